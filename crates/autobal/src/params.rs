@@ -1,0 +1,373 @@
+//! Parameters of the spatial rotor of papers 000 and 003: the SI description an engineer
+//! writes down, and the papers' dimensionless parameters derived from it (000, eqs (4), (5),
+//! (8), (10)).
+//!
+//! Axis convention: `z` runs along the shaft from the left support towards the right one.
+//! `l_cL = z_C − z_L`, `l_cR = z_R − z_C` (negative for an overhung rotor beyond the right
+//! support), `z_A = z_plane − z_C`. With this convention the papers' coupling coefficient
+//! `c_yα = c_L l_cL − c_R l_cR` and their antiresonance formula (003, eq (1)) follow from the
+//! forced response of the locked rotor (see `ranges::antiresonance_speed`).
+
+use crate::error::{finite, non_negative, positive, Error, Result};
+use crate::inertia::{self, Anisotropy, AnisotropyMethod, BallSet};
+use serde::Serialize;
+
+/// A rigid rotor on two isotropic elastic-viscous supports, with a point unbalance mass and an
+/// n-ball autobalancer in one plane A. SI units throughout.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SpatialRotorSi {
+    /// Rotor mass `M_r` (kg), without unbalance mass and balls.
+    pub rotor_mass: f64,
+    /// Equatorial moment of inertia `A_r` about the rotor's own centre of mass G (kg·m²).
+    pub equatorial_moment: f64,
+    /// Polar moment of inertia `C_r` (kg·m²).
+    pub polar_moment: f64,
+    /// Axial position of G (m).
+    pub z_rotor: f64,
+    /// Axial position of the balancer plane A, which also carries the unbalance (m).
+    pub z_balancer: f64,
+    /// Axial position of the left support (m).
+    pub z_left: f64,
+    /// Axial position of the right support (m); must exceed `z_left`.
+    pub z_right: f64,
+    /// Left support stiffness `c_L` (N/m).
+    pub stiffness_left: f64,
+    /// Right support stiffness `c_R` (N/m).
+    pub stiffness_right: f64,
+    /// Left support viscous damping `h_L` (N·s/m).
+    pub damping_left: f64,
+    /// Right support viscous damping `h_R` (N·s/m).
+    pub damping_right: f64,
+    /// Unbalance mass `m0` (kg).
+    pub unbalance_mass: f64,
+    /// Radius of the unbalance mass `R0` (m).
+    pub unbalance_radius: f64,
+    /// Number of balls `n` (0 for a rotor without balancer).
+    pub balls: u32,
+    /// Mass of one ball `m` (kg).
+    pub ball_mass: f64,
+    /// Race radius `R` (radius of the balls' centres) (m).
+    pub race_radius: f64,
+    /// Viscous drag on each ball's motion relative to the rotor `h_A` (N·s/m).
+    pub ball_drag: f64,
+}
+
+/// Masses and radii of unbalance and balls in the papers' dimensionless form (000, eq (17)):
+/// `m̄0 = m0/M_s`, `R̄0 = R0/ρ_s`, `m̄ = n m/M_s` (all balls together), `R̄ = R/ρ_s`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct MassSet {
+    /// `m̄0`, relative unbalance mass.
+    pub m0: f64,
+    /// `R̄0`, relative unbalance radius.
+    pub r0: f64,
+    /// `m̄`, relative mass of all balls together.
+    pub m: f64,
+    /// `R̄`, relative race radius.
+    pub r: f64,
+    /// `n`, number of balls.
+    pub n: u32,
+}
+
+impl MassSet {
+    /// `Ā_m0 = m̄0 R̄0²`: the unbalance mass's polar moment relative to `A_Σ`.
+    pub fn a_m0(&self) -> f64 {
+        self.m0 * self.r0 * self.r0
+    }
+    /// `Ā_m = m̄ R̄²`: the balls' polar moment relative to `A_Σ`.
+    pub fn a_m(&self) -> f64 {
+        self.m * self.r * self.r
+    }
+    /// Balancer capacity `E = m̄ R̄ / (m̄0 R̄0)` (000): the balls can cancel the unbalance
+    /// only when `E ≥ 1` (and, for one ball, `E = 1`). Infinite when there is no unbalance.
+    pub fn capacity(&self) -> f64 {
+        let s0 = self.m0 * self.r0;
+        if s0 == 0.0 {
+            f64::INFINITY
+        } else {
+            self.m * self.r / s0
+        }
+    }
+    /// The set of balls as the inertia module sees it.
+    pub fn ball_set(&self) -> BallSet {
+        BallSet { n: self.n, a_m0: self.a_m0(), a_m: self.a_m(), capacity: self.capacity() }
+    }
+}
+
+/// Dimensionless damping coefficients (000, eq (10)): `h̄x = h_x/(M_s ω0)`,
+/// `h̄α = h_α/(A_Σ ω0)`, `h̄yα = h_yα/(ω0 sqrt(M_s A_Σ))`, `h̄s = h_A/(m ω0)`.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct Damping {
+    /// `h̄x`, translational support damping.
+    pub h_x: f64,
+    /// `h̄α`, angular support damping.
+    pub h_alpha: f64,
+    /// `h̄yα`, cross damping between translation and tilt.
+    pub h_y_alpha: f64,
+    /// `h̄s`, drag on the balls' relative motion.
+    pub h_s: f64,
+}
+
+/// Scale factors back to SI, present when the model was built from a dimensional rotor.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Scale {
+    /// `ω0 = sqrt(c_x / M_s)` (rad/s): the unit of every dimensionless speed Ω.
+    pub omega0: f64,
+    /// `M_s = M_r + m0 + n m` (kg).
+    pub total_mass: f64,
+    /// `ρ_s = sqrt(A_Σ / M_s)` (m).
+    pub rho_s: f64,
+    /// Support span `l = z_R − z_L` (m).
+    pub span: f64,
+}
+
+/// The dimensionless spatial model every analysis of papers 000/003 works on.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SpatialModel {
+    /// `C̄Σ = C_Σ / A_Σ`: rotor type (long `< 1`, spherical `= 1`, short `> 1`).
+    pub c_sigma: f64,
+    /// `ρ̄s = ρ_s / l`, when known.
+    pub rho_s: Option<f64>,
+    /// `l̄_L = l_cL / l`, when known.
+    pub l_left: Option<f64>,
+    /// `p̄α² = c_α / (A_Σ ω0²)`: squared angular natural frequency of the supports.
+    pub p_alpha_sq: f64,
+    /// `c̄yα = c_yα / (ω0² sqrt(M_s A_Σ))`: translation–tilt coupling of the supports.
+    pub c_y_alpha: f64,
+    /// `z̄_A = z_A / ρ_s`: position of plane A relative to the common centre of mass C.
+    pub z_a: f64,
+    /// Inertia anisotropy of the composite rotor at balance (000, eq (17) and exact tensor).
+    pub anisotropy: Anisotropy,
+    /// `ΔĀ0`: anisotropy of the unbalance mass alone (003), used by the autobalancing ranges.
+    pub delta_a0: f64,
+    /// Dimensionless damping.
+    pub damping: Damping,
+    /// Masses, when the anisotropy was derived from them.
+    pub masses: Option<MassSet>,
+    /// SI scale factors, when built from a dimensional rotor.
+    pub scale: Option<Scale>,
+}
+
+/// Support coefficients for identical supports from `l̄_L` and `ρ̄s` (000, eq (10)):
+/// `p̄α² = (l̄_L² + (1 − l̄_L)²)/(2 ρ̄s²)`, `c̄yα = (2 l̄_L − 1)/(2 ρ̄s)`.
+pub fn identical_support_coefficients(l_left: f64, rho_s: f64) -> (f64, f64) {
+    let p_sq = (l_left * l_left + (1.0 - l_left) * (1.0 - l_left)) / (2.0 * rho_s * rho_s);
+    let c = (2.0 * l_left - 1.0) / (2.0 * rho_s);
+    (p_sq, c)
+}
+
+/// How the anisotropy of a dimensionless model is specified.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum AnisotropyInput {
+    /// `ΔĀ` given directly; it also serves as `ΔĀ0`, as in the worked examples of 003.
+    Direct(f64),
+    /// From masses and radii; `d_a` optionally fixes `D_A` for eq (17) when `n ≥ 3`.
+    Masses { masses: MassSet, d_a: Option<f64> },
+}
+
+/// Inputs of a dimensionless model in the papers' symbols, identical supports assumed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DimensionlessInput {
+    /// `C̄Σ`.
+    pub c_sigma: f64,
+    /// `ρ̄s`.
+    pub rho_s: f64,
+    /// `l̄_L`.
+    pub l_left: f64,
+    /// `z̄_A`.
+    pub z_a: f64,
+    /// The anisotropy specification.
+    pub anisotropy: AnisotropyInput,
+    /// `h̄x`; `h̄α`, `h̄yα` follow for identical supports.
+    pub h_x: f64,
+    /// `h̄s`.
+    pub h_s: f64,
+    /// Which anisotropy the analyses use.
+    pub method: AnisotropyMethod,
+}
+
+impl SpatialModel {
+    /// Build from the papers' dimensionless parameters, identical supports.
+    ///
+    /// Damping for identical supports: `h̄α = h̄x (l̄_L² + (1 − l̄_L)²)/(2 ρ̄s²)`,
+    /// `h̄yα = h̄x (2 l̄_L − 1)/(2 ρ̄s)` (same algebra as the stiffnesses).
+    pub fn from_dimensionless(inp: &DimensionlessInput) -> Result<Self> {
+        let p = "dimensionless";
+        positive(&format!("{p}.c_sigma"), inp.c_sigma)?;
+        positive(&format!("{p}.rho_s"), inp.rho_s)?;
+        finite(&format!("{p}.l_left"), inp.l_left)?;
+        finite(&format!("{p}.z_a"), inp.z_a)?;
+        non_negative(&format!("{p}.h_x"), inp.h_x)?;
+        non_negative(&format!("{p}.h_s"), inp.h_s)?;
+        let (p_alpha_sq, c_y_alpha) = identical_support_coefficients(inp.l_left, inp.rho_s);
+        let (anisotropy, delta_a0, masses) = match inp.anisotropy {
+            AnisotropyInput::Direct(d) => {
+                non_negative(&format!("{p}.delta_a"), d)?;
+                (Anisotropy::given(d), d, None)
+            }
+            AnisotropyInput::Masses { masses, d_a } => {
+                validate_masses(p, &masses)?;
+                let a = inertia::anisotropy(&masses.ball_set(), d_a, inp.method)
+                    .map_err(|e| prefix_field(e, p))?;
+                (a, 0.5 * masses.a_m0(), Some(masses))
+            }
+        };
+        let damping = Damping {
+            h_x: inp.h_x,
+            h_alpha: inp.h_x * p_alpha_sq,
+            h_y_alpha: inp.h_x * c_y_alpha,
+            h_s: inp.h_s,
+        };
+        Ok(SpatialModel {
+            c_sigma: inp.c_sigma,
+            rho_s: Some(inp.rho_s),
+            l_left: Some(inp.l_left),
+            p_alpha_sq,
+            c_y_alpha,
+            z_a: inp.z_a,
+            anisotropy,
+            delta_a0,
+            damping,
+            masses,
+            scale: None,
+        })
+    }
+
+    /// Build from an SI rotor (000, eqs (4), (5), (8), (10)):
+    /// `M_s = M_r + m0 + n m`, `z_C` from `M_r z_G + (m0 + n m) z_A = 0`,
+    /// `A_Σ = A_r + M_r z_G² + (m0 + n m) z_A² + ½ m0 R0² + ½ n m R²`,
+    /// `C_Σ = C_r + m0 R0² + n m R²`, `c_x = c_L + c_R`, `c_α = c_L l_cL² + c_R l_cR²`,
+    /// `c_yα = c_L l_cL − c_R l_cR` (and likewise for damping), `ω0 = sqrt(c_x/M_s)`.
+    pub fn from_si(r: &SpatialRotorSi, method: AnisotropyMethod) -> Result<Self> {
+        positive("rotor.mass", r.rotor_mass)?;
+        positive("rotor.equatorial_moment", r.equatorial_moment)?;
+        positive("rotor.polar_moment", r.polar_moment)?;
+        finite("rotor.z", r.z_rotor)?;
+        finite("balancer.z", r.z_balancer)?;
+        finite("supports.z_left", r.z_left)?;
+        finite("supports.z_right", r.z_right)?;
+        if r.z_right <= r.z_left {
+            return Err(Error::invalid(
+                "supports.z_right",
+                format!(
+                    "the right support must lie beyond the left one (z_right = {} ≤ z_left = {}): the span l = z_right − z_left must be positive",
+                    r.z_right, r.z_left
+                ),
+            ));
+        }
+        positive("supports.stiffness_left", r.stiffness_left)?;
+        positive("supports.stiffness_right", r.stiffness_right)?;
+        non_negative("supports.damping_left", r.damping_left)?;
+        non_negative("supports.damping_right", r.damping_right)?;
+        non_negative("unbalance.mass", r.unbalance_mass)?;
+        non_negative("unbalance.radius", r.unbalance_radius)?;
+        non_negative("balancer.ball_mass", r.ball_mass)?;
+        non_negative("balancer.race_radius", r.race_radius)?;
+        non_negative("balancer.ball_drag", r.ball_drag)?;
+        if r.balls == 0 && r.ball_mass > 0.0 {
+            return Err(Error::invalid(
+                "balancer.balls",
+                "is 0 but balancer.ball_mass is given: set the number of balls, or ball_mass = 0",
+            ));
+        }
+        if r.balls > 0 && r.ball_mass == 0.0 {
+            return Err(Error::invalid("balancer.ball_mass", "must be positive when balancer.balls > 0"));
+        }
+        if r.balls > 0 && r.race_radius == 0.0 {
+            return Err(Error::invalid("balancer.race_radius", "must be positive when balancer.balls > 0"));
+        }
+        let n = r.balls as f64;
+        let m_ab = r.unbalance_mass + n * r.ball_mass; // mass in plane A
+        let ms = r.rotor_mass + m_ab;
+        let z_c = (r.rotor_mass * r.z_rotor + m_ab * r.z_balancer) / ms;
+        let z_g = r.z_rotor - z_c;
+        let z_a = r.z_balancer - z_c;
+        let l_cl = z_c - r.z_left;
+        let l_cr = r.z_right - z_c;
+        let span = r.z_right - r.z_left;
+        let a_m0 = r.unbalance_mass * r.unbalance_radius.powi(2);
+        let a_m = n * r.ball_mass * r.race_radius.powi(2);
+        let a_s = r.equatorial_moment + r.rotor_mass * z_g * z_g + m_ab * z_a * z_a;
+        let a_sigma = a_s + 0.5 * a_m0 + 0.5 * a_m;
+        let c_sigma_abs = r.polar_moment + a_m0 + a_m;
+        let (cl, cr) = (r.stiffness_left, r.stiffness_right);
+        let c_x = cl + cr;
+        let c_alpha = cl * l_cl * l_cl + cr * l_cr * l_cr;
+        let c_ya = cl * l_cl - cr * l_cr;
+        let (hl, hr) = (r.damping_left, r.damping_right);
+        let h_x = hl + hr;
+        let h_alpha = hl * l_cl * l_cl + hr * l_cr * l_cr;
+        let h_ya = hl * l_cl - hr * l_cr;
+        let omega0 = (c_x / ms).sqrt();
+        let rho = (a_sigma / ms).sqrt();
+        let masses = MassSet {
+            m0: r.unbalance_mass / ms,
+            r0: r.unbalance_radius / rho,
+            m: n * r.ball_mass / ms,
+            r: r.race_radius / rho,
+            n: r.balls,
+        };
+        let anisotropy = inertia::anisotropy(&masses.ball_set(), None, method)?;
+        let h_s = if r.balls > 0 { r.ball_drag / (r.ball_mass * omega0) } else { 0.0 };
+        Ok(SpatialModel {
+            c_sigma: c_sigma_abs / a_sigma,
+            rho_s: Some(rho / span),
+            l_left: Some(l_cl / span),
+            p_alpha_sq: c_alpha / (a_sigma * omega0 * omega0),
+            c_y_alpha: c_ya / (omega0 * omega0 * (ms * a_sigma).sqrt()),
+            z_a: z_a / rho,
+            anisotropy,
+            delta_a0: 0.5 * masses.a_m0(),
+            damping: Damping {
+                h_x: h_x / (ms * omega0),
+                h_alpha: h_alpha / (a_sigma * omega0),
+                h_y_alpha: h_ya / (omega0 * (ms * a_sigma).sqrt()),
+                h_s,
+            },
+            masses: Some(masses),
+            scale: Some(Scale { omega0, total_mass: ms, rho_s: rho, span }),
+        })
+    }
+
+    /// `ΔĪ_1,2 = 1 − C̄Σ ± ΔĀ` (000, eq (15)) for the anisotropy in use.
+    pub fn delta_i(&self) -> [f64; 2] {
+        let d = self.anisotropy.used;
+        [1.0 - self.c_sigma + d, 1.0 - self.c_sigma - d]
+    }
+
+    /// Copy of the model with the anisotropy in use replaced by `delta_a` (e.g. an end of the
+    /// interval of a multi-ball balancer, or 0 for the isotropic comparison rotor).
+    pub fn with_anisotropy(&self, delta_a: f64) -> Self {
+        let mut m = self.clone();
+        m.anisotropy.used = delta_a;
+        m
+    }
+}
+
+fn prefix_field(e: Error, prefix: &str) -> Error {
+    match e {
+        Error::InvalidParameter { field, reason } if !field.contains('.') => {
+            Error::InvalidParameter { field: format!("{prefix}.{field}"), reason }
+        }
+        other => other,
+    }
+}
+
+fn validate_masses(p: &str, m: &MassSet) -> Result<()> {
+    non_negative(&format!("{p}.m0"), m.m0)?;
+    non_negative(&format!("{p}.r0"), m.r0)?;
+    non_negative(&format!("{p}.m"), m.m)?;
+    non_negative(&format!("{p}.r"), m.r)?;
+    if m.n == 0 && m.m > 0.0 {
+        return Err(Error::invalid(format!("{p}.n"), "is 0 but the ball mass m is given: set n, or m = 0"));
+    }
+    if m.n > 0 && m.m == 0.0 {
+        return Err(Error::invalid(format!("{p}.m"), "must be positive when n > 0"));
+    }
+    if m.m0 + m.m >= 1.0 {
+        return Err(Error::invalid(
+            format!("{p}.m0"),
+            format!("m0 + m = {} must stay below 1: they are fractions of the total mass M_s", m.m0 + m.m),
+        ));
+    }
+    Ok(())
+}
