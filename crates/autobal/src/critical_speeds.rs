@@ -51,7 +51,8 @@ impl RotorClass {
 
     /// Number of distinct critical speeds Table 1 predicts (generic parameters).
     pub fn table1_count(self, delta_a: f64, symmetric: bool) -> usize {
-        if delta_a == 0.0 {
+        // below 1e-9 the split (of order ΔĀ) is below the resolution of `distinct_count`
+        if delta_a <= 1e-9 {
             return if self == RotorClass::Long { 2 } else { 1 };
         }
         match (self, symmetric) {

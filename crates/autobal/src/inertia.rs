@@ -151,7 +151,13 @@ pub fn anisotropy(set: &BallSet, d_a: Option<f64>, method: AnisotropyMethod) -> 
     }
     let (paper, paper_interval, exact, ball_angles, d_used) = if set.n <= 2 || !can_balance {
         let angles = if can_balance { balancing_angles(set).unwrap() } else { vec![PI; set.n as usize] };
-        let (dc, ds) = mean_double_angle(&angles);
+        // two balls at π ± β, cos β = 1/E: D = cos 2β = 2/E² − 1 exactly (no trigonometric
+        // round-off, so 000's base case E = 2 comes out exactly isotropic)
+        let (dc, ds) = if set.n == 2 && can_balance && set.capacity.is_finite() {
+            (2.0 / (set.capacity * set.capacity) - 1.0, 0.0)
+        } else {
+            mean_double_angle(&angles)
+        };
         let da_natural = dc.hypot(ds);
         if set.n <= 2 {
             if let Some(d) = d_a {
@@ -167,7 +173,7 @@ pub fn anisotropy(set: &BallSet, d_a: Option<f64>, method: AnisotropyMethod) -> 
             }
         }
         let paper = 0.5 * set.a_m0 + 0.5 * set.a_m * da_natural;
-        let exact = exact_anisotropy_of(set, &angles);
+        let exact = 0.5 * (set.a_m0 + set.a_m * dc).hypot(set.a_m * ds);
         (paper, [paper; 2], [exact; 2], Some(angles), da_natural)
     } else {
         let d = d_a.unwrap_or(1.0);

@@ -1,0 +1,294 @@
+//! Config files: TOML in a dimensional (SI) or a dimensionless form, `--set` overrides, and
+//! validation with errors that name the field.
+
+use anyhow::{anyhow, bail, Result};
+use autobal::inertia::AnisotropyMethod;
+use autobal::params::{AnisotropyInput, DimensionlessInput, MassSet, SpatialModel, SpatialRotorSi};
+use toml::{Table, Value};
+
+/// The embedded default example (paper 000's base case).
+pub const DEFAULT_CONFIG: &str = include_str!("../../../examples/default.toml");
+
+/// Every table and key the config understands.
+const SCHEMA: &[(&str, &[&str])] = &[
+    ("rotor", &["mass", "equatorial_moment", "polar_moment", "z"]),
+    ("supports", &["z_left", "z_right", "stiffness_left", "stiffness_right", "damping_left", "damping_right"]),
+    ("unbalance", &["mass", "radius"]),
+    ("balancer", &["z", "balls", "ball_mass", "race_radius", "drag"]),
+    (
+        "dimensionless",
+        &["c_sigma", "rho_s", "l_left", "z_a", "delta_a", "m0", "r0", "m", "r", "n", "d_a", "h_x", "h_s"],
+    ),
+    ("analysis", &["anisotropy", "sensitivity_limit", "omega_max"]),
+];
+
+/// Analysis settings from the `[analysis]` table.
+#[derive(Debug, Clone)]
+pub struct Analysis {
+    #[allow(dead_code)] // recorded for completeness; the model already carries it
+    pub method: AnisotropyMethod,
+    pub sensitivity_limit: f64,
+    /// Upper end of speed axes in plots (dimensionless); default from the critical speeds.
+    pub omega_max: Option<f64>,
+}
+
+/// A loaded, validated config.
+#[derive(Debug, Clone)]
+pub struct Config {
+    pub model: SpatialModel,
+    pub analysis: Analysis,
+    /// Where it came from, for the report.
+    pub source: String,
+    /// The merged TOML text, for the report.
+    pub text: String,
+    pub dimensional: bool,
+}
+
+/// Parse a `--set key=value` value as TOML (number, bool, array, quoted string), falling back
+/// to a bare string.
+fn parse_value(raw: &str) -> Value {
+    match format!("v = {raw}").parse::<Table>() {
+        Ok(mut t) => t.remove("v").unwrap(),
+        Err(_) => Value::String(raw.to_string()),
+    }
+}
+
+/// Apply one `key=value` override with a dotted key.
+pub fn apply_set(root: &mut Table, assignment: &str) -> Result<()> {
+    let (key, value) = assignment
+        .split_once('=')
+        .ok_or_else(|| anyhow!("--set {assignment}: expected key=value, e.g. --set dimensionless.l_left=1.2"))?;
+    let key = key.trim();
+    let parts: Vec<&str> = key.split('.').collect();
+    if parts.len() != 2 || parts.iter().any(|p| p.is_empty()) {
+        bail!("--set {key}: expected a dotted key table.field, e.g. dimensionless.l_left");
+    }
+    check_key(parts[0], Some(parts[1]))?;
+    let table = root
+        .entry(parts[0].to_string())
+        .or_insert_with(|| Value::Table(Table::new()))
+        .as_table_mut()
+        .ok_or_else(|| anyhow!("--set {key}: `{}` is not a table", parts[0]))?;
+    table.insert(parts[1].to_string(), parse_value(value.trim()));
+    Ok(())
+}
+
+fn check_key(table: &str, key: Option<&str>) -> Result<()> {
+    let Some((_, keys)) = SCHEMA.iter().find(|(t, _)| *t == table) else {
+        let known: Vec<&str> = SCHEMA.iter().map(|(t, _)| *t).collect();
+        bail!("{table}: unknown table (known tables: {})", known.join(", "));
+    };
+    if let Some(k) = key {
+        if !keys.contains(&k) {
+            bail!("{table}.{k}: unknown key (known keys of [{table}]: {})", keys.join(", "));
+        }
+    }
+    Ok(())
+}
+
+struct Section<'a> {
+    name: &'static str,
+    table: Option<&'a Table>,
+}
+
+impl<'a> Section<'a> {
+    fn get(&self, key: &str) -> Option<&'a Value> {
+        self.table.and_then(|t| t.get(key))
+    }
+    fn f64(&self, key: &str) -> Result<Option<f64>> {
+        match self.get(key) {
+            None => Ok(None),
+            Some(Value::Float(f)) => Ok(Some(*f)),
+            Some(Value::Integer(i)) => Ok(Some(*i as f64)),
+            Some(v) => bail!("{}.{key}: expected a number, got {}", self.name, describe(v)),
+        }
+    }
+    fn req(&self, key: &str) -> Result<f64> {
+        self.f64(key)?.ok_or_else(|| anyhow!("{}.{key}: missing (required)", self.name))
+    }
+    fn count(&self, key: &str) -> Result<Option<u32>> {
+        match self.get(key) {
+            None => Ok(None),
+            Some(Value::Integer(i)) if *i >= 0 && *i <= 10_000 => Ok(Some(*i as u32)),
+            Some(Value::Integer(i)) => bail!("{}.{key}: must be a whole number between 0 and 10000, got {i}", self.name),
+            Some(v) => bail!("{}.{key}: expected a whole number, got {}", self.name, describe(v)),
+        }
+    }
+    fn string(&self, key: &str) -> Result<Option<&'a str>> {
+        match self.get(key) {
+            None => Ok(None),
+            Some(Value::String(s)) => Ok(Some(s)),
+            Some(v) => bail!("{}.{key}: expected a string, got {}", self.name, describe(v)),
+        }
+    }
+}
+
+fn describe(v: &Value) -> String {
+    match v {
+        Value::String(s) => format!("the string \"{s}\""),
+        Value::Table(_) => "a table".into(),
+        Value::Array(_) => "an array".into(),
+        other => other.to_string(),
+    }
+}
+
+/// Load the config text (or the embedded default), apply overrides, validate, build the model.
+pub fn load(path: Option<&std::path::Path>, sets: &[String]) -> Result<Config> {
+    let (text, source) = match path {
+        Some(p) => (
+            std::fs::read_to_string(p).map_err(|e| anyhow!("--config {}: cannot read: {e}", p.display()))?,
+            p.display().to_string(),
+        ),
+        None => (DEFAULT_CONFIG.to_string(), "embedded default (examples/default.toml)".to_string()),
+    };
+    let mut root: Table = text.parse::<Table>().map_err(|e| {
+        let msg = e.message().replace('\n', " ");
+        let line = e.span().map(|s| text[..s.start].lines().count().max(1));
+        match line {
+            Some(l) => anyhow!("{source}: line {l}: {msg}"),
+            None => anyhow!("{source}: {msg}"),
+        }
+    })?;
+    for s in sets {
+        apply_set(&mut root, s)?;
+    }
+    for (name, value) in &root {
+        check_key(name, None)?;
+        let t = value.as_table().ok_or_else(|| anyhow!("{name}: expected a table [{name}]"))?;
+        for k in t.keys() {
+            check_key(name, Some(k))?;
+        }
+    }
+    let sec = |name: &'static str| Section { name, table: root.get(name).and_then(Value::as_table) };
+    let an = sec("analysis");
+    let method = match an.string("anisotropy")? {
+        None | Some("exact") => AnisotropyMethod::Exact,
+        Some("paper") => AnisotropyMethod::Paper,
+        Some(o) => bail!("analysis.anisotropy: must be \"exact\" or \"paper\", got \"{o}\""),
+    };
+    let sensitivity_limit = an.f64("sensitivity_limit")?.unwrap_or(autobal::sensitivity::DEFAULT_LIMIT);
+    if !(sensitivity_limit > 0.0 && sensitivity_limit < 1.0) {
+        bail!("analysis.sensitivity_limit: must lie in (0, 1), got {sensitivity_limit}");
+    }
+    let omega_max = an.f64("omega_max")?;
+    if let Some(w) = omega_max {
+        if !(w > 0.0 && w.is_finite()) {
+            bail!("analysis.omega_max: must be a positive number, got {w}");
+        }
+    }
+    let dimensional_tables = ["rotor", "supports", "unbalance", "balancer"];
+    let has_dim = dimensional_tables.iter().any(|t| root.contains_key(*t));
+    let has_nondim = root.contains_key("dimensionless");
+    let model = match (has_dim, has_nondim) {
+        (true, true) => bail!(
+            "dimensionless: give either the dimensional tables [rotor], [supports], [unbalance], [balancer] or [dimensionless], not both"
+        ),
+        (false, false) => bail!("config: no model: give [dimensionless] or the dimensional tables [rotor] and [supports]"),
+        (true, false) => {
+            let (r, s, u, b) = (sec("rotor"), sec("supports"), sec("unbalance"), sec("balancer"));
+            let si = SpatialRotorSi {
+                rotor_mass: r.req("mass")?,
+                equatorial_moment: r.req("equatorial_moment")?,
+                polar_moment: r.req("polar_moment")?,
+                z_rotor: r.req("z")?,
+                z_balancer: b.f64("z")?.map_or_else(|| if b.table.is_some() || u.table.is_some() { Err(anyhow!("balancer.z: missing (required: the plane of balls and unbalance)")) } else { Ok(0.0) }, Ok)?,
+                z_left: s.req("z_left")?,
+                z_right: s.req("z_right")?,
+                stiffness_left: s.req("stiffness_left")?,
+                stiffness_right: s.req("stiffness_right")?,
+                damping_left: s.f64("damping_left")?.unwrap_or(0.0),
+                damping_right: s.f64("damping_right")?.unwrap_or(0.0),
+                unbalance_mass: u.f64("mass")?.unwrap_or(0.0),
+                unbalance_radius: u.f64("radius")?.unwrap_or(0.0),
+                balls: b.count("balls")?.unwrap_or(0),
+                ball_mass: b.f64("ball_mass")?.unwrap_or(0.0),
+                race_radius: b.f64("race_radius")?.unwrap_or(0.0),
+                ball_drag: b.f64("drag")?.unwrap_or(0.0),
+            };
+            SpatialModel::from_si(&si, method)?
+        }
+        (false, true) => {
+            let d = sec("dimensionless");
+            let direct = d.f64("delta_a")?;
+            let mass_keys = ["m0", "r0", "m", "r", "n"];
+            let any_mass = mass_keys.iter().any(|k| d.get(k).is_some());
+            let anisotropy = match (direct, any_mass) {
+                (Some(_), true) => bail!(
+                    "dimensionless.delta_a: give either delta_a or the masses m0, r0, m, r, n it is computed from, not both"
+                ),
+                (Some(v), false) => {
+                    if d.get("d_a").is_some() {
+                        bail!("dimensionless.d_a: only used with the masses m0, r0, m, r, n (delta_a is given directly)");
+                    }
+                    AnisotropyInput::Direct(v)
+                }
+                (None, true) => AnisotropyInput::Masses {
+                    masses: MassSet {
+                        m0: d.req("m0")?,
+                        r0: d.req("r0")?,
+                        m: d.f64("m")?.unwrap_or(0.0),
+                        r: d.f64("r")?.unwrap_or(0.0),
+                        n: d.count("n")?.unwrap_or(0),
+                    },
+                    d_a: d.f64("d_a")?,
+                },
+                (None, false) => AnisotropyInput::Direct(0.0),
+            };
+            SpatialModel::from_dimensionless(&DimensionlessInput {
+                c_sigma: d.req("c_sigma")?,
+                rho_s: d.req("rho_s")?,
+                l_left: d.req("l_left")?,
+                z_a: d.f64("z_a")?.unwrap_or(0.0),
+                anisotropy,
+                h_x: d.f64("h_x")?.unwrap_or(0.0),
+                h_s: d.f64("h_s")?.unwrap_or(0.0),
+                method,
+            })?
+        }
+    };
+    Ok(Config {
+        model,
+        analysis: Analysis { method, sensitivity_limit, omega_max },
+        source,
+        text: toml::to_string(&root).unwrap_or(text),
+        dimensional: has_dim,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn err(sets: &[&str]) -> String {
+        let s: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+        format!("{:#}", load(None, &s).unwrap_err())
+    }
+
+    #[test]
+    fn default_loads() {
+        let c = load(None, &[]).unwrap();
+        assert!((c.model.c_sigma - 0.75).abs() < 1e-15);
+    }
+
+    #[test]
+    fn errors_name_the_field() {
+        assert!(err(&["dimensionless.l_lef=1"]).starts_with("dimensionless.l_lef: unknown key"));
+        assert!(err(&["dimensionless.rho_s=0"]).starts_with("dimensionless.rho_s: must be positive"));
+        assert!(err(&["dimensionless.m0=-0.1"]).starts_with("dimensionless.m0: must not be negative"));
+        assert!(err(&["dimensionless.c_sigma=nan"]).starts_with("dimensionless.c_sigma: must be a finite number"));
+        assert!(err(&["dimensionless.c_sigma=\"big\""]).starts_with("dimensionless.c_sigma: expected a number"));
+        assert!(err(&["analysis.anisotropy=sideways"]).starts_with("analysis.anisotropy: must be"));
+        assert!(err(&["rotor.mass=1"]).starts_with("dimensionless: give either"));
+        assert!(err(&["nonsense"]).starts_with("--set nonsense: expected key=value"));
+        assert!(err(&["foo.bar=1"]).starts_with("foo: unknown table"));
+        assert!(err(&["dimensionless.n=0"]).starts_with("dimensionless.n: is 0 but"));
+        assert!(err(&["dimensionless.d_a=0.3"]).starts_with("dimensionless.d_a: with n = 2"));
+    }
+
+    #[test]
+    fn set_overrides_and_types() {
+        let c = load(None, &["dimensionless.l_left=1.2".into(), "dimensionless.c_sigma=1".into()]).unwrap();
+        assert_eq!(c.model.l_left, Some(1.2));
+        assert_eq!(c.model.c_sigma, 1.0);
+    }
+}

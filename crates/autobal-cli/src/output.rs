@@ -1,0 +1,266 @@
+//! Tables and JSON for the analytic commands.
+
+use crate::config::Config;
+use autobal::critical_speeds::{critical_speeds, CriticalSpeeds};
+use autobal::inertia::composite_inertia;
+use autobal::ranges::{autobalancing_ranges, AutobalancingRanges, SpeedRange};
+use autobal::sensitivity::sensitivity;
+use serde_json::{json, Value};
+use std::fmt::Write;
+
+/// `[lo, hi]` pairs with `null` for an unbounded end.
+pub fn ranges_value(r: &[SpeedRange]) -> Value {
+    Value::Array(r.iter().map(|x| json!([x.lo, x.hi])).collect())
+}
+
+fn model_json(cfg: &Config) -> Value {
+    let m = &cfg.model;
+    json!({
+        "c_sigma": m.c_sigma,
+        "rho_s": m.rho_s,
+        "l_left": m.l_left,
+        "z_a": m.z_a,
+        "p_alpha": m.p_alpha_sq.sqrt(),
+        "p_alpha_sq": m.p_alpha_sq,
+        "c_y_alpha": m.c_y_alpha,
+        "delta_a0": m.delta_a0,
+        "damping": m.damping,
+        "masses": m.masses,
+        "scale": m.scale,
+        "source": cfg.source,
+    })
+}
+
+fn anisotropy_json(cfg: &Config) -> Value {
+    let a = &cfg.model.anisotropy;
+    json!({
+        "paper": a.paper,
+        "exact": a.exact[1],
+        "used": a.used,
+        "method": a.method,
+        "exact_interval": a.exact,
+        "paper_interval": a.paper_interval,
+        "used_interval": a.used_interval,
+        "d_a": a.d_a,
+        "ball_angles_rad": a.ball_angles,
+        "can_balance": a.can_balance,
+        "warnings": a.warnings,
+    })
+}
+
+pub fn inertia_json(cfg: &Config) -> Value {
+    json!({
+        "model": model_json(cfg),
+        "inertia": composite_inertia(&cfg.model),
+        "anisotropy": anisotropy_json(cfg),
+    })
+}
+
+pub fn critical_json(cfg: &Config) -> Value {
+    let cs = critical_speeds(&cfg.model);
+    let ar = autobalancing_ranges(&cfg.model);
+    let s = sensitivity(&cfg.model, cfg.analysis.sensitivity_limit);
+    json!({
+        "critical_speeds": cs.speeds,
+        "distinct_count": cs.distinct_count,
+        "table1_count": cs.table1_count,
+        "rotor_type": cs.rotor_class,
+        "antiresonance_speed": ar.antiresonance_speed,
+        "autobalancing_ranges": ranges_value(&ar.ranges),
+        "balancing_class": ar.class,
+        "sensitivity": s,
+        "anisotropy": anisotropy_json(cfg),
+        "model": model_json(cfg),
+    })
+}
+
+pub fn ranges_json(cfg: &Config) -> Value {
+    let ar = autobalancing_ranges(&cfg.model);
+    let omega0 = cfg.model.scale.map(|s| s.omega0);
+    json!({
+        "antiresonance_speed": ar.antiresonance_speed,
+        "autobalancing_ranges": ranges_value(&ar.ranges),
+        "autobalancing_ranges_rpm": omega0.map(|w| ranges_value(&scale_ranges(&ar.ranges, w * 30.0 / std::f64::consts::PI))),
+        "phase_condition_ranges": ranges_value(&ar.phase_condition),
+        "instability_ranges": ranges_value(&ar.instability),
+        "critical_speeds_unbalanced_rotor": ar.critical_speeds,
+        "balancing_class": ar.class,
+        "delta_a0": cfg.model.delta_a0,
+        "model": model_json(cfg),
+    })
+}
+
+pub fn scale_ranges(r: &[SpeedRange], k: f64) -> Vec<SpeedRange> {
+    r.iter().map(|x| SpeedRange { lo: x.lo * k, hi: x.hi.map(|h| h * k) }).collect()
+}
+
+/// `a – b` or `a – ∞`.
+pub fn fmt_range(r: &SpeedRange, prec: usize) -> String {
+    match r.hi {
+        Some(h) => format!("{:.prec$} – {:.prec$}", r.lo, h),
+        None => format!("{:.prec$} – ∞", r.lo),
+    }
+}
+
+pub fn fmt_ranges(r: &[SpeedRange], prec: usize) -> String {
+    if r.is_empty() {
+        "none".into()
+    } else {
+        r.iter().map(|x| fmt_range(x, prec)).collect::<Vec<_>>().join(", ")
+    }
+}
+
+fn opt(x: Option<f64>, prec: usize) -> String {
+    x.map_or("—".into(), |v| format!("{v:.prec$}"))
+}
+
+fn header(cfg: &Config, s: &mut String) {
+    let m = &cfg.model;
+    let _ = writeln!(s, "config: {}", cfg.source);
+    let _ = writeln!(
+        s,
+        "C̄Σ = {:.4}  ρ̄s = {}  l̄_L = {}  z̄_A = {:.4}  p̄α = {:.4}  c̄yα = {:.4}",
+        m.c_sigma,
+        opt(m.rho_s, 4),
+        opt(m.l_left, 4),
+        m.z_a,
+        m.p_alpha_sq.sqrt(),
+        m.c_y_alpha
+    );
+    if let Some(sc) = m.scale {
+        let _ = writeln!(
+            s,
+            "ω0 = {:.4} rad/s ({:.1} rpm), M_s = {:.4} kg, ρ_s = {:.4} m, span l = {:.4} m",
+            sc.omega0,
+            sc.omega0 * 30.0 / std::f64::consts::PI,
+            sc.total_mass,
+            sc.rho_s,
+            sc.span
+        );
+    }
+    let a = &m.anisotropy;
+    let _ = writeln!(
+        s,
+        "anisotropy ΔĀ: used {:.6} ({:?}); exact tensor {}; paper eq (17) {}",
+        a.used,
+        a.method,
+        fmt_pair(a.exact),
+        fmt_pair(a.paper_interval)
+    );
+    for w in &a.warnings {
+        let _ = writeln!(s, "warning: {w}");
+    }
+}
+
+fn fmt_pair(p: [f64; 2]) -> String {
+    if (p[0] - p[1]).abs() <= 1e-12 * p[1].abs().max(1.0) {
+        format!("{:.6}", p[0])
+    } else {
+        format!("[{:.6}, {:.6}]", p[0], p[1])
+    }
+}
+
+pub fn inertia_table(cfg: &Config) -> String {
+    let mut s = String::new();
+    header(cfg, &mut s);
+    let ci = composite_inertia(&cfg.model);
+    let unit = if ci.si { " kg·m²" } else { " ×A_Σ" };
+    let _ = writeln!(s, "\ncomposite inertia");
+    if let Some(mt) = ci.total_mass {
+        let _ = writeln!(s, "  M_s   = {mt:.6} kg");
+    }
+    for (k, v) in [("A_Σ", ci.a_sigma), ("C_Σ", ci.c_sigma), ("A_C1", ci.a_c1), ("A_C2", ci.a_c2), ("ΔA", ci.delta_a)] {
+        let _ = writeln!(s, "  {k:<5} = {v:.6}{unit}");
+    }
+    if let Some(ang) = &cfg.model.anisotropy.ball_angles {
+        let deg: Vec<String> = ang.iter().map(|a| format!("{:.2}°", a.to_degrees())).collect();
+        let _ = writeln!(s, "  ball angles at balance (from the unbalance): {}", deg.join(", "));
+    }
+    s
+}
+
+pub fn critical_rows(cs: &CriticalSpeeds, dimensional: bool) -> Vec<[String; 8]> {
+    cs.speeds
+        .iter()
+        .enumerate()
+        .map(|(i, k)| {
+            [
+                format!("Ω_K{}", i + 1),
+                format!("{:.6}", k.omega),
+                format!("{:?}", k.kind).to_lowercase(),
+                k.branch.to_string(),
+                opt(k.approx_symmetric, 4),
+                opt(k.approx_near_symmetric, 4),
+                opt(k.approx_small_anisotropy, 4),
+                if dimensional {
+                    format!("{:.2} rad/s = {:.1} rpm", k.omega_rad_s.unwrap_or(f64::NAN), k.rpm.unwrap_or(f64::NAN))
+                } else {
+                    k.interval.map_or("—".into(), |iv| {
+                        if (iv[1] - iv[0]).abs() < 1e-12 {
+                            "—".into()
+                        } else {
+                            format!("[{:.4}, {:.4}]", iv[0], iv[1])
+                        }
+                    })
+                },
+            ]
+        })
+        .collect()
+}
+
+pub fn critical_table(cfg: &Config) -> String {
+    let mut s = String::new();
+    header(cfg, &mut s);
+    let cs = critical_speeds(&cfg.model);
+    let last = if cfg.dimensional { "SI" } else { "over ΔĀ interval" };
+    let _ = writeln!(
+        s,
+        "\ncritical speeds (exact roots of eq (16)); approximations (18) symmetric, (19) near-symmetric, (20) small ΔĀ"
+    );
+    let _ = writeln!(s, "  {:<6} {:>10}  {:<10} {:>2}  {:>7} {:>7} {:>7}  {}", "", "Ω", "kind", "br", "(18)", "(19)", "(20)", last);
+    for r in critical_rows(&cs, cfg.dimensional) {
+        let _ = writeln!(s, "  {:<6} {:>10}  {:<10} {:>2}  {:>7} {:>7} {:>7}  {}", r[0], r[1], r[2], r[3], r[4], r[5], r[6], r[7]);
+    }
+    let _ = writeln!(
+        s,
+        "  {} distinct; rotor class (Table 1): {:?}, which Table 1 says has {}",
+        cs.distinct_count, cs.rotor_class, cs.table1_count
+    );
+    let se = sensitivity(&cfg.model, cfg.analysis.sensitivity_limit);
+    let _ = writeln!(s, "\nsensitivity criterion (000 eqs (21)-(22), 003 eqs (4)-(5))");
+    let _ = writeln!(
+        s,
+        "  δΩ_Kα1,2 exact: {}, {}   eq (22): {}, {}",
+        opt(se.delta_exact[0], 4),
+        opt(se.delta_exact[1], 4),
+        opt(se.delta_approx[0], 4),
+        opt(se.delta_approx[1], 4)
+    );
+    let _ = writeln!(s, "  [ΔĀ0] = {:.4} for [δΩ_Kα] = {}{}", se.delta_a_limit, se.limit, se.m0_limit.map_or(String::new(), |m| format!(", i.e. [m̄0] = {m:.4}")));
+    let _ = writeln!(s, "  verdict: {}", se.reason);
+    s.push_str(&ranges_block(cfg, &autobalancing_ranges(&cfg.model)));
+    s
+}
+
+fn ranges_block(cfg: &Config, ar: &AutobalancingRanges) -> String {
+    let mut s = String::new();
+    let _ = writeln!(s, "\nautobalancing (003 eqs (1)-(3), anisotropy of the unbalance alone ΔĀ0 = {:.4})", cfg.model.delta_a0);
+    let _ = writeln!(s, "  antiresonance Ω_a = {}", opt(ar.antiresonance_speed, 4));
+    let _ = writeln!(s, "  critical speeds of the unbalanced rotor: {}", ar.critical_speeds.iter().map(|w| format!("{w:.4}")).collect::<Vec<_>>().join(", "));
+    let _ = writeln!(s, "  phase condition (1) holds: {}", fmt_ranges(&ar.phase_condition, 4));
+    let _ = writeln!(s, "  split-pair instability:   {}", fmt_ranges(&ar.instability, 4));
+    let _ = writeln!(s, "  autobalancing possible:   {}", fmt_ranges(&ar.ranges, 4));
+    if let Some(sc) = cfg.model.scale {
+        let k = sc.omega0 * 30.0 / std::f64::consts::PI;
+        let _ = writeln!(s, "                            {} rpm", fmt_ranges(&scale_ranges(&ar.ranges, k), 0));
+    }
+    let _ = writeln!(s, "  class (003): {:?}", ar.class);
+    s
+}
+
+pub fn ranges_table(cfg: &Config) -> String {
+    let mut s = String::new();
+    header(cfg, &mut s);
+    s.push_str(&ranges_block(cfg, &autobalancing_ranges(&cfg.model)));
+    s
+}

@@ -1,0 +1,163 @@
+//! The HTML report: parameters, tables, and the figures, written into one folder.
+//! Figures are written one by one before the index, so an interrupted run keeps them.
+
+use crate::config::Config;
+use crate::figures;
+use crate::output::{critical_rows, fmt_ranges, scale_ranges};
+use anyhow::{Context, Result};
+use autobal::critical_speeds::critical_speeds;
+use autobal::inertia::{composite_inertia, AnisotropyMethod};
+use autobal::params::{AnisotropyInput, DimensionlessInput, SpatialModel};
+use autobal::ranges::{antiresonance_speed, autobalancing_ranges};
+use autobal::sensitivity::sensitivity;
+use std::fmt::Write;
+use std::path::{Path, PathBuf};
+
+fn esc(s: &str) -> String {
+    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")
+}
+
+fn table(head: &[&str], rows: &[Vec<String>]) -> String {
+    let mut s = String::from("<table><tr>");
+    for h in head {
+        let _ = write!(s, "<th>{}</th>", esc(h));
+    }
+    s.push_str("</tr>\n");
+    for r in rows {
+        s.push_str("<tr>");
+        for c in r {
+            let _ = write!(s, "<td>{}</td>", esc(c));
+        }
+        s.push_str("</tr>\n");
+    }
+    s.push_str("</table>\n");
+    s
+}
+
+fn paper_examples() -> String {
+    let printed: [(f64, f64, f64, [f64; 4], f64); 3] = [
+        (0.5, 1.25, 0.0, [1.0, 1.0, 2.11, 3.23], 1.67),
+        (0.8, 1.46, 0.75, [0.837, 0.849, 2.52, 3.80], 2.24),
+        (1.2, 2.15, 1.75, [0.567, 0.575, 3.73, 5.61], 3.20),
+    ];
+    let mut rows = vec![];
+    for (l, p, c, k, wa) in printed {
+        let m = SpatialModel::from_dimensionless(&DimensionlessInput {
+            c_sigma: 0.75,
+            rho_s: 0.4,
+            l_left: l,
+            z_a: 0.8,
+            anisotropy: AnisotropyInput::Direct(0.1),
+            h_x: 0.0,
+            h_s: 0.0,
+            method: AnisotropyMethod::Exact,
+        })
+        .expect("paper base case is valid");
+        let cs: Vec<String> = critical_speeds(&m).speeds.iter().map(|s| format!("{:.4}", s.omega)).collect();
+        rows.push(vec![
+            format!("{l}"),
+            format!("{p} / {:.4}", m.p_alpha_sq.sqrt()),
+            format!("{c} / {:.4}", m.c_y_alpha),
+            format!("{:?} / {}", k, cs.join(", ")),
+            format!("{wa} / {:.4}", antiresonance_speed(&m).unwrap_or(f64::NAN)),
+            fmt_ranges(&autobalancing_ranges(&m).ranges, 3),
+        ]);
+    }
+    table(&["l̄_L", "p̄α printed / computed", "c̄yα", "Ω_K1-4 printed / computed", "Ω_a", "autobalancing ranges"], &rows)
+}
+
+/// Write the report into `dir`; returns the path of `index.html`.
+pub fn write(cfg: &Config, dir: &Path) -> Result<PathBuf> {
+    std::fs::create_dir_all(dir).with_context(|| format!("--out {}: cannot create the folder", dir.display()))?;
+    let m = &cfg.model;
+    let figs = figures::all(m, cfg.analysis.omega_max);
+    for f in &figs {
+        let p = dir.join(&f.file);
+        std::fs::write(&p, f.plot.to_svg()).with_context(|| format!("--out: cannot write {}", p.display()))?;
+    }
+    let mut h = String::new();
+    h.push_str(
+        r#"<!DOCTYPE html><html lang="en"><head><meta charset="utf-8"><title>autobal report</title>
+<style>
+body{font-family:system-ui,-apple-system,"DejaVu Sans",sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222;line-height:1.45}
+table{border-collapse:collapse;margin:.6em 0 1.2em}th,td{border:1px solid #ccc;padding:3px 8px;text-align:left;font-variant-numeric:tabular-nums}
+th{background:#f3f3f3}pre{background:#f7f7f7;padding:.8em;overflow:auto;font-size:90%}
+.warn{background:#fff4e0;border-left:4px solid #e69f00;padding:.4em .8em;margin:.5em 0}
+figure{margin:1.5em 0}figcaption{font-size:92%;color:#444;max-width:720px}
+</style></head><body>
+<h1>autobal report</h1>
+"#,
+    );
+    let _ = writeln!(h, "<p>Config: <code>{}</code>. Version {}.</p>", esc(&cfg.source), env!("CARGO_PKG_VERSION"));
+    for w in &m.anisotropy.warnings {
+        let _ = writeln!(h, "<div class=\"warn\">{}</div>", esc(w));
+    }
+
+    h.push_str("<h2>Parameters</h2>\n");
+    let mut rows = vec![
+        vec!["C̄Σ".into(), format!("{:.6}", m.c_sigma), "polar / mean equatorial moment".into()],
+        vec!["ρ̄s".into(), m.rho_s.map_or("—".into(), |v| format!("{v:.6}")), "radius of gyration / support span".into()],
+        vec!["l̄_L".into(), m.l_left.map_or("—".into(), |v| format!("{v:.6}")), "C from the left support / span".into()],
+        vec!["z̄_A".into(), format!("{:.6}", m.z_a), "balancer plane from C / ρ_s".into()],
+        vec!["p̄α".into(), format!("{:.6}", m.p_alpha_sq.sqrt()), "angular support frequency".into()],
+        vec!["c̄yα".into(), format!("{:.6}", m.c_y_alpha), "translation–tilt coupling".into()],
+        vec!["ΔĀ (used)".into(), format!("{:.6}", m.anisotropy.used), format!("{:?}", m.anisotropy.method).to_lowercase()],
+        vec!["ΔĀ exact tensor".into(), format!("{:.6} – {:.6}", m.anisotropy.exact[0], m.anisotropy.exact[1]), "over the balancing positions".into()],
+        vec!["ΔĀ eq (17)".into(), format!("{:.6}", m.anisotropy.paper), format!("D_A = {}", m.anisotropy.d_a.map_or("—".into(), |d| format!("{d:.4}")))],
+        vec!["ΔĀ0".into(), format!("{:.6}", m.delta_a0), "unbalance mass alone (003)".into()],
+        vec!["h̄x, h̄α, h̄yα, h̄s".into(), format!("{:.4}, {:.4}, {:.4}, {:.4}", m.damping.h_x, m.damping.h_alpha, m.damping.h_y_alpha, m.damping.h_s), "damping".into()],
+    ];
+    if let Some(ms) = m.masses {
+        rows.push(vec!["m̄0, R̄0, m̄, R̄, n".into(), format!("{}, {}, {}, {}, {}", ms.m0, ms.r0, ms.m, ms.r, ms.n), format!("capacity E = {:.4}", ms.capacity())]);
+    }
+    if let Some(sc) = m.scale {
+        rows.push(vec!["ω0".into(), format!("{:.4} rad/s = {:.1} rpm", sc.omega0, sc.omega0 * 30.0 / std::f64::consts::PI), "unit of speed".into()]);
+    }
+    h.push_str(&table(&["symbol", "value", "meaning"], &rows));
+    let ci = composite_inertia(m);
+    let unit = if ci.si { "kg·m²" } else { "A_Σ" };
+    h.push_str(&table(
+        &["A_Σ", "C_Σ", "A_C1", "A_C2", "ΔA", "unit"],
+        &[vec![format!("{:.6}", ci.a_sigma), format!("{:.6}", ci.c_sigma), format!("{:.6}", ci.a_c1), format!("{:.6}", ci.a_c2), format!("{:.6}", ci.delta_a), unit.into()]],
+    ));
+
+    h.push_str("<h2>Critical speeds</h2>\n<p>Exact roots of Δ1Δ2 = 0 (000, eq (16)) with the approximations (18) symmetric, (19) near-symmetric, (20) small anisotropy.</p>\n");
+    let cs = critical_speeds(m);
+    let rows: Vec<Vec<String>> = critical_rows(&cs, cfg.dimensional).into_iter().map(|r| r.to_vec()).collect();
+    h.push_str(&table(&["", "Ω", "kind", "branch", "(18)", "(19)", "(20)", if cfg.dimensional { "SI" } else { "over ΔĀ interval" }], &rows));
+    let _ = writeln!(h, "<p>{} distinct critical speeds; rotor class (Table 1, short-rotor boundary corrected to C̄Σ &gt; 1 + ΔĀ): {:?}, for which Table 1 predicts {}.</p>", cs.distinct_count, cs.rotor_class, cs.table1_count);
+
+    let se = sensitivity(m, cfg.analysis.sensitivity_limit);
+    h.push_str("<h2>Sensitivity criterion</h2>\n");
+    let f = |x: Option<f64>| x.map_or("—".into(), |v| format!("{v:.4}"));
+    h.push_str(&table(
+        &["δΩ_Kα1 exact", "δΩ_Kα2 exact", "δΩ_Kα1 (22)", "δΩ_Kα2 (22)", "[δΩ_Kα]", "[ΔĀ0]", "[m̄0]"],
+        &[vec![f(se.delta_exact[0]), f(se.delta_exact[1]), f(se.delta_approx[0]), f(se.delta_approx[1]), format!("{}", se.limit), format!("{:.4}", se.delta_a_limit), f(se.m0_limit)]],
+    ));
+    let _ = writeln!(h, "<p><b>Verdict:</b> {}</p>", esc(&se.reason));
+
+    let ar = autobalancing_ranges(m);
+    h.push_str("<h2>Autobalancing ranges (003)</h2>\n");
+    let _ = writeln!(
+        h,
+        "<p>Antiresonance Ω_a = {}. Phase condition (1) holds on {}; split-pair instability on {}. <b>Autobalancing possible on {}</b>{}. Class: {:?}.</p>",
+        f(ar.antiresonance_speed),
+        fmt_ranges(&ar.phase_condition, 4),
+        fmt_ranges(&ar.instability, 4),
+        fmt_ranges(&ar.ranges, 4),
+        m.scale.map_or(String::new(), |sc| format!(" ({} rpm)", fmt_ranges(&scale_ranges(&ar.ranges, sc.omega0 * 30.0 / std::f64::consts::PI), 0))),
+        ar.class
+    );
+
+    h.push_str("<h2>Worked examples of papers 000 and 003</h2>\n<p>C̄Σ = 0.75, ρ̄s = 0.4, ΔĀ = 0.1, z̄_A = 0.8, as printed / as computed.</p>\n");
+    h.push_str(&paper_examples());
+
+    h.push_str("<h2>Figures</h2>\n");
+    for fg in &figs {
+        let _ = writeln!(h, "<figure><img src=\"{}\" alt=\"{}\"><figcaption>{}</figcaption></figure>", fg.file, esc(&fg.plot.title), esc(&fg.caption));
+    }
+    let _ = writeln!(h, "<h2>Config as used</h2>\n<pre>{}</pre>\n</body></html>", esc(&cfg.text));
+    let index = dir.join("index.html");
+    std::fs::write(&index, h).with_context(|| format!("--out: cannot write {}", index.display()))?;
+    Ok(index)
+}

@@ -1,0 +1,115 @@
+//! End-to-end tests of the `autobal` binary: outputs, JSON schema, errors.
+
+use std::process::Command;
+
+fn autobal(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_autobal")).args(args).output().expect("binary runs");
+    (out.status.code().unwrap_or(-1), String::from_utf8_lossy(&out.stdout).into(), String::from_utf8_lossy(&out.stderr).into())
+}
+
+fn json(args: &[&str]) -> serde_json::Value {
+    let (code, out, err) = autobal(args);
+    assert_eq!(code, 0, "{err}");
+    serde_json::from_str(&out).expect("valid JSON")
+}
+
+fn examples(name: &str) -> String {
+    format!("{}/../../examples/{name}", env!("CARGO_MANIFEST_DIR"))
+}
+
+#[test]
+fn critical_json_has_the_documented_fields() {
+    let v = json(&["critical", "--format", "json", "--set", "dimensionless.l_left=0.8", "--set", "analysis.anisotropy=paper"]);
+    let cs = v["critical_speeds"].as_array().unwrap();
+    assert_eq!(cs.len(), 4);
+    let w: Vec<f64> = cs.iter().map(|c| c["omega"].as_f64().unwrap()).collect();
+    assert!(w.windows(2).all(|p| p[0] <= p[1]), "ascending");
+    assert_eq!(cs[0]["kind"], "transverse");
+    assert_eq!(cs[3]["kind"], "angular");
+    assert!(cs[0]["branch"].is_u64());
+    assert!((w[3] - 3.80).abs() < 0.005);
+    assert_eq!(v["rotor_type"], "long");
+    assert_eq!(v["anisotropy"]["used"], v["anisotropy"]["paper"]);
+    assert_eq!(v["anisotropy"]["exact"].as_f64(), Some(0.0));
+    let r = v["autobalancing_ranges"].as_array().unwrap();
+    assert!(r.last().unwrap()[1].is_null(), "last range unbounded");
+    assert!(v["antiresonance_speed"].as_f64().unwrap() > 0.0);
+}
+
+#[test]
+fn delta_a_given_directly_reproduces_003() {
+    // `delta_a` serves as ΔĀ and ΔĀ0: 003's worked example for l_L = 0.8
+    let dir = std::env::temp_dir().join(format!("autobal-cfg-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let cfg = dir.join("c.toml");
+    std::fs::write(&cfg, "[dimensionless]\nc_sigma = 0.75\nrho_s = 0.4\nl_left = 0.8\nz_a = 0.8\ndelta_a = 0.1\n").unwrap();
+    let v = json(&["critical", "--format", "json", "--config", cfg.to_str().unwrap()]);
+    assert!((v["antiresonance_speed"].as_f64().unwrap() - 2.24).abs() < 0.005);
+    let r = v["autobalancing_ranges"].as_array().unwrap();
+    assert!((r[0][0].as_f64().unwrap() - 0.849).abs() < 0.0005);
+    assert!((r[1][0].as_f64().unwrap() - 3.80).abs() < 0.005);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn dimensional_example_runs_and_reports_si() {
+    let v = json(&["critical", "--config", &examples("dimensional.toml"), "--format", "json"]);
+    let c = &v["critical_speeds"][0];
+    assert!(c["rpm"].as_f64().unwrap() > 1000.0);
+    let ratio = c["omega_rad_s"].as_f64().unwrap() / c["omega"].as_f64().unwrap();
+    assert!((ratio - v["model"]["scale"]["omega0"].as_f64().unwrap()).abs() < 1e-9 * ratio);
+}
+
+#[test]
+fn ranges_and_inertia_commands() {
+    let v = json(&["ranges", "--format", "json"]);
+    assert!(v["autobalancing_ranges"].is_array());
+    let v = json(&["inertia", "--format", "json"]);
+    assert!(v["inertia"]["a_c1"].as_f64().unwrap() >= v["inertia"]["a_c2"].as_f64().unwrap());
+    let (code, out, _) = autobal(&["critical"]);
+    assert_eq!(code, 0);
+    assert!(out.contains("critical speeds") && out.contains("autobalancing possible"));
+}
+
+#[test]
+fn bad_input_is_one_line_naming_the_field() {
+    let dim = examples("dimensional.toml");
+    for (args, field) in [
+        (vec!["critical", "--set", "dimensionless.rho_s=-1"], "dimensionless.rho_s"),
+        (vec!["critical", "--set", "dimensionless.bogus=1"], "dimensionless.bogus"),
+        (vec!["critical", "--set", "dimensionless.m0=nan"], "dimensionless.m0"),
+        (vec!["critical", "--config", &dim, "--set", "supports.z_right=-1"], "supports.z_right"),
+        (vec!["critical", "--config", &dim, "--set", "rotor.mass=-3"], "rotor.mass"),
+        (vec!["critical", "--config", &dim, "--set", "balancer.balls=0"], "balancer.balls"),
+        (vec!["critical", "--config", "/nonexistent.toml"], "--config"),
+    ] {
+        let (code, out, err) = autobal(&args);
+        assert_ne!(code, 0, "{args:?} should fail");
+        assert!(out.is_empty());
+        assert_eq!(err.trim_end().lines().count(), 1, "one line: {err}");
+        assert!(err.contains(field), "{err} should name {field}");
+        assert!(!err.contains("panicked") && !err.contains("backtrace"));
+    }
+}
+
+#[test]
+fn report_writes_index_and_figures() {
+    let dir = std::env::temp_dir().join(format!("autobal-report-test-{}", std::process::id()));
+    let (code, _, err) = autobal(&["report", "--out", dir.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    let index = std::fs::read_to_string(dir.join("index.html")).unwrap();
+    let svgs: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .filter(|e| e.path().extension().is_some_and(|x| x == "svg"))
+        .collect();
+    assert!(svgs.len() >= 10);
+    for s in &svgs {
+        let name = s.file_name().into_string().unwrap();
+        assert!(index.contains(&name), "index links {name}");
+        let text = std::fs::read_to_string(s.path()).unwrap();
+        assert!(text.starts_with("<svg") && text.trim_end().ends_with("</svg>"));
+        assert!(!text.contains("NaN"));
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
