@@ -210,15 +210,18 @@ pub fn load(path: Option<&std::path::Path>, sets: &[String]) -> Result<Config> {
         (false, true) => {
             let d = sec("dimensionless");
             let direct = d.f64("delta_a")?;
-            let mass_keys = ["m0", "r0", "m", "r", "n"];
-            let any_mass = mass_keys.iter().any(|k| d.get(k).is_some());
+            let any_mass = ["m0", "r0", "r"].iter().any(|k| d.get(k).is_some());
+            let mut direct_balls = None;
             let anisotropy = match (direct, any_mass) {
                 (Some(_), true) => bail!(
-                    "dimensionless.delta_a: give either delta_a or the masses m0, r0, m, r, n it is computed from, not both"
+                    "dimensionless.delta_a: give either delta_a or the masses m0, r0, m, r, n it is computed from, not both (with delta_a, only m and d_a may describe the balls)"
                 ),
                 (Some(v), false) => {
-                    if d.get("d_a").is_some() {
-                        bail!("dimensionless.d_a: only used with the masses m0, r0, m, r, n (delta_a is given directly)");
+                    match (d.f64("m")?, d.f64("d_a")?) {
+                        (Some(m), Some(da)) => direct_balls = Some((m, da)),
+                        (None, None) => {}
+                        (Some(_), None) => bail!("dimensionless.d_a: required with delta_a and m (D_A of the balls for the linear model)"),
+                        (None, Some(_)) => bail!("dimensionless.m: required with delta_a and d_a (the balls' mass fraction for the linear model)"),
                     }
                     AnisotropyInput::Direct(v)
                 }
@@ -243,6 +246,7 @@ pub fn load(path: Option<&std::path::Path>, sets: &[String]) -> Result<Config> {
                 h_x: d.f64("h_x")?.unwrap_or(0.0),
                 h_s: d.f64("h_s")?.unwrap_or(0.0),
                 method,
+                direct_balls,
             })?
         }
     };

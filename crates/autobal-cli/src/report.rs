@@ -51,6 +51,7 @@ fn paper_examples() -> String {
             h_x: 0.0,
             h_s: 0.0,
             method: AnisotropyMethod::Exact,
+            direct_balls: None,
         })
         .expect("paper base case is valid");
         let cs: Vec<String> = critical_speeds(&m).speeds.iter().map(|s| format!("{:.4}", s.omega)).collect();

@@ -56,7 +56,9 @@ pub struct Anisotropy {
     pub method: AnisotropyMethod,
     /// `D_A` of eq (17) in force.
     pub d_a: Option<f64>,
-    /// Ball angles at balance relative to the unbalance direction (rad), when unique.
+    /// Ball angles at balance relative to the unbalance direction (rad): the unique balancing
+    /// position for `n ≤ 2`; for `n ≥ 3` the member of the family with the largest exact
+    /// anisotropy (the worst case, which `exact[1]` and the linear model refer to).
     pub ball_angles: Option<Vec<f64>>,
     /// Whether the balls can cancel the unbalance (`E ≥ 1`; `E = 1` for one ball).
     pub can_balance: bool,
@@ -179,7 +181,7 @@ pub fn anisotropy(set: &BallSet, d_a: Option<f64>, method: AnisotropyMethod) -> 
         let d = d_a.unwrap_or(1.0);
         let paper = 0.5 * set.a_m0 + 0.5 * set.a_m * d;
         let interval = exact_interval(set);
-        (paper, [0.5 * set.a_m0, 0.5 * (set.a_m0 + set.a_m)], [interval.min, interval.max], None, d)
+        (paper, [0.5 * set.a_m0, 0.5 * (set.a_m0 + set.a_m)], [interval.min, interval.max], Some(interval.argmax), d)
     };
     let (used, used_interval) = match method {
         AnisotropyMethod::Paper => (paper, if d_a.is_some() || set.n <= 2 { [paper; 2] } else { paper_interval }),
@@ -393,4 +395,31 @@ pub fn composite_inertia(model: &crate::params::SpatialModel) -> CompositeInerti
         delta_a: d,
         si,
     }
+}
+
+/// Ball-coupling matrix `d_A` of the ball equation (000, eq (6); MODEL.md §1) in the principal
+/// frame of the composite rotor, where the inertia reads `I_C = E + ΔĀ E_A` with `ΔĀ ≥ 0`.
+///
+/// With `D = (1/n) Σ exp(2 i α_j)` (angles from the unbalance) and the complex anisotropy
+/// `Z = Ā_m0 + Ā_m D`, the principal frame is turned by `ψ = ½ arg Z`, so `D' = D e^{−2iψ}` and
+/// `d_A = [[1 − D'_c, −D'_s], [−D'_s, 1 + D'_c]]` (the sum of the balls' tangent projectors,
+/// `(2/n) Σ t_j t_jᵀ`). The paper's form `diag(1 − D_A, 1 + D_A)` is the case `D' = D_A ≥ 0`.
+pub fn ball_coupling_exact(set: &BallSet, angles: &[f64]) -> [[f64; 2]; 2] {
+    let (dc, ds) = if set.n == 2 && set.capacity.is_finite() && set.capacity >= 1.0 {
+        (2.0 / (set.capacity * set.capacity) - 1.0, 0.0)
+    } else {
+        mean_double_angle(angles)
+    };
+    let (zr, zi) = (set.a_m0 + set.a_m * dc, set.a_m * ds);
+    let two_psi = if zr == 0.0 && zi == 0.0 { 0.0 } else { zi.atan2(zr) };
+    let (c, s) = (two_psi.cos(), two_psi.sin());
+    // D' = D (cos 2ψ − i sin 2ψ)
+    let dpc = dc * c + ds * s;
+    let dps = ds * c - dc * s;
+    [[1.0 - dpc, -dps], [-dps, 1.0 + dpc]]
+}
+
+/// The paper's ball-coupling matrix `d_A = diag(1 − D_A, 1 + D_A)` (000, eq (6)).
+pub fn ball_coupling_paper(d_a: f64) -> [[f64; 2]; 2] {
+    [[1.0 - d_a, 0.0], [0.0, 1.0 + d_a]]
 }

@@ -14,6 +14,11 @@
 //! - [`sensitivity`]: the criterion of 000 eqs (21)-(22) / 003 eqs (4)-(5).
 //! - [`ranges`]: antiresonance speed and the speed ranges where autobalancing is possible
 //!   (003, eqs (1)-(3)).
+//! - [`linear_model`]: the linearised equations of the balanced state (000, eq (6)), balls free
+//!   (12 states) or locked (8 states).
+//! - [`eigen`]: eigenvalues of small dense matrices (balancing, Hessenberg, Francis QR),
+//!   characteristic polynomial and Routh–Hurwitz test.
+//! - [`stability`]: exact stability ranges, Campbell diagrams, stability verdicts for maps.
 //!
 //! ## Symbols (papers 000 and 003)
 //! | symbol | meaning |
@@ -34,10 +39,13 @@
 //! | `h̄x, h̄α, h̄yα, h̄s` | dimensionless damping and ball drag |
 
 pub mod critical_speeds;
+pub mod eigen;
 pub mod error;
 pub mod inertia;
+pub mod linear_model;
 pub mod params;
 pub mod ranges;
 pub mod sensitivity;
+pub mod stability;
 
 pub use error::{Error, Result};

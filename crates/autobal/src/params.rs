@@ -120,6 +120,16 @@ pub struct Scale {
     pub span: f64,
 }
 
+/// The balls as the linear model's ball equation sees them (000, eq (6)):
+/// `s'' + h̄s s' + ½ m̄ d_A (…) = 0`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct BallCoupling {
+    /// `m̄ = n m / M_s`.
+    pub m_bar: f64,
+    /// `d_A` in the frame of the model's inertia (see `inertia::ball_coupling_exact`).
+    pub d_a: [[f64; 2]; 2],
+}
+
 /// The dimensionless spatial model every analysis of papers 000/003 works on.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SpatialModel {
@@ -145,6 +155,8 @@ pub struct SpatialModel {
     pub masses: Option<MassSet>,
     /// SI scale factors, when built from a dimensional rotor.
     pub scale: Option<Scale>,
+    /// Ball coupling for the linear model with free balls, when the balls are described.
+    pub balls: Option<BallCoupling>,
 }
 
 /// Support coefficients for identical supports from `l̄_L` and `ρ̄s` (000, eq (10)):
@@ -183,6 +195,9 @@ pub struct DimensionlessInput {
     pub h_s: f64,
     /// Which anisotropy the analyses use.
     pub method: AnisotropyMethod,
+    /// With `delta_a` given directly: the balls' `m̄` and `D_A` for the linear model's ball
+    /// equation (`d_A = diag(1 − D_A, 1 + D_A)`), if the balls are to be free.
+    pub direct_balls: Option<(f64, f64)>,
 }
 
 impl SpatialModel {
@@ -202,6 +217,12 @@ impl SpatialModel {
         let (anisotropy, delta_a0, masses) = match inp.anisotropy {
             AnisotropyInput::Direct(d) => {
                 non_negative(&format!("{p}.delta_a"), d)?;
+                if let Some((m, d_a)) = inp.direct_balls {
+                    positive(&format!("{p}.m"), m)?;
+                    if !(0.0..=1.0).contains(&d_a) {
+                        return Err(Error::invalid(format!("{p}.d_a"), format!("D_A must lie in [0, 1], got {d_a}")));
+                    }
+                }
                 (Anisotropy::given(d), d, None)
             }
             AnisotropyInput::Masses { masses, d_a } => {
@@ -217,7 +238,13 @@ impl SpatialModel {
             h_y_alpha: inp.h_x * c_y_alpha,
             h_s: inp.h_s,
         };
+        let balls = match (masses, inp.direct_balls) {
+            (Some(ms), _) => ball_coupling(&ms, &anisotropy),
+            (None, Some((m_bar, d_a))) => Some(BallCoupling { m_bar, d_a: inertia::ball_coupling_paper(d_a) }),
+            _ => None,
+        };
         Ok(SpatialModel {
+            balls,
             c_sigma: inp.c_sigma,
             rho_s: Some(inp.rho_s),
             l_left: Some(inp.l_left),
@@ -309,6 +336,7 @@ impl SpatialModel {
         let anisotropy = inertia::anisotropy(&masses.ball_set(), None, method)?;
         let h_s = if r.balls > 0 { r.ball_drag / (r.ball_mass * omega0) } else { 0.0 };
         Ok(SpatialModel {
+            balls: ball_coupling(&masses, &anisotropy),
             c_sigma: c_sigma_abs / a_sigma,
             rho_s: Some(rho / span),
             l_left: Some(l_cl / span),
@@ -341,6 +369,18 @@ impl SpatialModel {
         m.anisotropy.used = delta_a;
         m
     }
+}
+
+/// Ball coupling of the linear model from the masses and the anisotropy in use.
+fn ball_coupling(ms: &MassSet, a: &Anisotropy) -> Option<BallCoupling> {
+    if ms.n == 0 || ms.m == 0.0 {
+        return None;
+    }
+    let d_a = match (a.method, &a.ball_angles) {
+        (AnisotropyMethod::Paper, _) | (_, None) => inertia::ball_coupling_paper(a.d_a.unwrap_or(1.0)),
+        (_, Some(angles)) => inertia::ball_coupling_exact(&ms.ball_set(), angles),
+    };
+    Some(BallCoupling { m_bar: ms.m, d_a })
 }
 
 fn prefix_field(e: Error, prefix: &str) -> Error {

@@ -17,6 +17,7 @@ pub fn base(l_left: f64) -> SpatialModel {
         h_x: 0.0,
         h_s: 0.0,
         method: AnisotropyMethod::Exact,
+        direct_balls: None,
     })
     .unwrap()
 }
@@ -76,6 +77,7 @@ fn paper_003_m0_limit_is_0_035_not_0_017() {
         h_x: 0.0,
         h_s: 0.0,
         method: AnisotropyMethod::Exact,
+        direct_balls: None,
     })
     .unwrap();
     assert!((m.delta_a0 - 0.1).abs() < 1e-15, "003: m̄0 = 0.05, R̄0 = 2 → ΔĀ0 = 0.1");

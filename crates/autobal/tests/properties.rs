@@ -34,6 +34,7 @@ fn model(c_sigma: f64, rho_s: f64, l_left: f64, z_a: f64, delta_a: f64) -> Spati
         h_x: 0.0,
         h_s: 0.0,
         method: AnisotropyMethod::Exact,
+        direct_balls: None,
     })
     .unwrap()
 }

@@ -1,0 +1,205 @@
+//! The linearised equations of the balanced state in axes rotating with the rotor
+//! (000, eq (6); MODEL.md §1), as a quadratic pencil `M q'' + G q' + K q = 0` and as the
+//! first-order system `y' = A y`.
+//!
+//! Coordinates `q = (ξ_c, η_c, δ, θ, s_ξ, s_η)`: translation `w` of the common centre of mass,
+//! tilt `χ`, total unbalance `s` of balls plus unbalance mass. With `E_c = [[0, −1], [1, 0]]`,
+//! `E_A = diag(−1, 1)`:
+//!
+//! ```text
+//! w'' + H_w w' + K_w w + h̄yα E_c χ' + K_wχ χ + s'' + 2Ω E_c s' − Ω² s = 0
+//! I_C χ'' + H_χ χ' + K_χ χ − h̄yα E_c w' − K_wχ w + z̄_A E_c (s'' + 2Ω E_c s' − Ω² s) = 0
+//! s'' + h̄s s' + ½ m̄ d_A (w'' + 2Ω E_c w' − Ω² w − z̄_A E_c (χ'' + 2Ω E_c χ' − Ω² χ)) = 0
+//! H_w = h̄x E + 2Ω E_c            H_χ = h̄α E + Ω (2 − C̄Σ) E_c
+//! K_w = (1 − Ω²) E + Ω h̄x E_c    K_wχ = −Ω h̄yα E + c̄yα E_c
+//! K_χ = (p̄α² − Ω² (1 − C̄Σ)) E + ΔĀ Ω² E_A + Ω h̄α E_c      I_C = E + ΔĀ E_A
+//! ```
+//!
+//! The mass matrix is not block-diagonal: `s` couples into `w` and `χ` through `M`. The
+//! anisotropy `ΔĀ ≥ 0` and `d_A` are in the composite's principal frame
+//! (`inertia::ball_coupling_exact`), or the paper's `diag(1 ∓ D_A)` on request.
+
+use crate::error::{Error, Result};
+use crate::params::SpatialModel;
+
+/// Largest number of generalised coordinates (balls free).
+pub const MAX_COORDS: usize = 6;
+/// Largest state dimension.
+pub const MAX_STATES: usize = 2 * MAX_COORDS;
+
+/// A square matrix of at most [`MAX_COORDS`] rows, stored on the stack.
+pub type Mat6 = [[f64; MAX_COORDS]; MAX_COORDS];
+/// A square matrix of at most [`MAX_STATES`] rows, stored on the stack.
+pub type Mat12 = [[f64; MAX_STATES]; MAX_STATES];
+
+/// Whether the balls move (12 states) or are locked at balance (`s ≡ 0`, 8 states).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Balls {
+    /// Balls free: coordinates `w, χ, s`.
+    Free,
+    /// Balls locked: the bare anisotropic rotor, coordinates `w, χ`.
+    Locked,
+}
+
+/// The pencil `M λ² + G λ + K` of the linearised equations at one speed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Pencil {
+    /// Number of coordinates (4 or 6).
+    pub n: usize,
+    /// Mass matrix.
+    pub m: Mat6,
+    /// Gyroscopic + damping matrix.
+    pub g: Mat6,
+    /// Stiffness + circulatory matrix.
+    pub k: Mat6,
+}
+
+type B2 = [[f64; 2]; 2];
+const E: B2 = [[1.0, 0.0], [0.0, 1.0]];
+const EC: B2 = [[0.0, -1.0], [1.0, 0.0]];
+const EA: B2 = [[-1.0, 0.0], [0.0, 1.0]];
+
+fn lin(terms: &[(f64, B2)]) -> B2 {
+    let mut r = [[0.0; 2]; 2];
+    for (a, b) in terms {
+        for i in 0..2 {
+            for j in 0..2 {
+                r[i][j] += a * b[i][j];
+            }
+        }
+    }
+    r
+}
+
+fn mul(a: B2, b: B2) -> B2 {
+    let mut r = [[0.0; 2]; 2];
+    for i in 0..2 {
+        for j in 0..2 {
+            r[i][j] = a[i][0] * b[0][j] + a[i][1] * b[1][j];
+        }
+    }
+    r
+}
+
+fn put(m: &mut Mat6, bi: usize, bj: usize, b: B2) {
+    for i in 0..2 {
+        for j in 0..2 {
+            m[2 * bi + i][2 * bj + j] = b[i][j];
+        }
+    }
+}
+
+impl Pencil {
+    /// Assemble the pencil of `model` at dimensionless speed `omega` (000, eq (6)).
+    ///
+    /// Fails when the balls are to be free but the model does not describe them.
+    pub fn new(model: &SpatialModel, omega: f64, balls: Balls) -> Result<Self> {
+        let w = omega;
+        let w2 = w * w;
+        let d = model.anisotropy.used;
+        let dm = &model.damping;
+        let (p2, c, z, cs) = (model.p_alpha_sq, model.c_y_alpha, model.z_a, model.c_sigma);
+        let h_w = lin(&[(dm.h_x, E), (2.0 * w, EC)]);
+        let h_chi = lin(&[(dm.h_alpha, E), (w * (2.0 - cs), EC)]);
+        let k_w = lin(&[(1.0 - w2, E), (w * dm.h_x, EC)]);
+        let k_wchi = lin(&[(-w * dm.h_y_alpha, E), (c, EC)]);
+        let k_chi = lin(&[(p2 - w2 * (1.0 - cs), E), (d * w2, EA), (w * dm.h_alpha, EC)]);
+        let i_c = lin(&[(1.0, E), (d, EA)]);
+        let mut pen = Pencil { n: 4, m: [[0.0; 6]; 6], g: [[0.0; 6]; 6], k: [[0.0; 6]; 6] };
+        put(&mut pen.m, 0, 0, E);
+        put(&mut pen.m, 1, 1, i_c);
+        put(&mut pen.g, 0, 0, h_w);
+        put(&mut pen.g, 0, 1, lin(&[(dm.h_y_alpha, EC)]));
+        put(&mut pen.g, 1, 0, lin(&[(-dm.h_y_alpha, EC)]));
+        put(&mut pen.g, 1, 1, h_chi);
+        put(&mut pen.k, 0, 0, k_w);
+        put(&mut pen.k, 0, 1, k_wchi);
+        put(&mut pen.k, 1, 0, lin(&[(-1.0, k_wchi)]));
+        put(&mut pen.k, 1, 1, k_chi);
+        if balls == Balls::Locked {
+            return Ok(pen);
+        }
+        let b = model.balls.ok_or_else(|| {
+            Error::invalid(
+                "dimensionless.m",
+                "the linear model with free balls needs the balls: give the masses (m0, r0, m, r, n), or m and d_a beside delta_a, or a dimensional [balancer]",
+            )
+        })?;
+        pen.n = 6;
+        let hm = 0.5 * b.m_bar;
+        let da = b.d_a;
+        // w rows: s'' + 2Ω E_c s' − Ω² s
+        put(&mut pen.m, 0, 2, E);
+        put(&mut pen.g, 0, 2, lin(&[(2.0 * w, EC)]));
+        put(&mut pen.k, 0, 2, lin(&[(-w2, E)]));
+        // χ rows: z̄ E_c (s'' + 2Ω E_c s' − Ω² s)
+        put(&mut pen.m, 1, 2, lin(&[(z, EC)]));
+        put(&mut pen.g, 1, 2, lin(&[(-2.0 * w * z, E)]));
+        put(&mut pen.k, 1, 2, lin(&[(-w2 * z, EC)]));
+        // s rows: s'' + h̄s s' + ½ m̄ d_A (w'' + 2Ω E_c w' − Ω² w − z̄ E_c (χ'' + 2Ω E_c χ' − Ω² χ))
+        let da_ec = mul(da, EC);
+        put(&mut pen.m, 2, 0, lin(&[(hm, da)]));
+        put(&mut pen.g, 2, 0, lin(&[(2.0 * w * hm, da_ec)]));
+        put(&mut pen.k, 2, 0, lin(&[(-w2 * hm, da)]));
+        put(&mut pen.m, 2, 1, lin(&[(-z * hm, da_ec)]));
+        put(&mut pen.g, 2, 1, lin(&[(2.0 * w * z * hm, da)]));
+        put(&mut pen.k, 2, 1, lin(&[(w2 * z * hm, da_ec)]));
+        put(&mut pen.m, 2, 2, E);
+        put(&mut pen.g, 2, 2, lin(&[(dm.h_s, E)]));
+        Ok(pen)
+    }
+
+    /// State dimension `2n`.
+    pub fn states(&self) -> usize {
+        2 * self.n
+    }
+
+    /// First-order state matrix `A = [[0, I], [−M⁻¹K, −M⁻¹G]]` for `y = (q, q')`
+    /// (Gaussian elimination with partial pivoting on `M`).
+    pub fn state_matrix(&self) -> Mat12 {
+        let n = self.n;
+        // solve M [X Y] = [K G]
+        let mut m = self.m;
+        let mut rhs = [[0.0; 2 * MAX_COORDS]; MAX_COORDS];
+        for i in 0..n {
+            for j in 0..n {
+                rhs[i][j] = self.k[i][j];
+                rhs[i][n + j] = self.g[i][j];
+            }
+        }
+        for col in 0..n {
+            let p = (col..n).max_by(|&a, &b| m[a][col].abs().total_cmp(&m[b][col].abs())).unwrap();
+            m.swap(col, p);
+            rhs.swap(col, p);
+            let piv = m[col][col];
+            for r in col + 1..n {
+                let f = m[r][col] / piv;
+                if f != 0.0 {
+                    for k in col..n {
+                        m[r][k] -= f * m[col][k];
+                    }
+                    for k in 0..2 * n {
+                        rhs[r][k] -= f * rhs[col][k];
+                    }
+                }
+            }
+        }
+        for col in (0..n).rev() {
+            for k in 0..2 * n {
+                let mut v = rhs[col][k];
+                for j in col + 1..n {
+                    v -= m[col][j] * rhs[j][k];
+                }
+                rhs[col][k] = v / m[col][col];
+            }
+        }
+        let mut a = [[0.0; MAX_STATES]; MAX_STATES];
+        for i in 0..n {
+            a[i][n + i] = 1.0;
+            for j in 0..2 * n {
+                a[n + i][j] = -rhs[i][j];
+            }
+        }
+        a
+    }
+}
