@@ -132,8 +132,8 @@ fn describe(v: &Value) -> String {
     }
 }
 
-/// Load the config text (or the embedded default), apply overrides, validate, build the model.
-pub fn load(path: Option<&std::path::Path>, sets: &[String]) -> Result<Config> {
+/// Read and parse the config text (or the embedded default) into a TOML table.
+pub fn read(path: Option<&std::path::Path>) -> Result<(Table, String)> {
     let (text, source) = match path {
         Some(p) => (
             std::fs::read_to_string(p).map_err(|e| anyhow!("--config {}: cannot read: {e}", p.display()))?,
@@ -141,7 +141,7 @@ pub fn load(path: Option<&std::path::Path>, sets: &[String]) -> Result<Config> {
         ),
         None => (DEFAULT_CONFIG.to_string(), "embedded default (examples/default.toml)".to_string()),
     };
-    let mut root: Table = text.parse::<Table>().map_err(|e| {
+    let root: Table = text.parse::<Table>().map_err(|e| {
         let msg = e.message().replace('\n', " ");
         let line = e.span().map(|s| text[..s.start].lines().count().max(1));
         match line {
@@ -149,10 +149,41 @@ pub fn load(path: Option<&std::path::Path>, sets: &[String]) -> Result<Config> {
             None => anyhow!("{source}: {msg}"),
         }
     })?;
+    Ok((root, source))
+}
+
+/// Set a numeric field `table.key` (checked against the schema).
+pub fn set_number(root: &mut Table, key: &str, value: f64) -> Result<()> {
+    let (t, k) = key.split_once('.').ok_or_else(|| anyhow!("{key}: expected a dotted key table.field"))?;
+    check_key(t, Some(k))?;
+    let table = root
+        .entry(t.to_string())
+        .or_insert_with(|| Value::Table(Table::new()))
+        .as_table_mut()
+        .ok_or_else(|| anyhow!("{key}: `{t}` is not a table"))?;
+    // keep integer fields integer (the ball count)
+    let v = match table.get(k) {
+        Some(Value::Integer(_)) if value.fract() == 0.0 => Value::Integer(value as i64),
+        _ => Value::Float(value),
+    };
+    table.insert(k.to_string(), v);
+    Ok(())
+}
+
+/// Load the config text (or the embedded default), apply overrides, validate, build the model.
+pub fn load(path: Option<&std::path::Path>, sets: &[String]) -> Result<Config> {
+    let (mut root, source) = read(path)?;
     for s in sets {
         apply_set(&mut root, s)?;
     }
-    for (name, value) in &root {
+    build(&root, &source)
+}
+
+/// Validate a config table and build the model.
+pub fn build(root: &Table, source: &str) -> Result<Config> {
+    let source = source.to_string();
+    let text = String::new();
+    for (name, value) in root {
         check_key(name, None)?;
         let t = value.as_table().ok_or_else(|| anyhow!("{name}: expected a table [{name}]"))?;
         for k in t.keys() {
@@ -254,7 +285,7 @@ pub fn load(path: Option<&std::path::Path>, sets: &[String]) -> Result<Config> {
         model,
         analysis: Analysis { method, sensitivity_limit, omega_max },
         source,
-        text: toml::to_string(&root).unwrap_or(text),
+        text: toml::to_string(root).unwrap_or(text),
         dimensional: has_dim,
     })
 }

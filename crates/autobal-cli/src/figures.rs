@@ -281,6 +281,7 @@ pub fn all(base: &SpatialModel, omega_max: Option<f64>) -> Vec<Figure> {
             vlines,
             x_range: Some((0.0, wmax)),
             y_range: Some((-ylim, ylim)),
+            raster: None,
         },
     });
 

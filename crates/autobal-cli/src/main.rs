@@ -3,11 +3,13 @@
 
 mod config;
 mod figures;
+mod linear;
+mod map;
 mod output;
 mod plot;
 mod report;
 
-use anyhow::Result;
+use anyhow::{Context, Result};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
 
@@ -26,6 +28,37 @@ struct Common {
     /// Override a config field, e.g. --set dimensionless.l_left=1.2 (repeatable)
     #[arg(long = "set", value_name = "KEY=VALUE", global = true)]
     set: Vec<String>,
+}
+
+#[derive(Args, Clone)]
+struct LinearArgs {
+    /// Upper end of the speed axis (dimensionless Ω); default: [analysis] omega_max, else automatic
+    #[arg(long)]
+    omega_max: Option<f64>,
+    /// Balls free (12 states) or locked at balance (8 states, the bare anisotropic rotor)
+    #[arg(long, value_enum, default_value = "free")]
+    balls: BallsArg,
+}
+
+#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
+enum BallsArg {
+    Free,
+    Locked,
+}
+
+impl From<BallsArg> for autobal::linear_model::Balls {
+    fn from(b: BallsArg) -> Self {
+        match b {
+            BallsArg::Free => autobal::linear_model::Balls::Free,
+            BallsArg::Locked => autobal::linear_model::Balls::Locked,
+        }
+    }
+}
+
+#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
+enum QuantityArg {
+    Margin,
+    Verdict,
 }
 
 #[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
@@ -57,6 +90,62 @@ enum Command {
         #[arg(long, value_enum, default_value = "table")]
         format: Format,
     },
+    /// Exact linear stability of the balanced state (eigenvalues of 000 eq (6)) vs 003's necessary ranges
+    Stability {
+        #[command(flatten)]
+        common: Common,
+        #[arg(long, value_enum, default_value = "table")]
+        format: Format,
+        #[command(flatten)]
+        lin: LinearArgs,
+        /// Grid points along Ω before the range ends are refined by bisection
+        #[arg(long, default_value_t = 2000)]
+        samples: usize,
+        /// Also write the margin plot as SVG to this file
+        #[arg(long)]
+        svg: Option<PathBuf>,
+    },
+    /// Campbell diagram: eigenvalues along Ω, tracked, with whirl direction and dominant motion
+    Campbell {
+        #[command(flatten)]
+        common: Common,
+        #[arg(long, value_enum, default_value = "table")]
+        format: Format,
+        #[command(flatten)]
+        lin: LinearArgs,
+        /// Number of speeds
+        #[arg(long, default_value_t = 300)]
+        points: usize,
+        /// Write PREFIX_rotating.svg and PREFIX_fixed.svg
+        #[arg(long, value_name = "PREFIX")]
+        svg: Option<PathBuf>,
+    },
+    /// Stability map over two parameters: margin heatmap with exact and necessary boundaries (SVG, PNG, CSV)
+    Map {
+        #[command(flatten)]
+        common: Common,
+        /// Horizontal axis, KEY=LO:HI:N with KEY `omega` or a config field (e.g. dimensionless.l_left)
+        #[arg(long, value_name = "KEY=LO:HI:N")]
+        x: String,
+        /// Vertical axis, KEY=LO:HI:N
+        #[arg(long, value_name = "KEY=LO:HI:N")]
+        y: String,
+        /// Speed Ω when neither axis is omega
+        #[arg(long)]
+        omega: Option<f64>,
+        /// Balls free (12 states) or locked (8 states)
+        #[arg(long, value_enum, default_value = "free")]
+        balls: BallsArg,
+        /// `margin`: max Re λ from the eigenvalues; `verdict`: Routh–Hurwitz only (faster)
+        #[arg(long, value_enum, default_value = "margin")]
+        quantity: QuantityArg,
+        /// Output stem: writes STEM.csv, STEM.svg, STEM.png
+        #[arg(long, short, default_value = "stability-map")]
+        out: PathBuf,
+        /// Worker threads (default: all cores)
+        #[arg(long)]
+        threads: Option<usize>,
+    },
     /// Write an HTML report with SVG figures to a folder
     Report {
         #[command(flatten)]
@@ -81,6 +170,35 @@ fn run(cli: Cli) -> Result<()> {
             let cfg = config::load(common.config.as_deref(), &common.set)?;
             emit(format, output::ranges_json(&cfg), output::ranges_table(&cfg))
         }
+        Command::Stability { common, format, lin, samples, svg } => {
+            let cfg = config::load(common.config.as_deref(), &common.set)?;
+            let w = linear::omega_max(&cfg, lin.omega_max)?;
+            if samples < 10 || samples > 1_000_000 {
+                anyhow::bail!("--samples: must lie between 10 and 1000000, got {samples}");
+            }
+            let c = linear::compare(&cfg.model, w, samples, lin.balls.into())?;
+            if let Some(p) = svg {
+                std::fs::write(&p, linear::margin_plot(&c).to_svg()).with_context(|| format!("--svg {}: cannot write", p.display()))?;
+            }
+            emit(format, linear::stability_json(&cfg, &c, lin.balls.into()), linear::stability_table(&cfg, &c, lin.balls.into()))
+        }
+        Command::Campbell { common, format, lin, points, svg } => {
+            let cfg = config::load(common.config.as_deref(), &common.set)?;
+            let w = linear::omega_max(&cfg, lin.omega_max)?;
+            if !(3..=100_000).contains(&points) {
+                anyhow::bail!("--points: must lie between 3 and 100000, got {points}");
+            }
+            let c = linear::campbell_of(&cfg, w, points, lin.balls.into())?;
+            if let Some(prefix) = svg {
+                let (rot, fixed) = linear::campbell_plots(&cfg.model, &c);
+                for (suffix, p) in [("rotating", rot), ("fixed", fixed)] {
+                    let path = PathBuf::from(format!("{}_{suffix}.svg", prefix.display()));
+                    std::fs::write(&path, p.to_svg()).with_context(|| format!("--svg: cannot write {}", path.display()))?;
+                }
+            }
+            emit(format, linear::campbell_json(&c), linear::campbell_table(&cfg, &c))
+        }
+        Command::Map { common, x, y, omega, balls, quantity, out, threads } => run_map(common, x, y, omega, balls, quantity, out, threads),
         Command::Report { common, out } => {
             let cfg = config::load(common.config.as_deref(), &common.set)?;
             let index = report::write(&cfg, &out)?;
@@ -91,6 +209,51 @@ fn run(cli: Cli) -> Result<()> {
             Ok(())
         }
     }
+}
+
+#[allow(clippy::too_many_arguments)]
+fn run_map(common: Common, x: String, y: String, omega: Option<f64>, balls: BallsArg, quantity: QuantityArg, out: PathBuf, threads: Option<usize>) -> Result<()> {
+    let (mut root, source) = config::read(common.config.as_deref())?;
+    for s in &common.set {
+        config::apply_set(&mut root, s)?;
+    }
+    let xa = map::Axis::parse("--x", &x)?;
+    let ya = map::Axis::parse("--y", &y)?;
+    if let Some(t) = threads {
+        if t == 0 {
+            anyhow::bail!("--threads: must be at least 1");
+        }
+        rayon::ThreadPoolBuilder::new().num_threads(t).build_global().ok();
+    }
+    let _ = ctrlc::set_handler(|| map::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
+    if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).with_context(|| format!("--out: cannot create {}", dir.display()))?;
+    }
+    let csv_path = out.with_extension("csv");
+    let file = std::fs::File::create(&csv_path).with_context(|| format!("--out: cannot create {}", csv_path.display()))?;
+    let mut w = std::io::BufWriter::new(file);
+    let q = if quantity == QuantityArg::Margin { map::Quantity::Margin } else { map::Quantity::Verdict };
+    let progress = std::io::IsTerminal::is_terminal(&std::io::stderr());
+    let t0 = std::time::Instant::now();
+    let r = map::compute(&root, &source, xa, ya, omega, balls.into(), q, &mut w, progress)?;
+    let secs = t0.elapsed().as_secs_f64();
+    let done = r.rows.iter().filter(|x| x.is_some()).count();
+    map::write_plots(&r, &out, &format!("Stability map, balls {}", if balls == BallsArg::Free { "free" } else { "locked" }))?;
+    let points = done * r.x.n;
+    println!(
+        "{} rows × {} points in {:.2} s ({:.2} µs per point); wrote {}, {}, {}",
+        done,
+        r.x.n,
+        secs,
+        1e6 * secs / points.max(1) as f64,
+        csv_path.display(),
+        out.with_extension("svg").display(),
+        out.with_extension("png").display()
+    );
+    if done < r.y.n {
+        anyhow::bail!("interrupted: {done} of {} rows computed and kept in {}", r.y.n, csv_path.display());
+    }
+    Ok(())
 }
 
 fn emit(format: Format, json: serde_json::Value, table: String) -> Result<()> {

@@ -33,6 +33,31 @@ pub struct Shade {
     pub color: String,
 }
 
+/// A raster image (PNG bytes) filling the whole plot area, drawn under everything else: the
+/// heatmap of a map, whose cells then line up with the axis ranges.
+#[derive(Debug, Clone)]
+pub struct Raster {
+    pub png: Vec<u8>,
+}
+
+/// Standard base64 (RFC 4648, with padding), for embedding the raster in the SVG.
+pub fn base64(data: &[u8]) -> String {
+    const T: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut s = String::with_capacity(data.len().div_ceil(3) * 4);
+    for ch in data.chunks(3) {
+        let b = [ch[0], *ch.get(1).unwrap_or(&0), *ch.get(2).unwrap_or(&0)];
+        let v = (b[0] as u32) << 16 | (b[1] as u32) << 8 | b[2] as u32;
+        for k in 0..4 {
+            if k <= ch.len() {
+                s.push(T[(v >> (18 - 6 * k) & 63) as usize] as char);
+            } else {
+                s.push('=');
+            }
+        }
+    }
+    s
+}
+
 /// A figure.
 #[derive(Debug, Clone, Default)]
 pub struct Plot {
@@ -47,6 +72,8 @@ pub struct Plot {
     pub y_range: Option<(f64, f64)>,
     /// Label of the shaded areas in the legend.
     pub shade_label: Option<String>,
+    /// Heatmap under the plot area.
+    pub raster: Option<Raster>,
 }
 
 const W: f64 = 720.0;
@@ -129,6 +156,13 @@ impl Plot {
             ML + pw / 2.0,
             esc(&self.title)
         );
+        if let Some(r) = &self.raster {
+            let _ = writeln!(
+                s,
+                r#"<image x="{ML}" y="{MT}" width="{pw}" height="{ph}" preserveAspectRatio="none" style="image-rendering:pixelated" href="data:image/png;base64,{}"/>"#,
+                base64(&r.png)
+            );
+        }
         s.push_str("<g clip-path=\"url(#plotarea)\">\n");
         for sh in &self.shades {
             let (ya, yb) = (sh.y.0.unwrap_or(y0).max(y0), sh.y.1.unwrap_or(y1).min(y1));
@@ -259,6 +293,13 @@ impl Plot {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn base64_matches_rfc_4648_vectors() {
+        for (i, o) in [("", ""), ("f", "Zg=="), ("fo", "Zm8="), ("foo", "Zm9v"), ("foob", "Zm9vYg=="), ("fooba", "Zm9vYmE="), ("foobar", "Zm9vYmFy")] {
+            assert_eq!(base64(i.as_bytes()), o);
+        }
+    }
 
     #[test]
     fn ticks_are_round_and_cover_the_range() {

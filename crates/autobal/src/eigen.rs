@@ -12,13 +12,13 @@ use crate::linear_model::{Mat12, MAX_STATES};
 use num_complex::Complex64;
 
 const N1: usize = MAX_STATES + 1;
-type A1 = [[f64; N1]; N1];
+pub type A1 = [[f64; N1]; N1];
 
 /// The eigen-solver did not converge (more than 60 QR iterations on one eigenvalue).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct NoConvergence;
 
-fn to_one_based(a: &Mat12, n: usize) -> A1 {
+pub fn to_one_based(a: &Mat12, n: usize) -> A1 {
     let mut b = [[0.0; N1]; N1];
     for i in 0..n {
         for j in 0..n {
@@ -30,7 +30,7 @@ fn to_one_based(a: &Mat12, n: usize) -> A1 {
 
 /// Diagonal similarity `D⁻¹ A D` with powers of two making row and column norms comparable
 /// (Parlett–Reinsch; LAPACK `dgebal` without permutations). Exact in floating point.
-fn balance(a: &mut A1, n: usize) {
+pub fn balance(a: &mut A1, n: usize) {
     const RADIX: f64 = 2.0;
     let sqrdx = RADIX * RADIX;
     let mut done = false;
@@ -76,7 +76,7 @@ fn balance(a: &mut A1, n: usize) {
 
 /// Reduce to upper Hessenberg form by Gaussian elimination with pivoting (EISPACK `elmhes`);
 /// entries below the subdiagonal are zeroed.
-fn hessenberg(a: &mut A1, n: usize) {
+pub fn hessenberg(a: &mut A1, n: usize) {
     for m in 2..n {
         let mut x: f64 = 0.0;
         let mut i = m;
@@ -314,30 +314,33 @@ pub fn spectral_abscissa(a: &Mat12, n: usize) -> Result<f64, NoConvergence> {
     Ok(wr[..n].iter().copied().fold(f64::NEG_INFINITY, f64::max))
 }
 
-/// Coefficients `c[0..=n]` of `det(λ I − H) = Σ c_k λ^{n−k}` (`c[0] = 1`) of the balanced
-/// Hessenberg form of `a`, by the recurrence on the leading principal submatrices
+/// Coefficients `c[0..=n]` of `det(λ I − A) = Σ c_k λ^{n−k}` (`c[0] = 1`) from the Hessenberg
+/// form of `a` (no balancing: the coefficients are invariant under it, and the dimensionless
+/// state matrices are well scaled; tests compare the verdict with the eigenvalues), by the recurrence on the leading principal submatrices
 /// `p_k = (λ − h_kk) p_{k−1} − Σ_{i<k} h_ik (Π_{j=i+1..k} h_{j,j−1}) p_{i−1}`.
 pub fn characteristic_polynomial(a: &Mat12, n: usize) -> [f64; MAX_STATES + 1] {
-    let mut h = to_one_based(a, n);
-    balance(&mut h, n);
-    hessenberg(&mut h, n);
-    // p[k] holds coefficients of p_k in ascending powers: p[k][d] multiplies λ^d
+    let mut h = *a;
+    hessenberg0(&mut h, n);
+    // p[k] holds the coefficients of p_k (leading k×k block) in ascending powers of λ
     let mut p = [[0.0; N1]; N1];
     p[0][0] = 1.0;
     for k in 1..=n {
-        // (λ − h_kk) p_{k−1}
-        for d in 0..=k {
-            let shifted = if d > 0 { p[k - 1][d - 1] } else { 0.0 };
-            let scaled = if d < k { h[k][k] * p[k - 1][d] } else { 0.0 };
-            p[k][d] = shifted - scaled;
+        let hkk = h[k - 1][k - 1];
+        let (done, rest) = p.split_at_mut(k);
+        let pk = &mut rest[0];
+        let prev = &done[k - 1];
+        pk[0] = -hkk * prev[0];
+        for d in 1..k {
+            pk[d] = prev[d - 1] - hkk * prev[d];
         }
+        pk[k] = prev[k - 1];
         let mut beta = 1.0;
         for i in (1..k).rev() {
-            beta *= h[i + 1][i];
-            let f = h[i][k] * beta;
+            beta *= h[i][i - 1];
+            let f = h[i - 1][k - 1] * beta;
             if f != 0.0 {
-                for d in 0..i {
-                    p[k][d] -= f * p[i - 1][d];
+                for (x, y) in pk[..i].iter_mut().zip(&done[i - 1][..i]) {
+                    *x -= f * y;
                 }
             }
         }
@@ -347,6 +350,50 @@ pub fn characteristic_polynomial(a: &Mat12, n: usize) -> [f64; MAX_STATES + 1] {
         c[k] = p[n][n - k];
     }
     c
+}
+
+/// [`hessenberg`] on a 0-based matrix, with the row updates as slice operations.
+fn hessenberg0(a: &mut Mat12, n: usize) {
+    for m in 1..n.saturating_sub(1) {
+        // pivot: largest |a[j][m−1]|, j ≥ m
+        let mut piv = m;
+        for j in m + 1..n {
+            if a[j][m - 1].abs() > a[piv][m - 1].abs() {
+                piv = j;
+            }
+        }
+        if piv != m {
+            a.swap(piv, m);
+            for row in a[..n].iter_mut() {
+                row.swap(piv, m);
+            }
+        }
+        let x = a[m][m - 1];
+        if x == 0.0 {
+            continue;
+        }
+        let (top, bottom) = a.split_at_mut(m + 1);
+        let pivot_row = &top[m];
+        let mut mult = [0.0; MAX_STATES];
+        for (r, row) in bottom[..n - m - 1].iter_mut().enumerate() {
+            let y = row[m - 1] / x;
+            mult[r] = y;
+            row[m - 1] = 0.0;
+            if y != 0.0 {
+                for (u, v) in row[m..n].iter_mut().zip(&pivot_row[m..n]) {
+                    *u -= y * v;
+                }
+            }
+        }
+        // column update a[:, m] += Σ_i y_i a[:, i]
+        for row in a[..n].iter_mut() {
+            let mut acc = 0.0;
+            for (y, v) in mult[..n - m - 1].iter().zip(&row[m + 1..n]) {
+                acc += y * v;
+            }
+            row[m] += acc;
+        }
+    }
 }
 
 /// Routh–Hurwitz: whether every root of `Σ c_k λ^{n−k}` (`c[0] > 0`) has negative real part,

@@ -203,3 +203,47 @@ impl Pencil {
         a
     }
 }
+
+/// The state matrix as a polynomial in Ω, `A(Ω) = A0 + Ω A1 + Ω² A2`, for evaluating many
+/// speeds of one model: `M` does not depend on Ω, `G` is linear and `K` quadratic in Ω
+/// (eq (6)), so `M⁻¹G` and `M⁻¹K` are factored once. Built from the state matrices at
+/// Ω = 0, ±1.
+#[derive(Debug, Clone)]
+pub struct StateSpace {
+    /// State dimension.
+    pub states: usize,
+    a0: Mat12,
+    a1: Mat12,
+    a2: Mat12,
+}
+
+impl StateSpace {
+    /// Factor the model's linearised equations once.
+    pub fn new(model: &SpatialModel, balls: Balls) -> Result<Self> {
+        let a0 = Pencil::new(model, 0.0, balls)?.state_matrix();
+        let ap = Pencil::new(model, 1.0, balls)?.state_matrix();
+        let am = Pencil::new(model, -1.0, balls)?.state_matrix();
+        let states = Pencil::new(model, 0.0, balls)?.states();
+        let mut a1 = [[0.0; MAX_STATES]; MAX_STATES];
+        let mut a2 = [[0.0; MAX_STATES]; MAX_STATES];
+        for i in 0..states {
+            for j in 0..states {
+                a1[i][j] = 0.5 * (ap[i][j] - am[i][j]);
+                a2[i][j] = 0.5 * (ap[i][j] + am[i][j]) - a0[i][j];
+            }
+        }
+        Ok(StateSpace { states, a0, a1, a2 })
+    }
+
+    /// `A(Ω)`.
+    pub fn at(&self, omega: f64) -> Mat12 {
+        let mut a = self.a0;
+        let w2 = omega * omega;
+        for i in self.states / 2..self.states {
+            for j in 0..self.states {
+                a[i][j] += omega * self.a1[i][j] + w2 * self.a2[i][j];
+            }
+        }
+        a
+    }
+}

@@ -99,7 +99,10 @@ pub fn classify(p: &Pencil, omega: f64, lam: Complex64) -> Mode {
             }
         }
     }
-    let energy = |k: usize| x[2 * k].norm_sqr() + x[2 * k + 1].norm_sqr();
+    // kinetic-energy weights: s is the balls' unbalance, about m̄ times their displacement,
+    // so the balls' share is |s|²/m̄ (translation and tilt are normalised alike by the papers)
+    let ball_weight = 1.0 / p.m[4][0].abs().max(p.m[5][1].abs()).max(1e-12);
+    let energy = |k: usize| (x[2 * k].norm_sqr() + x[2 * k + 1].norm_sqr()) * if k == 2 { ball_weight } else { 1.0 };
     let groups = n / 2;
     let e: Vec<f64> = (0..groups).map(energy).collect();
     let g = (0..groups).max_by(|&a, &b| e[a].total_cmp(&e[b])).unwrap_or(0);

@@ -351,3 +351,57 @@ fn two_ball_base_case_frame_is_consistent() {
     assert!(stability_ranges(&m, 6.0, 300, Balls::Free, 1e-9).is_ok());
 }
 
+
+#[test]
+fn undamped_model_has_lagrangian_structure() {
+    // Scaling the ball rows by S = (2/m̄) d_A⁻¹ must make M and K symmetric and G skew when all
+    // damping is zero: the linearisation of a conservative gyroscopic system. A sign slip in any
+    // coupling block of eq (6) breaks this.
+    let mut rng = Rng(29);
+    for _ in 0..200 {
+        let m = model(rng.range(0.2, 1.6), rng.range(0.2, 0.8), rng.range(-0.3, 1.4), rng.range(-1.0, 1.0), rng.range(0.0, 0.2), 0.0, 0.0, Some((rng.range(0.01, 0.1), rng.range(0.0, 0.9))));
+        let p = Pencil::new(&m, rng.range(0.0, 4.0), Balls::Free).unwrap();
+        let b = m.balls.unwrap();
+        let d = b.d_a;
+        let det = d[0][0] * d[1][1] - d[0][1] * d[1][0];
+        let s = [[2.0 / b.m_bar * d[1][1] / det, -2.0 / b.m_bar * d[0][1] / det], [-2.0 / b.m_bar * d[1][0] / det, 2.0 / b.m_bar * d[0][0] / det]];
+        let scaled = |a: &[[f64; 6]; 6]| {
+            let mut r = *a;
+            for j in 0..6 {
+                for i in 0..2 {
+                    r[4 + i][j] = s[i][0] * a[4][j] + s[i][1] * a[5][j];
+                }
+            }
+            r
+        };
+        let (ms, gs, ks) = (scaled(&p.m), scaled(&p.g), scaled(&p.k));
+        for i in 0..6 {
+            for j in 0..6 {
+                let tol = 1e-12 * (1.0 + ms[i][j].abs() + ks[i][j].abs() + gs[i][j].abs());
+                assert!((ms[i][j] - ms[j][i]).abs() < tol, "M not symmetric at ({i},{j})");
+                assert!((ks[i][j] - ks[j][i]).abs() < tol, "K not symmetric at ({i},{j})");
+                assert!((gs[i][j] + gs[j][i]).abs() < tol, "G not skew at ({i},{j})");
+            }
+        }
+    }
+}
+
+#[test]
+fn state_space_polynomial_matches_direct_assembly() {
+    use autobal::linear_model::StateSpace;
+    let mut rng = Rng(30);
+    for _ in 0..100 {
+        let m = random_model(&mut rng);
+        for balls in [Balls::Free, Balls::Locked] {
+            let ss = StateSpace::new(&m, balls).unwrap();
+            let w = rng.range(0.0, 6.0);
+            let p = Pencil::new(&m, w, balls).unwrap();
+            let (a, b) = (p.state_matrix(), ss.at(w));
+            for i in 0..p.states() {
+                for j in 0..p.states() {
+                    assert!((a[i][j] - b[i][j]).abs() < 1e-12 * (1.0 + a[i][j].abs()) * (1.0 + w * w));
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,351 @@
+//! `autobal map`: stability margin over two parameters (Ω and/or config fields), in parallel,
+//! with a progress bar, written as CSV (row by row, so an interrupted run keeps what it has
+//! computed), SVG and PNG.
+
+use crate::config::{self, Config};
+use crate::plot::{Plot, Raster, Series};
+use anyhow::{anyhow, bail, Context, Result};
+use autobal::linear_model::Balls;
+use autobal::stability::{is_strictly_stable, margin, STABILITY_TOLERANCE};
+use rayon::prelude::*;
+use std::io::Write;
+use std::path::Path;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Mutex;
+use toml::Table;
+
+/// Set by Ctrl-C: rows not yet started are skipped, rows written so far are kept.
+pub static INTERRUPTED: AtomicBool = AtomicBool::new(false);
+
+/// One axis: `key=lo:hi:n`, key `omega` or a config field.
+#[derive(Debug, Clone)]
+pub struct Axis {
+    pub key: String,
+    pub lo: f64,
+    pub hi: f64,
+    pub n: usize,
+}
+
+impl Axis {
+    pub fn parse(flag: &str, spec: &str) -> Result<Self> {
+        let (key, range) = spec.split_once('=').ok_or_else(|| anyhow!("{flag} {spec}: expected KEY=LO:HI:N, e.g. {flag} omega=0.1:6:400"))?;
+        let parts: Vec<&str> = range.split(':').collect();
+        if parts.len() != 3 {
+            bail!("{flag} {spec}: expected KEY=LO:HI:N");
+        }
+        let num = |s: &str, what: &str| -> Result<f64> {
+            let v: f64 = s.trim().parse().map_err(|_| anyhow!("{flag} {spec}: {what} `{s}` is not a number"))?;
+            if !v.is_finite() {
+                bail!("{flag} {spec}: {what} must be finite");
+            }
+            Ok(v)
+        };
+        let (lo, hi) = (num(parts[0], "LO")?, num(parts[1], "HI")?);
+        let n: usize = parts[2].trim().parse().map_err(|_| anyhow!("{flag} {spec}: N `{}` is not a whole number", parts[2]))?;
+        if n < 2 || n > 5000 {
+            bail!("{flag} {spec}: N must lie between 2 and 5000, got {n}");
+        }
+        if hi <= lo {
+            bail!("{flag} {spec}: HI must exceed LO");
+        }
+        let key = key.trim().to_string();
+        if key == "omega" && lo < 0.0 {
+            bail!("{flag} {spec}: the speed Ω must not be negative");
+        }
+        Ok(Axis { key, lo, hi, n })
+    }
+    pub fn value(&self, i: usize) -> f64 {
+        self.lo + (self.hi - self.lo) * i as f64 / (self.n - 1) as f64
+    }
+    fn is_omega(&self) -> bool {
+        self.key == "omega"
+    }
+}
+
+/// What each point stores.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Quantity {
+    /// Spectral abscissa from the eigenvalues (default).
+    Margin,
+    /// Routh–Hurwitz verdict only (faster; no margin).
+    Verdict,
+}
+
+#[derive(Debug, Clone, Copy)]
+pub struct Cell {
+    pub margin: f64,
+    pub stable: bool,
+    pub necessary: bool,
+}
+
+pub struct MapResult {
+    pub x: Axis,
+    pub y: Axis,
+    /// `rows[j][i]` at `(x_i, y_j)`; `None` for rows skipped by an interruption.
+    pub rows: Vec<Option<Vec<Cell>>>,
+    pub quantity: Quantity,
+}
+
+struct Point<'a> {
+    base: &'a Table,
+    source: &'a str,
+    x: &'a Axis,
+    y: &'a Axis,
+
+}
+
+impl Point<'_> {
+    fn config(&self, xv: Option<f64>, yv: f64) -> Result<Config> {
+        let mut t = self.base.clone();
+        if let Some(xv) = xv {
+            config::set_number(&mut t, &self.x.key, xv)?;
+        }
+        if !self.y.is_omega() {
+            config::set_number(&mut t, &self.y.key, yv)?;
+        }
+        config::build(&t, self.source).with_context(|| format!("at {} = {}", self.y.key, yv))
+    }
+}
+
+fn cell(cfg: &Config, nec: &[autobal::ranges::SpeedRange], omega: f64, balls: Balls, q: Quantity) -> Result<Cell> {
+    let necessary = nec.iter().any(|r| r.contains(omega));
+    Ok(match q {
+        Quantity::Margin => {
+            let a = margin(&cfg.model, omega, balls)?;
+            Cell { margin: a, stable: a <= STABILITY_TOLERANCE, necessary }
+        }
+        Quantity::Verdict => Cell { margin: f64::NAN, stable: is_strictly_stable(&cfg.model, omega, balls)?, necessary },
+    })
+}
+
+/// Compute the map; each finished row is appended to `csv` at once.
+#[allow(clippy::too_many_arguments)]
+pub fn compute(
+    base: &Table,
+    source: &str,
+    x: Axis,
+    y: Axis,
+    omega: Option<f64>,
+    balls: Balls,
+    quantity: Quantity,
+    csv: &mut (dyn Write + Send),
+    progress: bool,
+) -> Result<MapResult> {
+    for a in [&x, &y] {
+        if !a.is_omega() {
+            let mut t = base.clone();
+            config::set_number(&mut t, &a.key, a.lo).map_err(|e| anyhow!("--{}: {e:#}", if std::ptr::eq(a, &x) { "x" } else { "y" }))?;
+        }
+    }
+    if x.is_omega() && y.is_omega() {
+        bail!("--x, --y: only one axis can be omega");
+    }
+    if !x.is_omega() && !y.is_omega() && omega.is_none() {
+        bail!("--omega: required when neither axis is omega (the speed at which to map)");
+    }
+    writeln!(csv, "{},{},max_real_part,stable,necessary", x.key, y.key)?;
+    let pt = Point { base, source, x: &x, y: &y };
+    // fail early on a bad base config
+    pt.config(if x.is_omega() { None } else { Some(x.lo) }, y.lo)?;
+    let bar = if progress {
+        let b = indicatif::ProgressBar::new(y.n as u64);
+        b.set_style(
+            indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} rows  {elapsed_precise} (eta {eta})")
+                .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+        );
+        Some(b)
+    } else {
+        None
+    };
+    let sink = Mutex::new(csv);
+    // one model per value of the non-Ω axis, built once (the Ω axis reuses it)
+    type Built = (Config, Vec<autobal::ranges::SpeedRange>);
+    let build = |xv: Option<f64>, yv: f64| -> Result<Built> {
+        let c = pt.config(xv, yv)?;
+        let nec = autobal::ranges::autobalancing_ranges(&c.model).ranges;
+        Ok((c, nec))
+    };
+    let columns: Vec<Built> = if y.is_omega() {
+        (0..x.n).into_par_iter().map(|i| build(Some(x.value(i)), y.lo)).collect::<Result<_>>()?
+    } else {
+        vec![]
+    };
+    let rows: Vec<Result<Option<Vec<Cell>>>> = (0..y.n)
+        .into_par_iter()
+        .map(|j| {
+            if INTERRUPTED.load(Ordering::Relaxed) {
+                return Ok(None);
+            }
+            let yv = y.value(j);
+            let row: Option<Built> = if x.is_omega() { Some(build(None, yv)?) } else { None };
+            let mut cells = Vec::with_capacity(x.n);
+            for i in 0..x.n {
+                let xv = x.value(i);
+                let c = if let Some((c, nec)) = &row {
+                    cell(c, nec, xv.max(1e-9), balls, quantity)?
+                } else if let Some((c, nec)) = columns.get(i) {
+                    cell(c, nec, yv.max(1e-9), balls, quantity)?
+                } else {
+                    let (c, nec) = build(Some(xv), yv)?;
+                    cell(&c, &nec, omega.unwrap_or(1.0).max(1e-9), balls, quantity)?
+                };
+                cells.push(c);
+            }
+            {
+                let mut out = sink.lock().map_err(|_| anyhow!("CSV writer poisoned"))?;
+                let mut text = String::with_capacity(cells.len() * 48);
+                for (i, c) in cells.iter().enumerate() {
+                    text.push_str(&format!("{},{},{},{},{}\n", x.value(i), yv, c.margin, c.stable as u8, c.necessary as u8));
+                }
+                out.write_all(text.as_bytes())?;
+                out.flush()?;
+            }
+            if let Some(b) = &bar {
+                b.inc(1);
+            }
+            Ok(Some(cells))
+        })
+        .collect();
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
+    let rows = rows.into_iter().collect::<Result<Vec<_>>>()?;
+    Ok(MapResult { x, y, rows, quantity })
+}
+
+fn color(c: &Cell, scale: f64, q: Quantity) -> [u8; 3] {
+    if c.margin.is_nan() || q == Quantity::Verdict {
+        return if c.stable { [168, 221, 181] } else { [244, 165, 130] };
+    }
+    let t = (c.margin.abs() / scale).min(1.0).sqrt();
+    let lerp = |a: f64, b: f64| (a + (b - a) * t).round() as u8;
+    if c.margin <= STABILITY_TOLERANCE {
+        [lerp(247.0, 33.0), lerp(247.0, 102.0), lerp(247.0, 172.0)] // white → blue
+    } else {
+        [lerp(247.0, 178.0), lerp(247.0, 24.0), lerp(247.0, 43.0)] // white → red
+    }
+}
+
+fn raster(r: &MapResult) -> (Vec<u8>, f64) {
+    let scale = r.rows.iter().flatten().flatten().map(|c| c.margin.abs()).filter(|v| v.is_finite()).fold(1e-12, f64::max);
+    let mut px = Vec::with_capacity(r.x.n * r.y.n * 3);
+    for j in (0..r.y.n).rev() {
+        for i in 0..r.x.n {
+            let rgb = match &r.rows[j] {
+                Some(row) => color(&row[i], scale, r.quantity),
+                None => [200, 200, 200],
+            };
+            px.extend_from_slice(&rgb);
+        }
+    }
+    (px, scale)
+}
+
+fn png_bytes(w: usize, h: usize, rgb: &[u8]) -> Result<Vec<u8>> {
+    let mut out = vec![];
+    {
+        let mut enc = png::Encoder::new(&mut out, w as u32, h as u32);
+        enc.set_color(png::ColorType::Rgb);
+        enc.set_depth(png::BitDepth::Eight);
+        let mut wr = enc.write_header()?;
+        wr.write_image_data(rgb)?;
+    }
+    Ok(out)
+}
+
+/// Cell-edge segments between cells whose `flag` differs, in data coordinates, as one series
+/// (NaN-separated).
+fn boundary(r: &MapResult, flag: impl Fn(&Cell) -> bool) -> Vec<(f64, f64)> {
+    let dx = (r.x.hi - r.x.lo) / (r.x.n - 1) as f64;
+    let dy = (r.y.hi - r.y.lo) / (r.y.n - 1) as f64;
+    let mut pts = vec![];
+    for j in 0..r.y.n {
+        let Some(row) = &r.rows[j] else { continue };
+        for i in 0..r.x.n {
+            let (x, y) = (r.x.value(i), r.y.value(j));
+            if i + 1 < r.x.n && flag(&row[i]) != flag(&row[i + 1]) {
+                pts.extend([(x + dx / 2.0, y - dy / 2.0), (x + dx / 2.0, y + dy / 2.0), (f64::NAN, f64::NAN)]);
+            }
+            if let Some(Some(up)) = r.rows.get(j + 1) {
+                if flag(&row[i]) != flag(&up[i]) {
+                    pts.extend([(x - dx / 2.0, y + dy / 2.0), (x + dx / 2.0, y + dy / 2.0), (f64::NAN, f64::NAN)]);
+                }
+            }
+        }
+    }
+    pts
+}
+
+fn label(key: &str) -> String {
+    match key {
+        "omega" => "Ω".into(),
+        k => k.to_string(),
+    }
+}
+
+/// Write `<stem>.svg` and `<stem>.png`.
+pub fn write_plots(r: &MapResult, stem: &Path, title: &str) -> Result<()> {
+    let (px, scale) = raster(r);
+    let raster_png = png_bytes(r.x.n, r.y.n, &px)?;
+    let dx = (r.x.hi - r.x.lo) / (r.x.n - 1) as f64;
+    let dy = (r.y.hi - r.y.lo) / (r.y.n - 1) as f64;
+    let xr = (r.x.lo - dx / 2.0, r.x.hi + dx / 2.0);
+    let yr = (r.y.lo - dy / 2.0, r.y.hi + dy / 2.0);
+    let stab = boundary(r, |c| c.stable);
+    let nec = boundary(r, |c| c.necessary);
+    let full_title = match r.quantity {
+        Quantity::Margin => format!("{title} (max Re λ: blue < 0 stable, red > 0; |scale| {scale:.3e})"),
+        Quantity::Verdict => format!("{title} (green stable, red unstable)"),
+    };
+    let plot = Plot {
+        title: full_title.clone(),
+        x_label: label(&r.x.key),
+        y_label: label(&r.y.key),
+        series: vec![
+            Series::new("stability boundary (exact)", stab.clone(), "#000000"),
+            Series::new("003 necessary boundary", nec.clone(), "#CC79A7").dashed(),
+        ],
+        x_range: Some(xr),
+        y_range: Some(yr),
+        raster: Some(Raster { png: raster_png }),
+        ..Default::default()
+    };
+    let svg_path = stem.with_extension("svg");
+    std::fs::write(&svg_path, plot.to_svg()).with_context(|| format!("cannot write {}", svg_path.display()))?;
+    // PNG figure with axes, by plotters (fonts from the dejavu crate, no system fonts)
+    use plotters::prelude::*;
+    let png_path = stem.with_extension("png");
+    let _ = plotters::style::register_font("sans-serif", FontStyle::Normal, dejavu::sans::regular());
+    let root = BitMapBackend::new(&png_path, (900, 700)).into_drawing_area();
+    let draw = || -> std::result::Result<(), Box<dyn std::error::Error>> {
+        root.fill(&WHITE)?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, ("sans-serif", 20))
+            .margin(14)
+            .x_label_area_size(45)
+            .y_label_area_size(60)
+            .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)?;
+        chart.configure_mesh().disable_mesh().x_desc(label(&r.x.key)).y_desc(label(&r.y.key)).draw()?;
+        for j in 0..r.y.n {
+            for i in 0..r.x.n {
+                let k = ((r.y.n - 1 - j) * r.x.n + i) * 3;
+                let (x, y) = (r.x.value(i), r.y.value(j));
+                chart.draw_series(std::iter::once(Rectangle::new(
+                    [(x - dx / 2.0, y - dy / 2.0), (x + dx / 2.0, y + dy / 2.0)],
+                    RGBColor(px[k], px[k + 1], px[k + 2]).filled(),
+                )))?;
+            }
+        }
+        for (pts, col) in [(&stab, BLACK), (&nec, RGBColor(204, 121, 167))] {
+            for seg in pts.split(|p| p.0.is_nan()) {
+                if seg.len() == 2 {
+                    chart.draw_series(LineSeries::new(seg.iter().copied(), col.stroke_width(2)))?;
+                }
+            }
+        }
+        root.present()?;
+        Ok(())
+    };
+    draw().map_err(|e| anyhow!("cannot write {}: {e}", png_path.display()))?;
+    Ok(())
+}
