@@ -104,7 +104,7 @@ def main():
     alpha_rs = np.frombuffer(raw[: 8 * k], dtype="<f8")
     verdict_rs = np.frombuffer(raw[8 * k:], dtype=np.uint8).astype(bool)
 
-    tol = 1e-9
+    tol = 1e-11  # autobal::stability::STABILITY_TOLERANCE
     away = np.abs(alpha_np) > 1e-6
     stable_np = alpha_np <= tol
     mismatch_verdict = int(np.sum((verdict_rs != stable_np) & away))

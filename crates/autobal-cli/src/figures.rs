@@ -52,13 +52,17 @@ fn crit_series(
         .collect()
 }
 
-fn with_layout(base: &SpatialModel, l_left: f64) -> SpatialModel {
+/// The model moved on its supports to `l̄_L` (identical supports: stiffness and damping
+/// coefficients from 000 eq (10)).
+pub fn with_layout(base: &SpatialModel, l_left: f64) -> SpatialModel {
     let mut m = base.clone();
     let rho = base.rho_s.unwrap_or(0.4);
     let (p, c) = identical_support_coefficients(l_left, rho);
     m.p_alpha_sq = p;
     m.c_y_alpha = c;
     m.l_left = Some(l_left);
+    m.damping.h_alpha = m.damping.h_x * p;
+    m.damping.h_y_alpha = m.damping.h_x * c;
     m
 }
 

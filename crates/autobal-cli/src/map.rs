@@ -6,7 +6,8 @@ use crate::config::{self, Config};
 use crate::plot::{Plot, Raster, Series};
 use anyhow::{anyhow, bail, Context, Result};
 use autobal::linear_model::Balls;
-use autobal::stability::{is_strictly_stable, margin, STABILITY_TOLERANCE};
+use autobal::linear_model::StateSpace;
+use autobal::stability::{margin_at, strictly_stable_at, STABILITY_TOLERANCE};
 use rayon::prelude::*;
 use std::io::Write;
 use std::path::Path;
@@ -107,14 +108,14 @@ impl Point<'_> {
     }
 }
 
-fn cell(cfg: &Config, nec: &[autobal::ranges::SpeedRange], omega: f64, balls: Balls, q: Quantity) -> Result<Cell> {
+fn cell(ss: &StateSpace, nec: &[autobal::ranges::SpeedRange], omega: f64, q: Quantity) -> Result<Cell> {
     let necessary = nec.iter().any(|r| r.contains(omega));
     Ok(match q {
         Quantity::Margin => {
-            let a = margin(&cfg.model, omega, balls)?;
+            let a = margin_at(ss, omega)?;
             Cell { margin: a, stable: a <= STABILITY_TOLERANCE, necessary }
         }
-        Quantity::Verdict => Cell { margin: f64::NAN, stable: is_strictly_stable(&cfg.model, omega, balls)?, necessary },
+        Quantity::Verdict => Cell { margin: f64::NAN, stable: strictly_stable_at(ss, omega), necessary },
     })
 }
 
@@ -159,11 +160,11 @@ pub fn compute(
     };
     let sink = Mutex::new(csv);
     // one model per value of the non-Ω axis, built once (the Ω axis reuses it)
-    type Built = (Config, Vec<autobal::ranges::SpeedRange>);
+    type Built = (StateSpace, Vec<autobal::ranges::SpeedRange>);
     let build = |xv: Option<f64>, yv: f64| -> Result<Built> {
         let c = pt.config(xv, yv)?;
         let nec = autobal::ranges::autobalancing_ranges(&c.model).ranges;
-        Ok((c, nec))
+        Ok((StateSpace::new(&c.model, balls)?, nec))
     };
     let columns: Vec<Built> = if y.is_omega() {
         (0..x.n).into_par_iter().map(|i| build(Some(x.value(i)), y.lo)).collect::<Result<_>>()?
@@ -182,12 +183,12 @@ pub fn compute(
             for i in 0..x.n {
                 let xv = x.value(i);
                 let c = if let Some((c, nec)) = &row {
-                    cell(c, nec, xv.max(1e-9), balls, quantity)?
+                    cell(c, nec, xv.max(1e-9), quantity)?
                 } else if let Some((c, nec)) = columns.get(i) {
-                    cell(c, nec, yv.max(1e-9), balls, quantity)?
+                    cell(c, nec, yv.max(1e-9), quantity)?
                 } else {
                     let (c, nec) = build(Some(xv), yv)?;
-                    cell(&c, &nec, omega.unwrap_or(1.0).max(1e-9), balls, quantity)?
+                    cell(&c, &nec, omega.unwrap_or(1.0).max(1e-9), quantity)?
                 };
                 cells.push(c);
             }
@@ -213,32 +214,38 @@ pub fn compute(
     Ok(MapResult { x, y, rows, quantity })
 }
 
-fn color(c: &Cell, scale: f64, q: Quantity) -> [u8; 3] {
+/// Diverging colours, each side scaled by its own largest |margin| (square-root contrast):
+/// white at 0, blue for stable (Re λ < 0), red for unstable.
+fn color(c: &Cell, scale: (f64, f64), q: Quantity) -> [u8; 3] {
     if c.margin.is_nan() || q == Quantity::Verdict {
         return if c.stable { [168, 221, 181] } else { [244, 165, 130] };
     }
-    let t = (c.margin.abs() / scale).min(1.0).sqrt();
+    let s = if c.stable { scale.0 } else { scale.1 };
+    let t = (c.margin.abs() / s).min(1.0).sqrt();
     let lerp = |a: f64, b: f64| (a + (b - a) * t).round() as u8;
-    if c.margin <= STABILITY_TOLERANCE {
-        [lerp(247.0, 33.0), lerp(247.0, 102.0), lerp(247.0, 172.0)] // white → blue
+    if c.stable {
+        [lerp(247.0, 33.0), lerp(247.0, 102.0), lerp(247.0, 172.0)]
     } else {
-        [lerp(247.0, 178.0), lerp(247.0, 24.0), lerp(247.0, 43.0)] // white → red
+        [lerp(247.0, 178.0), lerp(247.0, 24.0), lerp(247.0, 43.0)]
     }
 }
 
-fn raster(r: &MapResult) -> (Vec<u8>, f64) {
-    let scale = r.rows.iter().flatten().flatten().map(|c| c.margin.abs()).filter(|v| v.is_finite()).fold(1e-12, f64::max);
+/// Pixels (top row = largest y) and the (stable, unstable) colour scales.
+fn raster(r: &MapResult) -> (Vec<u8>, (f64, f64)) {
+    let cells = || r.rows.iter().flatten().flatten().filter(|c| c.margin.is_finite());
+    let neg = cells().filter(|c| c.stable).map(|c| c.margin.abs()).fold(1e-12, f64::max);
+    let pos = cells().filter(|c| !c.stable).map(|c| c.margin.abs()).fold(1e-12, f64::max);
     let mut px = Vec::with_capacity(r.x.n * r.y.n * 3);
     for j in (0..r.y.n).rev() {
         for i in 0..r.x.n {
             let rgb = match &r.rows[j] {
-                Some(row) => color(&row[i], scale, r.quantity),
+                Some(row) => color(&row[i], (neg, pos), r.quantity),
                 None => [200, 200, 200],
             };
             px.extend_from_slice(&rgb);
         }
     }
-    (px, scale)
+    (px, (neg, pos))
 }
 
 fn png_bytes(w: usize, h: usize, rgb: &[u8]) -> Result<Vec<u8>> {
@@ -294,16 +301,16 @@ pub fn write_plots(r: &MapResult, stem: &Path, title: &str) -> Result<()> {
     let stab = boundary(r, |c| c.stable);
     let nec = boundary(r, |c| c.necessary);
     let full_title = match r.quantity {
-        Quantity::Margin => format!("{title} (max Re λ: blue < 0 stable, red > 0; |scale| {scale:.3e})"),
-        Quantity::Verdict => format!("{title} (green stable, red unstable)"),
+        Quantity::Margin => format!("{title}: max Re λ from −{:.2e} (blue) to {:.2e} (red)", scale.0, scale.1),
+        Quantity::Verdict => format!("{title}: green stable, red unstable"),
     };
     let plot = Plot {
         title: full_title.clone(),
         x_label: label(&r.x.key),
         y_label: label(&r.y.key),
         series: vec![
-            Series::new("stability boundary (exact)", stab.clone(), "#000000"),
-            Series::new("003 necessary boundary", nec.clone(), "#CC79A7").dashed(),
+            Series::new("exact boundary", stab.clone(), "#000000"),
+            Series::new("003 necessary", nec.clone(), "#CC79A7").dashed(),
         ],
         x_range: Some(xr),
         y_range: Some(yr),
@@ -320,7 +327,7 @@ pub fn write_plots(r: &MapResult, stem: &Path, title: &str) -> Result<()> {
     let draw = || -> std::result::Result<(), Box<dyn std::error::Error>> {
         root.fill(&WHITE)?;
         let mut chart = ChartBuilder::on(&root)
-            .caption(title, ("sans-serif", 20))
+            .caption(&full_title, ("sans-serif", 18))
             .margin(14)
             .x_label_area_size(45)
             .y_label_area_size(60)

@@ -153,7 +153,9 @@ figure{margin:1.5em 0}figcaption{font-size:92%;color:#444;max-width:720px}
     h.push_str("<h2>Worked examples of papers 000 and 003</h2>\n<p>C̄Σ = 0.75, ρ̄s = 0.4, ΔĀ = 0.1, z̄_A = 0.8, as printed / as computed.</p>\n");
     h.push_str(&paper_examples());
 
-    h.push_str("<h2>Figures</h2>\n");
+    h.push_str(&linear_section(cfg, dir)?);
+
+    h.push_str("<h2>Figures of papers 000 and 003</h2>\n");
     for fg in &figs {
         let _ = writeln!(h, "<figure><img src=\"{}\" alt=\"{}\"><figcaption>{}</figcaption></figure>", fg.file, esc(&fg.plot.title), esc(&fg.caption));
     }
@@ -161,4 +163,83 @@ figure{margin:1.5em 0}figcaption{font-size:92%;color:#444;max-width:720px}
     let index = dir.join("index.html");
     std::fs::write(&index, h).with_context(|| format!("--out: cannot write {}", index.display()))?;
     Ok(index)
+}
+
+/// Section of issue 3: Campbell diagram, exact vs necessary ranges for the three layouts of
+/// the papers, and one stability map (003 Fig. 5a layout).
+fn linear_section(cfg: &Config, dir: &Path) -> Result<String> {
+    use crate::linear;
+    use crate::map::{write_plots, Axis, Cell, MapResult, Quantity};
+    use autobal::linear_model::{Balls, StateSpace};
+    use autobal::stability::{margin_at, STABILITY_TOLERANCE};
+    let m = &cfg.model;
+    let mut h = String::from("<h2>Exact linear stability of the balanced state</h2>\n");
+    if m.balls.is_none() {
+        h.push_str("<p>The config does not describe the balls (give the masses, or <code>m</code> and <code>d_a</code> beside <code>delta_a</code>), so only the locked rotor is analysed here.</p>\n");
+    }
+    let balls = if m.balls.is_some() { Balls::Free } else { Balls::Locked };
+    let w = linear::omega_max(cfg, None)?;
+    let _ = writeln!(
+        h,
+        "<p>Eigenvalues of the linearised equations (000, eq (6)), balls {} ({} states). Stable means every eigenvalue has Re λ ≤ {:e}; range ends located by bisection to 1e-9.</p>",
+        if balls == Balls::Free { "free" } else { "locked" },
+        if balls == Balls::Free { 12 } else { 8 },
+        STABILITY_TOLERANCE
+    );
+    let c = linear::campbell_of(cfg, w, 240, balls)?;
+    let (rot, fixed) = linear::campbell_plots(m, &c);
+    for (file, p, cap) in [
+        ("campbell_fixed.svg", fixed, "Campbell diagram in fixed axes: whirl frequency of each tracked mode (forward above zero, backward below), the 1× line, and the analytic critical speeds K1-K4."),
+        ("campbell_rotating.svg", rot, "Campbell diagram in rotating axes: Im λ of each tracked eigenvalue."),
+    ] {
+        std::fs::write(dir.join(file), p.to_svg()).with_context(|| format!("--out: cannot write {file}"))?;
+        let _ = writeln!(h, "<figure><img src=\"{file}\" alt=\"{file}\"><figcaption>{}</figcaption></figure>", esc(cap));
+    }
+    let cmp = linear::compare(m, w, 1500, balls)?;
+    std::fs::write(dir.join("stability_margin.svg"), linear::margin_plot(&cmp).to_svg()).context("--out: cannot write stability_margin.svg")?;
+    let _ = writeln!(h, "<figure><img src=\"stability_margin.svg\" alt=\"margin\"><figcaption>{}</figcaption></figure>", esc(&format!("Largest real part along Ω for this config. {}.", linear::difference_sentence(&cmp))));
+    if m.rho_s.is_some() {
+        let mut rows = vec![];
+        for l in [0.5, 0.8, 1.2] {
+            let ml = crate::figures::with_layout(m, l);
+            let cl = linear::compare(&ml, w.max(crate::figures::omega_limit(&ml, None)), 1500, balls)?;
+            rows.push(vec![
+                format!("{l}"),
+                fmt_ranges(&cl.exact.stable_ranges, 4),
+                fmt_ranges(&cl.necessary, 4),
+                linear::difference_sentence(&cl),
+            ]);
+        }
+        h.push_str("<h3>Exact ranges against 003's necessary ranges, the papers' three layouts</h3>\n");
+        h.push_str(&table(&["l̄_L", "exactly stable", "003 necessary", "difference"], &rows));
+    }
+    // stability map, 003 Fig. 5a layout: z̄_A × Ω
+    let (nx, ny) = (121usize, 121usize);
+    let x = Axis { key: "dimensionless.z_a".into(), lo: -2.0, hi: 2.0, n: nx };
+    let y = Axis { key: "omega".into(), lo: 0.02 * w, hi: w, n: ny };
+    let cols: Vec<(StateSpace, Vec<autobal::ranges::SpeedRange>)> = (0..nx)
+        .map(|i| {
+            let mut mz = m.clone();
+            mz.z_a = x.value(i);
+            Ok((StateSpace::new(&mz, balls)?, autobal::ranges::autobalancing_ranges(&mz).ranges))
+        })
+        .collect::<Result<_>>()?;
+    let mut rows: Vec<Option<Vec<Cell>>> = vec![];
+    for j in 0..ny {
+        let om = y.value(j);
+        let mut row = vec![];
+        for (ss, nec) in &cols {
+            let a = margin_at(ss, om)?;
+            row.push(Cell { margin: a, stable: a <= STABILITY_TOLERANCE, necessary: nec.iter().any(|r| r.contains(om)) });
+        }
+        rows.push(Some(row));
+    }
+    let r = MapResult { x, y, rows, quantity: Quantity::Margin };
+    write_plots(&r, &dir.join("stability_map_z_a"), "Stability map z̄_A × Ω")?;
+    let _ = writeln!(
+        h,
+        "<figure><img src=\"stability_map_z_a.svg\" alt=\"stability map\"><figcaption>{}</figcaption></figure>",
+        esc("Stability map in the layout of 003 Fig. 5a: largest real part over the position of the balancer plane z̄_A and the speed Ω (blue stable, red unstable), with the exact stability boundary (black) and the boundary of 003's necessary condition (dashed). Also as stability_map_z_a.png.")
+    );
+    Ok(h)
 }

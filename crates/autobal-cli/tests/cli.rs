@@ -113,3 +113,88 @@ fn report_writes_index_and_figures() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn stability_json_has_ranges_and_margin() {
+    let v = json(&["stability", "--format", "json", "--omega-max", "5", "--samples", "400"]);
+    for k in ["stable_ranges", "necessary_ranges", "max_real_part"] {
+        assert!(v[k].is_array(), "{k}");
+    }
+    let samples = v["max_real_part"].as_array().unwrap();
+    assert!(samples.len() >= 400);
+    assert!(samples.iter().all(|p| p[0].as_f64().unwrap() <= 5.0));
+    // 003's last necessary range is unbounded: reported with hi = null
+    assert!(v["necessary_ranges"].as_array().unwrap().last().unwrap()[1].is_null());
+    // locked balls and no damping: stable everywhere except between split critical speeds,
+    // whose ends are the analytic critical speeds
+    let v = json(&[
+        "stability", "--format", "json", "--balls", "locked", "--omega-max", "4.5",
+        "--set", "analysis.anisotropy=paper", "--set", "dimensionless.h_x=0",
+    ]);
+    let c = json(&["critical", "--format", "json", "--set", "analysis.anisotropy=paper"]);
+    let ks: Vec<f64> = c["critical_speeds"].as_array().unwrap().iter().map(|k| k["omega"].as_f64().unwrap()).collect();
+    let ends: Vec<f64> = v["stable_ranges"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .flat_map(|r| [r[0].as_f64(), r[1].as_f64()])
+        .flatten()
+        .filter(|x| *x > 0.0)
+        .collect();
+    for k in ks {
+        assert!(ends.iter().any(|e| (e - k).abs() < 1e-6), "{k} not among {ends:?}");
+    }
+}
+
+#[test]
+fn campbell_and_map_write_their_files() {
+    let dir = std::env::temp_dir().join(format!("autobal-lin-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let prefix = dir.join("cb");
+    let v = json(&["campbell", "--format", "json", "--points", "40", "--svg", prefix.to_str().unwrap()]);
+    assert_eq!(v["lines"].as_array().unwrap().len(), 12);
+    assert!(dir.join("cb_fixed.svg").exists() && dir.join("cb_rotating.svg").exists());
+    let stem = dir.join("map");
+    let (code, _, err) = autobal(&["map", "--x", "dimensionless.z_a=-1:1:12", "--y", "omega=0.1:4:10", "--out", stem.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    let csv = std::fs::read_to_string(dir.join("map.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 1 + 12 * 10);
+    assert!(csv.starts_with("dimensionless.z_a,omega,max_real_part,stable,necessary"));
+    let png = std::fs::read(dir.join("map.png")).unwrap();
+    assert_eq!(&png[1..4], b"PNG");
+    assert!(std::fs::read_to_string(dir.join("map.svg")).unwrap().contains("data:image/png;base64,"));
+    // bad axis specs name the flag
+    for (x, flag) in [("omega=1:0:10", "--x"), ("dimensionless.nope=0:1:5", "dimensionless.nope"), ("omega=0:1", "--x")] {
+        let (code, _, err) = autobal(&["map", "--x", x, "--y", "dimensionless.z_a=0:1:3", "--out", stem.to_str().unwrap()]);
+        assert_ne!(code, 0);
+        assert!(err.contains(flag), "{err}");
+        assert_eq!(err.trim_end().lines().count(), 1);
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[cfg(unix)]
+#[test]
+fn interrupted_map_keeps_the_rows_written() {
+    let dir = std::env::temp_dir().join(format!("autobal-int-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let stem = dir.join("big");
+    let child = Command::new(env!("CARGO_BIN_EXE_autobal"))
+        .args(["map", "--x", "dimensionless.z_a=-2:2:1500", "--y", "omega=0.05:5:1500", "--threads", "1", "--out", stem.to_str().unwrap()])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(1500));
+    let _ = Command::new("kill").args(["-INT", &child.id().to_string()]).status();
+    let out = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_ne!(out.status.code(), Some(0), "should report the interruption");
+    assert!(err.contains("interrupted"), "{err}");
+    let csv = std::fs::read_to_string(dir.join("big.csv")).unwrap();
+    let lines = csv.lines().count() - 1;
+    assert!(lines > 0 && lines % 1500 == 0, "whole rows only: {lines} lines");
+    assert!(lines < 1500 * 1500);
+    assert!(dir.join("big.png").exists(), "plots of the rows computed are written");
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -11,14 +11,14 @@
 use crate::eigen::{characteristic_polynomial, complex_solve, eigenvalues, routh_hurwitz_stable, spectral_abscissa};
 use crate::critical_speeds::{critical_speeds_at, ModeKind};
 use crate::error::{Error, Result};
-use crate::linear_model::{Balls, Pencil};
+use crate::linear_model::{Balls, Pencil, StateSpace};
 use crate::params::SpatialModel;
 use crate::ranges::SpeedRange;
 use num_complex::Complex64;
 use serde::Serialize;
 
 /// Real parts up to this value count as zero (neutral stability).
-pub const STABILITY_TOLERANCE: f64 = 1e-9;
+pub const STABILITY_TOLERANCE: f64 = 1e-11;
 
 fn no_conv(omega: f64) -> Error {
     Error::invalid("omega", format!("the eigenvalue iteration did not converge at Ω = {omega}"))
@@ -28,6 +28,17 @@ fn no_conv(omega: f64) -> Error {
 pub fn margin(model: &SpatialModel, omega: f64, balls: Balls) -> Result<f64> {
     let p = Pencil::new(model, omega, balls)?;
     spectral_abscissa(&p.state_matrix(), p.states()).map_err(|_| no_conv(omega))
+}
+
+/// Spectral abscissa at `omega` from a factored [`StateSpace`] (many speeds of one model).
+pub fn margin_at(ss: &StateSpace, omega: f64) -> Result<f64> {
+    spectral_abscissa(&ss.at(omega), ss.states).map_err(|_| no_conv(omega))
+}
+
+/// Routh–Hurwitz verdict (every `Re λ < 0`) at `omega` from a factored [`StateSpace`].
+pub fn strictly_stable_at(ss: &StateSpace, omega: f64) -> bool {
+    let c = characteristic_polynomial(&ss.at(omega), ss.states);
+    routh_hurwitz_stable(&c[..=ss.states])
 }
 
 /// Stability verdict from the Routh–Hurwitz test on the characteristic polynomial: strict
@@ -162,7 +173,7 @@ pub fn stability_ranges(model: &SpatialModel, omega_max: f64, samples: usize, ba
         return Err(Error::invalid("omega_max", format!("must be a positive number, got {omega_max}")));
     }
     let samples = samples.max(2);
-    let lo0 = omega_max * 1e-4;
+    let lo0 = omega_max * 1e-3;
     let mut grid: Vec<f64> = (0..samples).map(|i| lo0 + (omega_max - lo0) * i as f64 / (samples - 1) as f64).collect();
     // Seed the grid with the analytic split pairs (locked rotor, ΔĀ and ΔĀ0): their instability
     // ranges can be far narrower than the grid spacing (near-symmetric layouts).
@@ -182,9 +193,10 @@ pub fn stability_ranges(model: &SpatialModel, omega_max: f64, samples: usize, ba
     grid.sort_by(f64::total_cmp);
     grid.dedup();
     let samples = grid.len();
+    let ss = StateSpace::new(model, balls)?;
     let mut alpha = Vec::with_capacity(samples);
     for &w in &grid {
-        alpha.push((w, margin(model, w, balls)?));
+        alpha.push((w, margin_at(&ss, w)?));
     }
     let stable = |a: f64| a <= STABILITY_TOLERANCE;
     let mut ranges: Vec<SpeedRange> = vec![];
@@ -196,7 +208,7 @@ pub fn stability_ranges(model: &SpatialModel, omega_max: f64, samples: usize, ba
             let (mut lo, mut hi) = (w0, w1);
             while hi - lo > tol {
                 let mid = 0.5 * (lo + hi);
-                if stable(margin(model, mid, balls)?) == stable(a0) {
+                if stable(margin_at(&ss, mid)?) == stable(a0) {
                     lo = mid;
                 } else {
                     hi = mid;
