@@ -46,6 +46,7 @@ pub mod linear_model;
 pub mod params;
 pub mod ranges;
 pub mod sensitivity;
+pub mod simulation;
 pub mod stability;
 
 pub use error::{Error, Result};

@@ -1,0 +1,94 @@
+//! Stationary (steady synchronous) whirls of the planar rotor at constant speed ω, for the
+//! dashed curves of the transient plots (004, Figs 2-4).
+//!
+//! In rotor axes a steady whirl has `u̇ = 0`, `ψ̇ = 0`; the translation equation gives
+//! `u (k + i c ω − m0 ω²) = ω² U`, `U = m1 s1 + (m2 + n m3) s2 e^{iγ} + m3 r Σ e^{iψ_j}`
+//! (the total unbalance about C in rotor axes).
+//!
+//! - **Balls locked** at given angles: `|u| = ω² |U| / |k − m0 ω² + i c ω|` (closed form).
+//! - **Semi-balanced** (balls free): the race centre E on the axis, `u = −s2 e^{iγ}`, so C whirls
+//!   at radius `s2` whatever ω; the balls must then supply
+//!   `B = m3 r Σ e^{iψ_j} = −s2 e^{iγ} (k/ω² + i c/ω) + m1 (s2 e^{iγ} − s1)`, possible while
+//!   `|B| ≤ n m3 r` (n ≥ 2). At high speed the capacity ratio tends to
+//!   `α∞ = n m3 r / (m1 |s1 − s2 e^{iγ}|)`.
+//! - **Aligned** (balls free, E off the axis): each ball is in equilibrium only on the line
+//!   through the axis and E (tangential centrifugal force zero), far side or near side; with
+//!   `q = n_far − n_near` and `w = u + s2 e^{iγ} = ρ e^{iφ}`:
+//!   `e^{iφ}(ρ D − m3 r q ω²) = ω² U0 + s2 e^{iγ} D`, `D = k + icω − m0 ω²`,
+//!   `U0 = m1 s1 + (m2 + n m3) s2 e^{iγ}`, a quadratic in `ρ ≥ 0`.
+
+use super::PlanarRotor;
+use num_complex::Complex64 as C;
+
+fn d_of(p: &PlanarRotor, w: f64) -> C {
+    C::new(p.k - p.total_mass() * w * w, p.c * w)
+}
+
+/// Steady whirl radius of C with the balls locked at angles `psi` (closed form).
+pub fn locked_amplitude(p: &PlanarRotor, w: f64, psi: &[f64]) -> f64 {
+    let e = C::from_polar(p.s2, p.gamma);
+    let mut u = C::new(p.m1 * p.s1, 0.0) + e * (p.m2 + p.n as f64 * p.m3);
+    for a in psi {
+        u += C::from_polar(p.m3 * p.r, *a);
+    }
+    w * w * u.norm() / d_of(p, w).norm()
+}
+
+/// The unbalance the balls must supply in the semi-balanced whirl at speed `w`.
+pub fn semi_balanced_demand(p: &PlanarRotor, w: f64) -> f64 {
+    let e = C::from_polar(p.s2, p.gamma);
+    (-e * C::new(p.k / (w * w), p.c / w) + (e - C::new(p.s1, 0.0)) * p.m1).norm()
+}
+
+/// Whether the semi-balanced whirl (radius `s2`) exists at speed `w`.
+pub fn semi_balanced_exists(p: &PlanarRotor, w: f64) -> bool {
+    p.n >= 2 && semi_balanced_demand(p, w) <= p.n as f64 * p.m3 * p.r
+}
+
+/// High-speed capacity ratio `α∞ = n m3 r / (m1 |s1 − s2 e^{iγ}|)`; the semi-balanced whirl
+/// exists at high speed when `α∞ > 1` (our reading of the paper's garbled eq (3)).
+pub fn capacity_ratio(p: &PlanarRotor) -> f64 {
+    let e = C::from_polar(p.s2, p.gamma);
+    p.n as f64 * p.m3 * p.r / (p.m1 * (C::new(p.s1, 0.0) - e).norm())
+}
+
+/// One aligned (unbalanced) steady whirl.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Aligned {
+    /// `n_far − n_near`.
+    pub q: i32,
+    /// Whirl radius of C.
+    pub amplitude: f64,
+}
+
+/// All aligned steady whirls at speed `w` (balls free, E off the axis).
+pub fn aligned_whirls(p: &PlanarRotor, w: f64) -> Vec<Aligned> {
+    let n = p.n as i32;
+    let e = C::from_polar(p.s2, p.gamma);
+    let d = d_of(p, w);
+    let u0 = C::new(p.m1 * p.s1, 0.0) + e * (p.m2 + p.n as f64 * p.m3);
+    let rhs = u0 * (w * w) + e * d;
+    let mut out = vec![];
+    let mut q = -n;
+    while q <= n {
+        let qq = p.m3 * p.r * q as f64 * w * w;
+        // |ρ D − qq|² = |rhs|²  →  ρ²|D|² − 2ρ qq Re D + qq² − |rhs|² = 0
+        let (a, b, c) = (d.norm_sqr(), -2.0 * qq * d.re, qq * qq - rhs.norm_sqr());
+        let disc = b * b - 4.0 * a * c;
+        if disc >= 0.0 && a > 0.0 {
+            for s in [-1.0, 1.0] {
+                let rho = (-b + s * disc.sqrt()) / (2.0 * a);
+                if rho > 0.0 {
+                    let phase = rhs.arg() - (d * rho - qq).arg();
+                    let u = C::from_polar(rho, phase) - e;
+                    out.push(Aligned { q, amplitude: u.norm() });
+                }
+                if disc == 0.0 {
+                    break;
+                }
+            }
+        }
+        q += 2;
+    }
+    out
+}
