@@ -20,7 +20,16 @@ const SCHEMA: &[(&str, &[&str])] = &[
         &["c_sigma", "rho_s", "l_left", "z_a", "delta_a", "m0", "r0", "m", "r", "n", "d_a", "h_x", "h_s"],
     ),
     ("analysis", &["anisotropy", "sensitivity_limit", "omega_max"]),
+    ("planar", &["m1", "m2", "m3", "n", "s1", "s2", "gamma", "r", "k", "c", "c_psi", "c_theta", "i_g"]),
+    (
+        "drive",
+        &["kind", "omega0", "b", "torque", "omega_idle", "t_off", "t_end", "psi0", "psi_rate0", "schedule", "schedule_of"],
+    ),
+    ("integration", &["rtol", "atol", "dt"]),
 ];
+
+/// The embedded default of `simulate` and `sweep` (paper 004's rotor).
+pub const DEFAULT_PLANAR: &str = include_str!("../../../examples/planar.toml");
 
 /// Analysis settings from the `[analysis]` table.
 #[derive(Debug, Clone)]
@@ -134,12 +143,17 @@ fn describe(v: &Value) -> String {
 
 /// Read and parse the config text (or the embedded default) into a TOML table.
 pub fn read(path: Option<&std::path::Path>) -> Result<(Table, String)> {
+    read_with_default(path, DEFAULT_CONFIG, "embedded default (examples/default.toml)")
+}
+
+/// [`read`] with another embedded default.
+pub fn read_with_default(path: Option<&std::path::Path>, default: &str, default_name: &str) -> Result<(Table, String)> {
     let (text, source) = match path {
         Some(p) => (
             std::fs::read_to_string(p).map_err(|e| anyhow!("--config {}: cannot read: {e}", p.display()))?,
             p.display().to_string(),
         ),
-        None => (DEFAULT_CONFIG.to_string(), "embedded default (examples/default.toml)".to_string()),
+        None => (default.to_string(), default_name.to_string()),
     };
     let root: Table = text.parse::<Table>().map_err(|e| {
         let msg = e.message().replace('\n', " ");
@@ -208,6 +222,9 @@ pub fn build(root: &Table, source: &str) -> Result<Config> {
         }
     }
     let dimensional_tables = ["rotor", "supports", "unbalance", "balancer"];
+    if !dimensional_tables.iter().any(|t| root.contains_key(*t)) && !root.contains_key("dimensionless") && root.contains_key("planar") {
+        bail!("config: this is a planar-rotor config ([planar], [drive]): use it with `autobal simulate` or `autobal sweep`");
+    }
     let has_dim = dimensional_tables.iter().any(|t| root.contains_key(*t));
     let has_nondim = root.contains_key("dimensionless");
     let model = match (has_dim, has_nondim) {
@@ -326,4 +343,119 @@ mod tests {
         assert_eq!(c.model.l_left, Some(1.2));
         assert_eq!(c.model.c_sigma, 1.0);
     }
+}
+
+/// A loaded planar-rotor simulation (paper 004).
+#[derive(Debug, Clone)]
+pub struct PlanarConfig {
+    pub rotor: autobal::simulation::PlanarRotor,
+    pub drive: autobal::simulation::Drive,
+    pub settings: autobal::simulation::Settings,
+    pub source: String,
+}
+
+fn array_f64(sec: &Section, key: &str) -> Result<Option<Vec<f64>>> {
+    match sec.get(key) {
+        None => Ok(None),
+        Some(Value::Array(a)) => a
+            .iter()
+            .map(|v| match v {
+                Value::Float(f) => Ok(*f),
+                Value::Integer(i) => Ok(*i as f64),
+                o => bail!("{}.{key}: expected numbers, got {}", sec.name, describe(o)),
+            })
+            .collect::<Result<Vec<_>>>()
+            .map(Some),
+        Some(v) => bail!("{}.{key}: expected an array of numbers, got {}", sec.name, describe(v)),
+    }
+}
+
+/// Load a planar config (embedded default: examples/planar.toml) with overrides.
+pub fn load_planar(path: Option<&std::path::Path>, sets: &[String]) -> Result<PlanarConfig> {
+    let (mut root, source) = read_with_default(path, DEFAULT_PLANAR, "embedded default (examples/planar.toml)")?;
+    for s in sets {
+        apply_set(&mut root, s)?;
+    }
+    build_planar(&root, &source)
+}
+
+/// Validate a planar config table.
+pub fn build_planar(root: &Table, source: &str) -> Result<PlanarConfig> {
+    use autobal::simulation::{Drive, PlanarRotor, Settings};
+    for (name, value) in root {
+        check_key(name, None)?;
+        let t = value.as_table().ok_or_else(|| anyhow!("{name}: expected a table [{name}]"))?;
+        for k in t.keys() {
+            check_key(name, Some(k))?;
+        }
+    }
+    if !root.contains_key("planar") {
+        bail!("planar: missing: `simulate` needs a [planar] table (see examples/planar.toml)");
+    }
+    let sec = |name: &'static str| Section { name, table: root.get(name).and_then(Value::as_table) };
+    let (p, d, ig) = (sec("planar"), sec("drive"), sec("integration"));
+    let rotor = PlanarRotor {
+        m1: p.req("m1")?,
+        m2: p.f64("m2")?.unwrap_or(0.0),
+        m3: p.f64("m3")?.unwrap_or(0.0),
+        n: p.count("n")?.unwrap_or(0) as usize,
+        s1: p.req("s1")?,
+        s2: p.f64("s2")?.unwrap_or(0.0),
+        gamma: p.f64("gamma")?.unwrap_or(0.0),
+        r: p.f64("r")?.unwrap_or(0.0),
+        k: p.req("k")?,
+        c: p.f64("c")?.unwrap_or(0.0),
+        c_psi: p.f64("c_psi")?.unwrap_or(0.0),
+        c_theta: p.f64("c_theta")?.unwrap_or(0.0),
+        i_g: p.req("i_g")?,
+    };
+    rotor.validate()?;
+    let omega0 = d.f64("omega0")?.unwrap_or(0.0);
+    let t_off = d.f64("t_off")?;
+    let kind = d.string("kind")?.unwrap_or("acceleration");
+    let need = |key: &str| d.f64(key)?.ok_or_else(|| anyhow!("drive.{key}: required for kind = \"{kind}\""));
+    let schedule = || -> Result<Vec<(f64, f64)>> {
+        match d.get("schedule") {
+            Some(Value::Array(rows)) => rows
+                .iter()
+                .map(|r| match r {
+                    Value::Array(pair) if pair.len() == 2 => {
+                        let num = |v: &Value| match v {
+                            Value::Float(f) => Ok(*f),
+                            Value::Integer(i) => Ok(*i as f64),
+                            o => Err(anyhow!("drive.schedule: expected numbers, got {}", describe(o))),
+                        };
+                        Ok((num(&pair[0])?, num(&pair[1])?))
+                    }
+                    _ => Err(anyhow!("drive.schedule: each entry must be a [t, value] pair")),
+                })
+                .collect(),
+            Some(v) => bail!("drive.schedule: expected an array of [t, value] pairs, got {}", describe(v)),
+            None => bail!("drive.schedule: required for kind = \"schedule\""),
+        }
+    };
+    let drive = match kind {
+        "speed" => Drive::Speed { omega0 },
+        "acceleration" => Drive::Acceleration { omega0, b: need("b")? },
+        "torque" => Drive::Torque { omega0, torque: need("torque")?, t_off },
+        "motor" => Drive::Motor { omega0, torque: need("torque")?, omega_idle: need("omega_idle")?, t_off },
+        "schedule" => match d.string("schedule_of")?.unwrap_or("speed") {
+            "speed" => Drive::SpeedSchedule { points: schedule()? },
+            "torque" => Drive::TorqueSchedule { omega0, points: schedule()? },
+            o => bail!("drive.schedule_of: must be \"speed\" or \"torque\", got \"{o}\""),
+        },
+        o => bail!("drive.kind: must be one of \"speed\", \"acceleration\", \"torque\", \"motor\", \"schedule\", got \"{o}\""),
+    };
+    drive.validate()?;
+    let t_end = d.f64("t_end")?.unwrap_or(10.0);
+    let settings = Settings {
+        t_end,
+        dt: ig.f64("dt")?.unwrap_or(t_end / 2000.0),
+        rtol: ig.f64("rtol")?.unwrap_or(1e-8),
+        atol: ig.f64("atol")?.unwrap_or(1e-9),
+        psi0: array_f64(&d, "psi0")?.unwrap_or_else(|| Settings::default_psi0(rotor.n)),
+        psi_rate0: array_f64(&d, "psi_rate0")?.unwrap_or_else(|| vec![0.0; rotor.n]),
+    };
+    settings.validate(&rotor)?;
+    Ok(PlanarConfig { rotor, drive, settings, source: source.to_string() })
 }

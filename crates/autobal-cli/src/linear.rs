@@ -223,7 +223,7 @@ pub fn margin_plot(c: &Comparison) -> Plot {
     let hi = pts.iter().map(|p| p.1).fold(0.0, f64::max);
     let pad = 0.1 * (hi - lo).max(1e-6);
     Plot {
-        title: "Stability margin: green below 0 = exactly stable, blue above 0 = 003 necessary".into(),
+        title: "max Re λ: green = exactly stable, blue = 003 necessary".into(),
         x_label: "Ω".into(),
         y_label: "max Re λ".into(),
         series: vec![Series::new("max Re λ", pts, PALETTE[1])],

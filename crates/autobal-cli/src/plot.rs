@@ -151,9 +151,10 @@ impl Plot {
             r#"<svg xmlns="http://www.w3.org/2000/svg" width="{W}" height="{H}" viewBox="0 0 {W} {H}" font-family="DejaVu Sans, Arial, sans-serif" font-size="12">
 <rect width="100%" height="100%" fill="white"/>
 <defs><clipPath id="plotarea"><rect x="{ML}" y="{MT}" width="{pw}" height="{ph}"/></clipPath></defs>
-<text x="{}" y="22" text-anchor="middle" font-size="14" font-weight="bold">{}</text>
+<text x="{}" y="22" text-anchor="middle" font-size="{}" font-weight="bold">{}</text>
 "#,
             ML + pw / 2.0,
+            if self.title.chars().count() > 60 { 11 } else { 14 },
             esc(&self.title)
         );
         if let Some(r) = &self.raster {

@@ -67,8 +67,9 @@ fn paper_examples() -> String {
     table(&["l̄_L", "p̄α printed / computed", "c̄yα", "Ω_K1-4 printed / computed", "Ω_a", "autobalancing ranges"], &rows)
 }
 
-/// Write the report into `dir`; returns the path of `index.html`.
-pub fn write(cfg: &Config, dir: &Path) -> Result<PathBuf> {
+/// Write the report into `dir`; returns the path of `index.html`. `quick` runs the passage
+/// simulations of paper 004 ten times faster (and skips the slowest), for tests.
+pub fn write(cfg: &Config, dir: &Path, quick: bool) -> Result<PathBuf> {
     std::fs::create_dir_all(dir).with_context(|| format!("--out {}: cannot create the folder", dir.display()))?;
     let m = &cfg.model;
     let figs = figures::all(m, cfg.analysis.omega_max);
@@ -154,6 +155,7 @@ figure{margin:1.5em 0}figcaption{font-size:92%;color:#444;max-width:720px}
     h.push_str(&paper_examples());
 
     h.push_str(&linear_section(cfg, dir)?);
+    h.push_str(&simulation_section(dir, quick)?);
 
     h.push_str("<h2>Figures of papers 000 and 003</h2>\n");
     for fg in &figs {
@@ -241,5 +243,177 @@ fn linear_section(cfg: &Config, dir: &Path) -> Result<String> {
         "<figure><img src=\"stability_map_z_a.svg\" alt=\"stability map\"><figcaption>{}</figcaption></figure>",
         esc("Stability map in the layout of 003 Fig. 5a: largest real part over the position of the balancer plane z̄_A and the speed Ω (blue stable, red unstable), with the exact stability boundary (black) and the boundary of 003's necessary condition (dashed). Also as stability_map_z_a.png.")
     );
+    Ok(h)
+}
+
+/// Section of issue 4: paper 004's passages through resonance, re-run with autobal.
+fn simulation_section(dir: &Path, quick: bool) -> Result<String> {
+    use crate::plot::{Plot, Series, PALETTE};
+    use crate::sim::{Envelope, INTERRUPTED};
+    use autobal::simulation::{simulate, stationary::locked_amplitude, Summary};
+    use rayon::prelude::*;
+    let f = if quick { 10.0 } else { 1.0 }; // quick: ten times faster sweeps
+    let b = |v: f64| v * f;
+    // (id, label, overrides)
+    let mut runs: Vec<(&str, String, Vec<String>)> = vec![];
+    let acc = |m3: f64, bb: f64, w0: f64, t_end: f64| -> Vec<String> {
+        vec![
+            format!("planar.m3={m3}"),
+            "drive.kind=\"acceleration\"".into(),
+            format!("drive.b={bb}"),
+            format!("drive.omega0={w0}"),
+            format!("drive.t_end={t_end}"),
+            format!("integration.dt={}", t_end / 4000.0),
+        ]
+    };
+    for (id, m3) in [("2", 0.01), ("3", 0.03)] {
+        runs.push((id, format!("m3 = {m3}, forward b = {}", b(0.25)), acc(m3, b(0.25), 0.0, 600.0 / b(0.25))));
+        runs.push((id, format!("m3 = {m3}, reverse b = {}", -b(0.25)), acc(m3, -b(0.25), 1000.0, 1000.0 / b(0.25))));
+    }
+    for bb in [0.25, 2.5, 12.5] {
+        runs.push(("4a", format!("forward b = {}", b(bb)), acc(0.03, b(bb), 0.0, 600.0 / b(bb))));
+        runs.push(("4b", format!("reverse b = {}", -b(bb)), acc(0.03, -b(bb), 1000.0, 1000.0 / b(bb))));
+    }
+    if !quick {
+        for bb in [0.04, 0.08, 0.2] {
+            runs.push(("4c", format!("forward b = {bb}"), acc(0.03, bb, 0.0, 600.0 / bb)));
+        }
+    }
+    for cp in [0.01, 0.1, 0.4] {
+        let mut o = acc(0.03, b(0.2), 0.0, 600.0 / b(0.2));
+        o.push(format!("planar.c_psi={cp}"));
+        runs.push(("5", format!("c_ψ = {cp}"), o));
+    }
+    let torque = |m: f64, t_off: Option<f64>, t_end: f64, cpsi: f64| -> Vec<String> {
+        let mut o = vec![
+            "drive.kind=\"torque\"".into(),
+            format!("drive.torque={m}"),
+            "drive.omega0=0".into(),
+            format!("drive.t_end={t_end}"),
+            format!("integration.dt={}", t_end / 4000.0),
+            format!("planar.c_psi={cpsi}"),
+        ];
+        if let Some(t) = t_off {
+            o.push(format!("drive.t_off={t}"));
+        }
+        o
+    };
+    for m in [3.0, 6.0, 10.0] {
+        runs.push(("6", format!("M = {m} N·m"), torque(m, None, 10.0, 0.1)));
+    }
+    runs.push(("7", "M = 10 N·m, off at 2 s".into(), torque(10.0, Some(2.0), 4.0, 0.1)));
+    runs.push(("8", "M = 10 N·m, c_ψ = 0.004".into(), torque(10.0, None, 6.0, 0.004)));
+    eprintln!("simulating paper 004's passages through resonance ({} runs{})…", runs.len(), if quick { ", quick" } else { "" });
+    let t0 = std::time::Instant::now();
+    let results: Vec<Result<(crate::config::PlanarConfig, Summary, Envelope, f64)>> = runs
+        .par_iter()
+        .map(|(_, _, sets)| {
+            let cfg = crate::config::load_planar(None, sets)?;
+            let mut env = Envelope::new((cfg.settings.t_end / cfg.settings.dt) as usize + 1, 4000);
+            let t = std::time::Instant::now();
+            let s = simulate(&cfg.rotor, &cfg.drive, &cfg.settings, |x| {
+                env.push(x);
+                !INTERRUPTED.load(std::sync::atomic::Ordering::Relaxed)
+            })?;
+            env.flush();
+            Ok((cfg, s, env, t.elapsed().as_secs_f64()))
+        })
+        .collect();
+    let results = results.into_iter().collect::<Result<Vec<_>>>()?;
+    let total = t0.elapsed().as_secs_f64();
+    let mut h = String::from("<h2>Passage through resonance (paper 004)</h2>\n");
+    let _ = writeln!(
+        h,
+        "<p>Paper 004's rotor (m1 = 1 kg, m2 = 0.2 kg, two balls, s1 = 3 mm, s2 = 0.5 mm, r = 60 mm, c = 50 kg/s, c_ψ = 0.1 N·m·s, sqrt(k/m0) = 288 1/s; I_G = 0.0025 kg·m² and c_θ = 0, which the paper does not give), integrated in rotor axes by DOP853 at rtol 1e-8.{} {} runs in {:.1} s.</p>",
+        if quick { " <b>Quick mode: accelerations ten times the paper's.</b>" } else { "" },
+        results.len(),
+        total
+    );
+    let mut rows = vec![];
+    for ((id, label, _), (_, s, _, wall)) in runs.iter().zip(&results) {
+        rows.push(vec![
+            format!("Fig. {id}"),
+            label.clone(),
+            format!("{:.3}", 1e3 * s.peak_amplitude),
+            format!("{:.1}", s.omega_at_peak),
+            format!("{:.4}", 1e3 * s.final_amplitude),
+            format!("{:.1}", s.final_omega),
+            if s.balanced { "yes".into() } else { "no".into() },
+            s.steps.to_string(),
+            format!("{wall:.3}"),
+        ]);
+    }
+    h.push_str(&table(&["figure", "run", "peak (mm)", "ω at peak", "final (mm)", "final ω", "semi-balanced", "steps", "wall (s)"], &rows));
+    let series_of = |ids: &[&str], x: &dyn Fn(&autobal::simulation::Sample) -> f64, y: &dyn Fn(&autobal::simulation::Sample) -> f64| -> Vec<Series> {
+        runs.iter()
+            .zip(&results)
+            .filter(|((id, _, _), _)| ids.contains(id))
+            .enumerate()
+            .map(|(i, ((_, label, _), (_, _, env, _)))| Series::new(label.clone(), env.kept.iter().map(|s| (x(s), y(s))).collect(), PALETTE[i % 7]))
+            .collect()
+    };
+    let mm = |s: &autobal::simulation::Sample| 1e3 * s.amplitude;
+    let om = |s: &autobal::simulation::Sample| s.omega;
+    let tt = |s: &autobal::simulation::Sample| s.t;
+    let mut figs: Vec<(String, Plot, String)> = vec![];
+    for (id, m3) in [("2", 0.01), ("3", 0.03)] {
+        let mut ser = series_of(&[id], &om, &mm);
+        let rotor = results.iter().zip(&runs).find(|(_, r)| r.0 == id).map(|(x, _)| x.0.rotor.clone()).expect("run present");
+        let psi0 = autobal::simulation::Settings::default_psi0(rotor.n);
+        ser.push(Series::new("stationary, balls locked at ψ0", (0..=500).map(|i| { let w = 2.0 * i as f64; (w, 1e3 * locked_amplitude(&rotor, w, &psi0)) }).collect(), PALETTE[7]).dashed());
+        figs.push((
+            format!("fig004_{id}_amplitude_omega.svg"),
+            Plot { title: format!("004 Fig. {id}: m3 = {m3} kg, forward and reverse"), x_label: "ω (rad/s)".into(), y_label: "radius of C (mm)".into(), series: ser, ..Default::default() },
+            format!("004 Fig. {id}a: radius of C against speed for forward and reverse passage, with the stationary curve of the rotor whose balls are held at their initial, evenly spread positions (dashed)."),
+        ));
+        let psi: Vec<Series> = runs
+            .iter()
+            .zip(&results)
+            .filter(|((i, _, _), _)| *i == id)
+            .flat_map(|((_, label, _), (cfg, _, env, _))| {
+                (0..cfg.rotor.n).map(move |j| Series::new(format!("{label}: ψ{}", j + 1), env.kept.iter().map(|s| (s.t, s.psi[j].to_degrees())).collect(), PALETTE[(j + 2 * usize::from(label.contains("reverse"))) % 7]))
+            })
+            .collect();
+        figs.push((
+            format!("fig004_{id}_ball_angles.svg"),
+            Plot { title: format!("004 Fig. {id}b,c: ball angles, m3 = {m3} kg"), x_label: "t (s)".into(), y_label: "ψ (degrees)".into(), series: psi, ..Default::default() },
+            format!("004 Fig. {id}b,c: ball angles relative to CG during the forward and reverse passages."),
+        ));
+    }
+    let mut four = vec![("4a", "forward"), ("4b", "reverse")];
+    if !quick {
+        four.push(("4c", "slow forward"));
+    }
+    for (id, what) in four {
+        figs.push((
+            format!("fig004_{id}_acceleration.svg"),
+            Plot { title: format!("004 Fig. {id}: {what} passage at several accelerations"), x_label: "ω (rad/s)".into(), y_label: "radius of C (mm)".into(), series: series_of(&[id], &om, &mm), ..Default::default() },
+            format!("004 Fig. {id}: radius of C against speed for {what} passages at the accelerations listed."),
+        ));
+    }
+    figs.push((
+        "fig004_5_ball_damping.svg".into(),
+        Plot { title: "004 Fig. 5: effect of the ball drag c_ψ".into(), x_label: "t (s)".into(), y_label: "radius of C (mm)".into(), series: series_of(&["5"], &tt, &mm), ..Default::default() },
+        "004 Fig. 5: radius of C against time for three ball drags: too little drag prolongs the oscillation after resonance, too much raises the peak.".into(),
+    ));
+    figs.push((
+        "fig004_6_torque_amplitude.svg".into(),
+        Plot { title: "004 Fig. 6a,b: constant torque".into(), x_label: "t (s)".into(), y_label: "radius of C (mm)".into(), series: series_of(&["6"], &tt, &mm), ..Default::default() },
+        "004 Fig. 6a,b: radius of C under constant torques; the smallest cannot pass resonance (Sommerfeld effect; with this rotor's inertia the threshold is about 4.8 N·m, the largest torque the whirl can absorb at resonance, c ω A²).".into(),
+    ));
+    figs.push((
+        "fig004_6_torque_speed.svg".into(),
+        Plot { title: "004 Fig. 6c: speed under constant torque".into(), x_label: "t (s)".into(), y_label: "ω (rad/s)".into(), series: series_of(&["6"], &tt, &om), ..Default::default() },
+        "004 Fig. 6c: speed against time; the rotor driven by the smallest torque sticks below sqrt(k/m0) = 288 1/s.".into(),
+    ));
+    figs.push((
+        "fig004_7_run_down.svg".into(),
+        Plot { title: "004 Fig. 7: run-up, torque off, run-down".into(), x_label: "t (s)".into(), y_label: "radius of C (mm)".into(), series: series_of(&["7", "8"], &tt, &mm), ..Default::default() },
+        "004 Figs 7-8: radius of C for a run-up with the torque switched off at 2 s, and a run-up with too little ball drag (c_ψ = 0.004).".into(),
+    ));
+    for (file, plot, caption) in figs {
+        std::fs::write(dir.join(&file), plot.to_svg()).with_context(|| format!("--out: cannot write {file}"))?;
+        let _ = writeln!(h, "<figure><img src=\"{file}\" alt=\"{}\"><figcaption>{}</figcaption></figure>", esc(&plot.title), esc(&caption));
+    }
     Ok(h)
 }

@@ -95,7 +95,7 @@ fn bad_input_is_one_line_naming_the_field() {
 #[test]
 fn report_writes_index_and_figures() {
     let dir = std::env::temp_dir().join(format!("autobal-report-test-{}", std::process::id()));
-    let (code, _, err) = autobal(&["report", "--out", dir.to_str().unwrap()]);
+    let (code, _, err) = autobal(&["report", "--quick", "--out", dir.to_str().unwrap()]);
     assert_eq!(code, 0, "{err}");
     let index = std::fs::read_to_string(dir.join("index.html")).unwrap();
     let svgs: Vec<_> = std::fs::read_dir(&dir)
@@ -196,5 +196,58 @@ fn interrupted_map_keeps_the_rows_written() {
     assert!(lines > 0 && lines % 1500 == 0, "whole rows only: {lines} lines");
     assert!(lines < 1500 * 1500);
     assert!(dir.join("big.png").exists(), "plots of the rows computed are written");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn simulation_agrees_with_an_independent_scipy_integration_in_fixed_axes() {
+    // bench/passage.py --check: paper 004's equations in fixed axes, written independently in
+    // Python and integrated by SciPy's DOP853, against `autobal simulate` (rotor axes), both
+    // against an autobal reference at rtol 1e-12: sampled radius of C within 1e-4 of the peak.
+    // NumPy and SciPy are installed by .ci/run.
+    let script = format!("{}/../../bench/passage.py", env!("CARGO_MANIFEST_DIR"));
+    let out = Command::new("python3").args([&script, "--check", "--exe", env!("CARGO_BIN_EXE_autobal")]).output().expect("python3 runs");
+    assert!(out.status.success(), "{}\n{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+}
+
+#[test]
+fn simulate_writes_csv_summary_and_plots() {
+    let dir = std::env::temp_dir().join(format!("autobal-sim-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("run.csv");
+    let v = json(&[
+        "simulate", "--format", "json", "--out", out.to_str().unwrap(),
+        "--set", "drive.omega0=200", "--set", "drive.t_end=10", "--dt", "0.01",
+    ]);
+    for k in ["peak_amplitude", "omega_at_peak", "final_amplitude", "balanced", "steps", "rhs_evaluations"] {
+        assert!(!v[k].is_null(), "{k}");
+    }
+    let csv = std::fs::read_to_string(&out).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(lines.next().unwrap(), "t,omega,x,y,amplitude,psi_1,psi_2");
+    let rows: Vec<Vec<f64>> = lines.map(|l| l.split(',').map(|x| x.parse().unwrap()).collect()).collect();
+    assert_eq!(rows.len(), 1001);
+    for r in &rows {
+        assert!((r[4] - r[2].hypot(r[3])).abs() <= 1e-12 + 1e-9 * r[4], "amplitude = |(x, y)|");
+    }
+    assert!((rows[1000][0] - 10.0).abs() < 1e-9);
+    for s in ["amplitude_omega", "amplitude_t", "psi_t", "omega_t"] {
+        assert!(dir.join(format!("run_{s}.svg")).exists(), "{s}");
+    }
+    // errors name the field
+    for (set, field) in [("planar.m1=-1", "planar.m1"), ("drive.kind=warp", "drive.kind"), ("drive.psi0=[1.0]", "drive.psi0"), ("planar.nope=1", "planar.nope")] {
+        let (code, _, err) = autobal(&["simulate", "--out", out.to_str().unwrap(), "--set", set]);
+        assert_ne!(code, 0);
+        assert!(err.contains(field), "{err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    }
+    // a sweep over two fields
+    let stem = dir.join("sw");
+    let v = json(&[
+        "sweep", "--format", "json", "--out", stem.to_str().unwrap(),
+        "--x", "drive.b=20:40:2", "--y", "planar.c_psi=0.05:0.1:2", "--set", "drive.t_end=20",
+    ]);
+    assert_eq!(v["runs"].as_array().unwrap().len(), 4);
+    assert!(dir.join("sw.csv").exists());
     std::fs::remove_dir_all(&dir).ok();
 }

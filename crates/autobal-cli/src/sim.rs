@@ -1,0 +1,312 @@
+//! `autobal simulate` and `autobal sweep`: the nonlinear passage through resonance (paper 004).
+
+use crate::config::{self, PlanarConfig};
+use crate::plot::{Plot, Series, PALETTE};
+use anyhow::{anyhow, bail, Context, Result};
+use autobal::simulation::stationary::{aligned_whirls, capacity_ratio, locked_amplitude, semi_balanced_exists};
+use autobal::simulation::{simulate, Sample, Summary};
+use rayon::prelude::*;
+use serde_json::{json, Value};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Mutex;
+
+/// Set by Ctrl-C.
+pub static INTERRUPTED: AtomicBool = AtomicBool::new(false);
+
+/// Samples kept for plotting: per bucket of consecutive samples, the ones with the smallest and
+/// largest amplitude (so peaks survive decimation).
+pub struct Envelope {
+    bucket: usize,
+    current: Vec<Sample>,
+    pub kept: Vec<Sample>,
+}
+
+impl Envelope {
+    pub fn new(expected: usize, target: usize) -> Self {
+        Envelope { bucket: expected.div_ceil(target.max(1)).max(1), current: vec![], kept: vec![] }
+    }
+    pub fn push(&mut self, s: &Sample) {
+        self.current.push(s.clone());
+        if self.current.len() >= self.bucket {
+            self.flush();
+        }
+    }
+    pub fn flush(&mut self) {
+        if self.current.is_empty() {
+            return;
+        }
+        if self.current.len() <= 2 {
+            self.kept.append(&mut self.current);
+            return;
+        }
+        let imin = (0..self.current.len()).min_by(|&a, &b| self.current[a].amplitude.total_cmp(&self.current[b].amplitude)).unwrap();
+        let imax = (0..self.current.len()).max_by(|&a, &b| self.current[a].amplitude.total_cmp(&self.current[b].amplitude)).unwrap();
+        let (a, b) = (imin.min(imax), imin.max(imax));
+        self.kept.push(self.current[a].clone());
+        if b != a {
+            self.kept.push(self.current[b].clone());
+        }
+        self.current.clear();
+    }
+}
+
+/// Run one simulation, writing every sample to `csv` (flushed as it goes) and keeping an
+/// envelope for the plots. Returns the summary, the envelope and the wall time.
+pub fn run_to_csv(cfg: &PlanarConfig, csv: &mut dyn Write, progress: bool) -> Result<(Summary, Envelope, f64)> {
+    let n = cfg.rotor.n;
+    let mut header = String::from("t,omega,x,y,amplitude");
+    for j in 1..=n {
+        header.push_str(&format!(",psi_{j}"));
+    }
+    writeln!(csv, "{header}")?;
+    let expected = (cfg.settings.t_end / cfg.settings.dt) as usize + 1;
+    let mut env = Envelope::new(expected, 6000);
+    let bar = progress.then(|| {
+        let b = indicatif::ProgressBar::new(1000);
+        b.set_style(
+            indicatif::ProgressStyle::with_template("{bar:40} simulated {msg}  {elapsed_precise} (eta {eta})")
+                .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+        );
+        b
+    });
+    let mut io_error: Option<std::io::Error> = None;
+    let mut count = 0u64;
+    let t0 = std::time::Instant::now();
+    let summary = simulate(&cfg.rotor, &cfg.drive, &cfg.settings, |s| {
+        let mut line = format!("{},{},{},{},{}", s.t, s.omega, s.x, s.y, s.amplitude);
+        for p in &s.psi {
+            line.push(',');
+            line.push_str(&p.to_string());
+        }
+        line.push('\n');
+        if let Err(e) = csv.write_all(line.as_bytes()) {
+            io_error = Some(e);
+            return false;
+        }
+        env.push(s);
+        count += 1;
+        if count % 1000 == 0 {
+            let _ = csv.flush();
+            if let Some(b) = &bar {
+                b.set_position((1000.0 * s.t / cfg.settings.t_end) as u64);
+                b.set_message(format!("{:.1} s of {:.1} s", s.t, cfg.settings.t_end));
+            }
+        }
+        !INTERRUPTED.load(Ordering::Relaxed)
+    })?;
+    let wall = t0.elapsed().as_secs_f64();
+    env.flush();
+    csv.flush()?;
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
+    if let Some(e) = io_error {
+        bail!("--out: cannot write the CSV: {e}");
+    }
+    Ok((summary, env, wall))
+}
+
+pub fn summary_json(cfg: &PlanarConfig, s: &Summary, wall: f64) -> Value {
+    json!({
+        "peak_amplitude": s.peak_amplitude,
+        "omega_at_peak": s.omega_at_peak,
+        "t_at_peak": s.t_at_peak,
+        "final_amplitude": s.final_amplitude,
+        "final_omega": s.final_omega,
+        "balanced": s.balanced,
+        "steps": s.steps,
+        "rejected_steps": s.rejected_steps,
+        "rhs_evaluations": s.rhs_evaluations,
+        "t_end": s.t_end,
+        "stopped": s.stopped,
+        "wall_time_s": wall,
+        "natural_frequency": cfg.rotor.natural_frequency(),
+        "capacity_ratio": capacity_ratio(&cfg.rotor),
+        "s2": cfg.rotor.s2,
+        "rotor": cfg.rotor,
+        "drive": cfg.drive,
+        "integration": { "rtol": cfg.settings.rtol, "atol": cfg.settings.atol, "dt": cfg.settings.dt },
+    })
+}
+
+pub fn summary_table(cfg: &PlanarConfig, s: &Summary, wall: f64) -> String {
+    let mut o = String::new();
+    use std::fmt::Write as _;
+    let _ = writeln!(o, "config: {}", cfg.source);
+    let _ = writeln!(
+        o,
+        "rotor: m0 = {:.4} kg, sqrt(k/m0) = {:.2} rad/s, capacity ratio α∞ = {:.3} ({})",
+        cfg.rotor.total_mass(),
+        cfg.rotor.natural_frequency(),
+        capacity_ratio(&cfg.rotor),
+        if capacity_ratio(&cfg.rotor) > 1.0 { "the balls can balance at high speed" } else { "too little ball mass to balance" }
+    );
+    let _ = writeln!(o, "peak whirl radius of C: {:.4} mm at ω = {:.2} rad/s (t = {:.3} s)", 1e3 * s.peak_amplitude, s.omega_at_peak, s.t_at_peak);
+    let _ = writeln!(o, "final: radius {:.4} mm at ω = {:.2} rad/s; {}", 1e3 * s.final_amplitude, s.final_omega, if s.balanced { "semi-balanced (radius = s2)" } else { "not balanced" });
+    let _ = writeln!(o, "integration: {} steps ({} rejected), {} right-hand sides, {:.3} s", s.steps, s.rejected_steps, s.rhs_evaluations, wall);
+    if let Some(st) = &s.stopped {
+        let _ = writeln!(o, "stopped early: {st}");
+    }
+    o
+}
+
+/// The four figures of 004's kind: amplitude vs ω with stationary curves, amplitude vs t,
+/// ball angles vs t, ω vs t.
+pub fn plots(cfg: &PlanarConfig, env: &Envelope, title: &str) -> Vec<(String, Plot)> {
+    let k = &env.kept;
+    let p = &cfg.rotor;
+    let mm = 1e3;
+    let (wlo, whi) = k.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), s| (a.min(s.omega), b.max(s.omega)));
+    let (wlo, whi) = if whi > wlo { (wlo.max(0.0), whi) } else { (0.0, 2.0 * p.natural_frequency()) };
+    let ws: Vec<f64> = (0..=600).map(|i| wlo + (whi - wlo) * i as f64 / 600.0).collect();
+    let mut s1 = vec![Series::new("transient", k.iter().map(|s| (s.omega, mm * s.amplitude)).collect(), PALETTE[0])];
+    s1.push(Series::new("stationary, balls held at ψ0", ws.iter().map(|&w| (w, mm * locked_amplitude(p, w, &cfg.settings.psi0))).collect(), PALETTE[6]).dashed());
+    if p.n >= 2 {
+        s1.push(Series::new("semi-balanced (= s2)", ws.iter().map(|&w| (w, if semi_balanced_exists(p, w) { mm * p.s2 } else { f64::NAN })).collect(), PALETTE[2]).dashed());
+    }
+    if p.n >= 1 {
+        let q = p.n as i32;
+        for (label, qq, col) in [("balls free, far side", q, PALETTE[1]), ("balls free, near side", -q, PALETTE[3])] {
+            let pts = ws
+                .iter()
+                .map(|&w| (w, aligned_whirls(p, w).iter().filter(|a| a.q == qq).map(|a| mm * a.amplitude).fold(f64::NAN, f64::min)))
+                .collect();
+            s1.push(Series::new(label, pts, col).dashed());
+        }
+    }
+    let peak = k.iter().map(|s| s.amplitude).fold(0.0, f64::max) * mm;
+    let mut out = vec![(
+        "amplitude_omega".to_string(),
+        Plot {
+            title: format!("{title}: whirl radius of C against speed"),
+            x_label: "ω (rad/s)".into(),
+            y_label: "radius of C (mm)".into(),
+            series: s1,
+            y_range: Some((0.0, 1.15 * peak.max(1e-6))),
+            ..Default::default()
+        },
+    )];
+    out.push((
+        "amplitude_t".into(),
+        Plot {
+            title: format!("{title}: whirl radius of C against time"),
+            x_label: "t (s)".into(),
+            y_label: "radius of C (mm)".into(),
+            series: vec![
+                Series::new("radius of C", k.iter().map(|s| (s.t, mm * s.amplitude)).collect(), PALETTE[0]),
+                Series::new("s2", vec![(0.0, mm * p.s2), (k.last().map_or(1.0, |s| s.t), mm * p.s2)], PALETTE[7]).dashed(),
+            ],
+            ..Default::default()
+        },
+    ));
+    let psi: Vec<Series> = (0..p.n)
+        .map(|j| Series::new(format!("ψ{}", j + 1), k.iter().map(|s| (s.t, s.psi[j].to_degrees())).collect(), PALETTE[(j + 1) % 7]))
+        .collect();
+    out.push(("psi_t".into(), Plot { title: format!("{title}: ball angles"), x_label: "t (s)".into(), y_label: "ψ (degrees from CG)".into(), series: psi, ..Default::default() }));
+    out.push((
+        "omega_t".into(),
+        Plot {
+            title: format!("{title}: speed"),
+            x_label: "t (s)".into(),
+            y_label: "ω (rad/s)".into(),
+            series: vec![
+                Series::new("ω", k.iter().map(|s| (s.t, s.omega)).collect(), PALETTE[0]),
+                Series::new("sqrt(k/m0)", vec![(0.0, p.natural_frequency()), (k.last().map_or(1.0, |s| s.t), p.natural_frequency())], PALETTE[7]).dashed(),
+            ],
+            ..Default::default()
+        },
+    ));
+    out
+}
+
+pub fn write_plots(cfg: &PlanarConfig, env: &Envelope, stem: &Path, title: &str) -> Result<Vec<PathBuf>> {
+    let mut files = vec![];
+    for (suffix, plot) in plots(cfg, env, title) {
+        let name = format!("{}_{suffix}.svg", stem.file_name().and_then(|s| s.to_str()).unwrap_or("simulation"));
+        let path = stem.with_file_name(name);
+        std::fs::write(&path, plot.to_svg()).with_context(|| format!("cannot write {}", path.display()))?;
+        files.push(path);
+    }
+    Ok(files)
+}
+
+/// One axis of a sweep: `key=lo:hi:n` with a config field (log spacing with `log:` prefix on lo).
+#[derive(Debug, Clone)]
+pub struct SweepAxis {
+    pub key: String,
+    pub values: Vec<f64>,
+}
+
+impl SweepAxis {
+    pub fn parse(flag: &str, spec: &str) -> Result<Self> {
+        let a = crate::map::Axis::parse(flag, spec).or_else(|e| {
+            // allow a single value: key=v
+            match spec.split_once('=').map(|(k, v)| (k, v.trim().parse::<f64>())) {
+                Some((k, Ok(v))) if v.is_finite() => Ok(crate::map::Axis { key: k.trim().to_string(), lo: v, hi: v, n: 1 }),
+                _ => Err(e),
+            }
+        })?;
+        if a.key == "omega" {
+            bail!("{flag} {spec}: sweep over config fields (e.g. drive.b, planar.c_psi), not omega");
+        }
+        let values = if a.n == 1 { vec![a.lo] } else { (0..a.n).map(|i| a.value(i)).collect() };
+        Ok(SweepAxis { key: a.key, values })
+    }
+}
+
+/// Run a sweep in parallel; results in row-major order (`y` outer). Skipped points (Ctrl-C) are `None`.
+pub fn sweep(base: &toml::Table, source: &str, x: &SweepAxis, y: Option<&SweepAxis>, progress: bool) -> Result<Vec<(f64, Option<f64>, Option<(Summary, f64)>)>> {
+    let ys: Vec<Option<f64>> = match y {
+        Some(a) => a.values.iter().map(|v| Some(*v)).collect(),
+        None => vec![None],
+    };
+    let mut points = vec![];
+    for yv in &ys {
+        for xv in &x.values {
+            points.push((*xv, *yv));
+        }
+    }
+    let build = |xv: f64, yv: Option<f64>| -> Result<PlanarConfig> {
+        let mut t = base.clone();
+        config::set_number(&mut t, &x.key, xv)?;
+        if let (Some(a), Some(v)) = (y, yv) {
+            config::set_number(&mut t, &a.key, v)?;
+        }
+        let mut c = config::build_planar(&t, source).with_context(|| match (y, yv) {
+            (Some(a), Some(v)) => format!("at {} = {xv}, {} = {v}", x.key, a.key),
+            _ => format!("at {} = {xv}", x.key),
+        })?;
+        c.settings.dt = c.settings.t_end; // summaries only: no dense sampling
+        Ok(c)
+    };
+    // validate every point before spending time
+    for (xv, yv) in &points {
+        build(*xv, *yv)?;
+    }
+    let bar = progress.then(|| indicatif::ProgressBar::new(points.len() as u64));
+    let done = Mutex::new(0usize);
+    let results: Vec<Result<(f64, Option<f64>, Option<(Summary, f64)>)>> = points
+        .par_iter()
+        .map(|&(xv, yv)| {
+            if INTERRUPTED.load(Ordering::Relaxed) {
+                return Ok((xv, yv, None));
+            }
+            let c = build(xv, yv)?;
+            let t0 = std::time::Instant::now();
+            let s = simulate(&c.rotor, &c.drive, &c.settings, |_| !INTERRUPTED.load(Ordering::Relaxed))?;
+            let wall = t0.elapsed().as_secs_f64();
+            if let Some(b) = &bar {
+                b.inc(1);
+            }
+            *done.lock().map_err(|_| anyhow!("poisoned"))? += 1;
+            let complete = s.stopped.is_none();
+            Ok((xv, yv, complete.then_some((s, wall))))
+        })
+        .collect();
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
+    results.into_iter().collect()
+}
