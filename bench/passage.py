@@ -93,6 +93,8 @@ def run_autobal(omega0, b, t_end, dt, rtol, atol):
         cmd = [exe, "simulate", "--format", "json", "--out", out,
                "--set", f"drive.omega0={omega0}", "--set", f"drive.b={b}", "--set", f"drive.t_end={t_end}",
                "--set", f"integration.dt={dt}", "--set", f"integration.rtol={rtol}", "--set", f"integration.atol={atol}"]
+        if b == 0:
+            cmd[cmd.index(f"drive.b={b}")] = 'drive.kind="speed"'
         res = subprocess.run(cmd, check=True, capture_output=True, text=True)
         summary = json.loads(res.stdout)
         data = np.loadtxt(out, delimiter=",", skiprows=1)
@@ -107,6 +109,7 @@ def main():
     ap.add_argument("--dt", type=float, default=0.05)
     ap.add_argument("--rtol", type=float, default=1e-8)
     ap.add_argument("--atol", type=float, default=1e-9)
+    ap.add_argument("--autobal-rtol", type=float, help="autobal's rtol when it differs from SciPy's (atol scaled alike)")
     ap.add_argument("--check", action="store_true", help="short run; exit 1 unless SciPy and autobal agree")
     ap.add_argument("--slowest", action="store_true", help="also run autobal on the paper's slowest case (b = 0.04 from rest)")
     ap.add_argument("--exe", help="the autobal binary to run (default: target/release/autobal, built if missing)")
@@ -130,25 +133,37 @@ def main():
         sys.exit(f"SciPy failed: {sol.message}")
     amp_scipy = np.hypot(sol.y[0], sol.y[1])
 
-    s_ab, d_ab = run_autobal(a.omega0, a.b, a.t_end, a.dt, a.rtol, a.atol)
+    ab_rtol = a.autobal_rtol or a.rtol
+    s_ab, d_ab = run_autobal(a.omega0, a.b, a.t_end, a.dt, ab_rtol, a.atol * ab_rtol / a.rtol)
     s_ref, d_ref = run_autobal(a.omega0, a.b, a.t_end, a.dt, 1e-12, 1e-14)
-    n = min(len(amp_scipy), len(d_ab), len(d_ref))
-    amp_ab, amp_ref = d_ab[:n, 4], d_ref[:n, 4]
+    s_ref2, d_ref2 = run_autobal(a.omega0, a.b, a.t_end, a.dt, 1e-11, 1e-13)
+    n = min(len(amp_scipy), len(d_ab), len(d_ref), len(d_ref2))
+    amp_ab, amp_ref, amp_ref2 = d_ab[:n, 4], d_ref[:n, 4], d_ref2[:n, 4]
     peak = amp_ref.max()
-    err_scipy = float(np.max(np.abs(amp_scipy[:n] - amp_ref)) / peak)
-    err_ab = float(np.max(np.abs(amp_ab - amp_ref)) / peak)
-    steps_scipy = len(sol.t) if False else None  # solve_ivp does not report steps; nfev does
+    # before the peak the motion is a forced response and every run must agree pointwise; after
+    # it the balls slip round the race and the phase of that slip depends sensitively on
+    # everything (two autobal references at rtol 1e-11 and 1e-12 already differ there), so
+    # only the peak and the final state are compared
+    pre = d_ref[:n, 0] <= s_ref["t_at_peak"]
+    err = lambda x, mask: float(np.max(np.abs(x[mask] - amp_ref[mask])) / peak)
+    every = np.ones(n, dtype=bool)
     report = {
-        "problem": f"004 rotor, m3 = {M3}, b = {a.b} 1/s^2, omega0 = {a.omega0} rad/s, t in [0, {a.t_end}] s, rtol = {a.rtol}",
+        "problem": f"004 rotor, m3 = {M3}, b = {a.b} 1/s^2, omega0 = {a.omega0} rad/s, t in [0, {a.t_end}] s, rtol = {a.rtol} (autobal {ab_rtol})",
         "samples_compared": int(n),
+        "samples_before_peak": int(pre.sum()),
         "scipy": {"wall_s": t_scipy, "rhs_evaluations": int(sol.nfev), "steps_estimate": int(sol.nfev // 12),
-                  "max_amplitude_error_rel_peak": err_scipy},
+                  "error_before_peak_rel": err(amp_scipy[:n], pre), "error_all_samples_rel": err(amp_scipy[:n], every),
+                  "peak_rel_error": float(abs(amp_scipy.max() - peak) / peak)},
         "autobal": {"wall_s": s_ab["wall_time_s"], "rhs_evaluations": s_ab["rhs_evaluations"], "steps": s_ab["steps"],
-                    "max_amplitude_error_rel_peak": err_ab},
+                    "error_before_peak_rel": err(amp_ab, pre), "error_all_samples_rel": err(amp_ab, every),
+                    "peak_rel_error": float(abs(amp_ab.max() - peak) / peak), "final_amplitude": s_ab["final_amplitude"]},
+        "reference_rtol_1e-11_vs_1e-12_all_samples_rel": err(amp_ref2, every),
         "speedup_wall": t_scipy / s_ab["wall_time_s"],
         "rhs_ratio": sol.nfev / s_ab["rhs_evaluations"],
         "peak_amplitude_m": {"reference": float(peak), "scipy": float(amp_scipy.max()), "autobal": float(amp_ab.max())},
     }
+    err_scipy, err_ab = report["scipy"]["error_before_peak_rel"], report["autobal"]["error_before_peak_rel"]
+    steps_scipy = None
     del steps_scipy
     if a.slowest:
         s_slow, _ = run_autobal(0.0, 0.04, 15000.0, 5.0, a.rtol, a.atol)
