@@ -39,6 +39,7 @@
 //! | `h̄x, h̄α, h̄yα, h̄s` | dimensionless damping and ball drag |
 
 pub mod critical_speeds;
+mod dense;
 pub mod eigen;
 pub mod error;
 pub mod inertia;

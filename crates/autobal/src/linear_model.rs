@@ -167,32 +167,7 @@ impl Pencil {
                 rhs[i][n + j] = self.g[i][j];
             }
         }
-        for col in 0..n {
-            let p = (col..n).max_by(|&a, &b| m[a][col].abs().total_cmp(&m[b][col].abs())).unwrap();
-            m.swap(col, p);
-            rhs.swap(col, p);
-            let piv = m[col][col];
-            for r in col + 1..n {
-                let f = m[r][col] / piv;
-                if f != 0.0 {
-                    for k in col..n {
-                        m[r][k] -= f * m[col][k];
-                    }
-                    for k in 0..2 * n {
-                        rhs[r][k] -= f * rhs[col][k];
-                    }
-                }
-            }
-        }
-        for col in (0..n).rev() {
-            for k in 0..2 * n {
-                let mut v = rhs[col][k];
-                for j in col + 1..n {
-                    v -= m[col][j] * rhs[j][k];
-                }
-                rhs[col][k] = v / m[col][col];
-            }
-        }
+        crate::dense::solve_in_place(&mut m, &mut rhs, n, 2 * n);
         let mut a = [[0.0; MAX_STATES]; MAX_STATES];
         for i in 0..n {
             a[i][n + i] = 1.0;

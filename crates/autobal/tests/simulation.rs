@@ -5,19 +5,8 @@ use autobal::simulation::dop853::{System, CAP};
 use autobal::simulation::stationary::{aligned_whirls, capacity_ratio, locked_amplitude, semi_balanced_exists};
 use autobal::simulation::{energy, simulate, Drive, Equations, PlanarRotor, Settings, Summary};
 
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, a: f64, b: f64) -> f64 {
-        a + (b - a) * self.next()
-    }
-}
+mod common;
+use common::Rng;
 
 fn settings(p: &PlanarRotor, t_end: f64, dt: f64) -> Settings {
     Settings { t_end, dt, rtol: 1e-8, atol: 1e-9, psi0: Settings::default_psi0(p.n), psi_rate0: vec![0.0; p.n] }

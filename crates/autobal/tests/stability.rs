@@ -9,19 +9,8 @@ use autobal::params::{AnisotropyInput, DimensionlessInput, MassSet, SpatialModel
 use autobal::stability::{campbell, eigenvalues_at, margin, stability_ranges, Group, Whirl};
 use num_complex::Complex64;
 
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, a: f64, b: f64) -> f64 {
-        a + (b - a) * self.next()
-    }
-}
+mod common;
+use common::Rng;
 
 #[allow(clippy::too_many_arguments)]
 fn model(c_sigma: f64, rho: f64, l: f64, z: f64, delta_a: f64, h_x: f64, h_s: f64, balls: Option<(f64, f64)>) -> SpatialModel {

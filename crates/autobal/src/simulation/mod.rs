@@ -461,10 +461,14 @@ impl System for Equations<'_> {
         } else {
             f[2] += self.drive.torque(t, th_d);
         }
-        let x = solve(&mut m, &mut f, nc);
+        let mut x = [[0.0; 1]; MAX_BALLS + 3];
+        for i in 0..nc {
+            x[i][0] = f[i];
+        }
+        crate::dense::solve_in_place(&mut m, &mut x, nc, 1);
         for i in 0..nc {
             dy[i] = y[nc + i];
-            dy[nc + i] = x[i];
+            dy[nc + i] = x[i][0];
         }
         if self.drive.prescribed() {
             // keep θ̇ on the schedule exactly (its derivative is the prescribed acceleration)
@@ -472,39 +476,6 @@ impl System for Equations<'_> {
             dy[2] = w;
         }
     }
-}
-
-/// Gaussian elimination with partial pivoting on the leading `n×n` block.
-fn solve(m: &mut [[f64; MAX_BALLS + 3]; MAX_BALLS + 3], f: &mut [f64; MAX_BALLS + 3], n: usize) -> [f64; MAX_BALLS + 3] {
-    for col in 0..n {
-        let mut p = col;
-        for r in col + 1..n {
-            if m[r][col].abs() > m[p][col].abs() {
-                p = r;
-            }
-        }
-        m.swap(col, p);
-        f.swap(col, p);
-        let piv = m[col][col];
-        for r in col + 1..n {
-            let g = m[r][col] / piv;
-            if g != 0.0 {
-                for c in col..n {
-                    m[r][c] -= g * m[col][c];
-                }
-                f[r] -= g * f[col];
-            }
-        }
-    }
-    let mut x = [0.0; MAX_BALLS + 3];
-    for r in (0..n).rev() {
-        let mut v = f[r];
-        for c in r + 1..n {
-            v -= m[r][c] * x[c];
-        }
-        x[r] = v / m[r][r];
-    }
-    x
 }
 
 /// One output sample.
