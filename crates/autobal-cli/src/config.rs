@@ -34,8 +34,6 @@ pub const DEFAULT_PLANAR: &str = include_str!("../../../examples/planar.toml");
 /// Analysis settings from the `[analysis]` table.
 #[derive(Debug, Clone)]
 pub struct Analysis {
-    #[allow(dead_code)] // recorded for completeness; the model already carries it
-    pub method: AnisotropyMethod,
     pub sensitivity_limit: f64,
     /// Upper end of speed axes in plots (dimensionless); default from the critical speeds.
     pub omega_max: Option<f64>,
@@ -239,7 +237,12 @@ pub fn build(root: &Table, source: &str) -> Result<Config> {
                 equatorial_moment: r.req("equatorial_moment")?,
                 polar_moment: r.req("polar_moment")?,
                 z_rotor: r.req("z")?,
-                z_balancer: b.f64("z")?.map_or_else(|| if b.table.is_some() || u.table.is_some() { Err(anyhow!("balancer.z: missing (required: the plane of balls and unbalance)")) } else { Ok(0.0) }, Ok)?,
+                // plane A carries balls and unbalance: required when either is described
+                z_balancer: match b.f64("z")? {
+                    Some(z) => z,
+                    None if b.table.is_some() || u.table.is_some() => bail!("balancer.z: missing (required: the plane of balls and unbalance)"),
+                    None => 0.0,
+                },
                 z_left: s.req("z_left")?,
                 z_right: s.req("z_right")?,
                 stiffness_left: s.req("stiffness_left")?,
@@ -300,7 +303,7 @@ pub fn build(root: &Table, source: &str) -> Result<Config> {
     };
     Ok(Config {
         model,
-        analysis: Analysis { method, sensitivity_limit, omega_max },
+        analysis: Analysis { sensitivity_limit, omega_max },
         source,
         text: toml::to_string(root).unwrap_or(text),
         dimensional: has_dim,

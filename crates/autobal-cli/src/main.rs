@@ -34,7 +34,7 @@ struct Common {
 #[derive(Args, Clone)]
 struct LinearArgs {
     /// Upper end of the speed axis (dimensionless Ω); default: [analysis] omega_max, else automatic
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     omega_max: Option<f64>,
     /// Balls free (12 states) or locked at balance (8 states, the bare anisotropic rotor)
     #[arg(long, value_enum, default_value = "free")]
@@ -132,7 +132,7 @@ enum Command {
         #[arg(long, value_name = "KEY=LO:HI:N")]
         y: String,
         /// Speed Ω when neither axis is omega
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         omega: Option<f64>,
         /// Balls free (12 states) or locked (8 states)
         #[arg(long, value_enum, default_value = "free")]
@@ -156,7 +156,7 @@ enum Command {
         #[arg(long = "set", value_name = "KEY=VALUE")]
         set: Vec<String>,
         /// Output interval (s), independent of the internal steps; overrides integration.dt
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         dt: Option<f64>,
         /// CSV of samples (t, omega, x, y, amplitude, psi_1 … psi_n); plots go beside it as STEM_*.svg
         #[arg(long, short, default_value = "simulation.csv")]
@@ -262,6 +262,11 @@ fn run_map(common: Common, x: String, y: String, omega: Option<f64>, balls: Ball
     let (mut root, source) = config::read(common.config.as_deref())?;
     for s in &common.set {
         config::apply_set(&mut root, s)?;
+    }
+    if let Some(w) = omega {
+        if !(w >= 0.0 && w.is_finite()) {
+            anyhow::bail!("--omega: the speed must be a finite number ≥ 0, got {w}");
+        }
     }
     let xa = map::Axis::parse("--x", &x)?;
     let ya = map::Axis::parse("--y", &y)?;

@@ -298,17 +298,17 @@ impl Settings {
         (0..n).map(|j| std::f64::consts::FRAC_PI_2 + 2.0 * std::f64::consts::PI * j as f64 / n as f64).collect()
     }
 
-    /// Validate against the rotor (errors name `drive.<field>`).
+    /// Validate against the rotor (errors name `drive.<field>` or `integration.<field>`).
     pub fn validate(&self, rotor: &PlanarRotor) -> Result<()> {
         positive("drive.t_end", self.t_end)?;
-        positive("drive.dt", self.dt)?;
+        positive("integration.dt", self.dt)?;
         if self.t_end / self.dt > 5e7 {
-            return Err(Error::invalid("drive.dt", format!("{} samples is too many; raise dt", self.t_end / self.dt)));
+            return Err(Error::invalid("integration.dt", format!("{} samples is too many; raise dt", self.t_end / self.dt)));
         }
-        positive("drive.rtol", self.rtol)?;
-        positive("drive.atol", self.atol)?;
+        positive("integration.rtol", self.rtol)?;
+        positive("integration.atol", self.atol)?;
         if self.rtol < 1e-14 {
-            return Err(Error::invalid("drive.rtol", "below 1e-14 the step cannot reach it in double precision"));
+            return Err(Error::invalid("integration.rtol", "below 1e-14 the step cannot reach it in double precision"));
         }
         if self.psi0.len() != rotor.n {
             return Err(Error::invalid("drive.psi0", format!("needs {} angles (planar.n), got {}", rotor.n, self.psi0.len())));
