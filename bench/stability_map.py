@@ -104,11 +104,11 @@ def main():
     alpha_rs = np.frombuffer(raw[: 8 * k], dtype="<f8")
     verdict_rs = np.frombuffer(raw[8 * k:], dtype=np.uint8).astype(bool)
 
-    tol = 1e-11  # autobal::stability::STABILITY_TOLERANCE
+    tol = 1e-11  # autobal::stability::STABILITY_TOLERANCE; balls free: stable iff max Re < -tol
     away = np.abs(alpha_np) > 1e-6
-    stable_np = alpha_np <= tol
+    stable_np = alpha_np < -tol
     mismatch_verdict = int(np.sum((verdict_rs != stable_np) & away))
-    mismatch_margin_verdict = int(np.sum(((alpha_rs <= tol) != stable_np) & away))
+    mismatch_margin_verdict = int(np.sum(((alpha_rs < -tol) != stable_np) & away))
     max_margin_diff = float(np.max(np.abs(alpha_rs - alpha_np)))
     np_us = 1e6 * t_eig / k
     report = {

@@ -7,7 +7,7 @@ use crate::plot::{Plot, Raster, Series};
 use anyhow::{anyhow, bail, Context, Result};
 use autobal::linear_model::Balls;
 use autobal::linear_model::StateSpace;
-use autobal::stability::{margin_at, strictly_stable_at, STABILITY_TOLERANCE};
+use autobal::stability::{counts_as_stable, margin_at, strictly_stable_at};
 use rayon::prelude::*;
 use std::io::Write;
 use std::path::Path;
@@ -108,12 +108,12 @@ impl Point<'_> {
     }
 }
 
-fn cell(ss: &StateSpace, nec: &[autobal::ranges::SpeedRange], omega: f64, q: Quantity) -> Result<Cell> {
+fn cell(ss: &StateSpace, nec: &[autobal::ranges::SpeedRange], omega: f64, q: Quantity, balls: Balls) -> Result<Cell> {
     let necessary = nec.iter().any(|r| r.contains(omega));
     Ok(match q {
         Quantity::Margin => {
             let a = margin_at(ss, omega)?;
-            Cell { margin: a, stable: a <= STABILITY_TOLERANCE, necessary }
+            Cell { margin: a, stable: counts_as_stable(a, balls), necessary }
         }
         Quantity::Verdict => Cell { margin: f64::NAN, stable: strictly_stable_at(ss, omega), necessary },
     })
@@ -183,12 +183,12 @@ pub fn compute(
             for i in 0..x.n {
                 let xv = x.value(i);
                 let c = if let Some((c, nec)) = &row {
-                    cell(c, nec, xv.max(1e-9), quantity)?
+                    cell(c, nec, xv.max(1e-9), quantity, balls)?
                 } else if let Some((c, nec)) = columns.get(i) {
-                    cell(c, nec, yv.max(1e-9), quantity)?
+                    cell(c, nec, yv.max(1e-9), quantity, balls)?
                 } else {
                     let (c, nec) = build(Some(xv), yv)?;
-                    cell(&c, &nec, omega.unwrap_or(1.0).max(1e-9), quantity)?
+                    cell(&c, &nec, omega.unwrap_or(1.0).max(1e-9), quantity, balls)?
                 };
                 cells.push(c);
             }

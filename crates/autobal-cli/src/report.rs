@@ -173,7 +173,7 @@ fn linear_section(cfg: &Config, dir: &Path) -> Result<String> {
     use crate::linear;
     use crate::map::{write_plots, Axis, Cell, MapResult, Quantity};
     use autobal::linear_model::{Balls, StateSpace};
-    use autobal::stability::{margin_at, STABILITY_TOLERANCE};
+    use autobal::stability::{counts_as_stable, margin_at};
     let m = &cfg.model;
     let mut h = String::from("<h2>Exact linear stability of the balanced state</h2>\n");
     if m.balls.is_none() {
@@ -183,10 +183,10 @@ fn linear_section(cfg: &Config, dir: &Path) -> Result<String> {
     let w = linear::omega_max(cfg, None)?;
     let _ = writeln!(
         h,
-        "<p>Eigenvalues of the linearised equations (000, eq (6)), balls {} ({} states). Stable means every eigenvalue has Re λ ≤ {:e}; range ends located by bisection to 1e-9.</p>",
+        "<p>Eigenvalues of the linearised equations (000, eq (6)), balls {} ({} states). Stable means every eigenvalue has Re λ {}; range ends located by bisection to 1e-9.</p>",
         if balls == Balls::Free { "free" } else { "locked" },
         if balls == Balls::Free { 12 } else { 8 },
-        STABILITY_TOLERANCE
+        if balls == Balls::Free { "&lt; −1e-11" } else { "≤ 1e-11 (neutral allowed)" }
     );
     let c = linear::campbell_of(cfg, w, 240, balls)?;
     let (rot, fixed) = linear::campbell_plots(m, &c);
@@ -232,7 +232,7 @@ fn linear_section(cfg: &Config, dir: &Path) -> Result<String> {
         let mut row = vec![];
         for (ss, nec) in &cols {
             let a = margin_at(ss, om)?;
-            row.push(Cell { margin: a, stable: a <= STABILITY_TOLERANCE, necessary: nec.iter().any(|r| r.contains(om)) });
+            row.push(Cell { margin: a, stable: counts_as_stable(a, balls), necessary: nec.iter().any(|r| r.contains(om)) });
         }
         rows.push(Some(row));
     }

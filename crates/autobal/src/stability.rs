@@ -2,11 +2,13 @@
 //! ([`crate::linear_model`]) along the speed axis, stability ranges located by bisection,
 //! and Campbell diagrams with mode tracking and whirl classification.
 //!
-//! A speed is **stable** when the spectral abscissa `α(Ω) = max Re λ` does not exceed
-//! [`STABILITY_TOLERANCE`]. The tolerance only absorbs round-off (eigenvalues of the
-//! dimensionless state matrices are accurate to ~1e-14): an undamped rotor, whose eigenvalues sit
-//! on the imaginary axis, counts as stable (neutral), as the papers' critical-speed analysis
-//! assumes.
+//! A speed is **stable** ([`counts_as_stable`]) when the spectral abscissa `α(Ω) = max Re λ` is
+//! below `−`[`STABILITY_TOLERANCE`] with the balls free (asymptotic stability: the balanced state
+//! attracts; at Ω → 0 the balls are neutral and do not count), and at most
+//! `+`[`STABILITY_TOLERANCE`] with the balls locked (an undamped rotor, whose eigenvalues sit on
+//! the imaginary axis, counts as neutrally stable, as the papers' critical-speed analysis
+//! assumes). The tolerance only absorbs round-off: eigenvalues of the dimensionless state
+//! matrices are accurate to ~1e-14.
 
 use crate::eigen::{characteristic_polynomial, complex_solve, eigenvalues, routh_hurwitz_stable, spectral_abscissa};
 use crate::critical_speeds::{critical_speeds_at, ModeKind};
@@ -17,8 +19,17 @@ use crate::ranges::SpeedRange;
 use num_complex::Complex64;
 use serde::Serialize;
 
-/// Real parts up to this value count as zero (neutral stability).
+/// Real parts within this distance of zero count as zero.
 pub const STABILITY_TOLERANCE: f64 = 1e-11;
+
+/// The stability verdict from the spectral abscissa (module docs): strict with the balls free,
+/// neutral allowed with the balls locked.
+pub fn counts_as_stable(alpha: f64, balls: Balls) -> bool {
+    match balls {
+        Balls::Free => alpha < -STABILITY_TOLERANCE,
+        Balls::Locked => alpha <= STABILITY_TOLERANCE,
+    }
+}
 
 fn no_conv(omega: f64) -> Error {
     Error::invalid("omega", format!("the eigenvalue iteration did not converge at Ω = {omega}"))
@@ -155,7 +166,7 @@ pub fn eigenvalues_at(model: &SpatialModel, omega: f64, balls: Balls) -> Result<
 /// Result of [`stability_ranges`].
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct StabilityRanges {
-    /// Speeds `0 < Ω ≤ Ω_max` where every eigenvalue has `Re λ ≤` [`STABILITY_TOLERANCE`];
+    /// Speeds `0 < Ω ≤ Ω_max` that are stable by [`counts_as_stable`];
     /// ends located by bisection to `tolerance`; `hi = None` when the range reaches `Ω_max`.
     pub stable_ranges: Vec<SpeedRange>,
     /// `(Ω, max Re λ)` on the grid.
@@ -198,7 +209,7 @@ pub fn stability_ranges(model: &SpatialModel, omega_max: f64, samples: usize, ba
     for &w in &grid {
         alpha.push((w, margin_at(&ss, w)?));
     }
-    let stable = |a: f64| a <= STABILITY_TOLERANCE;
+    let stable = |a: f64| counts_as_stable(a, balls);
     let mut ranges: Vec<SpeedRange> = vec![];
     let mut start: Option<f64> = if stable(alpha[0].1) { Some(0.0) } else { None };
     for k in 1..samples {
