@@ -215,34 +215,46 @@ fn linear_section(cfg: &Config, dir: &Path) -> Result<String> {
         h.push_str("<h3>Exact ranges against 003's necessary ranges, the papers' three layouts</h3>\n");
         h.push_str(&table(&["l̄_L", "exactly stable", "003 necessary", "difference"], &rows));
     }
-    // stability map, 003 Fig. 5a layout: z̄_A × Ω
-    let (nx, ny) = (121usize, 121usize);
-    let x = Axis { key: "dimensionless.z_a".into(), lo: -2.0, hi: 2.0, n: nx };
-    let y = Axis { key: "omega".into(), lo: 0.02 * w, hi: w, n: ny };
-    let cols: Vec<(StateSpace, Vec<autobal::ranges::SpeedRange>)> = (0..nx)
-        .map(|i| {
-            let mut mz = m.clone();
-            mz.z_a = x.value(i);
-            Ok((StateSpace::new(&mz, balls)?, autobal::ranges::autobalancing_ranges(&mz).ranges))
-        })
-        .collect::<Result<_>>()?;
-    let mut rows: Vec<Option<Vec<Cell>>> = vec![];
-    for j in 0..ny {
-        let om = y.value(j);
-        let mut row = vec![];
-        for (ss, nec) in &cols {
-            let a = margin_at(ss, om)?;
-            row.push(Cell { margin: a, stable: counts_as_stable(a, balls), necessary: nec.iter().any(|r| r.contains(om)) });
+    // stability maps in the layouts of 003 Figs 4 and 5a: C̄Σ × Ω and z̄_A × Ω
+    let maps: [(&str, &str, Axis, fn(&mut autobal::params::SpatialModel, f64), &str); 2] = [
+        (
+            "stability_map_c_sigma",
+            "Stability map C̄Σ × Ω",
+            Axis { key: "dimensionless.c_sigma".into(), lo: 0.2, hi: 2.0, n: 121 },
+            |m, v| m.c_sigma = v,
+            "Stability map in the layout of 003 Fig. 4: largest real part over the rotor type C̄Σ and the speed Ω (blue stable, red unstable), with the exact stability boundary (black) and the boundary of 003's necessary condition (dashed). Also as stability_map_c_sigma.png.",
+        ),
+        (
+            "stability_map_z_a",
+            "Stability map z̄_A × Ω",
+            Axis { key: "dimensionless.z_a".into(), lo: -2.0, hi: 2.0, n: 121 },
+            |m, v| m.z_a = v,
+            "Stability map in the layout of 003 Fig. 5a: largest real part over the position of the balancer plane z̄_A and the speed Ω, with the exact stability boundary (black) and the boundary of 003's necessary condition (dashed). Also as stability_map_z_a.png.",
+        ),
+    ];
+    for (stem, title, x, set, caption) in maps {
+        let y = Axis { key: "omega".into(), lo: 0.02 * w, hi: w, n: 121 };
+        let cols: Vec<(StateSpace, Vec<autobal::ranges::SpeedRange>)> = (0..x.n)
+            .map(|i| {
+                let mut mz = m.clone();
+                set(&mut mz, x.value(i));
+                Ok((StateSpace::new(&mz, balls)?, autobal::ranges::autobalancing_ranges(&mz).ranges))
+            })
+            .collect::<Result<_>>()?;
+        let mut rows: Vec<Option<Vec<Cell>>> = vec![];
+        for j in 0..y.n {
+            let om = y.value(j);
+            let mut row = vec![];
+            for (ss, nec) in &cols {
+                let a = margin_at(ss, om)?;
+                row.push(Cell { margin: a, stable: counts_as_stable(a, balls), necessary: nec.iter().any(|r| r.contains(om)) });
+            }
+            rows.push(Some(row));
         }
-        rows.push(Some(row));
+        let r = MapResult { x, y, rows, quantity: Quantity::Margin };
+        write_plots(&r, &dir.join(stem), title)?;
+        let _ = writeln!(h, "<figure><img src=\"{stem}.svg\" alt=\"{title}\"><figcaption>{}</figcaption></figure>", esc(caption));
     }
-    let r = MapResult { x, y, rows, quantity: Quantity::Margin };
-    write_plots(&r, &dir.join("stability_map_z_a"), "Stability map z̄_A × Ω")?;
-    let _ = writeln!(
-        h,
-        "<figure><img src=\"stability_map_z_a.svg\" alt=\"stability map\"><figcaption>{}</figcaption></figure>",
-        esc("Stability map in the layout of 003 Fig. 5a: largest real part over the position of the balancer plane z̄_A and the speed Ω (blue stable, red unstable), with the exact stability boundary (black) and the boundary of 003's necessary condition (dashed). Also as stability_map_z_a.png.")
-    );
     Ok(h)
 }
 
