@@ -25,7 +25,7 @@ const SCHEMA: &[(&str, &[&str])] = &[
         "drive",
         &["kind", "omega0", "b", "torque", "omega_idle", "t_off", "t_end", "psi0", "psi_rate0", "schedule", "schedule_of"],
     ),
-    ("integration", &["rtol", "atol", "dt"]),
+    ("integration", &["method", "rtol", "atol", "dt"]),
 ];
 
 /// The embedded default of `simulate` and `sweep` (paper 004's rotor).
@@ -451,7 +451,13 @@ pub fn build_planar(root: &Table, source: &str) -> Result<PlanarConfig> {
     };
     drive.validate()?;
     let t_end = d.f64("t_end")?.unwrap_or(10.0);
+    let method = match ig.string("method")? {
+        None | Some("dop853") => autobal::simulation::Method::Dop853,
+        Some("rosenbrock") => autobal::simulation::Method::Rosenbrock,
+        Some(o) => bail!("integration.method: must be \"dop853\" or \"rosenbrock\", got \"{o}\""),
+    };
     let settings = Settings {
+        method,
         t_end,
         dt: ig.f64("dt")?.unwrap_or(t_end / 2000.0),
         rtol: ig.f64("rtol")?.unwrap_or(1e-8),

@@ -7,7 +7,7 @@ fn main() {
     p.m3 = m3;
     let drive = Drive::Acceleration { omega0: 0.0, b };
     let t_end = 600.0 / b.abs();
-    let st = Settings { t_end, dt: t_end / 2000.0, rtol: 1e-8, atol: 1e-9, psi0: Settings::default_psi0(2), psi_rate0: vec![0.0; 2] };
+    let st = Settings { method: Method::Dop853, t_end, dt: t_end / 2000.0, rtol: 1e-8, atol: 1e-9, psi0: Settings::default_psi0(2), psi_rate0: vec![0.0; 2] };
     let t0 = std::time::Instant::now();
     let s = simulate(&p, &drive, &st, |_| true).unwrap();
     println!("{:?}\nwall {:.3} s", s, t0.elapsed().as_secs_f64());

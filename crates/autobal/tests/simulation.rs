@@ -3,13 +3,13 @@
 
 use autobal::simulation::dop853::{System, CAP};
 use autobal::simulation::stationary::{aligned_whirls, capacity_ratio, locked_amplitude, semi_balanced_exists};
-use autobal::simulation::{energy, simulate, Drive, Equations, PlanarRotor, Settings, Summary};
+use autobal::simulation::{energy, simulate, Drive, Equations, Method, PlanarRotor, Settings, Summary};
 
 mod common;
 use common::Rng;
 
 fn settings(p: &PlanarRotor, t_end: f64, dt: f64) -> Settings {
-    Settings { t_end, dt, rtol: 1e-8, atol: 1e-9, psi0: Settings::default_psi0(p.n), psi_rate0: vec![0.0; p.n] }
+    Settings { method: Method::Dop853, t_end, dt, rtol: 1e-8, atol: 1e-9, psi0: Settings::default_psi0(p.n), psi_rate0: vec![0.0; p.n] }
 }
 
 fn run(p: &PlanarRotor, d: &Drive, t_end: f64) -> (Summary, Vec<(f64, f64, f64)>) {
@@ -248,4 +248,43 @@ fn samples_are_on_the_requested_grid_whatever_the_steps() {
         assert!((t - 0.0037 * i as f64).abs() < 1e-12);
     }
     assert!(s.steps as usize != ts.len());
+}
+
+#[test]
+fn rosenbrock_agrees_with_dop853_and_wins_on_light_balls() {
+    // light balls (m3 = 2 g): the balls relax in m3 r²/c_ψ ≈ 72 µs; the implicit method must give
+    // the same passage as DOP853 in far fewer steps
+    let mut p = PlanarRotor::paper();
+    p.m3 = 0.002;
+    let d = Drive::Acceleration { omega0: 250.0, b: 50.0 };
+    let mut res = vec![];
+    for method in [Method::Dop853, Method::Rosenbrock] {
+        let mut st = settings(&p, 2.0, 0.001);
+        st.method = method;
+        let mut amps = vec![];
+        let s = simulate(&p, &d, &st, |x| {
+            amps.push(x.amplitude);
+            true
+        })
+        .unwrap();
+        assert!(s.stopped.is_none());
+        res.push((s, amps));
+    }
+    let (e, i) = (&res[0], &res[1]);
+    let peak = e.0.peak_amplitude;
+    assert!((e.0.peak_amplitude - i.0.peak_amplitude).abs() < 1e-5 * peak, "{} vs {}", e.0.peak_amplitude, i.0.peak_amplitude);
+    let worst = e.1.iter().zip(&i.1).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+    assert!(worst < 1e-4 * peak, "samples differ by {worst}");
+    assert!(i.0.steps < e.0.steps, "steps: DOP853 {}, Rosenbrock {}", e.0.steps, i.0.steps);
+    // where it pays: a long steady run, which DOP853 must step at its stability limit
+    // (h ≲ 6 m3 r²/c_ψ) while the Rosenbrock method strides
+    let d = Drive::Speed { omega0: 600.0 };
+    let mut fin = vec![];
+    for method in [Method::Dop853, Method::Rosenbrock] {
+        let mut st = settings(&p, 20.0, 0.5);
+        st.method = method;
+        fin.push(simulate(&p, &d, &st, |_| true).unwrap());
+    }
+    assert!((fin[0].final_amplitude - fin[1].final_amplitude).abs() < 1e-8 * fin[0].final_amplitude);
+    assert!(fin[1].steps * 10 < fin[0].steps, "steady run: DOP853 {} steps, Rosenbrock {}", fin[0].steps, fin[1].steps);
 }

@@ -25,6 +25,7 @@
 //! its sign) and against energy conservation.
 
 pub mod dop853;
+pub mod rosenbrock;
 #[allow(missing_docs)]
 pub mod dop853_tableau;
 pub mod stationary;
@@ -274,9 +275,23 @@ impl Drive {
     }
 }
 
+/// Which integrator.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum Method {
+    /// Explicit DOP853 (default): fastest unless the balls relax much faster than the whirl.
+    #[default]
+    Dop853,
+    /// Linearly implicit 4th-order Rosenbrock ([`rosenbrock`]): for stiff runs (light balls,
+    /// heavy ball drag: `m3 r²/c_ψ` far below the whirl's time scales).
+    Rosenbrock,
+}
+
 /// Integration settings.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Settings {
+    /// The integrator.
+    pub method: Method,
     /// End time (s).
     pub t_end: f64,
     /// Output interval (s), independent of the internal steps.
@@ -569,39 +584,24 @@ pub fn simulate(rotor: &PlanarRotor, drive: &Drive, settings: &Settings, mut sin
     let eq = Equations { rotor, drive };
     let y0 = initial_state(rotor, drive, settings);
     let tol = tolerances(rotor, settings);
-    let mut peak = (rotor_amp(&y0), drive.omega0(), 0.0);
-    let mut next_sample = 0usize;
+    let mut obs = Observer { rotor, settings, sink: &mut sink, peak: (rotor_amp(&y0), drive.omega0(), 0.0), next_sample: 0 };
     let first = sample_of(rotor, 0.0, &y0);
-    let mut keep_going = sink(&first);
-    next_sample += 1;
+    let keep_going = (obs.sink)(&first);
+    obs.next_sample = 1;
     let nc = 3 + rotor.n;
     let (t, y, stats, stop) = if !keep_going {
         (0.0, y0, Stats::default(), Some(Stop::Requested { t: 0.0 }))
     } else {
-        integrate(&eq, 0.0, &y0, settings.t_end, &tol, |step| {
-            let a = rotor_amp(step.y_new);
-            if a > peak.0 {
-                peak = (a, step.y_new[nc + 2], step.t_new);
+        match settings.method {
+            Method::Dop853 => integrate(&eq, 0.0, &y0, settings.t_end, &tol, |s| obs.on_step(s.t_new, s.y_new, |t| s.interpolate(t))),
+            Method::Rosenbrock => {
+                // the dense output is third order: keep steps within a few sample intervals
+                let tol = Tolerances { h_max: 4.0 * settings.dt, ..tol };
+                rosenbrock::integrate(&eq, 0.0, &y0, settings.t_end, &tol, |s| obs.on_step(s.t_new, s.y_new, |t| s.interpolate(t)))
             }
-            loop {
-                let ts = next_sample as f64 * settings.dt;
-                if ts > step.t_new + 1e-12 * step.t_new.abs() || ts > settings.t_end * (1.0 + 1e-12) {
-                    break;
-                }
-                let ys = if (ts - step.t_new).abs() <= 1e-12 * ts.abs().max(1.0) { *step.y_new } else { step.interpolate(ts) };
-                let s = sample_of(rotor, ts, &ys);
-                if s.amplitude > peak.0 {
-                    peak = (s.amplitude, s.omega, ts);
-                }
-                keep_going = sink(&s);
-                next_sample += 1;
-                if !keep_going {
-                    return false;
-                }
-            }
-            true
-        })
+        }
     };
+    let peak = obs.peak;
     let final_amp = rotor_amp(&y);
     let rates_small = (0..rotor.n).all(|j| y[nc + 3 + j].abs() < 1e-3 * y[nc + 2].abs().max(1.0));
     let target = if rotor.s2 > 0.0 { rotor.s2 } else { 0.0 };
@@ -625,6 +625,41 @@ pub fn simulate(rotor: &PlanarRotor, drive: &Drive, settings: &Settings, mut sin
             Stop::Requested { t } => format!("interrupted at t = {t}"),
         }),
     })
+}
+
+/// What `simulate` does after each accepted step, whichever the integrator: track the peak and
+/// emit the samples that fall in the step (from the dense output).
+struct Observer<'a, F: FnMut(&Sample) -> bool> {
+    rotor: &'a PlanarRotor,
+    settings: &'a Settings,
+    sink: &'a mut F,
+    peak: (f64, f64, f64),
+    next_sample: usize,
+}
+
+impl<F: FnMut(&Sample) -> bool> Observer<'_, F> {
+    fn on_step(&mut self, t_new: f64, y_new: &State, interpolate: impl Fn(f64) -> State) -> bool {
+        let nc = 3 + self.rotor.n;
+        let a = rotor_amp(y_new);
+        if a > self.peak.0 {
+            self.peak = (a, y_new[nc + 2], t_new);
+        }
+        loop {
+            let ts = self.next_sample as f64 * self.settings.dt;
+            if ts > t_new + 1e-12 * t_new.abs() || ts > self.settings.t_end * (1.0 + 1e-12) {
+                return true;
+            }
+            let ys = if (ts - t_new).abs() <= 1e-12 * ts.abs().max(1.0) { *y_new } else { interpolate(ts) };
+            let s = sample_of(self.rotor, ts, &ys);
+            if s.amplitude > self.peak.0 {
+                self.peak = (s.amplitude, s.omega, ts);
+            }
+            self.next_sample += 1;
+            if !(self.sink)(&s) {
+                return false;
+            }
+        }
+    }
 }
 
 fn rotor_amp(y: &State) -> f64 {
