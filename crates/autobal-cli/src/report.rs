@@ -279,8 +279,8 @@ fn simulation_section(dir: &Path, quick: bool) -> Result<String> {
         ]
     };
     for (id, m3) in [("2", 0.01), ("3", 0.03)] {
-        runs.push((id, format!("m3 = {m3}, forward b = {}", b(0.25)), acc(m3, b(0.25), 0.0, 600.0 / b(0.25))));
-        runs.push((id, format!("m3 = {m3}, reverse b = {}", -b(0.25)), acc(m3, -b(0.25), 1000.0, 1000.0 / b(0.25))));
+        runs.push((id, format!("forward b = {}", b(0.25)), acc(m3, b(0.25), 0.0, 600.0 / b(0.25))));
+        runs.push((id, format!("reverse b = {}", -b(0.25)), acc(m3, -b(0.25), 1000.0, 1000.0 / b(0.25))));
     }
     for bb in [0.25, 2.5, 12.5] {
         runs.push(("4a", format!("forward b = {}", b(bb)), acc(0.03, b(bb), 0.0, 600.0 / b(bb))));
@@ -342,10 +342,12 @@ fn simulation_section(dir: &Path, quick: bool) -> Result<String> {
         total
     );
     let mut rows = vec![];
-    for ((id, label, _), (_, s, _, wall)) in runs.iter().zip(&results) {
+    for ((id, label, _), (cfg, s, _, wall)) in runs.iter().zip(&results) {
         rows.push(vec![
             format!("Fig. {id}"),
             label.clone(),
+            format!("{}", cfg.rotor.m3),
+            format!("{}", cfg.rotor.c_psi),
             format!("{:.3}", 1e3 * s.peak_amplitude),
             format!("{:.1}", s.omega_at_peak),
             format!("{:.4}", 1e3 * s.final_amplitude),
@@ -355,7 +357,7 @@ fn simulation_section(dir: &Path, quick: bool) -> Result<String> {
             format!("{wall:.3}"),
         ]);
     }
-    h.push_str(&table(&["figure", "run", "peak (mm)", "ω at peak", "final (mm)", "final ω", "semi-balanced", "steps", "wall (s)"], &rows));
+    h.push_str(&table(&["figure", "run", "m3 (kg)", "c_ψ", "peak (mm)", "ω at peak", "final (mm)", "final ω", "semi-balanced", "steps", "wall (s)"], &rows));
     let series_of = |ids: &[&str], x: &dyn Fn(&autobal::simulation::Sample) -> f64, y: &dyn Fn(&autobal::simulation::Sample) -> f64| -> Vec<Series> {
         runs.iter()
             .zip(&results)
@@ -372,7 +374,7 @@ fn simulation_section(dir: &Path, quick: bool) -> Result<String> {
         let mut ser = series_of(&[id], &om, &mm);
         let rotor = results.iter().zip(&runs).find(|(_, r)| r.0 == id).map(|(x, _)| x.0.rotor.clone()).expect("run present");
         let psi0 = autobal::simulation::Settings::default_psi0(rotor.n);
-        ser.push(Series::new("stationary, balls locked at ψ0", (0..=500).map(|i| { let w = 2.0 * i as f64; (w, 1e3 * locked_amplitude(&rotor, w, &psi0)) }).collect(), PALETTE[7]).dashed());
+        ser.push(Series::new("stationary (balls held)", (0..=500).map(|i| { let w = 2.0 * i as f64; (w, 1e3 * locked_amplitude(&rotor, w, &psi0)) }).collect(), PALETTE[7]).dashed());
         figs.push((
             format!("fig004_{id}_amplitude_omega.svg"),
             Plot { title: format!("004 Fig. {id}: m3 = {m3} kg, forward and reverse"), x_label: "ω (rad/s)".into(), y_label: "radius of C (mm)".into(), series: ser, ..Default::default() },
@@ -383,7 +385,8 @@ fn simulation_section(dir: &Path, quick: bool) -> Result<String> {
             .zip(&results)
             .filter(|((i, _, _), _)| *i == id)
             .flat_map(|((_, label, _), (cfg, _, env, _))| {
-                (0..cfg.rotor.n).map(move |j| Series::new(format!("{label}: ψ{}", j + 1), env.kept.iter().map(|s| (s.t, s.psi[j].to_degrees())).collect(), PALETTE[(j + 2 * usize::from(label.contains("reverse"))) % 7]))
+                let dir = if label.contains("reverse") { "rev." } else { "fwd." };
+                (0..cfg.rotor.n).map(move |j| Series::new(format!("{dir} ψ{}", j + 1), crate::sim::wrapped_degrees(env.kept.iter().map(|s| (s.t, s.psi[j]))), PALETTE[(j + 2 * usize::from(dir == "rev.")) % 7]))
             })
             .collect();
         figs.push((

@@ -152,6 +152,22 @@ pub fn summary_table(cfg: &PlanarConfig, s: &Summary, wall: f64) -> String {
     o
 }
 
+/// Ball angles in degrees wrapped to (−180°, 180°], the line broken where it wraps (a ball
+/// slipping round the race would otherwise run off to thousands of degrees).
+pub fn wrapped_degrees(points: impl Iterator<Item = (f64, f64)>) -> Vec<(f64, f64)> {
+    let mut out: Vec<(f64, f64)> = vec![];
+    for (t, a) in points {
+        let d = (a.to_degrees() + 180.0).rem_euclid(360.0) - 180.0;
+        if let Some(&(_, prev)) = out.last() {
+            if prev.is_finite() && (d - prev).abs() > 180.0 {
+                out.push((t, f64::NAN));
+            }
+        }
+        out.push((t, d));
+    }
+    out
+}
+
 /// The four figures of 004's kind: amplitude vs ω with stationary curves, amplitude vs t,
 /// ball angles vs t, ω vs t.
 pub fn plots(cfg: &PlanarConfig, env: &Envelope, title: &str) -> Vec<(String, Plot)> {
@@ -162,7 +178,7 @@ pub fn plots(cfg: &PlanarConfig, env: &Envelope, title: &str) -> Vec<(String, Pl
     let (wlo, whi) = if whi > wlo { (wlo.max(0.0), whi) } else { (0.0, 2.0 * p.natural_frequency()) };
     let ws: Vec<f64> = (0..=600).map(|i| wlo + (whi - wlo) * i as f64 / 600.0).collect();
     let mut s1 = vec![Series::new("transient", k.iter().map(|s| (s.omega, mm * s.amplitude)).collect(), PALETTE[0])];
-    s1.push(Series::new("stationary, balls held at ψ0", ws.iter().map(|&w| (w, mm * locked_amplitude(p, w, &cfg.settings.psi0))).collect(), PALETTE[6]).dashed());
+    s1.push(Series::new("stationary (balls held)", ws.iter().map(|&w| (w, mm * locked_amplitude(p, w, &cfg.settings.psi0))).collect(), PALETTE[6]).dashed());
     if p.n >= 2 {
         s1.push(Series::new("semi-balanced (= s2)", ws.iter().map(|&w| (w, if semi_balanced_exists(p, w) { mm * p.s2 } else { f64::NAN })).collect(), PALETTE[2]).dashed());
     }
@@ -202,7 +218,7 @@ pub fn plots(cfg: &PlanarConfig, env: &Envelope, title: &str) -> Vec<(String, Pl
         },
     ));
     let psi: Vec<Series> = (0..p.n)
-        .map(|j| Series::new(format!("ψ{}", j + 1), k.iter().map(|s| (s.t, s.psi[j].to_degrees())).collect(), PALETTE[(j + 1) % 7]))
+        .map(|j| Series::new(format!("ψ{}", j + 1), wrapped_degrees(k.iter().map(|s| (s.t, s.psi[j]))), PALETTE[(j + 1) % 7]))
         .collect();
     out.push(("psi_t".into(), Plot { title: format!("{title}: ball angles"), x_label: "t (s)".into(), y_label: "ψ (degrees from CG)".into(), series: psi, ..Default::default() }));
     out.push((
