@@ -55,8 +55,18 @@ impl Axis {
         }
         Ok(Axis { key, lo, hi, n })
     }
+    /// The `i`-th grid value, rounded to 12 significant digits so that printed values read as
+    /// typed (0.4, not 0.39999999999999997); the ends are exact.
     pub fn value(&self, i: usize) -> f64 {
-        self.lo + (self.hi - self.lo) * i as f64 / (self.n - 1) as f64
+        if i + 1 >= self.n {
+            return self.hi;
+        }
+        let v = self.lo + (self.hi - self.lo) * i as f64 / (self.n - 1) as f64;
+        if v == 0.0 {
+            return 0.0;
+        }
+        let mag = 10f64.powi(11 - v.abs().log10().floor() as i32);
+        (v * mag).round() / mag
     }
     fn is_omega(&self) -> bool {
         self.key == "omega"
@@ -355,4 +365,27 @@ pub fn write_plots(r: &MapResult, stem: &Path, title: &str) -> Result<()> {
     };
     draw().map_err(|e| anyhow!("cannot write {}: {e}", png_path.display()))?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn axis_values_read_as_typed() {
+        let a = Axis::parse("--x", "planar.c_psi=0.01:0.4:4").unwrap();
+        let v: Vec<f64> = (0..4).map(|i| a.value(i)).collect();
+        assert_eq!(v, vec![0.01, 0.14, 0.27, 0.4]);
+        let a = Axis::parse("--x", "omega=0:6:401").unwrap();
+        assert_eq!(a.value(0), 0.0);
+        assert!((a.value(123) - 6.0 * 123.0 / 400.0).abs() < 1e-11);
+    }
+
+    #[test]
+    fn bad_axis_specs_are_rejected_with_the_flag() {
+        for spec in ["omega", "omega=1:2", "omega=2:1:5", "omega=0:1:1", "omega=a:1:3", "omega=-1:1:3", "x=0:1:9999999"] {
+            let e = Axis::parse("--y", spec).unwrap_err().to_string();
+            assert!(e.starts_with("--y"), "{e}");
+        }
+    }
 }
