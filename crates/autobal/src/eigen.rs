@@ -431,19 +431,25 @@ pub fn routh_hurwitz_stable(c: &[f64]) -> bool {
     r1[0] > 0.0
 }
 
-/// Solve the complex `n×n` system `a x = b` by Gaussian elimination with partial pivoting;
-/// a zero pivot is replaced by `ε‖a‖` (so it serves inverse iteration on singular matrices).
-pub fn complex_solve(a: &[Vec<Complex64>], b: &[Complex64]) -> Vec<Complex64> {
-    let n = b.len();
+/// Gaussian elimination with partial pivoting of a complex matrix, applied alike to `x`:
+/// returns the upper triangle and the sign of the row permutation. With `regularise`, a zero
+/// pivot is replaced by `ε‖a‖` (so that inverse iteration works on singular matrices).
+fn complex_eliminate(a: &[Vec<Complex64>], x: &mut [Complex64], regularise: bool) -> (Vec<Vec<Complex64>>, f64) {
+    let n = a.len();
     let mut m: Vec<Vec<Complex64>> = a.to_vec();
-    let mut x = b.to_vec();
+    let mut sign = 1.0;
     let scale = m.iter().flatten().map(|z| z.norm()).fold(0.0, f64::max).max(f64::MIN_POSITIVE);
     for col in 0..n {
         let p = (col..n).max_by(|&i, &j| m[i][col].norm().total_cmp(&m[j][col].norm())).unwrap();
-        m.swap(col, p);
-        x.swap(col, p);
-        if m[col][col].norm() < f64::EPSILON * scale {
+        if p != col {
+            m.swap(col, p);
+            x.swap(col, p);
+            sign = -sign;
+        }
+        if regularise && m[col][col].norm() < f64::EPSILON * scale {
             m[col][col] = Complex64::new(f64::EPSILON * scale, 0.0);
+        } else if m[col][col].norm() == 0.0 {
+            return (m, 0.0);
         }
         for r in col + 1..n {
             let f = m[r][col] / m[col][col];
@@ -455,6 +461,15 @@ pub fn complex_solve(a: &[Vec<Complex64>], b: &[Complex64]) -> Vec<Complex64> {
             x[r] -= f * t;
         }
     }
+    (m, sign)
+}
+
+/// Solve the complex `n×n` system `a x = b` (partial pivoting; a zero pivot is replaced by
+/// `ε‖a‖`, so it serves inverse iteration on singular matrices).
+pub fn complex_solve(a: &[Vec<Complex64>], b: &[Complex64]) -> Vec<Complex64> {
+    let n = b.len();
+    let mut x = b.to_vec();
+    let (m, _) = complex_eliminate(a, &mut x, true);
     for col in (0..n).rev() {
         let mut v = x[col];
         for j in col + 1..n {
@@ -467,27 +482,10 @@ pub fn complex_solve(a: &[Vec<Complex64>], b: &[Complex64]) -> Vec<Complex64> {
 
 /// Determinant of a complex `n×n` matrix (partial pivoting).
 pub fn complex_det(a: &[Vec<Complex64>]) -> Complex64 {
-    let n = a.len();
-    let mut m: Vec<Vec<Complex64>> = a.to_vec();
-    let mut det = Complex64::new(1.0, 0.0);
-    for col in 0..n {
-        let p = (col..n).max_by(|&i, &j| m[i][col].norm().total_cmp(&m[j][col].norm())).unwrap();
-        if p != col {
-            m.swap(col, p);
-            det = -det;
-        }
-        let piv = m[col][col];
-        if piv.norm() == 0.0 {
-            return Complex64::new(0.0, 0.0);
-        }
-        det *= piv;
-        for r in col + 1..n {
-            let f = m[r][col] / piv;
-            for k in col..n {
-                let t = m[col][k];
-                m[r][k] -= f * t;
-            }
-        }
+    let mut dummy = vec![Complex64::new(0.0, 0.0); a.len()];
+    let (m, sign) = complex_eliminate(a, &mut dummy, false);
+    if sign == 0.0 {
+        return Complex64::new(0.0, 0.0);
     }
-    det
+    (0..a.len()).fold(Complex64::new(sign, 0.0), |d, i| d * m[i][i])
 }

@@ -158,16 +158,20 @@ impl Pencil {
     /// (Gaussian elimination with partial pivoting on `M`).
     pub fn state_matrix(&self) -> Mat12 {
         let n = self.n;
-        // solve M [X Y] = [K G]
-        let mut m = self.m;
-        let mut rhs = [[0.0; 2 * MAX_COORDS]; MAX_COORDS];
-        for i in 0..n {
-            for j in 0..n {
-                rhs[i][j] = self.k[i][j];
-                rhs[i][n + j] = self.g[i][j];
+        // solve M [X Y] = [K G] (a singular M, impossible for physical inputs, gives NaN)
+        let mut rhs = [[f64::NAN; 2 * MAX_COORDS]; MAX_COORDS];
+        if let Some(lu) = crate::dense::Lu::new(self.m, n) {
+            for c in 0..2 * n {
+                let mut col = [0.0; MAX_COORDS];
+                for i in 0..n {
+                    col[i] = if c < n { self.k[i][c] } else { self.g[i][c - n] };
+                }
+                lu.solve(&mut col);
+                for i in 0..n {
+                    rhs[i][c] = col[i];
+                }
             }
         }
-        crate::dense::solve_in_place(&mut m, &mut rhs, n, 2 * n);
         let mut a = [[0.0; MAX_STATES]; MAX_STATES];
         for i in 0..n {
             a[i][n + i] = 1.0;

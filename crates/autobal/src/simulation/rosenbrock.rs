@@ -56,53 +56,6 @@ impl Step<'_> {
     }
 }
 
-struct Lu {
-    a: [[f64; CAP]; CAP],
-    piv: [usize; CAP],
-    n: usize,
-}
-
-impl Lu {
-    fn new(mut a: [[f64; CAP]; CAP], n: usize) -> Option<Self> {
-        let mut piv = [0usize; CAP];
-        for k in 0..n {
-            let p = (k..n).max_by(|&i, &j| a[i][k].abs().total_cmp(&a[j][k].abs()))?;
-            if a[p][k] == 0.0 {
-                return None;
-            }
-            a.swap(k, p);
-            piv[k] = p;
-            for i in k + 1..n {
-                let f = a[i][k] / a[k][k];
-                a[i][k] = f;
-                for j in k + 1..n {
-                    a[i][j] -= f * a[k][j];
-                }
-            }
-        }
-        Some(Lu { a, piv, n })
-    }
-    fn solve(&self, b: &mut State) {
-        let n = self.n;
-        // the factorisation swapped whole rows (multipliers included), so apply every
-        // interchange first, then the unit lower triangle (LAPACK getrs order)
-        for k in 0..n {
-            b.swap(k, self.piv[k]);
-        }
-        for k in 0..n {
-            for i in k + 1..n {
-                b[i] -= self.a[i][k] * b[k];
-            }
-        }
-        for k in (0..n).rev() {
-            for j in k + 1..n {
-                b[k] -= self.a[k][j] * b[j];
-            }
-            b[k] /= self.a[k][k];
-        }
-    }
-}
-
 /// Integrate like [`super::dop853::integrate`], with the Rosenbrock method.
 pub fn integrate<S: System>(sys: &S, t0: f64, y0: &State, t_end: f64, tol: &Tolerances, mut observe: impl FnMut(&Step) -> bool) -> (f64, State, Stats, Option<Stop>) {
     let n = sys.dim();
@@ -152,7 +105,7 @@ pub fn integrate<S: System>(sys: &S, t0: f64, y0: &State, t_end: f64, tol: &Tole
                 }
                 a[i][i] += 1.0 / (GAMMA * h);
             }
-            let Some(lu) = Lu::new(a, n) else {
+            let Some(lu) = crate::dense::Lu::<CAP>::new(a, n) else {
                 h *= 0.5;
                 stats.rejected += 1;
                 continue;
@@ -299,29 +252,3 @@ mod tests {
     }
 }
 
-#[cfg(test)]
-mod lu_tests {
-    use super::*;
-
-    #[test]
-    fn lu_solves_systems_that_need_pivoting() {
-        // a regression: applying the interchanges interleaved with the elimination, while the
-        // factorisation swaps whole rows, solved 1-D problems and failed on every system
-        let mut a = [[0.0; CAP]; CAP];
-        let m = [[0.0, 2.0, 1.0, 3.0], [1.0, 1.0, 0.0, -1.0], [4.0, -1.0, 2.0, 0.5], [2.0, 0.0, -3.0, 1.0]];
-        for i in 0..4 {
-            for j in 0..4 {
-                a[i][j] = m[i][j];
-            }
-        }
-        let x = [1.0, -2.0, 0.5, 3.0];
-        let mut b = [0.0; CAP];
-        for i in 0..4 {
-            b[i] = (0..4).map(|j| m[i][j] * x[j]).sum();
-        }
-        Lu::new(a, 4).unwrap().solve(&mut b);
-        for i in 0..4 {
-            assert!((b[i] - x[i]).abs() < 1e-14, "{:?}", &b[..4]);
-        }
-    }
-}
