@@ -235,8 +235,20 @@ impl Drive {
         }
     }
 
+    /// Times where the drive changes abruptly (schedule points, switch-off, the stop of a
+    /// run-down): `simulate` integrates piecewise between them, so that no step straddles a jump
+    /// of the torque or the acceleration.
+    pub fn breakpoints(&self) -> Vec<f64> {
+        match self {
+            Drive::Acceleration { omega0, b } if *b < 0.0 && *omega0 > 0.0 => vec![omega0 / -b],
+            Drive::Torque { t_off: Some(t), .. } | Drive::Motor { t_off: Some(t), .. } => vec![*t],
+            Drive::TorqueSchedule { points, .. } | Drive::SpeedSchedule { points } => points.iter().map(|p| p.0).collect(),
+            _ => vec![],
+        }
+    }
+
     /// Prescribed `(θ̇, θ̈)` at time `t`, for kinematic drives.
-    fn kinematics(&self, t: f64) -> (f64, f64) {
+    pub fn kinematics(&self, t: f64) -> (f64, f64) {
         match self {
             Drive::Speed { omega0 } => (*omega0, 0.0),
             Drive::Acceleration { omega0, b } => {
@@ -386,7 +398,7 @@ impl System for Equations<'_> {
         let nc = 3 + n;
         let u = C64::new(y[0], y[1]);
         let ud = C64::new(y[nc], y[nc + 1]);
-        let th_d = y[nc + 2];
+        let th_d = if self.drive.prescribed() { self.drive.kinematics(t).0 } else { y[nc + 2] };
         // offsets and their rates
         let e_off = C64::new(p.s2 * p.gamma.cos(), p.s2 * p.gamma.sin());
         let mut a = [C64::new(0.0, 0.0); MAX_BALLS + 2];
@@ -539,12 +551,13 @@ pub struct Summary {
     pub stopped: Option<String>,
 }
 
-fn sample_of(rotor: &PlanarRotor, t: f64, y: &State) -> Sample {
+fn sample_of(rotor: &PlanarRotor, drive: &Drive, t: f64, y: &State) -> Sample {
     let nc = 3 + rotor.n;
+    let omega = if drive.prescribed() { drive.kinematics(t).0 } else { y[nc + 2] };
     let (s, c) = y[2].sin_cos();
     let x = y[0] * c - y[1] * s;
     let yy = y[0] * s + y[1] * c;
-    Sample { t, omega: y[nc + 2], theta: y[2], x, y: yy, amplitude: y[0].hypot(y[1]), psi: y[3..3 + rotor.n].to_vec() }
+    Sample { t, omega, theta: y[2], x, y: yy, amplitude: y[0].hypot(y[1]), psi: y[3..3 + rotor.n].to_vec() }
 }
 
 /// Initial state from the drive and settings: C at rest on the axis, balls as set.
@@ -583,23 +596,41 @@ pub fn simulate(rotor: &PlanarRotor, drive: &Drive, settings: &Settings, mut sin
     let eq = Equations { rotor, drive };
     let y0 = initial_state(rotor, drive, settings);
     let tol = tolerances(rotor, settings);
-    let mut obs = Observer { rotor, settings, sink: &mut sink, peak: (rotor_amp(&y0), drive.omega0(), 0.0), next_sample: 0 };
-    let first = sample_of(rotor, 0.0, &y0);
+    let mut obs = Observer { rotor, drive, settings, sink: &mut sink, peak: (rotor_amp(&y0), drive.omega0(), 0.0), next_sample: 0 };
+    let first = sample_of(rotor, drive, 0.0, &y0);
     let keep_going = (obs.sink)(&first);
     obs.next_sample = 1;
     let nc = 3 + rotor.n;
-    let (t, y, stats, stop) = if !keep_going {
-        (0.0, y0, Stats::default(), Some(Stop::Requested { t: 0.0 }))
-    } else {
-        match settings.method {
-            Method::Dop853 => integrate(&eq, 0.0, &y0, settings.t_end, &tol, |s| obs.on_step(s.t_new, s.y_new, |t| s.interpolate(t))),
+    let mut stats = Stats::default();
+    let (mut t, mut y, mut stop) = (0.0, y0, None);
+    if !keep_going {
+        stop = Some(Stop::Requested { t: 0.0 });
+    }
+    // integrate piecewise between the drive's breakpoints
+    let mut ends: Vec<f64> = drive.breakpoints().into_iter().filter(|b| *b > 0.0 && *b < settings.t_end).collect();
+    ends.push(settings.t_end);
+    ends.sort_by(f64::total_cmp);
+    ends.dedup();
+    for end in ends {
+        if stop.is_some() {
+            break;
+        }
+        if drive.prescribed() {
+            y[nc + 2] = drive.kinematics(t).0; // start each piece exactly on the schedule
+        }
+        let (t1, y1, st, s1) = match settings.method {
+            Method::Dop853 => integrate(&eq, t, &y, end, &tol, |s| obs.on_step(s.t_new, s.y_new, |t| s.interpolate(t))),
             Method::Rosenbrock => {
                 // the dense output is third order: keep steps within a few sample intervals
                 let tol = Tolerances { h_max: 4.0 * settings.dt, ..tol };
-                rosenbrock::integrate(&eq, 0.0, &y0, settings.t_end, &tol, |s| obs.on_step(s.t_new, s.y_new, |t| s.interpolate(t)))
+                rosenbrock::integrate(&eq, t, &y, end, &tol, |s| obs.on_step(s.t_new, s.y_new, |t| s.interpolate(t)))
             }
-        }
-    };
+        };
+        (t, y, stop) = (t1, y1, s1);
+        stats.steps += st.steps;
+        stats.rejected += st.rejected;
+        stats.rhs_evaluations += st.rhs_evaluations;
+    }
     let peak = obs.peak;
     let final_amp = rotor_amp(&y);
     let rates_small = (0..rotor.n).all(|j| y[nc + 3 + j].abs() < 1e-3 * y[nc + 2].abs().max(1.0));
@@ -630,6 +661,7 @@ pub fn simulate(rotor: &PlanarRotor, drive: &Drive, settings: &Settings, mut sin
 /// emit the samples that fall in the step (from the dense output).
 struct Observer<'a, F: FnMut(&Sample) -> bool> {
     rotor: &'a PlanarRotor,
+    drive: &'a Drive,
     settings: &'a Settings,
     sink: &'a mut F,
     peak: (f64, f64, f64),
@@ -649,7 +681,7 @@ impl<F: FnMut(&Sample) -> bool> Observer<'_, F> {
                 return true;
             }
             let ys = if (ts - t_new).abs() <= 1e-12 * ts.abs().max(1.0) { *y_new } else { interpolate(ts) };
-            let s = sample_of(self.rotor, ts, &ys);
+            let s = sample_of(self.rotor, self.drive, ts, &ys);
             if s.amplitude > self.peak.0 {
                 self.peak = (s.amplitude, s.omega, ts);
             }
