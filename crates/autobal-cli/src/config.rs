@@ -263,10 +263,11 @@ pub fn build(root: &Table, source: &str) -> Result<Config> {
             let direct = d.f64("delta_a")?;
             let any_mass = ["m0", "r0", "r"].iter().any(|k| d.get(k).is_some());
             let mut direct_balls = None;
+            // delta_a beside the masses: the masses describe the balls (linear model) and delta_a,
+            // given directly, overrides the anisotropy they imply (as ΔĀ and ΔĀ0, like 003's
+            // worked examples), so that `--set dimensionless.delta_a=…` works on any config
+            let override_delta = if any_mass { direct } else { None };
             let anisotropy = match (direct, any_mass) {
-                (Some(_), true) => bail!(
-                    "dimensionless.delta_a: give either delta_a or the masses m0, r0, m, r, n it is computed from, not both (with delta_a, only m and d_a may describe the balls)"
-                ),
                 (Some(v), false) => {
                     match (d.f64("m")?, d.f64("d_a")?) {
                         (Some(m), Some(da)) => direct_balls = Some((m, da)),
@@ -276,7 +277,7 @@ pub fn build(root: &Table, source: &str) -> Result<Config> {
                     }
                     AnisotropyInput::Direct(v)
                 }
-                (None, true) => AnisotropyInput::Masses {
+                (_, true) => AnisotropyInput::Masses {
                     masses: MassSet {
                         m0: d.req("m0")?,
                         r0: d.req("r0")?,
@@ -298,6 +299,25 @@ pub fn build(root: &Table, source: &str) -> Result<Config> {
                 h_s: d.f64("h_s")?.unwrap_or(0.0),
                 method,
                 direct_balls,
+            })
+            .map(|mut m| {
+                if let Some(v) = override_delta {
+                    let computed = m.anisotropy.clone();
+                    m.anisotropy = autobal::inertia::Anisotropy::given(v);
+                    m.anisotropy.warnings.push(format!(
+                        "dimensionless.delta_a = {v} overrides the anisotropy of the masses (exact tensor {:.6}, eq (17) {:.6}); it serves as ΔĀ and ΔĀ0",
+                        computed.exact[1], computed.paper
+                    ));
+                    m.delta_a0 = v;
+                }
+                m
+            })
+            .and_then(|m| {
+                if override_delta.is_some_and(|v| !(v >= 0.0 && v.is_finite())) {
+                    Err(autobal::Error::invalid("dimensionless.delta_a", format!("must be a finite number ≥ 0, got {}", override_delta.unwrap_or(f64::NAN))))
+                } else {
+                    Ok(m)
+                }
             })?
         }
     };
@@ -338,6 +358,20 @@ mod tests {
         assert!(err(&["foo.bar=1"]).starts_with("foo: unknown table"));
         assert!(err(&["dimensionless.n=0"]).starts_with("dimensionless.n: is 0 but"));
         assert!(err(&["dimensionless.d_a=0.3"]).starts_with("dimensionless.d_a: with n = 2"));
+        assert!(err(&["dimensionless.delta_a=-0.1"]).starts_with("dimensionless.delta_a: must be"));
+    }
+
+    #[test]
+    fn delta_a_overrides_the_masses() {
+        // 003's worked example on the default config: delta_a serves as ΔĀ and ΔĀ0, the masses
+        // still describe the balls
+        let c = load(None, &["dimensionless.delta_a=0.1".into()]).unwrap();
+        assert_eq!(c.model.anisotropy.used, 0.1);
+        assert_eq!(c.model.delta_a0, 0.1);
+        assert!(c.model.balls.is_some());
+        assert!(c.model.anisotropy.warnings.iter().any(|w| w.contains("overrides")));
+        let ks: Vec<f64> = autobal::critical_speeds::critical_speeds(&c.model).speeds.iter().map(|s| s.omega).collect();
+        assert!((ks[3] - 3.80).abs() < 0.005, "{ks:?}");
     }
 
     #[test]
