@@ -216,7 +216,7 @@ fn linear_section(cfg: &Config, dir: &Path) -> Result<String> {
         h.push_str(&table(&["l̄_L", "exactly stable", "003 necessary", "difference"], &rows));
     }
     // stability maps in the layouts of 003 Figs 4 and 5a: C̄Σ × Ω and z̄_A × Ω
-    let maps: [(&str, &str, Axis, fn(&mut autobal::params::SpatialModel, f64), &str); 2] = [
+    let maps: [(&str, &str, Axis, fn(&mut autobal::params::SpatialModel, f64), &str); 3] = [
         (
             "stability_map_c_sigma",
             "Stability map C̄Σ × Ω",
@@ -230,6 +230,16 @@ fn linear_section(cfg: &Config, dir: &Path) -> Result<String> {
             Axis { key: "dimensionless.z_a".into(), lo: -2.0, hi: 2.0, n: 121 },
             |m, v| m.z_a = v,
             "Stability map in the layout of 003 Fig. 5a: largest real part over the position of the balancer plane z̄_A and the speed Ω, with the exact stability boundary (black) and the boundary of 003's necessary condition (dashed). Also as stability_map_z_a.png.",
+        ),
+        (
+            "stability_map_delta_a0",
+            "Stability map ΔĀ0 × Ω",
+            Axis { key: "dimensionless.delta_a".into(), lo: 0.0, hi: 0.24, n: 121 },
+            |m, v| {
+                m.anisotropy.used = v;
+                m.delta_a0 = v;
+            },
+            "Stability map in the layout of 003 Fig. 5b: largest real part over the anisotropy (ΔĀ = ΔĀ0, given directly as in 003's examples) and the speed Ω, with the exact boundary (black) and 003's (dashed). Also as stability_map_delta_a0.png.",
         ),
     ];
     for (stem, title, x, set, caption) in maps {
