@@ -80,6 +80,18 @@ pub fn apply_set(root: &mut Table, assignment: &str) -> Result<()> {
     Ok(())
 }
 
+/// Every table and key of `root` must be in [`SCHEMA`].
+fn check_schema(root: &Table) -> Result<()> {
+    for (name, value) in root {
+        check_key(name, None)?;
+        let t = value.as_table().ok_or_else(|| anyhow!("{name}: expected a table [{name}]"))?;
+        for k in t.keys() {
+            check_key(name, Some(k))?;
+        }
+    }
+    Ok(())
+}
+
 fn check_key(table: &str, key: Option<&str>) -> Result<()> {
     let Some((_, keys)) = SCHEMA.iter().find(|(t, _)| *t == table) else {
         let known: Vec<&str> = SCHEMA.iter().map(|(t, _)| *t).collect();
@@ -98,17 +110,21 @@ struct Section<'a> {
     table: Option<&'a Table>,
 }
 
+/// A TOML number (integer or float) as `f64`; `field` names it in the error.
+fn number(v: &Value, field: &str) -> Result<f64> {
+    match v {
+        Value::Float(f) => Ok(*f),
+        Value::Integer(i) => Ok(*i as f64),
+        o => bail!("{field}: expected a number, got {}", describe(o)),
+    }
+}
+
 impl<'a> Section<'a> {
     fn get(&self, key: &str) -> Option<&'a Value> {
         self.table.and_then(|t| t.get(key))
     }
     fn f64(&self, key: &str) -> Result<Option<f64>> {
-        match self.get(key) {
-            None => Ok(None),
-            Some(Value::Float(f)) => Ok(Some(*f)),
-            Some(Value::Integer(i)) => Ok(Some(*i as f64)),
-            Some(v) => bail!("{}.{key}: expected a number, got {}", self.name, describe(v)),
-        }
+        self.get(key).map(|v| number(v, &format!("{}.{key}", self.name))).transpose()
     }
     fn req(&self, key: &str) -> Result<f64> {
         self.f64(key)?.ok_or_else(|| anyhow!("{}.{key}: missing (required)", self.name))
@@ -195,13 +211,7 @@ pub fn load(path: Option<&std::path::Path>, sets: &[String]) -> Result<Config> {
 pub fn build(root: &Table, source: &str) -> Result<Config> {
     let source = source.to_string();
     let text = String::new();
-    for (name, value) in root {
-        check_key(name, None)?;
-        let t = value.as_table().ok_or_else(|| anyhow!("{name}: expected a table [{name}]"))?;
-        for k in t.keys() {
-            check_key(name, Some(k))?;
-        }
-    }
+    check_schema(root)?;
     let sec = |name: &'static str| Section { name, table: root.get(name).and_then(Value::as_table) };
     let an = sec("analysis");
     let method = match an.string("anisotropy")? {
@@ -267,6 +277,9 @@ pub fn build(root: &Table, source: &str) -> Result<Config> {
             // given directly, overrides the anisotropy they imply (as ΔĀ and ΔĀ0, like 003's
             // worked examples), so that `--set dimensionless.delta_a=…` works on any config
             let override_delta = if any_mass { direct } else { None };
+            if let Some(v) = override_delta.filter(|v| !(*v >= 0.0 && v.is_finite())) {
+                bail!("dimensionless.delta_a: must be a finite number ≥ 0, got {v}");
+            }
             let anisotropy = match (direct, any_mass) {
                 (Some(v), false) => {
                     match (d.f64("m")?, d.f64("d_a")?) {
@@ -311,13 +324,6 @@ pub fn build(root: &Table, source: &str) -> Result<Config> {
                     m.delta_a0 = v;
                 }
                 m
-            })
-            .and_then(|m| {
-                if override_delta.is_some_and(|v| !(v >= 0.0 && v.is_finite())) {
-                    Err(autobal::Error::invalid("dimensionless.delta_a", format!("must be a finite number ≥ 0, got {}", override_delta.unwrap_or(f64::NAN))))
-                } else {
-                    Ok(m)
-                }
             })?
         }
     };
@@ -394,15 +400,7 @@ pub struct PlanarConfig {
 fn array_f64(sec: &Section, key: &str) -> Result<Option<Vec<f64>>> {
     match sec.get(key) {
         None => Ok(None),
-        Some(Value::Array(a)) => a
-            .iter()
-            .map(|v| match v {
-                Value::Float(f) => Ok(*f),
-                Value::Integer(i) => Ok(*i as f64),
-                o => bail!("{}.{key}: expected numbers, got {}", sec.name, describe(o)),
-            })
-            .collect::<Result<Vec<_>>>()
-            .map(Some),
+        Some(Value::Array(a)) => a.iter().map(|v| number(v, &format!("{}.{key}", sec.name))).collect::<Result<Vec<_>>>().map(Some),
         Some(v) => bail!("{}.{key}: expected an array of numbers, got {}", sec.name, describe(v)),
     }
 }
@@ -419,13 +417,7 @@ pub fn load_planar(path: Option<&std::path::Path>, sets: &[String]) -> Result<Pl
 /// Validate a planar config table.
 pub fn build_planar(root: &Table, source: &str) -> Result<PlanarConfig> {
     use autobal::simulation::{Drive, PlanarRotor, Settings};
-    for (name, value) in root {
-        check_key(name, None)?;
-        let t = value.as_table().ok_or_else(|| anyhow!("{name}: expected a table [{name}]"))?;
-        for k in t.keys() {
-            check_key(name, Some(k))?;
-        }
-    }
+    check_schema(root)?;
     if !root.contains_key("planar") {
         bail!("planar: missing: `simulate` needs a [planar] table (see examples/planar.toml)");
     }
@@ -456,14 +448,7 @@ pub fn build_planar(root: &Table, source: &str) -> Result<PlanarConfig> {
             Some(Value::Array(rows)) => rows
                 .iter()
                 .map(|r| match r {
-                    Value::Array(pair) if pair.len() == 2 => {
-                        let num = |v: &Value| match v {
-                            Value::Float(f) => Ok(*f),
-                            Value::Integer(i) => Ok(*i as f64),
-                            o => Err(anyhow!("drive.schedule: expected numbers, got {}", describe(o))),
-                        };
-                        Ok((num(&pair[0])?, num(&pair[1])?))
-                    }
+                    Value::Array(pair) if pair.len() == 2 => Ok((number(&pair[0], "drive.schedule")?, number(&pair[1], "drive.schedule")?)),
                     _ => Err(anyhow!("drive.schedule: each entry must be a [t, value] pair")),
                 })
                 .collect(),

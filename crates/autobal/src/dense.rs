@@ -2,6 +2,17 @@
 //! order), shared by the linear model (`M⁻¹[K G]`), the simulation (its mass matrix at each
 //! step) and the implicit integrator (one factorisation, six solves per step).
 
+/// Row of the largest `|a[i][col]|`, `i ≥ col` (partial pivoting).
+fn pivot_row<const N: usize>(a: &[[f64; N]; N], col: usize, n: usize) -> usize {
+    let mut p = col;
+    for i in col + 1..n {
+        if a[i][col].abs() > a[p][col].abs() {
+            p = i;
+        }
+    }
+    p
+}
+
 /// LU factors of the leading `n×n` block of an `N×N` array.
 pub(crate) struct Lu<const N: usize> {
     a: [[f64; N]; N],
@@ -14,12 +25,7 @@ impl<const N: usize> Lu<N> {
     pub(crate) fn new(mut a: [[f64; N]; N], n: usize) -> Option<Self> {
         let mut piv = [0usize; N];
         for k in 0..n {
-            let mut p = k;
-            for i in k + 1..n {
-                if a[i][k].abs() > a[p][k].abs() {
-                    p = i;
-                }
-            }
+            let p = pivot_row(&a, k, n);
             if a[p][k] == 0.0 {
                 return None;
             }
@@ -65,12 +71,7 @@ impl<const N: usize> Lu<N> {
 /// Returns `false` (and leaves `b` undefined) when a pivot is exactly zero.
 pub(crate) fn solve_once<const N: usize>(a: &mut [[f64; N]; N], b: &mut [f64; N], n: usize) -> bool {
     for col in 0..n {
-        let mut p = col;
-        for r in col + 1..n {
-            if a[r][col].abs() > a[p][col].abs() {
-                p = r;
-            }
-        }
+        let p = pivot_row(a, col, n);
         if a[p][col] == 0.0 {
             return false;
         }

@@ -292,25 +292,27 @@ fn hqr(a: &mut A1, n: usize, wr: &mut [f64], wi: &mut [f64]) -> Result<(), NoCon
     Ok(())
 }
 
-/// All eigenvalues of the leading `n×n` block of `a` (balanced, Hessenberg, Francis QR).
-pub fn eigenvalues(a: &Mat12, n: usize) -> Result<Vec<Complex64>, NoConvergence> {
+/// Real and imaginary parts of the eigenvalues of the leading `n×n` block of `a`: balancing,
+/// Hessenberg reduction, Francis QR.
+fn eigen_parts(a: &Mat12, n: usize) -> Result<([f64; MAX_STATES], [f64; MAX_STATES]), NoConvergence> {
     let mut b = to_one_based(a, n);
     balance(&mut b, n);
     hessenberg(&mut b, n);
     let mut wr = [0.0; MAX_STATES];
     let mut wi = [0.0; MAX_STATES];
     hqr(&mut b, n, &mut wr, &mut wi)?;
+    Ok((wr, wi))
+}
+
+/// All eigenvalues of the leading `n×n` block of `a` (balanced, Hessenberg, Francis QR).
+pub fn eigenvalues(a: &Mat12, n: usize) -> Result<Vec<Complex64>, NoConvergence> {
+    let (wr, wi) = eigen_parts(a, n)?;
     Ok((0..n).map(|i| Complex64::new(wr[i], wi[i])).collect())
 }
 
 /// Spectral abscissa `max Re λ` of the leading `n×n` block of `a`.
 pub fn spectral_abscissa(a: &Mat12, n: usize) -> Result<f64, NoConvergence> {
-    let mut b = to_one_based(a, n);
-    balance(&mut b, n);
-    hessenberg(&mut b, n);
-    let mut wr = [0.0; MAX_STATES];
-    let mut wi = [0.0; MAX_STATES];
-    hqr(&mut b, n, &mut wr, &mut wi)?;
+    let (wr, _) = eigen_parts(a, n)?;
     Ok(wr[..n].iter().copied().fold(f64::NEG_INFINITY, f64::max))
 }
 
