@@ -2,8 +2,8 @@
 //! validation with errors that name the field.
 
 use anyhow::{anyhow, bail, Result};
-use autobal::inertia::AnisotropyMethod;
-use autobal::params::{AnisotropyInput, DimensionlessInput, MassSet, SpatialModel, SpatialRotorSi};
+use autobal::spatial::inertia::AnisotropyMethod;
+use autobal::spatial::params::{AnisotropyInput, DimensionlessInput, MassSet, SpatialModel, SpatialRotorSi};
 use toml::{Table, Value};
 
 /// The embedded default example (paper 000's base case).
@@ -219,7 +219,7 @@ pub fn build(root: &Table, source: &str) -> Result<Config> {
         Some("paper") => AnisotropyMethod::Paper,
         Some(o) => bail!("analysis.anisotropy: must be \"exact\" or \"paper\", got \"{o}\""),
     };
-    let sensitivity_limit = an.f64("sensitivity_limit")?.unwrap_or(autobal::sensitivity::DEFAULT_LIMIT);
+    let sensitivity_limit = an.f64("sensitivity_limit")?.unwrap_or(autobal::spatial::sensitivity::DEFAULT_LIMIT);
     if !(sensitivity_limit > 0.0 && sensitivity_limit < 1.0) {
         bail!("analysis.sensitivity_limit: must lie in (0, 1), got {sensitivity_limit}");
     }
@@ -316,7 +316,7 @@ pub fn build(root: &Table, source: &str) -> Result<Config> {
             .map(|mut m| {
                 if let Some(v) = override_delta {
                     let computed = m.anisotropy.clone();
-                    m.anisotropy = autobal::inertia::Anisotropy::given(v);
+                    m.anisotropy = autobal::spatial::inertia::Anisotropy::given(v);
                     m.anisotropy.warnings.push(format!(
                         "dimensionless.delta_a = {v} overrides the anisotropy of the masses (exact tensor {:.6}, eq (17) {:.6}); it serves as ΔĀ and ΔĀ0",
                         computed.exact[1], computed.paper
@@ -376,7 +376,7 @@ mod tests {
         assert_eq!(c.model.delta_a0, 0.1);
         assert!(c.model.balls.is_some());
         assert!(c.model.anisotropy.warnings.iter().any(|w| w.contains("overrides")));
-        let ks: Vec<f64> = autobal::critical_speeds::critical_speeds(&c.model).speeds.iter().map(|s| s.omega).collect();
+        let ks: Vec<f64> = autobal::spatial::critical_speeds::critical_speeds(&c.model).speeds.iter().map(|s| s.omega).collect();
         assert!((ks[3] - 3.80).abs() < 0.005, "{ks:?}");
     }
 
@@ -391,9 +391,9 @@ mod tests {
 /// A loaded planar-rotor simulation (paper 004).
 #[derive(Debug, Clone)]
 pub struct PlanarConfig {
-    pub rotor: autobal::simulation::PlanarRotor,
-    pub drive: autobal::simulation::Drive,
-    pub settings: autobal::simulation::Settings,
+    pub rotor: autobal::planar::PlanarRotor,
+    pub drive: autobal::planar::Drive,
+    pub settings: autobal::planar::Settings,
     pub source: String,
 }
 
@@ -416,7 +416,7 @@ pub fn load_planar(path: Option<&std::path::Path>, sets: &[String]) -> Result<Pl
 
 /// Validate a planar config table.
 pub fn build_planar(root: &Table, source: &str) -> Result<PlanarConfig> {
-    use autobal::simulation::{Drive, PlanarRotor, Settings};
+    use autobal::planar::{Drive, PlanarRotor, Settings};
     check_schema(root)?;
     if !root.contains_key("planar") {
         bail!("planar: missing: `simulate` needs a [planar] table (see examples/planar.toml)");
@@ -471,8 +471,8 @@ pub fn build_planar(root: &Table, source: &str) -> Result<PlanarConfig> {
     drive.validate()?;
     let t_end = d.f64("t_end")?.unwrap_or(10.0);
     let method = match ig.string("method")? {
-        None | Some("dop853") => autobal::simulation::Method::Dop853,
-        Some("rosenbrock") => autobal::simulation::Method::Rosenbrock,
+        None | Some("dop853") => autobal::planar::Method::Dop853,
+        Some("rosenbrock") => autobal::planar::Method::Rosenbrock,
         Some(o) => bail!("integration.method: must be \"dop853\" or \"rosenbrock\", got \"{o}\""),
     };
     let settings = Settings {

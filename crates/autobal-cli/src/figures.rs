@@ -1,10 +1,10 @@
 //! Parameter studies of papers 000 (Figs 4-8) and 003 (Figs 3-5), around the configured model.
 
 use crate::plot::{Plot, Series, Shade, PALETTE};
-use autobal::critical_speeds::{critical_speeds_at, ModeKind};
-use autobal::inertia::{anisotropy, AnisotropyMethod, BallSet};
-use autobal::params::{identical_support_coefficients, MassSet, SpatialModel};
-use autobal::ranges::{antiresonance_speed, autobalancing_ranges, point_a_response};
+use autobal::spatial::critical_speeds::{critical_speeds_at, ModeKind};
+use autobal::spatial::inertia::{anisotropy, AnisotropyMethod, BallSet};
+use autobal::spatial::params::{identical_support_coefficients, MassSet, SpatialModel};
+use autobal::spatial::ranges::{antiresonance_speed, autobalancing_ranges, point_a_response};
 
 /// A named figure with its caption.
 pub struct Figure {

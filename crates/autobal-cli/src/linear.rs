@@ -5,11 +5,11 @@ use crate::figures::omega_limit;
 use crate::output::{fmt_ranges, ranges_value};
 use crate::plot::{Plot, Series, PALETTE};
 use anyhow::Result;
-use autobal::critical_speeds::critical_speeds;
-use autobal::linear_model::Balls;
-use autobal::params::SpatialModel;
-use autobal::ranges::{autobalancing_ranges, SpeedRange};
-use autobal::stability::{campbell, stability_ranges, Campbell, StabilityRanges, Whirl};
+use autobal::spatial::critical_speeds::critical_speeds;
+use autobal::spatial::linear_model::Balls;
+use autobal::spatial::params::SpatialModel;
+use autobal::spatial::ranges::{autobalancing_ranges, SpeedRange};
+use autobal::spatial::stability::{campbell, stability_ranges, Campbell, StabilityRanges, Whirl};
 use serde_json::{json, Value};
 use std::fmt::Write;
 
@@ -96,7 +96,7 @@ pub fn stability_json(cfg: &Config, c: &Comparison, balls: Balls) -> Value {
         "difference": difference_sentence(c),
         "max_real_part": c.exact.max_real_part.iter().map(|(w, a)| json!([w, a])).collect::<Vec<_>>(),
         "tolerance": c.exact.tolerance,
-        "stability_threshold": autobal::stability::STABILITY_TOLERANCE,
+        "stability_threshold": autobal::spatial::stability::STABILITY_TOLERANCE,
         "anisotropy_used": cfg.model.anisotropy.used,
         "ball_coupling": cfg.model.balls,
     })

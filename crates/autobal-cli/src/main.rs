@@ -47,11 +47,11 @@ enum BallsArg {
     Locked,
 }
 
-impl From<BallsArg> for autobal::linear_model::Balls {
+impl From<BallsArg> for autobal::spatial::linear_model::Balls {
     fn from(b: BallsArg) -> Self {
         match b {
-            BallsArg::Free => autobal::linear_model::Balls::Free,
-            BallsArg::Locked => autobal::linear_model::Balls::Locked,
+            BallsArg::Free => autobal::spatial::linear_model::Balls::Free,
+            BallsArg::Locked => autobal::spatial::linear_model::Balls::Locked,
         }
     }
 }

@@ -5,9 +5,9 @@
 use crate::config::{self, Config};
 use crate::plot::{Plot, Raster, Series};
 use anyhow::{anyhow, bail, Context, Result};
-use autobal::linear_model::Balls;
-use autobal::linear_model::StateSpace;
-use autobal::stability::{counts_as_stable, margin_at, strictly_stable_at};
+use autobal::spatial::linear_model::Balls;
+use autobal::spatial::linear_model::StateSpace;
+use autobal::spatial::stability::{counts_as_stable, margin_at, strictly_stable_at};
 use rayon::prelude::*;
 use std::io::Write;
 use std::path::Path;
@@ -118,7 +118,7 @@ impl Point<'_> {
     }
 }
 
-fn cell(ss: &StateSpace, nec: &[autobal::ranges::SpeedRange], omega: f64, q: Quantity, balls: Balls) -> Result<Cell> {
+fn cell(ss: &StateSpace, nec: &[autobal::spatial::ranges::SpeedRange], omega: f64, q: Quantity, balls: Balls) -> Result<Cell> {
     let necessary = nec.iter().any(|r| r.contains(omega));
     Ok(match q {
         Quantity::Margin => {
@@ -170,10 +170,10 @@ pub fn compute(
     };
     let sink = Mutex::new(csv);
     // one model per value of the non-Ω axis, built once (the Ω axis reuses it)
-    type Built = (StateSpace, Vec<autobal::ranges::SpeedRange>);
+    type Built = (StateSpace, Vec<autobal::spatial::ranges::SpeedRange>);
     let build = |xv: Option<f64>, yv: f64| -> Result<Built> {
         let c = pt.config(xv, yv)?;
-        let nec = autobal::ranges::autobalancing_ranges(&c.model).ranges;
+        let nec = autobal::spatial::ranges::autobalancing_ranges(&c.model).ranges;
         Ok((StateSpace::new(&c.model, balls)?, nec))
     };
     let columns: Vec<Built> = if y.is_omega() {

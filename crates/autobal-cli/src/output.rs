@@ -1,10 +1,10 @@
 //! Tables and JSON for the analytic commands.
 
 use crate::config::Config;
-use autobal::critical_speeds::{critical_speeds, CriticalSpeeds};
-use autobal::inertia::composite_inertia;
-use autobal::ranges::{autobalancing_ranges, AutobalancingRanges, SpeedRange};
-use autobal::sensitivity::sensitivity;
+use autobal::spatial::critical_speeds::{critical_speeds, CriticalSpeeds};
+use autobal::spatial::inertia::composite_inertia;
+use autobal::spatial::ranges::{autobalancing_ranges, AutobalancingRanges, SpeedRange};
+use autobal::spatial::sensitivity::sensitivity;
 use serde_json::{json, Value};
 use std::fmt::Write;
 

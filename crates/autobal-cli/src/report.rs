@@ -5,11 +5,11 @@ use crate::config::Config;
 use crate::figures;
 use crate::output::{critical_rows, fmt_ranges, scale_ranges};
 use anyhow::{Context, Result};
-use autobal::critical_speeds::critical_speeds;
-use autobal::inertia::{composite_inertia, AnisotropyMethod};
-use autobal::params::{AnisotropyInput, DimensionlessInput, SpatialModel};
-use autobal::ranges::{antiresonance_speed, autobalancing_ranges};
-use autobal::sensitivity::sensitivity;
+use autobal::spatial::critical_speeds::critical_speeds;
+use autobal::spatial::inertia::{composite_inertia, AnisotropyMethod};
+use autobal::spatial::params::{AnisotropyInput, DimensionlessInput, SpatialModel};
+use autobal::spatial::ranges::{antiresonance_speed, autobalancing_ranges};
+use autobal::spatial::sensitivity::sensitivity;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
@@ -172,8 +172,8 @@ figure{margin:1.5em 0}figcaption{font-size:92%;color:#444;max-width:720px}
 fn linear_section(cfg: &Config, dir: &Path) -> Result<String> {
     use crate::linear;
     use crate::map::{write_plots, Axis, Cell, MapResult, Quantity};
-    use autobal::linear_model::{Balls, StateSpace};
-    use autobal::stability::{counts_as_stable, margin_at};
+    use autobal::spatial::linear_model::{Balls, StateSpace};
+    use autobal::spatial::stability::{counts_as_stable, margin_at};
     let m = &cfg.model;
     let mut h = String::from("<h2>Exact linear stability of the balanced state</h2>\n");
     if m.balls.is_none() {
@@ -216,7 +216,7 @@ fn linear_section(cfg: &Config, dir: &Path) -> Result<String> {
         h.push_str(&table(&["l̄_L", "exactly stable", "003 necessary", "difference"], &rows));
     }
     // stability maps in the layouts of 003 Figs 4 and 5a: C̄Σ × Ω and z̄_A × Ω
-    let maps: [(&str, &str, Axis, fn(&mut autobal::params::SpatialModel, f64), &str); 3] = [
+    let maps: [(&str, &str, Axis, fn(&mut autobal::spatial::params::SpatialModel, f64), &str); 3] = [
         (
             "stability_map_c_sigma",
             "Stability map C̄Σ × Ω",
@@ -244,11 +244,11 @@ fn linear_section(cfg: &Config, dir: &Path) -> Result<String> {
     ];
     for (stem, title, x, set, caption) in maps {
         let y = Axis { key: "omega".into(), lo: 0.02 * w, hi: w, n: 121 };
-        let cols: Vec<(StateSpace, Vec<autobal::ranges::SpeedRange>)> = (0..x.n)
+        let cols: Vec<(StateSpace, Vec<autobal::spatial::ranges::SpeedRange>)> = (0..x.n)
             .map(|i| {
                 let mut mz = m.clone();
                 set(&mut mz, x.value(i));
-                Ok((StateSpace::new(&mz, balls)?, autobal::ranges::autobalancing_ranges(&mz).ranges))
+                Ok((StateSpace::new(&mz, balls)?, autobal::spatial::ranges::autobalancing_ranges(&mz).ranges))
             })
             .collect::<Result<_>>()?;
         let mut rows: Vec<Option<Vec<Cell>>> = vec![];
@@ -272,7 +272,7 @@ fn linear_section(cfg: &Config, dir: &Path) -> Result<String> {
 fn simulation_section(dir: &Path, quick: bool) -> Result<String> {
     use crate::plot::{Plot, Series, PALETTE};
     use crate::sim::{Envelope, INTERRUPTED};
-    use autobal::simulation::{simulate, stationary::locked_amplitude, Summary};
+    use autobal::planar::{simulate, stationary::locked_amplitude, Summary};
     use rayon::prelude::*;
     let f = if quick { 10.0 } else { 1.0 }; // quick: ten times faster sweeps
     let b = |v: f64| v * f;
@@ -368,7 +368,7 @@ fn simulation_section(dir: &Path, quick: bool) -> Result<String> {
         ]);
     }
     h.push_str(&table(&["figure", "run", "m3 (kg)", "c_ψ", "peak (mm)", "ω at peak", "final (mm)", "final ω", "semi-balanced", "steps", "wall (s)"], &rows));
-    let series_of = |ids: &[&str], x: &dyn Fn(&autobal::simulation::Sample) -> f64, y: &dyn Fn(&autobal::simulation::Sample) -> f64| -> Vec<Series> {
+    let series_of = |ids: &[&str], x: &dyn Fn(&autobal::planar::Sample) -> f64, y: &dyn Fn(&autobal::planar::Sample) -> f64| -> Vec<Series> {
         runs.iter()
             .zip(&results)
             .filter(|((id, _, _), _)| ids.contains(id))
@@ -376,14 +376,14 @@ fn simulation_section(dir: &Path, quick: bool) -> Result<String> {
             .map(|(i, ((_, label, _), (_, _, env, _)))| Series::new(label.clone(), env.kept.iter().map(|s| (x(s), y(s))).collect(), PALETTE[i % 7]))
             .collect()
     };
-    let mm = |s: &autobal::simulation::Sample| 1e3 * s.amplitude;
-    let om = |s: &autobal::simulation::Sample| s.omega;
-    let tt = |s: &autobal::simulation::Sample| s.t;
+    let mm = |s: &autobal::planar::Sample| 1e3 * s.amplitude;
+    let om = |s: &autobal::planar::Sample| s.omega;
+    let tt = |s: &autobal::planar::Sample| s.t;
     let mut figs: Vec<(String, Plot, String)> = vec![];
     for (id, m3) in [("2", 0.01), ("3", 0.03)] {
         let mut ser = series_of(&[id], &om, &mm);
         let rotor = results.iter().zip(&runs).find(|(_, r)| r.0 == id).map(|(x, _)| x.0.rotor.clone()).expect("run present");
-        let psi0 = autobal::simulation::Settings::default_psi0(rotor.n);
+        let psi0 = autobal::planar::Settings::default_psi0(rotor.n);
         ser.push(Series::new("stationary (balls held)", (0..=500).map(|i| { let w = 2.0 * i as f64; (w, 1e3 * locked_amplitude(&rotor, w, &psi0)) }).collect(), PALETTE[7]).dashed());
         figs.push((
             format!("fig004_{id}_amplitude_omega.svg"),

@@ -3,8 +3,8 @@
 use crate::config::{self, PlanarConfig};
 use crate::plot::{Plot, Series, PALETTE};
 use anyhow::{anyhow, bail, Context, Result};
-use autobal::simulation::stationary::{aligned_whirls, capacity_ratio, locked_amplitude, semi_balanced_exists};
-use autobal::simulation::{simulate, Sample, Summary};
+use autobal::planar::stationary::{aligned_whirls, capacity_ratio, locked_amplitude, semi_balanced_exists};
+use autobal::planar::{simulate, Sample, Summary};
 use rayon::prelude::*;
 use serde_json::{json, Value};
 use std::io::Write;

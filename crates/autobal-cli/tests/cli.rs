@@ -2,6 +2,31 @@
 
 use std::process::Command;
 
+/// The Python that has `modules`: `$AUTOBAL_PYTHON`, else the repository's `.venv`, else
+/// `python3`. `None` (the test is skipped, with a message saying what to install) when none
+/// has them, unless `AUTOBAL_REQUIRE_PYTHON` is set (scripts/test.sh and CI set it): then the
+/// test fails with the same message.
+fn python_with(modules: &[&str]) -> Option<String> {
+    let venv = format!("{}/../../.venv/bin/python", env!("CARGO_MANIFEST_DIR"));
+    let candidates = std::env::var("AUTOBAL_PYTHON").into_iter().chain([venv, "python3".to_string()]);
+    let import = format!("import {}", modules.join(", "));
+    for py in candidates {
+        if Command::new(&py).args(["-c", &import]).output().is_ok_and(|o| o.status.success()) {
+            return Some(py);
+        }
+    }
+    let msg = format!(
+        "this cross-check needs Python with {}: run scripts/test.sh (it creates .venv with them), \
+         or set AUTOBAL_PYTHON to a python that has them",
+        modules.join(", ")
+    );
+    if std::env::var_os("AUTOBAL_REQUIRE_PYTHON").is_some() {
+        panic!("{msg}");
+    }
+    eprintln!("skipped: {msg}");
+    None
+}
+
 fn autobal(args: &[&str]) -> (i32, String, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_autobal")).args(args).output().expect("binary runs");
     (out.status.code().unwrap_or(-1), String::from_utf8_lossy(&out.stdout).into(), String::from_utf8_lossy(&out.stderr).into())
@@ -204,9 +229,10 @@ fn simulation_agrees_with_an_independent_scipy_integration_in_fixed_axes() {
     // bench/passage.py --check: paper 004's equations in fixed axes, written independently in
     // Python and integrated by SciPy's DOP853, against `autobal simulate` (rotor axes), both
     // against an autobal reference at rtol 1e-12: sampled radius of C within 1e-4 of the peak.
-    // NumPy and SciPy are installed by .ci/run.
+    // NumPy and SciPy come with scripts/test.sh (the README's test command).
+    let Some(python) = python_with(&["numpy", "scipy"]) else { return };
     let script = format!("{}/../../bench/passage.py", env!("CARGO_MANIFEST_DIR"));
-    let out = Command::new("python3").args([&script, "--check", "--exe", env!("CARGO_BIN_EXE_autobal")]).output().expect("python3 runs");
+    let out = Command::new(python).args([&script, "--check", "--exe", env!("CARGO_BIN_EXE_autobal")]).output().expect("python runs");
     assert!(out.status.success(), "{}\n{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
 }
 

@@ -6,10 +6,10 @@
 //! Usage: `cargo run --release --example bench_map -p autobal -- NX NY OUT.bin`
 //! Prints one JSON line of timings; OUT.bin holds NX·NY margins (f64 LE) then NX·NY verdicts (u8).
 
-use autobal::eigen::{characteristic_polynomial, routh_hurwitz_stable, spectral_abscissa};
-use autobal::inertia::AnisotropyMethod;
-use autobal::linear_model::{Balls, StateSpace};
-use autobal::params::{AnisotropyInput, DimensionlessInput, SpatialModel};
+use autobal::linalg::eigen::{characteristic_polynomial, routh_hurwitz_stable, spectral_abscissa};
+use autobal::spatial::inertia::AnisotropyMethod;
+use autobal::spatial::linear_model::{Balls, StateSpace};
+use autobal::spatial::params::{AnisotropyInput, DimensionlessInput, SpatialModel};
 use std::io::Write;
 use std::time::Instant;
 

@@ -1,4 +1,4 @@
-use autobal::simulation::*;
+use autobal::planar::*;
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let b: f64 = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(2.5);

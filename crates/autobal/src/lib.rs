@@ -4,21 +4,30 @@
 //! `autobal-cli` crate.
 //!
 //! ## A tour
-//! - [`params`]: the SI description of a rigid rotor on two supports with an unbalance mass
-//!   and an n-ball balancer ([`params::SpatialRotorSi`]) and the papers' dimensionless model
-//!   ([`params::SpatialModel`]) every analysis works on.
-//! - [`inertia`]: composite inertia and its anisotropy `ΔĀ`, by paper 000's eq (17) and by
+//! Two physical models over shared machinery:
+//!
+//! - [`spatial`]: the rigid rotor on two supports of papers 000 and 003.
+//! - [`planar`]: the planar rotor with an eccentric ball balancer of paper 004, in time.
+//! - [`drive`]: speed and torque histories shared by the dynamic models.
+//! - [`ode`]: the integrators (DOP853, RODAS) and their shared types.
+//! - [`linalg`]: small dense LU and eigenvalues.
+//!
+//! Inside [`spatial`]:
+//! - [`spatial::params`]: the SI description of a rigid rotor on two supports with an unbalance mass
+//!   and an n-ball balancer ([`spatial::params::SpatialRotorSi`]) and the papers' dimensionless model
+//!   ([`spatial::params::SpatialModel`]) every analysis works on.
+//! - [`spatial::inertia`]: composite inertia and its anisotropy `ΔĀ`, by paper 000's eq (17) and by
 //!   the exact inertia tensor of the point masses at their balancing positions.
-//! - [`critical_speeds`]: exact roots of `Δ1 Δ2 = 0` (000, eq (16)), approximations (18)-(20),
+//! - [`spatial::critical_speeds`]: exact roots of `Δ1 Δ2 = 0` (000, eq (16)), approximations (18)-(20),
 //!   Table 1.
-//! - [`sensitivity`]: the criterion of 000 eqs (21)-(22) / 003 eqs (4)-(5).
-//! - [`ranges`]: antiresonance speed and the speed ranges where autobalancing is possible
+//! - [`spatial::sensitivity`]: the criterion of 000 eqs (21)-(22) / 003 eqs (4)-(5).
+//! - [`spatial::ranges`]: antiresonance speed and the speed ranges where autobalancing is possible
 //!   (003, eqs (1)-(3)).
-//! - [`linear_model`]: the linearised equations of the balanced state (000, eq (6)), balls free
+//! - [`spatial::linear_model`]: the linearised equations of the balanced state (000, eq (6)), balls free
 //!   (12 states) or locked (8 states).
-//! - [`eigen`]: eigenvalues of small dense matrices (balancing, Hessenberg, Francis QR),
+//! - [`linalg::eigen`]: eigenvalues of small dense matrices (balancing, Hessenberg, Francis QR),
 //!   characteristic polynomial and Routh–Hurwitz test.
-//! - [`stability`]: exact stability ranges, Campbell diagrams, stability verdicts for maps.
+//! - [`spatial::stability`]: exact stability ranges, Campbell diagrams, stability verdicts for maps.
 //!
 //! ## Symbols (papers 000 and 003)
 //! | symbol | meaning |
@@ -38,16 +47,11 @@
 //! | `D_A = |(1/n) Σ exp(2 i α_j)|` | ball-geometry factor of eq (17) |
 //! | `h̄x, h̄α, h̄yα, h̄s` | dimensionless damping and ball drag |
 
-pub mod critical_speeds;
-mod dense;
-pub mod eigen;
+pub mod drive;
 pub mod error;
-pub mod inertia;
-pub mod linear_model;
-pub mod params;
-pub mod ranges;
-pub mod sensitivity;
-pub mod simulation;
-pub mod stability;
+pub mod linalg;
+pub mod ode;
+pub mod planar;
+pub mod spatial;
 
 pub use error::{Error, Result};

@@ -1,10 +1,10 @@
 //! Worked numbers of papers 000 and 003, reproduced to the digits they print.
 
-use autobal::critical_speeds::{critical_speeds, ModeKind};
-use autobal::inertia::AnisotropyMethod;
-use autobal::params::{AnisotropyInput, DimensionlessInput, MassSet, SpatialModel};
-use autobal::ranges::{antiresonance_speed, autobalancing_ranges};
-use autobal::sensitivity::sensitivity;
+use autobal::spatial::critical_speeds::{critical_speeds, ModeKind};
+use autobal::spatial::inertia::AnisotropyMethod;
+use autobal::spatial::params::{AnisotropyInput, DimensionlessInput, MassSet, SpatialModel};
+use autobal::spatial::ranges::{antiresonance_speed, autobalancing_ranges};
+use autobal::spatial::sensitivity::sensitivity;
 
 /// Base case of 000/003 with `ΔĀ = 0.1` given directly (as the papers' figures do).
 pub fn base(l_left: f64) -> SpatialModel {

@@ -1,13 +1,13 @@
 //! Property tests over seeded random parameters: limit cases, second routes, invariants.
 
-use autobal::critical_speeds::{branch_roots, critical_speeds, critical_speeds_at, delta_k, ModeKind, RotorClass};
-use autobal::inertia::{
+use autobal::spatial::critical_speeds::{branch_roots, critical_speeds, critical_speeds_at, delta_k, ModeKind, RotorClass};
+use autobal::spatial::inertia::{
     anisotropy, complete_configuration, exact_anisotropy_of, exact_interval, AnisotropyMethod, BallSet,
 };
-use autobal::params::{
+use autobal::spatial::params::{
     identical_support_coefficients, AnisotropyInput, DimensionlessInput, SpatialModel, SpatialRotorSi,
 };
-use autobal::ranges::{antiresonance_speed, autobalancing_ranges, point_a_response};
+use autobal::spatial::ranges::{antiresonance_speed, autobalancing_ranges, point_a_response};
 
 mod common;
 use common::Rng;
@@ -55,7 +55,7 @@ fn det4(mut a: [[f64; 4]; 4]) -> f64 {
 }
 
 /// Stiffness matrix of the locked, undamped rotor in rotating axes (000, eqs (6), (14)),
-/// assembled entry by entry from MODEL.md, coordinates (ξ, η, δ, θ).
+/// assembled entry by entry from docs/model.md §1, coordinates (ξ, η, δ, θ).
 fn stiffness(m: &SpatialModel, w: f64) -> [[f64; 4]; 4] {
     let x = w * w;
     let kw = 1.0 - x;
@@ -252,7 +252,7 @@ fn exact_tensor_equals_eq_17_when_balls_line_up() {
 
 #[test]
 fn balancing_positions_cancel_the_unbalance() {
-    use autobal::inertia::balancing_angles;
+    use autobal::spatial::inertia::balancing_angles;
     for e in [1.0, 1.3, 2.0, 5.0] {
         let set = BallSet { n: 2, a_m0: 0.1, a_m: 0.1 * e, capacity: e };
         let ang = balancing_angles(&set).unwrap();

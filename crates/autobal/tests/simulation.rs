@@ -1,9 +1,9 @@
 //! Nonlinear simulation of the planar rotor (paper 004): the equations against the paper's
 //! fixed-frame eq (1), energy balance, closed-form limits, and the paper's findings.
 
-use autobal::simulation::dop853::{System, CAP};
-use autobal::simulation::stationary::{aligned_whirls, capacity_ratio, locked_amplitude, semi_balanced_exists};
-use autobal::simulation::{energy, simulate, Drive, Equations, Method, PlanarRotor, Settings, Summary};
+use autobal::ode::{System, CAP};
+use autobal::planar::stationary::{aligned_whirls, capacity_ratio, locked_amplitude, semi_balanced_exists};
+use autobal::planar::{energy, simulate, Drive, Equations, Method, PlanarRotor, Settings, Summary};
 
 mod common;
 use common::Rng;
@@ -26,9 +26,9 @@ fn run(p: &PlanarRotor, d: &Drive, t_end: f64) -> (Summary, Vec<(f64, f64, f64)>
 #[test]
 fn equations_satisfy_the_papers_fixed_frame_eq_1() {
     // Random states: our rotor-frame accelerations, mapped to fixed axes, must satisfy 004's
-    // eq (1) as restated in MODEL.md, with the sign of the translation right-hand side corrected
-    // to −d²/dt²[…] (MODEL.md prints +, which would make an unbalance push the shaft towards
-    // the axis below resonance).
+    // eq (1) as docs/model.md §2 states it, with the translation right-hand side −d²/dt²[…]
+    // (the paper prints +, which would make an unbalance push the shaft towards the axis below
+    // resonance).
     let mut rng = Rng(41);
     for _ in 0..200 {
         let mut p = PlanarRotor::paper();
@@ -104,14 +104,14 @@ fn energy_balance_without_damping_under_constant_torque() {
     st.atol = 1e-13;
     st.psi0 = vec![0.3, 2.0];
     st.psi_rate0 = vec![5.0, -3.0];
-    let y0 = autobal::simulation::initial_state(&p, &d, &st);
+    let y0 = autobal::planar::initial_state(&p, &d, &st);
     let e0 = energy(&p, &y0);
     let mut worst: f64 = 0.0;
     let mut last = (0.0, 0.0);
     let nc = 3 + p.n;
     let eq = Equations { rotor: &p, drive: &d };
-    let tol = autobal::simulation::tolerances(&p, &st);
-    autobal::simulation::dop853::integrate(&eq, 0.0, &y0, 0.4, &tol, |s| {
+    let tol = autobal::planar::tolerances(&p, &st);
+    autobal::ode::dop853::integrate(&eq, 0.0, &y0, 0.4, &tol, |s| {
         let work = torque * (s.y_new[2] - y0[2]);
         let e = energy(&p, s.y_new);
         worst = worst.max((e - e0 - work).abs() / e.abs());

@@ -1,12 +1,12 @@
 //! Linear stability: the eigen-solver against nalgebra and the pencil's determinant, the
 //! textbook limits, and the analytic critical speeds.
 
-use autobal::critical_speeds::critical_speeds_at;
-use autobal::eigen::{characteristic_polynomial, complex_det, eigenvalues, routh_hurwitz_stable};
-use autobal::inertia::AnisotropyMethod;
-use autobal::linear_model::{Balls, Mat12, Pencil};
-use autobal::params::{AnisotropyInput, DimensionlessInput, MassSet, SpatialModel};
-use autobal::stability::{campbell, eigenvalues_at, margin, stability_ranges, Group, Whirl};
+use autobal::spatial::critical_speeds::critical_speeds_at;
+use autobal::linalg::eigen::{characteristic_polynomial, complex_det, eigenvalues, routh_hurwitz_stable};
+use autobal::spatial::inertia::AnisotropyMethod;
+use autobal::spatial::linear_model::{Balls, Mat12, Pencil};
+use autobal::spatial::params::{AnisotropyInput, DimensionlessInput, MassSet, SpatialModel};
+use autobal::spatial::stability::{campbell, eigenvalues_at, margin, stability_ranges, Group, Whirl};
 use num_complex::Complex64;
 
 mod common;
@@ -194,7 +194,7 @@ fn locked_undamped_instability_lies_exactly_between_split_critical_speeds() {
         for k in &ks {
             assert!(ends.iter().any(|e| (e - k).abs() < 1e-6), "Ω_K = {k} is no end of {:?}", st.stable_ranges);
         }
-        for kind in [autobal::critical_speeds::ModeKind::Transverse, autobal::critical_speeds::ModeKind::Angular] {
+        for kind in [autobal::spatial::critical_speeds::ModeKind::Transverse, autobal::spatial::critical_speeds::ModeKind::Angular] {
             let pair: Vec<f64> = crit.iter().filter(|r| r.1 == kind).map(|r| r.0).collect();
             if pair.len() == 2 {
                 let (_, ev) = eigenvalues_at(&m, 0.5 * (pair[0] + pair[1]), Balls::Locked).unwrap();
@@ -377,7 +377,7 @@ fn undamped_model_has_lagrangian_structure() {
 
 #[test]
 fn state_space_polynomial_matches_direct_assembly() {
-    use autobal::linear_model::StateSpace;
+    use autobal::spatial::linear_model::StateSpace;
     let mut rng = Rng(30);
     for _ in 0..100 {
         let m = random_model(&mut rng);

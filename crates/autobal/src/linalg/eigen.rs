@@ -8,7 +8,7 @@
 //! allocate; a stability map needs neither. The tests check every routine against nalgebra's
 //! Schur decomposition and against the pencil's determinant.
 
-use crate::linear_model::{Mat12, MAX_STATES};
+use crate::spatial::linear_model::{Mat12, MAX_STATES};
 use num_complex::Complex64;
 
 const N1: usize = MAX_STATES + 1;

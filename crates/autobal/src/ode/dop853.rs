@@ -1,63 +1,13 @@
 //! An allocation-free DOP853 integrator (Dormand–Prince 8(5,3), Hairer's `dop853.f`) with
 //! 7th-order dense output, for states of at most [`CAP`] components.
 //!
-//! Why our own: of the crates measured (shared DEPENDENCIES.md), `ode_solvers` has a wrong
+//! Why our own: of the crates measured (docs/dependencies.md), `ode_solvers` has a wrong
 //! node `c₁₂` in its DOP853 tableau and wrong dense output, and `differential-equations` swaps
 //! `s` and `1 − s` in the 7th-order dense-output correction. This one follows Hairer's step-size
 //! control and error norm; tests compare it with closed-form solutions and check the order.
 
 use super::dop853_tableau as tab;
-
-/// Largest state dimension.
-pub const CAP: usize = 24;
-
-/// A state vector (the first `dim` components are used).
-pub type State = [f64; CAP];
-
-/// Right-hand side `y' = f(t, y)` of a system of `dim` equations.
-pub trait System {
-    /// Number of equations (at most [`CAP`]).
-    fn dim(&self) -> usize;
-    /// Write `f(t, y)` into `dy`.
-    fn rhs(&self, t: f64, y: &State, dy: &mut State);
-}
-
-/// Tolerances and limits.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Tolerances {
-    /// Relative tolerance.
-    pub rtol: f64,
-    /// Absolute tolerance, per component (first `dim` used).
-    pub atol: State,
-    /// Largest step (`f64::INFINITY` for none).
-    pub h_max: f64,
-    /// Give up after this many steps.
-    pub max_steps: u64,
-}
-
-/// Work counters.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
-pub struct Stats {
-    /// Accepted steps.
-    pub steps: u64,
-    /// Rejected steps.
-    pub rejected: u64,
-    /// Evaluations of the right-hand side.
-    pub rhs_evaluations: u64,
-}
-
-/// Why the integration stopped early.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Stop {
-    /// The step size underflowed at time `t`.
-    StepTooSmall { t: f64 },
-    /// More than `max_steps` steps.
-    TooManySteps { t: f64 },
-    /// The state became non-finite at time `t`.
-    NotFinite { t: f64 },
-    /// The observer asked to stop at time `t`.
-    Requested { t: f64 },
-}
+use super::{State, Stats, Stop, System, Tolerances, CAP};
 
 /// What the observer sees after each accepted step: the step's ends and a dense-output
 /// evaluator on `[t_old, t_new]`.

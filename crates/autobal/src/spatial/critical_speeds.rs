@@ -10,7 +10,7 @@
 //! `x₁ = q/ΔĪ`, `x₂ = (p̄α² − c̄yα²)/q`, which also covers the spherical limit `ΔĪ → 0`
 //! (`x₂ → 1 − c̄yα²/p̄α²`, `x₁ → ∞`).
 
-use crate::params::SpatialModel;
+use crate::spatial::params::SpatialModel;
 use serde::Serialize;
 
 /// Dominant motion of a critical speed, by continuation to the uncoupled limit `c̄yα → 0`,

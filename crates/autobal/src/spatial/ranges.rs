@@ -11,8 +11,8 @@
 //! `ξ̄_A = −m̄0 R̄0 Ω² N(Ω)/Δ_2(Ω)` (in units of `ρ_s`), so (1) is the statement that A moves
 //! against the unbalance (003's "engineering phase criterion").
 
-use crate::critical_speeds::{branch_roots, delta_k};
-use crate::params::SpatialModel;
+use crate::spatial::critical_speeds::{branch_roots, delta_k};
+use crate::spatial::params::SpatialModel;
 use serde::Serialize;
 
 /// A speed interval `[lo, hi)`, `hi = None` when unbounded.

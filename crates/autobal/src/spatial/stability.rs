@@ -1,5 +1,5 @@
 //! Exact linear stability of the balanced state: eigenvalues of the linearised equations
-//! ([`crate::linear_model`]) along the speed axis, stability ranges located by bisection,
+//! ([`crate::spatial::linear_model`]) along the speed axis, stability ranges located by bisection,
 //! and Campbell diagrams with mode tracking and whirl classification.
 //!
 //! A speed is **stable** ([`counts_as_stable`]) when the spectral abscissa `α(Ω) = max Re λ` is
@@ -10,12 +10,12 @@
 //! assumes). The tolerance only absorbs round-off: eigenvalues of the dimensionless state
 //! matrices are accurate to ~1e-14.
 
-use crate::eigen::{characteristic_polynomial, complex_solve, eigenvalues, routh_hurwitz_stable, spectral_abscissa};
-use crate::critical_speeds::{critical_speeds_at, ModeKind};
+use crate::linalg::eigen::{characteristic_polynomial, complex_solve, eigenvalues, routh_hurwitz_stable, spectral_abscissa};
+use crate::spatial::critical_speeds::{critical_speeds_at, ModeKind};
 use crate::error::{Error, Result};
-use crate::linear_model::{Balls, Pencil, StateSpace};
-use crate::params::SpatialModel;
-use crate::ranges::SpeedRange;
+use crate::spatial::linear_model::{Balls, Pencil, StateSpace};
+use crate::spatial::params::SpatialModel;
+use crate::spatial::ranges::SpeedRange;
 use num_complex::Complex64;
 use serde::Serialize;
 

@@ -9,7 +9,7 @@
 //! forced response of the locked rotor (see `ranges::antiresonance_speed`).
 
 use crate::error::{finite, non_negative, positive, Error, Result};
-use crate::inertia::{self, Anisotropy, AnisotropyMethod, BallSet};
+use crate::spatial::inertia::{self, Anisotropy, AnisotropyMethod, BallSet};
 use serde::Serialize;
 
 /// A rigid rotor on two isotropic elastic-viscous supports, with a point unbalance mass and an

@@ -1,8 +1,8 @@
 //! Sensitivity criterion of the critical speeds to the balancer's inertia anisotropy
 //! (000, eqs (21)-(22); 003, eqs (4)-(5)).
 
-use crate::critical_speeds::{branch_roots, ModeKind};
-use crate::params::SpatialModel;
+use crate::spatial::critical_speeds::{branch_roots, ModeKind};
+use crate::spatial::params::SpatialModel;
 use serde::Serialize;
 
 /// Recommended permissible relative error of the angular critical speeds, `[δΩ_Kα] = 0.15`.

@@ -9,7 +9,7 @@
 //! method must still resolve it for stability. This method takes steps set by accuracy alone.
 //! Tests compare it with DOP853 and closed forms.
 
-use super::dop853::{State, Stats, Stop, System, Tolerances, CAP};
+use super::{State, Stats, Stop, System, Tolerances, CAP};
 
 const GAMMA: f64 = 0.25;
 const A: [[f64; 4]; 5] = [
@@ -105,7 +105,7 @@ pub fn integrate<S: System>(sys: &S, t0: f64, y0: &State, t_end: f64, tol: &Tole
                 }
                 a[i][i] += 1.0 / (GAMMA * h);
             }
-            let Some(lu) = crate::dense::Lu::<CAP>::new(a, n) else {
+            let Some(lu) = crate::linalg::dense::Lu::<CAP>::new(a, n) else {
                 h *= 0.5;
                 stats.rejected += 1;
                 continue;

@@ -380,7 +380,7 @@ pub struct CompositeInertia {
 }
 
 /// Composite inertia of a model, from the anisotropy in use.
-pub fn composite_inertia(model: &crate::params::SpatialModel) -> CompositeInertia {
+pub fn composite_inertia(model: &crate::spatial::params::SpatialModel) -> CompositeInertia {
     let (scale_a, total_mass, si) = match model.scale {
         Some(s) => (s.total_mass * s.rho_s * s.rho_s, Some(s.total_mass), true),
         None => (1.0, None, false),
@@ -397,7 +397,7 @@ pub fn composite_inertia(model: &crate::params::SpatialModel) -> CompositeInerti
     }
 }
 
-/// Ball-coupling matrix `d_A` of the ball equation (000, eq (6); MODEL.md §1) in the principal
+/// Ball-coupling matrix `d_A` of the ball equation (000, eq (6); docs/model.md §1) in the principal
 /// frame of the composite rotor, where the inertia reads `I_C = E + ΔĀ E_A` with `ΔĀ ≥ 0`.
 ///
 /// With `D = (1/n) Σ exp(2 i α_j)` (angles from the unbalance) and the complex anisotropy

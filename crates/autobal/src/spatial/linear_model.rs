@@ -1,5 +1,5 @@
 //! The linearised equations of the balanced state in axes rotating with the rotor
-//! (000, eq (6); MODEL.md §1), as a quadratic pencil `M q'' + G q' + K q = 0` and as the
+//! (000, eq (6); docs/model.md §1), as a quadratic pencil `M q'' + G q' + K q = 0` and as the
 //! first-order system `y' = A y`.
 //!
 //! Coordinates `q = (ξ_c, η_c, δ, θ, s_ξ, s_η)`: translation `w` of the common centre of mass,
@@ -20,7 +20,7 @@
 //! (`inertia::ball_coupling_exact`), or the paper's `diag(1 ∓ D_A)` on request.
 
 use crate::error::{Error, Result};
-use crate::params::SpatialModel;
+use crate::spatial::params::SpatialModel;
 
 /// Largest number of generalised coordinates (balls free).
 pub const MAX_COORDS: usize = 6;
@@ -160,7 +160,7 @@ impl Pencil {
         let n = self.n;
         // solve M [X Y] = [K G] (a singular M, impossible for physical inputs, gives NaN)
         let mut rhs = [[f64::NAN; 2 * MAX_COORDS]; MAX_COORDS];
-        if let Some(lu) = crate::dense::Lu::new(self.m, n) {
+        if let Some(lu) = crate::linalg::dense::Lu::new(self.m, n) {
             for c in 0..2 * n {
                 let mut col = [0.0; MAX_COORDS];
                 for i in 0..n {

@@ -1,5 +1,5 @@
 //! Nonlinear passage through resonance of the planar rotor with an eccentric ball balancer
-//! (paper 004; MODEL.md §2), in coordinates rotating with the rotor.
+//! (paper 004; docs/model.md §2), in coordinates rotating with the rotor.
 //!
 //! ## Model
 //! A disk (mass `m1`, centre of mass G at `s1` from the shaft point C, central moment `I_G`)
@@ -24,14 +24,12 @@
 //! rotation; tests check the equations against the paper's fixed-frame eq (1) (after correcting
 //! its sign) and against energy conservation.
 
-pub mod dop853;
-pub mod rosenbrock;
-#[allow(missing_docs)]
-pub mod dop853_tableau;
 pub mod stationary;
 
+pub use crate::drive::Drive;
 use crate::error::{finite, non_negative, positive, Error, Result};
-use dop853::{integrate, State, Stats, Stop, System, Tolerances, CAP};
+use crate::ode::dop853::integrate;
+use crate::ode::{rosenbrock, State, Stats, Stop, System, Tolerances, CAP};
 use serde::Serialize;
 
 /// Most balls the simulator takes (`2 (3 + n) ≤` [`CAP`]).
@@ -128,162 +126,6 @@ impl PlanarRotor {
     /// Natural frequency `sqrt(k/m0)` (rad/s).
     pub fn natural_frequency(&self) -> f64 {
         (self.k / self.total_mass()).sqrt()
-    }
-}
-
-/// How the rotor is driven.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-#[serde(tag = "kind", rename_all = "lowercase")]
-pub enum Drive {
-    /// Constant speed `θ̇ = ω0`.
-    Speed { omega0: f64 },
-    /// Constant angular acceleration `θ̇ = ω0 + b t` (`b < 0`: reverse passage); the speed is
-    /// held at 0 once reached.
-    Acceleration { omega0: f64, b: f64 },
-    /// Free rotor under a constant torque `M` (N·m) until `t_off` (run-down after it).
-    Torque { omega0: f64, torque: f64, t_off: Option<f64> },
-    /// Free rotor under a motor with a linear characteristic `M(ω) = M0 (1 − ω/ω_idle)`, the
-    /// classical non-ideal source of the Sommerfeld effect; switched off at `t_off`.
-    Motor { omega0: f64, torque: f64, omega_idle: f64, t_off: Option<f64> },
-    /// Piecewise-linear torque (free rotor) through `(t, M)` points.
-    TorqueSchedule { omega0: f64, points: Vec<(f64, f64)> },
-    /// Piecewise-linear prescribed speed through `(t, ω)` points.
-    SpeedSchedule { points: Vec<(f64, f64)> },
-}
-
-fn interp(points: &[(f64, f64)], t: f64) -> (f64, f64) {
-    // value and slope of the piecewise-linear function (held constant outside)
-    if t <= points[0].0 {
-        return (points[0].1, 0.0);
-    }
-    for w in points.windows(2) {
-        if t <= w[1].0 {
-            let s = (w[1].1 - w[0].1) / (w[1].0 - w[0].0);
-            return (w[0].1 + s * (t - w[0].0), s);
-        }
-    }
-    (points[points.len() - 1].1, 0.0)
-}
-
-impl Drive {
-    /// Validate (errors name `drive.<field>`).
-    pub fn validate(&self) -> Result<()> {
-        let check_points = |pts: &[(f64, f64)]| -> Result<()> {
-            if pts.len() < 2 {
-                return Err(Error::invalid("drive.schedule", "needs at least two [t, value] points"));
-            }
-            for w in pts.windows(2) {
-                if !(w[1].0 > w[0].0) {
-                    return Err(Error::invalid("drive.schedule", "times must increase strictly"));
-                }
-            }
-            for p in pts {
-                finite("drive.schedule", p.0)?;
-                finite("drive.schedule", p.1)?;
-            }
-            Ok(())
-        };
-        match self {
-            Drive::Speed { omega0 } => finite("drive.omega0", *omega0).map(|_| ()),
-            Drive::Acceleration { omega0, b } => {
-                finite("drive.omega0", *omega0)?;
-                finite("drive.b", *b)?;
-                if *b == 0.0 {
-                    return Err(Error::invalid("drive.b", "must not be 0 for kind = \"acceleration\" (use kind = \"speed\")"));
-                }
-                Ok(())
-            }
-            Drive::Torque { omega0, torque, t_off } => {
-                finite("drive.omega0", *omega0)?;
-                finite("drive.torque", *torque)?;
-                if let Some(t) = t_off {
-                    non_negative("drive.t_off", *t)?;
-                }
-                Ok(())
-            }
-            Drive::Motor { omega0, torque, omega_idle, t_off } => {
-                finite("drive.omega0", *omega0)?;
-                finite("drive.torque", *torque)?;
-                positive("drive.omega_idle", *omega_idle)?;
-                if let Some(t) = t_off {
-                    non_negative("drive.t_off", *t)?;
-                }
-                Ok(())
-            }
-            Drive::TorqueSchedule { omega0, points } => {
-                finite("drive.omega0", *omega0)?;
-                check_points(points)
-            }
-            Drive::SpeedSchedule { points } => check_points(points),
-        }
-    }
-
-    /// Whether the speed is prescribed (kinematic drive) rather than the result of a torque.
-    pub fn prescribed(&self) -> bool {
-        matches!(self, Drive::Speed { .. } | Drive::Acceleration { .. } | Drive::SpeedSchedule { .. })
-    }
-
-    /// Initial speed.
-    pub fn omega0(&self) -> f64 {
-        match self {
-            Drive::Speed { omega0 }
-            | Drive::Acceleration { omega0, .. }
-            | Drive::Torque { omega0, .. }
-            | Drive::Motor { omega0, .. }
-            | Drive::TorqueSchedule { omega0, .. } => *omega0,
-            Drive::SpeedSchedule { points } => interp(points, 0.0).0,
-        }
-    }
-
-    /// Times where the drive changes abruptly (schedule points, switch-off, the stop of a
-    /// run-down): `simulate` integrates piecewise between them, so that no step straddles a jump
-    /// of the torque or the acceleration.
-    pub fn breakpoints(&self) -> Vec<f64> {
-        match self {
-            Drive::Acceleration { omega0, b } if *b < 0.0 && *omega0 > 0.0 => vec![omega0 / -b],
-            Drive::Torque { t_off: Some(t), .. } | Drive::Motor { t_off: Some(t), .. } => vec![*t],
-            Drive::TorqueSchedule { points, .. } | Drive::SpeedSchedule { points } => points.iter().map(|p| p.0).collect(),
-            _ => vec![],
-        }
-    }
-
-    /// Prescribed `(θ̇, θ̈)` at time `t`, for kinematic drives.
-    pub fn kinematics(&self, t: f64) -> (f64, f64) {
-        match self {
-            Drive::Speed { omega0 } => (*omega0, 0.0),
-            Drive::Acceleration { omega0, b } => {
-                let w = omega0 + b * t;
-                if *b < 0.0 && w <= 0.0 {
-                    (0.0, 0.0) // a run-down stops at rest
-                } else {
-                    (w, *b)
-                }
-            }
-            Drive::SpeedSchedule { points } => interp(points, t),
-            _ => (0.0, 0.0),
-        }
-    }
-
-    /// Applied torque at time `t` and speed `omega`, for free-rotor drives.
-    pub fn torque(&self, t: f64, omega: f64) -> f64 {
-        match self {
-            Drive::Torque { torque, t_off, .. } => {
-                if t_off.is_some_and(|off| t >= off) {
-                    0.0
-                } else {
-                    *torque
-                }
-            }
-            Drive::Motor { torque, omega_idle, t_off, .. } => {
-                if t_off.is_some_and(|off| t >= off) {
-                    0.0
-                } else {
-                    torque * (1.0 - omega / omega_idle)
-                }
-            }
-            Drive::TorqueSchedule { points, .. } => interp(points, t).0,
-            _ => 0.0,
-        }
     }
 }
 
@@ -489,7 +331,7 @@ impl System for Equations<'_> {
             f[2] += self.drive.torque(t, th_d);
         }
         // the mass matrix is positive definite for validated inputs; NaN stops the integrator
-        if !crate::dense::solve_once(&mut m, &mut f, nc) {
+        if !crate::linalg::dense::solve_once(&mut m, &mut f, nc) {
             f = [f64::NAN; MAX_BALLS + 3];
         }
         for i in 0..nc {

@@ -1,0 +1,5 @@
+//! Small dense linear algebra on stack arrays: LU factorisation ([`dense`], crate-internal) and
+//! eigenvalues with the Routh–Hurwitz test ([`eigen`]).
+
+pub(crate) mod dense;
+pub mod eigen;
