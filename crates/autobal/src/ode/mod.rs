@@ -17,8 +17,8 @@ pub type State = [f64; CAP];
 pub trait System {
     /// Number of equations (at most [`CAP`]).
     fn dim(&self) -> usize;
-    /// Write `f(t, y)` into `dy`.
-    fn rhs(&self, t: f64, y: &State, dy: &mut State);
+    /// Write `f(t, y)` into `dy`; both slices have length [`System::dim`].
+    fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]);
 }
 
 /// Tolerances and limits.

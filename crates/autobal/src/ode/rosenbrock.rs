@@ -62,7 +62,7 @@ pub fn integrate<S: System>(sys: &S, t0: f64, y0: &State, t_end: f64, tol: &Tole
     let mut stats = Stats::default();
     let (mut t, mut y) = (t0, *y0);
     let mut f = [0.0; CAP];
-    sys.rhs(t, &y, &mut f);
+    sys.rhs(t, &y[..n], &mut f[..n]);
     stats.rhs_evaluations += 1;
     let scale_of = |y: &State| -> State { std::array::from_fn(|i| if i < n { tol.atol[i] + tol.rtol * y[i].abs() } else { 1.0 }) };
     // initial step from the size of the derivative
@@ -87,14 +87,14 @@ pub fn integrate<S: System>(sys: &S, t0: f64, y0: &State, t_end: f64, tol: &Tole
             let mut yj = y;
             yj[j] += dj;
             let mut fj = [0.0; CAP];
-            sys.rhs(t, &yj, &mut fj);
+            sys.rhs(t, &yj[..n], &mut fj[..n]);
             for i in 0..n {
                 jac[i][j] = (fj[i] - f[i]) / dj;
             }
         }
         let dt = f64::EPSILON.sqrt() * t.abs().max(1.0);
         let mut ft = [0.0; CAP];
-        sys.rhs(t + dt, &y, &mut ft);
+        sys.rhs(t + dt, &y[..n], &mut ft[..n]);
         let dfdt: State = std::array::from_fn(|i| if i < n { (ft[i] - f[i]) / dt } else { 0.0 });
         stats.rhs_evaluations += n as u64 + 1;
         loop {
@@ -126,7 +126,7 @@ pub fn integrate<S: System>(sys: &S, t0: f64, y0: &State, t_end: f64, tol: &Tole
                             ys[i] += (0..4).map(|j| A[4][j] * k[j][i]).sum::<f64>() + k[4][i];
                         }
                     }
-                    sys.rhs(t + C[st] * h, &ys, &mut fs);
+                    sys.rhs(t + C[st] * h, &ys[..n], &mut fs[..n]);
                     stats.rhs_evaluations += 1;
                 }
                 let mut rhs = [0.0; CAP];
@@ -150,7 +150,7 @@ pub fn integrate<S: System>(sys: &S, t0: f64, y0: &State, t_end: f64, tol: &Tole
             let err = (err / n as f64).sqrt();
             if err.is_finite() && err <= 1.0 {
                 let mut f_new = [0.0; CAP];
-                sys.rhs(t + h, &y_new, &mut f_new);
+                sys.rhs(t + h, &y_new[..n], &mut f_new[..n]);
                 stats.rhs_evaluations += 1;
                 stats.steps += 1;
                 let mut k2 = [0.0; CAP];
@@ -199,7 +199,7 @@ mod tests {
         fn dim(&self) -> usize {
             1
         }
-        fn rhs(&self, t: f64, y: &State, dy: &mut State) {
+        fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
             dy[0] = -self.0 * (y[0] - t.sin()) + t.cos();
         }
     }

@@ -234,7 +234,7 @@ impl System for Equations<'_> {
         2 * self.coords()
     }
 
-    fn rhs(&self, t: f64, y: &State, dy: &mut State) {
+    fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
         let p = self.rotor;
         let n = p.n;
         let nc = 3 + n;
