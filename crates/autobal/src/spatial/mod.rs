@@ -4,6 +4,7 @@
 //! stability.
 
 pub mod critical_speeds;
+pub mod dynamics;
 pub mod inertia;
 pub mod linear_model;
 pub mod params;

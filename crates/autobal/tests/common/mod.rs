@@ -18,3 +18,25 @@ impl Rng {
         a + (b - a) * self.next()
     }
 }
+
+/// A Python interpreter that can import `modules`: `$AUTOBAL_PYTHON`, the repository's `.venv`
+/// (made by scripts/test.sh), or `python3`. Without one the cross-check is skipped with a
+/// message, unless `AUTOBAL_REQUIRE_PYTHON` is set (scripts/test.sh sets it), where it fails.
+#[allow(dead_code)]
+pub fn python_with(modules: &[&str]) -> Option<String> {
+    let venv = format!("{}/../../.venv/bin/python", env!("CARGO_MANIFEST_DIR"));
+    let candidates = std::env::var("AUTOBAL_PYTHON").into_iter().chain([venv, "python3".to_string()]);
+    let import = format!("import {}", modules.join(", "));
+    for py in candidates {
+        if std::process::Command::new(&py).args(["-c", &import]).output().is_ok_and(|o| o.status.success()) {
+            return Some(py);
+        }
+    }
+    let msg = format!(
+        "this cross-check needs Python with {}: run scripts/test.sh (it creates .venv with them), or set AUTOBAL_PYTHON to a python that has them",
+        modules.join(", ")
+    );
+    assert!(std::env::var_os("AUTOBAL_REQUIRE_PYTHON").is_none(), "{msg}");
+    eprintln!("skipped: {msg}");
+    None
+}

@@ -1,0 +1,16 @@
+//! Nonlinear dynamics of the spatial rotor of papers 000/003 with its balls, in time
+//! (docs/spatial.md): a rigid rotor on one or two elastic supports (translation and tilt,
+//! 4 DOF), its spin (prescribed or driven by any [`crate::drive::Drive`]), unbalance as static
+//! plus couple, and any number of balls in one or more balancer planes, with no small-angle
+//! or small-displacement assumption on the balls and an exact rigid-body kinetic energy.
+//!
+//! - [`rotor`]: the parameters ([`SpatialRotor`]), from the analytic commands' SI or
+//!   dimensionless description.
+//! - [`equations`]: the equations of motion in axes turning with the rotor ([`Equations`]),
+//!   energy and dissipated power.
+
+pub mod equations;
+pub mod rotor;
+
+pub use equations::Equations;
+pub use rotor::{BallPlane, PointMass, RigidRotor, SpatialRotor, Support};
