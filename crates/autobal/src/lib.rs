@@ -28,6 +28,9 @@
 //! - [`linalg::eigen`]: eigenvalues of small dense matrices (balancing, Hessenberg, Francis QR),
 //!   characteristic polynomial and Routh–Hurwitz test.
 //! - [`spatial::stability`]: exact stability ranges, Campbell diagrams, stability verdicts for maps.
+//! - [`spatial::dynamics`]: the nonlinear equations of the rotor with its balls in time (one or
+//!   two supports and balancer planes, static and couple unbalance, anisotropic supports,
+//!   gravity, any drive), whose linearisation is 000's eq (6); simulation.
 //!
 //! ## Symbols (papers 000 and 003)
 //! | symbol | meaning |

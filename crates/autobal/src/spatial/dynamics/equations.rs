@@ -26,6 +26,8 @@
 //! diagonal `m R²` of the balls; the rotor accelerations come from the 5×5 Schur complement,
 //! so the cost is linear in the number of balls.
 
+#![allow(clippy::needless_range_loop)] // index loops read as the formulas
+
 use super::rotor::{SpatialRotor, MAX_BALLS};
 use crate::drive::Drive;
 use crate::ode::System;
@@ -429,12 +431,8 @@ impl System for Equations<'_> {
         for (ia, &ca) in idx.iter().enumerate() {
             acc[ca] = rhs[ia];
         }
-        for i in 0..nc {
-            dy[i] = y[nc + i];
-        }
-        for c in 0..ROTOR_COORDS {
-            dy[nc + c] = acc[c];
-        }
+        dy[..nc].copy_from_slice(&y[nc..2 * nc]);
+        dy[nc..nc + ROTOR_COORDS].copy_from_slice(&acc);
         if prescribed {
             dy[PHI] = phi_d;
             dy[nc + PHI] = phi_dd;

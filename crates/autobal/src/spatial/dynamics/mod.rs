@@ -8,9 +8,13 @@
 //!   dimensionless description.
 //! - [`equations`]: the equations of motion in axes turning with the rotor ([`Equations`]),
 //!   energy and dissipated power.
+//! - [`simulate`](mod@simulate): initial conditions, integration under a drive, samples, the
+//!   verdict ([`simulate()`]).
 
 pub mod equations;
 pub mod rotor;
+pub mod simulate;
 
 pub use equations::Equations;
 pub use rotor::{BallPlane, PointMass, RigidRotor, SpatialRotor, Support};
+pub use simulate::{simulate, Initial, Sample, Settings, Summary};

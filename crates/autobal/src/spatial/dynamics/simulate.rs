@@ -1,0 +1,350 @@
+//! Time simulation of the spatial rotor: initial conditions, samples at a fixed interval from
+//! the dense output, peak tracking and the end-of-run verdict (balanced or not).
+
+use super::equations::{Equations, PHI, ROTOR_COORDS};
+use super::rotor::SpatialRotor;
+use crate::drive::Drive;
+use crate::error::{finite, positive, Error, Result};
+use crate::ode::{dop853, rosenbrock, State, Stats, Stop, System, Tolerances, CAP};
+use crate::planar::Method;
+use serde::Serialize;
+
+/// Most balls in all planes together that the simulation integrates (state of at most
+/// [`CAP`] components: `2 (5 + N)`).
+pub const MAX_SIM_BALLS: usize = CAP / 2 - ROTOR_COORDS;
+
+/// Initial conditions (velocities in fixed axes; at `t = 0` the turning frame coincides with
+/// the fixed one).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Initial {
+    /// Lateral position `(x, y)` of the reference point C (m).
+    pub position: [f64; 2],
+    /// Its velocity `(ẋ, ẏ)` (m/s).
+    pub velocity: [f64; 2],
+    /// Tilt `(δ, θ)`: rotations about the x and y axes (rad).
+    pub tilt: [f64; 2],
+    /// Tilt rates about the fixed x and y axes (rad/s).
+    pub tilt_rate: [f64; 2],
+    /// Ball angles from the body x axis (the unbalance direction of the analytic models),
+    /// all planes in order (rad).
+    pub psi: Vec<f64>,
+    /// Ball rates relative to the rotor (rad/s).
+    pub psi_rate: Vec<f64>,
+}
+
+impl Initial {
+    /// At rest on the axis, balls of each plane spread evenly across the unbalance
+    /// (`ψ = π/2 + 2π j/n`: no net ball unbalance).
+    pub fn at_rest(rotor: &SpatialRotor) -> Self {
+        let psi: Vec<f64> = rotor
+            .planes
+            .iter()
+            .flat_map(|p| (0..p.n).map(move |j| std::f64::consts::FRAC_PI_2 + 2.0 * std::f64::consts::PI * j as f64 / p.n as f64))
+            .collect();
+        let n = psi.len();
+        Initial { position: [0.0; 2], velocity: [0.0; 2], tilt: [0.0; 2], tilt_rate: [0.0; 2], psi, psi_rate: vec![0.0; n] }
+    }
+}
+
+/// Integration settings.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Settings {
+    /// The integrator.
+    pub method: Method,
+    /// End time (s, or `τ` in the papers' units).
+    pub t_end: f64,
+    /// Output interval, independent of the internal steps.
+    pub dt: f64,
+    /// Relative tolerance.
+    pub rtol: f64,
+    /// Absolute tolerance on displacements (m, or `ρ_s`); angles scaled by the race radius,
+    /// rates by the natural frequency.
+    pub atol: f64,
+}
+
+impl Settings {
+    /// Validate (errors name `drive.t_end` or `integration.<field>`).
+    pub fn validate(&self) -> Result<()> {
+        positive("drive.t_end", self.t_end)?;
+        positive("integration.dt", self.dt)?;
+        if self.t_end / self.dt > 5e7 {
+            return Err(Error::invalid("integration.dt", format!("{} samples is too many; raise dt", self.t_end / self.dt)));
+        }
+        positive("integration.rtol", self.rtol)?;
+        positive("integration.atol", self.atol)?;
+        if self.rtol < 1e-14 {
+            return Err(Error::invalid("integration.rtol", "below 1e-14 the step cannot reach it in double precision"));
+        }
+        Ok(())
+    }
+}
+
+/// One output sample.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Sample {
+    /// Time.
+    pub t: f64,
+    /// Spin rate `φ̇`.
+    pub omega: f64,
+    /// `x`, `y` of C in fixed axes.
+    pub x: f64,
+    /// `y` of C.
+    pub y: f64,
+    /// Tilt about the fixed x axis.
+    pub tilt_x: f64,
+    /// Tilt about the fixed y axis.
+    pub tilt_y: f64,
+    /// Whirl radius of the shaft at each support.
+    pub amplitude_supports: Vec<f64>,
+    /// Whirl radius of the shaft at each balancer plane (at the first unbalance plane when
+    /// there are no balls).
+    pub amplitude_planes: Vec<f64>,
+    /// Ball angles relative to the rotor, all planes in order.
+    pub psi: Vec<f64>,
+}
+
+/// Summary of a run.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Summary {
+    /// Largest whirl radius at the (first) balancer plane, at step ends and samples.
+    pub peak_amplitude: f64,
+    /// Spin rate at that moment.
+    pub omega_at_peak: f64,
+    /// Time of the peak.
+    pub t_at_peak: f64,
+    /// Whirl radius at the (first) balancer plane at the end.
+    pub final_amplitude: f64,
+    /// Spin rate at the end.
+    pub final_omega: f64,
+    /// Static unbalance of unbalance masses and balls at the end, relative to the unbalance
+    /// masses' own (relative to the balls' capacity `Σ m R` when there is none).
+    pub residual_unbalance: f64,
+    /// Couple unbalance about C at the end relative to the unbalance's own couple (tilted axis
+    /// included); `None` when the unbalance has no couple.
+    pub residual_couple: Option<f64>,
+    /// Whether the balls ended at rest relative to the rotor with the residual static (and
+    /// couple) unbalance below 5 % of the unbalance's.
+    pub balanced: bool,
+    /// Accepted steps.
+    pub steps: u64,
+    /// Rejected steps.
+    pub rejected_steps: u64,
+    /// Right-hand-side evaluations (dense output included).
+    pub rhs_evaluations: u64,
+    /// Time reached.
+    pub t_end: f64,
+    /// Why the run stopped before `t_end`, if it did.
+    pub stopped: Option<String>,
+}
+
+/// The state vector of an initial condition (turning-frame coordinates at `t = 0`).
+pub fn initial_state(eq: &Equations, init: &Initial) -> Result<State> {
+    let nc = eq.coords();
+    let nb = nc - ROTOR_COORDS;
+    if init.psi.len() != nb {
+        return Err(Error::invalid("drive.psi0", format!("needs {nb} angles (all balls of all planes), got {}", init.psi.len())));
+    }
+    if init.psi_rate.len() != nb {
+        return Err(Error::invalid("drive.psi_rate0", format!("needs {nb} rates, got {}", init.psi_rate.len())));
+    }
+    for (name, v) in [("initial.position", init.position), ("initial.velocity", init.velocity), ("initial.tilt", init.tilt), ("initial.tilt_rate", init.tilt_rate)] {
+        finite(name, v[0])?;
+        finite(name, v[1])?;
+    }
+    for a in &init.psi {
+        finite("drive.psi0", *a)?;
+    }
+    for a in &init.psi_rate {
+        finite("drive.psi_rate0", *a)?;
+    }
+    if eq.rotor.lock_tilt && (init.tilt != [0.0; 2] || init.tilt_rate != [0.0; 2]) {
+        return Err(Error::invalid("initial.tilt", "must be zero with the tilt locked (spatial.lock_tilt)"));
+    }
+    let w = eq.drive.omega0();
+    let [x, y] = init.position;
+    let [d, th] = init.tilt;
+    let mut s = [0.0; CAP];
+    s[0] = x;
+    s[1] = y;
+    s[2] = d;
+    s[3] = th;
+    // rates in the turning frame: u̇ = v − ω e_z × u, χ̇ = χ̇_fixed − ω e_z × χ
+    s[nc] = init.velocity[0] + w * y;
+    s[nc + 1] = init.velocity[1] - w * x;
+    s[nc + 2] = init.tilt_rate[0] + w * th;
+    s[nc + 3] = init.tilt_rate[1] - w * d;
+    s[nc + PHI] = w;
+    for j in 0..nb {
+        s[ROTOR_COORDS + j] = init.psi[j];
+        s[nc + ROTOR_COORDS + j] = init.psi_rate[j];
+    }
+    Ok(s)
+}
+
+/// Absolute tolerances per component: `atol` on displacements, `atol/L` on angles (`L` the
+/// largest race or unbalance radius), times the natural frequency on rates.
+pub fn tolerances(eq: &Equations, settings: &Settings) -> Tolerances {
+    let nc = eq.coords();
+    let l = eq.rotor.length_scale().max(settings.atol);
+    let wn = eq.rotor.natural_frequency();
+    let mut atol = [1.0; CAP];
+    for i in 0..nc {
+        let base = if i < 2 { settings.atol } else { settings.atol / l };
+        atol[i] = base;
+        atol[nc + i] = base * wn;
+    }
+    Tolerances { rtol: settings.rtol, atol, h_max: f64::INFINITY, max_steps: 200_000_000 }
+}
+
+/// The sample of a state.
+pub fn sample_of(eq: &Equations, t: f64, y: &[f64]) -> Sample {
+    let nc = eq.coords();
+    let r = eq.rotor;
+    let c = eq.displacement_at(y, eq.z_reference());
+    let (sp, cp) = y[PHI].sin_cos();
+    let planes: Vec<f64> = if r.planes.is_empty() {
+        r.unbalances.first().map(|u| eq.displacement_at(y, u.z)).into_iter().map(|d| d[0].hypot(d[1])).collect()
+    } else {
+        r.planes.iter().map(|p| eq.displacement_at(y, p.z)).map(|d| d[0].hypot(d[1])).collect()
+    };
+    Sample {
+        t,
+        omega: eq.spin_rate(t, y),
+        x: c[0],
+        y: c[1],
+        tilt_x: cp * y[2] - sp * y[3],
+        tilt_y: sp * y[2] + cp * y[3],
+        amplitude_supports: r.supports.iter().map(|s| eq.displacement_at(y, s.z)).map(|d| d[0].hypot(d[1])).collect(),
+        amplitude_planes: planes,
+        psi: y[ROTOR_COORDS..nc].to_vec(),
+    }
+}
+
+fn plane_amplitude(eq: &Equations, y: &[f64]) -> f64 {
+    let z = eq.rotor.planes.first().map(|p| p.z).or_else(|| eq.rotor.unbalances.first().map(|u| u.z)).unwrap_or(eq.z_reference());
+    let d = eq.displacement_at(y, z);
+    d[0].hypot(d[1])
+}
+
+/// Simulate from `init`; `sink` receives every sample (at multiples of `dt`) and may return
+/// `false` to stop (an interruption): the summary then covers what was computed.
+///
+/// ```
+/// use autobal::drive::Drive;
+/// use autobal::spatial::dynamics::{simulate, Initial, Settings, SpatialRotor};
+/// use autobal::spatial::params::{AnisotropyInput, DimensionlessInput, MassSet, SpatialModel};
+/// use autobal::spatial::inertia::AnisotropyMethod;
+/// // paper 000's base case at Ω = 1.6, inside the exactly stable range
+/// let model = SpatialModel::from_dimensionless(&DimensionlessInput {
+///     c_sigma: 0.75, rho_s: 0.4, l_left: 0.8, z_a: 0.8,
+///     anisotropy: AnisotropyInput::Masses { masses: MassSet { m0: 0.025, r0: 2.0, m: 0.05, r: 2.0, n: 2 }, d_a: None },
+///     h_x: 0.05, h_s: 0.1, method: AnisotropyMethod::Exact, direct_balls: None,
+/// }).unwrap();
+/// let rotor = SpatialRotor::from_dimensionless(&model).unwrap();
+/// let drive = Drive::Speed { omega0: 1.6 };
+/// let settings = Settings { method: Default::default(), t_end: 3000.0, dt: 10.0, rtol: 1e-8, atol: 1e-9 };
+/// let s = simulate(&rotor, &drive, &Initial::at_rest(&rotor), &settings, |_| true).unwrap();
+/// assert!(s.balanced && s.residual_unbalance < 1e-3);
+/// ```
+pub fn simulate(rotor: &SpatialRotor, drive: &Drive, init: &Initial, settings: &Settings, mut sink: impl FnMut(&Sample) -> bool) -> Result<Summary> {
+    rotor.validate()?;
+    drive.validate()?;
+    settings.validate()?;
+    if rotor.balls() > MAX_SIM_BALLS {
+        return Err(Error::invalid("balancer.balls", format!("the simulation takes at most {MAX_SIM_BALLS} balls in all planes together, got {}", rotor.balls())));
+    }
+    let eq = Equations::new(rotor, drive);
+    let n = eq.dim();
+    let y0 = initial_state(&eq, init)?;
+    let tol = tolerances(&eq, settings);
+    let mut peak = (plane_amplitude(&eq, &y0[..n]), drive.omega0(), 0.0);
+    let mut next_sample = 0usize;
+    let mut on_step = |t_new: f64, y_new: &State, interpolate: &dyn Fn(f64) -> State| -> bool {
+        let a = plane_amplitude(&eq, &y_new[..n]);
+        if a > peak.0 {
+            peak = (a, eq.spin_rate(t_new, &y_new[..n]), t_new);
+        }
+        loop {
+            let ts = next_sample as f64 * settings.dt;
+            if ts > t_new + 1e-12 * t_new.abs() || ts > settings.t_end * (1.0 + 1e-12) {
+                return true;
+            }
+            let ys = if (ts - t_new).abs() <= 1e-12 * ts.abs().max(1.0) { *y_new } else { interpolate(ts) };
+            let s = sample_of(&eq, ts, &ys[..n]);
+            let a = plane_amplitude(&eq, &ys[..n]);
+            if a > peak.0 {
+                peak = (a, s.omega, ts);
+            }
+            next_sample += 1;
+            if !sink(&s) {
+                return false;
+            }
+        }
+    };
+    let mut stats = Stats::default();
+    let (mut t, mut y, mut stop) = (0.0, y0, None);
+    if !on_step(0.0, &y0, &|_| y0) {
+        stop = Some(Stop::Requested { t: 0.0 });
+    }
+    let mut ends: Vec<f64> = drive.breakpoints().into_iter().filter(|b| *b > 0.0 && *b < settings.t_end).collect();
+    ends.push(settings.t_end);
+    ends.sort_by(f64::total_cmp);
+    ends.dedup();
+    let nc = eq.coords();
+    for end in ends {
+        if stop.is_some() {
+            break;
+        }
+        if drive.prescribed() {
+            y[nc + PHI] = drive.kinematics(t).0;
+        }
+        let (t1, y1, st, s1) = match settings.method {
+            Method::Dop853 => dop853::integrate(&eq, t, &y, end, &tol, |s| on_step(s.t_new, s.y_new, &|t| s.interpolate(t))),
+            Method::Rosenbrock => {
+                let tol = Tolerances { h_max: 4.0 * settings.dt, ..tol };
+                rosenbrock::integrate(&eq, t, &y, end, &tol, |s| on_step(s.t_new, s.y_new, &|t| s.interpolate(t)))
+            }
+        };
+        (t, y, stop) = (t1, y1, s1);
+        stats.steps += st.steps;
+        stats.rejected += st.rejected;
+        stats.rhs_evaluations += st.rhs_evaluations;
+    }
+    Ok(summarise(&eq, t, &y[..n], peak, stats, stop))
+}
+
+fn summarise(eq: &Equations, t: f64, y: &[f64], peak: (f64, f64, f64), stats: Stats, stop: Option<Stop>) -> Summary {
+    let nc = eq.coords();
+    let r = eq.rotor;
+    let omega = eq.spin_rate(t, y);
+    let (st, cp) = eq.residual_unbalance(y);
+    let (s0, c0) = (r.static_unbalance(), r.couple_unbalance());
+    let capacity: f64 = r.planes.iter().map(|p| p.n as f64 * p.ball_mass * p.race_radius).sum();
+    let s0n = s0[0].hypot(s0[1]);
+    let residual_unbalance = st[0].hypot(st[1]) / if s0n > 0.0 { s0n } else { capacity.max(f64::MIN_POSITIVE) };
+    let c0n = c0[0].hypot(c0[1]);
+    let residual_couple = (c0n > 1e-12 * (s0n * r.length_scale()).max(f64::MIN_POSITIVE)).then(|| cp[0].hypot(cp[1]) / c0n);
+    let wn = r.natural_frequency();
+    let at_rest = (ROTOR_COORDS..nc).all(|i| y[nc + i].abs() < 1e-3 * omega.abs().max(wn));
+    let balanced = r.balls() > 0 && at_rest && residual_unbalance <= 0.05 && !matches!(residual_couple, Some(c) if c > 0.05);
+    Summary {
+        peak_amplitude: peak.0,
+        omega_at_peak: peak.1,
+        t_at_peak: peak.2,
+        final_amplitude: plane_amplitude(eq, y),
+        final_omega: omega,
+        residual_unbalance,
+        residual_couple,
+        balanced,
+        steps: stats.steps,
+        rejected_steps: stats.rejected,
+        rhs_evaluations: stats.rhs_evaluations,
+        t_end: t,
+        stopped: stop.map(|s| match s {
+            Stop::StepTooSmall { t } => format!("step size underflow at t = {t}"),
+            Stop::TooManySteps { t } => format!("too many steps at t = {t}"),
+            Stop::NotFinite { t } => format!("the state became non-finite at t = {t}"),
+            Stop::Requested { t } => format!("interrupted at t = {t}"),
+        }),
+    }
+}
