@@ -5,24 +5,33 @@
 # skipping it).
 set -eu
 cd "$(dirname "$0")/.."
+say() { echo "scripts/test.sh: $*" >&2; }
 if ! command -v cargo >/dev/null 2>&1; then
-    echo "scripts/test.sh: cargo not found; install Rust (rust-version in Cargo.toml) with rustup: https://rustup.rs" >&2
+    say "cargo not found; install Rust (rust-version in Cargo.toml, or newer) with rustup: https://rustup.rs"
+    exit 1
+fi
+if ! command -v python3 >/dev/null 2>&1; then
+    say "python3 not found; install Python >= 3.9 with venv (Debian/Ubuntu: sudo apt-get install python3 python3-venv)"
     exit 1
 fi
 if [ ! -x .venv/bin/python ]; then
-    if ! python3 -m venv .venv; then
+    if ! python3 -m venv .venv >/dev/null 2>&1; then
         rm -rf .venv
         if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
-            # Debian/Ubuntu ship venv separately from python3
+            # Debian/Ubuntu ship venv (ensurepip) separately from python3
+            say "installing python3-venv with apt-get"
             apt-get update -qq && apt-get install -y -qq python3-venv
             python3 -m venv .venv
         else
-            echo "scripts/test.sh: 'python3 -m venv' failed; on Debian/Ubuntu install it with: sudo apt-get install python3-venv" >&2
+            say "'python3 -m venv' failed: the venv module (ensurepip) is missing; on Debian/Ubuntu install it with: sudo apt-get install python3-venv"
             exit 1
         fi
     fi
 fi
-.venv/bin/python -m pip install --quiet --disable-pip-version-check -r requirements-test.txt
+if ! .venv/bin/python -m pip install --quiet --disable-pip-version-check -r requirements-test.txt; then
+    say "pip could not install requirements-test.txt into .venv (no network to PyPI?); the cross-checks need them"
+    exit 1
+fi
 export AUTOBAL_PYTHON="$PWD/.venv/bin/python"
 export AUTOBAL_REQUIRE_PYTHON=1
 cargo test --workspace "$@"

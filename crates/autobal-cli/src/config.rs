@@ -80,14 +80,52 @@ pub fn apply_set(root: &mut Table, assignment: &str) -> Result<()> {
     Ok(())
 }
 
-/// Every table and key of `root` must be in [`SCHEMA`].
+/// Every table and key of `root` must be in [`SCHEMA`], and every number in its range
+/// ([`autobal::limits`]): one place for the ranges of all commands.
 fn check_schema(root: &Table) -> Result<()> {
     for (name, value) in root {
         check_key(name, None)?;
         let t = value.as_table().ok_or_else(|| anyhow!("{name}: expected a table [{name}]"))?;
-        for k in t.keys() {
+        for (k, v) in t {
             check_key(name, Some(k))?;
+            check_range(&format!("{name}.{k}"), v)?;
         }
+    }
+    Ok(())
+}
+
+/// The keys read as whole numbers (numbers of balls).
+const COUNTS: &[&str] = &["balancer.balls", "dimensionless.n", "planar.n"];
+
+/// Numbers (and the numbers in arrays, one level of nesting for `drive.schedule`) against their
+/// limits; counts are checked where they are read, as whole numbers.
+fn check_range(field: &str, v: &Value) -> Result<()> {
+    let is_count = COUNTS.contains(&field);
+    match v {
+        Value::Float(_) | Value::Integer(_) if !is_count => {
+            autobal::limits::check(field, number(v, field)?)?;
+        }
+        Value::Array(a) => {
+            if a.len() > MAX_ARRAY_LEN {
+                return Err(autobal::Error::TooLarge { what: field.into(), size: a.len() as u64, limit: MAX_ARRAY_LEN as u64, reason: "entries".into() }.into());
+            }
+            for x in a {
+                match x {
+                    Value::Array(inner) => {
+                        for y in inner {
+                            if let Value::Float(_) | Value::Integer(_) = y {
+                                autobal::limits::check(field, number(y, field)?)?;
+                            }
+                        }
+                    }
+                    Value::Float(_) | Value::Integer(_) => {
+                        autobal::limits::check(field, number(x, field)?)?;
+                    }
+                    _ => {}
+                }
+            }
+        }
+        _ => {}
     }
     Ok(())
 }
@@ -130,11 +168,15 @@ impl<'a> Section<'a> {
         self.f64(key)?.ok_or_else(|| anyhow!("{}.{key}: missing (required)", self.name))
     }
     fn count(&self, key: &str) -> Result<Option<u32>> {
+        let field = format!("{}.{key}", self.name);
         match self.get(key) {
             None => Ok(None),
-            Some(Value::Integer(i)) if *i >= 0 && *i <= 10_000 => Ok(Some(*i as u32)),
-            Some(Value::Integer(i)) => bail!("{}.{key}: must be a whole number between 0 and 10000, got {i}", self.name),
-            Some(v) => bail!("{}.{key}: expected a whole number, got {}", self.name, describe(v)),
+            Some(Value::Integer(i)) if *i < 0 => bail!("{field}: must be a whole number ≥ 0, got {i}"),
+            Some(Value::Integer(i)) => {
+                autobal::limits::check_count(&field, *i as u64)?;
+                u32::try_from(*i).map(Some).map_err(|_| anyhow!("{field}: {i} is too large"))
+            }
+            Some(v) => bail!("{field}: expected a whole number, got {}", describe(v)),
         }
     }
     fn string(&self, key: &str) -> Result<Option<&'a str>> {
@@ -160,13 +202,39 @@ pub fn read(path: Option<&std::path::Path>) -> Result<(Table, String)> {
     read_with_default(path, DEFAULT_CONFIG, "embedded default (examples/default.toml)")
 }
 
+/// Largest config file read (bytes): a config is a few dozen lines; this bounds the memory and
+/// time a wrong path (`/dev/zero`, a log file) can cost.
+pub const MAX_CONFIG_BYTES: u64 = 1 << 20;
+
+/// Longest array in a config (`drive.schedule` points).
+pub const MAX_ARRAY_LEN: usize = 100_000;
+
+/// Read at most [`MAX_CONFIG_BYTES`] of a config file as UTF-8.
+fn read_limited(p: &std::path::Path) -> Result<String> {
+    use std::io::Read;
+    let name = format!("--config {}", p.display());
+    let file = std::fs::File::open(p).map_err(|e| anyhow!("{name}: cannot read: {e}"))?;
+    if file.metadata().map(|m| m.is_dir()).unwrap_or(false) {
+        bail!("{name}: is a directory, not a config file");
+    }
+    let mut bytes = Vec::new();
+    file.take(MAX_CONFIG_BYTES + 1).read_to_end(&mut bytes).map_err(|e| anyhow!("{name}: cannot read: {e}"))?;
+    if bytes.len() as u64 > MAX_CONFIG_BYTES {
+        return Err(autobal::Error::TooLarge {
+            what: name,
+            size: bytes.len() as u64,
+            limit: MAX_CONFIG_BYTES,
+            reason: "bytes; a config is a few dozen lines".into(),
+        }
+        .into());
+    }
+    String::from_utf8(bytes).map_err(|e| anyhow!("{name}: not UTF-8 text (byte {})", e.utf8_error().valid_up_to()))
+}
+
 /// [`read`] with another embedded default.
 pub fn read_with_default(path: Option<&std::path::Path>, default: &str, default_name: &str) -> Result<(Table, String)> {
     let (text, source) = match path {
-        Some(p) => (
-            std::fs::read_to_string(p).map_err(|e| anyhow!("--config {}: cannot read: {e}", p.display()))?,
-            p.display().to_string(),
-        ),
+        Some(p) => (read_limited(p)?, p.display().to_string()),
         None => (default.to_string(), default_name.to_string()),
     };
     let root: Table = text.parse::<Table>().map_err(|e| {
@@ -220,15 +288,8 @@ pub fn build(root: &Table, source: &str) -> Result<Config> {
         Some(o) => bail!("analysis.anisotropy: must be \"exact\" or \"paper\", got \"{o}\""),
     };
     let sensitivity_limit = an.f64("sensitivity_limit")?.unwrap_or(autobal::spatial::sensitivity::DEFAULT_LIMIT);
-    if !(sensitivity_limit > 0.0 && sensitivity_limit < 1.0) {
-        bail!("analysis.sensitivity_limit: must lie in (0, 1), got {sensitivity_limit}");
-    }
+    autobal::limits::check("analysis.sensitivity_limit", sensitivity_limit)?;
     let omega_max = an.f64("omega_max")?;
-    if let Some(w) = omega_max {
-        if !(w > 0.0 && w.is_finite()) {
-            bail!("analysis.omega_max: must be a positive number, got {w}");
-        }
-    }
     let dimensional_tables = ["rotor", "supports", "unbalance", "balancer"];
     if !dimensional_tables.iter().any(|t| root.contains_key(*t)) && !root.contains_key("dimensionless") && root.contains_key("planar") {
         bail!("config: this is a planar-rotor config ([planar], [drive]): use it with `autobal simulate` or `autobal sweep`");
@@ -277,8 +338,8 @@ pub fn build(root: &Table, source: &str) -> Result<Config> {
             // given directly, overrides the anisotropy they imply (as ΔĀ and ΔĀ0, like 003's
             // worked examples), so that `--set dimensionless.delta_a=…` works on any config
             let override_delta = if any_mass { direct } else { None };
-            if let Some(v) = override_delta.filter(|v| !(*v >= 0.0 && v.is_finite())) {
-                bail!("dimensionless.delta_a: must be a finite number ≥ 0, got {v}");
+            if let (Some(v), Some(cs)) = (override_delta, d.f64("c_sigma")?) {
+                autobal::spatial::params::check_delta_a(v, cs)?;
             }
             let anisotropy = match (direct, any_mass) {
                 (Some(v), false) => {
@@ -318,8 +379,10 @@ pub fn build(root: &Table, source: &str) -> Result<Config> {
                     let computed = m.anisotropy.clone();
                     m.anisotropy = autobal::spatial::inertia::Anisotropy::given(v);
                     m.anisotropy.warnings.push(format!(
-                        "dimensionless.delta_a = {v} overrides the anisotropy of the masses (exact tensor {:.6}, eq (17) {:.6}); it serves as ΔĀ and ΔĀ0",
-                        computed.exact[1], computed.paper
+                        "dimensionless.delta_a = {} overrides the anisotropy of the masses (exact tensor {:.6}, eq (17) {:.6}); it serves as ΔĀ and ΔĀ0",
+                        autobal::error::fmt_num(v),
+                        computed.exact[1],
+                        computed.paper
                     ));
                     m.delta_a0 = v;
                 }
@@ -354,9 +417,9 @@ mod tests {
     #[test]
     fn errors_name_the_field() {
         assert!(err(&["dimensionless.l_lef=1"]).starts_with("dimensionless.l_lef: unknown key"));
-        assert!(err(&["dimensionless.rho_s=0"]).starts_with("dimensionless.rho_s: must be positive"));
-        assert!(err(&["dimensionless.m0=-0.1"]).starts_with("dimensionless.m0: must not be negative"));
-        assert!(err(&["dimensionless.c_sigma=nan"]).starts_with("dimensionless.c_sigma: must be a finite number"));
+        assert!(err(&["dimensionless.rho_s=0"]).starts_with("dimensionless.rho_s: must lie in [0.001, 1000], got 0"));
+        assert!(err(&["dimensionless.m0=-0.1"]).starts_with("dimensionless.m0: must lie in [0, 1), got -0.1"));
+        assert!(err(&["dimensionless.c_sigma=nan"]).starts_with("dimensionless.c_sigma: must lie in (0, 2], got NaN"));
         assert!(err(&["dimensionless.c_sigma=\"big\""]).starts_with("dimensionless.c_sigma: expected a number"));
         assert!(err(&["analysis.anisotropy=sideways"]).starts_with("analysis.anisotropy: must be"));
         assert!(err(&["rotor.mass=1"]).starts_with("dimensionless: give either"));
@@ -364,7 +427,81 @@ mod tests {
         assert!(err(&["foo.bar=1"]).starts_with("foo: unknown table"));
         assert!(err(&["dimensionless.n=0"]).starts_with("dimensionless.n: is 0 but"));
         assert!(err(&["dimensionless.d_a=0.3"]).starts_with("dimensionless.d_a: with n = 2"));
-        assert!(err(&["dimensionless.delta_a=-0.1"]).starts_with("dimensionless.delta_a: must be"));
+        assert!(err(&["dimensionless.delta_a=-0.1"]).starts_with("dimensionless.delta_a: must lie in [0, 1), got -0.1"));
+    }
+
+    /// The keys of the schema that hold text, not numbers.
+    const TEXT_KEYS: &[&str] = &["analysis.anisotropy", "drive.kind", "drive.schedule_of", "integration.method"];
+
+    fn schema_keys() -> Vec<String> {
+        SCHEMA.iter().flat_map(|(t, ks)| ks.iter().map(move |k| format!("{t}.{k}"))).collect()
+    }
+
+    #[test]
+    fn every_numeric_key_has_a_limit_and_every_limit_a_key() {
+        let keys = schema_keys();
+        for k in &keys {
+            if !TEXT_KEYS.contains(&k.as_str()) {
+                assert!(autobal::limits::limit(k).is_some(), "{k} has no range in autobal::limits");
+            }
+        }
+        for l in autobal::limits::LIMITS {
+            assert!(keys.iter().any(|k| k == l.field), "limit for {}, which is no config key", l.field);
+        }
+    }
+
+    /// Set every key of the schema to hostile values, on the config where it belongs: every
+    /// error must name a real key (`table.key:` or a table), a range error the key that was set.
+    #[test]
+    fn every_validation_error_names_a_real_key() {
+        let dimensional = include_str!("../../../examples/dimensional.toml");
+        let keys = schema_keys();
+        let tables: Vec<&str> = SCHEMA.iter().map(|(t, _)| *t).collect();
+        let hostile = [
+            "1e308", "-1e308", "nan", "inf", "-inf", "0", "-1", "1e-308", "-1e-308", "0.5", "1", "2", "3", "1000", "100000",
+            "9223372036854775807", "-9223372036854775808", "\"x\"", "true", "[1, 2]", "[[0, 1], [1, 1e308]]", "{a = 1}",
+        ];
+        let mut errors = 0;
+        for key in &keys {
+            let table = key.split('.').next().unwrap();
+            for v in hostile {
+                let set = vec![format!("{key}={v}")];
+                let r = match table {
+                    "rotor" | "supports" | "unbalance" | "balancer" => {
+                        let mut root: Table = dimensional.parse().unwrap();
+                        apply_set(&mut root, &set[0]).and_then(|_| build(&root, "test").map(|_| ()))
+                    }
+                    "planar" | "drive" | "integration" => load_planar(None, &set).map(|_| ()),
+                    _ => load(None, &set).map(|_| ()),
+                };
+                let Err(e) = r else { continue };
+                errors += 1;
+                let msg = format!("{e:#}");
+                let named = msg.split(':').next().unwrap();
+                assert!(keys.iter().any(|k| k == named) || tables.contains(&named), "{key}={v}: `{msg}` names no config key");
+                if msg.contains("must lie in") {
+                    assert_eq!(named, key, "{key}={v}: `{msg}`");
+                }
+                assert!(!msg.contains('\n') && msg.len() < 400, "{key}={v}: `{msg}`");
+            }
+        }
+        assert!(errors > 500, "{errors}");
+    }
+
+    #[test]
+    fn config_files_are_read_with_a_size_limit() {
+        let dir = std::env::temp_dir().join(format!("autobal-config-test-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let big = dir.join("big.toml");
+        std::fs::write(&big, "#".repeat(MAX_CONFIG_BYTES as usize + 1)).unwrap();
+        let e = format!("{:#}", load(Some(&big), &[]).unwrap_err());
+        assert!(e.contains("exceeds the limit of 1048576"), "{e}");
+        let e = format!("{:#}", load(Some(&dir), &[]).unwrap_err());
+        assert!(e.contains("is a directory"), "{e}");
+        std::fs::write(&big, [0xff, 0xfe, 0x00]).unwrap();
+        let e = format!("{:#}", load(Some(&big), &[]).unwrap_err());
+        assert!(e.contains("not UTF-8"), "{e}");
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]

@@ -215,8 +215,11 @@ fn run(cli: Cli) -> Result<()> {
         }
         Command::Stability { common, format, lin, samples, svg } => {
             let cfg = config::load(common.config.as_deref(), &common.set)?;
+            if let Some(w) = lin.omega_max {
+                check_speed("--omega-max", w)?;
+            }
             let w = linear::omega_max(&cfg, lin.omega_max)?;
-            if samples < 10 || samples > 1_000_000 {
+            if !(10..=1_000_000).contains(&samples) {
                 anyhow::bail!("--samples: must lie between 10 and 1000000, got {samples}");
             }
             let c = linear::compare(&cfg.model, w, samples, lin.balls.into())?;
@@ -227,6 +230,9 @@ fn run(cli: Cli) -> Result<()> {
         }
         Command::Campbell { common, format, lin, points, svg } => {
             let cfg = config::load(common.config.as_deref(), &common.set)?;
+            if let Some(w) = lin.omega_max {
+                check_speed("--omega-max", w)?;
+            }
             let w = linear::omega_max(&cfg, lin.omega_max)?;
             if !(3..=100_000).contains(&points) {
                 anyhow::bail!("--points: must lie between 3 and 100000, got {points}");
@@ -249,10 +255,9 @@ fn run(cli: Cli) -> Result<()> {
             let _ = ctrlc::set_handler(|| sim::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
             let index = report::write(&cfg, &out, quick)?;
             for w in &cfg.model.anisotropy.warnings {
-                eprintln!("warning: {w}");
+                output::note(&format!("warning: {w}"));
             }
-            println!("report written to {}", index.display());
-            Ok(())
+            output::print(&format!("report written to {}\n", index.display()))
         }
     }
 }
@@ -264,12 +269,11 @@ fn run_map(common: Common, x: String, y: String, omega: Option<f64>, balls: Ball
         config::apply_set(&mut root, s)?;
     }
     if let Some(w) = omega {
-        if !(w >= 0.0 && w.is_finite()) {
-            anyhow::bail!("--omega: the speed must be a finite number ≥ 0, got {w}");
-        }
+        check_speed("--omega", w)?;
     }
     let xa = map::Axis::parse("--x", &x)?;
     let ya = map::Axis::parse("--y", &y)?;
+    distinct_axes(&xa.key, Some(&ya.key))?;
     if let Some(t) = threads {
         if t == 0 {
             anyhow::bail!("--threads: must be at least 1");
@@ -291,8 +295,8 @@ fn run_map(common: Common, x: String, y: String, omega: Option<f64>, balls: Ball
     let done = r.rows.iter().filter(|x| x.is_some()).count();
     map::write_plots(&r, &out, &format!("Stability map, balls {}", if balls == BallsArg::Free { "free" } else { "locked" }))?;
     let points = done * r.x.n;
-    println!(
-        "{} rows × {} points in {:.2} s ({:.2} µs per point); wrote {}, {}, {}",
+    output::print(&format!(
+        "{} rows × {} points in {:.2} s ({:.2} µs per point); wrote {}, {}, {}\n",
         done,
         r.x.n,
         secs,
@@ -300,7 +304,7 @@ fn run_map(common: Common, x: String, y: String, omega: Option<f64>, balls: Ball
         csv_path.display(),
         out.with_extension("svg").display(),
         out.with_extension("png").display()
-    );
+    ))?;
     if done < r.y.n {
         anyhow::bail!("interrupted: {done} of {} rows computed and kept in {}", r.y.n, csv_path.display());
     }
@@ -325,7 +329,7 @@ fn run_simulate(config: Option<PathBuf>, set: Vec<String>, dt: Option<f64>, out:
     let stem = out.with_extension("");
     let plots = sim::write_plots(&cfg, &env, &stem, "Passage")?;
     emit(format, sim::summary_json(&cfg, &summary, wall), sim::summary_table(&cfg, &summary, wall))?;
-    eprintln!("wrote {} and {} plots ({})", out.display(), plots.len(), plots.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", "));
+    output::note(&format!("wrote {} and {} plots ({})", out.display(), plots.len(), plots.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")));
     if let Some(st) = summary.stopped {
         anyhow::bail!("{st}: the samples up to then are kept in {}", out.display());
     }
@@ -340,6 +344,7 @@ fn run_sweep(config: Option<PathBuf>, set: Vec<String>, x: String, y: Option<Str
     }
     let xa = sim::SweepAxis::parse("--x", &x)?;
     let ya = y.as_deref().map(|s| sim::SweepAxis::parse("--y", s)).transpose()?;
+    distinct_axes(&xa.key, ya.as_ref().map(|a| a.key.as_str()))?;
     if let Some(t) = threads {
         if t == 0 {
             anyhow::bail!("--threads: must be at least 1");
@@ -374,18 +379,39 @@ fn run_sweep(config: Option<PathBuf>, set: Vec<String>, x: String, y: Option<Str
     Ok(())
 }
 
-fn emit(format: Format, json: serde_json::Value, table: String) -> Result<()> {
-    match format {
-        Format::Json => println!("{}", serde_json::to_string_pretty(&json)?),
-        Format::Table => print!("{table}"),
+/// The two axes of a map or sweep must set different fields (else one would silently win).
+fn distinct_axes(x: &str, y: Option<&str>) -> Result<()> {
+    if y == Some(x) {
+        anyhow::bail!("--y {x}: the same key as --x; give the second axis another field");
     }
     Ok(())
+}
+
+/// A dimensionless speed option (`--omega`, `--omega-max`): finite, ≥ 0 and within the range of
+/// `analysis.omega_max`.
+fn check_speed(flag: &str, w: f64) -> Result<()> {
+    if w == 0.0 && flag == "--omega" {
+        return Ok(());
+    }
+    autobal::limits::check_as(flag, "analysis.omega_max", w)?;
+    Ok(())
+}
+
+fn emit(format: Format, json: serde_json::Value, table: String) -> Result<()> {
+    match format {
+        Format::Json => output::print(&format!("{}\n", serde_json::to_string_pretty(&json)?)),
+        Format::Table => output::print(&table),
+    }
 }
 
 fn main() {
     let cli = Cli::parse();
     if let Err(e) = run(cli) {
-        eprintln!("error: {}", format!("{e:#}").replace('\n', " "));
+        if output::is_broken_pipe(&e) {
+            // the reader has what it wanted (`autobal critical | head -1`): end quietly
+            return;
+        }
+        output::note(&format!("error: {}", format!("{e:#}").replace('\n', " ")));
         std::process::exit(2);
     }
 }

@@ -43,7 +43,7 @@ impl Axis {
         };
         let (lo, hi) = (num(parts[0], "LO")?, num(parts[1], "HI")?);
         let n: usize = parts[2].trim().parse().map_err(|_| anyhow!("{flag} {spec}: N `{}` is not a whole number", parts[2]))?;
-        if n < 2 || n > 5000 {
+        if !(2..=5000).contains(&n) {
             bail!("{flag} {spec}: N must lie between 2 and 5000, got {n}");
         }
         if hi <= lo {

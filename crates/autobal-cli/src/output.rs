@@ -264,3 +264,24 @@ pub fn ranges_table(cfg: &Config) -> String {
     s.push_str(&ranges_block(cfg, &autobalancing_ranges(&cfg.model)));
     s
 }
+
+/// Write `text` to standard output. A reader that closed the pipe early (`autobal critical |
+/// head -1`) is not an error of ours: the error it gives is [`is_broken_pipe`], on which `main`
+/// ends quietly.
+pub fn print(text: &str) -> anyhow::Result<()> {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    out.write_all(text.as_bytes()).and_then(|_| out.flush())?;
+    Ok(())
+}
+
+/// Write a line to standard error, ignoring a closed one (warnings must not end a run).
+pub fn note(line: &str) {
+    use std::io::Write;
+    let _ = writeln!(std::io::stderr().lock(), "{line}");
+}
+
+/// Whether the error comes from a closed standard output (broken pipe).
+pub fn is_broken_pipe(e: &anyhow::Error) -> bool {
+    e.chain().any(|c| c.downcast_ref::<std::io::Error>().is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe))
+}

@@ -11,6 +11,7 @@
 //! - [`drive`]: speed and torque histories shared by the dynamic models.
 //! - [`ode`]: the integrators (DOP853, RODAS) and their shared types.
 //! - [`linalg`]: small dense LU and eigenvalues.
+//! - [`error`], [`limits`]: typed errors, and the range of every input.
 //!
 //! Inside [`spatial`]:
 //! - [`spatial::params`]: the SI description of a rigid rotor on two supports with an unbalance mass
@@ -52,6 +53,7 @@
 
 pub mod drive;
 pub mod error;
+pub mod limits;
 pub mod linalg;
 pub mod ode;
 pub mod planar;

@@ -230,7 +230,7 @@ fn hqr(a: &mut A1, n: usize, wr: &mut [f64], wi: &mut [f64]) -> Result<(), NoCon
                         }
                     }
                     let mut k = m;
-                    while k + 1 <= nu {
+                    while k < nu {
                         if k != m {
                             p = a[k][k - 1];
                             q = a[k + 1][k - 1];

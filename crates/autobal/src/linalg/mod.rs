@@ -1,4 +1,4 @@
-//! Small dense linear algebra on stack arrays: LU factorisation ([`dense`], crate-internal) and
+//! Small dense linear algebra on stack arrays: LU factorisation (`dense`, crate-internal) and
 //! eigenvalues with the Routh–Hurwitz test ([`eigen`]).
 
 pub(crate) mod dense;

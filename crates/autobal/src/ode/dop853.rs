@@ -68,7 +68,7 @@ impl<S: System> Step<'_, S> {
             for (r, fr) in f.iter().enumerate().rev() {
                 v += fr[i];
                 // Horner in x and (1 − x) alternately, as in Hairer's CONTD8
-                if (tab::INTERPOLATOR_POWER - 1 - r) % 2 == 0 {
+                if (tab::INTERPOLATOR_POWER - 1 - r).is_multiple_of(2) {
                     v *= x;
                 } else {
                     v *= 1.0 - x;

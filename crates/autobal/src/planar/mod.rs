@@ -334,10 +334,8 @@ impl System for Equations<'_> {
         if !crate::linalg::dense::solve_once(&mut m, &mut f, nc) {
             f = [f64::NAN; MAX_BALLS + 3];
         }
-        for i in 0..nc {
-            dy[i] = y[nc + i];
-            dy[nc + i] = f[i];
-        }
+        dy[..nc].copy_from_slice(&y[nc..2 * nc]);
+        dy[nc..2 * nc].copy_from_slice(&f[..nc]);
         if self.drive.prescribed() {
             // keep θ̇ on the schedule exactly (its derivative is the prescribed acceleration)
             let (w, _) = self.drive.kinematics(t);

@@ -10,7 +10,7 @@
 //! For two balls at balance `α = π ± acos(1/E)`, `D = 2/E² − 1`, negative once `E > √2`: in
 //! 000's own base case (`E = 2`) the exact anisotropy is zero while eq (17) gives 0.1.
 
-use crate::error::{Error, Result};
+use crate::error::{fmt_num, Error, Result};
 use serde::Serialize;
 use std::f64::consts::PI;
 
@@ -135,7 +135,7 @@ pub fn balancing_angles(set: &BallSet) -> Option<Vec<f64>> {
 pub fn anisotropy(set: &BallSet, d_a: Option<f64>, method: AnisotropyMethod) -> Result<Anisotropy> {
     if let Some(d) = d_a {
         if !(0.0..=1.0).contains(&d) || d.is_nan() {
-            return Err(Error::invalid("d_a", format!("D_A must lie in [0, 1], got {d}")));
+            return Err(Error::invalid("d_a", format!("D_A must lie in [0, 1], got {}", fmt_num(d))));
         }
     }
     let mut warnings = vec![];
@@ -167,8 +167,9 @@ pub fn anisotropy(set: &BallSet, d_a: Option<f64>, method: AnisotropyMethod) -> 
                     return Err(Error::invalid(
                         "d_a",
                         format!(
-                            "with n = {} balls the balancing positions are fixed, so D_A = {da_natural:.6}; omit d_a or use that value (d_a = {d} given)",
-                            set.n
+                            "with n = {} balls the balancing positions are fixed, so D_A = {da_natural:.6}; omit d_a or use that value (d_a = {} given)",
+                            set.n,
+                            fmt_num(d)
                         ),
                     ));
                 }

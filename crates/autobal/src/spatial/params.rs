@@ -8,7 +8,8 @@
 //! `c_yα = c_L l_cL − c_R l_cR` and their antiresonance formula (003, eq (1)) follow from the
 //! forced response of the locked rotor (see `ranges::antiresonance_speed`).
 
-use crate::error::{finite, non_negative, positive, Error, Result};
+use crate::error::{fmt_num, positive, Error, Result};
+use crate::limits::{check, check_count, check_derived};
 use crate::spatial::inertia::{self, Anisotropy, AnisotropyMethod, BallSet};
 use serde::Serialize;
 
@@ -207,26 +208,25 @@ impl SpatialModel {
     /// `h̄yα = h̄x (2 l̄_L − 1)/(2 ρ̄s)` (same algebra as the stiffnesses).
     pub fn from_dimensionless(inp: &DimensionlessInput) -> Result<Self> {
         let p = "dimensionless";
-        positive(&format!("{p}.c_sigma"), inp.c_sigma)?;
-        positive(&format!("{p}.rho_s"), inp.rho_s)?;
-        finite(&format!("{p}.l_left"), inp.l_left)?;
-        finite(&format!("{p}.z_a"), inp.z_a)?;
-        non_negative(&format!("{p}.h_x"), inp.h_x)?;
-        non_negative(&format!("{p}.h_s"), inp.h_s)?;
+        check("dimensionless.c_sigma", inp.c_sigma)?;
+        check("dimensionless.rho_s", inp.rho_s)?;
+        check("dimensionless.l_left", inp.l_left)?;
+        check("dimensionless.z_a", inp.z_a)?;
+        check("dimensionless.h_x", inp.h_x)?;
+        check("dimensionless.h_s", inp.h_s)?;
         let (p_alpha_sq, c_y_alpha) = identical_support_coefficients(inp.l_left, inp.rho_s);
         let (anisotropy, delta_a0, masses) = match inp.anisotropy {
             AnisotropyInput::Direct(d) => {
-                non_negative(&format!("{p}.delta_a"), d)?;
+                check_delta_a(d, inp.c_sigma)?;
                 if let Some((m, d_a)) = inp.direct_balls {
-                    positive(&format!("{p}.m"), m)?;
-                    if !(0.0..=1.0).contains(&d_a) {
-                        return Err(Error::invalid(format!("{p}.d_a"), format!("D_A must lie in [0, 1], got {d_a}")));
-                    }
+                    positive("dimensionless.m", m)?;
+                    check("dimensionless.m", m)?;
+                    check("dimensionless.d_a", d_a)?;
                 }
                 (Anisotropy::given(d), d, None)
             }
             AnisotropyInput::Masses { masses, d_a } => {
-                validate_masses(p, &masses)?;
+                validate_masses(p, &masses, inp.c_sigma)?;
                 let a = inertia::anisotropy(&masses.ball_set(), d_a, inp.method)
                     .map_err(|e| prefix_field(e, p))?;
                 (a, 0.5 * masses.a_m0(), Some(masses))
@@ -265,31 +265,43 @@ impl SpatialModel {
     /// `C_Σ = C_r + m0 R0² + n m R²`, `c_x = c_L + c_R`, `c_α = c_L l_cL² + c_R l_cR²`,
     /// `c_yα = c_L l_cL − c_R l_cR` (and likewise for damping), `ω0 = sqrt(c_x/M_s)`.
     pub fn from_si(r: &SpatialRotorSi, method: AnisotropyMethod) -> Result<Self> {
-        positive("rotor.mass", r.rotor_mass)?;
-        positive("rotor.equatorial_moment", r.equatorial_moment)?;
-        positive("rotor.polar_moment", r.polar_moment)?;
-        finite("rotor.z", r.z_rotor)?;
-        finite("balancer.z", r.z_balancer)?;
-        finite("supports.z_left", r.z_left)?;
-        finite("supports.z_right", r.z_right)?;
+        check("rotor.mass", r.rotor_mass)?;
+        check("rotor.equatorial_moment", r.equatorial_moment)?;
+        check("rotor.polar_moment", r.polar_moment)?;
+        if r.polar_moment > 2.0 * r.equatorial_moment {
+            return Err(Error::invalid(
+                "rotor.polar_moment",
+                format!(
+                    "C_r = {} kg·m² exceeds twice the equatorial moment A_r = {} kg·m²: no rigid body has a polar moment above the sum of its equatorial ones",
+                    fmt_num(r.polar_moment),
+                    fmt_num(r.equatorial_moment)
+                ),
+            ));
+        }
+        check("rotor.z", r.z_rotor)?;
+        check("balancer.z", r.z_balancer)?;
+        check("supports.z_left", r.z_left)?;
+        check("supports.z_right", r.z_right)?;
         if r.z_right <= r.z_left {
             return Err(Error::invalid(
                 "supports.z_right",
                 format!(
                     "the right support must lie beyond the left one (z_right = {} ≤ z_left = {}): the span l = z_right − z_left must be positive",
-                    r.z_right, r.z_left
+                    fmt_num(r.z_right),
+                    fmt_num(r.z_left)
                 ),
             ));
         }
-        positive("supports.stiffness_left", r.stiffness_left)?;
-        positive("supports.stiffness_right", r.stiffness_right)?;
-        non_negative("supports.damping_left", r.damping_left)?;
-        non_negative("supports.damping_right", r.damping_right)?;
-        non_negative("unbalance.mass", r.unbalance_mass)?;
-        non_negative("unbalance.radius", r.unbalance_radius)?;
-        non_negative("balancer.ball_mass", r.ball_mass)?;
-        non_negative("balancer.race_radius", r.race_radius)?;
-        non_negative("balancer.ball_drag", r.ball_drag)?;
+        check("supports.stiffness_left", r.stiffness_left)?;
+        check("supports.stiffness_right", r.stiffness_right)?;
+        check("supports.damping_left", r.damping_left)?;
+        check("supports.damping_right", r.damping_right)?;
+        check("unbalance.mass", r.unbalance_mass)?;
+        check("unbalance.radius", r.unbalance_radius)?;
+        check_count("balancer.balls", r.balls as u64)?;
+        check("balancer.ball_mass", r.ball_mass)?;
+        check("balancer.race_radius", r.race_radius)?;
+        check("balancer.drag", r.ball_drag)?;
         if r.balls == 0 && r.ball_mass > 0.0 {
             return Err(Error::invalid(
                 "balancer.balls",
@@ -335,6 +347,15 @@ impl SpatialModel {
         };
         let anisotropy = inertia::anisotropy(&masses.ball_set(), None, method)?;
         let h_s = if r.balls > 0 { r.ball_drag / (r.ball_mass * omega0) } else { 0.0 };
+        // the ratios of the SI inputs, through the dimensionless parameters they imply
+        let rho_bar = rho / span;
+        let what_rho = format!("the radius of gyration sqrt(A_Σ/M_s) = {} m over the span {} m", fmt_num(rho), fmt_num(span));
+        check_derived(if rho_bar < 1.0 { "supports.z_right" } else { "rotor.equatorial_moment" }, "dimensionless.rho_s", rho_bar, &what_rho)?;
+        check_derived("rotor.z", "dimensionless.l_left", l_cl / span, "the centre of mass's distance from the left support over the span")?;
+        check_derived("balancer.z", "dimensionless.z_a", z_a / rho, "the balancer plane's distance from the centre of mass over the radius of gyration")?;
+        let worse_support = if r.damping_left >= r.damping_right { "supports.damping_left" } else { "supports.damping_right" };
+        check_derived(worse_support, "dimensionless.h_x", h_x / (ms * omega0), "(damping_left + damping_right)/(M_s ω0)")?;
+        check_derived("balancer.drag", "dimensionless.h_s", h_s, "drag/(ball_mass ω0)")?;
         Ok(SpatialModel {
             balls: ball_coupling(&masses, &anisotropy),
             c_sigma: c_sigma_abs / a_sigma,
@@ -392,11 +413,41 @@ fn prefix_field(e: Error, prefix: &str) -> Error {
     }
 }
 
-fn validate_masses(p: &str, m: &MassSet) -> Result<()> {
-    non_negative(&format!("{p}.m0"), m.m0)?;
-    non_negative(&format!("{p}.r0"), m.r0)?;
-    non_negative(&format!("{p}.m"), m.m)?;
-    non_negative(&format!("{p}.r"), m.r)?;
+/// `ΔĀ` given directly: in its range, and `2 ΔĀ ≤ C̄Σ` (the principal moments `1 ± ΔĀ`, `C̄Σ`
+/// of a rigid body satisfy the triangle inequality).
+pub fn check_delta_a(delta_a: f64, c_sigma: f64) -> Result<()> {
+    check("dimensionless.delta_a", delta_a)?;
+    if 2.0 * delta_a > c_sigma {
+        return Err(Error::invalid(
+            "dimensionless.delta_a",
+            format!(
+                "2 ΔĀ = {} exceeds C̄Σ = {}: the principal moments 1 + ΔĀ, 1 − ΔĀ, C̄Σ of a rigid body satisfy the triangle inequality",
+                fmt_num(2.0 * delta_a),
+                fmt_num(c_sigma)
+            ),
+        ));
+    }
+    Ok(())
+}
+
+fn validate_masses(p: &str, m: &MassSet, c_sigma: f64) -> Result<()> {
+    check(&format!("{p}.m0"), m.m0)?;
+    check(&format!("{p}.r0"), m.r0)?;
+    check(&format!("{p}.m"), m.m)?;
+    check(&format!("{p}.r"), m.r)?;
+    check_count(&format!("{p}.n"), m.n as u64)?;
+    // the point masses' polar moment is part of C_Σ (and half of it part of A_Σ = 1)
+    let polar = m.a_m0() + m.a_m();
+    if polar > c_sigma {
+        return Err(Error::invalid(
+            if m.a_m0() >= m.a_m() { format!("{p}.r0") } else { format!("{p}.r") },
+            format!(
+                "the polar moment of unbalance and balls m0 r0² + m r² = {} exceeds C̄Σ = {}, of which it is a part",
+                fmt_num(polar),
+                fmt_num(c_sigma)
+            ),
+        ));
+    }
     if m.n == 0 && m.m > 0.0 {
         return Err(Error::invalid(format!("{p}.n"), "is 0 but the ball mass m is given: set n, or m = 0"));
     }
@@ -406,7 +457,7 @@ fn validate_masses(p: &str, m: &MassSet) -> Result<()> {
     if m.m0 + m.m >= 1.0 {
         return Err(Error::invalid(
             format!("{p}.m0"),
-            format!("m0 + m = {} must stay below 1: they are fractions of the total mass M_s", m.m0 + m.m),
+            format!("m0 + m = {} must stay below 1: they are fractions of the total mass M_s", fmt_num(m.m0 + m.m)),
         ));
     }
     Ok(())

@@ -32,7 +32,7 @@ pub fn counts_as_stable(alpha: f64, balls: Balls) -> bool {
 }
 
 fn no_conv(omega: f64) -> Error {
-    Error::invalid("omega", format!("the eigenvalue iteration did not converge at Ω = {omega}"))
+    Error::NoConvergence { omega }
 }
 
 /// Spectral abscissa `max Re λ` at speed `omega`.
@@ -181,7 +181,7 @@ pub struct StabilityRanges {
 /// escape the grid; split-pair ranges cannot.
 pub fn stability_ranges(model: &SpatialModel, omega_max: f64, samples: usize, balls: Balls, tol: f64) -> Result<StabilityRanges> {
     if !(omega_max > 0.0 && omega_max.is_finite()) {
-        return Err(Error::invalid("omega_max", format!("must be a positive number, got {omega_max}")));
+        return Err(Error::invalid("omega_max", format!("must be a positive number, got {}", crate::error::fmt_num(omega_max))));
     }
     let samples = samples.max(2);
     let lo0 = omega_max * 1e-3;

@@ -1,0 +1,237 @@
+//! The range of every input: where the physics means something and double precision still
+//! carries it. One table ([`LIMITS`]) serves the model constructors, the CLI's config check and
+//! the documentation (`docs/robustness.md` shows [`markdown_table`], a test keeps them equal).
+//!
+//! Two kinds of bound:
+//! - **SI inputs** get generous physical bounds (a rotor of at most 1e9 kg, lengths within
+//!   ±10 km, ...): wide enough for any machine, narrow enough that the products the models form
+//!   (`c_L l_cL²`, `m R²`, `k/m`) stay far inside double precision. Their ratios are checked
+//!   through the dimensionless parameters they imply ([`check_derived`]).
+//! - **Dimensionless inputs** (papers 000/003) get the bounds of the rigid-rotor model: a
+//!   radius of gyration between 1/1000 and 1000 support spans, the triangle inequality of a
+//!   rigid body's principal moments (`C̄Σ ≤ 2`, `2 ΔĀ ≤ C̄Σ`), mass fractions below 1.
+//!
+//! ```
+//! use autobal::limits::check;
+//! assert!(check("rotor.mass", 20.0).is_ok());
+//! let e = check("rotor.mass", 1e308).unwrap_err();
+//! assert!(e.to_string().starts_with("rotor.mass: must lie in (0, 1e9] kg, got 1e308"));
+//! ```
+
+use crate::error::{fmt_num, Error, Result};
+
+/// Most balls of the spatial model (`balancer.balls`, `dimensionless.n`): the exact anisotropy
+/// interval costs `O(n)` (see [`crate::spatial::inertia::exact_interval`]); beyond a few dozen
+/// balls a ball balancer is a ring of fluid, outside the point-mass model.
+pub const MAX_BALLS_SPATIAL: u32 = 16;
+
+/// The range of one input field.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Limit {
+    /// The field as the config spells it (`table.key`).
+    pub field: &'static str,
+    /// Lower bound.
+    pub lo: f64,
+    /// Whether `lo` itself is excluded.
+    pub lo_open: bool,
+    /// Upper bound.
+    pub hi: f64,
+    /// Whether `hi` itself is excluded.
+    pub hi_open: bool,
+    /// Unit (empty for dimensionless quantities).
+    pub unit: &'static str,
+    /// Why these bounds.
+    pub why: &'static str,
+}
+
+const fn lim(field: &'static str, lo: f64, lo_open: bool, hi: f64, hi_open: bool, unit: &'static str, why: &'static str) -> Limit {
+    Limit { field, lo, lo_open, hi, hi_open, unit, why }
+}
+
+const MASS: &str = "no machine rotor exceeds 1e9 kg; keeps m·l² and k/m inside double precision";
+const MOMENT: &str = "1e9 kg at 30 m; the ratio to mass and span is checked through ρ̄s";
+const LENGTH: &str = "±10 km; ratios are checked through l̄_L, z̄_A, ρ̄s";
+const RADIUS: &str = "a race or unbalance radius of at most 1 km";
+const STIFF: &str = "the stiffest bearings are ~1e10 N/m; ω0 and its ratios stay finite";
+const DAMP: &str = "the dimensionless damping it implies is checked as well";
+const ANGLE: &str = "an angle: beyond ±1000 rad sin and cos lose digits; give it modulo 2π";
+const SPEED: &str = "±1e6 rad/s (~1e7 rpm), beyond every machine";
+const TIME: &str = "1e7 s of simulated time (115 days)";
+
+/// Every numeric input field with its range.
+pub const LIMITS: &[Limit] = &[
+    // spatial rotor, SI (papers 000/003)
+    lim("rotor.mass", 0.0, true, 1e9, false, "kg", MASS),
+    lim("rotor.equatorial_moment", 0.0, true, 1e12, false, "kg·m²", MOMENT),
+    lim("rotor.polar_moment", 0.0, true, 1e12, false, "kg·m²", "also at most 2 equatorial_moment: a body's polar moment is at most the sum of its equatorial ones"),
+    lim("rotor.z", -1e4, false, 1e4, false, "m", LENGTH),
+    lim("supports.z_left", -1e4, false, 1e4, false, "m", LENGTH),
+    lim("supports.z_right", -1e4, false, 1e4, false, "m", "also beyond z_left: a positive span"),
+    lim("supports.stiffness_left", 0.0, true, 1e13, false, "N/m", STIFF),
+    lim("supports.stiffness_right", 0.0, true, 1e13, false, "N/m", STIFF),
+    lim("supports.damping_left", 0.0, false, 1e12, false, "N·s/m", DAMP),
+    lim("supports.damping_right", 0.0, false, 1e12, false, "N·s/m", DAMP),
+    lim("unbalance.mass", 0.0, false, 1e9, false, "kg", MASS),
+    lim("unbalance.radius", 0.0, false, 1e3, false, "m", RADIUS),
+    lim("balancer.z", -1e4, false, 1e4, false, "m", LENGTH),
+    lim("balancer.balls", 0.0, false, MAX_BALLS_SPATIAL as f64, false, "", "see MAX_BALLS_SPATIAL: point-mass balls, cost of the anisotropy interval"),
+    lim("balancer.ball_mass", 0.0, false, 1e9, false, "kg", MASS),
+    lim("balancer.race_radius", 0.0, false, 1e3, false, "m", RADIUS),
+    lim("balancer.drag", 0.0, false, 1e12, false, "N·s/m", DAMP),
+    // spatial rotor, dimensionless (papers' symbols)
+    lim("dimensionless.c_sigma", 0.0, true, 2.0, false, "", "C̄Σ = C_Σ/A_Σ ≤ 2: a body's polar moment is at most the sum of its equatorial ones"),
+    lim("dimensionless.rho_s", 1e-3, false, 1e3, false, "", "radius of gyration from 1/1000 to 1000 spans; outside, the shaft is no rigid body on two supports"),
+    lim("dimensionless.l_left", -1e3, false, 1e3, false, "", "centre of mass within 1000 spans of the supports"),
+    lim("dimensionless.z_a", -1e3, false, 1e3, false, "", "balancer plane within 1000 radii of gyration of the centre of mass"),
+    lim("dimensionless.delta_a", 0.0, false, 1.0, true, "", "ΔĀ < 1 keeps the smaller principal moment positive; also 2 ΔĀ ≤ C̄Σ, the triangle inequality of the principal moments"),
+    lim("dimensionless.m0", 0.0, false, 1.0, true, "", "a fraction of the total mass; m0 + m < 1"),
+    lim("dimensionless.r0", 0.0, false, 1e3, false, "", "with m0 r0² ≤ C̄Σ: the unbalance's polar moment is part of C_Σ"),
+    lim("dimensionless.m", 0.0, false, 1.0, true, "", "a fraction of the total mass; m0 + m < 1"),
+    lim("dimensionless.r", 0.0, false, 1e3, false, "", "with m0 r0² + m r² ≤ C̄Σ"),
+    lim("dimensionless.n", 0.0, false, MAX_BALLS_SPATIAL as f64, false, "", "as balancer.balls"),
+    lim("dimensionless.d_a", 0.0, false, 1.0, false, "", "D_A, the modulus of the mean of exp(2iα_j), is at most 1"),
+    lim("dimensionless.h_x", 0.0, false, 1e3, false, "", "a damping ratio up to 500; beyond, the supports do not move"),
+    lim("dimensionless.h_s", 0.0, false, 1e3, false, "", "beyond, the balls do not move on the time scale 1/ω0; use --balls locked"),
+    lim("analysis.sensitivity_limit", 0.0, true, 1.0, true, "", "a relative error of the critical speeds"),
+    lim("analysis.omega_max", 0.0, true, 1e6, false, "", "dimensionless speed; the largest critical speed the ranges above allow is ~1e6"),
+    // planar rotor (paper 004), SI
+    lim("planar.m1", 0.0, true, 1e9, false, "kg", MASS),
+    lim("planar.m2", 0.0, false, 1e9, false, "kg", MASS),
+    lim("planar.m3", 0.0, false, 1e9, false, "kg", MASS),
+    lim("planar.n", 0.0, false, 9.0, false, "", "the simulator's fixed-size state holds 2 (3 + n) ≤ 24 values"),
+    lim("planar.s1", 0.0, false, 1e3, false, "m", RADIUS),
+    lim("planar.s2", 0.0, false, 1e3, false, "m", RADIUS),
+    lim("planar.gamma", -1e3, false, 1e3, false, "rad", ANGLE),
+    lim("planar.r", 0.0, false, 1e3, false, "m", RADIUS),
+    lim("planar.k", 0.0, true, 1e13, false, "N/m", STIFF),
+    lim("planar.c", 0.0, false, 1e12, false, "kg/s", "as support damping"),
+    lim("planar.c_psi", 0.0, false, 1e12, false, "N·m·s", "as support damping"),
+    lim("planar.c_theta", 0.0, false, 1e12, false, "N·m·s", "as support damping"),
+    lim("planar.i_g", 0.0, true, 1e12, false, "kg·m²", MOMENT),
+    // drive
+    lim("drive.omega0", -1e6, false, 1e6, false, "rad/s", SPEED),
+    lim("drive.b", -1e6, false, 1e6, false, "rad/s²", "reaches 1e6 rad/s in a second"),
+    lim("drive.torque", -1e9, false, 1e9, false, "N·m", "the largest machine torques are ~1e7 N·m"),
+    lim("drive.omega_idle", 0.0, true, 1e6, false, "rad/s", SPEED),
+    lim("drive.t_off", 0.0, false, 1e7, false, "s", TIME),
+    lim("drive.t_end", 0.0, true, 1e7, false, "s", TIME),
+    lim("drive.psi0", -1e3, false, 1e3, false, "rad", ANGLE),
+    lim("drive.psi_rate0", -1e6, false, 1e6, false, "rad/s", SPEED),
+    lim("drive.schedule", -1e9, false, 1e9, false, "s, rad/s or N·m", "times within the simulated span, speeds and torques as above"),
+    // integration
+    lim("integration.rtol", 1e-14, false, 1e-2, false, "", "below 1e-14 double precision cannot reach it; above 1e-2 the error estimate no longer controls the error"),
+    lim("integration.atol", 0.0, true, 1e-2, false, "m", "absolute tolerance on displacements; above 1 cm it controls nothing"),
+    lim("integration.dt", 0.0, true, 1e7, false, "s", "also t_end/dt ≤ 5e7 samples"),
+];
+
+/// The limit of `field`, if it has one.
+pub fn limit(field: &str) -> Option<&'static Limit> {
+    LIMITS.iter().find(|l| l.field == field)
+}
+
+impl Limit {
+    /// Whether `value` lies in the range (NaN never does).
+    pub fn contains(&self, value: f64) -> bool {
+        let above = if self.lo_open { value > self.lo } else { value >= self.lo };
+        let below = if self.hi_open { value < self.hi } else { value <= self.hi };
+        above && below
+    }
+
+    /// `(0, 1e9] kg`.
+    pub fn describe(&self) -> String {
+        format!(
+            "{}{}, {}{}{}",
+            if self.lo_open { "(" } else { "[" },
+            fmt_num(self.lo),
+            fmt_num(self.hi),
+            if self.hi_open { ")" } else { "]" },
+            if self.unit.is_empty() { String::new() } else { format!(" {}", self.unit) }
+        )
+    }
+
+    /// The error for `value` outside the range, naming `name`.
+    pub fn error(&self, name: &str, value: f64) -> Error {
+        Error::invalid(name, format!("must lie in {}, got {} ({})", self.describe(), fmt_num(value), self.why))
+    }
+}
+
+/// Check `value` against the range of `field`; the error names `field`. A field without a limit
+/// is only checked to be finite.
+pub fn check(field: &str, value: f64) -> Result<f64> {
+    check_as(field, field, value)
+}
+
+/// Check `value` against the range of `field`, naming `name` in the error (a command-line
+/// option that sets that field, e.g. `--omega-max` for `analysis.omega_max`).
+pub fn check_as(name: &str, field: &str, value: f64) -> Result<f64> {
+    match limit(field) {
+        Some(l) if !l.contains(value) => Err(l.error(name, value)),
+        Some(_) => Ok(value),
+        None => crate::error::finite(name, value),
+    }
+}
+
+/// Check a count (balls) against the range of `field`.
+pub fn check_count(field: &str, value: u64) -> Result<u64> {
+    match limit(field) {
+        Some(l) if !l.contains(value as f64) => Err(Error::TooLarge { what: field.into(), size: value, limit: l.hi as u64, reason: l.why.into() }),
+        _ => Ok(value),
+    }
+}
+
+/// Check a derived dimensionless quantity against the range of the dimensionless field
+/// `field`, blaming the SI input `name` that set it: `what` says how it follows.
+pub fn check_derived(name: &str, field: &str, value: f64, what: &str) -> Result<f64> {
+    match limit(field) {
+        Some(l) if !l.contains(value) => Err(Error::invalid(
+            name,
+            format!("{what} gives {} = {}, outside {} ({})", field.trim_start_matches("dimensionless."), fmt_num(value), l.describe(), l.why),
+        )),
+        _ => Ok(value),
+    }
+}
+
+/// The table of ranges as Markdown (docs/robustness.md shows it).
+pub fn markdown_table() -> String {
+    let mut s = String::from("| field | range | why |\n|---|---|---|\n");
+    for l in LIMITS {
+        s.push_str(&format!("| `{}` | {} | {} |\n", l.field, l.describe(), l.why));
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bounds_are_ordered_and_fields_unique() {
+        for (i, l) in LIMITS.iter().enumerate() {
+            assert!(l.lo < l.hi, "{}", l.field);
+            assert!(l.lo.is_finite() && l.hi.is_finite());
+            assert!(LIMITS[..i].iter().all(|o| o.field != l.field), "{} twice", l.field);
+            assert!(!l.contains(f64::NAN) && !l.contains(f64::INFINITY) && !l.contains(f64::NEG_INFINITY));
+            assert!(!l.contains(1e308) && !l.contains(-1e308), "{}", l.field);
+        }
+    }
+
+    #[test]
+    fn the_docs_state_these_ranges() {
+        let docs = include_str!("../../../docs/robustness.md");
+        assert!(docs.contains(&markdown_table()), "docs/robustness.md must contain limits::markdown_table() verbatim:\n{}", markdown_table());
+    }
+
+    #[test]
+    fn open_and_closed_ends() {
+        let m = limit("dimensionless.delta_a").unwrap();
+        assert!(m.contains(0.0) && !m.contains(1.0) && m.contains(0.999));
+        let k = limit("planar.k").unwrap();
+        assert!(!k.contains(0.0) && k.contains(1e13) && !k.contains(1.0000001e13));
+        assert_eq!(k.describe(), "(0, 1e13] N/m");
+        assert_eq!(
+            check("integration.rtol", 1.0).unwrap_err().to_string(),
+            "integration.rtol: must lie in [1e-14, 0.01], got 1 (below 1e-14 double precision cannot reach it; above 1e-2 the error estimate no longer controls the error)"
+        );
+        assert_eq!(check_as("--omega-max", "analysis.omega_max", 1e308).unwrap_err().field(), Some("--omega-max"));
+    }
+}
