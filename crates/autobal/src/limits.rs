@@ -161,6 +161,11 @@ pub fn check(field: &str, value: f64) -> Result<f64> {
     check_as(field, field, value)
 }
 
+/// [`check`] each `(field, value)` in turn; the first error.
+pub fn check_all(fields: &[(&str, f64)]) -> Result<()> {
+    fields.iter().try_for_each(|(f, v)| check(f, *v).map(|_| ()))
+}
+
 /// Check `value` against the range of `field`, naming `name` in the error (a command-line
 /// option that sets that field, e.g. `--omega-max` for `analysis.omega_max`).
 pub fn check_as(name: &str, field: &str, value: f64) -> Result<f64> {

@@ -9,7 +9,7 @@
 //! forced response of the locked rotor (see `ranges::antiresonance_speed`).
 
 use crate::error::{fmt_num, positive, Error, Result};
-use crate::limits::{check, check_count, check_derived};
+use crate::limits::{check, check_all, check_count, check_derived};
 use crate::spatial::inertia::{self, Anisotropy, AnisotropyMethod, BallSet};
 use serde::Serialize;
 
@@ -208,12 +208,14 @@ impl SpatialModel {
     /// `h̄yα = h̄x (2 l̄_L − 1)/(2 ρ̄s)` (same algebra as the stiffnesses).
     pub fn from_dimensionless(inp: &DimensionlessInput) -> Result<Self> {
         let p = "dimensionless";
-        check("dimensionless.c_sigma", inp.c_sigma)?;
-        check("dimensionless.rho_s", inp.rho_s)?;
-        check("dimensionless.l_left", inp.l_left)?;
-        check("dimensionless.z_a", inp.z_a)?;
-        check("dimensionless.h_x", inp.h_x)?;
-        check("dimensionless.h_s", inp.h_s)?;
+        check_all(&[
+            ("dimensionless.c_sigma", inp.c_sigma),
+            ("dimensionless.rho_s", inp.rho_s),
+            ("dimensionless.l_left", inp.l_left),
+            ("dimensionless.z_a", inp.z_a),
+            ("dimensionless.h_x", inp.h_x),
+            ("dimensionless.h_s", inp.h_s),
+        ])?;
         let (p_alpha_sq, c_y_alpha) = identical_support_coefficients(inp.l_left, inp.rho_s);
         let (anisotropy, delta_a0, masses) = match inp.anisotropy {
             AnisotropyInput::Direct(d) => {
@@ -265,9 +267,15 @@ impl SpatialModel {
     /// `C_Σ = C_r + m0 R0² + n m R²`, `c_x = c_L + c_R`, `c_α = c_L l_cL² + c_R l_cR²`,
     /// `c_yα = c_L l_cL − c_R l_cR` (and likewise for damping), `ω0 = sqrt(c_x/M_s)`.
     pub fn from_si(r: &SpatialRotorSi, method: AnisotropyMethod) -> Result<Self> {
-        check("rotor.mass", r.rotor_mass)?;
-        check("rotor.equatorial_moment", r.equatorial_moment)?;
-        check("rotor.polar_moment", r.polar_moment)?;
+        check_all(&[
+            ("rotor.mass", r.rotor_mass),
+            ("rotor.equatorial_moment", r.equatorial_moment),
+            ("rotor.polar_moment", r.polar_moment),
+            ("rotor.z", r.z_rotor),
+            ("balancer.z", r.z_balancer),
+            ("supports.z_left", r.z_left),
+            ("supports.z_right", r.z_right),
+        ])?;
         if r.polar_moment > 2.0 * r.equatorial_moment {
             return Err(Error::invalid(
                 "rotor.polar_moment",
@@ -278,10 +286,6 @@ impl SpatialModel {
                 ),
             ));
         }
-        check("rotor.z", r.z_rotor)?;
-        check("balancer.z", r.z_balancer)?;
-        check("supports.z_left", r.z_left)?;
-        check("supports.z_right", r.z_right)?;
         if r.z_right <= r.z_left {
             return Err(Error::invalid(
                 "supports.z_right",
@@ -292,16 +296,18 @@ impl SpatialModel {
                 ),
             ));
         }
-        check("supports.stiffness_left", r.stiffness_left)?;
-        check("supports.stiffness_right", r.stiffness_right)?;
-        check("supports.damping_left", r.damping_left)?;
-        check("supports.damping_right", r.damping_right)?;
-        check("unbalance.mass", r.unbalance_mass)?;
-        check("unbalance.radius", r.unbalance_radius)?;
+        check_all(&[
+            ("supports.stiffness_left", r.stiffness_left),
+            ("supports.stiffness_right", r.stiffness_right),
+            ("supports.damping_left", r.damping_left),
+            ("supports.damping_right", r.damping_right),
+            ("unbalance.mass", r.unbalance_mass),
+            ("unbalance.radius", r.unbalance_radius),
+            ("balancer.ball_mass", r.ball_mass),
+            ("balancer.race_radius", r.race_radius),
+            ("balancer.drag", r.ball_drag),
+        ])?;
         check_count("balancer.balls", r.balls as u64)?;
-        check("balancer.ball_mass", r.ball_mass)?;
-        check("balancer.race_radius", r.race_radius)?;
-        check("balancer.drag", r.ball_drag)?;
         if r.balls == 0 && r.ball_mass > 0.0 {
             return Err(Error::invalid(
                 "balancer.balls",
@@ -431,10 +437,7 @@ pub fn check_delta_a(delta_a: f64, c_sigma: f64) -> Result<()> {
 }
 
 fn validate_masses(p: &str, m: &MassSet, c_sigma: f64) -> Result<()> {
-    check(&format!("{p}.m0"), m.m0)?;
-    check(&format!("{p}.r0"), m.r0)?;
-    check(&format!("{p}.m"), m.m)?;
-    check(&format!("{p}.r"), m.r)?;
+    check_all(&[("dimensionless.m0", m.m0), ("dimensionless.r0", m.r0), ("dimensionless.m", m.m), ("dimensionless.r", m.r)])?;
     check_count(&format!("{p}.n"), m.n as u64)?;
     // the point masses' polar moment is part of C_Σ (and half of it part of A_Σ = 1)
     let polar = m.a_m0() + m.a_m();
