@@ -34,4 +34,27 @@ if ! .venv/bin/python -m pip install --quiet --disable-pip-version-check -r requ
 fi
 export AUTOBAL_PYTHON="$PWD/.venv/bin/python"
 export AUTOBAL_REQUIRE_PYTHON=1
+
+# The report's browser test: Debian's Chromium driven by playwright-core (npm, pinned in
+# crates/autobal-cli/tests/browser/package-lock.json; it never downloads a browser of its own).
+# Installed here when run as root; otherwise the test says what to install and is skipped,
+# unless AUTOBAL_REQUIRE_BROWSER or CI is set.
+browser_dir=crates/autobal-cli/tests/browser
+chromium="${AUTOBAL_CHROMIUM:-/usr/bin/chromium}"
+if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
+    missing=""
+    [ -x "$chromium" ] || missing="chromium"
+    command -v npm >/dev/null 2>&1 || missing="$missing nodejs npm"
+    if [ -n "$missing" ]; then
+        apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $missing >/dev/null
+    fi
+fi
+if command -v npm >/dev/null 2>&1; then
+    (cd "$browser_dir" && PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1 npm ci --no-audit --no-fund --loglevel=error >/dev/null)
+fi
+if [ -x "$chromium" ] && [ -d "$browser_dir/node_modules/playwright-core" ]; then
+    export AUTOBAL_REQUIRE_BROWSER=1
+else
+    echo "scripts/test.sh: the report's browser test will be skipped: it needs Chromium (sudo apt-get install chromium) and Node.js with npm (sudo apt-get install nodejs npm)" >&2
+fi
 cargo test --workspace "$@"

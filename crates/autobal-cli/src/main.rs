@@ -6,6 +6,8 @@ mod figures;
 mod linear;
 mod map;
 mod output;
+mod mapfig;
+mod num;
 mod plot;
 mod sim;
 mod report;
@@ -251,12 +253,8 @@ fn run(cli: Cli) -> Result<()> {
         Command::Simulate { config, set, dt, out, format } => run_simulate(config, set, dt, out, format),
         Command::Sweep { config, set, x, y, out, format, threads } => run_sweep(config, set, x, y, out, format, threads),
         Command::Report { common, out, quick } => {
-            let cfg = config::load(common.config.as_deref(), &common.set)?;
             let _ = ctrlc::set_handler(|| sim::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
-            let index = report::write(&cfg, &out, quick)?;
-            for w in &cfg.model.anisotropy.warnings {
-                output::note(&format!("warning: {w}"));
-            }
+            let index = report::run(common.config.as_deref(), &common.set, &out, quick)?;
             output::print(&format!("report written to {}\n", index.display()))
         }
     }

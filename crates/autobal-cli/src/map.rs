@@ -3,7 +3,6 @@
 //! computed), SVG and PNG.
 
 use crate::config::{self, Config};
-use crate::plot::{Plot, Raster, Series};
 use anyhow::{anyhow, bail, Context, Result};
 use autobal::spatial::linear_model::Balls;
 use autobal::spatial::linear_model::StateSpace;
@@ -224,147 +223,9 @@ pub fn compute(
     Ok(MapResult { x, y, rows, quantity })
 }
 
-/// Diverging colours, each side scaled by its own largest |margin| (square-root contrast):
-/// white at 0, blue for stable (Re λ < 0), red for unstable.
-fn color(c: &Cell, scale: (f64, f64), q: Quantity) -> [u8; 3] {
-    if c.margin.is_nan() || q == Quantity::Verdict {
-        return if c.stable { [168, 221, 181] } else { [244, 165, 130] };
-    }
-    let s = if c.stable { scale.0 } else { scale.1 };
-    let t = (c.margin.abs() / s).min(1.0).sqrt();
-    let lerp = |a: f64, b: f64| (a + (b - a) * t).round() as u8;
-    if c.stable {
-        [lerp(247.0, 33.0), lerp(247.0, 102.0), lerp(247.0, 172.0)]
-    } else {
-        [lerp(247.0, 178.0), lerp(247.0, 24.0), lerp(247.0, 43.0)]
-    }
-}
-
-/// Pixels (top row = largest y) and the (stable, unstable) colour scales.
-fn raster(r: &MapResult) -> (Vec<u8>, (f64, f64)) {
-    let cells = || r.rows.iter().flatten().flatten().filter(|c| c.margin.is_finite());
-    let neg = cells().filter(|c| c.stable).map(|c| c.margin.abs()).fold(1e-12, f64::max);
-    let pos = cells().filter(|c| !c.stable).map(|c| c.margin.abs()).fold(1e-12, f64::max);
-    let mut px = Vec::with_capacity(r.x.n * r.y.n * 3);
-    for j in (0..r.y.n).rev() {
-        for i in 0..r.x.n {
-            let rgb = match &r.rows[j] {
-                Some(row) => color(&row[i], (neg, pos), r.quantity),
-                None => [200, 200, 200],
-            };
-            px.extend_from_slice(&rgb);
-        }
-    }
-    (px, (neg, pos))
-}
-
-fn png_bytes(w: usize, h: usize, rgb: &[u8]) -> Result<Vec<u8>> {
-    let mut out = vec![];
-    {
-        let mut enc = png::Encoder::new(&mut out, w as u32, h as u32);
-        enc.set_color(png::ColorType::Rgb);
-        enc.set_depth(png::BitDepth::Eight);
-        let mut wr = enc.write_header()?;
-        wr.write_image_data(rgb)?;
-    }
-    Ok(out)
-}
-
-/// Cell-edge segments between cells whose `flag` differs, in data coordinates, as one series
-/// (NaN-separated).
-fn boundary(r: &MapResult, flag: impl Fn(&Cell) -> bool) -> Vec<(f64, f64)> {
-    let dx = (r.x.hi - r.x.lo) / (r.x.n - 1) as f64;
-    let dy = (r.y.hi - r.y.lo) / (r.y.n - 1) as f64;
-    let mut pts = vec![];
-    for j in 0..r.y.n {
-        let Some(row) = &r.rows[j] else { continue };
-        for i in 0..r.x.n {
-            let (x, y) = (r.x.value(i), r.y.value(j));
-            if i + 1 < r.x.n && flag(&row[i]) != flag(&row[i + 1]) {
-                pts.extend([(x + dx / 2.0, y - dy / 2.0), (x + dx / 2.0, y + dy / 2.0), (f64::NAN, f64::NAN)]);
-            }
-            if let Some(Some(up)) = r.rows.get(j + 1) {
-                if flag(&row[i]) != flag(&up[i]) {
-                    pts.extend([(x - dx / 2.0, y + dy / 2.0), (x + dx / 2.0, y + dy / 2.0), (f64::NAN, f64::NAN)]);
-                }
-            }
-        }
-    }
-    pts
-}
-
-fn label(key: &str) -> String {
-    match key {
-        "omega" => "Ω".into(),
-        k => k.to_string(),
-    }
-}
-
-/// Write `<stem>.svg` and `<stem>.png`.
+/// Write `<stem>.svg` and `<stem>.png` (drawn by `mapfig`).
 pub fn write_plots(r: &MapResult, stem: &Path, title: &str) -> Result<()> {
-    let (px, scale) = raster(r);
-    let raster_png = png_bytes(r.x.n, r.y.n, &px)?;
-    let dx = (r.x.hi - r.x.lo) / (r.x.n - 1) as f64;
-    let dy = (r.y.hi - r.y.lo) / (r.y.n - 1) as f64;
-    let xr = (r.x.lo - dx / 2.0, r.x.hi + dx / 2.0);
-    let yr = (r.y.lo - dy / 2.0, r.y.hi + dy / 2.0);
-    let stab = boundary(r, |c| c.stable);
-    let nec = boundary(r, |c| c.necessary);
-    let full_title = match r.quantity {
-        Quantity::Margin => format!("{title}: max Re λ from −{:.2e} (blue) to {:.2e} (red)", scale.0, scale.1),
-        Quantity::Verdict => format!("{title}: green stable, red unstable"),
-    };
-    let plot = Plot {
-        title: full_title.clone(),
-        x_label: label(&r.x.key),
-        y_label: label(&r.y.key),
-        series: vec![
-            Series::new("exact boundary", stab.clone(), "#000000"),
-            Series::new("003 necessary", nec.clone(), "#CC79A7").dashed(),
-        ],
-        x_range: Some(xr),
-        y_range: Some(yr),
-        raster: Some(Raster { png: raster_png }),
-        ..Default::default()
-    };
-    let svg_path = stem.with_extension("svg");
-    std::fs::write(&svg_path, plot.to_svg()).with_context(|| format!("cannot write {}", svg_path.display()))?;
-    // PNG figure with axes, by plotters (fonts from the dejavu crate, no system fonts)
-    use plotters::prelude::*;
-    let png_path = stem.with_extension("png");
-    let _ = plotters::style::register_font("sans-serif", FontStyle::Normal, dejavu::sans::regular());
-    let root = BitMapBackend::new(&png_path, (900, 700)).into_drawing_area();
-    let draw = || -> std::result::Result<(), Box<dyn std::error::Error>> {
-        root.fill(&WHITE)?;
-        let mut chart = ChartBuilder::on(&root)
-            .caption(&full_title, ("sans-serif", 18))
-            .margin(14)
-            .x_label_area_size(45)
-            .y_label_area_size(60)
-            .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)?;
-        chart.configure_mesh().disable_mesh().x_desc(label(&r.x.key)).y_desc(label(&r.y.key)).draw()?;
-        for j in 0..r.y.n {
-            for i in 0..r.x.n {
-                let k = ((r.y.n - 1 - j) * r.x.n + i) * 3;
-                let (x, y) = (r.x.value(i), r.y.value(j));
-                chart.draw_series(std::iter::once(Rectangle::new(
-                    [(x - dx / 2.0, y - dy / 2.0), (x + dx / 2.0, y + dy / 2.0)],
-                    RGBColor(px[k], px[k + 1], px[k + 2]).filled(),
-                )))?;
-            }
-        }
-        for (pts, col) in [(&stab, BLACK), (&nec, RGBColor(204, 121, 167))] {
-            for seg in pts.split(|p| p.0.is_nan()) {
-                if seg.len() == 2 {
-                    chart.draw_series(LineSeries::new(seg.iter().copied(), col.stroke_width(2)))?;
-                }
-            }
-        }
-        root.present()?;
-        Ok(())
-    };
-    draw().map_err(|e| anyhow!("cannot write {}: {e}", png_path.display()))?;
-    Ok(())
+    crate::mapfig::write_plots(r, stem, title)
 }
 
 #[cfg(test)]

@@ -1,6 +1,14 @@
-//! A small SVG line-plot writer: axes with round ticks, polylines (NaN breaks a line), shaded
-//! intervals, vertical markers and a legend. No fonts are embedded; the browser renders text.
+//! Figures: one description ([`Plot`]) drawn three ways.
+//!
+//! - [`Plot::to_svg`]: a static SVG of our own (axes with round ticks, a legend sized to its
+//!   labels so it never clips, a colour bar beside a heatmap, vertical markers whose labels
+//!   step down when they would overlap, an optional second speed axis on top, e.g. rpm);
+//! - [`Plot::to_png`]: that SVG rasterised by `resvg` with the DejaVu fonts compiled in (no
+//!   system fonts), so the PNG is as complete as the SVG;
+//! - [`Plot::to_plotly`]: the figure as Plotly JSON (data and layout), which the HTML report
+//!   embeds and draws interactively (zoom, hover values, curves toggled in the legend).
 
+use serde_json::{json, Value};
 use std::fmt::Write;
 
 /// Colours of successive series (colour-blind-safe palette of Okabe and Ito).
@@ -9,18 +17,39 @@ pub const PALETTE: [&str; 8] = ["#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E6
 /// One curve.
 #[derive(Debug, Clone)]
 pub struct Series {
+    /// Legend text; empty: not in the legend (a further branch of the group above it).
     pub label: String,
+    /// Points; a NaN coordinate breaks the line.
     pub points: Vec<(f64, f64)>,
     pub color: String,
     pub dashed: bool,
+    /// Curves of one group share one legend entry and are toggled together.
+    pub group: Option<String>,
+    /// Draw markers instead of a line.
+    pub markers: bool,
+    /// Line width in px (default 2).
+    pub width: Option<f64>,
 }
 
 impl Series {
     pub fn new(label: impl Into<String>, points: Vec<(f64, f64)>, color: &str) -> Self {
-        Series { label: label.into(), points, color: color.to_string(), dashed: false }
+        Series { label: label.into(), points, color: color.to_string(), dashed: false, group: None, markers: false, width: None }
     }
     pub fn dashed(mut self) -> Self {
         self.dashed = true;
+        self
+    }
+    /// Put the curve in a legend group (one entry, toggled together).
+    pub fn group(mut self, g: impl Into<String>) -> Self {
+        self.group = Some(g.into());
+        self
+    }
+    pub fn markers(mut self) -> Self {
+        self.markers = true;
+        self
+    }
+    pub fn width(mut self, w: f64) -> Self {
+        self.width = Some(w);
         self
     }
 }
@@ -33,14 +62,159 @@ pub struct Shade {
     pub color: String,
 }
 
-/// A raster image (PNG bytes) filling the whole plot area, drawn under everything else: the
-/// heatmap of a map, whose cells then line up with the axis ranges.
-#[derive(Debug, Clone)]
-pub struct Raster {
-    pub png: Vec<u8>,
+/// How heatmap values map to colours.
+#[derive(Debug, Clone, Copy)]
+pub enum ColorScale {
+    /// Diverging about zero: blue for negative values down to `-neg`, red for positive up to
+    /// `pos`, each side with square-root contrast (small margins near the boundary stay
+    /// visible), white at zero.
+    Diverging { neg: f64, pos: f64 },
+    /// Two classes: negative values "stable" (green), positive "unstable" (red).
+    Verdict,
 }
 
-/// Standard base64 (RFC 4648, with padding), for embedding the raster in the SVG.
+/// A heatmap filling the plot area: `z[j][i]` at `(x[i], y[j])` on an even grid; NaN cells
+/// (not computed) are grey.
+#[derive(Debug, Clone)]
+pub struct Heatmap {
+    pub x: Vec<f64>,
+    pub y: Vec<f64>,
+    pub z: Vec<Vec<f64>>,
+    pub scale: ColorScale,
+    /// Title of the colour bar, e.g. "max Re λ".
+    pub label: String,
+}
+
+/// A second horizontal axis along the top: the bottom axis times `factor` (e.g. rpm over rad/s).
+#[derive(Debug, Clone)]
+pub struct SecondAxis {
+    pub factor: f64,
+    pub label: String,
+}
+
+/// A figure.
+#[derive(Debug, Clone, Default)]
+pub struct Plot {
+    pub title: String,
+    pub x_label: String,
+    pub y_label: String,
+    pub series: Vec<Series>,
+    pub shades: Vec<Shade>,
+    /// Vertical markers with a label.
+    pub vlines: Vec<(f64, String)>,
+    pub x_range: Option<(f64, f64)>,
+    pub y_range: Option<(f64, f64)>,
+    /// Label of the shaded areas in the legend.
+    pub shade_label: Option<String>,
+    /// Legend entries of shaded areas by colour `(colour, label)`, when they are of several kinds.
+    pub shade_legend: Vec<(String, String)>,
+    /// Heatmap under the plot area.
+    pub heatmap: Option<Heatmap>,
+    /// Second speed axis on top.
+    pub x2: Option<SecondAxis>,
+    /// Named ticks of the vertical axis (rows of a diagram) instead of numbers.
+    pub y_ticks: Option<Vec<(f64, String)>>,
+}
+
+const PW: f64 = 540.0;
+const PH: f64 = 340.0;
+const ML: f64 = 74.0;
+const MB: f64 = 58.0;
+const FONT: f64 = 13.0;
+/// Average advance of DejaVu Sans at 13 px, generous, for sizing the legend.
+const CHAR_W: f64 = 7.9;
+const COLORBAR_W: f64 = 96.0;
+
+/// Round tick positions covering `[lo, hi]`, about `target` of them.
+pub fn ticks(lo: f64, hi: f64, target: usize) -> Vec<f64> {
+    if !matches!(hi.partial_cmp(&lo), Some(std::cmp::Ordering::Greater)) {
+        return vec![lo];
+    }
+    let raw = (hi - lo) / target as f64;
+    let mag = 10f64.powf(raw.log10().floor());
+    let step = [1.0, 2.0, 2.5, 5.0, 10.0].iter().map(|m| m * mag).find(|s| *s >= raw).unwrap_or(10.0 * mag);
+    let start = (lo / step).ceil() as i64;
+    let end = (hi / step).floor() as i64;
+    (start..=end).map(|i| i as f64 * step).collect()
+}
+
+fn fmt_tick(v: f64) -> String {
+    crate::num::fmt(v, 6)
+}
+
+fn esc(s: &str) -> String {
+    pesc(s).replace('"', "&quot;")
+}
+
+/// Escape for Plotly's text, which reads a little HTML (`<br>`, entities).
+fn pesc(s: &str) -> String {
+    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")
+}
+
+fn text_width(s: &str) -> f64 {
+    // combining marks (the papers' bars: Ā) take no room
+    s.chars().filter(|c| !('\u{0300}'..='\u{036F}').contains(c)).count() as f64 * CHAR_W
+}
+
+/// Colour of a heatmap value.
+pub fn heat_color(v: f64, scale: ColorScale) -> [u8; 3] {
+    if !v.is_finite() {
+        return [200, 200, 200];
+    }
+    match scale {
+        ColorScale::Verdict => {
+            if v <= 0.0 {
+                [168, 221, 181]
+            } else {
+                [244, 165, 130]
+            }
+        }
+        ColorScale::Diverging { neg, pos } => {
+            let t = diverging_t(v, neg, pos).abs();
+            let lerp = |a: f64, b: f64| (a + (b - a) * t).round() as u8;
+            if v < 0.0 {
+                [lerp(247.0, 33.0), lerp(247.0, 102.0), lerp(247.0, 172.0)]
+            } else {
+                [lerp(247.0, 178.0), lerp(247.0, 24.0), lerp(247.0, 43.0)]
+            }
+        }
+    }
+}
+
+/// Position on the diverging colour scale, −1 (most negative) … 1: signed square root of the
+/// value over its side's extent.
+fn diverging_t(v: f64, neg: f64, pos: f64) -> f64 {
+    let side = if v < 0.0 { neg } else { pos }.max(1e-300);
+    v.signum() * (v.abs() / side).min(1.0).sqrt()
+}
+
+/// Ticks of a colour bar: (position −1…1, value).
+fn colorbar_ticks(scale: ColorScale) -> Vec<(f64, String)> {
+    match scale {
+        ColorScale::Verdict => vec![(-0.5, "stable".into()), (0.5, "unstable".into())],
+        ColorScale::Diverging { neg, pos } => [-1.0, -0.5, 0.0, 0.5, 1.0]
+            .iter()
+            .map(|&t: &f64| {
+                let side = if t < 0.0 { neg } else { pos };
+                (t, if t == 0.0 { "0".to_string() } else { crate::num::fmt(t.signum() * t * t * side, 2) })
+            })
+            .collect(),
+    }
+}
+
+fn png_bytes(w: usize, h: usize, rgb: &[u8]) -> Result<Vec<u8>, png::EncodingError> {
+    let mut out = vec![];
+    {
+        let mut enc = png::Encoder::new(&mut out, w as u32, h as u32);
+        enc.set_color(png::ColorType::Rgb);
+        enc.set_depth(png::BitDepth::Eight);
+        let mut wr = enc.write_header()?;
+        wr.write_image_data(rgb)?;
+    }
+    Ok(out)
+}
+
+/// Standard base64 (RFC 4648, with padding), for embedding rasters in the SVG.
 pub fn base64(data: &[u8]) -> String {
     const T: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     let mut s = String::with_capacity(data.len().div_ceil(3) * 4);
@@ -58,63 +232,43 @@ pub fn base64(data: &[u8]) -> String {
     s
 }
 
-/// A figure.
-#[derive(Debug, Clone, Default)]
-pub struct Plot {
-    pub title: String,
-    pub x_label: String,
-    pub y_label: String,
-    pub series: Vec<Series>,
-    pub shades: Vec<Shade>,
-    /// Vertical markers with a label.
-    pub vlines: Vec<(f64, String)>,
-    pub x_range: Option<(f64, f64)>,
-    pub y_range: Option<(f64, f64)>,
-    /// Label of the shaded areas in the legend.
-    pub shade_label: Option<String>,
-    /// Heatmap under the plot area.
-    pub raster: Option<Raster>,
+/// Rows of staggered labels: a label moves down a row while it would overlap the previous
+/// one in the same row (`min_gap` in the same units as `xs`).
+fn stagger(xs: &[f64], min_gap: f64) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..xs.len()).collect();
+    order.sort_by(|&a, &b| xs[a].total_cmp(&xs[b]));
+    let mut last: Vec<f64> = vec![];
+    let mut rows = vec![0; xs.len()];
+    for i in order {
+        let row = last.iter().position(|&l| xs[i] - l >= min_gap).unwrap_or(last.len());
+        if row == last.len() {
+            last.push(xs[i]);
+        } else {
+            last[row] = xs[i];
+        }
+        rows[i] = row;
+    }
+    rows
 }
 
-const W: f64 = 720.0;
-const H: f64 = 440.0;
-const ML: f64 = 70.0;
-const MR: f64 = 190.0;
-const MT: f64 = 40.0;
-const MB: f64 = 55.0;
-
-/// Round tick positions covering `[lo, hi]`, about `target` of them.
-pub fn ticks(lo: f64, hi: f64, target: usize) -> Vec<f64> {
-    if !(hi > lo) {
-        return vec![lo];
+/// Legend entries: (label, colour, dashed, markers, is a shade).
+fn legend_entries(p: &Plot) -> Vec<(String, String, bool, bool, bool)> {
+    let mut out: Vec<(String, String, bool, bool, bool)> =
+        p.series.iter().filter(|s| !s.label.is_empty()).map(|s| (s.label.clone(), s.color.clone(), s.dashed, s.markers, false)).collect();
+    if let (Some(label), Some(sh)) = (&p.shade_label, p.shades.first()) {
+        out.push((label.clone(), sh.color.clone(), false, false, true));
     }
-    let raw = (hi - lo) / target as f64;
-    let mag = 10f64.powf(raw.log10().floor());
-    let step = [1.0, 2.0, 2.5, 5.0, 10.0].iter().map(|m| m * mag).find(|s| *s >= raw).unwrap_or(10.0 * mag);
-    let start = (lo / step).ceil() as i64;
-    let end = (hi / step).floor() as i64;
-    (start..=end).map(|i| i as f64 * step).collect()
-}
-
-fn fmt_tick(v: f64) -> String {
-    if v == 0.0 {
-        return "0".into();
+    for (color, label) in &p.shade_legend {
+        if p.shades.iter().any(|s| &s.color == color) {
+            out.push((label.clone(), color.clone(), false, false, true));
+        }
     }
-    let a = v.abs();
-    if !(1e-3..1e5).contains(&a) {
-        format!("{v:.1e}")
-    } else {
-        let s = format!("{v:.4}");
-        s.trim_end_matches('0').trim_end_matches('.').to_string()
-    }
-}
-
-fn esc(s: &str) -> String {
-    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")
+    out
 }
 
 impl Plot {
-    fn data_range(&self) -> ((f64, f64), (f64, f64)) {
+    /// The axis ranges: the configured ones, else the data's (y with 5 % headroom).
+    pub fn ranges(&self) -> ((f64, f64), (f64, f64)) {
         let pts = self.series.iter().flat_map(|s| s.points.iter()).filter(|p| p.0.is_finite() && p.1.is_finite());
         let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
         for &(x, y) in pts {
@@ -123,45 +277,92 @@ impl Plot {
             y0 = y0.min(y);
             y1 = y1.max(y);
         }
+        if let Some(h) = &self.heatmap {
+            let half = |v: &[f64]| if v.len() > 1 { (v[1] - v[0]).abs() / 2.0 } else { 0.5 };
+            if let (Some(a), Some(b)) = (h.x.first(), h.x.last()) {
+                x0 = x0.min(a - half(&h.x));
+                x1 = x1.max(b + half(&h.x));
+            }
+            if let (Some(a), Some(b)) = (h.y.first(), h.y.last()) {
+                y0 = y0.min(a - half(&h.y));
+                y1 = y1.max(b + half(&h.y));
+            }
+        }
         if !x0.is_finite() {
             (x0, x1) = (0.0, 1.0);
         }
         if !y0.is_finite() {
             (y0, y1) = (0.0, 1.0);
         }
+        if x1 - x0 < 1e-12 {
+            x0 -= 0.5;
+            x1 += 0.5;
+        }
         if y1 - y0 < 1e-12 {
             y0 -= 0.5;
             y1 += 0.5;
         }
-        let xr = self.x_range.unwrap_or((x0, x1));
-        let yr = self.y_range.unwrap_or((y0, y1 + 0.05 * (y1 - y0)));
-        (xr, yr)
+        let head = if self.heatmap.is_some() { 0.0 } else { 0.05 * (y1 - y0) };
+        (self.x_range.unwrap_or((x0, x1)), self.y_range.unwrap_or((y0, y1 + head)))
+    }
+
+    fn heat_png(h: &Heatmap) -> Option<Vec<u8>> {
+        let (nx, ny) = (h.x.len(), h.y.len());
+        if nx == 0 || ny == 0 || h.z.len() != ny || h.z.iter().any(|r| r.len() != nx) {
+            return None;
+        }
+        let mut px = Vec::with_capacity(nx * ny * 3);
+        for j in (0..ny).rev() {
+            for i in 0..nx {
+                px.extend_from_slice(&heat_color(h.z[j][i], h.scale));
+            }
+        }
+        png_bytes(nx, ny, &px).ok()
     }
 
     /// Render to an SVG document.
     pub fn to_svg(&self) -> String {
-        let ((x0, x1), (y0, y1)) = self.data_range();
-        let pw = W - ML - MR;
-        let ph = H - MT - MB;
-        let sx = |x: f64| ML + (x - x0) / (x1 - x0) * pw;
-        let sy = |y: f64| MT + (1.0 - (y - y0) / (y1 - y0)) * ph;
+        let ((x0, x1), (y0, y1)) = self.ranges();
+        // left margin: room for named row ticks
+        let ml = self.y_ticks.as_ref().map_or(ML, |v| ML.max(v.iter().map(|t| text_width(&t.1)).fold(0.0, f64::max) + 40.0));
+        let legend = legend_entries(self);
+        let legend_w = legend.iter().map(|e| text_width(&e.0)).fold(0.0, f64::max);
+        let legend_w = if legend.is_empty() { 0.0 } else { legend_w + 48.0 };
+        let cb_w = if self.heatmap.is_some() { COLORBAR_W } else { 0.0 };
+        let mt = if self.x2.is_some() { 78.0 } else { 44.0 };
+        let w = (ml + PW + 16.0 + cb_w + legend_w).ceil();
+        // title: wrapped to the width
+        let max_chars = ((w - 20.0) / 8.6).max(20.0) as usize;
+        let title_lines = wrap(&self.title, max_chars);
+        let mt = mt + 18.0 * (title_lines.len().saturating_sub(1)) as f64;
+        let legend_h = 24.0 * legend.len() as f64 + 8.0;
+        let h = (mt + PH.max(legend_h) + MB).ceil();
+        let sx = |x: f64| ml + (x - x0) / (x1 - x0) * PW;
+        let sy = |y: f64| mt + (1.0 - (y - y0) / (y1 - y0)) * PH;
         let mut s = String::new();
-        let _ = write!(
+        let _ = writeln!(
             s,
-            r#"<svg xmlns="http://www.w3.org/2000/svg" width="{W}" height="{H}" viewBox="0 0 {W} {H}" font-family="DejaVu Sans, Arial, sans-serif" font-size="12">
+            r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="DejaVu Sans, Verdana, sans-serif" font-size="{FONT}">
 <rect width="100%" height="100%" fill="white"/>
-<defs><clipPath id="plotarea"><rect x="{ML}" y="{MT}" width="{pw}" height="{ph}"/></clipPath></defs>
-<text x="{}" y="22" text-anchor="middle" font-size="{}" font-weight="bold">{}</text>
-"#,
-            ML + pw / 2.0,
-            if self.title.chars().count() > 60 { 11 } else { 14 },
-            esc(&self.title)
+<defs><clipPath id="plotarea"><rect x="{ml}" y="{mt}" width="{PW}" height="{PH}"/></clipPath></defs>"#
         );
-        if let Some(r) = &self.raster {
+        for (k, line) in title_lines.iter().enumerate() {
+            let _ = writeln!(s, r#"<text x="{}" y="{}" text-anchor="middle" font-size="15" font-weight="bold">{}</text>"#, w / 2.0, 22.0 + 18.0 * k as f64, esc(line));
+        }
+        if let Some(png) = self.heatmap.as_ref().and_then(Self::heat_png) {
+            let h = self.heatmap.as_ref().expect("heatmap present");
+            // the raster's cells centred on the grid values
+            let half = |v: &[f64]| if v.len() > 1 { (v[1] - v[0]).abs() / 2.0 } else { 0.5 };
+            let (ha, hb) = (h.x[0] - half(&h.x), h.x[h.x.len() - 1] + half(&h.x));
+            let (va, vb) = (h.y[0] - half(&h.y), h.y[h.y.len() - 1] + half(&h.y));
             let _ = writeln!(
                 s,
-                r#"<image x="{ML}" y="{MT}" width="{pw}" height="{ph}" preserveAspectRatio="none" style="image-rendering:pixelated" href="data:image/png;base64,{}"/>"#,
-                base64(&r.png)
+                r#"<g clip-path="url(#plotarea)"><image x="{:.2}" y="{:.2}" width="{:.2}" height="{:.2}" preserveAspectRatio="none" image-rendering="optimizeSpeed" style="image-rendering:pixelated" href="data:image/png;base64,{}"/></g>"#,
+                sx(ha),
+                sy(vb),
+                sx(hb) - sx(ha),
+                sy(va) - sy(vb),
+                base64(&png)
             );
         }
         s.push_str("<g clip-path=\"url(#plotarea)\">\n");
@@ -173,7 +374,7 @@ impl Plot {
             let (xa, xb) = (sx(sh.x.0.max(x0)), sx(sh.x.1.min(x1)));
             let _ = writeln!(
                 s,
-                r#"<rect x="{:.2}" y="{:.2}" width="{:.2}" height="{:.2}" fill="{}" fill-opacity="0.35"/>"#,
+                r#"<rect x="{:.2}" y="{:.2}" width="{:.2}" height="{:.2}" fill="{}" fill-opacity="0.3"/>"#,
                 xa,
                 sy(yb),
                 (xb - xa).max(0.0),
@@ -183,64 +384,84 @@ impl Plot {
         }
         s.push_str("</g>\n");
         // grid and ticks
-        for t in ticks(x0, x1, 8) {
+        let grid = if self.heatmap.is_some() { "none" } else { "#e3e3e3" };
+        for t in ticks(x0, x1, 7) {
             let _ = writeln!(
                 s,
-                r##"<line x1="{0:.2}" y1="{1}" x2="{0:.2}" y2="{2}" stroke="#e0e0e0"/><text x="{0:.2}" y="{3}" text-anchor="middle">{4}</text>"##,
+                r##"<line x1="{0:.2}" y1="{1}" x2="{0:.2}" y2="{2}" stroke="{grid}"/><line x1="{0:.2}" y1="{2}" x2="{0:.2}" y2="{3}" stroke="#333"/><text x="{0:.2}" y="{4}" text-anchor="middle">{5}</text>"##,
                 sx(t),
-                MT,
-                MT + ph,
-                MT + ph + 16.0,
+                mt,
+                mt + PH,
+                mt + PH + 5.0,
+                mt + PH + 19.0,
                 fmt_tick(t)
             );
         }
-        for t in ticks(y0, y1, 7) {
+        let yt: Vec<(f64, String)> = match &self.y_ticks {
+            Some(v) => v.iter().filter(|t| t.0 >= y0 && t.0 <= y1).cloned().collect(),
+            None => ticks(y0, y1, 6).into_iter().map(|t| (t, fmt_tick(t))).collect(),
+        };
+        for (t, label) in yt {
             let _ = writeln!(
                 s,
-                r##"<line x1="{1}" y1="{0:.2}" x2="{2}" y2="{0:.2}" stroke="#e0e0e0"/><text x="{3}" y="{4:.2}" text-anchor="end">{5}</text>"##,
+                r##"<line x1="{1}" y1="{0:.2}" x2="{2}" y2="{0:.2}" stroke="{grid}"/><line x1="{3}" y1="{0:.2}" x2="{1}" y2="{0:.2}" stroke="#333"/><text x="{4}" y="{5:.2}" text-anchor="end">{6}</text>"##,
                 sy(t),
-                ML,
-                ML + pw,
-                ML - 6.0,
-                sy(t) + 4.0,
-                fmt_tick(t)
+                ml,
+                ml + PW,
+                ml - 5.0,
+                ml - 8.0,
+                sy(t) + 4.5,
+                esc(&label)
             );
         }
-        if y0 < 0.0 && y1 > 0.0 {
-            let _ = writeln!(s, r##"<line x1="{ML}" y1="{0:.2}" x2="{1}" y2="{0:.2}" stroke="#555"/>"##, sy(0.0), ML + pw);
-        }
-        let _ = writeln!(s, r##"<rect x="{ML}" y="{MT}" width="{pw}" height="{ph}" fill="none" stroke="#333"/>"##);
-        let _ = writeln!(s, r#"<text x="{}" y="{}" text-anchor="middle">{}</text>"#, ML + pw / 2.0, H - 12.0, esc(&self.x_label));
-        let _ = writeln!(
-            s,
-            r#"<text x="16" y="{0}" text-anchor="middle" transform="rotate(-90 16 {0})">{1}</text>"#,
-            MT + ph / 2.0,
-            esc(&self.y_label)
-        );
-        s.push_str("<g clip-path=\"url(#plotarea)\" fill=\"none\" stroke-width=\"1.8\">\n");
-        for (x, label) in &self.vlines {
-            if *x >= x0 && *x <= x1 {
+        if let Some(a) = &self.x2 {
+            for t in ticks(x0 * a.factor, x1 * a.factor, 7) {
+                let x = sx(t / a.factor);
                 let _ = writeln!(
                     s,
-                    r##"<line x1="{0:.2}" y1="{1}" x2="{0:.2}" y2="{2}" stroke="#777" stroke-dasharray="2 3" stroke-width="1"/><text x="{3:.2}" y="{4}" fill="#555" stroke="none" font-size="10">{5}</text>"##,
-                    sx(*x),
-                    MT,
-                    MT + ph,
-                    sx(*x) + 3.0,
-                    MT + 12.0,
-                    esc(label)
+                    r##"<line x1="{x:.2}" y1="{mt}" x2="{x:.2}" y2="{}" stroke="#333"/><text x="{x:.2}" y="{}" text-anchor="middle">{}</text>"##,
+                    mt - 5.0,
+                    mt - 9.0,
+                    fmt_tick(t)
                 );
             }
+            let _ = writeln!(s, r#"<text x="{}" y="{}" text-anchor="middle">{}</text>"#, ml + PW / 2.0, mt - 28.0, esc(&a.label));
+        }
+        if y0 < 0.0 && y1 > 0.0 && self.heatmap.is_none() {
+            let _ = writeln!(s, r##"<line x1="{ml}" y1="{0:.2}" x2="{1}" y2="{0:.2}" stroke="#666"/>"##, sy(0.0), ml + PW);
+        }
+        let _ = writeln!(s, r##"<rect x="{ml}" y="{mt}" width="{PW}" height="{PH}" fill="none" stroke="#333"/>"##);
+        let _ = writeln!(s, r#"<text x="{}" y="{}" text-anchor="middle">{}</text>"#, ml + PW / 2.0, mt + PH + 42.0, esc(&self.x_label));
+        let _ = writeln!(s, r#"<text x="18" y="{0}" text-anchor="middle" transform="rotate(-90 18 {0})">{1}</text>"#, mt + PH / 2.0, esc(&self.y_label));
+        s.push_str("<g clip-path=\"url(#plotarea)\" fill=\"none\" stroke-width=\"2\">\n");
+        let vis: Vec<&(f64, String)> = self.vlines.iter().filter(|(x, _)| *x >= x0 && *x <= x1).collect();
+        let rows = stagger(&vis.iter().map(|v| sx(v.0)).collect::<Vec<_>>(), 30.0);
+        for ((x, label), row) in vis.iter().zip(rows) {
+            let _ = writeln!(
+                s,
+                r##"<line x1="{0:.2}" y1="{1}" x2="{0:.2}" y2="{2}" stroke="#666" stroke-dasharray="2 3" stroke-width="1"/><text x="{3:.2}" y="{4}" fill="#444" stroke="none" font-size="11">{5}</text>"##,
+                sx(*x),
+                mt,
+                mt + PH,
+                sx(*x) + 3.0,
+                mt + 13.0 + 13.0 * row as f64,
+                esc(label)
+            );
         }
         for se in &self.series {
-            let dash = if se.dashed { r#" stroke-dasharray="6 4""# } else { "" };
+            let dash = if se.dashed { r#" stroke-dasharray="7 4""# } else { "" };
             let mut seg: Vec<String> = vec![];
             let flush = |seg: &mut Vec<String>, s: &mut String| {
-                if seg.len() >= 2 {
-                    let _ = writeln!(s, r#"<polyline points="{}" stroke="{}"{dash}/>"#, seg.join(" "), se.color);
+                if se.markers {
+                    for p in seg.iter() {
+                        let (x, y) = p.split_once(',').unwrap_or(("0", "0"));
+                        let _ = writeln!(s, r#"<circle cx="{x}" cy="{y}" r="3.5" fill="{}" stroke="none"/>"#, se.color);
+                    }
+                } else if seg.len() >= 2 {
+                    let _ = writeln!(s, r#"<polyline points="{}" stroke="{}" stroke-width="{}"{dash}/>"#, seg.join(" "), se.color, se.width.unwrap_or(2.0));
                 } else if seg.len() == 1 {
-                    let xy: Vec<&str> = seg[0].split(',').collect();
-                    let _ = writeln!(s, r#"<circle cx="{}" cy="{}" r="2" fill="{}" stroke="none"/>"#, xy[0], xy[1], se.color);
+                    let (x, y) = seg[0].split_once(',').unwrap_or(("0", "0"));
+                    let _ = writeln!(s, r#"<circle cx="{x}" cy="{y}" r="2" fill="{}" stroke="none"/>"#, se.color);
                 }
                 seg.clear();
             };
@@ -248,7 +469,8 @@ impl Plot {
                 if x.is_finite() && y.is_finite() {
                     // keep far-off points finite in SVG while the clip path hides them
                     let py = sy(y).clamp(-1e4, 1e4);
-                    seg.push(format!("{:.2},{:.2}", sx(x), py));
+                    let px = sx(x).clamp(-1e4, 1e4);
+                    seg.push(format!("{px:.2},{py:.2}"));
                 } else {
                     flush(&mut seg, &mut s);
                 }
@@ -256,39 +478,270 @@ impl Plot {
             flush(&mut seg, &mut s);
         }
         s.push_str("</g>\n");
-        // legend
-        let lx = ML + pw + 12.0;
-        let mut ly = MT + 8.0;
-        for se in &self.series {
-            if se.label.is_empty() {
-                continue;
+        // colour bar
+        let mut lx = ml + PW + 16.0;
+        if let Some(hm) = &self.heatmap {
+            let (bx, bw) = (lx + 4.0, 16.0);
+            let n = 64;
+            let mut px = Vec::with_capacity(n * 3);
+            for k in (0..n).rev() {
+                let t = -1.0 + 2.0 * (k as f64 + 0.5) / n as f64;
+                let v = match hm.scale {
+                    ColorScale::Verdict => t,
+                    ColorScale::Diverging { neg, pos } => t.signum() * t * t * if t < 0.0 { neg } else { pos },
+                };
+                px.extend_from_slice(&heat_color(v, hm.scale));
             }
-            let dash = if se.dashed { r#" stroke-dasharray="6 4""# } else { "" };
+            if let Ok(png) = png_bytes(1, n, &px) {
+                let _ = writeln!(
+                    s,
+                    r##"<image x="{bx}" y="{mt}" width="{bw}" height="{PH}" preserveAspectRatio="none" href="data:image/png;base64,{}"/><rect x="{bx}" y="{mt}" width="{bw}" height="{PH}" fill="none" stroke="#333"/>"##,
+                    base64(&png)
+                );
+            }
+            for (t, label) in colorbar_ticks(hm.scale) {
+                let y = mt + (1.0 - (t + 1.0) / 2.0) * PH;
+                let _ = writeln!(
+                    s,
+                    r##"<line x1="{}" y1="{y:.2}" x2="{}" y2="{y:.2}" stroke="#333"/><text x="{}" y="{:.2}" font-size="12">{}</text>"##,
+                    bx + bw,
+                    bx + bw + 4.0,
+                    bx + bw + 6.0,
+                    y + 4.0,
+                    esc(&label)
+                );
+            }
             let _ = writeln!(
                 s,
-                r#"<line x1="{lx}" y1="{ly}" x2="{}" y2="{ly}" stroke="{}" stroke-width="2"{dash}/><text x="{}" y="{}">{}</text>"#,
-                lx + 24.0,
-                se.color,
-                lx + 30.0,
-                ly + 4.0,
-                esc(&se.label)
+                r#"<text x="{0}" y="{1}" text-anchor="middle" font-size="12" transform="rotate(-90 {0} {1})">{2}</text>"#,
+                bx - 6.0,
+                mt + PH / 2.0,
+                esc(&hm.label)
             );
-            ly += 18.0;
+            lx += cb_w;
         }
-        if let (Some(label), Some(sh)) = (&self.shade_label, self.shades.first()) {
-            let _ = writeln!(
-                s,
-                r#"<rect x="{lx}" y="{}" width="24" height="10" fill="{}" fill-opacity="0.35"/><text x="{}" y="{}">{}</text>"#,
-                ly - 5.0,
-                sh.color,
-                lx + 30.0,
-                ly + 4.0,
-                esc(label)
-            );
+        // legend
+        let mut ly = mt + 10.0;
+        for (label, color, dashed, markers, shade) in legend {
+            if shade {
+                let _ = writeln!(s, r#"<rect x="{lx}" y="{}" width="30" height="12" fill="{color}" fill-opacity="0.3"/>"#, ly - 6.0);
+            } else if markers {
+                let _ = writeln!(s, r#"<circle cx="{}" cy="{ly}" r="3.5" fill="{color}"/>"#, lx + 15.0);
+            } else {
+                let dash = if dashed { r#" stroke-dasharray="7 4""# } else { "" };
+                let _ = writeln!(s, r#"<line x1="{lx}" y1="{ly}" x2="{}" y2="{ly}" stroke="{color}" stroke-width="2.5"{dash}/>"#, lx + 30.0);
+            }
+            let _ = writeln!(s, r#"<text x="{}" y="{}">{}</text>"#, lx + 38.0, ly + 4.5, esc(&label));
+            ly += 24.0;
         }
         s.push_str("</svg>\n");
         s
     }
+
+    /// Rasterise [`Plot::to_svg`] at `scale` (2 gives a sharp 150 dpi-like image), with the
+    /// DejaVu fonts compiled into the binary.
+    pub fn to_png(&self, scale: f32) -> anyhow::Result<Vec<u8>> {
+        svg_to_png(&self.to_svg(), scale)
+    }
+
+    /// The figure as Plotly JSON `{data, layout}` for the interactive report. Values are
+    /// rounded to 6 significant digits; NaN becomes null (a gap in the line).
+    pub fn to_plotly(&self) -> Value {
+        use crate::num::round_sig;
+        let r = |v: f64| round_sig(v, 6);
+        let ((x0, x1), (y0, y1)) = self.ranges();
+        let mut data = vec![];
+        if let Some(h) = &self.heatmap {
+            let t: Vec<Vec<Option<f64>>> = h
+                .z
+                .iter()
+                .map(|row| {
+                    row.iter()
+                        .map(|&v| {
+                            if !v.is_finite() {
+                                return None;
+                            }
+                            round_sig(
+                                match h.scale {
+                                    ColorScale::Verdict => v.signum() * 0.5,
+                                    ColorScale::Diverging { neg, pos } => diverging_t(v, neg, pos),
+                                },
+                                4,
+                            )
+                        })
+                        .collect()
+                })
+                .collect();
+            let raw: Vec<Vec<Option<f64>>> = h.z.iter().map(|row| row.iter().map(|&v| round_sig(v, 4)).collect()).collect();
+            let rgb = |v: f64| {
+                let c = heat_color(v, h.scale);
+                format!("rgb({},{},{})", c[0], c[1], c[2])
+            };
+            let (colorscale, hover) = match h.scale {
+                ColorScale::Verdict => (
+                    json!([[0.0, rgb(-1.0)], [0.5, rgb(-1.0)], [0.5, rgb(1.0)], [1.0, rgb(1.0)]]),
+                    format!("{}: %{{customdata:.0f}}", pesc(&h.label)),
+                ),
+                ColorScale::Diverging { neg, pos } => {
+                    let stops: Vec<Value> = (0..=20)
+                        .map(|k| {
+                            let t = -1.0 + k as f64 / 10.0;
+                            let v = t.signum() * t * t * if t < 0.0 { neg } else { pos };
+                            json!([k as f64 / 20.0, rgb(if t == 0.0 { 0.0 } else { v })])
+                        })
+                        .collect();
+                    (Value::Array(stops), format!("{} = %{{customdata:.3e}}", pesc(&h.label)))
+                }
+            };
+            let cb = colorbar_ticks(h.scale);
+            data.push(json!({
+                "type": "heatmap",
+                "name": h.label,
+                "x": h.x.iter().map(|&v| r(v)).collect::<Vec<_>>(),
+                "y": h.y.iter().map(|&v| r(v)).collect::<Vec<_>>(),
+                "z": t,
+                "customdata": raw,
+                "zmin": -1.0, "zmax": 1.0,
+                "colorscale": colorscale,
+                "showlegend": false,
+                "hoverongaps": false,
+                "hovertemplate": format!("{} = %{{x:.4g}}<br>{} = %{{y:.4g}}<br>{hover}<extra></extra>", pesc(&self.x_label), pesc(&self.y_label)),
+                "colorbar": {
+                    "title": {"text": h.label, "side": "right"},
+                    "tickvals": cb.iter().map(|c| c.0).collect::<Vec<_>>(),
+                    "ticktext": cb.iter().map(|c| c.1.clone()).collect::<Vec<_>>(),
+                    "x": 1.02, "xanchor": "left", "len": 1.0, "thickness": 16
+                }
+            }));
+        }
+        let mut seen_groups = std::collections::HashSet::new();
+        for (k, se) in self.series.iter().enumerate() {
+            let group = se.group.clone().unwrap_or_else(|| format!("s{k}"));
+            let first = seen_groups.insert(group.clone());
+            let show = !se.label.is_empty() && first;
+            let name = if se.label.is_empty() {
+                // hover shows the group's name
+                self.series.iter().find(|o| o.group.as_deref() == Some(group.as_str()) && !o.label.is_empty()).map_or(String::new(), |o| o.label.clone())
+            } else {
+                se.label.clone()
+            };
+            data.push(json!({
+                "type": "scatter",
+                "mode": if se.markers { "markers" } else { "lines" },
+                "name": name,
+                "legendgroup": group,
+                "showlegend": show,
+                "x": se.points.iter().map(|p| if p.1.is_finite() { r(p.0) } else { None }).collect::<Vec<_>>(),
+                "y": se.points.iter().map(|p| if p.0.is_finite() { r(p.1) } else { None }).collect::<Vec<_>>(),
+                "line": {"color": se.color, "width": se.width.unwrap_or(2.0), "dash": if se.dashed { "dash" } else { "solid" }},
+                "marker": {"color": se.color, "size": 7},
+                "hovertemplate": format!("{}<br>{} = %{{x:.4g}}<br>{} = %{{y:.4g}}<extra></extra>", pesc(&name), pesc(&self.x_label), pesc(&self.y_label)),
+            }));
+        }
+        let mut shapes = vec![];
+        let mut annotations = vec![];
+        for (k, sh) in self.shades.iter().enumerate() {
+            let mut shape = json!({
+                "type": "rect", "xref": "x", "yref": "y", "layer": "below",
+                "x0": r(sh.x.0.max(x0)), "x1": r(sh.x.1.min(x1)),
+                "y0": r(sh.y.0.unwrap_or(y0).max(y0)), "y1": r(sh.y.1.unwrap_or(y1).min(y1)),
+                "fillcolor": sh.color, "opacity": 0.3, "line": {"width": 0},
+                "legendgroup": "shade",
+            });
+            if let Some((_, l)) = self.shade_legend.iter().find(|c| c.0 == sh.color) {
+                shape["legendgroup"] = json!(format!("shade {}", sh.color));
+                if self.shades[..k].iter().all(|o| o.color != sh.color) {
+                    shape["showlegend"] = json!(true);
+                    shape["name"] = json!(pesc(l));
+                }
+            } else if k == 0 {
+                if let Some(l) = &self.shade_label {
+                    shape["showlegend"] = json!(true);
+                    shape["name"] = json!(pesc(l));
+                }
+            }
+            shapes.push(shape);
+        }
+        let vis: Vec<&(f64, String)> = self.vlines.iter().filter(|(x, _)| *x >= x0 && *x <= x1).collect();
+        let rows = stagger(&vis.iter().map(|v| (v.0 - x0) / (x1 - x0)).collect::<Vec<_>>(), 0.05);
+        for ((x, label), row) in vis.iter().zip(rows) {
+            shapes.push(json!({"type": "line", "xref": "x", "yref": "paper", "x0": r(*x), "x1": r(*x), "y0": 0, "y1": 1,
+                "line": {"color": "#666", "width": 1, "dash": "dot"}}));
+            annotations.push(json!({"x": r(*x), "xref": "x", "yref": "paper", "y": 1, "yanchor": "top", "xanchor": "left",
+                "yshift": -2.0 - 14.0 * row as f64, "text": pesc(label), "showarrow": false, "font": {"size": 11, "color": "#444"},
+                "hovertext": format!("{} = {}", pesc(label), crate::num::fmt(*x, 4))}));
+        }
+        let mut layout = json!({
+            "title": {"text": pesc(&self.title), "font": {"size": 15}},
+            "xaxis": {"title": {"text": pesc(&self.x_label)}, "range": [r(x0), r(x1)], "zeroline": false, "showline": true, "mirror": true, "ticks": "outside"},
+            "yaxis": {"title": {"text": pesc(&self.y_label)}, "range": [r(y0), r(y1)], "zeroline": self.heatmap.is_none(), "showline": true, "mirror": true, "ticks": "outside"},
+            "hovermode": "closest",
+            "legend": {"x": if self.heatmap.is_some() { 1.16 } else { 1.02 }, "xanchor": "left", "y": 1, "yanchor": "top"},
+            "margin": {"l": 70, "r": 20, "t": if self.x2.is_some() { 100 } else { 60 }, "b": 60},
+            "shapes": shapes,
+            "annotations": annotations,
+            "font": {"family": "DejaVu Sans, Verdana, sans-serif", "size": 13},
+            "plot_bgcolor": "white",
+            "paper_bgcolor": "white",
+        });
+        if let Some(t) = &self.y_ticks {
+            layout["yaxis"]["tickvals"] = json!(t.iter().map(|t| t.0).collect::<Vec<_>>());
+            layout["yaxis"]["ticktext"] = json!(t.iter().map(|t| pesc(&t.1)).collect::<Vec<_>>());
+        }
+        if let Some(a) = &self.x2 {
+            layout["xaxis2"] = json!({"title": {"text": pesc(&a.label)}, "overlaying": "x", "side": "top", "range": [r(x0 * a.factor), r(x1 * a.factor)], "showgrid": false, "ticks": "outside"});
+            layout["meta"] = json!({"x2factor": a.factor});
+            // an axis shows only with a trace on it: an invisible one
+            data.push(json!({"type": "scatter", "x": [r(x0 * a.factor), r(x1 * a.factor)], "y": [null, null], "xaxis": "x2", "showlegend": false, "hoverinfo": "skip", "mode": "lines"}));
+        }
+        json!({"data": data, "layout": layout})
+    }
+
+    /// Number of finite data points of the curves and heatmap (what the report's browser test
+    /// expects the page to hold).
+    pub fn point_count(&self) -> usize {
+        let s: usize = self.series.iter().map(|s| s.points.iter().filter(|p| p.0.is_finite() && p.1.is_finite()).count()).sum();
+        s + self.heatmap.as_ref().map_or(0, |h| h.z.iter().flatten().filter(|v| v.is_finite()).count())
+    }
+}
+
+/// Split `s` into lines of at most about `max` characters at spaces.
+fn wrap(s: &str, max: usize) -> Vec<String> {
+    let mut lines = vec![];
+    let mut cur = String::new();
+    for word in s.split(' ') {
+        if !cur.is_empty() && cur.chars().count() + 1 + word.chars().count() > max {
+            lines.push(std::mem::take(&mut cur));
+        }
+        if !cur.is_empty() {
+            cur.push(' ');
+        }
+        cur.push_str(word);
+    }
+    lines.push(cur);
+    lines
+}
+
+fn fontdb() -> &'static std::sync::Arc<resvg::usvg::fontdb::Database> {
+    static DB: std::sync::OnceLock<std::sync::Arc<resvg::usvg::fontdb::Database>> = std::sync::OnceLock::new();
+    DB.get_or_init(|| {
+        let mut db = resvg::usvg::fontdb::Database::new();
+        db.load_font_data(dejavu::sans::regular().to_vec());
+        db.load_font_data(dejavu::sans::bold().to_vec());
+        db.set_sans_serif_family("DejaVu Sans");
+        std::sync::Arc::new(db)
+    })
+}
+
+/// Rasterise an SVG document to PNG bytes at `scale`.
+pub fn svg_to_png(svg: &str, scale: f32) -> anyhow::Result<Vec<u8>> {
+    use resvg::{tiny_skia, usvg};
+    let opt = usvg::Options { fontdb: fontdb().clone(), font_family: "DejaVu Sans".into(), ..Default::default() };
+    let tree = usvg::Tree::from_str(svg, &opt).map_err(|e| anyhow::anyhow!("SVG not readable: {e}"))?;
+    let size = tree.size().to_int_size().scale_by(scale).ok_or_else(|| anyhow::anyhow!("empty figure"))?;
+    let mut pix = tiny_skia::Pixmap::new(size.width(), size.height()).ok_or_else(|| anyhow::anyhow!("figure too large"))?;
+    resvg::render(&tree, tiny_skia::Transform::from_scale(scale, scale), &mut pix.as_mut());
+    pix.encode_png().map_err(|e| anyhow::anyhow!("PNG encoding: {e}"))
 }
 
 #[cfg(test)]
@@ -321,5 +774,62 @@ mod tests {
         assert_eq!(svg.matches("<polyline").count(), 2);
         assert!(svg.contains("t &lt;&amp;&gt;"));
         assert!(!svg.contains("NaN") && !svg.contains("inf"));
+        let js = p.to_plotly();
+        assert_eq!(js["data"][0]["y"][2], Value::Null, "NaN is a gap");
+        assert_eq!(p.point_count(), 4);
+    }
+
+    #[test]
+    fn legend_is_wide_enough_for_its_longest_label() {
+        let long = "a label much longer than the old fixed legend column could hold";
+        let p = Plot { series: vec![Series::new(long, vec![(0.0, 0.0), (1.0, 1.0)], "#000")], ..Default::default() };
+        let svg = p.to_svg();
+        let w: f64 = svg.split("width=\"").nth(1).unwrap().split('"').next().unwrap().parse().unwrap();
+        assert!(w >= ML + PW + text_width(long) + 38.0, "width {w}");
+    }
+
+    #[test]
+    fn close_labels_step_down_and_far_ones_share_a_row() {
+        assert_eq!(stagger(&[0.0, 0.01, 0.5, 0.505], 0.05), vec![0, 1, 0, 1]);
+    }
+
+    #[test]
+    fn grouped_branches_have_one_legend_entry() {
+        let p = Plot {
+            series: vec![
+                Series::new("branch", vec![(0.0, 1.0)], "#000").group("g"),
+                Series::new("", vec![(0.0, 2.0)], "#000").group("g"),
+            ],
+            ..Default::default()
+        };
+        let js = p.to_plotly();
+        assert_eq!(js["data"][0]["showlegend"], true);
+        assert_eq!(js["data"][1]["showlegend"], false);
+        assert_eq!(js["data"][1]["name"], "branch");
+    }
+
+    #[test]
+    fn diverging_scale_is_white_at_zero_and_saturates_at_the_extent() {
+        let s = ColorScale::Diverging { neg: 2.0, pos: 0.5 };
+        assert_eq!(heat_color(0.0, s), [247, 247, 247]);
+        assert_eq!(heat_color(-2.0, s), [33, 102, 172]);
+        assert_eq!(heat_color(0.5, s), [178, 24, 43]);
+        assert_eq!(heat_color(9.0, s), [178, 24, 43]);
+        // colour-bar labels are the values at the tick positions: ±extent, ±extent/4
+        let t = colorbar_ticks(s);
+        assert_eq!(t[0].1, "-2");
+        assert_eq!(t[1].1, "-0.5");
+        assert_eq!(t[4].1, "0.5");
+    }
+
+    #[test]
+    fn png_has_the_svg_size_times_the_scale() {
+        let p = Plot { title: "Ω̄ ΔĀ".into(), series: vec![Series::new("ψ", vec![(0.0, 0.0), (1.0, 1.0)], "#000")], ..Default::default() };
+        let png = p.to_png(1.0).unwrap();
+        assert_eq!(&png[1..4], b"PNG");
+        let w = u32::from_be_bytes(png[16..20].try_into().unwrap()) as f64;
+        let svg = p.to_svg();
+        let sw: f64 = svg.split("width=\"").nth(1).unwrap().split('"').next().unwrap().parse().unwrap();
+        assert_eq!(w, sw.ceil());
     }
 }

@@ -117,26 +117,92 @@ fn bad_input_is_one_line_naming_the_field() {
     }
 }
 
+/// One quick report shared by the report tests (written once per test run).
+fn quick_report() -> &'static std::path::Path {
+    static DIR: std::sync::OnceLock<std::path::PathBuf> = std::sync::OnceLock::new();
+    DIR.get_or_init(|| {
+        // under target/ (replaced by the next run, so nothing piles up in /tmp)
+        let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("report-quick");
+        let _ = std::fs::remove_dir_all(&dir);
+        let (code, _, err) = autobal(&["report", "--quick", "--out", dir.to_str().unwrap()]);
+        assert_eq!(code, 0, "{err}");
+        assert!(err.contains("[6/6]"), "progress per section: {err}");
+        dir
+    })
+}
+
 #[test]
 fn report_writes_index_and_figures() {
-    let dir = std::env::temp_dir().join(format!("autobal-report-test-{}", std::process::id()));
-    let (code, _, err) = autobal(&["report", "--quick", "--out", dir.to_str().unwrap()]);
-    assert_eq!(code, 0, "{err}");
+    let dir = quick_report();
     let index = std::fs::read_to_string(dir.join("index.html")).unwrap();
-    let svgs: Vec<_> = std::fs::read_dir(&dir)
-        .unwrap()
-        .filter_map(|e| e.ok())
-        .filter(|e| e.path().extension().is_some_and(|x| x == "svg"))
-        .collect();
-    assert!(svgs.len() >= 10);
-    for s in &svgs {
-        let name = s.file_name().into_string().unwrap();
-        assert!(index.contains(&name), "index links {name}");
-        let text = std::fs::read_to_string(s.path()).unwrap();
+    let files: Vec<String> = std::fs::read_dir(dir).unwrap().filter_map(|e| e.ok()).map(|e| e.file_name().into_string().unwrap()).collect();
+    let svgs: Vec<&String> = files.iter().filter(|f| f.ends_with(".svg")).collect();
+    assert!(svgs.len() >= 30, "{} figures", svgs.len());
+    for name in &svgs {
+        assert!(index.contains(name.as_str()), "index links {name}");
+        let png = name.replace(".svg", ".png");
+        assert!(files.contains(&png), "{png} beside {name}");
+        let text = std::fs::read_to_string(dir.join(name)).unwrap();
         assert!(text.starts_with("<svg") && text.trim_end().ends_with("</svg>"));
-        assert!(!text.contains("NaN"));
+        assert!(!text.contains("NaN") && !text.contains("inf"));
     }
-    std::fs::remove_dir_all(&dir).ok();
+    // self-contained: the plotting library and its licence are in the folder, nothing is fetched
+    for f in ["plotly-cartesian.min.js", "plotly-LICENSE.txt", "report.js"] {
+        assert!(files.iter().any(|x| x == f), "{f} in the report folder");
+    }
+    assert!(!index.contains("http://") && !index.contains("https://") && !index.contains("//cdn"), "no network at view time");
+    // every figure's data is embedded, and printed floats keep at most 6 significant digits
+    let figures = index.matches("<div class=\"plot\" data-fig=").count();
+    assert_eq!(figures, index.matches("<script type=\"application/json\"").count());
+    assert_eq!(figures, svgs.len());
+    assert!(!index.contains("0.014492753623188406"));
+    // the figures of both papers, including those once missing
+    for id in ["fig000_3_spectrum", "fig000_9a_sensitivity_vs_anisotropy", "fig000_9b_sensitivity_vs_ball_mass", "fig003_3_signed_response", "campbell_fixed", "stability_map_z_a"] {
+        assert!(files.iter().any(|f| f == &format!("{id}.svg")), "{id}");
+    }
+    // 003's figures use 003's own ΔĀ0 = 0.1: its printed Ω_K4 = 3.80 and Ω_a = 2.24 appear
+    let fig3 = std::fs::read_to_string(dir.join("fig003_3_signed_response.svg")).unwrap();
+    assert!(fig3.contains("K4 = 3.8") && fig3.contains("Ω_a = 2.24"), "003 Fig. 3 markers");
+}
+
+/// Where the browser test can run: `(node, script)`, or why not. The test is skipped with that
+/// message unless `AUTOBAL_REQUIRE_BROWSER` or `CI` is set (scripts/test.sh sets the former when
+/// it could install Chromium and the npm packages): then it fails with it.
+fn browser() -> Option<(String, String)> {
+    let dir = format!("{}/tests/browser", env!("CARGO_MANIFEST_DIR"));
+    let chromium = std::env::var("AUTOBAL_CHROMIUM").unwrap_or_else(|_| "/usr/bin/chromium".into());
+    let node_ok = Command::new("node").arg("--version").output().is_ok_and(|o| o.status.success());
+    let missing: Vec<String> = [
+        (!std::path::Path::new(&chromium).exists()).then(|| format!("Chromium at {chromium} (Debian/Ubuntu: sudo apt-get install chromium; or set AUTOBAL_CHROMIUM)")),
+        (!node_ok).then(|| "Node.js (Debian/Ubuntu: sudo apt-get install nodejs npm)".to_string()),
+        (!std::path::Path::new(&format!("{dir}/node_modules/playwright-core")).exists())
+            .then(|| format!("the npm packages of {dir} (cd there and run: npm ci; playwright-core never downloads a browser)")),
+    ]
+    .into_iter()
+    .flatten()
+    .collect();
+    if missing.is_empty() {
+        return Some(("node".into(), format!("{dir}/report.mjs")));
+    }
+    let msg = format!("the report's browser test needs {}; scripts/test.sh installs them when run as root", missing.join(", "));
+    if std::env::var_os("AUTOBAL_REQUIRE_BROWSER").is_some() || std::env::var_os("CI").is_some() {
+        panic!("{msg}");
+    }
+    eprintln!("skipped: {msg}");
+    None
+}
+
+#[test]
+fn report_renders_in_a_headless_browser() {
+    // crates/autobal-cli/tests/browser/report.mjs: Debian's Chromium driven by playwright-core
+    // opens the quick report and checks: no console or page errors and no request outside the
+    // folder, every figure drawn by Plotly with all its data points, every contents link lands.
+    let Some((node, script)) = browser() else { return };
+    let dir = quick_report();
+    let out = Command::new(node).arg(&script).arg(dir).output().expect("node runs");
+    let (so, se) = (String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+    assert!(out.status.success(), "{so}\n{se}");
+    assert!(so.contains(" passed, 0 failed"), "{so}");
 }
 
 #[test]

@@ -1,0 +1,297 @@
+//! The HTML report: one self-contained folder (`index.html`, the vendored plotting library,
+//! every figure as SVG and PNG), readable offline.
+//!
+//! The report is a list of sections ([`SECTIONS`]), each a module with one function
+//! `build(&Ctx) -> Result<Option<Section>>` (`None`: the section does not apply to this config).
+//! Sections run in parallel and report their progress one line each; adding a section is adding
+//! a module and one line to [`SECTIONS`].
+//!
+//! Every figure is a [`Plot`]: the page embeds its data as Plotly JSON and draws it
+//! interactively with the vendored Plotly (zoom, hover values, curves toggled in the legend);
+//! the static SVG (also the page's fallback when scripts are off) and a PNG rasterised from it
+//! are written beside.
+//!
+//! A Ctrl-C stops the long computations; the page is still written, says which sections are
+//! incomplete, and the command exits with an error.
+
+mod html;
+mod paper000;
+mod paper003;
+mod paper004;
+mod passage;
+mod rotor;
+mod stability;
+
+use crate::config::{self, Config, PlanarConfig};
+use crate::plot::Plot;
+use anyhow::{bail, Context, Result};
+use html::esc;
+use rayon::prelude::*;
+use std::fmt::Write;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::Instant;
+
+/// Plotly (cartesian bundle, minified), vendored: see `assets/README.md`.
+const PLOTLY_JS: &str = include_str!("../../assets/plotly-cartesian.min.js");
+const PLOTLY_LICENSE: &str = include_str!("../../assets/plotly-LICENSE.txt");
+/// The page's own script: draws each figure from its embedded JSON.
+const REPORT_JS: &str = include_str!("../../assets/report.js");
+const REPORT_CSS: &str = include_str!("../../assets/report.css");
+
+/// What the sections analyse.
+pub struct Ctx {
+    /// The config's spatial rotor (papers 000/003 model), if it describes one.
+    pub spatial: Option<Config>,
+    /// The config's planar rotor (paper 004 model), if it has `[planar]`.
+    pub planar: Option<PlanarConfig>,
+    /// Shorter simulations (tests, a first look).
+    pub quick: bool,
+    /// The config file's name and the `--set` overrides, for the page.
+    pub source: String,
+    /// The merged config text.
+    pub text: String,
+    /// The config as a table (the overrides applied), for runs derived from it.
+    pub root: toml::Table,
+}
+
+/// A figure of the report.
+pub struct Figure {
+    /// File stem and HTML anchor (`fig000_5a_critical_vs_c_sigma`).
+    pub id: String,
+    pub plot: Plot,
+    /// HTML (already escaped where needed).
+    pub caption: String,
+}
+
+/// A piece of a section: HTML, a subsection heading (listed in the contents) or a figure.
+pub enum Block {
+    Html(String),
+    Heading { id: String, title: String },
+    Figure(Box<Figure>),
+}
+
+/// One section of the report.
+pub struct Section {
+    pub id: &'static str,
+    pub title: String,
+    pub blocks: Vec<Block>,
+    /// False when an interruption cut the section short.
+    pub complete: bool,
+}
+
+impl Section {
+    pub fn new(id: &'static str, title: impl Into<String>) -> Self {
+        Section { id, title: title.into(), blocks: vec![], complete: true }
+    }
+    /// Raw HTML.
+    pub fn html(&mut self, s: impl Into<String>) {
+        self.blocks.push(Block::Html(s.into()));
+    }
+    /// A paragraph of HTML.
+    pub fn p(&mut self, s: impl AsRef<str>) {
+        self.html(format!("<p>{}</p>\n", s.as_ref()));
+    }
+    /// A subsection heading, listed in the table of contents.
+    pub fn h3(&mut self, id: impl Into<String>, title: impl Into<String>) {
+        self.blocks.push(Block::Heading { id: id.into(), title: title.into() });
+    }
+    /// A table with a unit in every column head.
+    pub fn table(&mut self, head: &[&str], rows: &[Vec<String>]) {
+        self.html(html::table(head, rows));
+    }
+    pub fn figure(&mut self, id: impl Into<String>, plot: Plot, caption: impl Into<String>) {
+        self.blocks.push(Block::Figure(Box::new(Figure { id: id.into(), plot, caption: caption.into() })));
+    }
+    pub fn figures(&self) -> impl Iterator<Item = &Figure> {
+        self.blocks.iter().filter_map(|b| if let Block::Figure(f) = b { Some(&**f) } else { None })
+    }
+}
+
+type Builder = fn(&Ctx) -> Result<Option<Section>>;
+
+/// The sections, in page order. Each is one module.
+const SECTIONS: &[(&str, Builder)] = &[
+    ("your rotor", rotor::build),
+    ("linear stability", stability::build),
+    ("your rotor's passage", passage::build),
+    ("paper 000", paper000::build),
+    ("paper 003", paper003::build),
+    ("paper 004", paper004::build),
+];
+
+/// Whether Ctrl-C was pressed (the flag every long computation of the report polls).
+pub fn interrupted() -> bool {
+    crate::sim::INTERRUPTED.load(Ordering::Relaxed)
+}
+
+/// Read the config (spatial and/or planar), build every section in parallel, write the folder.
+pub fn run(path: Option<&Path>, sets: &[String], dir: &Path, quick: bool) -> Result<PathBuf> {
+    let (mut root, source) = config::read(path)?;
+    for s in sets {
+        config::apply_set(&mut root, s)?;
+    }
+    let spatial_tables = ["rotor", "supports", "unbalance", "balancer", "dimensionless"];
+    let spatial = if spatial_tables.iter().any(|t| root.contains_key(*t)) { Some(config::build(&root, &source)?) } else { None };
+    let planar = if root.contains_key("planar") { Some(config::build_planar(&root, &source)?) } else { None };
+    if spatial.is_none() && planar.is_none() {
+        bail!("config: describes no rotor: give [dimensionless] or [rotor], [supports], [unbalance], [balancer] (papers 000/003), or [planar] (paper 004)");
+    }
+    let spatial_text = spatial.as_ref().map(|c| c.text.clone());
+    let mut source_line = source.clone();
+    for s in sets {
+        source_line.push_str(&format!(" --set {s}"));
+    }
+    let ctx = Ctx { spatial, planar, quick, source: source_line, text: match &spatial_text { Some(t) => t.clone(), None => toml::to_string(&root).unwrap_or_default() }, root };
+    write(&ctx, dir)
+}
+
+/// Build every section and write the folder; returns the path of `index.html`.
+pub fn write(ctx: &Ctx, dir: &Path) -> Result<PathBuf> {
+    std::fs::create_dir_all(dir).with_context(|| format!("--out {}: cannot create the folder", dir.display()))?;
+    let t0 = Instant::now();
+    let done = AtomicUsize::new(0);
+    let n = SECTIONS.len();
+    eprintln!("report: {n} sections on {} threads{}", rayon::current_num_threads(), if ctx.quick { " (quick)" } else { "" });
+    let built: Vec<Result<Option<Section>>> = SECTIONS
+        .par_iter()
+        .map(|(name, build)| {
+            let t = Instant::now();
+            let r = build(ctx).with_context(|| format!("report section {name}"));
+            let k = done.fetch_add(1, Ordering::Relaxed) + 1;
+            let what = match &r {
+                Ok(Some(s)) if !s.complete => "interrupted",
+                Ok(Some(_)) => "done",
+                Ok(None) => "not applicable",
+                Err(_) => "failed",
+            };
+            eprintln!("report: [{k}/{n}] {name}: {what} in {:.1} s", t.elapsed().as_secs_f64());
+            r
+        })
+        .collect();
+    let sections: Vec<Section> = built.into_iter().collect::<Result<Vec<_>>>()?.into_iter().flatten().collect();
+    let compute_s = t0.elapsed().as_secs_f64();
+    // figure files, in parallel (rasterising is the slow part)
+    let figs: Vec<&Figure> = sections.iter().flat_map(|s| s.figures()).collect();
+    figs.par_iter()
+        .map(|f| -> Result<()> {
+            let svg = f.plot.to_svg();
+            let p = dir.join(format!("{}.svg", f.id));
+            std::fs::write(&p, &svg).with_context(|| format!("--out: cannot write {}", p.display()))?;
+            let p = dir.join(format!("{}.png", f.id));
+            std::fs::write(&p, crate::plot::svg_to_png(&svg, 1.5)?).with_context(|| format!("--out: cannot write {}", p.display()))?;
+            Ok(())
+        })
+        .collect::<Result<()>>()?;
+    for (name, text) in [("plotly-cartesian.min.js", PLOTLY_JS), ("plotly-LICENSE.txt", PLOTLY_LICENSE), ("report.js", REPORT_JS)] {
+        let p = dir.join(name);
+        std::fs::write(&p, text).with_context(|| format!("--out: cannot write {}", p.display()))?;
+    }
+    let incomplete: Vec<&str> = sections.iter().filter(|s| !s.complete).map(|s| s.title.as_str()).collect();
+    let interrupted = interrupted() || !incomplete.is_empty();
+    let page = page(ctx, &sections, interrupted, &incomplete, t0.elapsed().as_secs_f64());
+    let index = dir.join("index.html");
+    std::fs::write(&index, page).with_context(|| format!("--out: cannot write {}", index.display()))?;
+    eprintln!(
+        "report: {} sections, {} figures in {:.1} s (computing {:.1} s, figures {:.1} s)",
+        sections.len(),
+        figs.len(),
+        t0.elapsed().as_secs_f64(),
+        compute_s,
+        t0.elapsed().as_secs_f64() - compute_s
+    );
+    if interrupted {
+        bail!(
+            "interrupted: the report in {} is incomplete ({})",
+            index.display(),
+            if incomplete.is_empty() { "stopped while writing".to_string() } else { incomplete.join(", ") }
+        );
+    }
+    Ok(index)
+}
+
+/// Assemble `index.html`.
+fn page(ctx: &Ctx, sections: &[Section], interrupted: bool, incomplete: &[&str], secs: f64) -> String {
+    let mut h = String::new();
+    let _ = write!(
+        h,
+        "<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\">\n<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>autobal report</title>\n<style>\n{REPORT_CSS}</style>\n</head><body>\n<header><h1>autobal report</h1>\n"
+    );
+    let _ = writeln!(
+        h,
+        "<p class=\"meta\">Config: <code>{}</code> · autobal {} · computed in {} s. Figures: drag to zoom, double-click to reset, hover to read values, click a legend entry to hide or show a curve; each figure also as SVG and PNG (links under it).</p>",
+        esc(&ctx.source),
+        env!("CARGO_PKG_VERSION"),
+        crate::num::fmt(secs, 2)
+    );
+    if interrupted {
+        let _ = writeln!(
+            h,
+            "<div class=\"warn\" id=\"interrupted\"><b>Interrupted.</b> This report is incomplete: {}. Numbers of runs cut short are marked as such.</div>",
+            if incomplete.is_empty() { "the run was stopped".to_string() } else { format!("sections cut short: {}", esc(&incomplete.join(", "))) }
+        );
+    }
+    h.push_str("</header>\n");
+    // contents
+    h.push_str("<nav id=\"toc\"><h2>Contents</h2>\n<ol>\n");
+    let mut fig_no = 0;
+    for s in sections {
+        let _ = write!(h, "<li><a href=\"#{}\">{}</a>", s.id, esc(&s.title));
+        let subs: Vec<&Block> = s.blocks.iter().filter(|b| matches!(b, Block::Heading { .. } | Block::Figure(_))).collect();
+        if !subs.is_empty() {
+            h.push_str("<ol>");
+            for b in subs {
+                match b {
+                    Block::Heading { id, title } => {
+                        let _ = write!(h, "<li><a href=\"#{id}\">{}</a></li>", esc(title));
+                    }
+                    Block::Figure(f) => {
+                        fig_no += 1;
+                        let _ = write!(h, "<li class=\"figlink\"><a href=\"#{}\">Figure {fig_no}: {}</a></li>", f.id, esc(&f.plot.title));
+                    }
+                    Block::Html(_) => {}
+                }
+            }
+            h.push_str("</ol>");
+        }
+        h.push_str("</li>\n");
+    }
+    h.push_str("<li><a href=\"#config\">Config as used</a></li>\n</ol></nav>\n<main>\n");
+    let mut fig_no = 0;
+    for s in sections {
+        let _ = writeln!(h, "<section id=\"{}\"><h2>{}</h2>", s.id, esc(&s.title));
+        if !s.complete {
+            h.push_str("<div class=\"warn\">This section was cut short by an interruption.</div>\n");
+        }
+        for b in &s.blocks {
+            match b {
+                Block::Html(x) => h.push_str(x),
+                Block::Heading { id, title } => {
+                    let _ = writeln!(h, "<h3 id=\"{id}\">{}</h3>", esc(title));
+                }
+                Block::Figure(f) => {
+                    fig_no += 1;
+                    h.push_str(&figure_html(f, fig_no));
+                }
+            }
+        }
+        h.push_str("</section>\n");
+    }
+    let _ = writeln!(h, "<section id=\"config\"><h2>Config as used</h2>\n<pre>{}</pre></section>\n</main>", esc(&ctx.text));
+    h.push_str("<footer>Interactive figures drawn by <a href=\"plotly-cartesian.min.js\">Plotly.js</a> (MIT licence, <a href=\"plotly-LICENSE.txt\">text</a>), shipped in this folder: no network needed.</footer>\n");
+    h.push_str("<script src=\"plotly-cartesian.min.js\"></script>\n<script src=\"report.js\"></script>\n</body></html>\n");
+    h
+}
+
+/// One figure: the interactive plot (static SVG inside until the script draws it), its data as
+/// JSON, the caption and the links to the static files.
+fn figure_html(f: &Figure, no: usize) -> String {
+    let json = serde_json::to_string(&f.plot.to_plotly()).unwrap_or_else(|_| "{}".into()).replace("</", "<\\/");
+    format!(
+        "<figure id=\"{id}\">\n<div class=\"plot\" data-fig=\"{id}\" data-points=\"{pts}\"><img class=\"fallback\" src=\"{id}.svg\" alt=\"{alt}\"></div>\n<script type=\"application/json\" id=\"data-{id}\">{json}</script>\n<figcaption><b>Figure {no}.</b> {cap} <span class=\"files\">[<a href=\"{id}.svg\">SVG</a> · <a href=\"{id}.png\">PNG</a>]</span></figcaption>\n</figure>\n",
+        id = f.id,
+        pts = f.plot.point_count(),
+        alt = esc(&f.plot.title),
+        cap = f.caption,
+    )
+}

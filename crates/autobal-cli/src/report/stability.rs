@@ -1,0 +1,155 @@
+//! Section "Exact linear stability" of the config's spatial rotor: Campbell diagrams, the
+//! margin along the speed against 003's necessary ranges, the papers' three layouts, and
+//! stability maps in the layouts of 003's Figs 4, 5a, 5b around this rotor.
+
+use super::{interrupted, rotor::ranges_text, Ctx, Section};
+use crate::figures::{campbell_plots, margin_plot, omega_limit, with_layout, SpeedUnit};
+use crate::linear;
+use crate::map::{Axis, Cell, MapResult, Quantity};
+use crate::num::fmt;
+use anyhow::Result;
+use autobal::spatial::linear_model::{Balls, StateSpace};
+use autobal::spatial::params::SpatialModel;
+use autobal::spatial::ranges::{autobalancing_ranges, SpeedRange};
+use autobal::spatial::stability::{counts_as_stable, margin_at};
+use rayon::prelude::*;
+
+/// Grid of the report's maps (per axis).
+const MAP_N: usize = 121;
+
+pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
+    let Some(cfg) = &ctx.spatial else { return Ok(None) };
+    let m = &cfg.model;
+    let w0 = m.scale.map(|s| s.omega0);
+    let mut s = Section::new("stability", "Exact linear stability of the balanced state (your rotor)");
+    if m.balls.is_none() {
+        s.p("The config does not describe the balls (give the masses, or <code>m</code> and <code>d_a</code> beside <code>delta_a</code>), so only the locked rotor is analysed here.");
+    }
+    let balls = if m.balls.is_some() { Balls::Free } else { Balls::Locked };
+    let w = linear::omega_max(cfg, None)?;
+    s.p(format!(
+        "Eigenvalues of the linearised equations (000, eq (6)), balls {} ({} states). Stable means every eigenvalue has Re λ {}; range ends located by bisection to 1e-9 in Ω.",
+        if balls == Balls::Free { "free" } else { "locked" },
+        if balls == Balls::Free { 12 } else { 8 },
+        if balls == Balls::Free { "&lt; −1e-11 ω0" } else { "≤ 1e-11 ω0 (neutral allowed)" }
+    ));
+    s.h3("campbell", "Campbell diagrams");
+    let c = linear::campbell_of(cfg, w, 240, balls)?;
+    let (rot, fixed) = campbell_plots(m, &c);
+    s.figure(
+        "campbell_fixed",
+        fixed,
+        "Campbell diagram in fixed axes: whirl frequency of each tracked eigenvalue (forward above zero, backward below; legend: the motion that dominates the mode and its whirl), the synchronous 1× line, and the analytic critical speeds K1-K4 of the locked rotor. Where a mode crosses 1× near a K line the locked rotor is at a critical speed.",
+    );
+    s.figure("campbell_rotating", rot, "Campbell diagram in rotating axes: Im λ of each tracked eigenvalue (the frequency seen from the rotor).");
+
+    s.h3("margin", "Stability along the speed");
+    let cmp = linear::compare(m, w, 1500, balls)?;
+    s.figure(
+        "stability_margin",
+        margin_plot(m, &cmp),
+        format!(
+            "Largest real part of the eigenvalues along the speed for this rotor. Exactly stable on {}; 003's necessary condition holds on {}. {}.",
+            super::esc(&ranges_text(&cmp.exact.stable_ranges, w0)),
+            super::esc(&ranges_text(&cmp.necessary, w0)),
+            super::esc(&linear::difference_sentence(&cmp))
+        ),
+    );
+    if m.rho_s.is_some() && m.scale.is_none() {
+        let mut rows = vec![];
+        for l in [0.5, 0.8, 1.2] {
+            let ml = with_layout(m, l);
+            let cl = linear::compare(&ml, w.max(omega_limit(&ml, None)), 1500, balls)?;
+            rows.push(vec![fmt(l, 3), ranges_text(&cl.exact.stable_ranges, None), ranges_text(&cl.necessary, None), linear::difference_sentence(&cl)]);
+        }
+        s.h3("layouts", "Exact ranges against 003's necessary ranges, the papers' three layouts");
+        s.p("This rotor moved on identical supports to the three layouts of the papers' worked examples.");
+        s.table(&["l̄_L (–)", "exactly stable (Ω)", "003 necessary (Ω)", "difference"], &rows);
+    }
+
+    s.h3("maps", "Stability maps");
+    let u = SpeedUnit::of(m);
+    type Setter = fn(&mut SpatialModel, f64);
+    let maps: [(&str, &str, Axis, Setter, &str); 3] = [
+        (
+            "stability_map_c_sigma",
+            "Stability map C̄Σ × speed",
+            Axis { key: "dimensionless.c_sigma".into(), lo: 0.2, hi: 2.0, n: MAP_N },
+            |m, v| m.c_sigma = v,
+            "in the layout of 003 Fig. 4: over the rotor type C̄Σ (long &lt; 1 &lt; short) and the speed",
+        ),
+        (
+            "stability_map_z_a",
+            "Stability map z̄_A × speed",
+            Axis { key: "dimensionless.z_a".into(), lo: -2.0, hi: 2.0, n: MAP_N },
+            |m, v| m.z_a = v,
+            "in the layout of 003 Fig. 5a: over the position of the balancer plane z̄_A and the speed",
+        ),
+        (
+            "stability_map_delta_a0",
+            "Stability map ΔĀ0 × speed",
+            Axis { key: "dimensionless.delta_a".into(), lo: 0.0, hi: 0.24, n: MAP_N },
+            |m, v| {
+                m.anisotropy.used = v;
+                m.delta_a0 = v;
+            },
+            "in the layout of 003 Fig. 5b: over the anisotropy (ΔĀ = ΔĀ0, given directly as in 003's examples) and the speed",
+        ),
+    ];
+    for (stem, title, x, set, what) in maps {
+        let y = Axis { key: "omega".into(), lo: 0.02 * w, hi: w, n: MAP_N };
+        let r = map(m, x, y, set, balls)?;
+        let complete = r.rows.iter().all(|r| r.is_some());
+        s.complete &= complete;
+        let mut p = crate::mapfig::plot(&r, title);
+        if u.factor != 1.0 {
+            // speeds in rad/s, rpm on a second axis... on the vertical axis: say both in the title
+            if let Some(h) = p.heatmap.as_mut() {
+                h.y.iter_mut().for_each(|v| *v *= u.factor);
+            }
+            for se in &mut p.series {
+                se.points.iter_mut().for_each(|q| q.1 *= u.factor);
+            }
+            p.y_range = p.y_range.map(|(a, b)| (a * u.factor, b * u.factor));
+            p.y_label = u.label.clone();
+        }
+        s.figure(
+            stem,
+            p,
+            format!(
+                "Stability map {what}: largest real part of the eigenvalues (colour bar: blue stable, red unstable, white near zero, square-root scale on each side), the exact stability boundary (solid black) and the boundary of 003's necessary condition (dashed). The other parameters are this rotor's.{}",
+                if complete { "" } else { " <b>Interrupted: grey rows were not computed.</b>" }
+            ),
+        );
+    }
+    Ok(Some(s))
+}
+
+/// A stability map over one model parameter (`set`) and the speed, rows in parallel; rows not
+/// started when Ctrl-C came are `None`.
+fn map(m: &SpatialModel, x: Axis, y: Axis, set: fn(&mut SpatialModel, f64), balls: Balls) -> Result<MapResult> {
+    let cols: Vec<(StateSpace, Vec<SpeedRange>)> = (0..x.n)
+        .map(|i| {
+            let mut mz = m.clone();
+            set(&mut mz, x.value(i));
+            Ok((StateSpace::new(&mz, balls)?, autobalancing_ranges(&mz).ranges))
+        })
+        .collect::<Result<_>>()?;
+    let rows = (0..y.n)
+        .into_par_iter()
+        .map(|j| {
+            if interrupted() {
+                return Ok(None);
+            }
+            let om = y.value(j);
+            cols.iter()
+                .map(|(ss, nec)| {
+                    let a = margin_at(ss, om)?;
+                    Ok(Cell { margin: a, stable: counts_as_stable(a, balls), necessary: nec.iter().any(|r| r.contains(om)) })
+                })
+                .collect::<Result<Vec<_>>>()
+                .map(Some)
+        })
+        .collect::<Result<Vec<_>>>()?;
+    Ok(MapResult { x, y, rows, quantity: Quantity::Margin })
+}
