@@ -19,18 +19,14 @@ pub const BASE_MASSES: MassSet = MassSet { m0: 0.025, r0: 2.0, m: 0.05, r: 2.0, 
 
 /// The base case with the paper's eq (17) in use (ΔĀ = 0.1), exact tensor alongside.
 pub fn base_model(l_left: f64) -> SpatialModel {
-    SpatialModel::from_dimensionless(&DimensionlessInput {
-        c_sigma: 0.75,
-        rho_s: 0.4,
-        l_left,
-        z_a: 0.8,
-        anisotropy: AnisotropyInput::Masses { masses: BASE_MASSES, d_a: None },
-        h_x: 0.0,
-        h_s: 0.0,
-        method: AnisotropyMethod::Paper,
-        direct_balls: None,
-    })
-    .expect("paper 000's base case is valid")
+    papers_base(l_left, AnisotropyInput::Masses { masses: BASE_MASSES, d_a: None }, AnisotropyMethod::Paper)
+}
+
+/// The long rotor of both papers' worked examples (C̄Σ = 0.75, ρ̄s = 0.4, z̄_A = 0.8, no
+/// damping) at layout `l̄_L` with the given anisotropy.
+pub fn papers_base(l_left: f64, anisotropy: AnisotropyInput, method: AnisotropyMethod) -> SpatialModel {
+    SpatialModel::from_dimensionless(&DimensionlessInput { c_sigma: 0.75, rho_s: 0.4, l_left, z_a: 0.8, anisotropy, h_x: 0.0, h_s: 0.0, method, direct_balls: None })
+        .expect("the papers' base case is valid")
 }
 
 /// The worked numbers 000 prints for the base case, per layout: (l̄_L, p̄α, c̄yα, Ω_K1-4).

@@ -9,25 +9,14 @@ use crate::plot::{Plot, Series, Shade, PALETTE};
 use anyhow::Result;
 use autobal::spatial::critical_speeds::{critical_speeds_at, ModeKind};
 use autobal::spatial::inertia::AnisotropyMethod;
-use autobal::spatial::params::{AnisotropyInput, DimensionlessInput, SpatialModel};
+use autobal::spatial::params::{AnisotropyInput, SpatialModel};
 use autobal::spatial::ranges::{antiresonance_speed, autobalancing_ranges, point_a_response};
 use autobal::spatial::sensitivity::sensitivity;
 
 /// 003's base case: C̄Σ0 = 0.75, ρ̄s = 0.4, ΔĀ0 = 0.1, z̄_A0 = 0.8 (m̄0 = 0.05, R̄0 = 2,
 /// Ā_m0 = 0.2), at layout `l̄_L`.
 pub fn base_model(l_left: f64) -> SpatialModel {
-    SpatialModel::from_dimensionless(&DimensionlessInput {
-        c_sigma: 0.75,
-        rho_s: 0.4,
-        l_left,
-        z_a: 0.8,
-        anisotropy: AnisotropyInput::Direct(0.1),
-        h_x: 0.0,
-        h_s: 0.0,
-        method: AnisotropyMethod::Exact,
-        direct_balls: None,
-    })
-    .expect("paper 003's base case is valid")
+    super::paper000::papers_base(l_left, AnisotropyInput::Direct(0.1), AnisotropyMethod::Exact)
 }
 
 /// 003's printed numbers: (l̄_L, Ω_K1-4, Ω_a).
