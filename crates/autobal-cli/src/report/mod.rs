@@ -137,6 +137,9 @@ pub fn run(path: Option<&Path>, sets: &[String], dir: &Path, quick: bool) -> Res
     if spatial.is_none() && planar.is_none() {
         bail!("config: describes no rotor: give [dimensionless] or [rotor], [supports], [unbalance], [balancer] (papers 000/003), or [planar] (paper 004)");
     }
+    for w in spatial.iter().flat_map(|c| &c.model.anisotropy.warnings) {
+        crate::output::note(&format!("warning: {w}"));
+    }
     let spatial_text = spatial.as_ref().map(|c| c.text.clone());
     let mut source_line = source.clone();
     for s in sets {
@@ -152,7 +155,7 @@ pub fn write(ctx: &Ctx, dir: &Path) -> Result<PathBuf> {
     let t0 = Instant::now();
     let done = AtomicUsize::new(0);
     let n = SECTIONS.len();
-    eprintln!("report: {n} sections on {} threads{}", rayon::current_num_threads(), if ctx.quick { " (quick)" } else { "" });
+    crate::output::note(&format!("report: {n} sections on {} threads{}", rayon::current_num_threads(), if ctx.quick { " (quick)" } else { "" }));
     let built: Vec<Result<Option<Section>>> = SECTIONS
         .par_iter()
         .map(|(name, build)| {
@@ -165,7 +168,7 @@ pub fn write(ctx: &Ctx, dir: &Path) -> Result<PathBuf> {
                 Ok(None) => "not applicable",
                 Err(_) => "failed",
             };
-            eprintln!("report: [{k}/{n}] {name}: {what} in {:.1} s", t.elapsed().as_secs_f64());
+            crate::output::note(&format!("report: [{k}/{n}] {name}: {what} in {:.1} s", t.elapsed().as_secs_f64()));
             r
         })
         .collect();
@@ -192,14 +195,14 @@ pub fn write(ctx: &Ctx, dir: &Path) -> Result<PathBuf> {
     let page = page(ctx, &sections, interrupted, &incomplete, t0.elapsed().as_secs_f64());
     let index = dir.join("index.html");
     std::fs::write(&index, page).with_context(|| format!("--out: cannot write {}", index.display()))?;
-    eprintln!(
+    crate::output::note(&format!(
         "report: {} sections, {} figures in {:.1} s (computing {:.1} s, figures {:.1} s)",
         sections.len(),
         figs.len(),
         t0.elapsed().as_secs_f64(),
         compute_s,
         t0.elapsed().as_secs_f64() - compute_s
-    );
+    ));
     if interrupted {
         bail!(
             "interrupted: the report in {} is incomplete ({})",

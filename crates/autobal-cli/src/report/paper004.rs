@@ -87,7 +87,7 @@ pub fn runs_table(runs: &[Run], done: &[std::sync::Arc<Done>]) -> (Vec<&'static 
             let mut row = vec![r.tag.clone(), r.label.clone(), fmt(d.cfg.rotor.m3, 3), fmt(d.cfg.rotor.c_psi, 3), format!("{:?}", d.cfg.settings.method).to_lowercase()];
             if d.cut() {
                 row.push(format!("interrupted at t = {} s of {} s", fmt(s.t_end, 3), fmt(d.cfg.settings.t_end, 3)));
-                row.extend(std::iter::repeat("—".to_string()).take(5));
+                row.extend(std::iter::repeat_n("—".to_string(), 5));
             } else {
                 row.extend([fmt(1e3 * s.peak_amplitude, 4), fmt(s.omega_at_peak, 4), fmt(1e3 * s.final_amplitude, 3), fmt(s.final_omega, 4), if s.balanced { "yes".into() } else { "no".into() }]);
             }
