@@ -20,10 +20,11 @@
 
 use crate::error::{fmt_num, Error, Result};
 
-/// Most balls of the spatial model (`balancer.balls`, `dimensionless.n`): the exact anisotropy
-/// interval costs `O(n)` (see [`crate::spatial::inertia::exact_interval`]); beyond a few dozen
-/// balls a ball balancer is a ring of fluid, outside the point-mass model.
-pub const MAX_BALLS_SPATIAL: u32 = 16;
+/// Most balls of the spatial model (`balancer.balls`, `dimensionless.n`). The exact anisotropy
+/// interval costs `O(n)`, at most `200 000 + 8000 n` evaluations (see
+/// [`crate::spatial::inertia::exact_interval`]; about 0.1 s for 100 balls); a balancer with
+/// more than a hundred balls is better modelled as a fluid ring than as point masses.
+pub const MAX_BALLS_SPATIAL: u32 = 100;
 
 /// The range of one input field.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -74,7 +75,7 @@ pub const LIMITS: &[Limit] = &[
     lim("unbalance.mass", 0.0, false, 1e9, false, "kg", MASS),
     lim("unbalance.radius", 0.0, false, 1e3, false, "m", RADIUS),
     lim("balancer.z", -1e4, false, 1e4, false, "m", LENGTH),
-    lim("balancer.balls", 0.0, false, MAX_BALLS_SPATIAL as f64, false, "", "see MAX_BALLS_SPATIAL: point-mass balls, cost of the anisotropy interval"),
+    lim("balancer.balls", 0.0, false, MAX_BALLS_SPATIAL as f64, false, "", "point-mass balls; the anisotropy interval costs O(n); more balls are a fluid ring"),
     lim("balancer.ball_mass", 0.0, false, 1e9, false, "kg", MASS),
     lim("balancer.race_radius", 0.0, false, 1e3, false, "m", RADIUS),
     lim("balancer.drag", 0.0, false, 1e12, false, "N·s/m", DAMP),

@@ -232,6 +232,8 @@ pub struct ExactInterval {
     pub argmin: Vec<f64>,
     /// Ball angles attaining the maximum.
     pub argmax: Vec<f64>,
+    /// Evaluations of the anisotropy the search made: its cost, `O(n)` (tests bound it).
+    pub evaluations: u64,
 }
 
 /// Close a configuration: given the angles of balls 3..n, place balls 1 and 2 so that
@@ -243,121 +245,313 @@ pub fn complete_configuration(n: u32, capacity: f64, free: &[f64]) -> Option<Vec
         wx -= a.cos();
         wy -= a.sin();
     }
+    let (b1, b2) = close_with_pair(wx, wy)?;
+    let mut v = vec![b1, b2];
+    v.extend_from_slice(free);
+    Some(v)
+}
+
+/// Two unit vectors summing to `(wx, wy)`: angles `φ ± acos(r/2)`; `None` when `r > 2`.
+fn close_with_pair(wx: f64, wy: f64) -> Option<(f64, f64)> {
     let r = wx.hypot(wy);
     if r > 2.0 {
         return None;
     }
     let phi = wy.atan2(wx);
     let half = (r / 2.0).min(1.0).acos();
-    let mut v = vec![phi + half, phi - half];
-    v.extend_from_slice(free);
-    Some(v)
+    Some((phi + half, phi - half))
 }
 
-/// Global search of the exact anisotropy over the balancing family (`n ≥ 3`, `E ≥ 1`).
+/// Up to this many balls the interval is searched over all balancing configurations; above it
+/// over the families of [`exact_interval`].
+pub const FULL_SEARCH_MAX_BALLS: u32 = 6;
+
+/// A family of balancing configurations: `n1` balls at one angle, `n2` at another, and
+/// `singles` balls each at its own angle; the free parameters `x` and how the balance
+/// `Σ exp(i α_j) = −n/E` is closed:
+/// - `n1 ≥ 1, n2 ≥ 1` (`branch` ±1): `x = (σ, δ, b_3 … b_s)`, singles at `σ ± δ` and `b_k`, the two
+///   groups close the balance (a triangle with sides `n1`, `n2`, `|R|`; `branch` picks the mirror);
+/// - otherwise: `x = (group angle if n2 ≥ 1, b_3 … b_s)`, singles 1 and 2 close it.
+#[derive(Debug, Clone, Copy)]
+struct Family {
+    n: u32,
+    n1: u32,
+    n2: u32,
+    singles: usize,
+    branch: f64,
+}
+
+/// At most two groups and six singles: the largest family used (`n ≤ 6` searched in full).
+const MAX_PARTS: usize = 8;
+
+impl Family {
+    fn dim(&self) -> usize {
+        if self.n1 >= 1 {
+            self.singles
+        } else {
+            self.singles - 2 + usize::from(self.n2 >= 1)
+        }
+    }
+
+    /// `(count, angle)` of each part, or `None` when `x` cannot close the balance.
+    fn parts(&self, capacity: f64, x: &[f64]) -> Option<[(f64, f64); MAX_PARTS]> {
+        let target = -(self.n as f64) / capacity;
+        let mut p = [(0.0, 0.0); MAX_PARTS];
+        if self.n1 >= 1 {
+            let (sigma, delta) = (x[0], x[1]);
+            p[2] = (1.0, sigma + delta);
+            p[3] = (1.0, sigma - delta);
+            for (k, b) in x[2..].iter().enumerate() {
+                p[4 + k] = (1.0, *b);
+            }
+            let (mut rx, mut ry) = (target, 0.0);
+            for q in &p[2..2 + self.singles] {
+                rx -= q.1.cos();
+                ry -= q.1.sin();
+            }
+            let (n1, n2, r) = (self.n1 as f64, self.n2 as f64, rx.hypot(ry));
+            if r > n1 + n2 || r < (n1 - n2).abs() || r == 0.0 {
+                return None;
+            }
+            let cos1 = ((n1 * n1 + r * r - n2 * n2) / (2.0 * n1 * r)).clamp(-1.0, 1.0);
+            let a1 = ry.atan2(rx) + self.branch * cos1.acos();
+            let a2 = (ry - n1 * a1.sin()).atan2(rx - n1 * a1.cos());
+            p[0] = (n1, a1);
+            p[1] = (n2, a2);
+        } else {
+            let (mut wx, mut wy) = (target, 0.0);
+            let mut rest = x;
+            if self.n2 >= 1 {
+                p[1] = (self.n2 as f64, x[0]);
+                wx -= self.n2 as f64 * x[0].cos();
+                wy -= self.n2 as f64 * x[0].sin();
+                rest = &x[1..];
+            }
+            for (k, b) in rest.iter().enumerate() {
+                p[4 + k] = (1.0, *b);
+                wx -= b.cos();
+                wy -= b.sin();
+            }
+            let (b1, b2) = close_with_pair(wx, wy)?;
+            p[2] = (1.0, b1);
+            p[3] = (1.0, b2);
+        }
+        Some(p)
+    }
+
+    /// The exact anisotropy of the configuration `x`, `½ |Ā_m0 + Ā_m D|`.
+    fn anisotropy(&self, set: &BallSet, x: &[f64]) -> Option<f64> {
+        let p = self.parts(set.capacity, x)?;
+        let (mut c, mut s) = (0.0, 0.0);
+        for (count, a) in p.into_iter().filter(|q| q.0 > 0.0) {
+            let (sin, cos) = (2.0 * a).sin_cos();
+            c += count * cos;
+            s += count * sin;
+        }
+        let n = self.n as f64;
+        Some(0.5 * (set.a_m0 + set.a_m * c / n).hypot(set.a_m * s / n))
+    }
+
+    /// All `n` ball angles of the configuration `x`.
+    fn angles(&self, capacity: f64, x: &[f64]) -> Vec<f64> {
+        let Some(p) = self.parts(capacity, x) else { return vec![] };
+        p.iter().flat_map(|&(count, a)| std::iter::repeat_n(a, count as usize)).collect()
+    }
+}
+
+/// The range of the exact anisotropy over the balancing family (`n ≥ 3`, `E ≥ 1`).
 ///
-/// Parametrised by the angles of balls 3..n (balls 1, 2 close the balance,
-/// [`complete_configuration`]); deterministic multistart of Nelder–Mead from structured
-/// candidates (groups of balls at 0 and π with a symmetric pair) and quasi-random points.
-/// Tests check it against a dense sweep for `n = 3` and against random feasible samples.
+/// For `n ≤` [`FULL_SEARCH_MAX_BALLS`] a global search over all configurations, parametrised
+/// by the angles of balls 3..n (balls 1, 2 close the balance, [`complete_configuration`]).
+///
+/// For more balls the search runs over small families that contain every extremal
+/// configuration, so that the cost is `O(n)` instead of a search in `n − 2` dimensions. Why:
+/// the extreme values of `|Ā_m0 + Ā_m D|` are attained where a linear functional
+/// `Σ_j cos(2α_j − θ)` is stationary on the balance constraint (two equations), i.e. every
+/// ball sits at a critical point of `G(α) = cos(2α − θ) − λ cos α − μ sin α`, a trigonometric
+/// polynomial of degree 2 with at most two local maxima and two local minima. The second-order
+/// condition on the `(n − 2)`-dimensional tangent space allows at most two balls with the
+/// wrong curvature (maximum), four for the minimum of the modulus (whose Hessian adds a rank-2
+/// term). So a maximiser has two groups of balls (`n1 + n2 = n − 2`, each at one angle) and two
+/// single balls, a minimiser two groups and four singles: 2 and 4 free parameters, for each of
+/// the `O(n)` splits `n1 + n2`. Tests check it against the full search for `n = 7 … 9` and
+/// against random configurations for `n` up to 1000.
+///
+/// Each search is a deterministic multistart of Nelder–Mead from quasi-random points.
 pub fn exact_interval(set: &BallSet) -> ExactInterval {
     let n = set.n;
-    let k = (n - 2) as usize;
-    let e = set.capacity;
-    let eval = |free: &[f64]| complete_configuration(n, e, free).map(|c| exact_anisotropy_of(set, &c));
-    let mut starts: Vec<Vec<f64>> = vec![];
-    // structured: j balls at 0, the rest of the free ones at π
-    for j in 0..=k {
-        let mut v = vec![PI; k];
-        for x in v.iter_mut().take(j) {
-            *x = 0.0;
-        }
-        starts.push(v);
+    if n <= FULL_SEARCH_MAX_BALLS {
+        let all = Family { n, n1: 0, n2: 0, singles: n as usize, branch: 1.0 };
+        return search(set, &[all], &[all]);
     }
-    // quasi-random (additive recurrence on the golden ratio, deterministic)
-    let mut seed = 0.5f64;
-    let count = 48 * k.max(1);
-    for _ in 0..count {
-        let v: Vec<f64> = (0..k)
-            .map(|_| {
-                seed = (seed + 0.618_033_988_749_894_9).fract();
-                2.0 * PI * seed
-            })
-            .collect();
-        starts.push(v);
-    }
-    let mut best_min = (f64::INFINITY, vec![]);
-    let mut best_max = (f64::NEG_INFINITY, vec![]);
-    for s in &starts {
-        if eval(s).is_none() {
-            continue;
-        }
-        let (xmin, fmin) = nelder_mead(|x| eval(x).unwrap_or(f64::INFINITY), s, 0.4, 400);
-        if fmin < best_min.0 {
-            best_min = (fmin, xmin);
-        }
-        let (xmax, fmax) = nelder_mead(|x| eval(x).map(|v| -v).unwrap_or(f64::INFINITY), s, 0.4, 400);
-        if -fmax > best_max.0 {
-            best_max = (-fmax, xmax);
-        }
-    }
-    ExactInterval {
-        min: best_min.0,
-        max: best_max.0,
-        argmin: complete_configuration(n, e, &best_min.1).unwrap_or_default(),
-        argmax: complete_configuration(n, e, &best_max.1).unwrap_or_default(),
-    }
+    exact_interval_families(set)
 }
 
-/// Minimal Nelder–Mead simplex search (standard coefficients 1, 2, ½, ½), used only on the
-/// few smooth angle variables of [`exact_interval`]; infeasible points return `+∞`.
+/// The search over the families of extremal configurations alone ([`exact_interval`] uses it
+/// for `n >` [`FULL_SEARCH_MAX_BALLS`]); defined for `n ≥ 5`, so that tests can compare it with
+/// the full search where both apply.
+pub fn exact_interval_families(set: &BallSet) -> ExactInterval {
+    let n = set.n;
+    assert!(n >= 5, "the families need n ≥ 5 balls");
+    let splits = |singles: u32| -> Vec<Family> {
+        let rest = n - singles;
+        // one group (n1 = 0) closed by two singles, and every split into two groups
+        let mut v = vec![Family { n, n1: 0, n2: rest, singles: singles as usize, branch: 1.0 }];
+        for n1 in 1..=rest / 2 {
+            for branch in [1.0, -1.0] {
+                v.push(Family { n, n1, n2: rest - n1, singles: singles as usize, branch });
+            }
+        }
+        v
+    };
+    search(set, &splits(4), &splits(2))
+}
+
+/// Minimum over `min_families`, maximum over `max_families`.
+fn search(set: &BallSet, min_families: &[Family], max_families: &[Family]) -> ExactInterval {
+    let evaluations = std::cell::Cell::new(0u64);
+    let eval = |f: &Family, x: &[f64]| {
+        evaluations.set(evaluations.get() + 1);
+        f.anisotropy(set, x)
+    };
+    let mut best_min = (f64::INFINITY, vec![]);
+    let mut best_max = (f64::NEG_INFINITY, vec![]);
+    for (families, maximise) in [(min_families, false), (max_families, true)] {
+        for f in families {
+            // the target balance cannot be closed by any member of this split
+            if f.n1 >= 1 && (f.n2 - f.n1) as f64 > f.n as f64 / set.capacity + f.singles as f64 {
+                continue;
+            }
+            // zero is the least anisotropy there is (to round-off)
+            if !maximise && best_min.0 <= 1e-15 * (set.a_m0 + set.a_m) {
+                break;
+            }
+            let sign = if maximise { -1.0 } else { 1.0 };
+            let objective = |x: &[f64]| eval(f, x).map(|v| sign * v).unwrap_or(f64::INFINITY);
+            let feasible = |x: &[f64]| f.parts(set.capacity, x).is_some();
+            for start in starts(f.dim(), f.n1 == 0 && f.n2 == 0, feasible) {
+                let (x, v) = nelder_mead(objective, &start, 0.4, 400);
+                let v = sign * v;
+                if maximise && v > best_max.0 {
+                    best_max = (v, f.angles(set.capacity, &x));
+                } else if !maximise && v < best_min.0 {
+                    best_min = (v, f.angles(set.capacity, &x));
+                }
+            }
+        }
+    }
+    ExactInterval { min: best_min.0, max: best_max.0, argmin: best_min.1, argmax: best_max.1, evaluations: evaluations.get() }
+}
+
+/// Deterministic starting points in `[0, 2π)^k` that close the balance (`feasible`): for the
+/// full search (`structured`) groups of balls at 0 and π, then quasi-random points (Roberts'
+/// `R_k` sequence), `6 k` of them (`48 k` for the full search), from at most
+/// 50 times as many candidates.
+fn starts(k: usize, structured: bool, feasible: impl Fn(&[f64]) -> bool) -> Vec<Vec<f64>> {
+    let mut v: Vec<Vec<f64>> = vec![];
+    if structured {
+        for j in 0..=k {
+            let mut s = vec![PI; k];
+            for x in s.iter_mut().take(j) {
+                *x = 0.0;
+            }
+            if feasible(&s) {
+                v.push(s);
+            }
+        }
+    }
+    // Roberts' R_k sequence: x_i = frac(½ + i α_j), α_j = φ_k^−(j+1), φ_k the positive root of
+    // x^(k+1) = x + 1 (φ_1 is the golden ratio); fills the k-torus evenly in every dimension
+    let mut phi = 2.0f64;
+    for _ in 0..60 {
+        phi = (1.0 + phi).powf(1.0 / (k as f64 + 1.0));
+    }
+    let alpha: Vec<f64> = (1..=k).map(|j| phi.powi(-(j as i32))).collect();
+    let count = if structured { 48 * k.max(1) } else { 6 * k.max(1) };
+    let mut found = 0;
+    for i in 0..50 * count {
+        let s: Vec<f64> = alpha.iter().map(|a| 2.0 * PI * (0.5 + i as f64 * a).fract()).collect();
+        if feasible(&s) {
+            v.push(s);
+            found += 1;
+            if found == count {
+                break;
+            }
+        }
+    }
+    v
+}
+
+/// Most free parameters of a search: `n − 2 = 4` for the full search, 4 for the families.
+const MAX_DIM: usize = 4;
+
+/// Minimal Nelder–Mead simplex search (standard coefficients 1, 2, ½, ½) on stack arrays, used
+/// only on the few smooth angle variables of [`exact_interval`]; infeasible points return `+∞`.
 fn nelder_mead(f: impl Fn(&[f64]) -> f64, x0: &[f64], step: f64, iters: usize) -> (Vec<f64>, f64) {
     let d = x0.len();
-    let mut simplex: Vec<(Vec<f64>, f64)> = vec![(x0.to_vec(), f(x0))];
+    debug_assert!((1..=MAX_DIM).contains(&d));
+    type P = ([f64; MAX_DIM], f64);
+    let point = |x: &[f64]| -> [f64; MAX_DIM] {
+        let mut p = [0.0; MAX_DIM];
+        p[..d].copy_from_slice(&x[..d]);
+        p
+    };
+    let mut simplex: [P; MAX_DIM + 1] = [([0.0; MAX_DIM], 0.0); MAX_DIM + 1];
+    simplex[0] = (point(x0), f(x0));
     for i in 0..d {
-        let mut x = x0.to_vec();
+        let mut x = point(x0);
         x[i] += step;
-        let v = f(&x);
-        simplex.push((x, v));
+        simplex[i + 1] = (x, f(&x[..d]));
     }
+    let sort = |s: &mut [P; MAX_DIM + 1]| s[..=d].sort_by(|a, b| a.1.total_cmp(&b.1));
     for _ in 0..iters {
-        simplex.sort_by(|a, b| a.1.total_cmp(&b.1));
+        sort(&mut simplex);
         if (simplex[d].1 - simplex[0].1).abs() < 1e-15 && simplex[d].1.is_finite() {
-            let spread: f64 = simplex.iter().map(|p| (p.0[0] - simplex[0].0[0]).abs()).sum();
+            let spread: f64 = simplex[..=d].iter().map(|p| (p.0[0] - simplex[0].0[0]).abs()).sum();
             if spread < 1e-12 {
                 break;
             }
         }
-        let centroid: Vec<f64> =
-            (0..d).map(|j| simplex[..d].iter().map(|p| p.0[j]).sum::<f64>() / d as f64).collect();
-        let lerp = |t: f64| -> Vec<f64> { (0..d).map(|j| centroid[j] + t * (simplex[d].0[j] - centroid[j])).collect() };
+        let mut centroid = [0.0; MAX_DIM];
+        for p in &simplex[..d] {
+            for j in 0..d {
+                centroid[j] += p.0[j] / d as f64;
+            }
+        }
+        let worst = simplex[d].0;
+        let lerp = |t: f64| -> [f64; MAX_DIM] {
+            let mut x = [0.0; MAX_DIM];
+            for j in 0..d {
+                x[j] = centroid[j] + t * (worst[j] - centroid[j]);
+            }
+            x
+        };
         let xr = lerp(-1.0);
-        let fr = f(&xr);
+        let fr = f(&xr[..d]);
         if fr < simplex[0].1 {
             let xe = lerp(-2.0);
-            let fe = f(&xe);
+            let fe = f(&xe[..d]);
             simplex[d] = if fe < fr { (xe, fe) } else { (xr, fr) };
         } else if fr < simplex[d - 1].1 {
             simplex[d] = (xr, fr);
         } else {
             let xc = if fr < simplex[d].1 { lerp(-0.5) } else { lerp(0.5) };
-            let fc = f(&xc);
+            let fc = f(&xc[..d]);
             if fc < simplex[d].1.min(fr) {
                 simplex[d] = (xc, fc);
             } else {
-                let best = simplex[0].0.clone();
-                for p in simplex.iter_mut().skip(1) {
+                let best = simplex[0].0;
+                for p in simplex[1..=d].iter_mut() {
                     for j in 0..d {
                         p.0[j] = best[j] + 0.5 * (p.0[j] - best[j]);
                     }
-                    p.1 = f(&p.0);
+                    p.1 = f(&p.0[..d]);
                 }
             }
         }
     }
-    simplex.sort_by(|a, b| a.1.total_cmp(&b.1));
-    let (x, v) = simplex.swap_remove(0);
-    (x, v)
+    sort(&mut simplex);
+    (simplex[0].0[..d].to_vec(), simplex[0].1)
 }
 
 /// Composite mass-inertia properties (000, eqs (4), (5)) relative to `A_Σ`, or in SI when a

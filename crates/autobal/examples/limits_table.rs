@@ -1,0 +1,5 @@
+//! Prints the table of input ranges (`autobal::limits`) that docs/robustness.md shows:
+//! `cargo run -p autobal --example limits_table`.
+fn main() {
+    print!("{}", autobal::limits::markdown_table());
+}
