@@ -205,14 +205,17 @@ fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Inertia { common, format } => {
             let cfg = config::load(common.config.as_deref(), &common.set)?;
+            output::check_results(&cfg)?;
             emit(format, output::inertia_json(&cfg), output::inertia_table(&cfg))
         }
         Command::Critical { common, format } => {
             let cfg = config::load(common.config.as_deref(), &common.set)?;
+            output::check_results(&cfg)?;
             emit(format, output::critical_json(&cfg), output::critical_table(&cfg))
         }
         Command::Ranges { common, format } => {
             let cfg = config::load(common.config.as_deref(), &common.set)?;
+            output::check_results(&cfg)?;
             emit(format, output::ranges_json(&cfg), output::ranges_table(&cfg))
         }
         Command::Stability { common, format, lin, samples, svg } => {
@@ -225,6 +228,7 @@ fn run(cli: Cli) -> Result<()> {
                 anyhow::bail!("--samples: must lie between 10 and 1000000, got {samples}");
             }
             let c = linear::compare(&cfg.model, w, samples, lin.balls.into())?;
+            autobal::limits::check_finite("stability", &c.exact)?;
             if let Some(p) = svg {
                 std::fs::write(&p, linear::margin_plot(&c).to_svg()).with_context(|| format!("--svg {}: cannot write", p.display()))?;
             }
@@ -240,6 +244,7 @@ fn run(cli: Cli) -> Result<()> {
                 anyhow::bail!("--points: must lie between 3 and 100000, got {points}");
             }
             let c = linear::campbell_of(&cfg, w, points, lin.balls.into())?;
+            autobal::limits::check_finite("campbell", &c)?;
             if let Some(prefix) = svg {
                 let (rot, fixed) = linear::campbell_plots(&cfg.model, &c);
                 for (suffix, p) in [("rotating", rot), ("fixed", fixed)] {
@@ -323,6 +328,7 @@ fn run_simulate(config: Option<PathBuf>, set: Vec<String>, dt: Option<f64>, out:
     let mut w = std::io::BufWriter::new(file);
     let progress = std::io::IsTerminal::is_terminal(&std::io::stderr());
     let (summary, env, wall) = sim::run_to_csv(&cfg, &mut w, progress)?;
+    autobal::limits::check_finite("the summary", &summary)?;
     drop(w);
     let stem = out.with_extension("");
     let plots = sim::write_plots(&cfg, &env, &stem, "Passage")?;

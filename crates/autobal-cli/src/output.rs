@@ -265,6 +265,18 @@ pub fn ranges_table(cfg: &Config) -> String {
     s
 }
 
+/// Every number the analytic commands report is finite (else the error names the quantity);
+/// the input ranges (`autobal::limits`) are chosen so that this holds, this is the last guard.
+pub fn check_results(cfg: &Config) -> anyhow::Result<()> {
+    use autobal::limits::check_finite;
+    check_finite("the model", &cfg.model)?;
+    check_finite("inertia", &composite_inertia(&cfg.model))?;
+    check_finite("critical_speeds", &critical_speeds(&cfg.model))?;
+    check_finite("autobalancing_ranges", &autobalancing_ranges(&cfg.model))?;
+    check_finite("sensitivity", &sensitivity(&cfg.model, cfg.analysis.sensitivity_limit))?;
+    Ok(())
+}
+
 /// Write `text` to standard output. A reader that closed the pipe early (`autobal critical |
 /// head -1`) is not an error of ours: the error it gives is [`is_broken_pipe`], on which `main`
 /// ends quietly.

@@ -197,6 +197,193 @@ pub fn check_derived(name: &str, field: &str, value: f64, what: &str) -> Result<
     }
 }
 
+/// Check that every number in `value` (any result that serialises: critical speeds, ranges,
+/// summaries) is finite. The error is [`Error::NonFinite`] naming `what` and the path to the
+/// first offending number (`critical_speeds[2].omega`): JSON would silently print it as `null`.
+///
+/// ```
+/// use autobal::limits::check_finite;
+/// assert!(check_finite("speeds", &vec![1.0, 2.0]).is_ok());
+/// let e = check_finite("speeds", &vec![1.0, f64::NAN]).unwrap_err();
+/// assert_eq!(e.to_string(), "speeds[1] became non-finite");
+/// ```
+pub fn check_finite<T: serde::Serialize + ?Sized>(what: &str, value: &T) -> Result<()> {
+    let mut w = finite_walk::Walker { path: vec![what.to_string()], index: vec![] };
+    value.serialize(&mut w).map_err(|e| Error::NonFinite { what: e.0, t: None })
+}
+
+/// A serde serializer that only walks the value and stops at the first non-finite float.
+mod finite_walk {
+    use serde::ser::{self, Serialize};
+    use std::fmt::Display;
+
+    /// The path of the first non-finite number.
+    #[derive(Debug)]
+    pub struct Found(pub String);
+
+    impl Display for Found {
+        fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+            f.write_str(&self.0)
+        }
+    }
+    impl std::error::Error for Found {}
+    impl ser::Error for Found {
+        fn custom<T: Display>(msg: T) -> Self {
+            Found(msg.to_string())
+        }
+    }
+
+    pub struct Walker {
+        pub path: Vec<String>,
+        pub index: Vec<usize>,
+    }
+
+    type R = Result<(), Found>;
+
+    impl Walker {
+        fn float(&self, v: f64) -> R {
+            if v.is_finite() {
+                Ok(())
+            } else {
+                Err(Found(self.path.concat()))
+            }
+        }
+        fn nested<T: Serialize + ?Sized>(&mut self, part: String, v: &T) -> R {
+            self.path.push(part);
+            v.serialize(&mut *self)?;
+            self.path.pop();
+            Ok(())
+        }
+        fn element<T: Serialize + ?Sized>(&mut self, v: &T) -> R {
+            let i = self.index.last().copied().unwrap_or(0);
+            if let Some(last) = self.index.last_mut() {
+                *last += 1;
+            }
+            self.nested(format!("[{i}]"), v)
+        }
+        fn open(&mut self) -> Result<&mut Self, Found> {
+            self.index.push(0);
+            Ok(self)
+        }
+        fn close(&mut self) -> R {
+            self.index.pop();
+            Ok(())
+        }
+    }
+
+    macro_rules! ignore {
+        ($($f:ident: $t:ty),*) => {
+            $(fn $f(self, _: $t) -> R { Ok(()) })*
+        };
+    }
+
+    impl ser::Serializer for &mut Walker {
+        type Ok = ();
+        type Error = Found;
+        type SerializeSeq = Self;
+        type SerializeTuple = Self;
+        type SerializeTupleStruct = Self;
+        type SerializeTupleVariant = Self;
+        type SerializeMap = Self;
+        type SerializeStruct = Self;
+        type SerializeStructVariant = Self;
+        ignore!(serialize_bool: bool, serialize_i8: i8, serialize_i16: i16, serialize_i32: i32, serialize_i64: i64,
+            serialize_u8: u8, serialize_u16: u16, serialize_u32: u32, serialize_u64: u64, serialize_char: char,
+            serialize_str: &str, serialize_bytes: &[u8], serialize_unit_struct: &'static str);
+        fn serialize_f32(self, v: f32) -> R {
+            self.float(v as f64)
+        }
+        fn serialize_f64(self, v: f64) -> R {
+            self.float(v)
+        }
+        fn serialize_none(self) -> R {
+            Ok(())
+        }
+        fn serialize_some<T: Serialize + ?Sized>(self, v: &T) -> R {
+            v.serialize(self)
+        }
+        fn serialize_unit(self) -> R {
+            Ok(())
+        }
+        fn serialize_unit_variant(self, _: &'static str, _: u32, _: &'static str) -> R {
+            Ok(())
+        }
+        fn serialize_newtype_struct<T: Serialize + ?Sized>(self, _: &'static str, v: &T) -> R {
+            v.serialize(self)
+        }
+        fn serialize_newtype_variant<T: Serialize + ?Sized>(self, _: &'static str, _: u32, variant: &'static str, v: &T) -> R {
+            self.nested(format!(".{variant}"), v)
+        }
+        fn serialize_seq(self, _: Option<usize>) -> Result<Self, Found> {
+            self.open()
+        }
+        fn serialize_tuple(self, _: usize) -> Result<Self, Found> {
+            self.open()
+        }
+        fn serialize_tuple_struct(self, _: &'static str, _: usize) -> Result<Self, Found> {
+            self.open()
+        }
+        fn serialize_tuple_variant(self, _: &'static str, _: u32, _: &'static str, _: usize) -> Result<Self, Found> {
+            self.open()
+        }
+        fn serialize_map(self, _: Option<usize>) -> Result<Self, Found> {
+            self.open()
+        }
+        fn serialize_struct(self, _: &'static str, _: usize) -> Result<Self, Found> {
+            Ok(self)
+        }
+        fn serialize_struct_variant(self, _: &'static str, _: u32, _: &'static str, _: usize) -> Result<Self, Found> {
+            Ok(self)
+        }
+    }
+
+    macro_rules! sequence {
+        ($($tr:ident: $f:ident),*) => {$(
+            impl ser::$tr for &mut Walker {
+                type Ok = ();
+                type Error = Found;
+                fn $f<T: Serialize + ?Sized>(&mut self, v: &T) -> R {
+                    self.element(v)
+                }
+                fn end(self) -> R {
+                    self.close()
+                }
+            }
+        )*};
+    }
+    sequence!(SerializeSeq: serialize_element, SerializeTuple: serialize_element, SerializeTupleStruct: serialize_field, SerializeTupleVariant: serialize_field);
+
+    impl ser::SerializeMap for &mut Walker {
+        type Ok = ();
+        type Error = Found;
+        fn serialize_key<T: Serialize + ?Sized>(&mut self, _: &T) -> R {
+            Ok(())
+        }
+        fn serialize_value<T: Serialize + ?Sized>(&mut self, v: &T) -> R {
+            self.element(v)
+        }
+        fn end(self) -> R {
+            self.close()
+        }
+    }
+
+    macro_rules! structure {
+        ($($tr:ident),*) => {$(
+            impl ser::$tr for &mut Walker {
+                type Ok = ();
+                type Error = Found;
+                fn serialize_field<T: Serialize + ?Sized>(&mut self, key: &'static str, v: &T) -> R {
+                    self.nested(format!(".{key}"), v)
+                }
+                fn end(self) -> R {
+                    Ok(())
+                }
+            }
+        )*};
+    }
+    structure!(SerializeStruct, SerializeStructVariant);
+}
+
 /// The table of ranges as Markdown (docs/robustness.md shows it).
 pub fn markdown_table() -> String {
     let mut s = String::from("| field | range | why |\n|---|---|---|\n");
@@ -225,6 +412,28 @@ mod tests {
     fn the_docs_state_these_ranges() {
         let docs = include_str!("../../../docs/robustness.md");
         assert!(docs.contains(&markdown_table()), "docs/robustness.md must contain limits::markdown_table() verbatim:\n{}", markdown_table());
+    }
+
+    #[test]
+    fn non_finite_outputs_are_found_with_their_path() {
+        #[derive(serde::Serialize)]
+        struct Speed {
+            omega: f64,
+            rpm: Option<f64>,
+        }
+        #[derive(serde::Serialize)]
+        struct Out {
+            name: String,
+            speeds: Vec<Speed>,
+            range: (f64, Option<f64>),
+        }
+        let mut out = Out { name: "x".into(), speeds: vec![Speed { omega: 1.0, rpm: None }, Speed { omega: 2.0, rpm: Some(3.0) }], range: (0.0, None) };
+        assert!(check_finite("critical", &out).is_ok());
+        out.speeds[1].rpm = Some(f64::INFINITY);
+        assert_eq!(check_finite("critical", &out).unwrap_err(), Error::NonFinite { what: "critical.speeds[1].rpm".into(), t: None });
+        out.speeds[1].rpm = None;
+        out.range.1 = Some(f64::NAN);
+        assert_eq!(check_finite("critical", &out).unwrap_err().to_string(), "critical.range[1] became non-finite");
     }
 
     #[test]
