@@ -10,6 +10,7 @@ mod mapfig;
 mod num;
 mod plot;
 mod sim;
+mod sweep;
 mod report;
 
 use anyhow::{Context, Result};
@@ -167,27 +168,10 @@ enum Command {
         #[arg(long, value_enum, default_value = "table")]
         format: Format,
     },
-    /// Many simulations over a grid of config fields, in parallel; summaries as CSV/JSON
-    Sweep {
-        #[arg(long, short)]
-        config: Option<PathBuf>,
-        #[arg(long = "set", value_name = "KEY=VALUE")]
-        set: Vec<String>,
-        /// First axis, KEY=LO:HI:N (e.g. drive.b=0.5:12.5:5)
-        #[arg(long, value_name = "KEY=LO:HI:N")]
-        x: String,
-        /// Optional second axis, KEY=LO:HI:N (e.g. planar.c_psi=0.01:0.4:4)
-        #[arg(long, value_name = "KEY=LO:HI:N")]
-        y: Option<String>,
-        /// Output stem: STEM.csv and STEM.json
-        #[arg(long, short, default_value = "sweep")]
-        out: PathBuf,
-        #[arg(long, value_enum, default_value = "table")]
-        format: Format,
-        /// Worker threads (default: all cores)
-        #[arg(long)]
-        threads: Option<usize>,
-    },
+    /// Many simulations over a grid of parameter paths, in parallel; summaries as CSV/JSON (--shard K/N for batch systems)
+    Sweep(sweep::SweepArgs),
+    /// Merge the outputs of `autobal sweep --shard K/N` into the unsharded sweep's STEM.csv/json
+    Merge(sweep::MergeArgs),
     /// Write an HTML report with SVG figures to a folder
     Report {
         #[command(flatten)]
@@ -256,7 +240,8 @@ fn run(cli: Cli) -> Result<()> {
         }
         Command::Map { common, x, y, omega, balls, quantity, out, threads } => run_map(common, x, y, omega, balls, quantity, out, threads),
         Command::Simulate { config, set, dt, out, format } => run_simulate(config, set, dt, out, format),
-        Command::Sweep { config, set, x, y, out, format, threads } => run_sweep(config, set, x, y, out, format, threads),
+        Command::Sweep(a) => sweep::run(a),
+        Command::Merge(a) => sweep::merge(a),
         Command::Report { common, out, quick } => {
             let _ = ctrlc::set_handler(|| sim::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
             let index = report::run(common.config.as_deref(), &common.set, &out, quick)?;
@@ -336,49 +321,6 @@ fn run_simulate(config: Option<PathBuf>, set: Vec<String>, dt: Option<f64>, out:
     output::note(&format!("wrote {} and {} plots ({})", out.display(), plots.len(), plots.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")));
     if let Some(st) = summary.stopped {
         anyhow::bail!("{st}: the samples up to then are kept in {}", out.display());
-    }
-    Ok(())
-}
-
-#[allow(clippy::too_many_arguments)]
-fn run_sweep(config: Option<PathBuf>, set: Vec<String>, x: String, y: Option<String>, out: PathBuf, format: Format, threads: Option<usize>) -> Result<()> {
-    let (mut root, source) = config::read_with_default(config.as_deref(), config::DEFAULT_PLANAR, "embedded default (examples/planar.toml)")?;
-    for s in &set {
-        config::apply_set(&mut root, s)?;
-    }
-    let xa = sim::SweepAxis::parse("--x", &x)?;
-    let ya = y.as_deref().map(|s| sim::SweepAxis::parse("--y", s)).transpose()?;
-    distinct_axes(&xa.key, ya.as_ref().map(|a| a.key.as_str()))?;
-    if let Some(t) = threads {
-        if t == 0 {
-            anyhow::bail!("--threads: must be at least 1");
-        }
-        rayon::ThreadPoolBuilder::new().num_threads(t).build_global().ok();
-    }
-    let _ = ctrlc::set_handler(|| sim::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
-    let progress = std::io::IsTerminal::is_terminal(&std::io::stderr());
-    let res = sim::sweep(&root, &source, &xa, ya.as_ref(), progress)?;
-    let ykey = ya.as_ref().map_or("-".to_string(), |a| a.key.clone());
-    let mut csv = format!("{},{},peak_amplitude,omega_at_peak,final_amplitude,final_omega,balanced,steps,rhs_evaluations,wall_s\n", xa.key, ykey);
-    let mut rows = vec![];
-    let mut table = format!("{:>12} {:>12} {:>12} {:>12} {:>12} {:>9} {:>10}\n", xa.key, ykey, "peak (mm)", "ω at peak", "final (mm)", "balanced", "steps");
-    for (xv, yv, r) in &res {
-        let Some((s, wall)) = r else { continue };
-        let yv_s = yv.map_or(String::new(), |v| v.to_string());
-        csv.push_str(&format!("{xv},{yv_s},{},{},{},{},{},{},{},{wall}\n", s.peak_amplitude, s.omega_at_peak, s.final_amplitude, s.final_omega, s.balanced as u8, s.steps, s.rhs_evaluations));
-        table.push_str(&format!("{:>12} {:>12} {:>12.4} {:>12.2} {:>12.4} {:>9} {:>10}\n", xv, yv_s, 1e3 * s.peak_amplitude, s.omega_at_peak, 1e3 * s.final_amplitude, s.balanced, s.steps));
-        rows.push(serde_json::json!({ "x": xv, "y": yv, "summary": s, "wall_time_s": wall }));
-    }
-    let json = serde_json::json!({ "x_key": xa.key, "y_key": ya.as_ref().map(|a| a.key.clone()), "runs": rows });
-    if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).with_context(|| format!("--out: cannot create {}", dir.display()))?;
-    }
-    std::fs::write(out.with_extension("csv"), csv).with_context(|| format!("--out: cannot write {}", out.with_extension("csv").display()))?;
-    std::fs::write(out.with_extension("json"), serde_json::to_string_pretty(&json)?).with_context(|| "--out: cannot write the JSON".to_string())?;
-    emit(format, json, table)?;
-    let done = res.iter().filter(|r| r.2.is_some()).count();
-    if done < res.len() {
-        anyhow::bail!("interrupted: {done} of {} runs complete, kept in {}", res.len(), out.with_extension("csv").display());
     }
     Ok(())
 }

@@ -1,16 +1,14 @@
 //! `autobal simulate` and `autobal sweep`: the nonlinear passage through resonance (paper 004).
 
-use crate::config::{self, PlanarConfig};
+use crate::config::PlanarConfig;
 use crate::plot::{Plot, Series, PALETTE};
-use anyhow::{anyhow, bail, Context, Result};
+use anyhow::{bail, Context, Result};
 use autobal::planar::stationary::{aligned_whirls, capacity_ratio, locked_amplitude, semi_balanced_exists};
 use autobal::planar::{simulate, Sample, Summary};
-use rayon::prelude::*;
 use serde_json::{json, Value};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Mutex;
 
 /// Set by Ctrl-C.
 pub static INTERRUPTED: AtomicBool = AtomicBool::new(false);
@@ -246,83 +244,4 @@ pub fn write_plots(cfg: &PlanarConfig, env: &Envelope, stem: &Path, title: &str)
         files.push(path);
     }
     Ok(files)
-}
-
-/// One axis of a sweep: `key=lo:hi:n` with a config field (log spacing with `log:` prefix on lo).
-#[derive(Debug, Clone)]
-pub struct SweepAxis {
-    pub key: String,
-    pub values: Vec<f64>,
-}
-
-impl SweepAxis {
-    pub fn parse(flag: &str, spec: &str) -> Result<Self> {
-        let a = crate::map::Axis::parse(flag, spec).or_else(|e| {
-            // allow a single value: key=v
-            match spec.split_once('=').map(|(k, v)| (k, v.trim().parse::<f64>())) {
-                Some((k, Ok(v))) if v.is_finite() => Ok(crate::map::Axis { key: k.trim().to_string(), lo: v, hi: v, n: 1 }),
-                _ => Err(e),
-            }
-        })?;
-        if a.key == "omega" {
-            bail!("{flag} {spec}: sweep over config fields (e.g. drive.b, planar.c_psi), not omega");
-        }
-        let values = if a.n == 1 { vec![a.lo] } else { (0..a.n).map(|i| a.value(i)).collect() };
-        Ok(SweepAxis { key: a.key, values })
-    }
-}
-
-/// Run a sweep in parallel; results in row-major order (`y` outer). Skipped points (Ctrl-C) are `None`.
-pub fn sweep(base: &toml::Table, source: &str, x: &SweepAxis, y: Option<&SweepAxis>, progress: bool) -> Result<Vec<(f64, Option<f64>, Option<(Summary, f64)>)>> {
-    let ys: Vec<Option<f64>> = match y {
-        Some(a) => a.values.iter().map(|v| Some(*v)).collect(),
-        None => vec![None],
-    };
-    let mut points = vec![];
-    for yv in &ys {
-        for xv in &x.values {
-            points.push((*xv, *yv));
-        }
-    }
-    let build = |xv: f64, yv: Option<f64>| -> Result<PlanarConfig> {
-        let mut t = base.clone();
-        config::set_number(&mut t, &x.key, xv)?;
-        if let (Some(a), Some(v)) = (y, yv) {
-            config::set_number(&mut t, &a.key, v)?;
-        }
-        let mut c = config::build_planar(&t, source).with_context(|| match (y, yv) {
-            (Some(a), Some(v)) => format!("at {} = {xv}, {} = {v}", x.key, a.key),
-            _ => format!("at {} = {xv}", x.key),
-        })?;
-        c.settings.dt = c.settings.t_end; // summaries only: no dense sampling
-        Ok(c)
-    };
-    // validate every point before spending time
-    for (xv, yv) in &points {
-        build(*xv, *yv)?;
-    }
-    let bar = progress.then(|| indicatif::ProgressBar::new(points.len() as u64));
-    let done = Mutex::new(0usize);
-    let results: Vec<Result<(f64, Option<f64>, Option<(Summary, f64)>)>> = points
-        .par_iter()
-        .map(|&(xv, yv)| {
-            if INTERRUPTED.load(Ordering::Relaxed) {
-                return Ok((xv, yv, None));
-            }
-            let c = build(xv, yv)?;
-            let t0 = std::time::Instant::now();
-            let s = simulate(&c.rotor, &c.drive, &c.settings, |_| !INTERRUPTED.load(Ordering::Relaxed))?;
-            let wall = t0.elapsed().as_secs_f64();
-            if let Some(b) = &bar {
-                b.inc(1);
-            }
-            *done.lock().map_err(|_| anyhow!("poisoned"))? += 1;
-            let complete = s.stopped.is_none();
-            Ok((xv, yv, complete.then_some((s, wall))))
-        })
-        .collect();
-    if let Some(b) = bar {
-        b.finish_and_clear();
-    }
-    results.into_iter().collect()
 }

@@ -51,12 +51,15 @@
 //! | `D_A = |(1/n) Σ exp(2 i α_j)|` | ball-geometry factor of eq (17) |
 //! | `h̄x, h̄α, h̄yα, h̄s` | dimensionless damping and ball drag |
 
+pub(crate) mod builder;
 pub mod drive;
 pub mod error;
 pub mod limits;
 pub mod linalg;
 pub mod ode;
+pub mod paths;
 pub mod planar;
 pub mod spatial;
+pub mod sweep;
 
 pub use error::{Error, Result};

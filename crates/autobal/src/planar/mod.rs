@@ -24,6 +24,7 @@
 //! rotation; tests check the equations against the paper's fixed-frame eq (1) (after correcting
 //! its sign) and against energy conservation.
 
+pub mod problem;
 pub mod stationary;
 
 pub use crate::drive::Drive;

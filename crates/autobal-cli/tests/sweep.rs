@@ -1,0 +1,108 @@
+//! `autobal sweep` end to end: sharded runs merged equal the unsharded sweep, bit for bit
+//! (every column but the wall time), and merge refuses what does not make one sweep.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn autobal(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_autobal")).args(args).output().expect("binary runs");
+    (out.status.code().unwrap_or(-1), String::from_utf8_lossy(&out.stdout).into(), String::from_utf8_lossy(&out.stderr).into())
+}
+
+fn ok(args: &[&str]) -> String {
+    let (code, out, err) = autobal(args);
+    assert_eq!(code, 0, "{args:?}: {err}");
+    out
+}
+
+/// The CSV without its last column (the wall time, which differs between runs).
+fn without_wall_time(p: &Path) -> Vec<String> {
+    let text = std::fs::read_to_string(p).unwrap();
+    text.lines().map(|l| l.rsplit_once(',').unwrap().0.to_string()).collect()
+}
+
+fn dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("autobal-sweep-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+const GRID: &[&str] = &[
+    "--x", "drive.b=100:200:3", "--y", "planar.c_psi=0.05,0.1", "--axis", "drive.psi0[1]=1.4,1.6",
+    "--set", "drive.t_end=1.5", "--set", "drive.omega0=250",
+];
+
+#[test]
+fn merged_shards_equal_the_unsharded_sweep() {
+    let d = dir("merge");
+    let s = |p: &str| d.join(p).to_str().unwrap().to_string();
+    let mut args = vec!["sweep", "--out"];
+    let full = s("full");
+    args.push(&full);
+    args.extend(GRID);
+    ok(&args);
+    let whole = without_wall_time(&d.join("full.csv"));
+    assert_eq!(whole.len(), 1 + 12, "header and 3 × 2 × 2 points");
+    assert!(whole[0].starts_with("point,drive.b,planar.c_psi,drive.psi0[1],peak_amplitude,"), "{}", whole[0]);
+    // 5 shards of 12 points (sizes 3, 3, 2, 2, 2), run on one thread each, merged out of order
+    let mut shards = vec![];
+    for k in 1..=5 {
+        let stem = s(&format!("part{k}"));
+        let spec = format!("{k}/5");
+        let mut a = vec!["sweep", "--threads", "1", "--shard", &spec, "--out", &stem];
+        a.extend(GRID);
+        ok(&a);
+        shards.push(format!("{stem}.csv"));
+    }
+    let merged = s("merged");
+    let mut a = vec!["merge", "--out", &merged];
+    a.extend(shards.iter().rev().map(String::as_str));
+    ok(&a);
+    assert_eq!(without_wall_time(&d.join("merged.csv")), whole);
+    let jw: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(d.join("full.json")).unwrap()).unwrap();
+    let jm: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(d.join("merged.json")).unwrap()).unwrap();
+    let strip = |v: &serde_json::Value| {
+        let mut v = v.clone();
+        for r in v["runs"].as_array_mut().unwrap() {
+            r.as_object_mut().unwrap().remove("wall_time_s");
+        }
+        v
+    };
+    assert_eq!(strip(&jm), strip(&jw));
+    // merge refuses a missing shard, a shard given twice, and shards of another sweep
+    let (code, _, err) = autobal(&["merge", "--out", &s("x"), &shards[0], &shards[1], &shards[3], &shards[4]]);
+    assert_eq!((code, err.trim()), (2, "error: shard 3 of 5 is missing"));
+    let (code, _, err) = autobal(&["merge", "--out", &s("x"), &shards[0], &shards[0], &shards[1], &shards[2], &shards[3]]);
+    assert_eq!(code, 2);
+    assert!(err.contains("given twice"), "{err}");
+    let other = s("other");
+    let mut a = vec!["sweep", "--shard", "3/5", "--out", &other];
+    a.extend(GRID);
+    a.extend(["--set", "planar.c=40"]);
+    ok(&a);
+    let (code, _, err) = autobal(&["merge", "--out", &s("x"), &shards[0], &shards[1], &format!("{other}.csv"), &shards[3], &shards[4]]);
+    assert_eq!(code, 2);
+    assert!(err.contains("a different sweep") && err.contains("problem"), "{err}");
+    std::fs::remove_dir_all(&d).ok();
+}
+
+#[test]
+fn sweep_errors_name_the_option_and_path() {
+    for (args, start) in [
+        (vec!["sweep", "--x", "drive.torque=1:2:2"], "error: --x drive.torque: the drive is of kind acceleration"),
+        (vec!["sweep", "--x", "planar.c_pis=1:2:2"], "error: --x planar.c_pis: unknown parameter path"),
+        (vec!["sweep", "--x", "drive.b=1:2:2", "--shard", "0/3"], "error: --shard 0/3: expected K/N"),
+        (vec!["sweep", "--x", "drive.b=1:2:2", "--axis", "drive.b=3,4"], "error: --axis drive.b: the same key as --x"),
+        (vec!["sweep", "--x", "planar.m3=0.03,-1"], "error: planar.m3: must"),
+    ] {
+        let d = dir("errors");
+        let stem = d.join("nothing");
+        let mut args = args.clone();
+        args.extend(["--out", stem.to_str().unwrap()]);
+        let (code, _, err) = autobal(&args);
+        assert!(!d.join("nothing.csv").exists(), "{args:?}: no output for a sweep that cannot run");
+        assert_eq!(code, 2, "{args:?}");
+        assert!(err.starts_with(start), "{args:?}: {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    }
+}
