@@ -10,7 +10,7 @@ use toml::{Table, Value};
 pub const DEFAULT_CONFIG: &str = include_str!("../../../examples/default.toml");
 
 /// Every table and key the config understands.
-const SCHEMA: &[(&str, &[&str])] = &[
+pub(crate) const SCHEMA: &[(&str, &[&str])] = &[
     ("rotor", &["mass", "equatorial_moment", "polar_moment", "z"]),
     ("supports", &["z_left", "z_right", "stiffness_left", "stiffness_right", "damping_left", "damping_right"]),
     ("unbalance", &["mass", "radius"]),
@@ -55,8 +55,9 @@ pub struct Config {
 /// to a bare string.
 fn parse_value(raw: &str) -> Value {
     match format!("v = {raw}").parse::<Table>() {
-        Ok(mut t) => t.remove("v").unwrap(),
-        Err(_) => Value::String(raw.to_string()),
+        Ok(mut t) => t.remove("v").unwrap_or(Value::String(raw.to_string())),
+        // a whole number beyond i64 (TOML's integers) is still a number
+        Err(_) => raw.parse::<f64>().map(Value::Float).unwrap_or_else(|_| Value::String(raw.to_string())),
     }
 }
 
@@ -190,7 +191,8 @@ impl<'a> Section<'a> {
 
 fn describe(v: &Value) -> String {
     match v {
-        Value::String(s) => format!("the string \"{s}\""),
+        Value::Float(f) => autobal::error::fmt_num(*f),
+        Value::String(s) => format!("the string \"{}\"", s.chars().take(40).collect::<String>()),
         Value::Table(_) => "a table".into(),
         Value::Array(_) => "an array".into(),
         other => other.to_string(),
@@ -237,15 +239,20 @@ pub fn read_with_default(path: Option<&std::path::Path>, default: &str, default_
         Some(p) => (read_limited(p)?, p.display().to_string()),
         None => (default.to_string(), default_name.to_string()),
     };
-    let root: Table = text.parse::<Table>().map_err(|e| {
+    let root = parse_text(&text, &source)?;
+    Ok((root, source))
+}
+
+/// Parse config text into a TOML table; errors say `SOURCE: line N: …` on one line.
+pub fn parse_text(text: &str, source: &str) -> Result<Table> {
+    text.parse::<Table>().map_err(|e| {
         let msg = e.message().replace('\n', " ");
-        let line = e.span().map(|s| text[..s.start].lines().count().max(1));
+        let line = e.span().map(|s| text[..s.start.min(text.len())].lines().count().max(1));
         match line {
             Some(l) => anyhow!("{source}: line {l}: {msg}"),
             None => anyhow!("{source}: {msg}"),
         }
-    })?;
-    Ok((root, source))
+    })
 }
 
 /// Set a numeric field `table.key` (checked against the schema).
@@ -576,6 +583,18 @@ pub fn build_planar(root: &Table, source: &str) -> Result<PlanarConfig> {
         i_g: p.req("i_g")?,
     };
     rotor.validate()?;
+    // the shaft's natural frequency from 1e-3 to 1e7 rad/s (0.16 mHz to 1.6 MHz): below, the shaft
+    // has no stiffness on any drive's time scale; above, it is rigid on them, and the integrator
+    // would need ~100 steps per period of a vibration that plays no part
+    let wn = rotor.natural_frequency();
+    if !(1e-3..=1e7).contains(&wn) {
+        bail!(
+            "planar.k: the natural frequency sqrt(k/m0) = {} rad/s (k = {} N/m, m0 = {} kg) lies outside [0.001, 1e7] rad/s",
+            autobal::error::fmt_num(wn),
+            autobal::error::fmt_num(rotor.k),
+            autobal::error::fmt_num(rotor.total_mass())
+        );
+    }
     let omega0 = d.f64("omega0")?.unwrap_or(0.0);
     let t_off = d.f64("t_off")?;
     let kind = d.string("kind")?.unwrap_or("acceleration");

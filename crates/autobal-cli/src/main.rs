@@ -3,6 +3,8 @@
 
 mod config;
 mod figures;
+#[cfg(test)]
+mod fuzz;
 mod linear;
 mod map;
 mod output;
@@ -262,6 +264,11 @@ fn run_map(common: Common, x: String, y: String, omega: Option<f64>, balls: Ball
     let xa = map::Axis::parse("--x", &x)?;
     let ya = map::Axis::parse("--y", &y)?;
     distinct_axes(&xa.key, Some(&ya.key))?;
+    for (flag, a) in [("--x", &xa), ("--y", &ya)] {
+        if a.key == "omega" {
+            check_speed(&format!("{flag} omega"), a.hi)?;
+        }
+    }
     if let Some(t) = threads {
         if t == 0 {
             anyhow::bail!("--threads: must be at least 1");
@@ -336,7 +343,7 @@ fn distinct_axes(x: &str, y: Option<&str>) -> Result<()> {
 /// A dimensionless speed option (`--omega`, `--omega-max`): finite, ≥ 0 and within the range of
 /// `analysis.omega_max`.
 fn check_speed(flag: &str, w: f64) -> Result<()> {
-    if w == 0.0 && flag == "--omega" {
+    if w == 0.0 && !flag.ends_with("--omega-max") {
         return Ok(());
     }
     autobal::limits::check_as(flag, "analysis.omega_max", w)?;

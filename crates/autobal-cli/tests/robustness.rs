@@ -173,3 +173,35 @@ fn regression_closed_stdout_panicked() {
         assert_eq!(out.status.code(), Some(0), "autobal {}", a.join(" "));
     }
 }
+
+#[test]
+fn regression_map_omega_axis_1e308_failed_in_the_eigen_solver() {
+    rejects(&["map", "--x", "omega=0:1e308:3", "--y", "dimensionless.z_a=0:1:3", "--out", "m"], "--x omega");
+}
+
+#[test]
+fn regression_planar_k_1e_300_stopped_without_naming_the_field() {
+    // sqrt(k/m0) = 1e-150 rad/s: the integrator stopped with "step size underflow at t = 0"
+    rejects(&["simulate", "--set", "planar.k=1e-300", "--set", "drive.t_end=1"], "planar.k");
+    // and 1e13 N/m on 1e-9 kg: 1e11 rad/s, billions of steps per simulated second
+    rejects(&["simulate", "--set", "planar.k=1e13", "--set", "planar.m1=1e-9", "--set", "planar.m2=0", "--set", "planar.m3=1e-9"], "planar.k");
+}
+
+#[test]
+fn regression_numbers_in_type_errors_printed_in_full() {
+    // found by the fuzzing harness: "expected an array of numbers, got 0.000…(300 digits)…9456"
+    let line = rejects(&["simulate", "--set", "drive.psi0=1e-300"], "drive.psi0");
+    assert!(line.contains("got 1e-300"), "{line}");
+    // an integer beyond i64 was read as a string ("expected a number, got the string …")
+    let line = rejects(&["critical", "--set", "dimensionless.c_sigma=-27213779405634345000000000"], "dimensionless.c_sigma");
+    assert!(line.contains("must lie in"), "{line}");
+}
+
+#[test]
+fn regression_unbalance_on_the_axis_gave_an_infinite_mass_limit() {
+    // found by the fuzzing harness: r0 = 1e-300 made [m̄0] = 2 [ΔĀ0]/r0² infinite (JSON null)
+    let (code, out, err) = run_for(Duration::from_secs(20), &["critical", "--set", "dimensionless.r0=1e-300", "--format", "json"]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert!(v["sensitivity"]["m0_limit"].is_null(), "no limit for an unbalance on the axis");
+}

@@ -62,7 +62,8 @@ pub fn sensitivity(model: &SpatialModel, limit: f64) -> Sensitivity {
     let coefficient = maxabs(delta_exact);
     let coefficient_approx = maxabs(delta_approx);
     let delta_a_limit = di0.abs() * (1.0 - (1.0 - limit).powi(2));
-    let m0_limit = model.masses.filter(|m| m.r0 > 0.0).map(|m| 2.0 * delta_a_limit / (m.r0 * m.r0));
+    // an unbalance (almost) on the axis has no mass limit
+    let m0_limit = model.masses.filter(|m| m.r0 > 0.0).map(|m| 2.0 * delta_a_limit / (m.r0 * m.r0)).filter(|v| v.is_finite());
     let (needed, reason) = match coefficient {
         None => (
             false,

@@ -1,0 +1,176 @@
+#!/usr/bin/env bash
+# Hostile inputs against every command, each with a time and a memory limit; prints a Markdown
+# table of outcomes (docs/robustness.md keeps the latest). Usage:
+#   scripts/hostile.sh [path/to/autobal] > hostile.md
+# Expected outcome of every row: exit 0 with a finite result, or exit 2 with one line naming the
+# field; never a panic (101), a signal, a hang (timeout: 124) or running out of memory.
+set -u
+cd "$(dirname "$0")/.."
+BIN=${1:-target/release/autobal}
+[ -x "$BIN" ] || { echo "scripts/hostile.sh: build first: cargo build --release (or pass the binary)" >&2; exit 1; }
+BIN=$(cd "$(dirname "$BIN")" && pwd)/$(basename "$BIN")
+LIMIT_S=${HOSTILE_TIME_LIMIT:-60}
+LIMIT_KB=${HOSTILE_MEMORY_KB:-2000000}   # 2 GB of address space
+EX=$PWD/examples
+WORK=$(mktemp -d)
+trap 'rm -rf "$WORK"' EXIT
+cd "$WORK"
+printf 'x = %s%s\n' "$(printf '[%.0s' $(seq 1 5000))" "$(printf ']%.0s' $(seq 1 5000))" > deep.toml
+head -c 4096 /dev/urandom > binary.toml
+printf '[planar]\nm1 = 1\n' > planar-only.toml
+printf '[dimensionless]\nc_sigma = 0.75\n' > partial.toml
+mkdir -p adir
+
+DIM="--config $EX/dimensional.toml"
+cases=(
+# spatial, dimensionless fields (embedded default)
+"critical --set dimensionless.rho_s=1e-308"
+"critical --set dimensionless.rho_s=1e308"
+"critical --set dimensionless.l_left=-1e308"
+"critical --set dimensionless.l_left=nan"
+"critical --set dimensionless.z_a=1e308"
+"critical --set dimensionless.delta_a=1e308"
+"critical --set dimensionless.delta_a=0.45"
+"critical --set dimensionless.c_sigma=0"
+"critical --set dimensionless.c_sigma=2.5"
+"critical --set dimensionless.c_sigma=0.1"
+"critical --set dimensionless.m0=0.99"
+"critical --set dimensionless.m0=-0"
+"critical --set dimensionless.r0=1e308"
+"critical --set dimensionless.r=1e-308"
+"critical --set dimensionless.n=10000"
+"critical --set dimensionless.n=-1"
+"critical --set dimensionless.n=2.5"
+"critical --set dimensionless.n=100 --set dimensionless.m=0.05"
+"critical --set dimensionless.d_a=2"
+"critical --set dimensionless.h_x=inf"
+"critical --set dimensionless.h_s=1e308"
+"critical --set analysis.anisotropy=sideways"
+"critical --set analysis.sensitivity_limit=1"
+"critical --set analysis.omega_max=-1"
+"inertia --set dimensionless.m=0.5 --set dimensionless.m0=0.6"
+"ranges --set dimensionless.l_left=1000 --format json"
+# spatial, SI fields
+"critical $DIM --set rotor.mass=1e308"
+"critical $DIM --set rotor.mass=5e-324"
+"critical $DIM --set rotor.mass=0"
+"critical $DIM --set rotor.equatorial_moment=1e-300"
+"critical $DIM --set rotor.polar_moment=10"
+"critical $DIM --set rotor.z=-1e308"
+"critical $DIM --set supports.z_right=1e308 --format json"
+"critical $DIM --set supports.z_right=0"
+"critical $DIM --set supports.z_right=5000"
+"stability $DIM --set supports.stiffness_left=1e308"
+"stability $DIM --set supports.stiffness_right=1e-300"
+"stability $DIM --set supports.damping_left=1e12"
+"critical $DIM --set unbalance.mass=1e9"
+"critical $DIM --set unbalance.radius=-1"
+"critical $DIM --set balancer.drag=-1"
+"critical $DIM --set balancer.balls=1000"
+"critical $DIM --set balancer.balls=100 --set balancer.ball_mass=0.001"
+"stability $DIM --set balancer.balls=100 --set balancer.ball_mass=0.001"
+"campbell $DIM --set balancer.balls=100 --set balancer.ball_mass=0.001"
+"critical $DIM --set balancer.ball_mass=1e308"
+"critical $DIM --set balancer.race_radius=1e308"
+"critical $DIM --set balancer.z=1e4"
+"inertia $DIM --set dimensionless.c_sigma=1"
+# linear analysis options
+"stability --omega-max 1e308"
+"stability --omega-max 1e-300"
+"stability --omega-max nan"
+"stability --samples 0"
+"stability --samples 1000000 --omega-max 5"
+"stability --balls locked --format json"
+"stability --svg /dev/null/x.svg"
+"campbell --points 100000"
+"campbell --points 2"
+"campbell --omega-max 1e6 --points 50"
+# maps
+"map --x dimensionless.z_a=-2:2:5 --y omega=0.05:4.5:5 --out m1"
+"map --x dimensionless.z_a=0:1:3 --y dimensionless.z_a=0:1:3 --out m2"
+"map --x omega=0:1e308:3 --y dimensionless.z_a=0:1:3 --out m3"
+"map --x dimensionless.rho_s=1e-308:1:3 --y omega=0.1:1:3 --out m4"
+"map --x dimensionless.l_left=0:1:99999 --y omega=0.1:1:3 --out m5"
+"map --x nonsense.key=0:1:3 --y omega=0.1:1:3 --out m6"
+"map --x omega=0.1:1:3 --y dimensionless.z_a=0:1:3 --out /dev/null/m"
+"map --x omega=0.1:1:3 --y dimensionless.z_a=0:1:3 --threads 0"
+"map --x dimensionless.c_sigma=0.1:1.9:4 --y dimensionless.delta_a=0:0.5:4 --omega 1 --out m7"
+# simulation and sweeps (planar model, paper 004)
+"simulate --set planar.gamma=1e308"
+"simulate --set planar.k=1e308"
+"simulate --set planar.k=1e-300 --set drive.t_end=1"
+"simulate --set planar.k=1e13 --set planar.m1=1e-9 --set planar.m2=0 --set planar.m3=1e-9"
+"simulate --set drive.psi0=1e-300"
+"simulate --set planar.m3=-2721377940563434500000000"
+"simulate --set planar.m3=1e308"
+"simulate --set planar.m3=-1"
+"simulate --set planar.n=10"
+"simulate --set planar.i_g=1e308"
+"simulate --set drive.kind=torque --set drive.torque=1e308"
+"simulate --set drive.b=0"
+"simulate --set drive.b=1e308"
+"simulate --set drive.t_end=1e308"
+"simulate --set drive.t_end=1e7 --set integration.dt=1e-6"
+"simulate --set drive.psi0=[1e308,0]"
+"simulate --set drive.psi0=[1,2,3]"
+"simulate --set drive.kind=schedule --set drive.schedule=[[0,0],[0,1]]"
+"simulate --set drive.kind=schedule --set drive.schedule=[[0,0],[1,1e308]]"
+"simulate --set integration.rtol=1"
+"simulate --set integration.rtol=1e-300"
+"simulate --set integration.atol=0"
+"simulate --set integration.method=euler"
+"simulate --dt -1"
+"simulate --dt 1e-300"
+"simulate --set drive.t_end=1 --out /dev/null/s.csv"
+"simulate --set drive.b=0.04 --set drive.t_end=10"
+"sweep --x drive.b=1:2:2 --y drive.b=3:4:2 --out sw1"
+"sweep --x drive.b=1e308:1e308:2 --out sw2"
+"sweep --x planar.c_psi=0.01:0.4:2 --set drive.t_end=2 --out sw3"
+"sweep --x nonsense=1:2:2 --out sw4"
+"sweep --x drive.b=1:2:100000 --out sw5"
+# config files
+"critical --config /dev/zero"
+"critical --config /nonexistent.toml"
+"critical --config adir"
+"critical --config binary.toml"
+"critical --config deep.toml"
+"critical --config planar-only.toml"
+"critical --config partial.toml"
+"simulate --config $EX/default.toml"
+# --set syntax
+"critical --set nonsense"
+"critical --set =1"
+"critical --set dimensionless=1"
+"critical --set dimensionless.c_sigma.x=1"
+"critical --set dimensionless.c_sigma={a=1}"
+"critical --set dimensionless.c_sigma=[1,2]"
+"critical --set dimensionless.c_sigma=0x10"
+"critical --set dimensionless.c_sigma=1_0"
+"critical --set dimensionless.c_sigma=9223372036854775807"
+# report
+"report --quick --out rep --set dimensionless.rho_s=1e-308"
+"report --quick --out /dev/null/rep"
+)
+
+echo "| # | command | exit | time (s) | outcome |"
+echo "|---|---|---|---|---|"
+i=0
+for c in "${cases[@]}"; do
+    i=$((i + 1))
+    start=$(date +%s%N)
+    # shellcheck disable=SC2086
+    out=$( (ulimit -v "$LIMIT_KB"; timeout "$LIMIT_S" "$BIN" $c) 2>&1 >/dev/null)
+    code=$?
+    secs=$(awk "BEGIN { printf \"%.2f\", ($(date +%s%N) - $start) / 1e9 }")
+    first=$(printf '%s' "$out" | grep -v '^warning' | head -1 | cut -c1-160 | sed 's/|/\\|/g')
+    lines=$(printf '%s' "$out" | grep -vc '^warning\|^wrote\|^simulating\|^report written')
+    case $code in
+        0) verdict="ok" ;;
+        2) if [ "$lines" -le 1 ]; then verdict="error (one line)"; else verdict="error ($lines lines)"; fi ;;
+        124) verdict="**TIMEOUT**" ;;
+        101) verdict="**PANIC**" ;;
+        *) verdict="**exit $code**" ;;
+    esac
+    shown=$(echo "$c" | sed "s|$EX/|examples/|g")
+    printf '| %d | `autobal %s` | %d | %s | %s: %s |\n' "$i" "$shown" "$code" "$secs" "$verdict" "${first:-}"
+done
