@@ -677,7 +677,7 @@ impl Plot {
             "yaxis": {"title": {"text": pesc(&self.y_label)}, "range": [r(y0), r(y1)], "zeroline": self.heatmap.is_none(), "showline": true, "mirror": true, "ticks": "outside"},
             "hovermode": "closest",
             "legend": {"x": if self.heatmap.is_some() { 1.16 } else { 1.02 }, "xanchor": "left", "y": 1, "yanchor": "top"},
-            "margin": {"l": 70, "r": 20, "t": if self.x2.is_some() { 100 } else { 60 }, "b": 60},
+            "margin": {"l": 70, "r": 20, "t": if self.x2.is_some() { 115 } else { 60 }, "b": 60},
             "shapes": shapes,
             "annotations": annotations,
             "font": {"family": "DejaVu Sans, Verdana, sans-serif", "size": 13},
@@ -689,7 +689,10 @@ impl Plot {
             layout["yaxis"]["ticktext"] = json!(t.iter().map(|t| pesc(&t.1)).collect::<Vec<_>>());
         }
         if let Some(a) = &self.x2 {
-            layout["xaxis2"] = json!({"title": {"text": pesc(&a.label)}, "overlaying": "x", "side": "top", "range": [r(x0 * a.factor), r(x1 * a.factor)], "showgrid": false, "ticks": "outside"});
+            layout["xaxis2"] = json!({"title": {"text": pesc(&a.label), "standoff": 4}, "overlaying": "x", "side": "top", "range": [r(x0 * a.factor), r(x1 * a.factor)],
+                "showgrid": false, "ticks": "outside", "tickmode": "auto", "fixedrange": true});
+            layout["title"]["y"] = json!(0.985);
+            layout["title"]["yanchor"] = json!("top");
             layout["meta"] = json!({"x2factor": a.factor});
             // an axis shows only with a trace on it: an invisible one
             data.push(json!({"type": "scatter", "x": [r(x0 * a.factor), r(x1 * a.factor)], "y": [null, null], "xaxis": "x2", "showlegend": false, "hoverinfo": "skip", "mode": "lines"}));

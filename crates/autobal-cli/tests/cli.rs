@@ -290,6 +290,31 @@ fn interrupted_map_keeps_the_rows_written() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+#[cfg(unix)]
+#[test]
+fn interrupted_report_says_so_and_fails() {
+    // Ctrl-C during the full report (paper 004's passages take many seconds): the page is still
+    // written, says it is incomplete, marks the runs cut short instead of printing their
+    // numbers, and the command exits with 2.
+    let dir = std::env::temp_dir().join(format!("autobal-report-int-{}", std::process::id()));
+    let child = Command::new(env!("CARGO_BIN_EXE_autobal"))
+        .args(["report", "--out", dir.to_str().unwrap()])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(2000));
+    let _ = Command::new("kill").args(["-INT", &child.id().to_string()]).status();
+    let out = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("error: interrupted"), "{err}");
+    let index = std::fs::read_to_string(dir.join("index.html")).unwrap();
+    assert!(index.contains("id=\"interrupted\""), "the page says it is incomplete");
+    assert!(index.contains("interrupted at t = "), "runs cut short are marked, not reported as numbers");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 #[test]
 fn simulation_agrees_with_an_independent_scipy_integration_in_fixed_axes() {
     // bench/passage.py --check: paper 004's equations in fixed axes, written independently in
