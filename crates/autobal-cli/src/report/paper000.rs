@@ -304,7 +304,7 @@ pub fn build(_ctx: &Ctx) -> Result<Option<Section>> {
                 y_label: "δΩ_Kα1,2".into(),
                 series: curves(&ds, &|d| d),
                 x_range: Some((0.0, 0.2)),
-                y_range: Some((-0.5, 0.3)),
+                y_range: Some((-0.4, 0.6)),
                 vlines: vec![(0.1, "base case".into()), (0.095, "000: 0.095".into()), (se_base.delta_a_limit, format!("[ΔĀ0] = {}", fmt(se_base.delta_a_limit, 3)))],
                 ..Default::default()
             },
@@ -337,7 +337,7 @@ pub fn build(_ctx: &Ctx) -> Result<Option<Section>> {
                 y_label: "δΩ_Kα1,2".into(),
                 series: curves(&mb, &da),
                 x_range: Some((0.0, 0.1)),
-                y_range: Some((-0.5, 0.3)),
+                y_range: Some((-0.4, 0.6)),
                 vlines: vec![(0.05, "base case".into()), (0.036, "000: 0.036".into())],
                 ..Default::default()
             },
