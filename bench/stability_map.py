@@ -1,31 +1,47 @@
 #!/usr/bin/env python3
-"""Stability-map benchmark: autobal against NumPy on the same problem, in one run.
+"""Stability-map benchmark: autobal against NumPy on the same problem and the same outputs, in
+paired, interleaved runs.
 
 The problem: the 12-state linearised model of paper 000, eq (6) (docs/model.md section 1), balls
-free, over a 400 x 400 grid of z_A in [-2, 2] and Omega in [0.05, 4.5] (the layout of paper 003,
+free, over an N x N grid of z_A in [-2, 2] and Omega in [0.05, 4.5] (the layout of paper 003,
 Fig. 5a), with C_Sigma = 0.75, rho_s = 0.4, l_L = 0.8, dA = 0.1, m = 0.05, D_A = 0.5,
 h_x = 0.05, h_s = 0.1.
 
-NumPy side: the matrices are assembled here, independently of autobal, straight from the
-equations; the timed part is numpy.linalg.eigvals on the stacked 12x12 state matrices (the
-fastest vectorised way a Python user has), single-threaded. autobal side: the example
-`bench_map` (its timed part is the per-point work only, also single-threaded). Then the
-verdicts are compared on every point away from the boundary (|max Re lambda| > 1e-6), and the
-margins everywhere.
+Outputs compared, each timed from the parameters (NumPy's assembly of the matrices included,
+vectorised over the whole grid, single-threaded BLAS):
+  margin  = max Re lambda at every point.
+            NumPy: numpy.linalg.eigvals on the stacked 12x12 state matrices (LAPACK dgeev);
+            autobal: its map (continuation of the rightmost root of the characteristic
+            polynomial in Omega, certified by a Routh count, QR where it cannot certify).
+  verdict = stable or not at every point.
+            NumPy, two ways: from eigvals (as above), and the Routh-Hurwitz test vectorised over
+            the stack (Hessenberg reduction with pivoting, characteristic polynomial, Routh
+            array: the same per-point algorithm autobal used before); the faster counts.
+            autobal: its map (Routh-Hurwitz on the exact polynomial coefficients, every change
+            of verdict confirmed by the direct test).
+  For reference, autobal's per-point paths (QR per point; direct Routh-Hurwitz per point).
 
-Usage: python3 bench/stability_map.py [N]      (N x N grid, default 400)
+Each repetition runs NumPy's margin, autobal (one process: all its variants), NumPy's
+verdict, in that order; ratios are formed within a repetition and reported as median and
+min-max over repetitions. Outputs are checked: margins to 1e-10, verdicts equal everywhere away
+from the boundary (|max Re lambda| > 1e-6).
+
+Usage: python3 bench/stability_map.py [N] [REPEATS]      (default 400 5)
 """
 import json
 import os
+import statistics
 import subprocess
 import sys
 import time
 
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 os.environ.setdefault("OMP_NUM_THREADS", "1")
+os.environ.setdefault("MKL_NUM_THREADS", "1")
 import numpy as np  # noqa: E402
 
 N = int(sys.argv[1]) if len(sys.argv) > 1 else 400
+REPEATS = int(sys.argv[2]) if len(sys.argv) > 2 else 5
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 C_SIGMA, RHO, L_LEFT, DA, MBAR, D_A, HX, HS = 0.75, 0.4, 0.8, 0.1, 0.05, 0.5, 0.05, 0.1
@@ -83,51 +99,130 @@ def assemble(z, w):
     return A
 
 
-def main():
-    zs = np.linspace(-2.0, 2.0, N)
-    ws = np.linspace(0.05, 4.5, N)
+def routh_hurwitz_vectorised(A):
+    """Stable (all Re lambda < 0) for each matrix of the stack: Hessenberg reduction by
+    elimination with partial pivoting, the characteristic polynomial by the recurrence on the
+    leading minors, and the Routh array, each step vectorised over the stack."""
+    A = A.copy()
+    k, n, _ = A.shape
+    idx = np.arange(k)
+    for m in range(1, n - 1):
+        piv = m + np.argmax(np.abs(A[:, m:, m - 1]), axis=1)
+        row = A[idx, m, :].copy()
+        A[idx, m, :] = A[idx, piv, :]
+        A[idx, piv, :] = row
+        col = A[idx, :, m].copy()
+        A[idx, :, m] = A[idx, :, piv]
+        A[idx, :, piv] = col
+        x = A[:, m, m - 1]
+        safe = x != 0.0
+        y = np.where(safe[:, None], A[:, m + 1:, m - 1] / np.where(safe, x, 1.0)[:, None], 0.0)
+        A[:, m + 1:, :] -= y[:, :, None] * A[:, m, None, :]
+        A[:, :, m] += np.einsum("kij,kj->ki", A[:, :, m + 1:], y)
+    # p[j] = characteristic polynomial of the leading j x j block, ascending powers
+    p = [np.zeros((k, n + 1)) for _ in range(n + 1)]
+    p[0][:, 0] = 1.0
+    for j in range(1, n + 1):
+        hjj = A[:, j - 1, j - 1][:, None]
+        pj = np.zeros((k, n + 1))
+        pj[:, 1:] = p[j - 1][:, :-1]
+        pj -= hjj * p[j - 1]
+        beta = np.ones(k)
+        for i in range(j - 1, 0, -1):
+            beta = beta * A[:, i, i - 1]
+            pj -= (A[:, i - 1, j - 1] * beta)[:, None] * p[i - 1]
+        p[j] = pj
+    c = p[n][:, ::-1]  # descending: c[:, 0] = 1
+    stable = np.all(c > 0.0, axis=1)
+    r0 = c[:, 0::2].copy()
+    r1 = np.zeros_like(r0)
+    r1[:, : c[:, 1::2].shape[1]] = c[:, 1::2]
+    for _ in range(1, n):
+        stable &= r1[:, 0] > 0.0
+        q = r0[:, 0] / np.where(r1[:, 0] != 0.0, r1[:, 0], 1.0)
+        nxt = np.zeros_like(r0)
+        nxt[:, :-1] = r0[:, 1:] - q[:, None] * r1[:, 1:]
+        r0, r1 = r1, nxt
+    stable &= r1[:, 0] > 0.0
+    return stable
+
+
+def numpy_margin(zs, ws):
     Wg, Zg = np.meshgrid(ws, zs, indexing="ij")  # row j = speed, column i = z_A
     t0 = time.perf_counter()
     A = assemble(Zg.ravel(), Wg.ravel())
-    t_assemble = time.perf_counter() - t0
-    t0 = time.perf_counter()
-    ev = np.linalg.eigvals(A)
-    t_eig = time.perf_counter() - t0
-    alpha_np = ev.real.max(axis=1)
+    alpha = np.linalg.eigvals(A).real.max(axis=1)
+    return time.perf_counter() - t0, alpha
 
-    out = os.path.join(ROOT, "target", "bench_map.bin")
-    cmd = ["cargo", "run", "--quiet", "--release", "--example", "bench_map", "-p", "autobal", "--", str(N), str(N), out]
-    res = subprocess.run(cmd, cwd=ROOT, check=True, capture_output=True, text=True)
-    timing = json.loads(res.stdout.strip().splitlines()[-1])
-    raw = open(out, "rb").read()
+
+def numpy_verdict(zs, ws):
+    Wg, Zg = np.meshgrid(ws, zs, indexing="ij")
+    t0 = time.perf_counter()
+    A = assemble(Zg.ravel(), Wg.ravel())
+    stable = routh_hurwitz_vectorised(A)
+    return time.perf_counter() - t0, stable
+
+
+def spread(xs):
+    return {"median": statistics.median(xs), "min": min(xs), "max": max(xs)}
+
+
+def main():
+    zs = np.linspace(-2.0, 2.0, N)
+    ws = np.linspace(0.05, 4.5, N)
     k = N * N
+    out = os.path.join(ROOT, "target", "bench_map.bin")
+    subprocess.run(["cargo", "build", "--quiet", "--release", "--example", "bench_map", "-p", "autobal"], cwd=ROOT, check=True)
+    exe = os.path.join(ROOT, "target", "release", "examples", "bench_map")
+    runs = []
+    for r in range(REPEATS):
+        t_np_margin, alpha_np = numpy_margin(zs, ws)
+        res = subprocess.run([exe, str(N), str(N), out], cwd=ROOT, check=True, capture_output=True, text=True)
+        rs = json.loads(res.stdout.strip().splitlines()[-1])
+        t_np_verdict, stable_np_rh = numpy_verdict(zs, ws)
+        runs.append((t_np_margin, t_np_verdict, rs))
+        print(f"repetition {r + 1}/{REPEATS}: numpy margin {t_np_margin:.2f} s, numpy RH verdict {t_np_verdict:.2f} s, "
+              f"autobal margin {rs['margin_s']:.3f} s, verdict {rs['verdict_s']:.3f} s", file=sys.stderr)
+    raw = open(out, "rb").read()
     alpha_rs = np.frombuffer(raw[: 8 * k], dtype="<f8")
     verdict_rs = np.frombuffer(raw[8 * k:], dtype=np.uint8).astype(bool)
-
-    tol = 1e-11  # autobal::stability::STABILITY_TOLERANCE; balls free: stable iff max Re < -tol
+    tol = 1e-11  # autobal::spatial::stability::STABILITY_TOLERANCE; balls free: stable iff max Re < -tol
     away = np.abs(alpha_np) > 1e-6
     stable_np = alpha_np < -tol
-    mismatch_verdict = int(np.sum((verdict_rs != stable_np) & away))
-    mismatch_margin_verdict = int(np.sum(((alpha_rs < -tol) != stable_np) & away))
-    max_margin_diff = float(np.max(np.abs(alpha_rs - alpha_np)))
-    np_us = 1e6 * t_eig / k
-    report = {
-        "grid": f"{N} x {N}",
-        "points": k,
-        "numpy_eigvals_us_per_point": np_us,
-        "numpy_assembly_us_per_point": 1e6 * t_assemble / k,
-        "autobal_verdict_us_per_point": timing["verdict_us_per_point"],
-        "autobal_margin_us_per_point": timing["margin_us_per_point"],
-        "ratio_verdict": np_us / timing["verdict_us_per_point"],
-        "ratio_margin": np_us / timing["margin_us_per_point"],
+    checks = {
         "points_away_from_boundary": int(away.sum()),
-        "verdict_mismatches_away_from_boundary": mismatch_verdict,
-        "margin_verdict_mismatches_away_from_boundary": mismatch_margin_verdict,
-        "max_abs_margin_difference": max_margin_diff,
+        "verdict_mismatches_away_from_boundary": int(np.sum((verdict_rs != stable_np) & away)),
+        "numpy_rh_verdict_mismatches_away_from_boundary": int(np.sum((stable_np_rh != stable_np) & away)),
+        "margin_verdict_mismatches_away_from_boundary": int(np.sum(((alpha_rs < -tol) != stable_np) & away)),
+        "max_abs_margin_difference": float(np.max(np.abs(alpha_rs - alpha_np))),
         "stable_fraction": float(stable_np.mean()),
     }
+    us = lambda s: 1e6 * s / k  # noqa: E731
+    report = {
+        "grid": f"{N} x {N}",
+        "repeats": REPEATS,
+        "us_per_point": {
+            "numpy_eigvals_with_assembly": spread([us(t[0]) for t in runs]),
+            "numpy_routh_hurwitz_vectorised_with_assembly": spread([us(t[1]) for t in runs]),
+            "autobal_margin_map": spread([t[2]["margin_us_per_point"] for t in runs]),
+            "autobal_verdict_map": spread([t[2]["verdict_us_per_point"] for t in runs]),
+            "autobal_margin_qr_per_point": spread([t[2]["margin_qr_us_per_point"] for t in runs]),
+            "autobal_verdict_direct_per_point": spread([t[2]["verdict_direct_us_per_point"] for t in runs]),
+        },
+        "ratios_paired": {
+            "margin: numpy eigvals / autobal map": spread([t[0] / t[2]["margin_s"] for t in runs]),
+            "verdict: numpy eigvals / autobal map": spread([t[0] / t[2]["verdict_s"] for t in runs]),
+            "verdict: numpy best (min of eigvals, vectorised RH) / autobal map": spread([min(t[0], t[1]) / t[2]["verdict_s"] for t in runs]),
+            "margin: autobal QR per point / autobal map": spread([t[2]["margin_qr_s"] / t[2]["margin_s"] for t in runs]),
+        },
+        "autobal_map_points_by_continuation": runs[-1][2]["margin_continued"],
+        "autobal_map_qr_fallbacks": runs[-1][2]["margin_direct"],
+        "autobal_verdict_confirmations": runs[-1][2]["verdict_confirmations"],
+        "checks": checks,
+    }
     print(json.dumps(report, indent=2))
-    if mismatch_verdict or mismatch_margin_verdict or max_margin_diff > 1e-6:
+    if (checks["verdict_mismatches_away_from_boundary"] or checks["margin_verdict_mismatches_away_from_boundary"]
+            or checks["numpy_rh_verdict_mismatches_away_from_boundary"] or checks["max_abs_margin_difference"] > 1e-10):
         sys.exit("autobal and NumPy disagree")
 
 

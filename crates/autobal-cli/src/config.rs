@@ -4,6 +4,7 @@
 use anyhow::{anyhow, bail, Result};
 use autobal::spatial::inertia::AnisotropyMethod;
 use autobal::spatial::params::{AnisotropyInput, DimensionlessInput, MassSet, SpatialModel, SpatialRotorSi};
+use autobal::spatial::paths::{SpatialInput, SpatialSpec};
 use toml::{Table, Value};
 
 /// The embedded default example (paper 000's base case).
@@ -43,6 +44,8 @@ pub struct Analysis {
 #[derive(Debug, Clone)]
 pub struct Config {
     pub model: SpatialModel,
+    /// What the model was built from: parameter paths act on it (maps).
+    pub spec: SpatialSpec,
     pub analysis: Analysis,
     /// Where it came from, for the report.
     pub source: String,
@@ -303,7 +306,7 @@ pub fn build(root: &Table, source: &str) -> Result<Config> {
     }
     let has_dim = dimensional_tables.iter().any(|t| root.contains_key(*t));
     let has_nondim = root.contains_key("dimensionless");
-    let model = match (has_dim, has_nondim) {
+    let spec = match (has_dim, has_nondim) {
         (true, true) => bail!(
             "dimensionless: give either the dimensional tables [rotor], [supports], [unbalance], [balancer] or [dimensionless], not both"
         ),
@@ -334,7 +337,7 @@ pub fn build(root: &Table, source: &str) -> Result<Config> {
                 race_radius: b.f64("race_radius")?.unwrap_or(0.0),
                 ball_drag: b.f64("drag")?.unwrap_or(0.0),
             };
-            SpatialModel::from_si(&si, method)?
+            SpatialSpec { input: SpatialInput::Si { rotor: si, method }, delta_a_override: None }
         }
         (false, true) => {
             let d = sec("dimensionless");
@@ -370,35 +373,26 @@ pub fn build(root: &Table, source: &str) -> Result<Config> {
                 },
                 (None, false) => AnisotropyInput::Direct(0.0),
             };
-            SpatialModel::from_dimensionless(&DimensionlessInput {
-                c_sigma: d.req("c_sigma")?,
-                rho_s: d.req("rho_s")?,
-                l_left: d.req("l_left")?,
-                z_a: d.f64("z_a")?.unwrap_or(0.0),
-                anisotropy,
-                h_x: d.f64("h_x")?.unwrap_or(0.0),
-                h_s: d.f64("h_s")?.unwrap_or(0.0),
-                method,
-                direct_balls,
-            })
-            .map(|mut m| {
-                if let Some(v) = override_delta {
-                    let computed = m.anisotropy.clone();
-                    m.anisotropy = autobal::spatial::inertia::Anisotropy::given(v);
-                    m.anisotropy.warnings.push(format!(
-                        "dimensionless.delta_a = {} overrides the anisotropy of the masses (exact tensor {:.6}, eq (17) {:.6}); it serves as ΔĀ and ΔĀ0",
-                        autobal::error::fmt_num(v),
-                        computed.exact[1],
-                        computed.paper
-                    ));
-                    m.delta_a0 = v;
-                }
-                m
-            })?
+            SpatialSpec {
+                input: SpatialInput::Dimensionless(DimensionlessInput {
+                    c_sigma: d.req("c_sigma")?,
+                    rho_s: d.req("rho_s")?,
+                    l_left: d.req("l_left")?,
+                    z_a: d.f64("z_a")?.unwrap_or(0.0),
+                    anisotropy,
+                    h_x: d.f64("h_x")?.unwrap_or(0.0),
+                    h_s: d.f64("h_s")?.unwrap_or(0.0),
+                    method,
+                    direct_balls,
+                }),
+                delta_a_override: override_delta,
+            }
         }
     };
+    let model = spec.build()?;
     Ok(Config {
         model,
+        spec,
         analysis: Analysis { sensitivity_limit, omega_max },
         source,
         text: toml::to_string(root).unwrap_or(text),

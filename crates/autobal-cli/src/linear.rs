@@ -9,7 +9,7 @@ use autobal::spatial::critical_speeds::critical_speeds;
 use autobal::spatial::linear_model::Balls;
 use autobal::spatial::params::SpatialModel;
 use autobal::spatial::ranges::{autobalancing_ranges, SpeedRange};
-use autobal::spatial::stability::{campbell, stability_ranges, Campbell, StabilityRanges, Whirl};
+use autobal::spatial::stability::{campbell, campbell_stream, stability_ranges, Campbell, StabilityRanges, Whirl};
 use serde_json::{json, Value};
 use std::fmt::Write;
 
@@ -140,9 +140,6 @@ pub fn campbell_grid(w: f64, points: usize) -> Vec<f64> {
     (0..n).map(|i| w * (i as f64 + 0.5) / n as f64).collect()
 }
 
-pub fn campbell_json(c: &Campbell) -> Value {
-    json!({ "omega": c.omega, "lines": c.lines })
-}
 
 pub fn campbell_table(cfg: &Config, c: &Campbell) -> String {
     let mut s = String::new();
@@ -170,18 +167,40 @@ pub fn campbell_table(cfg: &Config, c: &Campbell) -> String {
     s
 }
 
-/// Campbell plots: rotating-frame frequencies and fixed-frame whirl frequencies with the 1×
-/// line and the analytic critical speeds.
+/// Share of a circular component below which it is not drawn in fixed axes.
+const COMPONENT_SHARE: f64 = 0.1;
+
+/// Campbell plots: rotating-frame frequencies, and fixed-frame whirl frequencies with the 1×
+/// line and the analytic critical speeds. In fixed axes a tracked mode whirls at `Ω + ν` and at
+/// `Ω − ν` (shares from its eigenvector); each component is drawn as its own continuous curve
+/// wherever its share is at least [`COMPONENT_SHARE`], so no curve jumps between the two where
+/// an elliptic mode changes its dominant direction.
 pub fn campbell_plots(model: &SpatialModel, c: &Campbell) -> (Plot, Plot) {
     let mut rot = vec![];
     let mut fixed = vec![];
     for (i, l) in c.lines.iter().enumerate() {
         let col = PALETTE[i % 7];
         let pts_r: Vec<(f64, f64)> = c.omega.iter().zip(&l.modes).map(|(&w, m)| (w, if m.im >= 0.0 { m.im } else { f64::NAN })).collect();
-        let pts_f: Vec<(f64, f64)> =
-            c.omega.iter().zip(&l.modes).map(|(&w, m)| (w, if m.im >= 0.0 && m.whirl != Whirl::None { m.fixed_frequency } else { f64::NAN })).collect();
+        let shown = |m: &autobal::spatial::stability::Mode| m.im >= 0.0 && m.whirl != Whirl::None;
+        let pts_f: Vec<(f64, f64)> = c
+            .omega
+            .iter()
+            .zip(&l.modes)
+            .map(|(&w, m)| (w, if shown(m) && m.forward_share >= COMPONENT_SHARE { w + m.im } else { f64::NAN }))
+            .collect();
+        let pts_b: Vec<(f64, f64)> = c
+            .omega
+            .iter()
+            .zip(&l.modes)
+            .map(|(&w, m)| (w, if shown(m) && 1.0 - m.forward_share >= COMPONENT_SHARE { w - m.im } else { f64::NAN }))
+            .collect();
         rot.push(Series::new("", pts_r, col));
-        fixed.push(Series::new("", pts_f, col));
+        if pts_f.iter().any(|p| p.1.is_finite()) {
+            fixed.push(Series::new("", pts_f, col));
+        }
+        if pts_b.iter().any(|p| p.1.is_finite()) {
+            fixed.push(Series::new("", pts_b, col));
+        }
     }
     let w = *c.omega.last().unwrap_or(&1.0);
     fixed.push(Series::new("1× (synchronous)", vec![(0.0, 0.0), (w, w)], "#000000").dashed());
@@ -198,7 +217,7 @@ pub fn campbell_plots(model: &SpatialModel, c: &Campbell) -> (Plot, Plot) {
             ..Default::default()
         },
         Plot {
-            title: "Campbell diagram, fixed axes (forward > 0 > backward)".into(),
+            title: "Campbell diagram, fixed axes: components Ω ± ν of each mode (forward > 0 > backward)".into(),
             x_label: "Ω".into(),
             y_label: "whirl frequency / ω0".into(),
             series: fixed,
@@ -237,4 +256,111 @@ pub fn margin_plot(c: &Comparison) -> Plot {
 
 pub fn campbell_of(cfg: &Config, w: f64, points: usize, balls: Balls) -> Result<Campbell> {
     Ok(campbell(&cfg.model, &campbell_grid(w, points), balls)?)
+}
+
+/// Largest number of speeds kept for the figures of `autobal campbell`.
+pub const PLOT_SPEEDS: usize = 2000;
+
+/// `autobal campbell`, streamed: JSON lines go to one temporary file per tracked line as the
+/// speeds are computed and are joined on standard output at the end; the table keeps its five
+/// speeds and the figures a decimated copy (at most [`PLOT_SPEEDS`] speeds). Memory does not
+/// grow with `points`.
+pub fn run_campbell(cfg: &Config, w: f64, points: usize, balls: Balls, json: bool, svg: Option<&std::path::Path>) -> Result<()> {
+    use anyhow::Context;
+    use std::io::Write as _;
+    let n = points.max(3);
+    let speed = |k: usize| w * (k as f64 + 0.5) / n as f64;
+    let stride = n.div_ceil(PLOT_SPEEDS);
+    let table_at = [0, n / 4, n / 2, 3 * n / 4, n - 1];
+    let mut plot = Campbell { omega: vec![], lines: vec![] };
+    let mut table = Campbell { omega: vec![], lines: vec![] };
+    let dir = std::env::temp_dir().join(format!("autobal-campbell-{}-{}", std::process::id(), std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_nanos())));
+    let mut files: Vec<std::io::BufWriter<std::fs::File>> = vec![];
+    if json {
+        std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    }
+    let mut io_err: Option<anyhow::Error> = None;
+    let keep = |c: &mut Campbell, wk: f64, modes: &[autobal::spatial::stability::Mode]| {
+        if c.lines.is_empty() {
+            c.lines = modes.iter().map(|_| autobal::spatial::stability::CampbellLine { modes: vec![] }).collect();
+        }
+        c.omega.push(wk);
+        for (l, m) in c.lines.iter_mut().zip(modes) {
+            l.modes.push(*m);
+        }
+    };
+    let result = campbell_stream(&cfg.model, (0..n).map(speed), balls, &mut |k, modes| {
+        // every reported number finite (as for the other commands), checked as it streams
+        if let Err(e) = autobal::limits::check_finite(&format!("campbell.speeds[{k}]"), &modes) {
+            io_err = Some(e.into());
+            return false;
+        }
+        if json {
+            if files.is_empty() {
+                for i in 0..modes.len() {
+                    match std::fs::File::create(dir.join(format!("{i}.json"))) {
+                        Ok(f) => files.push(std::io::BufWriter::new(f)),
+                        Err(e) => {
+                            io_err = Some(e.into());
+                            return false;
+                        }
+                    }
+                }
+            }
+            for (f, m) in files.iter_mut().zip(modes) {
+                let text = serde_json::to_string(m).unwrap_or_default();
+                if let Err(e) = write!(f, "{}{text}", if k == 0 { "" } else { ",\n" }) {
+                    io_err = Some(e.into());
+                    return false;
+                }
+            }
+        }
+        if k % stride == 0 || k + 1 == n {
+            keep(&mut plot, speed(k), modes);
+        }
+        if table_at.contains(&k) && table.omega.last() != Some(&speed(k)) {
+            keep(&mut table, speed(k), modes);
+        }
+        true
+    });
+    let finish = || -> Result<()> {
+        if let Some(e) = io_err {
+            return Err(e);
+        }
+        result?;
+        if let Some(prefix) = svg {
+            let (rot, fixed) = campbell_plots(&cfg.model, &plot);
+            for (suffix, p) in [("rotating", rot), ("fixed", fixed)] {
+                let path = std::path::PathBuf::from(format!("{}_{suffix}.svg", prefix.display()));
+                std::fs::write(&path, p.to_svg()).with_context(|| format!("--svg: cannot write {}", path.display()))?;
+            }
+        }
+        let stdout = std::io::stdout();
+        let mut out = std::io::BufWriter::new(stdout.lock());
+        if json {
+            write!(out, "{{\n\"omega\": [")?;
+            for k in 0..n {
+                write!(out, "{}{}", if k == 0 { "" } else { ", " }, serde_json::to_string(&speed(k))?)?;
+            }
+            write!(out, "],\n\"lines\": [\n")?;
+            for (i, f) in files.into_iter().enumerate() {
+                let f = f.into_inner().map_err(|e| e.into_error())?;
+                drop(f);
+                writeln!(out, "{}{{\"modes\": [", if i == 0 { "" } else { ",\n" })?;
+                let mut r = std::fs::File::open(dir.join(format!("{i}.json")))?;
+                std::io::copy(&mut r, &mut out)?;
+                write!(out, "\n]}}")?;
+            }
+            writeln!(out, "\n]\n}}")?;
+        } else {
+            write!(out, "{}", campbell_table(cfg, &table))?;
+        }
+        out.flush()?;
+        Ok(())
+    };
+    let r = finish();
+    if json {
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+    r
 }

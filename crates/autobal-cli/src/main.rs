@@ -226,19 +226,10 @@ fn run(cli: Cli) -> Result<()> {
                 check_speed("--omega-max", w)?;
             }
             let w = linear::omega_max(&cfg, lin.omega_max)?;
-            if !(3..=100_000).contains(&points) {
-                anyhow::bail!("--points: must lie between 3 and 100000, got {points}");
+            if !(3..=10_000_000).contains(&points) {
+                anyhow::bail!("--points: must lie between 3 and 10000000, got {points}");
             }
-            let c = linear::campbell_of(&cfg, w, points, lin.balls.into())?;
-            autobal::limits::check_finite("campbell", &c)?;
-            if let Some(prefix) = svg {
-                let (rot, fixed) = linear::campbell_plots(&cfg.model, &c);
-                for (suffix, p) in [("rotating", rot), ("fixed", fixed)] {
-                    let path = PathBuf::from(format!("{}_{suffix}.svg", prefix.display()));
-                    std::fs::write(&path, p.to_svg()).with_context(|| format!("--svg: cannot write {}", path.display()))?;
-                }
-            }
-            emit(format, linear::campbell_json(&c), linear::campbell_table(&cfg, &c))
+            linear::run_campbell(&cfg, w, points, lin.balls.into(), format == Format::Json, svg.as_deref())
         }
         Command::Map { common, x, y, omega, balls, quantity, out, threads } => run_map(common, x, y, omega, balls, quantity, out, threads),
         Command::Simulate { config, set, dt, out, format } => run_simulate(config, set, dt, out, format),
@@ -285,23 +276,26 @@ fn run_map(common: Common, x: String, y: String, omega: Option<f64>, balls: Ball
     let q = if quantity == QuantityArg::Margin { map::Quantity::Margin } else { map::Quantity::Verdict };
     let progress = std::io::IsTerminal::is_terminal(&std::io::stderr());
     let t0 = std::time::Instant::now();
-    let r = map::compute(&root, &source, xa, ya, omega, balls.into(), q, &mut w, progress)?;
+    let cfg = config::build(&root, &source)?;
+    let (r, run) = map::compute(&cfg, xa, ya, omega, balls.into(), q, &mut w, progress)?;
     let secs = t0.elapsed().as_secs_f64();
-    let done = r.rows.iter().filter(|x| x.is_some()).count();
+    let done = run.rows_done;
     map::write_plots(&r, &out, &format!("Stability map, balls {}", if balls == BallsArg::Free { "free" } else { "locked" }))?;
-    let points = done * r.x.n;
+    let points = done * run.row_len;
     output::print(&format!(
-        "{} rows × {} points in {:.2} s ({:.2} µs per point); wrote {}, {}, {}\n",
+        "{} rows × {} points in {:.2} s ({:.2} µs per point; {} by continuation, {} direct solves); wrote {}, {}, {}\n",
         done,
-        r.x.n,
+        run.row_len,
         secs,
         1e6 * secs / points.max(1) as f64,
+        run.continued,
+        run.direct,
         csv_path.display(),
         out.with_extension("svg").display(),
         out.with_extension("png").display()
     ))?;
-    if done < r.y.n {
-        anyhow::bail!("interrupted: {done} of {} rows computed and kept in {}", r.y.n, csv_path.display());
+    if done < run.rows_total {
+        anyhow::bail!("interrupted: {done} of {} rows computed and kept in {}", run.rows_total, csv_path.display());
     }
     Ok(())
 }

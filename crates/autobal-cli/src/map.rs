@@ -1,18 +1,15 @@
-//! `autobal map`: stability margin over two parameters (Ω and/or config fields), in parallel,
-//! with a progress bar, written as CSV (row by row, so an interrupted run keeps what it has
-//! computed), SVG and PNG.
+//! `autobal map`: stability margin over two parameters (Ω and/or parameter paths), computed by
+//! the library in parallel ([`autobal::spatial::map`]), with a progress bar, written as CSV in
+//! grid order as rows complete (an interrupted run keeps what it has computed), SVG and PNG
+//! from a decimated copy.
 
-use crate::config::{self, Config};
+use crate::config::Config;
 use anyhow::{anyhow, bail, Context, Result};
 use autobal::spatial::linear_model::Balls;
-use autobal::spatial::linear_model::StateSpace;
-use autobal::spatial::stability::{counts_as_stable, margin_at, strictly_stable_at};
 use rayon::prelude::*;
 use std::io::Write;
 use std::path::Path;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Mutex;
-use toml::Table;
 
 /// Set by Ctrl-C: rows not yet started are skipped, rows written so far are kept.
 pub static INTERRUPTED: AtomicBool = AtomicBool::new(false);
@@ -42,8 +39,8 @@ impl Axis {
         };
         let (lo, hi) = (num(parts[0], "LO")?, num(parts[1], "HI")?);
         let n: usize = parts[2].trim().parse().map_err(|_| anyhow!("{flag} {spec}: N `{}` is not a whole number", parts[2]))?;
-        if !(2..=5000).contains(&n) {
-            bail!("{flag} {spec}: N must lie between 2 and 5000, got {n}");
+        if !(2..=100_000).contains(&n) {
+            bail!("{flag} {spec}: N must lie between 2 and 100000, got {n}");
         }
         if hi <= lo {
             bail!("{flag} {spec}: HI must exceed LO");
@@ -72,79 +69,62 @@ impl Axis {
     }
 }
 
-/// What each point stores.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Quantity {
-    /// Spectral abscissa from the eigenvalues (default).
-    Margin,
-    /// Routh–Hurwitz verdict only (faster; no margin).
-    Verdict,
-}
+pub use autobal::spatial::map::{Cell, Quantity};
 
-#[derive(Debug, Clone, Copy)]
-pub struct Cell {
-    pub margin: f64,
-    pub stable: bool,
-    pub necessary: bool,
-}
-
+/// The data the figures are drawn from: the whole map, or a decimated copy of a large one
+/// (every k-th row and column, at most [`PLOT_CELLS`] per axis).
 pub struct MapResult {
     pub x: Axis,
     pub y: Axis,
-    /// `rows[j][i]` at `(x_i, y_j)`; `None` for rows skipped by an interruption.
+    /// `rows[j][i]` at `(x_i, y_j)`; `None` for rows not computed (interrupted).
     pub rows: Vec<Option<Vec<Cell>>>,
     pub quantity: Quantity,
 }
 
-struct Point<'a> {
-    base: &'a Table,
-    source: &'a str,
-    x: &'a Axis,
-    y: &'a Axis,
-
+/// How far a map got.
+pub struct MapRun {
+    /// Rows written to the CSV.
+    pub rows_done: usize,
+    /// Rows of the full grid.
+    pub rows_total: usize,
+    /// Points per row.
+    pub row_len: usize,
+    /// Points from continuation / characteristic polynomial, and direct solves.
+    pub continued: usize,
+    pub direct: usize,
 }
 
-impl Point<'_> {
-    fn config(&self, xv: Option<f64>, yv: f64) -> Result<Config> {
-        let mut t = self.base.clone();
-        if let Some(xv) = xv {
-            config::set_number(&mut t, &self.x.key, xv)?;
-        }
-        if !self.y.is_omega() {
-            config::set_number(&mut t, &self.y.key, yv)?;
-        }
-        config::build(&t, self.source).with_context(|| format!("at {} = {}", self.y.key, yv))
+/// Largest number of cells per axis kept for the figures.
+pub const PLOT_CELLS: usize = 500;
+
+/// Stride and decimated axis: indices `0, k, 2k, …` of `a`.
+fn decimate(a: &Axis) -> (usize, Axis) {
+    let k = a.n.div_ceil(PLOT_CELLS).max(1);
+    if k == 1 {
+        return (1, a.clone());
     }
+    let m = (a.n - 1) / k;
+    (k, Axis { key: a.key.clone(), lo: a.value(0), hi: a.value(m * k), n: m + 1 })
 }
 
-fn cell(ss: &StateSpace, nec: &[autobal::spatial::ranges::SpeedRange], omega: f64, q: Quantity, balls: Balls) -> Result<Cell> {
-    let necessary = nec.iter().any(|r| r.contains(omega));
-    Ok(match q {
-        Quantity::Margin => {
-            let a = margin_at(ss, omega)?;
-            Cell { margin: a, stable: counts_as_stable(a, balls), necessary }
-        }
-        Quantity::Verdict => Cell { margin: f64::NAN, stable: strictly_stable_at(ss, omega), necessary },
-    })
-}
-
-/// Compute the map; each finished row is appended to `csv` at once.
+/// Compute the map with the library ([`autobal::spatial::map::stability_map`]), writing the
+/// CSV in grid order (row `j` = all `x` at `y_j`) as rows complete, and keeping a decimated copy
+/// for the figures: memory does not grow with the grid.
 #[allow(clippy::too_many_arguments)]
 pub fn compute(
-    base: &Table,
-    source: &str,
+    cfg: &Config,
     x: Axis,
     y: Axis,
     omega: Option<f64>,
     balls: Balls,
     quantity: Quantity,
-    csv: &mut (dyn Write + Send),
+    csv: &mut dyn Write,
     progress: bool,
-) -> Result<MapResult> {
-    for a in [&x, &y] {
+) -> Result<(MapResult, MapRun)> {
+    for (flag, a) in [("--x", &x), ("--y", &y)] {
         if !a.is_omega() {
-            let mut t = base.clone();
-            config::set_number(&mut t, &a.key, a.lo).map_err(|e| anyhow!("--{}: {e:#}", if std::ptr::eq(a, &x) { "x" } else { "y" }))?;
+            let mut s = cfg.spec.clone();
+            s.set(&a.key, a.lo).map_err(|e| anyhow!("{flag}: {e}"))?;
         }
     }
     if x.is_omega() && y.is_omega() {
@@ -154,73 +134,72 @@ pub fn compute(
         bail!("--omega: required when neither axis is omega (the speed at which to map)");
     }
     writeln!(csv, "{},{},max_real_part,stable,necessary", x.key, y.key)?;
-    let pt = Point { base, source, x: &x, y: &y };
-    // fail early on a bad base config
-    pt.config(if x.is_omega() { None } else { Some(x.lo) }, y.lo)?;
-    let bar = if progress {
+    let lib_axis = |a: &Axis| autobal::spatial::map::Axis { path: a.key.clone(), values: (0..a.n).map(|i| a.value(i)).collect() };
+    let (lx, ly) = (lib_axis(&x), lib_axis(&y));
+    let settings = autobal::spatial::map::MapSettings { balls, quantity, omega };
+    let bar = progress.then(|| {
         let b = indicatif::ProgressBar::new(y.n as u64);
         b.set_style(
             indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} rows  {elapsed_precise} (eta {eta})")
                 .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
         );
-        Some(b)
-    } else {
-        None
-    };
-    let sink = Mutex::new(csv);
-    // one model per value of the non-Ω axis, built once (the Ω axis reuses it)
-    type Built = (StateSpace, Vec<autobal::spatial::ranges::SpeedRange>);
-    let build = |xv: Option<f64>, yv: f64| -> Result<Built> {
-        let c = pt.config(xv, yv)?;
-        let nec = autobal::spatial::ranges::autobalancing_ranges(&c.model).ranges;
-        Ok((StateSpace::new(&c.model, balls)?, nec))
-    };
-    let columns: Vec<Built> = if y.is_omega() {
-        (0..x.n).into_par_iter().map(|i| build(Some(x.value(i)), y.lo)).collect::<Result<_>>()?
-    } else {
-        vec![]
-    };
-    let rows: Vec<Result<Option<Vec<Cell>>>> = (0..y.n)
-        .into_par_iter()
-        .map(|j| {
-            if INTERRUPTED.load(Ordering::Relaxed) {
-                return Ok(None);
-            }
-            let yv = y.value(j);
-            let row: Option<Built> = if x.is_omega() { Some(build(None, yv)?) } else { None };
-            let mut cells = Vec::with_capacity(x.n);
-            for i in 0..x.n {
-                let xv = x.value(i);
-                let c = if let Some((c, nec)) = &row {
-                    cell(c, nec, xv.max(1e-9), quantity, balls)?
-                } else if let Some((c, nec)) = columns.get(i) {
-                    cell(c, nec, yv.max(1e-9), quantity, balls)?
-                } else {
-                    let (c, nec) = build(Some(xv), yv)?;
-                    cell(&c, &nec, omega.unwrap_or(1.0).max(1e-9), quantity, balls)?
-                };
-                cells.push(c);
-            }
-            {
-                let mut out = sink.lock().map_err(|_| anyhow!("CSV writer poisoned"))?;
-                let mut text = String::with_capacity(cells.len() * 48);
-                for (i, c) in cells.iter().enumerate() {
-                    text.push_str(&format!("{},{},{},{},{}\n", x.value(i), yv, c.margin, c.stable as u8, c.necessary as u8));
+        b
+    });
+    let (kx, dx) = decimate(&x);
+    let (ky, dy) = decimate(&y);
+    let mut kept: Vec<Option<Vec<Cell>>> = vec![None; dy.n];
+    let xs: Vec<String> = lx.values.iter().map(|v| v.to_string()).collect();
+    // rows are formatted in parallel in batches (the pool is idle between the library's blocks)
+    let mut pending: Vec<(usize, Vec<Cell>)> = vec![];
+    let mut io_error: Option<std::io::Error> = None;
+    let flush = |pending: &mut Vec<(usize, Vec<Cell>)>, csv: &mut dyn Write| -> std::io::Result<()> {
+        let texts: Vec<String> = pending
+            .par_iter()
+            .map(|(j, cells)| {
+                let yv = ly.values[*j].to_string();
+                let mut t = String::with_capacity(cells.len() * 40);
+                for (xs, c) in xs.iter().zip(cells) {
+                    use std::fmt::Write as _;
+                    let _ = writeln!(t, "{xs},{yv},{},{},{}", c.margin, c.stable as u8, c.necessary as u8);
                 }
-                out.write_all(text.as_bytes())?;
-                out.flush()?;
+                t
+            })
+            .collect();
+        pending.clear();
+        for t in texts {
+            csv.write_all(t.as_bytes())?;
+        }
+        csv.flush()
+    };
+    let batch = (1 << 16) / x.n.max(1) + 1;
+    let outcome = autobal::spatial::map::stability_map(&cfg.spec, &lx, &ly, &settings, &mut |j, cells| {
+        if j % ky == 0 && j / ky < dy.n {
+            kept[j / ky] = Some(cells.iter().step_by(kx).take(dx.n).copied().collect());
+        }
+        pending.push((j, cells.to_vec()));
+        if pending.len() >= batch || j + 1 == ly.values.len() {
+            if let Err(e) = flush(&mut pending, csv) {
+                io_error = Some(e);
+                return false;
             }
-            if let Some(b) = &bar {
-                b.inc(1);
-            }
-            Ok(Some(cells))
-        })
-        .collect();
+        }
+        if let Some(b) = &bar {
+            b.set_position(j as u64 + 1);
+        }
+        !INTERRUPTED.load(Ordering::Relaxed)
+    });
+    if let Some(e) = io_error {
+        return Err(e.into());
+    }
+    let outcome = outcome.map_err(|e| anyhow!("{e}"))?;
+    if !pending.is_empty() {
+        flush(&mut pending, csv)?;
+    }
     if let Some(b) = bar {
         b.finish_and_clear();
     }
-    let rows = rows.into_iter().collect::<Result<Vec<_>>>()?;
-    Ok(MapResult { x, y, rows, quantity })
+    let run = MapRun { rows_done: outcome.rows, rows_total: y.n, row_len: x.n, continued: outcome.continued, direct: outcome.direct };
+    Ok((MapResult { x: dx, y: dy, rows: kept, quantity }, run))
 }
 
 /// Write `<stem>.svg` and `<stem>.png` (drawn by `mapfig`).

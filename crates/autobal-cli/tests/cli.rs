@@ -368,3 +368,24 @@ fn simulate_writes_csv_summary_and_plots() {
     assert!(dir.join("sw.csv").exists());
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn map_csv_is_in_grid_order_whatever_the_thread_count() {
+    let dir = std::env::temp_dir().join(format!("autobal-order-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut texts = vec![];
+    for t in ["1", "2", "3"] {
+        let stem = dir.join(format!("m{t}"));
+        let (code, _, err) = autobal(&["map", "--x", "dimensionless.z_a=-1:1:23", "--y", "omega=0.1:4:150", "--threads", t, "--out", stem.to_str().unwrap()]);
+        assert_eq!(code, 0, "{err}");
+        texts.push(std::fs::read_to_string(stem.with_extension("csv")).unwrap());
+    }
+    assert!(texts[0] == texts[1] && texts[1] == texts[2], "CSV differs with the thread count");
+    // row-major: y outer, x inner
+    let rows: Vec<Vec<f64>> = texts[0].lines().skip(1).map(|l| l.split(',').take(2).map(|v| v.parse().unwrap()).collect()).collect();
+    for (k, r) in rows.iter().enumerate() {
+        assert!((r[0] - (-1.0 + 2.0 * (k % 23) as f64 / 22.0)).abs() < 1e-9, "row {k}: {r:?}");
+        assert!((r[1] - (0.1 + 3.9 * (k / 23) as f64 / 149.0)).abs() < 1e-9, "row {k}: {r:?}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -1,6 +1,9 @@
 //! Linear stability: the eigen-solver against nalgebra and the pencil's determinant, the
 //! textbook limits, and the analytic critical speeds.
 
+// Index loops follow the algorithms' formulas (rows, columns, coefficients).
+#![allow(clippy::needless_range_loop)]
+
 use autobal::spatial::critical_speeds::critical_speeds_at;
 use autobal::linalg::eigen::{characteristic_polynomial, complex_det, eigenvalues, routh_hurwitz_stable};
 use autobal::spatial::inertia::AnisotropyMethod;
@@ -394,6 +397,285 @@ fn state_space_polynomial_matches_direct_assembly() {
                     assert!((a[i][j] - b[i][j]).abs() < 1e-12 * (1.0 + a[i][j].abs()) * (1.0 + w * w));
                 }
             }
+        }
+    }
+}
+
+// ---- the characteristic polynomial in Ω, maps and Campbell diagrams built on it ----
+
+use autobal::linalg::charpoly::{routh_count_right_of, SpeedPolynomial};
+use autobal::linalg::eigen::spectral_abscissa;
+use autobal::spatial::linear_model::StateSpace;
+use autobal::spatial::map::{stability_map, Axis, Cell, MapSettings, Quantity};
+use autobal::spatial::paths::{SpatialInput, SpatialSpec};
+use autobal::spatial::stability::strictly_stable_at;
+
+fn random_input(rng: &mut Rng) -> DimensionlessInput {
+    DimensionlessInput {
+        c_sigma: rng.range(0.2, 1.6),
+        rho_s: rng.range(0.2, 0.8),
+        l_left: rng.range(-0.3, 1.4),
+        z_a: rng.range(-1.0, 1.0),
+        anisotropy: AnisotropyInput::Direct(rng.range(0.0, 0.2)),
+        h_x: rng.range(0.0, 0.2),
+        h_s: rng.range(0.01, 0.5),
+        method: AnisotropyMethod::Exact,
+        direct_balls: Some((rng.range(0.005, 0.1), rng.range(0.0, 1.0))),
+    }
+}
+
+#[test]
+fn speed_polynomial_roots_are_the_eigenvalues() {
+    // The exact expansion of det(M λ² + G(Ω) λ + K(Ω)) / det M, evaluated at Ω, has the QR
+    // eigenvalues of the state matrix (and nalgebra's) as roots: the Newton inclusion radius
+    // N |p(λ)/p'(λ)| at each is within the sensitivity of a double root, N sqrt(ε) (1 + |λ|).
+    let mut rng = Rng(31);
+    for _ in 0..200 {
+        let m = random_model(&mut rng);
+        for balls in [Balls::Free, Balls::Locked] {
+            let sp = SpeedPolynomial::new(&Pencil::terms(&m, balls).unwrap()).unwrap();
+            let w = rng.range(0.0, 6.0);
+            let p = Pencil::new(&m, w, balls).unwrap();
+            let n = p.states();
+            assert_eq!(sp.states, n);
+            let c = sp.at(w);
+            for lam in nalgebra_eigs(&p.state_matrix(), n) {
+                let (v, dv) = autobal::linalg::charpoly::eval_with_derivative(&c[..=n], lam);
+                let radius = n as f64 * (v / dv).norm();
+                assert!(radius < n as f64 * f64::EPSILON.sqrt() * (1.0 + lam.norm()), "Ω = {w}, λ = {lam}: radius {radius}");
+            }
+        }
+    }
+}
+
+#[test]
+fn routh_count_is_the_number_of_eigenvalues_right_of_a_shift() {
+    let mut rng = Rng(32);
+    let mut checked = 0;
+    for _ in 0..1500 {
+        let m = random_model(&mut rng);
+        let sp = SpeedPolynomial::new(&Pencil::terms(&m, Balls::Free).unwrap()).unwrap();
+        let w = rng.range(0.05, 5.0);
+        let ev = eigenvalues_at(&m, w, Balls::Free).unwrap().1;
+        let s = rng.range(-0.3, 0.1);
+        if ev.iter().any(|z| (z.re - s).abs() < 1e-6) {
+            continue;
+        }
+        let count = ev.iter().filter(|z| z.re > s).count();
+        assert_eq!(routh_count_right_of(&sp.at(w)[..=12], s), Some(count), "Ω = {w}, s = {s}: {ev:?}");
+        checked += 1;
+    }
+    assert!(checked > 1400);
+}
+
+fn spec_of(d: DimensionlessInput) -> SpatialSpec {
+    SpatialSpec { input: SpatialInput::Dimensionless(d), delta_a_override: None }
+}
+
+fn collect_map(spec: &SpatialSpec, x: &Axis, y: &Axis, s: &MapSettings) -> (Vec<Vec<Cell>>, autobal::spatial::map::MapOutcome) {
+    let mut rows = vec![];
+    let out = stability_map(spec, x, y, s, &mut |j, r| {
+        assert_eq!(j, rows.len(), "rows arrive in grid order");
+        rows.push(r.to_vec());
+        true
+    })
+    .unwrap();
+    (rows, out)
+}
+
+#[test]
+fn map_margin_by_continuation_matches_the_qr_eigenvalues_on_fine_grids() {
+    // Continuation of the rightmost root with a Routh certificate at every speed, against the
+    // full QR eigenvalues at every point: the certificate bounds the error by the Newton
+    // radius accepted (1e-10 (1 + |λ|)) plus the gap of the count (1e-12). Overtaking
+    // eigenvalues must be detected (fall-backs beyond the first speed of each line).
+    let mut rng = Rng(33);
+    let (mut fallbacks, mut worst) = (0, 0.0f64);
+    for _ in 0..12 {
+        let d = random_input(&mut rng);
+        let spec = spec_of(d);
+        let x = Axis { path: "dimensionless.z_a".into(), values: vec![d.z_a, d.z_a + 0.3, d.z_a - 0.4] };
+        let y = Axis::linspace("omega", 0.0, 6.0, 1500);
+        for balls in [Balls::Free, Balls::Locked] {
+            let s = MapSettings { balls, quantity: Quantity::Margin, omega: None };
+            let (rows, out) = collect_map(&spec, &x, &y, &s);
+            fallbacks += out.direct - x.values.len();
+            for (i, &z) in x.values.iter().enumerate() {
+                let mut di = d;
+                di.z_a = z;
+                let ss = StateSpace::new(&SpatialModel::from_dimensionless(&di).unwrap(), balls).unwrap();
+                for (j, &w) in y.values.iter().enumerate() {
+                    let qr = spectral_abscissa(&ss.at(w.max(1e-9)), ss.states).unwrap();
+                    let a = rows[j][i].margin;
+                    worst = worst.max((a - qr).abs());
+                    assert!((a - qr).abs() <= 1e-10 * (1.0 + w * w) + 1e-12, "Ω = {w}: continuation {a} vs QR {qr}");
+                    if qr.abs() > 1e-9 {
+                        assert_eq!(rows[j][i].stable, qr < 0.0);
+                    }
+                }
+            }
+        }
+    }
+    assert!(fallbacks > 50, "overtaking eigenvalues should occur and be caught: {fallbacks}");
+    assert!(worst < 1e-10, "{worst}");
+}
+
+#[test]
+fn map_verdict_equals_the_direct_routh_hurwitz_test_at_every_point() {
+    // Routh–Hurwitz on the polynomial coefficients, every change of verdict confirmed by the
+    // direct test on the state matrix: the map equals the direct test everywhere, and the
+    // eigenvalues away from the boundary.
+    let mut rng = Rng(34);
+    let mut stable = 0;
+    for _ in 0..12 {
+        let d = random_input(&mut rng);
+        let spec = spec_of(d);
+        let x = Axis { path: "dimensionless.h_s".into(), values: vec![d.h_s, 0.5 * d.h_s, 2.0 * d.h_s] };
+        let y = Axis::linspace("omega", 0.0, 6.0, 2000);
+        let s = MapSettings { balls: Balls::Free, quantity: Quantity::Verdict, omega: None };
+        let (rows, _) = collect_map(&spec, &x, &y, &s);
+        for (i, &h) in x.values.iter().enumerate() {
+            let mut di = d;
+            di.h_s = h;
+            let m = SpatialModel::from_dimensionless(&di).unwrap();
+            let ss = StateSpace::new(&m, Balls::Free).unwrap();
+            for (j, &w) in y.values.iter().enumerate() {
+                let w = w.max(1e-9);
+                assert_eq!(rows[j][i].stable, strictly_stable_at(&ss, w), "Ω = {w}");
+                let a = spectral_abscissa(&ss.at(w), 12).unwrap();
+                if a.abs() > 1e-6 {
+                    assert_eq!(rows[j][i].stable, a < 0.0, "Ω = {w}, α = {a}");
+                }
+                stable += rows[j][i].stable as usize;
+            }
+        }
+    }
+    assert!(stable > 1000, "{stable}");
+}
+
+#[test]
+fn map_rows_are_the_same_in_grid_order_whatever_the_thread_count() {
+    let mut rng = Rng(35);
+    let spec = spec_of(random_input(&mut rng));
+    let x = Axis::linspace("dimensionless.z_a", -1.0, 1.0, 37);
+    let y = Axis::linspace("omega", 0.05, 4.0, 1100);
+    for q in [Quantity::Margin, Quantity::Verdict] {
+        let s = MapSettings { balls: Balls::Free, quantity: q, omega: None };
+        let run = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            pool.install(|| collect_map(&spec, &x, &y, &s).0)
+        };
+        let one = run(1);
+        let three = run(3);
+        assert_eq!(one.len(), 1100);
+        for (a, b) in one.iter().zip(&three) {
+            for (p, q) in a.iter().zip(b) {
+                assert!(p.margin.to_bits() == q.margin.to_bits() && p.stable == q.stable && p.necessary == q.necessary);
+            }
+        }
+        // the speed on x: the same cells, transposed
+        let s2 = s;
+        let t = collect_map(&spec, &y, &x, &s2).0;
+        for j in 0..y.values.len() {
+            for i in 0..x.values.len() {
+                assert_eq!(one[j][i].stable, t[i][j].stable);
+                assert!(one[j][i].margin.to_bits() == t[i][j].margin.to_bits() || q == Quantity::Verdict);
+            }
+        }
+    }
+}
+
+#[test]
+fn map_without_a_speed_axis_and_its_errors() {
+    let mut rng = Rng(36);
+    let d = random_input(&mut rng);
+    let spec = spec_of(d);
+    let x = Axis::linspace("dimensionless.c_sigma", 0.3, 1.5, 5);
+    let y = Axis::linspace("dimensionless.l_left", 0.2, 1.2, 4);
+    let s = MapSettings { balls: Balls::Free, quantity: Quantity::Margin, omega: Some(1.7) };
+    let (rows, out) = collect_map(&spec, &x, &y, &s);
+    assert!(out.complete && out.rows == 4);
+    for (j, &l) in y.values.iter().enumerate() {
+        for (i, &c) in x.values.iter().enumerate() {
+            let mut di = d;
+            di.c_sigma = c;
+            di.l_left = l;
+            let a = margin(&SpatialModel::from_dimensionless(&di).unwrap(), 1.7, Balls::Free).unwrap();
+            // the map uses A(Ω) = A0 + Ω A1 + Ω² A2, `margin` the pencil at Ω: round-off apart
+            assert!((rows[j][i].margin - a).abs() < 64.0 * f64::EPSILON, "{} vs {a}", rows[j][i].margin);
+        }
+    }
+    // stopping early: the rows handed over are complete, the outcome says so
+    let mut seen = 0;
+    let out = stability_map(&spec, &Axis::linspace("dimensionless.z_a", -1.0, 1.0, 9), &Axis::linspace("omega", 0.1, 3.0, 50), &MapSettings { omega: None, ..s }, &mut |_, _| {
+        seen += 1;
+        seen < 7
+    })
+    .unwrap();
+    assert!(!out.complete && out.rows == 7);
+    let e = stability_map(&spec, &Axis::linspace("dimensionless.zz", 0.0, 1.0, 3), &Axis::linspace("omega", 0.1, 3.0, 5), &s, &mut |_, _| true).unwrap_err();
+    assert!(e.to_string().starts_with("dimensionless.zz: unknown parameter path"), "{e}");
+    let e = stability_map(&spec, &Axis::linspace("dimensionless.rho_s", -1.0, 1.0, 3), &Axis::linspace("omega", 0.1, 3.0, 5), &s, &mut |_, _| true).unwrap_err();
+    assert!(e.to_string().starts_with("dimensionless.rho_s: must be positive"), "{e}");
+    let e = stability_map(&spec, &x, &y, &MapSettings { omega: None, ..s }, &mut |_, _| true).unwrap_err();
+    assert!(e.to_string().starts_with("omega: required"), "{e}");
+}
+
+#[test]
+fn campbell_lines_follow_crossing_modes_by_their_eigenvectors() {
+    // Isotropic symmetric undamped rotor: translation (Jeffcott) and tilt decouple, and their
+    // rotating-frame eigenvalues collide (equal λ, not only equal frequency) at the crossings.
+    // Each tracked line must stay on one mode: the translation lines are exactly the straight
+    // lines ±i(1 ∓ Ω) at every speed, and every line keeps its group.
+    for (cs, rho) in [(0.6, 0.4), (1.3, 0.5), (0.9, 0.3)] {
+        let m = model(cs, rho, 0.5, 0.0, 0.0, 0.0, 0.0, None);
+        let omegas: Vec<f64> = (0..700).map(|i| 0.0037 + 0.0071 * i as f64).collect();
+        let c = campbell(&m, &omegas, Balls::Locked).unwrap();
+        let i = Complex64::new(0.0, 1.0);
+        let branches = [|w: f64| Complex64::new(0.0, 1.0 - w), |w: f64| Complex64::new(0.0, -1.0 - w), |w: f64| Complex64::new(0.0, -(1.0 - w)), |w: f64| Complex64::new(0.0, 1.0 + w)];
+        let mut translation_lines = 0;
+        for line in &c.lines {
+            let g = line.modes[0].group;
+            assert!(line.modes.iter().all(|md| md.group == g), "a line changed group (C̄Σ = {cs})");
+            if g == Group::Translation {
+                translation_lines += 1;
+                let l0 = Complex64::new(line.modes[0].re, line.modes[0].im);
+                let b = branches.iter().min_by(|f, g| (f(omegas[0]) - l0).norm().total_cmp(&(g(omegas[0]) - l0).norm())).unwrap();
+                for (md, &w) in line.modes.iter().zip(&omegas) {
+                    let lam = Complex64::new(md.re, md.im);
+                    assert!((lam - b(w)).norm() < 1e-9, "C̄Σ = {cs}, Ω = {w}: {lam} left its branch {}", b(w));
+                }
+            }
+        }
+        let _ = i;
+        assert_eq!(translation_lines, 4);
+    }
+}
+
+#[test]
+fn campbell_of_the_default_rotor_has_continuous_lines() {
+    // 000's base case with masses (the default config): every tracked line moves by less than
+    // the largest |dλ/dΩ| times the step between neighbouring speeds.
+    let m = SpatialModel::from_dimensionless(&DimensionlessInput {
+        c_sigma: 0.75,
+        rho_s: 0.4,
+        l_left: 0.8,
+        z_a: 0.8,
+        anisotropy: AnisotropyInput::Masses { masses: MassSet { m0: 0.025, r0: 2.0, m: 0.05, r: 2.0, n: 2 }, d_a: None },
+        h_x: 0.05,
+        h_s: 0.1,
+        method: AnisotropyMethod::Exact,
+        direct_balls: None,
+    })
+    .unwrap();
+    let h = 0.002;
+    let omegas: Vec<f64> = (0..2500).map(|i| 0.001 + h * i as f64).collect();
+    let c = campbell(&m, &omegas, Balls::Free).unwrap();
+    for line in &c.lines {
+        for k in 1..line.modes.len() {
+            let (a, b) = (&line.modes[k - 1], &line.modes[k]);
+            let jump = ((a.re - b.re).powi(2) + (a.im - b.im).powi(2)).sqrt();
+            assert!(jump < 4.0 * h, "jump {jump} at Ω = {}", omegas[k]);
         }
     }
 }

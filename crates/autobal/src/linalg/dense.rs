@@ -2,6 +2,9 @@
 //! order), shared by the linear model (`M⁻¹[K G]`), the simulation (its mass matrix at each
 //! step) and the implicit integrator (one factorisation, six solves per step).
 
+// Index loops follow the algorithms' formulas (rows, columns, coefficients).
+#![allow(clippy::needless_range_loop)]
+
 /// Row of the largest `|a[i][col]|`, `i ≥ col` (partial pivoting).
 fn pivot_row<const N: usize>(a: &[[f64; N]; N], col: usize, n: usize) -> usize {
     let mut p = col;

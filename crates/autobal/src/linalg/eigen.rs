@@ -8,6 +8,9 @@
 //! allocate; a stability map needs neither. The tests check every routine against nalgebra's
 //! Schur decomposition and against the pencil's determinant.
 
+// Index loops follow the algorithms' formulas (rows, columns, coefficients).
+#![allow(clippy::needless_range_loop)]
+
 use crate::spatial::linear_model::{Mat12, MAX_STATES};
 use num_complex::Complex64;
 

@@ -19,7 +19,11 @@
 //! anisotropy `ΔĀ ≥ 0` and `d_A` are in the composite's principal frame
 //! (`inertia::ball_coupling_exact`), or the paper's `diag(1 ∓ D_A)` on request.
 
+// Index loops follow the algorithms' formulas (rows, columns, coefficients).
+#![allow(clippy::needless_range_loop)]
+
 use crate::error::{Error, Result};
+use crate::linalg::charpoly::PencilTerms;
 use crate::spatial::params::SpatialModel;
 
 /// Largest number of generalised coordinates (balls free).
@@ -147,6 +151,23 @@ impl Pencil {
         put(&mut pen.m, 2, 2, E);
         put(&mut pen.g, 2, 2, lin(&[(dm.h_s, E)]));
         Ok(pen)
+    }
+
+    /// The pencil's dependence on the speed, `M λ² + (G0 + Ω G1) λ + K0 + Ω K1 + Ω² K2`, from
+    /// the pencils at `Ω = 0, ±1` (eq (6) is linear in `Ω` in `G` and quadratic in `K`).
+    pub fn terms(model: &SpatialModel, balls: Balls) -> Result<PencilTerms> {
+        let p0 = Pencil::new(model, 0.0, balls)?;
+        let pp = Pencil::new(model, 1.0, balls)?;
+        let pm = Pencil::new(model, -1.0, balls)?;
+        let mut t = PencilTerms { n: p0.n, m: p0.m, g: [p0.g, p0.g], k: [p0.k, p0.k, p0.k] };
+        for i in 0..p0.n {
+            for j in 0..p0.n {
+                t.g[1][i][j] = 0.5 * (pp.g[i][j] - pm.g[i][j]);
+                t.k[1][i][j] = 0.5 * (pp.k[i][j] - pm.k[i][j]);
+                t.k[2][i][j] = 0.5 * (pp.k[i][j] + pm.k[i][j]) - p0.k[i][j];
+            }
+        }
+        Ok(t)
     }
 
     /// State dimension `2n`.

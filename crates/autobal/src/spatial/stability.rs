@@ -10,10 +10,14 @@
 //! assumes). The tolerance only absorbs round-off: eigenvalues of the dimensionless state
 //! matrices are accurate to ~1e-14.
 
-use crate::linalg::eigen::{characteristic_polynomial, complex_solve, eigenvalues, routh_hurwitz_stable, spectral_abscissa};
+// Index loops follow the algorithms' formulas (rows, columns, coefficients).
+#![allow(clippy::needless_range_loop)]
+
+use crate::linalg::charpoly::{continue_roots, SpeedPolynomial};
+use crate::linalg::eigen::{characteristic_polynomial, eigenvalues, routh_hurwitz_stable, spectral_abscissa};
 use crate::spatial::critical_speeds::{critical_speeds_at, ModeKind};
 use crate::error::{Error, Result};
-use crate::spatial::linear_model::{Balls, Pencil, StateSpace};
+use crate::spatial::linear_model::{Balls, Pencil, StateSpace, MAX_STATES};
 use crate::spatial::params::SpatialModel;
 use crate::spatial::ranges::SpeedRange;
 use num_complex::Complex64;
@@ -31,7 +35,7 @@ pub fn counts_as_stable(alpha: f64, balls: Balls) -> bool {
     }
 }
 
-fn no_conv(omega: f64) -> Error {
+pub(crate) fn no_conv(omega: f64) -> Error {
     Error::NoConvergence { omega }
 }
 
@@ -98,36 +102,100 @@ pub struct Mode {
     pub log_decrement: Option<f64>,
     /// Dominant coordinate group of the eigenvector.
     pub group: Group,
-    /// Whirl frequency in fixed axes: `Ω + ν` or `Ω − ν`, whichever of the eigenvector's
-    /// forward and backward circular components dominates; positive = forward.
+    /// Whirl frequency in fixed axes of the dominant circular component: `Ω + ν` or `Ω − ν`
+    /// (see `forward_share`); positive = forward. It changes branch where the shares cross ½.
     pub fixed_frequency: f64,
+    /// Share of the eigenvector's circular component `x_ξ + i x_η` (summed over the coordinate
+    /// pairs): in fixed axes the mode whirls at `Ω + ν` with this share of its amplitude squared
+    /// and at `Ω − ν` with the rest (an anisotropic rotor has both).
+    pub forward_share: f64,
     /// Whirl direction in fixed axes.
     pub whirl: Whirl,
 }
 
-/// Interpret eigenvalue `lam` of `pencil` at speed `omega` from its eigenvector (two steps
-/// of inverse iteration on `M λ² + G λ + K`).
-pub fn classify(p: &Pencil, omega: f64, lam: Complex64) -> Mode {
+/// An eigenvector of the pencil `M λ² + G λ + K` for the eigenvalue `lam`: the null vector from
+/// Gaussian elimination with complete pivoting (the last pivot is the one that vanishes), on the
+/// stack. Normalised to unit length.
+pub fn pencil_null_vector(p: &Pencil, lam: Complex64) -> [Complex64; 6] {
     let n = p.n;
-    let mat: Vec<Vec<Complex64>> =
-        (0..n).map(|i| (0..n).map(|j| lam * lam * p.m[i][j] + lam * p.g[i][j] + p.k[i][j]).collect()).collect();
-    let mut x = vec![Complex64::new(1.0, 0.3); n];
-    for _ in 0..2 {
-        x = complex_solve(&mat, &x);
-        let nrm = x.iter().map(|z| z.norm_sqr()).sum::<f64>().sqrt();
-        if nrm > 0.0 && nrm.is_finite() {
-            for z in x.iter_mut() {
-                *z /= nrm;
+    let zero = Complex64::new(0.0, 0.0);
+    let mut a = [[zero; 6]; 6];
+    for i in 0..n {
+        for j in 0..n {
+            a[i][j] = lam * lam * p.m[i][j] + lam * p.g[i][j] + p.k[i][j];
+        }
+    }
+    let mut col = [0usize, 1, 2, 3, 4, 5];
+    for k in 0..n {
+        // complete pivoting
+        let (mut pi, mut pj, mut best) = (k, k, -1.0);
+        for i in k..n {
+            for j in k..n {
+                let v = a[i][j].norm_sqr();
+                if v > best {
+                    (pi, pj, best) = (i, j, v);
+                }
+            }
+        }
+        a.swap(k, pi);
+        for row in a.iter_mut() {
+            row.swap(k, pj);
+        }
+        col.swap(k, pj);
+        if best == 0.0 {
+            break;
+        }
+        for i in k + 1..n {
+            let f = a[i][k] / a[k][k];
+            for j in k..n {
+                let t = a[k][j];
+                a[i][j] -= f * t;
             }
         }
     }
+    // U y = 0 with y_{n−1} = 1 (the last pivot is ~0)
+    let mut y = [zero; 6];
+    y[n - 1] = Complex64::new(1.0, 0.0);
+    for k in (0..n - 1).rev() {
+        let mut v = zero;
+        for j in k + 1..n {
+            v -= a[k][j] * y[j];
+        }
+        y[k] = if a[k][k].norm() > 0.0 { v / a[k][k] } else { Complex64::new(1.0, 0.0) };
+    }
+    let mut x = [zero; 6];
+    for k in 0..n {
+        x[col[k]] = y[k];
+    }
+    let nrm = x.iter().map(|z| z.norm_sqr()).sum::<f64>().sqrt();
+    if nrm > 0.0 && nrm.is_finite() {
+        for z in x.iter_mut() {
+            *z /= nrm;
+        }
+    }
+    x
+}
+
+/// Interpret eigenvalue `lam` of `pencil` at speed `omega` from its eigenvector
+/// ([`pencil_null_vector`]).
+pub fn classify(p: &Pencil, omega: f64, lam: Complex64) -> Mode {
+    classify_vector(p, omega, lam, &pencil_null_vector(p, lam))
+}
+
+/// [`classify`] with the eigenvector given.
+pub fn classify_vector(p: &Pencil, omega: f64, lam: Complex64, x: &[Complex64; 6]) -> Mode {
+    let n = p.n;
     // kinetic-energy weights: s is the balls' unbalance, about m̄ times their displacement,
     // so the balls' share is |s|²/m̄ (translation and tilt are normalised alike by the papers)
     let ball_weight = 1.0 / p.m[4][0].abs().max(p.m[5][1].abs()).max(1e-12);
     let energy = |k: usize| (x[2 * k].norm_sqr() + x[2 * k + 1].norm_sqr()) * if k == 2 { ball_weight } else { 1.0 };
     let groups = n / 2;
-    let e: Vec<f64> = (0..groups).map(energy).collect();
-    let g = (0..groups).max_by(|&a, &b| e[a].total_cmp(&e[b])).unwrap_or(0);
+    let mut g = 0;
+    for k in 1..groups {
+        if energy(k) > energy(g) {
+            g = k;
+        }
+    }
     let group = [Group::Translation, Group::Tilt, Group::Balls][g];
     let i = Complex64::new(0.0, 1.0);
     let (mut fw, mut bw) = (0.0, 0.0);
@@ -151,6 +219,7 @@ pub fn classify(p: &Pencil, omega: f64, lam: Complex64) -> Mode {
         log_decrement: (nu.abs() > 1e-12).then(|| -2.0 * std::f64::consts::PI * lam.re / nu.abs()),
         group,
         fixed_frequency: fixed,
+        forward_share: if fw + bw > 0.0 { fw / (fw + bw) } else { 0.5 },
         whirl,
     }
 }
@@ -255,55 +324,200 @@ pub struct Campbell {
     pub lines: Vec<CampbellLine>,
 }
 
-/// Campbell diagram over `omegas` (ascending). Lines are continued by matching each new
-/// eigenvalue to the linear extrapolation of the previous two points (greedy nearest pairs),
-/// so lines do not jump between modes where they pass close.
-pub fn campbell(model: &SpatialModel, omegas: &[f64], balls: Balls) -> Result<Campbell> {
-    let mut lines: Vec<Vec<(Complex64, Mode)>> = vec![];
-    for (step, &w) in omegas.iter().enumerate() {
-        let (p, ev) = eigenvalues_at(model, w, balls)?;
-        if step == 0 {
-            lines = ev.iter().map(|&l| vec![(l, classify(&p, w, l))]).collect();
-            continue;
-        }
-        let pred: Vec<Complex64> = lines
-            .iter()
-            .map(|l| {
-                let last = l[l.len() - 1].0;
-                if l.len() >= 2 {
-                    let prev = l[l.len() - 2].0;
-                    let h0 = omegas[step - 1] - omegas[step - 2];
-                    let h1 = w - omegas[step - 1];
-                    last + (last - prev) * (h1 / h0)
-                } else {
-                    last
+/// How the eigenvalues of a Campbell diagram were found.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+pub struct CampbellStats {
+    /// Speeds handed to the caller.
+    pub speeds: usize,
+    /// Whether every speed was computed (`false`: the caller asked to stop).
+    pub complete: bool,
+    /// Speeds whose spectrum came from certified continuation of the roots of the
+    /// characteristic polynomial.
+    pub continued: usize,
+    /// Speeds that needed the QR eigenvalues.
+    pub direct: usize,
+}
+
+/// Optimal assignment (Hungarian method with potentials, O(n³)): `row → column` minimising the
+/// summed cost of an `n×n` matrix.
+fn assignment(cost: &[[f64; MAX_STATES]; MAX_STATES], n: usize) -> [usize; MAX_STATES] {
+    let inf = f64::INFINITY;
+    let mut u = [0.0; MAX_STATES + 1];
+    let mut v = [0.0; MAX_STATES + 1];
+    let mut p = [0usize; MAX_STATES + 1]; // p[j]: row matched to column j (1-based, 0 = none)
+    let mut way = [0usize; MAX_STATES + 1];
+    for i in 1..=n {
+        p[0] = i;
+        let mut j0 = 0;
+        let mut minv = [inf; MAX_STATES + 1];
+        let mut used = [false; MAX_STATES + 1];
+        loop {
+            used[j0] = true;
+            let i0 = p[j0];
+            let mut delta = inf;
+            let mut j1 = 0;
+            for j in 1..=n {
+                if !used[j] {
+                    let cur = cost[i0 - 1][j - 1] - u[i0] - v[j];
+                    if cur < minv[j] {
+                        minv[j] = cur;
+                        way[j] = j0;
+                    }
+                    if minv[j] < delta {
+                        delta = minv[j];
+                        j1 = j;
+                    }
                 }
-            })
-            .collect();
-        let mut pairs: Vec<(f64, usize, usize)> = vec![];
-        for (i, pr) in pred.iter().enumerate() {
-            for (j, e) in ev.iter().enumerate() {
-                pairs.push(((pr - e).norm(), i, j));
+            }
+            for j in 0..=n {
+                if used[j] {
+                    u[p[j]] += delta;
+                    v[j] -= delta;
+                } else {
+                    minv[j] -= delta;
+                }
+            }
+            j0 = j1;
+            if p[j0] == 0 {
+                break;
             }
         }
-        pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
-        let mut used_line = vec![false; lines.len()];
-        let mut used_ev = vec![false; ev.len()];
-        let mut assign = vec![usize::MAX; lines.len()];
-        for (_, i, j) in pairs {
-            if !used_line[i] && !used_ev[j] {
-                used_line[i] = true;
-                used_ev[j] = true;
-                assign[i] = j;
+        loop {
+            let j1 = way[j0];
+            p[j0] = p[j1];
+            j0 = j1;
+            if j0 == 0 {
+                break;
             }
-        }
-        for (i, l) in lines.iter_mut().enumerate() {
-            let lam = ev[assign[i]];
-            l.push((lam, classify(&p, w, lam)));
         }
     }
-    Ok(Campbell {
-        omega: omegas.to_vec(),
-        lines: lines.into_iter().map(|l| CampbellLine { modes: l.into_iter().map(|x| x.1).collect() }).collect(),
-    })
+    let mut out = [0usize; MAX_STATES];
+    for j in 1..=n {
+        if p[j] > 0 {
+            out[p[j] - 1] = j - 1;
+        }
+    }
+    out
+}
+
+/// Campbell diagram over the speeds `omegas` (ascending), streamed: at each speed `on_speed(k, modes)`
+/// receives the modes in line order (line `i` is the same tracked eigenvalue at every speed);
+/// it returns `false` to stop. Memory does not grow with the number of speeds.
+///
+/// The spectrum at each speed comes from the exact characteristic polynomial in `Ω`
+/// ([`SpeedPolynomial`]): Newton's method from the previous speeds' eigenvalues, certified by
+/// disjoint inclusion disks (then they are all `N` roots), else the QR eigenvalues. Lines are
+/// continued by an optimal assignment (Hungarian method) between the extrapolated eigenvalues
+/// and eigenvectors of the previous speeds and the new ones, with cost
+/// `|λ_pred − λ| / h + 4 (1 − MAC)` (`h` the speed step, MAC the modal assurance criterion of
+/// the eigenvectors): where two eigenvalues pass close, the eigenvectors decide.
+pub fn campbell_stream(
+    model: &SpatialModel,
+    omegas: impl IntoIterator<Item = f64>,
+    balls: Balls,
+    on_speed: &mut dyn FnMut(usize, &[Mode]) -> bool,
+) -> Result<CampbellStats> {
+    let ss = StateSpace::new(model, balls)?;
+    let n = ss.states;
+    let terms = Pencil::terms(model, balls)?;
+    let poly = SpeedPolynomial::new(&terms);
+    let zero = Complex64::new(0.0, 0.0);
+    // line i: eigenvalues at the last two speeds, eigenvector at the last
+    let mut lam = [[zero; MAX_STATES]; 2];
+    let mut vec = [[zero; 6]; MAX_STATES];
+    let mut stats = CampbellStats { complete: true, ..Default::default() };
+    let mut modes = Vec::with_capacity(n);
+    let mut prev_w = [0.0f64; 2];
+    for (step, w) in omegas.into_iter().enumerate() {
+        let p = Pencil::new(model, w, balls)?;
+        let mut ev = [zero; MAX_STATES];
+        let mut found = false;
+        if let (Some(sp), true) = (&poly, step > 0) {
+            let c = sp.at(w);
+            let mut starts = [zero; MAX_STATES];
+            for i in 0..n {
+                starts[i] = if step >= 2 {
+                    lam[1][i] + (lam[1][i] - lam[0][i]) * ((w - prev_w[1]) / (prev_w[1] - prev_w[0]))
+                } else {
+                    lam[1][i]
+                };
+            }
+            found = continue_roots(&c[..=n], &starts[..n], &mut ev[..n]).is_some();
+        }
+        if found {
+            stats.continued += 1;
+        } else {
+            stats.direct += 1;
+            let e = eigenvalues(&ss.at(w), n).map_err(|_| no_conv(w))?;
+            ev[..n].copy_from_slice(&e);
+        }
+        // eigenvectors: one elimination per eigenvalue with Im ≥ 0, conjugates mirrored
+        let mut xs = [[zero; 6]; MAX_STATES];
+        for j in 0..n {
+            if ev[j].im >= 0.0 {
+                xs[j] = pencil_null_vector(&p, ev[j]);
+            }
+        }
+        for j in 0..n {
+            if ev[j].im < 0.0 {
+                // the conjugate partner: nearest conj among Im > 0
+                let partner = (0..n).filter(|&k| ev[k].im > 0.0).min_by(|&a, &b| (ev[a].conj() - ev[j]).norm().total_cmp(&(ev[b].conj() - ev[j]).norm()));
+                xs[j] = match partner {
+                    Some(k) => xs[k].map(|z| z.conj()),
+                    None => pencil_null_vector(&p, ev[j]),
+                };
+            }
+        }
+        let order: [usize; MAX_STATES] = if step == 0 {
+            // first speed: lines sorted by imaginary then real part
+            let mut idx: Vec<usize> = (0..n).collect();
+            idx.sort_by(|&a, &b| ev[a].im.total_cmp(&ev[b].im).then(ev[a].re.total_cmp(&ev[b].re)));
+            let mut o = [0; MAX_STATES];
+            o[..n].copy_from_slice(&idx);
+            o
+        } else {
+            let h = (w - prev_w[1]).abs().max(1e-12);
+            let mut cost = [[0.0; MAX_STATES]; MAX_STATES];
+            for i in 0..n {
+                let pred = if step >= 2 { lam[1][i] + (lam[1][i] - lam[0][i]) * ((w - prev_w[1]) / (prev_w[1] - prev_w[0])) } else { lam[1][i] };
+                for j in 0..n {
+                    let dot: Complex64 = (0..6).map(|k| vec[i][k].conj() * xs[j][k]).sum();
+                    let mac = dot.norm_sqr();
+                    cost[i][j] = (pred - ev[j]).norm() / h + 4.0 * (1.0 - mac);
+                }
+            }
+            assignment(&cost, n)
+        };
+        modes.clear();
+        for i in 0..n {
+            let j = order[i];
+            lam[0][i] = lam[1][i];
+            lam[1][i] = ev[j];
+            vec[i] = xs[j];
+            modes.push(classify_vector(&p, w, ev[j], &xs[j]));
+        }
+        prev_w = [prev_w[1], w];
+        stats.speeds += 1;
+        if !on_speed(step, &modes) {
+            stats.complete = false;
+            break;
+        }
+    }
+    Ok(stats)
+}
+
+/// Campbell diagram over `omegas` (ascending), kept in memory ([`campbell_stream`] for large
+/// ones).
+pub fn campbell(model: &SpatialModel, omegas: &[f64], balls: Balls) -> Result<Campbell> {
+    let mut lines: Vec<CampbellLine> = vec![];
+    campbell_stream(model, omegas.iter().copied(), balls, &mut |_, modes| {
+        if lines.is_empty() {
+            lines = modes.iter().map(|_| CampbellLine { modes: Vec::with_capacity(omegas.len()) }).collect();
+        }
+        for (l, m) in lines.iter_mut().zip(modes) {
+            l.modes.push(*m);
+        }
+        true
+    })?;
+    Ok(Campbell { omega: omegas.to_vec(), lines })
 }

@@ -1,0 +1,404 @@
+//! Stability maps over two parameters: the spectral abscissa `max Re λ` (or the stability
+//! verdict) of the balanced state at every point of a grid, computed in parallel and delivered
+//! row by row in grid order, in bounded memory.
+//!
+//! An axis is a parameter path ([`crate::spatial::paths`], e.g. `dimensionless.z_a`) or
+//! [`OMEGA`], the speed. Along the speed axis a model is fixed, and the work is done per *line*
+//! (one model, all speeds) with the exact characteristic polynomial in `Ω`
+//! ([`crate::linalg::charpoly`]):
+//! - the **margin** by continuation of the rightmost eigenvalue with a Routh certificate at
+//!   every speed, falling back to the QR eigenvalues where another eigenvalue overtakes
+//!   ([`AbscissaTracker`]);
+//! - the **verdict** by the Routh–Hurwitz test on the coefficients at each speed; every change
+//!   of verdict along a line, and the ends of each block of speeds, are confirmed by the direct
+//!   test on the state matrix (Hessenberg characteristic polynomial), and cells found wrong are
+//!   corrected until every change of verdict has been confirmed on both sides.
+//!
+//! Without a speed axis every point is its own model, evaluated at the fixed speed by the QR
+//! eigenvalues or the direct Routh–Hurwitz test.
+//!
+//! Rows are computed in blocks in parallel (rayon, in the caller's thread pool) and handed to
+//! the caller's `on_row` in order, whatever the number of threads; memory is one block plus one
+//! state per line.
+
+// Index loops follow the algorithms' formulas (rows, columns, coefficients).
+#![allow(clippy::needless_range_loop)]
+
+use crate::error::{Error, Result};
+use crate::linalg::charpoly::{AbscissaTracker, SpeedPolynomial};
+use crate::linalg::eigen::{eigenvalues, routh_hurwitz_stable, spectral_abscissa};
+use crate::spatial::linear_model::{Balls, Pencil, StateSpace};
+use crate::spatial::paths::SpatialSpec;
+use crate::spatial::ranges::{autobalancing_ranges, SpeedRange};
+use crate::spatial::stability::{counts_as_stable, no_conv, strictly_stable_at};
+use rayon::prelude::*;
+
+/// The path of the speed axis.
+pub const OMEGA: &str = "omega";
+
+/// Speeds below this are evaluated at it (at `Ω = 0` the free balls are neutral and the
+/// eigenvalues multiple).
+pub const OMEGA_FLOOR: f64 = 1e-9;
+
+/// One axis of a map: a parameter path (or [`OMEGA`]) and its values.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Axis {
+    /// Parameter path or `omega`.
+    pub path: String,
+    /// Grid values (the speed axis must be ascending and non-negative).
+    pub values: Vec<f64>,
+}
+
+impl Axis {
+    /// `n` equally spaced values from `lo` to `hi`.
+    pub fn linspace(path: &str, lo: f64, hi: f64, n: usize) -> Self {
+        let values = (0..n).map(|i| if i + 1 == n { hi } else { lo + (hi - lo) * i as f64 / (n.max(2) - 1) as f64 }).collect();
+        Axis { path: path.to_string(), values }
+    }
+
+    fn is_omega(&self) -> bool {
+        self.path == OMEGA
+    }
+}
+
+/// What each point stores.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Quantity {
+    /// The spectral abscissa `max Re λ` (and the verdict from it).
+    Margin,
+    /// The Routh–Hurwitz verdict only (strict: every `Re λ < 0`); `margin` is NaN.
+    Verdict,
+}
+
+/// One point of a map.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Cell {
+    /// `max Re λ` (NaN for [`Quantity::Verdict`]).
+    pub margin: f64,
+    /// Stable by [`counts_as_stable`] (margin) or by Routh–Hurwitz (verdict).
+    pub stable: bool,
+    /// Inside 003's necessary ranges (eqs (1)-(3)).
+    pub necessary: bool,
+}
+
+/// Settings of a map.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MapSettings {
+    /// Balls free (12 states) or locked (8).
+    pub balls: Balls,
+    /// Margin or verdict.
+    pub quantity: Quantity,
+    /// The speed when neither axis is [`OMEGA`].
+    pub omega: Option<f64>,
+}
+
+/// How a map ended, and how its points were computed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct MapOutcome {
+    /// Rows handed to `on_row`.
+    pub rows: usize,
+    /// Whether every row was computed (`false`: `on_row` asked to stop).
+    pub complete: bool,
+    /// Points answered by continuation or by the characteristic polynomial.
+    pub continued: usize,
+    /// Direct solves on the state matrix (QR fall-backs of the margin, confirmations of the
+    /// verdict, and every point of a map without a speed axis).
+    pub direct: usize,
+}
+
+/// A model fixed along the speed axis.
+struct Line {
+    ss: StateSpace,
+    poly: Option<SpeedPolynomial>,
+    nec: Vec<SpeedRange>,
+    tracker: AbscissaTracker,
+    /// Verdict at the last speed of the previous block (confirmed directly).
+    last: Option<bool>,
+    continued: usize,
+    direct: usize,
+}
+
+impl Line {
+    fn new(spec: &SpatialSpec, balls: Balls) -> Result<Self> {
+        let model = spec.build()?;
+        let ss = StateSpace::new(&model, balls)?;
+        let poly = SpeedPolynomial::new(&Pencil::terms(&model, balls)?);
+        let nec = autobalancing_ranges(&model).ranges;
+        Ok(Line { ss, poly, nec, tracker: AbscissaTracker::new(), last: None, continued: 0, direct: 0 })
+    }
+
+    /// Cells at the ascending `speeds`, continuing from the previous call.
+    fn cells(&mut self, speeds: &[f64], q: Quantity, balls: Balls, out: &mut Vec<Cell>) -> Result<()> {
+        let n = self.ss.states;
+        let start = out.len();
+        for &w0 in speeds {
+            let w = w0.max(OMEGA_FLOOR);
+            let necessary = self.nec.iter().any(|r| r.contains(w));
+            let cell = match (q, &self.poly) {
+                (Quantity::Margin, Some(p)) => {
+                    let c = p.at(w);
+                    let before = self.tracker.fallbacks;
+                    let ss = &self.ss;
+                    let a = self.tracker.abscissa(w, &c[..=n], || eigenvalues(&ss.at(w), n).map_err(|_| no_conv(w)))?;
+                    if self.tracker.fallbacks > before {
+                        self.direct += 1;
+                    } else {
+                        self.continued += 1;
+                    }
+                    Cell { margin: a, stable: counts_as_stable(a, balls), necessary }
+                }
+                (Quantity::Margin, None) => {
+                    self.direct += 1;
+                    let a = spectral_abscissa(&self.ss.at(w), n).map_err(|_| no_conv(w))?;
+                    Cell { margin: a, stable: counts_as_stable(a, balls), necessary }
+                }
+                (Quantity::Verdict, Some(p)) => {
+                    self.continued += 1;
+                    let c = p.at(w);
+                    Cell { margin: f64::NAN, stable: routh_hurwitz_stable(&c[..=n]), necessary }
+                }
+                (Quantity::Verdict, None) => {
+                    self.direct += 1;
+                    Cell { margin: f64::NAN, stable: strictly_stable_at(&self.ss, w), necessary }
+                }
+            };
+            out.push(cell);
+        }
+        if q == Quantity::Verdict && self.poly.is_some() {
+            self.confirm(speeds, &mut out[start..]);
+        }
+        Ok(())
+    }
+
+    /// Confirm by the direct test the last cell of the block (and the first speed of the line),
+    /// and every change of verdict (including the one from the previous block's last cell,
+    /// which is confirmed), correcting cells until each change has been confirmed on both
+    /// sides.
+    fn confirm(&mut self, speeds: &[f64], cells: &mut [Cell]) {
+        let k = cells.len();
+        if k == 0 {
+            return;
+        }
+        let mut checked = vec![false; k];
+        let check = |i: usize, cells: &mut [Cell], checked: &mut [bool], direct: &mut usize| {
+            if !checked[i] {
+                checked[i] = true;
+                *direct += 1;
+                cells[i].stable = strictly_stable_at(&self.ss, speeds[i].max(OMEGA_FLOOR));
+            }
+        };
+        match self.last {
+            None => check(0, cells, &mut checked, &mut self.direct),
+            Some(prev) if prev != cells[0].stable => check(0, cells, &mut checked, &mut self.direct),
+            _ => {}
+        }
+        check(k - 1, cells, &mut checked, &mut self.direct);
+        loop {
+            let mut changed = false;
+            if let Some(prev) = self.last {
+                if prev != cells[0].stable && !checked[0] {
+                    check(0, cells, &mut checked, &mut self.direct);
+                    changed = true;
+                }
+            }
+            for i in 0..k.saturating_sub(1) {
+                if cells[i].stable != cells[i + 1].stable && !(checked[i] && checked[i + 1]) {
+                    check(i, cells, &mut checked, &mut self.direct);
+                    check(i + 1, cells, &mut checked, &mut self.direct);
+                    changed = true;
+                }
+            }
+            if !changed {
+                break;
+            }
+        }
+        self.last = Some(cells[k - 1].stable);
+    }
+}
+
+/// Number of cells computed between two hand-overs of rows (bounds memory and the latency of
+/// a stop).
+const BLOCK_CELLS: usize = 1 << 18;
+
+/// Compute the map of `spec` over `x × y`; row `j` (all `x` at `y[j]`) goes to `on_row(j, cells)`
+/// in order of `j`. `on_row` returns `false` to stop (the rows handed over are complete; the
+/// outcome says the map is not).
+///
+/// Errors name the parameter path (unknown path, a value the model refuses) or the speed (QR
+/// without convergence).
+///
+/// ```
+/// use autobal::spatial::map::{stability_map, Axis, MapSettings, Quantity};
+/// use autobal::spatial::linear_model::Balls;
+/// use autobal::spatial::params::{AnisotropyInput, DimensionlessInput};
+/// use autobal::spatial::paths::{SpatialInput, SpatialSpec};
+/// use autobal::spatial::inertia::AnisotropyMethod;
+///
+/// let spec = SpatialSpec {
+///     input: SpatialInput::Dimensionless(DimensionlessInput {
+///         c_sigma: 0.75, rho_s: 0.4, l_left: 0.8, z_a: 0.8,
+///         anisotropy: AnisotropyInput::Direct(0.1), h_x: 0.05, h_s: 0.1,
+///         method: AnisotropyMethod::Exact, direct_balls: Some((0.05, 0.5)),
+///     }),
+///     delta_a_override: None,
+/// };
+/// let x = Axis::linspace("dimensionless.z_a", -2.0, 2.0, 21);
+/// let y = Axis::linspace("omega", 0.05, 4.5, 30);
+/// let settings = MapSettings { balls: Balls::Free, quantity: Quantity::Margin, omega: None };
+/// let mut stable = 0;
+/// let out = stability_map(&spec, &x, &y, &settings, &mut |_j, row| {
+///     stable += row.iter().filter(|c| c.stable).count();
+///     true
+/// }).unwrap();
+/// assert!(out.complete && out.rows == 30 && stable > 0);
+/// ```
+pub fn stability_map(spec: &SpatialSpec, x: &Axis, y: &Axis, s: &MapSettings, on_row: &mut dyn FnMut(usize, &[Cell]) -> bool) -> Result<MapOutcome> {
+    for a in [x, y] {
+        if a.values.is_empty() {
+            return Err(Error::invalid(a.path.clone(), "the axis has no values"));
+        }
+        if a.values.iter().any(|v| !v.is_finite()) {
+            return Err(Error::invalid(a.path.clone(), "axis values must be finite"));
+        }
+        if a.is_omega() {
+            if a.values.iter().any(|v| *v < 0.0) || a.values.windows(2).any(|w| w[1] < w[0]) {
+                return Err(Error::invalid(OMEGA, "the speeds must be non-negative and ascending"));
+            }
+        } else {
+            // fail early on an unknown path or a value the model refuses
+            let mut t = spec.clone();
+            t.set(&a.path, a.values[0])?;
+            t.build()?;
+        }
+    }
+    match (x.is_omega(), y.is_omega()) {
+        (true, true) => Err(Error::invalid(OMEGA, "only one axis can be the speed")),
+        (false, true) => map_speed_rows(spec, x, y, s, on_row),
+        (true, false) => map_speed_columns(spec, x, y, s, on_row),
+        (false, false) => {
+            let w = s.omega.ok_or_else(|| Error::invalid(OMEGA, "required when neither axis is the speed (the speed at which to map)"))?;
+            if !(w >= 0.0 && w.is_finite()) {
+                return Err(Error::invalid(OMEGA, format!("the speed must be a finite number ≥ 0, got {w}")));
+            }
+            map_fixed_speed(spec, x, y, w, s, on_row)
+        }
+    }
+}
+
+fn with(spec: &SpatialSpec, path: &str, v: f64) -> Result<SpatialSpec> {
+    let mut t = spec.clone();
+    t.set(path, v)?;
+    Ok(t)
+}
+
+/// `y` is the speed: one line per `x`, rows are speeds.
+fn map_speed_rows(spec: &SpatialSpec, x: &Axis, y: &Axis, s: &MapSettings, on_row: &mut dyn FnMut(usize, &[Cell]) -> bool) -> Result<MapOutcome> {
+    let mut lines: Vec<Line> = x.values.par_iter().map(|&v| Line::new(&with(spec, &x.path, v)?, s.balls)).collect::<Result<_>>()?;
+    let nx = x.values.len();
+    let block = (BLOCK_CELLS / nx).max(1);
+    let mut out = MapOutcome { complete: true, ..Default::default() };
+    let mut j0 = 0;
+    while j0 < y.values.len() {
+        let j1 = (j0 + block).min(y.values.len());
+        let speeds = &y.values[j0..j1];
+        let cols: Vec<Vec<Cell>> = lines
+            .par_iter_mut()
+            .map(|l| {
+                let mut v = Vec::with_capacity(speeds.len());
+                l.cells(speeds, s.quantity, s.balls, &mut v)?;
+                Ok(v)
+            })
+            .collect::<Result<_>>()?;
+        let mut row = Vec::with_capacity(nx);
+        for jj in 0..speeds.len() {
+            row.clear();
+            row.extend(cols.iter().map(|c| c[jj]));
+            out.rows += 1;
+            if !on_row(j0 + jj, &row) {
+                out.complete = false;
+                break;
+            }
+        }
+        if !out.complete {
+            break;
+        }
+        j0 = j1;
+    }
+    for l in &lines {
+        out.continued += l.continued;
+        out.direct += l.direct;
+    }
+    Ok(out)
+}
+
+/// `x` is the speed: one line per row.
+fn map_speed_columns(spec: &SpatialSpec, x: &Axis, y: &Axis, s: &MapSettings, on_row: &mut dyn FnMut(usize, &[Cell]) -> bool) -> Result<MapOutcome> {
+    let block = (BLOCK_CELLS / x.values.len()).max(2 * rayon::current_num_threads());
+    let mut out = MapOutcome { complete: true, ..Default::default() };
+    let mut j0 = 0;
+    while j0 < y.values.len() {
+        let j1 = (j0 + block).min(y.values.len());
+        let rows: Vec<(Vec<Cell>, usize, usize)> = y.values[j0..j1]
+            .par_iter()
+            .map(|&v| {
+                let mut l = Line::new(&with(spec, &y.path, v)?, s.balls)?;
+                let mut cells = Vec::with_capacity(x.values.len());
+                l.cells(&x.values, s.quantity, s.balls, &mut cells)?;
+                Ok((cells, l.continued, l.direct))
+            })
+            .collect::<Result<_>>()?;
+        for (jj, (cells, c, d)) in rows.iter().enumerate() {
+            out.rows += 1;
+            out.continued += c;
+            out.direct += d;
+            if !on_row(j0 + jj, cells) {
+                out.complete = false;
+                return Ok(out);
+            }
+        }
+        j0 = j1;
+    }
+    Ok(out)
+}
+
+/// Neither axis is the speed: every point its own model at speed `w`.
+fn map_fixed_speed(spec: &SpatialSpec, x: &Axis, y: &Axis, w: f64, s: &MapSettings, on_row: &mut dyn FnMut(usize, &[Cell]) -> bool) -> Result<MapOutcome> {
+    let w = w.max(OMEGA_FLOOR);
+    let block = (BLOCK_CELLS / x.values.len()).max(2 * rayon::current_num_threads());
+    let mut out = MapOutcome { complete: true, ..Default::default() };
+    let mut j0 = 0;
+    while j0 < y.values.len() {
+        let j1 = (j0 + block).min(y.values.len());
+        let rows: Vec<Vec<Cell>> = y.values[j0..j1]
+            .par_iter()
+            .map(|&yv| {
+                let sy = with(spec, &y.path, yv)?;
+                x.values
+                    .iter()
+                    .map(|&xv| {
+                        let m = with(&sy, &x.path, xv)?.build()?;
+                        let ss = StateSpace::new(&m, s.balls)?;
+                        let necessary = autobalancing_ranges(&m).ranges.iter().any(|r| r.contains(w));
+                        Ok(match s.quantity {
+                            Quantity::Margin => {
+                                let a = spectral_abscissa(&ss.at(w), ss.states).map_err(|_| no_conv(w))?;
+                                Cell { margin: a, stable: counts_as_stable(a, s.balls), necessary }
+                            }
+                            Quantity::Verdict => Cell { margin: f64::NAN, stable: strictly_stable_at(&ss, w), necessary },
+                        })
+                    })
+                    .collect::<Result<Vec<Cell>>>()
+            })
+            .collect::<Result<_>>()?;
+        for (jj, cells) in rows.iter().enumerate() {
+            out.rows += 1;
+            out.direct += cells.len();
+            if !on_row(j0 + jj, cells) {
+                out.complete = false;
+                return Ok(out);
+            }
+        }
+        j0 = j1;
+    }
+    Ok(out)
+}

@@ -1,0 +1,379 @@
+//! Parameter paths: the description a spatial model was built from ([`SpatialSpec`]) and one
+//! table of dotted paths (`dimensionless.z_a`, `rotor.mass`, ...) that change it, so that maps
+//! and sweeps vary a parameter without going back through a config file.
+//!
+//! A path is spelled as the config spells the field (`table.key`); setting one changes the input
+//! and [`SpatialSpec::build`] derives the model again (microseconds: the derivation of 000,
+//! eqs (4), (5), (8), (10), and the anisotropy). Errors name the path. The table
+//! ([`PARAMETER_PATHS`]) is the single place to add a parameter.
+
+use crate::error::{Error, Result};
+use crate::spatial::inertia::{Anisotropy, AnisotropyMethod};
+use crate::spatial::params::{AnisotropyInput, DimensionlessInput, SpatialModel, SpatialRotorSi};
+
+/// The two ways to describe a spatial model.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SpatialInput {
+    /// The papers' dimensionless parameters (`[dimensionless]`).
+    Dimensionless(DimensionlessInput),
+    /// An SI rotor (`[rotor]`, `[supports]`, `[unbalance]`, `[balancer]`) and the anisotropy
+    /// method of `[analysis]`.
+    Si {
+        /// The rotor.
+        rotor: SpatialRotorSi,
+        /// Which anisotropy the analyses use.
+        method: AnisotropyMethod,
+    },
+}
+
+/// What a [`SpatialModel`] is built from: its input and, for a dimensionless model described by
+/// its masses, an anisotropy given directly that overrides the one the masses imply (serving as
+/// `ΔĀ` and `ΔĀ0`, as in 003's worked examples).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SpatialSpec {
+    /// The input.
+    pub input: SpatialInput,
+    /// `dimensionless.delta_a` beside the masses.
+    pub delta_a_override: Option<f64>,
+}
+
+impl SpatialSpec {
+    /// Derive the model (validating every field; errors name it).
+    pub fn build(&self) -> Result<SpatialModel> {
+        let mut m = match &self.input {
+            SpatialInput::Dimensionless(d) => SpatialModel::from_dimensionless(d)?,
+            SpatialInput::Si { rotor, method } => SpatialModel::from_si(rotor, *method)?,
+        };
+        if let Some(v) = self.delta_a_override {
+            if !(v >= 0.0 && v.is_finite()) {
+                return Err(Error::invalid("dimensionless.delta_a", format!("must be a finite number ≥ 0, got {v}")));
+            }
+            let computed = m.anisotropy.clone();
+            m.anisotropy = Anisotropy::given(v);
+            m.anisotropy.warnings.push(format!(
+                "dimensionless.delta_a = {} overrides the anisotropy of the masses (exact tensor {:.6}, eq (17) {:.6}); it serves as ΔĀ and ΔĀ0",
+                crate::error::fmt_num(v),
+                computed.exact[1],
+                computed.paper
+            ));
+            m.delta_a0 = v;
+        }
+        Ok(m)
+    }
+
+    /// Set the parameter at `path` to `value` (the model is derived again by [`Self::build`]).
+    pub fn set(&mut self, path: &str, value: f64) -> Result<()> {
+        let p = find(path)?;
+        (p.set)(self, value).map_err(|reason| Error::invalid(path, reason))
+    }
+
+    /// The value of the parameter at `path`.
+    pub fn get(&self, path: &str) -> Result<f64> {
+        let p = find(path)?;
+        (p.get)(self).map_err(|reason| Error::invalid(path, reason))
+    }
+}
+
+/// One settable parameter: its path and how to read and write it.
+pub struct ParameterPath {
+    /// Dotted path as the config spells it.
+    pub path: &'static str,
+    /// What it is (for listings).
+    pub doc: &'static str,
+    set: fn(&mut SpatialSpec, f64) -> std::result::Result<(), String>,
+    get: fn(&SpatialSpec) -> std::result::Result<f64, String>,
+}
+
+fn find(path: &str) -> Result<&'static ParameterPath> {
+    PARAMETER_PATHS.iter().find(|p| p.path == path).ok_or_else(|| {
+        let known: Vec<&str> = PARAMETER_PATHS.iter().map(|p| p.path).collect();
+        Error::invalid(path, format!("unknown parameter path (known: omega, {})", known.join(", ")))
+    })
+}
+
+fn dimless(s: &mut SpatialSpec) -> std::result::Result<&mut DimensionlessInput, String> {
+    match &mut s.input {
+        SpatialInput::Dimensionless(d) => Ok(d),
+        SpatialInput::Si { .. } => Err("the model is dimensional ([rotor], [supports], ...): vary its SI fields instead".into()),
+    }
+}
+
+fn dimless_ref(s: &SpatialSpec) -> std::result::Result<&DimensionlessInput, String> {
+    match &s.input {
+        SpatialInput::Dimensionless(d) => Ok(d),
+        SpatialInput::Si { .. } => Err("the model is dimensional ([rotor], [supports], ...): vary its SI fields instead".into()),
+    }
+}
+
+fn si(s: &mut SpatialSpec) -> std::result::Result<&mut SpatialRotorSi, String> {
+    match &mut s.input {
+        SpatialInput::Si { rotor, .. } => Ok(rotor),
+        SpatialInput::Dimensionless(_) => Err("the model is dimensionless ([dimensionless]): vary its dimensionless fields instead".into()),
+    }
+}
+
+fn si_ref(s: &SpatialSpec) -> std::result::Result<&SpatialRotorSi, String> {
+    match &s.input {
+        SpatialInput::Si { rotor, .. } => Ok(rotor),
+        SpatialInput::Dimensionless(_) => Err("the model is dimensionless ([dimensionless]): vary its dimensionless fields instead".into()),
+    }
+}
+
+fn masses_only() -> String {
+    "the model gives delta_a directly: this field belongs to a description by masses (m0, r0, m, r, n)".into()
+}
+
+fn whole(v: f64) -> std::result::Result<u32, String> {
+    if v.fract() == 0.0 && (0.0..=10_000.0).contains(&v) {
+        Ok(v as u32)
+    } else {
+        Err(format!("must be a whole number between 0 and 10000, got {v}"))
+    }
+}
+
+macro_rules! dimless_field {
+    ($path:literal, $doc:literal, $field:ident) => {
+        ParameterPath {
+            path: $path,
+            doc: $doc,
+            set: |s, v| {
+                dimless(s)?.$field = v;
+                Ok(())
+            },
+            get: |s| Ok(dimless_ref(s)?.$field),
+        }
+    };
+}
+
+macro_rules! si_field {
+    ($path:literal, $doc:literal, $field:ident) => {
+        ParameterPath {
+            path: $path,
+            doc: $doc,
+            set: |s, v| {
+                si(s)?.$field = v;
+                Ok(())
+            },
+            get: |s| Ok(si_ref(s)?.$field),
+        }
+    };
+}
+
+/// Every parameter a path can name, as the config spells it.
+pub static PARAMETER_PATHS: &[ParameterPath] = &[
+    dimless_field!("dimensionless.c_sigma", "C̄Σ, polar over equatorial moment", c_sigma),
+    dimless_field!("dimensionless.rho_s", "ρ̄s, radius of gyration over the span", rho_s),
+    dimless_field!("dimensionless.l_left", "l̄_L, centre of mass from the left support", l_left),
+    dimless_field!("dimensionless.z_a", "z̄_A, balancer plane from the centre of mass", z_a),
+    dimless_field!("dimensionless.h_x", "h̄x, support damping", h_x),
+    dimless_field!("dimensionless.h_s", "h̄s, ball drag", h_s),
+    ParameterPath {
+        path: "dimensionless.delta_a",
+        doc: "ΔĀ (and ΔĀ0), given directly",
+        set: |s, v| {
+            let d = dimless(s)?;
+            match &mut d.anisotropy {
+                AnisotropyInput::Direct(x) => *x = v,
+                AnisotropyInput::Masses { .. } => s.delta_a_override = Some(v),
+            }
+            Ok(())
+        },
+        get: |s| match (&dimless_ref(s)?.anisotropy, s.delta_a_override) {
+            (AnisotropyInput::Direct(x), _) => Ok(*x),
+            (AnisotropyInput::Masses { .. }, Some(v)) => Ok(v),
+            (AnisotropyInput::Masses { .. }, None) => Err("not given: the masses imply the anisotropy".into()),
+        },
+    },
+    ParameterPath {
+        path: "dimensionless.m0",
+        doc: "m̄0, unbalance mass",
+        set: |s, v| match &mut dimless(s)?.anisotropy {
+            AnisotropyInput::Masses { masses, .. } => {
+                masses.m0 = v;
+                Ok(())
+            }
+            AnisotropyInput::Direct(_) => Err(masses_only()),
+        },
+        get: |s| match &dimless_ref(s)?.anisotropy {
+            AnisotropyInput::Masses { masses, .. } => Ok(masses.m0),
+            AnisotropyInput::Direct(_) => Err(masses_only()),
+        },
+    },
+    ParameterPath {
+        path: "dimensionless.r0",
+        doc: "R̄0, unbalance radius",
+        set: |s, v| match &mut dimless(s)?.anisotropy {
+            AnisotropyInput::Masses { masses, .. } => {
+                masses.r0 = v;
+                Ok(())
+            }
+            AnisotropyInput::Direct(_) => Err(masses_only()),
+        },
+        get: |s| match &dimless_ref(s)?.anisotropy {
+            AnisotropyInput::Masses { masses, .. } => Ok(masses.r0),
+            AnisotropyInput::Direct(_) => Err(masses_only()),
+        },
+    },
+    ParameterPath {
+        path: "dimensionless.m",
+        doc: "m̄, mass of all balls",
+        set: |s, v| {
+            let d = dimless(s)?;
+            match (&mut d.anisotropy, &mut d.direct_balls) {
+                (AnisotropyInput::Masses { masses, .. }, _) => masses.m = v,
+                (AnisotropyInput::Direct(_), Some(b)) => b.0 = v,
+                (AnisotropyInput::Direct(_), None) => return Err("the model does not describe the balls (give m and d_a beside delta_a)".into()),
+            }
+            Ok(())
+        },
+        get: |s| {
+            let d = dimless_ref(s)?;
+            match (&d.anisotropy, d.direct_balls) {
+                (AnisotropyInput::Masses { masses, .. }, _) => Ok(masses.m),
+                (AnisotropyInput::Direct(_), Some(b)) => Ok(b.0),
+                (AnisotropyInput::Direct(_), None) => Err("the model does not describe the balls".into()),
+            }
+        },
+    },
+    ParameterPath {
+        path: "dimensionless.r",
+        doc: "R̄, race radius",
+        set: |s, v| match &mut dimless(s)?.anisotropy {
+            AnisotropyInput::Masses { masses, .. } => {
+                masses.r = v;
+                Ok(())
+            }
+            AnisotropyInput::Direct(_) => Err(masses_only()),
+        },
+        get: |s| match &dimless_ref(s)?.anisotropy {
+            AnisotropyInput::Masses { masses, .. } => Ok(masses.r),
+            AnisotropyInput::Direct(_) => Err(masses_only()),
+        },
+    },
+    ParameterPath {
+        path: "dimensionless.n",
+        doc: "n, number of balls",
+        set: |s, v| {
+            let n = whole(v)?;
+            match &mut dimless(s)?.anisotropy {
+                AnisotropyInput::Masses { masses, .. } => {
+                    masses.n = n;
+                    Ok(())
+                }
+                AnisotropyInput::Direct(_) => Err(masses_only()),
+            }
+        },
+        get: |s| match &dimless_ref(s)?.anisotropy {
+            AnisotropyInput::Masses { masses, .. } => Ok(masses.n as f64),
+            AnisotropyInput::Direct(_) => Err(masses_only()),
+        },
+    },
+    ParameterPath {
+        path: "dimensionless.d_a",
+        doc: "D_A, ball-geometry factor",
+        set: |s, v| {
+            let d = dimless(s)?;
+            match (&mut d.anisotropy, &mut d.direct_balls) {
+                (AnisotropyInput::Masses { d_a, .. }, _) => *d_a = Some(v),
+                (AnisotropyInput::Direct(_), Some(b)) => b.1 = v,
+                (AnisotropyInput::Direct(_), None) => return Err("the model does not describe the balls (give m and d_a beside delta_a)".into()),
+            }
+            Ok(())
+        },
+        get: |s| {
+            let d = dimless_ref(s)?;
+            match (&d.anisotropy, d.direct_balls) {
+                (AnisotropyInput::Masses { d_a: Some(x), .. }, _) => Ok(*x),
+                (AnisotropyInput::Masses { d_a: None, .. }, _) => Err("not given".into()),
+                (AnisotropyInput::Direct(_), Some(b)) => Ok(b.1),
+                (AnisotropyInput::Direct(_), None) => Err("the model does not describe the balls".into()),
+            }
+        },
+    },
+    si_field!("rotor.mass", "rotor mass M_r (kg)", rotor_mass),
+    si_field!("rotor.equatorial_moment", "A_r (kg·m²)", equatorial_moment),
+    si_field!("rotor.polar_moment", "C_r (kg·m²)", polar_moment),
+    si_field!("rotor.z", "axial position of G (m)", z_rotor),
+    si_field!("balancer.z", "axial position of the balancer plane (m)", z_balancer),
+    si_field!("supports.z_left", "left support position (m)", z_left),
+    si_field!("supports.z_right", "right support position (m)", z_right),
+    si_field!("supports.stiffness_left", "c_L (N/m)", stiffness_left),
+    si_field!("supports.stiffness_right", "c_R (N/m)", stiffness_right),
+    si_field!("supports.damping_left", "h_L (N·s/m)", damping_left),
+    si_field!("supports.damping_right", "h_R (N·s/m)", damping_right),
+    si_field!("unbalance.mass", "m0 (kg)", unbalance_mass),
+    si_field!("unbalance.radius", "R0 (m)", unbalance_radius),
+    si_field!("balancer.ball_mass", "mass of one ball (kg)", ball_mass),
+    si_field!("balancer.race_radius", "race radius R (m)", race_radius),
+    si_field!("balancer.drag", "drag on each ball h_A (N·s/m)", ball_drag),
+    ParameterPath {
+        path: "balancer.balls",
+        doc: "number of balls",
+        set: |s, v| {
+            si(s)?.balls = whole(v)?;
+            Ok(())
+        },
+        get: |s| Ok(si_ref(s)?.balls as f64),
+    },
+];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spatial::params::MassSet;
+
+    fn base() -> SpatialSpec {
+        SpatialSpec {
+            input: SpatialInput::Dimensionless(DimensionlessInput {
+                c_sigma: 0.75,
+                rho_s: 0.4,
+                l_left: 0.8,
+                z_a: 0.8,
+                anisotropy: AnisotropyInput::Masses { masses: MassSet { m0: 0.025, r0: 2.0, m: 0.05, r: 2.0, n: 2 }, d_a: None },
+                h_x: 0.05,
+                h_s: 0.1,
+                method: AnisotropyMethod::Exact,
+                direct_balls: None,
+            }),
+            delta_a_override: None,
+        }
+    }
+
+    #[test]
+    fn every_path_round_trips_or_names_itself() {
+        for p in PARAMETER_PATHS {
+            let mut s = base();
+            match s.get(p.path) {
+                Ok(v) => {
+                    s.set(p.path, v + 1.0).unwrap();
+                    assert_eq!(s.get(p.path).unwrap(), v + 1.0, "{}", p.path);
+                }
+                Err(e) => assert!(e.to_string().starts_with(p.path), "{e}"),
+            }
+        }
+        let e = base().set("dimensionless.zz", 1.0).unwrap_err().to_string();
+        assert!(e.starts_with("dimensionless.zz: unknown parameter path"), "{e}");
+        let e = base().set("dimensionless.n", 2.5).unwrap_err().to_string();
+        assert!(e.starts_with("dimensionless.n: must be a whole number"), "{e}");
+    }
+
+    #[test]
+    fn a_path_changes_the_model_as_the_field_does() {
+        let mut s = base();
+        s.set("dimensionless.z_a", -0.3).unwrap();
+        assert_eq!(s.build().unwrap().z_a, -0.3);
+        // l_left acts through the support coefficients (000, eq (10))
+        s.set("dimensionless.l_left", 1.2).unwrap();
+        let m = s.build().unwrap();
+        let (p2, c) = crate::spatial::params::identical_support_coefficients(1.2, 0.4);
+        assert_eq!((m.p_alpha_sq, m.c_y_alpha), (p2, c));
+        // delta_a beside the masses overrides ΔĀ and ΔĀ0, keeping the balls
+        s.set("dimensionless.delta_a", 0.1).unwrap();
+        let m = s.build().unwrap();
+        assert_eq!((m.anisotropy.used, m.delta_a0), (0.1, 0.1));
+        assert!(m.balls.is_some());
+        // invalid values are refused by the model's own validation, naming the field
+        s.set("dimensionless.rho_s", -1.0).unwrap();
+        assert!(s.build().unwrap_err().to_string().starts_with("dimensionless.rho_s"));
+    }
+}
