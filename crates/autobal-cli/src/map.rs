@@ -4,7 +4,7 @@
 //! from a decimated copy.
 
 use crate::config::Config;
-use anyhow::{anyhow, bail, Context, Result};
+use anyhow::{anyhow, bail, Result};
 use autobal::spatial::linear_model::Balls;
 use rayon::prelude::*;
 use std::io::Write;
