@@ -151,7 +151,7 @@ fn expand(t: &PencilTerms, in_omega: bool) -> Option<Box<Bi>> {
                 if mask & (1 << j) == 0 {
                     continue;
                 }
-                let sign = if (r + pos) % 2 == 0 { 1.0 } else { -1.0 };
+                let sign = if (r + pos).is_multiple_of(2) { 1.0 } else { -1.0 };
                 pos += 1;
                 let Some(minor) = &prev[mask & !(1 << j)] else { continue };
                 for (ea, eb, v) in entry(r, j) {
