@@ -19,6 +19,10 @@ vectorised over the whole grid, single-threaded BLAS):
             array: the same per-point algorithm autobal used before); the faster counts.
             autobal: its map (Routh-Hurwitz on the exact polynomial coefficients, every change
             of verdict confirmed by the direct test).
+  boundary = the stability boundary of the plane, traced as curves by autobal (Hopf and fold
+            conditions, pseudo-arclength continuation, every point located to ~1e-10),
+            compared with what an N x N grid costs (autobal's maps, autobal's QR per point,
+            NumPy's eigvals).
   For reference, autobal's per-point paths (QR per point; direct Routh-Hurwitz per point).
 
 Each repetition runs NumPy's margin, autobal (one process: all its variants), NumPy's
@@ -209,11 +213,18 @@ def main():
             "autobal_margin_qr_per_point": spread([t[2]["margin_qr_us_per_point"] for t in runs]),
             "autobal_verdict_direct_per_point": spread([t[2]["verdict_direct_us_per_point"] for t in runs]),
         },
+        "boundary_ms": spread([1e3 * t[2]["boundary_s"] for t in runs]),
+        "boundary_evaluations": runs[-1][2]["boundary_evaluations"],
+        "boundary_points": runs[-1][2]["boundary_points"],
         "ratios_paired": {
             "margin: numpy eigvals / autobal map": spread([t[0] / t[2]["margin_s"] for t in runs]),
             "verdict: numpy eigvals / autobal map": spread([t[0] / t[2]["verdict_s"] for t in runs]),
             "verdict: numpy best (min of eigvals, vectorised RH) / autobal map": spread([min(t[0], t[1]) / t[2]["verdict_s"] for t in runs]),
             "margin: autobal QR per point / autobal map": spread([t[2]["margin_qr_s"] / t[2]["margin_s"] for t in runs]),
+            "boundary: autobal margin map (N x N) / traced curves": spread([t[2]["margin_s"] / t[2]["boundary_s"] for t in runs]),
+            "boundary: autobal verdict map (N x N) / traced curves": spread([t[2]["verdict_s"] / t[2]["boundary_s"] for t in runs]),
+            "boundary: autobal QR per point (N x N) / traced curves": spread([t[2]["margin_qr_s"] / t[2]["boundary_s"] for t in runs]),
+            "boundary: numpy eigvals (N x N) / traced curves": spread([t[0] / t[2]["boundary_s"] for t in runs]),
         },
         "autobal_map_points_by_continuation": runs[-1][2]["margin_continued"],
         "autobal_map_qr_fallbacks": runs[-1][2]["margin_direct"],

@@ -151,6 +151,10 @@ enum Command {
         /// Worker threads (default: all cores)
         #[arg(long)]
         threads: Option<usize>,
+        /// Also trace the stability boundary as curves (Hopf and fold continuation), draw it on
+        /// the figures and write STEM_boundary.csv
+        #[arg(long)]
+        boundary: bool,
     },
     /// Nonlinear passage through resonance of the planar rotor with an eccentric ball balancer (paper 004)
     Simulate {
@@ -231,7 +235,7 @@ fn run(cli: Cli) -> Result<()> {
             }
             linear::run_campbell(&cfg, w, points, lin.balls.into(), format == Format::Json, svg.as_deref())
         }
-        Command::Map { common, x, y, omega, balls, quantity, out, threads } => run_map(common, x, y, omega, balls, quantity, out, threads),
+        Command::Map { common, x, y, omega, balls, quantity, out, threads, boundary } => run_map(common, x, y, omega, balls, quantity, out, threads, boundary),
         Command::Simulate { config, set, dt, out, format } => run_simulate(config, set, dt, out, format),
         Command::Sweep(a) => sweep::run(a),
         Command::Merge(a) => sweep::merge(a),
@@ -244,7 +248,7 @@ fn run(cli: Cli) -> Result<()> {
 }
 
 #[allow(clippy::too_many_arguments)]
-fn run_map(common: Common, x: String, y: String, omega: Option<f64>, balls: BallsArg, quantity: QuantityArg, out: PathBuf, threads: Option<usize>) -> Result<()> {
+fn run_map(common: Common, x: String, y: String, omega: Option<f64>, balls: BallsArg, quantity: QuantityArg, out: PathBuf, threads: Option<usize>, boundary: bool) -> Result<()> {
     let (mut root, source) = config::read(common.config.as_deref())?;
     for s in &common.set {
         config::apply_set(&mut root, s)?;
@@ -275,12 +279,29 @@ fn run_map(common: Common, x: String, y: String, omega: Option<f64>, balls: Ball
     let mut w = std::io::BufWriter::new(file);
     let q = if quantity == QuantityArg::Margin { map::Quantity::Margin } else { map::Quantity::Verdict };
     let progress = std::io::IsTerminal::is_terminal(&std::io::stderr());
-    let t0 = std::time::Instant::now();
     let cfg = config::build(&root, &source)?;
+    let traced = if boundary {
+        let t = std::time::Instant::now();
+        let b = map::trace(&cfg, &xa, &ya, omega, balls.into())?;
+        let path = PathBuf::from(format!("{}_boundary.csv", out.display()));
+        std::fs::write(&path, map::boundary_csv(&b, &xa.key, &ya.key)).with_context(|| format!("--out: cannot write {}", path.display()))?;
+        output::note(&format!(
+            "boundary: {} curves, {} codimension-two points, {} characteristic polynomials, {:.3} s; wrote {}",
+            b.curves.len(),
+            b.codim2.len(),
+            b.evaluations,
+            t.elapsed().as_secs_f64(),
+            path.display()
+        ));
+        Some(b)
+    } else {
+        None
+    };
+    let t0 = std::time::Instant::now();
     let (r, run) = map::compute(&cfg, xa, ya, omega, balls.into(), q, &mut w, progress)?;
     let secs = t0.elapsed().as_secs_f64();
     let done = run.rows_done;
-    map::write_plots(&r, &out, &format!("Stability map, balls {}", if balls == BallsArg::Free { "free" } else { "locked" }))?;
+    map::write_plots(&r, &out, &format!("Stability map, balls {}", if balls == BallsArg::Free { "free" } else { "locked" }), traced.as_ref())?;
     let points = done * run.row_len;
     output::print(&format!(
         "{} rows × {} points in {:.2} s ({:.2} µs per point; {} by continuation, {} direct solves); wrote {}, {}, {}\n",

@@ -4,7 +4,9 @@
 //! from a decimated copy.
 
 use crate::config::Config;
-use anyhow::{anyhow, bail, Result};
+use crate::plot::Series;
+use anyhow::{anyhow, bail, Context, Result};
+use autobal::spatial::boundary::{trace_boundary, Boundary, Codim2Kind, CurveKind, PlaneAxis, TraceSettings};
 use autobal::spatial::linear_model::Balls;
 use rayon::prelude::*;
 use std::io::Write;
@@ -202,9 +204,73 @@ pub fn compute(
     Ok((MapResult { x: dx, y: dy, rows: kept, quantity }, run))
 }
 
-/// Write `<stem>.svg` and `<stem>.png` (drawn by `mapfig`).
-pub fn write_plots(r: &MapResult, stem: &Path, title: &str) -> Result<()> {
-    crate::mapfig::write_plots(r, stem, title)
+/// Write `<stem>.svg` and `<stem>.png` (drawn by `mapfig`), with the traced boundary when given.
+pub fn write_plots(r: &MapResult, stem: &Path, title: &str, traced: Option<&Boundary>) -> Result<()> {
+    let Some(b) = traced else { return crate::mapfig::write_plots(r, stem, title) };
+    let mut p = crate::mapfig::plot(r, title);
+    p.series.extend(boundary_series(b));
+    let svg_path = stem.with_extension("svg");
+    std::fs::write(&svg_path, p.to_svg()).with_context(|| format!("cannot write {}", svg_path.display()))?;
+    let png_path = stem.with_extension("png");
+    std::fs::write(&png_path, p.to_png(1.5)?).with_context(|| format!("cannot write {}", png_path.display()))
+}
+
+/// The traced curves as figure series: the stability boundary solid (Hopf blue, fold orange),
+/// the rest of each curve thin and dashed, codimension-two points as markers.
+pub fn boundary_series(b: &Boundary) -> Vec<Series> {
+    let mut out = vec![];
+    for (kind, color, name) in [(CurveKind::Hopf, "#0072B2", "Hopf"), (CurveKind::Fold, "#E69F00", "fold")] {
+        let (mut on, mut off) = (vec![], vec![]);
+        for c in b.curves.iter().filter(|c| c.kind == kind) {
+            for w in c.points.windows(2) {
+                let seg = [(w[0].x, w[0].y), (w[1].x, w[1].y), (f64::NAN, f64::NAN)];
+                if w[0].on_boundary && w[1].on_boundary {
+                    on.extend(seg);
+                } else {
+                    off.extend(seg);
+                }
+            }
+        }
+        if !on.is_empty() {
+            out.push(Series::new(format!("traced boundary ({name})"), on, color).width(2.5));
+        }
+        if !off.is_empty() {
+            out.push(Series::new(format!("{name} curve, not a boundary"), off, color).dashed().width(1.0));
+        }
+    }
+    if !b.codim2.is_empty() {
+        out.push(Series::new("codimension-two points", b.codim2.iter().map(|p| (p.x, p.y)).collect(), "#000000").markers());
+    }
+    out
+}
+
+/// The traced curves as CSV rows `curve,kind,x,y,w,on_boundary` and the codimension-two points
+/// as `-,KIND,x,y,,`.
+pub fn boundary_csv(b: &Boundary, x: &str, y: &str) -> String {
+    use std::fmt::Write as _;
+    let mut s = format!("curve,kind,{x},{y},omega_squared,on_boundary\n");
+    for (i, c) in b.curves.iter().enumerate() {
+        let kind = if c.kind == CurveKind::Hopf { "hopf" } else { "fold" };
+        for p in &c.points {
+            let _ = writeln!(s, "{i},{kind},{},{},{},{}", p.x, p.y, p.w, p.on_boundary as u8);
+        }
+    }
+    for p in &b.codim2 {
+        let kind = match p.kind {
+            Codim2Kind::BogdanovTakens => "bogdanov-takens",
+            Codim2Kind::DoubleHopf => "double-hopf",
+            Codim2Kind::FoldHopf => "fold-hopf",
+        };
+        let _ = writeln!(s, "-,{kind},{},{},,", p.x, p.y);
+    }
+    s
+}
+
+/// Trace the stability boundary over the map's plane ([`autobal::spatial::boundary`]).
+pub fn trace(cfg: &Config, x: &Axis, y: &Axis, omega: Option<f64>, balls: Balls) -> Result<Boundary> {
+    let ax = |a: &Axis| PlaneAxis { path: a.key.clone(), lo: a.lo, hi: a.hi };
+    let s = TraceSettings { balls, omega, ..Default::default() };
+    trace_boundary(&cfg.spec, &ax(x), &ax(y), &s).map_err(|e| anyhow!("--boundary: {e}"))
 }
 
 #[cfg(test)]

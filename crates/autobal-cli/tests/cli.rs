@@ -389,3 +389,19 @@ fn map_csv_is_in_grid_order_whatever_the_thread_count() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn map_traces_the_boundary_as_curves() {
+    let dir = std::env::temp_dir().join(format!("autobal-bnd-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let stem = dir.join("m");
+    let (code, _, err) = autobal(&["map", "--x", "dimensionless.z_a=-2:2:30", "--y", "omega=0.05:4.5:30", "--boundary", "--out", stem.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("boundary:") && err.contains("curves"), "{err}");
+    let csv = std::fs::read_to_string(dir.join("m_boundary.csv")).unwrap();
+    assert!(csv.starts_with("curve,kind,dimensionless.z_a,omega,omega_squared,on_boundary"));
+    let on = csv.lines().skip(1).filter(|l| l.ends_with(",1") && l.contains(",hopf,")).count();
+    assert!(on > 20, "{on} Hopf points on the boundary");
+    assert!(std::fs::read_to_string(dir.join("m.svg")).unwrap().contains("traced boundary"));
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -7,6 +7,8 @@
 //!   rightmost root of the characteristic polynomial in Ω, certified, QR where it cannot be;
 //! - `verdict`: the library's map, Routh–Hurwitz on the polynomial coefficients, changes of
 //!   verdict confirmed directly;
+//! - `boundary`: the stability boundary of the same plane traced as curves
+//!   ([`autobal::spatial::boundary::trace_boundary`], default settings);
 //! - `margin_qr`, `verdict_direct`: the per-point paths (QR eigenvalues of each state matrix;
 //!   Hessenberg characteristic polynomial + Routh–Hurwitz), for reference.
 //!
@@ -15,6 +17,7 @@
 //! (u8), row-major (row = speed).
 
 use autobal::linalg::eigen::{characteristic_polynomial, routh_hurwitz_stable, spectral_abscissa};
+use autobal::spatial::boundary::{trace_boundary, PlaneAxis, TraceSettings};
 use autobal::spatial::inertia::AnisotropyMethod;
 use autobal::spatial::linear_model::{Balls, StateSpace};
 use autobal::spatial::map::{stability_map, Axis, MapSettings, Quantity};
@@ -62,6 +65,16 @@ fn main() {
     };
     let (margin, t_margin, om) = run(Quantity::Margin);
     let (verdict, t_verdict, ov) = run(Quantity::Verdict);
+    // the stability boundary of the same plane, traced as curves (single-threaded)
+    let t = Instant::now();
+    let b = trace_boundary(
+        &spec,
+        &PlaneAxis { path: x.path.clone(), lo: -2.0, hi: 2.0 },
+        &PlaneAxis { path: y.path.clone(), lo: 0.05, hi: 4.5 },
+        &TraceSettings::default(),
+    )
+    .expect("boundary");
+    let t_boundary = t.elapsed().as_secs_f64();
     // per-point reference paths (skipped with a fourth argument `maps`, for instruction counts)
     let maps_only = args.get(4).is_some_and(|a| a == "maps");
     let t = Instant::now();
@@ -96,8 +109,10 @@ fn main() {
     }
     let pts = (nx * ny) as f64;
     println!(
-        "{{\"points\": {}, \"margin_s\": {t_margin}, \"verdict_s\": {t_verdict}, \"margin_qr_s\": {t_qr}, \"verdict_direct_s\": {t_direct}, \"margin_us_per_point\": {}, \"verdict_us_per_point\": {}, \"margin_qr_us_per_point\": {}, \"verdict_direct_us_per_point\": {}, \"margin_continued\": {}, \"margin_direct\": {}, \"verdict_confirmations\": {}}}",
+        "{{\"points\": {}, \"boundary_s\": {t_boundary}, \"boundary_evaluations\": {}, \"boundary_points\": {}, \"margin_s\": {t_margin}, \"verdict_s\": {t_verdict}, \"margin_qr_s\": {t_qr}, \"verdict_direct_s\": {t_direct}, \"margin_us_per_point\": {}, \"verdict_us_per_point\": {}, \"margin_qr_us_per_point\": {}, \"verdict_direct_us_per_point\": {}, \"margin_continued\": {}, \"margin_direct\": {}, \"verdict_confirmations\": {}}}",
         nx * ny,
+        b.evaluations,
+        b.curves.iter().map(|c| c.points.len()).sum::<usize>(),
         1e6 * t_margin / pts,
         1e6 * t_verdict / pts,
         1e6 * t_qr / pts,

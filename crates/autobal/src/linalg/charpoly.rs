@@ -45,9 +45,6 @@ pub struct PencilTerms {
     pub k: [[[f64; 6]; 6]; 3],
 }
 
-/// A polynomial in `(λ, Ω)` of total degree ≤ 12, `a[i][j]` the coefficient of `λ^i Ω^j`.
-type Bi = [[f64; D]; D];
-
 /// The characteristic polynomial `Σ_k c_k(Ω) λ^{N−k}` (`c_0 = 1`) of the state matrix of a
 /// [`PencilTerms`], as exact polynomials `c_k(Ω)` of degree ≤ k.
 #[derive(Debug, Clone, PartialEq)]
@@ -67,7 +64,7 @@ impl SpeedPolynomial {
     /// column subsets `S` of size `r + 1` (`6·2⁵ = 192` products of bivariate polynomials for
     /// `n = 6`).
     pub fn new(t: &PencilTerms) -> Option<Self> {
-        let det = expand(t, true)?;
+        let det = expand::<D>(t)?;
         let nn = 2 * t.n;
         let lead = det[nn][0];
         if lead == 0.0 || !lead.is_finite() {
@@ -116,12 +113,14 @@ impl SpeedPolynomial {
     }
 }
 
-/// `det P(λ, Ω)` of a [`PencilTerms`] as a bivariate polynomial (`in_omega = false`: the terms in
-/// `Ω` are ignored, a polynomial in `λ` alone), by Laplace expansion along rows memoised over
-/// column subsets: `D_r(S) = Σ_{j ∈ S} ± P[r][j] D_{r−1}(S \ {j})`.
-fn expand(t: &PencilTerms, in_omega: bool) -> Option<Box<Bi>> {
+/// `det P(λ, Ω)` of a [`PencilTerms`] as a polynomial in `(λ, Ω)` with at most `B` powers of
+/// `Ω` (`B = 1`: the terms in `Ω` are ignored, a polynomial in `λ` alone), by Laplace expansion
+/// along rows memoised over column subsets: `D_r(S) = Σ_{j ∈ S} ± P[r][j] D_{r−1}(S \ {j})`,
+/// every subset's minor stored once by its bit mask (row `r` = size of `S` − 1).
+fn expand<const B: usize>(t: &PencilTerms) -> Option<[[f64; B]; D]> {
     let n = t.n;
-    // entries as bivariate polynomials: (λ-degree, Ω-degree, matrix)
+    let in_omega = B > 1;
+    // entries as polynomials: (λ-degree, Ω-degree, matrix)
     let entry = |i: usize, j: usize| -> [(usize, usize, f64); 6] {
         [
             (2, 0, t.m[i][j]),
@@ -132,47 +131,41 @@ fn expand(t: &PencilTerms, in_omega: bool) -> Option<Box<Bi>> {
             (0, 2, t.k[2][i][j]),
         ]
     };
-    // dets[S] for subsets S of {0..n} of the current size, indexed by bit mask
     let subsets = 1usize << n;
-    let mut prev: Vec<Option<Box<Bi>>> = vec![None; subsets];
-    let mut one = Box::new([[0.0; D]; D]);
-    one[0][0] = 1.0;
-    prev[0] = Some(one);
-    for r in 0..n {
-        let mut next: Vec<Option<Box<Bi>>> = vec![None; subsets];
-        let deg = 2 * r; // total degree of the minors in prev
-        for (mask, slot) in next.iter_mut().enumerate() {
-            if mask.count_ones() as usize != r + 1 {
+    let mut minors = vec![[[0.0; B]; D]; subsets];
+    minors[0][0][0] = 1.0;
+    let mut masks: Vec<usize> = (1..subsets).collect();
+    masks.sort_by_key(|m| m.count_ones());
+    for mask in masks {
+        let r = mask.count_ones() as usize - 1;
+        let deg = 2 * r; // total degree of the minors of size r
+        let mut acc = [[0.0; B]; D];
+        let mut pos = 0;
+        for j in 0..n {
+            if mask & (1 << j) == 0 {
                 continue;
             }
-            let mut acc = Box::new([[0.0; D]; D]);
-            let mut pos = 0;
-            for j in 0..n {
-                if mask & (1 << j) == 0 {
+            let sign = if (r + pos).is_multiple_of(2) { 1.0 } else { -1.0 };
+            pos += 1;
+            let minor = &minors[mask & !(1 << j)];
+            for (ea, eb, v) in entry(r, j) {
+                if v == 0.0 || (eb > 0 && !in_omega) {
                     continue;
                 }
-                let sign = if (r + pos).is_multiple_of(2) { 1.0 } else { -1.0 };
-                pos += 1;
-                let Some(minor) = &prev[mask & !(1 << j)] else { continue };
-                for (ea, eb, v) in entry(r, j) {
-                    if v == 0.0 || (eb > 0 && !in_omega) {
-                        continue;
-                    }
-                    let f = sign * v;
-                    for a in 0..=deg {
-                        let src = &minor[a][..=if in_omega { deg - a } else { 0 }];
-                        let dst = &mut acc[a + ea][eb..eb + src.len()];
-                        for (d, x) in dst.iter_mut().zip(src) {
-                            *d += f * x;
-                        }
+                let f = sign * v;
+                for a in 0..=deg {
+                    let len = if in_omega { (deg - a + 1).min(B - eb) } else { 1 };
+                    let src = &minor[a][..len];
+                    let dst = &mut acc[a + ea][eb..eb + len];
+                    for (d, x) in dst.iter_mut().zip(src) {
+                        *d += f * x;
                     }
                 }
             }
-            *slot = Some(acc);
         }
-        prev = next;
+        minors[mask] = acc;
     }
-    prev[subsets - 1].take()
+    minors.pop()
 }
 
 /// Ascending coefficients `a_0..a_N` (`a_N = 1`) of `det(M λ² + G λ + K) / det M` for one
@@ -181,7 +174,7 @@ fn expand(t: &PencilTerms, in_omega: bool) -> Option<Box<Bi>> {
 pub fn pencil_polynomial(p: &crate::spatial::linear_model::Pencil) -> Option<[f64; D]> {
     let z = [[0.0; 6]; 6];
     let t = PencilTerms { n: p.n, m: p.m, g: [p.g, z], k: [p.k, z, z] };
-    let det = expand(&t, false)?;
+    let det = expand::<1>(&t)?;
     let nn = 2 * p.n;
     let lead = det[nn][0];
     if lead == 0.0 || !lead.is_finite() {

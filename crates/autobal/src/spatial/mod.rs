@@ -3,6 +3,7 @@
 //! autobalancing ranges, the linearised equations of the balanced state and their exact
 //! stability.
 
+pub mod boundary;
 pub mod critical_speeds;
 pub mod dynamics;
 pub mod inertia;

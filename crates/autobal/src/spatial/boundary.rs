@@ -1,0 +1,786 @@
+//! Stability boundaries in a two-parameter plane, followed as curves: pseudo-arclength
+//! continuation of the Hopf condition (a pair `λ = ±iω` on the imaginary axis) and of the fold
+//! condition (`λ = 0`), as AUTO and BifurcationKit do, with the codimension-two points where
+//! the boundary changes from one curve to another.
+//!
+//! The conditions are written on the characteristic polynomial `p(λ) = Σ_j a_j λ^j` (`a_N = 1`)
+//! of the linearised equations at a point of the plane (the exact expansion of
+//! `det(M λ² + G λ + K)/det M`, [`crate::linalg::charpoly::pencil_polynomial`]). With `λ = iω`
+//! and `w = ω²`: `p(iω) = E(w) + iω O(w)`, `E(w) = Σ_m a_{2m} (−w)^m`,
+//! `O(w) = Σ_m a_{2m+1} (−w)^m`, so
+//! - **Hopf**: `E(w) = O(w) = 0` with `w > 0` (unknowns: the two parameters and `w`); the same
+//!   curve continues through `w = 0` (a **Bogdanov–Takens** point, where it meets the fold
+//!   curve) into `w < 0`, a real pair `±√(−w)` (a neutral saddle, no boundary);
+//! - **fold**: `a_0 = p(0) = 0` (unknowns: the two parameters).
+//!
+//! A point of a curve lies on the **stability boundary** when every other eigenvalue has
+//! `Re λ < 0`: Routh's count of the roots right of `−δ` is then exactly 2 (Hopf) or 1 (fold).
+//! Where that count changes along a curve another eigenvalue crosses the axis: a **double Hopf**
+//! or **fold–Hopf** point, located by regula falsi on the real part of the crossing eigenvalue;
+//! the other curve through it is traced too.
+//!
+//! Curves are seeded from the changes of verdict on a coarse grid (along the speed axis, if
+//! there is one, with the analytic critical speeds and the middles of their split pairs added,
+//! as [`crate::spatial::stability::stability_ranges`] does), each seed located by bisection and
+//! then corrected by Newton's method onto its condition. Every point of a curve satisfies its
+//! condition to the corrector's tolerance (steps below 1e-12 in the plane scaled to the unit
+//! square): it is located to ~1e-10, far inside the 1e-8 required.
+
+use crate::error::{Error, Result};
+use crate::linalg::charpoly::{pencil_polynomial, routh_count_right_of, SpeedPolynomial};
+use crate::linalg::eigen::eigenvalues;
+use crate::spatial::critical_speeds::{critical_speeds_at, ModeKind};
+use crate::spatial::linear_model::{Balls, Pencil};
+use crate::spatial::map::OMEGA;
+use crate::spatial::paths::SpatialSpec;
+use num_complex::Complex64;
+use serde::Serialize;
+
+/// One axis of the plane: a parameter path or [`OMEGA`], and its range.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PlaneAxis {
+    /// Parameter path or `omega`.
+    pub path: String,
+    /// Lower end.
+    pub lo: f64,
+    /// Upper end.
+    pub hi: f64,
+}
+
+/// Settings of [`trace_boundary`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TraceSettings {
+    /// Balls free or locked.
+    pub balls: Balls,
+    /// The speed when neither axis is [`OMEGA`].
+    pub omega: Option<f64>,
+    /// Coarse grid for the seeds (points along x, along y).
+    pub coarse: (usize, usize),
+    /// Largest step along a curve in the plane scaled to the unit square.
+    pub max_step: f64,
+}
+
+impl Default for TraceSettings {
+    fn default() -> Self {
+        TraceSettings { balls: Balls::Free, omega: None, coarse: (24, 24), max_step: 0.05 }
+    }
+}
+
+/// Which condition a curve follows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum CurveKind {
+    /// A pair of eigenvalues `±iω` (`w = ω² > 0`; `w < 0`: a neutral saddle).
+    Hopf,
+    /// A zero eigenvalue.
+    Fold,
+}
+
+/// A point of a curve.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct CurvePoint {
+    /// First parameter.
+    pub x: f64,
+    /// Second parameter.
+    pub y: f64,
+    /// `ω²` of the pair on the axis (Hopf), 0 for a fold.
+    pub w: f64,
+    /// Whether every other eigenvalue has `Re λ < 0` here (the curve is the stability boundary).
+    pub on_boundary: bool,
+}
+
+/// A traced curve.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct BoundaryCurve {
+    /// Hopf or fold.
+    pub kind: CurveKind,
+    /// Its points in order.
+    pub points: Vec<CurvePoint>,
+    /// Whether it closes on itself inside the plane.
+    pub closed: bool,
+}
+
+/// Kinds of codimension-two points.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Codim2Kind {
+    /// Hopf meets fold with `ω → 0` (a double zero eigenvalue).
+    BogdanovTakens,
+    /// Two pairs on the imaginary axis.
+    DoubleHopf,
+    /// A pair on the axis and a zero eigenvalue.
+    FoldHopf,
+}
+
+/// A codimension-two point.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Codim2Point {
+    /// Kind.
+    pub kind: Codim2Kind,
+    /// First parameter.
+    pub x: f64,
+    /// Second parameter.
+    pub y: f64,
+}
+
+/// The result of [`trace_boundary`].
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Boundary {
+    /// The plane.
+    pub x: PlaneAxis,
+    /// The plane.
+    pub y: PlaneAxis,
+    /// Every curve traced.
+    pub curves: Vec<BoundaryCurve>,
+    /// Codimension-two points found on them.
+    pub codim2: Vec<Codim2Point>,
+    /// Characteristic polynomials evaluated (the cost).
+    pub evaluations: usize,
+}
+
+/// Points of the plane → characteristic polynomials.
+struct Plane<'a> {
+    spec: &'a SpatialSpec,
+    x: &'a PlaneAxis,
+    y: &'a PlaneAxis,
+    balls: Balls,
+    omega: Option<f64>,
+    evaluations: std::cell::Cell<usize>,
+    /// The last point evaluated and its polynomial.
+    last: std::cell::Cell<Option<(f64, f64, [f64; D], usize)>>,
+}
+
+const D: usize = 13;
+
+impl Plane<'_> {
+    fn value(a: &PlaneAxis, u: f64) -> f64 {
+        a.lo + (a.hi - a.lo) * u
+    }
+
+    /// Ascending coefficients `a_0..a_N` (`a_N = 1`) at scaled coordinates `(u, v)`.
+    fn poly(&self, u: f64, v: f64) -> Result<([f64; D], usize)> {
+        if let Some((lu, lv, c, n)) = self.last.get() {
+            if lu == u && lv == v {
+                return Ok((c, n));
+            }
+        }
+        self.evaluations.set(self.evaluations.get() + 1);
+        let p = self.pencil(u, v)?;
+        let n = p.states();
+        let c = pencil_polynomial(&p).ok_or_else(|| Error::invalid(self.x.path.clone(), "the mass matrix is singular here"))?;
+        self.last.set(Some((u, v, c, n)));
+        Ok((c, n))
+    }
+
+    fn pencil(&self, u: f64, v: f64) -> Result<Pencil> {
+        let (xv, yv) = (Self::value(self.x, u), Self::value(self.y, v));
+        let mut spec = self.spec.clone();
+        let mut omega = self.omega.unwrap_or(0.0);
+        for (a, val) in [(self.x, xv), (self.y, yv)] {
+            if a.path == OMEGA {
+                omega = val;
+            } else {
+                spec.set(&a.path, val)?;
+            }
+        }
+        Pencil::new(&spec.build()?, omega.max(crate::spatial::map::OMEGA_FLOOR), self.balls)
+    }
+
+    fn eigen(&self, u: f64, v: f64) -> Result<Vec<Complex64>> {
+        let p = self.pencil(u, v)?;
+        eigenvalues(&p.state_matrix(), p.states()).map_err(|_| Error::NoConvergence { omega: Plane::value(self.y, v) })
+    }
+
+    /// Residual of a condition at `z` (`(u, v)` for a fold, `(u, v, w)` for Hopf).
+    fn residual(&self, kind: CurveKind, z: &[f64]) -> Result<[f64; 2]> {
+        let (a, n) = self.poly(z[0], z[1])?;
+        Ok(match kind {
+            CurveKind::Fold => [a[0], 0.0],
+            CurveKind::Hopf => {
+                let r = eo(&a, n, z[2]);
+                [r[0], r[1]]
+            }
+        })
+    }
+
+    /// Whether the point is on the stability boundary (all other roots left of −δ).
+    fn on_boundary(&self, kind: CurveKind, z: &[f64]) -> Result<bool> {
+        if kind == CurveKind::Hopf && z[2] <= 0.0 {
+            return Ok(false);
+        }
+        let (a, n) = self.poly(z[0], z[1])?;
+        Ok(critical_count(&a, n) == Some(if kind == CurveKind::Hopf { 2 } else { 1 }))
+    }
+}
+
+/// Routh count of the roots right of −δ: the pair (or zero) on the axis and any unstable root.
+fn critical_count(a: &[f64; D], n: usize) -> Option<usize> {
+    let mut c = [0.0; D];
+    for k in 0..=n {
+        c[k] = a[n - k];
+    }
+    routh_count_right_of(&c[..=n], -1e-7)
+}
+
+/// `E(w)`, `O(w)` of the module docs and their derivatives in `w`.
+fn eo(a: &[f64; D], n: usize, w: f64) -> [f64; 4] {
+    let (mut e, mut o, mut de, mut dd) = (0.0, 0.0, 0.0, 0.0);
+    for k in (0..=n / 2).rev() {
+        // Horner in x = −w: d/dw = −d/dx
+        de = de * (-w) - e;
+        e = e * (-w) + a[2 * k];
+        if 2 * k < n {
+            dd = dd * (-w) - o;
+            o = o * (-w) + a[2 * k + 1];
+        }
+    }
+    [e, o, de, dd]
+}
+
+/// Unknowns and equations of a condition.
+fn dims(kind: CurveKind) -> (usize, usize) {
+    match kind {
+        CurveKind::Fold => (2, 1),
+        CurveKind::Hopf => (3, 2),
+    }
+}
+
+/// Jacobian of the residual by forward differences (the corrector's accuracy does not depend
+/// on it, only its speed).
+fn jacobian(pl: &Plane, kind: CurveKind, z: &[f64; 3], f0: &[f64; 2]) -> Result<[[f64; 3]; 2]> {
+    let (_, nf) = dims(kind);
+    let mut j = [[0.0; 3]; 2];
+    if kind == CurveKind::Hopf {
+        // in w: exact (the polynomial does not depend on w)
+        let (a, n) = pl.poly(z[0], z[1])?;
+        let r = eo(&a, n, z[2]);
+        j[0][2] = r[2];
+        j[1][2] = r[3];
+    }
+    for c in 0..2 {
+        let h = 1e-7 * (1.0 + z[c].abs());
+        let mut zz = *z;
+        zz[c] += h;
+        let f = pl.residual(kind, &zz)?;
+        for r in 0..nf {
+            j[r][c] = (f[r] - f0[r]) / h;
+        }
+    }
+    Ok(j)
+}
+
+/// Unit tangent: the null vector of the `nf × nz` Jacobian, oriented along `prev`.
+fn tangent(kind: CurveKind, j: &[[f64; 3]; 2], prev: Option<&[f64; 3]>) -> [f64; 3] {
+    let mut t = match kind {
+        CurveKind::Fold => [-j[0][1], j[0][0], 0.0],
+        CurveKind::Hopf => [
+            j[0][1] * j[1][2] - j[0][2] * j[1][1],
+            j[0][2] * j[1][0] - j[0][0] * j[1][2],
+            j[0][0] * j[1][1] - j[0][1] * j[1][0],
+        ],
+    };
+    let nrm = t.iter().map(|x| x * x).sum::<f64>().sqrt();
+    for x in t.iter_mut() {
+        *x /= nrm;
+    }
+    if let Some(p) = prev {
+        if t.iter().zip(p).map(|(a, b)| a * b).sum::<f64>() < 0.0 {
+            for x in t.iter_mut() {
+                *x = -*x;
+            }
+        }
+    }
+    t
+}
+
+/// Solve the square system `a x = b` (≤ 3×3) by elimination with partial pivoting.
+fn solve3(mut a: [[f64; 3]; 3], mut b: [f64; 3], n: usize) -> Option<[f64; 3]> {
+    for k in 0..n {
+        let p = (k..n).max_by(|&i, &j| a[i][k].abs().total_cmp(&a[j][k].abs()))?;
+        if a[p][k] == 0.0 || !a[p][k].is_finite() {
+            return None;
+        }
+        a.swap(k, p);
+        b.swap(k, p);
+        for i in k + 1..n {
+            let f = a[i][k] / a[k][k];
+            for c in k..n {
+                a[i][c] -= f * a[k][c];
+            }
+            b[i] -= f * b[k];
+        }
+    }
+    let mut x = [0.0; 3];
+    for k in (0..n).rev() {
+        let mut s = b[k];
+        for c in k + 1..n {
+            s -= a[k][c] * x[c];
+        }
+        x[k] = s / a[k][k];
+    }
+    Some(x)
+}
+
+/// Newton's method on the condition plus the hyperplane `t · (z − z0) = 0` (pseudo-arclength
+/// corrector; with `t` a coordinate vector it holds that coordinate fixed). With `j0` (the
+/// Jacobian at the previous point) it iterates as the chord method and refreshes the Jacobian
+/// only if that stalls. Returns the point and the Jacobian there.
+fn correct(pl: &Plane, kind: CurveKind, z0: [f64; 3], t: &[f64; 3], j0: Option<&[[f64; 3]; 2]>) -> Result<Option<([f64; 3], [[f64; 3]; 2])>> {
+    let (nz, nf) = dims(kind);
+    let mut z = z0;
+    let mut j = match j0 {
+        Some(j) => *j,
+        None => {
+            let f = pl.residual(kind, &z)?;
+            jacobian(pl, kind, &z, &f)?
+        }
+    };
+    let mut fresh = j0.is_none();
+    for it in 0..12 {
+        let f = pl.residual(kind, &z)?;
+        if it == 4 && !fresh {
+            j = jacobian(pl, kind, &z, &f)?;
+            fresh = true;
+        }
+        let mut a = [[0.0; 3]; 3];
+        let mut b = [0.0; 3];
+        for r in 0..nf {
+            a[r][..nz].copy_from_slice(&j[r][..nz]);
+            b[r] = -f[r];
+        }
+        a[nf][..nz].copy_from_slice(&t[..nz]);
+        b[nf] = -(0..nz).map(|c| t[c] * (z[c] - z0[c])).sum::<f64>();
+        let Some(dz) = solve3(a, b, nz) else { return Ok(None) };
+        let mut step = 0.0f64;
+        for c in 0..nz {
+            z[c] += dz[c];
+            step = step.max(dz[c].abs() / if c == 2 { 1.0 + z[2].abs() } else { 1.0 });
+        }
+        if !z.iter().all(|x| x.is_finite()) || step > 0.5 {
+            return Ok(None);
+        }
+        if step < 1e-12 {
+            let f = pl.residual(kind, &z)?;
+            let j = jacobian(pl, kind, &z, &f)?;
+            return Ok(Some((z, j)));
+        }
+    }
+    Ok(None)
+}
+
+/// Trace the stability boundary of `spec` over the plane `x × y` (each axis a parameter path or
+/// `omega`, ranges `[lo, hi]`).
+///
+/// ```
+/// use autobal::spatial::boundary::{trace_boundary, PlaneAxis, TraceSettings};
+/// use autobal::spatial::params::{AnisotropyInput, DimensionlessInput};
+/// use autobal::spatial::paths::{SpatialInput, SpatialSpec};
+/// use autobal::spatial::inertia::AnisotropyMethod;
+///
+/// let spec = SpatialSpec {
+///     input: SpatialInput::Dimensionless(DimensionlessInput {
+///         c_sigma: 0.75, rho_s: 0.4, l_left: 0.8, z_a: 0.8,
+///         anisotropy: AnisotropyInput::Direct(0.1), h_x: 0.05, h_s: 0.1,
+///         method: AnisotropyMethod::Exact, direct_balls: Some((0.05, 0.5)),
+///     }),
+///     delta_a_override: None,
+/// };
+/// let x = PlaneAxis { path: "dimensionless.z_a".into(), lo: -2.0, hi: 2.0 };
+/// let y = PlaneAxis { path: "omega".into(), lo: 0.05, hi: 4.5 };
+/// let b = trace_boundary(&spec, &x, &y, &TraceSettings::default()).unwrap();
+/// assert!(b.curves.iter().any(|c| c.points.iter().any(|p| p.on_boundary)));
+/// ```
+pub fn trace_boundary(spec: &SpatialSpec, x: &PlaneAxis, y: &PlaneAxis, s: &TraceSettings) -> Result<Boundary> {
+    for a in [x, y] {
+        if !(a.lo.is_finite() && a.hi.is_finite() && a.hi > a.lo) {
+            return Err(Error::invalid(a.path.clone(), "the range must be finite with hi > lo"));
+        }
+        if a.path != OMEGA {
+            let mut t = spec.clone();
+            t.set(&a.path, a.lo)?;
+        }
+    }
+    if x.path == OMEGA && y.path == OMEGA {
+        return Err(Error::invalid(OMEGA, "only one axis can be the speed"));
+    }
+    if x.path != OMEGA && y.path != OMEGA && s.omega.is_none() {
+        return Err(Error::invalid(OMEGA, "required when neither axis is the speed"));
+    }
+    let pl = Plane { spec, x, y, balls: s.balls, omega: s.omega, evaluations: std::cell::Cell::new(0), last: std::cell::Cell::new(None) };
+    let mut out = Boundary { x: x.clone(), y: y.clone(), curves: vec![], codim2: vec![], evaluations: 0 };
+    // 1. lines across the plane (along the speed if there is one): changes of verdict
+    let first_dir = if x.path == OMEGA { 1 } else { 0 };
+    let mut queue: Vec<(CurveKind, [f64; 3])> = vec![];
+    // 2. then lines the other way (closed curves between the first lines); a change of verdict
+    // that a traced boundary already crosses is not looked at again
+    for dir in [first_dir, 1 - first_dir] {
+        let lines = if dir == 0 { s.coarse.0.max(2) } else { s.coarse.1.max(2) };
+        for li in 0..lines {
+            for raw in line_crossings(&pl, s, dir, li, &out.curves)? {
+                if let Some(seed) = seed_at(&pl, raw.0, raw.1, dir)? {
+                    queue.push(seed);
+                }
+                process(&pl, s, &mut queue, &mut out)?;
+            }
+        }
+    }
+    // one codimension-two point found from both of its curves is one point
+    let mut merged: Vec<Codim2Point> = vec![];
+    for p in out.codim2.drain(..) {
+        let dup = merged.iter().any(|q| {
+            q.kind == p.kind && ((q.x - p.x) / (x.hi - x.lo)).abs() < 1e-6 && ((q.y - p.y) / (y.hi - y.lo)).abs() < 1e-6
+        });
+        if !dup {
+            merged.push(p);
+        }
+    }
+    out.codim2 = merged;
+    out.evaluations = pl.evaluations.get();
+    Ok(out)
+}
+
+/// Trace the queued seeds that no traced curve already contains.
+fn process(pl: &Plane, s: &TraceSettings, queue: &mut Vec<(CurveKind, [f64; 3])>, out: &mut Boundary) -> Result<()> {
+    let mut guard = 0;
+    while let Some((kind, z)) = queue.pop() {
+        guard += 1;
+        if guard > 100 || out.curves.len() > 200 {
+            break;
+        }
+        if out.curves.iter().any(|c| c.kind == kind && near_curve(c, pl, &z)) {
+            continue;
+        }
+        if let Some(curve) = trace_curve(pl, kind, z, s.max_step, &mut out.codim2, queue)? {
+            out.curves.push(curve);
+        }
+    }
+    Ok(())
+}
+
+/// Whether the segment `a → b` (scaled) crosses the stability-boundary part of a traced curve.
+fn crossed(curves: &[BoundaryCurve], pl: &Plane, a: (f64, f64), b: (f64, f64)) -> bool {
+    let sc = |p: &CurvePoint| ((p.x - pl.x.lo) / (pl.x.hi - pl.x.lo), (p.y - pl.y.lo) / (pl.y.hi - pl.y.lo));
+    let cross = |o: (f64, f64), p: (f64, f64), q: (f64, f64)| (p.0 - o.0) * (q.1 - o.1) - (p.1 - o.1) * (q.0 - o.0);
+    curves.iter().any(|c| {
+        c.points.windows(2).filter(|w| w[0].on_boundary && w[1].on_boundary).any(|w| {
+            let (c0, c1) = (sc(&w[0]), sc(&w[1]));
+            let d1 = cross(c0, c1, a);
+            let d2 = cross(c0, c1, b);
+            let d3 = cross(a, b, c0);
+            let d4 = cross(a, b, c1);
+            d1 * d2 <= 0.0 && d3 * d4 <= 0.0
+        })
+    })
+}
+
+/// Whether `z` (scaled) lies on the curve already traced (within the step of its points).
+fn near_curve(c: &BoundaryCurve, pl: &Plane, z: &[f64; 3]) -> bool {
+    let sc = |p: &CurvePoint| ((p.x - pl.x.lo) / (pl.x.hi - pl.x.lo), (p.y - pl.y.lo) / (pl.y.hi - pl.y.lo));
+    for k in 0..c.points.len().saturating_sub(1) {
+        let (a, b) = (sc(&c.points[k]), sc(&c.points[k + 1]));
+        // distance from z to the segment ab, and the same pair frequency
+        let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+        let l2 = dx * dx + dy * dy;
+        let t = if l2 > 0.0 { (((z[0] - a.0) * dx + (z[1] - a.1) * dy) / l2).clamp(0.0, 1.0) } else { 0.0 };
+        let (px, py) = (a.0 + t * dx, a.1 + t * dy);
+        let d = ((z[0] - px).powi(2) + (z[1] - py).powi(2)).sqrt();
+        let w = c.points[k].w + t * (c.points[k + 1].w - c.points[k].w);
+        if d < 1e-3 + 0.05 * l2.sqrt() && (c.kind == CurveKind::Fold || (w - z[2]).abs() < 1e-3 * (1.0 + w.abs()) + 0.05 * (c.points[k + 1].w - c.points[k].w).abs()) {
+            return true;
+        }
+    }
+    false
+}
+
+/// Changes of verdict along the lines of a coarse grid in direction `dir` (0: lines along the
+/// second axis at fixed first coordinate; 1: the other way), located by bisection to 1e-9 of the
+/// unit square: points `(u, v)`. Along the speed the line's exact polynomial in `Ω` answers
+/// every point, and the analytic critical speeds and the middles of their split pairs are added
+/// to the line. A segment that a traced curve crosses is not bisected.
+fn line_crossings(pl: &Plane, s: &TraceSettings, dir: usize, li: usize, traced: &[BoundaryCurve]) -> Result<Vec<(f64, f64)>> {
+    let (nx, ny) = (s.coarse.0.max(2), s.coarse.1.max(2));
+    let (nl, np) = if dir == 0 { (nx, ny) } else { (ny, nx) };
+    let along = if dir == 0 { pl.y } else { pl.x };
+    let mut out = vec![];
+    {
+        let c = li as f64 / (nl - 1) as f64;
+        let at = |t: f64| if dir == 0 { (c, t) } else { (t, c) };
+        let mut ts: Vec<f64> = (0..np).map(|k| k as f64 / (np - 1) as f64).collect();
+        // the line's model when the line runs along the speed
+        let line_poly = if along.path == OMEGA {
+            let mut spec = pl.spec.clone();
+            for (a, val) in [(pl.x, at(0.0).0), (pl.y, at(0.0).1)] {
+                if a.path != OMEGA {
+                    spec.set(&a.path, Plane::value(a, val))?;
+                }
+            }
+            let m = spec.build()?;
+            for d in [m.anisotropy.used, m.delta_a0] {
+                let roots = critical_speeds_at(&m, d);
+                for kind in [ModeKind::Transverse, ModeKind::Angular] {
+                    let pair: Vec<f64> = roots.iter().filter(|r| r.1 == kind).map(|r| r.0).collect();
+                    let mid = if pair.len() == 2 { Some(0.5 * (pair[0] + pair[1])) } else { None };
+                    for w in pair.iter().chain(mid.iter()) {
+                        ts.push((w - along.lo) / (along.hi - along.lo));
+                    }
+                }
+            }
+            ts.retain(|t| (0.0..=1.0).contains(t));
+            ts.sort_by(f64::total_cmp);
+            ts.dedup();
+            SpeedPolynomial::new(&Pencil::terms(&m, pl.balls)?)
+        } else {
+            None
+        };
+        let stable = |t: f64| -> Result<bool> {
+            let c = match &line_poly {
+                Some(sp) => {
+                    let c = sp.at(Plane::value(along, t).max(crate::spatial::map::OMEGA_FLOOR));
+                    (c, sp.states)
+                }
+                None => {
+                    let (u, v) = at(t);
+                    let (a, n) = pl.poly(u, v)?;
+                    let mut cc = [0.0; D];
+                    for k in 0..=n {
+                        cc[k] = a[n - k];
+                    }
+                    (cc, n)
+                }
+            };
+            Ok(crate::linalg::eigen::routh_hurwitz_stable(&c.0[..=c.1]))
+        };
+        let mut prev = stable(ts[0])?;
+        for k in 1..ts.len() {
+            let cur = stable(ts[k])?;
+            if cur != prev && !crossed(traced, pl, at(ts[k - 1]), at(ts[k])) {
+                let (mut lo, mut hi) = (ts[k - 1], ts[k]);
+                while hi - lo > 1e-9 {
+                    let mid = 0.5 * (lo + hi);
+                    if stable(mid)? == prev {
+                        lo = mid;
+                    } else {
+                        hi = mid;
+                    }
+                }
+                out.push(at(0.5 * (lo + hi)));
+            }
+            prev = cur;
+        }
+    }
+    Ok(out)
+}
+
+/// Correct a boundary point found by bisection onto its condition, the line's fixed coordinate
+/// held fixed.
+fn seed_at(pl: &Plane, u: f64, v: f64, dir: usize) -> Result<Option<(CurveKind, [f64; 3])>> {
+    let ev = pl.eigen(u, v)?;
+    let crit = ev.iter().copied().max_by(|a, b| a.re.total_cmp(&b.re)).unwrap_or_default();
+    let kind = if crit.im.abs() < 1e-6 { CurveKind::Fold } else { CurveKind::Hopf };
+    let z0 = [u, v, crit.im * crit.im];
+    let fix = if dir == 0 { [1.0, 0.0, 0.0] } else { [0.0, 1.0, 0.0] };
+    Ok(correct(pl, kind, z0, &fix, None)?.map(|(z, _)| (kind, z)))
+}
+
+/// Follow the curve through `z0` in both directions.
+fn trace_curve(
+    pl: &Plane,
+    kind: CurveKind,
+    z0: [f64; 3],
+    max_step: f64,
+    codim2: &mut Vec<Codim2Point>,
+    queue: &mut Vec<(CurveKind, [f64; 3])>,
+) -> Result<Option<BoundaryCurve>> {
+    let f = pl.residual(kind, &z0)?;
+    let j = jacobian(pl, kind, &z0, &f)?;
+    let t0 = tangent(kind, &j, None);
+    let mut halves: Vec<(Vec<[f64; 3]>, bool)> = vec![];
+    for sign in [1.0, -1.0] {
+        let t = t0.map(|x| sign * x);
+        let (pts, closed) = march(pl, kind, z0, t, max_step)?;
+        let closed_loop = closed;
+        halves.push((pts, closed_loop));
+        if closed_loop {
+            break;
+        }
+    }
+    let closed = halves[0].1;
+    let mut pts: Vec<[f64; 3]> = vec![];
+    if halves.len() == 2 {
+        pts.extend(halves[1].0.iter().rev());
+        pts.extend(&halves[0].0[1..]);
+    } else {
+        pts = halves.remove(0).0;
+    }
+    if pts.len() < 2 {
+        return Ok(None);
+    }
+    // stability-boundary flags, and codimension-two points where they change
+    let mut flags = Vec::with_capacity(pts.len());
+    for z in &pts {
+        flags.push(pl.on_boundary(kind, z)?);
+    }
+    for k in 0..pts.len() - 1 {
+        let (a, b) = (pts[k], pts[k + 1]);
+        if kind == CurveKind::Hopf && (a[2] > 0.0) != (b[2] > 0.0) {
+            // Bogdanov–Takens: w = 0 (interpolated along the chord; the chord is short)
+            let t = a[2] / (a[2] - b[2]);
+            let p = [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])];
+            codim2.push(Codim2Point { kind: Codim2Kind::BogdanovTakens, x: Plane::value(pl.x, p[0]), y: Plane::value(pl.y, p[1]) });
+            continue;
+        }
+        if flags[k] != flags[k + 1] && (kind == CurveKind::Fold || (a[2] > 0.0 && b[2] > 0.0)) {
+            if let Some((p, other)) = locate_crossing(pl, kind, a, b)? {
+                let k2 = if other.im.abs() < 1e-6 || kind == CurveKind::Fold && other.im.abs() > 1e-6 {
+                    Codim2Kind::FoldHopf
+                } else {
+                    Codim2Kind::DoubleHopf
+                };
+                codim2.push(Codim2Point { kind: k2, x: Plane::value(pl.x, p[0]), y: Plane::value(pl.y, p[1]) });
+                // the other curve through the point
+                let other_kind = if other.im.abs() < 1e-6 { CurveKind::Fold } else { CurveKind::Hopf };
+                queue.push((other_kind, [p[0], p[1], other.im * other.im]));
+            }
+        }
+    }
+    let points = pts
+        .iter()
+        .zip(&flags)
+        .map(|(z, &f)| CurvePoint { x: Plane::value(pl.x, z[0]), y: Plane::value(pl.y, z[1]), w: if kind == CurveKind::Hopf { z[2] } else { 0.0 }, on_boundary: f })
+        .collect();
+    Ok(Some(BoundaryCurve { kind, points, closed }))
+}
+
+/// Where along the chord `a → b` (corrected onto the curve) another eigenvalue crosses the
+/// axis: regula falsi (Illinois) on its real part. Returns the point and that eigenvalue.
+fn locate_crossing(pl: &Plane, kind: CurveKind, a: [f64; 3], b: [f64; 3]) -> Result<Option<([f64; 3], Complex64)>> {
+    let d: [f64; 3] = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+    let nrm = d.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let t = d.map(|x| x / nrm);
+    // the eigenvalue nearest the axis other than the critical ones
+    let other = |z: &[f64; 3]| -> Result<Complex64> {
+        let ev = pl.eigen(z[0], z[1])?;
+        let wc = if kind == CurveKind::Hopf { z[2].max(0.0).sqrt() } else { 0.0 };
+        let mut cand: Vec<Complex64> = ev;
+        // drop the critical pair (or zero)
+        for target in [Complex64::new(0.0, wc), Complex64::new(0.0, -wc)] {
+            if let Some(i) = (0..cand.len()).min_by(|&i, &j| (cand[i] - target).norm().total_cmp(&(cand[j] - target).norm())) {
+                cand.remove(i);
+            }
+            if kind == CurveKind::Fold {
+                break;
+            }
+        }
+        Ok(cand.into_iter().max_by(|x, y| x.re.total_cmp(&y.re)).unwrap_or_default())
+    };
+    let point = |s: f64| -> Result<Option<[f64; 3]>> {
+        let z0 = [a[0] + s * d[0], a[1] + s * d[1], a[2] + s * d[2]];
+        Ok(correct(pl, kind, z0, &t, None)?.map(|r| r.0))
+    };
+    let (mut s0, mut s1) = (0.0, 1.0);
+    let (mut g0, mut g1) = (other(&a)?.re, other(&b)?.re);
+    if g0.signum() == g1.signum() {
+        return Ok(None);
+    }
+    let mut best = (a, Complex64::default());
+    let mut side = 0;
+    for _ in 0..40 {
+        let s = (s0 * g1 - s1 * g0) / (g1 - g0);
+        let Some(z) = point(s)? else { return Ok(None) };
+        let o = other(&z)?;
+        best = (z, o);
+        if o.re.abs() < 1e-10 || (s1 - s0) < 1e-10 {
+            break;
+        }
+        if o.re.signum() == g0.signum() {
+            s0 = s;
+            g0 = o.re;
+            if side == -1 {
+                g1 *= 0.5;
+            }
+            side = -1;
+        } else {
+            s1 = s;
+            g1 = o.re;
+            if side == 1 {
+                g0 *= 0.5;
+            }
+            side = 1;
+        }
+    }
+    Ok(Some(best))
+}
+
+/// March from `z0` along `t`: predictor–corrector with step control, until the curve leaves the
+/// unit square (the last point clipped to its edge), closes on itself, or 4000 points.
+fn march(pl: &Plane, kind: CurveKind, z0: [f64; 3], t0: [f64; 3], max_step: f64) -> Result<(Vec<[f64; 3]>, bool)> {
+    let mut pts = vec![z0];
+    let mut z = z0;
+    let mut t = t0;
+    let f0 = pl.residual(kind, &z0)?;
+    let mut jz = jacobian(pl, kind, &z0, &f0)?;
+    let mut h = 0.25 * max_step;
+    let mut travelled = 0.0;
+    while pts.len() < 4000 {
+        let pred = [z[0] + h * t[0], z[1] + h * t[1], z[2] + h * t[2]];
+        match correct(pl, kind, pred, &t, Some(&jz))? {
+            Some((zn, j)) => {
+                let tn = tangent(kind, &j, Some(&t));
+                let turn = (t.iter().zip(&tn).map(|(a, b)| a * b).sum::<f64>()).clamp(-1.0, 1.0).acos();
+                let dist = ((zn[0] - z[0]).powi(2) + (zn[1] - z[1]).powi(2) + (zn[2] - z[2]).powi(2)).sqrt();
+                if (turn > 0.15 || dist > 2.0 * h) && h > 1e-7 {
+                    h *= 0.5;
+                    continue;
+                }
+                let inside = |p: &[f64; 3]| (0.0..=1.0).contains(&p[0]) && (0.0..=1.0).contains(&p[1]);
+                if !inside(&zn) {
+                    // clip the chord at the edge of the square
+                    let (mut s, mut hit) = (1.0f64, 0);
+                    for c in 0..2 {
+                        for edge in [0.0, 1.0] {
+                            let dz = zn[c] - z[c];
+                            if dz != 0.0 {
+                                let r = (edge - z[c]) / dz;
+                                if r > 0.0 && r < s {
+                                    (s, hit) = (r, c);
+                                }
+                            }
+                        }
+                    }
+                    let mut zc = [z[0] + s * (zn[0] - z[0]), z[1] + s * (zn[1] - z[1]), z[2] + s * (zn[2] - z[2])];
+                    zc[hit] = zc[hit].round();
+                    // onto the curve, on the edge
+                    let mut normal = [0.0; 3];
+                    normal[hit] = 1.0;
+                    // (a point that does not correct onto the curve, e.g. in a corner, is left out)
+                    if let Some((ze, _)) = correct(pl, kind, zc, &normal, Some(&jz))? {
+                        if (-1e-9..=1.0 + 1e-9).contains(&ze[0]) && (-1e-9..=1.0 + 1e-9).contains(&ze[1]) {
+                            pts.push(ze);
+                        }
+                    }
+                    return Ok((pts, false));
+                }
+                travelled += dist;
+                let back = ((zn[0] - z0[0]).powi(2) + (zn[1] - z0[1]).powi(2) + (zn[2] - z0[2]).powi(2)).sqrt();
+                pts.push(zn);
+                if travelled > 4.0 * h && back < 1.5 * h {
+                    pts.push(z0);
+                    return Ok((pts, true));
+                }
+                z = zn;
+                t = tn;
+                jz = j;
+                if turn < 0.05 {
+                    h = (h * 1.5).min(max_step);
+                }
+            }
+            None => {
+                h *= 0.5;
+                if h < 1e-9 {
+                    return Ok((pts, false));
+                }
+            }
+        }
+    }
+    Ok((pts, false))
+}
