@@ -258,24 +258,6 @@ pub fn parse_text(text: &str, source: &str) -> Result<Table> {
     })
 }
 
-/// Set a numeric field `table.key` (checked against the schema).
-pub fn set_number(root: &mut Table, key: &str, value: f64) -> Result<()> {
-    let (t, k) = key.split_once('.').ok_or_else(|| anyhow!("{key}: expected a dotted key table.field"))?;
-    check_key(t, Some(k))?;
-    let table = root
-        .entry(t.to_string())
-        .or_insert_with(|| Value::Table(Table::new()))
-        .as_table_mut()
-        .ok_or_else(|| anyhow!("{key}: `{t}` is not a table"))?;
-    // keep integer fields integer (the ball count)
-    let v = match table.get(k) {
-        Some(Value::Integer(_)) if value.fract() == 0.0 => Value::Integer(value as i64),
-        _ => Value::Float(value),
-    };
-    table.insert(k.to_string(), v);
-    Ok(())
-}
-
 /// Load the config text (or the embedded default), apply overrides, validate, build the model.
 pub fn load(path: Option<&std::path::Path>, sets: &[String]) -> Result<Config> {
     let (mut root, source) = read(path)?;
