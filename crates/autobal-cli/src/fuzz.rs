@@ -301,7 +301,8 @@ proptest! {
         for method in [autobal::spatial::inertia::AnisotropyMethod::Exact, autobal::spatial::inertia::AnisotropyMethod::Paper] {
             match SpatialModel::from_si(&r, method) {
                 Ok(model) => {
-                    let cfg = config::Config { model, analysis: config::Analysis { sensitivity_limit: 0.15, omega_max: None }, source: String::new(), text: String::new(), dimensional: true };
+                    let spec = autobal::spatial::paths::SpatialSpec { input: autobal::spatial::paths::SpatialInput::Si { rotor: r.clone(), method }, delta_a_override: None };
+                    let cfg = config::Config { model, spec, analysis: config::Analysis { sensitivity_limit: 0.15, omega_max: None }, source: String::new(), text: String::new(), dimensional: true };
                     if let Err(e) = analyse_spatial(&cfg) {
                         panic!("accepted {r:?}, but: {e}");
                     }
@@ -335,7 +336,8 @@ proptest! {
         };
         match SpatialModel::from_dimensionless(&inp) {
             Ok(model) => {
-                let cfg = config::Config { model, analysis: config::Analysis { sensitivity_limit: 0.15, omega_max: None }, source: String::new(), text: String::new(), dimensional: false };
+                let spec = autobal::spatial::paths::SpatialSpec { input: autobal::spatial::paths::SpatialInput::Dimensionless(inp), delta_a_override: None };
+                let cfg = config::Config { model, spec, analysis: config::Analysis { sensitivity_limit: 0.15, omega_max: None }, source: String::new(), text: String::new(), dimensional: false };
                 if let Err(e) = analyse_spatial(&cfg) {
                     panic!("accepted {inp:?}, but: {e}");
                 }
