@@ -103,9 +103,16 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
         s.complete &= complete;
         let mut p = crate::mapfig::plot(&r, title);
         if u.factor != 1.0 {
-            // speeds in rad/s, rpm on a second axis... on the vertical axis: say both in the title
+            // a dimensional rotor: speed in rad/s, growth rate in 1/s
             if let Some(h) = p.heatmap.as_mut() {
                 h.y.iter_mut().for_each(|v| *v *= u.factor);
+                // Re λ in 1/s (the eigenvalues are in units of ω0)
+                h.z.iter_mut().flatten().for_each(|v| *v *= u.factor);
+                if let crate::plot::ColorScale::Diverging { neg, pos } = &mut h.scale {
+                    *neg *= u.factor;
+                    *pos *= u.factor;
+                }
+                h.label = "max Re λ (1/s; < 0 stable)".into();
             }
             for se in &mut p.series {
                 se.points.iter_mut().for_each(|q| q.1 *= u.factor);
