@@ -24,9 +24,9 @@ pub(crate) const SCHEMA: &[(&str, &[&str])] = &[
     ("planar", &["m1", "m2", "m3", "n", "s1", "s2", "gamma", "r", "k", "c", "c_psi", "c_theta", "i_g"]),
     (
         "drive",
-        &["kind", "omega0", "b", "torque", "omega_idle", "t_off", "t_end", "psi0", "psi_rate0", "schedule", "schedule_of"],
+        &["kind", "omega0", "b", "torque", "omega_idle", "t_off", "t_end", "psi0", "psi_rate0", "xy0", "xy_rate0", "schedule", "schedule_of"],
     ),
-    ("integration", &["method", "rtol", "atol", "dt"]),
+    ("integration", &["method", "rtol", "atol", "dt", "max_steps", "max_wall_s"]),
 ];
 
 /// The embedded default of `simulate` and `sweep` (paper 004's rotor).
@@ -603,10 +603,19 @@ pub fn build_planar(root: &Table, source: &str) -> Result<PlanarConfig> {
     drive.validate()?;
     let t_end = d.f64("t_end")?.unwrap_or(10.0);
     let method = match ig.string("method")? {
-        None | Some("dop853") => autobal::planar::Method::Dop853,
-        Some("rosenbrock") => autobal::planar::Method::Rosenbrock,
-        Some(o) => bail!("integration.method: must be \"dop853\" or \"rosenbrock\", got \"{o}\""),
+        None | Some("auto") => autobal::planar::Method::Auto,
+        Some("dop853") => autobal::planar::Method::Dop853,
+        Some("rodas") | Some("rosenbrock") => autobal::planar::Method::Rodas,
+        Some(o) => bail!("integration.method: must be \"auto\", \"dop853\" or \"rodas\", got \"{o}\""),
     };
+    let pair = |key: &str| -> Result<[f64; 2]> {
+        match array_f64(&d, key)? {
+            None => Ok([0.0; 2]),
+            Some(v) if v.len() == 2 => Ok([v[0], v[1]]),
+            Some(v) => bail!("drive.{key}: needs 2 numbers [X, Y], got {}", v.len()),
+        }
+    };
+    let defaults = Settings::new(&rotor, t_end);
     let settings = Settings {
         method,
         t_end,
@@ -615,6 +624,14 @@ pub fn build_planar(root: &Table, source: &str) -> Result<PlanarConfig> {
         atol: ig.f64("atol")?.unwrap_or(1e-9),
         psi0: array_f64(&d, "psi0")?.unwrap_or_else(|| Settings::default_psi0(rotor.n)),
         psi_rate0: array_f64(&d, "psi_rate0")?.unwrap_or_else(|| vec![0.0; rotor.n]),
+        xy0: pair("xy0")?,
+        xy_rate0: pair("xy_rate0")?,
+        max_steps: match ig.f64("max_steps")? {
+            None => defaults.max_steps,
+            Some(v) if (1.0..=1e15).contains(&v) && v.fract() == 0.0 => v as u64,
+            Some(v) => bail!("integration.max_steps: must be a whole number from 1 to 1e15, got {v}"),
+        },
+        max_wall_s: ig.f64("max_wall_s")?,
     };
     settings.validate(&rotor)?;
     Ok(PlanarConfig { rotor, drive, settings, source: source.to_string() })

@@ -341,6 +341,9 @@ fn run_simulate(config: Option<PathBuf>, set: Vec<String>, dt: Option<f64>, out:
     let plots = sim::write_plots(&cfg, &env, &stem, "Passage")?;
     emit(format, sim::summary_json(&cfg, &summary, wall), sim::summary_table(&cfg, &summary, wall))?;
     output::note(&format!("wrote {} and {} plots ({})", out.display(), plots.len(), plots.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")));
+    for w in &summary.warnings {
+        output::note(&format!("warning: {w}"));
+    }
     if let Some(st) = summary.stopped {
         anyhow::bail!("{st}: the samples up to then are kept in {}", out.display());
     }

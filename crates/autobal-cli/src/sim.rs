@@ -4,7 +4,7 @@ use crate::config::PlanarConfig;
 use crate::plot::{Plot, Series, PALETTE};
 use anyhow::{bail, Context, Result};
 use autobal::planar::stationary::{aligned_whirls, capacity_ratio, locked_amplitude, semi_balanced_exists};
-use autobal::planar::{simulate, Sample, Summary};
+use autobal::planar::{simulate_with, Sample, Summary};
 use serde_json::{json, Value};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -72,7 +72,7 @@ pub fn run_to_csv(cfg: &PlanarConfig, csv: &mut dyn Write, progress: bool) -> Re
     let mut io_error: Option<std::io::Error> = None;
     let mut count = 0u64;
     let t0 = std::time::Instant::now();
-    let summary = simulate(&cfg.rotor, &cfg.drive, &cfg.settings, |s| {
+    let summary = simulate_with(&cfg.rotor, &cfg.drive, &cfg.settings, Some(&|| INTERRUPTED.load(Ordering::Relaxed)), |s| {
         let mut line = format!("{},{},{},{},{}", s.t, s.omega, s.x, s.y, s.amplitude);
         for p in &s.psi {
             line.push(',');
@@ -114,18 +114,22 @@ pub fn summary_json(cfg: &PlanarConfig, s: &Summary, wall: f64) -> Value {
         "final_amplitude": s.final_amplitude,
         "final_omega": s.final_omega,
         "balanced": s.balanced,
+        "settled": s.settled,
         "steps": s.steps,
+        "implicit_steps": s.implicit_steps,
+        "switches": s.switches,
         "rejected_steps": s.rejected_steps,
         "rhs_evaluations": s.rhs_evaluations,
         "t_end": s.t_end,
         "stopped": s.stopped,
+        "warnings": s.warnings,
         "wall_time_s": wall,
         "natural_frequency": cfg.rotor.natural_frequency(),
         "capacity_ratio": capacity_ratio(&cfg.rotor),
         "s2": cfg.rotor.s2,
         "rotor": cfg.rotor,
         "drive": cfg.drive,
-        "integration": { "rtol": cfg.settings.rtol, "atol": cfg.settings.atol, "dt": cfg.settings.dt },
+        "integration": { "method": cfg.settings.method, "rtol": cfg.settings.rtol, "atol": cfg.settings.atol, "dt": cfg.settings.dt, "max_steps": cfg.settings.max_steps, "max_wall_s": cfg.settings.max_wall_s },
     })
 }
 
@@ -143,9 +147,16 @@ pub fn summary_table(cfg: &PlanarConfig, s: &Summary, wall: f64) -> String {
     );
     let _ = writeln!(o, "peak whirl radius of C: {:.4} mm at ω = {:.2} rad/s (t = {:.3} s)", 1e3 * s.peak_amplitude, s.omega_at_peak, s.t_at_peak);
     let _ = writeln!(o, "final: radius {:.4} mm at ω = {:.2} rad/s; {}", 1e3 * s.final_amplitude, s.final_omega, if s.balanced { "semi-balanced (radius = s2)" } else { "not balanced" });
-    let _ = writeln!(o, "integration: {} steps ({} rejected), {} right-hand sides, {:.3} s", s.steps, s.rejected_steps, s.rhs_evaluations, wall);
+    let _ = writeln!(
+        o,
+        "integration ({}): {} steps ({} implicit, {} switches, {} rejected), {} right-hand sides, {:.3} s",
+        cfg.settings.method, s.steps, s.implicit_steps, s.switches, s.rejected_steps, s.rhs_evaluations, wall
+    );
     if let Some(st) = &s.stopped {
         let _ = writeln!(o, "stopped early: {st}");
+    }
+    for w in &s.warnings {
+        let _ = writeln!(o, "warning: {w}");
     }
     o
 }

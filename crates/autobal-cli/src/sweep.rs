@@ -156,8 +156,11 @@ pub fn run(a: SweepArgs) -> Result<()> {
                 1e3 * s.final_amplitude,
                 s.balanced,
                 s.steps,
-                s.stopped.as_ref().map_or(String::new(), |w| format!("  ({w})"))
+                s.stopped.as_ref().or(s.warnings.first()).map_or(String::new(), |w| format!("  ({w})"))
             ));
+            for w in s.stopped.iter().chain(&s.warnings) {
+                crate::output::note(&format!("warning: point {i} ({}): {w}", values.iter().map(|v| v.to_string()).collect::<Vec<_>>().join(", ")));
+            }
             runs.push(json!({
                 "point": i,
                 "values": values,

@@ -46,7 +46,7 @@ impl Drive {
                 return Err(Error::invalid("drive.schedule", "needs at least two [t, value] points"));
             }
             for w in pts.windows(2) {
-                if !(w[1].0 > w[0].0) {
+                if w[1].0.partial_cmp(&w[0].0) != Some(std::cmp::Ordering::Greater) {
                     return Err(Error::invalid("drive.schedule", "times must increase strictly"));
                 }
             }
@@ -134,6 +134,15 @@ impl Drive {
             }
             Drive::SpeedSchedule { points } => interp(points, t),
             _ => (0.0, 0.0),
+        }
+    }
+
+    /// `∂M/∂ω` of the applied torque at `(t, ω)` (for exact Jacobians): `−M0/ω_idle` for a
+    /// running motor, 0 otherwise.
+    pub fn torque_slope(&self, t: f64, _omega: f64) -> f64 {
+        match self {
+            Drive::Motor { torque, omega_idle, t_off, .. } if !t_off.is_some_and(|off| t >= off) => -torque / omega_idle,
+            _ => 0.0,
         }
     }
 

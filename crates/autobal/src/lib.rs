@@ -9,7 +9,10 @@
 //! - [`spatial`]: the rigid rotor on two supports of papers 000 and 003.
 //! - [`planar`]: the planar rotor with an eccentric ball balancer of paper 004, in time.
 //! - [`drive`]: speed and torque histories shared by the dynamic models.
-//! - [`ode`]: the integrators (DOP853, RODAS) and their shared types.
+//! - [`ode`]: the integrators (DOP853, RODAS, automatic switching between them), dense output,
+//!   events, structured Jacobians.
+//! - [`simulation`]: what every time simulation needs on top of them (pieces between a drive's
+//!   breakpoints, samples at a fixed interval, peak tracking, budgets, interruption).
 //! - [`linalg`]: small dense LU and eigenvalues.
 //! - [`error`], [`limits`]: typed errors, and the range of every input.
 //!
@@ -59,6 +62,7 @@ pub mod linalg;
 pub mod ode;
 pub mod paths;
 pub mod planar;
+pub mod simulation;
 pub mod spatial;
 pub mod sweep;
 

@@ -38,7 +38,7 @@
 use crate::error::{fmt_num, Error, Result};
 use crate::paths::Parameters;
 use crate::planar::problem::PlanarProblem;
-use crate::planar::{simulate, Summary};
+use crate::planar::{simulate_with, Summary};
 use rayon::prelude::*;
 use std::ops::Range;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -352,7 +352,8 @@ fn run_points(
                 point(i, &mut v);
                 let p = problem_at(base, paths, &v)?;
                 let t0 = std::time::Instant::now();
-                let summary = simulate(&p.rotor, &p.drive, &p.settings, |_| !stop_now())?;
+                // the stop is also checked at every integrator step (a sweep run has one sample)
+                let summary = simulate_with(&p.rotor, &p.drive, &p.settings, Some(&stop_now), |_| !stop_now())?;
                 let wall_s = t0.elapsed().as_secs_f64();
                 // a run cut short by the stop is no result
                 Ok((!stopping.load(Ordering::Relaxed)).then_some((v, PointResult { summary, wall_s })))

@@ -1,7 +1,7 @@
 //! Nonlinear simulation of the planar rotor (paper 004): the equations against the paper's
 //! fixed-frame eq (1), energy balance, closed-form limits, and the paper's findings.
 
-use autobal::ode::{System, CAP};
+use autobal::ode::System;
 use autobal::planar::stationary::{aligned_whirls, capacity_ratio, locked_amplitude, semi_balanced_exists};
 use autobal::planar::{energy, simulate, Drive, Equations, Method, PlanarRotor, Settings, Summary};
 
@@ -9,7 +9,7 @@ mod common;
 use common::Rng;
 
 fn settings(p: &PlanarRotor, t_end: f64, dt: f64) -> Settings {
-    Settings { method: Method::Dop853, t_end, dt, rtol: 1e-8, atol: 1e-9, psi0: Settings::default_psi0(p.n), psi_rate0: vec![0.0; p.n] }
+    Settings { dt, ..Settings::new(p, t_end) }
 }
 
 fn run(p: &PlanarRotor, d: &Drive, t_end: f64) -> (Summary, Vec<(f64, f64, f64)>) {
@@ -37,10 +37,10 @@ fn equations_satisfy_the_papers_fixed_frame_eq_1() {
         p.c_theta = rng.range(0.0, 0.1);
         let torque = rng.range(-50.0, 50.0);
         let d = Drive::Torque { omega0: 0.0, torque, t_off: None };
-        let eq = Equations { rotor: &p, drive: &d };
+        let eq = Equations::new(&p, &d);
         let n = p.n;
         let nc = 3 + n;
-        let mut y = [0.0; CAP];
+        let mut y = vec![0.0; 2 * nc];
         for v in y.iter_mut().take(2 * nc) {
             *v = rng.range(-1.0, 1.0);
         }
@@ -49,7 +49,7 @@ fn equations_satisfy_the_papers_fixed_frame_eq_1() {
         y[nc] *= 3.0;
         y[nc + 1] *= 3.0;
         y[nc + 2] = rng.range(-500.0, 500.0);
-        let mut dy = [0.0; CAP];
+        let mut dy = vec![0.0; 2 * nc];
         eq.rhs(0.0, &y, &mut dy);
         let (th, thd, thdd) = (y[2], y[nc + 2], dy[nc + 2]);
         let (u, ud, udd) = ((y[0], y[1]), (y[nc], y[nc + 1]), (dy[nc], dy[nc + 1]));
@@ -109,16 +109,19 @@ fn energy_balance_without_damping_under_constant_torque() {
     let mut worst: f64 = 0.0;
     let mut last = (0.0, 0.0);
     let nc = 3 + p.n;
-    let eq = Equations { rotor: &p, drive: &d };
-    let tol = autobal::planar::tolerances(&p, &st);
-    autobal::ode::dop853::integrate(&eq, 0.0, &y0, 0.4, &tol, |s| {
+    let eq = Equations::new(&p, &d);
+    let tol = autobal::planar::tolerances(&p, &st).method(Method::Dop853);
+    let mut solver = autobal::ode::Solver::new(&eq, tol).unwrap();
+    let mut y = y0.clone();
+    let out = solver.integrate(0.0, &mut y, 0.4, |s| {
         let work = torque * (s.y_new[2] - y0[2]);
         let e = energy(&p, s.y_new);
         worst = worst.max((e - e0 - work).abs() / e.abs());
         last = (e - e0, work);
         let _ = nc;
-        true
+        autobal::ode::Control::Continue
     });
+    assert!(out.status.is_completed());
     assert!(last.1 > 10.0, "the torque did work: {last:?}");
     assert!(worst < 1e-8, "relative energy error {worst}");
 }
@@ -191,15 +194,28 @@ fn paper_004_forward_passage_overshoots_and_reverse_is_lower() {
     let p = PlanarRotor::paper();
     let stationary = (200..400).map(|w| locked_amplitude(&p, w as f64, &Settings::default_psi0(2))).fold(0.0, f64::max);
     let (fwd, _) = run(&p, &Drive::Acceleration { omega0: 0.0, b: 2.5 }, 240.0);
-    let (rev, _) = run(&p, &Drive::Acceleration { omega0: 600.0, b: -2.5 }, 240.0);
     assert!(fwd.peak_amplitude > stationary, "forward {} vs stationary {stationary}", fwd.peak_amplitude);
-    // reverse: the balls sit opposite the heavy spot when resonance is reached, so the peak stays
-    // far below the forward one (004: "the influence of the ABB is positive"). Against the
-    // stationary peak it is not robust: how the balls leave the semi-balanced state is sensitive
-    // (tolerances flip the reverse peak between 17.1 and ~22 mm, docs/simulation.md).
-    assert!(rev.peak_amplitude < 0.75 * fwd.peak_amplitude, "reverse {} vs forward {}", rev.peak_amplitude, fwd.peak_amplitude);
-    assert!(rev.peak_amplitude < 1.25 * stationary, "reverse {} vs stationary {stationary}", rev.peak_amplitude);
     assert!(fwd.balanced, "semi-balanced after the forward passage");
+    // reverse: the balls sit opposite the heavy spot when resonance is reached, so the peak stays
+    // far below the forward one (004: "the influence of the ABB is positive"). How the balls
+    // leave the semi-balanced state near resonance is sensitive to perturbations far below any
+    // tolerance: moving one ball's initial angle by 1e-10 rad already changes the reverse peak
+    // from 17.1 to 20.8 mm, and the looser the tolerance the more often the outcome is the
+    // higher one (docs/simulation.md). So the claim is checked over a family of imperceptibly
+    // different starts: every reverse peak far below the forward one (measured: 17.1-23.8 mm
+    // against 31.7), and none below 0.9 of the stationary peak (the balls cannot keep the rotor
+    // out of resonance on the way down either).
+    let mut peaks = vec![];
+    for dpsi in [0.0, 1e-10, 1e-8, 1e-7, 3e-7, 1e-5, 3e-5, 1e-3, 1e-2] {
+        let mut st = settings(&p, 240.0, 0.06);
+        st.psi0[0] += dpsi;
+        let s = simulate(&p, &Drive::Acceleration { omega0: 600.0, b: -2.5 }, &st, |_| true).unwrap();
+        assert!(s.status.is_completed());
+        peaks.push(s.peak_amplitude);
+    }
+    peaks.sort_by(f64::total_cmp);
+    assert!(peaks[peaks.len() - 1] < 0.8 * fwd.peak_amplitude, "reverse peaks {peaks:?} vs forward {}", fwd.peak_amplitude);
+    assert!(peaks[0] > 0.9 * stationary, "reverse peaks {peaks:?} vs stationary {stationary}");
 }
 
 #[test]
@@ -260,7 +276,7 @@ fn rosenbrock_agrees_with_dop853_and_wins_on_light_balls() {
     p.m3 = 0.002;
     let d = Drive::Acceleration { omega0: 250.0, b: 50.0 };
     let mut res = vec![];
-    for method in [Method::Dop853, Method::Rosenbrock] {
+    for method in [Method::Dop853, Method::Rodas] {
         let mut st = settings(&p, 2.0, 0.001);
         st.method = method;
         let mut amps = vec![];
@@ -282,7 +298,7 @@ fn rosenbrock_agrees_with_dop853_and_wins_on_light_balls() {
     // (h ≲ 6 m3 r²/c_ψ) while the Rosenbrock method strides
     let d = Drive::Speed { omega0: 600.0 };
     let mut fin = vec![];
-    for method in [Method::Dop853, Method::Rosenbrock] {
+    for method in [Method::Dop853, Method::Rodas] {
         let mut st = settings(&p, 20.0, 0.5);
         st.method = method;
         fin.push(simulate(&p, &d, &st, |_| true).unwrap());
@@ -336,4 +352,273 @@ fn drives_follow_their_definitions() {
     let m = 5.0 * (1.0 - weak.final_omega / (3.0 * wn));
     let drag = p.c * weak.final_omega * weak.final_amplitude.powi(2);
     assert!((m - drag).abs() < 1e-3 * m, "power balance at the stuck speed: M = {m}, c ω A² = {drag}");
+}
+
+/// Gaussian elimination with partial pivoting (row-major `n×n`), for the checks below.
+fn dense_solve(mut a: Vec<f64>, mut b: Vec<f64>) -> Vec<f64> {
+    let n = b.len();
+    for k in 0..n {
+        let p = (k..n).max_by(|&i, &j| a[i * n + k].abs().total_cmp(&a[j * n + k].abs())).unwrap();
+        for j in 0..n {
+            a.swap(k * n + j, p * n + j);
+        }
+        b.swap(k, p);
+        for i in k + 1..n {
+            let f = a[i * n + k] / a[k * n + k];
+            for j in k..n {
+                a[i * n + j] -= f * a[k * n + j];
+            }
+            b[i] -= f * b[k];
+        }
+    }
+    for k in (0..n).rev() {
+        let s: f64 = (k + 1..n).map(|j| a[k * n + j] * b[j]).sum();
+        b[k] = (b[k] - s) / a[k * n + k];
+    }
+    b
+}
+
+/// A random state of the planar rotor with `n` balls (displacements ~ 1 cm, speeds ~ 500 rad/s).
+fn random_state(rng: &mut Rng, n: usize) -> Vec<f64> {
+    let nc = 3 + n;
+    let mut y: Vec<f64> = (0..2 * nc).map(|_| rng.range(-1.0, 1.0)).collect();
+    y[0] *= 0.01;
+    y[1] *= 0.01;
+    y[2] *= 3.0;
+    for j in 0..n {
+        y[3 + j] *= 3.0;
+        y[nc + 3 + j] *= 50.0;
+    }
+    y[nc] *= 3.0;
+    y[nc + 1] *= 3.0;
+    y[nc + 2] = rng.range(-500.0, 500.0);
+    y
+}
+
+fn random_drives(rng: &mut Rng) -> Vec<Drive> {
+    vec![
+        Drive::Torque { omega0: 0.0, torque: rng.range(-20.0, 20.0), t_off: None },
+        Drive::Motor { omega0: 0.0, torque: 10.0, omega_idle: 400.0, t_off: None },
+        Drive::Acceleration { omega0: rng.range(0.0, 300.0), b: rng.range(-50.0, 50.0) },
+    ]
+}
+
+#[test]
+fn structured_rhs_equals_the_dense_mass_matrix_solve() {
+    // the closed-form elimination of the balls (cost linear in n) against the full mass matrix
+    // assembled body by body and solved by Gaussian elimination, at random states, for free and
+    // prescribed rotation; and every body's d'Alembert residual vanishes at the result
+    let mut rng = Rng(7);
+    let mut worst: f64 = 0.0;
+    for n in [0, 1, 2, 3, 5, 9, 17] {
+        for _ in 0..20 {
+            let mut p = PlanarRotor::paper();
+            p.n = n;
+            p.gamma = rng.range(-3.0, 3.0);
+            p.m3 = rng.range(1e-4, 0.1);
+            p.c_theta = rng.range(0.0, 0.1);
+            for d in random_drives(&mut rng) {
+                let eq = Equations::new(&p, &d);
+                let y = random_state(&mut rng, n);
+                let nc = 3 + n;
+                let mut dy = vec![0.0; 2 * nc];
+                eq.rhs(0.37, &y, &mut dy);
+                let (m, f) = eq.mass_matrix(0.37, &y);
+                let acc = dense_solve(m, f);
+                let scale = acc.iter().fold(1.0f64, |a, x| a.max(x.abs()));
+                for i in 0..nc {
+                    let e = (dy[nc + i] - acc[i]).abs() / scale;
+                    worst = worst.max(e);
+                    assert!(e < 1e-11, "n = {n}, {d:?}, component {i}: {} vs {}", dy[nc + i], acc[i]);
+                    assert_eq!(dy[i], y[nc + i]);
+                }
+                let res = eq.residuals(0.37, &y, &dy[nc..]);
+                let fscale = res.len() as f64 * p.k * 0.02 + 1.0;
+                assert!(res.iter().all(|r| r.abs() < 1e-9 * fscale), "n = {n}: residuals {res:?}");
+            }
+        }
+    }
+    eprintln!("largest difference, relative to the largest acceleration: {worst:e}");
+}
+
+#[test]
+fn structured_jacobian_equals_finite_differences() {
+    // the arrow linearisation (exact, by forward differentiation of the residuals) against
+    // central differences of the right-hand side, and its O(n) solve of (αI − J)x = b against a
+    // dense solve with that difference Jacobian
+    use autobal::ode::arrow::ArrowJacobian;
+    use autobal::ode::Jacobian;
+    let mut rng = Rng(11);
+    for n in [0, 1, 2, 4, 7] {
+        let mut p = PlanarRotor::paper();
+        p.n = n;
+        p.gamma = 0.7;
+        for d in random_drives(&mut rng) {
+            let eq = Equations::new(&p, &d);
+            let nc = 3 + n;
+            let dim = 2 * nc;
+            let y = random_state(&mut rng, n);
+            let t = 0.2;
+            let mut f0 = vec![0.0; dim];
+            eq.rhs(t, &y, &mut f0);
+            // J by central differences
+            let mut jfd = vec![0.0; dim * dim];
+            for j in 0..dim {
+                let h = 1e-6 * y[j].abs().max(if j % nc < 2 { 1e-3 } else { 1.0 });
+                let (mut yp, mut ym) = (y.clone(), y.clone());
+                yp[j] += h;
+                ym[j] -= h;
+                let (mut fp, mut fm) = (vec![0.0; dim], vec![0.0; dim]);
+                eq.rhs(t, &yp, &mut fp);
+                eq.rhs(t, &ym, &mut fm);
+                for i in 0..dim {
+                    jfd[i * dim + j] = (fp[i] - fm[i]) / (2.0 * h);
+                }
+            }
+            let mut jac = ArrowJacobian::new(&eq);
+            jac.update(t, &y, &f0);
+            // J from the linearisation: rows of q̈ are M⁻¹ G_q, M⁻¹ G_v
+            let lin = jac.linearization();
+            let m = lin.mass.to_dense();
+            let (gq, gv) = (lin.g_q.to_dense(), lin.g_v.to_dense());
+            for j in 0..nc {
+                let col_q = dense_solve(m.clone(), (0..nc).map(|i| gq[i * nc + j]).collect());
+                let col_v = dense_solve(m.clone(), (0..nc).map(|i| gv[i * nc + j]).collect());
+                for i in 0..nc {
+                    for (col, k) in [(&col_q, j), (&col_v, nc + j)] {
+                        let (a, b) = (col[i], jfd[(nc + i) * dim + k]);
+                        let sc = jfd[(nc + i) * dim..(nc + i + 1) * dim].iter().fold(1.0f64, |s, x| s.max(x.abs()));
+                        assert!((a - b).abs() < 1e-6 * sc, "n = {n}, {d:?}: ∂q̈_{i}/∂y_{k}: {a} vs {b}");
+                    }
+                }
+            }
+            // the structured solve against a dense one
+            let alpha = rng.range(10.0, 1e4);
+            assert!(jac.factor(alpha));
+            let b: Vec<f64> = (0..dim).map(|_| rng.range(-1.0, 1.0)).collect();
+            let mut x = b.clone();
+            jac.solve(&mut x);
+            let mut a = vec![0.0; dim * dim];
+            for i in 0..dim {
+                for k in 0..dim {
+                    a[i * dim + k] = -jfd[i * dim + k];
+                }
+                a[i * dim + i] += alpha;
+            }
+            let xd = dense_solve(a, b);
+            let sc = xd.iter().fold(1e-300f64, |s, v| s.max(v.abs()));
+            for i in 0..dim {
+                assert!((x[i] - xd[i]).abs() < 1e-6 * sc, "n = {n}, α = {alpha}: x[{i}] = {} vs {}", x[i], xd[i]);
+            }
+        }
+    }
+}
+
+#[test]
+fn initial_conditions_of_the_rotor_give_the_closed_form_free_whirl() {
+    // no balls, constant speed, C started off the axis and moving: in fixed axes
+    // m0 z̈ + c ż + k z = ω² U e^{iωt}, whose solution is the steady whirl plus the free
+    // vibration set by the initial conditions (closed form below)
+    use num_complex::Complex64 as C;
+    let mut p = PlanarRotor::paper();
+    p.n = 0;
+    let w = 250.0;
+    let d = Drive::Speed { omega0: w };
+    let mut st = settings(&p, 0.1, 0.001);
+    st.rtol = 1e-11;
+    st.atol = 1e-14;
+    st.xy0 = [1e-3, -2e-3];
+    st.xy_rate0 = [0.3, 0.1];
+    let m0 = p.total_mass();
+    let u_bal = C::new(p.m1 * p.s1 + p.m2 * p.s2, 0.0);
+    let zp = |t: f64| u_bal * w * w * C::new(0.0, w * t).exp() / C::new(p.k - m0 * w * w, p.c * w);
+    let disc = C::new(p.c * p.c - 4.0 * m0 * p.k, 0.0).sqrt();
+    let (l1, l2) = ((-p.c + disc) / (2.0 * m0), (-p.c - disc) / (2.0 * m0));
+    let z0 = C::new(st.xy0[0], st.xy0[1]) - zp(0.0);
+    let v0 = C::new(st.xy_rate0[0], st.xy_rate0[1]) - zp(0.0) * C::new(0.0, w);
+    // z_h = A e^{l1 t} + B e^{l2 t}: A + B = z0, l1 A + l2 B = v0
+    let a = (v0 - l2 * z0) / (l1 - l2);
+    let b = z0 - a;
+    let exact = |t: f64| zp(t) + a * (l1 * t).exp() + b * (l2 * t).exp();
+    let mut worst: f64 = 0.0;
+    let s = simulate(&p, &d, &st, |x| {
+        let e = exact(x.t);
+        worst = worst.max((x.x - e.re).hypot(x.y - e.im));
+        true
+    })
+    .unwrap();
+    assert!(s.status.is_completed());
+    assert!(worst < 1e-9 * 2e-3, "largest deviation from the closed form {worst:e} m");
+}
+
+#[test]
+fn automatic_switching_gives_the_dop853_passage() {
+    // paper 004's forward passage: the default method (DOP853 switching to RODAS where the
+    // balls' drag pins its step) against DOP853 alone, at the default tolerance; samples before
+    // the peak (the forced response) and the peak itself
+    let p = PlanarRotor::paper();
+    let d = Drive::Acceleration { omega0: 0.0, b: 2.5 };
+    let mut res = vec![];
+    for method in [Method::Dop853, Method::Auto] {
+        let mut st = settings(&p, 240.0, 0.05);
+        st.method = method;
+        let mut amps = vec![];
+        let s = simulate(&p, &d, &st, |x| {
+            amps.push((x.t, x.amplitude));
+            true
+        })
+        .unwrap();
+        assert!(s.status.is_completed() && s.warnings.is_empty(), "{s:?}");
+        res.push((s, amps));
+    }
+    let ((dop, a_dop), (auto, a_auto)) = (&res[0], &res[1]);
+    let peak = dop.peak_amplitude;
+    // both are within ~5e-8 of the peak of a reference at rtol 1e-12 (docs/simulation.md)
+    assert!((auto.peak_amplitude - peak).abs() < 1e-7 * peak, "peaks {} vs {}", auto.peak_amplitude, peak);
+    let worst = a_dop.iter().zip(a_auto).filter(|(a, _)| a.0 <= dop.t_at_peak).map(|(a, b)| (a.1 - b.1).abs()).fold(0.0, f64::max);
+    assert!(worst < 1e-7 * peak, "samples before the peak differ by {worst:e} m");
+    assert!(auto.balanced && (auto.final_amplitude - dop.final_amplitude).abs() < 1e-6 * p.s2);
+    assert!(auto.switches >= 2 && auto.implicit_steps > 0 && auto.steps * 5 < dop.steps, "auto {} steps ({} implicit), DOP853 {}", auto.steps, auto.implicit_steps, dop.steps);
+}
+
+#[test]
+fn many_balls_and_very_light_balls_run_promptly() {
+    // 64 balls sharing the paper's ball mass: the cost of a step is linear in n; the passage
+    // balances as with two balls
+    // (more slowly: they must first gather, so the speed is held at 600 rad/s after the run-up)
+    let mut p = PlanarRotor::paper();
+    p.n = 64;
+    p.m3 = 0.06 / 64.0;
+    let (s, _) = run(&p, &Drive::SpeedSchedule { points: vec![(0.0, 200.0), (16.0, 600.0), (120.0, 600.0)] }, 120.0);
+    assert!(s.balanced && s.warnings.is_empty(), "{s:?}");
+    // m3 = 1e-9 kg: the balls relax in m3 r²/c_ψ ≈ 4e-14 s; explicit steps would be of that
+    // size (issue 12: 12+ minutes). The switch to the implicit method keeps it to a few thousand.
+    let mut p = PlanarRotor::paper();
+    p.m3 = 1e-9;
+    let (s, _) = run(&p, &Drive::Acceleration { omega0: 0.0, b: 2.5 }, 240.0);
+    assert!(s.steps < 20_000 && s.implicit_steps > s.steps / 2, "{s:?}");
+    assert!(!s.balanced, "1e-9 kg balls cannot balance");
+}
+
+#[test]
+fn runs_that_miss_their_purpose_say_so() {
+    // issue 12: a passage at b = 0.04 1/s² with the default 240 s ends at 9.6 rad/s
+    let p = PlanarRotor::paper();
+    let mut st = settings(&p, 240.0, 1.0);
+    st.max_steps = 1_000_000;
+    let s = simulate(&p, &Drive::Acceleration { omega0: 0.0, b: 0.04 }, &st, |_| true).unwrap();
+    assert!(s.status.is_completed());
+    assert!(s.warnings.iter().any(|w| w.contains("resonance was never reached")), "{:?}", s.warnings);
+    // a run-up that ends just after resonance, the balls still slipping
+    let s = simulate(&p, &Drive::Acceleration { omega0: 0.0, b: 2.5 }, &settings(&p, 125.0, 0.5), |_| true).unwrap();
+    assert!(s.warnings.iter().any(|w| w.contains("before the motion settled")), "{:?}", s.warnings);
+    // a complete passage has none
+    let (s, _) = run(&p, &Drive::Acceleration { omega0: 200.0, b: 25.0 }, 16.0);
+    assert!(s.warnings.is_empty(), "{:?}", s.warnings);
+    // a step budget ends the run with a message, not a silent success
+    let mut st = settings(&p, 240.0, 0.5);
+    st.max_steps = 500;
+    let s = simulate(&p, &Drive::Acceleration { omega0: 0.0, b: 2.5 }, &st, |_| true).unwrap();
+    assert!(!s.status.is_completed() && s.t_end < 240.0);
+    assert!(s.stopped.as_deref().is_some_and(|m| m.contains("step budget of 500 steps")), "{:?}", s.stopped);
 }

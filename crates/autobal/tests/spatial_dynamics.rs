@@ -520,6 +520,7 @@ fn with_the_tilt_locked_it_is_the_planar_rotor_of_paper_004() {
             atol: 1e-12,
             psi0: init.psi.clone(),
             psi_rate0: vec![0.0; 2],
+            ..planar::Settings::new(&p, t_end)
         };
         let mut theirs = vec![];
         planar::simulate(&p, &drive, &ps, |s| {
@@ -565,11 +566,14 @@ fn energy_is_conserved_without_damping_or_drive() {
         let e0 = eq.energy(0.0, &y0[..eq.dim()]);
         let st = Settings { method: Default::default(), t_end: 20.0, dt: 20.0, rtol: 1e-11, atol: 1e-13 };
         let mut worst = 0.0f64;
-        let (t1, y1, _, stop) = autobal::ode::dop853::integrate(&eq, 0.0, &y0, 20.0, &autobal::spatial::dynamics::simulate::tolerances(&eq, &st), |s| {
-            worst = worst.max((eq.energy(s.t_new, &s.y_new[..eq.dim()]) - e0).abs());
-            true
+        let opts = autobal::spatial::dynamics::simulate::tolerances(&eq, &st).method(autobal::ode::Method::Dop853);
+        let mut solver = autobal::ode::Solver::new(&eq, opts).unwrap();
+        let mut y1 = y0.clone();
+        let out = solver.integrate(0.0, &mut y1, 20.0, |s| {
+            worst = worst.max((eq.energy(s.t_new, s.y_new) - e0).abs());
+            autobal::ode::Control::Continue
         });
-        assert!(stop.is_none() && t1 == 20.0);
+        assert!(out.status.is_completed() && out.t == 20.0);
         assert!(y1[eq.coords() + 4].abs() > 1.0);
         assert!(worst <= 1e-8 * e0.abs(), "energy drift {worst:e} of {e0}");
     }

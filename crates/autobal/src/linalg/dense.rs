@@ -1,6 +1,6 @@
 //! Small dense LU factorisations on stack arrays (partial pivoting, LAPACK `getrf`/`getrs`
-//! order), shared by the linear model (`M⁻¹[K G]`), the simulation (its mass matrix at each
-//! step) and the implicit integrator (one factorisation, six solves per step).
+//! order), shared by the linear model (`M⁻¹[K G]`), the spatial simulation (its mass matrix at each
+//! step) and the structured Jacobians of the integrators (the small border block of an arrow matrix).
 
 // Index loops follow the algorithms' formulas (rows, columns, coefficients).
 #![allow(clippy::needless_range_loop)]

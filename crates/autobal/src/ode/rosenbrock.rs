@@ -1,17 +1,20 @@
-//! A linearly implicit integrator for stiff runs: Hairer and Wanner's RODAS, a stiffly accurate,
-//! L-stable Rosenbrock method of order 4 with an embedded order-3 error estimate and a
-//! third-order dense output (*Solving Ordinary Differential Equations II*, 2nd ed., 1996,
-//! section IV.7; the coefficients of `rodas.f`), with the Jacobian and `∂f/∂t` by forward
-//! differences.
+//! RODAS: Hairer and Wanner's linearly implicit (Rosenbrock) method of order 4, stiffly
+//! accurate and L-stable, with an embedded order-3 error estimate and a third-order dense output
+//! (*Solving Ordinary Differential Equations II*, 2nd ed., 1996, section IV.7; the coefficients
+//! of `rodas.f`). Each step solves six linear systems with one matrix `I/(γh) − J`, through the
+//! system's [`super::Jacobian`] (dense by differences unless the system gives a structured one).
+//! The step loop is shared with DOP853 ([`super::Solver`]); this module holds the kernels.
 //!
-//! When it pays: the balls' relative motion relaxes with the time constant `m3 r² / c_ψ`; with
-//! light balls or heavy drag this is far shorter than anything the whirl does, and an explicit
-//! method must still resolve it for stability. This method takes steps set by accuracy alone.
-//! Tests compare it with DOP853 and closed forms.
+//! When it pays: where the step of an explicit method is held at its stability limit by a fast
+//! decaying mode (for the ball balancers: the balls' relative motion, relaxing with the time
+//! constant `m r²/c_ψ`), this method takes steps set by accuracy alone.
 
-use super::{State, Stats, Stop, System, Tolerances, CAP};
+use super::{Jacobian, System};
 
-const GAMMA: f64 = 0.25;
+/// Order of the method (step-size exponent `1/4`).
+pub const ORDER: i32 = 4;
+/// The diagonal coefficient `γ`: the linear systems have the matrix `I/(γh) − J`.
+pub const GAMMA: f64 = 0.25;
 const A: [[f64; 4]; 5] = [
     [0.0; 4],
     [1.544, 0.0, 0.0, 0.0],
@@ -32,223 +35,103 @@ const D: [f64; 6] = [0.25, -0.1043, 0.1035, -0.0362, 0.0, 0.0];
 const H2: [f64; 5] = [10.12623508344586, -7.487995877610167, -34.80091861555747, -7.992771707568823, 1.025137723295662];
 const H3: [f64; 5] = [-0.6762803392801253, 6.087714651680015, 16.43084320892478, 24.76722511418386, -6.594389125716872];
 
-/// An accepted step with RODAS's dense output between its ends.
-pub struct Step<'a> {
-    pub t_old: f64,
-    pub t_new: f64,
-    pub y_old: &'a State,
-    pub y_new: &'a State,
-    k2: &'a State,
-    k3: &'a State,
-    dim: usize,
+/// Buffers: the six stage increments, `∂f/∂t`, stage state and derivative, the two dense-output
+/// coefficient vectors.
+pub(crate) struct Work {
+    n: usize,
+    k: Vec<f64>,
+    pub(crate) dfdt: Vec<f64>,
+    ys: Vec<f64>,
+    fs: Vec<f64>,
+    d2: Vec<f64>,
+    d3: Vec<f64>,
 }
 
-impl Step<'_> {
+impl Work {
+    pub(crate) fn new(n: usize) -> Self {
+        Work { n, k: vec![0.0; 6 * n], dfdt: vec![0.0; n], ys: vec![0.0; n], fs: vec![0.0; n], d2: vec![0.0; n], d3: vec![0.0; n] }
+    }
+
+    /// One attempted step from `(t, y)` with `f = f(t, y)`, the Jacobian already updated at
+    /// `(t, y)` and `dfdt` filled: factor `I/(γh) − J`, six stages, the solution in `y_new`.
+    /// Returns the error norm (`≤ 1` to accept; RMS of the embedded estimate over
+    /// `atol + rtol max(|y|, |y_new|)`), or `None` when the matrix is singular.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn attempt<S: System + ?Sized>(&mut self, sys: &S, jac: &mut dyn Jacobian, t: f64, h: f64, y: &[f64], f: &[f64], y_new: &mut [f64], atol: &[f64], rtol: f64, rhs_count: &mut u64) -> Option<f64> {
+        let n = self.n;
+        if !jac.factor(1.0 / (GAMMA * h)) {
+            return None;
+        }
+        for st in 0..6 {
+            if st == 0 {
+                self.fs.copy_from_slice(f);
+            } else {
+                // stage state: y + Σ a_ij k_j; the sixth stage (stiffly accurate) starts from the
+                // fifth's result y + Σ a_5j k_j + k_5
+                self.ys.copy_from_slice(y);
+                let row = st.min(4);
+                for j in 0..row {
+                    let a = A[row][j];
+                    for (x, kj) in self.ys.iter_mut().zip(&self.k[j * n..(j + 1) * n]) {
+                        *x += a * kj;
+                    }
+                }
+                if st == 5 {
+                    for (x, k4) in self.ys.iter_mut().zip(&self.k[4 * n..5 * n]) {
+                        *x += k4;
+                    }
+                }
+                sys.rhs(t + C[st] * h, &self.ys, &mut self.fs);
+                *rhs_count += 1;
+            }
+            // (1/(γh) − J) k_i = f(stage) + h d_i ∂f/∂t + Σ_j (C_ij/h) k_j
+            let (done, rest) = self.k.split_at_mut(st * n);
+            let ki = &mut rest[..n];
+            let hd = h * D[st];
+            for i in 0..n {
+                ki[i] = self.fs[i] + hd * self.dfdt[i];
+            }
+            for j in 0..st {
+                let c = CC[st][j] / h;
+                for (x, kj) in ki.iter_mut().zip(&done[j * n..(j + 1) * n]) {
+                    *x += c * kj;
+                }
+            }
+            jac.solve(ki);
+        }
+        let mut err = 0.0;
+        for i in 0..n {
+            let mut v = y[i] + self.k[4 * n + i] + self.k[5 * n + i];
+            for j in 0..4 {
+                v += A[4][j] * self.k[j * n + i];
+            }
+            y_new[i] = v;
+            let sk = atol[i] + rtol * y[i].abs().max(v.abs());
+            err += (self.k[5 * n + i] / sk).powi(2);
+        }
+        Some((err / n as f64).sqrt())
+    }
+
+    /// After acceptance: the dense-output coefficients of the step.
+    pub(crate) fn finish(&mut self) {
+        let n = self.n;
+        for i in 0..n {
+            let (mut a, mut b) = (0.0, 0.0);
+            for j in 0..5 {
+                a += H2[j] * self.k[j * n + i];
+                b += H3[j] * self.k[j * n + i];
+            }
+            self.d2[i] = a;
+            self.d3[i] = b;
+        }
+    }
+
     /// `y(θ) = (1 − θ) y0 + θ (y1 + (1 − θ)(K₂ + θ K₃))`, `θ = (t − t_old)/h`.
-    pub fn interpolate(&self, t: f64) -> State {
-        let th = (t - self.t_old) / (self.t_new - self.t_old);
+    pub(crate) fn interpolate(&self, t_old: f64, h: f64, y_old: &[f64], y_new: &[f64], t: f64, out: &mut [f64]) {
+        let th = (t - t_old) / h;
         let th1 = 1.0 - th;
-        let mut y = [0.0; CAP];
-        for i in 0..self.dim {
-            y[i] = th1 * self.y_old[i] + th * (self.y_new[i] + th1 * (self.k2[i] + th * self.k3[i]));
+        for i in 0..self.n {
+            out[i] = th1 * y_old[i] + th * (y_new[i] + th1 * (self.d2[i] + th * self.d3[i]));
         }
-        y
     }
 }
-
-/// Integrate like [`super::dop853::integrate`], with the Rosenbrock method.
-pub fn integrate<S: System>(sys: &S, t0: f64, y0: &State, t_end: f64, tol: &Tolerances, mut observe: impl FnMut(&Step) -> bool) -> (f64, State, Stats, Option<Stop>) {
-    let n = sys.dim();
-    let mut stats = Stats::default();
-    let (mut t, mut y) = (t0, *y0);
-    let mut f = [0.0; CAP];
-    sys.rhs(t, &y[..n], &mut f[..n]);
-    stats.rhs_evaluations += 1;
-    let scale_of = |y: &State| -> State { std::array::from_fn(|i| if i < n { tol.atol[i] + tol.rtol * y[i].abs() } else { 1.0 }) };
-    // initial step from the size of the derivative
-    let sc = scale_of(&y);
-    let d1 = ((0..n).map(|i| (f[i] / sc[i]).powi(2)).sum::<f64>() / n as f64).sqrt();
-    let mut h = if d1 > 0.0 { (0.01 / d1).min(t_end - t0) } else { 1e-6 * (t_end - t0).max(1e-6) };
-    let mut rejected_last = false;
-    while t < t_end {
-        if stats.steps >= tol.max_steps {
-            return (t, y, stats, Some(Stop::TooManySteps { t }));
-        }
-        if h < 10.0 * f64::EPSILON * t.abs().max(1e-300) {
-            return (t, y, stats, Some(Stop::StepTooSmall { t }));
-        }
-        if t + h > t_end {
-            h = t_end - t;
-        }
-        // Jacobian and ∂f/∂t by forward differences
-        let mut jac = [[0.0; CAP]; CAP];
-        for j in 0..n {
-            let dj = (f64::EPSILON.sqrt() * y[j].abs().max(sc_floor(tol, j))).max(1e-300);
-            let mut yj = y;
-            yj[j] += dj;
-            let mut fj = [0.0; CAP];
-            sys.rhs(t, &yj[..n], &mut fj[..n]);
-            for i in 0..n {
-                jac[i][j] = (fj[i] - f[i]) / dj;
-            }
-        }
-        let dt = f64::EPSILON.sqrt() * t.abs().max(1.0);
-        let mut ft = [0.0; CAP];
-        sys.rhs(t + dt, &y[..n], &mut ft[..n]);
-        let dfdt: State = std::array::from_fn(|i| if i < n { (ft[i] - f[i]) / dt } else { 0.0 });
-        stats.rhs_evaluations += n as u64 + 1;
-        loop {
-            let mut a = [[0.0; CAP]; CAP];
-            for i in 0..n {
-                for j in 0..n {
-                    a[i][j] = -jac[i][j];
-                }
-                a[i][i] += 1.0 / (GAMMA * h);
-            }
-            let Some(lu) = crate::linalg::dense::Lu::<CAP>::new(a, n) else {
-                h *= 0.5;
-                stats.rejected += 1;
-                continue;
-            };
-            // stages: (1/(γh) − J) k_i = f(t + c_i h, y + Σ a_ij k_j) + Σ (C_ij/h) k_j + h d_i f_t
-            let mut k = [[0.0; CAP]; 6];
-            let mut fs = f;
-            for st in 0..6 {
-                if st > 0 {
-                    let mut ys = y;
-                    if st < 5 {
-                        for i in 0..n {
-                            ys[i] += (0..st.min(4)).map(|j| A[st][j] * k[j][i]).sum::<f64>();
-                        }
-                    } else {
-                        // stiffly accurate: the sixth stage starts from the fifth's result
-                        for i in 0..n {
-                            ys[i] += (0..4).map(|j| A[4][j] * k[j][i]).sum::<f64>() + k[4][i];
-                        }
-                    }
-                    sys.rhs(t + C[st] * h, &ys[..n], &mut fs[..n]);
-                    stats.rhs_evaluations += 1;
-                }
-                let mut rhs = [0.0; CAP];
-                for i in 0..n {
-                    let mut v = fs[i] + h * D[st] * dfdt[i];
-                    for j in 0..st {
-                        v += CC[st][j] / h * k[j][i];
-                    }
-                    rhs[i] = v;
-                }
-                lu.solve(&mut rhs);
-                k[st] = rhs;
-            }
-            let mut y_new = y;
-            let mut err: f64 = 0.0;
-            let scale = scale_of(&y);
-            for i in 0..n {
-                y_new[i] = y[i] + (0..4).map(|j| A[4][j] * k[j][i]).sum::<f64>() + k[4][i] + k[5][i];
-                err += (k[5][i] / scale[i].max(tol.atol[i] + tol.rtol * y_new[i].abs())).powi(2);
-            }
-            let err = (err / n as f64).sqrt();
-            if err.is_finite() && err <= 1.0 {
-                let mut f_new = [0.0; CAP];
-                sys.rhs(t + h, &y_new[..n], &mut f_new[..n]);
-                stats.rhs_evaluations += 1;
-                stats.steps += 1;
-                let mut k2 = [0.0; CAP];
-                let mut k3 = [0.0; CAP];
-                for i in 0..n {
-                    k2[i] = (0..5).map(|j| H2[j] * k[j][i]).sum();
-                    k3[i] = (0..5).map(|j| H3[j] * k[j][i]).sum();
-                }
-                let step = Step { t_old: t, t_new: t + h, y_old: &y, y_new: &y_new, k2: &k2, k3: &k3, dim: n };
-                let go_on = observe(&step);
-                t += h;
-                y = y_new;
-                f = f_new;
-                let grow = if err == 0.0 { 4.0 } else { (0.9 * err.powf(-0.25)).clamp(0.2, 4.0) };
-                h *= if rejected_last { grow.min(1.0) } else { grow };
-                h = h.min(tol.h_max);
-                rejected_last = false;
-                if !go_on {
-                    return (t, y, stats, Some(Stop::Requested { t }));
-                }
-                break;
-            }
-            stats.rejected += 1;
-            rejected_last = true;
-            h *= if err.is_finite() { (0.9 * err.powf(-0.25)).clamp(0.1, 0.9) } else { 0.2 };
-            if h < 10.0 * f64::EPSILON * t.abs().max(1e-300) {
-                return (t, y, stats, Some(if err.is_finite() { Stop::StepTooSmall { t } } else { Stop::NotFinite { t } }));
-            }
-        }
-    }
-    (t, y, stats, None)
-}
-
-fn sc_floor(tol: &Tolerances, j: usize) -> f64 {
-    // difference increments never below the absolute tolerance's scale
-    (tol.atol[j] / tol.rtol.max(1e-16)).max(1e-12)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// Prothero–Robinson: y' = −L (y − sin t) + cos t, y = sin t; stiff for large L.
-    struct Pr(f64);
-    impl System for Pr {
-        fn dim(&self) -> usize {
-            1
-        }
-        fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
-            dy[0] = -self.0 * (y[0] - t.sin()) + t.cos();
-        }
-    }
-
-    fn tol(r: f64) -> Tolerances {
-        Tolerances { rtol: r, atol: [r; CAP], h_max: f64::INFINITY, max_steps: 10_000_000 }
-    }
-
-    #[test]
-    fn stiff_prothero_robinson_is_accurate_with_few_steps() {
-        let y0 = [0.0; CAP];
-        let (t, y, st, stop) = integrate(&Pr(1e6), 0.0, &y0, 10.0, &tol(1e-8), |_| true);
-        assert!(stop.is_none() && t == 10.0);
-        assert!((y[0] - 10f64.sin()).abs() < 1e-8, "{}", y[0] - 10f64.sin());
-        // an explicit method would need ≥ L·T/3 ≈ 3·10⁶ steps for stability alone
-        assert!(st.steps < 200, "{st:?}");
-    }
-
-    #[test]
-    fn dense_output_keeps_the_tolerance() {
-        // between step ends the interpolant stays within ~100 rtol on a non-stiff problem; in the
-        // stiff limit (L = 1e6) it suffers the usual order reduction but stays within 1e-5
-        let y0 = [0.0; CAP];
-        let worst = |l: f64| {
-            let mut w: f64 = 0.0;
-            integrate(&Pr(l), 0.0, &y0, 10.0, &tol(1e-10), |s| {
-                for q in [0.25, 0.5, 0.75] {
-                    let tm = s.t_old + q * (s.t_new - s.t_old);
-                    w = w.max((s.interpolate(tm)[0] - tm.sin()).abs());
-                }
-                true
-            });
-            w
-        };
-        assert!(worst(1.0) < 1e-8, "{}", worst(1.0));
-        assert!(worst(100.0) < 1e-8, "{}", worst(100.0));
-        assert!(worst(1e6) < 1e-4, "{}", worst(1e6)); // measured 2.4e-5
-    }
-
-    #[test]
-    fn fourth_order_convergence() {
-        // error falls by ≳ 10× when the tolerance falls 100× (order 4: 100^(4/5) ≈ 40)
-        let y0 = [0.0; CAP];
-        let e = |r: f64| {
-            let (_, y, _, _) = integrate(&Pr(1.0), 0.0, &y0, 5.0, &tol(r), |_| true);
-            (y[0] - 5f64.sin()).abs()
-        };
-        let (a, b) = (e(1e-6), e(1e-8));
-        assert!(b < a / 10.0, "{a} → {b}");
-    }
-}
-

@@ -19,22 +19,40 @@
 //! m3 Re(conj(i r e^{iψ_j}) A_j) = −c_ψ ψ̇_j                             (ball j)
 //! ```
 //!
-//! linear in `(ü, θ̈, ψ̈)` with a symmetric mass matrix (solved each step). In these coordinates
-//! a steady synchronous whirl is a fixed point, so the integrator is not held to the period of
-//! rotation; tests check the equations against the paper's fixed-frame eq (1) (after correcting
-//! its sign) and against energy conservation.
+//! linear in `(ü, θ̈, ψ̈)` with a symmetric mass matrix with the arrow pattern (each ball couples
+//! only to the rotor): [`Equations`] eliminates the balls in closed form, so a right-hand side
+//! costs `O(n)`, and gives the implicit method an exact structured Jacobian (also `O(n)`). In
+//! these coordinates a steady synchronous whirl is a fixed point, so the integrator is not held
+//! to the period of rotation; tests check the equations against the paper's fixed-frame eq (1)
+//! (after correcting its sign) and against energy conservation.
+//!
+//! ```
+//! use autobal::planar::{simulate, Drive, PlanarRotor, Settings};
+//! // paper 004's rotor run up at 20 1/s² from 200 to 500 rad/s, through its resonance at 288
+//! let rotor = PlanarRotor::paper();
+//! let drive = Drive::Acceleration { omega0: 200.0, b: 20.0 };
+//! let settings = Settings::new(&rotor, 15.0);
+//! let summary = simulate(&rotor, &drive, &settings, |_sample| true).unwrap();
+//! assert!(summary.status.is_completed());
+//! assert!(summary.omega_at_peak > 280.0 && summary.omega_at_peak < 320.0);
+//! assert!(summary.balanced, "{:?}", summary.warnings); // semi-balanced: C whirls at s2
+//! ```
 
+mod equations;
 pub mod problem;
 pub mod stationary;
 
 pub use crate::drive::Drive;
+pub use crate::ode::Method;
 use crate::error::{finite, non_negative, positive, Error, Result};
-use crate::ode::dop853::integrate;
-use crate::ode::{rosenbrock, State, Stats, Stop, System, Tolerances, CAP};
+use crate::ode::{Control, Direction, Event, Options, Solver, Status, System};
+use crate::simulation::{run, Hooks, Peak, Timeline};
+pub use equations::{energy, Equations};
 use serde::Serialize;
 
-/// Most balls the simulator takes (`2 (3 + n) ≤` [`CAP`]).
-pub const MAX_BALLS: usize = 9;
+/// Most balls the simulator takes. The cost of a step is linear in `n` (about 20 ns per ball
+/// and right-hand side); the limit only keeps a mistyped number from allocating gigabytes.
+pub const MAX_BALLS: usize = 100_000;
 
 /// The planar rotor of paper 004, SI units.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -130,22 +148,10 @@ impl PlanarRotor {
     }
 }
 
-/// Which integrator.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Default)]
-#[serde(rename_all = "lowercase")]
-pub enum Method {
-    /// Explicit DOP853 (default): fastest unless the balls relax much faster than the whirl.
-    #[default]
-    Dop853,
-    /// Linearly implicit 4th-order Rosenbrock ([`rosenbrock`]): for stiff runs (light balls,
-    /// heavy ball drag: `m3 r²/c_ψ` far below the whirl's time scales).
-    Rosenbrock,
-}
-
-/// Integration settings.
+/// Integration settings and initial conditions.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Settings {
-    /// The integrator.
+    /// The integrator ([`Method::Auto`]: DOP853, switching to RODAS while the problem is stiff).
     pub method: Method,
     /// End time (s).
     pub t_end: f64,
@@ -159,9 +165,23 @@ pub struct Settings {
     pub psi0: Vec<f64>,
     /// Initial ball rates relative to the disk (rad/s).
     pub psi_rate0: Vec<f64>,
+    /// Initial position `(X, Y)` of the shaft point C in fixed axes (m); the rotor angle starts
+    /// at 0, so rotor and fixed axes coincide at `t = 0`.
+    pub xy0: [f64; 2],
+    /// Initial velocity `(Ẋ, Ẏ)` of C in fixed axes (m/s).
+    pub xy_rate0: [f64; 2],
+    /// Step budget: the run stops (and says so) after this many integrator steps.
+    pub max_steps: u64,
+    /// Wall-clock budget (s), if any.
+    pub max_wall_s: Option<f64>,
 }
 
 impl Settings {
+    /// Defaults for `rotor` run to `t_end` ([`Settings::for_balls`] with its number of balls).
+    pub fn new(rotor: &PlanarRotor, t_end: f64) -> Self {
+        Settings::for_balls(rotor.n, t_end)
+    }
+
     /// Default initial ball angles: spread evenly, `ψ_j = π/2 + 2π j/n`, so the balls start with no
     /// net unbalance (for n = 2: across the unbalance direction).
     pub fn default_psi0(n: usize) -> Vec<f64> {
@@ -180,168 +200,34 @@ impl Settings {
         if self.rtol < 1e-14 {
             return Err(Error::invalid("integration.rtol", "below 1e-14 the step cannot reach it in double precision"));
         }
+        if self.rtol > 1e-2 {
+            return Err(Error::invalid("integration.rtol", format!("{} is too loose for a meaningful result (at most 1e-2)", self.rtol)));
+        }
         if self.psi0.len() != rotor.n {
             return Err(Error::invalid("drive.psi0", format!("needs {} angles (planar.n), got {}", rotor.n, self.psi0.len())));
         }
         if self.psi_rate0.len() != rotor.n {
             return Err(Error::invalid("drive.psi_rate0", format!("needs {} rates (planar.n), got {}", rotor.n, self.psi_rate0.len())));
         }
-        for a in self.psi0.iter().chain(&self.psi_rate0) {
+        for a in &self.psi0 {
             finite("drive.psi0", *a)?;
         }
+        for a in &self.psi_rate0 {
+            finite("drive.psi_rate0", *a)?;
+        }
+        for a in self.xy0 {
+            finite("drive.xy0", a)?;
+        }
+        for a in self.xy_rate0 {
+            finite("drive.xy_rate0", a)?;
+        }
+        if self.max_steps == 0 {
+            return Err(Error::invalid("integration.max_steps", "must be at least 1"));
+        }
+        if let Some(w) = self.max_wall_s {
+            positive("integration.max_wall_s", w)?;
+        }
         Ok(())
-    }
-}
-
-/// The equations in rotor axes: state `y = (ξ, η, θ, ψ_1..n, ξ̇, η̇, θ̇, ψ̇_1..n)`.
-pub struct Equations<'a> {
-    pub rotor: &'a PlanarRotor,
-    pub drive: &'a Drive,
-}
-
-impl Equations<'_> {
-    /// Number of generalised coordinates `3 + n`.
-    pub fn coords(&self) -> usize {
-        3 + self.rotor.n
-    }
-}
-
-#[derive(Clone, Copy)]
-struct C64 {
-    re: f64,
-    im: f64,
-}
-impl C64 {
-    fn new(re: f64, im: f64) -> Self {
-        C64 { re, im }
-    }
-    fn add(self, o: C64) -> C64 {
-        C64::new(self.re + o.re, self.im + o.im)
-    }
-    fn scale(self, s: f64) -> C64 {
-        C64::new(self.re * s, self.im * s)
-    }
-    fn mul_i(self) -> C64 {
-        C64::new(-self.im, self.re)
-    }
-    /// `Re(conj(self) · o)`: the dot product of two plane vectors.
-    fn dot(self, o: C64) -> f64 {
-        self.re * o.re + self.im * o.im
-    }
-}
-
-impl System for Equations<'_> {
-    fn dim(&self) -> usize {
-        2 * self.coords()
-    }
-
-    fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
-        let p = self.rotor;
-        let n = p.n;
-        let nc = 3 + n;
-        let u = C64::new(y[0], y[1]);
-        let ud = C64::new(y[nc], y[nc + 1]);
-        let th_d = if self.drive.prescribed() { self.drive.kinematics(t).0 } else { y[nc + 2] };
-        // offsets and their rates
-        let e_off = C64::new(p.s2 * p.gamma.cos(), p.s2 * p.gamma.sin());
-        let mut a = [C64::new(0.0, 0.0); MAX_BALLS + 2];
-        let mut ad = [C64::new(0.0, 0.0); MAX_BALLS + 2];
-        let mut dir = [C64::new(0.0, 0.0); MAX_BALLS]; // e^{iψ_j}
-        let mut mass = [0.0; MAX_BALLS + 2];
-        a[0] = C64::new(p.s1, 0.0);
-        mass[0] = p.m1;
-        a[1] = e_off;
-        mass[1] = p.m2;
-        for j in 0..n {
-            let (s, c) = y[3 + j].sin_cos();
-            dir[j] = C64::new(c, s);
-            a[2 + j] = e_off.add(dir[j].scale(p.r));
-            ad[2 + j] = dir[j].mul_i().scale(p.r * y[nc + 3 + j]);
-            mass[2 + j] = p.m3;
-        }
-        let nb = 2 + n;
-        // velocity-dependent part R_b of each acceleration
-        let mut rb = [C64::new(0.0, 0.0); MAX_BALLS + 2];
-        for b in 0..nb {
-            let pos = u.add(a[b]);
-            let mut r = ud.add(ad[b]).mul_i().scale(2.0 * th_d).add(pos.scale(-th_d * th_d));
-            if b >= 2 {
-                let j = b - 2;
-                let psd = y[nc + 3 + j];
-                r = r.add(dir[j].scale(-p.r * psd * psd));
-            }
-            rb[b] = r;
-        }
-        // mass matrix Mx = f for x = (ü_re, ü_im, θ̈, ψ̈_1..n)
-        let mut m = [[0.0; MAX_BALLS + 3]; MAX_BALLS + 3];
-        let mut f = [0.0; MAX_BALLS + 3];
-        let m0 = p.total_mass();
-        let force = u.scale(-p.k).add(ud.add(u.mul_i().scale(th_d)).scale(-p.c));
-        // translation: m0 ü + iθ̈ S + Σ m3 i r e^{iψ_j} ψ̈_j = F − Σ m_b R_b
-        let mut s_sum = C64::new(0.0, 0.0);
-        let mut r_sum = C64::new(0.0, 0.0);
-        let mut inertia = p.i_g;
-        for b in 0..nb {
-            let pos = u.add(a[b]);
-            s_sum = s_sum.add(pos.scale(mass[b]));
-            r_sum = r_sum.add(rb[b].scale(mass[b]));
-            inertia += mass[b] * pos.dot(pos);
-        }
-        let is = s_sum.mul_i();
-        m[0][0] = m0;
-        m[1][1] = m0;
-        m[0][2] = is.re;
-        m[1][2] = is.im;
-        f[0] = force.re - r_sum.re;
-        f[1] = force.im - r_sum.im;
-        // θ row: Re(conj(iS) ü) + θ̈ (I_G + Σ m_b |u + a_b|²) + Σ m3 Re(conj(u + a_j) r e^{iψ_j}) ψ̈_j
-        m[2][0] = is.re;
-        m[2][1] = is.im;
-        m[2][2] = inertia;
-        let mut rot_rhs = u.mul_i().dot(force) - p.c_theta * th_d;
-        for b in 0..nb {
-            rot_rhs -= mass[b] * u.add(a[b]).mul_i().dot(rb[b]);
-        }
-        f[2] = rot_rhs;
-        for j in 0..n {
-            let b = 2 + j;
-            let tj = dir[j].mul_i().scale(p.r); // ∂(u + a_j)/∂ψ_j
-            let coup = p.m3 * u.add(a[b]).mul_i().dot(tj);
-            m[2][3 + j] = coup;
-            m[3 + j][2] = coup;
-            m[0][3 + j] = p.m3 * tj.re;
-            m[1][3 + j] = p.m3 * tj.im;
-            m[3 + j][0] = p.m3 * tj.re;
-            m[3 + j][1] = p.m3 * tj.im;
-            m[3 + j][3 + j] = p.m3 * p.r * p.r;
-            f[3 + j] = -p.c_psi * y[nc + 3 + j] - p.m3 * tj.dot(rb[b]);
-        }
-        if self.drive.prescribed() {
-            let (_, acc) = self.drive.kinematics(t);
-            // θ̈ known: drop its row, move its column to the right-hand side
-            for r in 0..nc {
-                if r != 2 {
-                    f[r] -= m[r][2] * acc;
-                }
-                m[r][2] = 0.0;
-            }
-            m[2] = [0.0; MAX_BALLS + 3];
-            m[2][2] = 1.0;
-            f[2] = acc;
-        } else {
-            f[2] += self.drive.torque(t, th_d);
-        }
-        // the mass matrix is positive definite for validated inputs; NaN stops the integrator
-        if !crate::linalg::dense::solve_once(&mut m, &mut f, nc) {
-            f = [f64::NAN; MAX_BALLS + 3];
-        }
-        dy[..nc].copy_from_slice(&y[nc..2 * nc]);
-        dy[nc..2 * nc].copy_from_slice(&f[..nc]);
-        if self.drive.prescribed() {
-            // keep θ̇ on the schedule exactly (its derivative is the prescribed acceleration)
-            let (w, _) = self.drive.kinematics(t);
-            dy[2] = w;
-        }
     }
 }
 
@@ -367,7 +253,7 @@ pub struct Sample {
 /// Summary of a run.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Summary {
-    /// Largest whirl radius of C, at step ends and samples (m).
+    /// Largest whirl radius of C (m), located on the dense output between step ends.
     pub peak_amplitude: f64,
     /// Rotor speed at that moment (rad/s).
     pub omega_at_peak: f64,
@@ -378,21 +264,34 @@ pub struct Summary {
     /// Speed at the end (rad/s).
     pub final_omega: f64,
     /// Whether the end state is the balanced/semi-balanced whirl: radius of C within 5 % of
-    /// `s2` (or below 5 % of `s1` when `s2 = 0`) and balls at rest relative to the disk.
+    /// `s2` (or below 5 % of `s1` when `s2 = 0`) and the motion settled (see `settled`).
     pub balanced: bool,
-    /// Integrator work.
+    /// Whether the motion had settled at the end: the whirl radius and the balls' angles change
+    /// no faster (relative rate, 1/s) than `3 |ω̇/ω| + 1e-4 sqrt(k/m0)`, i.e. quasi-statically.
+    pub settled: bool,
+    /// Integrator steps (accepted).
     pub steps: u64,
+    /// Of which by the implicit method.
+    pub implicit_steps: u64,
+    /// Switches between the explicit and the implicit method.
+    pub switches: u64,
     /// Rejected steps.
     pub rejected_steps: u64,
     /// Right-hand-side evaluations (including dense output).
     pub rhs_evaluations: u64,
     /// End time reached (s).
     pub t_end: f64,
-    /// Why the run stopped before `t_end`, if it did.
+    /// How the run ended (typed; `stopped` says it in words).
+    #[serde(skip)]
+    pub status: Status,
+    /// Why the run stopped before `t_end`, if it did (e.g. "interrupted at t = …").
     pub stopped: Option<String>,
+    /// Where the run did not do what it evidently was meant to (a passage that never reaches
+    /// resonance, a run that ends before the motion settled), one sentence each.
+    pub warnings: Vec<String>,
 }
 
-fn sample_of(rotor: &PlanarRotor, drive: &Drive, t: f64, y: &State) -> Sample {
+fn sample_of(rotor: &PlanarRotor, drive: &Drive, t: f64, y: &[f64]) -> Sample {
     let nc = 3 + rotor.n;
     let omega = if drive.prescribed() { drive.kinematics(t).0 } else { y[nc + 2] };
     let (s, c) = y[2].sin_cos();
@@ -401,162 +300,200 @@ fn sample_of(rotor: &PlanarRotor, drive: &Drive, t: f64, y: &State) -> Sample {
     Sample { t, omega, theta: y[2], x, y: yy, amplitude: y[0].hypot(y[1]), psi: y[3..3 + rotor.n].to_vec() }
 }
 
-/// Initial state from the drive and settings: C at rest on the axis, balls as set.
-pub fn initial_state(rotor: &PlanarRotor, drive: &Drive, settings: &Settings) -> State {
+/// Initial state from the drive and settings: C at `xy0` with velocity `xy_rate0` (fixed axes,
+/// `θ = 0`: `u = X + iY`, `u̇ = Ż − iω0 u`), balls as set, speed `ω0`.
+pub fn initial_state(rotor: &PlanarRotor, drive: &Drive, settings: &Settings) -> Vec<f64> {
     let nc = 3 + rotor.n;
-    let mut y = [0.0; CAP];
+    let mut y = vec![0.0; 2 * nc];
+    let w0 = drive.omega0();
+    let [x0, y0] = settings.xy0;
+    let [vx, vy] = settings.xy_rate0;
+    y[0] = x0;
+    y[1] = y0;
+    y[nc] = vx + w0 * y0;
+    y[nc + 1] = vy - w0 * x0;
     for j in 0..rotor.n {
         y[3 + j] = settings.psi0[j];
         y[nc + 3 + j] = settings.psi_rate0[j];
     }
-    y[nc + 2] = drive.omega0();
+    y[nc + 2] = w0;
     y
 }
 
-/// Absolute tolerances per component: `atol` on displacements, `atol/s_ref` on angles
-/// (`s_ref = max(s1, s2, r, atol)`), and the same divided by a time scale `1/ω_n` on rates.
-pub fn tolerances(rotor: &PlanarRotor, settings: &Settings) -> Tolerances {
+/// Integrator options for a run: the method and budgets of `settings`; absolute tolerances per
+/// component, `atol` on displacements, `atol/s_ref` on angles (`s_ref = max(s1, s2, r, atol)`),
+/// and the same times `ω_n` on rates; steps of the implicit method at most 4 output intervals
+/// (its dense output is third order).
+pub fn tolerances(rotor: &PlanarRotor, settings: &Settings) -> Options {
     let nc = 3 + rotor.n;
     let s_ref = rotor.s1.max(rotor.s2).max(rotor.r).max(settings.atol);
     let wn = rotor.natural_frequency();
-    let mut atol = [1.0; CAP];
+    let mut atol = vec![1.0; 2 * nc];
     for i in 0..nc {
         let base = if i < 2 { settings.atol } else { settings.atol / s_ref };
         atol[i] = base;
         atol[nc + i] = base * wn;
     }
-    Tolerances { rtol: settings.rtol, atol, h_max: f64::INFINITY, max_steps: 200_000_000 }
+    let mut o = Options::new(settings.rtol, settings.atol).method(settings.method).atol_per_component(atol);
+    o.h_max_implicit = 4.0 * settings.dt;
+    o.max_steps = settings.max_steps;
+    o.max_wall = settings.max_wall_s.map(std::time::Duration::from_secs_f64);
+    o
 }
 
 /// Simulate; `sink` receives every sample (at multiples of `dt`) and may return `false` to
-/// stop (an interruption): the summary then covers what was computed.
-pub fn simulate(rotor: &PlanarRotor, drive: &Drive, settings: &Settings, mut sink: impl FnMut(&Sample) -> bool) -> Result<Summary> {
+/// stop (an interruption): the summary then covers what was computed and says so.
+pub fn simulate(rotor: &PlanarRotor, drive: &Drive, settings: &Settings, sink: impl FnMut(&Sample) -> bool) -> Result<Summary> {
+    simulate_with(rotor, drive, settings, None, sink)
+}
+
+/// [`simulate`], also stopping at the first step after `cancel()` returns true (called before
+/// every integrator step, so a run with few samples stops as promptly as any; e.g.
+/// `&|| FLAG.load(Ordering::Relaxed)` for a Ctrl-C flag).
+pub fn simulate_with(rotor: &PlanarRotor, drive: &Drive, settings: &Settings, cancel: Option<&dyn Fn() -> bool>, mut sink: impl FnMut(&Sample) -> bool) -> Result<Summary> {
     rotor.validate()?;
     drive.validate()?;
     settings.validate(rotor)?;
-    let eq = Equations { rotor, drive };
-    let y0 = initial_state(rotor, drive, settings);
-    let tol = tolerances(rotor, settings);
-    let mut obs = Observer { rotor, drive, settings, sink: &mut sink, peak: (rotor_amp(&y0), drive.omega0(), 0.0), next_sample: 0 };
-    let first = sample_of(rotor, drive, 0.0, &y0);
-    let keep_going = (obs.sink)(&first);
-    obs.next_sample = 1;
+    let eq = Equations::new(rotor, drive);
+    let mut y = initial_state(rotor, drive, settings);
+    let mut solver = Solver::new(&eq, tolerances(rotor, settings))?;
+    if let Some(c) = cancel {
+        solver.cancel_if(c);
+    }
     let nc = 3 + rotor.n;
-    let mut stats = Stats::default();
-    let (mut t, mut y, mut stop) = (0.0, y0, None);
-    if !keep_going {
-        stop = Some(Stop::Requested { t: 0.0 });
-    }
-    // integrate piecewise between the drive's breakpoints
-    let mut ends: Vec<f64> = drive.breakpoints().into_iter().filter(|b| *b > 0.0 && *b < settings.t_end).collect();
-    ends.push(settings.t_end);
-    ends.sort_by(f64::total_cmp);
-    ends.dedup();
-    for end in ends {
-        if stop.is_some() {
-            break;
-        }
-        if drive.prescribed() {
-            y[nc + 2] = drive.kinematics(t).0; // start each piece exactly on the schedule
-        }
-        let (t1, y1, st, s1) = match settings.method {
-            Method::Dop853 => integrate(&eq, t, &y, end, &tol, |s| obs.on_step(s.t_new, s.y_new, |t| s.interpolate(t))),
-            Method::Rosenbrock => {
-                // the dense output is third order: keep steps within a few sample intervals
-                let tol = Tolerances { h_max: 4.0 * settings.dt, ..tol };
-                rosenbrock::integrate(&eq, t, &y, end, &tol, |s| obs.on_step(s.t_new, s.y_new, |t| s.interpolate(t)))
-            }
-        };
-        (t, y, stop) = (t1, y1, s1);
-        stats.steps += st.steps;
-        stats.rejected += st.rejected;
-        stats.rhs_evaluations += st.rhs_evaluations;
-    }
-    let peak = obs.peak;
-    let final_amp = rotor_amp(&y);
-    let rates_small = (0..rotor.n).all(|j| y[nc + 3 + j].abs() < 1e-3 * y[nc + 2].abs().max(1.0));
+    solver.add_event(RadiusMaximum { nc });
+    let breakpoints = drive.breakpoints();
+    let timeline = Timeline { t_end: settings.t_end, dt: settings.dt, breakpoints: &breakpoints };
+    let mut hooks = PlanarHooks { rotor, drive, sink: &mut sink, peak: Peak::new(drive.omega0()), speed: (f64::INFINITY, f64::NEG_INFINITY), nc };
+    let out = run(&mut solver, &mut y, &timeline, &mut hooks);
+    let peak = hooks.peak;
+    let speed_range = hooks.speed;
+    let final_amp = y[0].hypot(y[1]);
+    let final_omega = if drive.prescribed() { drive.kinematics(out.t).0 } else { y[nc + 2] };
+    // settled: the whirl radius and the balls change no faster than the drive's speed does
+    // (quasi-static) plus a floor of 1e-4 ω_n
+    let mut f = vec![0.0; y.len()];
+    eq.rhs(out.t, &y, &mut f);
+    let w_dot = f[nc + 2];
+    let rate_limit = 3.0 * if final_omega.abs() > 0.0 { (w_dot / final_omega).abs() } else { 0.0 } + 1e-4 * rotor.natural_frequency();
+    let radius_rate = if final_amp > 0.0 { (y[0] * y[nc] + y[1] * y[nc + 1]).abs() / (final_amp * final_amp) } else { 0.0 };
+    let rates_small = (0..rotor.n).all(|j| y[nc + 3 + j].abs() <= rate_limit);
+    let settled = rates_small && radius_rate <= rate_limit;
     let target = if rotor.s2 > 0.0 { rotor.s2 } else { 0.0 };
     let tolerance = if rotor.s2 > 0.0 { 0.05 * rotor.s2 } else { 0.05 * rotor.s1.max(1e-9) };
     let balanced = rotor.n > 0 && (final_amp - target).abs() <= tolerance && rates_small;
+    let completed = out.status.is_completed();
+    let stopped = match &out.status {
+        Status::Completed => None,
+        Status::Stopped => Some(format!("interrupted at t = {:.6} s", out.t)),
+        _ => Some(format!("{out}").replace(&format!("t = {:.6}", out.t), &format!("t = {:.6} s", out.t))),
+    };
+    let warnings = if completed { passage_warnings(rotor, drive, settings, speed_range, final_omega, settled) } else { vec![] };
     Ok(Summary {
-        peak_amplitude: peak.0,
-        omega_at_peak: peak.1,
-        t_at_peak: peak.2,
+        peak_amplitude: peak.value,
+        omega_at_peak: peak.with,
+        t_at_peak: peak.t,
         final_amplitude: final_amp,
-        final_omega: y[nc + 2],
+        final_omega,
         balanced,
-        steps: stats.steps,
-        rejected_steps: stats.rejected,
-        rhs_evaluations: stats.rhs_evaluations,
-        t_end: t,
-        stopped: stop.map(|s| match s {
-            Stop::StepTooSmall { t } => format!("step size underflow at t = {t}"),
-            Stop::TooManySteps { t } => format!("too many steps at t = {t}"),
-            Stop::NotFinite { t } => format!("the state became non-finite at t = {t}"),
-            Stop::Requested { t } => format!("interrupted at t = {t}"),
-        }),
+        settled,
+        steps: out.stats.steps,
+        implicit_steps: out.stats.implicit_steps,
+        switches: out.stats.switches,
+        rejected_steps: out.stats.rejected,
+        rhs_evaluations: out.stats.rhs_evaluations,
+        t_end: out.t,
+        status: out.status,
+        stopped,
+        warnings,
     })
 }
 
-/// What `simulate` does after each accepted step, whichever the integrator: track the peak and
-/// emit the samples that fall in the step (from the dense output).
-struct Observer<'a, F: FnMut(&Sample) -> bool> {
+/// Where a completed run did not do what its drive evidently asked: a run-up (or run-down)
+/// that never reaches `sqrt(k/m0)`, a run that ends before the motion settled.
+fn passage_warnings(rotor: &PlanarRotor, drive: &Drive, settings: &Settings, (w_min, w_max): (f64, f64), final_omega: f64, settled: bool) -> Vec<String> {
+    let wn = rotor.natural_frequency();
+    let mut w = vec![];
+    let passage = match drive {
+        Drive::Acceleration { omega0, b } => Some((*omega0, *b)),
+        Drive::Torque { omega0, torque, .. } | Drive::Motor { omega0, torque, .. } => Some((*omega0, *torque)),
+        _ => None,
+    };
+    if let Some((w0, sense)) = passage {
+        if sense > 0.0 && w0.abs() < wn && w_max < wn {
+            let hint = match drive {
+                Drive::Acceleration { b, .. } => format!("; at b = {b} it gets there at t = {:.4e} s: raise drive.t_end", (wn - w0) / b),
+                _ => " (the torque cannot pass it, or drive.t_end is too short)".to_string(),
+            };
+            w.push(format!("resonance was never reached: the speed stays below sqrt(k/m0) = {wn:.2} rad/s (at most {w_max:.2} rad/s by t = {} s){hint}", settings.t_end));
+        }
+        if sense < 0.0 && w0.abs() > wn && w_min > wn {
+            w.push(format!("resonance was never reached: the run-down ends at {final_omega:.2} rad/s, above sqrt(k/m0) = {wn:.2} rad/s: raise drive.t_end"));
+        }
+    }
+    if !settled {
+        w.push(format!(
+            "the run ends before the motion settled (at {final_omega:.2} rad/s the balls still move relative to the rotor or the whirl is still changing): final_amplitude and balanced describe a transient; raise drive.t_end"
+        ));
+    }
+    w
+}
+
+/// `g = u·u̇ = ½ d|u|²/dt` falling through zero: a maximum of the whirl radius, located on the
+/// dense output so the peak is as accurate as the integration, not as coarse as the steps.
+struct RadiusMaximum {
+    nc: usize,
+}
+
+impl Event for RadiusMaximum {
+    fn g(&self, _t: f64, y: &[f64]) -> f64 {
+        y[0] * y[self.nc] + y[1] * y[self.nc + 1]
+    }
+    fn direction(&self) -> Direction {
+        Direction::Falling
+    }
+    fn terminal(&self) -> bool {
+        false
+    }
+}
+
+/// What `simulate` does during the run: keep the prescribed speed on its schedule at each piece,
+/// track the peak and the speed range, emit the samples.
+struct PlanarHooks<'a, F: FnMut(&Sample) -> bool> {
     rotor: &'a PlanarRotor,
     drive: &'a Drive,
-    settings: &'a Settings,
     sink: &'a mut F,
-    peak: (f64, f64, f64),
-    next_sample: usize,
+    peak: Peak<f64>,
+    speed: (f64, f64),
+    nc: usize,
 }
 
-impl<F: FnMut(&Sample) -> bool> Observer<'_, F> {
-    fn on_step(&mut self, t_new: f64, y_new: &State, interpolate: impl Fn(f64) -> State) -> bool {
-        let nc = 3 + self.rotor.n;
-        let a = rotor_amp(y_new);
-        if a > self.peak.0 {
-            self.peak = (a, y_new[nc + 2], t_new);
-        }
-        loop {
-            let ts = self.next_sample as f64 * self.settings.dt;
-            if ts > t_new + 1e-12 * t_new.abs() || ts > self.settings.t_end * (1.0 + 1e-12) {
-                return true;
-            }
-            let ys = if (ts - t_new).abs() <= 1e-12 * ts.abs().max(1.0) { *y_new } else { interpolate(ts) };
-            let s = sample_of(self.rotor, self.drive, ts, &ys);
-            if s.amplitude > self.peak.0 {
-                self.peak = (s.amplitude, s.omega, ts);
-            }
-            self.next_sample += 1;
-            if !(self.sink)(&s) {
-                return false;
-            }
+impl<F: FnMut(&Sample) -> bool> Hooks for PlanarHooks<'_, F> {
+    fn start_piece(&mut self, t: f64, y: &mut [f64]) {
+        if self.drive.prescribed() {
+            y[self.nc + 2] = self.drive.kinematics(t).0; // start each piece exactly on the schedule
         }
     }
-}
 
-fn rotor_amp(y: &State) -> f64 {
-    y[0].hypot(y[1])
-}
-
-/// Total mechanical energy `T + V` of a state (J): for the energy-balance tests.
-pub fn energy(rotor: &PlanarRotor, y: &State) -> f64 {
-    let n = rotor.n;
-    let nc = 3 + n;
-    let u = C64::new(y[0], y[1]);
-    let ud = C64::new(y[nc], y[nc + 1]);
-    let w = y[nc + 2];
-    let e_off = C64::new(rotor.s2 * rotor.gamma.cos(), rotor.s2 * rotor.gamma.sin());
-    let vel = |a: C64, ad: C64| ud.add(ad).add(u.add(a).mul_i().scale(w));
-    let mut t = 0.5 * rotor.i_g * w * w;
-    let v_g = vel(C64::new(rotor.s1, 0.0), C64::new(0.0, 0.0));
-    t += 0.5 * rotor.m1 * v_g.dot(v_g);
-    let v_e = vel(e_off, C64::new(0.0, 0.0));
-    t += 0.5 * rotor.m2 * v_e.dot(v_e);
-    for j in 0..n {
-        let (s, c) = y[3 + j].sin_cos();
-        let d = C64::new(c, s);
-        let v = vel(e_off.add(d.scale(rotor.r)), d.mul_i().scale(rotor.r * y[nc + 3 + j]));
-        t += 0.5 * rotor.m3 * v.dot(v);
+    fn step(&mut self, t: f64, y: &[f64]) {
+        let w = if self.drive.prescribed() { self.drive.kinematics(t).0 } else { y[self.nc + 2] };
+        self.peak.observe(y[0].hypot(y[1]), t, w);
+        self.speed = (self.speed.0.min(w), self.speed.1.max(w));
     }
-    t + 0.5 * rotor.k * u.dot(u)
+
+    fn event(&mut self, _index: usize, t: f64, y: &[f64]) {
+        let w = if self.drive.prescribed() { self.drive.kinematics(t).0 } else { y[self.nc + 2] };
+        self.peak.observe(y[0].hypot(y[1]), t, w);
+    }
+
+    fn sample(&mut self, t: f64, y: &[f64]) -> Control {
+        let s = sample_of(self.rotor, self.drive, t, y);
+        self.peak.observe(s.amplitude, t, s.omega);
+        self.speed = (self.speed.0.min(s.omega), self.speed.1.max(s.omega));
+        if (self.sink)(&s) {
+            Control::Continue
+        } else {
+            Control::Stop
+        }
+    }
 }

@@ -61,9 +61,10 @@ impl Default for Drive {
 }
 
 impl Settings {
-    /// Settings for a rotor with `n` balls run to `t_end` (s): DOP853, `rtol = 1e-8`,
-    /// `atol = 1e-9 m`, 2000 output intervals (`dt = t_end/2000`), balls spread evenly
-    /// ([`Settings::default_psi0`]) at rest relative to the disk.
+    /// Settings for a rotor with `n` balls run to `t_end` (s): the automatic method (DOP853,
+    /// switching to RODAS while stiff), `rtol = 1e-8`, `atol = 1e-9 m`, 2000 output intervals
+    /// (`dt = t_end/2000`), balls spread evenly ([`Settings::default_psi0`]) at rest relative to
+    /// the disk, C at rest on the axis, at most 20 million steps.
     pub fn for_balls(n: usize, t_end: f64) -> Self {
         Settings {
             method: Default::default(),
@@ -73,6 +74,10 @@ impl Settings {
             atol: 1e-9,
             psi0: Settings::default_psi0(n),
             psi_rate0: vec![0.0; n],
+            xy0: [0.0; 2],
+            xy_rate0: [0.0; 2],
+            max_steps: 20_000_000,
+            max_wall_s: None,
         }
     }
 }

@@ -5,13 +5,13 @@ use super::equations::{Equations, PHI, ROTOR_COORDS};
 use super::rotor::SpatialRotor;
 use crate::drive::Drive;
 use crate::error::{finite, positive, Error, Result};
-use crate::ode::{dop853, rosenbrock, State, Stats, Stop, System, Tolerances, CAP};
-use crate::planar::Method;
+use crate::ode::{Control, Method, Options, Outcome, Solver, Stats, Status};
+use crate::simulation::{run, Hooks, Timeline};
 use serde::Serialize;
 
-/// Most balls in all planes together that the simulation integrates (state of at most
-/// [`CAP`] components: `2 (5 + N)`).
-pub const MAX_SIM_BALLS: usize = CAP / 2 - ROTOR_COORDS;
+/// Most balls in all planes together that the simulation integrates (the integrators take any
+/// dimension; this was the limit of their former fixed-size state, `2 (5 + N) ≤ 24`).
+pub const MAX_SIM_BALLS: usize = 7;
 
 /// Initial conditions (velocities in fixed axes; at `t = 0` the turning frame coincides with
 /// the fixed one).
@@ -138,7 +138,7 @@ pub struct Summary {
 }
 
 /// The state vector of an initial condition (turning-frame coordinates at `t = 0`).
-pub fn initial_state(eq: &Equations, init: &Initial) -> Result<State> {
+pub fn initial_state(eq: &Equations, init: &Initial) -> Result<Vec<f64>> {
     let nc = eq.coords();
     let nb = nc - ROTOR_COORDS;
     if init.psi.len() != nb {
@@ -163,7 +163,7 @@ pub fn initial_state(eq: &Equations, init: &Initial) -> Result<State> {
     let w = eq.drive.omega0();
     let [x, y] = init.position;
     let [d, th] = init.tilt;
-    let mut s = [0.0; CAP];
+    let mut s = vec![0.0; 2 * nc];
     s[0] = x;
     s[1] = y;
     s[2] = d;
@@ -183,17 +183,21 @@ pub fn initial_state(eq: &Equations, init: &Initial) -> Result<State> {
 
 /// Absolute tolerances per component: `atol` on displacements, `atol/L` on angles (`L` the
 /// largest race or unbalance radius), times the natural frequency on rates.
-pub fn tolerances(eq: &Equations, settings: &Settings) -> Tolerances {
+pub fn tolerances(eq: &Equations, settings: &Settings) -> Options {
     let nc = eq.coords();
     let l = eq.rotor.length_scale().max(settings.atol);
     let wn = eq.rotor.natural_frequency();
-    let mut atol = [1.0; CAP];
+    let mut atol = vec![1.0; 2 * nc];
     for i in 0..nc {
         let base = if i < 2 { settings.atol } else { settings.atol / l };
         atol[i] = base;
         atol[nc + i] = base * wn;
     }
-    Tolerances { rtol: settings.rtol, atol, h_max: f64::INFINITY, max_steps: 200_000_000 }
+    let mut o = Options::new(settings.rtol, settings.atol).method(settings.method).atol_per_component(atol);
+    // the implicit method's dense output is third order: steps of at most 4 output intervals
+    o.h_max_implicit = 4.0 * settings.dt;
+    o.max_steps = 200_000_000;
+    o
 }
 
 /// The sample of a state.
@@ -254,66 +258,53 @@ pub fn simulate(rotor: &SpatialRotor, drive: &Drive, init: &Initial, settings: &
         return Err(Error::invalid("balancer.balls", format!("the simulation takes at most {MAX_SIM_BALLS} balls in all planes together, got {}", rotor.balls())));
     }
     let eq = Equations::new(rotor, drive);
-    let n = eq.dim();
-    let y0 = initial_state(&eq, init)?;
-    let tol = tolerances(&eq, settings);
-    let mut peak = (plane_amplitude(&eq, &y0[..n]), drive.omega0(), 0.0);
-    let mut next_sample = 0usize;
-    let mut on_step = |t_new: f64, y_new: &State, interpolate: &dyn Fn(f64) -> State| -> bool {
-        let a = plane_amplitude(&eq, &y_new[..n]);
-        if a > peak.0 {
-            peak = (a, eq.spin_rate(t_new, &y_new[..n]), t_new);
-        }
-        loop {
-            let ts = next_sample as f64 * settings.dt;
-            if ts > t_new + 1e-12 * t_new.abs() || ts > settings.t_end * (1.0 + 1e-12) {
-                return true;
-            }
-            let ys = if (ts - t_new).abs() <= 1e-12 * ts.abs().max(1.0) { *y_new } else { interpolate(ts) };
-            let s = sample_of(&eq, ts, &ys[..n]);
-            let a = plane_amplitude(&eq, &ys[..n]);
-            if a > peak.0 {
-                peak = (a, s.omega, ts);
-            }
-            next_sample += 1;
-            if !sink(&s) {
-                return false;
-            }
-        }
-    };
-    let mut stats = Stats::default();
-    let (mut t, mut y, mut stop) = (0.0, y0, None);
-    if !on_step(0.0, &y0, &|_| y0) {
-        stop = Some(Stop::Requested { t: 0.0 });
-    }
-    let mut ends: Vec<f64> = drive.breakpoints().into_iter().filter(|b| *b > 0.0 && *b < settings.t_end).collect();
-    ends.push(settings.t_end);
-    ends.sort_by(f64::total_cmp);
-    ends.dedup();
-    let nc = eq.coords();
-    for end in ends {
-        if stop.is_some() {
-            break;
-        }
-        if drive.prescribed() {
-            y[nc + PHI] = drive.kinematics(t).0;
-        }
-        let (t1, y1, st, s1) = match settings.method {
-            Method::Dop853 => dop853::integrate(&eq, t, &y, end, &tol, |s| on_step(s.t_new, s.y_new, &|t| s.interpolate(t))),
-            Method::Rosenbrock => {
-                let tol = Tolerances { h_max: 4.0 * settings.dt, ..tol };
-                rosenbrock::integrate(&eq, t, &y, end, &tol, |s| on_step(s.t_new, s.y_new, &|t| s.interpolate(t)))
-            }
-        };
-        (t, y, stop) = (t1, y1, s1);
-        stats.steps += st.steps;
-        stats.rejected += st.rejected;
-        stats.rhs_evaluations += st.rhs_evaluations;
-    }
-    Ok(summarise(&eq, t, &y[..n], peak, stats, stop))
+    let mut y = initial_state(&eq, init)?;
+    let mut solver = Solver::new(&eq, tolerances(&eq, settings))?;
+    let breakpoints = drive.breakpoints();
+    let timeline = Timeline { t_end: settings.t_end, dt: settings.dt, breakpoints: &breakpoints };
+    let mut hooks = SpatialHooks { eq: &eq, sink: &mut sink, peak: (plane_amplitude(&eq, &y), drive.omega0(), 0.0) };
+    let out = run(&mut solver, &mut y, &timeline, &mut hooks);
+    let peak = hooks.peak;
+    Ok(summarise(&eq, out.t, &y, peak, out.stats, &out))
 }
 
-fn summarise(eq: &Equations, t: f64, y: &[f64], peak: (f64, f64, f64), stats: Stats, stop: Option<Stop>) -> Summary {
+/// Peak tracking at step ends and samples, the prescribed spin put back on its schedule at
+/// each piece, samples to the sink.
+struct SpatialHooks<'a, F: FnMut(&Sample) -> bool> {
+    eq: &'a Equations<'a>,
+    sink: &'a mut F,
+    peak: (f64, f64, f64),
+}
+
+impl<F: FnMut(&Sample) -> bool> Hooks for SpatialHooks<'_, F> {
+    fn start_piece(&mut self, t: f64, y: &mut [f64]) {
+        if self.eq.drive.prescribed() {
+            y[self.eq.coords() + PHI] = self.eq.drive.kinematics(t).0;
+        }
+    }
+
+    fn step(&mut self, t: f64, y: &[f64]) {
+        let a = plane_amplitude(self.eq, y);
+        if a > self.peak.0 {
+            self.peak = (a, self.eq.spin_rate(t, y), t);
+        }
+    }
+
+    fn sample(&mut self, t: f64, y: &[f64]) -> Control {
+        let s = sample_of(self.eq, t, y);
+        let a = plane_amplitude(self.eq, y);
+        if a > self.peak.0 {
+            self.peak = (a, s.omega, t);
+        }
+        if (self.sink)(&s) {
+            Control::Continue
+        } else {
+            Control::Stop
+        }
+    }
+}
+
+fn summarise(eq: &Equations, t: f64, y: &[f64], peak: (f64, f64, f64), stats: Stats, out: &Outcome) -> Summary {
     let nc = eq.coords();
     let r = eq.rotor;
     let omega = eq.spin_rate(t, y);
@@ -340,11 +331,10 @@ fn summarise(eq: &Equations, t: f64, y: &[f64], peak: (f64, f64, f64), stats: St
         rejected_steps: stats.rejected,
         rhs_evaluations: stats.rhs_evaluations,
         t_end: t,
-        stopped: stop.map(|s| match s {
-            Stop::StepTooSmall { t } => format!("step size underflow at t = {t}"),
-            Stop::TooManySteps { t } => format!("too many steps at t = {t}"),
-            Stop::NotFinite { t } => format!("the state became non-finite at t = {t}"),
-            Stop::Requested { t } => format!("interrupted at t = {t}"),
-        }),
+        stopped: match &out.status {
+            Status::Completed => None,
+            Status::Stopped => Some(format!("interrupted at t = {t}")),
+            _ => Some(out.to_string()),
+        },
     }
 }

@@ -1,0 +1,593 @@
+//! The one step loop of both integrators: step-size control, acceptance, dense output, events,
+//! cancellation, budgets, and the switching between DOP853 and RODAS.
+
+use super::events::{crosses, locate};
+use super::{dop853, rosenbrock, Control, Event, Jacobian, Method, Options, Outcome, Stats, Status, System};
+use crate::error::{Error, Result};
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// Accepted DOP853 steps with `h |λ|` above the threshold before [`Method::Auto`] switches to
+/// RODAS (Hairer's `dop853.f` reports stiffness after 15).
+const STIFF_STEPS: u32 = 15;
+/// Consecutive non-stiff tests that clear the count (Hairer: 6).
+const NONSTIFF_RESET: u32 = 6;
+/// In RODAS phases of [`Method::Auto`], the spectral radius is estimated every this many steps.
+const TEST_EVERY: u64 = 5;
+/// Power iterations per spectral-radius estimate.
+const POWER_ITERATIONS: usize = 10;
+
+/// What stops a run from outside: a flag (Ctrl-C handlers, other threads) or a callback.
+#[derive(Clone, Copy)]
+enum Cancel<'s> {
+    Flag(&'s AtomicBool),
+    Call(&'s dyn Fn() -> bool),
+}
+
+impl Cancel<'_> {
+    fn requested(&self) -> bool {
+        match self {
+            Cancel::Flag(f) => f.load(Ordering::Relaxed),
+            Cancel::Call(c) => c(),
+        }
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Mode {
+    Explicit,
+    Implicit,
+}
+
+/// An integrator for one system, with every buffer allocated once ([`Solver::new`]); calls of
+/// [`Solver::integrate`] allocate nothing.
+pub struct Solver<'s, S: System> {
+    sys: &'s S,
+    opts: Options,
+    n: usize,
+    atol: Vec<f64>,
+    cancel: Option<Cancel<'s>>,
+    events: Vec<Box<dyn Event + 's>>,
+    jac: Option<Box<dyn Jacobian + 's>>,
+    y: Vec<f64>,
+    f: Vec<f64>,
+    y_new: Vec<f64>,
+    y_event: Vec<f64>,
+    tmp1: Vec<f64>,
+    tmp2: Vec<f64>,
+    g_old: Vec<f64>,
+    hits: Vec<(usize, f64)>,
+    dop: dop853::Work,
+    rodas: rosenbrock::Work,
+    // control state carried from one call to the next
+    h_next: f64,
+    mode: Mode,
+    stiff_count: u32,
+    nonstiff_count: u32,
+    stiff_needed: u32,
+    phase_steps: u64,
+    total: Stats,
+    started: Option<std::time::Instant>,
+}
+
+/// One accepted step, as the observer of [`Solver::integrate`] sees it.
+pub struct Step<'a, S: System> {
+    /// Start of the step.
+    pub t_old: f64,
+    /// End of the step (the time of a terminal event when one cut the step short).
+    pub t_new: f64,
+    /// State at `t_old`.
+    pub y_old: &'a [f64],
+    /// State at `t_new`.
+    pub y_new: &'a [f64],
+    /// Which method took it ([`Method::Dop853`] or [`Method::Rodas`]).
+    pub method: Method,
+    /// Events located in the step, `(index, time)` in time order (a terminal one last).
+    pub events: &'a [(usize, f64)],
+    sys: &'a S,
+    h: f64,
+    y_end: &'a [f64],
+    dop: &'a mut dop853::Work,
+    rodas: &'a rosenbrock::Work,
+    extra_rhs: &'a mut u64,
+}
+
+impl<S: System> Step<'_, S> {
+    /// The dense output at `t ∈ [t_old, t_new]` into `out` (length `dim`): DOP853's 7th-order
+    /// interpolant (3 more right-hand sides on first use in a step) or RODAS's 3rd-order one.
+    pub fn interpolate(&mut self, t: f64, out: &mut [f64]) {
+        interpolate(self.method, self.sys, self.dop, self.rodas, self.t_old, self.h, self.y_old, self.y_end, t, out, self.extra_rhs);
+    }
+}
+
+#[allow(clippy::too_many_arguments)]
+fn interpolate<S: System + ?Sized>(
+    method: Method,
+    sys: &S,
+    dop: &mut dop853::Work,
+    rodas: &rosenbrock::Work,
+    t_old: f64,
+    h: f64,
+    y_old: &[f64],
+    y_new: &[f64],
+    t: f64,
+    out: &mut [f64],
+    rhs: &mut u64,
+) {
+    if t == t_old + h {
+        out.copy_from_slice(y_new);
+        return;
+    }
+    match method {
+        Method::Rodas => rodas.interpolate(t_old, h, y_old, y_new, t, out),
+        _ => *rhs += dop.interpolate(sys, t_old, h, y_old, y_new, t, out),
+    }
+}
+
+impl<'s, S: System> Solver<'s, S> {
+    /// A solver for `sys`; checks the options (errors name `integration.rtol`,
+    /// `integration.atol`) and allocates every buffer.
+    pub fn new(sys: &'s S, opts: Options) -> Result<Self> {
+        let n = sys.dim();
+        if !(opts.rtol > 0.0 && opts.rtol.is_finite()) {
+            return Err(Error::invalid("integration.rtol", format!("must be positive and finite, got {}", opts.rtol)));
+        }
+        if opts.rtol < 1e-14 {
+            return Err(Error::invalid("integration.rtol", format!("{} is below what double precision can reach (1e-14)", opts.rtol)));
+        }
+        if opts.rtol >= 1.0 {
+            return Err(Error::invalid("integration.rtol", format!("must be below 1, got {}", opts.rtol)));
+        }
+        let atol = match opts.atol.len() {
+            1 => vec![opts.atol[0]; n],
+            m if m == n => opts.atol.clone(),
+            m => return Err(Error::invalid("integration.atol", format!("needs 1 or {n} values, got {m}"))),
+        };
+        if let Some(a) = atol.iter().find(|a| !(**a > 0.0 && a.is_finite())) {
+            return Err(Error::invalid("integration.atol", format!("must be positive and finite, got {a}")));
+        }
+        if let Some(h) = opts.fixed_step {
+            if !(h > 0.0 && h.is_finite()) {
+                return Err(Error::invalid("integration.fixed_step", format!("must be positive and finite, got {h}")));
+            }
+        }
+        let mode = if opts.method == Method::Rodas { Mode::Implicit } else { Mode::Explicit };
+        Ok(Solver {
+            sys,
+            opts,
+            n,
+            atol,
+            cancel: None,
+            events: vec![],
+            jac: None,
+            y: vec![0.0; n],
+            f: vec![0.0; n],
+            y_new: vec![0.0; n],
+            y_event: vec![0.0; n],
+            tmp1: vec![0.0; n],
+            tmp2: vec![0.0; n],
+            g_old: vec![],
+            hits: vec![],
+            dop: dop853::Work::new(n),
+            rodas: rosenbrock::Work::new(n),
+            h_next: 0.0,
+            mode,
+            stiff_count: 0,
+            nonstiff_count: 0,
+            stiff_needed: STIFF_STEPS,
+            phase_steps: 0,
+            total: Stats::default(),
+            started: None,
+        })
+    }
+
+    /// Stop (with [`Status::Interrupted`]) at the first step after `flag` becomes true; checked
+    /// before every step.
+    pub fn cancel_on(&mut self, flag: &'s AtomicBool) {
+        self.cancel = Some(Cancel::Flag(flag));
+    }
+
+    /// Stop (with [`Status::Interrupted`]) at the first step after `stop()` returns true; called
+    /// before every step, so keep it cheap.
+    pub fn cancel_if(&mut self, stop: &'s dyn Fn() -> bool) {
+        self.cancel = Some(Cancel::Call(stop));
+    }
+
+    /// Locate the zeros of `event` on the dense output; returns its index (in
+    /// [`Step::events`] and [`Status::Event`]).
+    pub fn add_event(&mut self, event: impl Event + 's) -> usize {
+        self.events.push(Box::new(event));
+        self.g_old.push(0.0);
+        self.hits.reserve(self.events.len());
+        self.events.len() - 1
+    }
+
+    /// Counters of every call so far.
+    pub fn stats(&self) -> Stats {
+        self.total
+    }
+
+    /// The options.
+    pub fn options(&self) -> &Options {
+        &self.opts
+    }
+
+    /// The method that will take the next step ([`Method::Dop853`] or [`Method::Rodas`]).
+    pub fn current_method(&self) -> Method {
+        match self.mode {
+            Mode::Explicit => Method::Dop853,
+            Mode::Implicit => Method::Rodas,
+        }
+    }
+
+    /// Forget the step size and stiffness state (e.g. after the equations changed at an
+    /// event); the next call starts with a fresh initial step.
+    pub fn reset(&mut self) {
+        self.h_next = 0.0;
+        self.stiff_count = 0;
+        self.nonstiff_count = 0;
+        self.phase_steps = 0;
+        self.mode = if self.opts.method == Method::Rodas { Mode::Implicit } else { Mode::Explicit };
+    }
+
+    fn non_finite(&self, v: &[f64]) -> Option<Status> {
+        v.iter().position(|x| !x.is_finite()).map(|i| Status::NotFinite { component: i, name: self.sys.component_name(i) })
+    }
+
+    /// Integrate from `(t0, y)` to `t_end ≥ t0`, advancing `y` (length `dim`) in place, calling
+    /// `observe` after every accepted step. The step size, the method in use and the stiffness
+    /// state carry over to the next call (so a run can go on piecewise, e.g. between the
+    /// breakpoints of a drive); budgets ([`Options::max_steps`], [`Options::max_wall`]) count
+    /// all calls together.
+    pub fn integrate(&mut self, t0: f64, y: &mut [f64], t_end: f64, mut observe: impl FnMut(&mut Step<'_, S>) -> Control) -> Outcome {
+        let n = self.n;
+        assert_eq!(y.len(), n, "state of length dim");
+        let mut stats = Stats::default();
+        let started = *self.started.get_or_insert_with(std::time::Instant::now);
+        let mut t = t0;
+        let done = |status: Status, t: f64, stats: Stats, total: &mut Stats| {
+            total.add(&stats);
+            Outcome { status, t, stats }
+        };
+        if let Some(s) = self.non_finite(y) {
+            return done(s, t, stats, &mut self.total);
+        }
+        if !(t_end > t0) {
+            return done(Status::Completed, t, stats, &mut self.total);
+        }
+        self.y.copy_from_slice(y);
+        self.sys.rhs(t, &self.y, &mut self.f);
+        stats.rhs_evaluations += 1;
+        if let Some(s) = self.non_finite(&self.f) {
+            return done(s, t, stats, &mut self.total);
+        }
+        for (g, e) in self.g_old.iter_mut().zip(&self.events) {
+            *g = e.g(t, &self.y);
+        }
+        let rtol = self.opts.rtol;
+        let h_max = |mode: Mode, o: &Options| if mode == Mode::Implicit { o.h_max.min(o.h_max_implicit) } else { o.h_max };
+        let mut h = if let Some(hf) = self.opts.fixed_step {
+            hf
+        } else if self.h_next > 0.0 {
+            self.h_next
+        } else if let Some(h0) = self.opts.h_initial {
+            h0
+        } else {
+            for i in 0..n {
+                self.tmp1[i] = self.atol[i] + rtol * self.y[i].abs();
+            }
+            let order = if self.mode == Mode::Implicit { rosenbrock::ORDER } else { dop853::ORDER };
+            let scale = std::mem::take(&mut self.tmp1);
+            let h0 = dop853::initial_step(self.sys, t, &self.y, &self.f, h_max(self.mode, &self.opts), order, &scale, &mut self.y_new, &mut self.tmp2);
+            self.tmp1 = scale;
+            stats.rhs_evaluations += 1;
+            h0
+        };
+        let mut rejected_last = false;
+        // the Jacobian of the implicit method: made on first use, updated once per step
+        let mut jac_fresh = false;
+        loop {
+            if t >= t_end {
+                y.copy_from_slice(&self.y);
+                self.h_next = if self.opts.fixed_step.is_some() { self.h_next } else { h };
+                return done(Status::Completed, t, stats, &mut self.total);
+            }
+            if self.cancel.is_some_and(|c| c.requested()) {
+                y.copy_from_slice(&self.y);
+                return done(Status::Interrupted, t, stats, &mut self.total);
+            }
+            if self.total.steps + stats.steps >= self.opts.max_steps {
+                y.copy_from_slice(&self.y);
+                return done(Status::TooManySteps { max_steps: self.opts.max_steps }, t, stats, &mut self.total);
+            }
+            if let Some(w) = self.opts.max_wall {
+                if stats.steps.is_multiple_of(256) && started.elapsed() > w {
+                    y.copy_from_slice(&self.y);
+                    return done(Status::TimeBudget { seconds: w.as_secs_f64() }, t, stats, &mut self.total);
+                }
+            }
+            let hm = h_max(self.mode, &self.opts);
+            h = h.min(hm);
+            if self.opts.fixed_step.is_some() {
+                h = self.opts.fixed_step.unwrap_or(h).min(t_end - t);
+            }
+            let last = t + 1.01 * h >= t_end;
+            if last {
+                h = t_end - t;
+            }
+            let min_step = 16.0 * f64::EPSILON * t.abs().max(t_end.abs() * 1e-3).max(f64::MIN_POSITIVE);
+            if h < min_step {
+                y.copy_from_slice(&self.y);
+                return done(Status::StepTooSmall { h }, t, stats, &mut self.total);
+            }
+            // attempt
+            let err = match self.mode {
+                Mode::Explicit => {
+                    self.dop.k[..n].copy_from_slice(&self.f);
+                    let e = self.dop.attempt(self.sys, t, h, &self.y, &mut self.y_new, &self.atol, rtol);
+                    stats.rhs_evaluations += 11;
+                    Some(e)
+                }
+                Mode::Implicit => {
+                    let jac = self.jac.get_or_insert_with(|| {
+                        let mut j = self.sys.jacobian();
+                        let typical: Vec<f64> = self.atol.iter().map(|a| a / rtol).collect();
+                        j.set_typical(&typical);
+                        j
+                    });
+                    if !jac_fresh {
+                        stats.rhs_evaluations += jac.update(t, &self.y, &self.f);
+                        stats.jacobians += 1;
+                        if !jac.time_derivative(t, &self.y, &self.f, &mut self.rodas.dfdt) {
+                            // ∂f/∂t by a central difference inside [t0, t_end] (one-sided at
+                            // its ends: never across a breakpoint)
+                            let dt = f64::EPSILON.cbrt() * t.abs().max(h).max(1e-3 * (t_end - t0));
+                            let (lo, hi) = (t - dt >= t0, t + dt <= t_end);
+                            if lo && hi {
+                                self.sys.rhs(t + dt, &self.y, &mut self.tmp1);
+                                self.sys.rhs(t - dt, &self.y, &mut self.tmp2);
+                                stats.rhs_evaluations += 2;
+                                for i in 0..n {
+                                    self.rodas.dfdt[i] = (self.tmp1[i] - self.tmp2[i]) / (2.0 * dt);
+                                }
+                            } else {
+                                let dt = if hi { f64::EPSILON.sqrt() * t.abs().max(h) } else { -f64::EPSILON.sqrt() * t.abs().max(h) };
+                                self.sys.rhs(t + dt, &self.y, &mut self.tmp1);
+                                stats.rhs_evaluations += 1;
+                                for i in 0..n {
+                                    self.rodas.dfdt[i] = (self.tmp1[i] - self.f[i]) / dt;
+                                }
+                            }
+                        }
+                        jac_fresh = true;
+                    }
+                    stats.factorizations += 1;
+                    self.rodas.attempt(self.sys, jac.as_mut(), t, h, &self.y, &self.f, &mut self.y_new, &self.atol, rtol, &mut stats.rhs_evaluations)
+                }
+            };
+            let (q, grow_max, shrink_min) = match self.mode {
+                Mode::Explicit => (dop853::ORDER as f64, 6.0, 1.0 / 3.0),
+                Mode::Implicit => (rosenbrock::ORDER as f64, 6.0, 0.2),
+            };
+            let fixed = self.opts.fixed_step.is_some();
+            let bad = match err {
+                None => true,
+                Some(e) => !e.is_finite() || self.y_new.iter().any(|v| !v.is_finite()),
+            };
+            if bad && fixed {
+                y.copy_from_slice(&self.y);
+                let s = self.non_finite(&self.y_new).unwrap_or(Status::StepTooSmall { h });
+                return done(s, t, stats, &mut self.total);
+            }
+            if bad {
+                // singular matrix or overflow: much smaller steps
+                stats.rejected += 1;
+                rejected_last = true;
+                h *= 0.2;
+                if h < min_step {
+                    y.copy_from_slice(&self.y);
+                    let s = self.non_finite(&self.y_new).unwrap_or(Status::StepTooSmall { h });
+                    return done(s, t, stats, &mut self.total);
+                }
+                continue;
+            }
+            let err = err.unwrap_or(f64::NAN);
+            if !(fixed || err <= 1.0) {
+                stats.rejected += 1;
+                rejected_last = true;
+                h *= (0.9 * err.powf(-1.0 / q)).clamp(shrink_min, 1.0);
+                continue;
+            }
+            // accepted: the derivative at the new point (the next step's first stage)
+            let t_new = if last { t_end } else { t + h };
+            let method = match self.mode {
+                Mode::Explicit => {
+                    self.dop.finish(self.sys, t_new, &self.y_new);
+                    stats.rhs_evaluations += 1;
+                    Method::Dop853
+                }
+                Mode::Implicit => {
+                    self.rodas.finish();
+                    self.sys.rhs(t_new, &self.y_new, &mut self.tmp2);
+                    stats.rhs_evaluations += 1;
+                    Method::Rodas
+                }
+            };
+            stats.steps += 1;
+            if method == Method::Rodas {
+                stats.implicit_steps += 1;
+            }
+            // events on the dense output
+            self.hits.clear();
+            let mut t_cut = t_new;
+            let mut terminal: Option<usize> = None;
+            for (i, e) in self.events.iter().enumerate() {
+                let g1 = e.g(t_new, &self.y_new);
+                let g0 = self.g_old[i];
+                if crosses(e.direction(), g0, g1) {
+                    let (sys, dop, rodas, y_old, y_new, buf) = (self.sys, &mut self.dop, &self.rodas, &self.y, &self.y_new, &mut self.y_event);
+                    let rhs = &mut stats.rhs_evaluations;
+                    let te = locate(
+                        |tt| {
+                            interpolate(method, sys, dop, rodas, t, h, y_old, y_new, tt, buf, rhs);
+                            e.g(tt, buf)
+                        },
+                        t,
+                        g0,
+                        t_new,
+                        g1,
+                    );
+                    self.hits.push((i, te));
+                    if e.terminal() && te <= t_cut {
+                        t_cut = te;
+                        terminal = Some(i);
+                    }
+                }
+            }
+            if let Some(ti) = terminal {
+                self.hits.retain(|&(i, te)| te < t_cut || i == ti);
+            }
+            self.hits.sort_by(|a, b| a.1.total_cmp(&b.1));
+            if terminal.is_some() {
+                interpolate(method, self.sys, &mut self.dop, &self.rodas, t, h, &self.y, &self.y_new, t_cut, &mut self.y_event, &mut stats.rhs_evaluations);
+            } else {
+                self.y_event.copy_from_slice(&self.y_new);
+            }
+            let control = {
+                let mut step = Step {
+                    t_old: t,
+                    t_new: t_cut,
+                    y_old: &self.y,
+                    y_new: &self.y_event,
+                    method,
+                    events: &self.hits,
+                    sys: self.sys,
+                    h,
+                    y_end: &self.y_new,
+                    dop: &mut self.dop,
+                    rodas: &self.rodas,
+                    extra_rhs: &mut stats.rhs_evaluations,
+                };
+                observe(&mut step)
+            };
+            // advance
+            if let Some(ti) = terminal {
+                y.copy_from_slice(&self.y_event);
+                self.y.copy_from_slice(&self.y_event);
+                self.dop.invalidate();
+                self.h_next = h;
+                return done(Status::Event(ti), t_cut, stats, &mut self.total);
+            }
+            std::mem::swap(&mut self.y, &mut self.y_new);
+            match method {
+                Method::Rodas => self.f.copy_from_slice(&self.tmp2),
+                _ => self.f.copy_from_slice(self.dop.k(12)),
+            }
+            let h_old = h;
+            t = t_new;
+            jac_fresh = false;
+            for (g, e) in self.g_old.iter_mut().zip(&self.events) {
+                *g = e.g(t, &self.y);
+            }
+            if let Some(s) = self.non_finite(&self.f) {
+                y.copy_from_slice(&self.y);
+                return done(s, t, stats, &mut self.total);
+            }
+            // next step size
+            if !fixed {
+                let fac = if err == 0.0 { grow_max } else { (0.9 * err.powf(-1.0 / q)).clamp(shrink_min, grow_max) };
+                let fac = if rejected_last { fac.min(1.0) } else { fac };
+                h = h_old * fac;
+            }
+            rejected_last = false;
+            // automatic switching
+            if self.opts.method == Method::Auto && !fixed {
+                match self.mode {
+                    Mode::Explicit => {
+                        // Hairer's test: h|λ| at the stability boundary in STIFF_STEPS steps
+                        let hl = self.dop.h_lambda(h_old, &self.y);
+                        if hl > dop853::STIFFNESS_THRESHOLD {
+                            self.nonstiff_count = 0;
+                            self.stiff_count += 1;
+                            if self.stiff_count >= self.stiff_needed {
+                                self.mode = Mode::Implicit;
+                                self.stiff_count = 0;
+                                self.phase_steps = 0;
+                                stats.switches += 1;
+                            }
+                        } else {
+                            self.nonstiff_count += 1;
+                            if self.nonstiff_count >= NONSTIFF_RESET {
+                                self.stiff_count = 0;
+                            }
+                        }
+                    }
+                    Mode::Implicit => {
+                        self.phase_steps += 1;
+                        if self.phase_steps.is_multiple_of(TEST_EVERY) {
+                            let rho = self.spectral_radius(t, &mut stats);
+                            // back to DOP853 when it could take the implicit step stably
+                            if h * rho <= 0.9 * dop853::STABILITY_RADIUS {
+                                self.mode = Mode::Explicit;
+                                stats.switches += 1;
+                                // a short implicit phase was not worth it: ask for more evidence
+                                // of stiffness next time (and forgive once it pays again)
+                                self.stiff_needed = if self.phase_steps <= 4 * TEST_EVERY { (self.stiff_needed * 2).min(STIFF_STEPS << 8) } else { STIFF_STEPS };
+                                self.stiff_count = 0;
+                                self.nonstiff_count = 0;
+                                h = h.min(0.9 * dop853::STABILITY_RADIUS / rho.max(f64::MIN_POSITIVE));
+                            }
+                        }
+                    }
+                }
+            }
+            self.h_next = h;
+            if control == Control::Stop {
+                y.copy_from_slice(&self.y);
+                return done(Status::Stopped, t, stats, &mut self.total);
+            }
+        }
+    }
+
+    /// Spectral radius of `J` at `(t, self.y)` by power iteration on difference products
+    /// `J v ≈ (f(y + εv) − f(y))/ε`, in the norm weighted by the tolerances; the geometric mean
+    /// of the last growth ratios (a complex pair makes single ratios oscillate).
+    fn spectral_radius(&mut self, t: f64, stats: &mut Stats) -> f64 {
+        let n = self.n;
+        let rtol = self.opts.rtol;
+        let scale = |i: usize, y: &[f64]| self.atol[i] + rtol * y[i].abs();
+        // start: a fixed pattern of signs (deterministic), unit weighted norm
+        let mut u: Vec<f64> = std::mem::take(&mut self.tmp1);
+        for (i, ui) in u.iter_mut().enumerate() {
+            let h = (i as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 61;
+            *ui = (1.0 + h as f64) * if i % 3 == 1 { -1.0 } else { 1.0 };
+        }
+        let norm = |v: &[f64]| (v.iter().map(|x| x * x).sum::<f64>() / n as f64).sqrt();
+        let nu = norm(&u);
+        u.iter_mut().for_each(|x| *x /= nu);
+        let eps = f64::EPSILON.sqrt() / rtol;
+        let mut log_sum = 0.0;
+        let mut counted = 0;
+        for it in 0..POWER_ITERATIONS {
+            for i in 0..n {
+                self.y_event[i] = self.y[i] + eps * u[i] * scale(i, &self.y);
+            }
+            self.sys.rhs(t, &self.y_event, &mut self.tmp2);
+            stats.rhs_evaluations += 1;
+            for i in 0..n {
+                u[i] = (self.tmp2[i] - self.f[i]) / (eps * scale(i, &self.y));
+            }
+            let r = norm(&u);
+            if !(r > 0.0 && r.is_finite()) {
+                self.tmp1 = u;
+                return if r == 0.0 { 0.0 } else { f64::INFINITY };
+            }
+            u.iter_mut().for_each(|x| *x /= r);
+            if it >= POWER_ITERATIONS / 2 {
+                log_sum += r.ln();
+                counted += 1;
+            }
+        }
+        self.tmp1 = u;
+        (log_sum / counted as f64).exp()
+    }
+}

@@ -1,0 +1,489 @@
+//! The equations of motion of the planar rotor in rotor axes, in three forms that check each
+//! other: the right-hand side with the ball accelerations eliminated in closed form (what the
+//! integrators call, cost linear in the number of balls), the residual of every body's
+//! d'Alembert equation (the definition; exact Jacobians by forward-mode differentiation of it),
+//! and the full mass matrix assembled body by body (a second route, for tests).
+//!
+//! ## Elimination
+//! The unknowns are `x = (ü, θ̈)` (`θ̈` prescribed under a speed drive) and the ball
+//! accelerations `ψ̈_j`. Ball `j`'s equation involves only `x` and its own `ψ̈_j`:
+//!
+//! ```text
+//! m3 r b_j · x + m3 r² ψ̈_j = h_j,    b_j = (−sin ψ_j, cos ψ_j, e^{iψ_j}·(u + a_E) + r),
+//! h_j = −c_ψ ψ̇_j − m3 r (2θ̇ e^{iψ_j}·u̇ − θ̇² (i e^{iψ_j})·(u + a_E))
+//! ```
+//!
+//! (`a·b = Re(conj(a) b)`), so the mass matrix is an arrow: the rotor block `A` (3×3), border
+//! columns `m3 r b_j`, diagonal `m3 r²`. Its Schur complement gives
+//! `(A − m3 Σ b_j b_jᵀ) x = f − Σ b_j h_j / r`, a 3×3 (2×2) symmetric positive definite system
+//! solved in closed form (LDLᵀ), then `ψ̈_j = h_j/(m3 r²) − b_j·x / r`.
+
+use super::{Drive, PlanarRotor};
+use crate::ode::arrow::{ArrowJacobian, ArrowLinearization, ArrowSystem};
+use crate::ode::dual::{Dual, Real};
+use crate::ode::{Jacobian, System};
+
+/// A complex number over any [`Real`] (plane vectors in rotor axes).
+#[derive(Clone, Copy, Debug)]
+struct Cx<T> {
+    re: T,
+    im: T,
+}
+
+impl<T: Real> Cx<T> {
+    fn new(re: T, im: T) -> Self {
+        Cx { re, im }
+    }
+    fn c(re: f64, im: f64) -> Self {
+        Cx { re: T::cst(re), im: T::cst(im) }
+    }
+    fn add(self, o: Self) -> Self {
+        Cx::new(self.re + o.re, self.im + o.im)
+    }
+    fn sub(self, o: Self) -> Self {
+        Cx::new(self.re - o.re, self.im - o.im)
+    }
+    fn scale(self, s: T) -> Self {
+        Cx::new(self.re * s, self.im * s)
+    }
+    fn scalef(self, s: f64) -> Self {
+        Cx::new(self.re * s, self.im * s)
+    }
+    fn mul_i(self) -> Self {
+        Cx::new(-self.im, self.re)
+    }
+    /// `Re(conj(self) · o)`: the dot product of two plane vectors.
+    fn dot(self, o: Self) -> T {
+        self.re * o.re + self.im * o.im
+    }
+}
+
+/// The equations in rotor axes: state `y = (ξ, η, θ, ψ_1..n, ξ̇, η̇, θ̇, ψ̇_1..n)`, with
+/// `u = ξ + iη = (X + iY) e^{−iθ}` the shaft point C seen from the rotor.
+///
+/// Under a prescribed speed the rotor's `θ̇` component follows `θ̈ = a(t)` (it equals the
+/// schedule's `ω(t)` when started on it, as `simulate` does at each piece) and the dynamics use
+/// the schedule's `ω(t)` itself.
+pub struct Equations<'a> {
+    /// The rotor.
+    pub rotor: &'a PlanarRotor,
+    /// How it is driven.
+    pub drive: &'a Drive,
+    e: (f64, f64),
+    prescribed: bool,
+}
+
+impl<'a> Equations<'a> {
+    /// The equations of `rotor` under `drive`.
+    pub fn new(rotor: &'a PlanarRotor, drive: &'a Drive) -> Self {
+        let e = (rotor.s2 * rotor.gamma.cos(), rotor.s2 * rotor.gamma.sin());
+        Equations { rotor, drive, e, prescribed: drive.prescribed() }
+    }
+
+    /// Number of generalised coordinates `3 + n`.
+    pub fn coords(&self) -> usize {
+        3 + self.rotor.n
+    }
+
+    /// `(θ̇, θ̈)` used by the dynamics at `(t, y)`: the schedule's under a prescribed speed
+    /// (`θ̈` then known), else the state's `θ̇` and `None`.
+    fn speed(&self, t: f64, y: &[f64]) -> (f64, Option<f64>) {
+        if self.prescribed {
+            let (w, a) = self.drive.kinematics(t);
+            (w, Some(a))
+        } else {
+            (y[self.coords() + 2], None)
+        }
+    }
+
+    /// The residual of every equation, `R = F − M q̈` (zero at the solution), generic over the
+    /// number type so that [`Dual`] numbers give exact derivatives. `ψ̇_j`, `ψ_j` of ball `j`
+    /// come from `ball(j)`; `u`, `u̇`, `θ̇` are given; the accelerations `qdd` are plain numbers.
+    /// `on_ball(j, R_rotor_part, R_ball)` receives each ball's contributions (rotor rows:
+    /// translation x, y, rotation) before they are summed; returns the rotor rows' total.
+    #[allow(clippy::too_many_arguments)]
+    fn residual<T: Real>(&self, t: f64, u: Cx<T>, ud: Cx<T>, w: T, qdd: &[f64], ball: impl Fn(usize) -> (T, T), mut on_ball: impl FnMut(usize, [T; 3], T)) -> [T; 3] {
+        let p = self.rotor;
+        let n = p.n;
+        let udd = Cx::<T>::c(qdd[0], qdd[1]);
+        let wd = T::cst(qdd[2]);
+        let e = Cx::<T>::c(self.e.0, self.e.1);
+        let zero = Cx::<T>::c(0.0, 0.0);
+        // absolute acceleration of a body at offset a (rate ad, acceleration add), rotor axes
+        let acc = |pos: Cx<T>, ad: Cx<T>, add: Cx<T>| udd.add(add).add(pos.mul_i().scale(wd)).add(ud.add(ad).mul_i().scale(w * 2.0)).sub(pos.scale(w * w));
+        let force = u.scalef(-p.k).sub(ud.add(u.mul_i().scale(w)).scalef(p.c));
+        let mut trans = force;
+        let mut rot = u.mul_i().dot(force) - w * p.c_theta - wd * p.i_g;
+        if !self.prescribed {
+            rot = rot + T::cst(self.drive.torque(t, w.value())) + (w + (-w.value())) * self.drive.torque_slope(t, w.value());
+        }
+        for (m, a) in [(p.m1, Cx::c(p.s1, 0.0)), (p.m2, e)] {
+            let pos = u.add(a);
+            let ab = acc(pos, zero, zero);
+            trans = trans.sub(ab.scalef(m));
+            rot = rot - pos.mul_i().dot(ab) * m;
+        }
+        for j in 0..n {
+            let (psi, psid) = ball(j);
+            let (s, c) = psi.sin_cos();
+            let d = Cx::new(c, s);
+            let t_j = d.mul_i().scalef(p.r); // ∂(position)/∂ψ_j
+            let pos = u.add(e).add(d.scalef(p.r));
+            let ad = t_j.scale(psid);
+            let add = t_j.scalef(qdd[3 + j]).sub(d.scale(psid * psid).scalef(p.r));
+            let ab = acc(pos, ad, add);
+            let r_tr = ab.scalef(-p.m3);
+            let r_rot = pos.mul_i().dot(ab) * (-p.m3);
+            let r_ball = psid * (-p.c_psi) - t_j.dot(ab) * p.m3;
+            on_ball(j, [r_tr.re, r_tr.im, r_rot], r_ball);
+            trans = trans.add(r_tr);
+            rot = rot + r_rot;
+        }
+        if self.prescribed {
+            rot = T::cst(qdd[2]) * 0.0; // θ̈ = a(t): nothing depends on the state
+        }
+        [trans.re, trans.im, rot]
+    }
+
+    /// The residuals `F − M q̈` of all `3 + n` equations at `(t, y)` for accelerations `qdd`
+    /// (translation x, y, rotation, balls); zero when `qdd` is the right-hand side's. For checks.
+    pub fn residuals(&self, t: f64, y: &[f64], qdd: &[f64]) -> Vec<f64> {
+        let nc = self.coords();
+        let (w, wd) = self.speed(t, y);
+        let mut qdd = qdd.to_vec();
+        if let Some(a) = wd {
+            qdd[2] = a;
+        }
+        let mut out = vec![0.0; nc];
+        let r = self.residual::<f64>(t, Cx::new(y[0], y[1]), Cx::new(y[nc], y[nc + 1]), w, &qdd, |j| (y[3 + j], y[nc + 3 + j]), |j, _, rb| out[3 + j] = rb);
+        out[..3].copy_from_slice(&r);
+        if wd.is_some() {
+            out[2] = 0.0;
+        }
+        out
+    }
+
+    /// The full mass matrix `M` (row-major `(3+n)²`) and forces `F` of `M q̈ = F` at `(t, y)`,
+    /// assembled body by body from `A_b = ü + ä_b + iθ̈(u + a_b) + 2iθ̇(u̇ + ȧ_b) − θ̇²(u + a_b)`
+    /// (independently of the elimination in [`System::rhs`]; for checks). Under a prescribed
+    /// speed the rotation row is `θ̈ = a(t)`.
+    pub fn mass_matrix(&self, t: f64, y: &[f64]) -> (Vec<f64>, Vec<f64>) {
+        let p = self.rotor;
+        let n = p.n;
+        let nc = 3 + n;
+        let (w, wd) = self.speed(t, y);
+        let u = Cx::<f64>::new(y[0], y[1]);
+        let ud = Cx::<f64>::new(y[nc], y[nc + 1]);
+        let e = Cx::<f64>::new(self.e.0, self.e.1);
+        let mut m = vec![0.0; nc * nc];
+        let mut f = vec![0.0; nc];
+        let force = u.scalef(-p.k).sub(ud.add(u.mul_i().scalef(w)).scalef(p.c));
+        f[0] = force.re;
+        f[1] = force.im;
+        f[2] = u.mul_i().dot(force) - p.c_theta * w + self.drive.torque(t, w);
+        m[2 * nc + 2] = p.i_g;
+        // bodies: (mass, offset, offset rate, velocity-dependent part of ä, ∂offset/∂ψ (ball index))
+        let mut bodies = vec![(p.m1, Cx::new(p.s1, 0.0), Cx::new(0.0, 0.0), Cx::new(0.0, 0.0), None), (p.m2, e, Cx::new(0.0, 0.0), Cx::new(0.0, 0.0), None)];
+        for j in 0..n {
+            let (s, c) = y[3 + j].sin_cos();
+            let d = Cx::new(c, s);
+            let tj = d.mul_i().scalef(p.r);
+            let psid = y[nc + 3 + j];
+            bodies.push((p.m3, e.add(d.scalef(p.r)), tj.scalef(psid), d.scalef(-p.r * psid * psid), Some((j, tj))));
+        }
+        for (mb, a, ad, add_v, ball) in bodies {
+            let pos = u.add(a);
+            // velocity-dependent part of the acceleration
+            let rv = add_v.add(ud.add(ad).mul_i().scalef(2.0 * w)).sub(pos.scalef(w * w));
+            let ipos = pos.mul_i();
+            // rows: translation (x, y), rotation, own ball; columns ü_x, ü_y, θ̈, ψ̈_own
+            let mut rows: Vec<(usize, Cx<f64>)> = vec![(0, Cx::new(1.0, 0.0)), (1, Cx::new(0.0, 1.0)), (2, ipos)];
+            if let Some((j, tj)) = ball {
+                rows.push((3 + j, tj));
+            }
+            let mut cols: Vec<(usize, Cx<f64>)> = vec![(0, Cx::new(1.0, 0.0)), (1, Cx::new(0.0, 1.0)), (2, ipos)];
+            if let Some((j, tj)) = ball {
+                cols.push((3 + j, tj));
+            }
+            for &(r, dir) in &rows {
+                for &(cidx, cdir) in &cols {
+                    m[r * nc + cidx] += mb * dir.dot(cdir);
+                }
+                f[r] -= mb * dir.dot(rv);
+            }
+        }
+        for j in 0..n {
+            f[3 + j] -= p.c_psi * y[nc + 3 + j];
+        }
+        if let Some(a) = wd {
+            for r in 0..nc {
+                if r != 2 {
+                    f[r] -= m[r * nc + 2] * a;
+                }
+                m[r * nc + 2] = 0.0;
+                m[2 * nc + r] = 0.0;
+            }
+            m[2 * nc + 2] = 1.0;
+            f[2] = a;
+        }
+        (m, f)
+    }
+}
+
+/// `x` of the symmetric positive definite `a x = g` (3×3 or, with `p = 2`, the leading 2×2),
+/// by LDLᵀ in closed form.
+#[inline]
+fn solve_spd(a: [[f64; 3]; 3], g: [f64; 3], p: usize) -> [f64; 3] {
+    let d1 = a[0][0];
+    let l21 = a[1][0] / d1;
+    let d2 = a[1][1] - l21 * a[1][0];
+    let z1 = g[0];
+    let z2 = g[1] - l21 * z1;
+    if p == 2 {
+        let x2 = z2 / d2;
+        return [z1 / d1 - l21 * x2, x2, 0.0];
+    }
+    let l31 = a[2][0] / d1;
+    let l32 = (a[2][1] - l31 * a[1][0]) / d2;
+    let d3 = a[2][2] - l31 * a[2][0] - l32 * l32 * d2;
+    let z3 = g[2] - l31 * z1 - l32 * z2;
+    let x3 = z3 / d3;
+    let x2 = z2 / d2 - l32 * x3;
+    [z1 / d1 - l21 * x2 - l31 * x3, x2, x3]
+}
+
+impl System for Equations<'_> {
+    fn dim(&self) -> usize {
+        2 * self.coords()
+    }
+
+    fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
+        let p = self.rotor;
+        let n = p.n;
+        let nc = 3 + n;
+        let (w, wd_known) = self.speed(t, y);
+        let (ux, uy) = (y[0], y[1]);
+        let (vx, vy) = (y[nc], y[nc + 1]);
+        let (px, py) = (ux + self.e.0, uy + self.e.1); // P = u + a_E
+        let (m3r, r) = (p.m3 * p.r, p.r);
+        let wd_b = wd_known.unwrap_or(0.0);
+        // pass 1 over the balls: sums for the rotor rows and the Schur complement
+        let (mut sdx, mut sdy) = (0.0, 0.0); // Σ d_j
+        let (mut vbx, mut vby) = (0.0, 0.0); // Σ i d_j ψ̇_j
+        let (mut qx, mut qy) = (0.0, 0.0); // Σ d_j ψ̇_j²
+        let mut rot_b = 0.0; // Σ ψ̇_j (2θ̇ + ψ̇_j) P·(i d_j)
+        let mut bb = [[0.0; 3]; 3]; // Σ b_j b_jᵀ
+        let mut bh = [0.0; 3]; // Σ b_j h_j
+        for j in 0..n {
+            let (s, c) = y[3 + j].sin_cos();
+            let psid = y[nc + 3 + j];
+            dy[3 + j] = c; // scratch until the second pass
+            dy[nc + 3 + j] = s;
+            sdx += c;
+            sdy += s;
+            vbx -= s * psid;
+            vby += c * psid;
+            qx += c * psid * psid;
+            qy += s * psid * psid;
+            let p_id = -px * s + py * c; // P·(i d)
+            let d_p = px * c + py * s; // P·d
+            rot_b += psid * (2.0 * w + psid) * p_id;
+            let beta = d_p + r;
+            let h = -p.c_psi * psid - m3r * (2.0 * w * (c * vx + s * vy) - w * w * p_id) - m3r * beta * wd_b;
+            let b = [-s, c, beta];
+            for i in 0..3 {
+                for k in 0..=i {
+                    bb[i][k] += b[i] * b[k];
+                }
+                bh[i] += b[i] * h;
+            }
+        }
+        let m0 = p.total_mass();
+        let me = p.m2 + n as f64 * p.m3;
+        let sx = m0 * ux + p.m1 * p.s1 + me * self.e.0 + m3r * sdx;
+        let sy = m0 * uy + me * self.e.1 + m3r * sdy;
+        let (gx, gy) = (ux + p.s1, uy);
+        let p2 = px * px + py * py;
+        let inertia = p.i_g + p.m1 * (gx * gx + gy * gy) + me * p2 + p.m3 * (2.0 * r * (px * sdx + py * sdy) + n as f64 * r * r);
+        // forces and velocity-dependent inertia terms
+        let fx = -p.k * ux - p.c * (vx - w * uy);
+        let fy = -p.k * uy - p.c * (vy + w * ux);
+        let (bx, by) = (m0 * vx + m3r * vbx, m0 * vy + m3r * vby); // m0 u̇ + m3 r Σ i d ψ̇
+        let rx = -2.0 * w * by - w * w * sx - m3r * qx;
+        let ry = 2.0 * w * bx - w * w * sy - m3r * qy;
+        let mut g = [fx - rx, fy - ry, 0.0];
+        let (isx, isy) = (-sy, sx);
+        let mut a = [[m0, 0.0, isx], [0.0, m0, isy], [isx, isy, inertia]];
+        let dim = if let Some(acc) = wd_known {
+            g[0] -= isx * acc;
+            g[1] -= isy * acc;
+            2
+        } else {
+            let rot_r = 2.0 * w * ((p.m1 * gx + me * px) * vx + (p.m1 * gy + me * py) * vy + m3r * (vx * sdx + vy * sdy)) + m3r * rot_b;
+            g[2] = self.drive.torque(t, w) + (-uy * fx + ux * fy) - p.c_theta * w - rot_r;
+            3
+        };
+        for i in 0..3 {
+            for k in 0..=i {
+                a[i][k] -= p.m3 * bb[i][k];
+                a[k][i] = a[i][k];
+            }
+            if n > 0 {
+                g[i] -= bh[i] / r;
+            }
+        }
+        let x = solve_spd(a, g, dim);
+        let wd = wd_known.unwrap_or(x[2]);
+        // pass 2: ball accelerations
+        for j in 0..n {
+            let (c, s) = (dy[3 + j], dy[nc + 3 + j]);
+            let psid = y[nc + 3 + j];
+            let p_id = -px * s + py * c;
+            let beta = px * c + py * s + r;
+            let h = -p.c_psi * psid - m3r * (2.0 * w * (c * vx + s * vy) - w * w * p_id) - m3r * beta * wd_b;
+            let bx_ = -s * x[0] + c * x[1] + if wd_known.is_none() { beta * x[2] } else { 0.0 };
+            dy[nc + 3 + j] = h / (m3r * r) - bx_ / r;
+        }
+        dy[..nc].copy_from_slice(&y[nc..2 * nc]);
+        dy[nc] = x[0];
+        dy[nc + 1] = x[1];
+        dy[nc + 2] = wd;
+    }
+
+    fn jacobian(&self) -> Box<dyn Jacobian + '_> {
+        Box::new(ArrowJacobian::new(self))
+    }
+
+    fn component_name(&self, i: usize) -> String {
+        let nc = self.coords();
+        let (rate, k) = if i >= nc { (true, i - nc) } else { (false, i) };
+        let base = match k {
+            0 => "ξ (x of C in rotor axes)".to_string(),
+            1 => "η (y of C in rotor axes)".to_string(),
+            2 => "θ (rotor angle)".to_string(),
+            j => format!("ψ_{} (ball {} angle)", j - 2, j - 2),
+        };
+        if rate {
+            format!("rate of {base}")
+        } else {
+            base
+        }
+    }
+}
+
+/// Seeds of the Jacobian's forward differentiation: border `ξ, η, ξ̇, η̇, θ̇`, then the own
+/// ball's `ψ_j, ψ̇_j`.
+type D7 = Dual<7>;
+
+impl ArrowSystem for Equations<'_> {
+    fn arrow_shape(&self) -> (usize, usize) {
+        (3, self.rotor.n)
+    }
+
+    fn linearize(&self, t: f64, y: &[f64], qdd: &[f64], lin: &mut ArrowLinearization) {
+        let p = self.rotor;
+        let n = p.n;
+        let nc = 3 + n;
+        let (w, wd) = self.speed(t, y);
+        let mut acc = qdd.to_vec();
+        if let Some(a) = wd {
+            acc[2] = a;
+        }
+        lin.g_q.clear();
+        lin.g_v.clear();
+        // mass matrix (arrow): rotor block, border columns m3 r b_j, diagonal m3 r²
+        let m0 = p.total_mass();
+        let me = p.m2 + n as f64 * p.m3;
+        let (px, py) = (y[0] + self.e.0, y[1] + self.e.1);
+        let m = &mut lin.mass;
+        m.clear();
+        let (mut sdx, mut sdy) = (0.0, 0.0);
+        for j in 0..n {
+            let (s, c) = y[3 + j].sin_cos();
+            sdx += c;
+            sdy += s;
+            let beta = if self.prescribed { 0.0 } else { px * c + py * s + p.r };
+            let col = [-s * p.m3 * p.r, c * p.m3 * p.r, beta * p.m3 * p.r];
+            m.rb[3 * j..3 * j + 3].copy_from_slice(&col);
+            m.br[3 * j..3 * j + 3].copy_from_slice(&col);
+            m.bb[j] = p.m3 * p.r * p.r;
+        }
+        m.rr[0] = m0;
+        m.rr[4] = m0;
+        if self.prescribed {
+            m.rr[8] = 1.0;
+        } else {
+            let sx = m0 * y[0] + p.m1 * p.s1 + me * self.e.0 + p.m3 * p.r * sdx;
+            let sy = m0 * y[1] + me * self.e.1 + p.m3 * p.r * sdy;
+            let (gx, gy) = (y[0] + p.s1, y[1]);
+            m.rr[2] = -sy;
+            m.rr[6] = -sy;
+            m.rr[5] = sx;
+            m.rr[7] = sx;
+            m.rr[8] = p.i_g + p.m1 * (gx * gx + gy * gy) + me * (px * px + py * py) + p.m3 * (2.0 * p.r * (px * sdx + py * sdy) + n as f64 * p.r * p.r);
+        }
+        // residual derivatives by forward differentiation of the equations themselves
+        let u = Cx::new(D7::var(y[0], 0), D7::var(y[1], 1));
+        let ud = Cx::new(D7::var(y[nc], 2), D7::var(y[nc + 1], 3));
+        let wv = if self.prescribed { D7::cst(w) } else { D7::var(w, 4) };
+        let (gq, gv) = (&mut lin.g_q, &mut lin.g_v);
+        let rows = self.residual::<D7>(
+            t,
+            u,
+            ud,
+            wv,
+            &acc,
+            |j| (D7::var(y[3 + j], 5), D7::var(y[nc + 3 + j], 6)),
+            |j, r_rot, r_ball| {
+                for i in 0..3 {
+                    gq.rb[3 * j + i] = r_rot[i].d[5];
+                    gv.rb[3 * j + i] = r_rot[i].d[6];
+                }
+                gq.br[3 * j] = r_ball.d[0];
+                gq.br[3 * j + 1] = r_ball.d[1];
+                gv.br[3 * j] = r_ball.d[2];
+                gv.br[3 * j + 1] = r_ball.d[3];
+                gv.br[3 * j + 2] = r_ball.d[4];
+                gq.bb[j] = r_ball.d[5];
+                gv.bb[j] = r_ball.d[6];
+            },
+        );
+        let rows = if self.prescribed { [rows[0], rows[1], D7::cst(0.0)] } else { rows };
+        if self.prescribed {
+            for j in 0..n {
+                gq.rb[3 * j + 2] = 0.0;
+                gv.rb[3 * j + 2] = 0.0;
+            }
+        }
+        for (i, r) in rows.iter().enumerate() {
+            gq.rr[3 * i] = r.d[0];
+            gq.rr[3 * i + 1] = r.d[1];
+            gv.rr[3 * i] = r.d[2];
+            gv.rr[3 * i + 1] = r.d[3];
+            gv.rr[3 * i + 2] = r.d[4];
+        }
+    }
+}
+
+/// Total mechanical energy `T + V` of a state (J): for the energy-balance tests.
+pub fn energy(rotor: &PlanarRotor, y: &[f64]) -> f64 {
+    let n = rotor.n;
+    let nc = 3 + n;
+    let u = Cx::<f64>::new(y[0], y[1]);
+    let ud = Cx::<f64>::new(y[nc], y[nc + 1]);
+    let w = y[nc + 2];
+    let e_off = Cx::<f64>::new(rotor.s2 * rotor.gamma.cos(), rotor.s2 * rotor.gamma.sin());
+    let vel = |a: Cx<f64>, ad: Cx<f64>| ud.add(ad).add(u.add(a).mul_i().scalef(w));
+    let mut t = 0.5 * rotor.i_g * w * w;
+    let v_g = vel(Cx::new(rotor.s1, 0.0), Cx::new(0.0, 0.0));
+    t += 0.5 * rotor.m1 * v_g.dot(v_g);
+    let v_e = vel(e_off, Cx::new(0.0, 0.0));
+    t += 0.5 * rotor.m2 * v_e.dot(v_e);
+    for j in 0..n {
+        let (s, c) = y[3 + j].sin_cos();
+        let d = Cx::new(c, s);
+        let v = vel(e_off.add(d.scalef(rotor.r)), d.mul_i().scalef(rotor.r * y[nc + 3 + j]));
+        t += 0.5 * rotor.m3 * v.dot(v);
+    }
+    t + 0.5 * rotor.k * u.dot(u)
+}
