@@ -99,7 +99,7 @@ pub const LIMITS: &[Limit] = &[
     lim("planar.m1", 0.0, true, 1e9, false, "kg", MASS),
     lim("planar.m2", 0.0, false, 1e9, false, "kg", MASS),
     lim("planar.m3", 0.0, false, 1e9, false, "kg", MASS),
-    lim("planar.n", 0.0, false, 9.0, false, "", "the simulator's fixed-size state holds 2 (3 + n) ≤ 24 values"),
+    lim("planar.n", 0.0, false, crate::planar::MAX_BALLS as f64, false, "", "a step costs O(n); the limit keeps a mistyped number from allocating gigabytes"),
     lim("planar.s1", 0.0, false, 1e3, false, "m", RADIUS),
     lim("planar.s2", 0.0, false, 1e3, false, "m", RADIUS),
     lim("planar.gamma", -1e3, false, 1e3, false, "rad", ANGLE),
@@ -118,11 +118,15 @@ pub const LIMITS: &[Limit] = &[
     lim("drive.t_end", 0.0, true, 1e7, false, "s", TIME),
     lim("drive.psi0", -1e3, false, 1e3, false, "rad", ANGLE),
     lim("drive.psi_rate0", -1e6, false, 1e6, false, "rad/s", SPEED),
+    lim("drive.xy0", -1e3, false, 1e3, false, "m", RADIUS),
+    lim("drive.xy_rate0", -1e6, false, 1e6, false, "m/s", "far beyond any whirl velocity"),
     lim("drive.schedule", -1e9, false, 1e9, false, "s, rad/s or N·m", "times within the simulated span, speeds and torques as above"),
     // integration
     lim("integration.rtol", 1e-14, false, 1e-2, false, "", "below 1e-14 double precision cannot reach it; above 1e-2 the error estimate no longer controls the error"),
     lim("integration.atol", 0.0, true, 1e-2, false, "m", "absolute tolerance on displacements; above 1 cm it controls nothing"),
     lim("integration.dt", 0.0, true, 1e7, false, "s", "also t_end/dt ≤ 5e7 samples"),
+    lim("integration.max_steps", 1.0, false, 1e15, false, "", "a step budget; a whole number"),
+    lim("integration.max_wall_s", 0.0, true, 1e9, false, "s", "a wall-clock budget"),
 ];
 
 /// The limit of `field`, if it has one.
