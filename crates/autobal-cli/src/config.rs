@@ -559,18 +559,6 @@ pub fn build_planar(root: &Table, source: &str) -> Result<PlanarConfig> {
         i_g: p.req("i_g")?,
     };
     rotor.validate()?;
-    // the shaft's natural frequency from 1e-3 to 1e7 rad/s (0.16 mHz to 1.6 MHz): below, the shaft
-    // has no stiffness on any drive's time scale; above, it is rigid on them, and the integrator
-    // would need ~100 steps per period of a vibration that plays no part
-    let wn = rotor.natural_frequency();
-    if !(1e-3..=1e7).contains(&wn) {
-        bail!(
-            "planar.k: the natural frequency sqrt(k/m0) = {} rad/s (k = {} N/m, m0 = {} kg) lies outside [0.001, 1e7] rad/s",
-            autobal::error::fmt_num(wn),
-            autobal::error::fmt_num(rotor.k),
-            autobal::error::fmt_num(rotor.total_mass())
-        );
-    }
     let omega0 = d.f64("omega0")?.unwrap_or(0.0);
     let t_off = d.f64("t_off")?;
     let kind = d.string("kind")?.unwrap_or("acceleration");

@@ -205,3 +205,12 @@ fn regression_unbalance_on_the_axis_gave_an_infinite_mass_limit() {
     let v: serde_json::Value = serde_json::from_str(&out).unwrap();
     assert!(v["sensitivity"]["m0_limit"].is_null(), "no limit for an unbalance on the axis");
 }
+
+#[test]
+fn regression_sweep_axes_bypassed_the_ranges() {
+    // sweeps set their axes through the library's parameter paths, which checked only finiteness:
+    // planar.gamma = 1e300 ran; the ranges now hold in PlanarRotor/PlanarProblem::validate
+    rejects(&["sweep", "--x", "planar.gamma=1e300:1e301:2", "--out", "sw"], "planar.gamma");
+    rejects(&["sweep", "--x", "planar.k=1e-300:1e-299:2", "--out", "sw"], "planar.k");
+    rejects(&["sweep", "--x", "integration.rtol=0.5:1:2", "--out", "sw"], "integration.rtol");
+}

@@ -189,6 +189,71 @@ pub fn check_count(field: &str, value: u64) -> Result<u64> {
     }
 }
 
+/// The planar rotor (paper 004): every field in its range, and the shaft's natural frequency
+/// `sqrt(k/m0)` within `[1e-3, 1e7]` rad/s (0.16 mHz to 1.6 MHz): below, the shaft has no
+/// stiffness on any drive's time scale; above, it is rigid on them, and an integrator would
+/// need ~100 steps per period of a vibration that plays no part. [`crate::planar::PlanarRotor::validate`]
+/// calls it.
+pub fn check_planar_rotor(r: &crate::planar::PlanarRotor) -> Result<()> {
+    check_all(&[
+        ("planar.m1", r.m1),
+        ("planar.m2", r.m2),
+        ("planar.m3", r.m3),
+        ("planar.s1", r.s1),
+        ("planar.s2", r.s2),
+        ("planar.gamma", r.gamma),
+        ("planar.r", r.r),
+        ("planar.k", r.k),
+        ("planar.c", r.c),
+        ("planar.c_psi", r.c_psi),
+        ("planar.c_theta", r.c_theta),
+        ("planar.i_g", r.i_g),
+    ])?;
+    check_count("planar.n", r.n as u64)?;
+    let wn = r.natural_frequency();
+    if !(1e-3..=1e7).contains(&wn) {
+        return Err(Error::invalid(
+            "planar.k",
+            format!(
+                "the natural frequency sqrt(k/m0) = {} rad/s (k = {} N/m, m0 = {} kg) lies outside [0.001, 1e7] rad/s",
+                fmt_num(wn),
+                fmt_num(r.k),
+                fmt_num(r.total_mass())
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Every number of a description that has a limit, read through its parameter paths
+/// ([`crate::paths::Parameters`]): what a sweep or a front end may have set.
+pub fn check_parameters<T: crate::paths::Parameters>(t: &T) -> Result<()> {
+    for p in T::parameter_paths() {
+        if limit(p.path).is_some() {
+            if let Ok(v) = (p.get)(t) {
+                check(p.path, v)?;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// A planar problem: rotor ([`check_planar_rotor`]), drive and integration settings through
+/// their parameter paths, the initial ball angles and rates and the rotor's initial position and
+/// velocity one by one, and the step and wall-clock budgets.
+/// [`crate::planar::problem::PlanarProblem::validate`] calls it.
+pub fn check_planar_problem(p: &crate::planar::problem::PlanarProblem) -> Result<()> {
+    check_planar_rotor(&p.rotor)?;
+    check_parameters(p)?;
+    let s = &p.settings;
+    s.psi0.iter().try_for_each(|v| check("drive.psi0", *v).map(|_| ()))?;
+    s.psi_rate0.iter().try_for_each(|v| check("drive.psi_rate0", *v).map(|_| ()))?;
+    s.xy0.iter().try_for_each(|v| check("drive.xy0", *v).map(|_| ()))?;
+    s.xy_rate0.iter().try_for_each(|v| check("drive.xy_rate0", *v).map(|_| ()))?;
+    check("integration.max_steps", s.max_steps as f64)?;
+    s.max_wall_s.map_or(Ok(()), |w| check("integration.max_wall_s", w).map(|_| ()))
+}
+
 /// Check a derived dimensionless quantity against the range of the dimensionless field
 /// `field`, blaming the SI input `name` that set it: `what` says how it follows.
 pub fn check_derived(name: &str, field: &str, value: f64, what: &str) -> Result<f64> {

@@ -111,6 +111,7 @@ impl PlanarRotor {
 
     /// Check every field; errors name it as `planar.<field>`.
     pub fn validate(&self) -> Result<()> {
+        crate::limits::check_planar_rotor(self)?;
         positive("planar.m1", self.m1)?;
         non_negative("planar.m2", self.m2)?;
         non_negative("planar.m3", self.m3)?;

@@ -123,6 +123,7 @@ impl PlanarProblem {
 
     /// Check rotor, drive and settings (errors name the field).
     pub fn validate(&self) -> Result<()> {
+        crate::limits::check_planar_problem(self)?;
         self.rotor.validate()?;
         self.drive.validate()?;
         self.settings.validate(&self.rotor)
