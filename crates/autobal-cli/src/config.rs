@@ -12,10 +12,21 @@ pub const DEFAULT_CONFIG: &str = include_str!("../../../examples/default.toml");
 
 /// Every table and key the config understands.
 pub(crate) const SCHEMA: &[(&str, &[&str])] = &[
-    ("rotor", &["mass", "equatorial_moment", "polar_moment", "z"]),
-    ("supports", &["z_left", "z_right", "stiffness_left", "stiffness_right", "damping_left", "damping_right"]),
-    ("unbalance", &["mass", "radius"]),
+    ("rotor", &["mass", "equatorial_moment", "polar_moment", "z", "axis_tilt", "axis_tilt_angle"]),
+    (
+        "supports",
+        &[
+            "z_left", "z_right", "stiffness_left", "stiffness_right", "damping_left", "damping_right",
+            "stiffness_left_y", "stiffness_right_y", "damping_left_y", "damping_right_y",
+        ],
+    ),
+    ("unbalance", &["mass", "radius", "angle"]),
     ("balancer", &["z", "balls", "ball_mass", "race_radius", "drag"]),
+    // spatial simulation only (docs/spatial.md, examples/spatial_two_plane.toml)
+    ("couple", &["mass", "radius", "angle", "z"]),
+    ("balancer2", &["z", "balls", "ball_mass", "race_radius", "drag"]),
+    ("spatial", &["gravity", "lock_tilt", "spin_drag"]),
+    ("initial", &["position", "velocity", "tilt", "tilt_rate"]),
     (
         "dimensionless",
         &["c_sigma", "rho_s", "l_left", "z_a", "delta_a", "m0", "r0", "m", "r", "n", "d_a", "h_x", "h_s"],
@@ -52,6 +63,16 @@ pub struct Config {
     /// The merged TOML text, for the report.
     pub text: String,
     pub dimensional: bool,
+}
+
+impl Config {
+    /// The SI rotor of a dimensional config (the spatial simulation's input).
+    pub fn si(&self) -> Option<&SpatialRotorSi> {
+        match &self.spec.input {
+            SpatialInput::Si { rotor, .. } => Some(rotor),
+            SpatialInput::Dimensionless(_) => None,
+        }
+    }
 }
 
 /// Parse a `--set key=value` value as TOML (number, bool, array, quoted string), falling back
@@ -147,13 +168,13 @@ fn check_key(table: &str, key: Option<&str>) -> Result<()> {
     Ok(())
 }
 
-struct Section<'a> {
-    name: &'static str,
-    table: Option<&'a Table>,
+pub(crate) struct Section<'a> {
+    pub(crate) name: &'static str,
+    pub(crate) table: Option<&'a Table>,
 }
 
 /// A TOML number (integer or float) as `f64`; `field` names it in the error.
-fn number(v: &Value, field: &str) -> Result<f64> {
+pub(crate) fn number(v: &Value, field: &str) -> Result<f64> {
     match v {
         Value::Float(f) => Ok(*f),
         Value::Integer(i) => Ok(*i as f64),
@@ -162,16 +183,16 @@ fn number(v: &Value, field: &str) -> Result<f64> {
 }
 
 impl<'a> Section<'a> {
-    fn get(&self, key: &str) -> Option<&'a Value> {
+    pub(crate) fn get(&self, key: &str) -> Option<&'a Value> {
         self.table.and_then(|t| t.get(key))
     }
-    fn f64(&self, key: &str) -> Result<Option<f64>> {
+    pub(crate) fn f64(&self, key: &str) -> Result<Option<f64>> {
         self.get(key).map(|v| number(v, &format!("{}.{key}", self.name))).transpose()
     }
-    fn req(&self, key: &str) -> Result<f64> {
+    pub(crate) fn req(&self, key: &str) -> Result<f64> {
         self.f64(key)?.ok_or_else(|| anyhow!("{}.{key}: missing (required)", self.name))
     }
-    fn count(&self, key: &str) -> Result<Option<u32>> {
+    pub(crate) fn count(&self, key: &str) -> Result<Option<u32>> {
         let field = format!("{}.{key}", self.name);
         match self.get(key) {
             None => Ok(None),
@@ -183,7 +204,7 @@ impl<'a> Section<'a> {
             Some(v) => bail!("{field}: expected a whole number, got {}", describe(v)),
         }
     }
-    fn string(&self, key: &str) -> Result<Option<&'a str>> {
+    pub(crate) fn string(&self, key: &str) -> Result<Option<&'a str>> {
         match self.get(key) {
             None => Ok(None),
             Some(Value::String(s)) => Ok(Some(s)),
@@ -517,7 +538,7 @@ pub struct PlanarConfig {
     pub source: String,
 }
 
-fn array_f64(sec: &Section, key: &str) -> Result<Option<Vec<f64>>> {
+pub(crate) fn array_f64(sec: &Section, key: &str) -> Result<Option<Vec<f64>>> {
     match sec.get(key) {
         None => Ok(None),
         Some(Value::Array(a)) => a.iter().map(|v| number(v, &format!("{}.{key}", sec.name))).collect::<Result<Vec<_>>>().map(Some),
@@ -536,7 +557,7 @@ pub fn load_planar(path: Option<&std::path::Path>, sets: &[String]) -> Result<Pl
 
 /// Validate a planar config table.
 pub fn build_planar(root: &Table, source: &str) -> Result<PlanarConfig> {
-    use autobal::planar::{Drive, PlanarRotor, Settings};
+    use autobal::planar::{PlanarRotor, Settings};
     check_schema(root)?;
     if !root.contains_key("planar") {
         bail!("planar: missing: `simulate` needs a [planar] table (see examples/planar.toml)");
@@ -559,6 +580,36 @@ pub fn build_planar(root: &Table, source: &str) -> Result<PlanarConfig> {
         i_g: p.req("i_g")?,
     };
     rotor.validate()?;
+    let (drive, t_end) = drive_of(&d)?;
+    let ig = integration_of(&ig, t_end)?;
+    let pair = |key: &str| -> Result<[f64; 2]> {
+        match array_f64(&d, key)? {
+            None => Ok([0.0; 2]),
+            Some(v) if v.len() == 2 => Ok([v[0], v[1]]),
+            Some(v) => bail!("drive.{key}: needs 2 numbers [X, Y], got {}", v.len()),
+        }
+    };
+    let defaults = Settings::new(&rotor, t_end);
+    let settings = Settings {
+        method: ig.method,
+        t_end,
+        dt: ig.dt,
+        rtol: ig.rtol,
+        atol: ig.atol,
+        psi0: array_f64(&d, "psi0")?.unwrap_or_else(|| Settings::default_psi0(rotor.n)),
+        psi_rate0: array_f64(&d, "psi_rate0")?.unwrap_or_else(|| vec![0.0; rotor.n]),
+        xy0: pair("xy0")?,
+        xy_rate0: pair("xy_rate0")?,
+        max_steps: ig.max_steps.unwrap_or(defaults.max_steps),
+        max_wall_s: ig.max_wall_s,
+    };
+    settings.validate(&rotor)?;
+    Ok(PlanarConfig { rotor, drive, settings, source: source.to_string() })
+}
+
+/// `[drive]`: the drive (shared by the planar and the spatial simulation) and `t_end`.
+pub(crate) fn drive_of(d: &Section) -> Result<(autobal::drive::Drive, f64)> {
+    use autobal::drive::Drive;
     let omega0 = d.f64("omega0")?.unwrap_or(0.0);
     let t_off = d.f64("t_off")?;
     let kind = d.string("kind")?.unwrap_or("acceleration");
@@ -590,37 +641,41 @@ pub fn build_planar(root: &Table, source: &str) -> Result<PlanarConfig> {
     };
     drive.validate()?;
     let t_end = d.f64("t_end")?.unwrap_or(10.0);
+    Ok((drive, t_end))
+}
+
+/// The `[integration]` table, shared by the planar and the spatial simulation.
+pub(crate) struct Integration {
+    pub(crate) method: autobal::planar::Method,
+    /// Output interval (default `t_end/2000`).
+    pub(crate) dt: f64,
+    pub(crate) rtol: f64,
+    pub(crate) atol: f64,
+    /// Step budget (`None`: the model's default).
+    pub(crate) max_steps: Option<u64>,
+    /// Wall-clock budget in seconds.
+    pub(crate) max_wall_s: Option<f64>,
+}
+
+/// `[integration]`: method, output interval, tolerances, budgets.
+pub(crate) fn integration_of(ig: &Section, t_end: f64) -> Result<Integration> {
     let method = match ig.string("method")? {
         None | Some("auto") => autobal::planar::Method::Auto,
         Some("dop853") => autobal::planar::Method::Dop853,
         Some("rodas") | Some("rosenbrock") => autobal::planar::Method::Rodas,
         Some(o) => bail!("integration.method: must be \"auto\", \"dop853\" or \"rodas\", got \"{o}\""),
     };
-    let pair = |key: &str| -> Result<[f64; 2]> {
-        match array_f64(&d, key)? {
-            None => Ok([0.0; 2]),
-            Some(v) if v.len() == 2 => Ok([v[0], v[1]]),
-            Some(v) => bail!("drive.{key}: needs 2 numbers [X, Y], got {}", v.len()),
-        }
+    let max_steps = match ig.f64("max_steps")? {
+        None => None,
+        Some(v) if (1.0..=1e15).contains(&v) && v.fract() == 0.0 => Some(v as u64),
+        Some(v) => bail!("integration.max_steps: must be a whole number from 1 to 1e15, got {v}"),
     };
-    let defaults = Settings::new(&rotor, t_end);
-    let settings = Settings {
+    Ok(Integration {
         method,
-        t_end,
         dt: ig.f64("dt")?.unwrap_or(t_end / 2000.0),
         rtol: ig.f64("rtol")?.unwrap_or(1e-8),
         atol: ig.f64("atol")?.unwrap_or(1e-9),
-        psi0: array_f64(&d, "psi0")?.unwrap_or_else(|| Settings::default_psi0(rotor.n)),
-        psi_rate0: array_f64(&d, "psi_rate0")?.unwrap_or_else(|| vec![0.0; rotor.n]),
-        xy0: pair("xy0")?,
-        xy_rate0: pair("xy_rate0")?,
-        max_steps: match ig.f64("max_steps")? {
-            None => defaults.max_steps,
-            Some(v) if (1.0..=1e15).contains(&v) && v.fract() == 0.0 => v as u64,
-            Some(v) => bail!("integration.max_steps: must be a whole number from 1 to 1e15, got {v}"),
-        },
+        max_steps,
         max_wall_s: ig.f64("max_wall_s")?,
-    };
-    settings.validate(&rotor)?;
-    Ok(PlanarConfig { rotor, drive, settings, source: source.to_string() })
+    })
 }

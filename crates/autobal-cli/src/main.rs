@@ -13,6 +13,7 @@ mod num;
 mod plot;
 mod sim;
 mod sweep;
+mod spatial_sim;
 mod report;
 
 use anyhow::{Context, Result};
@@ -156,9 +157,9 @@ enum Command {
         #[arg(long)]
         boundary: bool,
     },
-    /// Nonlinear passage through resonance of the planar rotor with an eccentric ball balancer (paper 004)
+    /// Simulate in time: the planar rotor of paper 004 ([planar]) or the spatial rotor of 000/003 (the analytic commands' config plus [drive])
     Simulate {
-        /// Config file with [planar], [drive], [integration]; default: the embedded examples/planar.toml
+        /// Config file with [planar] or the spatial rotor's tables, plus [drive], [integration]; default: the embedded examples/planar.toml
         #[arg(long, short)]
         config: Option<PathBuf>,
         /// Override a config field, e.g. --set drive.b=-2.5 (repeatable)
@@ -178,6 +179,24 @@ enum Command {
     Sweep(sweep::SweepArgs),
     /// Merge the outputs of `autobal sweep --shard K/N` into the unsharded sweep's STEM.csv/json
     Merge(sweep::MergeArgs),
+    /// Basins of the spatial rotor: where runs end over a grid of the first two balls' initial angles (parallel; CSV)
+    Basins {
+        #[arg(long, short)]
+        config: Option<PathBuf>,
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        /// Grid points per angle (N × N runs)
+        #[arg(long, default_value_t = 24)]
+        n: usize,
+        /// CSV of the runs' ends
+        #[arg(long, short, default_value = "basins.csv")]
+        out: PathBuf,
+        #[arg(long, value_enum, default_value = "table")]
+        format: Format,
+        /// Worker threads (default: all cores)
+        #[arg(long)]
+        threads: Option<usize>,
+    },
     /// Write an HTML report with SVG figures to a folder
     Report {
         #[command(flatten)]
@@ -239,6 +258,7 @@ fn run(cli: Cli) -> Result<()> {
         Command::Simulate { config, set, dt, out, format } => run_simulate(config, set, dt, out, format),
         Command::Sweep(a) => sweep::run(a),
         Command::Merge(a) => sweep::merge(a),
+        Command::Basins { config, set, n, out, format, threads } => run_basins(config, set, n, out, format, threads),
         Command::Report { common, out, quick } => {
             let _ = ctrlc::set_handler(|| sim::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
             let index = report::run(common.config.as_deref(), &common.set, &out, quick)?;
@@ -322,7 +342,14 @@ fn run_map(common: Common, x: String, y: String, omega: Option<f64>, balls: Ball
 }
 
 fn run_simulate(config: Option<PathBuf>, set: Vec<String>, dt: Option<f64>, out: PathBuf, format: Format) -> Result<()> {
-    let mut cfg = config::load_planar(config.as_deref(), &set)?;
+    let (mut root, source) = config::read_with_default(config.as_deref(), config::DEFAULT_PLANAR, "embedded default (examples/planar.toml)")?;
+    for s in &set {
+        config::apply_set(&mut root, s)?;
+    }
+    if spatial_sim::is_spatial(&root) {
+        return run_spatial(&root, &source, dt, out, format);
+    }
+    let mut cfg = config::build_planar(&root, &source)?;
     if let Some(d) = dt {
         cfg.settings.dt = d;
         cfg.settings.validate(&cfg.rotor).map_err(|e| anyhow::anyhow!("--dt: {e}"))?;
@@ -348,6 +375,55 @@ fn run_simulate(config: Option<PathBuf>, set: Vec<String>, dt: Option<f64>, out:
         anyhow::bail!("{st}: the samples up to then are kept in {}", out.display());
     }
     Ok(())
+}
+
+fn run_spatial(root: &toml::Table, source: &str, dt: Option<f64>, out: PathBuf, format: Format) -> Result<()> {
+    let mut sim = spatial_sim::build(root, source)?;
+    if let Some(d) = dt {
+        sim.settings.dt = d;
+        sim.settings.validate().map_err(|e| anyhow::anyhow!("--dt: {e}"))?;
+    }
+    let _ = ctrlc::set_handler(|| sim::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
+    if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).with_context(|| format!("--out: cannot create {}", dir.display()))?;
+    }
+    let file = std::fs::File::create(&out).with_context(|| format!("--out: cannot create {}", out.display()))?;
+    let mut w = std::io::BufWriter::new(file);
+    let progress = std::io::IsTerminal::is_terminal(&std::io::stderr());
+    let (summary, kept, wall) = spatial_sim::run_to_csv(&sim, &mut w, progress, &sim::INTERRUPTED)?;
+    drop(w);
+    let plots = spatial_sim::write_plots(&sim, &kept, &out.with_extension(""), "Spatial rotor")?;
+    emit(format, spatial_sim::summary_json(&sim, &summary, wall), spatial_sim::summary_table(&sim, &summary, wall))?;
+    eprintln!("wrote {} and {} plots ({})", out.display(), plots.len(), plots.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", "));
+    if let Some(st) = summary.stopped {
+        anyhow::bail!("{st}: the samples up to then are kept in {}", out.display());
+    }
+    Ok(())
+}
+
+fn run_basins(config: Option<PathBuf>, set: Vec<String>, n: usize, out: PathBuf, format: Format, threads: Option<usize>) -> Result<()> {
+    let (mut root, source) = config::read(config.as_deref())?;
+    for s in &set {
+        config::apply_set(&mut root, s)?;
+    }
+    let sim = spatial_sim::build(&root, &source)?;
+    if let Some(t) = threads {
+        if t == 0 {
+            anyhow::bail!("--threads: must be at least 1");
+        }
+        rayon::ThreadPoolBuilder::new().num_threads(t).build_global().ok();
+    }
+    let _ = ctrlc::set_handler(|| sim::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
+    if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).with_context(|| format!("--out: cannot create {}", dir.display()))?;
+    }
+    let progress = std::io::IsTerminal::is_terminal(&std::io::stderr());
+    let v = spatial_sim::run_basins(&sim, n, &out, progress, &sim::INTERRUPTED)?;
+    let table = format!(
+        "{} of {} runs balanced ({:.1} %), {:.2} s; wrote {}\n",
+        v["balanced"], v["runs"], 100.0 * v["fraction_balanced"].as_f64().unwrap_or(0.0), v["wall_time_s"].as_f64().unwrap_or(0.0), out.display()
+    );
+    emit(format, v, table)
 }
 
 /// The two axes of a map or sweep must set different fields (else one would silently win).

@@ -108,6 +108,7 @@ pub fn run_to_csv(cfg: &PlanarConfig, csv: &mut dyn Write, progress: bool) -> Re
 
 pub fn summary_json(cfg: &PlanarConfig, s: &Summary, wall: f64) -> Value {
     json!({
+        "model": "planar",
         "peak_amplitude": s.peak_amplitude,
         "omega_at_peak": s.omega_at_peak,
         "t_at_peak": s.t_at_peak,

@@ -578,3 +578,34 @@ fn energy_is_conserved_without_damping_or_drive() {
         assert!(worst <= 1e-8 * e0.abs(), "energy drift {worst:e} of {e0}");
     }
 }
+
+#[test]
+fn stationary_whirl_of_the_symmetric_rotor_is_the_jeffcott_closed_form() {
+    // Symmetric layout (l̄_L = 0.5) with plane A through C (z̄_A = 0): translation decouples from
+    // tilt and the locked rotor with its balls at the unbalance side is a Jeffcott rotor with
+    // unbalance U = m0 R0 + m R Σ cos ψ_j: |w| = U Ω² / sqrt((1 − Ω²)² + (h̄x Ω)²) (units
+    // M_s = ω0 = 1). Newton on the nonlinear equations, continued across the critical speed.
+    use autobal::spatial::dynamics::stationary::response_curve;
+    let model = SpatialModel::from_dimensionless(&DimensionlessInput {
+        c_sigma: 0.75,
+        rho_s: 0.4,
+        l_left: 0.5,
+        z_a: 0.0,
+        anisotropy: AnisotropyInput::Masses { masses: MassSet { m0: 0.025, r0: 2.0, m: 0.05, r: 2.0, n: 2 }, d_a: None },
+        h_x: 0.05,
+        h_s: 0.1,
+        method: AnisotropyMethod::Exact,
+        direct_balls: None,
+    })
+    .unwrap();
+    let rotor = SpatialRotor::from_dimensionless(&model).unwrap();
+    let psi = [0.3f64, -0.5];
+    let u = 0.025 * 2.0 + 0.025 * 2.0 * (psi[0].cos() + psi[1].cos());
+    let v = 0.025 * 2.0 * (psi[0].sin() + psi[1].sin());
+    let omegas: Vec<f64> = (1..=80).map(|i| 0.05 * i as f64).collect();
+    for (w, s) in omegas.iter().zip(response_curve(&rotor, &psi, &omegas)) {
+        let s = s.expect("converges");
+        let exact = u.hypot(v) * w * w / ((1.0 - w * w).powi(2) + (0.05 * w).powi(2)).sqrt();
+        assert!((s.amplitude_planes[0] - exact).abs() <= 1e-6 * exact, "Ω = {w}: {} vs {exact}", s.amplitude_planes[0]);
+    }
+}

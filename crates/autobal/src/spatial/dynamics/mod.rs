@@ -10,10 +10,15 @@
 //!   energy and dissipated power.
 //! - [`simulate`](mod@simulate): initial conditions, integration under a drive, samples, the
 //!   verdict ([`simulate()`]).
+//! - [`stationary`]: steady synchronous whirls with the balls held (the stationary response
+//!   curves a run-up is drawn against).
+//! - [`basins`]: where runs end over a grid of initial conditions, in parallel.
 
+pub mod basins;
 pub mod equations;
 pub mod rotor;
 pub mod simulate;
+pub mod stationary;
 
 pub use equations::Equations;
 pub use rotor::{BallPlane, PointMass, RigidRotor, SpatialRotor, Support};

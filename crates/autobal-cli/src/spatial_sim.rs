@@ -1,0 +1,363 @@
+//! `autobal simulate` on the spatial rotor of papers 000/003 (the analytic commands' config
+//! plus `[drive]`, `[integration]`, optionally `[initial]`, `[spatial]`, `[couple]`,
+//! `[balancer2]`), and `autobal basins`.
+
+use crate::config::{self, array_f64, Config, Section};
+use crate::plot::{Plot, Series, PALETTE};
+use anyhow::{anyhow, bail, Context, Result};
+use autobal::drive::Drive;
+use autobal::spatial::dynamics::basins::{angle_grid, basins};
+use autobal::spatial::dynamics::stationary::response_curve;
+use autobal::spatial::dynamics::{simulate, BallPlane, Initial, PointMass, Sample, Settings, SpatialRotor, Summary};
+use serde_json::{json, Value};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::Ordering;
+use toml::Table;
+
+/// Whether a config describes the spatial rotor (the analytic commands' tables).
+pub fn is_spatial(root: &Table) -> bool {
+    ["dimensionless", "rotor", "supports", "unbalance", "balancer"].iter().any(|t| root.contains_key(*t))
+}
+
+/// A loaded spatial simulation.
+pub struct SpatialSim {
+    pub config: Config,
+    pub rotor: SpatialRotor,
+    pub drive: Drive,
+    pub initial: Initial,
+    pub settings: Settings,
+}
+
+impl SpatialSim {
+    /// Units of lengths and speeds for labels.
+    fn units(&self) -> (&'static str, f64, &'static str, &'static str) {
+        if self.config.dimensional {
+            ("mm", 1e3, "ω (rad/s)", "t (s)")
+        } else {
+            ("ρ_s", 1.0, "Ω", "τ")
+        }
+    }
+}
+
+fn pair(sec: &Section, key: &str) -> Result<Option<[f64; 2]>> {
+    match array_f64(sec, key)? {
+        None => Ok(None),
+        Some(v) if v.len() == 2 => Ok(Some([v[0], v[1]])),
+        Some(v) => bail!("{}.{key}: expected 2 numbers, got {}", sec.name, v.len()),
+    }
+}
+
+/// Build the spatial simulation from a config table.
+pub fn build(root: &Table, source: &str) -> Result<SpatialSim> {
+    let config = config::build(root, source)?;
+    let sec = |name: &'static str| Section { name, table: root.get(name).and_then(toml::Value::as_table) };
+    let mut rotor = match config.si() {
+        Some(si) => {
+            let mut r = SpatialRotor::from_si(si);
+            let (ro, su, un) = (sec("rotor"), sec("supports"), sec("unbalance"));
+            r.rotor.axis_tilt = ro.f64("axis_tilt")?.unwrap_or(0.0);
+            r.rotor.axis_tilt_angle = ro.f64("axis_tilt_angle")?.unwrap_or(0.0);
+            for (i, side) in ["left", "right"].iter().enumerate() {
+                if let Some(k) = su.f64(&format!("stiffness_{side}_y"))? {
+                    r.supports[i].stiffness[1] = k;
+                }
+                if let Some(c) = su.f64(&format!("damping_{side}_y"))? {
+                    r.supports[i].damping[1] = c;
+                }
+            }
+            r.unbalances[0].angle = un.f64("angle")?.unwrap_or(0.0);
+            let c = sec("couple");
+            if c.table.is_some() {
+                r.unbalances.push(PointMass { mass: c.req("mass")?, radius: c.req("radius")?, angle: c.f64("angle")?.unwrap_or(0.0), z: c.req("z")? });
+            }
+            let b = sec("balancer2");
+            if b.table.is_some() {
+                r.planes.push(BallPlane {
+                    z: b.req("z")?,
+                    n: b.count("balls")?.ok_or_else(|| anyhow!("balancer2.balls: missing (required)"))? as usize,
+                    ball_mass: b.req("ball_mass")?,
+                    race_radius: b.req("race_radius")?,
+                    drag: b.f64("drag")?.unwrap_or(0.0),
+                });
+            }
+            r
+        }
+        None => {
+            for t in ["couple", "balancer2"] {
+                if root.contains_key(t) {
+                    bail!("{t}: a second unbalance mass or balancer plane needs the dimensional tables ([rotor], [supports], ...)");
+                }
+            }
+            SpatialRotor::from_dimensionless(&config.model)?
+        }
+    };
+    let sp = sec("spatial");
+    if let Some(g) = array_f64(&sp, "gravity")? {
+        if g.len() != 3 {
+            bail!("spatial.gravity: expected 3 numbers [g_x, g_y, g_z], got {}", g.len());
+        }
+        rotor.gravity = [g[0], g[1], g[2]];
+    }
+    rotor.spin_drag = sp.f64("spin_drag")?.unwrap_or(0.0);
+    rotor.lock_tilt = match sp.get("lock_tilt") {
+        None => false,
+        Some(toml::Value::Boolean(b)) => *b,
+        Some(_) => bail!("spatial.lock_tilt: expected true or false"),
+    };
+    rotor.validate()?;
+    let d = sec("drive");
+    if d.table.is_none() {
+        bail!("drive: missing: the spatial simulation needs [drive] (see examples/spatial.toml)");
+    }
+    let (drive, t_end) = config::drive_of(&d)?;
+    let ig = config::integration_of(&sec("integration"), t_end)?;
+    if ig.max_steps.is_some() || ig.max_wall_s.is_some() {
+        let key = if ig.max_steps.is_some() { "max_steps" } else { "max_wall_s" };
+        bail!("integration.{key}: the spatial simulation takes no budget (Ctrl-C stops it, keeping what it wrote)");
+    }
+    let settings = Settings { method: ig.method, t_end, dt: ig.dt, rtol: ig.rtol, atol: ig.atol };
+    settings.validate()?;
+    let mut initial = Initial::at_rest(&rotor);
+    let ini = sec("initial");
+    initial.position = pair(&ini, "position")?.unwrap_or(initial.position);
+    initial.velocity = pair(&ini, "velocity")?.unwrap_or(initial.velocity);
+    initial.tilt = pair(&ini, "tilt")?.unwrap_or(initial.tilt);
+    initial.tilt_rate = pair(&ini, "tilt_rate")?.unwrap_or(initial.tilt_rate);
+    if let Some(p) = array_f64(&d, "psi0")? {
+        initial.psi = p;
+    }
+    if let Some(p) = array_f64(&d, "psi_rate0")? {
+        initial.psi_rate = p;
+    }
+    let eq = autobal::spatial::dynamics::Equations::new(&rotor, &drive);
+    autobal::spatial::dynamics::simulate::initial_state(&eq, &initial)?;
+    Ok(SpatialSim { config, rotor, drive, initial, settings })
+}
+
+/// Samples kept for the plots: per bucket of consecutive samples the smallest and largest
+/// whirl radius at the balancer plane (so peaks survive decimation).
+struct Envelope {
+    bucket: usize,
+    current: Vec<Sample>,
+    kept: Vec<Sample>,
+}
+
+impl Envelope {
+    fn push(&mut self, s: &Sample) {
+        self.current.push(s.clone());
+        if self.current.len() >= self.bucket {
+            self.flush();
+        }
+    }
+    fn flush(&mut self) {
+        let key = |s: &Sample| s.amplitude_planes.first().copied().unwrap_or(0.0);
+        if self.current.len() > 2 {
+            let by = |a: &usize, b: &usize| key(&self.current[*a]).total_cmp(&key(&self.current[*b]));
+            let imin = (0..self.current.len()).min_by(by).unwrap_or(0);
+            let imax = (0..self.current.len()).max_by(by).unwrap_or(0);
+            let mut keep = vec![imin.min(imax), imin.max(imax)];
+            keep.dedup();
+            self.current = keep.into_iter().map(|i| self.current[i].clone()).collect();
+        }
+        self.kept.append(&mut self.current);
+    }
+}
+
+/// Run, writing every sample to `csv` (flushed as it goes).
+pub fn run_to_csv(sim: &SpatialSim, csv: &mut dyn Write, progress: bool, interrupted: &std::sync::atomic::AtomicBool) -> Result<(Summary, Vec<Sample>, f64)> {
+    let r = &sim.rotor;
+    let mut header = String::from("t,omega,x,y,tilt_x,tilt_y");
+    for s in ["left", "right"].iter().take(r.supports.len()) {
+        header.push_str(&format!(",amplitude_{s}"));
+    }
+    for p in 1..=r.planes.len().max(1) {
+        header.push_str(&format!(",amplitude_plane{p}"));
+    }
+    for j in 1..=r.balls() {
+        header.push_str(&format!(",psi_{j}"));
+    }
+    writeln!(csv, "{header}")?;
+    let expected = (sim.settings.t_end / sim.settings.dt) as usize + 1;
+    let mut env = Envelope { bucket: expected.div_ceil(6000).max(1), current: vec![], kept: vec![] };
+    let bar = progress.then(|| {
+        let b = indicatif::ProgressBar::new(1000);
+        b.set_style(
+            indicatif::ProgressStyle::with_template("{bar:40} simulated {msg}  {elapsed_precise} (eta {eta})")
+                .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+        );
+        b
+    });
+    let mut io_error = None;
+    let mut count = 0u64;
+    let t0 = std::time::Instant::now();
+    let summary = simulate(r, &sim.drive, &sim.initial, &sim.settings, |s| {
+        let mut line = format!("{},{},{},{},{},{}", s.t, s.omega, s.x, s.y, s.tilt_x, s.tilt_y);
+        for v in s.amplitude_supports.iter().chain(&s.amplitude_planes).chain(&s.psi) {
+            line.push(',');
+            line.push_str(&v.to_string());
+        }
+        line.push('\n');
+        if let Err(e) = csv.write_all(line.as_bytes()) {
+            io_error = Some(e);
+            return false;
+        }
+        env.push(s);
+        count += 1;
+        if count % 1000 == 0 {
+            let _ = csv.flush();
+            if let Some(b) = &bar {
+                b.set_position((1000.0 * s.t / sim.settings.t_end) as u64);
+                b.set_message(format!("{:.1} of {:.1}", s.t, sim.settings.t_end));
+            }
+        }
+        !interrupted.load(Ordering::Relaxed)
+    })?;
+    let wall = t0.elapsed().as_secs_f64();
+    env.flush();
+    csv.flush()?;
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
+    if let Some(e) = io_error {
+        bail!("--out: cannot write the CSV: {e}");
+    }
+    Ok((summary, env.kept, wall))
+}
+
+pub fn summary_json(sim: &SpatialSim, s: &Summary, wall: f64) -> Value {
+    json!({
+        "model": "spatial",
+        "units": if sim.config.dimensional { "SI" } else { "dimensionless (M_s = ω0 = ρ_s = 1)" },
+        "balanced": s.balanced,
+        "residual_unbalance": s.residual_unbalance,
+        "residual_couple": s.residual_couple,
+        "peak_amplitude": s.peak_amplitude,
+        "omega_at_peak": s.omega_at_peak,
+        "t_at_peak": s.t_at_peak,
+        "final_amplitude": s.final_amplitude,
+        "final_omega": s.final_omega,
+        "steps": s.steps,
+        "rejected_steps": s.rejected_steps,
+        "rhs_evaluations": s.rhs_evaluations,
+        "wall_time_s": wall,
+        "t_end": s.t_end,
+        "stopped": s.stopped,
+        "natural_frequency": sim.rotor.natural_frequency(),
+        "rotor": sim.rotor,
+        "drive": sim.drive,
+        "initial": sim.initial,
+        "integration": sim.settings,
+    })
+}
+
+pub fn summary_table(sim: &SpatialSim, s: &Summary, wall: f64) -> String {
+    use std::fmt::Write as _;
+    let (lu, ls, _, _) = sim.units();
+    let mut o = String::new();
+    let _ = writeln!(o, "config: {} (spatial rotor, {} balls in {} plane(s))", sim.config.source, sim.rotor.balls(), sim.rotor.planes.len());
+    let _ = writeln!(o, "peak whirl radius at the balancer plane: {:.6} {lu} at speed {:.4} (t = {:.4})", ls * s.peak_amplitude, s.omega_at_peak, s.t_at_peak);
+    let _ = writeln!(o, "final: radius {:.6} {lu} at speed {:.4}; residual unbalance {:.3e} of the unbalance{}; {}", ls * s.final_amplitude, s.final_omega, s.residual_unbalance,
+        s.residual_couple.map_or(String::new(), |c| format!(", couple {c:.3e}")),
+        if s.balanced { "balanced" } else { "not balanced" });
+    let _ = writeln!(o, "integration: {} steps ({} rejected), {} right-hand sides, {:.3} s", s.steps, s.rejected_steps, s.rhs_evaluations, wall);
+    if let Some(st) = &s.stopped {
+        let _ = writeln!(o, "stopped early: {st}");
+    }
+    o
+}
+
+/// Amplitude against speed (with the stationary curve of the rotor with the balls held where
+/// they start), amplitudes against time, ball angles, speed.
+pub fn plots(sim: &SpatialSim, kept: &[Sample], title: &str) -> Vec<(String, Plot)> {
+    let (lu, ls, wl, tl) = sim.units();
+    let (wlo, whi) = kept.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), s| (a.min(s.omega), b.max(s.omega)));
+    let (wlo, whi) = if whi > wlo { (wlo.max(0.0), whi) } else { (0.0, 2.0 * sim.rotor.natural_frequency()) };
+    let ws: Vec<f64> = (0..=300).map(|i| wlo + (whi - wlo) * i as f64 / 300.0).collect();
+    let curve = response_curve(&sim.rotor, &sim.initial.psi, &ws);
+    let plane = |s: &Sample| s.amplitude_planes.first().copied().unwrap_or(0.0);
+    let peak = kept.iter().map(plane).fold(0.0, f64::max) * ls;
+    let series = vec![
+        Series::new("transient", kept.iter().map(|s| (s.omega, ls * plane(s))).collect(), PALETTE[0]),
+        Series::new(
+            "stationary, balls held",
+            ws.iter().zip(&curve).map(|(w, c)| (*w, c.as_ref().map_or(f64::NAN, |c| ls * c.amplitude_planes[0]))).collect(),
+            PALETTE[6],
+        )
+        .dashed(),
+    ];
+    let mut out = vec![(
+        "amplitude_omega".to_string(),
+        Plot {
+            title: format!("{title}: whirl radius at the balancer plane against speed"),
+            x_label: wl.into(),
+            y_label: format!("radius ({lu})"),
+            series,
+            y_range: Some((0.0, 1.15 * peak.max(1e-12))),
+            ..Default::default()
+        },
+    )];
+    let mut amp = vec![Series::new("balancer plane", kept.iter().map(|s| (s.t, ls * plane(s))).collect(), PALETTE[0])];
+    for (i, name) in ["left support", "right support"].iter().enumerate().take(sim.rotor.supports.len()) {
+        amp.push(Series::new(*name, kept.iter().map(|s| (s.t, ls * s.amplitude_supports[i])).collect(), PALETTE[i + 1]));
+    }
+    out.push(("amplitude_t".into(), Plot { title: format!("{title}: whirl radii"), x_label: tl.into(), y_label: format!("radius ({lu})"), series: amp, ..Default::default() }));
+    let psi: Vec<Series> = (0..sim.rotor.balls())
+        .map(|j| Series::new(format!("ψ{}", j + 1), crate::sim::wrapped_degrees(kept.iter().map(|s| (s.t, s.psi[j]))), PALETTE[(j + 1) % 7]))
+        .collect();
+    out.push(("psi_t".into(), Plot { title: format!("{title}: ball angles"), x_label: tl.into(), y_label: "ψ (degrees from the unbalance)".into(), series: psi, ..Default::default() }));
+    out.push((
+        "omega_t".into(),
+        Plot { title: format!("{title}: speed"), x_label: tl.into(), y_label: wl.into(), series: vec![Series::new("speed", kept.iter().map(|s| (s.t, s.omega)).collect(), PALETTE[0])], ..Default::default() },
+    ));
+    out
+}
+
+pub fn write_plots(sim: &SpatialSim, kept: &[Sample], stem: &Path, title: &str) -> Result<Vec<PathBuf>> {
+    let mut files = vec![];
+    for (suffix, plot) in plots(sim, kept, title) {
+        let name = format!("{}_{suffix}.svg", stem.file_name().and_then(|s| s.to_str()).unwrap_or("simulation"));
+        let path = stem.with_file_name(name);
+        std::fs::write(&path, plot.to_svg()).with_context(|| format!("cannot write {}", path.display()))?;
+        files.push(path);
+    }
+    Ok(files)
+}
+
+/// `autobal basins`: runs over a grid of the first two balls' initial angles; CSV row by row
+/// (`psi_1, psi_2, balanced, residual_unbalance, final_amplitude`) and a JSON summary.
+pub fn run_basins(sim: &SpatialSim, n: usize, out: &Path, progress: bool, interrupted: &std::sync::atomic::AtomicBool) -> Result<Value> {
+    if sim.rotor.balls() < 2 {
+        bail!("basins: needs at least two balls (the map is over the first two balls' initial angles)");
+    }
+    if !(2..=1000).contains(&n) {
+        bail!("--n: must lie between 2 and 1000, got {n}");
+    }
+    let cases = angle_grid(&sim.initial, &sim.drive, n, n);
+    let bar = progress.then(|| indicatif::ProgressBar::new(cases.len() as u64));
+    let t0 = std::time::Instant::now();
+    let res = basins(&sim.rotor, &cases, &sim.settings, |_| {
+        if let Some(b) = &bar {
+            b.inc(1);
+        }
+    }, interrupted)?;
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
+    let wall = t0.elapsed().as_secs_f64();
+    let mut csv = String::from("psi_1,psi_2,balanced,residual_unbalance,final_amplitude\n");
+    let (mut done, mut balanced) = (0, 0);
+    for (c, r) in cases.iter().zip(&res) {
+        if let Some(s) = r {
+            done += 1;
+            balanced += s.balanced as usize;
+            csv.push_str(&format!("{},{},{},{},{}\n", c.initial.psi[0], c.initial.psi[1], s.balanced as u8, s.residual_unbalance, s.final_amplitude));
+        }
+    }
+    std::fs::write(out, csv).with_context(|| format!("--out: cannot write {}", out.display()))?;
+    let v = json!({"runs": cases.len(), "completed": done, "balanced": balanced, "fraction_balanced": balanced as f64 / done.max(1) as f64, "wall_time_s": wall, "csv": out.display().to_string()});
+    if done < cases.len() {
+        bail!("interrupted: {done} of {} runs complete, kept in {}", cases.len(), out.display());
+    }
+    Ok(v)
+}

@@ -1,0 +1,71 @@
+//! Basins of attraction: where runs end over a grid of initial conditions (the balls' initial
+//! angles and/or the initial speed), computed in parallel, cancellable.
+
+use super::rotor::SpatialRotor;
+use super::simulate::{simulate, Initial, Settings, Summary};
+use crate::drive::Drive;
+use crate::error::Result;
+use rayon::prelude::*;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+
+/// One run of a basin map: its drive and initial conditions.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Case {
+    /// The drive (e.g. a constant speed, or an acceleration from an initial speed).
+    pub drive: Drive,
+    /// Initial conditions.
+    pub initial: Initial,
+}
+
+/// The cases of a map over the first two balls' initial angles `ψ1 × ψ2 ∈ [0, 2π)²`
+/// (`n1 × n2` points, row-major with `ψ2` outer), the other balls and the rotor as in `base`.
+pub fn angle_grid(base: &Initial, drive: &Drive, n1: usize, n2: usize) -> Vec<Case> {
+    let tau = 2.0 * std::f64::consts::PI;
+    let mut out = Vec::with_capacity(n1 * n2);
+    for j in 0..n2 {
+        for i in 0..n1 {
+            let mut init = base.clone();
+            if !init.psi.is_empty() {
+                init.psi[0] = tau * i as f64 / n1 as f64;
+            }
+            if init.psi.len() > 1 {
+                init.psi[1] = tau * j as f64 / n2 as f64;
+            }
+            out.push(Case { drive: drive.clone(), initial: init });
+        }
+    }
+    out
+}
+
+/// Run every case in parallel (rayon's pool). `progress(done)` is called after each run (from
+/// the worker threads); when `cancel` is set, the runs not yet started are skipped and the one
+/// running stops: their entries are `None`. Inputs are validated before any run starts.
+pub fn basins(
+    rotor: &SpatialRotor,
+    cases: &[Case],
+    settings: &Settings,
+    progress: impl Fn(usize) + Sync,
+    cancel: &AtomicBool,
+) -> Result<Vec<Option<Summary>>> {
+    rotor.validate()?;
+    settings.validate()?;
+    for c in cases {
+        c.drive.validate()?;
+        let eq = super::Equations::new(rotor, &c.drive);
+        super::simulate::initial_state(&eq, &c.initial)?;
+    }
+    let done = AtomicUsize::new(0);
+    // summaries only: one sample at the end
+    let quiet = Settings { dt: settings.t_end, ..settings.clone() };
+    cases
+        .par_iter()
+        .map(|c| {
+            if cancel.load(Ordering::Relaxed) {
+                return Ok(None);
+            }
+            let s = simulate(rotor, &c.drive, &c.initial, &quiet, |_| !cancel.load(Ordering::Relaxed))?;
+            progress(done.fetch_add(1, Ordering::Relaxed) + 1);
+            Ok((s.stopped.is_none() || !cancel.load(Ordering::Relaxed)).then_some(s))
+        })
+        .collect()
+}
