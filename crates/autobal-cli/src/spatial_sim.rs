@@ -204,7 +204,7 @@ pub fn run_to_csv(sim: &SpatialSim, csv: &mut dyn Write, progress: bool, interru
         }
         env.push(s);
         count += 1;
-        if count % 1000 == 0 {
+        if count.is_multiple_of(1000) {
             let _ = csv.flush();
             if let Some(b) = &bar {
                 b.set_position((1000.0 * s.t / sim.settings.t_end) as u64);
