@@ -435,7 +435,7 @@ mod tests {
     }
 
     /// The keys of the schema that hold text, not numbers.
-    const TEXT_KEYS: &[&str] = &["analysis.anisotropy", "drive.kind", "drive.schedule_of", "integration.method"];
+    const TEXT_KEYS: &[&str] = &["analysis.anisotropy", "drive.kind", "drive.schedule_of", "integration.method", "spatial.lock_tilt"];
 
     fn schema_keys() -> Vec<String> {
         SCHEMA.iter().flat_map(|(t, ks)| ks.iter().map(move |k| format!("{t}.{k}"))).collect()
