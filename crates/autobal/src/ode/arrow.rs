@@ -205,10 +205,12 @@ impl<S: ArrowSystem> Jacobian for ArrowJacobian<'_, S> {
         let nq = p + m;
         let alpha = self.alpha;
         let (bq, bv) = b.split_at_mut(nq);
-        // r = M b_v + α M b_q − G_v b_q
+        // r = M (b_v + α b_q) − G_v b_q (b_v is overwritten below anyway)
         self.rhs.iter_mut().for_each(|x| *x = 0.0);
+        for (v, q) in bv.iter_mut().zip(bq.iter()) {
+            *v += alpha * q;
+        }
         self.lin.mass.mul_add(1.0, bv, &mut self.rhs);
-        self.lin.mass.mul_add(alpha, bq, &mut self.rhs);
         self.lin.g_v.mul_add(-1.0, bq, &mut self.rhs);
         // K x = r by the Schur complement
         let (rr, rb) = self.rhs.split_at_mut(p);
