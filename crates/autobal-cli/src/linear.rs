@@ -146,7 +146,9 @@ pub fn campbell_table(cfg: &Config, c: &Campbell) -> String {
     let _ = writeln!(s, "config: {}", cfg.source);
     let _ = writeln!(s, "Campbell diagram: eigenvalues λ = σ + iν in rotating axes (Im ≥ 0 shown), fixed-axes whirl frequency");
     let n = c.omega.len();
-    for &k in &[0, n / 4, n / 2, 3 * n / 4, n - 1] {
+    let mut at = vec![0, n / 4, n / 2, 3 * n / 4, n.saturating_sub(1)];
+    at.dedup();
+    for k in at.into_iter().filter(|&k| k < n) {
         let _ = writeln!(s, "\nΩ = {:.4}", c.omega[k]);
         let _ = writeln!(s, "  {:>10} {:>10} {:>10} {:>12}  {:<12} {:<9}", "ν", "σ", "log dec", "fixed freq", "group", "whirl");
         let mut modes: Vec<_> = c.lines.iter().map(|l| l.modes[k]).filter(|m| m.im >= 0.0).collect();
@@ -290,6 +292,8 @@ pub fn run_campbell(cfg: &Config, w: f64, points: usize, balls: Balls, json: boo
         }
     };
     let result = campbell_stream(&cfg.model, (0..n).map(speed), balls, &mut |k, modes| {
+        // Ctrl-C: this speed is the last one computed and kept (figures and table end there)
+        let stop = crate::map::INTERRUPTED.load(std::sync::atomic::Ordering::Relaxed);
         // every reported number finite (as for the other commands), checked as it streams
         if let Err(e) = autobal::limits::check_finite(&format!("campbell.speeds[{k}]"), &modes) {
             io_err = Some(e.into());
@@ -315,19 +319,22 @@ pub fn run_campbell(cfg: &Config, w: f64, points: usize, balls: Balls, json: boo
                 }
             }
         }
-        if k % stride == 0 || k + 1 == n {
+        if k % stride == 0 || k + 1 == n || stop {
             keep(&mut plot, speed(k), modes);
         }
-        if table_at.contains(&k) && table.omega.last() != Some(&speed(k)) {
+        if (table_at.contains(&k) || stop) && table.omega.last() != Some(&speed(k)) {
             keep(&mut table, speed(k), modes);
         }
-        true
+        !stop
     });
     let finish = || -> Result<()> {
         if let Some(e) = io_err {
             return Err(e);
         }
-        result?;
+        // an interrupted run writes what it computed: the speeds done, the figures and the
+        // table up to the last of them
+        let stats = result?;
+        let done = stats.speeds;
         if let Some(prefix) = svg {
             let (rot, fixed) = campbell_plots(&cfg.model, &plot);
             for (suffix, p) in [("rotating", rot), ("fixed", fixed)] {
@@ -339,7 +346,7 @@ pub fn run_campbell(cfg: &Config, w: f64, points: usize, balls: Balls, json: boo
         let mut out = std::io::BufWriter::new(stdout.lock());
         if json {
             write!(out, "{{\n\"omega\": [")?;
-            for k in 0..n {
+            for k in 0..done {
                 write!(out, "{}{}", if k == 0 { "" } else { ", " }, serde_json::to_string(&speed(k))?)?;
             }
             write!(out, "],\n\"lines\": [\n")?;
@@ -351,11 +358,14 @@ pub fn run_campbell(cfg: &Config, w: f64, points: usize, balls: Balls, json: boo
                 std::io::copy(&mut r, &mut out)?;
                 write!(out, "\n]}}")?;
             }
-            writeln!(out, "\n]\n}}")?;
-        } else {
+            writeln!(out, "\n],\n\"complete\": {}\n}}", stats.complete)?;
+        } else if done > 0 {
             write!(out, "{}", campbell_table(cfg, &table))?;
         }
         out.flush()?;
+        if !stats.complete {
+            anyhow::bail!("interrupted: {done} of {n} speeds computed (up to Ω = {}); what was computed is written", crate::num::fmt(speed(done.saturating_sub(1)), 4));
+        }
         Ok(())
     };
     let r = finish();

@@ -252,6 +252,7 @@ fn run(cli: Cli) -> Result<()> {
             if !(3..=10_000_000).contains(&points) {
                 anyhow::bail!("--points: must lie between 3 and 10000000, got {points}");
             }
+            let _ = ctrlc::set_handler(|| map::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
             linear::run_campbell(&cfg, w, points, lin.balls.into(), format == Format::Json, svg.as_deref())
         }
         Command::Map { common, x, y, omega, balls, quantity, out, threads, boundary } => run_map(common, x, y, omega, balls, quantity, out, threads, boundary),
@@ -313,6 +314,12 @@ fn run_map(common: Common, x: String, y: String, omega: Option<f64>, balls: Ball
             t.elapsed().as_secs_f64(),
             path.display()
         ));
+        if !b.complete {
+            // nothing of the map was computed: no empty CSV left behind
+            drop(w);
+            let _ = std::fs::remove_file(&csv_path);
+            anyhow::bail!("interrupted while tracing the boundary: the {} curves traced are kept in {}; the map was not computed", b.curves.len(), path.display());
+        }
         Some(b)
     } else {
         None

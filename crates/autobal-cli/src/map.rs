@@ -6,7 +6,7 @@
 use crate::config::Config;
 use crate::plot::Series;
 use anyhow::{anyhow, bail, Context, Result};
-use autobal::spatial::boundary::{trace_boundary, Boundary, Codim2Kind, CurveKind, PlaneAxis, TraceSettings};
+use autobal::spatial::boundary::{trace_boundary_with, Boundary, Codim2Kind, CurveKind, PlaneAxis, TraceSettings};
 use autobal::spatial::linear_model::Balls;
 use rayon::prelude::*;
 use std::io::Write;
@@ -266,11 +266,12 @@ pub fn boundary_csv(b: &Boundary, x: &str, y: &str) -> String {
     s
 }
 
-/// Trace the stability boundary over the map's plane ([`autobal::spatial::boundary`]).
+/// Trace the stability boundary over the map's plane ([`autobal::spatial::boundary`]); Ctrl-C
+/// stops it with the curves traced so far (`complete` false).
 pub fn trace(cfg: &Config, x: &Axis, y: &Axis, omega: Option<f64>, balls: Balls) -> Result<Boundary> {
     let ax = |a: &Axis| PlaneAxis { path: a.key.clone(), lo: a.lo, hi: a.hi };
     let s = TraceSettings { balls, omega, ..Default::default() };
-    trace_boundary(&cfg.spec, &ax(x), &ax(y), &s).map_err(|e| anyhow!("--boundary: {e}"))
+    trace_boundary_with(&cfg.spec, &ax(x), &ax(y), &s, &|| INTERRUPTED.load(Ordering::Relaxed)).map_err(|e| anyhow!("--boundary: {e}"))
 }
 
 #[cfg(test)]

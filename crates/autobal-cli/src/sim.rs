@@ -3,7 +3,7 @@
 use crate::config::PlanarConfig;
 use crate::plot::{Plot, Series, PALETTE};
 use anyhow::{bail, Context, Result};
-use autobal::planar::stationary::{aligned_whirls, capacity_ratio, locked_amplitude, semi_balanced_exists};
+use autobal::planar::stationary::{aligned_whirls_of, capacity_ratio, locked_amplitude, semi_balanced_exists};
 use autobal::planar::{simulate_with, Sample, Summary};
 use serde_json::{json, Value};
 use std::io::Write;
@@ -178,6 +178,9 @@ pub fn wrapped_degrees(points: impl Iterator<Item = (f64, f64)>) -> Vec<(f64, f6
     out
 }
 
+/// Most ball-angle curves drawn in one figure.
+pub const PSI_CURVES: usize = 24;
+
 /// The four figures of 004's kind: amplitude vs ω with stationary curves, amplitude vs t,
 /// ball angles vs t, ω vs t.
 pub fn plots(cfg: &PlanarConfig, env: &Envelope, title: &str) -> Vec<(String, Plot)> {
@@ -197,7 +200,12 @@ pub fn plots(cfg: &PlanarConfig, env: &Envelope, title: &str) -> Vec<(String, Pl
         for (label, qq, col) in [("balls free, far side", q, PALETTE[1]), ("balls free, near side", -q, PALETTE[3])] {
             let pts = ws
                 .iter()
-                .map(|&w| (w, aligned_whirls(p, w).iter().filter(|a| a.q == qq).map(|a| mm * a.amplitude).fold(f64::NAN, f64::min)))
+                .map(|&w| {
+                    // only the branch with every ball on one side: O(1) per speed, whatever n
+                    let mut a = vec![];
+                    aligned_whirls_of(p, w, qq, &mut a);
+                    (w, a.iter().map(|a| mm * a.amplitude).fold(f64::NAN, f64::min))
+                })
                 .collect();
             s1.push(Series::new(label, pts, col).dashed());
         }
@@ -227,10 +235,14 @@ pub fn plots(cfg: &PlanarConfig, env: &Envelope, title: &str) -> Vec<(String, Pl
             ..Default::default()
         },
     ));
-    let psi: Vec<Series> = (0..p.n)
+    // at most PSI_CURVES balls drawn (a figure of 1e5 curves is tens of MB and unreadable);
+    // the CSV has every ball
+    let drawn = p.n.min(PSI_CURVES);
+    let psi: Vec<Series> = (0..drawn)
         .map(|j| Series::new(format!("ψ{}", j + 1), wrapped_degrees(k.iter().map(|s| (s.t, s.psi[j]))), PALETTE[(j + 1) % 7]))
         .collect();
-    out.push(("psi_t".into(), Plot { title: format!("{title}: ball angles"), x_label: "t (s)".into(), y_label: "ψ (degrees from CG)".into(), series: psi, ..Default::default() }));
+    let psi_title = if drawn < p.n { format!("{title}: ball angles (balls 1-{drawn} of {})", p.n) } else { format!("{title}: ball angles") };
+    out.push(("psi_t".into(), Plot { title: psi_title, x_label: "t (s)".into(), y_label: "ψ (degrees from CG)".into(), series: psi, ..Default::default() }));
     out.push((
         "omega_t".into(),
         Plot {

@@ -270,23 +270,86 @@ fn interrupted_map_keeps_the_rows_written() {
     let dir = std::env::temp_dir().join(format!("autobal-int-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let stem = dir.join("big");
-    let child = Command::new(env!("CARGO_BIN_EXE_autobal"))
-        .args(["map", "--x", "dimensionless.z_a=-2:2:1500", "--y", "omega=0.05:5:1500", "--threads", "1", "--out", stem.to_str().unwrap()])
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    std::thread::sleep(std::time::Duration::from_millis(1500));
-    let _ = Command::new("kill").args(["-INT", &child.id().to_string()]).status();
-    let out = child.wait_with_output().unwrap();
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_ne!(out.status.code(), Some(0), "should report the interruption");
+    let (code, _, err) =
+        interrupted_after(&["map", "--x", "dimensionless.z_a=-2:2:1500", "--y", "omega=0.05:5:1500", "--threads", "1", "--out", stem.to_str().unwrap()], 1500);
+    assert_ne!(code, Some(0), "should report the interruption");
     assert!(err.contains("interrupted"), "{err}");
     let csv = std::fs::read_to_string(dir.join("big.csv")).unwrap();
     let lines = csv.lines().count() - 1;
     assert!(lines > 0 && lines.is_multiple_of(1500), "whole rows only: {lines} lines");
     assert!(lines < 1500 * 1500);
     assert!(dir.join("big.png").exists(), "plots of the rows computed are written");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Run `autobal args`, send SIGINT after `ms` milliseconds, and return exit code, stdout, stderr.
+#[cfg(unix)]
+fn interrupted_after(args: &[&str], ms: u64) -> (Option<i32>, String, String) {
+    let child = Command::new(env!("CARGO_BIN_EXE_autobal"))
+        .args(args)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(ms));
+    let _ = Command::new("kill").args(["-INT", &child.id().to_string()]).status();
+    let out = child.wait_with_output().unwrap();
+    (out.status.code(), String::from_utf8_lossy(&out.stdout).into(), String::from_utf8_lossy(&out.stderr).into())
+}
+
+#[cfg(unix)]
+#[test]
+fn interrupted_campbell_writes_the_speeds_computed() {
+    // ten million speeds take minutes: Ctrl-C after 1.5 s stops the run; the JSON holds the
+    // speeds computed (every line as long as the speed axis), says it is incomplete, the figures
+    // are written, and the command exits with 2 saying it was interrupted
+    let dir = std::env::temp_dir().join(format!("autobal-campbell-int-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let prefix = dir.join("cb");
+    let (code, out, err) = interrupted_after(&["campbell", "--points", "10000000", "--format", "json", "--svg", prefix.to_str().unwrap()], 1500);
+    assert_eq!(code, Some(2), "{err}");
+    assert!(err.contains("error: interrupted") && err.contains("of 10000000 speeds computed"), "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).expect("the JSON of the speeds computed");
+    assert_eq!(v["complete"], false);
+    let done = v["omega"].as_array().unwrap().len();
+    assert!(done > 0 && done < 10_000_000, "{done} speeds");
+    for l in v["lines"].as_array().unwrap() {
+        assert_eq!(l["modes"].as_array().unwrap().len(), done);
+    }
+    assert!(dir.join("cb_fixed.svg").exists() && dir.join("cb_rotating.svg").exists());
+    // the table says where it stopped too
+    let (code, out, err) = interrupted_after(&["campbell", "--points", "10000000"], 1500);
+    assert_eq!(code, Some(2), "{err}");
+    assert!(out.contains("Ω = "), "{out}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[cfg(unix)]
+#[test]
+fn interrupted_map_with_boundary_keeps_what_it_wrote() {
+    // Ctrl-C in `map --boundary`: while the curves are traced (about 0.4 s here), the curves
+    // traced so far are written and no map is computed (no empty CSV left); later, in the
+    // 1500 × 1500 map, the whole boundary and the map's rows so far are kept. Either way the
+    // command exits with 2 saying it was interrupted. (The tracer's own stop is tested in
+    // autobal's tests/stability.rs, where it does not depend on timing.)
+    let dir = std::env::temp_dir().join(format!("autobal-boundary-int-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let stem = dir.join("b");
+    let (code, _, err) = interrupted_after(
+        &["map", "--x", "dimensionless.z_a=-2:2:1500", "--y", "omega=0.05:4.5:1500", "--threads", "1", "--boundary", "--out", stem.to_str().unwrap()],
+        1500,
+    );
+    assert_eq!(code, Some(2), "{err}");
+    assert!(err.contains("error: interrupted"), "{err}");
+    let boundary = std::fs::read_to_string(dir.join("b_boundary.csv")).unwrap();
+    assert!(boundary.lines().next().is_some_and(|h| h.contains("dimensionless.z_a")), "{boundary}");
+    if err.contains("while tracing the boundary") {
+        assert!(!dir.join("b.csv").exists(), "no empty map");
+    } else {
+        let rows = std::fs::read_to_string(dir.join("b.csv")).unwrap().lines().count() - 1;
+        assert!(rows.is_multiple_of(1500) && rows < 1500 * 1500, "{rows} lines");
+        assert!(dir.join("b.png").exists());
+    }
     std::fs::remove_dir_all(&dir).ok();
 }
 
@@ -297,17 +360,8 @@ fn interrupted_report_says_so_and_fails() {
     // written, says it is incomplete, marks the runs cut short instead of printing their
     // numbers, and the command exits with 2.
     let dir = std::env::temp_dir().join(format!("autobal-report-int-{}", std::process::id()));
-    let child = Command::new(env!("CARGO_BIN_EXE_autobal"))
-        .args(["report", "--out", dir.to_str().unwrap()])
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    std::thread::sleep(std::time::Duration::from_millis(2000));
-    let _ = Command::new("kill").args(["-INT", &child.id().to_string()]).status();
-    let out = child.wait_with_output().unwrap();
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{err}");
+    let (code, _, err) = interrupted_after(&["report", "--out", dir.to_str().unwrap()], 2000);
+    assert_eq!(code, Some(2), "{err}");
     assert!(err.contains("error: interrupted"), "{err}");
     let index = std::fs::read_to_string(dir.join("index.html")).unwrap();
     assert!(index.contains("id=\"interrupted\""), "the page says it is incomplete");

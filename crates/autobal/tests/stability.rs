@@ -704,14 +704,9 @@ fn distance_to_boundary(b: &Boundary, x: f64, y: f64) -> f64 {
     best
 }
 
-#[test]
-fn traced_boundary_is_located_to_1e_8_and_agrees_with_a_fine_grid() {
-    // Three planes with the speed: every traced point satisfies its condition (an eigenvalue
-    // pair ±i√w, or a zero eigenvalue, within 1e-8 of the QR eigenvalues there), and on 23 fine
-    // lines across each plane every end of an exact stable range (QR margins on 1500 speeds,
-    // bisection to 1e-11) lies on a traced stability boundary, within the chord error of the
-    // drawn polyline (steps ≤ 0.05 of the plane turning ≤ 0.15 rad: sagitta < 2e-3).
-    let base = DimensionlessInput {
+/// The papers' base case with free balls, the first plane of the boundary tests.
+fn boundary_base() -> DimensionlessInput {
+    DimensionlessInput {
         c_sigma: 0.75,
         rho_s: 0.4,
         l_left: 0.8,
@@ -721,7 +716,17 @@ fn traced_boundary_is_located_to_1e_8_and_agrees_with_a_fine_grid() {
         h_s: 0.1,
         method: AnisotropyMethod::Exact,
         direct_balls: Some((0.05, 0.5)),
-    };
+    }
+}
+
+#[test]
+fn traced_boundary_is_located_to_1e_8_and_agrees_with_a_fine_grid() {
+    // Three planes with the speed: every traced point satisfies its condition (an eigenvalue
+    // pair ±i√w, or a zero eigenvalue, within 1e-8 of the QR eigenvalues there), and on 23 fine
+    // lines across each plane every end of an exact stable range (QR margins on 1500 speeds,
+    // bisection to 1e-11) lies on a traced stability boundary, within the chord error of the
+    // drawn polyline (steps ≤ 0.05 of the plane turning ≤ 0.15 rad: sagitta < 2e-3).
+    let base = boundary_base();
     let mut rng = Rng(37);
     let cases = [
         (base, "dimensionless.z_a", -2.0, 2.0),
@@ -770,4 +775,38 @@ fn traced_boundary_is_located_to_1e_8_and_agrees_with_a_fine_grid() {
         total += ends;
     }
     assert!(total > 40, "{total} ends checked");
+}
+
+#[test]
+fn cancelled_boundary_keeps_whole_curves_and_says_it_is_incomplete() {
+    // Ctrl-C in `map --boundary` reaches the tracer through `cancel`: asked at once, nothing is
+    // traced; asked after a few checks, the curves kept are the first curves of the full trace,
+    // point for point (whole curves, never half of one), and `complete` says the search stopped
+    use autobal::spatial::boundary::trace_boundary_with;
+    let spec = spec_of(boundary_base());
+    let x = PlaneAxis { path: "dimensionless.z_a".into(), lo: -2.0, hi: 2.0 };
+    let y = PlaneAxis { path: "omega".into(), lo: 0.05, hi: 4.5 };
+    let s = TraceSettings::default();
+    let full = trace_boundary(&spec, &x, &y, &s).unwrap();
+    assert!(full.complete && full.curves.len() >= 3, "{} curves", full.curves.len());
+    let none = trace_boundary_with(&spec, &x, &y, &s, &|| true).unwrap();
+    assert!(!none.complete && none.curves.is_empty());
+    // stop once the first curve is traced: the checks before each curve see it
+    let calls = std::cell::Cell::new(0);
+    let mut stopped_at = None;
+    for k in 1..200 {
+        calls.set(0);
+        let part = trace_boundary_with(&spec, &x, &y, &s, &|| {
+            calls.set(calls.get() + 1);
+            calls.get() > k
+        })
+        .unwrap();
+        if !part.curves.is_empty() {
+            assert!(!part.complete && part.curves.len() < full.curves.len());
+            assert_eq!(part.curves[..], full.curves[..part.curves.len()]);
+            stopped_at = Some(k);
+            break;
+        }
+    }
+    assert!(stopped_at.is_some(), "a partial trace with curves");
 }

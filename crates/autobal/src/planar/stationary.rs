@@ -61,34 +61,42 @@ pub struct Aligned {
     pub amplitude: f64,
 }
 
-/// All aligned steady whirls at speed `w` (balls free, E off the axis).
+/// All aligned steady whirls at speed `w` (balls free, E off the axis): every
+/// `q = −n, −n + 2, …, n` ([`aligned_whirls_of`]), O(n).
 pub fn aligned_whirls(p: &PlanarRotor, w: f64) -> Vec<Aligned> {
     let n = p.n as i32;
+    let mut out = vec![];
+    let mut q = -n;
+    while q <= n {
+        aligned_whirls_of(p, w, q, &mut out);
+        q += 2;
+    }
+    out
+}
+
+/// The aligned steady whirls at speed `w` with `q = n_far − n_near` (at most two), appended to
+/// `out`: O(1), for a caller that needs one `q` of many balls (e.g. all balls on one side,
+/// `q = ±n`).
+pub fn aligned_whirls_of(p: &PlanarRotor, w: f64, q: i32, out: &mut Vec<Aligned>) {
     let e = C::from_polar(p.s2, p.gamma);
     let d = d_of(p, w);
     let u0 = C::new(p.m1 * p.s1, 0.0) + e * (p.m2 + p.n as f64 * p.m3);
     let rhs = u0 * (w * w) + e * d;
-    let mut out = vec![];
-    let mut q = -n;
-    while q <= n {
-        let qq = p.m3 * p.r * q as f64 * w * w;
-        // |ρ D − qq|² = |rhs|²  →  ρ²|D|² − 2ρ qq Re D + qq² − |rhs|² = 0
-        let (a, b, c) = (d.norm_sqr(), -2.0 * qq * d.re, qq * qq - rhs.norm_sqr());
-        let disc = b * b - 4.0 * a * c;
-        if disc >= 0.0 && a > 0.0 {
-            for s in [-1.0, 1.0] {
-                let rho = (-b + s * disc.sqrt()) / (2.0 * a);
-                if rho > 0.0 {
-                    let phase = rhs.arg() - (d * rho - qq).arg();
-                    let u = C::from_polar(rho, phase) - e;
-                    out.push(Aligned { q, amplitude: u.norm() });
-                }
-                if disc == 0.0 {
-                    break;
-                }
+    let qq = p.m3 * p.r * q as f64 * w * w;
+    // |ρ D − qq|² = |rhs|²  →  ρ²|D|² − 2ρ qq Re D + qq² − |rhs|² = 0
+    let (a, b, c) = (d.norm_sqr(), -2.0 * qq * d.re, qq * qq - rhs.norm_sqr());
+    let disc = b * b - 4.0 * a * c;
+    if disc >= 0.0 && a > 0.0 {
+        for s in [-1.0, 1.0] {
+            let rho = (-b + s * disc.sqrt()) / (2.0 * a);
+            if rho > 0.0 {
+                let phase = rhs.arg() - (d * rho - qq).arg();
+                let u = C::from_polar(rho, phase) - e;
+                out.push(Aligned { q, amplitude: u.norm() });
+            }
+            if disc == 0.0 {
+                break;
             }
         }
-        q += 2;
     }
-    out
 }

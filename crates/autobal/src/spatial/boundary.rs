@@ -136,6 +136,9 @@ pub struct Boundary {
     pub codim2: Vec<Codim2Point>,
     /// Characteristic polynomials evaluated (the cost).
     pub evaluations: usize,
+    /// Whether the whole plane was searched (`false`: stopped on request by
+    /// [`trace_boundary_with`]'s `cancel`; the curves traced until then are complete curves).
+    pub complete: bool,
 }
 
 /// Points of the plane → characteristic polynomials.
@@ -391,6 +394,13 @@ fn correct(pl: &Plane, kind: CurveKind, z0: [f64; 3], t: &[f64; 3], j0: Option<&
 /// assert!(b.curves.iter().any(|c| c.points.iter().any(|p| p.on_boundary)));
 /// ```
 pub fn trace_boundary(spec: &SpatialSpec, x: &PlaneAxis, y: &PlaneAxis, s: &TraceSettings) -> Result<Boundary> {
+    trace_boundary_with(spec, x, y, s, &|| false)
+}
+
+/// [`trace_boundary`], stopping when `cancel()` returns true (asked before each line of the
+/// coarse grid and before each curve is traced, e.g. `&|| FLAG.load(Ordering::Relaxed)` for a
+/// Ctrl-C flag): the result then holds the curves traced so far and `complete` is `false`.
+pub fn trace_boundary_with(spec: &SpatialSpec, x: &PlaneAxis, y: &PlaneAxis, s: &TraceSettings, cancel: &dyn Fn() -> bool) -> Result<Boundary> {
     for a in [x, y] {
         if !(a.lo.is_finite() && a.hi.is_finite() && a.hi > a.lo) {
             return Err(Error::invalid(a.path.clone(), "the range must be finite with hi > lo"));
@@ -407,20 +417,27 @@ pub fn trace_boundary(spec: &SpatialSpec, x: &PlaneAxis, y: &PlaneAxis, s: &Trac
         return Err(Error::invalid(OMEGA, "required when neither axis is the speed"));
     }
     let pl = Plane { spec, x, y, balls: s.balls, omega: s.omega, evaluations: std::cell::Cell::new(0), last: std::cell::Cell::new(None) };
-    let mut out = Boundary { x: x.clone(), y: y.clone(), curves: vec![], codim2: vec![], evaluations: 0 };
+    let mut out = Boundary { x: x.clone(), y: y.clone(), curves: vec![], codim2: vec![], evaluations: 0, complete: true };
     // 1. lines across the plane (along the speed if there is one): changes of verdict
     let first_dir = if x.path == OMEGA { 1 } else { 0 };
     let mut queue: Vec<(CurveKind, [f64; 3])> = vec![];
     // 2. then lines the other way (closed curves between the first lines); a change of verdict
     // that a traced boundary already crosses is not looked at again
-    for dir in [first_dir, 1 - first_dir] {
+    'search: for dir in [first_dir, 1 - first_dir] {
         let lines = if dir == 0 { s.coarse.0.max(2) } else { s.coarse.1.max(2) };
         for li in 0..lines {
+            if cancel() {
+                out.complete = false;
+                break 'search;
+            }
             for raw in line_crossings(&pl, s, dir, li, &out.curves)? {
                 if let Some(seed) = seed_at(&pl, raw.0, raw.1, dir)? {
                     queue.push(seed);
                 }
-                process(&pl, s, &mut queue, &mut out)?;
+                if !process(&pl, s, &mut queue, &mut out, cancel)? {
+                    out.complete = false;
+                    break 'search;
+                }
             }
         }
     }
@@ -439,10 +456,14 @@ pub fn trace_boundary(spec: &SpatialSpec, x: &PlaneAxis, y: &PlaneAxis, s: &Trac
     Ok(out)
 }
 
-/// Trace the queued seeds that no traced curve already contains.
-fn process(pl: &Plane, s: &TraceSettings, queue: &mut Vec<(CurveKind, [f64; 3])>, out: &mut Boundary) -> Result<()> {
+/// Trace the queued seeds that no traced curve already contains; `false` when `cancel()` asked
+/// to stop.
+fn process(pl: &Plane, s: &TraceSettings, queue: &mut Vec<(CurveKind, [f64; 3])>, out: &mut Boundary, cancel: &dyn Fn() -> bool) -> Result<bool> {
     let mut guard = 0;
     while let Some((kind, z)) = queue.pop() {
+        if cancel() {
+            return Ok(false);
+        }
         guard += 1;
         if guard > 100 || out.curves.len() > 200 {
             break;
@@ -454,7 +475,7 @@ fn process(pl: &Plane, s: &TraceSettings, queue: &mut Vec<(CurveKind, [f64; 3])>
             out.curves.push(curve);
         }
     }
-    Ok(())
+    Ok(true)
 }
 
 /// Whether the segment `a → b` (scaled) crosses the stability-boundary part of a traced curve.
