@@ -32,7 +32,13 @@ pub(crate) const SCHEMA: &[(&str, &[&str])] = &[
         &["c_sigma", "rho_s", "l_left", "z_a", "delta_a", "m0", "r0", "m", "r", "n", "d_a", "h_x", "h_s"],
     ),
     ("analysis", &["anisotropy", "sensitivity_limit", "omega_max"]),
-    ("planar", &["m1", "m2", "m3", "n", "s1", "s2", "gamma", "r", "k", "c", "c_psi", "c_theta", "i_g"]),
+    (
+        "planar",
+        &[
+            "m1", "m2", "m3", "n", "s1", "s2", "gamma", "r", "k", "c", "c_psi", "c_theta", "i_g", "ball_diameter", "contact", "restitution", "contact_stiffness",
+            "rolling_resistance", "slip_rate",
+        ],
+    ),
     (
         "drive",
         &["kind", "omega0", "b", "torque", "omega_idle", "t_off", "t_end", "psi0", "psi_rate0", "xy0", "xy_rate0", "schedule", "schedule_of"],
@@ -202,6 +208,13 @@ impl<'a> Section<'a> {
                 u32::try_from(*i).map(Some).map_err(|_| anyhow!("{field}: {i} is too large"))
             }
             Some(v) => bail!("{field}: expected a whole number, got {}", describe(v)),
+        }
+    }
+    fn boolean(&self, key: &str) -> Result<Option<bool>> {
+        match self.get(key) {
+            None => Ok(None),
+            Some(Value::Boolean(b)) => Ok(Some(*b)),
+            Some(v) => bail!("{}.{key}: expected true or false, got {}", self.name, describe(v)),
         }
     }
     pub(crate) fn string(&self, key: &str) -> Result<Option<&'a str>> {
@@ -435,7 +448,7 @@ mod tests {
     }
 
     /// The keys of the schema that hold text, not numbers.
-    const TEXT_KEYS: &[&str] = &["analysis.anisotropy", "drive.kind", "drive.schedule_of", "integration.method", "spatial.lock_tilt"];
+    const TEXT_KEYS: &[&str] = &["analysis.anisotropy", "drive.kind", "drive.schedule_of", "integration.method", "spatial.lock_tilt", "planar.contact"];
 
     fn schema_keys() -> Vec<String> {
         SCHEMA.iter().flat_map(|(t, ks)| ks.iter().map(move |k| format!("{t}.{k}"))).collect()
@@ -578,6 +591,17 @@ pub fn build_planar(root: &Table, source: &str) -> Result<PlanarConfig> {
         c_psi: p.f64("c_psi")?.unwrap_or(0.0),
         c_theta: p.f64("c_theta")?.unwrap_or(0.0),
         i_g: p.req("i_g")?,
+        balls: {
+            let d = autobal::balls::BallPhysics::default();
+            autobal::balls::BallPhysics {
+                diameter: p.f64("ball_diameter")?,
+                contact: p.boolean("contact")?.unwrap_or(false),
+                restitution: p.f64("restitution")?.unwrap_or(d.restitution),
+                contact_stiffness: p.f64("contact_stiffness")?,
+                rolling_resistance: p.f64("rolling_resistance")?.unwrap_or(0.0),
+                slip_rate: p.f64("slip_rate")?.unwrap_or(d.slip_rate),
+            }
+        },
     };
     rotor.validate()?;
     let (drive, t_end) = drive_of(&d)?;

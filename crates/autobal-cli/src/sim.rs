@@ -121,6 +121,8 @@ pub fn summary_json(cfg: &PlanarConfig, s: &Summary, wall: f64) -> Value {
         "switches": s.switches,
         "rejected_steps": s.rejected_steps,
         "rhs_evaluations": s.rhs_evaluations,
+        "contacts": s.contacts,
+        "stick_slip_transitions": s.stick_slip_transitions,
         "t_end": s.t_end,
         "stopped": s.stopped,
         "warnings": s.warnings,
@@ -153,6 +155,9 @@ pub fn summary_table(cfg: &PlanarConfig, s: &Summary, wall: f64) -> String {
         "integration ({}): {} steps ({} implicit, {} switches, {} rejected), {} right-hand sides, {:.3} s",
         cfg.settings.method, s.steps, s.implicit_steps, s.switches, s.rejected_steps, s.rhs_evaluations, wall
     );
+    if cfg.rotor.balls.is_active() {
+        let _ = writeln!(o, "real balls: {} contacts, {} stick-slip transitions", s.contacts, s.stick_slip_transitions);
+    }
     if let Some(st) = &s.stopped {
         let _ = writeln!(o, "stopped early: {st}");
     }

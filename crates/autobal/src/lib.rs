@@ -9,6 +9,8 @@
 //! - [`spatial`]: the rigid rotor on two supports of papers 000 and 003.
 //! - [`planar`]: the planar rotor with an eccentric ball balancer of paper 004, in time.
 //! - [`drive`]: speed and torque histories shared by the dynamic models.
+//! - [`balls`]: real balls shared by the dynamic models: finite size and contact, rolling
+//!   resistance, and their closed forms (capacity of touching balls, where friction lets a ball rest).
 //! - [`ode`]: the integrators (DOP853, RODAS, automatic switching between them), dense output,
 //!   events, structured Jacobians.
 //! - [`simulation`]: what every time simulation needs on top of them (pieces between a drive's
@@ -55,6 +57,7 @@
 //! | `h̄x, h̄α, h̄yα, h̄s` | dimensionless damping and ball drag |
 
 pub(crate) mod builder;
+pub mod balls;
 pub mod drive;
 pub mod error;
 pub mod limits;

@@ -132,6 +132,11 @@ pub const LIMITS: &[Limit] = &[
     lim("planar.c_psi", 0.0, false, 1e12, false, "N·m·s", "as support damping"),
     lim("planar.c_theta", 0.0, false, 1e12, false, "N·m·s", "as support damping"),
     lim("planar.i_g", 0.0, true, 1e12, false, "kg·m²", MOMENT),
+    lim("planar.ball_diameter", 0.0, true, 1e3, false, "m", "as the race radius; it must also fit the race (d < 2r, n balls side by side)"),
+    lim("planar.restitution", 0.0, false, 1.0, false, "", "0: plastic impact, 1: elastic"),
+    lim("planar.contact_stiffness", 0.0, true, 1e15, false, "N/m", "beyond the Hertz stiffness of any ball pair"),
+    lim("planar.rolling_resistance", 0.0, false, 1.0, false, "", "a moment arm over the ball radius; steel on steel is ~1e-3"),
+    lim("planar.slip_rate", 0.0, true, 1e6, false, "rad/s", "the regularisation of the rolling resistance's sign; smaller is more exact and stiffer"),
     // drive
     lim("drive.omega0", -1e6, false, 1e6, false, "rad/s", SPEED),
     lim("drive.b", -1e6, false, 1e6, false, "rad/s²", "reaches 1e6 rad/s in a second"),

@@ -19,9 +19,11 @@
 //! solved in closed form (LDLᵀ), then `ψ̈_j = h_j/(m3 r²) − b_j·x / r`.
 
 use super::{Drive, PlanarRotor};
+use crate::balls::BallForces;
 use crate::ode::arrow::{ArrowJacobian, ArrowLinearization, ArrowSystem};
 use crate::ode::dual::{Dual, Real};
-use crate::ode::{Jacobian, System};
+use crate::ode::{DenseJacobian, Jacobian, System};
+use std::cell::RefCell;
 
 /// A complex number over any [`Real`] (plane vectors in rotor axes).
 #[derive(Clone, Copy, Debug)]
@@ -71,13 +73,44 @@ pub struct Equations<'a> {
     pub drive: &'a Drive,
     e: (f64, f64),
     prescribed: bool,
+    /// Contact and rolling resistance of real balls, when switched on (`None`: point masses).
+    pub(crate) balls: Option<BallForces>,
+    /// The balls' generalised forces of the current right-hand side (scratch).
+    ball_q: RefCell<Vec<f64>>,
 }
 
 impl<'a> Equations<'a> {
     /// The equations of `rotor` under `drive`.
     pub fn new(rotor: &'a PlanarRotor, drive: &'a Drive) -> Self {
         let e = (rotor.s2 * rotor.gamma.cos(), rotor.s2 * rotor.gamma.sin());
-        Equations { rotor, drive, e, prescribed: drive.prescribed() }
+        let balls = BallForces::new(&rotor.balls, rotor.m3, rotor.r, rotor.n, rotor.natural_frequency());
+        let ball_q = RefCell::new(vec![0.0; if balls.is_some() { rotor.n } else { 0 }]);
+        Equations { rotor, drive, e, prescribed: drive.prescribed(), balls, ball_q }
+    }
+
+    /// The real balls' generalised forces `Q_j` at `(y, θ̇ = w)` into `q` ([`crate::balls`]):
+    /// contact, and rolling resistance with the race's normal force
+    /// `N_j = m3 (r (θ̇ + ψ̇_j)² + θ̇² P·e^{iψ_j} − 2θ̇ (i u̇)·e^{iψ_j})` (the centripetal part of
+    /// the ball's acceleration; terms in `ü`, `θ̈`, of relative size `|u|/r`, left out).
+    fn ball_forces(&self, f: &BallForces, w: f64, y: &[f64], q: &mut [f64]) {
+        let p = self.rotor;
+        let nc = self.coords();
+        let (px, py) = (y[0] + self.e.0, y[1] + self.e.1);
+        let (vx, vy) = (y[nc], y[nc + 1]);
+        let normal = |j: usize| {
+            let (s, c) = y[3 + j].sin_cos();
+            let wr = w + y[nc + 3 + j];
+            p.m3 * (p.r * wr * wr + w * w * (px * c + py * s) - 2.0 * w * (vx * s - vy * c))
+        };
+        f.torques(&y[3..nc], &y[nc + 3..2 * nc], normal, q);
+    }
+
+    /// The balls' generalised forces at `(t, y)` (empty when the balls are point masses).
+    pub fn ball_torques(&self, t: f64, y: &[f64]) -> Vec<f64> {
+        let Some(f) = &self.balls else { return vec![] };
+        let mut q = vec![0.0; self.rotor.n];
+        self.ball_forces(f, self.speed(t, y).0, y, &mut q);
+        q
     }
 
     /// Number of generalised coordinates `3 + n`.
@@ -157,6 +190,9 @@ impl<'a> Equations<'a> {
         let mut out = vec![0.0; nc];
         let r = self.residual::<f64>(t, Cx::new(y[0], y[1]), Cx::new(y[nc], y[nc + 1]), w, &qdd, |j| (y[3 + j], y[nc + 3 + j]), |j, _, rb| out[3 + j] = rb);
         out[..3].copy_from_slice(&r);
+        for (j, q) in self.ball_torques(t, y).iter().enumerate() {
+            out[3 + j] += q;
+        }
         if wd.is_some() {
             out[2] = 0.0;
         }
@@ -214,6 +250,9 @@ impl<'a> Equations<'a> {
         }
         for j in 0..n {
             f[3 + j] -= p.c_psi * y[nc + 3 + j];
+        }
+        for (j, q) in self.ball_torques(t, y).iter().enumerate() {
+            f[3 + j] += q;
         }
         if let Some(a) = wd {
             for r in 0..nc {
@@ -343,8 +382,21 @@ impl Equations<'_> {
         let beta = -two_w * vy - w2 * px - wd_b * py;
         let gamma0 = -wd_b * r;
         // Σ s_j h_j/(m3 r), Σ c_j h_j/(m3 r)
-        let hs = -kappa * s_sd + alpha * s_sc + beta * s_ss + gamma0 * s_s;
-        let hc = -kappa * s_cd + alpha * s_cc + beta * s_sc + gamma0 * s_c;
+        let mut hs = -kappa * s_sd + alpha * s_sc + beta * s_ss + gamma0 * s_s;
+        let mut hc = -kappa * s_cd + alpha * s_cc + beta * s_sc + gamma0 * s_c;
+        // real balls (contact, rolling resistance): generalised forces Q_j added to h_j, their
+        // moments to the sums; nothing for point masses
+        let mut q_buf = self.ball_q.borrow_mut();
+        let mut q_1 = 0.0; // Σ Q_j/(m3 r)
+        if let Some(f) = &self.balls {
+            self.ball_forces(f, w, y, &mut q_buf);
+            for j in 0..n {
+                let qj = q_buf[j] / m3r;
+                hs += sin_j[j] * qj;
+                hc += cos_j[j] * qj;
+                q_1 += qj;
+            }
+        }
         let m0 = p.total_mass();
         let me = p.m2 + nf * m3;
         let sx = m0 * ux + p.m1 * p.s1 + me * self.e.0 + m3r * s_c;
@@ -366,7 +418,7 @@ impl Equations<'_> {
             let rot_b = two_w * (py * s_cd - px * s_sd) + py * s_cq - px * s_sq; // Σ ψ̇ (2θ̇ + ψ̇) P·(i d)
             let rot_r = two_w * ((p.m1 * gx + me * px) * vx + (p.m1 * gy + me * py) * vy + m3r * (vx * s_c + vy * s_s)) + m3r * rot_b;
             let bbeta = px * px * s_cc + 2.0 * px * py * s_sc + py * py * s_ss + 2.0 * r * (px * s_c + py * s_s) + nf * r * r;
-            let hb = px * hc + py * hs + r * (-kappa * s_d + alpha * s_c + beta * s_s + gamma0 * nf);
+            let hb = px * hc + py * hs + r * (-kappa * s_d + alpha * s_c + beta * s_s + gamma0 * nf + q_1);
             g[2] = self.drive.torque(t, w) + (-uy * fx + ux * fy) - p.c_theta * w - rot_r - m3 * hb;
             let a = [a[0], a[1], [a[0][2], a[1][2], inertia - m3 * bbeta]];
             solve_spd(a, g, 3)
@@ -384,6 +436,11 @@ impl Equations<'_> {
         let k_1 = (gamma0 - r * x2) * inv_r;
         for j in 0..n {
             sin_j[j] = k_d * rates[j] + k_c * cos_j[j] + k_s * sin_j[j] + k_1;
+        }
+        if self.balls.is_some() {
+            for j in 0..n {
+                sin_j[j] += q_buf[j] * inv_r / m3r;
+            }
         }
         dy[..nc].copy_from_slice(&y[nc..2 * nc]);
         dy[nc] = x[0];
@@ -406,6 +463,10 @@ impl System for Equations<'_> {
     }
 
     fn jacobian(&self) -> Box<dyn Jacobian + '_> {
+        if self.balls.is_some() {
+            // contact couples neighbouring balls (no arrow); balancers have few balls
+            return Box::new(DenseJacobian::differences(self));
+        }
         Box::new(ArrowJacobian::new(self))
     }
 
@@ -520,7 +581,8 @@ impl ArrowSystem for Equations<'_> {
     }
 }
 
-/// Total mechanical energy `T + V` of a state (J): for the energy-balance tests.
+/// Total mechanical energy `T + V` of a state (J), the contacts' elastic energy included: for
+/// the energy-balance tests.
 pub fn energy(rotor: &PlanarRotor, y: &[f64]) -> f64 {
     let n = rotor.n;
     let nc = 3 + n;
@@ -540,7 +602,8 @@ pub fn energy(rotor: &PlanarRotor, y: &[f64]) -> f64 {
         let v = vel(e_off.add(d.scalef(rotor.r)), d.mul_i().scalef(rotor.r * y[nc + 3 + j]));
         t += 0.5 * rotor.m3 * v.dot(v);
     }
-    t + 0.5 * rotor.k * u.dot(u)
+    let contact = BallForces::new(&rotor.balls, rotor.m3, rotor.r, n, rotor.natural_frequency()).map_or(0.0, |f| f.contact_energy(&y[3..nc]));
+    t + 0.5 * rotor.k * u.dot(u) + contact
 }
 
 #[cfg(test)]

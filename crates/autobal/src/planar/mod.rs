@@ -44,6 +44,7 @@ pub mod stationary;
 
 pub use crate::drive::Drive;
 pub use crate::ode::Method;
+use crate::balls::{BallForces, BallPhysics, EventCounter};
 use crate::error::{finite, non_negative, positive, Error, Result};
 use crate::ode::{Control, Direction, Event, Options, Solver, Status, System};
 use crate::simulation::{run, Hooks, Peak, Timeline};
@@ -83,6 +84,9 @@ pub struct PlanarRotor {
     pub c_theta: f64,
     /// Central moment of inertia of the disk (and housing) `I_G` (kg·m²).
     pub i_g: f64,
+    /// Real balls: diameter, contact, rolling resistance ([`crate::balls`]); default: the
+    /// paper's point masses.
+    pub balls: BallPhysics,
 }
 
 impl PlanarRotor {
@@ -106,6 +110,7 @@ impl PlanarRotor {
             c_psi: 0.1,
             c_theta: 0.0,
             i_g: 0.0025,
+            balls: BallPhysics::default(),
         }
     }
 
@@ -130,6 +135,7 @@ impl PlanarRotor {
             positive("planar.r", self.r)?;
             non_negative("planar.c_psi", self.c_psi)?;
         }
+        self.balls.validate("planar", self.m3, self.r, self.n)?;
         Ok(())
     }
 
@@ -216,6 +222,7 @@ impl Settings {
         for a in &self.psi_rate0 {
             finite("drive.psi_rate0", *a)?;
         }
+        rotor.balls.check_initial("drive.psi0", rotor.m3, rotor.r, &self.psi0)?;
         for a in self.xy0 {
             finite("drive.xy0", a)?;
         }
@@ -280,6 +287,12 @@ pub struct Summary {
     pub rejected_steps: u64,
     /// Right-hand-side evaluations (including dense output).
     pub rhs_evaluations: u64,
+    /// Ball–ball contacts that began (real balls with `planar.contact`; counted between step
+    /// ends, so a contact that begins and ends inside one step is not counted).
+    pub contacts: u64,
+    /// Transitions of the balls between sticking (`|ψ̇| ≤ 10 planar.slip_rate`) and slipping
+    /// (with `planar.rolling_resistance`), all balls together.
+    pub stick_slip_transitions: u64,
     /// End time reached (s).
     pub t_end: f64,
     /// How the run ended (typed; `stopped` says it in words).
@@ -334,6 +347,10 @@ pub fn tolerances(rotor: &PlanarRotor, settings: &Settings) -> Options {
         let base = if i < 2 { settings.atol } else { settings.atol / s_ref };
         atol[i] = base;
         atol[nc + i] = base * wn;
+        if i >= 3 && rotor.balls.rolling_resistance > 0.0 {
+            // resolve the regularised rolling resistance: rates well below its slip rate
+            atol[nc + i] = atol[nc + i].min(0.1 * rotor.balls.slip_rate);
+        }
     }
     let mut o = Options::new(settings.rtol, settings.atol).method(settings.method).atol_per_component(atol);
     o.h_max_implicit = 4.0 * settings.dt;
@@ -365,10 +382,11 @@ pub fn simulate_with(rotor: &PlanarRotor, drive: &Drive, settings: &Settings, ca
     solver.add_event(RadiusMaximum { nc });
     let breakpoints = drive.breakpoints();
     let timeline = Timeline { t_end: settings.t_end, dt: settings.dt, breakpoints: &breakpoints };
-    let mut hooks = PlanarHooks { rotor, drive, sink: &mut sink, peak: Peak::new(drive.omega0()), speed: (f64::INFINITY, f64::NEG_INFINITY), nc };
+    let mut hooks = PlanarHooks { rotor, drive, sink: &mut sink, peak: Peak::new(drive.omega0()), speed: (f64::INFINITY, f64::NEG_INFINITY), nc, balls: eq.balls.as_ref().map(|f| (f, EventCounter::default())) };
     let out = run(&mut solver, &mut y, &timeline, &mut hooks);
     let peak = hooks.peak;
     let speed_range = hooks.speed;
+    let (contacts, stick_slip_transitions) = hooks.balls.as_ref().map_or((0, 0), |(_, c)| (c.contacts, c.stick_slip));
     let final_amp = y[0].hypot(y[1]);
     let final_omega = if drive.prescribed() { drive.kinematics(out.t).0 } else { y[nc + 2] };
     // settled: the whirl radius and the balls change no faster than the drive's speed does
@@ -403,6 +421,8 @@ pub fn simulate_with(rotor: &PlanarRotor, drive: &Drive, settings: &Settings, ca
         switches: out.stats.switches,
         rejected_steps: out.stats.rejected,
         rhs_evaluations: out.stats.rhs_evaluations,
+        contacts,
+        stick_slip_transitions,
         t_end: out.t,
         status: out.status,
         stopped,
@@ -467,6 +487,7 @@ struct PlanarHooks<'a, F: FnMut(&Sample) -> bool> {
     peak: Peak<f64>,
     speed: (f64, f64),
     nc: usize,
+    balls: Option<(&'a BallForces, EventCounter)>,
 }
 
 impl<F: FnMut(&Sample) -> bool> Hooks for PlanarHooks<'_, F> {
@@ -480,6 +501,9 @@ impl<F: FnMut(&Sample) -> bool> Hooks for PlanarHooks<'_, F> {
         let w = if self.drive.prescribed() { self.drive.kinematics(t).0 } else { y[self.nc + 2] };
         self.peak.observe(y[0].hypot(y[1]), t, w);
         self.speed = (self.speed.0.min(w), self.speed.1.max(w));
+        if let Some((f, counter)) = &mut self.balls {
+            counter.observe(f, &y[3..self.nc], &y[self.nc + 3..2 * self.nc]);
+        }
     }
 
     fn event(&mut self, _index: usize, t: f64, y: &[f64]) {

@@ -222,6 +222,60 @@ static PLANAR_PATHS: &[ParameterPath<PlanarProblem>] = &[
     rotor_path!("planar.c_theta", "bearing drag c_θ (N·m·s)", c_theta),
     rotor_path!("planar.i_g", "central moment of inertia I_G (kg·m²)", i_g),
     ParameterPath {
+        path: "planar.ball_diameter",
+        doc: "ball diameter (m; default: steel balls of mass m3)",
+        set: |p, v| {
+            p.rotor.balls.diameter = Some(v);
+            Ok(())
+        },
+        get: |p| Ok(p.rotor.balls.diameter(p.rotor.m3)),
+    },
+    ParameterPath {
+        path: "planar.contact",
+        doc: "balls of finite size that collide: 1 on, 0 off",
+        set: |p, v| {
+            p.rotor.balls.contact = whole(v, 1)? == 1;
+            Ok(())
+        },
+        get: |p| Ok(if p.rotor.balls.contact { 1.0 } else { 0.0 }),
+    },
+    ParameterPath {
+        path: "planar.restitution",
+        doc: "restitution coefficient e of ball–ball impacts",
+        set: |p, v| {
+            p.rotor.balls.restitution = v;
+            Ok(())
+        },
+        get: |p| Ok(p.rotor.balls.restitution),
+    },
+    ParameterPath {
+        path: "planar.contact_stiffness",
+        doc: "ball–ball contact stiffness (N/m; default: contact frequency 100 sqrt(k/m0))",
+        set: |p, v| {
+            p.rotor.balls.contact_stiffness = Some(v);
+            Ok(())
+        },
+        get: |p| Ok(crate::balls::BallForces::new(&crate::balls::BallPhysics { contact: true, ..p.rotor.balls.clone() }, p.rotor.m3, p.rotor.r, p.rotor.n.max(2), p.rotor.natural_frequency()).and_then(|f| f.contact).map_or(f64::NAN, |c| c.stiffness)),
+    },
+    ParameterPath {
+        path: "planar.rolling_resistance",
+        doc: "rolling-resistance coefficient μ_r of the balls on their race",
+        set: |p, v| {
+            p.rotor.balls.rolling_resistance = v;
+            Ok(())
+        },
+        get: |p| Ok(p.rotor.balls.rolling_resistance),
+    },
+    ParameterPath {
+        path: "planar.slip_rate",
+        doc: "regularisation v_ε of the rolling resistance's sign (rad/s)",
+        set: |p, v| {
+            p.rotor.balls.slip_rate = v;
+            Ok(())
+        },
+        get: |p| Ok(p.rotor.balls.slip_rate),
+    },
+    ParameterPath {
         path: "drive.omega0",
         doc: "initial speed ω0 (rad/s)",
         set: |p, v| {
@@ -365,7 +419,11 @@ mod tests {
             let mut s = PlanarProblem::default();
             match s.get(p.path) {
                 Ok(v) => {
-                    let w = if p.path == "planar.n" { 3.0 } else { v + 0.5 };
+                    let w = match p.path {
+                        "planar.n" => 3.0,
+                        "planar.contact" => 1.0 - v,
+                        _ => v + 0.5,
+                    };
                     s.set(p.path, w).unwrap();
                     assert_eq!(s.get(p.path).unwrap(), w, "{}", p.path);
                 }

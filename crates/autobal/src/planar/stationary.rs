@@ -40,16 +40,27 @@ pub fn semi_balanced_demand(p: &PlanarRotor, w: f64) -> f64 {
     (-e * C::new(p.k / (w * w), p.c / w) + (e - C::new(p.s1, 0.0)) * p.m1).norm()
 }
 
+/// The largest unbalance the balls can supply (kg·m): `n m3 r` for point masses, and for balls
+/// of finite size (`planar.contact`) that of the touching balls packed in one arc,
+/// `m3 r sin(nΔc/2)/sin(Δc/2)` ([`crate::balls::capacity`]).
+pub fn ball_capacity(p: &PlanarRotor) -> f64 {
+    if p.balls.contact {
+        crate::balls::capacity(p.n, p.m3, p.balls.diameter(p.m3), p.r)
+    } else {
+        p.n as f64 * p.m3 * p.r
+    }
+}
+
 /// Whether the semi-balanced whirl (radius `s2`) exists at speed `w`.
 pub fn semi_balanced_exists(p: &PlanarRotor, w: f64) -> bool {
-    p.n >= 2 && semi_balanced_demand(p, w) <= p.n as f64 * p.m3 * p.r
+    p.n >= 2 && semi_balanced_demand(p, w) <= ball_capacity(p)
 }
 
 /// High-speed capacity ratio `α∞ = n m3 r / (m1 |s1 − s2 e^{iγ}|)`; the semi-balanced whirl
 /// exists at high speed when `α∞ > 1` (our reading of the paper's garbled eq (3)).
 pub fn capacity_ratio(p: &PlanarRotor) -> f64 {
     let e = C::from_polar(p.s2, p.gamma);
-    p.n as f64 * p.m3 * p.r / (p.m1 * (C::new(p.s1, 0.0) - e).norm())
+    ball_capacity(p) / (p.m1 * (C::new(p.s1, 0.0) - e).norm())
 }
 
 /// One aligned (unbalanced) steady whirl.

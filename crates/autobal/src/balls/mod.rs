@@ -1,0 +1,480 @@
+//! Real balls, shared by the dynamic models: finite size and ball–ball contact, rolling
+//! resistance between ball and race, and the closed forms that follow from them (how far apart
+//! touching balls sit, the largest unbalance `n` touching balls can cancel, where friction lets a
+//! ball rest). The models' balls are otherwise point masses with viscous drag; every force here is
+//! a *generalised force on a ball's angle* `ψ_j` relative to the housing (a torque about the race
+//! centre E, N·m), so a model adds it to its ball equations and nothing else: forces between two
+//! balls, or between a ball and its race, do no work on the rotor's own coordinates when the
+//! balls' angles are measured relative to the housing.
+//!
+//! ## Finite size and contact
+//! A ball of mass `m` is a steel sphere of diameter `d = (6 m/(π ρ_steel))^{1/3}`,
+//! `ρ_steel = 7850 kg/m³` ([`STEEL_DENSITY`]), unless a diameter is given. On a race of (centre)
+//! radius `r`, the centres of two balls `Δ = ψ_b − ψ_a` apart are a chord `c = 2 r |sin(Δ/2)|`
+//! apart; they overlap by `δ = d − c` when `δ > 0`, so touching balls sit `Δ_c = 2 asin(d/(2r))`
+//! apart ([`min_separation`]). The contact is a linear spring–damper along the line of centres
+//! (Kelvin–Voigt), `F = k_c δ + c_c δ̇` while `δ > 0`, with `c_c = 2 ζ sqrt(k_c m_e)`,
+//! `m_e = m/(2 cos²(Δ_c/2))` (the pair's reduced mass along the chord) and
+//! `ζ = −ln e / sqrt(π² + ln² e)`: a free impact then ends with the relative speed reversed and
+//! multiplied by exactly `e`, the restitution coefficient, whatever the impact speed (a
+//! Hunt–Crossley law `k δ^{3/2}(1 + α δ̇)` has no closed form for its restitution). The
+//! generalised forces are `Q_b = −Q_a = F ∂c/∂ψ_b = F r cos(Δ/2) sgn Δ`.
+//!
+//! `k_c` is a penalty: the end states converge to the rigid-ball ones as `1/k_c` (tested). Its
+//! default puts the contact's frequency `sqrt(k_c/m_e)` at 100 times the model's reference
+//! frequency (the shaft's `sqrt(k/m0)` in the planar model): the overlap under the tangential
+//! loads of a balancer is then below 1e-4 of the diameter, and the implicit integrator takes the
+//! stiffness in its stride.
+//!
+//! Why compliant and not event-driven impacts: the state that matters is balls *resting* against
+//! each other for hundreds of seconds (an impact law with `e < 1` reaches it only through an
+//! infinite sequence of ever smaller impacts, which needs a separate sticking mode and its own
+//! release condition); a compliant contact gives resting contact, impacts and release from one
+//! smooth law, and the implicit method (RODAS) integrates its stiffness at a cost independent of
+//! `k_c` once the balls rest (measured in docs/balls.md).
+//!
+//! ## Rolling resistance
+//! A ball rolling on its race feels a rolling-resistance moment `M = μ_r (d/2) N`, `N` the
+//! race's normal force on the ball: at the ball's centre a tangential force `μ_r N` against the
+//! relative motion, i.e. `Q_j = −μ_r r N_j sgn ψ̇_j` (`μ_r`, dimensionless, is the config's
+//! `rolling_resistance`; steel on hardened steel 1e-4 to 1e-3). While `|ψ̇_j|` is zero the moment
+//! is whatever holds the ball, up to `μ_r r N_j`. The sign function is regularised,
+//! `sgn v ≈ v/sqrt(v² + v_ε²)` (`slip_rate` `v_ε`, rad/s): a held ball creeps at a speed below
+//! `v_ε` instead of resting, so its position drifts at most `v_ε t`; the error vanishes with
+//! `v_ε` (tested against the exact resting set).
+//!
+//! A ball at rest relative to the rotor at constant speed `ω` whose race centre E whirls with
+//! `P` (E's position relative to the axis, in rotor axes) feels the torque
+//! `m r ω² P·(i e^{iψ})` pulling it towards `−P` against `μ_r r N`, `N = m ω² (r + P·e^{iψ})`:
+//! it can rest where `|P| |sin(ψ − arg P)| ≤ μ_r (r + |P| cos(ψ − arg P))` ([`can_rest`]). Near
+//! the balanced state `|P| ≪ r`, so the balls stop as soon as `|P| ≲ μ_r r`: the residual
+//! eccentricity of E is about `μ_r r`, to first order independent of speed and ball mass (both
+//! sides scale with `m ω²`).
+
+use crate::error::{finite, non_negative, positive, Error, Result};
+use serde::Serialize;
+use std::f64::consts::PI;
+
+/// Density of bearing steel (kg/m³), for the default ball diameter.
+pub const STEEL_DENSITY: f64 = 7850.0;
+
+/// A ball counts as sticking while `|ψ̇| ≤ STICK_FACTOR v_ε` ([`EventCounter`]).
+pub const STICK_FACTOR: f64 = 10.0;
+
+/// Contact frequency over the model's reference frequency for the default contact stiffness.
+pub const DEFAULT_CONTACT_FREQUENCY_RATIO: f64 = 100.0;
+
+/// Diameter (m) of a steel ball of `mass` (kg): `(6 m/(π ρ_steel))^{1/3}`.
+pub fn steel_diameter(mass: f64) -> f64 {
+    (6.0 * mass / (PI * STEEL_DENSITY)).cbrt()
+}
+
+/// Angle between the centres of two touching balls of diameter `d` on a race of radius `r`:
+/// `Δ_c = 2 asin(d/(2r))` (needs `d ≤ 2r`).
+pub fn min_separation(d: f64, r: f64) -> f64 {
+    2.0 * (d / (2.0 * r)).min(1.0).asin()
+}
+
+/// Largest resultant `|Σ_j e^{iψ_j}|` of `n` balls whose centres are at least `Δ_c` apart on the
+/// circle: the packed arc, `sin(nΔ_c/2)/sin(Δ_c/2)` (point masses: `n`). The largest unbalance
+/// `n` balls of mass `m` on radius `r` can cancel is `m r` times this ([`capacity`]).
+pub fn packed_resultant(n: usize, sep: f64) -> f64 {
+    if n == 0 {
+        return 0.0;
+    }
+    if sep <= 0.0 {
+        return n as f64;
+    }
+    ((n as f64 * sep / 2.0).sin() / (sep / 2.0).sin()).max(0.0)
+}
+
+/// The largest unbalance (kg·m) `n` balls of mass `m` and diameter `d` on a race of radius `r`
+/// can cancel: `m r sin(nΔ_c/2)/sin(Δ_c/2)`, the touching balls packed in one arc.
+pub fn capacity(n: usize, m: f64, d: f64, r: f64) -> f64 {
+    m * r * packed_resultant(n, min_separation(d, r))
+}
+
+/// Whether a ball at angle `psi` can rest on its race under friction `mu_r` when the race centre
+/// is at `p = (p_x, p_y)` from the axis (rotor axes, constant speed): the pull towards `−P`,
+/// `|P| |sin(ψ − arg P)|`, is at most `μ_r (r + P·e^{iψ})`. Returns the margin
+/// `μ_r (r + P·e^{iψ}) − |P·(i e^{iψ})|` (non-negative where the ball can rest).
+pub fn can_rest(mu_r: f64, r: f64, p: (f64, f64), psi: f64) -> f64 {
+    let (s, c) = psi.sin_cos();
+    let along = p.0 * c + p.1 * s;
+    let across = -p.0 * s + p.1 * c;
+    mu_r * (r + along) - across.abs()
+}
+
+/// The ball physics of one set of balls, as the config gives it (`planar.*`, or a spatial
+/// balancer plane's keys). The default is the papers' point masses: no contact, no rolling
+/// resistance, and then none of it costs anything.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct BallPhysics {
+    /// Ball diameter (m); `None`: a steel ball of the set's mass ([`steel_diameter`]).
+    pub diameter: Option<f64>,
+    /// Whether balls collide and cannot overlap (finite size).
+    pub contact: bool,
+    /// Restitution coefficient `e` of a ball–ball impact, in `[0, 1]` (default 0.5).
+    pub restitution: f64,
+    /// Contact stiffness `k_c` (N/m); `None`: contact frequency 100 times the model's reference.
+    pub contact_stiffness: Option<f64>,
+    /// Rolling-resistance coefficient `μ_r` (dimensionless; moment `μ_r (d/2) N`); 0: none.
+    pub rolling_resistance: f64,
+    /// Regularisation `v_ε` of the rolling resistance's sign (rad/s).
+    pub slip_rate: f64,
+}
+
+impl Default for BallPhysics {
+    fn default() -> Self {
+        BallPhysics { diameter: None, contact: false, restitution: 0.5, contact_stiffness: None, rolling_resistance: 0.0, slip_rate: 1e-4 }
+    }
+}
+
+impl BallPhysics {
+    /// Whether any of it is switched on.
+    pub fn is_active(&self) -> bool {
+        self.contact || self.rolling_resistance > 0.0
+    }
+
+    /// The balls' diameter (m) for ball mass `mass`.
+    pub fn diameter(&self, mass: f64) -> f64 {
+        self.diameter.unwrap_or_else(|| steel_diameter(mass))
+    }
+
+    /// Check the fields for `n` balls of `mass` on a race of radius `r`; errors name
+    /// `PREFIX.ball_diameter`, `PREFIX.restitution`, ... (`prefix` as the config spells the set,
+    /// e.g. `planar`).
+    pub fn validate(&self, prefix: &str, mass: f64, r: f64, n: usize) -> Result<()> {
+        let f = |k: &str| format!("{prefix}.{k}");
+        if let Some(d) = self.diameter {
+            positive(&f("ball_diameter"), d)?;
+        }
+        let rr = finite(&f("restitution"), self.restitution)?;
+        if !(0.0..=1.0).contains(&rr) {
+            return Err(Error::invalid(f("restitution"), format!("must lie in [0, 1], got {}", crate::error::fmt_num(rr))));
+        }
+        if let Some(k) = self.contact_stiffness {
+            positive(&f("contact_stiffness"), k)?;
+        }
+        non_negative(&f("rolling_resistance"), self.rolling_resistance)?;
+        if self.rolling_resistance > 1.0 {
+            return Err(Error::invalid(f("rolling_resistance"), format!("{} is not a rolling resistance (at most 1; steel on steel is ~1e-3)", crate::error::fmt_num(self.rolling_resistance))));
+        }
+        positive(&f("slip_rate"), self.slip_rate)?;
+        if self.contact && n > 0 && mass > 0.0 && r > 0.0 {
+            let d = self.diameter(mass);
+            if d >= 2.0 * r {
+                return Err(Error::invalid(f("ball_diameter"), format!("{} m does not fit a race of radius {} m", crate::error::fmt_num(d), crate::error::fmt_num(r))));
+            }
+            let sep = min_separation(d, r);
+            if n as f64 * sep > 2.0 * PI * (1.0 + 1e-12) {
+                return Err(Error::invalid(
+                    f("ball_diameter"),
+                    format!("{n} balls of diameter {} m do not fit on a race of radius {} m (at most {})", crate::error::fmt_num(d), crate::error::fmt_num(r), (2.0 * PI / sep).floor()),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Check that no two balls overlap at the start (`psi`: the initial angles); the error names
+    /// `field` (e.g. `drive.psi0`).
+    pub fn check_initial(&self, field: &str, mass: f64, r: f64, psi: &[f64]) -> Result<()> {
+        if !self.contact {
+            return Ok(());
+        }
+        let d = self.diameter(mass);
+        for a in 0..psi.len() {
+            for b in a + 1..psi.len() {
+                let c = chord(r, psi[b] - psi[a]);
+                if c < d * (1.0 - 1e-9) {
+                    return Err(Error::invalid(field, format!("balls {} and {} overlap at the start ({} m apart, diameter {} m)", a + 1, b + 1, crate::error::fmt_num(c), crate::error::fmt_num(d))));
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Chord between two points `dpsi` apart on a circle of radius `r`.
+fn chord(r: f64, dpsi: f64) -> f64 {
+    2.0 * r * (0.5 * dpsi).sin().abs()
+}
+
+/// `x` wrapped into `(−π, π]`.
+fn wrap(x: f64) -> f64 {
+    let y = x.rem_euclid(2.0 * PI);
+    if y > PI {
+        y - 2.0 * PI
+    } else {
+        y
+    }
+}
+
+/// The linear spring–damper contact between two balls (see the module docs).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactLaw {
+    /// Ball diameter `d` (m).
+    pub diameter: f64,
+    /// Race radius `r` (m).
+    pub r: f64,
+    /// Stiffness `k_c` (N/m).
+    pub stiffness: f64,
+    /// Damping `c_c = 2ζ sqrt(k_c m_e)` (N·s/m).
+    pub damping: f64,
+}
+
+impl ContactLaw {
+    /// The law for balls of `mass` and `diameter` on radius `r` with restitution `e` and
+    /// stiffness `k_c`.
+    pub fn new(mass: f64, diameter: f64, r: f64, restitution: f64, stiffness: f64) -> Self {
+        let m_e = reduced_mass(mass, diameter, r);
+        ContactLaw { diameter, r, stiffness, damping: 2.0 * damping_ratio(restitution) * (stiffness * m_e).sqrt() }
+    }
+
+    /// The generalised force on ball `b` (ball `a` gets its negative) when `b` is `dpsi` ahead
+    /// of `a` and their angles separate at `drate` (rad/s); 0 when they do not overlap.
+    #[inline]
+    pub fn pair(&self, dpsi: f64, drate: f64) -> f64 {
+        let h = 0.5 * wrap(dpsi);
+        let (s, c) = h.sin_cos();
+        let overlap = self.diameter - 2.0 * self.r * s.abs();
+        if overlap <= 0.0 {
+            return 0.0;
+        }
+        let arm = self.r * c * s.signum(); // ∂chord/∂ψ_b
+        let force = self.stiffness * overlap - self.damping * arm * drate;
+        force * arm
+    }
+
+    /// Elastic energy `½ k_c δ²` stored in the pair (J).
+    pub fn energy(&self, dpsi: f64) -> f64 {
+        let overlap = self.diameter - chord(self.r, dpsi);
+        if overlap > 0.0 {
+            0.5 * self.stiffness * overlap * overlap
+        } else {
+            0.0
+        }
+    }
+
+    /// Overlap `δ = d − c` of a pair `dpsi` apart (m; negative: a gap).
+    pub fn overlap(&self, dpsi: f64) -> f64 {
+        self.diameter - chord(self.r, dpsi)
+    }
+}
+
+/// Reduced mass of a ball pair along their line of centres when touching:
+/// `m/(2 cos²(Δ_c/2)) = m/(2(1 − d²/(4r²)))`.
+pub fn reduced_mass(mass: f64, diameter: f64, r: f64) -> f64 {
+    mass / (2.0 * (1.0 - diameter * diameter / (4.0 * r * r)))
+}
+
+/// Damping ratio `ζ = −ln e/sqrt(π² + ln² e)` of a linear contact with restitution `e`
+/// (`e = 0`: critical damping, `ζ = 1`).
+pub fn damping_ratio(restitution: f64) -> f64 {
+    if restitution <= 0.0 {
+        return 1.0;
+    }
+    let l = restitution.ln();
+    -l / (PI * PI + l * l).sqrt()
+}
+
+/// Rolling resistance on a ball: `−μ_r r N v/sqrt(v² + v_ε²)` (N·m) at relative rate `v`.
+#[inline]
+pub fn rolling_torque(mu_r: f64, r: f64, normal: f64, rate: f64, slip_rate: f64) -> f64 {
+    -mu_r * r * normal * rate / (rate * rate + slip_rate * slip_rate).sqrt()
+}
+
+/// Everything a right-hand side needs for one set of `n` balls, resolved once per run.
+#[derive(Debug, Clone)]
+pub struct BallForces {
+    /// Number of balls.
+    pub n: usize,
+    /// Race radius (m).
+    pub r: f64,
+    /// The contact law, when balls collide.
+    pub contact: Option<ContactLaw>,
+    /// `μ_r`.
+    pub rolling_resistance: f64,
+    /// `v_ε` (rad/s).
+    pub slip_rate: f64,
+}
+
+impl BallForces {
+    /// The forces of `physics` on `n` balls of `mass` on radius `r`; `reference_frequency`
+    /// (rad/s) sets the default contact stiffness. `None` when nothing is switched on (then the
+    /// model's equations are the point-mass ones, at no cost).
+    pub fn new(physics: &BallPhysics, mass: f64, r: f64, n: usize, reference_frequency: f64) -> Option<Self> {
+        if !physics.is_active() || n == 0 {
+            return None;
+        }
+        let contact = if physics.contact && n > 1 {
+            let d = physics.diameter(mass);
+            let m_e = reduced_mass(mass, d, r);
+            let w = DEFAULT_CONTACT_FREQUENCY_RATIO * reference_frequency;
+            let k = physics.contact_stiffness.unwrap_or(m_e * w * w);
+            Some(ContactLaw::new(mass, d, r, physics.restitution, k))
+        } else {
+            None
+        };
+        Some(BallForces { n, r, contact, rolling_resistance: physics.rolling_resistance, slip_rate: physics.slip_rate })
+    }
+
+    /// Write the generalised forces `Q_j` (N·m) on the balls' angles into `q`: contact between
+    /// every pair (the balls cannot pass each other, so every overlap is a real contact) and
+    /// rolling resistance with the race's normal force `normal(j)` (N).
+    #[inline]
+    pub fn torques(&self, psi: &[f64], rate: &[f64], normal: impl Fn(usize) -> f64, q: &mut [f64]) {
+        for j in 0..self.n {
+            q[j] = if self.rolling_resistance > 0.0 { rolling_torque(self.rolling_resistance, self.r, normal(j).max(0.0), rate[j], self.slip_rate) } else { 0.0 };
+        }
+        if let Some(c) = &self.contact {
+            for a in 0..self.n {
+                for b in a + 1..self.n {
+                    let f = c.pair(psi[b] - psi[a], rate[b] - rate[a]);
+                    q[b] += f;
+                    q[a] -= f;
+                }
+            }
+        }
+    }
+
+    /// Elastic energy stored in the contacts (J).
+    pub fn contact_energy(&self, psi: &[f64]) -> f64 {
+        let Some(c) = &self.contact else { return 0.0 };
+        let mut e = 0.0;
+        for a in 0..self.n {
+            for b in a + 1..self.n {
+                e += c.energy(psi[b] - psi[a]);
+            }
+        }
+        e
+    }
+}
+
+/// Counts, over a run, the contacts that began and the balls' transitions between sticking
+/// (`|ψ̇| ≤ 10 v_ε`: a held ball creeps at `v_ε Q/sqrt(Q_max² − Q²)`, below `10 v_ε` unless its
+/// load `Q` is within 0.5 % of the limit `Q_max`) and slipping, from the states at the ends of
+/// accepted steps.
+#[derive(Debug, Clone, Default)]
+pub struct EventCounter {
+    touching: Vec<bool>,
+    sticking: Vec<bool>,
+    started: bool,
+    /// Contacts that began (a pair went from a gap to an overlap).
+    pub contacts: u64,
+    /// Transitions between sticking and slipping, all balls together.
+    pub stick_slip: u64,
+}
+
+impl EventCounter {
+    /// Observe the balls' angles and rates at the end of a step.
+    pub fn observe(&mut self, forces: &BallForces, psi: &[f64], rate: &[f64]) {
+        let n = forces.n;
+        if !self.started {
+            self.started = true;
+            self.touching = vec![false; n * n.saturating_sub(1) / 2];
+            self.sticking = vec![false; n];
+            self.record(forces, psi, rate, false);
+        } else {
+            self.record(forces, psi, rate, true);
+        }
+    }
+
+    fn record(&mut self, forces: &BallForces, psi: &[f64], rate: &[f64], count: bool) {
+        if let Some(c) = &forces.contact {
+            let mut k = 0;
+            for a in 0..forces.n {
+                for b in a + 1..forces.n {
+                    let now = c.overlap(psi[b] - psi[a]) > 0.0;
+                    if count && now && !self.touching[k] {
+                        self.contacts += 1;
+                    }
+                    self.touching[k] = now;
+                    k += 1;
+                }
+            }
+        }
+        if forces.rolling_resistance > 0.0 {
+            for (j, v) in rate.iter().enumerate().take(forces.n) {
+                let now = v.abs() <= STICK_FACTOR * forces.slip_rate;
+                if count && now != self.sticking[j] {
+                    self.stick_slip += 1;
+                }
+                self.sticking[j] = now;
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn steel_ball_of_ten_grams_is_13_mm() {
+        // 0.01 kg of steel: V = 1.274e-6 m³, d = 13.45 mm
+        let d = steel_diameter(0.01);
+        assert!((d - 0.013_45).abs() < 1e-5, "{d}");
+        assert!((PI / 6.0 * d.powi(3) * STEEL_DENSITY - 0.01).abs() < 1e-15);
+    }
+
+    #[test]
+    fn packed_resultant_is_the_best_of_any_arrangement() {
+        // brute force over arrangements of 3 balls with separations ≥ Δ_c: none beats the packed arc
+        let sep = 0.4;
+        let best = packed_resultant(3, sep);
+        assert!((best - (1.0 + 2.0 * sep.cos())).abs() < 1e-14);
+        let mut found: f64 = 0.0;
+        for i in 0..400 {
+            for k in 0..400 {
+                let a = sep + (2.0 * PI - 3.0 * sep) * i as f64 / 399.0;
+                let b = sep + (2.0 * PI - 3.0 * sep) * k as f64 / 399.0;
+                if a + b > 2.0 * PI - sep {
+                    continue;
+                }
+                let (x, y) = (1.0 + a.cos() + (a + b).cos(), a.sin() + (a + b).sin());
+                found = found.max(x.hypot(y));
+            }
+        }
+        assert!(found <= best + 1e-12 && found > best - 1e-9, "{found} vs {best}");
+        assert_eq!(packed_resultant(4, 0.0), 4.0);
+    }
+
+    #[test]
+    fn contact_force_is_the_gradient_of_its_energy() {
+        let law = ContactLaw::new(0.01, 0.0134, 0.06, 1.0, 1e6); // e = 1: no damping
+        assert_eq!(law.damping, 0.0);
+        let sep = min_separation(0.0134, 0.06);
+        for dpsi in [sep * 0.999, -sep * 0.995, sep * 0.9] {
+            let h = 1e-7;
+            let numeric = -(law.energy(dpsi + h) - law.energy(dpsi - h)) / (2.0 * h);
+            let q = law.pair(dpsi, 0.0);
+            assert!((q - numeric).abs() < 1e-6 * q.abs(), "{q} {numeric}");
+        }
+        assert_eq!(law.pair(sep * 1.01, 0.0), 0.0);
+    }
+
+    #[test]
+    fn damping_ratio_gives_the_restitution_of_a_linear_oscillator() {
+        for e in [0.1, 0.5, 0.9, 1.0] {
+            let z = damping_ratio(e);
+            let back = (-PI * z / (1.0 - z * z).sqrt()).exp();
+            assert!((back - e).abs() < 1e-12, "{e} {back}");
+        }
+    }
+
+    #[test]
+    fn validation_names_the_field() {
+        let p = BallPhysics { contact: true, ..Default::default() };
+        let e = p.validate("planar", 0.03, 0.06, 20).unwrap_err();
+        assert_eq!(e.field(), Some("planar.ball_diameter"));
+        assert!(p.validate("planar", 0.03, 0.06, 19).is_ok()); // 2π/0.324 = 19.4
+        let e = BallPhysics { restitution: 1.5, ..Default::default() }.validate("planar", 0.03, 0.06, 2).unwrap_err();
+        assert_eq!(e.field(), Some("planar.restitution"));
+        let e = BallPhysics { rolling_resistance: -1.0, ..Default::default() }.validate("planar", 0.03, 0.06, 2).unwrap_err();
+        assert_eq!(e.field(), Some("planar.rolling_resistance"));
+        let e = p.check_initial("drive.psi0", 0.03, 0.06, &[0.0, 0.2]).unwrap_err();
+        assert_eq!(e.field(), Some("drive.psi0"));
+    }
+}
