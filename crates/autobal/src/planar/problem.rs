@@ -185,6 +185,21 @@ macro_rules! rotor_path {
     };
 }
 
+/// A path to a number of the rotor's real-ball physics (`planar.restitution`, ...).
+macro_rules! balls_path {
+    ($path:literal, $doc:literal, $field:ident) => {
+        ParameterPath {
+            path: $path,
+            doc: $doc,
+            set: |p, v| {
+                p.rotor.balls.$field = v;
+                Ok(())
+            },
+            get: |p| Ok(p.rotor.balls.$field),
+        }
+    };
+}
+
 macro_rules! settings_path {
     ($path:literal, $doc:literal, $field:ident) => {
         ParameterPath {
@@ -239,15 +254,7 @@ static PLANAR_PATHS: &[ParameterPath<PlanarProblem>] = &[
         },
         get: |p| Ok(if p.rotor.balls.contact { 1.0 } else { 0.0 }),
     },
-    ParameterPath {
-        path: "planar.restitution",
-        doc: "restitution coefficient e of ball–ball impacts",
-        set: |p, v| {
-            p.rotor.balls.restitution = v;
-            Ok(())
-        },
-        get: |p| Ok(p.rotor.balls.restitution),
-    },
+    balls_path!("planar.restitution", "restitution coefficient e of ball–ball impacts", restitution),
     ParameterPath {
         path: "planar.contact_stiffness",
         doc: "ball–ball contact stiffness (N/m; default: contact frequency 100 sqrt(k/m0))",
@@ -257,24 +264,8 @@ static PLANAR_PATHS: &[ParameterPath<PlanarProblem>] = &[
         },
         get: |p| Ok(crate::balls::BallForces::new(&crate::balls::BallPhysics { contact: true, ..p.rotor.balls.clone() }, p.rotor.m3, p.rotor.r, p.rotor.n.max(2), p.rotor.natural_frequency()).and_then(|f| f.contact).map_or(f64::NAN, |c| c.stiffness)),
     },
-    ParameterPath {
-        path: "planar.rolling_resistance",
-        doc: "rolling-resistance coefficient μ_r of the balls on their race",
-        set: |p, v| {
-            p.rotor.balls.rolling_resistance = v;
-            Ok(())
-        },
-        get: |p| Ok(p.rotor.balls.rolling_resistance),
-    },
-    ParameterPath {
-        path: "planar.slip_rate",
-        doc: "regularisation v_ε of the rolling resistance's sign (rad/s)",
-        set: |p, v| {
-            p.rotor.balls.slip_rate = v;
-            Ok(())
-        },
-        get: |p| Ok(p.rotor.balls.slip_rate),
-    },
+    balls_path!("planar.rolling_resistance", "rolling-resistance coefficient μ_r of the balls on their race", rolling_resistance),
+    balls_path!("planar.slip_rate", "regularisation v_ε of the rolling resistance's sign (rad/s)", slip_rate),
     ParameterPath {
         path: "drive.omega0",
         doc: "initial speed ω0 (rad/s)",
