@@ -279,3 +279,34 @@ fn switched_off_the_balls_are_the_papers_point_masses() {
     assert_eq!(la, lb);
     assert_eq!((a.steps, a.contacts, a.stick_slip_transitions), (b.steps, 0, 0));
 }
+
+#[test]
+fn the_right_hand_side_solves_every_bodys_equation_with_the_ball_forces() {
+    // The structured right-hand side adds Q_j through its ball moments; every body's d'Alembert
+    // residual (assembled body by body, with Q_j added to the ball rows) must vanish at its
+    // accelerations, for free and prescribed rotation, with balls pressed together and rolling.
+    use autobal::ode::System;
+    use autobal::planar::Equations;
+    let drives = [Drive::Torque { omega0: 0.0, torque: 3.0, t_off: None }, Drive::Acceleration { omega0: 100.0, b: 20.0 }];
+    for n in [2, 3, 5] {
+        let p = PlanarRotor { n, balls: BallPhysics { contact: true, rolling_resistance: 2e-3, ..Default::default() }, ..PlanarRotor::paper_004(0.01) };
+        let sep = min_separation(steel_diameter(p.m3), p.r);
+        for d in &drives {
+            let eq = Equations::new(&p, d);
+            let nc = 3 + n;
+            let mut y = vec![0.0; 2 * nc];
+            (y[0], y[1], y[nc], y[nc + 1], y[nc + 2]) = (1e-3, -2e-3, 0.3, 0.1, 250.0);
+            for j in 0..n {
+                y[3 + j] = 1.0 + 0.999 * sep * j as f64; // each pair overlapping slightly
+                y[nc + 3 + j] = 0.01 * (j as f64 - 1.0); // one ball near sticking
+            }
+            let q = eq.ball_torques(0.0, &y);
+            assert!(q[0].abs() > 1.0, "the balls press on each other: {q:?}");
+            let mut dy = vec![0.0; 2 * nc];
+            eq.rhs(0.0, &y, &mut dy);
+            let res = eq.residuals(0.0, &y, &dy[nc..]);
+            let scale = q.iter().fold(p.k * 1e-3, |a, x| a.max(x.abs()));
+            assert!(res.iter().all(|r| r.abs() < 1e-10 * scale), "n = {n}, {d:?}: residuals {res:?}");
+        }
+    }
+}
