@@ -83,9 +83,16 @@ fn group_name(g: Group) -> &'static str {
     }
 }
 
-/// Campbell diagrams (rotating axes, fixed axes) with one legend entry per tracked mode
-/// ("mode 3: tilt, forward", from the dominant motion and whirl over the line), distinct
-/// colours, the 1× line and the analytic critical speeds as markers whose labels never overlap.
+/// Share of a circular component below which it is not drawn in fixed axes.
+const COMPONENT_SHARE: f64 = 0.1;
+
+/// Campbell diagrams (rotating axes, fixed axes) with one colour and legend entry per tracked
+/// mode ("mode 3: tilt, forward", from the dominant motion and whirl over the line), the 1×
+/// line and the analytic critical speeds as markers whose labels never overlap; speeds in the
+/// model's unit ([`SpeedUnit`]). In fixed axes a mode of rotating-frame frequency `ν` whirls
+/// at `Ω + ν` and at `Ω − ν` (shares from its eigenvector): each component is its own
+/// continuous curve wherever its share is at least 10 %, so no curve jumps between the two
+/// where an elliptic mode changes its dominant direction.
 pub fn campbell_plots(model: &SpatialModel, c: &Campbell) -> (Plot, Plot) {
     let u = SpeedUnit::of(model);
     let k = u.factor;
@@ -103,22 +110,31 @@ pub fn campbell_plots(model: &SpatialModel, c: &Campbell) -> (Plot, Plot) {
         let bwd = upper.iter().filter(|m| m.whirl == Whirl::Backward).count();
         let whirl = if fwd >= bwd { "forward" } else { "backward" };
         let pts_r: Vec<(f64, f64)> = c.omega.iter().zip(&l.modes).map(|(&w, m)| (k * w, if m.im >= 0.0 { k * m.im } else { f64::NAN })).collect();
-        let pts_f: Vec<(f64, f64)> = c
-            .omega
-            .iter()
-            .zip(&l.modes)
-            .map(|(&w, m)| (k * w, if m.im >= 0.0 && m.whirl != Whirl::None { k * m.fixed_frequency } else { f64::NAN }))
-            .collect();
         let start = |p: &[(f64, f64)]| p.iter().find(|q| q.1.is_finite()).map(|q| q.1);
         if start(&pts_r).is_none() {
             continue;
         }
+        // the fixed-axes components Ω + ν (share s) and Ω − ν (share 1 − s)
+        let component = |sign: f64| -> Vec<(f64, f64)> {
+            c.omega
+                .iter()
+                .zip(&l.modes)
+                .map(|(&w, m)| {
+                    let share = if sign > 0.0 { m.forward_share } else { 1.0 - m.forward_share };
+                    let drawn = m.im >= 0.0 && m.whirl != Whirl::None && share >= COMPONENT_SHARE;
+                    (k * w, if drawn { k * (w + sign * m.im) } else { f64::NAN })
+                })
+                .collect()
+        };
         shown += 1;
         let col = curve_color(shown - 1);
-        let name = |p: &[(f64, f64)]| format!("mode {shown}: {}, {whirl}, from {}", group_name(g), crate::num::fmt(start(p).unwrap_or(f64::NAN), 3));
-        rot.push(Series::new(name(&pts_r), pts_r.clone(), col));
-        if start(&pts_f).is_some() {
-            fixed.push(Series::new(name(&pts_f), pts_f, col));
+        let name = format!("mode {shown}: {}, {whirl}, from {}", group_name(g), crate::num::fmt(start(&pts_r).unwrap_or(f64::NAN), 3));
+        rot.push(Series::new(name.clone(), pts_r, col));
+        for (sign, part) in [(1.0, "Ω + ν"), (-1.0, "Ω − ν")] {
+            let pts = component(sign);
+            if start(&pts).is_some() {
+                fixed.push(Series::new(format!("{name} ({part})"), pts, col));
+            }
         }
     }
     let w = *c.omega.last().unwrap_or(&1.0);
@@ -136,7 +152,7 @@ pub fn campbell_plots(model: &SpatialModel, c: &Campbell) -> (Plot, Plot) {
             ..Default::default()
         },
         Plot {
-            title: "Campbell diagram, fixed axes (forward > 0 > backward)".into(),
+            title: "Campbell diagram, fixed axes: components Ω ± ν of each mode (forward > 0 > backward)".into(),
             x_label: u.label.clone(),
             y_label: u.freq_label.clone(),
             series: fixed,

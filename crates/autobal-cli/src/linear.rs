@@ -3,13 +3,11 @@
 use crate::config::Config;
 use crate::figures::omega_limit;
 use crate::output::{fmt_ranges, ranges_value};
-use crate::plot::{Plot, Series, PALETTE};
 use anyhow::Result;
-use autobal::spatial::critical_speeds::critical_speeds;
 use autobal::spatial::linear_model::Balls;
 use autobal::spatial::params::SpatialModel;
 use autobal::spatial::ranges::{autobalancing_ranges, SpeedRange};
-use autobal::spatial::stability::{campbell, campbell_stream, stability_ranges, Campbell, StabilityRanges, Whirl};
+use autobal::spatial::stability::{campbell, campbell_stream, stability_ranges, Campbell, StabilityRanges};
 use serde_json::{json, Value};
 use std::fmt::Write;
 
@@ -169,93 +167,6 @@ pub fn campbell_table(cfg: &Config, c: &Campbell) -> String {
     s
 }
 
-/// Share of a circular component below which it is not drawn in fixed axes.
-const COMPONENT_SHARE: f64 = 0.1;
-
-/// Campbell plots: rotating-frame frequencies, and fixed-frame whirl frequencies with the 1×
-/// line and the analytic critical speeds. In fixed axes a tracked mode whirls at `Ω + ν` and at
-/// `Ω − ν` (shares from its eigenvector); each component is drawn as its own continuous curve
-/// wherever its share is at least [`COMPONENT_SHARE`], so no curve jumps between the two where
-/// an elliptic mode changes its dominant direction.
-pub fn campbell_plots(model: &SpatialModel, c: &Campbell) -> (Plot, Plot) {
-    let mut rot = vec![];
-    let mut fixed = vec![];
-    for (i, l) in c.lines.iter().enumerate() {
-        let col = PALETTE[i % 7];
-        let pts_r: Vec<(f64, f64)> = c.omega.iter().zip(&l.modes).map(|(&w, m)| (w, if m.im >= 0.0 { m.im } else { f64::NAN })).collect();
-        let shown = |m: &autobal::spatial::stability::Mode| m.im >= 0.0 && m.whirl != Whirl::None;
-        let pts_f: Vec<(f64, f64)> = c
-            .omega
-            .iter()
-            .zip(&l.modes)
-            .map(|(&w, m)| (w, if shown(m) && m.forward_share >= COMPONENT_SHARE { w + m.im } else { f64::NAN }))
-            .collect();
-        let pts_b: Vec<(f64, f64)> = c
-            .omega
-            .iter()
-            .zip(&l.modes)
-            .map(|(&w, m)| (w, if shown(m) && 1.0 - m.forward_share >= COMPONENT_SHARE { w - m.im } else { f64::NAN }))
-            .collect();
-        rot.push(Series::new("", pts_r, col));
-        if pts_f.iter().any(|p| p.1.is_finite()) {
-            fixed.push(Series::new("", pts_f, col));
-        }
-        if pts_b.iter().any(|p| p.1.is_finite()) {
-            fixed.push(Series::new("", pts_b, col));
-        }
-    }
-    let w = *c.omega.last().unwrap_or(&1.0);
-    fixed.push(Series::new("1× (synchronous)", vec![(0.0, 0.0), (w, w)], "#000000").dashed());
-    let vlines: Vec<(f64, String)> =
-        critical_speeds(model).speeds.iter().enumerate().map(|(i, k)| (k.omega, format!("K{}", i + 1))).collect();
-    (
-        Plot {
-            title: "Campbell diagram, rotating axes".into(),
-            x_label: "Ω".into(),
-            y_label: "Im λ (rotating frame)".into(),
-            series: rot,
-            vlines: vlines.clone(),
-            x_range: Some((0.0, w)),
-            ..Default::default()
-        },
-        Plot {
-            title: "Campbell diagram, fixed axes: components Ω ± ν of each mode (forward > 0 > backward)".into(),
-            x_label: "Ω".into(),
-            y_label: "whirl frequency / ω0".into(),
-            series: fixed,
-            vlines,
-            x_range: Some((0.0, w)),
-            ..Default::default()
-        },
-    )
-}
-
-/// Margin plot along Ω with the exact and necessary ranges shaded.
-pub fn margin_plot(c: &Comparison) -> Plot {
-    use crate::plot::Shade;
-    let pts = c.exact.max_real_part.clone();
-    let mut shades: Vec<Shade> = c
-        .exact
-        .stable_ranges
-        .iter()
-        .map(|r| Shade { x: (r.lo, r.hi.unwrap_or(c.omega_max)), y: (None, Some(0.0)), color: "#009E73".into() })
-        .collect();
-    shades.extend(c.necessary.iter().map(|r| Shade { x: (r.lo, r.hi.unwrap_or(c.omega_max)), y: (Some(0.0), None), color: "#56B4E9".into() }));
-    let lo = pts.iter().map(|p| p.1).fold(0.0, f64::min);
-    let hi = pts.iter().map(|p| p.1).fold(0.0, f64::max);
-    let pad = 0.1 * (hi - lo).max(1e-6);
-    Plot {
-        title: "max Re λ: green = exactly stable, blue = 003 necessary".into(),
-        x_label: "Ω".into(),
-        y_label: "max Re λ".into(),
-        series: vec![Series::new("max Re λ", pts, PALETTE[1])],
-        shades,
-        x_range: Some((0.0, c.omega_max)),
-        y_range: Some((lo - pad, hi + pad)),
-        ..Default::default()
-    }
-}
-
 pub fn campbell_of(cfg: &Config, w: f64, points: usize, balls: Balls) -> Result<Campbell> {
     Ok(campbell(&cfg.model, &campbell_grid(w, points), balls)?)
 }
@@ -336,7 +247,7 @@ pub fn run_campbell(cfg: &Config, w: f64, points: usize, balls: Balls, json: boo
         let stats = result?;
         let done = stats.speeds;
         if let Some(prefix) = svg {
-            let (rot, fixed) = campbell_plots(&cfg.model, &plot);
+            let (rot, fixed) = crate::figures::campbell_plots(&cfg.model, &plot);
             for (suffix, p) in [("rotating", rot), ("fixed", fixed)] {
                 let path = std::path::PathBuf::from(format!("{}_{suffix}.svg", prefix.display()));
                 std::fs::write(&path, p.to_svg()).with_context(|| format!("--svg: cannot write {}", path.display()))?;

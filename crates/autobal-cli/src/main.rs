@@ -239,7 +239,7 @@ fn run(cli: Cli) -> Result<()> {
             let c = linear::compare(&cfg.model, w, samples, lin.balls.into())?;
             autobal::limits::check_finite("stability", &c.exact)?;
             if let Some(p) = svg {
-                std::fs::write(&p, linear::margin_plot(&c).to_svg()).with_context(|| format!("--svg {}: cannot write", p.display()))?;
+                std::fs::write(&p, figures::margin_plot(&cfg.model, &c).to_svg()).with_context(|| format!("--svg {}: cannot write", p.display()))?;
             }
             emit(format, linear::stability_json(&cfg, &c, lin.balls.into()), linear::stability_table(&cfg, &c, lin.balls.into()))
         }

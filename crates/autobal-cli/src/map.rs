@@ -69,6 +69,10 @@ impl Axis {
     fn is_omega(&self) -> bool {
         self.key == "omega"
     }
+    /// The library's axis: the path and every value.
+    pub fn to_library(&self) -> autobal::spatial::map::Axis {
+        autobal::spatial::map::Axis { path: self.key.clone(), values: (0..self.n).map(|i| self.value(i)).collect() }
+    }
 }
 
 pub use autobal::spatial::map::{Cell, Quantity};
@@ -136,8 +140,7 @@ pub fn compute(
         bail!("--omega: required when neither axis is omega (the speed at which to map)");
     }
     writeln!(csv, "{},{},max_real_part,stable,necessary", x.key, y.key)?;
-    let lib_axis = |a: &Axis| autobal::spatial::map::Axis { path: a.key.clone(), values: (0..a.n).map(|i| a.value(i)).collect() };
-    let (lx, ly) = (lib_axis(&x), lib_axis(&y));
+    let (lx, ly) = (x.to_library(), y.to_library());
     let settings = autobal::spatial::map::MapSettings { balls, quantity, omega };
     let bar = progress.then(|| {
         let b = indicatif::ProgressBar::new(y.n as u64);

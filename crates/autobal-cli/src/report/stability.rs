@@ -5,14 +5,12 @@
 use super::{interrupted, rotor::ranges_text, Ctx, Section};
 use crate::figures::{campbell_plots, margin_plot, omega_limit, with_layout, SpeedUnit};
 use crate::linear;
-use crate::map::{Axis, Cell, MapResult, Quantity};
+use crate::map::{Axis, MapResult, Quantity};
 use crate::num::fmt;
 use anyhow::Result;
-use autobal::spatial::linear_model::{Balls, StateSpace};
+use autobal::spatial::linear_model::Balls;
+use autobal::spatial::map::{stability_map, MapSettings, ModelFamily};
 use autobal::spatial::params::SpatialModel;
-use autobal::spatial::ranges::{autobalancing_ranges, SpeedRange};
-use autobal::spatial::stability::{counts_as_stable, margin_at};
-use rayon::prelude::*;
 
 /// Grid of the report's maps (per axis).
 const MAP_N: usize = 121;
@@ -132,31 +130,41 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
     Ok(Some(s))
 }
 
-/// A stability map over one model parameter (`set`) and the speed, rows in parallel; rows not
-/// started when Ctrl-C came are `None`.
+/// This rotor with one dimensionless coefficient of its derived model set directly (`set`, the
+/// only path): a dimensional rotor is varied in the papers' layouts as a dimensionless one is.
+#[derive(Clone)]
+struct Varied<'a> {
+    model: &'a SpatialModel,
+    path: &'a str,
+    set: fn(&mut SpatialModel, f64),
+    value: Option<f64>,
+}
+
+impl ModelFamily for Varied<'_> {
+    fn with(&self, path: &str, value: f64) -> autobal::error::Result<Self> {
+        if path != self.path {
+            return Err(autobal::error::Error::invalid(path, format!("this map varies {} only", self.path)));
+        }
+        Ok(Varied { value: Some(value), ..self.clone() })
+    }
+    fn model(&self) -> autobal::error::Result<SpatialModel> {
+        let mut m = self.model.clone();
+        if let Some(v) = self.value {
+            (self.set)(&mut m, v);
+        }
+        Ok(m)
+    }
+}
+
+/// A stability map over one model parameter (`set`) and the speed, by the library's map
+/// ([`autobal::spatial::map::stability_map`]); rows not computed when Ctrl-C came are `None`.
 fn map(m: &SpatialModel, x: Axis, y: Axis, set: fn(&mut SpatialModel, f64), balls: Balls) -> Result<MapResult> {
-    let cols: Vec<(StateSpace, Vec<SpeedRange>)> = (0..x.n)
-        .map(|i| {
-            let mut mz = m.clone();
-            set(&mut mz, x.value(i));
-            Ok((StateSpace::new(&mz, balls)?, autobalancing_ranges(&mz).ranges))
-        })
-        .collect::<Result<_>>()?;
-    let rows = (0..y.n)
-        .into_par_iter()
-        .map(|j| {
-            if interrupted() {
-                return Ok(None);
-            }
-            let om = y.value(j);
-            cols.iter()
-                .map(|(ss, nec)| {
-                    let a = margin_at(ss, om)?;
-                    Ok(Cell { margin: a, stable: counts_as_stable(a, balls), necessary: nec.iter().any(|r| r.contains(om)) })
-                })
-                .collect::<Result<Vec<_>>>()
-                .map(Some)
-        })
-        .collect::<Result<Vec<_>>>()?;
+    let family = Varied { model: m, path: &x.key, set, value: None };
+    let settings = MapSettings { balls, quantity: Quantity::Margin, omega: None };
+    let mut rows = vec![None; y.n];
+    stability_map(&family, &x.to_library(), &y.to_library(), &settings, &mut |j, cells| {
+        rows[j] = Some(cells.to_vec());
+        !interrupted()
+    })?;
     Ok(MapResult { x, y, rows, quantity: Quantity::Margin })
 }

@@ -28,6 +28,7 @@ use crate::error::{Error, Result};
 use crate::linalg::charpoly::{AbscissaTracker, SpeedPolynomial};
 use crate::linalg::eigen::{eigenvalues, routh_hurwitz_stable, spectral_abscissa};
 use crate::spatial::linear_model::{Balls, Pencil, StateSpace};
+use crate::spatial::params::SpatialModel;
 use crate::spatial::paths::SpatialSpec;
 use crate::spatial::ranges::{autobalancing_ranges, SpeedRange};
 use crate::spatial::stability::{counts_as_stable, no_conv, strictly_stable_at};
@@ -106,6 +107,27 @@ pub struct MapOutcome {
     pub direct: usize,
 }
 
+/// What a map varies: a family of models reached through parameter paths. [`SpatialSpec`] is
+/// one (the config's paths; the model is derived again at every point); a front end may give
+/// another, e.g. a derived model whose dimensionless coefficients are set directly.
+pub trait ModelFamily: Clone + Sync {
+    /// The member with the parameter at `path` set to `value` (errors name the path).
+    fn with(&self, path: &str, value: f64) -> Result<Self>;
+    /// Its model.
+    fn model(&self) -> Result<SpatialModel>;
+}
+
+impl ModelFamily for SpatialSpec {
+    fn with(&self, path: &str, value: f64) -> Result<Self> {
+        let mut t = self.clone();
+        t.set(path, value)?;
+        Ok(t)
+    }
+    fn model(&self) -> Result<SpatialModel> {
+        self.build()
+    }
+}
+
 /// A model fixed along the speed axis.
 struct Line {
     ss: StateSpace,
@@ -119,8 +141,8 @@ struct Line {
 }
 
 impl Line {
-    fn new(spec: &SpatialSpec, balls: Balls) -> Result<Self> {
-        let model = spec.build()?;
+    fn new(spec: &impl ModelFamily, balls: Balls) -> Result<Self> {
+        let model = spec.model()?;
         let ss = StateSpace::new(&model, balls)?;
         let poly = SpeedPolynomial::new(&Pencil::terms(&model, balls)?);
         let nec = autobalancing_ranges(&model).ranges;
@@ -220,7 +242,7 @@ impl Line {
 /// a stop).
 const BLOCK_CELLS: usize = 1 << 18;
 
-/// Compute the map of `spec` over `x × y`; row `j` (all `x` at `y[j]`) goes to `on_row(j, cells)`
+/// Compute the map of `spec` (a [`SpatialSpec`], or any [`ModelFamily`]) over `x × y`; row `j` (all `x` at `y[j]`) goes to `on_row(j, cells)`
 /// in order of `j`. `on_row` returns `false` to stop (the rows handed over are complete; the
 /// outcome says the map is not).
 ///
@@ -252,7 +274,7 @@ const BLOCK_CELLS: usize = 1 << 18;
 /// }).unwrap();
 /// assert!(out.complete && out.rows == 30 && stable > 0);
 /// ```
-pub fn stability_map(spec: &SpatialSpec, x: &Axis, y: &Axis, s: &MapSettings, on_row: &mut dyn FnMut(usize, &[Cell]) -> bool) -> Result<MapOutcome> {
+pub fn stability_map<F: ModelFamily>(spec: &F, x: &Axis, y: &Axis, s: &MapSettings, on_row: &mut dyn FnMut(usize, &[Cell]) -> bool) -> Result<MapOutcome> {
     for a in [x, y] {
         if a.values.is_empty() {
             return Err(Error::invalid(a.path.clone(), "the axis has no values"));
@@ -266,9 +288,7 @@ pub fn stability_map(spec: &SpatialSpec, x: &Axis, y: &Axis, s: &MapSettings, on
             }
         } else {
             // fail early on an unknown path or a value the model refuses
-            let mut t = spec.clone();
-            t.set(&a.path, a.values[0])?;
-            t.build()?;
+            spec.with(&a.path, a.values[0])?.model()?;
         }
     }
     match (x.is_omega(), y.is_omega()) {
@@ -285,15 +305,9 @@ pub fn stability_map(spec: &SpatialSpec, x: &Axis, y: &Axis, s: &MapSettings, on
     }
 }
 
-fn with(spec: &SpatialSpec, path: &str, v: f64) -> Result<SpatialSpec> {
-    let mut t = spec.clone();
-    t.set(path, v)?;
-    Ok(t)
-}
-
 /// `y` is the speed: one line per `x`, rows are speeds.
-fn map_speed_rows(spec: &SpatialSpec, x: &Axis, y: &Axis, s: &MapSettings, on_row: &mut dyn FnMut(usize, &[Cell]) -> bool) -> Result<MapOutcome> {
-    let mut lines: Vec<Line> = x.values.par_iter().map(|&v| Line::new(&with(spec, &x.path, v)?, s.balls)).collect::<Result<_>>()?;
+fn map_speed_rows<F: ModelFamily>(spec: &F, x: &Axis, y: &Axis, s: &MapSettings, on_row: &mut dyn FnMut(usize, &[Cell]) -> bool) -> Result<MapOutcome> {
+    let mut lines: Vec<Line> = x.values.par_iter().map(|&v| Line::new(&spec.with(&x.path, v)?, s.balls)).collect::<Result<_>>()?;
     let nx = x.values.len();
     let block = (BLOCK_CELLS / nx).max(1);
     let mut out = MapOutcome { complete: true, ..Default::default() };
@@ -332,7 +346,7 @@ fn map_speed_rows(spec: &SpatialSpec, x: &Axis, y: &Axis, s: &MapSettings, on_ro
 }
 
 /// `x` is the speed: one line per row.
-fn map_speed_columns(spec: &SpatialSpec, x: &Axis, y: &Axis, s: &MapSettings, on_row: &mut dyn FnMut(usize, &[Cell]) -> bool) -> Result<MapOutcome> {
+fn map_speed_columns<F: ModelFamily>(spec: &F, x: &Axis, y: &Axis, s: &MapSettings, on_row: &mut dyn FnMut(usize, &[Cell]) -> bool) -> Result<MapOutcome> {
     let block = (BLOCK_CELLS / x.values.len()).max(2 * rayon::current_num_threads());
     let mut out = MapOutcome { complete: true, ..Default::default() };
     let mut j0 = 0;
@@ -341,7 +355,7 @@ fn map_speed_columns(spec: &SpatialSpec, x: &Axis, y: &Axis, s: &MapSettings, on
         let rows: Vec<(Vec<Cell>, usize, usize)> = y.values[j0..j1]
             .par_iter()
             .map(|&v| {
-                let mut l = Line::new(&with(spec, &y.path, v)?, s.balls)?;
+                let mut l = Line::new(&spec.with(&y.path, v)?, s.balls)?;
                 let mut cells = Vec::with_capacity(x.values.len());
                 l.cells(&x.values, s.quantity, s.balls, &mut cells)?;
                 Ok((cells, l.continued, l.direct))
@@ -362,7 +376,7 @@ fn map_speed_columns(spec: &SpatialSpec, x: &Axis, y: &Axis, s: &MapSettings, on
 }
 
 /// Neither axis is the speed: every point its own model at speed `w`.
-fn map_fixed_speed(spec: &SpatialSpec, x: &Axis, y: &Axis, w: f64, s: &MapSettings, on_row: &mut dyn FnMut(usize, &[Cell]) -> bool) -> Result<MapOutcome> {
+fn map_fixed_speed<F: ModelFamily>(spec: &F, x: &Axis, y: &Axis, w: f64, s: &MapSettings, on_row: &mut dyn FnMut(usize, &[Cell]) -> bool) -> Result<MapOutcome> {
     let w = w.max(OMEGA_FLOOR);
     let block = (BLOCK_CELLS / x.values.len()).max(2 * rayon::current_num_threads());
     let mut out = MapOutcome { complete: true, ..Default::default() };
@@ -372,11 +386,11 @@ fn map_fixed_speed(spec: &SpatialSpec, x: &Axis, y: &Axis, w: f64, s: &MapSettin
         let rows: Vec<Vec<Cell>> = y.values[j0..j1]
             .par_iter()
             .map(|&yv| {
-                let sy = with(spec, &y.path, yv)?;
+                let sy = spec.with(&y.path, yv)?;
                 x.values
                     .iter()
                     .map(|&xv| {
-                        let m = with(&sy, &x.path, xv)?.build()?;
+                        let m = sy.with(&x.path, xv)?.model()?;
                         let ss = StateSpace::new(&m, s.balls)?;
                         let necessary = autobalancing_ranges(&m).ranges.iter().any(|r| r.contains(w));
                         Ok(match s.quantity {
