@@ -126,7 +126,7 @@ fn quick_report() -> &'static std::path::Path {
         let _ = std::fs::remove_dir_all(&dir);
         let (code, _, err) = autobal(&["report", "--quick", "--out", dir.to_str().unwrap()]);
         assert_eq!(code, 0, "{err}");
-        assert!(err.contains("[6/6]"), "progress per section: {err}");
+        assert!(err.contains("[7/7]"), "progress per section: {err}");
         dir
     })
 }

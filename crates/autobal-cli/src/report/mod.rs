@@ -20,6 +20,7 @@ mod paper003;
 mod paper004;
 mod passage;
 mod rotor;
+mod spatial_run;
 mod stability;
 
 use crate::config::{self, Config, PlanarConfig};
@@ -115,6 +116,7 @@ const SECTIONS: &[(&str, Builder)] = &[
     ("your rotor", rotor::build),
     ("linear stability", stability::build),
     ("your rotor's passage", passage::build),
+    ("your rotor in time", spatial_run::build),
     ("paper 000", paper000::build),
     ("paper 003", paper003::build),
     ("paper 004", paper004::build),

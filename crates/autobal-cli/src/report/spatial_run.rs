@@ -1,0 +1,97 @@
+//! Section "Your rotor in time": the config's spatial rotor (papers 000/003 model) simulated
+//! with its balls by the nonlinear spatial model (docs/spatial.md): its own `[drive]` when the
+//! config has one for this rotor, else a run-up at constant acceleration from rest through its
+//! critical speeds. The whirl radius at the balancer plane against speed is drawn beside the
+//! stationary curve of the rotor with the balls held where they start; SI (mm, rad/s) for a
+//! dimensional config.
+
+use super::{Ctx, Section};
+use crate::num::{fmt, grouped, RPM_PER_RAD_S};
+use crate::spatial_sim;
+use anyhow::Result;
+use autobal::spatial::critical_speeds::critical_speeds;
+use toml::Value;
+
+/// Revolutions of the default run-up (the quick report: fewer).
+const REVOLUTIONS: f64 = 1000.0;
+const REVOLUTIONS_QUICK: f64 = 300.0;
+
+pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
+    let Some(cfg) = &ctx.spatial else { return Ok(None) };
+    let m = &cfg.model;
+    let w0 = m.scale.map_or(1.0, |s| s.omega0);
+    let mut root = ctx.root.clone();
+    // a [drive] beside [planar] is the planar rotor's: this rotor then gets the default run-up
+    let own_drive = ctx.planar.is_none() && root.contains_key("drive");
+    let crit = critical_speeds(m);
+    let top = crit.speeds.iter().map(|c| c.omega).fold(0.0, f64::max);
+    let revolutions = if ctx.quick { REVOLUTIONS_QUICK } else { REVOLUTIONS };
+    if !own_drive {
+        for t in ["drive", "integration"] {
+            root.remove(t);
+        }
+        // from rest to 1.3 times the highest critical speed (or analysis.omega_max) in a fixed
+        // number of revolutions: φ = ω_end²/(2b) = 2π N
+        let omega_end = w0 * cfg.analysis.omega_max.unwrap_or(1.3 * top.max(1.0));
+        let b = omega_end * omega_end / (4.0 * std::f64::consts::PI * revolutions);
+        let t_end = omega_end / b;
+        let mut d = toml::Table::new();
+        d.insert("kind".into(), Value::String("acceleration".into()));
+        d.insert("omega0".into(), Value::Float(0.0));
+        d.insert("b".into(), Value::Float(b));
+        d.insert("t_end".into(), Value::Float(t_end));
+        root.insert("drive".into(), Value::Table(d));
+        let mut ig = toml::Table::new();
+        ig.insert("dt".into(), Value::Float(t_end / 3000.0));
+        root.insert("integration".into(), Value::Table(ig));
+    }
+    let mut s = Section::new("spatial-run", "Your rotor in time (nonlinear spatial model)");
+    let sim = match spatial_sim::build(&root, &ctx.source) {
+        Ok(sim) => sim,
+        Err(e) => {
+            s.p(format!("Not simulated: {}.", super::esc(&format!("{e:#}"))));
+            return Ok(Some(s));
+        }
+    };
+    let (summary, kept, wall) = spatial_sim::run_to_csv(&sim, &mut std::io::sink(), false, &crate::sim::INTERRUPTED)?;
+    s.complete = summary.stopped.is_none();
+    let (lu, ls, speed_unit) = if cfg.dimensional { ("mm", 1e3, "rad/s") } else { ("ρ_s", 1.0, "(Ω)") };
+    let rpm = |w: f64| if cfg.dimensional { format!(" ({} rpm)", grouped(w * RPM_PER_RAD_S, 0)) } else { String::new() };
+    let drive_text = if own_drive {
+        "with the config's own <code>[drive]</code>".to_string()
+    } else {
+        format!(
+            "run up from rest at constant acceleration through its critical speeds to {} {speed_unit}{} in {} revolutions (the config has no <code>[drive]</code> for it; give one to simulate your own)",
+            fmt(sim.drive.kinematics(sim.settings.t_end).0, 4),
+            rpm(sim.drive.kinematics(sim.settings.t_end).0),
+            revolutions
+        )
+    };
+    s.p(format!(
+        "The rotor of the config simulated in time with its {} balls free on their race (full nonlinear equations: translation, tilt, spin and balls; docs/spatial.md), {drive_text}. The balls start spread evenly across the unbalance unless <code>drive.psi0</code> says otherwise. The critical speeds of the balanced rotor (linear analysis) are {}.",
+        sim.rotor.balls(),
+        crit.speeds.iter().map(|c| format!("{} {speed_unit}{}", fmt(c.omega * w0, 4), rpm(c.omega * w0))).collect::<Vec<_>>().join(", ")
+    ));
+    let t_unit = if cfg.dimensional { "s" } else { "τ" };
+    let rows = vec![
+        vec!["peak whirl radius at the balancer plane".into(), format!("{} {lu}", fmt(ls * summary.peak_amplitude, 4)), format!("at {} {speed_unit}{}, t = {} {t_unit}", fmt(summary.omega_at_peak, 4), rpm(summary.omega_at_peak), fmt(summary.t_at_peak, 4))],
+        vec!["final whirl radius".into(), format!("{} {lu}", fmt(ls * summary.final_amplitude, 4)), format!("at {} {speed_unit}{}", fmt(summary.final_omega, 4), rpm(summary.final_omega))],
+        vec!["residual unbalance (balls + unbalance)".into(), fmt(summary.residual_unbalance, 3), format!("of the unbalance alone: {}", if summary.balanced { "balanced" } else { "not balanced" })],
+        vec!["integration".into(), format!("{} steps", summary.steps), format!("{} right-hand sides, {} s", summary.rhs_evaluations, fmt(wall, 3))],
+    ];
+    s.table(&["quantity", "value", "note"], &rows);
+    if let Some(st) = &summary.stopped {
+        s.p(format!("The run stopped early: {}.", super::esc(st)));
+    }
+    for (suffix, plot) in spatial_sim::plots(&sim, &kept, "Your rotor in time") {
+        let caption = match suffix.as_str() {
+            "amplitude_omega" => "Whirl radius of the shaft at the balancer plane against the speed, beside the stationary whirls of the rotor with the balls held where they start (Newton on the nonlinear equations).",
+            "amplitude_t" => "Whirl radii at the balancer plane and at the supports against time.",
+            "psi_t" => "Ball angles from the unbalance direction, wrapped to ±180°.",
+            _ if !own_drive => continue,
+            _ => "Speed against time.",
+        };
+        s.figure(format!("spatial_run_{suffix}"), plot, caption);
+    }
+    Ok(Some(s))
+}
