@@ -289,19 +289,23 @@ pub(crate) fn sin_cos(x: f64) -> (f64, f64) {
     if !(x.abs() <= LIMIT) {
         return x.sin_cos();
     }
-    let k = (x * INV_PIO2 + ROUND) - ROUND;
+    let shifted = x * INV_PIO2 + ROUND;
+    let k = shifted - ROUND;
+    // the quadrant k mod 4 sits in the low bits of the shifted sum (two's complement)
+    let q = shifted.to_bits() & 3;
     let r = ((x - k * P1) - k * P2) - k * P3;
     let z = r * r;
     let sin = r + r * z * (S[0] + z * (S[1] + z * (S[2] + z * (S[3] + z * (S[4] + z * S[5])))));
     let hz = 0.5 * z;
     let w = 1.0 - hz;
     let cos = w + (((1.0 - w) - hz) + z * z * (C[0] + z * (C[1] + z * (C[2] + z * (C[3] + z * (C[4] + z * C[5]))))));
-    match (k as i64) & 3 {
-        0 => (sin, cos),
-        1 => (cos, -sin),
-        2 => (-sin, -cos),
-        _ => (-cos, sin),
-    }
+    // (sin, cos), (cos, −sin), (−sin, −cos), (−cos, sin) for q = 0..3, without branches (a
+    // jump per ball mispredicts when the balls lie in different quadrants)
+    let swap = 0u64.wrapping_sub(q & 1);
+    let (sb, cb) = (sin.to_bits(), cos.to_bits());
+    let first = (sb & !swap) | (cb & swap);
+    let second = (cb & !swap) | (sb & swap);
+    (f64::from_bits(first ^ ((q & 2) << 62)), f64::from_bits(second ^ (((q + 1) & 2) << 62)))
 }
 
 /// `x` of the symmetric positive definite `a x = g` (3×3 or, with `p = 2`, the leading 2×2),
@@ -357,11 +361,10 @@ impl Equations<'_> {
         let (rates, angles) = (&y[nc + 3..], &y[3..nc]);
         let (mut s_c, mut s_s, mut s_cc, mut s_sc, mut s_ss) = (0.0, 0.0, 0.0, 0.0, 0.0);
         let (mut s_cd, mut s_sd, mut s_cq, mut s_sq, mut s_d) = (0.0, 0.0, 0.0, 0.0, 0.0);
-        for j in 0..n {
-            let (s, c) = sin_cos(angles[j]);
-            let d = rates[j];
-            cos_j[j] = c;
-            sin_j[j] = s;
+        for (((&psi_j, &d), cos_j), sin_j) in angles.iter().zip(rates).zip(cos_j.iter_mut()).zip(sin_j.iter_mut()) {
+            let (s, c) = sin_cos(psi_j);
+            *cos_j = c;
+            *sin_j = s;
             s_c += c;
             s_s += s;
             s_cc += c * c;
@@ -434,8 +437,8 @@ impl Equations<'_> {
         let k_c = (alpha - x[1] - px * x2) * inv_r;
         let k_s = (beta + x[0] - py * x2) * inv_r;
         let k_1 = (gamma0 - r * x2) * inv_r;
-        for j in 0..n {
-            sin_j[j] = k_d * rates[j] + k_c * cos_j[j] + k_s * sin_j[j] + k_1;
+        for ((out, &d), &c) in sin_j.iter_mut().zip(rates).zip(cos_j.iter()) {
+            *out = k_d * d + k_c * c + k_s * *out + k_1;
         }
         if self.balls.is_some() {
             for j in 0..n {
