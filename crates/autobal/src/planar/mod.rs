@@ -51,8 +51,9 @@ use crate::simulation::{run, Hooks, Peak, Timeline};
 pub use equations::{energy, Equations};
 use serde::Serialize;
 
-/// Most balls the simulator takes. The cost of a step is linear in `n` (about 20 ns per ball
-/// and right-hand side); the limit only keeps a mistyped number from allocating gigabytes.
+/// Most balls the simulator takes. The cost of a step is linear in `n` (about 110 instructions
+/// per ball and right-hand side, as many again in the integrators' vector operations: 64 balls
+/// cost about 10× two); the limit only keeps a mistyped number from allocating gigabytes.
 pub const MAX_BALLS: usize = 100_000;
 
 /// The planar rotor of paper 004, SI units.
