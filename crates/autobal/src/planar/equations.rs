@@ -278,7 +278,19 @@ impl<'a> Equations<'a> {
 /// bit (shortest decimals that round to them).
 #[inline(always)]
 pub(crate) fn sin_cos(x: f64) -> (f64, f64) {
-    const LIMIT: f64 = 823_549.656_552_477_6; // 2^19 π/2
+    if !(x.abs() <= SIN_COS_LIMIT) {
+        return x.sin_cos();
+    }
+    sin_cos_reduced(x)
+}
+
+/// Arguments up to this magnitude take [`sin_cos_reduced`] (`2^19 π/2`).
+const SIN_COS_LIMIT: f64 = 823_549.656_552_477_6;
+
+/// [`sin_cos`] without the range check (`|x| ≤ SIN_COS_LIMIT`): no branch, so a loop over the
+/// balls vectorises.
+#[inline(always)]
+fn sin_cos_reduced(x: f64) -> (f64, f64) {
     const INV_PIO2: f64 = std::f64::consts::FRAC_2_PI;
     const P1: f64 = 1.570_796_326_734_125_6; // first 33 bits of π/2
     const P2: f64 = 6.077_100_506_303_966e-11; // next 33 bits
@@ -286,9 +298,6 @@ pub(crate) fn sin_cos(x: f64) -> (f64, f64) {
     const ROUND: f64 = 6_755_399_441_055_744.0; // 1.5 · 2^52: adding it rounds to an integer
     const S: [f64; 6] = [-0.166_666_666_666_666_32, 0.008_333_333_333_322_49, -1.984_126_982_985_795e-4, 2.755_731_370_707_006_8e-6, -2.505_076_025_340_686_3e-8, 1.589_690_995_211_55e-10];
     const C: [f64; 6] = [0.041_666_666_666_666_6, -0.001_388_888_888_887_411, 2.480_158_728_947_673e-5, -2.755_731_435_139_066_3e-7, 2.087_572_321_298_175e-9, -1.135_964_755_778_819_5e-11];
-    if !(x.abs() <= LIMIT) {
-        return x.sin_cos();
-    }
     let shifted = x * INV_PIO2 + ROUND;
     let k = shifted - ROUND;
     // the quadrant k mod 4 sits in the low bits of the shifted sum (two's complement)
@@ -361,10 +370,16 @@ impl Equations<'_> {
         let (rates, angles) = (&y[nc + 3..], &y[3..nc]);
         let (mut s_c, mut s_s, mut s_cc, mut s_sc, mut s_ss) = (0.0, 0.0, 0.0, 0.0, 0.0);
         let (mut s_cd, mut s_sd, mut s_cq, mut s_sq, mut s_d) = (0.0, 0.0, 0.0, 0.0, 0.0);
-        for (((&psi_j, &d), cos_j), sin_j) in angles.iter().zip(rates).zip(cos_j.iter_mut()).zip(sin_j.iter_mut()) {
-            let (s, c) = sin_cos(psi_j);
-            *cos_j = c;
-            *sin_j = s;
+        if angles.iter().all(|x| x.abs() <= SIN_COS_LIMIT) {
+            for ((&psi_j, cos_j), sin_j) in angles.iter().zip(cos_j.iter_mut()).zip(sin_j.iter_mut()) {
+                (*sin_j, *cos_j) = sin_cos_reduced(psi_j);
+            }
+        } else {
+            for ((&psi_j, cos_j), sin_j) in angles.iter().zip(cos_j.iter_mut()).zip(sin_j.iter_mut()) {
+                (*sin_j, *cos_j) = sin_cos(psi_j);
+            }
+        }
+        for ((&d, &c), &s) in rates.iter().zip(cos_j.iter()).zip(sin_j.iter()) {
             s_c += c;
             s_s += s;
             s_cc += c * c;

@@ -53,7 +53,7 @@ use serde::Serialize;
 
 /// Most balls the simulator takes. The cost of a step is linear in `n` (about 110 instructions
 /// per ball and right-hand side, as many again in the integrators' vector operations: 64 balls
-/// cost about 10× two); the limit only keeps a mistyped number from allocating gigabytes.
+/// cost about 9× two); the limit only keeps a mistyped number from allocating gigabytes.
 pub const MAX_BALLS: usize = 100_000;
 
 /// The planar rotor of paper 004, SI units.
