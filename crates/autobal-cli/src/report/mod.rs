@@ -18,6 +18,7 @@ mod html;
 mod paper000;
 mod paper003;
 mod paper004;
+mod paper004_torque;
 mod passage;
 mod rotor;
 mod spatial_run;
@@ -120,6 +121,7 @@ const SECTIONS: &[(&str, Builder)] = &[
     ("paper 000", paper000::build),
     ("paper 003", paper003::build),
     ("paper 004", paper004::build),
+    ("paper 004, torque", paper004_torque::build),
 ];
 
 /// Whether Ctrl-C was pressed (the flag every long computation of the report polls).

@@ -39,6 +39,7 @@
 //! ```
 
 mod equations;
+pub mod paper004;
 pub mod problem;
 pub mod stationary;
 
