@@ -363,6 +363,9 @@ def calibrate(rot, summary, method, target, ref_amp, mask, atol_per_rtol, looses
 
 def bench_case(name, a):
     sets, what, compared = CASES[name]
+    if a.t_end is not None:
+        sets = sets + [f"drive.t_end={a.t_end!r}"]
+        what += f" (here τ ∈ [0, {a.t_end:g}])"
     print(f"case {name}: {what}", file=sys.stderr)
     ref, ref_data = run_autobal(sets, 1e-12, 1e-14)
     ref_amp = ref_data[:, 8]
@@ -428,6 +431,7 @@ def main():
     ap.add_argument("--runup-methods", nargs="+", help="methods on the run-up (default: --methods)")
     ap.add_argument("--rtol", type=float, default=1e-8, help="autobal's rtol")
     ap.add_argument("--atol", type=float, default=1e-10, help="autobal's atol (SciPy's scaled with its rtol)")
+    ap.add_argument("--t-end", type=float, help="shorter runs (e.g. for Radau, which takes long): drive.t_end of the case")
     ap.add_argument("--check", action="store_true")
     ap.add_argument("--exe", help="the autobal binary (default: target/release/autobal, built first)")
     a = ap.parse_args()

@@ -383,6 +383,18 @@ fn simulation_agrees_with_an_independent_scipy_integration_in_fixed_axes() {
 }
 
 #[test]
+fn spatial_benchmark_equations_agree_with_sympy_and_autobal() {
+    // bench/spatial.py --check: the benchmark's NumPy right-hand side of the spatial rotor
+    // against the tests' independent SymPy derivation (1e-9 relative; measured 7e-16) and a
+    // 60 τ run-up integrated by SciPy's DOP853 against `autobal simulate` (1e-6 of the peak;
+    // measured 6e-9): the benchmark times the same equations.
+    let Some(python) = python_with(&["numpy", "scipy", "sympy"]) else { return };
+    let script = format!("{}/../../bench/spatial.py", env!("CARGO_MANIFEST_DIR"));
+    let out = Command::new(python).args([&script, "--check", "--exe", env!("CARGO_BIN_EXE_autobal")]).output().expect("python runs");
+    assert!(out.status.success(), "{}\n{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+}
+
+#[test]
 fn simulate_writes_csv_summary_and_plots() {
     let dir = std::env::temp_dir().join(format!("autobal-sim-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
