@@ -14,6 +14,7 @@
 //! A Ctrl-C stops the long computations; the page is still written, says which sections are
 //! incomplete, and the command exits with an error.
 
+mod friction;
 mod html;
 mod paper000;
 mod paper003;
@@ -122,6 +123,7 @@ const SECTIONS: &[(&str, Builder)] = &[
     ("paper 003", paper003::build),
     ("paper 004", paper004::build),
     ("paper 004, torque", paper004_torque::build),
+    ("rolling resistance", friction::build),
 ];
 
 /// Whether Ctrl-C was pressed (the flag every long computation of the report polls).

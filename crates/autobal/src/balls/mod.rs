@@ -21,18 +21,22 @@
 //! generalised forces are `Q_b = −Q_a = F ∂c/∂ψ_b = F r cos(Δ/2) sgn Δ`.
 //!
 //! `k_c` is a penalty: the end states converge to the rigid-ball ones as `1/k_c` (tested). Its
-//! default puts the contact's frequency `sqrt(k_c/m_e)` at 100 times the model's reference
-//! frequency (the shaft's `sqrt(k/m0)` in the planar model): the overlap under the tangential
-//! loads of a balancer is then below 1e-4 of the diameter, and the implicit integrator takes the
-//! stiffness in its stride.
-//!
+//! default puts the contact's frequency `sqrt(k_c/m_e)` at 20 times the model's reference
+//! frequency (the shaft's `sqrt(k/m0)` in the planar model; 5760 rad/s for paper 004's rotor):
+//! the overlap under the tangential loads of a balancer (a few N; tens at the highest speeds) is
+//! then below 0.2 % of the diameter, an error of the positions below 1e-3 rad. The cost grows
+//! as `sqrt(k_c)` while balls touch (the explicit method's step is bounded by the contact's
+//! period; measured in docs/balls.md): 25 times the default moves paper 004's forward peak by
+//! 2.4e-5 of its value.
+
 //! Why compliant and not event-driven impacts: the state that matters is balls *resting* against
 //! each other for hundreds of seconds (an impact law with `e < 1` reaches it only through an
-//! infinite sequence of ever smaller impacts, which needs a separate sticking mode and its own
-//! release condition); a compliant contact gives resting contact, impacts and release from one
-//! smooth law, and the implicit method (RODAS) integrates its stiffness at a cost independent of
-//! `k_c` once the balls rest (measured in docs/balls.md).
-//!
+//! infinite sequence of ever smaller impacts, which needs a separate sticking mode, its own
+//! release condition, and an impulse through the rotor's mass matrix at every impact); a
+//! compliant contact gives resting contact, impacts and release from one smooth law, and its
+//! cost is that of resolving the contact's period while balls touch (measured in docs/balls.md;
+//! event-driven impacts were not built, so not measured).
+
 //! ## Rolling resistance
 //! A ball rolling on its race feels a rolling-resistance moment `M = μ_r (d/2) N`, `N` the
 //! race's normal force on the ball: at the ball's centre a tangential force `μ_r N` against the
@@ -62,7 +66,7 @@ pub const STEEL_DENSITY: f64 = 7850.0;
 pub const STICK_FACTOR: f64 = 10.0;
 
 /// Contact frequency over the model's reference frequency for the default contact stiffness.
-pub const DEFAULT_CONTACT_FREQUENCY_RATIO: f64 = 100.0;
+pub const DEFAULT_CONTACT_FREQUENCY_RATIO: f64 = 20.0;
 
 /// Diameter (m) of a steel ball of `mass` (kg): `(6 m/(π ρ_steel))^{1/3}`.
 pub fn steel_diameter(mass: f64) -> f64 {
@@ -116,7 +120,7 @@ pub struct BallPhysics {
     pub contact: bool,
     /// Restitution coefficient `e` of a ball–ball impact, in `[0, 1]` (default 0.5).
     pub restitution: f64,
-    /// Contact stiffness `k_c` (N/m); `None`: contact frequency 100 times the model's reference.
+    /// Contact stiffness `k_c` (N/m); `None`: contact frequency 20 times the model's reference.
     pub contact_stiffness: Option<f64>,
     /// Rolling-resistance coefficient `μ_r` (dimensionless; moment `μ_r (d/2) N`); 0: none.
     pub rolling_resistance: f64,

@@ -40,6 +40,7 @@
 
 mod equations;
 pub mod paper004;
+pub mod friction;
 pub mod problem;
 pub mod stationary;
 

@@ -257,7 +257,7 @@ static PLANAR_PATHS: &[ParameterPath<PlanarProblem>] = &[
     balls_path!("planar.restitution", "restitution coefficient e of ball–ball impacts", restitution),
     ParameterPath {
         path: "planar.contact_stiffness",
-        doc: "ball–ball contact stiffness (N/m; default: contact frequency 100 sqrt(k/m0))",
+        doc: "ball–ball contact stiffness (N/m; default: contact frequency 20 sqrt(k/m0))",
         set: |p, v| {
             p.rotor.balls.contact_stiffness = Some(v);
             Ok(())

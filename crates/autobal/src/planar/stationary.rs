@@ -26,12 +26,23 @@ fn d_of(p: &PlanarRotor, w: f64) -> C {
 
 /// Steady whirl radius of C with the balls locked at angles `psi` (closed form).
 pub fn locked_amplitude(p: &PlanarRotor, w: f64, psi: &[f64]) -> f64 {
+    locked_whirl(p, w, psi).norm()
+}
+
+/// Steady whirl `u = H(ω) U` of C in rotor axes with the balls locked at angles `psi`:
+/// `H = ω²/(k − m0 ω² + i c ω)` ([`receptance`]), `U` the total unbalance about C.
+pub fn locked_whirl(p: &PlanarRotor, w: f64, psi: &[f64]) -> C {
     let e = C::from_polar(p.s2, p.gamma);
     let mut u = C::new(p.m1 * p.s1, 0.0) + e * (p.m2 + p.n as f64 * p.m3);
     for a in psi {
         u += C::from_polar(p.m3 * p.r, *a);
     }
-    w * w * u.norm() / d_of(p, w).norm()
+    receptance(p, w) * u
+}
+
+/// `H(ω) = ω²/(k − m0 ω² + i c ω)`: the steady whirl of C per unit unbalance (m/(kg·m)).
+pub fn receptance(p: &PlanarRotor, w: f64) -> C {
+    C::new(w * w, 0.0) / d_of(p, w)
 }
 
 /// The unbalance the balls must supply in the semi-balanced whirl at speed `w`.
