@@ -79,6 +79,7 @@ pub fn build(root: &Table, source: &str) -> Result<SpatialSim> {
                     ball_mass: b.req("ball_mass")?,
                     race_radius: b.req("race_radius")?,
                     drag: b.f64("drag")?.unwrap_or(0.0),
+                    physics: Default::default(),
                 });
             }
             r

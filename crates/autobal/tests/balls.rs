@@ -337,3 +337,54 @@ fn the_residual_eccentricity_is_about_mu_r_r_whatever_the_speed_and_ball_mass() 
         }
     }
 }
+
+#[test]
+fn the_spatial_model_has_the_same_real_balls() {
+    // The same ball physics in both models: the spatial rotor with its tilt locked on one
+    // support is paper 004's planar rotor (balancer centred, s2 = 0; the disk's eccentricity as
+    // an unbalance mass with the same first and polar moments). With contact and rolling
+    // resistance on, both must run into the same end state: balls touching or stuck at the same
+    // angles, the same whirl, the same counts of contacts.
+    use autobal::spatial::dynamics::{simulate as spatial_simulate, BallPlane, Initial, PointMass, RigidRotor, Settings as SpatialSettings, SpatialRotor, Support};
+    let physics = BallPhysics { contact: true, contact_stiffness: Some(1e6), rolling_resistance: 1e-3, ..Default::default() };
+    for m3 in [0.01, 0.03] {
+        let mut p = PlanarRotor { balls: physics, ..PlanarRotor::paper_004(m3) };
+        p.s2 = 0.0;
+        p.m2 = 0.0;
+        let mu = 0.1;
+        let ru = p.s1 * p.m1 / mu;
+        let rotor = SpatialRotor {
+            rotor: RigidRotor { mass: p.m1 - mu, equatorial_moment: 0.01, polar_moment: p.i_g + p.m1 * p.s1 * p.s1 - mu * ru * ru, z: 0.0, axis_tilt: 0.0, axis_tilt_angle: 0.0 },
+            supports: vec![Support { z: 0.0, stiffness: [p.k; 2], damping: [p.c; 2] }],
+            unbalances: vec![PointMass { mass: mu, radius: ru, angle: 0.0, z: 0.0 }],
+            planes: vec![BallPlane { z: 0.0, n: 2, ball_mass: p.m3, race_radius: p.r, drag: p.c_psi / (p.r * p.r), physics }],
+            gravity: [0.0; 3],
+            spin_drag: 0.0,
+            lock_tilt: true,
+        };
+        let drive = Drive::Speed { omega0: 2.0 * p.natural_frequency() };
+        let (t_end, dt) = (10.0, 0.5);
+        let init = Initial { psi: vec![PI - 0.6, PI + 0.5], ..Initial::at_rest(&rotor) };
+        let mut ours = None;
+        let s = spatial_simulate(&rotor, &drive, &init, &SpatialSettings { method: Default::default(), t_end, dt, rtol: 1e-10, atol: 1e-12 }, |x| {
+            ours = Some((x.x, x.y, x.psi.clone()));
+            true
+        })
+        .unwrap();
+        let ours = ours.unwrap();
+        let ps = Settings { t_end, dt, rtol: 1e-10, atol: 1e-12, psi0: init.psi.clone(), ..Settings::new(&p, t_end) };
+        let mut theirs = None;
+        let t = simulate(&p, &drive, &ps, |x| {
+            theirs = Some((x.x, x.y, x.psi.clone()));
+            true
+        })
+        .unwrap();
+        let theirs = theirs.unwrap();
+        assert!(t.contacts >= 1 || m3 == 0.03, "{t:?}");
+        for j in 0..2 {
+            assert!((ours.2[j] - theirs.2[j]).abs() < 1e-6, "m3 = {m3}: ψ {:?} vs {:?} ({s:?})", ours.2, theirs.2);
+        }
+        let amp = theirs.0.hypot(theirs.1);
+        assert!((ours.0 - theirs.0).abs() < 1e-5 * amp && (ours.1 - theirs.1).abs() < 1e-5 * amp, "m3 = {m3}: C {ours:?} vs {theirs:?}");
+    }
+}

@@ -112,7 +112,7 @@ pub fn can_rest(mu_r: f64, r: f64, p: (f64, f64), psi: f64) -> f64 {
 /// The ball physics of one set of balls, as the config gives it (`planar.*`, or a spatial
 /// balancer plane's keys). The default is the papers' point masses: no contact, no rolling
 /// resistance, and then none of it costs anything.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct BallPhysics {
     /// Ball diameter (m); `None`: a steel ball of the set's mass ([`steel_diameter`]).
     pub diameter: Option<f64>,

@@ -262,7 +262,7 @@ static PLANAR_PATHS: &[ParameterPath<PlanarProblem>] = &[
             p.rotor.balls.contact_stiffness = Some(v);
             Ok(())
         },
-        get: |p| Ok(crate::balls::BallForces::new(&crate::balls::BallPhysics { contact: true, ..p.rotor.balls.clone() }, p.rotor.m3, p.rotor.r, p.rotor.n.max(2), p.rotor.natural_frequency()).and_then(|f| f.contact).map_or(f64::NAN, |c| c.stiffness)),
+        get: |p| Ok(crate::balls::BallForces::new(&crate::balls::BallPhysics { contact: true, ..p.rotor.balls }, p.rotor.m3, p.rotor.r, p.rotor.n.max(2), p.rotor.natural_frequency()).and_then(|f| f.contact).map_or(f64::NAN, |c| c.stiffness)),
     },
     balls_path!("planar.rolling_resistance", "rolling-resistance coefficient μ_r of the balls on their race", rolling_resistance),
     balls_path!("planar.slip_rate", "regularisation v_ε of the rolling resistance's sign (rad/s)", slip_rate),

@@ -29,6 +29,7 @@
 #![allow(clippy::needless_range_loop)] // index loops read as the formulas
 
 use super::rotor::{SpatialRotor, MAX_BALLS};
+use crate::balls::BallForces;
 use crate::drive::Drive;
 use crate::ode::System;
 
@@ -98,6 +99,8 @@ pub struct Equations<'a> {
     balls: Vec<Ball>,
     supports: Vec<SupportAt>,
     z_ref: f64,
+    /// Real-ball forces of each plane that has them switched on: (index of its first ball, forces).
+    ball_forces: Vec<(usize, BallForces)>,
 }
 
 /// Body-frame quantities of the rigid carrier (rotor + unbalance masses) about O:
@@ -148,8 +151,18 @@ impl<'a> Equations<'a> {
             .iter()
             .flat_map(|p| (0..p.n).map(move |_| Ball { m: p.ball_mass, r: p.race_radius, zeta: p.z - z_ref, drag: p.drag }))
             .collect();
-        let supports = rotor.supports.iter().map(|s| SupportAt { zeta: s.z - z_ref, k: s.stiffness, c: s.damping }).collect();
-        Equations { rotor, drive, carrier_mass, carrier_first, carrier_inertia, total_mass: rotor.total_mass(), balls, supports, z_ref }
+        let supports: Vec<SupportAt> = rotor.supports.iter().map(|s| SupportAt { zeta: s.z - z_ref, k: s.stiffness, c: s.damping }).collect();
+        // reference frequency of the default contact stiffness: the rotor's translation on its supports
+        let w_ref = (supports.iter().map(|s| s.k[0]).sum::<f64>() / rotor.total_mass()).sqrt();
+        let mut first = 0;
+        let mut ball_forces = vec![];
+        for p in &rotor.planes {
+            if let Some(f) = BallForces::new(&p.physics, p.ball_mass, p.race_radius, p.n, w_ref) {
+                ball_forces.push((first, f));
+            }
+            first += p.n;
+        }
+        Equations { rotor, drive, carrier_mass, carrier_first, carrier_inertia, total_mass: rotor.total_mass(), balls, supports, z_ref, ball_forces }
     }
 
     /// Number of generalised coordinates `5 + N`.
@@ -332,6 +345,8 @@ impl System for Equations<'_> {
         let nb = self.balls.len();
         let mut brow = [[0.0; ROTOR_COORDS]; MAX_BALLS];
         let mut bf = [0.0; MAX_BALLS];
+        let mut normal = [0.0; MAX_BALLS];
+        let real_balls = !self.ball_forces.is_empty();
         for (i, b) in self.balls.iter().enumerate() {
             let psi_d = y[nc + ROTOR_COORDS + i];
             let (r, t_j, n_j) = self.ball_geometry(&k, b, y[ROTOR_COORDS + i]);
@@ -349,6 +364,20 @@ impl System for Equations<'_> {
                 brow[i][c] = b.m * (dot(k.v[c], t_j) + dot(k.g[c], rxt));
             }
             bf[i] = -b.drag * b.r * b.r * psi_d + b.m * dot(g_f, t_j) - dot(t_j, ma);
+            if real_balls {
+                // the race's normal force: the centripetal part of the ball's acceleration
+                // (n_j = −R e_r), the terms in q̈ left out as in the planar model
+                normal[i] = dot(ma, n_j) / b.r;
+            }
+        }
+        // real balls: contact and rolling resistance, generalised forces on the ball angles
+        for (first, f) in &self.ball_forces {
+            let (a, e) = (*first, first + f.n);
+            let mut q = [0.0; MAX_BALLS];
+            f.torques(&y[ROTOR_COORDS + a..ROTOR_COORDS + e], &y[nc + ROTOR_COORDS + a..nc + ROTOR_COORDS + e], |j| normal[a + j], &mut q[..f.n]);
+            for j in 0..f.n {
+                bf[a + j] += q[j];
+            }
         }
         // external forces and moments about O: gravity and supports
         let mut f_ex = scale(g_f, self.total_mass);

@@ -71,6 +71,9 @@ pub struct BallPlane {
     /// Drag coefficient `h_A` (N·s/m): the force on a ball is `h_A R ψ̇` against its motion
     /// relative to the race (000's `h_A`; `h̄s = h_A/(m ω0)`).
     pub drag: f64,
+    /// Real balls: diameter, contact, rolling resistance ([`crate::balls`]); default: point
+    /// masses.
+    pub physics: crate::balls::BallPhysics,
 }
 
 /// The spatial rotor with its supports, unbalance and balls.
@@ -195,6 +198,7 @@ impl SpatialRotor {
                 positive(&format!("{t}.race_radius"), p.race_radius)?;
                 non_negative(&format!("{t}.drag"), p.drag)?;
             }
+            p.physics.validate(t, p.ball_mass, p.race_radius, p.n)?;
         }
         for (i, g) in self.gravity.iter().enumerate() {
             finite(&format!("spatial.gravity[{i}]"), *g)?;
@@ -221,7 +225,7 @@ impl SpatialRotor {
             ],
             unbalances: vec![PointMass { mass: r.unbalance_mass, radius: r.unbalance_radius, angle: 0.0, z: r.z_balancer }],
             planes: if r.balls > 0 {
-                vec![BallPlane { z: r.z_balancer, n: r.balls as usize, ball_mass: r.ball_mass, race_radius: r.race_radius, drag: r.ball_drag }]
+                vec![BallPlane { z: r.z_balancer, n: r.balls as usize, ball_mass: r.ball_mass, race_radius: r.race_radius, drag: r.ball_drag, physics: Default::default() }]
             } else {
                 vec![]
             },
@@ -278,7 +282,7 @@ impl SpatialRotor {
             ],
             unbalances: vec![PointMass { mass: ms.m0, radius: ms.r0, angle: 0.0, z: z_a }],
             planes: if n > 0 {
-                vec![BallPlane { z: z_a, n, ball_mass: ms.m / n as f64, race_radius: ms.r, drag: model.damping.h_s * ms.m / n as f64 }]
+                vec![BallPlane { z: z_a, n, ball_mass: ms.m / n as f64, race_radius: ms.r, drag: model.damping.h_s * ms.m / n as f64, physics: Default::default() }]
             } else {
                 vec![]
             },
