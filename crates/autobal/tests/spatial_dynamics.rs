@@ -741,7 +741,7 @@ fn two_plane_rotor() -> SpatialRotor {
     };
     let mut r = SpatialRotor::from_si(&si);
     r.unbalances.push(PointMass { mass: 0.01, radius: 0.1, angle: 2.5, z: 0.25 });
-    r.planes.push(BallPlane { z: 0.05, n: 2, ball_mass: 0.02, race_radius: 0.12, drag: 0.5 });
+    r.planes.push(BallPlane { z: 0.05, n: 2, ball_mass: 0.02, race_radius: 0.12, drag: 0.5, physics: Default::default() });
     r
 }
 
