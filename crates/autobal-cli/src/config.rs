@@ -21,10 +21,10 @@ pub(crate) const SCHEMA: &[(&str, &[&str])] = &[
         ],
     ),
     ("unbalance", &["mass", "radius", "angle"]),
-    ("balancer", &["z", "balls", "ball_mass", "race_radius", "drag"]),
+    ("balancer", &["z", "balls", "ball_mass", "race_radius", "drag", "ball_diameter", "contact", "restitution", "contact_stiffness", "rolling_resistance", "slip_rate"]),
     // spatial simulation only (docs/spatial.md, examples/spatial_two_plane.toml)
     ("couple", &["mass", "radius", "angle", "z"]),
-    ("balancer2", &["z", "balls", "ball_mass", "race_radius", "drag"]),
+    ("balancer2", &["z", "balls", "ball_mass", "race_radius", "drag", "ball_diameter", "contact", "restitution", "contact_stiffness", "rolling_resistance", "slip_rate"]),
     ("spatial", &["gravity", "lock_tilt", "spin_drag"]),
     ("initial", &["position", "velocity", "tilt", "tilt_rate"]),
     (
@@ -45,6 +45,21 @@ pub(crate) const SCHEMA: &[(&str, &[&str])] = &[
     ),
     ("integration", &["method", "rtol", "atol", "dt", "max_steps", "max_wall_s"]),
 ];
+
+/// Real balls of one ball set (`[planar]`, `[balancer]`, `[balancer2]`): `ball_diameter`,
+/// `contact`, `restitution`, `contact_stiffness`, `rolling_resistance`, `slip_rate`
+/// ([`autobal::balls::BallPhysics`]; absent keys: its defaults, the papers' point masses).
+pub fn ball_physics_of(sec: &Section) -> Result<autobal::balls::BallPhysics> {
+    let d = autobal::balls::BallPhysics::default();
+    Ok(autobal::balls::BallPhysics {
+        diameter: sec.f64("ball_diameter")?,
+        contact: sec.boolean("contact")?.unwrap_or(d.contact),
+        restitution: sec.f64("restitution")?.unwrap_or(d.restitution),
+        contact_stiffness: sec.f64("contact_stiffness")?,
+        rolling_resistance: sec.f64("rolling_resistance")?.unwrap_or(d.rolling_resistance),
+        slip_rate: sec.f64("slip_rate")?.unwrap_or(d.slip_rate),
+    })
+}
 
 /// The embedded default of `simulate` and `sweep` (paper 004's rotor).
 pub const DEFAULT_PLANAR: &str = include_str!("../../../examples/planar.toml");
@@ -210,7 +225,7 @@ impl<'a> Section<'a> {
             Some(v) => bail!("{field}: expected a whole number, got {}", describe(v)),
         }
     }
-    fn boolean(&self, key: &str) -> Result<Option<bool>> {
+    pub(crate) fn boolean(&self, key: &str) -> Result<Option<bool>> {
         match self.get(key) {
             None => Ok(None),
             Some(Value::Boolean(b)) => Ok(Some(*b)),
@@ -448,7 +463,7 @@ mod tests {
     }
 
     /// The keys of the schema that hold text, not numbers.
-    const TEXT_KEYS: &[&str] = &["analysis.anisotropy", "drive.kind", "drive.schedule_of", "integration.method", "spatial.lock_tilt", "planar.contact"];
+    const TEXT_KEYS: &[&str] = &["analysis.anisotropy", "drive.kind", "drive.schedule_of", "integration.method", "spatial.lock_tilt", "planar.contact", "balancer.contact", "balancer2.contact"];
 
     fn schema_keys() -> Vec<String> {
         SCHEMA.iter().flat_map(|(t, ks)| ks.iter().map(move |k| format!("{t}.{k}"))).collect()
@@ -591,17 +606,7 @@ pub fn build_planar(root: &Table, source: &str) -> Result<PlanarConfig> {
         c_psi: p.f64("c_psi")?.unwrap_or(0.0),
         c_theta: p.f64("c_theta")?.unwrap_or(0.0),
         i_g: p.req("i_g")?,
-        balls: {
-            let d = autobal::balls::BallPhysics::default();
-            autobal::balls::BallPhysics {
-                diameter: p.f64("ball_diameter")?,
-                contact: p.boolean("contact")?.unwrap_or(false),
-                restitution: p.f64("restitution")?.unwrap_or(d.restitution),
-                contact_stiffness: p.f64("contact_stiffness")?,
-                rolling_resistance: p.f64("rolling_resistance")?.unwrap_or(0.0),
-                slip_rate: p.f64("slip_rate")?.unwrap_or(d.slip_rate),
-            }
-        },
+        balls: ball_physics_of(&p)?,
     };
     rotor.validate()?;
     let (drive, t_end) = drive_of(&d)?;

@@ -79,8 +79,11 @@ pub fn build(root: &Table, source: &str) -> Result<SpatialSim> {
                     ball_mass: b.req("ball_mass")?,
                     race_radius: b.req("race_radius")?,
                     drag: b.f64("drag")?.unwrap_or(0.0),
-                    physics: Default::default(),
+                    physics: config::ball_physics_of(&b)?,
                 });
+            }
+            if let Some(p) = r.planes.first_mut() {
+                p.physics = config::ball_physics_of(&sec("balancer"))?;
             }
             r
         }
@@ -241,6 +244,8 @@ pub fn summary_json(sim: &SpatialSim, s: &Summary, wall: f64) -> Value {
         "steps": s.steps,
         "rejected_steps": s.rejected_steps,
         "rhs_evaluations": s.rhs_evaluations,
+        "contacts": s.contacts,
+        "stick_slip_transitions": s.stick_slip_transitions,
         "wall_time_s": wall,
         "t_end": s.t_end,
         "stopped": s.stopped,
@@ -262,6 +267,9 @@ pub fn summary_table(sim: &SpatialSim, s: &Summary, wall: f64) -> String {
         s.residual_couple.map_or(String::new(), |c| format!(", couple {c:.3e}")),
         if s.balanced { "balanced" } else { "not balanced" });
     let _ = writeln!(o, "integration: {} steps ({} rejected), {} right-hand sides, {:.3} s", s.steps, s.rejected_steps, s.rhs_evaluations, wall);
+    if sim.rotor.planes.iter().any(|p| p.physics.is_active()) {
+        let _ = writeln!(o, "real balls: {} contacts, {} stick-slip transitions", s.contacts, s.stick_slip_transitions);
+    }
     if let Some(st) = &s.stopped {
         let _ = writeln!(o, "stopped early: {st}");
     }

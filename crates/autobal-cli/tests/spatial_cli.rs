@@ -40,6 +40,41 @@ fn simulate_runs_the_spatial_model_on_the_analytic_config() {
 }
 
 #[test]
+fn spatial_real_balls_from_the_balancer_tables() {
+    // [balancer] and [balancer2] take the real-ball keys of [planar] (docs/balls.md): each plane
+    // its own; the summary counts contacts and stick-slip transitions
+    let cfg = example("spatial_two_plane.toml");
+    let dir = std::env::temp_dir().join(format!("autobal-spatial-balls-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("run.csv");
+    let out = out.to_str().unwrap();
+    let run = |extra: &[&str]| {
+        let mut args = vec!["simulate", "--config", &cfg, "--format", "json", "--out", out, "--set", "drive.t_end=3"];
+        args.extend_from_slice(extra);
+        let (code, stdout, err) = autobal(&args);
+        assert_eq!(code, 0, "{err}");
+        serde_json::from_str::<serde_json::Value>(&stdout).unwrap()
+    };
+    let off = run(&[]);
+    assert_eq!((off["contacts"].as_u64(), off["stick_slip_transitions"].as_u64()), (Some(0), Some(0)));
+    let on = run(&["--set", "balancer.contact=true", "--set", "balancer2.contact=true", "--set", "balancer.rolling_resistance=1e-3", "--set", "balancer2.rolling_resistance=1e-3"]);
+    assert!(on["contacts"].as_u64().unwrap() > 0 && on["stick_slip_transitions"].as_u64().unwrap() > 0, "{on}");
+    assert_eq!(on["rotor"]["planes"][1]["physics"]["rolling_resistance"], 1e-3);
+    for (set, msg) in [
+        ("balancer.restitution=2", "balancer.restitution: must lie in"),
+        ("balancer2.contact=1", "balancer2.contact: expected true or false"),
+        ("balancer2.rolling_resistance=-1", "balancer2.rolling_resistance: must"),
+    ] {
+        let (code, _, err) = autobal(&["simulate", "--config", &cfg, "--set", set]);
+        assert_eq!(code, 2, "{set}: {err}");
+        assert!(err.contains(msg), "{set}: {err}");
+    }
+    let (code, _, err) = autobal(&["simulate", "--config", &cfg, "--set", "balancer.contact=true", "--set", "drive.psi0=[0, 0.05, 0, 3]"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("drive.psi0: balls 1 and 2 overlap"), "{err}");
+}
+
+#[test]
 fn spatial_errors_name_the_field() {
     let (code, _, err) = autobal(&["simulate", "--config", &example("default.toml")]);
     assert_eq!(code, 2);

@@ -381,6 +381,10 @@ fn the_spatial_model_has_the_same_real_balls() {
         .unwrap();
         let theirs = theirs.unwrap();
         assert!(t.contacts >= 1 || m3 == 0.03, "{t:?}");
+        // both count the same events (from the states at their own step ends): contacts where
+        // the planar run had them, stick-slip transitions as the balls stop
+        assert_eq!(s.contacts > 0, t.contacts > 0, "m3 = {m3}: spatial {s:?} vs planar {t:?}");
+        assert!(s.stick_slip_transitions >= 1 && t.stick_slip_transitions >= 1, "m3 = {m3}: spatial {s:?} vs planar {t:?}");
         for j in 0..2 {
             assert!((ours.2[j] - theirs.2[j]).abs() < 1e-6, "m3 = {m3}: ψ {:?} vs {:?} ({s:?})", ours.2, theirs.2);
         }

@@ -181,6 +181,17 @@ impl BallPhysics {
         Ok(())
     }
 
+    /// Absolute tolerance (rad/s) for a ball's rate given the model's own `atol`: with rolling
+    /// resistance at most `0.1 v_ε`, so the integrator resolves the regularised sign (a held
+    /// ball creeps below `v_ε`); unchanged otherwise.
+    pub fn rate_tolerance(&self, atol: f64) -> f64 {
+        if self.rolling_resistance > 0.0 {
+            atol.min(0.1 * self.slip_rate)
+        } else {
+            atol
+        }
+    }
+
     /// Check that no two balls overlap at the start (`psi`: the initial angles); the error names
     /// `field` (e.g. `drive.psi0`).
     pub fn check_initial(&self, field: &str, mass: f64, r: f64, psi: &[f64]) -> Result<()> {

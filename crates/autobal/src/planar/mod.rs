@@ -350,9 +350,8 @@ pub fn tolerances(rotor: &PlanarRotor, settings: &Settings) -> Options {
         let base = if i < 2 { settings.atol } else { settings.atol / s_ref };
         atol[i] = base;
         atol[nc + i] = base * wn;
-        if i >= 3 && rotor.balls.rolling_resistance > 0.0 {
-            // resolve the regularised rolling resistance: rates well below its slip rate
-            atol[nc + i] = atol[nc + i].min(0.1 * rotor.balls.slip_rate);
+        if i >= 3 {
+            atol[nc + i] = rotor.balls.rate_tolerance(atol[nc + i]);
         }
     }
     let mut o = Options::new(settings.rtol, settings.atol).method(settings.method).atol_per_component(atol);

@@ -165,6 +165,12 @@ impl<'a> Equations<'a> {
         Equations { rotor, drive, carrier_mass, carrier_first, carrier_inertia, total_mass: rotor.total_mass(), balls, supports, z_ref, ball_forces }
     }
 
+    /// The real-ball forces of the planes that have them switched on: (index of the plane's
+    /// first ball among all balls, its forces); empty for point masses.
+    pub fn ball_forces(&self) -> &[(usize, BallForces)] {
+        &self.ball_forces
+    }
+
     /// Number of generalised coordinates `5 + N`.
     pub fn coords(&self) -> usize {
         ROTOR_COORDS + self.balls.len()

@@ -3,6 +3,7 @@
 
 use super::equations::{Equations, PHI, ROTOR_COORDS};
 use super::rotor::SpatialRotor;
+use crate::balls::EventCounter;
 use crate::drive::Drive;
 use crate::error::{finite, positive, Error, Result};
 use crate::ode::{Control, Method, Options, Outcome, Solver, Stats, Status};
@@ -131,6 +132,12 @@ pub struct Summary {
     pub rejected_steps: u64,
     /// Right-hand-side evaluations (dense output included).
     pub rhs_evaluations: u64,
+    /// Ball–ball contacts that began, all planes together (real balls with contact; counted
+    /// between step ends, [`crate::balls::EventCounter`]).
+    pub contacts: u64,
+    /// Transitions of the balls between sticking and slipping (real balls with rolling
+    /// resistance), all planes together.
+    pub stick_slip_transitions: u64,
     /// Time reached.
     pub t_end: f64,
     /// Why the run stopped before `t_end`, if it did.
@@ -156,6 +163,11 @@ pub fn initial_state(eq: &Equations, init: &Initial) -> Result<Vec<f64>> {
     }
     for a in &init.psi_rate {
         finite("drive.psi_rate0", *a)?;
+    }
+    let mut first = 0;
+    for p in &eq.rotor.planes {
+        p.physics.check_initial("drive.psi0", p.ball_mass, p.race_radius, &init.psi[first..first + p.n])?;
+        first += p.n;
     }
     if eq.rotor.lock_tilt && (init.tilt != [0.0; 2] || init.tilt_rate != [0.0; 2]) {
         return Err(Error::invalid("initial.tilt", "must be zero with the tilt locked (spatial.lock_tilt)"));
@@ -192,6 +204,14 @@ pub fn tolerances(eq: &Equations, settings: &Settings) -> Options {
         let base = if i < 2 { settings.atol } else { settings.atol / l };
         atol[i] = base;
         atol[nc + i] = base * wn;
+    }
+    // ball rates of planes with rolling resistance: resolve its regularised sign
+    let mut i = nc + ROTOR_COORDS;
+    for p in &eq.rotor.planes {
+        for _ in 0..p.n {
+            atol[i] = p.physics.rate_tolerance(atol[i]);
+            i += 1;
+        }
     }
     let mut o = Options::new(settings.rtol, settings.atol).method(settings.method).atol_per_component(atol);
     // the implicit method's dense output is third order: steps of at most 4 output intervals
@@ -262,18 +282,23 @@ pub fn simulate(rotor: &SpatialRotor, drive: &Drive, init: &Initial, settings: &
     let mut solver = Solver::new(&eq, tolerances(&eq, settings))?;
     let breakpoints = drive.breakpoints();
     let timeline = Timeline { t_end: settings.t_end, dt: settings.dt, breakpoints: &breakpoints };
-    let mut hooks = SpatialHooks { eq: &eq, sink: &mut sink, peak: (plane_amplitude(&eq, &y), drive.omega0(), 0.0) };
+    let counters = vec![EventCounter::default(); eq.ball_forces().len()];
+    let mut hooks = SpatialHooks { eq: &eq, sink: &mut sink, peak: (plane_amplitude(&eq, &y), drive.omega0(), 0.0), counters };
     let out = run(&mut solver, &mut y, &timeline, &mut hooks);
     let peak = hooks.peak;
-    Ok(summarise(&eq, out.t, &y, peak, out.stats, &out))
+    let mut s = summarise(&eq, out.t, &y, peak, out.stats, &out);
+    s.contacts = hooks.counters.iter().map(|c| c.contacts).sum();
+    s.stick_slip_transitions = hooks.counters.iter().map(|c| c.stick_slip).sum();
+    Ok(s)
 }
 
 /// Peak tracking at step ends and samples, the prescribed spin put back on its schedule at
-/// each piece, samples to the sink.
+/// each piece, samples to the sink, real balls' contacts and stick-slip counted per plane.
 struct SpatialHooks<'a, F: FnMut(&Sample) -> bool> {
     eq: &'a Equations<'a>,
     sink: &'a mut F,
     peak: (f64, f64, f64),
+    counters: Vec<EventCounter>,
 }
 
 impl<F: FnMut(&Sample) -> bool> Hooks for SpatialHooks<'_, F> {
@@ -287,6 +312,11 @@ impl<F: FnMut(&Sample) -> bool> Hooks for SpatialHooks<'_, F> {
         let a = plane_amplitude(self.eq, y);
         if a > self.peak.0 {
             self.peak = (a, self.eq.spin_rate(t, y), t);
+        }
+        let nc = self.eq.coords();
+        for ((first, f), c) in self.eq.ball_forces().iter().zip(&mut self.counters) {
+            let a = ROTOR_COORDS + first;
+            c.observe(f, &y[a..a + f.n], &y[nc + a..nc + a + f.n]);
         }
     }
 
@@ -330,6 +360,8 @@ fn summarise(eq: &Equations, t: f64, y: &[f64], peak: (f64, f64, f64), stats: St
         steps: stats.steps,
         rejected_steps: stats.rejected,
         rhs_evaluations: stats.rhs_evaluations,
+        contacts: 0,
+        stick_slip_transitions: 0,
         t_end: t,
         stopped: match &out.status {
             Status::Completed => None,
