@@ -58,3 +58,11 @@ else
     echo "scripts/test.sh: the report's browser test will be skipped: it needs Chromium (sudo apt-get install chromium) and Node.js with npm (sudo apt-get install nodejs npm)" >&2
 fi
 cargo test --workspace "$@"
+
+# The Python package: its wheel built by maturin with the workspace's dev profile (reusing the
+# build above), installed into .venv, and its tests (pytest) on the installed wheel, including
+# results equal to the CLI's JSON (the binary just built) and a sweep on a local Dask cluster.
+rm -rf target/wheels
+.venv/bin/maturin build --quiet --profile dev -m crates/autobal-py/Cargo.toml -i .venv/bin/python -o target/wheels
+.venv/bin/python -m pip install --quiet --disable-pip-version-check --force-reinstall --no-deps target/wheels/autobal-*.whl
+AUTOBAL_BIN="$PWD/target/debug/autobal" .venv/bin/python -m pytest -q -p no:cacheprovider crates/autobal-py/tests

@@ -4,9 +4,8 @@
 use crate::linear::Comparison;
 use crate::num::RPM_PER_RAD_S;
 use crate::plot::{Plot, SecondAxis, Series, Shade, PALETTE};
-use autobal::spatial::critical_speeds::{critical_speeds, critical_speeds_at};
+use autobal::spatial::critical_speeds::critical_speeds;
 use autobal::spatial::params::{identical_support_coefficients, SpatialModel};
-use autobal::spatial::ranges::{antiresonance_speed, autobalancing_ranges};
 use autobal::spatial::stability::{Campbell, Group, Whirl};
 
 /// `n` evenly spaced values from `a` to `b`.
@@ -30,15 +29,7 @@ pub fn with_layout(base: &SpatialModel, l_left: f64) -> SpatialModel {
 
 /// Speed axis limit: configured, else 1.3 × the highest critical speed or antiresonance.
 pub fn omega_limit(m: &SpatialModel, configured: Option<f64>) -> f64 {
-    configured.unwrap_or_else(|| {
-        let top = critical_speeds_at(m, m.anisotropy.used)
-            .iter()
-            .map(|r| r.0)
-            .chain(antiresonance_speed(m))
-            .chain(autobalancing_ranges(m).critical_speeds)
-            .fold(1.0, f64::max);
-        (1.3 * top).min(50.0)
-    })
+    configured.unwrap_or_else(|| autobal::reports::default_omega_max(m))
 }
 
 /// How speeds of a model are shown: ω in rad/s (rpm on a second axis) for a dimensional

@@ -1,103 +1,17 @@
 //! `autobal stability` and `autobal campbell`: exact linear stability of the balanced state.
 
 use crate::config::Config;
-use crate::figures::omega_limit;
-use crate::output::{fmt_ranges, ranges_value};
+use crate::output::fmt_ranges;
 use anyhow::Result;
 use autobal::spatial::linear_model::Balls;
-use autobal::spatial::params::SpatialModel;
-use autobal::spatial::ranges::{autobalancing_ranges, SpeedRange};
-use autobal::spatial::stability::{campbell, campbell_stream, stability_ranges, Campbell, StabilityRanges};
-use serde_json::{json, Value};
+use autobal::spatial::stability::{campbell, campbell_stream, Campbell};
+use serde_json::Value;
 use std::fmt::Write;
 
-/// Clip ranges to `[0, w]` as closed pairs.
-fn clip(r: &[SpeedRange], w: f64) -> Vec<(f64, f64)> {
-    r.iter().filter(|x| x.lo < w).map(|x| (x.lo, x.hi.map_or(w, |h| h.min(w)))).collect()
-}
-
-/// `a \ b` for sorted disjoint interval lists.
-fn minus(a: &[(f64, f64)], b: &[(f64, f64)]) -> Vec<(f64, f64)> {
-    let mut out = vec![];
-    for &(lo, hi) in a {
-        let mut cur = lo;
-        for &(blo, bhi) in b {
-            if bhi <= cur || blo >= hi {
-                continue;
-            }
-            if blo > cur {
-                out.push((cur, blo));
-            }
-            cur = cur.max(bhi);
-        }
-        if cur < hi {
-            out.push((cur, hi));
-        }
-    }
-    out.into_iter().filter(|(l, h)| h - l > 1e-9).collect()
-}
-
-fn to_ranges(v: &[(f64, f64)], w: f64) -> Vec<SpeedRange> {
-    v.iter().map(|&(lo, hi)| SpeedRange { lo, hi: if hi >= w { None } else { Some(hi) } }).collect()
-}
-
-/// Exact stability against 003's necessary conditions over `(0, w]`.
-pub struct Comparison {
-    pub exact: StabilityRanges,
-    pub necessary: Vec<SpeedRange>,
-    /// Where 003's condition holds but the balanced state is unstable.
-    pub necessary_not_stable: Vec<SpeedRange>,
-    /// Where the balanced state is stable but 003's condition fails.
-    pub stable_not_necessary: Vec<SpeedRange>,
-    pub omega_max: f64,
-}
-
-pub fn compare(model: &SpatialModel, omega_max: f64, samples: usize, balls: Balls) -> Result<Comparison> {
-    let exact = stability_ranges(model, omega_max, samples, balls, 1e-9)?;
-    let nec = autobalancing_ranges(model).ranges;
-    let (e, n) = (clip(&exact.stable_ranges, omega_max), clip(&nec, omega_max));
-    Ok(Comparison {
-        necessary: to_ranges(&n, omega_max),
-        necessary_not_stable: to_ranges(&minus(&n, &e), omega_max),
-        stable_not_necessary: to_ranges(&minus(&e, &n), omega_max),
-        exact,
-        omega_max,
-    })
-}
-
-fn total(r: &[SpeedRange], w: f64) -> f64 {
-    r.iter().map(|x| x.hi.unwrap_or(w) - x.lo).sum::<f64>() + 0.0 // + 0.0: an empty sum is −0
-}
-
-pub fn difference_sentence(c: &Comparison) -> String {
-    let w = c.omega_max;
-    match (c.necessary_not_stable.is_empty(), c.stable_not_necessary.is_empty()) {
-        (true, true) => "the exact stability ranges coincide with 003's necessary ranges".into(),
-        _ => format!(
-            "003's condition holds but the balanced state is unstable on {} (total {:.4}); the balanced state is stable where 003's condition fails on {} (total {:.4})",
-            fmt_ranges(&c.necessary_not_stable, 4),
-            total(&c.necessary_not_stable, w),
-            fmt_ranges(&c.stable_not_necessary, 4),
-            total(&c.stable_not_necessary, w)
-        ),
-    }
-}
+pub use autobal::spatial::comparison::{compare, Comparison};
 
 pub fn stability_json(cfg: &Config, c: &Comparison, balls: Balls) -> Value {
-    json!({
-        "balls": if balls == Balls::Free { "free" } else { "locked" },
-        "omega_max": c.omega_max,
-        "stable_ranges": ranges_value(&c.exact.stable_ranges),
-        "necessary_ranges": ranges_value(&c.necessary),
-        "necessary_not_stable": ranges_value(&c.necessary_not_stable),
-        "stable_not_necessary": ranges_value(&c.stable_not_necessary),
-        "difference": difference_sentence(c),
-        "max_real_part": c.exact.max_real_part.iter().map(|(w, a)| json!([w, a])).collect::<Vec<_>>(),
-        "tolerance": c.exact.tolerance,
-        "stability_threshold": autobal::spatial::stability::STABILITY_TOLERANCE,
-        "anisotropy_used": cfg.model.anisotropy.used,
-        "ball_coupling": cfg.model.balls,
-    })
+    autobal::reports::stability(&cfg.model, c, balls)
 }
 
 pub fn stability_table(cfg: &Config, c: &Comparison, balls: Balls) -> String {
@@ -113,7 +27,7 @@ pub fn stability_table(cfg: &Config, c: &Comparison, balls: Balls) -> String {
     let rule = if balls == Balls::Free { "all Re λ < −1e-11" } else { "all Re λ ≤ 1e-11" };
     let _ = writeln!(s, "  stable ({rule}): {}", fmt_ranges(&c.exact.stable_ranges, 6));
     let _ = writeln!(s, "  necessary (003, eqs (1)-(3)):   {}", fmt_ranges(&c.necessary, 6));
-    let _ = writeln!(s, "  difference: {}", difference_sentence(c));
+    let _ = writeln!(s, "  difference: {}", c.difference());
     if let Some(sc) = cfg.model.scale {
         let k = sc.omega0 * 30.0 / std::f64::consts::PI;
         let _ = writeln!(s, "  stable in rpm: {}", fmt_ranges(&crate::output::scale_ranges(&c.exact.stable_ranges, k), 0));
@@ -126,7 +40,7 @@ pub fn stability_table(cfg: &Config, c: &Comparison, balls: Balls) -> String {
 
 /// The speed axis of the linear commands: `--omega-max`, else the config's, else automatic.
 pub fn omega_max(cfg: &Config, arg: Option<f64>) -> Result<f64> {
-    let w = arg.or(cfg.analysis.omega_max).unwrap_or_else(|| omega_limit(&cfg.model, None));
+    let w = arg.or(cfg.analysis.omega_max).unwrap_or_else(|| autobal::reports::default_omega_max(&cfg.model));
     if !(w > 0.0 && w.is_finite()) {
         anyhow::bail!("--omega-max: must be a positive number, got {w}");
     }
@@ -134,8 +48,7 @@ pub fn omega_max(cfg: &Config, arg: Option<f64>) -> Result<f64> {
 }
 
 pub fn campbell_grid(w: f64, points: usize) -> Vec<f64> {
-    let n = points.max(3);
-    (0..n).map(|i| w * (i as f64 + 0.5) / n as f64).collect()
+    autobal::reports::campbell_speeds(w, points)
 }
 
 

@@ -3,111 +3,29 @@
 use crate::config::Config;
 use autobal::spatial::critical_speeds::{critical_speeds, CriticalSpeeds};
 use autobal::spatial::inertia::composite_inertia;
-use autobal::spatial::ranges::{autobalancing_ranges, AutobalancingRanges, SpeedRange};
+use autobal::spatial::ranges::{autobalancing_ranges, AutobalancingRanges};
 use autobal::spatial::sensitivity::sensitivity;
-use serde_json::{json, Value};
+use serde_json::Value;
 use std::fmt::Write;
 
-/// `[lo, hi]` pairs with `null` for an unbounded end.
-pub fn ranges_value(r: &[SpeedRange]) -> Value {
-    Value::Array(r.iter().map(|x| json!([x.lo, x.hi])).collect())
-}
+pub use autobal::reports::scale_ranges;
+pub use autobal::spatial::comparison::fmt_ranges;
 
-fn model_json(cfg: &Config) -> Value {
-    let m = &cfg.model;
-    json!({
-        "c_sigma": m.c_sigma,
-        "rho_s": m.rho_s,
-        "l_left": m.l_left,
-        "z_a": m.z_a,
-        "p_alpha": m.p_alpha_sq.sqrt(),
-        "p_alpha_sq": m.p_alpha_sq,
-        "c_y_alpha": m.c_y_alpha,
-        "delta_a0": m.delta_a0,
-        "damping": m.damping,
-        "masses": m.masses,
-        "scale": m.scale,
-        "source": cfg.source,
-    })
-}
-
-fn anisotropy_json(cfg: &Config) -> Value {
-    let a = &cfg.model.anisotropy;
-    json!({
-        "paper": a.paper,
-        "exact": a.exact[1],
-        "used": a.used,
-        "method": a.method,
-        "exact_interval": a.exact,
-        "paper_interval": a.paper_interval,
-        "used_interval": a.used_interval,
-        "d_a": a.d_a,
-        "ball_angles_rad": a.ball_angles,
-        "can_balance": a.can_balance,
-        "warnings": a.warnings,
-    })
+/// The library's view of a loaded config.
+fn spatial(cfg: &Config) -> autobal::config::SpatialConfig {
+    autobal::config::SpatialConfig { model: cfg.model.clone(), spec: cfg.spec.clone(), analysis: cfg.analysis.clone(), dimensional: cfg.dimensional }
 }
 
 pub fn inertia_json(cfg: &Config) -> Value {
-    json!({
-        "model": model_json(cfg),
-        "inertia": composite_inertia(&cfg.model),
-        "anisotropy": anisotropy_json(cfg),
-    })
+    autobal::reports::inertia(&spatial(cfg), &cfg.source)
 }
 
 pub fn critical_json(cfg: &Config) -> Value {
-    let cs = critical_speeds(&cfg.model);
-    let ar = autobalancing_ranges(&cfg.model);
-    let s = sensitivity(&cfg.model, cfg.analysis.sensitivity_limit);
-    json!({
-        "critical_speeds": cs.speeds,
-        "distinct_count": cs.distinct_count,
-        "table1_count": cs.table1_count,
-        "rotor_type": cs.rotor_class,
-        "antiresonance_speed": ar.antiresonance_speed,
-        "autobalancing_ranges": ranges_value(&ar.ranges),
-        "balancing_class": ar.class,
-        "sensitivity": s,
-        "anisotropy": anisotropy_json(cfg),
-        "model": model_json(cfg),
-    })
+    autobal::reports::critical(&spatial(cfg), &cfg.source)
 }
 
 pub fn ranges_json(cfg: &Config) -> Value {
-    let ar = autobalancing_ranges(&cfg.model);
-    let omega0 = cfg.model.scale.map(|s| s.omega0);
-    json!({
-        "antiresonance_speed": ar.antiresonance_speed,
-        "autobalancing_ranges": ranges_value(&ar.ranges),
-        "autobalancing_ranges_rpm": omega0.map(|w| ranges_value(&scale_ranges(&ar.ranges, w * 30.0 / std::f64::consts::PI))),
-        "phase_condition_ranges": ranges_value(&ar.phase_condition),
-        "instability_ranges": ranges_value(&ar.instability),
-        "critical_speeds_unbalanced_rotor": ar.critical_speeds,
-        "balancing_class": ar.class,
-        "delta_a0": cfg.model.delta_a0,
-        "model": model_json(cfg),
-    })
-}
-
-pub fn scale_ranges(r: &[SpeedRange], k: f64) -> Vec<SpeedRange> {
-    r.iter().map(|x| SpeedRange { lo: x.lo * k, hi: x.hi.map(|h| h * k) }).collect()
-}
-
-/// `a – b` or `a – ∞`.
-pub fn fmt_range(r: &SpeedRange, prec: usize) -> String {
-    match r.hi {
-        Some(h) => format!("{:.prec$} – {:.prec$}", r.lo, h),
-        None => format!("{:.prec$} – ∞", r.lo),
-    }
-}
-
-pub fn fmt_ranges(r: &[SpeedRange], prec: usize) -> String {
-    if r.is_empty() {
-        "none".into()
-    } else {
-        r.iter().map(|x| fmt_range(x, prec)).collect::<Vec<_>>().join(", ")
-    }
+    autobal::reports::ranges(&spatial(cfg), &cfg.source)
 }
 
 fn opt(x: Option<f64>, prec: usize) -> String {
@@ -265,16 +183,9 @@ pub fn ranges_table(cfg: &Config) -> String {
     s
 }
 
-/// Every number the analytic commands report is finite (else the error names the quantity);
-/// the input ranges (`autobal::limits`) are chosen so that this holds, this is the last guard.
+/// Every number the analytic commands report is finite (else the error names the quantity).
 pub fn check_results(cfg: &Config) -> anyhow::Result<()> {
-    use autobal::limits::check_finite;
-    check_finite("the model", &cfg.model)?;
-    check_finite("inertia", &composite_inertia(&cfg.model))?;
-    check_finite("critical_speeds", &critical_speeds(&cfg.model))?;
-    check_finite("autobalancing_ranges", &autobalancing_ranges(&cfg.model))?;
-    check_finite("sensitivity", &sensitivity(&cfg.model, cfg.analysis.sensitivity_limit))?;
-    Ok(())
+    Ok(autobal::reports::check_results(&spatial(cfg))?)
 }
 
 /// Write `text` to standard output. A reader that closed the pipe early (`autobal critical |

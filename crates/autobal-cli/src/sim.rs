@@ -5,7 +5,7 @@ use crate::plot::{Plot, Series, PALETTE};
 use anyhow::{bail, Context, Result};
 use autobal::planar::stationary::{aligned_whirls_of, capacity_ratio, locked_amplitude, semi_balanced_exists};
 use autobal::planar::{simulate_with, Sample, Summary};
-use serde_json::{json, Value};
+use serde_json::Value;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -107,33 +107,8 @@ pub fn run_to_csv(cfg: &PlanarConfig, csv: &mut dyn Write, progress: bool) -> Re
 }
 
 pub fn summary_json(cfg: &PlanarConfig, s: &Summary, wall: f64) -> Value {
-    json!({
-        "model": "planar",
-        "peak_amplitude": s.peak_amplitude,
-        "omega_at_peak": s.omega_at_peak,
-        "t_at_peak": s.t_at_peak,
-        "final_amplitude": s.final_amplitude,
-        "final_omega": s.final_omega,
-        "balanced": s.balanced,
-        "settled": s.settled,
-        "steps": s.steps,
-        "implicit_steps": s.implicit_steps,
-        "switches": s.switches,
-        "rejected_steps": s.rejected_steps,
-        "rhs_evaluations": s.rhs_evaluations,
-        "contacts": s.contacts,
-        "stick_slip_transitions": s.stick_slip_transitions,
-        "t_end": s.t_end,
-        "stopped": s.stopped,
-        "warnings": s.warnings,
-        "wall_time_s": wall,
-        "natural_frequency": cfg.rotor.natural_frequency(),
-        "capacity_ratio": capacity_ratio(&cfg.rotor),
-        "s2": cfg.rotor.s2,
-        "rotor": cfg.rotor,
-        "drive": cfg.drive,
-        "integration": { "method": cfg.settings.method, "rtol": cfg.settings.rtol, "atol": cfg.settings.atol, "dt": cfg.settings.dt, "max_steps": cfg.settings.max_steps, "max_wall_s": cfg.settings.max_wall_s },
-    })
+    let p = autobal::planar::problem::PlanarProblem { rotor: cfg.rotor.clone(), drive: cfg.drive.clone(), settings: cfg.settings.clone() };
+    autobal::reports::simulation(&p, s, wall)
 }
 
 pub fn summary_table(cfg: &PlanarConfig, s: &Summary, wall: f64) -> String {

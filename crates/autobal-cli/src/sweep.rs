@@ -121,9 +121,8 @@ pub fn run(a: SweepArgs) -> Result<()> {
     let mut csv = std::io::BufWriter::new(file);
     let paths = grid.paths();
     writeln!(csv, "{}", header(&paths))?;
-    let keys: Vec<String> = paths.iter().map(|p| p.to_string()).collect();
     let mut table = String::new();
-    for k in keys.iter().take(2) {
+    for k in paths.iter().take(2) {
         table.push_str(&format!("{k:>14} "));
     }
     table.push_str(&format!("{:>12} {:>12} {:>12} {:>9} {:>10}\n", "peak (mm)", "ω at peak", "final (mm)", "balanced", "steps"));
@@ -161,14 +160,7 @@ pub fn run(a: SweepArgs) -> Result<()> {
             for w in s.stopped.iter().chain(&s.warnings) {
                 crate::output::note(&format!("warning: point {i} ({}): {w}", values.iter().map(|v| v.to_string()).collect::<Vec<_>>().join(", ")));
             }
-            runs.push(json!({
-                "point": i,
-                "values": values,
-                "x": values[0],
-                "y": values.get(1),
-                "summary": s,
-                "wall_time_s": r.wall_s,
-            }));
+            runs.push(autobal::reports::sweep_run(i, values, r));
             if let Some(b) = &bar {
                 b.inc(1);
             }
@@ -183,18 +175,8 @@ pub fn run(a: SweepArgs) -> Result<()> {
     if let Some(e) = io_error {
         bail!("--out: cannot write {}: {e}", csv_path.display());
     }
-    let json = json!({
-        "paths": keys,
-        "x_key": keys[0],
-        "y_key": keys.get(1),
-        "grid": grid.axes.iter().map(|a| json!({ "path": a.path, "values": a.values })).collect::<Vec<_>>(),
-        "points": grid.len(),
-        "shard": shard_kn.map(|(k, n)| [k, n]),
-        "range": [range.start, range.end],
-        "complete": outcome.complete,
-        "problem": base,
-        "runs": runs,
-    });
+    let info = autobal::reports::SweepInfo { problem: &base, grid: &grid, shard: shard_kn, range: range.clone(), complete: outcome.complete };
+    let json = autobal::reports::sweep(&info, runs);
     let json_path = out.with_extension("json");
     std::fs::write(&json_path, serde_json::to_string_pretty(&json)?).with_context(|| format!("--out: cannot write {}", json_path.display()))?;
     emit(a.format, json, table)?;

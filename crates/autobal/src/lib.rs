@@ -58,6 +58,7 @@
 
 pub(crate) mod builder;
 pub mod balls;
+pub mod config;
 pub mod drive;
 pub mod error;
 pub mod limits;
@@ -66,6 +67,7 @@ pub mod ode;
 pub mod paths;
 pub mod planar;
 pub mod simulation;
+pub mod reports;
 pub mod spatial;
 pub mod sweep;
 

@@ -393,6 +393,13 @@ pub fn check_grid(base: &PlanarProblem, grid: &Grid, range: Range<usize>) -> Res
     check_points(base, &grid.paths(), range, &|i, out| grid.point(i, out))
 }
 
+/// Check the points of a batch (`params` row after row, one value per path) as
+/// [`simulate_batch`] does before it runs anything.
+pub fn check_batch(base: &PlanarProblem, paths: &[&str], params: &[f64]) -> Result<()> {
+    let k = paths.len().max(1);
+    check_points(base, paths, 0..params.len() / k, &|i, out| out.copy_from_slice(&params[i * k..(i + 1) * k]))
+}
+
 /// Run points `range` of `grid` on `base` (see the module docs); `on_row(i, values, result)`
 /// receives point `i` in order.
 pub fn simulate_grid(

@@ -50,7 +50,7 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
             "Largest real part of the eigenvalues along the speed for this rotor. Exactly stable on {}; 003's necessary condition holds on {}. {}.",
             super::esc(&ranges_text(&cmp.exact.stable_ranges, w0)),
             super::esc(&ranges_text(&cmp.necessary, w0)),
-            super::esc(&linear::difference_sentence(&cmp))
+            super::esc(&cmp.difference())
         ),
     );
     if m.rho_s.is_some() && m.scale.is_none() {
@@ -58,7 +58,7 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
         for l in [0.5, 0.8, 1.2] {
             let ml = with_layout(m, l);
             let cl = linear::compare(&ml, w.max(omega_limit(&ml, None)), 1500, balls)?;
-            rows.push(vec![fmt(l, 3), ranges_text(&cl.exact.stable_ranges, None), ranges_text(&cl.necessary, None), linear::difference_sentence(&cl)]);
+            rows.push(vec![fmt(l, 3), ranges_text(&cl.exact.stable_ranges, None), ranges_text(&cl.necessary, None), cl.difference()]);
         }
         s.h3("layouts", "Exact ranges against 003's necessary ranges, the papers' three layouts");
         s.p("This rotor moved on identical supports to the three layouts of the papers' worked examples.");

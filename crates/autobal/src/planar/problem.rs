@@ -125,6 +125,7 @@ impl PlanarProblem {
     pub fn validate(&self) -> Result<()> {
         crate::limits::check_planar_problem(self)?;
         self.rotor.validate()?;
+        check_natural_frequency(&self.rotor)?;
         self.drive.validate()?;
         self.settings.validate(&self.rotor)
     }
@@ -151,6 +152,25 @@ impl PlanarProblem {
         self.settings.dt = self.settings.t_end;
         self
     }
+}
+
+/// The shaft's natural frequency `sqrt(k/m0)` from 1e-3 to 1e7 rad/s (0.16 mHz to 1.6 MHz):
+/// below, the shaft has no stiffness on any drive's time scale; above, it is rigid on them, and
+/// the integrator would need ~100 steps per period of a vibration that plays no part.
+pub fn check_natural_frequency(rotor: &PlanarRotor) -> Result<()> {
+    let wn = rotor.natural_frequency();
+    if !(1e-3..=1e7).contains(&wn) {
+        return Err(Error::invalid(
+            "planar.k",
+            format!(
+                "the natural frequency sqrt(k/m0) = {} rad/s (k = {} N/m, m0 = {} kg) lies outside [0.001, 1e7] rad/s",
+                crate::error::fmt_num(wn),
+                crate::error::fmt_num(rotor.k),
+                crate::error::fmt_num(rotor.total_mass())
+            ),
+        ));
+    }
+    Ok(())
 }
 
 builder!(

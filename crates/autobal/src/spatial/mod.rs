@@ -4,6 +4,7 @@
 //! stability.
 
 pub mod boundary;
+pub mod comparison;
 pub mod critical_speeds;
 pub mod dynamics;
 pub mod inertia;
@@ -11,6 +12,7 @@ pub mod linear_model;
 pub mod map;
 pub mod params;
 pub mod paths;
+pub mod presets;
 pub mod ranges;
 pub mod sensitivity;
 pub mod stability;

@@ -1,0 +1,331 @@
+"""autobal: rotors with passive automatic balancing devices (ball balancers).
+
+Two models, each built from keyword arguments, a dict of config tables or a TOML file (the
+same tables and keys as the ``autobal`` command line, ``examples/*.toml``):
+
+- :class:`SpatialModel`, the rigid rotor of papers 000/003: inertia, critical speeds,
+  autobalancing ranges, exact stability against 003's necessary ranges, Campbell data;
+- :class:`PlanarProblem`, the rotor of paper 004 with an eccentric ball balancer, in time:
+  simulations (columns as NumPy arrays, :meth:`Simulation.to_pandas`), batches and sweeps
+  (:func:`simulate_batch`, :func:`sweep`, on a Dask cluster with ``client=``).
+
+:func:`run` is every analytic and simulation command of the CLI as one call, returning the
+dict that ``autobal COMMAND --format json`` prints. Errors are :mod:`autobal.errors`
+exceptions naming the field. Long calls release the GIL and stop on Ctrl-C.
+
+>>> import autobal
+>>> m = autobal.SpatialModel(delta_a=0.1)          # paper 000's base case, 003's anisotropy
+>>> m.critical_speeds().round(2).tolist()
+[0.84, 0.85, 2.52, 3.8]
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from pathlib import Path
+from typing import Any, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from . import _autobal
+from .errors import AutobalError, Interrupted, InvalidParameter, NoConvergence, SimulationError, TooLarge
+from ._sweep import simulate_batch, sweep, grid
+
+__version__: str = _autobal.__version__
+#: Columns of a run's summary in :func:`simulate_batch` and :func:`sweep`, in order.
+SUMMARY_COLUMNS: List[str] = list(_autobal.SUMMARY_COLUMNS)
+
+__all__ = [
+    "SpatialModel",
+    "PlanarProblem",
+    "Simulation",
+    "run",
+    "simulate_batch",
+    "sweep",
+    "grid",
+    "SUMMARY_COLUMNS",
+    "AutobalError",
+    "InvalidParameter",
+    "TooLarge",
+    "NoConvergence",
+    "SimulationError",
+    "Interrupted",
+]
+
+ConfigLike = Union[None, str, "os.PathLike[str]", Mapping[str, Any]]
+
+_SCHEMA: Dict[str, List[str]] = {t: list(k) for t, k in _autobal.SCHEMA}
+_SPATIAL_FLAT = ("dimensionless", "analysis")
+_SI_TABLES = ("rotor", "supports", "unbalance", "balancer")
+_PLANAR_FLAT = ("planar", "drive", "integration")
+
+
+def _sets(keys: Mapping[str, Any], set: Optional[Mapping[str, Any]], flat_tables: Sequence[str]) -> List[Tuple[str, Any]]:
+    """``table.key`` assignments from keyword arguments (``key=`` of a table in
+    ``flat_tables``, or ``table={...}``) and the ``set`` mapping (``{"table.key": value}``)."""
+    out: List[Tuple[str, Any]] = []
+    for k, v in keys.items():
+        if k in _SCHEMA and isinstance(v, Mapping):
+            out.extend((f"{k}.{kk}", vv) for kk, vv in v.items())
+            continue
+        tables = [t for t in flat_tables if k in _SCHEMA[t]]
+        if len(tables) != 1:
+            known = ", ".join(sorted({kk for t in flat_tables for kk in _SCHEMA[t]}))
+            raise InvalidParameter(f"{k}: unknown keyword (keys: {known}; or a table as a dict, e.g. rotor={{...}}, or set={{'table.key': value}})")
+        out.append((f"{tables[0]}.{k}", v))
+    out.extend((set or {}).items())
+    return out
+
+
+def _read(config: ConfigLike, default: str, default_name: str) -> Tuple[Optional[str], Optional[dict], str]:
+    if config is None:
+        return default, None, default_name
+    if isinstance(config, Mapping):
+        return None, dict(config), "dict"
+    p = Path(config)
+    try:
+        size = p.stat().st_size
+    except OSError as e:
+        raise InvalidParameter(f"config {p}: cannot read: {e.strerror}") from None
+    if size > 1 << 20:
+        raise TooLarge(f"config {p}: {size} bytes exceeds the limit of 1048576 (a config is a few dozen lines)")
+    return p.read_text(encoding="utf-8"), None, str(p)
+
+
+class _Config:
+    """A validated config of one model: the default config, changed by keyword arguments and
+    ``set``, or a dict or TOML file (see the subclasses)."""
+
+    _DEFAULT: str = ""
+    _DEFAULT_NAME: str = ""
+    _FLAT: Sequence[str] = ()
+
+    def __init__(self, config: ConfigLike = None, *, set: Optional[Mapping[str, Any]] = None, **keys: Any) -> None:
+        if config is None and any(t in keys for t in _SI_TABLES):
+            config = {}
+        text, table, source = _read(config, self._DEFAULT, self._DEFAULT_NAME)
+        self._cfg = self._make(text, table, source, _sets(keys, set, self._FLAT))
+
+    @staticmethod
+    def _make(text: Optional[str], table: Optional[dict], source: str, sets: List[Tuple[str, Any]]) -> Any:
+        raise NotImplementedError
+
+    @classmethod
+    def from_toml(cls, path: Union[str, "os.PathLike[str]"], **keys: Any) -> Any:
+        """The model of a TOML config file (``examples/*.toml``), changed by ``keys``."""
+        return cls(path, **keys)
+
+    @property
+    def toml(self) -> str:
+        """The config's tables as TOML (after keyword arguments and ``set``)."""
+        return self._cfg.toml
+
+
+class SpatialModel(_Config):
+    """The rigid rotor on two supports with an unbalance mass and an n-ball balancer (papers
+    000/003), validated.
+
+    ``config``: a TOML file, a dict of tables (``{"dimensionless": {...}, "analysis": {...}}``
+    or the SI tables ``rotor``, ``supports``, ``unbalance``, ``balancer``), or ``None`` for
+    paper 000's base case (``examples/default.toml``). Keyword arguments set keys of
+    ``[dimensionless]`` and ``[analysis]`` by name (``l_left=1.2``, ``anisotropy="paper"``) or
+    whole tables (``rotor={"mass": 20, ...}``); ``set`` takes ``{"table.key": value}``, like the
+    CLI's ``--set``. Without ``config``, SI tables start from an empty config.
+
+    >>> SpatialModel(l_left=1.2).critical()["rotor_type"]
+    'long'
+    """
+
+    _DEFAULT = _autobal.DEFAULT_SPATIAL
+    _DEFAULT_NAME = "embedded default (examples/default.toml)"
+    _FLAT = _SPATIAL_FLAT
+    _make = staticmethod(_autobal.spatial_config)
+
+    @classmethod
+    def paper_000(cls, l_left: float = 0.8) -> "SpatialModel":
+        """Paper 000's base case at layout ``l̄_L`` (``examples/default.toml``)."""
+        return cls(l_left=l_left)
+
+    @classmethod
+    def paper_003(cls, l_left: float = 0.8) -> "SpatialModel":
+        """Paper 003's worked examples at ``l̄_L`` = 0.5, 0.8, 1.2: ``ΔĀ = ΔĀ0 = 0.1`` given
+        directly, no damping."""
+        return cls({"dimensionless": {"c_sigma": 0.75, "rho_s": 0.4, "l_left": l_left, "z_a": 0.8, "delta_a": 0.1}})
+
+    def _report(self, command: str, **options: Any) -> Dict[str, Any]:
+        return json.loads(_autobal.spatial_report(command, self._cfg, **options))
+
+    def inertia(self) -> Dict[str, Any]:
+        """Composite inertia and anisotropy (``autobal inertia --format json``)."""
+        return self._report("inertia")
+
+    def critical(self) -> Dict[str, Any]:
+        """Critical speeds, sensitivity, autobalancing ranges (``autobal critical``)."""
+        return self._report("critical")
+
+    def critical_speeds(self) -> np.ndarray:
+        """The critical speeds Ω (dimensionless, ascending; exact roots of 000's eq (16))."""
+        return np.array([k["omega"] for k in self.critical()["critical_speeds"]], dtype=float)
+
+    def ranges(self) -> Dict[str, Any]:
+        """Antiresonance and autobalancing ranges of 003 (``autobal ranges``)."""
+        return self._report("ranges")
+
+    def stability(self, omega_max: Optional[float] = None, samples: int = 2000, balls: str = "free") -> Dict[str, Any]:
+        """Exact stability ranges of the balanced state against 003's necessary ranges over
+        ``0 < Ω ≤ omega_max`` (``autobal stability``); ``balls``: ``"free"`` or ``"locked"``."""
+        return self._report("stability", omega_max=omega_max, samples=samples, balls=balls)
+
+    def campbell(self, omega_max: Optional[float] = None, points: int = 300, balls: str = "free") -> Dict[str, Any]:
+        """Campbell data: ``omega`` (speeds), and per tracked line (rows) and speed (columns)
+        ``re``, ``im`` (rotating axes), ``fixed_frequency``, ``log_decrement`` (NaN where
+        undefined) as arrays, ``whirl`` and ``group`` as lists of lists; ``raw`` is the JSON of
+        ``autobal campbell``."""
+        raw = self._report("campbell", omega_max=omega_max, points=points, balls=balls)
+        lines = [line["modes"] for line in raw["lines"]]
+
+        def arr(key: str) -> np.ndarray:
+            return np.array([[np.nan if m.get(key) is None else m[key] for m in ms] for ms in lines], dtype=float)
+
+        return {
+            "omega": np.array(raw["omega"], dtype=float),
+            "re": arr("re"),
+            "im": arr("im"),
+            "fixed_frequency": arr("fixed_frequency"),
+            "log_decrement": arr("log_decrement"),
+            "whirl": [[m["whirl"] for m in ms] for ms in lines],
+            "group": [[m["group"] for m in ms] for ms in lines],
+            "raw": raw,
+        }
+
+
+class Simulation:
+    """A run of a :class:`PlanarProblem`: ``columns`` (``t``, ``omega``, ``x``, ``y``,
+    ``amplitude`` as 1-D arrays, ``psi`` as samples × balls) and ``summary`` (the dict
+    ``autobal simulate --format json`` prints)."""
+
+    def __init__(self, columns: Dict[str, np.ndarray], summary: Dict[str, Any]) -> None:
+        self.columns = columns
+        self.summary = summary
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        return self.columns[name]
+
+    def __repr__(self) -> str:
+        s = self.summary
+        return f"Simulation({len(self.columns['t'])} samples, peak {1e3 * s['peak_amplitude']:.4g} mm at ω = {s['omega_at_peak']:.4g} rad/s, balanced={s['balanced']})"
+
+    def to_pandas(self) -> "Any":
+        """The samples as a pandas DataFrame, columns ``t, omega, x, y, amplitude, psi_1 …
+        psi_n`` as in the CLI's CSV (needs pandas)."""
+        import pandas as pd
+
+        data = {k: v for k, v in self.columns.items() if k != "psi"}
+        psi = self.columns["psi"]
+        for j in range(psi.shape[1]):
+            data[f"psi_{j + 1}"] = psi[:, j]
+        return pd.DataFrame(data)
+
+
+class PlanarProblem(_Config):
+    """The planar rotor of paper 004 with its drive and integration settings, validated.
+
+    ``config``: a TOML file, a dict of the tables ``planar``, ``drive``, ``integration``, or
+    ``None`` for paper 004's passage (``examples/planar.toml``). Keyword arguments set keys of
+    these tables by name (``m3=0.01``, ``b=5.0``, ``t_end=20``); ``set`` takes
+    ``{"table.key": value}``.
+
+    >>> PlanarProblem(m3=0.01).get("planar.m3")
+    0.01
+    """
+
+    _DEFAULT = _autobal.DEFAULT_PLANAR
+    _DEFAULT_NAME = "embedded default (examples/planar.toml)"
+    _FLAT = _PLANAR_FLAT
+    _make = staticmethod(_autobal.planar_config)
+
+    @classmethod
+    def paper_004(cls, m3: float = 0.03) -> "PlanarProblem":
+        """Paper 004's passage with ball mass ``m3`` (kg): 0.03 balances, 0.01 does not."""
+        return cls(m3=m3)
+
+    @staticmethod
+    def paths() -> List[Tuple[str, str]]:
+        """Every parameter path a sweep can vary, with what it is."""
+        return list(_autobal.planar_paths())
+
+    def get(self, path: str) -> float:
+        """The number at a parameter path (``planar.m3``, ``drive.b``, ``drive.psi0[1]``)."""
+        return self._cfg.get(path)
+
+    def simulate(self, dt: Optional[float] = None) -> Simulation:
+        """Run it, sampling every ``dt`` seconds (default: the config's ``integration.dt``).
+        A run that stops before its end raises :class:`SimulationError` (``.result`` holds
+        the :class:`Simulation` up to then)."""
+        columns, summary = _autobal.simulate(self._cfg, dt)
+        sim = Simulation(columns, json.loads(summary))
+        if sim.summary.get("stopped"):
+            e = SimulationError(f"{sim.summary['stopped']}: the samples up to then are in .result")
+            e.result = sim
+            raise e
+        return sim
+
+
+def run(command: str, config: ConfigLike = None, set: Optional[Mapping[str, Any]] = None, **options: Any) -> Dict[str, Any]:
+    """Run a CLI command and return the dict ``autobal COMMAND --format json`` prints for the
+    same config and ``--set`` overrides.
+
+    Commands and their options (as the CLI's, with ``_`` for ``-``):
+
+    - ``inertia``, ``critical``, ``ranges``;
+    - ``stability`` (``omega_max``, ``samples``, ``balls``), ``campbell`` (``omega_max``,
+      ``points``, ``balls``);
+    - ``simulate`` (``dt``): the summary (no files are written);
+    - ``sweep`` (``x``, ``y``, ``axis`` (a list), ``shard`` (``"K/N"``), ``threads``): the JSON
+      of the sweep (no files are written).
+
+    >>> run("critical", set={"dimensionless.delta_a": 0.1})["critical_speeds"][3]["omega"] > 3.79
+    True
+    """
+    if command in ("inertia", "critical", "ranges", "stability", "campbell"):
+        return SpatialModel(config, set=set)._report(command, **options)
+    if command == "simulate":
+        p = PlanarProblem(config, set=set)
+        columns, summary = _autobal.simulate(p._cfg, options.pop("dt", None))
+        _no_more(command, options)
+        out = json.loads(summary)
+        if out.get("stopped"):
+            e = SimulationError(out["stopped"])
+            e.result = out
+            raise e
+        return out
+    if command == "sweep":
+        p = PlanarProblem(config, set=set)
+        specs = [("x", options.pop("x", None))]
+        if "y" in options:
+            specs.append(("y", options.pop("y")))
+        specs += [("axis", a) for a in options.pop("axis", [])]
+        if specs[0][1] is None:
+            raise InvalidParameter("x: required (the first axis, e.g. x='drive.b=0.5:12.5:5')")
+        axes = [_autobal.parse_axis(spec) for _, spec in specs if spec is not None]
+        shard = options.pop("shard", None)
+        kn = None
+        if shard is not None:
+            try:
+                k, n = (int(s) for s in str(shard).split("/"))
+            except ValueError:
+                raise InvalidParameter(f"shard {shard}: expected K/N with 1 ≤ K ≤ N, e.g. shard='3/8'") from None
+            kn = (k, n)
+        threads = options.pop("threads", None)
+        _no_more(command, options)
+        return json.loads(_autobal.sweep_report(p._cfg, axes, kn, threads))
+    raise InvalidParameter(
+        f"command: \"{command}\" is not a command of autobal.run (inertia, critical, ranges, stability, campbell, simulate, sweep); "
+        "map, report and merge write files: use the CLI"
+    )
+
+
+def _no_more(command: str, options: Mapping[str, Any]) -> None:
+    if options:
+        raise InvalidParameter(f"{next(iter(options))}: not an option of {command}")

@@ -1,0 +1,226 @@
+"""Batches and sweeps of planar simulations: in-process (Rust threads) or on a Dask cluster,
+streamed to disk chunk by chunk so that an interrupted sweep keeps what finished and resumes."""
+
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+from pathlib import Path
+from typing import TYPE_CHECKING, Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from . import _autobal
+from .errors import InvalidParameter
+
+if TYPE_CHECKING:  # pragma: no cover
+    from . import PlanarProblem
+
+Axes = Union[Mapping[str, Sequence[float]], Sequence[Union[str, Tuple[str, Sequence[float]]]]]
+
+
+def _axes(axes: Axes) -> List[Tuple[str, List[float]]]:
+    """``{path: values}``, ``[(path, values)]`` or ``["path=lo:hi:n", ...]`` as ``[(path, values)]``."""
+    items = axes.items() if isinstance(axes, Mapping) else axes
+    out: List[Tuple[str, List[float]]] = []
+    for a in items:
+        if isinstance(a, str):
+            out.append(_autobal.parse_axis(a))
+        else:
+            path, values = a
+            out.append((str(path), [float(v) for v in np.atleast_1d(np.asarray(values, dtype=float))]))
+    return out
+
+
+def grid(axes: Axes) -> np.ndarray:
+    """The points of a grid, one row per point (points × axes), the first axis varying
+    fastest, as ``autobal sweep`` numbers them.
+
+    >>> grid({"drive.b": [1.0, 2.0], "planar.c_psi": [0.1, 0.2]}).tolist()
+    [[1.0, 0.1], [2.0, 0.1], [1.0, 0.2], [2.0, 0.2]]
+    """
+    return _autobal.grid_points(_axes(axes))
+
+
+def simulate_batch(problem: "PlanarProblem", paths: Sequence[str], params: Any, threads: Optional[int] = None) -> np.ndarray:
+    """Run one simulation per row of ``params`` (points × ``len(paths)``), each the problem
+    with ``paths`` set to the row's values, in parallel in Rust (``threads``, default all
+    cores) with the GIL released. Returns points × ``SUMMARY_COLUMNS``; the same bits
+    whatever the number of threads or chunks."""
+    p = np.require(np.asarray(params, dtype=float), requirements=["C", "A"])
+    if p.ndim == 1 and len(paths) == 1:
+        p = p.reshape(-1, 1)
+    if p.ndim != 2:
+        raise InvalidParameter(f"params: expected a 2-D array (points × {len(paths)} paths), got shape {p.shape}")
+    return _autobal.simulate_batch(problem._cfg, list(paths), p, threads)
+
+
+def _run_chunk(problem_toml: str, paths: List[str], params: np.ndarray, threads: Optional[int]) -> np.ndarray:
+    """One chunk on a worker: the problem from its TOML, then a batch."""
+    cfg = _autobal.planar_config(problem_toml, None, "sweep", [])
+    # arrays unpickled on a worker may be unaligned views of the message buffer
+    return _autobal.simulate_batch(cfg, paths, np.require(params, dtype=float, requirements=["C", "A"]), threads)
+
+
+def _write_atomic(path: Path, write) -> None:
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=path.name, suffix=".tmp")
+    os.close(fd)
+    try:
+        write(tmp)
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.remove(tmp)
+
+
+class _Parts:
+    """Finished chunks on disk: ``DIR/manifest.json`` (what the sweep is) and one
+    ``chunk-NNNNNN.npy`` per chunk (written whole or not at all)."""
+
+    def __init__(self, directory: Path, manifest: Dict[str, Any], resume: bool) -> None:
+        self.dir = directory
+        self.dir.mkdir(parents=True, exist_ok=True)
+        manifest = json.loads(json.dumps(manifest))  # as it reads back (tuples become lists)
+        mpath = self.dir / "manifest.json"
+        if mpath.exists():
+            old = json.loads(mpath.read_text())
+            if not resume:
+                for f in self.dir.glob("chunk-*.npy"):
+                    f.unlink()
+            elif old != manifest:
+                raise InvalidParameter(
+                    f"out: {self.dir} holds parts of a different sweep (problem, axes or chunk size differ); "
+                    "give another out, or resume=False to start over"
+                )
+        _write_atomic(mpath, lambda t: Path(t).write_text(json.dumps(manifest, indent=1)))
+
+    def path(self, i: int) -> Path:
+        return self.dir / f"chunk-{i:06d}.npy"
+
+    def done(self, i: int) -> bool:
+        return self.path(i).exists()
+
+    def save(self, i: int, a: np.ndarray) -> None:
+        def w(t: str) -> None:
+            with open(t, "wb") as f:
+                np.save(f, a)
+
+        _write_atomic(self.path(i), w)
+
+    def load(self, i: int) -> np.ndarray:
+        return np.load(self.path(i))
+
+
+def _table(points: np.ndarray, paths: List[str], results: np.ndarray) -> Dict[str, np.ndarray]:
+    cols: Dict[str, np.ndarray] = {"point": np.arange(len(points), dtype=np.int64)}
+    for j, p in enumerate(paths):
+        cols[p] = points[:, j]
+    for j, c in enumerate(_autobal.SUMMARY_COLUMNS):
+        cols[c] = results[:, j]
+    return cols
+
+
+def _write_table(cols: Dict[str, np.ndarray], out: Path) -> None:
+    if out.suffix == ".parquet":
+        import pandas as pd
+
+        _write_atomic(out, lambda t: pd.DataFrame(cols).to_parquet(t, index=False))
+        return
+    names = list(cols)
+    data = np.column_stack([cols[n].astype(float) for n in names]) if len(cols[names[0]]) else np.zeros((0, len(names)))
+
+    def w(t: str) -> None:
+        with open(t, "w") as f:
+            f.write(",".join(names) + "\n")
+            # %.17g: every double round-trips exactly; integers print as integers
+            np.savetxt(f, data, fmt="%.17g", delimiter=",")
+
+    _write_atomic(out, w)
+
+
+def sweep(
+    problem: "PlanarProblem",
+    axes: Axes,
+    *,
+    out: Union[None, str, "os.PathLike[str]"] = None,
+    client: Any = None,
+    chunk_size: Optional[int] = None,
+    resume: bool = True,
+    threads: Optional[int] = None,
+) -> Any:
+    """Run the problem at every point of the grid ``axes`` (``{path: values}``, or
+    ``["drive.b=0.5:12.5:5", ...]``; the first axis varies fastest) and return the table:
+    ``point``, the paths, ``SUMMARY_COLUMNS`` — a pandas DataFrame when pandas is installed,
+    else a dict of arrays.
+
+    - ``client``: a ``dask.distributed.Client``; the grid is cut into chunks of ``chunk_size``
+      points, each submitted as one :func:`simulate_batch` call (``threads`` per task, default
+      1: Dask runs the tasks in parallel). Without a client, the chunks run here on all cores.
+    - ``out``: ``NAME.csv`` or ``NAME.parquet`` for the table. Chunks are written to
+      ``NAME.parts/`` as they arrive; an interrupted sweep (Ctrl-C, a lost worker) keeps them,
+      and the same call resumes, running only the missing chunks (``resume=False`` starts
+      over). The table is written when every chunk is done.
+
+    The results are the same bits whatever the client, workers, chunks or threads.
+    """
+    ax = _axes(axes)
+    paths = [p for p, _ in ax]
+    points = _autobal.grid_points(ax)
+    n = len(points)
+    if chunk_size is None:
+        workers = len(client.scheduler_info().get("workers", {})) if client is not None else 1
+        chunk_size = max(1, min(4096, -(-n // max(1, 8 * workers)))) if client is not None else max(1, min(n, 4096))
+    if chunk_size < 1:
+        raise InvalidParameter(f"chunk_size: must be at least 1, got {chunk_size}")
+    chunks = [(i, i * chunk_size, min(n, (i + 1) * chunk_size)) for i in range(-(-n // chunk_size))]
+    toml = problem.toml
+    parts: Optional[_Parts] = None
+    table_path: Optional[Path] = None
+    if out is not None:
+        table_path = Path(out)
+        if table_path.suffix not in (".csv", ".parquet"):
+            raise InvalidParameter(f"out: {table_path} must end in .csv or .parquet")
+        manifest = {"problem": toml, "axes": ax, "chunk_size": chunk_size, "columns": list(_autobal.SUMMARY_COLUMNS)}
+        parts = _Parts(table_path.with_suffix(".parts"), manifest, resume)
+    results: Dict[int, np.ndarray] = {}
+    todo = []
+    for i, lo, hi in chunks:
+        if parts is not None and parts.done(i):
+            results[i] = parts.load(i)
+        else:
+            todo.append((i, lo, hi))
+    # every point is checked before anything runs (errors name the path and the point)
+    _autobal.check_batch(problem._cfg, paths, points)
+    if client is None:
+        for i, lo, hi in todo:
+            r = _autobal.simulate_batch(problem._cfg, paths, points[lo:hi], threads)
+            results[i] = r
+            if parts is not None:
+                parts.save(i, r)
+    else:
+        from dask.distributed import as_completed
+
+        futures = {
+            client.submit(_run_chunk, toml, paths, points[lo:hi], threads or 1, pure=False, key=f"autobal-sweep-{os.getpid()}-{id(points)}-{i}"): i
+            for i, lo, hi in todo
+        }
+        try:
+            for fut in as_completed(list(futures)):
+                i = futures[fut]
+                r = fut.result()
+                results[i] = r
+                if parts is not None:
+                    parts.save(i, r)
+        except BaseException:
+            client.cancel(list(futures))
+            raise
+    res = np.concatenate([results[i] for i, _, _ in chunks]) if chunks else np.zeros((0, len(_autobal.SUMMARY_COLUMNS)))
+    cols = _table(points, paths, res)
+    if table_path is not None:
+        _write_table(cols, table_path)
+    try:
+        import pandas as pd
+    except ImportError:
+        return cols
+    return pd.DataFrame(cols)

@@ -1,0 +1,412 @@
+//! The `autobal._autobal` extension module: the library's configs, analyses, simulations and
+//! sweeps for the Python package (`python/autobal`), which adds the pythonic layer (keyword
+//! arguments, pandas, Dask). Every long call runs on a worker thread with the GIL released;
+//! the calling thread checks for signals every 50 ms and, on Ctrl-C, cancels the work through
+//! the library's cancel callback and raises `KeyboardInterrupt`. Library errors become the
+//! exceptions of `autobal.errors`, naming the field.
+
+use autobal::config::{self, Table, Value};
+use autobal::paths::Parameters;
+use autobal::planar::problem::PlanarProblem;
+use autobal::spatial::linear_model::Balls;
+use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
+use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Duration;
+
+/// How often the waiting thread looks for signals (Ctrl-C).
+const SIGNAL_POLL: Duration = Duration::from_millis(50);
+
+/// Run `f` on a worker thread with the GIL released, checking for signals meanwhile; on a
+/// signal, set the cancel flag `f` polls, wait for `f` to return, and raise the signal's error.
+fn interruptible<R: Send>(py: Python<'_>, f: impl FnOnce(&AtomicBool) -> R + Send) -> PyResult<R> {
+    let cancel = AtomicBool::new(false);
+    std::thread::scope(|s| {
+        let (tx, mut rx) = std::sync::mpsc::channel();
+        let cancel = &cancel;
+        s.spawn(move || {
+            let _ = tx.send(f(cancel));
+        });
+        loop {
+            let (got, back) = py.detach(move || (rx.recv_timeout(SIGNAL_POLL), rx));
+            rx = back;
+            match got {
+                Ok(r) => return Ok(r),
+                Err(std::sync::mpsc::RecvTimeoutError::Disconnected) => return Err(PyRuntimeError::new_err("autobal: the worker thread panicked")),
+                Err(std::sync::mpsc::RecvTimeoutError::Timeout) => {
+                    if let Err(e) = py.check_signals() {
+                        cancel.store(true, Ordering::Relaxed);
+                        let _ = py.detach(move || rx.recv());
+                        return Err(e);
+                    }
+                }
+            }
+        }
+    })
+}
+
+/// `work` in a pool of `threads` threads, or in the global pool (all cores).
+fn with_threads<R: Send>(threads: Option<usize>, work: impl FnOnce() -> autobal::Result<R> + Send) -> autobal::Result<R> {
+    match threads {
+        Some(t) => rayon::ThreadPoolBuilder::new()
+            .num_threads(t.max(1))
+            .build()
+            .map_err(|e| autobal::Error::invalid("threads", e.to_string()))
+            .and_then(|pool| pool.install(work)),
+        None => work(),
+    }
+}
+
+/// A library error as the matching exception of `autobal.errors` (`InvalidParameter` names the
+/// field in `.field`).
+fn py_err(py: Python<'_>, e: autobal::Error) -> PyErr {
+    use autobal::Error as E;
+    let (class, field, reason) = match &e {
+        E::InvalidParameter { field, reason } => ("InvalidParameter", Some(field.clone()), Some(reason.clone())),
+        E::TooLarge { what, .. } => ("TooLarge", Some(what.clone()), None),
+        E::NoConvergence { .. } => ("NoConvergence", None, None),
+        E::Interrupted { .. } => ("Interrupted", None, None),
+        E::SingularMassMatrix { .. } | E::NonFinite { .. } | E::StepTooSmall { .. } | E::TooManySteps { .. } => ("SimulationError", None, None),
+        _ => ("AutobalError", None, None),
+    };
+    let made = (|| -> PyResult<PyErr> {
+        let cls = py.import("autobal.errors")?.getattr(class)?;
+        let exc = cls.call1((e.to_string(),))?;
+        exc.setattr("field", field)?;
+        exc.setattr("reason", reason)?;
+        Ok(PyErr::from_value(exc))
+    })();
+    made.unwrap_or_else(|err| err)
+}
+
+/// A Python value (dict, list, number, bool, str) as TOML; `at` names it in errors.
+fn to_toml(v: &Bound<'_, PyAny>, at: &str) -> PyResult<Value> {
+    if v.is_instance_of::<PyBool>() {
+        return Ok(Value::Boolean(v.extract()?));
+    }
+    if v.is_instance_of::<PyInt>() {
+        return Ok(Value::Integer(v.extract()?));
+    }
+    if v.is_instance_of::<PyFloat>() {
+        return Ok(Value::Float(v.extract()?));
+    }
+    if v.is_instance_of::<PyString>() {
+        return Ok(Value::String(v.extract()?));
+    }
+    if let Ok(d) = v.cast::<PyDict>() {
+        let mut t = Table::new();
+        for (k, x) in d.iter() {
+            let k: String = k.extract().map_err(|_| PyTypeError::new_err(format!("{at}: keys must be strings")))?;
+            let inner = if at.is_empty() { k.clone() } else { format!("{at}.{k}") };
+            t.insert(k, to_toml(&x, &inner)?);
+        }
+        return Ok(Value::Table(t));
+    }
+    if v.is_instance_of::<PyList>() || v.is_instance_of::<PyTuple>() || v.hasattr("tolist")? {
+        let list = if v.hasattr("tolist")? { v.call_method0("tolist")? } else { v.clone() };
+        if let Ok(f) = list.extract::<f64>() {
+            return Ok(Value::Float(f)); // a numpy scalar
+        }
+        let mut a = vec![];
+        for x in list.try_iter()? {
+            a.push(to_toml(&x?, at)?);
+        }
+        return Ok(Value::Array(a));
+    }
+    Err(PyTypeError::new_err(format!("{at}: expected a number, string, bool, list or dict, got {}", v.get_type().name()?)))
+}
+
+/// The raw table of a config: TOML `text` (named `source` in errors) or a dict, then each
+/// `(table.key, value)` of `sets`.
+fn table(py: Python<'_>, text: Option<&str>, dict: Option<&Bound<'_, PyDict>>, source: &str, sets: Vec<(String, Bound<'_, PyAny>)>) -> PyResult<Table> {
+    let mut root = match (text, dict) {
+        (Some(t), _) => config::parse(t, source).map_err(|e| py_err(py, e))?,
+        (None, Some(d)) => match to_toml(d.as_any(), "")? {
+            Value::Table(t) => t,
+            _ => unreachable!("a dict converts to a table"),
+        },
+        (None, None) => Table::new(),
+    };
+    for (k, v) in sets {
+        let value = to_toml(&v, &k)?;
+        config::set(&mut root, &k, value).map_err(|e| py_err(py, e))?;
+    }
+    Ok(root)
+}
+
+/// A spatial config (papers 000/003), validated.
+#[pyclass(module = "autobal._autobal", name = "SpatialConfig", frozen)]
+struct PySpatial {
+    cfg: config::SpatialConfig,
+    source: String,
+    toml: String,
+}
+
+/// A planar problem (paper 004), validated.
+#[pyclass(module = "autobal._autobal", name = "PlanarConfig", frozen)]
+struct PyPlanar {
+    problem: PlanarProblem,
+    toml: String,
+}
+
+#[pymethods]
+impl PySpatial {
+    /// The config's tables as TOML text.
+    #[getter]
+    fn toml(&self) -> &str {
+        &self.toml
+    }
+}
+
+#[pymethods]
+impl PyPlanar {
+    /// The config's tables as TOML text.
+    #[getter]
+    fn toml(&self) -> &str {
+        &self.toml
+    }
+    /// The number at a parameter path (`planar.m3`, `drive.b`, `drive.psi0[1]`).
+    fn get(&self, py: Python<'_>, path: &str) -> PyResult<f64> {
+        self.problem.get(path).map_err(|e| py_err(py, e))
+    }
+    /// The problem as JSON (rotor, drive, settings).
+    fn to_json(&self) -> String {
+        serde_json::to_string(&self.problem).unwrap_or_default()
+    }
+}
+
+#[pyfunction]
+#[pyo3(signature = (text, dict, source, sets))]
+fn spatial_config(py: Python<'_>, text: Option<&str>, dict: Option<&Bound<'_, PyDict>>, source: &str, sets: Vec<(String, Bound<'_, PyAny>)>) -> PyResult<PySpatial> {
+    let root = table(py, text, dict, source, sets)?;
+    let cfg = config::spatial(&root).map_err(|e| py_err(py, e))?;
+    Ok(PySpatial { cfg, source: source.to_string(), toml: toml::to_string(&root).unwrap_or_default() })
+}
+
+#[pyfunction]
+#[pyo3(signature = (text, dict, source, sets))]
+fn planar_config(py: Python<'_>, text: Option<&str>, dict: Option<&Bound<'_, PyDict>>, source: &str, sets: Vec<(String, Bound<'_, PyAny>)>) -> PyResult<PyPlanar> {
+    let root = table(py, text, dict, source, sets)?;
+    let problem = config::planar(&root).map_err(|e| py_err(py, e))?;
+    Ok(PyPlanar { problem, toml: toml::to_string(&root).unwrap_or_default() })
+}
+
+fn balls(py: Python<'_>, s: &str) -> PyResult<Balls> {
+    match s {
+        "free" => Ok(Balls::Free),
+        "locked" => Ok(Balls::Locked),
+        o => Err(py_err(py, autobal::Error::invalid("balls", format!("must be \"free\" or \"locked\", got \"{o}\"")))),
+    }
+}
+
+/// The speed span of the linear commands: `omega_max`, else the config's, else automatic.
+fn omega_span(py: Python<'_>, c: &PySpatial, omega_max: Option<f64>) -> PyResult<f64> {
+    if let Some(w) = omega_max {
+        autobal::limits::check_as("omega_max", "analysis.omega_max", w).map_err(|e| py_err(py, e))?;
+    }
+    Ok(omega_max.or(c.cfg.analysis.omega_max).unwrap_or_else(|| autobal::reports::default_omega_max(&c.cfg.model)))
+}
+
+/// The JSON text of an analytic command (`inertia`, `critical`, `ranges`, `stability`,
+/// `campbell`) on a spatial config: what `autobal COMMAND --format json` prints.
+#[pyfunction]
+#[pyo3(signature = (command, cfg, omega_max=None, samples=2000, points=300, balls="free"))]
+fn spatial_report(py: Python<'_>, command: &str, cfg: &PySpatial, omega_max: Option<f64>, samples: usize, points: usize, balls: &str) -> PyResult<String> {
+    let c = &cfg.cfg;
+    let src = cfg.source.as_str();
+    let b = self::balls(py, balls)?;
+    let err = |e| py_err(py, e);
+    autobal::reports::check_results(c).map_err(err)?;
+    let v = match command {
+        "inertia" => autobal::reports::inertia(c, src),
+        "critical" => autobal::reports::critical(c, src),
+        "ranges" => autobal::reports::ranges(c, src),
+        "stability" => {
+            if !(10..=1_000_000).contains(&samples) {
+                return Err(err(autobal::Error::invalid("samples", format!("must lie between 10 and 1000000, got {samples}"))));
+            }
+            let w = omega_span(py, cfg, omega_max)?;
+            let model = c.model.clone();
+            let cmp = interruptible(py, move |_| autobal::spatial::comparison::compare(&model, w, samples, b))?.map_err(err)?;
+            autobal::limits::check_finite("stability", &cmp.exact).map_err(err)?;
+            autobal::reports::stability(&c.model, &cmp, b)
+        }
+        "campbell" => {
+            if !(3..=100_000).contains(&points) {
+                return Err(err(autobal::Error::invalid("points", format!("must lie between 3 and 100000, got {points}"))));
+            }
+            let w = omega_span(py, cfg, omega_max)?;
+            let model = c.model.clone();
+            let grid = autobal::reports::campbell_speeds(w, points);
+            let cb = interruptible(py, move |_| autobal::spatial::stability::campbell(&model, &grid, b))?.map_err(err)?;
+            autobal::limits::check_finite("campbell", &cb).map_err(err)?;
+            autobal::reports::campbell(&cb)
+        }
+        o => return Err(PyValueError::new_err(format!("command: unknown analytic command \"{o}\" (inertia, critical, ranges, stability, campbell)"))),
+    };
+    Ok(v.to_string())
+}
+
+/// Run a planar problem: `(columns, summary JSON)`, columns `t, omega, x, y, amplitude` and
+/// `psi` (samples × balls) as arrays, the summary as `autobal simulate --format json` prints
+/// it. `dt` overrides the output interval.
+#[pyfunction]
+#[pyo3(signature = (cfg, dt=None))]
+fn simulate<'py>(py: Python<'py>, cfg: &PyPlanar, dt: Option<f64>) -> PyResult<(Bound<'py, PyDict>, String)> {
+    let mut p = cfg.problem.clone();
+    if let Some(d) = dt {
+        p.settings.dt = d;
+        p.settings.validate(&p.rotor).map_err(|e| py_err(py, e))?;
+    }
+    let n = p.rotor.n;
+    let run = interruptible(py, |cancel| {
+        let mut cols: [Vec<f64>; 5] = Default::default();
+        let mut psi = vec![];
+        let t0 = std::time::Instant::now();
+        let s = autobal::planar::simulate(&p.rotor, &p.drive, &p.settings, |s| {
+            for (c, v) in cols.iter_mut().zip([s.t, s.omega, s.x, s.y, s.amplitude]) {
+                c.push(v);
+            }
+            psi.extend_from_slice(&s.psi);
+            !cancel.load(Ordering::Relaxed)
+        });
+        (s, cols, psi, t0.elapsed().as_secs_f64())
+    })?;
+    let (s, cols, psi, wall) = run;
+    let s = s.map_err(|e| py_err(py, e))?;
+    let out = PyDict::new(py);
+    let rows = cols[0].len();
+    for (name, c) in ["t", "omega", "x", "y", "amplitude"].iter().zip(cols) {
+        out.set_item(name, PyArray1::from_vec(py, c))?;
+    }
+    out.set_item("psi", PyArray1::from_vec(py, psi).reshape([rows, n])?)?;
+    Ok((out, autobal::reports::simulation(&p, &s, wall).to_string()))
+}
+
+/// Check every row of `params` (points × paths) as a batch would before running.
+#[pyfunction]
+fn check_batch(py: Python<'_>, cfg: &PyPlanar, paths: Vec<String>, params: PyReadonlyArray2<'_, f64>) -> PyResult<()> {
+    let flat: Vec<f64> = params.as_array().iter().copied().collect();
+    let refs: Vec<&str> = paths.iter().map(String::as_str).collect();
+    if params.shape()[1] != paths.len() {
+        return Err(py_err(py, autobal::Error::invalid("params", format!("{} columns for {} paths", params.shape()[1], paths.len()))));
+    }
+    autobal::sweep::check_batch(&cfg.problem, &refs, &flat).map_err(|e| py_err(py, e))
+}
+
+/// Run `params` (points × paths) on the problem in parallel (`threads`, default all cores):
+/// an array points × `SUMMARY_COLUMNS`, the same bits whatever the threads.
+#[pyfunction]
+#[pyo3(signature = (cfg, paths, params, threads=None))]
+fn simulate_batch<'py>(py: Python<'py>, cfg: &PyPlanar, paths: Vec<String>, params: PyReadonlyArray2<'py, f64>, threads: Option<usize>) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
+    let shape = params.shape();
+    let (rows, k) = (shape[0], shape[1]);
+    if k != paths.len() {
+        return Err(py_err(py, autobal::Error::invalid("params", format!("{k} columns for {} paths", paths.len()))));
+    }
+    let flat: Vec<f64> = params.as_array().iter().copied().collect();
+    let base = cfg.problem.clone();
+    let ncol = autobal::sweep::SUMMARY_COLUMNS.len();
+    let result = interruptible(py, move |cancel| {
+        let work = || {
+            let refs: Vec<&str> = paths.iter().map(String::as_str).collect();
+            let mut out = vec![f64::NAN; rows * ncol];
+            let o = autobal::sweep::simulate_batch(&base, &refs, &flat, &mut |i, _, r| {
+                out[i * ncol..(i + 1) * ncol].copy_from_slice(&autobal::sweep::summary_values(&r.summary));
+                true
+            }, &|| cancel.load(Ordering::Relaxed))?;
+            o.into_result()?;
+            Ok(out)
+        };
+        with_threads(threads, work)
+    })?;
+    let out = result.map_err(|e| py_err(py, e))?;
+    PyArray1::from_vec(py, out).reshape([rows, ncol])
+}
+
+/// `autobal sweep --format json` on the problem: `axes` as `[(path, values), ...]` (first
+/// fastest), `shard` as `(k, n)` 1-based. The JSON text.
+#[pyfunction]
+#[pyo3(signature = (cfg, axes, shard=None, threads=None))]
+fn sweep_report(py: Python<'_>, cfg: &PyPlanar, axes: Vec<(String, Vec<f64>)>, shard: Option<(usize, usize)>, threads: Option<usize>) -> PyResult<String> {
+    let err = |e| py_err(py, e);
+    let grid = autobal::sweep::Grid::new(axes.into_iter().map(|(p, v)| autobal::sweep::Axis::new(p, v)).collect()).map_err(err)?;
+    let range = match shard {
+        Some((k, n)) if k >= 1 => autobal::sweep::shard(grid.len(), k - 1, n).map_err(err)?,
+        Some((k, n)) => return Err(err(autobal::Error::invalid("shard", format!("shard {k} of {n} does not exist (k from 1 to N)")))),
+        None => 0..grid.len(),
+    };
+    let base = &cfg.problem;
+    let (g, r) = (&grid, range.clone());
+    let out = interruptible(py, move |cancel| {
+        let work = || {
+            let mut runs = vec![];
+            let o = autobal::sweep::simulate_grid(base, g, r.clone(), &mut |i, v, res| {
+                runs.push(autobal::reports::sweep_run(i, v, res));
+                true
+            }, &|| cancel.load(Ordering::Relaxed))?;
+            o.into_result()?;
+            Ok(runs)
+        };
+        with_threads(threads, work)
+    })?;
+    let runs = out.map_err(err)?;
+    let info = autobal::reports::SweepInfo { problem: base, grid: &grid, shard, range, complete: true };
+    Ok(autobal::reports::sweep(&info, runs).to_string())
+}
+
+/// The points of a grid (`[(path, values), ...]`, first axis fastest), rows `lo..hi`.
+#[pyfunction]
+#[pyo3(signature = (axes, lo=None, hi=None))]
+fn grid_points<'py>(py: Python<'py>, axes: Vec<(String, Vec<f64>)>, lo: Option<usize>, hi: Option<usize>) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
+    let grid = autobal::sweep::Grid::new(axes.into_iter().map(|(p, v)| autobal::sweep::Axis::new(p, v)).collect()).map_err(|e| py_err(py, e))?;
+    let (lo, hi) = (lo.unwrap_or(0), hi.unwrap_or(grid.len()).min(grid.len()));
+    let k = grid.axes.len();
+    let pts = grid.points(lo..hi.max(lo));
+    PyArray1::from_vec(py, pts).reshape([hi.max(lo) - lo, k])
+}
+
+/// An axis from its text form (`drive.b=0.5:12.5:5`, `planar.m3=0.01,0.03`).
+#[pyfunction]
+fn parse_axis(py: Python<'_>, spec: &str) -> PyResult<(String, Vec<f64>)> {
+    let a = autobal::sweep::Axis::parse(spec).map_err(|e| py_err(py, e))?;
+    Ok((a.path, a.values))
+}
+
+/// Shard `k` of `n` (0-based) of `total` points: `(lo, hi)`.
+#[pyfunction]
+fn shard(py: Python<'_>, total: usize, k: usize, n: usize) -> PyResult<(usize, usize)> {
+    let r = autobal::sweep::shard(total, k, n).map_err(|e| py_err(py, e))?;
+    Ok((r.start, r.end))
+}
+
+/// Every parameter path of the planar problem with its description.
+#[pyfunction]
+fn planar_paths() -> Vec<(&'static str, &'static str)> {
+    PlanarProblem::parameter_paths().iter().map(|p| (p.path, p.doc)).collect()
+}
+
+#[pymodule]
+fn _autobal(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add("SUMMARY_COLUMNS", autobal::sweep::SUMMARY_COLUMNS.to_vec())?;
+    m.add("SCHEMA", config::SCHEMA.iter().map(|(t, ks)| (*t, ks.to_vec())).collect::<Vec<_>>())?;
+    m.add("DEFAULT_SPATIAL", config::DEFAULT_SPATIAL)?;
+    m.add("DEFAULT_PLANAR", config::DEFAULT_PLANAR)?;
+    m.add_class::<PySpatial>()?;
+    m.add_class::<PyPlanar>()?;
+    m.add_function(wrap_pyfunction!(spatial_config, m)?)?;
+    m.add_function(wrap_pyfunction!(planar_config, m)?)?;
+    m.add_function(wrap_pyfunction!(spatial_report, m)?)?;
+    m.add_function(wrap_pyfunction!(simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(simulate_batch, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep_report, m)?)?;
+    m.add_function(wrap_pyfunction!(check_batch, m)?)?;
+    m.add_function(wrap_pyfunction!(grid_points, m)?)?;
+    m.add_function(wrap_pyfunction!(parse_axis, m)?)?;
+    m.add_function(wrap_pyfunction!(shard, m)?)?;
+    m.add_function(wrap_pyfunction!(planar_paths, m)?)?;
+    Ok(())
+}

@@ -1,0 +1,240 @@
+"""Tests of the Python package on the built wheel (scripts/test.sh builds it into .venv).
+
+The CLI comparisons need the `autobal` binary: $AUTOBAL_BIN, else target/debug/autobal.
+Optional tools (pandas, pyarrow, polars, dask) are required when AUTOBAL_REQUIRE_PYTHON is
+set (scripts/test.sh and CI set it), else their tests are skipped.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import threading
+import time
+import _thread
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import autobal
+from autobal.errors import AutobalError, InvalidParameter
+
+ROOT = Path(__file__).resolve().parents[3]
+REQUIRE = bool(os.environ.get("AUTOBAL_REQUIRE_PYTHON"))
+
+
+def need(module: str):
+    try:
+        return __import__(module)
+    except ImportError:
+        if REQUIRE:
+            raise
+        pytest.skip(f"needs {module} (pip install -r requirements-test.txt)")
+
+
+def cli(*args: str) -> dict:
+    exe = os.environ.get("AUTOBAL_BIN", str(ROOT / "target" / "debug" / "autobal"))
+    if not Path(exe).exists():
+        if REQUIRE:
+            raise FileNotFoundError(f"{exe}: build the CLI first (cargo build -p autobal-cli)")
+        pytest.skip("needs the autobal binary")
+    out = subprocess.run([exe, *args, "--format", "json"], capture_output=True, text=True, check=True, cwd=os.environ.get("TMPDIR", "/tmp"))
+    return json.loads(out.stdout)
+
+
+def without(d, key):
+    """`d` without `key` at any depth (wall times differ between runs)."""
+    if isinstance(d, dict):
+        return {k: without(v, key) for k, v in d.items() if k != key}
+    if isinstance(d, list):
+        return [without(v, key) for v in d]
+    return d
+
+
+SETS = {"dimensionless.l_left": 1.2, "analysis.anisotropy": "paper"}
+
+
+@pytest.mark.parametrize("command", ["inertia", "critical", "ranges"])
+def test_run_equals_the_cli_json(command):
+    assert autobal.run(command) == cli(command)
+    args = [a for k, v in SETS.items() for a in ("--set", f"{k}={v}")]
+    assert autobal.run(command, set=SETS) == cli(command, *args)
+    dim = str(ROOT / "examples" / "dimensional.toml")
+    got = autobal.run(command, config=dim)
+    assert got == cli(command, "--config", dim)
+
+
+def test_run_linear_commands_equal_the_cli_json():
+    assert autobal.run("stability", omega_max=4.0, samples=200) == cli("stability", "--omega-max", "4", "--samples", "200")
+    assert autobal.run("stability", balls="locked", samples=100) == cli("stability", "--balls", "locked", "--samples", "100")
+    got = autobal.run("campbell", points=20, omega_max=3.0)
+    assert got == cli("campbell", "--points", "20", "--omega-max", "3")
+
+
+def test_run_simulate_and_sweep_equal_the_cli_json(tmp_path):
+    sets = {"drive.t_end": 1.0, "drive.omega0": 250.0, "drive.b": 100.0}
+    args = [a for k, v in sets.items() for a in ("--set", f"{k}={v}")]
+    got = autobal.run("simulate", set=sets)
+    want = cli("simulate", "--out", str(tmp_path / "s.csv"), *args)
+    assert without(got, "wall_time_s") == without(want, "wall_time_s")
+    got = autobal.run("sweep", set=sets, x="planar.c_psi=0.05:0.15:3", y="drive.b=80,120", shard="2/3")
+    want = cli("sweep", "--out", str(tmp_path / "sw"), "--x", "planar.c_psi=0.05:0.15:3", "--y", "drive.b=80,120", "--shard", "2/3", *args)
+    assert without(got, "wall_time_s") == without(want, "wall_time_s")
+
+
+def test_models_from_keywords_dicts_and_files(tmp_path):
+    a = autobal.SpatialModel(l_left=1.2, anisotropy="paper")
+    b = autobal.SpatialModel(set={"dimensionless.l_left": 1.2, "analysis.anisotropy": "paper"})
+    assert a.critical() == b.critical()
+    f = tmp_path / "m.toml"
+    f.write_text(a.toml)
+    c = autobal.SpatialModel.from_toml(f)
+    assert np.array_equal(c.critical_speeds(), a.critical_speeds())
+    d = autobal.SpatialModel(dict(dimensionless=dict(c_sigma=0.75, rho_s=0.4, l_left=0.8, z_a=0.8, delta_a=0.1)))
+    # 003's worked example at l_L = 0.8 (Ω_K1-4 = 0.837, 0.849, 2.52, 3.80 as printed)
+    assert np.allclose(d.critical_speeds(), [0.837, 0.849, 2.52, 3.80], atol=0.005)
+    assert np.array_equal(autobal.SpatialModel.paper_003(0.8).critical_speeds(), d.critical_speeds())
+    si = autobal.SpatialModel(rotor=dict(mass=20.0, equatorial_moment=0.6, polar_moment=0.15, z=0.25), supports=dict(z_left=0.0, z_right=0.5, stiffness_left=2e6, stiffness_right=3e6))
+    assert si.critical()["model"]["scale"]["omega0"] > 0
+    p = autobal.PlanarProblem(m3=0.01, b=5.0, t_end=20.0)
+    assert (p.get("planar.m3"), p.get("drive.b"), p.get("drive.t_end")) == (0.01, 5.0, 20.0)
+    assert autobal.PlanarProblem.paper_004(0.01).get("planar.m3") == 0.01
+    assert any(path == "drive.psi0[j]" for path, _ in autobal.PlanarProblem.paths())
+
+
+def test_errors_name_the_field():
+    with pytest.raises(InvalidParameter) as e:
+        autobal.SpatialModel(rho_s=-1.0)
+    assert e.value.field == "dimensionless.rho_s" and str(e.value).startswith("dimensionless.rho_s: must lie in")
+    assert isinstance(e.value, ValueError) and isinstance(e.value, AutobalError)
+    with pytest.raises(InvalidParameter) as e:
+        autobal.PlanarProblem(set={"planar.m3": -1})
+    assert e.value.field == "planar.m3"
+    with pytest.raises(InvalidParameter, match="^l_lef: unknown keyword"):
+        autobal.SpatialModel(l_lef=1.0)
+    with pytest.raises(InvalidParameter) as e:
+        autobal.SpatialModel(set={"dimensionless.l_lef": 1.0})
+    assert e.value.field == "dimensionless.l_lef"
+    with pytest.raises(InvalidParameter) as e:
+        autobal.simulate_batch(autobal.PlanarProblem(), ["drive.torque"], [[1.0]])
+    assert e.value.field == "drive.torque" and "kind acceleration" in str(e.value)
+    with pytest.raises(InvalidParameter) as e:
+        autobal.run("stability", omega_max=-1.0)
+    assert e.value.field == "omega_max"
+    with pytest.raises(InvalidParameter):
+        autobal.run("report")
+
+
+def test_simulation_columns():
+    s = autobal.PlanarProblem(t_end=1.0, omega0=250.0, b=100.0).simulate(dt=0.01)
+    t = s["t"]
+    assert t.shape == (101,) and t[-1] == pytest.approx(1.0)
+    assert s["psi"].shape == (101, 2)
+    assert np.allclose(s["amplitude"], np.hypot(s["x"], s["y"]), rtol=1e-9, atol=1e-15)
+    assert s.summary["peak_amplitude"] >= s["amplitude"].max()
+    pd = need("pandas")
+    df = s.to_pandas()
+    assert list(df.columns) == ["t", "omega", "x", "y", "amplitude", "psi_1", "psi_2"]
+    assert isinstance(df, pd.DataFrame)
+
+
+def short():
+    return autobal.PlanarProblem(t_end=0.5, omega0=250.0, b=100.0)
+
+
+def test_batch_equals_single_runs_and_threads_do_not_matter():
+    p = short()
+    params = autobal.grid({"planar.c_psi": [0.05, 0.1, 0.2], "drive.b": [80.0, 120.0]})
+    one = autobal.simulate_batch(p, ["planar.c_psi", "drive.b"], params, threads=1)
+    many = autobal.simulate_batch(p, ["planar.c_psi", "drive.b"], params, threads=4)
+    assert one.tobytes() == many.tobytes()
+    assert one.shape == (6, len(autobal.SUMMARY_COLUMNS))
+    # row 4 is the problem at c_psi = 0.1, b = 120, run on its own
+    s = autobal.PlanarProblem(t_end=0.5, omega0=250.0, b=120.0, c_psi=0.1, dt=0.5).simulate().summary
+    row = dict(zip(autobal.SUMMARY_COLUMNS, one[4]))
+    assert row["peak_amplitude"] == s["peak_amplitude"] and row["steps"] == s["steps"]
+
+
+def test_sweep_streams_and_resumes(tmp_path):
+    pd = need("pandas")
+    p = short()
+    axes = {"planar.c_psi": [0.05, 0.1, 0.15, 0.2], "drive.b": [80.0, 120.0]}
+    ref = autobal.sweep(p, axes)
+    out = tmp_path / "sw.csv"
+    got = autobal.sweep(p, axes, out=out, chunk_size=3)
+    assert got.equals(ref)
+    back = pd.read_csv(out)
+    assert back.drop(columns="point").to_numpy().tobytes() == ref.drop(columns="point").to_numpy().tobytes()
+    # an interrupted sweep keeps its finished chunks; the same call runs only the missing one
+    parts = sorted((tmp_path / "sw.parts").glob("chunk-*.npy"))
+    assert len(parts) == 3
+    kept = parts[0].stat().st_mtime_ns
+    parts[2].unlink()
+    out.unlink()
+    again = autobal.sweep(p, axes, out=out, chunk_size=3)
+    assert again.equals(ref) and parts[0].stat().st_mtime_ns == kept and parts[2].exists()
+    with pytest.raises(InvalidParameter, match="different sweep"):
+        autobal.sweep(p, {"planar.c_psi": [0.3]}, out=out, chunk_size=3)
+
+
+def test_parquet_is_read_by_pandas_and_polars(tmp_path):
+    pd = need("pandas")
+    need("pyarrow")
+    ref = autobal.sweep(short(), {"planar.c_psi": [0.05, 0.1], "drive.b": [80.0, 120.0]}, out=tmp_path / "sw.parquet")
+    assert pd.read_parquet(tmp_path / "sw.parquet").equals(ref)
+    pl = need("polars")
+    df = pl.read_parquet(tmp_path / "sw.parquet")
+    assert df.columns == list(ref.columns)
+    assert np.array_equal(df["peak_amplitude"].to_numpy(), ref["peak_amplitude"].to_numpy())
+
+
+def test_dask_local_cluster_equals_the_serial_sweep(tmp_path):
+    need("dask")
+    distributed = need("distributed")
+    axes = {"planar.c_psi": [0.05, 0.1, 0.15, 0.2, 0.25], "drive.b": [80.0, 100.0, 120.0]}
+    serial = autobal.sweep(short(), axes)
+    with distributed.LocalCluster(n_workers=3, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, distributed.Client(cluster) as client:
+        got = autobal.sweep(short(), axes, client=client, chunk_size=2, out=tmp_path / "d.csv")
+    assert got.to_numpy().tobytes() == serial.to_numpy().tobytes()
+    assert len(list((tmp_path / "d.parts").glob("chunk-*.npy"))) == 8
+
+
+def test_long_calls_release_the_gil_and_stop_on_ctrl_c():
+    p = autobal.PlanarProblem(t_end=30.0, omega0=250.0, b=10.0)
+    params = np.linspace(0.05, 0.2, 64).reshape(-1, 1)
+    ticks = []
+    done = threading.Event()
+
+    def tick():
+        while not done.is_set():
+            ticks.append(time.perf_counter())
+            time.sleep(0.01)
+
+    t = threading.Thread(target=tick)
+    t.start()
+    threading.Timer(0.3, _thread.interrupt_main).start()
+    t0 = time.perf_counter()
+    with pytest.raises(KeyboardInterrupt):
+        autobal.simulate_batch(p, ["planar.c_psi"], params)
+    stopped = time.perf_counter() - t0
+    done.set()
+    t.join()
+    assert stopped < 5.0, f"took {stopped:.1f} s to stop"
+    assert len([x for x in ticks if x < t0 + 0.3]) >= 5, "another Python thread ran while the batch ran"
+
+
+def test_stubs_are_shipped():
+    pkg = Path(autobal.__file__).parent
+    assert (pkg / "py.typed").exists() and (pkg / "_autobal.pyi").exists()
+
+
+def test_docstring_examples_run():
+    import doctest
+
+    import autobal._sweep
+
+    for mod in (autobal, autobal._sweep):
+        r = doctest.testmod(mod, optionflags=doctest.NORMALIZE_WHITESPACE)
+        assert r.failed == 0 and r.attempted > 0, mod.__name__

@@ -1,0 +1,580 @@
+//! Configs: the raw tables a user writes (TOML text, or the same tables from a front end: a
+//! Python dict, keyword arguments) converted into validated descriptions: the spatial model of
+//! papers 000/003 ([`spatial`]) and the planar simulation of paper 004 ([`planar`]).
+//!
+//! Every table and key is checked against one [`SCHEMA`], every number against its range
+//! ([`crate::limits`]); every error names the key as the config spells it (`planar.m3`,
+//! `dimensionless.delta_a`). The front ends only read files and parse `--set` text; the
+//! interpretation (defaults, required keys, which keys go together, the `delta_a` override)
+//! lives here, once.
+//!
+//! ```
+//! use autobal::config;
+//! let mut root = config::parse(config::DEFAULT_SPATIAL, "default").unwrap();
+//! config::set(&mut root, "dimensionless.delta_a", config::parse_value("0.1")).unwrap();
+//! let c = config::spatial(&root).unwrap();
+//! assert_eq!(c.model.anisotropy.used, 0.1); // 003's worked example on 000's base case
+//! let e = config::set(&mut root, "dimensionless.l_lef", 1.0.into()).unwrap_err();
+//! assert!(e.to_string().starts_with("dimensionless.l_lef: unknown key"));
+//! ```
+
+use crate::error::{Error, Result};
+use crate::planar::problem::PlanarProblem;
+use crate::planar::{Drive, Method, PlanarRotor, Settings};
+use crate::spatial::inertia::AnisotropyMethod;
+use crate::spatial::params::{check_delta_a, AnisotropyInput, DimensionlessInput, MassSet, SpatialModel, SpatialRotorSi};
+use crate::spatial::paths::{SpatialInput, SpatialSpec};
+pub use toml::{Table, Value};
+
+/// Paper 000's base case, the default config of the spatial model (`examples/default.toml`).
+pub const DEFAULT_SPATIAL: &str = include_str!("../../../examples/default.toml");
+
+/// Paper 004's passage, the default config of the planar simulation (`examples/planar.toml`).
+pub const DEFAULT_PLANAR: &str = include_str!("../../../examples/planar.toml");
+
+/// Every table and key a config may have.
+pub const SCHEMA: &[(&str, &[&str])] = &[
+    ("rotor", &["mass", "equatorial_moment", "polar_moment", "z", "axis_tilt", "axis_tilt_angle"]),
+    (
+        "supports",
+        &[
+            "z_left", "z_right", "stiffness_left", "stiffness_right", "damping_left", "damping_right",
+            "stiffness_left_y", "stiffness_right_y", "damping_left_y", "damping_right_y",
+        ],
+    ),
+    ("unbalance", &["mass", "radius", "angle"]),
+    ("balancer", &["z", "balls", "ball_mass", "race_radius", "drag", "ball_diameter", "contact", "restitution", "contact_stiffness", "rolling_resistance", "slip_rate"]),
+    // spatial simulation only (docs/spatial.md, examples/spatial_two_plane.toml)
+    ("couple", &["mass", "radius", "angle", "z"]),
+    ("balancer2", &["z", "balls", "ball_mass", "race_radius", "drag", "ball_diameter", "contact", "restitution", "contact_stiffness", "rolling_resistance", "slip_rate"]),
+    ("spatial", &["gravity", "lock_tilt", "spin_drag"]),
+    ("initial", &["position", "velocity", "tilt", "tilt_rate"]),
+    ("dimensionless", &["c_sigma", "rho_s", "l_left", "z_a", "delta_a", "m0", "r0", "m", "r", "n", "d_a", "h_x", "h_s"]),
+    ("analysis", &["anisotropy", "sensitivity_limit", "omega_max"]),
+    (
+        "planar",
+        &[
+            "m1", "m2", "m3", "n", "s1", "s2", "gamma", "r", "k", "c", "c_psi", "c_theta", "i_g", "ball_diameter", "contact", "restitution", "contact_stiffness",
+            "rolling_resistance", "slip_rate",
+        ],
+    ),
+    (
+        "drive",
+        &["kind", "omega0", "b", "torque", "omega_idle", "t_off", "t_end", "psi0", "psi_rate0", "xy0", "xy_rate0", "schedule", "schedule_of"],
+    ),
+    ("integration", &["method", "rtol", "atol", "dt", "max_steps", "max_wall_s"]),
+];
+
+/// The keys read as whole numbers (numbers of balls).
+const COUNTS: &[&str] = &["balancer.balls", "dimensionless.n", "planar.n"];
+
+/// Longest array in a config (`drive.schedule` points).
+pub const MAX_ARRAY_LEN: usize = 100_000;
+
+/// Parse config text; errors name `source` and the line.
+pub fn parse(text: &str, source: &str) -> Result<Table> {
+    text.parse::<Table>().map_err(|e| {
+        let msg = e.message().replace('\n', " ");
+        match e.span().map(|s| text[..s.start.min(text.len())].lines().count().max(1)) {
+            Some(l) => Error::invalid(source, format!("line {l}: {msg}")),
+            None => Error::invalid(source, msg),
+        }
+    })
+}
+
+/// A value as typed after `--set key=`: TOML (number, bool, array, quoted string), else the
+/// bare text as a string.
+pub fn parse_value(raw: &str) -> Value {
+    match format!("v = {raw}").parse::<Table>() {
+        Ok(mut t) => t.remove("v").unwrap_or_else(|| Value::String(raw.to_string())),
+        // a whole number beyond i64 (TOML's integers) is still a number
+        Err(_) => raw.parse::<f64>().map(Value::Float).unwrap_or_else(|_| Value::String(raw.to_string())),
+    }
+}
+
+/// Set `table.key` (a key of [`SCHEMA`]) to `value`, creating the table if needed.
+pub fn set(root: &mut Table, key: &str, value: Value) -> Result<()> {
+    let (t, k) = split_key(key)?;
+    let table = root
+        .entry(t.to_string())
+        .or_insert_with(|| Value::Table(Table::new()))
+        .as_table_mut()
+        .ok_or_else(|| Error::invalid(key, format!("`{t}` is not a table")))?;
+    table.insert(k.to_string(), value);
+    Ok(())
+}
+
+/// Set a numeric `table.key`, keeping a whole-number key whole (the ball count).
+pub fn set_number(root: &mut Table, key: &str, value: f64) -> Result<()> {
+    let (t, k) = split_key(key)?;
+    let whole = matches!(root.get(t).and_then(|v| v.get(k)), Some(Value::Integer(_))) || COUNTS.contains(&key);
+    let v = if whole && value.fract() == 0.0 && value.abs() < 9e15 { Value::Integer(value as i64) } else { Value::Float(value) };
+    set(root, key, v)
+}
+
+fn split_key(key: &str) -> Result<(&str, &str)> {
+    let parts: Vec<&str> = key.split('.').collect();
+    if parts.len() != 2 || parts.iter().any(|p| p.is_empty()) {
+        return Err(Error::invalid(key, "expected a dotted key table.field, e.g. dimensionless.l_left"));
+    }
+    check_key(parts[0], Some(parts[1]))?;
+    Ok((parts[0], parts[1]))
+}
+
+/// Every table and key of `root` must be in [`SCHEMA`], and every number in its range
+/// ([`crate::limits`]).
+pub fn check_schema(root: &Table) -> Result<()> {
+    for (name, value) in root {
+        check_key(name, None)?;
+        let t = value.as_table().ok_or_else(|| Error::invalid(name.as_str(), format!("expected a table [{name}]")))?;
+        for (k, v) in t {
+            check_key(name, Some(k))?;
+            check_range(&format!("{name}.{k}"), v)?;
+        }
+    }
+    Ok(())
+}
+
+/// Numbers (and the numbers in arrays, one level of nesting for `drive.schedule`) against their
+/// limits; counts are checked where they are read, as whole numbers.
+fn check_range(field: &str, v: &Value) -> Result<()> {
+    let is_count = COUNTS.contains(&field);
+    match v {
+        Value::Float(_) | Value::Integer(_) if !is_count => {
+            crate::limits::check(field, number(v, field)?)?;
+        }
+        Value::Array(a) => {
+            if a.len() > MAX_ARRAY_LEN {
+                return Err(Error::TooLarge { what: field.into(), size: a.len() as u64, limit: MAX_ARRAY_LEN as u64, reason: "entries".into() });
+            }
+            for x in a {
+                match x {
+                    Value::Array(inner) => {
+                        for y in inner {
+                            if let Value::Float(_) | Value::Integer(_) = y {
+                                crate::limits::check(field, number(y, field)?)?;
+                            }
+                        }
+                    }
+                    Value::Float(_) | Value::Integer(_) => {
+                        crate::limits::check(field, number(x, field)?)?;
+                    }
+                    _ => {}
+                }
+            }
+        }
+        _ => {}
+    }
+    Ok(())
+}
+
+fn check_key(table: &str, key: Option<&str>) -> Result<()> {
+    let Some((_, keys)) = SCHEMA.iter().find(|(t, _)| *t == table) else {
+        let known: Vec<&str> = SCHEMA.iter().map(|(t, _)| *t).collect();
+        return Err(Error::invalid(table, format!("unknown table (known tables: {})", known.join(", "))));
+    };
+    if let Some(k) = key {
+        if !keys.contains(&k) {
+            return Err(Error::invalid(format!("{table}.{k}"), format!("unknown key (known keys of [{table}]: {})", keys.join(", "))));
+        }
+    }
+    Ok(())
+}
+
+/// A TOML number (integer or float) as `f64`; `field` names it in the error.
+fn number(v: &Value, field: &str) -> Result<f64> {
+    match v {
+        Value::Float(f) => Ok(*f),
+        Value::Integer(i) => Ok(*i as f64),
+        o => Err(Error::invalid(field, format!("expected a number, got {}", describe(o)))),
+    }
+}
+
+fn describe(v: &Value) -> String {
+    match v {
+        Value::Float(f) => crate::error::fmt_num(*f),
+        Value::String(s) => format!("the string \"{}\"", s.chars().take(40).collect::<String>()),
+        Value::Table(_) => "a table".into(),
+        Value::Array(_) => "an array".into(),
+        other => other.to_string(),
+    }
+}
+
+/// One table of a config, read key by key with errors that name `table.key`.
+pub struct Section<'a> {
+    /// The table's name (`drive`).
+    pub name: &'static str,
+    /// The table, if the config has it.
+    pub table: Option<&'a Table>,
+}
+
+impl<'a> Section<'a> {
+    /// The table `name` of `root` (absent: every key reads as not given).
+    pub fn of(root: &'a Table, name: &'static str) -> Self {
+        Section { name, table: root.get(name).and_then(Value::as_table) }
+    }
+    /// `table.key`, as errors name it.
+    pub fn field(&self, key: &str) -> String {
+        format!("{}.{key}", self.name)
+    }
+    /// The raw value of `key`.
+    pub fn get(&self, key: &str) -> Option<&'a Value> {
+        self.table.and_then(|t| t.get(key))
+    }
+    /// A number, if given.
+    pub fn f64(&self, key: &str) -> Result<Option<f64>> {
+        self.get(key).map(|v| number(v, &self.field(key))).transpose()
+    }
+    /// A required number.
+    pub fn req(&self, key: &str) -> Result<f64> {
+        self.f64(key)?.ok_or_else(|| Error::invalid(self.field(key), "missing (required)"))
+    }
+    /// A whole number ≥ 0 (a number of balls), if given.
+    pub fn count(&self, key: &str) -> Result<Option<u32>> {
+        let field = self.field(key);
+        match self.get(key) {
+            None => Ok(None),
+            Some(Value::Integer(i)) if *i < 0 => Err(Error::invalid(field, format!("must be a whole number ≥ 0, got {i}"))),
+            Some(Value::Integer(i)) => {
+                crate::limits::check_count(&field, *i as u64)?;
+                u32::try_from(*i).map(Some).map_err(|_| Error::invalid(field, format!("{i} is too large")))
+            }
+            Some(v) => Err(Error::invalid(field, format!("expected a whole number, got {}", describe(v)))),
+        }
+    }
+    /// `true` or `false`, if given.
+    pub fn boolean(&self, key: &str) -> Result<Option<bool>> {
+        match self.get(key) {
+            None => Ok(None),
+            Some(Value::Boolean(b)) => Ok(Some(*b)),
+            Some(v) => Err(Error::invalid(self.field(key), format!("expected true or false, got {}", describe(v)))),
+        }
+    }
+    /// A string, if given.
+    pub fn string(&self, key: &str) -> Result<Option<&'a str>> {
+        match self.get(key) {
+            None => Ok(None),
+            Some(Value::String(s)) => Ok(Some(s)),
+            Some(v) => Err(Error::invalid(self.field(key), format!("expected a string, got {}", describe(v)))),
+        }
+    }
+    /// An array of numbers, if given.
+    pub fn array_f64(&self, key: &str) -> Result<Option<Vec<f64>>> {
+        match self.get(key) {
+            None => Ok(None),
+            Some(Value::Array(a)) => a.iter().map(|v| number(v, &self.field(key))).collect::<Result<Vec<_>>>().map(Some),
+            Some(v) => Err(Error::invalid(self.field(key), format!("expected an array of numbers, got {}", describe(v)))),
+        }
+    }
+}
+
+/// Settings of the analytic commands (`[analysis]`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Analysis {
+    /// `[δΩ_Kα]`, the permissible relative error of the angular critical speeds.
+    pub sensitivity_limit: f64,
+    /// Upper end of speed axes (dimensionless), if given.
+    pub omega_max: Option<f64>,
+}
+
+/// A spatial config (papers 000/003) converted: the model and the analysis settings.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SpatialConfig {
+    /// The validated model.
+    pub model: SpatialModel,
+    /// What the model was built from: parameter paths act on it (maps).
+    pub spec: SpatialSpec,
+    /// `[analysis]`.
+    pub analysis: Analysis,
+    /// Whether it was given in SI (`[rotor]`, `[supports]`, ...).
+    pub dimensional: bool,
+}
+
+/// Real balls of one ball set (`[planar]`, `[balancer]`, `[balancer2]`): `ball_diameter`,
+/// `contact`, `restitution`, `contact_stiffness`, `rolling_resistance`, `slip_rate`
+/// ([`crate::balls::BallPhysics`]; absent keys: its defaults, the papers' point masses).
+pub fn ball_physics_of(sec: &Section) -> Result<crate::balls::BallPhysics> {
+    let d = crate::balls::BallPhysics::default();
+    Ok(crate::balls::BallPhysics {
+        diameter: sec.f64("ball_diameter")?,
+        contact: sec.boolean("contact")?.unwrap_or(d.contact),
+        restitution: sec.f64("restitution")?.unwrap_or(d.restitution),
+        contact_stiffness: sec.f64("contact_stiffness")?,
+        rolling_resistance: sec.f64("rolling_resistance")?.unwrap_or(d.rolling_resistance),
+        slip_rate: sec.f64("slip_rate")?.unwrap_or(d.slip_rate),
+    })
+}
+
+const DIMENSIONAL_TABLES: [&str; 4] = ["rotor", "supports", "unbalance", "balancer"];
+
+/// Convert a spatial config: `[dimensionless]` or the SI tables, and `[analysis]`.
+///
+/// With `delta_a` beside the masses in `[dimensionless]`, the masses describe the balls (linear
+/// model) and `delta_a` overrides the anisotropy they imply, serving as `ΔĀ` and `ΔĀ0` as in
+/// 003's worked examples (with a warning in the model's anisotropy).
+pub fn spatial(root: &Table) -> Result<SpatialConfig> {
+    check_schema(root)?;
+    let an = Section::of(root, "analysis");
+    let method = match an.string("anisotropy")? {
+        None | Some("exact") => AnisotropyMethod::Exact,
+        Some("paper") => AnisotropyMethod::Paper,
+        Some(o) => return Err(Error::invalid("analysis.anisotropy", format!("must be \"exact\" or \"paper\", got \"{o}\""))),
+    };
+    let sensitivity_limit = an.f64("sensitivity_limit")?.unwrap_or(crate::spatial::sensitivity::DEFAULT_LIMIT);
+    crate::limits::check("analysis.sensitivity_limit", sensitivity_limit)?;
+    let omega_max = an.f64("omega_max")?;
+    let has_dim = DIMENSIONAL_TABLES.iter().any(|t| root.contains_key(*t));
+    let has_nondim = root.contains_key("dimensionless");
+    if !has_dim && !has_nondim && root.contains_key("planar") {
+        return Err(Error::invalid(
+            "config",
+            "this is a planar-rotor config ([planar], [drive]): use it with `autobal simulate` or `autobal sweep`",
+        ));
+    }
+    let spec = match (has_dim, has_nondim) {
+        (true, true) => {
+            return Err(Error::invalid(
+                "dimensionless",
+                "give either the dimensional tables [rotor], [supports], [unbalance], [balancer] or [dimensionless], not both",
+            ))
+        }
+        (false, false) => return Err(Error::invalid("config", "no model: give [dimensionless] or the dimensional tables [rotor] and [supports]")),
+        (true, false) => SpatialSpec { input: SpatialInput::Si { rotor: rotor_si(root)?, method }, delta_a_override: None },
+        (false, true) => dimensionless(root, method)?,
+    };
+    let model = spec.build()?;
+    Ok(SpatialConfig { model, spec, analysis: Analysis { sensitivity_limit, omega_max }, dimensional: has_dim })
+}
+
+fn rotor_si(root: &Table) -> Result<SpatialRotorSi> {
+    let (r, s, u, b) = (Section::of(root, "rotor"), Section::of(root, "supports"), Section::of(root, "unbalance"), Section::of(root, "balancer"));
+    Ok(SpatialRotorSi {
+        rotor_mass: r.req("mass")?,
+        equatorial_moment: r.req("equatorial_moment")?,
+        polar_moment: r.req("polar_moment")?,
+        z_rotor: r.req("z")?,
+        // plane A carries balls and unbalance: required when either is described
+        z_balancer: match b.f64("z")? {
+            Some(z) => z,
+            None if b.table.is_some() || u.table.is_some() => {
+                return Err(Error::invalid("balancer.z", "missing (required: the plane of balls and unbalance)"))
+            }
+            None => 0.0,
+        },
+        z_left: s.req("z_left")?,
+        z_right: s.req("z_right")?,
+        stiffness_left: s.req("stiffness_left")?,
+        stiffness_right: s.req("stiffness_right")?,
+        damping_left: s.f64("damping_left")?.unwrap_or(0.0),
+        damping_right: s.f64("damping_right")?.unwrap_or(0.0),
+        unbalance_mass: u.f64("mass")?.unwrap_or(0.0),
+        unbalance_radius: u.f64("radius")?.unwrap_or(0.0),
+        balls: b.count("balls")?.unwrap_or(0),
+        ball_mass: b.f64("ball_mass")?.unwrap_or(0.0),
+        race_radius: b.f64("race_radius")?.unwrap_or(0.0),
+        ball_drag: b.f64("drag")?.unwrap_or(0.0),
+    })
+}
+
+fn dimensionless(root: &Table, method: AnisotropyMethod) -> Result<SpatialSpec> {
+    let d = Section::of(root, "dimensionless");
+    let direct = d.f64("delta_a")?;
+    let any_mass = ["m0", "r0", "r"].iter().any(|k| d.get(k).is_some());
+    let mut direct_balls = None;
+    let override_delta = if any_mass { direct } else { None };
+    if let (Some(v), Some(cs)) = (override_delta, d.f64("c_sigma")?) {
+        check_delta_a(v, cs)?;
+    }
+    let anisotropy = match (direct, any_mass) {
+        (Some(v), false) => {
+            match (d.f64("m")?, d.f64("d_a")?) {
+                (Some(m), Some(da)) => direct_balls = Some((m, da)),
+                (None, None) => {}
+                (Some(_), None) => return Err(Error::invalid("dimensionless.d_a", "required with delta_a and m (D_A of the balls for the linear model)")),
+                (None, Some(_)) => return Err(Error::invalid("dimensionless.m", "required with delta_a and d_a (the balls' mass fraction for the linear model)")),
+            }
+            AnisotropyInput::Direct(v)
+        }
+        (_, true) => AnisotropyInput::Masses {
+            masses: MassSet { m0: d.req("m0")?, r0: d.req("r0")?, m: d.f64("m")?.unwrap_or(0.0), r: d.f64("r")?.unwrap_or(0.0), n: d.count("n")?.unwrap_or(0) },
+            d_a: d.f64("d_a")?,
+        },
+        (None, false) => AnisotropyInput::Direct(0.0),
+    };
+    let input = SpatialInput::Dimensionless(DimensionlessInput {
+        c_sigma: d.req("c_sigma")?,
+        rho_s: d.req("rho_s")?,
+        l_left: d.req("l_left")?,
+        z_a: d.f64("z_a")?.unwrap_or(0.0),
+        anisotropy,
+        h_x: d.f64("h_x")?.unwrap_or(0.0),
+        h_s: d.f64("h_s")?.unwrap_or(0.0),
+        method,
+        direct_balls,
+    });
+    Ok(SpatialSpec { input, delta_a_override: override_delta })
+}
+
+/// Convert a planar config (`[planar]`, `[drive]`, `[integration]`) into a validated problem.
+/// Defaults: no housing or balls unless given, `drive.kind = "acceleration"` from rest,
+/// `t_end = 10 s`, `dt = t_end/2000`, `rtol = 1e-8`, `atol = 1e-9 m`, balls spread evenly at rest.
+pub fn planar(root: &Table) -> Result<PlanarProblem> {
+    check_schema(root)?;
+    if !root.contains_key("planar") {
+        return Err(Error::invalid("planar", "missing: `simulate` needs a [planar] table (see examples/planar.toml)"));
+    }
+    let (p, d, ig) = (Section::of(root, "planar"), Section::of(root, "drive"), Section::of(root, "integration"));
+    let rotor = PlanarRotor {
+        m1: p.req("m1")?,
+        m2: p.f64("m2")?.unwrap_or(0.0),
+        m3: p.f64("m3")?.unwrap_or(0.0),
+        n: p.count("n")?.unwrap_or(0) as usize,
+        s1: p.req("s1")?,
+        s2: p.f64("s2")?.unwrap_or(0.0),
+        gamma: p.f64("gamma")?.unwrap_or(0.0),
+        r: p.f64("r")?.unwrap_or(0.0),
+        k: p.req("k")?,
+        c: p.f64("c")?.unwrap_or(0.0),
+        c_psi: p.f64("c_psi")?.unwrap_or(0.0),
+        c_theta: p.f64("c_theta")?.unwrap_or(0.0),
+        i_g: p.req("i_g")?,
+        balls: ball_physics_of(&p)?,
+    };
+    rotor.validate()?;
+    crate::planar::problem::check_natural_frequency(&rotor)?;
+    let (drive, t_end) = drive(&d)?;
+    let ig = integration(&ig, t_end)?;
+    let pair = |key: &str| -> Result<[f64; 2]> {
+        match d.array_f64(key)? {
+            None => Ok([0.0; 2]),
+            Some(v) if v.len() == 2 => Ok([v[0], v[1]]),
+            Some(v) => Err(Error::invalid(d.field(key), format!("needs 2 numbers [X, Y], got {}", v.len()))),
+        }
+    };
+    let defaults = Settings::for_balls(rotor.n, t_end);
+    let settings = Settings {
+        method: ig.method,
+        dt: ig.dt,
+        rtol: ig.rtol,
+        atol: ig.atol,
+        psi0: d.array_f64("psi0")?.unwrap_or(defaults.psi0),
+        psi_rate0: d.array_f64("psi_rate0")?.unwrap_or(defaults.psi_rate0),
+        xy0: pair("xy0")?,
+        xy_rate0: pair("xy_rate0")?,
+        max_steps: ig.max_steps.unwrap_or(defaults.max_steps),
+        max_wall_s: ig.max_wall_s,
+        t_end,
+    };
+    settings.validate(&rotor)?;
+    Ok(PlanarProblem { rotor, drive, settings })
+}
+
+/// `[drive]`: the drive (shared by the planar and the spatial simulation) and `t_end`
+/// (default 10 s).
+pub fn drive(d: &Section) -> Result<(Drive, f64)> {
+    let omega0 = d.f64("omega0")?.unwrap_or(0.0);
+    let t_off = d.f64("t_off")?;
+    let kind = d.string("kind")?.unwrap_or("acceleration");
+    let need = |key: &str| d.f64(key)?.ok_or_else(|| Error::invalid(d.field(key), format!("required for kind = \"{kind}\"")));
+    let schedule = || -> Result<Vec<(f64, f64)>> {
+        match d.get("schedule") {
+            Some(Value::Array(rows)) => rows
+                .iter()
+                .map(|r| match r {
+                    Value::Array(pair) if pair.len() == 2 => Ok((number(&pair[0], "drive.schedule")?, number(&pair[1], "drive.schedule")?)),
+                    _ => Err(Error::invalid("drive.schedule", "each entry must be a [t, value] pair")),
+                })
+                .collect(),
+            Some(v) => Err(Error::invalid("drive.schedule", format!("expected an array of [t, value] pairs, got {}", describe(v)))),
+            None => Err(Error::invalid("drive.schedule", "required for kind = \"schedule\"")),
+        }
+    };
+    let drive = match kind {
+        "speed" => Drive::Speed { omega0 },
+        "acceleration" => Drive::Acceleration { omega0, b: need("b")? },
+        "torque" => Drive::Torque { omega0, torque: need("torque")?, t_off },
+        "motor" => Drive::Motor { omega0, torque: need("torque")?, omega_idle: need("omega_idle")?, t_off },
+        "schedule" => match d.string("schedule_of")?.unwrap_or("speed") {
+            "speed" => Drive::SpeedSchedule { points: schedule()? },
+            "torque" => Drive::TorqueSchedule { omega0, points: schedule()? },
+            o => return Err(Error::invalid("drive.schedule_of", format!("must be \"speed\" or \"torque\", got \"{o}\""))),
+        },
+        o => {
+            return Err(Error::invalid(
+                "drive.kind",
+                format!("must be one of \"speed\", \"acceleration\", \"torque\", \"motor\", \"schedule\", got \"{o}\""),
+            ))
+        }
+    };
+    drive.validate()?;
+    let t_end = d.f64("t_end")?.unwrap_or(10.0);
+    Ok((drive, t_end))
+}
+
+/// The `[integration]` table, shared by the planar and the spatial simulation.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Integration {
+    /// `integration.method`: `auto` (default), `dop853` or `rodas`.
+    pub method: Method,
+    /// Output interval (default `t_end/2000`).
+    pub dt: f64,
+    /// Relative tolerance (default 1e-8).
+    pub rtol: f64,
+    /// Absolute tolerance (default 1e-9).
+    pub atol: f64,
+    /// Step budget (`None`: the model's default).
+    pub max_steps: Option<u64>,
+    /// Wall-clock budget in seconds.
+    pub max_wall_s: Option<f64>,
+}
+
+/// `[integration]`: method, output interval, tolerances, budgets.
+pub fn integration(ig: &Section, t_end: f64) -> Result<Integration> {
+    let method = match ig.string("method")? {
+        None | Some("auto") => Method::Auto,
+        Some("dop853") => Method::Dop853,
+        Some("rodas") | Some("rosenbrock") => Method::Rodas,
+        Some(o) => return Err(Error::invalid("integration.method", format!("must be \"auto\", \"dop853\" or \"rodas\", got \"{o}\""))),
+    };
+    let max_steps = match ig.f64("max_steps")? {
+        None => None,
+        Some(v) if (1.0..=1e15).contains(&v) && v.fract() == 0.0 => Some(v as u64),
+        Some(v) => return Err(Error::invalid("integration.max_steps", format!("must be a whole number from 1 to 1e15, got {v}"))),
+    };
+    Ok(Integration {
+        method,
+        dt: ig.f64("dt")?.unwrap_or(t_end / 2000.0),
+        rtol: ig.f64("rtol")?.unwrap_or(1e-8),
+        atol: ig.f64("atol")?.unwrap_or(1e-9),
+        max_steps,
+        max_wall_s: ig.f64("max_wall_s")?,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_defaults_are_the_presets() {
+        // the embedded configs and the library's presets describe the same runs
+        let p = planar(&parse(DEFAULT_PLANAR, "planar").unwrap()).unwrap();
+        assert_eq!(p, PlanarProblem::default());
+        let c = spatial(&parse(DEFAULT_SPATIAL, "default").unwrap()).unwrap();
+        assert_eq!(c.model, SpatialModel::from_dimensionless(&DimensionlessInput::paper_000(0.8)).unwrap());
+    }
+
+    #[test]
+    fn values_parse_as_typed() {
+        assert_eq!(parse_value("1.5"), Value::Float(1.5));
+        assert_eq!(parse_value("2"), Value::Integer(2));
+        assert_eq!(parse_value("paper"), Value::String("paper".into()));
+        assert_eq!(parse_value("\"paper\""), Value::String("paper".into()));
+        let mut t = Table::new();
+        set_number(&mut t, "planar.n", 3.0).unwrap();
+        assert_eq!(t["planar"]["n"], Value::Integer(3));
+        assert!(set_number(&mut t, "planar", 3.0).unwrap_err().to_string().starts_with("planar: expected a dotted key"));
+        let e = parse("[planar]\nm1 = = 2", "my.toml").unwrap_err().to_string();
+        assert!(e.starts_with("my.toml: line 2:"), "{e}");
+    }
+}

@@ -1,0 +1,135 @@
+//! Presets, defaults and builders of the spatial model's inputs: the papers' base cases as
+//! values, so that a user (and the tests, the report) start from the same numbers.
+//!
+//! ```
+//! use autobal::spatial::params::{DimensionlessInput, SpatialModel};
+//! use autobal::spatial::critical_speeds::critical_speeds;
+//!
+//! // 003's worked example at l̄_L = 0.8: Ω_K4 = 3.80 as printed
+//! let m = SpatialModel::from_dimensionless(&DimensionlessInput::paper_003(0.8)).unwrap();
+//! let k4 = critical_speeds(&m).speeds[3].omega;
+//! assert_eq!((k4 * 100.0).round() / 100.0, 3.80);
+//!
+//! // the base case with a balancer plane closer to the centre of mass
+//! let m = DimensionlessInput::builder().z_a(0.3).build_model().unwrap();
+//! assert_eq!(m.z_a, 0.3);
+//! ```
+
+use crate::builder::builder;
+use crate::error::Result;
+use crate::spatial::inertia::AnisotropyMethod;
+use crate::spatial::params::{AnisotropyInput, DimensionlessInput, MassSet, SpatialModel, SpatialRotorSi};
+
+/// Unbalance and balls of paper 000's base case: `m̄0 = 0.025`, `R̄0 = 2`, two balls of
+/// `m̄ = 0.05` in all on `R̄ = 2` (capacity `E = 2`).
+pub const PAPER_000_MASSES: MassSet = MassSet { m0: 0.025, r0: 2.0, m: 0.05, r: 2.0, n: 2 };
+
+impl DimensionlessInput {
+    /// Paper 000's base case at layout `l̄_L` (`examples/default.toml` at `l̄_L = 0.8`): the
+    /// long rotor `C̄Σ = 0.75`, `ρ̄s = 0.4`, `z̄_A = 0.8` with [`PAPER_000_MASSES`], the exact
+    /// anisotropy, and the damping of autobal's example (`h̄x = 0.05`, `h̄s = 0.1`; the paper's
+    /// worked numbers are undamped).
+    pub fn paper_000(l_left: f64) -> Self {
+        DimensionlessInput {
+            c_sigma: 0.75,
+            rho_s: 0.4,
+            l_left,
+            z_a: 0.8,
+            anisotropy: AnisotropyInput::Masses { masses: PAPER_000_MASSES, d_a: None },
+            h_x: 0.05,
+            h_s: 0.1,
+            method: AnisotropyMethod::Exact,
+            direct_balls: None,
+        }
+    }
+
+    /// Paper 003's worked examples at `l̄_L` = 0.5, 0.8 or 1.2 (any layout is accepted): the
+    /// same rotor with `ΔĀ = ΔĀ0 = 0.1` given directly and no damping, whose critical speeds
+    /// and antiresonance 003 prints.
+    pub fn paper_003(l_left: f64) -> Self {
+        DimensionlessInput { anisotropy: AnisotropyInput::Direct(0.1), h_x: 0.0, h_s: 0.0, ..Self::paper_000(l_left) }
+    }
+
+    /// A builder starting from paper 000's base case at `l̄_L = 0.8`.
+    pub fn builder() -> DimensionlessInputBuilder {
+        DimensionlessInputBuilder::default()
+    }
+}
+
+/// Paper 000's base case at `l̄_L = 0.8` ([`DimensionlessInput::paper_000`]).
+impl Default for DimensionlessInput {
+    fn default() -> Self {
+        Self::paper_000(0.8)
+    }
+}
+
+builder!(
+    /// Builder of a [`DimensionlessInput`]; `build()` checks it by deriving the model,
+    /// `build_model()` returns the model.
+    DimensionlessInputBuilder for DimensionlessInput, |d| SpatialModel::from_dimensionless(d).map(|_| ());
+    c_sigma: f64, rho_s: f64, l_left: f64, z_a: f64, anisotropy: AnisotropyInput, h_x: f64, h_s: f64, method: AnisotropyMethod,
+    direct_balls: Option<(f64, f64)>,
+);
+
+impl DimensionlessInputBuilder {
+    /// The validated model.
+    pub fn build_model(self) -> Result<SpatialModel> {
+        SpatialModel::from_dimensionless(&self.build()?)
+    }
+}
+
+/// The rotor of `examples/dimensional.toml`: 20 kg on supports 0.5 m apart (2 and 3 MN/m),
+/// 10 g of unbalance at 100 mm and two 20 g balls on a 120 mm race in the plane at 0.45 m.
+impl Default for SpatialRotorSi {
+    fn default() -> Self {
+        SpatialRotorSi {
+            rotor_mass: 20.0,
+            equatorial_moment: 0.60,
+            polar_moment: 0.15,
+            z_rotor: 0.25,
+            z_balancer: 0.45,
+            z_left: 0.0,
+            z_right: 0.50,
+            stiffness_left: 2.0e6,
+            stiffness_right: 3.0e6,
+            damping_left: 300.0,
+            damping_right: 300.0,
+            unbalance_mass: 0.010,
+            unbalance_radius: 0.10,
+            balls: 2,
+            ball_mass: 0.020,
+            race_radius: 0.12,
+            ball_drag: 0.5,
+        }
+    }
+}
+
+impl SpatialRotorSi {
+    /// A builder starting from [`SpatialRotorSi::default`].
+    pub fn builder() -> SpatialRotorSiBuilder {
+        SpatialRotorSiBuilder::default()
+    }
+}
+
+builder!(
+    /// Builder of a [`SpatialRotorSi`]; `build()` checks it by deriving the model (exact
+    /// anisotropy).
+    SpatialRotorSiBuilder for SpatialRotorSi, |r| SpatialModel::from_si(r, AnisotropyMethod::Exact).map(|_| ());
+    rotor_mass: f64, equatorial_moment: f64, polar_moment: f64, z_rotor: f64, z_balancer: f64, z_left: f64, z_right: f64,
+    stiffness_left: f64, stiffness_right: f64, damping_left: f64, damping_right: f64, unbalance_mass: f64, unbalance_radius: f64,
+    balls: u32, ball_mass: f64, race_radius: f64, ball_drag: f64,
+);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn builders_validate_and_name_the_field() {
+        let e = DimensionlessInput::builder().rho_s(-1.0).build().unwrap_err().to_string();
+        assert!(e.starts_with("dimensionless.rho_s"), "{e}");
+        let e = SpatialRotorSi::builder().z_right(-1.0).build().unwrap_err().to_string();
+        assert!(e.starts_with("supports.z_right"), "{e}");
+        SpatialRotorSi::builder().build().unwrap();
+    }
+}
