@@ -47,16 +47,23 @@ fn interruptible<R: Send>(py: Python<'_>, f: impl FnOnce(&AtomicBool) -> R + Sen
     })
 }
 
-/// `work` in a pool of `threads` threads, or in the global pool (all cores).
+/// `work` in a pool of `threads` threads (kept for the next call with the same number: building
+/// a pool costs more than a short run), or in the global pool (all cores).
 fn with_threads<R: Send>(threads: Option<usize>, work: impl FnOnce() -> autobal::Result<R> + Send) -> autobal::Result<R> {
-    match threads {
-        Some(t) => rayon::ThreadPoolBuilder::new()
-            .num_threads(t.max(1))
-            .build()
-            .map_err(|e| autobal::Error::invalid("threads", e.to_string()))
-            .and_then(|pool| pool.install(work)),
-        None => work(),
-    }
+    static POOLS: std::sync::Mutex<Vec<(usize, std::sync::Arc<rayon::ThreadPool>)>> = std::sync::Mutex::new(Vec::new());
+    let Some(t) = threads.map(|t| t.max(1)) else { return work() };
+    let pool = {
+        let mut pools = POOLS.lock().unwrap_or_else(|p| p.into_inner());
+        match pools.iter().find(|(n, _)| *n == t) {
+            Some((_, p)) => p.clone(),
+            None => {
+                let p = std::sync::Arc::new(rayon::ThreadPoolBuilder::new().num_threads(t).build().map_err(|e| autobal::Error::invalid("threads", e.to_string()))?);
+                pools.push((t, p.clone()));
+                p
+            }
+        }
+    };
+    pool.install(work)
 }
 
 /// A library error as the matching exception of `autobal.errors` (`InvalidParameter` names the
