@@ -8,6 +8,7 @@ mod fuzz;
 mod linear;
 mod map;
 mod output;
+mod parquet;
 mod mapfig;
 mod num;
 mod plot;
@@ -171,6 +172,9 @@ enum Command {
         /// CSV of samples (t, omega, x, y, amplitude, psi_1 … psi_n); plots go beside it as STEM_*.svg
         #[arg(long, short, default_value = "simulation.csv")]
         out: PathBuf,
+        /// Also write the samples as Parquet, STEM.parquet beside the CSV
+        #[arg(long)]
+        parquet: bool,
         /// Summary format on standard output
         #[arg(long, value_enum, default_value = "table")]
         format: Format,
@@ -256,7 +260,7 @@ fn run(cli: Cli) -> Result<()> {
             linear::run_campbell(&cfg, w, points, lin.balls.into(), format == Format::Json, svg.as_deref())
         }
         Command::Map { common, x, y, omega, balls, quantity, out, threads, boundary } => run_map(common, x, y, omega, balls, quantity, out, threads, boundary),
-        Command::Simulate { config, set, dt, out, format } => run_simulate(config, set, dt, out, format),
+        Command::Simulate { config, set, dt, out, parquet, format } => run_simulate(config, set, dt, out, parquet, format),
         Command::Sweep(a) => sweep::run(a),
         Command::Merge(a) => sweep::merge(a),
         Command::Basins { config, set, n, out, format, threads } => run_basins(config, set, n, out, format, threads),
@@ -348,12 +352,15 @@ fn run_map(common: Common, x: String, y: String, omega: Option<f64>, balls: Ball
     Ok(())
 }
 
-fn run_simulate(config: Option<PathBuf>, set: Vec<String>, dt: Option<f64>, out: PathBuf, format: Format) -> Result<()> {
+fn run_simulate(config: Option<PathBuf>, set: Vec<String>, dt: Option<f64>, out: PathBuf, parquet: bool, format: Format) -> Result<()> {
     let (mut root, source) = config::read_with_default(config.as_deref(), config::DEFAULT_PLANAR, "embedded default (examples/planar.toml)")?;
     for s in &set {
         config::apply_set(&mut root, s)?;
     }
     if spatial_sim::is_spatial(&root) {
+        if parquet {
+            anyhow::bail!("--parquet: the spatial simulation writes CSV only (the planar simulation and sweeps write Parquet)");
+        }
         return run_spatial(&root, &source, dt, out, format);
     }
     let mut cfg = config::build_planar(&root, &source)?;
@@ -367,10 +374,17 @@ fn run_simulate(config: Option<PathBuf>, set: Vec<String>, dt: Option<f64>, out:
     }
     let file = std::fs::File::create(&out).with_context(|| format!("--out: cannot create {}", out.display()))?;
     let mut w = std::io::BufWriter::new(file);
+    let mut table = match parquet {
+        true => Some(parquet::Table::create(&out.with_extension("parquet"), &sim::sample_columns(cfg.rotor.n), false)?),
+        false => None,
+    };
     let progress = std::io::IsTerminal::is_terminal(&std::io::stderr());
-    let (summary, env, wall) = sim::run_to_csv(&cfg, &mut w, progress)?;
-    autobal::limits::check_finite("the summary", &summary)?;
+    let (summary, env, wall) = sim::run_to_csv(&cfg, &mut w, table.as_mut(), progress)?;
     drop(w);
+    if let Some(t) = table {
+        output::note(&format!("wrote {}", t.finish()?.display()));
+    }
+    autobal::limits::check_finite("the summary", &summary)?;
     let stem = out.with_extension("");
     let plots = sim::write_plots(&cfg, &env, &stem, "Passage")?;
     emit(format, sim::summary_json(&cfg, &summary, wall), sim::summary_table(&cfg, &summary, wall))?;

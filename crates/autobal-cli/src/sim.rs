@@ -50,15 +50,18 @@ impl Envelope {
     }
 }
 
-/// Run one simulation, writing every sample to `csv` (flushed as it goes) and keeping an
-/// envelope for the plots. Returns the summary, the envelope and the wall time.
-pub fn run_to_csv(cfg: &PlanarConfig, csv: &mut dyn Write, progress: bool) -> Result<(Summary, Envelope, f64)> {
-    let n = cfg.rotor.n;
-    let mut header = String::from("t,omega,x,y,amplitude");
-    for j in 1..=n {
-        header.push_str(&format!(",psi_{j}"));
-    }
-    writeln!(csv, "{header}")?;
+/// The columns of a simulation's samples: `t, omega, x, y, amplitude, psi_1 … psi_n`.
+pub fn sample_columns(n: usize) -> Vec<String> {
+    let mut c: Vec<String> = ["t", "omega", "x", "y", "amplitude"].iter().map(|s| s.to_string()).collect();
+    c.extend((1..=n).map(|j| format!("psi_{j}")));
+    c
+}
+
+/// Run one simulation, writing every sample to `csv` (flushed as it goes) and to `parquet` if
+/// given, and keeping an envelope for the plots. Returns the summary, the envelope and the wall time.
+pub fn run_to_csv(cfg: &PlanarConfig, csv: &mut dyn Write, mut parquet: Option<&mut crate::parquet::Table>, progress: bool) -> Result<(Summary, Envelope, f64)> {
+    writeln!(csv, "{}", sample_columns(cfg.rotor.n).join(","))?;
+    let mut row = vec![];
     let expected = (cfg.settings.t_end / cfg.settings.dt) as usize + 1;
     let mut env = Envelope::new(expected, 6000);
     let bar = progress.then(|| {
@@ -69,7 +72,7 @@ pub fn run_to_csv(cfg: &PlanarConfig, csv: &mut dyn Write, progress: bool) -> Re
         );
         b
     });
-    let mut io_error: Option<std::io::Error> = None;
+    let mut io_error: Option<anyhow::Error> = None;
     let mut count = 0u64;
     let t0 = std::time::Instant::now();
     let summary = simulate_with(&cfg.rotor, &cfg.drive, &cfg.settings, Some(&|| INTERRUPTED.load(Ordering::Relaxed)), |s| {
@@ -80,8 +83,17 @@ pub fn run_to_csv(cfg: &PlanarConfig, csv: &mut dyn Write, progress: bool) -> Re
         }
         line.push('\n');
         if let Err(e) = csv.write_all(line.as_bytes()) {
-            io_error = Some(e);
+            io_error = Some(e.into());
             return false;
+        }
+        if let Some(t) = parquet.as_deref_mut() {
+            row.clear();
+            row.extend([s.t, s.omega, s.x, s.y, s.amplitude]);
+            row.extend(&s.psi);
+            if let Err(e) = t.push(&row) {
+                io_error = Some(e);
+                return false;
+            }
         }
         env.push(s);
         count += 1;
@@ -101,7 +113,7 @@ pub fn run_to_csv(cfg: &PlanarConfig, csv: &mut dyn Write, progress: bool) -> Re
         b.finish_and_clear();
     }
     if let Some(e) = io_error {
-        bail!("--out: cannot write the CSV: {e}");
+        bail!("--out: cannot write: {e:#}");
     }
     Ok((summary, env, wall))
 }

@@ -35,6 +35,9 @@ pub struct SweepArgs {
     /// Output stem: STEM.csv (one row per run, written as runs finish) and STEM.json
     #[arg(long, short, default_value = "sweep")]
     out: PathBuf,
+    /// Also write the rows as Parquet, STEM.parquet (row groups written as runs finish)
+    #[arg(long)]
+    parquet: bool,
     #[arg(long, value_enum, default_value = "table")]
     format: Format,
     /// Worker threads (default: all cores)
@@ -50,6 +53,9 @@ pub struct MergeArgs {
     /// Output stem: STEM.csv and STEM.json, as the unsharded sweep writes them
     #[arg(long, short)]
     out: PathBuf,
+    /// Also write STEM.parquet, as `autobal sweep --parquet` does
+    #[arg(long)]
+    parquet: bool,
 }
 
 /// `K/N` (1-based) as a 0-based `(k, n)`.
@@ -63,13 +69,13 @@ fn parse_shard(spec: &str) -> Result<(usize, usize)> {
     Ok((k - 1, n))
 }
 
-/// The CSV header: point index, the axes' paths, the summary's columns, the wall time.
-fn header(paths: &[&str]) -> String {
+/// The columns: point index, the axes' paths, the summary's columns, the wall time.
+fn columns(paths: &[&str]) -> Vec<String> {
     let mut cols = vec!["point"];
     cols.extend(paths);
     cols.extend(SUMMARY_COLUMNS);
     cols.push("wall_s");
-    cols.join(",")
+    cols.into_iter().map(String::from).collect()
 }
 
 pub fn run(a: SweepArgs) -> Result<()> {
@@ -120,7 +126,11 @@ pub fn run(a: SweepArgs) -> Result<()> {
     let file = std::fs::File::create(&csv_path).with_context(|| format!("--out: cannot create {}", csv_path.display()))?;
     let mut csv = std::io::BufWriter::new(file);
     let paths = grid.paths();
-    writeln!(csv, "{}", header(&paths))?;
+    writeln!(csv, "{}", columns(&paths).join(","))?;
+    let mut pq = match a.parquet {
+        true => Some(crate::parquet::Table::create(&out.with_extension("parquet"), &columns(&paths), true)?),
+        false => None,
+    };
     let mut table = String::new();
     for k in paths.iter().take(2) {
         table.push_str(&format!("{k:>14} "));
@@ -141,8 +151,15 @@ pub fn run(a: SweepArgs) -> Result<()> {
             }
             line.push_str(&format!(",{}\n", r.wall_s));
             if let Err(e) = csv.write_all(line.as_bytes()) {
-                io_error = Some(e);
+                io_error = Some(anyhow!("--out: cannot write {}: {e}", csv_path.display()));
                 return false;
+            }
+            if let Some(t) = pq.as_mut() {
+                let row: Vec<f64> = std::iter::once(i as f64).chain(values.iter().copied()).chain(summary_values(&r.summary)).chain([r.wall_s]).collect();
+                if let Err(e) = t.push(&row) {
+                    io_error = Some(e);
+                    return false;
+                }
             }
             let s = &r.summary;
             for v in values.iter().take(2) {
@@ -173,7 +190,10 @@ pub fn run(a: SweepArgs) -> Result<()> {
     }
     csv.flush()?;
     if let Some(e) = io_error {
-        bail!("--out: cannot write {}: {e}", csv_path.display());
+        return Err(e);
+    }
+    if let Some(t) = pq {
+        crate::output::note(&format!("wrote {}", t.finish()?.display()));
     }
     let info = autobal::reports::SweepInfo { problem: &base, grid: &grid, shard: shard_kn, range: range.clone(), complete: outcome.complete };
     let json = autobal::reports::sweep(&info, runs);
@@ -269,6 +289,15 @@ pub fn merge(a: MergeArgs) -> Result<()> {
         std::fs::create_dir_all(dir).with_context(|| format!("--out: cannot create {}", dir.display()))?;
     }
     let (cp, jp) = (a.out.with_extension("csv"), a.out.with_extension("json"));
+    if a.parquet {
+        let names: Vec<String> = head.split(',').map(String::from).collect();
+        let mut t = crate::parquet::Table::create(&a.out.with_extension("parquet"), &names, true)?;
+        for l in csv.lines().skip(1) {
+            let row = l.split(',').map(|v| v.parse::<f64>()).collect::<std::result::Result<Vec<_>, _>>();
+            t.push(&row.map_err(|e| anyhow!("{}: a value that is not a number in the row `{l}`: {e}", cp.display()))?)?;
+        }
+        crate::output::note(&format!("wrote {}", t.finish()?.display()));
+    }
     std::fs::write(&cp, csv).with_context(|| format!("--out: cannot write {}", cp.display()))?;
     std::fs::write(&jp, serde_json::to_string_pretty(&json)?).with_context(|| format!("--out: cannot write {}", jp.display()))?;
     crate::output::print(&format!("merged {n} shards, {points} points: wrote {}, {}\n", cp.display(), jp.display()))

@@ -190,17 +190,6 @@ def test_parquet_is_read_by_pandas_and_polars(tmp_path):
     assert np.array_equal(df["peak_amplitude"].to_numpy(), ref["peak_amplitude"].to_numpy())
 
 
-def test_dask_local_cluster_equals_the_serial_sweep(tmp_path):
-    need("dask")
-    distributed = need("distributed")
-    axes = {"planar.c_psi": [0.05, 0.1, 0.15, 0.2, 0.25], "drive.b": [80.0, 100.0, 120.0]}
-    serial = autobal.sweep(short(), axes)
-    with distributed.LocalCluster(n_workers=3, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, distributed.Client(cluster) as client:
-        got = autobal.sweep(short(), axes, client=client, chunk_size=2, out=tmp_path / "d.csv")
-    assert got.to_numpy().tobytes() == serial.to_numpy().tobytes()
-    assert len(list((tmp_path / "d.parts").glob("chunk-*.npy"))) == 8
-
-
 def test_long_calls_release_the_gil_and_stop_on_ctrl_c():
     p = autobal.PlanarProblem(t_end=30.0, omega0=250.0, b=10.0)
     params = np.linspace(0.05, 0.2, 64).reshape(-1, 1)
@@ -238,3 +227,94 @@ def test_docstring_examples_run():
     for mod in (autobal, autobal._sweep):
         r = doctest.testmod(mod, optionflags=doctest.NORMALIZE_WHITESPACE)
         assert r.failed == 0 and r.attempted > 0, mod.__name__
+
+
+def interrupt_after_first_part(parts_dir: Path):
+    """A thread that presses Ctrl-C (KeyboardInterrupt in the main thread) as soon as the first
+    finished chunk lies in `parts_dir`, so the interruption lands mid-sweep whatever the load."""
+    stop = threading.Event()
+
+    def watch():
+        while not stop.is_set():
+            if any(parts_dir.glob("chunk-*.npy")):
+                _thread.interrupt_main()
+                return
+            time.sleep(0.002)
+
+    t = threading.Thread(target=watch, daemon=True)
+    t.start()
+    return stop
+
+
+def interrupted_then_resumed(tmp_path, name, **kw):
+    """Run a sweep, press Ctrl-C after its first chunk, check what was kept, resume; returns the
+    resumed table and the number of chunks kept at the interruption."""
+    p = autobal.PlanarProblem(t_end=2.0, omega0=250.0, b=100.0, dt=2.0)
+    axes = {"planar.c_psi": np.linspace(0.05, 0.2, 24), "drive.b": [80.0, 120.0]}
+    out = tmp_path / f"{name}.csv"
+    parts = tmp_path / f"{name}.parts"
+    stop = interrupt_after_first_part(parts)
+    with pytest.raises(KeyboardInterrupt):
+        autobal.sweep(p, axes, out=out, chunk_size=1, **kw)
+    stop.set()
+    kept = sorted(parts.glob("chunk-*.npy"))
+    assert 0 < len(kept) < 48, f"{len(kept)} of 48 chunks kept"
+    assert not out.exists(), "the table is written only when every chunk is done"
+    stamps = {f.name: f.stat().st_mtime_ns for f in kept}
+    again = autobal.sweep(p, axes, out=out, chunk_size=1, **kw)
+    # the chunks kept were not run again
+    assert all((parts / n).stat().st_mtime_ns == s for n, s in stamps.items())
+    assert len(list(parts.glob("chunk-*.npy"))) == 48
+    return p, axes, again, len(kept)
+
+
+def test_an_interrupted_sweep_keeps_what_finished_and_resumes(tmp_path):
+    need("pandas")
+    p, axes, again, _ = interrupted_then_resumed(tmp_path, "serial", threads=1)
+    assert again.to_numpy().tobytes() == autobal.sweep(p, axes).to_numpy().tobytes()
+
+
+def test_dask_local_cluster_equals_the_serial_sweep_and_resumes(tmp_path):
+    need("dask")
+    distributed = need("distributed")
+    axes = {"planar.c_psi": [0.05, 0.1, 0.15, 0.2, 0.25], "drive.b": [80.0, 100.0, 120.0]}
+    serial = autobal.sweep(short(), axes)
+    with distributed.LocalCluster(n_workers=3, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, distributed.Client(cluster) as client:
+        assert len(client.scheduler_info()["workers"]) == 3
+        got = autobal.sweep(short(), axes, client=client, chunk_size=2, out=tmp_path / "d.csv")
+        # interrupted on the cluster, resumed on it: the chunks kept are not run again
+        p, big_axes, again, kept = interrupted_then_resumed(tmp_path, "dask", client=client)
+    assert got.to_numpy().tobytes() == serial.to_numpy().tobytes()
+    assert len(list((tmp_path / "d.parts").glob("chunk-*.npy"))) == 8
+    assert again.to_numpy().tobytes() == autobal.sweep(p, big_axes).to_numpy().tobytes()
+
+
+def test_cli_parquet_equals_its_csv_and_merged_shards_equal_the_sweep(tmp_path):
+    """`--parquet` of simulate, sweep and merge, read back by pandas (pyarrow) and polars: the
+    same numbers as the CSV beside it, bit for bit; merged shards equal the unsharded sweep."""
+    pd = need("pandas")
+    need("pyarrow")
+    pl = need("polars")
+
+    def same(parquet, csv):
+        a = pd.read_parquet(parquet, engine="pyarrow")
+        b = pd.read_csv(csv, float_precision="round_trip")
+        assert list(a.columns) == list(b.columns)
+        assert a.to_numpy(dtype=float).tobytes() == b.to_numpy(dtype=float).tobytes()
+        assert pl.read_parquet(parquet).columns == list(b.columns)
+        return a
+
+    sets = ["--set", "drive.t_end=1", "--set", "drive.omega0=250", "--set", "drive.b=100"]
+    cli("simulate", "--out", str(tmp_path / "s.csv"), "--parquet", "--dt", "0.001", *sets)
+    s = same(tmp_path / "s.parquet", tmp_path / "s.csv")
+    assert len(s) == 1001 and list(s.columns)[-2:] == ["psi_1", "psi_2"]
+    grid = ["--x", "planar.c_psi=0.05:0.15:3", "--y", "drive.b=80,120", "--axis", "drive.psi0[1]=1,2"]
+    cli("sweep", "--out", str(tmp_path / "all"), "--parquet", *grid, *sets)
+    whole = same(tmp_path / "all.parquet", tmp_path / "all.csv")
+    assert str(whole["point"].dtype) == "int64" and "drive.psi0[1]" in whole.columns
+    for k in (1, 2, 3):
+        cli("sweep", "--out", str(tmp_path / f"part{k}"), "--shard", f"{k}/3", *grid, *sets)
+    exe = os.environ.get("AUTOBAL_BIN", str(ROOT / "target" / "debug" / "autobal"))
+    subprocess.run([exe, "merge", *(str(tmp_path / f"part{k}.csv") for k in (3, 1, 2)), "--out", str(tmp_path / "merged"), "--parquet"], check=True, capture_output=True)
+    merged = same(tmp_path / "merged.parquet", tmp_path / "merged.csv")
+    assert merged.drop(columns="wall_s").equals(whole.drop(columns="wall_s"))
