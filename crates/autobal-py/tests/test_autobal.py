@@ -191,8 +191,9 @@ def test_parquet_is_read_by_pandas_and_polars(tmp_path):
 
 
 def test_long_calls_release_the_gil_and_stop_on_ctrl_c():
+    # 4096 passages of 30 s: seconds of work on any machine, so Ctrl-C at 0.3 s lands mid-batch
     p = autobal.PlanarProblem(t_end=30.0, omega0=250.0, b=10.0)
-    params = np.linspace(0.05, 0.2, 64).reshape(-1, 1)
+    params = np.linspace(0.05, 0.2, 4096).reshape(-1, 1)
     ticks = []
     done = threading.Event()
 
@@ -203,13 +204,17 @@ def test_long_calls_release_the_gil_and_stop_on_ctrl_c():
 
     t = threading.Thread(target=tick)
     t.start()
-    threading.Timer(0.3, _thread.interrupt_main).start()
+    ctrl_c = threading.Timer(0.3, _thread.interrupt_main)
+    ctrl_c.start()
     t0 = time.perf_counter()
-    with pytest.raises(KeyboardInterrupt):
-        autobal.simulate_batch(p, ["planar.c_psi"], params)
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            autobal.simulate_batch(p, ["planar.c_psi"], params)
+    finally:
+        ctrl_c.cancel()  # a batch that ended first must not interrupt the test session later
+        done.set()
+        t.join()
     stopped = time.perf_counter() - t0
-    done.set()
-    t.join()
     assert stopped < 5.0, f"took {stopped:.1f} s to stop"
     assert len([x for x in ticks if x < t0 + 0.3]) >= 5, "another Python thread ran while the batch ran"
 

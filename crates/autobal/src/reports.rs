@@ -165,9 +165,10 @@ pub fn stability(model: &SpatialModel, c: &Comparison, balls: Balls) -> Value {
     })
 }
 
-/// `autobal campbell`: the speeds and the tracked lines.
+/// `autobal campbell` of a complete run: the speeds, the tracked lines and `complete: true`
+/// (the CLI streams the same JSON, with `complete: false` after Ctrl-C).
 pub fn campbell(c: &Campbell) -> Value {
-    json!({ "omega": c.omega, "lines": c.lines })
+    json!({ "omega": c.omega, "lines": c.lines, "complete": true })
 }
 
 /// `autobal simulate`: the run's summary, with the rotor, drive and tolerances it ran with.
