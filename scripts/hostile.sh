@@ -2,8 +2,12 @@
 # Hostile inputs against every command, each with a time and a memory limit; prints a Markdown
 # table of outcomes (docs/robustness.md keeps the latest). Usage:
 #   scripts/hostile.sh [path/to/autobal] > hostile.md
+# Environment: HOSTILE_TIME_LIMIT (s, default 60), HOSTILE_MEMORY_KB (default 2000000),
+# HOSTILE_ONLY (row numbers to run, e.g. "3 71").
 # Expected outcome of every row: exit 0 with a finite result, or exit 2 with one line naming the
-# field; never a panic (101), a signal, a hang (timeout: 124) or running out of memory.
+# field; never a panic (101), a signal, a hang or running out of memory. A run still going at the
+# time limit gets Ctrl-C (SIGINT), as a user would send it: it must then stop within 10 s, keep
+# what it wrote and say it was interrupted (exit 2); one that ignores it is killed (**HANG**).
 set -u
 cd "$(dirname "$0")/.."
 BIN=${1:-target/release/autobal}
@@ -12,6 +16,7 @@ BIN=$(cd "$(dirname "$BIN")" && pwd)/$(basename "$BIN")
 LIMIT_S=${HOSTILE_TIME_LIMIT:-60}
 LIMIT_KB=${HOSTILE_MEMORY_KB:-2000000}   # 2 GB of address space
 EX=$PWD/examples
+SP="--config $EX/spatial.toml"
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
 cd "$WORK"
@@ -95,7 +100,25 @@ cases=(
 "map --x omega=0.1:1:3 --y dimensionless.z_a=0:1:3 --out /dev/null/m"
 "map --x omega=0.1:1:3 --y dimensionless.z_a=0:1:3 --threads 0"
 "map --x dimensionless.c_sigma=0.1:1.9:4 --y dimensionless.delta_a=0:0.5:4 --omega 1 --out m7"
+# stability boundary, and what the issue found slow
+"map --x dimensionless.z_a=-2:2:3 --y omega=0.05:4.5:3 --boundary --out mb1"
+"map --x dimensionless.h_s=0.001:2:3 --y omega=0.05:10:3 --boundary --out mb2"
+"map --x dimensionless.c_sigma=0.35:1.9:3 --y dimensionless.z_a=-3:3:3 --boundary --out mb3"
+"campbell --points 10000000"
+"campbell $DIM --set balancer.balls=100 --set balancer.ball_mass=0.001 --points 100000"
 # simulation and sweeps (planar model, paper 004)
+"simulate --set planar.m3=1e-9"
+"simulate --set planar.m3=1e-6 --set integration.method=dop853"
+"simulate --set drive.b=0.04"
+"simulate --set planar.n=100000 --set drive.t_end=1 --set integration.dt=0.5"
+"simulate --set planar.n=100001"
+"simulate --set drive.xy0=[1e308,0]"
+"simulate --set integration.max_steps=0"
+"simulate --set integration.max_wall_s=-1"
+"simulate --set integration.max_steps=1000"
+"simulate --set integration.max_wall_s=0.01"
+"sweep --x drive.b=0.5:12.5:5 --set drive.t_end=60 --out sw6"
+"sweep --x planar.gamma=1e300:1e301:2 --out sw7"
 "simulate --set planar.gamma=1e308"
 "simulate --set planar.k=1e308"
 "simulate --set planar.k=1e-300 --set drive.t_end=1"
@@ -128,6 +151,17 @@ cases=(
 "sweep --x planar.c_psi=0.01:0.4:2 --set drive.t_end=2 --out sw3"
 "sweep --x nonsense=1:2:2 --out sw4"
 "sweep --x drive.b=1:2:100000 --out sw5"
+# spatial rotor in time (000/003) and its basins
+"simulate $SP --set dimensionless.h_s=1e308"
+"simulate $SP --set drive.t_end=1e308"
+"simulate $SP --set drive.psi0=[1,2,3]"
+"simulate $SP --set spatial.gravity=[0,1e308,0]"
+"simulate $SP --set dimensionless.m=1e-9 --set drive.t_end=100"
+"simulate $SP --set initial.position=[nan,0]"
+"simulate $SP --set drive.t_end=1e7"
+"basins $SP --n 0"
+"basins $SP --n 100000"
+"basins $SP --n 4 --set drive.t_end=100"
 # config files
 "critical --config /dev/zero"
 "critical --config /nonexistent.toml"
@@ -157,17 +191,24 @@ echo "|---|---|---|---|---|"
 i=0
 for c in "${cases[@]}"; do
     i=$((i + 1))
+    # HOSTILE_ONLY="3 71": run only these rows (numbers as in the table)
+    if [ -n "${HOSTILE_ONLY:-}" ] && ! printf ' %s ' "$HOSTILE_ONLY" | grep -q " $i "; then continue; fi
     start=$(date +%s%N)
     # shellcheck disable=SC2086
-    out=$( (ulimit -v "$LIMIT_KB"; timeout "$LIMIT_S" "$BIN" $c) 2>&1 >/dev/null)
+    # at the limit: SIGINT (Ctrl-C), then SIGKILL 10 s later if it is ignored
+    out=$( (ulimit -v "$LIMIT_KB"; timeout --preserve-status -s INT -k 10 "$LIMIT_S" "$BIN" $c) 2>&1 >/dev/null)
     code=$?
     secs=$(awk "BEGIN { printf \"%.2f\", ($(date +%s%N) - $start) / 1e9 }")
-    first=$(printf '%s' "$out" | grep -v '^warning' | head -1 | cut -c1-160 | sed 's/|/\\|/g')
-    lines=$(printf '%s' "$out" | grep -vc '^warning\|^wrote\|^simulating\|^report written')
+    long=$(awk "BEGIN { print ($secs >= $LIMIT_S) ? 1 : 0 }")
+    first=$(printf '%s' "$out" | grep -v '^warning\|^boundary:\|^wrote\|^[0-9]* rows' | head -1 | cut -c1-160 | sed 's/|/\\|/g')
+    warn=$(printf '%s' "$out" | grep '^warning' | head -1 | cut -c1-160 | sed 's/|/\\|/g')
+    lines=$(printf '%s' "$out" | grep -vc '^warning\|^wrote\|^simulating\|^report written\|^boundary:\|^[0-9]* rows')
     case $code in
-        0) verdict="ok" ;;
-        2) if [ "$lines" -le 1 ]; then verdict="error (one line)"; else verdict="error ($lines lines)"; fi ;;
-        124) verdict="**TIMEOUT**" ;;
+        0) verdict="ok"; [ -n "$warn" ] && first=$warn ;;
+        2) if [ "$long" = 1 ] && printf '%s' "$out" | grep -q 'interrupted'; then verdict="long run, stopped by Ctrl-C at the limit";
+           elif [ "$lines" -le 1 ]; then verdict="error (one line)"; else verdict="error ($lines lines)"; fi ;;
+        130) if [ "$long" = 1 ]; then verdict="long run, ended by Ctrl-C at the limit (writes nothing before its end)"; else verdict="**exit 130**"; fi ;;
+        137) verdict="**HANG (ignored Ctrl-C)**" ;;
         101) verdict="**PANIC**" ;;
         *) verdict="**exit $code**" ;;
     esac

@@ -305,6 +305,9 @@ fn run_map(common: Common, x: String, y: String, omega: Option<f64>, balls: Ball
     let q = if quantity == QuantityArg::Margin { map::Quantity::Margin } else { map::Quantity::Verdict };
     let progress = std::io::IsTerminal::is_terminal(&std::io::stderr());
     let cfg = config::build(&root, &source)?;
+    if xa.key != "omega" && ya.key != "omega" && omega.is_none() {
+        anyhow::bail!("--omega: required when neither axis is omega (the speed at which to map)");
+    }
     let traced = if boundary {
         let t = std::time::Instant::now();
         let b = map::trace(&cfg, &xa, &ya, omega, balls.into())?;

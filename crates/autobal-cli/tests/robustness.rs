@@ -214,3 +214,16 @@ fn regression_sweep_axes_bypassed_the_ranges() {
     rejects(&["sweep", "--x", "planar.k=1e-300:1e-299:2", "--out", "sw"], "planar.k");
     rejects(&["sweep", "--x", "integration.rtol=0.5:1:2", "--out", "sw"], "integration.rtol");
 }
+
+#[test]
+fn regression_boundary_stepped_off_the_plane_and_failed() {
+    // `map --boundary` over h_s from 0.001: the tracer's corrector stepped to h_s = -0.0105 just
+    // beyond the plane's end, the model refused it, and the whole command failed naming a value
+    // the user never gave; a curve now ends where the model refuses its parameter
+    let (code, _, err) = run_for(
+        Duration::from_secs(60),
+        &["map", "--x", "dimensionless.h_s=0.001:2:3", "--y", "omega=0.05:10:3", "--boundary", "--out", "hs"],
+    );
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("boundary: ") && !err.contains("boundary: 0 curves"), "{err}");
+}

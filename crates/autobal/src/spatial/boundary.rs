@@ -744,7 +744,13 @@ fn march(pl: &Plane, kind: CurveKind, z0: [f64; 3], t0: [f64; 3], max_step: f64)
     let mut travelled = 0.0;
     while pts.len() < 4000 {
         let pred = [z[0] + h * t[0], z[1] + h * t[1], z[2] + h * t[2]];
-        match correct(pl, kind, pred, &t, Some(&jz))? {
+        // a step the model refuses (beyond an end of the plane where the parameter has no
+        // meaning, e.g. a negative drag): the curve leaves the plane there
+        let step = match correct(pl, kind, pred, &t, Some(&jz)) {
+            Err(Error::InvalidParameter { .. }) => return Ok((pts, false)),
+            r => r?,
+        };
+        match step {
             Some((zn, j)) => {
                 let tn = tangent(kind, &j, Some(&t));
                 let turn = (t.iter().zip(&tn).map(|(a, b)| a * b).sum::<f64>()).clamp(-1.0, 1.0).acos();
@@ -774,7 +780,8 @@ fn march(pl: &Plane, kind: CurveKind, z0: [f64; 3], t0: [f64; 3], max_step: f64)
                     let mut normal = [0.0; 3];
                     normal[hit] = 1.0;
                     // (a point that does not correct onto the curve, e.g. in a corner, is left out)
-                    if let Some((ze, _)) = correct(pl, kind, zc, &normal, Some(&jz))? {
+                    let edge = correct(pl, kind, zc, &normal, Some(&jz)).or_else(|e| if matches!(e, Error::InvalidParameter { .. }) { Ok(None) } else { Err(e) })?;
+                    if let Some((ze, _)) = edge {
                         if (-1e-9..=1.0 + 1e-9).contains(&ze[0]) && (-1e-9..=1.0 + 1e-9).contains(&ze[1]) {
                             pts.push(ze);
                         }

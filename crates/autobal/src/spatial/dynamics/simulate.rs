@@ -365,7 +365,7 @@ fn summarise(eq: &Equations, t: f64, y: &[f64], peak: (f64, f64, f64), stats: St
         t_end: t,
         stopped: match &out.status {
             Status::Completed => None,
-            Status::Stopped => Some(format!("interrupted at t = {t}")),
+            Status::Stopped => Some(format!("interrupted at t = {}", crate::error::fmt_num(t))),
             _ => Some(out.to_string()),
         },
     }
