@@ -305,10 +305,16 @@ fn run_map(common: Common, x: String, y: String, omega: Option<f64>, balls: Ball
     let q = if quantity == QuantityArg::Margin { map::Quantity::Margin } else { map::Quantity::Verdict };
     let progress = std::io::IsTerminal::is_terminal(&std::io::stderr());
     let cfg = config::build(&root, &source)?;
-    if xa.key != "omega" && ya.key != "omega" && omega.is_none() {
-        anyhow::bail!("--omega: required when neither axis is omega (the speed at which to map)");
-    }
     let traced = if boundary {
+        // the checks the map makes, before the tracing (whose messages would not name the flags)
+        for (flag, a) in [("--x", &xa), ("--y", &ya)] {
+            if a.key != "omega" {
+                cfg.spec.clone().set(&a.key, a.lo).map_err(|e| anyhow::anyhow!("{flag}: {e}"))?;
+            }
+        }
+        if xa.key != "omega" && ya.key != "omega" && omega.is_none() {
+            anyhow::bail!("--omega: required when neither axis is omega (the speed at which to map)");
+        }
         let t = std::time::Instant::now();
         let b = map::trace(&cfg, &xa, &ya, omega, balls.into())?;
         let path = PathBuf::from(format!("{}_boundary.csv", out.display()));
