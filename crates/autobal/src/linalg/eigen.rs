@@ -313,6 +313,17 @@ pub fn eigenvalues(a: &Mat12, n: usize) -> Result<Vec<Complex64>, NoConvergence>
     Ok((0..n).map(|i| Complex64::new(wr[i], wi[i])).collect())
 }
 
+/// All eigenvalues of the leading `n×n` block of `h`, an upper Hessenberg matrix (e.g. Arnoldi's
+/// projection, whose orthonormal basis leaves it well scaled): the Francis QR iteration alone,
+/// without balancing or reduction.
+pub fn hessenberg_eigenvalues(h: &Mat12, n: usize) -> Result<Vec<Complex64>, NoConvergence> {
+    let mut b = to_one_based(h, n);
+    let mut wr = [0.0; MAX_STATES];
+    let mut wi = [0.0; MAX_STATES];
+    hqr(&mut b, n, &mut wr, &mut wi)?;
+    Ok((0..n).map(|i| Complex64::new(wr[i], wi[i])).collect())
+}
+
 /// Spectral abscissa `max Re λ` of the leading `n×n` block of `a`.
 pub fn spectral_abscissa(a: &Mat12, n: usize) -> Result<f64, NoConvergence> {
     let (wr, _) = eigen_parts(a, n)?;

@@ -228,7 +228,11 @@ pub enum Method {
     /// DOP853 while the problem is not stiff; switches to RODAS when Hairer's stiffness test
     /// (`h |λ|` at DOP853's stability boundary in 15 accepted steps) fires, and back when the
     /// implicit step falls inside DOP853's stability region (`h ρ(J) ≤ 5.4`, spectral radius by
-    /// power iteration).
+    /// power iteration). In RODAS phases (of this method and of [`Method::Rodas`]) the implicit
+    /// step is capped so that it resolves every mode of `J` that does not decay within the
+    /// longest implicit step (`|h λ| ≤ 1` at `rtol = 1e-8`): an L-stable step damps an
+    /// unresolved oscillation, and would hold a state whose slow oscillatory instability
+    /// (a Hopf bifurcation under a slowly changing speed) should set in.
     #[default]
     Auto,
 }

@@ -15,6 +15,18 @@ const NONSTIFF_RESET: u32 = 6;
 const TEST_EVERY: u64 = 5;
 /// Power iterations per spectral-radius estimate.
 const POWER_ITERATIONS: usize = 10;
+/// Largest Krylov dimension of the check for unresolved modes (the Ritz values are the
+/// eigenvalues of an at most 12×12 Hessenberg matrix).
+const KRYLOV: usize = 12;
+/// A mode decays enough to be left unresolved by the implicit method when
+/// `Re(h_ref λ) ≤ −DECAYED` (a factor `e^{−3}` over `h_ref`, the longest implicit step allowed:
+/// [`super::Options::h_max_implicit`] where finite, else the longest taken).
+const DECAYED: f64 = 3.0;
+/// `|h λ|` allowed for a mode that is not [`DECAYED`], at `rtol = 1e-8`. RODAS damps an
+/// undamped oscillation by `log |R(iy)| = −6.3e-5, −1.9e-3, −0.34` per step at `y = 1, 2, 10`: at
+/// `|hλ| = 1` a mode that grows through 30 e-folds over 400 of its radians is off by 0.03 of an
+/// e-fold. Scaled with `rtol^{1/6}` (the per-step error in the growth exponent goes as `|hλ|⁶`).
+const RESOLVED_AT_1E8: f64 = 1.0;
 
 /// What stops a run from outside: a flag (Ctrl-C handlers, other threads) or a callback.
 #[derive(Clone, Copy)]
@@ -58,6 +70,14 @@ pub struct Solver<'s, S: System> {
     hits: Vec<(usize, f64)>,
     dop: dop853::Work,
     rodas: rosenbrock::Work,
+    /// Arnoldi basis of the check for unresolved modes (`(KRYLOV + 1) × dim`, made on first use).
+    krylov: Vec<f64>,
+    /// Cap on the implicit step from that check (`∞`: none).
+    mode_cap: f64,
+    /// The step the error control asked for when the cap was set.
+    h_free: f64,
+    /// The longest implicit step so far.
+    h_implicit_max: f64,
     // control state carried from one call to the next
     h_next: f64,
     mode: Mode,
@@ -169,6 +189,10 @@ impl<'s, S: System> Solver<'s, S> {
             hits: vec![],
             dop: dop853::Work::new(n),
             rodas: rosenbrock::Work::new(n),
+            krylov: vec![],
+            mode_cap: f64::INFINITY,
+            h_free: 0.0,
+            h_implicit_max: 0.0,
             h_next: 0.0,
             mode,
             stiff_count: 0,
@@ -226,6 +250,8 @@ impl<'s, S: System> Solver<'s, S> {
         self.stiff_count = 0;
         self.nonstiff_count = 0;
         self.phase_steps = 0;
+        self.mode_cap = f64::INFINITY;
+        self.h_free = 0.0;
         self.mode = if self.opts.method == Method::Rodas { Mode::Implicit } else { Mode::Explicit };
     }
 
@@ -307,6 +333,9 @@ impl<'s, S: System> Solver<'s, S> {
             }
             let hm = h_max(self.mode, &self.opts);
             h = h.min(hm);
+            if self.mode == Mode::Implicit {
+                h = h.min(self.mode_cap);
+            }
             if self.opts.fixed_step.is_some() {
                 h = self.opts.fixed_step.unwrap_or(h).min(t_end - t);
             }
@@ -499,6 +528,24 @@ impl<'s, S: System> Solver<'s, S> {
                 h = h_old * fac;
             }
             rejected_last = false;
+            // implicit steps must not step over a mode that grows or decays slowly: RODAS damps
+            // an unresolved oscillation (|R(iy)| → 0 as y → ∞), so a slow instability would
+            // never get going. Every TEST_EVERY implicit steps: the modes of J, and a cap on h.
+            if self.mode == Mode::Implicit && !fixed {
+                self.phase_steps += 1;
+                if self.phase_steps.is_multiple_of(TEST_EVERY) {
+                    self.h_implicit_max = self.h_implicit_max.max(h_old);
+                    let hm = h_max(self.mode, &self.opts);
+                    let h_ref = if hm.is_finite() { hm } else { h.max(self.h_free).max(self.h_implicit_max) };
+                    let cap = self.unresolved_mode_cap(h_old, h_ref);
+                    if cap.is_finite() && self.mode_cap.is_infinite() {
+                        self.h_free = h_ref;
+                    } else if cap.is_infinite() {
+                        self.h_free = 0.0;
+                    }
+                    self.mode_cap = cap;
+                }
+            }
             // automatic switching
             if self.opts.method == Method::Auto && !fixed {
                 match self.mode {
@@ -512,6 +559,8 @@ impl<'s, S: System> Solver<'s, S> {
                                 self.mode = Mode::Implicit;
                                 self.stiff_count = 0;
                                 self.phase_steps = 0;
+                                self.mode_cap = f64::INFINITY;
+                                self.h_free = 0.0;
                                 stats.switches += 1;
                             }
                         } else {
@@ -522,7 +571,6 @@ impl<'s, S: System> Solver<'s, S> {
                         }
                     }
                     Mode::Implicit => {
-                        self.phase_steps += 1;
                         if self.phase_steps.is_multiple_of(TEST_EVERY) {
                             let rho = self.spectral_radius(t, &mut stats);
                             // back to DOP853 when it could take the implicit step stably
@@ -546,6 +594,83 @@ impl<'s, S: System> Solver<'s, S> {
                 return done(Status::Stopped, t, stats, &mut self.total);
             }
         }
+    }
+
+    /// The largest implicit step that resolves every mode of `J` that does not decay within a
+    /// step of `h_ref`: `min |κ/λ|` over the eigenvalues `λ` with `Re(h_ref λ) > −DECAYED`
+    /// (`κ` = [`RESOLVED_AT_1E8`] `(rtol/1e-8)^{1/6}`), `∞` when there is none. The eigenvalues
+    /// come from Arnoldi's method on the shift-invert operator `(α I − J)⁻¹` with the step's
+    /// factorisation (`α = 1/(γ h)`, `h` the step just taken): it finds the eigenvalues nearest
+    /// `α`, i.e. the slow ones, first; with at most [`KRYLOV`] states the Krylov space is the
+    /// whole space and the eigenvalues are exact. In the weighted variables `y_i/(atol_i +
+    /// rtol |y_i|)`.
+    fn unresolved_mode_cap(&mut self, h: f64, h_ref: f64) -> f64 {
+        let n = self.n;
+        let Some(jac) = self.jac.as_mut() else { return f64::INFINITY };
+        let m = n.min(KRYLOV);
+        if self.krylov.len() < (KRYLOV + 1) * n {
+            self.krylov = vec![0.0; (KRYLOV + 1) * n];
+        }
+        let rtol = self.opts.rtol;
+        let scale: &mut Vec<f64> = &mut self.tmp1;
+        for i in 0..n {
+            scale[i] = self.atol[i] + rtol * self.y[i].abs();
+        }
+        let v = &mut self.krylov;
+        for i in 0..n {
+            let hsh = (i as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 61;
+            v[i] = (1.0 + hsh as f64) * if i % 3 == 1 { -1.0 } else { 1.0 };
+        }
+        let norm = |x: &[f64]| x.iter().map(|a| a * a).sum::<f64>().sqrt();
+        let nv = norm(&v[..n]);
+        v[..n].iter_mut().for_each(|x| *x /= nv);
+        let mut hess: crate::spatial::linear_model::Mat12 = Default::default();
+        let mut size = m;
+        let w = &mut self.tmp2;
+        for k in 0..m {
+            for i in 0..n {
+                w[i] = v[k * n + i] * scale[i];
+            }
+            jac.solve(w);
+            for i in 0..n {
+                w[i] /= scale[i];
+            }
+            let before = norm(w);
+            // modified Gram–Schmidt, twice
+            for _ in 0..2 {
+                for j in 0..=k {
+                    let vj = &v[j * n..(j + 1) * n];
+                    let d: f64 = vj.iter().zip(w.iter()).map(|(a, b)| a * b).sum();
+                    hess[j][k] += d;
+                    w.iter_mut().zip(vj).for_each(|(x, a)| *x -= d * a);
+                }
+            }
+            let r = norm(w);
+            if !(r > 1e-12 * before) || k + 1 == m {
+                // an invariant subspace (or the last column): the Ritz values of what is found
+                size = k + 1;
+                break;
+            }
+            hess[k + 1][k] = r;
+            let (_, next) = v.split_at_mut((k + 1) * n);
+            next[..n].iter_mut().zip(w.iter()).for_each(|(a, x)| *a = x / r);
+        }
+        let Ok(mu) = crate::linalg::eigen::hessenberg_eigenvalues(&hess, size) else { return self.mode_cap };
+        let alpha = 1.0 / (rosenbrock::GAMMA * h);
+        let kappa = RESOLVED_AT_1E8 * (rtol / 1e-8).powf(1.0 / 6.0);
+        let mut cap = f64::INFINITY;
+        for mu in mu {
+            if !(mu.norm() > 0.0) {
+                continue; // an eigenvalue at infinity
+            }
+            let lambda = alpha - mu.inv();
+            // a real decaying mode is only damped faster (0 < R(z) < 1): harmless
+            let oscillates = lambda.im.abs() * h_ref > kappa;
+            if lambda.re * h_ref > -DECAYED && (oscillates || lambda.re > 0.0) && lambda.norm() > 0.0 {
+                cap = cap.min(kappa / lambda.norm());
+            }
+        }
+        cap
     }
 
     /// Spectral radius of `J` at `(t, self.y)` by power iteration on difference products
