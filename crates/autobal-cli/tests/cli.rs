@@ -157,8 +157,9 @@ fn report_writes_index_and_figures() {
     assert_eq!(figures, index.matches("<script type=\"application/json\"").count());
     assert_eq!(figures, svgs.len());
     assert!(!index.contains("0.014492753623188406"));
-    // the figures of both papers, including those once missing
-    for id in ["fig000_3_spectrum", "fig000_9a_sensitivity_vs_anisotropy", "fig000_9b_sensitivity_vs_ball_mass", "fig003_3_signed_response", "campbell_fixed", "stability_map_z_a"] {
+    // the figures of both papers, including those once missing, and real balls' residual against
+    // friction (the browser test draws every one of them)
+    for id in ["fig000_3_spectrum", "fig000_9a_sensitivity_vs_anisotropy", "fig000_9b_sensitivity_vs_ball_mass", "fig003_3_signed_response", "campbell_fixed", "stability_map_z_a", "balls_residual_vs_friction"] {
         assert!(files.iter().any(|f| f == &format!("{id}.svg")), "{id}");
     }
     // 003's figures use 003's own ΔĀ0 = 0.1: its printed Ω_K4 = 3.80 and Ω_a = 2.24 appear
