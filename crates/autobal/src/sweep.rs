@@ -226,7 +226,8 @@ pub fn shard(total: usize, k: usize, n: usize) -> Result<Range<usize>> {
 
 /// Columns of a run's summary as numbers ([`summary_values`]), in this order. `balanced` and
 /// `completed` are 0 or 1; `completed` is 0 for a run that stopped on its own before `t_end`
-/// (its reason is in the summary's `stopped`).
+/// (its reason is in the summary's `stopped`); `contacts` and `stick_slip_transitions` count
+/// real balls' events ([`crate::balls`]; 0 for point masses).
 pub const SUMMARY_COLUMNS: &[&str] = &[
     "peak_amplitude",
     "omega_at_peak",
@@ -239,11 +240,13 @@ pub const SUMMARY_COLUMNS: &[&str] = &[
     "steps",
     "rejected_steps",
     "rhs_evaluations",
+    "contacts",
+    "stick_slip_transitions",
 ];
 
 /// The summary's numbers in the order of [`SUMMARY_COLUMNS`] (counts are exact in `f64` up
 /// to 2⁵³).
-pub fn summary_values(s: &Summary) -> [f64; 11] {
+pub fn summary_values(s: &Summary) -> [f64; 13] {
     [
         s.peak_amplitude,
         s.omega_at_peak,
@@ -256,6 +259,8 @@ pub fn summary_values(s: &Summary) -> [f64; 11] {
         s.steps as f64,
         s.rejected_steps as f64,
         s.rhs_evaluations as f64,
+        s.contacts as f64,
+        s.stick_slip_transitions as f64,
     ]
 }
 
