@@ -573,8 +573,10 @@ impl<'s, S: System> Solver<'s, S> {
                     Mode::Implicit => {
                         if self.phase_steps.is_multiple_of(TEST_EVERY) {
                             let rho = self.spectral_radius(t, &mut stats);
-                            // back to DOP853 when it could take the implicit step stably
-                            if h * rho <= 0.9 * dop853::STABILITY_RADIUS {
+                            // back to DOP853 when it could take the implicit step stably (the
+                            // step as capped for unresolved modes: where that cap is as short
+                            // as DOP853's stable step, RODAS has nothing left to gain)
+                            if h.min(self.mode_cap) * rho <= 0.9 * dop853::STABILITY_RADIUS {
                                 self.mode = Mode::Explicit;
                                 stats.switches += 1;
                                 // a short implicit phase was not worth it: ask for more evidence
