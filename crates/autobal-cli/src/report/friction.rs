@@ -43,6 +43,9 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
         series.push(Series::new(format!("ω = {k} sqrt(k/m0)"), pts, PALETTE[i]).markers());
     }
     series.push(Series::new("μ_r r", mus.iter().map(|m| (*m, 1e6 * m * rotor.r)).collect(), PALETTE[7]).dashed());
+    // margins, so the markers at μ_r = 0 and at the largest μ_r are not cut by the axes
+    let mu_max = mus.iter().copied().fold(0.0, f64::max);
+    let y_max = series.iter().flat_map(|s| s.points.iter().map(|p| p.1)).filter(|y| y.is_finite()).fold(0.0, f64::max);
     s.p(format!(
         "Balls that roll with resistance stop as soon as every ball can rest: |P| |sin(ψ_j − arg P)| ≤ μ_r (r + P·e^{{iψ_j}}), P the race centre E's offset from the axis (docs/balls.md). The runs hold the rotor ({} balls of {} g on r = {} mm, sqrt(k/m0) = {} rad/s) at constant speed for {} s from balls spread evenly, the shaft started in its steady whirl; the end states are checked against that condition on the closed-form steady whirl (column 'at rest').",
         rotor.n,
@@ -53,7 +56,7 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
     ));
     s.figure(
         "balls_residual_vs_friction",
-        Plot { title: "Residual eccentricity of the balancer against rolling resistance".into(), x_label: "rolling-resistance coefficient μ_r".into(), y_label: "|P| (µm)".into(), series, ..Default::default() },
+        Plot { title: "Residual eccentricity of the balancer against rolling resistance".into(), x_label: "rolling-resistance coefficient μ_r".into(), y_label: "|P| (µm)".into(), series, x_range: Some((-0.04 * mu_max, 1.04 * mu_max)), y_range: (y_max > 0.0).then_some((-0.04 * y_max, 1.06 * y_max)), ..Default::default() },
         "Eccentricity |P| of the race centre E after the balls stopped, against the rolling-resistance coefficient, at three speeds above resonance; dashed: μ_r r. Without friction E ends on the axis (semi-balanced); with it the residual grows about linearly with μ_r and depends little on the speed (the pull on a ball and the friction that holds it both scale with m3 ω²).",
     );
     s.table(&["ω/sqrt(k/m0)", "ω (rad/s)", "μ_r", "|P| (µm)", "residual unbalance (g·mm)", "at rest", "stick-slip transitions"], &rows);
