@@ -9,19 +9,51 @@ use serde::Serialize;
 #[serde(tag = "kind", rename_all = "lowercase")]
 pub enum Drive {
     /// Constant speed `θ̇ = ω0`.
-    Speed { omega0: f64 },
+    Speed {
+        /// The speed `ω0` (rad/s, or Ω in a dimensionless model).
+        omega0: f64,
+    },
     /// Constant angular acceleration `θ̇ = ω0 + b t` (`b < 0`: reverse passage); the speed is
     /// held at 0 once reached.
-    Acceleration { omega0: f64, b: f64 },
+    Acceleration {
+        /// Speed at `t = 0`.
+        omega0: f64,
+        /// Angular acceleration `b` (rad/s², or the papers' dimensionless rate).
+        b: f64,
+    },
     /// Free rotor under a constant torque `M` (N·m) until `t_off` (run-down after it).
-    Torque { omega0: f64, torque: f64, t_off: Option<f64> },
+    Torque {
+        /// Speed at `t = 0`.
+        omega0: f64,
+        /// The constant torque `M` (N·m).
+        torque: f64,
+        /// When the torque is switched off (`None`: never).
+        t_off: Option<f64>,
+    },
     /// Free rotor under a motor with a linear characteristic `M(ω) = M0 (1 − ω/ω_idle)`, the
     /// classical non-ideal source of the Sommerfeld effect; switched off at `t_off`.
-    Motor { omega0: f64, torque: f64, omega_idle: f64, t_off: Option<f64> },
+    Motor {
+        /// Speed at `t = 0`.
+        omega0: f64,
+        /// Stall torque `M0` (N·m), the torque at `ω = 0`.
+        torque: f64,
+        /// Idle speed `ω_idle`, where the motor's torque falls to zero.
+        omega_idle: f64,
+        /// When the motor is switched off (`None`: never).
+        t_off: Option<f64>,
+    },
     /// Piecewise-linear torque (free rotor) through `(t, M)` points.
-    TorqueSchedule { omega0: f64, points: Vec<(f64, f64)> },
+    TorqueSchedule {
+        /// Speed at `t = 0`.
+        omega0: f64,
+        /// `(t, M)` points, times increasing; the torque is held constant outside them.
+        points: Vec<(f64, f64)>,
+    },
     /// Piecewise-linear prescribed speed through `(t, ω)` points.
-    SpeedSchedule { points: Vec<(f64, f64)> },
+    SpeedSchedule {
+        /// `(t, ω)` points, times increasing; the speed is held constant outside them.
+        points: Vec<(f64, f64)>,
+    },
 }
 
 fn interp(points: &[(f64, f64)], t: f64) -> (f64, f64) {

@@ -15,12 +15,15 @@ use crate::spatial::linear_model::{Mat12, MAX_STATES};
 use num_complex::Complex64;
 
 const N1: usize = MAX_STATES + 1;
+/// A square matrix indexed from 1, as in the EISPACK algorithms this module follows (row and
+/// column 0 unused).
 pub type A1 = [[f64; N1]; N1];
 
 /// The eigen-solver did not converge (more than 60 QR iterations on one eigenvalue).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct NoConvergence;
 
+/// The leading `n × n` block of `a` copied into a one-based [`A1`].
 pub fn to_one_based(a: &Mat12, n: usize) -> A1 {
     let mut b = [[0.0; N1]; N1];
     for i in 0..n {

@@ -66,6 +66,7 @@ pub fn settling_time<'a>(samples: impl IntoIterator<Item = &'a (f64, f64)>, targ
 /// A run from rest under a constant torque, with the measures of the paper's Figs 6-8.
 #[derive(Debug, Clone)]
 pub struct TorqueRun {
+    /// The simulation's summary (peak, final state, counts).
     pub summary: Summary,
     /// `sqrt(k/m0)` (rad/s).
     pub natural_frequency: f64,
@@ -151,7 +152,9 @@ pub fn torque_run(rotor: &PlanarRotor, torque: f64, t_off: Option<f64>, t_end: f
 /// The outcomes of the paper's section 3 for one choice of `I_G` and `c_θ` (its Figs 6-7).
 #[derive(Debug, Clone)]
 pub struct TorqueOutcomes {
+    /// Disk inertia `I_G` (kg·m²) chosen for these runs (the paper does not give it).
     pub i_g: f64,
+    /// Bearing drag `c_θ` (N·m·s) chosen for these runs (the paper does not give it).
     pub c_theta: f64,
     /// 18 N·m: the run settles below `sqrt(k/m0)` (Fig. 6a, c).
     pub sticks_18: bool,

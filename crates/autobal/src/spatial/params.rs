@@ -174,7 +174,12 @@ pub enum AnisotropyInput {
     /// `ΔĀ` given directly; it also serves as `ΔĀ0`, as in the worked examples of 003.
     Direct(f64),
     /// From masses and radii; `d_a` optionally fixes `D_A` for eq (17) when `n ≥ 3`.
-    Masses { masses: MassSet, d_a: Option<f64> },
+    Masses {
+        /// The unbalance and ball masses and radii.
+        masses: MassSet,
+        /// `D_A`, the modulus of the mean of `exp(2iα_j)` over the balls, for eq (17).
+        d_a: Option<f64>,
+    },
 }
 
 /// Inputs of a dimensionless model in the papers' symbols, identical supports assumed.
