@@ -16,6 +16,9 @@ use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
+/// Most cells of a stability map returned as arrays (10 bytes each: 500 MB).
+const MAX_MAP_CELLS: usize = 50_000_000;
+
 /// How often the waiting thread looks for signals (Ctrl-C).
 const SIGNAL_POLL: Duration = Duration::from_millis(50);
 
@@ -364,6 +367,69 @@ fn sweep_report(py: Python<'_>, cfg: &PyPlanar, axes: Vec<(String, Vec<f64>)>, s
     Ok(autobal::reports::sweep(&info, runs).to_string())
 }
 
+/// A stability map of the spatial model (what `autobal map` writes as CSV): `x` and `y` as
+/// `(path, values)` (path `omega` for the speed), `omega` the speed when neither axis is it.
+/// Arrays `margin` (max Re λ; NaN for `quantity="verdict"`), `stable`, `necessary`, each
+/// `len(y) × len(x)` (row `j` at `y[j]`), computed in parallel (`threads`, default all cores).
+#[pyfunction]
+#[pyo3(signature = (cfg, x, y, omega=None, balls="free", quantity="margin", threads=None))]
+#[allow(clippy::too_many_arguments)]
+fn stability_map<'py>(
+    py: Python<'py>,
+    cfg: &PySpatial,
+    x: (String, Vec<f64>),
+    y: (String, Vec<f64>),
+    omega: Option<f64>,
+    balls: &str,
+    quantity: &str,
+    threads: Option<usize>,
+) -> PyResult<Bound<'py, PyDict>> {
+    use autobal::spatial::map::{Axis, MapSettings, Quantity};
+    let err = |e| py_err(py, e);
+    let quantity = match quantity {
+        "margin" => Quantity::Margin,
+        "verdict" => Quantity::Verdict,
+        o => return Err(err(autobal::Error::invalid("quantity", format!("must be \"margin\" or \"verdict\", got \"{o}\"")))),
+    };
+    let settings = MapSettings { balls: self::balls(py, balls)?, quantity, omega };
+    let (nx, ny) = (x.1.len(), y.1.len());
+    let cells = nx.saturating_mul(ny);
+    if cells > MAX_MAP_CELLS {
+        return Err(err(autobal::Error::TooLarge { what: "x × y".into(), size: cells as u64, limit: MAX_MAP_CELLS as u64, reason: "cells of the map held in memory".into() }));
+    }
+    let (ax, ay) = (Axis { path: x.0, values: x.1 }, Axis { path: y.0, values: y.1 });
+    let spec = cfg.cfg.spec.clone();
+    let (xs, ys) = (ax.values.clone(), ay.values.clone());
+    let out = interruptible(py, move |cancel| {
+        let work = || {
+            let mut margin = vec![f64::NAN; cells];
+            let mut stable = vec![false; cells];
+            let mut necessary = vec![false; cells];
+            let o = autobal::spatial::map::stability_map(&spec, &ax, &ay, &settings, &mut |j, row| {
+                for (i, c) in row.iter().enumerate() {
+                    margin[j * nx + i] = c.margin;
+                    stable[j * nx + i] = c.stable;
+                    necessary[j * nx + i] = c.necessary;
+                }
+                !cancel.load(Ordering::Relaxed)
+            })?;
+            if !o.complete {
+                return Err(autobal::Error::Interrupted { t: o.rows as f64 / ny.max(1) as f64 });
+            }
+            Ok((margin, stable, necessary))
+        };
+        with_threads(threads, work)
+    })?;
+    let (margin, stable, necessary) = out.map_err(err)?;
+    let d = PyDict::new(py);
+    d.set_item("x", PyArray1::from_vec(py, xs))?;
+    d.set_item("y", PyArray1::from_vec(py, ys))?;
+    d.set_item("margin", PyArray1::from_vec(py, margin).reshape([ny, nx])?)?;
+    d.set_item("stable", PyArray1::from_vec(py, stable).reshape([ny, nx])?)?;
+    d.set_item("necessary", PyArray1::from_vec(py, necessary).reshape([ny, nx])?)?;
+    Ok(d)
+}
+
 /// The points of a grid (`[(path, values), ...]`, first axis fastest), rows `lo..hi`.
 #[pyfunction]
 #[pyo3(signature = (axes, lo=None, hi=None))]
@@ -407,6 +473,7 @@ fn _autobal(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(spatial_config, m)?)?;
     m.add_function(wrap_pyfunction!(planar_config, m)?)?;
     m.add_function(wrap_pyfunction!(spatial_report, m)?)?;
+    m.add_function(wrap_pyfunction!(stability_map, m)?)?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(simulate_batch, m)?)?;
     m.add_function(wrap_pyfunction!(sweep_report, m)?)?;

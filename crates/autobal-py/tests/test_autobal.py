@@ -323,3 +323,27 @@ def test_cli_parquet_equals_its_csv_and_merged_shards_equal_the_sweep(tmp_path):
     subprocess.run([exe, "merge", *(str(tmp_path / f"part{k}.csv") for k in (3, 1, 2)), "--out", str(tmp_path / "merged"), "--parquet"], check=True, capture_output=True)
     merged = same(tmp_path / "merged.parquet", tmp_path / "merged.csv")
     assert merged.drop(columns="wall_s").equals(whole.drop(columns="wall_s"))
+
+
+def test_stability_map_equals_the_cli_map(tmp_path):
+    """`SpatialModel.stability_map` and `autobal map` on the same config: the same cells, bit
+    for bit (margin, verdict, necessary ranges), in the CSV's order (rows at y, x fastest)."""
+    exe = os.environ.get("AUTOBAL_BIN", str(ROOT / "target" / "debug" / "autobal"))
+    dim = str(ROOT / "examples" / "default.toml")
+    for x, y, extra in (("dimensionless.z_a=-2:2:9", "omega=0.05:4.5:7", {}), ("dimensionless.l_left=0.5:1.2:4", "dimensionless.z_a=-1:1:3", {"omega": 2.0})):
+        args = [exe, "map", "--config", dim, "--x", x, "--y", y, "--out", str(tmp_path / "m")]
+        if extra:
+            args += ["--omega", str(extra["omega"])]
+        subprocess.run(args, check=True, capture_output=True)
+        got = autobal.SpatialModel.from_toml(dim).stability_map(x, y, **extra)
+        rows = [line.split(",") for line in (tmp_path / "m.csv").read_text().splitlines()[1:]]
+        assert got["margin"].shape == (len(got["y"]), len(got["x"])) and len(rows) == got["margin"].size
+        assert [float(r[0]) for r in rows[: len(got["x"])]] == got["x"].tolist()
+        assert [float(r[2]) for r in rows] == got["margin"].ravel().tolist()
+        assert [r[3] == "1" for r in rows] == got["stable"].ravel().tolist()
+        assert [r[4] == "1" for r in rows] == got["necessary"].ravel().tolist()
+        if not extra:
+            assert got["stable"].any() and not got["stable"].all()
+    with pytest.raises(InvalidParameter) as e:
+        autobal.SpatialModel().stability_map("dimensionless.z_a=-2:2:3", "dimensionless.l_left=0.5:1:3")
+    assert e.value.field == "omega"

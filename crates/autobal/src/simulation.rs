@@ -33,6 +33,7 @@
 //! assert!((rec.samples[3].1 - (-1.5f64).exp()).abs() < 1e-9);
 //! ```
 
+use crate::error::{Error, Result};
 use crate::ode::{Control, Outcome, Solver, Stats, Status, System};
 
 /// When to sample and where to break the integration.
@@ -140,4 +141,20 @@ pub fn run<S: System>(solver: &mut Solver<'_, S>, y: &mut [f64], timeline: &Time
         }
     }
     Outcome { status: Status::Completed, t, stats }
+}
+
+/// How a run ended, as the library's result: `Ok` when it reached `t_end` (or a terminal
+/// event), else the early stop as a typed error at the time `t` it was reached:
+/// [`Error::Interrupted`] (a cancel callback, Ctrl-C, an observer that stopped it, the
+/// wall-time budget), [`Error::StepTooSmall`], [`Error::TooManySteps`], [`Error::NonFinite`].
+/// The models' summaries offer it as `into_result`, so that a caller who wants no partial
+/// result writes `simulate(..)?.into_result()?`.
+pub fn status_result(status: &Status, t: f64) -> Result<()> {
+    match status {
+        Status::Completed | Status::Event(_) => Ok(()),
+        Status::Interrupted | Status::Stopped | Status::TimeBudget { .. } => Err(Error::Interrupted { t }),
+        Status::StepTooSmall { .. } => Err(Error::StepTooSmall { t }),
+        Status::TooManySteps { .. } => Err(Error::TooManySteps { t }),
+        Status::NotFinite { name, .. } => Err(Error::NonFinite { what: name.clone(), t: Some(t) }),
+    }
 }

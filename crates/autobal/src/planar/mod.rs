@@ -308,6 +308,39 @@ pub struct Summary {
     pub warnings: Vec<String>,
 }
 
+impl Summary {
+    /// The summary if the run reached `t_end`, else its early stop as a typed error
+    /// ([`crate::simulation::status_result`]): [`Error::Interrupted`] with the time reached for
+    /// a cancel callback or a sink that returned `false`, [`Error::TooManySteps`] for a spent
+    /// step budget, and so on. `simulate` itself returns the partial summary (what was
+    /// computed, with [`Summary::status`] saying why it ended), never a silent success.
+    ///
+    /// ```
+    /// use autobal::error::Error;
+    /// use autobal::planar::{simulate, Drive, PlanarRotor, Settings};
+    /// let rotor = PlanarRotor::paper();
+    /// let drive = Drive::Acceleration { omega0: 200.0, b: 20.0 };
+    /// let settings = Settings::new(&rotor, 15.0);
+    /// // a sink that stops after ten samples: an interruption at t = 9 dt
+    /// let mut seen = 0;
+    /// let s = simulate(&rotor, &drive, &settings, |_| { seen += 1; seen < 10 }).unwrap();
+    /// assert!(!s.status.is_completed());
+    /// match s.into_result() {
+    ///     Err(Error::Interrupted { t }) => assert!((t - 9.0 * settings.dt).abs() < 1e-9),
+    ///     other => panic!("{other:?}"),
+    /// }
+    /// // a step budget too small for the run
+    /// let tight = Settings { max_steps: 20, ..settings.clone() };
+    /// let s = simulate(&rotor, &drive, &tight, |_| true).unwrap();
+    /// assert!(matches!(s.into_result(), Err(Error::TooManySteps { .. })));
+    /// // a complete run passes through
+    /// assert!(simulate(&rotor, &drive, &settings, |_| true).unwrap().into_result().is_ok());
+    /// ```
+    pub fn into_result(self) -> Result<Self> {
+        crate::simulation::status_result(&self.status, self.t_end).map(|()| self)
+    }
+}
+
 fn sample_of(rotor: &PlanarRotor, drive: &Drive, t: f64, y: &[f64]) -> Sample {
     let nc = 3 + rotor.n;
     let omega = if drive.prescribed() { drive.kinematics(t).0 } else { y[nc + 2] };

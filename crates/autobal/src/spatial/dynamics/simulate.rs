@@ -140,8 +140,20 @@ pub struct Summary {
     pub stick_slip_transitions: u64,
     /// Time reached.
     pub t_end: f64,
+    /// How the run ended (typed; `stopped` says it in words).
+    #[serde(skip)]
+    pub status: Status,
     /// Why the run stopped before `t_end`, if it did.
     pub stopped: Option<String>,
+}
+
+impl Summary {
+    /// The summary if the run reached `t_end`, else its early stop as a typed error
+    /// ([`crate::simulation::status_result`]: [`crate::Error::Interrupted`] with the time
+    /// reached, [`crate::Error::TooManySteps`], …).
+    pub fn into_result(self) -> Result<Self> {
+        crate::simulation::status_result(&self.status, self.t_end).map(|()| self)
+    }
 }
 
 /// The state vector of an initial condition (turning-frame coordinates at `t = 0`).
@@ -368,5 +380,6 @@ fn summarise(eq: &Equations, t: f64, y: &[f64], peak: (f64, f64, f64), stats: St
             Status::Stopped => Some(format!("interrupted at t = {}", crate::error::fmt_num(t))),
             _ => Some(out.to_string()),
         },
+        status: out.status.clone(),
     }
 }
