@@ -6,9 +6,8 @@
 //!
 //! Usage: `cargo run --release --example bench_campbell -p autobal -- [SPEEDS] [REPEAT]`
 
-use autobal::spatial::inertia::AnisotropyMethod;
 use autobal::spatial::linear_model::Balls;
-use autobal::spatial::params::{AnisotropyInput, DimensionlessInput, MassSet, SpatialModel};
+use autobal::spatial::params::{DimensionlessInput, SpatialModel};
 use autobal::spatial::stability::campbell_stream;
 use std::time::Instant;
 
@@ -16,17 +15,7 @@ fn main() {
     let args: Vec<String> = std::env::args().collect();
     let n: usize = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(200);
     let reps: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(21);
-    let m = SpatialModel::from_dimensionless(&DimensionlessInput {
-        c_sigma: 0.75,
-        rho_s: 0.4,
-        l_left: 0.8,
-        z_a: 0.8,
-        anisotropy: AnisotropyInput::Masses { masses: MassSet { m0: 0.025, r0: 2.0, m: 0.05, r: 2.0, n: 2 }, d_a: None },
-        h_x: 0.05,
-        h_s: 0.1,
-        method: AnisotropyMethod::Exact,
-        direct_balls: None,
-    })
+    let m = SpatialModel::from_dimensionless(&DimensionlessInput::paper_000(0.8))
     .expect("valid");
     let mut report = vec![];
     for (name, balls) in [("free", Balls::Free), ("locked", Balls::Locked)] {

@@ -8,7 +8,7 @@ use autobal::spatial::critical_speeds::critical_speeds_at;
 use autobal::linalg::eigen::{characteristic_polynomial, complex_det, eigenvalues, routh_hurwitz_stable};
 use autobal::spatial::inertia::AnisotropyMethod;
 use autobal::spatial::linear_model::{Balls, Mat12, Pencil};
-use autobal::spatial::params::{AnisotropyInput, DimensionlessInput, MassSet, SpatialModel};
+use autobal::spatial::params::{AnisotropyInput, DimensionlessInput, SpatialModel};
 use autobal::spatial::stability::{campbell, eigenvalues_at, margin, stability_ranges, Group, Whirl};
 use num_complex::Complex64;
 
@@ -327,17 +327,7 @@ fn light_balls_leave_the_rotor_modes_unchanged() {
 #[test]
 fn two_ball_base_case_frame_is_consistent() {
     // 000's base case with masses: exact anisotropy 0, d_A = [[1 − D', 0], [0, 1 + D']], D' = −0.5
-    let m = SpatialModel::from_dimensionless(&DimensionlessInput {
-        c_sigma: 0.75,
-        rho_s: 0.4,
-        l_left: 0.8,
-        z_a: 0.8,
-        anisotropy: AnisotropyInput::Masses { masses: MassSet { m0: 0.025, r0: 2.0, m: 0.05, r: 2.0, n: 2 }, d_a: None },
-        h_x: 0.05,
-        h_s: 0.1,
-        method: AnisotropyMethod::Exact,
-        direct_balls: None,
-    })
+    let m = SpatialModel::from_dimensionless(&DimensionlessInput::paper_000(0.8))
     .unwrap();
     let b = m.balls.unwrap();
     assert!((b.d_a[0][0] - 1.5).abs() < 1e-15 && (b.d_a[1][1] - 0.5).abs() < 1e-15);
@@ -656,17 +646,7 @@ fn campbell_lines_follow_crossing_modes_by_their_eigenvectors() {
 fn campbell_of_the_default_rotor_has_continuous_lines() {
     // 000's base case with masses (the default config): every tracked line moves by less than
     // the largest |dλ/dΩ| times the step between neighbouring speeds.
-    let m = SpatialModel::from_dimensionless(&DimensionlessInput {
-        c_sigma: 0.75,
-        rho_s: 0.4,
-        l_left: 0.8,
-        z_a: 0.8,
-        anisotropy: AnisotropyInput::Masses { masses: MassSet { m0: 0.025, r0: 2.0, m: 0.05, r: 2.0, n: 2 }, d_a: None },
-        h_x: 0.05,
-        h_s: 0.1,
-        method: AnisotropyMethod::Exact,
-        direct_balls: None,
-    })
+    let m = SpatialModel::from_dimensionless(&DimensionlessInput::paper_000(0.8))
     .unwrap();
     let h = 0.002;
     let omegas: Vec<f64> = (0..2500).map(|i| 0.001 + h * i as f64).collect();
@@ -809,4 +789,123 @@ fn cancelled_boundary_keeps_whole_curves_and_says_it_is_incomplete() {
         }
     }
     assert!(stopped_at.is_some(), "a partial trace with curves");
+}
+
+// ---- Campbell: eigenvectors, root continuation, branch tracking ----
+
+use autobal::linalg::charpoly::continue_roots;
+use autobal::spatial::stability::pencil_null_vector;
+
+#[test]
+fn eigenvectors_are_null_vectors_of_the_pencil_on_both_elimination_paths() {
+    // Every eigenvalue (QR) of random models, balls free and locked, speeds down to Ω = 0.001
+    // where the balls' neutral and drag modes have μ = λ² + h̄s λ ≈ 0 (the 6×6 path) and above
+    // (the 4×4 Schur complement): the unit vector's residual |P(λ) x| is round-off times the
+    // size of P(λ) and the conditioning of the Schur step (|μ| ≥ 1e-3 (1 + |λ|²), so ≤ 1e3):
+    // 1e-10 relative, where a wrong eigenvector has a residual of order one.
+    let mut rng = Rng(41);
+    let (mut schur, mut full, mut worst) = (0, 0, 0.0f64);
+    for _ in 0..300 {
+        let mut d = random_input(&mut rng);
+        d.anisotropy = AnisotropyInput::Direct(rng.range(0.0, 0.5 * d.c_sigma).min(0.2));
+        let h_s = d.h_s;
+        let m = SpatialModel::from_dimensionless(&d).unwrap();
+        for w in [0.001, rng.range(0.05, 5.0)] {
+            for balls in [Balls::Free, Balls::Locked] {
+                let (p, ev) = eigenvalues_at(&m, w, balls).unwrap();
+                for &lam in &ev {
+                    let x = pencil_null_vector(&p, lam);
+                    let nx: f64 = x.iter().map(|z| z.norm_sqr()).sum::<f64>().sqrt();
+                    assert!((nx - 1.0).abs() < 1e-12, "not unit: {nx}");
+                    let (mut res, mut size) = (0.0f64, 0.0f64);
+                    for i in 0..p.n {
+                        let mut v = Complex64::new(0.0, 0.0);
+                        for j in 0..p.n {
+                            let e = lam * lam * p.m[i][j] + lam * p.g[i][j] + p.k[i][j];
+                            v += e * x[j];
+                            size = size.max(e.norm());
+                        }
+                        res = res.max(v.norm());
+                    }
+                    worst = worst.max(res / size);
+                    assert!(res < 1e-10 * size, "Ω = {w}, λ = {lam}: |P(λ)x| = {res:e}, |P| = {size:e}");
+                    if balls == Balls::Free {
+                        let mu = lam * lam + h_s * lam;
+                        if mu.norm_sqr() >= 1e-6 * (1.0 + (lam * lam).norm_sqr()) {
+                            schur += 1;
+                        } else {
+                            full += 1;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    assert!(schur > 5000 && full > 300, "both paths: {schur} Schur, {full} full");
+    eprintln!("worst relative residual {worst:e} ({schur} Schur, {full} 6×6)");
+}
+
+#[test]
+fn root_continuation_mirrors_conjugates_and_refuses_overlapping_disks() {
+    // From starts 1e-4 off the QR eigenvalues (conjugate-symmetric, as the Campbell lines
+    // are, or not), the continued roots are the eigenvalues to 1e-11 (inclusion radius at
+    // round-off); two starts drawn to one root give overlapping disks: None, never a spectrum
+    // with a root missing.
+    let mut rng = Rng(43);
+    for _ in 0..200 {
+        let m = random_model(&mut rng);
+        let w = rng.range(0.05, 5.0);
+        let sp = SpeedPolynomial::new(&Pencil::terms(&m, Balls::Free).unwrap()).unwrap();
+        let c = sp.at(w);
+        let ev = eigenvalues_at(&m, w, Balls::Free).unwrap().1;
+        let kick = Complex64::new(rng.range(-1e-4, 1e-4), rng.range(-1e-4, 1e-4));
+        let symmetric: Vec<Complex64> = ev.iter().map(|z| if z.im >= 0.0 { z + kick } else { z + kick.conj() }).collect();
+        let asymmetric: Vec<Complex64> = ev.iter().map(|z| z + kick).collect();
+        for starts in [&symmetric, &asymmetric] {
+            let mut out = [Complex64::new(0.0, 0.0); 12];
+            if continue_roots(&c[..=12], starts, &mut out).is_some() {
+                assert!(match_dist(&out, &ev) < 1e-11, "Ω = {w}: {out:?} vs {ev:?}");
+                for (o, s) in out.iter().zip(starts.iter()) {
+                    assert!((o - s).norm() < 1e-3, "a root continued from the wrong start");
+                }
+            }
+        }
+        // the first upper root twice, its conjugate twice: overlapping disks
+        let k = ev.iter().position(|z| z.im > 0.0).unwrap();
+        let l = ev.iter().position(|z| z.im > 0.0 && (z - ev[k]).norm() > 1e-3).unwrap();
+        let mut dup = symmetric.clone();
+        dup[l] = dup[k];
+        let lc = ev.iter().position(|z| (z - ev[l].conj()).norm() < 1e-12).unwrap();
+        let kc = ev.iter().position(|z| (z - ev[k].conj()).norm() < 1e-12).unwrap();
+        dup[lc] = dup[kc];
+        let mut out = [Complex64::new(0.0, 0.0); 12];
+        assert!(continue_roots(&c[..=12], &dup, &mut out).is_none(), "Ω = {w}: a duplicated start certified");
+    }
+}
+
+#[test]
+fn campbell_lines_of_a_coarse_grid_are_the_fine_grids_lines() {
+    // Tracking never switches branches: the default rotor's lines (balls free and locked) on a
+    // grid 10× coarser (h = 0.02) are, line by line, the same eigenvalues as on the fine grid
+    // (h = 0.002, where no line moves by more than 4h, see above) at the shared speeds, up to
+    // conjugation: where a complex pair meets on the real axis and splits into two real
+    // eigenvalues (Ω ≈ 2.12 here) which real branch continues the upper line is arbitrary,
+    // and a pair and its conjugate are one real motion.
+    let m = SpatialModel::from_dimensionless(&DimensionlessInput::paper_000(0.8))
+    .unwrap();
+    let fine: Vec<f64> = (0..2500).map(|i| 0.001 + 0.002 * i as f64).collect();
+    let coarse: Vec<f64> = fine.iter().step_by(10).copied().collect();
+    for balls in [Balls::Free, Balls::Locked] {
+        let f = campbell(&m, &fine, balls).unwrap();
+        let c = campbell(&m, &coarse, balls).unwrap();
+        assert_eq!(f.lines.len(), c.lines.len());
+        for (lf, lc) in f.lines.iter().zip(&c.lines) {
+            for (k, mc) in lc.modes.iter().enumerate() {
+                let mf = &lf.modes[10 * k];
+                let d = ((mf.re - mc.re).powi(2) + (mf.im.abs() - mc.im.abs()).powi(2)).sqrt();
+                assert!(d < 1e-9, "{balls:?}: Ω = {}: coarse line at {} {}, fine at {} {}", coarse[k], mc.re, mc.im, mf.re, mf.im);
+                assert_eq!(mf.group, mc.group, "{balls:?}: Ω = {}", coarse[k]);
+            }
+        }
+    }
 }

@@ -246,6 +246,18 @@ pub fn routh_count_right_of(c: &[f64], s: f64) -> Option<usize> {
     routh_right_half_plane(&taylor_shift(c, s)[..=n])
 }
 
+/// `|z|` as `√(re² + im²)`: within 1.5 ulp of `hypot` and a fraction of its cost; `hypot` only
+/// where the square would overflow or lose digits to underflow.
+#[inline]
+pub fn modulus(z: Complex64) -> f64 {
+    let s = z.norm_sqr();
+    if (f64::MIN_POSITIVE..=f64::MAX).contains(&s) {
+        s.sqrt()
+    } else {
+        z.norm()
+    }
+}
+
 /// `p(z)` and `p'(z)` for `p(λ) = Σ_k c_k λ^{N−k}` (complex Horner).
 #[inline]
 pub fn eval_with_derivative(c: &[f64], z: Complex64) -> (Complex64, Complex64) {
@@ -259,43 +271,61 @@ pub fn eval_with_derivative(c: &[f64], z: Complex64) -> (Complex64, Complex64) {
 }
 
 /// Newton's method on the polynomial from `z`: at most `iterations` steps, stopping when a step
-/// is below `tol`. Returns the root and an inclusion radius `N |p(z)/p'(z)|` (a disk of that
-/// radius around the returned point contains a root of `p`, whatever the other roots), or `None`
+/// is below `tol`. Returns the root and an inclusion radius `N |p(z)/p'(z)|` widened by the
+/// evaluation's rounding (a disk of that radius around the returned point contains a root of
+/// `p`, whatever the other roots), or `None`
 /// when the iteration did not settle.
 pub fn polish_root(c: &[f64], mut z: Complex64, iterations: usize, tol: f64) -> Option<(Complex64, f64)> {
-    let n = (c.len() - 1) as f64;
     for _ in 0..iterations {
         let (p, dp) = eval_with_derivative(c, z);
-        if dp.norm() == 0.0 || !dp.is_finite() || !p.is_finite() {
+        if dp == Complex64::new(0.0, 0.0) || !dp.is_finite() || !p.is_finite() {
             return None;
         }
         let step = p / dp;
         z -= step;
-        if step.norm() <= tol {
+        if modulus(step) <= tol {
             let (p, dp) = eval_with_derivative(c, z);
-            let r = n * (p / dp).norm();
-            return r.is_finite().then_some((z, r));
+            return inclusion_radius(c, z, p, dp).map(|r| (z, r));
         }
     }
     None
 }
 
+/// Inclusion radius `N (|p(z)| + e_p) / (|p'(z)| − e_dp)` around `z`, with `p`, `dp` the computed
+/// values and `e_p`, `e_dp` bounds on their rounding errors (complex Horner: `4Nε` times Horner on
+/// the coefficients' and `z`'s magnitudes): the disk contains a root of the polynomial whatever
+/// the rounding. Without `e_p` two starts that converged to one root could carry disjoint disks
+/// of radius ~1e-20 about points 5e-19 apart, and be taken for two roots. `None` when `p'` is not
+/// known to be non-zero.
+fn inclusion_radius(c: &[f64], z: Complex64, p: Complex64, dp: Complex64) -> Option<f64> {
+    let n = c.len() - 1;
+    let a = modulus(z);
+    let (mut mp, mut mdp) = (c[0].abs(), 0.0);
+    for &ck in &c[1..] {
+        mdp = mdp * a + mp;
+        mp = mp * a + ck.abs();
+    }
+    let gamma = 4.0 * n as f64 * f64::EPSILON;
+    let den = modulus(dp) - gamma * mdp;
+    let r = n as f64 * (modulus(p) + gamma * mp) / den;
+    (den > 0.0 && r.is_finite()).then_some(r)
+}
+
 /// Newton on the polynomial until the step stalls at round-off: returns the point and its
 /// inclusion radius `N |p/p'|` when the radius is at most `accept` (relative to `1 + |z|`).
 fn converge(c: &[f64], mut z: Complex64, accept: f64) -> Option<(Complex64, f64)> {
-    let n = (c.len() - 1) as f64;
     let mut last = f64::INFINITY;
     for it in 0..16 {
         let (p, dp) = eval_with_derivative(c, z);
-        if dp.norm() == 0.0 || !p.is_finite() || !dp.is_finite() {
+        if dp == Complex64::new(0.0, 0.0) || !p.is_finite() || !dp.is_finite() {
             return None;
         }
         let step = p / dp;
-        let s = step.norm();
-        let scale = 1.0 + z.norm();
+        let s = modulus(step);
+        let scale = 1.0 + modulus(z);
         // quadratic convergence has stopped (round-off floor), or the step is negligible
         if s <= 1e-15 * scale || (it >= 2 && s > 0.5 * last) {
-            let r = n * s;
+            let r = inclusion_radius(c, z, p, dp)?;
             return (r <= accept * scale).then_some((z, r));
         }
         z -= step;
@@ -405,13 +435,45 @@ impl AbscissaTracker {
 /// (`N |p/p'|`), and when the `N` disks are pairwise disjoint each holds exactly one root, so the
 /// points are the whole spectrum. `None` when a start does not converge or two disks overlap
 /// (roots close together, or two starts drawn to one root): the caller uses a full solver.
+///
+/// The coefficients are real, so the roots are symmetric about the real axis: a start in the
+/// lower half-plane that mirrors one in the upper half-plane (to 1e-9 relative) gets the mirror
+/// of that one's root and disk (a disk's mirror contains the mirrored root), and only the
+/// upper and real starts are iterated. `out[i]` is the root continued from `starts[i]`.
 pub fn continue_roots(c: &[f64], starts: &[Complex64], out: &mut [Complex64]) -> Option<()> {
     let n = c.len() - 1;
     if starts.len() != n || out.len() != n {
         return None;
     }
+    // mirror[i]: the upper start whose conjugate start i is, or NONE
+    const NONE: usize = usize::MAX;
+    let mut mirror = [NONE; MAX_N];
+    let mut taken = [false; MAX_N];
+    for i in 0..n {
+        if starts[i].im >= 0.0 {
+            continue;
+        }
+        let target = starts[i].conj();
+        let mut best = (NONE, f64::INFINITY);
+        for j in 0..n {
+            if starts[j].im > 0.0 && !taken[j] {
+                let d = (starts[j] - target).norm_sqr();
+                if d < best.1 {
+                    best = (j, d);
+                }
+            }
+        }
+        let tol = 1e-9 * (1.0 + modulus(target));
+        if best.0 != NONE && best.1 <= tol * tol {
+            mirror[i] = best.0;
+            taken[best.0] = true;
+        }
+    }
     let mut r = [0.0; MAX_N];
     for i in 0..n {
+        if mirror[i] != NONE {
+            continue;
+        }
         let mut z0 = starts[i];
         if z0.im == 0.0 {
             z0.im = 1e-7 * (1.0 + z0.re.abs()) * if i % 2 == 0 { 1.0 } else { -1.0 };
@@ -421,8 +483,14 @@ pub fn continue_roots(c: &[f64], starts: &[Complex64], out: &mut [Complex64]) ->
         r[i] = ri;
     }
     for i in 0..n {
+        if mirror[i] != NONE {
+            out[i] = out[mirror[i]].conj();
+            r[i] = r[mirror[i]];
+        }
+    }
+    for i in 0..n {
         for j in i + 1..n {
-            if (out[i] - out[j]).norm() <= r[i] + r[j] {
+            if modulus(out[i] - out[j]) <= r[i] + r[j] {
                 return None;
             }
         }

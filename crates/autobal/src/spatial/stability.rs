@@ -13,7 +13,7 @@
 // Index loops follow the algorithms' formulas (rows, columns, coefficients).
 #![allow(clippy::needless_range_loop)]
 
-use crate::linalg::charpoly::{continue_roots, SpeedPolynomial};
+use crate::linalg::charpoly::{continue_roots, modulus, SpeedPolynomial};
 use crate::linalg::eigen::{characteristic_polynomial, eigenvalues, routh_hurwitz_stable, spectral_abscissa};
 use crate::spatial::critical_speeds::{critical_speeds_at, ModeKind};
 use crate::error::{Error, Result};
@@ -113,21 +113,70 @@ pub struct Mode {
     pub whirl: Whirl,
 }
 
-/// An eigenvector of the pencil `M λ² + G λ + K` for the eigenvalue `lam`: the null vector from
-/// Gaussian elimination with complete pivoting (the last pivot is the one that vanishes), on the
-/// stack. Normalised to unit length.
+/// An eigenvector of the pencil `M λ² + G λ + K` for the eigenvalue `lam`, normalised to unit
+/// length, on the stack.
+///
+/// With the balls free the balls' block of `P(λ)` is `μ E` (`μ = λ² + h̄s λ`: the ball rows
+/// of eq (6) have `s'' + h̄s s'` alone), so `s = −P_sr r / μ` and `r = (w, χ)` is the null vector
+/// of the 4×4 Schur complement `P_rr − P_rs P_sr / μ`; where `|μ|² < 1e-6 (1 + |λ|⁴)` (the balls'
+/// neutral and drag modes at `Ω → 0`) the whole 6×6 `P(λ)` is eliminated instead. The null
+/// vector comes from Gaussian elimination with complete pivoting (the last pivot is the one that
+/// vanishes).
 pub fn pencil_null_vector(p: &Pencil, lam: Complex64) -> [Complex64; 6] {
     let n = p.n;
     let zero = Complex64::new(0.0, 0.0);
+    let l2 = lam * lam;
+    let entry = |i: usize, j: usize| {
+        let (m, g, k) = (p.m[i][j], p.g[i][j], p.k[i][j]);
+        Complex64::new(m * l2.re + g * lam.re + k, m * l2.im + g * lam.im)
+    };
     let mut a = [[zero; 6]; 6];
-    for i in 0..n {
-        for j in 0..n {
-            a[i][j] = lam * lam * p.m[i][j] + lam * p.g[i][j] + p.k[i][j];
+    let mut x = [zero; 6];
+    let scalar_balls = n == 6 && [&p.m, &p.g, &p.k].iter().all(|b| b[4][5] == 0.0 && b[5][4] == 0.0 && b[4][4] == b[5][5]);
+    let mu = if scalar_balls { entry(4, 4) } else { zero };
+    if scalar_balls && mu.norm_sqr() >= 1e-6 * (1.0 + l2.norm_sqr()) {
+        let inv = mu.inv();
+        let p_sr = [[entry(4, 0), entry(4, 1), entry(4, 2), entry(4, 3)], [entry(5, 0), entry(5, 1), entry(5, 2), entry(5, 3)]];
+        for i in 0..4 {
+            let (r0, r1) = (entry(i, 4) * inv, entry(i, 5) * inv);
+            for j in 0..4 {
+                a[i][j] = entry(i, j) - (r0 * p_sr[0][j] + r1 * p_sr[1][j]);
+            }
+        }
+        let r = null_vector(&mut a, 4);
+        x[..4].copy_from_slice(&r[..4]);
+        for b in 0..2 {
+            let mut v = zero;
+            for j in 0..4 {
+                v += p_sr[b][j] * r[j];
+            }
+            x[4 + b] = -v * inv;
+        }
+    } else {
+        for i in 0..n {
+            for j in 0..n {
+                a[i][j] = entry(i, j);
+            }
+        }
+        x = null_vector(&mut a, n);
+    }
+    let nrm = x.iter().map(|z| z.norm_sqr()).sum::<f64>().sqrt();
+    if nrm > 0.0 && nrm.is_finite() {
+        let s = 1.0 / nrm;
+        for z in x.iter_mut() {
+            *z *= s;
         }
     }
+    x
+}
+
+/// A null vector of the (numerically) singular `n×n` matrix `a` (overwritten): Gaussian
+/// elimination with complete pivoting, then `U y = 0` with the last entry 1 (the last pivot is
+/// the one that vanishes). Not normalised.
+fn null_vector(a: &mut [[Complex64; 6]; 6], n: usize) -> [Complex64; 6] {
+    let zero = Complex64::new(0.0, 0.0);
     let mut col = [0usize, 1, 2, 3, 4, 5];
     for k in 0..n {
-        // complete pivoting
         let (mut pi, mut pj, mut best) = (k, k, -1.0);
         for i in k..n {
             for j in k..n {
@@ -138,22 +187,24 @@ pub fn pencil_null_vector(p: &Pencil, lam: Complex64) -> [Complex64; 6] {
             }
         }
         a.swap(k, pi);
-        for row in a.iter_mut() {
-            row.swap(k, pj);
+        if pj != k {
+            for row in a.iter_mut() {
+                row.swap(k, pj);
+            }
+            col.swap(k, pj);
         }
-        col.swap(k, pj);
         if best == 0.0 {
             break;
         }
-        for i in k + 1..n {
-            let f = a[i][k] / a[k][k];
-            for j in k..n {
-                let t = a[k][j];
-                a[i][j] -= f * t;
+        let inv = a[k][k].inv();
+        let pivot_row = a[k];
+        for row in a[k + 1..n].iter_mut() {
+            let f = row[k] * inv;
+            for j in k + 1..n {
+                row[j] -= f * pivot_row[j];
             }
         }
     }
-    // U y = 0 with y_{n−1} = 1 (the last pivot is ~0)
     let mut y = [zero; 6];
     y[n - 1] = Complex64::new(1.0, 0.0);
     for k in (0..n - 1).rev() {
@@ -161,17 +212,11 @@ pub fn pencil_null_vector(p: &Pencil, lam: Complex64) -> [Complex64; 6] {
         for j in k + 1..n {
             v -= a[k][j] * y[j];
         }
-        y[k] = if a[k][k].norm() > 0.0 { v / a[k][k] } else { Complex64::new(1.0, 0.0) };
+        y[k] = if a[k][k] != zero { v / a[k][k] } else { Complex64::new(1.0, 0.0) };
     }
     let mut x = [zero; 6];
     for k in 0..n {
         x[col[k]] = y[k];
-    }
-    let nrm = x.iter().map(|z| z.norm_sqr()).sum::<f64>().sqrt();
-    if nrm > 0.0 && nrm.is_finite() {
-        for z in x.iter_mut() {
-            *z /= nrm;
-        }
     }
     x
 }
@@ -400,6 +445,57 @@ fn assignment(cost: &[[f64; MAX_STATES]; MAX_STATES], n: usize) -> [usize; MAX_S
     out
 }
 
+/// Modal assurance criterion `|x·y|²` of two unit vectors.
+fn mac(x: &[Complex64; 6], y: &[Complex64; 6]) -> f64 {
+    let (mut re, mut im) = (0.0, 0.0);
+    for k in 0..6 {
+        re += x[k].re * y[k].re + x[k].im * y[k].im;
+        im += x[k].re * y[k].im - x[k].im * y[k].re;
+    }
+    re * re + im * im
+}
+
+/// The optimal assignment of lines (rows) to eigenvalues (columns) for the tracking cost
+/// `cost(i, j) ≥ dist[i][j]`, evaluating `cost` only where needed: each row's minimum is found
+/// among the columns whose `dist` is below the best cost so far; when those minima fall in
+/// different columns they are the optimum (their sum bounds every assignment from below),
+/// otherwise the full matrix goes to the Hungarian method ([`assignment`]).
+fn tracking_assignment(dist: &[[f64; MAX_STATES]; MAX_STATES], cost: &dyn Fn(usize, usize) -> f64, n: usize) -> [usize; MAX_STATES] {
+    let mut order = [0usize; MAX_STATES];
+    let mut used = [false; MAX_STATES];
+    let mut permutation = true;
+    for i in 0..n {
+        let mut first = 0;
+        for j in 1..n {
+            if dist[i][j] < dist[i][first] {
+                first = j;
+            }
+        }
+        let (mut best_j, mut best) = (first, cost(i, first));
+        for j in 0..n {
+            if j != first && dist[i][j] < best {
+                let c = cost(i, j);
+                if c < best {
+                    (best_j, best) = (j, c);
+                }
+            }
+        }
+        order[i] = best_j;
+        permutation &= !used[best_j];
+        used[best_j] = true;
+    }
+    if permutation {
+        return order;
+    }
+    let mut full = [[0.0; MAX_STATES]; MAX_STATES];
+    for i in 0..n {
+        for j in 0..n {
+            full[i][j] = cost(i, j);
+        }
+    }
+    assignment(&full, n)
+}
+
 /// Campbell diagram over the speeds `omegas` (ascending), streamed: at each speed `on_speed(k, modes)`
 /// receives the modes in line order (line `i` is the same tracked eigenvalue at every speed);
 /// it returns `false` to stop. Memory does not grow with the number of speeds.
@@ -431,16 +527,15 @@ pub fn campbell_stream(
     for (step, w) in omegas.into_iter().enumerate() {
         let p = Pencil::new(model, w, balls)?;
         let mut ev = [zero; MAX_STATES];
+        // each line's eigenvalue extrapolated linearly from the last two speeds
+        let f = if step >= 2 { (w - prev_w[1]) / (prev_w[1] - prev_w[0]) } else { 0.0 };
+        let predict = |i: usize| lam[1][i] + (lam[1][i] - lam[0][i]) * f;
         let mut found = false;
         if let (Some(sp), true) = (&poly, step > 0) {
             let c = sp.at(w);
             let mut starts = [zero; MAX_STATES];
             for i in 0..n {
-                starts[i] = if step >= 2 {
-                    lam[1][i] + (lam[1][i] - lam[0][i]) * ((w - prev_w[1]) / (prev_w[1] - prev_w[0]))
-                } else {
-                    lam[1][i]
-                };
+                starts[i] = predict(i);
             }
             found = continue_roots(&c[..=n], &starts[..n], &mut ev[..n]).is_some();
         }
@@ -461,7 +556,7 @@ pub fn campbell_stream(
         for j in 0..n {
             if ev[j].im < 0.0 {
                 // the conjugate partner: nearest conj among Im > 0
-                let partner = (0..n).filter(|&k| ev[k].im > 0.0).min_by(|&a, &b| (ev[a].conj() - ev[j]).norm().total_cmp(&(ev[b].conj() - ev[j]).norm()));
+                let partner = (0..n).filter(|&k| ev[k].im > 0.0).min_by(|&a, &b| (ev[a].conj() - ev[j]).norm_sqr().total_cmp(&(ev[b].conj() - ev[j]).norm_sqr()));
                 xs[j] = match partner {
                     Some(k) => xs[k].map(|z| z.conj()),
                     None => pencil_null_vector(&p, ev[j]),
@@ -477,16 +572,15 @@ pub fn campbell_stream(
             o
         } else {
             let h = (w - prev_w[1]).abs().max(1e-12);
-            let mut cost = [[0.0; MAX_STATES]; MAX_STATES];
+            let mut dist = [[0.0; MAX_STATES]; MAX_STATES];
             for i in 0..n {
-                let pred = if step >= 2 { lam[1][i] + (lam[1][i] - lam[0][i]) * ((w - prev_w[1]) / (prev_w[1] - prev_w[0])) } else { lam[1][i] };
+                let pred = predict(i);
                 for j in 0..n {
-                    let dot: Complex64 = (0..6).map(|k| vec[i][k].conj() * xs[j][k]).sum();
-                    let mac = dot.norm_sqr();
-                    cost[i][j] = (pred - ev[j]).norm() / h + 4.0 * (1.0 - mac);
+                    dist[i][j] = modulus(pred - ev[j]) / h;
                 }
             }
-            assignment(&cost, n)
+            let cost_of = |i: usize, j: usize| dist[i][j] + 4.0 * (1.0 - mac(&vec[i], &xs[j]));
+            tracking_assignment(&dist, &cost_of, n)
         };
         modes.clear();
         for i in 0..n {
