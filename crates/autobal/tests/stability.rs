@@ -909,3 +909,25 @@ fn campbell_lines_of_a_coarse_grid_are_the_fine_grids_lines() {
         }
     }
 }
+
+#[test]
+fn pencil_polynomial_is_the_speed_polynomial_at_that_speed() {
+    // Two routes to det(M λ² + G λ + K)/det M at one speed: the expansion of the pencil at Ω
+    // (boundary tracing) and the expansion in (λ, Ω) evaluated at Ω (maps, Campbell). They agree
+    // to the rounding of the sums, bounded by 1e-13 times Σ_j |c_kj| |Ω|^j (the terms summed).
+    let mut rng = Rng(47);
+    for _ in 0..300 {
+        let m = random_model(&mut rng);
+        let w = rng.range(0.0, 6.0);
+        for balls in [Balls::Free, Balls::Locked] {
+            let p = Pencil::new(&m, w, balls).unwrap();
+            let n = p.states();
+            let a = autobal::linalg::charpoly::pencil_polynomial(&p).unwrap();
+            let sp = SpeedPolynomial::new(&Pencil::terms(&m, balls).unwrap()).unwrap();
+            let (c, mag) = (sp.at(w), sp.magnitudes(w));
+            for k in 0..=n {
+                assert!((a[n - k] - c[k]).abs() <= 1e-13 * mag[k].max(1.0), "Ω = {w}, c_{k}: {} vs {}", a[n - k], c[k]);
+            }
+        }
+    }
+}
