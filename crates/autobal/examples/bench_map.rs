@@ -1,5 +1,5 @@
 //! Stability-map benchmark, autobal side: the 12-state model of 000 eq (6) over a grid
-//! z̄_A × Ω (003 Fig. 5a layout), single-threaded. `bench/stability_map.py` runs this, builds the
+//! z̄_A × Ω (003 Fig. 5a layout), single-threaded (the maps on `BENCH_THREADS` threads if set). `bench/stability_map.py` runs this, builds the
 //! same matrices in NumPy, times NumPy's best ways to the same outputs, and compares.
 //!
 //! Timed, each from the model parameters to the map (model set-up included):
@@ -12,7 +12,7 @@
 //! - `margin_qr`, `verdict_direct`: the per-point paths (QR eigenvalues of each state matrix;
 //!   Hessenberg characteristic polynomial + Routh–Hurwitz), for reference.
 //!
-//! Usage: `cargo run --release --example bench_map -p autobal -- NX NY OUT.bin [maps]`
+//! Usage: `[BENCH_THREADS=N] cargo run --release --example bench_map -p autobal -- NX NY OUT.bin [maps]`
 //! Prints one JSON line of timings; OUT.bin holds NX·NY margins (f64 LE) then NX·NY verdicts
 //! (u8), row-major (row = speed).
 
@@ -45,7 +45,9 @@ fn main() {
     let nx: usize = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(400);
     let ny: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(400);
     let out = args.get(3).cloned().unwrap_or_else(|| "bench_map.bin".into());
-    let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("pool");
+    // the maps' thread count (default 1; `BENCH_THREADS=2` for the scaling measurement)
+    let threads = std::env::var("BENCH_THREADS").ok().and_then(|s| s.parse().ok()).unwrap_or(1);
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("pool");
     let spec = SpatialSpec { input: SpatialInput::Dimensionless(input(0.0)), delta_a_override: None };
     let x = Axis::linspace("dimensionless.z_a", -2.0, 2.0, nx);
     let y = Axis::linspace("omega", 0.05, 4.5, ny);
