@@ -113,6 +113,28 @@ impl SpeedPolynomial {
     }
 }
 
+/// The memoised Laplace expansion along rows over column subsets, shared by [`expand`] and
+/// [`pencil_polynomial`]: `minors[S] = Σ_{j ∈ S} ± P[r][j] minors[S \ {j}]` with `r = |S| − 1`,
+/// `minors[∅]` given. Subsets in increasing order of their bit masks: a subset's minors come
+/// from subsets with one column less, whose masks are smaller. `add(acc, minor, r, j, sign)`
+/// adds the term of column `j`.
+fn laplace<T: Copy>(n: usize, minors: &mut [T], zero: T, add: impl Fn(&mut T, &T, usize, usize, f64)) {
+    for mask in 1usize..1 << n {
+        let r = mask.count_ones() as usize - 1;
+        let mut acc = zero;
+        let mut pos = 0;
+        for j in 0..n {
+            if mask & (1 << j) == 0 {
+                continue;
+            }
+            let sign = if (r + pos).is_multiple_of(2) { 1.0 } else { -1.0 };
+            pos += 1;
+            add(&mut acc, &minors[mask & !(1 << j)], r, j, sign);
+        }
+        minors[mask] = acc;
+    }
+}
+
 /// `det P(λ, Ω)` of a [`PencilTerms`] as a polynomial in `(λ, Ω)` with at most `B` powers of
 /// `Ω` (`B = 1`: the terms in `Ω` are ignored, a polynomial in `λ` alone), by Laplace expansion
 /// along rows memoised over column subsets: `D_r(S) = Σ_{j ∈ S} ± P[r][j] D_{r−1}(S \ {j})`,
@@ -131,39 +153,25 @@ fn expand<const B: usize>(t: &PencilTerms) -> Option<[[f64; B]; D]> {
             (0, 2, t.k[2][i][j]),
         ]
     };
-    let subsets = 1usize << n;
-    let mut minors = vec![[[0.0; B]; D]; subsets];
+    let mut minors = vec![[[0.0; B]; D]; 1 << n];
     minors[0][0][0] = 1.0;
-    // a subset's minors come from subsets with one column less, whose masks are smaller
-    for mask in 1..subsets {
-        let r = mask.count_ones() as usize - 1;
+    laplace(n, &mut minors, [[0.0; B]; D], |acc, minor, r, j, sign| {
         let deg = 2 * r; // total degree of the minors of size r
-        let mut acc = [[0.0; B]; D];
-        let mut pos = 0;
-        for j in 0..n {
-            if mask & (1 << j) == 0 {
+        for (ea, eb, v) in entry(r, j) {
+            if v == 0.0 || (eb > 0 && !in_omega) {
                 continue;
             }
-            let sign = if (r + pos).is_multiple_of(2) { 1.0 } else { -1.0 };
-            pos += 1;
-            let minor = &minors[mask & !(1 << j)];
-            for (ea, eb, v) in entry(r, j) {
-                if v == 0.0 || (eb > 0 && !in_omega) {
-                    continue;
-                }
-                let f = sign * v;
-                for a in 0..=deg {
-                    let len = if in_omega { (deg - a + 1).min(B - eb) } else { 1 };
-                    let src = &minor[a][..len];
-                    let dst = &mut acc[a + ea][eb..eb + len];
-                    for (d, x) in dst.iter_mut().zip(src) {
-                        *d += f * x;
-                    }
+            let f = sign * v;
+            for a in 0..=deg {
+                let len = if in_omega { (deg - a + 1).min(B - eb) } else { 1 };
+                let src = &minor[a][..len];
+                let dst = &mut acc[a + ea][eb..eb + len];
+                for (d, x) in dst.iter_mut().zip(src) {
+                    *d += f * x;
                 }
             }
         }
-        minors[mask] = acc;
-    }
+    });
     minors.pop()
 }
 
@@ -179,33 +187,21 @@ pub fn pencil_polynomial(p: &crate::spatial::linear_model::Pencil) -> Option<[f6
     let n = p.n;
     let mut minors = [[0.0f64; D]; 1 << 6];
     minors[0][0] = 1.0;
-    for mask in 1usize..1 << n {
-        let r = mask.count_ones() as usize - 1;
-        let mut acc = [0.0; D];
-        let mut pos = 0;
-        for j in 0..n {
-            if mask & (1 << j) == 0 {
-                continue;
-            }
-            let sign = if (r + pos).is_multiple_of(2) { 1.0 } else { -1.0 };
-            pos += 1;
-            let minor = &minors[mask & !(1 << j)];
-            // most entries of M, G, K are 0
-            for (shift, v) in [(2, p.m[r][j]), (1, p.g[r][j]), (0, p.k[r][j])] {
-                if v != 0.0 {
-                    let f = sign * v;
-                    // all 11 slots (those above the minor's degree hold exact zeros): a
-                    // fixed-length loop the compiler vectorises
-                    let dst: &mut [f64; 11] = (&mut acc[shift..shift + 11]).try_into().expect("11");
-                    let src: &[f64; 11] = minor[..11].try_into().expect("11");
-                    for t in 0..11 {
-                        dst[t] += f * src[t];
-                    }
+    laplace(n, &mut minors, [0.0; D], |acc, minor, r, j, sign| {
+        // most entries of M, G, K are 0
+        for (shift, v) in [(2, p.m[r][j]), (1, p.g[r][j]), (0, p.k[r][j])] {
+            if v != 0.0 {
+                let f = sign * v;
+                // all 11 slots (those above the minor's degree 2r hold exact zeros): a
+                // fixed-length loop the compiler vectorises
+                let dst: &mut [f64; 11] = (&mut acc[shift..shift + 11]).try_into().expect("11");
+                let src: &[f64; 11] = minor[..11].try_into().expect("11");
+                for t in 0..11 {
+                    dst[t] += f * src[t];
                 }
             }
         }
-        minors[mask] = acc;
-    }
+    });
     let det = minors[(1 << n) - 1];
     let nn = 2 * n;
     let lead = det[nn];
