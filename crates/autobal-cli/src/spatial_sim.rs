@@ -370,3 +370,18 @@ pub fn run_basins(sim: &SpatialSim, n: usize, out: &Path, progress: bool, interr
     }
     Ok(v)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn examples_spatial_toml_is_the_librarys_preset() {
+        // the library's defaults of the spatial model in time describe examples/spatial.toml's run
+        let root = autobal::config::parse(include_str!("../../../examples/spatial.toml"), "spatial.toml").unwrap();
+        let sim = build(&root, "spatial.toml").unwrap();
+        assert_eq!(sim.rotor, SpatialRotor::default());
+        assert_eq!(sim.settings, Settings::default());
+        assert_eq!(sim.drive, Drive::Speed { omega0: 1.6 });
+    }
+}

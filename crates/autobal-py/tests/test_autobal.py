@@ -344,6 +344,27 @@ def test_stability_map_equals_the_cli_map(tmp_path):
         assert [r[4] == "1" for r in rows] == got["necessary"].ravel().tolist()
         if not extra:
             assert got["stable"].any() and not got["stable"].all()
+        via_run = autobal.run("map", config=dim, x=x, y=y, **extra)
+        assert via_run["margin"].tobytes() == got["margin"].tobytes() and (via_run["stable"] == got["stable"]).all()
     with pytest.raises(InvalidParameter) as e:
         autobal.SpatialModel().stability_map("dimensionless.z_a=-2:2:3", "dimensionless.l_left=0.5:1:3")
     assert e.value.field == "omega"
+
+
+def test_the_readme_session_runs_as_printed(tmp_path, monkeypatch):
+    """The README's Python session, line by line with its printed results (doctest), in a fresh
+    folder that has the repository's examples/: what a new user types after installing."""
+    import doctest
+
+    need("pandas")
+    need("pyarrow")
+    text = (ROOT / "README.md").read_text()
+    session = text.split("## Python", 1)[1].split("```python\n", 1)[1].split("```", 1)[0]
+    (tmp_path / "examples").symlink_to(ROOT / "examples")
+    monkeypatch.chdir(tmp_path)
+    test = doctest.DocTestParser().get_doctest(session, {}, "README.md", "README.md", 0)
+    assert len(test.examples) >= 8
+    runner = doctest.DocTestRunner(optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
+    runner.run(test)
+    assert runner.failures == 0
+    assert (tmp_path / "sweep.parquet").exists()

@@ -38,6 +38,38 @@
 //!   two supports and balancer planes, static and couple unbalance, anisotropic supports,
 //!   gravity, any drive), whose linearisation is 000's eq (6); simulation.
 //!
+//! ## Starting points
+//! Every model and settings type has a `Default` (each paper's base case) and presets named
+//! after the papers ([`planar::PlanarRotor::paper_004`], [`planar::problem::PlanarProblem::paper_004`],
+//! [`spatial::params::DimensionlessInput::paper_000`] and `paper_003`,
+//! [`spatial::dynamics::SpatialRotor::paper_000`], [`spatial::params::SpatialRotorSi::default`],
+//! the settings of `examples/`); the models and the simulations' settings have builders whose
+//! `build()` validates (errors name the field as the config spells it). Parameters are
+//! addressed by path (`planar.c_psi`, `drive.psi0[2]`, `dimensionless.z_a`, `rotor.mass`):
+//! [`paths::Parameters`] for the planar problem, [`spatial::paths::SpatialSpec`] for the spatial
+//! model; [`sweep`] and [`spatial::map`] vary them in parallel.
+//!
+//! ## How long computations end
+//! A computation that can stop early (a cancel callback, a sink or callback that returns
+//! `false`, a step or wall-time budget, a non-finite state) never returns a silent `Ok` that
+//! looks like a whole result: it returns a typed error or an outcome that says so.
+//!
+//! | entry point | an early stop is |
+//! |---|---|
+//! | [`planar::simulate`], [`planar::simulate_with`], [`planar::problem::PlanarProblem::simulate_summary`] | [`planar::Summary::status`] (and `stopped` in words); [`planar::Summary::into_result`] makes it [`Error::Interrupted`], [`Error::TooManySteps`], … |
+//! | [`spatial::dynamics::simulate()`] | [`spatial::dynamics::Summary::status`]; [`spatial::dynamics::Summary::into_result`] |
+//! | [`sweep::simulate_grid`], [`sweep::simulate_batch`] | [`sweep::SweepOutcome::complete`] (`into_result`: [`Error::Interrupted`] with the fraction done); each point's summary has its own `completed` and `t_reached` |
+//! | [`spatial::map::stability_map`] | [`spatial::map::MapOutcome::complete`] (the rows handed over are whole) |
+//! | [`spatial::stability::campbell_stream`] | [`spatial::stability::CampbellStats::complete`] |
+//! | [`spatial::boundary::trace_boundary_with`] | [`spatial::boundary::Boundary::complete`] (the curves traced are whole) |
+//! | [`spatial::dynamics::basins::basins`] | `None` for each run cancelled; each run's summary has its `status` |
+//! | [`planar::paper004::torque_run`] / [`planar::paper004::torque_outcomes`] | the run's `summary.status` / a typed error |
+//! | [`planar::friction::residual`] | [`planar::friction::Residual::completed`] |
+//!
+//! The analyses without a callback ([`spatial::stability::stability_ranges`],
+//! [`spatial::stability::campbell`], [`spatial::critical_speeds::critical_speeds`], …) either
+//! finish or return an error ([`Error::NoConvergence`] with the speed, …).
+//!
 //! ## Symbols (papers 000 and 003)
 //! | symbol | meaning |
 //! |---|---|

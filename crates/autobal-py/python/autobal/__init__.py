@@ -310,7 +310,10 @@ def run(command: str, config: ConfigLike = None, set: Optional[Mapping[str, Any]
       ``points``, ``balls``);
     - ``simulate`` (``dt``): the summary (no files are written);
     - ``sweep`` (``x``, ``y``, ``axis`` (a list), ``shard`` (``"K/N"``), ``threads``): the JSON
-      of the sweep (no files are written).
+      of the sweep (no files are written);
+    - ``map`` (``x``, ``y``, ``omega``, ``balls``, ``quantity``, ``threads``): the CLI writes
+      CSV and figures, no JSON; this returns :meth:`SpatialModel.stability_map`'s arrays, the
+      cells of the CLI's CSV.
 
     >>> run("critical", set={"dimensionless.delta_a": 0.1})["critical_speeds"][3]["omega"] > 3.79
     True
@@ -347,9 +350,13 @@ def run(command: str, config: ConfigLike = None, set: Optional[Mapping[str, Any]
         threads = options.pop("threads", None)
         _no_more(command, options)
         return json.loads(_autobal.sweep_report(p._cfg, axes, kn, threads))
+    if command == "map":
+        if "x" not in options or "y" not in options:
+            raise InvalidParameter("x: required, with y (e.g. x='dimensionless.z_a=-2:2:41', y='omega=0.05:4.5:41')")
+        return SpatialModel(config, set=set).stability_map(options.pop("x"), options.pop("y"), **options)
     raise InvalidParameter(
-        f"command: \"{command}\" is not a command of autobal.run (inertia, critical, ranges, stability, campbell, simulate, sweep); "
-        "map, report and merge write files: use the CLI"
+        f"command: \"{command}\" is not a command of autobal.run (inertia, critical, ranges, stability, campbell, simulate, sweep, map); "
+        "report and merge write files: use the CLI"
     )
 
 

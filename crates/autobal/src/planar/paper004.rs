@@ -192,13 +192,24 @@ fn stick_time(rotor: &PlanarRotor) -> f64 {
 
 /// Evaluate [`TorqueOutcomes`] for paper 004's rotor with `I_G = i_g`, `c_θ = c_theta`: three
 /// runs (18 N·m; 73 N·m for 12 s; 183 N·m switched off at 1.8 s, for 12 s). `cancel` is polled
-/// by every sample; the runs stop when it returns true.
+/// by every sample; the runs stop when it returns true, and then (as for any run that ends
+/// early: a spent step budget, ...) the result is the typed error
+/// ([`crate::Error::Interrupted`] with the time reached, ...), never outcomes read from a
+/// partial run.
+///
+/// ```
+/// use autobal::error::Error;
+/// use autobal::planar::paper004::{torque_outcomes, TORQUE_C_THETA, TORQUE_I_G};
+/// let e = torque_outcomes(TORQUE_I_G, TORQUE_C_THETA, &|| true).unwrap_err();
+/// assert!(matches!(e, Error::Interrupted { .. }), "{e}");
+/// ```
 pub fn torque_outcomes(i_g: f64, c_theta: f64, cancel: &(dyn Fn() -> bool + Sync)) -> Result<TorqueOutcomes> {
     let rotor = torque_rotor(i_g, c_theta);
     let go = |_: &Sample| !cancel();
-    let r18 = torque_run(&rotor, 18.0, None, stick_time(&rotor), go)?;
-    let r73 = torque_run(&rotor, 73.0, None, 12.0, go)?;
-    let r183 = torque_run(&rotor, 183.0, Some(SWITCH_OFF), 12.0, go)?;
+    let whole = |r: TorqueRun| crate::simulation::status_result(&r.summary.status, r.summary.t_end).map(|()| r);
+    let r18 = whole(torque_run(&rotor, 18.0, None, stick_time(&rotor), go)?)?;
+    let r73 = whole(torque_run(&rotor, 73.0, None, 12.0, go)?)?;
+    let r183 = whole(torque_run(&rotor, 183.0, Some(SWITCH_OFF), 12.0, go)?)?;
     let peaks = (r73.summary.peak_amplitude, r183.peak_driven());
     Ok(TorqueOutcomes {
         i_g,

@@ -89,6 +89,29 @@ impl Default for Settings {
     }
 }
 
+impl Settings {
+    /// A builder starting from [`Settings::default`] (paper 004's run).
+    pub fn builder() -> SettingsBuilder {
+        SettingsBuilder::default()
+    }
+}
+
+builder!(
+    /// Builder of the planar [`Settings`]; `build()` checks every field that does not depend on
+    /// the rotor (as for a rotor with `psi0.len()` point-mass balls);
+    /// [`PlanarProblem::validate`] checks them against the rotor they run.
+    ///
+    /// ```
+    /// use autobal::planar::Settings;
+    /// let s = Settings::builder().t_end(10.0).dt(0.01).rtol(1e-10).build().unwrap();
+    /// assert_eq!((s.t_end, s.psi0.len()), (10.0, 2));
+    /// assert!(Settings::builder().dt(-1.0).build().unwrap_err().to_string().starts_with("integration.dt"));
+    /// ```
+    SettingsBuilder for Settings, |s| s.validate(&PlanarRotor { n: s.psi0.len(), ..PlanarRotor::paper() });
+    method: crate::ode::Method, t_end: f64, dt: f64, rtol: f64, atol: f64, psi0: Vec<f64>, psi_rate0: Vec<f64>, xy0: [f64; 2],
+    xy_rate0: [f64; 2], max_steps: u64, max_wall_s: Option<f64>,
+);
+
 /// One simulation of the planar rotor: what [`simulate`] takes, as one value that paths
 /// address and sweeps vary.
 #[derive(Debug, Clone, PartialEq, Serialize)]

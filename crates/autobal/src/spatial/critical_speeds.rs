@@ -171,6 +171,15 @@ pub fn critical_speeds_at(model: &SpatialModel, delta_a: f64) -> Vec<(f64, ModeK
 
 /// Critical speeds of the composite rotor (000, eq (16)) with approximations (18)-(20),
 /// Table 1 classification, intervals over the anisotropy interval, and SI values.
+///
+/// ```
+/// use autobal::spatial::critical_speeds::critical_speeds;
+/// use autobal::spatial::params::{DimensionlessInput, SpatialModel};
+/// // 003's worked example at l̄_L = 0.8 (ΔĀ = 0.1): Ω_K = 0.84, 0.85, 2.52, 3.80 as printed
+/// let m = SpatialModel::from_dimensionless(&DimensionlessInput::paper_003(0.8)).unwrap();
+/// let k: Vec<f64> = critical_speeds(&m).speeds.iter().map(|c| (c.omega * 100.0).round() / 100.0).collect();
+/// assert_eq!(k, [0.84, 0.85, 2.52, 3.80]);
+/// ```
 pub fn critical_speeds(model: &SpatialModel) -> CriticalSpeeds {
     let d = model.anisotropy.used;
     let (p, c) = (model.p_alpha_sq, model.c_y_alpha);

@@ -93,6 +93,13 @@ pub struct MapSettings {
     pub omega: Option<f64>,
 }
 
+/// Balls free, the margin, the speed from an axis.
+impl Default for MapSettings {
+    fn default() -> Self {
+        MapSettings { balls: Balls::Free, quantity: Quantity::Margin, omega: None }
+    }
+}
+
 /// How a map ended, and how its points were computed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct MapOutcome {

@@ -133,3 +133,70 @@ mod tests {
         SpatialRotorSi::builder().build().unwrap();
     }
 }
+
+/// The spatial model in time: paper 000's base case as the nonlinear rotor, and the run of
+/// `examples/spatial.toml`.
+mod dynamics_presets {
+    use super::*;
+    use crate::ode::Method;
+    use crate::spatial::dynamics::{BallPlane, PointMass, RigidRotor, Settings, SpatialRotor, Support};
+
+    impl SpatialRotor {
+        /// Paper 000's base case at layout `l̄_L` ([`DimensionlessInput::paper_000`]) as the
+        /// nonlinear rotor, in the papers' units (`M_s = ρ_s = ω0 = 1`): what
+        /// `examples/spatial.toml` describes.
+        ///
+        /// ```
+        /// use autobal::spatial::dynamics::SpatialRotor;
+        /// let r = SpatialRotor::paper_000(0.8).unwrap();
+        /// assert!((r.total_mass() - 1.0).abs() < 1e-12 && (r.natural_frequency() - 1.0).abs() < 1e-12);
+        /// assert_eq!(r, SpatialRotor::default());
+        /// ```
+        pub fn paper_000(l_left: f64) -> Result<Self> {
+            SpatialRotor::from_dimensionless(&SpatialModel::from_dimensionless(&DimensionlessInput::paper_000(l_left))?)
+        }
+
+        /// A builder starting from [`SpatialRotor::default`].
+        pub fn builder() -> SpatialRotorBuilder {
+            SpatialRotorBuilder::default()
+        }
+    }
+
+    /// Paper 000's base case at `l̄_L = 0.8` ([`SpatialRotor::paper_000`]).
+    impl Default for SpatialRotor {
+        fn default() -> Self {
+            // a constant, valid input (tested by the doc example above)
+            SpatialRotor::paper_000(0.8).expect("paper 000's base case is a valid model")
+        }
+    }
+
+    builder!(
+        /// Builder of a [`SpatialRotor`]; `build()` runs [`SpatialRotor::validate`].
+        SpatialRotorBuilder for SpatialRotor, |r| r.validate();
+        rotor: RigidRotor, supports: Vec<Support>, unbalances: Vec<PointMass>, planes: Vec<BallPlane>, gravity: [f64; 3], spin_drag: f64,
+        lock_tilt: bool,
+    );
+
+    /// The run of `examples/spatial.toml`: DOP853, `τ` to 2500 sampled every 1,
+    /// `rtol = 1e-8`, `atol = 1e-10 ρ_s`.
+    impl Default for Settings {
+        fn default() -> Self {
+            Settings { method: Method::Dop853, t_end: 2500.0, dt: 1.0, rtol: 1e-8, atol: 1e-10 }
+        }
+    }
+
+    impl Settings {
+        /// A builder starting from [`Settings::default`].
+        pub fn builder() -> SpatialSettingsBuilder {
+            SpatialSettingsBuilder::default()
+        }
+    }
+
+    builder!(
+        /// Builder of the spatial simulation's [`Settings`]; `build()` runs [`Settings::validate`].
+        SpatialSettingsBuilder for Settings, |s| s.validate();
+        method: Method, t_end: f64, dt: f64, rtol: f64, atol: f64,
+    );
+}
+
+pub use dynamics_presets::{SpatialRotorBuilder, SpatialSettingsBuilder};

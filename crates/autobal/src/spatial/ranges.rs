@@ -111,6 +111,19 @@ fn sign_set(mut breaks: Vec<f64>, pred: impl Fn(f64) -> bool) -> Vec<SpeedRange>
 }
 
 /// Autobalancing ranges of 003 from the sign conditions themselves.
+///
+/// ```
+/// use autobal::spatial::params::{DimensionlessInput, SpatialModel};
+/// use autobal::spatial::ranges::autobalancing_ranges;
+/// let m = SpatialModel::from_dimensionless(&DimensionlessInput::paper_003(0.8)).unwrap();
+/// let r = autobalancing_ranges(&m);
+/// let round = |x: f64| (x * 1e4).round() / 1e4;
+/// // 003's long rotor: from the upper end of the first split pair to the antiresonance, and
+/// // beyond the second split pair
+/// assert_eq!(round(r.antiresonance_speed.unwrap()), 2.2403);
+/// let ends: Vec<(f64, Option<f64>)> = r.ranges.iter().map(|x| (round(x.lo), x.hi.map(round))).collect();
+/// assert_eq!(ends, [(0.8492, Some(2.2403)), (3.8007, None)]);
+/// ```
 pub fn autobalancing_ranges(model: &SpatialModel) -> AutobalancingRanges {
     let (p, c, z) = (model.p_alpha_sq, model.c_y_alpha, model.z_a);
     let d0 = model.delta_a0;

@@ -293,6 +293,17 @@ pub struct StabilityRanges {
 /// analytic critical speeds and the middles of their split pairs, then bisection on every
 /// change of verdict down to `tol` in Ω. A flutter range narrower than the grid spacing can
 /// escape the grid; split-pair ranges cannot.
+///
+/// ```
+/// use autobal::spatial::linear_model::Balls;
+/// use autobal::spatial::params::{DimensionlessInput, SpatialModel};
+/// use autobal::spatial::stability::stability_ranges;
+/// // paper 000's base case: balancing is stable at Ω = 1.6, not at 1.72 (between two ranges)
+/// let m = SpatialModel::from_dimensionless(&DimensionlessInput::paper_000(0.8)).unwrap();
+/// let s = stability_ranges(&m, 5.0, 2000, Balls::Free, 1e-9).unwrap();
+/// assert!(s.stable_ranges.iter().any(|r| r.contains(1.6)));
+/// assert!(!s.stable_ranges.iter().any(|r| r.contains(1.72)));
+/// ```
 pub fn stability_ranges(model: &SpatialModel, omega_max: f64, samples: usize, balls: Balls, tol: f64) -> Result<StabilityRanges> {
     if !(omega_max > 0.0 && omega_max.is_finite()) {
         return Err(Error::invalid("omega_max", format!("must be a positive number, got {}", crate::error::fmt_num(omega_max))));
@@ -507,6 +518,25 @@ fn tracking_assignment(dist: &[[f64; MAX_STATES]; MAX_STATES], cost: &dyn Fn(usi
 /// and eigenvectors of the previous speeds and the new ones, with cost
 /// `|λ_pred − λ| / h + 4 (1 − MAC)` (`h` the speed step, MAC the modal assurance criterion of
 /// the eigenvectors): where two eigenvalues pass close, the eigenvectors decide.
+///
+/// The outcome says whether every speed was computed ([`CampbellStats::complete`]):
+///
+/// ```
+/// use autobal::spatial::linear_model::Balls;
+/// use autobal::spatial::params::{DimensionlessInput, SpatialModel};
+/// use autobal::spatial::stability::campbell_stream;
+/// let m = SpatialModel::from_dimensionless(&DimensionlessInput::paper_000(0.8)).unwrap();
+/// let speeds = (1..=300).map(|k| 5.0 * k as f64 / 300.0);
+/// let mut seen = 0;
+/// let stats = campbell_stream(&m, speeds.clone(), Balls::Free, &mut |_, modes| {
+///     assert_eq!(modes.len(), 12); // 12 states with the balls free
+///     seen += 1;
+///     seen < 10 // stop after ten speeds
+/// }).unwrap();
+/// assert!(!stats.complete && stats.speeds == 10);
+/// let all = campbell_stream(&m, speeds, Balls::Free, &mut |_, _| true).unwrap();
+/// assert!(all.complete && all.speeds == 300);
+/// ```
 pub fn campbell_stream(
     model: &SpatialModel,
     omegas: impl IntoIterator<Item = f64>,

@@ -40,6 +40,23 @@ pub fn angle_grid(base: &Initial, drive: &Drive, n1: usize, n2: usize) -> Vec<Ca
 /// Run every case in parallel (rayon's pool). `progress(done)` is called after each run (from
 /// the worker threads); when `cancel` is set, the runs not yet started are skipped and the one
 /// running stops: their entries are `None`. Inputs are validated before any run starts.
+///
+/// ```
+/// use autobal::drive::Drive;
+/// use autobal::spatial::dynamics::basins::{angle_grid, basins};
+/// use autobal::spatial::dynamics::{Initial, Settings, SpatialRotor};
+/// use std::sync::atomic::{AtomicBool, Ordering};
+/// // paper 000's base case at Ω = 1.6, 2 × 2 initial angles, a short run each
+/// let rotor = SpatialRotor::default();
+/// let cases = angle_grid(&Initial::at_rest(&rotor), &Drive::Speed { omega0: 1.6 }, 2, 2);
+/// let settings = Settings { t_end: 20.0, ..Settings::default() };
+/// let cancel = AtomicBool::new(false);
+/// let ends = basins(&rotor, &cases, &settings, |_| {}, &cancel).unwrap();
+/// assert!(ends.iter().all(|e| e.as_ref().is_some_and(|s| s.status.is_completed())));
+/// // cancelled: no run is reported as if it had ended
+/// cancel.store(true, Ordering::Relaxed);
+/// assert!(basins(&rotor, &cases, &settings, |_| {}, &cancel).unwrap().iter().all(Option::is_none));
+/// ```
 pub fn basins(
     rotor: &SpatialRotor,
     cases: &[Case],
