@@ -78,6 +78,9 @@ fn columns(paths: &[&str]) -> Vec<String> {
     cols.into_iter().map(String::from).collect()
 }
 
+/// Points whose warnings a sweep prints on standard error; the others are counted.
+const PRINTED_WARNINGS: usize = 10;
+
 pub fn run(a: SweepArgs) -> Result<()> {
     let cfg = config::load_planar(a.config.as_deref(), &a.set)?;
     let base = PlanarProblem { rotor: cfg.rotor, drive: cfg.drive, settings: cfg.settings };
@@ -138,6 +141,9 @@ pub fn run(a: SweepArgs) -> Result<()> {
     table.push_str(&format!("{:>12} {:>12} {:>12} {:>9} {:>10}\n", "peak (mm)", "ω at peak", "final (mm)", "balanced", "steps"));
     let bar = std::io::IsTerminal::is_terminal(&std::io::stderr()).then(|| indicatif::ProgressBar::new(range.len() as u64));
     let mut runs = vec![];
+    // points whose runs have warnings: the first few are printed, the rest counted (every run's
+    // warnings are in STEM.json)
+    let mut warned = 0usize;
     let mut io_error = None;
     let outcome = simulate_grid(
         &base,
@@ -174,8 +180,13 @@ pub fn run(a: SweepArgs) -> Result<()> {
                 s.steps,
                 s.stopped.as_ref().or(s.warnings.first()).map_or(String::new(), |w| format!("  ({w})"))
             ));
-            for w in s.stopped.iter().chain(&s.warnings) {
-                crate::output::note(&format!("warning: point {i} ({}): {w}", values.iter().map(|v| v.to_string()).collect::<Vec<_>>().join(", ")));
+            if s.stopped.is_some() || !s.warnings.is_empty() {
+                warned += 1;
+                if warned <= PRINTED_WARNINGS {
+                    for w in s.stopped.iter().chain(&s.warnings) {
+                        crate::output::note(&format!("warning: point {i} ({}): {w}", values.iter().map(|v| v.to_string()).collect::<Vec<_>>().join(", ")));
+                    }
+                }
             }
             runs.push(autobal::reports::sweep_run(i, values, r));
             if let Some(b) = &bar {
@@ -187,6 +198,13 @@ pub fn run(a: SweepArgs) -> Result<()> {
     )?;
     if let Some(b) = bar {
         b.finish_and_clear();
+    }
+    if warned > PRINTED_WARNINGS {
+        crate::output::note(&format!(
+            "warning: {} more points have warnings (each run's warnings and stop reason are in {})",
+            warned - PRINTED_WARNINGS,
+            out.with_extension("json").display()
+        ));
     }
     csv.flush()?;
     if let Some(e) = io_error {

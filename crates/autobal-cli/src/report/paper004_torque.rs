@@ -70,7 +70,12 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
     // quick mode: a 2 × 2 corner of the sweep around the chosen pair
     let (igs, cts): (&[f64], &[f64]) = if ctx.quick { (&[0.1, 0.3], &[0.03, 0.1]) } else { (&SWEEP_I_G, &SWEEP_C_THETA) };
     let grid: Vec<(f64, f64)> = igs.iter().flat_map(|&i| cts.iter().map(move |&c| (i, c))).collect();
-    let sweep: Vec<TorqueOutcomes> = grid.par_iter().map(|&(i, c)| torque_outcomes(i, c, &interrupted)).collect::<autobal::Result<_>>()?;
+    let sweep: Vec<TorqueOutcomes> = match grid.par_iter().map(|&(i, c)| torque_outcomes(i, c, &interrupted)).collect::<autobal::Result<_>>() {
+        Ok(v) => v,
+        // cut short (Ctrl-C): no row is read from a partial run; the section says it is incomplete
+        Err(autobal::Error::Interrupted { .. }) => Vec::new(),
+        Err(e) => return Err(e.into()),
+    };
     let mut s = Section::new("paper004torque", "Paper 004: passage under a constant torque");
     s.complete = !done.iter().any(|d| d.cut()) && !interrupted();
     let rotor = torque_rotor(TORQUE_I_G, TORQUE_C_THETA);
@@ -165,6 +170,10 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
             ]
         })
         .collect();
-    s.table(&head, &rows);
+    if rows.is_empty() {
+        s.p("Interrupted: the sweep was cut short, so its rows are left out.");
+    } else {
+        s.table(&head, &rows);
+    }
     Ok(Some(s))
 }
