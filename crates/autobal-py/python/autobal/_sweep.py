@@ -6,6 +6,7 @@ from __future__ import annotations
 import json
 import os
 import tempfile
+import uuid
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
@@ -201,8 +202,12 @@ def sweep(
     else:
         from dask.distributed import as_completed
 
+        # keys unique to this call: a resumed sweep must not reuse the key of a future that the
+        # interrupted call cancelled (the scheduler may still be forgetting it, and would
+        # cancel the new one too; `id(points)` had been reused by the next call)
+        run = uuid.uuid4().hex
         futures = {
-            client.submit(_run_chunk, toml, paths, points[lo:hi], threads or 1, pure=False, key=f"autobal-sweep-{os.getpid()}-{id(points)}-{i}"): i
+            client.submit(_run_chunk, toml, paths, points[lo:hi], threads or 1, pure=False, key=f"autobal-sweep-{run}-{i}"): i
             for i, lo, hi in todo
         }
         try:
