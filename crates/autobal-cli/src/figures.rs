@@ -59,10 +59,11 @@ impl SpeedUnit {
     }
 }
 
-/// Colours for many curves: the palette without black and grey, then more distinct ones.
+/// Colours for many curves: the palette without black and grey, then more distinct ones, ordered
+/// so that the first nine differ in hue (no two greens or two light blues among them).
 pub fn curve_color(i: usize) -> &'static str {
     const MORE: [&str; 12] =
-        ["#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#882255", "#44AA99", "#999933", "#AA4499", "#332288", "#117733"];
+        ["#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#882255", "#332288", "#999933", "#56B4E9", "#AA4499", "#44AA99", "#117733"];
     MORE[i % MORE.len()]
 }
 
@@ -121,10 +122,15 @@ pub fn campbell_plots(model: &SpatialModel, c: &Campbell) -> (Plot, Plot) {
         let col = curve_color(shown - 1);
         let name = format!("mode {shown}: {}, {whirl}, from {}", group_name(g), crate::num::fmt(start(&pts_r).unwrap_or(f64::NAN), 3));
         rot.push(Series::new(name.clone(), pts_r, col));
-        for (sign, part) in [(1.0, "Ω + ν"), (-1.0, "Ω − ν")] {
+        // one legend entry per mode, toggling both components: Ω + ν solid, Ω − ν dashed
+        let mut labelled = false;
+        for sign in [1.0, -1.0] {
             let pts = component(sign);
             if start(&pts).is_some() {
-                fixed.push(Series::new(format!("{name} ({part})"), pts, col));
+                let label = if labelled { String::new() } else { name.clone() };
+                labelled = true;
+                let se = Series::new(label, pts, col).group(format!("mode {shown}"));
+                fixed.push(if sign < 0.0 { se.dashed() } else { se });
             }
         }
     }
@@ -143,7 +149,7 @@ pub fn campbell_plots(model: &SpatialModel, c: &Campbell) -> (Plot, Plot) {
             ..Default::default()
         },
         Plot {
-            title: "Campbell diagram, fixed axes: components Ω ± ν of each mode (forward > 0 > backward)".into(),
+            title: "Campbell diagram, fixed axes: Ω + ν (solid) and Ω − ν (dashed) of each mode".into(),
             x_label: u.label.clone(),
             y_label: u.freq_label.clone(),
             series: fixed,

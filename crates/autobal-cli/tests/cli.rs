@@ -207,6 +207,51 @@ fn report_renders_in_a_headless_browser() {
     assert!(so.contains(" passed, 0 failed"), "{so}");
 }
 
+/// A real machine in SI (examples/washing_machine.toml): the report analyses and simulates that
+/// rotor with speeds in rad/s and rpm and amplitudes in mm, on the axes, in the tables and in
+/// the captions, and it renders in the browser like the default one.
+#[test]
+fn dimensional_report_is_in_si_and_renders() {
+    let cfg = examples("washing_machine.toml");
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("report-washer");
+    let _ = std::fs::remove_dir_all(&dir);
+    let (code, _, err) = autobal(&["report", "--quick", "--config", &cfg, "--out", dir.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    let index = std::fs::read_to_string(dir.join("index.html")).unwrap();
+    assert!(index.contains("Your rotor (dimensional config)"));
+    // the critical speeds in rpm as `autobal critical` computes them, in the report's table
+    let c = json(&["critical", "--config", &cfg, "--format", "json"]);
+    for k in c["critical_speeds"].as_array().unwrap() {
+        // grouped by thousands with a narrow no-break space, as the report prints them
+        let digits = format!("{:.0}", k["rpm"].as_f64().unwrap());
+        let grouped: String = digits.chars().enumerate().flat_map(|(i, ch)| ((i > 0 && (digits.len() - i) % 3 == 0).then_some('\u{202F}')).into_iter().chain([ch])).collect();
+        let rpm = format!("<td>{grouped}</td>");
+        assert!(index.contains(&rpm), "{rpm} in the critical speeds' table");
+    }
+    let svg = |name: &str| std::fs::read_to_string(dir.join(format!("{name}.svg"))).unwrap();
+    // speed axes in rad/s with rpm along the top; amplitudes in mm; growth rates in 1/s
+    for name in ["rotor_response", "campbell_fixed", "campbell_rotating", "stability_margin", "spatial_run_amplitude_omega"] {
+        let t = svg(name);
+        assert!(t.contains("ω (rad/s)") && t.contains("n (rpm)"), "{name}: speed in rad/s and rpm");
+    }
+    assert!(svg("rotor_response").contains("(mm)") && svg("spatial_run_amplitude_omega").contains("radius (mm)"));
+    assert!(svg("stability_margin").contains("1/s"));
+    assert!(svg("stability_map_z_a").contains("ω (rad/s)"), "maps' speed axis in rad/s");
+    // the user's rotor is simulated (its 3 balls), not paper 004's
+    assert!(index.contains("simulated in time with its 3 balls"));
+    // Campbell in fixed axes: one legend entry per mode (both components toggled together)
+    let fixed = svg("campbell_fixed");
+    assert!(!fixed.contains("(Ω − ν)") && !fixed.contains("(Ω + ν)"));
+    for k in 1..=12 {
+        assert!(fixed.matches(&format!(">mode {k}:")).count() <= 1, "mode {k} once in the legend");
+    }
+    if let Some((node, script)) = browser() {
+        let out = Command::new(node).arg(&script).arg(&dir).output().expect("node runs");
+        let (so, se) = (String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+        assert!(out.status.success() && so.contains(" passed, 0 failed"), "{so}\n{se}");
+    }
+}
+
 #[test]
 fn stability_json_has_ranges_and_margin() {
     let v = json(&["stability", "--format", "json", "--omega-max", "5", "--samples", "400"]);

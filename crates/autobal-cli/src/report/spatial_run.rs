@@ -83,7 +83,10 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
     if let Some(st) = &summary.stopped {
         s.p(format!("The run stopped early: {}.", super::esc(st)));
     }
-    for (suffix, plot) in spatial_sim::plots(&sim, &kept, "Your rotor in time") {
+    for (suffix, mut plot) in spatial_sim::plots(&sim, &kept, "Your rotor in time") {
+        if cfg.dimensional && suffix == "amplitude_omega" {
+            plot.x2 = super::rotor::speed_axis(m).2;
+        }
         let caption = match suffix.as_str() {
             "amplitude_omega" => "Whirl radius of the shaft at the balancer plane against the speed, beside the stationary whirls of the rotor with the balls held where they start (Newton on the nonlinear equations).",
             "amplitude_t" => "Whirl radii at the balancer plane and at the supports against time.",

@@ -37,7 +37,7 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
     s.figure(
         "campbell_fixed",
         fixed,
-        "Campbell diagram in fixed axes: whirl frequency of each tracked eigenvalue (forward above zero, backward below; legend: the motion that dominates the mode and its whirl), the synchronous 1× line, and the analytic critical speeds K1-K4 of the locked rotor. Where a mode crosses 1× near a K line the locked rotor is at a critical speed.",
+        "Campbell diagram in fixed axes: whirl frequency of each tracked eigenvalue (forward above zero, backward below; legend: the motion that dominates the mode and its whirl). A mode whirls in fixed axes at Ω + ν (solid) and Ω − ν (dashed), ν its frequency seen from the rotor; a component is drawn where it carries at least 10 % of the mode's motion, so curves start and stop where a whirl turns circular. Clicking a legend entry hides both components. Also drawn: the synchronous 1× line, and the analytic critical speeds K1-K4 of the locked rotor. Where a mode crosses 1× near a K line the locked rotor is at a critical speed.",
     );
     s.figure("campbell_rotating", rot, "Campbell diagram in rotating axes: Im λ of each tracked eigenvalue (the frequency seen from the rotor).");
 
