@@ -161,3 +161,105 @@ fn capacity_condition_readings() {
     let s = simulate(&mid, &Drive::Speed { omega0: 600.0 }, &Settings { dt: 0.01, ..Settings::new(&mid, 3.0) }, |_| true).unwrap();
     assert!(!s.balanced && s.final_amplitude > 1.3 * mid.s2, "{s:?}");
 }
+
+/// Paper 004's eq (1) in fixed axes as the paper writes it (X, Y of the shaft point C, ball
+/// angles ψ_j in the rotor frame, the speed prescribed: θ = ω0 t + b t²/2), two balls, γ = 0,
+/// with the right-hand side of the translation equations multiplied by `sign`: +1 is Newton's
+/// law (`m0 Ẍ + c Ẋ + k X = −d²/dt² [m1 s1 cos θ + (m2 + n m3) s2 cos θ + m3 r Σ cos(θ + ψ_j)]`),
+/// −1 the sign the paper prints. Written independently of `autobal::planar` (which integrates in
+/// rotor axes), so that with +1 it is also a second route to the planar model.
+struct PrintedSign {
+    p: PlanarRotor,
+    sign: f64,
+    omega0: f64,
+    b: f64,
+}
+
+impl autobal::ode::System for PrintedSign {
+    fn dim(&self) -> usize {
+        8
+    }
+    fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
+        let (p, s) = (&self.p, self.sign);
+        let (m3r, mr2) = (p.m3 * p.r, p.m3 * p.r * p.r);
+        let m0 = p.m1 + p.m2 + 2.0 * p.m3;
+        let (th, thd, thdd) = (self.omega0 * t + 0.5 * self.b * t * t, self.omega0 + self.b * t, self.b);
+        let (st, ct) = th.sin_cos();
+        let u = p.m1 * p.s1 + (p.m2 + 2.0 * p.m3) * p.s2;
+        let (mut fx, mut fy) = (u * (thd * thd * ct + thdd * st), u * (thd * thd * st - thdd * ct));
+        // rows: X, Y, ψ1, ψ2; the ψ̈ terms of the translation rows carry its sign too
+        let mut a = [[m0, 0.0, 0.0, 0.0], [0.0, m0, 0.0, 0.0], [0.0; 4], [0.0; 4]];
+        let mut f = [0.0; 4];
+        for j in 0..2 {
+            let (sa, ca) = (th + y[2 + j]).sin_cos();
+            let ad = thd + y[6 + j];
+            fx += m3r * (ad * ad * ca + thdd * sa);
+            fy += m3r * (ad * ad * sa - thdd * ca);
+            a[0][2 + j] = -s * m3r * sa;
+            a[1][2 + j] = s * m3r * ca;
+            a[2 + j] = [-m3r * sa, m3r * ca, 0.0, 0.0];
+            a[2 + j][2 + j] = mr2;
+            let psi = y[2 + j];
+            f[2 + j] = -p.c_psi * y[6 + j] - mr2 * thdd - m3r * p.s2 * (thd * thd * psi.sin() + thdd * psi.cos());
+        }
+        f[0] = -p.c * y[4] - p.k * y[0] + s * fx;
+        f[1] = -p.c * y[5] - p.k * y[1] + s * fy;
+        // Gaussian elimination with partial pivoting
+        for c in 0..4 {
+            let piv = (c..4).max_by(|&i, &j| a[i][c].abs().total_cmp(&a[j][c].abs())).unwrap_or(c);
+            a.swap(c, piv);
+            f.swap(c, piv);
+            for r in c + 1..4 {
+                let q = a[r][c] / a[c][c];
+                let row = a[c];
+                a[r].iter_mut().zip(row).for_each(|(x, v)| *x -= q * v);
+                f[r] -= q * f[c];
+            }
+        }
+        let mut acc = [0.0; 4];
+        for r in (0..4).rev() {
+            acc[r] = (f[r] - (r + 1..4).map(|k| a[r][k] * acc[k]).sum::<f64>()) / a[r][r];
+        }
+        dy[..4].copy_from_slice(&y[4..]);
+        dy[4..].copy_from_slice(&acc);
+    }
+}
+
+/// A forward passage of [`PrintedSign`] from rest to 600 rad/s by DOP853: `(peak radius of C,
+/// final radius, final ball angles from the unbalance in degrees)`.
+fn printed_sign_passage(p: &PlanarRotor, sign: f64, b: f64) -> (f64, f64, [f64; 2]) {
+    use autobal::ode::{Control, Options, Solver};
+    let sys = PrintedSign { p: p.clone(), sign, omega0: 0.0, b };
+    let psi0 = Settings::default_psi0(2);
+    let mut y = [0.0, 0.0, psi0[0], psi0[1], 0.0, 0.0, 0.0, 0.0];
+    let mut solver = Solver::new(&sys, Options::new(1e-8, 1e-9).method(Method::Dop853)).unwrap();
+    let mut peak = 0.0f64;
+    let out = solver.integrate(0.0, &mut y, 600.0 / b, |st| {
+        peak = peak.max(st.y_new[0].hypot(st.y_new[1]));
+        Control::Continue
+    });
+    assert!(out.status.is_completed(), "{:?}", out.status);
+    let deg = |x: f64| (x.to_degrees() + 180.0).rem_euclid(360.0) - 180.0;
+    (peak, y[0].hypot(y[1]), [deg(y[2]), deg(y[3])])
+}
+
+#[test]
+fn the_printed_sign_of_the_translation_equation_gives_no_semi_balancing() {
+    // 004 prints eq (1)'s translation equations with `+` where Newton's law gives `−`. Could the
+    // trends the correct sign does not give come from the printed one? No: with the printed sign
+    // the balls balance the rotor below resonance and gather near the unbalance above it, so
+    // the rotor never settles semi-balanced at s2 after the passage, which the paper's Figs 3-8
+    // all show. (docs/paper004.md: its peaks also fall with b from 0.25 1/s², with no rise.)
+    let p = PlanarRotor::paper();
+    let b = 12.5;
+    // Newton's sign in fixed axes: the planar model's passage (a second route), semi-balanced
+    let (peak, fin, _) = printed_sign_passage(&p, 1.0, b);
+    let (model, _) = passage(&p, 0.0, b, 600.0 / b, |_| {});
+    assert!((peak / model.peak_amplitude - 1.0).abs() < 2e-3, "peak {peak} vs planar model {}", model.peak_amplitude);
+    assert!((fin / model.final_amplitude - 1.0).abs() < 1e-2, "final {fin} vs planar model {}", model.final_amplitude);
+    assert!(fin < 1.1 * p.s2, "Newton's sign: semi-balanced, {fin} m");
+    // the printed sign: far from s2 above resonance, both balls within 30° of the unbalance
+    let (_, fin, psi) = printed_sign_passage(&p, -1.0, b);
+    assert!(fin > 10.0 * p.s2, "printed sign: final radius {fin} m");
+    assert!(psi.iter().all(|a| a.abs() < 30.0), "printed sign: balls at {psi:?}° from the unbalance");
+}
