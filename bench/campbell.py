@@ -41,10 +41,17 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 
 def ross_rotor():
-    import contextlib
-    import io
-    with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
+    # ROSS's import prints (CoolProp's REFPROP notice) from C, straight to file descriptor 1:
+    # silence the descriptor itself, so that stdout carries only the JSON report
+    sys.stdout.flush()
+    saved, null = os.dup(1), os.open(os.devnull, os.O_WRONLY)
+    os.dup2(null, 1)
+    try:
         import ross as rs
+    finally:
+        os.dup2(saved, 1)
+        os.close(null)
+        os.close(saved)
     steel = rs.Material(name="Steel", rho=7810, E=211e9, G_s=81.2e9)
     shaft = [rs.ShaftElement(L=0.25, idl=0.0, odl=0.05, material=steel)]
     disk = [rs.DiskElement.from_geometry(n=0, material=steel, width=0.07, i_d=0.05, o_d=0.28)]
