@@ -20,6 +20,7 @@ pub struct Table {
     #[cfg(feature = "parquet")]
     writer: parquet::file::writer::SerializedFileWriter<std::fs::File>,
     /// Whether column 0 is an integer column.
+    #[cfg(feature = "parquet")]
     int_first: bool,
     /// Buffered rows, column by column.
     columns: Vec<Vec<f64>>,
