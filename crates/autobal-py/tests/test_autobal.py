@@ -125,6 +125,11 @@ def test_errors_name_the_field():
     assert e.value.field == "omega_max"
     with pytest.raises(InvalidParameter):
         autobal.run("report")
+    # what the package does not do yet says so and names the CLI command
+    with pytest.raises(InvalidParameter, match="not in the Python package yet: run `autobal simulate"):
+        autobal.run("simulate", config=ROOT / "examples" / "spatial.toml")
+    with pytest.raises(InvalidParameter, match="basins and the spatial rotor's simulate are not in the Python package yet"):
+        autobal.run("basins", config=ROOT / "examples" / "spatial.toml")
 
 
 def test_simulation_columns():

@@ -321,7 +321,17 @@ def run(command: str, config: ConfigLike = None, set: Optional[Mapping[str, Any]
     if command in ("inertia", "critical", "ranges", "stability", "campbell"):
         return SpatialModel(config, set=set)._report(command, **options)
     if command == "simulate":
-        p = PlanarProblem(config, set=set)
+        try:
+            p = PlanarProblem(config, set=set)
+        except InvalidParameter as e:
+            if e.field == "planar" and "missing" in str(e):
+                hint = InvalidParameter(
+                    f"{e}; a spatial rotor's simulation (examples/spatial.toml) is not in the Python package yet: "
+                    "run `autobal simulate --config FILE --format json`"
+                )
+                hint.field, hint.reason = e.field, e.reason
+                raise hint from None
+            raise
         columns, summary = _autobal.simulate(p._cfg, options.pop("dt", None))
         _no_more(command, options)
         out = json.loads(summary)
@@ -356,7 +366,7 @@ def run(command: str, config: ConfigLike = None, set: Optional[Mapping[str, Any]
         return SpatialModel(config, set=set).stability_map(options.pop("x"), options.pop("y"), **options)
     raise InvalidParameter(
         f"command: \"{command}\" is not a command of autobal.run (inertia, critical, ranges, stability, campbell, simulate, sweep, map); "
-        "report and merge write files: use the CLI"
+        "report and merge write files, basins and the spatial rotor's simulate are not in the Python package yet: use the CLI"
     )
 
 
