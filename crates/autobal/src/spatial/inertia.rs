@@ -167,8 +167,9 @@ pub fn anisotropy(set: &BallSet, d_a: Option<f64>, method: AnisotropyMethod) -> 
                     return Err(Error::invalid(
                         "d_a",
                         format!(
-                            "with n = {} balls the balancing positions are fixed, so D_A = {da_natural:.6}; omit d_a or use that value (d_a = {} given)",
+                            "with n = {} balls the balancing positions are fixed, so D_A = {}; omit d_a or use that value (d_a = {} given)",
                             set.n,
+                            fmt_num(da_natural),
                             fmt_num(d)
                         ),
                     ));

@@ -46,15 +46,15 @@ impl SpatialSpec {
         };
         if let Some(v) = self.delta_a_override {
             if !(v >= 0.0 && v.is_finite()) {
-                return Err(Error::invalid("dimensionless.delta_a", format!("must be a finite number ≥ 0, got {v}")));
+                return Err(Error::invalid("dimensionless.delta_a", format!("must be a finite number ≥ 0, got {}", crate::error::fmt_num(v))));
             }
             let computed = m.anisotropy.clone();
             m.anisotropy = Anisotropy::given(v);
             m.anisotropy.warnings.push(format!(
-                "dimensionless.delta_a = {} overrides the anisotropy of the masses (exact tensor {:.6}, eq (17) {:.6}); it serves as ΔĀ and ΔĀ0",
+                "dimensionless.delta_a = {} overrides the anisotropy of the masses (exact tensor {}, eq (17) {}); it serves as ΔĀ and ΔĀ0",
                 crate::error::fmt_num(v),
-                computed.exact[1],
-                computed.paper
+                crate::error::fmt_num(computed.exact[1]),
+                crate::error::fmt_num(computed.paper)
             ));
             m.delta_a0 = v;
         }
