@@ -128,13 +128,52 @@ pub struct BallPhysics {
     pub slip_rate: f64,
 }
 
+/// The papers' point masses: steel-ball diameter if contact is switched on, no contact, `e = 0.5`,
+/// the default contact stiffness, no rolling resistance, `v_ε = 1e-4 rad/s`.
 impl Default for BallPhysics {
     fn default() -> Self {
         BallPhysics { diameter: None, contact: false, restitution: 0.5, contact_stiffness: None, rolling_resistance: 0.0, slip_rate: 1e-4 }
     }
 }
 
+crate::builder::builder!(
+    /// Builder of [`BallPhysics`], starting from the point masses ([`BallPhysics::default`]).
+    /// `build()` checks the fields alone, named as the planar section spells them
+    /// (`planar.restitution`, `planar.ball_diameter`, ...); [`BallPhysicsBuilder::build_for`]
+    /// also checks them against a set of balls (do they fit on the race?) under another
+    /// section's name (`balancer`, `balancer2`).
+    ///
+    /// ```
+    /// use autobal::balls::BallPhysics;
+    /// let b = BallPhysics::builder().contact(true).restitution(0.8).rolling_resistance(1e-3).build().unwrap();
+    /// assert!(b.is_active() && b.diameter.is_none());
+    /// let e = BallPhysics::builder().restitution(1.5).build().unwrap_err();
+    /// assert!(e.to_string().starts_with("planar.restitution"), "{e}");
+    /// // 40 mm balls do not fit twice on a 15 mm race
+    /// let e = BallPhysics::builder().contact(true).diameter(Some(0.04)).build_for("balancer", 0.02, 0.015, 2).unwrap_err();
+    /// assert!(e.to_string().starts_with("balancer.ball_diameter"), "{e}");
+    /// let e = BallPhysics::builder().slip_rate(0.0).build_for("balancer2", 0.02, 0.1, 2).unwrap_err();
+    /// assert!(e.to_string().starts_with("balancer2.slip_rate"), "{e}");
+    /// ```
+    BallPhysicsBuilder for BallPhysics, |b| b.validate("planar", 0.0, 0.0, 0);
+    diameter: Option<f64>, contact: bool, restitution: f64, contact_stiffness: Option<f64>, rolling_resistance: f64, slip_rate: f64,
+);
+
+impl BallPhysicsBuilder {
+    /// Validate for `n` balls of `mass` (kg) on a race of radius `r` (m), errors naming
+    /// `PREFIX.field` ([`BallPhysics::validate`]), and return the physics.
+    pub fn build_for(self, prefix: &str, mass: f64, r: f64, n: usize) -> Result<BallPhysics> {
+        self.inner.validate(prefix, mass, r, n)?;
+        Ok(self.inner)
+    }
+}
+
 impl BallPhysics {
+    /// A builder starting from [`BallPhysics::default`].
+    pub fn builder() -> BallPhysicsBuilder {
+        BallPhysicsBuilder::default()
+    }
+
     /// Whether any of it is switched on.
     pub fn is_active(&self) -> bool {
         self.contact || self.rolling_resistance > 0.0

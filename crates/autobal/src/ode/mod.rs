@@ -300,7 +300,81 @@ impl Options {
         self.atol = atol;
         self
     }
+
+    /// A builder starting from [`Options::default`].
+    pub fn builder() -> OptionsBuilder {
+        OptionsBuilder::default()
+    }
+
+    /// Check every field that does not depend on the system's dimension (errors name
+    /// `integration.FIELD`): `1e-14 ≤ rtol < 1` (below 1e-14 double precision cannot reach it);
+    /// at least one `atol`, each positive and finite; `h_max` and `h_max_implicit` positive
+    /// (`∞`: no limit); `h_initial` and `fixed_step`, when given, positive and finite;
+    /// `max_steps ≥ 1`. [`Solver::new`] runs it and checks the number of `atol` values against
+    /// the dimension.
+    pub fn validate(&self) -> crate::error::Result<()> {
+        use crate::error::{positive, Error};
+        let rtol = self.rtol;
+        if !(rtol > 0.0 && rtol.is_finite()) {
+            return Err(Error::invalid("integration.rtol", format!("must be positive and finite, got {rtol}")));
+        }
+        if rtol < 1e-14 {
+            return Err(Error::invalid("integration.rtol", format!("{rtol} is below what double precision can reach (1e-14)")));
+        }
+        if rtol >= 1.0 {
+            return Err(Error::invalid("integration.rtol", format!("must be below 1, got {rtol}")));
+        }
+        if self.atol.is_empty() {
+            return Err(Error::invalid("integration.atol", "needs at least one value"));
+        }
+        if let Some(a) = self.atol.iter().find(|a| !(**a > 0.0 && a.is_finite())) {
+            return Err(Error::invalid("integration.atol", format!("must be positive and finite, got {a}")));
+        }
+        for (field, h) in [("integration.h_max", self.h_max), ("integration.h_max_implicit", self.h_max_implicit)] {
+            if !(h > 0.0) {
+                return Err(Error::invalid(field, format!("must be positive (inf: no limit), got {h}")));
+            }
+        }
+        if let Some(h) = self.h_initial {
+            positive("integration.h_initial", h)?;
+        }
+        if let Some(h) = self.fixed_step {
+            if !(h > 0.0 && h.is_finite()) {
+                return Err(Error::invalid("integration.fixed_step", format!("must be positive and finite, got {h}")));
+            }
+        }
+        if self.max_steps == 0 {
+            return Err(Error::invalid("integration.max_steps", "must be at least 1"));
+        }
+        Ok(())
+    }
 }
+
+/// `rtol = 1e-8`, `atol = 1e-10` for every component (the simulations' defaults), then as
+/// [`Options::new`]: [`Method::Auto`], no step limit, at most 10⁸ steps.
+impl Default for Options {
+    fn default() -> Self {
+        Options::new(1e-8, 1e-10)
+    }
+}
+
+crate::builder::builder!(
+    /// Builder of the integrator's [`Options`]; `build()` runs [`Options::validate`] (the
+    /// number of `atol` values is checked against the system by [`Solver::new`]).
+    ///
+    /// ```
+    /// use autobal::ode::{Method, Options};
+    /// let o = Options::builder().method(Method::Rodas).rtol(1e-6).atol(vec![1e-9, 1e-7]).h_max(0.1).build().unwrap();
+    /// assert_eq!((o.method, o.rtol, o.atol.len(), o.max_steps), (Method::Rodas, 1e-6, 2, 100_000_000));
+    /// let e = Options::builder().rtol(1e-16).build().unwrap_err();
+    /// assert!(e.to_string().starts_with("integration.rtol"), "{e}");
+    /// let e = Options::builder().fixed_step(Some(-0.1)).build().unwrap_err();
+    /// assert!(e.to_string().starts_with("integration.fixed_step"), "{e}");
+    /// ```
+    OptionsBuilder for Options, |o| o.validate();
+    method: Method, rtol: f64, atol: Vec<f64>, h_max: f64, h_max_implicit: f64, h_initial: Option<f64>, fixed_step: Option<f64>,
+    max_steps: u64, max_wall: Option<std::time::Duration>,
+);
 
 /// Work counters.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]

@@ -144,32 +144,17 @@ fn interpolate<S: System + ?Sized>(
 }
 
 impl<'s, S: System> Solver<'s, S> {
-    /// A solver for `sys`; checks the options (errors name `integration.rtol`,
-    /// `integration.atol`) and allocates every buffer.
+    /// A solver for `sys`; checks the options ([`Options::validate`], and one `atol` or one per
+    /// component; errors name `integration.rtol`, `integration.atol`, ...) and allocates every
+    /// buffer.
     pub fn new(sys: &'s S, opts: Options) -> Result<Self> {
         let n = sys.dim();
-        if !(opts.rtol > 0.0 && opts.rtol.is_finite()) {
-            return Err(Error::invalid("integration.rtol", format!("must be positive and finite, got {}", opts.rtol)));
-        }
-        if opts.rtol < 1e-14 {
-            return Err(Error::invalid("integration.rtol", format!("{} is below what double precision can reach (1e-14)", opts.rtol)));
-        }
-        if opts.rtol >= 1.0 {
-            return Err(Error::invalid("integration.rtol", format!("must be below 1, got {}", opts.rtol)));
-        }
+        opts.validate()?;
         let atol = match opts.atol.len() {
             1 => vec![opts.atol[0]; n],
             m if m == n => opts.atol.clone(),
             m => return Err(Error::invalid("integration.atol", format!("needs 1 or {n} values, got {m}"))),
         };
-        if let Some(a) = atol.iter().find(|a| !(**a > 0.0 && a.is_finite())) {
-            return Err(Error::invalid("integration.atol", format!("must be positive and finite, got {a}")));
-        }
-        if let Some(h) = opts.fixed_step {
-            if !(h > 0.0 && h.is_finite()) {
-                return Err(Error::invalid("integration.fixed_step", format!("must be positive and finite, got {h}")));
-            }
-        }
         let mode = if opts.method == Method::Rodas { Mode::Implicit } else { Mode::Explicit };
         Ok(Solver {
             sys,

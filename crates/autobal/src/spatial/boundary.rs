@@ -26,6 +26,7 @@
 //! condition to the corrector's tolerance (steps below 1e-12 in the plane scaled to the unit
 //! square): it is located to ~1e-10, far inside the 1e-8 required.
 
+use crate::builder::builder;
 use crate::error::{Error, Result};
 use crate::linalg::charpoly::{pencil_polynomial, routh_count_right_of, SpeedPolynomial};
 use crate::linalg::eigen::eigenvalues;
@@ -60,11 +61,50 @@ pub struct TraceSettings {
     pub max_step: f64,
 }
 
+/// Balls free, the speed from an axis, a 24 × 24 seed grid, steps of at most 1/20 of the plane.
 impl Default for TraceSettings {
     fn default() -> Self {
         TraceSettings { balls: Balls::Free, omega: None, coarse: (24, 24), max_step: 0.05 }
     }
 }
+
+impl TraceSettings {
+    /// A builder starting from [`TraceSettings::default`].
+    pub fn builder() -> TraceSettingsBuilder {
+        TraceSettingsBuilder::default()
+    }
+
+    /// Check the settings that do not depend on the axes (errors name `omega`, `coarse`,
+    /// `max_step`): a fixed speed, when given, finite and `≥ 0`; at least 2 seed lines each way;
+    /// `0 < max_step ≤ 1` (a step is measured in the plane scaled to the unit square). Whether
+    /// the speed is needed depends on the axes ([`trace_boundary`] checks that).
+    pub fn validate(&self) -> Result<()> {
+        crate::spatial::map::check_fixed_speed(self.omega)?;
+        if self.coarse.0 < 2 || self.coarse.1 < 2 {
+            return Err(Error::invalid("coarse", format!("the seed grid needs at least 2 lines each way, got {:?}", self.coarse)));
+        }
+        if !(self.max_step > 0.0 && self.max_step <= 1.0) {
+            return Err(Error::invalid("max_step", format!("must lie in (0, 1] (a fraction of the plane), got {}", self.max_step)));
+        }
+        Ok(())
+    }
+}
+
+builder!(
+    /// Builder of [`TraceSettings`]; `build()` runs [`TraceSettings::validate`].
+    ///
+    /// ```
+    /// use autobal::spatial::boundary::TraceSettings;
+    /// let s = TraceSettings::builder().coarse((40, 12)).max_step(0.02).build().unwrap();
+    /// assert_eq!((s.coarse, s.max_step, s.omega), ((40, 12), 0.02, None));
+    /// let e = TraceSettings::builder().max_step(0.0).build().unwrap_err();
+    /// assert!(e.to_string().starts_with("max_step"), "{e}");
+    /// let e = TraceSettings::builder().coarse((1, 24)).build().unwrap_err();
+    /// assert!(e.to_string().starts_with("coarse"), "{e}");
+    /// ```
+    TraceSettingsBuilder for TraceSettings, |s| s.validate();
+    balls: Balls, omega: Option<f64>, coarse: (usize, usize), max_step: f64,
+);
 
 /// Which condition a curve follows.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -401,6 +441,7 @@ pub fn trace_boundary(spec: &SpatialSpec, x: &PlaneAxis, y: &PlaneAxis, s: &Trac
 /// coarse grid and before each curve is traced, e.g. `&|| FLAG.load(Ordering::Relaxed)` for a
 /// Ctrl-C flag): the result then holds the curves traced so far and `complete` is `false`.
 pub fn trace_boundary_with(spec: &SpatialSpec, x: &PlaneAxis, y: &PlaneAxis, s: &TraceSettings, cancel: &dyn Fn() -> bool) -> Result<Boundary> {
+    s.validate()?;
     for a in [x, y] {
         if !(a.lo.is_finite() && a.hi.is_finite() && a.hi > a.lo) {
             return Err(Error::invalid(a.path.clone(), "the range must be finite with hi > lo"));
@@ -811,4 +852,26 @@ fn march(pl: &Plane, kind: CurveKind, z0: [f64; 3], t0: [f64; 3], max_step: f64)
         }
     }
     Ok((pts, false))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spatial::params::DimensionlessInput;
+    use crate::spatial::paths::SpatialInput;
+
+    #[test]
+    fn tracing_refuses_invalid_settings_naming_them() {
+        let spec = SpatialSpec { input: SpatialInput::Dimensionless(DimensionlessInput::default()), delta_a_override: None };
+        let x = PlaneAxis { path: "dimensionless.z_a".into(), lo: -1.0, hi: 1.0 };
+        let y = PlaneAxis { path: OMEGA.into(), lo: 0.1, hi: 2.0 };
+        for (s, field) in [
+            (TraceSettings { max_step: f64::NAN, ..Default::default() }, "max_step"),
+            (TraceSettings { coarse: (24, 0), ..Default::default() }, "coarse"),
+            (TraceSettings { omega: Some(-1.0), ..Default::default() }, OMEGA),
+        ] {
+            let e = trace_boundary(&spec, &x, &y, &s).unwrap_err();
+            assert_eq!(e.field(), Some(field), "{e}");
+        }
+    }
 }

@@ -24,6 +24,7 @@
 // Index loops follow the algorithms' formulas (rows, columns, coefficients).
 #![allow(clippy::needless_range_loop)]
 
+use crate::builder::builder;
 use crate::error::{Error, Result};
 use crate::linalg::charpoly::{AbscissaTracker, SpeedPolynomial};
 use crate::linalg::eigen::{eigenvalues, routh_hurwitz_stable, spectral_abscissa};
@@ -99,6 +100,45 @@ impl Default for MapSettings {
         MapSettings { balls: Balls::Free, quantity: Quantity::Margin, omega: None }
     }
 }
+
+impl MapSettings {
+    /// A builder starting from [`MapSettings::default`].
+    pub fn builder() -> MapSettingsBuilder {
+        MapSettingsBuilder::default()
+    }
+
+    /// Check the settings that do not depend on the axes: a fixed speed `omega`, when given,
+    /// is a finite number `≥ 0` (the error names `omega`). Whether it is needed depends on the
+    /// axes ([`stability_map`] checks that).
+    pub fn validate(&self) -> Result<()> {
+        check_fixed_speed(self.omega)
+    }
+}
+
+/// A fixed speed, when given, is a finite number `≥ 0` (the error names `omega`).
+pub(crate) fn check_fixed_speed(omega: Option<f64>) -> Result<()> {
+    if let Some(w) = omega {
+        if !(w >= 0.0 && w.is_finite()) {
+            return Err(Error::invalid(OMEGA, format!("the speed must be a finite number ≥ 0, got {w}")));
+        }
+    }
+    Ok(())
+}
+
+builder!(
+    /// Builder of [`MapSettings`]; `build()` runs [`MapSettings::validate`].
+    ///
+    /// ```
+    /// use autobal::spatial::map::{MapSettings, Quantity};
+    /// use autobal::spatial::linear_model::Balls;
+    /// let s = MapSettings::builder().balls(Balls::Locked).quantity(Quantity::Verdict).omega(Some(1.5)).build().unwrap();
+    /// assert_eq!((s.balls, s.quantity, s.omega), (Balls::Locked, Quantity::Verdict, Some(1.5)));
+    /// let e = MapSettings::builder().omega(Some(-1.0)).build().unwrap_err();
+    /// assert!(e.to_string().starts_with("omega"), "{e}");
+    /// ```
+    MapSettingsBuilder for MapSettings, |s| s.validate();
+    balls: Balls, quantity: Quantity, omega: Option<f64>,
+);
 
 /// How a map ended, and how its points were computed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -282,6 +322,7 @@ const BLOCK_CELLS: usize = 1 << 18;
 /// assert!(out.complete && out.rows == 30 && stable > 0);
 /// ```
 pub fn stability_map<F: ModelFamily>(spec: &F, x: &Axis, y: &Axis, s: &MapSettings, on_row: &mut dyn FnMut(usize, &[Cell]) -> bool) -> Result<MapOutcome> {
+    s.validate()?;
     for a in [x, y] {
         if a.values.is_empty() {
             return Err(Error::invalid(a.path.clone(), "the axis has no values"));
@@ -304,9 +345,6 @@ pub fn stability_map<F: ModelFamily>(spec: &F, x: &Axis, y: &Axis, s: &MapSettin
         (true, false) => map_speed_columns(spec, x, y, s, on_row),
         (false, false) => {
             let w = s.omega.ok_or_else(|| Error::invalid(OMEGA, "required when neither axis is the speed (the speed at which to map)"))?;
-            if !(w >= 0.0 && w.is_finite()) {
-                return Err(Error::invalid(OMEGA, format!("the speed must be a finite number ≥ 0, got {w}")));
-            }
             map_fixed_speed(spec, x, y, w, s, on_row)
         }
     }
@@ -422,4 +460,28 @@ fn map_fixed_speed<F: ModelFamily>(spec: &F, x: &Axis, y: &Axis, w: f64, s: &Map
         j0 = j1;
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spatial::params::DimensionlessInput;
+    use crate::spatial::paths::SpatialInput;
+
+    #[test]
+    fn a_map_refuses_a_speed_that_is_not_one_even_with_a_speed_axis() {
+        let spec = SpatialSpec { input: SpatialInput::Dimensionless(DimensionlessInput::default()), delta_a_override: None };
+        let x = Axis::linspace("dimensionless.z_a", -1.0, 1.0, 3);
+        let y = Axis::linspace(OMEGA, 0.1, 2.0, 3);
+        let s = MapSettings { omega: Some(f64::NAN), ..MapSettings::default() };
+        let e = stability_map(&spec, &x, &y, &s, &mut |_, _| panic!("no row before the settings are checked")).unwrap_err();
+        assert_eq!(e.field(), Some(OMEGA), "{e}");
+        let mut rows = 0;
+        stability_map(&spec, &x, &y, &MapSettings::builder().omega(Some(1.0)).build().unwrap(), &mut |_, _| {
+            rows += 1;
+            true
+        })
+        .unwrap();
+        assert_eq!(rows, 3);
+    }
 }
