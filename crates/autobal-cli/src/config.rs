@@ -3,8 +3,8 @@
 //! defaults and every check live).
 
 use anyhow::{anyhow, bail, Result};
-use autobal::spatial::params::{SpatialModel, SpatialRotorSi};
-use autobal::spatial::paths::{SpatialInput, SpatialSpec};
+use autobal::spatial::params::SpatialModel;
+use autobal::spatial::paths::SpatialSpec;
 use toml::Table;
 
 /// The embedded default example (paper 000's base case).
@@ -14,9 +14,6 @@ pub const DEFAULT_CONFIG: &str = autobal::config::DEFAULT_SPATIAL;
 pub const DEFAULT_PLANAR: &str = autobal::config::DEFAULT_PLANAR;
 
 pub use autobal::config::Analysis;
-/// The library's table reader and the `[drive]`/`[integration]` conversions, shared with the
-/// spatial simulation's config.
-pub(crate) use autobal::config::{ball_physics_of, drive as drive_of, integration as integration_of, Section};
 #[cfg(test)]
 pub use autobal::config::SCHEMA;
 
@@ -32,16 +29,6 @@ pub struct Config {
     /// The merged TOML text, for the report.
     pub text: String,
     pub dimensional: bool,
-}
-
-impl Config {
-    /// The SI rotor of a dimensional config (the spatial simulation's input).
-    pub fn si(&self) -> Option<&SpatialRotorSi> {
-        match &self.spec.input {
-            SpatialInput::Si { rotor, .. } => Some(rotor),
-            SpatialInput::Dimensionless(_) => None,
-        }
-    }
 }
 
 /// Apply one `key=value` override with a dotted key.
@@ -109,15 +96,19 @@ pub fn load(path: Option<&std::path::Path>, sets: &[String]) -> Result<Config> {
 
 /// Validate a config table and build the model.
 pub fn build(root: &Table, source: &str) -> Result<Config> {
-    let c = autobal::config::spatial(root)?;
-    Ok(Config {
+    Ok(from_library(autobal::config::spatial(root)?, root, source))
+}
+
+/// The CLI's config of a converted library config (`root`: its tables, kept as text for the report).
+pub fn from_library(c: autobal::config::SpatialConfig, root: &Table, source: &str) -> Config {
+    Config {
         model: c.model,
         spec: c.spec,
         analysis: c.analysis,
         source: source.to_string(),
         text: toml::to_string(root).unwrap_or_default(),
         dimensional: c.dimensional,
-    })
+    }
 }
 
 #[cfg(test)]
@@ -253,11 +244,6 @@ pub struct PlanarConfig {
     pub drive: autobal::planar::Drive,
     pub settings: autobal::planar::Settings,
     pub source: String,
-}
-
-/// `[table].key` as an array of numbers (for the CLI's own tables: the spatial simulation).
-pub(crate) fn array_f64(sec: &Section, key: &str) -> Result<Option<Vec<f64>>> {
-    Ok(sec.array_f64(key)?)
 }
 
 /// Load a planar config (embedded default: examples/planar.toml) with overrides.

@@ -2,13 +2,12 @@
 //! plus `[drive]`, `[integration]`, optionally `[initial]`, `[spatial]`, `[couple]`,
 //! `[balancer2]`), and `autobal basins`.
 
-use crate::config::{self, array_f64, Config, Section};
 use crate::plot::{Plot, Series, PALETTE};
-use anyhow::{anyhow, bail, Context, Result};
-use autobal::drive::Drive;
-use autobal::spatial::dynamics::basins::{angle_grid, basins};
+use anyhow::{bail, Context, Result};
+use autobal::config::SpatialSimulation;
+use autobal::spatial::dynamics::basins::{angle_grid, basins, check_angle_grid};
 use autobal::spatial::dynamics::stationary::response_curve;
-use autobal::spatial::dynamics::{simulate, BallPlane, Initial, PointMass, Sample, Settings, SpatialRotor, Summary};
+use autobal::spatial::dynamics::{simulate, Sample, Summary};
 use serde_json::{json, Value};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -17,16 +16,26 @@ use toml::Table;
 
 /// Whether a config describes the spatial rotor (the analytic commands' tables).
 pub fn is_spatial(root: &Table) -> bool {
-    ["dimensionless", "rotor", "supports", "unbalance", "balancer"].iter().any(|t| root.contains_key(*t))
+    autobal::config::is_spatial(root)
 }
 
-/// A loaded spatial simulation.
+/// A loaded spatial simulation: the library's converted config and where it came from.
 pub struct SpatialSim {
-    pub config: Config,
-    pub rotor: SpatialRotor,
-    pub drive: Drive,
-    pub initial: Initial,
-    pub settings: Settings,
+    pub lib: SpatialSimulation,
+    pub source: String,
+}
+
+impl std::ops::Deref for SpatialSim {
+    type Target = SpatialSimulation;
+    fn deref(&self) -> &SpatialSimulation {
+        &self.lib
+    }
+}
+
+impl std::ops::DerefMut for SpatialSim {
+    fn deref_mut(&mut self) -> &mut SpatialSimulation {
+        &mut self.lib
+    }
 }
 
 impl SpatialSim {
@@ -40,103 +49,10 @@ impl SpatialSim {
     }
 }
 
-fn pair(sec: &Section, key: &str) -> Result<Option<[f64; 2]>> {
-    match array_f64(sec, key)? {
-        None => Ok(None),
-        Some(v) if v.len() == 2 => Ok(Some([v[0], v[1]])),
-        Some(v) => bail!("{}.{key}: expected 2 numbers, got {}", sec.name, v.len()),
-    }
-}
-
-/// Build the spatial simulation from a config table.
+/// Build the spatial simulation from a config table (converted by the library,
+/// [`autobal::config::spatial_simulation`]).
 pub fn build(root: &Table, source: &str) -> Result<SpatialSim> {
-    let config = config::build(root, source)?;
-    let sec = |name: &'static str| Section { name, table: root.get(name).and_then(toml::Value::as_table) };
-    let mut rotor = match config.si() {
-        Some(si) => {
-            let mut r = SpatialRotor::from_si(si);
-            let (ro, su, un) = (sec("rotor"), sec("supports"), sec("unbalance"));
-            r.rotor.axis_tilt = ro.f64("axis_tilt")?.unwrap_or(0.0);
-            r.rotor.axis_tilt_angle = ro.f64("axis_tilt_angle")?.unwrap_or(0.0);
-            for (i, side) in ["left", "right"].iter().enumerate() {
-                if let Some(k) = su.f64(&format!("stiffness_{side}_y"))? {
-                    r.supports[i].stiffness[1] = k;
-                }
-                if let Some(c) = su.f64(&format!("damping_{side}_y"))? {
-                    r.supports[i].damping[1] = c;
-                }
-            }
-            r.unbalances[0].angle = un.f64("angle")?.unwrap_or(0.0);
-            let c = sec("couple");
-            if c.table.is_some() {
-                r.unbalances.push(PointMass { mass: c.req("mass")?, radius: c.req("radius")?, angle: c.f64("angle")?.unwrap_or(0.0), z: c.req("z")? });
-            }
-            let b = sec("balancer2");
-            if b.table.is_some() {
-                r.planes.push(BallPlane {
-                    z: b.req("z")?,
-                    n: b.count("balls")?.ok_or_else(|| anyhow!("balancer2.balls: missing (required)"))? as usize,
-                    ball_mass: b.req("ball_mass")?,
-                    race_radius: b.req("race_radius")?,
-                    drag: b.f64("drag")?.unwrap_or(0.0),
-                    physics: config::ball_physics_of(&b)?,
-                });
-            }
-            if let Some(p) = r.planes.first_mut() {
-                p.physics = config::ball_physics_of(&sec("balancer"))?;
-            }
-            r
-        }
-        None => {
-            for t in ["couple", "balancer2"] {
-                if root.contains_key(t) {
-                    bail!("{t}: a second unbalance mass or balancer plane needs the dimensional tables ([rotor], [supports], ...)");
-                }
-            }
-            SpatialRotor::from_dimensionless(&config.model)?
-        }
-    };
-    let sp = sec("spatial");
-    if let Some(g) = array_f64(&sp, "gravity")? {
-        if g.len() != 3 {
-            bail!("spatial.gravity: expected 3 numbers [g_x, g_y, g_z], got {}", g.len());
-        }
-        rotor.gravity = [g[0], g[1], g[2]];
-    }
-    rotor.spin_drag = sp.f64("spin_drag")?.unwrap_or(0.0);
-    rotor.lock_tilt = match sp.get("lock_tilt") {
-        None => false,
-        Some(toml::Value::Boolean(b)) => *b,
-        Some(_) => bail!("spatial.lock_tilt: expected true or false"),
-    };
-    rotor.validate()?;
-    let d = sec("drive");
-    if d.table.is_none() {
-        bail!("drive: missing: the spatial simulation needs [drive] (see examples/spatial.toml)");
-    }
-    let (drive, t_end) = config::drive_of(&d)?;
-    let ig = config::integration_of(&sec("integration"), t_end)?;
-    if ig.max_steps.is_some() || ig.max_wall_s.is_some() {
-        let key = if ig.max_steps.is_some() { "max_steps" } else { "max_wall_s" };
-        bail!("integration.{key}: the spatial simulation takes no budget (Ctrl-C stops it, keeping what it wrote)");
-    }
-    let settings = Settings { method: ig.method, t_end, dt: ig.dt, rtol: ig.rtol, atol: ig.atol };
-    settings.validate()?;
-    let mut initial = Initial::at_rest(&rotor);
-    let ini = sec("initial");
-    initial.position = pair(&ini, "position")?.unwrap_or(initial.position);
-    initial.velocity = pair(&ini, "velocity")?.unwrap_or(initial.velocity);
-    initial.tilt = pair(&ini, "tilt")?.unwrap_or(initial.tilt);
-    initial.tilt_rate = pair(&ini, "tilt_rate")?.unwrap_or(initial.tilt_rate);
-    if let Some(p) = array_f64(&d, "psi0")? {
-        initial.psi = p;
-    }
-    if let Some(p) = array_f64(&d, "psi_rate0")? {
-        initial.psi_rate = p;
-    }
-    let eq = autobal::spatial::dynamics::Equations::new(&rotor, &drive);
-    autobal::spatial::dynamics::simulate::initial_state(&eq, &initial)?;
-    Ok(SpatialSim { config, rotor, drive, initial, settings })
+    Ok(SpatialSim { lib: autobal::config::spatial_simulation(root)?, source: source.to_string() })
 }
 
 /// Samples kept for the plots: per bucket of consecutive samples the smallest and largest
@@ -229,39 +145,16 @@ pub fn run_to_csv(sim: &SpatialSim, csv: &mut dyn Write, progress: bool, interru
     Ok((summary, env.kept, wall))
 }
 
+/// The summary as `--format json` prints it ([`autobal::reports::spatial_simulation`]).
 pub fn summary_json(sim: &SpatialSim, s: &Summary, wall: f64) -> Value {
-    json!({
-        "model": "spatial",
-        "units": if sim.config.dimensional { "SI" } else { "dimensionless (M_s = ω0 = ρ_s = 1)" },
-        "balanced": s.balanced,
-        "residual_unbalance": s.residual_unbalance,
-        "residual_couple": s.residual_couple,
-        "peak_amplitude": s.peak_amplitude,
-        "omega_at_peak": s.omega_at_peak,
-        "t_at_peak": s.t_at_peak,
-        "final_amplitude": s.final_amplitude,
-        "final_omega": s.final_omega,
-        "steps": s.steps,
-        "rejected_steps": s.rejected_steps,
-        "rhs_evaluations": s.rhs_evaluations,
-        "contacts": s.contacts,
-        "stick_slip_transitions": s.stick_slip_transitions,
-        "wall_time_s": wall,
-        "t_end": s.t_end,
-        "stopped": s.stopped,
-        "natural_frequency": sim.rotor.natural_frequency(),
-        "rotor": sim.rotor,
-        "drive": sim.drive,
-        "initial": sim.initial,
-        "integration": sim.settings,
-    })
+    autobal::reports::spatial_simulation(sim, s, wall)
 }
 
 pub fn summary_table(sim: &SpatialSim, s: &Summary, wall: f64) -> String {
     use std::fmt::Write as _;
     let (lu, ls, _, _) = sim.units();
     let mut o = String::new();
-    let _ = writeln!(o, "config: {} (spatial rotor, {} balls in {} plane(s))", sim.config.source, sim.rotor.balls(), sim.rotor.planes.len());
+    let _ = writeln!(o, "config: {} (spatial rotor, {} balls in {} plane(s))", sim.source, sim.rotor.balls(), sim.rotor.planes.len());
     let _ = writeln!(o, "peak whirl radius at the balancer plane: {:.6} {lu} at speed {:.4} (t = {:.4})", ls * s.peak_amplitude, s.omega_at_peak, s.t_at_peak);
     let _ = writeln!(o, "final: radius {:.6} {lu} at speed {:.4}; residual unbalance {:.3e} of the unbalance{}; {}", ls * s.final_amplitude, s.final_omega, s.residual_unbalance,
         s.residual_couple.map_or(String::new(), |c| format!(", couple {c:.3e}")),
@@ -336,12 +229,7 @@ pub fn write_plots(sim: &SpatialSim, kept: &[Sample], stem: &Path, title: &str) 
 /// `autobal basins`: runs over a grid of the first two balls' initial angles; CSV row by row
 /// (`psi_1, psi_2, balanced, residual_unbalance, final_amplitude`) and a JSON summary.
 pub fn run_basins(sim: &SpatialSim, n: usize, out: &Path, progress: bool, interrupted: &std::sync::atomic::AtomicBool) -> Result<Value> {
-    if sim.rotor.balls() < 2 {
-        bail!("basins: needs at least two balls (the map is over the first two balls' initial angles)");
-    }
-    if !(2..=1000).contains(&n) {
-        bail!("--n: must lie between 2 and 1000, got {n}");
-    }
+    check_angle_grid(&sim.rotor, n, "--n")?;
     let cases = angle_grid(&sim.initial, &sim.drive, n, n);
     let bar = progress.then(|| indicatif::ProgressBar::new(cases.len() as u64));
     let t0 = std::time::Instant::now();
@@ -355,33 +243,17 @@ pub fn run_basins(sim: &SpatialSim, n: usize, out: &Path, progress: bool, interr
     }
     let wall = t0.elapsed().as_secs_f64();
     let mut csv = String::from("psi_1,psi_2,balanced,residual_unbalance,final_amplitude\n");
-    let (mut done, mut balanced) = (0, 0);
     for (c, r) in cases.iter().zip(&res) {
         if let Some(s) = r {
-            done += 1;
-            balanced += s.balanced as usize;
             csv.push_str(&format!("{},{},{},{},{}\n", c.initial.psi[0], c.initial.psi[1], s.balanced as u8, s.residual_unbalance, s.final_amplitude));
         }
     }
     std::fs::write(out, csv).with_context(|| format!("--out: cannot write {}", out.display()))?;
-    let v = json!({"runs": cases.len(), "completed": done, "balanced": balanced, "fraction_balanced": balanced as f64 / done.max(1) as f64, "wall_time_s": wall, "csv": out.display().to_string()});
+    let mut v = autobal::reports::basins(&res, wall);
+    v["csv"] = json!(out.display().to_string());
+    let done = res.iter().flatten().count();
     if done < cases.len() {
         bail!("interrupted: {done} of {} runs complete, kept in {}", cases.len(), out.display());
     }
     Ok(v)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn examples_spatial_toml_is_the_librarys_preset() {
-        // the library's defaults of the spatial model in time describe examples/spatial.toml's run
-        let root = autobal::config::parse(include_str!("../../../examples/spatial.toml"), "spatial.toml").unwrap();
-        let sim = build(&root, "spatial.toml").unwrap();
-        assert_eq!(sim.rotor, SpatialRotor::default());
-        assert_eq!(sim.settings, Settings::default());
-        assert_eq!(sim.drive, Drive::Speed { omega0: 1.6 });
-    }
 }

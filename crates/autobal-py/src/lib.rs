@@ -295,6 +295,96 @@ fn simulate<'py>(py: Python<'py>, cfg: &PyPlanar, dt: Option<f64>) -> PyResult<(
     Ok((out, autobal::reports::simulation(&p, &s, wall).to_string()))
 }
 
+/// Run the spatial rotor of papers 000/003 from a config (the analytic config plus `[drive]`,
+/// `[integration]`, ...): `(columns, summary JSON)`, columns `t, omega, x, y, tilt_x, tilt_y`,
+/// `amplitude_left`, `amplitude_right` (supports), `amplitude_plane1`, ... (balancer planes)
+/// and `psi` (samples × balls) as arrays, the summary as `autobal simulate --format json`
+/// prints it. `dt` overrides the output interval.
+#[pyfunction]
+#[pyo3(signature = (text, dict, source, sets, dt=None))]
+fn spatial_simulate<'py>(
+    py: Python<'py>,
+    text: Option<&str>,
+    dict: Option<&Bound<'_, PyDict>>,
+    source: &str,
+    sets: Vec<(String, Bound<'_, PyAny>)>,
+    dt: Option<f64>,
+) -> PyResult<(Bound<'py, PyDict>, String)> {
+    let root = table(py, text, dict, source, sets)?;
+    let mut sim = config::spatial_simulation(&root).map_err(|e| py_err(py, e))?;
+    if let Some(d) = dt {
+        sim.settings.dt = d;
+        sim.settings.validate().map_err(|e| py_err(py, e))?;
+    }
+    let (supports, planes, balls) = (sim.rotor.supports.len(), sim.rotor.planes.len().max(1), sim.rotor.balls());
+    let (s, cols, amps, psi, wall) = interruptible(py, |cancel| {
+        let mut cols: [Vec<f64>; 6] = Default::default();
+        let mut amps: Vec<Vec<f64>> = vec![vec![]; supports + planes];
+        let mut psi = vec![];
+        let t0 = std::time::Instant::now();
+        let s = autobal::spatial::dynamics::simulate(&sim.rotor, &sim.drive, &sim.initial, &sim.settings, |s| {
+            for (c, v) in cols.iter_mut().zip([s.t, s.omega, s.x, s.y, s.tilt_x, s.tilt_y]) {
+                c.push(v);
+            }
+            for (c, v) in amps.iter_mut().zip(s.amplitude_supports.iter().chain(&s.amplitude_planes)) {
+                c.push(*v);
+            }
+            psi.extend_from_slice(&s.psi);
+            !cancel.load(Ordering::Relaxed)
+        });
+        (s, cols, amps, psi, t0.elapsed().as_secs_f64())
+    })?;
+    let s = s.map_err(|e| py_err(py, e))?;
+    let out = PyDict::new(py);
+    let rows = cols[0].len();
+    for (name, c) in ["t", "omega", "x", "y", "tilt_x", "tilt_y"].iter().zip(cols) {
+        out.set_item(name, PyArray1::from_vec(py, c))?;
+    }
+    let names = ["amplitude_left", "amplitude_right"].iter().take(supports).map(|n| n.to_string()).chain((1..=planes).map(|p| format!("amplitude_plane{p}")));
+    for (name, c) in names.zip(amps) {
+        out.set_item(name, PyArray1::from_vec(py, c))?;
+    }
+    out.set_item("psi", PyArray1::from_vec(py, psi).reshape([rows, balls])?)?;
+    Ok((out, autobal::reports::spatial_simulation(&sim, &s, wall).to_string()))
+}
+
+/// `autobal basins` on a spatial config: runs over an `n × n` grid of the first two balls'
+/// initial angles, in parallel in Rust. `(arrays, summary JSON)`: `psi_1`, `psi_2` (initial
+/// angles), `balanced`, `residual_unbalance`, `final_amplitude` per run (the CLI's CSV, row-major
+/// with `psi_2` outer), the summary as `autobal basins --format json` prints it (without `csv`).
+#[pyfunction]
+#[pyo3(signature = (text, dict, source, sets, n=16))]
+fn spatial_basins<'py>(
+    py: Python<'py>,
+    text: Option<&str>,
+    dict: Option<&Bound<'_, PyDict>>,
+    source: &str,
+    sets: Vec<(String, Bound<'_, PyAny>)>,
+    n: usize,
+) -> PyResult<(Bound<'py, PyDict>, String)> {
+    use autobal::spatial::dynamics::basins::{angle_grid, basins, check_angle_grid};
+    let root = table(py, text, dict, source, sets)?;
+    let sim = config::spatial_simulation(&root).map_err(|e| py_err(py, e))?;
+    check_angle_grid(&sim.rotor, n, "n").map_err(|e| py_err(py, e))?;
+    let cases = angle_grid(&sim.initial, &sim.drive, n, n);
+    let (res, wall) = interruptible(py, |cancel| {
+        let t0 = std::time::Instant::now();
+        (basins(&sim.rotor, &cases, &sim.settings, |_| {}, cancel), t0.elapsed().as_secs_f64())
+    })?;
+    let res = res.map_err(|e| py_err(py, e))?;
+    if res.iter().any(Option::is_none) {
+        return Err(py_err(py, autobal::Error::Interrupted { t: 0.0 }));
+    }
+    let ends: Vec<_> = res.iter().flatten().collect();
+    let out = PyDict::new(py);
+    out.set_item("psi_1", PyArray1::from_vec(py, cases.iter().map(|c| c.initial.psi[0]).collect()))?;
+    out.set_item("psi_2", PyArray1::from_vec(py, cases.iter().map(|c| c.initial.psi[1]).collect()))?;
+    out.set_item("balanced", PyArray1::from_vec(py, ends.iter().map(|s| s.balanced).collect()))?;
+    out.set_item("residual_unbalance", PyArray1::from_vec(py, ends.iter().map(|s| s.residual_unbalance).collect()))?;
+    out.set_item("final_amplitude", PyArray1::from_vec(py, ends.iter().map(|s| s.final_amplitude).collect()))?;
+    Ok((out, autobal::reports::basins(&res, wall).to_string()))
+}
+
 /// Check every row of `params` (points × paths) as a batch would before running.
 #[pyfunction]
 fn check_batch(py: Python<'_>, cfg: &PyPlanar, paths: Vec<String>, params: PyReadonlyArray2<'_, f64>) -> PyResult<()> {
@@ -476,6 +566,8 @@ fn _autobal(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(stability_map, m)?)?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(simulate_batch, m)?)?;
+    m.add_function(wrap_pyfunction!(spatial_simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(spatial_basins, m)?)?;
     m.add_function(wrap_pyfunction!(sweep_report, m)?)?;
     m.add_function(wrap_pyfunction!(check_batch, m)?)?;
     m.add_function(wrap_pyfunction!(grid_points, m)?)?;

@@ -551,6 +551,139 @@ pub fn integration(ig: &Section, t_end: f64) -> Result<Integration> {
     })
 }
 
+/// Whether a config describes the spatial rotor of papers 000/003 (the analytic commands'
+/// tables `[dimensionless]`, `[rotor]`, `[supports]`, `[unbalance]`, `[balancer]`) rather than
+/// the planar rotor of paper 004 (`[planar]`).
+pub fn is_spatial(root: &Table) -> bool {
+    ["dimensionless", "rotor", "supports", "unbalance", "balancer"].iter().any(|t| root.contains_key(*t))
+}
+
+/// A spatial simulation's config converted (`autobal simulate` and `autobal basins` on the
+/// rotor of papers 000/003): the analytic config plus `[drive]`, `[integration]` and, optionally,
+/// `[initial]`, `[spatial]`, `[couple]`, `[balancer2]` (docs/spatial.md).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SpatialSimulation {
+    /// The analytic config the rotor was built from (units, source of the model).
+    pub config: SpatialConfig,
+    /// The rotor in time.
+    pub rotor: crate::spatial::dynamics::SpatialRotor,
+    /// `[drive]` (speeds and times in rad/s and s for an SI config, Ω and τ for a
+    /// dimensionless one).
+    pub drive: Drive,
+    /// Initial state: `[initial]` (rotor position, velocity, tilt, tilt rate) and
+    /// `drive.psi0`, `drive.psi_rate0` (balls).
+    pub initial: crate::spatial::dynamics::Initial,
+    /// `[integration]` and `drive.t_end`.
+    pub settings: crate::spatial::dynamics::Settings,
+}
+
+/// Convert a spatial simulation's config ([`SpatialSimulation`]); every error names the key.
+///
+/// ```
+/// let root = autobal::config::parse(include_str!("../../../examples/spatial.toml"), "spatial.toml").unwrap();
+/// let sim = autobal::config::spatial_simulation(&root).unwrap();
+/// assert_eq!(sim.rotor, autobal::spatial::dynamics::SpatialRotor::default()); // 000's base case
+/// let mut no_drive = root.clone();
+/// no_drive.remove("drive");
+/// let e = autobal::config::spatial_simulation(&no_drive).unwrap_err();
+/// assert!(e.to_string().starts_with("drive: missing"));
+/// ```
+pub fn spatial_simulation(root: &Table) -> Result<SpatialSimulation> {
+    use crate::spatial::dynamics::{simulate::initial_state, BallPlane, Equations, Initial, PointMass, Settings as SpatialSettings, SpatialRotor};
+    let config = spatial(root)?;
+    let sec = |name: &'static str| Section::of(root, name);
+    let pair = |s: &Section, key: &str| -> Result<Option<[f64; 2]>> {
+        match s.array_f64(key)? {
+            None => Ok(None),
+            Some(v) if v.len() == 2 => Ok(Some([v[0], v[1]])),
+            Some(v) => Err(Error::invalid(s.field(key), format!("expected 2 numbers, got {}", v.len()))),
+        }
+    };
+    let mut rotor = match &config.spec.input {
+        SpatialInput::Si { rotor: si, .. } => {
+            let mut r = SpatialRotor::from_si(si);
+            let (ro, su, un) = (sec("rotor"), sec("supports"), sec("unbalance"));
+            r.rotor.axis_tilt = ro.f64("axis_tilt")?.unwrap_or(0.0);
+            r.rotor.axis_tilt_angle = ro.f64("axis_tilt_angle")?.unwrap_or(0.0);
+            for (i, side) in ["left", "right"].iter().enumerate() {
+                if let Some(k) = su.f64(&format!("stiffness_{side}_y"))? {
+                    r.supports[i].stiffness[1] = k;
+                }
+                if let Some(c) = su.f64(&format!("damping_{side}_y"))? {
+                    r.supports[i].damping[1] = c;
+                }
+            }
+            r.unbalances[0].angle = un.f64("angle")?.unwrap_or(0.0);
+            let c = sec("couple");
+            if c.table.is_some() {
+                r.unbalances.push(PointMass { mass: c.req("mass")?, radius: c.req("radius")?, angle: c.f64("angle")?.unwrap_or(0.0), z: c.req("z")? });
+            }
+            let b = sec("balancer2");
+            if b.table.is_some() {
+                r.planes.push(BallPlane {
+                    z: b.req("z")?,
+                    n: b.count("balls")?.ok_or_else(|| Error::invalid("balancer2.balls", "missing (required)"))? as usize,
+                    ball_mass: b.req("ball_mass")?,
+                    race_radius: b.req("race_radius")?,
+                    drag: b.f64("drag")?.unwrap_or(0.0),
+                    physics: ball_physics_of(&b)?,
+                });
+            }
+            if let Some(p) = r.planes.first_mut() {
+                p.physics = ball_physics_of(&sec("balancer"))?;
+            }
+            r
+        }
+        SpatialInput::Dimensionless(_) => {
+            for t in ["couple", "balancer2"] {
+                if root.contains_key(t) {
+                    return Err(Error::invalid(t, "a second unbalance mass or balancer plane needs the dimensional tables ([rotor], [supports], ...)"));
+                }
+            }
+            SpatialRotor::from_dimensionless(&config.model)?
+        }
+    };
+    let sp = sec("spatial");
+    if let Some(g) = sp.array_f64("gravity")? {
+        if g.len() != 3 {
+            return Err(Error::invalid("spatial.gravity", format!("expected 3 numbers [g_x, g_y, g_z], got {}", g.len())));
+        }
+        rotor.gravity = [g[0], g[1], g[2]];
+    }
+    rotor.spin_drag = sp.f64("spin_drag")?.unwrap_or(0.0);
+    rotor.lock_tilt = sp.boolean("lock_tilt")?.unwrap_or(false);
+    rotor.validate()?;
+    let d = sec("drive");
+    if d.table.is_none() {
+        return Err(Error::invalid("drive", "missing: the spatial simulation needs [drive] (see examples/spatial.toml)"));
+    }
+    let (drive, t_end) = drive(&d)?;
+    let ig = integration(&sec("integration"), t_end)?;
+    if ig.max_steps.is_some() || ig.max_wall_s.is_some() {
+        let key = if ig.max_steps.is_some() { "max_steps" } else { "max_wall_s" };
+        return Err(Error::invalid(
+            format!("integration.{key}"),
+            "the spatial simulation takes no budget (Ctrl-C stops it, keeping what it wrote)",
+        ));
+    }
+    let settings = SpatialSettings { method: ig.method, t_end, dt: ig.dt, rtol: ig.rtol, atol: ig.atol };
+    settings.validate()?;
+    let mut initial = Initial::at_rest(&rotor);
+    let ini = sec("initial");
+    initial.position = pair(&ini, "position")?.unwrap_or(initial.position);
+    initial.velocity = pair(&ini, "velocity")?.unwrap_or(initial.velocity);
+    initial.tilt = pair(&ini, "tilt")?.unwrap_or(initial.tilt);
+    initial.tilt_rate = pair(&ini, "tilt_rate")?.unwrap_or(initial.tilt_rate);
+    if let Some(p) = d.array_f64("psi0")? {
+        initial.psi = p;
+    }
+    if let Some(p) = d.array_f64("psi_rate0")? {
+        initial.psi_rate = p;
+    }
+    initial_state(&Equations::new(&rotor, &drive), &initial)?;
+    Ok(SpatialSimulation { config, rotor, drive, initial, settings })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -562,6 +695,11 @@ mod tests {
         assert_eq!(p, PlanarProblem::default());
         let c = spatial(&parse(DEFAULT_SPATIAL, "default").unwrap()).unwrap();
         assert_eq!(c.model, SpatialModel::from_dimensionless(&DimensionlessInput::paper_000(0.8)).unwrap());
+        // the library's defaults of the spatial model in time describe examples/spatial.toml's run
+        let sim = spatial_simulation(&parse(include_str!("../../../examples/spatial.toml"), "spatial.toml").unwrap()).unwrap();
+        assert_eq!(sim.rotor, crate::spatial::dynamics::SpatialRotor::default());
+        assert_eq!(sim.settings, crate::spatial::dynamics::Settings::default());
+        assert_eq!(sim.drive, Drive::Speed { omega0: 1.6 });
     }
 
     #[test]

@@ -209,6 +209,51 @@ pub fn simulation(p: &PlanarProblem, s: &Summary, wall_time_s: f64) -> Value {
     })
 }
 
+/// `autobal simulate` on the spatial rotor (papers 000/003): the run's summary, with the rotor,
+/// drive, initial state and tolerances it ran with; lengths and speeds in SI for an SI config,
+/// in `ρ_s` and `ω0` for a dimensionless one (`units` says which).
+pub fn spatial_simulation(sim: &crate::config::SpatialSimulation, s: &crate::spatial::dynamics::Summary, wall_time_s: f64) -> Value {
+    json!({
+        "model": "spatial",
+        "units": if sim.config.dimensional { "SI" } else { "dimensionless (M_s = ω0 = ρ_s = 1)" },
+        "balanced": s.balanced,
+        "residual_unbalance": s.residual_unbalance,
+        "residual_couple": s.residual_couple,
+        "peak_amplitude": s.peak_amplitude,
+        "omega_at_peak": s.omega_at_peak,
+        "t_at_peak": s.t_at_peak,
+        "final_amplitude": s.final_amplitude,
+        "final_omega": s.final_omega,
+        "steps": s.steps,
+        "rejected_steps": s.rejected_steps,
+        "rhs_evaluations": s.rhs_evaluations,
+        "contacts": s.contacts,
+        "stick_slip_transitions": s.stick_slip_transitions,
+        "wall_time_s": wall_time_s,
+        "t_end": s.t_end,
+        "stopped": s.stopped,
+        "natural_frequency": sim.rotor.natural_frequency(),
+        "rotor": sim.rotor,
+        "drive": sim.drive,
+        "initial": sim.initial,
+        "integration": sim.settings,
+    })
+}
+
+/// `autobal basins`: how many of the runs over the first two balls' initial angles completed
+/// and ended balanced.
+pub fn basins(results: &[Option<crate::spatial::dynamics::Summary>], wall_time_s: f64) -> Value {
+    let done = results.iter().flatten().count();
+    let balanced = results.iter().flatten().filter(|s| s.balanced).count();
+    json!({
+        "runs": results.len(),
+        "completed": done,
+        "balanced": balanced,
+        "fraction_balanced": balanced as f64 / done.max(1) as f64,
+        "wall_time_s": wall_time_s,
+    })
+}
+
 /// One run of `autobal sweep` as its JSON lists it: the point's index and values (`x`, `y`:
 /// the first two), the summary and the wall time.
 pub fn sweep_run(point: usize, values: &[f64], r: &crate::sweep::PointResult) -> Value {

@@ -199,6 +199,33 @@ class SpatialModel(_Config):
             "raw": raw,
         }
 
+    def simulate(self, dt: Optional[float] = None) -> "Simulation":
+        """Run this rotor in time: the nonlinear spatial model (docs/spatial.md) with the
+        config's ``[drive]`` and ``[integration]`` (and ``[initial]``, ``[spatial]``,
+        ``[couple]``, ``[balancer2]`` where given), as ``autobal simulate`` does; ``dt``
+        overrides the output interval. Columns ``t, omega, x, y, tilt_x, tilt_y``,
+        ``amplitude_left``, ``amplitude_right`` (supports), ``amplitude_plane1`` … (balancer
+        planes), ``psi`` (samples × balls); the summary as ``autobal simulate --format json``
+        prints it. A run that stops before its end raises :class:`SimulationError`.
+
+        >>> s = SpatialModel(drive={"kind": "speed", "omega0": 1.6, "t_end": 200}).simulate(dt=1.0)
+        >>> s.summary["model"], s["psi"].shape, s.summary["units"]
+        ('spatial', (201, 2), 'dimensionless (M_s = ω0 = ρ_s = 1)')
+        """
+        columns, summary = _autobal.spatial_simulate(self.toml, None, "config", [], dt)
+        return _finished(Simulation(columns, json.loads(summary)))
+
+    def basins(self, n: int = 16) -> Dict[str, Any]:
+        """Where runs from an ``n × n`` grid of the first two balls' initial angles end (the
+        config's drive and integration; in parallel in Rust, Ctrl-C stops it), as ``autobal
+        basins`` computes them: ``runs``, ``completed``, ``balanced``, ``fraction_balanced``,
+        ``wall_time_s`` (its JSON) and per run the arrays ``psi_1``, ``psi_2`` (initial
+        angles), ``balanced``, ``residual_unbalance``, ``final_amplitude`` (its CSV)."""
+        arrays, summary = _autobal.spatial_basins(self.toml, None, "config", [], n)
+        out: Dict[str, Any] = json.loads(summary)
+        out.update(arrays)
+        return out
+
     def stability_map(
         self,
         x: Union[str, Tuple[str, Sequence[float]]],
@@ -228,9 +255,11 @@ class SpatialModel(_Config):
 
 
 class Simulation:
-    """A run of a :class:`PlanarProblem`: ``columns`` (``t``, ``omega``, ``x``, ``y``,
-    ``amplitude`` as 1-D arrays, ``psi`` as samples × balls) and ``summary`` (the dict
-    ``autobal simulate --format json`` prints)."""
+    """A run of a :class:`PlanarProblem` or of a :class:`SpatialModel` in time: ``columns``
+    (1-D arrays: ``t``, ``omega``, ``x``, ``y``, ``amplitude`` for the planar rotor; ``t``,
+    ``omega``, ``x``, ``y``, ``tilt_x``, ``tilt_y`` and the whirl radii for the spatial one;
+    ``psi`` as samples × balls) and ``summary`` (the dict ``autobal simulate --format json``
+    prints; ``summary["model"]`` says which)."""
 
     def __init__(self, columns: Dict[str, np.ndarray], summary: Dict[str, Any]) -> None:
         self.columns = columns
@@ -241,11 +270,15 @@ class Simulation:
 
     def __repr__(self) -> str:
         s = self.summary
-        return f"Simulation({len(self.columns['t'])} samples, peak {1e3 * s['peak_amplitude']:.4g} mm at ω = {s['omega_at_peak']:.4g} rad/s, balanced={s['balanced']})"
+        if s.get("units", "SI") == "SI":
+            peak = f"{1e3 * s['peak_amplitude']:.4g} mm at ω = {s['omega_at_peak']:.4g} rad/s"
+        else:
+            peak = f"{s['peak_amplitude']:.4g} ρ_s at Ω = {s['omega_at_peak']:.4g}"
+        return f"Simulation({s['model']}, {len(self.columns['t'])} samples, peak {peak}, balanced={s['balanced']})"
 
     def to_pandas(self) -> "Any":
-        """The samples as a pandas DataFrame, columns ``t, omega, x, y, amplitude, psi_1 …
-        psi_n`` as in the CLI's CSV (needs pandas)."""
+        """The samples as a pandas DataFrame with the columns of the CLI's CSV (``psi`` split
+        into ``psi_1 … psi_n``; needs pandas)."""
         import pandas as pd
 
         data = {k: v for k, v in self.columns.items() if k != "psi"}
@@ -291,12 +324,17 @@ class PlanarProblem(_Config):
         A run that stops before its end raises :class:`SimulationError` (``.result`` holds
         the :class:`Simulation` up to then)."""
         columns, summary = _autobal.simulate(self._cfg, dt)
-        sim = Simulation(columns, json.loads(summary))
-        if sim.summary.get("stopped"):
-            e = SimulationError(f"{sim.summary['stopped']}: the samples up to then are in .result")
-            e.result = sim
-            raise e
-        return sim
+        return _finished(Simulation(columns, json.loads(summary)))
+
+
+def _finished(sim: Simulation) -> Simulation:
+    """``sim``, or :class:`SimulationError` (``.result``: the samples up to then) when the run
+    stopped before its end."""
+    if sim.summary.get("stopped"):
+        e = SimulationError(f"{sim.summary['stopped']}: the samples up to then are in .result")
+        e.result = sim
+        raise e
+    return sim
 
 
 def run(command: str, config: ConfigLike = None, set: Optional[Mapping[str, Any]] = None, **options: Any) -> Dict[str, Any]:
@@ -308,7 +346,10 @@ def run(command: str, config: ConfigLike = None, set: Optional[Mapping[str, Any]
     - ``inertia``, ``critical``, ``ranges``;
     - ``stability`` (``omega_max``, ``samples``, ``balls``), ``campbell`` (``omega_max``,
       ``points``, ``balls``);
-    - ``simulate`` (``dt``): the summary (no files are written);
+    - ``simulate`` (``dt``): the summary (no files are written), of the planar rotor
+      (``[planar]``) or of the spatial rotor in time (the analytic config plus ``[drive]``);
+    - ``basins`` (``n``): the JSON of ``autobal basins`` (no CSV is written; the runs' arrays:
+      :meth:`SpatialModel.basins`);
     - ``sweep`` (``x``, ``y``, ``axis`` (a list), ``shard`` (``"K/N"``), ``threads``): the JSON
       of the sweep (no files are written);
     - ``map`` (``x``, ``y``, ``omega``, ``balls``, ``quantity``, ``threads``): the CLI writes
@@ -321,19 +362,18 @@ def run(command: str, config: ConfigLike = None, set: Optional[Mapping[str, Any]
     if command in ("inertia", "critical", "ranges", "stability", "campbell"):
         return SpatialModel(config, set=set)._report(command, **options)
     if command == "simulate":
+        dt = options.pop("dt", None)
+        _no_more(command, options)
         try:
             p = PlanarProblem(config, set=set)
         except InvalidParameter as e:
-            if e.field == "planar" and "missing" in str(e):
-                hint = InvalidParameter(
-                    f"{e}; a spatial rotor's simulation (examples/spatial.toml) is not in the Python package yet: "
-                    "run `autobal simulate --config FILE --format json`"
-                )
-                hint.field, hint.reason = e.field, e.reason
-                raise hint from None
-            raise
-        columns, summary = _autobal.simulate(p._cfg, options.pop("dt", None))
-        _no_more(command, options)
+            if not (e.field == "planar" and "missing" in str(e)):
+                raise
+            # the analytic commands' config: the spatial rotor in time
+            text, table, source = _read(config, _autobal.DEFAULT_SPATIAL, SpatialModel._DEFAULT_NAME)
+            _, summary = _autobal.spatial_simulate(text, table, source, list((set or {}).items()), dt)
+        else:
+            _, summary = _autobal.simulate(p._cfg, dt)
         out = json.loads(summary)
         if out.get("stopped"):
             e = SimulationError(out["stopped"])
@@ -360,13 +400,18 @@ def run(command: str, config: ConfigLike = None, set: Optional[Mapping[str, Any]
         threads = options.pop("threads", None)
         _no_more(command, options)
         return json.loads(_autobal.sweep_report(p._cfg, axes, kn, threads))
+    if command == "basins":
+        n = options.pop("n", 16)
+        _no_more(command, options)
+        text, table, source = _read(config, _autobal.DEFAULT_SPATIAL, SpatialModel._DEFAULT_NAME)
+        return json.loads(_autobal.spatial_basins(text, table, source, list((set or {}).items()), n)[1])
     if command == "map":
         if "x" not in options or "y" not in options:
             raise InvalidParameter("x: required, with y (e.g. x='dimensionless.z_a=-2:2:41', y='omega=0.05:4.5:41')")
         return SpatialModel(config, set=set).stability_map(options.pop("x"), options.pop("y"), **options)
     raise InvalidParameter(
-        f"command: \"{command}\" is not a command of autobal.run (inertia, critical, ranges, stability, campbell, simulate, sweep, map); "
-        "report and merge write files, basins and the spatial rotor's simulate are not in the Python package yet: use the CLI"
+        f"command: \"{command}\" is not a command of autobal.run (inertia, critical, ranges, stability, campbell, simulate, sweep, basins, map); "
+        "report and merge write files: use the CLI"
     )
 
 

@@ -37,6 +37,19 @@ pub fn angle_grid(base: &Initial, drive: &Drive, n1: usize, n2: usize) -> Vec<Ca
     out
 }
 
+/// Check a map over the first two balls' initial angles of `n × n` points before it runs: the
+/// rotor needs at least two balls, and `2 ≤ n ≤ 1000` (a million runs); `n_field` names `n` in
+/// the error as the front end spells it (`--n`, `n`).
+pub fn check_angle_grid(rotor: &SpatialRotor, n: usize, n_field: &str) -> Result<()> {
+    if rotor.balls() < 2 {
+        return Err(crate::Error::invalid("balancer.balls", "basins need at least two balls (the map is over the first two balls' initial angles)"));
+    }
+    if !(2..=1000).contains(&n) {
+        return Err(crate::Error::invalid(n_field, format!("must lie between 2 and 1000, got {n}")));
+    }
+    Ok(())
+}
+
 /// Run every case in parallel (rayon's pool). `progress(done)` is called after each run (from
 /// the worker threads); when `cancel` is set, the runs not yet started are skipped and the one
 /// running stops: their entries are `None`. Inputs are validated before any run starts.
