@@ -48,9 +48,22 @@ impl Default for PlanarRotor {
 }
 
 builder!(
-    /// Builder of a [`PlanarRotor`]; `build()` runs [`PlanarRotor::validate`].
+    /// Builder of a [`PlanarRotor`]; `build()` runs [`PlanarRotor::validate`], real balls
+    /// included (they must fit on the race).
+    ///
+    /// ```
+    /// use autobal::balls::BallPhysics;
+    /// use autobal::planar::PlanarRotor;
+    /// let touching = BallPhysics { contact: true, ..BallPhysics::default() };
+    /// let r = PlanarRotor::builder().balls(touching.clone()).build().unwrap();
+    /// assert!(r.balls.contact);
+    /// // 20 balls of 30 g (19.4 mm steel) do not fit on paper 004's 60 mm race
+    /// let e = PlanarRotor::builder().n(20).balls(touching).build().unwrap_err();
+    /// assert!(e.to_string().starts_with("planar.ball_diameter"), "{e}");
+    /// ```
     PlanarRotorBuilder for PlanarRotor, |r| r.validate();
     m1: f64, m2: f64, m3: f64, n: usize, s1: f64, s2: f64, gamma: f64, r: f64, k: f64, c: f64, c_psi: f64, c_theta: f64, i_g: f64,
+    balls: crate::balls::BallPhysics,
 );
 
 /// Paper 004's run: from rest at `b = 2.5 1/s²` (`examples/planar.toml`).
