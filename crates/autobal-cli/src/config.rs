@@ -33,9 +33,7 @@ pub struct Config {
 
 /// Apply one `key=value` override with a dotted key.
 pub fn apply_set(root: &mut Table, assignment: &str) -> Result<()> {
-    let (key, value) = assignment
-        .split_once('=')
-        .ok_or_else(|| anyhow!("--set {assignment}: expected key=value, e.g. --set dimensionless.l_left=1.2"))?;
+    let (key, value) = assignment.split_once('=').ok_or_else(|| anyhow!("--set {assignment}: expected key=value, e.g. --set dimensionless.l_left=1.2"))?;
     let key = key.trim();
     Ok(autobal::config::set(root, key, autobal::config::parse_value(value.trim()))?)
 }
@@ -143,7 +141,16 @@ mod tests {
     }
 
     /// The keys of the schema that hold text, not numbers.
-    const TEXT_KEYS: &[&str] = &["analysis.anisotropy", "drive.kind", "drive.schedule_of", "integration.method", "spatial.lock_tilt", "planar.contact", "balancer.contact", "balancer2.contact"];
+    const TEXT_KEYS: &[&str] = &[
+        "analysis.anisotropy",
+        "drive.kind",
+        "drive.schedule_of",
+        "integration.method",
+        "spatial.lock_tilt",
+        "planar.contact",
+        "balancer.contact",
+        "balancer2.contact",
+    ];
 
     fn schema_keys() -> Vec<String> {
         SCHEMA.iter().flat_map(|(t, ks)| ks.iter().map(move |k| format!("{t}.{k}"))).collect()
@@ -170,8 +177,28 @@ mod tests {
         let keys = schema_keys();
         let tables: Vec<&str> = SCHEMA.iter().map(|(t, _)| *t).collect();
         let hostile = [
-            "1e308", "-1e308", "nan", "inf", "-inf", "0", "-1", "1e-308", "-1e-308", "0.5", "1", "2", "3", "1000", "100000",
-            "9223372036854775807", "-9223372036854775808", "\"x\"", "true", "[1, 2]", "[[0, 1], [1, 1e308]]", "{a = 1}",
+            "1e308",
+            "-1e308",
+            "nan",
+            "inf",
+            "-inf",
+            "0",
+            "-1",
+            "1e-308",
+            "-1e-308",
+            "0.5",
+            "1",
+            "2",
+            "3",
+            "1000",
+            "100000",
+            "9223372036854775807",
+            "-9223372036854775808",
+            "\"x\"",
+            "true",
+            "[1, 2]",
+            "[[0, 1], [1, 1e308]]",
+            "{a = 1}",
         ];
         let mut errors = 0;
         for key in &keys {

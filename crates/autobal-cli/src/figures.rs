@@ -168,12 +168,8 @@ pub fn margin_plot(model: &SpatialModel, c: &Comparison) -> Plot {
     let k = u.factor;
     // with a dimensional rotor Re λ in 1/s (the eigenvalues are in units of ω0)
     let pts: Vec<(f64, f64)> = c.exact.max_real_part.iter().map(|&(w, a)| (k * w, k * a)).collect();
-    let mut shades: Vec<Shade> = c
-        .exact
-        .stable_ranges
-        .iter()
-        .map(|r| Shade { x: (k * r.lo, k * r.hi.unwrap_or(c.omega_max)), y: (None, Some(0.0)), color: "#009E73".into() })
-        .collect();
+    let mut shades: Vec<Shade> =
+        c.exact.stable_ranges.iter().map(|r| Shade { x: (k * r.lo, k * r.hi.unwrap_or(c.omega_max)), y: (None, Some(0.0)), color: "#009E73".into() }).collect();
     let nec: Vec<Shade> =
         c.necessary.iter().map(|r| Shade { x: (k * r.lo, k * r.hi.unwrap_or(c.omega_max)), y: (Some(0.0), None), color: "#56B4E9".into() }).collect();
     let lo = pts.iter().map(|p| p.1).fold(0.0, f64::min);

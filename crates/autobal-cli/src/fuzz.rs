@@ -95,13 +95,8 @@ fn key() -> impl Strategy<Value = (String, String)> {
 
 /// The three embedded or example configs, or nothing, as the tree the mutations start from.
 fn base() -> impl Strategy<Value = Table> {
-    prop::sample::select(vec![
-        config::DEFAULT_CONFIG,
-        include_str!("../../../examples/dimensional.toml"),
-        config::DEFAULT_PLANAR,
-        "",
-    ])
-    .prop_map(|t| t.parse::<Table>().expect("examples parse"))
+    prop::sample::select(vec![config::DEFAULT_CONFIG, include_str!("../../../examples/dimensional.toml"), config::DEFAULT_PLANAR, ""])
+        .prop_map(|t| t.parse::<Table>().expect("examples parse"))
 }
 
 /// A key with a value: mostly a number from [`value_for`] (a whole number for the counts), else
@@ -186,9 +181,22 @@ fn outcome(root: &Table) -> Result<(), String> {
 
 /// The SI fields in the order of [`autobal::spatial::params::SpatialRotorSi`].
 const SI_FIELDS: [&str; 16] = [
-    "rotor.mass", "rotor.equatorial_moment", "rotor.polar_moment", "rotor.z", "balancer.z", "supports.z_left", "supports.z_right",
-    "supports.stiffness_left", "supports.stiffness_right", "supports.damping_left", "supports.damping_right", "unbalance.mass",
-    "unbalance.radius", "balancer.ball_mass", "balancer.race_radius", "balancer.drag",
+    "rotor.mass",
+    "rotor.equatorial_moment",
+    "rotor.polar_moment",
+    "rotor.z",
+    "balancer.z",
+    "supports.z_left",
+    "supports.z_right",
+    "supports.stiffness_left",
+    "supports.stiffness_right",
+    "supports.damping_left",
+    "supports.damping_right",
+    "unbalance.mass",
+    "unbalance.radius",
+    "balancer.ball_mass",
+    "balancer.race_radius",
+    "balancer.drag",
 ];
 
 /// The SI example (examples/dimensional.toml) with every field scaled by up to `10^±s` (`s` from
@@ -213,8 +221,16 @@ fn near_the_example() -> impl Strategy<Value = Vec<f64>> {
 
 /// The dimensionless fields of [`autobal::spatial::params::DimensionlessInput`] and the masses.
 const DIMENSIONLESS_FIELDS: [&str; 10] = [
-    "dimensionless.c_sigma", "dimensionless.rho_s", "dimensionless.l_left", "dimensionless.z_a", "dimensionless.h_x",
-    "dimensionless.h_s", "dimensionless.delta_a", "dimensionless.m0", "dimensionless.r0", "dimensionless.m",
+    "dimensionless.c_sigma",
+    "dimensionless.rho_s",
+    "dimensionless.l_left",
+    "dimensionless.z_a",
+    "dimensionless.h_x",
+    "dimensionless.h_s",
+    "dimensionless.delta_a",
+    "dimensionless.m0",
+    "dimensionless.r0",
+    "dimensionless.m",
 ];
 
 proptest! {

@@ -51,7 +51,6 @@ pub fn campbell_grid(w: f64, points: usize) -> Vec<f64> {
     autobal::reports::campbell_speeds(w, points)
 }
 
-
 pub fn campbell_table(cfg: &Config, c: &Campbell) -> String {
     let mut s = String::new();
     let _ = writeln!(s, "config: {}", cfg.source);
@@ -100,7 +99,11 @@ pub fn run_campbell(cfg: &Config, w: f64, points: usize, balls: Balls, json: boo
     let table_at = [0, n / 4, n / 2, 3 * n / 4, n - 1];
     let mut plot = Campbell { omega: vec![], lines: vec![] };
     let mut table = Campbell { omega: vec![], lines: vec![] };
-    let dir = std::env::temp_dir().join(format!("autobal-campbell-{}-{}", std::process::id(), std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_nanos())));
+    let dir = std::env::temp_dir().join(format!(
+        "autobal-campbell-{}-{}",
+        std::process::id(),
+        std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_nanos())
+    ));
     let mut files: Vec<std::io::BufWriter<std::fs::File>> = vec![];
     if json {
         std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
@@ -188,7 +191,10 @@ pub fn run_campbell(cfg: &Config, w: f64, points: usize, balls: Balls, json: boo
         }
         out.flush()?;
         if !stats.complete {
-            anyhow::bail!("interrupted: {done} of {n} speeds computed (up to Ω = {}); what was computed is written", crate::num::fmt(speed(done.saturating_sub(1)), 4));
+            anyhow::bail!(
+                "interrupted: {done} of {n} speeds computed (up to Ω = {}); what was computed is written",
+                crate::num::fmt(speed(done.saturating_sub(1)), 4)
+            );
         }
         Ok(())
     };

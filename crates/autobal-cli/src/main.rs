@@ -7,15 +7,15 @@ mod figures;
 mod fuzz;
 mod linear;
 mod map;
-mod output;
-mod parquet;
 mod mapfig;
 mod num;
+mod output;
+mod parquet;
 mod plot;
-mod sim;
-mod sweep;
-mod spatial_sim;
 mod report;
+mod sim;
+mod spatial_sim;
+mod sweep;
 
 use anyhow::{Context, Result};
 use clap::{Args, Parser, Subcommand, ValueEnum};
@@ -273,7 +273,17 @@ fn run(cli: Cli) -> Result<()> {
 }
 
 #[allow(clippy::too_many_arguments)]
-fn run_map(common: Common, x: String, y: String, omega: Option<f64>, balls: BallsArg, quantity: QuantityArg, out: PathBuf, threads: Option<usize>, boundary: bool) -> Result<()> {
+fn run_map(
+    common: Common,
+    x: String,
+    y: String,
+    omega: Option<f64>,
+    balls: BallsArg,
+    quantity: QuantityArg,
+    out: PathBuf,
+    threads: Option<usize>,
+    boundary: bool,
+) -> Result<()> {
     let (mut root, source) = config::read(common.config.as_deref())?;
     for s in &common.set {
         config::apply_set(&mut root, s)?;
@@ -331,7 +341,11 @@ fn run_map(common: Common, x: String, y: String, omega: Option<f64>, balls: Ball
             // nothing of the map was computed: no empty CSV left behind
             drop(w);
             let _ = std::fs::remove_file(&csv_path);
-            anyhow::bail!("interrupted while tracing the boundary: the {} curves traced are kept in {}; the map was not computed", b.curves.len(), path.display());
+            anyhow::bail!(
+                "interrupted while tracing the boundary: the {} curves traced are kept in {}; the map was not computed",
+                b.curves.len(),
+                path.display()
+            );
         }
         Some(b)
     } else {
@@ -397,7 +411,12 @@ fn run_simulate(config: Option<PathBuf>, set: Vec<String>, dt: Option<f64>, out:
     let stem = out.with_extension("");
     let plots = sim::write_plots(&cfg, &env, &stem, "Passage")?;
     emit(format, sim::summary_json(&cfg, &summary, wall), sim::summary_table(&cfg, &summary, wall))?;
-    output::note(&format!("wrote {} and {} plots ({})", out.display(), plots.len(), plots.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")));
+    output::note(&format!(
+        "wrote {} and {} plots ({})",
+        out.display(),
+        plots.len(),
+        plots.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")
+    ));
     for w in &summary.warnings {
         output::note(&format!("warning: {w}"));
     }
@@ -451,7 +470,11 @@ fn run_basins(config: Option<PathBuf>, set: Vec<String>, n: usize, out: PathBuf,
     let v = spatial_sim::run_basins(&sim, n, &out, progress, &sim::INTERRUPTED)?;
     let table = format!(
         "{} of {} runs balanced ({:.1} %), {:.2} s; wrote {}\n",
-        v["balanced"], v["runs"], 100.0 * v["fraction_balanced"].as_f64().unwrap_or(0.0), v["wall_time_s"].as_f64().unwrap_or(0.0), out.display()
+        v["balanced"],
+        v["runs"],
+        100.0 * v["fraction_balanced"].as_f64().unwrap_or(0.0),
+        v["wall_time_s"].as_f64().unwrap_or(0.0),
+        out.display()
     );
     emit(format, v, table)
 }

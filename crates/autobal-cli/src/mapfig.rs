@@ -146,13 +146,7 @@ pub fn plot(r: &MapResult, title: &str) -> Plot {
         ],
         x_range: Some((r.x.lo - dx / 2.0, r.x.hi + dx / 2.0)),
         y_range: Some((r.y.lo - dy / 2.0, r.y.hi + dy / 2.0)),
-        heatmap: Some(Heatmap {
-            x: (0..r.x.n).map(|i| r.x.value(i)).collect(),
-            y: (0..r.y.n).map(|j| r.y.value(j)).collect(),
-            z,
-            scale,
-            label,
-        }),
+        heatmap: Some(Heatmap { x: (0..r.x.n).map(|i| r.x.value(i)).collect(), y: (0..r.y.n).map(|j| r.y.value(j)).collect(), z, scale, label }),
         ..Default::default()
     }
 }

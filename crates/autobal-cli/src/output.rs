@@ -57,14 +57,7 @@ fn header(cfg: &Config, s: &mut String) {
         );
     }
     let a = &m.anisotropy;
-    let _ = writeln!(
-        s,
-        "anisotropy ΔĀ: used {:.6} ({:?}); exact tensor {}; paper eq (17) {}",
-        a.used,
-        a.method,
-        fmt_pair(a.exact),
-        fmt_pair(a.paper_interval)
-    );
+    let _ = writeln!(s, "anisotropy ΔĀ: used {:.6} ({:?}); exact tensor {}; paper eq (17) {}", a.used, a.method, fmt_pair(a.exact), fmt_pair(a.paper_interval));
     for w in &a.warnings {
         let _ = writeln!(s, "warning: {w}");
     }
@@ -113,13 +106,7 @@ pub fn critical_rows(cs: &CriticalSpeeds, dimensional: bool) -> Vec<[String; 8]>
                 if dimensional {
                     format!("{:.2} rad/s = {:.1} rpm", k.omega_rad_s.unwrap_or(f64::NAN), k.rpm.unwrap_or(f64::NAN))
                 } else {
-                    k.interval.map_or("—".into(), |iv| {
-                        if (iv[1] - iv[0]).abs() < 1e-12 {
-                            "—".into()
-                        } else {
-                            format!("[{:.4}, {:.4}]", iv[0], iv[1])
-                        }
-                    })
+                    k.interval.map_or("—".into(), |iv| if (iv[1] - iv[0]).abs() < 1e-12 { "—".into() } else { format!("[{:.4}, {:.4}]", iv[0], iv[1]) })
                 },
             ]
         })
@@ -131,19 +118,12 @@ pub fn critical_table(cfg: &Config) -> String {
     header(cfg, &mut s);
     let cs = critical_speeds(&cfg.model);
     let last = if cfg.dimensional { "SI" } else { "over ΔĀ interval" };
-    let _ = writeln!(
-        s,
-        "\ncritical speeds (exact roots of eq (16)); approximations (18) symmetric, (19) near-symmetric, (20) small ΔĀ"
-    );
+    let _ = writeln!(s, "\ncritical speeds (exact roots of eq (16)); approximations (18) symmetric, (19) near-symmetric, (20) small ΔĀ");
     let _ = writeln!(s, "  {:<6} {:>10}  {:<10} {:>2}  {:>7} {:>7} {:>7}  {}", "", "Ω", "kind", "br", "(18)", "(19)", "(20)", last);
     for r in critical_rows(&cs, cfg.dimensional) {
         let _ = writeln!(s, "  {:<6} {:>10}  {:<10} {:>2}  {:>7} {:>7} {:>7}  {}", r[0], r[1], r[2], r[3], r[4], r[5], r[6], r[7]);
     }
-    let _ = writeln!(
-        s,
-        "  {} distinct; rotor class (Table 1): {:?}, which Table 1 says has {}",
-        cs.distinct_count, cs.rotor_class, cs.table1_count
-    );
+    let _ = writeln!(s, "  {} distinct; rotor class (Table 1): {:?}, which Table 1 says has {}", cs.distinct_count, cs.rotor_class, cs.table1_count);
     let se = sensitivity(&cfg.model, cfg.analysis.sensitivity_limit);
     let _ = writeln!(s, "\nsensitivity criterion (000 eqs (21)-(22), 003 eqs (4)-(5))");
     let _ = writeln!(
@@ -154,7 +134,8 @@ pub fn critical_table(cfg: &Config) -> String {
         opt(se.delta_approx[0], 4),
         opt(se.delta_approx[1], 4)
     );
-    let _ = writeln!(s, "  [ΔĀ0] = {:.4} for [δΩ_Kα] = {}{}", se.delta_a_limit, se.limit, se.m0_limit.map_or(String::new(), |m| format!(", i.e. [m̄0] = {m:.4}")));
+    let _ =
+        writeln!(s, "  [ΔĀ0] = {:.4} for [δΩ_Kα] = {}{}", se.delta_a_limit, se.limit, se.m0_limit.map_or(String::new(), |m| format!(", i.e. [m̄0] = {m:.4}")));
     let _ = writeln!(s, "  verdict: {}", se.reason);
     s.push_str(&ranges_block(cfg, &autobalancing_ranges(&cfg.model)));
     s

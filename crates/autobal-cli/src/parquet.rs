@@ -43,9 +43,7 @@ impl Table {
             })
             .collect::<parquet::errors::Result<Vec<_>>>()?;
         let schema = Arc::new(Type::group_type_builder("autobal").with_fields(fields).build()?);
-        let props = parquet::file::properties::WriterProperties::builder()
-            .set_created_by(format!("autobal {}", env!("CARGO_PKG_VERSION")))
-            .build();
+        let props = parquet::file::properties::WriterProperties::builder().set_created_by(format!("autobal {}", env!("CARGO_PKG_VERSION"))).build();
         let file = std::fs::File::create(path).with_context(|| format!("--parquet: cannot create {}", path.display()))?;
         let writer = parquet::file::writer::SerializedFileWriter::new(file, schema, Arc::new(props))?;
         Ok(Table { path: path.to_path_buf(), writer, int_first, columns: vec![vec![]; names.len()] })

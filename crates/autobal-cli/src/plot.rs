@@ -347,7 +347,13 @@ impl Plot {
 <defs><clipPath id="plotarea"><rect x="{ml}" y="{mt}" width="{PW}" height="{PH}"/></clipPath></defs>"#
         );
         for (k, line) in title_lines.iter().enumerate() {
-            let _ = writeln!(s, r#"<text x="{}" y="{}" text-anchor="middle" font-size="15" font-weight="bold">{}</text>"#, w / 2.0, 22.0 + 18.0 * k as f64, esc(line));
+            let _ = writeln!(
+                s,
+                r#"<text x="{}" y="{}" text-anchor="middle" font-size="15" font-weight="bold">{}</text>"#,
+                w / 2.0,
+                22.0 + 18.0 * k as f64,
+                esc(line)
+            );
         }
         if let Some(png) = self.heatmap.as_ref().and_then(Self::heat_png) {
             let h = self.heatmap.as_ref().expect("heatmap present");
@@ -552,36 +558,34 @@ impl Plot {
         let ((x0, x1), (y0, y1)) = self.ranges();
         let mut data = vec![];
         if let Some(h) = &self.heatmap {
-            let t: Vec<Vec<Option<f64>>> = h
-                .z
-                .iter()
-                .map(|row| {
-                    row.iter()
-                        .map(|&v| {
-                            if !v.is_finite() {
-                                return None;
-                            }
-                            round_sig(
-                                match h.scale {
-                                    ColorScale::Verdict => v.signum() * 0.5,
-                                    ColorScale::Diverging { neg, pos } => diverging_t(v, neg, pos),
-                                },
-                                4,
-                            )
-                        })
-                        .collect()
-                })
-                .collect();
+            let t: Vec<Vec<Option<f64>>> =
+                h.z.iter()
+                    .map(|row| {
+                        row.iter()
+                            .map(|&v| {
+                                if !v.is_finite() {
+                                    return None;
+                                }
+                                round_sig(
+                                    match h.scale {
+                                        ColorScale::Verdict => v.signum() * 0.5,
+                                        ColorScale::Diverging { neg, pos } => diverging_t(v, neg, pos),
+                                    },
+                                    4,
+                                )
+                            })
+                            .collect()
+                    })
+                    .collect();
             let raw: Vec<Vec<Option<f64>>> = h.z.iter().map(|row| row.iter().map(|&v| round_sig(v, 4)).collect()).collect();
             let rgb = |v: f64| {
                 let c = heat_color(v, h.scale);
                 format!("rgb({},{},{})", c[0], c[1], c[2])
             };
             let (colorscale, hover) = match h.scale {
-                ColorScale::Verdict => (
-                    json!([[0.0, rgb(-1.0)], [0.5, rgb(-1.0)], [0.5, rgb(1.0)], [1.0, rgb(1.0)]]),
-                    format!("{}: %{{customdata:.0f}}", pesc(&h.label)),
-                ),
+                ColorScale::Verdict => {
+                    (json!([[0.0, rgb(-1.0)], [0.5, rgb(-1.0)], [0.5, rgb(1.0)], [1.0, rgb(1.0)]]), format!("{}: %{{customdata:.0f}}", pesc(&h.label)))
+                }
                 ColorScale::Diverging { neg, pos } => {
                     let stops: Vec<Value> = (0..=20)
                         .map(|k| {
@@ -799,10 +803,7 @@ mod tests {
     #[test]
     fn grouped_branches_have_one_legend_entry() {
         let p = Plot {
-            series: vec![
-                Series::new("branch", vec![(0.0, 1.0)], "#000").group("g"),
-                Series::new("", vec![(0.0, 2.0)], "#000").group("g"),
-            ],
+            series: vec![Series::new("branch", vec![(0.0, 1.0)], "#000").group("g"), Series::new("", vec![(0.0, 2.0)], "#000").group("g")],
             ..Default::default()
         };
         let js = p.to_plotly();

@@ -59,7 +59,12 @@ pub fn sample_columns(n: usize) -> Vec<String> {
 
 /// Run one simulation, writing every sample to `csv` (flushed as it goes) and to `parquet` if
 /// given, and keeping an envelope for the plots. Returns the summary, the envelope and the wall time.
-pub fn run_to_csv(cfg: &PlanarConfig, csv: &mut dyn Write, mut parquet: Option<&mut crate::parquet::Table>, progress: bool) -> Result<(Summary, Envelope, f64)> {
+pub fn run_to_csv(
+    cfg: &PlanarConfig,
+    csv: &mut dyn Write,
+    mut parquet: Option<&mut crate::parquet::Table>,
+    progress: bool,
+) -> Result<(Summary, Envelope, f64)> {
     writeln!(csv, "{}", sample_columns(cfg.rotor.n).join(","))?;
     let mut row = vec![];
     let expected = (cfg.settings.t_end / cfg.settings.dt) as usize + 1;
@@ -136,7 +141,13 @@ pub fn summary_table(cfg: &PlanarConfig, s: &Summary, wall: f64) -> String {
         if capacity_ratio(&cfg.rotor) > 1.0 { "the balls can balance at high speed" } else { "too little ball mass to balance" }
     );
     let _ = writeln!(o, "peak whirl radius of C: {:.4} mm at ω = {:.2} rad/s (t = {:.3} s)", 1e3 * s.peak_amplitude, s.omega_at_peak, s.t_at_peak);
-    let _ = writeln!(o, "final: radius {:.4} mm at ω = {:.2} rad/s; {}", 1e3 * s.final_amplitude, s.final_omega, if s.balanced { "semi-balanced (radius = s2)" } else { "not balanced" });
+    let _ = writeln!(
+        o,
+        "final: radius {:.4} mm at ω = {:.2} rad/s; {}",
+        1e3 * s.final_amplitude,
+        s.final_omega,
+        if s.balanced { "semi-balanced (radius = s2)" } else { "not balanced" }
+    );
     let _ = writeln!(
         o,
         "integration ({}): {} steps ({} implicit, {} switches, {} rejected), {} right-hand sides, {:.3} s",
@@ -185,7 +196,10 @@ pub fn plots(cfg: &PlanarConfig, env: &Envelope, title: &str) -> Vec<(String, Pl
     let mut s1 = vec![Series::new("transient", k.iter().map(|s| (s.omega, mm * s.amplitude)).collect(), PALETTE[0])];
     s1.push(Series::new("stationary (balls held)", ws.iter().map(|&w| (w, mm * locked_amplitude(p, w, &cfg.settings.psi0))).collect(), PALETTE[6]).dashed());
     if p.n >= 2 {
-        s1.push(Series::new("semi-balanced (= s2)", ws.iter().map(|&w| (w, if semi_balanced_exists(p, w) { mm * p.s2 } else { f64::NAN })).collect(), PALETTE[2]).dashed());
+        s1.push(
+            Series::new("semi-balanced (= s2)", ws.iter().map(|&w| (w, if semi_balanced_exists(p, w) { mm * p.s2 } else { f64::NAN })).collect(), PALETTE[2])
+                .dashed(),
+        );
     }
     if p.n >= 1 {
         let q = p.n as i32;
@@ -230,9 +244,8 @@ pub fn plots(cfg: &PlanarConfig, env: &Envelope, title: &str) -> Vec<(String, Pl
     // at most PSI_CURVES balls drawn (a figure of 1e5 curves is tens of MB and unreadable);
     // the CSV has every ball
     let drawn = p.n.min(PSI_CURVES);
-    let psi: Vec<Series> = (0..drawn)
-        .map(|j| Series::new(format!("ψ{}", j + 1), wrapped_degrees(k.iter().map(|s| (s.t, s.psi[j]))), PALETTE[(j + 1) % 7]))
-        .collect();
+    let psi: Vec<Series> =
+        (0..drawn).map(|j| Series::new(format!("ψ{}", j + 1), wrapped_degrees(k.iter().map(|s| (s.t, s.psi[j]))), PALETTE[(j + 1) % 7])).collect();
     let psi_title = if drawn < p.n { format!("{title}: ball angles (balls 1-{drawn} of {})", p.n) } else { format!("{title}: ball angles") };
     out.push(("psi_t".into(), Plot { title: psi_title, x_label: "t (s)".into(), y_label: "ψ (degrees from CG)".into(), series: psi, ..Default::default() }));
     out.push((

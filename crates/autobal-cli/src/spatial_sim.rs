@@ -156,9 +156,15 @@ pub fn summary_table(sim: &SpatialSim, s: &Summary, wall: f64) -> String {
     let mut o = String::new();
     let _ = writeln!(o, "config: {} (spatial rotor, {} balls in {} plane(s))", sim.source, sim.rotor.balls(), sim.rotor.planes.len());
     let _ = writeln!(o, "peak whirl radius at the balancer plane: {:.6} {lu} at speed {:.4} (t = {:.4})", ls * s.peak_amplitude, s.omega_at_peak, s.t_at_peak);
-    let _ = writeln!(o, "final: radius {:.6} {lu} at speed {:.4}; residual unbalance {:.3e} of the unbalance{}; {}", ls * s.final_amplitude, s.final_omega, s.residual_unbalance,
+    let _ = writeln!(
+        o,
+        "final: radius {:.6} {lu} at speed {:.4}; residual unbalance {:.3e} of the unbalance{}; {}",
+        ls * s.final_amplitude,
+        s.final_omega,
+        s.residual_unbalance,
         s.residual_couple.map_or(String::new(), |c| format!(", couple {c:.3e}")),
-        if s.balanced { "balanced" } else { "not balanced" });
+        if s.balanced { "balanced" } else { "not balanced" }
+    );
     let _ = writeln!(o, "integration: {} steps ({} rejected), {} right-hand sides, {:.3} s", s.steps, s.rejected_steps, s.rhs_evaluations, wall);
     if sim.rotor.planes.iter().any(|p| p.physics.is_active()) {
         let _ = writeln!(o, "real balls: {} contacts, {} stick-slip transitions", s.contacts, s.stick_slip_transitions);
@@ -203,14 +209,32 @@ pub fn plots(sim: &SpatialSim, kept: &[Sample], title: &str) -> Vec<(String, Plo
     for (i, name) in ["left support", "right support"].iter().enumerate().take(sim.rotor.supports.len()) {
         amp.push(Series::new(*name, kept.iter().map(|s| (s.t, ls * s.amplitude_supports[i])).collect(), PALETTE[i + 1]));
     }
-    out.push(("amplitude_t".into(), Plot { title: format!("{title}: whirl radii"), x_label: tl.into(), y_label: format!("radius ({lu})"), series: amp, ..Default::default() }));
+    out.push((
+        "amplitude_t".into(),
+        Plot { title: format!("{title}: whirl radii"), x_label: tl.into(), y_label: format!("radius ({lu})"), series: amp, ..Default::default() },
+    ));
     let psi: Vec<Series> = (0..sim.rotor.balls())
         .map(|j| Series::new(format!("ψ{}", j + 1), crate::sim::wrapped_degrees(kept.iter().map(|s| (s.t, s.psi[j]))), PALETTE[(j + 1) % 7]))
         .collect();
-    out.push(("psi_t".into(), Plot { title: format!("{title}: ball angles"), x_label: tl.into(), y_label: "ψ (degrees from the unbalance)".into(), series: psi, ..Default::default() }));
+    out.push((
+        "psi_t".into(),
+        Plot {
+            title: format!("{title}: ball angles"),
+            x_label: tl.into(),
+            y_label: "ψ (degrees from the unbalance)".into(),
+            series: psi,
+            ..Default::default()
+        },
+    ));
     out.push((
         "omega_t".into(),
-        Plot { title: format!("{title}: speed"), x_label: tl.into(), y_label: wl.into(), series: vec![Series::new("speed", kept.iter().map(|s| (s.t, s.omega)).collect(), PALETTE[0])], ..Default::default() },
+        Plot {
+            title: format!("{title}: speed"),
+            x_label: tl.into(),
+            y_label: wl.into(),
+            series: vec![Series::new("speed", kept.iter().map(|s| (s.t, s.omega)).collect(), PALETTE[0])],
+            ..Default::default()
+        },
     ));
     out
 }
@@ -233,11 +257,17 @@ pub fn run_basins(sim: &SpatialSim, n: usize, out: &Path, progress: bool, interr
     let cases = angle_grid(&sim.initial, &sim.drive, n, n);
     let bar = progress.then(|| indicatif::ProgressBar::new(cases.len() as u64));
     let t0 = std::time::Instant::now();
-    let res = basins(&sim.rotor, &cases, &sim.settings, |_| {
-        if let Some(b) = &bar {
-            b.inc(1);
-        }
-    }, interrupted)?;
+    let res = basins(
+        &sim.rotor,
+        &cases,
+        &sim.settings,
+        |_| {
+            if let Some(b) = &bar {
+                b.inc(1);
+            }
+        },
+        interrupted,
+    )?;
     if let Some(b) = bar {
         b.finish_and_clear();
     }

@@ -159,7 +159,15 @@ fn report_writes_index_and_figures() {
     assert!(!index.contains("0.014492753623188406"));
     // the figures of both papers, including those once missing, and real balls' residual against
     // friction (the browser test draws every one of them)
-    for id in ["fig000_3_spectrum", "fig000_9a_sensitivity_vs_anisotropy", "fig000_9b_sensitivity_vs_ball_mass", "fig003_3_signed_response", "campbell_fixed", "stability_map_z_a", "balls_residual_vs_friction"] {
+    for id in [
+        "fig000_3_spectrum",
+        "fig000_9a_sensitivity_vs_anisotropy",
+        "fig000_9b_sensitivity_vs_ball_mass",
+        "fig003_3_signed_response",
+        "campbell_fixed",
+        "stability_map_z_a",
+        "balls_residual_vs_friction",
+    ] {
         assert!(files.iter().any(|f| f == &format!("{id}.svg")), "{id}");
     }
     // 003's figures use 003's own ΔĀ0 = 0.1: its printed Ω_K4 = 3.80 and Ω_a = 2.24 appear
@@ -175,7 +183,8 @@ fn browser() -> Option<(String, String)> {
     let chromium = std::env::var("AUTOBAL_CHROMIUM").unwrap_or_else(|_| "/usr/bin/chromium".into());
     let node_ok = Command::new("node").arg("--version").output().is_ok_and(|o| o.status.success());
     let missing: Vec<String> = [
-        (!std::path::Path::new(&chromium).exists()).then(|| format!("Chromium at {chromium} (Debian/Ubuntu: sudo apt-get install chromium; or set AUTOBAL_CHROMIUM)")),
+        (!std::path::Path::new(&chromium).exists())
+            .then(|| format!("Chromium at {chromium} (Debian/Ubuntu: sudo apt-get install chromium; or set AUTOBAL_CHROMIUM)")),
         (!node_ok).then(|| "Node.js (Debian/Ubuntu: sudo apt-get install nodejs npm)".to_string()),
         (!std::path::Path::new(&format!("{dir}/node_modules/playwright-core")).exists())
             .then(|| format!("the npm packages of {dir} (cd there and run: npm ci; playwright-core never downloads a browser)")),
@@ -224,7 +233,8 @@ fn dimensional_report_is_in_si_and_renders() {
     for k in c["critical_speeds"].as_array().unwrap() {
         // grouped by thousands with a narrow no-break space, as the report prints them
         let digits = format!("{:.0}", k["rpm"].as_f64().unwrap());
-        let grouped: String = digits.chars().enumerate().flat_map(|(i, ch)| ((i > 0 && (digits.len() - i) % 3 == 0).then_some('\u{202F}')).into_iter().chain([ch])).collect();
+        let grouped: String =
+            digits.chars().enumerate().flat_map(|(i, ch)| ((i > 0 && (digits.len() - i) % 3 == 0).then_some('\u{202F}')).into_iter().chain([ch])).collect();
         let rpm = format!("<td>{grouped}</td>");
         assert!(index.contains(&rpm), "{rpm} in the critical speeds' table");
     }
@@ -266,19 +276,21 @@ fn stability_json_has_ranges_and_margin() {
     // locked balls and no damping: stable everywhere except between split critical speeds,
     // whose ends are the analytic critical speeds
     let v = json(&[
-        "stability", "--format", "json", "--balls", "locked", "--omega-max", "4.5",
-        "--set", "analysis.anisotropy=paper", "--set", "dimensionless.h_x=0",
+        "stability",
+        "--format",
+        "json",
+        "--balls",
+        "locked",
+        "--omega-max",
+        "4.5",
+        "--set",
+        "analysis.anisotropy=paper",
+        "--set",
+        "dimensionless.h_x=0",
     ]);
     let c = json(&["critical", "--format", "json", "--set", "analysis.anisotropy=paper"]);
     let ks: Vec<f64> = c["critical_speeds"].as_array().unwrap().iter().map(|k| k["omega"].as_f64().unwrap()).collect();
-    let ends: Vec<f64> = v["stable_ranges"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .flat_map(|r| [r[0].as_f64(), r[1].as_f64()])
-        .flatten()
-        .filter(|x| *x > 0.0)
-        .collect();
+    let ends: Vec<f64> = v["stable_ranges"].as_array().unwrap().iter().flat_map(|r| [r[0].as_f64(), r[1].as_f64()]).flatten().filter(|x| *x > 0.0).collect();
     for k in ks {
         assert!(ends.iter().any(|e| (e - k).abs() < 1e-6), "{k} not among {ends:?}");
     }
@@ -332,12 +344,8 @@ fn interrupted_map_keeps_the_rows_written() {
 /// Run `autobal args`, send SIGINT after `ms` milliseconds, and return exit code, stdout, stderr.
 #[cfg(unix)]
 fn interrupted_after(args: &[&str], ms: u64) -> (Option<i32>, String, String) {
-    let child = Command::new(env!("CARGO_BIN_EXE_autobal"))
-        .args(args)
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
+    let child =
+        Command::new(env!("CARGO_BIN_EXE_autobal")).args(args).stdout(std::process::Stdio::piped()).stderr(std::process::Stdio::piped()).spawn().unwrap();
     std::thread::sleep(std::time::Duration::from_millis(ms));
     let _ = Command::new("kill").args(["-INT", &child.id().to_string()]).status();
     let out = child.wait_with_output().unwrap();
@@ -445,10 +453,7 @@ fn simulate_writes_csv_summary_and_plots() {
     let dir = std::env::temp_dir().join(format!("autobal-sim-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let out = dir.join("run.csv");
-    let v = json(&[
-        "simulate", "--format", "json", "--out", out.to_str().unwrap(),
-        "--set", "drive.omega0=200", "--set", "drive.t_end=10", "--dt", "0.01",
-    ]);
+    let v = json(&["simulate", "--format", "json", "--out", out.to_str().unwrap(), "--set", "drive.omega0=200", "--set", "drive.t_end=10", "--dt", "0.01"]);
     for k in ["peak_amplitude", "omega_at_peak", "final_amplitude", "balanced", "steps", "rhs_evaluations"] {
         assert!(!v[k].is_null(), "{k}");
     }
@@ -465,7 +470,8 @@ fn simulate_writes_csv_summary_and_plots() {
         assert!(dir.join(format!("run_{s}.svg")).exists(), "{s}");
     }
     // errors name the field
-    for (set, field) in [("planar.m1=-1", "planar.m1"), ("drive.kind=warp", "drive.kind"), ("drive.psi0=[1.0]", "drive.psi0"), ("planar.nope=1", "planar.nope")] {
+    for (set, field) in [("planar.m1=-1", "planar.m1"), ("drive.kind=warp", "drive.kind"), ("drive.psi0=[1.0]", "drive.psi0"), ("planar.nope=1", "planar.nope")]
+    {
         let (code, _, err) = autobal(&["simulate", "--out", out.to_str().unwrap(), "--set", set]);
         assert_ne!(code, 0);
         assert!(err.contains(field), "{err}");
@@ -474,8 +480,17 @@ fn simulate_writes_csv_summary_and_plots() {
     // a sweep over two fields
     let stem = dir.join("sw");
     let v = json(&[
-        "sweep", "--format", "json", "--out", stem.to_str().unwrap(),
-        "--x", "drive.b=20:40:2", "--y", "planar.c_psi=0.05:0.1:2", "--set", "drive.t_end=20",
+        "sweep",
+        "--format",
+        "json",
+        "--out",
+        stem.to_str().unwrap(),
+        "--x",
+        "drive.b=20:40:2",
+        "--y",
+        "planar.c_psi=0.05:0.1:2",
+        "--set",
+        "drive.t_end=20",
     ]);
     assert_eq!(v["runs"].as_array().unwrap().len(), 4);
     assert!(dir.join("sw.csv").exists());

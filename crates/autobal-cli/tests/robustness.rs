@@ -11,13 +11,8 @@ use std::time::{Duration, Instant};
 fn run_for(limit: Duration, args: &[&str]) -> (i32, String, String) {
     let dir = std::env::temp_dir().join(format!("autobal-robustness-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let mut child = Command::new(env!("CARGO_BIN_EXE_autobal"))
-        .args(args)
-        .current_dir(&dir)
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("binary runs");
+    let mut child =
+        Command::new(env!("CARGO_BIN_EXE_autobal")).args(args).current_dir(&dir).stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().expect("binary runs");
     let (mut out, mut err) = (child.stdout.take().unwrap(), child.stderr.take().unwrap());
     let reader = std::thread::spawn(move || {
         let mut s = String::new();
@@ -156,7 +151,10 @@ fn regression_a_thousand_balls_hung_critical() {
     rejects(&["critical", "--set", "dimensionless.n=10000"], "dimensionless.n");
     // at the limit every analytic command finishes (n = 30 took 4.5 s, n = 100 80 s before)
     for cmd in ["critical", "stability", "campbell", "inertia"] {
-        let (code, _, err) = run_for(Duration::from_secs(60), &[cmd, "--config", &examples("dimensional.toml"), "--set", "balancer.balls=100", "--set", "balancer.ball_mass=0.001"]);
+        let (code, _, err) = run_for(
+            Duration::from_secs(60),
+            &[cmd, "--config", &examples("dimensional.toml"), "--set", "balancer.balls=100", "--set", "balancer.ball_mass=0.001"],
+        );
         assert_eq!(code, 0, "{cmd}: {err}");
     }
 }
@@ -220,10 +218,8 @@ fn regression_boundary_stepped_off_the_plane_and_failed() {
     // `map --boundary` over h_s from 0.001: the tracer's corrector stepped to h_s = -0.0105 just
     // beyond the plane's end, the model refused it, and the whole command failed naming a value
     // the user never gave; a curve now ends where the model refuses its parameter
-    let (code, _, err) = run_for(
-        Duration::from_secs(60),
-        &["map", "--x", "dimensionless.h_s=0.001:2:3", "--y", "omega=0.05:10:3", "--boundary", "--out", "hs"],
-    );
+    let (code, _, err) =
+        run_for(Duration::from_secs(60), &["map", "--x", "dimensionless.h_s=0.001:2:3", "--y", "omega=0.05:10:3", "--boundary", "--out", "hs"]);
     assert_eq!(code, 0, "{err}");
     assert!(err.contains("boundary: ") && !err.contains("boundary: 0 curves"), "{err}");
 }

@@ -57,7 +57,16 @@ fn spatial_real_balls_from_the_balancer_tables() {
     };
     let off = run(&[]);
     assert_eq!((off["contacts"].as_u64(), off["stick_slip_transitions"].as_u64()), (Some(0), Some(0)));
-    let on = run(&["--set", "balancer.contact=true", "--set", "balancer2.contact=true", "--set", "balancer.rolling_resistance=1e-3", "--set", "balancer2.rolling_resistance=1e-3"]);
+    let on = run(&[
+        "--set",
+        "balancer.contact=true",
+        "--set",
+        "balancer2.contact=true",
+        "--set",
+        "balancer.rolling_resistance=1e-3",
+        "--set",
+        "balancer2.rolling_resistance=1e-3",
+    ]);
     assert!(on["contacts"].as_u64().unwrap() > 0 && on["stick_slip_transitions"].as_u64().unwrap() > 0, "{on}");
     assert_eq!(on["rotor"]["planes"][1]["physics"]["rolling_resistance"], 1e-3);
     for (set, msg) in [
@@ -85,7 +94,8 @@ fn spatial_errors_name_the_field() {
     let (code, _, err) = autobal(&["simulate", "--config", &example("spatial.toml"), "--set", "spatial.gravity=[1, 2]"]);
     assert_eq!(code, 2);
     assert!(err.contains("spatial.gravity"), "{err}");
-    let (code, _, err) = autobal(&["simulate", "--config", &example("dimensional.toml"), "--set", "drive.kind=\"speed\"", "--set", "supports.stiffness_left_y=-1"]);
+    let (code, _, err) =
+        autobal(&["simulate", "--config", &example("dimensional.toml"), "--set", "drive.kind=\"speed\"", "--set", "supports.stiffness_left_y=-1"]);
     assert_eq!(code, 2);
     assert!(err.contains("supports.stiffness_left_y: must"), "{err}");
 }
@@ -93,7 +103,8 @@ fn spatial_errors_name_the_field() {
 #[test]
 fn basins_map_where_runs_end() {
     let out = std::env::temp_dir().join(format!("autobal-basins-{}.csv", std::process::id()));
-    let (code, stdout, err) = autobal(&["basins", "--config", &example("spatial.toml"), "--n", "3", "--set", "drive.t_end=300", "--format", "json", "--out", out.to_str().unwrap()]);
+    let (code, stdout, err) =
+        autobal(&["basins", "--config", &example("spatial.toml"), "--n", "3", "--set", "drive.t_end=300", "--format", "json", "--out", out.to_str().unwrap()]);
     assert_eq!(code, 0, "{err}");
     let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
     assert_eq!(v["runs"], 9);

@@ -27,10 +27,8 @@ fn dir(name: &str) -> PathBuf {
     d
 }
 
-const GRID: &[&str] = &[
-    "--x", "drive.b=100:200:3", "--y", "planar.c_psi=0.05,0.1", "--axis", "drive.psi0[1]=1.4,1.6",
-    "--set", "drive.t_end=1.5", "--set", "drive.omega0=250",
-];
+const GRID: &[&str] =
+    &["--x", "drive.b=100:200:3", "--y", "planar.c_psi=0.05,0.1", "--axis", "drive.psi0[1]=1.4,1.6", "--set", "drive.t_end=1.5", "--set", "drive.omega0=250"];
 
 #[test]
 fn merged_shards_equal_the_unsharded_sweep() {

@@ -60,7 +60,8 @@ fn with_threads<R: Send>(threads: Option<usize>, work: impl FnOnce() -> autobal:
         match pools.iter().find(|(n, _)| *n == t) {
             Some((_, p)) => p.clone(),
             None => {
-                let p = std::sync::Arc::new(rayon::ThreadPoolBuilder::new().num_threads(t).build().map_err(|e| autobal::Error::invalid("threads", e.to_string()))?);
+                let p =
+                    std::sync::Arc::new(rayon::ThreadPoolBuilder::new().num_threads(t).build().map_err(|e| autobal::Error::invalid("threads", e.to_string()))?);
                 pools.push((t, p.clone()));
                 p
             }
@@ -189,7 +190,13 @@ impl PyPlanar {
 
 #[pyfunction]
 #[pyo3(signature = (text, dict, source, sets))]
-fn spatial_config(py: Python<'_>, text: Option<&str>, dict: Option<&Bound<'_, PyDict>>, source: &str, sets: Vec<(String, Bound<'_, PyAny>)>) -> PyResult<PySpatial> {
+fn spatial_config(
+    py: Python<'_>,
+    text: Option<&str>,
+    dict: Option<&Bound<'_, PyDict>>,
+    source: &str,
+    sets: Vec<(String, Bound<'_, PyAny>)>,
+) -> PyResult<PySpatial> {
     let root = table(py, text, dict, source, sets)?;
     let cfg = config::spatial(&root).map_err(|e| py_err(py, e))?;
     Ok(PySpatial { cfg, source: source.to_string(), toml: toml::to_string(&root).unwrap_or_default() })
@@ -197,7 +204,13 @@ fn spatial_config(py: Python<'_>, text: Option<&str>, dict: Option<&Bound<'_, Py
 
 #[pyfunction]
 #[pyo3(signature = (text, dict, source, sets))]
-fn planar_config(py: Python<'_>, text: Option<&str>, dict: Option<&Bound<'_, PyDict>>, source: &str, sets: Vec<(String, Bound<'_, PyAny>)>) -> PyResult<PyPlanar> {
+fn planar_config(
+    py: Python<'_>,
+    text: Option<&str>,
+    dict: Option<&Bound<'_, PyDict>>,
+    source: &str,
+    sets: Vec<(String, Bound<'_, PyAny>)>,
+) -> PyResult<PyPlanar> {
     let root = table(py, text, dict, source, sets)?;
     let problem = config::planar(&root).map_err(|e| py_err(py, e))?;
     Ok(PyPlanar { problem, toml: toml::to_string(&root).unwrap_or_default() })
@@ -400,7 +413,13 @@ fn check_batch(py: Python<'_>, cfg: &PyPlanar, paths: Vec<String>, params: PyRea
 /// an array points × `SUMMARY_COLUMNS`, the same bits whatever the threads.
 #[pyfunction]
 #[pyo3(signature = (cfg, paths, params, threads=None))]
-fn simulate_batch<'py>(py: Python<'py>, cfg: &PyPlanar, paths: Vec<String>, params: PyReadonlyArray2<'py, f64>, threads: Option<usize>) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
+fn simulate_batch<'py>(
+    py: Python<'py>,
+    cfg: &PyPlanar,
+    paths: Vec<String>,
+    params: PyReadonlyArray2<'py, f64>,
+    threads: Option<usize>,
+) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
     let shape = params.shape();
     let (rows, k) = (shape[0], shape[1]);
     if k != paths.len() {
@@ -413,10 +432,16 @@ fn simulate_batch<'py>(py: Python<'py>, cfg: &PyPlanar, paths: Vec<String>, para
         let work = || {
             let refs: Vec<&str> = paths.iter().map(String::as_str).collect();
             let mut out = vec![f64::NAN; rows * ncol];
-            let o = autobal::sweep::simulate_batch(&base, &refs, &flat, &mut |i, _, r| {
-                out[i * ncol..(i + 1) * ncol].copy_from_slice(&autobal::sweep::summary_values(&r.summary));
-                true
-            }, &|| cancel.load(Ordering::Relaxed))?;
+            let o = autobal::sweep::simulate_batch(
+                &base,
+                &refs,
+                &flat,
+                &mut |i, _, r| {
+                    out[i * ncol..(i + 1) * ncol].copy_from_slice(&autobal::sweep::summary_values(&r.summary));
+                    true
+                },
+                &|| cancel.load(Ordering::Relaxed),
+            )?;
             o.into_result()?;
             Ok(out)
         };
@@ -443,10 +468,16 @@ fn sweep_report(py: Python<'_>, cfg: &PyPlanar, axes: Vec<(String, Vec<f64>)>, s
     let out = interruptible(py, move |cancel| {
         let work = || {
             let mut runs = vec![];
-            let o = autobal::sweep::simulate_grid(base, g, r.clone(), &mut |i, v, res| {
-                runs.push(autobal::reports::sweep_run(i, v, res));
-                true
-            }, &|| cancel.load(Ordering::Relaxed))?;
+            let o = autobal::sweep::simulate_grid(
+                base,
+                g,
+                r.clone(),
+                &mut |i, v, res| {
+                    runs.push(autobal::reports::sweep_run(i, v, res));
+                    true
+                },
+                &|| cancel.load(Ordering::Relaxed),
+            )?;
             o.into_result()?;
             Ok(runs)
         };
@@ -485,7 +516,12 @@ fn stability_map<'py>(
     let (nx, ny) = (x.1.len(), y.1.len());
     let cells = nx.saturating_mul(ny);
     if cells > MAX_MAP_CELLS {
-        return Err(err(autobal::Error::TooLarge { what: "x × y".into(), size: cells as u64, limit: MAX_MAP_CELLS as u64, reason: "cells of the map held in memory".into() }));
+        return Err(err(autobal::Error::TooLarge {
+            what: "x × y".into(),
+            size: cells as u64,
+            limit: MAX_MAP_CELLS as u64,
+            reason: "cells of the map held in memory".into(),
+        }));
     }
     let (ax, ay) = (Axis { path: x.0, values: x.1 }, Axis { path: y.0, values: y.1 });
     let spec = cfg.cfg.spec.clone();

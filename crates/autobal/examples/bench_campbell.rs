@@ -15,8 +15,7 @@ fn main() {
     let args: Vec<String> = std::env::args().collect();
     let n: usize = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(200);
     let reps: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(21);
-    let m = SpatialModel::from_dimensionless(&DimensionlessInput::paper_000(0.8))
-    .expect("valid");
+    let m = SpatialModel::from_dimensionless(&DimensionlessInput::paper_000(0.8)).expect("valid");
     let mut report = vec![];
     for (name, balls) in [("free", Balls::Free), ("locked", Balls::Locked)] {
         let mut times = vec![];

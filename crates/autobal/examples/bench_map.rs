@@ -80,11 +80,8 @@ fn main() {
     // per-point reference paths (skipped with a fourth argument `maps`, for instruction counts)
     let maps_only = args.get(4).is_some_and(|a| a == "maps");
     let t = Instant::now();
-    let spaces: Vec<StateSpace> = x
-        .values
-        .iter()
-        .map(|&z| StateSpace::new(&SpatialModel::from_dimensionless(&input(z)).expect("valid"), Balls::Free).expect("balls"))
-        .collect();
+    let spaces: Vec<StateSpace> =
+        x.values.iter().map(|&z| StateSpace::new(&SpatialModel::from_dimensionless(&input(z)).expect("valid"), Balls::Free).expect("balls")).collect();
     let mut check = 0.0;
     for &w in y.values.iter().filter(|_| !maps_only) {
         for ss in &spaces {

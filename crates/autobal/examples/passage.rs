@@ -23,11 +23,14 @@ fn main() {
         kv.insert(k.to_string(), v.to_string());
     }
     let num = |k: &str, d: f64| -> f64 {
-        kv.get(k).map(|v| v.parse().unwrap_or_else(|_| {
-            eprintln!("{k}: not a number: {v}");
-            std::process::exit(2)
-        }))
-        .unwrap_or(d)
+        kv.get(k)
+            .map(|v| {
+                v.parse().unwrap_or_else(|_| {
+                    eprintln!("{k}: not a number: {v}");
+                    std::process::exit(2)
+                })
+            })
+            .unwrap_or(d)
     };
     let b = num("b", 2.5);
     let omega0 = num("omega0", 0.0);

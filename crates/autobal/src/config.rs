@@ -38,15 +38,29 @@ pub const SCHEMA: &[(&str, &[&str])] = &[
     (
         "supports",
         &[
-            "z_left", "z_right", "stiffness_left", "stiffness_right", "damping_left", "damping_right",
-            "stiffness_left_y", "stiffness_right_y", "damping_left_y", "damping_right_y",
+            "z_left",
+            "z_right",
+            "stiffness_left",
+            "stiffness_right",
+            "damping_left",
+            "damping_right",
+            "stiffness_left_y",
+            "stiffness_right_y",
+            "damping_left_y",
+            "damping_right_y",
         ],
     ),
     ("unbalance", &["mass", "radius", "angle"]),
-    ("balancer", &["z", "balls", "ball_mass", "race_radius", "drag", "ball_diameter", "contact", "restitution", "contact_stiffness", "rolling_resistance", "slip_rate"]),
+    (
+        "balancer",
+        &["z", "balls", "ball_mass", "race_radius", "drag", "ball_diameter", "contact", "restitution", "contact_stiffness", "rolling_resistance", "slip_rate"],
+    ),
     // spatial simulation only (docs/spatial.md, examples/spatial_two_plane.toml)
     ("couple", &["mass", "radius", "angle", "z"]),
-    ("balancer2", &["z", "balls", "ball_mass", "race_radius", "drag", "ball_diameter", "contact", "restitution", "contact_stiffness", "rolling_resistance", "slip_rate"]),
+    (
+        "balancer2",
+        &["z", "balls", "ball_mass", "race_radius", "drag", "ball_diameter", "contact", "restitution", "contact_stiffness", "rolling_resistance", "slip_rate"],
+    ),
     ("spatial", &["gravity", "lock_tilt", "spin_drag"]),
     ("initial", &["position", "velocity", "tilt", "tilt_rate"]),
     ("dimensionless", &["c_sigma", "rho_s", "l_left", "z_a", "delta_a", "m0", "r0", "m", "r", "n", "d_a", "h_x", "h_s"]),
@@ -54,14 +68,28 @@ pub const SCHEMA: &[(&str, &[&str])] = &[
     (
         "planar",
         &[
-            "m1", "m2", "m3", "n", "s1", "s2", "gamma", "r", "k", "c", "c_psi", "c_theta", "i_g", "ball_diameter", "contact", "restitution", "contact_stiffness",
-            "rolling_resistance", "slip_rate",
+            "m1",
+            "m2",
+            "m3",
+            "n",
+            "s1",
+            "s2",
+            "gamma",
+            "r",
+            "k",
+            "c",
+            "c_psi",
+            "c_theta",
+            "i_g",
+            "ball_diameter",
+            "contact",
+            "restitution",
+            "contact_stiffness",
+            "rolling_resistance",
+            "slip_rate",
         ],
     ),
-    (
-        "drive",
-        &["kind", "omega0", "b", "torque", "omega_idle", "t_off", "t_end", "psi0", "psi_rate0", "xy0", "xy_rate0", "schedule", "schedule_of"],
-    ),
+    ("drive", &["kind", "omega0", "b", "torque", "omega_idle", "t_off", "t_end", "psi0", "psi_rate0", "xy0", "xy_rate0", "schedule", "schedule_of"]),
     ("integration", &["method", "rtol", "atol", "dt", "max_steps", "max_wall_s"]),
 ];
 
@@ -326,10 +354,7 @@ pub fn spatial(root: &Table) -> Result<SpatialConfig> {
     let has_dim = DIMENSIONAL_TABLES.iter().any(|t| root.contains_key(*t));
     let has_nondim = root.contains_key("dimensionless");
     if !has_dim && !has_nondim && root.contains_key("planar") {
-        return Err(Error::invalid(
-            "config",
-            "this is a planar-rotor config ([planar], [drive]): use it with `autobal simulate` or `autobal sweep`",
-        ));
+        return Err(Error::invalid("config", "this is a planar-rotor config ([planar], [drive]): use it with `autobal simulate` or `autobal sweep`"));
     }
     let spec = match (has_dim, has_nondim) {
         (true, true) => {
@@ -356,9 +381,7 @@ fn rotor_si(root: &Table) -> Result<SpatialRotorSi> {
         // plane A carries balls and unbalance: required when either is described
         z_balancer: match b.f64("z")? {
             Some(z) => z,
-            None if b.table.is_some() || u.table.is_some() => {
-                return Err(Error::invalid("balancer.z", "missing (required: the plane of balls and unbalance)"))
-            }
+            None if b.table.is_some() || u.table.is_some() => return Err(Error::invalid("balancer.z", "missing (required: the plane of balls and unbalance)")),
             None => 0.0,
         },
         z_left: s.req("z_left")?,
@@ -391,7 +414,9 @@ fn dimensionless(root: &Table, method: AnisotropyMethod) -> Result<SpatialSpec> 
                 (Some(m), Some(da)) => direct_balls = Some((m, da)),
                 (None, None) => {}
                 (Some(_), None) => return Err(Error::invalid("dimensionless.d_a", "required with delta_a and m (D_A of the balls for the linear model)")),
-                (None, Some(_)) => return Err(Error::invalid("dimensionless.m", "required with delta_a and d_a (the balls' mass fraction for the linear model)")),
+                (None, Some(_)) => {
+                    return Err(Error::invalid("dimensionless.m", "required with delta_a and d_a (the balls' mass fraction for the linear model)"))
+                }
             }
             AnisotropyInput::Direct(v)
         }
@@ -499,12 +524,7 @@ pub fn drive(d: &Section) -> Result<(Drive, f64)> {
             "torque" => Drive::TorqueSchedule { omega0, points: schedule()? },
             o => return Err(Error::invalid("drive.schedule_of", format!("must be \"speed\" or \"torque\", got \"{o}\""))),
         },
-        o => {
-            return Err(Error::invalid(
-                "drive.kind",
-                format!("must be one of \"speed\", \"acceleration\", \"torque\", \"motor\", \"schedule\", got \"{o}\""),
-            ))
-        }
+        o => return Err(Error::invalid("drive.kind", format!("must be one of \"speed\", \"acceleration\", \"torque\", \"motor\", \"schedule\", got \"{o}\""))),
     };
     drive.validate()?;
     let t_end = d.f64("t_end")?.unwrap_or(10.0);
@@ -661,10 +681,7 @@ pub fn spatial_simulation(root: &Table) -> Result<SpatialSimulation> {
     let ig = integration(&sec("integration"), t_end)?;
     if ig.max_steps.is_some() || ig.max_wall_s.is_some() {
         let key = if ig.max_steps.is_some() { "max_steps" } else { "max_wall_s" };
-        return Err(Error::invalid(
-            format!("integration.{key}"),
-            "the spatial simulation takes no budget (Ctrl-C stops it, keeping what it wrote)",
-        ));
+        return Err(Error::invalid(format!("integration.{key}"), "the spatial simulation takes no budget (Ctrl-C stops it, keeping what it wrote)"));
     }
     let settings = SpatialSettings { method: ig.method, t_end, dt: ig.dt, rtol: ig.rtol, atol: ig.atol };
     settings.validate()?;

@@ -92,8 +92,8 @@
 // warnings, so an undocumented public item fails the build.
 #![warn(missing_docs)]
 
-pub(crate) mod builder;
 pub mod balls;
+pub(crate) mod builder;
 pub mod config;
 pub mod drive;
 pub mod error;
@@ -102,8 +102,8 @@ pub mod linalg;
 pub mod ode;
 pub mod paths;
 pub mod planar;
-pub mod simulation;
 pub mod reports;
+pub mod simulation;
 pub mod spatial;
 pub mod sweep;
 

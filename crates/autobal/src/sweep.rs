@@ -335,12 +335,14 @@ fn run_points(
     check_points(base, paths, range.clone(), point)?;
     let total = range.len();
     let stopping = AtomicBool::new(false);
-    let stop_now = || stopping.load(Ordering::Relaxed) || {
-        let c = cancel();
-        if c {
-            stopping.store(true, Ordering::Relaxed);
+    let stop_now = || {
+        stopping.load(Ordering::Relaxed) || {
+            let c = cancel();
+            if c {
+                stopping.store(true, Ordering::Relaxed);
+            }
+            c
         }
-        c
     };
     let mut out = SweepOutcome { points: total, delivered: 0, complete: true };
     let mut start = range.start;
@@ -486,10 +488,16 @@ mod tests {
         let g = Grid::new(vec![Axis::linspace("planar.c_psi", 0.05, 0.2, 200)]).unwrap();
         // on_row stops after 3 rows
         let mut seen = vec![];
-        let out = simulate_grid(&base, &g, 0..g.len(), &mut |i, _, _| {
-            seen.push(i);
-            seen.len() < 3
-        }, &|| false)
+        let out = simulate_grid(
+            &base,
+            &g,
+            0..g.len(),
+            &mut |i, _, _| {
+                seen.push(i);
+                seen.len() < 3
+            },
+            &|| false,
+        )
         .unwrap();
         assert_eq!((out.delivered, out.complete), (3, false));
         assert_eq!(seen, vec![0, 1, 2]);
@@ -516,10 +524,18 @@ mod tests {
         let collect = |range: Range<usize>, threads: usize| {
             let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
             let mut rows = vec![];
-            pool.install(|| simulate_grid(&base, &g, range, &mut |i, v, r| {
-                rows.push((i, v.to_vec(), summary_values(&r.summary).map(f64::to_bits)));
-                true
-            }, &|| false))
+            pool.install(|| {
+                simulate_grid(
+                    &base,
+                    &g,
+                    range,
+                    &mut |i, v, r| {
+                        rows.push((i, v.to_vec(), summary_values(&r.summary).map(f64::to_bits)));
+                        true
+                    },
+                    &|| false,
+                )
+            })
             .unwrap();
             rows
         };
@@ -532,10 +548,16 @@ mod tests {
         // and a batch of the same points gives the same bits
         let params = g.points(0..g.len());
         let mut batch = vec![];
-        simulate_batch(&base, &g.paths(), &params, &mut |i, v, r| {
-            batch.push((i, v.to_vec(), summary_values(&r.summary).map(f64::to_bits)));
-            true
-        }, &|| false)
+        simulate_batch(
+            &base,
+            &g.paths(),
+            &params,
+            &mut |i, v, r| {
+                batch.push((i, v.to_vec(), summary_values(&r.summary).map(f64::to_bits)));
+                true
+            },
+            &|| false,
+        )
         .unwrap();
         assert_eq!(whole, batch);
     }

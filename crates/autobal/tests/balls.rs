@@ -73,7 +73,8 @@ fn touching_pair(p: &PlanarRotor, w: f64) -> (f64, f64) {
     let wv = h * (C::new(p.m1 * p.s1, 0.0) + e * (p.m2 + 2.0 * p.m3)) + e;
     let g = h * 2.0 * p.m3 * p.r * (sep / 2.0).cos();
     let a = (-g.im / wv.norm()).asin();
-    let candidates: Vec<f64> = [wv.arg() - a, wv.arg() - PI + a].into_iter().filter(|b| ((wv + g * C::from_polar(1.0, *b)) * C::from_polar(1.0, -b)).re > 0.0).collect();
+    let candidates: Vec<f64> =
+        [wv.arg() - a, wv.arg() - PI + a].into_iter().filter(|b| ((wv + g * C::from_polar(1.0, *b)) * C::from_polar(1.0, -b)).re > 0.0).collect();
     assert_eq!(candidates.len(), 1, "{candidates:?}");
     let beta = candidates[0];
     (beta, (wv + g * C::from_polar(1.0, beta) - e).norm())
@@ -337,7 +338,10 @@ fn the_residual_eccentricity_is_about_mu_r_r_whatever_the_speed_and_ball_mass() 
             for mu in [5e-4, 2e-3] {
                 let r = residual(&p, k * wn, mu, 40.0).unwrap();
                 let ratio = r.eccentricity / (mu * p.r);
-                eprintln!("m3 = {m3}, ω = {k} ω_n, μ_r = {mu}: |P| = {:.3e} m = {ratio:.3} μ_r r, residual unbalance {:.3e} kg·m, {} stick-slip transitions", r.eccentricity, r.unbalance, r.stick_slip_transitions);
+                eprintln!(
+                    "m3 = {m3}, ω = {k} ω_n, μ_r = {mu}: |P| = {:.3e} m = {ratio:.3} μ_r r, residual unbalance {:.3e} kg·m, {} stick-slip transitions",
+                    r.eccentricity, r.unbalance, r.stick_slip_transitions
+                );
                 assert!(r.completed && r.settled && r.at_rest, "{r:?}");
                 let range = if m3 == 0.03 { 0.8..1.5 } else { 0.0..1.5 };
                 assert!(range.contains(&ratio), "m3 = {m3}, ω = {k} ω_n, μ_r = {mu}: |P| = {ratio} μ_r r");
@@ -353,7 +357,9 @@ fn the_spatial_model_has_the_same_real_balls() {
     // an unbalance mass with the same first and polar moments). With contact and rolling
     // resistance on, both must run into the same end state: balls touching or stuck at the same
     // angles, the same whirl, the same counts of contacts.
-    use autobal::spatial::dynamics::{simulate as spatial_simulate, BallPlane, Initial, PointMass, RigidRotor, Settings as SpatialSettings, SpatialRotor, Support};
+    use autobal::spatial::dynamics::{
+        simulate as spatial_simulate, BallPlane, Initial, PointMass, RigidRotor, Settings as SpatialSettings, SpatialRotor, Support,
+    };
     let physics = BallPhysics { contact: true, contact_stiffness: Some(1e6), rolling_resistance: 1e-3, ..Default::default() };
     for m3 in [0.01, 0.03] {
         let mut p = PlanarRotor { balls: physics, ..PlanarRotor::paper_004(m3) };
@@ -362,7 +368,14 @@ fn the_spatial_model_has_the_same_real_balls() {
         let mu = 0.1;
         let ru = p.s1 * p.m1 / mu;
         let rotor = SpatialRotor {
-            rotor: RigidRotor { mass: p.m1 - mu, equatorial_moment: 0.01, polar_moment: p.i_g + p.m1 * p.s1 * p.s1 - mu * ru * ru, z: 0.0, axis_tilt: 0.0, axis_tilt_angle: 0.0 },
+            rotor: RigidRotor {
+                mass: p.m1 - mu,
+                equatorial_moment: 0.01,
+                polar_moment: p.i_g + p.m1 * p.s1 * p.s1 - mu * ru * ru,
+                z: 0.0,
+                axis_tilt: 0.0,
+                axis_tilt_angle: 0.0,
+            },
             supports: vec![Support { z: 0.0, stiffness: [p.k; 2], damping: [p.c; 2] }],
             unbalances: vec![PointMass { mass: mu, radius: ru, angle: 0.0, z: 0.0 }],
             planes: vec![BallPlane { z: 0.0, n: 2, ball_mass: p.m3, race_radius: p.r, drag: p.c_psi / (p.r * p.r), physics }],
@@ -450,7 +463,12 @@ fn paper_004s_findings_with_real_balls() {
         let (rev_pm, _) = passage(&PlanarRotor::paper_004(0.03), false, rtol);
         let (rev_rb, _) = passage(&p, false, rtol);
         assert!(rev_pm.peak_amplitude < 0.75 * pm.peak_amplitude, "rtol {rtol}: point masses' reverse peak {}", rev_pm.peak_amplitude);
-        assert!(rev_rb.peak_amplitude < 0.9 * rb.peak_amplitude, "rtol {rtol}: real balls' reverse peak {} vs forward {}", rev_rb.peak_amplitude, rb.peak_amplitude);
+        assert!(
+            rev_rb.peak_amplitude < 0.9 * rb.peak_amplitude,
+            "rtol {rtol}: real balls' reverse peak {} vs forward {}",
+            rev_rb.peak_amplitude,
+            rb.peak_amplitude
+        );
         assert!(rev_rb.contacts > 100, "balls touch and separate as the speed falls: {rev_rb:?}");
     }
 

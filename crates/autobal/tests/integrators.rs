@@ -31,7 +31,17 @@ impl System for Mixed {
             DenseJacobian::analytic(self, |t, y, j| {
                 let (x, z) = (y[0], y[1]);
                 let r2 = x * x + z * z;
-                j.copy_from_slice(&[1.0 - r2 - 2.0 * x * x, -1.0 - 2.0 * x * z, 0.0, 1.0 - 2.0 * x * z, 1.0 - r2 - 2.0 * z * z, 0.0, 2.0 * x, 2.0 * z, (3.0 * t).cos()]);
+                j.copy_from_slice(&[
+                    1.0 - r2 - 2.0 * x * x,
+                    -1.0 - 2.0 * x * z,
+                    0.0,
+                    1.0 - 2.0 * x * z,
+                    1.0 - r2 - 2.0 * z * z,
+                    0.0,
+                    2.0 * x,
+                    2.0 * z,
+                    (3.0 * t).cos(),
+                ]);
             })
             .with_time_derivative(|t, y, out| {
                 // d/dt r(t)² = 6 e^{−2t} / (1 + 3 e^{−2t})²
@@ -379,4 +389,3 @@ fn dense_difference_jacobian_matches_the_closed_form() {
         assert!((x_fd[i] - x_an[i]).abs() < 1e-7, "difference Jacobian: {x_fd:?} vs {x_an:?}");
     }
 }
-

@@ -80,7 +80,13 @@ fn forward_peak_does_not_depend_on_the_acceleration_below_12_5() {
     let p = PlanarRotor::paper();
     let peak = |b: f64, tweak: fn(&mut Settings)| passage(&p, 200.0, b, 200.0 / b, tweak).0.peak_amplitude;
     let base = peak(2.5, |_| {});
-    for (b, tweak) in [(0.2, (|_| {}) as fn(&mut Settings)), (12.5, |_| {}), (2.5, |s| s.psi0 = vec![0.0, 0.0]), (2.5, |s| s.psi0 = vec![3.0, 3.3]), (2.5, |s| s.rtol = 1e-10)] {
+    for (b, tweak) in [
+        (0.2, (|_| {}) as fn(&mut Settings)),
+        (12.5, |_| {}),
+        (2.5, |s| s.psi0 = vec![0.0, 0.0]),
+        (2.5, |s| s.psi0 = vec![3.0, 3.3]),
+        (2.5, |s| s.rtol = 1e-10),
+    ] {
         let v = peak(b, tweak);
         assert!((v / base - 1.0).abs() < 2e-3, "b = {b}: {v} vs {base}");
     }
@@ -100,10 +106,14 @@ fn reverse_passage_at_a_quarter_is_lower_but_not_far_lower() {
     // only for faster passages (0.54-0.75 at 2.5 1/s², tests/simulation.rs).
     let p = PlanarRotor::paper();
     let fwd = passage(&p, 200.0, 0.25, 800.0, |_| {}).0.peak_amplitude;
-    for tweak in [(|s| s.method = Method::Dop853) as fn(&mut Settings), |s| {
-        s.method = Method::Dop853;
-        s.psi0[0] += 1e-3;
-    }, |s| s.method = Method::Auto] {
+    for tweak in [
+        (|s| s.method = Method::Dop853) as fn(&mut Settings),
+        |s| {
+            s.method = Method::Dop853;
+            s.psi0[0] += 1e-3;
+        },
+        |s| s.method = Method::Auto,
+    ] {
         let rev = passage(&p, 400.0, -0.25, 1600.0, tweak).0.peak_amplitude;
         let ratio = rev / fwd;
         assert!(ratio > 0.92 && ratio < 0.96, "reverse/forward = {ratio}");

@@ -70,10 +70,7 @@ fn paper_003_m0_limit_is_0_035_not_0_017() {
         rho_s: 0.4,
         l_left: 0.8,
         z_a: 0.8,
-        anisotropy: AnisotropyInput::Masses {
-            masses: MassSet { m0: 0.05, r0: 2.0, m: 0.0, r: 0.0, n: 0 },
-            d_a: None,
-        },
+        anisotropy: AnisotropyInput::Masses { masses: MassSet { m0: 0.05, r0: 2.0, m: 0.0, r: 0.0, n: 0 }, d_a: None },
         h_x: 0.0,
         h_s: 0.0,
         method: AnisotropyMethod::Exact,

@@ -1,13 +1,8 @@
 //! Property tests over seeded random parameters: limit cases, second routes, invariants.
 
 use autobal::spatial::critical_speeds::{branch_roots, critical_speeds, critical_speeds_at, delta_k, ModeKind, RotorClass};
-use autobal::spatial::inertia::{
-    anisotropy, complete_configuration, exact_anisotropy_of, exact_interval, exact_interval_families, AnisotropyMethod,
-    BallSet,
-};
-use autobal::spatial::params::{
-    identical_support_coefficients, AnisotropyInput, DimensionlessInput, SpatialModel, SpatialRotorSi,
-};
+use autobal::spatial::inertia::{anisotropy, complete_configuration, exact_anisotropy_of, exact_interval, exact_interval_families, AnisotropyMethod, BallSet};
+use autobal::spatial::params::{identical_support_coefficients, AnisotropyInput, DimensionlessInput, SpatialModel, SpatialRotorSi};
 use autobal::spatial::ranges::{antiresonance_speed, autobalancing_ranges, point_a_response};
 
 mod common;
@@ -335,7 +330,14 @@ fn multi_ball_families_agree_with_the_full_search() {
             let set = random_ball_set(&mut rng, n);
             let full = exact_interval(&set);
             let fam = exact_interval_families(&set);
-            assert!((full.min - fam.min).abs() <= 1e-9 && (full.max - fam.max).abs() <= 1e-9, "n={n} {set:?}: full [{}, {}], families [{}, {}]", full.min, full.max, fam.min, fam.max);
+            assert!(
+                (full.min - fam.min).abs() <= 1e-9 && (full.max - fam.max).abs() <= 1e-9,
+                "n={n} {set:?}: full [{}, {}], families [{}, {}]",
+                full.min,
+                full.max,
+                fam.min,
+                fam.max
+            );
         }
     }
 }

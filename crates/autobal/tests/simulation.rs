@@ -317,7 +317,13 @@ fn drives_follow_their_definitions() {
     let mut worst: f64 = 0.0;
     let st = settings(&p, 3.0, 0.01);
     simulate(&p, &d, &st, |s| {
-        let expect = if s.t <= 1.0 { 100.0 + 300.0 * s.t } else if s.t <= 2.0 { 400.0 } else { 400.0 - 150.0 * (s.t - 2.0) };
+        let expect = if s.t <= 1.0 {
+            100.0 + 300.0 * s.t
+        } else if s.t <= 2.0 {
+            400.0
+        } else {
+            400.0 - 150.0 * (s.t - 2.0)
+        };
         worst = worst.max((s.omega - expect).abs());
         true
     })
@@ -578,7 +584,13 @@ fn automatic_switching_gives_the_dop853_passage() {
     let worst = a_dop.iter().zip(a_auto).filter(|(a, _)| a.0 <= dop.t_at_peak).map(|(a, b)| (a.1 - b.1).abs()).fold(0.0, f64::max);
     assert!(worst < 1e-7 * peak, "samples before the peak differ by {worst:e} m");
     assert!(auto.balanced && (auto.final_amplitude - dop.final_amplitude).abs() < 1e-6 * p.s2);
-    assert!(auto.switches >= 2 && auto.implicit_steps > 0 && auto.steps * 5 < dop.steps, "auto {} steps ({} implicit), DOP853 {}", auto.steps, auto.implicit_steps, dop.steps);
+    assert!(
+        auto.switches >= 2 && auto.implicit_steps > 0 && auto.steps * 5 < dop.steps,
+        "auto {} steps ({} implicit), DOP853 {}",
+        auto.steps,
+        auto.implicit_steps,
+        dop.steps
+    );
 }
 
 #[test]

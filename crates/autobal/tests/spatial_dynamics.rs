@@ -27,16 +27,38 @@ fn general_rotor(rng: &mut Rng) -> SpatialRotor {
             axis_tilt_angle: rng.range(-3.0, 3.0),
         },
         supports: vec![
-            Support { z: rng.range(-0.8, -0.4), stiffness: [rng.range(50.0, 200.0), rng.range(50.0, 200.0)], damping: [rng.range(0.0, 3.0), rng.range(0.0, 3.0)] },
-            Support { z: rng.range(0.4, 0.8), stiffness: [rng.range(50.0, 200.0), rng.range(50.0, 200.0)], damping: [rng.range(0.0, 3.0), rng.range(0.0, 3.0)] },
+            Support {
+                z: rng.range(-0.8, -0.4),
+                stiffness: [rng.range(50.0, 200.0), rng.range(50.0, 200.0)],
+                damping: [rng.range(0.0, 3.0), rng.range(0.0, 3.0)],
+            },
+            Support {
+                z: rng.range(0.4, 0.8),
+                stiffness: [rng.range(50.0, 200.0), rng.range(50.0, 200.0)],
+                damping: [rng.range(0.0, 3.0), rng.range(0.0, 3.0)],
+            },
         ],
         unbalances: vec![
             PointMass { mass: rng.range(0.01, 0.2), radius: rng.range(0.05, 0.3), angle: rng.range(-3.0, 3.0), z: rng.range(-0.5, 0.5) },
             PointMass { mass: rng.range(0.01, 0.2), radius: rng.range(0.05, 0.3), angle: rng.range(-3.0, 3.0), z: rng.range(-0.5, 0.5) },
         ],
         planes: vec![
-            BallPlane { z: rng.range(0.1, 0.5), n: 2, ball_mass: rng.range(0.01, 0.1), race_radius: rng.range(0.1, 0.3), drag: rng.range(0.0, 0.5), physics: Default::default() },
-            BallPlane { z: rng.range(-0.5, -0.1), n: 1, ball_mass: rng.range(0.01, 0.1), race_radius: rng.range(0.1, 0.3), drag: rng.range(0.0, 0.5), physics: Default::default() },
+            BallPlane {
+                z: rng.range(0.1, 0.5),
+                n: 2,
+                ball_mass: rng.range(0.01, 0.1),
+                race_radius: rng.range(0.1, 0.3),
+                drag: rng.range(0.0, 0.5),
+                physics: Default::default(),
+            },
+            BallPlane {
+                z: rng.range(-0.5, -0.1),
+                n: 1,
+                ball_mass: rng.range(0.01, 0.1),
+                race_radius: rng.range(0.1, 0.3),
+                drag: rng.range(0.0, 0.5),
+                physics: Default::default(),
+            },
         ],
         gravity: [rng.range(-3.0, 3.0), rng.range(-10.0, 10.0), rng.range(-3.0, 3.0)],
         spin_drag: rng.range(0.0, 0.05),
@@ -68,11 +90,8 @@ fn case_json(r: &SpatialRotor, eq: &Equations, y: &[f64], t: f64) -> serde_json:
     let nc = eq.coords();
     let mut qd = y[nc..].to_vec();
     qd[4] = eq.spin_rate(t, y);
-    let balls: Vec<_> = r
-        .planes
-        .iter()
-        .flat_map(|p| (0..p.n).map(move |_| json!({"mass": p.ball_mass, "radius": p.race_radius, "zeta": p.z - zr, "drag": p.drag})))
-        .collect();
+    let balls: Vec<_> =
+        r.planes.iter().flat_map(|p| (0..p.n).map(move |_| json!({"mass": p.ball_mass, "radius": p.race_radius, "zeta": p.z - zr, "drag": p.drag}))).collect();
     json!({
         "rotor": {"mass": r.rotor.mass, "a": r.rotor.equatorial_moment, "c": r.rotor.polar_moment, "zeta": r.rotor.z - zr,
                   "kappa": r.rotor.axis_tilt, "beta": r.rotor.axis_tilt_angle},
@@ -115,12 +134,8 @@ fn equations_equal_an_independent_symbolic_lagrangian_derivation() {
         ours.push(dy[eq.coords()..].to_vec());
     }
     let script = format!("{}/tests/spatial_lagrange.py", env!("CARGO_MANIFEST_DIR"));
-    let mut child = std::process::Command::new(python)
-        .arg(script)
-        .stdin(std::process::Stdio::piped())
-        .stdout(std::process::Stdio::piped())
-        .spawn()
-        .expect("python runs");
+    let mut child =
+        std::process::Command::new(python).arg(script).stdin(std::process::Stdio::piped()).stdout(std::process::Stdio::piped()).spawn().expect("python runs");
     use std::io::Write;
     child.stdin.take().unwrap().write_all(serde_json::to_string(&cases).unwrap().as_bytes()).unwrap();
     let out = child.wait_with_output().unwrap();

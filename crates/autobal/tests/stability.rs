@@ -4,8 +4,8 @@
 // Index loops follow the algorithms' formulas (rows, columns, coefficients).
 #![allow(clippy::needless_range_loop)]
 
-use autobal::spatial::critical_speeds::critical_speeds_at;
 use autobal::linalg::eigen::{characteristic_polynomial, complex_det, eigenvalues, routh_hurwitz_stable};
+use autobal::spatial::critical_speeds::critical_speeds_at;
 use autobal::spatial::inertia::AnisotropyMethod;
 use autobal::spatial::linear_model::{Balls, Mat12, Pencil};
 use autobal::spatial::params::{AnisotropyInput, DimensionlessInput, SpatialModel};
@@ -57,13 +57,7 @@ fn match_dist(a: &[Complex64], b: &[Complex64]) -> f64 {
     let mut used = vec![false; b.len()];
     let mut worst: f64 = 0.0;
     for x in a {
-        let (j, d) = b
-            .iter()
-            .enumerate()
-            .filter(|(j, _)| !used[*j])
-            .map(|(j, y)| (j, (x - y).norm()))
-            .min_by(|p, q| p.1.total_cmp(&q.1))
-            .unwrap();
+        let (j, d) = b.iter().enumerate().filter(|(j, _)| !used[*j]).map(|(j, y)| (j, (x - y).norm())).min_by(|p, q| p.1.total_cmp(&q.1)).unwrap();
         used[j] = true;
         worst = worst.max(d);
     }
@@ -120,8 +114,7 @@ fn eigenvalues_are_roots_of_the_pencil_determinant() {
         let w = rng.range(0.05, 5.0);
         let (p, ev) = eigenvalues_at(&m, w, Balls::Free).unwrap();
         for lam in ev {
-            let mat: Vec<Vec<Complex64>> =
-                (0..p.n).map(|i| (0..p.n).map(|j| lam * lam * p.m[i][j] + lam * p.g[i][j] + p.k[i][j]).collect()).collect();
+            let mat: Vec<Vec<Complex64>> = (0..p.n).map(|i| (0..p.n).map(|j| lam * lam * p.m[i][j] + lam * p.g[i][j] + p.k[i][j]).collect()).collect();
             // Hadamard's bound: |det| ≤ Π ‖row‖; at an eigenvalue det vanishes to round-off of that size
             let bound: f64 = mat.iter().map(|r| r.iter().map(|z| z.norm_sqr()).sum::<f64>().sqrt()).product();
             assert!(complex_det(&mat).norm() < 1e-10 * bound, "λ = {lam}: |det| = {} vs {bound}", complex_det(&mat).norm());
@@ -147,10 +140,7 @@ fn isotropic_symmetric_rotor_decouples_into_jeffcott_and_tilt() {
             [(-b + d) / 2.0, (-b - d) / 2.0]
         };
         let ha = m.damping.h_alpha;
-        for mu in quad(Complex64::new(h, 0.0), Complex64::new(1.0, 0.0))
-            .into_iter()
-            .chain(quad(ha - i * cs * w, Complex64::new(m.p_alpha_sq, 0.0)))
-        {
+        for mu in quad(Complex64::new(h, 0.0), Complex64::new(1.0, 0.0)).into_iter().chain(quad(ha - i * cs * w, Complex64::new(m.p_alpha_sq, 0.0))) {
             let lam = mu - i * w;
             expect.push(lam);
             expect.push(lam.conj());
@@ -327,14 +317,12 @@ fn light_balls_leave_the_rotor_modes_unchanged() {
 #[test]
 fn two_ball_base_case_frame_is_consistent() {
     // 000's base case with masses: exact anisotropy 0, d_A = [[1 − D', 0], [0, 1 + D']], D' = −0.5
-    let m = SpatialModel::from_dimensionless(&DimensionlessInput::paper_000(0.8))
-    .unwrap();
+    let m = SpatialModel::from_dimensionless(&DimensionlessInput::paper_000(0.8)).unwrap();
     let b = m.balls.unwrap();
     assert!((b.d_a[0][0] - 1.5).abs() < 1e-15 && (b.d_a[1][1] - 0.5).abs() < 1e-15);
     assert_eq!(b.d_a[0][1], 0.0);
     assert!(stability_ranges(&m, 6.0, 300, Balls::Free, 1e-9).is_ok());
 }
-
 
 #[test]
 fn undamped_model_has_lagrangian_structure() {
@@ -344,7 +332,16 @@ fn undamped_model_has_lagrangian_structure() {
     let mut rng = Rng(29);
     for _ in 0..200 {
         let c_sigma = rng.range(0.2, 1.6);
-        let m = model(c_sigma, rng.range(0.2, 0.8), rng.range(-0.3, 1.4), rng.range(-1.0, 1.0), rng.range(0.0, 0.2).min(0.5 * c_sigma), 0.0, 0.0, Some((rng.range(0.01, 0.1), rng.range(0.0, 0.9))));
+        let m = model(
+            c_sigma,
+            rng.range(0.2, 0.8),
+            rng.range(-0.3, 1.4),
+            rng.range(-1.0, 1.0),
+            rng.range(0.0, 0.2).min(0.5 * c_sigma),
+            0.0,
+            0.0,
+            Some((rng.range(0.01, 0.1), rng.range(0.0, 0.9))),
+        );
         let p = Pencil::new(&m, rng.range(0.0, 4.0), Balls::Free).unwrap();
         let b = m.balls.unwrap();
         let d = b.d_a;
@@ -597,15 +594,22 @@ fn map_without_a_speed_axis_and_its_errors() {
     }
     // stopping early: the rows handed over are complete, the outcome says so
     let mut seen = 0;
-    let out = stability_map(&spec, &Axis::linspace("dimensionless.z_a", -1.0, 1.0, 9), &Axis::linspace("omega", 0.1, 3.0, 50), &MapSettings { omega: None, ..s }, &mut |_, _| {
-        seen += 1;
-        seen < 7
-    })
+    let out = stability_map(
+        &spec,
+        &Axis::linspace("dimensionless.z_a", -1.0, 1.0, 9),
+        &Axis::linspace("omega", 0.1, 3.0, 50),
+        &MapSettings { omega: None, ..s },
+        &mut |_, _| {
+            seen += 1;
+            seen < 7
+        },
+    )
     .unwrap();
     assert!(!out.complete && out.rows == 7);
     let e = stability_map(&spec, &Axis::linspace("dimensionless.zz", 0.0, 1.0, 3), &Axis::linspace("omega", 0.1, 3.0, 5), &s, &mut |_, _| true).unwrap_err();
     assert!(e.to_string().starts_with("dimensionless.zz: unknown parameter path"), "{e}");
-    let e = stability_map(&spec, &Axis::linspace("dimensionless.rho_s", -1.0, 1.0, 3), &Axis::linspace("omega", 0.1, 3.0, 5), &s, &mut |_, _| true).unwrap_err();
+    let e =
+        stability_map(&spec, &Axis::linspace("dimensionless.rho_s", -1.0, 1.0, 3), &Axis::linspace("omega", 0.1, 3.0, 5), &s, &mut |_, _| true).unwrap_err();
     assert!(e.to_string().starts_with("dimensionless.rho_s: "), "{e}");
     let e = stability_map(&spec, &x, &y, &MapSettings { omega: None, ..s }, &mut |_, _| true).unwrap_err();
     assert!(e.to_string().starts_with("omega: required"), "{e}");
@@ -622,7 +626,12 @@ fn campbell_lines_follow_crossing_modes_by_their_eigenvectors() {
         let omegas: Vec<f64> = (0..700).map(|i| 0.0037 + 0.0071 * i as f64).collect();
         let c = campbell(&m, &omegas, Balls::Locked).unwrap();
         let i = Complex64::new(0.0, 1.0);
-        let branches = [|w: f64| Complex64::new(0.0, 1.0 - w), |w: f64| Complex64::new(0.0, -1.0 - w), |w: f64| Complex64::new(0.0, -(1.0 - w)), |w: f64| Complex64::new(0.0, 1.0 + w)];
+        let branches = [
+            |w: f64| Complex64::new(0.0, 1.0 - w),
+            |w: f64| Complex64::new(0.0, -1.0 - w),
+            |w: f64| Complex64::new(0.0, -(1.0 - w)),
+            |w: f64| Complex64::new(0.0, 1.0 + w),
+        ];
         let mut translation_lines = 0;
         for line in &c.lines {
             let g = line.modes[0].group;
@@ -646,8 +655,7 @@ fn campbell_lines_follow_crossing_modes_by_their_eigenvectors() {
 fn campbell_of_the_default_rotor_has_continuous_lines() {
     // 000's base case with masses (the default config): every tracked line moves by less than
     // the largest |dλ/dΩ| times the step between neighbouring speeds.
-    let m = SpatialModel::from_dimensionless(&DimensionlessInput::paper_000(0.8))
-    .unwrap();
+    let m = SpatialModel::from_dimensionless(&DimensionlessInput::paper_000(0.8)).unwrap();
     let h = 0.002;
     let omegas: Vec<f64> = (0..2500).map(|i| 0.001 + h * i as f64).collect();
     let c = campbell(&m, &omegas, Balls::Free).unwrap();
@@ -891,8 +899,7 @@ fn campbell_lines_of_a_coarse_grid_are_the_fine_grids_lines() {
     // conjugation: where a complex pair meets on the real axis and splits into two real
     // eigenvalues (Ω ≈ 2.12 here) which real branch continues the upper line is arbitrary,
     // and a pair and its conjugate are one real motion.
-    let m = SpatialModel::from_dimensionless(&DimensionlessInput::paper_000(0.8))
-    .unwrap();
+    let m = SpatialModel::from_dimensionless(&DimensionlessInput::paper_000(0.8)).unwrap();
     let fine: Vec<f64> = (0..2500).map(|i| 0.001 + 0.002 * i as f64).collect();
     let coarse: Vec<f64> = fine.iter().step_by(10).copied().collect();
     for balls in [Balls::Free, Balls::Locked] {

@@ -22,7 +22,10 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
     let wn = rotor.natural_frequency();
     let jobs: Vec<(f64, f64)> = SPEED_RATIOS.iter().flat_map(|k| mus.iter().map(move |mu| (k * wn, *mu))).collect();
     let t_end = 40.0;
-    let done: Vec<Result<Residual>> = jobs.par_iter().map(|(w, mu)| if super::interrupted() { Err(anyhow::anyhow!("interrupted")) } else { residual(&rotor, *w, *mu, t_end).map_err(Into::into) }).collect();
+    let done: Vec<Result<Residual>> = jobs
+        .par_iter()
+        .map(|(w, mu)| if super::interrupted() { Err(anyhow::anyhow!("interrupted")) } else { residual(&rotor, *w, *mu, t_end).map_err(Into::into) })
+        .collect();
     let mut s = Section::new("friction", "Rolling resistance: the unbalance real balls leave");
     let mut rows = vec![];
     let mut series = vec![];
@@ -35,7 +38,15 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
             match r {
                 Ok(r) => {
                     pts.push((r.rolling_resistance, 1e6 * r.eccentricity));
-                    rows.push(vec![fmt(*k, 3), fmt(r.omega, 4), fmt(r.rolling_resistance, 3), fmt(1e6 * r.eccentricity, 3), fmt(1e6 * r.unbalance, 3), r.at_rest.to_string(), r.stick_slip_transitions.to_string()]);
+                    rows.push(vec![
+                        fmt(*k, 3),
+                        fmt(r.omega, 4),
+                        fmt(r.rolling_resistance, 3),
+                        fmt(1e6 * r.eccentricity, 3),
+                        fmt(1e6 * r.unbalance, 3),
+                        r.at_rest.to_string(),
+                        r.stick_slip_transitions.to_string(),
+                    ]);
                 }
                 Err(_) => s.complete = false,
             }

@@ -151,7 +151,17 @@ pub fn run(path: Option<&Path>, sets: &[String], dir: &Path, quick: bool) -> Res
     for s in sets {
         source_line.push_str(&format!(" --set {s}"));
     }
-    let ctx = Ctx { spatial, planar, quick, source: source_line, text: match &spatial_text { Some(t) => t.clone(), None => toml::to_string(&root).unwrap_or_default() }, root };
+    let ctx = Ctx {
+        spatial,
+        planar,
+        quick,
+        source: source_line,
+        text: match &spatial_text {
+            Some(t) => t.clone(),
+            None => toml::to_string(&root).unwrap_or_default(),
+        },
+        root,
+    };
     write(&ctx, dir)
 }
 

@@ -25,26 +25,36 @@ pub fn base_model(l_left: f64) -> SpatialModel {
 /// The long rotor of both papers' worked examples (C̄Σ = 0.75, ρ̄s = 0.4, z̄_A = 0.8, no
 /// damping) at layout `l̄_L` with the given anisotropy.
 pub fn papers_base(l_left: f64, anisotropy: AnisotropyInput, method: AnisotropyMethod) -> SpatialModel {
-    SpatialModel::from_dimensionless(&DimensionlessInput { c_sigma: 0.75, rho_s: 0.4, l_left, z_a: 0.8, anisotropy, h_x: 0.0, h_s: 0.0, method, direct_balls: None })
-        .expect("the papers' base case is valid")
+    SpatialModel::from_dimensionless(&DimensionlessInput {
+        c_sigma: 0.75,
+        rho_s: 0.4,
+        l_left,
+        z_a: 0.8,
+        anisotropy,
+        h_x: 0.0,
+        h_s: 0.0,
+        method,
+        direct_balls: None,
+    })
+    .expect("the papers' base case is valid")
 }
 
 /// The worked numbers 000 prints for the base case, per layout: (l̄_L, p̄α, c̄yα, Ω_K1-4).
-pub const PRINTED: [(f64, f64, f64, [f64; 4]); 3] = [
-    (0.5, 1.25, 0.0, [1.0, 1.0, 2.11, 3.23]),
-    (0.8, 1.46, 0.75, [0.837, 0.849, 2.52, 3.80]),
-    (1.2, 2.15, 1.75, [0.567, 0.575, 3.73, 5.61]),
-];
+pub const PRINTED: [(f64, f64, f64, [f64; 4]); 3] =
+    [(0.5, 1.25, 0.0, [1.0, 1.0, 2.11, 3.23]), (0.8, 1.46, 0.75, [0.837, 0.849, 2.52, 3.80]), (1.2, 2.15, 1.75, [0.567, 0.575, 3.73, 5.61])];
 
 const KEYS: [(u8, ModeKind); 4] = [(1, ModeKind::Transverse), (1, ModeKind::Angular), (2, ModeKind::Transverse), (2, ModeKind::Angular)];
 
 /// Critical speeds along a sweep, one curve per (branch, kind), in one legend group per branch.
 /// NaN where a root does not exist.
 fn branch_curves(xs: &[f64], at: &dyn Fn(f64) -> (SpatialModel, f64), names: [&str; 2], colors: [&str; 2], dashed: bool, angular_only: bool) -> Vec<Series> {
-    let roots: Vec<Vec<(f64, ModeKind, u8)>> = xs.iter().map(|&x| {
-        let (m, d) = at(x);
-        critical_speeds_at(&m, d)
-    }).collect();
+    let roots: Vec<Vec<(f64, ModeKind, u8)>> = xs
+        .iter()
+        .map(|&x| {
+            let (m, d) = at(x);
+            critical_speeds_at(&m, d)
+        })
+        .collect();
     let mut out = vec![];
     for (k, &(branch, kind)) in KEYS.iter().enumerate() {
         if angular_only && kind != ModeKind::Angular {
@@ -76,7 +86,12 @@ pub fn build(_ctx: &Ctx) -> Result<Option<Section>> {
     for (l, p, c, k) in PRINTED {
         let m = base_model(l);
         let cs: Vec<String> = critical_speeds_at(&m, 0.1).iter().map(|r| fmt(r.0, 4)).collect();
-        rows.push(vec![fmt(l, 2), format!("{} / {}", fmt(p, 3), fmt(m.p_alpha_sq.sqrt(), 4)), format!("{} / {}", fmt(c, 3), fmt(m.c_y_alpha, 4)), format!("{} / {}", k.map(|v| fmt(v, 3)).join(", "), cs.join(", "))]);
+        rows.push(vec![
+            fmt(l, 2),
+            format!("{} / {}", fmt(p, 3), fmt(m.p_alpha_sq.sqrt(), 4)),
+            format!("{} / {}", fmt(c, 3), fmt(m.c_y_alpha, 4)),
+            format!("{} / {}", k.map(|v| fmt(v, 3)).join(", "), cs.join(", ")),
+        ]);
     }
     s.table(&["l̄_L (–)", "p̄α printed / computed (–)", "c̄yα printed / computed (–)", "Ω_K1-4 printed / computed, ΔĀ = 0.1 (–)"], &rows);
 
@@ -141,12 +156,22 @@ pub fn build(_ctx: &Ctx) -> Result<Option<Section>> {
         let mut series: Vec<Series> = [0.0, 0.5, 1.0]
             .iter()
             .enumerate()
-            .map(|(i, &d)| Series::new(format!("{}: eq (17), D_A = {d}", i + 1), mbar.iter().map(|&m| (m, 0.5 * ms.a_m0() + 0.5 * m * ms.r * ms.r * d)).collect(), PALETTE[i]))
+            .map(|(i, &d)| {
+                Series::new(
+                    format!("{}: eq (17), D_A = {d}", i + 1),
+                    mbar.iter().map(|&m| (m, 0.5 * ms.a_m0() + 0.5 * m * ms.r * ms.r * d)).collect(),
+                    PALETTE[i],
+                )
+            })
             .collect();
         let set_at = |m: f64, n: u32| BallSet { n, ..MassSet { m, n, ..ms }.ball_set() };
         series.push(Series::new(
             "exact tensor, 2 balls",
-            mbar.iter().map(|&m| (m, if m > 0.0 { anisotropy(&set_at(m, 2), None, AnisotropyMethod::Exact).map_or(f64::NAN, |a| a.exact[0]) } else { 0.5 * ms.a_m0() })).collect(),
+            mbar.iter()
+                .map(|&m| {
+                    (m, if m > 0.0 { anisotropy(&set_at(m, 2), None, AnisotropyMethod::Exact).map_or(f64::NAN, |a| a.exact[0]) } else { 0.5 * ms.a_m0() })
+                })
+                .collect(),
             PALETTE[6],
         ));
         let mbar3 = linspace(0.0, 0.1, 41);

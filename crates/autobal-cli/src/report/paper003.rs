@@ -29,7 +29,9 @@ const GREEN: &str = "#009E73";
 /// (the angular root of Δ1), Ω_a, and the isotropic Ω_K3,4 (dashed).
 fn boundaries(xs: &[f64], at: &dyn Fn(f64) -> SpatialModel) -> Vec<Series> {
     let models: Vec<SpatialModel> = xs.iter().map(|&x| at(x)).collect();
-    let root = |m: &SpatialModel, d: f64, branch: u8, kind: ModeKind| critical_speeds_at(m, d).into_iter().find(|q| q.2 == branch && q.1 == kind).map_or(f64::NAN, |q| q.0);
+    let root = |m: &SpatialModel, d: f64, branch: u8, kind: ModeKind| {
+        critical_speeds_at(m, d).into_iter().find(|q| q.2 == branch && q.1 == kind).map_or(f64::NAN, |q| q.0)
+    };
     let curve = |f: &dyn Fn(&SpatialModel) -> f64| xs.iter().zip(&models).map(|(&x, m)| (x, f(m))).collect::<Vec<_>>();
     vec![
         Series::new("Ω_K2 (transverse, Δ2)", curve(&|m| root(m, m.delta_a0, 2, ModeKind::Transverse)), PALETTE[0]),
@@ -44,7 +46,9 @@ fn boundaries(xs: &[f64], at: &dyn Fn(f64) -> SpatialModel) -> Vec<Series> {
 fn range_shades(xs: &[f64], at: &dyn Fn(f64) -> SpatialModel) -> Vec<Shade> {
     let dx = if xs.len() > 1 { xs[1] - xs[0] } else { 1.0 };
     xs.iter()
-        .flat_map(|&x| autobalancing_ranges(&at(x)).ranges.into_iter().map(move |r| Shade { x: (x - dx / 2.0, x + dx / 2.0), y: (Some(r.lo), r.hi), color: GREEN.into() }))
+        .flat_map(|&x| {
+            autobalancing_ranges(&at(x)).ranges.into_iter().map(move |r| Shade { x: (x - dx / 2.0, x + dx / 2.0), y: (Some(r.lo), r.hi), color: GREEN.into() })
+        })
         .collect()
 }
 
@@ -81,7 +85,8 @@ pub fn build(_ctx: &Ctx) -> Result<Option<Section>> {
         for (row, (l, k, wa)) in PRINTED.iter().enumerate() {
             let y = 3.0 - row as f64;
             let ar = autobalancing_ranges(&base_model(*l));
-            let band = |lo: f64, hi: Option<f64>, dy: (f64, f64), c: &str| Shade { x: (lo, hi.unwrap_or(wmax)), y: (Some(y + dy.0), Some(y + dy.1)), color: c.into() };
+            let band =
+                |lo: f64, hi: Option<f64>, dy: (f64, f64), c: &str| Shade { x: (lo, hi.unwrap_or(wmax)), y: (Some(y + dy.0), Some(y + dy.1)), color: c.into() };
             for r in &ar.phase_condition {
                 shades.push(band(r.lo, r.hi, (0.16, 0.4), "#56B4E9"));
             }
@@ -91,7 +96,11 @@ pub fn build(_ctx: &Ctx) -> Result<Option<Section>> {
             for r in &ar.instability {
                 shades.push(band(r.lo, r.hi, (-0.4, -0.16), "#D55E00"));
             }
-            series.push(Series::new(if row == 0 { "printed Ω_K1-4 and Ω_a" } else { "" }, k.iter().chain([wa]).map(|&w| (w, y)).collect(), "#000000").markers().group("printed"));
+            series.push(
+                Series::new(if row == 0 { "printed Ω_K1-4 and Ω_a" } else { "" }, k.iter().chain([wa]).map(|&w| (w, y)).collect(), "#000000")
+                    .markers()
+                    .group("printed"),
+            );
             ticks.push((y, format!("l̄_L = {l}")));
         }
         s.figure(

@@ -8,7 +8,11 @@ use crate::num::fmt;
 use crate::plot::{Plot, Series, PALETTE};
 use crate::sim::Envelope;
 use anyhow::Result;
-use autobal::planar::{simulate, stationary::{aligned_whirls, locked_amplitude}, Sample, Summary};
+use autobal::planar::{
+    simulate,
+    stationary::{aligned_whirls, locked_amplitude},
+    Sample, Summary,
+};
 use rayon::prelude::*;
 
 /// Samples kept per run for the figures (min and max of each bucket: peaks survive).
@@ -78,18 +82,38 @@ pub fn run_all(runs: &[Run], base: Option<&toml::Table>) -> Result<Vec<std::sync
 
 /// Table of runs: peak, final state, work; a run cut short says so instead of numbers.
 pub fn runs_table(runs: &[Run], done: &[std::sync::Arc<Done>]) -> (Vec<&'static str>, Vec<Vec<String>>) {
-    let head = vec!["figure", "run", "m3 (kg)", "c_ψ (N·m·s)", "method", "peak radius of C (mm)", "ω at peak (rad/s)", "final radius (mm)", "final ω (rad/s)", "semi-balanced", "steps", "wall (s)"];
+    let head = vec![
+        "figure",
+        "run",
+        "m3 (kg)",
+        "c_ψ (N·m·s)",
+        "method",
+        "peak radius of C (mm)",
+        "ω at peak (rad/s)",
+        "final radius (mm)",
+        "final ω (rad/s)",
+        "semi-balanced",
+        "steps",
+        "wall (s)",
+    ];
     let rows = runs
         .iter()
         .zip(done)
         .map(|(r, d)| {
             let s = &d.summary;
-            let mut row = vec![r.tag.clone(), r.label.clone(), fmt(d.cfg.rotor.m3, 3), fmt(d.cfg.rotor.c_psi, 3), format!("{:?}", d.cfg.settings.method).to_lowercase()];
+            let mut row =
+                vec![r.tag.clone(), r.label.clone(), fmt(d.cfg.rotor.m3, 3), fmt(d.cfg.rotor.c_psi, 3), format!("{:?}", d.cfg.settings.method).to_lowercase()];
             if d.cut() {
                 row.push(format!("interrupted at t = {} s of {} s", fmt(s.t_end, 3), fmt(d.cfg.settings.t_end, 3)));
                 row.extend(std::iter::repeat_n("—".to_string(), 5));
             } else {
-                row.extend([fmt(1e3 * s.peak_amplitude, 4), fmt(s.omega_at_peak, 4), fmt(1e3 * s.final_amplitude, 3), fmt(s.final_omega, 4), if s.balanced { "yes".into() } else { "no".into() }]);
+                row.extend([
+                    fmt(1e3 * s.peak_amplitude, 4),
+                    fmt(s.omega_at_peak, 4),
+                    fmt(1e3 * s.final_amplitude, 3),
+                    fmt(s.final_omega, 4),
+                    if s.balanced { "yes".into() } else { "no".into() },
+                ]);
             }
             row.push(s.steps.to_string());
             row.push(fmt(d.wall, 2));
@@ -228,7 +252,14 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
             let ws = (0..=1000).map(|i| i as f64);
             ser.push(Series::new("stationary, balls held", ws.clone().map(|w| (w, 1e3 * locked_amplitude(rotor, w, &psi0))).collect(), PALETTE[7]).dashed());
             let q = rotor.n as i32;
-            ser.push(Series::new("stationary, balls free, far side", ws.map(|w| (w, aligned_whirls(rotor, w).iter().filter(|a| a.q == q).map(|a| 1e3 * a.amplitude).fold(f64::NAN, f64::min))).collect(), PALETTE[4]).dashed());
+            ser.push(
+                Series::new(
+                    "stationary, balls free, far side",
+                    ws.map(|w| (w, aligned_whirls(rotor, w).iter().filter(|a| a.q == q).map(|a| 1e3 * a.amplitude).fold(f64::NAN, f64::min))).collect(),
+                    PALETTE[4],
+                )
+                .dashed(),
+            );
         }
         s.figure(
             format!("fig004_{tag}_amplitude_omega"),
@@ -238,7 +269,14 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
         let psi = ball_angles(&runs, &done, &[tag]);
         s.figure(
             format!("fig004_{tag}_ball_angles"),
-            Plot { title: format!("004 Fig. {tag}b,c: ball angles, m3 = {m3} kg"), x_label: "t (s)".into(), y_label: "ψ (degrees from CG)".into(), series: psi, y_range: Some((-180.0, 180.0)), ..Default::default() },
+            Plot {
+                title: format!("004 Fig. {tag}b,c: ball angles, m3 = {m3} kg"),
+                x_label: "t (s)".into(),
+                y_label: "ψ (degrees from CG)".into(),
+                series: psi,
+                y_range: Some((-180.0, 180.0)),
+                ..Default::default()
+            },
             format!("004 Fig. {tag}b,c: angles of the balls relative to CG, wrapped to ±180° (a ball slipping round the race shows as a line that wraps)."),
         );
     }
@@ -291,7 +329,11 @@ pub fn ball_angles(runs: &[Run], done: &[std::sync::Arc<Done>], tags: &[&str]) -
         .enumerate()
         .flat_map(|(k, (r, d))| {
             (0..d.cfg.rotor.n).map(move |j| {
-                let s = Series::new(format!("{}: ψ{}", r.label, j + 1), crate::sim::wrapped_degrees(d.env.kept.iter().map(|s| (s.t, s.psi[j]))), crate::figures::curve_color(k));
+                let s = Series::new(
+                    format!("{}: ψ{}", r.label, j + 1),
+                    crate::sim::wrapped_degrees(d.env.kept.iter().map(|s| (s.t, s.psi[j]))),
+                    crate::figures::curve_color(k),
+                );
                 if j > 0 {
                     s.dashed()
                 } else {

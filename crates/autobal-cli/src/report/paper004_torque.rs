@@ -138,7 +138,9 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
         .zip(&done)
         .filter(|(r, _)| r.tag == "7" || r.tag == "8")
         .enumerate()
-        .map(|(i, (r, d))| Series::new(r.label.clone(), d.env.kept.iter().map(|x| (x.t, d.cfg.drive.torque(x.t, x.omega))).collect(), crate::figures::curve_color(i)))
+        .map(|(i, (r, d))| {
+            Series::new(r.label.clone(), d.env.kept.iter().map(|x| (x.t, d.cfg.drive.torque(x.t, x.omega))).collect(), crate::figures::curve_color(i))
+        })
         .collect();
     s.figure(
         "fig004_7_8_torque",
@@ -150,7 +152,19 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
     s.p(format!(
         "Each row: paper 004's rotor with that disk inertia and bearing drag, three runs from rest (18 N·m; 73 N·m for 12 s; 183 N·m switched off at {SWITCH_OFF} s, for 12 s). \"Sticks\": the speed never reaches sqrt(k/m0) = 288 rad/s; \"balanced by {SWITCH_OFF} s\": the radius of C within 5 % of s2 for good before the switch-off; \"re-excited\": after it the speed falls below 288 rad/s again and the radius of C exceeds 4 s2 = 2 mm. Only c_θ between about 0.06 and 0.2 N·m·s makes 18 N·m stick while 73 N·m passes; only I_G of about 0.3 kg·m² (the moment of a 1 kg disk of radius 0.77 m) makes the smaller torque the gentler one and still settles 183 N·m before {SWITCH_OFF} s. The chosen pair is marked."
     ));
-    let head = ["I_G (kg·m²)", "c_θ (N·m·s)", "18 N·m sticks", "ω at 18 N·m (rad/s)", "73 N·m passes", "183 N·m balanced by 1.8 s", "peak at 73 N·m (mm)", "peak at 183 N·m (mm)", "73 N·m lower peak", "re-excited after switch-off", "all of the paper's outcomes"];
+    let head = [
+        "I_G (kg·m²)",
+        "c_θ (N·m·s)",
+        "18 N·m sticks",
+        "ω at 18 N·m (rad/s)",
+        "73 N·m passes",
+        "183 N·m balanced by 1.8 s",
+        "peak at 73 N·m (mm)",
+        "peak at 183 N·m (mm)",
+        "73 N·m lower peak",
+        "re-excited after switch-off",
+        "all of the paper's outcomes",
+    ];
     let rows: Vec<Vec<String>> = sweep
         .iter()
         .map(|o| {

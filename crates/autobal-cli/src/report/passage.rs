@@ -9,7 +9,11 @@ use autobal::planar::stationary::capacity_ratio;
 
 pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
     let Some(cfg) = &ctx.planar else { return Ok(None) };
-    let runs = vec![Run { tag: "config".into(), label: format!("{:?} drive", cfg.drive).split(['{', '(']).next().unwrap_or("drive").trim().to_lowercase(), sets: vec![] }];
+    let runs = vec![Run {
+        tag: "config".into(),
+        label: format!("{:?} drive", cfg.drive).split(['{', '(']).next().unwrap_or("drive").trim().to_lowercase(),
+        sets: vec![],
+    }];
     let done = run_all(&runs, Some(&ctx.root))?;
     let d = &done[0];
     let p = &d.cfg.rotor;

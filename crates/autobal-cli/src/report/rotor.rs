@@ -81,13 +81,32 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
         vec!["p̄α".into(), fmt(m.p_alpha_sq.sqrt(), 5), "–".into(), "angular support frequency".into()],
         vec!["c̄yα".into(), fmt(m.c_y_alpha, 5), "–".into(), "translation–tilt coupling of the supports".into()],
         vec!["ΔĀ (used)".into(), fmt(m.anisotropy.used, 4), "–".into(), format!("inertia anisotropy, {}", format!("{:?}", m.anisotropy.method).to_lowercase())],
-        vec!["ΔĀ exact tensor".into(), if (m.anisotropy.exact[1] - m.anisotropy.exact[0]).abs() < 1e-12 { fmt(m.anisotropy.exact[0], 4) } else { format!("{} – {}", fmt(m.anisotropy.exact[0], 4), fmt(m.anisotropy.exact[1], 4)) }, "–".into(), "over the balancing positions of the balls".into()],
+        vec![
+            "ΔĀ exact tensor".into(),
+            if (m.anisotropy.exact[1] - m.anisotropy.exact[0]).abs() < 1e-12 {
+                fmt(m.anisotropy.exact[0], 4)
+            } else {
+                format!("{} – {}", fmt(m.anisotropy.exact[0], 4), fmt(m.anisotropy.exact[1], 4))
+            },
+            "–".into(),
+            "over the balancing positions of the balls".into(),
+        ],
         vec!["ΔĀ eq (17)".into(), fmt(m.anisotropy.paper, 4), "–".into(), format!("paper 000's sum of magnitudes, D_A = {}", opt(m.anisotropy.d_a))],
         vec!["ΔĀ0".into(), fmt(m.delta_a0, 4), "–".into(), "anisotropy of the unbalance mass alone (003)".into()],
-        vec!["h̄x, h̄α, h̄yα, h̄s".into(), format!("{}, {}, {}, {}", fmt(m.damping.h_x, 3), fmt(m.damping.h_alpha, 3), fmt(m.damping.h_y_alpha, 3), fmt(m.damping.h_s, 3)), "–".into(), "damping of supports and balls".into()],
+        vec![
+            "h̄x, h̄α, h̄yα, h̄s".into(),
+            format!("{}, {}, {}, {}", fmt(m.damping.h_x, 3), fmt(m.damping.h_alpha, 3), fmt(m.damping.h_y_alpha, 3), fmt(m.damping.h_s, 3)),
+            "–".into(),
+            "damping of supports and balls".into(),
+        ],
     ];
     if let Some(ms) = m.masses {
-        rows.push(vec!["m̄0, R̄0, m̄, R̄, n".into(), format!("{}, {}, {}, {}, {}", fmt(ms.m0, 4), fmt(ms.r0, 4), fmt(ms.m, 4), fmt(ms.r, 4), ms.n), "–".into(), format!("masses and radii; balancer capacity E = {}", fmt(ms.capacity(), 4))]);
+        rows.push(vec![
+            "m̄0, R̄0, m̄, R̄, n".into(),
+            format!("{}, {}, {}, {}, {}", fmt(ms.m0, 4), fmt(ms.r0, 4), fmt(ms.m, 4), fmt(ms.r, 4), ms.n),
+            "–".into(),
+            format!("masses and radii; balancer capacity E = {}", fmt(ms.capacity(), 4)),
+        ]);
     }
     if let Some(sc) = m.scale {
         rows.push(vec!["ω0".into(), fmt(sc.omega0, 5), "rad/s".into(), format!("unit of speed = {} rpm", grouped(sc.omega0 * RPM_PER_RAD_S, 0))]);
@@ -147,7 +166,15 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
     s.h3("rotor-sensitivity", "Sensitivity criterion");
     s.table(
         &["δΩ_Kα1 exact (–)", "δΩ_Kα2 exact (–)", "δΩ_Kα1 (22) (–)", "δΩ_Kα2 (22) (–)", "[δΩ_Kα] (–)", "[ΔĀ0] (–)", "[m̄0] (–)"],
-        &[vec![opt(se.delta_exact[0]), opt(se.delta_exact[1]), opt(se.delta_approx[0]), opt(se.delta_approx[1]), fmt(se.limit, 3), fmt(se.delta_a_limit, 4), opt(se.m0_limit)]],
+        &[vec![
+            opt(se.delta_exact[0]),
+            opt(se.delta_exact[1]),
+            opt(se.delta_approx[0]),
+            opt(se.delta_approx[1]),
+            fmt(se.limit, 3),
+            fmt(se.delta_a_limit, 4),
+            opt(se.m0_limit),
+        ]],
     );
     s.p(format!("<b>Verdict:</b> {}", super::esc(&se.reason)));
 

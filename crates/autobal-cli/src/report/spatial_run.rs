@@ -74,9 +74,21 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
     ));
     let t_unit = if cfg.dimensional { "s" } else { "τ" };
     let rows = vec![
-        vec!["peak whirl radius at the balancer plane".into(), format!("{} {lu}", fmt(ls * summary.peak_amplitude, 4)), format!("at {} {speed_unit}{}, t = {} {t_unit}", fmt(summary.omega_at_peak, 4), rpm(summary.omega_at_peak), fmt(summary.t_at_peak, 4))],
-        vec!["final whirl radius".into(), format!("{} {lu}", fmt(ls * summary.final_amplitude, 4)), format!("at {} {speed_unit}{}", fmt(summary.final_omega, 4), rpm(summary.final_omega))],
-        vec!["residual unbalance (balls + unbalance)".into(), fmt(summary.residual_unbalance, 3), format!("of the unbalance alone: {}", if summary.balanced { "balanced" } else { "not balanced" })],
+        vec![
+            "peak whirl radius at the balancer plane".into(),
+            format!("{} {lu}", fmt(ls * summary.peak_amplitude, 4)),
+            format!("at {} {speed_unit}{}, t = {} {t_unit}", fmt(summary.omega_at_peak, 4), rpm(summary.omega_at_peak), fmt(summary.t_at_peak, 4)),
+        ],
+        vec![
+            "final whirl radius".into(),
+            format!("{} {lu}", fmt(ls * summary.final_amplitude, 4)),
+            format!("at {} {speed_unit}{}", fmt(summary.final_omega, 4), rpm(summary.final_omega)),
+        ],
+        vec![
+            "residual unbalance (balls + unbalance)".into(),
+            fmt(summary.residual_unbalance, 3),
+            format!("of the unbalance alone: {}", if summary.balanced { "balanced" } else { "not balanced" }),
+        ],
         vec!["integration".into(), format!("{} steps", summary.steps), format!("{} right-hand sides, {} s", summary.rhs_evaluations, fmt(wall, 3))],
     ];
     s.table(&["quantity", "value", "note"], &rows);

@@ -201,19 +201,30 @@ impl BallPhysics {
         }
         non_negative(&f("rolling_resistance"), self.rolling_resistance)?;
         if self.rolling_resistance > 1.0 {
-            return Err(Error::invalid(f("rolling_resistance"), format!("{} is not a rolling resistance (at most 1; steel on steel is ~1e-3)", crate::error::fmt_num(self.rolling_resistance))));
+            return Err(Error::invalid(
+                f("rolling_resistance"),
+                format!("{} is not a rolling resistance (at most 1; steel on steel is ~1e-3)", crate::error::fmt_num(self.rolling_resistance)),
+            ));
         }
         positive(&f("slip_rate"), self.slip_rate)?;
         if self.contact && n > 0 && mass > 0.0 && r > 0.0 {
             let d = self.diameter(mass);
             if d >= 2.0 * r {
-                return Err(Error::invalid(f("ball_diameter"), format!("{} m does not fit a race of radius {} m", crate::error::fmt_num(d), crate::error::fmt_num(r))));
+                return Err(Error::invalid(
+                    f("ball_diameter"),
+                    format!("{} m does not fit a race of radius {} m", crate::error::fmt_num(d), crate::error::fmt_num(r)),
+                ));
             }
             let sep = min_separation(d, r);
             if n as f64 * sep > 2.0 * PI * (1.0 + 1e-12) {
                 return Err(Error::invalid(
                     f("ball_diameter"),
-                    format!("{n} balls of diameter {} m do not fit on a race of radius {} m (at most {})", crate::error::fmt_num(d), crate::error::fmt_num(r), (2.0 * PI / sep).floor()),
+                    format!(
+                        "{n} balls of diameter {} m do not fit on a race of radius {} m (at most {})",
+                        crate::error::fmt_num(d),
+                        crate::error::fmt_num(r),
+                        (2.0 * PI / sep).floor()
+                    ),
                 ));
             }
         }
@@ -242,7 +253,16 @@ impl BallPhysics {
             for b in a + 1..psi.len() {
                 let c = chord(r, psi[b] - psi[a]);
                 if c < d * (1.0 - 1e-9) {
-                    return Err(Error::invalid(field, format!("balls {} and {} overlap at the start ({} m apart, diameter {} m)", a + 1, b + 1, crate::error::fmt_num(c), crate::error::fmt_num(d))));
+                    return Err(Error::invalid(
+                        field,
+                        format!(
+                            "balls {} and {} overlap at the start ({} m apart, diameter {} m)",
+                            a + 1,
+                            b + 1,
+                            crate::error::fmt_num(c),
+                            crate::error::fmt_num(d)
+                        ),
+                    ));
                 }
             }
         }
@@ -380,7 +400,8 @@ impl BallForces {
     #[inline]
     pub fn torques(&self, psi: &[f64], rate: &[f64], normal: impl Fn(usize) -> f64, q: &mut [f64]) {
         for j in 0..self.n {
-            q[j] = if self.rolling_resistance > 0.0 { rolling_torque(self.rolling_resistance, self.r, normal(j).max(0.0), rate[j], self.slip_rate) } else { 0.0 };
+            q[j] =
+                if self.rolling_resistance > 0.0 { rolling_torque(self.rolling_resistance, self.r, normal(j).max(0.0), rate[j], self.slip_rate) } else { 0.0 };
         }
         if let Some(c) = &self.contact {
             for a in 0..self.n {

@@ -144,14 +144,7 @@ fn expand<const B: usize>(t: &PencilTerms) -> Option<[[f64; B]; D]> {
     let in_omega = B > 1;
     // entries as polynomials: (λ-degree, Ω-degree, matrix)
     let entry = |i: usize, j: usize| -> [(usize, usize, f64); 6] {
-        [
-            (2, 0, t.m[i][j]),
-            (1, 0, t.g[0][i][j]),
-            (1, 1, t.g[1][i][j]),
-            (0, 0, t.k[0][i][j]),
-            (0, 1, t.k[1][i][j]),
-            (0, 2, t.k[2][i][j]),
-        ]
+        [(2, 0, t.m[i][j]), (1, 0, t.g[0][i][j]), (1, 1, t.g[1][i][j]), (0, 0, t.k[0][i][j]), (0, 1, t.k[1][i][j]), (0, 2, t.k[2][i][j])]
     };
     let mut minors = vec![[[0.0; B]; D]; 1 << n];
     minors[0][0][0] = 1.0;

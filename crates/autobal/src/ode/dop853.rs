@@ -175,7 +175,17 @@ impl Work {
 }
 
 /// Hairer's initial step (`HINIT`) for a method of order `order`.
-pub(crate) fn initial_step<S: System + ?Sized>(sys: &S, t: f64, y: &[f64], f: &[f64], h_max: f64, order: i32, scale: &[f64], y1: &mut [f64], f1: &mut [f64]) -> f64 {
+pub(crate) fn initial_step<S: System + ?Sized>(
+    sys: &S,
+    t: f64,
+    y: &[f64],
+    f: &[f64],
+    h_max: f64,
+    order: i32,
+    scale: &[f64],
+    y1: &mut [f64],
+    f1: &mut [f64],
+) -> f64 {
     let n = y.len();
     let norm = |v: &[f64]| (v.iter().zip(scale).map(|(a, s)| (a / s).powi(2)).sum::<f64>() / n as f64).sqrt();
     let (dny, dnf) = (norm(y), norm(f));

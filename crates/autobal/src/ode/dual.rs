@@ -5,7 +5,9 @@
 use std::ops::{Add, Mul, Neg, Sub};
 
 /// What the equations need of a number: `+ − ×`, scaling by constants, `sin`/`cos`.
-pub trait Real: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> + Neg<Output = Self> + Mul<f64, Output = Self> + Add<f64, Output = Self> {
+pub trait Real:
+    Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> + Neg<Output = Self> + Mul<f64, Output = Self> + Add<f64, Output = Self>
+{
     /// A constant.
     fn cst(v: f64) -> Self;
     /// `(sin x, cos x)`.

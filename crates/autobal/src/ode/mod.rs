@@ -58,6 +58,7 @@
 pub mod arrow;
 pub mod dop853;
 #[allow(missing_docs)]
+#[rustfmt::skip] // the tableau is laid out as Hairer prints it
 pub mod dop853_tableau;
 pub mod dual;
 mod events;
@@ -483,7 +484,9 @@ impl fmt::Display for Outcome {
             Status::Interrupted => write!(f, "interrupted at t = {t:.6}"),
             Status::Stopped => write!(f, "stopped by the observer at t = {t:.6}"),
             Status::Event(i) => write!(f, "event {i} at t = {t:.9}"),
-            Status::StepTooSmall { h } => write!(f, "the step size fell to {h:.3e} at t = {t:.6}: the tolerances cannot be met there (a singularity or an unphysical input)"),
+            Status::StepTooSmall { h } => {
+                write!(f, "the step size fell to {h:.3e} at t = {t:.6}: the tolerances cannot be met there (a singularity or an unphysical input)")
+            }
             Status::TooManySteps { max_steps } => write!(f, "step budget of {max_steps} steps spent at t = {t:.6}"),
             Status::TimeBudget { seconds } => write!(f, "time budget of {seconds} s spent at t = {t:.6}"),
             Status::NotFinite { name, .. } => write!(f, "the state became non-finite ({name}) at t = {t:.6}"),

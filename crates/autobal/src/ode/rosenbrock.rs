@@ -57,7 +57,19 @@ impl Work {
     /// Returns the error norm (`≤ 1` to accept; RMS of the embedded estimate over
     /// `atol + rtol max(|y|, |y_new|)`), or `None` when the matrix is singular.
     #[allow(clippy::too_many_arguments)]
-    pub(crate) fn attempt<S: System + ?Sized>(&mut self, sys: &S, jac: &mut dyn Jacobian, t: f64, h: f64, y: &[f64], f: &[f64], y_new: &mut [f64], atol: &[f64], rtol: f64, rhs_count: &mut u64) -> Option<f64> {
+    pub(crate) fn attempt<S: System + ?Sized>(
+        &mut self,
+        sys: &S,
+        jac: &mut dyn Jacobian,
+        t: f64,
+        h: f64,
+        y: &[f64],
+        f: &[f64],
+        y_new: &mut [f64],
+        atol: &[f64],
+        rtol: f64,
+        rhs_count: &mut u64,
+    ) -> Option<f64> {
         let n = self.n;
         if !jac.factor(1.0 / (GAMMA * h)) {
             return None;

@@ -566,7 +566,8 @@ impl<'s, S: System> Solver<'s, S> {
                                 stats.switches += 1;
                                 // a short implicit phase was not worth it: ask for more evidence
                                 // of stiffness next time (and forgive once it pays again)
-                                self.stiff_needed = if self.phase_steps <= 4 * TEST_EVERY { (self.stiff_needed * 2).min(STIFF_STEPS << 8) } else { STIFF_STEPS };
+                                self.stiff_needed =
+                                    if self.phase_steps <= 4 * TEST_EVERY { (self.stiff_needed * 2).min(STIFF_STEPS << 8) } else { STIFF_STEPS };
                                 self.stiff_count = 0;
                                 self.nonstiff_count = 0;
                                 h = h.min(0.9 * dop853::STABILITY_RADIUS / rho.max(f64::MIN_POSITIVE));

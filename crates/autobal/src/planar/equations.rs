@@ -135,7 +135,16 @@ impl<'a> Equations<'a> {
     /// `on_ball(j, R_rotor_part, R_ball)` receives each ball's contributions (rotor rows:
     /// translation x, y, rotation) before they are summed; returns the rotor rows' total.
     #[allow(clippy::too_many_arguments)]
-    fn residual<T: Real>(&self, t: f64, u: Cx<T>, ud: Cx<T>, w: T, qdd: &[f64], ball: impl Fn(usize) -> (T, T), mut on_ball: impl FnMut(usize, [T; 3], T)) -> [T; 3] {
+    fn residual<T: Real>(
+        &self,
+        t: f64,
+        u: Cx<T>,
+        ud: Cx<T>,
+        w: T,
+        qdd: &[f64],
+        ball: impl Fn(usize) -> (T, T),
+        mut on_ball: impl FnMut(usize, [T; 3], T),
+    ) -> [T; 3] {
         let p = self.rotor;
         let n = p.n;
         let udd = Cx::<T>::c(qdd[0], qdd[1]);
@@ -296,8 +305,22 @@ fn sin_cos_reduced(x: f64) -> (f64, f64) {
     const P2: f64 = 6.077_100_506_303_966e-11; // next 33 bits
     const P3: f64 = 2.022_266_248_795_950_6e-21; // π/2 − P1 − P2
     const ROUND: f64 = 6_755_399_441_055_744.0; // 1.5 · 2^52: adding it rounds to an integer
-    const S: [f64; 6] = [-0.166_666_666_666_666_32, 0.008_333_333_333_322_49, -1.984_126_982_985_795e-4, 2.755_731_370_707_006_8e-6, -2.505_076_025_340_686_3e-8, 1.589_690_995_211_55e-10];
-    const C: [f64; 6] = [0.041_666_666_666_666_6, -0.001_388_888_888_887_411, 2.480_158_728_947_673e-5, -2.755_731_435_139_066_3e-7, 2.087_572_321_298_175e-9, -1.135_964_755_778_819_5e-11];
+    const S: [f64; 6] = [
+        -0.166_666_666_666_666_32,
+        0.008_333_333_333_322_49,
+        -1.984_126_982_985_795e-4,
+        2.755_731_370_707_006_8e-6,
+        -2.505_076_025_340_686_3e-8,
+        1.589_690_995_211_55e-10,
+    ];
+    const C: [f64; 6] = [
+        0.041_666_666_666_666_6,
+        -0.001_388_888_888_887_411,
+        2.480_158_728_947_673e-5,
+        -2.755_731_435_139_066_3e-7,
+        2.087_572_321_298_175e-9,
+        -1.135_964_755_778_819_5e-11,
+    ];
     let shifted = x * INV_PIO2 + ROUND;
     let k = shifted - ROUND;
     // the quadrant k mod 4 sits in the low bits of the shifted sum (two's complement)

@@ -39,15 +39,15 @@
 //! ```
 
 mod equations;
-pub mod paper004;
 pub mod friction;
+pub mod paper004;
 pub mod problem;
 pub mod stationary;
 
-pub use crate::drive::Drive;
-pub use crate::ode::Method;
 use crate::balls::{BallForces, BallPhysics, EventCounter};
+pub use crate::drive::Drive;
 use crate::error::{finite, non_negative, positive, Error, Result};
+pub use crate::ode::Method;
 use crate::ode::{Control, Direction, Event, Options, Solver, Status, System};
 use crate::simulation::{run, Hooks, Peak, Timeline};
 pub use equations::{energy, Equations};
@@ -404,7 +404,13 @@ pub fn simulate(rotor: &PlanarRotor, drive: &Drive, settings: &Settings, sink: i
 /// [`simulate`], also stopping at the first step after `cancel()` returns true (called before
 /// every integrator step, so a run with few samples stops as promptly as any; e.g.
 /// `&|| FLAG.load(Ordering::Relaxed)` for a Ctrl-C flag).
-pub fn simulate_with(rotor: &PlanarRotor, drive: &Drive, settings: &Settings, cancel: Option<&dyn Fn() -> bool>, mut sink: impl FnMut(&Sample) -> bool) -> Result<Summary> {
+pub fn simulate_with(
+    rotor: &PlanarRotor,
+    drive: &Drive,
+    settings: &Settings,
+    cancel: Option<&dyn Fn() -> bool>,
+    mut sink: impl FnMut(&Sample) -> bool,
+) -> Result<Summary> {
     rotor.validate()?;
     drive.validate()?;
     settings.validate(rotor)?;
@@ -418,7 +424,15 @@ pub fn simulate_with(rotor: &PlanarRotor, drive: &Drive, settings: &Settings, ca
     solver.add_event(RadiusMaximum { nc });
     let breakpoints = drive.breakpoints();
     let timeline = Timeline { t_end: settings.t_end, dt: settings.dt, breakpoints: &breakpoints };
-    let mut hooks = PlanarHooks { rotor, drive, sink: &mut sink, peak: Peak::new(drive.omega0()), speed: (f64::INFINITY, f64::NEG_INFINITY), nc, balls: eq.balls.as_ref().map(|f| (f, EventCounter::default())) };
+    let mut hooks = PlanarHooks {
+        rotor,
+        drive,
+        sink: &mut sink,
+        peak: Peak::new(drive.omega0()),
+        speed: (f64::INFINITY, f64::NEG_INFINITY),
+        nc,
+        balls: eq.balls.as_ref().map(|f| (f, EventCounter::default())),
+    };
     let out = run(&mut solver, &mut y, &timeline, &mut hooks);
     let peak = hooks.peak;
     let speed_range = hooks.speed;
@@ -482,7 +496,10 @@ fn passage_warnings(rotor: &PlanarRotor, drive: &Drive, settings: &Settings, (w_
                 Drive::Acceleration { b, .. } => format!("; at b = {b} it gets there at t = {:.4e} s: raise drive.t_end", (wn - w0) / b),
                 _ => " (the torque cannot pass it, or drive.t_end is too short)".to_string(),
             };
-            w.push(format!("resonance was never reached: the speed stays below sqrt(k/m0) = {wn:.2} rad/s (at most {w_max:.2} rad/s by t = {} s){hint}", settings.t_end));
+            w.push(format!(
+                "resonance was never reached: the speed stays below sqrt(k/m0) = {wn:.2} rad/s (at most {w_max:.2} rad/s by t = {} s){hint}",
+                settings.t_end
+            ));
         }
         if sense < 0.0 && w0.abs() > wn && w_min > wn {
             w.push(format!("resonance was never reached: the run-down ends at {final_omega:.2} rad/s, above sqrt(k/m0) = {wn:.2} rad/s: raise drive.t_end"));

@@ -318,7 +318,17 @@ static PLANAR_PATHS: &[ParameterPath<PlanarProblem>] = &[
             p.rotor.balls.contact_stiffness = Some(v);
             Ok(())
         },
-        get: |p| Ok(crate::balls::BallForces::new(&crate::balls::BallPhysics { contact: true, ..p.rotor.balls }, p.rotor.m3, p.rotor.r, p.rotor.n.max(2), p.rotor.natural_frequency()).and_then(|f| f.contact).map_or(f64::NAN, |c| c.stiffness)),
+        get: |p| {
+            Ok(crate::balls::BallForces::new(
+                &crate::balls::BallPhysics { contact: true, ..p.rotor.balls },
+                p.rotor.m3,
+                p.rotor.r,
+                p.rotor.n.max(2),
+                p.rotor.natural_frequency(),
+            )
+            .and_then(|f| f.contact)
+            .map_or(f64::NAN, |c| c.stiffness))
+        },
     },
     balls_path!("planar.rolling_resistance", "rolling-resistance coefficient μ_r of the balls on their race", rolling_resistance),
     balls_path!("planar.slip_rate", "regularisation v_ε of the rolling resistance's sign (rad/s)", slip_rate),
@@ -327,7 +337,11 @@ static PLANAR_PATHS: &[ParameterPath<PlanarProblem>] = &[
         doc: "initial speed ω0 (rad/s)",
         set: |p, v| {
             match &mut p.drive {
-                Drive::Speed { omega0 } | Drive::Acceleration { omega0, .. } | Drive::Torque { omega0, .. } | Drive::Motor { omega0, .. } | Drive::TorqueSchedule { omega0, .. } => *omega0 = v,
+                Drive::Speed { omega0 }
+                | Drive::Acceleration { omega0, .. }
+                | Drive::Torque { omega0, .. }
+                | Drive::Motor { omega0, .. }
+                | Drive::TorqueSchedule { omega0, .. } => *omega0 = v,
                 d @ Drive::SpeedSchedule { .. } => return Err(kind_error(d, "omega0", "kinds speed, acceleration, torque, motor, torque schedule")),
             }
             Ok(())

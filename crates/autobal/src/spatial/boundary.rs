@@ -316,11 +316,7 @@ fn jacobian(pl: &Plane, kind: CurveKind, z: &[f64; 3], f0: &[f64; 2]) -> Result<
 fn tangent(kind: CurveKind, j: &[[f64; 3]; 2], prev: Option<&[f64; 3]>) -> [f64; 3] {
     let mut t = match kind {
         CurveKind::Fold => [-j[0][1], j[0][0], 0.0],
-        CurveKind::Hopf => [
-            j[0][1] * j[1][2] - j[0][2] * j[1][1],
-            j[0][2] * j[1][0] - j[0][0] * j[1][2],
-            j[0][0] * j[1][1] - j[0][1] * j[1][0],
-        ],
+        CurveKind::Hopf => [j[0][1] * j[1][2] - j[0][2] * j[1][1], j[0][2] * j[1][0] - j[0][0] * j[1][2], j[0][0] * j[1][1] - j[0][1] * j[1][0]],
     };
     let nrm = t.iter().map(|x| x * x).sum::<f64>().sqrt();
     for x in t.iter_mut() {
@@ -485,9 +481,7 @@ pub fn trace_boundary_with(spec: &SpatialSpec, x: &PlaneAxis, y: &PlaneAxis, s: 
     // one codimension-two point found from both of its curves is one point
     let mut merged: Vec<Codim2Point> = vec![];
     for p in out.codim2.drain(..) {
-        let dup = merged.iter().any(|q| {
-            q.kind == p.kind && ((q.x - p.x) / (x.hi - x.lo)).abs() < 1e-6 && ((q.y - p.y) / (y.hi - y.lo)).abs() < 1e-6
-        });
+        let dup = merged.iter().any(|q| q.kind == p.kind && ((q.x - p.x) / (x.hi - x.lo)).abs() < 1e-6 && ((q.y - p.y) / (y.hi - y.lo)).abs() < 1e-6);
         if !dup {
             merged.push(p);
         }
@@ -547,7 +541,9 @@ fn near_curve(c: &BoundaryCurve, pl: &Plane, z: &[f64; 3]) -> bool {
         let (px, py) = (a.0 + t * dx, a.1 + t * dy);
         let d = ((z[0] - px).powi(2) + (z[1] - py).powi(2)).sqrt();
         let w = c.points[k].w + t * (c.points[k + 1].w - c.points[k].w);
-        if d < 1e-3 + 0.05 * l2.sqrt() && (c.kind == CurveKind::Fold || (w - z[2]).abs() < 1e-3 * (1.0 + w.abs()) + 0.05 * (c.points[k + 1].w - c.points[k].w).abs()) {
+        if d < 1e-3 + 0.05 * l2.sqrt()
+            && (c.kind == CurveKind::Fold || (w - z[2]).abs() < 1e-3 * (1.0 + w.abs()) + 0.05 * (c.points[k + 1].w - c.points[k].w).abs())
+        {
             return true;
         }
     }
@@ -693,11 +689,7 @@ fn trace_curve(
         }
         if flags[k] != flags[k + 1] && (kind == CurveKind::Fold || (a[2] > 0.0 && b[2] > 0.0)) {
             if let Some((p, other)) = locate_crossing(pl, kind, a, b)? {
-                let k2 = if other.im.abs() < 1e-6 || kind == CurveKind::Fold && other.im.abs() > 1e-6 {
-                    Codim2Kind::FoldHopf
-                } else {
-                    Codim2Kind::DoubleHopf
-                };
+                let k2 = if other.im.abs() < 1e-6 || kind == CurveKind::Fold && other.im.abs() > 1e-6 { Codim2Kind::FoldHopf } else { Codim2Kind::DoubleHopf };
                 codim2.push(Codim2Point { kind: k2, x: Plane::value(pl.x, p[0]), y: Plane::value(pl.y, p[1]) });
                 // the other curve through the point
                 let other_kind = if other.im.abs() < 1e-6 { CurveKind::Fold } else { CurveKind::Hopf };
@@ -708,7 +700,12 @@ fn trace_curve(
     let points = pts
         .iter()
         .zip(&flags)
-        .map(|(z, &f)| CurvePoint { x: Plane::value(pl.x, z[0]), y: Plane::value(pl.y, z[1]), w: if kind == CurveKind::Hopf { z[2] } else { 0.0 }, on_boundary: f })
+        .map(|(z, &f)| CurvePoint {
+            x: Plane::value(pl.x, z[0]),
+            y: Plane::value(pl.y, z[1]),
+            w: if kind == CurveKind::Hopf { z[2] } else { 0.0 },
+            on_boundary: f,
+        })
         .collect();
     Ok(Some(BoundaryCurve { kind, points, closed }))
 }
@@ -821,7 +818,8 @@ fn march(pl: &Plane, kind: CurveKind, z0: [f64; 3], t0: [f64; 3], max_step: f64)
                     let mut normal = [0.0; 3];
                     normal[hit] = 1.0;
                     // (a point that does not correct onto the curve, e.g. in a corner, is left out)
-                    let edge = correct(pl, kind, zc, &normal, Some(&jz)).or_else(|e| if matches!(e, Error::InvalidParameter { .. }) { Ok(None) } else { Err(e) })?;
+                    let edge =
+                        correct(pl, kind, zc, &normal, Some(&jz)).or_else(|e| if matches!(e, Error::InvalidParameter { .. }) { Ok(None) } else { Err(e) })?;
                     if let Some((ze, _)) = edge {
                         if (-1e-9..=1.0 + 1e-9).contains(&ze[0]) && (-1e-9..=1.0 + 1e-9).contains(&ze[1]) {
                             pts.push(ze);

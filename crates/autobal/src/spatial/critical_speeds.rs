@@ -102,11 +102,7 @@ pub fn branch_roots(delta_i: f64, p_sq: f64, c: f64) -> Vec<(f64, ModeKind)> {
             vec![(pos[0], kind)]
         }
         _ => {
-            let (lo, hi) = if lower_is_transverse {
-                (ModeKind::Transverse, ModeKind::Angular)
-            } else {
-                (ModeKind::Angular, ModeKind::Transverse)
-            };
+            let (lo, hi) = if lower_is_transverse { (ModeKind::Transverse, ModeKind::Angular) } else { (ModeKind::Angular, ModeKind::Transverse) };
             vec![(pos[0], lo), (pos[1], hi)]
         }
     }
@@ -197,9 +193,7 @@ pub fn critical_speeds(model: &SpatialModel) -> CriticalSpeeds {
                 ModeKind::Transverse => (Some(1.0), sqrt_pos(1.0 - c * c / (p - di))),
                 ModeKind::Angular => (sqrt_pos(p / di), sqrt_pos(p / di + c * c / (p - di))),
             };
-            let small = iso.iter().find(|(_, k)| *k == kind).and_then(|&(x0, _)| {
-                sqrt_pos(x0 * (1.0 - s * (x0 - 1.0) * d / (2.0 * di0 * x0 - p - di0)))
-            });
+            let small = iso.iter().find(|(_, k)| *k == kind).and_then(|&(x0, _)| sqrt_pos(x0 * (1.0 - s * (x0 - 1.0) * d / (2.0 * di0 * x0 - p - di0))));
             let find = |v: &[(f64, ModeKind, u8)]| v.iter().find(|r| r.1 == kind && r.2 == branch).map(|r| r.0);
             let interval = match (find(&at_lo), find(&at_hi)) {
                 (Some(a), Some(b)) => Some([a.min(b), a.max(b)]),

@@ -155,11 +155,8 @@ pub fn anisotropy(set: &BallSet, d_a: Option<f64>, method: AnisotropyMethod) -> 
         let angles = if can_balance { balancing_angles(set).unwrap() } else { vec![PI; set.n as usize] };
         // two balls at π ± β, cos β = 1/E: D = cos 2β = 2/E² − 1 exactly (no trigonometric
         // round-off, so 000's base case E = 2 comes out exactly isotropic)
-        let (dc, ds) = if set.n == 2 && can_balance && set.capacity.is_finite() {
-            (2.0 / (set.capacity * set.capacity) - 1.0, 0.0)
-        } else {
-            mean_double_angle(&angles)
-        };
+        let (dc, ds) =
+            if set.n == 2 && can_balance && set.capacity.is_finite() { (2.0 / (set.capacity * set.capacity) - 1.0, 0.0) } else { mean_double_angle(&angles) };
         let da_natural = dc.hypot(ds);
         if set.n <= 2 {
             if let Some(d) = d_a {
@@ -582,15 +579,7 @@ pub fn composite_inertia(model: &crate::spatial::params::SpatialModel) -> Compos
         None => (1.0, None, false),
     };
     let d = model.anisotropy.used * scale_a;
-    CompositeInertia {
-        total_mass,
-        a_sigma: scale_a,
-        c_sigma: model.c_sigma * scale_a,
-        a_c1: scale_a + d,
-        a_c2: scale_a - d,
-        delta_a: d,
-        si,
-    }
+    CompositeInertia { total_mass, a_sigma: scale_a, c_sigma: model.c_sigma * scale_a, a_c1: scale_a + d, a_c2: scale_a - d, delta_a: d, si }
 }
 
 /// Ball-coupling matrix `d_A` of the ball equation (000, eq (6); docs/model.md §1) in the principal

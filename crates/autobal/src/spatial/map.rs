@@ -421,7 +421,14 @@ fn map_speed_columns<F: ModelFamily>(spec: &F, x: &Axis, y: &Axis, s: &MapSettin
 }
 
 /// Neither axis is the speed: every point its own model at speed `w`.
-fn map_fixed_speed<F: ModelFamily>(spec: &F, x: &Axis, y: &Axis, w: f64, s: &MapSettings, on_row: &mut dyn FnMut(usize, &[Cell]) -> bool) -> Result<MapOutcome> {
+fn map_fixed_speed<F: ModelFamily>(
+    spec: &F,
+    x: &Axis,
+    y: &Axis,
+    w: f64,
+    s: &MapSettings,
+    on_row: &mut dyn FnMut(usize, &[Cell]) -> bool,
+) -> Result<MapOutcome> {
     let w = w.max(OMEGA_FLOOR);
     let block = (BLOCK_CELLS / x.values.len()).max(2 * rayon::current_num_threads());
     let mut out = MapOutcome { complete: true, ..Default::default() };

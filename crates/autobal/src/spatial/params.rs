@@ -234,17 +234,11 @@ impl SpatialModel {
             }
             AnisotropyInput::Masses { masses, d_a } => {
                 validate_masses(p, &masses, inp.c_sigma)?;
-                let a = inertia::anisotropy(&masses.ball_set(), d_a, inp.method)
-                    .map_err(|e| prefix_field(e, p))?;
+                let a = inertia::anisotropy(&masses.ball_set(), d_a, inp.method).map_err(|e| prefix_field(e, p))?;
                 (a, 0.5 * masses.a_m0(), Some(masses))
             }
         };
-        let damping = Damping {
-            h_x: inp.h_x,
-            h_alpha: inp.h_x * p_alpha_sq,
-            h_y_alpha: inp.h_x * c_y_alpha,
-            h_s: inp.h_s,
-        };
+        let damping = Damping { h_x: inp.h_x, h_alpha: inp.h_x * p_alpha_sq, h_y_alpha: inp.h_x * c_y_alpha, h_s: inp.h_s };
         let balls = match (masses, inp.direct_balls) {
             (Some(ms), _) => ball_coupling(&ms, &anisotropy),
             (None, Some((m_bar, d_a))) => Some(BallCoupling { m_bar, d_a: inertia::ball_coupling_paper(d_a) }),
@@ -314,10 +308,7 @@ impl SpatialModel {
         ])?;
         check_count("balancer.balls", r.balls as u64)?;
         if r.balls == 0 && r.ball_mass > 0.0 {
-            return Err(Error::invalid(
-                "balancer.balls",
-                "is 0 but balancer.ball_mass is given: set the number of balls, or ball_mass = 0",
-            ));
+            return Err(Error::invalid("balancer.balls", "is 0 but balancer.ball_mass is given: set the number of balls, or ball_mass = 0"));
         }
         if r.balls > 0 && r.ball_mass == 0.0 {
             return Err(Error::invalid("balancer.ball_mass", "must be positive when balancer.balls > 0"));
@@ -349,13 +340,7 @@ impl SpatialModel {
         let h_ya = hl * l_cl - hr * l_cr;
         let omega0 = (c_x / ms).sqrt();
         let rho = (a_sigma / ms).sqrt();
-        let masses = MassSet {
-            m0: r.unbalance_mass / ms,
-            r0: r.unbalance_radius / rho,
-            m: n * r.ball_mass / ms,
-            r: r.race_radius / rho,
-            n: r.balls,
-        };
+        let masses = MassSet { m0: r.unbalance_mass / ms, r0: r.unbalance_radius / rho, m: n * r.ball_mass / ms, r: r.race_radius / rho, n: r.balls };
         let anisotropy = inertia::anisotropy(&masses.ball_set(), None, method)?;
         let h_s = if r.balls > 0 { r.ball_drag / (r.ball_mass * omega0) } else { 0.0 };
         // the ratios of the SI inputs, through the dimensionless parameters they imply
@@ -377,12 +362,7 @@ impl SpatialModel {
             z_a: z_a / rho,
             anisotropy,
             delta_a0: 0.5 * masses.a_m0(),
-            damping: Damping {
-                h_x: h_x / (ms * omega0),
-                h_alpha: h_alpha / (a_sigma * omega0),
-                h_y_alpha: h_ya / (omega0 * (ms * a_sigma).sqrt()),
-                h_s,
-            },
+            damping: Damping { h_x: h_x / (ms * omega0), h_alpha: h_alpha / (a_sigma * omega0), h_y_alpha: h_ya / (omega0 * (ms * a_sigma).sqrt()), h_s },
             masses: Some(masses),
             scale: Some(Scale { omega0, total_mass: ms, rho_s: rho, span }),
         })
@@ -417,9 +397,7 @@ fn ball_coupling(ms: &MassSet, a: &Anisotropy) -> Option<BallCoupling> {
 
 fn prefix_field(e: Error, prefix: &str) -> Error {
     match e {
-        Error::InvalidParameter { field, reason } if !field.contains('.') => {
-            Error::InvalidParameter { field: format!("{prefix}.{field}"), reason }
-        }
+        Error::InvalidParameter { field, reason } if !field.contains('.') => Error::InvalidParameter { field: format!("{prefix}.{field}"), reason },
         other => other,
     }
 }
@@ -449,11 +427,7 @@ fn validate_masses(p: &str, m: &MassSet, c_sigma: f64) -> Result<()> {
     if polar > c_sigma {
         return Err(Error::invalid(
             if m.a_m0() >= m.a_m() { format!("{p}.r0") } else { format!("{p}.r") },
-            format!(
-                "the polar moment of unbalance and balls m0 r0² + m r² = {} exceeds C̄Σ = {}, of which it is a part",
-                fmt_num(polar),
-                fmt_num(c_sigma)
-            ),
+            format!("the polar moment of unbalance and balls m0 r0² + m r² = {} exceeds C̄Σ = {}, of which it is a part", fmt_num(polar), fmt_num(c_sigma)),
         ));
     }
     if m.n == 0 && m.m > 0.0 {
@@ -463,10 +437,7 @@ fn validate_masses(p: &str, m: &MassSet, c_sigma: f64) -> Result<()> {
         return Err(Error::invalid(format!("{p}.m"), "must be positive when n > 0"));
     }
     if m.m0 + m.m >= 1.0 {
-        return Err(Error::invalid(
-            format!("{p}.m0"),
-            format!("m0 + m = {} must stay below 1: they are fractions of the total mass M_s", fmt_num(m.m0 + m.m)),
-        ));
+        return Err(Error::invalid(format!("{p}.m0"), format!("m0 + m = {} must stay below 1: they are fractions of the total mass M_s", fmt_num(m.m0 + m.m))));
     }
     Ok(())
 }

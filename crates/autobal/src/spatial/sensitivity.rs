@@ -65,25 +65,9 @@ pub fn sensitivity(model: &SpatialModel, limit: f64) -> Sensitivity {
     // an unbalance (almost) on the axis has no mass limit
     let m0_limit = model.masses.filter(|m| m.r0 > 0.0).map(|m| 2.0 * delta_a_limit / (m.r0 * m.r0)).filter(|v| v.is_finite());
     let (needed, reason) = match coefficient {
-        None => (
-            false,
-            "the isotropic rotor has no angular critical speed (short rotor): the simplified model suffices (003)".to_string(),
-        ),
-        Some(k) if k > limit => (
-            true,
-            format!("δΩ_Kα = {k:.4} exceeds [δΩ_Kα] = {limit}: the masses of unbalance and balls must be modelled"),
-        ),
+        None => (false, "the isotropic rotor has no angular critical speed (short rotor): the simplified model suffices (003)".to_string()),
+        Some(k) if k > limit => (true, format!("δΩ_Kα = {k:.4} exceeds [δΩ_Kα] = {limit}: the masses of unbalance and balls must be modelled")),
         Some(k) => (false, format!("δΩ_Kα = {k:.4} ≤ [δΩ_Kα] = {limit}: the simplified model suffices")),
     };
-    Sensitivity {
-        delta_exact,
-        delta_approx,
-        coefficient,
-        coefficient_approx,
-        limit,
-        delta_a_limit,
-        m0_limit,
-        finite_mass_model_needed: needed,
-        reason,
-    }
+    Sensitivity { delta_exact, delta_approx, coefficient, coefficient_approx, limit, delta_a_limit, m0_limit, finite_mass_model_needed: needed, reason }
 }

@@ -13,10 +13,10 @@
 // Index loops follow the algorithms' formulas (rows, columns, coefficients).
 #![allow(clippy::needless_range_loop)]
 
+use crate::error::{Error, Result};
 use crate::linalg::charpoly::{continue_roots, modulus, SpeedPolynomial};
 use crate::linalg::eigen::{characteristic_polynomial, eigenvalues, routh_hurwitz_stable, spectral_abscissa};
 use crate::spatial::critical_speeds::{critical_speeds_at, ModeKind};
-use crate::error::{Error, Result};
 use crate::spatial::linear_model::{Balls, Pencil, StateSpace, MAX_STATES};
 use crate::spatial::params::SpatialModel;
 use crate::spatial::ranges::SpeedRange;
@@ -586,7 +586,8 @@ pub fn campbell_stream(
         for j in 0..n {
             if ev[j].im < 0.0 {
                 // the conjugate partner: nearest conj among Im > 0
-                let partner = (0..n).filter(|&k| ev[k].im > 0.0).min_by(|&a, &b| (ev[a].conj() - ev[j]).norm_sqr().total_cmp(&(ev[b].conj() - ev[j]).norm_sqr()));
+                let partner =
+                    (0..n).filter(|&k| ev[k].im > 0.0).min_by(|&a, &b| (ev[a].conj() - ev[j]).norm_sqr().total_cmp(&(ev[b].conj() - ev[j]).norm_sqr()));
                 xs[j] = match partner {
                     Some(k) => xs[k].map(|z| z.conj()),
                     None => pencil_null_vector(&p, ev[j]),

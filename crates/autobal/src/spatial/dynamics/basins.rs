@@ -70,13 +70,7 @@ pub fn check_angle_grid(rotor: &SpatialRotor, n: usize, n_field: &str) -> Result
 /// cancel.store(true, Ordering::Relaxed);
 /// assert!(basins(&rotor, &cases, &settings, |_| {}, &cancel).unwrap().iter().all(Option::is_none));
 /// ```
-pub fn basins(
-    rotor: &SpatialRotor,
-    cases: &[Case],
-    settings: &Settings,
-    progress: impl Fn(usize) + Sync,
-    cancel: &AtomicBool,
-) -> Result<Vec<Option<Summary>>> {
+pub fn basins(rotor: &SpatialRotor, cases: &[Case], settings: &Settings, progress: impl Fn(usize) + Sync, cancel: &AtomicBool) -> Result<Vec<Option<Summary>>> {
     rotor.validate()?;
     settings.validate()?;
     for c in cases {

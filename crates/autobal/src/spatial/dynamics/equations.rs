@@ -146,11 +146,8 @@ impl<'a> Equations<'a> {
     pub fn new(rotor: &'a SpatialRotor, drive: &'a Drive) -> Self {
         let z_ref = rotor.z_reference();
         let (carrier_mass, carrier_first, carrier_inertia) = carrier(rotor, z_ref);
-        let balls = rotor
-            .planes
-            .iter()
-            .flat_map(|p| (0..p.n).map(move |_| Ball { m: p.ball_mass, r: p.race_radius, zeta: p.z - z_ref, drag: p.drag }))
-            .collect();
+        let balls =
+            rotor.planes.iter().flat_map(|p| (0..p.n).map(move |_| Ball { m: p.ball_mass, r: p.race_radius, zeta: p.z - z_ref, drag: p.drag })).collect();
         let supports: Vec<SupportAt> = rotor.supports.iter().map(|s| SupportAt { zeta: s.z - z_ref, k: s.stiffness, c: s.damping }).collect();
         // reference frequency of the default contact stiffness: the rotor's translation on its supports
         let w_ref = (supports.iter().map(|s| s.k[0]).sum::<f64>() / rotor.total_mass()).sqrt();
@@ -356,10 +353,7 @@ impl System for Equations<'_> {
         for (i, b) in self.balls.iter().enumerate() {
             let psi_d = y[nc + ROTOR_COORDS + i];
             let (r, t_j, n_j) = self.ball_geometry(&k, b, y[ROTOR_COORDS + i]);
-            let a_j = add(
-                add(add(a_o, cross(alpha, r)), cross(w, cross(w, r))),
-                add(scale(cross(w, t_j), 2.0 * psi_d), scale(n_j, psi_d * psi_d)),
-            );
+            let a_j = add(add(add(a_o, cross(alpha, r)), cross(w, cross(w, r))), add(scale(cross(w, t_j), 2.0 * psi_d), scale(n_j, psi_d * psi_d)));
             let ma = scale(a_j, b.m);
             f_in = add(f_in, ma);
             t_in = add(t_in, cross(r, ma));

@@ -225,7 +225,14 @@ impl SpatialRotor {
             ],
             unbalances: vec![PointMass { mass: r.unbalance_mass, radius: r.unbalance_radius, angle: 0.0, z: r.z_balancer }],
             planes: if r.balls > 0 {
-                vec![BallPlane { z: r.z_balancer, n: r.balls as usize, ball_mass: r.ball_mass, race_radius: r.race_radius, drag: r.ball_drag, physics: Default::default() }]
+                vec![BallPlane {
+                    z: r.z_balancer,
+                    n: r.balls as usize,
+                    ball_mass: r.ball_mass,
+                    race_radius: r.race_radius,
+                    drag: r.ball_drag,
+                    physics: Default::default(),
+                }]
             } else {
                 vec![]
             },
@@ -246,10 +253,7 @@ impl SpatialRotor {
     pub fn from_dimensionless(model: &SpatialModel) -> Result<Self> {
         let p = "dimensionless";
         let ms = model.masses.ok_or_else(|| {
-            Error::invalid(
-                format!("{p}.m0"),
-                "the simulation needs the masses and radii of unbalance and balls (m0, r0, m, r, n), not only delta_a",
-            )
+            Error::invalid(format!("{p}.m0"), "the simulation needs the masses and radii of unbalance and balls (m0, r0, m, r, n), not only delta_a")
         })?;
         let rho = model.rho_s.ok_or_else(|| Error::invalid(format!("{p}.rho_s"), "required by the simulation"))?;
         let l_left = model.l_left.ok_or_else(|| Error::invalid(format!("{p}.l_left"), "required by the simulation"))?;
@@ -282,7 +286,14 @@ impl SpatialRotor {
             ],
             unbalances: vec![PointMass { mass: ms.m0, radius: ms.r0, angle: 0.0, z: z_a }],
             planes: if n > 0 {
-                vec![BallPlane { z: z_a, n, ball_mass: ms.m / n as f64, race_radius: ms.r, drag: model.damping.h_s * ms.m / n as f64, physics: Default::default() }]
+                vec![BallPlane {
+                    z: z_a,
+                    n,
+                    ball_mass: ms.m / n as f64,
+                    race_radius: ms.r,
+                    drag: model.damping.h_s * ms.m / n as f64,
+                    physics: Default::default(),
+                }]
             } else {
                 vec![]
             },

@@ -37,11 +37,8 @@ impl Initial {
     /// At rest on the axis, balls of each plane spread evenly across the unbalance
     /// (`ψ = π/2 + 2π j/n`: no net ball unbalance).
     pub fn at_rest(rotor: &SpatialRotor) -> Self {
-        let psi: Vec<f64> = rotor
-            .planes
-            .iter()
-            .flat_map(|p| (0..p.n).map(move |j| std::f64::consts::FRAC_PI_2 + 2.0 * std::f64::consts::PI * j as f64 / p.n as f64))
-            .collect();
+        let psi: Vec<f64> =
+            rotor.planes.iter().flat_map(|p| (0..p.n).map(move |j| std::f64::consts::FRAC_PI_2 + 2.0 * std::f64::consts::PI * j as f64 / p.n as f64)).collect();
         let n = psi.len();
         Initial { position: [0.0; 2], velocity: [0.0; 2], tilt: [0.0; 2], tilt_rate: [0.0; 2], psi, psi_rate: vec![0.0; n] }
     }
@@ -166,7 +163,9 @@ pub fn initial_state(eq: &Equations, init: &Initial) -> Result<Vec<f64>> {
     if init.psi_rate.len() != nb {
         return Err(Error::invalid("drive.psi_rate0", format!("needs {nb} rates, got {}", init.psi_rate.len())));
     }
-    for (name, v) in [("initial.position", init.position), ("initial.velocity", init.velocity), ("initial.tilt", init.tilt), ("initial.tilt_rate", init.tilt_rate)] {
+    for (name, v) in
+        [("initial.position", init.position), ("initial.velocity", init.velocity), ("initial.tilt", init.tilt), ("initial.tilt_rate", init.tilt_rate)]
+    {
         finite(name, v[0])?;
         finite(name, v[1])?;
     }
@@ -287,7 +286,10 @@ pub fn simulate(rotor: &SpatialRotor, drive: &Drive, init: &Initial, settings: &
     drive.validate()?;
     settings.validate()?;
     if rotor.balls() > MAX_SIM_BALLS {
-        return Err(Error::invalid("balancer.balls", format!("the simulation takes at most {MAX_SIM_BALLS} balls in all planes together, got {}", rotor.balls())));
+        return Err(Error::invalid(
+            "balancer.balls",
+            format!("the simulation takes at most {MAX_SIM_BALLS} balls in all planes together, got {}", rotor.balls()),
+        ));
     }
     let eq = Equations::new(rotor, drive);
     let mut y = initial_state(&eq, init)?;
