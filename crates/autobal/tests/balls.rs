@@ -9,6 +9,9 @@ use autobal::planar::{energy, initial_state, simulate, Drive, PlanarRotor, Sampl
 use num_complex::Complex64 as C;
 use std::f64::consts::PI;
 
+mod common;
+use common::planar_as_spatial;
+
 /// The last sample of a run at constant speed `w` from ball angles `psi0`.
 fn run_at(p: &PlanarRotor, w: f64, psi0: &[f64], t_end: f64) -> (Summary, Sample) {
     run_from(p, w, psi0, t_end, false)
@@ -357,32 +360,13 @@ fn the_spatial_model_has_the_same_real_balls() {
     // an unbalance mass with the same first and polar moments). With contact and rolling
     // resistance on, both must run into the same end state: balls touching or stuck at the same
     // angles, the same whirl, the same counts of contacts.
-    use autobal::spatial::dynamics::{
-        simulate as spatial_simulate, BallPlane, Initial, PointMass, RigidRotor, Settings as SpatialSettings, SpatialRotor, Support,
-    };
+    use autobal::spatial::dynamics::{simulate as spatial_simulate, Initial, Settings as SpatialSettings};
     let physics = BallPhysics { contact: true, contact_stiffness: Some(1e6), rolling_resistance: 1e-3, ..Default::default() };
     for m3 in [0.01, 0.03] {
         let mut p = PlanarRotor { balls: physics, ..PlanarRotor::paper_004(m3) };
         p.s2 = 0.0;
         p.m2 = 0.0;
-        let mu = 0.1;
-        let ru = p.s1 * p.m1 / mu;
-        let rotor = SpatialRotor {
-            rotor: RigidRotor {
-                mass: p.m1 - mu,
-                equatorial_moment: 0.01,
-                polar_moment: p.i_g + p.m1 * p.s1 * p.s1 - mu * ru * ru,
-                z: 0.0,
-                axis_tilt: 0.0,
-                axis_tilt_angle: 0.0,
-            },
-            supports: vec![Support { z: 0.0, stiffness: [p.k; 2], damping: [p.c; 2] }],
-            unbalances: vec![PointMass { mass: mu, radius: ru, angle: 0.0, z: 0.0 }],
-            planes: vec![BallPlane { z: 0.0, n: 2, ball_mass: p.m3, race_radius: p.r, drag: p.c_psi / (p.r * p.r), physics }],
-            gravity: [0.0; 3],
-            spin_drag: 0.0,
-            lock_tilt: true,
-        };
+        let rotor = planar_as_spatial(&p, physics);
         let drive = Drive::Speed { omega0: 2.0 * p.natural_frequency() };
         let (t_end, dt) = (10.0, 0.5);
         let init = Initial { psi: vec![PI - 0.6, PI + 0.5], ..Initial::at_rest(&rotor) };

@@ -12,7 +12,7 @@ use autobal::spatial::params::{AnisotropyInput, DimensionlessInput, MassSet, Spa
 use serde_json::json;
 
 mod common;
-use common::{python_with, Rng};
+use common::{planar_as_spatial, python_with, Rng};
 
 /// A rotor with everything the model has: tilted principal axis, static and couple unbalance,
 /// two ball planes (2 and 1 balls), anisotropic supports, gravity off the axes.
@@ -489,34 +489,14 @@ fn in_the_upper_range_of_003_the_balanced_state_is_left() {
 #[test]
 fn with_the_tilt_locked_it_is_the_planar_rotor_of_paper_004() {
     // (d) of issue 7 §3: tilt locked, one support: the planar Jeffcott rotor with balls. Paper
-    // 004's rotor with the balancer centred (s2 = 0): the disk (m1, eccentricity s1) becomes our
-    // rotor mass m1 − m_u on the axis plus an unbalance mass m_u at radius s1 m1/m_u (the same
-    // mass and first moment), with the same polar moment about the axis. Run-up through resonance
-    // and a torque-driven run: both models agree to the integration tolerance.
+    // 004's rotor with the balancer centred (s2 = 0) as the spatial rotor (`planar_as_spatial`).
+    // Run-up through resonance and a torque-driven run: both models agree to the integration
+    // tolerance.
     use autobal::planar::{self, PlanarRotor};
     let mut p = PlanarRotor::paper();
     p.s2 = 0.0;
     p.m2 = 0.0;
-    let mu = 0.1;
-    let ru = p.s1 * p.m1 / mu;
-    let rotor = SpatialRotor {
-        rotor: RigidRotor {
-            mass: p.m1 - mu,
-            equatorial_moment: 0.01,
-            // polar moment about the axis: I_G + m1 s1² = C_r + m_u R_u²
-            polar_moment: p.i_g + p.m1 * p.s1 * p.s1 - mu * ru * ru,
-            z: 0.0,
-            axis_tilt: 0.0,
-            axis_tilt_angle: 0.0,
-        },
-        supports: vec![Support { z: 0.0, stiffness: [p.k; 2], damping: [p.c; 2] }],
-        unbalances: vec![PointMass { mass: mu, radius: ru, angle: 0.0, z: 0.0 }],
-        planes: vec![BallPlane { z: 0.0, n: 2, ball_mass: p.m3, race_radius: p.r, drag: p.c_psi / (p.r * p.r), physics: Default::default() }],
-        gravity: [0.0; 3],
-        spin_drag: 0.0,
-        lock_tilt: true,
-    };
-    assert!(rotor.rotor.polar_moment > 0.0);
+    let rotor = planar_as_spatial(&p, Default::default());
     for drive in [Drive::Acceleration { omega0: 200.0, b: 100.0 }, Drive::Torque { omega0: 200.0, torque: 5.0, t_off: None }] {
         let t_end = 2.0;
         let dt = 0.01;

@@ -1,5 +1,12 @@
 //! Helpers shared by the integration tests.
 
+// Each test file compiles this module on its own and uses only some of it.
+#![allow(dead_code)]
+
+use autobal::balls::BallPhysics;
+use autobal::planar::PlanarRotor;
+use autobal::spatial::dynamics::{BallPlane, PointMass, RigidRotor, SpatialRotor, Support};
+
 /// SplitMix64: a tiny seeded generator, so failures reproduce.
 pub struct Rng(pub u64);
 
@@ -22,7 +29,6 @@ impl Rng {
 /// A Python interpreter that can import `modules`: `$AUTOBAL_PYTHON`, the repository's `.venv`
 /// (made by scripts/test.sh), or `python3`. Without one the cross-check is skipped with a
 /// message, unless `AUTOBAL_REQUIRE_PYTHON` is set (scripts/test.sh sets it), where it fails.
-#[allow(dead_code)]
 pub fn python_with(modules: &[&str]) -> Option<String> {
     let venv = format!("{}/../../.venv/bin/python", env!("CARGO_MANIFEST_DIR"));
     let candidates = std::env::var("AUTOBAL_PYTHON").into_iter().chain([venv, "python3".to_string()]);
@@ -39,4 +45,33 @@ pub fn python_with(modules: &[&str]) -> Option<String> {
     assert!(std::env::var_os("AUTOBAL_REQUIRE_PYTHON").is_none(), "{msg}");
     eprintln!("skipped: {msg}");
     None
+}
+
+/// Paper 004's planar rotor `p` (balancer centred: `s2 = 0`, no housing mass `m2`) as the spatial
+/// rotor with its tilt locked on one support, its two balls given `physics`: the disk (mass
+/// `m1`, eccentricity `s1`) becomes a rotor mass `m1 − m_u` on the axis plus an unbalance mass
+/// `m_u` at radius `s1 m1/m_u` (the same mass and first moment), with the same polar moment about
+/// the axis (`I_G + m1 s1² = C_r + m_u R_u²`).
+pub fn planar_as_spatial(p: &PlanarRotor, physics: BallPhysics) -> SpatialRotor {
+    assert!(p.s2 == 0.0 && p.m2 == 0.0, "the spatial rotor's balancer is centred and has no housing of its own");
+    let mu = 0.1;
+    let ru = p.s1 * p.m1 / mu;
+    let rotor = SpatialRotor {
+        rotor: RigidRotor {
+            mass: p.m1 - mu,
+            equatorial_moment: 0.01,
+            polar_moment: p.i_g + p.m1 * p.s1 * p.s1 - mu * ru * ru,
+            z: 0.0,
+            axis_tilt: 0.0,
+            axis_tilt_angle: 0.0,
+        },
+        supports: vec![Support { z: 0.0, stiffness: [p.k; 2], damping: [p.c; 2] }],
+        unbalances: vec![PointMass { mass: mu, radius: ru, angle: 0.0, z: 0.0 }],
+        planes: vec![BallPlane { z: 0.0, n: 2, ball_mass: p.m3, race_radius: p.r, drag: p.c_psi / (p.r * p.r), physics }],
+        gravity: [0.0; 3],
+        spin_drag: 0.0,
+        lock_tilt: true,
+    };
+    assert!(rotor.rotor.polar_moment > 0.0);
+    rotor
 }
