@@ -380,7 +380,7 @@ fn run_simulate(config: Option<PathBuf>, set: Vec<String>, dt: Option<f64>, out:
     for s in &set {
         config::apply_set(&mut root, s)?;
     }
-    if spatial_sim::is_spatial(&root) {
+    if autobal::config::is_spatial(&root) {
         if parquet {
             anyhow::bail!("--parquet: the spatial simulation writes CSV only (the planar simulation and sweeps write Parquet)");
         }

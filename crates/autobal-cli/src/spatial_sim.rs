@@ -14,11 +14,6 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::Ordering;
 use toml::Table;
 
-/// Whether a config describes the spatial rotor (the analytic commands' tables).
-pub fn is_spatial(root: &Table) -> bool {
-    autobal::config::is_spatial(root)
-}
-
 /// A loaded spatial simulation: the library's converted config and where it came from.
 pub struct SpatialSim {
     pub lib: SpatialSimulation,

@@ -152,7 +152,8 @@ fn table(py: Python<'_>, text: Option<&str>, dict: Option<&Bound<'_, PyDict>>, s
 struct PySpatial {
     cfg: config::SpatialConfig,
     source: String,
-    toml: String,
+    /// The tables it was built from (the simulation reads `[drive]`, `[initial]`, ... from them).
+    root: Table,
 }
 
 /// A planar problem (paper 004), validated.
@@ -166,8 +167,8 @@ struct PyPlanar {
 impl PySpatial {
     /// The config's tables as TOML text.
     #[getter]
-    fn toml(&self) -> &str {
-        &self.toml
+    fn toml(&self) -> String {
+        toml::to_string(&self.root).unwrap_or_default()
     }
 }
 
@@ -199,7 +200,7 @@ fn spatial_config(
 ) -> PyResult<PySpatial> {
     let root = table(py, text, dict, source, sets)?;
     let cfg = config::spatial(&root).map_err(|e| py_err(py, e))?;
-    Ok(PySpatial { cfg, source: source.to_string(), toml: toml::to_string(&root).unwrap_or_default() })
+    Ok(PySpatial { cfg, source: source.to_string(), root })
 }
 
 #[pyfunction]
@@ -308,23 +309,15 @@ fn simulate<'py>(py: Python<'py>, cfg: &PyPlanar, dt: Option<f64>) -> PyResult<(
     Ok((out, autobal::reports::simulation(&p, &s, wall).to_string()))
 }
 
-/// Run the spatial rotor of papers 000/003 from a config (the analytic config plus `[drive]`,
+/// Run the spatial rotor of papers 000/003 of a spatial config with `[drive]` (and
 /// `[integration]`, ...): `(columns, summary JSON)`, columns `t, omega, x, y, tilt_x, tilt_y`,
 /// `amplitude_left`, `amplitude_right` (supports), `amplitude_plane1`, ... (balancer planes)
 /// and `psi` (samples × balls) as arrays, the summary as `autobal simulate --format json`
 /// prints it. `dt` overrides the output interval.
 #[pyfunction]
-#[pyo3(signature = (text, dict, source, sets, dt=None))]
-fn spatial_simulate<'py>(
-    py: Python<'py>,
-    text: Option<&str>,
-    dict: Option<&Bound<'_, PyDict>>,
-    source: &str,
-    sets: Vec<(String, Bound<'_, PyAny>)>,
-    dt: Option<f64>,
-) -> PyResult<(Bound<'py, PyDict>, String)> {
-    let root = table(py, text, dict, source, sets)?;
-    let mut sim = config::spatial_simulation(&root).map_err(|e| py_err(py, e))?;
+#[pyo3(signature = (cfg, dt=None))]
+fn spatial_simulate<'py>(py: Python<'py>, cfg: &PySpatial, dt: Option<f64>) -> PyResult<(Bound<'py, PyDict>, String)> {
+    let mut sim = config::spatial_simulation(&cfg.root).map_err(|e| py_err(py, e))?;
     if let Some(d) = dt {
         sim.settings.dt = d;
         sim.settings.validate().map_err(|e| py_err(py, e))?;
@@ -361,23 +354,15 @@ fn spatial_simulate<'py>(
     Ok((out, autobal::reports::spatial_simulation(&sim, &s, wall).to_string()))
 }
 
-/// `autobal basins` on a spatial config: runs over an `n × n` grid of the first two balls'
+/// `autobal basins` on a spatial config with `[drive]`: runs over an `n × n` grid of the first two balls'
 /// initial angles, in parallel in Rust. `(arrays, summary JSON)`: `psi_1`, `psi_2` (initial
 /// angles), `balanced`, `residual_unbalance`, `final_amplitude` per run (the CLI's CSV, row-major
 /// with `psi_2` outer), the summary as `autobal basins --format json` prints it (without `csv`).
 #[pyfunction]
-#[pyo3(signature = (text, dict, source, sets, n=16))]
-fn spatial_basins<'py>(
-    py: Python<'py>,
-    text: Option<&str>,
-    dict: Option<&Bound<'_, PyDict>>,
-    source: &str,
-    sets: Vec<(String, Bound<'_, PyAny>)>,
-    n: usize,
-) -> PyResult<(Bound<'py, PyDict>, String)> {
+#[pyo3(signature = (cfg, n=16))]
+fn spatial_basins<'py>(py: Python<'py>, cfg: &PySpatial, n: usize) -> PyResult<(Bound<'py, PyDict>, String)> {
     use autobal::spatial::dynamics::basins::{angle_grid, basins, check_angle_grid};
-    let root = table(py, text, dict, source, sets)?;
-    let sim = config::spatial_simulation(&root).map_err(|e| py_err(py, e))?;
+    let sim = config::spatial_simulation(&cfg.root).map_err(|e| py_err(py, e))?;
     check_angle_grid(&sim.rotor, n, "n").map_err(|e| py_err(py, e))?;
     let cases = angle_grid(&sim.initial, &sim.drive, n, n);
     let (res, wall) = interruptible(py, |cancel| {

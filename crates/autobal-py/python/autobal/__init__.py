@@ -212,7 +212,7 @@ class SpatialModel(_Config):
         >>> s.summary["model"], s["psi"].shape, s.summary["units"]
         ('spatial', (201, 2), 'dimensionless (M_s = ω0 = ρ_s = 1)')
         """
-        columns, summary = _autobal.spatial_simulate(self.toml, None, "config", [], dt)
+        columns, summary = _autobal.spatial_simulate(self._cfg, dt)
         return _finished(Simulation(columns, json.loads(summary)))
 
     def basins(self, n: int = 16) -> Dict[str, Any]:
@@ -221,7 +221,7 @@ class SpatialModel(_Config):
         basins`` computes them: ``runs``, ``completed``, ``balanced``, ``fraction_balanced``,
         ``wall_time_s`` (its JSON) and per run the arrays ``psi_1``, ``psi_2`` (initial
         angles), ``balanced``, ``residual_unbalance``, ``final_amplitude`` (its CSV)."""
-        arrays, summary = _autobal.spatial_basins(self.toml, None, "config", [], n)
+        arrays, summary = _autobal.spatial_basins(self._cfg, n)
         out: Dict[str, Any] = json.loads(summary)
         out.update(arrays)
         return out
@@ -370,8 +370,7 @@ def run(command: str, config: ConfigLike = None, set: Optional[Mapping[str, Any]
             if not (e.field == "planar" and "missing" in str(e)):
                 raise
             # the analytic commands' config: the spatial rotor in time
-            text, table, source = _read(config, _autobal.DEFAULT_SPATIAL, SpatialModel._DEFAULT_NAME)
-            _, summary = _autobal.spatial_simulate(text, table, source, list((set or {}).items()), dt)
+            _, summary = _autobal.spatial_simulate(SpatialModel(config, set=set)._cfg, dt)
         else:
             _, summary = _autobal.simulate(p._cfg, dt)
         out = json.loads(summary)
@@ -403,8 +402,7 @@ def run(command: str, config: ConfigLike = None, set: Optional[Mapping[str, Any]
     if command == "basins":
         n = options.pop("n", 16)
         _no_more(command, options)
-        text, table, source = _read(config, _autobal.DEFAULT_SPATIAL, SpatialModel._DEFAULT_NAME)
-        return json.loads(_autobal.spatial_basins(text, table, source, list((set or {}).items()), n)[1])
+        return json.loads(_autobal.spatial_basins(SpatialModel(config, set=set)._cfg, n)[1])
     if command == "map":
         if "x" not in options or "y" not in options:
             raise InvalidParameter("x: required, with y (e.g. x='dimensionless.z_a=-2:2:41', y='omega=0.05:4.5:41')")
