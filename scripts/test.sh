@@ -47,6 +47,7 @@ if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
     command -v npm >/dev/null 2>&1 || missing="$missing nodejs npm"
     if [ -n "$missing" ]; then
         apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $missing >/dev/null
+        apt-get clean
     fi
 fi
 if command -v npm >/dev/null 2>&1; then
