@@ -38,7 +38,7 @@
 use crate::error::{fmt_num, Error, Result};
 use crate::paths::Parameters;
 use crate::planar::problem::PlanarProblem;
-use crate::planar::{simulate_with, Summary};
+use crate::planar::{simulate_summary, Summary};
 use rayon::prelude::*;
 use std::ops::Range;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -303,7 +303,6 @@ pub fn problem_at(base: &PlanarProblem, paths: &[&str], values: &[f64]) -> Resul
     for (path, v) in paths.iter().zip(values) {
         p.set(path, *v).map_err(|e| with_point(e, &at()))?;
     }
-    let p = p.summary_only();
     p.validate().map_err(|e| with_point(e, &at()))?;
     Ok(p)
 }
@@ -359,8 +358,9 @@ fn run_points(
                 point(i, &mut v);
                 let p = problem_at(base, paths, &v)?;
                 let t0 = std::time::Instant::now();
-                // the stop is also checked at every integrator step (a sweep run has one sample)
-                let summary = simulate_with(&p.rotor, &p.drive, &p.settings, Some(&stop_now), |_| !stop_now())?;
+                // the run of `simulate` with the same settings (dt included: it is also the automatic
+                // method's time resolution), sampled only at its ends; the stop is checked at every step
+                let summary = simulate_summary(&p.rotor, &p.drive, &p.settings, Some(&stop_now))?;
                 let wall_s = t0.elapsed().as_secs_f64();
                 // a run cut short by the stop is no result
                 Ok((!stopping.load(Ordering::Relaxed)).then_some((v, PointResult { summary, wall_s })))

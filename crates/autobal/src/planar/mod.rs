@@ -165,7 +165,9 @@ pub struct Settings {
     pub method: Method,
     /// End time (s).
     pub t_end: f64,
-    /// Output interval (s), independent of the internal steps.
+    /// Output interval (s); also the time resolution of [`Method::Auto`] and
+    /// [`Method::Rodas`] (implicit steps of at most `4 dt`, see [`tolerances`]); samples are
+    /// read from the dense output.
     pub dt: f64,
     /// Relative tolerance.
     pub rtol: f64,
@@ -409,6 +411,35 @@ pub fn simulate_with(
     drive: &Drive,
     settings: &Settings,
     cancel: Option<&dyn Fn() -> bool>,
+    sink: impl FnMut(&Sample) -> bool,
+) -> Result<Summary> {
+    simulate_sampled(rotor, drive, settings, cancel, settings.dt, sink)
+}
+
+/// The run of [`simulate_with`] with samples only at its start and end, for its summary (sweeps,
+/// batches): the same settings, `dt` included, so the same steps and the same summary as
+/// [`simulate`] (`dt` is also the automatic method's time resolution, see [`tolerances`]).
+///
+/// ```
+/// use autobal::planar::{simulate, simulate_summary, Drive, PlanarRotor, Settings};
+/// let rotor = PlanarRotor::default();
+/// let drive = Drive::Acceleration { omega0: 0.0, b: 25.0 };
+/// let settings = Settings { dt: 0.01, ..Settings::new(&rotor, 16.0) };
+/// let full = simulate(&rotor, &drive, &settings, |_| true).unwrap();
+/// let summary = simulate_summary(&rotor, &drive, &settings, None).unwrap();
+/// assert_eq!((summary.steps, summary.final_amplitude), (full.steps, full.final_amplitude));
+/// ```
+pub fn simulate_summary(rotor: &PlanarRotor, drive: &Drive, settings: &Settings, cancel: Option<&dyn Fn() -> bool>) -> Result<Summary> {
+    simulate_sampled(rotor, drive, settings, cancel, settings.t_end, |_| true)
+}
+
+/// [`simulate_with`], sampling every `sample_dt` (the integrator's settings unchanged).
+fn simulate_sampled(
+    rotor: &PlanarRotor,
+    drive: &Drive,
+    settings: &Settings,
+    cancel: Option<&dyn Fn() -> bool>,
+    sample_dt: f64,
     mut sink: impl FnMut(&Sample) -> bool,
 ) -> Result<Summary> {
     rotor.validate()?;
@@ -423,7 +454,7 @@ pub fn simulate_with(
     let nc = 3 + rotor.n;
     solver.add_event(RadiusMaximum { nc });
     let breakpoints = drive.breakpoints();
-    let timeline = Timeline { t_end: settings.t_end, dt: settings.dt, breakpoints: &breakpoints };
+    let timeline = Timeline { t_end: settings.t_end, dt: sample_dt, breakpoints: &breakpoints };
     let mut hooks = PlanarHooks {
         rotor,
         drive,

@@ -17,7 +17,7 @@
 //! assert!(!s.balanced); // too little ball mass: α∞ = 0.48 < 1
 //! ```
 
-use super::{simulate, Drive, PlanarRotor, Settings, Summary, MAX_BALLS};
+use super::{Drive, PlanarRotor, Settings, Summary, MAX_BALLS};
 use crate::builder::builder;
 use crate::error::{Error, Result};
 use crate::paths::{indexed, whole, ParameterPath, Parameters};
@@ -125,7 +125,7 @@ builder!(
     xy_rate0: [f64; 2], max_steps: u64, max_wall_s: Option<f64>,
 );
 
-/// One simulation of the planar rotor: what [`simulate`] takes, as one value that paths
+/// One simulation of the planar rotor: what [`simulate`](crate::planar::simulate) takes, as one value that paths
 /// address and sweeps vary.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct PlanarProblem {
@@ -166,9 +166,10 @@ impl PlanarProblem {
         self.settings.validate(&self.rotor)
     }
 
-    /// Run it, keeping only the summary (samples are not stored).
+    /// Run it, keeping only the summary (sampled only at the ends; the same steps and summary as
+    /// [`simulate`](crate::planar::simulate), see [`crate::planar::simulate_summary`]).
     pub fn simulate_summary(&self) -> Result<Summary> {
-        simulate(&self.rotor, &self.drive, &self.settings, |_| true)
+        crate::planar::simulate_summary(&self.rotor, &self.drive, &self.settings, None)
     }
 
     /// Set the number of balls, keeping the initial ball angles and rates when their number
@@ -181,12 +182,6 @@ impl PlanarProblem {
         if self.settings.psi_rate0.len() != n {
             self.settings.psi_rate0 = vec![0.0; n];
         }
-    }
-
-    /// The run to `t_end` only, for a summary: one sample at the end (a sweep's runs).
-    pub fn summary_only(mut self) -> Self {
-        self.settings.dt = self.settings.t_end;
-        self
     }
 }
 

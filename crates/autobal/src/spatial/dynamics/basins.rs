@@ -2,7 +2,7 @@
 //! angles and/or the initial speed), computed in parallel, cancellable.
 
 use super::rotor::SpatialRotor;
-use super::simulate::{simulate, Initial, Settings, Summary};
+use super::simulate::{simulate_summary, Initial, Settings, Summary};
 use crate::drive::Drive;
 use crate::error::Result;
 use rayon::prelude::*;
@@ -79,15 +79,14 @@ pub fn basins(rotor: &SpatialRotor, cases: &[Case], settings: &Settings, progres
         super::simulate::initial_state(&eq, &c.initial)?;
     }
     let done = AtomicUsize::new(0);
-    // summaries only: one sample at the end
-    let quiet = Settings { dt: settings.t_end, ..settings.clone() };
     cases
         .par_iter()
         .map(|c| {
             if cancel.load(Ordering::Relaxed) {
                 return Ok(None);
             }
-            let s = simulate(rotor, &c.drive, &c.initial, &quiet, |_| !cancel.load(Ordering::Relaxed))?;
+            // summaries only, from the same steps as `simulate` (dt is the automatic method's time resolution)
+            let s = simulate_summary(rotor, &c.drive, &c.initial, settings, || !cancel.load(Ordering::Relaxed))?;
             progress(done.fetch_add(1, Ordering::Relaxed) + 1);
             Ok((s.stopped.is_none() || !cancel.load(Ordering::Relaxed)).then_some(s))
         })

@@ -22,4 +22,4 @@ pub mod stationary;
 
 pub use equations::Equations;
 pub use rotor::{BallPlane, PointMass, RigidRotor, SpatialRotor, Support};
-pub use simulate::{simulate, Initial, Sample, Settings, Summary};
+pub use simulate::{simulate, simulate_summary, Initial, Sample, Settings, Summary};

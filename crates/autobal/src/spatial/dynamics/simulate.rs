@@ -51,7 +51,8 @@ pub struct Settings {
     pub method: Method,
     /// End time (s, or `τ` in the papers' units).
     pub t_end: f64,
-    /// Output interval, independent of the internal steps.
+    /// Output interval; also the time resolution of the automatic and implicit methods (implicit
+    /// steps of at most `4 dt`, see [`tolerances`]); samples are read from the dense output.
     pub dt: f64,
     /// Relative tolerance.
     pub rtol: f64,
@@ -281,7 +282,27 @@ fn plane_amplitude(eq: &Equations, y: &[f64]) -> f64 {
 /// let s = simulate(&rotor, &drive, &Initial::at_rest(&rotor), &settings, |_| true).unwrap();
 /// assert!(s.balanced && s.residual_unbalance < 1e-3);
 /// ```
-pub fn simulate(rotor: &SpatialRotor, drive: &Drive, init: &Initial, settings: &Settings, mut sink: impl FnMut(&Sample) -> bool) -> Result<Summary> {
+pub fn simulate(rotor: &SpatialRotor, drive: &Drive, init: &Initial, settings: &Settings, sink: impl FnMut(&Sample) -> bool) -> Result<Summary> {
+    simulate_sampled(rotor, drive, init, settings, settings.dt, sink)
+}
+
+/// The run of [`simulate`] with samples only at its start and end, for its summary (basins):
+/// the same settings, `dt` included, so the same steps and the same summary (`dt` is also the
+/// automatic method's time resolution, see [`tolerances`]). `keep_going` is asked at every step;
+/// `false` stops the run (an interruption, as in [`simulate`]).
+pub fn simulate_summary(rotor: &SpatialRotor, drive: &Drive, init: &Initial, settings: &Settings, keep_going: impl Fn() -> bool) -> Result<Summary> {
+    simulate_sampled(rotor, drive, init, settings, settings.t_end, |_| keep_going())
+}
+
+/// [`simulate`], sampling every `sample_dt` (the integrator's settings unchanged).
+fn simulate_sampled(
+    rotor: &SpatialRotor,
+    drive: &Drive,
+    init: &Initial,
+    settings: &Settings,
+    sample_dt: f64,
+    mut sink: impl FnMut(&Sample) -> bool,
+) -> Result<Summary> {
     rotor.validate()?;
     drive.validate()?;
     settings.validate()?;
@@ -295,7 +316,7 @@ pub fn simulate(rotor: &SpatialRotor, drive: &Drive, init: &Initial, settings: &
     let mut y = initial_state(&eq, init)?;
     let mut solver = Solver::new(&eq, tolerances(&eq, settings))?;
     let breakpoints = drive.breakpoints();
-    let timeline = Timeline { t_end: settings.t_end, dt: settings.dt, breakpoints: &breakpoints };
+    let timeline = Timeline { t_end: settings.t_end, dt: sample_dt, breakpoints: &breakpoints };
     let counters = vec![EventCounter::default(); eq.ball_forces().len()];
     let mut hooks = SpatialHooks { eq: &eq, sink: &mut sink, peak: (plane_amplitude(&eq, &y), drive.omega0(), 0.0), counters };
     let out = run(&mut solver, &mut y, &timeline, &mut hooks);
