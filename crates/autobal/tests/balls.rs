@@ -204,8 +204,13 @@ fn an_impact_honours_the_restitution_coefficient_and_keeps_momentum() {
         let prev = prev.unwrap();
         let rate = |j: usize| (last.psi[j] - prev.psi[j]) / (last.t - prev.t);
         let (v1, v2) = (rate(0), rate(1));
-        assert!(((v2 - v1) - e).abs() < 2e-3, "e = {e}: relative speed after {}", v2 - v1);
-        assert!((v1 + v2 - 1.0).abs() < 2e-3, "e = {e}: momentum {}", v1 + v2);
+        // Errors measured: relative speed 1.6e-5, 2.3e-5, 1.0e-6 (e = 1, 0.5, 0.2), momentum
+        // ≤ 7.5e-7, energy (e = 1) 1.6e-5. Their sources: the housing, pushed through the
+        // contact, keeps a share of O(m3/m0) = 5e-6 of momentum and energy (its vibration is not
+        // counted below), and the contact is the linear spring–damper of exact restitution
+        // only to first order in the overlap (chord against angle). Tolerances ≈ 10× measured.
+        assert!(((v2 - v1) - e).abs() < 2e-4, "e = {e}: relative speed after {}", v2 - v1);
+        assert!((v1 + v2 - 1.0).abs() < 1e-5, "e = {e}: momentum {}", v1 + v2);
         if e == 1.0 {
             let mut y = y0.clone();
             let nc = 5;
@@ -214,7 +219,7 @@ fn an_impact_honours_the_restitution_coefficient_and_keeps_momentum() {
             y[nc + 3] = v1;
             y[nc + 4] = v2;
             let (e0, e1) = (energy(&p, &y0), energy(&p, &y));
-            assert!((e1 - e0).abs() < 1e-3 * e0, "energy {e0} → {e1}");
+            assert!((e1 - e0).abs() < 2e-4 * e0, "energy {e0} → {e1}");
         }
     }
 }
@@ -230,7 +235,7 @@ fn friction_leaves_the_balls_where_the_static_equilibrium_lets_them_rest() {
     // axis (semi-balanced, |P| → 0); with μ_r the balls stop as soon as every ball can rest,
     // |P| |sin(ψ_j − arg P)| ≤ μ_r (r + P·e^{iψ_j}), checked on the closed-form steady whirl P
     // of the end configuration (independent of the simulated rotor state), which the simulated
-    // rotor matches; the residual |P| is of the order μ_r r.
+    // rotor matches; the residual |P| is of the order μ_r r (1.4 μ_r r from this start).
     let w = 450.0;
     let start = [PI / 2.0, 3.0 * PI / 2.0];
     let (s0, last0) = run_at(&friction_rotor(0.0, 1e-4), w, &start, 40.0);
@@ -243,13 +248,16 @@ fn friction_leaves_the_balls_where_the_static_equilibrium_lets_them_rest() {
         let pp = steady_p(&p, w, &last.psi);
         let e = C::from_polar(p.s2, p.gamma);
         let sim_p = u_of(&last) + e;
-        assert!((sim_p - pp).norm() < 1e-3 * pp.norm(), "simulated P {sim_p} vs steady {pp}");
+        // measured 3.2e-6 and 1.6e-6 (the balls still creep at the regularisation's v_ε)
+        assert!((sim_p - pp).norm() < 3e-5 * pp.norm(), "simulated P {sim_p} vs steady {pp}");
         for &psi in &last.psi {
             let margin = can_rest(mu, p.r, (pp.re, pp.im), psi);
             assert!(margin > -1e-3 * mu * p.r, "μ = {mu}: ball at {psi} cannot rest (margin {margin})");
         }
         let residual = pp.norm();
-        assert!(residual > 0.2 * mu * p.r && residual < 3.0 * mu * p.r, "μ = {mu}: residual |P| = {residual} vs μ r = {}", mu * p.r);
+        // of the order μ_r r: measured 1.42 and 1.39 μ_r r; the band 1.2-1.6 μ_r r is that range
+        // (the residual test below sweeps speed, μ_r and ball mass)
+        assert!(residual > 1.2 * mu * p.r && residual < 1.6 * mu * p.r, "μ = {mu}: residual |P| = {residual} vs μ r = {}", mu * p.r);
     }
 }
 
@@ -329,26 +337,51 @@ fn the_right_hand_side_solves_every_bodys_equation_with_the_ball_forces() {
 fn the_residual_eccentricity_is_about_mu_r_r_whatever_the_speed_and_ball_mass() {
     // The pull on a resting ball (m3 r ω² |P| |sin|) and the friction that holds it
     // (μ_r r m3 ω² (r + …)) both scale with m3 ω²: balls that approach the balanced state slowly
-    // (paper 004's 30 g balls) stop at the edge of the dead zone, |P| ≈ μ_r r whatever the speed,
-    // growing linearly with μ_r. Heavier balls (60 g) overshoot, stick and slip again, and stop
-    // deeper inside: the residual is then smaller, never larger (the end state always satisfies
-    // the static resting condition).
+    // (paper 004's 30 g balls) stop at the edge of the dead zone, |P| ≈ μ_r r whatever the speed.
+    // Heavier balls (60 g) overshoot, stick and slip again, and stop deeper inside: the
+    // residual is then smaller, never larger. Every end state satisfies the static resting
+    // condition (`at_rest`: `can_rest` on the closed-form whirl of the end configuration).
     use autobal::planar::friction::residual;
-    for m3 in [0.03, 0.06] {
+    let (speeds, mus) = ([1.5, 3.0], [5e-4, 2e-3]);
+    // ratio[m3][speed][μ_r] = |P| / (μ_r r)
+    let mut ratio = [[[0.0; 2]; 2]; 2];
+    for (i, m3) in [0.03, 0.06].into_iter().enumerate() {
         let p = PlanarRotor::paper_004(m3);
         let wn = p.natural_frequency();
-        for k in [1.5, 3.0] {
-            for mu in [5e-4, 2e-3] {
+        for (j, k) in speeds.into_iter().enumerate() {
+            for (l, mu) in mus.into_iter().enumerate() {
                 let r = residual(&p, k * wn, mu, 40.0).unwrap();
-                let ratio = r.eccentricity / (mu * p.r);
-                eprintln!(
-                    "m3 = {m3}, ω = {k} ω_n, μ_r = {mu}: |P| = {:.3e} m = {ratio:.3} μ_r r, residual unbalance {:.3e} kg·m, {} stick-slip transitions",
-                    r.eccentricity, r.unbalance, r.stick_slip_transitions
-                );
                 assert!(r.completed && r.settled && r.at_rest, "{r:?}");
-                let range = if m3 == 0.03 { 0.8..1.5 } else { 0.0..1.5 };
-                assert!(range.contains(&ratio), "m3 = {m3}, ω = {k} ω_n, μ_r = {mu}: |P| = {ratio} μ_r r");
+                ratio[i][j][l] = r.eccentricity / (mu * p.r);
             }
+        }
+    }
+    let light = ratio[0];
+    // 30 g: |P| = 0.94-1.23 μ_r r (measured); the band 0.9-1.3 is that range, so a residual
+    // that stops scaling with μ_r r, or stops at the axis, fails
+    assert!(light.iter().flatten().all(|q| (0.9..1.3).contains(q)), "30 g: |P|/(μ_r r) = {light:?}");
+    // almost independent of the speed: 3 against 1.5 ω_n within 10 % (measured 2.4 % at
+    // μ_r = 5e-4, 7.2 % at 2e-3)
+    for l in 0..2 {
+        assert!((light[1][l] / light[0][l] - 1.0).abs() < 0.1, "30 g, μ_r = {}: {light:?}", mus[l]);
+    }
+    // a little faster than linear in μ_r: 4× μ_r gives 1.22-1.28× the ratio (|P| 4.9-5.1×)
+    for j in 0..2 {
+        let g = light[j][1] / light[j][0];
+        assert!(g > 1.1 && g < 1.4, "30 g at {} ω_n: ratio grows {g}× for 4× μ_r", speeds[j]);
+    }
+    // 60 g: never more than 30 g at the same speed and μ_r (measured 0.12-0.74 against
+    // 0.94-1.23), and not at the axis
+    for j in 0..2 {
+        for l in 0..2 {
+            assert!(
+                ratio[1][j][l] > 0.0 && ratio[1][j][l] <= light[j][l],
+                "{} ω_n, μ_r = {}: 60 g {} vs 30 g {}",
+                speeds[j],
+                mus[l],
+                ratio[1][j][l],
+                light[j][l]
+            );
         }
     }
 }
@@ -475,4 +508,26 @@ fn paper_004s_findings_with_real_balls() {
     assert!(wrap(mid - beta).abs() < 5e-4, "pair centre {mid} vs closed form {beta}");
     assert!((rb.final_amplitude - radius).abs() < 5e-5 * radius, "C whirls at {} vs closed form {radius}", rb.final_amplitude);
     assert!(rb.final_amplitude > pm.final_amplitude, "real balls leave more: {} vs {}", rb.final_amplitude, pm.final_amplitude);
+}
+
+#[test]
+fn rolling_resistance_stops_the_balls_short_of_s2_after_a_passage() {
+    // docs/balls.md, "Which of 004's findings survive": with μ_r = 1e-3 (point masses otherwise)
+    // the 30 g balls stop before E reaches the axis during the forward passage, and C ends at
+    // 0.820 s2 (0.410 mm) instead of s2, E 90 µm = 1.50 μ_r r off the axis. Measured
+    // 0.819874-0.819878 s2 and 1.5010-1.5011 μ_r r at rtol 1e-6 to 1e-10; the tolerances are
+    // ten times that spread.
+    let mu = 1e-3;
+    let p = PlanarRotor { balls: BallPhysics { rolling_resistance: mu, ..Default::default() }, ..PlanarRotor::paper_004(0.03) };
+    let (s, last) = passage(&p, true, 1e-8);
+    assert!(s.settled && s.stick_slip_transitions >= 2, "{s:?}");
+    assert!((s.final_amplitude / p.s2 - 0.81988).abs() < 5e-5, "C ends at {} s2", s.final_amplitude / p.s2);
+    let pe = u_of(&last) + C::from_polar(p.s2, p.gamma);
+    assert!((pe.norm() / (mu * p.r) - 1.5011).abs() < 2e-3, "|P| = {} μ_r r", pe.norm() / (mu * p.r));
+    // every ball where the static resting condition lets it rest (closed-form whirl at 600 rad/s)
+    let pp = steady_p(&p, s.final_omega, &last.psi);
+    for &psi in &last.psi {
+        let margin = can_rest(mu, p.r, (pp.re, pp.im), psi);
+        assert!(margin > -1e-3 * mu * p.r, "ball at {psi} cannot rest (margin {margin})");
+    }
 }

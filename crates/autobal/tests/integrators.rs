@@ -77,8 +77,7 @@ fn global_error(method: Method, h: f64, t_end: f64) -> f64 {
 }
 
 /// Error after one step of size `h` from the exact state at `t0` (`O(h^{p+1})` for order `p`).
-fn local_error(method: Method, h: f64) -> f64 {
-    let t0 = 0.4;
+fn local_error(method: Method, t0: f64, h: f64) -> f64 {
     let mut s = Solver::new(&Mixed, fixed(method, h)).unwrap();
     let mut y = mixed_exact(t0);
     s.integrate(t0, &mut y, t0 + h, |_| Control::Continue);
@@ -120,9 +119,15 @@ fn dop853_is_of_order_8_under_step_halving() {
     for q in &p {
         assert!(*q > 7.7 && *q < 9.3, "observed orders {p:?} (errors {errs:?})");
     }
-    // the local error of one step: O(h⁹)
-    let errs: Vec<f64> = [0.8, 0.4].iter().map(|h| local_error(Method::Dop853, *h)).collect();
-    assert!(orders(&errs)[0] > 8.0, "local error {errs:?}");
+    // the local error of one step: O(h⁹). Measured from t0 = 1 under two halvings: 2^8.94 and
+    // 2^9.07 (errors 5e-9 → 1.9e-14, above rounding); the bracket ±0.3 is the spread of the
+    // local slopes over h = 0.3-0.075 (8.9-9.1) with room for the O(h¹⁰) term. (From t0 = 0.4
+    // one component's h⁹ coefficient nearly vanishes and the ratios scatter, 2^4.9-2^11.8.)
+    let errs: Vec<f64> = [0.3, 0.15, 0.075].iter().map(|h| local_error(Method::Dop853, 1.0, *h)).collect();
+    let p = orders(&errs);
+    for q in &p {
+        assert!((q - 9.0).abs() < 0.3, "observed local orders {p:?} (errors {errs:?})");
+    }
 }
 
 #[test]

@@ -55,9 +55,16 @@ fn the_outcomes_change_with_the_inertia_and_the_drag() {
     // 18 N·m passes; too much and 73 N·m sticks; a lighter disk makes 73 N·m the higher peak
     let little_drag = torque_outcomes(TORQUE_I_G, 0.03, &|| false).unwrap();
     assert!(!little_drag.sticks_18 && little_drag.passes_73, "{little_drag:?}");
+    // at c_θ = 0.3 the bearing alone holds 73 N·m below resonance (T/c_θ = 243 < 288 rad/s)
     let much_drag = torque_outcomes(TORQUE_I_G, 0.3, &|| false).unwrap();
-    assert!(much_drag.sticks_18 || !much_drag.passes_73, "{much_drag:?}");
     assert!(!much_drag.passes_73, "{much_drag:?}");
+    // and 18 N·m at T/c_θ = 60 rad/s: with J_C/c_θ = 1 s the bearing alone gives
+    // 60 (1 − e^{−10}) = 59.9973 rad/s at the end of the run (10 s); the whirl's c ω A² takes a
+    // little more (measured 59.99698). It never passes, but at 60 rad/s the balls still creep
+    // when the run ends (settled by 30 s), so `sticks_18`, which also asks for a settled run,
+    // reads false there (from c_θ = 0.15 on: docs/paper004.md)
+    assert!(much_drag.omega_18 < 59.9973 && much_drag.omega_18 > 59.99, "{much_drag:?}");
+    assert!(!much_drag.sticks_18, "{much_drag:?}");
     for i_g in [0.01, 0.1] {
         let light = torque_outcomes(i_g, TORQUE_C_THETA, &|| false).unwrap();
         assert!(light.sticks_18 && light.passes_73 && light.balanced_183_before_off, "{light:?}");
@@ -118,6 +125,26 @@ fn reverse_passage_at_a_quarter_is_lower_but_not_far_lower() {
         let ratio = rev / fwd;
         assert!(ratio > 0.92 && ratio < 0.96, "reverse/forward = {ratio}");
     }
+}
+
+#[test]
+fn reverse_peak_falls_with_the_deceleration_then_stays_flat() {
+    // 004 Fig. 4b: the reverse peak "falls, then rises" with |b|. Reverse passages from
+    // 1000 rad/s to rest as the report runs them (automatic method to 12.5 1/s², DOP853 beyond):
+    // measured 30.22, 19.09, 11.70, 10.735, 10.735 mm at 0.25, 2.5, 12.5, 25, 50 1/s² (0.2 s of
+    // CPU for all five). The fall follows, the rise does not.
+    let p = PlanarRotor::paper();
+    let peaks: Vec<f64> = [(0.25, Method::Auto), (2.5, Method::Auto), (12.5, Method::Auto), (25.0, Method::Dop853), (50.0, Method::Dop853)]
+        .iter()
+        .map(|&(b, method)| passage(&p, 1000.0, -b, 1000.0 / b, |s| s.method = method).0.peak_amplitude)
+        .collect();
+    // the fall, each step by a margin the runs' sensitivity cannot bridge: 0.25 → 2.5 measured
+    // 1.58×; 2.5 → 12.5 1.63× (the 2.5 1/s² reverse peak is ill-conditioned, 0.54-0.75 of the
+    // forward peak with the start, i.e. 17-24 mm: 1.3× still holds for all of them); 12.5 → 25
+    // 1.09×
+    assert!(peaks[0] > 1.3 * peaks[1] && peaks[1] > 1.3 * peaks[2] && peaks[2] > 1.05 * peaks[3], "reverse peaks {peaks:?}");
+    // no rise: 50 equals 25 1/s² (measured to 1.3e-5); 1e-3 is flat to the doc's 3 digits
+    assert!((peaks[4] / peaks[3] - 1.0).abs() < 1e-3, "reverse peaks {peaks:?}");
 }
 
 #[test]

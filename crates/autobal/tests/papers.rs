@@ -8,12 +8,17 @@ use autobal::spatial::sensitivity::sensitivity;
 
 /// Base case of 000/003 with `ΔĀ = 0.1` given directly (as the papers' figures do).
 pub fn base(l_left: f64) -> SpatialModel {
+    base_with(l_left, 0.1)
+}
+
+/// The base case with `ΔĀ = delta_a` given directly.
+fn base_with(l_left: f64, delta_a: f64) -> SpatialModel {
     SpatialModel::from_dimensionless(&DimensionlessInput {
         c_sigma: 0.75,
         rho_s: 0.4,
         l_left,
         z_a: 0.8,
-        anisotropy: AnisotropyInput::Direct(0.1),
+        anisotropy: AnisotropyInput::Direct(delta_a),
         h_x: 0.0,
         h_s: 0.0,
         method: AnisotropyMethod::Exact,
@@ -104,4 +109,29 @@ fn paper_000_sensitivity_of_base_case() {
     assert_eq!(r(s.coefficient.unwrap(), 3), 0.220);
     assert_eq!(r(s.coefficient_approx.unwrap(), 3), 0.225);
     assert!(s.finite_mass_model_needed);
+}
+
+#[test]
+fn paper_000_thresholds_by_the_exact_roots_at_three_layouts() {
+    // docs/papers.md, finding 5: the exact roots of (16) change the angular critical speed by
+    // 22.5 % at l̄_L = 0.5 (eq (22)'s value too), and δΩ_Kα reaches 0.15 at ΔĀ = 0.0694
+    // (l̄_L = 0.5), 0.0712 (0.8), 0.0712 (1.2), not at 000's 0.095: bisection on ΔĀ (the
+    // coefficient grows with it) to 1e-12, against the printed 4 decimals.
+    let s = sensitivity(&base(0.5), 0.15);
+    assert_eq!(r(s.coefficient.unwrap(), 3), 0.225);
+    assert_eq!(r(s.coefficient_approx.unwrap(), 3), 0.225);
+    for (l, printed) in [(0.5, 0.0694), (0.8, 0.0712), (1.2, 0.0712)] {
+        let k = |d: f64| sensitivity(&base_with(l, d), 0.15).coefficient.unwrap() - 0.15;
+        let (mut lo, mut hi) = (1e-3, 0.095);
+        assert!(k(lo) < 0.0 && k(hi) > 0.0, "l̄_L = {l}: 0.095 must exceed the threshold");
+        while hi - lo > 1e-12 {
+            let mid = 0.5 * (lo + hi);
+            if k(mid) < 0.0 {
+                lo = mid
+            } else {
+                hi = mid
+            }
+        }
+        assert_eq!(r(lo, 4), printed, "l̄_L = {l}: δΩ_Kα = 0.15 at ΔĀ = {lo}");
+    }
 }

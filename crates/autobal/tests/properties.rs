@@ -94,6 +94,17 @@ fn critical_speeds_are_roots_of_the_assembled_determinant() {
             prev = v;
         }
         total += found.len();
+        // every reported critical speed is a root of det K (the other direction): Hadamard's
+        // bound |det| ≤ Π ‖row‖ is the size of the terms that cancel there. Measured: at most
+        // 1.2e-13 of it over the 300 rotors (the root's own rounding, ε Ω times d det/dΩ, and
+        // the elimination's); 1e-12 allows for that, while a speed off by 1e-9 relative
+        // leaves far more
+        for s in &cs.speeds {
+            let k = stiffness(&m, s.omega);
+            let bound: f64 = k.iter().map(|r| r.iter().map(|v| v * v).sum::<f64>().sqrt()).product();
+            let d = det4(k).abs();
+            assert!(d <= 1e-12 * bound, "Ω_K = {}: |det K| = {d} vs Hadamard bound {bound} ({m:?})", s.omega);
+        }
         // every simple root of det K is a reported critical speed
         for r in &found {
             assert!(
@@ -173,14 +184,16 @@ fn approximations_converge_at_their_order() {
             critical_speeds(&m).speeds.iter().map(|s| (s.approx_near_symmetric.unwrap() - s.omega).abs()).fold(0.0, f64::max)
         };
         let (e1, e2) = (err19(0.5 + 0.02), err19(0.5 + 0.01));
-        // halving c̄yα divides the error by ≈ 16
-        assert!(e2 < e1 / 10.0, "(19) error {e1} → {e2}");
+        // halving c̄yα divides the error by ≈ 16: measured 15.7-15.9 over these rotors (the
+        // O(c̄yα⁶) term lowers it a little); 14-18 brackets that, order 3 or 5 would give 8 or 32
+        assert!(e1 / e2 > 14.0 && e1 / e2 < 18.0, "(19) error {e1} → {e2}: ratio {} should be ≈ 16", e1 / e2);
         let err20 = |d: f64| {
             let m = model(cs_, rho, 0.8, 0.0, d);
             critical_speeds(&m).speeds.iter().map(|s| (s.approx_small_anisotropy.unwrap() - s.omega).abs()).fold(0.0, f64::max)
         };
         let (e1, e2) = (err20(0.004), err20(0.002));
-        assert!(e2 < e1 / 3.0 && e2 > e1 / 5.0, "(20) error {e1} → {e2} should quarter");
+        // measured 4.006-4.014; 3.8-4.2 brackets that, order 1 or 3 would give 2 or 8
+        assert!(e1 / e2 > 3.8 && e1 / e2 < 4.2, "(20) error {e1} → {e2} should quarter: ratio {}", e1 / e2);
         checked += 1;
     }
     assert!(checked > 50);

@@ -633,20 +633,25 @@ fn run_up_through_the_split_critical_speeds_follows_the_locked_ball_curve() {
     //   its two maxima at the split transverse critical speeds of the linear analysis
     //   (0.838, 0.848; within 1 %); the split angular ones (2.580, 3.618), damped more
     //   strongly, merge into one maximum between them;
-    // - a run-up at constant acceleration (1000 revolutions from rest to Ω = 4.2) and one under
-    //   a constant torque follow that curve below the first critical speed and between the
-    //   transverse and the angular ones (Ω in 0.4-0.7 and 1.3-1.9: within 5 %, the rest of the
-    //   passage's free vibration; measured 3.9 %);
-    // - at the transverse critical speeds the passage peaks later than the stationary curve,
-    //   and at constant acceleration lower (the classic passage result; under the torque,
-    //   slowed by the resonance, higher: 2.42 against 2.09). Near the angular ones the run-up rises
-    //   far above this curve (docs/spatial.md): not asserted.
+    // - a run-up at constant acceleration (1000 revolutions from rest to Ω = 4.2) follows that
+    //   curve below the first critical speed and between the transverse and the angular ones
+    //   (Ω in 0.4-0.7 and 1.3-1.9: within 5 %, the rest of the passage's free vibration;
+    //   measured 3.9 %);
+    // - at the transverse critical speeds it peaks later and lower than the stationary curve
+    //   (the classic passage result). Near the angular ones the run-up rises far above this
+    //   curve (docs/spatial.md): not asserted;
+    // - under constant torques: captured below the pair (small torques) or through it so fast
+    //   that the whirl stays far below the curve (below).
     let (model, rotor) = base_case(0.8);
     let psi = [3.0944, 5.1888];
     let locked = locked_rotor(&rotor, &psi);
     let set = BallSet { n: 2, a_m0: 0.025 * 4.0, a_m: 0.05 * 4.0, capacity: 2.0 };
     let da = exact_anisotropy_of(&set, &psi);
-    assert!((da - 0.084).abs() < 0.002, "ΔĀ of the held balls {da}");
+    let closed = 0.5
+        * (num_complex::Complex64::new(set.a_m0, 0.0)
+            + set.a_m / 2.0 * psi.iter().map(|a| num_complex::Complex64::from_polar(1.0, 2.0 * a)).sum::<num_complex::Complex64>())
+        .norm();
+    assert!((da - closed).abs() < 1e-12 && (da * 1e3).round() == 84.0, "ΔĀ of the held balls {da} vs {closed}");
     let crit: Vec<f64> = critical_speeds_at(&model, da).into_iter().map(|c| c.0).collect();
     let angular: Vec<f64> = crit.iter().copied().filter(|w| *w > 1.5).collect();
     assert_eq!(angular.len(), 2, "split angular critical speeds {crit:?}");
@@ -681,8 +686,7 @@ fn run_up_through_the_split_critical_speeds_follows_the_locked_ball_curve() {
     // under the torque that would give the same acceleration without whirl, T = C b, and
     // under ten times that, the resonance captures the drive below the first critical speed
     // (the Sommerfeld effect: the support dampers take c Ω² a² ≈ 0.03 of power at a whirl of
-    // 1 ρ_s, more than T Ω); T = 0.1 passes the transverse pair (fast: only its peak is
-    // compared) and is captured again between the split angular ones (Ω ≈ 3.15)
+    // 1 ρ_s, more than T Ω); T = 0.1 passes the transverse pair (below)
     let captured = Drive::Torque { omega0: 0.0, torque: polar * b, t_off: None };
     let set = Settings { method: Default::default(), t_end, dt: 0.5, rtol: 1e-8, atol: 1e-10 };
     let (_, s) = radius_vs_speed(&locked, &captured, &init, &set);
@@ -690,25 +694,33 @@ fn run_up_through_the_split_critical_speeds_follows_the_locked_ball_curve() {
     let captured = Drive::Torque { omega0: 0.0, torque: 10.0 * polar * b, t_off: None };
     let (_, s) = radius_vs_speed(&locked, &captured, &init, &set);
     assert!(s.final_omega < crit[1], "T = 10 C b: captured below Ω_K2, ends at Ω = {}", s.final_omega);
-    for (name, drive) in [("acceleration", Drive::Acceleration { omega0: 0.0, b }), ("torque", Drive::Torque { omega0: 0.0, torque: 0.1, t_off: None })] {
-        let (run, s) = radius_vs_speed(&locked, &drive, &init, &set);
-        if name == "acceleration" {
-            assert!(s.final_omega > 4.0, "{name}: the run reaches Ω = {}", s.final_omega);
-        } else {
-            assert!(s.final_omega > angular[0] && s.final_omega < angular[1], "{name}: captured between the angular critical speeds? Ω = {}", s.final_omega);
-        }
-        let mut worst: f64 = 0.0;
-        for &(w, a) in run.iter().filter(|p| name == "acceleration" && away(p.0)) {
-            let e = (a - stationary_at(w)).abs() / stationary_at(w).max(0.1 * scale);
-            worst = worst.max(e);
-        }
-        assert!(worst <= 0.05, "{name}: away from the critical speeds the run departs {worst} from the stationary curve");
-        let w = crit[0];
-        let near = |p: &(f64, f64)| (p.0 - w).abs() <= 0.12 * w;
-        let run_peak = run.iter().filter(|p| near(p)).fold((0.0, 0.0), |m, p| if p.1 > m.1 { *p } else { m });
-        let st_peak = maxima.iter().filter(|p| near(p)).fold((0.0, 0.0), |m, p| if p.1 > m.1 { *p } else { m });
-        assert!(run_peak.0 > st_peak.0 && (name == "torque" || run_peak.1 < st_peak.1), "{name} at Ω_K = {w}: run peak {run_peak:?}, stationary {st_peak:?}");
-    }
+    let w = crit[0];
+    let near = |p: &(f64, f64)| (p.0 - w).abs() <= 0.12 * w;
+    let peak_of = |v: &mut dyn Iterator<Item = (f64, f64)>| v.fold((0.0, 0.0), |m, p| if p.1 > m.1 { p } else { m });
+    let st_peak = peak_of(&mut maxima.iter().copied().filter(near));
+    // the run-up at constant acceleration (speed monotonic): within 5 % of the curve away from
+    // the critical speeds (measured 3.9 %), and its peak at the transverse pair later and lower
+    // (measured 1.45 at Ω = 0.90 against 2.09 at 0.835)
+    let (run, s) = radius_vs_speed(&locked, &Drive::Acceleration { omega0: 0.0, b }, &init, &set);
+    assert!(s.final_omega > 4.0, "the run-up reaches Ω = {}", s.final_omega);
+    let worst = run.iter().filter(|p| away(p.0)).map(|&(w, a)| (a - stationary_at(w)).abs() / stationary_at(w).max(0.1 * scale)).fold(0.0, f64::max);
+    assert!(worst <= 0.05, "away from the critical speeds the run-up departs {worst} from the stationary curve");
+    let run_peak = peak_of(&mut run.iter().copied().filter(near));
+    assert!(run_peak.0 > st_peak.0 && run_peak.1 < st_peak.1, "run-up at Ω_K = {w}: run peak {run_peak:?}, stationary {st_peak:?}");
+    // T = 0.1 crosses the transverse pair in about one τ (Ω 0.80 → 0.93): the whirl has no time
+    // to build and peaks after the pair, far lower than the curve (measured 0.274 at Ω = 1.49,
+    // 0.13 of the stationary peak, the same to 1e-9 at rtol 1e-8 to 1e-11). It does not follow
+    // the curve below the pair either (0.045 against 0.135 at Ω = 0.67: the speed rises too
+    // fast). Then the spin and the whirl trade energy: the speed swings over the whole range,
+    // forward and back through every critical speed, without settling (second half of the run:
+    // Ω from −0.23 to 5.4; from −0.09 to 8.6 and −0.24 to 7.3 at rtol 1e-10 and 1e-11, whose
+    // final speeds 3.15, 2.91, 1.47 differ: a chaotic response, so only the span is asserted).
+    let (run, _) = radius_vs_speed(&locked, &Drive::Torque { omega0: 0.0, torque: 0.1, t_off: None }, &init, &set);
+    let upto = run.iter().position(|p| p.0 > 1.9).expect("T = 0.1 passes the transverse pair");
+    let pass = peak_of(&mut run[..upto].iter().copied());
+    assert!(pass.0 > crit[1] && pass.1 < 0.2 * st_peak.1, "T = 0.1: passage peak {pass:?}, stationary {st_peak:?}");
+    let (lo, hi) = run[run.len() / 2..].iter().fold((f64::INFINITY, 0.0f64), |(l, h), p| (l.min(p.0), h.max(p.0)));
+    assert!(lo < crit[0] && hi > angular[1], "T = 0.1: second half of the run only in Ω {lo}-{hi}");
 }
 
 /// The two-plane rotor of examples/spatial_two_plane.toml with isotropic supports and no
@@ -746,11 +758,14 @@ fn two_ball_sets_cancel_static_plus_couple_unbalance_above_both_critical_speeds(
     // at 100 mm, 143° round, at mid-span), two ball sets (2 × 20 g at 120 mm each) near the
     // ends. Linear critical speeds of the rotor: 484 rad/s (transverse) and 840 rad/s
     // (conical). At constant speed, balls started spread evenly:
-    // - below the first and between the two critical speeds the balls do not balance;
+    // - below the first and between the two critical speeds the balls do not balance, nor at
+    //   1100 rad/s (1.31 times the conical critical speed; residuals 1.3 and 9.3 times the
+    //   unbalance's);
     // - above both (1.4 to 3.6 times the conical one) they do, static and couple residuals
     //   below 1e-6 of the unbalance's, and each set sits where two-plane balancing in closed
     //   form puts it: the resultants B_A, B_B of the sets solve B_A + B_B = −ΣU and
-    //   z_A B_A + z_B B_B = −Σ z U (rotor frame), each pair at arg B ± acos(|B|/(2 m R)).
+    //   z_A B_A + z_B B_B = −Σ z U (rotor frame), each pair at arg B ± acos(|B|/(2 m R)),
+    //   also on anisotropic supports (residuals 1e-13 at 1400 rad/s).
     let r = two_plane_rotor();
     let (u1, u2) = (&r.unbalances[0], &r.unbalances[1]);
     let cplx = |m: f64, rad: f64, a: f64| [m * rad * a.cos(), m * rad * a.sin()];
@@ -765,12 +780,18 @@ fn two_ball_sets_cancel_static_plus_couple_unbalance_above_both_critical_speeds(
     };
     let want = [expected(&ba, &r.planes[0]), expected(&bb, &r.planes[1])];
     let wrap = |a: f64| (a + std::f64::consts::PI).rem_euclid(2.0 * std::f64::consts::PI) - std::f64::consts::PI;
-    for (omega, balances) in [(300.0, false), (700.0, false), (1200.0, true), (2000.0, true), (3000.0, true)] {
+    // anisotropic supports (k_y 1.3 and 1.2 times k_x) do not spoil it at 1400 rad/s
+    let mut aniso = r.clone();
+    aniso.supports[0].stiffness[1] *= 1.3;
+    aniso.supports[1].stiffness[1] *= 1.2;
+    for (omega, balances, r) in
+        [(300.0, false, &r), (700.0, false, &r), (1100.0, false, &r), (1200.0, true, &r), (2000.0, true, &r), (3000.0, true, &r), (1400.0, true, &aniso)]
+    {
         let drive = Drive::Speed { omega0: omega };
-        let init = Initial::at_rest(&r);
+        let init = Initial::at_rest(r);
         let set = Settings { method: Default::default(), t_end: 10.0, dt: 0.05, rtol: 1e-10, atol: 1e-12 };
         let mut last = vec![];
-        let s = simulate(&r, &drive, &init, &set, |x| {
+        let s = simulate(r, &drive, &init, &set, |x| {
             last = x.psi.clone();
             true
         })
@@ -790,4 +811,15 @@ fn two_ball_sets_cancel_static_plus_couple_unbalance_above_both_critical_speeds(
             }
         }
     }
+    // The example's layout (couple mass in the second ball plane) under gravity across the axis
+    // (−9.81 m/s² along y) at 1400 rad/s: balanced, but for a small residual, the weight seen
+    // by the turning balls (docs/spatial.md). Measured 3.8698e-4 static and 5.8430e-5 couple,
+    // the same to 2e-6 of their values at rtol 1e-8 to 1e-12: asserted to the doc's 2 digits.
+    let mut heavy = two_plane_rotor();
+    heavy.unbalances[1].z = 0.05;
+    heavy.gravity = [0.0, -9.81, 0.0];
+    let set = Settings { method: Default::default(), t_end: 10.0, dt: 0.05, rtol: 1e-9, atol: 1e-11 };
+    let s = simulate(&heavy, &Drive::Speed { omega0: 1400.0 }, &Initial::at_rest(&heavy), &set, |_| true).unwrap();
+    let couple = s.residual_couple.unwrap();
+    assert!(s.balanced && (s.residual_unbalance - 3.9e-4).abs() < 0.05e-4 && (couple - 5.8e-5).abs() < 0.05e-5, "gravity: {s:?}");
 }

@@ -315,13 +315,47 @@ fn light_balls_leave_the_rotor_modes_unchanged() {
 }
 
 #[test]
-fn two_ball_base_case_frame_is_consistent() {
-    // 000's base case with masses: exact anisotropy 0, d_A = [[1 − D', 0], [0, 1 + D']], D' = −0.5
+fn exact_ranges_of_the_three_layouts_are_the_printed_table() {
+    // docs/stability.md, "What the exact analysis shows that the papers do not": 000's base case
+    // with masses at l̄_L = 0.5, 0.8, 1.2, computed as `autobal stability` does (its default
+    // Ω_max and 2000 grid speeds, ends bisected to 1e-9), against the table's 4 decimals.
+    use autobal::reports::default_omega_max;
+    use autobal::spatial::comparison::compare;
+    use autobal::spatial::ranges::SpeedRange;
+    // the frame of the balls at balance: two balls at π ± acos(1/E), E = 2, give
+    // D' = cos(2 acos(1/E)) = 2/E² − 1 = −0.5 and d_A = [[1 − D', 0], [0, 1 + D']]
     let m = SpatialModel::from_dimensionless(&DimensionlessInput::paper_000(0.8)).unwrap();
     let b = m.balls.unwrap();
-    assert!((b.d_a[0][0] - 1.5).abs() < 1e-15 && (b.d_a[1][1] - 0.5).abs() < 1e-15);
-    assert_eq!(b.d_a[0][1], 0.0);
-    assert!(stability_ranges(&m, 6.0, 300, Balls::Free, 1e-9).is_ok());
+    assert!((b.d_a[0][0] - 1.5).abs() < 1e-15 && (b.d_a[1][1] - 0.5).abs() < 1e-15 && b.d_a[0][1] == 0.0, "{:?}", b.d_a);
+    let r4 = |x: f64| (x * 1e4).round() / 1e4;
+    let ends = |v: &[SpeedRange]| -> Vec<(f64, Option<f64>)> { v.iter().map(|r| (r4(r.lo), r.hi.map(r4))).collect() };
+    type Table = [(f64, &'static [(f64, Option<f64>)], &'static [(f64, Option<f64>)], &'static [(f64, Option<f64>)])];
+    // (l̄_L, exactly stable, 003's necessary ranges, stable where 003's condition fails)
+    let table: &Table = &[
+        (0.5, &[(1.4469, Some(1.6745))], &[(1.0, Some(1.6193)), (2.7951, None)], &[(1.6193, Some(1.6745))]),
+        (0.8, &[(1.4122, Some(1.7071)), (1.7317, Some(2.2384))], &[(0.8463, Some(2.1726)), (3.3029, None)], &[(2.1726, Some(2.2384))]),
+        (1.2, &[(1.0716, Some(3.0625))], &[(0.5730, Some(3.0986)), (4.8782, None)], &[]),
+    ];
+    for &(l, exact, necessary, outside) in table {
+        let m = SpatialModel::from_dimensionless(&DimensionlessInput::paper_000(l)).unwrap();
+        let c = compare(&m, default_omega_max(&m), 2000, Balls::Free).unwrap();
+        assert_eq!(c.exact.tolerance, 1e-9);
+        assert_eq!(ends(&c.exact.stable_ranges), exact, "l̄_L = {l}: exactly stable");
+        assert_eq!(ends(&c.necessary), necessary, "l̄_L = {l}: 003's necessary ranges");
+        // finding 4: stable speeds outside 003's ranges are rare and narrow
+        assert_eq!(ends(&c.stable_not_necessary), outside, "l̄_L = {l}: stable outside 003's ranges");
+        // finding 2: the lower exact range starts well above 003's lower bound (Ω_K2 or 1)
+        assert!(exact[0].0 > necessary[0].0 + 0.3, "l̄_L = {l}");
+        // finding 1: 003's upper range (Ω > Ω_K4) is unstable at every speed up to 6: the
+        // spectral abscissa is positive on a grid of 200 speeds (docs: "not stable here")
+        let lo = necessary[1].0;
+        let mut least = f64::INFINITY;
+        for i in 1..=200 {
+            let w = lo + (6.0 - lo) * i as f64 / 200.0;
+            least = least.min(margin(&m, w, Balls::Free).unwrap());
+        }
+        assert!(least > 0.0, "l̄_L = {l}: a stable speed above Ω_K4 ({least})");
+    }
 }
 
 #[test]
