@@ -83,13 +83,55 @@ pub fn parse_text(text: &str, source: &str) -> Result<Table> {
     Ok(autobal::config::parse(text, source)?)
 }
 
-/// Load the config text (or the embedded default), apply overrides, validate, build the model.
-pub fn load(path: Option<&std::path::Path>, sets: &[String]) -> Result<Config> {
+/// Read the config text (or the embedded default) and apply the overrides.
+pub fn read_set(path: Option<&std::path::Path>, sets: &[String]) -> Result<(Table, String)> {
     let (mut root, source) = read(path)?;
     for s in sets {
         apply_set(&mut root, s)?;
     }
+    Ok((root, source))
+}
+
+/// Load the config text (or the embedded default), apply overrides, validate, build the model.
+#[cfg(test)]
+pub fn load(path: Option<&std::path::Path>, sets: &[String]) -> Result<Config> {
+    let (root, source) = read_set(path, sets)?;
     build(&root, &source)
+}
+
+/// [`load`] for the analytic `command`, warning (one line on standard error) about the entries
+/// it ignores ([`ignored_warning`]).
+pub fn load_analytic(command: &str, path: Option<&std::path::Path>, sets: &[String]) -> Result<Config> {
+    let (root, source) = read_set(path, sets)?;
+    let cfg = build(&root, &source)?;
+    warn_ignored(&root, command);
+    Ok(cfg)
+}
+
+/// The warning of an analytic `command` (`critical`, `map`, `report`, ...) on a config with
+/// entries that only the spatial simulation uses ([`autobal::config::ignored_by_linear_model`]),
+/// or `None`.
+pub fn ignored_warning(root: &Table, command: &str) -> Option<String> {
+    let keys = autobal::config::ignored_by_linear_model(root);
+    if keys.is_empty() {
+        return None;
+    }
+    let (who, also) = match command {
+        "report" => ("the report's analytic sections use".to_string(), " and the report's \"Your rotor in time\""),
+        _ => (format!("{command} uses"), ""),
+    };
+    Some(format!(
+        "warning: {who} the rotor of papers 000/003 (isotropic supports, one balancer plane of point-mass balls, static unbalance): {} {} used only by `simulate`/`basins`{also}",
+        keys.join(", "),
+        if keys.len() == 1 { "is" } else { "are" }
+    ))
+}
+
+/// Print [`ignored_warning`], if any.
+pub fn warn_ignored(root: &Table, command: &str) {
+    if let Some(w) = ignored_warning(root, command) {
+        crate::output::note(&w);
+    }
 }
 
 /// Validate a config table and build the model.
@@ -275,11 +317,17 @@ pub struct PlanarConfig {
 
 /// Load a planar config (embedded default: examples/planar.toml) with overrides.
 pub fn load_planar(path: Option<&std::path::Path>, sets: &[String]) -> Result<PlanarConfig> {
+    let (root, source) = read_planar_set(path, sets)?;
+    build_planar(&root, &source)
+}
+
+/// Read a planar config (embedded default: examples/planar.toml) and apply the overrides.
+pub fn read_planar_set(path: Option<&std::path::Path>, sets: &[String]) -> Result<(Table, String)> {
     let (mut root, source) = read_with_default(path, DEFAULT_PLANAR, "embedded default (examples/planar.toml)")?;
     for s in sets {
         apply_set(&mut root, s)?;
     }
-    build_planar(&root, &source)
+    Ok((root, source))
 }
 
 /// Validate a planar config table.

@@ -1,8 +1,8 @@
 //! `autobal stability` and `autobal campbell`: exact linear stability of the balanced state.
 
 use crate::config::Config;
-use crate::output::fmt_ranges;
 use anyhow::Result;
+use autobal::spatial::comparison::fmt_ranges_in;
 use autobal::spatial::linear_model::Balls;
 use autobal::spatial::stability::{campbell, campbell_stream, Campbell};
 use serde_json::Value;
@@ -22,15 +22,17 @@ pub fn stability_table(cfg: &Config, c: &Comparison, balls: Balls) -> String {
         "exact linear stability of the balanced state, balls {} ({} states), 0 < Ω ≤ {}",
         if balls == Balls::Free { "free" } else { "locked" },
         if balls == Balls::Free { 12 } else { 8 },
-        c.omega_max
+        crate::num::fmt(c.omega_max, 7)
     );
+    // computed over (0, Ω_max] only: a range reaching Ω_max ends there as far as is known
+    let w = Some(c.omega_max);
     let rule = if balls == Balls::Free { "all Re λ < −1e-11" } else { "all Re λ ≤ 1e-11" };
-    let _ = writeln!(s, "  stable ({rule}): {}", fmt_ranges(&c.exact.stable_ranges, 6));
-    let _ = writeln!(s, "  necessary (003, eqs (1)-(3)):   {}", fmt_ranges(&c.necessary, 6));
+    let _ = writeln!(s, "  stable ({rule}): {}", fmt_ranges_in(&c.exact.stable_ranges, 6, w));
+    let _ = writeln!(s, "  necessary (003, eqs (1)-(3)):   {}", fmt_ranges_in(&c.necessary, 6, w));
     let _ = writeln!(s, "  difference: {}", c.difference());
     if let Some(sc) = cfg.model.scale {
         let k = sc.omega0 * 30.0 / std::f64::consts::PI;
-        let _ = writeln!(s, "  stable in rpm: {}", fmt_ranges(&crate::output::scale_ranges(&c.exact.stable_ranges, k), 0));
+        let _ = writeln!(s, "  stable in rpm: {}", fmt_ranges_in(&crate::output::scale_ranges(&c.exact.stable_ranges, k), 0, Some(c.omega_max * k)));
     }
     let worst = c.exact.max_real_part.iter().map(|x| x.1).fold(f64::NEG_INFINITY, f64::max);
     let best = c.exact.max_real_part.iter().map(|x| x.1).fold(f64::INFINITY, f64::min);

@@ -81,6 +81,7 @@ enum Command {
     Inertia {
         #[command(flatten)]
         common: Common,
+        /// Output on standard output: a table to read or JSON
         #[arg(long, value_enum, default_value = "table")]
         format: Format,
     },
@@ -88,6 +89,7 @@ enum Command {
     Critical {
         #[command(flatten)]
         common: Common,
+        /// Output on standard output: a table to read or JSON
         #[arg(long, value_enum, default_value = "table")]
         format: Format,
     },
@@ -95,6 +97,7 @@ enum Command {
     Ranges {
         #[command(flatten)]
         common: Common,
+        /// Output on standard output: a table to read or JSON
         #[arg(long, value_enum, default_value = "table")]
         format: Format,
     },
@@ -102,6 +105,7 @@ enum Command {
     Stability {
         #[command(flatten)]
         common: Common,
+        /// Output on standard output: a table to read or JSON
         #[arg(long, value_enum, default_value = "table")]
         format: Format,
         #[command(flatten)]
@@ -117,6 +121,7 @@ enum Command {
     Campbell {
         #[command(flatten)]
         common: Common,
+        /// Output on standard output: a table to read or JSON
         #[arg(long, value_enum, default_value = "table")]
         format: Format,
         #[command(flatten)]
@@ -166,7 +171,7 @@ enum Command {
         /// Override a config field, e.g. --set drive.b=-2.5 (repeatable)
         #[arg(long = "set", value_name = "KEY=VALUE")]
         set: Vec<String>,
-        /// Output interval (s), independent of the internal steps; overrides integration.dt
+        /// Output interval (s, or τ for a dimensionless config), independent of the internal steps; overrides integration.dt
         #[arg(long, allow_negative_numbers = true)]
         dt: Option<f64>,
         /// CSV of samples (t, omega, x, y, amplitude, psi_1 … psi_n); plots go beside it as STEM_*.svg
@@ -185,8 +190,11 @@ enum Command {
     Merge(sweep::MergeArgs),
     /// Basins of the spatial rotor: where runs end over a grid of the first two balls' initial angles (parallel; CSV)
     Basins {
+        /// Config file with the spatial rotor's tables plus [drive] (e.g. examples/spatial.toml);
+        /// default: the embedded examples/default.toml, which has no [drive]
         #[arg(long, short)]
         config: Option<PathBuf>,
+        /// Override a config field, e.g. --set drive.omega0=1.5 (repeatable)
         #[arg(long = "set", value_name = "KEY=VALUE")]
         set: Vec<String>,
         /// Grid points per angle (N × N runs)
@@ -195,6 +203,7 @@ enum Command {
         /// CSV of the runs' ends
         #[arg(long, short, default_value = "basins.csv")]
         out: PathBuf,
+        /// Output on standard output: a table to read or JSON
         #[arg(long, value_enum, default_value = "table")]
         format: Format,
         /// Worker threads (default: all cores)
@@ -217,22 +226,22 @@ enum Command {
 fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Inertia { common, format } => {
-            let cfg = config::load(common.config.as_deref(), &common.set)?;
+            let cfg = config::load_analytic("inertia", common.config.as_deref(), &common.set)?;
             output::check_results(&cfg)?;
             emit(format, output::inertia_json(&cfg), output::inertia_table(&cfg))
         }
         Command::Critical { common, format } => {
-            let cfg = config::load(common.config.as_deref(), &common.set)?;
+            let cfg = config::load_analytic("critical", common.config.as_deref(), &common.set)?;
             output::check_results(&cfg)?;
             emit(format, output::critical_json(&cfg), output::critical_table(&cfg))
         }
         Command::Ranges { common, format } => {
-            let cfg = config::load(common.config.as_deref(), &common.set)?;
+            let cfg = config::load_analytic("ranges", common.config.as_deref(), &common.set)?;
             output::check_results(&cfg)?;
             emit(format, output::ranges_json(&cfg), output::ranges_table(&cfg))
         }
         Command::Stability { common, format, lin, samples, svg } => {
-            let cfg = config::load(common.config.as_deref(), &common.set)?;
+            let cfg = config::load_analytic("stability", common.config.as_deref(), &common.set)?;
             if let Some(w) = lin.omega_max {
                 check_speed("--omega-max", w)?;
             }
@@ -248,7 +257,7 @@ fn run(cli: Cli) -> Result<()> {
             emit(format, linear::stability_json(&cfg, &c, lin.balls.into()), linear::stability_table(&cfg, &c, lin.balls.into()))
         }
         Command::Campbell { common, format, lin, points, svg } => {
-            let cfg = config::load(common.config.as_deref(), &common.set)?;
+            let cfg = config::load_analytic("campbell", common.config.as_deref(), &common.set)?;
             if let Some(w) = lin.omega_max {
                 check_speed("--omega-max", w)?;
             }
@@ -266,6 +275,12 @@ fn run(cli: Cli) -> Result<()> {
         Command::Basins { config, set, n, out, format, threads } => run_basins(config, set, n, out, format, threads),
         Command::Report { common, out, quick } => {
             let _ = ctrlc::set_handler(|| sim::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
+            // the report reads the config itself; the warning of the analytic sections here
+            if let Ok((root, _)) = config::read_set(common.config.as_deref(), &common.set) {
+                if autobal::config::spatial(&root).is_ok() {
+                    config::warn_ignored(&root, "report");
+                }
+            }
             let index = report::run(common.config.as_deref(), &common.set, &out, quick)?;
             output::print(&format!("report written to {}\n", index.display()))
         }
@@ -284,10 +299,7 @@ fn run_map(
     threads: Option<usize>,
     boundary: bool,
 ) -> Result<()> {
-    let (mut root, source) = config::read(common.config.as_deref())?;
-    for s in &common.set {
-        config::apply_set(&mut root, s)?;
-    }
+    let (root, source) = config::read_set(common.config.as_deref(), &common.set)?;
     if let Some(w) = omega {
         check_speed("--omega", w)?;
     }
@@ -315,6 +327,7 @@ fn run_map(
     let q = if quantity == QuantityArg::Margin { map::Quantity::Margin } else { map::Quantity::Verdict };
     let progress = std::io::IsTerminal::is_terminal(&std::io::stderr());
     let cfg = config::build(&root, &source)?;
+    config::warn_ignored(&root, "map");
     let traced = if boundary {
         // the checks the map makes, before the tracing (whose messages would not name the flags)
         for (flag, a) in [("--x", &xa), ("--y", &ya)] {
@@ -451,10 +464,7 @@ fn run_spatial(root: &toml::Table, source: &str, dt: Option<f64>, out: PathBuf, 
 }
 
 fn run_basins(config: Option<PathBuf>, set: Vec<String>, n: usize, out: PathBuf, format: Format, threads: Option<usize>) -> Result<()> {
-    let (mut root, source) = config::read(config.as_deref())?;
-    for s in &set {
-        config::apply_set(&mut root, s)?;
-    }
+    let (root, source) = config::read_set(config.as_deref(), &set)?;
     let sim = spatial_sim::build(&root, &source)?;
     if let Some(t) = threads {
         if t == 0 {

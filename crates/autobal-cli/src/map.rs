@@ -247,11 +247,12 @@ pub fn boundary_series(b: &Boundary) -> Vec<Series> {
     out
 }
 
-/// The traced curves as CSV rows `curve,kind,x,y,w,on_boundary` and the codimension-two points
-/// as `-,KIND,x,y,,`.
+/// The traced curves as CSV rows `curve,kind,x,y,hopf_frequency_squared,on_boundary` (`ω_H²` of
+/// the pair `λ = ±iω_H` on a Hopf curve, 0 on a fold curve; not the speed) and the
+/// codimension-two points as `-,KIND,x,y,,`.
 pub fn boundary_csv(b: &Boundary, x: &str, y: &str) -> String {
     use std::fmt::Write as _;
-    let mut s = format!("curve,kind,{x},{y},omega_squared,on_boundary\n");
+    let mut s = format!("curve,kind,{x},{y},hopf_frequency_squared,on_boundary\n");
     for (i, c) in b.curves.iter().enumerate() {
         let kind = if c.kind == CurveKind::Hopf { "hopf" } else { "fold" };
         for p in &c.points {

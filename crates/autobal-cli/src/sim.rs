@@ -150,8 +150,15 @@ pub fn summary_table(cfg: &PlanarConfig, s: &Summary, wall: f64) -> String {
     );
     let _ = writeln!(
         o,
-        "integration ({}): {} steps ({} implicit, {} switches, {} rejected), {} right-hand sides, {:.3} s",
-        cfg.settings.method, s.steps, s.implicit_steps, s.switches, s.rejected_steps, s.rhs_evaluations, wall
+        "integration ({}): {} steps ({} implicit, {} {}, {} rejected), {} right-hand sides, {:.3} s",
+        cfg.settings.method,
+        s.steps,
+        s.implicit_steps,
+        s.switches,
+        if s.switches == 1 { "switch" } else { "switches" },
+        s.rejected_steps,
+        s.rhs_evaluations,
+        wall
     );
     if cfg.rotor.balls.is_active() {
         let _ = writeln!(o, "real balls: {} contacts, {} stick-slip transitions", s.contacts, s.stick_slip_transitions);

@@ -149,13 +149,26 @@ pub fn summary_table(sim: &SpatialSim, s: &Summary, wall: f64) -> String {
     use std::fmt::Write as _;
     let (lu, ls, _, _) = sim.units();
     let mut o = String::new();
-    let _ = writeln!(o, "config: {} (spatial rotor, {} balls in {} plane(s))", sim.source, sim.rotor.balls(), sim.rotor.planes.len());
-    let _ = writeln!(o, "peak whirl radius at the balancer plane: {:.6} {lu} at speed {:.4} (t = {:.4})", ls * s.peak_amplitude, s.omega_at_peak, s.t_at_peak);
+    let (balls, planes) = (sim.rotor.balls(), sim.rotor.planes.len());
     let _ = writeln!(
         o,
-        "final: radius {:.6} {lu} at speed {:.4}; residual unbalance {:.3e} of the unbalance{}; {}",
+        "config: {} (spatial rotor, {balls} ball{} in {planes} plane{})",
+        sim.source,
+        if balls == 1 { "" } else { "s" },
+        if planes == 1 { "" } else { "s" }
+    );
+    // speeds and times in the config's units: rad/s (rpm) and s, or the papers' Ω and τ
+    let speed = |w: f64| match sim.config.dimensional {
+        true => format!("ω = {w:.4} rad/s = {:.1} rpm", w * 30.0 / std::f64::consts::PI),
+        false => format!("Ω = {w:.4}"),
+    };
+    let time = |t: f64| if sim.config.dimensional { format!("t = {t:.4} s") } else { format!("τ = {t:.4}") };
+    let _ = writeln!(o, "peak whirl radius at the balancer plane: {:.6} {lu} at {} ({})", ls * s.peak_amplitude, speed(s.omega_at_peak), time(s.t_at_peak));
+    let _ = writeln!(
+        o,
+        "final: radius {:.6} {lu} at {}; residual unbalance {:.3e} of the unbalance{}; {}",
         ls * s.final_amplitude,
-        s.final_omega,
+        speed(s.final_omega),
         s.residual_unbalance,
         s.residual_couple.map_or(String::new(), |c| format!(", couple {c:.3e}")),
         if s.balanced { "balanced" } else { "not balanced" }

@@ -15,8 +15,11 @@ use std::sync::atomic::Ordering;
 
 #[derive(Args)]
 pub struct SweepArgs {
+    /// Config file with the planar rotor of paper 004 ([planar], [drive], [integration]);
+    /// default: the embedded examples/planar.toml
     #[arg(long, short)]
     config: Option<PathBuf>,
+    /// Override a config field for every run, e.g. --set planar.c_psi=0.1 (repeatable)
     #[arg(long = "set", value_name = "KEY=VALUE")]
     set: Vec<String>,
     /// First axis (varies fastest): PATH=LO:HI:N, PATH=V1,V2,… or PATH=V (e.g. drive.b=0.5:12.5:5)
@@ -38,6 +41,7 @@ pub struct SweepArgs {
     /// Also write the rows as Parquet, STEM.parquet (row groups written as runs finish)
     #[arg(long)]
     parquet: bool,
+    /// Output on standard output: a table to read or JSON
     #[arg(long, value_enum, default_value = "table")]
     format: Format,
     /// Worker threads (default: all cores)
@@ -82,7 +86,11 @@ fn columns(paths: &[&str]) -> Vec<String> {
 const PRINTED_WARNINGS: usize = 10;
 
 pub fn run(a: SweepArgs) -> Result<()> {
-    let cfg = config::load_planar(a.config.as_deref(), &a.set)?;
+    let (root, source) = config::read_planar_set(a.config.as_deref(), &a.set)?;
+    if autobal::config::is_spatial(&root) && !root.contains_key("planar") {
+        bail!("config: `sweep` runs the planar rotor of paper 004 only ([planar], [drive]); the spatial rotor of papers 000/003 is simulated by `simulate` (and `basins` over the balls' initial angles)");
+    }
+    let cfg = config::build_planar(&root, &source)?;
     let base = PlanarProblem { rotor: cfg.rotor, drive: cfg.drive, settings: cfg.settings };
     let mut axes = vec![("--x", a.x.as_str())];
     axes.extend(a.y.as_deref().map(|y| ("--y", y)));

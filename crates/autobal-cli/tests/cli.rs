@@ -224,8 +224,14 @@ fn dimensional_report_is_in_si_and_renders() {
     let cfg = examples("washing_machine.toml");
     let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("report-washer");
     let _ = std::fs::remove_dir_all(&dir);
-    let (code, _, err) = autobal(&["report", "--quick", "--config", &cfg, "--out", dir.to_str().unwrap()]);
+    // spin drag acts on torque drives only (the report's run-up is at constant acceleration):
+    // it changes nothing here but the warning that the analytic sections ignore it
+    let (code, _, err) = autobal(&["report", "--quick", "--config", &cfg, "--set", "spatial.spin_drag=0.01", "--out", dir.to_str().unwrap()]);
     assert_eq!(code, 0, "{err}");
+    assert!(
+        err.contains("warning: the report's analytic sections use the rotor of papers 000/003 (isotropic supports, one balancer plane of point-mass balls, static unbalance): spatial.spin_drag is used only by `simulate`/`basins` and the report's \"Your rotor in time\""),
+        "{err}"
+    );
     let index = std::fs::read_to_string(dir.join("index.html")).unwrap();
     assert!(index.contains("Your rotor (dimensional config)"));
     // the critical speeds in rpm as `autobal critical` computes them, in the report's table
@@ -527,9 +533,144 @@ fn map_traces_the_boundary_as_curves() {
     assert_eq!(code, 0, "{err}");
     assert!(err.contains("boundary:") && err.contains("curves"), "{err}");
     let csv = std::fs::read_to_string(dir.join("m_boundary.csv")).unwrap();
-    assert!(csv.starts_with("curve,kind,dimensionless.z_a,omega,omega_squared,on_boundary"));
+    assert!(csv.starts_with("curve,kind,dimensionless.z_a,omega,hopf_frequency_squared,on_boundary"), "{csv}");
     let on = csv.lines().skip(1).filter(|l| l.ends_with(",1") && l.contains(",hopf,")).count();
     assert!(on > 20, "{on} Hopf points on the boundary");
     assert!(std::fs::read_to_string(dir.join("m.svg")).unwrap().contains("traced boundary"));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The warning of the analytic commands on entries only the spatial simulation uses.
+fn ignored_warning(command: &str, keys: &str, verb: &str) -> String {
+    format!(
+        "warning: {command} uses the rotor of papers 000/003 (isotropic supports, one balancer plane of point-mass balls, static unbalance): {keys} {verb} used only by `simulate`/`basins`"
+    )
+}
+
+#[test]
+fn analytic_commands_warn_about_entries_only_the_simulation_uses() {
+    let two = examples("spatial_two_plane.toml");
+    let keys = "supports.stiffness_left_y, supports.stiffness_right_y, [couple], [balancer2], spatial.gravity";
+    let runs: [&[&str]; 5] = [
+        &["inertia"],
+        &["critical"],
+        &["ranges"],
+        &["stability", "--samples", "10", "--omega-max", "1.5"],
+        &["campbell", "--points", "3", "--omega-max", "1.5"],
+    ];
+    for args in runs {
+        let mut a = args.to_vec();
+        a.extend(["--config", &two]);
+        let (code, _, err) = autobal(&a);
+        assert_eq!(code, 0, "{err}");
+        let w = ignored_warning(args[0], keys, "are");
+        assert_eq!(err.lines().filter(|l| l.starts_with(&format!("warning: {} uses", args[0]))).collect::<Vec<_>>(), [w.as_str()], "{err}");
+    }
+    // what the warning says: the second plane's balls do not change the analytic results
+    let crit = |sets: &[&str]| {
+        let mut a = vec!["critical", "--format", "json", "--config", &two];
+        a.extend(sets.iter().flat_map(|s| ["--set", s]));
+        json(&a)["critical_speeds"].clone()
+    };
+    assert_eq!(crit(&[]), crit(&["balancer2.ball_mass=5"]));
+    // one entry, in the singular; entries at the linear model's values (a tilt of 0, y
+    // stiffness equal to x, examples/spatial.toml's zero gravity) are no difference
+    let dim = examples("dimensional.toml");
+    let (code, _, err) = autobal(&["critical", "--config", &dim, "--set", "rotor.axis_tilt=0.01", "--set", "rotor.axis_tilt_angle=0"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains(&ignored_warning("critical", "rotor.axis_tilt, rotor.axis_tilt_angle", "are")), "{err}");
+    let (code, _, err) = autobal(&["ranges", "--config", &dim, "--set", "balancer.contact=true"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains(&ignored_warning("ranges", "balancer.contact", "is")), "{err}");
+    let (code, _, err) = autobal(&["critical", "--config", &dim, "--set", "rotor.axis_tilt=0", "--set", "supports.stiffness_left_y=2.0e6"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(!err.contains("warning: critical uses"), "{err}");
+    let (code, _, err) = autobal(&["critical", "--config", &examples("spatial.toml")]);
+    assert_eq!(code, 0, "{err}");
+    assert!(!err.contains("warning: critical uses"), "{err}");
+    // the map too
+    let dir = std::env::temp_dir().join(format!("autobal-ignored-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let stem = dir.join("m");
+    let (code, _, err) = autobal(&[
+        "map",
+        "--config",
+        &examples("spatial.toml"),
+        "--set",
+        "spatial.lock_tilt=true",
+        "--x",
+        "dimensionless.z_a=0:1:3",
+        "--y",
+        "omega=0.5:2:3",
+        "--out",
+        stem.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains(&ignored_warning("map", "spatial.lock_tilt", "is")), "{err}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn ranges_cut_at_the_span_end_are_not_unbounded() {
+    // paper 000's base case: the last stable range ends at 2.2384, 003's last necessary range at
+    // 2.17 (both beyond Ω = 2); cut at --omega-max 2 they reach the end of the span, not ∞
+    let (code, out, err) = autobal(&["stability", "--omega-max", "2", "--samples", "400"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("1.412184 – 1.707095, 1.731747 – 2 (end of the span)\n"), "{out}");
+    assert!(out.contains("necessary (003, eqs (1)-(3)):   0.846264 – 2 (end of the span)\n"), "{out}");
+    assert!(!out.contains('∞'), "{out}");
+    let v = json(&["stability", "--format", "json", "--omega-max", "2", "--samples", "400"]);
+    assert!(v["stable_ranges"].as_array().unwrap().last().unwrap()[1].is_null());
+    assert_eq!(v["open_at_span_end"]["stable_ranges"], true);
+    assert_eq!(v["open_at_span_end"]["necessary_ranges"], true);
+    assert_eq!(v["open_at_span_end"]["necessary_not_stable"], false);
+    // over a longer span the stable range ends inside it
+    let v = json(&["stability", "--format", "json", "--omega-max", "5", "--samples", "400"]);
+    assert!(v["stable_ranges"].as_array().unwrap().last().unwrap()[1].as_f64().is_some_and(|h| (h - 2.2384).abs() < 1e-3), "{v}");
+    assert_eq!(v["open_at_span_end"]["stable_ranges"], false);
+    // the automatic span's end is printed as a number is, not to 16 digits
+    let (code, out, err) = autobal(&["stability", "--config", &examples("dimensional.toml"), "--samples", "100"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("0 < Ω ≤ 2.188091\n"), "{out}");
+    assert!(out.contains(" – 2.188091 (end of the span)") && out.contains(" – 10434 (end of the span)"), "{out}");
+}
+
+#[test]
+fn every_option_has_a_description() {
+    for c in ["inertia", "critical", "ranges", "stability", "campbell", "map", "simulate", "sweep", "merge", "basins", "report"] {
+        let (code, out, err) = autobal(&[c, "--help"]);
+        assert_eq!(code, 0, "{err}");
+        let mut listed = false;
+        for line in out.lines().skip_while(|l| !l.starts_with("Arguments:") && !l.starts_with("Options:")) {
+            let l = line.trim_start();
+            if !(l.starts_with('-') || l.starts_with('<')) {
+                continue;
+            }
+            listed = true;
+            let text = l.split_once("  ").map(|(_, t)| t.trim_start()).unwrap_or("");
+            assert!(!text.is_empty() && !text.starts_with('['), "{c}: `{line}` has no description");
+        }
+        assert!(listed, "{c}: {out}");
+    }
+    let (_, out, _) = autobal(&["simulate", "--help"]);
+    assert!(out.contains("Output interval (s, or τ for a dimensionless config)"), "{out}");
+}
+
+#[test]
+fn integration_method_errors_list_every_accepted_name() {
+    let (code, _, err) = autobal(&["simulate", "--set", "integration.method=euler"]);
+    assert_eq!(code, 2);
+    let names: Vec<&str> = err.split('"').skip(1).step_by(2).filter(|n| *n != "euler").collect();
+    assert_eq!(names, ["auto", "dop853", "rodas", "rosenbrock"], "{err}");
+    let dir = std::env::temp_dir().join(format!("autobal-methods-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for n in names {
+        let (code, out, err) =
+            autobal(&["simulate", "--set", &format!("integration.method=\"{n}\""), "--set", "drive.t_end=1", "--out", dir.join("p.csv").to_str().unwrap()]);
+        assert_eq!(code, 0, "{n}: {err}");
+        // counts in the singular where there is one (this run switches once under `auto`)
+        let line = out.lines().find(|l| l.starts_with("integration (")).unwrap();
+        assert!(!line.contains(" 1 switches") && !line.contains(" 1 steps"), "{line}");
+    }
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -53,6 +53,8 @@ fn spatial_real_balls_from_the_balancer_tables() {
         args.extend_from_slice(extra);
         let (code, stdout, err) = autobal(&args);
         assert_eq!(code, 0, "{err}");
+        // the simulation uses [couple], [balancer2], ...: no warning that they are ignored
+        assert!(!err.contains("uses the rotor of papers"), "{err}");
         serde_json::from_str::<serde_json::Value>(&stdout).unwrap()
     };
     let off = run(&[]);
@@ -103,10 +105,48 @@ fn spatial_errors_name_the_field() {
 #[test]
 fn basins_map_where_runs_end() {
     let out = std::env::temp_dir().join(format!("autobal-basins-{}.csv", std::process::id()));
-    let (code, stdout, err) =
-        autobal(&["basins", "--config", &example("spatial.toml"), "--n", "3", "--set", "drive.t_end=300", "--format", "json", "--out", out.to_str().unwrap()]);
+    let (code, stdout, err) = autobal(&[
+        "basins",
+        "--config",
+        &example("spatial.toml"),
+        "--n",
+        "3",
+        "--set",
+        "drive.t_end=300",
+        "--set",
+        "spatial.gravity=[0, -0.01, 0]",
+        "--format",
+        "json",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
     assert_eq!(code, 0, "{err}");
+    assert!(!err.contains("uses the rotor of papers"), "{err}");
     let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
     assert_eq!(v["runs"], 9);
     assert_eq!(std::fs::read_to_string(&out).unwrap().lines().count(), 10);
+}
+
+#[test]
+fn the_summary_says_the_units() {
+    // SI: rad/s, rpm and s; dimensionless: the papers' Ω and τ
+    let dir = std::env::temp_dir().join(format!("autobal-spatial-units-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("run.csv");
+    let (code, stdout, err) =
+        autobal(&["simulate", "--config", &example("spatial_two_plane.toml"), "--set", "drive.t_end=0.2", "--out", out.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    assert!(stdout.contains("(spatial rotor, 4 balls in 2 planes)"), "{stdout}");
+    let peak = stdout.lines().find(|l| l.starts_with("peak whirl radius")).unwrap();
+    let (w, rest) = peak.split_once("at ω = ").unwrap().1.split_once(" rad/s = ").unwrap();
+    let (rpm, t) = rest.split_once(" rpm (t = ").unwrap();
+    let (w, rpm): (f64, f64) = (w.parse().unwrap(), rpm.parse().unwrap());
+    assert!((rpm - w * 30.0 / std::f64::consts::PI).abs() < 0.06, "{peak}");
+    assert!(t.ends_with(" s)") && peak.contains(" mm at "), "{peak}");
+    assert!(stdout.lines().any(|l| l.starts_with("final: radius") && l.contains(" rad/s = ") && l.contains(" rpm;")), "{stdout}");
+    let (code, stdout, err) = autobal(&["simulate", "--config", &example("spatial.toml"), "--set", "drive.t_end=10", "--out", out.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    assert!(stdout.contains("(spatial rotor, 2 balls in 1 plane)"), "{stdout}");
+    assert!(stdout.contains(" ρ_s at Ω = 1.6000 (τ = ") && stdout.contains(" ρ_s at Ω = 1.6000;"), "{stdout}");
+    std::fs::remove_dir_all(&dir).ok();
 }

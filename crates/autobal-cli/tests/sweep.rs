@@ -86,7 +86,12 @@ fn merged_shards_equal_the_unsharded_sweep() {
 
 #[test]
 fn sweep_errors_name_the_option_and_path() {
+    let spatial = format!("{}/../../examples/spatial.toml", env!("CARGO_MANIFEST_DIR"));
     for (args, start) in [
+        (
+            vec!["sweep", "--config", &spatial, "--x", "drive.omega0=1.5:1.7:2"],
+            "error: config: `sweep` runs the planar rotor of paper 004 only ([planar], [drive]); the spatial rotor of papers 000/003 is simulated by `simulate`",
+        ),
         (vec!["sweep", "--x", "drive.torque=1:2:2"], "error: --x drive.torque: the drive is of kind acceleration"),
         (vec!["sweep", "--x", "planar.c_pis=1:2:2"], "error: --x planar.c_pis: unknown parameter path"),
         (vec!["sweep", "--x", "drive.b=1:2:2", "--shard", "0/3"], "error: --shard 0/3: expected K/N"),

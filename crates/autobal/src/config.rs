@@ -534,7 +534,7 @@ pub fn drive(d: &Section) -> Result<(Drive, f64)> {
 /// The `[integration]` table, shared by the planar and the spatial simulation.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Integration {
-    /// `integration.method`: `auto` (default), `dop853` or `rodas`.
+    /// `integration.method`: `auto` (default), `dop853` or `rodas` (also spelled `rosenbrock`).
     pub method: Method,
     /// Output interval (default `t_end/2000`).
     pub dt: f64,
@@ -554,7 +554,9 @@ pub fn integration(ig: &Section, t_end: f64) -> Result<Integration> {
         None | Some("auto") => Method::Auto,
         Some("dop853") => Method::Dop853,
         Some("rodas") | Some("rosenbrock") => Method::Rodas,
-        Some(o) => return Err(Error::invalid("integration.method", format!("must be \"auto\", \"dop853\" or \"rodas\", got \"{o}\""))),
+        Some(o) => {
+            return Err(Error::invalid("integration.method", format!("must be \"auto\", \"dop853\", \"rodas\" or \"rosenbrock\" (the same), got \"{o}\"")))
+        }
     };
     let max_steps = match ig.f64("max_steps")? {
         None => None,
@@ -576,6 +578,90 @@ pub fn integration(ig: &Section, t_end: f64) -> Result<Integration> {
 /// the planar rotor of paper 004 (`[planar]`).
 pub fn is_spatial(root: &Table) -> bool {
     ["dimensionless", "rotor", "supports", "unbalance", "balancer"].iter().any(|t| root.contains_key(*t))
+}
+
+/// The entries of a spatial config that the linear model of papers 000/003 (the analytic
+/// commands: inertia, critical speeds, ranges, stability, Campbell diagrams, maps) does not use:
+/// that model has isotropic supports, one balancer plane of point-mass balls and a static
+/// unbalance, so these describe the rotor only for the spatial simulation
+/// ([`spatial_simulation`]). In the order of [`SCHEMA`], as the config spells them:
+///
+/// - `[couple]`, `[balancer2]`: whenever present (a second unbalance mass, a second ball set);
+/// - `supports.stiffness_left_y` … `damping_right_y`: where they differ from the x value;
+/// - `rotor.axis_tilt` (with `rotor.axis_tilt_angle`): where the tilt is not 0;
+/// - `balancer.contact`, `balancer.rolling_resistance` (real balls): where they switch the
+///   physics on;
+/// - `spatial.gravity`, `spatial.lock_tilt`, `spatial.spin_drag`: where not 0 / `false`.
+///
+/// Keys at the value that reproduces the linear model are not listed (an example written out
+/// in full, `gravity = [0, 0, 0]`, is not a difference); nor are the run's settings (`[drive]`,
+/// `[integration]`, `[initial]`), which describe a run rather than the rotor. The entries are
+/// read without validation: call it on a config that [`spatial`] accepted.
+///
+/// ```
+/// use autobal::config;
+/// let two = config::parse(include_str!("../../../examples/spatial_two_plane.toml"), "two").unwrap();
+/// assert_eq!(
+///     config::ignored_by_linear_model(&two),
+///     ["supports.stiffness_left_y", "supports.stiffness_right_y", "[couple]", "[balancer2]", "spatial.gravity"]
+/// );
+/// let one = config::parse(include_str!("../../../examples/spatial.toml"), "one").unwrap();
+/// assert!(config::ignored_by_linear_model(&one).is_empty()); // gravity 0, no tilt lock
+/// ```
+pub fn ignored_by_linear_model(root: &Table) -> Vec<String> {
+    let get = |t: &str, k: &str| root.get(t).and_then(Value::as_table).and_then(|tab| tab.get(k));
+    let f = |t: &str, k: &str| get(t, k).and_then(|v| number(v, "").ok());
+    let nonzero = |t: &str, k: &str| f(t, k).is_some_and(|x| x != 0.0);
+    let mut out = vec![];
+    for (table, _) in SCHEMA {
+        if !root.contains_key(*table) {
+            continue;
+        }
+        match *table {
+            "couple" | "balancer2" => out.push(format!("[{table}]")),
+            "rotor" if nonzero("rotor", "axis_tilt") => {
+                out.push("rotor.axis_tilt".into());
+                if get("rotor", "axis_tilt_angle").is_some() {
+                    out.push("rotor.axis_tilt_angle".into());
+                }
+            }
+            "supports" => {
+                for q in ["stiffness", "damping"] {
+                    for side in ["left", "right"] {
+                        let y = format!("{q}_{side}_y");
+                        if let Some(v) = f("supports", &y) {
+                            if v != f("supports", &format!("{q}_{side}")).unwrap_or(0.0) {
+                                out.push(format!("supports.{y}"));
+                            }
+                        }
+                    }
+                }
+            }
+            "balancer" => {
+                if matches!(get("balancer", "contact"), Some(Value::Boolean(true))) {
+                    out.push("balancer.contact".into());
+                }
+                if nonzero("balancer", "rolling_resistance") {
+                    out.push("balancer.rolling_resistance".into());
+                }
+            }
+            "spatial" => {
+                if let Some(Value::Array(g)) = get("spatial", "gravity") {
+                    if g.iter().any(|v| number(v, "").ok() != Some(0.0)) {
+                        out.push("spatial.gravity".into());
+                    }
+                }
+                if matches!(get("spatial", "lock_tilt"), Some(Value::Boolean(true))) {
+                    out.push("spatial.lock_tilt".into());
+                }
+                if nonzero("spatial", "spin_drag") {
+                    out.push("spatial.spin_drag".into());
+                }
+            }
+            _ => {}
+        }
+    }
+    out
 }
 
 /// A spatial simulation's config converted (`autobal simulate` and `autobal basins` on the

@@ -31,6 +31,11 @@ pub fn ranges_value(r: &[SpeedRange]) -> Value {
     Value::Array(r.iter().map(|x| json!([x.lo, x.hi])).collect())
 }
 
+/// Whether the last of ranges computed over a span reaches the span's end (`hi = None` there).
+fn open_at(r: &[SpeedRange]) -> bool {
+    r.last().is_some_and(|x| x.hi.is_none())
+}
+
 /// Ranges scaled by `k` (e.g. to rpm).
 pub fn scale_ranges(r: &[SpeedRange], k: f64) -> Vec<SpeedRange> {
     r.iter().map(|x| SpeedRange { lo: x.lo * k, hi: x.hi.map(|h| h * k) }).collect()
@@ -156,6 +161,14 @@ pub fn stability(model: &SpatialModel, c: &Comparison, balls: Balls) -> Value {
         "necessary_ranges": ranges_value(&c.necessary),
         "necessary_not_stable": ranges_value(&c.necessary_not_stable),
         "stable_not_necessary": ranges_value(&c.stable_not_necessary),
+        // the ranges are computed over (0, omega_max] only: a null upper end means "reaches
+        // omega_max", not "unbounded"; true for the lists whose last range reaches it
+        "open_at_span_end": {
+            "stable_ranges": open_at(&c.exact.stable_ranges),
+            "necessary_ranges": open_at(&c.necessary),
+            "necessary_not_stable": open_at(&c.necessary_not_stable),
+            "stable_not_necessary": open_at(&c.stable_not_necessary),
+        },
         "difference": c.difference(),
         "max_real_part": c.exact.max_real_part.iter().map(|(w, a)| json!([w, a])).collect::<Vec<_>>(),
         "tolerance": c.exact.tolerance,

@@ -15,12 +15,19 @@ use autobal::spatial::sensitivity::sensitivity;
 
 /// Speed ranges as text: dimensionless, and in rpm when the rotor is dimensional.
 pub fn ranges_text(r: &[SpeedRange], omega0: Option<f64>) -> String {
+    ranges_text_in(r, omega0, None)
+}
+
+/// [`ranges_text`] of ranges computed over `(0, span_end]` only: a range without upper end
+/// reaches the span's end, `a – W (end of the span)`, rather than `a – ∞`.
+pub fn ranges_text_in(r: &[SpeedRange], omega0: Option<f64>, span_end: Option<f64>) -> String {
     if r.is_empty() {
         return "none".into();
     }
+    let open = |w: Option<String>| w.map_or("∞".to_string(), |w| format!("{w} (end of the span)"));
     let one = |x: &SpeedRange| match x.hi {
         Some(h) => format!("{} – {}", fmt(x.lo, 4), fmt(h, 4)),
-        None => format!("{} – ∞", fmt(x.lo, 4)),
+        None => format!("{} – {}", fmt(x.lo, 4), open(span_end.map(|w| fmt(w, 4)))),
     };
     let dimless = r.iter().map(one).collect::<Vec<_>>().join(", ");
     match omega0 {
@@ -30,7 +37,7 @@ pub fn ranges_text(r: &[SpeedRange], omega0: Option<f64>) -> String {
                 .iter()
                 .map(|x| match x.hi {
                     Some(h) => format!("{} – {}", grouped(x.lo * k, 0), grouped(h * k, 0)),
-                    None => format!("{} – ∞", grouped(x.lo * k, 0)),
+                    None => format!("{} – {}", grouped(x.lo * k, 0), open(span_end.map(|w| grouped(w * k, 0)))),
                 })
                 .collect::<Vec<_>>()
                 .join(", ");

@@ -2,7 +2,7 @@
 //! margin along the speed against 003's necessary ranges, the papers' three layouts, and
 //! stability maps in the layouts of 003's Figs 4, 5a, 5b around this rotor.
 
-use super::{interrupted, rotor::ranges_text, Ctx, Section};
+use super::{interrupted, rotor::ranges_text_in, Ctx, Section};
 use crate::figures::{campbell_plots, margin_plot, omega_limit, with_layout, SpeedUnit};
 use crate::linear;
 use crate::map::{Axis, MapResult, Quantity};
@@ -48,8 +48,8 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
         margin_plot(m, &cmp),
         format!(
             "Largest real part of the eigenvalues along the speed for this rotor. Exactly stable on {}; 003's necessary condition holds on {}. {}.",
-            super::esc(&ranges_text(&cmp.exact.stable_ranges, w0)),
-            super::esc(&ranges_text(&cmp.necessary, w0)),
+            super::esc(&ranges_text_in(&cmp.exact.stable_ranges, w0, Some(cmp.omega_max))),
+            super::esc(&ranges_text_in(&cmp.necessary, w0, Some(cmp.omega_max))),
             super::esc(&cmp.difference())
         ),
     );
@@ -58,7 +58,12 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
         for l in [0.5, 0.8, 1.2] {
             let ml = with_layout(m, l);
             let cl = linear::compare(&ml, w.max(omega_limit(&ml, None)), 1500, balls)?;
-            rows.push(vec![fmt(l, 3), ranges_text(&cl.exact.stable_ranges, None), ranges_text(&cl.necessary, None), cl.difference()]);
+            rows.push(vec![
+                fmt(l, 3),
+                ranges_text_in(&cl.exact.stable_ranges, None, Some(cl.omega_max)),
+                ranges_text_in(&cl.necessary, None, Some(cl.omega_max)),
+                cl.difference(),
+            ]);
         }
         s.h3("layouts", "Exact ranges against 003's necessary ranges, the papers' three layouts");
         s.p("This rotor moved on identical supports to the three layouts of the papers' worked examples.");

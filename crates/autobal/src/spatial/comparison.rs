@@ -88,20 +88,38 @@ fn total(r: &[SpeedRange], w: f64) -> f64 {
     r.iter().map(|x| x.hi.unwrap_or(w) - x.lo).sum::<f64>() + 0.0 // + 0.0: an empty sum is −0
 }
 
-/// `a – b` or `a – ∞`.
+/// `a – b` or `a – ∞` (a range without upper end, as 003's ranges above `Ω_K4`).
 pub fn fmt_range(r: &SpeedRange, prec: usize) -> String {
-    match r.hi {
-        Some(h) => format!("{:.prec$} – {:.prec$}", r.lo, h),
-        None => format!("{:.prec$} – ∞", r.lo),
+    fmt_range_in(r, prec, None)
+}
+
+/// `a – b`; without upper end `a – ∞` (`span_end = None`), or `a – W (end of the span)` for
+/// ranges computed over `(0, W]` only ([`Comparison`]), which reach `W` and are not known
+/// beyond it.
+pub fn fmt_range_in(r: &SpeedRange, prec: usize, span_end: Option<f64>) -> String {
+    match (r.hi, span_end) {
+        (Some(h), _) => format!("{:.prec$} – {:.prec$}", r.lo, h),
+        (None, None) => format!("{:.prec$} – ∞", r.lo),
+        (None, Some(w)) => {
+            // the span's end as given (`2`, not `2.000000`), at most to the ranges' precision
+            let end = format!("{w:.prec$}");
+            let end = if end.contains('.') { end.trim_end_matches('0').trim_end_matches('.') } else { &end };
+            format!("{:.prec$} – {end} (end of the span)", r.lo)
+        }
     }
 }
 
 /// Ranges as `a – b, c – ∞`, or `none`.
 pub fn fmt_ranges(r: &[SpeedRange], prec: usize) -> String {
+    fmt_ranges_in(r, prec, None)
+}
+
+/// Ranges as `a – b, c – W (end of the span)` ([`fmt_range_in`]), or `none`.
+pub fn fmt_ranges_in(r: &[SpeedRange], prec: usize, span_end: Option<f64>) -> String {
     if r.is_empty() {
         "none".into()
     } else {
-        r.iter().map(|x| fmt_range(x, prec)).collect::<Vec<_>>().join(", ")
+        r.iter().map(|x| fmt_range_in(x, prec, span_end)).collect::<Vec<_>>().join(", ")
     }
 }
 
@@ -113,9 +131,9 @@ impl Comparison {
             (true, true) => "the exact stability ranges coincide with 003's necessary ranges".into(),
             _ => format!(
                 "003's condition holds but the balanced state is unstable on {} (total {:.4}); the balanced state is stable where 003's condition fails on {} (total {:.4})",
-                fmt_ranges(&self.necessary_not_stable, 4),
+                fmt_ranges_in(&self.necessary_not_stable, 4, Some(w)),
                 total(&self.necessary_not_stable, w),
-                fmt_ranges(&self.stable_not_necessary, 4),
+                fmt_ranges_in(&self.stable_not_necessary, 4, Some(w)),
                 total(&self.stable_not_necessary, w)
             ),
         }
@@ -132,5 +150,9 @@ mod tests {
         assert_eq!(minus(&[(1.0, 2.0)], &[(0.0, 3.0)]), vec![]);
         assert_eq!(to_ranges(&[(1.0, 5.0)], 5.0), vec![SpeedRange { lo: 1.0, hi: None }]);
         assert_eq!(total(&[], 1.0).to_bits(), 0.0f64.to_bits());
+        // a range cut at the span's end is not an unbounded one
+        let cut = [SpeedRange { lo: 1.5, hi: None }];
+        assert_eq!(fmt_ranges(&cut, 2), "1.50 – ∞");
+        assert_eq!(fmt_ranges_in(&cut, 2, Some(2.0)), "1.50 – 2 (end of the span)");
     }
 }
