@@ -138,11 +138,13 @@ fn reverse_peak_falls_with_the_deceleration_then_stays_flat() {
         .iter()
         .map(|&(b, method)| passage(&p, 1000.0, -b, 1000.0 / b, |s| s.method = method).0.peak_amplitude)
         .collect();
-    // the fall, each step by a margin the runs' sensitivity cannot bridge: 0.25 → 2.5 measured
-    // 1.58×; 2.5 → 12.5 1.63× (the 2.5 1/s² reverse peak is ill-conditioned, 0.54-0.75 of the
-    // forward peak with the start, i.e. 17-24 mm: 1.3× still holds for all of them); 12.5 → 25
-    // 1.09×
-    assert!(peaks[0] > 1.3 * peaks[1] && peaks[1] > 1.3 * peaks[2] && peaks[2] > 1.05 * peaks[3], "reverse peaks {peaks:?}");
+    // the fall, each step by a margin the runs' sensitivity cannot bridge. The 2.5 1/s² peak
+    // has no converged value: 17.1-22.3 mm here with the method (auto, DOP853), rtol 1e-8 or
+    // 1e-10, dt, and a ball started 1e-10 rad away, 17.1-24.6 mm in docs/simulation.md; the
+    // others move by less than 1.7 % (0.25: 29.7-30.2 mm; 12.5 and 25: to 0.1 mm). So
+    // 0.25 → 2.5: measured 1.58×, at least 29.7/24.6 = 1.21× → asserted 1.15×; 2.5 → 12.5:
+    // measured 1.63×, at least 17.1/11.7 = 1.46× → 1.3×; 12.5 → 25: measured 1.09× → 1.05×
+    assert!(peaks[0] > 1.15 * peaks[1] && peaks[1] > 1.3 * peaks[2] && peaks[2] > 1.05 * peaks[3], "reverse peaks {peaks:?}");
     // no rise: 50 equals 25 1/s² (measured to 1.3e-5); 1e-3 is flat to the doc's 3 digits
     assert!((peaks[4] / peaks[3] - 1.0).abs() < 1e-3, "reverse peaks {peaks:?}");
 }
