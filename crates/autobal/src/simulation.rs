@@ -41,7 +41,7 @@ use crate::ode::{Control, Outcome, Solver, Stats, Status, System};
 pub struct Timeline<'a> {
     /// End of the run (the run starts at 0).
     pub t_end: f64,
-    /// Output interval: samples at `k dt`, `k = 0, 1, …` up to `t_end`.
+    /// Output interval: samples at `k dt`, `k = 0, 1, …` up to `t_end`, and at `t_end`.
     pub dt: f64,
     /// Times where the equations change abruptly (outside `(0, t_end)` ignored).
     pub breakpoints: &'a [f64],
@@ -87,7 +87,8 @@ impl<X: Copy> Peak<X> {
 }
 
 /// Integrate `y` (the state at 0) to `timeline.t_end` in pieces between the breakpoints,
-/// sampling at `k dt` (the first sample is the initial state). A terminal event of the solver
+/// sampling at `k dt` (the first sample is the initial state, the last the state at `t_end`,
+/// also where `t_end` is no multiple of `dt`). A terminal event of the solver
 /// ends the run with [`Status::Event`] (the caller may change the equations and call again). The outcome's `t` is the time
 /// reached and `stats` the work of the whole run; `y` holds the state at that time.
 pub fn run<S: System>(solver: &mut Solver<'_, S>, y: &mut [f64], timeline: &Timeline, hooks: &mut impl Hooks) -> Outcome {
@@ -139,6 +140,10 @@ pub fn run<S: System>(solver: &mut Solver<'_, S>, y: &mut [f64], timeline: &Time
         if !out.status.is_completed() {
             return Outcome { status: out.status, t, stats };
         }
+    }
+    // the last sample is the end of the run, also where t_end is no multiple of dt
+    if (k - 1) as f64 * dt < t_end - slack && hooks.sample(t_end, y) == Control::Stop {
+        return Outcome { status: Status::Stopped, t, stats };
     }
     Outcome { status: Status::Completed, t, stats }
 }

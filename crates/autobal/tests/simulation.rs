@@ -714,3 +714,26 @@ fn a_sweep_point_and_a_basin_run_are_the_simulation_of_the_same_config() {
     assert_eq!(basin.final_amplitude.to_bits(), full.final_amplitude.to_bits());
     assert_eq!(basin.peak_amplitude.to_bits(), full.peak_amplitude.to_bits());
 }
+
+#[test]
+fn the_last_sample_is_the_end_of_the_run() {
+    // Samples at k dt and at t_end where t_end is no multiple of dt (a CSV used to end at the
+    // last multiple, without the state the summary describes; with dt > t_end it held only t = 0).
+    let p = PlanarRotor::default();
+    let d = Drive::Acceleration { omega0: 0.0, b: 25.0 };
+    for (t_end, dt, times) in [(1.0, 0.3, vec![0.0, 0.3, 0.6, 0.9, 1.0]), (1.0, 0.25, vec![0.0, 0.25, 0.5, 0.75, 1.0]), (0.5, 2.0, vec![0.0, 0.5])] {
+        let mut got = vec![];
+        let mut last = 0.0;
+        let s = simulate(&p, &d, &settings(&p, t_end, dt), |x| {
+            got.push(x.t);
+            last = x.amplitude;
+            true
+        })
+        .unwrap();
+        assert_eq!(got.len(), times.len(), "{got:?}");
+        for (a, b) in got.iter().zip(&times) {
+            assert!((a - b).abs() < 1e-12, "{got:?}");
+        }
+        assert_eq!(last.to_bits(), s.final_amplitude.to_bits(), "the last sample is the final state");
+    }
+}
