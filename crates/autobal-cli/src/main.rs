@@ -171,7 +171,7 @@ enum Command {
         /// Override a config field, e.g. --set drive.b=-2.5 (repeatable)
         #[arg(long = "set", value_name = "KEY=VALUE")]
         set: Vec<String>,
-        /// Output interval (s, or τ for a dimensionless config), independent of the internal steps; overrides integration.dt
+        /// Output interval (s, or τ for a dimensionless config), read from the dense output; also the automatic method's time resolution (implicit steps ≤ 4 dt); overrides integration.dt
         #[arg(long, allow_negative_numbers = true)]
         dt: Option<f64>,
         /// CSV of samples (t, omega, x, y, amplitude, psi_1 … psi_n); plots go beside it as STEM_*.svg

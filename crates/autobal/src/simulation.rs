@@ -1,7 +1,7 @@
 //! Time simulation of a dynamic model, the machinery every model shares on top of the
 //! integrators ([`crate::ode`]): the run is integrated piecewise between the drive's breakpoints
 //! (no step straddles a jump of the torque or the acceleration), samples are taken at a fixed
-//! interval from the dense output (independent of the internal steps), hooks see every step
+//! interval from the dense output (the steps do not stop at the samples), hooks see every step
 //! (peak tracking) and every sample (output, progress), and the run ends early only with an
 //! explicit [`Status`] (interrupted, budget spent, non-finite state…), never as a silent success.
 //!
