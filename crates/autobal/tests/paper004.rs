@@ -60,11 +60,11 @@ fn the_outcomes_change_with_the_inertia_and_the_drag() {
     assert!(!much_drag.passes_73, "{much_drag:?}");
     // and 18 N·m at T/c_θ = 60 rad/s: with J_C/c_θ = 1 s the bearing alone gives
     // 60 (1 − e^{−10}) = 59.9973 rad/s at the end of the run (10 s); the whirl's c ω A² takes a
-    // little more (measured 59.99698). It never passes, but at 60 rad/s the balls still creep
-    // when the run ends (settled by 30 s), so `sticks_18`, which also asks for a settled run,
-    // reads false there (from c_θ = 0.15 on: docs/paper004.md)
+    // little more (measured 59.99698). It never passes and its speed has settled, though at
+    // 60 rad/s the balls still creep when the run ends (settled by 30 s): sticking is about the
+    // speed (`TorqueRun::speed_settled`), as in the paper's Fig. 6
     assert!(much_drag.omega_18 < 59.9973 && much_drag.omega_18 > 59.99, "{much_drag:?}");
-    assert!(!much_drag.sticks_18, "{much_drag:?}");
+    assert!(much_drag.sticks_18 && !much_drag.passes_73, "{much_drag:?}");
     for i_g in [0.01, 0.1] {
         let light = torque_outcomes(i_g, TORQUE_C_THETA, &|| false).unwrap();
         assert!(light.sticks_18 && light.passes_73 && light.balanced_183_before_off, "{light:?}");

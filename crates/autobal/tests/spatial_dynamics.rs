@@ -445,7 +445,7 @@ fn envelope_rate(h: &[(f64, f64)], lo: f64, hi: f64, window: f64) -> f64 {
 #[test]
 fn inside_the_exactly_stable_range_the_balls_balance_at_the_least_damped_rate() {
     // (b) of issue 7 §3: 000's base case, l̄_L = 0.8, Ω = 1.6 (exactly stable 1.4122-1.7071).
-    // Balls started 60° off their balancing positions converge; the residual unbalance decays
+    // Balls started 1 rad (57°) off their balancing positions converge; the residual unbalance decays
     // at the rate of the least-damped eigenvalue of the 12-state model, measured on the
     // envelope over 1e-3..1e-8 of the initial unbalance (the linear regime): within 1 % (measured: 0.014 %).
     let (model, rotor) = base_case(0.8);
