@@ -441,6 +441,16 @@ fn run_simulate(config: Option<PathBuf>, set: Vec<String>, dt: Option<f64>, out:
 
 fn run_spatial(root: &toml::Table, source: &str, dt: Option<f64>, out: PathBuf, format: Format) -> Result<()> {
     let mut sim = spatial_sim::build(root, source)?;
+    if sim.default_drive {
+        let (w_end, _) = sim.drive.kinematics(sim.settings.t_end);
+        let unit = if sim.config.dimensional { " rad/s" } else { " (Ω)" };
+        output::note(&format!(
+            "note: the config has no [drive]: running up from rest at constant acceleration through the critical speeds to {}{unit} in {} revolutions (t_end = {}); give [drive] to choose the run",
+            autobal::error::fmt_num(w_end),
+            autobal::config::DEFAULT_RUN_UP_REVOLUTIONS,
+            autobal::error::fmt_num(sim.settings.t_end)
+        ));
+    }
     if let Some(d) = dt {
         sim.settings.dt = d;
         sim.settings.validate().map_err(|e| anyhow::anyhow!("--dt: {e}"))?;

@@ -40,6 +40,30 @@ fn simulate_runs_the_spatial_model_on_the_analytic_config() {
 }
 
 #[test]
+fn a_config_without_drive_runs_up_through_its_critical_speeds() {
+    // the SI rotor an engineer analysed with `critical`, simulated as it is: no [drive] gives
+    // the library's default run-up (docs/spatial.md), said on stderr and in the JSON
+    let dir = std::env::temp_dir().join(format!("autobal-runup-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let cfg = example("dimensional.toml");
+    let (code, stdout, err) = autobal(&["simulate", "--config", &cfg, "--format", "json", "--out", dir.join("r.csv").to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("note: the config has no [drive]: running up from rest"), "{err}");
+    let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    assert_eq!(v["drive_is_default"], true);
+    assert_eq!(v["drive"]["kind"], "acceleration");
+    // it ends at 1.3 times the highest critical speed of `critical`, in rad/s
+    let (code, crit, err) = autobal(&["critical", "--config", &cfg, "--format", "json"]);
+    assert_eq!(code, 0, "{err}");
+    let c: serde_json::Value = serde_json::from_str(&crit).unwrap();
+    let top = c["critical_speeds"].as_array().unwrap().iter().map(|k| k["omega_rad_s"].as_f64().unwrap()).fold(0.0, f64::max);
+    let end = v["final_omega"].as_f64().unwrap();
+    assert!((end / (1.3 * top) - 1.0).abs() < 1e-9, "{end} vs 1.3 × {top}");
+    assert!(v["omega_at_peak"].as_f64().unwrap() < end);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
 fn spatial_real_balls_from_the_balancer_tables() {
     // [balancer] and [balancer2] take the real-ball keys of [planar] (docs/balls.md): each plane
     // its own; the summary counts contacts and stick-slip transitions
@@ -87,9 +111,6 @@ fn spatial_real_balls_from_the_balancer_tables() {
 
 #[test]
 fn spatial_errors_name_the_field() {
-    let (code, _, err) = autobal(&["simulate", "--config", &example("default.toml")]);
-    assert_eq!(code, 2);
-    assert!(err.contains("drive: missing"), "{err}");
     let (code, _, err) = autobal(&["simulate", "--config", &example("spatial.toml"), "--set", "drive.psi0=[1.0]"]);
     assert_eq!(code, 2);
     assert!(err.contains("drive.psi0: needs 2 angles"), "{err}");

@@ -681,6 +681,44 @@ pub struct SpatialSimulation {
     pub initial: crate::spatial::dynamics::Initial,
     /// `[integration]` and `drive.t_end`.
     pub settings: crate::spatial::dynamics::Settings,
+    /// Whether the config had no `[drive]`, so that the run is [`default_run_up`]'s.
+    pub default_drive: bool,
+}
+
+/// Revolutions of the run-up a spatial simulation gets when its config has no `[drive]`.
+pub const DEFAULT_RUN_UP_REVOLUTIONS: f64 = 1000.0;
+
+/// The `[drive]` and `[integration]` a spatial config gets when it has no `[drive]`: from rest at
+/// constant acceleration `b` to `ω_end`, 1.3 times the highest critical speed of the balanced
+/// rotor (or `omega_max`, the config's `analysis.omega_max`), in `revolutions` revolutions: `φ = ω_end²/(2b) = 2π N`, so
+/// `b = ω_end²/(4π N)` and `t_end = ω_end/b`; samples every `t_end/3000`. Speeds in rad/s for an
+/// SI config, in Ω for a dimensionless one. The given `[integration]` keys are kept, but for a
+/// missing `dt`.
+///
+/// ```
+/// let root = autobal::config::parse(include_str!("../../../examples/dimensional.toml"), "dimensional.toml").unwrap();
+/// let config = autobal::config::spatial(&root).unwrap();
+/// let (drive, integration) = autobal::config::default_run_up(&config.model, config.analysis.omega_max, &autobal::config::Table::new(), 1000.0);
+/// let (b, t_end) = (drive["b"].as_float().unwrap(), drive["t_end"].as_float().unwrap());
+/// let omega_end = b * t_end;
+/// assert!((0.5 * b * t_end * t_end - 2.0 * std::f64::consts::PI * 1000.0).abs() < 1e-6); // 1000 revolutions
+/// assert!((integration["dt"].as_float().unwrap() - t_end / 3000.0).abs() < 1e-12);
+/// # let _ = omega_end;
+/// ```
+pub fn default_run_up(model: &SpatialModel, omega_max: Option<f64>, integration: &Table, revolutions: f64) -> (Table, Table) {
+    let w0 = model.scale.map_or(1.0, |s| s.omega0);
+    let top = crate::spatial::critical_speeds::critical_speeds(model).speeds.iter().map(|c| c.omega).fold(0.0, f64::max);
+    let omega_end = w0 * omega_max.unwrap_or(1.3 * top.max(1.0));
+    let b = omega_end * omega_end / (4.0 * std::f64::consts::PI * revolutions);
+    let t_end = omega_end / b;
+    let mut d = Table::new();
+    d.insert("kind".into(), Value::String("acceleration".into()));
+    d.insert("omega0".into(), Value::Float(0.0));
+    d.insert("b".into(), Value::Float(b));
+    d.insert("t_end".into(), Value::Float(t_end));
+    let mut ig = integration.clone();
+    ig.entry("dt").or_insert(Value::Float(t_end / 3000.0));
+    (d, ig)
 }
 
 /// Convert a spatial simulation's config ([`SpatialSimulation`]); every error names the key.
@@ -689,10 +727,11 @@ pub struct SpatialSimulation {
 /// let root = autobal::config::parse(include_str!("../../../examples/spatial.toml"), "spatial.toml").unwrap();
 /// let sim = autobal::config::spatial_simulation(&root).unwrap();
 /// assert_eq!(sim.rotor, autobal::spatial::dynamics::SpatialRotor::default()); // 000's base case
+/// // without [drive]: the default run-up through the critical speeds
 /// let mut no_drive = root.clone();
 /// no_drive.remove("drive");
-/// let e = autobal::config::spatial_simulation(&no_drive).unwrap_err();
-/// assert!(e.to_string().starts_with("drive: missing"));
+/// let run_up = autobal::config::spatial_simulation(&no_drive).unwrap();
+/// assert!(run_up.default_drive && matches!(run_up.drive, autobal::drive::Drive::Acceleration { .. }));
 /// ```
 pub fn spatial_simulation(root: &Table) -> Result<SpatialSimulation> {
     use crate::spatial::dynamics::{simulate::initial_state, BallPlane, Equations, Initial, PointMass, Settings as SpatialSettings, SpatialRotor};
@@ -759,12 +798,17 @@ pub fn spatial_simulation(root: &Table) -> Result<SpatialSimulation> {
     rotor.spin_drag = sp.f64("spin_drag")?.unwrap_or(0.0);
     rotor.lock_tilt = sp.boolean("lock_tilt")?.unwrap_or(false);
     rotor.validate()?;
-    let d = sec("drive");
-    if d.table.is_none() {
-        return Err(Error::invalid("drive", "missing: the spatial simulation needs [drive] (see examples/spatial.toml)"));
-    }
+    let default_drive = !root.contains_key("drive");
+    let defaults = default_drive.then(|| {
+        let given = root.get("integration").and_then(Value::as_table).cloned().unwrap_or_default();
+        default_run_up(&config.model, config.analysis.omega_max, &given, DEFAULT_RUN_UP_REVOLUTIONS)
+    });
+    let (d, ig) = match &defaults {
+        Some((d, ig)) => (Section { name: "drive", table: Some(d) }, Section { name: "integration", table: Some(ig) }),
+        None => (sec("drive"), sec("integration")),
+    };
     let (drive, t_end) = drive(&d)?;
-    let ig = integration(&sec("integration"), t_end)?;
+    let ig = integration(&ig, t_end)?;
     if ig.max_steps.is_some() || ig.max_wall_s.is_some() {
         let key = if ig.max_steps.is_some() { "max_steps" } else { "max_wall_s" };
         return Err(Error::invalid(format!("integration.{key}"), "the spatial simulation takes no budget (Ctrl-C stops it, keeping what it wrote)"));
@@ -784,7 +828,7 @@ pub fn spatial_simulation(root: &Table) -> Result<SpatialSimulation> {
         initial.psi_rate = p;
     }
     initial_state(&Equations::new(&rotor, &drive), &initial)?;
-    Ok(SpatialSimulation { config, rotor, drive, initial, settings })
+    Ok(SpatialSimulation { config, rotor, drive, initial, settings, default_drive })
 }
 
 #[cfg(test)]

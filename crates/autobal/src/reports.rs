@@ -248,6 +248,7 @@ pub fn spatial_simulation(sim: &crate::config::SpatialSimulation, s: &crate::spa
         "natural_frequency": sim.rotor.natural_frequency(),
         "rotor": sim.rotor,
         "drive": sim.drive,
+        "drive_is_default": sim.default_drive,
         "initial": sim.initial,
         "integration": sim.settings,
     })

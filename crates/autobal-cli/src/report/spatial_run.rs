@@ -13,7 +13,7 @@ use autobal::spatial::critical_speeds::critical_speeds;
 use toml::Value;
 
 /// Revolutions of the default run-up (the quick report: fewer).
-const REVOLUTIONS: f64 = 1000.0;
+const REVOLUTIONS: f64 = autobal::config::DEFAULT_RUN_UP_REVOLUTIONS;
 const REVOLUTIONS_QUICK: f64 = 300.0;
 
 pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
@@ -24,25 +24,12 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
     // a [drive] beside [planar] is the planar rotor's: this rotor then gets the default run-up
     let own_drive = ctx.planar.is_none() && root.contains_key("drive");
     let crit = critical_speeds(m);
-    let top = crit.speeds.iter().map(|c| c.omega).fold(0.0, f64::max);
     let revolutions = if ctx.quick { REVOLUTIONS_QUICK } else { REVOLUTIONS };
     if !own_drive {
-        for t in ["drive", "integration"] {
-            root.remove(t);
-        }
-        // from rest to 1.3 times the highest critical speed (or analysis.omega_max) in a fixed
-        // number of revolutions: φ = ω_end²/(2b) = 2π N
-        let omega_end = w0 * cfg.analysis.omega_max.unwrap_or(1.3 * top.max(1.0));
-        let b = omega_end * omega_end / (4.0 * std::f64::consts::PI * revolutions);
-        let t_end = omega_end / b;
-        let mut d = toml::Table::new();
-        d.insert("kind".into(), Value::String("acceleration".into()));
-        d.insert("omega0".into(), Value::Float(0.0));
-        d.insert("b".into(), Value::Float(b));
-        d.insert("t_end".into(), Value::Float(t_end));
+        // the library's run-up from rest through the critical speeds (the one `simulate` runs
+        // for a config without [drive]), in fewer revolutions for the quick report
+        let (d, ig) = autobal::config::default_run_up(m, cfg.analysis.omega_max, &toml::Table::new(), revolutions);
         root.insert("drive".into(), Value::Table(d));
-        let mut ig = toml::Table::new();
-        ig.insert("dt".into(), Value::Float(t_end / 3000.0));
         root.insert("integration".into(), Value::Table(ig));
     }
     let mut s = Section::new("spatial-run", "Your rotor in time (nonlinear spatial model)");
