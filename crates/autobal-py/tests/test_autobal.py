@@ -112,10 +112,10 @@ def test_spatial_simulate_and_basins_equal_the_cli_json(tmp_path):
     rows = np.genfromtxt(tmp_path / "b.csv", delimiter=",", names=True)
     for name in rows.dtype.names:
         assert np.array_equal(np.asarray(b[name], dtype=float), rows[name]), name
-    # errors name the field: no drive, too small a grid
-    with pytest.raises(autobal.InvalidParameter) as e:
-        autobal.run("simulate", config=str(ROOT / "examples" / "dimensional.toml"))
-    assert e.value.field == "drive"
+    # no [drive]: the default run-up through the critical speeds, as the CLI runs it
+    run_up = autobal.run("simulate", config=str(ROOT / "examples" / "dimensional.toml"))
+    assert run_up["drive_is_default"] and run_up["drive"]["kind"] == "acceleration"
+    # errors name the field: too small a grid
     with pytest.raises(autobal.InvalidParameter) as e:
         autobal.run("basins", config=spatial, n=1)
     assert e.value.field == "n"
