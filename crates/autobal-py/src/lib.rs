@@ -356,8 +356,9 @@ fn spatial_simulate<'py>(py: Python<'py>, cfg: &PySpatial, dt: Option<f64>) -> P
 
 /// `autobal basins` on a spatial config with `[drive]`: runs over an `n × n` grid of the first two balls'
 /// initial angles, in parallel in Rust. `(arrays, summary JSON)`: `psi_1`, `psi_2` (initial
-/// angles), `balanced`, `residual_unbalance`, `final_amplitude` per run (the CLI's CSV, row-major
-/// with `psi_2` outer), the summary as `autobal basins --format json` prints it (without `csv`).
+/// angles), `balanced_runs` (the CSV's `balanced` column: this run ended balanced),
+/// `residual_unbalance`, `final_amplitude` per run (the CLI's CSV, row-major with `psi_2` outer;
+/// not `balanced`, which the summary uses for the count of balanced runs), the summary as `autobal basins --format json` prints it (without `csv`).
 #[pyfunction]
 #[pyo3(signature = (cfg, n=16))]
 fn spatial_basins<'py>(py: Python<'py>, cfg: &PySpatial, n: usize) -> PyResult<(Bound<'py, PyDict>, String)> {
@@ -377,7 +378,7 @@ fn spatial_basins<'py>(py: Python<'py>, cfg: &PySpatial, n: usize) -> PyResult<(
     let out = PyDict::new(py);
     out.set_item("psi_1", PyArray1::from_vec(py, cases.iter().map(|c| c.initial.psi[0]).collect()))?;
     out.set_item("psi_2", PyArray1::from_vec(py, cases.iter().map(|c| c.initial.psi[1]).collect()))?;
-    out.set_item("balanced", PyArray1::from_vec(py, ends.iter().map(|s| s.balanced).collect()))?;
+    out.set_item("balanced_runs", PyArray1::from_vec(py, ends.iter().map(|s| s.balanced).collect()))?;
     out.set_item("residual_unbalance", PyArray1::from_vec(py, ends.iter().map(|s| s.residual_unbalance).collect()))?;
     out.set_item("final_amplitude", PyArray1::from_vec(py, ends.iter().map(|s| s.final_amplitude).collect()))?;
     Ok((out, autobal::reports::basins(&res, wall).to_string()))

@@ -111,7 +111,13 @@ def test_spatial_simulate_and_basins_equal_the_cli_json(tmp_path):
     b = autobal.SpatialModel(spatial, set=bsets).basins(n=3)
     rows = np.genfromtxt(tmp_path / "b.csv", delimiter=",", names=True)
     for name in rows.dtype.names:
-        assert np.array_equal(np.asarray(b[name], dtype=float), rows[name]), name
+        # the CSV's per-run `balanced` column is `balanced_runs`: `balanced` is the JSON's count
+        key = "balanced_runs" if name == "balanced" else name
+        assert np.array_equal(np.asarray(b[key], dtype=float), rows[name]), name
+    # the dict carries the JSON as the CLI prints it (balanced = how many runs ended balanced)
+    arrays = ("psi_1", "psi_2", "balanced_runs", "residual_unbalance", "final_amplitude")
+    assert without({k: v for k, v in b.items() if k not in arrays}, "wall_time_s") == without(without(want, "wall_time_s"), "csv")
+    assert b["balanced"] == int(np.count_nonzero(b["balanced_runs"])) and b["balanced_runs"].dtype == bool
     # no [drive]: the default run-up through the critical speeds, as the CLI runs it
     run_up = autobal.run("simulate", config=str(ROOT / "examples" / "dimensional.toml"))
     assert run_up["drive_is_default"] and run_up["drive"]["kind"] == "acceleration"
@@ -141,6 +147,16 @@ def test_models_from_keywords_dicts_and_files(tmp_path):
     assert any(path == "drive.psi0[j]" for path, _ in autobal.PlanarProblem.paths())
 
 
+def test_a_missing_config_file_is_file_not_found(tmp_path):
+    missing = tmp_path / "no_such.toml"
+    for make in (autobal.SpatialModel, autobal.PlanarProblem):
+        with pytest.raises(FileNotFoundError) as e:
+            make(missing)
+        assert e.value.filename == str(missing) and str(missing) in str(e.value)
+    with pytest.raises(OSError):
+        autobal.run("critical", config=str(missing))
+
+
 def test_errors_name_the_field():
     with pytest.raises(InvalidParameter) as e:
         autobal.SpatialModel(rho_s=-1.0)
@@ -149,8 +165,15 @@ def test_errors_name_the_field():
     with pytest.raises(InvalidParameter) as e:
         autobal.PlanarProblem(set={"planar.m3": -1})
     assert e.value.field == "planar.m3"
-    with pytest.raises(InvalidParameter, match="^l_lef: unknown keyword"):
+    with pytest.raises(InvalidParameter, match="^l_lef: unknown keyword") as e:
         autobal.SpatialModel(l_lef=1.0)
+    assert e.value.field == "l_lef" and "l_left" in str(e.value)
+    with pytest.raises(InvalidParameter, match="^m33: unknown keyword") as e:
+        autobal.PlanarProblem(m33=1.0)
+    assert e.value.field == "m33" and e.value.reason.startswith("unknown keyword") and "m3," in str(e.value)
+    with pytest.raises(InvalidParameter) as e:
+        autobal.run("critical", nonsense=1)
+    assert e.value.field == "nonsense"
     with pytest.raises(InvalidParameter) as e:
         autobal.SpatialModel(set={"dimensionless.l_lef": 1.0})
     assert e.value.field == "dimensionless.l_lef"

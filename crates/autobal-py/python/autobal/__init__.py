@@ -61,6 +61,14 @@ _SI_TABLES = ("rotor", "supports", "unbalance", "balancer")
 _PLANAR_FLAT = ("planar", "drive", "integration")
 
 
+def _invalid(field: str, reason: str) -> InvalidParameter:
+    """An :class:`InvalidParameter` about ``field`` (``.field``, ``.reason``), as the Rust side
+    raises them: the message is ``"field: reason"``."""
+    e = InvalidParameter(f"{field}: {reason}")
+    e.field, e.reason = field, reason
+    return e
+
+
 def _sets(keys: Mapping[str, Any], set: Optional[Mapping[str, Any]], flat_tables: Sequence[str]) -> List[Tuple[str, Any]]:
     """``table.key`` assignments from keyword arguments (``key=`` of a table in
     ``flat_tables``, or ``table={...}``) and the ``set`` mapping (``{"table.key": value}``)."""
@@ -72,7 +80,7 @@ def _sets(keys: Mapping[str, Any], set: Optional[Mapping[str, Any]], flat_tables
         tables = [t for t in flat_tables if k in _SCHEMA[t]]
         if len(tables) != 1:
             known = ", ".join(sorted({kk for t in flat_tables for kk in _SCHEMA[t]}))
-            raise InvalidParameter(f"{k}: unknown keyword (keys: {known}; or a table as a dict, e.g. rotor={{...}}, or set={{'table.key': value}})")
+            raise _invalid(k, f"unknown keyword (keys: {known}; or a table as a dict, e.g. rotor={{...}}, or set={{'table.key': value}})")
         out.append((f"{tables[0]}.{k}", v))
     out.extend((set or {}).items())
     return out
@@ -87,7 +95,9 @@ def _read(config: ConfigLike, default: str, default_name: str) -> Tuple[Optional
     try:
         size = p.stat().st_size
     except OSError as e:
-        raise InvalidParameter(f"config {p}: cannot read: {e.strerror}") from None
+        # the OSError subclass Python users expect (FileNotFoundError for a missing file,
+        # PermissionError, ...), naming the path
+        raise type(e)(e.errno, f"config {p}: cannot read: {e.strerror}", str(p)) from None
     if size > 1 << 20:
         raise TooLarge(f"config {p}: {size} bytes exceeds the limit of 1048576 (a config is a few dozen lines)")
     return p.read_text(encoding="utf-8"), None, str(p)
@@ -218,9 +228,10 @@ class SpatialModel(_Config):
     def basins(self, n: int = 16) -> Dict[str, Any]:
         """Where runs from an ``n × n`` grid of the first two balls' initial angles end (the
         config's drive and integration; in parallel in Rust, Ctrl-C stops it), as ``autobal
-        basins`` computes them: ``runs``, ``completed``, ``balanced``, ``fraction_balanced``,
-        ``wall_time_s`` (its JSON) and per run the arrays ``psi_1``, ``psi_2`` (initial
-        angles), ``balanced``, ``residual_unbalance``, ``final_amplitude`` (its CSV)."""
+        basins`` computes them: ``runs``, ``completed``, ``balanced`` (how many runs ended
+        balanced), ``fraction_balanced``, ``wall_time_s`` (its JSON) and per run the arrays
+        ``psi_1``, ``psi_2`` (initial angles), ``balanced_runs`` (bool: this run ended balanced;
+        the CSV's ``balanced`` column), ``residual_unbalance``, ``final_amplitude`` (its CSV)."""
         arrays, summary = _autobal.spatial_basins(self._cfg, n)
         out: Dict[str, Any] = json.loads(summary)
         out.update(arrays)
@@ -359,7 +370,8 @@ def run(command: str, config: ConfigLike = None, set: Optional[Mapping[str, Any]
     >>> run("critical", set={"dimensionless.delta_a": 0.1})["critical_speeds"][3]["omega"] > 3.79
     True
     """
-    if command in ("inertia", "critical", "ranges", "stability", "campbell"):
+    if command in _REPORT_OPTIONS:
+        _no_more(command, {k: v for k, v in options.items() if k not in _REPORT_OPTIONS[command]})
         return SpatialModel(config, set=set)._report(command, **options)
     if command == "simulate":
         dt = options.pop("dt", None)
@@ -386,7 +398,7 @@ def run(command: str, config: ConfigLike = None, set: Optional[Mapping[str, Any]
             specs.append(("y", options.pop("y")))
         specs += [("axis", a) for a in options.pop("axis", [])]
         if specs[0][1] is None:
-            raise InvalidParameter("x: required (the first axis, e.g. x='drive.b=0.5:12.5:5')")
+            raise _invalid("x", "required (the first axis, e.g. x='drive.b=0.5:12.5:5')")
         axes = [_autobal.parse_axis(spec) for _, spec in specs if spec is not None]
         shard = options.pop("shard", None)
         kn = None
@@ -394,7 +406,7 @@ def run(command: str, config: ConfigLike = None, set: Optional[Mapping[str, Any]
             try:
                 k, n = (int(s) for s in str(shard).split("/"))
             except ValueError:
-                raise InvalidParameter(f"shard {shard}: expected K/N with 1 ≤ K ≤ N, e.g. shard='3/8'") from None
+                raise _invalid("shard", f"{shard}: expected K/N with 1 ≤ K ≤ N, e.g. shard='3/8'") from None
             kn = (k, n)
         threads = options.pop("threads", None)
         _no_more(command, options)
@@ -405,7 +417,7 @@ def run(command: str, config: ConfigLike = None, set: Optional[Mapping[str, Any]
         return json.loads(_autobal.spatial_basins(SpatialModel(config, set=set)._cfg, n)[1])
     if command == "map":
         if "x" not in options or "y" not in options:
-            raise InvalidParameter("x: required, with y (e.g. x='dimensionless.z_a=-2:2:41', y='omega=0.05:4.5:41')")
+            raise _invalid("x", "required, with y (e.g. x='dimensionless.z_a=-2:2:41', y='omega=0.05:4.5:41')")
         return SpatialModel(config, set=set).stability_map(options.pop("x"), options.pop("y"), **options)
     raise InvalidParameter(
         f"command: \"{command}\" is not a command of autobal.run (inertia, critical, ranges, stability, campbell, simulate, sweep, basins, map); "
@@ -413,6 +425,16 @@ def run(command: str, config: ConfigLike = None, set: Optional[Mapping[str, Any]
     )
 
 
+# the options of the analytic commands (the others take theirs from ``options`` one by one)
+_REPORT_OPTIONS: Dict[str, Tuple[str, ...]] = {
+    "inertia": (),
+    "critical": (),
+    "ranges": (),
+    "stability": ("omega_max", "samples", "balls"),
+    "campbell": ("omega_max", "points", "balls"),
+}
+
+
 def _no_more(command: str, options: Mapping[str, Any]) -> None:
     if options:
-        raise InvalidParameter(f"{next(iter(options))}: not an option of {command}")
+        raise _invalid(next(iter(options)), f"not an option of {command} (see help(autobal.run))")
