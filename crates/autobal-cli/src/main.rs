@@ -174,7 +174,9 @@ enum Command {
         /// Output interval (s, or τ for a dimensionless config), read from the dense output; also the automatic method's time resolution (implicit steps ≤ 4 dt); overrides integration.dt
         #[arg(long, allow_negative_numbers = true)]
         dt: Option<f64>,
-        /// CSV of samples (t, omega, x, y, amplitude, psi_1 … psi_n); plots go beside it as STEM_*.svg
+        /// CSV of samples (t, omega, x, y, amplitude, psi_1 … psi_n): `--out run.csv` writes run.csv; a
+        /// name without .csv is a stem, as for sweep and map (`--out runs/m3` writes runs/m3.csv);
+        /// plots go beside it as STEM_*.svg
         #[arg(long, short, default_value = "simulation.csv")]
         out: PathBuf,
         /// Also write the samples as Parquet, STEM.parquet beside the CSV
@@ -321,7 +323,8 @@ fn run_map(
     if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir).with_context(|| format!("--out: cannot create {}", dir.display()))?;
     }
-    let csv_path = out.with_extension("csv");
+    let out = output::out_stem(&out, &["csv", "svg", "png"]);
+    let csv_path = output::with_suffix(&out, "csv");
     let file = std::fs::File::create(&csv_path).with_context(|| format!("--out: cannot create {}", csv_path.display()))?;
     let mut w = std::io::BufWriter::new(file);
     let q = if quantity == QuantityArg::Margin { map::Quantity::Margin } else { map::Quantity::Verdict };
@@ -379,13 +382,20 @@ fn run_map(
         run.continued,
         run.direct,
         csv_path.display(),
-        out.with_extension("svg").display(),
-        out.with_extension("png").display()
+        output::with_suffix(&out, "svg").display(),
+        output::with_suffix(&out, "png").display()
     ))?;
     if done < run.rows_total {
         anyhow::bail!("interrupted: {done} of {} rows computed and kept in {}", run.rows_total, csv_path.display());
     }
     Ok(())
+}
+
+/// `simulate --out`: `file.csv` is written as given; any other name is a stem (as for sweep and
+/// map), `STEM.csv`. Returns the CSV's path and the stem of the files beside it.
+fn csv_and_stem(out: &std::path::Path) -> (PathBuf, PathBuf) {
+    let stem = output::out_stem(out, &["csv", "parquet", "svg"]);
+    (output::with_suffix(&stem, "csv"), stem)
 }
 
 fn run_simulate(config: Option<PathBuf>, set: Vec<String>, dt: Option<f64>, out: PathBuf, parquet: bool, format: Format) -> Result<()> {
@@ -408,10 +418,11 @@ fn run_simulate(config: Option<PathBuf>, set: Vec<String>, dt: Option<f64>, out:
     if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir).with_context(|| format!("--out: cannot create {}", dir.display()))?;
     }
+    let (out, stem) = csv_and_stem(&out);
     let file = std::fs::File::create(&out).with_context(|| format!("--out: cannot create {}", out.display()))?;
     let mut w = std::io::BufWriter::new(file);
     let mut table = match parquet {
-        true => Some(parquet::Table::create(&out.with_extension("parquet"), &sim::sample_columns(cfg.rotor.n), false)?),
+        true => Some(parquet::Table::create(&output::with_suffix(&stem, "parquet"), &sim::sample_columns(cfg.rotor.n), false)?),
         false => None,
     };
     let progress = std::io::IsTerminal::is_terminal(&std::io::stderr());
@@ -421,7 +432,6 @@ fn run_simulate(config: Option<PathBuf>, set: Vec<String>, dt: Option<f64>, out:
         output::note(&format!("wrote {}", t.finish()?.display()));
     }
     autobal::limits::check_finite("the summary", &summary)?;
-    let stem = out.with_extension("");
     let plots = sim::write_plots(&cfg, &env, &stem, "Passage")?;
     emit(format, sim::summary_json(&cfg, &summary, wall), sim::summary_table(&cfg, &summary, wall))?;
     output::note(&format!(
@@ -459,12 +469,13 @@ fn run_spatial(root: &toml::Table, source: &str, dt: Option<f64>, out: PathBuf, 
     if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir).with_context(|| format!("--out: cannot create {}", dir.display()))?;
     }
+    let (out, stem) = csv_and_stem(&out);
     let file = std::fs::File::create(&out).with_context(|| format!("--out: cannot create {}", out.display()))?;
     let mut w = std::io::BufWriter::new(file);
     let progress = std::io::IsTerminal::is_terminal(&std::io::stderr());
     let (summary, kept, wall) = spatial_sim::run_to_csv(&sim, &mut w, progress, &sim::INTERRUPTED)?;
     drop(w);
-    let plots = spatial_sim::write_plots(&sim, &kept, &out.with_extension(""), "Spatial rotor")?;
+    let plots = spatial_sim::write_plots(&sim, &kept, &stem, "Spatial rotor")?;
     emit(format, spatial_sim::summary_json(&sim, &summary, wall), spatial_sim::summary_table(&sim, &summary, wall))?;
     eprintln!("wrote {} and {} plots ({})", out.display(), plots.len(), plots.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", "));
     if let Some(st) = summary.stopped {

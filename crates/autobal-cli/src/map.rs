@@ -212,9 +212,9 @@ pub fn write_plots(r: &MapResult, stem: &Path, title: &str, traced: Option<&Boun
     let Some(b) = traced else { return crate::mapfig::write_plots(r, stem, title) };
     let mut p = crate::mapfig::plot(r, title);
     p.series.extend(boundary_series(b));
-    let svg_path = stem.with_extension("svg");
+    let svg_path = crate::output::with_suffix(stem, "svg");
     std::fs::write(&svg_path, p.to_svg()).with_context(|| format!("cannot write {}", svg_path.display()))?;
-    let png_path = stem.with_extension("png");
+    let png_path = crate::output::with_suffix(stem, "png");
     std::fs::write(&png_path, p.to_png(1.5)?).with_context(|| format!("cannot write {}", png_path.display()))
 }
 

@@ -155,9 +155,9 @@ pub fn plot(r: &MapResult, title: &str) -> Plot {
 /// and tick labels included).
 pub fn write_plots(r: &MapResult, stem: &Path, title: &str) -> Result<()> {
     let p = plot(r, title);
-    let svg_path = stem.with_extension("svg");
+    let svg_path = crate::output::with_suffix(stem, "svg");
     std::fs::write(&svg_path, p.to_svg()).with_context(|| format!("cannot write {}", svg_path.display()))?;
-    let png_path = stem.with_extension("png");
+    let png_path = crate::output::with_suffix(stem, "png");
     std::fs::write(&png_path, p.to_png(1.5)?).with_context(|| format!("cannot write {}", png_path.display()))?;
     Ok(())
 }

@@ -189,3 +189,20 @@ pub fn note(line: &str) {
 pub fn is_broken_pipe(e: &anyhow::Error) -> bool {
     e.chain().any(|c| c.downcast_ref::<std::io::Error>().is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe))
 }
+
+/// The stem of an `--out` path: only one of the command's own extensions (`exts`, e.g. `csv`) is
+/// taken off, so a dot inside a name stays (`--out slow0.05` → `slow0.05.csv`, not `slow0.csv`).
+pub fn out_stem(out: &std::path::Path, exts: &[&str]) -> std::path::PathBuf {
+    match out.extension().and_then(|e| e.to_str()) {
+        Some(e) if exts.iter().any(|x| x.eq_ignore_ascii_case(e)) => out.with_extension(""),
+        _ => out.to_path_buf(),
+    }
+}
+
+/// `STEM.ext`: the extension appended to the stem (never replacing a dotted part of its name).
+pub fn with_suffix(stem: &std::path::Path, ext: &str) -> std::path::PathBuf {
+    let mut s = stem.as_os_str().to_os_string();
+    s.push(".");
+    s.push(ext);
+    s.into()
+}

@@ -129,17 +129,17 @@ pub fn run(a: SweepArgs) -> Result<()> {
     }
     autobal::sweep::check_grid(&base, &grid, range.clone())?;
     let _ = ctrlc::set_handler(|| crate::sim::INTERRUPTED.store(true, Ordering::Relaxed));
-    let out = &a.out;
+    let out = &crate::output::out_stem(&a.out, &["csv", "json", "parquet"]);
     if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir).with_context(|| format!("--out: cannot create {}", dir.display()))?;
     }
-    let csv_path = out.with_extension("csv");
+    let csv_path = crate::output::with_suffix(out, "csv");
     let file = std::fs::File::create(&csv_path).with_context(|| format!("--out: cannot create {}", csv_path.display()))?;
     let mut csv = std::io::BufWriter::new(file);
     let paths = grid.paths();
     writeln!(csv, "{}", columns(&paths).join(","))?;
     let mut pq = match a.parquet {
-        true => Some(crate::parquet::Table::create(&out.with_extension("parquet"), &columns(&paths), true)?),
+        true => Some(crate::parquet::Table::create(&crate::output::with_suffix(out, "parquet"), &columns(&paths), true)?),
         false => None,
     };
     let mut table = String::new();
@@ -211,7 +211,7 @@ pub fn run(a: SweepArgs) -> Result<()> {
         crate::output::note(&format!(
             "warning: {} more points have warnings (each run's warnings and stop reason are in {})",
             warned - PRINTED_WARNINGS,
-            out.with_extension("json").display()
+            crate::output::with_suffix(out, "json").display()
         ));
     }
     csv.flush()?;
@@ -223,7 +223,7 @@ pub fn run(a: SweepArgs) -> Result<()> {
     }
     let info = autobal::reports::SweepInfo { problem: &base, grid: &grid, shard: shard_kn, range: range.clone(), complete: outcome.complete };
     let json = autobal::reports::sweep(&info, runs);
-    let json_path = out.with_extension("json");
+    let json_path = crate::output::with_suffix(out, "json");
     std::fs::write(&json_path, serde_json::to_string_pretty(&json)?).with_context(|| format!("--out: cannot write {}", json_path.display()))?;
     emit(a.format, json, table)?;
     if !outcome.complete {
@@ -311,13 +311,14 @@ pub fn merge(a: MergeArgs) -> Result<()> {
     json["shard"] = Value::Null;
     json["range"] = json!([0, points]);
     json["runs"] = Value::Array(runs);
-    if let Some(dir) = a.out.parent().filter(|d| !d.as_os_str().is_empty()) {
+    let out = crate::output::out_stem(&a.out, &["csv", "json", "parquet"]);
+    if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir).with_context(|| format!("--out: cannot create {}", dir.display()))?;
     }
-    let (cp, jp) = (a.out.with_extension("csv"), a.out.with_extension("json"));
+    let (cp, jp) = (crate::output::with_suffix(&out, "csv"), crate::output::with_suffix(&out, "json"));
     if a.parquet {
         let names: Vec<String> = head.split(',').map(String::from).collect();
-        let mut t = crate::parquet::Table::create(&a.out.with_extension("parquet"), &names, true)?;
+        let mut t = crate::parquet::Table::create(&crate::output::with_suffix(&out, "parquet"), &names, true)?;
         for l in csv.lines().skip(1) {
             let row = l.split(',').map(|v| v.parse::<f64>()).collect::<std::result::Result<Vec<_>, _>>();
             t.push(&row.map_err(|e| anyhow!("{}: a value that is not a number in the row `{l}`: {e}", cp.display()))?)?;

@@ -109,3 +109,31 @@ fn sweep_errors_name_the_option_and_path() {
         assert_eq!(err.trim_end().lines().count(), 1, "{err}");
     }
 }
+
+/// `--out` is a stem: only the command's own extensions are taken off, so a dot inside a name
+/// (`slow0.05`) stays; `simulate --out m3` writes m3.csv like the other commands, `--out x.csv`
+/// writes x.csv as given.
+#[test]
+fn out_stems_keep_dots_and_simulate_adds_csv() {
+    let d = dir("stems");
+    let s = |p: &str| d.join(p).to_str().unwrap().to_string();
+    let stem = s("slow0.05");
+    let mut args = vec!["sweep", "--threads", "1", "--x", "drive.b=100,200", "--set", "drive.t_end=0.5", "--set", "drive.omega0=250", "--out", &stem];
+    ok(&args);
+    assert!(d.join("slow0.05.csv").exists() && d.join("slow0.05.json").exists(), "sweep kept the stem");
+    assert!(!d.join("slow0.csv").exists(), "the stem's '.05' was taken for an extension");
+    // a known extension given with the stem is not doubled
+    let with_csv = s("b.csv");
+    args.pop();
+    args.push(&with_csv);
+    ok(&args);
+    assert!(d.join("b.csv").exists() && d.join("b.json").exists() && !d.join("b.csv.csv").exists());
+    for (out, file) in [("m3", "m3.csv"), ("m3.5", "m3.5.csv"), ("given.csv", "given.csv")] {
+        let o = s(out);
+        ok(&["simulate", "--set", "drive.t_end=0.5", "--set", "drive.omega0=250", "--out", &o]);
+        let text = std::fs::read_to_string(d.join(file)).unwrap_or_else(|e| panic!("--out {out}: no {file}: {e}"));
+        assert!(text.starts_with("t,omega,"), "--out {out}: {file} is the samples' CSV");
+    }
+    assert!(!d.join("m3").exists() && !d.join("m3.5").exists(), "simulate wrote a file without .csv");
+    assert!(d.join("m3.5_amplitude_t.svg").exists(), "plots beside the CSV as STEM_*.svg");
+}
