@@ -153,7 +153,7 @@ pub fn compute(
     let (kx, dx) = decimate(&x);
     let (ky, dy) = decimate(&y);
     let mut kept: Vec<Option<Vec<Cell>>> = vec![None; dy.n];
-    let xs: Vec<String> = lx.values.iter().map(|v| v.to_string()).collect();
+    let xs: Vec<String> = lx.values.iter().map(|v| crate::num::Csv(*v).to_string()).collect();
     // rows are formatted in parallel in batches (the pool is idle between the library's blocks)
     let mut pending: Vec<(usize, Vec<Cell>)> = vec![];
     let mut io_error: Option<std::io::Error> = None;
@@ -161,11 +161,11 @@ pub fn compute(
         let texts: Vec<String> = pending
             .par_iter()
             .map(|(j, cells)| {
-                let yv = ly.values[*j].to_string();
+                let yv = crate::num::Csv(ly.values[*j]).to_string();
                 let mut t = String::with_capacity(cells.len() * 40);
                 for (xs, c) in xs.iter().zip(cells) {
                     use std::fmt::Write as _;
-                    let _ = writeln!(t, "{xs},{yv},{},{},{}", c.margin, c.stable as u8, c.necessary as u8);
+                    let _ = writeln!(t, "{xs},{yv},{},{},{}", crate::num::Csv(c.margin), c.stable as u8, c.necessary as u8);
                 }
                 t
             })
@@ -256,7 +256,7 @@ pub fn boundary_csv(b: &Boundary, x: &str, y: &str) -> String {
     for (i, c) in b.curves.iter().enumerate() {
         let kind = if c.kind == CurveKind::Hopf { "hopf" } else { "fold" };
         for p in &c.points {
-            let _ = writeln!(s, "{i},{kind},{},{},{},{}", p.x, p.y, p.w, p.on_boundary as u8);
+            let _ = writeln!(s, "{i},{kind},{},{},{},{}", crate::num::Csv(p.x), crate::num::Csv(p.y), crate::num::Csv(p.w), p.on_boundary as u8);
         }
     }
     for p in &b.codim2 {
@@ -265,7 +265,7 @@ pub fn boundary_csv(b: &Boundary, x: &str, y: &str) -> String {
             Codim2Kind::DoubleHopf => "double-hopf",
             Codim2Kind::FoldHopf => "fold-hopf",
         };
-        let _ = writeln!(s, "-,{kind},{},{},,", p.x, p.y);
+        let _ = writeln!(s, "-,{kind},{},{},,", crate::num::Csv(p.x), crate::num::Csv(p.y));
     }
     s
 }

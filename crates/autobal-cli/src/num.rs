@@ -93,6 +93,61 @@ pub fn round_sig(v: f64, digits: usize) -> Option<f64> {
     format!("{:.*e}", digits.clamp(1, 17) - 1, v).parse().ok()
 }
 
+/// A float as the CSVs write it: the shortest text that reads back to the same `f64`, positional
+/// or with an exponent, whichever is shorter (`0.25`, `1.6092556977295832e-7`, `1e16`; positional
+/// on a tie: `100`, `0.01`). Both of Rust's forms (`{}` and `{:e}`) print the fewest digits
+/// that round-trip, so either is exact; this only picks the shorter.
+pub struct Csv(pub f64);
+
+impl std::fmt::Display for Csv {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let v = self.0;
+        if !v.is_finite() || v == 0.0 {
+            return write!(f, "{v}");
+        }
+        let mut exp = Short::default();
+        let _ = std::fmt::Write::write_fmt(&mut exp, format_args!("{v:e}"));
+        let s = exp.as_str();
+        let (mantissa, e) = s.split_once('e').unwrap_or((s, "0"));
+        let e: i32 = e.parse().unwrap_or(0);
+        let digits = mantissa.bytes().filter(u8::is_ascii_digit).count() as i32;
+        // length of `{v}`: d digits with the point after digit e + 1, or `0.` and -e - 1 zeros
+        let positional = i32::from(v < 0.0)
+            + match e {
+                e if e < 0 => digits + 1 - e,
+                e if digits > e + 1 => digits + 1,
+                e => e + 1,
+            };
+        if positional <= s.len() as i32 {
+            write!(f, "{v}")
+        } else {
+            f.write_str(s)
+        }
+    }
+}
+
+/// A stack buffer for one `{:e}` float (at most 24 bytes: sign, 17 digits, point, `e-324`).
+#[derive(Default)]
+struct Short {
+    buf: [u8; 32],
+    len: usize,
+}
+
+impl Short {
+    fn as_str(&self) -> &str {
+        std::str::from_utf8(&self.buf[..self.len]).unwrap_or("")
+    }
+}
+
+impl std::fmt::Write for Short {
+    fn write_str(&mut self, s: &str) -> std::fmt::Result {
+        let end = self.len + s.len();
+        self.buf.get_mut(self.len..end).ok_or(std::fmt::Error)?.copy_from_slice(s.as_bytes());
+        self.len = end;
+        Ok(())
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -132,5 +187,39 @@ mod tests {
     fn rounding_for_json_keeps_six_digits() {
         assert_eq!(round_sig(0.014492753623188406, 6), Some(0.0144928));
         assert_eq!(round_sig(f64::NAN, 6), None);
+    }
+
+    #[test]
+    fn csv_numbers_are_the_shorter_exact_form() {
+        use super::Csv;
+        for (v, want) in [
+            (1.6092556977295832e-7, "1.6092556977295832e-7"),
+            (0.25, "0.25"),
+            (100.0, "100"),
+            (1e16, "1e16"),
+            (0.01, "0.01"),
+            (0.001, "1e-3"),
+            (0.0001, "1e-4"),
+            (-0.00012, "-1.2e-4"),
+            (123456.5, "123456.5"),
+            (0.0, "0"),
+            (-2.5, "-2.5"),
+        ] {
+            assert_eq!(Csv(v).to_string(), want, "{v:e}");
+        }
+        // every value reads back bit for bit, in no more characters than either of Rust's forms
+        let mut x = 0x2545_F491_4F6C_DD1Du64;
+        for _ in 0..20_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let v = f64::from_bits(x);
+            if !v.is_finite() {
+                continue;
+            }
+            let s = Csv(v).to_string();
+            assert_eq!(s.parse::<f64>().unwrap().to_bits(), v.to_bits(), "{s}");
+            assert_eq!(s.len(), format!("{v}").len().min(format!("{v:e}").len()), "{v:e}: {s}");
+        }
     }
 }

@@ -81,10 +81,11 @@ pub fn run_to_csv(
     let mut count = 0u64;
     let t0 = std::time::Instant::now();
     let summary = simulate_with(&cfg.rotor, &cfg.drive, &cfg.settings, Some(&|| INTERRUPTED.load(Ordering::Relaxed)), |s| {
-        let mut line = format!("{},{},{},{},{}", s.t, s.omega, s.x, s.y, s.amplitude);
+        let mut line =
+            format!("{},{},{},{},{}", crate::num::Csv(s.t), crate::num::Csv(s.omega), crate::num::Csv(s.x), crate::num::Csv(s.y), crate::num::Csv(s.amplitude));
         for p in &s.psi {
             line.push(',');
-            line.push_str(&p.to_string());
+            line.push_str(&crate::num::Csv(*p).to_string());
         }
         line.push('\n');
         if let Err(e) = csv.write_all(line.as_bytes()) {

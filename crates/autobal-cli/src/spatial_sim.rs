@@ -107,10 +107,18 @@ pub fn run_to_csv(sim: &SpatialSim, csv: &mut dyn Write, progress: bool, interru
     let mut count = 0u64;
     let t0 = std::time::Instant::now();
     let summary = simulate(r, &sim.drive, &sim.initial, &sim.settings, |s| {
-        let mut line = format!("{},{},{},{},{},{}", s.t, s.omega, s.x, s.y, s.tilt_x, s.tilt_y);
+        let mut line = format!(
+            "{},{},{},{},{},{}",
+            crate::num::Csv(s.t),
+            crate::num::Csv(s.omega),
+            crate::num::Csv(s.x),
+            crate::num::Csv(s.y),
+            crate::num::Csv(s.tilt_x),
+            crate::num::Csv(s.tilt_y)
+        );
         for v in s.amplitude_supports.iter().chain(&s.amplitude_planes).chain(&s.psi) {
             line.push(',');
-            line.push_str(&v.to_string());
+            line.push_str(&crate::num::Csv(*v).to_string());
         }
         line.push('\n');
         if let Err(e) = csv.write_all(line.as_bytes()) {
@@ -283,7 +291,14 @@ pub fn run_basins(sim: &SpatialSim, n: usize, out: &Path, progress: bool, interr
     let mut csv = String::from("psi_1,psi_2,balanced,residual_unbalance,final_amplitude\n");
     for (c, r) in cases.iter().zip(&res) {
         if let Some(s) = r {
-            csv.push_str(&format!("{},{},{},{},{}\n", c.initial.psi[0], c.initial.psi[1], s.balanced as u8, s.residual_unbalance, s.final_amplitude));
+            csv.push_str(&format!(
+                "{},{},{},{},{}\n",
+                crate::num::Csv(c.initial.psi[0]),
+                crate::num::Csv(c.initial.psi[1]),
+                s.balanced as u8,
+                crate::num::Csv(s.residual_unbalance),
+                crate::num::Csv(s.final_amplitude)
+            ));
         }
     }
     std::fs::write(out, csv).with_context(|| format!("--out: cannot write {}", out.display()))?;

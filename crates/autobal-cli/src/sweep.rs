@@ -161,9 +161,9 @@ pub fn run(a: SweepArgs) -> Result<()> {
             let mut line = format!("{i}");
             for v in values.iter().chain(&summary_values(&r.summary)) {
                 line.push(',');
-                line.push_str(&v.to_string());
+                line.push_str(&crate::num::Csv(*v).to_string());
             }
-            line.push_str(&format!(",{}\n", r.wall_s));
+            line.push_str(&format!(",{}\n", crate::num::Csv(r.wall_s)));
             if let Err(e) = csv.write_all(line.as_bytes()) {
                 io_error = Some(anyhow!("--out: cannot write {}: {e}", csv_path.display()));
                 return false;

@@ -137,3 +137,33 @@ fn out_stems_keep_dots_and_simulate_adds_csv() {
     assert!(!d.join("m3").exists() && !d.join("m3.5").exists(), "simulate wrote a file without .csv");
     assert!(d.join("m3.5_amplitude_t.svg").exists(), "plots beside the CSV as STEM_*.svg");
 }
+
+/// Every number in `p` (a CSV) in the shortest text that reads back to it: positional or with an
+/// exponent, whichever is shorter (Rust's `{}` and `{:e}` both print the fewest round-trip
+/// digits). Returns how many fields use an exponent.
+fn check_shortest_numbers(p: &Path) -> usize {
+    let text = std::fs::read_to_string(p).unwrap();
+    let mut exponents = 0;
+    for l in text.lines().skip(1) {
+        for f in l.split(',') {
+            let Ok(v) = f.parse::<f64>() else { continue };
+            let (pos, exp) = (format!("{v}"), format!("{v:e}"));
+            let want = if exp.len() < pos.len() { exp } else { pos };
+            assert_eq!(f, want, "{}: {f} is not the shortest exact form of {v:e}", p.display());
+            exponents += f.contains('e') as usize;
+        }
+    }
+    exponents
+}
+
+#[test]
+fn csv_numbers_are_shortest_round_trip() {
+    let d = dir("numbers");
+    let sim = d.join("sim.csv");
+    ok(&["simulate", "--set", "drive.t_end=0.01", "--dt", "0.0001", "--set", "drive.omega0=250", "--out", sim.to_str().unwrap()]);
+    // samples every 1e-4 s from rest: times and displacements this small are written with exponents
+    assert!(check_shortest_numbers(&sim) > 0, "no tiny value written with an exponent");
+    let stem = d.join("sweep");
+    ok(&["sweep", "--threads", "1", "--x", "drive.b=100,200", "--set", "drive.t_end=0.5", "--set", "drive.omega0=250", "--out", stem.to_str().unwrap()]);
+    check_shortest_numbers(&d.join("sweep.csv"));
+}
