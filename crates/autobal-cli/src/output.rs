@@ -144,8 +144,14 @@ pub fn critical_table(cfg: &Config) -> String {
 fn ranges_block(cfg: &Config, ar: &AutobalancingRanges) -> String {
     let mut s = String::new();
     let _ = writeln!(s, "\nautobalancing (003 eqs (1)-(3), anisotropy of the unbalance alone ΔĀ0 = {:.4})", cfg.model.delta_a0);
-    let _ = writeln!(s, "  antiresonance Ω_a = {}", opt(ar.antiresonance_speed, 4));
-    let _ = writeln!(s, "  critical speeds of the unbalanced rotor: {}", ar.critical_speeds.iter().map(|w| format!("{w:.4}")).collect::<Vec<_>>().join(", "));
+    let si =
+        |w: f64| cfg.model.scale.map_or(String::new(), |sc| format!(" ({:.1} rad/s, {:.0} rpm)", w * sc.omega0, w * sc.omega0 * 30.0 / std::f64::consts::PI));
+    let _ = writeln!(s, "  antiresonance Ω_a = {}{}", opt(ar.antiresonance_speed, 4), ar.antiresonance_speed.map_or(String::new(), si));
+    let _ = writeln!(
+        s,
+        "  critical speeds of the unbalanced rotor: {}",
+        ar.critical_speeds.iter().map(|&w| format!("{w:.4}{}", si(w))).collect::<Vec<_>>().join(", ")
+    );
     let _ = writeln!(s, "  phase condition (1) holds: {}", fmt_ranges(&ar.phase_condition, 4));
     let _ = writeln!(s, "  split-pair instability:   {}", fmt_ranges(&ar.instability, 4));
     let _ = writeln!(s, "  autobalancing possible:   {}", fmt_ranges(&ar.ranges, 4));

@@ -674,3 +674,44 @@ fn integration_method_errors_list_every_accepted_name() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A dimensional config's analytic outputs give speeds in rad/s and rpm beside Ω (= ω / ω0):
+/// critical's JSON has the autobalancing ranges in rpm as ranges' JSON has them, both have the
+/// antiresonance speed in SI, stability has its ranges in rpm; the text prints Ω_a and the
+/// unbalanced rotor's critical speeds in rad/s and rpm. A dimensionless config gets `null`s.
+#[test]
+fn dimensional_analytic_outputs_give_si_speeds() {
+    let dim = examples("dimensional.toml");
+    let c = json(&["critical", "--config", &dim, "--format", "json"]);
+    let r = json(&["ranges", "--config", &dim, "--format", "json"]);
+    let w0 = c["model"]["scale"]["omega0"].as_f64().unwrap();
+    let rpm = w0 * 30.0 / std::f64::consts::PI;
+    assert_eq!(c["autobalancing_ranges_rpm"], r["autobalancing_ranges_rpm"]);
+    assert!(c["autobalancing_ranges_rpm"].as_array().is_some_and(|a| !a.is_empty()), "{}", c["autobalancing_ranges_rpm"]);
+    let close = |a: &serde_json::Value, b: f64| (a.as_f64().unwrap() - b).abs() <= 1e-12 * b.abs();
+    for v in [&c, &r] {
+        let wa = v["antiresonance_speed"].as_f64().expect("the example has an antiresonance");
+        assert!(close(&v["antiresonance_speed_rad_s"], wa * w0) && close(&v["antiresonance_speed_rpm"], wa * rpm), "{v}");
+    }
+    let cs = r["critical_speeds_unbalanced_rotor"].as_array().unwrap();
+    for (i, w) in cs.iter().enumerate() {
+        let w = w.as_f64().unwrap();
+        assert!(close(&r["critical_speeds_unbalanced_rotor_rad_s"][i], w * w0) && close(&r["critical_speeds_unbalanced_rotor_rpm"][i], w * rpm));
+    }
+    let s = json(&["stability", "--config", &dim, "--format", "json"]);
+    for k in ["stable_ranges", "necessary_ranges"] {
+        let (a, b) = (s[k].as_array().unwrap(), s[format!("{k}_rpm")].as_array().unwrap_or_else(|| panic!("{k}_rpm: {}", s[format!("{k}_rpm")])));
+        assert_eq!(a.len(), b.len(), "{k}");
+        for (x, y) in a.iter().zip(b) {
+            assert!(close(&y[0], x[0].as_f64().unwrap() * rpm), "{k}: {x} vs {y}");
+        }
+    }
+    let (code, text, err) = autobal(&["ranges", "--config", &dim]);
+    assert_eq!(code, 0, "{err}");
+    let line = |p: &str| text.lines().find(|l| l.contains(p)).unwrap_or_else(|| panic!("no '{p}' in {text}")).to_string();
+    for p in ["antiresonance Ω_a", "critical speeds of the unbalanced rotor"] {
+        assert!(line(p).contains("rad/s") && line(p).contains("rpm"), "{}", line(p));
+    }
+    let d = json(&["ranges", "--format", "json"]);
+    assert!(d["antiresonance_speed_rpm"].is_null() && d["autobalancing_ranges_rpm"].is_null(), "a dimensionless config has no SI speeds");
+}

@@ -41,6 +41,25 @@ pub fn scale_ranges(r: &[SpeedRange], k: f64) -> Vec<SpeedRange> {
     r.iter().map(|x| SpeedRange { lo: x.lo * k, hi: x.hi.map(|h| h * k) }).collect()
 }
 
+/// rad/s and rpm per unit of dimensionless speed Ω (`ω0` and `30 ω0 / π`), for a dimensional
+/// config; `None` for a dimensionless one, whose SI keys are then `null`.
+fn si_units(m: &SpatialModel) -> Option<(f64, f64)> {
+    m.scale.map(|s| (s.omega0, s.omega0 * 30.0 / std::f64::consts::PI))
+}
+
+/// A speed (or speeds) Ω in rad/s and rpm: `(rad_s, rpm)`, `null`s without a scale.
+fn speed_si(m: &SpatialModel, w: &[f64]) -> (Value, Value) {
+    match si_units(m) {
+        Some((rad, rpm)) => (json!(w.iter().map(|x| x * rad).collect::<Vec<_>>()), json!(w.iter().map(|x| x * rpm).collect::<Vec<_>>())),
+        None => (Value::Null, Value::Null),
+    }
+}
+
+/// Ranges of Ω in rpm, `null` without a scale.
+fn ranges_rpm(m: &SpatialModel, r: &[SpeedRange]) -> Value {
+    si_units(m).map_or(Value::Null, |(_, rpm)| ranges_value(&scale_ranges(r, rpm)))
+}
+
 /// The upper end of the speed axis when none is given: 1.3 times the highest critical,
 /// antiresonance or split-pair speed (at least 1), at most 50.
 pub fn default_omega_max(m: &SpatialModel) -> f64 {
@@ -113,13 +132,17 @@ pub fn critical(c: &SpatialConfig, source: &str) -> Value {
     let cs = critical_speeds(&c.model);
     let ar = autobalancing_ranges(&c.model);
     let s = sensitivity(&c.model, c.analysis.sensitivity_limit);
+    let (a_rad, a_rpm) = speed_si(&c.model, &ar.antiresonance_speed.into_iter().collect::<Vec<_>>());
     json!({
         "critical_speeds": cs.speeds,
         "distinct_count": cs.distinct_count,
         "table1_count": cs.table1_count,
         "rotor_type": cs.rotor_class,
         "antiresonance_speed": ar.antiresonance_speed,
+        "antiresonance_speed_rad_s": a_rad[0],
+        "antiresonance_speed_rpm": a_rpm[0],
         "autobalancing_ranges": ranges_value(&ar.ranges),
+        "autobalancing_ranges_rpm": ranges_rpm(&c.model, &ar.ranges),
         "balancing_class": ar.class,
         "sensitivity": s,
         "anisotropy": anisotropy_json(&c.model),
@@ -130,14 +153,19 @@ pub fn critical(c: &SpatialConfig, source: &str) -> Value {
 /// `autobal ranges`: the speed ranges where autobalancing is possible (003).
 pub fn ranges(c: &SpatialConfig, source: &str) -> Value {
     let ar = autobalancing_ranges(&c.model);
-    let omega0 = c.model.scale.map(|s| s.omega0);
+    let (a_rad, a_rpm) = speed_si(&c.model, &ar.antiresonance_speed.into_iter().collect::<Vec<_>>());
+    let (cs_rad, cs_rpm) = speed_si(&c.model, &ar.critical_speeds);
     json!({
         "antiresonance_speed": ar.antiresonance_speed,
+        "antiresonance_speed_rad_s": a_rad[0],
+        "antiresonance_speed_rpm": a_rpm[0],
         "autobalancing_ranges": ranges_value(&ar.ranges),
-        "autobalancing_ranges_rpm": omega0.map(|w| ranges_value(&scale_ranges(&ar.ranges, w * 30.0 / std::f64::consts::PI))),
+        "autobalancing_ranges_rpm": ranges_rpm(&c.model, &ar.ranges),
         "phase_condition_ranges": ranges_value(&ar.phase_condition),
         "instability_ranges": ranges_value(&ar.instability),
         "critical_speeds_unbalanced_rotor": ar.critical_speeds,
+        "critical_speeds_unbalanced_rotor_rad_s": cs_rad,
+        "critical_speeds_unbalanced_rotor_rpm": cs_rpm,
         "balancing_class": ar.class,
         "delta_a0": c.model.delta_a0,
         "model": model_json(c, source),
@@ -159,6 +187,8 @@ pub fn stability(model: &SpatialModel, c: &Comparison, balls: Balls) -> Value {
         "omega_max": c.omega_max,
         "stable_ranges": ranges_value(&c.exact.stable_ranges),
         "necessary_ranges": ranges_value(&c.necessary),
+        "stable_ranges_rpm": ranges_rpm(model, &c.exact.stable_ranges),
+        "necessary_ranges_rpm": ranges_rpm(model, &c.necessary),
         "necessary_not_stable": ranges_value(&c.necessary_not_stable),
         "stable_not_necessary": ranges_value(&c.stable_not_necessary),
         // the ranges are computed over (0, omega_max] only: a null upper end means "reaches
