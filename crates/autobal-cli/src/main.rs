@@ -277,12 +277,6 @@ fn run(cli: Cli) -> Result<()> {
         Command::Basins { config, set, n, out, format, threads } => run_basins(config, set, n, out, format, threads),
         Command::Report { common, out, quick } => {
             let _ = ctrlc::set_handler(|| sim::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
-            // the report reads the config itself; the warning of the analytic sections here
-            if let Ok((root, _)) = config::read_set(common.config.as_deref(), &common.set) {
-                if autobal::config::spatial(&root).is_ok() {
-                    config::warn_ignored(&root, "report");
-                }
-            }
             let index = report::run(common.config.as_deref(), &common.set, &out, quick)?;
             output::print(&format!("report written to {}\n", index.display()))
         }

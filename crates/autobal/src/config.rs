@@ -577,7 +577,7 @@ pub fn integration(ig: &Section, t_end: f64) -> Result<Integration> {
 /// tables `[dimensionless]`, `[rotor]`, `[supports]`, `[unbalance]`, `[balancer]`) rather than
 /// the planar rotor of paper 004 (`[planar]`).
 pub fn is_spatial(root: &Table) -> bool {
-    ["dimensionless", "rotor", "supports", "unbalance", "balancer"].iter().any(|t| root.contains_key(*t))
+    root.contains_key("dimensionless") || DIMENSIONAL_TABLES.iter().any(|t| root.contains_key(*t))
 }
 
 /// The entries of a spatial config that the linear model of papers 000/003 (the analytic

@@ -133,15 +133,14 @@ pub fn interrupted() -> bool {
 
 /// Read the config (spatial and/or planar), build every section in parallel, write the folder.
 pub fn run(path: Option<&Path>, sets: &[String], dir: &Path, quick: bool) -> Result<PathBuf> {
-    let (mut root, source) = config::read(path)?;
-    for s in sets {
-        config::apply_set(&mut root, s)?;
-    }
-    let spatial_tables = ["rotor", "supports", "unbalance", "balancer", "dimensionless"];
-    let spatial = if spatial_tables.iter().any(|t| root.contains_key(*t)) { Some(config::build(&root, &source)?) } else { None };
+    let (root, source) = config::read_set(path, sets)?;
+    let spatial = if autobal::config::is_spatial(&root) { Some(config::build(&root, &source)?) } else { None };
     let planar = if root.contains_key("planar") { Some(config::build_planar(&root, &source)?) } else { None };
     if spatial.is_none() && planar.is_none() {
         bail!("config: describes no rotor: give [dimensionless] or [rotor], [supports], [unbalance], [balancer] (papers 000/003), or [planar] (paper 004)");
+    }
+    if spatial.is_some() {
+        config::warn_ignored(&root, "report");
     }
     for w in spatial.iter().flat_map(|c| &c.model.anisotropy.warnings) {
         crate::output::note(&format!("warning: {w}"));

@@ -86,7 +86,7 @@ pub fn basins(rotor: &SpatialRotor, cases: &[Case], settings: &Settings, progres
                 return Ok(None);
             }
             // summaries only, from the same steps as `simulate` (dt is the automatic method's time resolution)
-            let s = simulate_summary(rotor, &c.drive, &c.initial, settings, || !cancel.load(Ordering::Relaxed))?;
+            let s = simulate_summary(rotor, &c.drive, &c.initial, settings, Some(&|| cancel.load(Ordering::Relaxed)))?;
             progress(done.fetch_add(1, Ordering::Relaxed) + 1);
             Ok((s.stopped.is_none() || !cancel.load(Ordering::Relaxed)).then_some(s))
         })

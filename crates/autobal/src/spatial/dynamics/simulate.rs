@@ -283,23 +283,26 @@ fn plane_amplitude(eq: &Equations, y: &[f64]) -> f64 {
 /// assert!(s.balanced && s.residual_unbalance < 1e-3);
 /// ```
 pub fn simulate(rotor: &SpatialRotor, drive: &Drive, init: &Initial, settings: &Settings, sink: impl FnMut(&Sample) -> bool) -> Result<Summary> {
-    simulate_sampled(rotor, drive, init, settings, settings.dt, sink)
+    simulate_sampled(rotor, drive, init, settings, None, settings.dt, sink)
 }
 
 /// The run of [`simulate`] with samples only at its start and end, for its summary (basins):
 /// the same settings, `dt` included, so the same steps and the same summary (`dt` is also the
-/// automatic method's time resolution, see [`tolerances`]). `keep_going` is asked at every step;
-/// `false` stops the run (an interruption, as in [`simulate`]).
-pub fn simulate_summary(rotor: &SpatialRotor, drive: &Drive, init: &Initial, settings: &Settings, keep_going: impl Fn() -> bool) -> Result<Summary> {
-    simulate_sampled(rotor, drive, init, settings, settings.t_end, |_| keep_going())
+/// automatic method's time resolution, see [`tolerances`]). `cancel` is asked before every
+/// step; `true` stops the run (an interruption, as in [`simulate`]), as in
+/// [`crate::planar::simulate_summary`].
+pub fn simulate_summary(rotor: &SpatialRotor, drive: &Drive, init: &Initial, settings: &Settings, cancel: Option<&dyn Fn() -> bool>) -> Result<Summary> {
+    simulate_sampled(rotor, drive, init, settings, cancel, settings.t_end, |_| true)
 }
 
-/// [`simulate`], sampling every `sample_dt` (the integrator's settings unchanged).
+/// [`simulate`], stopping when `cancel()` returns true and sampling every `sample_dt` (the
+/// integrator's settings unchanged).
 fn simulate_sampled(
     rotor: &SpatialRotor,
     drive: &Drive,
     init: &Initial,
     settings: &Settings,
+    cancel: Option<&dyn Fn() -> bool>,
     sample_dt: f64,
     mut sink: impl FnMut(&Sample) -> bool,
 ) -> Result<Summary> {
@@ -315,6 +318,9 @@ fn simulate_sampled(
     let eq = Equations::new(rotor, drive);
     let mut y = initial_state(&eq, init)?;
     let mut solver = Solver::new(&eq, tolerances(&eq, settings))?;
+    if let Some(c) = cancel {
+        solver.cancel_if(c);
+    }
     let breakpoints = drive.breakpoints();
     let timeline = Timeline { t_end: settings.t_end, dt: sample_dt, breakpoints: &breakpoints };
     let counters = vec![EventCounter::default(); eq.ball_forces().len()];
