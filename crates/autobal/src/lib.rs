@@ -92,6 +92,7 @@
 // warnings, so an undocumented public item fails the build.
 #![warn(missing_docs)]
 
+pub mod analysis;
 pub mod balls;
 pub(crate) mod builder;
 pub mod config;
