@@ -10,19 +10,105 @@ use std::fmt::Write;
 
 pub use autobal::spatial::comparison::{compare, Comparison};
 
+/// The library's view of a loaded config.
+pub fn library(cfg: &Config) -> autobal::config::SpatialConfig {
+    autobal::config::SpatialConfig { model: cfg.model.clone(), spec: cfg.spec.clone(), analysis: cfg.analysis.clone(), dimensional: cfg.dimensional }
+}
+
 pub fn stability_json(cfg: &Config, c: &Comparison, balls: Balls) -> Value {
-    autobal::reports::stability(&cfg.model, c, balls)
+    autobal::reports::stability_of(&library(cfg), c, balls)
+}
+
+/// A speed `Ω` as the config's user reads it: `Ω = 1.5 (157.1 rad/s, 1500 rpm)` for a
+/// dimensional config, `Ω = 1.5` for a dimensionless one.
+pub fn speed_text(cfg: &Config, w: f64) -> String {
+    match cfg.model.scale {
+        Some(sc) => {
+            let (rad, rpm, _) = autobal::units::omega_in_si(w, sc.omega0);
+            format!("{rpm:.0} rpm ({rad:.1} rad/s, Ω = {})", crate::num::fmt(w, 4))
+        }
+        None => format!("Ω = {}", crate::num::fmt(w, 4)),
+    }
+}
+
+/// A speed or range `[lo, hi]` as [`speed_text`] writes one.
+fn op_text(cfg: &Config, [lo, hi]: [f64; 2]) -> String {
+    if lo == hi {
+        return speed_text(cfg, lo);
+    }
+    match cfg.model.scale {
+        Some(sc) => {
+            let k = sc.omega0 * 30.0 / std::f64::consts::PI;
+            format!("{:.0}-{:.0} rpm (Ω = {}-{})", lo * k, hi * k, crate::num::fmt(lo, 4), crate::num::fmt(hi, 4))
+        }
+        None => format!("Ω = {}-{}", crate::num::fmt(lo, 4), crate::num::fmt(hi, 4)),
+    }
+}
+
+/// The verdict at the operating speed in words, one or two lines (the first lines of
+/// `critical` and `stability`), or nothing without `analysis.operating_speed`.
+pub fn operating_lines(cfg: &Config, v: Option<autobal::Result<autobal::reports::OperatingVerdict>>) -> String {
+    let Some(v) = v else { return String::new() };
+    let v = match v {
+        Ok(v) => v,
+        Err(e) => return format!("operating speed: the exact stability could not be computed ({e})\n"),
+    };
+    let at = op_text(cfg, v.omega);
+    let f = |x: f64| crate::num::fmt(x, 4);
+    let rate = match v.max_real_part_per_s {
+        Some(r) => format!("max Re λ = {} 1/s ({} in units of ω0)", f(r), f(v.max_real_part)),
+        None => format!("max Re λ = {}", f(v.max_real_part)),
+    };
+    let rpm = cfg.model.scale.map(|sc| sc.omega0 * 30.0 / std::f64::consts::PI);
+    let range = |r: autobal::spatial::ranges::SpeedRange| match rpm {
+        Some(k) => format!("{:.0}-{} rpm", r.lo * k, r.hi.map_or(format!("{:.0}+", v.span * k), |h| format!("{:.0}", h * k))),
+        None => format!("Ω = {}-{}", f(r.lo), r.hi.map_or(format!("{}+", f(v.span)), f)),
+    };
+    let dist = |d: f64| match rpm {
+        Some(k) => format!("{:.0} rpm (Ω {})", d * k, f(d)),
+        None => format!("Ω {}", f(d)),
+    };
+    let end = |w: f64| match rpm {
+        Some(k) => format!("{:.0} rpm", w * k),
+        None => format!("Ω = {}", f(w)),
+    };
+    if v.stable {
+        let r = v.stable_range.expect("a stable verdict has its range");
+        let margin = match (v.margin_below, v.margin_above) {
+            (Some(b), Some(a)) if a < b => format!("margin {} to its upper end", dist(a)),
+            (Some(b), Some(_)) => format!("margin {} to its lower end", dist(b)),
+            (Some(b), None) => format!("margin {} to its lower end; no upper end up to {}", dist(b), end(v.span)),
+            _ => String::new(),
+        };
+        format!("operating speed {at}: the balanced state is STABLE (exact, balls {}) in the stable range {}, {margin}; {rate}\n", v.balls, range(r))
+    } else {
+        let near = v.nearest_stable_range.map_or(format!("no stable range up to {}", end(v.span)), |r| format!("nearest stable range {}", range(r)));
+        format!("operating speed {at}: the balanced state is NOT STABLE (exact, balls {}); {rate}; {near}\n", v.balls)
+    }
 }
 
 pub fn stability_table(cfg: &Config, c: &Comparison, balls: Balls) -> String {
     let mut s = String::new();
     let _ = writeln!(s, "config: {}", cfg.source);
+    let op = cfg.analysis.operating_speed.map(|op| {
+        if op[1] <= c.omega_max {
+            autobal::reports::operating_verdict(&cfg.model, op, &c.exact.stable_ranges, c.omega_max, balls)
+        } else {
+            autobal::reports::operating_of(&library(cfg), balls).expect("an operating speed")
+        }
+    });
+    s.push_str(&operating_lines(cfg, op));
     let _ = writeln!(
         s,
-        "exact linear stability of the balanced state, balls {} ({} states), 0 < Ω ≤ {}",
+        "exact linear stability of the balanced state, balls {} ({} states), 0 < Ω ≤ {}{}",
         if balls == Balls::Free { "free" } else { "locked" },
         if balls == Balls::Free { 12 } else { 8 },
-        crate::num::fmt(c.omega_max, 7)
+        crate::num::fmt(c.omega_max, 7),
+        cfg.model.scale.map_or(String::new(), |sc| format!(
+            " (up to {:.0} rpm, {:.1} rad/s)",
+            c.omega_max * sc.omega0 * 30.0 / std::f64::consts::PI,
+            c.omega_max * sc.omega0
+        ))
     );
     // computed over (0, Ω_max] only: a range reaching Ω_max ends there as far as is known
     let w = Some(c.omega_max);
@@ -33,6 +119,7 @@ pub fn stability_table(cfg: &Config, c: &Comparison, balls: Balls) -> String {
     if let Some(sc) = cfg.model.scale {
         let k = sc.omega0 * 30.0 / std::f64::consts::PI;
         let _ = writeln!(s, "  stable in rpm: {}", fmt_ranges_in(&crate::output::scale_ranges(&c.exact.stable_ranges, k), 0, Some(c.omega_max * k)));
+        let _ = writeln!(s, "  necessary in rpm: {}", fmt_ranges_in(&crate::output::scale_ranges(&c.necessary, k), 0, Some(c.omega_max * k)));
     }
     let worst = c.exact.max_real_part.iter().map(|x| x.1).fold(f64::NEG_INFINITY, f64::max);
     let best = c.exact.max_real_part.iter().map(|x| x.1).fold(f64::INFINITY, f64::min);
@@ -40,9 +127,50 @@ pub fn stability_table(cfg: &Config, c: &Comparison, balls: Balls) -> String {
     s
 }
 
-/// The speed axis of the linear commands: `--omega-max`, else the config's, else automatic.
-pub fn omega_max(cfg: &Config, arg: Option<f64>) -> Result<f64> {
-    let w = arg.or(cfg.analysis.omega_max).unwrap_or_else(|| autobal::reports::default_omega_max(&cfg.model));
+/// A speed option (`--omega-max 1500rpm`, `--omega 2.1`) as `Ω` ([`autobal::units`]): a bare
+/// number is `Ω`; a dimensional config notes on standard error which speed that is, a
+/// dimensionless one refuses units.
+pub fn speed_arg(cfg: &Config, flag: &str, text: &str) -> Result<f64> {
+    let s = autobal::units::parse_speed(flag, text)?;
+    let w = s.to_omega(flag, cfg.model.scale.map(|sc| sc.omega0))?;
+    if !s.is_si() && cfg.dimensional && w.is_finite() {
+        crate::output::note(&format!(
+            "note: {flag} {text} is the dimensionless Ω = {text}, i.e. {}; give a unit (rpm, rad/s or Hz) for SI",
+            speed_text(cfg, w)
+        ));
+    }
+    Ok(w)
+}
+
+/// A map's fixed speed given in SI (`--omega 1400rpm`) is one `Ω` only if neither axis changes
+/// the rotor's `ω0 = sqrt(c_x/M_s)` (masses, stiffnesses do): checked at both ends of each axis.
+pub fn check_fixed_speed(cfg: &Config, axes: [(&str, f64, f64); 2]) -> Result<()> {
+    let w0 = cfg.model.scale.map(|s| s.omega0);
+    for (key, lo, hi) in axes {
+        for v in [lo, hi] {
+            let mut s = cfg.spec.clone();
+            if s.set(key, v).is_err() {
+                continue; // the map names the bad path itself
+            }
+            let other = s.build().ok().and_then(|m| m.scale.map(|s| s.omega0));
+            if other.is_some() && other != w0 {
+                anyhow::bail!(
+                    "--omega: {key} changes the rotor's ω0 (the unit of Ω), so a speed in SI is a different Ω across the map; give --omega as Ω, or map over a speed axis (speed_rpm=LO:HI:N)"
+                );
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The speed axis of the linear commands: `--omega-max` (a speed with its unit, or `Ω`), else
+/// the config's `analysis.omega_max`, else automatic: up to 1.3 times the highest critical
+/// speed and 1.25 times the top of the operating speed ([`autobal::reports::speed_axis_max`]).
+pub fn omega_max(cfg: &Config, arg: Option<&str>) -> Result<f64> {
+    let w = match arg {
+        Some(t) => speed_arg(cfg, "--omega-max", t)?,
+        None => cfg.analysis.speed_axis_max(autobal::reports::default_omega_max(&cfg.model)),
+    };
     if !(w > 0.0 && w.is_finite()) {
         anyhow::bail!("--omega-max: must be a positive number, got {w}");
     }
@@ -60,15 +188,35 @@ pub fn campbell_table(cfg: &Config, c: &Campbell) -> String {
     let n = c.omega.len();
     let mut at = vec![0, n / 4, n / 2, 3 * n / 4, n.saturating_sub(1)];
     at.dedup();
+    let w0 = cfg.model.scale.map(|sc| sc.omega0);
+    if let Some(w0) = w0 {
+        let _ = writeln!(s, "frequencies in Hz and rpm (cycles per minute) with ω0 = {w0:.4} rad/s; ν, σ and fixed freq also in units of ω0");
+    }
     for k in at.into_iter().filter(|&k| k < n) {
-        let _ = writeln!(s, "\nΩ = {:.4}", c.omega[k]);
-        let _ = writeln!(s, "  {:>10} {:>10} {:>10} {:>12}  {:<12} {:<9}", "ν", "σ", "log dec", "fixed freq", "group", "whirl");
+        match w0 {
+            Some(_) => {
+                let _ = writeln!(s, "\nspeed {}", speed_text(cfg, c.omega[k]));
+                let _ = writeln!(
+                    s,
+                    "  {:>10} {:>10} {:>10} {:>12} {:>11} {:>11}  {:<12} {:<9}",
+                    "ν (ω0)", "σ (ω0)", "log dec", "fixed (ω0)", "fixed Hz", "fixed rpm", "group", "whirl"
+                );
+            }
+            None => {
+                let _ = writeln!(s, "\nΩ = {:.4}", c.omega[k]);
+                let _ = writeln!(s, "  {:>10} {:>10} {:>10} {:>12}  {:<12} {:<9}", "ν", "σ", "log dec", "fixed freq", "group", "whirl");
+            }
+        }
         let mut modes: Vec<_> = c.lines.iter().map(|l| l.modes[k]).filter(|m| m.im >= 0.0).collect();
         modes.sort_by(|a, b| a.im.total_cmp(&b.im));
         for m in modes {
+            let si = w0.map_or(String::new(), |w0| {
+                let hz = m.fixed_frequency * w0 / (2.0 * std::f64::consts::PI);
+                format!(" {:>11.3} {:>11.1}", hz, 60.0 * hz)
+            });
             let _ = writeln!(
                 s,
-                "  {:>10.5} {:>10.5} {:>10} {:>12.5}  {:<12} {:<9}",
+                "  {:>10.5} {:>10.5} {:>10} {:>12.5}{si}  {:<12} {:<9}",
                 m.im,
                 m.re,
                 m.log_decrement.map_or("—".into(), |d| format!("{d:.4}")),
@@ -141,7 +289,7 @@ pub fn run_campbell(cfg: &Config, w: f64, points: usize, balls: Balls, json: boo
                 }
             }
             for (f, m) in files.iter_mut().zip(modes) {
-                let text = serde_json::to_string(m).unwrap_or_default();
+                let text = serde_json::to_string(&autobal::reports::mode_json(&cfg.model, m)).unwrap_or_default();
                 if let Err(e) = write!(f, "{}{text}", if k == 0 { "" } else { ",\n" }) {
                     io_err = Some(e.into());
                     return false;
@@ -178,7 +326,18 @@ pub fn run_campbell(cfg: &Config, w: f64, points: usize, balls: Balls, json: boo
             for k in 0..done {
                 write!(out, "{}{}", if k == 0 { "" } else { ", " }, serde_json::to_string(&speed(k))?)?;
             }
-            write!(out, "],\n\"lines\": [\n")?;
+            write!(out, "]")?;
+            if let Some(sc) = cfg.model.scale {
+                // the speeds in SI, as autobal::reports::campbell_of writes them
+                for (key, k) in [("omega_rad_s", sc.omega0), ("omega_rpm", sc.omega0 * 30.0 / std::f64::consts::PI)] {
+                    write!(out, ",\n\"{key}\": [")?;
+                    for j in 0..done {
+                        write!(out, "{}{}", if j == 0 { "" } else { ", " }, serde_json::to_string(&(speed(j) * k))?)?;
+                    }
+                    write!(out, "]")?;
+                }
+            }
+            write!(out, ",\n\"lines\": [\n")?;
             for (i, f) in files.into_iter().enumerate() {
                 let f = f.into_inner().map_err(|e| e.into_error())?;
                 drop(f);

@@ -40,9 +40,12 @@ struct Common {
 
 #[derive(Args, Clone)]
 struct LinearArgs {
-    /// Upper end of the speed axis (dimensionless Ω); default: [analysis] omega_max, else automatic
-    #[arg(long, allow_negative_numbers = true)]
-    omega_max: Option<f64>,
+    /// Upper end of the speed axis: a speed with its unit (1500rpm, "157 rad/s", 25Hz) for a
+    /// dimensional config, or a bare number, the dimensionless Ω; default: [analysis] omega_max,
+    /// else automatic (1.3 × the highest critical speed, and 1.25 × the top of
+    /// [analysis] operating_speed)
+    #[arg(long, allow_negative_numbers = true, value_name = "SPEED")]
+    omega_max: Option<String>,
     /// Balls free (12 states) or locked at balance (8 states, the bare anisotropic rotor)
     #[arg(long, value_enum, default_value = "free")]
     balls: BallsArg,
@@ -137,15 +140,17 @@ enum Command {
     Map {
         #[command(flatten)]
         common: Common,
-        /// Horizontal axis, KEY=LO:HI:N with KEY `omega` or a config field (e.g. dimensionless.l_left)
+        /// Horizontal axis, KEY=LO:HI:N with KEY a speed (`omega`: dimensionless Ω; for a
+        /// dimensional config `speed_rpm`, `speed` in rad/s, `speed_hz`) or a config field (e.g.
+        /// dimensionless.l_left, balancer.ball_mass)
         #[arg(long, value_name = "KEY=LO:HI:N")]
         x: String,
         /// Vertical axis, KEY=LO:HI:N
         #[arg(long, value_name = "KEY=LO:HI:N")]
         y: String,
-        /// Speed Ω when neither axis is omega
-        #[arg(long, allow_negative_numbers = true)]
-        omega: Option<f64>,
+        /// The speed when neither axis is a speed: 1400rpm, "147 rad/s", 23Hz, or a bare number Ω
+        #[arg(long, allow_negative_numbers = true, value_name = "SPEED")]
+        omega: Option<String>,
         /// Balls free (12 states) or locked (8 states)
         #[arg(long, value_enum, default_value = "free")]
         balls: BallsArg,
@@ -244,10 +249,10 @@ fn run(cli: Cli) -> Result<()> {
         }
         Command::Stability { common, format, lin, samples, svg } => {
             let cfg = config::load_analytic("stability", common.config.as_deref(), &common.set)?;
-            if let Some(w) = lin.omega_max {
+            let w = linear::omega_max(&cfg, lin.omega_max.as_deref())?;
+            if lin.omega_max.is_some() {
                 check_speed("--omega-max", w)?;
             }
-            let w = linear::omega_max(&cfg, lin.omega_max)?;
             if !(10..=1_000_000).contains(&samples) {
                 anyhow::bail!("--samples: must lie between 10 and 1000000, got {samples}");
             }
@@ -260,10 +265,10 @@ fn run(cli: Cli) -> Result<()> {
         }
         Command::Campbell { common, format, lin, points, svg } => {
             let cfg = config::load_analytic("campbell", common.config.as_deref(), &common.set)?;
-            if let Some(w) = lin.omega_max {
+            let w = linear::omega_max(&cfg, lin.omega_max.as_deref())?;
+            if lin.omega_max.is_some() {
                 check_speed("--omega-max", w)?;
             }
-            let w = linear::omega_max(&cfg, lin.omega_max)?;
             if !(3..=10_000_000).contains(&points) {
                 anyhow::bail!("--points: must lie between 3 and 10000000, got {points}");
             }
@@ -288,7 +293,7 @@ fn run_map(
     common: Common,
     x: String,
     y: String,
-    omega: Option<f64>,
+    omega: Option<String>,
     balls: BallsArg,
     quantity: QuantityArg,
     out: PathBuf,
@@ -296,12 +301,22 @@ fn run_map(
     boundary: bool,
 ) -> Result<()> {
     let (root, source) = config::read_set(common.config.as_deref(), &common.set)?;
+    // the speeds need the config's ω0: it is read (and checked) first
+    let cfg = config::build(&root, &source)?;
+    let omega_text = omega;
+    let omega = omega_text.as_deref().map(|t| linear::speed_arg(&cfg, "--omega", t)).transpose()?;
     if let Some(w) = omega {
         check_speed("--omega", w)?;
     }
     let xa = map::Axis::parse("--x", &x)?;
     let ya = map::Axis::parse("--y", &y)?;
     distinct_axes(&xa.key, Some(&ya.key))?;
+    // a speed axis in SI (speed_rpm, speed, speed_hz) is converted to Ω point by point by the
+    // library (autobal::spatial::paths::stability_map_units); a fixed speed in SI must mean one Ω
+    let is_speed = |a: &map::Axis| autobal::units::speed_path_unit(&a.key).is_some();
+    if omega_text.as_deref().is_some_and(|t| autobal::units::parse_speed("--omega", t).is_ok_and(|s| s.is_si())) && !is_speed(&xa) && !is_speed(&ya) {
+        linear::check_fixed_speed(&cfg, [(&xa.key, xa.lo, xa.hi), (&ya.key, ya.lo, ya.hi)])?;
+    }
     for (flag, a) in [("--x", &xa), ("--y", &ya)] {
         if a.key == "omega" {
             check_speed(&format!("{flag} omega"), a.hi)?;
@@ -323,16 +338,15 @@ fn run_map(
     let mut w = std::io::BufWriter::new(file);
     let q = if quantity == QuantityArg::Margin { map::Quantity::Margin } else { map::Quantity::Verdict };
     let progress = std::io::IsTerminal::is_terminal(&std::io::stderr());
-    let cfg = config::build(&root, &source)?;
     config::warn_ignored(&root, "map");
     let traced = if boundary {
         // the checks the map makes, before the tracing (whose messages would not name the flags)
         for (flag, a) in [("--x", &xa), ("--y", &ya)] {
-            if a.key != "omega" {
+            if !is_speed(a) {
                 cfg.spec.clone().set(&a.key, a.lo).map_err(|e| anyhow::anyhow!("{flag}: {e}"))?;
             }
         }
-        if xa.key != "omega" && ya.key != "omega" && omega.is_none() {
+        if !is_speed(&xa) && !is_speed(&ya) && omega.is_none() {
             anyhow::bail!("--omega: required when neither axis is omega (the speed at which to map)");
         }
         let t = std::time::Instant::now();

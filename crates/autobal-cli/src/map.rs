@@ -6,7 +6,7 @@
 use crate::config::Config;
 use crate::plot::Series;
 use anyhow::{anyhow, bail, Context, Result};
-use autobal::spatial::boundary::{trace_boundary_with, Boundary, Codim2Kind, CurveKind, PlaneAxis, TraceSettings};
+use autobal::spatial::boundary::{Boundary, Codim2Kind, CurveKind, PlaneAxis, TraceSettings};
 use autobal::spatial::linear_model::Balls;
 use rayon::prelude::*;
 use std::io::Write;
@@ -66,8 +66,10 @@ impl Axis {
         let mag = 10f64.powi(11 - v.abs().log10().floor() as i32);
         (v * mag).round() / mag
     }
+    /// Whether the axis is the speed: `omega` (Ω) or, for a dimensional config, `speed_rpm`,
+    /// `speed` (rad/s), `speed_hz` ([`autobal::units::SPEED_PATHS`]).
     fn is_omega(&self) -> bool {
-        self.key == "omega"
+        autobal::units::speed_path_unit(&self.key).is_some()
     }
     /// The library's axis: the path and every value.
     pub fn to_library(&self) -> autobal::spatial::map::Axis {
@@ -177,7 +179,7 @@ pub fn compute(
         csv.flush()
     };
     let batch = (1 << 16) / x.n.max(1) + 1;
-    let outcome = autobal::spatial::map::stability_map(&cfg.spec, &lx, &ly, &settings, &mut |j, cells| {
+    let outcome = autobal::spatial::paths::stability_map_units(&cfg.spec, &lx, &ly, &settings, &mut |j, cells| {
         if j % ky == 0 && j / ky < dy.n {
             kept[j / ky] = Some(cells.iter().step_by(kx).take(dx.n).copied().collect());
         }
@@ -275,7 +277,8 @@ pub fn boundary_csv(b: &Boundary, x: &str, y: &str) -> String {
 pub fn trace(cfg: &Config, x: &Axis, y: &Axis, omega: Option<f64>, balls: Balls) -> Result<Boundary> {
     let ax = |a: &Axis| PlaneAxis { path: a.key.clone(), lo: a.lo, hi: a.hi };
     let s = TraceSettings { balls, omega, ..Default::default() };
-    trace_boundary_with(&cfg.spec, &ax(x), &ax(y), &s, &|| INTERRUPTED.load(Ordering::Relaxed)).map_err(|e| anyhow!("--boundary: {e}"))
+    autobal::spatial::paths::trace_boundary_units(&cfg.spec, &ax(x), &ax(y), &s, &|| INTERRUPTED.load(Ordering::Relaxed))
+        .map_err(|e| anyhow!("--boundary: {e}"))
 }
 
 #[cfg(test)]

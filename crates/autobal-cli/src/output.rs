@@ -58,7 +58,8 @@ fn header(cfg: &Config, s: &mut String) {
     }
     let a = &m.anisotropy;
     let _ = writeln!(s, "anisotropy ΔĀ: used {:.6} ({:?}); exact tensor {}; paper eq (17) {}", a.used, a.method, fmt_pair(a.exact), fmt_pair(a.paper_interval));
-    for w in &a.warnings {
+    // the comparison with eq (17) is a property of the paper's formula: `inertia` prints it
+    for w in autobal::reports::actionable_warnings(a) {
         let _ = writeln!(s, "warning: {w}");
     }
 }
@@ -74,6 +75,9 @@ fn fmt_pair(p: [f64; 2]) -> String {
 pub fn inertia_table(cfg: &Config) -> String {
     let mut s = String::new();
     header(cfg, &mut s);
+    for w in cfg.model.anisotropy.warnings.iter().filter(|w| autobal::reports::is_eq17_comparison(w)) {
+        let _ = writeln!(s, "note: {w}");
+    }
     let ci = composite_inertia(&cfg.model);
     let unit = if ci.si { " kg·m²" } else { " ×A_Σ" };
     let _ = writeln!(s, "\ncomposite inertia");
@@ -116,6 +120,9 @@ pub fn critical_rows(cs: &CriticalSpeeds, dimensional: bool) -> Vec<[String; 8]>
 pub fn critical_table(cfg: &Config) -> String {
     let mut s = String::new();
     header(cfg, &mut s);
+    let op = autobal::reports::operating_of(&crate::linear::library(cfg), autobal::spatial::linear_model::Balls::Free);
+    let exact = op.as_ref().and_then(|v| v.as_ref().ok()).map(|v| (v.stable_ranges.clone(), v.span));
+    s.push_str(&crate::linear::operating_lines(cfg, op));
     let cs = critical_speeds(&cfg.model);
     let last = if cfg.dimensional { "SI" } else { "over ΔĀ interval" };
     let _ = writeln!(s, "\ncritical speeds (exact roots of eq (16)); approximations (18) symmetric, (19) near-symmetric, (20) small ΔĀ");
@@ -123,7 +130,8 @@ pub fn critical_table(cfg: &Config) -> String {
     for r in critical_rows(&cs, cfg.dimensional) {
         let _ = writeln!(s, "  {:<6} {:>10}  {:<10} {:>2}  {:>7} {:>7} {:>7}  {}", r[0], r[1], r[2], r[3], r[4], r[5], r[6], r[7]);
     }
-    let _ = writeln!(s, "  {} distinct; rotor class (Table 1): {:?}, which Table 1 says has {}", cs.distinct_count, cs.rotor_class, cs.table1_count);
+    let _ =
+        writeln!(s, "  {} distinct; inertia class (000 Table 1): {}, which Table 1 says has {}", cs.distinct_count, cs.rotor_class.label(), cs.table1_count);
     let se = sensitivity(&cfg.model, cfg.analysis.sensitivity_limit);
     let _ = writeln!(s, "\nsensitivity criterion (000 eqs (21)-(22), 003 eqs (4)-(5))");
     let _ = writeln!(
@@ -138,6 +146,20 @@ pub fn critical_table(cfg: &Config) -> String {
         writeln!(s, "  [ΔĀ0] = {:.4} for [δΩ_Kα] = {}{}", se.delta_a_limit, se.limit, se.m0_limit.map_or(String::new(), |m| format!(", i.e. [m̄0] = {m:.4}")));
     let _ = writeln!(s, "  verdict: {}", se.reason);
     s.push_str(&ranges_block(cfg, &autobalancing_ranges(&cfg.model)));
+    if let Some((r, span)) = exact {
+        let _ = writeln!(
+            s,
+            "  exact stable ranges (eigenvalues, balls free), 0 < Ω ≤ {}: {}",
+            crate::num::fmt(span, 4),
+            autobal::spatial::comparison::fmt_ranges_in(&r, 4, Some(span))
+        );
+        if let Some(sc) = cfg.model.scale {
+            let k = sc.omega0 * 30.0 / std::f64::consts::PI;
+            let _ = writeln!(s, "                            {} rpm", autobal::spatial::comparison::fmt_ranges_in(&scale_ranges(&r, k), 0, Some(span * k)));
+        }
+    } else {
+        let _ = writeln!(s, "  (necessary only: `autobal stability` computes the exact stable ranges)");
+    }
     s
 }
 
@@ -154,12 +176,12 @@ fn ranges_block(cfg: &Config, ar: &AutobalancingRanges) -> String {
     );
     let _ = writeln!(s, "  phase condition (1) holds: {}", fmt_ranges(&ar.phase_condition, 4));
     let _ = writeln!(s, "  split-pair instability:   {}", fmt_ranges(&ar.instability, 4));
-    let _ = writeln!(s, "  autobalancing possible:   {}", fmt_ranges(&ar.ranges, 4));
+    let _ = writeln!(s, "  necessary condition for autobalancing (003): {}", fmt_ranges(&ar.ranges, 4));
     if let Some(sc) = cfg.model.scale {
         let k = sc.omega0 * 30.0 / std::f64::consts::PI;
-        let _ = writeln!(s, "                            {} rpm", fmt_ranges(&scale_ranges(&ar.ranges, k), 0));
+        let _ = writeln!(s, "                                               {} rpm", fmt_ranges(&scale_ranges(&ar.ranges, k), 0));
     }
-    let _ = writeln!(s, "  class (003): {:?}", ar.class);
+    let _ = writeln!(s, "  autobalancing class (003): {}", ar.class.label());
     s
 }
 

@@ -64,7 +64,7 @@ pub const SCHEMA: &[(&str, &[&str])] = &[
     ("spatial", &["gravity", "lock_tilt", "spin_drag"]),
     ("initial", &["position", "velocity", "tilt", "tilt_rate"]),
     ("dimensionless", &["c_sigma", "rho_s", "l_left", "z_a", "delta_a", "m0", "r0", "m", "r", "n", "d_a", "h_x", "h_s"]),
-    ("analysis", &["anisotropy", "sensitivity_limit", "omega_max"]),
+    ("analysis", &["anisotropy", "sensitivity_limit", "omega_max", "operating_speed"]),
     (
         "planar",
         &[
@@ -301,8 +301,62 @@ impl<'a> Section<'a> {
 pub struct Analysis {
     /// `[δΩ_Kα]`, the permissible relative error of the angular critical speeds.
     pub sensitivity_limit: f64,
-    /// Upper end of speed axes (dimensionless), if given.
+    /// Upper end of speed axes as `Ω`, if given (`analysis.omega_max`: a bare number is `Ω`,
+    /// `"1500 rpm"`, `"157 rad/s"`, `"25 Hz"` are converted with `ω0`; [`crate::units`]).
     pub omega_max: Option<f64>,
+    /// The machine's operating speed `[lo, hi]` as `Ω` (`lo = hi` for one speed), if given
+    /// (`analysis.operating_speed = "1400 rpm"` or `"1200-1400 rpm"`). Every automatic speed axis
+    /// covers it with margin ([`OPERATING_SPEED_MARGIN`]); the default run-up of the spatial
+    /// simulation goes to its top ([`Analysis::run_up_end`]).
+    pub operating_speed: Option<[f64; 2]>,
+}
+
+impl Default for Analysis {
+    fn default() -> Self {
+        Analysis { sensitivity_limit: crate::spatial::sensitivity::DEFAULT_LIMIT, omega_max: None, operating_speed: None }
+    }
+}
+
+/// An automatic speed axis reaches at least this multiple of the top of the operating speed.
+pub const OPERATING_SPEED_MARGIN: f64 = 1.25;
+
+impl Analysis {
+    /// The upper end of an automatic speed axis (`Ω`): `analysis.omega_max` when given (the
+    /// user's choice is kept), else the larger of `automatic` (from the critical speeds, e.g.
+    /// [`crate::reports::default_omega_max`]) and [`OPERATING_SPEED_MARGIN`] times the top of the
+    /// operating speed.
+    ///
+    /// ```
+    /// let a = autobal::config::Analysis { operating_speed: Some([2.0, 4.0]), ..Default::default() };
+    /// assert_eq!(a.speed_axis_max(3.0), 5.0); // 1.25 × 4 covers the operating range
+    /// assert_eq!(a.speed_axis_max(6.0), 6.0);
+    /// ```
+    pub fn speed_axis_max(&self, automatic: f64) -> f64 {
+        self.omega_max.unwrap_or_else(|| self.operating_speed.map_or(automatic, |[_, hi]| automatic.max(OPERATING_SPEED_MARGIN * hi)))
+    }
+
+    /// Where the default run-up of the spatial simulation ends (`Ω`), if the config says: the top
+    /// of the operating speed, else `analysis.omega_max` ([`default_run_up`]).
+    pub fn run_up_end(&self) -> Option<f64> {
+        self.operating_speed.map(|[_, hi]| hi).or(self.omega_max)
+    }
+}
+
+/// Read a speed key of `[analysis]` (`field`, e.g. `analysis.omega_max`) as `Ω`: a number is
+/// `Ω`, a string is a speed with a unit ([`crate::units`]) converted with `ω0` (a dimensionless
+/// config, `omega0 = None`, refuses units). Checked against the range of `analysis.omega_max`
+/// (`(0, 1e6]` in `Ω`).
+fn analysis_speed(field: &str, v: &Value, omega0: Option<f64>) -> Result<[f64; 2]> {
+    let (lo, hi) = if field.ends_with("operating_speed") {
+        crate::units::speed_range_of_value(field, v)?
+    } else {
+        let s = crate::units::speed_of_value(field, v)?;
+        (s, s)
+    };
+    let (lo, hi) = (lo.to_omega(field, omega0)?, hi.to_omega(field, omega0)?);
+    crate::limits::check_as(field, "analysis.omega_max", lo)?;
+    crate::limits::check_as(field, "analysis.omega_max", hi)?;
+    Ok([lo, hi])
 }
 
 /// A spatial config (papers 000/003) converted: the model and the analysis settings.
@@ -350,7 +404,6 @@ pub fn spatial(root: &Table) -> Result<SpatialConfig> {
     };
     let sensitivity_limit = an.f64("sensitivity_limit")?.unwrap_or(crate::spatial::sensitivity::DEFAULT_LIMIT);
     crate::limits::check("analysis.sensitivity_limit", sensitivity_limit)?;
-    let omega_max = an.f64("omega_max")?;
     let has_dim = DIMENSIONAL_TABLES.iter().any(|t| root.contains_key(*t));
     let has_nondim = root.contains_key("dimensionless");
     if !has_dim && !has_nondim && root.contains_key("planar") {
@@ -368,7 +421,10 @@ pub fn spatial(root: &Table) -> Result<SpatialConfig> {
         (false, true) => dimensionless(root, method)?,
     };
     let model = spec.build()?;
-    Ok(SpatialConfig { model, spec, analysis: Analysis { sensitivity_limit, omega_max }, dimensional: has_dim })
+    let omega0 = model.scale.map(|s| s.omega0);
+    let omega_max = an.get("omega_max").map(|v| analysis_speed("analysis.omega_max", v, omega0).map(|w| w[1])).transpose()?;
+    let operating_speed = an.get("operating_speed").map(|v| analysis_speed("analysis.operating_speed", v, omega0)).transpose()?;
+    Ok(SpatialConfig { model, spec, analysis: Analysis { sensitivity_limit, omega_max, operating_speed }, dimensional: has_dim })
 }
 
 fn rotor_si(root: &Table) -> Result<SpatialRotorSi> {
@@ -690,7 +746,8 @@ pub const DEFAULT_RUN_UP_REVOLUTIONS: f64 = 1000.0;
 
 /// The `[drive]` and `[integration]` a spatial config gets when it has no `[drive]`: from rest at
 /// constant acceleration `b` to `ω_end`, 1.3 times the highest critical speed of the balanced
-/// rotor (or `omega_max`, the config's `analysis.omega_max`), in `revolutions` revolutions: `φ = ω_end²/(2b) = 2π N`, so
+/// rotor, or `omega_max` when given ([`Analysis::run_up_end`]: the top of the config's
+/// `analysis.operating_speed`, else its `analysis.omega_max`), in `revolutions` revolutions: `φ = ω_end²/(2b) = 2π N`, so
 /// `b = ω_end²/(4π N)` and `t_end = ω_end/b`; samples every `t_end/3000`. Speeds in rad/s for an
 /// SI config, in Ω for a dimensionless one. The given `[integration]` keys are kept, but for a
 /// missing `dt`.
@@ -801,7 +858,7 @@ pub fn spatial_simulation(root: &Table) -> Result<SpatialSimulation> {
     let default_drive = !root.contains_key("drive");
     let defaults = default_drive.then(|| {
         let given = root.get("integration").and_then(Value::as_table).cloned().unwrap_or_default();
-        default_run_up(&config.model, config.analysis.omega_max, &given, DEFAULT_RUN_UP_REVOLUTIONS)
+        default_run_up(&config.model, config.analysis.run_up_end(), &given, DEFAULT_RUN_UP_REVOLUTIONS)
     });
     let (d, ig) = match &defaults {
         Some((d, ig)) => (Section { name: "drive", table: Some(d) }, Section { name: "integration", table: Some(ig) }),

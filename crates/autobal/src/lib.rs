@@ -107,5 +107,6 @@ pub mod reports;
 pub mod simulation;
 pub mod spatial;
 pub mod sweep;
+pub mod units;
 
 pub use error::{Error, Result};

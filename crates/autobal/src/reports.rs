@@ -72,6 +72,149 @@ pub fn default_omega_max(m: &SpatialModel) -> f64 {
     (1.3 * top).min(50.0)
 }
 
+/// The upper end of the automatic speed axis of a config (`Ω`): `analysis.omega_max` if given,
+/// else [`default_omega_max`] extended to cover the operating speed with margin
+/// ([`crate::config::Analysis::speed_axis_max`]).
+pub fn speed_axis_max(c: &SpatialConfig) -> f64 {
+    c.analysis.speed_axis_max(default_omega_max(&c.model))
+}
+
+/// Grid speeds of the stability verdict at the operating speed ([`operating_verdict`]).
+pub const OPERATING_SAMPLES: usize = 2000;
+
+/// The balanced state at the machine's operating speed (`analysis.operating_speed`): whether
+/// it is stable there by the exact linear stability ([`crate::spatial::stability`]), and by how
+/// much. Speeds in `Ω`, with rad/s and rpm for a dimensional config.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct OperatingVerdict {
+    /// The operating speed `[lo, hi]` (`Ω`; `lo = hi` for one speed).
+    pub omega: [f64; 2],
+    /// The same in rad/s (dimensional configs).
+    pub rad_s: Option<[f64; 2]>,
+    /// The same in rpm (dimensional configs).
+    pub rpm: Option<[f64; 2]>,
+    /// `free` or `locked`.
+    pub balls: &'static str,
+    /// Whether the whole operating speed lies inside one exact stable range.
+    pub stable: bool,
+    /// That range (`Ω`; `hi = None`: it reaches `span`, the end of the computation).
+    pub stable_range: Option<SpeedRange>,
+    /// The stable range nearest to the operating speed, when it is not stable.
+    pub nearest_stable_range: Option<SpeedRange>,
+    /// Distance from the lower end of the stable range down to the operating speed (`Ω`).
+    pub margin_below: Option<f64>,
+    /// Distance from the operating speed up to the upper end of the stable range (`Ω`); `None`
+    /// when the range reaches `span` (then it is at least `span − hi`).
+    pub margin_above: Option<f64>,
+    /// The smaller of the two: the distance to the nearest end of the stable range (`Ω`).
+    pub margin: Option<f64>,
+    /// `margin` in rpm (dimensional configs).
+    pub margin_rpm: Option<f64>,
+    /// `max Re λ` over the operating speed (largest over 33 speeds of a range), unit `ω0`:
+    /// negative where stable.
+    pub max_real_part: f64,
+    /// `max_real_part` in 1/s (dimensional configs).
+    pub max_real_part_per_s: Option<f64>,
+    /// The span `(0, span]` the stable ranges were computed over (`Ω`).
+    pub span: f64,
+    /// Every exact stable range over `(0, span]` (`Ω`; `hi = None`: reaches `span`).
+    pub stable_ranges: Vec<SpeedRange>,
+    /// The same in rpm (dimensional configs).
+    pub stable_ranges_rpm: Option<Vec<SpeedRange>>,
+}
+
+/// [`OperatingVerdict`] of `model` at `op = [lo, hi]` (`Ω`) from its exact stable ranges over
+/// `(0, span]` (`span ≥ hi`, [`crate::spatial::stability::stability_ranges`]); `max Re λ` from
+/// the eigenvalues ([`crate::spatial::stability::margin`]).
+///
+/// ```
+/// use autobal::reports::operating_verdict;
+/// use autobal::spatial::linear_model::Balls;
+/// use autobal::spatial::params::{DimensionlessInput, SpatialModel};
+/// use autobal::spatial::stability::stability_ranges;
+/// // paper 000's base case: stable at Ω = 1.6 (the range ~[1.13, 1.70]), not at 1.72
+/// let m = SpatialModel::from_dimensionless(&DimensionlessInput::paper_000(0.8)).unwrap();
+/// let s = stability_ranges(&m, 5.0, 2000, Balls::Free, 1e-9).unwrap();
+/// let v = operating_verdict(&m, [1.6, 1.6], &s.stable_ranges, 5.0, Balls::Free).unwrap();
+/// assert!(v.stable && v.max_real_part < 0.0 && v.margin.unwrap() > 0.0);
+/// let r = v.stable_range.unwrap();
+/// assert_eq!(v.margin.unwrap(), (1.6 - r.lo).min(r.hi.unwrap() - 1.6));
+/// assert!(!operating_verdict(&m, [1.72, 1.72], &s.stable_ranges, 5.0, Balls::Free).unwrap().stable);
+/// ```
+pub fn operating_verdict(model: &SpatialModel, op: [f64; 2], stable: &[SpeedRange], span: f64, balls: Balls) -> Result<OperatingVerdict> {
+    let [lo, hi] = op;
+    let inside = stable.iter().find(|r| r.lo <= lo && r.hi.is_none_or(|h| hi <= h) && r.contains(0.5 * (lo + hi)));
+    let dist = |r: &SpeedRange| if r.hi.is_some_and(|h| h <= lo) { lo - r.hi.unwrap_or(lo) } else { (r.lo - hi).max(0.0) };
+    let nearest = if inside.is_some() { None } else { stable.iter().min_by(|a, b| dist(a).total_cmp(&dist(b))).copied() };
+    let n = if hi > lo { 33 } else { 1 };
+    let mut worst = f64::NEG_INFINITY;
+    for k in 0..n {
+        let w = if n == 1 { lo } else { lo + (hi - lo) * k as f64 / (n - 1) as f64 };
+        worst = worst.max(crate::spatial::stability::margin(model, w.max(crate::spatial::map::OMEGA_FLOOR), balls)?);
+    }
+    let (below, above) = match inside {
+        Some(r) => (Some(lo - r.lo), r.hi.map(|h| h - hi)),
+        None => (None, None),
+    };
+    let margin = match (below, above) {
+        (Some(b), Some(a)) => Some(b.min(a)),
+        (Some(b), None) => Some(b),
+        _ => None,
+    };
+    let si = si_units(model);
+    Ok(OperatingVerdict {
+        omega: op,
+        rad_s: si.map(|(k, _)| [lo * k, hi * k]),
+        rpm: si.map(|(_, k)| [lo * k, hi * k]),
+        balls: balls_name(balls),
+        stable: inside.is_some(),
+        stable_range: inside.copied(),
+        nearest_stable_range: nearest,
+        margin_below: below,
+        margin_above: above,
+        margin,
+        margin_rpm: si.and_then(|(_, k)| margin.map(|m| m * k)),
+        max_real_part: worst,
+        max_real_part_per_s: si.map(|(k, _)| worst * k),
+        span,
+        stable_ranges: stable.to_vec(),
+        stable_ranges_rpm: si.map(|(_, k)| scale_ranges(stable, k)),
+    })
+}
+
+/// The verdict at the config's operating speed, if it has one: exact stable ranges over
+/// `(0, max(span, 1.25 hi)]` with [`OPERATING_SAMPLES`] grid speeds.
+pub fn operating_of(c: &SpatialConfig, balls: Balls) -> Option<Result<OperatingVerdict>> {
+    let op = c.analysis.operating_speed?;
+    let span = speed_axis_max(c).max(crate::config::OPERATING_SPEED_MARGIN * op[1]);
+    Some(crate::spatial::stability::stability_ranges(&c.model, span, OPERATING_SAMPLES, balls, crate::spatial::comparison::RANGE_TOLERANCE).and_then(|s| {
+        check_finite("stability", &s)?;
+        operating_verdict(&c.model, op, &s.stable_ranges, span, balls)
+    }))
+}
+
+/// The operating verdict as JSON: `null` without an operating speed, `{"error": ...}` where the
+/// eigenvalues did not converge.
+fn operating_json(v: Option<Result<OperatingVerdict>>) -> Value {
+    match v {
+        None => Value::Null,
+        Some(Ok(v)) => json!(v),
+        Some(Err(e)) => json!({ "error": e.to_string() }),
+    }
+}
+
+/// Warnings about the anisotropy a user can act on: all but the comparison of the exact tensor
+/// with paper 000's eq (17) (a property of the paper's formula, reported by `inertia` and the
+/// docs only).
+pub fn actionable_warnings(a: &crate::spatial::inertia::Anisotropy) -> Vec<String> {
+    a.warnings.iter().filter(|w| !is_eq17_comparison(w)).cloned().collect()
+}
+
+/// Whether a warning of [`crate::spatial::inertia::Anisotropy`] is its comparison with eq (17).
+pub fn is_eq17_comparison(w: &str) -> bool {
+    w.contains("paper 000's eq (17) gives")
+}
+
 fn model_json(c: &SpatialConfig, source: &str) -> Value {
     let m = &c.model;
     json!({
@@ -90,8 +233,11 @@ fn model_json(c: &SpatialConfig, source: &str) -> Value {
     })
 }
 
-fn anisotropy_json(m: &SpatialModel) -> Value {
+/// The anisotropy; `eq17`: with the comparison of the exact tensor and eq (17) among the
+/// warnings (`inertia` only, [`actionable_warnings`]).
+fn anisotropy_json(m: &SpatialModel, eq17: bool) -> Value {
     let a = &m.anisotropy;
+    let warnings = if eq17 { a.warnings.clone() } else { actionable_warnings(a) };
     json!({
         "paper": a.paper,
         "exact": a.exact[1],
@@ -103,7 +249,7 @@ fn anisotropy_json(m: &SpatialModel) -> Value {
         "d_a": a.d_a,
         "ball_angles_rad": a.ball_angles,
         "can_balance": a.can_balance,
-        "warnings": a.warnings,
+        "warnings": warnings,
     })
 }
 
@@ -123,7 +269,7 @@ pub fn inertia(c: &SpatialConfig, source: &str) -> Value {
     json!({
         "model": model_json(c, source),
         "inertia": composite_inertia(&c.model),
-        "anisotropy": anisotropy_json(&c.model),
+        "anisotropy": anisotropy_json(&c.model, true),
     })
 }
 
@@ -133,8 +279,23 @@ pub fn critical(c: &SpatialConfig, source: &str) -> Value {
     let ar = autobalancing_ranges(&c.model);
     let s = sensitivity(&c.model, c.analysis.sensitivity_limit);
     let (a_rad, a_rpm) = speed_si(&c.model, &ar.antiresonance_speed.into_iter().collect::<Vec<_>>());
+    let mut speeds = json!(cs.speeds);
+    if let (Some((_, rpm)), Some(list)) = (si_units(&c.model), speeds.as_array_mut()) {
+        // every dimensionless speed of an entry beside its rpm (exact value: omega_rad_s, rpm)
+        for e in list.iter_mut().filter_map(Value::as_object_mut) {
+            for k in ["approx_symmetric", "approx_near_symmetric", "approx_small_anisotropy"] {
+                let v = e.get(k).and_then(Value::as_f64).map_or(Value::Null, |w| json!(w * rpm));
+                e.insert(format!("{k}_rpm"), v);
+            }
+            let iv = e
+                .get("interval")
+                .and_then(Value::as_array)
+                .map_or(Value::Null, |iv| json!(iv.iter().filter_map(Value::as_f64).map(|w| w * rpm).collect::<Vec<_>>()));
+            e.insert("interval_rpm".into(), iv);
+        }
+    }
     json!({
-        "critical_speeds": cs.speeds,
+        "critical_speeds": speeds,
         "distinct_count": cs.distinct_count,
         "table1_count": cs.table1_count,
         "rotor_type": cs.rotor_class,
@@ -144,8 +305,9 @@ pub fn critical(c: &SpatialConfig, source: &str) -> Value {
         "autobalancing_ranges": ranges_value(&ar.ranges),
         "autobalancing_ranges_rpm": ranges_rpm(&c.model, &ar.ranges),
         "balancing_class": ar.class,
+        "operating_speed": operating_json(operating_of(c, Balls::Free)),
         "sensitivity": s,
-        "anisotropy": anisotropy_json(&c.model),
+        "anisotropy": anisotropy_json(&c.model, false),
         "model": model_json(c, source),
     })
 }
@@ -180,11 +342,35 @@ fn balls_name(balls: Balls) -> &'static str {
     }
 }
 
-/// `autobal stability`: exact stability ranges against 003's necessary ranges.
+/// `autobal stability` of a config: [`stability`] with the verdict at the config's operating
+/// speed (`operating_speed`, `null` without one; [`OperatingVerdict`]).
+pub fn stability_of(cfg: &SpatialConfig, c: &Comparison, balls: Balls) -> Value {
+    let mut v = stability(&cfg.model, c, balls);
+    let op = cfg.analysis.operating_speed.map(|op| {
+        if op[1] <= c.omega_max {
+            operating_verdict(&cfg.model, op, &c.exact.stable_ranges, c.omega_max, balls)
+        } else {
+            // the span given does not reach the operating speed: a span that does
+            operating_of(cfg, balls).unwrap_or_else(|| operating_verdict(&cfg.model, op, &c.exact.stable_ranges, c.omega_max, balls))
+        }
+    });
+    v["operating_speed"] = operating_json(op);
+    v
+}
+
+/// `autobal stability`: exact stability ranges against 003's necessary ranges; speeds in `Ω`
+/// and, for a dimensional config, in rpm (`*_rpm`) and rad/s (`omega_max_rad_s`); the grid's
+/// `max Re λ` also as `[rpm, 1/s]` pairs (`max_real_part_si`).
 pub fn stability(model: &SpatialModel, c: &Comparison, balls: Balls) -> Value {
+    let si = si_units(model);
     json!({
         "balls": balls_name(balls),
         "omega_max": c.omega_max,
+        "omega_max_rad_s": si.map(|(k, _)| c.omega_max * k),
+        "omega_max_rpm": si.map(|(_, k)| c.omega_max * k),
+        "necessary_not_stable_rpm": ranges_rpm(model, &c.necessary_not_stable),
+        "stable_not_necessary_rpm": ranges_rpm(model, &c.stable_not_necessary),
+        "max_real_part_si": si.map(|(k, rpm)| c.exact.max_real_part.iter().map(|(w, a)| json!([w * rpm, a * k])).collect::<Vec<_>>()),
         "stable_ranges": ranges_value(&c.exact.stable_ranges),
         "necessary_ranges": ranges_value(&c.necessary),
         "stable_ranges_rpm": ranges_rpm(model, &c.exact.stable_ranges),
@@ -209,9 +395,43 @@ pub fn stability(model: &SpatialModel, c: &Comparison, balls: Balls) -> Value {
 }
 
 /// `autobal campbell` of a complete run: the speeds, the tracked lines and `complete: true`
-/// (the CLI streams the same JSON, with `complete: false` after Ctrl-C).
+/// (the CLI streams the same JSON, with `complete: false` after Ctrl-C). Dimensionless: for a
+/// dimensional model see [`campbell_of`].
 pub fn campbell(c: &Campbell) -> Value {
     json!({ "omega": c.omega, "lines": c.lines, "complete": true })
+}
+
+/// [`campbell`] in the model's units: for a dimensional model also the speeds in rad/s and rpm
+/// (`omega_rad_s`, `omega_rpm`) and every mode with its frequencies in SI ([`mode_json`]).
+pub fn campbell_of(model: &SpatialModel, c: &Campbell) -> Value {
+    let Some((rad, rpm)) = si_units(model) else { return campbell(c) };
+    let lines: Vec<Value> = c.lines.iter().map(|l| json!({ "modes": l.modes.iter().map(|m| mode_json(model, m)).collect::<Vec<_>>() })).collect();
+    json!({
+        "omega": c.omega,
+        "omega_rad_s": c.omega.iter().map(|w| w * rad).collect::<Vec<_>>(),
+        "omega_rpm": c.omega.iter().map(|w| w * rpm).collect::<Vec<_>>(),
+        "lines": lines,
+        "complete": true,
+    })
+}
+
+/// One mode of a Campbell diagram as JSON: its fields (`Ω`-units, unit `ω0`) and, for a
+/// dimensional model, `im_rad_s`, `im_hz` (`ν ω0`, `ν ω0/2π`), `re_per_s` (`σ ω0`, 1/s),
+/// `decay_rate_per_s`, `fixed_frequency_rad_s`, `fixed_frequency_hz`, `fixed_frequency_rpm`
+/// (whirl in fixed axes, `ω = f ω0`; in rpm, cycles per minute).
+pub fn mode_json(model: &SpatialModel, m: &crate::spatial::stability::Mode) -> Value {
+    let mut v = json!(m);
+    if let (Some((k, _)), Some(o)) = (si_units(model), v.as_object_mut()) {
+        let tau = 2.0 * std::f64::consts::PI;
+        o.insert("re_per_s".into(), json!(m.re * k));
+        o.insert("im_rad_s".into(), json!(m.im * k));
+        o.insert("im_hz".into(), json!(m.im * k / tau));
+        o.insert("decay_rate_per_s".into(), json!(m.decay_rate * k));
+        o.insert("fixed_frequency_rad_s".into(), json!(m.fixed_frequency * k));
+        o.insert("fixed_frequency_hz".into(), json!(m.fixed_frequency * k / tau));
+        o.insert("fixed_frequency_rpm".into(), json!(m.fixed_frequency * k * 60.0 / tau));
+    }
+    v
 }
 
 /// `autobal simulate`: the run's summary, with the rotor, drive and tolerances it ran with.

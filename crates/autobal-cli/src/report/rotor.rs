@@ -195,7 +195,11 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
         ranges_text(&ar.ranges, w0),
         format!("{:?}", ar.class).to_lowercase()
     ));
-    s.figure("rotor_response", response_plot(m, crate::figures::omega_limit(m, cfg.analysis.omega_max)), response_caption(m));
+    s.figure(
+        "rotor_response",
+        response_plot(m, crate::figures::omega_limit(m, Some(cfg.analysis.speed_axis_max(autobal::reports::default_omega_max(m))))),
+        response_caption(m),
+    );
     Ok(Some(s))
 }
 

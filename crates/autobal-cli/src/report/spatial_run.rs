@@ -28,7 +28,7 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
     if !own_drive {
         // the library's run-up from rest through the critical speeds (the one `simulate` runs
         // for a config without [drive]), in fewer revolutions for the quick report
-        let (d, ig) = autobal::config::default_run_up(m, cfg.analysis.omega_max, &toml::Table::new(), revolutions);
+        let (d, ig) = autobal::config::default_run_up(m, cfg.analysis.run_up_end(), &toml::Table::new(), revolutions);
         root.insert("drive".into(), Value::Table(d));
         root.insert("integration".into(), Value::Table(ig));
     }

@@ -49,6 +49,19 @@ impl RotorClass {
         }
     }
 
+    /// The class as every output names it: "inertia class (000 Table 1)" with its kebab-case
+    /// name (`long`, `near-spherical`, `short`) and its defining inequality. 003 classifies
+    /// rotors again, by their autobalancing ranges ([`crate::spatial::ranges::BalancingClass`],
+    /// "autobalancing class (003)"): the two can differ for one rotor (003's boundary has
+    /// `+ z̄_A²`), hence the two labels.
+    pub fn label(self) -> &'static str {
+        match self {
+            RotorClass::Long => "long (C̄Σ < 1 − ΔĀ: both ΔĪ_k > 0)",
+            RotorClass::NearSpherical => "near-spherical (1 − ΔĀ ≤ C̄Σ ≤ 1 + ΔĀ: ΔĪ_1 ≥ 0 ≥ ΔĪ_2)",
+            RotorClass::Short => "short (C̄Σ > 1 + ΔĀ: both ΔĪ_k < 0)",
+        }
+    }
+
     /// Number of distinct critical speeds Table 1 predicts (generic parameters).
     pub fn table1_count(self, delta_a: f64, symmetric: bool) -> usize {
         // below 1e-9 the split (of order ΔĀ) is below the resolution of `distinct_count`

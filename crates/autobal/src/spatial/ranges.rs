@@ -44,6 +44,20 @@ pub enum BalancingClass {
     Short,
 }
 
+impl BalancingClass {
+    /// The class as every output names it: "autobalancing class (003)" with its kebab-case name
+    /// and defining inequality (not 000's Table 1 class,
+    /// [`crate::spatial::critical_speeds::RotorClass`], "inertia class", which counts critical
+    /// speeds from `ΔĀ` rather than `ΔĀ0` and `z̄_A`).
+    pub fn label(self) -> &'static str {
+        match self {
+            BalancingClass::Long => "long (C̄Σ0 < 1 − ΔĀ0: two ranges expected, Ω1 < Ω < Ω2 and Ω > Ω3)",
+            BalancingClass::NearSpherical => "near-spherical (1 − ΔĀ0 ≤ C̄Σ0 ≤ 1 − ΔĀ0 + z̄_A²: one bounded range)",
+            BalancingClass::Short => "short (C̄Σ0 > 1 − ΔĀ0 + z̄_A²: one range bounded below)",
+        }
+    }
+}
+
 /// Result of the autobalancing-range analysis.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct AutobalancingRanges {
