@@ -182,9 +182,11 @@ mod tests {
         assert!(err(&["dimensionless.delta_a=-0.1"]).starts_with("dimensionless.delta_a: must lie in [0, 1), got -0.1"));
     }
 
-    /// The keys of the schema that hold text, not numbers.
+    /// The keys of the schema that hold text, not numbers (`analysis.operating_speed`: a speed
+    /// with its unit, checked in `Ω` against the range of `analysis.omega_max`).
     const TEXT_KEYS: &[&str] = &[
         "analysis.anisotropy",
+        "analysis.operating_speed",
         "drive.kind",
         "drive.schedule_of",
         "integration.method",

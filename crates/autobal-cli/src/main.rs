@@ -314,6 +314,11 @@ fn run_map(
     // a speed axis in SI (speed_rpm, speed, speed_hz) is converted to Ω point by point by the
     // library (autobal::spatial::paths::stability_map_units); a fixed speed in SI must mean one Ω
     let is_speed = |a: &map::Axis| autobal::units::speed_path_unit(&a.key).is_some();
+    for (flag, a) in [("--x", &xa), ("--y", &ya)] {
+        if is_speed(a) && a.key != "omega" && !cfg.dimensional {
+            anyhow::bail!("{flag} {}: a speed in SI needs a dimensional config (the rotor's ω0); this config is dimensionless: use omega=LO:HI:N (Ω)", a.key);
+        }
+    }
     if omega_text.as_deref().is_some_and(|t| autobal::units::parse_speed("--omega", t).is_ok_and(|s| s.is_si())) && !is_speed(&xa) && !is_speed(&ya) {
         linear::check_fixed_speed(&cfg, [(&xa.key, xa.lo, xa.hi), (&ya.key, ya.lo, ya.hi)])?;
     }

@@ -110,6 +110,16 @@ pub struct OperatingVerdict {
     pub margin: Option<f64>,
     /// `margin` in rpm (dimensional configs).
     pub margin_rpm: Option<f64>,
+    /// `margin_below` in rpm (dimensional configs).
+    pub margin_below_rpm: Option<f64>,
+    /// `margin_above` in rpm (dimensional configs).
+    pub margin_above_rpm: Option<f64>,
+    /// `stable_range` in rpm (dimensional configs).
+    pub stable_range_rpm: Option<SpeedRange>,
+    /// `nearest_stable_range` in rpm (dimensional configs).
+    pub nearest_stable_range_rpm: Option<SpeedRange>,
+    /// `span` in rpm (dimensional configs).
+    pub span_rpm: Option<f64>,
     /// `max Re λ` over the operating speed (largest over 33 speeds of a range), unit `ω0`:
     /// negative where stable.
     pub max_real_part: f64,
@@ -174,6 +184,11 @@ pub fn operating_verdict(model: &SpatialModel, op: [f64; 2], stable: &[SpeedRang
         margin_above: above,
         margin,
         margin_rpm: si.and_then(|(_, k)| margin.map(|m| m * k)),
+        margin_below_rpm: si.and_then(|(_, k)| below.map(|m| m * k)),
+        margin_above_rpm: si.and_then(|(_, k)| above.map(|m| m * k)),
+        stable_range_rpm: si.and_then(|(_, k)| inside.map(|r| scale_ranges(&[*r], k)[0])),
+        nearest_stable_range_rpm: si.and_then(|(_, k)| nearest.map(|r| scale_ranges(&[r], k)[0])),
+        span_rpm: si.map(|(_, k)| span * k),
         max_real_part: worst,
         max_real_part_per_s: si.map(|(k, _)| worst * k),
         span,
@@ -324,7 +339,9 @@ pub fn ranges(c: &SpatialConfig, source: &str) -> Value {
         "autobalancing_ranges": ranges_value(&ar.ranges),
         "autobalancing_ranges_rpm": ranges_rpm(&c.model, &ar.ranges),
         "phase_condition_ranges": ranges_value(&ar.phase_condition),
+        "phase_condition_ranges_rpm": ranges_rpm(&c.model, &ar.phase_condition),
         "instability_ranges": ranges_value(&ar.instability),
+        "instability_ranges_rpm": ranges_rpm(&c.model, &ar.instability),
         "critical_speeds_unbalanced_rotor": ar.critical_speeds,
         "critical_speeds_unbalanced_rotor_rad_s": cs_rad,
         "critical_speeds_unbalanced_rotor_rpm": cs_rpm,
