@@ -230,7 +230,7 @@ fn omega_span(py: Python<'_>, c: &PySpatial, omega_max: Option<f64>) -> PyResult
     if let Some(w) = omega_max {
         autobal::limits::check_as("omega_max", "analysis.omega_max", w).map_err(|e| py_err(py, e))?;
     }
-    Ok(omega_max.or(c.cfg.analysis.omega_max).unwrap_or_else(|| autobal::reports::default_omega_max(&c.cfg.model)))
+    Ok(omega_max.unwrap_or_else(|| autobal::reports::speed_axis_max(&c.cfg)))
 }
 
 /// The JSON text of an analytic command (`inertia`, `critical`, `ranges`, `stability`,
@@ -255,7 +255,7 @@ fn spatial_report(py: Python<'_>, command: &str, cfg: &PySpatial, omega_max: Opt
             let model = c.model.clone();
             let cmp = interruptible(py, move |_| autobal::spatial::comparison::compare(&model, w, samples, b))?.map_err(err)?;
             autobal::limits::check_finite("stability", &cmp.exact).map_err(err)?;
-            autobal::reports::stability(&c.model, &cmp, b)
+            autobal::reports::stability_of(c, &cmp, b)
         }
         "campbell" => {
             if !(3..=100_000).contains(&points) {
@@ -266,7 +266,7 @@ fn spatial_report(py: Python<'_>, command: &str, cfg: &PySpatial, omega_max: Opt
             let grid = autobal::reports::campbell_speeds(w, points);
             let cb = interruptible(py, move |_| autobal::spatial::stability::campbell(&model, &grid, b))?.map_err(err)?;
             autobal::limits::check_finite("campbell", &cb).map_err(err)?;
-            autobal::reports::campbell(&cb)
+            autobal::reports::campbell_of(&c.model, &cb)
         }
         o => return Err(PyValueError::new_err(format!("command: unknown analytic command \"{o}\" (inertia, critical, ranges, stability, campbell)"))),
     };
@@ -517,7 +517,7 @@ fn stability_map<'py>(
             let mut margin = vec![f64::NAN; cells];
             let mut stable = vec![false; cells];
             let mut necessary = vec![false; cells];
-            let o = autobal::spatial::map::stability_map(&spec, &ax, &ay, &settings, &mut |j, row| {
+            let o = autobal::spatial::paths::stability_map_units(&spec, &ax, &ay, &settings, &mut |j, row| {
                 for (i, c) in row.iter().enumerate() {
                     margin[j * nx + i] = c.margin;
                     stable[j * nx + i] = c.stable;

@@ -907,6 +907,43 @@ mod tests {
     }
 
     #[test]
+    fn speeds_in_analysis_take_units_and_the_operating_speed_drives_the_defaults() {
+        let washer = include_str!("../../../examples/washing_machine.toml");
+        let mut root = parse(washer, "washer").unwrap();
+        let c = spatial(&root).unwrap();
+        let w0 = c.model.scale.unwrap().omega0;
+        // 1400 rpm = 1400 π/30 rad/s, over ω0 (one product and one division: 1e-15 relative)
+        let op = 1400.0 * std::f64::consts::PI / 30.0 / w0;
+        let [lo, hi] = c.analysis.operating_speed.unwrap();
+        assert!((lo - op).abs() < 1e-15 * op && lo == hi, "{lo} {op}");
+        // the automatic axis covers 1.25 × the operating speed; the critical speeds' 1.3 × do not
+        let auto = crate::reports::default_omega_max(&c.model);
+        assert!(auto < op && c.analysis.speed_axis_max(auto) == OPERATING_SPEED_MARGIN * hi);
+        // the default run-up ends at it: b t_end = ω_op (rad/s)
+        let sim = spatial_simulation(&root).unwrap();
+        let Drive::Acceleration { omega0, b } = sim.drive else { panic!("{:?}", sim.drive) };
+        assert_eq!(omega0, 0.0);
+        assert!((b * sim.settings.t_end - op * w0).abs() < 1e-12 * op * w0);
+        // a range, and omega_max in Hz or as a bare Ω
+        set(&mut root, "analysis.operating_speed", parse_value("\"20-25 Hz\"")).unwrap();
+        set(&mut root, "analysis.omega_max", parse_value("\"30 Hz\"")).unwrap();
+        let a = spatial(&root).unwrap().analysis;
+        let hz = |f: f64| 2.0 * std::f64::consts::PI * f / w0;
+        assert_eq!(a.operating_speed, Some([hz(20.0), hz(25.0)]));
+        assert_eq!(a.omega_max, Some(hz(30.0)));
+        assert_eq!(a.speed_axis_max(0.1), hz(30.0), "a given omega_max is kept");
+        set(&mut root, "analysis.omega_max", parse_value("5.2")).unwrap();
+        assert_eq!(spatial(&root).unwrap().analysis.omega_max, Some(5.2));
+        // errors name the key, on one line
+        for (v, why) in [("\"fast\"", "is not a speed"), ("\"0 rpm\"", "must lie in (0, 1e6]"), ("-1", "must lie in (0, 1e6]"), ("[1, 2]", "expected a speed")]
+        {
+            set(&mut root, "analysis.omega_max", parse_value(v)).unwrap();
+            let e = spatial(&root).unwrap_err().to_string();
+            assert!(e.starts_with("analysis.omega_max: ") && e.contains(why) && !e.contains('\n'), "{v}: {e}");
+        }
+    }
+
+    #[test]
     fn values_parse_as_typed() {
         assert_eq!(parse_value("1.5"), Value::Float(1.5));
         assert_eq!(parse_value("2"), Value::Integer(2));

@@ -20,7 +20,7 @@
 //! let s = parse_speed("--omega-max", "1500rpm").unwrap();
 //! assert_eq!((s.value, s.unit), (1500.0, SpeedUnit::Rpm));
 //! // with ω0 = 100 rad/s: 1500 rpm = 157.08 rad/s = Ω 1.5708
-//! assert!((s.to_omega("--omega-max", Some(100.0)).unwrap() - 0.05 * std::f64::consts::PI).abs() < 1e-15);
+//! assert!((s.to_omega("--omega-max", Some(100.0)).unwrap() - 0.5 * std::f64::consts::PI).abs() < 1e-15);
 //! assert_eq!(parse_speed("x", "2.5").unwrap().unit, SpeedUnit::Omega);
 //! let e = parse_speed("analysis.omega_max", "1500 rmp").unwrap_err().to_string();
 //! assert!(e.starts_with("analysis.omega_max: unknown unit \"rmp\""), "{e}");
@@ -130,7 +130,7 @@ const UNITS_HELP: &str = "rpm, rad/s or Hz, or a bare number for the dimensionle
 /// Split `text` into a number and the rest: the longest prefix that parses as a float.
 fn split_number(text: &str) -> Option<(f64, &str)> {
     let t = text.trim();
-    let end = t.char_indices().map(|(i, c)| i + c.len_utf8()).filter(|&i| t[..i].trim().parse::<f64>().is_ok()).last()?;
+    let end = t.char_indices().map(|(i, c)| i + c.len_utf8()).rfind(|&i| t[..i].trim().parse::<f64>().is_ok())?;
     // "1e" or "inf" prefixes of a unit are not numbers a user meant: keep digits, dot, sign, exponent
     let num = &t[..end];
     if !num.trim().chars().all(|c| c.is_ascii_digit() || matches!(c, '.' | '+' | '-' | 'e' | 'E')) {
