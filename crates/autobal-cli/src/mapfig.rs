@@ -11,6 +11,9 @@ use std::path::Path;
 pub fn axis_label(key: &str) -> String {
     let known: &[(&str, &str)] = &[
         ("omega", "Ω = ω/ω0"),
+        ("speed_rpm", "speed n (rpm)"),
+        ("speed", "speed ω (rad/s)"),
+        ("speed_hz", "speed f (Hz)"),
         ("dimensionless.c_sigma", "C̄Σ (polar / mean equatorial moment)"),
         ("dimensionless.rho_s", "ρ̄s (radius of gyration / span)"),
         ("dimensionless.l_left", "l̄_L (C from the left support / span)"),

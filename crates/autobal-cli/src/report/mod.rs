@@ -142,7 +142,8 @@ pub fn run(path: Option<&Path>, sets: &[String], dir: &Path, quick: bool) -> Res
     if spatial.is_some() {
         config::warn_ignored(&root, "report");
     }
-    for w in spatial.iter().flat_map(|c| &c.model.anisotropy.warnings) {
+    // the comparison with eq (17) stays in the report's inertia section (and `inertia`)
+    for w in spatial.iter().flat_map(|c| autobal::reports::actionable_warnings(&c.model.anisotropy)) {
         crate::output::note(&format!("warning: {w}"));
     }
     let spatial_text = spatial.as_ref().map(|c| c.text.clone());
