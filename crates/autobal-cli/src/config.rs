@@ -127,11 +127,31 @@ pub fn ignored_warning(root: &Table, command: &str) -> Option<String> {
     ))
 }
 
-/// Print [`ignored_warning`], if any.
+/// Print [`ignored_warning`], if any, and [`bare_speed_notes`].
 pub fn warn_ignored(root: &Table, command: &str) {
     if let Some(w) = ignored_warning(root, command) {
         crate::output::note(&w);
     }
+    for n in bare_speed_notes(root) {
+        crate::output::note(&n);
+    }
+}
+
+/// A note for each speed key of `[analysis]` given as a bare number in a dimensional config: a
+/// bare number is the dimensionless `Ω = ω/ω0` ([`autobal::units`]), which a user writing SI may
+/// not mean.
+pub fn bare_speed_notes(root: &Table) -> Vec<String> {
+    let dimensional = ["rotor", "supports", "unbalance", "balancer"].iter().any(|t| root.contains_key(*t));
+    let an = root.get("analysis").and_then(toml::Value::as_table);
+    let mut out = vec![];
+    for key in ["omega_max", "operating_speed"] {
+        if let Some(v @ (toml::Value::Float(_) | toml::Value::Integer(_))) = an.and_then(|a| a.get(key)).filter(|_| dimensional) {
+            out.push(format!(
+                "note: analysis.{key} = {v} is the dimensionless Ω = ω/ω0; write a unit for SI, e.g. analysis.{key} = \"1500 rpm\" (or rad/s, Hz)"
+            ));
+        }
+    }
+    out
 }
 
 /// Validate a config table and build the model.

@@ -50,6 +50,12 @@ fn speeds_with_units_are_the_same_speed_in_every_spelling() {
     let (code, _, err) = autobal(&["stability", "--config", &cfg, "--samples", "50", "--omega-max", "5.2"]);
     assert_eq!(code, 0, "{err}");
     assert!(err.contains("note: --omega-max 5.2 is the dimensionless Ω = 5.2, i.e. 1505 rpm"), "{err}");
+    let (code, _, err) = autobal(&["critical", "--config", &cfg, "--set", "analysis.omega_max=5.2"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("note: analysis.omega_max = 5.2 is the dimensionless Ω = ω/ω0; write a unit for SI"), "{err}");
+    // not on a config with units, nor on a dimensionless config (where Ω is the only speed)
+    assert!(!autobal(&["critical", "--config", &cfg]).2.contains("note:"));
+    assert!(!autobal(&["critical", "--set", "analysis.omega_max=5.2"]).2.contains("note:"));
 }
 
 #[test]
