@@ -325,6 +325,9 @@ fn run_map(
     for (flag, a) in [("--x", &xa), ("--y", &ya)] {
         if a.key == "omega" {
             check_speed(&format!("{flag} omega"), a.hi)?;
+        } else if let (Some(k), Some(sc)) = (autobal::units::speed_path_unit(&a.key).and_then(|u| u.rad_s()), cfg.model.scale) {
+            // the same range as Ω (at the config's ω0; a mass axis moves it a little)
+            check_speed(&format!("{flag} {}", a.key), a.hi * k / sc.omega0)?;
         }
     }
     if let Some(t) = threads {

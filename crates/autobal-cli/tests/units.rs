@@ -70,6 +70,10 @@ fn bad_speeds_are_one_line_naming_the_option() {
         (vec!["stability", "--omega-max", "1500rpm"], "error: --omega-max: 1500 rpm needs a dimensional config"),
         (vec!["critical", "--set", "analysis.omega_max=\"3 Hz\""], "error: analysis.omega_max: 3 Hz needs a dimensional config"),
         (
+            vec!["map", "--config", &cfg, "--x", "balancer.z=0.1:0.2:3", "--y", "speed_rpm=0:1e308:3", "--out", "/nonexistent/m"],
+            "error: --y speed_rpm: must lie in (0, 1e6]",
+        ),
+        (
             vec!["map", "--x", "dimensionless.z_a=-1:1:3", "--y", "speed_rpm=100:900:3", "--out", "/nonexistent/m"],
             "error: --y speed_rpm: a speed in SI needs a dimensional config",
         ),
