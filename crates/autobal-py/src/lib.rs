@@ -225,19 +225,32 @@ fn balls(py: Python<'_>, s: &str) -> PyResult<Balls> {
     }
 }
 
-/// The speed span of the linear commands: `omega_max`, else the config's, else automatic.
-fn omega_span(py: Python<'_>, c: &PySpatial, omega_max: Option<f64>) -> PyResult<f64> {
-    if let Some(w) = omega_max {
-        autobal::limits::check_as("omega_max", "analysis.omega_max", w).map_err(|e| py_err(py, e))?;
-    }
-    Ok(omega_max.unwrap_or_else(|| autobal::reports::speed_axis_max(&c.cfg)))
+/// A speed argument: a number (the dimensionless Ω) or a speed with its unit, `"1500 rpm"`
+/// ([`autobal::units`]).
+#[derive(FromPyObject)]
+enum SpeedArg {
+    Number(f64),
+    Text(String),
+}
+
+/// The speed span of the linear commands: `omega_max` (Ω, or a speed with its unit for a
+/// dimensional config), else the config's, else automatic (covering the operating speed).
+fn omega_span(py: Python<'_>, c: &PySpatial, omega_max: Option<SpeedArg>) -> PyResult<f64> {
+    let w = match omega_max {
+        None => return Ok(autobal::reports::speed_axis_max(&c.cfg)),
+        Some(SpeedArg::Number(w)) => w,
+        Some(SpeedArg::Text(t)) => autobal::units::parse_speed("omega_max", &t)
+            .and_then(|s| s.to_omega("omega_max", c.cfg.model.scale.map(|sc| sc.omega0)))
+            .map_err(|e| py_err(py, e))?,
+    };
+    autobal::limits::check_as("omega_max", "analysis.omega_max", w).map_err(|e| py_err(py, e))
 }
 
 /// The JSON text of an analytic command (`inertia`, `critical`, `ranges`, `stability`,
 /// `campbell`) on a spatial config: what `autobal COMMAND --format json` prints.
 #[pyfunction]
 #[pyo3(signature = (command, cfg, omega_max=None, samples=2000, points=300, balls="free"))]
-fn spatial_report(py: Python<'_>, command: &str, cfg: &PySpatial, omega_max: Option<f64>, samples: usize, points: usize, balls: &str) -> PyResult<String> {
+fn spatial_report(py: Python<'_>, command: &str, cfg: &PySpatial, omega_max: Option<SpeedArg>, samples: usize, points: usize, balls: &str) -> PyResult<String> {
     let c = &cfg.cfg;
     let src = cfg.source.as_str();
     let b = self::balls(py, balls)?;

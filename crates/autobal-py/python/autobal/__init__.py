@@ -182,23 +182,30 @@ class SpatialModel(_Config):
         """Antiresonance and autobalancing ranges of 003 (``autobal ranges``)."""
         return self._report("ranges")
 
-    def stability(self, omega_max: Optional[float] = None, samples: int = 2000, balls: str = "free") -> Dict[str, Any]:
+    def stability(self, omega_max: Optional[Union[float, str]] = None, samples: int = 2000, balls: str = "free") -> Dict[str, Any]:
         """Exact stability ranges of the balanced state against 003's necessary ranges over
-        ``0 < Ω ≤ omega_max`` (``autobal stability``); ``balls``: ``"free"`` or ``"locked"``."""
+        ``0 < Ω ≤ omega_max`` (``autobal stability``); ``balls``: ``"free"`` or ``"locked"``.
+        ``omega_max``: a number is the dimensionless Ω; a dimensional config also takes a speed
+        with its unit, ``"1500 rpm"``, ``"157 rad/s"``, ``"25 Hz"``. With
+        ``analysis.operating_speed`` the result's ``operating_speed`` says whether the balanced
+        state is stable there, with the margin; ``*_rpm`` keys give the ranges in rpm."""
         return self._report("stability", omega_max=omega_max, samples=samples, balls=balls)
 
-    def campbell(self, omega_max: Optional[float] = None, points: int = 300, balls: str = "free") -> Dict[str, Any]:
+    def campbell(self, omega_max: Optional[Union[float, str]] = None, points: int = 300, balls: str = "free") -> Dict[str, Any]:
         """Campbell data: ``omega`` (speeds), and per tracked line (rows) and speed (columns)
         ``re``, ``im`` (rotating axes), ``fixed_frequency``, ``log_decrement`` (NaN where
         undefined) as arrays, ``whirl`` and ``group`` as lists of lists; ``raw`` is the JSON of
-        ``autobal campbell``."""
+        ``autobal campbell``. For a dimensional config also ``omega_rpm``, ``omega_rad_s`` and
+        per mode ``fixed_frequency_hz``, ``fixed_frequency_rpm``, ``fixed_frequency_rad_s``,
+        ``im_hz``, ``im_rad_s``, ``re_per_s`` (Ω-units times ω0). ``omega_max`` as for
+        :meth:`stability`."""
         raw = self._report("campbell", omega_max=omega_max, points=points, balls=balls)
         lines = [line["modes"] for line in raw["lines"]]
 
         def arr(key: str) -> np.ndarray:
             return np.array([[np.nan if m.get(key) is None else m[key] for m in ms] for ms in lines], dtype=float)
 
-        return {
+        out = {
             "omega": np.array(raw["omega"], dtype=float),
             "re": arr("re"),
             "im": arr("im"),
@@ -208,6 +215,15 @@ class SpatialModel(_Config):
             "group": [[m["group"] for m in ms] for ms in lines],
             "raw": raw,
         }
+        # a dimensional config: the same in SI
+        for key in ("omega_rpm", "omega_rad_s"):
+            if key in raw:
+                out[key] = np.array(raw[key], dtype=float)
+        si = ("fixed_frequency_hz", "fixed_frequency_rpm", "fixed_frequency_rad_s", "im_hz", "im_rad_s", "re_per_s")
+        if lines and lines[0] and "fixed_frequency_hz" in lines[0][0]:
+            for key in si:
+                out[key] = arr(key)
+        return out
 
     def simulate(self, dt: Optional[float] = None) -> "Simulation":
         """Run this rotor in time: the nonlinear spatial model (docs/spatial.md) with the
