@@ -10,10 +10,6 @@ use crate::ode::{Control, Method, Options, Outcome, Solver, Stats, Status};
 use crate::simulation::{run, Hooks, Timeline};
 use serde::Serialize;
 
-/// Most balls in all planes together that the simulation integrates (the integrators take any
-/// dimension; this was the limit of their former fixed-size state, `2 (5 + N) ≤ 24`).
-pub const MAX_SIM_BALLS: usize = 7;
-
 /// Initial conditions (velocities in fixed axes; at `t = 0` the turning frame coincides with
 /// the fixed one).
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -309,12 +305,6 @@ fn simulate_sampled(
     rotor.validate()?;
     drive.validate()?;
     settings.validate()?;
-    if rotor.balls() > MAX_SIM_BALLS {
-        return Err(Error::invalid(
-            "balancer.balls",
-            format!("the simulation takes at most {MAX_SIM_BALLS} balls in all planes together, got {}", rotor.balls()),
-        ));
-    }
     let eq = Equations::new(rotor, drive);
     let mut y = initial_state(&eq, init)?;
     let mut solver = Solver::new(&eq, tolerances(&eq, settings))?;
