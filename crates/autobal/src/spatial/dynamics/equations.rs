@@ -742,12 +742,14 @@ impl<'a> Equations<'a> {
     /// torque's slope [`Drive::torque_slope`] enters the `φ̇` column.
     ///
     /// Errors with [`Error::NoLinearisation`] for real balls (contact, rolling resistance):
-    /// their dead zones and resting contacts have no derivative.
+    /// their dead zones and resting contacts have no derivative. Panics when `jac` does not
+    /// hold `dim²` entries (a caller's bug, not an input).
     pub fn exact_jacobian(&self, t: f64, y: &[f64], jac: &mut [f64]) -> Result<()> {
         if !self.ball_forces.is_empty() {
             return Err(real_balls_error());
         }
         let dim = self.dim();
+        assert_eq!(jac.len(), dim * dim, "exact_jacobian: jac must hold dim² = {} entries", dim * dim);
         let mut dy = vec![0.0; dim];
         self.rhs(t, y, &mut dy);
         let cols: Vec<usize> = (0..dim).collect();
