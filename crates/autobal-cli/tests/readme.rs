@@ -17,7 +17,8 @@
 //!   `cargo test`. (With a wheel left from an earlier build this checks the README against that
 //!   build.) The longer session under `## Python` is run by the Python package's tests
 //!   (`test_the_readme_session_runs_as_printed`), on the wheel just built.
-//! - Every relative link and image of the README names a file of the repository.
+//! - Every relative link and image of the README and of docs/README.md (the documentation's
+//!   index) names a file of the repository.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -176,33 +177,40 @@ const PENDING: &[&str] = &["docs/benchmarks.md"];
 
 #[test]
 fn the_readme_links_resolve() {
-    // the prose only: code blocks hold no links, and `](` can occur in code
-    let mut text = String::new();
-    let mut code = false;
-    for line in readme().lines() {
-        if line.starts_with("```") {
-            code = !code;
-        } else if !code {
-            text.push_str(line);
-            text.push('\n');
+    // the README and the documentation's index, each link relative to its file's folder
+    for (name, folder) in [("README.md", root()), ("docs/README.md", root().join("docs"))] {
+        let md = std::fs::read_to_string(root().join(name)).unwrap_or_else(|e| panic!("{name}: {e}"));
+        // the prose only: code blocks hold no links, and `](` can occur in code
+        let mut text = String::new();
+        let mut code = false;
+        for line in md.lines() {
+            if line.starts_with("```") {
+                code = !code;
+            } else if !code {
+                text.push_str(line);
+                text.push('\n');
+            }
         }
-    }
-    let mut targets = Vec::new();
-    for (i, _) in text.match_indices("](") {
-        let rest = &text[i + 2..];
-        targets.push(rest[..rest.find(')').expect("a link's closing parenthesis")].to_string());
-    }
-    assert!(targets.len() >= 10, "README.md: only {} links found", targets.len());
-    for t in targets {
-        if t.starts_with("http://") || t.starts_with("https://") || t.starts_with('#') || t.starts_with("mailto:") {
-            continue;
+        let mut targets = Vec::new();
+        for (i, _) in text.match_indices("](") {
+            let rest = &text[i + 2..];
+            targets.push(rest[..rest.find(')').expect("a link's closing parenthesis")].to_string());
         }
-        let file = t.split('#').next().expect("split gives one part");
-        if root().join(file).exists() {
-            continue;
+        assert!(targets.len() >= 10, "{name}: only {} links found", targets.len());
+        for t in targets {
+            if t.starts_with("http://") || t.starts_with("https://") || t.starts_with('#') || t.starts_with("mailto:") {
+                continue;
+            }
+            let file = t.split('#').next().expect("split gives one part");
+            let path = folder.join(file);
+            if path.exists() {
+                continue;
+            }
+            let from_root = path.strip_prefix(root()).map(|p| p.display().to_string()).unwrap_or_default();
+            let pending = PENDING.iter().any(|p| root().join(p) == path || from_root == *p);
+            assert!(pending, "{name} links to {t}, which is not in the repository");
+            eprintln!("note: {name} links to {t}, written on another branch (PENDING)");
         }
-        assert!(PENDING.contains(&file), "README.md links to {t}, which is not in the repository");
-        eprintln!("note: README.md links to {file}, written on another branch (PENDING)");
     }
 }
 
