@@ -34,7 +34,9 @@
 //!   [`VectorField::scales`], since `‖S⁻¹ J S‖∞` is the fastest rate of the linearisation;
 //!   periodic orbit: `‖S⁻¹ (x0 − x(T))‖∞`, below `1e-10`, above the integration's error). Round-off
 //!   in `f` is about `ε` times its largest term, so the equilibrium test is met where the scales
-//!   are sensible; a residual that stops decreasing within 1000× the tolerance is accepted.
+//!   are sensible; a residual that stops decreasing within 1000× the tolerance is accepted. An equilibrium
+//!   then gets one more full Newton step (kept if the residual does not rise): with quadratic
+//!   convergence that takes it to round-off.
 //!   Otherwise [`AnalysisError::NoConvergence`] with the residual reached.
 //! - **Verdict**, equilibrium: neutral where `|α| ≤ 1e-9 ρ`, `ρ = max |λ|` the characteristic
 //!   rate of the linearisation. The balanced QR's eigenvalues carry an absolute error of about
@@ -149,3 +151,6 @@ pub enum AnalysisError {
 
 /// Result of the analysis functions.
 pub type Result<T> = std::result::Result<T, AnalysisError>;
+
+#[cfg(test)]
+mod tests;

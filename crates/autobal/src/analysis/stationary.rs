@@ -108,8 +108,8 @@ fn direction(a: &[f64], n: usize, r: &[f64], k: usize) -> Option<Vec<f64>> {
 
 /// Damped Newton on `g(x) = 0` in variables scaled by `s`: `eval(x)` returns the scaled
 /// residual vector `S⁻¹ g(x) / rate` and the scaled Jacobian `S⁻¹ (∂g/∂x) S / rate`; the test
-/// is `‖·‖∞ ≤ tol`.
-#[allow(clippy::type_complexity)]
+/// is `‖·‖∞ ≤ tol`; with `polish`, one more step is taken after it is met.
+#[allow(clippy::type_complexity, clippy::too_many_arguments)]
 fn newton(
     what: &str,
     n: usize,
@@ -118,6 +118,7 @@ fn newton(
     k: usize,
     tol: f64,
     max_iterations: usize,
+    polish: bool,
     mut eval: impl FnMut(&[f64], bool) -> Result<(Vec<f64>, Option<Vec<f64>>)>,
 ) -> Result<(Vec<f64>, usize, f64)> {
     let fail = |iterations: usize, residual: f64, detail: &str| AnalysisError::NoConvergence {
@@ -132,6 +133,19 @@ fn newton(
     for it in 0..max_iterations {
         let res = norm_inf(&r);
         if res <= tol {
+            if polish {
+                // one more full step (quadratic convergence: to round-off), kept if it does not
+                // raise the residual
+                if let Some(d) = direction(jac.as_ref().expect("Jacobian requested"), n, &r, k) {
+                    let xn: Vec<f64> = x.iter().zip(&d).zip(s).map(|((xi, di), si)| xi + di * si).collect();
+                    if let Ok((rn, _)) = eval(&xn, false) {
+                        let rn = norm_inf(&rn);
+                        if rn <= res {
+                            return Ok((xn, it + 1, rn));
+                        }
+                    }
+                }
+            }
             return Ok((x, it, res));
         }
         let Some(d) = direction(jac.as_ref().expect("Jacobian requested"), n, &r, k) else {
@@ -171,7 +185,6 @@ fn newton(
 
 fn equilibrium<F: VectorField + ?Sized>(f: &F, guess: &[f64], s: &[f64], k: usize, opts: &NewtonOptions) -> Result<StationaryState> {
     let n = f.dim();
-    let mut fx = vec![0.0; n];
     let mut jac = vec![0.0; n * n];
     // the characteristic rate ‖S⁻¹ J S‖∞, from the guess's Jacobian (held fixed so that the
     // residual measure does not change between iterations)
@@ -196,8 +209,7 @@ fn equilibrium<F: VectorField + ?Sized>(f: &F, guess: &[f64], s: &[f64], k: usiz
         }
         Ok((r, Some(j)))
     };
-    let (x, iterations, residual) = newton("equilibrium", n, guess, s, k, opts.tolerance, opts.max_iterations, eval)?;
-    f.rhs(0.0, &x, &mut fx);
+    let (x, iterations, residual) = newton("equilibrium", n, guess, s, k, opts.tolerance, opts.max_iterations, true, eval)?;
     Ok(StationaryState { family_dimension: f.structural_zeros(&x), x, period: None, iterations, residual, monodromy: None })
 }
 
@@ -307,7 +319,7 @@ fn periodic<F: VectorField + ?Sized>(f: &F, guess: &[f64], period: f64, s: &[f64
         }
         Ok((r, Some(j)))
     };
-    let (x, iterations, residual) = newton("periodic orbit", n, guess, s, k, opts.periodic_tolerance, opts.max_iterations, eval)?;
+    let (x, iterations, residual) = newton("periodic orbit", n, guess, s, k, opts.periodic_tolerance, opts.max_iterations, false, eval)?;
     let (_, phi) = flow(f, &x, period, s, opts.rtol)?;
     Ok(StationaryState { family_dimension: f.structural_zeros(&x), x, period: Some(period), iterations, residual, monodromy: Some(phi) })
 }

@@ -129,9 +129,9 @@ impl PlanarField {
         let phase = if b.norm() > 0.0 { b.arg() } else { 0.0 };
         let mut psi = Vec::with_capacity(n);
         let pairs = n / 2;
-        let cos_phi = if n % 2 == 0 { ratio / n as f64 } else { (ratio - 1.0) / (n - 1) as f64 };
+        let cos_phi = if n.is_multiple_of(2) { ratio / n as f64 } else { (ratio - 1.0) / (n - 1) as f64 };
         let phi = cos_phi.clamp(-1.0, 1.0).acos();
-        if n % 2 == 1 {
+        if !n.is_multiple_of(2) {
             psi.push(phase);
         }
         for _ in 0..pairs {
