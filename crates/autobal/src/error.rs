@@ -90,13 +90,6 @@ pub enum Error {
         /// Simulated time (s).
         t: f64,
     },
-    /// The stationary state of this configuration has no linearisation (a friction dead zone,
-    /// resting contact between real balls): a stability analysis has no eigenvalues to give.
-    #[error("no linearisation: {reason}")]
-    NoLinearisation {
-        /// Why (which feature of the configuration).
-        reason: String,
-    },
 }
 
 impl Error {
