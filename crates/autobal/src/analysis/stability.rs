@@ -180,11 +180,15 @@ pub struct ScanOptions {
     pub newton: NewtonOptions,
     /// Relative width in `Ω` to which a stability boundary is bisected (default `1e-9`).
     pub boundary_rtol: f64,
+    /// Start Newton from the model's closed-form state before the previous speed's solution
+    /// (default `true`): the closed form names the branch (balanced, semi-balanced) whose
+    /// stability is asked, and continuation could otherwise switch branches at a bifurcation.
+    pub prefer_guess: bool,
 }
 
 impl Default for ScanOptions {
     fn default() -> Self {
-        ScanOptions { newton: NewtonOptions::default(), boundary_rtol: 1e-9 }
+        ScanOptions { newton: NewtonOptions::default(), boundary_rtol: 1e-9, prefer_guess: true }
     }
 }
 
@@ -265,7 +269,12 @@ where
     let evaluate = |omega: f64, previous: Option<&[f64]>| -> std::result::Result<(StationaryState, Stability), String> {
         let f = field_at(omega).map_err(|e| e.to_string())?;
         let guess = guess_at(&f, omega);
-        solve_at(&f, &[previous, guess.as_deref()], &opts.newton)
+        // the closed-form state first where the model has one: near a bifurcation (a real
+        // eigenvalue crossing zero, where another branch of stationary states crosses the
+        // balanced one) Newton from a neighbour's solution can land on the other branch, whose
+        // stability is the opposite; the closed form pins the branch the user asked about
+        let starts = if opts.prefer_guess { [guess.as_deref(), previous] } else { [previous, guess.as_deref()] };
+        solve_at(&f, &starts, &opts.newton)
     };
     let mut points: Vec<ScanPoint> = Vec::with_capacity(speeds.len());
     let mut previous: Option<Vec<f64>> = None;
