@@ -310,6 +310,16 @@ impl VectorField for SpatialField {
         ((anisotropic || across) && self.omega != 0.0).then(|| 2.0 * std::f64::consts::PI / self.omega.abs())
     }
 
+    /// Typical magnitudes for Newton's scaled residual and the shooting's absolute tolerances:
+    /// the length scale ([`SpatialRotor::length_scale`]) for the translations, 1 rad for the
+    /// tilts and ball angles, and those times `max(|Ω|, ω0)` for the rates.
+    fn scales(&self) -> Vec<f64> {
+        let m = self.coords.len();
+        let l = self.rotor.length_scale();
+        let w = self.omega.abs().max(self.rotor.natural_frequency());
+        (0..2 * m).map(|i| if i % m < 2 { l } else { 1.0 } * if i >= m { w } else { 1.0 }).collect()
+    }
+
     /// At a balanced state — rotor at rest on the axis (displacements within 1e-6 of the length
     /// scale, tilts within 1e-6 rad, rates within 1e-6 of those times `max(|Ω|, ω0)`) and the
     /// residual static and couple unbalance within 1e-6 of `Σ m R + |s0|` (times the largest
