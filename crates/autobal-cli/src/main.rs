@@ -3,6 +3,7 @@
 
 mod config;
 mod figures;
+mod general;
 #[cfg(test)]
 mod fuzz;
 mod linear;
@@ -64,6 +65,12 @@ impl From<BallsArg> for autobal::spatial::linear_model::Balls {
 }
 
 #[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
+enum RouteArg {
+    Auto,
+    General,
+}
+
+#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
 enum QuantityArg {
     Margin,
     Verdict,
@@ -110,12 +117,18 @@ enum Command {
         format: Format,
         #[command(flatten)]
         lin: LinearArgs,
-        /// Grid points along Ω before the range ends are refined by bisection
-        #[arg(long, default_value_t = 2000)]
-        samples: usize,
+        /// Grid points along Ω before the range ends are refined by bisection (default 2000 on
+        /// the closed-form route, 200 on the general route)
+        #[arg(long)]
+        samples: Option<usize>,
         /// Also write the margin plot as SVG to this file
         #[arg(long)]
         svg: Option<PathBuf>,
+        /// `auto`: paper 000's 12-state model (closed form) where it represents the config, else
+        /// the general route (the nonlinear equations: planar rotor, two planes, couple,
+        /// direction-dependent supports, gravity); `general`: the general route always
+        #[arg(long, value_enum, default_value = "auto")]
+        route: RouteArg,
     },
     /// Campbell diagram: eigenvalues along Ω, tracked, with whirl direction and dominant motion
     Campbell {
@@ -242,7 +255,12 @@ fn run(cli: Cli) -> Result<()> {
             output::check_results(&cfg)?;
             emit(format, output::ranges_json(&cfg), output::ranges_table(&cfg))
         }
-        Command::Stability { common, format, lin, samples, svg } => {
+        Command::Stability { common, format, lin, samples, svg, route } => {
+            let (root, _) = config::read_set(common.config.as_deref(), &common.set)?;
+            if route == RouteArg::General || general::needs_general_route(&root) {
+                return run_general_stability(&root, format, lin, samples, svg);
+            }
+            let samples = samples.unwrap_or(2000);
             let cfg = config::load_analytic("stability", common.config.as_deref(), &common.set)?;
             if let Some(w) = lin.omega_max {
                 check_speed("--omega-max", w)?;
@@ -281,6 +299,35 @@ fn run(cli: Cli) -> Result<()> {
             output::print(&format!("report written to {}\n", index.display()))
         }
     }
+}
+
+/// `stability` by the general route ([`general`]): any planar or spatial config.
+fn run_general_stability(root: &toml::Table, format: Format, lin: LinearArgs, samples: Option<usize>, svg: Option<PathBuf>) -> Result<()> {
+    if lin.balls == BallsArg::Locked {
+        anyhow::bail!("--balls locked: the general route analyses the balls free (use the closed-form route of a one-plane config for the locked rotor)");
+    }
+    let samples = samples.unwrap_or(200);
+    if !(10..=1_000_000).contains(&samples) {
+        anyhow::bail!("--samples: must lie between 10 and 1000000, got {samples}");
+    }
+    let g = general::rotor_of(root)?;
+    let omega_max = match (&g.rotor, lin.omega_max) {
+        (_, Some(w)) => {
+            check_speed("--omega-max", w)?;
+            w * g.omega0
+        }
+        (autobal::rotor_stability::Rotor::Planar(_), None) => 3.0 * g.rotor.natural_frequency(),
+        (autobal::rotor_stability::Rotor::Spatial(_), None) => {
+            let cfg = autobal::config::spatial(root)?;
+            let w = cfg.analysis.omega_max.unwrap_or_else(|| autobal::reports::default_omega_max(&cfg.model));
+            w * g.omega0
+        }
+    };
+    let r = general::analyse(&g, omega_max, samples)?;
+    if let Some(p) = svg {
+        general::write_svg(&g, &r, omega_max, &p)?;
+    }
+    emit(format, general::json(&g, &r, omega_max), general::table(&g, &r, omega_max))
 }
 
 #[allow(clippy::too_many_arguments)]
