@@ -92,7 +92,8 @@ fn norm2(v: &[f64]) -> f64 {
 }
 
 /// The Newton direction `d` of `A d = −r` in scaled variables: LU, or the minimum-norm
-/// solution without the `k` smallest singular values when the states form a family.
+/// solution without the `k` smallest singular values when the states form a family (or when
+/// LU meets an exactly zero pivot).
 fn direction(a: &[f64], n: usize, r: &[f64], k: usize) -> Option<Vec<f64>> {
     let mut d: Vec<f64> = r.iter().map(|v| -v).collect();
     if k == 0 {
@@ -100,7 +101,9 @@ fn direction(a: &[f64], n: usize, r: &[f64], k: usize) -> Option<Vec<f64>> {
         if lu_solve(&mut m, n, &mut d) {
             return Some(d);
         }
-        return None;
+        // an exactly singular matrix the model did not declare: the minimum-norm step over
+        // the singular values above 1e-12 σ_max
+        d = r.iter().map(|v| -v).collect();
     }
     let d = min_norm_solve(a, n, &d, k);
     d.iter().all(|v| v.is_finite()).then_some(d)
