@@ -429,3 +429,17 @@ fn real_balls_and_bad_input_are_typed_errors() {
     let scan = speed_scan(|w| PlanarField::new(&jeffcott(), w), |f, _| f.semi_balanced_guess(), &[], &ScanOptions::default());
     assert!(scan.is_err());
 }
+
+#[test]
+fn the_result_serialises_for_a_command_line() {
+    // what a CLI prints: snake-case kind and verdict, the spectrum as {re, im}, the structural
+    // eigenvalues apart, the matrix left out
+    let (_, s, st) = analyse(&jeffcott(), 400.0);
+    let v = serde_json::to_value(&st).unwrap();
+    assert_eq!((v["kind"].as_str(), v["verdict"].as_str()), (Some("equilibrium"), Some("stable")));
+    assert_eq!(v["spectrum"].as_array().unwrap().len(), 8);
+    assert_eq!(v["abscissa"].as_f64(), Some(st.abscissa));
+    assert!(v.get("matrix").is_none() && v["structural"].as_array().unwrap().is_empty());
+    let v = serde_json::to_value(&s).unwrap();
+    assert!(v.get("monodromy").is_none() && v["period"].is_null() && v["x"].as_array().unwrap().len() == 8);
+}

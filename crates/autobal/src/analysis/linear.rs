@@ -41,8 +41,10 @@ pub(crate) fn lu_solve(a: &mut [f64], n: usize, b: &mut [f64]) -> bool {
 }
 
 /// The minimum-norm least-squares solution of `A x = b` with the `drop` smallest singular
-/// values of `A` (row-major `n × n`) treated as zero: `x = V Σ⁺ Uᵀ b`. The SVD by one-sided
-/// Jacobi rotations on the columns of `A V` (Hestenes), to relative orthogonality `1e-15`.
+/// values of `A` (row-major `n × n`), and any below `1e-12 σ_max`, treated as zero:
+/// `x = V Σ⁺ Uᵀ b`. The SVD by one-sided
+/// Jacobi rotations on the columns of `A V` (Hestenes), to relative orthogonality `n ε` (a
+/// tighter test is not met in floating point and only spends sweeps).
 /// Where `A` is the Jacobian at a family of equilibria (rank `n − drop`), this Newton step
 /// moves to the member of the family nearest the current point.
 pub(crate) fn min_norm_solve(a: &[f64], n: usize, b: &[f64], drop: usize) -> Vec<f64> {
@@ -52,6 +54,7 @@ pub(crate) fn min_norm_solve(a: &[f64], n: usize, b: &[f64], drop: usize) -> Vec
     for i in 0..n {
         v[i * n + i] = 1.0;
     }
+    let orthogonal = n.max(1) as f64 * f64::EPSILON;
     for _sweep in 0..60 {
         let mut rotated = false;
         for p in 0..n {
@@ -63,7 +66,7 @@ pub(crate) fn min_norm_solve(a: &[f64], n: usize, b: &[f64], drop: usize) -> Vec
                     beta += y * y;
                     gamma += x * y;
                 }
-                if gamma == 0.0 || gamma.abs() <= 1e-15 * (alpha * beta).sqrt() {
+                if gamma == 0.0 || gamma.abs() <= orthogonal * (alpha * beta).sqrt() {
                     continue;
                 }
                 rotated = true;
@@ -89,9 +92,10 @@ pub(crate) fn min_norm_solve(a: &[f64], n: usize, b: &[f64], drop: usize) -> Vec
     let sigma: Vec<f64> = (0..n).map(|j| w[j * n..(j + 1) * n].iter().map(|x| x * x).sum::<f64>().sqrt()).collect();
     let mut order: Vec<usize> = (0..n).collect();
     order.sort_by(|&i, &j| sigma[i].total_cmp(&sigma[j]));
+    let cut = 1e-12 * sigma.iter().fold(0.0f64, |m, v| m.max(*v));
     let mut x = vec![0.0; n];
     for &j in order.iter().skip(drop) {
-        if sigma[j] == 0.0 {
+        if sigma[j] <= cut {
             continue;
         }
         // u_j = w_j / σ_j; coefficient (u_j · b)/σ_j

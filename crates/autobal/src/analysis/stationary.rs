@@ -92,7 +92,8 @@ fn norm2(v: &[f64]) -> f64 {
 }
 
 /// The Newton direction `d` of `A d = −r` in scaled variables: LU, or the minimum-norm
-/// solution without the `k` smallest singular values when the states form a family.
+/// solution without the `k` smallest singular values when the states form a family (or when
+/// LU meets an exactly zero pivot).
 fn direction(a: &[f64], n: usize, r: &[f64], k: usize) -> Option<Vec<f64>> {
     let mut d: Vec<f64> = r.iter().map(|v| -v).collect();
     if k == 0 {
@@ -100,7 +101,9 @@ fn direction(a: &[f64], n: usize, r: &[f64], k: usize) -> Option<Vec<f64>> {
         if lu_solve(&mut m, n, &mut d) {
             return Some(d);
         }
-        return None;
+        // an exactly singular matrix the model did not declare: the minimum-norm step over
+        // the singular values above 1e-12 σ_max
+        d = r.iter().map(|v| -v).collect();
     }
     let d = min_norm_solve(a, n, &d, k);
     d.iter().all(|v| v.is_finite()).then_some(d)
@@ -120,7 +123,7 @@ fn newton(
     max_iterations: usize,
     polish: bool,
     mut eval: impl FnMut(&[f64], bool) -> Result<(Vec<f64>, Option<Vec<f64>>)>,
-) -> Result<(Vec<f64>, usize, f64)> {
+) -> Result<(Vec<f64>, usize, f64, Option<Vec<f64>>)> {
     let fail = |iterations: usize, residual: f64, detail: &str| AnalysisError::NoConvergence {
         what: what.into(),
         iterations,
@@ -141,16 +144,16 @@ fn newton(
                     if let Ok((rn, _)) = eval(&xn, false) {
                         let rn = norm_inf(&rn);
                         if rn <= res {
-                            return Ok((xn, it + 1, rn));
+                            return Ok((xn, it + 1, rn, None));
                         }
                     }
                 }
             }
-            return Ok((x, it, res));
+            return Ok((x, it, res, jac));
         }
         let Some(d) = direction(jac.as_ref().expect("Jacobian requested"), n, &r, k) else {
             if res <= 1e3 * tol {
-                return Ok((x, it, res));
+                return Ok((x, it, res, jac));
             }
             return Err(fail(it, res, "the Jacobian is singular (a family of states the model does not declare, or a turning point)"));
         };
@@ -169,7 +172,7 @@ fn newton(
         }
         let Some(xn) = accepted else {
             if res <= 1e3 * tol {
-                return Ok((x, it, res)); // round-off level: no step can reduce it further
+                return Ok((x, it, res, jac)); // round-off level: no step can reduce it further
             }
             return Err(fail(it, res, "no step along the Newton direction reduces the residual"));
         };
@@ -178,7 +181,7 @@ fn newton(
     }
     let res = norm_inf(&r);
     if res <= tol {
-        return Ok((x, max_iterations, res));
+        return Ok((x, max_iterations, res, jac));
     }
     Err(fail(max_iterations, res, "iteration limit"))
 }
@@ -209,7 +212,7 @@ fn equilibrium<F: VectorField + ?Sized>(f: &F, guess: &[f64], s: &[f64], k: usiz
         }
         Ok((r, Some(j)))
     };
-    let (x, iterations, residual) = newton("equilibrium", n, guess, s, k, opts.tolerance, opts.max_iterations, true, eval)?;
+    let (x, iterations, residual, _) = newton("equilibrium", n, guess, s, k, opts.tolerance, opts.max_iterations, true, eval)?;
     Ok(StationaryState { family_dimension: f.structural_zeros(&x), x, period: None, iterations, residual, monodromy: None })
 }
 
@@ -276,40 +279,66 @@ impl<F: VectorField + ?Sized> System for VariationalSystem<'_, F> {
     }
 }
 
-/// `x(T; x0)` and `Φ(T)` by DOP853 from `t = 0` (module docs of [`crate::analysis`]).
-fn flow<F: VectorField + ?Sized>(f: &F, x0: &[f64], period: f64, s: &[f64], rtol: f64) -> Result<(Vec<f64>, Vec<f64>)> {
+/// The field alone as an ODE system (for trial points of the line search, which need no `Φ`).
+struct Plain<'a, F: VectorField + ?Sized>(&'a F);
+
+impl<F: VectorField + ?Sized> System for Plain<'_, F> {
+    fn dim(&self) -> usize {
+        self.0.dim()
+    }
+    fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
+        self.0.rhs(t, y, dy)
+    }
+    fn component_name(&self, i: usize) -> String {
+        self.0.component_name(i)
+    }
+}
+
+/// Integrate `sys` from `y` at `t = 0` to `period` by DOP853 at `rtol`, absolute tolerances
+/// `atol` per component.
+fn integrate_period<S: System>(sys: &S, y: &mut [f64], period: f64, rtol: f64, atol: Vec<f64>) -> Result<()> {
+    let opts = Options::new(rtol, rtol).method(Method::Dop853).atol_per_component(atol);
+    let mut solver = Solver::new(sys, opts)?;
+    let out = solver.integrate(0.0, y, period, |_| Control::Continue);
+    if !out.status.is_completed() {
+        return Err(AnalysisError::Integration { period, reason: out.to_string() });
+    }
+    Ok(())
+}
+
+/// `x(T; x0)`, and with `variational` also `Φ(T)`, by DOP853 from `t = 0` (module docs of
+/// [`crate::analysis`]).
+fn flow<F: VectorField + ?Sized>(f: &F, x0: &[f64], period: f64, s: &[f64], rtol: f64, variational: bool) -> Result<(Vec<f64>, Option<Vec<f64>>)> {
     let n = f.dim();
+    let atol_x = s.iter().map(|v| rtol * v);
+    if !variational {
+        let mut y = x0.to_vec();
+        integrate_period(&Plain(f), &mut y, period, rtol, atol_x.collect())?;
+        return Ok((y, None));
+    }
     let sys = VariationalSystem::new(f);
-    let mut atol = Vec::with_capacity(n + n * n);
-    atol.extend(s.iter().map(|v| rtol * v));
+    let mut atol: Vec<f64> = atol_x.collect();
     for a in 0..n {
         for b in 0..n {
             atol.push(rtol * s[a] / s[b]);
         }
     }
-    let opts = Options::new(rtol, rtol).method(Method::Dop853).atol_per_component(atol);
-    let mut solver = Solver::new(&sys, opts)?;
     let mut y = vec![0.0; n + n * n];
     y[..n].copy_from_slice(x0);
     for a in 0..n {
         y[n + a * n + a] = 1.0;
     }
-    let out = solver.integrate(0.0, &mut y, period, |_| Control::Continue);
-    if !out.status.is_completed() {
-        return Err(AnalysisError::Integration { period, reason: out.to_string() });
-    }
+    integrate_period(&sys, &mut y, period, rtol, atol)?;
     let phi = y.split_off(n);
-    Ok((y, phi))
+    Ok((y, Some(phi)))
 }
 
 fn periodic<F: VectorField + ?Sized>(f: &F, guess: &[f64], period: f64, s: &[f64], k: usize, opts: &NewtonOptions) -> Result<StationaryState> {
     let n = f.dim();
     let eval = |x0: &[f64], with_jac: bool| -> Result<(Vec<f64>, Option<Vec<f64>>)> {
-        let (xt, phi) = flow(f, x0, period, s, opts.rtol)?;
+        let (xt, phi) = flow(f, x0, period, s, opts.rtol, with_jac)?;
         let r: Vec<f64> = (0..n).map(|i| (x0[i] - xt[i]) / s[i]).collect();
-        if !with_jac {
-            return Ok((r, None));
-        }
+        let Some(phi) = phi else { return Ok((r, None)) };
         // S⁻¹ (I − Φ) S
         let mut j = vec![0.0; n * n];
         for a in 0..n {
@@ -319,7 +348,12 @@ fn periodic<F: VectorField + ?Sized>(f: &F, guess: &[f64], period: f64, s: &[f64
         }
         Ok((r, Some(j)))
     };
-    let (x, iterations, residual) = newton("periodic orbit", n, guess, s, k, opts.periodic_tolerance, opts.max_iterations, false, eval)?;
-    let (_, phi) = flow(f, &x, period, s, opts.rtol)?;
-    Ok(StationaryState { family_dimension: f.structural_zeros(&x), x, period: Some(period), iterations, residual, monodromy: Some(phi) })
+    let (x, iterations, residual, last) = newton("periodic orbit", n, guess, s, k, opts.periodic_tolerance, opts.max_iterations, false, eval)?;
+    // Φ(T) at the orbit: recovered from the last scaled Jacobian S⁻¹(I − Φ)S where Newton
+    // stopped at it, else integrated again
+    let phi = match last {
+        Some(j) => Some((0..n * n).map(|ab| (if ab / n == ab % n { 1.0 } else { 0.0 }) - j[ab] * s[ab / n] / s[ab % n]).collect()),
+        None => flow(f, &x, period, s, opts.rtol, true)?.1,
+    };
+    Ok(StationaryState { family_dimension: f.structural_zeros(&x), x, period: Some(period), iterations, residual, monodromy: phi })
 }

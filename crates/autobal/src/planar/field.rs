@@ -16,6 +16,22 @@
 //! ([`PlanarField::semi_balanced_guess`]); with the race centred (`s2 = 0`) it is the balanced
 //! state of the Jeffcott rotor. With `n ≥ 3` balls such states form a family of dimension
 //! `n − 2` (the balls only have to sum to `B`), which [`VectorField::structural_zeros`] reports.
+//!
+//! ```
+//! use autobal::analysis::{speed_scan, stability, stationary, NewtonOptions, ScanOptions, Verdict};
+//! use autobal::planar::field::PlanarField;
+//! use autobal::planar::PlanarRotor;
+//! // paper 004's rotor (eccentric race): semi-balanced and stable at 400 rad/s, above 288
+//! let rotor = PlanarRotor::paper();
+//! let f = PlanarField::new(&rotor, 400.0).unwrap();
+//! let state = stationary(&f, &f.semi_balanced_guess().unwrap(), &NewtonOptions::default()).unwrap();
+//! assert!((state.x[0].hypot(state.x[1]) - rotor.s2).abs() < 1e-15); // C whirls at s2
+//! assert_eq!(stability(&f, &state).unwrap().verdict, Verdict::Stable);
+//! // the stable range over 50..2040 rad/s starts a little above the critical speed
+//! let speeds: Vec<f64> = (0..200).map(|i| 50.0 + 10.0 * i as f64).collect();
+//! let scan = speed_scan(|w| PlanarField::new(&rotor, w), |f, _| f.semi_balanced_guess(), &speeds, &ScanOptions::default()).unwrap();
+//! assert!((scan.stable_ranges[0].from - 300.951).abs() < 1e-3);
+//! ```
 
 use super::equations::Equations;
 use super::{Drive, PlanarRotor};
