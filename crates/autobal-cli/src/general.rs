@@ -79,7 +79,9 @@ fn what_is_analysed(g: &GeneralRotor, r: &RotorStability) -> String {
     let model = match &g.rotor {
         Rotor::Planar(p) if p.s2 == 0.0 => "the planar rotor with its race centred (a Jeffcott rotor with balls): its balanced state",
         Rotor::Planar(_) => "the planar rotor with an eccentric race (paper 004): its semi-balanced state (race centre on the axis)",
-        Rotor::Spatial(s) if s.planes.iter().filter(|p| p.n > 0).count() > 1 => "the spatial rotor with two ball planes: the state where the balls cancel static and couple unbalance",
+        Rotor::Spatial(s) if s.planes.iter().filter(|p| p.n > 0).count() > 1 => {
+            "the spatial rotor with two ball planes: the state where the balls cancel static and couple unbalance"
+        }
         Rotor::Spatial(_) => "the spatial rotor: the state where the balls cancel the static unbalance",
     };
     let how = match r.kind {
@@ -167,7 +169,10 @@ pub fn margin_plot(g: &GeneralRotor, r: &RotorStability, omega_max: f64) -> Plot
     let shades = r.stable_ranges.iter().map(|s| Shade { x: (s.from, s.to), y: (None, Some(0.0)), color: "#009E73".into() }).collect();
     let rate = if g.si { "1/s" } else { "per unit τ" };
     Plot {
-        title: format!("Stability margin of the {} over speed (general route)", if r.kind == Kind::PeriodicOrbit { "stationary orbit" } else { "balanced state" }),
+        title: format!(
+            "Stability margin of the {} over speed (general route)",
+            if r.kind == Kind::PeriodicOrbit { "stationary orbit" } else { "balanced state" }
+        ),
         x_label: if g.si { "speed ω (rad/s)".into() } else { "speed Ω".into() },
         y_label: format!("{} ({rate}; < 0: stable)", if r.kind == Kind::PeriodicOrbit { "largest Floquet exponent" } else { "max Re λ" }),
         series: vec![Series::new("margin", pts, PALETTE[1])],

@@ -3,9 +3,9 @@
 
 mod config;
 mod figures;
-mod general;
 #[cfg(test)]
 mod fuzz;
+mod general;
 mod linear;
 mod map;
 mod mapfig;
@@ -306,11 +306,12 @@ fn run_general_stability(root: &toml::Table, format: Format, lin: LinearArgs, sa
     if lin.balls == BallsArg::Locked {
         anyhow::bail!("--balls locked: the general route analyses the balls free (use the closed-form route of a one-plane config for the locked rotor)");
     }
-    let samples = samples.unwrap_or(200);
+    let g = general::rotor_of(root)?;
+    // a periodic orbit costs a shooting (the variational equations over a revolution) per speed
+    let samples = samples.unwrap_or(if g.rotor.is_periodic() { 50 } else { 200 });
     if !(10..=1_000_000).contains(&samples) {
         anyhow::bail!("--samples: must lie between 10 and 1000000, got {samples}");
     }
-    let g = general::rotor_of(root)?;
     let omega_max = match (&g.rotor, lin.omega_max) {
         (_, Some(w)) => {
             check_speed("--omega-max", w)?;
@@ -319,7 +320,9 @@ fn run_general_stability(root: &toml::Table, format: Format, lin: LinearArgs, sa
         (autobal::rotor_stability::Rotor::Planar(_), None) => 3.0 * g.rotor.natural_frequency(),
         (autobal::rotor_stability::Rotor::Spatial(_), None) => {
             let cfg = autobal::config::spatial(root)?;
-            let w = cfg.analysis.omega_max.unwrap_or_else(|| autobal::reports::default_omega_max(&cfg.model));
+            // the 12-state model's automatic axis covers its critical speeds; a second plane,
+            // supports that differ by direction or gravity move the modes, so twice that
+            let w = cfg.analysis.omega_max.unwrap_or_else(|| 2.0 * autobal::reports::default_omega_max(&cfg.model));
             w * g.omega0
         }
     };
