@@ -156,9 +156,11 @@ pub fn plot(r: &MapResult, title: &str) -> Plot {
 pub fn write_plots(r: &MapResult, stem: &Path, title: &str) -> Result<()> {
     let p = plot(r, title);
     let svg_path = crate::output::with_suffix(stem, "svg");
-    std::fs::write(&svg_path, p.to_svg()).with_context(|| format!("cannot write {}", svg_path.display()))?;
+    // one SVG (the heatmap's PNG encoded once), rasterised for the PNG
+    let svg = p.to_svg();
+    std::fs::write(&svg_path, &svg).with_context(|| format!("cannot write {}", svg_path.display()))?;
     let png_path = crate::output::with_suffix(stem, "png");
-    std::fs::write(&png_path, p.to_png(1.5)?).with_context(|| format!("cannot write {}", png_path.display()))?;
+    std::fs::write(&png_path, crate::plot::svg_to_png(&svg, 1.5)?).with_context(|| format!("cannot write {}", png_path.display()))?;
     Ok(())
 }
 
