@@ -361,9 +361,13 @@ impl Plot {
             let half = |v: &[f64]| if v.len() > 1 { (v[1] - v[0]).abs() / 2.0 } else { 0.5 };
             let (ha, hb) = (h.x[0] - half(&h.x), h.x[h.x.len() - 1] + half(&h.x));
             let (va, vb) = (h.y[0] - half(&h.y), h.y[h.y.len() - 1] + half(&h.y));
+            // clipped to the plot area only where it reaches outside it (a map's raster fills
+            // it exactly, and a clip costs the PNG rasteriser a mask over the whole figure)
+            let inside = sx(ha) >= ml - 0.01 && sx(hb) <= ml + PW + 0.01 && sy(vb) >= mt - 0.01 && sy(va) <= mt + PH + 0.01;
+            let (open, close) = if inside { ("<g>", "</g>") } else { (r#"<g clip-path="url(#plotarea)">"#, "</g>") };
             let _ = writeln!(
                 s,
-                r#"<g clip-path="url(#plotarea)"><image x="{:.2}" y="{:.2}" width="{:.2}" height="{:.2}" preserveAspectRatio="none" image-rendering="optimizeSpeed" style="image-rendering:pixelated" href="data:image/png;base64,{}"/></g>"#,
+                r#"{open}<image x="{:.2}" y="{:.2}" width="{:.2}" height="{:.2}" preserveAspectRatio="none" image-rendering="optimizeSpeed" style="image-rendering:pixelated" href="data:image/png;base64,{}"/>{close}"#,
                 sx(ha),
                 sy(vb),
                 sx(hb) - sx(ha),
