@@ -348,9 +348,14 @@ def main():
                           "setup_s": setup, "compile_s": ladder[0]["wall_s"] - warm0,
                           "wall_s": wm, "cpu_s": measure.median_spread([r[1] for r in runs]),
                           "vs_command": wm["median"] / cmd_wall, "vs_library": wm["median"] / lib_wall}
+            # CPU: the peer's process time against the command's and the example's process CPU
+            cm = peers[key]["cpu_s"]["median"]
+            peers[key]["cpu_vs_command"] = cm / report["autobal"]["command_cpu_s"]["median"]
+            peers[key]["cpu_vs_library_process"] = cm / report["autobal"]["library_process_cpu_s"]["median"]
             bound = "" if reached else " (target not reached: lower bound)"
-            print(f"{key}: rtol {rtol:g}, {wm['median'] * 1e3:.1f} ms = {wm['median'] / cmd_wall:.2f}x the command, "
-                  f"{wm['median'] / lib_wall:.2f}x the library{bound}", file=sys.stderr)
+            print(f"{key}: rtol {rtol:g}, {wm['median'] * 1e3:.1f} ms wall = {wm['median'] / cmd_wall:.2f}x the command, "
+                  f"{wm['median'] / lib_wall:.2f}x the library; CPU {cm * 1e3:.1f} ms = {peers[key]['cpu_vs_command']:.2f}x the "
+                  f"command's, {peers[key]['cpu_vs_library_process']:.2f}x the example process's{bound}", file=sys.stderr)
     report["peers"] = peers
     ok = sess.finish(report)
     print(json.dumps(report, indent=2))

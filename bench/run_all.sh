@@ -75,16 +75,16 @@ for path in sorted(glob.glob(os.path.join(d, "*.json"))):
                 lines.append(f"| {k} | {ms(v['command_wall_s'])} | {ms(v['command_cpu_s'])} | {ms(v['library_in_process_s'])} | {rt(v['ratio_command_cpu_to_library'])} |")
     elif name == "peers_passage":
         a = r["autobal"]
-        lines += ["| solver | rtol | error before peak | wall ms | CPU ms | compile s | / command | / library |", "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
+        lines += ["| solver | rtol | error before peak | wall ms | CPU ms | compile s | CPU / command's | CPU / library process's |", "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
         lines.append(f"| autobal simulate (command) | 1e-08 | {f(a['error_before_peak'])} | {ms(a['command_wall_s'])} | {ms(a['command_cpu_s'])} | - | 1 | - |")
-        lines.append(f"| autobal library | 1e-08 | {f(a['error_before_peak'])} | {ms(a['library_wall_s'])} | - | - | - | 1 |")
+        lines.append(f"| autobal library (examples/passage) | 1e-08 | {f(a['error_before_peak'])} | {ms(a['library_wall_s'])} | {ms(a['library_process_cpu_s'])} | - | - | 1 |")
         for k, v in r["peers"].items():
             if "error" in v:
                 lines.append(f"| {k} | failed: {v['error']} | | | | | | |")
                 continue
             e = next((x.get("error_before_peak") for x in v["ladder"] if x["rtol"] == v["rtol"]), None)
             note = "" if v["reached_target"] else " (target not reached)"
-            lines.append(f"| {k} | {v['rtol']:g}{note} | {f(e)} | {ms(v['wall_s'])} | {ms(v['cpu_s'])} | {f(v.get('compile_s'))} | {f(v['vs_command'])} | {f(v['vs_library'])} |")
+            lines.append(f"| {k} | {v['rtol']:g}{note} | {f(e)} | {ms(v['wall_s'])} | {ms(v['cpu_s'])} | {f(v.get('compile_s'))} | {f(v.get('cpu_vs_command'))} | {f(v.get('cpu_vs_library_process'))} |")
     else:
         lines.append("```json\n" + json.dumps({k: v for k, v in r.items() if k != "conditions"}, indent=1)[:4000] + "\n```")
     lines.append("")
