@@ -86,11 +86,14 @@ pub fn chain(segments: &[Segment]) -> Vec<(f64, f64)> {
 fn boundary(r: &MapResult, flag: impl Fn(&Cell) -> bool) -> Vec<(f64, f64)> {
     let dx = (r.x.hi - r.x.lo) / (r.x.n - 1) as f64;
     let dy = (r.y.hi - r.y.lo) / (r.y.n - 1) as f64;
+    // the grid values once (each `value` call rounds through log10: 320 000 calls per figure)
+    let xs: Vec<f64> = (0..r.x.n).map(|i| r.x.value(i)).collect();
+    let ys: Vec<f64> = (0..r.y.n).map(|j| r.y.value(j)).collect();
     let mut segs = vec![];
     for j in 0..r.y.n {
         let Some(row) = &r.rows[j] else { continue };
         for i in 0..r.x.n {
-            let (x, y) = (r.x.value(i), r.y.value(j));
+            let (x, y) = (xs[i], ys[j]);
             if i + 1 < r.x.n && flag(&row[i]) != flag(&row[i + 1]) {
                 segs.push(((x + dx / 2.0, y - dy / 2.0), (x + dx / 2.0, y + dy / 2.0)));
             }
