@@ -9,6 +9,7 @@ mod linear;
 mod map;
 mod mapfig;
 mod num;
+mod outfile;
 mod output;
 mod parquet;
 mod plot;
@@ -17,7 +18,7 @@ mod sim;
 mod spatial_sim;
 mod sweep;
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
 
@@ -149,10 +150,11 @@ enum Command {
         /// Balls free (12 states) or locked (8 states)
         #[arg(long, value_enum, default_value = "free")]
         balls: BallsArg,
-        /// `margin`: max Re λ from the eigenvalues; `verdict`: Routh–Hurwitz only (faster)
+        /// `margin`: max Re λ from the eigenvalues; `verdict`: Routh–Hurwitz only (faster; the
+        /// CSV's max_real_part column is then empty)
         #[arg(long, value_enum, default_value = "margin")]
         quantity: QuantityArg,
-        /// Output stem: writes STEM.csv, STEM.svg, STEM.png
+        /// Output stem: writes STEM.csv, STEM.svg, STEM.png (a folder, `DIR/`: DIR/stability-map.*)
         #[arg(long, short, default_value = "stability-map")]
         out: PathBuf,
         /// Worker threads (default: all cores)
@@ -251,10 +253,14 @@ fn run(cli: Cli) -> Result<()> {
             if !(10..=1_000_000).contains(&samples) {
                 anyhow::bail!("--samples: must lie between 10 and 1000000, got {samples}");
             }
+            let svg = svg.map(|p| outfile::resolve(&p, "stability.svg"));
+            if let Some(p) = &svg {
+                outfile::Outputs::new().inputs(common.config.as_deref()).output("--svg", p).check()?;
+            }
             let c = linear::compare(&cfg.model, w, samples, lin.balls.into())?;
             autobal::limits::check_finite("stability", &c.exact)?;
             if let Some(p) = svg {
-                std::fs::write(&p, figures::margin_plot(&cfg.model, &c).to_svg()).with_context(|| format!("--svg {}: cannot write", p.display()))?;
+                outfile::write_atomic("--svg", &p, figures::margin_plot(&cfg.model, &c).to_svg())?;
             }
             emit(format, linear::stability_json(&cfg, &c, lin.balls.into()), linear::stability_table(&cfg, &c, lin.balls.into()))
         }
@@ -267,6 +273,15 @@ fn run(cli: Cli) -> Result<()> {
             if !(3..=10_000_000).contains(&points) {
                 anyhow::bail!("--points: must lie between 3 and 10000000, got {points}");
             }
+            let svg = svg.map(|p| outfile::resolve(&p, "campbell"));
+            if let Some(p) = &svg {
+                let mut o = outfile::Outputs::new();
+                o.inputs(common.config.as_deref());
+                for suffix in ["rotating", "fixed"] {
+                    o.output("--svg", &PathBuf::from(format!("{}_{suffix}.svg", p.display())));
+                }
+                o.check()?;
+            }
             let _ = ctrlc::set_handler(|| map::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
             linear::run_campbell(&cfg, w, points, lin.balls.into(), format == Format::Json, svg.as_deref())
         }
@@ -276,6 +291,8 @@ fn run(cli: Cli) -> Result<()> {
         Command::Merge(a) => sweep::merge(a),
         Command::Basins { config, set, n, out, format, threads } => run_basins(config, set, n, out, format, threads),
         Command::Report { common, out, quick } => {
+            // the folder is created and checked before any section runs
+            outfile::Outputs::new().inputs(common.config.as_deref()).output("--out", &out.join("index.html")).check()?;
             let _ = ctrlc::set_handler(|| sim::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
             let index = report::run(common.config.as_deref(), &common.set, &out, quick)?;
             output::print(&format!("report written to {}\n", index.display()))
@@ -314,13 +331,21 @@ fn run_map(
         rayon::ThreadPoolBuilder::new().num_threads(t).build_global().ok();
     }
     let _ = ctrlc::set_handler(|| map::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
-    if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).with_context(|| format!("--out: cannot create {}", dir.display()))?;
-    }
-    let out = output::out_stem(&out, &["csv", "svg", "png"]);
+    let out = output::out_stem(&outfile::resolve(&out, "stability-map"), &["csv", "svg", "png"]);
     let csv_path = output::with_suffix(&out, "csv");
-    let file = std::fs::File::create(&csv_path).with_context(|| format!("--out: cannot create {}", csv_path.display()))?;
-    let mut w = std::io::BufWriter::new(file);
+    let boundary_path = PathBuf::from(format!("{}_boundary.csv", out.display()));
+    let mut o = outfile::Outputs::new();
+    o.inputs(common.config.as_deref());
+    for p in outfile::stem_files(&out, &["csv", "svg", "png"]) {
+        o.output("--out", &p);
+    }
+    if boundary {
+        o.output("--out", &boundary_path);
+    }
+    o.check()?;
+    // the rows go to a temporary file, renamed into place when the map ends or is interrupted
+    // (complete rows only); an error removes it
+    let mut w = outfile::Staged::create("--out", &csv_path)?;
     let q = if quantity == QuantityArg::Margin { map::Quantity::Margin } else { map::Quantity::Verdict };
     let progress = std::io::IsTerminal::is_terminal(&std::io::stderr());
     let cfg = config::build(&root, &source)?;
@@ -337,8 +362,8 @@ fn run_map(
         }
         let t = std::time::Instant::now();
         let b = map::trace(&cfg, &xa, &ya, omega, balls.into())?;
-        let path = PathBuf::from(format!("{}_boundary.csv", out.display()));
-        std::fs::write(&path, map::boundary_csv(&b, &xa.key, &ya.key)).with_context(|| format!("--out: cannot write {}", path.display()))?;
+        let path = boundary_path;
+        outfile::write_atomic("--out", &path, map::boundary_csv(&b, &xa.key, &ya.key))?;
         output::note(&format!(
             "boundary: {} curves, {} codimension-two points, {} characteristic polynomials, {:.3} s; wrote {}",
             b.curves.len(),
@@ -350,7 +375,6 @@ fn run_map(
         if !b.complete {
             // nothing of the map was computed: no empty CSV left behind
             drop(w);
-            let _ = std::fs::remove_file(&csv_path);
             anyhow::bail!(
                 "interrupted while tracing the boundary: the {} curves traced are kept in {}; the map was not computed",
                 b.curves.len(),
@@ -363,6 +387,7 @@ fn run_map(
     };
     let t0 = std::time::Instant::now();
     let (r, run) = map::compute(&cfg, xa, ya, omega, balls.into(), q, &mut w, progress)?;
+    let csv_path = w.commit()?;
     let secs = t0.elapsed().as_secs_f64();
     let done = run.rows_done;
     map::write_plots(&r, &out, &format!("Stability map, balls {}", if balls == BallsArg::Free { "free" } else { "locked" }), traced.as_ref())?;
@@ -386,10 +411,26 @@ fn run_map(
 }
 
 /// `simulate --out`: `file.csv` is written as given; any other name is a stem (as for sweep and
-/// map), `STEM.csv`. Returns the CSV's path and the stem of the files beside it.
+/// map), `STEM.csv`; a folder (`runs/`) gets `runs/simulation.csv`. Returns the CSV's path and
+/// the stem of the files beside it.
 fn csv_and_stem(out: &std::path::Path) -> (PathBuf, PathBuf) {
-    let stem = output::out_stem(out, &["csv", "parquet", "svg"]);
+    let stem = output::out_stem(&outfile::resolve(out, "simulation.csv"), &["csv", "parquet", "svg"]);
     (output::with_suffix(&stem, "csv"), stem)
+}
+
+/// `simulate`'s outputs (the CSV, the Parquet file, the figures), checked before the run.
+fn simulation_outputs(config: Option<&std::path::Path>, out: &std::path::Path, parquet: bool) -> Result<(PathBuf, PathBuf)> {
+    let (csv, stem) = csv_and_stem(out);
+    let mut o = outfile::Outputs::new();
+    o.inputs(config).output("--out", &csv);
+    if parquet {
+        o.output("--parquet", &output::with_suffix(&stem, "parquet"));
+    }
+    for p in sim::plot_paths(&stem) {
+        o.output("--out", &p);
+    }
+    o.check()?;
+    Ok((csv, stem))
 }
 
 fn run_simulate(config: Option<PathBuf>, set: Vec<String>, dt: Option<f64>, out: PathBuf, parquet: bool, format: Format) -> Result<()> {
@@ -401,7 +442,7 @@ fn run_simulate(config: Option<PathBuf>, set: Vec<String>, dt: Option<f64>, out:
         if parquet {
             anyhow::bail!("--parquet: the spatial simulation writes CSV only (the planar simulation and sweeps write Parquet)");
         }
-        return run_spatial(&root, &source, dt, out, format);
+        return run_spatial(&root, &source, config.as_deref(), dt, out, format);
     }
     let mut cfg = config::build_planar(&root, &source)?;
     if let Some(d) = dt {
@@ -409,23 +450,20 @@ fn run_simulate(config: Option<PathBuf>, set: Vec<String>, dt: Option<f64>, out:
         cfg.settings.validate(&cfg.rotor).map_err(|e| anyhow::anyhow!("--dt: {e}"))?;
     }
     let _ = ctrlc::set_handler(|| sim::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
-    if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).with_context(|| format!("--out: cannot create {}", dir.display()))?;
-    }
-    let (out, stem) = csv_and_stem(&out);
-    let file = std::fs::File::create(&out).with_context(|| format!("--out: cannot create {}", out.display()))?;
-    let mut w = std::io::BufWriter::new(file);
+    let (out, stem) = simulation_outputs(config.as_deref(), &out, parquet)?;
+    let mut w = outfile::Staged::create("--out", &out)?;
     let mut table = match parquet {
         true => Some(parquet::Table::create(&output::with_suffix(&stem, "parquet"), &sim::sample_columns(cfg.rotor.n), false)?),
         false => None,
     };
     let progress = std::io::IsTerminal::is_terminal(&std::io::stderr());
     let (summary, env, wall) = sim::run_to_csv(&cfg, &mut w, table.as_mut(), progress)?;
-    drop(w);
+    autobal::limits::check_finite("the summary", &summary)?;
+    // complete rows (also when stopped early): renamed into place
+    let out = w.commit()?;
     if let Some(t) = table {
         output::note(&format!("wrote {}", t.finish()?.display()));
     }
-    autobal::limits::check_finite("the summary", &summary)?;
     let plots = sim::write_plots(&cfg, &env, &stem, "Passage")?;
     emit(format, sim::summary_json(&cfg, &summary, wall), sim::summary_table(&cfg, &summary, wall))?;
     output::note(&format!(
@@ -443,7 +481,7 @@ fn run_simulate(config: Option<PathBuf>, set: Vec<String>, dt: Option<f64>, out:
     Ok(())
 }
 
-fn run_spatial(root: &toml::Table, source: &str, dt: Option<f64>, out: PathBuf, format: Format) -> Result<()> {
+fn run_spatial(root: &toml::Table, source: &str, config: Option<&std::path::Path>, dt: Option<f64>, out: PathBuf, format: Format) -> Result<()> {
     let mut sim = spatial_sim::build(root, source)?;
     if sim.default_drive {
         let (w_end, _) = sim.drive.kinematics(sim.settings.t_end);
@@ -460,15 +498,12 @@ fn run_spatial(root: &toml::Table, source: &str, dt: Option<f64>, out: PathBuf, 
         sim.settings.validate().map_err(|e| anyhow::anyhow!("--dt: {e}"))?;
     }
     let _ = ctrlc::set_handler(|| sim::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
-    if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).with_context(|| format!("--out: cannot create {}", dir.display()))?;
-    }
-    let (out, stem) = csv_and_stem(&out);
-    let file = std::fs::File::create(&out).with_context(|| format!("--out: cannot create {}", out.display()))?;
-    let mut w = std::io::BufWriter::new(file);
+    let (out, stem) = simulation_outputs(config, &out, false)?;
+    let mut w = outfile::Staged::create("--out", &out)?;
     let progress = std::io::IsTerminal::is_terminal(&std::io::stderr());
     let (summary, kept, wall) = spatial_sim::run_to_csv(&sim, &mut w, progress, &sim::INTERRUPTED)?;
-    drop(w);
+    // complete rows (also when stopped early): renamed into place
+    let out = w.commit()?;
     let plots = spatial_sim::write_plots(&sim, &kept, &stem, "Spatial rotor")?;
     emit(format, spatial_sim::summary_json(&sim, &summary, wall), spatial_sim::summary_table(&sim, &summary, wall))?;
     eprintln!("wrote {} and {} plots ({})", out.display(), plots.len(), plots.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", "));
@@ -488,9 +523,9 @@ fn run_basins(config: Option<PathBuf>, set: Vec<String>, n: usize, out: PathBuf,
         rayon::ThreadPoolBuilder::new().num_threads(t).build_global().ok();
     }
     let _ = ctrlc::set_handler(|| sim::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
-    if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).with_context(|| format!("--out: cannot create {}", dir.display()))?;
-    }
+    // checked before the grid is computed
+    let out = outfile::resolve(&out, "basins.csv");
+    outfile::Outputs::new().inputs(config.as_deref()).output("--out", &out).check()?;
     let progress = std::io::IsTerminal::is_terminal(&std::io::stderr());
     let v = spatial_sim::run_basins(&sim, n, &out, progress, &sim::INTERRUPTED)?;
     let table = format!(

@@ -3,6 +3,9 @@
 //! `INT64` column (a sweep's `point`) and `DOUBLE`s, written in row groups of [`ROW_GROUP`] rows
 //! as rows arrive, so memory stays bounded and an interrupted run keeps every full group plus
 //! the last partial one (the footer is written by [`Table::finish`], also on interruption).
+//! The rows go to a temporary file beside the final name ([`crate::outfile::TempName`]):
+//! [`Table::finish`] writes the footer and renames it into place; a table dropped unfinished
+//! (an error) removes it, so a footer-less file never appears under the final name.
 //!
 //! Built with the `parquet` crate (no Arrow, no compression codecs: the cheapest build that
 //! writes standard files); the cargo feature `parquet` (on by default) can leave it out, and
@@ -17,6 +20,9 @@ pub const ROW_GROUP: usize = 1 << 16;
 /// A Parquet file being written row by row.
 pub struct Table {
     path: PathBuf,
+    /// The temporary file's name until [`Table::finish`] renames it.
+    #[cfg(feature = "parquet")]
+    temp: crate::outfile::TempName,
     #[cfg(feature = "parquet")]
     writer: parquet::file::writer::SerializedFileWriter<std::fs::File>,
     /// Whether column 0 is an integer column.
@@ -44,9 +50,9 @@ impl Table {
             .collect::<parquet::errors::Result<Vec<_>>>()?;
         let schema = Arc::new(Type::group_type_builder("autobal").with_fields(fields).build()?);
         let props = parquet::file::properties::WriterProperties::builder().set_created_by(format!("autobal {}", env!("CARGO_PKG_VERSION"))).build();
-        let file = std::fs::File::create(path).with_context(|| format!("--parquet: cannot create {}", path.display()))?;
+        let (temp, file) = crate::outfile::TempName::create("--parquet", path)?;
         let writer = parquet::file::writer::SerializedFileWriter::new(file, schema, Arc::new(props))?;
-        Ok(Table { path: path.to_path_buf(), writer, int_first, columns: vec![vec![]; names.len()] })
+        Ok(Table { path: path.to_path_buf(), temp, writer, int_first, columns: vec![vec![]; names.len()] })
     }
 
     /// Without the `parquet` feature: an error that says how to get it.
@@ -101,11 +107,16 @@ impl Table {
         Ok(())
     }
 
-    /// Write the last rows and the footer (without it the file cannot be read).
+    /// Write the last rows and the footer (without it the file cannot be read), and rename the
+    /// file into place.
     pub fn finish(mut self) -> Result<PathBuf> {
         self.flush().with_context(|| format!("--parquet: cannot write {}", self.path.display()))?;
         #[cfg(feature = "parquet")]
-        self.writer.close().with_context(|| format!("--parquet: cannot write {}", self.path.display()))?;
+        {
+            self.writer.close().with_context(|| format!("--parquet: cannot write {}", self.path.display()))?;
+            self.temp.rename()
+        }
+        #[cfg(not(feature = "parquet"))]
         Ok(self.path)
     }
 }

@@ -3,7 +3,7 @@
 //! `[balancer2]`), and `autobal basins`.
 
 use crate::plot::{Plot, Series, PALETTE};
-use anyhow::{bail, Context, Result};
+use anyhow::{bail, Result};
 use autobal::config::SpatialSimulation;
 use autobal::spatial::dynamics::basins::{angle_grid, basins, check_angle_grid};
 use autobal::spatial::dynamics::stationary::response_curve;
@@ -258,9 +258,8 @@ pub fn plots(sim: &SpatialSim, kept: &[Sample], title: &str) -> Vec<(String, Plo
 pub fn write_plots(sim: &SpatialSim, kept: &[Sample], stem: &Path, title: &str) -> Result<Vec<PathBuf>> {
     let mut files = vec![];
     for (suffix, plot) in plots(sim, kept, title) {
-        let name = format!("{}_{suffix}.svg", stem.file_name().and_then(|s| s.to_str()).unwrap_or("simulation"));
-        let path = stem.with_file_name(name);
-        std::fs::write(&path, plot.to_svg()).with_context(|| format!("cannot write {}", path.display()))?;
+        let path = crate::sim::plot_path(stem, &suffix);
+        crate::outfile::write_atomic("--out", &path, plot.to_svg())?;
         files.push(path);
     }
     Ok(files)
@@ -301,7 +300,8 @@ pub fn run_basins(sim: &SpatialSim, n: usize, out: &Path, progress: bool, interr
             ));
         }
     }
-    std::fs::write(out, csv).with_context(|| format!("--out: cannot write {}", out.display()))?;
+    // whole or not at all (an interrupted run keeps its complete runs, and says so below)
+    crate::outfile::write_atomic("--out", out, csv)?;
     let mut v = autobal::reports::basins(&res, wall);
     v["csv"] = json!(out.display().to_string());
     let done = res.iter().flatten().count();
