@@ -178,7 +178,8 @@ enum Command {
         dt: Option<f64>,
         /// CSV of samples (t, omega, x, y, amplitude, psi_1 … psi_n): `--out run.csv` writes run.csv; a
         /// name without .csv is a stem, as for sweep and map (`--out runs/m3` writes runs/m3.csv);
-        /// plots go beside it as STEM_*.svg
+        /// plots go beside it as STEM_*.svg; a folder (`runs/`) gets runs/simulation.csv. Written
+        /// to a temporary name and renamed when done (or stopped, with the complete rows)
         #[arg(long, short, default_value = "simulation.csv")]
         out: PathBuf,
         /// Also write the samples as Parquet, STEM.parquet beside the CSV
@@ -204,7 +205,7 @@ enum Command {
         /// Grid points per angle (N × N runs)
         #[arg(long, default_value_t = 24)]
         n: usize,
-        /// CSV of the runs' ends
+        /// CSV of the runs' ends (a folder, `DIR/`: DIR/basins.csv); checked before the runs
         #[arg(long, short, default_value = "basins.csv")]
         out: PathBuf,
         /// Output on standard output: a table to read or JSON
@@ -439,10 +440,7 @@ fn run_simulate(config: Option<PathBuf>, set: Vec<String>, dt: Option<f64>, out:
         config::apply_set(&mut root, s)?;
     }
     if autobal::config::is_spatial(&root) {
-        if parquet {
-            anyhow::bail!("--parquet: the spatial simulation writes CSV only (the planar simulation and sweeps write Parquet)");
-        }
-        return run_spatial(&root, &source, config.as_deref(), dt, out, format);
+        return run_spatial(&root, &source, config.as_deref(), dt, out, parquet, format);
     }
     let mut cfg = config::build_planar(&root, &source)?;
     if let Some(d) = dt {
@@ -481,7 +479,7 @@ fn run_simulate(config: Option<PathBuf>, set: Vec<String>, dt: Option<f64>, out:
     Ok(())
 }
 
-fn run_spatial(root: &toml::Table, source: &str, config: Option<&std::path::Path>, dt: Option<f64>, out: PathBuf, format: Format) -> Result<()> {
+fn run_spatial(root: &toml::Table, source: &str, config: Option<&std::path::Path>, dt: Option<f64>, out: PathBuf, parquet: bool, format: Format) -> Result<()> {
     let mut sim = spatial_sim::build(root, source)?;
     if sim.default_drive {
         let (w_end, _) = sim.drive.kinematics(sim.settings.t_end);
@@ -498,12 +496,19 @@ fn run_spatial(root: &toml::Table, source: &str, config: Option<&std::path::Path
         sim.settings.validate().map_err(|e| anyhow::anyhow!("--dt: {e}"))?;
     }
     let _ = ctrlc::set_handler(|| sim::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
-    let (out, stem) = simulation_outputs(config, &out, false)?;
+    let (out, stem) = simulation_outputs(config, &out, parquet)?;
     let mut w = outfile::Staged::create("--out", &out)?;
+    let mut table = match parquet {
+        true => Some(parquet::Table::create(&output::with_suffix(&stem, "parquet"), &spatial_sim::columns(&sim), false)?),
+        false => None,
+    };
     let progress = std::io::IsTerminal::is_terminal(&std::io::stderr());
-    let (summary, kept, wall) = spatial_sim::run_to_csv(&sim, &mut w, progress, &sim::INTERRUPTED)?;
+    let (summary, kept, wall) = spatial_sim::run_to_files(&sim, &mut w, table.as_mut(), progress, &sim::INTERRUPTED)?;
     // complete rows (also when stopped early): renamed into place
     let out = w.commit()?;
+    if let Some(t) = table {
+        output::note(&format!("wrote {}", t.finish()?.display()));
+    }
     let plots = spatial_sim::write_plots(&sim, &kept, &stem, "Spatial rotor")?;
     emit(format, spatial_sim::summary_json(&sim, &summary, wall), spatial_sim::summary_table(&sim, &summary, wall))?;
     eprintln!("wrote {} and {} plots ({})", out.display(), plots.len(), plots.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", "));

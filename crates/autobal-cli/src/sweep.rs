@@ -35,7 +35,8 @@ pub struct SweepArgs {
     /// shards' outputs with `autobal merge`
     #[arg(long, value_name = "K/N")]
     shard: Option<String>,
-    /// Output stem: STEM.csv (one row per run, written as runs finish) and STEM.json
+    /// Output stem: STEM.csv (one row per run, written as runs finish, to a temporary name
+    /// renamed when done or stopped) and STEM.json; a folder (`DIR/`): DIR/sweep.*
     #[arg(long, short, default_value = "sweep")]
     out: PathBuf,
     /// Also write the rows as Parquet, STEM.parquet (row groups written as runs finish)
@@ -54,7 +55,8 @@ pub struct MergeArgs {
     /// The shards' CSV files (each with its STEM.json beside it), in any order
     #[arg(required = true, value_name = "SHARD.csv")]
     shards: Vec<PathBuf>,
-    /// Output stem: STEM.csv and STEM.json, as the unsharded sweep writes them
+    /// Output stem: STEM.csv and STEM.json, as the unsharded sweep writes them (a folder,
+    /// `DIR/`: DIR/sweep.*); written only when every shard checks out
     #[arg(long, short)]
     out: PathBuf,
     /// Also write STEM.parquet, as `autobal sweep --parquet` does

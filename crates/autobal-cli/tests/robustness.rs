@@ -490,3 +490,17 @@ fn regression_ctrl_c_left_truncated_or_footerless_files() {
     }
     std::fs::remove_dir_all(&d).ok();
 }
+
+#[test]
+fn regression_spatial_simulate_refused_parquet_its_help_promises() {
+    let d = scratch("spq");
+    let stem = s(&d.join("sp"));
+    let (code, _, err) =
+        run_for(Duration::from_secs(60), &["simulate", "--config", &examples("spatial.toml"), "--set", "drive.t_end=20", "--parquet", "--out", &stem]);
+    assert_eq!(code, 0, "{err}");
+    let rows = csv_is_whole(&d.join("sp.csv"));
+    let bytes = std::fs::read(d.join("sp.parquet")).unwrap();
+    assert!(rows > 0 && &bytes[..4] == b"PAR1" && &bytes[bytes.len() - 4..] == b"PAR1", "{err}");
+    no_part_files(&d);
+    std::fs::remove_dir_all(&d).ok();
+}
