@@ -154,4 +154,24 @@ mod tests {
         }
         std::fs::remove_dir_all(&dir).unwrap();
     }
+
+    #[test]
+    fn a_table_dropped_unfinished_leaves_no_file() {
+        // an error between create and finish: no footer-less file under any name
+        let dir = std::env::temp_dir().join(format!("autobal-parquet-drop-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("t.parquet");
+        let mut t = Table::create(&path, &["a".to_string()], false).unwrap();
+        for i in 0..ROW_GROUP + 3 {
+            t.push(&[i as f64]).unwrap();
+        }
+        drop(t);
+        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0);
+        let t = Table::create(&path, &["a".to_string()], false).unwrap();
+        assert!(!path.exists(), "the final name appears only when finished");
+        t.finish().unwrap();
+        let bytes = std::fs::read(&path).unwrap();
+        assert_eq!(&bytes[bytes.len() - 4..], b"PAR1");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 }
