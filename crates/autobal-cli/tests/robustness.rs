@@ -467,7 +467,7 @@ fn regression_ctrl_c_left_truncated_or_footerless_files() {
     // every file under its final name is whole, and no temporary file is left
     let spatial = examples("spatial.toml");
     let runs: Vec<(&str, Vec<&str>)> = vec![
-        ("sim.csv", vec!["simulate", "--parquet", "--set", "drive.t_end=2000", "--set", "integration.dt=0.0005", "--out", "sim.csv"]),
+        ("sim.csv", vec!["simulate", "--parquet", "--set", "drive.t_end=2000", "--set", "integration.dt=0.002", "--out", "sim.csv"]),
         ("sw.csv", vec!["sweep", "--parquet", "--threads", "1", "--x", "drive.b=1:2:4000", "--out", "sw"]),
         ("map.csv", vec!["map", "--x", "dimensionless.z_a=-2:2:2000", "--y", "omega=0.1:3:2000", "--threads", "1", "--out", "map"]),
         ("b.csv", vec!["basins", "--config", &spatial, "--n", "200", "--threads", "1", "--out", "b.csv"]),
