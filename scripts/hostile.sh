@@ -244,6 +244,8 @@ cases=(
 "INTFAST:merge $SH/s1.csv $SH/s2.csv --parquet --out merged"
 "INTFAST:merge $SH/s1.csv $SH/s2.csv --parquet --out merged"
 "INTFAST:merge $SH/s1.csv $SH/s2.csv --parquet --out merged"
+# --set with a whole table as the value of a table
+"critical --set dimensionless={c_sigma=1}"
 )
 
 RANDOM=${HOSTILE_SEED:-23}
