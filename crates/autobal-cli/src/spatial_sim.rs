@@ -173,7 +173,7 @@ pub fn summary_table(sim: &SpatialSim, s: &Summary, wall: f64) -> String {
     let time = |t: f64| if sim.config.dimensional { format!("t = {t:.4} s") } else { format!("τ = {t:.4}") };
     let _ = writeln!(
         o,
-        "peak displacement at the balancer plane (from the axis, sag included): {:.6} {lu} at {} ({})",
+        "peak whirl radius at the balancer plane (distance from the axis, a sag included): {:.6} {lu} at {} ({})",
         ls * s.peak_amplitude,
         speed(s.omega_at_peak),
         time(s.t_at_peak)
@@ -181,27 +181,23 @@ pub fn summary_table(sim: &SpatialSim, s: &Summary, wall: f64) -> String {
     use autobal::spatial::dynamics::RunOutcome;
     let _ = writeln!(
         o,
-        "final (over the last revolution): whirl radius {:.6} {lu} (RMS about the mean position), static sag {:.6} {lu}, at {}",
+        "final: radius {:.6} {lu} at {}; static sag {:.6} {lu} (last revolution: radius = RMS whirl about the mean position, sag = its distance from the axis); residual unbalance {:.3e} of the unbalance{} (mean over the last revolution); {}",
         ls * s.final_amplitude,
-        ls * s.static_sag,
         speed(s.final_omega),
-    );
-    let _ = writeln!(
-        o,
-        "residual unbalance (mean over the last revolution) {:.3e} of the unbalance{}; {}",
+        ls * s.static_sag,
         s.residual_unbalance,
         s.residual_couple.map_or(String::new(), |c| format!(", couple {c:.3e}")),
         match s.outcome {
-            RunOutcome::Balanced => "balanced".to_string(),
-            RunOutcome::PartiallyBalanced => "partially balanced: the balls' capacity falls short, they rest together against the unbalance".to_string(),
-            RunOutcome::NotBalanced => "not balanced".to_string(),
-            RunOutcome::NotSettled => "not settled".to_string(),
+            RunOutcome::Balanced => "balanced",
+            RunOutcome::PartiallyBalanced => "partially balanced: the balls' capacity falls short, they rest together against the unbalance",
+            RunOutcome::NotBalanced => "not balanced",
+            RunOutcome::NotSettled => "not settled",
         }
     );
     if s.outcome == RunOutcome::NotSettled && s.stopped.is_none() {
         let _ = writeln!(
             o,
-            "warning: the run ends before the balls settled (their mean angles still drift from one revolution to the next{}): the residual and radius describe a transient; raise drive.t_end",
+            "warning: the balls have not settled: their mean angles still drift from one revolution to the next{}: a transient (raise drive.t_end) or balls circulating round the race; the residual and radius are no stationary state's",
             s.ball_drift.map_or(", or it turned less than two revolutions".to_string(), |d| format!(" by {d:.2e} rad"))
         );
     }
