@@ -192,16 +192,36 @@ pub fn summary_table(sim: &SpatialSim, s: &Summary, wall: f64) -> String {
         false => format!("Ω = {w:.4}"),
     };
     let time = |t: f64| if sim.config.dimensional { format!("t = {t:.4} s") } else { format!("τ = {t:.4}") };
-    let _ = writeln!(o, "peak whirl radius at the balancer plane: {:.6} {lu} at {} ({})", ls * s.peak_amplitude, speed(s.omega_at_peak), time(s.t_at_peak));
     let _ = writeln!(
         o,
-        "final: radius {:.6} {lu} at {}; residual unbalance {:.3e} of the unbalance{}; {}",
+        "peak whirl radius at the balancer plane (distance from the axis, a sag included): {:.6} {lu} at {} ({})",
+        ls * s.peak_amplitude,
+        speed(s.omega_at_peak),
+        time(s.t_at_peak)
+    );
+    use autobal::spatial::dynamics::RunOutcome;
+    let _ = writeln!(
+        o,
+        "final: radius {:.6} {lu} at {}; static sag {:.6} {lu} (last revolution: radius = RMS whirl about the mean position, sag = its distance from the axis); residual unbalance {:.3e} of the unbalance{} (mean over the last revolution); {}",
         ls * s.final_amplitude,
         speed(s.final_omega),
+        ls * s.static_sag,
         s.residual_unbalance,
         s.residual_couple.map_or(String::new(), |c| format!(", couple {c:.3e}")),
-        if s.balanced { "balanced" } else { "not balanced" }
+        match s.outcome {
+            RunOutcome::Balanced => "balanced",
+            RunOutcome::PartiallyBalanced => "partially balanced: the balls' capacity falls short, they rest together against the unbalance",
+            RunOutcome::NotBalanced => "not balanced",
+            RunOutcome::NotSettled => "not settled",
+        }
     );
+    if s.outcome == RunOutcome::NotSettled && s.stopped.is_none() {
+        let _ = writeln!(
+            o,
+            "warning: the balls have not settled: their mean angles still drift from one revolution to the next{}: a transient (raise drive.t_end) or balls circulating round the race; the residual and radius are no stationary state's",
+            s.ball_drift.map_or(", or it turned less than two revolutions".to_string(), |d| format!(" by {d:.2e} rad"))
+        );
+    }
     let _ = writeln!(o, "integration: {} steps ({} rejected), {} right-hand sides, {:.3} s", s.steps, s.rejected_steps, s.rhs_evaluations, wall);
     if sim.rotor.planes.iter().any(|p| p.physics.is_active()) {
         let _ = writeln!(o, "real balls: {} contacts, {} stick-slip transitions", s.contacts, s.stick_slip_transitions);
