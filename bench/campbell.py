@@ -20,7 +20,11 @@ ROSS is not a test requirement: install it into a separate environment, e.g.
 (on Python 3.11 pip resolves ross-rotordynamics 2.3.0: 3.x needs Python >= 3.12/3.13). Without
 ROSS the script compares with NumPy only and says so.
 
-Usage: python3 bench/campbell.py [SPEEDS] [REPEATS]      (default 200 7)
+Also the command a user runs, `autobal campbell --points SPEEDS --omega-max 5 --format json`,
+as a whole process (wall and CPU). Load average before and after, CPU beside wall, LOADED rule:
+bench/measure.py.
+
+Usage: python3 bench/campbell.py [SPEEDS] [REPEATS] [--allow-loaded] [--json FILE]   (default 200 7)
 """
 import json
 import os
@@ -34,6 +38,10 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")
 os.environ.setdefault("MKL_NUM_THREADS", "1")
 import numpy as np  # noqa: E402
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import measure  # noqa: E402
+
+OPTS = measure.strip_args(sys.argv)  # --allow-loaded, --json FILE
 SPEEDS = int(sys.argv[1]) if len(sys.argv) > 1 else 200
 REPEATS = int(sys.argv[2]) if len(sys.argv) > 2 else 7
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -74,6 +82,9 @@ def spread(xs):
 
 
 def main():
+    sess = measure.Session("campbell", allow_loaded=OPTS.allow_loaded)
+    cli = os.path.join(ROOT, "target", "release", "autobal")
+    cmd_runs, np_cpu = [], []
     subprocess.run(["cargo", "build", "--quiet", "--release", "--example", "bench_campbell", "-p", "autobal"], cwd=ROOT, check=True)
     exe = os.path.join(ROOT, "target", "release", "examples", "bench_campbell")
     try:
@@ -91,7 +102,11 @@ def main():
             t_ross = time.perf_counter() - t0
         res = subprocess.run([exe, str(SPEEDS), "5"], check=True, capture_output=True, text=True)
         ab = json.loads(res.stdout.strip().splitlines()[-1])
+        c0 = time.process_time()
         t_np = numpy_campbell(SPEEDS)
+        np_cpu.append(time.process_time() - c0)
+        if os.path.exists(cli):
+            cmd_runs.append(measure.run_cmd([cli, "campbell", "--points", str(SPEEDS), "--omega-max", "5", "--format", "json"]))
         runs.append((t_ross, ab, t_np))
         print(f"repetition {r + 1}/{REPEATS}: ROSS {t_ross} s, autobal free {ab['free']['median_s']:.4f} s, "
               f"locked {ab['locked']['median_s']:.4f} s, NumPy eig {t_np:.4f} s", file=sys.stderr)
@@ -114,7 +129,14 @@ def main():
         report["seconds"]["ross_run_campbell_24_states"] = spread([t for t, _, _ in runs])
         report["ratios_paired"]["ROSS / autobal free"] = spread([t / a["free"]["median_s"] for t, a, _ in runs])
         report["ratios_paired"]["ROSS / autobal locked"] = spread([t / a["locked"]["median_s"] for t, a, _ in runs])
+    report["cpu_s"] = {"numpy_eig_stack_12_states": spread(np_cpu)}
+    if cmd_runs:
+        report["seconds"]["autobal_campbell_command_wall"] = spread([w for w, _ in cmd_runs])
+        report["cpu_s"]["autobal_campbell_command"] = spread([c for _, c in cmd_runs])
+        report["ratios_paired"]["command wall / library free"] = spread([w / a["free"]["median_s"] for (w, _), (_, a, _) in zip(cmd_runs, runs)])
+    ok = sess.finish(report)
     print(json.dumps(report, indent=2))
+    measure.write_table(OPTS.json, report, ok)
 
 
 if __name__ == "__main__":

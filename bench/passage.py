@@ -52,6 +52,8 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "bench"))
+import measure  # noqa: E402
 M1, M2, M3, N = 1.0, 0.2, 0.03, 2
 S1, S2, GAMMA, R = 0.003, 0.0005, 0.0, 0.06
 M0 = M1 + M2 + N * M3
@@ -309,6 +311,7 @@ def main():
     ap.add_argument("--balls", action="store_true", help="also time b = 0.04 from rest and 64 balls against 2 (autobal only)")
     ap.add_argument("--check", action="store_true", help="short cross-check (fixed axes, rotor axes, autobal); exit 1 on disagreement")
     ap.add_argument("--exe", help="the autobal CLI binary for --check (default: target/release/autobal)")
+    measure.add_args(ap)
     a = ap.parse_args()
     if a.check:
         exe = a.exe or os.path.join(ROOT, "target", "release", "autobal")
@@ -316,6 +319,7 @@ def main():
             subprocess.run(["cargo", "build", "--release", "--quiet", "-p", "autobal-cli"], cwd=ROOT, check=True)
         check(exe)
         return
+    sess = measure.Session("passage", allow_loaded=a.allow_loaded)
     b, omega0 = a.b, a.omega0
     t_end = (a.omega_end - omega0) / b
     t_eval = np.arange(0.0, t_end + 0.5 * a.dt, a.dt)
@@ -374,13 +378,18 @@ def main():
         n_pairs = a.pairs if tried[-1]["wall_s"] <= a.cap / 4 else max(1, min(a.pairs, 2))
         for i in range(n_pairs):
             order = [0, 1] if i % 2 == 0 else [1, 0]
-            w = [None, None]
+            w, cpu = [None, None], [None, None]
             for k in order:
                 if k == 0:
+                    c0 = measure.children_cpu()
                     w[0] = run_autobal(omega0, b, t_end, a.dt, rtol_ab, rtol_ab / 10, samples=False)[0][0]
+                    cpu[0] = measure.children_cpu() - c0  # the example's whole process
                 else:
+                    c0 = time.process_time()
                     w[1], _, stats = run_scipy(m, omega0, b, t_end, t_eval, rtol_m, rtol_m / 10, jac=not a.no_jac)
-            pairs.append({"autobal_s": w[0], "scipy_s": w[1], "ratio": w[1] / w[0]})
+                    cpu[1] = time.process_time() - c0
+            pairs.append({"autobal_s": w[0], "scipy_s": w[1], "ratio": w[1] / w[0],
+                          "autobal_process_cpu_s": cpu[0], "scipy_cpu_s": cpu[1], "ratio_cpu": cpu[1] / cpu[0]})
         r = sorted(p["ratio"] for p in pairs)
         med = statistics.median  # the mean of the middle two for an even count (2 pairs)
         results[m].update({"stats": stats, "pairs": pairs, "ratio_median": med(r), "ratio_min": r[0], "ratio_max": r[-1],
@@ -410,7 +419,9 @@ def main():
                                    "n2": {k: s2[k] for k in ("steps", "implicit_steps", "rhs_evaluations", "peak_amplitude")},
                                    "n64": {k: s64[k] for k in ("steps", "implicit_steps", "rhs_evaluations", "peak_amplitude")}}
     report["machine"] += f", {os.getloadavg()[0]:.1f} at end"
+    ok = sess.finish(report)
     print(json.dumps(report, indent=2))
+    measure.write_table(a.json, report, ok)
 
 
 if __name__ == "__main__":

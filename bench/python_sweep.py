@@ -36,6 +36,11 @@ import numpy as np
 
 import autobal
 
+import sys  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import measure  # noqa: E402
+
 SETS = {"drive.t_end": 0.5, "drive.omega0": 250.0, "integration.dt": 0.5}
 X, Y = "planar.c_psi=0.05:0.2:100", "drive.b=100:200:100"
 
@@ -64,9 +69,11 @@ def python(problem) -> tuple[float, float]:
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--pairs", type=int, default=7)
+    measure.add_args(ap)
     ap.add_argument("--bin", default=os.environ.get("AUTOBAL_BIN", "target/release/autobal"))
     ap.add_argument("--overhead-only", action="store_true", help="only the cost per call")
     a = ap.parse_args()
+    sess = measure.Session("python_sweep", allow_loaded=a.allow_loaded)
     problem = autobal.PlanarProblem(set=SETS)
     if a.overhead_only:
         overhead(problem)
@@ -96,6 +103,9 @@ def main() -> None:
         c, p = [r[k] for r in runs[0]], [r[k] for r in runs[1]]
         print(f"{name:4}: CLI {spread(c)} s; Python {spread(p)} s; ratio Python/CLI {spread([y / x for x, y in zip(c, p)])}")
     overhead(problem)
+    report = {"cli_wall_s": [r[0] for r in runs[0]], "cli_cpu_s": [r[1] for r in runs[0]],
+              "python_wall_s": [r[0] for r in runs[1]], "python_cpu_s": [r[1] for r in runs[1]]}
+    measure.write_table(a.json, report, sess.finish(report))
 
 
 def overhead(problem) -> None:

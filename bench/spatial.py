@@ -47,6 +47,8 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "bench"))
+import measure  # noqa: E402
 CONFIG = os.path.join(ROOT, "examples", "spatial.toml")
 EXE = None
 
@@ -434,12 +436,14 @@ def main():
     ap.add_argument("--t-end", type=float, help="shorter runs (e.g. for Radau, which takes long): drive.t_end of the case")
     ap.add_argument("--check", action="store_true")
     ap.add_argument("--exe", help="the autobal binary (default: target/release/autobal, built first)")
+    measure.add_args(ap)
     a = ap.parse_args()
     global EXE
     EXE = a.exe
     if a.check:
         check(a)
         return
+    sess = measure.Session("spatial", allow_loaded=a.allow_loaded)
     names = list(CASES) if a.case == "all" else [a.case]
     results = []
     for n in names:
@@ -449,7 +453,10 @@ def main():
         results.append(bench_case(n, a))
         a.methods = methods
         print(json.dumps(results[-1]), file=sys.stderr)
-    print(json.dumps(results, indent=2))
+    report = {"cases": results}
+    ok = sess.finish(report)
+    print(json.dumps(report, indent=2))
+    measure.write_table(a.json, report, ok)
 
 
 if __name__ == "__main__":

@@ -30,7 +30,13 @@ verdict, in that order; ratios are formed within a repetition and reported as me
 min-max over repetitions. Outputs are checked: margins to 1e-10, verdicts equal everywhere away
 from the boundary (|max Re lambda| > 1e-6).
 
-Usage: python3 bench/stability_map.py [N] [REPEATS]      (default 400 5)
+Each repetition also runs the command a user runs, `autobal map --quantity margin` and
+`--quantity verdict` on the same grid (one thread; CSV, SVG and PNG written), as whole
+processes: wall and CPU time (getrusage of the child), against NumPy's CPU time.
+
+Load average before and after, CPU beside wall, LOADED rule: bench/measure.py.
+
+Usage: python3 bench/stability_map.py [N] [REPEATS] [--allow-loaded] [--json FILE]   (default 400 5)
 """
 import json
 import os
@@ -44,6 +50,10 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")
 os.environ.setdefault("MKL_NUM_THREADS", "1")
 import numpy as np  # noqa: E402
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import measure  # noqa: E402
+
+OPTS = measure.strip_args(sys.argv)  # --allow-loaded, --json FILE; the positional arguments remain
 N = int(sys.argv[1]) if len(sys.argv) > 1 else 400
 REPEATS = int(sys.argv[2]) if len(sys.argv) > 2 else 5
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -153,18 +163,24 @@ def routh_hurwitz_vectorised(A):
 
 def numpy_margin(zs, ws):
     Wg, Zg = np.meshgrid(ws, zs, indexing="ij")  # row j = speed, column i = z_A
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     A = assemble(Zg.ravel(), Wg.ravel())
     alpha = np.linalg.eigvals(A).real.max(axis=1)
+    CPU["numpy_margin"].append(time.process_time() - c0)
     return time.perf_counter() - t0, alpha
 
 
 def numpy_verdict(zs, ws):
     Wg, Zg = np.meshgrid(ws, zs, indexing="ij")
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     A = assemble(Zg.ravel(), Wg.ravel())
     stable = routh_hurwitz_vectorised(A)
+    CPU["numpy_verdict"].append(time.process_time() - c0)
     return time.perf_counter() - t0, stable
+
+
+CPU = {"numpy_margin": [], "numpy_verdict": [], "autobal_example": [], "command_margin": [], "command_verdict": []}
+WALL = {"command_margin": [], "command_verdict": []}
 
 
 def spread(xs):
@@ -172,6 +188,9 @@ def spread(xs):
 
 
 def main():
+    sess = measure.Session("stability_map", allow_loaded=OPTS.allow_loaded)
+    cli = os.path.join(ROOT, "target", "release", "autobal")
+    tmp = os.path.join(ROOT, "target", "bench_map_cmd")
     zs = np.linspace(-2.0, 2.0, N)
     ws = np.linspace(0.05, 4.5, N)
     k = N * N
@@ -181,7 +200,15 @@ def main():
     runs = []
     for r in range(REPEATS):
         t_np_margin, alpha_np = numpy_margin(zs, ws)
+        c0 = measure.children_cpu()
         res = subprocess.run([exe, str(N), str(N), out], cwd=ROOT, check=True, capture_output=True, text=True)
+        CPU["autobal_example"].append(measure.children_cpu() - c0)
+        if os.path.exists(cli):
+            for q in ("margin", "verdict"):
+                w, c = measure.run_cmd([cli, "map", "--threads", "1", "--quantity", q, "--x", f"dimensionless.z_a=-2:2:{N}",
+                                        "--y", f"omega=0.05:4.5:{N}", "--out", tmp])
+                WALL[f"command_{q}"].append(w)
+                CPU[f"command_{q}"].append(c)
         rs = json.loads(res.stdout.strip().splitlines()[-1])
         t_np_verdict, stable_np_rh = numpy_verdict(zs, ws)
         runs.append((t_np_margin, t_np_verdict, rs))
@@ -230,8 +257,18 @@ def main():
         "autobal_map_qr_fallbacks": runs[-1][2]["margin_direct"],
         "autobal_verdict_confirmations": runs[-1][2]["verdict_confirmations"],
         "checks": checks,
+        "cpu_s": {k: spread(v) for k, v in CPU.items() if v},
+        "commands_wall_s": {k: spread(v) for k, v in WALL.items() if v},
     }
+    if CPU["command_margin"]:
+        # whole commands (process CPU) against NumPy's CPU, pair by pair
+        report["ratios_cpu_paired"] = {
+            "margin: numpy eigvals CPU / autobal map --quantity margin process CPU": spread([a / b for a, b in zip(CPU["numpy_margin"], CPU["command_margin"])]),
+            "verdict: numpy eigvals CPU / autobal map --quantity verdict process CPU": spread([a / b for a, b in zip(CPU["numpy_margin"], CPU["command_verdict"])]),
+        }
+    ok = sess.finish(report)
     print(json.dumps(report, indent=2))
+    measure.write_table(OPTS.json, report, ok)
     if (checks["verdict_mismatches_away_from_boundary"] or checks["margin_verdict_mismatches_away_from_boundary"]
             or checks["numpy_rh_verdict_mismatches_away_from_boundary"] or checks["max_abs_margin_difference"] > 1e-10):
         sys.exit("autobal and NumPy disagree")

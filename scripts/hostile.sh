@@ -8,6 +8,12 @@
 # field; never a panic (101), a signal, a hang or running out of memory. A run still going at the
 # time limit gets Ctrl-C (SIGINT), as a user would send it: it must then stop within 10 s, keep
 # what it wrote and say it was interrupted (exit 2); one that ignores it is killed (**HANG**).
+# Rows `INT:…` (`INTFAST:…`) are sent Ctrl-C at a random time (0.1 to 3 s, 0.01 to 0.3 s;
+# HOSTILE_SEED seeds it, default 23)
+# in a folder of their own: each must finish, or stop saying so (exit 2), and every file it
+# leaves must be whole (CSV: complete rows ending in a line end; Parquet: its footer; no
+# temporary `*.part` file), else **TRUNCATED**. After every row, no `*.part` file may be left
+# in the work folder either.
 set -u
 cd "$(dirname "$0")/.."
 BIN=${1:-target/release/autobal}
@@ -25,6 +31,22 @@ head -c 4096 /dev/urandom > binary.toml
 printf '[planar]\nm1 = 1\n' > planar-only.toml
 printf '[dimensionless]\nc_sigma = 0.75\n' > partial.toml
 mkdir -p adir
+# --out variants: a config that an output would overwrite
+mkdir -p inputs
+cp "$EX/planar.toml" inputs/cfg.csv
+cp "$EX/planar.toml" sw.json
+# merges: two shards of one sweep, and damaged ones
+mkdir -p shards
+Q="--threads 1 --set drive.t_end=0.05 --x drive.b=2:3:4000"
+for k in 1 2; do "$BIN" sweep $Q --shard $k/2 --out shards/s$k >/dev/null 2>&1; done
+"$BIN" sweep $Q --set drive.t_end=0.06 --shard 2/2 --out shards/other >/dev/null 2>&1
+cp shards/s1.csv shards/dup.csv; cp shards/s1.json shards/dup.json
+head -c $(( $(wc -c < shards/s2.csv) - 9 )) shards/s2.csv > shards/cut.csv; cp shards/s2.json shards/cut.json
+head -n 1000 shards/s2.csv > shards/short.csv; cp shards/s2.json shards/short.json
+sed '3s/,/,x/' shards/s2.csv > shards/nan.csv; cp shards/s2.json shards/nan.json
+sed 's/"definition_checksum": "fnv1a64:[0-9a-f]*"/"definition_checksum": "fnv1a64:0123456789abcdef"/' shards/s2.json > shards/sum.json; cp shards/s2.csv shards/sum.csv
+: > shards/empty.csv; : > shards/empty.json
+SH=$WORK/shards
 
 DIM="--config $EX/dimensional.toml"
 cases=(
@@ -184,7 +206,66 @@ cases=(
 # report
 "report --quick --out rep --set dimensionless.rho_s=1e-308"
 "report --quick --out /dev/null/rep"
+# --out: a folder (with and without the slash), an input, an unusable or unwritable place
+"simulate --set drive.t_end=1 --out outdir/"
+"simulate --set drive.t_end=1 --out adir"
+"map --x dimensionless.z_a=-2:2:3 --y omega=0.1:2:3 --out adir/"
+"stability --svg adir/"
+"simulate --config inputs/cfg.csv --out inputs/cfg.csv"
+"sweep --config sw.json --x drive.b=1:2:2 --out ./sw"
+"merge $SH/s1.csv $SH/s2.csv --out $SH/s1"
+"basins $SP --n 1000 --out /dev/null/basins.csv"
+"basins $SP --n 1000 --out /dev/null"
+"map --x dimensionless.z_a=-2:2:3 --y omega=0.1:2:3 --boundary --out /proc/m"
+"sweep --x drive.b=1:2:2 --out /proc/sw"
+"report --quick --out inputs/cfg.csv"
+# merges: whole, then damaged shards
+"merge $SH/s2.csv $SH/s1.csv --parquet --out merged"
+"merge $SH/s1.csv $SH/cut.csv --out m1"
+"merge $SH/s1.csv $SH/short.csv --out m2"
+"merge $SH/s1.csv $SH/nan.csv --out m3"
+"merge $SH/s1.csv $SH/other.csv --out m4"
+"merge $SH/s1.csv $SH/sum.csv --out m5"
+"merge $SH/s1.csv $SH/dup.csv $SH/s2.csv --out m6"
+"merge $SH/s1.csv --out m7"
+"merge /dev/zero --out m8"
+"merge $SH/empty.csv --out m9"
+"merge adir --out m10"
+# Ctrl-C at a random time: whatever the command has written must be whole
+"INT:simulate --parquet --set drive.t_end=2000 --set integration.dt=0.0005 --out sim"
+"INT:simulate --parquet --set drive.t_end=2000 --set integration.dt=0.0005 --out sim"
+"INT:simulate $SP --set drive.t_end=1e6 --out spatial"
+"INT:sweep --parquet --threads 2 --x drive.b=1:2:4000 --out sw"
+"INT:sweep --parquet --threads 2 --x drive.b=1:2:4000 --shard 2/3 --out sw"
+"INT:map --x dimensionless.z_a=-2:2:2000 --y omega=0.1:3:2000 --out map"
+"INT:map --x dimensionless.z_a=-2:2:400 --y omega=0.05:4.5:400 --boundary --out mapb"
+"INT:basins $SP --n 200 --out basins.csv"
+"INT:basins $SP --n 200 --out basins.csv"
+"INTFAST:merge $SH/s1.csv $SH/s2.csv --parquet --out merged"
+"INTFAST:merge $SH/s1.csv $SH/s2.csv --parquet --out merged"
+"INTFAST:merge $SH/s1.csv $SH/s2.csv --parquet --out merged"
+# --set with a whole table as the value of a table
+"critical --set dimensionless={c_sigma=1}"
 )
+
+RANDOM=${HOSTILE_SEED:-23}
+
+# Every file in folder $1 whole: CSV rows complete, Parquet with its footer, no *.part file.
+# Prints the first damaged file, or nothing.
+damaged() {
+    local f
+    for f in "$1"/*.part; do [ -e "$f" ] && { echo "temporary file left: $(basename "$f")"; return; }; done
+    for f in "$1"/*.csv; do
+        [ -e "$f" ] || continue
+        [ -s "$f" ] || { echo "empty $(basename "$f")"; return; }
+        [ -z "$(tail -c 1 "$f")" ] || { echo "$(basename "$f") ends mid-row"; return; }
+        awk -F, 'NR == 1 { n = NF } NF != n { bad = 1 } END { exit bad }' "$f" || { echo "$(basename "$f") has a short row"; return; }
+    done
+    for f in "$1"/*.parquet; do
+        [ -e "$f" ] || continue
+        [ "$(tail -c 4 "$f")" = PAR1 ] || { echo "$(basename "$f") has no footer"; return; }
+    done
+}
 
 echo "| # | command | exit | time (s) | outcome |"
 echo "|---|---|---|---|---|"
@@ -193,13 +274,27 @@ for c in "${cases[@]}"; do
     i=$((i + 1))
     # HOSTILE_ONLY="3 71": run only these rows (numbers as in the table)
     if [ -n "${HOSTILE_ONLY:-}" ] && ! printf ' %s ' "$HOSTILE_ONLY" | grep -q " $i "; then continue; fi
+    limit=$LIMIT_S
+    run_dir=.
+    interrupt=""
+    case $c in INT*:*)
+        # a random time between 0.1 and 3 s (INTFAST: 0.01 to 0.3 s, for quick commands), in a
+        # folder of its own
+        span=2.9; lo=0.1
+        case $c in INTFAST:*) span=0.29; lo=0.01 ;; esac
+        c=${c#*:}
+        limit=$(awk "BEGIN { printf \"%.2f\", $lo + $span * $RANDOM / 32767 }")
+        interrupt=$limit
+        run_dir=int$i
+        mkdir -p "$run_dir" ;;
+    esac
     start=$(date +%s%N)
     # shellcheck disable=SC2086
     # at the limit: SIGINT (Ctrl-C), then SIGKILL 10 s later if it is ignored
-    out=$( (ulimit -v "$LIMIT_KB"; timeout --preserve-status -s INT -k 10 "$LIMIT_S" "$BIN" $c) 2>&1 >/dev/null)
+    out=$( (cd "$run_dir" && ulimit -v "$LIMIT_KB" && timeout --preserve-status -s INT -k 10 "$limit" "$BIN" $c) 2>&1 >/dev/null)
     code=$?
     secs=$(awk "BEGIN { printf \"%.2f\", ($(date +%s%N) - $start) / 1e9 }")
-    long=$(awk "BEGIN { print ($secs >= $LIMIT_S) ? 1 : 0 }")
+    long=$(awk "BEGIN { print ($secs >= $limit) ? 1 : 0 }")
     first=$(printf '%s' "$out" | grep -v '^warning\|^boundary:\|^wrote\|^[0-9]* rows' | head -1 | cut -c1-160 | sed 's/|/\\|/g')
     warn=$(printf '%s' "$out" | grep '^warning' | head -1 | cut -c1-160 | sed 's/|/\\|/g')
     lines=$(printf '%s' "$out" | grep -vc '^warning\|^wrote\|^simulating\|^report written\|^boundary:\|^[0-9]* rows')
@@ -212,6 +307,20 @@ for c in "${cases[@]}"; do
         101) verdict="**PANIC**" ;;
         *) verdict="**exit $code**" ;;
     esac
-    shown=$(echo "$c" | sed "s|$EX/|examples/|g")
+    if [ -n "$interrupt" ]; then
+        bad=$(damaged "$run_dir")
+        case $code in
+            0) verdict="finished before Ctrl-C at $interrupt s" ;;
+            2) if printf '%s' "$out" | grep -q 'interrupted\|stopped'; then verdict="stopped by Ctrl-C at $interrupt s"; else verdict="error (not Ctrl-C) at $interrupt s"; fi ;;
+            130) verdict="ended by Ctrl-C at $interrupt s before its handler was set" ;;
+        esac
+        first=$(printf '%s' "$out" | grep 'interrupted\|stopped\|^error' | head -1 | cut -c1-160 | sed 's/|/\\|/g')
+        if [ -n "$bad" ]; then verdict="**TRUNCATED ($bad)**, $verdict"; else verdict="$verdict, files whole ($(cd "$run_dir" && ls | tr '\n' ' ' | cut -c1-80 | sed 's/ *$//'))"; fi
+        c="$c  # Ctrl-C at $interrupt s"
+    fi
+    bad=$(damaged .)
+    [ -n "$bad" ] && verdict="**TRUNCATED ($bad)**, $verdict"
+    shown=$(echo "$c" | sed "s|$EX/|examples/|g; s|$WORK/||g")
+    first=$(printf '%s' "$first" | sed "s|$WORK/||g")
     printf '| %d | `autobal %s` | %d | %s | %s: %s |\n' "$i" "$shown" "$code" "$secs" "$verdict" "${first:-}"
 done

@@ -35,6 +35,14 @@ pub struct Config {
 pub fn apply_set(root: &mut Table, assignment: &str) -> Result<()> {
     let (key, value) = assignment.split_once('=').ok_or_else(|| anyhow!("--set {assignment}: expected key=value, e.g. --set dimensionless.l_left=1.2"))?;
     let key = key.trim();
+    if key.is_empty() {
+        bail!("--set {assignment}: no key before `=`; expected key=value, e.g. --set dimensionless.l_left=1.2");
+    }
+    // `--set dimensionless={c_sigma=1}`: a whole table is not set at once; the option is named
+    let parts: Vec<&str> = key.split('.').collect();
+    if parts.len() != 2 || parts.iter().any(|p| p.trim().is_empty()) {
+        bail!("--set {key}: expected a dotted key table.field (one field at a time), e.g. --set dimensionless.l_left=1.2");
+    }
     Ok(autobal::config::set(root, key, autobal::config::parse_value(value.trim()))?)
 }
 

@@ -316,7 +316,7 @@ pub fn run_campbell(cfg: &Config, w: f64, points: usize, balls: Balls, json: boo
             let (rot, fixed) = crate::figures::campbell_plots(&cfg.model, &plot);
             for (suffix, p) in [("rotating", rot), ("fixed", fixed)] {
                 let path = std::path::PathBuf::from(format!("{}_{suffix}.svg", prefix.display()));
-                std::fs::write(&path, p.to_svg()).with_context(|| format!("--svg: cannot write {}", path.display()))?;
+                crate::outfile::write_atomic("--svg", &path, p.to_svg())?;
             }
         }
         let stdout = std::io::stdout();

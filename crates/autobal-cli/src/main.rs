@@ -5,10 +5,12 @@ mod config;
 mod figures;
 #[cfg(test)]
 mod fuzz;
+mod general;
 mod linear;
 mod map;
 mod mapfig;
 mod num;
+mod outfile;
 mod output;
 mod parquet;
 mod plot;
@@ -17,7 +19,7 @@ mod sim;
 mod spatial_sim;
 mod sweep;
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
 
@@ -67,6 +69,12 @@ impl From<BallsArg> for autobal::spatial::linear_model::Balls {
 }
 
 #[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
+enum RouteArg {
+    Auto,
+    General,
+}
+
+#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
 enum QuantityArg {
     Margin,
     Verdict,
@@ -113,12 +121,18 @@ enum Command {
         format: Format,
         #[command(flatten)]
         lin: LinearArgs,
-        /// Grid points along Ω before the range ends are refined by bisection
-        #[arg(long, default_value_t = 2000)]
-        samples: usize,
+        /// Grid points along Ω before the range ends are refined by bisection (default 2000 on
+        /// the closed-form route, 200 on the general route)
+        #[arg(long)]
+        samples: Option<usize>,
         /// Also write the margin plot as SVG to this file
         #[arg(long)]
         svg: Option<PathBuf>,
+        /// `auto`: paper 000's 12-state model (closed form) where it represents the config, else
+        /// the general route (the nonlinear equations: planar rotor, two planes, couple,
+        /// direction-dependent supports, gravity); `general`: the general route always
+        #[arg(long, value_enum, default_value = "auto")]
+        route: RouteArg,
     },
     /// Campbell diagram: eigenvalues along Ω, tracked, with whirl direction and dominant motion
     Campbell {
@@ -154,10 +168,11 @@ enum Command {
         /// Balls free (12 states) or locked (8 states)
         #[arg(long, value_enum, default_value = "free")]
         balls: BallsArg,
-        /// `margin`: max Re λ from the eigenvalues; `verdict`: Routh–Hurwitz only (faster)
+        /// `margin`: max Re λ from the eigenvalues; `verdict`: Routh–Hurwitz only (faster; the
+        /// CSV's max_real_part column is then empty)
         #[arg(long, value_enum, default_value = "margin")]
         quantity: QuantityArg,
-        /// Output stem: writes STEM.csv, STEM.svg, STEM.png
+        /// Output stem: writes STEM.csv, STEM.svg, STEM.png (a folder, `DIR/`: DIR/stability-map.*)
         #[arg(long, short, default_value = "stability-map")]
         out: PathBuf,
         /// Worker threads (default: all cores)
@@ -181,7 +196,8 @@ enum Command {
         dt: Option<f64>,
         /// CSV of samples (t, omega, x, y, amplitude, psi_1 … psi_n): `--out run.csv` writes run.csv; a
         /// name without .csv is a stem, as for sweep and map (`--out runs/m3` writes runs/m3.csv);
-        /// plots go beside it as STEM_*.svg
+        /// plots go beside it as STEM_*.svg; a folder (`runs/`) gets runs/simulation.csv. Written
+        /// to a temporary name and renamed when done (or stopped, with the complete rows)
         #[arg(long, short, default_value = "simulation.csv")]
         out: PathBuf,
         /// Also write the samples as Parquet, STEM.parquet beside the CSV
@@ -207,7 +223,7 @@ enum Command {
         /// Grid points per angle (N × N runs)
         #[arg(long, default_value_t = 24)]
         n: usize,
-        /// CSV of the runs' ends
+        /// CSV of the runs' ends (a folder, `DIR/`: DIR/basins.csv); checked before the runs
         #[arg(long, short, default_value = "basins.csv")]
         out: PathBuf,
         /// Output on standard output: a table to read or JSON
@@ -247,7 +263,12 @@ fn run(cli: Cli) -> Result<()> {
             output::check_results(&cfg)?;
             emit(format, output::ranges_json(&cfg), output::ranges_table(&cfg))
         }
-        Command::Stability { common, format, lin, samples, svg } => {
+        Command::Stability { common, format, lin, samples, svg, route } => {
+            let (root, _) = config::read_set(common.config.as_deref(), &common.set)?;
+            if route == RouteArg::General || general::needs_general_route(&root) {
+                return run_general_stability(&root, format, lin, samples, svg);
+            }
+            let samples = samples.unwrap_or(2000);
             let cfg = config::load_analytic("stability", common.config.as_deref(), &common.set)?;
             let w = linear::omega_max(&cfg, lin.omega_max.as_deref())?;
             if lin.omega_max.is_some() {
@@ -256,10 +277,14 @@ fn run(cli: Cli) -> Result<()> {
             if !(10..=1_000_000).contains(&samples) {
                 anyhow::bail!("--samples: must lie between 10 and 1000000, got {samples}");
             }
+            let svg = svg.map(|p| outfile::resolve(&p, "stability.svg"));
+            if let Some(p) = &svg {
+                outfile::Outputs::new().inputs(common.config.as_deref()).output("--svg", p).check()?;
+            }
             let c = linear::compare(&cfg.model, w, samples, lin.balls.into())?;
             autobal::limits::check_finite("stability", &c.exact)?;
             if let Some(p) = svg {
-                std::fs::write(&p, figures::margin_plot(&cfg.model, &c).to_svg()).with_context(|| format!("--svg {}: cannot write", p.display()))?;
+                outfile::write_atomic("--svg", &p, figures::margin_plot(&cfg.model, &c).to_svg())?;
             }
             emit(format, linear::stability_json(&cfg, &c, lin.balls.into()), linear::stability_table(&cfg, &c, lin.balls.into()))
         }
@@ -272,6 +297,15 @@ fn run(cli: Cli) -> Result<()> {
             if !(3..=10_000_000).contains(&points) {
                 anyhow::bail!("--points: must lie between 3 and 10000000, got {points}");
             }
+            let svg = svg.map(|p| outfile::resolve(&p, "campbell"));
+            if let Some(p) = &svg {
+                let mut o = outfile::Outputs::new();
+                o.inputs(common.config.as_deref());
+                for suffix in ["rotating", "fixed"] {
+                    o.output("--svg", &PathBuf::from(format!("{}_{suffix}.svg", p.display())));
+                }
+                o.check()?;
+            }
             let _ = ctrlc::set_handler(|| map::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
             linear::run_campbell(&cfg, w, points, lin.balls.into(), format == Format::Json, svg.as_deref())
         }
@@ -281,11 +315,53 @@ fn run(cli: Cli) -> Result<()> {
         Command::Merge(a) => sweep::merge(a),
         Command::Basins { config, set, n, out, format, threads } => run_basins(config, set, n, out, format, threads),
         Command::Report { common, out, quick } => {
+            // the folder is created and checked before any section runs
+            outfile::Outputs::new().inputs(common.config.as_deref()).output("--out", &out.join("index.html")).check()?;
             let _ = ctrlc::set_handler(|| sim::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
             let index = report::run(common.config.as_deref(), &common.set, &out, quick)?;
             output::print(&format!("report written to {}\n", index.display()))
         }
     }
+}
+
+/// `stability` by the general route ([`general`]): any planar or spatial config.
+fn run_general_stability(root: &toml::Table, format: Format, lin: LinearArgs, samples: Option<usize>, svg: Option<PathBuf>) -> Result<()> {
+    if lin.balls == BallsArg::Locked {
+        anyhow::bail!("--balls locked: the general route analyses the balls free (use the closed-form route of a one-plane config for the locked rotor)");
+    }
+    let g = general::rotor_of(root)?;
+    // a periodic orbit costs a shooting (the variational equations over a revolution) per speed
+    let samples = samples.unwrap_or(if g.rotor.is_periodic() { 50 } else { 200 });
+    if !(10..=1_000_000).contains(&samples) {
+        anyhow::bail!("--samples: must lie between 10 and 1000000, got {samples}");
+    }
+    let omega_max = match (&g.rotor, lin.omega_max) {
+        (_, Some(t)) => {
+            // rad/s: a speed with its unit on an SI config, a bare number times the unit of its
+            // speeds (ω0 of a spatial config, 1 rad/s of a planar one)
+            let s = autobal::units::parse_speed("--omega-max", &t)?;
+            let w = match s.unit.rad_s() {
+                Some(k) if g.si => s.value * k,
+                Some(_) => s.to_omega("--omega-max", None)?,
+                None => s.value * g.omega0,
+            };
+            check_speed("--omega-max", w / g.omega0)?;
+            w
+        }
+        (autobal::rotor_stability::Rotor::Planar(_), None) => 3.0 * g.rotor.natural_frequency(),
+        (autobal::rotor_stability::Rotor::Spatial(_), None) => {
+            let cfg = autobal::config::spatial(root)?;
+            // the 12-state model's automatic axis covers its critical speeds; a second plane,
+            // supports that differ by direction or gravity move the modes, so twice that
+            let w = cfg.analysis.speed_axis_max(2.0 * autobal::reports::default_omega_max(&cfg.model));
+            w * g.omega0
+        }
+    };
+    let r = general::analyse(&g, omega_max, samples)?;
+    if let Some(p) = svg {
+        general::write_svg(&g, &r, omega_max, &p)?;
+    }
+    emit(format, general::json(&g, &r, omega_max), general::table(&g, &r, omega_max))
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -337,13 +413,21 @@ fn run_map(
         rayon::ThreadPoolBuilder::new().num_threads(t).build_global().ok();
     }
     let _ = ctrlc::set_handler(|| map::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
-    if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).with_context(|| format!("--out: cannot create {}", dir.display()))?;
-    }
-    let out = output::out_stem(&out, &["csv", "svg", "png"]);
+    let out = output::out_stem(&outfile::resolve(&out, "stability-map"), &["csv", "svg", "png"]);
     let csv_path = output::with_suffix(&out, "csv");
-    let file = std::fs::File::create(&csv_path).with_context(|| format!("--out: cannot create {}", csv_path.display()))?;
-    let mut w = std::io::BufWriter::new(file);
+    let boundary_path = PathBuf::from(format!("{}_boundary.csv", out.display()));
+    let mut o = outfile::Outputs::new();
+    o.inputs(common.config.as_deref());
+    for p in outfile::stem_files(&out, &["csv", "svg", "png"]) {
+        o.output("--out", &p);
+    }
+    if boundary {
+        o.output("--out", &boundary_path);
+    }
+    o.check()?;
+    // the rows go to a temporary file, renamed into place when the map ends or is interrupted
+    // (complete rows only); an error removes it
+    let mut w = outfile::Staged::create("--out", &csv_path)?;
     let q = if quantity == QuantityArg::Margin { map::Quantity::Margin } else { map::Quantity::Verdict };
     let progress = std::io::IsTerminal::is_terminal(&std::io::stderr());
     config::warn_ignored(&root, "map");
@@ -359,8 +443,8 @@ fn run_map(
         }
         let t = std::time::Instant::now();
         let b = map::trace(&cfg, &xa, &ya, omega, balls.into())?;
-        let path = PathBuf::from(format!("{}_boundary.csv", out.display()));
-        std::fs::write(&path, map::boundary_csv(&b, &xa.key, &ya.key)).with_context(|| format!("--out: cannot write {}", path.display()))?;
+        let path = boundary_path;
+        outfile::write_atomic("--out", &path, map::boundary_csv(&b, &xa.key, &ya.key))?;
         output::note(&format!(
             "boundary: {} curves, {} codimension-two points, {} characteristic polynomials, {:.3} s; wrote {}",
             b.curves.len(),
@@ -372,7 +456,6 @@ fn run_map(
         if !b.complete {
             // nothing of the map was computed: no empty CSV left behind
             drop(w);
-            let _ = std::fs::remove_file(&csv_path);
             anyhow::bail!(
                 "interrupted while tracing the boundary: the {} curves traced are kept in {}; the map was not computed",
                 b.curves.len(),
@@ -385,6 +468,7 @@ fn run_map(
     };
     let t0 = std::time::Instant::now();
     let (r, run) = map::compute(&cfg, xa, ya, omega, balls.into(), q, &mut w, progress)?;
+    let csv_path = w.commit()?;
     let secs = t0.elapsed().as_secs_f64();
     let done = run.rows_done;
     map::write_plots(&r, &out, &format!("Stability map, balls {}", if balls == BallsArg::Free { "free" } else { "locked" }), traced.as_ref())?;
@@ -408,10 +492,26 @@ fn run_map(
 }
 
 /// `simulate --out`: `file.csv` is written as given; any other name is a stem (as for sweep and
-/// map), `STEM.csv`. Returns the CSV's path and the stem of the files beside it.
+/// map), `STEM.csv`; a folder (`runs/`) gets `runs/simulation.csv`. Returns the CSV's path and
+/// the stem of the files beside it.
 fn csv_and_stem(out: &std::path::Path) -> (PathBuf, PathBuf) {
-    let stem = output::out_stem(out, &["csv", "parquet", "svg"]);
+    let stem = output::out_stem(&outfile::resolve(out, "simulation.csv"), &["csv", "parquet", "svg"]);
     (output::with_suffix(&stem, "csv"), stem)
+}
+
+/// `simulate`'s outputs (the CSV, the Parquet file, the figures), checked before the run.
+fn simulation_outputs(config: Option<&std::path::Path>, out: &std::path::Path, parquet: bool) -> Result<(PathBuf, PathBuf)> {
+    let (csv, stem) = csv_and_stem(out);
+    let mut o = outfile::Outputs::new();
+    o.inputs(config).output("--out", &csv);
+    if parquet {
+        o.output("--parquet", &output::with_suffix(&stem, "parquet"));
+    }
+    for p in sim::plot_paths(&stem) {
+        o.output("--out", &p);
+    }
+    o.check()?;
+    Ok((csv, stem))
 }
 
 fn run_simulate(config: Option<PathBuf>, set: Vec<String>, dt: Option<f64>, out: PathBuf, parquet: bool, format: Format) -> Result<()> {
@@ -420,10 +520,7 @@ fn run_simulate(config: Option<PathBuf>, set: Vec<String>, dt: Option<f64>, out:
         config::apply_set(&mut root, s)?;
     }
     if autobal::config::is_spatial(&root) {
-        if parquet {
-            anyhow::bail!("--parquet: the spatial simulation writes CSV only (the planar simulation and sweeps write Parquet)");
-        }
-        return run_spatial(&root, &source, dt, out, format);
+        return run_spatial(&root, &source, config.as_deref(), dt, out, parquet, format);
     }
     let mut cfg = config::build_planar(&root, &source)?;
     if let Some(d) = dt {
@@ -431,23 +528,20 @@ fn run_simulate(config: Option<PathBuf>, set: Vec<String>, dt: Option<f64>, out:
         cfg.settings.validate(&cfg.rotor).map_err(|e| anyhow::anyhow!("--dt: {e}"))?;
     }
     let _ = ctrlc::set_handler(|| sim::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
-    if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).with_context(|| format!("--out: cannot create {}", dir.display()))?;
-    }
-    let (out, stem) = csv_and_stem(&out);
-    let file = std::fs::File::create(&out).with_context(|| format!("--out: cannot create {}", out.display()))?;
-    let mut w = std::io::BufWriter::new(file);
+    let (out, stem) = simulation_outputs(config.as_deref(), &out, parquet)?;
+    let mut w = outfile::Staged::create("--out", &out)?;
     let mut table = match parquet {
         true => Some(parquet::Table::create(&output::with_suffix(&stem, "parquet"), &sim::sample_columns(cfg.rotor.n), false)?),
         false => None,
     };
     let progress = std::io::IsTerminal::is_terminal(&std::io::stderr());
     let (summary, env, wall) = sim::run_to_csv(&cfg, &mut w, table.as_mut(), progress)?;
-    drop(w);
+    autobal::limits::check_finite("the summary", &summary)?;
+    // complete rows (also when stopped early): renamed into place
+    let out = w.commit()?;
     if let Some(t) = table {
         output::note(&format!("wrote {}", t.finish()?.display()));
     }
-    autobal::limits::check_finite("the summary", &summary)?;
     let plots = sim::write_plots(&cfg, &env, &stem, "Passage")?;
     emit(format, sim::summary_json(&cfg, &summary, wall), sim::summary_table(&cfg, &summary, wall))?;
     output::note(&format!(
@@ -465,7 +559,7 @@ fn run_simulate(config: Option<PathBuf>, set: Vec<String>, dt: Option<f64>, out:
     Ok(())
 }
 
-fn run_spatial(root: &toml::Table, source: &str, dt: Option<f64>, out: PathBuf, format: Format) -> Result<()> {
+fn run_spatial(root: &toml::Table, source: &str, config: Option<&std::path::Path>, dt: Option<f64>, out: PathBuf, parquet: bool, format: Format) -> Result<()> {
     let mut sim = spatial_sim::build(root, source)?;
     if sim.default_drive {
         let (w_end, _) = sim.drive.kinematics(sim.settings.t_end);
@@ -482,15 +576,19 @@ fn run_spatial(root: &toml::Table, source: &str, dt: Option<f64>, out: PathBuf, 
         sim.settings.validate().map_err(|e| anyhow::anyhow!("--dt: {e}"))?;
     }
     let _ = ctrlc::set_handler(|| sim::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
-    if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).with_context(|| format!("--out: cannot create {}", dir.display()))?;
-    }
-    let (out, stem) = csv_and_stem(&out);
-    let file = std::fs::File::create(&out).with_context(|| format!("--out: cannot create {}", out.display()))?;
-    let mut w = std::io::BufWriter::new(file);
+    let (out, stem) = simulation_outputs(config, &out, parquet)?;
+    let mut w = outfile::Staged::create("--out", &out)?;
+    let mut table = match parquet {
+        true => Some(parquet::Table::create(&output::with_suffix(&stem, "parquet"), &spatial_sim::columns(&sim), false)?),
+        false => None,
+    };
     let progress = std::io::IsTerminal::is_terminal(&std::io::stderr());
-    let (summary, kept, wall) = spatial_sim::run_to_csv(&sim, &mut w, progress, &sim::INTERRUPTED)?;
-    drop(w);
+    let (summary, kept, wall) = spatial_sim::run_to_files(&sim, &mut w, table.as_mut(), progress, &sim::INTERRUPTED)?;
+    // complete rows (also when stopped early): renamed into place
+    let out = w.commit()?;
+    if let Some(t) = table {
+        output::note(&format!("wrote {}", t.finish()?.display()));
+    }
     let plots = spatial_sim::write_plots(&sim, &kept, &stem, "Spatial rotor")?;
     emit(format, spatial_sim::summary_json(&sim, &summary, wall), spatial_sim::summary_table(&sim, &summary, wall))?;
     eprintln!("wrote {} and {} plots ({})", out.display(), plots.len(), plots.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", "));
@@ -510,9 +608,9 @@ fn run_basins(config: Option<PathBuf>, set: Vec<String>, n: usize, out: PathBuf,
         rayon::ThreadPoolBuilder::new().num_threads(t).build_global().ok();
     }
     let _ = ctrlc::set_handler(|| sim::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
-    if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).with_context(|| format!("--out: cannot create {}", dir.display()))?;
-    }
+    // checked before the grid is computed
+    let out = outfile::resolve(&out, "basins.csv");
+    outfile::Outputs::new().inputs(config.as_deref()).output("--out", &out).check()?;
     let progress = std::io::IsTerminal::is_terminal(&std::io::stderr());
     let v = spatial_sim::run_basins(&sim, n, &out, progress, &sim::INTERRUPTED)?;
     let table = format!(

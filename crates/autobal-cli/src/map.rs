@@ -5,7 +5,7 @@
 
 use crate::config::Config;
 use crate::plot::Series;
-use anyhow::{anyhow, bail, Context, Result};
+use anyhow::{anyhow, bail, Result};
 use autobal::spatial::boundary::{Boundary, Codim2Kind, CurveKind, PlaneAxis, TraceSettings};
 use autobal::spatial::linear_model::Balls;
 use rayon::prelude::*;
@@ -156,6 +156,7 @@ pub fn compute(
     let (ky, dy) = decimate(&y);
     let mut kept: Vec<Option<Vec<Cell>>> = vec![None; dy.n];
     let xs: Vec<String> = lx.values.iter().map(|v| crate::num::Csv(*v).to_string()).collect();
+    let verdict_only = quantity == Quantity::Verdict;
     // rows are formatted in parallel in batches (the pool is idle between the library's blocks)
     let mut pending: Vec<(usize, Vec<Cell>)> = vec![];
     let mut io_error: Option<std::io::Error> = None;
@@ -167,7 +168,9 @@ pub fn compute(
                 let mut t = String::with_capacity(cells.len() * 40);
                 for (xs, c) in xs.iter().zip(cells) {
                     use std::fmt::Write as _;
-                    let _ = writeln!(t, "{xs},{yv},{},{},{}", crate::num::Csv(c.margin), c.stable as u8, c.necessary as u8);
+                    // `--quantity verdict` computes no margin: an empty field, never `NaN`
+                    let margin = if verdict_only { String::new() } else { crate::num::Csv(c.margin).to_string() };
+                    let _ = writeln!(t, "{xs},{yv},{margin},{},{}", c.stable as u8, c.necessary as u8);
                 }
                 t
             })
@@ -214,10 +217,8 @@ pub fn write_plots(r: &MapResult, stem: &Path, title: &str, traced: Option<&Boun
     let Some(b) = traced else { return crate::mapfig::write_plots(r, stem, title) };
     let mut p = crate::mapfig::plot(r, title);
     p.series.extend(boundary_series(b));
-    let svg_path = crate::output::with_suffix(stem, "svg");
-    std::fs::write(&svg_path, p.to_svg()).with_context(|| format!("cannot write {}", svg_path.display()))?;
-    let png_path = crate::output::with_suffix(stem, "png");
-    std::fs::write(&png_path, p.to_png(1.5)?).with_context(|| format!("cannot write {}", png_path.display()))
+    crate::outfile::write_atomic("--out", &crate::output::with_suffix(stem, "svg"), p.to_svg())?;
+    crate::outfile::write_atomic("--out", &crate::output::with_suffix(stem, "png"), p.to_png(1.5)?)
 }
 
 /// The traced curves as figure series: the stability boundary solid (Hopf blue, fold orange),

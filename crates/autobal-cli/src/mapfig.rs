@@ -89,11 +89,14 @@ pub fn chain(segments: &[Segment]) -> Vec<(f64, f64)> {
 fn boundary(r: &MapResult, flag: impl Fn(&Cell) -> bool) -> Vec<(f64, f64)> {
     let dx = (r.x.hi - r.x.lo) / (r.x.n - 1) as f64;
     let dy = (r.y.hi - r.y.lo) / (r.y.n - 1) as f64;
+    // the grid values once (each `value` call rounds through log10: 320 000 calls per figure)
+    let xs: Vec<f64> = (0..r.x.n).map(|i| r.x.value(i)).collect();
+    let ys: Vec<f64> = (0..r.y.n).map(|j| r.y.value(j)).collect();
     let mut segs = vec![];
     for j in 0..r.y.n {
         let Some(row) = &r.rows[j] else { continue };
         for i in 0..r.x.n {
-            let (x, y) = (r.x.value(i), r.y.value(j));
+            let (x, y) = (xs[i], ys[j]);
             if i + 1 < r.x.n && flag(&row[i]) != flag(&row[i + 1]) {
                 segs.push(((x + dx / 2.0, y - dy / 2.0), (x + dx / 2.0, y + dy / 2.0)));
             }
@@ -159,9 +162,11 @@ pub fn plot(r: &MapResult, title: &str) -> Plot {
 pub fn write_plots(r: &MapResult, stem: &Path, title: &str) -> Result<()> {
     let p = plot(r, title);
     let svg_path = crate::output::with_suffix(stem, "svg");
-    std::fs::write(&svg_path, p.to_svg()).with_context(|| format!("cannot write {}", svg_path.display()))?;
+    // one SVG (the heatmap's PNG encoded once), rasterised for the PNG
+    let svg = p.to_svg();
+    std::fs::write(&svg_path, &svg).with_context(|| format!("cannot write {}", svg_path.display()))?;
     let png_path = crate::output::with_suffix(stem, "png");
-    std::fs::write(&png_path, p.to_png(1.5)?).with_context(|| format!("cannot write {}", png_path.display()))?;
+    std::fs::write(&png_path, crate::plot::svg_to_png(&svg, 1.5)?).with_context(|| format!("cannot write {}", png_path.display()))?;
     Ok(())
 }
 

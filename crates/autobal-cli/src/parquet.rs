@@ -3,6 +3,9 @@
 //! `INT64` column (a sweep's `point`) and `DOUBLE`s, written in row groups of [`ROW_GROUP`] rows
 //! as rows arrive, so memory stays bounded and an interrupted run keeps every full group plus
 //! the last partial one (the footer is written by [`Table::finish`], also on interruption).
+//! The rows go to a temporary file beside the final name ([`crate::outfile::TempName`]):
+//! [`Table::finish`] writes the footer and renames it into place; a table dropped unfinished
+//! (an error) removes it, so a footer-less file never appears under the final name.
 //!
 //! Built with the `parquet` crate (no Arrow, no compression codecs: the cheapest build that
 //! writes standard files); the cargo feature `parquet` (on by default) can leave it out, and
@@ -17,6 +20,9 @@ pub const ROW_GROUP: usize = 1 << 16;
 /// A Parquet file being written row by row.
 pub struct Table {
     path: PathBuf,
+    /// The temporary file's name until [`Table::finish`] renames it.
+    #[cfg(feature = "parquet")]
+    temp: crate::outfile::TempName,
     #[cfg(feature = "parquet")]
     writer: parquet::file::writer::SerializedFileWriter<std::fs::File>,
     /// Whether column 0 is an integer column.
@@ -44,9 +50,9 @@ impl Table {
             .collect::<parquet::errors::Result<Vec<_>>>()?;
         let schema = Arc::new(Type::group_type_builder("autobal").with_fields(fields).build()?);
         let props = parquet::file::properties::WriterProperties::builder().set_created_by(format!("autobal {}", env!("CARGO_PKG_VERSION"))).build();
-        let file = std::fs::File::create(path).with_context(|| format!("--parquet: cannot create {}", path.display()))?;
+        let (temp, file) = crate::outfile::TempName::create("--parquet", path)?;
         let writer = parquet::file::writer::SerializedFileWriter::new(file, schema, Arc::new(props))?;
-        Ok(Table { path: path.to_path_buf(), writer, int_first, columns: vec![vec![]; names.len()] })
+        Ok(Table { path: path.to_path_buf(), temp, writer, int_first, columns: vec![vec![]; names.len()] })
     }
 
     /// Without the `parquet` feature: an error that says how to get it.
@@ -101,11 +107,16 @@ impl Table {
         Ok(())
     }
 
-    /// Write the last rows and the footer (without it the file cannot be read).
+    /// Write the last rows and the footer (without it the file cannot be read), and rename the
+    /// file into place.
     pub fn finish(mut self) -> Result<PathBuf> {
         self.flush().with_context(|| format!("--parquet: cannot write {}", self.path.display()))?;
         #[cfg(feature = "parquet")]
-        self.writer.close().with_context(|| format!("--parquet: cannot write {}", self.path.display()))?;
+        {
+            self.writer.close().with_context(|| format!("--parquet: cannot write {}", self.path.display()))?;
+            self.temp.rename()
+        }
+        #[cfg(not(feature = "parquet"))]
         Ok(self.path)
     }
 }
@@ -141,6 +152,26 @@ mod tests {
             assert_eq!(row.get_double(1).unwrap().to_bits(), (0.1 * i as f64).to_bits());
             assert_eq!(row.get_double(2).unwrap().to_bits(), 0x3ff0_0000_0000_0001 + i as u64);
         }
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn a_table_dropped_unfinished_leaves_no_file() {
+        // an error between create and finish: no footer-less file under any name
+        let dir = std::env::temp_dir().join(format!("autobal-parquet-drop-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("t.parquet");
+        let mut t = Table::create(&path, &["a".to_string()], false).unwrap();
+        for i in 0..ROW_GROUP + 3 {
+            t.push(&[i as f64]).unwrap();
+        }
+        drop(t);
+        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0);
+        let t = Table::create(&path, &["a".to_string()], false).unwrap();
+        assert!(!path.exists(), "the final name appears only when finished");
+        t.finish().unwrap();
+        let bytes = std::fs::read(&path).unwrap();
+        assert_eq!(&bytes[bytes.len() - 4..], b"PAR1");
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -361,9 +361,13 @@ impl Plot {
             let half = |v: &[f64]| if v.len() > 1 { (v[1] - v[0]).abs() / 2.0 } else { 0.5 };
             let (ha, hb) = (h.x[0] - half(&h.x), h.x[h.x.len() - 1] + half(&h.x));
             let (va, vb) = (h.y[0] - half(&h.y), h.y[h.y.len() - 1] + half(&h.y));
+            // clipped to the plot area only where it reaches outside it (a map's raster fills
+            // it exactly, and a clip costs the PNG rasteriser a mask over the whole figure)
+            let inside = sx(ha) >= ml - 0.01 && sx(hb) <= ml + PW + 0.01 && sy(vb) >= mt - 0.01 && sy(va) <= mt + PH + 0.01;
+            let (open, close) = if inside { ("<g>", "</g>") } else { (r#"<g clip-path="url(#plotarea)">"#, "</g>") };
             let _ = writeln!(
                 s,
-                r#"<g clip-path="url(#plotarea)"><image x="{:.2}" y="{:.2}" width="{:.2}" height="{:.2}" preserveAspectRatio="none" image-rendering="optimizeSpeed" style="image-rendering:pixelated" href="data:image/png;base64,{}"/></g>"#,
+                r#"{open}<image x="{:.2}" y="{:.2}" width="{:.2}" height="{:.2}" preserveAspectRatio="none" image-rendering="optimizeSpeed" style="image-rendering:pixelated" href="data:image/png;base64,{}"/>{close}"#,
                 sx(ha),
                 sy(vb),
                 sx(hb) - sx(ha),
@@ -456,27 +460,42 @@ impl Plot {
         }
         for se in &self.series {
             let dash = if se.dashed { r#" stroke-dasharray="7 4""# } else { "" };
-            let mut seg: Vec<String> = vec![];
-            let flush = |seg: &mut Vec<String>, s: &mut String| {
+            // pixel coordinates of one unbroken piece of the curve (NaN breaks it), reduced to
+            // what a pixel column shows (`pixel_columns`), written with two decimals
+            let mut seg: Vec<(f64, f64)> = Vec::new();
+            let flush = |seg: &mut Vec<(f64, f64)>, s: &mut String| {
                 if se.markers {
-                    for p in seg.iter() {
-                        let (x, y) = p.split_once(',').unwrap_or(("0", "0"));
-                        let _ = writeln!(s, r#"<circle cx="{x}" cy="{y}" r="3.5" fill="{}" stroke="none"/>"#, se.color);
+                    for &(x, y) in seg.iter() {
+                        s.push_str(r#"<circle cx=""#);
+                        push_px(s, x);
+                        s.push_str(r#"" cy=""#);
+                        push_px(s, y);
+                        let _ = writeln!(s, r#"" r="3.5" fill="{}" stroke="none"/>"#, se.color);
                     }
                 } else if seg.len() >= 2 {
-                    let _ = writeln!(s, r#"<polyline points="{}" stroke="{}" stroke-width="{}"{dash}/>"#, seg.join(" "), se.color, se.width.unwrap_or(2.0));
-                } else if seg.len() == 1 {
-                    let (x, y) = seg[0].split_once(',').unwrap_or(("0", "0"));
-                    let _ = writeln!(s, r#"<circle cx="{x}" cy="{y}" r="2" fill="{}" stroke="none"/>"#, se.color);
+                    s.push_str(r#"<polyline points=""#);
+                    for (k, &(x, y)) in pixel_columns(seg).iter().enumerate() {
+                        if k > 0 {
+                            s.push(' ');
+                        }
+                        push_px(s, x);
+                        s.push(',');
+                        push_px(s, y);
+                    }
+                    let _ = writeln!(s, r#"" stroke="{}" stroke-width="{}"{dash}/>"#, se.color, se.width.unwrap_or(2.0));
+                } else if let Some(&(x, y)) = seg.first() {
+                    s.push_str(r#"<circle cx=""#);
+                    push_px(s, x);
+                    s.push_str(r#"" cy=""#);
+                    push_px(s, y);
+                    let _ = writeln!(s, r#"" r="2" fill="{}" stroke="none"/>"#, se.color);
                 }
                 seg.clear();
             };
             for &(x, y) in &se.points {
                 if x.is_finite() && y.is_finite() {
                     // keep far-off points finite in SVG while the clip path hides them
-                    let py = sy(y).clamp(-1e4, 1e4);
-                    let px = sx(x).clamp(-1e4, 1e4);
-                    seg.push(format!("{px:.2},{py:.2}"));
+                    seg.push((sx(x).clamp(-1e4, 1e4), sy(y).clamp(-1e4, 1e4)));
                 } else {
                     flush(&mut seg, &mut s);
                 }
@@ -713,6 +732,68 @@ impl Plot {
 }
 
 /// Split `s` into lines of at most about `max` characters at spaces.
+/// Append a pixel coordinate with two decimals (a hundredth of a pixel, below what any
+/// renderer resolves): `round(100 v)` split into integer and hundredths, the same text as
+/// `format!("{v:.2}")` but without its exact-decimal machinery (the figures of a 4 801-sample
+/// run write tens of thousands of them). `|v| ≤ 1e4` here (the caller clamps).
+fn push_px(s: &mut String, v: f64) {
+    let c = (v * 100.0).round();
+    let c = if c.is_finite() { c as i64 } else { 0 };
+    let a = c.unsigned_abs();
+    // written backwards: hundredths, tenths, point, integer digits, sign
+    let mut buf = [b'0'; 24];
+    let mut k = buf.len() - 3;
+    buf[k + 2] = b'0' + (a % 10) as u8;
+    buf[k + 1] = b'0' + (a / 10 % 10) as u8;
+    buf[k] = b'.';
+    let mut int = a / 100;
+    loop {
+        k -= 1;
+        buf[k] = b'0' + (int % 10) as u8;
+        int /= 10;
+        if int == 0 {
+            break;
+        }
+    }
+    if c < 0 {
+        k -= 1;
+        buf[k] = b'-';
+    }
+    s.push_str(std::str::from_utf8(&buf[k..]).unwrap_or("0"));
+}
+
+/// A polyline in pixel coordinates reduced to what a one-pixel column shows: each run of
+/// consecutive points in the same column `⌊x⌋` keeps its first, lowest, highest and last point,
+/// in their order along the curve (M4 aggregation). Every vertical extent, peak and the order of
+/// entry and exit of each column are kept, so the drawn line differs from the full one by less
+/// than a pixel; a curve that goes back (x not increasing) only starts a new run. A 4 801-sample
+/// run over the 540-pixel plot keeps at most 4 points a column.
+fn pixel_columns(pts: &[(f64, f64)]) -> Vec<(f64, f64)> {
+    let mut keep: Vec<usize> = Vec::with_capacity(pts.len().min(4 * PW as usize + 8));
+    let mut i = 0;
+    while i < pts.len() {
+        let col = pts[i].0.floor();
+        let (mut lo, mut hi, mut j) = (i, i, i + 1);
+        while j < pts.len() && pts[j].0.floor() == col {
+            if pts[j].1 < pts[lo].1 {
+                lo = j;
+            }
+            if pts[j].1 > pts[hi].1 {
+                hi = j;
+            }
+            j += 1;
+        }
+        for k in [i, lo.min(hi), lo.max(hi), j - 1] {
+            // ascending indices, each once
+            if keep.last().is_none_or(|&l| l < k) {
+                keep.push(k);
+            }
+        }
+        i = j;
+    }
+    keep.into_iter().map(|k| pts[k]).collect()
+}
+
 fn wrap(s: &str, max: usize) -> Vec<String> {
     let mut lines = vec![];
     let mut cur = String::new();
@@ -748,7 +829,23 @@ pub fn svg_to_png(svg: &str, scale: f32) -> anyhow::Result<Vec<u8>> {
     let size = tree.size().to_int_size().scale_by(scale).ok_or_else(|| anyhow::anyhow!("empty figure"))?;
     let mut pix = tiny_skia::Pixmap::new(size.width(), size.height()).ok_or_else(|| anyhow::anyhow!("figure too large"))?;
     resvg::render(&tree, tiny_skia::Transform::from_scale(scale, scale), &mut pix.as_mut());
-    pix.encode_png().map_err(|e| anyhow::anyhow!("PNG encoding: {e}"))
+    // the figures are opaque (white background): RGB, with the png crate's fast deflate, a
+    // third of the instructions of tiny-skia's RGBA `encode_png` at its default level
+    let opaque = pix.pixels().iter().all(|p| p.alpha() == 255);
+    if !opaque {
+        return pix.encode_png().map_err(|e| anyhow::anyhow!("PNG encoding: {e}"));
+    }
+    let rgb: Vec<u8> = pix.pixels().iter().flat_map(|p| [p.red(), p.green(), p.blue()]).collect();
+    let mut out = vec![];
+    {
+        let mut enc = png::Encoder::new(&mut out, pix.width(), pix.height());
+        enc.set_color(png::ColorType::Rgb);
+        enc.set_depth(png::BitDepth::Eight);
+        enc.set_compression(png::Compression::Fast);
+        let mut wr = enc.write_header().map_err(|e| anyhow::anyhow!("PNG encoding: {e}"))?;
+        wr.write_image_data(&rgb).map_err(|e| anyhow::anyhow!("PNG encoding: {e}"))?;
+    }
+    Ok(out)
 }
 
 #[cfg(test)]
@@ -768,6 +865,61 @@ mod tests {
         assert_eq!(t.first(), Some(&0.0));
         assert!(t.windows(2).all(|w| ((w[1] - w[0]) - 0.5).abs() < 1e-12));
         assert!(*t.last().unwrap() <= 3.7);
+    }
+
+    #[test]
+    fn pixel_coordinates_print_as_two_decimals() {
+        let mut x = 0x9E37_79B9_7F4A_7C15u64;
+        for _ in 0..20_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let v = ((x >> 11) as f64 / (1u64 << 53) as f64 - 0.3) * 3000.0;
+            let (mut s, want) = (String::new(), format!("{v:.2}"));
+            push_px(&mut s, v);
+            // the two roundings differ only on a hundredth's exact half, where either is right
+            let close = (s.parse::<f64>().unwrap() - v).abs() <= 0.005 + 1e-9;
+            assert!(s == want || (close && (want.parse::<f64>().unwrap() - v).abs() >= 0.005 - 1e-9), "{v}: {s} vs {want}");
+        }
+        for (v, want) in [(0.0, "0.00"), (1.0, "1.00"), (-1.5, "-1.50"), (614.004, "614.00"), (0.999, "1.00"), (-10000.0, "-10000.00")] {
+            let mut s = String::new();
+            push_px(&mut s, v);
+            assert_eq!(s, want);
+        }
+    }
+
+    #[test]
+    fn pixel_columns_keep_every_column_extent_and_both_ends() {
+        // a 4 801-sample resonance-like curve with a sharp peak over 540 px, plus noise
+        let n = 4801;
+        let pts: Vec<(f64, f64)> = (0..n)
+            .map(|k| {
+                let x = 74.0 + 540.0 * k as f64 / (n - 1) as f64;
+                let y = 300.0 - 250.0 / (1.0 + ((k as f64 - 2000.0) / 15.0).powi(2)) + 3.0 * ((k * 7919 % 13) as f64 / 13.0);
+                (x, y)
+            })
+            .collect();
+        let r = pixel_columns(&pts);
+        assert!(r.len() <= 4 * 541 && r.len() < n / 2, "{} points kept", r.len());
+        assert_eq!(r.first(), pts.first());
+        assert_eq!(r.last(), pts.last());
+        // per column: the same lowest and highest y (the peak, k = 2000, is kept exactly)
+        let ext = |p: &[(f64, f64)]| {
+            let mut m = std::collections::BTreeMap::new();
+            for &(x, y) in p {
+                let e = m.entry(x.floor() as i64).or_insert((f64::INFINITY, f64::NEG_INFINITY));
+                *e = (e.0.min(y), e.1.max(y));
+            }
+            m
+        };
+        assert_eq!(ext(&r), ext(&pts));
+        assert!(r.contains(&pts[2000]), "the peak sample is kept");
+        // kept points are a subsequence of the curve, in order
+        let mut it = pts.iter();
+        assert!(r.iter().all(|p| it.any(|q| q == p)));
+        // a curve going back and forth keeps its turning points
+        let zig = [(10.2, 1.0), (10.8, 5.0), (10.1, 2.0), (12.5, 0.0), (10.3, 9.0)];
+        assert_eq!(pixel_columns(&zig), zig.to_vec());
     }
 
     #[test]
@@ -835,5 +987,17 @@ mod tests {
         let svg = p.to_svg();
         let sw: f64 = svg.split("width=\"").nth(1).unwrap().split('"').next().unwrap().parse().unwrap();
         assert_eq!(w, sw.ceil());
+        // the fast RGB encoding decodes to the rasteriser's pixels
+        let dec = png::Decoder::new(std::io::Cursor::new(&png));
+        let mut rd = dec.read_info().unwrap();
+        let mut buf = vec![0; rd.output_buffer_size()];
+        let info = rd.next_frame(&mut buf).unwrap();
+        assert_eq!(info.color_type, png::ColorType::Rgb);
+        let opt = resvg::usvg::Options { fontdb: fontdb().clone(), font_family: "DejaVu Sans".into(), ..Default::default() };
+        let tree = resvg::usvg::Tree::from_str(&svg, &opt).unwrap();
+        let mut pix = resvg::tiny_skia::Pixmap::new(info.width, info.height).unwrap();
+        resvg::render(&tree, resvg::tiny_skia::Transform::identity(), &mut pix.as_mut());
+        let want: Vec<u8> = pix.pixels().iter().flat_map(|p| [p.red(), p.green(), p.blue()]).collect();
+        assert!(buf[..info.buffer_size()] == want[..], "decoded pixels differ");
     }
 }

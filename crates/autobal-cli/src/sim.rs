@@ -2,7 +2,7 @@
 
 use crate::config::PlanarConfig;
 use crate::plot::{Plot, Series, PALETTE};
-use anyhow::{bail, Context, Result};
+use anyhow::{bail, Result};
 use autobal::planar::stationary::{aligned_whirls_of, capacity_ratio, locked_amplitude, semi_balanced_exists};
 use autobal::planar::{simulate_with, Sample, Summary};
 use serde_json::Value;
@@ -272,12 +272,27 @@ pub fn plots(cfg: &PlanarConfig, env: &Envelope, title: &str) -> Vec<(String, Pl
     out
 }
 
+/// The figures' names beside the CSV: `STEM_amplitude_omega.svg`, `STEM_amplitude_t.svg`,
+/// `STEM_psi_t.svg`, `STEM_omega_t.svg` (the planar and the spatial simulation draw the same
+/// four), known before the run so that `--out` is checked before any work.
+pub const PLOTS: [&str; 4] = ["amplitude_omega", "amplitude_t", "psi_t", "omega_t"];
+
+/// `STEM_suffix.svg`.
+pub fn plot_path(stem: &Path, suffix: &str) -> PathBuf {
+    let name = format!("{}_{suffix}.svg", stem.file_name().and_then(|s| s.to_str()).unwrap_or("simulation"));
+    stem.with_file_name(name)
+}
+
+/// Every figure's path ([`PLOTS`]).
+pub fn plot_paths(stem: &Path) -> Vec<PathBuf> {
+    PLOTS.iter().map(|s| plot_path(stem, s)).collect()
+}
+
 pub fn write_plots(cfg: &PlanarConfig, env: &Envelope, stem: &Path, title: &str) -> Result<Vec<PathBuf>> {
     let mut files = vec![];
     for (suffix, plot) in plots(cfg, env, title) {
-        let name = format!("{}_{suffix}.svg", stem.file_name().and_then(|s| s.to_str()).unwrap_or("simulation"));
-        let path = stem.with_file_name(name);
-        std::fs::write(&path, plot.to_svg()).with_context(|| format!("cannot write {}", path.display()))?;
+        let path = plot_path(stem, &suffix);
+        crate::outfile::write_atomic("--out", &path, plot.to_svg())?;
         files.push(path);
     }
     Ok(files)

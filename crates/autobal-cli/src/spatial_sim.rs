@@ -3,7 +3,7 @@
 //! `[balancer2]`), and `autobal basins`.
 
 use crate::plot::{Plot, Series, PALETTE};
-use anyhow::{bail, Context, Result};
+use anyhow::{bail, Result};
 use autobal::config::SpatialSimulation;
 use autobal::spatial::dynamics::basins::{angle_grid, basins, check_angle_grid};
 use autobal::spatial::dynamics::stationary::response_curve;
@@ -79,20 +79,32 @@ impl Envelope {
     }
 }
 
+/// The columns of the samples: `t, omega, x, y, tilt_x, tilt_y`, the supports' and planes'
+/// amplitudes, `psi_1 … psi_n`.
+pub fn columns(sim: &SpatialSim) -> Vec<String> {
+    let r = &sim.rotor;
+    let mut c: Vec<String> = ["t", "omega", "x", "y", "tilt_x", "tilt_y"].iter().map(|s| s.to_string()).collect();
+    c.extend(["left", "right"].iter().take(r.supports.len()).map(|s| format!("amplitude_{s}")));
+    c.extend((1..=r.planes.len().max(1)).map(|p| format!("amplitude_plane{p}")));
+    c.extend((1..=r.balls()).map(|j| format!("psi_{j}")));
+    c
+}
+
 /// Run, writing every sample to `csv` (flushed as it goes).
 pub fn run_to_csv(sim: &SpatialSim, csv: &mut dyn Write, progress: bool, interrupted: &std::sync::atomic::AtomicBool) -> Result<(Summary, Vec<Sample>, f64)> {
-    let r = &sim.rotor;
-    let mut header = String::from("t,omega,x,y,tilt_x,tilt_y");
-    for s in ["left", "right"].iter().take(r.supports.len()) {
-        header.push_str(&format!(",amplitude_{s}"));
-    }
-    for p in 1..=r.planes.len().max(1) {
-        header.push_str(&format!(",amplitude_plane{p}"));
-    }
-    for j in 1..=r.balls() {
-        header.push_str(&format!(",psi_{j}"));
-    }
-    writeln!(csv, "{header}")?;
+    run_to_files(sim, csv, None, progress, interrupted)
+}
+
+/// Run, writing every sample to `csv` (flushed as it goes) and to `parquet` if given.
+pub fn run_to_files(
+    sim: &SpatialSim,
+    csv: &mut dyn Write,
+    mut parquet: Option<&mut crate::parquet::Table>,
+    progress: bool,
+    interrupted: &std::sync::atomic::AtomicBool,
+) -> Result<(Summary, Vec<Sample>, f64)> {
+    writeln!(csv, "{}", columns(sim).join(","))?;
+    let mut row = vec![];
     let expected = (sim.settings.t_end / sim.settings.dt) as usize + 1;
     let mut env = Envelope { bucket: expected.div_ceil(6000).max(1), current: vec![], kept: vec![] };
     let bar = progress.then(|| {
@@ -106,7 +118,7 @@ pub fn run_to_csv(sim: &SpatialSim, csv: &mut dyn Write, progress: bool, interru
     let mut io_error = None;
     let mut count = 0u64;
     let t0 = std::time::Instant::now();
-    let summary = simulate(r, &sim.drive, &sim.initial, &sim.settings, |s| {
+    let summary = simulate(&sim.rotor, &sim.drive, &sim.initial, &sim.settings, |s| {
         let mut line = format!(
             "{},{},{},{},{},{}",
             crate::num::Csv(s.t),
@@ -122,8 +134,17 @@ pub fn run_to_csv(sim: &SpatialSim, csv: &mut dyn Write, progress: bool, interru
         }
         line.push('\n');
         if let Err(e) = csv.write_all(line.as_bytes()) {
-            io_error = Some(e);
+            io_error = Some(anyhow::Error::from(e));
             return false;
+        }
+        if let Some(t) = parquet.as_deref_mut() {
+            row.clear();
+            row.extend([s.t, s.omega, s.x, s.y, s.tilt_x, s.tilt_y]);
+            row.extend(s.amplitude_supports.iter().chain(&s.amplitude_planes).chain(&s.psi));
+            if let Err(e) = t.push(&row) {
+                io_error = Some(e);
+                return false;
+            }
         }
         env.push(s);
         count += 1;
@@ -143,7 +164,7 @@ pub fn run_to_csv(sim: &SpatialSim, csv: &mut dyn Write, progress: bool, interru
         b.finish_and_clear();
     }
     if let Some(e) = io_error {
-        bail!("--out: cannot write the CSV: {e}");
+        bail!("--out: cannot write: {e:#}");
     }
     Ok((summary, env.kept, wall))
 }
@@ -171,16 +192,36 @@ pub fn summary_table(sim: &SpatialSim, s: &Summary, wall: f64) -> String {
         false => format!("Ω = {w:.4}"),
     };
     let time = |t: f64| if sim.config.dimensional { format!("t = {t:.4} s") } else { format!("τ = {t:.4}") };
-    let _ = writeln!(o, "peak whirl radius at the balancer plane: {:.6} {lu} at {} ({})", ls * s.peak_amplitude, speed(s.omega_at_peak), time(s.t_at_peak));
     let _ = writeln!(
         o,
-        "final: radius {:.6} {lu} at {}; residual unbalance {:.3e} of the unbalance{}; {}",
+        "peak whirl radius at the balancer plane (distance from the axis, a sag included): {:.6} {lu} at {} ({})",
+        ls * s.peak_amplitude,
+        speed(s.omega_at_peak),
+        time(s.t_at_peak)
+    );
+    use autobal::spatial::dynamics::RunOutcome;
+    let _ = writeln!(
+        o,
+        "final: radius {:.6} {lu} at {}; static sag {:.6} {lu} (last revolution: radius = RMS whirl about the mean position, sag = its distance from the axis); residual unbalance {:.3e} of the unbalance{} (mean over the last revolution); {}",
         ls * s.final_amplitude,
         speed(s.final_omega),
+        ls * s.static_sag,
         s.residual_unbalance,
         s.residual_couple.map_or(String::new(), |c| format!(", couple {c:.3e}")),
-        if s.balanced { "balanced" } else { "not balanced" }
+        match s.outcome {
+            RunOutcome::Balanced => "balanced",
+            RunOutcome::PartiallyBalanced => "partially balanced: the balls' capacity falls short, they rest together against the unbalance",
+            RunOutcome::NotBalanced => "not balanced",
+            RunOutcome::NotSettled => "not settled",
+        }
     );
+    if s.outcome == RunOutcome::NotSettled && s.stopped.is_none() {
+        let _ = writeln!(
+            o,
+            "warning: the balls have not settled: their mean angles still drift from one revolution to the next{}: a transient (raise drive.t_end) or balls circulating round the race; the residual and radius are no stationary state's",
+            s.ball_drift.map_or(", or it turned less than two revolutions".to_string(), |d| format!(" by {d:.2e} rad"))
+        );
+    }
     let _ = writeln!(o, "integration: {} steps ({} rejected), {} right-hand sides, {:.3} s", s.steps, s.rejected_steps, s.rhs_evaluations, wall);
     if sim.rotor.planes.iter().any(|p| p.physics.is_active()) {
         let _ = writeln!(o, "real balls: {} contacts, {} stick-slip transitions", s.contacts, s.stick_slip_transitions);
@@ -258,9 +299,8 @@ pub fn plots(sim: &SpatialSim, kept: &[Sample], title: &str) -> Vec<(String, Plo
 pub fn write_plots(sim: &SpatialSim, kept: &[Sample], stem: &Path, title: &str) -> Result<Vec<PathBuf>> {
     let mut files = vec![];
     for (suffix, plot) in plots(sim, kept, title) {
-        let name = format!("{}_{suffix}.svg", stem.file_name().and_then(|s| s.to_str()).unwrap_or("simulation"));
-        let path = stem.with_file_name(name);
-        std::fs::write(&path, plot.to_svg()).with_context(|| format!("cannot write {}", path.display()))?;
+        let path = crate::sim::plot_path(stem, &suffix);
+        crate::outfile::write_atomic("--out", &path, plot.to_svg())?;
         files.push(path);
     }
     Ok(files)
@@ -301,7 +341,8 @@ pub fn run_basins(sim: &SpatialSim, n: usize, out: &Path, progress: bool, interr
             ));
         }
     }
-    std::fs::write(out, csv).with_context(|| format!("--out: cannot write {}", out.display()))?;
+    // whole or not at all (an interrupted run keeps its complete runs, and says so below)
+    crate::outfile::write_atomic("--out", out, csv)?;
     let mut v = autobal::reports::basins(&res, wall);
     v["csv"] = json!(out.display().to_string());
     let done = res.iter().flatten().count();

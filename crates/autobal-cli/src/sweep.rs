@@ -35,7 +35,8 @@ pub struct SweepArgs {
     /// shards' outputs with `autobal merge`
     #[arg(long, value_name = "K/N")]
     shard: Option<String>,
-    /// Output stem: STEM.csv (one row per run, written as runs finish) and STEM.json
+    /// Output stem: STEM.csv (one row per run, written as runs finish, to a temporary name
+    /// renamed when done or stopped) and STEM.json; a folder (`DIR/`): DIR/sweep.*
     #[arg(long, short, default_value = "sweep")]
     out: PathBuf,
     /// Also write the rows as Parquet, STEM.parquet (row groups written as runs finish)
@@ -54,7 +55,8 @@ pub struct MergeArgs {
     /// The shards' CSV files (each with its STEM.json beside it), in any order
     #[arg(required = true, value_name = "SHARD.csv")]
     shards: Vec<PathBuf>,
-    /// Output stem: STEM.csv and STEM.json, as the unsharded sweep writes them
+    /// Output stem: STEM.csv and STEM.json, as the unsharded sweep writes them (a folder,
+    /// `DIR/`: DIR/sweep.*); written only when every shard checks out
     #[arg(long, short)]
     out: PathBuf,
     /// Also write STEM.parquet, as `autobal sweep --parquet` does
@@ -128,14 +130,20 @@ pub fn run(a: SweepArgs) -> Result<()> {
         rayon::ThreadPoolBuilder::new().num_threads(t).build_global().ok();
     }
     autobal::sweep::check_grid(&base, &grid, range.clone())?;
+    let checksum = definition_checksum(&root, &grid);
     let _ = ctrlc::set_handler(|| crate::sim::INTERRUPTED.store(true, Ordering::Relaxed));
-    let out = &crate::output::out_stem(&a.out, &["csv", "json", "parquet"]);
-    if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).with_context(|| format!("--out: cannot create {}", dir.display()))?;
-    }
+    let out = &crate::output::out_stem(&crate::outfile::resolve(&a.out, "sweep"), &["csv", "json", "parquet"]);
     let csv_path = crate::output::with_suffix(out, "csv");
-    let file = std::fs::File::create(&csv_path).with_context(|| format!("--out: cannot create {}", csv_path.display()))?;
-    let mut csv = std::io::BufWriter::new(file);
+    let json_path = crate::output::with_suffix(out, "json");
+    let mut outputs = crate::outfile::Outputs::new();
+    outputs.inputs(a.config.as_deref()).output("--out", &csv_path).output("--out", &json_path);
+    if a.parquet {
+        outputs.output("--parquet", &crate::output::with_suffix(out, "parquet"));
+    }
+    outputs.check()?;
+    // rows go to a temporary file, renamed into place when the sweep ends or is interrupted
+    // (complete rows, with its JSON); an error removes it
+    let mut csv = crate::outfile::Staged::create("--out", &csv_path)?;
     let paths = grid.paths();
     writeln!(csv, "{}", columns(&paths).join(","))?;
     let mut pq = match a.parquet {
@@ -214,22 +222,72 @@ pub fn run(a: SweepArgs) -> Result<()> {
             crate::output::with_suffix(out, "json").display()
         ));
     }
-    csv.flush()?;
     if let Some(e) = io_error {
         return Err(e);
     }
+    let info = autobal::reports::SweepInfo { problem: &base, grid: &grid, shard: shard_kn, range: range.clone(), complete: outcome.complete };
+    let mut json = autobal::reports::sweep(&info, runs);
+    json["definition_checksum"] = json!(checksum);
+    let csv_path = csv.commit()?;
     if let Some(t) = pq {
         crate::output::note(&format!("wrote {}", t.finish()?.display()));
     }
-    let info = autobal::reports::SweepInfo { problem: &base, grid: &grid, shard: shard_kn, range: range.clone(), complete: outcome.complete };
-    let json = autobal::reports::sweep(&info, runs);
-    let json_path = crate::output::with_suffix(out, "json");
-    std::fs::write(&json_path, serde_json::to_string_pretty(&json)?).with_context(|| format!("--out: cannot write {}", json_path.display()))?;
+    crate::outfile::write_atomic("--out", &json_path, serde_json::to_string_pretty(&json)?)?;
     emit(a.format, json, table)?;
     if !outcome.complete {
         bail!("interrupted: {} of {} runs complete, kept in {}", outcome.delivered, outcome.points, csv_path.display());
     }
     Ok(())
+}
+
+/// A 64-bit FNV-1a hash of the sweep's definition: the config after the `--set` overrides
+/// (as TOML text) and every axis's path and values (bit patterns), written in each shard's JSON
+/// as `definition_checksum` so that `merge` refuses shards of different sweeps. FNV-1a
+/// (`h = (h ⊕ byte) · 0x100000001b3` from `0xcbf29ce484222325`) guards against mistakes, not
+/// forgery: two different definitions collide with probability ~2⁻⁶⁴.
+pub fn definition_checksum(root: &toml::Table, grid: &Grid) -> String {
+    let mut text = toml::to_string(root).unwrap_or_default();
+    for a in &grid.axes {
+        text.push_str(&format!("\naxis {}=", a.path));
+        for v in &a.values {
+            text.push_str(&format!("{:016x},", v.to_bits()));
+        }
+    }
+    format!("fnv1a64:{:016x}", fnv1a64(text.as_bytes()))
+}
+
+/// FNV-1a, 64 bits.
+fn fnv1a64(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &b| (h ^ b as u64).wrapping_mul(0x0000_0100_0000_01b3))
+}
+
+/// Largest shard file `merge` reads (CSV or JSON), bytes: a row is well under 1 kB, so 1 GiB
+/// holds over a million points per shard; a wrong path (`/dev/zero`, a disk image) is refused
+/// from its size before anything is read.
+pub const MAX_SHARD_BYTES: u64 = 1 << 30;
+
+/// Read a shard's file: a regular file of at most [`MAX_SHARD_BYTES`], as UTF-8.
+fn read_bounded(p: &Path, what: &str) -> Result<String> {
+    use std::io::Read;
+    let meta = std::fs::metadata(p).with_context(|| format!("{}: cannot read {what}", p.display()))?;
+    if !meta.is_file() {
+        bail!("{}: {what} is not a regular file (a folder, device or pipe)", p.display());
+    }
+    if meta.len() > MAX_SHARD_BYTES {
+        return Err(autobal::Error::TooLarge {
+            what: format!("{} ({what})", p.display()),
+            size: meta.len(),
+            limit: MAX_SHARD_BYTES,
+            reason: "bytes per shard file".into(),
+        }
+        .into());
+    }
+    let mut bytes = vec![];
+    std::fs::File::open(p).and_then(|f| f.take(MAX_SHARD_BYTES + 1).read_to_end(&mut bytes)).with_context(|| format!("{}: cannot read {what}", p.display()))?;
+    if bytes.len() as u64 > MAX_SHARD_BYTES {
+        bail!("{}: {what} grew past {MAX_SHARD_BYTES} bytes while being read", p.display());
+    }
+    String::from_utf8(bytes).map_err(|e| anyhow!("{}: {what} is not UTF-8 text (byte {})", p.display(), e.utf8_error().valid_up_to()))
 }
 
 /// A shard's outputs: its JSON sidecar and its CSV text.
@@ -239,25 +297,129 @@ struct Shard {
     csv: String,
 }
 
+/// The JSON beside a shard's CSV: `STEM.json` for `STEM.csv`.
+fn json_of(p: &Path) -> PathBuf {
+    p.with_extension("json")
+}
+
 fn read_shard(p: &Path) -> Result<Shard> {
-    let csv = std::fs::read_to_string(p).with_context(|| format!("{}: cannot read", p.display()))?;
-    let jp = p.with_extension("json");
-    let text = std::fs::read_to_string(&jp).with_context(|| format!("{}: cannot read the shard's JSON beside its CSV", jp.display()))?;
-    let json: Value = serde_json::from_str(&text).with_context(|| format!("{}: not a sweep's JSON", jp.display()))?;
+    let csv = read_bounded(p, "the shard's CSV")?;
+    let jp = json_of(p);
+    let text = read_bounded(&jp, "the shard's JSON beside its CSV")?;
+    let json: Value = serde_json::from_str(&text).map_err(|e| anyhow!("{}: not a sweep's JSON: {e}", jp.display()))?;
+    if !json.is_object() {
+        bail!("{}: not a sweep's JSON (not an object)", jp.display());
+    }
     Ok(Shard { path: p.to_path_buf(), json, csv })
 }
 
+/// The grid's values at `point` from a sweep's JSON (`grid`: the axes, first varying fastest).
+fn grid_values(json: &Value, point: u64) -> Option<Vec<f64>> {
+    let mut idx = point;
+    let mut out = vec![];
+    for a in json["grid"].as_array()? {
+        let vals = a["values"].as_array()?;
+        let n = vals.len() as u64;
+        if n == 0 {
+            return None;
+        }
+        out.push(vals[(idx % n) as usize].as_f64()?);
+        idx /= n;
+    }
+    Some(out)
+}
+
+/// Check every row of a shard: complete (ends with a line end, as many fields as the header),
+/// every field a number, the points its JSON's `range` in order, the axis values those of the
+/// grid at that point, and each row's point, values and wall time those of its JSON's run.
+/// Errors name the shard and the line.
+fn verify_rows(s: &Shard, head: &str) -> Result<Vec<String>> {
+    let name = s.path.display();
+    let width = head.split(',').count();
+    let paths = s.json["paths"].as_array().map_or(0, |p| p.len());
+    let range = (s.json["range"][0].as_u64(), s.json["range"][1].as_u64());
+    let (Some(start), Some(end)) = range else { bail!("{}: no range [start, end] of points", json_of(&s.path).display()) };
+    let runs = s.json["runs"].as_array().ok_or_else(|| anyhow!("{}: no runs", json_of(&s.path).display()))?;
+    if !s.csv.is_empty() && !s.csv.ends_with('\n') {
+        let last = s.csv.lines().count();
+        bail!("{name}: line {last} is cut short (no line end): the shard was truncated mid-row; run this shard again");
+    }
+    let mut rows = vec![];
+    let mut expected = start;
+    for (i, l) in s.csv.lines().enumerate().skip(1) {
+        let line = i + 1;
+        if crate::sim::INTERRUPTED.load(Ordering::Relaxed) {
+            bail!("interrupted while reading {name}: nothing written");
+        }
+        let fields: Vec<&str> = l.split(',').collect();
+        if fields.len() != width {
+            bail!("{name}: line {line} has {} fields where the header has {width} (a row cut short or edited)", fields.len());
+        }
+        let point: u64 = fields[0].parse().map_err(|_| anyhow!("{name}: line {line}: the point index `{}` is not a whole number", fields[0]))?;
+        let mut values = Vec::with_capacity(width);
+        for (k, f) in fields.iter().enumerate().skip(1) {
+            let v: f64 = f.parse().map_err(|_| anyhow!("{name}: line {line}, column {}: `{f}` is not a number", k + 1))?;
+            values.push(v);
+        }
+        if point != expected {
+            bail!("{name}: line {line}: point {point} where {expected} was expected (edited or truncated shard?)");
+        }
+        let grid = grid_values(&s.json, point).ok_or_else(|| anyhow!("{}: its grid does not give point {point}", json_of(&s.path).display()))?;
+        if grid.len() != paths || values[..paths].iter().zip(&grid).any(|(a, b)| a.to_bits() != b.to_bits()) {
+            bail!("{name}: line {line}: the axis values of point {point} are not the sweep's grid values {grid:?}");
+        }
+        let run =
+            runs.get((point - start) as usize).ok_or_else(|| anyhow!("{name}: line {line}: point {point} has no run in {}", json_of(&s.path).display()))?;
+        let json_values: Option<Vec<f64>> = run["values"].as_array().map(|v| v.iter().filter_map(Value::as_f64).collect());
+        let wall = values.last().copied().unwrap_or(f64::NAN);
+        if run["point"].as_u64() != Some(point)
+            || json_values.as_deref() != Some(&grid[..])
+            || run["wall_time_s"].as_f64().map(f64::to_bits) != Some(wall.to_bits())
+        {
+            bail!("{name}: line {line}: point {point} differs from its run in {} (CSV and JSON of different runs?)", json_of(&s.path).display());
+        }
+        rows.push(l.to_string());
+        expected += 1;
+    }
+    if expected != end || runs.len() as u64 != end - start {
+        bail!("{name}: holds points {start}..{expected} but its JSON says {start}..{end} with {} runs (truncated shard?)", runs.len());
+    }
+    Ok(rows)
+}
+
 pub fn merge(a: MergeArgs) -> Result<()> {
-    let mut shards = a.shards.iter().map(|p| read_shard(p)).collect::<Result<Vec<_>>>()?;
+    // the outputs, checked against each other and the shards before anything is read
+    let out = crate::output::out_stem(&crate::outfile::resolve(&a.out, "sweep"), &["csv", "json", "parquet"]);
+    let (cp, jp, pp) = (crate::output::with_suffix(&out, "csv"), crate::output::with_suffix(&out, "json"), crate::output::with_suffix(&out, "parquet"));
+    let mut outputs = crate::outfile::Outputs::new();
+    for s in &a.shards {
+        outputs.input("shard", s).input("shard JSON", &json_of(s));
+    }
+    outputs.output("--out", &cp).output("--out", &jp);
+    if a.parquet {
+        outputs.output("--parquet", &pp);
+    }
+    outputs.check()?;
+    let _ = ctrlc::set_handler(|| crate::sim::INTERRUPTED.store(true, Ordering::Relaxed));
+    let mut shards = vec![];
+    for p in &a.shards {
+        if crate::sim::INTERRUPTED.load(Ordering::Relaxed) {
+            bail!("interrupted while reading the shards: nothing written");
+        }
+        shards.push(read_shard(p)?);
+    }
     let name = |s: &Shard| s.path.display().to_string();
     let kn = |s: &Shard| -> Result<(u64, u64)> {
         let v = &s.json["shard"];
         match (v[0].as_u64(), v[1].as_u64()) {
-            (Some(k), Some(n)) => Ok((k, n)),
+            (Some(k), Some(n)) if k >= 1 && k <= n => Ok((k, n)),
             _ => bail!("{}: not a shard (run with --shard K/N)", name(s)),
         }
     };
     let n = kn(&shards[0])?.1;
+    // the same sweep: the grid and problem, then the checksum of its definition (the config
+    // text after --set and the axes)
+    let sum = |s: &Shard| s.json["definition_checksum"].as_str().map(String::from);
     for s in &shards {
         let (_, ni) = kn(s)?;
         if ni != n {
@@ -268,38 +430,58 @@ pub fn merge(a: MergeArgs) -> Result<()> {
                 bail!("{}: a different sweep than {} (its {key} differ)", name(s), name(&shards[0]));
             }
         }
+        if sum(s) != sum(&shards[0]) {
+            let show = |x: Option<String>| x.unwrap_or_else(|| "none (an older autobal)".into());
+            bail!(
+                "{} and {}: shards of different sweeps (definition checksums {} and {}: the config, --set or axes differ)",
+                name(&shards[0]),
+                name(s),
+                show(sum(&shards[0])),
+                show(sum(s))
+            );
+        }
         if s.json["complete"] != Value::Bool(true) {
             bail!("{}: incomplete (interrupted); run this shard again", name(s));
         }
     }
-    shards.sort_by_key(|s| kn(s).map(|x| x.0).unwrap_or(0));
-    for (i, s) in shards.iter().enumerate() {
+    // each shard once: a duplicate names both files, a gap every missing shard
+    let mut seen: Vec<Option<&Shard>> = vec![None; n as usize];
+    for s in &shards {
         let k = kn(s)?.0;
-        if k != i as u64 + 1 {
-            let dup = k <= i as u64;
-            bail!("shard {} of {n} is {}", i + 1, if dup { format!("given twice ({})", name(s)) } else { "missing".into() });
+        if let Some(first) = seen[(k - 1) as usize] {
+            if crate::outfile::same_file(&first.path, &s.path) {
+                bail!("shard {k} of {n} is given twice ({})", name(s));
+            }
+            bail!("shard {k} of {n} is given twice: {} and {}", name(first), name(s));
         }
+        seen[(k - 1) as usize] = Some(s);
     }
-    if shards.len() as u64 != n {
-        bail!("shard {} of {n} is missing", shards.len() + 1);
+    let missing: Vec<String> = seen.iter().enumerate().filter(|(_, s)| s.is_none()).map(|(k, _)| (k + 1).to_string()).collect();
+    if !missing.is_empty() {
+        bail!("shard{} {} of {n} {} missing", if missing.len() > 1 { "s" } else { "" }, missing.join(", "), if missing.len() > 1 { "are" } else { "is" });
     }
+    shards.sort_by_key(|s| kn(s).map(|x| x.0).unwrap_or(0));
     let head = shards[0].csv.lines().next().unwrap_or_default().to_string();
-    let mut csv = format!("{head}\n");
+    let paths: Vec<&str> = shards[0].json["paths"].as_array().map(|p| p.iter().filter_map(Value::as_str).collect()).unwrap_or_default();
+    if head != columns(&paths).join(",") {
+        bail!("{}: its CSV header is not a sweep's over {} (`{head}`)", name(&shards[0]), paths.join(", "));
+    }
+    let mut csv = String::with_capacity(shards.iter().map(|s| s.csv.len()).sum());
+    csv.push_str(&head);
+    csv.push('\n');
     let mut runs = vec![];
     let mut next = 0u64;
     for s in &shards {
-        let mut lines = s.csv.lines();
-        if lines.next() != Some(head.as_str()) {
+        if s.csv.lines().next() != Some(head.as_str()) {
             bail!("{}: its CSV header differs from {}", name(s), name(&shards[0]));
         }
-        for l in lines {
-            let point: u64 = l.split(',').next().and_then(|p| p.parse().ok()).ok_or_else(|| anyhow!("{}: a row without its point index", name(s)))?;
-            if point != next {
-                bail!("{}: point {point} where {next} was expected (edited or truncated shard?)", name(s));
-            }
-            next += 1;
-            csv.push_str(l);
+        if s.json["range"][0].as_u64() != Some(next) {
+            bail!("{}: starts at point {} where {next} was expected", name(s), s.json["range"][0]);
+        }
+        for l in verify_rows(s, &head)? {
+            csv.push_str(&l);
             csv.push('\n');
+            next += 1;
         }
         runs.extend(s.json["runs"].as_array().cloned().unwrap_or_default());
     }
@@ -311,22 +493,32 @@ pub fn merge(a: MergeArgs) -> Result<()> {
     json["shard"] = Value::Null;
     json["range"] = json!([0, points]);
     json["runs"] = Value::Array(runs);
-    let out = crate::output::out_stem(&a.out, &["csv", "json", "parquet"]);
-    if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).with_context(|| format!("--out: cannot create {}", dir.display()))?;
-    }
-    let (cp, jp) = (crate::output::with_suffix(&out, "csv"), crate::output::with_suffix(&out, "json"));
+    // every file to a temporary name; renamed into place only when all are written
+    let mut pq = None;
     if a.parquet {
         let names: Vec<String> = head.split(',').map(String::from).collect();
-        let mut t = crate::parquet::Table::create(&crate::output::with_suffix(&out, "parquet"), &names, true)?;
+        let mut t = crate::parquet::Table::create(&pp, &names, true)?;
         for l in csv.lines().skip(1) {
+            if crate::sim::INTERRUPTED.load(Ordering::Relaxed) {
+                bail!("interrupted: nothing written");
+            }
             let row = l.split(',').map(|v| v.parse::<f64>()).collect::<std::result::Result<Vec<_>, _>>();
             t.push(&row.map_err(|e| anyhow!("{}: a value that is not a number in the row `{l}`: {e}", cp.display()))?)?;
         }
+        pq = Some(t);
+    }
+    let mut c = crate::outfile::Staged::create("--out", &cp)?;
+    c.write_all(csv.as_bytes()).with_context(|| format!("--out: cannot write {}", cp.display()))?;
+    let mut j = crate::outfile::Staged::create("--out", &jp)?;
+    j.write_all(serde_json::to_string_pretty(&json)?.as_bytes()).with_context(|| format!("--out: cannot write {}", jp.display()))?;
+    if crate::sim::INTERRUPTED.load(Ordering::Relaxed) {
+        bail!("interrupted: nothing written");
+    }
+    c.commit()?;
+    j.commit()?;
+    if let Some(t) = pq {
         crate::output::note(&format!("wrote {}", t.finish()?.display()));
     }
-    std::fs::write(&cp, csv).with_context(|| format!("--out: cannot write {}", cp.display()))?;
-    std::fs::write(&jp, serde_json::to_string_pretty(&json)?).with_context(|| format!("--out: cannot write {}", jp.display()))?;
     crate::output::print(&format!("merged {n} shards, {points} points: wrote {}, {}\n", cp.display(), jp.display()))
 }
 

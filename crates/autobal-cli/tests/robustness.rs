@@ -223,3 +223,284 @@ fn regression_boundary_stepped_off_the_plane_and_failed() {
     assert_eq!(code, 0, "{err}");
     assert!(err.contains("boundary: ") && !err.contains("boundary: 0 curves"), "{err}");
 }
+
+// ---- issue 23: outputs that never destroy or corrupt, merge that verifies -------------------
+
+/// A fresh scratch folder for one test.
+fn scratch(name: &str) -> std::path::PathBuf {
+    let d = std::env::temp_dir().join(format!("autobal-out-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn s(p: &std::path::Path) -> String {
+    p.to_str().unwrap().to_string()
+}
+
+/// No temporary `*.part` file left in `d`.
+#[track_caller]
+fn no_part_files(d: &std::path::Path) {
+    let left: Vec<String> =
+        std::fs::read_dir(d).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).filter(|n| n.ends_with(".part")).collect();
+    assert!(left.is_empty(), "temporary files left: {left:?}");
+}
+
+/// Every line of a CSV is complete: ends with a line end and has the header's field count.
+#[track_caller]
+fn csv_is_whole(p: &std::path::Path) -> usize {
+    let text = std::fs::read_to_string(p).unwrap();
+    assert!(text.ends_with('\n'), "{}: ends mid-row", p.display());
+    let mut lines = text.lines();
+    let width = lines.next().unwrap().split(',').count();
+    let mut n = 0;
+    for (i, l) in lines.enumerate() {
+        assert_eq!(l.split(',').count(), width, "{} line {}: `{l}`", p.display(), i + 2);
+        for f in l.split(',') {
+            assert!(f.is_empty() || f.parse::<f64>().is_ok(), "{} line {}: `{f}`", p.display(), i + 2);
+        }
+        n += 1;
+    }
+    n
+}
+
+/// A small planar sweep's args over 6 points.
+const SMALL_SWEEP: [&str; 8] = ["sweep", "--threads", "1", "--x", "drive.b=2:3:6", "--set", "drive.t_end=0.5", "--format=json"];
+
+#[test]
+fn regression_out_equal_to_an_input_overwrote_it() {
+    let d = scratch("same");
+    // the config as the CSV simulate writes
+    let cfg = d.join("run.csv");
+    std::fs::copy(examples("planar.toml"), &cfg).unwrap();
+    let before = std::fs::read(&cfg).unwrap();
+    let line = rejects(&["simulate", "--config", &s(&cfg), "--out", &s(&cfg)], "--out");
+    assert!(line.contains("--config"), "{line}");
+    // a sweep whose JSON would be the config, spelled another way (./)
+    let cfg2 = d.join("sw.json");
+    std::fs::copy(examples("planar.toml"), &cfg2).unwrap();
+    let mut a = SMALL_SWEEP.to_vec();
+    let stem = format!("{}/./sw", d.display());
+    a.extend(["--config", cfg2.to_str().unwrap(), "--out", &stem]);
+    rejects(&a, "--out");
+    assert_eq!(std::fs::read(&cfg).unwrap(), before);
+    assert_eq!(std::fs::read(&cfg2).unwrap(), before);
+    // a shard as the merge's output
+    let mut a = SMALL_SWEEP.to_vec();
+    let sh = s(&d.join("sh1"));
+    a.extend(["--shard", "1/1", "--out", &sh]);
+    let (code, _, err) = run_for(Duration::from_secs(60), &a);
+    assert_eq!(code, 0, "{err}");
+    let shard_before = std::fs::read(d.join("sh1.csv")).unwrap();
+    let line = rejects(&["merge", &format!("{sh}.csv"), "--out", &sh], "--out");
+    assert!(line.contains("shard"), "{line}");
+    assert_eq!(std::fs::read(d.join("sh1.csv")).unwrap(), shard_before);
+    no_part_files(&d);
+    std::fs::remove_dir_all(&d).ok();
+}
+
+#[test]
+fn regression_out_folder_wrote_hidden_nameless_files() {
+    let d = scratch("dir");
+    let runs = format!("{}/runs/", d.display());
+    let (code, _, err) = run_for(Duration::from_secs(60), &["simulate", "--set", "drive.t_end=1", "--out", &runs]);
+    assert_eq!(code, 0, "{err}");
+    assert!(d.join("runs/simulation.csv").is_file() && !d.join("runs/.csv").exists(), "{err}");
+    assert!(d.join("runs/simulation_amplitude_omega.svg").is_file());
+    // an existing folder without the slash
+    let (code, _, err) = run_for(Duration::from_secs(60), &["map", "--x", "dimensionless.z_a=-2:2:3", "--y", "omega=0.1:2:3", "--out", &s(&d)]);
+    assert_eq!(code, 0, "{err}");
+    assert!(d.join("stability-map.csv").is_file() && d.join("stability-map.png").is_file());
+    let mut a = SMALL_SWEEP.to_vec();
+    a.extend(["--out", &runs]);
+    let (code, _, err) = run_for(Duration::from_secs(60), &a);
+    assert_eq!(code, 0, "{err}");
+    assert!(d.join("runs/sweep.csv").is_file() && d.join("runs/sweep.json").is_file());
+    no_part_files(&d);
+    no_part_files(&d.join("runs"));
+    std::fs::remove_dir_all(&d).ok();
+}
+
+#[test]
+fn regression_basins_found_its_out_unusable_after_the_grid() {
+    // --n 1000 is a million runs: the unusable --out must fail before any of them
+    for out in ["/dev/null/basins.csv", "/dev/null"] {
+        rejects(&["basins", "--config", &examples("spatial.toml"), "--n", "1000", "--out", out], "--out");
+    }
+    rejects(&["map", "--x", "dimensionless.z_a=-2:2:3", "--y", "omega=0.1:2:3", "--out", "/dev/null/m"], "--out");
+    rejects(&["stability", "--svg", "/dev/null/x.svg"], "--svg");
+    rejects(&["campbell", "--svg", "/dev/null/x"], "--svg");
+    rejects(&["report", "--quick", "--out", "/dev/null/rep"], "--out");
+}
+
+/// Two shards of [`SMALL_SWEEP`] in `d`: `a1.csv`, `a2.csv` (with their JSON).
+fn two_shards(d: &std::path::Path) -> (String, String) {
+    let mut names = vec![];
+    for k in 1..=2 {
+        let stem = s(&d.join(format!("a{k}")));
+        let spec = format!("{k}/2");
+        let mut a = SMALL_SWEEP.to_vec();
+        a.extend(["--shard", &spec, "--out", &stem]);
+        let (code, _, err) = run_for(Duration::from_secs(60), &a);
+        assert_eq!(code, 0, "{err}");
+        names.push(format!("{stem}.csv"));
+    }
+    (names[0].clone(), names[1].clone())
+}
+
+#[test]
+fn regression_merge_copied_a_shard_cut_mid_row() {
+    let d = scratch("cut");
+    let (a1, a2) = two_shards(&d);
+    let out = s(&d.join("m"));
+    let (code, _, err) = run_for(Duration::from_secs(30), &["merge", &a1, &a2, "--out", &out]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(csv_is_whole(&d.join("m.csv")), 6);
+    std::fs::remove_file(d.join("m.csv")).unwrap();
+    std::fs::remove_file(d.join("m.json")).unwrap();
+    // cut mid-row: the last row loses its end
+    let text = std::fs::read_to_string(&a2).unwrap();
+    std::fs::write(&a2, &text[..text.len() - 7]).unwrap();
+    let line = rejects(&["merge", &a1, &a2, "--out", &out], &a2);
+    assert!(line.contains("line 4"), "{line}");
+    // cut at a line end: a whole row is missing against the shard's JSON
+    let cut = text[..text.len() - 1].rfind('\n').unwrap() + 1;
+    std::fs::write(&a2, &text[..cut]).unwrap();
+    rejects(&["merge", &a1, &a2, "--out", &out], &a2);
+    // a number edited into garbage
+    let mut lines: Vec<String> = text.lines().map(String::from).collect();
+    lines[2] = lines[2].replacen(",", ",x", 1);
+    std::fs::write(&a2, lines.join("\n") + "\n").unwrap();
+    let line = rejects(&["merge", &a1, &a2, "--out", &out], &a2);
+    assert!(line.contains("line 3") && line.contains("not a number"), "{line}");
+    assert!(!d.join("m.csv").exists() && !d.join("m.json").exists());
+    no_part_files(&d);
+    std::fs::remove_dir_all(&d).ok();
+}
+
+#[test]
+fn regression_merge_accepted_another_sweeps_shard() {
+    let d = scratch("other");
+    let (a1, a2) = two_shards(&d);
+    let j2 = a2.replace(".csv", ".json");
+    let mut v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&j2).unwrap()).unwrap();
+    let sum = v["definition_checksum"].as_str().expect("a checksum in the shard's JSON").to_string();
+    assert!(sum.starts_with("fnv1a64:"), "{sum}");
+    v["definition_checksum"] = serde_json::json!("fnv1a64:0000000000000000");
+    std::fs::write(&j2, v.to_string()).unwrap();
+    let (code, _, err) = run_for(Duration::from_secs(30), &["merge", &a1, &a2, "--out", &s(&d.join("m"))]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("different sweeps") && err.contains(&a1) && err.contains(&a2), "{err}");
+    assert!(!d.join("m.csv").exists());
+    std::fs::remove_dir_all(&d).ok();
+}
+
+#[test]
+fn regression_merge_named_the_wrong_shard_as_duplicated() {
+    let d = scratch("dup");
+    let (a1, a2) = two_shards(&d);
+    let copy = s(&d.join("copy.csv"));
+    std::fs::copy(&a1, &copy).unwrap();
+    std::fs::copy(a1.replace(".csv", ".json"), d.join("copy.json")).unwrap();
+    let (code, _, err) = run_for(Duration::from_secs(30), &["merge", &a2, &copy, &a1, "--out", &s(&d.join("m"))]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("shard 1 of 2 is given twice") && err.contains(&copy) && err.contains(&a1), "{err}");
+    std::fs::remove_dir_all(&d).ok();
+}
+
+#[test]
+fn regression_merge_dev_zero_read_2_gb() {
+    let d = scratch("zero");
+    if std::path::Path::new("/dev/zero").exists() {
+        rejects(&["merge", "/dev/zero", "--out", &s(&d.join("m"))], "/dev/zero");
+    }
+    rejects(&["merge", &s(&d), "--out", &s(&d.join("m"))], &s(&d));
+    // an empty file with an empty JSON beside it
+    std::fs::write(d.join("e.csv"), "").unwrap();
+    std::fs::write(d.join("e.json"), "").unwrap();
+    rejects(&["merge", &s(&d.join("e.csv")), "--out", &s(&d.join("m"))], &s(&d.join("e.json")));
+    assert!(!d.join("m.csv").exists());
+    std::fs::remove_dir_all(&d).ok();
+}
+
+#[test]
+fn regression_verdict_map_wrote_nan_margins() {
+    let d = scratch("verdict");
+    let (code, _, err) = run_for(
+        Duration::from_secs(60),
+        &["map", "--quantity", "verdict", "--x", "dimensionless.z_a=-2:2:3", "--y", "omega=0.1:2:3", "--out", &s(&d.join("v"))],
+    );
+    assert_eq!(code, 0, "{err}");
+    let text = std::fs::read_to_string(d.join("v.csv")).unwrap();
+    assert!(!text.to_lowercase().contains("nan"), "{text}");
+    assert_eq!(csv_is_whole(&d.join("v.csv")), 9);
+    assert!(text.lines().nth(1).unwrap().contains(",,"), "the margin field is empty: {text}");
+    std::fs::remove_dir_all(&d).ok();
+}
+
+#[test]
+fn regression_set_without_key_or_with_a_table_did_not_name_set() {
+    rejects(&["critical", "--set", "=1"], "--set =1");
+    rejects(&["critical", "--set", "dimensionless={c_sigma=1}"], "--set dimensionless");
+    rejects(&["critical", "--set", "dimensionless.c_sigma.x=1"], "--set dimensionless.c_sigma.x");
+    // a table as a field's value names the field
+    rejects(&["critical", "--set", "dimensionless.c_sigma={a=1}"], "dimensionless.c_sigma");
+}
+
+/// Start `args` in `d`, send SIGINT after `after`, and return `(exit code, stderr)`.
+#[cfg(unix)]
+fn interrupt_after(d: &std::path::Path, after: Duration, args: &[&str]) -> (i32, String) {
+    let child = Command::new(env!("CARGO_BIN_EXE_autobal")).args(args).current_dir(d).stdout(Stdio::null()).stderr(Stdio::piped()).spawn().unwrap();
+    std::thread::sleep(after);
+    let _ = Command::new("kill").args(["-INT", &child.id().to_string()]).status();
+    let t0 = Instant::now();
+    let out = child.wait_with_output().unwrap();
+    assert!(t0.elapsed() < Duration::from_secs(60), "autobal {} ignored Ctrl-C", args.join(" "));
+    (out.status.code().unwrap_or(-1), String::from_utf8_lossy(&out.stderr).into_owned())
+}
+
+#[cfg(unix)]
+#[test]
+fn regression_ctrl_c_left_truncated_or_footerless_files() {
+    let d = scratch("ctrlc");
+    // long runs, each stopped after a while: exit 2 saying so, or done (exit 0); either way
+    // every file under its final name is whole, and no temporary file is left
+    let spatial = examples("spatial.toml");
+    let runs: Vec<(&str, Vec<&str>)> = vec![
+        ("sim.csv", vec!["simulate", "--parquet", "--set", "drive.t_end=2000", "--set", "integration.dt=0.002", "--out", "sim.csv"]),
+        ("sw.csv", vec!["sweep", "--parquet", "--threads", "1", "--x", "drive.b=1:2:4000", "--out", "sw"]),
+        ("map.csv", vec!["map", "--x", "dimensionless.z_a=-2:2:2000", "--y", "omega=0.1:3:2000", "--threads", "1", "--out", "map"]),
+        ("b.csv", vec!["basins", "--config", &spatial, "--n", "200", "--threads", "1", "--out", "b.csv"]),
+    ];
+    for (file, args) in &runs {
+        let (code, err) = interrupt_after(&d, Duration::from_millis(1500), args);
+        assert!(code == 0 || (code == 2 && err.contains("interrupted")), "autobal {}: exit {code}: {err}", args.join(" "));
+        let p = d.join(file);
+        if p.exists() {
+            csv_is_whole(&p);
+        } else {
+            assert!(code != 0 && err.contains("interrupted"), "{err}");
+        }
+        let pq = p.with_extension("parquet");
+        if pq.exists() {
+            let bytes = std::fs::read(&pq).unwrap();
+            assert!(bytes.len() >= 8 && &bytes[bytes.len() - 4..] == b"PAR1", "{}: no Parquet footer", pq.display());
+        }
+        no_part_files(&d);
+    }
+    std::fs::remove_dir_all(&d).ok();
+}
+
+#[test]
+fn regression_spatial_simulate_refused_parquet_its_help_promises() {
+    let d = scratch("spq");
+    let stem = s(&d.join("sp"));
+    let (code, _, err) =
+        run_for(Duration::from_secs(60), &["simulate", "--config", &examples("spatial.toml"), "--set", "drive.t_end=20", "--parquet", "--out", &stem]);
+    assert_eq!(code, 0, "{err}");
+    let rows = csv_is_whole(&d.join("sp.csv"));
+    let bytes = std::fs::read(d.join("sp.parquet")).unwrap();
+    assert!(rows > 0 && &bytes[..4] == b"PAR1" && &bytes[bytes.len() - 4..] == b"PAR1", "{err}");
+    no_part_files(&d);
+    std::fs::remove_dir_all(&d).ok();
+}

@@ -77,6 +77,13 @@ pub enum Error {
         /// Simulated time (s).
         t: f64,
     },
+    /// A stationary analysis asked for the linearisation of equations that have none there
+    /// (friction dead zones, resting contacts of real balls); `reason` says what.
+    #[error("no linearisation: {reason}")]
+    NoLinearisation {
+        /// What makes the equations non-differentiable.
+        reason: String,
+    },
     /// The integrator hit its step limit at time `t` (s).
     #[error("too many steps at t = {} s", fmt_num(*t))]
     TooManySteps {

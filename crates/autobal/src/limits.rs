@@ -20,7 +20,9 @@
 
 use crate::error::{fmt_num, Error, Result};
 
-/// Most balls of the spatial model (`balancer.balls`, `dimensionless.n`). The exact anisotropy
+/// Most balls of one plane of the spatial model (`balancer.balls`, `balancer2.balls`,
+/// `dimensionless.n`); [`crate::spatial::dynamics::SpatialRotor::validate`] holds every plane
+/// to it, and the simulation's right-hand side costs `O(N)` in all. The exact anisotropy
 /// interval costs `O(n)`, at most `200 000 + 8000 n` evaluations (see
 /// [`crate::spatial::inertia::exact_interval`]; about 0.1 s for 100 balls); a balancer with
 /// more than a hundred balls is better modelled as a fluid ring than as point masses.

@@ -812,14 +812,15 @@ fn two_ball_sets_cancel_static_plus_couple_unbalance_above_both_critical_speeds(
         }
     }
     // The example's layout (couple mass in the second ball plane) under gravity across the axis
-    // (−9.81 m/s² along y) at 1400 rad/s: balanced, but for a small residual, the weight seen
-    // by the turning balls (docs/spatial.md). Measured 3.8698e-4 static and 5.8430e-5 couple,
-    // the same to 2e-6 of their values at rtol 1e-8 to 1e-12: asserted to the doc's 2 digits.
+    // (−9.81 m/s² along y) at 1400 rad/s: balanced on average over a revolution; the weight
+    // seen by the turning balls makes them swing, a residual of 3.9e-4 static and 5.8e-5
+    // couple at the run's end that averages out (docs/spatial.md; measured 1.5e-6 and 2.9e-7
+    // averaged over the last revolution): asserted below 1e-5.
     let mut heavy = two_plane_rotor();
     heavy.unbalances[1].z = 0.05;
     heavy.gravity = [0.0, -9.81, 0.0];
     let set = Settings { method: Default::default(), t_end: 10.0, dt: 0.05, rtol: 1e-9, atol: 1e-11 };
     let s = simulate(&heavy, &Drive::Speed { omega0: 1400.0 }, &Initial::at_rest(&heavy), &set, |_| true).unwrap();
     let couple = s.residual_couple.unwrap();
-    assert!(s.balanced && (s.residual_unbalance - 3.9e-4).abs() < 0.05e-4 && (couple - 5.8e-5).abs() < 0.05e-5, "gravity: {s:?}");
+    assert!(s.balanced && s.residual_unbalance < 1e-5 && couple < 1e-5, "gravity: {s:?}");
 }

@@ -196,21 +196,21 @@ pub fn write(ctx: &Ctx, dir: &Path) -> Result<PathBuf> {
         .map(|f| -> Result<()> {
             let svg = f.plot.to_svg();
             let p = dir.join(format!("{}.svg", f.id));
-            std::fs::write(&p, &svg).with_context(|| format!("--out: cannot write {}", p.display()))?;
+            crate::outfile::write_atomic("--out", &p, &svg)?;
             let p = dir.join(format!("{}.png", f.id));
-            std::fs::write(&p, crate::plot::svg_to_png(&svg, 1.5)?).with_context(|| format!("--out: cannot write {}", p.display()))?;
+            crate::outfile::write_atomic("--out", &p, crate::plot::svg_to_png(&svg, 1.5)?)?;
             Ok(())
         })
         .collect::<Result<()>>()?;
     for (name, text) in [("plotly-cartesian.min.js", PLOTLY_JS), ("plotly-LICENSE.txt", PLOTLY_LICENSE), ("report.js", REPORT_JS)] {
         let p = dir.join(name);
-        std::fs::write(&p, text).with_context(|| format!("--out: cannot write {}", p.display()))?;
+        crate::outfile::write_atomic("--out", &p, text)?;
     }
     let incomplete: Vec<&str> = sections.iter().filter(|s| !s.complete).map(|s| s.title.as_str()).collect();
     let interrupted = interrupted() || !incomplete.is_empty();
     let page = page(ctx, &sections, interrupted, &incomplete, t0.elapsed().as_secs_f64());
     let index = dir.join("index.html");
-    std::fs::write(&index, page).with_context(|| format!("--out: cannot write {}", index.display()))?;
+    crate::outfile::write_atomic("--out", &index, page)?;
     crate::output::note(&format!(
         "report: {} sections, {} figures in {:.1} s (computing {:.1} s, figures {:.1} s)",
         sections.len(),

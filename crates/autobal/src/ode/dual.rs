@@ -2,11 +2,19 @@
 //! model writes its equations once, generic over [`Real`], and gets exact Jacobian entries
 //! (no difference increments) by evaluating them on [`Dual`] numbers.
 
-use std::ops::{Add, Mul, Neg, Sub};
+use std::ops::{Add, Div, Mul, Neg, Sub};
 
-/// What the equations need of a number: `+ − ×`, scaling by constants, `sin`/`cos`.
+/// What the equations need of a number: `+ − ×`, scaling by and division by constants,
+/// adding constants, `sin`/`cos`.
 pub trait Real:
-    Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> + Neg<Output = Self> + Mul<f64, Output = Self> + Add<f64, Output = Self>
+    Copy
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Neg<Output = Self>
+    + Mul<f64, Output = Self>
+    + Div<f64, Output = Self>
+    + Add<f64, Output = Self>
 {
     /// A constant.
     fn cst(v: f64) -> Self;
@@ -86,6 +94,14 @@ impl<const N: usize> Mul<f64> for Dual<N> {
         Dual { v: self.v * s, d: self.d.map(|x| x * s) }
     }
 }
+impl<const N: usize> Div<f64> for Dual<N> {
+    type Output = Self;
+    /// `(v + d ε)/s = v/s + (d/s) ε` (divided, not multiplied by `1/s`: `f64` rounding kept).
+    #[inline]
+    fn div(self, s: f64) -> Self {
+        Dual { v: self.v / s, d: self.d.map(|x| x / s) }
+    }
+}
 impl<const N: usize> Add<f64> for Dual<N> {
     type Output = Self;
     #[inline]
@@ -121,6 +137,8 @@ mod tests {
             x * x * sy + x * 3.0 - y * cx
         };
         let r = f(Dual::var(x, 0), Dual::var(y, 1));
+        let q = Dual::<2>::var(x, 0) / 4.0;
+        assert_eq!((q.v, q.d), (x / 4.0, [0.25, 0.0]));
         assert!((r.v - (x * x * y.sin() + 3.0 * x - y * x.cos())).abs() < 1e-15);
         assert!((r.d[0] - (2.0 * x * y.sin() + 3.0 + y * x.sin())).abs() < 1e-15);
         assert!((r.d[1] - (x * x * y.cos() - x.cos())).abs() < 1e-15);

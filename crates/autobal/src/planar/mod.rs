@@ -39,6 +39,7 @@
 //! ```
 
 mod equations;
+pub mod field;
 pub mod friction;
 pub mod paper004;
 pub mod problem;

@@ -25,41 +25,71 @@
 //! The mass matrix is an arrow: a dense 5×5 rotor block, one column per ball, and the
 //! diagonal `m R²` of the balls; the rotor accelerations come from the 5×5 Schur complement,
 //! so the cost is linear in the number of balls.
+//!
+//! ## One computation for values and derivatives
+//! The generalised forces at `q̈ = 0` (`Q`, rotor rows, and the balls' `b_j`) and the mass
+//! matrix's blocks (rotor block `M_rr`, ball rows `B_j`, diagonal `m R²`) come from one
+//! function generic over the number type ([`Real`]): on `f64` it feeds the right-hand side
+//! (Schur complement solve); on [`Dual`] numbers it gives the residual
+//! `R(y) = Q(y) − M(y) q̈0` with `q̈0` the accelerations at `y` held constant, whose exact
+//! derivative gives the Jacobian `∂q̈/∂y = M⁻¹ ∂R/∂y` (exact at the solution, where `R = 0`:
+//! `∂(M⁻¹Q)/∂y = M⁻¹(∂Q/∂y − (∂M/∂y) M⁻¹Q)`), see [`Equations::exact_jacobian`].
 
 #![allow(clippy::needless_range_loop)] // index loops read as the formulas
 
-use super::rotor::{SpatialRotor, MAX_BALLS};
+use super::rotor::SpatialRotor;
 use crate::balls::BallForces;
 use crate::drive::Drive;
+use crate::error::{Error, Result};
+use crate::ode::dual::{Dual, Real};
 use crate::ode::System;
+use std::cell::RefCell;
 
-type V3 = [f64; 3];
-type M3 = [[f64; 3]; 3];
+type V3<T> = [T; 3];
+type M3<T> = [[T; 3]; 3];
 
-fn cross(a: V3, b: V3) -> V3 {
+#[inline(always)]
+fn cross<T: Real>(a: V3<T>, b: V3<T>) -> V3<T> {
     [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
 }
-fn dot(a: V3, b: V3) -> f64 {
+#[inline(always)]
+fn dot<T: Real>(a: V3<T>, b: V3<T>) -> T {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
-fn add(a: V3, b: V3) -> V3 {
+#[inline(always)]
+fn add<T: Real>(a: V3<T>, b: V3<T>) -> V3<T> {
     [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
 }
-fn sub(a: V3, b: V3) -> V3 {
+#[inline(always)]
+fn sub<T: Real>(a: V3<T>, b: V3<T>) -> V3<T> {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
-fn scale(a: V3, s: f64) -> V3 {
+#[inline(always)]
+fn scale<T: Real>(a: V3<T>, s: T) -> V3<T> {
     [a[0] * s, a[1] * s, a[2] * s]
 }
-fn mat_vec(m: &M3, v: V3) -> V3 {
+#[inline(always)]
+fn scalef<T: Real>(a: V3<T>, s: f64) -> V3<T> {
+    [a[0] * s, a[1] * s, a[2] * s]
+}
+#[inline(always)]
+fn mat_vec<T: Real>(m: &M3<T>, v: V3<T>) -> V3<T> {
     [dot(m[0], v), dot(m[1], v), dot(m[2], v)]
 }
+/// `m v` for a constant vector `v`.
+#[inline(always)]
+fn mat_vecf<T: Real>(m: &M3<T>, v: [f64; 3]) -> V3<T> {
+    let row = |r: [T; 3]| r[0] * v[0] + r[1] * v[1] + r[2] * v[2];
+    [row(m[0]), row(m[1]), row(m[2])]
+}
 /// `Σ m (|r|² I − r rᵀ)` increment for a point mass.
-fn add_point_inertia(j: &mut M3, m: f64, r: V3) {
+#[inline(always)]
+fn add_point_inertia<T: Real>(j: &mut M3<T>, m: f64, r: V3<T>) {
     let r2 = dot(r, r);
     for a in 0..3 {
         for b in 0..3 {
-            j[a][b] += m * (if a == b { r2 } else { 0.0 } - r[a] * r[b]);
+            let d = if a == b { r2 } else { T::cst(0.0) } - r[a] * r[b];
+            j[a][b] = j[a][b] + d * m;
         }
     }
 }
@@ -70,10 +100,10 @@ pub const ROTOR_COORDS: usize = 5;
 pub const PHI: usize = 4;
 
 #[derive(Debug, Clone, Copy)]
-struct Ball {
-    m: f64,
-    r: f64,
-    zeta: f64,
+pub(super) struct Ball {
+    pub(super) m: f64,
+    pub(super) r: f64,
+    pub(super) zeta: f64,
     drag: f64,
 }
 
@@ -84,29 +114,53 @@ struct SupportAt {
     c: [f64; 2],
 }
 
-/// The equations of a [`SpatialRotor`] under a [`Drive`]; state
-/// `y = (ξ, η, δ, θ, φ, ψ_1..N, ξ̇, η̇, δ̇, θ̇, φ̇, ψ̇_1..N)` (SI: m, rad, s).
+/// How the spin enters the equations at one instant: prescribed (`φ̇`, `φ̈` given, the `φ`
+/// row dropped) or free under a torque `M(t, φ̇)` (its value and slope `∂M/∂φ̇` at the state).
+#[derive(Debug, Clone, Copy)]
+pub(super) enum Spin {
+    /// `φ̇ = rate`, `φ̈ = acc`.
+    Prescribed { rate: f64, acc: f64 },
+    /// `φ̇` from the state; drive torque and its slope at that `φ̇`.
+    Free { torque: f64, slope: f64 },
+}
+
+/// Everything the equations need of a rotor, owned (computed once): carrier mass properties
+/// about O, balls and supports in body axial coordinates, gravity, spin drag, locked tilt.
 #[derive(Debug, Clone)]
-pub struct Equations<'a> {
-    /// The rotor.
-    pub rotor: &'a SpatialRotor,
-    /// How it is driven.
-    pub drive: &'a Drive,
+pub(super) struct Model {
     carrier_mass: f64,
-    carrier_first: V3,
-    carrier_inertia: M3,
+    carrier_first: [f64; 3],
+    carrier_inertia: [[f64; 3]; 3],
     total_mass: f64,
-    balls: Vec<Ball>,
+    pub(super) balls: Vec<Ball>,
     supports: Vec<SupportAt>,
     z_ref: f64,
-    /// Real-ball forces of each plane that has them switched on: (index of its first ball, forces).
-    ball_forces: Vec<(usize, BallForces)>,
+    gravity: [f64; 3],
+    spin_drag: f64,
+    lock_tilt: bool,
+}
+
+/// Scratch of the right-hand side: ball rows of the mass matrix, ball forces, normal forces.
+#[derive(Debug, Clone, Default)]
+pub(super) struct Scratch {
+    brow: Vec<[f64; ROTOR_COORDS]>,
+    bf: Vec<f64>,
+    normal: Vec<f64>,
+    /// Real balls' generalised forces of one plane.
+    qb: Vec<f64>,
+}
+
+impl Scratch {
+    pub(super) fn new(balls: usize, real_balls: bool) -> RefCell<Self> {
+        let real = if real_balls { balls } else { 0 };
+        RefCell::new(Scratch { brow: vec![[0.0; ROTOR_COORDS]; balls], bf: vec![0.0; balls], normal: vec![0.0; real], qb: vec![0.0; real] })
+    }
 }
 
 /// Body-frame quantities of the rigid carrier (rotor + unbalance masses) about O:
 /// mass, first moment `S = Σ m ρ`, inertia tensor `J = Σ m (|ρ|² I − ρ ρᵀ)` (rotor's own tensor
 /// `A I + (C − A) e eᵀ` about G, `e` its principal axis, moved to O).
-fn carrier(rotor: &SpatialRotor, z_ref: f64) -> (f64, V3, M3) {
+fn carrier(rotor: &SpatialRotor, z_ref: f64) -> (f64, [f64; 3], [[f64; 3]; 3]) {
     let r = &rotor.rotor;
     let (sk, ck) = r.axis_tilt.sin_cos();
     let (sb, cb) = r.axis_tilt_angle.sin_cos();
@@ -119,342 +173,258 @@ fn carrier(rotor: &SpatialRotor, z_ref: f64) -> (f64, V3, M3) {
     }
     let d = [0.0, 0.0, r.z - z_ref];
     add_point_inertia(&mut j, r.mass, d);
-    let mut s = scale(d, r.mass);
+    let mut s = scalef(d, r.mass);
     let mut m = r.mass;
     for u in &rotor.unbalances {
         let rho = [u.radius * u.angle.cos(), u.radius * u.angle.sin(), u.z - z_ref];
         add_point_inertia(&mut j, u.mass, rho);
-        s = add(s, scale(rho, u.mass));
+        s = add(s, scalef(rho, u.mass));
         m += u.mass;
     }
     (m, s, j)
 }
 
 /// Kinematics of one state shared by the right-hand side and the energy.
-struct Kin {
-    u: V3,
-    v_o: V3,
-    w: V3,
-    rt: M3,
-    g: [V3; ROTOR_COORDS],
-    v: [V3; ROTOR_COORDS],
-    phi_d: f64,
+struct Kin<T> {
+    u: V3<T>,
+    v_o: V3<T>,
+    w: V3<T>,
+    rt: M3<T>,
+    g: [V3<T>; ROTOR_COORDS],
+    v: [V3<T>; ROTOR_COORDS],
+    phi_d: T,
+    sd: T,
+    cd: T,
 }
 
-impl<'a> Equations<'a> {
-    /// Prepare the equations (the carrier's mass properties are computed once).
-    pub fn new(rotor: &'a SpatialRotor, drive: &'a Drive) -> Self {
+impl Model {
+    pub(super) fn new(rotor: &SpatialRotor) -> Self {
         let z_ref = rotor.z_reference();
         let (carrier_mass, carrier_first, carrier_inertia) = carrier(rotor, z_ref);
         let balls =
             rotor.planes.iter().flat_map(|p| (0..p.n).map(move |_| Ball { m: p.ball_mass, r: p.race_radius, zeta: p.z - z_ref, drag: p.drag })).collect();
-        let supports: Vec<SupportAt> = rotor.supports.iter().map(|s| SupportAt { zeta: s.z - z_ref, k: s.stiffness, c: s.damping }).collect();
-        // reference frequency of the default contact stiffness: the rotor's translation on its supports
-        let w_ref = (supports.iter().map(|s| s.k[0]).sum::<f64>() / rotor.total_mass()).sqrt();
-        let mut first = 0;
-        let mut ball_forces = vec![];
-        for p in &rotor.planes {
-            if let Some(f) = BallForces::new(&p.physics, p.ball_mass, p.race_radius, p.n, w_ref) {
-                ball_forces.push((first, f));
-            }
-            first += p.n;
+        let supports = rotor.supports.iter().map(|s| SupportAt { zeta: s.z - z_ref, k: s.stiffness, c: s.damping }).collect();
+        Model {
+            carrier_mass,
+            carrier_first,
+            carrier_inertia,
+            total_mass: rotor.total_mass(),
+            balls,
+            supports,
+            z_ref,
+            gravity: rotor.gravity,
+            spin_drag: rotor.spin_drag,
+            lock_tilt: rotor.lock_tilt,
         }
-        Equations { rotor, drive, carrier_mass, carrier_first, carrier_inertia, total_mass: rotor.total_mass(), balls, supports, z_ref, ball_forces }
-    }
-
-    /// The real-ball forces of the planes that have them switched on: (index of the plane's
-    /// first ball among all balls, its forces); empty for point masses.
-    pub fn ball_forces(&self) -> &[(usize, BallForces)] {
-        &self.ball_forces
     }
 
     /// Number of generalised coordinates `5 + N`.
-    pub fn coords(&self) -> usize {
+    pub(super) fn coords(&self) -> usize {
         ROTOR_COORDS + self.balls.len()
     }
 
-    /// Axial position of the reference point O (= C).
-    pub fn z_reference(&self) -> f64 {
-        self.z_ref
+    /// Which rotor coordinates are integrated (not prescribed, not locked).
+    fn free(&self, prescribed: bool) -> [bool; ROTOR_COORDS] {
+        let tilt = !self.lock_tilt;
+        [true, true, tilt, tilt, !prescribed]
     }
 
-    /// Spin rate at `t`: prescribed by the drive, or the state's `φ̇`.
-    pub fn spin_rate(&self, t: f64, y: &[f64]) -> f64 {
-        if self.drive.prescribed() {
-            self.drive.kinematics(t).0
-        } else {
-            y[self.coords() + PHI]
-        }
-    }
-
-    fn kin(&self, t: f64, y: &[f64]) -> Kin {
+    #[inline(always)]
+    fn kin<T: Real>(&self, y: &[T], phi_d: T) -> Kin<T> {
         let nc = self.coords();
         let (xi, eta, de, th) = (y[0], y[1], y[2], y[3]);
         let (xid, etad, ded, thd) = (y[nc], y[nc + 1], y[nc + 2], y[nc + 3]);
-        let phi_d = self.spin_rate(t, y);
         let (sd, cd) = de.sin_cos();
         let (st, ct) = th.sin_cos();
-        let rt = [[ct, 0.0, st], [sd * st, cd, -sd * ct], [-cd * st, sd, cd * ct]];
-        let u = [xi, eta, 0.0];
-        let v_o = [xid - phi_d * eta, etad + phi_d * xi, 0.0];
+        let (zero, one) = (T::cst(0.0), T::cst(1.0));
+        let rt = [[ct, zero, st], [sd * st, cd, -(sd * ct)], [-(cd * st), sd, cd * ct]];
+        let u = [xi, eta, zero];
+        let v_o = [xid - phi_d * eta, etad + phi_d * xi, zero];
         let w = [ded, thd * cd, phi_d + thd * sd];
-        let z = [0.0; 3];
-        let g = [z, z, [1.0, 0.0, 0.0], [0.0, cd, sd], [0.0, 0.0, 1.0]];
-        let v = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], z, z, [-eta, xi, 0.0]];
-        Kin { u, v_o, w, rt, g, v, phi_d }
+        let z = [zero; 3];
+        let g = [z, z, [one, zero, zero], [zero, cd, sd], [zero, zero, one]];
+        let v = [[one, zero, zero], [zero, one, zero], z, z, [-eta, xi, zero]];
+        Kin { u, v_o, w, rt, g, v, phi_d, sd, cd }
     }
 
-    fn ball_geometry(&self, k: &Kin, b: &Ball, psi: f64) -> (V3, V3, V3) {
+    #[inline(always)]
+    fn ball_geometry<T: Real>(&self, k: &Kin<T>, b: &Ball, psi: T) -> (V3<T>, V3<T>, V3<T>) {
         let (sp, cp) = psi.sin_cos();
-        let r = mat_vec(&k.rt, [b.r * cp, b.r * sp, b.zeta]);
-        let t = mat_vec(&k.rt, [-b.r * sp, b.r * cp, 0.0]);
-        let n = mat_vec(&k.rt, [-b.r * cp, -b.r * sp, 0.0]);
+        let r = mat_vec(&k.rt, [cp * b.r, sp * b.r, T::cst(b.zeta)]);
+        let t = mat_vec(&k.rt, [-(sp * b.r), cp * b.r, T::cst(0.0)]);
+        let n = mat_vec(&k.rt, [-(cp * b.r), -(sp * b.r), T::cst(0.0)]);
         (r, t, n)
     }
 
     /// First moment `s` and inertia tensor `J` of the carrier about O in F components.
-    fn carrier_in_f(&self, k: &Kin) -> (V3, M3) {
-        let s = mat_vec(&k.rt, self.carrier_first);
+    #[inline(always)]
+    fn carrier_in_f<T: Real>(&self, k: &Kin<T>) -> (V3<T>, M3<T>) {
+        let s = mat_vecf(&k.rt, self.carrier_first);
         // J = R_t J_b R_tᵀ
-        let mut rj = [[0.0; 3]; 3];
+        let zero = T::cst(0.0);
+        let mut rj = [[zero; 3]; 3];
         for a in 0..3 {
             for b in 0..3 {
-                rj[a][b] = (0..3).map(|c| k.rt[a][c] * self.carrier_inertia[c][b]).sum();
+                let ji = &self.carrier_inertia;
+                rj[a][b] = k.rt[a][0] * ji[0][b] + k.rt[a][1] * ji[1][b] + k.rt[a][2] * ji[2][b];
             }
         }
-        let mut j = [[0.0; 3]; 3];
+        let mut j = [[zero; 3]; 3];
         for a in 0..3 {
             for b in 0..3 {
-                j[a][b] = (0..3).map(|c| rj[a][c] * k.rt[b][c]).sum();
+                j[a][b] = rj[a][0] * k.rt[b][0] + rj[a][1] * k.rt[b][1] + rj[a][2] * k.rt[b][2];
             }
         }
         (s, j)
     }
 
     /// Lateral position and velocity of the shaft point at body axial coordinate `zeta`, in F
-    /// components: `(r, v)` with `r = u + R_t ζ e_z` (its third component is axial).
-    fn shaft_point(&self, k: &Kin, zeta: f64) -> (V3, V3, V3) {
-        let rho = [zeta * k.rt[0][2], zeta * k.rt[1][2], zeta * k.rt[2][2]];
+    /// components: `(ρ, r, v)` with `ρ = R_t ζ e_z`, `r = u + ρ` (its third component is axial).
+    #[inline(always)]
+    fn shaft_point<T: Real>(&self, k: &Kin<T>, zeta: f64) -> (V3<T>, V3<T>, V3<T>) {
+        let rho = [k.rt[0][2] * zeta, k.rt[1][2] * zeta, k.rt[2][2] * zeta];
         let r = add(k.u, rho);
         let v = add(k.v_o, cross(k.w, rho));
         (rho, r, v)
     }
 
-    /// Total mechanical energy `T + V` (J): kinetic energy of carrier and balls, elastic
-    /// energy of the supports, potential of gravity. For the energy-balance tests.
-    pub fn energy(&self, t: f64, y: &[f64]) -> f64 {
+    /// The generalised forces at `q̈ = 0` and the mass matrix at a state `y` (full state, any
+    /// number type), the known `φ̈` of a prescribed spin moved to the forces:
+    /// returns the rotor rows `Q` and the rotor block `M_rr`; writes ball `j`'s row of the
+    /// mass matrix `B_j = m (V_c·t_j + G_c·(r_j × t_j))` into `brow[j]`, its force
+    /// `b_j = −h_A R² ψ̇_j + m g·t_j − t_j·(m a_j|_{q̈=0})` into `bf[j]` and, when `normal` is not
+    /// empty, the race's normal force `m a_j·n_j/R` (real balls) into `normal[j]`. The
+    /// equations are `M_rr q̈ + Σ_j B_jᵀ ψ̈_j = Q`, `B_j q̈ + m R² ψ̈_j = b_j` (balls' diagonal
+    /// constant), restricted to the free rotor coordinates.
+    #[inline(always)]
+    fn forces<T: Real>(
+        &self,
+        spin: Spin,
+        y: &[T],
+        brow: &mut [[T; ROTOR_COORDS]],
+        bf: &mut [T],
+        normal: &mut [T],
+    ) -> ([T; ROTOR_COORDS], [[T; ROTOR_COORDS]; ROTOR_COORDS]) {
         let nc = self.coords();
-        let k = self.kin(t, y);
-        let (s, j) = self.carrier_in_f(&k);
-        let mut e = 0.5 * self.carrier_mass * dot(k.v_o, k.v_o) + dot(k.v_o, cross(k.w, s)) + 0.5 * dot(k.w, mat_vec(&j, k.w));
-        let phi = y[PHI];
-        let (sp, cp) = phi.sin_cos();
-        let g = self.rotor.gravity;
-        let g_f = [g[0] * cp + g[1] * sp, -g[0] * sp + g[1] * cp, g[2]];
-        let mut first = add(scale(k.u, self.carrier_mass), s);
-        for (i, b) in self.balls.iter().enumerate() {
-            let (r, t_j, _) = self.ball_geometry(&k, b, y[ROTOR_COORDS + i]);
-            let v = add(add(k.v_o, cross(k.w, r)), scale(t_j, y[nc + ROTOR_COORDS + i]));
-            e += 0.5 * b.m * dot(v, v);
-            first = add(first, scale(add(k.u, r), b.m));
-        }
-        e -= dot(g_f, first);
-        for sup in &self.supports {
-            let (_, r, _) = self.shaft_point(&k, sup.zeta);
-            let (x, yy) = (cp * r[0] - sp * r[1], sp * r[0] + cp * r[1]);
-            e += 0.5 * (sup.k[0] * x * x + sup.k[1] * yy * yy);
-        }
-        e
-    }
-
-    /// Power dissipated by the dampers and the ball drag at a state (W, ≥ 0): for the power
-    /// balance `dE/dt = P_drive − P_dissipated`.
-    pub fn dissipated_power(&self, t: f64, y: &[f64]) -> f64 {
-        let nc = self.coords();
-        let k = self.kin(t, y);
-        let (sp, cp) = y[PHI].sin_cos();
-        let mut p = 0.0;
-        for sup in &self.supports {
-            let (_, _, v) = self.shaft_point(&k, sup.zeta);
-            let (vx, vy) = (cp * v[0] - sp * v[1], sp * v[0] + cp * v[1]);
-            p += sup.c[0] * vx * vx + sup.c[1] * vy * vy;
-        }
-        for (i, b) in self.balls.iter().enumerate() {
-            let r = y[nc + ROTOR_COORDS + i];
-            p += b.drag * b.r * b.r * r * r;
-        }
-        if !self.drive.prescribed() {
-            p += self.rotor.spin_drag * k.phi_d * k.phi_d;
-        }
-        p
-    }
-
-    /// Lateral displacement, in fixed axes, of the shaft point at axial position `z` (m).
-    pub fn displacement_at(&self, y: &[f64], z: f64) -> [f64; 2] {
-        let k = self.kin(0.0, y);
-        let (_, r, _) = self.shaft_point(&k, z - self.z_ref);
-        let (sp, cp) = y[PHI].sin_cos();
-        [cp * r[0] - sp * r[1], sp * r[0] + cp * r[1]]
-    }
-
-    /// Residual unbalance of unbalance masses and balls together, rotor frame:
-    /// static `Σ m ρ_⊥` (kg·m) and couple about C `Σ m ζ ρ_⊥` plus the tilted principal
-    /// axis's products of inertia (kg·m²).
-    pub fn residual_unbalance(&self, y: &[f64]) -> ([f64; 2], [f64; 2]) {
-        let (mut st, mut cp) = (self.rotor.static_unbalance(), self.rotor.couple_unbalance());
-        for (i, b) in self.balls.iter().enumerate() {
-            let (s, c) = y[ROTOR_COORDS + i].sin_cos();
-            st[0] += b.m * b.r * c;
-            st[1] += b.m * b.r * s;
-            cp[0] += b.m * b.r * b.zeta * c;
-            cp[1] += b.m * b.r * b.zeta * s;
-        }
-        (st, cp)
-    }
-
-    /// Which rotor coordinates are integrated (not prescribed, not locked).
-    fn free(&self) -> [bool; ROTOR_COORDS] {
-        let tilt = !self.rotor.lock_tilt;
-        [true, true, tilt, tilt, !self.drive.prescribed()]
-    }
-}
-
-impl System for Equations<'_> {
-    fn dim(&self) -> usize {
-        2 * self.coords()
-    }
-
-    fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
-        let nc = self.coords();
-        let k = self.kin(t, y);
+        let phi_d = match spin {
+            Spin::Prescribed { rate, .. } => T::cst(rate),
+            Spin::Free { .. } => y[nc + PHI],
+        };
+        let k = self.kin(y, phi_d);
         let (ded, thd) = (y[nc + 2], y[nc + 3]);
-        let (sd, cd) = y[2].sin_cos();
-        let phi_d = k.phi_d;
+        let (sd, cd) = (k.sd, k.cd);
         let (xid, etad) = (y[nc], y[nc + 1]);
+        let zero = T::cst(0.0);
         // accelerations with q̈ = 0
-        let a_o = [-2.0 * phi_d * etad - phi_d * phi_d * y[0], 2.0 * phi_d * xid - phi_d * phi_d * y[1], 0.0];
-        let alpha = [-phi_d * thd * cd, -thd * ded * sd + phi_d * ded, thd * ded * cd];
+        let a_o = [-(phi_d * etad * 2.0) - phi_d * phi_d * y[0], phi_d * xid * 2.0 - phi_d * phi_d * y[1], zero];
+        let alpha = [-(phi_d * thd * cd), -(thd * ded * sd) + phi_d * ded, thd * ded * cd];
         let (s, j) = self.carrier_in_f(&k);
         let w = k.w;
         let mc = self.carrier_mass;
-        let mut f_in = add(add(scale(a_o, mc), cross(alpha, s)), cross(w, cross(w, s)));
+        let mut f_in = add(add(scalef(a_o, mc), cross(alpha, s)), cross(w, cross(w, s)));
         let mut t_in = add(add(cross(s, a_o), mat_vec(&j, alpha)), cross(w, mat_vec(&j, w)));
         let mut s_tot = s;
         let mut j_tot = j;
         let (sp, cp) = y[PHI].sin_cos();
-        let gr = self.rotor.gravity;
-        let g_f = [gr[0] * cp + gr[1] * sp, -gr[0] * sp + gr[1] * cp, gr[2]];
+        let gr = self.gravity;
+        let g_f = [cp * gr[0] + sp * gr[1], -(sp * gr[0]) + cp * gr[1], T::cst(gr[2])];
         // balls: inertia forces, rows of the arrow
-        let nb = self.balls.len();
-        let mut brow = [[0.0; ROTOR_COORDS]; MAX_BALLS];
-        let mut bf = [0.0; MAX_BALLS];
-        let mut normal = [0.0; MAX_BALLS];
-        let real_balls = !self.ball_forces.is_empty();
+        let real_balls = !normal.is_empty();
         for (i, b) in self.balls.iter().enumerate() {
             let psi_d = y[nc + ROTOR_COORDS + i];
             let (r, t_j, n_j) = self.ball_geometry(&k, b, y[ROTOR_COORDS + i]);
-            let a_j = add(add(add(a_o, cross(alpha, r)), cross(w, cross(w, r))), add(scale(cross(w, t_j), 2.0 * psi_d), scale(n_j, psi_d * psi_d)));
-            let ma = scale(a_j, b.m);
+            let a_j = add(add(add(a_o, cross(alpha, r)), cross(w, cross(w, r))), add(scale(cross(w, t_j), psi_d * 2.0), scale(n_j, psi_d * psi_d)));
+            let ma = scalef(a_j, b.m);
             f_in = add(f_in, ma);
             t_in = add(t_in, cross(r, ma));
-            s_tot = add(s_tot, scale(r, b.m));
+            s_tot = add(s_tot, scalef(r, b.m));
             add_point_inertia(&mut j_tot, b.m, r);
             let rxt = cross(r, t_j);
             for c in 0..ROTOR_COORDS {
-                brow[i][c] = b.m * (dot(k.v[c], t_j) + dot(k.g[c], rxt));
+                brow[i][c] = (dot(k.v[c], t_j) + dot(k.g[c], rxt)) * b.m;
             }
-            bf[i] = -b.drag * b.r * b.r * psi_d + b.m * dot(g_f, t_j) - dot(t_j, ma);
+            bf[i] = psi_d * (-b.drag * b.r * b.r) + dot(g_f, t_j) * b.m - dot(t_j, ma);
             if real_balls {
                 // the race's normal force: the centripetal part of the ball's acceleration
                 // (n_j = −R e_r), the terms in q̈ left out as in the planar model
                 normal[i] = dot(ma, n_j) / b.r;
             }
         }
-        // real balls: contact and rolling resistance, generalised forces on the ball angles
-        for (first, f) in &self.ball_forces {
-            let (a, e) = (*first, first + f.n);
-            let mut q = [0.0; MAX_BALLS];
-            f.torques(&y[ROTOR_COORDS + a..ROTOR_COORDS + e], &y[nc + ROTOR_COORDS + a..nc + ROTOR_COORDS + e], |j| normal[a + j], &mut q[..f.n]);
-            for j in 0..f.n {
-                bf[a + j] += q[j];
-            }
-        }
         // external forces and moments about O: gravity and supports
-        let mut f_ex = scale(g_f, self.total_mass);
+        let mut f_ex = scalef(g_f, self.total_mass);
         let mut t_ex = cross(s_tot, g_f);
         for sup in &self.supports {
             let (rho, r, v) = self.shaft_point(&k, sup.zeta);
             let (x, yy) = (cp * r[0] - sp * r[1], sp * r[0] + cp * r[1]);
             let (vx, vy) = (cp * v[0] - sp * v[1], sp * v[0] + cp * v[1]);
-            let (fx, fy) = (-sup.k[0] * x - sup.c[0] * vx, -sup.k[1] * yy - sup.c[1] * vy);
-            let f = [cp * fx + sp * fy, -sp * fx + cp * fy, 0.0];
+            let (fx, fy) = (x * -sup.k[0] - vx * sup.c[0], yy * -sup.k[1] - vy * sup.c[1]);
+            let f = [cp * fx + sp * fy, -(sp * fx) + cp * fy, zero];
             f_ex = add(f_ex, f);
             t_ex = add(t_ex, cross(rho, f));
         }
         let (df, dt_) = (sub(f_ex, f_in), sub(t_ex, t_in));
-        let mut q = [0.0; ROTOR_COORDS];
+        let mut q = [zero; ROTOR_COORDS];
         for c in 0..ROTOR_COORDS {
             q[c] = dot(k.v[c], df) + dot(k.g[c], dt_);
         }
         // rotor block of the mass matrix
         let mt = self.total_mass;
-        let mut m = [[0.0; ROTOR_COORDS]; ROTOR_COORDS];
-        let mut gxs = [[0.0; 3]; ROTOR_COORDS];
-        let mut jg = [[0.0; 3]; ROTOR_COORDS];
+        let mut m = [[zero; ROTOR_COORDS]; ROTOR_COORDS];
+        let mut gxs = [[zero; 3]; ROTOR_COORDS];
+        let mut jg = [[zero; 3]; ROTOR_COORDS];
         for c in 0..ROTOR_COORDS {
             gxs[c] = cross(k.g[c], s_tot);
             jg[c] = mat_vec(&j_tot, k.g[c]);
         }
         for a in 0..ROTOR_COORDS {
             for b in a..ROTOR_COORDS {
-                let v = mt * dot(k.v[a], k.v[b]) + dot(k.v[a], gxs[b]) + dot(k.v[b], gxs[a]) + dot(k.g[a], jg[b]);
+                let v = dot(k.v[a], k.v[b]) * mt + dot(k.v[a], gxs[b]) + dot(k.v[b], gxs[a]) + dot(k.g[a], jg[b]);
                 m[a][b] = v;
                 m[b][a] = v;
             }
         }
-        let free = self.free();
-        let prescribed = self.drive.prescribed();
-        let phi_dd = if prescribed {
-            let acc = self.drive.kinematics(t).1;
-            for c in 0..ROTOR_COORDS {
-                q[c] -= m[c][PHI] * acc;
-            }
-            for i in 0..nb {
-                bf[i] -= brow[i][PHI] * acc;
-            }
-            acc
-        } else {
-            q[PHI] += self.drive.torque(t, phi_d) - self.rotor.spin_drag * phi_d;
-            0.0
-        };
-        // Schur complement on the free rotor coordinates
-        let mut idx_buf = [0usize; ROTOR_COORDS];
-        let mut nf = 0;
-        for c in 0..ROTOR_COORDS {
-            if free[c] {
-                idx_buf[nf] = c;
-                nf += 1;
-            }
-        }
-        let idx = &idx_buf[..nf];
-        let mut a = [[0.0; ROTOR_COORDS]; ROTOR_COORDS];
-        let mut rhs = [0.0; ROTOR_COORDS];
-        for (ia, &ca) in idx.iter().enumerate() {
-            rhs[ia] = q[ca];
-            for (ib, &cb) in idx.iter().enumerate() {
-                a[ia][ib] = m[ca][cb];
-            }
-        }
-        for i in 0..nb {
-            let d = self.balls[i].m * self.balls[i].r * self.balls[i].r;
-            for (ia, &ca) in idx.iter().enumerate() {
-                let bi = brow[i][ca] / d;
-                rhs[ia] -= bi * bf[i];
-                for (ib, &cb) in idx.iter().enumerate() {
-                    a[ia][ib] -= bi * brow[i][cb];
+        match spin {
+            Spin::Prescribed { acc, .. } => {
+                for c in 0..ROTOR_COORDS {
+                    q[c] = q[c] - m[c][PHI] * acc;
+                }
+                for i in 0..self.balls.len() {
+                    bf[i] = bf[i] - brow[i][PHI] * acc;
                 }
             }
+            Spin::Free { torque, slope } => {
+                // M(φ̇) to first order about the state's φ̇ (exact value, exact slope)
+                let mut drive = T::cst(torque);
+                if slope != 0.0 {
+                    drive = drive + (phi_d - T::cst(phi_d.value())) * slope;
+                }
+                q[PHI] = q[PHI] + (drive - phi_d * self.spin_drag);
+            }
         }
+        (q, m)
+    }
+
+    /// The right-hand side `dy` at the full state `y`: [`Model::forces`] on `f64`, real-ball
+    /// forces added, then the arrow solved by its Schur complement on the free rotor coordinates.
+    #[inline(always)]
+    pub(super) fn rhs(&self, spin: Spin, y: &[f64], dy: &mut [f64], ball_forces: &[(usize, BallForces)], scratch: &RefCell<Scratch>) {
+        let nc = self.coords();
+        let nb = self.balls.len();
+        let mut guard = scratch.borrow_mut();
+        let Scratch { brow, bf, normal, qb } = &mut *guard;
+        let (q, m) = self.forces::<f64>(spin, y, brow, bf, normal);
+        // real balls: contact and rolling resistance, generalised forces on the ball angles
+        for (first, f) in ball_forces {
+            let (a, e) = (*first, first + f.n);
+            f.torques(&y[ROTOR_COORDS + a..ROTOR_COORDS + e], &y[nc + ROTOR_COORDS + a..nc + ROTOR_COORDS + e], |j| normal[a + j], &mut qb[..f.n]);
+            for j in 0..f.n {
+                bf[a + j] += qb[j];
+            }
+        }
+        let prescribed = matches!(spin, Spin::Prescribed { .. });
+        let (idx_buf, nf) = self.free_indices(prescribed);
+        let idx = &idx_buf[..nf];
+        let (mut a, mut rhs) = self.schur(&m, brow, idx, &q, bf);
         let ok = crate::linalg::dense::solve_once(&mut a, &mut rhs, nf);
         let mut acc = [0.0; ROTOR_COORDS];
         for (ia, &ca) in idx.iter().enumerate() {
@@ -462,9 +432,9 @@ impl System for Equations<'_> {
         }
         dy[..nc].copy_from_slice(&y[nc..2 * nc]);
         dy[nc..nc + ROTOR_COORDS].copy_from_slice(&acc);
-        if prescribed {
-            dy[PHI] = phi_d;
-            dy[nc + PHI] = phi_dd;
+        if let Spin::Prescribed { rate, acc } = spin {
+            dy[PHI] = rate;
+            dy[nc + PHI] = acc;
         }
         for i in 0..nb {
             let d = self.balls[i].m * self.balls[i].r * self.balls[i].r;
@@ -477,5 +447,343 @@ impl System for Equations<'_> {
         if !ok {
             dy.iter_mut().for_each(|v| *v = f64::NAN);
         }
+    }
+
+    /// The free rotor coordinates (not locked, `φ` unless prescribed) and their number.
+    #[inline(always)]
+    fn free_indices(&self, prescribed: bool) -> ([usize; ROTOR_COORDS], usize) {
+        let free = self.free(prescribed);
+        let mut idx_buf = [0usize; ROTOR_COORDS];
+        let mut nf = 0;
+        for c in 0..ROTOR_COORDS {
+            if free[c] {
+                idx_buf[nf] = c;
+                nf += 1;
+            }
+        }
+        (idx_buf, nf)
+    }
+
+    /// The Schur complement `A = M_ff − Σ_j B_jᵀ B_j/(m R²)` on the free coordinates `idx`
+    /// and its right-hand side `Q_f − Σ_j B_jᵀ b_j/(m R²)`.
+    #[inline(always)]
+    fn schur(
+        &self,
+        m: &[[f64; ROTOR_COORDS]; ROTOR_COORDS],
+        brow: &[[f64; ROTOR_COORDS]],
+        idx: &[usize],
+        q: &[f64; ROTOR_COORDS],
+        bf: &[f64],
+    ) -> ([[f64; ROTOR_COORDS]; ROTOR_COORDS], [f64; ROTOR_COORDS]) {
+        let mut a = [[0.0; ROTOR_COORDS]; ROTOR_COORDS];
+        let mut rhs = [0.0; ROTOR_COORDS];
+        for (ia, &ca) in idx.iter().enumerate() {
+            rhs[ia] = q[ca];
+            for (ib, &cb) in idx.iter().enumerate() {
+                a[ia][ib] = m[ca][cb];
+            }
+        }
+        for (i, b) in self.balls.iter().enumerate() {
+            let d = b.m * b.r * b.r;
+            for (ia, &ca) in idx.iter().enumerate() {
+                let bi = brow[i][ca] / d;
+                rhs[ia] -= bi * bf[i];
+                for (ib, &cb) in idx.iter().enumerate() {
+                    a[ia][ib] -= bi * brow[i][cb];
+                }
+            }
+        }
+        (a, rhs)
+    }
+
+    /// The exact Jacobian columns `∂f/∂y_c` for the full-state indices `cols`, by forward
+    /// differentiation of [`Model::forces`] (no real-ball forces): `jac[r * cols.len() + k]` is
+    /// `∂f_r/∂y_{cols[k]}` for every row `r` of the full state (row-major
+    /// `2(5 + N) × cols.len()`). `dy` is `f(y)` (from [`Model::rhs`]).
+    ///
+    /// With `q̈0` the accelerations in `dy`, the residual `R(y) = Q(y) − M(y) q̈0` (free rotor
+    /// rows and ball rows) is differentiated in chunks of [`JAC_CHUNK`] directions; then
+    /// `∂q̈/∂y_c = M⁻¹ ∂R/∂y_c` (Schur complement again). The first half of the rows is
+    /// `∂q̇/∂y`: one where `y_c` is the rate itself, except the prescribed `φ̇`.
+    pub(super) fn jacobian_columns(&self, spin: Spin, y: &[f64], dy: &[f64], cols: &[usize], jac: &mut [f64]) {
+        let nc = self.coords();
+        let nb = self.balls.len();
+        let dim = 2 * nc;
+        let ncol = cols.len();
+        debug_assert_eq!(jac.len(), dim * ncol);
+        jac.iter_mut().for_each(|v| *v = 0.0);
+        let prescribed = matches!(spin, Spin::Prescribed { .. });
+        // q̇ rows
+        for (k, &c) in cols.iter().enumerate() {
+            if c >= nc && !(prescribed && c == nc + PHI) {
+                jac[(c - nc) * ncol + k] = 1.0;
+            }
+        }
+        let (idx_buf, nf) = self.free_indices(prescribed);
+        let idx = &idx_buf[..nf];
+        let qdd = &dy[nc..];
+        // f64 mass matrix (for the solve)
+        let mut brow = vec![[0.0; ROTOR_COORDS]; nb];
+        let mut bf = vec![0.0; nb];
+        let (q, m) = self.forces::<f64>(spin, y, &mut brow, &mut bf, &mut []);
+        let (a, _) = self.schur(&m, &brow, idx, &q, &bf);
+        // residual derivatives, JAC_CHUNK directions at a time
+        type D = Dual<JAC_CHUNK>;
+        let mut yd: Vec<D> = y.iter().map(|&v| D::cst(v)).collect();
+        let mut browd = vec![[D::cst(0.0); ROTOR_COORDS]; nb];
+        let mut bfd = vec![D::cst(0.0); nb];
+        let mut dr_rot = [[0.0; JAC_CHUNK]; ROTOR_COORDS];
+        let mut dr_ball = vec![[0.0; JAC_CHUNK]; nb];
+        for (chunk_no, chunk) in cols.chunks(JAC_CHUNK).enumerate() {
+            for (s, &c) in chunk.iter().enumerate() {
+                yd[c] = D::var(y[c], s);
+            }
+            let (q, md) = self.forces::<D>(spin, &yd, &mut browd, &mut bfd, &mut []);
+            for &c in chunk {
+                yd[c] = D::cst(y[c]);
+            }
+            // R = Q − M q̈0 on free rotor rows and ball rows
+            for &ca in idx {
+                let mut r = q[ca];
+                for &cb in idx {
+                    r = r - md[ca][cb] * qdd[cb];
+                }
+                for i in 0..nb {
+                    r = r - browd[i][ca] * qdd[ROTOR_COORDS + i];
+                }
+                dr_rot[ca] = r.d;
+            }
+            // (the balls' diagonal m R² is constant: no derivative)
+            for i in 0..nb {
+                let mut r = bfd[i];
+                for &cb in idx {
+                    r = r - browd[i][cb] * qdd[cb];
+                }
+                dr_ball[i] = r.d;
+            }
+            // solve M x = ∂R/∂y_c for each direction of the chunk
+            for s in 0..chunk.len() {
+                let k = chunk_no * JAC_CHUNK + s;
+                let mut rhs = [0.0; ROTOR_COORDS];
+                for (ia, &ca) in idx.iter().enumerate() {
+                    rhs[ia] = dr_rot[ca][s];
+                }
+                for (i, b) in self.balls.iter().enumerate() {
+                    let d = b.m * b.r * b.r;
+                    for (ia, &ca) in idx.iter().enumerate() {
+                        rhs[ia] -= brow[i][ca] / d * dr_ball[i][s];
+                    }
+                }
+                let mut aa = a;
+                crate::linalg::dense::solve_once(&mut aa, &mut rhs, nf);
+                let mut x = [0.0; ROTOR_COORDS];
+                for (ia, &ca) in idx.iter().enumerate() {
+                    x[ca] = rhs[ia];
+                    jac[(nc + ca) * ncol + k] = rhs[ia];
+                }
+                for (i, b) in self.balls.iter().enumerate() {
+                    let d = b.m * b.r * b.r;
+                    let mut v = dr_ball[i][s];
+                    for &c in idx {
+                        v -= brow[i][c] * x[c];
+                    }
+                    jac[(nc + ROTOR_COORDS + i) * ncol + k] = v / d;
+                }
+            }
+        }
+    }
+}
+
+/// Directions differentiated together by [`Equations::exact_jacobian`] (the [`Dual`] width).
+pub const JAC_CHUNK: usize = 8;
+
+/// The equations of a [`SpatialRotor`] under a [`Drive`]; state
+/// `y = (ξ, η, δ, θ, φ, ψ_1..N, ξ̇, η̇, δ̇, θ̇, φ̇, ψ̇_1..N)` (SI: m, rad, s).
+#[derive(Debug, Clone)]
+pub struct Equations<'a> {
+    /// The rotor.
+    pub rotor: &'a SpatialRotor,
+    /// How it is driven.
+    pub drive: &'a Drive,
+    model: Model,
+    /// Real-ball forces of each plane that has them switched on: (index of its first ball, forces).
+    ball_forces: Vec<(usize, BallForces)>,
+    scratch: RefCell<Scratch>,
+}
+
+impl<'a> Equations<'a> {
+    /// Prepare the equations (the carrier's mass properties are computed once).
+    pub fn new(rotor: &'a SpatialRotor, drive: &'a Drive) -> Self {
+        let model = Model::new(rotor);
+        // reference frequency of the default contact stiffness: the rotor's translation on its supports
+        let w_ref = (model.supports.iter().map(|s| s.k[0]).sum::<f64>() / rotor.total_mass()).sqrt();
+        let mut first = 0;
+        let mut ball_forces = vec![];
+        for p in &rotor.planes {
+            if let Some(f) = BallForces::new(&p.physics, p.ball_mass, p.race_radius, p.n, w_ref) {
+                ball_forces.push((first, f));
+            }
+            first += p.n;
+        }
+        let scratch = Scratch::new(model.balls.len(), !ball_forces.is_empty());
+        Equations { rotor, drive, model, ball_forces, scratch }
+    }
+
+    /// The real-ball forces of the planes that have them switched on: (index of the plane's
+    /// first ball among all balls, its forces); empty for point masses.
+    pub fn ball_forces(&self) -> &[(usize, BallForces)] {
+        &self.ball_forces
+    }
+
+    /// Number of generalised coordinates `5 + N`.
+    pub fn coords(&self) -> usize {
+        self.model.coords()
+    }
+
+    /// Axial position of the reference point O (= C).
+    pub fn z_reference(&self) -> f64 {
+        self.model.z_ref
+    }
+
+    /// Spin rate at `t`: prescribed by the drive, or the state's `φ̇`.
+    pub fn spin_rate(&self, t: f64, y: &[f64]) -> f64 {
+        if self.drive.prescribed() {
+            self.drive.kinematics(t).0
+        } else {
+            y[self.coords() + PHI]
+        }
+    }
+
+    /// The drive at `(t, y)` as the equations use it; `slope`: also `∂M/∂φ̇` (Jacobians).
+    fn spin(&self, t: f64, y: &[f64], slope: bool) -> Spin {
+        if self.drive.prescribed() {
+            let (rate, acc) = self.drive.kinematics(t);
+            Spin::Prescribed { rate, acc }
+        } else {
+            let w = y[self.coords() + PHI];
+            Spin::Free { torque: self.drive.torque(t, w), slope: if slope { self.drive.torque_slope(t, w) } else { 0.0 } }
+        }
+    }
+
+    fn kin(&self, t: f64, y: &[f64]) -> Kin<f64> {
+        self.model.kin(y, self.spin_rate(t, y))
+    }
+
+    /// Total mechanical energy `T + V` (J): kinetic energy of carrier and balls, elastic
+    /// energy of the supports, potential of gravity. For the energy-balance tests.
+    pub fn energy(&self, t: f64, y: &[f64]) -> f64 {
+        let nc = self.coords();
+        let md = &self.model;
+        let k = self.kin(t, y);
+        let (s, j) = md.carrier_in_f(&k);
+        let mut e = 0.5 * md.carrier_mass * dot(k.v_o, k.v_o) + dot(k.v_o, cross(k.w, s)) + 0.5 * dot(k.w, mat_vec(&j, k.w));
+        let phi = y[PHI];
+        let (sp, cp) = phi.sin_cos();
+        let g = md.gravity;
+        let g_f = [g[0] * cp + g[1] * sp, -g[0] * sp + g[1] * cp, g[2]];
+        let mut first = add(scalef(k.u, md.carrier_mass), s);
+        for (i, b) in md.balls.iter().enumerate() {
+            let (r, t_j, _) = md.ball_geometry(&k, b, y[ROTOR_COORDS + i]);
+            let v = add(add(k.v_o, cross(k.w, r)), scalef(t_j, y[nc + ROTOR_COORDS + i]));
+            e += 0.5 * b.m * dot(v, v);
+            first = add(first, scalef(add(k.u, r), b.m));
+        }
+        e -= dot(g_f, first);
+        for sup in &md.supports {
+            let (_, r, _) = md.shaft_point(&k, sup.zeta);
+            let (x, yy) = (cp * r[0] - sp * r[1], sp * r[0] + cp * r[1]);
+            e += 0.5 * (sup.k[0] * x * x + sup.k[1] * yy * yy);
+        }
+        e
+    }
+
+    /// Power dissipated by the dampers and the ball drag at a state (W, ≥ 0): for the power
+    /// balance `dE/dt = P_drive − P_dissipated`.
+    pub fn dissipated_power(&self, t: f64, y: &[f64]) -> f64 {
+        let nc = self.coords();
+        let md = &self.model;
+        let k = self.kin(t, y);
+        let (sp, cp) = y[PHI].sin_cos();
+        let mut p = 0.0;
+        for sup in &md.supports {
+            let (_, _, v) = md.shaft_point(&k, sup.zeta);
+            let (vx, vy) = (cp * v[0] - sp * v[1], sp * v[0] + cp * v[1]);
+            p += sup.c[0] * vx * vx + sup.c[1] * vy * vy;
+        }
+        for (i, b) in md.balls.iter().enumerate() {
+            let r = y[nc + ROTOR_COORDS + i];
+            p += b.drag * b.r * b.r * r * r;
+        }
+        if !self.drive.prescribed() {
+            p += self.rotor.spin_drag * k.phi_d * k.phi_d;
+        }
+        p
+    }
+
+    /// Lateral displacement, in fixed axes, of the shaft point at axial position `z` (m).
+    pub fn displacement_at(&self, y: &[f64], z: f64) -> [f64; 2] {
+        let k = self.model.kin(y, 0.0);
+        let (_, r, _) = self.model.shaft_point(&k, z - self.model.z_ref);
+        let (sp, cp) = y[PHI].sin_cos();
+        [cp * r[0] - sp * r[1], sp * r[0] + cp * r[1]]
+    }
+
+    /// Residual unbalance of unbalance masses and balls together, rotor frame:
+    /// static `Σ m ρ_⊥` (kg·m) and couple about C `Σ m ζ ρ_⊥` plus the tilted principal
+    /// axis's products of inertia (kg·m²).
+    pub fn residual_unbalance(&self, y: &[f64]) -> ([f64; 2], [f64; 2]) {
+        residual_unbalance(self.rotor, &self.model, y)
+    }
+
+    /// The exact Jacobian `∂f/∂y` of [`System::rhs`] at `(t, y)`, row-major `dim × dim`, by
+    /// forward-mode differentiation of the same code that computes the right-hand side
+    /// (module docs): no difference increments. Under a prescribed spin the `φ̇` column is zero
+    /// (the schedule's rate is used) and the `φ̇`, `φ̈` rows are zero; under a torque drive the
+    /// torque's slope [`Drive::torque_slope`] enters the `φ̇` column.
+    ///
+    /// Errors with [`Error::NoLinearisation`] for real balls (contact, rolling resistance):
+    /// their dead zones and resting contacts have no derivative. Panics when `jac` does not
+    /// hold `dim²` entries (a caller's bug, not an input).
+    pub fn exact_jacobian(&self, t: f64, y: &[f64], jac: &mut [f64]) -> Result<()> {
+        if !self.ball_forces.is_empty() {
+            return Err(real_balls_error());
+        }
+        let dim = self.dim();
+        assert_eq!(jac.len(), dim * dim, "exact_jacobian: jac must hold dim² = {} entries", dim * dim);
+        let mut dy = vec![0.0; dim];
+        self.rhs(t, y, &mut dy);
+        let cols: Vec<usize> = (0..dim).collect();
+        self.model.jacobian_columns(self.spin(t, y, true), y, &dy, &cols, jac);
+        Ok(())
+    }
+}
+
+/// The refusal of real balls by the linearisations.
+pub(super) fn real_balls_error() -> Error {
+    Error::NoLinearisation {
+        reason: "balls with contact or rolling resistance (balancer.contact, balancer.rolling_resistance) have friction dead zones and resting contacts".into(),
+    }
+}
+
+/// [`Equations::residual_unbalance`] of `rotor` at the ball angles of `y`.
+pub(super) fn residual_unbalance(rotor: &SpatialRotor, model: &Model, y: &[f64]) -> ([f64; 2], [f64; 2]) {
+    let (mut st, mut cp) = (rotor.static_unbalance(), rotor.couple_unbalance());
+    for (i, b) in model.balls.iter().enumerate() {
+        let (s, c) = y[ROTOR_COORDS + i].sin_cos();
+        st[0] += b.m * b.r * c;
+        st[1] += b.m * b.r * s;
+        cp[0] += b.m * b.r * b.zeta * c;
+        cp[1] += b.m * b.r * b.zeta * s;
+    }
+    (st, cp)
+}
+
+impl System for Equations<'_> {
+    fn dim(&self) -> usize {
+        2 * self.coords()
+    }
+
+    fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
+        self.model.rhs(self.spin(t, y, false), y, dy, &self.ball_forces, &self.scratch);
     }
 }

@@ -7,7 +7,9 @@
 //! - [`rotor`]: the parameters ([`SpatialRotor`]), from the analytic commands' SI or
 //!   dimensionless description.
 //! - [`equations`]: the equations of motion in axes turning with the rotor ([`Equations`]),
-//!   energy and dissipated power.
+//!   energy and dissipated power, the exact Jacobian by forward-mode differentiation.
+//! - [`field`]: the rotor at a constant speed as an [`crate::analysis::VectorField`]
+//!   ([`SpatialField`]: reduced state, exact Jacobian, period, family of balanced states).
 //! - [`simulate`](mod@simulate): initial conditions, integration under a drive, samples, the
 //!   verdict ([`simulate()`]).
 //! - [`stationary`]: steady synchronous whirls with the balls held (the stationary response
@@ -16,10 +18,12 @@
 
 pub mod basins;
 pub mod equations;
+pub mod field;
 pub mod rotor;
 pub mod simulate;
 pub mod stationary;
 
 pub use equations::Equations;
+pub use field::SpatialField;
 pub use rotor::{BallPlane, PointMass, RigidRotor, SpatialRotor, Support};
-pub use simulate::{simulate, simulate_summary, Initial, Sample, Settings, Summary};
+pub use simulate::{simulate, simulate_summary, Initial, RunOutcome, Sample, Settings, Summary};

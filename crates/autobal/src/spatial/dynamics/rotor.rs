@@ -96,9 +96,6 @@ pub struct SpatialRotor {
     pub lock_tilt: bool,
 }
 
-/// Most balls in all planes together that the equations take.
-pub const MAX_BALLS: usize = 64;
-
 impl SpatialRotor {
     /// Total mass `M_s` (kg).
     pub fn total_mass(&self) -> f64 {
@@ -141,12 +138,16 @@ impl SpatialRotor {
     }
 
     /// The couple unbalance about C of the unbalance masses and the tilted principal axis
-    /// alone (kg·m²), rotor frame: `Σ m_u ζ_u ρ_u + (C_r − A_r) sin κ cos κ (cos β, sin β)`, the
-    /// products of inertia `(−J_xz, −J_yz)` that make the rotor wobble.
+    /// alone (kg·m²), rotor frame: `Σ m_u ζ_u ρ_u − (C_r − A_r) sin κ cos κ (cos β, sin β)`, the
+    /// products of inertia `(−J_xz, −J_yz)` that make the rotor wobble. (A point mass has
+    /// `J_xz = −m x z`, so its couple `m ζ x` is `−J_xz`; the rotor's own tensor
+    /// `A I + (C − A) e eᵀ` with `e = (sin κ cos β, sin κ sin β, cos κ)` has
+    /// `J_xz = (C − A) sin κ cos κ cos β`, hence the minus: with it, balls that cancel this
+    /// couple leave the rotor at rest on the axis, `tests/spatial_field.rs`.)
     pub fn couple_unbalance(&self) -> [f64; 2] {
         let zc = self.z_reference();
         let r = &self.rotor;
-        let k = (r.polar_moment - r.equatorial_moment) * r.axis_tilt.sin() * r.axis_tilt.cos();
+        let k = -(r.polar_moment - r.equatorial_moment) * r.axis_tilt.sin() * r.axis_tilt.cos();
         self.unbalances.iter().fold([k * r.axis_tilt_angle.cos(), k * r.axis_tilt_angle.sin()], |a, u| {
             let s = u.mass * u.radius * (u.z - zc);
             [a[0] + s * u.angle.cos(), a[1] + s * u.angle.sin()]
@@ -187,11 +188,10 @@ impl SpatialRotor {
             finite(&format!("{t}.angle"), u.angle)?;
             finite(&format!("{t}.z"), u.z)?;
         }
-        if self.balls() > MAX_BALLS {
-            return Err(Error::invalid("balancer.balls", format!("at most {MAX_BALLS} balls in all planes together, got {}", self.balls())));
-        }
         for (i, p) in self.planes.iter().enumerate() {
             let t = if i == 0 { "balancer" } else { "balancer2" };
+            // at most crate::limits::MAX_BALLS_SPATIAL per plane, as the limits table says
+            crate::limits::check_count(&format!("{t}.balls"), p.n as u64)?;
             finite(&format!("{t}.z"), p.z)?;
             if p.n > 0 {
                 positive(&format!("{t}.ball_mass"), p.ball_mass)?;

@@ -10,10 +10,6 @@ use crate::ode::{Control, Method, Options, Outcome, Solver, Stats, Status};
 use crate::simulation::{run, Hooks, Timeline};
 use serde::Serialize;
 
-/// Most balls in all planes together that the simulation integrates (the integrators take any
-/// dimension; this was the limit of their former fixed-size state, `2 (5 + N) ≤ 24`).
-pub const MAX_SIM_BALLS: usize = 7;
-
 /// Initial conditions (velocities in fixed axes; at `t = 0` the turning frame coincides with
 /// the fixed one).
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -105,24 +101,48 @@ pub struct Sample {
 /// Summary of a run.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Summary {
-    /// Largest whirl radius at the (first) balancer plane, at step ends and samples.
+    /// Largest distance from the axis `|r|` of the shaft at the (first) balancer plane (a sag
+    /// included), at step ends and samples.
     pub peak_amplitude: f64,
     /// Spin rate at that moment.
     pub omega_at_peak: f64,
     /// Time of the peak.
     pub t_at_peak: f64,
-    /// Whirl radius at the (first) balancer plane at the end.
+    /// Whirl radius at the (first) balancer plane about its stationary position: the RMS over
+    /// the run's last revolution of `|r(t) − r̄|`, `r` the shaft's displacement there in fixed
+    /// axes and `r̄` its mean over that revolution ([`Summary::mean_displacement`]); a circular
+    /// whirl of radius `a` about `r̄` gives `a`. The distance from the axis at the end when the
+    /// run turned less than a revolution.
     pub final_amplitude: f64,
+    /// Mean lateral displacement `r̄ = (1/T) ∫ r dt` of the shaft at the (first) balancer plane
+    /// in fixed axes over the last revolution (m, or `ρ_s`): the stationary motion without the
+    /// whirl, e.g. the sag under gravity across the axis (`≈ M g / Σ k`).
+    pub mean_displacement: [f64; 2],
+    /// `|r̄|`, the static sag at the (first) balancer plane (see [`Summary::mean_displacement`]).
+    pub static_sag: f64,
     /// Spin rate at the end.
     pub final_omega: f64,
-    /// Static unbalance of unbalance masses and balls at the end, relative to the unbalance
-    /// masses' own (relative to the balls' capacity `Σ m R` when there is none).
+    /// Static unbalance of unbalance masses and balls, rotor frame, averaged over the last
+    /// revolution (`|(1/T) ∫ Σ m ρ_⊥ dt|`), relative to the unbalance masses' own (relative to
+    /// the balls' capacity `Σ m R` when there is none). At the end when the run turned less
+    /// than a revolution.
     pub residual_unbalance: f64,
-    /// Couple unbalance about C at the end relative to the unbalance's own couple (tilted axis
-    /// included); `None` when the unbalance has no couple.
+    /// Couple unbalance about C relative to the unbalance's own couple (tilted axis included),
+    /// averaged over the last revolution as `residual_unbalance`; `None` when the unbalance has
+    /// no couple.
     pub residual_couple: Option<f64>,
-    /// Whether the balls ended at rest relative to the rotor with the residual static (and
-    /// couple) unbalance below 5 % of the unbalance's.
+    /// The largest change of a ball's mean angle (its average over a revolution, relative to
+    /// the rotor) between the last two revolutions (rad); `None` without balls or when the run
+    /// turned less than two revolutions.
+    pub ball_drift: Option<f64>,
+    /// What the run ended in ([`RunOutcome`]): balanced, partially balanced, not balanced, not
+    /// settled.
+    pub outcome: RunOutcome,
+    /// `outcome == RunOutcome::Balanced`: the balls cancel the unbalance on average over the last
+    /// revolution (residual static and couple unbalance at most [`BALANCE_TOLERANCE`] of the
+    /// unbalance's, the balls' capacity sufficing) and their motion relative to the rotor is
+    /// periodic (at rest, or swinging once per revolution under gravity or direction-dependent
+    /// supports; mean angles drift by at most [`drift_tolerance`] per revolution).
     pub balanced: bool,
     /// Accepted steps.
     pub steps: u64,
@@ -152,6 +172,63 @@ impl Summary {
     pub fn into_result(self) -> Result<Self> {
         crate::simulation::status_result(&self.status, self.t_end).map(|()| self)
     }
+}
+
+/// Residual unbalance (static and couple, relative to the unbalance's) up to which a settled run
+/// counts as balanced: 5 %.
+pub const BALANCE_TOLERANCE: f64 = 0.05;
+
+/// How far (absolute, as a fraction of the unbalance) the residual of a partially balanced run
+/// may lie from the closed form `1 − Σ m R / |U|`: 0.02. The balls settle on the direction of
+/// the whirl, which with damping lags a few degrees behind exactly against the unbalance: an
+/// angle `α` off raises the residual by `≈ c α² / (2 (1 − c))`, `c = Σ m R / |U|` (the washer
+/// of examples/washing_machine.toml with half its ball mass: `α = 5°`, residual 0.326 against
+/// 0.318). Balls "together": the resultant of each plane's balls is at least `1 − 0.01` of the
+/// plane's capacity (within about ±8° of each other).
+pub const PARTIAL_TOLERANCE: f64 = 0.02;
+
+/// The fraction of a plane's capacity its balls' resultant reaches at least when they are
+/// "together" (see [`PARTIAL_TOLERANCE`]).
+const TOGETHER: f64 = 0.99;
+
+/// Revolutions the summary averages over at the end of a run (the last one for the averages, the
+/// one before it for the balls' drift).
+const WINDOW_REVOLUTIONS: f64 = 2.0;
+
+/// Passes of the defect correction of the mean ([`Window::mean`]) at most: at 4 steps per
+/// revolution (`Δφ = π/2`) each pass shrinks the error by `Δφ²/12 ≈ 0.2`, 40 passes to 1e-28;
+/// usually it stops after a few, on a change below 1e-14 of the mean.
+const MEAN_PASSES: usize = 40;
+
+/// Step-end records kept at most (a run that hardly turns would otherwise keep them all).
+const MAX_RECORDS: usize = 100_000;
+
+/// The largest change of a ball's mean angle from one revolution to the next that still counts
+/// as periodic motion: `2π · 10⁻³ · max(1, ω_n/|ω|)` rad, i.e. a mean relative rate below
+/// `10⁻³ max(|ω|, ω_n)` (the criterion `|ψ̇| < 10⁻³ max(|ω|, ω_n)` of balls at rest, applied to
+/// the mean over a revolution), `ω_n` the rotor's natural frequency.
+pub fn drift_tolerance(omega: f64, natural_frequency: f64) -> f64 {
+    2.0 * std::f64::consts::PI * 1e-3 * (natural_frequency / omega.abs()).max(1.0)
+}
+
+/// What a run ended in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RunOutcome {
+    /// The balls cancel the unbalance on average over a revolution (see [`Summary::balanced`]).
+    Balanced,
+    /// The balls' capacity `Σ m R` falls short of the static unbalance `|U|`: the balls of
+    /// every plane ended together (resultant at least 99 % of the plane's capacity) against
+    /// the unbalance, the residual within [`PARTIAL_TOLERANCE`] of the
+    /// closed form `1 − Σ m R / |U|`. The least residual there is; never `Balanced`.
+    PartiallyBalanced,
+    /// Settled (or without balls) but neither of the above: e.g. the balls on the heavy side
+    /// below the critical speed, or no balls.
+    NotBalanced,
+    /// The balls' mean angles still drift between the last two revolutions by more than
+    /// [`drift_tolerance`] (a transient, or balls circulating round the race), or the run turned
+    /// less than two revolutions, or it stopped early.
+    NotSettled,
 }
 
 /// The state vector of an initial condition (turning-frame coordinates at `t = 0`).
@@ -256,10 +333,175 @@ pub fn sample_of(eq: &Equations, t: f64, y: &[f64]) -> Sample {
     }
 }
 
+/// Axial position where the whirl is measured: the first balancer plane, else the first
+/// unbalance, else C.
+fn amplitude_z(eq: &Equations) -> f64 {
+    eq.rotor.planes.first().map(|p| p.z).or_else(|| eq.rotor.unbalances.first().map(|u| u.z)).unwrap_or(eq.z_reference())
+}
+
 fn plane_amplitude(eq: &Equations, y: &[f64]) -> f64 {
-    let z = eq.rotor.planes.first().map(|p| p.z).or_else(|| eq.rotor.unbalances.first().map(|u| u.z)).unwrap_or(eq.z_reference());
-    let d = eq.displacement_at(y, z);
+    let d = eq.displacement_at(y, amplitude_z(eq));
     d[0].hypot(d[1])
+}
+
+/// Step-end records over the run's last [`WINDOW_REVOLUTIONS`] revolutions (by the spin angle
+/// `φ`), for the averages of the summary: each is `t, φ`, the residual static and couple
+/// unbalance in the rotor frame (4), the shaft's displacement at the balancer plane in the
+/// rotor frame `w = R(−φ) r` (2), the ball angles. Records older than the window (but the one
+/// just before it) are dropped as the run goes, so the memory is that of the steps of two
+/// revolutions.
+struct Window {
+    stride: usize,
+    data: std::collections::VecDeque<f64>,
+}
+
+const REC_RES: usize = 2;
+const REC_W: usize = 6;
+const REC_PSI: usize = 8;
+
+impl Window {
+    fn new(balls: usize) -> Self {
+        Window { stride: REC_PSI + balls, data: Default::default() }
+    }
+
+    fn len(&self) -> usize {
+        self.data.len() / self.stride
+    }
+
+    fn get(&self, i: usize, k: usize) -> f64 {
+        self.data[i * self.stride + k]
+    }
+
+    fn push(&mut self, eq: &Equations, t: f64, y: &[f64]) {
+        let phi = y[PHI];
+        let (st, cp) = eq.residual_unbalance(y);
+        let r = eq.displacement_at(y, amplitude_z(eq));
+        let (sp, c) = phi.sin_cos();
+        let w = [c * r[0] + sp * r[1], -sp * r[0] + c * r[1]];
+        self.data.extend([t, phi, st[0], st[1], cp[0], cp[1], w[0], w[1]]);
+        self.data.extend(&y[ROTOR_COORDS..eq.coords()]);
+        // drop the front while the record after it is still a whole window before this one
+        let span = 2.0 * std::f64::consts::PI * WINDOW_REVOLUTIONS;
+        while self.len() > 2 && ((phi - self.get(1, 1)).abs() >= span || self.len() > MAX_RECORDS) {
+            self.data.drain(..self.stride);
+        }
+    }
+
+    /// Integrals over the part of the record between `lo` and `hi` radians of spin before the
+    /// last record, the values linear in time between records in the rotor frame and `φ`
+    /// linear (exact for a constant speed): duration, `∫` of the record's values from
+    /// [`REC_RES`] on, `∫ e^{iφ} (w − e^{−iφ} r0) dt` and `∫ |w − e^{−iφ} r0|² dt` (`r0` a
+    /// guess of the mean in fixed axes subtracted before interpolating, so that a displacement
+    /// constant in fixed axes is integrated exactly as well; see [`Window::mean`]).
+    fn integrals(&self, lo: f64, hi: f64, r0: [f64; 2]) -> (f64, Vec<f64>, [f64; 2], f64) {
+        let n = self.len();
+        let mut sums = vec![0.0; self.stride - REC_RES];
+        let (mut dur, mut fixed, mut sq) = (0.0, [0.0; 2], 0.0);
+        if n < 2 {
+            return (dur, sums, fixed, sq);
+        }
+        let phi_end = self.get(n - 1, 1);
+        let sense = if phi_end >= self.get(0, 1) { 1.0 } else { -1.0 };
+        let before = |i: usize| sense * (phi_end - self.get(i, 1));
+        let shifted = |i: usize| {
+            let (sp, c) = self.get(i, 1).sin_cos();
+            [self.get(i, REC_W) - (c * r0[0] + sp * r0[1]), self.get(i, REC_W + 1) - (-sp * r0[0] + c * r0[1])]
+        };
+        for i in 0..n - 1 {
+            let (a0, a1) = (before(i), before(i + 1));
+            let (top, bottom) = (a0.min(hi), a1.max(lo));
+            if a0 <= a1 || top <= bottom {
+                continue;
+            }
+            // fractions of the step where the window's part begins and ends
+            let (s0, s1) = ((a0 - top) / (a0 - a1), (a0 - bottom) / (a0 - a1));
+            let lerp = |k: usize, s: f64| self.get(i, k) + s * (self.get(i + 1, k) - self.get(i, k));
+            let h = lerp(0, s1) - lerp(0, s0);
+            let (p0, p1) = (lerp(1, s0), lerp(1, s1));
+            dur += h;
+            for (k, sum) in sums.iter_mut().enumerate() {
+                *sum += 0.5 * h * (lerp(k + REC_RES, s0) + lerp(k + REC_RES, s1));
+            }
+            let (wa, wb) = (shifted(i), shifted(i + 1));
+            let w0 = [wa[0] + s0 * (wb[0] - wa[0]), wa[1] + s0 * (wb[1] - wa[1])];
+            let w1 = [wa[0] + s1 * (wb[0] - wa[0]), wa[1] + s1 * (wb[1] - wa[1])];
+            let d = [w1[0] - w0[0], w1[1] - w0[1]];
+            // ∫ e^{iφ} w = h e^{iφ0} (w0 I0 + d I1), I_k = ∫_0^1 s^k e^{iΔs} ds
+            let (i0, i1) = phase_moments(p1 - p0);
+            let v = cadd(cmul(w0, i0), cmul(d, i1));
+            let e = cmul([p0.cos(), p0.sin()], v);
+            fixed[0] += h * e[0];
+            fixed[1] += h * e[1];
+            // ∫ |w0 + d s|² ds = |w0|² + w0·d + |d|²/3
+            sq += h * (w0[0] * w0[0] + w0[1] * w0[1] + w0[0] * d[0] + w0[1] * d[1] + (d[0] * d[0] + d[1] * d[1]) / 3.0);
+        }
+        (dur, sums, fixed, sq)
+    }
+
+    /// The averages over the last revolution: duration `T`, the means of the residual
+    /// unbalance (4), the displacement in the rotor frame (2) and ball angles, the mean
+    /// displacement `r̄` in fixed axes, and the RMS of `|r − r̄|`. The mean is found by defect
+    /// correction: each pass integrates `r − r0` with `r0` the previous pass's mean, so the
+    /// interpolation error (the chords in the rotor frame of a vector fixed in fixed axes,
+    /// `~ Δφ²/12` of it for steps of `Δφ`) shrinks by that factor per pass, down to the part of
+    /// the motion that is fixed in neither frame.
+    fn mean(&self) -> (f64, Vec<f64>, [f64; 2], f64) {
+        let two_pi = 2.0 * std::f64::consts::PI;
+        let mut r0 = [0.0; 2];
+        let (mut dur, mut sums, mut var) = (0.0, vec![], 0.0);
+        for _ in 0..MEAN_PASSES {
+            let (d, s, f, q) = self.integrals(0.0, two_pi, r0);
+            if d <= 0.0 {
+                return (0.0, s, r0, 0.0);
+            }
+            let m = [f[0] / d, f[1] / d];
+            // ∫|r − r0|² = ∫|r − r̄|² + T |r̄ − r0|²
+            (dur, sums, var) = (d, s, q / d - (m[0] * m[0] + m[1] * m[1]));
+            r0 = [r0[0] + m[0], r0[1] + m[1]];
+            if m[0].hypot(m[1]) <= 1e-14 * r0[0].hypot(r0[1]) {
+                break;
+            }
+        }
+        (dur, sums.iter().map(|v| v / dur).collect(), r0, var.max(0.0).sqrt())
+    }
+
+    /// Whether the record covers `revolutions` whole revolutions before its end.
+    fn covers(&self, revolutions: f64) -> bool {
+        let n = self.len();
+        n >= 2 && (self.get(n - 1, 1) - self.get(0, 1)).abs() >= 2.0 * std::f64::consts::PI * revolutions * (1.0 - 1e-12)
+    }
+}
+
+fn cmul(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    [a[0] * b[0] - a[1] * b[1], a[0] * b[1] + a[1] * b[0]]
+}
+
+fn cadd(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    [a[0] + b[0], a[1] + b[1]]
+}
+
+/// `I_0 = ∫_0^1 e^{iΔs} ds` and `I_1 = ∫_0^1 s e^{iΔs} ds` as complex `[re, im]`: by the series
+/// `I_k = Σ_m (iΔ)^m / (m! (k + m + 1))` for `|Δ| ≤ 1` (no cancellation), else in closed form
+/// `I_0 = (e^{iΔ} − 1)/(iΔ)`, `I_1 = (e^{iΔ} − I_0)/(iΔ)` (integration by parts).
+fn phase_moments(delta: f64) -> ([f64; 2], [f64; 2]) {
+    if delta.abs() <= 1.0 {
+        let (mut i0, mut i1) = ([0.0; 2], [0.0; 2]);
+        let mut term = [1.0, 0.0]; // (iΔ)^m / m!
+        for m in 0..24 {
+            let mf = m as f64;
+            i0 = cadd(i0, [term[0] / (mf + 1.0), term[1] / (mf + 1.0)]);
+            i1 = cadd(i1, [term[0] / (mf + 2.0), term[1] / (mf + 2.0)]);
+            term = cmul(term, [0.0, delta / (mf + 1.0)]);
+        }
+        (i0, i1)
+    } else {
+        let e = [delta.cos(), delta.sin()];
+        // 1/(iΔ) = −i/Δ
+        let inv = [0.0, -1.0 / delta];
+        let i0 = cmul([e[0] - 1.0, e[1]], inv);
+        let i1 = cmul([e[0] - i0[0], e[1] - i0[1]], inv);
+        (i0, i1)
+    }
 }
 
 /// Simulate from `init`; `sink` receives every sample (at multiples of `dt`) and may return
@@ -309,12 +551,6 @@ fn simulate_sampled(
     rotor.validate()?;
     drive.validate()?;
     settings.validate()?;
-    if rotor.balls() > MAX_SIM_BALLS {
-        return Err(Error::invalid(
-            "balancer.balls",
-            format!("the simulation takes at most {MAX_SIM_BALLS} balls in all planes together, got {}", rotor.balls()),
-        ));
-    }
     let eq = Equations::new(rotor, drive);
     let mut y = initial_state(&eq, init)?;
     let mut solver = Solver::new(&eq, tolerances(&eq, settings))?;
@@ -324,22 +560,26 @@ fn simulate_sampled(
     let breakpoints = drive.breakpoints();
     let timeline = Timeline { t_end: settings.t_end, dt: sample_dt, breakpoints: &breakpoints };
     let counters = vec![EventCounter::default(); eq.ball_forces().len()];
-    let mut hooks = SpatialHooks { eq: &eq, sink: &mut sink, peak: (plane_amplitude(&eq, &y), drive.omega0(), 0.0), counters };
+    let mut window = Window::new(rotor.balls());
+    window.push(&eq, 0.0, &y);
+    let mut hooks = SpatialHooks { eq: &eq, sink: &mut sink, peak: (plane_amplitude(&eq, &y), drive.omega0(), 0.0), counters, window };
     let out = run(&mut solver, &mut y, &timeline, &mut hooks);
     let peak = hooks.peak;
-    let mut s = summarise(&eq, out.t, &y, peak, out.stats, &out);
+    let mut s = summarise(&eq, out.t, &y, peak, out.stats, &out, &hooks.window);
     s.contacts = hooks.counters.iter().map(|c| c.contacts).sum();
     s.stick_slip_transitions = hooks.counters.iter().map(|c| c.stick_slip).sum();
     Ok(s)
 }
 
 /// Peak tracking at step ends and samples, the prescribed spin put back on its schedule at
-/// each piece, samples to the sink, real balls' contacts and stick-slip counted per plane.
+/// each piece, samples to the sink, real balls' contacts and stick-slip counted per plane, the
+/// last revolutions' step ends kept for the summary's averages ([`Window`]).
 struct SpatialHooks<'a, F: FnMut(&Sample) -> bool> {
     eq: &'a Equations<'a>,
     sink: &'a mut F,
     peak: (f64, f64, f64),
     counters: Vec<EventCounter>,
+    window: Window,
 }
 
 impl<F: FnMut(&Sample) -> bool> Hooks for SpatialHooks<'_, F> {
@@ -359,6 +599,7 @@ impl<F: FnMut(&Sample) -> bool> Hooks for SpatialHooks<'_, F> {
             let a = ROTOR_COORDS + first;
             c.observe(f, &y[a..a + f.n], &y[nc + a..nc + a + f.n]);
         }
+        self.window.push(self.eq, t, y);
     }
 
     fn sample(&mut self, t: f64, y: &[f64]) -> Control {
@@ -375,29 +616,75 @@ impl<F: FnMut(&Sample) -> bool> Hooks for SpatialHooks<'_, F> {
     }
 }
 
-fn summarise(eq: &Equations, t: f64, y: &[f64], peak: (f64, f64, f64), stats: Stats, out: &Outcome) -> Summary {
-    let nc = eq.coords();
+/// The summary at the end of a run: averages over the last revolution from `window`, the
+/// verdict ([`RunOutcome`]).
+fn summarise(eq: &Equations, t: f64, y: &[f64], peak: (f64, f64, f64), stats: Stats, out: &Outcome, window: &Window) -> Summary {
     let r = eq.rotor;
     let omega = eq.spin_rate(t, y);
-    let (st, cp) = eq.residual_unbalance(y);
     let (s0, c0) = (r.static_unbalance(), r.couple_unbalance());
     let capacity: f64 = r.planes.iter().map(|p| p.n as f64 * p.ball_mass * p.race_radius).sum();
     let s0n = s0[0].hypot(s0[1]);
-    let residual_unbalance = st[0].hypot(st[1]) / if s0n > 0.0 { s0n } else { capacity.max(f64::MIN_POSITIVE) };
     let c0n = c0[0].hypot(c0[1]);
-    let residual_couple = (c0n > 1e-12 * (s0n * r.length_scale()).max(f64::MIN_POSITIVE)).then(|| cp[0].hypot(cp[1]) / c0n);
-    let wn = r.natural_frequency();
-    let at_rest = (ROTOR_COORDS..nc).all(|i| y[nc + i].abs() < 1e-3 * omega.abs().max(wn));
-    let balanced = r.balls() > 0 && at_rest && residual_unbalance <= 0.05 && !matches!(residual_couple, Some(c) if c > 0.05);
+    let has_couple = c0n > 1e-12 * (s0n * r.length_scale()).max(f64::MIN_POSITIVE);
+    let nb = r.balls();
+    // averages over the last revolution, or the end state when the run turned less
+    let whole = window.covers(1.0);
+    let (st, cp, mean_psi, mean_r, whirl) = if whole {
+        let (_, means, mean_r, rms) = window.mean();
+        ([means[0], means[1]], [means[2], means[3]], means[REC_PSI - REC_RES..].to_vec(), mean_r, rms)
+    } else {
+        let (st, cp) = eq.residual_unbalance(y);
+        let d = eq.displacement_at(y, amplitude_z(eq));
+        (st, cp, y[ROTOR_COORDS..ROTOR_COORDS + nb].to_vec(), [0.0; 2], d[0].hypot(d[1]))
+    };
+    let residual_unbalance = st[0].hypot(st[1]) / if s0n > 0.0 { s0n } else { capacity.max(f64::MIN_POSITIVE) };
+    let residual_couple = has_couple.then(|| cp[0].hypot(cp[1]) / c0n);
+    // the balls' drift: mean angles over the last revolution against the one before
+    let two_pi = 2.0 * std::f64::consts::PI;
+    let ball_drift = (nb > 0 && window.covers(WINDOW_REVOLUTIONS)).then(|| {
+        let (d, sums, _, _) = window.integrals(two_pi, 2.0 * two_pi, [0.0; 2]);
+        (0..nb).map(|j| (sums[REC_PSI - REC_RES + j] / d - mean_psi[j]).abs()).fold(0.0, f64::max)
+    });
+    let settled = out.status.is_completed() && matches!(ball_drift, Some(d) if d <= drift_tolerance(omega, r.natural_frequency()));
+    let outcome = if nb == 0 {
+        RunOutcome::NotBalanced
+    } else if !settled {
+        RunOutcome::NotSettled
+    } else if capacity < s0n {
+        // no balanced state: the least residual is the balls together against the unbalance
+        let mut first = 0;
+        let together = r.planes.iter().all(|p| {
+            let (mut a, mut b) = (0.0, 0.0);
+            for psi in &mean_psi[first..first + p.n] {
+                a += psi.cos();
+                b += psi.sin();
+            }
+            first += p.n;
+            a.hypot(b) >= TOGETHER * p.n as f64
+        });
+        if together && (residual_unbalance - (1.0 - capacity / s0n)).abs() <= PARTIAL_TOLERANCE {
+            RunOutcome::PartiallyBalanced
+        } else {
+            RunOutcome::NotBalanced
+        }
+    } else if residual_unbalance <= BALANCE_TOLERANCE && !matches!(residual_couple, Some(c) if c > BALANCE_TOLERANCE) {
+        RunOutcome::Balanced
+    } else {
+        RunOutcome::NotBalanced
+    };
     Summary {
         peak_amplitude: peak.0,
         omega_at_peak: peak.1,
         t_at_peak: peak.2,
-        final_amplitude: plane_amplitude(eq, y),
+        final_amplitude: whirl,
+        mean_displacement: mean_r,
+        static_sag: mean_r[0].hypot(mean_r[1]),
         final_omega: omega,
         residual_unbalance,
         residual_couple,
-        balanced,
+        ball_drift,
+        outcome,
+        balanced: outcome == RunOutcome::Balanced,
         steps: stats.steps,
         rejected_steps: stats.rejected,
         rhs_evaluations: stats.rhs_evaluations,
@@ -410,5 +697,43 @@ fn summarise(eq: &Equations, t: f64, y: &[f64], peak: (f64, f64, f64), stats: St
             _ => Some(out.to_string()),
         },
         status: out.status.clone(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::phase_moments;
+
+    #[test]
+    fn phase_moments_equal_quadrature_on_both_sides_of_the_switch() {
+        // I_k = ∫_0^1 s^k e^{iΔs} ds against composite Simpson on 2000 panels (error ~1e-14
+        // for |Δ| ≤ 10), series and closed form alike, also just either side of |Δ| = 1
+        for delta in [0.0, 1e-9, -0.3, 0.999_999, 1.000_001, -2.5, 7.0] {
+            let f = |s: f64, k: i32| {
+                let (sn, c) = (delta * s).sin_cos();
+                [s.powi(k) * c, s.powi(k) * sn]
+            };
+            let n = 2000;
+            let simpson = |k: i32| {
+                let mut acc = [0.0; 2];
+                for j in 0..=n {
+                    let w = if j == 0 || j == n {
+                        1.0
+                    } else if j % 2 == 1 {
+                        4.0
+                    } else {
+                        2.0
+                    };
+                    let v = f(j as f64 / n as f64, k);
+                    acc[0] += w * v[0];
+                    acc[1] += w * v[1];
+                }
+                [acc[0] / (3.0 * n as f64), acc[1] / (3.0 * n as f64)]
+            };
+            let (i0, i1) = phase_moments(delta);
+            for (got, want) in [(i0, simpson(0)), (i1, simpson(1))] {
+                assert!((got[0] - want[0]).abs() < 1e-12 && (got[1] - want[1]).abs() < 1e-12, "Δ = {delta}: {got:?} vs {want:?}");
+            }
+        }
     }
 }

@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# Instruction counts (valgrind --tool=callgrind, "I refs"): independent of the load on the
+# machine, so a before/after comparison made on a busy machine still holds. For each command,
+# the whole process against the library's share of the same work:
+#   simulate  the library example examples/passage (the same passage, samples in memory)
+#   map       inside the command's own profile: Line::new + Line::cells (the map's library work)
+#   campbell  inside the command's own profile: campbell_stream less the command's callback
+#   sweep     inside the command's own profile: planar::simulate_summary
+#
+#   bench/instructions.sh [AUTOBAL_BINARY]      (default target/release/autobal)
+#
+# Needs valgrind and the release example (cargo build --release -p autobal --example passage).
+# Prints a markdown table. Instruction counts miss system calls and cache misses: they are the
+# floor of a process's cost, not its time (docs/benchmarks.md).
+set -euo pipefail
+ROOT="$(cd "$(dirname "$0")/.." && pwd)"
+EXE="${1:-$ROOT/target/release/autobal}"
+EX="$ROOT/target/release/examples"
+W="$(mktemp -d)"
+trap 'rm -rf "$W"' EXIT
+count() { # name, command...: the instruction count of the whole process; profile in $W/name.cg
+  local name="$1"; shift
+  (cd "$W" && valgrind --tool=callgrind --callgrind-out-file="$W/$name.cg" "$@" >/dev/null 2>"$W/$name.err") || true
+  grep -o 'refs: *[0-9,]*' "$W/$name.err" | tr -dc '0-9'
+}
+incl() { # profile, function name pattern: its inclusive count (sum over matching lines)
+  callgrind_annotate --inclusive=yes "$1" 2>/dev/null | grep -E "$2" | awk '{gsub(",","",$1); s+=$1} END {print s+0}'
+}
+row() { printf '| %s | %s | %s | %.2f |\n' "$1" "$2" "$3" "$(echo "$2 / $3" | bc -l)"; }
+echo "| command | process (instructions) | library's share (instructions) | process / library |"
+echo "| --- | ---: | ---: | ---: |"
+c=$(count sim "$EXE" simulate --out "$W/sim.csv"); l=$(count passage "$EX/passage")
+row "simulate (paper 004 passage, CSV + 4 SVG)" "$c" "$l"
+c=$(count map "$EXE" map --threads 1 --x dimensionless.z_a=-2:2:400 --y omega=0.05:4.5:400 --out "$W/map")
+l=$(incl "$W/map.cg" 'spatial::map::Line::(new|cells) \[')
+row "map --threads 1, 400 x 400 margin (CSV + SVG + PNG)" "$c" "$l"
+c=$(count campbell "$EXE" campbell --points 200 --omega-max 5 --format json)
+l=$(( $(incl "$W/campbell.cg" 'campbell_stream \[') - $(incl "$W/campbell.cg" 'run_campbell::\{\{closure\}\} \[') ))
+row "campbell --points 200 --format json" "$c" "$l"
+c=$(count sweep "$EXE" sweep --threads 1 --x planar.c_psi=0.05:0.2:20 --y drive.b=100:200:20 --set drive.t_end=0.5 \
+  --set drive.omega0=250 --set integration.dt=0.5 --out "$W/sw")
+l=$(incl "$W/sweep.cg" 'planar::simulate_summary \[')
+row "sweep --threads 1, 20 x 20 short passages (CSV)" "$c" "$l"

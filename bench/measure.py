@@ -1,0 +1,185 @@
+"""How every bench/ script measures: the load on the machine, CPU time beside wall time, and a
+refusal to publish numbers taken on a loaded machine.
+
+Rules (docs/benchmarks.md):
+- the 1-, 5- and 15-minute load averages are printed (to stderr) before and after the run;
+- a run is LOADED when the 1-minute load average, before or after, is above 1 per core
+  (`os.cpu_count()`): other work then shares the cores and slows the two sides of a comparison
+  by different amounts (a Python process more than a short Rust one);
+- a LOADED run prints `LOADED` and its figures, but writes no result table (no --json/--table
+  file) unless `--allow-loaded` is given, and then the table says LOADED;
+- CPU time (user + system) is reported beside every wall time: of this process
+  (`time.process_time`, all its threads) for in-process work, of the finished child processes
+  (`resource.getrusage(RUSAGE_CHILDREN)`) for commands. CPU time does not count the time a
+  process waits for a core, so it moves less with the load than wall time (it still moves:
+  caches and frequency are shared).
+
+Use:
+    from measure import Session, run_cmd, cpu_of
+    s = Session("passage", allow_loaded=args.allow_loaded)      # prints the load before
+    wall, cpu = run_cmd([exe, ...])                               # one child process
+    (wall, cpu), result = cpu_of(lambda: solve_ivp(...))          # in-process work
+    s.finish(report)          # prints the load after, adds "conditions" to report; False if
+                              # LOADED and not allowed (the caller then writes no table)
+"""
+
+from __future__ import annotations
+
+import datetime
+import os
+import platform
+import resource
+import subprocess
+import sys
+import time
+
+
+def cores() -> int:
+    """Logical processors of this machine (what `nproc` prints without affinity limits)."""
+    return os.cpu_count() or 1
+
+
+def cpu_model() -> str:
+    """The processor's model name from /proc/cpuinfo (Linux), else platform's guess."""
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor() or platform.machine()
+
+
+def loadavg() -> tuple[float, float, float]:
+    """The 1-, 5- and 15-minute load averages."""
+    return os.getloadavg()
+
+
+def is_loaded(load1: float) -> bool:
+    """The rule: a 1-minute load average above 1 per core."""
+    return load1 > cores()
+
+
+def children_cpu() -> float:
+    """User + system seconds of all finished, waited-for child processes so far."""
+    r = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return r.ru_utime + r.ru_stime
+
+
+def run_cmd(cmd, **kw) -> tuple[float, float]:
+    """Run `cmd` to completion (output discarded unless `kw` says otherwise): its wall time and
+    its CPU time (user + system, all its threads and children), in seconds."""
+    kw.setdefault("stdout", subprocess.DEVNULL)
+    kw.setdefault("stderr", subprocess.DEVNULL)
+    c0 = children_cpu()
+    t0 = time.perf_counter()
+    subprocess.run(cmd, check=True, **kw)
+    wall = time.perf_counter() - t0
+    return wall, children_cpu() - c0
+
+
+def cpu_of(fn):
+    """((wall, cpu), fn()) for in-process work: wall clock and this process's CPU time."""
+    c0 = time.process_time()
+    t0 = time.perf_counter()
+    out = fn()
+    return (time.perf_counter() - t0, time.process_time() - c0), out
+
+
+def median_spread(xs) -> dict:
+    """Median, min and max of a list of numbers (None for an empty list)."""
+    xs = sorted(x for x in xs if x is not None)
+    if not xs:
+        return {"median": None, "min": None, "max": None}
+    n = len(xs)
+    med = xs[n // 2] if n % 2 else 0.5 * (xs[n // 2 - 1] + xs[n // 2])
+    return {"median": med, "min": xs[0], "max": xs[-1]}
+
+
+class Session:
+    """One benchmark run: prints the load before at construction and after at `finish`."""
+
+    def __init__(self, name: str, allow_loaded: bool = False):
+        self.name = name
+        self.allow_loaded = allow_loaded
+        self.start = datetime.datetime.now(datetime.timezone.utc)
+        self.before = loadavg()
+        self.wall0 = time.perf_counter()
+        self.cpu0 = time.process_time() + children_cpu()
+        print(f"[{name}] {self.start:%Y-%m-%d %H:%M} UTC, {cores()} cores ({cpu_model()}), "
+              f"load average before {self.before[0]:.2f} {self.before[1]:.2f} {self.before[2]:.2f}", file=sys.stderr)
+        if is_loaded(self.before[0]):
+            print(f"[{name}] LOADED: 1-minute load {self.before[0]:.2f} > {cores()} (1 per core) at the start", file=sys.stderr)
+
+    def conditions(self) -> dict:
+        """Date, machine, load before/after and the verdict, for a result table."""
+        after = loadavg()
+        loaded = is_loaded(self.before[0]) or is_loaded(after[0])
+        return {
+            "date_utc": f"{self.start:%Y-%m-%d %H:%M}",
+            "machine": f"{cores()} cores, {cpu_model()}",
+            "cores": cores(),
+            "load_before": [round(x, 2) for x in self.before],
+            "load_after": [round(x, 2) for x in after],
+            "loaded": loaded,
+            "script_wall_s": time.perf_counter() - self.wall0,
+            "script_cpu_s": time.process_time() + children_cpu() - self.cpu0,
+        }
+
+    def finish(self, report: dict | None = None) -> bool:
+        """Print the load after; put the conditions into `report`. True when the figures may be
+        written as a result table: the run was quiet, or --allow-loaded was given."""
+        c = self.conditions()
+        if report is not None:
+            report["conditions"] = c
+        a = c["load_after"]
+        print(f"[{self.name}] load average after {a[0]:.2f} {a[1]:.2f} {a[2]:.2f}; "
+              f"script {c['script_wall_s']:.1f} s wall, {c['script_cpu_s']:.1f} s CPU (this process and its children)", file=sys.stderr)
+        if c["loaded"]:
+            print(f"[{self.name}] LOADED: the 1-minute load average was above 1 per core ({cores()}); "
+                  + ("figures kept because of --allow-loaded, marked LOADED" if self.allow_loaded else "no result table written (--allow-loaded to keep it)"),
+                  file=sys.stderr)
+            return self.allow_loaded
+        return True
+
+
+def add_args(ap) -> None:
+    """The options every bench script shares: --allow-loaded and --json FILE (the result table)."""
+    ap.add_argument("--allow-loaded", action="store_true", help="write the result table even if the load average was above 1 per core (marked LOADED)")
+    ap.add_argument("--json", metavar="FILE", help="write the result table (JSON) to FILE; refused for a LOADED run without --allow-loaded")
+
+
+def write_table(path: str | None, report: dict, ok: bool) -> None:
+    """Write `report` as JSON to `path` if given and allowed."""
+    import json
+
+    if path and ok:
+        with open(path, "w") as f:
+            json.dump(report, f, indent=2)
+        print(f"wrote {path}", file=sys.stderr)
+    elif path:
+        print(f"not written: {path} (LOADED)", file=sys.stderr)
+
+
+def strip_args(argv):
+    """For scripts with positional arguments: take --allow-loaded and --json FILE out of `argv`
+    (in place) and return them as an object with .allow_loaded and .json."""
+    class Opts:
+        allow_loaded = False
+        json = None
+
+    o = Opts()
+    rest = [argv[0]]
+    it = iter(argv[1:])
+    for a in it:
+        if a == "--allow-loaded":
+            o.allow_loaded = True
+        elif a == "--json":
+            o.json = next(it, None)
+        elif a.startswith("--json="):
+            o.json = a.split("=", 1)[1]
+        else:
+            rest.append(a)
+    argv[:] = rest
+    return o

@@ -1,0 +1,190 @@
+//! `autobal stability` on any configuration autobal can run: the general route
+//! ([`autobal::rotor_stability`]) for the planar rotor and for spatial rotors with what paper
+//! 000's 12-state model does not have (a second plane, couple unbalance, supports that differ by
+//! direction, gravity, a tilted principal axis), or for any config with `--route general`.
+
+use crate::plot::{Plot, Series, Shade, PALETTE};
+use anyhow::{Context, Result};
+use autobal::analysis::{Kind, Verdict};
+use autobal::error::fmt_num;
+use autobal::rotor_stability::{speed_grid, stability_over_speed, Rotor, RotorStability};
+use serde_json::{json, Value};
+use std::path::Path;
+use toml::Table;
+
+/// A rotor built from a config for the general route, with its speed unit.
+pub struct GeneralRotor {
+    /// The rotor.
+    pub rotor: Rotor,
+    /// Whether speeds are SI (rad/s; also rpm printed) or the papers' dimensionless Ω.
+    pub si: bool,
+    /// ω0 of a spatial config (rad/s per unit Ω), 1 otherwise.
+    pub omega0: f64,
+}
+
+/// Whether `stability` must take the general route for this config: a planar config, or a
+/// spatial one with entries paper 000's 12-state model does not represent.
+pub fn needs_general_route(root: &Table) -> bool {
+    !autobal::config::is_spatial(root) || !autobal::config::ignored_by_linear_model(root).is_empty()
+}
+
+/// The rotor of a planar (`[planar]`) or spatial config, as the simulation would run it.
+pub fn rotor_of(root: &Table) -> Result<GeneralRotor> {
+    if autobal::config::is_spatial(root) {
+        let sim = autobal::config::spatial_simulation(root)?;
+        let omega0 = sim.config.model.scale.map_or(1.0, |s| s.omega0);
+        Ok(GeneralRotor { rotor: Rotor::Spatial(sim.rotor), si: sim.config.dimensional, omega0 })
+    } else {
+        let p = autobal::config::planar(root)?;
+        Ok(GeneralRotor { rotor: Rotor::Planar(p.rotor), si: true, omega0: 1.0 })
+    }
+}
+
+fn unit(g: &GeneralRotor) -> &'static str {
+    if g.si {
+        "rad/s"
+    } else {
+        "Ω"
+    }
+}
+
+fn rpm(w: f64) -> f64 {
+    w * 30.0 / std::f64::consts::PI
+}
+
+fn speed_text(g: &GeneralRotor, w: f64) -> String {
+    if g.si {
+        format!("{} rad/s ({} rpm)", fmt_num(round(w)), fmt_num(round(rpm(w))))
+    } else {
+        format!("Ω = {}", fmt_num(round(w)))
+    }
+}
+
+/// Six significant digits for the table (the JSON keeps every digit).
+fn round(x: f64) -> f64 {
+    if x == 0.0 || !x.is_finite() {
+        return x;
+    }
+    let p = 10f64.powi(5 - x.abs().log10().floor() as i32);
+    (x * p).round() / p
+}
+
+/// Run the general route over `(0, omega_max]` (model units) with `samples` speeds.
+pub fn analyse(g: &GeneralRotor, omega_max: f64, samples: usize) -> Result<RotorStability> {
+    let speeds = speed_grid(omega_max, samples)?;
+    Ok(stability_over_speed(&g.rotor, &speeds)?)
+}
+
+fn what_is_analysed(g: &GeneralRotor, r: &RotorStability) -> String {
+    let model = match &g.rotor {
+        Rotor::Planar(p) if p.s2 == 0.0 => "the planar rotor with its race centred (a Jeffcott rotor with balls): its balanced state",
+        Rotor::Planar(_) => "the planar rotor with an eccentric race (paper 004): its semi-balanced state (race centre on the axis)",
+        Rotor::Spatial(s) if s.planes.iter().filter(|p| p.n > 0).count() > 1 => {
+            "the spatial rotor with two ball planes: the state where the balls cancel static and couple unbalance"
+        }
+        Rotor::Spatial(_) => "the spatial rotor: the state where the balls cancel the static unbalance",
+    };
+    let how = match r.kind {
+        Kind::Equilibrium => "an equilibrium in axes turning with the rotor (Newton on the nonlinear equations; eigenvalues of their exact Jacobian by automatic differentiation)",
+        Kind::PeriodicOrbit => {
+            "a periodic orbit of one revolution (supports that differ by direction or gravity turn against the rotor: the rotor sags and the balls swing; shooting with the variational equations; Floquet multipliers)"
+        }
+    };
+    format!("{model}, found as {how}")
+}
+
+/// The JSON of the general route.
+pub fn json(g: &GeneralRotor, r: &RotorStability, omega_max: f64) -> Value {
+    let ranges: Vec<Value> = r
+        .stable_ranges
+        .iter()
+        .map(|s| {
+            let mut v = json!({ "from": s.from, "to": s.to, "from_is_boundary": s.from_is_boundary, "to_is_boundary": s.to_is_boundary });
+            if g.si {
+                v["from_rpm"] = json!(rpm(s.from));
+                v["to_rpm"] = json!(rpm(s.to));
+            }
+            v
+        })
+        .collect();
+    json!({
+        "route": "general",
+        "model": r.model,
+        "stationary_state": r.kind,
+        "what": what_is_analysed(g, r),
+        "speed_unit": unit(g),
+        "omega_max": omega_max,
+        "stable_ranges": ranges,
+        "family_dimension": r.family_dimension,
+        "member_psi": r.member_psi,
+        "neutral_tolerance": match r.kind {
+            Kind::Equilibrium => format!("|max Re λ| ≤ {} · max|λ| is neutral", fmt_num(autobal::analysis::NEUTRAL_TOLERANCE)),
+            Kind::PeriodicOrbit => format!("|max|μ| − 1| ≤ {} is neutral", fmt_num(autobal::analysis::FLOQUET_TOLERANCE)),
+        },
+        "points": r.points,
+    })
+}
+
+/// The table of the general route.
+pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64) -> String {
+    let mut s = String::new();
+    s.push_str("Exact linear stability over speed (general route)\n");
+    s.push_str(&format!("analysed: {}\n", what_is_analysed(g, r)));
+    if r.family_dimension > 0 {
+        s.push_str(&format!(
+            "the balanced states form a family of dimension {} (the balls' positions are not unique); its {} zero eigenvalue(s) are structural and left out of the verdict, which is that of the member with ball angles {} rad\n",
+            r.family_dimension,
+            r.family_dimension,
+            r.member_psi.iter().map(|p| fmt_num(round(p.rem_euclid(std::f64::consts::TAU)))).collect::<Vec<_>>().join(", ")
+        ));
+    }
+    let missing = r.points.iter().filter(|p| p.verdict.is_none()).count();
+    if r.stable_ranges.is_empty() {
+        s.push_str(&format!("stable: nowhere in (0, {}]\n", speed_text(g, omega_max)));
+    } else {
+        for st in &r.stable_ranges {
+            let to = if st.to_is_boundary { speed_text(g, st.to) } else { format!("{} (end of the axis)", speed_text(g, st.to)) };
+            let from = if st.from_is_boundary { speed_text(g, st.from) } else { format!("{} (start of the axis)", speed_text(g, st.from)) };
+            s.push_str(&format!("stable: {from} to {to}\n"));
+        }
+    }
+    let neutral = r.points.iter().filter(|p| p.verdict == Some(Verdict::Neutral)).count();
+    if neutral > 0 {
+        s.push_str(&format!("neutral (linearisation cannot decide) at {neutral} of {} speeds\n", r.points.len()));
+    }
+    if missing > 0 {
+        let first = r.points.iter().find(|p| p.verdict.is_none()).and_then(|p| p.failure.clone()).unwrap_or_default();
+        s.push_str(&format!("no stationary state found at {missing} of {} speeds (first: {first})\n", r.points.len()));
+    }
+    s
+}
+
+/// The margin over speed as a plot: the spectral abscissa (or largest Floquet exponent) of the
+/// stationary state, stable ranges shaded.
+pub fn margin_plot(g: &GeneralRotor, r: &RotorStability, omega_max: f64) -> Plot {
+    let pts: Vec<(f64, f64)> = r.points.iter().filter_map(|p| p.abscissa.map(|a| (p.omega, a))).collect();
+    let lo = pts.iter().map(|p| p.1).fold(0.0, f64::min);
+    let hi = pts.iter().map(|p| p.1).fold(0.0, f64::max);
+    let pad = 0.1 * (hi - lo).max(1e-6);
+    let shades = r.stable_ranges.iter().map(|s| Shade { x: (s.from, s.to), y: (None, Some(0.0)), color: "#009E73".into() }).collect();
+    let rate = if g.si { "1/s" } else { "per unit τ" };
+    Plot {
+        title: format!(
+            "Stability margin of the {} over speed (general route)",
+            if r.kind == Kind::PeriodicOrbit { "stationary orbit" } else { "balanced state" }
+        ),
+        x_label: if g.si { "speed ω (rad/s)".into() } else { "speed Ω".into() },
+        y_label: format!("{} ({rate}; < 0: stable)", if r.kind == Kind::PeriodicOrbit { "largest Floquet exponent" } else { "max Re λ" }),
+        series: vec![Series::new("margin", pts, PALETTE[1])],
+        shades,
+        shade_legend: vec![("#009E73".into(), "exactly stable (shaded below 0)".into())],
+        x_range: Some((0.0, omega_max)),
+        y_range: Some((lo - pad, hi + pad)),
+        ..Default::default()
+    }
+}
+
+/// Write the margin plot as SVG to `path`.
+pub fn write_svg(g: &GeneralRotor, r: &RotorStability, omega_max: f64, path: &Path) -> Result<()> {
+    std::fs::write(path, margin_plot(g, r, omega_max).to_svg()).with_context(|| format!("--svg {}: cannot write", path.display()))
+}

@@ -1,0 +1,345 @@
+//! Linear stability of a stationary state, and its continuation over the rotor speed (module
+//! docs of [`crate::analysis`]).
+
+use super::stationary::{stationary, NewtonOptions, StationaryState};
+use super::{AnalysisError, Result, VectorField};
+use crate::linalg::eigen::complex_solve;
+use crate::linalg::eigen_dyn::eigenvalues;
+use num_complex::Complex64;
+use serde::Serialize;
+
+/// Relative tolerance of the equilibrium verdict: `|α| ≤ NEUTRAL_TOLERANCE · ρ` is neutral,
+/// `ρ = max |λ|` (module docs of [`crate::analysis`]).
+pub const NEUTRAL_TOLERANCE: f64 = 1e-9;
+
+/// Tolerance of the periodic verdict on `max |μ| − 1` (equivalently `|α| ≤ FLOQUET_TOLERANCE / T`
+/// on the Floquet exponent; module docs of [`crate::analysis`]).
+pub const FLOQUET_TOLERANCE: f64 = 1e-8;
+
+/// A complex eigenvalue (or multiplier) as two numbers, for output.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Eigenvalue {
+    /// Real part.
+    pub re: f64,
+    /// Imaginary part.
+    pub im: f64,
+}
+
+impl From<Complex64> for Eigenvalue {
+    fn from(z: Complex64) -> Self {
+        Eigenvalue { re: z.re, im: z.im }
+    }
+}
+
+impl Eigenvalue {
+    /// As a complex number.
+    pub fn complex(&self) -> Complex64 {
+        Complex64::new(self.re, self.im)
+    }
+}
+
+/// What kind of stationary state was analysed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Kind {
+    /// An equilibrium of an autonomous field: eigenvalues of the Jacobian.
+    Equilibrium,
+    /// A periodic orbit: Floquet multipliers, eigenvalues of the monodromy matrix.
+    PeriodicOrbit,
+}
+
+/// The linear stability verdict (tolerances in the module docs of [`crate::analysis`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Verdict {
+    /// Every non-structural exponent has `Re λ < −threshold`: perturbations decay.
+    Stable,
+    /// Some exponent has `Re λ > threshold`: perturbations along it grow.
+    Unstable,
+    /// The largest `|Re λ| ≤ threshold`: linearisation alone cannot decide.
+    Neutral,
+}
+
+/// The stability of one stationary state ([`stability()`]).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Stability {
+    /// Equilibrium or periodic orbit.
+    pub kind: Kind,
+    /// The orbit's period `T` (s), `None` for an equilibrium.
+    pub period: Option<f64>,
+    /// The verdict from `abscissa` against `threshold`.
+    pub verdict: Verdict,
+    /// `α`: the spectral abscissa `max Re λ` of the non-structural eigenvalues, or for an orbit
+    /// the largest Floquet exponent `max ln|μ| / T` (1/s).
+    pub abscissa: f64,
+    /// `|α| ≤ threshold` is neutral (1/s): `NEUTRAL_TOLERANCE · ρ` or `FLOQUET_TOLERANCE / T`.
+    pub threshold: f64,
+    /// Characteristic rate `ρ = max |λ|` over every exponent, structural ones included (1/s).
+    pub rate: f64,
+    /// The non-structural eigenvalues `λ` (equilibrium) or multipliers `μ` (orbit).
+    pub spectrum: Vec<Eigenvalue>,
+    /// The exponents of `spectrum`: `λ` itself, or `ln μ / T` (principal logarithm).
+    pub exponents: Vec<Eigenvalue>,
+    /// The structural eigenvalues (nearest 0) or multipliers (nearest 1), removed from the
+    /// verdict: as many as [`VectorField::structural_zeros`] at the state.
+    pub structural: Vec<Eigenvalue>,
+    /// Index into `spectrum` of the least stable member (largest real exponent).
+    pub least_stable: Option<usize>,
+    /// The matrix analysed, row-major: the Jacobian or the monodromy matrix `Φ(T)` (for
+    /// [`mode`]).
+    #[serde(skip)]
+    pub matrix: Vec<f64>,
+}
+
+impl Stability {
+    /// The least stable exponent, if any.
+    pub fn least_stable_exponent(&self) -> Option<Complex64> {
+        self.least_stable.map(|i| self.exponents[i].complex())
+    }
+}
+
+/// The linear stability of the stationary `state` of `f` (module docs of [`crate::analysis`]):
+/// eigenvalues of `J(0, x)` for an equilibrium, Floquet multipliers of `Φ(T)` for a periodic
+/// orbit; the `state.family_dimension` eigenvalues nearest 0 (multipliers nearest 1) set apart
+/// as structural; the verdict from the rest.
+pub fn stability<F: VectorField + ?Sized>(f: &F, state: &StationaryState) -> Result<Stability> {
+    let n = f.dim();
+    if state.x.len() != n {
+        return Err(AnalysisError::InvalidInput { field: "state".into(), reason: format!("has {} components, the field {n}", state.x.len()) });
+    }
+    let k = state.family_dimension.min(n);
+    let (kind, matrix, what) = match (state.period, &state.monodromy) {
+        (None, _) => {
+            let mut j = vec![0.0; n * n];
+            f.jacobian(0.0, &state.x, &mut j);
+            (Kind::Equilibrium, j, "Jacobian")
+        }
+        (Some(_), Some(phi)) => (Kind::PeriodicOrbit, phi.clone(), "monodromy matrix"),
+        (Some(_), None) => return Err(AnalysisError::InvalidInput { field: "state".into(), reason: "a periodic orbit without its monodromy matrix".into() }),
+    };
+    if let Some(i) = matrix.iter().position(|v| !v.is_finite()) {
+        return Err(AnalysisError::NonFinite { component: f.component_name(i / n), what: what.into() });
+    }
+    let values = eigenvalues(&matrix, n).map_err(|source| AnalysisError::Eigenvalues { what: what.into(), source })?;
+    let period = state.period;
+    let exponent = |z: Complex64| match period {
+        None => z,
+        Some(t) => Complex64::new(z.norm().max(f64::MIN_POSITIVE).ln(), z.arg()) / t,
+    };
+    let reference = |z: &Complex64| match period {
+        None => z.norm(),
+        Some(_) => (z - 1.0).norm(),
+    };
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by(|&a, &b| reference(&values[a]).total_cmp(&reference(&values[b])));
+    let structural: Vec<Eigenvalue> = order[..k].iter().map(|&i| values[i].into()).collect();
+    let mut rest: Vec<usize> = order[k..].to_vec();
+    rest.sort_unstable();
+    let spectrum: Vec<Eigenvalue> = rest.iter().map(|&i| values[i].into()).collect();
+    let exponents: Vec<Eigenvalue> = rest.iter().map(|&i| exponent(values[i]).into()).collect();
+    let rate = values.iter().map(|z| exponent(*z).norm()).fold(0.0, f64::max);
+    let threshold = match period {
+        None => NEUTRAL_TOLERANCE * rate,
+        Some(t) => FLOQUET_TOLERANCE / t,
+    };
+    let least_stable = (0..exponents.len()).max_by(|&a, &b| exponents[a].re.total_cmp(&exponents[b].re));
+    let abscissa = least_stable.map_or(f64::NEG_INFINITY, |i| exponents[i].re);
+    let verdict = if abscissa < -threshold {
+        Verdict::Stable
+    } else if abscissa > threshold {
+        Verdict::Unstable
+    } else {
+        Verdict::Neutral
+    };
+    Ok(Stability { kind, period, verdict, abscissa, threshold, rate, spectrum, exponents, structural, least_stable, matrix })
+}
+
+/// The eigenvector of the `n × n` matrix `a` (row-major) for its eigenvalue `value`, by inverse
+/// iteration (three solves with `A − (value + δ) I`, `δ = ε‖A‖`), normalised to largest
+/// component 1.
+pub fn mode(a: &[f64], n: usize, value: Complex64) -> Vec<Complex64> {
+    let norm = a.iter().fold(0.0f64, |m, v| m.max(v.abs())).max(f64::MIN_POSITIVE);
+    let shift = value + Complex64::new(f64::EPSILON * norm, 0.0);
+    let m: Vec<Vec<Complex64>> =
+        (0..n).map(|i| (0..n).map(|j| Complex64::new(a[i * n + j], 0.0) - if i == j { shift } else { Complex64::new(0.0, 0.0) }).collect()).collect();
+    let mut v: Vec<Complex64> = (0..n).map(|i| Complex64::new(1.0 + 0.1 * i as f64, 0.0)).collect();
+    for _ in 0..3 {
+        v = complex_solve(&m, &v);
+        let big = v.iter().copied().max_by(|p, q| p.norm().total_cmp(&q.norm())).unwrap_or(Complex64::new(1.0, 0.0));
+        if big.norm() > 0.0 && big.is_finite() {
+            v.iter_mut().for_each(|z| *z /= big);
+        }
+    }
+    v
+}
+
+/// Options of [`speed_scan`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct ScanOptions {
+    /// Newton's tolerances.
+    pub newton: NewtonOptions,
+    /// Relative width in `Ω` to which a stability boundary is bisected (default `1e-9`).
+    pub boundary_rtol: f64,
+    /// Start Newton from the model's closed-form state before the previous speed's solution
+    /// (default `true`): the closed form names the branch (balanced, semi-balanced) whose
+    /// stability is asked, and continuation could otherwise switch branches at a bifurcation.
+    pub prefer_guess: bool,
+}
+
+impl Default for ScanOptions {
+    fn default() -> Self {
+        ScanOptions { newton: NewtonOptions::default(), boundary_rtol: 1e-9, prefer_guess: true }
+    }
+}
+
+/// One speed of a [`speed_scan`].
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ScanPoint {
+    /// The speed `Ω`.
+    pub omega: f64,
+    /// The stationary state found there (`None` where none was).
+    pub state: Option<StationaryState>,
+    /// Its stability.
+    pub stability: Option<Stability>,
+    /// Why there is no state or no verdict (a one-line message).
+    pub failure: Option<String>,
+}
+
+impl ScanPoint {
+    /// Whether the verdict here is [`Verdict::Stable`].
+    pub fn is_stable(&self) -> bool {
+        self.stability.as_ref().is_some_and(|s| s.verdict == Verdict::Stable)
+    }
+}
+
+/// A range of speeds where the stationary state is stable.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct StableRange {
+    /// Lower end.
+    pub from: f64,
+    /// Upper end.
+    pub to: f64,
+    /// Whether `from` is a located boundary (else the grid's first speed).
+    pub from_is_boundary: bool,
+    /// Whether `to` is a located boundary (else the grid's last speed).
+    pub to_is_boundary: bool,
+}
+
+/// The result of a [`speed_scan`].
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SpeedScan {
+    /// Every speed of the grid, in order.
+    pub points: Vec<ScanPoint>,
+    /// The stable ranges, ends bisected to `boundary_rtol`.
+    pub stable_ranges: Vec<StableRange>,
+}
+
+/// The stationary state at one speed: Newton from each of `starts` in turn (the first that
+/// converges), then its stability.
+fn solve_at<F: VectorField>(f: &F, starts: &[Option<&[f64]>], opts: &NewtonOptions) -> std::result::Result<(StationaryState, Stability), String> {
+    let mut last = String::from("no starting point (no previous solution and no closed-form guess)");
+    for start in starts.iter().flatten() {
+        match stationary(f, start, opts) {
+            Ok(state) => return stability(f, &state).map(|st| (state, st)).map_err(|e| e.to_string()),
+            Err(e) => last = e.to_string(),
+        }
+    }
+    Err(last)
+}
+
+/// The stationary state and its stability along `speeds` (ascending or descending), and the
+/// ends of the stable ranges (module docs of [`crate::analysis`]): `field_at(Ω)` builds the
+/// model at speed `Ω`; `guess_at(&field, Ω)` gives its closed-form stationary state where one
+/// exists. At each speed Newton starts from the previous speed's solution, else from the
+/// guess; between two speeds whose verdicts differ (stable or not), the boundary is bisected
+/// to `boundary_rtol · Ω` on the sign of the abscissa `α` (so an end is where `α` crosses
+/// zero), each trial continued from the solution on the side it joins.
+pub fn speed_scan<F, M, G>(field_at: M, guess_at: G, speeds: &[f64], opts: &ScanOptions) -> Result<SpeedScan>
+where
+    F: VectorField,
+    M: Fn(f64) -> crate::Result<F>,
+    G: Fn(&F, f64) -> Option<Vec<f64>>,
+{
+    if speeds.is_empty() {
+        return Err(AnalysisError::InvalidInput { field: "speeds".into(), reason: "no speed to scan".into() });
+    }
+    if let Some(w) = speeds.iter().find(|w| !w.is_finite()) {
+        return Err(AnalysisError::InvalidInput { field: "speeds".into(), reason: format!("{w} is not a finite speed") });
+    }
+    let evaluate = |omega: f64, previous: Option<&[f64]>| -> std::result::Result<(StationaryState, Stability), String> {
+        let f = field_at(omega).map_err(|e| e.to_string())?;
+        let guess = guess_at(&f, omega);
+        // the closed-form state first where the model has one: near a bifurcation (a real
+        // eigenvalue crossing zero, where another branch of stationary states crosses the
+        // balanced one) Newton from a neighbour's solution can land on the other branch, whose
+        // stability is the opposite; the closed form pins the branch the user asked about
+        let starts = if opts.prefer_guess { [guess.as_deref(), previous] } else { [previous, guess.as_deref()] };
+        solve_at(&f, &starts, &opts.newton)
+    };
+    let mut points: Vec<ScanPoint> = Vec::with_capacity(speeds.len());
+    let mut previous: Option<Vec<f64>> = None;
+    for &omega in speeds {
+        match evaluate(omega, previous.as_deref()) {
+            Ok((state, st)) => {
+                previous = Some(state.x.clone());
+                points.push(ScanPoint { omega, state: Some(state), stability: Some(st), failure: None });
+            }
+            Err(e) => {
+                previous = None;
+                points.push(ScanPoint { omega, state: None, stability: None, failure: Some(e) });
+            }
+        }
+    }
+    // boundaries between neighbours whose verdicts differ
+    let mut boundary = vec![None; points.len()];
+    for i in 0..points.len().saturating_sub(1) {
+        let (a, b) = (&points[i], &points[i + 1]);
+        if a.is_stable() == b.is_stable() {
+            continue;
+        }
+        let stable_lo = a.is_stable();
+        let (mut lo, mut hi) = (a.omega, b.omega);
+        let mut x_lo = a.state.as_ref().map(|s| s.x.clone());
+        let mut x_hi = b.state.as_ref().map(|s| s.x.clone());
+        while (hi - lo).abs() > opts.boundary_rtol * lo.abs().max(hi.abs()) {
+            let mid = 0.5 * (lo + hi);
+            if mid == lo || mid == hi {
+                break;
+            }
+            let near = x_lo.as_deref().or(x_hi.as_deref());
+            let r = evaluate(mid, near).or_else(|_| evaluate(mid, x_hi.as_deref()));
+            // the side is decided by the sign of α, so the end is where α crosses zero (not
+            // where it crosses the neutral threshold, which would shift it by the tolerance)
+            let (stable, x) = match r {
+                Ok((state, st)) => (st.abscissa < 0.0, Some(state.x)),
+                Err(_) => (false, None),
+            };
+            if stable == stable_lo {
+                lo = mid;
+                x_lo = x.or(x_lo);
+            } else {
+                hi = mid;
+                x_hi = x.or(x_hi);
+            }
+        }
+        boundary[i] = Some(0.5 * (lo + hi));
+    }
+    let mut stable_ranges = vec![];
+    let mut i = 0;
+    while i < points.len() {
+        if !points[i].is_stable() {
+            i += 1;
+            continue;
+        }
+        let start = if i > 0 { boundary[i - 1].map(|w| (w, true)) } else { None }.unwrap_or((points[i].omega, false));
+        let mut j = i;
+        while j + 1 < points.len() && points[j + 1].is_stable() {
+            j += 1;
+        }
+        let end = boundary[j].map(|w| (w, true)).unwrap_or((points[j].omega, false));
+        let (from, to, fb, tb) = if start.0 <= end.0 { (start.0, end.0, start.1, end.1) } else { (end.0, start.0, end.1, start.1) };
+        stable_ranges.push(StableRange { from, to, from_is_boundary: fb, to_is_boundary: tb });
+        i = j + 1;
+    }
+    Ok(SpeedScan { points, stable_ranges })
+}

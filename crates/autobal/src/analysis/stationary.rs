@@ -1,0 +1,359 @@
+//! The stationary state: an equilibrium by Newton's method, a periodic orbit by single shooting
+//! (module docs of [`crate::analysis`]).
+
+// Index loops follow the formulas (rows, columns).
+#![allow(clippy::needless_range_loop)]
+
+use super::linear::{lu_solve, min_norm_solve};
+use super::{AnalysisError, Result, VectorField};
+use crate::ode::{Control, Method, Options, Solver, System};
+use serde::Serialize;
+use std::cell::RefCell;
+
+/// Tolerances and limits of [`stationary()`] (module docs of [`crate::analysis`] for why).
+#[derive(Debug, Clone, PartialEq)]
+pub struct NewtonOptions {
+    /// Scaled residual at which an equilibrium counts as found (default `1e-12`).
+    pub tolerance: f64,
+    /// Scaled residual `‖S⁻¹(x0 − x(T))‖∞` at which a periodic orbit counts as found (default
+    /// `1e-10`).
+    pub periodic_tolerance: f64,
+    /// Most Newton iterations (default 50).
+    pub max_iterations: usize,
+    /// Relative tolerance of the integration over one period (default `1e-12`; absolute
+    /// tolerances are this times [`VectorField::scales`]).
+    pub rtol: f64,
+}
+
+impl Default for NewtonOptions {
+    fn default() -> Self {
+        NewtonOptions { tolerance: 1e-12, periodic_tolerance: 1e-10, max_iterations: 50, rtol: 1e-12 }
+    }
+}
+
+/// A stationary state found by [`stationary()`].
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StationaryState {
+    /// The equilibrium, or the periodic orbit's state at `t = 0`.
+    pub x: Vec<f64>,
+    /// The orbit's period `T`, `None` for an equilibrium.
+    pub period: Option<f64>,
+    /// Newton iterations used.
+    pub iterations: usize,
+    /// The scaled residual reached (module docs of [`crate::analysis`]).
+    pub residual: f64,
+    /// Dimension of the family of stationary states through `x`
+    /// ([`VectorField::structural_zeros`]).
+    pub family_dimension: usize,
+    /// The monodromy matrix `Φ(T)` at `x` (row-major), for a periodic orbit.
+    #[serde(skip)]
+    pub monodromy: Option<Vec<f64>>,
+}
+
+/// The stationary state of `f` nearest `guess`: an equilibrium `f(x) = 0` when `f` is
+/// autonomous, else the periodic orbit `x(T; x0) = x0` of its period `T` (module docs of
+/// [`crate::analysis`]: damped Newton with the exact Jacobian, minimum-norm steps on a family,
+/// single shooting with the variational equations `Φ' = J Φ`).
+pub fn stationary<F: VectorField + ?Sized>(f: &F, guess: &[f64], opts: &NewtonOptions) -> Result<StationaryState> {
+    let n = f.dim();
+    if guess.len() != n {
+        return Err(AnalysisError::InvalidInput { field: "guess".into(), reason: format!("has {} components, the field {n}", guess.len()) });
+    }
+    if let Some(i) = guess.iter().position(|v| !v.is_finite()) {
+        return Err(AnalysisError::InvalidInput { field: "guess".into(), reason: format!("{} is not finite", f.component_name(i)) });
+    }
+    let s = f.scales();
+    if s.len() != n || s.iter().any(|v| !(*v > 0.0 && v.is_finite())) {
+        return Err(AnalysisError::InvalidInput { field: "scales".into(), reason: "need one positive finite scale per state".into() });
+    }
+    let k = f.structural_zeros(guess);
+    match f.period() {
+        None => equilibrium(f, guess, &s, k, opts),
+        Some(t) if t > 0.0 && t.is_finite() => periodic(f, guess, t, &s, k, opts),
+        Some(t) => {
+            Err(AnalysisError::InvalidInput { field: "period".into(), reason: format!("must be positive and finite, got {}", crate::error::fmt_num(t)) })
+        }
+    }
+}
+
+fn non_finite<F: VectorField + ?Sized>(f: &F, v: &[f64], what: &str) -> Result<()> {
+    match v.iter().position(|x| !x.is_finite()) {
+        Some(i) => Err(AnalysisError::NonFinite { component: f.component_name(i % f.dim()), what: what.into() }),
+        None => Ok(()),
+    }
+}
+
+fn norm_inf(v: &[f64]) -> f64 {
+    v.iter().fold(0.0, |m, x| m.max(x.abs()))
+}
+
+fn norm2(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
+
+/// The Newton direction `d` of `A d = −r` in scaled variables: LU, or the minimum-norm
+/// solution without the `k` smallest singular values when the states form a family (or when
+/// LU meets an exactly zero pivot).
+fn direction(a: &[f64], n: usize, r: &[f64], k: usize) -> Option<Vec<f64>> {
+    let mut d: Vec<f64> = r.iter().map(|v| -v).collect();
+    if k == 0 {
+        let mut m = a.to_vec();
+        if lu_solve(&mut m, n, &mut d) {
+            return Some(d);
+        }
+        // an exactly singular matrix the model did not declare: the minimum-norm step over
+        // the singular values above 1e-12 σ_max
+        d = r.iter().map(|v| -v).collect();
+    }
+    let d = min_norm_solve(a, n, &d, k);
+    d.iter().all(|v| v.is_finite()).then_some(d)
+}
+
+/// Damped Newton on `g(x) = 0` in variables scaled by `s`: `eval(x)` returns the scaled
+/// residual vector `S⁻¹ g(x) / rate` and the scaled Jacobian `S⁻¹ (∂g/∂x) S / rate`; the test
+/// is `‖·‖∞ ≤ tol`; with `polish`, one more step is taken after it is met.
+#[allow(clippy::type_complexity, clippy::too_many_arguments)]
+fn newton(
+    what: &str,
+    n: usize,
+    x0: &[f64],
+    s: &[f64],
+    k: usize,
+    tol: f64,
+    max_iterations: usize,
+    polish: bool,
+    mut eval: impl FnMut(&[f64], bool) -> Result<(Vec<f64>, Option<Vec<f64>>)>,
+) -> Result<(Vec<f64>, usize, f64, Option<Vec<f64>>)> {
+    let fail = |iterations: usize, residual: f64, detail: &str| AnalysisError::NoConvergence {
+        what: what.into(),
+        iterations,
+        residual,
+        tolerance: tol,
+        detail: detail.into(),
+    };
+    let mut x = x0.to_vec();
+    let (mut r, mut jac) = eval(&x, true)?;
+    for it in 0..max_iterations {
+        let res = norm_inf(&r);
+        if res <= tol {
+            if polish {
+                // one more full step (quadratic convergence: to round-off), kept if it does not
+                // raise the residual
+                if let Some(d) = direction(jac.as_ref().expect("Jacobian requested"), n, &r, k) {
+                    let xn: Vec<f64> = x.iter().zip(&d).zip(s).map(|((xi, di), si)| xi + di * si).collect();
+                    if let Ok((rn, _)) = eval(&xn, false) {
+                        let rn = norm_inf(&rn);
+                        if rn <= res {
+                            return Ok((xn, it + 1, rn, None));
+                        }
+                    }
+                }
+            }
+            return Ok((x, it, res, jac));
+        }
+        let Some(d) = direction(jac.as_ref().expect("Jacobian requested"), n, &r, k) else {
+            if res <= 1e3 * tol {
+                return Ok((x, it, res, jac));
+            }
+            return Err(fail(it, res, "the Jacobian is singular (a family of states the model does not declare, or a turning point)"));
+        };
+        let r0 = norm2(&r);
+        let mut lambda = 1.0;
+        let mut accepted = None;
+        while lambda >= 1e-10 {
+            let xn: Vec<f64> = x.iter().zip(&d).zip(s).map(|((xi, di), si)| xi + lambda * di * si).collect();
+            match eval(&xn, false) {
+                Ok((rn, _)) if norm2(&rn) < (1.0 - 1e-4 * lambda) * r0 => {
+                    accepted = Some(xn);
+                    break;
+                }
+                _ => lambda *= 0.5,
+            }
+        }
+        let Some(xn) = accepted else {
+            if res <= 1e3 * tol {
+                return Ok((x, it, res, jac)); // round-off level: no step can reduce it further
+            }
+            return Err(fail(it, res, "no step along the Newton direction reduces the residual"));
+        };
+        x = xn;
+        (r, jac) = eval(&x, true)?;
+    }
+    let res = norm_inf(&r);
+    if res <= tol {
+        return Ok((x, max_iterations, res, jac));
+    }
+    Err(fail(max_iterations, res, "iteration limit"))
+}
+
+fn equilibrium<F: VectorField + ?Sized>(f: &F, guess: &[f64], s: &[f64], k: usize, opts: &NewtonOptions) -> Result<StationaryState> {
+    let n = f.dim();
+    let mut jac = vec![0.0; n * n];
+    // the characteristic rate ‖S⁻¹ J S‖∞, from the guess's Jacobian (held fixed so that the
+    // residual measure does not change between iterations)
+    f.jacobian(0.0, guess, &mut jac);
+    non_finite(f, &jac, "Jacobian")?;
+    let rate = scaled_rate(&jac, s, n);
+    let eval = |x: &[f64], with_jac: bool| -> Result<(Vec<f64>, Option<Vec<f64>>)> {
+        let mut fx = vec![0.0; n];
+        f.rhs(0.0, x, &mut fx);
+        non_finite(f, &fx, "right-hand side")?;
+        let r: Vec<f64> = fx.iter().zip(s).map(|(v, si)| v / si / rate).collect();
+        if !with_jac {
+            return Ok((r, None));
+        }
+        let mut j = vec![0.0; n * n];
+        f.jacobian(0.0, x, &mut j);
+        non_finite(f, &j, "Jacobian")?;
+        for a in 0..n {
+            for b in 0..n {
+                j[a * n + b] *= s[b] / s[a] / rate;
+            }
+        }
+        Ok((r, Some(j)))
+    };
+    let (x, iterations, residual, _) = newton("equilibrium", n, guess, s, k, opts.tolerance, opts.max_iterations, true, eval)?;
+    Ok(StationaryState { family_dimension: f.structural_zeros(&x), x, period: None, iterations, residual, monodromy: None })
+}
+
+/// `‖S⁻¹ J S‖∞` (1 where it vanishes).
+fn scaled_rate(jac: &[f64], s: &[f64], n: usize) -> f64 {
+    let r = (0..n).map(|a| (0..n).map(|b| (jac[a * n + b] * s[b] / s[a]).abs()).sum::<f64>()).fold(0.0, f64::max);
+    if r > 0.0 && r.is_finite() {
+        r
+    } else {
+        1.0
+    }
+}
+
+/// `x' = f(t, x)` with the variational equations `Φ' = J(t, x) Φ` (Φ row-major `n × n` after
+/// `x` in the state): the ODE system whose solution over one period gives the monodromy
+/// matrix `Φ(T)`.
+pub struct VariationalSystem<'a, F: VectorField + ?Sized> {
+    f: &'a F,
+    n: usize,
+    jac: RefCell<Vec<f64>>,
+}
+
+impl<'a, F: VectorField + ?Sized> VariationalSystem<'a, F> {
+    /// The variational system of `f`.
+    pub fn new(f: &'a F) -> Self {
+        let n = f.dim();
+        VariationalSystem { f, n, jac: RefCell::new(vec![0.0; n * n]) }
+    }
+}
+
+impl<F: VectorField + ?Sized> System for VariationalSystem<'_, F> {
+    fn dim(&self) -> usize {
+        self.n + self.n * self.n
+    }
+
+    fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
+        let n = self.n;
+        let (x, phi) = y.split_at(n);
+        let (dx, dphi) = dy.split_at_mut(n);
+        self.f.rhs(t, x, dx);
+        let mut j = self.jac.borrow_mut();
+        self.f.jacobian(t, x, &mut j);
+        for a in 0..n {
+            let row = &mut dphi[a * n..(a + 1) * n];
+            row.iter_mut().for_each(|v| *v = 0.0);
+            for c in 0..n {
+                let jac = j[a * n + c];
+                if jac != 0.0 {
+                    for (o, p) in row.iter_mut().zip(&phi[c * n..(c + 1) * n]) {
+                        *o += jac * p;
+                    }
+                }
+            }
+        }
+    }
+
+    fn component_name(&self, i: usize) -> String {
+        if i < self.n {
+            self.f.component_name(i)
+        } else {
+            let (a, b) = ((i - self.n) / self.n, (i - self.n) % self.n);
+            format!("Φ[{a}][{b}] (∂{} / ∂{} at t = 0)", self.f.component_name(a), self.f.component_name(b))
+        }
+    }
+}
+
+/// The field alone as an ODE system (for trial points of the line search, which need no `Φ`).
+struct Plain<'a, F: VectorField + ?Sized>(&'a F);
+
+impl<F: VectorField + ?Sized> System for Plain<'_, F> {
+    fn dim(&self) -> usize {
+        self.0.dim()
+    }
+    fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
+        self.0.rhs(t, y, dy)
+    }
+    fn component_name(&self, i: usize) -> String {
+        self.0.component_name(i)
+    }
+}
+
+/// Integrate `sys` from `y` at `t = 0` to `period` by DOP853 at `rtol`, absolute tolerances
+/// `atol` per component.
+fn integrate_period<S: System>(sys: &S, y: &mut [f64], period: f64, rtol: f64, atol: Vec<f64>) -> Result<()> {
+    let opts = Options::new(rtol, rtol).method(Method::Dop853).atol_per_component(atol);
+    let mut solver = Solver::new(sys, opts)?;
+    let out = solver.integrate(0.0, y, period, |_| Control::Continue);
+    if !out.status.is_completed() {
+        return Err(AnalysisError::Integration { period, reason: out.to_string() });
+    }
+    Ok(())
+}
+
+/// `x(T; x0)`, and with `variational` also `Φ(T)`, by DOP853 from `t = 0` (module docs of
+/// [`crate::analysis`]).
+fn flow<F: VectorField + ?Sized>(f: &F, x0: &[f64], period: f64, s: &[f64], rtol: f64, variational: bool) -> Result<(Vec<f64>, Option<Vec<f64>>)> {
+    let n = f.dim();
+    let atol_x = s.iter().map(|v| rtol * v);
+    if !variational {
+        let mut y = x0.to_vec();
+        integrate_period(&Plain(f), &mut y, period, rtol, atol_x.collect())?;
+        return Ok((y, None));
+    }
+    let sys = VariationalSystem::new(f);
+    let mut atol: Vec<f64> = atol_x.collect();
+    for a in 0..n {
+        for b in 0..n {
+            atol.push(rtol * s[a] / s[b]);
+        }
+    }
+    let mut y = vec![0.0; n + n * n];
+    y[..n].copy_from_slice(x0);
+    for a in 0..n {
+        y[n + a * n + a] = 1.0;
+    }
+    integrate_period(&sys, &mut y, period, rtol, atol)?;
+    let phi = y.split_off(n);
+    Ok((y, Some(phi)))
+}
+
+fn periodic<F: VectorField + ?Sized>(f: &F, guess: &[f64], period: f64, s: &[f64], k: usize, opts: &NewtonOptions) -> Result<StationaryState> {
+    let n = f.dim();
+    let eval = |x0: &[f64], with_jac: bool| -> Result<(Vec<f64>, Option<Vec<f64>>)> {
+        let (xt, phi) = flow(f, x0, period, s, opts.rtol, with_jac)?;
+        let r: Vec<f64> = (0..n).map(|i| (x0[i] - xt[i]) / s[i]).collect();
+        let Some(phi) = phi else { return Ok((r, None)) };
+        // S⁻¹ (I − Φ) S
+        let mut j = vec![0.0; n * n];
+        for a in 0..n {
+            for b in 0..n {
+                j[a * n + b] = (if a == b { 1.0 } else { 0.0 }) - phi[a * n + b] * s[b] / s[a];
+            }
+        }
+        Ok((r, Some(j)))
+    };
+    let (x, iterations, residual, last) = newton("periodic orbit", n, guess, s, k, opts.periodic_tolerance, opts.max_iterations, false, eval)?;
+    // Φ(T) at the orbit: recovered from the last scaled Jacobian S⁻¹(I − Φ)S where Newton
+    // stopped at it, else integrated again
+    let phi = match last {
+        Some(j) => Some((0..n * n).map(|ab| (if ab / n == ab % n { 1.0 } else { 0.0 }) - j[ab] * s[ab / n] / s[ab % n]).collect()),
+        None => flow(f, &x, period, s, opts.rtol, true)?.1,
+    };
+    Ok(StationaryState { family_dimension: f.structural_zeros(&x), x, period: Some(period), iterations, residual, monodromy: phi })
+}

@@ -1,0 +1,309 @@
+//! The planar rotor at a constant speed as a [`VectorField`] for the model-agnostic stationary
+//! and stability analysis ([`crate::analysis`]).
+//!
+//! Under a constant speed `Ω` the rotor angle `θ = Ω t` and its rate are prescribed, so the
+//! state is reduced to `x = (ξ, η, ψ_1..n, ξ̇, η̇, ψ̇_1..n)` (`u = ξ + iη` the shaft point C in
+//! rotor axes, `ψ_j` the balls' angles from CG). The right-hand side is [`Equations`] under
+//! `Drive::Speed` (which does not depend on `θ`); the Jacobian is exact: with the residual
+//! `R = F − M q̈` differentiated by forward-mode dual numbers (the arrow linearisation of the
+//! implicit integrator, [`ArrowSystem::linearize`]), `∂q̈/∂q = M⁻¹ ∂R/∂q` and
+//! `∂q̈/∂q̇ = M⁻¹ ∂R/∂q̇` (`M` the mass matrix; `R(q, q̇, q̈(q, q̇)) = 0`). The supports are
+//! isotropic and there is no gravity, so the field is autonomous (`period() = None`) and the
+//! stationary states are equilibria.
+//!
+//! The semi-balanced state (race centre E on the axis, `u = −s2 e^{iγ}`, balls at rest
+//! supplying `B`, [`crate::planar::stationary`]) is a closed-form starting point
+//! ([`PlanarField::semi_balanced_guess`]); with the race centred (`s2 = 0`) it is the balanced
+//! state of the Jeffcott rotor. With `n ≥ 3` balls such states form a family of dimension
+//! `n − 2` (the balls only have to sum to `B`), which [`VectorField::structural_zeros`] reports.
+//!
+//! ```
+//! use autobal::analysis::{speed_scan, stability, stationary, NewtonOptions, ScanOptions, Verdict};
+//! use autobal::planar::field::PlanarField;
+//! use autobal::planar::PlanarRotor;
+//! // paper 004's rotor (eccentric race): semi-balanced and stable at 400 rad/s, above 288
+//! let rotor = PlanarRotor::paper();
+//! let f = PlanarField::new(&rotor, 400.0).unwrap();
+//! let state = stationary(&f, &f.semi_balanced_guess().unwrap(), &NewtonOptions::default()).unwrap();
+//! assert!((state.x[0].hypot(state.x[1]) - rotor.s2).abs() < 1e-15); // C whirls at s2
+//! assert_eq!(stability(&f, &state).unwrap().verdict, Verdict::Stable);
+//! // the stable range over 50..2040 rad/s starts a little above the critical speed
+//! let speeds: Vec<f64> = (0..200).map(|i| 50.0 + 10.0 * i as f64).collect();
+//! let scan = speed_scan(|w| PlanarField::new(&rotor, w), |f, _| f.semi_balanced_guess(), &speeds, &ScanOptions::default()).unwrap();
+//! assert!((scan.stable_ranges[0].from - 300.951).abs() < 1e-3);
+//! ```
+
+use super::equations::Equations;
+use super::{Drive, PlanarRotor};
+use crate::analysis::VectorField;
+use crate::error::{finite, Error, Result};
+use crate::ode::arrow::{Arrow, ArrowLinearization, ArrowSystem};
+use crate::ode::System;
+use num_complex::Complex64 as C;
+
+/// The planar rotor at constant speed `Ω`, reduced state `x = (ξ, η, ψ_1..n, ξ̇, η̇, ψ̇_1..n)`
+/// (module docs).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlanarField {
+    rotor: PlanarRotor,
+    drive: Drive,
+    omega: f64,
+}
+
+impl PlanarField {
+    /// The field of `rotor` at speed `omega` (rad/s). Real balls (contact, rolling resistance:
+    /// [`crate::balls`]) have stationary sets with a friction dead zone or resting contact and
+    /// no linearisation: [`Error::NoLinearisation`].
+    pub fn new(rotor: &PlanarRotor, omega: f64) -> Result<Self> {
+        rotor.validate()?;
+        finite("omega", omega)?;
+        if rotor.balls.is_active() {
+            return Err(Error::NoLinearisation {
+                reason: "planar.contact / planar.rolling_resistance make the balls' stationary set a friction dead zone or a resting contact; switch them off to analyse the point-mass balls".into(),
+            });
+        }
+        Ok(PlanarField { rotor: rotor.clone(), drive: Drive::Speed { omega0: omega }, omega })
+    }
+
+    /// The rotor.
+    pub fn rotor(&self) -> &PlanarRotor {
+        &self.rotor
+    }
+
+    /// The speed `Ω` (rad/s).
+    pub fn omega(&self) -> f64 {
+        self.omega
+    }
+
+    /// Number of reduced coordinates `2 + n`.
+    fn nr(&self) -> usize {
+        2 + self.rotor.n
+    }
+
+    /// Full coordinate index (`ξ, η, θ, ψ_j`) of reduced coordinate `i < 2 + n`.
+    fn full_coord(i: usize) -> usize {
+        if i < 2 {
+            i
+        } else {
+            i + 1
+        }
+    }
+
+    /// The full state `y = (ξ, η, θ, ψ, ξ̇, η̇, θ̇, ψ̇)` of [`Equations`] at `θ = 0`, `θ̇ = Ω`.
+    pub fn full_state(&self, x: &[f64]) -> Vec<f64> {
+        let (nr, nc) = (self.nr(), self.nr() + 1);
+        let mut y = vec![0.0; 2 * nc];
+        for i in 0..nr {
+            y[Self::full_coord(i)] = x[i];
+            y[nc + Self::full_coord(i)] = x[nr + i];
+        }
+        y[nc + 2] = self.omega;
+        y
+    }
+
+    /// The reduced state of a full state `y` of [`Equations`] (drops `θ`, `θ̇`).
+    pub fn reduced_state(&self, y: &[f64]) -> Vec<f64> {
+        let (nr, nc) = (self.nr(), self.nr() + 1);
+        let mut x = vec![0.0; 2 * nr];
+        for i in 0..nr {
+            x[i] = y[Self::full_coord(i)];
+            x[nr + i] = y[nc + Self::full_coord(i)];
+        }
+        x
+    }
+
+    /// Length scale of the whirl: `s1 + s2 + n m3 r / m0` (the unbalances), or the race radius
+    /// when all vanish.
+    fn length(&self) -> f64 {
+        let p = &self.rotor;
+        let l = p.s1 + p.s2 + p.n as f64 * p.m3 * p.r / p.total_mass();
+        if l > 0.0 {
+            l
+        } else {
+            p.r.max(1e-3)
+        }
+    }
+
+    /// The semi-balanced state at this speed (module docs of [`crate::planar::stationary`]):
+    /// `u = −s2 e^{iγ}`, the balls at rest with `m3 r Σ e^{iψ_j} = B`,
+    /// `B = −s2 e^{iγ}(k/Ω² + i c/Ω) + m1 (s2 e^{iγ} − s1)`; one member of the family for
+    /// `n ≥ 3` (pairs at `arg B ± φ`, and for odd `n` one ball at `arg B`). `None` where it
+    /// does not exist (`|B| > n m3 r`, `n < 2`, `Ω = 0`).
+    pub fn semi_balanced_guess(&self) -> Option<Vec<f64>> {
+        let p = &self.rotor;
+        let n = p.n;
+        let w = self.omega;
+        if n < 2 || w == 0.0 {
+            return None;
+        }
+        let e = C::from_polar(p.s2, p.gamma);
+        let b = -e * C::new(p.k / (w * w), p.c / w) + (e - C::new(p.s1, 0.0)) * p.m1;
+        let ratio = b.norm() / (p.m3 * p.r);
+        if ratio > n as f64 {
+            return None;
+        }
+        let phase = if b.norm() > 0.0 { b.arg() } else { 0.0 };
+        let mut psi = Vec::with_capacity(n);
+        let pairs = n / 2;
+        let cos_phi = if n.is_multiple_of(2) { ratio / n as f64 } else { (ratio - 1.0) / (n - 1) as f64 };
+        let phi = cos_phi.clamp(-1.0, 1.0).acos();
+        if !n.is_multiple_of(2) {
+            psi.push(phase);
+        }
+        for _ in 0..pairs {
+            psi.push(phase + phi);
+            psi.push(phase - phi);
+        }
+        let nr = self.nr();
+        let mut x = vec![0.0; 2 * nr];
+        x[0] = -e.re;
+        x[1] = -e.im;
+        x[2..nr].copy_from_slice(&psi);
+        Some(x)
+    }
+}
+
+impl VectorField for PlanarField {
+    fn dim(&self) -> usize {
+        2 * self.nr()
+    }
+
+    fn rhs(&self, _t: f64, x: &[f64], dx: &mut [f64]) {
+        let eq = Equations::new(&self.rotor, &self.drive);
+        let y = self.full_state(x);
+        let mut dy = vec![0.0; y.len()];
+        eq.rhs(0.0, &y, &mut dy);
+        dx.copy_from_slice(&self.reduced_state(&dy));
+    }
+
+    fn jacobian(&self, _t: f64, x: &[f64], jac: &mut [f64]) {
+        let eq = Equations::new(&self.rotor, &self.drive);
+        let (nr, nc) = (self.nr(), self.nr() + 1);
+        let n = 2 * nr;
+        let y = self.full_state(x);
+        let mut dy = vec![0.0; y.len()];
+        eq.rhs(0.0, &y, &mut dy);
+        let z = Arrow::zeros(3, self.rotor.n);
+        let mut lin = ArrowLinearization { mass: z.clone(), g_q: z.clone(), g_v: z };
+        eq.linearize(0.0, &y, &dy[nc..], &mut lin);
+        // M X = [G_q | G_v] for the reduced columns
+        let m = lin.mass.to_dense();
+        let (gq, gv) = (lin.g_q.to_dense(), lin.g_v.to_dense());
+        let lu = DenseLu::new(m, nc);
+        jac.iter_mut().for_each(|v| *v = 0.0);
+        for i in 0..nr {
+            jac[i * n + nr + i] = 1.0;
+        }
+        let mut col = vec![0.0; nc];
+        for (half, g) in [(0, &gq), (nr, &gv)] {
+            for j in 0..nr {
+                let cj = Self::full_coord(j);
+                for (r, c) in col.iter_mut().enumerate() {
+                    *c = g[r * nc + cj];
+                }
+                lu.solve(&mut col);
+                for i in 0..nr {
+                    jac[(nr + i) * n + half + j] = col[Self::full_coord(i)];
+                }
+            }
+        }
+    }
+
+    fn period(&self) -> Option<f64> {
+        None
+    }
+
+    fn structural_zeros(&self, x: &[f64]) -> usize {
+        let p = &self.rotor;
+        if p.n < 3 {
+            return 0;
+        }
+        // E on the axis: u + s2 e^{iγ} = 0 (to 1e-6 of the whirl's length scale)
+        let off = (x[0] + p.s2 * p.gamma.cos()).hypot(x[1] + p.s2 * p.gamma.sin());
+        if off <= 1e-6 * self.length() {
+            p.n - 2
+        } else {
+            0
+        }
+    }
+
+    fn component_name(&self, i: usize) -> String {
+        let nr = self.nr();
+        let (rate, k) = if i >= nr { (true, i - nr) } else { (false, i) };
+        let base = match k {
+            0 => "ξ (x of C in rotor axes)".to_string(),
+            1 => "η (y of C in rotor axes)".to_string(),
+            j => format!("ψ_{} (ball {} angle)", j - 1, j - 1),
+        };
+        if rate {
+            format!("rate of {base}")
+        } else {
+            base
+        }
+    }
+
+    fn scales(&self) -> Vec<f64> {
+        let l = self.length();
+        let w = self.omega.abs().max(self.rotor.natural_frequency());
+        let nr = self.nr();
+        (0..2 * nr)
+            .map(|i| {
+                let base = if i % nr < 2 { l } else { 1.0 };
+                if i >= nr {
+                    base * w
+                } else {
+                    base
+                }
+            })
+            .collect()
+    }
+}
+
+/// LU with partial pivoting of a dense `n × n` matrix (the mass matrix; symmetric positive
+/// definite, so the pivoting is a formality).
+struct DenseLu {
+    a: Vec<f64>,
+    perm: Vec<usize>,
+    n: usize,
+}
+
+impl DenseLu {
+    fn new(mut a: Vec<f64>, n: usize) -> Self {
+        let mut perm: Vec<usize> = (0..n).collect();
+        for c in 0..n {
+            let p = (c..n).max_by(|&i, &j| a[i * n + c].abs().total_cmp(&a[j * n + c].abs())).unwrap_or(c);
+            if p != c {
+                for k in 0..n {
+                    a.swap(p * n + k, c * n + k);
+                }
+                perm.swap(p, c);
+            }
+            let piv = a[c * n + c];
+            for r in c + 1..n {
+                let f = a[r * n + c] / piv;
+                a[r * n + c] = f;
+                for k in c + 1..n {
+                    a[r * n + k] -= f * a[c * n + k];
+                }
+            }
+        }
+        DenseLu { a, perm, n }
+    }
+
+    fn solve(&self, b: &mut [f64]) {
+        let n = self.n;
+        let mut x: Vec<f64> = self.perm.iter().map(|&p| b[p]).collect();
+        for r in 0..n {
+            for k in 0..r {
+                x[r] -= self.a[r * n + k] * x[k];
+            }
+        }
+        for r in (0..n).rev() {
+            for k in r + 1..n {
+                x[r] -= self.a[r * n + k] * x[k];
+            }
+            x[r] /= self.a[r * n + r];
+        }
+        b.copy_from_slice(&x);
+    }
+}

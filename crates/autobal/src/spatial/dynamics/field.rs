@@ -1,0 +1,374 @@
+//! The spatial rotor at a constant speed as an [`analysis::VectorField`](crate::analysis::VectorField):
+//! the equations of [`Equations`](super::Equations) with the spin prescribed, `φ = Ω t`,
+//! `φ̇ = Ω`, and the coordinates that do not move (`φ`, `φ̇`, and the tilt when locked)
+//! removed from the state, so that a stationary motion of the rotor in its turning axes is an
+//! equilibrium (isotropic supports, gravity along the axis) or a periodic orbit of the
+//! revolution's period `2π/Ω` (supports that differ by direction, gravity across the axis).
+//!
+//! The reduced state is `x = (ξ, η[, δ, θ], ψ_1..N, ξ̇, η̇[, δ̇, θ̇], ψ̇_1..N)` (tilt omitted when
+//! locked); its Jacobian is exact, by forward-mode differentiation of the same code that
+//! computes the right-hand side ([`Equations::exact_jacobian`](super::Equations::exact_jacobian)).
+//!
+//! ```
+//! use autobal::analysis::VectorField;
+//! use autobal::spatial::dynamics::field::SpatialField;
+//! use autobal::spatial::dynamics::SpatialRotor;
+//! use autobal::spatial::params::SpatialRotorSi;
+//! let si = SpatialRotorSi { rotor_mass: 10.0, equatorial_moment: 0.5, polar_moment: 0.2, z_rotor: 0.0,
+//!     z_left: -0.3, z_right: 0.3, stiffness_left: 1e5, stiffness_right: 1e5, damping_left: 20.0,
+//!     damping_right: 20.0, unbalance_mass: 0.01, unbalance_radius: 0.1, z_balancer: 0.1,
+//!     balls: 3, ball_mass: 0.02, race_radius: 0.1, ball_drag: 0.01 };
+//! let field = SpatialField::new(&SpatialRotor::from_si(&si), 300.0).unwrap();
+//! let x = field.balanced_guess().unwrap(); // balls cancel the unbalance: an equilibrium
+//! let mut f = vec![0.0; field.dim()];
+//! field.rhs(0.0, &x, &mut f);
+//! assert!(f.iter().all(|v| v.abs() < 1e-9));
+//! assert_eq!(field.period(), None);
+//! assert_eq!(field.structural_zeros(&x), 1); // 3 balls, 2 conditions
+//! ```
+
+use super::equations::{real_balls_error, residual_unbalance, Model, Scratch, Spin, PHI, ROTOR_COORDS};
+use super::rotor::SpatialRotor;
+use crate::analysis::VectorField;
+use crate::error::{finite, Result};
+use std::cell::RefCell;
+
+/// The spatial rotor at the constant speed `Ω` in its turning axes ([module docs](self)).
+#[derive(Debug, Clone)]
+pub struct SpatialField {
+    rotor: SpatialRotor,
+    omega: f64,
+    model: Model,
+    /// Full-state coordinate of each reduced coordinate (`ξ, η[, δ, θ], ψ_j`).
+    coords: Vec<usize>,
+    scratch: RefCell<Scratch>,
+    /// Full state and its derivative (scratch of the reduced right-hand side).
+    full: RefCell<(Vec<f64>, Vec<f64>)>,
+}
+
+/// Relative tolerance of [`SpatialField::structural_zeros`]'s tests (rotor at rest on the axis,
+/// unbalance cancelled): a stationary state found by Newton's method meets them with room
+/// (~1e-12); a state off balance by more than a millionth of its scales is not balanced.
+const BALANCE_TOL: f64 = 1e-6;
+
+/// Relative pivot tolerance of the rank of `∂(static, couple)/∂ψ`: entries carry round-off of
+/// ~1e-16 of the largest; a pivot below 1e-9 of the largest entry is a configuration within
+/// round-off-amplified distance of a degenerate one (balls collinear), counted degenerate.
+const RANK_TOL: f64 = 1e-9;
+
+impl SpatialField {
+    /// The field of `rotor` at speed `omega` (rad/s; the papers' units for a dimensionless
+    /// rotor). Errors: the rotor's own validation ([`SpatialRotor::validate`]), a non-finite
+    /// speed (`drive.omega0`), and [`crate::Error::NoLinearisation`] for real balls (contact or
+    /// rolling resistance: a friction dead zone or a resting contact has no linearisation).
+    pub fn new(rotor: &SpatialRotor, omega: f64) -> Result<Self> {
+        rotor.validate()?;
+        finite("drive.omega0", omega)?;
+        if rotor.planes.iter().any(|p| p.n > 0 && p.physics.is_active()) {
+            return Err(real_balls_error());
+        }
+        let model = Model::new(rotor);
+        let nb = rotor.balls();
+        let tilt: &[usize] = if rotor.lock_tilt { &[] } else { &[2, 3] };
+        let coords: Vec<usize> = [0, 1].iter().chain(tilt).copied().chain(ROTOR_COORDS..ROTOR_COORDS + nb).collect();
+        let nc = model.coords();
+        Ok(SpatialField {
+            rotor: rotor.clone(),
+            omega,
+            model,
+            coords,
+            scratch: Scratch::new(nb, false),
+            full: RefCell::new((vec![0.0; 2 * nc], vec![0.0; 2 * nc])),
+        })
+    }
+
+    /// The rotor.
+    pub fn rotor(&self) -> &SpatialRotor {
+        &self.rotor
+    }
+
+    /// The speed `Ω`.
+    pub fn omega(&self) -> f64 {
+        self.omega
+    }
+
+    /// Number of reduced coordinates `m = 2 (or 4 with the tilt free) + N`; the state has `2m`.
+    pub fn coords(&self) -> usize {
+        self.coords.len()
+    }
+
+    /// The full state `y` of [`Equations`](super::Equations) (under `Drive::Speed { omega0: Ω }`)
+    /// at time `t` for the reduced state `x`: `φ = Ω t`, `φ̇ = Ω`, the locked tilt and its rate 0.
+    pub fn full_state(&self, t: f64, x: &[f64]) -> Vec<f64> {
+        let mut y = vec![0.0; 2 * self.model.coords()];
+        self.fill_full(t, x, &mut y);
+        y
+    }
+
+    fn fill_full(&self, t: f64, x: &[f64], y: &mut [f64]) {
+        let nc = self.model.coords();
+        let m = self.coords.len();
+        y.iter_mut().for_each(|v| *v = 0.0);
+        for (i, &c) in self.coords.iter().enumerate() {
+            y[c] = x[i];
+            y[nc + c] = x[m + i];
+        }
+        y[PHI] = self.omega * t;
+        y[nc + PHI] = self.omega;
+    }
+
+    /// The reduced state of a full state `y` (drops `φ`, `φ̇` and the locked tilt).
+    pub fn reduced_state(&self, y: &[f64]) -> Vec<f64> {
+        let nc = self.model.coords();
+        self.coords.iter().map(|&c| y[c]).chain(self.coords.iter().map(|&c| y[nc + c])).collect()
+    }
+
+    /// A closed-form starting guess for the balanced state, reduced: rotor at rest on the axis,
+    /// all rates zero, and the balls placed so that they cancel the unbalance masses' static
+    /// unbalance `s0` (one plane) or static and couple unbalance `s0`, `c0` about C (two planes,
+    /// as Rodrigues et al. 2008: plane `k` at `ζ_k` takes the share `b_1 = (ζ_2 s0 − c0)/(ζ_1 − ζ_2)`,
+    /// `b_2 = −s0 − b_1`, so that `b_1 + b_2 = −s0`, `ζ_1 b_1 + ζ_2 b_2 = −c0`). Each plane's
+    /// balls form the arc of [`arc_angles`]. With one plane and a couple unbalance (or a tilted
+    /// principal axis) the guess cancels only the static part and is not itself stationary.
+    ///
+    /// `None` when a plane's capacity `n m R` is below its share, with no balls or more than
+    /// two planes of balls, or two planes at the same axial position.
+    pub fn balanced_guess(&self) -> Option<Vec<f64>> {
+        let planes: Vec<_> = self.rotor.planes.iter().filter(|p| p.n > 0).collect();
+        let s0 = self.rotor.static_unbalance();
+        let targets: Vec<[f64; 2]> = match planes.len() {
+            1 => vec![[-s0[0], -s0[1]]],
+            2 => {
+                let zr = self.rotor.z_reference();
+                let (z1, z2) = (planes[0].z - zr, planes[1].z - zr);
+                if z1 == z2 {
+                    return None;
+                }
+                let c0 = self.rotor.couple_unbalance();
+                let b1 = [(z2 * s0[0] - c0[0]) / (z1 - z2), (z2 * s0[1] - c0[1]) / (z1 - z2)];
+                vec![b1, [-s0[0] - b1[0], -s0[1] - b1[1]]]
+            }
+            _ => return None,
+        };
+        let mut psi = vec![];
+        for (p, t) in planes.iter().zip(targets) {
+            psi.extend(arc_angles(p.n, p.ball_mass * p.race_radius, t)?);
+        }
+        // planes without balls contribute none; the balls keep the planes' order
+        let m = self.coords.len();
+        let first = m - psi.len();
+        let mut x = vec![0.0; 2 * m];
+        x[first..m].copy_from_slice(&psi);
+        Some(x)
+    }
+
+    /// The rank of `∂(s, c/L)/∂ψ` at the ball angles `psi` (all planes): the 4×N matrix of
+    /// columns `m_j R_j (−sin ψ_j, cos ψ_j, −ζ_j sin ψ_j/L, ζ_j cos ψ_j/L)` (`s`, `c` the residual
+    /// static and couple unbalance, `L` the largest `|ζ_j|` so that the rows are commensurate),
+    /// by Gaussian elimination with full pivoting, pivots below [`RANK_TOL`] times the largest
+    /// entry counted zero. One plane gives couple rows `ζ_p` times the static rows: rank ≤ 2.
+    fn unbalance_rank(&self, psi: &[f64]) -> usize {
+        let balls = &self.model.balls;
+        let l = balls.iter().map(|b| b.zeta.abs()).fold(0.0, f64::max);
+        let l = if l > 0.0 { l } else { 1.0 };
+        let n = balls.len();
+        let mut a = vec![[0.0; 4]; n];
+        for (j, b) in balls.iter().enumerate() {
+            let (s, c) = psi[j].sin_cos();
+            let mr = b.m * b.r;
+            a[j] = [-mr * s, mr * c, -mr * b.zeta / l * s, mr * b.zeta / l * c];
+        }
+        let big = a.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+        if big == 0.0 {
+            return 0;
+        }
+        // eliminate on the transpose (rows = balls, 4 columns)
+        let mut rank = 0;
+        let mut used_col = [false; 4];
+        let mut used_row = vec![false; n];
+        loop {
+            let mut best = (0.0, 0, 0);
+            for (j, row) in a.iter().enumerate() {
+                if used_row[j] {
+                    continue;
+                }
+                for k in 0..4 {
+                    if !used_col[k] && row[k].abs() > best.0 {
+                        best = (row[k].abs(), j, k);
+                    }
+                }
+            }
+            if best.0 <= RANK_TOL * big {
+                return rank;
+            }
+            let (_, pj, pk) = best;
+            used_row[pj] = true;
+            used_col[pk] = true;
+            rank += 1;
+            let prow = a[pj];
+            for (j, row) in a.iter_mut().enumerate() {
+                if used_row[j] {
+                    continue;
+                }
+                let f = row[pk] / prow[pk];
+                for k in 0..4 {
+                    row[k] -= f * prow[k];
+                }
+            }
+        }
+    }
+}
+
+/// Ball angles (from the body x axis) of `n` equal balls of first moment `mr = m R` each whose
+/// sum `Σ m R (cos ψ_j, sin ψ_j)` is `target`: an arc of equally spaced balls centred on the
+/// target's direction `β`, `ψ_j = β + a (j − (n − 1)/2)`, its spacing `a ∈ [0, 2π/n]` solving
+/// `Σ_j cos(a (j − (n−1)/2)) = sin(n a/2)/sin(a/2) = |target|/(m R)` (decreasing in `a` there:
+/// bisection to round-off). Two balls sit at `β ± a/2`, `cos(a/2) = |target|/(2 m R)`; for
+/// `n ≥ 3` this is one member of the `(n − 2)`-dimensional family of balancing positions; a
+/// zero target gives the balls evenly spread round the race.
+///
+/// `None` when the capacity `n m R` is below `|target|` (beyond a relative 1e-12), or for one
+/// ball unless `|target| = m R` to that tolerance.
+pub fn arc_angles(n: usize, mr: f64, target: [f64; 2]) -> Option<Vec<f64>> {
+    let need = target[0].hypot(target[1]);
+    if n == 0 {
+        return (need == 0.0).then(Vec::new);
+    }
+    if !(mr > 0.0) || !need.is_finite() {
+        return None;
+    }
+    let ratio = need / mr;
+    let nf = n as f64;
+    if ratio > nf * (1.0 + 1e-12) {
+        return None;
+    }
+    let dir = target[1].atan2(target[0]);
+    if n == 1 {
+        return ((ratio - 1.0).abs() <= 1e-12).then(|| vec![dir]);
+    }
+    let centre = 0.5 * (nf - 1.0);
+    let sum = |a: f64| (0..n).map(|j| (a * (j as f64 - centre)).cos()).sum::<f64>();
+    let (mut lo, mut hi) = (0.0, 2.0 * std::f64::consts::PI / nf);
+    if ratio >= nf {
+        hi = 0.0;
+    }
+    while hi - lo > 1e-16 * hi.max(1.0) {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        if sum(mid) > ratio {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let a = 0.5 * (lo + hi);
+    Some((0..n).map(|j| dir + a * (j as f64 - centre)).collect())
+}
+
+impl VectorField for SpatialField {
+    fn dim(&self) -> usize {
+        2 * self.coords.len()
+    }
+
+    fn rhs(&self, t: f64, x: &[f64], dx: &mut [f64]) {
+        let mut full = self.full.borrow_mut();
+        let (y, dy) = &mut *full;
+        self.fill_full(t, x, y);
+        self.model.rhs(Spin::Prescribed { rate: self.omega, acc: 0.0 }, y, dy, &[], &self.scratch);
+        let nc = self.model.coords();
+        let m = self.coords.len();
+        for (i, &c) in self.coords.iter().enumerate() {
+            dx[i] = dy[c];
+            dx[m + i] = dy[nc + c];
+        }
+    }
+
+    fn jacobian(&self, t: f64, x: &[f64], jac: &mut [f64]) {
+        let nc = self.model.coords();
+        let m = self.coords.len();
+        let y = self.full_state(t, x);
+        let mut dy = vec![0.0; 2 * nc];
+        let spin = Spin::Prescribed { rate: self.omega, acc: 0.0 };
+        self.model.rhs(spin, &y, &mut dy, &[], &self.scratch);
+        // full-state index of each reduced component
+        let full: Vec<usize> = self.coords.iter().copied().chain(self.coords.iter().map(|&c| nc + c)).collect();
+        let mut cols = vec![0.0; 2 * nc * 2 * m];
+        self.model.jacobian_columns(spin, &y, &dy, &full, &mut cols);
+        for (i, &r) in full.iter().enumerate() {
+            jac[i * 2 * m..(i + 1) * 2 * m].copy_from_slice(&cols[r * 2 * m..(r + 1) * 2 * m]);
+        }
+    }
+
+    /// `Some(2π/|Ω|)` when a support's stiffness or damping differs between x and y or gravity
+    /// has a component across the spin axis (both turn at `−Ω` in the rotor's axes), else
+    /// `None` (also at `Ω = 0`, where nothing turns).
+    fn period(&self) -> Option<f64> {
+        let anisotropic = self.rotor.supports.iter().any(|s| s.stiffness[0] != s.stiffness[1] || s.damping[0] != s.damping[1]);
+        let across = self.rotor.gravity[0] != 0.0 || self.rotor.gravity[1] != 0.0;
+        ((anisotropic || across) && self.omega != 0.0).then(|| 2.0 * std::f64::consts::PI / self.omega.abs())
+    }
+
+    /// Typical magnitudes for Newton's scaled residual and the shooting's absolute tolerances:
+    /// the length scale ([`SpatialRotor::length_scale`]) for the translations, 1 rad for the
+    /// tilts and ball angles, and those times `max(|Ω|, ω0)` for the rates.
+    fn scales(&self) -> Vec<f64> {
+        let m = self.coords.len();
+        let l = self.rotor.length_scale();
+        let w = self.omega.abs().max(self.rotor.natural_frequency());
+        (0..2 * m).map(|i| if i % m < 2 { l } else { 1.0 } * if i >= m { w } else { 1.0 }).collect()
+    }
+
+    /// At a balanced state — rotor at rest on the axis (displacements within 1e-6 of the length
+    /// scale, tilts within 1e-6 rad, rates within 1e-6 of those times `max(|Ω|, ω0)`) and the
+    /// residual static and couple unbalance within 1e-6 of `Σ m R + |s0|` (times the largest
+    /// `|ζ|` for the couple) — the stationary states form a family of dimension
+    /// `N − rank ∂(s, c)/∂ψ` (balls of all planes; `n − 2` for `n ≥ 3` balls in one plane):
+    /// every ball is in equilibrium wherever it sits, and the rotor only needs the 2 (one plane)
+    /// or 4 conditions `s = 0`, `c = 0`. Elsewhere 0.
+    fn structural_zeros(&self, x: &[f64]) -> usize {
+        let nb = self.model.balls.len();
+        if nb == 0 {
+            return 0;
+        }
+        let m = self.coords.len();
+        let nr = m - nb;
+        let l = self.rotor.length_scale();
+        let rate = self.omega.abs().max(self.rotor.natural_frequency());
+        let at_rest = (0..nr).all(|i| {
+            let s = if i < 2 { l } else { 1.0 };
+            x[i].abs() <= BALANCE_TOL * s && x[m + i].abs() <= BALANCE_TOL * s * rate
+        }) && (nr..m).all(|i| x[m + i].abs() <= BALANCE_TOL * rate);
+        if !at_rest {
+            return 0;
+        }
+        let y = self.full_state(0.0, x);
+        let (st, cp) = residual_unbalance(&self.rotor, &self.model, &y);
+        let s0 = self.rotor.static_unbalance();
+        let scale = self.model.balls.iter().map(|b| b.m * b.r).sum::<f64>() + s0[0].hypot(s0[1]);
+        let zl = self.model.balls.iter().map(|b| b.zeta.abs()).fold(l, f64::max);
+        if st[0].hypot(st[1]) > BALANCE_TOL * scale || cp[0].hypot(cp[1]) > BALANCE_TOL * scale * zl {
+            return 0;
+        }
+        nb - self.unbalance_rank(&x[nr..m])
+    }
+
+    fn component_name(&self, i: usize) -> String {
+        let m = self.coords.len();
+        let (rate, k) = if i >= m { (true, i - m) } else { (false, i) };
+        let base = match self.coords.get(k) {
+            Some(0) => "ξ (x of C in rotor axes)".to_string(),
+            Some(1) => "η (y of C in rotor axes)".to_string(),
+            Some(2) => "δ (tilt about the rotor x axis)".to_string(),
+            Some(3) => "θ (tilt about the rotor y axis)".to_string(),
+            Some(&c) => format!("ψ_{} (ball {} angle)", c - ROTOR_COORDS + 1, c - ROTOR_COORDS + 1),
+            None => format!("x[{i}]"),
+        };
+        if rate {
+            format!("rate of {base}")
+        } else {
+            base
+        }
+    }
+}

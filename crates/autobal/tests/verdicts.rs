@@ -1,0 +1,215 @@
+//! A run's verdicts mean what they say (issue 18 item 4): `balanced` is the balls cancelling
+//! the unbalance on average over a revolution, the stationary motion (the sag under gravity) is
+//! its own field and the whirl radius is measured about it, a balancer of too little capacity
+//! is `partially_balanced` with the closed-form residual.
+
+use autobal::drive::Drive;
+use autobal::spatial::dynamics::{simulate, simulate_summary, Initial, RunOutcome, Settings, SpatialRotor, Summary};
+use autobal::spatial::params::SpatialRotorSi;
+
+const G: f64 = 9.81;
+
+/// examples/washing_machine.toml: drum, tub and counterweights on their suspension, 0.3 kg of
+/// laundry at the drum wall, three 120 g balls at 250 mm.
+fn washer(ball_mass: f64) -> SpatialRotor {
+    SpatialRotor::from_si(&SpatialRotorSi {
+        rotor_mass: 32.0,
+        equatorial_moment: 0.9,
+        polar_moment: 0.75,
+        z_rotor: 0.22,
+        z_balancer: 0.26,
+        z_left: 0.0,
+        z_right: 0.45,
+        stiffness_left: 1.8e4,
+        stiffness_right: 1.2e4,
+        damping_left: 180.0,
+        damping_right: 120.0,
+        unbalance_mass: 0.30,
+        unbalance_radius: 0.22,
+        balls: 3,
+        ball_mass,
+        race_radius: 0.25,
+        ball_drag: 1.5,
+    })
+}
+
+fn horizontal(mut r: SpatialRotor) -> SpatialRotor {
+    r.gravity = [0.0, -G, 0.0];
+    r
+}
+
+/// 1400 rpm, above the washer's four critical speeds (284, 985, 1060 rpm).
+const SPIN: f64 = 1400.0 * std::f64::consts::PI / 30.0;
+
+fn run(r: &SpatialRotor, t_end: f64) -> Summary {
+    let drive = Drive::Speed { omega0: SPIN };
+    let set = Settings { method: Default::default(), t_end, dt: 1e-3, rtol: 1e-8, atol: 1e-10 };
+    simulate_summary(r, &drive, &Initial::at_rest(r), &set, None).unwrap()
+}
+
+/// The static deflection at `z` of a rigid rotor of weight `w` (centre of mass at `z_g`) on
+/// springs `k_i` at `z_i`, the line `d(z) = a + b z` from the balance of forces and moments:
+/// `Σ k_i (a + b z_i) = w`, `Σ k_i z_i (a + b z_i) = w z_g`. Gyroscopic and unbalance forces
+/// do not enter: the sag is constant in fixed axes (no precession), and the balls' and the
+/// unbalance's centrifugal forces cancel when balanced.
+fn two_spring_sag(springs: &[(f64, f64)], w: f64, z_g: f64, z: f64) -> f64 {
+    let (k0, k1, k2) = springs.iter().fold((0.0, 0.0, 0.0), |(a, b, c), (k, zi)| (a + k, b + k * zi, c + k * zi * zi));
+    let det = k0 * k2 - k1 * k1;
+    let a = (w * k2 - k1 * w * z_g) / det;
+    let b = (k0 * w * z_g - k1 * w) / det;
+    a + b * z
+}
+
+/// Total mass and centre of mass of rotor, unbalance and balls.
+fn mass_and_centre(r: &SpatialRotor) -> (f64, f64) {
+    let mut m = r.rotor.mass;
+    let mut mz = r.rotor.mass * r.rotor.z;
+    for u in &r.unbalances {
+        m += u.mass;
+        mz += u.mass * u.z;
+    }
+    for p in &r.planes {
+        m += p.n as f64 * p.ball_mass;
+        mz += p.n as f64 * p.ball_mass * p.z;
+    }
+    (m, mz / m)
+}
+
+fn springs(r: &SpatialRotor) -> Vec<(f64, f64)> {
+    r.supports.iter().map(|s| (s.stiffness[1], s.z)).collect()
+}
+
+#[test]
+fn the_horizontal_washer_balances_about_its_sag() {
+    // The defect of issue 18: under gravity across the axis the balls swing once per revolution
+    // (never at rest) and the shaft sags; the old verdict asked for balls at rest and printed
+    // the sag as the whirl radius. Now: balanced on average, the sag its own field, the whirl
+    // about it.
+    let r = horizontal(washer(0.12));
+    let drive = Drive::Speed { omega0: SPIN };
+    let set = Settings { method: Default::default(), t_end: 20.0, dt: 1e-3, rtol: 1e-8, atol: 1e-10 };
+    let period = 2.0 * std::f64::consts::PI / SPIN;
+    let mut last_rev: Vec<f64> = vec![];
+    let s = simulate(&r, &drive, &Initial::at_rest(&r), &set, |x| {
+        if x.t > 20.0 - period {
+            last_rev.push(x.psi[0]);
+        }
+        true
+    })
+    .unwrap();
+    assert_eq!(s.outcome, RunOutcome::Balanced, "{s:#?}");
+    assert!(s.balanced);
+    // balanced to 1e-3 of the unbalance (measured 1.7e-5)
+    assert!(s.residual_unbalance < 1e-3 && s.residual_couple.unwrap() < 1e-3, "{s:#?}");
+    // the balls swing relative to the rotor (not at rest: the old criterion fails) but their
+    // mean does not drift
+    let swing = last_rev.iter().fold(f64::NEG_INFINITY, |a, b| a.max(*b)) - last_rev.iter().fold(f64::INFINITY, |a, b| a.min(*b));
+    assert!(swing > 1e-4, "swing {swing}");
+    assert!(s.ball_drift.unwrap() < 1e-2 * swing, "drift {:?} swing {swing}", s.ball_drift);
+    // the sag: the two-spring closed form (the supports 1.8e4 and 1.2e4 N/m are not centred on
+    // the centre of mass, so the drum tilts: 11.40 mm at the balancer plane, not
+    // M g / Σ k = 10.68 mm). Tolerance 1e-3 relative: the tilt (9e-3 rad) enters the
+    // nonlinear equations at second order (1e-4) and the defect-corrected mean is exact for a
+    // displacement constant in fixed axes (measured 1.4e-5).
+    let (m, zg) = mass_and_centre(&r);
+    let want = two_spring_sag(&springs(&r), m * G, zg, r.planes[0].z);
+    assert!((s.static_sag / want - 1.0).abs() < 1e-3, "sag {} closed form {want}", s.static_sag);
+    assert!(s.mean_displacement[1] < 0.0 && s.mean_displacement[0].abs() < 1e-3 * s.static_sag, "{:?}", s.mean_displacement);
+    let mgk = m * G / 3.0e4;
+    assert!((s.static_sag / mgk - 1.0).abs() < 0.1, "sag {} M g / k {mgk}", s.static_sag);
+    // the whirl about it is much smaller than the sag (measured 8.7e-7 m against 1.14e-2 m)
+    assert!(s.final_amplitude < 1e-3 * s.static_sag, "whirl {} sag {}", s.final_amplitude, s.static_sag);
+}
+
+#[test]
+fn a_balancer_short_of_capacity_is_partially_balanced_with_the_closed_form_residual() {
+    // Half the washer's ball mass: capacity 3 · 0.06 · 0.25 = 0.045 kg m against the laundry's
+    // 0.3 · 0.22 = 0.066 kg m: no balanced state exists, the least residual is
+    // 1 − 0.045/0.066 = 0.318, the balls together against the unbalance.
+    let r = horizontal(washer(0.06));
+    let drive = Drive::Speed { omega0: SPIN };
+    let set = Settings { method: Default::default(), t_end: 20.0, dt: 1e-3, rtol: 1e-8, atol: 1e-10 };
+    let mut last = vec![];
+    let s = simulate(&r, &drive, &Initial::at_rest(&r), &set, |x| {
+        last = x.psi.clone();
+        true
+    })
+    .unwrap();
+    assert_eq!(s.outcome, RunOutcome::PartiallyBalanced, "{s:#?}");
+    assert!(!s.balanced);
+    let c = 3.0 * 0.06 * 0.25 / (0.30 * 0.22);
+    let closed = 1.0 - c;
+    // never below the closed form (|U + B| ≥ |U| − |B|), above it by the whirl's lag only
+    // (measured 0.3258 against 0.3182: the balls sit 5° off exactly against)
+    assert!(s.residual_unbalance >= closed - 1e-9 && s.residual_unbalance - closed < 0.01, "{} vs {closed}", s.residual_unbalance);
+    // second route: the residual from the balls' angle at the end, |1 + c e^{iψ}| (the balls
+    // together; the swing changes it by less than 1e-3)
+    assert!(last.iter().all(|p| (p - last[0]).abs() < 1e-6), "{last:?}");
+    let from_angle = (1.0 + c * last[0].cos()).hypot(c * last[0].sin());
+    assert!((s.residual_unbalance - from_angle).abs() < 1e-3, "{} vs {from_angle}", s.residual_unbalance);
+}
+
+#[test]
+fn an_unbalanced_rotor_without_balls_is_not_balanced_and_whirls_about_its_sag() {
+    // The washer without balls, its tilt locked: a Jeffcott rotor. Sag M g / k exactly, whirl
+    // about it the unbalance response m0 R0 Ω² / |k − M Ω² + i c Ω| (2.13 mm at 1400 rpm; the
+    // transient from rest decays as exp(−4.6 t)). Tolerance 1e-7 relative on both (measured
+    // 8.5e-9 and 5e-12 at rtol 1e-8, about 10 steps per revolution): a circle's RMS radius is
+    // its radius, and the whirl, constant in the rotor frame, and the sag, constant in fixed
+    // axes, are both integrated exactly by the summary's averages.
+    let mut r = horizontal(washer(0.0));
+    r.planes.clear();
+    r.lock_tilt = true;
+    let s = run(&r, 20.0);
+    assert_eq!(s.outcome, RunOutcome::NotBalanced, "{s:#?}");
+    assert!(!s.balanced && s.ball_drift.is_none());
+    assert!((s.residual_unbalance - 1.0).abs() < 1e-12, "{}", s.residual_unbalance);
+    let (m, _) = mass_and_centre(&r);
+    let (k, c) = (3.0e4, 300.0);
+    let sag = m * G / k;
+    let u = r.unbalances[0].mass * r.unbalances[0].radius;
+    let whirl = u * SPIN * SPIN / (k - m * SPIN * SPIN).hypot(c * SPIN);
+    assert!((s.static_sag / sag - 1.0).abs() < 1e-7, "sag {} closed form {sag}", s.static_sag);
+    assert!((s.final_amplitude / whirl - 1.0).abs() < 1e-7, "whirl {} closed form {whirl}", s.final_amplitude);
+}
+
+#[test]
+fn a_balanced_isotropic_run_is_still_balanced_without_sag() {
+    // The washer without gravity: the balanced state is an equilibrium in the rotor frame; no
+    // sag (below 1e-9 m: only the transient's remains), no whirl, no drift.
+    let r = washer(0.12);
+    let s = run(&r, 20.0);
+    assert_eq!(s.outcome, RunOutcome::Balanced, "{s:#?}");
+    assert!(s.balanced && s.residual_unbalance < 1e-3);
+    assert!(s.static_sag < 1e-9 && s.final_amplitude < 1e-6, "{s:#?}");
+    assert!(s.ball_drift.unwrap() < 1e-6, "{s:#?}");
+}
+
+#[test]
+fn a_run_shorter_than_two_revolutions_is_not_settled() {
+    let r = horizontal(washer(0.12));
+    let s = run(&r, 1.5 * 2.0 * std::f64::consts::PI / SPIN);
+    assert_eq!(s.outcome, RunOutcome::NotSettled, "{s:#?}");
+    assert!(!s.balanced && s.ball_drift.is_none());
+}
+
+#[test]
+fn the_averages_are_exact_for_whirl_and_sag_whatever_the_steps() {
+    // The same Jeffcott washer with a loose tolerance (rtol 1e-5: 4 steps per revolution,
+    // 90° each); the averages still find the closed forms to 1e-4, the integration's own
+    // error at rtol 1e-5 (measured 3e-6 sag, 6e-7 whirl). Without the defect correction of the
+    // mean the chords of 90° steps would put the sag 20 % off.
+    let mut r = horizontal(washer(0.0));
+    r.planes.clear();
+    r.lock_tilt = true;
+    let drive = Drive::Speed { omega0: SPIN };
+    let set = Settings { method: Default::default(), t_end: 20.0, dt: 1e-3, rtol: 1e-5, atol: 1e-7 };
+    let s = simulate_summary(&r, &drive, &Initial::at_rest(&r), &set, None).unwrap();
+    let (m, _) = mass_and_centre(&r);
+    let sag = m * G / 3.0e4;
+    let u = r.unbalances[0].mass * r.unbalances[0].radius;
+    let whirl = u * SPIN * SPIN / (3.0e4 - m * SPIN * SPIN).hypot(300.0 * SPIN);
+    let per_rev = s.steps as f64 / (20.0 * SPIN / (2.0 * std::f64::consts::PI));
+    assert!((s.static_sag / sag - 1.0).abs() < 1e-4, "sag {} closed form {sag} ({per_rev} steps per revolution)", s.static_sag);
+    assert!((s.final_amplitude / whirl - 1.0).abs() < 1e-4, "whirl {} closed form {whirl} ({per_rev} steps per revolution)", s.final_amplitude);
+}
