@@ -52,6 +52,8 @@ pub enum Rotor {
 }
 
 /// Either model's field at one speed ([`VectorField`] by delegation).
+// one field per speed, built and dropped in the scan's loop: the variants' sizes do not matter
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug)]
 pub enum Field {
     /// [`PlanarField`].
