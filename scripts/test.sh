@@ -67,3 +67,7 @@ rm -rf target/wheels
 .venv/bin/maturin build --quiet --profile dev -m crates/autobal-py/Cargo.toml -i .venv/bin/python -o target/wheels
 .venv/bin/python -m pip install --quiet --disable-pip-version-check --force-reinstall --no-deps target/wheels/autobal-*.whl
 AUTOBAL_BIN="$PWD/target/debug/autobal" .venv/bin/python -m pytest -q -p no:cacheprovider crates/autobal-py/tests
+
+# The README's Python quick start, now that the wheel is installed (the cargo run above skipped it:
+# the wheel did not exist yet).
+cargo test -p autobal-cli --test readme "$@" -- the_readme_python_quick_start_runs_as_printed
