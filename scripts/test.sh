@@ -70,4 +70,4 @@ AUTOBAL_BIN="$PWD/target/debug/autobal" .venv/bin/python -m pytest -q -p no:cach
 
 # The README's Python quick start, now that the wheel is installed (the cargo run above skipped it:
 # the wheel did not exist yet).
-cargo test -p autobal-cli --test readme "$@" -- the_readme_python_quick_start_runs_as_printed
+cargo test -p autobal-cli --test readme -- the_readme_python_quick_start_runs_as_printed
