@@ -1,0 +1,505 @@
+//! The general linear rotor with ball balancers ([`autobal::linear_rotor`]): the Jeffcott preset
+//! against the native planar model, the exact Jacobian against differences, the rotating-frame
+//! matrices against the formulas stated in the module docs, the two frames against each other
+//! by integration, an anisotropic rotor's periodic orbit against its closed form, the shaft
+//! builder against beam theory, and the balancer on a flexible shaft over speed.
+
+use autobal::analysis::{speed_scan, stability, stationary, Kind, NewtonOptions, ScanOptions, Stability, VectorField, Verdict};
+use autobal::linear_rotor::shaft::{Bearing, Disk, ShaftBuilder};
+use autobal::linear_rotor::{BalancerPlane, Direction, Frame, Layout, LinearRotor, LinearRotorField, Unbalance};
+use autobal::ode::{Control, Method, Options, Solver, System};
+use autobal::planar::field::PlanarField;
+use autobal::planar::PlanarRotor;
+use num_complex::Complex64;
+use std::f64::consts::PI;
+
+/// A small deterministic generator (xorshift64*), uniform in `[a, b)`.
+struct Rng(u64);
+impl Rng {
+    fn uniform(&mut self, a: f64, b: f64) -> f64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        let u = (self.0.wrapping_mul(0x2545F4914F6CDD1D) >> 11) as f64 / (1u64 << 53) as f64;
+        a + (b - a) * u
+    }
+}
+
+fn all_eigenvalues(st: &Stability) -> Vec<Complex64> {
+    st.spectrum.iter().chain(&st.structural).map(|e| e.complex()).collect()
+}
+
+/// Largest distance from each of `a` to its nearest unused member of `b` (greedy matching).
+fn spectrum_distance(a: &[Complex64], b: &[Complex64]) -> f64 {
+    assert_eq!(a.len(), b.len());
+    let mut used = vec![false; b.len()];
+    let mut worst = 0.0f64;
+    for x in a {
+        let (j, d) = b.iter().enumerate().filter(|(j, _)| !used[*j]).map(|(j, y)| (j, (x - y).norm())).min_by(|p, q| p.1.total_cmp(&q.1)).unwrap();
+        used[j] = true;
+        worst = worst.max(d);
+    }
+    worst
+}
+
+fn random_planar(rng: &mut Rng) -> PlanarRotor {
+    let n = rng.uniform(2.0, 5.0) as usize;
+    let m1 = rng.uniform(0.5, 5.0);
+    let m3 = rng.uniform(0.01, 0.1);
+    let r = rng.uniform(0.03, 0.1);
+    // the balls can cancel the unbalance: m1 s1 / (n m3 r) in (0.2, 0.8)
+    let s1 = rng.uniform(0.2, 0.8) * n as f64 * m3 * r / m1;
+    let p = PlanarRotor { m1, m2: rng.uniform(0.0, 1.0), m3, n, s1, s2: 0.0, gamma: 0.0, r, c: 0.0, c_psi: rng.uniform(0.01, 0.5), ..PlanarRotor::paper() };
+    let wn = rng.uniform(50.0, 500.0);
+    PlanarRotor { k: wn * wn * p.total_mass(), c: rng.uniform(0.02, 0.2) * 2.0 * wn * p.total_mass(), ..p }
+}
+
+/// Paper 004's rotor with its race centred, as a linear rotor, equals the native planar model
+/// (`PlanarField` at `s2 = 0`): the right-hand sides and exact Jacobians at random states agree
+/// to round-off, and the balanced state and its eigenvalues (through the analysis pipeline) to
+/// `1e-10` relative, over random parameters and speeds below and above the critical speed. The
+/// two codes share no equations (the planar one eliminates the ball accelerations from the
+/// d'Alembert equations of each body in rotor axes; this one rotates fixed-axes matrices), so
+/// round-off (`1e-16` on each term, amplified by at most the condition of the balanced QR) is
+/// the only difference; `1e-10` leaves 1e5 for that amplification.
+#[test]
+fn jeffcott_preset_equals_the_planar_model() {
+    let mut rng = Rng(0x9E3779B97F4A7C15);
+    for case in 0..12 {
+        let p = random_planar(&mut rng);
+        let omega = p.natural_frequency() * rng.uniform(0.4, 3.0);
+        let native = PlanarField::new(&p, omega).unwrap();
+        let lin = LinearRotorField::new(&LinearRotor::from_planar(&p).unwrap(), omega, Frame::Rotating).unwrap();
+        assert_eq!(native.dim(), lin.dim());
+        assert_eq!(lin.period(), None);
+        let d = lin.dim();
+        let scales = native.scales();
+        // right-hand side and Jacobian at a random state
+        let x: Vec<f64> = scales.iter().enumerate().map(|(i, s)| s * rng.uniform(-1.0, 1.0) * if i % (d / 2) < 2 { 1.0 } else { 3.0 }).collect();
+        let (mut fa, mut fb) = (vec![0.0; d], vec![0.0; d]);
+        native.rhs(0.0, &x, &mut fa);
+        lin.rhs(0.0, &x, &mut fb);
+        let (mut ja, mut jb) = (vec![0.0; d * d], vec![0.0; d * d]);
+        native.jacobian(0.0, &x, &mut ja);
+        lin.jacobian(0.0, &x, &mut jb);
+        for i in 0..d {
+            // scaled by the component's rate scale: terms of f_i are at most |J_i·| s
+            let row_scale = (0..d).map(|j| (ja[i * d + j] * scales[j]).abs()).fold(0.0, f64::max).max(scales[i]);
+            assert!((fa[i] - fb[i]).abs() <= 1e-12 * row_scale, "case {case}: f[{i}] {} vs {}", fa[i], fb[i]);
+            for j in 0..d {
+                let tol = 1e-12 * row_scale / scales[j];
+                assert!((ja[i * d + j] - jb[i * d + j]).abs() <= tol, "case {case}: J[{i}][{j}] {} vs {}", ja[i * d + j], jb[i * d + j]);
+            }
+        }
+        // the balanced state and its eigenvalues through the pipeline
+        let guess = native.semi_balanced_guess().unwrap();
+        let sa = stationary(&native, &guess, &NewtonOptions::default()).unwrap();
+        let sb = stationary(&lin, &lin.balanced_guess().unwrap(), &NewtonOptions::default()).unwrap();
+        assert_eq!(sa.family_dimension, sb.family_dimension);
+        assert_eq!(sb.family_dimension, p.n - 2);
+        for i in 0..d {
+            // ball angles are defined modulo 2π
+            let mut diff = sa.x[i] - sb.x[i];
+            if (2..2 + p.n).contains(&i) {
+                diff -= (diff / (2.0 * PI)).round() * 2.0 * PI;
+            }
+            assert!(diff.abs() <= 1e-10 * scales[i], "case {case}: x[{i}] {} vs {}", sa.x[i], sb.x[i]);
+        }
+        let (sta, stb) = (stability(&native, &sa).unwrap(), stability(&lin, &sb).unwrap());
+        let (ea, eb) = (all_eigenvalues(&sta), all_eigenvalues(&stb));
+        let dist = spectrum_distance(&ea, &eb);
+        assert!(dist <= 1e-10 * sta.rate, "case {case}: eigenvalues differ by {dist:e} (rate {})", sta.rate);
+        assert_eq!(sta.verdict, stb.verdict, "case {case}");
+    }
+}
+
+/// The stable speed range of the Jeffcott rotor with two balls, by the speed scan on each model:
+/// the same ends (bisected to `1e-9` relative; `1e-8` allows both bisections' last intervals).
+#[test]
+fn jeffcott_stable_range_equals_the_planar_models() {
+    let p = PlanarRotor { s2: 0.0, ..PlanarRotor::paper() };
+    let lin = LinearRotor::from_planar(&p).unwrap();
+    let speeds: Vec<f64> = (0..60).map(|i| 100.0 + 10.0 * i as f64).collect();
+    let a = speed_scan(|w| PlanarField::new(&p, w), |f, _| f.semi_balanced_guess(), &speeds, &ScanOptions::default()).unwrap();
+    let b = speed_scan(|w| LinearRotorField::new(&lin, w, Frame::Rotating), |f, _| f.balanced_guess(), &speeds, &ScanOptions::default()).unwrap();
+    assert_eq!(a.stable_ranges.len(), b.stable_ranges.len());
+    assert!(!a.stable_ranges.is_empty());
+    for (ra, rb) in a.stable_ranges.iter().zip(&b.stable_ranges) {
+        assert!((ra.from - rb.from).abs() <= 1e-8 * ra.from, "{} vs {}", ra.from, rb.from);
+        assert!((ra.to - rb.to).abs() <= 1e-8 * ra.to);
+    }
+    // unstable below the critical speed sqrt(k/m0) = 288 rad/s, as for the Jeffcott rotor
+    assert!(a.stable_ranges[0].from > 288.0);
+}
+
+/// A shaft on anisotropic bearings with a disk, an offset unbalance and a balancer: the exact
+/// (forward-mode) Jacobian against central differences, in both frames, at a random state and
+/// time. Central differences with step `h = 1e-6` of each component's scale have truncation
+/// error `O(h²)` and round-off `O(ε/h) ≈ 1e-10` relative: `1e-6` of the row's size is far above
+/// both and far below any error in a term.
+#[test]
+fn exact_jacobian_matches_differences() {
+    let mut b = ShaftBuilder::uniform(4, 0.8, 0.02, 2.1e11, 7800.0);
+    b.rotary_inertia = true;
+    b.gyroscopic = true;
+    b.disks.push(Disk { node: 2, mass: 3.0, id: 0.01, ip: 0.02 });
+    b.bearings.push(Bearing { node: 0, k: 1e6, c: 100.0 });
+    b.bearings.push(Bearing { node: 4, k: 1e6, c: 100.0 });
+    let mut r = b.build().unwrap();
+    let n = r.dofs();
+    r.k[n + 1] += 5e5; // node 0 y stiffer: anisotropic
+    r.unbalances.push(Unbalance { node: 2, me: 1e-4, phase: 0.3, offset: 0.02 });
+    r.balancers.push(BalancerPlane { node: 2, radius: 0.08, balls: 3, ball_mass: 0.02, drag: 0.01 });
+    assert!(!r.is_isotropic());
+    let mut rng = Rng(12345);
+    for frame in [Frame::Rotating, Frame::Fixed] {
+        let f = LinearRotorField::new(&r, 300.0, frame).unwrap();
+        let d = f.dim();
+        let s = f.scales();
+        let x: Vec<f64> = s.iter().map(|v| v * rng.uniform(-1.0, 1.0)).collect();
+        let t = 0.0037;
+        let mut jac = vec![0.0; d * d];
+        f.jacobian(t, &x, &mut jac);
+        let (mut fp, mut fm) = (vec![0.0; d], vec![0.0; d]);
+        let mut num = vec![0.0; d * d];
+        for j in 0..d {
+            let h = 1e-6 * s[j];
+            let mut xp = x.clone();
+            xp[j] += h;
+            f.rhs(t, &xp, &mut fp);
+            xp[j] -= 2.0 * h;
+            f.rhs(t, &xp, &mut fm);
+            for i in 0..d {
+                num[i * d + j] = (fp[i] - fm[i]) / (2.0 * h);
+            }
+        }
+        for i in 0..d {
+            let row = (0..d).map(|j| (num[i * d + j] * s[j]).abs()).fold(0.0, f64::max);
+            for j in 0..d {
+                assert!((jac[i * d + j] - num[i * d + j]).abs() * s[j] <= 1e-6 * row, "{frame:?}: J[{i}][{j}] {} vs {}", jac[i * d + j], num[i * d + j]);
+            }
+        }
+    }
+}
+
+/// The mass matrix `A(ψ)` is symmetric, equals the residual's dependence on the accelerations
+/// (the residual is linear in them: `A e_i = R(0) − R(e_i)`), and the residual vanishes at the
+/// computed accelerations.
+#[test]
+fn mass_matrix_and_residual_are_consistent() {
+    let mut r = ShaftBuilder::uniform(3, 0.6, 0.02, 2.1e11, 7800.0).build().unwrap();
+    r.unbalances.push(Unbalance { node: 1, me: 1e-4, phase: 0.0, offset: 0.0 });
+    r.balancers.push(BalancerPlane { node: 1, radius: 0.05, balls: 2, ball_mass: 0.03, drag: 0.02 });
+    r.balancers.push(BalancerPlane { node: 3, radius: 0.04, balls: 3, ball_mass: 0.01, drag: 0.02 });
+    let f = LinearRotorField::new(&r, 200.0, Frame::Fixed).unwrap();
+    let nc = f.coords();
+    let mut rng = Rng(7);
+    let x: Vec<f64> = f.scales().iter().map(|v| v * rng.uniform(-1.0, 1.0)).collect();
+    let t = 0.01;
+    let a = f.mass(t, &x);
+    let r0 = f.residuals(t, &x, &vec![0.0; nc]);
+    // the differences R(0) − R(e_i) cancel terms of the size of R(0): round-off ε |R(0)|
+    let big = a.iter().chain(&r0).fold(0.0f64, |s, v| s.max(v.abs()));
+    for i in 0..nc {
+        let mut e = vec![0.0; nc];
+        e[i] = 1.0;
+        let ri = f.residuals(t, &x, &e);
+        for k in 0..nc {
+            assert!((a[k * nc + i] - a[i * nc + k]).abs() <= 1e-15 * big);
+            assert!((r0[k] - ri[k] - a[k * nc + i]).abs() <= 1e-12 * big, "A[{k}][{i}]");
+        }
+    }
+    let acc = f.accelerations(t, &x).unwrap();
+    let res = f.residuals(t, &x, &acc);
+    let size = r0.iter().fold(0.0f64, |s, v| s.max(v.abs()));
+    assert!(res.iter().all(|v| v.abs() <= 1e-10 * size));
+}
+
+/// For an isotropic structure without balls the field in turning axes is the linear system of the
+/// module docs: `M p̈ + (C + ΩG + 2Ω M J) ṗ + (K − Ω² M + Ω C J + Ω² G J) p = f_r`. Its Jacobian
+/// built from those formulas equals the field's (which rotates the fixed-axes kinematics
+/// instead), to round-off.
+#[test]
+fn rotating_frame_matrices_as_stated() {
+    let mut b = ShaftBuilder::uniform(3, 0.6, 0.03, 2.1e11, 7800.0);
+    b.rotary_inertia = true;
+    b.gyroscopic = true;
+    b.disks.push(Disk { node: 1, mass: 2.0, id: 0.02, ip: 0.04 });
+    b.bearings.push(Bearing { node: 0, k: 2e6, c: 300.0 });
+    b.bearings.push(Bearing { node: 3, k: 3e6, c: 200.0 });
+    let r = b.build().unwrap();
+    assert!(r.is_isotropic());
+    let n = r.dofs();
+    let w = 400.0;
+    let f = LinearRotorField::new(&r, w, Frame::Rotating).unwrap();
+    assert_eq!(f.period(), None);
+    let mut jac = vec![0.0; 4 * n * n];
+    f.jacobian(0.0, &vec![0.0; 2 * n], &mut jac);
+    // J (block-diagonal [[0, −1], [1, 0]]) applied on the right: (X J)[i][j]
+    let xj = |x: &[f64], i: usize, j: usize| if j % 2 == 0 { x[i * n + j + 1] } else { -x[i * n + j - 1] };
+    let mut kr = vec![0.0; n * n];
+    let mut cr = vec![0.0; n * n];
+    for i in 0..n {
+        for j in 0..n {
+            kr[i * n + j] = r.k[i * n + j] - w * w * r.m[i * n + j] + w * xj(&r.c, i, j) + w * w * xj(&r.g, i, j);
+            cr[i * n + j] = r.c[i * n + j] + w * r.g[i * n + j] + 2.0 * w * xj(&r.m, i, j);
+        }
+    }
+    // M X = −[K_r | C_r] column by column, compared with the field's lower blocks times M
+    for i in 0..n {
+        for j in 0..2 * n {
+            let mx: f64 = (0..n).map(|k| r.m[i * n + k] * jac[(n + k) * 2 * n + j]).sum();
+            let want = if j < n { -kr[i * n + j] } else { -cr[i * n + j - n] };
+            let size = kr[i * n..(i + 1) * n].iter().chain(&cr[i * n..(i + 1) * n]).fold(0.0f64, |s, v| s.max(v.abs()));
+            assert!((mx - want).abs() <= 1e-9 * size, "row {i} col {j}: {mx} vs {want}");
+        }
+    }
+}
+
+/// Integrating the fixed-axes equations from a state and the turning-axes equations from the
+/// same state seen from the rotor gives the same motion (rotated back), to the integration
+/// tolerance: the two frames are one model. Four balls in two planes, anisotropic bearings.
+#[test]
+fn fixed_and_rotating_frames_agree_in_time() {
+    struct Sys<'a>(&'a LinearRotorField);
+    impl System for Sys<'_> {
+        fn dim(&self) -> usize {
+            self.0.dim()
+        }
+        fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
+            self.0.rhs(t, y, dy)
+        }
+    }
+    let mut r = LinearRotor::zeros(2, Layout::Translation);
+    let n = r.dofs();
+    for (i, (m, k)) in [(1.0, 4e4), (1.2, 5e4), (0.8, 3e4), (1.1, 6e4)].iter().enumerate() {
+        r.m[i * n + i] = *m;
+        r.k[i * n + i] = *k;
+        r.c[i * n + i] = 10.0;
+    }
+    r.k[2] = -1e4; // x0–x1 coupling
+    r.k[2 * n] = -1e4;
+    r.unbalances.push(Unbalance { node: 0, me: 2e-3, phase: 1.0, offset: 0.0 });
+    r.balancers.push(BalancerPlane { node: 0, radius: 0.05, balls: 2, ball_mass: 0.05, drag: 0.02 });
+    r.balancers.push(BalancerPlane { node: 1, radius: 0.04, balls: 2, ball_mass: 0.03, drag: 0.03 });
+    let w = 250.0;
+    let rot = LinearRotorField::new(&r, w, Frame::Rotating).unwrap();
+    let fix = LinearRotorField::new(&r, w, Frame::Fixed).unwrap();
+    assert_eq!(rot.period(), Some(PI / w));
+    assert_eq!(fix.period(), Some(2.0 * PI / w));
+    let mut rng = Rng(99);
+    let x0: Vec<f64> = rot.scales().iter().map(|v| v * rng.uniform(-1.0, 1.0)).collect();
+    let t_end = 3.0 * 2.0 * PI / w;
+    let integrate = |f: &LinearRotorField, y: &mut Vec<f64>| {
+        let opts = Options::new(1e-11, 1e-13).method(Method::Dop853);
+        let sys = Sys(f);
+        let mut s = Solver::new(&sys, opts).unwrap();
+        assert!(s.integrate(0.0, y, t_end, |_| Control::Continue).status.is_completed());
+    };
+    let mut yr = x0.clone();
+    integrate(&rot, &mut yr);
+    let mut yf = rot.rotating_to_fixed(0.0, &x0);
+    integrate(&fix, &mut yf);
+    let back = rot.rotating_to_fixed(t_end, &yr);
+    let s = rot.scales();
+    for i in 0..yf.len() {
+        // 1e-11 relative integration error over 3 revolutions, times a growth of O(10)
+        assert!((back[i] - yf[i]).abs() <= 1e-8 * s[i], "{}: {} vs {}", rot.component_name(i), back[i], yf[i]);
+    }
+}
+
+/// A Jeffcott rotor on anisotropic supports without balls: in turning axes its field is periodic
+/// with `π/Ω`, and the periodic orbit the pipeline finds by shooting is the closed-form unbalance
+/// response `x = Re(X e^{iΩt})`, `X = m e Ω²/(k_x − mΩ² + i cΩ)`, `y = Re(−i m e Ω² e^{iΩt}/(k_y − mΩ² + i cΩ))`
+/// seen from the rotor at `t = 0` (`p = q`, `ṗ = q̇ − Ω J q`), to the shooting's `1e-10`.
+#[test]
+fn anisotropic_supports_give_the_closed_form_orbit() {
+    let (m, kx, ky, c, me, w) = (2.0, 8e4, 1.2e5, 30.0, 1e-3, 230.0);
+    let mut r = LinearRotor::zeros(1, Layout::Translation);
+    r.m = vec![m, 0.0, 0.0, m];
+    r.k = vec![kx, 0.0, 0.0, ky];
+    r.c = vec![c, 0.0, 0.0, c];
+    r.unbalances.push(Unbalance { node: 0, me, phase: 0.0, offset: 0.0 });
+    let f = LinearRotorField::new(&r, w, Frame::Rotating).unwrap();
+    assert_eq!(f.period(), Some(PI / w));
+    let s = stationary(&f, &[0.0; 4], &NewtonOptions::default()).unwrap();
+    let i = Complex64::i();
+    let xa = me * w * w / (kx - m * w * w + i * c * w);
+    let ya = -i * me * w * w / (ky - m * w * w + i * c * w);
+    let q = [xa.re, ya.re];
+    let qd = [(i * w * xa).re, (i * w * ya).re];
+    let want = [q[0], q[1], qd[0] + w * q[1], qd[1] - w * q[0]];
+    let l = xa.norm().max(ya.norm());
+    for k in 0..4 {
+        let scale = if k < 2 { l } else { l * w };
+        assert!((s.x[k] - want[k]).abs() <= 1e-9 * scale, "x[{k}] {} vs {}", s.x[k], want[k]);
+    }
+    let st = stability(&f, &s).unwrap();
+    assert_eq!(st.kind, Kind::PeriodicOrbit);
+    assert_eq!(st.verdict, Verdict::Stable);
+}
+
+fn ss_first_frequencies(elements: usize) -> (Vec<f64>, f64) {
+    let (l, d, e, rho) = (1.2, 0.04, 2.1e11, 7800.0);
+    let r = ShaftBuilder::uniform(elements, l, d, e, rho).build().unwrap();
+    let last = elements;
+    let fixed = [r.dof(0, Direction::X).unwrap(), r.dof(0, Direction::Y).unwrap(), r.dof(last, Direction::X).unwrap(), r.dof(last, Direction::Y).unwrap()];
+    let w = r.natural_frequencies(&fixed, false).unwrap();
+    let (a, i) = (PI * d * d / 4.0, PI * d.powi(4) / 64.0);
+    (w, (e * i / (rho * a)).sqrt() / (l * l))
+}
+
+/// A simply supported uniform Euler–Bernoulli shaft: `ω_k = (kπ/L)² sqrt(EI/(ρA))`, each twice
+/// (the `x–z` and `y–z` planes). The consistent-mass element converges as `h⁴`: the first mode's
+/// error with 20 elements is below `1e-4` (observed ≈ 4e-7) and the observed order between 5, 10
+/// and 20 elements is 4 (within 0.2).
+#[test]
+fn simply_supported_shaft_frequencies() {
+    let mut errs = vec![];
+    for ne in [5, 10, 20] {
+        let (w, unit) = ss_first_frequencies(ne);
+        // the two planes give equal frequencies
+        assert!((w[0] - w[1]).abs() <= 1e-9 * w[0]);
+        let e1 = (w[0] / (PI * PI * unit) - 1.0).abs();
+        let e2 = (w[2] / (4.0 * PI * PI * unit) - 1.0).abs();
+        errs.push(e1);
+        if ne == 20 {
+            assert!(e1 < 1e-4, "first mode error {e1:e}");
+            assert!(e2 < 1e-3, "second mode error {e2:e}");
+        }
+    }
+    for k in 0..2 {
+        let order = (errs[k] / errs[k + 1]).log2();
+        assert!((order - 4.0).abs() < 0.2, "observed order {order} from errors {errs:?}");
+    }
+}
+
+/// A free-free uniform beam: four rigid-body modes (two per plane) at zero, then the first elastic
+/// frequency `(β1 L)² sqrt(EI/(ρ A L⁴))`, `β1 L = 4.730040745`, twice; to `1e-4` with 20 elements.
+#[test]
+fn free_free_beam_frequencies() {
+    let (l, d, e, rho) = (1.0, 0.05, 7e10, 2700.0);
+    let r = ShaftBuilder::uniform(20, l, d, e, rho).build().unwrap();
+    let w = r.natural_frequencies(&[], false).unwrap();
+    let (a, i) = (PI * d * d / 4.0, PI * d.powi(4) / 64.0);
+    let w1 = 4.730040744862704f64.powi(2) * (e * i / (rho * a * l.powi(4))).sqrt();
+    for z in &w[..4] {
+        assert!(*z < 1e-5 * w1, "rigid-body mode at {z}");
+    }
+    for k in [4, 5] {
+        assert!((w[k] / w1 - 1.0).abs() < 1e-4, "{} vs {w1}", w[k]);
+    }
+    let w2 = 7.853204624095838f64.powi(2) * (e * i / (rho * a * l.powi(4))).sqrt();
+    assert!((w[6] / w2 - 1.0).abs() < 1e-3);
+}
+
+/// A flexible shaft with a disk at mid-span carrying a two-ball balancer and the unbalance: the
+/// balanced state (node at rest on the axis in turning axes) over speed by the pipeline's speed
+/// scan. As for the Jeffcott rotor, it is unstable below the first critical speed (the first
+/// bending frequency of the shaft with the balls' mass, `ω1`) and becomes stable a little above
+/// it.
+#[test]
+fn balancer_on_a_flexible_shaft_over_speed() {
+    let mut b = ShaftBuilder::uniform(6, 0.9, 0.025, 2.1e11, 7800.0);
+    b.disks.push(Disk { node: 3, mass: 6.0, id: 0.03, ip: 0.06 });
+    b.bearings.push(Bearing { node: 0, k: 5e6, c: 2000.0 });
+    b.bearings.push(Bearing { node: 6, k: 5e6, c: 2000.0 });
+    b.rotary_inertia = true;
+    b.gyroscopic = true;
+    let mut r = b.build().unwrap();
+    let n = r.dofs();
+    // light external damping at the disk (air), so that the mode above the critical speed decays
+    for d in [12, 13] {
+        r.c[d * n + d] += 20.0;
+    }
+    r.unbalances.push(Unbalance { node: 3, me: 2e-4, phase: 0.0, offset: 0.0 });
+    r.balancers.push(BalancerPlane { node: 3, radius: 0.1, balls: 2, ball_mass: 0.04, drag: 0.05 });
+    let w1 = r.natural_frequencies(&[], true).unwrap()[0];
+    let speeds: Vec<f64> = (0..30).map(|i| w1 * (0.3 + 0.05 * i as f64)).collect();
+    let scan = speed_scan(|w| LinearRotorField::new(&r, w, Frame::Rotating), |f, _| f.balanced_guess(), &speeds, &ScanOptions::default()).unwrap();
+    for p in &scan.points {
+        let st = p.state.as_ref().expect("the balanced state exists at every speed");
+        assert!(st.x[12].hypot(st.x[13]) < 1e-12, "node 3 on the axis");
+        if p.omega < w1 {
+            assert_eq!(p.stability.as_ref().unwrap().verdict, Verdict::Unstable, "Ω = {} below ω1 = {w1}", p.omega);
+        }
+    }
+    let first = scan.stable_ranges.first().expect("a stable range above the critical speed");
+    // 1.39 ω1 here; the Jeffcott rotor of the same disk, balls and damping ratio starts at 1.43
+    assert!(first.from_is_boundary && first.from > w1 && first.from < 1.6 * w1, "stable from {} (ω1 = {w1})", first.from);
+}
+
+/// The flexible shaft in its Jeffcott limit: a nearly massless shaft (density `1e-4` of steel's:
+/// shaft mass `5.7e-5` of the disk's) on stiff undamped bearings with the disk, balancer and
+/// unbalance at mid-span is the planar rotor with `m1` the disk, `k = 1/(1/k_s + 1/(2 k_b))`
+/// (`k_s = 48 EI/L³`: cubic elements give the static deflection under nodal loads exactly) and
+/// the disk's share `α m_disk` of the damping `αM`. The stable range's lower end agrees to `2e-4`
+/// relative (observed 2.3e-5: the shaft's residual mass shifts it by about its mass ratio).
+#[test]
+fn flexible_shaft_tends_to_the_jeffcott_rotor() {
+    let (l, d, e) = (0.9, 0.025, 2.1e11);
+    let mut b = ShaftBuilder::uniform(6, l, d, e, 0.78);
+    b.disks.push(Disk { node: 3, mass: 6.0, id: 0.03, ip: 0.06 });
+    let kb = 1e8;
+    b.bearings.push(Bearing { node: 0, k: kb, c: 0.0 });
+    b.bearings.push(Bearing { node: 6, k: kb, c: 0.0 });
+    let mut r = b.build().unwrap();
+    // mass-proportional damping αM: every undamped mode decays at α/2 (without damping the
+    // shaft's and the disk's tilt modes are neutral), and the disk's translation gets α m_disk:
+    // the Jeffcott rotor's external damping c = α m_disk (plus α times the shaft's mass, 6e-5 of it)
+    let alpha = 20.0 / 6.0;
+    for (cv, mv) in r.c.iter_mut().zip(&r.m) {
+        *cv += alpha * mv;
+    }
+    let me = 2e-4;
+    r.unbalances.push(Unbalance { node: 3, me, phase: 0.0, offset: 0.0 });
+    r.balancers.push(BalancerPlane { node: 3, radius: 0.1, balls: 2, ball_mass: 0.04, drag: 0.05 });
+    let ks = 48.0 * e * (PI * d.powi(4) / 64.0) / l.powi(3);
+    let k = 1.0 / (1.0 / ks + 1.0 / (2.0 * kb));
+    let c = alpha * 6.0;
+    let p = PlanarRotor { m1: 6.0, m2: 0.0, m3: 0.04, n: 2, s1: me / 6.0, s2: 0.0, gamma: 0.0, r: 0.1, k, c, c_psi: 0.05, ..PlanarRotor::paper() };
+    let wn = p.natural_frequency();
+    let speeds: Vec<f64> = (0..20).map(|i| wn * (0.5 + 0.1 * i as f64)).collect();
+    let a = speed_scan(|w| PlanarField::new(&p, w), |f, _| f.semi_balanced_guess(), &speeds, &ScanOptions::default()).unwrap();
+    let s = speed_scan(|w| LinearRotorField::new(&r, w, Frame::Rotating), |f, _| f.balanced_guess(), &speeds, &ScanOptions::default()).unwrap();
+    let (fa, fs) = (a.stable_ranges[0].from, s.stable_ranges[0].from);
+    assert!((fa - fs).abs() <= 2e-4 * fa, "Jeffcott {fa} vs shaft {fs}");
+}
+
+/// Bad input gives a typed error naming the field.
+#[test]
+fn invalid_models_name_the_field() {
+    let good = LinearRotor::jeffcott(1.0, 1e4, 1.0, 1e-4, BalancerPlane { node: 0, radius: 0.05, balls: 2, ball_mass: 0.01, drag: 0.01 });
+    good.validate().unwrap();
+    let field_of = |r: &LinearRotor| r.validate().unwrap_err().field().unwrap().to_string();
+    let mut r = good.clone();
+    r.m[1] = 0.1;
+    assert_eq!(field_of(&r), "linear_rotor.m[1,0]");
+    let mut r = good.clone();
+    r.m[3] = -1.0;
+    assert_eq!(field_of(&r), "linear_rotor.m");
+    let mut r = good.clone();
+    r.g[1] = 0.1;
+    assert_eq!(field_of(&r), "linear_rotor.g[1,0]");
+    let mut r = good.clone();
+    r.k[2] = f64::NAN;
+    assert_eq!(field_of(&r), "linear_rotor.k[1,0]");
+    let mut r = good.clone();
+    r.k.pop();
+    assert_eq!(field_of(&r), "linear_rotor.k");
+    let mut r = good.clone();
+    r.balancers[0].radius = 0.0;
+    assert_eq!(field_of(&r), "linear_rotor.balancers[0].radius");
+    let mut r = good.clone();
+    r.balancers[0].node = 1;
+    assert_eq!(field_of(&r), "linear_rotor.balancers[0].node");
+    let mut r = good.clone();
+    r.unbalances[0].offset = 0.1;
+    assert_eq!(field_of(&r), "linear_rotor.unbalances[0].offset");
+    let p = PlanarRotor::paper();
+    assert_eq!(LinearRotor::from_planar(&p).unwrap_err().field(), Some("planar.s2"));
+    let mut s = ShaftBuilder::uniform(2, 1.0, 0.02, 2e11, 7800.0);
+    s.disks.push(Disk { node: 5, mass: 1.0, id: 0.0, ip: 0.0 });
+    assert_eq!(s.build().unwrap_err().field(), Some("shaft.disks[0].node"));
+    assert!(LinearRotorField::new(&good, f64::NAN, Frame::Rotating).is_err());
+}
