@@ -236,7 +236,7 @@ fn rotating_frame_matrices_as_stated() {
     let mut jac = vec![0.0; 4 * n * n];
     f.jacobian(0.0, &vec![0.0; 2 * n], &mut jac);
     // J (block-diagonal [[0, −1], [1, 0]]) applied on the right: (X J)[i][j]
-    let xj = |x: &[f64], i: usize, j: usize| if j % 2 == 0 { x[i * n + j + 1] } else { -x[i * n + j - 1] };
+    let xj = |x: &[f64], i: usize, j: usize| if j.is_multiple_of(2) { x[i * n + j + 1] } else { -x[i * n + j - 1] };
     let mut kr = vec![0.0; n * n];
     let mut cr = vec![0.0; n * n];
     for i in 0..n {

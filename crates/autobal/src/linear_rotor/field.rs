@@ -294,10 +294,10 @@ impl LinearRotorField {
             return None;
         }
         let phase = if need.norm() > 0.0 { need.arg() } else { 0.0 };
-        let cos_phi = if nb % 2 == 0 { ratio / nb as f64 } else { (ratio - 1.0) / (nb - 1) as f64 };
+        let cos_phi = if nb.is_multiple_of(2) { ratio / nb as f64 } else { (ratio - 1.0) / (nb - 1) as f64 };
         let phi = cos_phi.clamp(-1.0, 1.0).acos();
         let mut psi = vec![];
-        if nb % 2 == 1 {
+        if !nb.is_multiple_of(2) {
             psi.push(phase);
         }
         for _ in 0..nb / 2 {
@@ -327,7 +327,7 @@ impl LinearRotorField {
         for i in 0..n {
             for j in 0..n {
                 // (D J)_{ij}: column j of D J is D times column j of J
-                let dj = if j % 2 == 0 { self.d[i * n + j + 1] } else { -self.d[i * n + j - 1] };
+                let dj = if j.is_multiple_of(2) { self.d[i * n + j + 1] } else { -self.d[i * n + j - 1] };
                 a[i * n + j] = r.k[i * n + j] - w * w * (r.m[i * n + j] + mb[i * n + j]) + w * dj;
             }
         }

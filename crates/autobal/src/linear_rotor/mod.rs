@@ -66,7 +66,7 @@
 //! equilibrium of this form ([`Frame::Rotating`]). **Anisotropic** structure: the part of a 2×2
 //! block that anticommutes with `J` turns as `e^{±2iφ}` under `R(φ)ᵀ · R(φ)`, so the field is
 //! periodic with period `π/Ω` (the unbalance and the ball terms are constant in these axes).
-//! [`field::LinearRotorField::period`] returns `π/Ω`, the least period (`2π/Ω` is also one).
+//! [`LinearRotorField`]'s `period()` ([`crate::analysis::VectorField::period`]) returns `π/Ω`, the least period (`2π/Ω` is also one).
 //!
 //! # The equations as solved
 //! Both frames share one residual (generalised forces minus inertia forces), with frame rate
@@ -277,7 +277,7 @@ impl LinearRotor {
         }
         for (name, a) in [("m", &self.m), ("c", &self.c), ("g", &self.g), ("k", &self.k)] {
             if a.len() != n * n {
-                return Err(Error::invalid(&format!("linear_rotor.{name}"), format!("has {} entries, N² = {} for N = {n} DOFs", a.len(), n * n)));
+                return Err(Error::invalid(format!("linear_rotor.{name}"), format!("has {} entries, N² = {} for N = {n} DOFs", a.len(), n * n)));
             }
             for (i, v) in a.iter().enumerate() {
                 finite(&format!("linear_rotor.{name}[{},{}]", i / n, i % n), *v)?;
@@ -288,12 +288,12 @@ impl LinearRotor {
         for i in 0..n {
             for j in 0..i {
                 if (self.m[i * n + j] - self.m[j * n + i]).abs() > 1e-12 * sm {
-                    return Err(Error::invalid(&format!("linear_rotor.m[{i},{j}]"), format!("must equal m[{j},{i}] (M symmetric)")));
+                    return Err(Error::invalid(format!("linear_rotor.m[{i},{j}]"), format!("must equal m[{j},{i}] (M symmetric)")));
                 }
             }
             for j in 0..=i {
                 if (self.g[i * n + j] + self.g[j * n + i]).abs() > 1e-12 * sg {
-                    return Err(Error::invalid(&format!("linear_rotor.g[{i},{j}]"), format!("must equal −g[{j},{i}] (G skew)")));
+                    return Err(Error::invalid(format!("linear_rotor.g[{i},{j}]"), format!("must equal −g[{j},{i}] (G skew)")));
                 }
             }
         }
@@ -303,25 +303,25 @@ impl LinearRotor {
         for (i, u) in self.unbalances.iter().enumerate() {
             let f = |s: &str| format!("linear_rotor.unbalances[{i}].{s}");
             if u.node >= self.nodes {
-                return Err(Error::invalid(&f("node"), format!("{} is not a node (0..{})", u.node, self.nodes)));
+                return Err(Error::invalid(f("node"), format!("{} is not a node (0..{})", u.node, self.nodes)));
             }
             finite(&f("me"), u.me)?;
             finite(&f("phase"), u.phase)?;
             finite(&f("offset"), u.offset)?;
             if u.offset != 0.0 && self.layout == Layout::Translation {
-                return Err(Error::invalid(&f("offset"), "an axial offset needs the tilt DOFs (layout x, y, α, β)"));
+                return Err(Error::invalid(f("offset"), "an axial offset needs the tilt DOFs (layout x, y, α, β)"));
             }
         }
         for (i, b) in self.balancers.iter().enumerate() {
             let f = |s: &str| format!("linear_rotor.balancers[{i}].{s}");
             if b.node >= self.nodes {
-                return Err(Error::invalid(&f("node"), format!("{} is not a node (0..{})", b.node, self.nodes)));
+                return Err(Error::invalid(f("node"), format!("{} is not a node (0..{})", b.node, self.nodes)));
             }
             positive(&f("radius"), b.radius)?;
             positive(&f("ball_mass"), b.ball_mass)?;
             non_negative(&f("drag"), b.drag)?;
             if b.balls == 0 {
-                return Err(Error::invalid(&f("balls"), "must be at least 1"));
+                return Err(Error::invalid(f("balls"), "must be at least 1"));
             }
             if b.balls > crate::planar::MAX_BALLS {
                 return Err(Error::TooLarge { what: f("balls"), size: b.balls as u64, limit: crate::planar::MAX_BALLS as u64, reason: String::new() });
