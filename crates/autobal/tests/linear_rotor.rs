@@ -149,7 +149,7 @@ fn exact_jacobian_matches_differences() {
     let n = r.dofs();
     r.k[n + 1] += 5e5; // node 0 y stiffer: anisotropic
     r.unbalances.push(Unbalance { node: 2, me: 1e-4, phase: 0.3, offset: 0.02 });
-    r.balancers.push(BalancerPlane { node: 2, radius: 0.08, balls: 3, ball_mass: 0.02, drag: 0.01 });
+    r.balancers.push(BalancerPlane { node: 2, radius: 0.08, balls: 3, ball_mass: 0.02, drag: 0.01, offset: 0.03 });
     assert!(!r.is_isotropic());
     let mut rng = Rng(12345);
     for frame in [Frame::Rotating, Frame::Fixed] {
@@ -189,8 +189,8 @@ fn exact_jacobian_matches_differences() {
 fn mass_matrix_and_residual_are_consistent() {
     let mut r = ShaftBuilder::uniform(3, 0.6, 0.02, 2.1e11, 7800.0).build().unwrap();
     r.unbalances.push(Unbalance { node: 1, me: 1e-4, phase: 0.0, offset: 0.0 });
-    r.balancers.push(BalancerPlane { node: 1, radius: 0.05, balls: 2, ball_mass: 0.03, drag: 0.02 });
-    r.balancers.push(BalancerPlane { node: 3, radius: 0.04, balls: 3, ball_mass: 0.01, drag: 0.02 });
+    r.balancers.push(BalancerPlane { node: 1, radius: 0.05, balls: 2, ball_mass: 0.03, drag: 0.02, offset: 0.0 });
+    r.balancers.push(BalancerPlane { node: 3, radius: 0.04, balls: 3, ball_mass: 0.01, drag: 0.02, offset: -0.02 });
     let f = LinearRotorField::new(&r, 200.0, Frame::Fixed).unwrap();
     let nc = f.coords();
     let mut rng = Rng(7);
@@ -280,8 +280,8 @@ fn fixed_and_rotating_frames_agree_in_time() {
     r.k[2] = -1e4; // x0–x1 coupling
     r.k[2 * n] = -1e4;
     r.unbalances.push(Unbalance { node: 0, me: 2e-3, phase: 1.0, offset: 0.0 });
-    r.balancers.push(BalancerPlane { node: 0, radius: 0.05, balls: 2, ball_mass: 0.05, drag: 0.02 });
-    r.balancers.push(BalancerPlane { node: 1, radius: 0.04, balls: 2, ball_mass: 0.03, drag: 0.03 });
+    r.balancers.push(BalancerPlane { node: 0, radius: 0.05, balls: 2, ball_mass: 0.05, drag: 0.02, offset: 0.0 });
+    r.balancers.push(BalancerPlane { node: 1, radius: 0.04, balls: 2, ball_mass: 0.03, drag: 0.03, offset: 0.0 });
     let w = 250.0;
     let rot = LinearRotorField::new(&r, w, Frame::Rotating).unwrap();
     let fix = LinearRotorField::new(&r, w, Frame::Fixed).unwrap();
@@ -413,7 +413,7 @@ fn balancer_on_a_flexible_shaft_over_speed() {
         r.c[d * n + d] += 20.0;
     }
     r.unbalances.push(Unbalance { node: 3, me: 2e-4, phase: 0.0, offset: 0.0 });
-    r.balancers.push(BalancerPlane { node: 3, radius: 0.1, balls: 2, ball_mass: 0.04, drag: 0.05 });
+    r.balancers.push(BalancerPlane { node: 3, radius: 0.1, balls: 2, ball_mass: 0.04, drag: 0.05, offset: 0.0 });
     let w1 = r.natural_frequencies(&[], true).unwrap()[0];
     let speeds: Vec<f64> = (0..30).map(|i| w1 * (0.3 + 0.05 * i as f64)).collect();
     let scan = speed_scan(|w| LinearRotorField::new(&r, w, Frame::Rotating), |f, _| f.balanced_guess(), &speeds, &ScanOptions::default()).unwrap();
@@ -453,7 +453,7 @@ fn flexible_shaft_tends_to_the_jeffcott_rotor() {
     }
     let me = 2e-4;
     r.unbalances.push(Unbalance { node: 3, me, phase: 0.0, offset: 0.0 });
-    r.balancers.push(BalancerPlane { node: 3, radius: 0.1, balls: 2, ball_mass: 0.04, drag: 0.05 });
+    r.balancers.push(BalancerPlane { node: 3, radius: 0.1, balls: 2, ball_mass: 0.04, drag: 0.05, offset: 0.0 });
     let ks = 48.0 * e * (PI * d.powi(4) / 64.0) / l.powi(3);
     let k = 1.0 / (1.0 / ks + 1.0 / (2.0 * kb));
     let c = alpha * 6.0;
@@ -469,7 +469,7 @@ fn flexible_shaft_tends_to_the_jeffcott_rotor() {
 /// Bad input gives a typed error naming the field.
 #[test]
 fn invalid_models_name_the_field() {
-    let good = LinearRotor::jeffcott(1.0, 1e4, 1.0, 1e-4, BalancerPlane { node: 0, radius: 0.05, balls: 2, ball_mass: 0.01, drag: 0.01 });
+    let good = LinearRotor::jeffcott(1.0, 1e4, 1.0, 1e-4, BalancerPlane { node: 0, radius: 0.05, balls: 2, ball_mass: 0.01, drag: 0.01, offset: 0.0 });
     good.validate().unwrap();
     let field_of = |r: &LinearRotor| r.validate().unwrap_err().field().unwrap().to_string();
     let mut r = good.clone();
@@ -493,6 +493,9 @@ fn invalid_models_name_the_field() {
     let mut r = good.clone();
     r.balancers[0].node = 1;
     assert_eq!(field_of(&r), "linear_rotor.balancers[0].node");
+    let mut r = good.clone();
+    r.balancers[0].offset = 0.1;
+    assert_eq!(field_of(&r), "linear_rotor.balancers[0].offset");
     let mut r = good.clone();
     r.unbalances[0].offset = 0.1;
     assert_eq!(field_of(&r), "linear_rotor.unbalances[0].offset");

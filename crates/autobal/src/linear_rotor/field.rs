@@ -6,7 +6,7 @@
 //! use autobal::analysis::{stability, stationary, NewtonOptions, Verdict};
 //! use autobal::linear_rotor::{BalancerPlane, Frame, LinearRotor, LinearRotorField};
 //! // a Jeffcott rotor, ω_n = 100 rad/s, balanced at 150 rad/s by two balls
-//! let b = BalancerPlane { node: 0, radius: 0.05, balls: 2, ball_mass: 0.02, drag: 0.01 };
+//! let b = BalancerPlane { node: 0, radius: 0.05, balls: 2, ball_mass: 0.02, drag: 0.01, offset: 0.0 };
 //! let rotor = LinearRotor::jeffcott(1.0, 1e4 * 1.04, 20.0, 1e-3, b);
 //! let f = LinearRotorField::new(&rotor, 150.0, Frame::Rotating).unwrap();
 //! let s = stationary(&f, &f.balanced_guess().unwrap(), &NewtonOptions::default()).unwrap();
@@ -34,14 +34,17 @@ pub enum Frame {
 /// Directions seeded per forward-mode pass of the Jacobian.
 const SEEDS: usize = 8;
 
-/// One ball: its plane's node DOFs `(x, y)`, race radius, mass, drag.
+/// One ball: its plane's node DOFs `(x, y)` and `(α, β)` (where the layout has them), race
+/// radius, mass, drag, axial offset of the race plane.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Ball {
     ix: usize,
     iy: usize,
+    tilt: Option<(usize, usize)>,
     r: f64,
     m: f64,
     drag: f64,
+    z: f64,
 }
 
 /// The linear rotor at constant speed `Ω` in a [`Frame`] (module docs of [`crate::linear_rotor`]).
@@ -72,8 +75,9 @@ impl LinearRotorField {
         for b in &rotor.balancers {
             let (ix, iy) = (rotor.dof(b.node, super::Direction::X), rotor.dof(b.node, super::Direction::Y));
             let (Some(ix), Some(iy)) = (ix, iy) else { return Err(Error::invalid("linear_rotor.balancers.node", "has no x, y DOFs")) };
+            let tilt = rotor.dof(b.node, super::Direction::Alpha).zip(rotor.dof(b.node, super::Direction::Beta));
             for _ in 0..b.balls {
-                balls.push(Ball { ix, iy, r: b.radius, m: b.ball_mass, drag: b.drag });
+                balls.push(Ball { ix, iy, tilt, r: b.radius, m: b.ball_mass, drag: b.drag, z: b.offset });
             }
         }
         let d = rotor.c.iter().zip(&rotor.g).map(|(c, g)| c + omega * g).collect();
@@ -200,11 +204,38 @@ impl LinearRotorField {
             let rate = psid + w;
             let w2 = rate * rate;
             let pdd = acc[n + g];
-            let ax = a[b.ix] + (s * pdd + c * w2) * (-b.r);
-            let ay = a[b.iy] + (c * pdd - s * w2) * b.r;
+            let mr2 = b.m * b.r * b.r;
+            // the race centre's acceleration a_u − z J ω̇ (J (a, b) = (−b, a))
+            let (mut ax, mut ay) = (a[b.ix], a[b.iy]);
+            if let Some((ia, ib)) = b.tilt {
+                ax = ax + a[ib] * b.z;
+                ay = ay - a[ia] * b.z;
+            }
+            let ax = ax + (s * pdd + c * w2) * (-b.r);
+            let ay = ay + (c * pdd - s * w2) * b.r;
             out[b.ix] = out[b.ix] - ax * b.m;
             out[b.iy] = out[b.iy] - ay * b.m;
             out[n + g] = psid * (-b.drag) - (c * ay - s * ax) * (b.m * b.r);
+            if let Some((ia, ib)) = b.tilt {
+                // generalised inertia on the tilts through the offset: z J F, F = m a_j
+                out[ia] = out[ia] + ay * (b.m * b.z);
+                out[ib] = out[ib] - ax * (b.m * b.z);
+                // the balls' tilt inertia (module docs): τ = (α, β), ω = τ̇, ω̇ the absolute
+                // rates and accelerations in the frame's components; e = (c, s), e⊥ = (−s, c)
+                let (ta, tb) = (p[ia], p[ib]);
+                let (oa, ob) = (v[ia], v[ib]);
+                let (da, db) = (a[ia], a[ib]);
+                let sigma = oa * s - ob * c;
+                let o_e = oa * c + ob * s;
+                let sigma_dot = (da * s - db * c) + rate * o_e;
+                // I = −mR² (σ̇ e⊥ − θ̇ σ e) − ½ mR² θ̈ J τ − mR² θ̇ J ω
+                let ia_x = (sigma_dot * s + rate * sigma * c) * mr2 + tb * (0.5 * mr2 * pdd) + rate * ob * mr2;
+                let ia_y = (sigma_dot * (-c) + rate * sigma * s) * mr2 - ta * (0.5 * mr2 * pdd) - rate * oa * mr2;
+                out[ia] = out[ia] - ia_x;
+                out[ib] = out[ib] - ia_y;
+                // ball: ½ mR² (ω̇ × τ) − mR² σ (ω·e)
+                out[n + g] = out[n + g] - (da * tb - db * ta) * (0.5 * mr2) + sigma * o_e * mr2;
+            }
         }
     }
 
@@ -220,13 +251,36 @@ impl LinearRotorField {
         for (g, b) in self.balls.iter().enumerate() {
             let (s, c) = (x[n + g] + chi).sin_cos();
             let j = n + g;
-            a[b.ix * nc + b.ix] += b.m;
-            a[b.iy * nc + b.iy] += b.m;
-            a[b.ix * nc + j] = -b.m * b.r * s;
-            a[j * nc + b.ix] = -b.m * b.r * s;
-            a[b.iy * nc + j] = b.m * b.r * c;
-            a[j * nc + b.iy] = b.m * b.r * c;
-            a[j * nc + j] = b.m * b.r * b.r;
+            let mr2 = b.m * b.r * b.r;
+            // race centre (x + z β, y − z α): rows of P
+            let mut px = vec![(b.ix, 1.0)];
+            let mut py = vec![(b.iy, 1.0)];
+            if let Some((ia, ib)) = b.tilt {
+                px.push((ib, b.z));
+                py.push((ia, -b.z));
+            }
+            for (row, e) in [(&px, -b.m * b.r * s), (&py, b.m * b.r * c)] {
+                for &(i, ci) in row.iter() {
+                    for &(k, ck) in row.iter() {
+                        a[i * nc + k] += b.m * ci * ck;
+                    }
+                    a[i * nc + j] += ci * e;
+                    a[j * nc + i] += ci * e;
+                }
+            }
+            a[j * nc + j] += mr2;
+            if let Some((ia, ib)) = b.tilt {
+                // mR² e⊥ e⊥ᵀ on the tilts, −½ mR² J τ between the tilts and the ball
+                a[ia * nc + ia] += mr2 * s * s;
+                a[ia * nc + ib] -= mr2 * s * c;
+                a[ib * nc + ia] -= mr2 * s * c;
+                a[ib * nc + ib] += mr2 * c * c;
+                let (ta, tb) = (x[ia], x[ib]);
+                a[ia * nc + j] += 0.5 * mr2 * tb;
+                a[j * nc + ia] += 0.5 * mr2 * tb;
+                a[ib * nc + j] -= 0.5 * mr2 * ta;
+                a[j * nc + ib] -= 0.5 * mr2 * ta;
+            }
         }
         a
     }
@@ -322,6 +376,10 @@ impl LinearRotorField {
         let (ix, iy) = (self.balls[0].ix, self.balls[0].iy);
         f[ix] += ball_f.re;
         f[iy] += ball_f.im;
+        if let Some((ia, ib)) = self.balls[0].tilt {
+            f[ia] -= b.offset * ball_f.im;
+            f[ib] += b.offset * ball_f.re;
+        }
         let mb = r.ball_mass_matrix();
         let mut a = vec![0.0; n * n];
         for i in 0..n {

@@ -178,6 +178,9 @@ pub struct BalancerPlane {
     pub ball_mass: f64,
     /// Drag per ball `c_b` (N·m·s).
     pub drag: f64,
+    /// Axial offset `z` of the race plane from the node (m): the race centre is at
+    /// `(x + z β, y − z α)`; nonzero needs [`Layout::TranslationTilt`].
+    pub offset: f64,
 }
 
 /// The structural model `M q̈ + (C + Ω G) q̇ + K q = f` in fixed axes with its unbalances and
@@ -222,7 +225,7 @@ impl LinearRotor {
             r.c[i * 3] = c;
         }
         r.unbalances.push(Unbalance { node: 0, me, phase: 0.0, offset: 0.0 });
-        r.balancers.push(BalancerPlane { node: 0, ..balancer });
+        r.balancers.push(BalancerPlane { node: 0, offset: 0.0, ..balancer });
         r
     }
 
@@ -240,7 +243,13 @@ impl LinearRotor {
         if p.balls.is_active() {
             return Err(Error::invalid("planar.balls", "real balls (contact, rolling resistance) are not modelled on the linear rotor"));
         }
-        Ok(LinearRotor::jeffcott(p.m1 + p.m2, p.k, p.c, p.m1 * p.s1, BalancerPlane { node: 0, radius: p.r, balls: p.n, ball_mass: p.m3, drag: p.c_psi }))
+        Ok(LinearRotor::jeffcott(
+            p.m1 + p.m2,
+            p.k,
+            p.c,
+            p.m1 * p.s1,
+            BalancerPlane { node: 0, radius: p.r, balls: p.n, ball_mass: p.m3, drag: p.c_psi, offset: 0.0 },
+        ))
     }
 
     /// Number of structural DOFs `N`.
@@ -320,6 +329,10 @@ impl LinearRotor {
             positive(&f("radius"), b.radius)?;
             positive(&f("ball_mass"), b.ball_mass)?;
             non_negative(&f("drag"), b.drag)?;
+            finite(&f("offset"), b.offset)?;
+            if b.offset != 0.0 && self.layout == Layout::Translation {
+                return Err(Error::invalid(f("offset"), "an axial offset needs the tilt DOFs (layout x, y, α, β)"));
+            }
             if b.balls == 0 {
                 return Err(Error::invalid(f("balls"), "must be at least 1"));
             }
@@ -375,15 +388,32 @@ impl LinearRotor {
         Ok(w)
     }
 
-    /// The balls' mass as a lumped matrix: `Σ n m_b` on each balancer node's `x, y` diagonal
-    /// (their translational inertia, e.g. for critical speeds of the rotor with its balls).
+    /// The balls as rings, a lumped mass matrix (e.g. for critical speeds of the rotor with its
+    /// balls): each plane's mass `n m_b` at its race centre `(x + z β, y − z α)`, i.e.
+    /// `n m_b Pᵀ P` with `P` the map from the node's DOFs to the race centre's translation, and
+    /// with tilt DOFs the ring's diametral moment `n m_b R²/2` on `α, β` (the exact average of
+    /// the balls' tilt inertia `m_b R² (α̇ sin θ − β̇ cos θ)²` over evenly spread balls).
     pub fn ball_mass_matrix(&self) -> Vec<f64> {
         let n = self.dofs();
         let mut a = vec![0.0; n * n];
         for b in &self.balancers {
-            for d in [Direction::X, Direction::Y] {
-                if let Some(i) = self.dof(b.node, d) {
-                    a[i * n + i] += b.balls as f64 * b.ball_mass;
+            let mass = b.balls as f64 * b.ball_mass;
+            let (Some(ix), Some(iy)) = (self.dof(b.node, Direction::X), self.dof(b.node, Direction::Y)) else { continue };
+            let tilt = self.dof(b.node, Direction::Alpha).zip(self.dof(b.node, Direction::Beta));
+            // race centre: x + z β, y − z α
+            let mut rows: Vec<Vec<(usize, f64)>> = vec![vec![(ix, 1.0)], vec![(iy, 1.0)]];
+            if let Some((ia, ib)) = tilt {
+                rows[0].push((ib, b.offset));
+                rows[1].push((ia, -b.offset));
+                for i in [ia, ib] {
+                    a[i * n + i] += 0.5 * mass * b.radius * b.radius;
+                }
+            }
+            for row in &rows {
+                for &(i, ci) in row {
+                    for &(j, cj) in row {
+                        a[i * n + j] += mass * ci * cj;
+                    }
                 }
             }
         }
