@@ -581,3 +581,150 @@ fn fixed_axes_orbit_is_the_rotating_equilibrium() {
     let dist = spectrum_distance(&mu, &all_eigenvalues(&sto));
     assert!(dist <= 1e-8, "multipliers differ by {dist:e}");
 }
+
+/// Four evenly spread balls resting on the race act on the structure as a rigid ring, i.e. as a
+/// ROSS disk of mass `4 m_b`, diametral moment `I_d = 4 m_b R²/2` and polar moment `I_p = 4 m_b R²`
+/// at the race centre (offset `z` from the node): at rest in fixed axes, the structure block of
+/// the mass matrix is `M + Pᵀ D P` (`P` the node's DOFs to the race centre's `x + zβ, y − zα, α,
+/// β`, `D = diag(m, m, I_d, I_d)`), the residual's derivative by the structure's rates is
+/// `−(C + Ω (G + G_ring))` with `G_ring[α][β] = I_p = −G_ring[β][α]`, and by its displacements
+/// `−K`. The residual is quadratic in the rates, so central differences with a unit step are
+/// exact up to round-off (`1e-12` of the matrices).
+#[test]
+fn evenly_spread_balls_act_as_a_ring() {
+    let mut b = ShaftBuilder::uniform(4, 0.8, 0.03, 2.1e11, 7800.0);
+    b.rotary_inertia = true;
+    b.gyroscopic = true;
+    b.bearings.push(Bearing { node: 0, k: 1e6, c: 150.0 });
+    b.bearings.push(Bearing { node: 4, k: 2e6, c: 150.0 });
+    let mut r = b.build().unwrap();
+    let (mb, rr, z, nb) = (0.05, 0.09, 0.04, 4);
+    r.balancers.push(BalancerPlane { node: 2, radius: rr, balls: nb, ball_mass: mb, drag: 0.1, offset: z });
+    let n = r.dofs();
+    let w = 350.0;
+    let f = LinearRotorField::new(&r, w, Frame::Fixed).unwrap();
+    let nc = f.coords();
+    let mut x = vec![0.0; 2 * nc];
+    for j in 0..nb {
+        x[n + j] = 0.3 + 2.0 * PI * j as f64 / nb as f64;
+    }
+    let (ix, iy, ia, ib) = (8, 9, 10, 11);
+    let (m, id, ip) = (nb as f64 * mb, nb as f64 * mb * rr * rr / 2.0, nb as f64 * mb * rr * rr);
+    // P: rows x + zβ, y − zα, α, β of the node's (x, y, α, β)
+    let p = [[1.0, 0.0, 0.0, z], [0.0, 1.0, -z, 0.0], [0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.0, 1.0]];
+    let d = [m, m, id, id];
+    let dofs = [ix, iy, ia, ib];
+    let mut want_m = r.m.clone();
+    for a in 0..4 {
+        for c in 0..4 {
+            want_m[dofs[a] * n + dofs[c]] += (0..4).map(|k| p[k][a] * d[k] * p[k][c]).sum::<f64>();
+        }
+    }
+    let mut g = r.g.clone();
+    g[ia * n + ib] += ip;
+    g[ib * n + ia] -= ip;
+    let a = f.mass(0.0, &x);
+    let scale_m = want_m.iter().fold(0.0f64, |s, v| s.max(v.abs()));
+    for i in 0..n {
+        for j in 0..n {
+            assert!((a[i * nc + j] - want_m[i * n + j]).abs() <= 1e-12 * scale_m, "A[{}][{}]", r.dof_name(i), r.dof_name(j));
+        }
+    }
+    let zero = vec![0.0; nc];
+    let scale_d = r.c.iter().zip(&g).map(|(c, g)| (c + w * g).abs()).fold(0.0, f64::max);
+    let scale_k = r.k.iter().fold(0.0f64, |s, v| s.max(v.abs()));
+    for j in 0..n {
+        for (offset, scale) in [(nc, scale_d), (0, scale_k)] {
+            let (mut xp, mut xm) = (x.clone(), x.clone());
+            xp[offset + j] += 1e-3_f64.max(if offset == 0 { 0.0 } else { 1.0 });
+            xm[offset + j] -= 1e-3_f64.max(if offset == 0 { 0.0 } else { 1.0 });
+            let h = xp[offset + j] - x[offset + j];
+            let (rp, rm) = (f.residuals(0.0, &xp, &zero), f.residuals(0.0, &xm, &zero));
+            for i in 0..n {
+                let got = (rp[i] - rm[i]) / (2.0 * h);
+                let want = if offset == nc { -(r.c[i * n + j] + w * g[i * n + j]) } else { -r.k[i * n + j] };
+                assert!(
+                    (got - want).abs() <= 1e-9 * scale,
+                    "∂R[{}]/∂{}{}: {got} vs {want}",
+                    r.dof_name(i),
+                    if offset == nc { "rate of " } else { "" },
+                    r.dof_name(j)
+                );
+            }
+        }
+    }
+}
+
+/// Without damping or drag, in axes turning with an isotropic rotor, the equations are those of
+/// an autonomous Lagrangian, so the Jacobi integral `h = Σ q̇ ∂L/∂q̇ − L = L2 − L0` is conserved.
+/// `L` is written here independently of the module's residual, from the model's kinetic energy:
+/// `½ wᵀ M w + (Ω/2) wᵀ G p − ½ pᵀ K p + f_r·p + Σ_j [½ m |w_c + R θ̇ e⊥|² + ½ m R² σ² + ½ m R² θ̇ (ω × τ)]`
+/// (`w = ṗ + Ω J p`, `w_c` the race centre's velocity, `τ = (α, β)`, `ω = τ̇` absolute,
+/// `σ = ω_α sin θ − ω_β cos θ`, `θ̇ = Ω + ψ̇`). A wrong sign or factor in any inertia term of the
+/// equations makes `h` drift by the power of that term; the integration at `rtol = 1e-12` over two
+/// revolutions keeps `h` to about `1e-10` of its terms; the bound is `1e-8`.
+#[test]
+fn jacobi_integral_is_conserved_in_turning_axes() {
+    struct Sys<'a>(&'a LinearRotorField);
+    impl System for Sys<'_> {
+        fn dim(&self) -> usize {
+            self.0.dim()
+        }
+        fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
+            self.0.rhs(t, y, dy)
+        }
+    }
+    let mut b = ShaftBuilder::uniform(3, 0.6, 0.03, 2.1e11, 7800.0);
+    b.rotary_inertia = true;
+    b.gyroscopic = true;
+    b.disks.push(Disk { node: 1, mass: 2.0, id: 0.01, ip: 0.02 });
+    b.bearings.push(Bearing { node: 0, k: 1e6, c: 0.0 });
+    b.bearings.push(Bearing { node: 3, k: 1e6, c: 0.0 });
+    let mut r = b.build().unwrap();
+    r.unbalances.push(Unbalance { node: 1, me: 1e-4, phase: 0.5, offset: 0.01 });
+    r.balancers.push(BalancerPlane { node: 2, radius: 0.07, balls: 3, ball_mass: 0.04, drag: 0.0, offset: 0.03 });
+    let n = r.dofs();
+    let w = 300.0;
+    let f = LinearRotorField::new(&r, w, Frame::Rotating).unwrap();
+    let nc = f.coords();
+    let fr = f.forcing(0.0);
+    let lagrangian = |x: &[f64]| -> f64 {
+        let (p, pd) = (&x[..n], &x[nc..nc + n]);
+        let wv: Vec<f64> = (0..n).map(|i| if i % 2 == 0 { pd[i] - w * p[i + 1] } else { pd[i] + w * p[i - 1] }).collect();
+        let quad = |a: &[f64], u: &[f64], v: &[f64]| -> f64 { (0..n).map(|i| u[i] * (0..n).map(|j| a[i * n + j] * v[j]).sum::<f64>()).sum() };
+        let mut l = 0.5 * quad(&r.m, &wv, &wv) + 0.5 * w * quad(&r.g, &wv, p) - 0.5 * quad(&r.k, p, p) + (0..n).map(|i| fr[i] * p[i]).sum::<f64>();
+        let bal = r.balancers[0];
+        let (ix, iy, ia, ib) = (8, 9, 10, 11);
+        let (mb, rr, z) = (bal.ball_mass, bal.radius, bal.offset);
+        for j in 0..bal.balls {
+            let (s, c) = x[n + j].sin_cos();
+            let th = w + x[nc + n + j];
+            let (om_a, om_b) = (wv[ia], wv[ib]);
+            let (vx, vy) = (wv[ix] + z * om_b - rr * th * s, wv[iy] - z * om_a + rr * th * c);
+            let sigma = om_a * s - om_b * c;
+            l += 0.5 * mb * (vx * vx + vy * vy) + 0.5 * mb * rr * rr * sigma * sigma + 0.5 * mb * rr * rr * th * (om_a * p[ib] - om_b * p[ia]);
+        }
+        l
+    };
+    let h = |x: &[f64]| -> (f64, f64) {
+        let mut xm = x.to_vec();
+        let mut x0 = x.to_vec();
+        for i in nc..2 * nc {
+            xm[i] = -x[i];
+            x0[i] = 0.0;
+        }
+        let (lp, lm, l0) = (lagrangian(x), lagrangian(&xm), lagrangian(&x0));
+        ((lp + lm) / 2.0 - 2.0 * l0, lp.abs() + l0.abs())
+    };
+    let mut rng = Rng(2024);
+    let s = f.scales();
+    let mut y: Vec<f64> = s.iter().map(|v| v * rng.uniform(-1.0, 1.0)).collect();
+    let (h0, size) = h(&y);
+    let opts = Options::new(1e-12, 1e-12).method(Method::Dop853).atol_per_component(s.iter().map(|v| 1e-12 * v).collect());
+    let sys = Sys(&f);
+    let mut solver = Solver::new(&sys, opts).unwrap();
+    let t_end = 2.0 * 2.0 * PI / w;
+    assert!(solver.integrate(0.0, &mut y, t_end, |_| Control::Continue).status.is_completed());
+    let (h1, _) = h(&y);
+    assert!((h1 - h0).abs() <= 1e-8 * size, "h drifted from {h0} to {h1} (size {size})");
+}
