@@ -20,22 +20,36 @@
 //!
 //! # The balls (derivation)
 //! A balancer plane ([`BalancerPlane`]) at node `k` carries `n` point balls of mass `m_b` on a
-//! race of radius `R` centred on the node (coupled through the node's translation; the tilt
-//! coupling is not modelled yet). Ball `j` sits at `z_k + R e^{i(φ + ψ_j)}`, `z_k = x_k + i y_k`,
-//! `ψ_j` its angle relative to the rotor. The Lagrangian and the drag are
+//! race of radius `R` whose centre sits at the axial offset `z` from the node, at
+//! `c_k = (x_k + z β_k, y_k − z α_k)` (complex `c_k = z_k − i z τ_k`... written below as the
+//! vector `c = u − z J τ`, `τ = (α, β)`, `J (a, b) = (−b, a)`). The race plane tilts with the node
+//! and spins with the rotor (`φ = Ω t`); ball `j` is at the angle `θ_j = φ + ψ_j`, `ψ_j` its angle
+//! relative to the rotor. To second order in the structure's small motions (exact in `ψ`, `ψ̇`),
+//! its velocity is the race centre's plus `R θ̇_j e⊥_j` in the plane (`e_j = (cos θ_j, sin θ_j)`,
+//! `e⊥_j = (−sin θ_j, cos θ_j)`) plus the axial `R σ_j`, `σ_j = α̇ sin θ_j − β̇ cos θ_j`, from the
+//! race's tilt rate; and the spin about the tilted axis is `θ̇_j + ½(α̇β − β̇α)` (the symmetric
+//! form; the `α`-then-`β` and `β`-then-`α` tilt sequences differ from it by terms in `θ̈ τ`,
+//! second order at any stationary state). With `ω = τ̇` the Lagrangian and the drag are
 //!
 //! ```text
-//! L = ½ q̇ᵀ M q̇ − ½ qᵀ K q + Σ_j ½ m_b |ż_k + i R (Ω + ψ̇_j) e^{i(φ + ψ_j)}|²,
-//! Q_ψj = −c_b ψ̇_j,     Q_q = f − (C + Ω G) q̇,
+//! L = ½ q̇ᵀ M q̇ + ½ Ω q̇ᵀ G q − ½ qᵀ K q + f·q
+//!     + Σ_j [ ½ m_b |ċ + R θ̇_j e⊥_j|² + ½ m_b R² σ_j² + ½ m_b R² θ̇_j (ω × τ) ],
+//! Q_ψj = −c_b ψ̇_j,     Q_q = −C q̇,
 //! ```
 //!
-//! so that, with `θ_j = φ + ψ_j` and the ball's acceleration `a_j = z̈_k + R(i ψ̈_j − (Ω + ψ̇_j)²) e^{iθ_j}`
-//! (constant `Ω`), Lagrange's equations are
+//! (`ω × τ = α̇β − β̇α`; the term `½ Ω q̇ᵀ G q` gives the gyroscopic `Ω G q̇`). Evenly spread
+//! balls at rest make the last two terms a ring's `½ I_d |ω|²`, `I_d = n m_b R²/2`, and
+//! `½ I_p Ω (α̇β − β̇α)`, `I_p = n m_b R²`: ROSS's disk (`G[α][β] = I_p`). Lagrange's equations,
+//! with `a_j = c̈ + R(ψ̈_j e⊥_j − θ̇_j² e_j)` the ball's in-plane acceleration (constant `Ω`):
 //!
 //! ```text
-//! M q̈ + (C + Ω G) q̇ + K q + Σ_j m_b P_kᵀ a_j = f,        (P_k picks x_k, y_k; a_j as (Re, Im))
-//! m_b R Im(e^{−iθ_j} a_j) = m_b R² ψ̈_j + m_b R (−sin θ_j ẍ_k + cos θ_j ÿ_k) = −c_b ψ̇_j.
+//! M q̈ + (C + Ω G) q̇ + K q + Σ_j [ m_b Pᵀ a_j + T_j ] = f,        (P: q ↦ c)
+//! m_b R e⊥_j·a_j + ½ m_b R² (ω̇ × τ) − m_b R² σ_j (ω·e_j) = −c_b ψ̇_j,
+//! T_j = −m_b R² (σ̇_j e⊥_j − θ̇_j σ_j e_j) − ½ m_b R² θ̈_j J τ − m_b R² θ̇_j J ω   (on α, β),
 //! ```
+//!
+//! `σ̇_j = ω̇·(sin θ_j, −cos θ_j) + θ̇_j ω·e_j`. Without tilt DOFs (or `R² → 0`) the ball equation
+//! is `m_b R² ψ̈_j + m_b R (−sin θ_j ẍ_k + cos θ_j ÿ_k) = −c_b ψ̇_j`.
 //!
 //! This is the **fixed-axes form** ([`Frame::Fixed`]): state `(q, ψ, q̇, ψ̇)`, periodic in `t`
 //! with `2π/Ω` (the unbalance force and the balls' absolute angles turn with the rotor); it is the
@@ -61,7 +75,9 @@
 //! Coriolis `2Ω M J`, centrifugal `−Ω² M`, the rotating damping's `Ω C J` (the circulatory term
 //! of damping seen from the rotor), and the gyroscopic `Ω² G J`; the unbalance force is constant,
 //! `f_r = m e Ω² e^{i phase}`, and the ball terms become
-//! `a_j = ü_k + 2iΩ u̇_k − Ω² u_k + R(i ψ̈_j − (Ω + ψ̇_j)²) e^{iψ_j}`, no longer depending on time.
+//! `a_j = c̈ + 2iΩ ċ − Ω² c + R(i ψ̈_j − (Ω + ψ̇_j)²) e^{iψ_j}` (complex), with the same rule for the
+//! tilt rates and accelerations (`ω = τ̇ + ΩJτ`, `ω̇ = τ̈ + 2ΩJτ̇ − Ω²τ` in turning components: the
+//! ball terms are invariant under rotations), no longer depending on time.
 //! The balanced state (rotor at rest in these axes, balls at rest cancelling the unbalance) is an
 //! equilibrium of this form ([`Frame::Rotating`]). **Anisotropic** structure: the part of a 2×2
 //! block that anticommutes with `J` turns as `e^{±2iφ}` under `R(φ)ᵀ · R(φ)`, so the field is
@@ -72,10 +88,11 @@
 //! Both frames share one residual (generalised forces minus inertia forces), with frame rate
 //! `ν` (`Ω` turning, `0` fixed) and the rotor's angle in the frame `χ = (Ω − ν) t`: the ball's
 //! angle in the frame is `θ_j = χ + ψ_j`, its acceleration in frame components
-//! `a_j = a_u + R(i ψ̈_j − (Ω + ψ̇_j)²) e^{iθ_j}` (`a_u` the node's frame acceleration), and the
-//! unbalance force `m e Ω² e^{i(phase + χ)}`. The accelerations solve `A(ψ) (p̈, ψ̈) = R(p, ψ, ṗ, ψ̇)`,
-//! `A` symmetric: `M_r` plus `n m_b` on each balancer node's `x, y` diagonal, the ball columns
-//! `m_b R (−sin θ_j, cos θ_j)` on those rows, `m_b R²` on the balls' diagonal. The Jacobian is
+//! `a_j = a_c + R(i ψ̈_j − (Ω + ψ̇_j)²) e^{iθ_j}` (`a_c` the race centre's absolute acceleration in
+//! the frame's components), and the unbalance force `m e Ω² e^{i(phase + χ)}`. The accelerations
+//! solve `A(ψ, τ) (p̈, ψ̈) = R(p, ψ, ṗ, ψ̇)`, `A` symmetric: `M_r` plus `m_b Pᵀ P` per ball, the
+//! ball columns `Pᵀ m_b R e⊥_j` and (tilt) `−½ m_b R² J τ`, `m_b R² e⊥_j e⊥_jᵀ` on the tilts,
+//! `m_b R²` on the balls' diagonal. The Jacobian is
 //! exact: `∂(p̈, ψ̈)/∂x = A⁻¹ ∂(R − A a)/∂x` at the current accelerations `a`, the residual
 //! differentiated by forward-mode dual numbers ([`crate::ode::dual`]).
 //!
