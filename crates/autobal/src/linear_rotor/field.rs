@@ -537,3 +537,27 @@ impl VectorField for LinearRotorField {
             .collect()
     }
 }
+
+/// The field as an ODE system for the integrators of [`crate::ode`] (time simulation at constant
+/// speed, usually in [`Frame::Fixed`]): the right-hand side of [`LinearRotorField`], and for the
+/// implicit method (RODAS, or [`crate::ode::Method::Auto`] when the problem is stiff, as a shaft
+/// model's high modes make it) the exact Jacobian of [`VectorField::jacobian`].
+pub struct TimeSystem<'a>(pub &'a LinearRotorField);
+
+impl crate::ode::System for TimeSystem<'_> {
+    fn dim(&self) -> usize {
+        VectorField::dim(self.0)
+    }
+
+    fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
+        VectorField::rhs(self.0, t, y, dy)
+    }
+
+    fn jacobian(&self) -> Box<dyn crate::ode::Jacobian + '_> {
+        Box::new(crate::ode::DenseJacobian::analytic(self, move |t, y, j| VectorField::jacobian(self.0, t, y, j)))
+    }
+
+    fn component_name(&self, i: usize) -> String {
+        VectorField::component_name(self.0, i)
+    }
+}

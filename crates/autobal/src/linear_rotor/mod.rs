@@ -111,7 +111,7 @@ use crate::linalg::eigen_dyn;
 use crate::planar::PlanarRotor;
 use serde::Serialize;
 
-pub use field::{Frame, LinearRotorField};
+pub use field::{Frame, LinearRotorField, TimeSystem};
 
 /// The degrees of freedom of each node.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
