@@ -765,3 +765,33 @@ fn time_simulation_with_the_exact_jacobian() {
         assert!((ya[i] - yb[i]).abs() <= 1e-5 * s[i], "{}: {} vs {}", f.component_name(i), ya[i], yb[i]);
     }
 }
+
+/// Three balls on a flexible shaft whose unbalance sits in the balancer's plane, offset from the
+/// node: the balanced state (structure at rest on the axis, balls cancelling the unbalance) is a
+/// family of dimension `n − 2 = 1`, found exactly at the closed-form start, with one structural
+/// zero eigenvalue; with the unbalance in another plane the node cannot rest on the axis and
+/// there is no family.
+#[test]
+fn three_balls_on_a_shaft_form_a_family() {
+    let mut b = ShaftBuilder::uniform(4, 0.8, 0.025, 2.1e11, 7800.0);
+    b.disks.push(Disk { node: 2, mass: 4.0, id: 0.02, ip: 0.04 });
+    b.bearings.push(Bearing { node: 0, k: 5e6, c: 500.0 });
+    b.bearings.push(Bearing { node: 4, k: 5e6, c: 500.0 });
+    let mut r = b.build().unwrap();
+    r.unbalances.push(Unbalance { node: 2, me: 2e-4, phase: 0.7, offset: 0.02 });
+    r.balancers.push(BalancerPlane { node: 2, radius: 0.08, balls: 3, ball_mass: 0.02, drag: 0.05, offset: 0.02 });
+    let f = LinearRotorField::new(&r, 400.0, Frame::Rotating).unwrap();
+    let guess = f.balanced_guess().unwrap();
+    // forces cancel to round-off (1e-16 of m e Ω² = 32 N): displacements of order 1e-20 m
+    assert!(guess[..r.dofs()].iter().all(|v| v.abs() < 1e-15));
+    let s = stationary(&f, &guess, &NewtonOptions::default()).unwrap();
+    assert_eq!(s.family_dimension, 1);
+    assert!(s.x[..r.dofs()].iter().all(|v| v.abs() < 1e-15));
+    let st = stability(&f, &s).unwrap();
+    assert_eq!(st.structural.len(), 1);
+    assert!(st.structural[0].complex().norm() <= 1e-9 * st.rate);
+    r.unbalances[0].node = 1;
+    let f = LinearRotorField::new(&r, 400.0, Frame::Rotating).unwrap();
+    let s = stationary(&f, &f.balanced_guess().unwrap(), &NewtonOptions::default()).unwrap();
+    assert_eq!(s.family_dimension, 0);
+}

@@ -492,18 +492,25 @@ impl VectorField for LinearRotorField {
         }
     }
 
-    /// `Σ (n − 2)` over the planes with `n ≥ 3` balls whose node is on the axis (to `1e-6` of the
-    /// length scale): there the balls only have to sum to their resultant, a family of dimension
-    /// `n − 2`.
+    /// `Σ (n − 2)` over the planes with `n ≥ 3` balls whose race centre is on the axis and whose
+    /// race is not tilted (to `1e-6` of the length scale, the tilt measured by its displacement
+    /// `|τ| max(R, |z|)` of the race): there the balls only have to sum to their resultant, a
+    /// family of dimension `n − 2`. (A tilted race breaks the family at second order in the tilt.)
     fn structural_zeros(&self, x: &[f64]) -> usize {
         let l = self.length();
-        self.rotor
-            .balancers
+        let r = &self.rotor;
+        r.balancers
             .iter()
             .filter(|b| b.balls >= 3)
             .filter_map(|b| {
-                let ix = self.rotor.dof(b.node, super::Direction::X)?;
-                (x[ix].hypot(x[ix + 1]) <= 1e-6 * l).then_some(b.balls - 2)
+                let ix = r.dof(b.node, super::Direction::X)?;
+                let (mut cx, mut cy, mut tilt) = (x[ix], x[ix + 1], 0.0);
+                if let (Some(ia), Some(ib)) = (r.dof(b.node, super::Direction::Alpha), r.dof(b.node, super::Direction::Beta)) {
+                    cx += b.offset * x[ib];
+                    cy -= b.offset * x[ia];
+                    tilt = x[ia].hypot(x[ib]) * b.radius.max(b.offset.abs());
+                }
+                (cx.hypot(cy) <= 1e-6 * l && tilt <= 1e-6 * l).then_some(b.balls - 2)
             })
             .sum()
     }
