@@ -100,6 +100,7 @@ pub mod drive;
 pub mod error;
 pub mod limits;
 pub mod linalg;
+pub mod linear_rotor;
 pub mod ode;
 pub mod paths;
 pub mod planar;

@@ -1,0 +1,570 @@
+//! The linear rotor with its balls at constant speed as a [`VectorField`] (derivation in the
+//! module docs of [`crate::linear_rotor`]): state `x = (p, ψ, ṗ, ψ̇)`, `p` the `N` structural
+//! DOFs in the frame's axes, `ψ` the balls' angles relative to the rotor (plane by plane).
+//!
+//! ```
+//! use autobal::analysis::{stability, stationary, NewtonOptions, Verdict};
+//! use autobal::linear_rotor::{BalancerPlane, Frame, LinearRotor, LinearRotorField};
+//! // a Jeffcott rotor, ω_n = 100 rad/s, balanced at 150 rad/s by two balls
+//! let b = BalancerPlane { node: 0, radius: 0.05, balls: 2, ball_mass: 0.02, drag: 0.01, offset: 0.0 };
+//! let rotor = LinearRotor::jeffcott(1.0, 1e4 * 1.04, 20.0, 1e-3, b);
+//! let f = LinearRotorField::new(&rotor, 150.0, Frame::Rotating).unwrap();
+//! let s = stationary(&f, &f.balanced_guess().unwrap(), &NewtonOptions::default()).unwrap();
+//! assert!(s.x[0].hypot(s.x[1]) < 1e-15); // the node rests on the axis
+//! assert_eq!(stability(&f, &s).unwrap().verdict, Verdict::Stable);
+//! ```
+
+use super::{DenseLu, LinearRotor};
+use crate::analysis::VectorField;
+use crate::error::{finite, Error, Result};
+use crate::ode::dual::{Dual, Real};
+use num_complex::Complex64 as C;
+use std::f64::consts::PI;
+
+/// The axes the equations are written in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Frame {
+    /// Axes turning with the rotor (`ν = Ω`): autonomous for an isotropic structure, else
+    /// periodic with `π/Ω`; the balanced state is an equilibrium (isotropic).
+    Rotating,
+    /// Fixed axes (`ν = 0`): periodic with `2π/Ω`; the form for time simulation.
+    Fixed,
+}
+
+/// Directions seeded per forward-mode pass of the Jacobian.
+const SEEDS: usize = 8;
+
+/// One ball: its plane's node DOFs `(x, y)` and `(α, β)` (where the layout has them), race
+/// radius, mass, drag, axial offset of the race plane.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Ball {
+    ix: usize,
+    iy: usize,
+    tilt: Option<(usize, usize)>,
+    r: f64,
+    m: f64,
+    drag: f64,
+    z: f64,
+}
+
+/// The linear rotor at constant speed `Ω` in a [`Frame`] (module docs of [`crate::linear_rotor`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct LinearRotorField {
+    rotor: LinearRotor,
+    omega: f64,
+    frame: Frame,
+    isotropic: bool,
+    balls: Vec<Ball>,
+    /// `C + Ω G`.
+    d: Vec<f64>,
+}
+
+/// The structure's matrices in the frame at one time: `M_r`, `(C + ΩG)_r`, `K_r`.
+struct Mats<'a> {
+    m: std::borrow::Cow<'a, [f64]>,
+    d: std::borrow::Cow<'a, [f64]>,
+    k: std::borrow::Cow<'a, [f64]>,
+}
+
+impl LinearRotorField {
+    /// The field of `rotor` at speed `omega` (rad/s) in `frame`; the rotor is validated.
+    pub fn new(rotor: &LinearRotor, omega: f64, frame: Frame) -> Result<Self> {
+        rotor.validate()?;
+        finite("omega", omega)?;
+        let mut balls = vec![];
+        for b in &rotor.balancers {
+            let (ix, iy) = (rotor.dof(b.node, super::Direction::X), rotor.dof(b.node, super::Direction::Y));
+            let (Some(ix), Some(iy)) = (ix, iy) else { return Err(Error::invalid("linear_rotor.balancers.node", "has no x, y DOFs")) };
+            let tilt = rotor.dof(b.node, super::Direction::Alpha).zip(rotor.dof(b.node, super::Direction::Beta));
+            for _ in 0..b.balls {
+                balls.push(Ball { ix, iy, tilt, r: b.radius, m: b.ball_mass, drag: b.drag, z: b.offset });
+            }
+        }
+        let d = rotor.c.iter().zip(&rotor.g).map(|(c, g)| c + omega * g).collect();
+        Ok(LinearRotorField { isotropic: rotor.is_isotropic(), rotor: rotor.clone(), omega, frame, balls, d })
+    }
+
+    /// The rotor.
+    pub fn rotor(&self) -> &LinearRotor {
+        &self.rotor
+    }
+
+    /// The speed `Ω` (rad/s).
+    pub fn omega(&self) -> f64 {
+        self.omega
+    }
+
+    /// The frame.
+    pub fn frame(&self) -> Frame {
+        self.frame
+    }
+
+    /// Number of coordinates `N + Σ n`.
+    pub fn coords(&self) -> usize {
+        self.rotor.dofs() + self.balls.len()
+    }
+
+    /// The frame's rate `ν`: `Ω` turning, 0 fixed.
+    fn nu(&self) -> f64 {
+        match self.frame {
+            Frame::Rotating => self.omega,
+            Frame::Fixed => 0.0,
+        }
+    }
+
+    /// `M_r = Tᵀ M T` etc. at time `t`, `T = T(ν t)` (the matrices themselves where the frame
+    /// does not turn or the structure is isotropic).
+    fn mats(&self, t: f64) -> Mats<'_> {
+        use std::borrow::Cow;
+        let phi = self.nu() * t;
+        if self.isotropic || phi == 0.0 {
+            return Mats { m: Cow::Borrowed(&self.rotor.m), d: Cow::Borrowed(&self.d), k: Cow::Borrowed(&self.rotor.k) };
+        }
+        let n = self.rotor.dofs();
+        let (s, c) = phi.sin_cos();
+        let rot = |a: &[f64]| -> Vec<f64> {
+            let mut out = vec![0.0; n * n];
+            for bi in 0..n / 2 {
+                for bj in 0..n / 2 {
+                    let e = |r: usize, cc: usize| a[(2 * bi + r) * n + 2 * bj + cc];
+                    // Rᵀ B R, R = [[c, −s], [s, c]]
+                    let b = [[e(0, 0), e(0, 1)], [e(1, 0), e(1, 1)]];
+                    let br = [[b[0][0] * c + b[0][1] * s, -b[0][0] * s + b[0][1] * c], [b[1][0] * c + b[1][1] * s, -b[1][0] * s + b[1][1] * c]];
+                    let o = [[c * br[0][0] + s * br[1][0], c * br[0][1] + s * br[1][1]], [-s * br[0][0] + c * br[1][0], -s * br[0][1] + c * br[1][1]]];
+                    for r in 0..2 {
+                        for cc in 0..2 {
+                            out[(2 * bi + r) * n + 2 * bj + cc] = o[r][cc];
+                        }
+                    }
+                }
+            }
+            out
+        };
+        Mats { m: Cow::Owned(rot(&self.rotor.m)), d: Cow::Owned(rot(&self.d)), k: Cow::Owned(rot(&self.rotor.k)) }
+    }
+
+    /// The unbalance forces in the frame's axes at time `t` (length `N`): `m e Ω² e^{i(phase + χ)}`
+    /// at the node, `f_α = −z F_y`, `f_β = z F_x`; `χ = (Ω − ν) t`.
+    pub fn forcing(&self, t: f64) -> Vec<f64> {
+        let r = &self.rotor;
+        let chi = (self.omega - self.nu()) * t;
+        let mut f = vec![0.0; r.dofs()];
+        for u in &r.unbalances {
+            let force = C::from_polar(u.me * self.omega * self.omega, u.phase + chi);
+            let per = r.layout.per_node();
+            f[u.node * per] += force.re;
+            f[u.node * per + 1] += force.im;
+            if per == 4 {
+                f[u.node * per + 2] += -u.offset * force.im;
+                f[u.node * per + 3] += u.offset * force.re;
+            }
+        }
+        f
+    }
+
+    /// The residual `R(x) − A a` of the `N + Σ n` equations (generalised forces minus inertia
+    /// forces, module docs) at state `x` and accelerations `acc`, generic over the number type.
+    fn residual<T: Real>(&self, mats: &Mats, t: f64, x: &[T], acc: &[f64], out: &mut [T]) {
+        let n = self.rotor.dofs();
+        let nc = self.coords();
+        let nu = self.nu();
+        let w = self.omega;
+        let chi = (w - nu) * t;
+        let (p, pd) = (&x[..n], &x[nc..nc + n]);
+        // v = ṗ + ν J p, a_s = p̈ + 2ν J ṗ − ν² p (J (a, b) = (−b, a) per pair)
+        let mut v = Vec::with_capacity(n);
+        let mut a = Vec::with_capacity(n);
+        for m in 0..n / 2 {
+            let (i, j) = (2 * m, 2 * m + 1);
+            v.push(pd[i] - p[j] * nu);
+            v.push(pd[j] + p[i] * nu);
+            a.push(pd[j] * (-2.0 * nu) - p[i] * (nu * nu) + acc[i]);
+            a.push(pd[i] * (2.0 * nu) - p[j] * (nu * nu) + acc[j]);
+        }
+        let f = self.forcing(t);
+        for i in 0..n {
+            let mut s = T::cst(f[i]);
+            let (mr, dr, kr) = (&mats.m[i * n..(i + 1) * n], &mats.d[i * n..(i + 1) * n], &mats.k[i * n..(i + 1) * n]);
+            for j in 0..n {
+                if mr[j] != 0.0 {
+                    s = s - a[j] * mr[j];
+                }
+                if dr[j] != 0.0 {
+                    s = s - v[j] * dr[j];
+                }
+                if kr[j] != 0.0 {
+                    s = s - p[j] * kr[j];
+                }
+            }
+            out[i] = s;
+        }
+        for (g, b) in self.balls.iter().enumerate() {
+            let (psi, psid) = (x[n + g], x[nc + n + g]);
+            let (s, c) = (psi + chi).sin_cos();
+            let rate = psid + w;
+            let w2 = rate * rate;
+            let pdd = acc[n + g];
+            let mr2 = b.m * b.r * b.r;
+            // the race centre's acceleration a_u − z J ω̇ (J (a, b) = (−b, a))
+            let (mut ax, mut ay) = (a[b.ix], a[b.iy]);
+            if let Some((ia, ib)) = b.tilt {
+                ax = ax + a[ib] * b.z;
+                ay = ay - a[ia] * b.z;
+            }
+            let ax = ax + (s * pdd + c * w2) * (-b.r);
+            let ay = ay + (c * pdd - s * w2) * b.r;
+            out[b.ix] = out[b.ix] - ax * b.m;
+            out[b.iy] = out[b.iy] - ay * b.m;
+            out[n + g] = psid * (-b.drag) - (c * ay - s * ax) * (b.m * b.r);
+            if let Some((ia, ib)) = b.tilt {
+                // generalised inertia on the tilts through the offset: z J F, F = m a_j
+                out[ia] = out[ia] + ay * (b.m * b.z);
+                out[ib] = out[ib] - ax * (b.m * b.z);
+                // the balls' tilt inertia (module docs): τ = (α, β), ω = τ̇, ω̇ the absolute
+                // rates and accelerations in the frame's components; e = (c, s), e⊥ = (−s, c)
+                let (ta, tb) = (p[ia], p[ib]);
+                let (oa, ob) = (v[ia], v[ib]);
+                let (da, db) = (a[ia], a[ib]);
+                let sigma = oa * s - ob * c;
+                let o_e = oa * c + ob * s;
+                let sigma_dot = (da * s - db * c) + rate * o_e;
+                // I = −mR² (σ̇ e⊥ − θ̇ σ e) − ½ mR² θ̈ J τ − mR² θ̇ J ω
+                let ia_x = (sigma_dot * s + rate * sigma * c) * mr2 + tb * (0.5 * mr2 * pdd) + rate * ob * mr2;
+                let ia_y = (sigma_dot * (-c) + rate * sigma * s) * mr2 - ta * (0.5 * mr2 * pdd) - rate * oa * mr2;
+                out[ia] = out[ia] - ia_x;
+                out[ib] = out[ib] - ia_y;
+                // ball: ½ mR² (ω̇ × τ) − mR² σ (ω·e)
+                out[n + g] = out[n + g] - (da * tb - db * ta) * (0.5 * mr2) + sigma * o_e * mr2;
+            }
+        }
+    }
+
+    /// The symmetric mass matrix `A(ψ)` of the `N + Σ n` accelerations at time `t` (module docs).
+    fn mass_matrix(&self, mats: &Mats, t: f64, x: &[f64]) -> Vec<f64> {
+        let n = self.rotor.dofs();
+        let nc = self.coords();
+        let chi = (self.omega - self.nu()) * t;
+        let mut a = vec![0.0; nc * nc];
+        for i in 0..n {
+            a[i * nc..i * nc + n].copy_from_slice(&mats.m[i * n..(i + 1) * n]);
+        }
+        for (g, b) in self.balls.iter().enumerate() {
+            let (s, c) = (x[n + g] + chi).sin_cos();
+            let j = n + g;
+            let mr2 = b.m * b.r * b.r;
+            // race centre (x + z β, y − z α): rows of P
+            let mut px = vec![(b.ix, 1.0)];
+            let mut py = vec![(b.iy, 1.0)];
+            if let Some((ia, ib)) = b.tilt {
+                px.push((ib, b.z));
+                py.push((ia, -b.z));
+            }
+            for (row, e) in [(&px, -b.m * b.r * s), (&py, b.m * b.r * c)] {
+                for &(i, ci) in row.iter() {
+                    for &(k, ck) in row.iter() {
+                        a[i * nc + k] += b.m * ci * ck;
+                    }
+                    a[i * nc + j] += ci * e;
+                    a[j * nc + i] += ci * e;
+                }
+            }
+            a[j * nc + j] += mr2;
+            if let Some((ia, ib)) = b.tilt {
+                // mR² e⊥ e⊥ᵀ on the tilts, −½ mR² J τ between the tilts and the ball
+                a[ia * nc + ia] += mr2 * s * s;
+                a[ia * nc + ib] -= mr2 * s * c;
+                a[ib * nc + ia] -= mr2 * s * c;
+                a[ib * nc + ib] += mr2 * c * c;
+                let (ta, tb) = (x[ia], x[ib]);
+                a[ia * nc + j] += 0.5 * mr2 * tb;
+                a[j * nc + ia] += 0.5 * mr2 * tb;
+                a[ib * nc + j] -= 0.5 * mr2 * ta;
+                a[j * nc + ib] -= 0.5 * mr2 * ta;
+            }
+        }
+        a
+    }
+
+    /// The accelerations `(p̈, ψ̈)` at `(t, x)`: `A⁻¹ R` (`None` if `A` is singular, which a
+    /// validated rotor's positive definite `M` rules out).
+    pub fn accelerations(&self, t: f64, x: &[f64]) -> Option<Vec<f64>> {
+        let mats = self.mats(t);
+        let nc = self.coords();
+        let mut r = vec![0.0; nc];
+        self.residual::<f64>(&mats, t, x, &vec![0.0; nc], &mut r);
+        let lu = DenseLu::new(self.mass_matrix(&mats, t, x), nc)?;
+        lu.solve(&mut r);
+        Some(r)
+    }
+
+    /// The residuals of the `N + Σ n` equations at `(t, x)` for accelerations `acc`: zero at the
+    /// accelerations of [`LinearRotorField::accelerations`]. For checks.
+    pub fn residuals(&self, t: f64, x: &[f64], acc: &[f64]) -> Vec<f64> {
+        let mats = self.mats(t);
+        let mut r = vec![0.0; self.coords()];
+        self.residual::<f64>(&mats, t, x, acc, &mut r);
+        r
+    }
+
+    /// The mass matrix `A(ψ)` at `(t, x)` (row-major, `(N + Σ n)²`). For checks.
+    pub fn mass(&self, t: f64, x: &[f64]) -> Vec<f64> {
+        self.mass_matrix(&self.mats(t), t, x)
+    }
+
+    /// Displacement scale: `(Σ|m e| + Σ n m_b R) / m̄`, `m̄` the mean diagonal of `M` over the
+    /// translations plus the balls' mass, or `1e-6` m when that vanishes.
+    fn length(&self) -> f64 {
+        let r = &self.rotor;
+        let n = r.dofs();
+        let per = r.layout.per_node();
+        let mass: f64 = (0..r.nodes).map(|k| r.m[(k * per) * n + k * per]).sum::<f64>() / r.nodes as f64 + self.balls.iter().map(|b| b.m).sum::<f64>();
+        let me: f64 = r.unbalances.iter().map(|u| u.me.abs()).sum::<f64>() + self.balls.iter().map(|b| b.m * b.r).sum::<f64>();
+        let l = me / mass;
+        if l > 0.0 && l.is_finite() {
+            l
+        } else {
+            1e-6
+        }
+    }
+
+    /// The balanced state's closed-form start (one balancer plane, `n ≥ 2`): the balls at rest
+    /// with `m_b R Σ e^{iψ_j} = −Σ m e e^{i phase}` (pairs at `arg ± φ`, an odd ball on the
+    /// resultant), the structure from the linear stationary equations in turning axes at `t = 0`,
+    /// `(K_r − Ω² M_r − Ω² M_b + Ω D_r J) p = f_r + f_balls` (`M_b` the balls' lumped mass), which is
+    /// `p = 0` when the unbalances sit at the balancer node without offset; transformed to
+    /// fixed axes (`q̇ = Ω J p`) for [`Frame::Fixed`]. `None` where no arrangement cancels the
+    /// resultant (`|B| > n m_b R`), for several planes, or at `Ω = 0`.
+    pub fn balanced_guess(&self) -> Option<Vec<f64>> {
+        let r = &self.rotor;
+        if r.balancers.len() != 1 || r.balancers[0].balls < 2 || self.omega == 0.0 {
+            return None;
+        }
+        let b = r.balancers[0];
+        let nb = b.balls;
+        let res: C = r.unbalances.iter().map(|u| C::from_polar(u.me, u.phase)).sum();
+        let need = -res + C::new(0.0, 0.0); // no −0 imaginary part: arg(−a) = π
+        let ratio = need.norm() / (b.ball_mass * b.radius);
+        if ratio > nb as f64 {
+            return None;
+        }
+        let phase = if need.norm() > 0.0 { need.arg() } else { 0.0 };
+        let cos_phi = if nb.is_multiple_of(2) { ratio / nb as f64 } else { (ratio - 1.0) / (nb - 1) as f64 };
+        let phi = cos_phi.clamp(-1.0, 1.0).acos();
+        let mut psi = vec![];
+        if !nb.is_multiple_of(2) {
+            psi.push(phase);
+        }
+        for _ in 0..nb / 2 {
+            psi.push(phase + phi);
+            psi.push(phase - phi);
+        }
+        // structure: stationary linear equations in turning axes at t = 0
+        let n = r.dofs();
+        let w = self.omega;
+        let mut f = vec![0.0; n];
+        for u in &r.unbalances {
+            let force = C::from_polar(u.me * w * w, u.phase);
+            let per = r.layout.per_node();
+            f[u.node * per] += force.re;
+            f[u.node * per + 1] += force.im;
+            if per == 4 {
+                f[u.node * per + 2] -= u.offset * force.im;
+                f[u.node * per + 3] += u.offset * force.re;
+            }
+        }
+        let ball_f: C = psi.iter().map(|&p| C::from_polar(b.ball_mass * b.radius * w * w, p)).sum();
+        let (ix, iy) = (self.balls[0].ix, self.balls[0].iy);
+        f[ix] += ball_f.re;
+        f[iy] += ball_f.im;
+        if let Some((ia, ib)) = self.balls[0].tilt {
+            f[ia] -= b.offset * ball_f.im;
+            f[ib] += b.offset * ball_f.re;
+        }
+        let mb = r.ball_mass_matrix();
+        let mut a = vec![0.0; n * n];
+        for i in 0..n {
+            for j in 0..n {
+                // (D J)_{ij}: column j of D J is D times column j of J
+                let dj = if j.is_multiple_of(2) { self.d[i * n + j + 1] } else { -self.d[i * n + j - 1] };
+                a[i * n + j] = r.k[i * n + j] - w * w * (r.m[i * n + j] + mb[i * n + j]) + w * dj;
+            }
+        }
+        let p = if f.iter().all(|v| *v == 0.0) {
+            vec![0.0; n]
+        } else {
+            let lu = DenseLu::new(a, n)?;
+            let mut p = f;
+            lu.solve(&mut p);
+            p
+        };
+        let nc = self.coords();
+        let mut x = vec![0.0; 2 * nc];
+        x[..n].copy_from_slice(&p);
+        x[n..nc].copy_from_slice(&psi);
+        if self.frame == Frame::Fixed {
+            for m in 0..n / 2 {
+                x[nc + 2 * m] = -w * p[2 * m + 1];
+                x[nc + 2 * m + 1] = w * p[2 * m];
+            }
+        }
+        Some(x)
+    }
+
+    /// The state in fixed axes at time `t` of the state `x` in turning axes at `t` (same ball
+    /// angles): `q = T(Ω t) p`, `q̇ = T(Ω t)(ṗ + Ω J p)`.
+    pub fn rotating_to_fixed(&self, t: f64, x: &[f64]) -> Vec<f64> {
+        let n = self.rotor.dofs();
+        let nc = self.coords();
+        let w = self.omega;
+        let (s, c) = (w * t).sin_cos();
+        let mut y = x.to_vec();
+        for m in 0..n / 2 {
+            let (i, j) = (2 * m, 2 * m + 1);
+            let (px, py) = (x[i], x[j]);
+            let (vx, vy) = (x[nc + i] - w * py, x[nc + j] + w * px);
+            y[i] = c * px - s * py;
+            y[j] = s * px + c * py;
+            y[nc + i] = c * vx - s * vy;
+            y[nc + j] = s * vx + c * vy;
+        }
+        y
+    }
+}
+
+impl VectorField for LinearRotorField {
+    fn dim(&self) -> usize {
+        2 * self.coords()
+    }
+
+    fn rhs(&self, t: f64, x: &[f64], dx: &mut [f64]) {
+        let nc = self.coords();
+        dx[..nc].copy_from_slice(&x[nc..]);
+        match self.accelerations(t, x) {
+            Some(acc) => dx[nc..].copy_from_slice(&acc),
+            None => dx[nc..].iter_mut().for_each(|v| *v = f64::NAN),
+        }
+    }
+
+    fn jacobian(&self, t: f64, x: &[f64], jac: &mut [f64]) {
+        let nc = self.coords();
+        let dim = 2 * nc;
+        let mats = self.mats(t);
+        jac.iter_mut().for_each(|v| *v = 0.0);
+        for i in 0..nc {
+            jac[i * dim + nc + i] = 1.0;
+        }
+        let Some(lu) = DenseLu::new(self.mass_matrix(&mats, t, x), nc) else {
+            jac[nc * dim..].iter_mut().for_each(|v| *v = f64::NAN);
+            return;
+        };
+        let mut acc = vec![0.0; nc];
+        self.residual::<f64>(&mats, t, x, &vec![0.0; nc], &mut acc);
+        lu.solve(&mut acc);
+        // ∂(R − A a)/∂x at the current a, SEEDS directions per pass; then A⁻¹ of each column
+        let mut xd = vec![Dual::<SEEDS>::cst(0.0); dim];
+        let mut out = vec![Dual::<SEEDS>::cst(0.0); nc];
+        let mut col = vec![0.0; nc];
+        for start in (0..dim).step_by(SEEDS) {
+            for (i, v) in xd.iter_mut().enumerate() {
+                *v = if i >= start && i < start + SEEDS { Dual::var(x[i], i - start) } else { Dual::cst(x[i]) };
+            }
+            self.residual(&mats, t, &xd, &acc, &mut out);
+            for k in 0..SEEDS.min(dim - start) {
+                for (c, o) in col.iter_mut().zip(&out) {
+                    *c = o.d[k];
+                }
+                lu.solve(&mut col);
+                for (r, c) in col.iter().enumerate() {
+                    jac[(nc + r) * dim + start + k] = *c;
+                }
+            }
+        }
+    }
+
+    fn period(&self) -> Option<f64> {
+        if self.omega == 0.0 {
+            return None;
+        }
+        match self.frame {
+            Frame::Rotating if self.isotropic => None,
+            Frame::Rotating => Some(PI / self.omega.abs()),
+            Frame::Fixed => Some(2.0 * PI / self.omega.abs()),
+        }
+    }
+
+    /// `Σ (n − 2)` over the planes with `n ≥ 3` balls whose race centre is on the axis and whose
+    /// race is not tilted (to `1e-6` of the length scale, the tilt measured by its displacement
+    /// `|τ| max(R, |z|)` of the race): there the balls only have to sum to their resultant, a
+    /// family of dimension `n − 2`. (A tilted race breaks the family at second order in the tilt.)
+    fn structural_zeros(&self, x: &[f64]) -> usize {
+        let l = self.length();
+        let r = &self.rotor;
+        r.balancers
+            .iter()
+            .filter(|b| b.balls >= 3)
+            .filter_map(|b| {
+                let ix = r.dof(b.node, super::Direction::X)?;
+                let (mut cx, mut cy, mut tilt) = (x[ix], x[ix + 1], 0.0);
+                if let (Some(ia), Some(ib)) = (r.dof(b.node, super::Direction::Alpha), r.dof(b.node, super::Direction::Beta)) {
+                    cx += b.offset * x[ib];
+                    cy -= b.offset * x[ia];
+                    tilt = x[ia].hypot(x[ib]) * b.radius.max(b.offset.abs());
+                }
+                (cx.hypot(cy) <= 1e-6 * l && tilt <= 1e-6 * l).then_some(b.balls - 2)
+            })
+            .sum()
+    }
+
+    fn component_name(&self, i: usize) -> String {
+        let nc = self.coords();
+        let n = self.rotor.dofs();
+        let (rate, k) = if i >= nc { (true, i - nc) } else { (false, i) };
+        let base = if k < n { self.rotor.dof_name(k) } else { format!("ψ_{} (ball {} angle)", k - n, k - n) };
+        if rate {
+            format!("rate of {base}")
+        } else {
+            base
+        }
+    }
+
+    fn scales(&self) -> Vec<f64> {
+        let l = self.length();
+        let n = self.rotor.dofs();
+        let nc = self.coords();
+        let w = if self.omega != 0.0 { self.omega.abs() } else { 1.0 };
+        (0..2 * nc)
+            .map(|i| {
+                let base = if i % nc < n { l } else { 1.0 };
+                if i >= nc {
+                    base * w
+                } else {
+                    base
+                }
+            })
+            .collect()
+    }
+}
+
+/// The field as an ODE system for the integrators of [`crate::ode`] (time simulation at constant
+/// speed, usually in [`Frame::Fixed`]): the right-hand side of [`LinearRotorField`], and for the
+/// implicit method (RODAS, or [`crate::ode::Method::Auto`] when the problem is stiff, as a shaft
+/// model's high modes make it) the exact Jacobian of [`VectorField::jacobian`].
+pub struct TimeSystem<'a>(pub &'a LinearRotorField);
+
+impl crate::ode::System for TimeSystem<'_> {
+    fn dim(&self) -> usize {
+        VectorField::dim(self.0)
+    }
+
+    fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
+        VectorField::rhs(self.0, t, y, dy)
+    }
+
+    fn jacobian(&self) -> Box<dyn crate::ode::Jacobian + '_> {
+        Box::new(crate::ode::DenseJacobian::analytic(self, move |t, y, j| VectorField::jacobian(self.0, t, y, j)))
+    }
+
+    fn component_name(&self, i: usize) -> String {
+        VectorField::component_name(self.0, i)
+    }
+}

@@ -1,0 +1,532 @@
+//! Ball balancers on a general linear rotor–bearing model (issue 19, "your own rotor"): the
+//! structure is given by its matrices, the balls are added by this module.
+//!
+//! # The structure
+//! [`LinearRotor`] holds the structural equations in **fixed axes**
+//!
+//! ```text
+//! M q̈ + (C + Ω G) q̇ + K q = f(t),
+//! ```
+//!
+//! `q` the `N` degrees of freedom named by node and direction in ROSS's order: per node
+//! `x, y` ([`Layout::Translation`]) or `x, y, α, β` ([`Layout::TranslationTilt`]), `α` the tilt
+//! about `x` and `β` the tilt about `y` (a point at axial offset `z` from the node moves by
+//! `(x + z β, y − z α)`). `M` is symmetric positive definite, `G` skew (gyroscopic, multiplied
+//! by the spin speed `Ω`), `C` and `K` any real matrices (cross-coupled bearings give
+//! non-symmetric `K`). The balls' mass is **not** in `M`: the balancer planes bring it.
+//! Unbalances ([`Unbalance`]: node, `m·e`, phase, axial offset `z`) apply, at constant speed, the
+//! force `F = m e Ω² e^{i(φ + phase)}` at the node (`φ = Ω t` the spin angle) and, through the
+//! offset, the moments `f_α = −z F_y`, `f_β = z F_x` (virtual work of `F` on `(x + zβ, y − zα)`).
+//!
+//! # The balls (derivation)
+//! A balancer plane ([`BalancerPlane`]) at node `k` carries `n` point balls of mass `m_b` on a
+//! race of radius `R` whose centre sits at the axial offset `z` from the node, at
+//! `c_k = (x_k + z β_k, y_k − z α_k)` (complex `c_k = z_k − i z τ_k`... written below as the
+//! vector `c = u − z J τ`, `τ = (α, β)`, `J (a, b) = (−b, a)`). The race plane tilts with the node
+//! and spins with the rotor (`φ = Ω t`); ball `j` is at the angle `θ_j = φ + ψ_j`, `ψ_j` its angle
+//! relative to the rotor. To second order in the structure's small motions (exact in `ψ`, `ψ̇`),
+//! its velocity is the race centre's plus `R θ̇_j e⊥_j` in the plane (`e_j = (cos θ_j, sin θ_j)`,
+//! `e⊥_j = (−sin θ_j, cos θ_j)`) plus the axial `R σ_j`, `σ_j = α̇ sin θ_j − β̇ cos θ_j`, from the
+//! race's tilt rate; and the spin about the tilted axis is `θ̇_j + ½(α̇β − β̇α)` (the symmetric
+//! form; the `α`-then-`β` and `β`-then-`α` tilt sequences differ from it by terms in `θ̈ τ`,
+//! second order at any stationary state). With `ω = τ̇` the Lagrangian and the drag are
+//!
+//! ```text
+//! L = ½ q̇ᵀ M q̇ + ½ Ω q̇ᵀ G q − ½ qᵀ K q + f·q
+//!     + Σ_j [ ½ m_b |ċ + R θ̇_j e⊥_j|² + ½ m_b R² σ_j² + ½ m_b R² θ̇_j (ω × τ) ],
+//! Q_ψj = −c_b ψ̇_j,     Q_q = −C q̇,
+//! ```
+//!
+//! (`ω × τ = α̇β − β̇α`; the term `½ Ω q̇ᵀ G q` gives the gyroscopic `Ω G q̇`). Evenly spread
+//! balls at rest make the last two terms a ring's `½ I_d |ω|²`, `I_d = n m_b R²/2`, and
+//! `½ I_p Ω (α̇β − β̇α)`, `I_p = n m_b R²`: ROSS's disk (`G[α][β] = I_p`). Lagrange's equations,
+//! with `a_j = c̈ + R(ψ̈_j e⊥_j − θ̇_j² e_j)` the ball's in-plane acceleration (constant `Ω`):
+//!
+//! ```text
+//! M q̈ + (C + Ω G) q̇ + K q + Σ_j [ m_b Pᵀ a_j + T_j ] = f,        (P: q ↦ c)
+//! m_b R e⊥_j·a_j + ½ m_b R² (ω̇ × τ) − m_b R² σ_j (ω·e_j) = −c_b ψ̇_j,
+//! T_j = −m_b R² (σ̇_j e⊥_j − θ̇_j σ_j e_j) − ½ m_b R² θ̈_j J τ − m_b R² θ̇_j J ω   (on α, β),
+//! ```
+//!
+//! `σ̇_j = ω̇·(sin θ_j, −cos θ_j) + θ̇_j ω·e_j`. Without tilt DOFs (or `R² → 0`) the ball equation
+//! is `m_b R² ψ̈_j + m_b R (−sin θ_j ẍ_k + cos θ_j ÿ_k) = −c_b ψ̇_j`.
+//!
+//! This is the **fixed-axes form** ([`Frame::Fixed`]): state `(q, ψ, q̇, ψ̇)`, periodic in `t`
+//! with `2π/Ω` (the unbalance force and the balls' absolute angles turn with the rotor); it is the
+//! form for time simulation at constant speed. The balanced state is **not** an equilibrium of it.
+//!
+//! # Axes turning with the rotor
+//! Each pair `(x, y)`, `(α, β)` is a plane vector and turns with the frame: `q = T(φ) p`,
+//! `T` block-diagonal with 2×2 rotations `R(φ)` (complex: `u = e^{−iφ}(x + i y)`, tilt likewise),
+//! `Ṫ = Ω T J`, `J` block-diagonal `[[0, −1], [1, 0]]` (multiplication by `i`), `T J = J T`.
+//! Then `q̇ = T(ṗ + Ω J p)`, `q̈ = T(p̈ + 2Ω J ṗ − Ω² p)`, and with `X_r = Tᵀ X T`:
+//!
+//! ```text
+//! M_r (p̈ + 2Ω J ṗ − Ω² p) + (C_r + Ω G_r)(ṗ + Ω J p) + K_r p + balls = Tᵀ f.
+//! ```
+//!
+//! **Isotropic** structure (every 2×2 block of `M, C, G, K` between two pairs has the form
+//! `[[a, −b], [b, a]]`, i.e. commutes with `J`: `X_r = X`): the equations are autonomous,
+//!
+//! ```text
+//! M p̈ + (C + Ω G + 2Ω M J) ṗ + (K − Ω² M + Ω C J + Ω² G J) p + balls = f_r,
+//! ```
+//!
+//! Coriolis `2Ω M J`, centrifugal `−Ω² M`, the rotating damping's `Ω C J` (the circulatory term
+//! of damping seen from the rotor), and the gyroscopic `Ω² G J`; the unbalance force is constant,
+//! `f_r = m e Ω² e^{i phase}`, and the ball terms become
+//! `a_j = c̈ + 2iΩ ċ − Ω² c + R(i ψ̈_j − (Ω + ψ̇_j)²) e^{iψ_j}` (complex), with the same rule for the
+//! tilt rates and accelerations (`ω = τ̇ + ΩJτ`, `ω̇ = τ̈ + 2ΩJτ̇ − Ω²τ` in turning components: the
+//! ball terms are invariant under rotations), no longer depending on time.
+//! The balanced state (rotor at rest in these axes, balls at rest cancelling the unbalance) is an
+//! equilibrium of this form ([`Frame::Rotating`]). **Anisotropic** structure: the part of a 2×2
+//! block that anticommutes with `J` turns as `e^{±2iφ}` under `R(φ)ᵀ · R(φ)`, so the field is
+//! periodic with period `π/Ω` (the unbalance and the ball terms are constant in these axes).
+//! [`LinearRotorField`]'s `period()` ([`crate::analysis::VectorField::period`]) returns `π/Ω`, the least period (`2π/Ω` is also one).
+//!
+//! # The equations as solved
+//! Both frames share one residual (generalised forces minus inertia forces), with frame rate
+//! `ν` (`Ω` turning, `0` fixed) and the rotor's angle in the frame `χ = (Ω − ν) t`: the ball's
+//! angle in the frame is `θ_j = χ + ψ_j`, its acceleration in frame components
+//! `a_j = a_c + R(i ψ̈_j − (Ω + ψ̇_j)²) e^{iθ_j}` (`a_c` the race centre's absolute acceleration in
+//! the frame's components), and the unbalance force `m e Ω² e^{i(phase + χ)}`. The accelerations
+//! solve `A(ψ, τ) (p̈, ψ̈) = R(p, ψ, ṗ, ψ̇)`, `A` symmetric: `M_r` plus `m_b Pᵀ P` per ball, the
+//! ball columns `Pᵀ m_b R e⊥_j` and (tilt) `−½ m_b R² J τ`, `m_b R² e⊥_j e⊥_jᵀ` on the tilts,
+//! `m_b R²` on the balls' diagonal. The Jacobian is
+//! exact: `∂(p̈, ψ̈)/∂x = A⁻¹ ∂(R − A a)/∂x` at the current accelerations `a`, the residual
+//! differentiated by forward-mode dual numbers ([`crate::ode::dual`]).
+//!
+//! # Presets and builders
+//! - [`LinearRotor::from_planar`]: paper 004's planar rotor with its race centred (a Jeffcott
+//!   rotor: one node, `M = (m1 + m2) I`, `K = k I`, `C = c I`, the disk's `m1 s1` as unbalance):
+//!   equal to [`crate::planar::field::PlanarField`] at `s2 = 0`.
+//! - [`shaft::ShaftBuilder`]: Euler–Bernoulli beam elements, rigid disks, linear isotropic
+//!   bearings.
+
+pub mod field;
+pub mod shaft;
+
+use crate::error::{finite, non_negative, positive, Error, Result};
+use crate::linalg::eigen_dyn;
+use crate::planar::PlanarRotor;
+use serde::Serialize;
+
+pub use field::{Frame, LinearRotorField, TimeSystem};
+
+/// The degrees of freedom of each node.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum Layout {
+    /// `x, y` per node (2 DOFs).
+    Translation,
+    /// `x, y, α, β` per node (4 DOFs, ROSS's order).
+    TranslationTilt,
+}
+
+impl Layout {
+    /// DOFs per node: 2 or 4.
+    pub fn per_node(self) -> usize {
+        match self {
+            Layout::Translation => 2,
+            Layout::TranslationTilt => 4,
+        }
+    }
+}
+
+/// A direction of a node's motion.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum Direction {
+    /// Translation along `x`.
+    X,
+    /// Translation along `y`.
+    Y,
+    /// Tilt `α` about `x` (`y` of a point at axial offset `z` moves by `−z α`).
+    Alpha,
+    /// Tilt `β` about `y` (`x` of a point at axial offset `z` moves by `z β`).
+    Beta,
+}
+
+impl Direction {
+    /// Offset within a node: `x 0, y 1, α 2, β 3`.
+    fn offset(self) -> usize {
+        match self {
+            Direction::X => 0,
+            Direction::Y => 1,
+            Direction::Alpha => 2,
+            Direction::Beta => 3,
+        }
+    }
+    /// Symbol.
+    fn symbol(self) -> &'static str {
+        match self {
+            Direction::X => "x",
+            Direction::Y => "y",
+            Direction::Alpha => "α",
+            Direction::Beta => "β",
+        }
+    }
+}
+
+/// A static unbalance: the force `m e Ω² e^{i(φ + phase)}` at `node` (constant speed), and
+/// through the axial `offset` `z` the moments `f_α = −z F_y`, `f_β = z F_x`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Unbalance {
+    /// Node index.
+    pub node: usize,
+    /// `m·e` (kg·m).
+    pub me: f64,
+    /// Angle of the unbalance in rotor axes (rad).
+    pub phase: f64,
+    /// Axial offset `z` of its plane from the node (m); nonzero needs [`Layout::TranslationTilt`].
+    pub offset: f64,
+}
+
+/// A ball balancer plane: `balls` point balls of mass `ball_mass` on a race of radius `radius`
+/// centred on `node`, each with viscous drag `drag` on its angle relative to the rotor
+/// (`Q_ψ = −drag · ψ̇`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct BalancerPlane {
+    /// Node index.
+    pub node: usize,
+    /// Race radius `R` (m).
+    pub radius: f64,
+    /// Number of balls `n`.
+    pub balls: usize,
+    /// Mass of one ball `m_b` (kg).
+    pub ball_mass: f64,
+    /// Drag per ball `c_b` (N·m·s).
+    pub drag: f64,
+    /// Axial offset `z` of the race plane from the node (m): the race centre is at
+    /// `(x + z β, y − z α)`; nonzero needs [`Layout::TranslationTilt`].
+    pub offset: f64,
+}
+
+/// The structural model `M q̈ + (C + Ω G) q̇ + K q = f` in fixed axes with its unbalances and
+/// balancer planes (module docs). Matrices row-major `N × N`, `N = nodes · layout.per_node()`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct LinearRotor {
+    /// Number of nodes.
+    pub nodes: usize,
+    /// DOFs per node.
+    pub layout: Layout,
+    /// Mass matrix `M` (symmetric positive definite, without the balls).
+    pub m: Vec<f64>,
+    /// Damping matrix `C`.
+    pub c: Vec<f64>,
+    /// Gyroscopic matrix `G` (skew), multiplied by `Ω`.
+    pub g: Vec<f64>,
+    /// Stiffness matrix `K`.
+    pub k: Vec<f64>,
+    /// Unbalances.
+    pub unbalances: Vec<Unbalance>,
+    /// Balancer planes.
+    pub balancers: Vec<BalancerPlane>,
+}
+
+/// Largest number of DOFs accepted (dense matrices of `N²` entries).
+pub const MAX_DOFS: usize = 2000;
+
+impl LinearRotor {
+    /// A structure of `nodes` nodes with zero matrices, no unbalance and no balancer.
+    pub fn zeros(nodes: usize, layout: Layout) -> Self {
+        let n = nodes * layout.per_node();
+        LinearRotor { nodes, layout, m: vec![0.0; n * n], c: vec![0.0; n * n], g: vec![0.0; n * n], k: vec![0.0; n * n], unbalances: vec![], balancers: vec![] }
+    }
+
+    /// A Jeffcott rotor: one node (`x, y`), `M = m I`, `K = k I`, `C = c I`, `G = 0`, one
+    /// unbalance `me` at phase 0 and one balancer plane.
+    pub fn jeffcott(mass: f64, k: f64, c: f64, me: f64, balancer: BalancerPlane) -> Self {
+        let mut r = LinearRotor::zeros(1, Layout::Translation);
+        for i in 0..2 {
+            r.m[i * 3] = mass;
+            r.k[i * 3] = k;
+            r.c[i * 3] = c;
+        }
+        r.unbalances.push(Unbalance { node: 0, me, phase: 0.0, offset: 0.0 });
+        r.balancers.push(BalancerPlane { node: 0, offset: 0.0, ..balancer });
+        r
+    }
+
+    /// Paper 004's planar rotor with its race centred (`s2 = 0`): the Jeffcott rotor with
+    /// `M = (m1 + m2) I` (the balls' `n m3` come with the balancer), `K = k I`, `C = c I`, the
+    /// disk's eccentric mass as the unbalance `m·e = m1 s1` at phase 0 (exact at constant speed:
+    /// the disk's inertia force `m1 (ü + 2iΩu̇ − Ω²(u + s1))` is `m1 ü + …` plus the unbalance
+    /// force `m1 s1 Ω²`), and the balancer `(r, n, m3, c_ψ)`. `c_θ` and `I_G` act on the spin only,
+    /// which is prescribed. Errors: `planar.s2` nonzero, real balls, or the rotor's own checks.
+    pub fn from_planar(p: &PlanarRotor) -> Result<Self> {
+        p.validate()?;
+        if p.s2 != 0.0 {
+            return Err(Error::invalid("planar.s2", "the linear rotor's race is centred on the node: s2 must be 0"));
+        }
+        if p.balls.is_active() {
+            return Err(Error::invalid("planar.balls", "real balls (contact, rolling resistance) are not modelled on the linear rotor"));
+        }
+        Ok(LinearRotor::jeffcott(
+            p.m1 + p.m2,
+            p.k,
+            p.c,
+            p.m1 * p.s1,
+            BalancerPlane { node: 0, radius: p.r, balls: p.n, ball_mass: p.m3, drag: p.c_psi, offset: 0.0 },
+        ))
+    }
+
+    /// Number of structural DOFs `N`.
+    pub fn dofs(&self) -> usize {
+        self.nodes * self.layout.per_node()
+    }
+
+    /// Index of DOF `(node, direction)`, `None` where the layout has no such DOF.
+    pub fn dof(&self, node: usize, dir: Direction) -> Option<usize> {
+        let per = self.layout.per_node();
+        (node < self.nodes && dir.offset() < per).then(|| node * per + dir.offset())
+    }
+
+    /// Name of DOF `i`, e.g. `"node 3 α"`.
+    pub fn dof_name(&self, i: usize) -> String {
+        let per = self.layout.per_node();
+        let dir = [Direction::X, Direction::Y, Direction::Alpha, Direction::Beta][i % per];
+        format!("node {} {}", i / per, dir.symbol())
+    }
+
+    /// Total number of balls `Σ n` over the balancer planes.
+    pub fn total_balls(&self) -> usize {
+        self.balancers.iter().map(|b| b.balls).sum()
+    }
+
+    /// Check every field; errors name it (`linear_rotor.m[2,3]`, `linear_rotor.balancers[0].radius`, …).
+    pub fn validate(&self) -> Result<()> {
+        if self.nodes == 0 {
+            return Err(Error::invalid("linear_rotor.nodes", "must be at least 1"));
+        }
+        let n = self.dofs();
+        if n > MAX_DOFS {
+            return Err(Error::TooLarge { what: "linear_rotor DOFs".into(), size: n as u64, limit: MAX_DOFS as u64, reason: "dense matrices".into() });
+        }
+        for (name, a) in [("m", &self.m), ("c", &self.c), ("g", &self.g), ("k", &self.k)] {
+            if a.len() != n * n {
+                return Err(Error::invalid(format!("linear_rotor.{name}"), format!("has {} entries, N² = {} for N = {n} DOFs", a.len(), n * n)));
+            }
+            for (i, v) in a.iter().enumerate() {
+                finite(&format!("linear_rotor.{name}[{},{}]", i / n, i % n), *v)?;
+            }
+        }
+        let scale = |a: &[f64]| a.iter().fold(0.0f64, |s, v| s.max(v.abs()));
+        let (sm, sg) = (scale(&self.m), scale(&self.g));
+        for i in 0..n {
+            for j in 0..i {
+                if (self.m[i * n + j] - self.m[j * n + i]).abs() > 1e-12 * sm {
+                    return Err(Error::invalid(format!("linear_rotor.m[{i},{j}]"), format!("must equal m[{j},{i}] (M symmetric)")));
+                }
+            }
+            for j in 0..=i {
+                if (self.g[i * n + j] + self.g[j * n + i]).abs() > 1e-12 * sg {
+                    return Err(Error::invalid(format!("linear_rotor.g[{i},{j}]"), format!("must equal −g[{j},{i}] (G skew)")));
+                }
+            }
+        }
+        if let Err(i) = cholesky(&self.m, n) {
+            return Err(Error::invalid("linear_rotor.m", format!("is not positive definite (pivot {i}, {})", self.dof_name(i))));
+        }
+        for (i, u) in self.unbalances.iter().enumerate() {
+            let f = |s: &str| format!("linear_rotor.unbalances[{i}].{s}");
+            if u.node >= self.nodes {
+                return Err(Error::invalid(f("node"), format!("{} is not a node (0..{})", u.node, self.nodes)));
+            }
+            finite(&f("me"), u.me)?;
+            finite(&f("phase"), u.phase)?;
+            finite(&f("offset"), u.offset)?;
+            if u.offset != 0.0 && self.layout == Layout::Translation {
+                return Err(Error::invalid(f("offset"), "an axial offset needs the tilt DOFs (layout x, y, α, β)"));
+            }
+        }
+        for (i, b) in self.balancers.iter().enumerate() {
+            let f = |s: &str| format!("linear_rotor.balancers[{i}].{s}");
+            if b.node >= self.nodes {
+                return Err(Error::invalid(f("node"), format!("{} is not a node (0..{})", b.node, self.nodes)));
+            }
+            positive(&f("radius"), b.radius)?;
+            positive(&f("ball_mass"), b.ball_mass)?;
+            non_negative(&f("drag"), b.drag)?;
+            finite(&f("offset"), b.offset)?;
+            if b.offset != 0.0 && self.layout == Layout::Translation {
+                return Err(Error::invalid(f("offset"), "an axial offset needs the tilt DOFs (layout x, y, α, β)"));
+            }
+            if b.balls == 0 {
+                return Err(Error::invalid(f("balls"), "must be at least 1"));
+            }
+            if b.balls > crate::planar::MAX_BALLS {
+                return Err(Error::TooLarge { what: f("balls"), size: b.balls as u64, limit: crate::planar::MAX_BALLS as u64, reason: String::new() });
+            }
+        }
+        Ok(())
+    }
+
+    /// Whether `M, C, G, K` are isotropic: every 2×2 block between two pairs `(x, y)`, `(α, β)`
+    /// has the form `[[a, −b], [b, a]]` (commutes with `J`), to `1e-12` of the matrix's largest
+    /// entry. Then the equations in axes turning with the rotor are autonomous (module docs).
+    pub fn is_isotropic(&self) -> bool {
+        let n = self.dofs();
+        [&self.m, &self.c, &self.g, &self.k].iter().all(|a| {
+            let tol = 1e-12 * a.iter().fold(0.0f64, |s, v| s.max(v.abs()));
+            (0..n / 2).all(|bi| {
+                (0..n / 2).all(|bj| {
+                    let e = |r: usize, c: usize| a[(2 * bi + r) * n + 2 * bj + c];
+                    (e(0, 0) - e(1, 1)).abs() <= tol && (e(0, 1) + e(1, 0)).abs() <= tol
+                })
+            })
+        })
+    }
+
+    /// The undamped natural frequencies `ω_i` (rad/s, ascending) of `M q̈ + K q = 0` with the DOFs
+    /// in `constrained` held at zero and `extra_mass` added to `M` (e.g. the balls'
+    /// [`LinearRotor::ball_mass_matrix`]): `K` must be symmetric; the generalised problem
+    /// `K v = ω² M v` is reduced to the standard one `L⁻¹ K L⁻ᵀ w = ω² w` by the Cholesky factor
+    /// `M = L Lᵀ` and solved by [`eigen_dyn`]; `ω = sqrt(max(λ, 0))` (rigid-body modes give 0).
+    pub fn natural_frequencies(&self, constrained: &[usize], with_balls: bool) -> Result<Vec<f64>> {
+        self.validate()?;
+        let n = self.dofs();
+        let mut m = self.m.clone();
+        if with_balls {
+            for (i, v) in self.ball_mass_matrix().iter().enumerate() {
+                m[i] += v;
+            }
+        }
+        let keep: Vec<usize> = (0..n).filter(|i| !constrained.contains(i)).collect();
+        let r = keep.len();
+        let sub = |a: &[f64]| -> Vec<f64> { keep.iter().flat_map(|&i| keep.iter().map(move |&j| a[i * n + j])).collect() };
+        let (mr, kr) = (sub(&m), sub(&self.k));
+        let l = cholesky(&mr, r).map_err(|i| Error::invalid("linear_rotor.m", format!("is not positive definite on the free DOFs (pivot {i})")))?;
+        // S = L⁻¹ K L⁻ᵀ: solve L X = K, then L Sᵀ = Xᵀ
+        let x = lower_solve_columns(&l, &kr, r);
+        let xt: Vec<f64> = (0..r * r).map(|ij| x[(ij % r) * r + ij / r]).collect();
+        let s = lower_solve_columns(&l, &xt, r);
+        let ev = eigen_dyn::eigenvalues(&s, r).map_err(|_| Error::NoConvergence { omega: 0.0 })?;
+        let mut w: Vec<f64> = ev.iter().map(|z| z.re.max(0.0).sqrt()).collect();
+        w.sort_by(f64::total_cmp);
+        Ok(w)
+    }
+
+    /// The balls as rings, a lumped mass matrix (e.g. for critical speeds of the rotor with its
+    /// balls): each plane's mass `n m_b` at its race centre `(x + z β, y − z α)`, i.e.
+    /// `n m_b Pᵀ P` with `P` the map from the node's DOFs to the race centre's translation, and
+    /// with tilt DOFs the ring's diametral moment `n m_b R²/2` on `α, β` (the exact average of
+    /// the balls' tilt inertia `m_b R² (α̇ sin θ − β̇ cos θ)²` over evenly spread balls).
+    pub fn ball_mass_matrix(&self) -> Vec<f64> {
+        let n = self.dofs();
+        let mut a = vec![0.0; n * n];
+        for b in &self.balancers {
+            let mass = b.balls as f64 * b.ball_mass;
+            let (Some(ix), Some(iy)) = (self.dof(b.node, Direction::X), self.dof(b.node, Direction::Y)) else { continue };
+            let tilt = self.dof(b.node, Direction::Alpha).zip(self.dof(b.node, Direction::Beta));
+            // race centre: x + z β, y − z α
+            let mut rows: Vec<Vec<(usize, f64)>> = vec![vec![(ix, 1.0)], vec![(iy, 1.0)]];
+            if let Some((ia, ib)) = tilt {
+                rows[0].push((ib, b.offset));
+                rows[1].push((ia, -b.offset));
+                for i in [ia, ib] {
+                    a[i * n + i] += 0.5 * mass * b.radius * b.radius;
+                }
+            }
+            for row in &rows {
+                for &(i, ci) in row {
+                    for &(j, cj) in row {
+                        a[i * n + j] += mass * ci * cj;
+                    }
+                }
+            }
+        }
+        a
+    }
+}
+
+/// Cholesky factor `L` (row-major, lower) of a symmetric positive definite `n × n` matrix, or
+/// the index of the first non-positive pivot.
+pub(crate) fn cholesky(a: &[f64], n: usize) -> std::result::Result<Vec<f64>, usize> {
+    let mut l = vec![0.0; n * n];
+    for j in 0..n {
+        let mut d = a[j * n + j];
+        for k in 0..j {
+            d -= l[j * n + k] * l[j * n + k];
+        }
+        if d.is_nan() || d <= 0.0 {
+            return Err(j);
+        }
+        let d = d.sqrt();
+        l[j * n + j] = d;
+        for i in j + 1..n {
+            let mut s = a[i * n + j];
+            for k in 0..j {
+                s -= l[i * n + k] * l[j * n + k];
+            }
+            l[i * n + j] = s / d;
+        }
+    }
+    Ok(l)
+}
+
+/// `L⁻¹ B` for lower-triangular `L` and `n × n` `B` (row-major), column by column.
+fn lower_solve_columns(l: &[f64], b: &[f64], n: usize) -> Vec<f64> {
+    let mut x = b.to_vec();
+    for c in 0..n {
+        for r in 0..n {
+            let mut s = x[r * n + c];
+            for k in 0..r {
+                s -= l[r * n + k] * x[k * n + c];
+            }
+            x[r * n + c] = s / l[r * n + r];
+        }
+    }
+    x
+}
+
+/// LU with partial pivoting of a dense `n × n` matrix (row-major), for the accelerations.
+pub(crate) struct DenseLu {
+    a: Vec<f64>,
+    perm: Vec<usize>,
+    n: usize,
+}
+
+impl DenseLu {
+    /// Factor `a`; `None` if a pivot vanishes (singular).
+    pub(crate) fn new(mut a: Vec<f64>, n: usize) -> Option<Self> {
+        let mut perm: Vec<usize> = (0..n).collect();
+        for c in 0..n {
+            let p = (c..n).max_by(|&i, &j| a[i * n + c].abs().total_cmp(&a[j * n + c].abs()))?;
+            if p != c {
+                for k in 0..n {
+                    a.swap(p * n + k, c * n + k);
+                }
+                perm.swap(p, c);
+            }
+            let piv = a[c * n + c];
+            if piv == 0.0 || !piv.is_finite() {
+                return None;
+            }
+            for r in c + 1..n {
+                let f = a[r * n + c] / piv;
+                if f == 0.0 {
+                    continue;
+                }
+                a[r * n + c] = f;
+                for k in c + 1..n {
+                    a[r * n + k] -= f * a[c * n + k];
+                }
+            }
+        }
+        Some(DenseLu { a, perm, n })
+    }
+
+    /// Solve `A x = b` in place.
+    pub(crate) fn solve(&self, b: &mut [f64]) {
+        let n = self.n;
+        let mut x: Vec<f64> = self.perm.iter().map(|&p| b[p]).collect();
+        for r in 0..n {
+            let s: f64 = (0..r).map(|k| self.a[r * n + k] * x[k]).sum();
+            x[r] -= s;
+        }
+        for r in (0..n).rev() {
+            let s: f64 = (r + 1..n).map(|k| self.a[r * n + k] * x[k]).sum();
+            x[r] = (x[r] - s) / self.a[r * n + r];
+        }
+        b.copy_from_slice(&x);
+    }
+}
