@@ -228,11 +228,23 @@ pub fn stability_over_speed(rotor: &Rotor, speeds: &[f64]) -> Result<RotorStabil
                 threshold: p.stability.as_ref().map(|s| s.threshold),
                 family_dimension: fam,
                 amplitude,
-                failure: p.failure.clone(),
+                failure: p.failure.as_ref().map(|f| explain_failure(rotor, f)),
             }
         })
         .collect();
     Ok(RotorStability { model: rotor.model_name(), kind, stable_ranges: scan.stable_ranges, points, family_dimension, member_psi })
+}
+
+/// A scan's failure in the user's terms: where the closed form gives no state, say which state
+/// does not exist and why.
+fn explain_failure(rotor: &Rotor, failure: &str) -> String {
+    if !failure.starts_with("no starting point") {
+        return failure.to_string();
+    }
+    match rotor {
+        Rotor::Planar(_) => "no semi-balanced state at this speed: the balls cannot supply the unbalance it needs (|B| > n m3 r, planar::stationary)".into(),
+        Rotor::Spatial(_) => "no balanced state: the balls' capacity Σ m R of a plane is below the unbalance it must cancel".into(),
+    }
 }
 
 /// The balls' angles in a reduced state.
