@@ -493,8 +493,6 @@ fn interrupted_map_with_boundary_keeps_what_it_wrote() {
     );
     assert_eq!(code, Some(2), "{err}");
     assert!(err.contains("error: interrupted"), "{err}");
-    // without --config the report is the papers'
-    assert!(err.contains("report: the papers' reproductions"), "{err}");
     let boundary = std::fs::read_to_string(dir.join("b_boundary.csv")).unwrap();
     assert!(boundary.lines().next().is_some_and(|h| h.contains("dimensionless.z_a")), "{boundary}");
     if err.contains("while tracing the boundary") {

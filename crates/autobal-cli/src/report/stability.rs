@@ -55,7 +55,8 @@ pub fn build_user(ctx: &Ctx) -> Result<Option<Section>> {
         (Some(stable), Some(line)) => s.summary.push(verdict_html(stable, line)),
         (_, Some(line)) => s.summary.push(format!("<b>{}</b>", super::esc(line))),
         _ => s.summary.push(format!(
-            "No operating speed given (<code>[analysis] operating_speed = \"1400 rpm\"</code> or a range): the balanced state is exactly stable on {}.",
+            "No operating speed given (<code>[analysis] operating_speed = {}</code> or a range): the balanced state is exactly stable on {}.",
+            if w0.is_some() { "\"1400 rpm\"" } else { "1.5</code>, as Ω = ω/ω0,<code>" },
             super::esc(&ranges_text_in(&cmp.exact.stable_ranges, w0, Some(cmp.omega_max)))
         )),
     }
