@@ -272,6 +272,20 @@ fn dimensional_report_is_in_si_and_renders() {
     let summary = &index[index.find("id=\"summary\"").unwrap()..index.find("<nav id=\"toc\"").unwrap()];
     assert!(summary.contains(&line.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")), "{line} in {summary}");
     assert!(summary.contains("The run-up (from rest to 1\u{202F}400 rpm) peaks at"), "{summary}");
+    // the basins at 1400 rpm: the count of balanced runs is `autobal basins`' with the same
+    // drive (200 revolutions at the operating speed, the quick report's 6 × 6 grid)
+    let w = 1400.0 * std::f64::consts::PI / 30.0;
+    let t_end = 200.0 * std::f64::consts::TAU / w;
+    let csv = dir.join("basins-check.csv");
+    let sets =
+        [r#"drive.kind="speed""#.to_string(), format!("drive.omega0={w:?}"), format!("drive.t_end={t_end:?}"), format!("integration.dt={:?}", t_end / 200.0)];
+    let mut args = vec!["basins", "--config", &cfg, "--n", "6", "--format", "json", "--out", csv.to_str().unwrap()];
+    for s in &sets {
+        args.extend(["--set", s]);
+    }
+    let b = json(&args);
+    let want = format!("{} of {} starts of the balls", b["balanced"], b["runs"]);
+    assert!(summary.contains(&want), "{want} in {summary}");
     // the design maps of the brief: balancer position, ball mass, ball drag, against rpm
     for name in ["design_balancer_z", "design_balancer_ball_mass", "design_balancer_drag"] {
         let t = std::fs::read_to_string(dir.join(format!("{name}.svg"))).unwrap();
