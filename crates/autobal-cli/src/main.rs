@@ -233,16 +233,21 @@ enum Command {
         #[arg(long)]
         threads: Option<usize>,
     },
-    /// Write an HTML report with SVG figures to a folder
+    /// Write an HTML report with SVG figures to a folder: about your rotor (with --config), or
+    /// the papers' reproductions (--papers, the default without --config)
     Report {
         #[command(flatten)]
         common: Common,
         /// Output folder (created if missing)
         #[arg(long, short, default_value = "autobal-report")]
         out: PathBuf,
-        /// Run paper 004's passages ten times faster (for a quick look; the tests use it)
+        /// Shorter runs in time (for a quick look; the tests use it)
         #[arg(long)]
         quick: bool,
+        /// The papers' reproductions (000, 003, 004) instead of a report about the config's rotor;
+        /// the default when no --config is given
+        #[arg(long, conflicts_with = "config")]
+        papers: bool,
     },
 }
 
@@ -314,11 +319,12 @@ fn run(cli: Cli) -> Result<()> {
         Command::Sweep(a) => sweep::run(a),
         Command::Merge(a) => sweep::merge(a),
         Command::Basins { config, set, n, out, format, threads } => run_basins(config, set, n, out, format, threads),
-        Command::Report { common, out, quick } => {
+        Command::Report { common, out, quick, papers } => {
             // the folder is created and checked before any section runs
             outfile::Outputs::new().inputs(common.config.as_deref()).output("--out", &out.join("index.html")).check()?;
             let _ = ctrlc::set_handler(|| sim::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
-            let index = report::run(common.config.as_deref(), &common.set, &out, quick)?;
+            let kind = if papers || common.config.is_none() { report::Kind::Papers } else { report::Kind::User };
+            let index = report::run(common.config.as_deref(), &common.set, &out, quick, kind)?;
             output::print(&format!("report written to {}\n", index.display()))
         }
     }
