@@ -359,7 +359,7 @@ fn report_takes_the_general_route_as_stability_does() {
     let (code, _, err) = autobal(&["report", "--quick", "--config", &cfg, "--set", "spatial.spin_drag=0.01", "--out", dir.to_str().unwrap()]);
     assert_eq!(code, 0, "{err}");
     assert!(
-        err.contains("warning: the report's analytic sections use the rotor of papers 000/003 (isotropic supports, one balancer plane of point-mass balls, static unbalance): spatial.spin_drag is used only by `simulate`/`basins` and the report's \"Your rotor in time\""),
+        err.contains("warning: the report's critical speeds and design maps use the rotor of papers 000/003 (isotropic supports, one balancer plane of point-mass balls, static unbalance): spatial.spin_drag is used only by `simulate`/`basins` and the report's stability (general route) and run-up"),
         "{err}"
     );
     let index = std::fs::read_to_string(dir.join("index.html")).unwrap();
