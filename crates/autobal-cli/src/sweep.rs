@@ -6,7 +6,7 @@ use crate::config;
 use crate::{emit, Format};
 use anyhow::{anyhow, bail, Context, Result};
 use autobal::planar::problem::PlanarProblem;
-use autobal::sweep::{shard, simulate_grid, Axis, Grid, SpatialSweep, SweepModel, SweepSummary, SPATIAL_SUMMARY_COLUMNS, SUMMARY_COLUMNS};
+use autobal::sweep::{definition_checksum, shard, simulate_grid, Axis, Grid, SpatialSweep, SweepModel, SweepSummary, SPATIAL_SUMMARY_COLUMNS, SUMMARY_COLUMNS};
 use clap::Args;
 use serde_json::{json, Value};
 use std::io::Write;
@@ -91,7 +91,7 @@ fn columns(paths: &[&str], summary: &[&str]) -> Vec<String> {
 const PRINTED_WARNINGS: usize = 10;
 
 /// A run's summary as the sweep's table shows it.
-trait Row: SweepSummary + serde::Serialize {
+trait Row: SweepSummary {
     /// The table's header after the axes (`lu`: the unit of lengths).
     fn header(lu: &str) -> String;
     /// The row after the axes (`ls`: lengths in that unit per config unit).
@@ -167,15 +167,7 @@ pub fn run(a: SweepArgs) -> Result<()> {
             // an unknown key, or one the config cannot take, before anything runs
             SpatialSweep::set(&mut root.clone(), &ax.path, ax.values[0]).map_err(|e| anyhow!("{flag} {e}"))?;
         }
-        let problem = json!({
-            "model": "spatial",
-            "config": root,
-            "rotor": sim.rotor,
-            "drive": sim.drive,
-            "drive_is_default": sim.default_drive,
-            "initial": sim.initial,
-            "integration": sim.settings,
-        });
+        let problem = base.to_json()?;
         let units = if sim.config.dimensional { ("mm", 1e3) } else { ("ρ_s", 1.0) };
         return sweep_on(&a, &root, &base, axes, problem, units);
     }
@@ -188,24 +180,6 @@ pub fn run(a: SweepArgs) -> Result<()> {
     }
     let problem = serde_json::to_value(&base)?;
     sweep_on(&a, &root, &base, axes, problem, ("mm", 1e3))
-}
-
-/// The sweep's JSON: the grid, the problem (`problem`), which part, and the runs in order (as
-/// [`autobal::reports::sweep`] writes it for the planar rotor).
-fn sweep_json(grid: &Grid, shard: Option<(usize, usize)>, range: &std::ops::Range<usize>, complete: bool, problem: Value, runs: Vec<Value>) -> Value {
-    let keys = grid.paths();
-    json!({
-        "paths": keys,
-        "x_key": keys[0],
-        "y_key": keys.get(1),
-        "grid": grid.axes.iter().map(|a| json!({ "path": a.path, "values": a.values })).collect::<Vec<_>>(),
-        "points": grid.len(),
-        "shard": shard.map(|(k, n)| [k, n]),
-        "range": [range.start, range.end],
-        "complete": complete,
-        "problem": problem,
-        "runs": runs,
-    })
 }
 
 /// Run the sweep of `base` over `axes` and write its outputs (`units`: the table's unit of
@@ -299,14 +273,7 @@ where
                     }
                 }
             }
-            runs.push(json!({
-                "point": i,
-                "values": values,
-                "x": values.first(),
-                "y": values.get(1),
-                "summary": s,
-                "wall_time_s": r.wall_s,
-            }));
+            runs.push(autobal::sweep::run_json(i, values, r));
             if let Some(b) = &bar {
                 b.inc(1);
             }
@@ -327,7 +294,7 @@ where
     if let Some(e) = io_error {
         return Err(e);
     }
-    let mut json = sweep_json(&grid, shard_kn, &range, outcome.complete, problem, runs);
+    let mut json = autobal::sweep::report(&grid, shard_kn, &range, outcome.complete, problem, runs);
     json["definition_checksum"] = json!(checksum);
     let csv_path = csv.commit()?;
     if let Some(t) = pq {
@@ -339,27 +306,6 @@ where
         bail!("interrupted: {} of {} runs complete, kept in {}", outcome.delivered, outcome.points, csv_path.display());
     }
     Ok(())
-}
-
-/// A 64-bit FNV-1a hash of the sweep's definition: the config after the `--set` overrides
-/// (as TOML text) and every axis's path and values (bit patterns), written in each shard's JSON
-/// as `definition_checksum` so that `merge` refuses shards of different sweeps. FNV-1a
-/// (`h = (h ⊕ byte) · 0x100000001b3` from `0xcbf29ce484222325`) guards against mistakes, not
-/// forgery: two different definitions collide with probability ~2⁻⁶⁴.
-pub fn definition_checksum(root: &toml::Table, grid: &Grid) -> String {
-    let mut text = toml::to_string(root).unwrap_or_default();
-    for a in &grid.axes {
-        text.push_str(&format!("\naxis {}=", a.path));
-        for v in &a.values {
-            text.push_str(&format!("{:016x},", v.to_bits()));
-        }
-    }
-    format!("fnv1a64:{:016x}", fnv1a64(text.as_bytes()))
-}
-
-/// FNV-1a, 64 bits.
-fn fnv1a64(bytes: &[u8]) -> u64 {
-    bytes.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &b| (h ^ b as u64).wrapping_mul(0x0000_0100_0000_01b3))
 }
 
 /// Largest shard file `merge` reads (CSV or JSON), bytes: a row is well under 1 kB, so 1 GiB

@@ -334,8 +334,9 @@ pub fn spatial_summary_values(s: &crate::spatial::dynamics::Summary) -> [f64; 17
     ]
 }
 
-/// A run's summary as a sweep's row: its columns' names and numbers.
-pub trait SweepSummary: Send + Sync {
+/// A run's summary as a sweep's row: its columns' names and numbers (and as JSON, its
+/// run's `summary`).
+pub trait SweepSummary: Send + Sync + serde::Serialize {
     /// The columns' names ([`SUMMARY_COLUMNS`], [`SPATIAL_SUMMARY_COLUMNS`]).
     const COLUMNS: &'static [&'static str];
     /// The numbers, one per column, in their order.
@@ -454,6 +455,64 @@ impl SpatialSweep {
         *slot = toml::Value::Float(value);
         crate::config::set(root, key, toml::Value::Array(a))
     }
+}
+
+impl SpatialSweep {
+    /// The sweep's base problem as a sweep's JSON gives it (`problem`): `model: "spatial"`,
+    /// the config's tables (`config`) and what they convert to (`rotor`, `drive`,
+    /// `drive_is_default`, `initial`, `integration`).
+    pub fn to_json(&self) -> Result<serde_json::Value> {
+        let sim = crate::config::spatial_simulation(&self.root)?;
+        Ok(serde_json::json!({
+            "model": "spatial",
+            "config": self.root,
+            "rotor": sim.rotor,
+            "drive": sim.drive,
+            "drive_is_default": sim.default_drive,
+            "initial": sim.initial,
+            "integration": sim.settings,
+        }))
+    }
+}
+
+/// One run as a sweep's JSON lists it: the point's index and values (`x`, `y`: the first
+/// two), the summary and the wall time (as [`crate::reports::sweep_run`], for either rotor).
+pub fn run_json<S: serde::Serialize>(point: usize, values: &[f64], r: &PointResult<S>) -> serde_json::Value {
+    serde_json::json!({
+        "point": point,
+        "values": values,
+        "x": values.first(),
+        "y": values.get(1),
+        "summary": r.summary,
+        "wall_time_s": r.wall_s,
+    })
+}
+
+/// A sweep's JSON (as [`crate::reports::sweep`], for either rotor): the paths, the grid, which
+/// part (`shard`, 1-based `(k, n)`, and `range`), whether it is complete, the base `problem`
+/// ([`SpatialSweep::to_json`], or the [`PlanarProblem`] as JSON) and the runs in order
+/// ([`run_json`]).
+pub fn report(
+    grid: &Grid,
+    shard: Option<(usize, usize)>,
+    range: &Range<usize>,
+    complete: bool,
+    problem: serde_json::Value,
+    runs: Vec<serde_json::Value>,
+) -> serde_json::Value {
+    let keys = grid.paths();
+    serde_json::json!({
+        "paths": keys,
+        "x_key": keys[0],
+        "y_key": keys.get(1),
+        "grid": grid.axes.iter().map(|a| serde_json::json!({ "path": a.path, "values": a.values })).collect::<Vec<_>>(),
+        "points": grid.len(),
+        "shard": shard.map(|(k, n)| [k, n]),
+        "range": [range.start, range.end],
+        "complete": complete,
+        "problem": problem,
+        "runs": runs,
+    })
 }
 
 impl SweepModel for SpatialSweep {
@@ -658,6 +717,27 @@ pub fn simulate_batch<M: SweepModel>(
     }
     let n = params.len().checked_div(k).unwrap_or(0);
     run_points(base, paths, 0..n, &|i, out| out.copy_from_slice(&params[i * k..(i + 1) * k]), on_row, cancel)
+}
+
+/// A 64-bit FNV-1a hash of the sweep's definition: the config after the `--set` overrides
+/// (as TOML text) and every axis's path and values (bit patterns), written in each shard's JSON
+/// as `definition_checksum` so that `autobal merge` refuses shards of different sweeps. FNV-1a
+/// (`h = (h ⊕ byte) · 0x100000001b3` from `0xcbf29ce484222325`) guards against mistakes, not
+/// forgery: two different definitions collide with probability ~2⁻⁶⁴.
+pub fn definition_checksum(root: &Table, grid: &Grid) -> String {
+    let mut text = toml::to_string(root).unwrap_or_default();
+    for a in &grid.axes {
+        text.push_str(&format!("\naxis {}=", a.path));
+        for v in &a.values {
+            text.push_str(&format!("{:016x},", v.to_bits()));
+        }
+    }
+    format!("fnv1a64:{:016x}", fnv1a64(text.as_bytes()))
+}
+
+/// FNV-1a, 64 bits.
+fn fnv1a64(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &b| (h ^ b as u64).wrapping_mul(0x0000_0100_0000_01b3))
 }
 
 #[cfg(test)]
