@@ -298,16 +298,13 @@ pub fn run_general(
     threads: Option<usize>,
     boundary: bool,
 ) -> Result<()> {
-    use autobal::rotor_map::{general_map, Kind, Verdict};
+    use autobal::rotor_map::{general_map_traced, BoundaryPoint, Kind, Verdict};
     let xa = Axis::parse("--x", x)?;
     let ya = Axis::parse("--y", y)?;
     if xa.key == ya.key {
         bail!("--y {}: the same key as --x; map over two different keys", ya.key);
     }
     let speed = omega.map(|t| autobal::units::parse_speed("--omega", t)).transpose()?;
-    if boundary {
-        bail!("--boundary: not available on the general route yet (the map itself is: run without --boundary)");
-    }
     if let Some(t) = threads {
         if t == 0 {
             bail!("--threads: must be at least 1");
@@ -322,9 +319,20 @@ pub fn run_general(
     for p in crate::outfile::stem_files(&out, &["csv", "svg", "png"]) {
         o.output("--out", &p);
     }
+    let boundary_path = std::path::PathBuf::from(format!("{}_boundary.csv", out.display()));
+    if boundary {
+        o.output("--out", &boundary_path);
+    }
     o.check()?;
     let mut w = crate::outfile::Staged::create("--out", &csv_path)?;
     writeln!(w, "{},{},max_real_part,verdict,family_dimension", xa.key, ya.key)?;
+    let mut traced: Vec<BoundaryPoint> = vec![];
+    let verdict_name = |v: Option<Verdict>| match v {
+        None => "",
+        Some(Verdict::Stable) => "stable",
+        Some(Verdict::Unstable) => "unstable",
+        Some(Verdict::Neutral) => "neutral",
+    };
     let (lx, ly) = (xa.to_library(), ya.to_library());
     let bar = std::io::IsTerminal::is_terminal(&std::io::stderr()).then(|| {
         let b = indicatif::ProgressBar::new(ya.n as u64);
@@ -340,7 +348,8 @@ pub fn run_general(
     let xs: Vec<String> = lx.values.iter().map(|v| crate::num::Csv(*v).to_string()).collect();
     let mut io_error: Option<std::io::Error> = None;
     let t0 = std::time::Instant::now();
-    let outcome = general_map(root, &lx, &ly, speed, &|| INTERRUPTED.load(Ordering::Relaxed), &mut |j, cells| {
+    let outcome = general_map_traced(root, &lx, &ly, speed, boundary, &|| INTERRUPTED.load(Ordering::Relaxed), &mut |j, cells, points| {
+        traced.extend_from_slice(points);
         if j % ky == 0 && j / ky < dy.n {
             kept[j / ky] = Some(cells.iter().step_by(kx).take(dx.n).copied().collect());
         }
@@ -351,15 +360,9 @@ pub fn run_general(
             // no stationary state: empty fields, never `NaN`
             let (margin, verdict, fam) = match c.verdict {
                 None => (String::new(), "", String::new()),
-                Some(v) => (
-                    if verdict_only { String::new() } else { crate::num::Csv(c.margin).to_string() },
-                    match v {
-                        Verdict::Stable => "stable",
-                        Verdict::Unstable => "unstable",
-                        Verdict::Neutral => "neutral",
-                    },
-                    c.family_dimension.to_string(),
-                ),
+                Some(v) => {
+                    (if verdict_only { String::new() } else { crate::num::Csv(c.margin).to_string() }, verdict_name(Some(v)), c.family_dimension.to_string())
+                }
             };
             let _ = writeln!(t, "{xs},{yv},{margin},{verdict},{fam}");
         }
@@ -425,6 +428,20 @@ pub fn run_general(
         if !verdict_only {
             let what = if periodic { "largest Floquet exponent" } else { "max Re λ" };
             h.label = format!("{what} ({}; < 0 stable)", if planar { "1/s" } else { "per unit τ" });
+        }
+    }
+    if boundary {
+        // the bisected points: `x` to 1e-9 relative where the margin changes sign (or a
+        // stationary state appears), with the verdicts on either side
+        let mut t = format!("{},{},from,to\n", xa.key, ya.key);
+        for b in &traced {
+            use std::fmt::Write as _;
+            let _ = writeln!(t, "{},{},{},{}", crate::num::Csv(b.x), crate::num::Csv(b.y), verdict_name(b.from), verdict_name(b.to));
+        }
+        crate::outfile::write_atomic("--out", &boundary_path, t)?;
+        crate::output::note(&format!("boundary: {} points bisected along {} to 1e-9 relative; wrote {}", traced.len(), xa.key, boundary_path.display()));
+        if !traced.is_empty() {
+            p.series.push(Series::new("bisected boundary points", traced.iter().map(|b| (b.x, b.y)).collect(), "#0072B2").markers());
         }
     }
     crate::outfile::write_atomic("--out", &crate::output::with_suffix(&out, "svg"), p.to_svg())?;

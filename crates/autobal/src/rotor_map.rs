@@ -167,6 +167,20 @@ fn solve(c: &CellRotor, w: f64, previous: Option<&[f64]>) -> (GeneralCell, Optio
     (GeneralCell::NONE, None)
 }
 
+/// One end of a bisection: `x`, the verdict, the state, the cell.
+type Side = (f64, Option<Verdict>, Option<Vec<f64>>, GeneralCell);
+
+/// Which side of the stability boundary a cell lies on: 0 without a stationary state, 1 where
+/// the margin is negative, 2 where it is not. The boundary is where the margin crosses 0 (as
+/// [`crate::analysis::speed_scan`] bisects it), not the edge of the neutral band around it.
+fn side(c: &GeneralCell) -> u8 {
+    match c.verdict {
+        None => 0,
+        Some(_) if c.margin < 0.0 => 1,
+        Some(_) => 2,
+    }
+}
+
 /// An axis: the speed in some unit, or a config path.
 fn speed_unit(a: &Axis) -> Option<SpeedUnit> {
     speed_path_unit(&a.path)
@@ -185,16 +199,23 @@ struct Plane<'a> {
 
 impl Plane<'_> {
     /// The rotor at `(xv, yv)` (grid index `(i, j)` for the prebuilt line) and its speed.
-    fn cell(&self, i: usize, j: usize, xv: f64, yv: f64) -> Result<(std::borrow::Cow<'_, CellRotor>, f64)> {
+    /// `i` is `None` off the grid's `x` values (a bisection), where a rotor along `x` is built.
+    fn cell(&self, i: Option<usize>, j: usize, xv: f64, yv: f64) -> Result<(std::borrow::Cow<'_, CellRotor>, f64)> {
         use std::borrow::Cow;
         match (speed_unit(self.x), speed_unit(self.y)) {
             (Some(u), None) => {
-                let c = self.line.as_ref().map_or_else(|| self.build_at(&[(&self.y.path, yv)]).map(Cow::Owned), |l| Ok(Cow::Borrowed(&l[j])))?;
+                let c = match &self.line {
+                    Some(l) => Cow::Borrowed(&l[j]),
+                    None => Cow::Owned(self.build_at(&[(&self.y.path, yv)])?),
+                };
                 let w = model_speed(&c, Speed { value: xv, unit: u }, &self.x.path)?;
                 Ok((c, w))
             }
             (None, Some(u)) => {
-                let c = self.line.as_ref().map_or_else(|| self.build_at(&[(&self.x.path, xv)]).map(Cow::Owned), |l| Ok(Cow::Borrowed(&l[i])))?;
+                let c = match (&self.line, i) {
+                    (Some(l), Some(i)) => Cow::Borrowed(&l[i]),
+                    _ => Cow::Owned(self.build_at(&[(&self.x.path, xv)])?),
+                };
                 let w = model_speed(&c, Speed { value: yv, unit: u }, &self.y.path)?;
                 Ok((c, w))
             }
@@ -220,18 +241,58 @@ impl Plane<'_> {
         })
     }
 
-    /// Row `j`: every `x` at `y_j`, continued along the row.
-    fn row(&self, j: usize) -> Result<Vec<GeneralCell>> {
+    /// Row `j`: every `x` at `y_j`, continued along the row; with `trace`, the points where
+    /// the verdict changes between neighbouring cells, bisected along `x`.
+    fn row(&self, j: usize, trace: bool) -> Result<(Vec<GeneralCell>, Vec<BoundaryPoint>)> {
         let yv = self.y.values[j];
         let mut previous: Option<Vec<f64>> = None;
         let mut out = Vec::with_capacity(self.x.values.len());
+        let mut states = Vec::with_capacity(if trace { self.x.values.len() } else { 0 });
         for (i, &xv) in self.x.values.iter().enumerate() {
-            let (c, w) = self.cell(i, j, xv, yv)?;
+            let (c, w) = self.cell(Some(i), j, xv, yv)?;
             let (cell, x) = solve(&c, w, previous.as_deref());
+            if trace {
+                states.push(x.clone());
+            }
             previous = x.or(previous);
             out.push(cell);
         }
-        Ok(out)
+        let mut points = vec![];
+        if trace {
+            for i in 0..out.len().saturating_sub(1) {
+                if side(&out[i]) != side(&out[i + 1]) {
+                    let end = |k: usize| (self.x.values[k], out[k].verdict, states[k].clone(), out[k]);
+                    points.push(self.bisect(j, end(i), end(i + 1))?);
+                }
+            }
+        }
+        Ok((out, points))
+    }
+
+    /// The point between `lo` and `hi` (x, verdict, state) on row `j` where the verdict changes,
+    /// by bisection to [`BOUNDARY_RTOL`] relative in `x`.
+    fn bisect(&self, j: usize, lo: Side, hi: Side) -> Result<BoundaryPoint> {
+        let yv = self.y.values[j];
+        let (from, to) = (lo.1, hi.1);
+        let side_lo = side(&lo.3);
+        let (mut a, mut b) = (lo.0, hi.0);
+        let (mut xa, mut xb) = (lo.2, hi.2);
+        while (b - a).abs() > BOUNDARY_RTOL * a.abs().max(b.abs()) {
+            let mid = 0.5 * (a + b);
+            if mid == a || mid == b {
+                break;
+            }
+            let (c, w) = self.cell(None, j, mid, yv)?;
+            let (cell, x) = solve(&c, w, xa.as_deref().or(xb.as_deref()));
+            if side(&cell) == side_lo {
+                a = mid;
+                xa = x.or(xa);
+            } else {
+                b = mid;
+                xb = x.or(xb);
+            }
+        }
+        Ok(BoundaryPoint { x: 0.5 * (a + b), y: yv, from, to })
     }
 }
 
@@ -261,6 +322,41 @@ pub fn general_map(
     cancel: &(dyn Fn() -> bool + Sync),
     on_row: &mut dyn FnMut(usize, &[GeneralCell]) -> bool,
 ) -> Result<GeneralMapOutcome> {
+    general_map_traced(root, x, y, speed, false, cancel, &mut |j, cells, _| on_row(j, cells))
+}
+
+/// Where the verdict changes along `x` between two cells of a row: `x` located by bisection to
+/// [`BOUNDARY_RTOL`] relative, `y` the row's value.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct BoundaryPoint {
+    /// The boundary's `x`.
+    pub x: f64,
+    /// The row's `y`.
+    pub y: f64,
+    /// The verdict on the side of smaller `x` (`None`: no stationary state).
+    pub from: Option<Verdict>,
+    /// The verdict on the side of larger `x`.
+    pub to: Option<Verdict>,
+}
+
+/// Relative width in `x` to which [`general_map_traced`] bisects a verdict change: `|b − a| ≤
+/// 1e-9 max(|a|, |b|)`, as [`crate::analysis::speed_scan`] bisects the ends of stable ranges.
+pub const BOUNDARY_RTOL: f64 = 1e-9;
+
+/// [`general_map`], and with `trace` the stability boundary of each row: wherever the margin
+/// changes sign between neighbouring cells, or a stationary state appears or disappears, the
+/// change is located by bisection along `x` ([`BoundaryPoint`]; each midpoint solved from the
+/// closed form, else continued from the nearer side's state). `on_row(j, cells, points)`.
+#[allow(clippy::type_complexity)]
+pub fn general_map_traced(
+    root: &Table,
+    x: &Axis,
+    y: &Axis,
+    speed: Option<Speed>,
+    trace: bool,
+    cancel: &(dyn Fn() -> bool + Sync),
+    on_row: &mut dyn FnMut(usize, &[GeneralCell], &[BoundaryPoint]) -> bool,
+) -> Result<GeneralMapOutcome> {
     check_axis(root, x)?;
     check_axis(root, y)?;
     let (sx, sy) = (speed_unit(x), speed_unit(y));
@@ -282,7 +378,7 @@ pub fn general_map(
         plane.line = Some(line);
     }
     // the model's own refusals (real balls, a bad speed unit) before any row: at the first cell
-    let (c, w) = plane.cell(0, 0, x.values[0], y.values[0])?;
+    let (c, w) = plane.cell(Some(0), 0, x.values[0], y.values[0])?;
     c.rotor.field(w.max(f64::MIN_POSITIVE))?;
     drop(c);
     let mut out = GeneralMapOutcome { complete: true, ..Default::default() };
@@ -290,10 +386,10 @@ pub fn general_map(
     let mut j0 = 0;
     while j0 < y.values.len() {
         let j1 = (j0 + block).min(y.values.len());
-        let rows: Vec<Option<Vec<GeneralCell>>> =
-            (j0..j1).into_par_iter().map(|j| if cancel() { Ok(None) } else { plane.row(j).map(Some) }).collect::<Result<_>>()?;
+        let rows: Vec<Option<(Vec<GeneralCell>, Vec<BoundaryPoint>)>> =
+            (j0..j1).into_par_iter().map(|j| if cancel() { Ok(None) } else { plane.row(j, trace).map(Some) }).collect::<Result<_>>()?;
         for (jj, row) in rows.into_iter().enumerate() {
-            let Some(row) = row else {
+            let Some((row, points)) = row else {
                 out.complete = false;
                 return Ok(out);
             };
@@ -308,7 +404,7 @@ pub fn general_map(
                 }
             }
             out.rows += 1;
-            if !on_row(j0 + jj, &row) {
+            if !on_row(j0 + jj, &row, &points) {
                 out.complete = j0 + jj + 1 == y.values.len();
                 return Ok(out);
             }
@@ -392,6 +488,40 @@ mod tests {
         if !config::spatial(&sp).unwrap().dimensional {
             let e = collect(&sp, &rpm, &m, None).unwrap_err().to_string();
             assert!(e.starts_with("speed_rpm"), "{e}");
+        }
+    }
+
+    #[test]
+    fn the_traced_boundary_is_the_speed_scans_range_end() {
+        // second route: rotor_stability's speed scan bisects the start of the stable range to
+        // 1e-9 relative in Ω, as the trace bisects along x: the two agree to 2e-9 relative
+        let root = planar_root();
+        let wn = config::planar(&root).unwrap().rotor.natural_frequency();
+        let speeds: Vec<f64> = (1..=6).map(|i| 0.5 * wn * i as f64).collect();
+        let x = Axis { path: "omega".into(), values: speeds.clone() };
+        let y = Axis { path: "planar.c_psi".into(), values: vec![0.1] };
+        let mut pts = vec![];
+        general_map_traced(&root, &x, &y, None, true, &|| false, &mut |_, _, p| {
+            pts.extend_from_slice(p);
+            true
+        })
+        .unwrap();
+        let rotor = Rotor::Planar(config::planar(&root).unwrap().rotor);
+        let scan = crate::rotor_stability::stability_over_speed(&rotor, &speeds).unwrap();
+        let ends: Vec<f64> = scan
+            .stable_ranges
+            .iter()
+            .flat_map(|r| [r.from, r.to].into_iter().zip([r.from_is_boundary, r.to_is_boundary]))
+            .filter(|e| e.1)
+            .map(|e| e.0)
+            .collect();
+        assert!(!pts.is_empty());
+        assert_eq!(pts.len(), ends.len(), "{pts:?} vs {ends:?}");
+        for (p, e) in pts.iter().zip(&ends) {
+            assert!((p.x - e).abs() <= 2e-9 * e, "{} vs {e}", p.x);
+            assert_eq!((p.from, p.to), (Some(Verdict::Unstable), Some(Verdict::Stable)));
+            // above the critical speed (Jeffcott with balls: stable only above sqrt(k/M))
+            assert!(p.x > wn);
         }
     }
 
