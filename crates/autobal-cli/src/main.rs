@@ -182,6 +182,11 @@ enum Command {
         /// the figures and write STEM_boundary.csv
         #[arg(long)]
         boundary: bool,
+        /// `auto`: paper 000's 12-state model where it represents the config, else the general
+        /// route (the stationary state of the nonlinear equations: planar rotor, two planes,
+        /// couple, direction-dependent supports, gravity); `general`: the general route always
+        #[arg(long, value_enum, default_value = "auto")]
+        route: RouteArg,
     },
     /// Simulate in time: the planar rotor of paper 004 ([planar]) or the spatial rotor of 000/003 (the analytic commands' config plus [drive])
     Simulate {
@@ -314,7 +319,9 @@ fn run(cli: Cli) -> Result<()> {
             let _ = ctrlc::set_handler(|| map::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
             linear::run_campbell(&cfg, w, points, lin.balls.into(), format == Format::Json, svg.as_deref())
         }
-        Command::Map { common, x, y, omega, balls, quantity, out, threads, boundary } => run_map(common, x, y, omega, balls, quantity, out, threads, boundary),
+        Command::Map { common, x, y, omega, balls, quantity, out, threads, boundary, route } => {
+            run_map(common, x, y, omega, balls, quantity, out, threads, boundary, route)
+        }
         Command::Simulate { config, set, dt, out, parquet, format } => run_simulate(config, set, dt, out, parquet, format),
         Command::Sweep(a) => sweep::run(a),
         Command::Merge(a) => sweep::merge(a),
@@ -381,8 +388,16 @@ fn run_map(
     out: PathBuf,
     threads: Option<usize>,
     boundary: bool,
+    route: RouteArg,
 ) -> Result<()> {
     let (root, source) = config::read_set(common.config.as_deref(), &common.set)?;
+    if route == RouteArg::General || general::needs_general_route(&root) {
+        if balls == BallsArg::Locked {
+            anyhow::bail!("--balls locked: the general route maps the balls free (use the 12-state route of a one-plane config for the locked rotor)");
+        }
+        let verdict_only = quantity == QuantityArg::Verdict;
+        return map::run_general(&root, common.config.as_deref(), &x, &y, omega.as_deref(), verdict_only, &out, threads, boundary);
+    }
     // the speeds need the config's ω0: it is read (and checked) first
     let cfg = config::build(&root, &source)?;
     let omega_text = omega;
