@@ -35,8 +35,11 @@
 //!   periodic orbit: `‖S⁻¹ (x0 − x(T))‖∞`, below `1e-10`, above the integration's error). Round-off
 //!   in `f` is about `ε` times its largest term, so the equilibrium test is met where the scales
 //!   are sensible; a residual that stops decreasing within 1000× the tolerance is accepted. An equilibrium
-//!   then gets one more full Newton step (kept if the residual does not rise): with quadratic
-//!   convergence that takes it to round-off.
+//!   then gets one more full Newton step, kept only if it cuts the residual tenfold: with
+//!   quadratic convergence that takes it to round-off, while a step from a residual already at
+//!   round-off is refused (near a real eigenvalue crossing zero it would be round-off divided
+//!   by that eigenvalue, a move along the near-null direction that shifts the abscissa by more
+//!   than its own error, and the stability boundary with it).
 //!   Otherwise [`AnalysisError::NoConvergence`] with the residual reached.
 //! - **Verdict**, equilibrium: neutral where `|α| ≤ 1e-9 ρ`, `ρ = max |λ|` the characteristic
 //!   rate of the linearisation. The balanced QR's eigenvalues carry an absolute error of about

@@ -137,13 +137,17 @@ fn newton(
         let res = norm_inf(&r);
         if res <= tol {
             if polish {
-                // one more full step (quadratic convergence: to round-off), kept if it does not
-                // raise the residual
+                // one more full step (quadratic convergence: to round-off), kept only if it
+                // cuts the residual tenfold: a step from a residual already at round-off is
+                // round-off divided by the Jacobian's smallest singular value, which near a
+                // bifurcation (a real eigenvalue crossing zero) is a large move along the
+                // near-null direction that leaves the residual at round-off but shifts the
+                // Jacobian, and with it the abscissa, by far more than its own error
                 if let Some(d) = direction(jac.as_ref().expect("Jacobian requested"), n, &r, k) {
                     let xn: Vec<f64> = x.iter().zip(&d).zip(s).map(|((xi, di), si)| xi + di * si).collect();
                     if let Ok((rn, _)) = eval(&xn, false) {
                         let rn = norm_inf(&rn);
-                        if rn <= res {
+                        if rn <= 0.1 * res {
                             return Ok((xn, it + 1, rn, None));
                         }
                     }
