@@ -1,7 +1,7 @@
 //! Linear stability of a stationary state, and its continuation over the rotor speed (module
 //! docs of [`crate::analysis`]).
 
-use super::stationary::{stationary, NewtonOptions, StationaryState};
+use super::stationary::{stationary_near, NewtonOptions, StationaryState};
 use super::{AnalysisError, Result, VectorField};
 use crate::linalg::eigen::complex_solve;
 use crate::linalg::eigen_dyn::eigenvalues;
@@ -235,11 +235,17 @@ pub struct SpeedScan {
 }
 
 /// The stationary state at one speed: Newton from each of `starts` in turn (the first that
-/// converges), then its stability.
-fn solve_at<F: VectorField>(f: &F, starts: &[Option<&[f64]>], opts: &NewtonOptions) -> std::result::Result<(StationaryState, Stability), String> {
+/// converges), then its stability; `hint`: a neighbouring orbit's monodromy matrix
+/// ([`stationary_near`]).
+fn solve_at<F: VectorField>(
+    f: &F,
+    starts: &[Option<&[f64]>],
+    hint: Option<&[f64]>,
+    opts: &NewtonOptions,
+) -> std::result::Result<(StationaryState, Stability), String> {
     let mut last = String::from("no starting point (no previous solution and no closed-form guess)");
     for start in starts.iter().flatten() {
-        match stationary(f, start, opts) {
+        match stationary_near(f, start, hint, opts) {
             Ok(state) => return stability(f, &state).map(|st| (state, st)).map_err(|e| e.to_string()),
             Err(e) => last = e.to_string(),
         }
@@ -266,22 +272,25 @@ where
     if let Some(w) = speeds.iter().find(|w| !w.is_finite()) {
         return Err(AnalysisError::InvalidInput { field: "speeds".into(), reason: format!("{w} is not a finite speed") });
     }
-    let evaluate = |omega: f64, previous: Option<&[f64]>| -> std::result::Result<(StationaryState, Stability), String> {
+    let evaluate = |omega: f64, previous: Option<&StationaryState>| -> std::result::Result<(StationaryState, Stability), String> {
         let f = field_at(omega).map_err(|e| e.to_string())?;
         let guess = guess_at(&f, omega);
         // the closed-form state first where the model has one: near a bifurcation (a real
         // eigenvalue crossing zero, where another branch of stationary states crosses the
         // balanced one) Newton from a neighbour's solution can land on the other branch, whose
         // stability is the opposite; the closed form pins the branch the user asked about
-        let starts = if opts.prefer_guess { [guess.as_deref(), previous] } else { [previous, guess.as_deref()] };
-        solve_at(&f, &starts, &opts.newton)
+        let near = previous.map(|p| p.x.as_slice());
+        let starts = if opts.prefer_guess { [guess.as_deref(), near] } else { [near, guess.as_deref()] };
+        // a periodic orbit's shooting starts from the neighbour's monodromy matrix (no
+        // variational integration until the orbit is found)
+        solve_at(&f, &starts, previous.and_then(|p| p.monodromy.as_deref()), &opts.newton)
     };
     let mut points: Vec<ScanPoint> = Vec::with_capacity(speeds.len());
-    let mut previous: Option<Vec<f64>> = None;
+    let mut previous: Option<StationaryState> = None;
     for &omega in speeds {
-        match evaluate(omega, previous.as_deref()) {
+        match evaluate(omega, previous.as_ref()) {
             Ok((state, st)) => {
-                previous = Some(state.x.clone());
+                previous = Some(state.clone());
                 points.push(ScanPoint { omega, state: Some(state), stability: Some(st), failure: None });
             }
             Err(e) => {
@@ -299,19 +308,19 @@ where
         }
         let stable_lo = a.is_stable();
         let (mut lo, mut hi) = (a.omega, b.omega);
-        let mut x_lo = a.state.as_ref().map(|s| s.x.clone());
-        let mut x_hi = b.state.as_ref().map(|s| s.x.clone());
+        let mut x_lo = a.state.clone();
+        let mut x_hi = b.state.clone();
         while (hi - lo).abs() > opts.boundary_rtol * lo.abs().max(hi.abs()) {
             let mid = 0.5 * (lo + hi);
             if mid == lo || mid == hi {
                 break;
             }
-            let near = x_lo.as_deref().or(x_hi.as_deref());
-            let r = evaluate(mid, near).or_else(|_| evaluate(mid, x_hi.as_deref()));
+            let near = x_lo.as_ref().or(x_hi.as_ref());
+            let r = evaluate(mid, near).or_else(|_| evaluate(mid, x_hi.as_ref()));
             // the side is decided by the sign of α, so the end is where α crosses zero (not
             // where it crosses the neutral threshold, which would shift it by the tolerance)
             let (stable, x) = match r {
-                Ok((state, st)) => (st.abscissa < 0.0, Some(state.x)),
+                Ok((state, st)) => (st.abscissa < 0.0, Some(state)),
                 Err(_) => (false, None),
             };
             if stable == stable_lo {
