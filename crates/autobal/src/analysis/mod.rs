@@ -34,7 +34,7 @@
 //!   the model's closed-form guess, else from the previous speed's solution, per
 //!   [`ScanOptions::prefer_guess`]; a periodic orbit's shooting starting from the previous
 //!   orbit's monodromy matrix), its stability at each, and the ends of the stable ranges
-//!   located by bisection to `1e-9` relative in `Ω`.
+//!   located to `1e-9` relative in `Ω` (regula falsi on the abscissa, safeguarded by bisection).
 //!
 //! # Tolerances, and why
 //! - **Newton** stops when the scaled residual is below `1e-12` (equilibrium:

@@ -358,7 +358,8 @@ fn shooting_matrix(phi: &[f64], s: &[f64], n: usize) -> Vec<f64> {
 /// the start (or from `hint`, a neighbouring orbit's monodromy matrix) and updated by rank one
 /// after each step; the variational equations are integrated again only where the updated
 /// matrix gives no descent or a step fails to halve the residual (then the iteration is
-/// Newton's), and once at the orbit found, for its monodromy matrix.
+/// Newton's; at most `max_iterations / 2` times, then the search is reported as stagnating),
+/// and once at the orbit found, for its monodromy matrix.
 fn periodic<F: VectorField + ?Sized>(
     f: &F,
     guess: &[f64],
@@ -392,6 +393,12 @@ fn periodic<F: VectorField + ?Sized>(
         }
     };
     let mut it = 0;
+    // the exact matrix is integrated again at most max_iterations / 2 times: each such
+    // integration is a Newton step, and where they do not converge within that many (a
+    // start with no orbit near, e.g. far below the speeds where the balls follow the rotor,
+    // where a revolution is long and each integration dear) more would not either
+    let max_refreshes = (opts.max_iterations / 2).max(2);
+    let mut refreshes = 0;
     loop {
         non_finite(f, &r, "right-hand side")?;
         let res = norm_inf(&r);
@@ -467,6 +474,14 @@ fn periodic<F: VectorField + ?Sized>(
                 r = rn;
                 phi_at_x = None;
                 if stalled {
+                    refreshes += 1;
+                    if refreshes > max_refreshes {
+                        return Err(fail(
+                            it,
+                            norm_inf(&r),
+                            &format!("stagnates ({max_refreshes} integrations of the variational equations without converging)"),
+                        ));
+                    }
                     let (xt, phi) = flow(f, &x, period, s, opts.rtol, true)?;
                     let phi = phi.expect("variational flow");
                     r = residual(&x, &xt);
@@ -476,6 +491,10 @@ fn periodic<F: VectorField + ?Sized>(
             }
             None if phi_at_x.is_none() => {
                 // the updated matrix gives no descent: the exact one at x
+                refreshes += 1;
+                if refreshes > max_refreshes {
+                    return Err(fail(it, res, &format!("stagnates ({max_refreshes} integrations of the variational equations without converging)")));
+                }
                 let (xt, phi) = flow(f, &x, period, s, opts.rtol, true)?;
                 let phi = phi.expect("variational flow");
                 r = residual(&x, &xt);
