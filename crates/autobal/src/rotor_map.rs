@@ -15,8 +15,8 @@
 //! on the equations in turning axes ([`crate::analysis::stationary`]: an equilibrium, or the
 //! periodic orbit of the revolution by shooting) from the closed-form balanced state
 //! ([`Rotor::guess`]), and where that fails from the state of the cell before it in the row
-//! (continuation; for a periodic orbit the neighbour is tried first, as the closed form is only
-//! its autonomous neighbour). Its stability ([`crate::analysis::stability()`]) gives the verdict
+//! (continuation; the closed form first for a periodic orbit too, as `rotor_stability` does:
+//! continuation from a neighbour can land on another orbit). Its stability ([`crate::analysis::stability()`]) gives the verdict
 //! and the margin: the spectral abscissa `α = max Re λ` without the family's structural zeros,
 //! or the largest Floquet exponent `max ln|μ| / T`. The margin is written in the time unit of
 //! the speed axis `omega`: per unit `τ = ω0 t` for a spatial config (`α / ω0`, as the 12-state
@@ -155,7 +155,9 @@ fn solve(c: &CellRotor, w: f64, previous: Option<&[f64]>) -> (GeneralCell, Optio
         opts.max_iterations = 20;
         opts.rtol = 1e-10;
     }
-    let starts = if periodic { [(previous, true), (guess.as_deref(), false)] } else { [(guess.as_deref(), false), (previous, true)] };
+    // the closed form first, as rotor_stability does for both kinds: continuation from a
+    // neighbouring cell can land on another orbit (the balls elsewhere) near a bifurcation
+    let starts = [(guess.as_deref(), false), (previous, true)];
     for (start, continued) in starts {
         let Some(start) = start else { continue };
         let Ok(state) = stationary(&field, start, &opts) else { continue };
