@@ -504,3 +504,20 @@ fn regression_spatial_simulate_refused_parquet_its_help_promises() {
     no_part_files(&d);
     std::fs::remove_dir_all(&d).ok();
 }
+
+#[test]
+fn regression_a_whole_number_written_2_0_was_refused_as_got_2() {
+    // "expected a whole number, got 2" for `2.0`: the message must say what is wrong with it
+    let (code, _, err) = run_for(Duration::from_secs(20), &["critical", "--set", "dimensionless.n=2.0"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("dimensionless.n: expected a whole number written without a decimal point (write 2), got the decimal number 2.0"), "{err}");
+}
+
+#[test]
+fn regression_spatial_sample_count_was_printed_with_303_digits() {
+    let spatial = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/spatial.toml");
+    let (code, _, err) = run_for(Duration::from_secs(20), &["simulate", "--config", spatial, "--dt", "1e-300"]);
+    assert_eq!(code, 2, "{err}");
+    let line = err.lines().find(|l| l.contains("samples is too many")).unwrap_or_else(|| panic!("{err}"));
+    assert!(line.len() < 120, "{line}");
+}

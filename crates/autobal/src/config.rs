@@ -267,6 +267,11 @@ impl<'a> Section<'a> {
                 crate::limits::check_count(&field, *i as u64)?;
                 u32::try_from(*i).map(Some).map_err(|_| Error::invalid(field, format!("{i} is too large")))
             }
+            // a float that happens to be whole ("2.0"): say what was wrong with it, not "got 2"
+            Some(Value::Float(f)) if f.fract() == 0.0 && f.is_finite() => Err(Error::invalid(
+                field,
+                format!("expected a whole number written without a decimal point (write {}), got the decimal number {f:?}", crate::error::fmt_num(*f)),
+            )),
             Some(v) => Err(Error::invalid(field, format!("expected a whole number, got {}", describe(v)))),
         }
     }

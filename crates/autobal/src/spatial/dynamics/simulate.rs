@@ -63,7 +63,7 @@ impl Settings {
         positive("drive.t_end", self.t_end)?;
         positive("integration.dt", self.dt)?;
         if self.t_end / self.dt > 5e7 {
-            return Err(Error::invalid("integration.dt", format!("{} samples is too many; raise dt", self.t_end / self.dt)));
+            return Err(Error::invalid("integration.dt", format!("{} samples is too many; raise dt", crate::error::fmt_num(self.t_end / self.dt))));
         }
         positive("integration.rtol", self.rtol)?;
         positive("integration.atol", self.atol)?;
