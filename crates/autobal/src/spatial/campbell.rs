@@ -1,0 +1,312 @@
+//! The Campbell diagram as engineers read it: one continuous natural-frequency curve per mode
+//! in **fixed** axes, with its whirl direction and logarithmic decrement at every speed, and the
+//! critical speeds where the curves cross the `h×` excitation lines.
+//!
+//! In rotating axes an eigenvalue `λ = σ + iν` with eigenvector `x` moves each coordinate pair
+//! `(ξ, η)` as `Re(x e^{λt})`; in fixed axes (multiplied by `e^{iΩt}`) that is a circular
+//! component at `Ω + ν` (amplitude `|x_ξ + i x_η|`) and one at `Ω − ν` (amplitude
+//! `|x_ξ − i x_η|`): see [`Mode::forward_share`]. A curve follows the dominant component; where
+//! the dominance switches (an elliptic mode whose minor component grows past the major one) the
+//! dominant frequency jumps by `2|ν|`, so the curve keeps the component that continues its
+//! previous values: it leaves the dominant component only where the other one lies closer to
+//! the curve's linear extrapolation by more than two speed steps. The frequency is signed: `f > 0` forward whirl, `f < 0`
+//! backward; the curve is drawn at `|f|`.
+//!
+//! The logarithmic decrement per fixed-axes cycle is `δ = −2π σ/|f|` (the fixed-axes eigenvalue
+//! of the component is `σ + i f`, ROSS's convention); `δ > 0` decays. (The rotating-axes
+//! [`Mode::log_decrement`] divides by `|ν|` instead.)
+//!
+//! A curve meets the line `h Ω` where `g(Ω) = |f(Ω)| − hΩ` vanishes. With `h = 1` and forward
+//! whirl, `g = ±ν`: the rotating-axes eigenvalue is real, and with the balls locked and no
+//! damping it is `λ = 0`, i.e. `det K(Ω) = 0`: 000 eq (15)-(16)'s critical speeds. Crossings
+//! are bracketed on the grid and located by bisection on the model's eigenvalues; where a curve
+//! runs along the line over an interval (a divergence range between split critical speeds,
+//! where the rotating-axes pair is real) both ends are reported.
+
+use crate::error::{Error, Result};
+use crate::linalg::eigen::eigenvalues;
+use crate::spatial::linear_model::{Balls, Pencil};
+use crate::spatial::params::SpatialModel;
+use crate::spatial::stability::{classify_vector, no_conv, pencil_null_vector, Campbell, Whirl};
+use num_complex::Complex64;
+use serde::Serialize;
+
+/// `|Im λ|` below this counts as a real eigenvalue (QR round-off on real roots).
+const REAL_TOL: f64 = 1e-9;
+/// `|g| = ||f| − hΩ|` at most this (times `max(1, hΩ)`) counts as on the excitation line:
+/// above the ~1e-8 error of a double eigenvalue at a split critical speed, whose square
+/// (`g ~ sqrt(Ω − Ω_K)`) bounds the error of the located speed to ~1e-14.
+const ON_LINE_TOL: f64 = 1e-7;
+/// Bisection stops at this width (relative to `max(1, Ω)`).
+const BISECT_TOL: f64 = 1e-13;
+/// Entry and exit of an excitation line closer than this (relative) are one crossing.
+const MERGE_TOL: f64 = 1e-9;
+
+/// One speed of a fixed-axes curve.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct FixedPoint {
+    /// Speed `Ω`.
+    pub omega: f64,
+    /// Natural frequency in fixed axes `|f|`, `f = Ω ± ν` the followed component (unit `ω0`).
+    pub frequency: f64,
+    /// The signed frequency `f` (positive: forward whirl).
+    pub fixed_frequency: f64,
+    /// Whirl direction: forward where `f > 0`, backward where `f < 0` (the previous one at `f = 0`).
+    pub whirl: Whirl,
+    /// Real part `σ` of the eigenvalue (unit `ω0`).
+    pub re: f64,
+    /// Rotating-axes frequency `ν = Im λ`.
+    pub nu: f64,
+    /// Logarithmic decrement per fixed-axes cycle `δ = −2π σ/|f|` (`None` where `|f| < 1e-12`).
+    pub log_decrement: Option<f64>,
+    /// Share of the followed component in the eigenvector's amplitude squared (`≥ ½` where the
+    /// curve follows the dominant one).
+    pub share: f64,
+}
+
+/// One mode's curve in fixed axes.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FixedCurve {
+    /// The tracked line of the [`Campbell`] it comes from.
+    pub line: usize,
+    /// One point per speed of the diagram.
+    pub points: Vec<FixedPoint>,
+}
+
+/// A crossing of a curve with the excitation line `h Ω`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct CriticalSpeed {
+    /// Speed `Ω` of the crossing.
+    pub omega: f64,
+    /// Harmonic `h` of the excitation line.
+    pub harmonic: u32,
+    /// Index of the curve in [`FixedCampbell::curves`] (mode number − 1).
+    pub mode: usize,
+    /// Whirl direction of the curve there.
+    pub whirl: Whirl,
+    /// Natural frequency there, `hΩ`.
+    pub frequency: f64,
+}
+
+/// A Campbell diagram in fixed axes: curves sorted by their frequency at the first speed
+/// (mode 1 the lowest), and the critical speeds sorted by speed.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FixedCampbell {
+    /// The speeds.
+    pub omega: Vec<f64>,
+    /// One curve per mode (a conjugate line describes the same real motion and is left out).
+    pub curves: Vec<FixedCurve>,
+    /// Crossings with the excitation lines.
+    pub critical_speeds: Vec<CriticalSpeed>,
+    /// The harmonics `h` searched.
+    pub harmonics: Vec<u32>,
+}
+
+fn lam(m: &crate::spatial::stability::Mode) -> Complex64 {
+    Complex64::new(m.re, m.im)
+}
+
+/// Whether two lines are conjugates at speed `k`.
+fn conj_at(c: &Campbell, i: usize, j: usize, k: usize) -> bool {
+    let (a, b) = (lam(&c.lines[i].modes[k]), lam(&c.lines[j].modes[k]));
+    (b - a.conj()).norm() <= 1e-7 * (1.0 + a.norm())
+}
+
+/// The fixed-axes view of a Campbell diagram of `model` (computed with `balls`): one curve per
+/// pair of conjugate lines, the log decrement per point and the crossings with `h Ω` for each
+/// `h` of `harmonics` (module docs).
+///
+/// Within a real segment of a pair (both lines real and not conjugate, e.g. a divergence
+/// range) the kept curve carries the larger of the two real parts, so that the sign of its log
+/// decrement is the pair's stability.
+pub fn fixed_axes(model: &SpatialModel, c: &Campbell, balls: Balls, harmonics: &[u32]) -> Result<FixedCampbell> {
+    if let Some(h) = harmonics.iter().find(|&&h| h == 0) {
+        return Err(Error::invalid("harmonics", format!("must be positive integers, got {h}")));
+    }
+    let n = c.omega.len();
+    if c.lines.iter().any(|l| l.modes.len() != n) {
+        return Err(Error::invalid("campbell", "every line needs one mode per speed"));
+    }
+    // conjugate partners: j duplicates an earlier kept i when they are conjugates at at least
+    // half of the speeds where either is complex
+    let nl = c.lines.len();
+    let mut partner: Vec<Option<usize>> = vec![None; nl];
+    let mut dropped = vec![false; nl];
+    for i in 0..nl {
+        if dropped[i] {
+            continue;
+        }
+        for j in i + 1..nl {
+            if dropped[j] || partner[i].is_some() {
+                continue;
+            }
+            let complex: Vec<usize> = (0..n).filter(|&k| c.lines[i].modes[k].im.abs() > REAL_TOL || c.lines[j].modes[k].im.abs() > REAL_TOL).collect();
+            let matched = complex.iter().filter(|&&k| conj_at(c, i, j, k)).count();
+            if !complex.is_empty() && 2 * matched >= complex.len() {
+                // keep the line with more points of Im λ ≥ 0
+                let up = |l: usize| c.lines[l].modes.iter().filter(|m| m.im >= 0.0).count();
+                let (keep, drop) = if up(j) > up(i) { (j, i) } else { (i, j) };
+                partner[keep] = Some(drop);
+                dropped[drop] = true;
+                if drop == i {
+                    break;
+                }
+            }
+        }
+    }
+    let mut curves = vec![];
+    for (li, line) in c.lines.iter().enumerate() {
+        if dropped[li] || n == 0 {
+            continue;
+        }
+        let mut pts: Vec<FixedPoint> = Vec::with_capacity(n);
+        for k in 0..n {
+            let m = &line.modes[k];
+            let w = c.omega[k];
+            let cand = [(w + m.im, m.forward_share), (w - m.im, 1.0 - m.forward_share)];
+            let dominant = if m.forward_share >= 0.5 { 0 } else { 1 };
+            let pick = if k == 0 {
+                dominant
+            } else {
+                let prev = pts[k - 1].fixed_frequency;
+                let pred = if k >= 2 {
+                    let (w1, w2) = (c.omega[k - 2], c.omega[k - 1]);
+                    prev + (prev - pts[k - 2].fixed_frequency) * (w - w2) / (w2 - w1).max(1e-300)
+                } else {
+                    prev
+                };
+                // stay on the dominant component unless the other continues the curve better
+                // by more than the continuity bound (two speed steps)
+                let h = (w - c.omega[k - 1]).abs();
+                let d = |i: usize| (cand[i].0 - pred).abs();
+                if d(dominant) > d(1 - dominant) + 2.0 * h {
+                    1 - dominant
+                } else {
+                    dominant
+                }
+            };
+            let (f, share) = cand[pick];
+            let mut sigma = m.re;
+            if let Some(j) = partner[li] {
+                let o = &c.lines[j].modes[k];
+                if m.im.abs() <= REAL_TOL && o.im.abs() <= REAL_TOL && !conj_at(c, li, j, k) {
+                    sigma = sigma.max(o.re);
+                }
+            }
+            let whirl = if f > 0.0 {
+                Whirl::Forward
+            } else if f < 0.0 {
+                Whirl::Backward
+            } else {
+                pts.last().map_or(Whirl::Forward, |p: &FixedPoint| p.whirl)
+            };
+            pts.push(FixedPoint {
+                omega: w,
+                frequency: f.abs(),
+                fixed_frequency: f,
+                whirl,
+                re: sigma,
+                nu: m.im,
+                log_decrement: (f.abs() >= 1e-12).then(|| -2.0 * std::f64::consts::PI * sigma / f.abs()),
+                share,
+            });
+        }
+        curves.push(FixedCurve { line: li, points: pts });
+    }
+    curves.sort_by(|a, b| a.points[0].frequency.total_cmp(&b.points[0].frequency).then(a.line.cmp(&b.line)));
+    let mut crit = vec![];
+    for &h in harmonics {
+        for (ci, cv) in curves.iter().enumerate() {
+            crossings(model, c, balls, cv, ci, h, &mut crit)?;
+        }
+    }
+    crit.sort_by(|a: &CriticalSpeed, b| a.omega.total_cmp(&b.omega));
+    Ok(FixedCampbell { omega: c.omega.clone(), curves, critical_speeds: crit, harmonics: harmonics.to_vec() })
+}
+
+/// Sign of `g = |f| − hΩ` with the on-line band (module docs): −1, 0 or 1.
+fn side(f: f64, omega: f64, h: u32) -> i8 {
+    let target = h as f64 * omega;
+    let g = f.abs() - target;
+    if g.abs() <= ON_LINE_TOL * target.max(1.0) {
+        0
+    } else if g > 0.0 {
+        1
+    } else {
+        -1
+    }
+}
+
+/// The curve's signed frequency at a speed `w` between grid points `k` and `k + 1`: the
+/// eigenvalue nearest the line's interpolated one, its component nearest the interpolated `f`.
+fn frequency_at(model: &SpatialModel, c: &Campbell, balls: Balls, cv: &FixedCurve, k: usize, w: f64) -> Result<f64> {
+    let (w0, w1) = (c.omega[k], c.omega[k + 1]);
+    let t = if w1 != w0 { (w - w0) / (w1 - w0) } else { 0.0 };
+    let line = &c.lines[cv.line];
+    let guess = lam(&line.modes[k]) * (1.0 - t) + lam(&line.modes[k + 1]) * t;
+    let f_guess = cv.points[k].fixed_frequency * (1.0 - t) + cv.points[k + 1].fixed_frequency * t;
+    let p = Pencil::new(model, w, balls)?;
+    let ev = eigenvalues(&p.state_matrix(), p.states()).map_err(|_| no_conv(w))?;
+    let l = ev.iter().copied().min_by(|a, b| (a - guess).norm().total_cmp(&(b - guess).norm())).ok_or_else(|| no_conv(w))?;
+    let x = pencil_null_vector(&p, l);
+    let m = classify_vector(&p, w, l, &x);
+    let (a, b) = (w + m.im, w - m.im);
+    Ok(if (a - f_guess).abs() <= (b - f_guess).abs() { a } else { b })
+}
+
+/// Bisection between `lo` (side `s_lo`) and `hi` (another side) for the end of side `s_lo`;
+/// `from_left = false` runs it mirrored (the end of `hi`'s side seen from the right).
+#[allow(clippy::too_many_arguments)]
+fn bisect(model: &SpatialModel, c: &Campbell, balls: Balls, cv: &FixedCurve, k: usize, h: u32, keep: i8, from_left: bool) -> Result<f64> {
+    let (mut lo, mut hi) = (c.omega[k], c.omega[k + 1]);
+    while hi - lo > BISECT_TOL * hi.max(1.0) {
+        let mid = 0.5 * (lo + hi);
+        let s = side(frequency_at(model, c, balls, cv, k, mid)?, mid, h);
+        if (s == keep) == from_left {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    Ok(0.5 * (lo + hi))
+}
+
+/// The crossings of curve `cv` (index `ci`) with `h Ω`, appended to `out`. Each interval of
+/// the grid where the side of `g` changes gives the end of the old side and the start of the
+/// new one; two ends closer than the on-line band of a linear crossing (`2 tol/|g'|`, `g'` the
+/// grid slope) are one crossing at their midpoint, farther ones (a curve running along the
+/// line, e.g. between split critical speeds) are both reported.
+#[allow(clippy::too_many_arguments)]
+fn crossings(model: &SpatialModel, c: &Campbell, balls: Balls, cv: &FixedCurve, ci: usize, h: u32, out: &mut Vec<CriticalSpeed>) -> Result<()> {
+    let pts = &cv.points;
+    let g = |k: usize| pts[k].frequency - h as f64 * pts[k].omega;
+    // (speed, whirl, half-width of the on-line band of a linear crossing there)
+    let mut ends: Vec<(f64, Whirl, f64)> = vec![];
+    for k in 0..pts.len().saturating_sub(1) {
+        let (a, b) = (side(pts[k].fixed_frequency, pts[k].omega, h), side(pts[k + 1].fixed_frequency, pts[k + 1].omega, h));
+        if a == b {
+            continue;
+        }
+        let slope = ((g(k + 1) - g(k)) / (pts[k + 1].omega - pts[k].omega)).abs().max(1e-3);
+        let band = ON_LINE_TOL * (h as f64 * pts[k + 1].omega).max(1.0) / slope;
+        if a != 0 {
+            ends.push((bisect(model, c, balls, cv, k, h, a, true)?, pts[k].whirl, band));
+        }
+        if b != 0 {
+            ends.push((bisect(model, c, balls, cv, k, h, b, false)?, pts[k + 1].whirl, band));
+        }
+    }
+    let mut i = 0;
+    while i < ends.len() {
+        let (t1, whirl, band) = ends[i];
+        if i + 1 < ends.len() && ends[i + 1].0 - t1 <= 2.0 * band.max(ends[i + 1].2) + MERGE_TOL * t1.max(1.0) {
+            let t = 0.5 * (t1 + ends[i + 1].0);
+            out.push(CriticalSpeed { omega: t, harmonic: h, mode: ci, whirl, frequency: h as f64 * t });
+            i += 2;
+        } else {
+            out.push(CriticalSpeed { omega: t1, harmonic: h, mode: ci, whirl, frequency: h as f64 * t1 });
+            i += 1;
+        }
+    }
+    Ok(())
+}
