@@ -5,7 +5,7 @@
 //! In rotating axes an eigenvalue `λ = σ + iν` with eigenvector `x` moves each coordinate pair
 //! `(ξ, η)` as `Re(x e^{λt})`; in fixed axes (multiplied by `e^{iΩt}`) that is a circular
 //! component at `Ω + ν` (amplitude `|x_ξ + i x_η|`) and one at `Ω − ν` (amplitude
-//! `|x_ξ − i x_η|`): see [`Mode::forward_share`]. A curve follows the dominant component; where
+//! `|x_ξ − i x_η|`): see [`Mode::forward_share`](crate::spatial::stability::Mode::forward_share). A curve follows the dominant component; where
 //! the dominance switches (an elliptic mode whose minor component grows past the major one) the
 //! dominant frequency jumps by `2|ν|`, so the curve keeps the component that continues its
 //! previous values: it leaves the dominant component only where the other one lies closer to
@@ -14,7 +14,7 @@
 //!
 //! The logarithmic decrement per fixed-axes cycle is `δ = −2π σ/|f|` (the fixed-axes eigenvalue
 //! of the component is `σ + i f`, ROSS's convention); `δ > 0` decays. (The rotating-axes
-//! [`Mode::log_decrement`] divides by `|ν|` instead.)
+//! [`Mode::log_decrement`](crate::spatial::stability::Mode::log_decrement) divides by `|ν|` instead.)
 //!
 //! A curve meets the line `h Ω` where `g(Ω) = |f(Ω)| − hΩ` vanishes. With `h = 1` and forward
 //! whirl, `g = ±ν`: the rotating-axes eigenvalue is real, and with the balls locked and no
