@@ -33,10 +33,11 @@ use serde::Serialize;
 
 /// `|Im λ|` below this counts as a real eigenvalue (QR round-off on real roots).
 const REAL_TOL: f64 = 1e-9;
-/// `|g| = ||f| − hΩ|` at most this (times `max(1, hΩ)`) counts as on the excitation line:
-/// above the ~1e-8 error of a double eigenvalue at a split critical speed, whose square
-/// (`g ~ sqrt(Ω − Ω_K)`) bounds the error of the located speed to ~1e-14.
-const ON_LINE_TOL: f64 = 1e-7;
+/// `|g| = ||f| − hΩ|` at most this (times `max(1, hΩ)`) counts as on the excitation line. A
+/// linear crossing (`|g'|` ≳ 0.01) is then located to ~1e-8 by the band's midpoint; at a split
+/// critical speed (`g ~ sqrt(Ω − Ω_K)`, eigenvalues accurate to ~1e-8 at the double root) the
+/// error is the square of that noise, ~1e-16.
+const ON_LINE_TOL: f64 = 1e-10;
 /// Bisection stops at this width (relative to `max(1, Ω)`).
 const BISECT_TOL: f64 = 1e-13;
 /// Entry and exit of an excitation line closer than this (relative) are one crossing.
@@ -80,8 +81,8 @@ pub struct CriticalSpeed {
     pub omega: f64,
     /// Harmonic `h` of the excitation line.
     pub harmonic: u32,
-    /// Index of the curve in [`FixedCampbell::curves`] (mode number − 1).
-    pub mode: usize,
+    /// Index of the curve in [`FixedCampbell::curves`] (the mode number − 1).
+    pub curve: usize,
     /// Whirl direction of the curve there.
     pub whirl: Whirl,
     /// Natural frequency there, `hΩ`.
@@ -116,9 +117,10 @@ fn conj_at(c: &Campbell, i: usize, j: usize, k: usize) -> bool {
 /// pair of conjugate lines, the log decrement per point and the crossings with `h Ω` for each
 /// `h` of `harmonics` (module docs).
 ///
-/// Within a real segment of a pair (both lines real and not conjugate, e.g. a divergence
-/// range) the kept curve carries the larger of the two real parts, so that the sign of its log
-/// decrement is the pair's stability.
+/// Where a kept line is real (e.g. a divergence range, where a pair splits into two real
+/// eigenvalues) its point carries the largest real part of the real eigenvalues of its
+/// conjugacy component that are left out there, so that the sign of the log decrement is the
+/// stability of all of them.
 pub fn fixed_axes(model: &SpatialModel, c: &Campbell, balls: Balls, harmonics: &[u32]) -> Result<FixedCampbell> {
     if let Some(h) = harmonics.iter().find(|&&h| h == 0) {
         return Err(Error::invalid("harmonics", format!("must be positive integers, got {h}")));
@@ -127,30 +129,50 @@ pub fn fixed_axes(model: &SpatialModel, c: &Campbell, balls: Balls, harmonics: &
     if c.lines.iter().any(|l| l.modes.len() != n) {
         return Err(Error::invalid("campbell", "every line needs one mode per speed"));
     }
-    // conjugate partners: j duplicates an earlier kept i when they are conjugates at at least
-    // half of the speeds where either is complex
+    // Conjugate lines describe the same real motion. Tracked pairs can change partners where
+    // eigenvalues collide on the real axis (a damped rotor's pair turns into two real ones and
+    // back, possibly pairing with another line), so the kept lines are a 2-colouring of the
+    // graph whose edges join lines that are conjugates (and complex) at some speed: at every
+    // speed each complex pair then has exactly one kept line. Each connected component keeps
+    // the colour with more points of Im λ ≥ 0; a line never complex is kept (a real mode).
     let nl = c.lines.len();
-    let mut partner: Vec<Option<usize>> = vec![None; nl];
-    let mut dropped = vec![false; nl];
+    let is_real = |i: usize, k: usize| c.lines[i].modes[k].im.abs() <= REAL_TOL;
+    let mut edges: Vec<Vec<usize>> = vec![vec![]; nl];
     for i in 0..nl {
-        if dropped[i] {
+        for j in i + 1..nl {
+            if (0..n).any(|k| !is_real(i, k) && !is_real(j, k) && conj_at(c, i, j, k)) {
+                edges[i].push(j);
+                edges[j].push(i);
+            }
+        }
+    }
+    let mut colour: Vec<Option<bool>> = vec![None; nl];
+    let mut component = vec![0usize; nl];
+    let mut dropped = vec![false; nl];
+    let up = |l: usize| c.lines[l].modes.iter().filter(|m| m.im >= 0.0).count() as i64;
+    for start in 0..nl {
+        if colour[start].is_some() {
             continue;
         }
-        for j in i + 1..nl {
-            if dropped[j] || partner[i].is_some() {
-                continue;
-            }
-            let complex: Vec<usize> = (0..n).filter(|&k| c.lines[i].modes[k].im.abs() > REAL_TOL || c.lines[j].modes[k].im.abs() > REAL_TOL).collect();
-            let matched = complex.iter().filter(|&&k| conj_at(c, i, j, k)).count();
-            if !complex.is_empty() && 2 * matched >= complex.len() {
-                // keep the line with more points of Im λ ≥ 0
-                let up = |l: usize| c.lines[l].modes.iter().filter(|m| m.im >= 0.0).count();
-                let (keep, drop) = if up(j) > up(i) { (j, i) } else { (i, j) };
-                partner[keep] = Some(drop);
-                dropped[drop] = true;
-                if drop == i {
-                    break;
+        colour[start] = Some(true);
+        component[start] = start;
+        let mut members = vec![start];
+        let mut q = 0;
+        while q < members.len() {
+            let i = members[q];
+            q += 1;
+            for &j in &edges[i] {
+                if colour[j].is_none() {
+                    colour[j] = Some(!colour[i].unwrap_or(true));
+                    component[j] = start;
+                    members.push(j);
                 }
+            }
+        }
+        if members.len() > 1 {
+            let score: i64 = members.iter().map(|&l| if colour[l] == Some(true) { up(l) } else { -up(l) }).sum();
+            for &l in &members {
+                dropped[l] = (colour[l] == Some(true)) != (score >= 0);
             }
         }
     }
@@ -187,10 +209,10 @@ pub fn fixed_axes(model: &SpatialModel, c: &Campbell, balls: Balls, harmonics: &
             };
             let (f, share) = cand[pick];
             let mut sigma = m.re;
-            if let Some(j) = partner[li] {
-                let o = &c.lines[j].modes[k];
-                if m.im.abs() <= REAL_TOL && o.im.abs() <= REAL_TOL && !conj_at(c, li, j, k) {
-                    sigma = sigma.max(o.re);
+            if is_real(li, k) {
+                // the real eigenvalues of the component left out here: their decay counts
+                for j in (0..nl).filter(|&j| dropped[j] && component[j] == component[li] && is_real(j, k)) {
+                    sigma = sigma.max(c.lines[j].modes[k].re);
                 }
             }
             let whirl = if f > 0.0 {
@@ -238,7 +260,9 @@ fn side(f: f64, omega: f64, h: u32) -> i8 {
 }
 
 /// The curve's signed frequency at a speed `w` between grid points `k` and `k + 1`: the
-/// eigenvalue nearest the line's interpolated one, its component nearest the interpolated `f`.
+/// eigenvalue nearest the line's interpolated one, its component with the share nearest the
+/// interpolated share of the followed component (the nearer frequency where the two shares
+/// are within 0.1 of ½).
 fn frequency_at(model: &SpatialModel, c: &Campbell, balls: Balls, cv: &FixedCurve, k: usize, w: f64) -> Result<f64> {
     let (w0, w1) = (c.omega[k], c.omega[k + 1]);
     let t = if w1 != w0 { (w - w0) / (w1 - w0) } else { 0.0 };
@@ -250,8 +274,22 @@ fn frequency_at(model: &SpatialModel, c: &Campbell, balls: Balls, cv: &FixedCurv
     let l = ev.iter().copied().min_by(|a, b| (a - guess).norm().total_cmp(&(b - guess).norm())).ok_or_else(|| no_conv(w))?;
     let x = pencil_null_vector(&p, l);
     let m = classify_vector(&p, w, l, &x);
-    let (a, b) = (w + m.im, w - m.im);
-    Ok(if (a - f_guess).abs() <= (b - f_guess).abs() { a } else { b })
+    // the component with the followed one's share (at a crossing of 1x the two frequencies
+    // differ by less than the interpolation error, their shares not), else the nearer frequency
+    let share_guess = cv.points[k].share * (1.0 - t) + cv.points[k + 1].share * t;
+    let cand = [(w + m.im, m.forward_share), (w - m.im, 1.0 - m.forward_share)];
+    let pick = if (2.0 * m.forward_share - 1.0).abs() > 0.2 {
+        if (cand[0].1 - share_guess).abs() <= (cand[1].1 - share_guess).abs() {
+            0
+        } else {
+            1
+        }
+    } else if (cand[0].0 - f_guess).abs() <= (cand[1].0 - f_guess).abs() {
+        0
+    } else {
+        1
+    };
+    Ok(cand[pick].0)
 }
 
 /// Bisection between `lo` (side `s_lo`) and `hi` (another side) for the end of side `s_lo`;
@@ -289,10 +327,14 @@ fn crossings(model: &SpatialModel, c: &Campbell, balls: Balls, cv: &FixedCurve, 
         }
         let slope = ((g(k + 1) - g(k)) / (pts[k + 1].omega - pts[k].omega)).abs().max(1e-3);
         let band = ON_LINE_TOL * (h as f64 * pts[k + 1].omega).max(1.0) / slope;
-        if a != 0 {
+        // a curve on the line from the first speed (a real mode whirling with the rotor) has no
+        // crossing where it leaves it, nor one on the line up to the last speed where it joins it
+        let first_run = pts[..=k].iter().all(|p| side(p.fixed_frequency, p.omega, h) == 0);
+        let last_run = pts[k + 1..].iter().all(|p| side(p.fixed_frequency, p.omega, h) == 0);
+        if a != 0 && !last_run {
             ends.push((bisect(model, c, balls, cv, k, h, a, true)?, pts[k].whirl, band));
         }
-        if b != 0 {
+        if b != 0 && !first_run {
             ends.push((bisect(model, c, balls, cv, k, h, b, false)?, pts[k + 1].whirl, band));
         }
     }
@@ -301,10 +343,10 @@ fn crossings(model: &SpatialModel, c: &Campbell, balls: Balls, cv: &FixedCurve, 
         let (t1, whirl, band) = ends[i];
         if i + 1 < ends.len() && ends[i + 1].0 - t1 <= 2.0 * band.max(ends[i + 1].2) + MERGE_TOL * t1.max(1.0) {
             let t = 0.5 * (t1 + ends[i + 1].0);
-            out.push(CriticalSpeed { omega: t, harmonic: h, mode: ci, whirl, frequency: h as f64 * t });
+            out.push(CriticalSpeed { omega: t, harmonic: h, curve: ci, whirl, frequency: h as f64 * t });
             i += 2;
         } else {
-            out.push(CriticalSpeed { omega: t1, harmonic: h, mode: ci, whirl, frequency: h as f64 * t1 });
+            out.push(CriticalSpeed { omega: t1, harmonic: h, curve: ci, whirl, frequency: h as f64 * t1 });
             i += 1;
         }
     }
