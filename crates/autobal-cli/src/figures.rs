@@ -310,3 +310,31 @@ fn fmt_freq(model: &SpatialModel, f: f64) -> String {
         None => format!("f = {}", crate::num::fmt(f, 4)),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use autobal::spatial::campbell::fixed_axes;
+    use autobal::spatial::linear_model::Balls;
+    use autobal::spatial::params::DimensionlessInput;
+    use autobal::spatial::stability::campbell;
+
+    #[test]
+    fn fixed_campbell_plot_has_one_legend_entry_per_mode_and_critical_speed() {
+        let m = SpatialModel::from_dimensionless(&DimensionlessInput::paper_000(0.8)).unwrap();
+        let omegas = linspace(0.01, 4.0, 200);
+        let c = campbell(&m, &omegas, Balls::Locked).unwrap();
+        let f = fixed_axes(&m, &c, Balls::Locked, &[1, 2]).unwrap();
+        let p = campbell_fixed_plot(&m, &f);
+        let labels: Vec<&str> = p.series.iter().map(|s| s.label.as_str()).filter(|l| !l.is_empty()).collect();
+        assert_eq!(labels.iter().filter(|l| l.starts_with("mode ")).count(), f.curves.len());
+        assert_eq!(labels.iter().filter(|l| l.starts_with("critical ")).count(), f.critical_speeds.len().min(12));
+        assert!(labels.contains(&"1× (excitation)") && labels.contains(&"2× (excitation)"));
+        // backward stretches are dashed, forward ones solid
+        assert!(p.series.iter().any(|s| s.dashed && s.group.is_some()) && p.series.iter().any(|s| !s.dashed && s.group.is_some()));
+        let svg = p.to_svg();
+        assert!(svg.contains("log dec"));
+        let plotly = p.to_plotly();
+        assert!(plotly.to_string().contains("mode 1:"));
+    }
+}
