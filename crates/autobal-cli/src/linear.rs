@@ -318,8 +318,8 @@ pub fn fixed_table(cfg: &Config, f: &FixedCampbell, at: &[f64]) -> String {
 }
 
 /// The fixed-axes view as JSON: `fixed_axes_modes` (per mode: its number, tracked line and per
-/// speed `omega`, `frequency`, `fixed_frequency`, `whirl`, `log_decrement`, ...; SI
-/// frequencies `frequency_hz` for a dimensional config) and `critical_speeds` (speed, mode
+/// speed `omega`, `frequency`, `fixed_frequency`, `whirl`, `log_decrement`, ...; for a
+/// dimensional config `frequency_hz`, `fixed_frequency_hz`, `re_per_s`, `omega_rpm`) and `critical_speeds` (speed, mode
 /// number, whirl, harmonic; in rpm and Hz for a dimensional config).
 pub fn fixed_json(cfg: &Config, f: &FixedCampbell) -> Value {
     let w0 = cfg.model.scale.map(|sc| sc.omega0);
@@ -336,6 +336,8 @@ pub fn fixed_json(cfg: &Config, f: &FixedCampbell) -> Value {
                     let mut v = json!(p);
                     if let (Some(w0), Some(o)) = (w0, v.as_object_mut()) {
                         o.insert("frequency_hz".into(), json!(p.frequency * w0 / tau));
+                        o.insert("fixed_frequency_hz".into(), json!(p.fixed_frequency * w0 / tau));
+                        o.insert("re_per_s".into(), json!(p.re * w0));
                         o.insert("omega_rpm".into(), json!(p.omega * w0 * 60.0 / tau));
                     }
                     v
