@@ -230,13 +230,13 @@ pub fn campbell_table(cfg: &Config, c: &Campbell) -> String {
     s
 }
 
-/// Which figure `autobal campbell --svg PREFIX` draws.
+/// Which figure `autobal campbell --svg PREFIX` draws: `Fixed`, one natural-frequency curve per
+/// mode in fixed axes (PREFIX.svg); `Components`, rotating axes and the two whirl components of
+/// each mode (PREFIX_rotating.svg and PREFIX_fixed.svg). (No docs on the variants: clap would
+/// switch the whole `--help` to its long layout.)
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 pub enum CampbellView {
-    /// One natural-frequency curve per mode in fixed axes: PREFIX.svg.
     Fixed,
-    /// Rotating axes and the two whirl components of each mode: PREFIX_rotating.svg and
-    /// PREFIX_fixed.svg.
     Components,
 }
 
