@@ -8,6 +8,10 @@ use autobal::spatial::inertia::AnisotropyMethod;
 use autobal::spatial::linear_model::Balls;
 use autobal::spatial::params::{AnisotropyInput, DimensionlessInput, SpatialModel};
 use autobal::spatial::stability::{campbell, margin, Whirl};
+use num_complex::Complex64;
+
+mod common;
+use common::Rng;
 
 #[allow(clippy::too_many_arguments)]
 fn model(c_sigma: f64, rho: f64, l: f64, z: f64, delta_a: f64, h_x: f64, h_s: f64, balls: Option<(f64, f64)>) -> SpatialModel {
@@ -146,4 +150,38 @@ fn zero_harmonic_is_refused() {
     let c = campbell(&m, &[0.5, 1.0], Balls::Locked).unwrap();
     let e = fixed_axes(&m, &c, Balls::Locked, &[0]).unwrap_err();
     assert!(e.to_string().contains("harmonics"), "{e}");
+}
+
+#[test]
+fn curves_cover_every_eigenvalue_once_up_to_conjugation() {
+    // 20 random damped rotors with free balls (12 states): 6 curves (one per conjugate pair,
+    // the pairs' partners changing along the speed where they split on the real axis), and at
+    // no speed do two curves carry the same complex pair (a line and its conjugate).
+    let mut rng = Rng(77);
+    for case in 0..20 {
+        let c_sigma = rng.range(0.2, 1.6);
+        let m = model(
+            c_sigma,
+            rng.range(0.2, 0.8),
+            rng.range(-0.3, 1.4),
+            rng.range(-1.0, 1.0),
+            rng.range(0.0, 0.2).min(0.5 * c_sigma),
+            rng.range(0.01, 0.2),
+            rng.range(0.01, 0.5),
+            Some((rng.range(0.005, 0.1), rng.range(0.0, 1.0))),
+        );
+        let omegas: Vec<f64> = (0..300).map(|i| 0.005 + 0.01 * i as f64).collect();
+        let c = campbell(&m, &omegas, Balls::Free).unwrap();
+        let f = fixed_axes(&m, &c, Balls::Free, &[1]).unwrap();
+        assert_eq!(f.curves.len(), 6, "case {case}");
+        for k in 0..omegas.len() {
+            let lams: Vec<Complex64> = f.curves.iter().map(|cv| Complex64::new(c.lines[cv.line].modes[k].re, c.lines[cv.line].modes[k].im)).collect();
+            for a in 0..lams.len() {
+                for b in a + 1..lams.len() {
+                    let complex = lams[a].im.abs() > 1e-9;
+                    assert!(!(complex && (lams[b] - lams[a].conj()).norm() < 1e-7 * (1.0 + lams[a].norm())), "case {case}, Ω = {}: a pair twice", omegas[k]);
+                }
+            }
+        }
+    }
 }
