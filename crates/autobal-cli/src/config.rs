@@ -125,7 +125,7 @@ pub fn ignored_warning(root: &Table, command: &str) -> Option<String> {
         return None;
     }
     let (who, also) = match command {
-        "report" => ("the report's analytic sections use".to_string(), " and the report's \"Your rotor in time\""),
+        "report" => ("the report's critical speeds and design maps use".to_string(), " and the report's stability (general route) and run-up"),
         _ => (format!("{command} uses"), ""),
     };
     Some(format!(

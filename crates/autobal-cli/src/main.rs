@@ -192,6 +192,11 @@ enum Command {
         /// the figures and write STEM_boundary.csv
         #[arg(long)]
         boundary: bool,
+        /// `auto`: paper 000's 12-state model where it represents the config, else the general
+        /// route (the stationary state of the nonlinear equations: planar rotor, two planes,
+        /// couple, direction-dependent supports, gravity); `general`: the general route always
+        #[arg(long, value_enum, default_value = "auto")]
+        route: RouteArg,
     },
     /// Simulate in time: the planar rotor of paper 004 ([planar]) or the spatial rotor of 000/003 (the analytic commands' config plus [drive])
     Simulate {
@@ -243,16 +248,21 @@ enum Command {
         #[arg(long)]
         threads: Option<usize>,
     },
-    /// Write an HTML report with SVG figures to a folder
+    /// Write an HTML report with SVG figures to a folder: about your rotor (with --config), or
+    /// the papers' reproductions (--papers, the default without --config)
     Report {
         #[command(flatten)]
         common: Common,
         /// Output folder (created if missing)
         #[arg(long, short, default_value = "autobal-report")]
         out: PathBuf,
-        /// Run paper 004's passages ten times faster (for a quick look; the tests use it)
+        /// Shorter runs in time (for a quick look; the tests use it)
         #[arg(long)]
         quick: bool,
+        /// The papers' reproductions (000, 003, 004) instead of a report about the config's rotor;
+        /// the default when no --config is given
+        #[arg(long, conflicts_with = "config")]
+        papers: bool,
     },
 }
 
@@ -320,16 +330,19 @@ fn run(cli: Cli) -> Result<()> {
             let _ = ctrlc::set_handler(|| map::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
             linear::run_campbell(&cfg, w, points, lin.balls.into(), format == Format::Json, svg.as_deref(), view, &harmonics)
         }
-        Command::Map { common, x, y, omega, balls, quantity, out, threads, boundary } => run_map(common, x, y, omega, balls, quantity, out, threads, boundary),
+        Command::Map { common, x, y, omega, balls, quantity, out, threads, boundary, route } => {
+            run_map(common, x, y, omega, balls, quantity, out, threads, boundary, route)
+        }
         Command::Simulate { config, set, dt, out, parquet, format } => run_simulate(config, set, dt, out, parquet, format),
         Command::Sweep(a) => sweep::run(a),
         Command::Merge(a) => sweep::merge(a),
         Command::Basins { config, set, n, out, format, threads } => run_basins(config, set, n, out, format, threads),
-        Command::Report { common, out, quick } => {
+        Command::Report { common, out, quick, papers } => {
             // the folder is created and checked before any section runs
             outfile::Outputs::new().inputs(common.config.as_deref()).output("--out", &out.join("index.html")).check()?;
             let _ = ctrlc::set_handler(|| sim::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
-            let index = report::run(common.config.as_deref(), &common.set, &out, quick)?;
+            let kind = if papers || common.config.is_none() { report::Kind::Papers } else { report::Kind::User };
+            let index = report::run(common.config.as_deref(), &common.set, &out, quick, kind)?;
             output::print(&format!("report written to {}\n", index.display()))
         }
     }
@@ -386,8 +399,16 @@ fn run_map(
     out: PathBuf,
     threads: Option<usize>,
     boundary: bool,
+    route: RouteArg,
 ) -> Result<()> {
     let (root, source) = config::read_set(common.config.as_deref(), &common.set)?;
+    if route == RouteArg::General || general::needs_general_route(&root) {
+        if balls == BallsArg::Locked {
+            anyhow::bail!("--balls locked: the general route maps the balls free (use the 12-state route of a one-plane config for the locked rotor)");
+        }
+        let verdict_only = quantity == QuantityArg::Verdict;
+        return map::run_general(&root, common.config.as_deref(), &x, &y, omega.as_deref(), verdict_only, &out, threads, boundary);
+    }
     // the speeds need the config's ω0: it is read (and checked) first
     let cfg = config::build(&root, &source)?;
     let omega_text = omega;

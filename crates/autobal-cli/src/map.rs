@@ -282,6 +282,190 @@ pub fn trace(cfg: &Config, x: &Axis, y: &Axis, omega: Option<f64>, balls: Balls)
         .map_err(|e| anyhow!("--boundary: {e}"))
 }
 
+/// `autobal map` by the general route ([`autobal::rotor_map`]): any planar or spatial config,
+/// written as `STEM.csv` (columns: the two axes, `max_real_part`, `verdict`,
+/// `family_dimension`; empty fields where no stationary state was found), `STEM.svg`,
+/// `STEM.png`.
+#[allow(clippy::too_many_arguments)]
+pub fn run_general(
+    root: &toml::Table,
+    config: Option<&Path>,
+    x: &str,
+    y: &str,
+    omega: Option<&str>,
+    verdict_only: bool,
+    out: &Path,
+    threads: Option<usize>,
+    boundary: bool,
+) -> Result<()> {
+    use autobal::rotor_map::{general_map_traced, BoundaryPoint, Kind, Verdict};
+    let xa = Axis::parse("--x", x)?;
+    let ya = Axis::parse("--y", y)?;
+    if xa.key == ya.key {
+        bail!("--y {}: the same key as --x; map over two different keys", ya.key);
+    }
+    let speed = omega.map(|t| autobal::units::parse_speed("--omega", t)).transpose()?;
+    if let Some(t) = threads {
+        if t == 0 {
+            bail!("--threads: must be at least 1");
+        }
+        rayon::ThreadPoolBuilder::new().num_threads(t).build_global().ok();
+    }
+    let _ = ctrlc::set_handler(|| INTERRUPTED.store(true, Ordering::Relaxed));
+    let out = crate::output::out_stem(&crate::outfile::resolve(out, "stability-map"), &["csv", "svg", "png"]);
+    let csv_path = crate::output::with_suffix(&out, "csv");
+    let mut o = crate::outfile::Outputs::new();
+    o.inputs(config);
+    for p in crate::outfile::stem_files(&out, &["csv", "svg", "png"]) {
+        o.output("--out", &p);
+    }
+    let boundary_path = std::path::PathBuf::from(format!("{}_boundary.csv", out.display()));
+    if boundary {
+        o.output("--out", &boundary_path);
+    }
+    o.check()?;
+    let mut w = crate::outfile::Staged::create("--out", &csv_path)?;
+    writeln!(w, "{},{},max_real_part,verdict,family_dimension", xa.key, ya.key)?;
+    let mut traced: Vec<BoundaryPoint> = vec![];
+    let verdict_name = |v: Option<Verdict>| match v {
+        None => "",
+        Some(Verdict::Stable) => "stable",
+        Some(Verdict::Unstable) => "unstable",
+        Some(Verdict::Neutral) => "neutral",
+    };
+    let (lx, ly) = (xa.to_library(), ya.to_library());
+    let bar = std::io::IsTerminal::is_terminal(&std::io::stderr()).then(|| {
+        let b = indicatif::ProgressBar::new(ya.n as u64);
+        b.set_style(
+            indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} rows  {elapsed_precise} (eta {eta})")
+                .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+        );
+        b
+    });
+    let (kx, dx) = decimate(&xa);
+    let (ky, dy) = decimate(&ya);
+    let mut kept: Vec<Option<Vec<autobal::rotor_map::GeneralCell>>> = vec![None; dy.n];
+    let xs: Vec<String> = lx.values.iter().map(|v| crate::num::Csv(*v).to_string()).collect();
+    let mut io_error: Option<std::io::Error> = None;
+    let t0 = std::time::Instant::now();
+    let outcome = general_map_traced(root, &lx, &ly, speed, boundary, &|| INTERRUPTED.load(Ordering::Relaxed), &mut |j, cells, points| {
+        traced.extend_from_slice(points);
+        if j % ky == 0 && j / ky < dy.n {
+            kept[j / ky] = Some(cells.iter().step_by(kx).take(dx.n).copied().collect());
+        }
+        use std::fmt::Write as _;
+        let yv = crate::num::Csv(ly.values[j]).to_string();
+        let mut t = String::with_capacity(cells.len() * 48);
+        for (xs, c) in xs.iter().zip(cells) {
+            // no stationary state: empty fields, never `NaN`
+            let (margin, verdict, fam) = match c.verdict {
+                None => (String::new(), "", String::new()),
+                Some(v) => {
+                    (if verdict_only { String::new() } else { crate::num::Csv(c.margin).to_string() }, verdict_name(Some(v)), c.family_dimension.to_string())
+                }
+            };
+            let _ = writeln!(t, "{xs},{yv},{margin},{verdict},{fam}");
+        }
+        if let Err(e) = w.write_all(t.as_bytes()).and_then(|_| w.flush()) {
+            io_error = Some(e);
+            return false;
+        }
+        if let Some(b) = &bar {
+            b.set_position(j as u64 + 1);
+        }
+        true
+    });
+    if let Some(e) = io_error {
+        return Err(e.into());
+    }
+    let outcome = outcome.map_err(|e| match e.field() {
+        Some(f) if f == xa.key => anyhow!("--x: {e}"),
+        Some(f) if f == ya.key => anyhow!("--y: {e}"),
+        Some("omega") => anyhow!("--omega: {e}"),
+        _ => anyhow!("{e}"),
+    })?;
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
+    let csv_path = w.commit()?;
+    let secs = t0.elapsed().as_secs_f64();
+    let planar = !autobal::config::is_spatial(root);
+    let periodic = outcome.periodic > 0;
+    let kind = if periodic { Kind::PeriodicOrbit } else { Kind::Equilibrium };
+    let rows: Vec<Option<Vec<Cell>>> = kept
+        .iter()
+        .map(|r| r.as_ref().map(|r| r.iter().map(|c| Cell { margin: c.margin, stable: c.verdict == Some(Verdict::Stable), necessary: false }).collect()))
+        .collect();
+    let q = if verdict_only { Quantity::Verdict } else { Quantity::Margin };
+    let r = MapResult { x: dx, y: dy, rows, quantity: q };
+    let state = match kind {
+        Kind::Equilibrium => "equilibrium (eigenvalues)",
+        Kind::PeriodicOrbit => "periodic orbit (Floquet multipliers)",
+    };
+    let title = format!("Stability map of the {} rotor's stationary state (general route: {state})", if planar { "planar" } else { "spatial" });
+    let mut p = crate::mapfig::plot(&r, &title);
+    // no 003 necessary ranges off the 12-state model
+    p.series.retain(|s| s.label != "003 necessary boundary");
+    if planar {
+        // the planar model's `omega` is ω itself (no ω0)
+        for (key, label) in [(&r.x.key, &mut p.x_label), (&r.y.key, &mut p.y_label)] {
+            if key == "omega" {
+                *label = "speed ω (rad/s)".into();
+            }
+        }
+    }
+    if let Some(h) = p.heatmap.as_mut() {
+        // cells without a stationary state stay blank
+        for (zr, kr) in h.z.iter_mut().zip(&kept) {
+            if let Some(kr) = kr {
+                for (z, c) in zr.iter_mut().zip(kr) {
+                    if c.verdict.is_none() {
+                        *z = f64::NAN;
+                    }
+                }
+            }
+        }
+        if !verdict_only {
+            let what = if periodic { "largest Floquet exponent" } else { "max Re λ" };
+            h.label = format!("{what} ({}; < 0 stable)", if planar { "1/s" } else { "per unit τ" });
+        }
+    }
+    if boundary {
+        // the bisected points: `x` to 1e-9 relative where the margin changes sign (or a
+        // stationary state appears), with the verdicts on either side
+        let mut t = format!("{},{},from,to\n", xa.key, ya.key);
+        for b in &traced {
+            use std::fmt::Write as _;
+            let _ = writeln!(t, "{},{},{},{}", crate::num::Csv(b.x), crate::num::Csv(b.y), verdict_name(b.from), verdict_name(b.to));
+        }
+        crate::outfile::write_atomic("--out", &boundary_path, t)?;
+        crate::output::note(&format!("boundary: {} points bisected along {} to 1e-9 relative; wrote {}", traced.len(), xa.key, boundary_path.display()));
+        if !traced.is_empty() {
+            p.series.push(Series::new("bisected boundary points", traced.iter().map(|b| (b.x, b.y)).collect(), "#0072B2").markers());
+        }
+    }
+    crate::outfile::write_atomic("--out", &crate::output::with_suffix(&out, "svg"), p.to_svg())?;
+    crate::outfile::write_atomic("--out", &crate::output::with_suffix(&out, "png"), p.to_png(1.5)?)?;
+    let points = outcome.rows * xa.n;
+    crate::output::print(&format!(
+        "general route: {} rows × {} points in {:.2} s ({:.2} µs per point; {} from the closed form, {} continued from a neighbour, {} without a stationary state); stationary state: {state}; wrote {}, {}, {}\n",
+        outcome.rows,
+        xa.n,
+        secs,
+        1e6 * secs / points.max(1) as f64,
+        outcome.closed_form,
+        outcome.continued,
+        outcome.none,
+        csv_path.display(),
+        crate::output::with_suffix(&out, "svg").display(),
+        crate::output::with_suffix(&out, "png").display()
+    ))?;
+    if !outcome.complete {
+        bail!("interrupted: {} of {} rows computed and kept in {}", outcome.rows, ya.n, csv_path.display());
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -6,7 +6,7 @@ use crate::config;
 use crate::{emit, Format};
 use anyhow::{anyhow, bail, Context, Result};
 use autobal::planar::problem::PlanarProblem;
-use autobal::sweep::{shard, simulate_grid, summary_values, Axis, Grid, SUMMARY_COLUMNS};
+use autobal::sweep::{definition_checksum, shard, simulate_grid, Axis, Grid, SpatialSweep, SweepModel, SweepSummary, SPATIAL_SUMMARY_COLUMNS, SUMMARY_COLUMNS};
 use clap::Args;
 use serde_json::{json, Value};
 use std::io::Write;
@@ -15,14 +15,16 @@ use std::sync::atomic::Ordering;
 
 #[derive(Args)]
 pub struct SweepArgs {
-    /// Config file with the planar rotor of paper 004 ([planar], [drive], [integration]);
-    /// default: the embedded examples/planar.toml
+    /// Config file: the planar rotor of paper 004 ([planar], [drive], [integration]) or the
+    /// spatial rotor of papers 000/003 (the analytic commands' tables plus [drive],
+    /// [integration]); default: the embedded examples/planar.toml
     #[arg(long, short)]
     config: Option<PathBuf>,
     /// Override a config field for every run, e.g. --set planar.c_psi=0.1 (repeatable)
     #[arg(long = "set", value_name = "KEY=VALUE")]
     set: Vec<String>,
-    /// First axis (varies fastest): PATH=LO:HI:N, PATH=V1,V2,… or PATH=V (e.g. drive.b=0.5:12.5:5)
+    /// First axis (varies fastest): PATH=LO:HI:N, PATH=V1,V2,… or PATH=V (e.g. drive.b=0.5:12.5:5;
+    /// for a spatial config any of its keys, e.g. balancer.ball_mass=0.01:0.05:5, drive.psi0[2]=3:4:3)
     #[arg(long, value_name = "PATH=LO:HI:N")]
     x: String,
     /// Second axis (e.g. planar.c_psi=0.01:0.4:4)
@@ -75,11 +77,12 @@ fn parse_shard(spec: &str) -> Result<(usize, usize)> {
     Ok((k - 1, n))
 }
 
-/// The columns: point index, the axes' paths, the summary's columns, the wall time.
-fn columns(paths: &[&str]) -> Vec<String> {
+/// The columns: point index, the axes' paths, the summary's columns (`summary`:
+/// [`SUMMARY_COLUMNS`] or [`SPATIAL_SUMMARY_COLUMNS`]), the wall time.
+fn columns(paths: &[&str], summary: &[&str]) -> Vec<String> {
     let mut cols = vec!["point"];
     cols.extend(paths);
-    cols.extend(SUMMARY_COLUMNS);
+    cols.extend(summary);
     cols.push("wall_s");
     cols.into_iter().map(String::from).collect()
 }
@@ -87,13 +90,51 @@ fn columns(paths: &[&str]) -> Vec<String> {
 /// Points whose warnings a sweep prints on standard error; the others are counted.
 const PRINTED_WARNINGS: usize = 10;
 
-pub fn run(a: SweepArgs) -> Result<()> {
-    let (root, source) = config::read_planar_set(a.config.as_deref(), &a.set)?;
-    if autobal::config::is_spatial(&root) && !root.contains_key("planar") {
-        bail!("config: `sweep` runs the planar rotor of paper 004 only ([planar], [drive]); the spatial rotor of papers 000/003 is simulated by `simulate` (and `basins` over the balls' initial angles)");
+/// A run's summary as the sweep's table shows it.
+trait Row: SweepSummary {
+    /// The table's header after the axes (`lu`: the unit of lengths).
+    fn header(lu: &str) -> String;
+    /// The row after the axes (`ls`: lengths in that unit per config unit).
+    fn cells(&self, ls: f64) -> String;
+    /// The run's warnings (its early stop first).
+    fn warnings(&self) -> Vec<String>;
+}
+
+impl Row for autobal::planar::Summary {
+    fn header(lu: &str) -> String {
+        format!("{:>12} {:>12} {:>12} {:>9} {:>10}\n", format!("peak ({lu})"), "ω at peak", format!("final ({lu})"), "balanced", "steps")
     }
-    let cfg = config::build_planar(&root, &source)?;
-    let base = PlanarProblem { rotor: cfg.rotor, drive: cfg.drive, settings: cfg.settings };
+    fn cells(&self, ls: f64) -> String {
+        format!("{:>12.4} {:>12.2} {:>12.4} {:>9} {:>10}", ls * self.peak_amplitude, self.omega_at_peak, ls * self.final_amplitude, self.balanced, self.steps)
+    }
+    fn warnings(&self) -> Vec<String> {
+        self.stopped.iter().chain(&self.warnings).cloned().collect()
+    }
+}
+
+impl Row for autobal::spatial::dynamics::Summary {
+    fn header(lu: &str) -> String {
+        format!("{:>12} {:>12} {:>12} {:>12} {:>19} {:>10}\n", format!("peak ({lu})"), "ω at peak", format!("final ({lu})"), "residual", "outcome", "steps")
+    }
+    fn cells(&self, ls: f64) -> String {
+        let outcome = serde_json::to_value(self.outcome).ok().and_then(|v| v.as_str().map(String::from)).unwrap_or_default();
+        format!(
+            "{:>12.4} {:>12.4} {:>12.4} {:>12.3e} {:>19} {:>10}",
+            ls * self.peak_amplitude,
+            self.omega_at_peak,
+            ls * self.final_amplitude,
+            self.residual_unbalance,
+            outcome,
+            self.steps
+        )
+    }
+    fn warnings(&self) -> Vec<String> {
+        self.stopped.iter().cloned().collect()
+    }
+}
+
+/// The axes of `--x`, `--y` and `--axis`, each with its option, distinct.
+fn parse_axes(a: &SweepArgs) -> Result<Vec<(&'static str, Axis)>> {
     let mut axes = vec![("--x", a.x.as_str())];
     axes.extend(a.y.as_deref().map(|y| ("--y", y)));
     axes.extend(a.axes.iter().map(|s| ("--axis", s.as_str())));
@@ -102,7 +143,7 @@ pub fn run(a: SweepArgs) -> Result<()> {
         .map(|(flag, spec)| {
             let ax = Axis::parse(spec).map_err(|e| anyhow!("{flag} {e}"))?;
             if ax.path == "omega" {
-                bail!("{flag} {spec}: a sweep varies parameter paths (e.g. drive.b, planar.c_psi), not omega");
+                bail!("{flag} {spec}: a sweep varies parameter paths (e.g. drive.b, planar.c_psi, drive.omega0), not omega");
             }
             Ok((flag, ax))
         })
@@ -111,10 +152,43 @@ pub fn run(a: SweepArgs) -> Result<()> {
         if let Some((first, _)) = axes[..i].iter().find(|(_, b)| b.path == ax.path) {
             bail!("{flag} {}: the same key as {first}; give this axis another field", ax.path);
         }
+    }
+    Ok(axes)
+}
+
+pub fn run(a: SweepArgs) -> Result<()> {
+    let (root, source) = config::read_planar_set(a.config.as_deref(), &a.set)?;
+    let axes = parse_axes(&a)?;
+    if autobal::config::is_spatial(&root) && !root.contains_key("planar") {
+        // the spatial rotor of papers 000/003: the config's keys are the paths
+        let sim = crate::spatial_sim::build(&root, &source)?;
+        let base = SpatialSweep::new(root.clone())?;
+        for (flag, ax) in &axes {
+            // an unknown key, or one the config cannot take, before anything runs
+            SpatialSweep::set(&mut root.clone(), &ax.path, ax.values[0]).map_err(|e| anyhow!("{flag} {e}"))?;
+        }
+        let problem = base.to_json()?;
+        let units = if sim.config.dimensional { ("mm", 1e3) } else { ("ρ_s", 1.0) };
+        return sweep_on(&a, &root, &base, axes, problem, units);
+    }
+    let cfg = config::build_planar(&root, &source)?;
+    let base = PlanarProblem { rotor: cfg.rotor, drive: cfg.drive, settings: cfg.settings };
+    for (flag, ax) in &axes {
         // an unknown path, or one the drive does not have, before anything runs
         let mut p = base.clone();
         autobal::paths::Parameters::set(&mut p, &ax.path, ax.values[0]).map_err(|e| anyhow!("{flag} {e}"))?;
     }
+    let problem = serde_json::to_value(&base)?;
+    sweep_on(&a, &root, &base, axes, problem, ("mm", 1e3))
+}
+
+/// Run the sweep of `base` over `axes` and write its outputs (`units`: the table's unit of
+/// lengths and its factor).
+fn sweep_on<M>(a: &SweepArgs, root: &toml::Table, base: &M, axes: Vec<(&str, Axis)>, problem: Value, (lu, ls): (&str, f64)) -> Result<()>
+where
+    M: SweepModel,
+    M::Summary: Row,
+{
     let grid = Grid::new(axes.into_iter().map(|(_, a)| a).collect())?;
     let (shard_kn, range) = match a.shard.as_deref() {
         Some(s) => {
@@ -129,8 +203,8 @@ pub fn run(a: SweepArgs) -> Result<()> {
         }
         rayon::ThreadPoolBuilder::new().num_threads(t).build_global().ok();
     }
-    autobal::sweep::check_grid(&base, &grid, range.clone())?;
-    let checksum = definition_checksum(&root, &grid);
+    autobal::sweep::check_grid(base, &grid, range.clone())?;
+    let checksum = definition_checksum(root, &grid);
     let _ = ctrlc::set_handler(|| crate::sim::INTERRUPTED.store(true, Ordering::Relaxed));
     let out = &crate::output::out_stem(&crate::outfile::resolve(&a.out, "sweep"), &["csv", "json", "parquet"]);
     let csv_path = crate::output::with_suffix(out, "csv");
@@ -145,16 +219,17 @@ pub fn run(a: SweepArgs) -> Result<()> {
     // (complete rows, with its JSON); an error removes it
     let mut csv = crate::outfile::Staged::create("--out", &csv_path)?;
     let paths = grid.paths();
-    writeln!(csv, "{}", columns(&paths).join(","))?;
+    let cols = columns(&paths, <M::Summary as SweepSummary>::COLUMNS);
+    writeln!(csv, "{}", cols.join(","))?;
     let mut pq = match a.parquet {
-        true => Some(crate::parquet::Table::create(&crate::output::with_suffix(out, "parquet"), &columns(&paths), true)?),
+        true => Some(crate::parquet::Table::create(&crate::output::with_suffix(out, "parquet"), &cols, true)?),
         false => None,
     };
     let mut table = String::new();
     for k in paths.iter().take(2) {
         table.push_str(&format!("{k:>14} "));
     }
-    table.push_str(&format!("{:>12} {:>12} {:>12} {:>9} {:>10}\n", "peak (mm)", "ω at peak", "final (mm)", "balanced", "steps"));
+    table.push_str(&<M::Summary as Row>::header(lu));
     let bar = std::io::IsTerminal::is_terminal(&std::io::stderr()).then(|| indicatif::ProgressBar::new(range.len() as u64));
     let mut runs = vec![];
     // points whose runs have warnings: the first few are printed, the rest counted (every run's
@@ -162,12 +237,13 @@ pub fn run(a: SweepArgs) -> Result<()> {
     let mut warned = 0usize;
     let mut io_error = None;
     let outcome = simulate_grid(
-        &base,
+        base,
         &grid,
         range.clone(),
         &mut |i, values, r| {
+            let summary = r.summary.values();
             let mut line = format!("{i}");
-            for v in values.iter().chain(&summary_values(&r.summary)) {
+            for v in values.iter().chain(&summary) {
                 line.push(',');
                 line.push_str(&crate::num::Csv(*v).to_string());
             }
@@ -177,7 +253,7 @@ pub fn run(a: SweepArgs) -> Result<()> {
                 return false;
             }
             if let Some(t) = pq.as_mut() {
-                let row: Vec<f64> = std::iter::once(i as f64).chain(values.iter().copied()).chain(summary_values(&r.summary)).chain([r.wall_s]).collect();
+                let row: Vec<f64> = std::iter::once(i as f64).chain(values.iter().copied()).chain(summary.iter().copied()).chain([r.wall_s]).collect();
                 if let Err(e) = t.push(&row) {
                     io_error = Some(e);
                     return false;
@@ -187,24 +263,17 @@ pub fn run(a: SweepArgs) -> Result<()> {
             for v in values.iter().take(2) {
                 table.push_str(&format!("{v:>14} "));
             }
-            table.push_str(&format!(
-                "{:>12.4} {:>12.2} {:>12.4} {:>9} {:>10}{}\n",
-                1e3 * s.peak_amplitude,
-                s.omega_at_peak,
-                1e3 * s.final_amplitude,
-                s.balanced,
-                s.steps,
-                s.stopped.as_ref().or(s.warnings.first()).map_or(String::new(), |w| format!("  ({w})"))
-            ));
-            if s.stopped.is_some() || !s.warnings.is_empty() {
+            let warnings = s.warnings();
+            table.push_str(&format!("{}{}\n", s.cells(ls), warnings.first().map_or(String::new(), |w| format!("  ({w})"))));
+            if !warnings.is_empty() {
                 warned += 1;
                 if warned <= PRINTED_WARNINGS {
-                    for w in s.stopped.iter().chain(&s.warnings) {
+                    for w in &warnings {
                         crate::output::note(&format!("warning: point {i} ({}): {w}", values.iter().map(|v| v.to_string()).collect::<Vec<_>>().join(", ")));
                     }
                 }
             }
-            runs.push(autobal::reports::sweep_run(i, values, r));
+            runs.push(autobal::sweep::run_json(i, values, r));
             if let Some(b) = &bar {
                 b.inc(1);
             }
@@ -225,8 +294,7 @@ pub fn run(a: SweepArgs) -> Result<()> {
     if let Some(e) = io_error {
         return Err(e);
     }
-    let info = autobal::reports::SweepInfo { problem: &base, grid: &grid, shard: shard_kn, range: range.clone(), complete: outcome.complete };
-    let mut json = autobal::reports::sweep(&info, runs);
+    let mut json = autobal::sweep::report(&grid, shard_kn, &range, outcome.complete, problem, runs);
     json["definition_checksum"] = json!(checksum);
     let csv_path = csv.commit()?;
     if let Some(t) = pq {
@@ -238,27 +306,6 @@ pub fn run(a: SweepArgs) -> Result<()> {
         bail!("interrupted: {} of {} runs complete, kept in {}", outcome.delivered, outcome.points, csv_path.display());
     }
     Ok(())
-}
-
-/// A 64-bit FNV-1a hash of the sweep's definition: the config after the `--set` overrides
-/// (as TOML text) and every axis's path and values (bit patterns), written in each shard's JSON
-/// as `definition_checksum` so that `merge` refuses shards of different sweeps. FNV-1a
-/// (`h = (h ⊕ byte) · 0x100000001b3` from `0xcbf29ce484222325`) guards against mistakes, not
-/// forgery: two different definitions collide with probability ~2⁻⁶⁴.
-pub fn definition_checksum(root: &toml::Table, grid: &Grid) -> String {
-    let mut text = toml::to_string(root).unwrap_or_default();
-    for a in &grid.axes {
-        text.push_str(&format!("\naxis {}=", a.path));
-        for v in &a.values {
-            text.push_str(&format!("{:016x},", v.to_bits()));
-        }
-    }
-    format!("fnv1a64:{:016x}", fnv1a64(text.as_bytes()))
-}
-
-/// FNV-1a, 64 bits.
-fn fnv1a64(bytes: &[u8]) -> u64 {
-    bytes.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &b| (h ^ b as u64).wrapping_mul(0x0000_0100_0000_01b3))
 }
 
 /// Largest shard file `merge` reads (CSV or JSON), bytes: a row is well under 1 kB, so 1 GiB
@@ -463,7 +510,7 @@ pub fn merge(a: MergeArgs) -> Result<()> {
     shards.sort_by_key(|s| kn(s).map(|x| x.0).unwrap_or(0));
     let head = shards[0].csv.lines().next().unwrap_or_default().to_string();
     let paths: Vec<&str> = shards[0].json["paths"].as_array().map(|p| p.iter().filter_map(Value::as_str).collect()).unwrap_or_default();
-    if head != columns(&paths).join(",") {
+    if head != columns(&paths, SUMMARY_COLUMNS).join(",") && head != columns(&paths, SPATIAL_SUMMARY_COLUMNS).join(",") {
         bail!("{}: its CSV header is not a sweep's over {} (`{head}`)", name(&shards[0]), paths.join(", "));
     }
     let mut csv = String::with_capacity(shards.iter().map(|s| s.csv.len()).sum());

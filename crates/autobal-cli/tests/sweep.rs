@@ -88,10 +88,10 @@ fn merged_shards_equal_the_unsharded_sweep() {
 fn sweep_errors_name_the_option_and_path() {
     let spatial = format!("{}/../../examples/spatial.toml", env!("CARGO_MANIFEST_DIR"));
     for (args, start) in [
-        (
-            vec!["sweep", "--config", &spatial, "--x", "drive.omega0=1.5:1.7:2"],
-            "error: config: `sweep` runs the planar rotor of paper 004 only ([planar], [drive]); the spatial rotor of papers 000/003 is simulated by `simulate`",
-        ),
+        (vec!["sweep", "--config", &spatial, "--x", "planar.c_psi=0.1,0.2"], "error: --x planar.c_psi: a key of the planar rotor of paper 004"),
+        (vec!["sweep", "--config", &spatial, "--x", "dimensionless.z_q=1,2"], "error: --x dimensionless.z_q:"),
+        (vec!["sweep", "--config", &spatial, "--x", "drive.psi0[3]=1,2"], "error: --x drive.psi0[3]: element 3 of 2"),
+        (vec!["sweep", "--config", &spatial, "--x", "dimensionless.m0=0.01,-0.01"], "error: dimensionless.m0:"),
         (vec!["sweep", "--x", "drive.torque=1:2:2"], "error: --x drive.torque: the drive is of kind acceleration"),
         (vec!["sweep", "--x", "planar.c_pis=1:2:2"], "error: --x planar.c_pis: unknown parameter path"),
         (vec!["sweep", "--x", "drive.b=1:2:2", "--shard", "0/3"], "error: --shard 0/3: expected K/N"),
@@ -166,4 +166,110 @@ fn csv_numbers_are_shortest_round_trip() {
     let stem = d.join("sweep");
     ok(&["sweep", "--threads", "1", "--x", "drive.b=100,200", "--set", "drive.t_end=0.5", "--set", "drive.omega0=250", "--out", stem.to_str().unwrap()]);
     check_shortest_numbers(&d.join("sweep.csv"));
+}
+
+/// The two-plane SI example (static and couple unbalance, two ball sets, gravity, anisotropic
+/// supports) cut to half a second: every table of the spatial simulation takes part.
+fn two_plane() -> String {
+    format!("{}/../../examples/spatial_two_plane.toml", env!("CARGO_MANIFEST_DIR"))
+}
+
+const SPATIAL_GRID: &[&str] =
+    &["--x", "balancer.ball_mass=0.015,0.02,0.025", "--y", "supports.stiffness_left_y=2e6,2.6e6", "--axis", "balancer2.drag=0.5,1", "--set", "drive.t_end=0.5"];
+
+/// A spatial sweep's row is `autobal simulate` of the config with the point's values set, bit
+/// for bit in every column but the wall time; shards merged equal the unsharded sweep.
+#[test]
+fn spatial_sweep_points_are_simulate_runs_and_shards_merge() {
+    let d = dir("spatial");
+    let s = |p: &str| d.join(p).to_str().unwrap().to_string();
+    let cfg = two_plane();
+    let full = s("full");
+    let mut args = vec!["sweep", "--config", &cfg, "--out", &full, "--format", "json"];
+    args.extend(SPATIAL_GRID);
+    let printed: serde_json::Value = serde_json::from_str(&ok(&args)).unwrap();
+    assert_eq!(printed["problem"]["model"], "spatial");
+    let text = std::fs::read_to_string(d.join("full.csv")).unwrap();
+    let mut lines = text.lines();
+    let head: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows.len(), 12, "3 × 2 × 2 points");
+    assert_eq!(
+        head[4..].join(","),
+        "peak_amplitude,omega_at_peak,t_at_peak,final_amplitude,final_omega,balanced,completed,t_reached,steps,rejected_steps,rhs_evaluations,\
+         contacts,stick_slip_transitions,outcome,residual_unbalance,residual_couple,static_sag,wall_s"
+    );
+    // the axes reach the rotor: the points differ
+    let col = |c: &str| head.iter().position(|h| *h == c).unwrap();
+    assert_ne!(rows[0][col("peak_amplitude")], rows[1][col("peak_amplitude")]);
+    // points 0, 7 and 11 (every axis at another value) against `autobal simulate --set`
+    for r in [&rows[0], &rows[7], &rows[11]] {
+        let sets: Vec<String> = (1..4).map(|j| format!("{}={}", head[j], r[j])).collect();
+        let mut a = vec!["simulate", "--config", &cfg, "--set", "drive.t_end=0.5", "--format", "json"];
+        for set in &sets {
+            a.extend(["--set", set.as_str()]);
+        }
+        let out = s(&format!("sim{}", r[0]));
+        a.extend(["--out", &out]);
+        let text = ok(&a);
+        let j: serde_json::Value = serde_json::from_str(&text).unwrap();
+        // a number as printed (the shortest text that reads back to it), read with Rust's exact
+        // parser: serde_json's own may be 1 ulp off
+        let num = |k: &str| -> f64 {
+            let at = text.find(&format!("\n  \"{k}\": ")).unwrap_or_else(|| panic!("no top-level {k}")) + k.len() + 7;
+            let end = text[at..].find([',', '\n']).unwrap() + at;
+            text[at..end].parse().unwrap_or_else(|_| panic!("{k}: {}", &text[at..end]))
+        };
+        let outcome = ["not_settled", "not_balanced", "partially_balanced", "balanced"].iter().position(|o| j["outcome"] == *o).unwrap() as f64;
+        let expected = [
+            ("peak_amplitude", num("peak_amplitude")),
+            ("omega_at_peak", num("omega_at_peak")),
+            ("t_at_peak", num("t_at_peak")),
+            ("final_amplitude", num("final_amplitude")),
+            ("final_omega", num("final_omega")),
+            ("balanced", if j["balanced"] == true { 1.0 } else { 0.0 }),
+            ("completed", if j["stopped"].is_null() { 1.0 } else { 0.0 }),
+            ("t_reached", num("t_end")),
+            ("steps", num("steps")),
+            ("rejected_steps", num("rejected_steps")),
+            ("rhs_evaluations", num("rhs_evaluations")),
+            ("contacts", num("contacts")),
+            ("stick_slip_transitions", num("stick_slip_transitions")),
+            ("outcome", outcome),
+            ("residual_unbalance", num("residual_unbalance")),
+            ("residual_couple", if j["residual_couple"].is_null() { f64::NAN } else { num("residual_couple") }),
+            ("static_sag", num("static_sag")),
+        ];
+        for (c, want) in expected {
+            let got: f64 = r[col(c)].parse().unwrap();
+            assert_eq!(got.to_bits(), want.to_bits(), "point {}: {c} = {got:e} in the sweep, {want:e} by simulate ({sets:?})", r[0]);
+        }
+        assert_eq!(num("t_end"), 0.5, "the run completed");
+    }
+    // 5 shards on one thread each, merged out of order, equal the unsharded sweep
+    let whole = without_wall_time(&d.join("full.csv"));
+    let mut shards = vec![];
+    for k in 1..=5 {
+        let stem = s(&format!("part{k}"));
+        let spec = format!("{k}/5");
+        let mut a = vec!["sweep", "--config", &cfg, "--threads", "1", "--shard", &spec, "--out", &stem];
+        a.extend(SPATIAL_GRID);
+        ok(&a);
+        shards.push(format!("{stem}.csv"));
+    }
+    let merged = s("merged");
+    let mut a = vec!["merge", "--out", &merged];
+    a.extend(shards.iter().rev().map(String::as_str));
+    ok(&a);
+    assert_eq!(without_wall_time(&d.join("merged.csv")), whole);
+    // a shard of the same grid on another config is refused
+    let other = s("other");
+    let mut a = vec!["sweep", "--config", &cfg, "--shard", "2/5", "--out", &other];
+    a.extend(SPATIAL_GRID);
+    a.extend(["--set", "balancer.drag=0.7"]);
+    ok(&a);
+    let (code, _, err) = autobal(&["merge", "--out", &s("x"), &shards[0], &format!("{other}.csv"), &shards[2], &shards[3], &shards[4]]);
+    assert_eq!(code, 2);
+    assert!(err.contains("a different sweep") && err.contains("problem"), "{err}");
+    std::fs::remove_dir_all(&d).ok();
 }

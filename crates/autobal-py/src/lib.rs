@@ -397,24 +397,69 @@ fn spatial_basins<'py>(py: Python<'py>, cfg: &PySpatial, n: usize) -> PyResult<(
     Ok((out, autobal::reports::basins(&res, wall).to_string()))
 }
 
+/// The base of a batch or sweep: a planar problem or a spatial config (one per call: the
+/// planar problem's size does not matter).
+#[allow(clippy::large_enum_variant)]
+enum Base {
+    Planar(PlanarProblem),
+    Spatial(autobal::sweep::SpatialSweep),
+}
+
+/// `cfg` (a `PlanarConfig` or a `SpatialConfig`) as the base of a batch or sweep; a spatial
+/// config must convert to a simulation (`[drive]`, `[integration]`, ...).
+fn base_of(py: Python<'_>, cfg: &Bound<'_, PyAny>) -> PyResult<Base> {
+    if let Ok(p) = cfg.extract::<PyRef<'_, PyPlanar>>() {
+        return Ok(Base::Planar(p.problem.clone()));
+    }
+    if let Ok(c) = cfg.extract::<PyRef<'_, PySpatial>>() {
+        return autobal::sweep::SpatialSweep::new(c.root.clone()).map(Base::Spatial).map_err(|e| py_err(py, e));
+    }
+    Err(PyTypeError::new_err("cfg: expected a PlanarConfig or a SpatialConfig (PlanarProblem._cfg, SpatialModel._cfg)"))
+}
+
 /// Check every row of `params` (points × paths) as a batch would before running.
 #[pyfunction]
-fn check_batch(py: Python<'_>, cfg: &PyPlanar, paths: Vec<String>, params: PyReadonlyArray2<'_, f64>) -> PyResult<()> {
+fn check_batch(py: Python<'_>, cfg: &Bound<'_, PyAny>, paths: Vec<String>, params: PyReadonlyArray2<'_, f64>) -> PyResult<()> {
     let flat: Vec<f64> = params.as_array().iter().copied().collect();
     let refs: Vec<&str> = paths.iter().map(String::as_str).collect();
     if params.shape()[1] != paths.len() {
         return Err(py_err(py, autobal::Error::invalid("params", format!("{} columns for {} paths", params.shape()[1], paths.len()))));
     }
-    autobal::sweep::check_batch(&cfg.problem, &refs, &flat).map_err(|e| py_err(py, e))
+    let r = match base_of(py, cfg)? {
+        Base::Planar(p) => autobal::sweep::check_batch(&p, &refs, &flat),
+        Base::Spatial(s) => autobal::sweep::check_batch(&s, &refs, &flat),
+    };
+    r.map_err(|e| py_err(py, e))
 }
 
-/// Run `params` (points × paths) on the problem in parallel (`threads`, default all cores):
-/// an array points × `SUMMARY_COLUMNS`, the same bits whatever the threads.
+/// A batch of `base`: `rows × ncol` summaries, `ncol` the model's summary columns.
+fn run_batch<M: autobal::sweep::SweepModel>(base: &M, paths: &[String], flat: &[f64], rows: usize, cancel: &AtomicBool) -> autobal::Result<Vec<f64>> {
+    use autobal::sweep::SweepSummary;
+    let ncol = <M::Summary as SweepSummary>::COLUMNS.len();
+    let refs: Vec<&str> = paths.iter().map(String::as_str).collect();
+    let mut out = vec![f64::NAN; rows * ncol];
+    let o = autobal::sweep::simulate_batch(
+        base,
+        &refs,
+        flat,
+        &mut |i, _, r| {
+            out[i * ncol..(i + 1) * ncol].copy_from_slice(&r.summary.values());
+            true
+        },
+        &|| cancel.load(Ordering::Relaxed),
+    )?;
+    o.into_result()?;
+    Ok(out)
+}
+
+/// Run `params` (points × paths) on the problem (a `PlanarConfig`, or a `SpatialConfig` with
+/// `[drive]`) in parallel (`threads`, default all cores): an array points × `SUMMARY_COLUMNS`
+/// (planar) or `SPATIAL_SUMMARY_COLUMNS` (spatial), the same bits whatever the threads.
 #[pyfunction]
 #[pyo3(signature = (cfg, paths, params, threads=None))]
 fn simulate_batch<'py>(
     py: Python<'py>,
-    cfg: &PyPlanar,
+    cfg: &Bound<'py, PyAny>,
     paths: Vec<String>,
     params: PyReadonlyArray2<'py, f64>,
     threads: Option<usize>,
@@ -425,36 +470,55 @@ fn simulate_batch<'py>(
         return Err(py_err(py, autobal::Error::invalid("params", format!("{k} columns for {} paths", paths.len()))));
     }
     let flat: Vec<f64> = params.as_array().iter().copied().collect();
-    let base = cfg.problem.clone();
-    let ncol = autobal::sweep::SUMMARY_COLUMNS.len();
+    let base = base_of(py, cfg)?;
+    let ncol = match base {
+        Base::Planar(_) => autobal::sweep::SUMMARY_COLUMNS.len(),
+        Base::Spatial(_) => autobal::sweep::SPATIAL_SUMMARY_COLUMNS.len(),
+    };
     let result = interruptible(py, move |cancel| {
-        let work = || {
-            let refs: Vec<&str> = paths.iter().map(String::as_str).collect();
-            let mut out = vec![f64::NAN; rows * ncol];
-            let o = autobal::sweep::simulate_batch(
-                &base,
-                &refs,
-                &flat,
-                &mut |i, _, r| {
-                    out[i * ncol..(i + 1) * ncol].copy_from_slice(&autobal::sweep::summary_values(&r.summary));
-                    true
-                },
-                &|| cancel.load(Ordering::Relaxed),
-            )?;
-            o.into_result()?;
-            Ok(out)
-        };
-        with_threads(threads, work)
+        with_threads(threads, || match &base {
+            Base::Planar(p) => run_batch(p, &paths, &flat, rows, cancel),
+            Base::Spatial(s) => run_batch(s, &paths, &flat, rows, cancel),
+        })
     })?;
     let out = result.map_err(|e| py_err(py, e))?;
     PyArray1::from_vec(py, out).reshape([rows, ncol])
 }
 
-/// `autobal sweep --format json` on the problem: `axes` as `[(path, values), ...]` (first
-/// fastest), `shard` as `(k, n)` 1-based. The JSON text.
+/// The runs of `range` of `grid` on `base` as the sweep's JSON lists them.
+fn run_grid<M: autobal::sweep::SweepModel>(
+    base: &M,
+    grid: &autobal::sweep::Grid,
+    range: std::ops::Range<usize>,
+    cancel: &AtomicBool,
+) -> autobal::Result<Vec<serde_json::Value>> {
+    let mut runs = vec![];
+    let o = autobal::sweep::simulate_grid(
+        base,
+        grid,
+        range,
+        &mut |i, v, res| {
+            runs.push(autobal::sweep::run_json(i, v, res));
+            true
+        },
+        &|| cancel.load(Ordering::Relaxed),
+    )?;
+    o.into_result()?;
+    Ok(runs)
+}
+
+/// `autobal sweep --format json` on the problem (a `PlanarConfig`, or a `SpatialConfig` with
+/// `[drive]`): `axes` as `[(path, values), ...]` (first fastest), `shard` as `(k, n)` 1-based.
+/// The JSON text, with the CLI's `definition_checksum`.
 #[pyfunction]
 #[pyo3(signature = (cfg, axes, shard=None, threads=None))]
-fn sweep_report(py: Python<'_>, cfg: &PyPlanar, axes: Vec<(String, Vec<f64>)>, shard: Option<(usize, usize)>, threads: Option<usize>) -> PyResult<String> {
+fn sweep_report(
+    py: Python<'_>,
+    cfg: &Bound<'_, PyAny>,
+    axes: Vec<(String, Vec<f64>)>,
+    shard: Option<(usize, usize)>,
+    threads: Option<usize>,
+) -> PyResult<String> {
     let err = |e| py_err(py, e);
     let grid = autobal::sweep::Grid::new(axes.into_iter().map(|(p, v)| autobal::sweep::Axis::new(p, v)).collect()).map_err(err)?;
     let range = match shard {
@@ -462,29 +526,27 @@ fn sweep_report(py: Python<'_>, cfg: &PyPlanar, axes: Vec<(String, Vec<f64>)>, s
         Some((k, n)) => return Err(err(autobal::Error::invalid("shard", format!("shard {k} of {n} does not exist (k from 1 to N)")))),
         None => 0..grid.len(),
     };
-    let base = &cfg.problem;
+    let base = base_of(py, cfg)?;
+    // the config's tables, for the checksum of the sweep's definition (as the CLI's)
+    let root = match &base {
+        Base::Planar(_) => config::parse(&cfg.extract::<PyRef<'_, PyPlanar>>()?.toml, "config").map_err(err)?,
+        Base::Spatial(s) => s.root().clone(),
+    };
+    let problem = match &base {
+        Base::Planar(p) => serde_json::to_value(p).map_err(|e| PyRuntimeError::new_err(e.to_string()))?,
+        Base::Spatial(s) => s.to_json().map_err(err)?,
+    };
     let (g, r) = (&grid, range.clone());
     let out = interruptible(py, move |cancel| {
-        let work = || {
-            let mut runs = vec![];
-            let o = autobal::sweep::simulate_grid(
-                base,
-                g,
-                r.clone(),
-                &mut |i, v, res| {
-                    runs.push(autobal::reports::sweep_run(i, v, res));
-                    true
-                },
-                &|| cancel.load(Ordering::Relaxed),
-            )?;
-            o.into_result()?;
-            Ok(runs)
-        };
-        with_threads(threads, work)
+        with_threads(threads, || match &base {
+            Base::Planar(p) => run_grid(p, g, r.clone(), cancel),
+            Base::Spatial(s) => run_grid(s, g, r.clone(), cancel),
+        })
     })?;
     let runs = out.map_err(err)?;
-    let info = autobal::reports::SweepInfo { problem: base, grid: &grid, shard, range, complete: true };
-    Ok(autobal::reports::sweep(&info, runs).to_string())
+    let mut json = autobal::sweep::report(&grid, shard, &range, true, problem, runs);
+    json["definition_checksum"] = autobal::sweep::definition_checksum(&root, &grid).into();
+    Ok(json.to_string())
 }
 
 /// A stability map of the spatial model (what `autobal map` writes as CSV): `x` and `y` as
@@ -590,6 +652,7 @@ fn planar_paths() -> Vec<(&'static str, &'static str)> {
 fn _autobal(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("SUMMARY_COLUMNS", autobal::sweep::SUMMARY_COLUMNS.to_vec())?;
+    m.add("SPATIAL_SUMMARY_COLUMNS", autobal::sweep::SPATIAL_SUMMARY_COLUMNS.to_vec())?;
     m.add("SCHEMA", config::SCHEMA.iter().map(|(t, ks)| (*t, ks.to_vec())).collect::<Vec<_>>())?;
     m.add("DEFAULT_SPATIAL", config::DEFAULT_SPATIAL)?;
     m.add("DEFAULT_PLANAR", config::DEFAULT_PLANAR)?;

@@ -218,6 +218,67 @@ def test_batch_equals_single_runs_and_threads_do_not_matter():
     assert row["peak_amplitude"] == s["peak_amplitude"] and row["steps"] == s["steps"]
 
 
+def spatial_two_plane():
+    """examples/spatial_two_plane.toml (SI; static and couple unbalance, two ball sets, gravity,
+    anisotropic supports) cut to half a second."""
+    return autobal.SpatialModel(str(ROOT / "examples" / "spatial_two_plane.toml"), set={"drive.t_end": 0.5})
+
+
+SPATIAL_AXES = {"balancer.ball_mass": [0.015, 0.025], "supports.stiffness_left_y": [2e6, 2.6e6], "balancer2.drag": [0.5, 1.0]}
+
+
+def test_spatial_sweep_equals_the_cli_and_single_runs(tmp_path):
+    """A sweep of the spatial rotor: the CLI's rows bit for bit (all but wall_s), its JSON
+    through run("sweep"), the same bits on 1 or 2 threads, in chunks and on a worker, and a
+    row is the config with those keys set, simulated on its own."""
+    m = spatial_two_plane()
+    paths = list(SPATIAL_AXES)
+    names = ["point", *paths, *autobal.SPATIAL_SUMMARY_COLUMNS]
+    assert autobal.columns(m) == autobal.SPATIAL_SUMMARY_COLUMNS
+    assert autobal.SPATIAL_SUMMARY_COLUMNS[: len(autobal.SUMMARY_COLUMNS)] == autobal.SUMMARY_COLUMNS
+    table = autobal.sweep(m, SPATIAL_AXES)
+    cols = {k: np.asarray(v) for k, v in dict(table).items()} if isinstance(table, dict) else {c: table[c].to_numpy() for c in table.columns}
+    assert list(cols) == names and len(cols["point"]) == 8
+    # the CLI on the same config and grid
+    two = str(ROOT / "examples" / "spatial_two_plane.toml")
+    grid = ["--x", "balancer.ball_mass=0.015,0.025", "--y", "supports.stiffness_left_y=2e6,2.6e6", "--axis", "balancer2.drag=0.5,1"]
+    want = cli("sweep", "--config", two, "--set", "drive.t_end=0.5", "--out", str(tmp_path / "cli"), *grid)
+    csv = np.genfromtxt(tmp_path / "cli.csv", delimiter=",", names=True, deletechars="")
+    assert list(csv.dtype.names) == [*names, "wall_s"]
+    for name in names:
+        assert np.array_equal(cols[name].astype(float), csv[name], equal_nan=True), name
+    got = autobal.run("sweep", config=two, set={"drive.t_end": 0.5}, x=grid[1], y=grid[3], axis=[grid[5]])
+    assert got["problem"]["model"] == "spatial" and without(got, "wall_time_s") == without(want, "wall_time_s")
+    # threads, chunks and the Dask worker's route give the same bits
+    params = autobal.grid(SPATIAL_AXES)
+    one = autobal.simulate_batch(m, paths, params, threads=1)
+    two_threads = autobal.simulate_batch(m, paths, params, threads=2)
+    assert one.shape == (8, len(autobal.SPATIAL_SUMMARY_COLUMNS)) and one.tobytes() == two_threads.tobytes()
+    from autobal._sweep import _run_chunk
+
+    assert _run_chunk("spatial", m.toml, paths, params[3:], 1).tobytes() == one[3:].tobytes()
+    chunked = autobal.sweep(m, SPATIAL_AXES, out=tmp_path / "sp.csv", chunk_size=3)
+    assert np.array_equal(np.column_stack([np.asarray(chunked[c], dtype=float) for c in names]), np.column_stack([cols[c].astype(float) for c in names]), equal_nan=True)
+    # row 5: ball mass 0.025, stiffness 2e6, drag 1.0, simulated on its own
+    assert params[5].tolist() == [0.025, 2e6, 1.0]
+    single = autobal.SpatialModel(two, set={"drive.t_end": 0.5, "balancer.ball_mass": 0.025, "supports.stiffness_left_y": 2e6, "balancer2.drag": 1.0}).simulate()
+    row = dict(zip(autobal.SPATIAL_SUMMARY_COLUMNS, one[5]))
+    for key in ["peak_amplitude", "t_at_peak", "final_amplitude", "residual_unbalance", "residual_couple", "static_sag", "steps", "rhs_evaluations"]:
+        assert row[key] == single.summary[key], key
+    assert row["t_reached"] == single.summary["t_end"] == 0.5 and row["completed"] == 1.0
+    outcomes = ["not_settled", "not_balanced", "partially_balanced", "balanced"]
+    assert outcomes[int(row["outcome"])] == single.summary["outcome"]
+    # the points differ: the axes reached the rotor
+    assert len(set(one[:, 0].tolist())) == 8
+    # paths are the config's keys; others are refused, naming the path
+    with pytest.raises(InvalidParameter) as e:
+        autobal.simulate_batch(m, ["planar.c_psi"], [[0.1]])
+    assert e.value.field == "planar.c_psi"
+    with pytest.raises(InvalidParameter) as e:
+        autobal.simulate_batch(m, ["balancer.ball_mass"], [[0.02], [-0.02]])
+    assert e.value.field == "balancer.ball_mass" and "at the point balancer.ball_mass = -0.02" in str(e.value)
+
+
 def test_sweep_streams_and_resumes(tmp_path):
     pd = need("pandas")
     p = short()

@@ -190,15 +190,15 @@ pub fn stability_over_speed(rotor: &Rotor, speeds: &[f64]) -> Result<RotorStabil
     // the model's own validation first, so its message names the field
     let first = rotor.field(speeds[0])?;
     let kind = if first.period().is_some() { Kind::PeriodicOrbit } else { Kind::Equilibrium };
-    // the closed form is the balanced state itself for an equilibrium (start there: it names
-    // the branch); for a periodic orbit it is only the orbit's autonomous neighbour, and the
-    // previous speed's orbit is the better start. The shooting integrates at rtol 1e-10 (not
-    // the pipeline's default 1e-12): 5.5x faster on the two-plane example (3.5 s for 50
-    // speeds, release), and the multipliers near 1 stay good to ~1e-9, inside
-    // FLOQUET_TOLERANCE (1e-8)
+    // Newton starts from the closed form at every speed (it names the branch: the balanced
+    // state, or for a periodic orbit its autonomous neighbour, from which the shooting lands on
+    // the orbit of the balanced branch; continuation from the previous orbit switched to orbits
+    // with the balls elsewhere at 450-650 rad/s on examples/spatial_two_plane.toml), the
+    // shooting's matrix from the previous speed's monodromy (analysis::stationary_near). The
+    // shooting integrates at rtol 1e-10 (not the pipeline's default 1e-12): 5.5x faster, and
+    // the multipliers near 1 stay good to ~1e-9, inside FLOQUET_TOLERANCE (1e-8)
     let mut opts = ScanOptions::default();
     if kind == Kind::PeriodicOrbit {
-        opts.prefer_guess = false;
         opts.newton.max_iterations = 20;
         opts.newton.rtol = 1e-10;
     }
@@ -228,11 +228,23 @@ pub fn stability_over_speed(rotor: &Rotor, speeds: &[f64]) -> Result<RotorStabil
                 threshold: p.stability.as_ref().map(|s| s.threshold),
                 family_dimension: fam,
                 amplitude,
-                failure: p.failure.clone(),
+                failure: p.failure.as_ref().map(|f| explain_failure(rotor, f)),
             }
         })
         .collect();
     Ok(RotorStability { model: rotor.model_name(), kind, stable_ranges: scan.stable_ranges, points, family_dimension, member_psi })
+}
+
+/// A scan's failure in the user's terms: where the closed form gives no state, say which state
+/// does not exist and why.
+fn explain_failure(rotor: &Rotor, failure: &str) -> String {
+    if !failure.starts_with("no starting point") {
+        return failure.to_string();
+    }
+    match rotor {
+        Rotor::Planar(_) => "no semi-balanced state at this speed: the balls cannot supply the unbalance it needs (|B| > n m3 r, planar::stationary)".into(),
+        Rotor::Spatial(_) => "no balanced state: the balls' capacity Σ m R of a plane is below the unbalance it must cancel".into(),
+    }
 }
 
 /// The balls' angles in a reduced state.

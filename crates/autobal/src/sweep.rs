@@ -1,5 +1,10 @@
-//! Simulation sweeps: many runs of one [`PlanarProblem`] with parameters changed by path
-//! ([`crate::paths`]), in parallel, delivered in order, stoppable.
+//! Simulation sweeps: many runs of one rotor with parameters changed by path, in parallel,
+//! delivered in order, stoppable. The rotor is a [`SweepModel`]: paper 004's planar rotor, a
+//! [`PlanarProblem`] (paths of [`crate::paths`]: `planar.c_psi`, `drive.b`, `drive.psi0[1]`),
+//! or the spatial rotor of papers 000/003, a [`SpatialSweep`] (the config's own keys,
+//! `balancer.ball_mass`, `drive.omega0`, `dimensionless.z_a`, …, set in its tables and the
+//! rotor converted again per point). Their rows are [`SUMMARY_COLUMNS`] and
+//! [`SPATIAL_SUMMARY_COLUMNS`].
 //!
 //! - A [`Grid`] is the product of [`Axis`] values (the first axis varies fastest); its points
 //!   are numbered `0..len`, and a [`shard`] is a contiguous range of them, so that shards run
@@ -35,10 +40,12 @@
 //! assert!(rows.iter().all(|r| r.2[completed] == 1.0));
 //! ```
 
+use crate::config::Table;
 use crate::error::{fmt_num, Error, Result};
 use crate::paths::Parameters;
 use crate::planar::problem::PlanarProblem;
 use crate::planar::{simulate_summary, Summary};
+use crate::spatial::dynamics::RunOutcome;
 use rayon::prelude::*;
 use std::ops::Range;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -264,11 +271,276 @@ pub fn summary_values(s: &Summary) -> [f64; 13] {
     ]
 }
 
-/// One run of a sweep.
+/// Columns of a spatial run's summary ([`spatial_summary_values`]), in this order: those of
+/// [`SUMMARY_COLUMNS`], meaning the same for the spatial rotor ([`crate::spatial::dynamics::Summary`]:
+/// amplitudes are the whirl radius at the first balancer plane, `balanced` its verdict), then
+///
+/// - `outcome`: [`RunOutcome`] as a number ([`outcome_code`]): 0 not settled, 1 not balanced,
+///   2 partially balanced, 3 balanced;
+/// - `residual_unbalance`, `residual_couple` (relative to the unbalance's own; the couple is
+///   NaN when the unbalance has none), `static_sag` (distance of the mean position from the axis).
+pub const SPATIAL_SUMMARY_COLUMNS: &[&str] = &[
+    "peak_amplitude",
+    "omega_at_peak",
+    "t_at_peak",
+    "final_amplitude",
+    "final_omega",
+    "balanced",
+    "completed",
+    "t_reached",
+    "steps",
+    "rejected_steps",
+    "rhs_evaluations",
+    "contacts",
+    "stick_slip_transitions",
+    "outcome",
+    "residual_unbalance",
+    "residual_couple",
+    "static_sag",
+];
+
+/// [`RunOutcome`] as the number of the `outcome` column: 0 not settled, 1 not balanced,
+/// 2 partially balanced, 3 balanced (the better, the larger).
+pub fn outcome_code(o: RunOutcome) -> f64 {
+    match o {
+        RunOutcome::NotSettled => 0.0,
+        RunOutcome::NotBalanced => 1.0,
+        RunOutcome::PartiallyBalanced => 2.0,
+        RunOutcome::Balanced => 3.0,
+    }
+}
+
+/// A spatial run's summary in the order of [`SPATIAL_SUMMARY_COLUMNS`] (counts exact in `f64`
+/// up to 2⁵³; `residual_couple` NaN when the unbalance has no couple).
+pub fn spatial_summary_values(s: &crate::spatial::dynamics::Summary) -> [f64; 17] {
+    [
+        s.peak_amplitude,
+        s.omega_at_peak,
+        s.t_at_peak,
+        s.final_amplitude,
+        s.final_omega,
+        f64::from(u8::from(s.balanced)),
+        f64::from(u8::from(s.stopped.is_none())),
+        s.t_end,
+        s.steps as f64,
+        s.rejected_steps as f64,
+        s.rhs_evaluations as f64,
+        s.contacts as f64,
+        s.stick_slip_transitions as f64,
+        outcome_code(s.outcome),
+        s.residual_unbalance,
+        s.residual_couple.unwrap_or(f64::NAN),
+        s.static_sag,
+    ]
+}
+
+/// A run's summary as a sweep's row: its columns' names and numbers (and as JSON, its
+/// run's `summary`).
+pub trait SweepSummary: Send + Sync + serde::Serialize {
+    /// The columns' names ([`SUMMARY_COLUMNS`], [`SPATIAL_SUMMARY_COLUMNS`]).
+    const COLUMNS: &'static [&'static str];
+    /// The numbers, one per column, in their order.
+    fn values(&self) -> Vec<f64>;
+    /// Why the run stopped before its end, if it did.
+    fn stopped(&self) -> Option<&str>;
+}
+
+impl SweepSummary for Summary {
+    const COLUMNS: &'static [&'static str] = SUMMARY_COLUMNS;
+    fn values(&self) -> Vec<f64> {
+        summary_values(self).to_vec()
+    }
+    fn stopped(&self) -> Option<&str> {
+        self.stopped.as_deref()
+    }
+}
+
+impl SweepSummary for crate::spatial::dynamics::Summary {
+    const COLUMNS: &'static [&'static str] = SPATIAL_SUMMARY_COLUMNS;
+    fn values(&self) -> Vec<f64> {
+        spatial_summary_values(self).to_vec()
+    }
+    fn stopped(&self) -> Option<&str> {
+        self.stopped.as_deref()
+    }
+}
+
+/// What a sweep runs: a base description, the description of one point (the base with
+/// numbers set at paths), and the run of that point.
+pub trait SweepModel: Sync {
+    /// One point's description.
+    type Point: Send;
+    /// One run's summary.
+    type Summary: SweepSummary;
+    /// The base with `values` set at `paths`, checked; errors name the path and the point.
+    fn at(&self, paths: &[&str], values: &[f64]) -> Result<Self::Point>;
+    /// Run a point, keeping its summary; `cancel` is polled during the run (a run it stops is
+    /// discarded by the sweep).
+    fn run(&self, point: &Self::Point, cancel: &dyn Fn() -> bool) -> Result<Self::Summary>;
+}
+
+impl SweepModel for PlanarProblem {
+    type Point = PlanarProblem;
+    type Summary = Summary;
+    fn at(&self, paths: &[&str], values: &[f64]) -> Result<PlanarProblem> {
+        problem_at(self, paths, values)
+    }
+    fn run(&self, p: &PlanarProblem, cancel: &dyn Fn() -> bool) -> Result<Summary> {
+        // the run of `simulate` with the same settings (dt included: it is also the automatic
+        // method's time resolution), sampled only at its ends; the stop is checked at every step
+        simulate_summary(&p.rotor, &p.drive, &p.settings, Some(cancel))
+    }
+}
+
+/// A sweep of the spatial rotor of papers 000/003 ([`crate::config::spatial_simulation`]):
+/// the config's tables, a point setting its keys (`balancer.ball_mass`, `drive.omega0`,
+/// `dimensionless.z_a`, `supports.stiffness_left`, …, and an element of an array key,
+/// `drive.psi0[2]`, 1-based) in the tables and converting them again, so that every key the
+/// config accepts is a path and a point is exactly the config with that value set (as
+/// `autobal simulate --set KEY=VALUE` runs it).
+///
+/// ```
+/// use autobal::sweep::{simulate_batch, SpatialSweep, SweepModel};
+/// let mut root = autobal::config::parse(include_str!("../../../examples/spatial.toml"), "spatial.toml").unwrap();
+/// autobal::config::set_number(&mut root, "drive.t_end", 50.0).unwrap();
+/// let base = SpatialSweep::new(root.clone()).unwrap();
+/// let mut rows = vec![];
+/// simulate_batch(&base, &["drive.omega0"], &[1.5, 1.6], &mut |_, _, r| { rows.push(r.summary.clone()); true }, &|| false).unwrap();
+/// // point 1 is the config with drive.omega0 = 1.6, run as `simulate` runs it
+/// autobal::config::set_number(&mut root, "drive.omega0", 1.6).unwrap();
+/// let sim = autobal::config::spatial_simulation(&root).unwrap();
+/// let direct = autobal::spatial::dynamics::simulate(&sim.rotor, &sim.drive, &sim.initial, &sim.settings, |_| true).unwrap();
+/// assert_eq!(rows[1], direct);
+/// ```
 #[derive(Debug, Clone, PartialEq)]
-pub struct PointResult {
+pub struct SpatialSweep {
+    root: Table,
+}
+
+impl SpatialSweep {
+    /// A sweep over the config `root` (the analytic commands' tables plus `[drive]`,
+    /// `[integration]`, …), which must convert as it is.
+    pub fn new(root: Table) -> Result<Self> {
+        crate::config::spatial_simulation(&root)?;
+        Ok(SpatialSweep { root })
+    }
+
+    /// The config's tables.
+    pub fn root(&self) -> &Table {
+        &self.root
+    }
+
+    /// The config with `value` set at `path` (`table.key`, or `table.key[j]` for element `j`,
+    /// 1-based, of an array key); errors name the path.
+    pub fn set(root: &mut Table, path: &str, value: f64) -> Result<()> {
+        let (key, index) = match crate::paths::indexed(path) {
+            Some((name, j)) => (name, Some(j.map_err(|r| Error::invalid(path, r))?)),
+            None => (path, None),
+        };
+        if key.split('.').next() == Some("planar") {
+            return Err(Error::invalid(path, "a key of the planar rotor of paper 004; this config is the spatial rotor's"));
+        }
+        let Some(j) = index else {
+            return crate::config::set_number(root, key, value);
+        };
+        // check the key against the config's schema by setting it, then put the array back
+        let (t, k) = key.split_once('.').unwrap_or((key, ""));
+        let old = root.get(t).and_then(|v| v.get(k)).cloned();
+        let Some(toml::Value::Array(mut a)) = old else {
+            crate::config::set_number(&mut Table::new(), key, value)?;
+            return Err(Error::invalid(path, format!("`{key}` is not an array in the config (give it in full with --set first)")));
+        };
+        let n = a.len();
+        let slot = a.get_mut(j).ok_or_else(|| Error::invalid(path, format!("element {} of {n}: `{key}` has {n} elements", j + 1)))?;
+        *slot = toml::Value::Float(value);
+        crate::config::set(root, key, toml::Value::Array(a))
+    }
+}
+
+impl SpatialSweep {
+    /// The sweep's base problem as a sweep's JSON gives it (`problem`): `model: "spatial"`,
+    /// the config's tables (`config`) and what they convert to (`rotor`, `drive`,
+    /// `drive_is_default`, `initial`, `integration`).
+    pub fn to_json(&self) -> Result<serde_json::Value> {
+        let sim = crate::config::spatial_simulation(&self.root)?;
+        Ok(serde_json::json!({
+            "model": "spatial",
+            "config": self.root,
+            "rotor": sim.rotor,
+            "drive": sim.drive,
+            "drive_is_default": sim.default_drive,
+            "initial": sim.initial,
+            "integration": sim.settings,
+        }))
+    }
+}
+
+/// One run as a sweep's JSON lists it: the point's index and values (`x`, `y`: the first
+/// two), the summary and the wall time (as [`crate::reports::sweep_run`], for either rotor).
+pub fn run_json<S: serde::Serialize>(point: usize, values: &[f64], r: &PointResult<S>) -> serde_json::Value {
+    serde_json::json!({
+        "point": point,
+        "values": values,
+        "x": values.first(),
+        "y": values.get(1),
+        "summary": r.summary,
+        "wall_time_s": r.wall_s,
+    })
+}
+
+/// A sweep's JSON (as [`crate::reports::sweep`], for either rotor): the paths, the grid, which
+/// part (`shard`, 1-based `(k, n)`, and `range`), whether it is complete, the base `problem`
+/// ([`SpatialSweep::to_json`], or the [`PlanarProblem`] as JSON) and the runs in order
+/// ([`run_json`]).
+pub fn report(
+    grid: &Grid,
+    shard: Option<(usize, usize)>,
+    range: &Range<usize>,
+    complete: bool,
+    problem: serde_json::Value,
+    runs: Vec<serde_json::Value>,
+) -> serde_json::Value {
+    let keys = grid.paths();
+    serde_json::json!({
+        "paths": keys,
+        "x_key": keys[0],
+        "y_key": keys.get(1),
+        "grid": grid.axes.iter().map(|a| serde_json::json!({ "path": a.path, "values": a.values })).collect::<Vec<_>>(),
+        "points": grid.len(),
+        "shard": shard.map(|(k, n)| [k, n]),
+        "range": [range.start, range.end],
+        "complete": complete,
+        "problem": problem,
+        "runs": runs,
+    })
+}
+
+impl SweepModel for SpatialSweep {
+    type Point = crate::config::SpatialSimulation;
+    type Summary = crate::spatial::dynamics::Summary;
+    fn at(&self, paths: &[&str], values: &[f64]) -> Result<Self::Point> {
+        let at = || point_text(paths, values);
+        let mut root = self.root.clone();
+        for (path, v) in paths.iter().zip(values) {
+            SpatialSweep::set(&mut root, path, *v).map_err(|e| with_point(e, &at()))?;
+        }
+        crate::config::spatial_simulation(&root).map_err(|e| with_point(e, &at()))
+    }
+    fn run(&self, p: &Self::Point, cancel: &dyn Fn() -> bool) -> Result<Self::Summary> {
+        // the run of `autobal simulate` itself, samples every `dt` included: the peak is tracked
+        // at step ends and samples, and the samples' dense output costs right-hand sides, so a
+        // run sampled only at its ends would differ in those columns; the stop is asked at
+        // every sample
+        crate::spatial::dynamics::simulate(&p.rotor, &p.drive, &p.initial, &p.settings, |_| !cancel())
+    }
+}
+
+/// One run of a sweep of the planar rotor's run ([`Summary`], the default) or of
+/// the spatial rotor's ([`crate::spatial::dynamics::Summary`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PointResult<S = Summary> {
     /// Its summary.
-    pub summary: Summary,
+    pub summary: S,
     /// Wall-clock time of the run (s); the one column that differs between repetitions.
     pub wall_s: f64,
 }
@@ -298,13 +570,18 @@ impl SweepOutcome {
 /// The problem of one point: `base` with `values` set at `paths`, for a summary only; errors
 /// name the path and the point.
 pub fn problem_at(base: &PlanarProblem, paths: &[&str], values: &[f64]) -> Result<PlanarProblem> {
-    let at = || paths.iter().zip(values).map(|(p, v)| format!("{p} = {}", fmt_num(*v))).collect::<Vec<_>>().join(", ");
+    let at = || point_text(paths, values);
     let mut p = base.clone();
     for (path, v) in paths.iter().zip(values) {
         p.set(path, *v).map_err(|e| with_point(e, &at()))?;
     }
     p.validate().map_err(|e| with_point(e, &at()))?;
     Ok(p)
+}
+
+/// `path = value, …` of a point, for errors.
+fn point_text(paths: &[&str], values: &[f64]) -> String {
+    paths.iter().zip(values).map(|(p, v)| format!("{p} = {}", fmt_num(*v))).collect::<Vec<_>>().join(", ")
 }
 
 fn with_point(e: Error, at: &str) -> Error {
@@ -322,12 +599,12 @@ fn block_len() -> usize {
 
 /// The shared loop: points `range` (numbered as the caller numbers them), point values from
 /// `point(i, out)`.
-fn run_points(
-    base: &PlanarProblem,
+fn run_points<M: SweepModel>(
+    base: &M,
     paths: &[&str],
     range: Range<usize>,
     point: &(dyn Fn(usize, &mut [f64]) + Sync),
-    on_row: &mut dyn FnMut(usize, &[f64], &PointResult) -> bool,
+    on_row: &mut dyn FnMut(usize, &[f64], &PointResult<M::Summary>) -> bool,
     cancel: &(dyn Fn() -> bool + Sync),
 ) -> Result<SweepOutcome> {
     let k = paths.len();
@@ -348,19 +625,17 @@ fn run_points(
     let block = block_len();
     while start < range.end {
         let end = (start + block).min(range.end);
-        let results: Vec<Option<(Vec<f64>, PointResult)>> = (start..end)
+        let results: Vec<Option<(Vec<f64>, PointResult<M::Summary>)>> = (start..end)
             .into_par_iter()
-            .map(|i| -> Result<Option<(Vec<f64>, PointResult)>> {
+            .map(|i| -> Result<Option<(Vec<f64>, PointResult<M::Summary>)>> {
                 if stop_now() {
                     return Ok(None);
                 }
                 let mut v = vec![0.0; k];
                 point(i, &mut v);
-                let p = problem_at(base, paths, &v)?;
+                let p = base.at(paths, &v)?;
                 let t0 = std::time::Instant::now();
-                // the run of `simulate` with the same settings (dt included: it is also the automatic
-                // method's time resolution), sampled only at its ends; the stop is checked at every step
-                let summary = simulate_summary(&p.rotor, &p.drive, &p.settings, Some(&stop_now))?;
+                let summary = base.run(&p, &stop_now)?;
                 let wall_s = t0.elapsed().as_secs_f64();
                 // a run cut short by the stop is no result
                 Ok((!stopping.load(Ordering::Relaxed)).then_some((v, PointResult { summary, wall_s })))
@@ -384,11 +659,11 @@ fn run_points(
 }
 
 /// Every point first: an invalid value must not surface after hours of runs.
-fn check_points(base: &PlanarProblem, paths: &[&str], range: Range<usize>, point: &(dyn Fn(usize, &mut [f64]) + Sync)) -> Result<()> {
+fn check_points<M: SweepModel>(base: &M, paths: &[&str], range: Range<usize>, point: &(dyn Fn(usize, &mut [f64]) + Sync)) -> Result<()> {
     let mut buf = vec![0.0; paths.len()];
     for i in range {
         point(i, &mut buf);
-        problem_at(base, paths, &buf)?;
+        base.at(paths, &buf)?;
     }
     Ok(())
 }
@@ -396,24 +671,24 @@ fn check_points(base: &PlanarProblem, paths: &[&str], range: Range<usize>, point
 /// Check points `range` of `grid` on `base` as [`simulate_grid`] does before it runs anything
 /// (for a caller that must know before it creates its output files); errors name the path and
 /// the point.
-pub fn check_grid(base: &PlanarProblem, grid: &Grid, range: Range<usize>) -> Result<()> {
+pub fn check_grid<M: SweepModel>(base: &M, grid: &Grid, range: Range<usize>) -> Result<()> {
     check_points(base, &grid.paths(), range, &|i, out| grid.point(i, out))
 }
 
 /// Check the points of a batch (`params` row after row, one value per path) as
 /// [`simulate_batch`] does before it runs anything.
-pub fn check_batch(base: &PlanarProblem, paths: &[&str], params: &[f64]) -> Result<()> {
+pub fn check_batch<M: SweepModel>(base: &M, paths: &[&str], params: &[f64]) -> Result<()> {
     let k = paths.len().max(1);
     check_points(base, paths, 0..params.len() / k, &|i, out| out.copy_from_slice(&params[i * k..(i + 1) * k]))
 }
 
 /// Run points `range` of `grid` on `base` (see the module docs); `on_row(i, values, result)`
 /// receives point `i` in order.
-pub fn simulate_grid(
-    base: &PlanarProblem,
+pub fn simulate_grid<M: SweepModel>(
+    base: &M,
     grid: &Grid,
     range: Range<usize>,
-    on_row: &mut dyn FnMut(usize, &[f64], &PointResult) -> bool,
+    on_row: &mut dyn FnMut(usize, &[f64], &PointResult<M::Summary>) -> bool,
     cancel: &(dyn Fn() -> bool + Sync),
 ) -> Result<SweepOutcome> {
     if range.end > grid.len() {
@@ -425,11 +700,11 @@ pub fn simulate_grid(
 
 /// Run `params.len() / paths.len()` points given row after row (`params[i k + j]` is the value
 /// of `paths[j]` at point `i`); `on_row(i, values, result)` receives point `i` in order.
-pub fn simulate_batch(
-    base: &PlanarProblem,
+pub fn simulate_batch<M: SweepModel>(
+    base: &M,
     paths: &[&str],
     params: &[f64],
-    on_row: &mut dyn FnMut(usize, &[f64], &PointResult) -> bool,
+    on_row: &mut dyn FnMut(usize, &[f64], &PointResult<M::Summary>) -> bool,
     cancel: &(dyn Fn() -> bool + Sync),
 ) -> Result<SweepOutcome> {
     let k = paths.len();
@@ -442,6 +717,27 @@ pub fn simulate_batch(
     }
     let n = params.len().checked_div(k).unwrap_or(0);
     run_points(base, paths, 0..n, &|i, out| out.copy_from_slice(&params[i * k..(i + 1) * k]), on_row, cancel)
+}
+
+/// A 64-bit FNV-1a hash of the sweep's definition: the config after the `--set` overrides
+/// (as TOML text) and every axis's path and values (bit patterns), written in each shard's JSON
+/// as `definition_checksum` so that `autobal merge` refuses shards of different sweeps. FNV-1a
+/// (`h = (h ⊕ byte) · 0x100000001b3` from `0xcbf29ce484222325`) guards against mistakes, not
+/// forgery: two different definitions collide with probability ~2⁻⁶⁴.
+pub fn definition_checksum(root: &Table, grid: &Grid) -> String {
+    let mut text = toml::to_string(root).unwrap_or_default();
+    for a in &grid.axes {
+        text.push_str(&format!("\naxis {}=", a.path));
+        for v in &a.values {
+            text.push_str(&format!("{:016x},", v.to_bits()));
+        }
+    }
+    format!("fnv1a64:{:016x}", fnv1a64(text.as_bytes()))
+}
+
+/// FNV-1a, 64 bits.
+fn fnv1a64(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &b| (h ^ b as u64).wrapping_mul(0x0000_0100_0000_01b3))
 }
 
 #[cfg(test)]
@@ -560,5 +856,116 @@ mod tests {
         )
         .unwrap();
         assert_eq!(whole, batch);
+    }
+
+    /// examples/spatial.toml (paper 000's base case, dimensionless) cut to `t_end` τ.
+    fn spatial_root(t_end: f64) -> Table {
+        let mut root = crate::config::parse(include_str!("../../../examples/spatial.toml"), "spatial.toml").unwrap();
+        crate::config::set_number(&mut root, "drive.t_end", t_end).unwrap();
+        root
+    }
+
+    #[test]
+    fn a_spatial_point_is_the_config_with_that_value_run_as_simulate_runs_it() {
+        let root = spatial_root(60.0);
+        let base = SpatialSweep::new(root.clone()).unwrap();
+        let paths = ["drive.omega0", "dimensionless.z_a", "drive.psi0[2]"];
+        let params = [1.5, 0.7, 4.5, 1.7, 0.9, 5.0];
+        let mut rows = vec![];
+        simulate_batch(
+            &base,
+            &paths,
+            &params,
+            &mut |i, v, r| {
+                rows.push((i, v.to_vec(), r.summary.clone()));
+                true
+            },
+            &|| false,
+        )
+        .unwrap();
+        assert_eq!(rows.len(), 2);
+        for (i, v, s) in &rows {
+            // the second route: the config text edited by hand, converted and run with samples
+            let mut r = root.clone();
+            crate::config::set(&mut r, "drive.omega0", toml::Value::Float(v[0])).unwrap();
+            crate::config::set(&mut r, "dimensionless.z_a", toml::Value::Float(v[1])).unwrap();
+            crate::config::set(&mut r, "drive.psi0", toml::Value::Array(vec![toml::Value::Float(3.0944), toml::Value::Float(v[2])])).unwrap();
+            let sim = crate::config::spatial_simulation(&r).unwrap();
+            assert_eq!(sim.initial.psi, vec![3.0944, v[2]], "point {i}");
+            let mut samples = 0;
+            let direct = crate::spatial::dynamics::simulate(&sim.rotor, &sim.drive, &sim.initial, &sim.settings, |_| {
+                samples += 1;
+                true
+            })
+            .unwrap();
+            assert!(samples > 50, "the direct run was sampled every dt");
+            assert_eq!(*s, direct, "point {i}");
+            assert_eq!(spatial_summary_values(s).map(f64::to_bits), spatial_summary_values(&direct).map(f64::to_bits));
+        }
+        // the points differ (the paths reached the rotor), and a run that completed says so
+        assert_ne!(rows[0].2.final_amplitude, rows[1].2.final_amplitude);
+        let v = spatial_summary_values(&rows[0].2);
+        let col = |c: &str| SPATIAL_SUMMARY_COLUMNS.iter().position(|x| *x == c).unwrap();
+        assert_eq!((v[col("completed")], v[col("t_reached")]), (1.0, 60.0));
+        assert_eq!(v[col("outcome")], outcome_code(rows[0].2.outcome));
+        // the unbalance sits in plane A, off C: it has a couple
+        assert_eq!(Some(v[col("residual_couple")]), rows[0].2.residual_couple);
+        assert_eq!(SPATIAL_SUMMARY_COLUMNS[..SUMMARY_COLUMNS.len()], *SUMMARY_COLUMNS);
+    }
+
+    #[test]
+    fn spatial_results_do_not_depend_on_threads_or_shards() {
+        let base = SpatialSweep::new(spatial_root(40.0)).unwrap();
+        let g = Grid::new(vec![Axis::linspace("drive.omega0", 1.5, 1.7, 3), Axis::new("dimensionless.h_s", vec![0.05, 0.1])]).unwrap();
+        let collect = |range: Range<usize>, threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            let mut rows = vec![];
+            pool.install(|| {
+                simulate_grid(
+                    &base,
+                    &g,
+                    range,
+                    &mut |i, v, r| {
+                        rows.push((i, v.to_vec(), spatial_summary_values(&r.summary).map(f64::to_bits)));
+                        true
+                    },
+                    &|| false,
+                )
+            })
+            .unwrap();
+            rows
+        };
+        let whole = collect(0..g.len(), 1);
+        let mut sharded = vec![];
+        for k in 0..4 {
+            sharded.extend(collect(shard(g.len(), k, 4).unwrap(), 2));
+        }
+        assert_eq!(whole, sharded);
+        assert_eq!(whole.len(), 6);
+    }
+
+    #[test]
+    fn spatial_paths_are_the_configs_keys_and_errors_name_them() {
+        let base = SpatialSweep::new(spatial_root(10.0)).unwrap();
+        let err = |paths: &[&str], params: &[f64]| check_batch(&base, paths, params).unwrap_err().to_string();
+        let e = err(&["dimensionless.m0"], &[0.01, -0.01]);
+        assert!(e.starts_with("dimensionless.m0:") && e.ends_with("(at the point dimensionless.m0 = -0.01)"), "{e}");
+        let e = err(&["dimensionless.z_b"], &[0.1]);
+        assert!(e.starts_with("dimensionless.z_b:"), "{e}");
+        let e = err(&["planar.c_psi"], &[0.1]);
+        assert!(e.starts_with("planar.c_psi:") && e.contains("spatial rotor's"), "{e}");
+        let e = err(&["drive.psi0[3]"], &[1.0]);
+        assert!(e.starts_with("drive.psi0[3]:") && e.contains("has 2 elements"), "{e}");
+        let e = err(&["drive.psi_rate0[1]"], &[1.0]);
+        assert!(e.starts_with("drive.psi_rate0[1]:") && e.contains("not an array"), "{e}");
+        let e = err(&["drive.psi0[0]"], &[1.0]);
+        assert!(e.starts_with("drive.psi0[0]:"), "{e}");
+        // the number of balls is a whole number in the config, and a path like any other
+        check_batch(&base, &["dimensionless.n"], &[3.0]).unwrap_err(); // psi0 gives 2 angles
+        assert!(err(&["dimensionless.n"], &[2.5]).starts_with("dimensionless.n:"));
+        // a base that does not convert is refused up front
+        let mut bad = spatial_root(10.0);
+        crate::config::set_number(&mut bad, "dimensionless.m0", -1.0).unwrap();
+        assert!(SpatialSweep::new(bad).is_err());
     }
 }

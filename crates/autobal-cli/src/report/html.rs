@@ -24,3 +24,18 @@ pub fn table(head: &[&str], rows: &[Vec<String>]) -> String {
     s.push_str("</tbody></table></div>\n");
     s
 }
+
+/// The text of an HTML fragment: tags removed, the entities of [`esc`] decoded.
+pub fn strip(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    let mut in_tag = false;
+    for c in s.chars() {
+        match c {
+            '<' => in_tag = true,
+            '>' if in_tag => in_tag = false,
+            _ if !in_tag => out.push(c),
+            _ => {}
+        }
+    }
+    out.replace("&lt;", "<").replace("&gt;", ">").replace("&quot;", "\"").replace("&amp;", "&")
+}

@@ -1,10 +1,13 @@
 //! The HTML report: one self-contained folder (`index.html`, the vendored plotting library,
 //! every figure as SVG and PNG), readable offline.
 //!
-//! The report is a list of sections ([`SECTIONS`]), each a module with one function
-//! `build(&Ctx) -> Result<Option<Section>>` (`None`: the section does not apply to this config).
-//! Sections run in parallel and report their progress one line each; adding a section is adding
-//! a module and one line to [`SECTIONS`].
+//! Two reports: about the user's rotor ([`Kind::User`], `--config`: [`USER_SECTIONS`], with a
+//! summary at the top) and the papers' reproductions ([`Kind::Papers`], `--papers` and the
+//! default without `--config`: [`PAPER_SECTIONS`]). Each section is a module with one function
+//! `build(&Ctx) -> Result<Option<Section>>`; a section that does not apply returns
+//! [`Section::not_applicable`] with the reason in one line (shown on the page and in the
+//! progress). Sections run in parallel and report their progress one line each; adding a
+//! section is adding a module and one line to a list.
 //!
 //! Every figure is a [`Plot`]: the page embeds its data as Plotly JSON and draws it
 //! interactively with the vendored Plotly (zoom, hover values, curves toggled in the legend);
@@ -14,6 +17,8 @@
 //! A Ctrl-C stops the long computations; the page is still written, says which sections are
 //! incomplete, and the command exits with an error.
 
+mod basins;
+mod design;
 mod friction;
 mod html;
 mod paper000;
@@ -42,8 +47,19 @@ const PLOTLY_LICENSE: &str = include_str!("../../assets/plotly-LICENSE.txt");
 const REPORT_JS: &str = include_str!("../../assets/report.js");
 const REPORT_CSS: &str = include_str!("../../assets/report.css");
 
+/// Which report: about the config's rotor, or the papers' reproductions.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kind {
+    /// The config's rotor only ([`USER_SECTIONS`]).
+    User,
+    /// The papers' figures with their own parameters ([`PAPER_SECTIONS`]).
+    Papers,
+}
+
 /// What the sections analyse.
 pub struct Ctx {
+    /// Which report is written.
+    pub kind: Kind,
     /// The config's spatial rotor (papers 000/003 model), if it describes one.
     pub spatial: Option<Config>,
     /// The config's planar rotor (paper 004 model), if it has `[planar]`.
@@ -81,11 +97,23 @@ pub struct Section {
     pub blocks: Vec<Block>,
     /// False when an interruption cut the section short.
     pub complete: bool,
+    /// Why the section does not apply to this config (one line), if it does not.
+    pub not_applicable: Option<String>,
+    /// Lines (HTML) for the summary at the top of the page, in section order.
+    pub summary: Vec<String>,
 }
 
 impl Section {
     pub fn new(id: &'static str, title: impl Into<String>) -> Self {
-        Section { id, title: title.into(), blocks: vec![], complete: true }
+        Section { id, title: title.into(), blocks: vec![], complete: true, not_applicable: None, summary: vec![] }
+    }
+    /// A section that does not apply, with the reason in one line (plain text).
+    pub fn not_applicable(id: &'static str, title: impl Into<String>, why: impl Into<String>) -> Self {
+        let why = why.into();
+        let mut s = Section::new(id, title);
+        s.p(format!("Not applicable: {}.", esc(&why)));
+        s.not_applicable = Some(why);
+        s
     }
     /// Raw HTML.
     pub fn html(&mut self, s: impl Into<String>) {
@@ -113,14 +141,22 @@ impl Section {
 
 type Builder = fn(&Ctx) -> Result<Option<Section>>;
 
-/// The sections, in page order. Each is one module.
-const SECTIONS: &[(&str, Builder)] = &[
+/// The report about the config's rotor, in page order. Each is one module.
+pub const USER_SECTIONS: &[(&str, Builder)] = &[
     ("your rotor", rotor::build),
-    ("linear stability", stability::build),
-    ("your rotor's passage", passage::build),
-    ("your rotor in time", spatial_run::build),
+    ("stability over speed", stability::build_user),
+    ("design maps", design::build),
+    ("run-up", spatial_run::build),
+    ("the rotor's passage", passage::build),
+    ("the balls' basins", basins::build),
+];
+
+/// The papers' reproductions, in page order (the exact stability of paper 000's base case,
+/// the embedded default example, with 003's maps beside the papers' own figures).
+pub const PAPER_SECTIONS: &[(&str, Builder)] = &[
     ("paper 000", paper000::build),
     ("paper 003", paper003::build),
+    ("exact stability of the base case", stability::build),
     ("paper 004", paper004::build),
     ("paper 004, torque", paper004_torque::build),
     ("rolling resistance", friction::build),
@@ -132,7 +168,7 @@ pub fn interrupted() -> bool {
 }
 
 /// Read the config (spatial and/or planar), build every section in parallel, write the folder.
-pub fn run(path: Option<&Path>, sets: &[String], dir: &Path, quick: bool) -> Result<PathBuf> {
+pub fn run(path: Option<&Path>, sets: &[String], dir: &Path, quick: bool, kind: Kind) -> Result<PathBuf> {
     let (root, source) = config::read_set(path, sets)?;
     let spatial = if autobal::config::is_spatial(&root) { Some(config::build(&root, &source)?) } else { None };
     let planar = if root.contains_key("planar") { Some(config::build_planar(&root, &source)?) } else { None };
@@ -152,6 +188,7 @@ pub fn run(path: Option<&Path>, sets: &[String], dir: &Path, quick: bool) -> Res
         source_line.push_str(&format!(" --set {s}"));
     }
     let ctx = Ctx {
+        kind,
         spatial,
         planar,
         quick,
@@ -170,19 +207,26 @@ pub fn write(ctx: &Ctx, dir: &Path) -> Result<PathBuf> {
     std::fs::create_dir_all(dir).with_context(|| format!("--out {}: cannot create the folder", dir.display()))?;
     let t0 = Instant::now();
     let done = AtomicUsize::new(0);
-    let n = SECTIONS.len();
-    crate::output::note(&format!("report: {n} sections on {} threads{}", rayon::current_num_threads(), if ctx.quick { " (quick)" } else { "" }));
-    let built: Vec<Result<Option<Section>>> = SECTIONS
+    let list = if ctx.kind == Kind::User { USER_SECTIONS } else { PAPER_SECTIONS };
+    let n = list.len();
+    crate::output::note(&format!(
+        "report: {} with {n} sections on {} threads{}",
+        if ctx.kind == Kind::User { "about the config's rotor" } else { "the papers' reproductions" },
+        rayon::current_num_threads(),
+        if ctx.quick { " (quick)" } else { "" }
+    ));
+    let built: Vec<Result<Option<Section>>> = list
         .par_iter()
         .map(|(name, build)| {
             let t = Instant::now();
             let r = build(ctx).with_context(|| format!("report section {name}"));
             let k = done.fetch_add(1, Ordering::Relaxed) + 1;
             let what = match &r {
-                Ok(Some(s)) if !s.complete => "interrupted",
-                Ok(Some(_)) => "done",
-                Ok(None) => "not applicable",
-                Err(_) => "failed",
+                Ok(Some(s)) if !s.complete => "interrupted".to_string(),
+                Ok(Some(Section { not_applicable: Some(why), .. })) => format!("not applicable ({why})"),
+                Ok(Some(_)) => "done".to_string(),
+                Ok(None) => "not applicable".to_string(),
+                Err(_) => "failed".to_string(),
             };
             crate::output::note(&format!("report: [{k}/{n}] {name}: {what} in {:.1} s", t.elapsed().as_secs_f64()));
             r
@@ -190,6 +234,9 @@ pub fn write(ctx: &Ctx, dir: &Path) -> Result<PathBuf> {
         .collect();
     let sections: Vec<Section> = built.into_iter().collect::<Result<Vec<_>>>()?.into_iter().flatten().collect();
     let compute_s = t0.elapsed().as_secs_f64();
+    for line in summary_lines(&sections) {
+        crate::output::note(&format!("report: summary: {}", html::strip(line)));
+    }
     // figure files, in parallel (rasterising is the slow part)
     let figs: Vec<&Figure> = sections.iter().flat_map(|s| s.figures()).collect();
     figs.par_iter()
@@ -229,12 +276,23 @@ pub fn write(ctx: &Ctx, dir: &Path) -> Result<PathBuf> {
     Ok(index)
 }
 
+/// The summary's lines: the verdict at the operating speed (section `stability`) first, then
+/// the others in page order.
+fn summary_lines(sections: &[Section]) -> impl Iterator<Item = &String> {
+    let first = sections.iter().filter(|s| s.id == "stability");
+    first.chain(sections.iter().filter(|s| s.id != "stability")).flat_map(|s| &s.summary)
+}
+
 /// Assemble `index.html`.
 fn page(ctx: &Ctx, sections: &[Section], interrupted: bool, incomplete: &[&str], secs: f64) -> String {
     let mut h = String::new();
+    let title = match ctx.kind {
+        Kind::User => "autobal report: your rotor",
+        Kind::Papers => "autobal report: the papers' reproductions",
+    };
     let _ = write!(
         h,
-        "<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\">\n<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>autobal report</title>\n<style>\n{REPORT_CSS}</style>\n</head><body>\n<header><h1>autobal report</h1>\n"
+        "<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\">\n<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>{title}</title>\n<style>\n{REPORT_CSS}</style>\n</head><body>\n<header><h1>{title}</h1>\n"
     );
     let _ = writeln!(
         h,
@@ -249,6 +307,18 @@ fn page(ctx: &Ctx, sections: &[Section], interrupted: bool, incomplete: &[&str],
             "<div class=\"warn\" id=\"interrupted\"><b>Interrupted.</b> This report is incomplete: {}. Numbers of runs cut short are marked as such.</div>",
             if incomplete.is_empty() { "the run was stopped".to_string() } else { format!("sections cut short: {}", esc(&incomplete.join(", "))) }
         );
+    }
+    match ctx.kind {
+        Kind::User => {
+            h.push_str("<div id=\"summary\" class=\"summary\"><h2>Summary</h2>\n<ul>\n");
+            for line in summary_lines(sections) {
+                let _ = writeln!(h, "<li>{line}</li>");
+            }
+            h.push_str("</ul>\n<p>The papers' reproductions are a report of their own: <code>autobal report --papers</code>.</p></div>\n");
+        }
+        Kind::Papers => h.push_str(
+            "<p class=\"meta\">The papers' figures, each with the parameters the paper states (whatever the config). A report about your own rotor: <code>autobal report --config FILE</code>.</p>\n",
+        ),
     }
     h.push_str("</header>\n");
     // contents

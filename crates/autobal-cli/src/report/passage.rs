@@ -8,7 +8,13 @@ use anyhow::Result;
 use autobal::planar::stationary::capacity_ratio;
 
 pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
-    let Some(cfg) = &ctx.planar else { return Ok(None) };
+    let Some(cfg) = &ctx.planar else {
+        return Ok(Some(Section::not_applicable(
+            "passage",
+            "Your rotor's passage through resonance",
+            "the rotor's passage (paper 004's planar model) needs a [planar] config: not applicable to a spatial rotor, whose run-up is the section \"Run-up\"",
+        )));
+    };
     let runs = vec![Run {
         tag: "config".into(),
         label: format!("{:?} drive", cfg.drive).split(['{', '(']).next().unwrap_or("drive").trim().to_lowercase(),

@@ -56,8 +56,24 @@ pub fn speed_axis(m: &SpatialModel) -> (f64, String, Option<SecondAxis>) {
     }
 }
 
+/// Vertical markers at the operating speed (`analysis.operating_speed`, `Ω`) on an axis that
+/// shows `k · Ω`: one line, or one at each end of a range.
+pub fn operating_vlines(op: Option<[f64; 2]>, k: f64) -> Vec<(f64, String)> {
+    match op {
+        Some([lo, hi]) if lo == hi => vec![(k * lo, "operating speed".into())],
+        Some([lo, hi]) => vec![(k * lo, "operating from".into()), (k * hi, "operating to".into())],
+        None => vec![],
+    }
+}
+
 pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
-    let Some(cfg) = &ctx.spatial else { return Ok(None) };
+    let Some(cfg) = &ctx.spatial else {
+        return Ok(Some(Section::not_applicable(
+            "rotor",
+            "Your rotor",
+            "the critical speeds and autobalancing ranges (papers 000/003) need a spatial rotor ([rotor], [supports], [unbalance], [balancer] or [dimensionless]); this config has only a [planar] rotor, analysed in the passage and stability sections",
+        )));
+    };
     let m = &cfg.model;
     let w0 = m.scale.map(|s| s.omega0);
     let mut s = Section::new("rotor", if cfg.dimensional { "Your rotor (dimensional config)" } else { "Your rotor (dimensionless config)" });
@@ -169,6 +185,17 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
         cs.table1_count
     ));
 
+    if ctx.kind == super::Kind::User {
+        let list: Vec<String> = cs
+            .speeds
+            .iter()
+            .map(|k| match w0 {
+                Some(w0) => format!("{} rpm", grouped(k.omega * w0 * RPM_PER_RAD_S, 0)),
+                None => format!("Ω = {}", fmt(k.omega, 4)),
+            })
+            .collect();
+        s.summary.push(format!("Critical speeds (the rotor with its balls held, 000 eq (16)): {}.", list.join(", ")));
+    }
     let se = sensitivity(m, cfg.analysis.sensitivity_limit);
     s.h3("rotor-sensitivity", "Sensitivity criterion");
     s.table(
@@ -197,7 +224,11 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
     ));
     s.figure(
         "rotor_response",
-        response_plot(m, crate::figures::omega_limit(m, Some(cfg.analysis.speed_axis_max(autobal::reports::default_omega_max(m))))),
+        response_plot(
+            m,
+            crate::figures::omega_limit(m, Some(cfg.analysis.speed_axis_max(autobal::reports::default_omega_max(m)))),
+            cfg.analysis.operating_speed,
+        ),
         response_caption(m),
     );
     Ok(Some(s))
@@ -205,7 +236,7 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
 
 /// Signed response of plane A along the speed (003 Fig. 3 for this rotor): per unit unbalance,
 /// or in mm for a dimensional rotor.
-fn response_plot(m: &SpatialModel, wmax: f64) -> Plot {
+fn response_plot(m: &SpatialModel, wmax: f64, op: Option<[f64; 2]>) -> Plot {
     let (k, xl, x2) = speed_axis(m);
     // dimensional: ξ_A = (m0 R0 / M_s) · ξ̄_A/(m̄0 R̄0)
     let (amp, yl) = match (m.scale, m.masses) {
@@ -227,6 +258,7 @@ fn response_plot(m: &SpatialModel, wmax: f64) -> Plot {
     if let Some(wa) = ar.antiresonance_speed {
         vlines.push((k * wa, "Ω_a".into()));
     }
+    vlines.extend(operating_vlines(op, k));
     Plot {
         title: "Signed response of the balancer plane A (locked balls)".into(),
         x_label: xl,

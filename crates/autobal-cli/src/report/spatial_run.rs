@@ -17,7 +17,13 @@ const REVOLUTIONS: f64 = autobal::config::DEFAULT_RUN_UP_REVOLUTIONS;
 const REVOLUTIONS_QUICK: f64 = 300.0;
 
 pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
-    let Some(cfg) = &ctx.spatial else { return Ok(None) };
+    let Some(cfg) = &ctx.spatial else {
+        return Ok(Some(Section::not_applicable(
+            "spatial-run",
+            "Run-up",
+            "the run-up of the spatial model needs a spatial rotor; a [planar] rotor's run is the section \"Your rotor's passage\"",
+        )));
+    };
     let m = &cfg.model;
     let w0 = m.scale.map_or(1.0, |s| s.omega0);
     let mut root = ctx.root.clone();
@@ -32,7 +38,12 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
         root.insert("drive".into(), Value::Table(d));
         root.insert("integration".into(), Value::Table(ig));
     }
-    let mut s = Section::new("spatial-run", "Your rotor in time (nonlinear spatial model)");
+    let title = match (ctx.kind, own_drive, cfg.analysis.operating_speed.is_some()) {
+        (super::Kind::User, false, true) => "Run-up to the operating speed (nonlinear spatial model)",
+        (super::Kind::User, _, _) => "Run-up (nonlinear spatial model)",
+        _ => "Your rotor in time (nonlinear spatial model)",
+    };
+    let mut s = Section::new("spatial-run", title);
     let sim = match spatial_sim::build(&root, &ctx.source) {
         Ok(sim) => sim,
         Err(e) => {
@@ -79,12 +90,29 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
         vec!["integration".into(), format!("{} steps", summary.steps), format!("{} right-hand sides, {} s", summary.rhs_evaluations, fmt(wall, 3))],
     ];
     s.table(&["quantity", "value", "note"], &rows);
+    if summary.stopped.is_none() {
+        let at = |w: f64| if cfg.dimensional { format!("{} rpm", grouped(w * RPM_PER_RAD_S, 0)) } else { format!("Ω = {}", fmt(w, 4)) };
+        s.summary.push(format!(
+            "The run-up ({}) peaks at <b>{} {lu} at {}</b>; at its end ({}) the whirl is {} {lu}, {}.",
+            if own_drive { "the config's <code>[drive]</code>".to_string() } else { format!("from rest to {}", at(summary.final_omega)) },
+            fmt(ls * summary.peak_amplitude, 3),
+            at(summary.omega_at_peak),
+            at(summary.final_omega),
+            fmt(ls * summary.final_amplitude, 3),
+            if summary.balanced { "the balls balance the rotor" } else { "the balls have not balanced the rotor" }
+        ));
+    } else {
+        s.summary.push("The run-up was cut short: no peak to report.".into());
+    }
     if let Some(st) = &summary.stopped {
         s.p(format!("The run stopped early: {}.", super::esc(st)));
     }
     for (suffix, mut plot) in spatial_sim::plots(&sim, &kept, "Your rotor in time") {
-        if cfg.dimensional && suffix == "amplitude_omega" {
-            plot.x2 = super::rotor::speed_axis(m).2;
+        if suffix == "amplitude_omega" {
+            if cfg.dimensional {
+                plot.x2 = super::rotor::speed_axis(m).2;
+            }
+            plot.vlines.extend(super::rotor::operating_vlines(cfg.analysis.operating_speed, w0));
         }
         let caption = match suffix.as_str() {
             "amplitude_omega" => "Whirl radius of the shaft at the balancer plane against the speed, beside the stationary whirls of the rotor with the balls held where they start (Newton on the nonlinear equations).",

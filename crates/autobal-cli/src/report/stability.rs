@@ -1,6 +1,14 @@
 //! Section "Exact linear stability" of the config's spatial rotor: Campbell diagrams, the
 //! margin along the speed against 003's necessary ranges, the papers' three layouts, and
-//! stability maps in the layouts of 003's Figs 4, 5a, 5b around this rotor.
+//! stability maps in the layouts of 003's Figs 4, 5a, 5b around this rotor ([`build`], the
+//! papers' report, on paper 000's base case).
+//!
+//! [`build_user`], the report about the user's rotor: the same exact stability over speed, as
+//! `autobal stability` computes it (same speed axis, same 2000 grid speeds), with the verdict at
+//! the operating speed in the summary, and the operating speed marked; a config that paper 000's
+//! 12-state model does not represent (two planes, gravity, supports that differ by direction,
+//! a planar rotor; [`crate::general::needs_general_route`]) is analysed as given by the general
+//! route ([`crate::general::analyse`]), as `autobal stability` does.
 
 use super::{interrupted, rotor::ranges_text_in, Ctx, Section};
 use crate::figures::{campbell_plots, margin_plot, omega_limit, with_layout, SpeedUnit};
@@ -15,11 +23,153 @@ use autobal::spatial::params::SpatialModel;
 /// Grid of the report's maps (per axis).
 const MAP_N: usize = 121;
 
-pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
-    let Some(cfg) = &ctx.spatial else { return Ok(None) };
+/// Grid speeds of `autobal stability` (its default `--samples`): the report's verdict is
+/// computed on the same grid, so it is the command's.
+pub const STABILITY_SAMPLES: usize = 2000;
+
+/// Marker of the verdict at the operating speed in the summary: `data-stable` is `true` or
+/// `false` (the tests compare it with `autobal stability --format json`).
+fn verdict_html(stable: bool, text: &str) -> String {
+    format!("<span id=\"verdict\" data-stable=\"{stable}\"><b>{}</b></span>", super::esc(text))
+}
+
+/// The section of the user's report ([`Kind::User`](super::Kind::User)).
+pub fn build_user(ctx: &Ctx) -> Result<Option<Section>> {
+    if crate::general::needs_general_route(&ctx.root) {
+        return general_route(ctx);
+    }
+    let Some(cfg) = &ctx.spatial else { return general_route(ctx) };
     let m = &cfg.model;
     let w0 = m.scale.map(|s| s.omega0);
-    let mut s = Section::new("stability", "Exact linear stability of the balanced state (your rotor)");
+    let mut s = Section::new("stability", "Exact stability of the balanced state over speed");
+    if m.balls.is_none() {
+        s.p("The config does not describe the balls (give the masses, or <code>m</code> and <code>d_a</code> beside <code>delta_a</code>), so only the locked rotor is analysed here.");
+    }
+    let balls = if m.balls.is_some() { Balls::Free } else { Balls::Locked };
+    let w = linear::omega_max(cfg, None)?;
+    let cmp = linear::compare(m, w, STABILITY_SAMPLES, balls)?;
+    autobal::limits::check_finite("stability", &cmp.exact)?;
+    let table = linear::stability_table(cfg, &cmp, balls);
+    let json = linear::stability_json(cfg, &cmp, balls);
+    match (json["operating_speed"]["stable"].as_bool(), table.lines().find(|l| l.starts_with("operating speed"))) {
+        (Some(stable), Some(line)) => s.summary.push(verdict_html(stable, line)),
+        (_, Some(line)) => s.summary.push(format!("<b>{}</b>", super::esc(line))),
+        _ => s.summary.push(format!(
+            "No operating speed given (<code>[analysis] operating_speed = {}</code> or a range): the balanced state is exactly stable on {}.",
+            if w0.is_some() { "\"1400 rpm\"" } else { "1.5</code>, as Ω = ω/ω0,<code>" },
+            super::esc(&ranges_text_in(&cmp.exact.stable_ranges, w0, Some(cmp.omega_max)))
+        )),
+    }
+    s.p(format!(
+        "Eigenvalues of the linearised equations (000, eq (6)), balls {} ({} states), on {STABILITY_SAMPLES} speeds up to the end of the speed axis, the operating speed and 1.3 times the highest critical speed covered. Stable means every eigenvalue has Re λ {}; range ends located by bisection to 1e-9 in Ω. What <code>autobal stability</code> prints for this config:",
+        if balls == Balls::Free { "free" } else { "locked" },
+        if balls == Balls::Free { 12 } else { 8 },
+        if balls == Balls::Free { "&lt; −1e-11 ω0" } else { "≤ 1e-11 ω0 (neutral allowed)" }
+    ));
+    s.html(format!("<pre>{}</pre>\n", super::esc(table.lines().skip(1).collect::<Vec<_>>().join("\n").as_str())));
+    let u = SpeedUnit::of(m);
+    let mut margin = margin_plot(m, &cmp);
+    margin.vlines.extend(super::rotor::operating_vlines(cfg.analysis.operating_speed, u.factor));
+    s.figure(
+        "stability_margin",
+        margin,
+        format!(
+            "Largest real part of the eigenvalues along the speed, the operating speed marked. Exactly stable on {}; 003's necessary condition holds on {}. {}.",
+            super::esc(&ranges_text_in(&cmp.exact.stable_ranges, w0, Some(cmp.omega_max))),
+            super::esc(&ranges_text_in(&cmp.necessary, w0, Some(cmp.omega_max))),
+            super::esc(&cmp.difference())
+        ),
+    );
+    s.h3("campbell", "Campbell diagrams");
+    let c = linear::campbell_of(cfg, w, 240, balls)?;
+    let (mut rot, mut fixed) = campbell_plots(m, &c);
+    for p in [&mut rot, &mut fixed] {
+        p.vlines.extend(super::rotor::operating_vlines(cfg.analysis.operating_speed, u.factor));
+    }
+    s.figure("campbell_fixed", fixed, CAMPBELL_FIXED_CAPTION);
+    s.figure("campbell_rotating", rot, "Campbell diagram in rotating axes: Im λ of each tracked eigenvalue (the frequency seen from the rotor).");
+    Ok(Some(s))
+}
+
+/// The stability section by the general route, as `autobal stability` runs it for this config
+/// (same speed axis and number of speeds).
+fn general_route(ctx: &Ctx) -> Result<Option<Section>> {
+    use autobal::rotor_stability::Rotor;
+    let g = crate::general::rotor_of(&ctx.root)?;
+    let samples = if g.rotor.is_periodic() { 50 } else { 200 };
+    let (omega_max, op) = match &g.rotor {
+        Rotor::Planar(_) => (3.0 * g.rotor.natural_frequency(), None),
+        Rotor::Spatial(_) => {
+            let cfg = autobal::config::spatial(&ctx.root)?;
+            (
+                cfg.analysis.speed_axis_max(2.0 * autobal::reports::default_omega_max(&cfg.model)) * g.omega0,
+                cfg.analysis.operating_speed.map(|[a, b]| [a * g.omega0, b * g.omega0]),
+            )
+        }
+    };
+    let r = crate::general::analyse(&g, omega_max, samples)?;
+    let mut s = Section::new("stability", "Exact stability of the stationary state over speed (general route)");
+    let what: Vec<String> = autobal::config::ignored_by_linear_model(&ctx.root);
+    s.p(format!(
+        "{} The general route finds the stationary state from the full nonlinear equations at each of {samples} speeds and takes its eigenvalues (or Floquet multipliers), as <code>autobal stability</code> does for this config. What it prints:",
+        if matches!(g.rotor, Rotor::Planar(_)) {
+            "The config's planar rotor (paper 004 model).".to_string()
+        } else {
+            format!("The config has what paper 000's 12-state model does not represent ({}), so its rotor is analysed as given.", super::esc(&what.join(", ")))
+        }
+    ));
+    s.html(format!("<pre>{}</pre>\n", super::esc(&crate::general::table(&g, &r, omega_max))));
+    let speed = |w: f64| if g.si { format!("{} rpm", crate::num::grouped(w * crate::num::RPM_PER_RAD_S, 0)) } else { format!("Ω = {}", fmt(w, 4)) };
+    match op {
+        Some([lo, hi]) => {
+            let at = if lo == hi { speed(lo) } else { format!("{} – {}", speed(lo), speed(hi)) };
+            let inside = r.stable_ranges.iter().find(|x| x.from <= lo && hi <= x.to);
+            let text = match inside {
+                Some(x) => {
+                    let below = x.from_is_boundary.then_some(lo - x.from);
+                    let above = x.to_is_boundary.then_some(x.to - hi);
+                    let margin = match (below, above) {
+                        (Some(b), Some(a)) if a < b => format!("margin {} to its upper end", speed(a)),
+                        (Some(b), _) => format!("margin {} to its lower end", speed(b)),
+                        (None, Some(a)) => format!("margin {} to its upper end", speed(a)),
+                        (None, None) => "stable over the whole axis".into(),
+                    };
+                    format!(
+                        "operating speed {at}: the balanced state is STABLE (exact, general route) in the stable range {} – {}{}, {margin}",
+                        speed(x.from),
+                        speed(x.to),
+                        if x.to_is_boundary { "" } else { " (end of the axis)" }
+                    )
+                }
+                None => format!("operating speed {at}: the balanced state is NOT STABLE (exact, general route)"),
+            };
+            s.summary.push(verdict_html(inside.is_some(), &text));
+        }
+        None => s.summary.push(format!(
+            "No operating speed given{}: see the stable ranges of the stability section.",
+            if matches!(g.rotor, Rotor::Planar(_)) { " (a planar config has none)" } else { " (<code>[analysis] operating_speed</code>)" }
+        )),
+    }
+    let mut p = crate::general::margin_plot(&g, &r, omega_max);
+    p.vlines.extend(super::rotor::operating_vlines(op, 1.0));
+    if g.si {
+        p.x2 = Some(crate::plot::SecondAxis { factor: crate::num::RPM_PER_RAD_S, label: "n (rpm)".into() });
+    }
+    s.figure("stability_margin", p, "The stationary state's margin over speed by the general route (largest Re λ, or largest Floquet exponent for a periodic orbit), the stable ranges shaded and the operating speed marked.");
+    Ok(Some(s))
+}
+
+const CAMPBELL_FIXED_CAPTION: &str = "Campbell diagram in fixed axes: whirl frequency of each tracked eigenvalue (forward above zero, backward below; legend: the motion that dominates the mode and its whirl). A mode whirls in fixed axes at Ω + ν (solid) and Ω − ν (dashed), ν its frequency seen from the rotor; a component is drawn where it carries at least 10 % of the mode's motion, so curves start and stop where a whirl turns circular. Clicking a legend entry hides both components. Also drawn: the synchronous 1× line, and the analytic critical speeds K1-K4 of the locked rotor. Where a mode crosses 1× near a K line the locked rotor is at a critical speed.";
+
+/// The section of the papers' report ([`Kind::Papers`](super::Kind::Papers)): paper 000's base
+/// case (the embedded default) with 003's maps.
+pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
+    let Some(cfg) = &ctx.spatial else {
+        return Ok(Some(Section::not_applicable("stability", "Exact linear stability", "the exact stability of papers 000/003 needs a spatial rotor")));
+    };
+    let m = &cfg.model;
+    let w0 = m.scale.map(|s| s.omega0);
+    let mut s = Section::new("stability", "Exact linear stability of the balanced state (paper 000's base case, the embedded default)");
     if m.balls.is_none() {
         s.p("The config does not describe the balls (give the masses, or <code>m</code> and <code>d_a</code> beside <code>delta_a</code>), so only the locked rotor is analysed here.");
     }
@@ -34,11 +184,7 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
     s.h3("campbell", "Campbell diagrams");
     let c = linear::campbell_of(cfg, w, 240, balls)?;
     let (rot, fixed) = campbell_plots(m, &c);
-    s.figure(
-        "campbell_fixed",
-        fixed,
-        "Campbell diagram in fixed axes: whirl frequency of each tracked eigenvalue (forward above zero, backward below; legend: the motion that dominates the mode and its whirl). A mode whirls in fixed axes at Ω + ν (solid) and Ω − ν (dashed), ν its frequency seen from the rotor; a component is drawn where it carries at least 10 % of the mode's motion, so curves start and stop where a whirl turns circular. Clicking a legend entry hides both components. Also drawn: the synchronous 1× line, and the analytic critical speeds K1-K4 of the locked rotor. Where a mode crosses 1× near a K line the locked rotor is at a critical speed.",
-    );
+    s.figure("campbell_fixed", fixed, CAMPBELL_FIXED_CAPTION);
     s.figure("campbell_rotating", rot, "Campbell diagram in rotating axes: Im λ of each tracked eigenvalue (the frequency seen from the rotor).");
 
     s.h3("margin", "Stability along the speed");

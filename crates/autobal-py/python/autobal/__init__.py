@@ -7,7 +7,8 @@ same tables and keys as the ``autobal`` command line, ``examples/*.toml``):
   autobalancing ranges, exact stability against 003's necessary ranges, Campbell data;
 - :class:`PlanarProblem`, the rotor of paper 004 with an eccentric ball balancer, in time:
   simulations (columns as NumPy arrays, :meth:`Simulation.to_pandas`), batches and sweeps
-  (:func:`simulate_batch`, :func:`sweep`, on a Dask cluster with ``client=``).
+  (:func:`simulate_batch`, :func:`sweep`, on a Dask cluster with ``client=``), which also run
+  the spatial rotor of a :class:`SpatialModel` with ``[drive]``.
 
 :func:`run` is every analytic and simulation command of the CLI as one call, returning the
 dict that ``autobal COMMAND --format json`` prints. Errors are :mod:`autobal.errors`
@@ -30,11 +31,15 @@ import numpy as np
 
 from . import _autobal
 from .errors import AutobalError, Interrupted, InvalidParameter, NoConvergence, SimulationError, TooLarge
-from ._sweep import _axes, simulate_batch, sweep, grid
+from ._sweep import _axes, columns, simulate_batch, sweep, grid
 
 __version__: str = _autobal.__version__
-#: Columns of a run's summary in :func:`simulate_batch` and :func:`sweep`, in order.
+#: Columns of a planar run's summary in :func:`simulate_batch` and :func:`sweep`, in order.
 SUMMARY_COLUMNS: List[str] = list(_autobal.SUMMARY_COLUMNS)
+#: Columns of a spatial run's summary (:class:`SpatialModel`): ``SUMMARY_COLUMNS``, then
+#: ``outcome`` (0 not settled, 1 not balanced, 2 partially balanced, 3 balanced),
+#: ``residual_unbalance``, ``residual_couple`` (NaN without a couple), ``static_sag``.
+SPATIAL_SUMMARY_COLUMNS: List[str] = list(_autobal.SPATIAL_SUMMARY_COLUMNS)
 
 __all__ = [
     "SpatialModel",
@@ -44,7 +49,9 @@ __all__ = [
     "simulate_batch",
     "sweep",
     "grid",
+    "columns",
     "SUMMARY_COLUMNS",
+    "SPATIAL_SUMMARY_COLUMNS",
     "AutobalError",
     "InvalidParameter",
     "TooLarge",
@@ -378,7 +385,7 @@ def run(command: str, config: ConfigLike = None, set: Optional[Mapping[str, Any]
     - ``basins`` (``n``): the JSON of ``autobal basins`` (no CSV is written; the runs' arrays:
       :meth:`SpatialModel.basins`);
     - ``sweep`` (``x``, ``y``, ``axis`` (a list), ``shard`` (``"K/N"``), ``threads``): the JSON
-      of the sweep (no files are written);
+      of the sweep (no files are written), of either rotor;
     - ``map`` (``x``, ``y``, ``omega``, ``balls``, ``quantity``, ``threads``): the CLI writes
       CSV and figures, no JSON; this returns :meth:`SpatialModel.stability_map`'s arrays, the
       cells of the CLI's CSV.
@@ -408,7 +415,14 @@ def run(command: str, config: ConfigLike = None, set: Optional[Mapping[str, Any]
             raise e
         return out
     if command == "sweep":
-        p = PlanarProblem(config, set=set)
+        p: Any
+        try:
+            p = PlanarProblem(config, set=set)
+        except InvalidParameter as e:
+            if not (e.field == "planar" and "missing" in str(e)):
+                raise
+            # the analytic commands' config: the spatial rotor in time
+            p = SpatialModel(config, set=set)
         specs = [("x", options.pop("x", None))]
         if "y" in options:
             specs.append(("y", options.pop("y")))

@@ -1,5 +1,7 @@
-"""Batches and sweeps of planar simulations: in-process (Rust threads) or on a Dask cluster,
-streamed to disk chunk by chunk so that an interrupted sweep keeps what finished and resumes."""
+"""Batches and sweeps of simulations, of the planar rotor (:class:`PlanarProblem`) or of the
+spatial rotor (:class:`SpatialModel` of a config with ``[drive]``): in-process (Rust threads) or
+on a Dask cluster, streamed to disk chunk by chunk so that an interrupted sweep keeps what
+finished and resumes."""
 
 from __future__ import annotations
 
@@ -16,7 +18,9 @@ from . import _autobal
 from .errors import InvalidParameter
 
 if TYPE_CHECKING:  # pragma: no cover
-    from . import PlanarProblem
+    from . import PlanarProblem, SpatialModel
+
+Problem = Union["PlanarProblem", "SpatialModel"]
 
 Axes = Union[Mapping[str, Sequence[float]], Sequence[Union[str, Tuple[str, Sequence[float]]]]]
 
@@ -44,11 +48,35 @@ def grid(axes: Axes) -> np.ndarray:
     return _autobal.grid_points(_axes(axes))
 
 
-def simulate_batch(problem: "PlanarProblem", paths: Sequence[str], params: Any, threads: Optional[int] = None) -> np.ndarray:
+def _kind(problem: Any) -> str:
+    """``"spatial"`` for a :class:`SpatialModel`, ``"planar"`` for a :class:`PlanarProblem`."""
+    cfg = getattr(problem, "_cfg", None)
+    if isinstance(cfg, _autobal.SpatialConfig):
+        return "spatial"
+    if isinstance(cfg, _autobal.PlanarConfig):
+        return "planar"
+    raise InvalidParameter(f"problem: expected an autobal.PlanarProblem or autobal.SpatialModel, got {type(problem).__name__}")
+
+
+def columns(problem: Problem) -> List[str]:
+    """The summary columns of ``problem``'s runs: ``SUMMARY_COLUMNS`` (planar) or
+    ``SPATIAL_SUMMARY_COLUMNS`` (spatial: the planar ones, then ``outcome`` (0 not settled,
+    1 not balanced, 2 partially balanced, 3 balanced), ``residual_unbalance``,
+    ``residual_couple`` (NaN without a couple unbalance), ``static_sag``)."""
+    return list(_autobal.SPATIAL_SUMMARY_COLUMNS if _kind(problem) == "spatial" else _autobal.SUMMARY_COLUMNS)
+
+
+def simulate_batch(problem: Problem, paths: Sequence[str], params: Any, threads: Optional[int] = None) -> np.ndarray:
     """Run one simulation per row of ``params`` (points × ``len(paths)``), each the problem
     with ``paths`` set to the row's values, in parallel in Rust (``threads``, default all
-    cores) with the GIL released. Returns points × ``SUMMARY_COLUMNS``; the same bits
-    whatever the number of threads or chunks."""
+    cores) with the GIL released. Returns points × :func:`columns` (``SUMMARY_COLUMNS`` for a
+    :class:`PlanarProblem`, ``SPATIAL_SUMMARY_COLUMNS`` for a :class:`SpatialModel`); the same
+    bits whatever the number of threads or chunks.
+
+    For a :class:`SpatialModel` (a config with ``[drive]``; without one, the default run-up)
+    the paths are the config's keys (``balancer.ball_mass``, ``drive.omega0``,
+    ``dimensionless.z_a``, ``drive.psi0[2]`` for one element of an array), and a row is
+    exactly ``autobal simulate`` of the config with those keys set."""
     p = np.require(np.asarray(params, dtype=float), requirements=["C", "A"])
     if p.ndim == 1 and len(paths) == 1:
         p = p.reshape(-1, 1)
@@ -57,9 +85,10 @@ def simulate_batch(problem: "PlanarProblem", paths: Sequence[str], params: Any, 
     return _autobal.simulate_batch(problem._cfg, list(paths), p, threads)
 
 
-def _run_chunk(problem_toml: str, paths: List[str], params: np.ndarray, threads: Optional[int]) -> np.ndarray:
-    """One chunk on a worker: the problem from its TOML, then a batch."""
-    cfg = _autobal.planar_config(problem_toml, None, "sweep", [])
+def _run_chunk(kind: str, problem_toml: str, paths: List[str], params: np.ndarray, threads: Optional[int]) -> np.ndarray:
+    """One chunk on a worker: the problem (``kind``: planar or spatial) from its TOML, then a batch."""
+    make = _autobal.spatial_config if kind == "spatial" else _autobal.planar_config
+    cfg = make(problem_toml, None, "sweep", [])
     # arrays unpickled on a worker may be unaligned views of the message buffer
     return _autobal.simulate_batch(cfg, paths, np.require(params, dtype=float, requirements=["C", "A"]), threads)
 
@@ -113,11 +142,11 @@ class _Parts:
         return np.load(self.path(i))
 
 
-def _table(points: np.ndarray, paths: List[str], results: np.ndarray) -> Dict[str, np.ndarray]:
+def _table(points: np.ndarray, paths: List[str], results: np.ndarray, names: List[str]) -> Dict[str, np.ndarray]:
     cols: Dict[str, np.ndarray] = {"point": np.arange(len(points), dtype=np.int64)}
     for j, p in enumerate(paths):
         cols[p] = points[:, j]
-    for j, c in enumerate(_autobal.SUMMARY_COLUMNS):
+    for j, c in enumerate(names):
         cols[c] = results[:, j]
     return cols
 
@@ -141,7 +170,7 @@ def _write_table(cols: Dict[str, np.ndarray], out: Path) -> None:
 
 
 def sweep(
-    problem: "PlanarProblem",
+    problem: Problem,
     axes: Axes,
     *,
     out: Union[None, str, "os.PathLike[str]"] = None,
@@ -152,8 +181,12 @@ def sweep(
 ) -> Any:
     """Run the problem at every point of the grid ``axes`` (``{path: values}``, or
     ``["drive.b=0.5:12.5:5", ...]``; the first axis varies fastest) and return the table:
-    ``point``, the paths, ``SUMMARY_COLUMNS`` — a pandas DataFrame when pandas is installed,
-    else a dict of arrays.
+    ``point``, the paths, the summary's :func:`columns` — a pandas DataFrame when pandas is
+    installed, else a dict of arrays.
+
+    ``problem``: a :class:`PlanarProblem` (paths such as ``planar.c_psi``, ``drive.b``) or a
+    :class:`SpatialModel` of a config with ``[drive]`` (paths: the config's keys, such as
+    ``balancer.ball_mass``, ``drive.omega0``, ``dimensionless.z_a``; see :func:`simulate_batch`).
 
     - ``client``: a ``dask.distributed.Client``; the grid is cut into chunks of ``chunk_size``
       points, each submitted as one :func:`simulate_batch` call (``threads`` per task, default
@@ -165,6 +198,8 @@ def sweep(
 
     The results are the same bits whatever the client, workers, chunks or threads.
     """
+    kind = _kind(problem)
+    names = columns(problem)
     ax = _axes(axes)
     paths = [p for p, _ in ax]
     points = _autobal.grid_points(ax)
@@ -182,7 +217,7 @@ def sweep(
         table_path = Path(out)
         if table_path.suffix not in (".csv", ".parquet"):
             raise InvalidParameter(f"out: {table_path} must end in .csv or .parquet")
-        manifest = {"problem": toml, "axes": ax, "chunk_size": chunk_size, "columns": list(_autobal.SUMMARY_COLUMNS)}
+        manifest = {"problem": toml, "axes": ax, "chunk_size": chunk_size, "columns": names}
         parts = _Parts(table_path.with_suffix(".parts"), manifest, resume)
     results: Dict[int, np.ndarray] = {}
     todo = []
@@ -207,7 +242,7 @@ def sweep(
         # cancel the new one too; `id(points)` had been reused by the next call)
         run = uuid.uuid4().hex
         futures = {
-            client.submit(_run_chunk, toml, paths, points[lo:hi], threads or 1, pure=False, key=f"autobal-sweep-{run}-{i}"): i
+            client.submit(_run_chunk, kind, toml, paths, points[lo:hi], threads or 1, pure=False, key=f"autobal-sweep-{run}-{i}"): i
             for i, lo, hi in todo
         }
         try:
@@ -220,8 +255,8 @@ def sweep(
         except BaseException:
             client.cancel(list(futures))
             raise
-    res = np.concatenate([results[i] for i, _, _ in chunks]) if chunks else np.zeros((0, len(_autobal.SUMMARY_COLUMNS)))
-    cols = _table(points, paths, res)
+    res = np.concatenate([results[i] for i, _, _ in chunks]) if chunks else np.zeros((0, len(names)))
+    cols = _table(points, paths, res, names)
     if table_path is not None:
         _write_table(cols, table_path)
     try:

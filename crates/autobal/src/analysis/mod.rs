@@ -15,18 +15,26 @@
 //!   dimension `k = `[`VectorField::structural_zeros`] the Jacobian is singular, and the step is
 //!   the minimum-norm one (truncated SVD of the scaled Jacobian, dropping its `k` smallest
 //!   singular values), so Newton converges to the member of the family nearest the guess.
-//!   **A periodic orbit** of period `T` (non-autonomous field) by single shooting: `x(T; x0)`
-//!   and the variational equations `Φ' = J(t, x) Φ`, `Φ(0) = I`, integrated together by DOP853
-//!   at `rtol = 1e-12` (absolute tolerances `1e-12` times [`VectorField::scales`]), Newton on
-//!   `x0 − x(T; x0) = 0` with the matrix `I − Φ(T)`.
+//!   **A periodic orbit** of period `T` (non-autonomous field) by single shooting on
+//!   `x0 − x(T; x0) = 0`, `x(T; x0)` integrated by DOP853 at `rtol = 1e-12` (absolute
+//!   tolerances `1e-12` times [`VectorField::scales`]). The matrix of the iteration is
+//!   `I − Φ(T)`, `Φ` from the variational equations `Φ' = J(t, x) Φ`, `Φ(0) = I`, integrated
+//!   with `x` — exact at the start, or a neighbouring orbit's ([`stationary_near`]) — and
+//!   updated by Broyden's rank-one formula after each step, so that the iterations need only
+//!   the flow of `x` (the variational integration, `n + n²` equations whose error control
+//!   takes ~5x the steps of `x` alone, costs ~50x a plain flow); the exact matrix is
+//!   integrated again where a step fails to halve the residual, and once at the orbit found:
+//!   its monodromy matrix.
 //! - [`stability()`]: the eigenvalues `λ` of `J` (equilibrium) or the Floquet multipliers `μ`,
 //!   eigenvalues of the monodromy matrix `Φ(T)` (periodic orbit), with Floquet exponents
 //!   `ln μ / T`; the `k` structural eigenvalues nearest 0 (multipliers nearest 1) are reported
 //!   apart and left out of the verdict; the verdict ([`Verdict`]) from the spectral abscissa
 //!   `α = max Re λ` (or `max ln|μ| / T`) of the rest.
 //! - [`speed_scan`]: the stationary state continued along a grid of speeds (each Newton from
-//!   the previous speed's solution, else from the model's closed-form guess), its stability at
-//!   each, and the ends of the stable ranges located by bisection to `1e-9` relative in `Ω`.
+//!   the model's closed-form guess, else from the previous speed's solution, per
+//!   [`ScanOptions::prefer_guess`]; a periodic orbit's shooting starting from the previous
+//!   orbit's monodromy matrix), its stability at each, and the ends of the stable ranges
+//!   located to `1e-9` relative in `Ω` (regula falsi on the abscissa, safeguarded by bisection).
 //!
 //! # Tolerances, and why
 //! - **Newton** stops when the scaled residual is below `1e-12` (equilibrium:
@@ -35,8 +43,11 @@
 //!   periodic orbit: `‖S⁻¹ (x0 − x(T))‖∞`, below `1e-10`, above the integration's error). Round-off
 //!   in `f` is about `ε` times its largest term, so the equilibrium test is met where the scales
 //!   are sensible; a residual that stops decreasing within 1000× the tolerance is accepted. An equilibrium
-//!   then gets one more full Newton step (kept if the residual does not rise): with quadratic
-//!   convergence that takes it to round-off.
+//!   then gets one more full Newton step, kept only if it cuts the residual tenfold: with
+//!   quadratic convergence that takes it to round-off, while a step from a residual already at
+//!   round-off is refused (near a real eigenvalue crossing zero it would be round-off divided
+//!   by that eigenvalue, a move along the near-null direction that shifts the abscissa by more
+//!   than its own error, and the stability boundary with it).
 //!   Otherwise [`AnalysisError::NoConvergence`] with the residual reached.
 //! - **Verdict**, equilibrium: neutral where `|α| ≤ 1e-9 ρ`, `ρ = max |λ|` the characteristic
 //!   rate of the linearisation. The balanced QR's eigenvalues carry an absolute error of about
@@ -55,7 +66,7 @@ mod stationary;
 pub use stability::{
     mode, speed_scan, stability, Eigenvalue, Kind, ScanOptions, ScanPoint, SpeedScan, Stability, StableRange, Verdict, FLOQUET_TOLERANCE, NEUTRAL_TOLERANCE,
 };
-pub use stationary::{stationary, NewtonOptions, StationaryState, VariationalSystem};
+pub use stationary::{stationary, stationary_near, NewtonOptions, StationaryState, VariationalSystem};
 
 use crate::linalg::eigen_dyn;
 

@@ -55,6 +55,16 @@ pub struct StationaryState {
 /// [`crate::analysis`]: damped Newton with the exact Jacobian, minimum-norm steps on a family,
 /// single shooting with the variational equations `Φ' = J Φ`).
 pub fn stationary<F: VectorField + ?Sized>(f: &F, guess: &[f64], opts: &NewtonOptions) -> Result<StationaryState> {
+    stationary_near(f, guess, None, opts)
+}
+
+/// [`stationary()`] with, for a periodic orbit, `monodromy_hint`: the monodromy matrix `Φ(T)`
+/// (row-major) of a neighbouring orbit (the previous speed's in a continuation), used as the
+/// shooting's starting matrix `I − Φ` in place of integrating the variational equations at the
+/// guess; ignored for an equilibrium, or when of the wrong size or not finite. The result is
+/// the same orbit (to the tolerance) with its own monodromy matrix.
+pub fn stationary_near<F: VectorField + ?Sized>(f: &F, guess: &[f64], monodromy_hint: Option<&[f64]>, opts: &NewtonOptions) -> Result<StationaryState> {
+    let hint = monodromy_hint;
     let n = f.dim();
     if guess.len() != n {
         return Err(AnalysisError::InvalidInput { field: "guess".into(), reason: format!("has {} components, the field {n}", guess.len()) });
@@ -69,7 +79,7 @@ pub fn stationary<F: VectorField + ?Sized>(f: &F, guess: &[f64], opts: &NewtonOp
     let k = f.structural_zeros(guess);
     match f.period() {
         None => equilibrium(f, guess, &s, k, opts),
-        Some(t) if t > 0.0 && t.is_finite() => periodic(f, guess, t, &s, k, opts),
+        Some(t) if t > 0.0 && t.is_finite() => periodic(f, guess, t, &s, k, opts, hint),
         Some(t) => {
             Err(AnalysisError::InvalidInput { field: "period".into(), reason: format!("must be positive and finite, got {}", crate::error::fmt_num(t)) })
         }
@@ -137,13 +147,17 @@ fn newton(
         let res = norm_inf(&r);
         if res <= tol {
             if polish {
-                // one more full step (quadratic convergence: to round-off), kept if it does not
-                // raise the residual
+                // one more full step (quadratic convergence: to round-off), kept only if it
+                // cuts the residual tenfold: a step from a residual already at round-off is
+                // round-off divided by the Jacobian's smallest singular value, which near a
+                // bifurcation (a real eigenvalue crossing zero) is a large move along the
+                // near-null direction that leaves the residual at round-off but shifts the
+                // Jacobian, and with it the abscissa, by far more than its own error
                 if let Some(d) = direction(jac.as_ref().expect("Jacobian requested"), n, &r, k) {
                     let xn: Vec<f64> = x.iter().zip(&d).zip(s).map(|((xi, di), si)| xi + di * si).collect();
                     if let Ok((rn, _)) = eval(&xn, false) {
                         let rn = norm_inf(&rn);
-                        if rn <= res {
+                        if rn <= 0.1 * res {
                             return Ok((xn, it + 1, rn, None));
                         }
                     }
@@ -333,27 +347,173 @@ fn flow<F: VectorField + ?Sized>(f: &F, x0: &[f64], period: f64, s: &[f64], rtol
     Ok((y, Some(phi)))
 }
 
-fn periodic<F: VectorField + ?Sized>(f: &F, guess: &[f64], period: f64, s: &[f64], k: usize, opts: &NewtonOptions) -> Result<StationaryState> {
+/// `S⁻¹ (I − Φ) S`: the shooting residual's Jacobian in scaled variables.
+fn shooting_matrix(phi: &[f64], s: &[f64], n: usize) -> Vec<f64> {
+    (0..n * n).map(|ab| (if ab / n == ab % n { 1.0 } else { 0.0 }) - phi[ab] * s[ab % n] / s[ab / n]).collect()
+}
+
+/// The periodic orbit by single shooting (module docs of [`crate::analysis`]): quasi-Newton
+/// (Broyden) iterations on `r(x0) = S⁻¹ (x0 − x(T; x0))` whose trial points need only the
+/// flow `x(T; x0)`, the matrix `S⁻¹ (I − Φ) S` taken exact from the variational equations at
+/// the start (or from `hint`, a neighbouring orbit's monodromy matrix) and updated by rank one
+/// after each step; the variational equations are integrated again only where the updated
+/// matrix gives no descent or a step fails to halve the residual (then the iteration is
+/// Newton's; at most `max_iterations / 2` times, then the search is reported as stagnating),
+/// and once at the orbit found, for its monodromy matrix.
+fn periodic<F: VectorField + ?Sized>(
+    f: &F,
+    guess: &[f64],
+    period: f64,
+    s: &[f64],
+    k: usize,
+    opts: &NewtonOptions,
+    hint: Option<&[f64]>,
+) -> Result<StationaryState> {
     let n = f.dim();
-    let eval = |x0: &[f64], with_jac: bool| -> Result<(Vec<f64>, Option<Vec<f64>>)> {
-        let (xt, phi) = flow(f, x0, period, s, opts.rtol, with_jac)?;
-        let r: Vec<f64> = (0..n).map(|i| (x0[i] - xt[i]) / s[i]).collect();
-        let Some(phi) = phi else { return Ok((r, None)) };
-        // S⁻¹ (I − Φ) S
-        let mut j = vec![0.0; n * n];
-        for a in 0..n {
-            for b in 0..n {
-                j[a * n + b] = (if a == b { 1.0 } else { 0.0 }) - phi[a * n + b] * s[b] / s[a];
-            }
+    let tol = opts.periodic_tolerance;
+    let residual = |x0: &[f64], xt: &[f64]| -> Vec<f64> { (0..n).map(|i| (x0[i] - xt[i]) / s[i]).collect() };
+    let fail = |iterations: usize, residual: f64, detail: &str| AnalysisError::NoConvergence {
+        what: "periodic orbit".into(),
+        iterations,
+        residual,
+        tolerance: tol,
+        detail: detail.into(),
+    };
+    let mut x = guess.to_vec();
+    // the matrix, and Φ(T) at x where it was integrated there (then the matrix is exact)
+    let (mut r, mut b, mut phi_at_x) = match hint.filter(|h| h.len() == n * n && h.iter().all(|v| v.is_finite())) {
+        Some(h) => {
+            let (xt, _) = flow(f, &x, period, s, opts.rtol, false)?;
+            (residual(&x, &xt), shooting_matrix(h, s, n), None)
         }
-        Ok((r, Some(j)))
+        None => {
+            let (xt, phi) = flow(f, &x, period, s, opts.rtol, true)?;
+            let phi = phi.expect("variational flow");
+            (residual(&x, &xt), shooting_matrix(&phi, s, n), Some(phi))
+        }
     };
-    let (x, iterations, residual, last) = newton("periodic orbit", n, guess, s, k, opts.periodic_tolerance, opts.max_iterations, false, eval)?;
-    // Φ(T) at the orbit: recovered from the last scaled Jacobian S⁻¹(I − Φ)S where Newton
-    // stopped at it, else integrated again
-    let phi = match last {
-        Some(j) => Some((0..n * n).map(|ab| (if ab / n == ab % n { 1.0 } else { 0.0 }) - j[ab] * s[ab / n] / s[ab % n]).collect()),
-        None => flow(f, &x, period, s, opts.rtol, true)?.1,
-    };
-    Ok(StationaryState { family_dimension: f.structural_zeros(&x), x, period: Some(period), iterations, residual, monodromy: phi })
+    let mut it = 0;
+    // the exact matrix is integrated again at most max_iterations / 2 times: each such
+    // integration is a Newton step, and where they do not converge within that many (a
+    // start with no orbit near, e.g. far below the speeds where the balls follow the rotor,
+    // where a revolution is long and each integration dear) more would not either
+    let max_refreshes = (opts.max_iterations / 2).max(2);
+    let mut refreshes = 0;
+    loop {
+        non_finite(f, &r, "right-hand side")?;
+        let res = norm_inf(&r);
+        if res <= tol {
+            let phi = match phi_at_x {
+                Some(phi) => phi,
+                None => {
+                    // Φ(T) at the orbit, and with it one Newton step with the exact matrix
+                    // (quadratic: from a residual at the tolerance to the integration's error;
+                    // the quasi-Newton iteration stops just below the tolerance), taken only
+                    // if it is a small move (≤ 1e3 tolerances, scaled), with the residual
+                    // before it reported
+                    let (xt, phi) = flow(f, &x, period, s, opts.rtol, true)?;
+                    let phi = phi.expect("variational flow");
+                    let rv = residual(&x, &xt);
+                    if let Some(d) = direction(&shooting_matrix(&phi, s, n), n, &rv, k) {
+                        if norm_inf(&d) <= 1e3 * tol {
+                            x.iter_mut().zip(&d).zip(s).for_each(|((xi, di), si)| *xi += di * si);
+                        }
+                    }
+                    phi
+                }
+            };
+            return Ok(StationaryState {
+                family_dimension: f.structural_zeros(&x),
+                x,
+                period: Some(period),
+                iterations: it,
+                residual: res,
+                monodromy: Some(phi),
+            });
+        }
+        if it >= opts.max_iterations {
+            return Err(fail(it, res, "iteration limit"));
+        }
+        it += 1;
+        // backtracking on the scaled residual, as in `newton`; with an updated (not exact)
+        // matrix only down to 1/16, then the exact matrix is worth its integration
+        let shortest = if phi_at_x.is_some() { 1e-10 } else { 1.0 / 16.0 };
+        let step = direction(&b, n, &r, k).and_then(|d| {
+            let r0 = norm2(&r);
+            let mut lambda = 1.0;
+            while lambda >= shortest {
+                let xn: Vec<f64> = x.iter().zip(&d).zip(s).map(|((xi, di), si)| xi + lambda * di * si).collect();
+                if let Ok((xt, _)) = flow(f, &xn, period, s, opts.rtol, false) {
+                    let rn = residual(&xn, &xt);
+                    if norm2(&rn) < (1.0 - 1e-4 * lambda) * r0 {
+                        return Some((xn, rn, lambda, d));
+                    }
+                }
+                lambda *= 0.5;
+            }
+            None
+        });
+        match step {
+            Some((xn, rn, lambda, d)) => {
+                // Broyden's update B ← B + (Δr − B p) pᵀ / pᵀp, p = λ d the scaled step
+                let p: Vec<f64> = d.iter().map(|v| lambda * v).collect();
+                let pp: f64 = p.iter().map(|v| v * v).sum();
+                if pp > 0.0 {
+                    for a in 0..n {
+                        let bp: f64 = (0..n).map(|c| b[a * n + c] * p[c]).sum();
+                        let w = (rn[a] - r[a] - bp) / pp;
+                        for c in 0..n {
+                            b[a * n + c] += w * p[c];
+                        }
+                    }
+                }
+                // a step that did not halve the residual: the updated matrix has drifted (or
+                // the start was poor), so the exact one at the new point
+                let stalled = norm2(&rn) > 0.5 * norm2(&r);
+                x = xn;
+                r = rn;
+                phi_at_x = None;
+                if stalled {
+                    refreshes += 1;
+                    if refreshes > max_refreshes {
+                        return Err(fail(
+                            it,
+                            norm_inf(&r),
+                            &format!("stagnates ({max_refreshes} integrations of the variational equations without converging)"),
+                        ));
+                    }
+                    let (xt, phi) = flow(f, &x, period, s, opts.rtol, true)?;
+                    let phi = phi.expect("variational flow");
+                    r = residual(&x, &xt);
+                    b = shooting_matrix(&phi, s, n);
+                    phi_at_x = Some(phi);
+                }
+            }
+            None if phi_at_x.is_none() => {
+                // the updated matrix gives no descent: the exact one at x
+                refreshes += 1;
+                if refreshes > max_refreshes {
+                    return Err(fail(it, res, &format!("stagnates ({max_refreshes} integrations of the variational equations without converging)")));
+                }
+                let (xt, phi) = flow(f, &x, period, s, opts.rtol, true)?;
+                let phi = phi.expect("variational flow");
+                r = residual(&x, &xt);
+                b = shooting_matrix(&phi, s, n);
+                phi_at_x = Some(phi);
+            }
+            None if res <= 1e3 * tol => {
+                // round-off level of the integration: no step can reduce it further
+                let phi = phi_at_x.expect("exact matrix");
+                return Ok(StationaryState {
+                    family_dimension: f.structural_zeros(&x),
+                    x,
+                    period: Some(period),
+                    iterations: it,
+                    residual: res,
+                    monodromy: Some(phi),
+                });
+            }
+            None => return Err(fail(it, res, "no step along the Newton direction reduces the residual")),
+        }
+    }
 }

@@ -194,3 +194,30 @@ fn shooting_finds_the_forced_orbit_and_its_exact_floquet_multipliers_which_simul
         assert!((measured - st.abscissa).abs() < 1e-4 * st.abscissa.abs(), "measured {measured}, computed {}", st.abscissa);
     }
 }
+
+#[test]
+fn shooting_from_a_neighbours_monodromy_finds_the_same_orbit_and_multipliers() {
+    // stationary_near: the quasi-Newton shooting started with another matrix than the exact
+    // one at the guess must end at the same orbit (to the shooting's 1e-10) with its own
+    // exact multipliers exp(λ_K T) (to 1e-9, as above): with a neighbouring speed's monodromy
+    // (ω 5% higher: the continuation's case), with a useless one (Φ = 0, so I − Φ = I: the
+    // exact matrix must be fetched when the steps stall), and with one of the wrong size
+    // (ignored). The monodromy returned is integrated at the orbit, not the hint updated.
+    let g0 = [0.5, 0.2];
+    let c = [[-0.1, 1.3], [-0.6, -0.3]];
+    let f = Rotating::new(c, g0, 0.3, 1.0);
+    let neighbour = Rotating::new(c, g0, 0.3, 1.05);
+    let y = neighbour.orbit_start();
+    let hint = stationary(&neighbour, &y, &NewtonOptions::default()).unwrap().monodromy.unwrap();
+    let ystar = f.orbit_start();
+    let exact = f.multipliers();
+    for h in [hint, vec![0.0; 4], vec![1.0; 3]] {
+        let s = stationary_near(&f, &[ystar[0] + 0.3, ystar[1] - 0.2], Some(&h), &NewtonOptions::default()).unwrap();
+        assert!((s.x[0] - ystar[0]).abs() < 1e-10 && (s.x[1] - ystar[1]).abs() < 1e-10, "hint {h:?}: {:?} against {ystar:?}", s.x);
+        let st = stability(&f, &s).unwrap();
+        for m in &st.spectrum {
+            let d = exact.iter().map(|e| (e - m.complex()).norm()).fold(f64::INFINITY, f64::min);
+            assert!(d < 1e-9, "hint {h:?}: {m:?} against {exact:?}");
+        }
+    }
+}

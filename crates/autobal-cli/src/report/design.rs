@@ -1,0 +1,185 @@
+//! Section "Design maps" of the report about the user's rotor: the exact stability of the
+//! balanced state over speed against the three things a designer of a ball balancer chooses,
+//! the position of the balancer plane, the mass of a ball and the drag on the balls, each
+//! around the config's own value, with the operating speed and the config's value marked.
+//!
+//! Each map is the library's stability map ([`autobal::spatial::paths::stability_map_units`],
+//! the one `autobal map` runs) over the config's own parameter path (`balancer.z`,
+//! `balancer.ball_mass`, `balancer.drag` of a dimensional config, `dimensionless.z_a`, `.m`,
+//! `.h_s` of a dimensionless one) and the speed (`speed_rpm`, or `omega`), so a map's row at the
+//! config's value is the stability section's margin line. A dimensional map's growth rate is
+//! `max Re λ · ω0` in 1/s, with the `ω0 = sqrt(c_x/M_s)` of each column (a ball's mass moves it).
+
+use super::{interrupted, rotor::operating_vlines, Ctx, Section};
+use crate::map::{Axis, MapResult, Quantity};
+use crate::num::{fmt, RPM_PER_RAD_S};
+use crate::plot::{ColorScale, Series};
+use anyhow::Result;
+use autobal::spatial::linear_model::Balls;
+use autobal::spatial::map::{MapSettings, ModelFamily};
+use autobal::spatial::paths::SpatialSpec;
+
+/// Grid of the maps per axis (the quick report: fewer).
+const MAP_N: usize = 121;
+const MAP_N_QUICK: usize = 41;
+
+/// One design map: the parameter path, its range, the title and what it shows.
+struct Design {
+    path: &'static str,
+    lo: f64,
+    hi: f64,
+    title: &'static str,
+    what: &'static str,
+}
+
+/// The three maps around the config's values (a map whose parameter is zero or unknown is left
+/// out, with the reason).
+fn designs(spec: &SpatialSpec, si: bool) -> (Vec<Design>, Vec<String>) {
+    let get = |p: &str| spec.get(p).ok().filter(|v| v.is_finite());
+    let (z, m, h) = if si { ("balancer.z", "balancer.ball_mass", "balancer.drag") } else { ("dimensionless.z_a", "dimensionless.m", "dimensionless.h_s") };
+    let mut out = vec![];
+    let mut skipped = vec![];
+    // the balancer plane: between the supports (SI), or over 003 Fig. 5a's −2 … 2 (ρ_s)
+    let zv = get(z);
+    let (zlo, zhi) = if si {
+        match (get("supports.z_left"), get("supports.z_right")) {
+            (Some(a), Some(b)) if b > a => (a.min(zv.unwrap_or(a)), b.max(zv.unwrap_or(b))),
+            _ => (zv.unwrap_or(0.0) - 0.5, zv.unwrap_or(0.0) + 0.5),
+        }
+    } else {
+        ((-2.0f64).min(zv.unwrap_or(0.0) - 0.5), 2.0f64.max(zv.unwrap_or(0.0) + 0.5))
+    };
+    out.push(Design {
+        path: z,
+        lo: zlo,
+        hi: zhi,
+        title: "Design map: balancer position × speed",
+        what: if si {
+            "over the axial position of the balancer plane between the supports"
+        } else {
+            "over the position of the balancer plane z̄_A (from the centre of mass, in ρ_s)"
+        },
+    });
+    match get(m) {
+        Some(v) if v > 0.0 => out.push(Design {
+            path: m,
+            lo: 0.25 * v,
+            hi: 3.0 * v,
+            title: "Design map: ball mass × speed",
+            what: "over the mass of one ball, from a quarter to three times the config's",
+        }),
+        _ => skipped.push(format!("ball mass: the config gives no ball mass ({m})")),
+    }
+    match get(h) {
+        Some(v) if v > 0.0 => out.push(Design {
+            path: h,
+            lo: 0.1 * v,
+            hi: 5.0 * v,
+            title: "Design map: ball drag × speed",
+            what: "over the drag on the balls, from a tenth to five times the config's",
+        }),
+        _ => skipped.push(format!("ball drag: the config's drag is zero or not given ({h}); a map around zero has no scale")),
+    }
+    (out, skipped)
+}
+
+pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
+    let Some(cfg) = &ctx.spatial else {
+        return Ok(Some(Section::not_applicable(
+            "design",
+            "Design maps",
+            "the design maps (balancer position, ball mass, ball drag against speed) use the spatial model of papers 000/003; a [planar] rotor's parameters are swept with `autobal sweep`",
+        )));
+    };
+    let m = &cfg.model;
+    let si = cfg.spec.get("balancer.z").is_ok();
+    let mut s = Section::new("design", "Design maps: balancer position, ball mass, ball drag");
+    let ignored = autobal::config::ignored_by_linear_model(&ctx.root);
+    let balls = if m.balls.is_some() { Balls::Free } else { Balls::Locked };
+    s.p(format!(
+        "The exact stability of the balanced state (the margin of the stability section, balls {}) over the speed and one design parameter at a time, the others the config's. Colour: the largest real part of the eigenvalues (blue stable, red unstable, white near zero, square-root scale on each side); solid black: the exact stability boundary; dashed: 003's necessary condition; the vertical line is the config's value, the horizontal one the operating speed; grey: no balanced state there (too little ball mass to cancel the unbalance) or a row not computed.{}",
+        if balls == Balls::Free { "free" } else { "locked" },
+        if ignored.is_empty() {
+            String::new()
+        } else {
+            format!(
+                " <b>These maps are of the one-plane rotor of papers 000/003, which leaves out {}</b>: a guide to the trends; the verdict is the stability section's (general route).",
+                super::esc(&ignored.join(", "))
+            )
+        }
+    ));
+    let w = crate::linear::omega_max(cfg, None)?;
+    let w0 = m.scale.map(|sc| sc.omega0);
+    let n = if ctx.quick { MAP_N_QUICK } else { MAP_N };
+    // the speed axis in rpm for a dimensional config (ω0 per column, as `autobal map`), else Ω
+    let (ykey, yk) = match (si, w0) {
+        (true, Some(w0)) => ("speed_rpm", w0 * RPM_PER_RAD_S),
+        _ => ("omega", 1.0),
+    };
+    let (list, skipped) = designs(&cfg.spec, si);
+    for d in list {
+        let x = Axis { key: d.path.into(), lo: d.lo, hi: d.hi, n };
+        let y = Axis { key: ykey.into(), lo: 0.02 * w * yk, hi: w * yk, n };
+        let r = match map(&cfg.spec, x, y, balls) {
+            Ok(r) => r,
+            Err(e) => {
+                s.p(format!("{}: not computed ({}).", d.title, super::esc(&format!("{e:#}"))));
+                continue;
+            }
+        };
+        let complete = r.rows.iter().all(|r| r.is_some());
+        s.complete &= complete;
+        let mut p = crate::mapfig::plot(&r, d.title);
+        if ykey == "speed_rpm" {
+            // Re λ in 1/s: units of each column's ω0
+            let k: Vec<f64> = (0..r.x.n)
+                .map(|i| cfg.spec.with(d.path, r.x.value(i)).and_then(|f| f.model()).map_or(f64::NAN, |m| m.scale.map_or(f64::NAN, |s| s.omega0)))
+                .collect();
+            if let Some(h) = p.heatmap.as_mut() {
+                for row in h.z.iter_mut() {
+                    row.iter_mut().zip(&k).for_each(|(v, k)| *v *= k);
+                }
+                let neg = h.z.iter().flatten().filter(|v| **v < 0.0).map(|v| -v).fold(1e-12, f64::max);
+                let pos = h.z.iter().flatten().filter(|v| **v >= 0.0).copied().fold(1e-12, f64::max);
+                h.scale = ColorScale::Diverging { neg, pos };
+                h.label = "max Re λ (1/s; < 0 stable)".into();
+            }
+        }
+        if let Ok(v) = cfg.spec.get(d.path) {
+            p.vlines.push((v, "this rotor".into()));
+        }
+        for (y, label) in operating_vlines(cfg.analysis.operating_speed, yk) {
+            p.series.push(Series::new(label, vec![(d.lo, y), (d.hi, y)], "#E69F00").width(1.5));
+        }
+        s.figure(
+            format!("design_{}", d.path.replace('.', "_")),
+            p,
+            format!(
+                "Stability map {} and the speed{}.{}",
+                d.what,
+                if ykey == "speed_rpm" { " (rpm)" } else { " (Ω)" },
+                if complete { "" } else { " <b>Interrupted: grey rows were not computed.</b>" }
+            ),
+        );
+    }
+    for why in skipped {
+        s.p(format!("Not drawn: {}.", super::esc(&why)));
+    }
+    s.p(format!(
+        "Other parameters: <code>autobal map --config FILE --x PATH=LO:HI:N --y {ykey}={}:{}:{n}</code> (docs/stability.md lists the paths).",
+        fmt(0.02 * w * yk, 4),
+        fmt(w * yk, 4)
+    ));
+    Ok(Some(s))
+}
+
+/// The library's map over `x` and the speed `y` (rows not computed when Ctrl-C came: `None`).
+fn map(spec: &SpatialSpec, x: Axis, y: Axis, balls: Balls) -> Result<MapResult> {
+    let settings = MapSettings { balls, quantity: Quantity::Margin, omega: None };
+    let mut rows = vec![None; y.n];
+    autobal::spatial::paths::stability_map_units(spec, &x.to_library(), &y.to_library(), &settings, &mut |j, cells| {
+        rows[j] = Some(cells.to_vec());
+        !interrupted()
+    })?;
+    Ok(MapResult { x, y, rows, quantity: Quantity::Margin })
+}

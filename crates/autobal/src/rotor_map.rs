@@ -1,0 +1,538 @@
+//! Stability maps on **every configuration** (issue 18 item 3): the verdict and margin of the
+//! stationary state over a grid of two parameter paths, for the planar rotor and for spatial
+//! rotors with what paper 000's 12-state model ([`crate::spatial::map`]) does not represent (a
+//! second plane, couple unbalance, supports that differ by direction, gravity, a tilted axis).
+//!
+//! Each axis is a config key (`balancer.ball_mass`, `planar.c_psi`, `supports.stiffness_left`, …),
+//! set in the TOML table with [`crate::config::set_number`], the rotor rebuilt by
+//! [`crate::config::planar`] or [`crate::config::spatial_simulation`] as the simulation would
+//! build it; or the speed: `omega` (the papers' `Ω = ω/ω0` for a spatial config, with the `ω0`
+//! of the rotor at that cell as in the 12-state map; rad/s for a planar one), or `speed`
+//! (rad/s), `speed_rpm`, `speed_hz` ([`crate::units::SPEED_PATHS`]; not for a dimensionless
+//! config).
+//!
+//! At each cell the stationary state is found as in [`crate::rotor_stability`]: Newton's method
+//! on the equations in turning axes ([`crate::analysis::stationary`]: an equilibrium, or the
+//! periodic orbit of the revolution by shooting) from the closed-form balanced state
+//! ([`Rotor::guess`]), and where that fails from the state of the cell before it in the row
+//! (continuation; the closed form first for a periodic orbit too, as `rotor_stability` does:
+//! continuation from a neighbour can land on another orbit). Its stability ([`crate::analysis::stability()`]) gives the verdict
+//! and the margin: the spectral abscissa `α = max Re λ` without the family's structural zeros,
+//! or the largest Floquet exponent `max ln|μ| / T`. The margin is written in the time unit of
+//! the speed axis `omega`: per unit `τ = ω0 t` for a spatial config (`α / ω0`, as the 12-state
+//! map writes it), 1/s for a planar one. A cell without a stationary state has margin NaN and no
+//! verdict.
+//!
+//! Rows (all `x` at one `y`) are computed in parallel (rayon) in blocks and handed to `on_row`
+//! in order; `cancel` is asked before each row is started.
+//!
+//! ```
+//! use autobal::rotor_map::{general_map, Verdict};
+//! use autobal::spatial::map::Axis;
+//! let mut root = autobal::config::parse(include_str!("../../../examples/planar.toml"), "planar").unwrap();
+//! autobal::config::set_number(&mut root, "planar.s2", 0.0).unwrap(); // race centred: Jeffcott
+//! let wn = autobal::config::planar(&root).unwrap().rotor.natural_frequency();
+//! let x = Axis { path: "omega".into(), values: vec![0.5 * wn, 2.0 * wn] };
+//! let y = Axis { path: "planar.c_psi".into(), values: vec![0.05, 0.1] };
+//! let mut rows = vec![];
+//! general_map(&root, &x, &y, None, &|| false, &mut |_, r| { rows.push(r.to_vec()); true }).unwrap();
+//! // the balanced state is unstable below the critical speed in every row
+//! assert!(rows.iter().all(|r| r[0].verdict == Some(Verdict::Unstable)));
+//! ```
+
+use crate::analysis::{stability, stationary, NewtonOptions, VectorField};
+pub use crate::analysis::{Kind, Verdict};
+use crate::config;
+use crate::error::{fmt_num, Error, Result};
+use crate::rotor_stability::Rotor;
+use crate::spatial::map::Axis;
+use crate::units::{speed_path_unit, Speed, SpeedUnit};
+use rayon::prelude::*;
+use serde::Serialize;
+use toml::Table;
+
+/// One cell of a general map.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct GeneralCell {
+    /// Spectral abscissa `max Re λ` (or the largest Floquet exponent `max ln|μ| / T`) without
+    /// the structural zeros, per unit `τ` (spatial) or 1/s (planar); NaN without a state.
+    pub margin: f64,
+    /// The verdict; `None` where no stationary state was found.
+    pub verdict: Option<Verdict>,
+    /// Equilibrium or periodic orbit; `None` without a state.
+    pub kind: Option<Kind>,
+    /// Dimension of the family of stationary states ([`VectorField::structural_zeros`]).
+    pub family_dimension: usize,
+    /// Whether the state was reached from the neighbouring cell rather than the closed form.
+    pub continued: bool,
+}
+
+impl GeneralCell {
+    const NONE: GeneralCell = GeneralCell { margin: f64::NAN, verdict: None, kind: None, family_dimension: 0, continued: false };
+}
+
+/// How far a general map got.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct GeneralMapOutcome {
+    /// Rows handed to `on_row`.
+    pub rows: usize,
+    /// Whether every row was computed (not cancelled or stopped by `on_row`).
+    pub complete: bool,
+    /// Cells whose state came from the closed form.
+    pub closed_form: usize,
+    /// Cells whose state was continued from the neighbour.
+    pub continued: usize,
+    /// Cells without a stationary state.
+    pub none: usize,
+    /// Cells whose stationary state is a periodic orbit.
+    pub periodic: usize,
+}
+
+/// The rotor of one cell and the speed unit of its `omega`.
+#[derive(Debug, Clone)]
+struct CellRotor {
+    rotor: Rotor,
+    /// Model speed units per unit of `omega`: `ω0` (rad/s) of an SI spatial rotor, else 1.
+    scale: f64,
+    /// Whether the model's speeds are rad/s (planar, SI spatial) rather than `Ω`.
+    si: bool,
+}
+
+/// The rotor the config `root` describes, as [`crate::rotor_stability`] takes it.
+fn build(root: &Table) -> Result<CellRotor> {
+    if config::is_spatial(root) {
+        let sim = config::spatial_simulation(root)?;
+        let scale = sim.config.model.scale.map_or(1.0, |s| s.omega0);
+        Ok(CellRotor { rotor: Rotor::Spatial(sim.rotor), scale, si: sim.config.dimensional })
+    } else {
+        let p = config::planar(root)?;
+        Ok(CellRotor { rotor: Rotor::Planar(p.rotor), scale: 1.0, si: true })
+    }
+}
+
+/// `root` with `path` set to `v`; errors name the path and the value.
+fn with(root: &Table, path: &str, v: f64) -> Result<Table> {
+    let mut t = root.clone();
+    config::set_number(&mut t, path, v).map_err(|e| name_axis(e, path, v))?;
+    Ok(t)
+}
+
+fn name_axis(e: Error, path: &str, v: f64) -> Error {
+    if e.field() == Some(path) {
+        e
+    } else {
+        Error::invalid(path, format!("at {path} = {}: {e}", fmt_num(v)))
+    }
+}
+
+/// A speed in the model's units (rad/s, or `Ω` for a dimensionless spatial rotor): `Ω · ω0`
+/// for `omega`, the value times its unit's rad/s otherwise.
+fn model_speed(c: &CellRotor, s: Speed, field: &str) -> Result<f64> {
+    match s.unit.rad_s() {
+        None => Ok(s.value * c.scale),
+        Some(k) if c.si => Ok(s.value * k),
+        Some(_) => Err(Error::invalid(
+            field,
+            format!(
+                "{} {} needs a dimensional config (the rotor's ω0); this config is dimensionless: use the axis omega (Ω)",
+                fmt_num(s.value),
+                s.unit.symbol()
+            ),
+        )),
+    }
+}
+
+/// The stationary state at model speed `w` from the closed form or `previous`, and its cell.
+fn solve(c: &CellRotor, w: f64, previous: Option<&[f64]>) -> (GeneralCell, Option<Vec<f64>>) {
+    let Ok(field) = c.rotor.field(w) else { return (GeneralCell::NONE, None) };
+    let periodic = field.period().is_some();
+    let guess = Rotor::guess(&field);
+    let previous = previous.filter(|p| p.len() == field.dim());
+    let mut opts = NewtonOptions::default();
+    if periodic {
+        // as rotor_stability: the shooting at rtol 1e-10 keeps multipliers near 1 good to ~1e-9,
+        // inside FLOQUET_TOLERANCE (1e-8)
+        opts.max_iterations = 20;
+        opts.rtol = 1e-10;
+    }
+    // the closed form first, as rotor_stability does for both kinds: continuation from a
+    // neighbouring cell can land on another orbit (the balls elsewhere) near a bifurcation
+    let starts = [(guess.as_deref(), false), (previous, true)];
+    for (start, continued) in starts {
+        let Some(start) = start else { continue };
+        let Ok(state) = stationary(&field, start, &opts) else { continue };
+        let Ok(st) = stability(&field, &state) else { continue };
+        let cell =
+            GeneralCell { margin: st.abscissa / c.scale, verdict: Some(st.verdict), kind: Some(st.kind), family_dimension: state.family_dimension, continued };
+        return (cell, Some(state.x));
+    }
+    (GeneralCell::NONE, None)
+}
+
+/// One end of a bisection: `x`, the verdict, the state, the cell.
+type Side = (f64, Option<Verdict>, Option<Vec<f64>>, GeneralCell);
+
+/// Which side of the stability boundary a cell lies on: 0 without a stationary state, 1 where
+/// the margin is negative, 2 where it is not. The boundary is where the margin crosses 0 (as
+/// [`crate::analysis::speed_scan`] bisects it), not the edge of the neutral band around it.
+fn side(c: &GeneralCell) -> u8 {
+    match c.verdict {
+        None => 0,
+        Some(_) if c.margin < 0.0 => 1,
+        Some(_) => 2,
+    }
+}
+
+/// An axis: the speed in some unit, or a config path.
+fn speed_unit(a: &Axis) -> Option<SpeedUnit> {
+    speed_path_unit(&a.path)
+}
+
+/// The map's plane: the config, the axes, the fixed speed, and the rotors prebuilt along the
+/// parameter axis when the other is the speed.
+struct Plane<'a> {
+    root: &'a Table,
+    x: &'a Axis,
+    y: &'a Axis,
+    speed: Option<Speed>,
+    /// Rotors along the parameter axis (when one axis is the speed).
+    line: Option<Vec<CellRotor>>,
+}
+
+impl Plane<'_> {
+    /// The rotor at `(xv, yv)` (grid index `(i, j)` for the prebuilt line) and its speed.
+    /// `i` is `None` off the grid's `x` values (a bisection), where a rotor along `x` is built.
+    fn cell(&self, i: Option<usize>, j: usize, xv: f64, yv: f64) -> Result<(std::borrow::Cow<'_, CellRotor>, f64)> {
+        use std::borrow::Cow;
+        match (speed_unit(self.x), speed_unit(self.y)) {
+            (Some(u), None) => {
+                let c = match &self.line {
+                    Some(l) => Cow::Borrowed(&l[j]),
+                    None => Cow::Owned(self.build_at(&[(&self.y.path, yv)])?),
+                };
+                let w = model_speed(&c, Speed { value: xv, unit: u }, &self.x.path)?;
+                Ok((c, w))
+            }
+            (None, Some(u)) => {
+                let c = match (&self.line, i) {
+                    (Some(l), Some(i)) => Cow::Borrowed(&l[i]),
+                    _ => Cow::Owned(self.build_at(&[(&self.x.path, xv)])?),
+                };
+                let w = model_speed(&c, Speed { value: yv, unit: u }, &self.y.path)?;
+                Ok((c, w))
+            }
+            _ => {
+                let c = self.build_at(&[(&self.x.path, xv), (&self.y.path, yv)])?;
+                let s = self.speed.ok_or_else(|| Error::invalid("omega", "required when neither axis is the speed (the speed at which to map)"))?;
+                let w = model_speed(&c, s, "omega")?;
+                Ok((Cow::Owned(c), w))
+            }
+        }
+    }
+
+    fn build_at(&self, set: &[(&str, f64)]) -> Result<CellRotor> {
+        let mut t = self.root.clone();
+        for (p, v) in set {
+            t = with(&t, p, *v)?;
+        }
+        let v = set.last().map_or(0.0, |s| s.1);
+        build(&t).map_err(|e| match set {
+            [(p, v)] => name_axis(e, p, *v),
+            [(p, pv), (q, qv)] => Error::invalid(*p, format!("at {p} = {}, {q} = {}: {e}", fmt_num(*pv), fmt_num(*qv))),
+            _ => name_axis(e, "config", v),
+        })
+    }
+
+    /// Row `j`: every `x` at `y_j`, continued along the row; with `trace`, the points where
+    /// the verdict changes between neighbouring cells, bisected along `x`.
+    fn row(&self, j: usize, trace: bool) -> Result<(Vec<GeneralCell>, Vec<BoundaryPoint>)> {
+        let yv = self.y.values[j];
+        let mut previous: Option<Vec<f64>> = None;
+        let mut out = Vec::with_capacity(self.x.values.len());
+        let mut states = Vec::with_capacity(if trace { self.x.values.len() } else { 0 });
+        for (i, &xv) in self.x.values.iter().enumerate() {
+            let (c, w) = self.cell(Some(i), j, xv, yv)?;
+            let (cell, x) = solve(&c, w, previous.as_deref());
+            if trace {
+                states.push(x.clone());
+            }
+            previous = x.or(previous);
+            out.push(cell);
+        }
+        let mut points = vec![];
+        if trace {
+            for i in 0..out.len().saturating_sub(1) {
+                if side(&out[i]) != side(&out[i + 1]) {
+                    let end = |k: usize| (self.x.values[k], out[k].verdict, states[k].clone(), out[k]);
+                    points.push(self.bisect(j, end(i), end(i + 1))?);
+                }
+            }
+        }
+        Ok((out, points))
+    }
+
+    /// The point between `lo` and `hi` (x, verdict, state) on row `j` where the verdict changes,
+    /// by bisection to [`BOUNDARY_RTOL`] relative in `x`.
+    fn bisect(&self, j: usize, lo: Side, hi: Side) -> Result<BoundaryPoint> {
+        let yv = self.y.values[j];
+        let (from, to) = (lo.1, hi.1);
+        let side_lo = side(&lo.3);
+        let (mut a, mut b) = (lo.0, hi.0);
+        let (mut xa, mut xb) = (lo.2, hi.2);
+        while (b - a).abs() > BOUNDARY_RTOL * a.abs().max(b.abs()) {
+            let mid = 0.5 * (a + b);
+            if mid == a || mid == b {
+                break;
+            }
+            let (c, w) = self.cell(None, j, mid, yv)?;
+            let (cell, x) = solve(&c, w, xa.as_deref().or(xb.as_deref()));
+            if side(&cell) == side_lo {
+                a = mid;
+                xa = x.or(xa);
+            } else {
+                b = mid;
+                xb = x.or(xb);
+            }
+        }
+        Ok(BoundaryPoint { x: 0.5 * (a + b), y: yv, from, to })
+    }
+}
+
+/// Check an axis: a speed, or a config path that the config takes (at its first value).
+fn check_axis(root: &Table, a: &Axis) -> Result<()> {
+    if a.values.is_empty() {
+        return Err(Error::invalid(a.path.clone(), "the axis has no value"));
+    }
+    if let Some(v) = a.values.iter().find(|v| !v.is_finite()) {
+        return Err(Error::invalid(a.path.clone(), format!("{v} is not a finite value")));
+    }
+    match speed_unit(a) {
+        Some(_) if a.values.iter().any(|v| *v < 0.0) => Err(Error::invalid(a.path.clone(), "the speed must not be negative")),
+        Some(_) => Ok(()),
+        None => with(root, &a.path, a.values[0]).map(|_| ()),
+    }
+}
+
+/// The stationary state's verdict and margin over the grid `x × y` (module docs): `on_row(j,
+/// cells)` gets row `j` (`cells[i]` at `(x_i, y_j)`) in order and returns whether to go on;
+/// `speed` is the speed when neither axis is one (a bare number is `omega`'s unit).
+pub fn general_map(
+    root: &Table,
+    x: &Axis,
+    y: &Axis,
+    speed: Option<Speed>,
+    cancel: &(dyn Fn() -> bool + Sync),
+    on_row: &mut dyn FnMut(usize, &[GeneralCell]) -> bool,
+) -> Result<GeneralMapOutcome> {
+    general_map_traced(root, x, y, speed, false, cancel, &mut |j, cells, _| on_row(j, cells))
+}
+
+/// Where the verdict changes along `x` between two cells of a row: `x` located by bisection to
+/// [`BOUNDARY_RTOL`] relative, `y` the row's value.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct BoundaryPoint {
+    /// The boundary's `x`.
+    pub x: f64,
+    /// The row's `y`.
+    pub y: f64,
+    /// The verdict on the side of smaller `x` (`None`: no stationary state).
+    pub from: Option<Verdict>,
+    /// The verdict on the side of larger `x`.
+    pub to: Option<Verdict>,
+}
+
+/// Relative width in `x` to which [`general_map_traced`] bisects a verdict change: `|b − a| ≤
+/// 1e-9 max(|a|, |b|)`, as [`crate::analysis::speed_scan`] bisects the ends of stable ranges.
+pub const BOUNDARY_RTOL: f64 = 1e-9;
+
+/// [`general_map`], and with `trace` the stability boundary of each row: wherever the margin
+/// changes sign between neighbouring cells, or a stationary state appears or disappears, the
+/// change is located by bisection along `x` ([`BoundaryPoint`]; each midpoint solved from the
+/// closed form, else continued from the nearer side's state). `on_row(j, cells, points)`.
+#[allow(clippy::type_complexity)]
+pub fn general_map_traced(
+    root: &Table,
+    x: &Axis,
+    y: &Axis,
+    speed: Option<Speed>,
+    trace: bool,
+    cancel: &(dyn Fn() -> bool + Sync),
+    on_row: &mut dyn FnMut(usize, &[GeneralCell], &[BoundaryPoint]) -> bool,
+) -> Result<GeneralMapOutcome> {
+    check_axis(root, x)?;
+    check_axis(root, y)?;
+    let (sx, sy) = (speed_unit(x), speed_unit(y));
+    if sx.is_some() && sy.is_some() {
+        return Err(Error::invalid(y.path.clone(), "only one axis can be the speed"));
+    }
+    if sx.is_none() && sy.is_none() && speed.is_none() {
+        return Err(Error::invalid("omega", "required when neither axis is the speed (the speed at which to map)"));
+    }
+    let mut plane = Plane { root, x, y, speed, line: None };
+    // the rotors along the parameter axis, once, when the other axis is the speed
+    let other = match (sx, sy) {
+        (Some(_), None) => Some(y),
+        (None, Some(_)) => Some(x),
+        _ => None,
+    };
+    if let Some(a) = other {
+        let line: Vec<CellRotor> = a.values.par_iter().map(|&v| plane.build_at(&[(&a.path, v)])).collect::<Result<_>>()?;
+        plane.line = Some(line);
+    }
+    // the model's own refusals (real balls, a bad speed unit) before any row: at the first cell
+    let (c, w) = plane.cell(Some(0), 0, x.values[0], y.values[0])?;
+    c.rotor.field(w.max(f64::MIN_POSITIVE))?;
+    drop(c);
+    let mut out = GeneralMapOutcome { complete: true, ..Default::default() };
+    let block = (4 * rayon::current_num_threads()).max(1);
+    let mut j0 = 0;
+    while j0 < y.values.len() {
+        let j1 = (j0 + block).min(y.values.len());
+        let rows: Vec<Option<(Vec<GeneralCell>, Vec<BoundaryPoint>)>> =
+            (j0..j1).into_par_iter().map(|j| if cancel() { Ok(None) } else { plane.row(j, trace).map(Some) }).collect::<Result<_>>()?;
+        for (jj, row) in rows.into_iter().enumerate() {
+            let Some((row, points)) = row else {
+                out.complete = false;
+                return Ok(out);
+            };
+            for c in &row {
+                match c.verdict {
+                    None => out.none += 1,
+                    Some(_) if c.continued => out.continued += 1,
+                    Some(_) => out.closed_form += 1,
+                }
+                if c.kind == Some(Kind::PeriodicOrbit) {
+                    out.periodic += 1;
+                }
+            }
+            out.rows += 1;
+            if !on_row(j0 + jj, &row, &points) {
+                out.complete = j0 + jj + 1 == y.values.len();
+                return Ok(out);
+            }
+        }
+        j0 = j1;
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn planar_root() -> Table {
+        let mut root = config::parse(include_str!("../../../examples/planar.toml"), "planar").unwrap();
+        config::set_number(&mut root, "planar.s2", 0.0).unwrap();
+        root
+    }
+
+    fn collect(root: &Table, x: &Axis, y: &Axis, speed: Option<Speed>) -> Result<Vec<Vec<GeneralCell>>> {
+        let mut rows = vec![];
+        general_map(root, x, y, speed, &|| false, &mut |_, r| {
+            rows.push(r.to_vec());
+            true
+        })?;
+        Ok(rows)
+    }
+
+    #[test]
+    fn each_row_equals_the_speed_scan_of_the_general_route() {
+        // a second route to every cell: rotor_stability's speed scan on the rotor rebuilt with
+        // the row's c_psi; the same Newton from the same closed form, so the margins agree to
+        // round-off (1e-9 relative of the largest one: the solutions differ only by the order
+        // in which the grid is walked, which the closed-form start makes irrelevant)
+        let root = planar_root();
+        let wn = config::planar(&root).unwrap().rotor.natural_frequency();
+        let speeds: Vec<f64> = (1..=7).map(|i| 0.4 * wn * i as f64).collect();
+        let x = Axis { path: "omega".into(), values: speeds.clone() };
+        let y = Axis { path: "planar.c_psi".into(), values: vec![0.02, 0.3] };
+        let rows = collect(&root, &x, &y, None).unwrap();
+        for (j, &c) in y.values.iter().enumerate() {
+            let mut r = root.clone();
+            config::set_number(&mut r, "planar.c_psi", c).unwrap();
+            let rotor = Rotor::Planar(config::planar(&r).unwrap().rotor);
+            let scan = crate::rotor_stability::stability_over_speed(&rotor, &speeds).unwrap();
+            for (cell, p) in rows[j].iter().zip(&scan.points) {
+                assert_eq!(cell.verdict, p.verdict);
+                let a = p.abscissa.unwrap();
+                assert!((cell.margin - a).abs() <= 1e-9 * a.abs().max(1.0), "{} vs {a}", cell.margin);
+            }
+            // Jeffcott with balls: unstable below sqrt(k/M), and stable somewhere above
+            assert!(rows[j].iter().zip(&speeds).filter(|(_, w)| **w < wn).all(|(c, _)| c.verdict == Some(Verdict::Unstable)));
+        }
+        assert!(rows.iter().flatten().any(|c| c.verdict == Some(Verdict::Stable)));
+    }
+
+    #[test]
+    fn a_fixed_speed_map_over_two_keys_and_errors_naming_the_axis() {
+        let root = planar_root();
+        let x = Axis { path: "planar.c_psi".into(), values: vec![0.05, 0.1] };
+        let y = Axis { path: "planar.m3".into(), values: vec![0.02, 0.03, 0.04] };
+        let wn = config::planar(&root).unwrap().rotor.natural_frequency();
+        // m3 = 0.02 kg: the balls cannot cancel the unbalance (n m3 r = 0.0024 < m1 s1 = 0.003
+        // kg m), so there is no balanced state: no verdict and a NaN margin; with heavier
+        // balls, below the critical speed every cell is unstable
+        let slow = collect(&root, &x, &y, Some(Speed::omega(0.5 * wn))).unwrap();
+        assert!(slow[0].iter().all(|c| c.verdict.is_none() && c.margin.is_nan()), "{slow:?}");
+        assert!(slow[1..].iter().flatten().all(|c| c.verdict == Some(Verdict::Unstable)), "{slow:?}");
+        let e = collect(&root, &x, &y, None).unwrap_err().to_string();
+        assert!(e.starts_with("omega"), "{e}");
+        let bad = Axis { path: "planar.nope".into(), values: vec![1.0, 2.0] };
+        let e = collect(&root, &bad, &y, Some(Speed::omega(wn))).unwrap_err().to_string();
+        assert!(e.contains("planar.nope"), "{e}");
+        let neg = Axis { path: "planar.k".into(), values: vec![1e5, -1.0] };
+        let e = collect(&root, &neg, &Axis { path: "omega".into(), values: vec![wn] }, None).unwrap_err().to_string();
+        assert!(e.starts_with("planar.k"), "{e}");
+        // a speed in SI on a dimensionless spatial config is refused, naming the axis
+        let sp = config::parse(include_str!("../../../examples/spatial.toml"), "spatial").unwrap();
+        let rpm = Axis { path: "speed_rpm".into(), values: vec![100.0, 200.0] };
+        let m = Axis { path: "dimensionless.h_s".into(), values: vec![0.01, 0.02] };
+        if !config::spatial(&sp).unwrap().dimensional {
+            let e = collect(&sp, &rpm, &m, None).unwrap_err().to_string();
+            assert!(e.starts_with("speed_rpm"), "{e}");
+        }
+    }
+
+    #[test]
+    fn the_traced_boundary_is_the_speed_scans_range_end() {
+        // second route: rotor_stability's speed scan bisects the start of the stable range to
+        // 1e-9 relative in Ω, as the trace bisects along x: the two agree to 2e-9 relative
+        let root = planar_root();
+        let wn = config::planar(&root).unwrap().rotor.natural_frequency();
+        let speeds: Vec<f64> = (1..=6).map(|i| 0.5 * wn * i as f64).collect();
+        let x = Axis { path: "omega".into(), values: speeds.clone() };
+        let y = Axis { path: "planar.c_psi".into(), values: vec![0.1] };
+        let mut pts = vec![];
+        general_map_traced(&root, &x, &y, None, true, &|| false, &mut |_, _, p| {
+            pts.extend_from_slice(p);
+            true
+        })
+        .unwrap();
+        let rotor = Rotor::Planar(config::planar(&root).unwrap().rotor);
+        let scan = crate::rotor_stability::stability_over_speed(&rotor, &speeds).unwrap();
+        let ends: Vec<f64> = scan
+            .stable_ranges
+            .iter()
+            .flat_map(|r| [r.from, r.to].into_iter().zip([r.from_is_boundary, r.to_is_boundary]))
+            .filter(|e| e.1)
+            .map(|e| e.0)
+            .collect();
+        assert!(!pts.is_empty());
+        assert_eq!(pts.len(), ends.len(), "{pts:?} vs {ends:?}");
+        for (p, e) in pts.iter().zip(&ends) {
+            assert!((p.x - e).abs() <= 2e-9 * e, "{} vs {e}", p.x);
+            assert_eq!((p.from, p.to), (Some(Verdict::Unstable), Some(Verdict::Stable)));
+            // above the critical speed (Jeffcott with balls: stable only above sqrt(k/M))
+            assert!(p.x > wn);
+        }
+    }
+
+    #[test]
+    fn cancelling_stops_before_the_rows() {
+        let root = planar_root();
+        let x = Axis { path: "omega".into(), values: vec![100.0, 200.0] };
+        let y = Axis { path: "planar.c_psi".into(), values: vec![0.05, 0.1, 0.2] };
+        let out = general_map(&root, &x, &y, None, &|| true, &mut |_, _| panic!("no row is computed")).unwrap();
+        assert_eq!((out.rows, out.complete), (0, false));
+    }
+}
