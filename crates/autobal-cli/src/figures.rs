@@ -4,6 +4,7 @@
 use crate::linear::Comparison;
 use crate::num::RPM_PER_RAD_S;
 use crate::plot::{Plot, SecondAxis, Series, Shade, PALETTE};
+use autobal::spatial::campbell::{FixedCampbell, FixedPoint};
 use autobal::spatial::critical_speeds::critical_speeds;
 use autobal::spatial::params::{identical_support_coefficients, SpatialModel};
 use autobal::spatial::stability::{Campbell, Group, Whirl};
@@ -191,5 +192,149 @@ pub fn margin_plot(model: &SpatialModel, c: &Comparison) -> Plot {
         y_range: Some((lo - pad, hi + pad)),
         x2: u.second,
         ..Default::default()
+    }
+}
+
+/// Log-decrement classes of the fixed-axes Campbell diagram: (upper bound, colour, legend).
+const LOG_DEC_CLASSES: [(f64, &str, &str); 4] = [
+    (0.0, "#D62728", "δ < 0: unstable"),
+    (0.1, "#E69F00", "0 ≤ δ < 0.1: lightly damped"),
+    (0.5, "#009E73", "0.1 ≤ δ < 0.5"),
+    (f64::INFINITY, "#0072B2", "δ ≥ 0.5: well damped"),
+];
+
+/// Colour of a log decrement `δ` ([`LOG_DEC_CLASSES`]; grey where it is undefined, `f = 0`).
+pub fn log_dec_color(d: Option<f64>) -> &'static str {
+    match d {
+        Some(d) => LOG_DEC_CLASSES.iter().find(|c| d < c.0).map_or(LOG_DEC_CLASSES[3].1, |c| c.1),
+        None => "#999999",
+    }
+}
+
+/// The axes of the fixed-axes Campbell diagram: (speed factor and label, frequency factor and
+/// label): rpm and Hz for a dimensional model (`n = Ω ω0 · 30/π`, `f_Hz = f ω0 / 2π`), `Ω` and
+/// `f/ω0` otherwise.
+pub fn campbell_axes(model: &SpatialModel) -> ((f64, String), (f64, String)) {
+    match model.scale {
+        Some(sc) => (
+            (sc.omega0 * 30.0 / std::f64::consts::PI, "rotor speed n (rpm)".into()),
+            (sc.omega0 / (2.0 * std::f64::consts::PI), "natural frequency (Hz)".into()),
+        ),
+        None => ((1.0, "Ω = ω/ω0".into()), (1.0, "natural frequency / ω0".into())),
+    }
+}
+
+/// The Campbell diagram as engineers read it ([`autobal::spatial::campbell`]): one curve per
+/// mode of natural frequency `|f|` in fixed axes, forward whirl solid and backward dashed, each
+/// segment coloured by its log decrement `δ = −2π σ/|f|` (classes in the legend); the
+/// excitation lines `h Ω` dashed grey; the critical speeds (crossings with them) as points,
+/// each listed in the legend. Axes in rpm and Hz for a dimensional model ([`campbell_axes`]).
+pub fn campbell_fixed_plot(model: &SpatialModel, f: &FixedCampbell) -> Plot {
+    let ((kx, x_label), (ky, y_label)) = campbell_axes(model);
+    let mut series = vec![];
+    let w_max = f.omega.last().copied().unwrap_or(1.0);
+    let f_max = f.curves.iter().flat_map(|c| c.points.iter().map(|p| p.frequency)).fold(0.0, f64::max);
+    for (i, cv) in f.curves.iter().enumerate() {
+        let group = format!("mode {}", i + 1);
+        let p0 = &cv.points[0];
+        let fwd = cv.points.iter().filter(|p| p.whirl == Whirl::Forward).count();
+        let whirl = if 2 * fwd >= cv.points.len() { "forward" } else { "backward" };
+        let name = format!("mode {}: {whirl}, {} at {}", i + 1, fmt_freq(model, p0.frequency), fmt_speed(model, p0.omega));
+        // runs of one whirl direction and one colour; each run starts at the previous run's
+        // last point so that the curve has no gaps
+        let key = |p: &FixedPoint| (p.whirl, log_dec_color(p.log_decrement));
+        let mut start = 0;
+        let mut labelled = false;
+        for k in 1..=cv.points.len() {
+            if k < cv.points.len() && key(&cv.points[k]) == key(&cv.points[start]) {
+                continue;
+            }
+            let from = start.saturating_sub(1);
+            let pts: Vec<(f64, f64)> = cv.points[from..k].iter().map(|p| (kx * p.omega, ky * p.frequency)).collect();
+            let (wh, col) = key(&cv.points[start]);
+            let label = if labelled { String::new() } else { name.clone() };
+            labelled = true;
+            let se = Series::new(label, pts, col).group(group.clone());
+            series.push(if wh == Whirl::Backward { se.dashed() } else { se });
+            start = k;
+        }
+    }
+    let y_top = f_max.max(w_max) * 1.05;
+    for &h in &f.harmonics {
+        // the line h Ω up to the top of the frequency axis
+        let w_end = w_max.min(y_top / h as f64);
+        series.push(Series::new(format!("{h}× (excitation)"), vec![(0.0, 0.0), (kx * w_end, ky * h as f64 * w_end)], "#888888").dashed());
+    }
+    const LISTED: usize = 12;
+    for (j, cs) in f.critical_speeds.iter().enumerate() {
+        let whirl = if cs.whirl == Whirl::Backward { "backward" } else { "forward" };
+        let label = if j < LISTED {
+            format!("critical {}: {} (mode {}, {whirl}, {}×)", j + 1, fmt_speed(model, cs.omega), cs.curve + 1, cs.harmonic)
+        } else if j == LISTED {
+            format!("further critical speeds ({})", f.critical_speeds.len() - LISTED)
+        } else {
+            String::new()
+        };
+        let se = Series::new(label, vec![(kx * cs.omega, ky * cs.frequency)], "#000000").markers();
+        series.push(if j >= LISTED { se.group("further critical speeds") } else { se });
+    }
+    // the colour classes of the log decrement, as legend entries without points
+    for (_, col, text) in LOG_DEC_CLASSES {
+        if f.curves.iter().any(|c| c.points.iter().any(|p| log_dec_color(p.log_decrement) == col)) {
+            series.push(Series::new(format!("log dec {text}"), vec![], col));
+        }
+    }
+    Plot {
+        title: "Campbell diagram (fixed axes): natural frequencies, forward solid, backward dashed, coloured by log decrement".into(),
+        x_label,
+        y_label,
+        series,
+        x_range: Some((0.0, kx * w_max)),
+        y_range: Some((0.0, ky * y_top)),
+        ..Default::default()
+    }
+}
+
+/// A speed `Ω` as the figure's legend writes it: rpm for a dimensional model.
+fn fmt_speed(model: &SpatialModel, w: f64) -> String {
+    match model.scale {
+        Some(sc) => format!("{:.0} rpm", w * sc.omega0 * 30.0 / std::f64::consts::PI),
+        None => format!("Ω = {}", crate::num::fmt(w, 4)),
+    }
+}
+
+/// A frequency `f` (unit `ω0`) as the figure's legend writes it: Hz for a dimensional model.
+fn fmt_freq(model: &SpatialModel, f: f64) -> String {
+    match model.scale {
+        Some(sc) => format!("{} Hz", crate::num::fmt(f * sc.omega0 / (2.0 * std::f64::consts::PI), 4)),
+        None => format!("f = {}", crate::num::fmt(f, 4)),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use autobal::spatial::campbell::fixed_axes;
+    use autobal::spatial::linear_model::Balls;
+    use autobal::spatial::params::DimensionlessInput;
+    use autobal::spatial::stability::campbell;
+
+    #[test]
+    fn fixed_campbell_plot_has_one_legend_entry_per_mode_and_critical_speed() {
+        let m = SpatialModel::from_dimensionless(&DimensionlessInput::paper_000(0.8)).unwrap();
+        let omegas = linspace(0.01, 4.0, 200);
+        let c = campbell(&m, &omegas, Balls::Locked).unwrap();
+        let f = fixed_axes(&m, &c, Balls::Locked, &[1, 2]).unwrap();
+        let p = campbell_fixed_plot(&m, &f);
+        let labels: Vec<&str> = p.series.iter().map(|s| s.label.as_str()).filter(|l| !l.is_empty()).collect();
+        assert_eq!(labels.iter().filter(|l| l.starts_with("mode ")).count(), f.curves.len());
+        assert_eq!(labels.iter().filter(|l| l.starts_with("critical ")).count(), f.critical_speeds.len().min(12));
+        assert!(labels.contains(&"1× (excitation)") && labels.contains(&"2× (excitation)"));
+        // backward stretches are dashed, forward ones solid
+        assert!(p.series.iter().any(|s| s.dashed && s.group.is_some()) && p.series.iter().any(|s| !s.dashed && s.group.is_some()));
+        let svg = p.to_svg();
+        assert!(svg.contains("log dec"));
+        let plotly = p.to_plotly();
+        assert!(plotly.to_string().contains("mode 1:"));
     }
 }

@@ -2,10 +2,11 @@
 
 use crate::config::Config;
 use anyhow::Result;
+use autobal::spatial::campbell::{fixed_axes, FixedCampbell};
 use autobal::spatial::comparison::fmt_ranges_in;
 use autobal::spatial::linear_model::Balls;
-use autobal::spatial::stability::{campbell, campbell_stream, Campbell};
-use serde_json::Value;
+use autobal::spatial::stability::{campbell, campbell_stream, Campbell, Whirl};
+use serde_json::{json, Value};
 use std::fmt::Write;
 
 pub use autobal::spatial::comparison::{compare, Comparison};
@@ -229,6 +230,138 @@ pub fn campbell_table(cfg: &Config, c: &Campbell) -> String {
     s
 }
 
+/// Which figure `autobal campbell --svg PREFIX` draws: `Fixed`, one natural-frequency curve per
+/// mode in fixed axes (PREFIX.svg); `Components`, rotating axes and the two whirl components of
+/// each mode (PREFIX_rotating.svg and PREFIX_fixed.svg). (No docs on the variants: clap would
+/// switch the whole `--help` to its long layout.)
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum CampbellView {
+    Fixed,
+    Components,
+}
+
+/// The files `--svg PREFIX` writes for a view (a PREFIX ending in `.svg` is the fixed view's file).
+pub fn campbell_svg_paths(prefix: &std::path::Path, view: CampbellView) -> Vec<std::path::PathBuf> {
+    let p = prefix.display().to_string();
+    match view {
+        CampbellView::Fixed if p.ends_with(".svg") => vec![prefix.to_path_buf()],
+        CampbellView::Fixed => vec![format!("{p}.svg").into()],
+        CampbellView::Components => ["rotating", "fixed"].iter().map(|s| format!("{p}_{s}.svg").into()).collect(),
+    }
+}
+
+/// `--harmonics`: each between 1 and 20, sorted, without repeats.
+pub fn check_harmonics(h: &[u32]) -> Result<Vec<u32>> {
+    if h.is_empty() {
+        anyhow::bail!("--harmonics: give at least one harmonic, e.g. 1 or 1,2");
+    }
+    if let Some(bad) = h.iter().find(|&&x| !(1..=20).contains(&x)) {
+        anyhow::bail!("--harmonics: each must lie between 1 and 20, got {bad}");
+    }
+    let mut v = h.to_vec();
+    v.sort_unstable();
+    v.dedup();
+    Ok(v)
+}
+
+fn whirl_name(w: Whirl) -> &'static str {
+    match w {
+        Whirl::Forward => "forward",
+        Whirl::Backward => "backward",
+        Whirl::None => "none",
+    }
+}
+
+/// The fixed-axes view as text: the critical speeds (crossings with `h×Ω`) and, at the table's
+/// speeds, each mode's natural frequency, whirl and log decrement (`δ = −2π σ/|f|` per
+/// fixed-axes cycle).
+pub fn fixed_table(cfg: &Config, f: &FixedCampbell, at: &[f64]) -> String {
+    let mut s = String::new();
+    let w0 = cfg.model.scale.map(|sc| sc.omega0);
+    let hz = |x: f64| w0.map_or(String::new(), |w0| format!(" ({} Hz)", crate::num::fmt(x * w0 / (2.0 * std::f64::consts::PI), 5)));
+    let hs: Vec<String> = f.harmonics.iter().map(|h| format!("{h}×")).collect();
+    let _ = writeln!(s, "\ncritical speeds (a mode's natural frequency in fixed axes crosses {}):", hs.join(", "));
+    if f.critical_speeds.is_empty() {
+        let _ = writeln!(s, "  none up to {}", speed_text(cfg, f.omega.last().copied().unwrap_or(0.0)));
+    }
+    for (j, k) in f.critical_speeds.iter().enumerate() {
+        let _ = writeln!(
+            s,
+            "  {:>2}. {}  mode {}, {}, {}×, frequency {}{}",
+            j + 1,
+            speed_text(cfg, k.omega),
+            k.curve + 1,
+            whirl_name(k.whirl),
+            k.harmonic,
+            crate::num::fmt(k.frequency, 6),
+            hz(k.frequency)
+        );
+    }
+    let _ = writeln!(s, "\nmodes in fixed axes (one continuous curve per mode; log dec per fixed-axes cycle):");
+    for &w in at {
+        let Some(k) = f.omega.iter().position(|&x| x == w) else { continue };
+        let _ = writeln!(s, "speed {}", speed_text(cfg, w));
+        for (i, cv) in f.curves.iter().enumerate() {
+            let p = &cv.points[k];
+            let _ = writeln!(
+                s,
+                "  mode {:>2}: frequency {:>10}{}  {:<8}  log dec {}",
+                i + 1,
+                crate::num::fmt(p.frequency, 6),
+                hz(p.frequency),
+                whirl_name(p.whirl),
+                p.log_decrement.map_or("—".into(), |d| format!("{d:.4}"))
+            );
+        }
+    }
+    s
+}
+
+/// The fixed-axes view as JSON: `fixed_axes_modes` (per mode: its number, tracked line and per
+/// speed `omega`, `frequency`, `fixed_frequency`, `whirl`, `log_decrement`, ...; for a
+/// dimensional config `frequency_hz`, `fixed_frequency_hz`, `re_per_s`, `omega_rpm`) and `critical_speeds` (speed, mode
+/// number, whirl, harmonic; in rpm and Hz for a dimensional config).
+pub fn fixed_json(cfg: &Config, f: &FixedCampbell) -> Value {
+    let w0 = cfg.model.scale.map(|sc| sc.omega0);
+    let tau = 2.0 * std::f64::consts::PI;
+    let modes: Vec<Value> = f
+        .curves
+        .iter()
+        .enumerate()
+        .map(|(i, cv)| {
+            let pts: Vec<Value> = cv
+                .points
+                .iter()
+                .map(|p| {
+                    let mut v = json!(p);
+                    if let (Some(w0), Some(o)) = (w0, v.as_object_mut()) {
+                        o.insert("frequency_hz".into(), json!(p.frequency * w0 / tau));
+                        o.insert("fixed_frequency_hz".into(), json!(p.fixed_frequency * w0 / tau));
+                        o.insert("re_per_s".into(), json!(p.re * w0));
+                        o.insert("omega_rpm".into(), json!(p.omega * w0 * 60.0 / tau));
+                    }
+                    v
+                })
+                .collect();
+            json!({"mode": i + 1, "line": cv.line, "points": pts})
+        })
+        .collect();
+    let crit: Vec<Value> = f
+        .critical_speeds
+        .iter()
+        .map(|k| {
+            let mut v = json!({"omega": k.omega, "mode": k.curve + 1, "whirl": k.whirl, "harmonic": k.harmonic, "frequency": k.frequency});
+            if let (Some(w0), Some(o)) = (w0, v.as_object_mut()) {
+                o.insert("omega_rad_s".into(), json!(k.omega * w0));
+                o.insert("omega_rpm".into(), json!(k.omega * w0 * 60.0 / tau));
+                o.insert("frequency_hz".into(), json!(k.frequency * w0 / tau));
+            }
+            v
+        })
+        .collect();
+    json!({"harmonics": f.harmonics, "fixed_axes_modes": modes, "critical_speeds": crit})
+}
+
 pub fn campbell_of(cfg: &Config, w: f64, points: usize, balls: Balls) -> Result<Campbell> {
     Ok(campbell(&cfg.model, &campbell_grid(w, points), balls)?)
 }
@@ -240,7 +373,17 @@ pub const PLOT_SPEEDS: usize = 2000;
 /// speeds are computed and are joined on standard output at the end; the table keeps its five
 /// speeds and the figures a decimated copy (at most [`PLOT_SPEEDS`] speeds). Memory does not
 /// grow with `points`.
-pub fn run_campbell(cfg: &Config, w: f64, points: usize, balls: Balls, json: bool, svg: Option<&std::path::Path>) -> Result<()> {
+#[allow(clippy::too_many_arguments)]
+pub fn run_campbell(
+    cfg: &Config,
+    w: f64,
+    points: usize,
+    balls: Balls,
+    json: bool,
+    svg: Option<&std::path::Path>,
+    view: CampbellView,
+    harmonics: &[u32],
+) -> Result<()> {
     use anyhow::Context;
     use std::io::Write as _;
     let n = points.max(3);
@@ -296,7 +439,8 @@ pub fn run_campbell(cfg: &Config, w: f64, points: usize, balls: Balls, json: boo
                 }
             }
         }
-        if k % stride == 0 || k + 1 == n || stop {
+        // the figures' speeds include the table's (the fixed-axes table reads the curves there)
+        if k % stride == 0 || k + 1 == n || stop || table_at.contains(&k) {
             keep(&mut plot, speed(k), modes);
         }
         if (table_at.contains(&k) || stop) && table.omega.last() != Some(&speed(k)) {
@@ -312,11 +456,21 @@ pub fn run_campbell(cfg: &Config, w: f64, points: usize, balls: Balls, json: boo
         // table up to the last of them
         let stats = result?;
         let done = stats.speeds;
+        // the fixed-axes curves and the critical speeds, on the figures' speeds
+        let fixed = fixed_axes(&cfg.model, &plot, balls, harmonics)?;
+        autobal::limits::check_finite("campbell.critical_speeds", &fixed.critical_speeds)?;
         if let Some(prefix) = svg {
-            let (rot, fixed) = crate::figures::campbell_plots(&cfg.model, &plot);
-            for (suffix, p) in [("rotating", rot), ("fixed", fixed)] {
-                let path = std::path::PathBuf::from(format!("{}_{suffix}.svg", prefix.display()));
-                crate::outfile::write_atomic("--svg", &path, p.to_svg())?;
+            let paths = campbell_svg_paths(prefix, view);
+            match view {
+                CampbellView::Fixed => {
+                    crate::outfile::write_atomic("--svg", &paths[0], crate::figures::campbell_fixed_plot(&cfg.model, &fixed).to_svg())?;
+                }
+                CampbellView::Components => {
+                    let (rot, fx) = crate::figures::campbell_plots(&cfg.model, &plot);
+                    for (path, p) in paths.iter().zip([rot, fx]) {
+                        crate::outfile::write_atomic("--svg", path, p.to_svg())?;
+                    }
+                }
             }
         }
         let stdout = std::io::stdout();
@@ -346,9 +500,16 @@ pub fn run_campbell(cfg: &Config, w: f64, points: usize, balls: Balls, json: boo
                 std::io::copy(&mut r, &mut out)?;
                 write!(out, "\n]}}")?;
             }
-            writeln!(out, "\n],\n\"complete\": {}\n}}", stats.complete)?;
+            write!(out, "\n]")?;
+            if let Value::Object(o) = fixed_json(cfg, &fixed) {
+                for (key, v) in o {
+                    write!(out, ",\n\"{key}\": {}", serde_json::to_string(&v)?)?;
+                }
+            }
+            writeln!(out, ",\n\"complete\": {}\n}}", stats.complete)?;
         } else if done > 0 {
             write!(out, "{}", campbell_table(cfg, &table))?;
+            write!(out, "{}", fixed_table(cfg, &fixed, &table.omega))?;
         }
         out.flush()?;
         if !stats.complete {

@@ -146,9 +146,19 @@ enum Command {
         /// Number of speeds
         #[arg(long, default_value_t = 300)]
         points: usize,
-        /// Write PREFIX_rotating.svg and PREFIX_fixed.svg
+        /// Write the figure: PREFIX.svg (`--view fixed`) or PREFIX_rotating.svg and
+        /// PREFIX_fixed.svg (`--view components`)
         #[arg(long, value_name = "PREFIX")]
         svg: Option<PathBuf>,
+        /// Figure view: `fixed` (one natural-frequency curve per mode in fixed axes, forward
+        /// solid, backward dashed, coloured by log decrement, critical speeds marked) or
+        /// `components` (rotating axes, and the Ω + ν and Ω − ν components of each mode)
+        #[arg(long, value_enum, default_value = "fixed")]
+        view: linear::CampbellView,
+        /// Excitation harmonics h whose lines h×Ω are drawn and crossed for the critical
+        /// speeds, e.g. 1,2
+        #[arg(long, value_delimiter = ',', default_value = "1")]
+        harmonics: Vec<u32>,
     },
     /// Stability map over two parameters: margin heatmap with exact and necessary boundaries (SVG, PNG, CSV)
     Map {
@@ -298,7 +308,7 @@ fn run(cli: Cli) -> Result<()> {
             }
             emit(format, linear::stability_json(&cfg, &c, lin.balls.into()), linear::stability_table(&cfg, &c, lin.balls.into()))
         }
-        Command::Campbell { common, format, lin, points, svg } => {
+        Command::Campbell { common, format, lin, points, svg, view, harmonics } => {
             let cfg = config::load_analytic("campbell", common.config.as_deref(), &common.set)?;
             let w = linear::omega_max(&cfg, lin.omega_max.as_deref())?;
             if lin.omega_max.is_some() {
@@ -311,13 +321,14 @@ fn run(cli: Cli) -> Result<()> {
             if let Some(p) = &svg {
                 let mut o = outfile::Outputs::new();
                 o.inputs(common.config.as_deref());
-                for suffix in ["rotating", "fixed"] {
-                    o.output("--svg", &PathBuf::from(format!("{}_{suffix}.svg", p.display())));
+                for path in linear::campbell_svg_paths(p, view) {
+                    o.output("--svg", &path);
                 }
                 o.check()?;
             }
+            let harmonics = linear::check_harmonics(&harmonics)?;
             let _ = ctrlc::set_handler(|| map::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
-            linear::run_campbell(&cfg, w, points, lin.balls.into(), format == Format::Json, svg.as_deref())
+            linear::run_campbell(&cfg, w, points, lin.balls.into(), format == Format::Json, svg.as_deref(), view, &harmonics)
         }
         Command::Map { common, x, y, omega, balls, quantity, out, threads, boundary, route } => {
             run_map(common, x, y, omega, balls, quantity, out, threads, boundary, route)

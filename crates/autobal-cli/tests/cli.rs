@@ -412,7 +412,7 @@ fn campbell_and_map_write_their_files() {
     let dir = std::env::temp_dir().join(format!("autobal-lin-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let prefix = dir.join("cb");
-    let v = json(&["campbell", "--format", "json", "--points", "40", "--svg", prefix.to_str().unwrap()]);
+    let v = json(&["campbell", "--format", "json", "--points", "40", "--view", "components", "--svg", prefix.to_str().unwrap()]);
     assert_eq!(v["lines"].as_array().unwrap().len(), 12);
     assert!(dir.join("cb_fixed.svg").exists() && dir.join("cb_rotating.svg").exists());
     let stem = dir.join("map");
@@ -472,7 +472,8 @@ fn interrupted_campbell_writes_the_speeds_computed() {
     let dir = std::env::temp_dir().join(format!("autobal-campbell-int-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let prefix = dir.join("cb");
-    let (code, out, err) = interrupted_after(&["campbell", "--points", "10000000", "--format", "json", "--svg", prefix.to_str().unwrap()], 1500);
+    let (code, out, err) =
+        interrupted_after(&["campbell", "--points", "10000000", "--format", "json", "--view", "components", "--svg", prefix.to_str().unwrap()], 1500);
     assert_eq!(code, Some(2), "{err}");
     assert!(err.contains("error: interrupted") && err.contains("of 10000000 speeds computed"), "{err}");
     let v: serde_json::Value = serde_json::from_str(&out).expect("the JSON of the speeds computed");

@@ -138,7 +138,7 @@ fn the_readme_commands_run_as_printed() {
     // blocks this test no longer finds must not pass by running nothing
     assert!(ran.len() >= 6, "README.md: only {} commands found: {ran:?}", ran.len());
     // what the quick start says it writes
-    for f in ["washer_stability.svg", "washer_campbell_fixed.svg", "washer_runup.csv", "washer-report/index.html"] {
+    for f in ["washer_stability.svg", "washer_campbell.svg", "washer_runup.csv", "washer-report/index.html"] {
         assert!(dir.join(f).is_file(), "README.md: the quick start did not write {f}");
     }
     let _ = std::fs::remove_dir_all(&dir);

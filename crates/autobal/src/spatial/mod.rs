@@ -4,6 +4,7 @@
 //! stability.
 
 pub mod boundary;
+pub mod campbell;
 pub mod comparison;
 pub mod critical_speeds;
 pub mod dynamics;
