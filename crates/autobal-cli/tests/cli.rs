@@ -188,6 +188,7 @@ fn report_writes_index_and_figures() {
         "fig000_9b_sensitivity_vs_ball_mass",
         "fig003_3_signed_response",
         "campbell_fixed",
+        "campbell_modes",
         "stability_map_z_a",
         "balls_residual_vs_friction",
     ] {
