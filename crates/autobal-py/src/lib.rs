@@ -279,7 +279,15 @@ fn spatial_report(py: Python<'_>, command: &str, cfg: &PySpatial, omega_max: Opt
             let grid = autobal::reports::campbell_speeds(w, points);
             let cb = interruptible(py, move |_| autobal::spatial::stability::campbell(&model, &grid, b))?.map_err(err)?;
             autobal::limits::check_finite("campbell", &cb).map_err(err)?;
-            autobal::reports::campbell_of(&c.model, &cb)
+            // the fixed-axes curves and critical speeds, as the CLI adds them (on every speed: the
+            // CLI draws them on its figures' speeds, every speed up to 2000)
+            let fixed = autobal::spatial::campbell::fixed_axes(&c.model, &cb, b, &[1]).map_err(err)?;
+            autobal::limits::check_finite("campbell.critical_speeds", &fixed.critical_speeds).map_err(err)?;
+            let mut v = autobal::reports::campbell_of(&c.model, &cb);
+            if let (Some(o), serde_json::Value::Object(extra)) = (v.as_object_mut(), autobal::reports::campbell_fixed(&c.model, &fixed)) {
+                o.extend(extra);
+            }
+            v
         }
         o => return Err(PyValueError::new_err(format!("command: unknown analytic command \"{o}\" (inertia, critical, ranges, stability, campbell)"))),
     };

@@ -589,3 +589,48 @@ pub fn campbell_speeds(omega_max: f64, points: usize) -> Vec<f64> {
     let n = points.max(3);
     (0..n).map(|i| omega_max * (i as f64 + 0.5) / n as f64).collect()
 }
+
+/// The fixed-axes Campbell view ([`crate::spatial::campbell::fixed_axes`]) as JSON, as `autobal campbell --format json` prints it beside the tracked lines: `fixed_axes_modes` (per mode: its number, tracked line and per
+/// speed `omega`, `frequency`, `fixed_frequency`, `whirl`, `log_decrement`, ...; for a
+/// dimensional config `frequency_hz`, `fixed_frequency_hz`, `re_per_s`, `omega_rpm`) and `critical_speeds` (speed, mode
+/// number, whirl, harmonic; in rpm and Hz for a dimensional config).
+pub fn campbell_fixed(model: &SpatialModel, f: &crate::spatial::campbell::FixedCampbell) -> Value {
+    let w0 = model.scale.map(|sc| sc.omega0);
+    let tau = 2.0 * std::f64::consts::PI;
+    let modes: Vec<Value> = f
+        .curves
+        .iter()
+        .enumerate()
+        .map(|(i, cv)| {
+            let pts: Vec<Value> = cv
+                .points
+                .iter()
+                .map(|p| {
+                    let mut v = json!(p);
+                    if let (Some(w0), Some(o)) = (w0, v.as_object_mut()) {
+                        o.insert("frequency_hz".into(), json!(p.frequency * w0 / tau));
+                        o.insert("fixed_frequency_hz".into(), json!(p.fixed_frequency * w0 / tau));
+                        o.insert("re_per_s".into(), json!(p.re * w0));
+                        o.insert("omega_rpm".into(), json!(p.omega * w0 * 60.0 / tau));
+                    }
+                    v
+                })
+                .collect();
+            json!({"mode": i + 1, "line": cv.line, "points": pts})
+        })
+        .collect();
+    let crit: Vec<Value> = f
+        .critical_speeds
+        .iter()
+        .map(|k| {
+            let mut v = json!({"omega": k.omega, "mode": k.curve + 1, "whirl": k.whirl, "harmonic": k.harmonic, "frequency": k.frequency});
+            if let (Some(w0), Some(o)) = (w0, v.as_object_mut()) {
+                o.insert("omega_rad_s".into(), json!(k.omega * w0));
+                o.insert("omega_rpm".into(), json!(k.omega * w0 * 60.0 / tau));
+                o.insert("frequency_hz".into(), json!(k.frequency * w0 / tau));
+            }
+            v
+        })
+        .collect();
+    json!({"harmonics": f.harmonics, "fixed_axes_modes": modes, "critical_speeds": crit})
+}
