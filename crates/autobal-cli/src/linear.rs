@@ -6,7 +6,7 @@ use autobal::spatial::campbell::{fixed_axes, FixedCampbell};
 use autobal::spatial::comparison::fmt_ranges_in;
 use autobal::spatial::linear_model::Balls;
 use autobal::spatial::stability::{campbell, campbell_stream, Campbell, Whirl};
-use serde_json::{json, Value};
+use serde_json::Value;
 use std::fmt::Write;
 
 pub use autobal::spatial::comparison::{compare, Comparison};
