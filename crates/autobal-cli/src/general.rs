@@ -139,8 +139,15 @@ pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64) -> String {
         ));
     }
     let missing = r.points.iter().filter(|p| p.verdict.is_none()).count();
-    if r.stable_ranges.is_empty() {
-        s.push_str(&format!("stable: nowhere in (0, {}]\n", speed_text(g, omega_max)));
+    let solved = r.points.len() - missing;
+    if r.stable_ranges.is_empty() && solved == 0 {
+        s.push_str(&format!("no verdict: no stationary state was found at any of the {} speeds in (0, {}]\n", r.points.len(), speed_text(g, omega_max)));
+    } else if r.stable_ranges.is_empty() {
+        s.push_str(&format!(
+            "stable: nowhere among the {solved} of {} speeds in (0, {}] where a stationary state was found\n",
+            r.points.len(),
+            speed_text(g, omega_max)
+        ));
     } else {
         for st in &r.stable_ranges {
             let to = if st.to_is_boundary { speed_text(g, st.to) } else { format!("{} (end of the axis)", speed_text(g, st.to)) };

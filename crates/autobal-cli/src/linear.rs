@@ -98,6 +98,9 @@ pub fn stability_table(cfg: &Config, c: &Comparison, balls: Balls) -> String {
             autobal::reports::operating_of(&library(cfg), balls).expect("an operating speed")
         }
     });
+    if let Some(w) = autobal::reports::no_balanced_state_warning(&cfg.model) {
+        let _ = writeln!(s, "{w}");
+    }
     s.push_str(&operating_lines(cfg, op));
     let _ = writeln!(
         s,
@@ -124,7 +127,19 @@ pub fn stability_table(cfg: &Config, c: &Comparison, balls: Balls) -> String {
     }
     let worst = c.exact.max_real_part.iter().map(|x| x.1).fold(f64::NEG_INFINITY, f64::max);
     let best = c.exact.max_real_part.iter().map(|x| x.1).fold(f64::INFINITY, f64::min);
-    let _ = writeln!(s, "  max Re λ over the grid: from {best:.4e} to {worst:.4e}");
+    match cfg.model.scale {
+        Some(sc) => {
+            let _ = writeln!(
+                s,
+                "  max Re λ over the grid: from {:.4e} to {:.4e} 1/s ({best:.4e} to {worst:.4e} in units of ω0)",
+                best * sc.omega0,
+                worst * sc.omega0
+            );
+        }
+        None => {
+            let _ = writeln!(s, "  max Re λ over the grid: from {best:.4e} to {worst:.4e} (in units of ω0)");
+        }
+    }
     s
 }
 

@@ -164,9 +164,9 @@ enum Command {
     Map {
         #[command(flatten)]
         common: Common,
-        /// Horizontal axis, KEY=LO:HI:N with KEY a speed (`omega`: dimensionless Ω; for a
-        /// dimensional config `speed_rpm`, `speed` in rad/s, `speed_hz`) or a config field (e.g.
-        /// dimensionless.l_left, balancer.ball_mass)
+        /// Horizontal axis, KEY=LO:HI:N with KEY a speed (`omega`: dimensionless Ω for a spatial
+        /// config, rad/s for the planar rotor; for a dimensional config `speed_rpm`, `speed` in
+        /// rad/s, `speed_hz`) or a config field (e.g. dimensionless.l_left, balancer.ball_mass)
         #[arg(long, value_name = "KEY=LO:HI:N")]
         x: String,
         /// Vertical axis, KEY=LO:HI:N
@@ -597,10 +597,11 @@ fn run_spatial(root: &toml::Table, source: &str, config: Option<&std::path::Path
         let (w_end, _) = sim.drive.kinematics(sim.settings.t_end);
         let unit = if sim.config.dimensional { " rad/s" } else { " (Ω)" };
         output::note(&format!(
-            "note: the config has no [drive]: running up from rest at constant acceleration through the critical speeds to {}{unit} in {} revolutions (t_end = {}); give [drive] to choose the run",
+            "note: the config has no [drive]: running up from rest at constant acceleration through the critical speeds to {}{unit} in {} revolutions (t_end = {}{}); give [drive] to choose the run",
             autobal::error::fmt_num(w_end),
             autobal::config::DEFAULT_RUN_UP_REVOLUTIONS,
-            autobal::error::fmt_num(sim.settings.t_end)
+            autobal::error::fmt_num(sim.settings.t_end),
+            if sim.config.dimensional { " s" } else { " τ" }
         ));
     }
     if let Some(d) = dt {

@@ -372,7 +372,24 @@ pub fn stability_of(cfg: &SpatialConfig, c: &Comparison, balls: Balls) -> Value 
         }
     });
     v["operating_speed"] = operating_json(op);
+    // a balancer that cannot cancel the unbalance has no balanced state: the verdicts above are
+    // about the linear model's state, not about balancing (said, not left to be inferred)
+    let capacity = cfg.model.masses.as_ref().map(|m| m.capacity());
+    v["balancer_capacity"] = json!(capacity);
+    v["balanced_state_exists"] = json!(capacity.is_none_or(|e| e >= 1.0));
     v
+}
+
+/// The line a report of the exact stability prints when the balancer's capacity `E < 1`: no
+/// balanced state exists, so the 12-state verdict is not a verdict on balancing.
+pub fn no_balanced_state_warning(model: &SpatialModel) -> Option<String> {
+    let e = model.masses.as_ref()?.capacity();
+    (e < 1.0).then(|| {
+        format!(
+            "warning: no balanced state exists: the balancer's capacity E = {} < 1 (the balls cannot cancel the unbalance; at best they rest together opposite it, partially balanced). The verdicts below are those of the linearised equations at the balanced configuration the balls cannot reach: not a verdict on balancing",
+            crate::error::fmt_num((e * 1e4).round() / 1e4)
+        )
+    })
 }
 
 /// `autobal stability`: exact stability ranges against 003's necessary ranges; speeds in `Ω`
