@@ -826,3 +826,18 @@ fn dimensional_analytic_outputs_give_si_speeds() {
     let d = json(&["ranges", "--format", "json"]);
     assert!(d["antiresonance_speed_rpm"].is_null() && d["autobalancing_ranges_rpm"].is_null(), "a dimensionless config has no SI speeds");
 }
+
+#[test]
+fn regression_stability_gave_a_verdict_on_a_balanced_state_that_cannot_exist() {
+    // capacity E = 0.7955 < 1 (a new user's washer with lighter balls): the balls cannot cancel
+    // the unbalance, so stability must say that no balanced state exists, in the table and JSON
+    let washer = examples("washing_machine.toml");
+    let (code, out, err) = autobal(&["stability", "--config", &washer, "--set", "balancer.ball_mass=0.07"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("warning: no balanced state exists: the balancer's capacity E = 0.7955 < 1"), "{out}");
+    let v = json(&["stability", "--format", "json", "--config", &washer, "--set", "balancer.ball_mass=0.07"]);
+    assert_eq!(v["balanced_state_exists"], false);
+    let v = json(&["stability", "--format", "json", "--config", &washer]);
+    assert_eq!(v["balanced_state_exists"], true);
+    assert!(v["balancer_capacity"].as_f64().unwrap() > 1.0);
+}
