@@ -122,7 +122,7 @@ enum Command {
         #[command(flatten)]
         lin: LinearArgs,
         /// Grid points along Ω before the range ends are refined by bisection (default 2000 on
-        /// the closed-form route, 200 on the general route)
+        /// the closed-form route, 200 on the general route, 50 where it shoots periodic orbits)
         #[arg(long)]
         samples: Option<usize>,
         /// Also write the margin plot as SVG to this file
