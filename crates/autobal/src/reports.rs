@@ -557,50 +557,6 @@ pub fn basins(results: &[Option<crate::spatial::dynamics::Summary>], wall_time_s
     })
 }
 
-/// One run of `autobal sweep` as its JSON lists it: the point's index and values (`x`, `y`:
-/// the first two), the summary and the wall time.
-pub fn sweep_run(point: usize, values: &[f64], r: &crate::sweep::PointResult) -> Value {
-    json!({
-        "point": point,
-        "values": values,
-        "x": values.first(),
-        "y": values.get(1),
-        "summary": r.summary,
-        "wall_time_s": r.wall_s,
-    })
-}
-
-/// Where a sweep's runs came from: the grid, the problem and (for a shard) which part.
-pub struct SweepInfo<'a> {
-    /// The problem every point changes.
-    pub problem: &'a PlanarProblem,
-    /// The grid.
-    pub grid: &'a crate::sweep::Grid,
-    /// `(k, n)`, 1-based, for shard `k` of `n`.
-    pub shard: Option<(usize, usize)>,
-    /// The points run.
-    pub range: std::ops::Range<usize>,
-    /// Whether every point of `range` was run.
-    pub complete: bool,
-}
-
-/// `autobal sweep`: the grid, the problem, and the runs ([`sweep_run`]) in order.
-pub fn sweep(info: &SweepInfo, runs: Vec<Value>) -> Value {
-    let keys = info.grid.paths();
-    json!({
-        "paths": keys,
-        "x_key": keys[0],
-        "y_key": keys.get(1),
-        "grid": info.grid.axes.iter().map(|a| json!({ "path": a.path, "values": a.values })).collect::<Vec<_>>(),
-        "points": info.grid.len(),
-        "shard": info.shard.map(|(k, n)| [k, n]),
-        "range": [info.range.start, info.range.end],
-        "complete": info.complete,
-        "problem": info.problem,
-        "runs": runs,
-    })
-}
-
 /// The speeds of `autobal campbell`: `points` cell centres over `(0, omega_max)`.
 pub fn campbell_speeds(omega_max: f64, points: usize) -> Vec<f64> {
     let n = points.max(3);

@@ -476,7 +476,7 @@ impl SpatialSweep {
 }
 
 /// One run as a sweep's JSON lists it: the point's index and values (`x`, `y`: the first
-/// two), the summary and the wall time (as [`crate::reports::sweep_run`], for either rotor).
+/// two), the summary and the wall time, for either rotor.
 pub fn run_json<S: serde::Serialize>(point: usize, values: &[f64], r: &PointResult<S>) -> serde_json::Value {
     serde_json::json!({
         "point": point,
@@ -488,7 +488,7 @@ pub fn run_json<S: serde::Serialize>(point: usize, values: &[f64], r: &PointResu
     })
 }
 
-/// A sweep's JSON (as [`crate::reports::sweep`], for either rotor): the paths, the grid, which
+/// A sweep's JSON, for either rotor: the paths, the grid, which
 /// part (`shard`, 1-based `(k, n)`, and `range`), whether it is complete, the base `problem`
 /// ([`SpatialSweep::to_json`], or the [`PlanarProblem`] as JSON) and the runs in order
 /// ([`run_json`]).
