@@ -14,10 +14,11 @@
 //! assert_eq!(stability(&f, &s).unwrap().verdict, Verdict::Stable);
 //! ```
 
-use super::{DenseLu, LinearRotor};
+use super::LinearRotor;
 use crate::analysis::VectorField;
 use crate::error::{finite, Error, Result};
 use crate::ode::dual::{Dual, Real};
+use crate::ode::lu::Lu;
 use num_complex::Complex64 as C;
 use std::f64::consts::PI;
 
@@ -292,7 +293,7 @@ impl LinearRotorField {
         let nc = self.coords();
         let mut r = vec![0.0; nc];
         self.residual::<f64>(&mats, t, x, &vec![0.0; nc], &mut r);
-        let lu = DenseLu::new(self.mass_matrix(&mats, t, x), nc)?;
+        let lu = Lu::factored(self.mass_matrix(&mats, t, x), nc)?;
         lu.solve(&mut r);
         Some(r)
     }
@@ -392,7 +393,7 @@ impl LinearRotorField {
         let p = if f.iter().all(|v| *v == 0.0) {
             vec![0.0; n]
         } else {
-            let lu = DenseLu::new(a, n)?;
+            let lu = Lu::factored(a, n)?;
             let mut p = f;
             lu.solve(&mut p);
             p
@@ -453,7 +454,7 @@ impl VectorField for LinearRotorField {
         for i in 0..nc {
             jac[i * dim + nc + i] = 1.0;
         }
-        let Some(lu) = DenseLu::new(self.mass_matrix(&mats, t, x), nc) else {
+        let Some(lu) = Lu::factored(self.mass_matrix(&mats, t, x), nc) else {
             jac[nc * dim..].iter_mut().for_each(|v| *v = f64::NAN);
             return;
         };

@@ -14,6 +14,14 @@ impl Lu {
         Lu { n, a: vec![0.0; n * n], piv: vec![0; n] }
     }
 
+    /// The factorisation of the row-major `n × n` matrix `a`; `None` when a pivot is exactly
+    /// zero or not finite (singular).
+    pub(crate) fn factored(a: Vec<f64>, n: usize) -> Option<Self> {
+        debug_assert_eq!(a.len(), n * n);
+        let mut lu = Lu { n, a, piv: vec![0; n] };
+        lu.factor().then_some(lu)
+    }
+
     /// The matrix to factor (row-major), to be filled before [`Lu::factor`].
     pub(crate) fn matrix_mut(&mut self) -> &mut [f64] {
         &mut self.a

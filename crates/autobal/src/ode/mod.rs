@@ -62,7 +62,7 @@ pub mod dop853;
 pub mod dop853_tableau;
 pub mod dual;
 mod events;
-mod lu;
+pub(crate) mod lu;
 pub mod rosenbrock;
 mod solver;
 

@@ -38,6 +38,7 @@ use super::{Drive, PlanarRotor};
 use crate::analysis::VectorField;
 use crate::error::{finite, Error, Result};
 use crate::ode::arrow::{Arrow, ArrowLinearization, ArrowSystem};
+use crate::ode::lu::Lu;
 use crate::ode::System;
 use num_complex::Complex64 as C;
 
@@ -189,8 +190,13 @@ impl VectorField for PlanarField {
         // M X = [G_q | G_v] for the reduced columns
         let m = lin.mass.to_dense();
         let (gq, gv) = (lin.g_q.to_dense(), lin.g_v.to_dense());
-        let lu = DenseLu::new(m, nc);
         jac.iter_mut().for_each(|v| *v = 0.0);
+        // the mass matrix is symmetric positive definite; were it singular, the rows of the
+        // accelerations are not finite, as the right-hand side's would be
+        let Some(lu) = Lu::factored(m, nc) else {
+            jac[nr * n..].iter_mut().for_each(|v| *v = f64::NAN);
+            return;
+        };
         for i in 0..nr {
             jac[i * n + nr + i] = 1.0;
         }
@@ -256,54 +262,5 @@ impl VectorField for PlanarField {
                 }
             })
             .collect()
-    }
-}
-
-/// LU with partial pivoting of a dense `n × n` matrix (the mass matrix; symmetric positive
-/// definite, so the pivoting is a formality).
-struct DenseLu {
-    a: Vec<f64>,
-    perm: Vec<usize>,
-    n: usize,
-}
-
-impl DenseLu {
-    fn new(mut a: Vec<f64>, n: usize) -> Self {
-        let mut perm: Vec<usize> = (0..n).collect();
-        for c in 0..n {
-            let p = (c..n).max_by(|&i, &j| a[i * n + c].abs().total_cmp(&a[j * n + c].abs())).unwrap_or(c);
-            if p != c {
-                for k in 0..n {
-                    a.swap(p * n + k, c * n + k);
-                }
-                perm.swap(p, c);
-            }
-            let piv = a[c * n + c];
-            for r in c + 1..n {
-                let f = a[r * n + c] / piv;
-                a[r * n + c] = f;
-                for k in c + 1..n {
-                    a[r * n + k] -= f * a[c * n + k];
-                }
-            }
-        }
-        DenseLu { a, perm, n }
-    }
-
-    fn solve(&self, b: &mut [f64]) {
-        let n = self.n;
-        let mut x: Vec<f64> = self.perm.iter().map(|&p| b[p]).collect();
-        for r in 0..n {
-            for k in 0..r {
-                x[r] -= self.a[r * n + k] * x[k];
-            }
-        }
-        for r in (0..n).rev() {
-            for k in r + 1..n {
-                x[r] -= self.a[r * n + k] * x[k];
-            }
-            x[r] /= self.a[r * n + r];
-        }
-        b.copy_from_slice(&x);
     }
 }
