@@ -5,7 +5,7 @@
 //! Every outcome must be `Ok` with every reported number finite, or an error whose message
 //! begins with a real config key (or table, or option) — never a panic, never a hang. The
 //! number of cases per property is fixed (so `cargo test` runs them in bounded time, ~10 s);
-//! `PROPTEST_CASES=20000 cargo test -p autobal-cli fuzz` runs a longer campaign. Failures are
+//! `PROPTEST_CASES=20000 cargo test -p autobal-commands fuzz` runs a longer campaign. Failures are
 //! shrunk to a minimal input and printed; a case that fails should become a named regression
 //! test in `tests/robustness.rs`.
 

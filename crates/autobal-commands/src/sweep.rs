@@ -3,7 +3,7 @@
 //! they arrive and prints the table), sharded for batch systems and merged back.
 
 use crate::config;
-use crate::{emit, Format};
+use crate::output::{emit, Format};
 use anyhow::{anyhow, bail, Context, Result};
 use autobal::planar::problem::PlanarProblem;
 use autobal::sweep::{definition_checksum, shard, simulate_grid, Axis, Grid, SpatialSweep, SweepModel, SweepSummary, SPATIAL_SUMMARY_COLUMNS, SUMMARY_COLUMNS};

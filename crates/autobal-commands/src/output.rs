@@ -8,6 +8,22 @@ use autobal::spatial::sensitivity::sensitivity;
 use serde_json::Value;
 use std::fmt::Write;
 
+/// How a command's result is printed: the text table, or its JSON (the same JSON as Python's
+/// `autobal.run`).
+#[derive(Clone, Copy, Debug, clap::ValueEnum, PartialEq, Eq)]
+pub enum Format {
+    Table,
+    Json,
+}
+
+/// Prints a command's result on stdout in the chosen format.
+pub fn emit(format: Format, json: Value, table: String) -> anyhow::Result<()> {
+    match format {
+        Format::Json => print(&format!("{}\n", serde_json::to_string_pretty(&json)?)),
+        Format::Table => print(&table),
+    }
+}
+
 pub use autobal::reports::scale_ranges;
 pub use autobal::spatial::comparison::fmt_ranges;
 

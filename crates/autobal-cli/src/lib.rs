@@ -1,0 +1,683 @@
+//! `autobal`: the command-line front end. Parses the arguments and hands each subcommand to
+//! `autobal-commands`, which reads the config, runs the library's analyses and writes tables,
+//! JSON, figures and the HTML report.
+
+use autobal_commands::{config, figures, general, linear, map, outfile, output, parquet, report, sim, spatial_sim, sweep};
+
+use anyhow::Result;
+use autobal_commands::output::{emit, Format};
+use clap::{Args, Parser, Subcommand, ValueEnum};
+use std::path::PathBuf;
+
+#[derive(Parser)]
+#[command(name = "autobal", version, about = "Rotors with automatic ball balancers: inertia, critical speeds, autobalancing ranges, report")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Args, Clone)]
+struct Common {
+    /// Config file (TOML); default: the embedded example (examples/default.toml)
+    #[arg(long, short, global = true)]
+    config: Option<PathBuf>,
+    /// Override a config field, e.g. --set dimensionless.l_left=1.2 (repeatable)
+    #[arg(long = "set", value_name = "KEY=VALUE", global = true)]
+    set: Vec<String>,
+}
+
+#[derive(Args, Clone)]
+struct LinearArgs {
+    /// Upper end of the speed axis: a speed with its unit (1500rpm, "157 rad/s", 25Hz) for a
+    /// dimensional config, or a bare number, the dimensionless Ω; default: [analysis] omega_max,
+    /// else automatic (1.3 × the highest critical speed, and 1.25 × the top of
+    /// [analysis] operating_speed)
+    #[arg(long, allow_negative_numbers = true, value_name = "SPEED")]
+    omega_max: Option<String>,
+    /// Balls free (12 states) or locked at balance (8 states, the bare anisotropic rotor)
+    #[arg(long, value_enum, default_value = "free")]
+    balls: BallsArg,
+}
+
+#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
+enum BallsArg {
+    Free,
+    Locked,
+}
+
+impl From<BallsArg> for autobal::spatial::linear_model::Balls {
+    fn from(b: BallsArg) -> Self {
+        match b {
+            BallsArg::Free => autobal::spatial::linear_model::Balls::Free,
+            BallsArg::Locked => autobal::spatial::linear_model::Balls::Locked,
+        }
+    }
+}
+
+#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
+enum RouteArg {
+    Auto,
+    General,
+}
+
+#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
+enum QuantityArg {
+    Margin,
+    Verdict,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Mass-inertia properties and anisotropy of the composite rotor (000, eqs (4), (5), (17))
+    Inertia {
+        #[command(flatten)]
+        common: Common,
+        /// Output on standard output: a table to read or JSON
+        #[arg(long, value_enum, default_value = "table")]
+        format: Format,
+    },
+    /// Critical speeds (000, eq (16)), sensitivity criterion and autobalancing ranges
+    Critical {
+        #[command(flatten)]
+        common: Common,
+        /// Output on standard output: a table to read or JSON
+        #[arg(long, value_enum, default_value = "table")]
+        format: Format,
+    },
+    /// Speed ranges where autobalancing is possible (003, eqs (1)-(3))
+    Ranges {
+        #[command(flatten)]
+        common: Common,
+        /// Output on standard output: a table to read or JSON
+        #[arg(long, value_enum, default_value = "table")]
+        format: Format,
+    },
+    /// Exact linear stability of the balanced state (eigenvalues of 000 eq (6)) vs 003's necessary ranges
+    Stability {
+        #[command(flatten)]
+        common: Common,
+        /// Output on standard output: a table to read or JSON
+        #[arg(long, value_enum, default_value = "table")]
+        format: Format,
+        #[command(flatten)]
+        lin: LinearArgs,
+        /// Grid points along Ω before the range ends are refined by bisection (default 2000 on
+        /// the closed-form route, 200 on the general route, 50 where it shoots periodic orbits)
+        #[arg(long)]
+        samples: Option<usize>,
+        /// Also write the margin plot as SVG to this file
+        #[arg(long)]
+        svg: Option<PathBuf>,
+        /// `auto`: paper 000's 12-state model (closed form) where it represents the config, else
+        /// the general route (the nonlinear equations: planar rotor, two planes, couple,
+        /// direction-dependent supports, gravity); `general`: the general route always
+        #[arg(long, value_enum, default_value = "auto")]
+        route: RouteArg,
+    },
+    /// Campbell diagram: eigenvalues along Ω, tracked, with whirl direction and dominant motion
+    Campbell {
+        #[command(flatten)]
+        common: Common,
+        /// Output on standard output: a table to read or JSON
+        #[arg(long, value_enum, default_value = "table")]
+        format: Format,
+        #[command(flatten)]
+        lin: LinearArgs,
+        /// Number of speeds
+        #[arg(long, default_value_t = 300)]
+        points: usize,
+        /// Write the figure: PREFIX.svg (`--view fixed`) or PREFIX_rotating.svg and
+        /// PREFIX_fixed.svg (`--view components`)
+        #[arg(long, value_name = "PREFIX")]
+        svg: Option<PathBuf>,
+        /// Figure view: `fixed` (one natural-frequency curve per mode in fixed axes, forward
+        /// solid, backward dashed, coloured by log decrement, critical speeds marked) or
+        /// `components` (rotating axes, and the Ω + ν and Ω − ν components of each mode)
+        #[arg(long, value_enum, default_value = "fixed")]
+        view: linear::CampbellView,
+        /// Excitation harmonics h whose lines h×Ω are drawn and crossed for the critical
+        /// speeds, e.g. 1,2
+        #[arg(long, value_delimiter = ',', default_value = "1")]
+        harmonics: Vec<u32>,
+    },
+    /// Stability map over two parameters: margin heatmap with exact and necessary boundaries (SVG, PNG, CSV)
+    Map {
+        #[command(flatten)]
+        common: Common,
+        /// Horizontal axis, KEY=LO:HI:N with KEY a speed (`omega`: dimensionless Ω for a spatial
+        /// config, rad/s for the planar rotor; for a dimensional config `speed_rpm`, `speed` in
+        /// rad/s, `speed_hz`) or a config field (e.g. dimensionless.l_left, balancer.ball_mass)
+        #[arg(long, value_name = "KEY=LO:HI:N")]
+        x: String,
+        /// Vertical axis, KEY=LO:HI:N
+        #[arg(long, value_name = "KEY=LO:HI:N")]
+        y: String,
+        /// The speed when neither axis is a speed: 1400rpm, "147 rad/s", 23Hz, or a bare number Ω
+        #[arg(long, allow_negative_numbers = true, value_name = "SPEED")]
+        omega: Option<String>,
+        /// Balls free (12 states) or locked (8 states)
+        #[arg(long, value_enum, default_value = "free")]
+        balls: BallsArg,
+        /// `margin`: max Re λ from the eigenvalues; `verdict`: Routh–Hurwitz only (faster; the
+        /// CSV's max_real_part column is then empty)
+        #[arg(long, value_enum, default_value = "margin")]
+        quantity: QuantityArg,
+        /// Output stem: writes STEM.csv, STEM.svg, STEM.png (a folder, `DIR/`: DIR/stability-map.*)
+        #[arg(long, short, default_value = "stability-map")]
+        out: PathBuf,
+        /// Worker threads (default: all cores)
+        #[arg(long)]
+        threads: Option<usize>,
+        /// Also trace the stability boundary as curves (Hopf and fold continuation), draw it on
+        /// the figures and write STEM_boundary.csv
+        #[arg(long)]
+        boundary: bool,
+        /// `auto`: paper 000's 12-state model where it represents the config, else the general
+        /// route (the stationary state of the nonlinear equations: planar rotor, two planes,
+        /// couple, direction-dependent supports, gravity); `general`: the general route always
+        #[arg(long, value_enum, default_value = "auto")]
+        route: RouteArg,
+    },
+    /// Simulate in time: the planar rotor of paper 004 ([planar]) or the spatial rotor of 000/003 (the analytic commands' config plus [drive])
+    Simulate {
+        /// Config file with [planar] or the spatial rotor's tables, plus [drive], [integration]; default: the embedded examples/planar.toml
+        #[arg(long, short)]
+        config: Option<PathBuf>,
+        /// Override a config field, e.g. --set drive.b=-2.5 (repeatable)
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        /// Output interval (s, or τ for a dimensionless config), read from the dense output; also the automatic method's time resolution (implicit steps ≤ 4 dt); overrides integration.dt
+        #[arg(long, allow_negative_numbers = true)]
+        dt: Option<f64>,
+        /// CSV of samples (t, omega, x, y, amplitude, psi_1 … psi_n): `--out run.csv` writes run.csv; a
+        /// name without .csv is a stem, as for sweep and map (`--out runs/m3` writes runs/m3.csv);
+        /// plots go beside it as STEM_*.svg; a folder (`runs/`) gets runs/simulation.csv. Written
+        /// to a temporary name and renamed when done (or stopped, with the complete rows)
+        #[arg(long, short, default_value = "simulation.csv")]
+        out: PathBuf,
+        /// Also write the samples as Parquet, STEM.parquet beside the CSV
+        #[arg(long)]
+        parquet: bool,
+        /// Summary format on standard output
+        #[arg(long, value_enum, default_value = "table")]
+        format: Format,
+    },
+    /// Many simulations over a grid of parameter paths, in parallel; summaries as CSV/JSON (--shard K/N for batch systems)
+    Sweep(sweep::SweepArgs),
+    /// Merge the outputs of `autobal sweep --shard K/N` into the unsharded sweep's STEM.csv/json
+    Merge(sweep::MergeArgs),
+    /// Basins of the spatial rotor: where runs end over a grid of the first two balls' initial angles (parallel; CSV)
+    Basins {
+        /// Config file with the spatial rotor's tables plus [drive] (e.g. examples/spatial.toml);
+        /// default: the embedded examples/default.toml, which has no [drive]
+        #[arg(long, short)]
+        config: Option<PathBuf>,
+        /// Override a config field, e.g. --set drive.omega0=1.5 (repeatable)
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        /// Grid points per angle (N × N runs)
+        #[arg(long, default_value_t = 24)]
+        n: usize,
+        /// CSV of the runs' ends (a folder, `DIR/`: DIR/basins.csv); checked before the runs
+        #[arg(long, short, default_value = "basins.csv")]
+        out: PathBuf,
+        /// Output on standard output: a table to read or JSON
+        #[arg(long, value_enum, default_value = "table")]
+        format: Format,
+        /// Worker threads (default: all cores)
+        #[arg(long)]
+        threads: Option<usize>,
+    },
+    /// Write an HTML report with SVG figures to a folder: about your rotor (with --config), or
+    /// the papers' reproductions (--papers, the default without --config)
+    Report {
+        #[command(flatten)]
+        common: Common,
+        /// Output folder (created if missing)
+        #[arg(long, short, default_value = "autobal-report")]
+        out: PathBuf,
+        /// Shorter runs in time (for a quick look; the tests use it)
+        #[arg(long)]
+        quick: bool,
+        /// The papers' reproductions (000, 003, 004) instead of a report about the config's rotor;
+        /// the default when no --config is given
+        #[arg(long, conflicts_with = "config")]
+        papers: bool,
+    },
+}
+
+fn run(cli: Cli) -> Result<()> {
+    match cli.command {
+        Command::Inertia { common, format } => {
+            let cfg = config::load_analytic("inertia", common.config.as_deref(), &common.set)?;
+            output::check_results(&cfg)?;
+            emit(format, output::inertia_json(&cfg), output::inertia_table(&cfg))
+        }
+        Command::Critical { common, format } => {
+            let cfg = config::load_analytic("critical", common.config.as_deref(), &common.set)?;
+            output::check_results(&cfg)?;
+            emit(format, output::critical_json(&cfg), output::critical_table(&cfg))
+        }
+        Command::Ranges { common, format } => {
+            let cfg = config::load_analytic("ranges", common.config.as_deref(), &common.set)?;
+            output::check_results(&cfg)?;
+            emit(format, output::ranges_json(&cfg), output::ranges_table(&cfg))
+        }
+        Command::Stability { common, format, lin, samples, svg, route } => {
+            let (root, _) = config::read_set(common.config.as_deref(), &common.set)?;
+            if route == RouteArg::General || general::needs_general_route(&root) {
+                return run_general_stability(&root, format, lin, samples, svg);
+            }
+            let samples = samples.unwrap_or(2000);
+            let cfg = config::load_analytic("stability", common.config.as_deref(), &common.set)?;
+            let w = linear::omega_max(&cfg, lin.omega_max.as_deref())?;
+            if lin.omega_max.is_some() {
+                check_speed("--omega-max", w)?;
+            }
+            if !(10..=1_000_000).contains(&samples) {
+                anyhow::bail!("--samples: must lie between 10 and 1000000, got {samples}");
+            }
+            let svg = svg.map(|p| outfile::resolve(&p, "stability.svg"));
+            if let Some(p) = &svg {
+                outfile::Outputs::new().inputs(common.config.as_deref()).output("--svg", p).check()?;
+            }
+            let c = linear::compare(&cfg.model, w, samples, lin.balls.into())?;
+            autobal::limits::check_finite("stability", &c.exact)?;
+            if let Some(p) = svg {
+                outfile::write_atomic("--svg", &p, figures::margin_plot(&cfg.model, &c).to_svg())?;
+            }
+            emit(format, linear::stability_json(&cfg, &c, lin.balls.into()), linear::stability_table(&cfg, &c, lin.balls.into()))
+        }
+        Command::Campbell { common, format, lin, points, svg, view, harmonics } => {
+            let cfg = config::load_analytic("campbell", common.config.as_deref(), &common.set)?;
+            let w = linear::omega_max(&cfg, lin.omega_max.as_deref())?;
+            if lin.omega_max.is_some() {
+                check_speed("--omega-max", w)?;
+            }
+            if !(3..=10_000_000).contains(&points) {
+                anyhow::bail!("--points: must lie between 3 and 10000000, got {points}");
+            }
+            let svg = svg.map(|p| outfile::resolve(&p, "campbell"));
+            if let Some(p) = &svg {
+                let mut o = outfile::Outputs::new();
+                o.inputs(common.config.as_deref());
+                for path in linear::campbell_svg_paths(p, view) {
+                    o.output("--svg", &path);
+                }
+                o.check()?;
+            }
+            let harmonics = linear::check_harmonics(&harmonics)?;
+            let _ = ctrlc::set_handler(|| map::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
+            linear::run_campbell(&cfg, w, points, lin.balls.into(), format == Format::Json, svg.as_deref(), view, &harmonics)
+        }
+        Command::Map { common, x, y, omega, balls, quantity, out, threads, boundary, route } => {
+            run_map(common, x, y, omega, balls, quantity, out, threads, boundary, route)
+        }
+        Command::Simulate { config, set, dt, out, parquet, format } => run_simulate(config, set, dt, out, parquet, format),
+        Command::Sweep(a) => sweep::run(a),
+        Command::Merge(a) => sweep::merge(a),
+        Command::Basins { config, set, n, out, format, threads } => run_basins(config, set, n, out, format, threads),
+        Command::Report { common, out, quick, papers } => {
+            // the folder is created and checked before any section runs
+            outfile::Outputs::new().inputs(common.config.as_deref()).output("--out", &out.join("index.html")).check()?;
+            let _ = ctrlc::set_handler(|| sim::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
+            let kind = if papers || common.config.is_none() { report::Kind::Papers } else { report::Kind::User };
+            let index = report::run(common.config.as_deref(), &common.set, &out, quick, kind)?;
+            output::print(&format!("report written to {}\n", index.display()))
+        }
+    }
+}
+
+/// `stability` by the general route ([`general`]): any planar or spatial config.
+fn run_general_stability(root: &toml::Table, format: Format, lin: LinearArgs, samples: Option<usize>, svg: Option<PathBuf>) -> Result<()> {
+    if lin.balls == BallsArg::Locked {
+        anyhow::bail!("--balls locked: the general route analyses the balls free (use the closed-form route of a one-plane config for the locked rotor)");
+    }
+    let g = general::rotor_of(root)?;
+    // a periodic orbit costs a shooting (the variational equations over a revolution) per speed
+    let samples = samples.unwrap_or(if g.rotor.is_periodic() { 50 } else { 200 });
+    if !(10..=1_000_000).contains(&samples) {
+        anyhow::bail!("--samples: must lie between 10 and 1000000, got {samples}");
+    }
+    let omega_max = match (&g.rotor, lin.omega_max) {
+        (_, Some(t)) => {
+            // rad/s: a speed with its unit on an SI config, a bare number times the unit of its
+            // speeds (ω0 of a spatial config, 1 rad/s of a planar one)
+            let s = autobal::units::parse_speed("--omega-max", &t)?;
+            let w = match s.unit.rad_s() {
+                Some(k) if g.si => s.value * k,
+                Some(_) => s.to_omega("--omega-max", None)?,
+                None => s.value * g.omega0,
+            };
+            check_speed("--omega-max", w / g.omega0)?;
+            w
+        }
+        (autobal::rotor_stability::Rotor::Planar(_), None) => 3.0 * g.rotor.natural_frequency(),
+        (autobal::rotor_stability::Rotor::Spatial(_), None) => {
+            let cfg = autobal::config::spatial(root)?;
+            // the 12-state model's automatic axis covers its critical speeds; a second plane,
+            // supports that differ by direction or gravity move the modes, so twice that
+            let w = cfg.analysis.speed_axis_max(2.0 * autobal::reports::default_omega_max(&cfg.model));
+            w * g.omega0
+        }
+    };
+    let r = general::analyse(&g, omega_max, samples)?;
+    if let Some(p) = svg {
+        general::write_svg(&g, &r, omega_max, &p)?;
+    }
+    emit(format, general::json(&g, &r, omega_max), general::table(&g, &r, omega_max))
+}
+
+#[allow(clippy::too_many_arguments)]
+fn run_map(
+    common: Common,
+    x: String,
+    y: String,
+    omega: Option<String>,
+    balls: BallsArg,
+    quantity: QuantityArg,
+    out: PathBuf,
+    threads: Option<usize>,
+    boundary: bool,
+    route: RouteArg,
+) -> Result<()> {
+    let (root, source) = config::read_set(common.config.as_deref(), &common.set)?;
+    if route == RouteArg::General || general::needs_general_route(&root) {
+        if balls == BallsArg::Locked {
+            anyhow::bail!("--balls locked: the general route maps the balls free (use the 12-state route of a one-plane config for the locked rotor)");
+        }
+        let verdict_only = quantity == QuantityArg::Verdict;
+        return map::run_general(&root, common.config.as_deref(), &x, &y, omega.as_deref(), verdict_only, &out, threads, boundary);
+    }
+    // the speeds need the config's ω0: it is read (and checked) first
+    let cfg = config::build(&root, &source)?;
+    let omega_text = omega;
+    let omega = omega_text.as_deref().map(|t| linear::speed_arg(&cfg, "--omega", t)).transpose()?;
+    if let Some(w) = omega {
+        check_speed("--omega", w)?;
+    }
+    let xa = map::Axis::parse("--x", &x)?;
+    let ya = map::Axis::parse("--y", &y)?;
+    distinct_axes(&xa.key, Some(&ya.key))?;
+    // a speed axis in SI (speed_rpm, speed, speed_hz) is converted to Ω point by point by the
+    // library (autobal::spatial::paths::stability_map_units); a fixed speed in SI must mean one Ω
+    let is_speed = |a: &map::Axis| autobal::units::speed_path_unit(&a.key).is_some();
+    for (flag, a) in [("--x", &xa), ("--y", &ya)] {
+        if is_speed(a) && a.key != "omega" && !cfg.dimensional {
+            anyhow::bail!("{flag} {}: a speed in SI needs a dimensional config (the rotor's ω0); this config is dimensionless: use omega=LO:HI:N (Ω)", a.key);
+        }
+    }
+    if omega_text.as_deref().is_some_and(|t| autobal::units::parse_speed("--omega", t).is_ok_and(|s| s.is_si())) && !is_speed(&xa) && !is_speed(&ya) {
+        linear::check_fixed_speed(&cfg, [(&xa.key, xa.lo, xa.hi), (&ya.key, ya.lo, ya.hi)])?;
+    }
+    for (flag, a) in [("--x", &xa), ("--y", &ya)] {
+        if a.key == "omega" {
+            check_speed(&format!("{flag} omega"), a.hi)?;
+        } else if let (Some(k), Some(sc)) = (autobal::units::speed_path_unit(&a.key).and_then(|u| u.rad_s()), cfg.model.scale) {
+            // the same range as Ω (at the config's ω0; a mass axis moves it a little)
+            check_speed(&format!("{flag} {}", a.key), a.hi * k / sc.omega0)?;
+        }
+    }
+    if let Some(t) = threads {
+        if t == 0 {
+            anyhow::bail!("--threads: must be at least 1");
+        }
+        rayon::ThreadPoolBuilder::new().num_threads(t).build_global().ok();
+    }
+    let _ = ctrlc::set_handler(|| map::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
+    let out = output::out_stem(&outfile::resolve(&out, "stability-map"), &["csv", "svg", "png"]);
+    let csv_path = output::with_suffix(&out, "csv");
+    let boundary_path = PathBuf::from(format!("{}_boundary.csv", out.display()));
+    let mut o = outfile::Outputs::new();
+    o.inputs(common.config.as_deref());
+    for p in outfile::stem_files(&out, &["csv", "svg", "png"]) {
+        o.output("--out", &p);
+    }
+    if boundary {
+        o.output("--out", &boundary_path);
+    }
+    o.check()?;
+    // the rows go to a temporary file, renamed into place when the map ends or is interrupted
+    // (complete rows only); an error removes it
+    let mut w = outfile::Staged::create("--out", &csv_path)?;
+    let q = if quantity == QuantityArg::Margin { map::Quantity::Margin } else { map::Quantity::Verdict };
+    let progress = std::io::IsTerminal::is_terminal(&std::io::stderr());
+    config::warn_ignored(&root, "map");
+    let traced = if boundary {
+        // the checks the map makes, before the tracing (whose messages would not name the flags)
+        for (flag, a) in [("--x", &xa), ("--y", &ya)] {
+            if !is_speed(a) {
+                cfg.spec.clone().set(&a.key, a.lo).map_err(|e| anyhow::anyhow!("{flag}: {e}"))?;
+            }
+        }
+        if !is_speed(&xa) && !is_speed(&ya) && omega.is_none() {
+            anyhow::bail!("--omega: required when neither axis is omega (the speed at which to map)");
+        }
+        let t = std::time::Instant::now();
+        let b = map::trace(&cfg, &xa, &ya, omega, balls.into())?;
+        let path = boundary_path;
+        outfile::write_atomic("--out", &path, map::boundary_csv(&b, &xa.key, &ya.key))?;
+        output::note(&format!(
+            "boundary: {} curves, {} codimension-two points, {} characteristic polynomials, {:.3} s; wrote {}",
+            b.curves.len(),
+            b.codim2.len(),
+            b.evaluations,
+            t.elapsed().as_secs_f64(),
+            path.display()
+        ));
+        if !b.complete {
+            // nothing of the map was computed: no empty CSV left behind
+            drop(w);
+            anyhow::bail!(
+                "interrupted while tracing the boundary: the {} curves traced are kept in {}; the map was not computed",
+                b.curves.len(),
+                path.display()
+            );
+        }
+        Some(b)
+    } else {
+        None
+    };
+    let t0 = std::time::Instant::now();
+    let (r, run) = map::compute(&cfg, xa, ya, omega, balls.into(), q, &mut w, progress)?;
+    let csv_path = w.commit()?;
+    let secs = t0.elapsed().as_secs_f64();
+    let done = run.rows_done;
+    map::write_plots(&r, &out, &format!("Stability map, balls {}", if balls == BallsArg::Free { "free" } else { "locked" }), traced.as_ref())?;
+    let points = done * run.row_len;
+    output::print(&format!(
+        "{} rows × {} points in {:.2} s ({:.2} µs per point; {} by continuation, {} direct solves); wrote {}, {}, {}\n",
+        done,
+        run.row_len,
+        secs,
+        1e6 * secs / points.max(1) as f64,
+        run.continued,
+        run.direct,
+        csv_path.display(),
+        output::with_suffix(&out, "svg").display(),
+        output::with_suffix(&out, "png").display()
+    ))?;
+    if done < run.rows_total {
+        anyhow::bail!("interrupted: {done} of {} rows computed and kept in {}", run.rows_total, csv_path.display());
+    }
+    Ok(())
+}
+
+/// `simulate --out`: `file.csv` is written as given; any other name is a stem (as for sweep and
+/// map), `STEM.csv`; a folder (`runs/`) gets `runs/simulation.csv`. Returns the CSV's path and
+/// the stem of the files beside it.
+fn csv_and_stem(out: &std::path::Path) -> (PathBuf, PathBuf) {
+    let stem = output::out_stem(&outfile::resolve(out, "simulation.csv"), &["csv", "parquet", "svg"]);
+    (output::with_suffix(&stem, "csv"), stem)
+}
+
+/// `simulate`'s outputs (the CSV, the Parquet file, the figures), checked before the run.
+fn simulation_outputs(config: Option<&std::path::Path>, out: &std::path::Path, parquet: bool) -> Result<(PathBuf, PathBuf)> {
+    let (csv, stem) = csv_and_stem(out);
+    let mut o = outfile::Outputs::new();
+    o.inputs(config).output("--out", &csv);
+    if parquet {
+        o.output("--parquet", &output::with_suffix(&stem, "parquet"));
+    }
+    for p in sim::plot_paths(&stem) {
+        o.output("--out", &p);
+    }
+    o.check()?;
+    Ok((csv, stem))
+}
+
+fn run_simulate(config: Option<PathBuf>, set: Vec<String>, dt: Option<f64>, out: PathBuf, parquet: bool, format: Format) -> Result<()> {
+    let (mut root, source) = config::read_with_default(config.as_deref(), config::DEFAULT_PLANAR, "embedded default (examples/planar.toml)")?;
+    for s in &set {
+        config::apply_set(&mut root, s)?;
+    }
+    if autobal::config::is_spatial(&root) {
+        return run_spatial(&root, &source, config.as_deref(), dt, out, parquet, format);
+    }
+    let mut cfg = config::build_planar(&root, &source)?;
+    if let Some(d) = dt {
+        cfg.settings.dt = d;
+        cfg.settings.validate(&cfg.rotor).map_err(|e| anyhow::anyhow!("--dt: {e}"))?;
+    }
+    let _ = ctrlc::set_handler(|| sim::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
+    let (out, stem) = simulation_outputs(config.as_deref(), &out, parquet)?;
+    let mut w = outfile::Staged::create("--out", &out)?;
+    let mut table = match parquet {
+        true => Some(parquet::Table::create(&output::with_suffix(&stem, "parquet"), &sim::sample_columns(cfg.rotor.n), false)?),
+        false => None,
+    };
+    let progress = std::io::IsTerminal::is_terminal(&std::io::stderr());
+    let (summary, env, wall) = sim::run_to_csv(&cfg, &mut w, table.as_mut(), progress)?;
+    autobal::limits::check_finite("the summary", &summary)?;
+    // complete rows (also when stopped early): renamed into place
+    let out = w.commit()?;
+    if let Some(t) = table {
+        output::note(&format!("wrote {}", t.finish()?.display()));
+    }
+    let plots = sim::write_plots(&cfg, &env, &stem, "Passage")?;
+    emit(format, sim::summary_json(&cfg, &summary, wall), sim::summary_table(&cfg, &summary, wall))?;
+    output::note(&format!(
+        "wrote {} and {} plots ({})",
+        out.display(),
+        plots.len(),
+        plots.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")
+    ));
+    for w in &summary.warnings {
+        output::note(&format!("warning: {w}"));
+    }
+    if let Some(st) = summary.stopped {
+        anyhow::bail!("{st}: the samples up to then are kept in {}", out.display());
+    }
+    Ok(())
+}
+
+fn run_spatial(root: &toml::Table, source: &str, config: Option<&std::path::Path>, dt: Option<f64>, out: PathBuf, parquet: bool, format: Format) -> Result<()> {
+    let mut sim = spatial_sim::build(root, source)?;
+    if sim.default_drive {
+        let (w_end, _) = sim.drive.kinematics(sim.settings.t_end);
+        let unit = if sim.config.dimensional { " rad/s" } else { " (Ω)" };
+        output::note(&format!(
+            "note: the config has no [drive]: running up from rest at constant acceleration through the critical speeds to {}{unit} in {} revolutions (t_end = {}{}); give [drive] to choose the run",
+            autobal::error::fmt_num(w_end),
+            autobal::config::DEFAULT_RUN_UP_REVOLUTIONS,
+            autobal::error::fmt_num(sim.settings.t_end),
+            if sim.config.dimensional { " s" } else { " τ" }
+        ));
+    }
+    if let Some(d) = dt {
+        sim.settings.dt = d;
+        sim.settings.validate().map_err(|e| anyhow::anyhow!("--dt: {e}"))?;
+    }
+    let _ = ctrlc::set_handler(|| sim::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
+    let (out, stem) = simulation_outputs(config, &out, parquet)?;
+    let mut w = outfile::Staged::create("--out", &out)?;
+    let mut table = match parquet {
+        true => Some(parquet::Table::create(&output::with_suffix(&stem, "parquet"), &spatial_sim::columns(&sim), false)?),
+        false => None,
+    };
+    let progress = std::io::IsTerminal::is_terminal(&std::io::stderr());
+    let (summary, kept, wall) = spatial_sim::run_to_files(&sim, &mut w, table.as_mut(), progress, &sim::INTERRUPTED)?;
+    // complete rows (also when stopped early): renamed into place
+    let out = w.commit()?;
+    if let Some(t) = table {
+        output::note(&format!("wrote {}", t.finish()?.display()));
+    }
+    let plots = spatial_sim::write_plots(&sim, &kept, &stem, "Spatial rotor")?;
+    emit(format, spatial_sim::summary_json(&sim, &summary, wall), spatial_sim::summary_table(&sim, &summary, wall))?;
+    eprintln!("wrote {} and {} plots ({})", out.display(), plots.len(), plots.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", "));
+    if let Some(st) = summary.stopped {
+        anyhow::bail!("{st}: the samples up to then are kept in {}", out.display());
+    }
+    Ok(())
+}
+
+fn run_basins(config: Option<PathBuf>, set: Vec<String>, n: usize, out: PathBuf, format: Format, threads: Option<usize>) -> Result<()> {
+    let (root, source) = config::read_set(config.as_deref(), &set)?;
+    let sim = spatial_sim::build(&root, &source)?;
+    if let Some(t) = threads {
+        if t == 0 {
+            anyhow::bail!("--threads: must be at least 1");
+        }
+        rayon::ThreadPoolBuilder::new().num_threads(t).build_global().ok();
+    }
+    let _ = ctrlc::set_handler(|| sim::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
+    // checked before the grid is computed
+    let out = outfile::resolve(&out, "basins.csv");
+    outfile::Outputs::new().inputs(config.as_deref()).output("--out", &out).check()?;
+    let progress = std::io::IsTerminal::is_terminal(&std::io::stderr());
+    let v = spatial_sim::run_basins(&sim, n, &out, progress, &sim::INTERRUPTED)?;
+    let table = format!(
+        "{} of {} runs balanced ({:.1} %), {:.2} s; wrote {}\n",
+        v["balanced"],
+        v["runs"],
+        100.0 * v["fraction_balanced"].as_f64().unwrap_or(0.0),
+        v["wall_time_s"].as_f64().unwrap_or(0.0),
+        out.display()
+    );
+    emit(format, v, table)
+}
+
+/// The two axes of a map or sweep must set different fields (else one would silently win).
+fn distinct_axes(x: &str, y: Option<&str>) -> Result<()> {
+    if y == Some(x) {
+        anyhow::bail!("--y {x}: the same key as --x; give the second axis another field");
+    }
+    Ok(())
+}
+
+/// A dimensionless speed option (`--omega`, `--omega-max`): finite, ≥ 0 and within the range of
+/// `analysis.omega_max`.
+fn check_speed(flag: &str, w: f64) -> Result<()> {
+    if w == 0.0 && !flag.ends_with("--omega-max") {
+        return Ok(());
+    }
+    autobal::limits::check_as(flag, "analysis.omega_max", w)?;
+    Ok(())
+}
+
+/// Runs the `autobal` command line on `args` (the program name first, as `std::env::args_os`
+/// gives it) and returns the process's exit code: 0 on success, 2 on an error (its one-line
+/// message already on stderr), clap's own codes for `--help`, `--version` and usage errors.
+/// The binary and the Python wheel's console script both call this.
+pub fn main_with_args<I, T>(args: I) -> i32
+where
+    I: IntoIterator<Item = T>,
+    T: Into<std::ffi::OsString> + Clone,
+{
+    let cli = match Cli::try_parse_from(args) {
+        Ok(cli) => cli,
+        Err(e) => {
+            let _ = e.print();
+            return e.exit_code();
+        }
+    };
+    if let Err(e) = run(cli) {
+        if output::is_broken_pipe(&e) {
+            // the reader has what it wanted (`autobal critical | head -1`): end quietly
+            return 0;
+        }
+        output::note(&format!("error: {}", format!("{e:#}").replace('\n', " ")));
+        return 2;
+    }
+    0
+}
