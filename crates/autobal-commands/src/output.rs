@@ -2,7 +2,6 @@
 
 use crate::config::Config;
 use autobal::spatial::critical_speeds::{critical_speeds, CriticalSpeeds};
-use autobal::spatial::inertia::composite_inertia;
 use autobal::spatial::ranges::{autobalancing_ranges, AutobalancingRanges};
 use autobal::spatial::sensitivity::sensitivity;
 use serde_json::Value;
@@ -94,7 +93,7 @@ pub fn inertia_table(cfg: &Config) -> String {
     for w in cfg.model.anisotropy.warnings.iter().filter(|w| autobal::reports::is_eq17_comparison(w)) {
         let _ = writeln!(s, "note: {w}");
     }
-    let ci = composite_inertia(&cfg.model);
+    let ci = cfg.model.composite_inertia();
     let unit = if ci.si { " kg·m²" } else { " ×A_Σ" };
     let _ = writeln!(s, "\ncomposite inertia");
     if let Some(mt) = ci.total_mass {

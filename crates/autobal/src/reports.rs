@@ -18,7 +18,6 @@ use crate::planar::stationary::capacity_ratio;
 use crate::planar::Summary;
 use crate::spatial::comparison::Comparison;
 use crate::spatial::critical_speeds::{critical_speeds, critical_speeds_at};
-use crate::spatial::inertia::composite_inertia;
 use crate::spatial::linear_model::Balls;
 use crate::spatial::params::SpatialModel;
 use crate::spatial::ranges::{antiresonance_speed, autobalancing_ranges, SpeedRange};
@@ -272,7 +271,7 @@ fn anisotropy_json(m: &SpatialModel, eq17: bool) -> Value {
 /// the input ranges ([`crate::limits`]) are chosen so that this holds, this is the last guard.
 pub fn check_results(c: &SpatialConfig) -> Result<()> {
     check_finite("the model", &c.model)?;
-    check_finite("inertia", &composite_inertia(&c.model))?;
+    check_finite("inertia", &c.model.composite_inertia())?;
     check_finite("critical_speeds", &critical_speeds(&c.model))?;
     check_finite("autobalancing_ranges", &autobalancing_ranges(&c.model))?;
     check_finite("sensitivity", &sensitivity(&c.model, c.analysis.sensitivity_limit))?;
@@ -283,7 +282,7 @@ pub fn check_results(c: &SpatialConfig) -> Result<()> {
 pub fn inertia(c: &SpatialConfig, source: &str) -> Value {
     json!({
         "model": model_json(c, source),
-        "inertia": composite_inertia(&c.model),
+        "inertia": c.model.composite_inertia(),
         "anisotropy": anisotropy_json(&c.model, true),
     })
 }

@@ -8,7 +8,6 @@ use crate::num::{fmt, grouped, speed, RPM_PER_RAD_S};
 use crate::plot::{Plot, SecondAxis, Series, Shade, PALETTE};
 use anyhow::Result;
 use autobal::spatial::critical_speeds::critical_speeds;
-use autobal::spatial::inertia::composite_inertia;
 use autobal::spatial::params::SpatialModel;
 use autobal::spatial::ranges::{autobalancing_ranges, point_a_response, SpeedRange};
 use autobal::spatial::sensitivity::sensitivity;
@@ -138,7 +137,7 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
         rows.push(vec!["l".into(), fmt(1e3 * sc.span, 5), "mm".into(), "support span".into()]);
     }
     s.table(&["symbol", "value", "unit", "meaning"], &rows);
-    let ci = composite_inertia(m);
+    let ci = m.composite_inertia();
     let unit = if ci.si { "kg·m²" } else { "A_Σ" };
     s.table(
         &[&format!("A_Σ ({unit})"), &format!("C_Σ ({unit})"), &format!("A_C1 ({unit})"), &format!("A_C2 ({unit})"), &format!("ΔA ({unit})")],

@@ -176,7 +176,7 @@ fn expand<const B: usize>(t: &PencilTerms) -> Option<[[f64; B]; D]> {
 /// the stack, the subsets in increasing order (no sort), zero entries skipped (the same sums in
 /// the same order as the general expansion, a fraction of its instructions; the boundary
 /// tracer calls it thousands of times).
-pub fn pencil_polynomial(p: &crate::spatial::linear_model::Pencil) -> Option<[f64; D]> {
+pub fn pencil_polynomial(p: &super::small::Pencil) -> Option<[f64; D]> {
     let n = p.n;
     let mut minors = [[0.0f64; D]; 1 << 6];
     minors[0][0] = 1.0;

@@ -11,7 +11,7 @@
 // Index loops follow the algorithms' formulas (rows, columns, coefficients).
 #![allow(clippy::needless_range_loop)]
 
-use crate::spatial::linear_model::{Mat12, MAX_STATES};
+use super::small::{Mat12, MAX_STATES};
 use num_complex::Complex64;
 
 const N1: usize = MAX_STATES + 1;

@@ -1,8 +1,10 @@
 //! Small dense linear algebra on stack arrays: LU factorisation (`dense`, crate-internal) and
-//! eigenvalues with the Routh–Hurwitz test ([`eigen`]); eigenvalues of
-//! dense matrices of any size on the heap ([`eigen_dyn`]).
+//! eigenvalues with the Routh–Hurwitz test ([`eigen`]) on the fixed-size matrices of
+//! [`small`]; eigenvalues of dense matrices of any size on the heap ([`eigen_dyn`]). Nothing
+//! here imports a model.
 
 pub mod charpoly;
 pub(crate) mod dense;
 pub mod eigen;
 pub mod eigen_dyn;
+pub mod small;

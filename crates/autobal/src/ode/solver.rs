@@ -612,7 +612,7 @@ impl<'s, S: System> Solver<'s, S> {
         let norm = |x: &[f64]| x.iter().map(|a| a * a).sum::<f64>().sqrt();
         let nv = norm(&v[..n]);
         v[..n].iter_mut().for_each(|x| *x /= nv);
-        let mut hess: crate::spatial::linear_model::Mat12 = Default::default();
+        let mut hess: crate::linalg::small::Mat12 = Default::default();
         let mut size = m;
         let w = &mut self.tmp2;
         for k in 0..m {

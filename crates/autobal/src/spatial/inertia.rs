@@ -572,16 +572,6 @@ pub struct CompositeInertia {
     pub si: bool,
 }
 
-/// Composite inertia of a model, from the anisotropy in use.
-pub fn composite_inertia(model: &crate::spatial::params::SpatialModel) -> CompositeInertia {
-    let (scale_a, total_mass, si) = match model.scale {
-        Some(s) => (s.total_mass * s.rho_s * s.rho_s, Some(s.total_mass), true),
-        None => (1.0, None, false),
-    };
-    let d = model.anisotropy.used * scale_a;
-    CompositeInertia { total_mass, a_sigma: scale_a, c_sigma: model.c_sigma * scale_a, a_c1: scale_a + d, a_c2: scale_a - d, delta_a: d, si }
-}
-
 /// Ball-coupling matrix `d_A` of the ball equation (000, eq (6); docs/model.md §1) in the principal
 /// frame of the composite rotor, where the inertia reads `I_C = E + ΔĀ E_A` with `ΔĀ ≥ 0`.
 ///

@@ -26,15 +26,7 @@ use crate::error::{Error, Result};
 use crate::linalg::charpoly::PencilTerms;
 use crate::spatial::params::SpatialModel;
 
-/// Largest number of generalised coordinates (balls free).
-pub const MAX_COORDS: usize = 6;
-/// Largest state dimension.
-pub const MAX_STATES: usize = 2 * MAX_COORDS;
-
-/// A square matrix of at most [`MAX_COORDS`] rows, stored on the stack.
-pub type Mat6 = [[f64; MAX_COORDS]; MAX_COORDS];
-/// A square matrix of at most [`MAX_STATES`] rows, stored on the stack.
-pub type Mat12 = [[f64; MAX_STATES]; MAX_STATES];
+pub use crate::linalg::small::{Mat12, Mat6, Pencil, MAX_COORDS, MAX_STATES};
 
 /// Whether the balls move (12 states) or are locked at balance (`s ≡ 0`, 8 states).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -43,19 +35,6 @@ pub enum Balls {
     Free,
     /// Balls locked: the bare anisotropic rotor, coordinates `w, χ`.
     Locked,
-}
-
-/// The pencil `M λ² + G λ + K` of the linearised equations at one speed.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Pencil {
-    /// Number of coordinates (4 or 6).
-    pub n: usize,
-    /// Mass matrix.
-    pub m: Mat6,
-    /// Gyroscopic + damping matrix.
-    pub g: Mat6,
-    /// Stiffness + circulatory matrix.
-    pub k: Mat6,
 }
 
 type B2 = [[f64; 2]; 2];

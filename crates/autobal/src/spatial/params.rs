@@ -10,7 +10,7 @@
 
 use crate::error::{fmt_num, positive, Error, Result};
 use crate::limits::{check, check_all, check_count, check_derived};
-use crate::spatial::inertia::{self, Anisotropy, AnisotropyMethod, BallSet};
+use crate::spatial::inertia::{self, Anisotropy, AnisotropyMethod, BallSet, CompositeInertia};
 use serde::Serialize;
 
 /// A rigid rotor on two isotropic elastic-viscous supports, with a point unbalance mass and an
@@ -207,6 +207,17 @@ pub struct DimensionlessInput {
 }
 
 impl SpatialModel {
+    /// The composite rotor's inertia from the anisotropy in use: `A_C1,2 = A_Σ ± ΔA`, `C_Σ`
+    /// (000, eqs (4)-(5)), in SI when the model came from a dimensional config, else relative to
+    /// `A_Σ`.
+    pub fn composite_inertia(&self) -> CompositeInertia {
+        let (scale_a, total_mass, si) = match self.scale {
+            Some(s) => (s.total_mass * s.rho_s * s.rho_s, Some(s.total_mass), true),
+            None => (1.0, None, false),
+        };
+        let d = self.anisotropy.used * scale_a;
+        CompositeInertia { total_mass, a_sigma: scale_a, c_sigma: self.c_sigma * scale_a, a_c1: scale_a + d, a_c2: scale_a - d, delta_a: d, si }
+    }
     /// Build from the papers' dimensionless parameters, identical supports.
     ///
     /// Damping for identical supports: `h̄α = h̄x (l̄_L² + (1 − l̄_L)²)/(2 ρ̄s²)`,
