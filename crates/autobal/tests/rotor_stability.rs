@@ -11,7 +11,7 @@ use autobal::spatial::dynamics::field::SpatialField;
 use autobal::spatial::dynamics::SpatialRotor;
 use autobal::spatial::inertia::AnisotropyMethod;
 use autobal::spatial::linear_model::Balls;
-use autobal::spatial::params::{AnisotropyInput, DimensionlessInput, MassSet, SpatialModel, SpatialRotorSi};
+use autobal::spatial::params::{SpatialModel, SpatialRotorSi};
 use autobal::spatial::stability::stability_ranges;
 
 mod common;
@@ -20,28 +20,7 @@ use common::Rng;
 /// A random one-plane, two-ball dimensionless rotor (isotropic supports, no gravity), retried
 /// until the rotor exists and its balancer can balance (capacity 1.05-3).
 fn random_model(rng: &mut Rng) -> (SpatialModel, SpatialRotor) {
-    loop {
-        let m0 = rng.range(0.005, 0.04);
-        let r0 = rng.range(0.5, 2.5);
-        let e = rng.range(1.05, 3.0);
-        let r = rng.range(0.5, 2.5);
-        let m = e * m0 * r0 / r;
-        let inp = DimensionlessInput {
-            c_sigma: rng.range(0.3, 1.6),
-            rho_s: rng.range(0.25, 0.6),
-            l_left: rng.range(0.2, 1.3),
-            z_a: rng.range(-1.0, 1.0),
-            anisotropy: AnisotropyInput::Masses { masses: MassSet { m0, r0, m, r, n: 2 }, d_a: None },
-            h_x: rng.range(0.02, 0.2),
-            h_s: rng.range(0.02, 0.5),
-            method: AnisotropyMethod::Exact,
-            direct_balls: None,
-        };
-        let Ok(model) = SpatialModel::from_dimensionless(&inp) else { continue };
-        if let Ok(rotor) = SpatialRotor::from_dimensionless(&model) {
-            return (model, rotor);
-        }
-    }
+    common::random_spatial_model(rng, AnisotropyMethod::Exact, (1.05, 3.0), (0.02, 0.2), (0.02, 0.5))
 }
 
 #[test]

@@ -152,28 +152,7 @@ fn equations_equal_an_independent_symbolic_lagrangian_derivation() {
 /// A random dimensionless model with masses (two balls) and the speed, retried until the
 /// rotor exists (positive A_r, C_r).
 fn random_model(rng: &mut Rng, method: AnisotropyMethod, capacity: (f64, f64)) -> (SpatialModel, SpatialRotor) {
-    loop {
-        let m0 = rng.range(0.005, 0.04);
-        let r0 = rng.range(0.5, 2.5);
-        let e = rng.range(capacity.0, capacity.1);
-        let r = rng.range(0.5, 2.5);
-        let m = e * m0 * r0 / r;
-        let inp = DimensionlessInput {
-            c_sigma: rng.range(0.3, 1.6),
-            rho_s: rng.range(0.25, 0.6),
-            l_left: rng.range(0.2, 1.3),
-            z_a: rng.range(-1.0, 1.0),
-            anisotropy: AnisotropyInput::Masses { masses: MassSet { m0, r0, m, r, n: 2 }, d_a: None },
-            h_x: rng.range(0.0, 0.2),
-            h_s: rng.range(0.01, 0.5),
-            method,
-            direct_balls: None,
-        };
-        let Ok(model) = SpatialModel::from_dimensionless(&inp) else { continue };
-        if let Ok(rotor) = SpatialRotor::from_dimensionless(&model) {
-            return (model, rotor);
-        }
-    }
+    common::random_spatial_model(rng, method, capacity, (0.0, 0.2), (0.01, 0.5))
 }
 
 /// Put unbalance and balls at balance in the composite's principal frame (the linear model's

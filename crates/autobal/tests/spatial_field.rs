@@ -11,7 +11,7 @@ use autobal::spatial::dynamics::field::{arc_angles, SpatialField};
 use autobal::spatial::dynamics::{simulate, BallPlane, Equations, Initial, PointMass, RigidRotor, Settings, SpatialRotor, Support};
 use autobal::spatial::inertia::AnisotropyMethod;
 use autobal::spatial::linear_model::{Balls, Pencil};
-use autobal::spatial::params::{AnisotropyInput, DimensionlessInput, MassSet, SpatialModel, SpatialRotorSi};
+use autobal::spatial::params::{SpatialModel, SpatialRotorSi};
 use num_complex::Complex64;
 
 mod common;
@@ -186,28 +186,7 @@ fn full_state_jacobian_equals_central_differences_under_every_drive() {
 /// A random dimensionless model with masses (two balls), retried until the rotor exists
 /// (tests/spatial_dynamics.rs).
 fn random_model(rng: &mut Rng, capacity: (f64, f64)) -> (SpatialModel, SpatialRotor) {
-    loop {
-        let m0 = rng.range(0.005, 0.04);
-        let r0 = rng.range(0.5, 2.5);
-        let e = rng.range(capacity.0, capacity.1);
-        let r = rng.range(0.5, 2.5);
-        let m = e * m0 * r0 / r;
-        let inp = DimensionlessInput {
-            c_sigma: rng.range(0.3, 1.6),
-            rho_s: rng.range(0.25, 0.6),
-            l_left: rng.range(0.2, 1.3),
-            z_a: rng.range(-1.0, 1.0),
-            anisotropy: AnisotropyInput::Masses { masses: MassSet { m0, r0, m, r, n: 2 }, d_a: None },
-            h_x: rng.range(0.0, 0.2),
-            h_s: rng.range(0.01, 0.5),
-            method: AnisotropyMethod::Exact,
-            direct_balls: None,
-        };
-        let Ok(model) = SpatialModel::from_dimensionless(&inp) else { continue };
-        if let Ok(rotor) = SpatialRotor::from_dimensionless(&model) {
-            return (model, rotor);
-        }
-    }
+    common::random_spatial_model(rng, AnisotropyMethod::Exact, capacity, (0.0, 0.2), (0.01, 0.5))
 }
 
 /// Unbalance and balls at balance in the composite's principal frame (the linear model's

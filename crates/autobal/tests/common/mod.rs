@@ -75,3 +75,39 @@ pub fn planar_as_spatial(p: &PlanarRotor, physics: BallPhysics) -> SpatialRotor 
     assert!(rotor.rotor.polar_moment > 0.0);
     rotor
 }
+
+/// A random one-plane spatial rotor of papers 000/003 with two balls (the model and its
+/// nonlinear equations), rejected and redrawn until both build: unbalance `m0` 0.005-0.04 at
+/// `r0` 0.5-2.5, capacity `E = n m r / (m0 r0)` in `capacity`, `C̄Σ` 0.3-1.6, `ρ̄s` 0.25-0.6,
+/// `l̄_L` 0.2-1.3, `z̄_A` ±1, support damping `h_x` and ball drag `h_s` in the given ranges.
+pub fn random_spatial_model(
+    rng: &mut Rng,
+    method: autobal::spatial::inertia::AnisotropyMethod,
+    capacity: (f64, f64),
+    h_x: (f64, f64),
+    h_s: (f64, f64),
+) -> (autobal::spatial::params::SpatialModel, SpatialRotor) {
+    use autobal::spatial::params::{AnisotropyInput, DimensionlessInput, MassSet, SpatialModel};
+    loop {
+        let m0 = rng.range(0.005, 0.04);
+        let r0 = rng.range(0.5, 2.5);
+        let e = rng.range(capacity.0, capacity.1);
+        let r = rng.range(0.5, 2.5);
+        let m = e * m0 * r0 / r;
+        let inp = DimensionlessInput {
+            c_sigma: rng.range(0.3, 1.6),
+            rho_s: rng.range(0.25, 0.6),
+            l_left: rng.range(0.2, 1.3),
+            z_a: rng.range(-1.0, 1.0),
+            anisotropy: AnisotropyInput::Masses { masses: MassSet { m0, r0, m, r, n: 2 }, d_a: None },
+            h_x: rng.range(h_x.0, h_x.1),
+            h_s: rng.range(h_s.0, h_s.1),
+            method,
+            direct_balls: None,
+        };
+        let Ok(model) = SpatialModel::from_dimensionless(&inp) else { continue };
+        if let Ok(rotor) = SpatialRotor::from_dimensionless(&model) {
+            return (model, rotor);
+        }
+    }
+}
