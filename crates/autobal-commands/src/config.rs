@@ -107,7 +107,7 @@ pub fn load(path: Option<&std::path::Path>, sets: &[String]) -> Result<Config> {
     build(&root, &source)
 }
 
-/// [`load`] for the analytic `command`, warning (one line on standard error) about the entries
+/// `load` for the analytic `command`, warning (one line on standard error) about the entries
 /// it ignores ([`ignored_warning`]).
 pub fn load_analytic(command: &str, path: Option<&std::path::Path>, sets: &[String]) -> Result<Config> {
     let (root, source) = read_set(path, sets)?;
