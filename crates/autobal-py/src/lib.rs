@@ -656,6 +656,14 @@ fn planar_paths() -> Vec<(&'static str, &'static str)> {
     PlanarProblem::parameter_paths().iter().map(|p| (p.path, p.doc)).collect()
 }
 
+/// The `autobal` command line on `argv` (the program name first): what the binary does, with
+/// the GIL released; returns the exit code. The wheel's `autobal` console script
+/// (`autobal._cli:main`) calls it.
+#[pyfunction]
+fn cli_main(py: Python<'_>, argv: Vec<String>) -> i32 {
+    py.detach(move || autobal_cli::main_with_args(argv))
+}
+
 #[pymodule]
 fn _autobal(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
@@ -680,5 +688,6 @@ fn _autobal(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(parse_axis, m)?)?;
     m.add_function(wrap_pyfunction!(shard, m)?)?;
     m.add_function(wrap_pyfunction!(planar_paths, m)?)?;
+    m.add_function(wrap_pyfunction!(cli_main, m)?)?;
     Ok(())
 }
