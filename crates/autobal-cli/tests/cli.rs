@@ -462,8 +462,7 @@ fn interrupted_map_keeps_the_rows_written() {
 /// Run `autobal args`, send SIGINT after `ms` milliseconds, and return exit code, stdout, stderr.
 #[cfg(unix)]
 fn interrupted_after(args: &[&str], ms: u64) -> (Option<i32>, String, String) {
-    let child =
-        Command::new(bin()).args(args).stdout(std::process::Stdio::piped()).stderr(std::process::Stdio::piped()).spawn().unwrap();
+    let child = Command::new(bin()).args(args).stdout(std::process::Stdio::piped()).stderr(std::process::Stdio::piped()).spawn().unwrap();
     std::thread::sleep(std::time::Duration::from_millis(ms));
     let _ = Command::new("kill").args(["-INT", &child.id().to_string()]).status();
     let out = child.wait_with_output().unwrap();
