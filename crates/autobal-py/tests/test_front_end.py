@@ -344,3 +344,54 @@ def test_report_and_figures_stop_on_ctrl_c(tmp_path):
     for d in ("cli", "r"):
         assert 'id="interrupted"' in (tmp_path / d / "index.html").read_text()
     assert list(autobal.analyse("stability", samples=50).figures()) == ["stability_margin"]
+
+
+def test_a_notebook_of_results_renders_in_a_browser(tmp_path):
+    """A notebook whose cells end in results, with the outputs Jupyter makes of them (the rich
+    display, `_repr_html_`, beside the text), rendered to HTML by nbconvert and opened in
+    headless Chromium: every figure drawn by the embedded plotly.js (offline), with its traces,
+    beside the summary tables. Chromium: $AUTOBAL_CHROMIUM, else /usr/bin/chromium (required
+    when AUTOBAL_REQUIRE_BROWSER is set, as for the report's browser test)."""
+    nbformat = need("nbformat")
+    need("nbconvert")
+    need("plotly")
+    from nbconvert import HTMLExporter
+
+    chromium = os.environ.get("AUTOBAL_CHROMIUM", "/usr/bin/chromium")
+    if not Path(chromium).exists():
+        if os.environ.get("AUTOBAL_REQUIRE_BROWSER"):
+            raise FileNotFoundError(f"{chromium}: install Chromium (sudo apt-get install chromium)")
+        pytest.skip("needs Chromium (sudo apt-get install chromium)")
+    # a notebook is a session of its own: its first figure brings plotly.js
+    import autobal._results
+
+    autobal._results._PLOTLYJS_SENT = False
+    sources = [
+        'autobal.analyse("stability", samples=100)',
+        'autobal.analyse("campbell", points=30)',
+        'autobal.analyse("critical")',
+    ]
+    cells, figures = [nbformat.v4.new_code_cell("import autobal")], []
+    for k, src in enumerate(sources):
+        r = eval(src, {"autobal": autobal})
+        out = nbformat.v4.new_output("execute_result", data={"text/html": r._repr_html_(), "text/plain": repr(r)}, execution_count=k + 2)
+        cells.append(nbformat.v4.new_code_cell(src, outputs=[out], execution_count=k + 2))
+        if r.command in autobal.COMMANDS_WITH_FIGURES:
+            figures.append(r.plot())
+    page, _ = HTMLExporter().from_notebook_node(nbformat.v4.new_notebook(cells=cells))
+    path = tmp_path / "results.html"
+    path.write_text(page, encoding="utf-8")
+    dom = subprocess.run(
+        [chromium, "--headless", "--no-sandbox", "--disable-gpu", "--virtual-time-budget=15000", "--dump-dom", path.as_uri()],
+        capture_output=True, text=True, timeout=120,
+    ).stdout
+    # plotly.js marks each figure it drew, and draws each scatter trace with a point as a group
+    # of its own (a trace without one, e.g. a mode's component that never carries 10 % of its
+    # motion, draws nothing)
+    assert dom.count('class="plot-container plotly"') == len(figures), "a figure was not drawn"
+    want = sum(1 for f in figures for t in f.data if t.type == "scatter" and any(x is not None and y is not None for x, y in zip(t.x or (), t.y or ())))
+    assert want > 20
+    assert len(re.findall(r'class="trace scatter trace[0-9a-f]+"', dom)) == want
+    # the summary tables: the results' numbers, in the page as drawn
+    for k in ("autobal critical", "rotor_type", "antiresonance_speed", "autobal stability", "balanced_state_exists", "autobal campbell"):
+        assert k in dom, k
