@@ -395,3 +395,11 @@ def test_a_notebook_of_results_renders_in_a_browser(tmp_path):
     # the summary tables: the results' numbers, in the page as drawn
     for k in ("autobal critical", "rotor_type", "antiresonance_speed", "autobal stability", "balanced_state_exists", "autobal campbell"):
         assert k in dom, k
+
+
+def test_the_stubs_pass_mypy_stubtest():
+    """mypy's stubtest: every name, signature (parameter names, kinds, defaults), class and
+    `__all__` of the stub against the compiled module."""
+    need("mypy")
+    out = subprocess.run([sys.executable, "-m", "mypy.stubtest", "autobal._autobal"], capture_output=True, text=True, cwd=os.environ.get("TMPDIR", "/tmp"), timeout=300)
+    assert out.returncode == 0, out.stdout + out.stderr

@@ -1,10 +1,39 @@
 """Type stubs of the extension module (the Rust side of autobal); use the `autobal` package."""
 
-from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union, final
 
 import numpy as np
 import numpy.typing as npt
 
+__all__ = [
+    "__version__",
+    "SUMMARY_COLUMNS",
+    "SPATIAL_SUMMARY_COLUMNS",
+    "SCHEMA",
+    "DEFAULT_SPATIAL",
+    "DEFAULT_PLANAR",
+    "SpatialConfig",
+    "PlanarConfig",
+    "spatial_config",
+    "planar_config",
+    "spatial_report",
+    "stability_map",
+    "simulate",
+    "simulate_batch",
+    "spatial_simulate",
+    "spatial_basins",
+    "sweep_report",
+    "check_batch",
+    "grid_points",
+    "parse_axis",
+    "shard",
+    "planar_paths",
+    "cli_main",
+    "figures",
+    "report",
+    "COMMANDS_WITH_FIGURES",
+    "COMMANDS",
+]
 __version__: str
 SUMMARY_COLUMNS: List[str]
 SPATIAL_SUMMARY_COLUMNS: List[str]
@@ -12,10 +41,12 @@ SCHEMA: List[Tuple[str, List[str]]]
 DEFAULT_SPATIAL: str
 DEFAULT_PLANAR: str
 
+@final
 class SpatialConfig:
     @property
     def toml(self) -> str: ...
 
+@final
 class PlanarConfig:
     @property
     def toml(self) -> str: ...
