@@ -285,6 +285,8 @@ def test_results_plot_and_tabulate():
         r.plot("nope")
     with pytest.raises(autobal.AutobalError, match="samples"):
         autobal.analyse("stability", samples=3).plot()
+    with pytest.raises(TypeError, match="TOML file"):
+        autobal.report({"dimensionless": {}}, out="never-written")
 
 
 def test_the_stubs_are_the_module():

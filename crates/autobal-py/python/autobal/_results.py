@@ -259,6 +259,8 @@ def report(
     reproductions with ``papers=True`` or without a config. ``set``: ``{"table.key": value}``,
     the CLI's ``--set``; ``quick``: shorter runs in time. Ctrl-C stops it (the page is still
     written, marked incomplete, and :class:`KeyboardInterrupt` is raised)."""
+    if isinstance(config, Mapping):
+        raise TypeError("config: the report reads a TOML file, as the CLI's --config (a dict of tables: write it to a file first)")
     sets = [f"{k}={_toml_value(v)}" for k, v in (set or {}).items()]
     path = None if config is None else os.fspath(config)
     return Report(_autobal.report(path, sets, os.fspath(out), quick, papers))
