@@ -61,12 +61,16 @@ fi
 cargo test --workspace "$@"
 
 # The Python package: its wheel built by maturin with the workspace's dev profile (reusing the
-# build above), installed into .venv, and its tests (pytest) on the installed wheel, including
+# build above), installed into .venv (with the `autobal` command), and its tests (pytest) on the installed wheel, including
 # results equal to the CLI's JSON (the binary just built) and a sweep on a local Dask cluster.
 rm -rf target/wheels
 .venv/bin/maturin build --quiet --profile dev -m crates/autobal-py/Cargo.toml -i .venv/bin/python -o target/wheels
 .venv/bin/python -m pip install --quiet --disable-pip-version-check --force-reinstall --no-deps target/wheels/autobal-*.whl
 AUTOBAL_BIN="$PWD/target/debug/autobal" .venv/bin/python -m pytest -q -p no:cacheprovider crates/autobal-py/tests
+
+# The wheel's `autobal` command (the console script into the same Rust front end) passes the CLI's
+# end-to-end tests: one test binary again, with AUTOBAL_BIN pointing at the installed script.
+AUTOBAL_BIN="$PWD/.venv/bin/autobal" cargo test -p autobal-cli --test cli
 
 # The README's Python quick start, now that the wheel is installed (the cargo run above skipped it:
 # the wheel did not exist yet).

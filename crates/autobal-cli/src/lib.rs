@@ -655,6 +655,13 @@ fn check_speed(flag: &str, w: f64) -> Result<()> {
     Ok(())
 }
 
+/// The names of the CLI's commands, in `--help`'s order (the Python module lists them from here,
+/// so that its tests cover every command without a list kept by hand).
+pub fn command_names() -> Vec<String> {
+    use clap::CommandFactory;
+    Cli::command().get_subcommands().map(|c| c.get_name().to_string()).collect()
+}
+
 /// Runs the `autobal` command line on `args` (the program name first, as `std::env::args_os`
 /// gives it) and returns the process's exit code: 0 on success, 2 on an error (its one-line
 /// message already on stderr), clap's own codes for `--help`, `--version` and usage errors.

@@ -27,8 +27,14 @@ fn python_with(modules: &[&str]) -> Option<String> {
     None
 }
 
+/// The `autobal` command under test: `$AUTOBAL_BIN` (scripts/test.sh runs these tests once more
+/// on the wheel's console script, `.venv/bin/autobal`), else the binary cargo built.
+fn bin() -> String {
+    std::env::var("AUTOBAL_BIN").unwrap_or_else(|_| env!("CARGO_BIN_EXE_autobal").to_string())
+}
+
 fn autobal(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_autobal")).args(args).output().expect("binary runs");
+    let out = Command::new(bin()).args(args).output().expect("binary runs");
     (out.status.code().unwrap_or(-1), String::from_utf8_lossy(&out.stdout).into(), String::from_utf8_lossy(&out.stderr).into())
 }
 
@@ -456,8 +462,7 @@ fn interrupted_map_keeps_the_rows_written() {
 /// Run `autobal args`, send SIGINT after `ms` milliseconds, and return exit code, stdout, stderr.
 #[cfg(unix)]
 fn interrupted_after(args: &[&str], ms: u64) -> (Option<i32>, String, String) {
-    let child =
-        Command::new(env!("CARGO_BIN_EXE_autobal")).args(args).stdout(std::process::Stdio::piped()).stderr(std::process::Stdio::piped()).spawn().unwrap();
+    let child = Command::new(bin()).args(args).stdout(std::process::Stdio::piped()).stderr(std::process::Stdio::piped()).spawn().unwrap();
     std::thread::sleep(std::time::Duration::from_millis(ms));
     let _ = Command::new("kill").args(["-INT", &child.id().to_string()]).status();
     let out = child.wait_with_output().unwrap();
@@ -547,7 +552,7 @@ fn simulation_agrees_with_an_independent_scipy_integration_in_fixed_axes() {
     // NumPy and SciPy come with scripts/test.sh (the README's test command).
     let Some(python) = python_with(&["numpy", "scipy"]) else { return };
     let script = format!("{}/../../bench/passage.py", env!("CARGO_MANIFEST_DIR"));
-    let out = Command::new(python).args([&script, "--check", "--exe", env!("CARGO_BIN_EXE_autobal")]).output().expect("python runs");
+    let out = Command::new(python).args([&script, "--check", "--exe", &bin()]).output().expect("python runs");
     assert!(out.status.success(), "{}\n{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
 }
 
@@ -559,7 +564,7 @@ fn spatial_benchmark_equations_agree_with_sympy_and_autobal() {
     // measured 6e-9): the benchmark times the same equations.
     let Some(python) = python_with(&["numpy", "scipy", "sympy"]) else { return };
     let script = format!("{}/../../bench/spatial.py", env!("CARGO_MANIFEST_DIR"));
-    let out = Command::new(python).args([&script, "--check", "--exe", env!("CARGO_BIN_EXE_autobal")]).output().expect("python runs");
+    let out = Command::new(python).args([&script, "--check", "--exe", &bin()]).output().expect("python runs");
     assert!(out.status.success(), "{}\n{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
 }
 

@@ -8,13 +8,15 @@
 //! [`spatial_sim`] for runs in time, [`map`], [`sweep`]), the output files ([`outfile`]: checked
 //! before the work, written under a temporary name and renamed when complete; [`num`] for CSV,
 //! [`parquet`]), the figure descriptions that SVG, PNG and Plotly all draw ([`plot`],
-//! [`figures`], [`mapfig`]) and the HTML report ([`report`]).
+//! [`figures`], [`mapfig`]; each command's figures for a front end that draws them itself:
+//! [`figures_api`]) and the HTML report ([`report`]).
 //!
 //! The front ends parse arguments and own the terminal: `autobal-cli` maps each subcommand to
 //! the functions here; `autobal-py` converts to NumPy and Python exceptions.
 
 pub mod config;
 pub mod figures;
+pub mod figures_api;
 #[cfg(test)]
 mod fuzz;
 pub mod general;

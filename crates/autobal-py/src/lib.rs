@@ -25,6 +25,12 @@ const SIGNAL_POLL: Duration = Duration::from_millis(50);
 /// Run `f` on a worker thread with the GIL released, checking for signals meanwhile; on a
 /// signal, set the cancel flag `f` polls, wait for `f` to return, and raise the signal's error.
 fn interruptible<R: Send>(py: Python<'_>, f: impl FnOnce(&AtomicBool) -> R + Send) -> PyResult<R> {
+    interruptible_with(py, || {}, f)
+}
+
+/// [`interruptible`], calling `on_cancel` too on a signal (the commands crate's computations
+/// poll flags of their own: [`autobal_commands::figures_api::interrupt`]).
+fn interruptible_with<R: Send>(py: Python<'_>, on_cancel: impl Fn(), f: impl FnOnce(&AtomicBool) -> R + Send) -> PyResult<R> {
     let cancel = AtomicBool::new(false);
     std::thread::scope(|s| {
         let (tx, mut rx) = std::sync::mpsc::channel();
@@ -41,6 +47,7 @@ fn interruptible<R: Send>(py: Python<'_>, f: impl FnOnce(&AtomicBool) -> R + Sen
                 Err(std::sync::mpsc::RecvTimeoutError::Timeout) => {
                     if let Err(e) = py.check_signals() {
                         cancel.store(true, Ordering::Relaxed);
+                        on_cancel();
                         let _ = py.detach(move || rx.recv());
                         return Err(e);
                     }
@@ -90,6 +97,31 @@ fn py_err(py: Python<'_>, e: autobal::Error) -> PyErr {
         Ok(PyErr::from_value(exc))
     })();
     made.unwrap_or_else(|err| err)
+}
+
+/// An error of the commands crate: a library error as its exception of `autobal.errors`, any
+/// other (a file, a Ctrl-C) as `AutobalError` with the CLI's one-line message.
+fn any_err(py: Python<'_>, e: anyhow::Error) -> PyErr {
+    match e.downcast::<autobal::Error>() {
+        Ok(e) => py_err(py, e),
+        Err(e) => {
+            let msg = format!("{e:#}").replace('\n', " ");
+            match py.import("autobal.errors").and_then(|m| m.getattr("AutobalError")).and_then(|c| c.call1((msg,))) {
+                Ok(exc) => PyErr::from_value(exc),
+                Err(err) => err,
+            }
+        }
+    }
+}
+
+/// Run a computation of the commands crate on a worker thread with the GIL released; Ctrl-C
+/// stops it through the crate's flags and raises `KeyboardInterrupt`.
+fn commands_call<R: Send>(py: Python<'_>, f: impl FnOnce() -> anyhow::Result<R> + Send) -> PyResult<R> {
+    use autobal_commands::figures_api::{interrupt, reset};
+    reset();
+    let r = interruptible_with(py, interrupt, |_| f());
+    reset();
+    r?.map_err(|e| any_err(py, e))
 }
 
 /// A Python value (dict, list, number, bool, str) as TOML; `at` names it in errors.
@@ -656,6 +688,52 @@ fn planar_paths() -> Vec<(&'static str, &'static str)> {
     PlanarProblem::parameter_paths().iter().map(|p| (p.path, p.doc)).collect()
 }
 
+/// The figures of `command`'s result on a config (as [`spatial_config`] reads it), computed as
+/// the CLI computes them: JSON `[{"id", "title", "figure"}, ...]`, `figure` Plotly's
+/// `{data, layout}` (the description the report draws). `options`: JSON of the CLI's options
+/// ([`autobal_commands::figures_api::Options`]).
+#[pyfunction]
+#[pyo3(signature = (command, text, dict, source, sets, options="{}"))]
+fn figures(
+    py: Python<'_>,
+    command: &str,
+    text: Option<&str>,
+    dict: Option<&Bound<'_, PyDict>>,
+    source: &str,
+    sets: Vec<(String, Bound<'_, PyAny>)>,
+    options: &str,
+) -> PyResult<String> {
+    let root = table(py, text, dict, source, sets)?;
+    let o: autobal_commands::figures_api::Options = serde_json::from_str(options).map_err(|e| py_err(py, autobal::Error::invalid("options", e.to_string())))?;
+    let (command, source) = (command.to_string(), source.to_string());
+    let v = commands_call(py, move || autobal_commands::figures_api::figures_json(&command, &root, &source, &o))?;
+    Ok(v.to_string())
+}
+
+/// `autobal report`: the HTML report of the config file `config` (with `sets`, the CLI's
+/// `--set KEY=VALUE`) written to the folder `out` by the same code; the papers' reproductions
+/// with `papers` or without a config. Returns the path of `index.html`.
+#[pyfunction]
+#[pyo3(signature = (config, sets, out, quick=false, papers=false))]
+fn report(py: Python<'_>, config: Option<std::path::PathBuf>, sets: Vec<String>, out: std::path::PathBuf, quick: bool, papers: bool) -> PyResult<String> {
+    use autobal_commands::{outfile, report};
+    let kind = if papers || config.is_none() { report::Kind::Papers } else { report::Kind::User };
+    let index = commands_call(py, move || {
+        // the folder is created and checked before any section runs, as the CLI does
+        outfile::Outputs::new().inputs(config.as_deref()).output("out", &out.join("index.html")).check()?;
+        report::run(config.as_deref(), &sets, &out, quick, kind)
+    })?;
+    Ok(index.display().to_string())
+}
+
+/// The `autobal` command line on `argv` (the program name first): what the binary does, with
+/// the GIL released; returns the exit code. The wheel's `autobal` console script
+/// (`autobal._cli:main`) calls it.
+#[pyfunction]
+fn cli_main(py: Python<'_>, argv: Vec<String>) -> i32 {
+    py.detach(move || autobal_cli::main_with_args(argv))
+}
+
 #[pymodule]
 fn _autobal(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
@@ -680,5 +758,10 @@ fn _autobal(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(parse_axis, m)?)?;
     m.add_function(wrap_pyfunction!(shard, m)?)?;
     m.add_function(wrap_pyfunction!(planar_paths, m)?)?;
+    m.add_function(wrap_pyfunction!(cli_main, m)?)?;
+    m.add_function(wrap_pyfunction!(figures, m)?)?;
+    m.add_function(wrap_pyfunction!(report, m)?)?;
+    m.add("COMMANDS_WITH_FIGURES", autobal_commands::figures_api::COMMANDS_WITH_FIGURES.to_vec())?;
+    m.add("COMMANDS", autobal_cli::command_names())?;
     Ok(())
 }

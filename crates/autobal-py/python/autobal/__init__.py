@@ -11,7 +11,10 @@ same tables and keys as the ``autobal`` command line, ``examples/*.toml``):
   the spatial rotor of a :class:`SpatialModel` with ``[drive]``.
 
 :func:`run` is every analytic and simulation command of the CLI as one call, returning the
-dict that ``autobal COMMAND --format json`` prints. Errors are :mod:`autobal.errors`
+dict that ``autobal COMMAND --format json`` prints; :func:`analyse` returns the same as a
+:class:`Result` with ``.plot()`` (Plotly figures, the report's), ``.to_pandas()`` and a rich
+display in Jupyter; :func:`report` writes the HTML report of ``autobal report``. The wheel also
+installs the ``autobal`` command itself. Errors are :mod:`autobal.errors`
 exceptions naming the field. Long calls release the GIL and stop on Ctrl-C.
 
 >>> import autobal
@@ -32,6 +35,7 @@ import numpy as np
 from . import _autobal
 from .errors import AutobalError, Interrupted, InvalidParameter, NoConvergence, SimulationError, TooLarge
 from ._sweep import _axes, columns, simulate_batch, sweep, grid
+from ._results import COMMANDS, COMMANDS_WITH_FIGURES, Report, Result, report
 
 __version__: str = _autobal.__version__
 #: Columns of a planar run's summary in :func:`simulate_batch` and :func:`sweep`, in order.
@@ -46,6 +50,12 @@ __all__ = [
     "PlanarProblem",
     "Simulation",
     "run",
+    "analyse",
+    "report",
+    "Result",
+    "Report",
+    "COMMANDS",
+    "COMMANDS_WITH_FIGURES",
     "simulate_batch",
     "sweep",
     "grid",
@@ -468,3 +478,48 @@ _REPORT_OPTIONS: Dict[str, Tuple[str, ...]] = {
 def _no_more(command: str, options: Mapping[str, Any]) -> None:
     if options:
         raise _invalid(next(iter(options)), f"not an option of {command} (see help(autobal.run))")
+
+
+def analyse(command: str, config: ConfigLike = None, set: Optional[Mapping[str, Any]] = None, **options: Any) -> Result:
+    """Run a CLI command as :func:`run` does and return its :class:`Result`: ``.result`` is what
+    :func:`run` returns (``autobal COMMAND --format json``), ``.plot(name=None)`` its figures as
+    Plotly figures (those the CLI writes and the report draws, from the same description;
+    ``stability``, ``campbell``, ``map`` with text axes, ``simulate``), ``.to_pandas()`` its
+    table, and Jupyter shows a summary table and the main figure. Options as for :func:`run`;
+    ``campbell`` also takes ``harmonics`` (its figures' excitation lines). ``analyse("report",
+    config, out=..., quick=..., papers=...)`` is :func:`report`.
+
+    The figures are computed on the first ``.plot()`` (for ``simulate`` the run is repeated:
+    its samples are not kept in Rust between the calls).
+
+    >>> r = analyse("critical", set={"dimensionless.delta_a": 0.1})
+    >>> r.result == run("critical", set={"dimensionless.delta_a": 0.1}), len(r.to_pandas())
+    (True, 4)
+    """
+    arrays: Optional[Dict[str, Any]] = None
+    if command == "report":
+        return report(config, options.pop("out", "autobal-report"), set=set, **options)
+    if command == "simulate":
+        _no_more(command, {k: v for k, v in options.items() if k != "dt"})
+        try:
+            p = PlanarProblem(config, set=set)
+        except InvalidParameter as e:
+            if not (e.field == "planar" and "missing" in str(e)):
+                raise
+            sim = SpatialModel(config, set=set).simulate(options.get("dt"))
+        else:
+            sim = p.simulate(options.get("dt"))
+        result, arrays = sim.summary, sim.columns
+    elif command == "basins":
+        _no_more(command, {k: v for k, v in options.items() if k != "n"})
+        arrays, summary = _autobal.spatial_basins(SpatialModel(config, set=set)._cfg, options.get("n", 16))
+        result = json.loads(summary)
+    else:
+        result = run(command, config, set, **options)
+    planar_default = command in ("simulate", "sweep")
+    text, table, source = _read(
+        config,
+        _autobal.DEFAULT_PLANAR if planar_default else _autobal.DEFAULT_SPATIAL,
+        "embedded default (examples/planar.toml)" if planar_default else SpatialModel._DEFAULT_NAME,
+    )
+    return Result(command, result, (text, table, source, list((set or {}).items())), options, arrays)

@@ -1,10 +1,39 @@
 """Type stubs of the extension module (the Rust side of autobal); use the `autobal` package."""
 
-from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union, final
 
 import numpy as np
 import numpy.typing as npt
 
+__all__ = [
+    "__version__",
+    "SUMMARY_COLUMNS",
+    "SPATIAL_SUMMARY_COLUMNS",
+    "SCHEMA",
+    "DEFAULT_SPATIAL",
+    "DEFAULT_PLANAR",
+    "SpatialConfig",
+    "PlanarConfig",
+    "spatial_config",
+    "planar_config",
+    "spatial_report",
+    "stability_map",
+    "simulate",
+    "simulate_batch",
+    "spatial_simulate",
+    "spatial_basins",
+    "sweep_report",
+    "check_batch",
+    "grid_points",
+    "parse_axis",
+    "shard",
+    "planar_paths",
+    "cli_main",
+    "figures",
+    "report",
+    "COMMANDS_WITH_FIGURES",
+    "COMMANDS",
+]
 __version__: str
 SUMMARY_COLUMNS: List[str]
 SPATIAL_SUMMARY_COLUMNS: List[str]
@@ -12,10 +41,12 @@ SCHEMA: List[Tuple[str, List[str]]]
 DEFAULT_SPATIAL: str
 DEFAULT_PLANAR: str
 
+@final
 class SpatialConfig:
     @property
     def toml(self) -> str: ...
 
+@final
 class PlanarConfig:
     @property
     def toml(self) -> str: ...
@@ -38,3 +69,9 @@ def grid_points(axes: Sequence[Tuple[str, Sequence[float]]], lo: Optional[int] =
 def parse_axis(spec: str) -> Tuple[str, List[float]]: ...
 def shard(total: int, k: int, n: int) -> Tuple[int, int]: ...
 def planar_paths() -> List[Tuple[str, str]]: ...
+def cli_main(argv: Sequence[str]) -> int: ...
+COMMANDS: List[str]
+COMMANDS_WITH_FIGURES: List[str]
+# JSON [{"id", "title", "figure"}], `figure` Plotly's {data, layout}; `options` JSON of the CLI's flags
+def figures(command: str, text: Optional[str], dict: Optional[Mapping[str, Any]], source: str, sets: Sequence[Tuple[str, Any]], options: str = "{}") -> str: ...
+def report(config: Optional[str], sets: Sequence[str], out: str, quick: bool = False, papers: bool = False) -> str: ...

@@ -1,0 +1,282 @@
+//! The figures of each command's result, for a front end that draws them itself (the Python
+//! module's `.plot()`, which builds `plotly.graph_objects.Figure`s): the same [`Plot`]
+//! descriptions the CLI writes as SVG/PNG and the report embeds as Plotly JSON, computed as the
+//! CLI computes them (same routes, same defaults), returned as [`Plot::to_plotly`]'s JSON.
+//!
+//! - `stability`: `stability_margin` (paper 000's 12-state model, or the general route where
+//!   the CLI takes it: [`crate::general::needs_general_route`]);
+//! - `campbell`: `campbell_modes` (fixed axes, one curve per mode: what `--svg` draws by
+//!   default), `campbell_fixed`, `campbell_rotating` (`--view components`);
+//! - `map`: `stability_map` (the closed-form route's map; `x`, `y` as `KEY=LO:HI:N`);
+//! - `simulate`: `simulation_amplitude_omega`, `simulation_amplitude_t`, `simulation_psi_t`,
+//!   `simulation_omega_t` (the plots `simulate` writes beside its CSV);
+//! - `report`: every figure of the HTML report, by its id ([`report_figures`]).
+//!
+//! The other commands draw no figure ([`COMMANDS_WITH_FIGURES`]). Ctrl-C: [`interrupt`] sets the
+//! flags the long computations poll; [`reset`] clears them before the next call.
+
+use crate::config;
+use crate::map::{Axis, Quantity};
+use crate::plot::Plot;
+use anyhow::{bail, Result};
+use autobal::spatial::linear_model::Balls;
+use serde::Deserialize;
+use serde_json::{json, Value};
+use std::sync::atomic::Ordering;
+use toml::Table;
+
+/// The commands whose results have figures, in the CLI's order.
+pub const COMMANDS_WITH_FIGURES: &[&str] = &["stability", "campbell", "map", "simulate", "report"];
+
+/// A command's options that change its figures, as the CLI's flags (`None`: the CLI's default).
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Options {
+    /// `--omega-max` (a speed with its unit, or a bare number Ω).
+    pub omega_max: Option<String>,
+    /// `stability --samples`.
+    pub samples: Option<usize>,
+    /// `campbell --points`.
+    pub points: Option<usize>,
+    /// `--balls`: `free` (default) or `locked`.
+    pub balls: Option<String>,
+    /// `campbell --harmonics` (default `[1]`).
+    pub harmonics: Option<Vec<u32>>,
+    /// `map --x`, `--y` (`KEY=LO:HI:N`).
+    pub x: Option<String>,
+    pub y: Option<String>,
+    /// `map --omega`.
+    pub omega: Option<String>,
+    /// `map --quantity`: `margin` (default) or `verdict`.
+    pub quantity: Option<String>,
+    /// `simulate --dt`.
+    pub dt: Option<f64>,
+    /// `report --quick`.
+    pub quick: Option<bool>,
+    /// `report --papers`.
+    pub papers: Option<bool>,
+}
+
+/// One figure: its id (the report's figure id, or the command's) and its description.
+pub struct Figure {
+    pub id: String,
+    pub plot: Plot,
+}
+
+impl Figure {
+    /// `{"id", "title", "figure"}`, the figure as Plotly JSON (`{data, layout}`).
+    pub fn to_json(&self) -> Value {
+        json!({"id": self.id, "title": self.plot.title, "figure": self.plot.to_plotly()})
+    }
+}
+
+/// Ask the running computation to stop (Ctrl-C in a front end without the CLI's handler).
+pub fn interrupt() {
+    crate::map::INTERRUPTED.store(true, Ordering::Relaxed);
+    crate::sim::INTERRUPTED.store(true, Ordering::Relaxed);
+}
+
+/// Clear the stop flags before a new computation.
+pub fn reset() {
+    crate::map::INTERRUPTED.store(false, Ordering::Relaxed);
+    crate::sim::INTERRUPTED.store(false, Ordering::Relaxed);
+}
+
+fn balls(o: &Options) -> Result<Balls> {
+    match o.balls.as_deref().unwrap_or("free") {
+        "free" => Ok(Balls::Free),
+        "locked" => Ok(Balls::Locked),
+        b => bail!("balls: must be \"free\" or \"locked\", got \"{b}\""),
+    }
+}
+
+/// The figures of `command` on the config `root` (`source` names it in messages), as a JSON
+/// array of [`Figure::to_json`].
+pub fn figures_json(command: &str, root: &Table, source: &str, o: &Options) -> Result<Value> {
+    Ok(Value::Array(figures(command, root, source, o)?.iter().map(Figure::to_json).collect()))
+}
+
+/// The figures of `command` on the config `root`, computed as the CLI computes them.
+pub fn figures(command: &str, root: &Table, source: &str, o: &Options) -> Result<Vec<Figure>> {
+    let fig = |id: &str, plot: Plot| Figure { id: id.to_string(), plot };
+    match command {
+        "stability" => {
+            let b = balls(o)?;
+            if crate::general::needs_general_route(root) {
+                if b == Balls::Locked {
+                    bail!("balls: the general route analyses the balls free");
+                }
+                let g = crate::general::rotor_of(root)?;
+                let samples = o.samples.unwrap_or(if g.rotor.is_periodic() { 50 } else { 200 });
+                let omega_max = general_omega_max(root, &g, o.omega_max.as_deref())?;
+                let r = crate::general::analyse(&g, omega_max, samples)?;
+                return Ok(vec![fig("stability_margin", crate::general::margin_plot(&g, &r, omega_max))]);
+            }
+            let cfg = config::build(root, source)?;
+            let w = crate::linear::omega_max(&cfg, o.omega_max.as_deref())?;
+            let samples = o.samples.unwrap_or(2000);
+            if !(10..=1_000_000).contains(&samples) {
+                bail!("samples: must lie between 10 and 1000000, got {samples}");
+            }
+            let c = crate::linear::compare(&cfg.model, w, samples, b)?;
+            autobal::limits::check_finite("stability", &c.exact)?;
+            Ok(vec![fig("stability_margin", crate::figures::margin_plot(&cfg.model, &c))])
+        }
+        "campbell" => {
+            let b = balls(o)?;
+            let cfg = config::build(root, source)?;
+            let w = crate::linear::omega_max(&cfg, o.omega_max.as_deref())?;
+            let points = o.points.unwrap_or(300);
+            if !(3..=crate::linear::PLOT_SPEEDS).contains(&points) {
+                bail!("points: the figures take between 3 and {} speeds, got {points}", crate::linear::PLOT_SPEEDS);
+            }
+            let harmonics = crate::linear::check_harmonics(o.harmonics.as_deref().unwrap_or(&[1]))?;
+            let c = crate::linear::campbell_of(&cfg, w, points, b)?;
+            autobal::limits::check_finite("campbell", &c)?;
+            let fixed = autobal::spatial::campbell::fixed_axes(&cfg.model, &c, b, &harmonics)?;
+            let (rot, fx) = crate::figures::campbell_plots(&cfg.model, &c);
+            Ok(vec![fig("campbell_modes", crate::figures::campbell_fixed_plot(&cfg.model, &fixed)), fig("campbell_fixed", fx), fig("campbell_rotating", rot)])
+        }
+        "map" => {
+            if crate::general::needs_general_route(root) {
+                bail!("map: the figures of the general route's map are written by the CLI only (autobal map --out STEM)");
+            }
+            let cfg = config::build(root, source)?;
+            let (Some(x), Some(y)) = (&o.x, &o.y) else { bail!("x: required, with y (KEY=LO:HI:N, e.g. x='dimensionless.z_a=-2:2:41')") };
+            let (xa, ya) = (Axis::parse("x", x)?, Axis::parse("y", y)?);
+            let omega = o.omega.as_deref().map(|t| crate::linear::speed_arg(&cfg, "omega", t)).transpose()?;
+            let q = match o.quantity.as_deref().unwrap_or("margin") {
+                "margin" => Quantity::Margin,
+                "verdict" => Quantity::Verdict,
+                q => bail!("quantity: must be \"margin\" or \"verdict\", got \"{q}\""),
+            };
+            let b = balls(o)?;
+            let (r, run) = crate::map::compute(&cfg, xa, ya, omega, b, q, &mut std::io::sink(), false)?;
+            if run.rows_done < run.rows_total {
+                bail!("interrupted: {} of {} rows computed", run.rows_done, run.rows_total);
+            }
+            let title = format!("Stability map, balls {}", if b == Balls::Free { "free" } else { "locked" });
+            Ok(vec![fig("stability_map", crate::mapfig::plot(&r, &title))])
+        }
+        "simulate" => {
+            let stopped = |s: &Option<String>| -> Result<()> {
+                match s {
+                    Some(st) => bail!("{st}"),
+                    None => Ok(()),
+                }
+            };
+            let plots = if autobal::config::is_spatial(root) {
+                let mut sim = crate::spatial_sim::build(root, source)?;
+                if let Some(d) = o.dt {
+                    sim.settings.dt = d;
+                    sim.settings.validate().map_err(|e| anyhow::anyhow!("dt: {e}"))?;
+                }
+                let (summary, kept, _) = crate::spatial_sim::run_to_csv(&sim, &mut std::io::sink(), false, &crate::sim::INTERRUPTED)?;
+                stopped(&summary.stopped)?;
+                crate::spatial_sim::plots(&sim, &kept, "Spatial rotor")
+            } else {
+                let mut cfg = config::build_planar(root, source)?;
+                if let Some(d) = o.dt {
+                    cfg.settings.dt = d;
+                    cfg.settings.validate(&cfg.rotor).map_err(|e| anyhow::anyhow!("dt: {e}"))?;
+                }
+                let (summary, env, _) = crate::sim::run_to_csv(&cfg, &mut std::io::sink(), None, false)?;
+                stopped(&summary.stopped)?;
+                crate::sim::plots(&cfg, &env, "Passage")
+            };
+            Ok(plots.into_iter().map(|(suffix, p)| fig(&format!("simulation_{suffix}"), p)).collect())
+        }
+        "report" => {
+            let kind = if o.papers.unwrap_or(false) { crate::report::Kind::Papers } else { crate::report::Kind::User };
+            report_figures(root, source, o.quick.unwrap_or(false), kind)
+        }
+        c if crate_commands().contains(&c) => bail!("command: {c} draws no figure (figures: {})", COMMANDS_WITH_FIGURES.join(", ")),
+        c => bail!("command: unknown command \"{c}\""),
+    }
+}
+
+/// Every command of the CLI (those without figures included), for the messages.
+fn crate_commands() -> &'static [&'static str] {
+    &["inertia", "critical", "ranges", "stability", "campbell", "map", "simulate", "sweep", "merge", "basins", "report"]
+}
+
+/// `--omega-max` of the general route in rad/s (1 rad/s for a planar rotor), as `autobal
+/// stability` takes it; the CLI's automatic axis without it.
+fn general_omega_max(root: &Table, g: &crate::general::GeneralRotor, arg: Option<&str>) -> Result<f64> {
+    use autobal::rotor_stability::Rotor;
+    Ok(match (&g.rotor, arg) {
+        (_, Some(t)) => {
+            let s = autobal::units::parse_speed("omega_max", t)?;
+            let w = match s.unit.rad_s() {
+                Some(k) if g.si => s.value * k,
+                Some(_) => s.to_omega("omega_max", None)?,
+                None => s.value * g.omega0,
+            };
+            autobal::limits::check_as("omega_max", "analysis.omega_max", w / g.omega0)?;
+            w
+        }
+        (Rotor::Planar(_), None) => 3.0 * g.rotor.natural_frequency(),
+        (Rotor::Spatial(_), None) => {
+            let cfg = autobal::config::spatial(root)?;
+            cfg.analysis.speed_axis_max(2.0 * autobal::reports::default_omega_max(&cfg.model)) * g.omega0
+        }
+    })
+}
+
+/// Every figure of the HTML report on the config `root` (its sections built as `autobal
+/// report` builds them, no file written), in page order.
+pub fn report_figures(root: &Table, source: &str, quick: bool, kind: crate::report::Kind) -> Result<Vec<Figure>> {
+    let spatial = if autobal::config::is_spatial(root) { Some(config::build(root, source)?) } else { None };
+    let planar = if root.contains_key("planar") { Some(config::build_planar(root, source)?) } else { None };
+    if spatial.is_none() && planar.is_none() {
+        bail!("config: describes no rotor: give [dimensionless] or [rotor], [supports], [unbalance], [balancer] (papers 000/003), or [planar] (paper 004)");
+    }
+    let text = match &spatial {
+        Some(c) => c.text.clone(),
+        None => toml::to_string(root).unwrap_or_default(),
+    };
+    let ctx = crate::report::Ctx { kind, spatial, planar, quick, source: source.to_string(), text, root: root.clone() };
+    let list = if kind == crate::report::Kind::User { crate::report::USER_SECTIONS } else { crate::report::PAPER_SECTIONS };
+    let mut out = vec![];
+    for (name, build) in list {
+        let Some(s) = build(&ctx).map_err(|e| e.context(format!("report section {name}")))? else { continue };
+        if !s.complete {
+            bail!("interrupted: report section {name} was cut short");
+        }
+        for f in s.figures() {
+            out.push(Figure { id: f.id.clone(), plot: f.plot.clone() });
+        }
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn default_root() -> Table {
+        config::parse_text(config::DEFAULT_CONFIG, "default").unwrap()
+    }
+
+    #[test]
+    fn stability_figure_is_the_clis_margin_plot() {
+        let root = default_root();
+        let f = figures("stability", &root, "default", &Options { samples: Some(100), ..Default::default() }).unwrap();
+        assert_eq!(f.len(), 1);
+        assert_eq!(f[0].id, "stability_margin");
+        let cfg = config::build(&root, "default").unwrap();
+        let w = crate::linear::omega_max(&cfg, None).unwrap();
+        let c = crate::linear::compare(&cfg.model, w, 100, Balls::Free).unwrap();
+        assert_eq!(f[0].plot.to_plotly(), crate::figures::margin_plot(&cfg.model, &c).to_plotly());
+    }
+
+    #[test]
+    fn commands_without_figures_say_so() {
+        let e = figures("critical", &default_root(), "default", &Options::default()).err().unwrap().to_string();
+        assert!(e.contains("draws no figure"), "{e}");
+        let e = figures("nope", &default_root(), "default", &Options::default()).err().unwrap().to_string();
+        assert!(e.contains("unknown command"), "{e}");
+        let e = serde_json::from_str::<Options>(r#"{"sample": 3}"#).err().unwrap().to_string();
+        assert!(e.contains("unknown field"), "{e}");
+    }
+}

@@ -1,0 +1,282 @@
+"""Result objects: one command's result with its figures, its table and its rich display.
+
+:func:`analyse` runs a command as :func:`autobal.run` does and wraps what ``run`` returns
+(``.result``, equal to ``autobal COMMAND --format json``) in a :class:`Result`:
+
+- ``.plot(name=None)``: a ``plotly.graph_objects.Figure`` built from the figure description the
+  CLI draws as SVG and the report draws with Plotly (the same Plotly JSON, computed in Rust by
+  ``autobal_commands::figures_api``); ``.figures()`` lists them by id;
+- ``.to_pandas()``: the result's table (critical speeds, ranges, the margin over speed, the
+  Campbell lines, the map's cells, a run's samples, a sweep's runs, the basins' runs);
+- ``_repr_html_``: a summary table and the main figure, for Jupyter.
+
+:func:`report` writes the HTML report (``autobal report``) and returns a :class:`Report`, whose
+``.plot(id)`` gives each figure of the page from the page's own data.
+"""
+
+from __future__ import annotations
+
+import html
+import json
+import os
+import re
+from pathlib import Path
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+
+from . import _autobal
+
+#: Every command of the ``autobal`` command line (from the CLI's own argument parser).
+COMMANDS: List[str] = list(_autobal.COMMANDS)
+#: The commands whose results have figures (``.plot()``).
+COMMANDS_WITH_FIGURES: List[str] = list(_autobal.COMMANDS_WITH_FIGURES)
+
+# the options that change each command's figures, as the CLI's flags (figures_api::Options)
+_FIGURE_OPTIONS: Dict[str, Tuple[str, ...]] = {
+    "stability": ("omega_max", "samples", "balls"),
+    "campbell": ("omega_max", "points", "balls", "harmonics"),
+    "map": ("x", "y", "omega", "balls", "quantity"),
+    "simulate": ("dt",),
+}
+
+
+def _figure_options(command: str, options: Mapping[str, Any]) -> str:
+    out: Dict[str, Any] = {}
+    for k in _FIGURE_OPTIONS.get(command, ()):
+        v = options.get(k)
+        if v is None:
+            continue
+        if k in ("omega_max", "omega"):
+            v = v if isinstance(v, str) else repr(float(v))
+        if k in ("x", "y") and not isinstance(v, str):
+            raise TypeError(f"{k}: the map's figure takes the axis as text, 'KEY=LO:HI:N' (as the CLI's --{k})")
+        out[k] = v
+    return json.dumps(out)
+
+
+def _go() -> Any:
+    try:
+        import plotly.graph_objects as go
+    except ImportError:
+        raise ImportError("plotting needs plotly: pip install 'autobal[plot]' (or pip install plotly)") from None
+    return go
+
+
+def _scalars(d: Mapping[str, Any], prefix: str = "", depth: int = 0) -> List[Tuple[str, Any]]:
+    """The numbers, strings and booleans of ``d`` as ``(key.path, value)``, nested tables
+    flattened two levels deep."""
+    rows: List[Tuple[str, Any]] = []
+    for k, v in d.items():
+        key = f"{prefix}{k}"
+        if isinstance(v, Mapping) and depth < 1:
+            rows.extend(_scalars(v, key + ".", depth + 1))
+        elif isinstance(v, (int, float, str, bool)) or v is None:
+            rows.append((key, v))
+    return rows
+
+
+_PLOTLYJS_SENT = False
+
+
+class Result:
+    """The result of one command (:func:`analyse`).
+
+    ``command``: its name; ``result``: what :func:`autobal.run` returns for it (for every command
+    but ``map``, the dict ``autobal COMMAND --format json`` prints); ``arrays``: per-sample or
+    per-run arrays where the command has them (``simulate``'s columns, ``basins``' runs).
+    ``result[key]`` reads the result.
+    """
+
+    def __init__(
+        self,
+        command: str,
+        result: Dict[str, Any],
+        config: Tuple[Optional[str], Optional[dict], str, List[Tuple[str, Any]]],
+        options: Mapping[str, Any],
+        arrays: Optional[Dict[str, Any]] = None,
+    ) -> None:
+        self.command = command
+        self.result = result
+        self.arrays = arrays
+        self._config = config
+        self._options = dict(options)
+        self._figures: Optional[Dict[str, Dict[str, Any]]] = None
+
+    def __getitem__(self, key: str) -> Any:
+        return self.result[key]
+
+    def __repr__(self) -> str:
+        return f"<autobal.Result {self.command}: {len(self.result)} keys{', figures: ' + ', '.join(self.figures()) if self._figures else ''}>"
+
+    # -- figures -----------------------------------------------------------------------------
+    def figures(self) -> Dict[str, Dict[str, Any]]:
+        """The figures of this result by id, each the Plotly JSON ``{"data", "layout"}`` of the
+        CLI's and the report's figure description (computed on the first call, then kept; an
+        empty dict for a command without figures)."""
+        if self._figures is None:
+            if self.command not in COMMANDS_WITH_FIGURES:
+                self._figures = {}
+            else:
+                text, table, source, sets = self._config
+                raw = _autobal.figures(self.command, text, table, source, sets, _figure_options(self.command, self._options))
+                self._figures = {f["id"]: f["figure"] for f in json.loads(raw)}
+        return self._figures
+
+    def plot(self, name: Optional[str] = None) -> Any:
+        """The figure ``name`` (default: the main one, the first of :meth:`figures`) as a
+        ``plotly.graph_objects.Figure`` (needs plotly: ``pip install 'autobal[plot]'``)."""
+        figs = self.figures()
+        if not figs:
+            raise ValueError(f"{self.command} draws no figure (figures: {', '.join(COMMANDS_WITH_FIGURES)}); its table: .to_pandas()")
+        if name is None:
+            name = next(iter(figs))
+        if name not in figs:
+            raise KeyError(f"{name}: not a figure of {self.command} (figures: {', '.join(figs)})")
+        return _go().Figure(figs[name])
+
+    # -- tables ------------------------------------------------------------------------------
+    def to_pandas(self) -> Any:
+        """The result's table as a pandas DataFrame (needs pandas):
+
+        - ``critical``: one row per critical speed; ``ranges``: one row per range (``kind``
+          autobalancing, instability or antiresonance-free, ``from``, ``to``); ``stability``:
+          the largest real part of the eigenvalues per speed (``omega``, ``max_real_part``);
+        - ``campbell``: one row per speed and tracked line (``omega``, ``line`` and the mode's
+          fields); ``map``: one row per cell, as the CLI's CSV;
+        - ``simulate``: the samples (the CLI's CSV columns); ``sweep``: one row per run;
+          ``basins``: one row per run (the CLI's CSV).
+
+        ``inertia`` has no table (its result is a few numbers: ``.result``)."""
+        import pandas as pd
+
+        r, c = self.result, self.command
+        if c == "critical":
+            return pd.DataFrame(r["critical_speeds"])
+        if c == "ranges":
+            rows = [
+                {"kind": kind, "from": lo, "to": hi}
+                for kind in ("autobalancing_ranges", "instability_ranges")
+                for lo, hi in (r.get(kind) or [])
+            ]
+            return pd.DataFrame(rows, columns=["kind", "from", "to"])
+        if c == "stability":
+            return pd.DataFrame(r["max_real_part"], columns=["omega", "max_real_part"])
+        if c == "campbell":
+            rows = [
+                {"omega": w, "line": i, **m}
+                for i, line in enumerate(r["lines"])
+                for w, m in zip(r["omega"], line["modes"])
+            ]
+            return pd.DataFrame(rows)
+        if c == "map":
+            import numpy as np
+
+            xs, ys = np.meshgrid(r["x"], r["y"])
+            return pd.DataFrame(
+                {
+                    r["x_path"]: xs.ravel(),
+                    r["y_path"]: ys.ravel(),
+                    "max_real_part": r["margin"].ravel(),
+                    "stable": r["stable"].ravel(),
+                    "necessary": r["necessary"].ravel(),
+                }
+            )
+        if c == "simulate" and self.arrays is not None:
+            data = {k: v for k, v in self.arrays.items() if k != "psi"}
+            psi = self.arrays["psi"]
+            for j in range(psi.shape[1]):
+                data[f"psi_{j + 1}"] = psi[:, j]
+            return pd.DataFrame(data)
+        if c == "sweep":
+            return pd.json_normalize(r["runs"])
+        if c == "basins" and self.arrays is not None:
+            return pd.DataFrame({k: self.arrays[k] for k in ("psi_1", "psi_2", "balanced_runs", "residual_unbalance", "final_amplitude")}).rename(
+                columns={"balanced_runs": "balanced"}
+            )
+        raise TypeError(f"{c} has no table: its result is a few numbers (.result)")
+
+    # -- Jupyter -----------------------------------------------------------------------------
+    def _summary_rows(self) -> List[Tuple[str, Any]]:
+        if self.command == "map":
+            import numpy as np
+
+            r = self.result
+            return [
+                ("x", f"{r['x_path']}: {len(r['x'])} values"),
+                ("y", f"{r['y_path']}: {len(r['y'])} values"),
+                ("stable cells", f"{int(np.sum(r['stable']))} of {r['stable'].size}"),
+            ]
+        return _scalars(self.result)
+
+    def _repr_html_(self) -> str:
+        global _PLOTLYJS_SENT
+        rows = "".join(f"<tr><th style='text-align:left'>{html.escape(k)}</th><td style='text-align:left'>{html.escape(str(v))}</td></tr>" for k, v in self._summary_rows()[:40])
+        out = f"<div><b>autobal {html.escape(self.command)}</b><table>{rows}</table>"
+        if self.command in COMMANDS_WITH_FIGURES:
+            try:
+                fig = self.plot()
+            except ImportError as e:
+                out += f"<p>{html.escape(str(e))}</p>"
+            else:
+                # plotly.js once per session, in the page itself (readable offline)
+                out += fig.to_html(full_html=False, include_plotlyjs=not _PLOTLYJS_SENT)
+                _PLOTLYJS_SENT = True
+        return out + "</div>"
+
+
+class Report(Result):
+    """The HTML report written by :func:`report`: ``path`` (its ``index.html``); ``.figures()``
+    every figure of the page by its id, read from the page's own data (what the page draws);
+    ``.plot(id)`` one of them as a plotly Figure."""
+
+    def __init__(self, path: str) -> None:
+        super().__init__("report", {"index": path}, (None, None, "", []), {})
+        self.path = Path(path)
+
+    def figures(self) -> Dict[str, Dict[str, Any]]:
+        if self._figures is None:
+            page = self.path.read_text(encoding="utf-8")
+            found = re.findall(r'<script type="application/json" id="data-([^"]+)">(.*?)</script>', page, flags=re.S)
+            self._figures = {fid: json.loads(data) for fid, data in found}
+        return self._figures
+
+    def __repr__(self) -> str:
+        return f"<autobal.Report {self.path}: {len(self.figures())} figures>"
+
+    def _summary_rows(self) -> List[Tuple[str, Any]]:
+        return [("index", str(self.path)), ("figures", ", ".join(self.figures()))]
+
+
+def report(
+    config: Union[None, str, "os.PathLike[str]"] = None,
+    out: Union[str, "os.PathLike[str]"] = "autobal-report",
+    *,
+    set: Optional[Mapping[str, Any]] = None,
+    quick: bool = False,
+    papers: bool = False,
+) -> Report:
+    """Write the HTML report to the folder ``out``, as ``autobal report --config CONFIG --out
+    OUT`` does (the same code: the same files): about the config's rotor, or the papers'
+    reproductions with ``papers=True`` or without a config. ``set``: ``{"table.key": value}``,
+    the CLI's ``--set``; ``quick``: shorter runs in time. Ctrl-C stops it (the page is still
+    written, marked incomplete, and :class:`KeyboardInterrupt` is raised)."""
+    if isinstance(config, Mapping):
+        raise TypeError("config: the report reads a TOML file, as the CLI's --config (a dict of tables: write it to a file first)")
+    sets = [f"{k}={_toml_value(v)}" for k, v in (set or {}).items()]
+    path = None if config is None else os.fspath(config)
+    return Report(_autobal.report(path, sets, os.fspath(out), quick, papers))
+
+
+def _toml_value(v: Any) -> str:
+    """``v`` as the CLI's ``--set KEY=VALUE`` reads it (TOML)."""
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, (int, float)):
+        return repr(v)
+    if isinstance(v, str):
+        return json.dumps(v)
+    if isinstance(v, (list, tuple)):
+        return "[" + ", ".join(_toml_value(x) for x in v) + "]"
+    raise TypeError(f"set: {v!r} is not a number, string, bool or list")
+
+
+__all__: Sequence[str] = ["Result", "Report", "report", "COMMANDS", "COMMANDS_WITH_FIGURES"]

@@ -1,0 +1,407 @@
+"""The wheel as a whole front end (issue 20 §3, §6): the `autobal` command it installs, every
+command's JSON equal to the CLI's, the figures of the result objects equal to the report's, the
+report from Python equal to the CLI's, and the stubs equal to the module.
+
+The CLI comparisons need the `autobal` binary cargo built: $AUTOBAL_BIN, else target/debug/autobal.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+import autobal
+
+ROOT = Path(__file__).resolve().parents[3]
+REQUIRE = bool(os.environ.get("AUTOBAL_REQUIRE_PYTHON"))
+
+
+def binary() -> str:
+    exe = os.environ.get("AUTOBAL_BIN", str(ROOT / "target" / "debug" / "autobal"))
+    if not Path(exe).exists():
+        if REQUIRE:
+            raise FileNotFoundError(f"{exe}: build the CLI first (cargo build -p autobal-cli)")
+        pytest.skip("needs the autobal binary")
+    return exe
+
+
+def need(module: str):
+    try:
+        return __import__(module)
+    except ImportError:
+        if REQUIRE:
+            raise
+        pytest.skip(f"needs {module} (pip install -r requirements-test.txt)")
+
+
+def script() -> str:
+    """The console script the wheel installed beside this Python."""
+    exe = Path(sys.executable).parent / "autobal"
+    assert exe.exists(), f"{exe}: the wheel installs the autobal command ([project.scripts])"
+    return str(exe)
+
+
+def run(exe: str, *args: str, cwd=None) -> subprocess.CompletedProcess:
+    return subprocess.run([exe, *args], capture_output=True, text=True, cwd=cwd or os.environ.get("TMPDIR", "/tmp"))
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        ("critical",),
+        ("critical", "--format", "json", "--set", "dimensionless.l_left=1.2"),
+        ("--version",),
+        ("stability", "--omega-max", "nope"),
+        ("frobnicate",),
+    ],
+)
+def test_the_installed_command_is_the_clis(args):
+    # the same stdout, stderr and exit code as the binary cargo built (errors and usage included)
+    a, b = run(script(), *args), run(binary(), *args)
+    assert (a.returncode, a.stdout, a.stderr) == (b.returncode, b.stdout, b.stderr)
+
+
+def cli_json(*args: str) -> dict:
+    out = run(binary(), *args, "--format", "json")
+    assert out.returncode == 0, out.stderr
+    return json.loads(out.stdout)
+
+
+def without_walls(d):
+    """`d` without the wall times (they differ between runs) at any depth."""
+    if isinstance(d, dict):
+        return {k: without_walls(v) for k, v in d.items() if not k.startswith("wall")}
+    if isinstance(d, list):
+        return [without_walls(v) for v in d]
+    return d
+
+
+def setargs(sets: dict) -> list:
+    return [a for k, v in sets.items() for a in ("--set", f"{k}={v}")]
+
+
+EX = ROOT / "examples"
+SPATIAL = str(EX / "spatial.toml")
+SHORT_PLANAR = {"drive.t_end": 1.0, "drive.omega0": 250.0, "drive.b": 100.0}
+GRID = {"x": "planar.c_psi=0.05:0.15:3", "y": "drive.b=80,120"}
+
+
+def case_linear(command):
+    def check(tmp_path):
+        dim = str(EX / "dimensional.toml")
+        assert autobal.run(command) == cli_json(command)
+        assert autobal.run(command, config=dim) == cli_json(command, "--config", dim)
+        assert autobal.analyse(command, config=dim).result == cli_json(command, "--config", dim)
+
+    return check
+
+
+def case_stability(tmp_path):
+    assert autobal.run("stability", omega_max=4.0, samples=200) == cli_json("stability", "--omega-max", "4", "--samples", "200")
+    dim = str(EX / "washing_machine.toml")
+    assert autobal.analyse("stability", config=dim).result == cli_json("stability", "--config", dim)
+
+
+def case_campbell(tmp_path):
+    assert autobal.analyse("campbell", points=20, omega_max=3.0).result == cli_json("campbell", "--points", "20", "--omega-max", "3")
+
+
+def case_map(tmp_path):
+    # the CLI writes the map as CSV (no JSON): the same cells, bit for bit
+    x, y = "dimensionless.z_a=-2:2:9", "omega=0.05:4.5:7"
+    out = run(binary(), "map", "--x", x, "--y", y, "--out", str(tmp_path / "m"))
+    assert out.returncode == 0, out.stderr
+    df = autobal.analyse("map", x=x, y=y).to_pandas()
+    rows = [line.split(",") for line in (tmp_path / "m.csv").read_text().splitlines()]
+    assert rows[0] == list(df.columns)
+    assert [[float(v) for v in r] for r in rows[1:]] == df.astype(float).values.tolist()
+
+
+def case_simulate(tmp_path):
+    got = autobal.analyse("simulate", set=SHORT_PLANAR)
+    want = cli_json("simulate", "--out", str(tmp_path / "s.csv"), *setargs(SHORT_PLANAR))
+    assert without_walls(got.result) == without_walls(want) == without_walls(autobal.run("simulate", set=SHORT_PLANAR))
+    csv = (tmp_path / "s.csv").read_text().splitlines()
+    df = got.to_pandas()
+    assert csv[0].split(",") == list(df.columns) and len(csv) - 1 == len(df)
+
+
+def case_sweep(tmp_path):
+    got = autobal.run("sweep", set=SHORT_PLANAR, **GRID)
+    want = cli_json("sweep", "--out", str(tmp_path / "sw"), "--x", GRID["x"], "--y", GRID["y"], *setargs(SHORT_PLANAR))
+    assert without_walls(got) == without_walls(want)
+    assert len(autobal.analyse("sweep", set=SHORT_PLANAR, **GRID).to_pandas()) == 6
+
+
+def case_merge(tmp_path):
+    # merge joins the shards of a sweep: its JSON is the unsharded sweep's, which run gives
+    for k in (1, 2):
+        r = run(binary(), "sweep", "--out", str(tmp_path / f"p{k}"), "--shard", f"{k}/2", "--x", GRID["x"], "--y", GRID["y"], *setargs(SHORT_PLANAR))
+        assert r.returncode == 0, r.stderr
+    r = run(binary(), "merge", str(tmp_path / "p2.csv"), str(tmp_path / "p1.csv"), "--out", str(tmp_path / "merged"))
+    assert r.returncode == 0, r.stderr
+    merged = json.loads((tmp_path / "merged.json").read_text())
+    # to 2 ulp, not bit for bit: merge reads the shards' CSV (exact shortest digits) back with
+    # serde_json's default float parser, which can miss by 1 ulp (measured: 0.0019022483945061678
+    # in the CSV, 0.001902248394506168 in merged.json); the CLI's own sweep JSON equals Python's
+    # bit for bit (case_sweep)
+    assert_close(without_walls(merged), without_walls(autobal.run("sweep", set=SHORT_PLANAR, **GRID)))
+
+
+def assert_close(a, b, at="", rel=4.5e-16):
+    if isinstance(a, dict):
+        assert isinstance(b, dict) and set(a) == set(b), at
+        for k in a:
+            assert_close(a[k], b[k], f"{at}.{k}", rel)
+    elif isinstance(a, list):
+        assert isinstance(b, list) and len(a) == len(b), at
+        for i, (x, y) in enumerate(zip(a, b)):
+            assert_close(x, y, f"{at}[{i}]", rel)
+    elif isinstance(a, float) and isinstance(b, float):
+        assert abs(a - b) <= rel * max(abs(a), abs(b)), f"{at}: {a!r} != {b!r}"
+    else:
+        assert a == b, f"{at}: {a!r} != {b!r}"
+
+
+def case_basins(tmp_path):
+    sets = {"drive.t_end": 50.0}
+    got = autobal.analyse("basins", config=SPATIAL, set=sets, n=3)
+    want = cli_json("basins", "--config", SPATIAL, "--n", "3", "--out", str(tmp_path / "b.csv"), *setargs(sets))
+    assert without_walls(got.result) == {k: v for k, v in without_walls(want).items() if k != "csv"}
+    csv = (tmp_path / "b.csv").read_text().splitlines()
+    assert csv[0].split(",") == list(got.to_pandas().columns) and len(csv) == 10
+
+
+def case_report(tmp_path):
+    # the report from Python equals the CLI's, file by file (but for the wall times on the page)
+    cfg = str(EX / "washing_machine.toml")
+    r = run(binary(), "report", "--config", cfg, "--quick", "--out", str(tmp_path / "cli"))
+    assert r.returncode == 0, r.stderr
+    rep = autobal.report(cfg, out=tmp_path / "py", quick=True)
+    assert rep.path == tmp_path / "py" / "index.html"
+    names = sorted(p.name for p in (tmp_path / "cli").iterdir())
+    assert names == sorted(p.name for p in (tmp_path / "py").iterdir()) and len(names) > 20
+    # the wall times: the page's "computed in N s", the run-up's "N right-hand sides, N s", the
+    # basins' "(N s here)"
+    timed = re.compile(r"(computed in |right-hand sides, |\()[0-9.]+ s")
+    for name in names:
+        a, b = (tmp_path / "cli" / name).read_bytes(), (tmp_path / "py" / name).read_bytes()
+        if name == "index.html":
+            a, b = (timed.sub("", x.decode()) for x in (a, b))
+        assert a == b, name
+
+
+CASES = {
+    "inertia": case_linear("inertia"),
+    "critical": case_linear("critical"),
+    "ranges": case_linear("ranges"),
+    "stability": case_stability,
+    "campbell": case_campbell,
+    "map": case_map,
+    "simulate": case_simulate,
+    "sweep": case_sweep,
+    "merge": case_merge,
+    "basins": case_basins,
+    "report": case_report,
+}
+
+
+@pytest.mark.parametrize("command", autobal.COMMANDS)
+def test_every_command_from_python_equals_the_cli(command, tmp_path):
+    """Every command of the CLI (the list from its argument parser, not kept here): Python's
+    result equals the CLI's output. A new command fails here until its case is written."""
+    need("pandas")
+    assert command in CASES, f"{command}: a new command of the CLI; add its comparison to CASES"
+    CASES[command](tmp_path)
+
+
+def traces(fig) -> list:
+    """A plotly Figure's traces as JSON (what the page's Plotly draws)."""
+    return json.loads(fig.to_json())["data"]
+
+
+# figures the report draws that no command draws (the rotor's response, the design maps with the
+# speed in rpm, the basins): they come out of the Report's .plot() only
+REPORT_ONLY = re.compile(r"^(rotor_response|design_.*|basins)$")
+
+
+def test_every_figure_of_the_report_comes_out_of_plot(tmp_path):
+    need("plotly")
+    cfg = str(EX / "washing_machine.toml")
+    rep = autobal.report(cfg, out=tmp_path / "r")
+    page = rep.figures()
+    assert len(page) >= 10 and "stability_margin" in page
+    # every figure of the page, as a plotly Figure with the page's own traces
+    for fid, fig in page.items():
+        assert traces(rep.plot(fid)) == fig["data"], fid
+    # the figures the commands draw (the same descriptions, the report's options) are the
+    # report's, trace by trace
+    from_commands = {}
+    for r in (autobal.analyse("stability", cfg), autobal.analyse("campbell", cfg, points=240), autobal.analyse("simulate", cfg)):
+        from_commands.update({fid: r.plot(fid) for fid in r.figures()})
+    # the run-up's figures: `simulate`'s (the report adds the rpm axis on top, drawn by an
+    # invisible trace on the axis x2, to its speed axis: left out of the comparison)
+    rename = {f"simulation_{s}": f"spatial_run_{s}" for s in ("amplitude_omega", "amplitude_t", "psi_t")}
+    for fid, fig in from_commands.items():
+        fid = rename.get(fid, fid)
+        if fid in page:
+            got = [t for t in traces(fig) if t.get("xaxis") != "x2"]
+            want = [t for t in page[fid]["data"] if t.get("xaxis") != "x2"]
+            assert got == want and got, fid
+    covered = {rename.get(f, f) for f in from_commands}
+    missing = [f for f in page if f not in covered and not REPORT_ONLY.match(f)]
+    assert not missing, f"figures of the report that no command's .plot() gives: {missing}"
+
+
+def test_results_plot_and_tabulate():
+    pd = need("pandas")
+    need("plotly")
+    r = autobal.analyse("stability", samples=100)
+    assert r.result == autobal.run("stability", samples=100)
+    fig = r.plot()
+    assert fig.layout.title.text and len(fig.data) >= 1
+    df = r.to_pandas()
+    assert isinstance(df, pd.DataFrame) and list(df.columns) == ["omega", "max_real_part"]
+    html_ = r._repr_html_()
+    assert "<table>" in html_ and "plotly" in html_.lower()
+    c = autobal.analyse("campbell", points=20)
+    assert set(c.figures()) == {"campbell_modes", "campbell_fixed", "campbell_rotating"}
+    assert len(c.to_pandas()) == 20 * len(c.result["lines"])
+    m = autobal.analyse("map", x="dimensionless.z_a=-2:2:5", y="omega=0.1:4.5:4")
+    assert m.plot().data[0].type == "heatmap" and len(m.to_pandas()) == 20
+    crit = autobal.analyse("critical")
+    assert len(crit.to_pandas()) == 4 and "<table>" in crit._repr_html_()
+    with pytest.raises(ValueError, match="draws no figure"):
+        crit.plot()
+    with pytest.raises(TypeError, match="no table"):
+        autobal.analyse("inertia").to_pandas()
+    with pytest.raises(KeyError, match="not a figure"):
+        r.plot("nope")
+    with pytest.raises(autobal.AutobalError, match="samples"):
+        autobal.analyse("stability", samples=3).plot()
+    with pytest.raises(TypeError, match="TOML file"):
+        autobal.report({"dimensionless": {}}, out="never-written")
+
+
+def test_the_stubs_are_the_module():
+    """Every public name of the extension module is in its stub, and every name of the stub is
+    in the module."""
+    import ast
+
+    stub = Path(autobal.__file__).with_name("_autobal.pyi")
+    tree = ast.parse(stub.read_text())
+    names = set()
+    for node in tree.body:
+        if isinstance(node, (ast.FunctionDef, ast.ClassDef)):
+            names.add(node.name)
+        elif isinstance(node, ast.AnnAssign) and isinstance(node.target, ast.Name):
+            names.add(node.target.id)
+    public = {n for n in dir(autobal._autobal) if not n.startswith("_")} | {"__version__"}
+    assert names == public, f"only in the module: {sorted(public - names)}; only in the stub: {sorted(names - public)}"
+    # and each class's public members
+    for node in tree.body:
+        if isinstance(node, ast.ClassDef):
+            members = {n.name for n in node.body if isinstance(n, ast.FunctionDef)}
+            real = {n for n in dir(getattr(autobal._autobal, node.name)) if not n.startswith("_")}
+            assert members == real, node.name
+
+
+def test_report_and_figures_stop_on_ctrl_c(tmp_path):
+    """Ctrl-C during `autobal.report` stops it in order, as it stops the CLI's: KeyboardInterrupt,
+    the page written and marked incomplete, no later than the CLI stops (measured here the same
+    way; the design maps finish their current map first: about 7 s); a map's figures stop within
+    seconds; the next call runs normally (the stop flags are cleared)."""
+    import _thread
+    import signal
+    import threading
+    import time
+
+    cfg = str(EX / "washing_machine.toml")
+    p = subprocess.Popen([binary(), "report", "--config", cfg, "--out", str(tmp_path / "cli")], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    time.sleep(1.0)
+    t0 = time.perf_counter()
+    p.send_signal(signal.SIGINT)
+    assert p.wait() == 2
+    cli_stop = time.perf_counter() - t0
+    for work, bound in (
+        (lambda: autobal.report(cfg, out=tmp_path / "r"), cli_stop + 3.0),
+        (lambda: autobal.analyse("map", x="dimensionless.z_a=-2:2:1500", y="omega=0.05:4.5:1500").figures(), 5.0),
+    ):
+        ctrl_c = threading.Timer(1.0, _thread.interrupt_main)
+        ctrl_c.start()
+        t0 = time.perf_counter()
+        try:
+            with pytest.raises(KeyboardInterrupt):
+                work()
+        finally:
+            ctrl_c.cancel()
+        stopped = time.perf_counter() - t0 - 1.0
+        assert stopped < bound, f"took {stopped:.1f} s to stop (the CLI's report: {cli_stop:.1f} s)"
+    for d in ("cli", "r"):
+        assert 'id="interrupted"' in (tmp_path / d / "index.html").read_text()
+    assert list(autobal.analyse("stability", samples=50).figures()) == ["stability_margin"]
+
+
+def test_a_notebook_of_results_renders_in_a_browser(tmp_path):
+    """A notebook whose cells end in results, with the outputs Jupyter makes of them (the rich
+    display, `_repr_html_`, beside the text), rendered to HTML by nbconvert and opened in
+    headless Chromium: every figure drawn by the embedded plotly.js (offline), with its traces,
+    beside the summary tables. Chromium: $AUTOBAL_CHROMIUM, else /usr/bin/chromium (required
+    when AUTOBAL_REQUIRE_BROWSER is set, as for the report's browser test)."""
+    nbformat = need("nbformat")
+    need("nbconvert")
+    need("plotly")
+    from nbconvert import HTMLExporter
+
+    chromium = os.environ.get("AUTOBAL_CHROMIUM", "/usr/bin/chromium")
+    if not Path(chromium).exists():
+        if os.environ.get("AUTOBAL_REQUIRE_BROWSER"):
+            raise FileNotFoundError(f"{chromium}: install Chromium (sudo apt-get install chromium)")
+        pytest.skip("needs Chromium (sudo apt-get install chromium)")
+    # a notebook is a session of its own: its first figure brings plotly.js
+    import autobal._results
+
+    autobal._results._PLOTLYJS_SENT = False
+    sources = [
+        'autobal.analyse("stability", samples=100)',
+        'autobal.analyse("campbell", points=30)',
+        'autobal.analyse("critical")',
+    ]
+    cells, figures = [nbformat.v4.new_code_cell("import autobal")], []
+    for k, src in enumerate(sources):
+        r = eval(src, {"autobal": autobal})
+        out = nbformat.v4.new_output("execute_result", data={"text/html": r._repr_html_(), "text/plain": repr(r)}, execution_count=k + 2)
+        cells.append(nbformat.v4.new_code_cell(src, outputs=[out], execution_count=k + 2))
+        if r.command in autobal.COMMANDS_WITH_FIGURES:
+            figures.append(r.plot())
+    page, _ = HTMLExporter().from_notebook_node(nbformat.v4.new_notebook(cells=cells))
+    path = tmp_path / "results.html"
+    path.write_text(page, encoding="utf-8")
+    dom = subprocess.run(
+        [chromium, "--headless", "--no-sandbox", "--disable-gpu", "--virtual-time-budget=15000", "--dump-dom", path.as_uri()],
+        capture_output=True, text=True, timeout=120,
+    ).stdout
+    # plotly.js marks each figure it drew, and draws each scatter trace with a point as a group
+    # of its own (a trace without one, e.g. a mode's component that never carries 10 % of its
+    # motion, draws nothing)
+    assert dom.count('class="plot-container plotly"') == len(figures), "a figure was not drawn"
+    want = sum(1 for f in figures for t in f.data if t.type == "scatter" and any(x is not None and y is not None for x, y in zip(t.x or (), t.y or ())))
+    assert want > 20
+    assert len(re.findall(r'class="trace scatter trace[0-9a-f]+"', dom)) == want
+    # the summary tables: the results' numbers, in the page as drawn
+    for k in ("autobal critical", "rotor_type", "antiresonance_speed", "autobal stability", "balanced_state_exists", "autobal campbell"):
+        assert k in dom, k
+
+
+def test_the_stubs_pass_mypy_stubtest():
+    """mypy's stubtest: every name, signature (parameter names, kinds, defaults), class and
+    `__all__` of the stub against the compiled module."""
+    need("mypy")
+    out = subprocess.run([sys.executable, "-m", "mypy.stubtest", "autobal._autobal"], capture_output=True, text=True, cwd=os.environ.get("TMPDIR", "/tmp"), timeout=300)
+    assert out.returncode == 0, out.stdout + out.stderr
