@@ -96,6 +96,7 @@ pub mod analysis;
 pub mod balls;
 pub(crate) mod builder;
 pub mod config;
+pub mod control;
 pub mod drive;
 pub mod error;
 pub mod limits;

@@ -447,10 +447,10 @@ pub fn trace_boundary_units(
     x: &crate::spatial::boundary::PlaneAxis,
     y: &crate::spatial::boundary::PlaneAxis,
     s: &crate::spatial::boundary::TraceSettings,
-    cancel: &dyn Fn() -> bool,
+    control: &crate::control::Control,
 ) -> Result<crate::spatial::boundary::Boundary> {
     use crate::spatial::boundary::{trace_boundary_with, PlaneAxis};
-    let Some((i, k)) = si_speed_axis(spec, [&x.path, &y.path])? else { return trace_boundary_with(spec, x, y, s, cancel) };
+    let Some((i, k)) = si_speed_axis(spec, [&x.path, &y.path])? else { return trace_boundary_with(spec, x, y, s, control) };
     let (speed, other) = if i == 0 { (x, y) } else { (y, x) };
     if !(speed.lo >= 0.0 && speed.hi > speed.lo && speed.hi.is_finite()) {
         return Err(Error::invalid(speed.path.clone(), "the speeds must be finite, non-negative, with hi > lo"));
@@ -461,7 +461,7 @@ pub fn trace_boundary_units(
     }
     let (lo, hi) = w0s.iter().fold((f64::INFINITY, 0.0f64), |(a, b), w| (a.min(*w), b.max(*w)));
     let om = PlaneAxis { path: crate::spatial::map::OMEGA.into(), lo: speed.lo * k / hi, hi: speed.hi * k / lo };
-    let mut b = if i == 0 { trace_boundary_with(spec, &om, y, s, cancel)? } else { trace_boundary_with(spec, x, &om, s, cancel)? };
+    let mut b = if i == 0 { trace_boundary_with(spec, &om, y, s, control)? } else { trace_boundary_with(spec, x, &om, s, control)? };
     let carry = |sp: &mut f64, ot: f64| -> Result<()> {
         *sp *= omega0_at(spec, &other.path, ot)? / k;
         Ok(())
