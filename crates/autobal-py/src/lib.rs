@@ -13,7 +13,7 @@ use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
-use std::sync::atomic::{AtomicBool, Ordering};
+use autobal::control::Control;
 use std::time::Duration;
 
 /// Most cells of a stability map returned as arrays (10 bytes each: 500 MB).
@@ -24,8 +24,8 @@ const SIGNAL_POLL: Duration = Duration::from_millis(50);
 
 /// Run `f` on a worker thread with the GIL released, checking for signals meanwhile; on a
 /// signal, set the cancel flag `f` polls, wait for `f` to return, and raise the signal's error.
-fn interruptible<R: Send>(py: Python<'_>, f: impl FnOnce(&AtomicBool) -> R + Send) -> PyResult<R> {
-    let cancel = AtomicBool::new(false);
+fn interruptible<R: Send>(py: Python<'_>, f: impl FnOnce(&Control) -> R + Send) -> PyResult<R> {
+    let cancel = Control::new();
     std::thread::scope(|s| {
         let (tx, mut rx) = std::sync::mpsc::channel();
         let cancel = &cancel;
@@ -40,7 +40,7 @@ fn interruptible<R: Send>(py: Python<'_>, f: impl FnOnce(&AtomicBool) -> R + Sen
                 Err(std::sync::mpsc::RecvTimeoutError::Disconnected) => return Err(PyRuntimeError::new_err("autobal: the worker thread panicked")),
                 Err(std::sync::mpsc::RecvTimeoutError::Timeout) => {
                     if let Err(e) = py.check_signals() {
-                        cancel.store(true, Ordering::Relaxed);
+                        cancel.cancel();
                         let _ = py.detach(move || rx.recv());
                         return Err(e);
                     }
@@ -310,12 +310,12 @@ fn simulate<'py>(py: Python<'py>, cfg: &PyPlanar, dt: Option<f64>) -> PyResult<(
         let mut cols: [Vec<f64>; 5] = Default::default();
         let mut psi = vec![];
         let t0 = std::time::Instant::now();
-        let s = autobal::planar::simulate(&p.rotor, &p.drive, &p.settings, |s| {
+        let s = autobal::planar::simulate_with(&p.rotor, &p.drive, &p.settings, cancel, |s| {
             for (c, v) in cols.iter_mut().zip([s.t, s.omega, s.x, s.y, s.amplitude]) {
                 c.push(v);
             }
             psi.extend_from_slice(&s.psi);
-            !cancel.load(Ordering::Relaxed)
+            !cancel.is_cancelled()
         });
         (s, cols, psi, t0.elapsed().as_secs_f64())
     })?;
@@ -349,7 +349,7 @@ fn spatial_simulate<'py>(py: Python<'py>, cfg: &PySpatial, dt: Option<f64>) -> P
         let mut amps: Vec<Vec<f64>> = vec![vec![]; supports + planes];
         let mut psi = vec![];
         let t0 = std::time::Instant::now();
-        let s = autobal::spatial::dynamics::simulate(&sim.rotor, &sim.drive, &sim.initial, &sim.settings, |s| {
+        let s = autobal::spatial::dynamics::simulate_with(&sim.rotor, &sim.drive, &sim.initial, &sim.settings, cancel, |s| {
             for (c, v) in cols.iter_mut().zip([s.t, s.omega, s.x, s.y, s.tilt_x, s.tilt_y]) {
                 c.push(v);
             }
@@ -357,7 +357,7 @@ fn spatial_simulate<'py>(py: Python<'py>, cfg: &PySpatial, dt: Option<f64>) -> P
                 c.push(*v);
             }
             psi.extend_from_slice(&s.psi);
-            !cancel.load(Ordering::Relaxed)
+            !cancel.is_cancelled()
         });
         (s, cols, amps, psi, t0.elapsed().as_secs_f64())
     })?;
@@ -389,7 +389,7 @@ fn spatial_basins<'py>(py: Python<'py>, cfg: &PySpatial, n: usize) -> PyResult<(
     let cases = angle_grid(&sim.initial, &sim.drive, n, n);
     let (res, wall) = interruptible(py, |cancel| {
         let t0 = std::time::Instant::now();
-        (basins(&sim.rotor, &cases, &sim.settings, |_| {}, cancel), t0.elapsed().as_secs_f64())
+        (basins(&sim.rotor, &cases, &sim.settings, cancel).map(|o| o.value), t0.elapsed().as_secs_f64())
     })?;
     let res = res.map_err(|e| py_err(py, e))?;
     if res.iter().any(Option::is_none) {
@@ -441,7 +441,7 @@ fn check_batch(py: Python<'_>, cfg: &Bound<'_, PyAny>, paths: Vec<String>, param
 }
 
 /// A batch of `base`: `rows × ncol` summaries, `ncol` the model's summary columns.
-fn run_batch<M: autobal::sweep::SweepModel>(base: &M, paths: &[String], flat: &[f64], rows: usize, cancel: &AtomicBool) -> autobal::Result<Vec<f64>> {
+fn run_batch<M: autobal::sweep::SweepModel>(base: &M, paths: &[String], flat: &[f64], rows: usize, cancel: &Control) -> autobal::Result<Vec<f64>> {
     use autobal::sweep::SweepSummary;
     let ncol = <M::Summary as SweepSummary>::COLUMNS.len();
     let refs: Vec<&str> = paths.iter().map(String::as_str).collect();
@@ -454,7 +454,7 @@ fn run_batch<M: autobal::sweep::SweepModel>(base: &M, paths: &[String], flat: &[
             out[i * ncol..(i + 1) * ncol].copy_from_slice(&r.summary.values());
             true
         },
-        &|| cancel.load(Ordering::Relaxed),
+        cancel,
     )?;
     o.into_result()?;
     Ok(out)
@@ -498,7 +498,7 @@ fn run_grid<M: autobal::sweep::SweepModel>(
     base: &M,
     grid: &autobal::sweep::Grid,
     range: std::ops::Range<usize>,
-    cancel: &AtomicBool,
+    cancel: &Control,
 ) -> autobal::Result<Vec<serde_json::Value>> {
     let mut runs = vec![];
     let o = autobal::sweep::simulate_grid(
@@ -509,7 +509,7 @@ fn run_grid<M: autobal::sweep::SweepModel>(
             runs.push(autobal::sweep::run_json(i, v, res));
             true
         },
-        &|| cancel.load(Ordering::Relaxed),
+        cancel,
     )?;
     o.into_result()?;
     Ok(runs)
@@ -606,7 +606,7 @@ fn stability_map<'py>(
                     stable[j * nx + i] = c.stable;
                     necessary[j * nx + i] = c.necessary;
                 }
-                !cancel.load(Ordering::Relaxed)
+                !cancel.is_cancelled()
             })?;
             if !o.complete {
                 return Err(autobal::Error::Interrupted { t: o.rows as f64 / ny.max(1) as f64 });
