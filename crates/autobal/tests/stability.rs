@@ -804,6 +804,7 @@ fn cancelled_boundary_keeps_whole_curves_and_says_it_is_incomplete() {
     // Ctrl-C in `map --boundary` reaches the tracer through `cancel`: asked at once, nothing is
     // traced; asked after a few checks, the curves kept are the first curves of the full trace,
     // point for point (whole curves, never half of one), and `complete` says the search stopped
+    use autobal::control::{Control, StopReason};
     use autobal::spatial::boundary::trace_boundary_with;
     let spec = spec_of(boundary_base());
     let x = PlaneAxis { path: "dimensionless.z_a".into(), lo: -2.0, hi: 2.0 };
@@ -811,20 +812,28 @@ fn cancelled_boundary_keeps_whole_curves_and_says_it_is_incomplete() {
     let s = TraceSettings::default();
     let full = trace_boundary(&spec, &x, &y, &s).unwrap();
     assert!(full.complete && full.curves.len() >= 3, "{} curves", full.curves.len());
-    let none = trace_boundary_with(&spec, &x, &y, &s, &|| true).unwrap();
-    assert!(!none.complete && none.curves.is_empty());
-    // stop once the first curve is traced: the checks before each curve see it
-    let calls = std::cell::Cell::new(0);
+    let cancelled = Control::new();
+    cancelled.cancel();
+    let none = trace_boundary_with(&spec, &x, &y, &s, &cancelled).unwrap();
+    assert!(!none.complete && none.curves.is_empty() && none.stopped == Some(StopReason::Interrupted));
+    // a zero budget: nothing traced, the budget named
+    let spent = trace_boundary_with(&spec, &x, &y, &s, &Control::new().with_budget(std::time::Duration::ZERO)).unwrap();
+    assert!(!spent.complete && spent.curves.is_empty() && matches!(spent.stopped, Some(StopReason::Budget { .. })));
+    // cancelled from the progress observer at its k-th report (after a line or a curve): the
+    // checks before the next line or curve see it
     let mut stopped_at = None;
     for k in 1..200 {
-        calls.set(0);
-        let part = trace_boundary_with(&spec, &x, &y, &s, &|| {
-            calls.set(calls.get() + 1);
-            calls.get() > k
-        })
-        .unwrap();
+        let calls = std::sync::Arc::new(std::sync::atomic::AtomicUsize::new(0));
+        let c = Control::new();
+        let (flag, n) = (c.flag().clone(), calls.clone());
+        let c = c.with_progress(move |_| {
+            if n.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1 >= k {
+                flag.store(true, std::sync::atomic::Ordering::Relaxed);
+            }
+        });
+        let part = trace_boundary_with(&spec, &x, &y, &s, &c).unwrap();
         if !part.curves.is_empty() {
-            assert!(!part.complete && part.curves.len() < full.curves.len());
+            assert!(!part.complete && part.curves.len() < full.curves.len() && part.stopped == Some(StopReason::Interrupted));
             assert_eq!(part.curves[..], full.curves[..part.curves.len()]);
             stopped_at = Some(k);
             break;

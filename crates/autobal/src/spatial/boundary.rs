@@ -439,7 +439,8 @@ pub fn trace_boundary(spec: &SpatialSpec, x: &PlaneAxis, y: &PlaneAxis, s: &Trac
 
 /// [`trace_boundary`] under `control` (asked before each line of the coarse grid and before
 /// each curve is traced): when it stops, the result holds the curves traced so far, `complete`
-/// is `false` and `stopped` says why.
+/// is `false` and `stopped` says why. Its progress observer hears `(lines searched, lines)`
+/// after each line and after each curve traced.
 pub fn trace_boundary_with(spec: &SpatialSpec, x: &PlaneAxis, y: &PlaneAxis, s: &TraceSettings, control: &Control) -> Result<Boundary> {
     s.validate()?;
     for a in [x, y] {
@@ -464,6 +465,8 @@ pub fn trace_boundary_with(spec: &SpatialSpec, x: &PlaneAxis, y: &PlaneAxis, s: 
     let mut queue: Vec<(CurveKind, [f64; 3])> = vec![];
     // 2. then lines the other way (closed curves between the first lines); a change of verdict
     // that a traced boundary already crosses is not looked at again
+    let all_lines = (s.coarse.0.max(2) + s.coarse.1.max(2)) as u64;
+    let mut searched = 0;
     'search: for dir in [first_dir, 1 - first_dir] {
         let lines = if dir == 0 { s.coarse.0.max(2) } else { s.coarse.1.max(2) };
         for li in 0..lines {
@@ -475,11 +478,13 @@ pub fn trace_boundary_with(spec: &SpatialSpec, x: &PlaneAxis, y: &PlaneAxis, s: 
                 if let Some(seed) = seed_at(&pl, raw.0, raw.1, dir)? {
                     queue.push(seed);
                 }
-                if let Some(why) = process(&pl, s, &mut queue, &mut out, control)? {
+                if let Some(why) = process(&pl, s, &mut queue, &mut out, control, (searched, all_lines))? {
                     (out.complete, out.stopped) = (false, Some(why));
                     break 'search;
                 }
             }
+            searched += 1;
+            control.report(searched, all_lines);
         }
     }
     // one codimension-two point found from both of its curves is one point
@@ -496,8 +501,15 @@ pub fn trace_boundary_with(spec: &SpatialSpec, x: &PlaneAxis, y: &PlaneAxis, s: 
 }
 
 /// Trace the queued seeds that no traced curve already contains; `Some(why)` when the control
-/// asked to stop.
-fn process(pl: &Plane, s: &TraceSettings, queue: &mut Vec<(CurveKind, [f64; 3])>, out: &mut Boundary, control: &Control) -> Result<Option<StopReason>> {
+/// asked to stop; `progress` is reported after each curve.
+fn process(
+    pl: &Plane,
+    s: &TraceSettings,
+    queue: &mut Vec<(CurveKind, [f64; 3])>,
+    out: &mut Boundary,
+    control: &Control,
+    progress: (u64, u64),
+) -> Result<Option<StopReason>> {
     let mut guard = 0;
     while let Some((kind, z)) = queue.pop() {
         if let Some(why) = control.should_stop() {
@@ -512,6 +524,7 @@ fn process(pl: &Plane, s: &TraceSettings, queue: &mut Vec<(CurveKind, [f64; 3])>
         }
         if let Some(curve) = trace_curve(pl, kind, z, s.max_step, &mut out.codim2, queue)? {
             out.curves.push(curve);
+            control.report(progress.0, progress.1);
         }
     }
     Ok(None)
