@@ -5,8 +5,8 @@
 use autobal_commands::{config, figures, general, linear, map, outfile, output, parquet, report, sim, spatial_sim, sweep};
 
 use anyhow::Result;
-use autobal_commands::output::{emit, Format};
 use autobal::control::Control;
+use autobal_commands::output::{emit, Format};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
 
@@ -621,7 +621,16 @@ fn run_simulate(config: Option<PathBuf>, set: Vec<String>, dt: Option<f64>, out:
 }
 
 #[allow(clippy::too_many_arguments)]
-fn run_spatial(root: &toml::Table, source: &str, config: Option<&std::path::Path>, dt: Option<f64>, out: PathBuf, parquet: bool, format: Format, control: &Control) -> Result<()> {
+fn run_spatial(
+    root: &toml::Table,
+    source: &str,
+    config: Option<&std::path::Path>,
+    dt: Option<f64>,
+    out: PathBuf,
+    parquet: bool,
+    format: Format,
+    control: &Control,
+) -> Result<()> {
     let mut sim = spatial_sim::build(root, source)?;
     if sim.default_drive {
         let (w_end, _) = sim.drive.kinematics(sim.settings.t_end);

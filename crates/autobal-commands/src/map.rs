@@ -6,12 +6,12 @@
 use crate::config::Config;
 use crate::plot::Series;
 use anyhow::{anyhow, bail, Result};
+use autobal::control::Control;
 use autobal::spatial::boundary::{Boundary, Codim2Kind, CurveKind, PlaneAxis, TraceSettings};
 use autobal::spatial::linear_model::Balls;
 use rayon::prelude::*;
 use std::io::Write;
 use std::path::Path;
-use autobal::control::Control;
 
 /// One axis: `key=lo:hi:n`, key `omega` or a config field.
 #[derive(Debug, Clone)]
@@ -276,8 +276,7 @@ pub fn boundary_csv(b: &Boundary, x: &str, y: &str) -> String {
 pub fn trace(cfg: &Config, x: &Axis, y: &Axis, omega: Option<f64>, balls: Balls, control: &Control) -> Result<Boundary> {
     let ax = |a: &Axis| PlaneAxis { path: a.key.clone(), lo: a.lo, hi: a.hi };
     let s = TraceSettings { balls, omega, ..Default::default() };
-    autobal::spatial::paths::trace_boundary_units(&cfg.spec, &ax(x), &ax(y), &s, control)
-        .map_err(|e| anyhow!("--boundary: {e}"))
+    autobal::spatial::paths::trace_boundary_units(&cfg.spec, &ax(x), &ax(y), &s, control).map_err(|e| anyhow!("--boundary: {e}"))
 }
 
 /// `autobal map` by the general route ([`autobal::rotor_map`]): any planar or spatial config,

@@ -3,12 +3,12 @@
 use crate::config::PlanarConfig;
 use crate::plot::{Plot, Series, PALETTE};
 use anyhow::{bail, Result};
+use autobal::control::Control;
 use autobal::planar::stationary::{aligned_whirls_of, capacity_ratio, locked_amplitude, semi_balanced_exists};
 use autobal::planar::{simulate_with, Sample, Summary};
 use serde_json::Value;
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use autobal::control::Control;
 
 /// Samples kept for plotting: per bucket of consecutive samples, the ones with the smallest and
 /// largest amplitude (so peaks survive decimation).

@@ -5,13 +5,13 @@
 use crate::plot::{Plot, Series, PALETTE};
 use anyhow::{bail, Result};
 use autobal::config::SpatialSimulation;
+use autobal::control::Control;
 use autobal::spatial::dynamics::basins::{angle_grid, basins, check_angle_grid};
 use autobal::spatial::dynamics::stationary::response_curve;
 use autobal::spatial::dynamics::{simulate_with, Sample, Summary};
 use serde_json::{json, Value};
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use autobal::control::Control;
 use toml::Table;
 
 /// A loaded spatial simulation: the library's converted config and where it came from.

@@ -5,13 +5,13 @@
 use crate::config;
 use crate::output::{emit, Format};
 use anyhow::{anyhow, bail, Context, Result};
+use autobal::control::Control;
 use autobal::planar::problem::PlanarProblem;
 use autobal::sweep::{definition_checksum, shard, simulate_grid, Axis, Grid, SpatialSweep, SweepModel, SweepSummary, SPATIAL_SUMMARY_COLUMNS, SUMMARY_COLUMNS};
 use clap::Args;
 use serde_json::{json, Value};
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use autobal::control::Control;
 
 #[derive(Args)]
 pub struct SweepArgs {

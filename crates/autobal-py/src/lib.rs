@@ -6,6 +6,7 @@
 //! exceptions of `autobal.errors`, naming the field.
 
 use autobal::config::{self, Table, Value};
+use autobal::control::Control;
 use autobal::paths::Parameters;
 use autobal::planar::problem::PlanarProblem;
 use autobal::spatial::linear_model::Balls;
@@ -13,7 +14,6 @@ use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
-use autobal::control::Control;
 use std::time::Duration;
 
 /// Most cells of a stability map returned as arrays (10 bytes each: 500 MB).

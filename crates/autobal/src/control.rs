@@ -197,7 +197,7 @@ impl Control {
     /// Whether the wall-time budget is spent (reads the clock; `None` without a budget).
     pub fn budget_spent(&self) -> Option<StopReason> {
         let (start, d) = self.budget?;
-        (start.elapsed() >= d).then(|| StopReason::Budget { seconds: d.as_secs_f64() })
+        (start.elapsed() >= d).then_some(StopReason::Budget { seconds: d.as_secs_f64() })
     }
 
     /// Why the computation should stop now, if it should: [`StopReason::Interrupted`] when the

@@ -44,6 +44,7 @@
 //! ```
 
 use crate::config::Table;
+use crate::control::{Control, StopReason};
 use crate::error::{fmt_num, Error, Result};
 use crate::paths::Parameters;
 use crate::planar::problem::PlanarProblem;
@@ -51,7 +52,6 @@ use crate::planar::{simulate_summary, Summary};
 use crate::spatial::dynamics::RunOutcome;
 use rayon::prelude::*;
 use std::ops::Range;
-use crate::control::{Control, StopReason};
 
 /// Most points of one grid (a bound on what a mistyped axis can ask for, not on what a cluster
 /// can run: 1e9 passages of 10 ms are 115 CPU-days).

@@ -69,10 +69,10 @@ pub(crate) mod lu;
 pub mod rosenbrock;
 mod solver;
 
+pub use crate::control::StopReason;
 pub use events::{Direction, Event};
 pub use solver::{Solver, Step};
 use std::fmt;
-pub use crate::control::StopReason;
 
 /// Right-hand side `y' = f(t, y)` of a system of `dim` equations.
 pub trait System {

@@ -152,7 +152,14 @@ pub fn torque_run(rotor: &PlanarRotor, torque: f64, t_off: Option<f64>, t_end: f
 }
 
 /// [`torque_run`] under `control` (an early stop is the run's `summary.status`).
-pub fn torque_run_with(rotor: &PlanarRotor, torque: f64, t_off: Option<f64>, t_end: f64, control: &Control, mut sink: impl FnMut(&Sample) -> bool) -> Result<TorqueRun> {
+pub fn torque_run_with(
+    rotor: &PlanarRotor,
+    torque: f64,
+    t_off: Option<f64>,
+    t_end: f64,
+    control: &Control,
+    mut sink: impl FnMut(&Sample) -> bool,
+) -> Result<TorqueRun> {
     let drive = Drive::Torque { omega0: 0.0, torque, t_off };
     let settings = Settings { dt: t_end / 4000.0, ..Settings::new(rotor, t_end) };
     let mut trace = Vec::with_capacity(4001);

@@ -3,10 +3,10 @@
 
 use super::rotor::SpatialRotor;
 use super::simulate::{simulate_summary, Initial, Settings, Summary};
+use crate::control::{Control, Outcome, StopReason};
 use crate::drive::Drive;
 use crate::error::Result;
 use rayon::prelude::*;
-use crate::control::{Control, Outcome, StopReason};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// One run of a basin map: its drive and initial conditions.
