@@ -180,7 +180,7 @@ pub fn compute(
         csv.flush()
     };
     let batch = (1 << 16) / x.n.max(1) + 1;
-    let outcome = autobal::spatial::paths::stability_map_units(&cfg.spec, &lx, &ly, &settings, &mut |j, cells| {
+    let outcome = autobal::spatial::paths::stability_map_units(&cfg.spec, &lx, &ly, &settings, control, &mut |j, cells| {
         if j % ky == 0 && j / ky < dy.n {
             kept[j / ky] = Some(cells.iter().step_by(kx).take(dx.n).copied().collect());
         }
@@ -194,7 +194,7 @@ pub fn compute(
         if let Some(b) = &bar {
             b.set_position(j as u64 + 1);
         }
-        control.should_stop().is_none()
+        true
     });
     if let Some(e) = io_error {
         return Err(e.into());

@@ -68,7 +68,7 @@
 //! | [`spatial::boundary::trace_boundary_with`], [`spatial::paths::trace_boundary_units`] | `&Control` | [`spatial::boundary::Boundary::stopped`] (the curves traced are whole) |
 //! | [`spatial::dynamics::basins::basins`] | `&Control` | [`control::Outcome::stopped`]; `None` for each run not run or cut short |
 //! | [`planar::paper004::torque_run_with`] / [`planar::paper004::torque_outcomes`] | `&Control` | the run's `summary.status` / a typed error |
-//! | [`spatial::map::stability_map`] | `on_row` returns `false` (the front ends return `control.should_stop().is_none()`) | [`spatial::map::MapOutcome::complete`] (the rows handed over are whole) |
+//! | [`spatial::map::stability_map`], [`spatial::paths::stability_map_units`] | `&Control` (asked between rows) | [`spatial::map::MapOutcome::stopped`] (the rows handed over are whole) |
 //! | [`spatial::stability::campbell_stream`] | `on_speed` returns `false` (likewise) | [`spatial::stability::CampbellStats::complete`] |
 //! | [`planar::friction::residual`] | none (one bounded run; callers ask the control between runs) | [`planar::friction::Residual::completed`] |
 //!

@@ -111,3 +111,37 @@ fn torque_outcomes_stop_with_a_typed_error() {
     assert!(matches!(torque_outcomes(TORQUE_I_G, TORQUE_C_THETA, &cancelled()), Err(Error::Interrupted { .. })));
     assert!(matches!(torque_outcomes(TORQUE_I_G, TORQUE_C_THETA, &zero_budget()), Err(Error::Interrupted { .. })));
 }
+
+#[test]
+fn spatial_stability_map_keeps_whole_rows() {
+    use autobal::spatial::map::{stability_map, Axis, MapSettings};
+    use autobal::spatial::paths::stability_map_units;
+    let root = autobal::config::parse(include_str!("../../../examples/washing_machine.toml"), "w").unwrap();
+    let c = autobal::config::spatial(&root).unwrap();
+    let x = Axis::linspace("balancer.z", 0.05, 0.15, 3);
+    let omega = Axis::linspace("omega", 0.1, 3.0, 40);
+    let rpm = Axis::linspace("speed_rpm", 300.0, 1500.0, 40);
+    for (control, why) in [(cancelled(), StopReason::Interrupted), (zero_budget(), StopReason::Budget { seconds: 0.0 })] {
+        let out = stability_map(&c.spec, &x, &omega, &MapSettings::default(), &control, &mut |_, _| panic!("no row")).unwrap();
+        assert_eq!((out.rows, out.complete, out.stopped), (0, false, Some(why)));
+        let out = stability_map_units(&c.spec, &x, &rpm, &MapSettings::default(), &control, &mut |_, _| panic!("no row")).unwrap();
+        assert_eq!((out.rows, out.complete, out.stopped), (0, false, Some(why)));
+    }
+    // cancelled while the rows arrive (from the receiver of the third row, as Ctrl-C would be):
+    // the rows handed over are whole, and the map stops after the third
+    let control = Control::new();
+    let mut rows = vec![];
+    let out = stability_map(&c.spec, &x, &omega, &MapSettings::default(), &control, &mut |_, r| {
+        rows.push(r.to_vec());
+        if rows.len() == 3 {
+            control.cancel();
+        }
+        true
+    })
+    .unwrap();
+    assert_eq!((out.rows, out.stopped), (3, Some(StopReason::Interrupted)));
+    assert!(rows.iter().all(|r| r.len() == 3));
+    // a complete map under no control says so
+    let out = stability_map(&c.spec, &x, &omega, &MapSettings::default(), &Control::none(), &mut |_, _| true).unwrap();
+    assert!(out.complete && out.stopped.is_none() && out.rows == 40);
+}

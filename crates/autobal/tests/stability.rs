@@ -495,7 +495,7 @@ fn spec_of(d: DimensionlessInput) -> SpatialSpec {
 
 fn collect_map(spec: &SpatialSpec, x: &Axis, y: &Axis, s: &MapSettings) -> (Vec<Vec<Cell>>, autobal::spatial::map::MapOutcome) {
     let mut rows = vec![];
-    let out = stability_map(spec, x, y, s, &mut |j, r| {
+    let out = stability_map(spec, x, y, s, &autobal::control::Control::none(), &mut |j, r| {
         assert_eq!(j, rows.len(), "rows arrive in grid order");
         rows.push(r.to_vec());
         true
@@ -633,19 +633,20 @@ fn map_without_a_speed_axis_and_its_errors() {
         &Axis::linspace("dimensionless.z_a", -1.0, 1.0, 9),
         &Axis::linspace("omega", 0.1, 3.0, 50),
         &MapSettings { omega: None, ..s },
+        &autobal::control::Control::none(),
         &mut |_, _| {
             seen += 1;
             seen < 7
         },
     )
     .unwrap();
-    assert!(!out.complete && out.rows == 7);
-    let e = stability_map(&spec, &Axis::linspace("dimensionless.zz", 0.0, 1.0, 3), &Axis::linspace("omega", 0.1, 3.0, 5), &s, &mut |_, _| true).unwrap_err();
+    assert!(!out.complete && out.rows == 7 && out.stopped == Some(autobal::control::StopReason::Observer));
+    let e = stability_map(&spec, &Axis::linspace("dimensionless.zz", 0.0, 1.0, 3), &Axis::linspace("omega", 0.1, 3.0, 5), &s, &autobal::control::Control::none(), &mut |_, _| true).unwrap_err();
     assert!(e.to_string().starts_with("dimensionless.zz: unknown parameter path"), "{e}");
     let e =
-        stability_map(&spec, &Axis::linspace("dimensionless.rho_s", -1.0, 1.0, 3), &Axis::linspace("omega", 0.1, 3.0, 5), &s, &mut |_, _| true).unwrap_err();
+        stability_map(&spec, &Axis::linspace("dimensionless.rho_s", -1.0, 1.0, 3), &Axis::linspace("omega", 0.1, 3.0, 5), &s, &autobal::control::Control::none(), &mut |_, _| true).unwrap_err();
     assert!(e.to_string().starts_with("dimensionless.rho_s: "), "{e}");
-    let e = stability_map(&spec, &x, &y, &MapSettings { omega: None, ..s }, &mut |_, _| true).unwrap_err();
+    let e = stability_map(&spec, &x, &y, &MapSettings { omega: None, ..s }, &autobal::control::Control::none(), &mut |_, _| true).unwrap_err();
     assert!(e.to_string().starts_with("omega: required"), "{e}");
 }
 

@@ -177,9 +177,9 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
 fn map(spec: &SpatialSpec, x: Axis, y: Axis, balls: Balls, control: &autobal::control::Control) -> Result<MapResult> {
     let settings = MapSettings { balls, quantity: Quantity::Margin, omega: None };
     let mut rows = vec![None; y.n];
-    autobal::spatial::paths::stability_map_units(spec, &x.to_library(), &y.to_library(), &settings, &mut |j, cells| {
+    autobal::spatial::paths::stability_map_units(spec, &x.to_library(), &y.to_library(), &settings, control, &mut |j, cells| {
         rows[j] = Some(cells.to_vec());
-        control.should_stop().is_none()
+        true
     })?;
     Ok(MapResult { x, y, rows, quantity: Quantity::Margin })
 }

@@ -317,9 +317,9 @@ fn map(m: &SpatialModel, x: Axis, y: Axis, set: fn(&mut SpatialModel, f64), ball
     let family = Varied { model: m, path: &x.key, set, value: None };
     let settings = MapSettings { balls, quantity: Quantity::Margin, omega: None };
     let mut rows = vec![None; y.n];
-    stability_map(&family, &x.to_library(), &y.to_library(), &settings, &mut |j, cells| {
+    stability_map(&family, &x.to_library(), &y.to_library(), &settings, control, &mut |j, cells| {
         rows[j] = Some(cells.to_vec());
-        control.should_stop().is_none()
+        true
     })?;
     Ok(MapResult { x, y, rows, quantity: Quantity::Margin })
 }
