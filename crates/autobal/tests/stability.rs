@@ -641,10 +641,25 @@ fn map_without_a_speed_axis_and_its_errors() {
     )
     .unwrap();
     assert!(!out.complete && out.rows == 7 && out.stopped == Some(autobal::control::StopReason::Observer));
-    let e = stability_map(&spec, &Axis::linspace("dimensionless.zz", 0.0, 1.0, 3), &Axis::linspace("omega", 0.1, 3.0, 5), &s, &autobal::control::Control::none(), &mut |_, _| true).unwrap_err();
+    let e = stability_map(
+        &spec,
+        &Axis::linspace("dimensionless.zz", 0.0, 1.0, 3),
+        &Axis::linspace("omega", 0.1, 3.0, 5),
+        &s,
+        &autobal::control::Control::none(),
+        &mut |_, _| true,
+    )
+    .unwrap_err();
     assert!(e.to_string().starts_with("dimensionless.zz: unknown parameter path"), "{e}");
-    let e =
-        stability_map(&spec, &Axis::linspace("dimensionless.rho_s", -1.0, 1.0, 3), &Axis::linspace("omega", 0.1, 3.0, 5), &s, &autobal::control::Control::none(), &mut |_, _| true).unwrap_err();
+    let e = stability_map(
+        &spec,
+        &Axis::linspace("dimensionless.rho_s", -1.0, 1.0, 3),
+        &Axis::linspace("omega", 0.1, 3.0, 5),
+        &s,
+        &autobal::control::Control::none(),
+        &mut |_, _| true,
+    )
+    .unwrap_err();
     assert!(e.to_string().starts_with("dimensionless.rho_s: "), "{e}");
     let e = stability_map(&spec, &x, &y, &MapSettings { omega: None, ..s }, &autobal::control::Control::none(), &mut |_, _| true).unwrap_err();
     assert!(e.to_string().starts_with("omega: required"), "{e}");
