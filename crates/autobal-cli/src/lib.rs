@@ -5,9 +5,44 @@
 use autobal_commands::{config, figures, general, linear, map, outfile, output, parquet, report, sim, spatial_sim, sweep};
 
 use anyhow::Result;
+use autobal::control::Control;
 use autobal_commands::output::{emit, Format};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
+
+/// Ctrl-C, installed once per process: the one flag of the [`Control`] every command of this
+/// front end runs under.
+mod interrupt {
+    use autobal::control::Control;
+    use std::sync::atomic::{AtomicBool, Ordering};
+    use std::sync::{Arc, OnceLock};
+
+    /// The flag Ctrl-C sets.
+    static FLAG: OnceLock<Arc<AtomicBool>> = OnceLock::new();
+    /// Whether the running command asks the control (else Ctrl-C ends the process at once, as
+    /// without a handler).
+    static POLLED: AtomicBool = AtomicBool::new(false);
+
+    /// The control of one command line: the process's one flag, cleared, with the handler
+    /// installed on first use. `polled`: whether the command's long work asks the control; a
+    /// command that does not (a quick analysis) is ended by Ctrl-C at once (exit status 130),
+    /// and so is any command on a second Ctrl-C.
+    pub fn control(polled: bool) -> Control {
+        let flag = FLAG.get_or_init(|| {
+            let flag = Arc::new(AtomicBool::new(false));
+            let f = flag.clone();
+            let _ = ctrlc::set_handler(move || {
+                if !POLLED.load(Ordering::Relaxed) || f.swap(true, Ordering::Relaxed) {
+                    std::process::exit(130);
+                }
+            });
+            flag
+        });
+        flag.store(false, Ordering::Relaxed);
+        POLLED.store(polled, Ordering::Relaxed);
+        Control::with_flag(flag.clone())
+    }
+}
 
 #[derive(Parser)]
 #[command(name = "autobal", version, about = "Rotors with automatic ball balancers: inertia, critical speeds, autobalancing ranges, report")]
@@ -246,7 +281,24 @@ enum Command {
     },
 }
 
-fn run(cli: Cli) -> Result<()> {
+impl Command {
+    /// Whether the command's long work asks the [`Control`] (so Ctrl-C stops it keeping what
+    /// it computed); the others end at once on Ctrl-C.
+    fn polls_the_control(&self) -> bool {
+        matches!(
+            self,
+            Command::Campbell { .. }
+                | Command::Map { .. }
+                | Command::Simulate { .. }
+                | Command::Sweep(_)
+                | Command::Merge(_)
+                | Command::Basins { .. }
+                | Command::Report { .. }
+        )
+    }
+}
+
+fn run(cli: Cli, control: &Control) -> Result<()> {
     match cli.command {
         Command::Inertia { common, format } => {
             let cfg = config::load_analytic("inertia", common.config.as_deref(), &common.set)?;
@@ -307,22 +359,20 @@ fn run(cli: Cli) -> Result<()> {
                 o.check()?;
             }
             let harmonics = linear::check_harmonics(&harmonics)?;
-            let _ = ctrlc::set_handler(|| map::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
-            linear::run_campbell(&cfg, w, points, lin.balls.into(), format == Format::Json, svg.as_deref(), view, &harmonics)
+            linear::run_campbell(&cfg, w, points, lin.balls.into(), format == Format::Json, svg.as_deref(), view, &harmonics, control)
         }
         Command::Map { common, x, y, omega, balls, quantity, out, threads, boundary, route } => {
-            run_map(common, x, y, omega, balls, quantity, out, threads, boundary, route)
+            run_map(common, x, y, omega, balls, quantity, out, threads, boundary, route, control)
         }
-        Command::Simulate { config, set, dt, out, parquet, format } => run_simulate(config, set, dt, out, parquet, format),
-        Command::Sweep(a) => sweep::run(a),
-        Command::Merge(a) => sweep::merge(a),
-        Command::Basins { config, set, n, out, format, threads } => run_basins(config, set, n, out, format, threads),
+        Command::Simulate { config, set, dt, out, parquet, format } => run_simulate(config, set, dt, out, parquet, format, control),
+        Command::Sweep(a) => sweep::run(a, control),
+        Command::Merge(a) => sweep::merge(a, control),
+        Command::Basins { config, set, n, out, format, threads } => run_basins(config, set, n, out, format, threads, control),
         Command::Report { common, out, quick, papers } => {
             // the folder is created and checked before any section runs
             outfile::Outputs::new().inputs(common.config.as_deref()).output("--out", &out.join("index.html")).check()?;
-            let _ = ctrlc::set_handler(|| sim::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
             let kind = if papers || common.config.is_none() { report::Kind::Papers } else { report::Kind::User };
-            let index = report::run(common.config.as_deref(), &common.set, &out, quick, kind)?;
+            let index = report::run(common.config.as_deref(), &common.set, &out, quick, kind, control)?;
             output::print(&format!("report written to {}\n", index.display()))
         }
     }
@@ -380,6 +430,7 @@ fn run_map(
     threads: Option<usize>,
     boundary: bool,
     route: RouteArg,
+    control: &Control,
 ) -> Result<()> {
     let (root, source) = config::read_set(common.config.as_deref(), &common.set)?;
     if route == RouteArg::General || general::needs_general_route(&root) {
@@ -387,7 +438,7 @@ fn run_map(
             anyhow::bail!("--balls locked: the general route maps the balls free (use the 12-state route of a one-plane config for the locked rotor)");
         }
         let verdict_only = quantity == QuantityArg::Verdict;
-        return map::run_general(&root, common.config.as_deref(), &x, &y, omega.as_deref(), verdict_only, &out, threads, boundary);
+        return map::run_general(&root, common.config.as_deref(), &x, &y, omega.as_deref(), verdict_only, &out, threads, boundary, control);
     }
     // the speeds need the config's ω0: it is read (and checked) first
     let cfg = config::build(&root, &source)?;
@@ -424,7 +475,6 @@ fn run_map(
         }
         rayon::ThreadPoolBuilder::new().num_threads(t).build_global().ok();
     }
-    let _ = ctrlc::set_handler(|| map::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
     let out = output::out_stem(&outfile::resolve(&out, "stability-map"), &["csv", "svg", "png"]);
     let csv_path = output::with_suffix(&out, "csv");
     let boundary_path = PathBuf::from(format!("{}_boundary.csv", out.display()));
@@ -454,7 +504,7 @@ fn run_map(
             anyhow::bail!("--omega: required when neither axis is omega (the speed at which to map)");
         }
         let t = std::time::Instant::now();
-        let b = map::trace(&cfg, &xa, &ya, omega, balls.into())?;
+        let b = map::trace(&cfg, &xa, &ya, omega, balls.into(), control)?;
         let path = boundary_path;
         outfile::write_atomic("--out", &path, map::boundary_csv(&b, &xa.key, &ya.key))?;
         output::note(&format!(
@@ -479,7 +529,7 @@ fn run_map(
         None
     };
     let t0 = std::time::Instant::now();
-    let (r, run) = map::compute(&cfg, xa, ya, omega, balls.into(), q, &mut w, progress)?;
+    let (r, run) = map::compute(&cfg, xa, ya, omega, balls.into(), q, &mut w, progress, control)?;
     let csv_path = w.commit()?;
     let secs = t0.elapsed().as_secs_f64();
     let done = run.rows_done;
@@ -526,20 +576,19 @@ fn simulation_outputs(config: Option<&std::path::Path>, out: &std::path::Path, p
     Ok((csv, stem))
 }
 
-fn run_simulate(config: Option<PathBuf>, set: Vec<String>, dt: Option<f64>, out: PathBuf, parquet: bool, format: Format) -> Result<()> {
+fn run_simulate(config: Option<PathBuf>, set: Vec<String>, dt: Option<f64>, out: PathBuf, parquet: bool, format: Format, control: &Control) -> Result<()> {
     let (mut root, source) = config::read_with_default(config.as_deref(), config::DEFAULT_PLANAR, "embedded default (examples/planar.toml)")?;
     for s in &set {
         config::apply_set(&mut root, s)?;
     }
     if autobal::config::is_spatial(&root) {
-        return run_spatial(&root, &source, config.as_deref(), dt, out, parquet, format);
+        return run_spatial(&root, &source, config.as_deref(), dt, out, parquet, format, control);
     }
     let mut cfg = config::build_planar(&root, &source)?;
     if let Some(d) = dt {
         cfg.settings.dt = d;
         cfg.settings.validate(&cfg.rotor).map_err(|e| anyhow::anyhow!("--dt: {e}"))?;
     }
-    let _ = ctrlc::set_handler(|| sim::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
     let (out, stem) = simulation_outputs(config.as_deref(), &out, parquet)?;
     let mut w = outfile::Staged::create("--out", &out)?;
     let mut table = match parquet {
@@ -547,7 +596,7 @@ fn run_simulate(config: Option<PathBuf>, set: Vec<String>, dt: Option<f64>, out:
         false => None,
     };
     let progress = std::io::IsTerminal::is_terminal(&std::io::stderr());
-    let (summary, env, wall) = sim::run_to_csv(&cfg, &mut w, table.as_mut(), progress)?;
+    let (summary, env, wall) = sim::run_to_csv(&cfg, &mut w, table.as_mut(), progress, control)?;
     autobal::limits::check_finite("the summary", &summary)?;
     // complete rows (also when stopped early): renamed into place
     let out = w.commit()?;
@@ -571,7 +620,17 @@ fn run_simulate(config: Option<PathBuf>, set: Vec<String>, dt: Option<f64>, out:
     Ok(())
 }
 
-fn run_spatial(root: &toml::Table, source: &str, config: Option<&std::path::Path>, dt: Option<f64>, out: PathBuf, parquet: bool, format: Format) -> Result<()> {
+#[allow(clippy::too_many_arguments)]
+fn run_spatial(
+    root: &toml::Table,
+    source: &str,
+    config: Option<&std::path::Path>,
+    dt: Option<f64>,
+    out: PathBuf,
+    parquet: bool,
+    format: Format,
+    control: &Control,
+) -> Result<()> {
     let mut sim = spatial_sim::build(root, source)?;
     if sim.default_drive {
         let (w_end, _) = sim.drive.kinematics(sim.settings.t_end);
@@ -588,7 +647,6 @@ fn run_spatial(root: &toml::Table, source: &str, config: Option<&std::path::Path
         sim.settings.dt = d;
         sim.settings.validate().map_err(|e| anyhow::anyhow!("--dt: {e}"))?;
     }
-    let _ = ctrlc::set_handler(|| sim::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
     let (out, stem) = simulation_outputs(config, &out, parquet)?;
     let mut w = outfile::Staged::create("--out", &out)?;
     let mut table = match parquet {
@@ -596,7 +654,7 @@ fn run_spatial(root: &toml::Table, source: &str, config: Option<&std::path::Path
         false => None,
     };
     let progress = std::io::IsTerminal::is_terminal(&std::io::stderr());
-    let (summary, kept, wall) = spatial_sim::run_to_files(&sim, &mut w, table.as_mut(), progress, &sim::INTERRUPTED)?;
+    let (summary, kept, wall) = spatial_sim::run_to_files(&sim, &mut w, table.as_mut(), progress, control)?;
     // complete rows (also when stopped early): renamed into place
     let out = w.commit()?;
     if let Some(t) = table {
@@ -611,7 +669,7 @@ fn run_spatial(root: &toml::Table, source: &str, config: Option<&std::path::Path
     Ok(())
 }
 
-fn run_basins(config: Option<PathBuf>, set: Vec<String>, n: usize, out: PathBuf, format: Format, threads: Option<usize>) -> Result<()> {
+fn run_basins(config: Option<PathBuf>, set: Vec<String>, n: usize, out: PathBuf, format: Format, threads: Option<usize>, control: &Control) -> Result<()> {
     let (root, source) = config::read_set(config.as_deref(), &set)?;
     let sim = spatial_sim::build(&root, &source)?;
     if let Some(t) = threads {
@@ -620,12 +678,11 @@ fn run_basins(config: Option<PathBuf>, set: Vec<String>, n: usize, out: PathBuf,
         }
         rayon::ThreadPoolBuilder::new().num_threads(t).build_global().ok();
     }
-    let _ = ctrlc::set_handler(|| sim::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
     // checked before the grid is computed
     let out = outfile::resolve(&out, "basins.csv");
     outfile::Outputs::new().inputs(config.as_deref()).output("--out", &out).check()?;
     let progress = std::io::IsTerminal::is_terminal(&std::io::stderr());
-    let v = spatial_sim::run_basins(&sim, n, &out, progress, &sim::INTERRUPTED)?;
+    let v = spatial_sim::run_basins(&sim, n, &out, progress, control)?;
     let table = format!(
         "{} of {} runs balanced ({:.1} %), {:.2} s; wrote {}\n",
         v["balanced"],
@@ -678,7 +735,8 @@ where
             return e.exit_code();
         }
     };
-    if let Err(e) = run(cli) {
+    let control = interrupt::control(cli.command.polls_the_control());
+    if let Err(e) = run(cli, &control) {
         if output::is_broken_pipe(&e) {
             // the reader has what it wanted (`autobal critical | head -1`): end quietly
             return 0;

@@ -12,17 +12,17 @@
 //!   `simulation_omega_t` (the plots `simulate` writes beside its CSV);
 //! - `report`: every figure of the HTML report, by its id ([`report_figures`]).
 //!
-//! The other commands draw no figure ([`COMMANDS_WITH_FIGURES`]). Ctrl-C: [`interrupt`] sets the
-//! flags the long computations poll; [`reset`] clears them before the next call.
+//! The other commands draw no figure ([`COMMANDS_WITH_FIGURES`]). Every function takes the
+//! [`Control`] the long computations run under (the front end's Ctrl-C).
 
 use crate::config;
 use crate::map::{Axis, Quantity};
 use crate::plot::Plot;
 use anyhow::{bail, Result};
+use autobal::control::Control;
 use autobal::spatial::linear_model::Balls;
 use serde::Deserialize;
 use serde_json::{json, Value};
-use std::sync::atomic::Ordering;
 use toml::Table;
 
 /// The commands whose results have figures, in the CLI's order.
@@ -70,18 +70,6 @@ impl Figure {
     }
 }
 
-/// Ask the running computation to stop (Ctrl-C in a front end without the CLI's handler).
-pub fn interrupt() {
-    crate::map::INTERRUPTED.store(true, Ordering::Relaxed);
-    crate::sim::INTERRUPTED.store(true, Ordering::Relaxed);
-}
-
-/// Clear the stop flags before a new computation.
-pub fn reset() {
-    crate::map::INTERRUPTED.store(false, Ordering::Relaxed);
-    crate::sim::INTERRUPTED.store(false, Ordering::Relaxed);
-}
-
 fn balls(o: &Options) -> Result<Balls> {
     match o.balls.as_deref().unwrap_or("free") {
         "free" => Ok(Balls::Free),
@@ -92,12 +80,12 @@ fn balls(o: &Options) -> Result<Balls> {
 
 /// The figures of `command` on the config `root` (`source` names it in messages), as a JSON
 /// array of [`Figure::to_json`].
-pub fn figures_json(command: &str, root: &Table, source: &str, o: &Options) -> Result<Value> {
-    Ok(Value::Array(figures(command, root, source, o)?.iter().map(Figure::to_json).collect()))
+pub fn figures_json(command: &str, root: &Table, source: &str, o: &Options, control: &Control) -> Result<Value> {
+    Ok(Value::Array(figures(command, root, source, o, control)?.iter().map(Figure::to_json).collect()))
 }
 
 /// The figures of `command` on the config `root`, computed as the CLI computes them.
-pub fn figures(command: &str, root: &Table, source: &str, o: &Options) -> Result<Vec<Figure>> {
+pub fn figures(command: &str, root: &Table, source: &str, o: &Options, control: &Control) -> Result<Vec<Figure>> {
     let fig = |id: &str, plot: Plot| Figure { id: id.to_string(), plot };
     match command {
         "stability" => {
@@ -151,7 +139,7 @@ pub fn figures(command: &str, root: &Table, source: &str, o: &Options) -> Result
                 q => bail!("quantity: must be \"margin\" or \"verdict\", got \"{q}\""),
             };
             let b = balls(o)?;
-            let (r, run) = crate::map::compute(&cfg, xa, ya, omega, b, q, &mut std::io::sink(), false)?;
+            let (r, run) = crate::map::compute(&cfg, xa, ya, omega, b, q, &mut std::io::sink(), false, control)?;
             if run.rows_done < run.rows_total {
                 bail!("interrupted: {} of {} rows computed", run.rows_done, run.rows_total);
             }
@@ -171,7 +159,7 @@ pub fn figures(command: &str, root: &Table, source: &str, o: &Options) -> Result
                     sim.settings.dt = d;
                     sim.settings.validate().map_err(|e| anyhow::anyhow!("dt: {e}"))?;
                 }
-                let (summary, kept, _) = crate::spatial_sim::run_to_csv(&sim, &mut std::io::sink(), false, &crate::sim::INTERRUPTED)?;
+                let (summary, kept, _) = crate::spatial_sim::run_to_csv(&sim, &mut std::io::sink(), false, control)?;
                 stopped(&summary.stopped)?;
                 crate::spatial_sim::plots(&sim, &kept, "Spatial rotor")
             } else {
@@ -180,7 +168,7 @@ pub fn figures(command: &str, root: &Table, source: &str, o: &Options) -> Result
                     cfg.settings.dt = d;
                     cfg.settings.validate(&cfg.rotor).map_err(|e| anyhow::anyhow!("dt: {e}"))?;
                 }
-                let (summary, env, _) = crate::sim::run_to_csv(&cfg, &mut std::io::sink(), None, false)?;
+                let (summary, env, _) = crate::sim::run_to_csv(&cfg, &mut std::io::sink(), None, false, control)?;
                 stopped(&summary.stopped)?;
                 crate::sim::plots(&cfg, &env, "Passage")
             };
@@ -188,7 +176,7 @@ pub fn figures(command: &str, root: &Table, source: &str, o: &Options) -> Result
         }
         "report" => {
             let kind = if o.papers.unwrap_or(false) { crate::report::Kind::Papers } else { crate::report::Kind::User };
-            report_figures(root, source, o.quick.unwrap_or(false), kind)
+            report_figures(root, source, o.quick.unwrap_or(false), kind, control)
         }
         c if crate_commands().contains(&c) => bail!("command: {c} draws no figure (figures: {})", COMMANDS_WITH_FIGURES.join(", ")),
         c => bail!("command: unknown command \"{c}\""),
@@ -225,7 +213,7 @@ fn general_omega_max(root: &Table, g: &crate::general::GeneralRotor, arg: Option
 
 /// Every figure of the HTML report on the config `root` (its sections built as `autobal
 /// report` builds them, no file written), in page order.
-pub fn report_figures(root: &Table, source: &str, quick: bool, kind: crate::report::Kind) -> Result<Vec<Figure>> {
+pub fn report_figures(root: &Table, source: &str, quick: bool, kind: crate::report::Kind, control: &Control) -> Result<Vec<Figure>> {
     let spatial = if autobal::config::is_spatial(root) { Some(config::build(root, source)?) } else { None };
     let planar = if root.contains_key("planar") { Some(config::build_planar(root, source)?) } else { None };
     if spatial.is_none() && planar.is_none() {
@@ -235,7 +223,7 @@ pub fn report_figures(root: &Table, source: &str, quick: bool, kind: crate::repo
         Some(c) => c.text.clone(),
         None => toml::to_string(root).unwrap_or_default(),
     };
-    let ctx = crate::report::Ctx { kind, spatial, planar, quick, source: source.to_string(), text, root: root.clone() };
+    let ctx = crate::report::Ctx { kind, spatial, planar, quick, source: source.to_string(), text, root: root.clone(), control: control.clone() };
     let list = if kind == crate::report::Kind::User { crate::report::USER_SECTIONS } else { crate::report::PAPER_SECTIONS };
     let mut out = vec![];
     for (name, build) in list {
@@ -261,7 +249,7 @@ mod tests {
     #[test]
     fn stability_figure_is_the_clis_margin_plot() {
         let root = default_root();
-        let f = figures("stability", &root, "default", &Options { samples: Some(100), ..Default::default() }).unwrap();
+        let f = figures("stability", &root, "default", &Options { samples: Some(100), ..Default::default() }, &Control::none()).unwrap();
         assert_eq!(f.len(), 1);
         assert_eq!(f[0].id, "stability_margin");
         let cfg = config::build(&root, "default").unwrap();
@@ -272,9 +260,9 @@ mod tests {
 
     #[test]
     fn commands_without_figures_say_so() {
-        let e = figures("critical", &default_root(), "default", &Options::default()).err().unwrap().to_string();
+        let e = figures("critical", &default_root(), "default", &Options::default(), &Control::none()).err().unwrap().to_string();
         assert!(e.contains("draws no figure"), "{e}");
-        let e = figures("nope", &default_root(), "default", &Options::default()).err().unwrap().to_string();
+        let e = figures("nope", &default_root(), "default", &Options::default(), &Control::none()).err().unwrap().to_string();
         assert!(e.contains("unknown command"), "{e}");
         let e = serde_json::from_str::<Options>(r#"{"sample": 3}"#).err().unwrap().to_string();
         assert!(e.contains("unknown field"), "{e}");

@@ -358,6 +358,7 @@ pub fn run_campbell(
     svg: Option<&std::path::Path>,
     view: CampbellView,
     harmonics: &[u32],
+    control: &autobal::control::Control,
 ) -> Result<()> {
     use anyhow::Context;
     use std::io::Write as _;
@@ -388,7 +389,7 @@ pub fn run_campbell(
     };
     let result = campbell_stream(&cfg.model, (0..n).map(speed), balls, &mut |k, modes| {
         // Ctrl-C: this speed is the last one computed and kept (figures and table end there)
-        let stop = crate::map::INTERRUPTED.load(std::sync::atomic::Ordering::Relaxed);
+        let stop = control.should_stop().is_some();
         // every reported number finite (as for the other commands), checked as it streams
         if let Err(e) = autobal::limits::check_finite(&format!("campbell.speeds[{k}]"), &modes) {
             io_err = Some(e.into());

@@ -6,15 +6,12 @@
 use crate::config::Config;
 use crate::plot::Series;
 use anyhow::{anyhow, bail, Result};
+use autobal::control::Control;
 use autobal::spatial::boundary::{Boundary, Codim2Kind, CurveKind, PlaneAxis, TraceSettings};
 use autobal::spatial::linear_model::Balls;
 use rayon::prelude::*;
 use std::io::Write;
 use std::path::Path;
-use std::sync::atomic::{AtomicBool, Ordering};
-
-/// Set by Ctrl-C: rows not yet started are skipped, rows written so far are kept.
-pub static INTERRUPTED: AtomicBool = AtomicBool::new(false);
 
 /// One axis: `key=lo:hi:n`, key `omega` or a config field.
 #[derive(Debug, Clone)]
@@ -128,6 +125,7 @@ pub fn compute(
     quantity: Quantity,
     csv: &mut dyn Write,
     progress: bool,
+    control: &Control,
 ) -> Result<(MapResult, MapRun)> {
     for (flag, a) in [("--x", &x), ("--y", &y)] {
         if !a.is_omega() {
@@ -182,7 +180,7 @@ pub fn compute(
         csv.flush()
     };
     let batch = (1 << 16) / x.n.max(1) + 1;
-    let outcome = autobal::spatial::paths::stability_map_units(&cfg.spec, &lx, &ly, &settings, &mut |j, cells| {
+    let outcome = autobal::spatial::paths::stability_map_units(&cfg.spec, &lx, &ly, &settings, control, &mut |j, cells| {
         if j % ky == 0 && j / ky < dy.n {
             kept[j / ky] = Some(cells.iter().step_by(kx).take(dx.n).copied().collect());
         }
@@ -196,7 +194,7 @@ pub fn compute(
         if let Some(b) = &bar {
             b.set_position(j as u64 + 1);
         }
-        !INTERRUPTED.load(Ordering::Relaxed)
+        true
     });
     if let Some(e) = io_error {
         return Err(e.into());
@@ -273,13 +271,12 @@ pub fn boundary_csv(b: &Boundary, x: &str, y: &str) -> String {
     s
 }
 
-/// Trace the stability boundary over the map's plane ([`autobal::spatial::boundary`]); Ctrl-C
-/// stops it with the curves traced so far (`complete` false).
-pub fn trace(cfg: &Config, x: &Axis, y: &Axis, omega: Option<f64>, balls: Balls) -> Result<Boundary> {
+/// Trace the stability boundary over the map's plane ([`autobal::spatial::boundary`]); the
+/// control (Ctrl-C) stops it with the curves traced so far (`complete` false).
+pub fn trace(cfg: &Config, x: &Axis, y: &Axis, omega: Option<f64>, balls: Balls, control: &Control) -> Result<Boundary> {
     let ax = |a: &Axis| PlaneAxis { path: a.key.clone(), lo: a.lo, hi: a.hi };
     let s = TraceSettings { balls, omega, ..Default::default() };
-    autobal::spatial::paths::trace_boundary_units(&cfg.spec, &ax(x), &ax(y), &s, &|| INTERRUPTED.load(Ordering::Relaxed))
-        .map_err(|e| anyhow!("--boundary: {e}"))
+    autobal::spatial::paths::trace_boundary_units(&cfg.spec, &ax(x), &ax(y), &s, control).map_err(|e| anyhow!("--boundary: {e}"))
 }
 
 /// `autobal map` by the general route ([`autobal::rotor_map`]): any planar or spatial config,
@@ -297,6 +294,7 @@ pub fn run_general(
     out: &Path,
     threads: Option<usize>,
     boundary: bool,
+    control: &Control,
 ) -> Result<()> {
     use autobal::rotor_map::{general_map_traced, BoundaryPoint, Kind, Verdict};
     let xa = Axis::parse("--x", x)?;
@@ -311,7 +309,6 @@ pub fn run_general(
         }
         rayon::ThreadPoolBuilder::new().num_threads(t).build_global().ok();
     }
-    let _ = ctrlc::set_handler(|| INTERRUPTED.store(true, Ordering::Relaxed));
     let out = crate::output::out_stem(&crate::outfile::resolve(out, "stability-map"), &["csv", "svg", "png"]);
     let csv_path = crate::output::with_suffix(&out, "csv");
     let mut o = crate::outfile::Outputs::new();
@@ -348,7 +345,7 @@ pub fn run_general(
     let xs: Vec<String> = lx.values.iter().map(|v| crate::num::Csv(*v).to_string()).collect();
     let mut io_error: Option<std::io::Error> = None;
     let t0 = std::time::Instant::now();
-    let outcome = general_map_traced(root, &lx, &ly, speed, boundary, &|| INTERRUPTED.load(Ordering::Relaxed), &mut |j, cells, points| {
+    let outcome = general_map_traced(root, &lx, &ly, speed, boundary, control, &mut |j, cells, points| {
         traced.extend_from_slice(points);
         if j % ky == 0 && j / ky < dy.n {
             kept[j / ky] = Some(cells.iter().step_by(kx).take(dx.n).copied().collect());

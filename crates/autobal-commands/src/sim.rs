@@ -3,15 +3,12 @@
 use crate::config::PlanarConfig;
 use crate::plot::{Plot, Series, PALETTE};
 use anyhow::{bail, Result};
+use autobal::control::Control;
 use autobal::planar::stationary::{aligned_whirls_of, capacity_ratio, locked_amplitude, semi_balanced_exists};
 use autobal::planar::{simulate_with, Sample, Summary};
 use serde_json::Value;
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, Ordering};
-
-/// Set by Ctrl-C.
-pub static INTERRUPTED: AtomicBool = AtomicBool::new(false);
 
 /// Samples kept for plotting: per bucket of consecutive samples, the ones with the smallest and
 /// largest amplitude (so peaks survive decimation).
@@ -64,6 +61,7 @@ pub fn run_to_csv(
     csv: &mut dyn Write,
     mut parquet: Option<&mut crate::parquet::Table>,
     progress: bool,
+    control: &Control,
 ) -> Result<(Summary, Envelope, f64)> {
     writeln!(csv, "{}", sample_columns(cfg.rotor.n).join(","))?;
     let mut row = vec![];
@@ -80,7 +78,7 @@ pub fn run_to_csv(
     let mut io_error: Option<anyhow::Error> = None;
     let mut count = 0u64;
     let t0 = std::time::Instant::now();
-    let summary = simulate_with(&cfg.rotor, &cfg.drive, &cfg.settings, Some(&|| INTERRUPTED.load(Ordering::Relaxed)), |s| {
+    let summary = simulate_with(&cfg.rotor, &cfg.drive, &cfg.settings, control, |s| {
         let mut line =
             format!("{},{},{},{},{}", crate::num::Csv(s.t), crate::num::Csv(s.omega), crate::num::Csv(s.x), crate::num::Csv(s.y), crate::num::Csv(s.amplitude));
         for p in &s.psi {
@@ -110,7 +108,7 @@ pub fn run_to_csv(
                 b.set_message(format!("{:.1} s of {:.1} s", s.t, cfg.settings.t_end));
             }
         }
-        !INTERRUPTED.load(Ordering::Relaxed)
+        true
     })?;
     let wall = t0.elapsed().as_secs_f64();
     env.flush();

@@ -5,13 +5,13 @@
 use crate::plot::{Plot, Series, PALETTE};
 use anyhow::{bail, Result};
 use autobal::config::SpatialSimulation;
+use autobal::control::Control;
 use autobal::spatial::dynamics::basins::{angle_grid, basins, check_angle_grid};
 use autobal::spatial::dynamics::stationary::response_curve;
-use autobal::spatial::dynamics::{simulate, Sample, Summary};
+use autobal::spatial::dynamics::{simulate_with, Sample, Summary};
 use serde_json::{json, Value};
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::Ordering;
 use toml::Table;
 
 /// A loaded spatial simulation: the library's converted config and where it came from.
@@ -91,8 +91,8 @@ pub fn columns(sim: &SpatialSim) -> Vec<String> {
 }
 
 /// Run, writing every sample to `csv` (flushed as it goes).
-pub fn run_to_csv(sim: &SpatialSim, csv: &mut dyn Write, progress: bool, interrupted: &std::sync::atomic::AtomicBool) -> Result<(Summary, Vec<Sample>, f64)> {
-    run_to_files(sim, csv, None, progress, interrupted)
+pub fn run_to_csv(sim: &SpatialSim, csv: &mut dyn Write, progress: bool, control: &Control) -> Result<(Summary, Vec<Sample>, f64)> {
+    run_to_files(sim, csv, None, progress, control)
 }
 
 /// Run, writing every sample to `csv` (flushed as it goes) and to `parquet` if given.
@@ -101,7 +101,7 @@ pub fn run_to_files(
     csv: &mut dyn Write,
     mut parquet: Option<&mut crate::parquet::Table>,
     progress: bool,
-    interrupted: &std::sync::atomic::AtomicBool,
+    control: &Control,
 ) -> Result<(Summary, Vec<Sample>, f64)> {
     writeln!(csv, "{}", columns(sim).join(","))?;
     let mut row = vec![];
@@ -118,7 +118,7 @@ pub fn run_to_files(
     let mut io_error = None;
     let mut count = 0u64;
     let t0 = std::time::Instant::now();
-    let summary = simulate(&sim.rotor, &sim.drive, &sim.initial, &sim.settings, |s| {
+    let summary = simulate_with(&sim.rotor, &sim.drive, &sim.initial, &sim.settings, control, |s| {
         let mut line = format!(
             "{},{},{},{},{},{}",
             crate::num::Csv(s.t),
@@ -155,7 +155,7 @@ pub fn run_to_files(
                 b.set_message(format!("{:.1} of {:.1}", s.t, sim.settings.t_end));
             }
         }
-        !interrupted.load(Ordering::Relaxed)
+        true
     })?;
     let wall = t0.elapsed().as_secs_f64();
     env.flush();
@@ -308,22 +308,17 @@ pub fn write_plots(sim: &SpatialSim, kept: &[Sample], stem: &Path, title: &str) 
 
 /// `autobal basins`: runs over a grid of the first two balls' initial angles; CSV row by row
 /// (`psi_1, psi_2, balanced, residual_unbalance, final_amplitude`) and a JSON summary.
-pub fn run_basins(sim: &SpatialSim, n: usize, out: &Path, progress: bool, interrupted: &std::sync::atomic::AtomicBool) -> Result<Value> {
+pub fn run_basins(sim: &SpatialSim, n: usize, out: &Path, progress: bool, control: &Control) -> Result<Value> {
     check_angle_grid(&sim.rotor, n, "--n")?;
     let cases = angle_grid(&sim.initial, &sim.drive, n, n);
     let bar = progress.then(|| indicatif::ProgressBar::new(cases.len() as u64));
     let t0 = std::time::Instant::now();
-    let res = basins(
-        &sim.rotor,
-        &cases,
-        &sim.settings,
-        |_| {
-            if let Some(b) = &bar {
-                b.inc(1);
-            }
-        },
-        interrupted,
-    )?;
+    // the same flag and budget, with the progress bar as its observer
+    let shown = match bar.clone() {
+        Some(b) => control.clone().with_progress(move |p| b.set_position(p.done)),
+        None => control.clone(),
+    };
+    let res = basins(&sim.rotor, &cases, &sim.settings, &shown)?.value;
     if let Some(b) = bar {
         b.finish_and_clear();
     }

@@ -5,13 +5,13 @@
 use crate::config;
 use crate::output::{emit, Format};
 use anyhow::{anyhow, bail, Context, Result};
+use autobal::control::Control;
 use autobal::planar::problem::PlanarProblem;
 use autobal::sweep::{definition_checksum, shard, simulate_grid, Axis, Grid, SpatialSweep, SweepModel, SweepSummary, SPATIAL_SUMMARY_COLUMNS, SUMMARY_COLUMNS};
 use clap::Args;
 use serde_json::{json, Value};
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::Ordering;
 
 #[derive(Args)]
 pub struct SweepArgs {
@@ -156,7 +156,7 @@ fn parse_axes(a: &SweepArgs) -> Result<Vec<(&'static str, Axis)>> {
     Ok(axes)
 }
 
-pub fn run(a: SweepArgs) -> Result<()> {
+pub fn run(a: SweepArgs, control: &Control) -> Result<()> {
     let (root, source) = config::read_planar_set(a.config.as_deref(), &a.set)?;
     let axes = parse_axes(&a)?;
     if autobal::config::is_spatial(&root) && !root.contains_key("planar") {
@@ -169,7 +169,7 @@ pub fn run(a: SweepArgs) -> Result<()> {
         }
         let problem = base.to_json()?;
         let units = if sim.config.dimensional { ("mm", 1e3) } else { ("ρ_s", 1.0) };
-        return sweep_on(&a, &root, &base, axes, problem, units);
+        return sweep_on(&a, &root, &base, axes, problem, units, control);
     }
     let cfg = config::build_planar(&root, &source)?;
     let base = PlanarProblem { rotor: cfg.rotor, drive: cfg.drive, settings: cfg.settings };
@@ -179,12 +179,13 @@ pub fn run(a: SweepArgs) -> Result<()> {
         autobal::paths::Parameters::set(&mut p, &ax.path, ax.values[0]).map_err(|e| anyhow!("{flag} {e}"))?;
     }
     let problem = serde_json::to_value(&base)?;
-    sweep_on(&a, &root, &base, axes, problem, ("mm", 1e3))
+    sweep_on(&a, &root, &base, axes, problem, ("mm", 1e3), control)
 }
 
 /// Run the sweep of `base` over `axes` and write its outputs (`units`: the table's unit of
 /// lengths and its factor).
-fn sweep_on<M>(a: &SweepArgs, root: &toml::Table, base: &M, axes: Vec<(&str, Axis)>, problem: Value, (lu, ls): (&str, f64)) -> Result<()>
+#[allow(clippy::too_many_arguments)]
+fn sweep_on<M>(a: &SweepArgs, root: &toml::Table, base: &M, axes: Vec<(&str, Axis)>, problem: Value, (lu, ls): (&str, f64), control: &Control) -> Result<()>
 where
     M: SweepModel,
     M::Summary: Row,
@@ -205,7 +206,6 @@ where
     }
     autobal::sweep::check_grid(base, &grid, range.clone())?;
     let checksum = definition_checksum(root, &grid);
-    let _ = ctrlc::set_handler(|| crate::sim::INTERRUPTED.store(true, Ordering::Relaxed));
     let out = &crate::output::out_stem(&crate::outfile::resolve(&a.out, "sweep"), &["csv", "json", "parquet"]);
     let csv_path = crate::output::with_suffix(out, "csv");
     let json_path = crate::output::with_suffix(out, "json");
@@ -277,9 +277,9 @@ where
             if let Some(b) = &bar {
                 b.inc(1);
             }
-            !crate::sim::INTERRUPTED.load(Ordering::Relaxed)
+            true
         },
-        &|| crate::sim::INTERRUPTED.load(Ordering::Relaxed),
+        control,
     )?;
     if let Some(b) = bar {
         b.finish_and_clear();
@@ -294,7 +294,7 @@ where
     if let Some(e) = io_error {
         return Err(e);
     }
-    let mut json = autobal::sweep::report(&grid, shard_kn, &range, outcome.complete, problem, runs);
+    let mut json = autobal::sweep::report(&grid, shard_kn, &range, outcome.complete(), problem, runs);
     json["definition_checksum"] = json!(checksum);
     let csv_path = csv.commit()?;
     if let Some(t) = pq {
@@ -302,7 +302,7 @@ where
     }
     crate::outfile::write_atomic("--out", &json_path, serde_json::to_string_pretty(&json)?)?;
     emit(a.format, json, table)?;
-    if !outcome.complete {
+    if !outcome.complete() {
         bail!("interrupted: {} of {} runs complete, kept in {}", outcome.delivered, outcome.points, csv_path.display());
     }
     Ok(())
@@ -380,7 +380,7 @@ fn grid_values(json: &Value, point: u64) -> Option<Vec<f64>> {
 /// every field a number, the points its JSON's `range` in order, the axis values those of the
 /// grid at that point, and each row's point, values and wall time those of its JSON's run.
 /// Errors name the shard and the line.
-fn verify_rows(s: &Shard, head: &str) -> Result<Vec<String>> {
+fn verify_rows(s: &Shard, head: &str, control: &Control) -> Result<Vec<String>> {
     let name = s.path.display();
     let width = head.split(',').count();
     let paths = s.json["paths"].as_array().map_or(0, |p| p.len());
@@ -395,7 +395,7 @@ fn verify_rows(s: &Shard, head: &str) -> Result<Vec<String>> {
     let mut expected = start;
     for (i, l) in s.csv.lines().enumerate().skip(1) {
         let line = i + 1;
-        if crate::sim::INTERRUPTED.load(Ordering::Relaxed) {
+        if control.should_stop().is_some() {
             bail!("interrupted while reading {name}: nothing written");
         }
         let fields: Vec<&str> = l.split(',').collect();
@@ -434,7 +434,7 @@ fn verify_rows(s: &Shard, head: &str) -> Result<Vec<String>> {
     Ok(rows)
 }
 
-pub fn merge(a: MergeArgs) -> Result<()> {
+pub fn merge(a: MergeArgs, control: &Control) -> Result<()> {
     // the outputs, checked against each other and the shards before anything is read
     let out = crate::output::out_stem(&crate::outfile::resolve(&a.out, "sweep"), &["csv", "json", "parquet"]);
     let (cp, jp, pp) = (crate::output::with_suffix(&out, "csv"), crate::output::with_suffix(&out, "json"), crate::output::with_suffix(&out, "parquet"));
@@ -447,10 +447,9 @@ pub fn merge(a: MergeArgs) -> Result<()> {
         outputs.output("--parquet", &pp);
     }
     outputs.check()?;
-    let _ = ctrlc::set_handler(|| crate::sim::INTERRUPTED.store(true, Ordering::Relaxed));
     let mut shards = vec![];
     for p in &a.shards {
-        if crate::sim::INTERRUPTED.load(Ordering::Relaxed) {
+        if control.should_stop().is_some() {
             bail!("interrupted while reading the shards: nothing written");
         }
         shards.push(read_shard(p)?);
@@ -525,7 +524,7 @@ pub fn merge(a: MergeArgs) -> Result<()> {
         if s.json["range"][0].as_u64() != Some(next) {
             bail!("{}: starts at point {} where {next} was expected", name(s), s.json["range"][0]);
         }
-        for l in verify_rows(s, &head)? {
+        for l in verify_rows(s, &head, control)? {
             csv.push_str(&l);
             csv.push('\n');
             next += 1;
@@ -546,7 +545,7 @@ pub fn merge(a: MergeArgs) -> Result<()> {
         let names: Vec<String> = head.split(',').map(String::from).collect();
         let mut t = crate::parquet::Table::create(&pp, &names, true)?;
         for l in csv.lines().skip(1) {
-            if crate::sim::INTERRUPTED.load(Ordering::Relaxed) {
+            if control.should_stop().is_some() {
                 bail!("interrupted: nothing written");
             }
             let row = l.split(',').map(|v| v.parse::<f64>()).collect::<std::result::Result<Vec<_>, _>>();
@@ -558,7 +557,7 @@ pub fn merge(a: MergeArgs) -> Result<()> {
     c.write_all(csv.as_bytes()).with_context(|| format!("--out: cannot write {}", cp.display()))?;
     let mut j = crate::outfile::Staged::create("--out", &jp)?;
     j.write_all(serde_json::to_string_pretty(&json)?.as_bytes()).with_context(|| format!("--out: cannot write {}", jp.display()))?;
-    if crate::sim::INTERRUPTED.load(Ordering::Relaxed) {
+    if control.should_stop().is_some() {
         bail!("interrupted: nothing written");
     }
     c.commit()?;

@@ -6,6 +6,7 @@
 //! exceptions of `autobal.errors`, naming the field.
 
 use autobal::config::{self, Table, Value};
+use autobal::control::Control;
 use autobal::paths::Parameters;
 use autobal::planar::problem::PlanarProblem;
 use autobal::spatial::linear_model::Balls;
@@ -13,7 +14,6 @@ use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
-use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
 /// Most cells of a stability map returned as arrays (10 bytes each: 500 MB).
@@ -24,14 +24,8 @@ const SIGNAL_POLL: Duration = Duration::from_millis(50);
 
 /// Run `f` on a worker thread with the GIL released, checking for signals meanwhile; on a
 /// signal, set the cancel flag `f` polls, wait for `f` to return, and raise the signal's error.
-fn interruptible<R: Send>(py: Python<'_>, f: impl FnOnce(&AtomicBool) -> R + Send) -> PyResult<R> {
-    interruptible_with(py, || {}, f)
-}
-
-/// [`interruptible`], calling `on_cancel` too on a signal (the commands crate's computations
-/// poll flags of their own: [`autobal_commands::figures_api::interrupt`]).
-fn interruptible_with<R: Send>(py: Python<'_>, on_cancel: impl Fn(), f: impl FnOnce(&AtomicBool) -> R + Send) -> PyResult<R> {
-    let cancel = AtomicBool::new(false);
+fn interruptible<R: Send>(py: Python<'_>, f: impl FnOnce(&Control) -> R + Send) -> PyResult<R> {
+    let cancel = Control::new();
     std::thread::scope(|s| {
         let (tx, mut rx) = std::sync::mpsc::channel();
         let cancel = &cancel;
@@ -46,8 +40,7 @@ fn interruptible_with<R: Send>(py: Python<'_>, on_cancel: impl Fn(), f: impl FnO
                 Err(std::sync::mpsc::RecvTimeoutError::Disconnected) => return Err(PyRuntimeError::new_err("autobal: the worker thread panicked")),
                 Err(std::sync::mpsc::RecvTimeoutError::Timeout) => {
                     if let Err(e) = py.check_signals() {
-                        cancel.store(true, Ordering::Relaxed);
-                        on_cancel();
+                        cancel.cancel();
                         let _ = py.detach(move || rx.recv());
                         return Err(e);
                     }
@@ -115,13 +108,9 @@ fn any_err(py: Python<'_>, e: anyhow::Error) -> PyErr {
 }
 
 /// Run a computation of the commands crate on a worker thread with the GIL released; Ctrl-C
-/// stops it through the crate's flags and raises `KeyboardInterrupt`.
-fn commands_call<R: Send>(py: Python<'_>, f: impl FnOnce() -> anyhow::Result<R> + Send) -> PyResult<R> {
-    use autobal_commands::figures_api::{interrupt, reset};
-    reset();
-    let r = interruptible_with(py, interrupt, |_| f());
-    reset();
-    r?.map_err(|e| any_err(py, e))
+/// stops it through its [`Control`] and raises `KeyboardInterrupt`.
+fn commands_call<R: Send>(py: Python<'_>, f: impl FnOnce(&Control) -> anyhow::Result<R> + Send) -> PyResult<R> {
+    interruptible(py, f)?.map_err(|e| any_err(py, e))
 }
 
 /// A Python value (dict, list, number, bool, str) as TOML; `at` names it in errors.
@@ -342,12 +331,12 @@ fn simulate<'py>(py: Python<'py>, cfg: &PyPlanar, dt: Option<f64>) -> PyResult<(
         let mut cols: [Vec<f64>; 5] = Default::default();
         let mut psi = vec![];
         let t0 = std::time::Instant::now();
-        let s = autobal::planar::simulate(&p.rotor, &p.drive, &p.settings, |s| {
+        let s = autobal::planar::simulate_with(&p.rotor, &p.drive, &p.settings, cancel, |s| {
             for (c, v) in cols.iter_mut().zip([s.t, s.omega, s.x, s.y, s.amplitude]) {
                 c.push(v);
             }
             psi.extend_from_slice(&s.psi);
-            !cancel.load(Ordering::Relaxed)
+            !cancel.is_cancelled()
         });
         (s, cols, psi, t0.elapsed().as_secs_f64())
     })?;
@@ -381,7 +370,7 @@ fn spatial_simulate<'py>(py: Python<'py>, cfg: &PySpatial, dt: Option<f64>) -> P
         let mut amps: Vec<Vec<f64>> = vec![vec![]; supports + planes];
         let mut psi = vec![];
         let t0 = std::time::Instant::now();
-        let s = autobal::spatial::dynamics::simulate(&sim.rotor, &sim.drive, &sim.initial, &sim.settings, |s| {
+        let s = autobal::spatial::dynamics::simulate_with(&sim.rotor, &sim.drive, &sim.initial, &sim.settings, cancel, |s| {
             for (c, v) in cols.iter_mut().zip([s.t, s.omega, s.x, s.y, s.tilt_x, s.tilt_y]) {
                 c.push(v);
             }
@@ -389,7 +378,7 @@ fn spatial_simulate<'py>(py: Python<'py>, cfg: &PySpatial, dt: Option<f64>) -> P
                 c.push(*v);
             }
             psi.extend_from_slice(&s.psi);
-            !cancel.load(Ordering::Relaxed)
+            !cancel.is_cancelled()
         });
         (s, cols, amps, psi, t0.elapsed().as_secs_f64())
     })?;
@@ -421,7 +410,7 @@ fn spatial_basins<'py>(py: Python<'py>, cfg: &PySpatial, n: usize) -> PyResult<(
     let cases = angle_grid(&sim.initial, &sim.drive, n, n);
     let (res, wall) = interruptible(py, |cancel| {
         let t0 = std::time::Instant::now();
-        (basins(&sim.rotor, &cases, &sim.settings, |_| {}, cancel), t0.elapsed().as_secs_f64())
+        (basins(&sim.rotor, &cases, &sim.settings, cancel).map(|o| o.value), t0.elapsed().as_secs_f64())
     })?;
     let res = res.map_err(|e| py_err(py, e))?;
     if res.iter().any(Option::is_none) {
@@ -473,7 +462,7 @@ fn check_batch(py: Python<'_>, cfg: &Bound<'_, PyAny>, paths: Vec<String>, param
 }
 
 /// A batch of `base`: `rows × ncol` summaries, `ncol` the model's summary columns.
-fn run_batch<M: autobal::sweep::SweepModel>(base: &M, paths: &[String], flat: &[f64], rows: usize, cancel: &AtomicBool) -> autobal::Result<Vec<f64>> {
+fn run_batch<M: autobal::sweep::SweepModel>(base: &M, paths: &[String], flat: &[f64], rows: usize, cancel: &Control) -> autobal::Result<Vec<f64>> {
     use autobal::sweep::SweepSummary;
     let ncol = <M::Summary as SweepSummary>::COLUMNS.len();
     let refs: Vec<&str> = paths.iter().map(String::as_str).collect();
@@ -486,7 +475,7 @@ fn run_batch<M: autobal::sweep::SweepModel>(base: &M, paths: &[String], flat: &[
             out[i * ncol..(i + 1) * ncol].copy_from_slice(&r.summary.values());
             true
         },
-        &|| cancel.load(Ordering::Relaxed),
+        cancel,
     )?;
     o.into_result()?;
     Ok(out)
@@ -530,7 +519,7 @@ fn run_grid<M: autobal::sweep::SweepModel>(
     base: &M,
     grid: &autobal::sweep::Grid,
     range: std::ops::Range<usize>,
-    cancel: &AtomicBool,
+    cancel: &Control,
 ) -> autobal::Result<Vec<serde_json::Value>> {
     let mut runs = vec![];
     let o = autobal::sweep::simulate_grid(
@@ -541,7 +530,7 @@ fn run_grid<M: autobal::sweep::SweepModel>(
             runs.push(autobal::sweep::run_json(i, v, res));
             true
         },
-        &|| cancel.load(Ordering::Relaxed),
+        cancel,
     )?;
     o.into_result()?;
     Ok(runs)
@@ -632,13 +621,13 @@ fn stability_map<'py>(
             let mut margin = vec![f64::NAN; cells];
             let mut stable = vec![false; cells];
             let mut necessary = vec![false; cells];
-            let o = autobal::spatial::paths::stability_map_units(&spec, &ax, &ay, &settings, &mut |j, row| {
+            let o = autobal::spatial::paths::stability_map_units(&spec, &ax, &ay, &settings, cancel, &mut |j, row| {
                 for (i, c) in row.iter().enumerate() {
                     margin[j * nx + i] = c.margin;
                     stable[j * nx + i] = c.stable;
                     necessary[j * nx + i] = c.necessary;
                 }
-                !cancel.load(Ordering::Relaxed)
+                !cancel.is_cancelled()
             })?;
             if !o.complete {
                 return Err(autobal::Error::Interrupted { t: o.rows as f64 / ny.max(1) as f64 });
@@ -706,7 +695,7 @@ fn figures(
     let root = table(py, text, dict, source, sets)?;
     let o: autobal_commands::figures_api::Options = serde_json::from_str(options).map_err(|e| py_err(py, autobal::Error::invalid("options", e.to_string())))?;
     let (command, source) = (command.to_string(), source.to_string());
-    let v = commands_call(py, move || autobal_commands::figures_api::figures_json(&command, &root, &source, &o))?;
+    let v = commands_call(py, move |control| autobal_commands::figures_api::figures_json(&command, &root, &source, &o, control))?;
     Ok(v.to_string())
 }
 
@@ -718,10 +707,10 @@ fn figures(
 fn report(py: Python<'_>, config: Option<std::path::PathBuf>, sets: Vec<String>, out: std::path::PathBuf, quick: bool, papers: bool) -> PyResult<String> {
     use autobal_commands::{outfile, report};
     let kind = if papers || config.is_none() { report::Kind::Papers } else { report::Kind::User };
-    let index = commands_call(py, move || {
+    let index = commands_call(py, move |control| {
         // the folder is created and checked before any section runs, as the CLI does
         outfile::Outputs::new().inputs(config.as_deref()).output("out", &out.join("index.html")).check()?;
-        report::run(config.as_deref(), &sets, &out, quick, kind)
+        report::run(config.as_deref(), &sets, &out, quick, kind, control)
     })?;
     Ok(index.display().to_string())
 }

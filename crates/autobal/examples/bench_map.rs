@@ -56,7 +56,7 @@ fn main() {
         let s = MapSettings { balls: Balls::Free, quantity: q, omega: None };
         let t = Instant::now();
         let o = pool.install(|| {
-            stability_map(&spec, &x, &y, &s, &mut |_, row| {
+            stability_map(&spec, &x, &y, &s, &autobal::control::Control::none(), &mut |_, row| {
                 cells.extend_from_slice(row);
                 true
             })

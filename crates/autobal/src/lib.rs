@@ -50,21 +50,27 @@
 //! model; [`sweep`] and [`spatial::map`] vary them in parallel.
 //!
 //! ## How long computations end
-//! A computation that can stop early (a cancel callback, a sink or callback that returns
-//! `false`, a step or wall-time budget, a non-finite state) never returns a silent `Ok` that
-//! looks like a whole result: it returns a typed error or an outcome that says so.
+//! Every long computation runs under one [`control::Control`] (a cancel flag shared across
+//! threads, an optional wall-time budget, an optional progress observer; [`control::Control::none`]
+//! to run to the end) and says why it stopped early with one [`control::StopReason`]
+//! (interrupted, budget spent, step budget spent, a sink that asked to stop), keeping what it
+//! computed until then. It never returns a silent `Ok` that looks like a whole result. Failures
+//! that are no decision to stop (a non-finite state, a step size that underflows) are errors or
+//! the run's [`ode::Status`].
 //!
-//! | entry point | an early stop is |
-//! |---|---|
-//! | [`planar::simulate`], [`planar::simulate_with`], [`planar::problem::PlanarProblem::simulate_summary`] | [`planar::Summary::status`] (and `stopped` in words); [`planar::Summary::into_result`] makes it [`Error::Interrupted`], [`Error::TooManySteps`], … |
-//! | [`spatial::dynamics::simulate()`] | [`spatial::dynamics::Summary::status`]; [`spatial::dynamics::Summary::into_result`] |
-//! | [`sweep::simulate_grid`], [`sweep::simulate_batch`] | [`sweep::SweepOutcome::complete`] (`into_result`: [`Error::Interrupted`] with the fraction done); each point's summary has its own `completed` and `t_reached` |
-//! | [`spatial::map::stability_map`] | [`spatial::map::MapOutcome::complete`] (the rows handed over are whole) |
-//! | [`spatial::stability::campbell_stream`] | [`spatial::stability::CampbellStats::complete`] |
-//! | [`spatial::boundary::trace_boundary_with`] | [`spatial::boundary::Boundary::complete`] (the curves traced are whole) |
-//! | [`spatial::dynamics::basins::basins`] | `None` for each run cancelled; each run's summary has its `status` |
-//! | [`planar::paper004::torque_run`] / [`planar::paper004::torque_outcomes`] | the run's `summary.status` / a typed error |
-//! | [`planar::friction::residual`] | [`planar::friction::Residual::completed`] |
+//! | entry point | runs under | an early stop is |
+//! |---|---|---|
+//! | [`ode::Solver::integrate`] | [`ode::Solver::control`] (flag every step, budget every [`control::BUDGET_CHECK_EVERY`] steps) | [`ode::Status::Stopped`] with the reason |
+//! | [`planar::simulate_with`], [`planar::simulate_summary`], [`planar::problem::PlanarProblem::simulate_summary`] | `&Control` | [`planar::Summary::status`] (and `stopped` in words); [`planar::Summary::into_result`] makes it [`Error::Interrupted`], [`Error::TooManySteps`], … |
+//! | [`spatial::dynamics::simulate_with`], [`spatial::dynamics::simulate_summary`] | `&Control` | [`spatial::dynamics::Summary::status`]; [`spatial::dynamics::Summary::into_result`] |
+//! | [`sweep::simulate_grid`], [`sweep::simulate_batch`] ([`sweep::SweepModel::run`]) | `&Control` | [`sweep::SweepOutcome::stopped`] (`into_result`: [`Error::Interrupted`] with the fraction done); each point's summary has its own `completed` and `t_reached` |
+//! | [`rotor_map::general_map`], [`rotor_map::general_map_traced`] | `&Control` | [`rotor_map::GeneralMapOutcome::stopped`] (the rows handed over are whole) |
+//! | [`spatial::boundary::trace_boundary_with`], [`spatial::paths::trace_boundary_units`] | `&Control` | [`spatial::boundary::Boundary::stopped`] (the curves traced are whole) |
+//! | [`spatial::dynamics::basins::basins`] | `&Control` | [`control::Outcome::stopped`]; `None` for each run not run or cut short |
+//! | [`planar::paper004::torque_run_with`] / [`planar::paper004::torque_outcomes`] | `&Control` | the run's `summary.status` / a typed error |
+//! | [`spatial::map::stability_map`], [`spatial::paths::stability_map_units`] | `&Control` (asked between rows) | [`spatial::map::MapOutcome::stopped`] (the rows handed over are whole) |
+//! | [`spatial::stability::campbell_stream`] | `on_speed` returns `false` (likewise) | [`spatial::stability::CampbellStats::complete`] |
+//! | [`planar::friction::residual`] | none (one bounded run; callers ask the control between runs) | [`planar::friction::Residual::completed`] |
 //!
 //! The analyses without a callback ([`spatial::stability::stability_ranges`],
 //! [`spatial::stability::campbell`], [`spatial::critical_speeds::critical_speeds`], …) either
@@ -96,6 +102,7 @@ pub mod analysis;
 pub mod balls;
 pub(crate) mod builder;
 pub mod config;
+pub mod control;
 pub mod drive;
 pub mod error;
 pub mod limits;

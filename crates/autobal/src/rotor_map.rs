@@ -24,7 +24,8 @@
 //! verdict.
 //!
 //! Rows (all `x` at one `y`) are computed in parallel (rayon) in blocks and handed to `on_row`
-//! in order; `cancel` is asked before each row is started.
+//! in order; the [`Control`] is asked before each row is started (an early stop is
+//! [`GeneralMapOutcome::stopped`]) and its progress observer hears `(rows done, rows)`.
 //!
 //! ```
 //! use autobal::rotor_map::{general_map, Verdict};
@@ -35,7 +36,7 @@
 //! let x = Axis { path: "omega".into(), values: vec![0.5 * wn, 2.0 * wn] };
 //! let y = Axis { path: "planar.c_psi".into(), values: vec![0.05, 0.1] };
 //! let mut rows = vec![];
-//! general_map(&root, &x, &y, None, &|| false, &mut |_, r| { rows.push(r.to_vec()); true }).unwrap();
+//! general_map(&root, &x, &y, None, &autobal::control::Control::none(), &mut |_, r| { rows.push(r.to_vec()); true }).unwrap();
 //! // the balanced state is unstable below the critical speed in every row
 //! assert!(rows.iter().all(|r| r[0].verdict == Some(Verdict::Unstable)));
 //! ```
@@ -43,6 +44,7 @@
 use crate::analysis::{stability, stationary, NewtonOptions, VectorField};
 pub use crate::analysis::{Kind, Verdict};
 use crate::config;
+use crate::control::{Control, StopReason};
 use crate::error::{fmt_num, Error, Result};
 use crate::rotor_stability::Rotor;
 use crate::spatial::map::Axis;
@@ -76,8 +78,12 @@ impl GeneralCell {
 pub struct GeneralMapOutcome {
     /// Rows handed to `on_row`.
     pub rows: usize,
-    /// Whether every row was computed (not cancelled or stopped by `on_row`).
+    /// Whether every row was computed (not stopped by the control or by `on_row`); the same as
+    /// `stopped.is_none()`.
     pub complete: bool,
+    /// Why it stopped before every row was computed (`None`: complete).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stopped: Option<StopReason>,
     /// Cells whose state came from the closed form.
     pub closed_form: usize,
     /// Cells whose state was continued from the neighbour.
@@ -321,10 +327,10 @@ pub fn general_map(
     x: &Axis,
     y: &Axis,
     speed: Option<Speed>,
-    cancel: &(dyn Fn() -> bool + Sync),
+    control: &Control,
     on_row: &mut dyn FnMut(usize, &[GeneralCell]) -> bool,
 ) -> Result<GeneralMapOutcome> {
-    general_map_traced(root, x, y, speed, false, cancel, &mut |j, cells, _| on_row(j, cells))
+    general_map_traced(root, x, y, speed, false, control, &mut |j, cells, _| on_row(j, cells))
 }
 
 /// Where the verdict changes along `x` between two cells of a row: `x` located by bisection to
@@ -356,7 +362,7 @@ pub fn general_map_traced(
     y: &Axis,
     speed: Option<Speed>,
     trace: bool,
-    cancel: &(dyn Fn() -> bool + Sync),
+    control: &Control,
     on_row: &mut dyn FnMut(usize, &[GeneralCell], &[BoundaryPoint]) -> bool,
 ) -> Result<GeneralMapOutcome> {
     check_axis(root, x)?;
@@ -389,10 +395,11 @@ pub fn general_map_traced(
     while j0 < y.values.len() {
         let j1 = (j0 + block).min(y.values.len());
         let rows: Vec<Option<(Vec<GeneralCell>, Vec<BoundaryPoint>)>> =
-            (j0..j1).into_par_iter().map(|j| if cancel() { Ok(None) } else { plane.row(j, trace).map(Some) }).collect::<Result<_>>()?;
+            (j0..j1).into_par_iter().map(|j| if control.should_stop().is_some() { Ok(None) } else { plane.row(j, trace).map(Some) }).collect::<Result<_>>()?;
         for (jj, row) in rows.into_iter().enumerate() {
             let Some((row, points)) = row else {
                 out.complete = false;
+                out.stopped = Some(control.should_stop().unwrap_or(StopReason::Interrupted));
                 return Ok(out);
             };
             for c in &row {
@@ -406,8 +413,11 @@ pub fn general_map_traced(
                 }
             }
             out.rows += 1;
-            if !on_row(j0 + jj, &row, &points) {
+            let go_on = on_row(j0 + jj, &row, &points);
+            control.report(out.rows as u64, y.values.len() as u64);
+            if !go_on {
                 out.complete = j0 + jj + 1 == y.values.len();
+                out.stopped = (!out.complete).then_some(StopReason::Observer);
                 return Ok(out);
             }
         }
@@ -428,7 +438,7 @@ mod tests {
 
     fn collect(root: &Table, x: &Axis, y: &Axis, speed: Option<Speed>) -> Result<Vec<Vec<GeneralCell>>> {
         let mut rows = vec![];
-        general_map(root, x, y, speed, &|| false, &mut |_, r| {
+        general_map(root, x, y, speed, &Control::none(), &mut |_, r| {
             rows.push(r.to_vec());
             true
         })?;
@@ -503,7 +513,7 @@ mod tests {
         let x = Axis { path: "omega".into(), values: speeds.clone() };
         let y = Axis { path: "planar.c_psi".into(), values: vec![0.1] };
         let mut pts = vec![];
-        general_map_traced(&root, &x, &y, None, true, &|| false, &mut |_, _, p| {
+        general_map_traced(&root, &x, &y, None, true, &Control::none(), &mut |_, _, p| {
             pts.extend_from_slice(p);
             true
         })
@@ -532,7 +542,16 @@ mod tests {
         let root = planar_root();
         let x = Axis { path: "omega".into(), values: vec![100.0, 200.0] };
         let y = Axis { path: "planar.c_psi".into(), values: vec![0.05, 0.1, 0.2] };
-        let out = general_map(&root, &x, &y, None, &|| true, &mut |_, _| panic!("no row is computed")).unwrap();
-        assert_eq!((out.rows, out.complete), (0, false));
+        let cancelled = Control::new();
+        cancelled.cancel();
+        let out = general_map(&root, &x, &y, None, &cancelled, &mut |_, _| panic!("no row is computed")).unwrap();
+        assert_eq!((out.rows, out.complete, out.stopped), (0, false, Some(StopReason::Interrupted)));
+        // a zero budget: stopped before the first row, the budget named
+        let none = Control::new().with_budget(std::time::Duration::ZERO);
+        let out = general_map(&root, &x, &y, None, &none, &mut |_, _| panic!("no row is computed")).unwrap();
+        assert_eq!((out.rows, out.stopped), (0, Some(StopReason::Budget { seconds: 0.0 })));
+        // on_row stopping after the first row: the rows so far, stopped by the observer
+        let out = general_map(&root, &x, &y, None, &Control::none(), &mut |_, _| false).unwrap();
+        assert_eq!((out.rows, out.stopped), (1, Some(StopReason::Observer)));
     }
 }

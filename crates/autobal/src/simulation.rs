@@ -34,7 +34,7 @@
 //! ```
 
 use crate::error::{Error, Result};
-use crate::ode::{Control, Outcome, Solver, Stats, Status, System};
+use crate::ode::{Control, Outcome, Solver, Stats, Status, StopReason, System};
 
 /// When to sample and where to break the integration.
 #[derive(Debug, Clone, Copy)]
@@ -55,7 +55,7 @@ pub trait Hooks {
     /// After every accepted step, with the state at its end (e.g. peak tracking between samples).
     fn step(&mut self, _t: f64, _y: &[f64]) {}
     /// A sample at `t = k dt` (interpolated from the dense output); [`Control::Stop`] ends the
-    /// run ([`Status::Stopped`]).
+    /// run ([`Status::Stopped`] with [`StopReason::Observer`]).
     fn sample(&mut self, t: f64, y: &[f64]) -> Control;
     /// A non-terminal event `index` of the solver ([`Solver::add_event`]) located at `t`, with
     /// the state there (e.g. a maximum of the whirl radius between step ends).
@@ -105,7 +105,7 @@ pub fn run<S: System>(solver: &mut Solver<'_, S>, y: &mut [f64], timeline: &Time
     let slack = 1e-12 * t_end.abs().max(dt);
     hooks.start_piece(0.0, y);
     if hooks.sample(0.0, y) == Control::Stop {
-        return Outcome { status: Status::Stopped, t, stats };
+        return Outcome { status: Status::Stopped(StopReason::Observer), t, stats };
     }
     k += 1;
     for end in ends {
@@ -143,23 +143,23 @@ pub fn run<S: System>(solver: &mut Solver<'_, S>, y: &mut [f64], timeline: &Time
     }
     // the last sample is the end of the run, also where t_end is no multiple of dt
     if (k - 1) as f64 * dt < t_end - slack && hooks.sample(t_end, y) == Control::Stop {
-        return Outcome { status: Status::Stopped, t, stats };
+        return Outcome { status: Status::Stopped(StopReason::Observer), t, stats };
     }
     Outcome { status: Status::Completed, t, stats }
 }
 
 /// How a run ended, as the library's result: `Ok` when it reached `t_end` (or a terminal
 /// event), else the early stop as a typed error at the time `t` it was reached:
-/// [`Error::Interrupted`] (a cancel callback, Ctrl-C, an observer that stopped it, the
-/// wall-time budget), [`Error::StepTooSmall`], [`Error::TooManySteps`], [`Error::NonFinite`].
+/// [`Error::Interrupted`] (the control's cancel flag or wall-time budget, an observer that
+/// stopped it), [`Error::TooManySteps`] (the step budget), [`Error::StepTooSmall`],
+/// [`Error::NonFinite`].
 /// The models' summaries offer it as `into_result`, so that a caller who wants no partial
 /// result writes `simulate(..)?.into_result()?`.
 pub fn status_result(status: &Status, t: f64) -> Result<()> {
     match status {
         Status::Completed | Status::Event(_) => Ok(()),
-        Status::Interrupted | Status::Stopped | Status::TimeBudget { .. } => Err(Error::Interrupted { t }),
+        Status::Stopped(why) => Err(why.into_error(t)),
         Status::StepTooSmall { .. } => Err(Error::StepTooSmall { t }),
-        Status::TooManySteps { .. } => Err(Error::TooManySteps { t }),
         Status::NotFinite { name, .. } => Err(Error::NonFinite { what: name.clone(), t: Some(t) }),
     }
 }

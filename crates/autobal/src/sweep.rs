@@ -15,14 +15,17 @@
 //!   parallel (rayon, in the caller's thread pool) and hand each result to `on_row` in the order
 //!   of the points, whatever the number of threads: a sweep's output is the same on 1 thread,
 //!   64 threads or 64 shards.
-//! - **Stopping**: `on_row` returns `false`, or `cancel` (polled by the workers between runs and
-//!   during them) returns `true`. The outcome then says how many points were delivered
-//!   ([`SweepOutcome::complete`] is `false`); [`SweepOutcome::into_result`] turns that into
-//!   [`Error::Interrupted`]. A sweep never ends early with a plain success.
+//! - **Stopping**: `on_row` returns `false`, or the [`Control`] stops (its cancel flag or its
+//!   wall-time budget, asked by the workers between runs and during them). The outcome then
+//!   says how many points were delivered and why it stopped ([`SweepOutcome::stopped`]);
+//!   [`SweepOutcome::into_result`] turns that into [`Error::Interrupted`]. A sweep never ends
+//!   early with a plain success. The control's progress observer hears `(points delivered,
+//!   points asked for)`.
 //! - A run that fails on its own (step size underflow, non-finite state) is a result, not an
 //!   error: its summary says why it stopped ([`SUMMARY_COLUMNS`]' `completed` is 0).
 //!
 //! ```
+//! use autobal::control::Control;
 //! use autobal::planar::problem::PlanarProblem;
 //! use autobal::sweep::{simulate_grid, summary_values, Axis, Grid, SUMMARY_COLUMNS};
 //!
@@ -33,14 +36,15 @@
 //! let out = simulate_grid(&base, &grid, 0..grid.len(), &mut |i, point, r| {
 //!     rows.push((i, point.to_vec(), summary_values(&r.summary)));
 //!     true
-//! }, &|| false).unwrap();
-//! assert!(out.complete && rows.len() == 6);
+//! }, &Control::none()).unwrap();
+//! assert!(out.complete() && rows.len() == 6);
 //! assert_eq!(rows[1].1, vec![0.1, 100.0]); // the first axis varies fastest
 //! let completed = SUMMARY_COLUMNS.iter().position(|c| *c == "completed").unwrap();
 //! assert!(rows.iter().all(|r| r.2[completed] == 1.0));
 //! ```
 
 use crate::config::Table;
+use crate::control::{Control, StopReason};
 use crate::error::{fmt_num, Error, Result};
 use crate::paths::Parameters;
 use crate::planar::problem::PlanarProblem;
@@ -48,7 +52,6 @@ use crate::planar::{simulate_summary, Summary};
 use crate::spatial::dynamics::RunOutcome;
 use rayon::prelude::*;
 use std::ops::Range;
-use std::sync::atomic::{AtomicBool, Ordering};
 
 /// Most points of one grid (a bound on what a mistyped axis can ask for, not on what a cluster
 /// can run: 1e9 passages of 10 ms are 115 CPU-days).
@@ -374,9 +377,9 @@ pub trait SweepModel: Sync {
     type Summary: SweepSummary;
     /// The base with `values` set at `paths`, checked; errors name the path and the point.
     fn at(&self, paths: &[&str], values: &[f64]) -> Result<Self::Point>;
-    /// Run a point, keeping its summary; `cancel` is polled during the run (a run it stops is
-    /// discarded by the sweep).
-    fn run(&self, point: &Self::Point, cancel: &dyn Fn() -> bool) -> Result<Self::Summary>;
+    /// Run a point under `control`, keeping its summary (a run the control stops is discarded
+    /// by the sweep).
+    fn run(&self, point: &Self::Point, control: &Control) -> Result<Self::Summary>;
 }
 
 impl SweepModel for PlanarProblem {
@@ -385,10 +388,10 @@ impl SweepModel for PlanarProblem {
     fn at(&self, paths: &[&str], values: &[f64]) -> Result<PlanarProblem> {
         problem_at(self, paths, values)
     }
-    fn run(&self, p: &PlanarProblem, cancel: &dyn Fn() -> bool) -> Result<Summary> {
+    fn run(&self, p: &PlanarProblem, control: &Control) -> Result<Summary> {
         // the run of `simulate` with the same settings (dt included: it is also the automatic
         // method's time resolution), sampled only at its ends; the stop is checked at every step
-        simulate_summary(&p.rotor, &p.drive, &p.settings, Some(cancel))
+        simulate_summary(&p.rotor, &p.drive, &p.settings, control)
     }
 }
 
@@ -400,12 +403,13 @@ impl SweepModel for PlanarProblem {
 /// `autobal simulate --set KEY=VALUE` runs it).
 ///
 /// ```
+/// use autobal::control::Control;
 /// use autobal::sweep::{simulate_batch, SpatialSweep, SweepModel};
 /// let mut root = autobal::config::parse(include_str!("../../../examples/spatial.toml"), "spatial.toml").unwrap();
 /// autobal::config::set_number(&mut root, "drive.t_end", 50.0).unwrap();
 /// let base = SpatialSweep::new(root.clone()).unwrap();
 /// let mut rows = vec![];
-/// simulate_batch(&base, &["drive.omega0"], &[1.5, 1.6], &mut |_, _, r| { rows.push(r.summary.clone()); true }, &|| false).unwrap();
+/// simulate_batch(&base, &["drive.omega0"], &[1.5, 1.6], &mut |_, _, r| { rows.push(r.summary.clone()); true }, &Control::none()).unwrap();
 /// // point 1 is the config with drive.omega0 = 1.6, run as `simulate` runs it
 /// autobal::config::set_number(&mut root, "drive.omega0", 1.6).unwrap();
 /// let sim = autobal::config::spatial_simulation(&root).unwrap();
@@ -526,12 +530,12 @@ impl SweepModel for SpatialSweep {
         }
         crate::config::spatial_simulation(&root).map_err(|e| with_point(e, &at()))
     }
-    fn run(&self, p: &Self::Point, cancel: &dyn Fn() -> bool) -> Result<Self::Summary> {
+    fn run(&self, p: &Self::Point, control: &Control) -> Result<Self::Summary> {
         // the run of `autobal simulate` itself, samples every `dt` included: the peak is tracked
         // at step ends and samples, and the samples' dense output costs right-hand sides, so a
-        // run sampled only at its ends would differ in those columns; the stop is asked at
-        // every sample
-        crate::spatial::dynamics::simulate(&p.rotor, &p.drive, &p.initial, &p.settings, |_| !cancel())
+        // run sampled only at its ends would differ in those columns; the control is asked at
+        // every step
+        crate::spatial::dynamics::simulate_with(&p.rotor, &p.drive, &p.initial, &p.settings, control, |_| true)
     }
 }
 
@@ -546,20 +550,26 @@ pub struct PointResult<S = Summary> {
 }
 
 /// How a sweep ended.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SweepOutcome {
     /// Points asked for.
     pub points: usize,
     /// Points delivered to `on_row` (a prefix of them, in order).
     pub delivered: usize,
-    /// Whether every point was delivered (`false`: stopped by `on_row` or `cancel`).
-    pub complete: bool,
+    /// Why it stopped before every point was delivered ([`StopReason::Observer`]: `on_row`
+    /// returned `false`; else the control's reason); `None`: complete.
+    pub stopped: Option<StopReason>,
 }
 
 impl SweepOutcome {
+    /// Whether every point was delivered.
+    pub fn complete(&self) -> bool {
+        self.stopped.is_none()
+    }
+
     /// `Ok` when complete, else [`Error::Interrupted`] with the fraction delivered as `t`.
     pub fn into_result(self) -> Result<Self> {
-        if self.complete {
+        if self.complete() {
             Ok(self)
         } else {
             Err(Error::Interrupted { t: self.delivered as f64 / self.points.max(1) as f64 })
@@ -605,22 +615,12 @@ fn run_points<M: SweepModel>(
     range: Range<usize>,
     point: &(dyn Fn(usize, &mut [f64]) + Sync),
     on_row: &mut dyn FnMut(usize, &[f64], &PointResult<M::Summary>) -> bool,
-    cancel: &(dyn Fn() -> bool + Sync),
+    control: &Control,
 ) -> Result<SweepOutcome> {
     let k = paths.len();
     check_points(base, paths, range.clone(), point)?;
     let total = range.len();
-    let stopping = AtomicBool::new(false);
-    let stop_now = || {
-        stopping.load(Ordering::Relaxed) || {
-            let c = cancel();
-            if c {
-                stopping.store(true, Ordering::Relaxed);
-            }
-            c
-        }
-    };
-    let mut out = SweepOutcome { points: total, delivered: 0, complete: true };
+    let mut out = SweepOutcome { points: total, delivered: 0, stopped: None };
     let mut start = range.start;
     let block = block_len();
     while start < range.end {
@@ -628,30 +628,33 @@ fn run_points<M: SweepModel>(
         let results: Vec<Option<(Vec<f64>, PointResult<M::Summary>)>> = (start..end)
             .into_par_iter()
             .map(|i| -> Result<Option<(Vec<f64>, PointResult<M::Summary>)>> {
-                if stop_now() {
+                if control.should_stop().is_some() {
                     return Ok(None);
                 }
                 let mut v = vec![0.0; k];
                 point(i, &mut v);
                 let p = base.at(paths, &v)?;
                 let t0 = std::time::Instant::now();
-                let summary = base.run(&p, &stop_now)?;
+                let summary = base.run(&p, control)?;
                 let wall_s = t0.elapsed().as_secs_f64();
-                // a run cut short by the stop is no result
-                Ok((!stopping.load(Ordering::Relaxed)).then_some((v, PointResult { summary, wall_s })))
+                // a run cut short by the stop is no result (the flag and a spent budget stay set)
+                Ok(control.should_stop().is_none().then_some((v, PointResult { summary, wall_s })))
             })
             .collect::<Result<_>>()?;
         for (i, r) in (start..end).zip(&results) {
             let Some((v, r)) = r else {
-                out.complete = false;
+                out.stopped = Some(control.should_stop().unwrap_or(StopReason::Interrupted));
                 return Ok(out);
             };
-            if !on_row(i, v, r) {
-                out.delivered += 1;
-                out.complete = out.delivered == total;
+            let go_on = on_row(i, v, r);
+            out.delivered += 1;
+            control.report(out.delivered as u64, total as u64);
+            if !go_on {
+                if out.delivered < total {
+                    out.stopped = Some(StopReason::Observer);
+                }
                 return Ok(out);
             }
-            out.delivered += 1;
         }
         start = end;
     }
@@ -689,13 +692,13 @@ pub fn simulate_grid<M: SweepModel>(
     grid: &Grid,
     range: Range<usize>,
     on_row: &mut dyn FnMut(usize, &[f64], &PointResult<M::Summary>) -> bool,
-    cancel: &(dyn Fn() -> bool + Sync),
+    control: &Control,
 ) -> Result<SweepOutcome> {
     if range.end > grid.len() {
         return Err(Error::invalid("range", format!("points {}..{} beyond the grid's {}", range.start, range.end, grid.len())));
     }
     let paths = grid.paths();
-    run_points(base, &paths, range, &|i, out| grid.point(i, out), on_row, cancel)
+    run_points(base, &paths, range, &|i, out| grid.point(i, out), on_row, control)
 }
 
 /// Run `params.len() / paths.len()` points given row after row (`params[i k + j]` is the value
@@ -705,7 +708,7 @@ pub fn simulate_batch<M: SweepModel>(
     paths: &[&str],
     params: &[f64],
     on_row: &mut dyn FnMut(usize, &[f64], &PointResult<M::Summary>) -> bool,
-    cancel: &(dyn Fn() -> bool + Sync),
+    control: &Control,
 ) -> Result<SweepOutcome> {
     let k = paths.len();
     if k == 0 {
@@ -716,7 +719,7 @@ pub fn simulate_batch<M: SweepModel>(
         return Err(Error::invalid("params", format!("{} values are not whole rows of {k} (one per path)", params.len())));
     }
     let n = params.len().checked_div(k).unwrap_or(0);
-    run_points(base, paths, 0..n, &|i, out| out.copy_from_slice(&params[i * k..(i + 1) * k]), on_row, cancel)
+    run_points(base, paths, 0..n, &|i, out| out.copy_from_slice(&params[i * k..(i + 1) * k]), on_row, control)
 }
 
 /// A 64-bit FNV-1a hash of the sweep's definition: the config after the `--set` overrides
@@ -792,25 +795,30 @@ mod tests {
                 seen.push(i);
                 seen.len() < 3
             },
-            &|| false,
+            &Control::none(),
         )
         .unwrap();
-        assert_eq!((out.delivered, out.complete), (3, false));
+        assert_eq!((out.delivered, out.stopped), (3, Some(StopReason::Observer)));
         assert_eq!(seen, vec![0, 1, 2]);
         assert!(matches!(out.into_result(), Err(Error::Interrupted { .. })));
-        // cancel from the start: nothing delivered, not complete
-        let out = simulate_grid(&base, &g, 0..g.len(), &mut |_, _, _| true, &|| true).unwrap();
-        assert_eq!((out.delivered, out.complete), (0, false));
+        // cancel from the start: nothing delivered, interrupted
+        let cancelled = Control::new();
+        cancelled.cancel();
+        let out = simulate_grid(&base, &g, 0..g.len(), &mut |_, _, _| true, &cancelled).unwrap();
+        assert_eq!((out.delivered, out.stopped), (0, Some(StopReason::Interrupted)));
+        // a zero budget: nothing delivered, the budget named
+        let out = simulate_grid(&base, &g, 0..g.len(), &mut |_, _, _| true, &Control::new().with_budget(std::time::Duration::ZERO)).unwrap();
+        assert_eq!((out.delivered, out.stopped), (0, Some(StopReason::Budget { seconds: 0.0 })));
     }
 
     #[test]
     fn invalid_points_name_the_path_and_the_point() {
         let base = short();
-        let e = simulate_batch(&base, &["planar.m3", "drive.b"], &[0.03, 1.0, -0.01, 2.0], &mut |_, _, _| true, &|| false).unwrap_err().to_string();
+        let e = simulate_batch(&base, &["planar.m3", "drive.b"], &[0.03, 1.0, -0.01, 2.0], &mut |_, _, _| true, &Control::none()).unwrap_err().to_string();
         assert!(e.starts_with("planar.m3:") && e.contains("(at the point planar.m3 = -0.01, drive.b = 2)"), "{e}");
-        let e = simulate_batch(&base, &["planar.m3"], &[], &mut |_, _, _| true, &|| false).unwrap();
-        assert!(e.complete && e.points == 0);
-        assert!(simulate_batch(&base, &["planar.m3", "drive.b"], &[1.0], &mut |_, _, _| true, &|| false).is_err());
+        let e = simulate_batch(&base, &["planar.m3"], &[], &mut |_, _, _| true, &Control::none()).unwrap();
+        assert!(e.complete() && e.points == 0);
+        assert!(simulate_batch(&base, &["planar.m3", "drive.b"], &[1.0], &mut |_, _, _| true, &Control::none()).is_err());
     }
 
     #[test]
@@ -829,7 +837,7 @@ mod tests {
                         rows.push((i, v.to_vec(), summary_values(&r.summary).map(f64::to_bits)));
                         true
                     },
-                    &|| false,
+                    &Control::none(),
                 )
             })
             .unwrap();
@@ -852,7 +860,7 @@ mod tests {
                 batch.push((i, v.to_vec(), summary_values(&r.summary).map(f64::to_bits)));
                 true
             },
-            &|| false,
+            &Control::none(),
         )
         .unwrap();
         assert_eq!(whole, batch);
@@ -880,7 +888,7 @@ mod tests {
                 rows.push((i, v.to_vec(), r.summary.clone()));
                 true
             },
-            &|| false,
+            &Control::none(),
         )
         .unwrap();
         assert_eq!(rows.len(), 2);
@@ -929,7 +937,7 @@ mod tests {
                         rows.push((i, v.to_vec(), spatial_summary_values(&r.summary).map(f64::to_bits)));
                         true
                     },
-                    &|| false,
+                    &Control::none(),
                 )
             })
             .unwrap();

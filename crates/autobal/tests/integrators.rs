@@ -2,8 +2,7 @@
 //! output 7, RODAS 4, its dense output 3) on problems with known solutions, stiffness, the
 //! automatic switching against pure DOP853, events, cancellation, budgets, failures.
 
-use autobal::ode::{AtomicBool, Control, DenseJacobian, Direction, Event, Jacobian, Method, Options, Solver, Status, System};
-use std::sync::atomic::Ordering;
+use autobal::ode::{Control, DenseJacobian, Direction, Event, Jacobian, Method, Options, Solver, Status, System};
 
 /// A non-stiff test problem with a known solution, nonlinear, coupled and non-autonomous: a
 /// limit cycle `x' = −y + x(1 − r²)`, `y' = x + y(1 − r²)` (`r' = r(1 − r²)`, so
@@ -284,36 +283,43 @@ fn events_are_located_on_the_dense_output() {
 
 #[test]
 fn cancellation_and_budgets_end_a_run_with_an_explicit_status() {
-    static FLAG: AtomicBool = AtomicBool::new(false);
+    use autobal::control::{Control as RunControl, StopReason};
+    let run = RunControl::new();
     let sys = Pr { l: |_| 1e5 };
     let mut s = Solver::new(&sys, Options::new(1e-8, 1e-8).method(Method::Dop853)).unwrap();
-    s.cancel_on(&FLAG);
+    s.control(&run);
     let mut y = [0.0, 1.0, 0.0];
     let mut n = 0;
     let out = s.integrate(0.0, &mut y, 100.0, |_| {
         n += 1;
         if n == 50 {
-            FLAG.store(true, Ordering::Relaxed); // e.g. Ctrl-C from another thread
+            run.cancel(); // e.g. Ctrl-C from another thread
         }
         Control::Continue
     });
-    assert_eq!(out.status, Status::Interrupted);
+    assert_eq!(out.status, Status::Stopped(StopReason::Interrupted));
     assert_eq!(out.stats.steps, 50, "stopped at the next step");
     assert!(out.t > 0.0 && out.t < 100.0 && (y[0] - out.t.sin()).abs() < 1e-6, "the state is the one at t = {}", out.t);
     assert!(format!("{out}").starts_with("interrupted at t = "));
-    FLAG.store(false, Ordering::Relaxed);
     // step budget
     let mut o = Options::new(1e-8, 1e-8).method(Method::Dop853);
     o.max_steps = 1000;
     let mut s = Solver::new(&sys, o).unwrap();
     let mut y = [0.0, 1.0, 0.0];
     let out = s.integrate(0.0, &mut y, 100.0, |_| Control::Continue);
-    assert_eq!(out.status, Status::TooManySteps { max_steps: 1000 });
+    assert_eq!(out.status, Status::Stopped(StopReason::TooManySteps { max_steps: 1000 }));
     assert!(format!("{out}").contains("step budget of 1000 steps"));
     // the observer stops
     let mut s = Solver::new(&Osc, Options::new(1e-8, 1e-8)).unwrap();
     let out = s.integrate(0.0, &mut [1.0, 0.0], 10.0, |st| if st.t_new > 1.0 { Control::Stop } else { Control::Continue });
-    assert_eq!(out.status, Status::Stopped);
+    assert_eq!(out.status, Status::Stopped(StopReason::Observer));
+    // a zero wall-time budget of the control: stopped before the first step, the state untouched
+    let spent = RunControl::new().with_budget(std::time::Duration::ZERO);
+    let mut s = Solver::new(&Osc, Options::new(1e-8, 1e-8)).unwrap();
+    s.control(&spent);
+    let mut y = [1.0, 0.0];
+    let out = s.integrate(0.0, &mut y, 10.0, |_| Control::Continue);
+    assert_eq!((out.status, out.t, out.stats.steps, y), (Status::Stopped(StopReason::Budget { seconds: 0.0 }), 0.0, 0, [1.0, 0.0]));
 }
 
 #[test]

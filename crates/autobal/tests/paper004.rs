@@ -26,7 +26,7 @@ fn max_over_speed(f: impl Fn(f64) -> f64) -> f64 {
 
 #[test]
 fn the_chosen_inertia_and_drag_give_every_outcome_of_section_3() {
-    let o = torque_outcomes(TORQUE_I_G, TORQUE_C_THETA, &|| false).unwrap();
+    let o = torque_outcomes(TORQUE_I_G, TORQUE_C_THETA, &autobal::control::Control::none()).unwrap();
     assert!(o.all(), "{o:?}");
     let rotor = torque_rotor(TORQUE_I_G, TORQUE_C_THETA);
     // Fig. 6b: the larger torque settles semi-balanced sooner
@@ -53,10 +53,10 @@ fn the_chosen_inertia_and_drag_give_every_outcome_of_section_3() {
 fn the_outcomes_change_with_the_inertia_and_the_drag() {
     // how the choice decides the outcomes (the report's sweep): too little bearing drag and
     // 18 N·m passes; too much and 73 N·m sticks; a lighter disk makes 73 N·m the higher peak
-    let little_drag = torque_outcomes(TORQUE_I_G, 0.03, &|| false).unwrap();
+    let little_drag = torque_outcomes(TORQUE_I_G, 0.03, &autobal::control::Control::none()).unwrap();
     assert!(!little_drag.sticks_18 && little_drag.passes_73, "{little_drag:?}");
     // at c_θ = 0.3 the bearing alone holds 73 N·m below resonance (T/c_θ = 243 < 288 rad/s)
-    let much_drag = torque_outcomes(TORQUE_I_G, 0.3, &|| false).unwrap();
+    let much_drag = torque_outcomes(TORQUE_I_G, 0.3, &autobal::control::Control::none()).unwrap();
     assert!(!much_drag.passes_73, "{much_drag:?}");
     // and 18 N·m at T/c_θ = 60 rad/s: with J_C/c_θ = 1 s the bearing alone gives
     // 60 (1 − e^{−10}) = 59.9973 rad/s at the end of the run (10 s); the whirl's c ω A² takes a
@@ -66,12 +66,12 @@ fn the_outcomes_change_with_the_inertia_and_the_drag() {
     assert!(much_drag.omega_18 < 59.9973 && much_drag.omega_18 > 59.99, "{much_drag:?}");
     assert!(much_drag.sticks_18 && !much_drag.passes_73, "{much_drag:?}");
     for i_g in [0.01, 0.1] {
-        let light = torque_outcomes(i_g, TORQUE_C_THETA, &|| false).unwrap();
+        let light = torque_outcomes(i_g, TORQUE_C_THETA, &autobal::control::Control::none()).unwrap();
         assert!(light.sticks_18 && light.passes_73 && light.balanced_183_before_off, "{light:?}");
         assert!(!light.smaller_torque_lower_peak, "I_G = {i_g}: {light:?}");
     }
     // the switch-off time 1.8 s is in the settled part only for a light enough disk
-    let heavy = torque_outcomes(1.0, TORQUE_C_THETA, &|| false).unwrap();
+    let heavy = torque_outcomes(1.0, TORQUE_C_THETA, &autobal::control::Control::none()).unwrap();
     assert!(!heavy.balanced_183_before_off, "{heavy:?}");
     assert_eq!(SWITCH_OFF, 1.8);
 }

@@ -694,7 +694,7 @@ fn a_sweep_point_and_a_basin_run_are_the_simulation_of_the_same_config() {
                 got = Some(r.summary.clone());
                 true
             },
-            &|| false,
+            &autobal::control::Control::none(),
         )
         .unwrap();
         let swept = got.unwrap();
@@ -709,8 +709,7 @@ fn a_sweep_point_and_a_basin_run_are_the_simulation_of_the_same_config() {
     let sim = autobal::config::spatial_simulation(&autobal::config::parse(include_str!("../../../examples/spatial.toml"), "spatial.toml").unwrap()).unwrap();
     let full = spatial_simulate(&sim.rotor, &sim.drive, &sim.initial, &sim.settings, |_| true).unwrap();
     let case = Case { drive: sim.drive.clone(), initial: sim.initial.clone() };
-    let cancel = std::sync::atomic::AtomicBool::new(false);
-    let basin = basins(&sim.rotor, &[case], &sim.settings, |_| {}, &cancel).unwrap().remove(0).unwrap();
+    let basin = basins(&sim.rotor, &[case], &sim.settings, &autobal::control::Control::none()).unwrap().value.remove(0).unwrap();
     assert_eq!((basin.steps, basin.balanced), (full.steps, full.balanced));
     assert_eq!(basin.final_amplitude.to_bits(), full.final_amplitude.to_bits());
     assert_eq!(basin.peak_amplitude.to_bits(), full.peak_amplitude.to_bits());

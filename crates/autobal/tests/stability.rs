@@ -495,7 +495,7 @@ fn spec_of(d: DimensionlessInput) -> SpatialSpec {
 
 fn collect_map(spec: &SpatialSpec, x: &Axis, y: &Axis, s: &MapSettings) -> (Vec<Vec<Cell>>, autobal::spatial::map::MapOutcome) {
     let mut rows = vec![];
-    let out = stability_map(spec, x, y, s, &mut |j, r| {
+    let out = stability_map(spec, x, y, s, &autobal::control::Control::none(), &mut |j, r| {
         assert_eq!(j, rows.len(), "rows arrive in grid order");
         rows.push(r.to_vec());
         true
@@ -633,19 +633,35 @@ fn map_without_a_speed_axis_and_its_errors() {
         &Axis::linspace("dimensionless.z_a", -1.0, 1.0, 9),
         &Axis::linspace("omega", 0.1, 3.0, 50),
         &MapSettings { omega: None, ..s },
+        &autobal::control::Control::none(),
         &mut |_, _| {
             seen += 1;
             seen < 7
         },
     )
     .unwrap();
-    assert!(!out.complete && out.rows == 7);
-    let e = stability_map(&spec, &Axis::linspace("dimensionless.zz", 0.0, 1.0, 3), &Axis::linspace("omega", 0.1, 3.0, 5), &s, &mut |_, _| true).unwrap_err();
+    assert!(!out.complete && out.rows == 7 && out.stopped == Some(autobal::control::StopReason::Observer));
+    let e = stability_map(
+        &spec,
+        &Axis::linspace("dimensionless.zz", 0.0, 1.0, 3),
+        &Axis::linspace("omega", 0.1, 3.0, 5),
+        &s,
+        &autobal::control::Control::none(),
+        &mut |_, _| true,
+    )
+    .unwrap_err();
     assert!(e.to_string().starts_with("dimensionless.zz: unknown parameter path"), "{e}");
-    let e =
-        stability_map(&spec, &Axis::linspace("dimensionless.rho_s", -1.0, 1.0, 3), &Axis::linspace("omega", 0.1, 3.0, 5), &s, &mut |_, _| true).unwrap_err();
+    let e = stability_map(
+        &spec,
+        &Axis::linspace("dimensionless.rho_s", -1.0, 1.0, 3),
+        &Axis::linspace("omega", 0.1, 3.0, 5),
+        &s,
+        &autobal::control::Control::none(),
+        &mut |_, _| true,
+    )
+    .unwrap_err();
     assert!(e.to_string().starts_with("dimensionless.rho_s: "), "{e}");
-    let e = stability_map(&spec, &x, &y, &MapSettings { omega: None, ..s }, &mut |_, _| true).unwrap_err();
+    let e = stability_map(&spec, &x, &y, &MapSettings { omega: None, ..s }, &autobal::control::Control::none(), &mut |_, _| true).unwrap_err();
     assert!(e.to_string().starts_with("omega: required"), "{e}");
 }
 
@@ -804,6 +820,7 @@ fn cancelled_boundary_keeps_whole_curves_and_says_it_is_incomplete() {
     // Ctrl-C in `map --boundary` reaches the tracer through `cancel`: asked at once, nothing is
     // traced; asked after a few checks, the curves kept are the first curves of the full trace,
     // point for point (whole curves, never half of one), and `complete` says the search stopped
+    use autobal::control::{Control, StopReason};
     use autobal::spatial::boundary::trace_boundary_with;
     let spec = spec_of(boundary_base());
     let x = PlaneAxis { path: "dimensionless.z_a".into(), lo: -2.0, hi: 2.0 };
@@ -811,20 +828,28 @@ fn cancelled_boundary_keeps_whole_curves_and_says_it_is_incomplete() {
     let s = TraceSettings::default();
     let full = trace_boundary(&spec, &x, &y, &s).unwrap();
     assert!(full.complete && full.curves.len() >= 3, "{} curves", full.curves.len());
-    let none = trace_boundary_with(&spec, &x, &y, &s, &|| true).unwrap();
-    assert!(!none.complete && none.curves.is_empty());
-    // stop once the first curve is traced: the checks before each curve see it
-    let calls = std::cell::Cell::new(0);
+    let cancelled = Control::new();
+    cancelled.cancel();
+    let none = trace_boundary_with(&spec, &x, &y, &s, &cancelled).unwrap();
+    assert!(!none.complete && none.curves.is_empty() && none.stopped == Some(StopReason::Interrupted));
+    // a zero budget: nothing traced, the budget named
+    let spent = trace_boundary_with(&spec, &x, &y, &s, &Control::new().with_budget(std::time::Duration::ZERO)).unwrap();
+    assert!(!spent.complete && spent.curves.is_empty() && matches!(spent.stopped, Some(StopReason::Budget { .. })));
+    // cancelled from the progress observer at its k-th report (after a line or a curve): the
+    // checks before the next line or curve see it
     let mut stopped_at = None;
     for k in 1..200 {
-        calls.set(0);
-        let part = trace_boundary_with(&spec, &x, &y, &s, &|| {
-            calls.set(calls.get() + 1);
-            calls.get() > k
-        })
-        .unwrap();
+        let calls = std::sync::Arc::new(std::sync::atomic::AtomicUsize::new(0));
+        let c = Control::new();
+        let (flag, n) = (c.flag().clone(), calls.clone());
+        let c = c.with_progress(move |_| {
+            if n.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1 >= k {
+                flag.store(true, std::sync::atomic::Ordering::Relaxed);
+            }
+        });
+        let part = trace_boundary_with(&spec, &x, &y, &s, &c).unwrap();
         if !part.curves.is_empty() {
-            assert!(!part.complete && part.curves.len() < full.curves.len());
+            assert!(!part.complete && part.curves.len() < full.curves.len() && part.stopped == Some(StopReason::Interrupted));
             assert_eq!(part.curves[..], full.curves[..part.curves.len()]);
             stopped_at = Some(k);
             break;

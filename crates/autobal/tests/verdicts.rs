@@ -44,7 +44,7 @@ const SPIN: f64 = 1400.0 * std::f64::consts::PI / 30.0;
 fn run(r: &SpatialRotor, t_end: f64) -> Summary {
     let drive = Drive::Speed { omega0: SPIN };
     let set = Settings { method: Default::default(), t_end, dt: 1e-3, rtol: 1e-8, atol: 1e-10 };
-    simulate_summary(r, &drive, &Initial::at_rest(r), &set, None).unwrap()
+    simulate_summary(r, &drive, &Initial::at_rest(r), &set, &autobal::control::Control::none()).unwrap()
 }
 
 /// The static deflection at `z` of a rigid rotor of weight `w` (centre of mass at `z_g`) on
@@ -204,7 +204,7 @@ fn the_averages_are_exact_for_whirl_and_sag_whatever_the_steps() {
     r.lock_tilt = true;
     let drive = Drive::Speed { omega0: SPIN };
     let set = Settings { method: Default::default(), t_end: 20.0, dt: 1e-3, rtol: 1e-5, atol: 1e-7 };
-    let s = simulate_summary(&r, &drive, &Initial::at_rest(&r), &set, None).unwrap();
+    let s = simulate_summary(&r, &drive, &Initial::at_rest(&r), &set, &autobal::control::Control::none()).unwrap();
     let (m, _) = mass_and_centre(&r);
     let sag = m * G / 3.0e4;
     let u = r.unbalances[0].mass * r.unbalances[0].radius;

@@ -5,7 +5,7 @@
 //! `autobal basins` does ([`autobal::spatial::dynamics::basins`]); a run is balanced when the
 //! balls cancel the unbalance at its end (the run-up's criterion).
 
-use super::{interrupted, Ctx, Section};
+use super::{Ctx, Section};
 use crate::num::fmt;
 use crate::plot::{ColorScale, Heatmap, Plot};
 use anyhow::Result;
@@ -70,10 +70,11 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
     check_angle_grid(&sim.rotor, n, "n")?;
     let cases = angle_grid(&sim.initial, &sim.drive, n, n);
     let t0 = std::time::Instant::now();
-    let res = basins(&sim.rotor, &cases, &sim.settings, |_| {}, &crate::sim::INTERRUPTED)?;
+    let out = basins(&sim.rotor, &cases, &sim.settings, &ctx.control)?;
     let wall = t0.elapsed().as_secs_f64();
+    let res = out.value;
     let done: Vec<_> = res.iter().flatten().collect();
-    s.complete = done.len() == cases.len() && !interrupted();
+    s.complete = done.len() == cases.len() && out.stopped.is_none();
     let balanced = done.iter().filter(|r| r.balanced).count();
     let (lu, ls) = if cfg.dimensional { ("mm", 1e3) } else { ("ρ_s", 1.0) };
     let worst = done.iter().map(|r| r.final_amplitude).fold(0.0, f64::max);

@@ -10,7 +10,7 @@
 //! config's value is the stability section's margin line. A dimensional map's growth rate is
 //! `max Re λ · ω0` in 1/s, with the `ω0 = sqrt(c_x/M_s)` of each column (a ball's mass moves it).
 
-use super::{interrupted, rotor::operating_vlines, Ctx, Section};
+use super::{rotor::operating_vlines, Ctx, Section};
 use crate::map::{Axis, MapResult, Quantity};
 use crate::num::{fmt, RPM_PER_RAD_S};
 use crate::plot::{ColorScale, Series};
@@ -120,7 +120,7 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
     for d in list {
         let x = Axis { key: d.path.into(), lo: d.lo, hi: d.hi, n };
         let y = Axis { key: ykey.into(), lo: 0.02 * w * yk, hi: w * yk, n };
-        let r = match map(&cfg.spec, x, y, balls) {
+        let r = match map(&cfg.spec, x, y, balls, &ctx.control) {
             Ok(r) => r,
             Err(e) => {
                 s.p(format!("{}: not computed ({}).", d.title, super::esc(&format!("{e:#}"))));
@@ -174,12 +174,12 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
 }
 
 /// The library's map over `x` and the speed `y` (rows not computed when Ctrl-C came: `None`).
-fn map(spec: &SpatialSpec, x: Axis, y: Axis, balls: Balls) -> Result<MapResult> {
+fn map(spec: &SpatialSpec, x: Axis, y: Axis, balls: Balls, control: &autobal::control::Control) -> Result<MapResult> {
     let settings = MapSettings { balls, quantity: Quantity::Margin, omega: None };
     let mut rows = vec![None; y.n];
-    autobal::spatial::paths::stability_map_units(spec, &x.to_library(), &y.to_library(), &settings, &mut |j, cells| {
+    autobal::spatial::paths::stability_map_units(spec, &x.to_library(), &y.to_library(), &settings, control, &mut |j, cells| {
         rows[j] = Some(cells.to_vec());
-        !interrupted()
+        true
     })?;
     Ok(MapResult { x, y, rows, quantity: Quantity::Margin })
 }

@@ -24,7 +24,15 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
     let t_end = 40.0;
     let done: Vec<Result<Residual>> = jobs
         .par_iter()
-        .map(|(w, mu)| if super::interrupted() { Err(anyhow::anyhow!("interrupted")) } else { residual(&rotor, *w, *mu, t_end).map_err(Into::into) })
+        .map(
+            |(w, mu)| {
+                if ctx.control.should_stop().is_some() {
+                    Err(anyhow::anyhow!("interrupted"))
+                } else {
+                    residual(&rotor, *w, *mu, t_end).map_err(Into::into)
+                }
+            },
+        )
         .collect();
     let mut s = Section::new("friction", "Rolling resistance: the unbalance real balls leave");
     let mut rows = vec![];

@@ -72,6 +72,8 @@ pub struct Ctx {
     pub text: String,
     /// The config as a table (the overrides applied), for runs derived from it.
     pub root: toml::Table,
+    /// What every section's long computations run under (the front end's Ctrl-C flag).
+    pub control: autobal::control::Control,
 }
 
 /// A figure of the report.
@@ -162,13 +164,9 @@ pub const PAPER_SECTIONS: &[(&str, Builder)] = &[
     ("rolling resistance", friction::build),
 ];
 
-/// Whether Ctrl-C was pressed (the flag every long computation of the report polls).
-pub fn interrupted() -> bool {
-    crate::sim::INTERRUPTED.load(Ordering::Relaxed)
-}
-
-/// Read the config (spatial and/or planar), build every section in parallel, write the folder.
-pub fn run(path: Option<&Path>, sets: &[String], dir: &Path, quick: bool, kind: Kind) -> Result<PathBuf> {
+/// Read the config (spatial and/or planar), build every section in parallel under `control`,
+/// write the folder.
+pub fn run(path: Option<&Path>, sets: &[String], dir: &Path, quick: bool, kind: Kind, control: &autobal::control::Control) -> Result<PathBuf> {
     let (root, source) = config::read_set(path, sets)?;
     let spatial = if autobal::config::is_spatial(&root) { Some(config::build(&root, &source)?) } else { None };
     let planar = if root.contains_key("planar") { Some(config::build_planar(&root, &source)?) } else { None };
@@ -198,6 +196,7 @@ pub fn run(path: Option<&Path>, sets: &[String], dir: &Path, quick: bool, kind: 
             None => toml::to_string(&root).unwrap_or_default(),
         },
         root,
+        control: control.clone(),
     };
     write(&ctx, dir)
 }
@@ -254,7 +253,7 @@ pub fn write(ctx: &Ctx, dir: &Path) -> Result<PathBuf> {
         crate::outfile::write_atomic("--out", &p, text)?;
     }
     let incomplete: Vec<&str> = sections.iter().filter(|s| !s.complete).map(|s| s.title.as_str()).collect();
-    let interrupted = interrupted() || !incomplete.is_empty();
+    let interrupted = ctx.control.should_stop().is_some() || !incomplete.is_empty();
     let page = page(ctx, &sections, interrupted, &incomplete, t0.elapsed().as_secs_f64());
     let index = dir.join("index.html");
     crate::outfile::write_atomic("--out", &index, page)?;

@@ -2,14 +2,13 @@
 //! the paper's rotor. Runs in parallel; a run that Ctrl-C cuts short is marked as such, never
 //! reported with numbers it did not reach.
 
-use super::{esc, interrupted, Ctx, Section};
+use super::{esc, Ctx, Section};
 use crate::config::PlanarConfig;
 use crate::num::fmt;
 use crate::plot::{Plot, Series, PALETTE};
 use crate::sim::Envelope;
 use anyhow::Result;
 use autobal::planar::{
-    simulate,
     stationary::{aligned_whirls, locked_amplitude},
     Sample, Summary,
 };
@@ -36,15 +35,16 @@ pub struct Done {
 }
 
 impl Done {
-    /// Whether Ctrl-C cut the run short.
+    /// Whether the control (Ctrl-C) cut the run short.
     pub fn cut(&self) -> bool {
-        self.summary.stopped.is_some() && interrupted()
+        use autobal::control::StopReason;
+        matches!(self.summary.status.stop_reason(), Some(StopReason::Interrupted | StopReason::Budget { .. }))
     }
 }
 
 /// Run every simulation in parallel; identical runs (same overrides) are computed once.
 /// `base`: the config table to apply the overrides to (`None`: paper 004's rotor).
-pub fn run_all(runs: &[Run], base: Option<&toml::Table>) -> Result<Vec<std::sync::Arc<Done>>> {
+pub fn run_all(runs: &[Run], base: Option<&toml::Table>, control: &autobal::control::Control) -> Result<Vec<std::sync::Arc<Done>>> {
     use std::collections::HashMap;
     use std::sync::Arc;
     let mut unique: Vec<&Vec<String>> = vec![];
@@ -68,9 +68,9 @@ pub fn run_all(runs: &[Run], base: Option<&toml::Table>) -> Result<Vec<std::sync
             };
             let mut env = Envelope::new((cfg.settings.t_end / cfg.settings.dt) as usize + 1, BUCKETS);
             let t = std::time::Instant::now();
-            let summary = simulate(&cfg.rotor, &cfg.drive, &cfg.settings, |x| {
+            let summary = autobal::planar::simulate_with(&cfg.rotor, &cfg.drive, &cfg.settings, control, |x| {
                 env.push(x);
-                !interrupted()
+                true
             })?;
             env.flush();
             Ok(Arc::new(Done { cfg, summary, env, wall: t.elapsed().as_secs_f64() }))
@@ -230,7 +230,7 @@ fn runs(quick: bool) -> Vec<Run> {
 
 pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
     let runs = runs(ctx.quick);
-    let done = run_all(&runs, None)?;
+    let done = run_all(&runs, None, &ctx.control)?;
     let mut s = Section::new("paper004", "Paper 004: passage through resonance");
     s.complete = !done.iter().any(|d| d.cut());
     s.p(format!(

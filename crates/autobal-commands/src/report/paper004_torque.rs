@@ -4,7 +4,7 @@
 //! the choice decides. Runs in parallel; a run cut short by Ctrl-C is marked as such.
 
 use super::paper004::{ball_angles, curves, mm, om, run_all, runs_table, tt, Run};
-use super::{interrupted, Ctx, Section};
+use super::{Ctx, Section};
 use crate::num::fmt;
 use crate::plot::{Plot, Series, PALETTE};
 use anyhow::Result;
@@ -66,18 +66,18 @@ fn mark(b: bool) -> &'static str {
 
 pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
     let runs = runs();
-    let done = run_all(&runs, None)?;
+    let done = run_all(&runs, None, &ctx.control)?;
     // quick mode: a 2 × 2 corner of the sweep around the chosen pair
     let (igs, cts): (&[f64], &[f64]) = if ctx.quick { (&[0.1, 0.3], &[0.03, 0.1]) } else { (&SWEEP_I_G, &SWEEP_C_THETA) };
     let grid: Vec<(f64, f64)> = igs.iter().flat_map(|&i| cts.iter().map(move |&c| (i, c))).collect();
-    let sweep: Vec<TorqueOutcomes> = match grid.par_iter().map(|&(i, c)| torque_outcomes(i, c, &interrupted)).collect::<autobal::Result<_>>() {
+    let sweep: Vec<TorqueOutcomes> = match grid.par_iter().map(|&(i, c)| torque_outcomes(i, c, &ctx.control)).collect::<autobal::Result<_>>() {
         Ok(v) => v,
         // cut short (Ctrl-C): no row is read from a partial run; the section says it is incomplete
         Err(autobal::Error::Interrupted { .. }) => Vec::new(),
         Err(e) => return Err(e.into()),
     };
     let mut s = Section::new("paper004torque", "Paper 004: passage under a constant torque");
-    s.complete = !done.iter().any(|d| d.cut()) && !interrupted();
+    s.complete = !done.iter().any(|d| d.cut()) && ctx.control.should_stop().is_none();
     let rotor = torque_rotor(TORQUE_I_G, TORQUE_C_THETA);
     let wn = rotor.natural_frequency();
     s.p(format!(

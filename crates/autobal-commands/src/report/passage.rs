@@ -20,7 +20,7 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
         label: format!("{:?} drive", cfg.drive).split(['{', '(']).next().unwrap_or("drive").trim().to_lowercase(),
         sets: vec![],
     }];
-    let done = run_all(&runs, Some(&ctx.root))?;
+    let done = run_all(&runs, Some(&ctx.root), &ctx.control)?;
     let d = &done[0];
     let p = &d.cfg.rotor;
     let mut s = Section::new("passage", "Your rotor's passage through resonance (paper 004 model)");

@@ -51,7 +51,7 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
             return Ok(Some(s));
         }
     };
-    let (summary, kept, wall) = spatial_sim::run_to_csv(&sim, &mut std::io::sink(), false, &crate::sim::INTERRUPTED)?;
+    let (summary, kept, wall) = spatial_sim::run_to_csv(&sim, &mut std::io::sink(), false, &ctx.control)?;
     s.complete = summary.stopped.is_none();
     let (lu, ls, speed_unit) = if cfg.dimensional { ("mm", 1e3, "rad/s") } else { ("ρ_s", 1.0, "(Ω)") };
     let rpm = |w: f64| if cfg.dimensional { format!(" ({} rpm)", grouped(w * RPM_PER_RAD_S, 0)) } else { String::new() };

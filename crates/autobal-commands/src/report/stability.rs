@@ -10,7 +10,7 @@
 //! a planar rotor; [`crate::general::needs_general_route`]) is analysed as given by the general
 //! route ([`crate::general::analyse`]), as `autobal stability` does.
 
-use super::{interrupted, rotor::ranges_text_in, Ctx, Section};
+use super::{rotor::ranges_text_in, Ctx, Section};
 use crate::figures::{campbell_plots, margin_plot, omega_limit, with_layout, SpeedUnit};
 use crate::linear;
 use crate::map::{Axis, MapResult, Quantity};
@@ -251,7 +251,7 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
     ];
     for (stem, title, x, set, what) in maps {
         let y = Axis { key: "omega".into(), lo: 0.02 * w, hi: w, n: MAP_N };
-        let r = map(m, x, y, set, balls)?;
+        let r = map(m, x, y, set, balls, &ctx.control)?;
         let complete = r.rows.iter().all(|r| r.is_some());
         s.complete &= complete;
         let mut p = crate::mapfig::plot(&r, title);
@@ -313,13 +313,13 @@ impl ModelFamily for Varied<'_> {
 
 /// A stability map over one model parameter (`set`) and the speed, by the library's map
 /// ([`autobal::spatial::map::stability_map`]); rows not computed when Ctrl-C came are `None`.
-fn map(m: &SpatialModel, x: Axis, y: Axis, set: fn(&mut SpatialModel, f64), balls: Balls) -> Result<MapResult> {
+fn map(m: &SpatialModel, x: Axis, y: Axis, set: fn(&mut SpatialModel, f64), balls: Balls, control: &autobal::control::Control) -> Result<MapResult> {
     let family = Varied { model: m, path: &x.key, set, value: None };
     let settings = MapSettings { balls, quantity: Quantity::Margin, omega: None };
     let mut rows = vec![None; y.n];
-    stability_map(&family, &x.to_library(), &y.to_library(), &settings, &mut |j, cells| {
+    stability_map(&family, &x.to_library(), &y.to_library(), &settings, control, &mut |j, cells| {
         rows[j] = Some(cells.to_vec());
-        !interrupted()
+        true
     })?;
     Ok(MapResult { x, y, rows, quantity: Quantity::Margin })
 }

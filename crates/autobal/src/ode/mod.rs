@@ -10,14 +10,17 @@
 //!    dense Jacobian by forward differences (cost `O(dim³)` per implicit step).
 //! 2. Make a [`Solver`] once per run ([`Solver::new`] allocates every buffer; the step loop then
 //!    allocates nothing) with [`Options`]: tolerances, [`Method`] (default [`Method::Auto`]),
-//!    limits. Optionally [`Solver::cancel_on`] an [`AtomicBool`] (Ctrl-C, another thread) and
-//!    [`Solver::add_event`] to locate `g(t, y) = 0` on the dense output.
+//!    limits. Optionally run it under a [`crate::control::Control`] ([`Solver::control`]: its
+//!    cancel flag is asked before every step, its wall-time budget every
+//!    [`crate::control::BUDGET_CHECK_EVERY`] steps) and [`Solver::add_event`] to locate
+//!    `g(t, y) = 0` on the dense output.
 //! 3. Call [`Solver::integrate`] from `t0` to `t_end` with the state in a slice that is advanced
 //!    in place; the observer sees every accepted [`Step`] and can interpolate inside it
 //!    ([`Step::interpolate`]). Call it again to go on (e.g. piecewise between the breakpoints of a
 //!    drive; the step size and stiffness state carry over).
-//! 4. Read the [`Outcome`]: its [`Status`] says whether the run completed, was interrupted, hit
-//!    an event, or stopped early and why; an early stop is never reported as a completed run.
+//! 4. Read the [`Outcome`]: its [`Status`] says whether the run completed, hit an event, was
+//!    stopped early ([`Status::Stopped`] with the library's one [`StopReason`]: interrupted, a
+//!    budget spent, the observer) or failed; an early stop is never reported as a completed run.
 //!
 //! [`crate::simulation`] builds on this the machinery a time simulation needs (samples at a
 //! fixed interval, pieces between breakpoints, peak tracking, budgets).
@@ -66,10 +69,10 @@ pub(crate) mod lu;
 pub mod rosenbrock;
 mod solver;
 
+pub use crate::control::StopReason;
 pub use events::{Direction, Event};
 pub use solver::{Solver, Step};
 use std::fmt;
-pub use std::sync::atomic::AtomicBool;
 
 /// Right-hand side `y' = f(t, y)` of a system of `dim` equations.
 pub trait System {
@@ -424,10 +427,12 @@ pub enum Control {
 pub enum Status {
     /// Reached `t_end`.
     Completed,
-    /// The cancellation flag was set ([`Solver::cancel_on`]).
-    Interrupted,
-    /// The observer returned [`Control::Stop`].
-    Stopped,
+    /// Stopped before `t_end` on a decision to stop: the control's cancel flag
+    /// ([`StopReason::Interrupted`]) or wall-time budget ([`StopReason::Budget`],
+    /// [`Options::max_wall`] too), the step budget [`Options::max_steps`]
+    /// ([`StopReason::TooManySteps`]), or the observer returned [`Control::Stop`]
+    /// ([`StopReason::Observer`]).
+    Stopped(StopReason),
     /// A terminal event ([`Solver::add_event`]) was located; its index.
     Event(usize),
     /// The step size fell below what double precision resolves at `t` (a singularity, or
@@ -435,16 +440,6 @@ pub enum Status {
     StepTooSmall {
         /// The last step size tried.
         h: f64,
-    },
-    /// More than [`Options::max_steps`] accepted steps.
-    TooManySteps {
-        /// The limit.
-        max_steps: u64,
-    },
-    /// More than [`Options::max_wall`] of wall-clock time.
-    TimeBudget {
-        /// The limit (s).
-        seconds: f64,
     },
     /// A component of the state or its derivative became NaN or infinite and smaller steps
     /// did not help.
@@ -460,6 +455,14 @@ impl Status {
     /// Whether `t_end` was reached.
     pub fn is_completed(&self) -> bool {
         *self == Status::Completed
+    }
+
+    /// The reason of an early stop ([`Status::Stopped`]), if it is one.
+    pub fn stop_reason(&self) -> Option<&StopReason> {
+        match self {
+            Status::Stopped(r) => Some(r),
+            _ => None,
+        }
     }
 }
 
@@ -481,14 +484,12 @@ impl fmt::Display for Outcome {
         let t = self.t;
         match &self.status {
             Status::Completed => write!(f, "completed at t = {t:.6}"),
-            Status::Interrupted => write!(f, "interrupted at t = {t:.6}"),
-            Status::Stopped => write!(f, "stopped by the observer at t = {t:.6}"),
+            Status::Stopped(StopReason::Observer) => write!(f, "stopped by the observer at t = {t:.6}"),
+            Status::Stopped(r) => write!(f, "{r} at t = {t:.6}"),
             Status::Event(i) => write!(f, "event {i} at t = {t:.9}"),
             Status::StepTooSmall { h } => {
                 write!(f, "the step size fell to {h:.3e} at t = {t:.6}: the tolerances cannot be met there (a singularity or an unphysical input)")
             }
-            Status::TooManySteps { max_steps } => write!(f, "step budget of {max_steps} steps spent at t = {t:.6}"),
-            Status::TimeBudget { seconds } => write!(f, "time budget of {seconds} s spent at t = {t:.6}"),
             Status::NotFinite { name, .. } => write!(f, "the state became non-finite ({name}) at t = {t:.6}"),
         }
     }

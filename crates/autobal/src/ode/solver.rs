@@ -2,9 +2,9 @@
 //! cancellation, budgets, and the switching between DOP853 and RODAS.
 
 use super::events::{crosses, locate};
-use super::{dop853, rosenbrock, Control, Event, Jacobian, Method, Options, Outcome, Stats, Status, System};
+use super::{dop853, rosenbrock, Control, Event, Jacobian, Method, Options, Outcome, Stats, Status, StopReason, System};
+use crate::control::BUDGET_CHECK_EVERY;
 use crate::error::{Error, Result};
-use std::sync::atomic::{AtomicBool, Ordering};
 
 /// Accepted DOP853 steps with `h |λ|` above the threshold before [`Method::Auto`] switches to
 /// RODAS (Hairer's `dop853.f` reports stiffness after 15).
@@ -28,22 +28,6 @@ const DECAYED: f64 = 3.0;
 /// e-fold. Scaled with `rtol^{1/6}` (the per-step error in the growth exponent goes as `|hλ|⁶`).
 const RESOLVED_AT_1E8: f64 = 1.0;
 
-/// What stops a run from outside: a flag (Ctrl-C handlers, other threads) or a callback.
-#[derive(Clone, Copy)]
-enum Cancel<'s> {
-    Flag(&'s AtomicBool),
-    Call(&'s dyn Fn() -> bool),
-}
-
-impl Cancel<'_> {
-    fn requested(&self) -> bool {
-        match self {
-            Cancel::Flag(f) => f.load(Ordering::Relaxed),
-            Cancel::Call(c) => c(),
-        }
-    }
-}
-
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Mode {
     Explicit,
@@ -57,7 +41,7 @@ pub struct Solver<'s, S: System> {
     opts: Options,
     n: usize,
     atol: Vec<f64>,
-    cancel: Option<Cancel<'s>>,
+    control: Option<&'s crate::control::Control>,
     events: Vec<Box<dyn Event + 's>>,
     jac: Option<Box<dyn Jacobian + 's>>,
     y: Vec<f64>,
@@ -161,7 +145,7 @@ impl<'s, S: System> Solver<'s, S> {
             opts,
             n,
             atol,
-            cancel: None,
+            control: None,
             events: vec![],
             jac: None,
             y: vec![0.0; n],
@@ -189,16 +173,12 @@ impl<'s, S: System> Solver<'s, S> {
         })
     }
 
-    /// Stop (with [`Status::Interrupted`]) at the first step after `flag` becomes true; checked
-    /// before every step.
-    pub fn cancel_on(&mut self, flag: &'s AtomicBool) {
-        self.cancel = Some(Cancel::Flag(flag));
-    }
-
-    /// Stop (with [`Status::Interrupted`]) at the first step after `stop()` returns true; called
-    /// before every step, so keep it cheap.
-    pub fn cancel_if(&mut self, stop: &'s dyn Fn() -> bool) {
-        self.cancel = Some(Cancel::Call(stop));
+    /// Run under `control`: stop ([`Status::Stopped`]) with [`StopReason::Interrupted`] at the
+    /// first step after its cancel flag is set (one atomic load before every step), with
+    /// [`StopReason::Budget`] once its wall-time budget is spent (the clock is read every
+    /// [`BUDGET_CHECK_EVERY`] steps, so a step loop of cheap steps stays cheap).
+    pub fn control(&mut self, control: &'s crate::control::Control) {
+        self.control = Some(control);
     }
 
     /// Locate the zeros of `event` on the dense output; returns its index (in
@@ -302,18 +282,27 @@ impl<'s, S: System> Solver<'s, S> {
                 self.h_next = if self.opts.fixed_step.is_some() { self.h_next } else { h };
                 return done(Status::Completed, t, stats, &mut self.total);
             }
-            if self.cancel.is_some_and(|c| c.requested()) {
-                y.copy_from_slice(&self.y);
-                return done(Status::Interrupted, t, stats, &mut self.total);
+            if let Some(c) = self.control {
+                let why = if c.is_cancelled() {
+                    Some(StopReason::Interrupted)
+                } else if stats.steps.is_multiple_of(BUDGET_CHECK_EVERY) {
+                    c.budget_spent()
+                } else {
+                    None
+                };
+                if let Some(why) = why {
+                    y.copy_from_slice(&self.y);
+                    return done(Status::Stopped(why), t, stats, &mut self.total);
+                }
             }
             if self.total.steps + stats.steps >= self.opts.max_steps {
                 y.copy_from_slice(&self.y);
-                return done(Status::TooManySteps { max_steps: self.opts.max_steps }, t, stats, &mut self.total);
+                return done(Status::Stopped(StopReason::TooManySteps { max_steps: self.opts.max_steps }), t, stats, &mut self.total);
             }
             if let Some(w) = self.opts.max_wall {
-                if stats.steps.is_multiple_of(256) && started.elapsed() > w {
+                if stats.steps.is_multiple_of(BUDGET_CHECK_EVERY) && started.elapsed() > w {
                     y.copy_from_slice(&self.y);
-                    return done(Status::TimeBudget { seconds: w.as_secs_f64() }, t, stats, &mut self.total);
+                    return done(Status::Stopped(StopReason::Budget { seconds: w.as_secs_f64() }), t, stats, &mut self.total);
                 }
             }
             let hm = h_max(self.mode, &self.opts);
@@ -579,7 +568,7 @@ impl<'s, S: System> Solver<'s, S> {
             self.h_next = h;
             if control == Control::Stop {
                 y.copy_from_slice(&self.y);
-                return done(Status::Stopped, t, stats, &mut self.total);
+                return done(Status::Stopped(StopReason::Observer), t, stats, &mut self.total);
             }
         }
     }

@@ -49,7 +49,7 @@ use crate::balls::{BallForces, BallPhysics, EventCounter};
 pub use crate::drive::Drive;
 use crate::error::{finite, non_negative, positive, Error, Result};
 pub use crate::ode::Method;
-use crate::ode::{Control, Direction, Event, Options, Solver, Status, System};
+use crate::ode::{Control, Direction, Event, Options, Solver, Status, StopReason, System};
 use crate::simulation::{run, Hooks, Peak, Timeline};
 pub use equations::{energy, Equations};
 use serde::Serialize;
@@ -401,20 +401,20 @@ pub fn tolerances(rotor: &PlanarRotor, settings: &Settings) -> Options {
 /// Simulate; `sink` receives every sample (at multiples of `dt`) and may return `false` to
 /// stop (an interruption): the summary then covers what was computed and says so.
 pub fn simulate(rotor: &PlanarRotor, drive: &Drive, settings: &Settings, sink: impl FnMut(&Sample) -> bool) -> Result<Summary> {
-    simulate_with(rotor, drive, settings, None, sink)
+    simulate_with(rotor, drive, settings, &crate::control::Control::none(), sink)
 }
 
-/// [`simulate`], also stopping at the first step after `cancel()` returns true (called before
-/// every integrator step, so a run with few samples stops as promptly as any; e.g.
-/// `&|| FLAG.load(Ordering::Relaxed)` for a Ctrl-C flag).
+/// [`simulate`] under `control` (its cancel flag is asked before every integrator step, so a
+/// run with few samples stops as promptly as any; its budget every few hundred steps): an early
+/// stop is the summary's [`Summary::status`].
 pub fn simulate_with(
     rotor: &PlanarRotor,
     drive: &Drive,
     settings: &Settings,
-    cancel: Option<&dyn Fn() -> bool>,
+    control: &crate::control::Control,
     sink: impl FnMut(&Sample) -> bool,
 ) -> Result<Summary> {
-    simulate_sampled(rotor, drive, settings, cancel, settings.dt, sink)
+    simulate_sampled(rotor, drive, settings, control, settings.dt, sink)
 }
 
 /// The run of [`simulate_with`] with samples only at its start and end, for its summary (sweeps,
@@ -422,16 +422,17 @@ pub fn simulate_with(
 /// [`simulate`] (`dt` is also the automatic method's time resolution, see [`tolerances`]).
 ///
 /// ```
+/// use autobal::control::Control;
 /// use autobal::planar::{simulate, simulate_summary, Drive, PlanarRotor, Settings};
 /// let rotor = PlanarRotor::default();
 /// let drive = Drive::Acceleration { omega0: 0.0, b: 25.0 };
 /// let settings = Settings { dt: 0.01, ..Settings::new(&rotor, 16.0) };
 /// let full = simulate(&rotor, &drive, &settings, |_| true).unwrap();
-/// let summary = simulate_summary(&rotor, &drive, &settings, None).unwrap();
+/// let summary = simulate_summary(&rotor, &drive, &settings, &Control::none()).unwrap();
 /// assert_eq!((summary.steps, summary.final_amplitude), (full.steps, full.final_amplitude));
 /// ```
-pub fn simulate_summary(rotor: &PlanarRotor, drive: &Drive, settings: &Settings, cancel: Option<&dyn Fn() -> bool>) -> Result<Summary> {
-    simulate_sampled(rotor, drive, settings, cancel, settings.t_end, |_| true)
+pub fn simulate_summary(rotor: &PlanarRotor, drive: &Drive, settings: &Settings, control: &crate::control::Control) -> Result<Summary> {
+    simulate_sampled(rotor, drive, settings, control, settings.t_end, |_| true)
 }
 
 /// [`simulate_with`], sampling every `sample_dt` (the integrator's settings unchanged).
@@ -439,7 +440,7 @@ fn simulate_sampled(
     rotor: &PlanarRotor,
     drive: &Drive,
     settings: &Settings,
-    cancel: Option<&dyn Fn() -> bool>,
+    control: &crate::control::Control,
     sample_dt: f64,
     mut sink: impl FnMut(&Sample) -> bool,
 ) -> Result<Summary> {
@@ -449,9 +450,7 @@ fn simulate_sampled(
     let eq = Equations::new(rotor, drive);
     let mut y = initial_state(rotor, drive, settings);
     let mut solver = Solver::new(&eq, tolerances(rotor, settings))?;
-    if let Some(c) = cancel {
-        solver.cancel_if(c);
-    }
+    solver.control(control);
     let nc = 3 + rotor.n;
     solver.add_event(RadiusMaximum { nc });
     let breakpoints = drive.breakpoints();
@@ -486,7 +485,7 @@ fn simulate_sampled(
     let completed = out.status.is_completed();
     let stopped = match &out.status {
         Status::Completed => None,
-        Status::Stopped => Some(format!("interrupted at t = {:.6} s", out.t)),
+        Status::Stopped(StopReason::Observer) => Some(format!("interrupted at t = {:.6} s", out.t)),
         _ => Some(format!("{out}").replace(&format!("t = {:.6}", out.t), &format!("t = {:.6} s", out.t))),
     };
     let warnings = if completed { passage_warnings(rotor, drive, settings, speed_range, final_omega, settled) } else { vec![] };

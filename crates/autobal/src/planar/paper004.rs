@@ -18,7 +18,8 @@
 //! assert!(run.summary.final_omega < rotor.natural_frequency());
 //! ```
 
-use super::{simulate, Drive, PlanarRotor, Sample, Settings, Summary};
+use super::{Drive, PlanarRotor, Sample, Settings, Summary};
+use crate::control::Control;
 use crate::error::Result;
 
 /// Chosen central moment of inertia of the disk for the paper's torque runs (kg·m²): with
@@ -146,11 +147,23 @@ impl TorqueRun {
 
 /// Run `rotor` from rest under `torque` (N·m), switched off at `t_off`, to `t_end`, sampled
 /// 4000 times; every sample also goes to `sink` (return `false` to stop the run).
-pub fn torque_run(rotor: &PlanarRotor, torque: f64, t_off: Option<f64>, t_end: f64, mut sink: impl FnMut(&Sample) -> bool) -> Result<TorqueRun> {
+pub fn torque_run(rotor: &PlanarRotor, torque: f64, t_off: Option<f64>, t_end: f64, sink: impl FnMut(&Sample) -> bool) -> Result<TorqueRun> {
+    torque_run_with(rotor, torque, t_off, t_end, &Control::none(), sink)
+}
+
+/// [`torque_run`] under `control` (an early stop is the run's `summary.status`).
+pub fn torque_run_with(
+    rotor: &PlanarRotor,
+    torque: f64,
+    t_off: Option<f64>,
+    t_end: f64,
+    control: &Control,
+    mut sink: impl FnMut(&Sample) -> bool,
+) -> Result<TorqueRun> {
     let drive = Drive::Torque { omega0: 0.0, torque, t_off };
     let settings = Settings { dt: t_end / 4000.0, ..Settings::new(rotor, t_end) };
     let mut trace = Vec::with_capacity(4001);
-    let summary = simulate(rotor, &drive, &settings, |s| {
+    let summary = crate::planar::simulate_with(rotor, &drive, &settings, control, |s| {
         trace.push((s.t, s.omega, s.amplitude));
         sink(s)
     })?;
@@ -199,25 +212,28 @@ fn stick_time(rotor: &PlanarRotor) -> f64 {
 }
 
 /// Evaluate [`TorqueOutcomes`] for paper 004's rotor with `I_G = i_g`, `c_θ = c_theta`: three
-/// runs (18 N·m; 73 N·m for 12 s; 183 N·m switched off at 1.8 s, for 12 s). `cancel` is polled
-/// by every sample; the runs stop when it returns true, and then (as for any run that ends
-/// early: a spent step budget, ...) the result is the typed error
+/// runs (18 N·m; 73 N·m for 12 s; 183 N·m switched off at 1.8 s, for 12 s) under `control`;
+/// when it stops the runs, then (as for any run that ends early: a spent step budget, ...) the
+/// result is the typed error
 /// ([`crate::Error::Interrupted`] with the time reached, ...), never outcomes read from a
 /// partial run.
 ///
 /// ```
+/// use autobal::control::Control;
 /// use autobal::error::Error;
 /// use autobal::planar::paper004::{torque_outcomes, TORQUE_C_THETA, TORQUE_I_G};
-/// let e = torque_outcomes(TORQUE_I_G, TORQUE_C_THETA, &|| true).unwrap_err();
+/// let cancelled = Control::new();
+/// cancelled.cancel();
+/// let e = torque_outcomes(TORQUE_I_G, TORQUE_C_THETA, &cancelled).unwrap_err();
 /// assert!(matches!(e, Error::Interrupted { .. }), "{e}");
 /// ```
-pub fn torque_outcomes(i_g: f64, c_theta: f64, cancel: &(dyn Fn() -> bool + Sync)) -> Result<TorqueOutcomes> {
+pub fn torque_outcomes(i_g: f64, c_theta: f64, control: &Control) -> Result<TorqueOutcomes> {
     let rotor = torque_rotor(i_g, c_theta);
-    let go = |_: &Sample| !cancel();
+    let go = |_: &Sample| true;
     let whole = |r: TorqueRun| crate::simulation::status_result(&r.summary.status, r.summary.t_end).map(|()| r);
-    let r18 = whole(torque_run(&rotor, 18.0, None, stick_time(&rotor), go)?)?;
-    let r73 = whole(torque_run(&rotor, 73.0, None, 12.0, go)?)?;
-    let r183 = whole(torque_run(&rotor, 183.0, Some(SWITCH_OFF), 12.0, go)?)?;
+    let r18 = whole(torque_run_with(&rotor, 18.0, None, stick_time(&rotor), control, go)?)?;
+    let r73 = whole(torque_run_with(&rotor, 73.0, None, 12.0, control, go)?)?;
+    let r183 = whole(torque_run_with(&rotor, 183.0, Some(SWITCH_OFF), 12.0, control, go)?)?;
     let peaks = (r73.summary.peak_amplitude, r183.peak_driven());
     Ok(TorqueOutcomes {
         i_g,

@@ -11,7 +11,7 @@
 //! let mut p = PlanarProblem::paper_004(0.01);
 //! p.drive = Drive::Acceleration { omega0: 200.0, b: 50.0 };
 //! p.set("drive.t_end", 4.0).unwrap();
-//! let s = p.simulate_summary().unwrap();
+//! let s = p.simulate_summary(&autobal::control::Control::none()).unwrap();
 //! assert!(s.stopped.is_none());
 //! assert!(s.omega_at_peak > 250.0 && s.omega_at_peak < 330.0);
 //! assert!(!s.balanced); // too little ball mass: α∞ = 0.48 < 1
@@ -167,9 +167,10 @@ impl PlanarProblem {
     }
 
     /// Run it, keeping only the summary (sampled only at the ends; the same steps and summary as
-    /// [`simulate`](crate::planar::simulate), see [`crate::planar::simulate_summary`]).
-    pub fn simulate_summary(&self) -> Result<Summary> {
-        crate::planar::simulate_summary(&self.rotor, &self.drive, &self.settings, None)
+    /// [`simulate`](crate::planar::simulate), see [`crate::planar::simulate_summary`]) under
+    /// `control`.
+    pub fn simulate_summary(&self, control: &crate::control::Control) -> Result<Summary> {
+        crate::planar::simulate_summary(&self.rotor, &self.drive, &self.settings, control)
     }
 
     /// Set the number of balls, keeping the initial ball angles and rates when their number

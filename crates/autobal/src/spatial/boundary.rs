@@ -27,6 +27,7 @@
 //! square): it is located to ~1e-10, far inside the 1e-8 required.
 
 use crate::builder::builder;
+use crate::control::{Control, StopReason};
 use crate::error::{Error, Result};
 use crate::linalg::charpoly::{pencil_polynomial, routh_count_right_of, SpeedPolynomial};
 use crate::linalg::eigen::eigenvalues;
@@ -176,9 +177,12 @@ pub struct Boundary {
     pub codim2: Vec<Codim2Point>,
     /// Characteristic polynomials evaluated (the cost).
     pub evaluations: usize,
-    /// Whether the whole plane was searched (`false`: stopped on request by
-    /// [`trace_boundary_with`]'s `cancel`; the curves traced until then are complete curves).
+    /// Whether the whole plane was searched (`false`: stopped by [`trace_boundary_with`]'s
+    /// control; the curves traced until then are complete curves); `stopped.is_none()`.
     pub complete: bool,
+    /// Why the search stopped early (`None`: complete).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stopped: Option<StopReason>,
 }
 
 /// Points of the plane → characteristic polynomials.
@@ -430,13 +434,14 @@ fn correct(pl: &Plane, kind: CurveKind, z0: [f64; 3], t: &[f64; 3], j0: Option<&
 /// assert!(b.curves.iter().any(|c| c.points.iter().any(|p| p.on_boundary)));
 /// ```
 pub fn trace_boundary(spec: &SpatialSpec, x: &PlaneAxis, y: &PlaneAxis, s: &TraceSettings) -> Result<Boundary> {
-    trace_boundary_with(spec, x, y, s, &|| false)
+    trace_boundary_with(spec, x, y, s, &Control::none())
 }
 
-/// [`trace_boundary`], stopping when `cancel()` returns true (asked before each line of the
-/// coarse grid and before each curve is traced, e.g. `&|| FLAG.load(Ordering::Relaxed)` for a
-/// Ctrl-C flag): the result then holds the curves traced so far and `complete` is `false`.
-pub fn trace_boundary_with(spec: &SpatialSpec, x: &PlaneAxis, y: &PlaneAxis, s: &TraceSettings, cancel: &dyn Fn() -> bool) -> Result<Boundary> {
+/// [`trace_boundary`] under `control` (asked before each line of the coarse grid and before
+/// each curve is traced): when it stops, the result holds the curves traced so far, `complete`
+/// is `false` and `stopped` says why. Its progress observer hears `(lines searched, lines)`
+/// after each line and after each curve traced.
+pub fn trace_boundary_with(spec: &SpatialSpec, x: &PlaneAxis, y: &PlaneAxis, s: &TraceSettings, control: &Control) -> Result<Boundary> {
     s.validate()?;
     for a in [x, y] {
         if !(a.lo.is_finite() && a.hi.is_finite() && a.hi > a.lo) {
@@ -454,28 +459,32 @@ pub fn trace_boundary_with(spec: &SpatialSpec, x: &PlaneAxis, y: &PlaneAxis, s: 
         return Err(Error::invalid(OMEGA, "required when neither axis is the speed"));
     }
     let pl = Plane { spec, x, y, balls: s.balls, omega: s.omega, evaluations: std::cell::Cell::new(0), last: std::cell::Cell::new(None) };
-    let mut out = Boundary { x: x.clone(), y: y.clone(), curves: vec![], codim2: vec![], evaluations: 0, complete: true };
+    let mut out = Boundary { x: x.clone(), y: y.clone(), curves: vec![], codim2: vec![], evaluations: 0, complete: true, stopped: None };
     // 1. lines across the plane (along the speed if there is one): changes of verdict
     let first_dir = if x.path == OMEGA { 1 } else { 0 };
     let mut queue: Vec<(CurveKind, [f64; 3])> = vec![];
     // 2. then lines the other way (closed curves between the first lines); a change of verdict
     // that a traced boundary already crosses is not looked at again
+    let all_lines = (s.coarse.0.max(2) + s.coarse.1.max(2)) as u64;
+    let mut searched = 0;
     'search: for dir in [first_dir, 1 - first_dir] {
         let lines = if dir == 0 { s.coarse.0.max(2) } else { s.coarse.1.max(2) };
         for li in 0..lines {
-            if cancel() {
-                out.complete = false;
+            if let Some(why) = control.should_stop() {
+                (out.complete, out.stopped) = (false, Some(why));
                 break 'search;
             }
             for raw in line_crossings(&pl, s, dir, li, &out.curves)? {
                 if let Some(seed) = seed_at(&pl, raw.0, raw.1, dir)? {
                     queue.push(seed);
                 }
-                if !process(&pl, s, &mut queue, &mut out, cancel)? {
-                    out.complete = false;
+                if let Some(why) = process(&pl, s, &mut queue, &mut out, control, (searched, all_lines))? {
+                    (out.complete, out.stopped) = (false, Some(why));
                     break 'search;
                 }
             }
+            searched += 1;
+            control.report(searched, all_lines);
         }
     }
     // one codimension-two point found from both of its curves is one point
@@ -491,13 +500,20 @@ pub fn trace_boundary_with(spec: &SpatialSpec, x: &PlaneAxis, y: &PlaneAxis, s: 
     Ok(out)
 }
 
-/// Trace the queued seeds that no traced curve already contains; `false` when `cancel()` asked
-/// to stop.
-fn process(pl: &Plane, s: &TraceSettings, queue: &mut Vec<(CurveKind, [f64; 3])>, out: &mut Boundary, cancel: &dyn Fn() -> bool) -> Result<bool> {
+/// Trace the queued seeds that no traced curve already contains; `Some(why)` when the control
+/// asked to stop; `progress` is reported after each curve.
+fn process(
+    pl: &Plane,
+    s: &TraceSettings,
+    queue: &mut Vec<(CurveKind, [f64; 3])>,
+    out: &mut Boundary,
+    control: &Control,
+    progress: (u64, u64),
+) -> Result<Option<StopReason>> {
     let mut guard = 0;
     while let Some((kind, z)) = queue.pop() {
-        if cancel() {
-            return Ok(false);
+        if let Some(why) = control.should_stop() {
+            return Ok(Some(why));
         }
         guard += 1;
         if guard > 100 || out.curves.len() > 200 {
@@ -508,9 +524,10 @@ fn process(pl: &Plane, s: &TraceSettings, queue: &mut Vec<(CurveKind, [f64; 3])>
         }
         if let Some(curve) = trace_curve(pl, kind, z, s.max_step, &mut out.codim2, queue)? {
             out.curves.push(curve);
+            control.report(progress.0, progress.1);
         }
     }
-    Ok(true)
+    Ok(None)
 }
 
 /// Whether the segment `a → b` (scaled) crosses the stability-boundary part of a traced curve.

@@ -25,6 +25,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use crate::builder::builder;
+use crate::control::{Control, StopReason};
 use crate::error::{Error, Result};
 use crate::linalg::charpoly::{AbscissaTracker, SpeedPolynomial};
 use crate::linalg::eigen::{eigenvalues, routh_hurwitz_stable, spectral_abscissa};
@@ -141,12 +142,15 @@ builder!(
 );
 
 /// How a map ended, and how its points were computed.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct MapOutcome {
     /// Rows handed to `on_row`.
     pub rows: usize,
-    /// Whether every row was computed (`false`: `on_row` asked to stop).
+    /// Whether every row was computed (`false`: the control or `on_row` stopped it); the same
+    /// as `stopped.is_none()`.
     pub complete: bool,
+    /// Why it stopped before every row was computed (`None`: complete).
+    pub stopped: Option<StopReason>,
     /// Points answered by continuation or by the characteristic polynomial.
     pub continued: usize,
     /// Direct solves on the state matrix (QR fall-backs of the margin, confirmations of the
@@ -315,13 +319,20 @@ const BLOCK_CELLS: usize = 1 << 18;
 /// let y = Axis::linspace("omega", 0.05, 4.5, 30);
 /// let settings = MapSettings { balls: Balls::Free, quantity: Quantity::Margin, omega: None };
 /// let mut stable = 0;
-/// let out = stability_map(&spec, &x, &y, &settings, &mut |_j, row| {
+/// let out = stability_map(&spec, &x, &y, &settings, &autobal::control::Control::none(), &mut |_j, row| {
 ///     stable += row.iter().filter(|c| c.stable).count();
 ///     true
 /// }).unwrap();
 /// assert!(out.complete && out.rows == 30 && stable > 0);
 /// ```
-pub fn stability_map<F: ModelFamily>(spec: &F, x: &Axis, y: &Axis, s: &MapSettings, on_row: &mut dyn FnMut(usize, &[Cell]) -> bool) -> Result<MapOutcome> {
+pub fn stability_map<F: ModelFamily>(
+    spec: &F,
+    x: &Axis,
+    y: &Axis,
+    s: &MapSettings,
+    control: &Control,
+    on_row: &mut dyn FnMut(usize, &[Cell]) -> bool,
+) -> Result<MapOutcome> {
     s.validate()?;
     for a in [x, y] {
         if a.values.is_empty() {
@@ -339,14 +350,51 @@ pub fn stability_map<F: ModelFamily>(spec: &F, x: &Axis, y: &Axis, s: &MapSettin
             spec.with(&a.path, a.values[0])?.model()?;
         }
     }
-    match (x.is_omega(), y.is_omega()) {
-        (true, true) => Err(Error::invalid(OMEGA, "only one axis can be the speed")),
-        (false, true) => map_speed_rows(spec, x, y, s, on_row),
-        (true, false) => map_speed_columns(spec, x, y, s, on_row),
-        (false, false) => {
-            let w = s.omega.ok_or_else(|| Error::invalid(OMEGA, "required when neither axis is the speed (the speed at which to map)"))?;
-            map_fixed_speed(spec, x, y, w, s, on_row)
+    if x.is_omega() && y.is_omega() {
+        return Err(Error::invalid(OMEGA, "only one axis can be the speed"));
+    }
+    let w = match (x.is_omega(), y.is_omega()) {
+        (false, false) => Some(s.omega.ok_or_else(|| Error::invalid(OMEGA, "required when neither axis is the speed (the speed at which to map)"))?),
+        _ => None,
+    };
+    if let Some(why) = control.should_stop() {
+        return Ok(MapOutcome { stopped: Some(why), ..Default::default() });
+    }
+    let mut why = None;
+    let mut asked = ask_control(control, y.values.len(), on_row, &mut why);
+    let mut out = match (x.is_omega(), w) {
+        (false, None) => map_speed_rows(spec, x, y, s, &mut asked),
+        (true, _) => map_speed_columns(spec, x, y, s, &mut asked),
+        (false, Some(w)) => map_fixed_speed(spec, x, y, w, s, &mut asked),
+    }?;
+    drop(asked);
+    out.stopped = (!out.complete).then_some(why.unwrap_or(StopReason::Observer));
+    Ok(out)
+}
+
+/// `on_row`, then the control asked after each row but the last (its progress observer hears
+/// `(rows, rows in all)`); `why` receives the reason when either stops the map.
+pub(crate) fn ask_control<'a>(
+    control: &'a Control,
+    rows: usize,
+    on_row: &'a mut dyn FnMut(usize, &[Cell]) -> bool,
+    why: &'a mut Option<StopReason>,
+) -> impl FnMut(usize, &[Cell]) -> bool + 'a {
+    let mut done = 0;
+    move |j, cells| {
+        done += 1;
+        if !on_row(j, cells) {
+            *why = Some(StopReason::Observer);
+            return false;
         }
+        control.report(done as u64, rows as u64);
+        if done < rows {
+            if let Some(r) = control.should_stop() {
+                *why = Some(r);
+                return false;
+            }
+        }
+        true
     }
 }
 
@@ -481,10 +529,10 @@ mod tests {
         let x = Axis::linspace("dimensionless.z_a", -1.0, 1.0, 3);
         let y = Axis::linspace(OMEGA, 0.1, 2.0, 3);
         let s = MapSettings { omega: Some(f64::NAN), ..MapSettings::default() };
-        let e = stability_map(&spec, &x, &y, &s, &mut |_, _| panic!("no row before the settings are checked")).unwrap_err();
+        let e = stability_map(&spec, &x, &y, &s, &Control::none(), &mut |_, _| panic!("no row before the settings are checked")).unwrap_err();
         assert_eq!(e.field(), Some(OMEGA), "{e}");
         let mut rows = 0;
-        stability_map(&spec, &x, &y, &MapSettings::builder().omega(Some(1.0)).build().unwrap(), &mut |_, _| {
+        stability_map(&spec, &x, &y, &MapSettings::builder().omega(Some(1.0)).build().unwrap(), &Control::none(), &mut |_, _| {
             rows += 1;
             true
         })

@@ -362,8 +362,9 @@ fn omega0_at(spec: &SpatialSpec, path: &str, v: f64) -> Result<f64> {
 /// let rpm = Axis::linspace("speed_rpm", 300.0, 1500.0, 5);
 /// let omega = Axis { path: "omega".into(), values: rpm.values.iter().map(|n| n * std::f64::consts::PI / 30.0 / w0).collect() };
 /// let (mut a, mut b) = (vec![], vec![]);
-/// stability_map_units(&c.spec, &x, &rpm, &MapSettings::default(), &mut |_, r| { a.push(r.to_vec()); true }).unwrap();
-/// stability_map(&c.spec, &x, &omega, &MapSettings::default(), &mut |_, r| { b.push(r.to_vec()); true }).unwrap();
+/// let none = autobal::control::Control::none();
+/// stability_map_units(&c.spec, &x, &rpm, &MapSettings::default(), &none, &mut |_, r| { a.push(r.to_vec()); true }).unwrap();
+/// stability_map(&c.spec, &x, &omega, &MapSettings::default(), &none, &mut |_, r| { b.push(r.to_vec()); true }).unwrap();
 /// assert_eq!(a, b);
 /// ```
 pub fn stability_map_units(
@@ -371,11 +372,13 @@ pub fn stability_map_units(
     x: &crate::spatial::map::Axis,
     y: &crate::spatial::map::Axis,
     s: &crate::spatial::map::MapSettings,
+    control: &crate::control::Control,
     on_row: &mut dyn FnMut(usize, &[crate::spatial::map::Cell]) -> bool,
 ) -> Result<crate::spatial::map::MapOutcome> {
-    use crate::spatial::map::{stability_map, Axis, MapOutcome, OMEGA};
+    use crate::control::{Control, StopReason};
+    use crate::spatial::map::{ask_control, stability_map, Axis, MapOutcome, OMEGA};
     use rayon::prelude::*;
-    let Some((i, k)) = si_speed_axis(spec, [&x.path, &y.path])? else { return stability_map(spec, x, y, s, on_row) };
+    let Some((i, k)) = si_speed_axis(spec, [&x.path, &y.path])? else { return stability_map(spec, x, y, s, control, on_row) };
     let (speed, other) = if i == 0 { (x, y) } else { (y, x) };
     if speed.values.iter().any(|v| !(v.is_finite() && *v >= 0.0)) || speed.values.windows(2).any(|w| w[1] < w[0]) {
         return Err(Error::invalid(speed.path.clone(), "the speeds must be finite, non-negative and ascending"));
@@ -385,7 +388,7 @@ pub fn stability_map_units(
     if w0.iter().all(|w| *w == w0[0]) {
         // ω0 the same on every line: one map over the converted speeds
         let om = to_omega(w0[0]);
-        return if i == 0 { stability_map(spec, &om, y, s, on_row) } else { stability_map(spec, x, &om, s, on_row) };
+        return if i == 0 { stability_map(spec, &om, y, s, control, on_row) } else { stability_map(spec, x, &om, s, control, on_row) };
     }
     // ω0 changes with the other axis: each line over its own Ω values
     let line = |j: usize, speeds: std::ops::Range<usize>| -> Result<(Vec<crate::spatial::map::Cell>, MapOutcome)> {
@@ -393,13 +396,18 @@ pub fn stability_map_units(
         let mut om = to_omega(w0[j]);
         om.values = om.values[speeds].to_vec();
         let mut cells = vec![];
-        let out = stability_map(spec, &om, &one, s, &mut |_, r| {
+        let out = stability_map(spec, &om, &one, s, &Control::none(), &mut |_, r| {
             cells.extend_from_slice(r);
             true
         })?;
         Ok((cells, out))
     };
     let nx = x.values.len();
+    if let Some(why) = control.should_stop() {
+        return Ok(MapOutcome { stopped: Some(why), ..Default::default() });
+    }
+    let mut why = None;
+    let mut on_row = ask_control(control, y.values.len(), on_row, &mut why);
     let mut out = MapOutcome { complete: true, ..Default::default() };
     let block = ((1usize << 18) / nx).max(2 * rayon::current_num_threads());
     let mut j0 = 0;
@@ -429,6 +437,8 @@ pub fn stability_map_units(
             out.rows += 1;
             if !on_row(j0 + jj, row) {
                 out.complete = false;
+                drop(on_row);
+                out.stopped = Some(why.unwrap_or(StopReason::Observer));
                 return Ok(out);
             }
         }
@@ -447,10 +457,10 @@ pub fn trace_boundary_units(
     x: &crate::spatial::boundary::PlaneAxis,
     y: &crate::spatial::boundary::PlaneAxis,
     s: &crate::spatial::boundary::TraceSettings,
-    cancel: &dyn Fn() -> bool,
+    control: &crate::control::Control,
 ) -> Result<crate::spatial::boundary::Boundary> {
     use crate::spatial::boundary::{trace_boundary_with, PlaneAxis};
-    let Some((i, k)) = si_speed_axis(spec, [&x.path, &y.path])? else { return trace_boundary_with(spec, x, y, s, cancel) };
+    let Some((i, k)) = si_speed_axis(spec, [&x.path, &y.path])? else { return trace_boundary_with(spec, x, y, s, control) };
     let (speed, other) = if i == 0 { (x, y) } else { (y, x) };
     if !(speed.lo >= 0.0 && speed.hi > speed.lo && speed.hi.is_finite()) {
         return Err(Error::invalid(speed.path.clone(), "the speeds must be finite, non-negative, with hi > lo"));
@@ -461,7 +471,7 @@ pub fn trace_boundary_units(
     }
     let (lo, hi) = w0s.iter().fold((f64::INFINITY, 0.0f64), |(a, b), w| (a.min(*w), b.max(*w)));
     let om = PlaneAxis { path: crate::spatial::map::OMEGA.into(), lo: speed.lo * k / hi, hi: speed.hi * k / lo };
-    let mut b = if i == 0 { trace_boundary_with(spec, &om, y, s, cancel)? } else { trace_boundary_with(spec, x, &om, s, cancel)? };
+    let mut b = if i == 0 { trace_boundary_with(spec, &om, y, s, control)? } else { trace_boundary_with(spec, x, &om, s, control)? };
     let carry = |sp: &mut f64, ot: f64| -> Result<()> {
         *sp *= omega0_at(spec, &other.path, ot)? / k;
         Ok(())

@@ -3,10 +3,11 @@
 
 use super::rotor::SpatialRotor;
 use super::simulate::{simulate_summary, Initial, Settings, Summary};
+use crate::control::{Control, Outcome, StopReason};
 use crate::drive::Drive;
 use crate::error::Result;
 use rayon::prelude::*;
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// One run of a basin map: its drive and initial conditions.
 #[derive(Debug, Clone, PartialEq)]
@@ -50,27 +51,32 @@ pub fn check_angle_grid(rotor: &SpatialRotor, n: usize, n_field: &str) -> Result
     Ok(())
 }
 
-/// Run every case in parallel (rayon's pool). `progress(done)` is called after each run (from
-/// the worker threads); when `cancel` is set, the runs not yet started are skipped and the one
-/// running stops: their entries are `None`. Inputs are validated before any run starts.
+/// Run every case in parallel (rayon's pool) under `control`: its progress observer hears
+/// `(runs done, runs in all)` after each run (from the worker threads); when it stops (its
+/// cancel flag, its budget), the runs not yet started are skipped and those running stop: their
+/// entries are `None`, and the outcome's `stopped` says why. Inputs are validated before any
+/// run starts.
 ///
 /// ```
+/// use autobal::control::{Control, StopReason};
 /// use autobal::drive::Drive;
 /// use autobal::spatial::dynamics::basins::{angle_grid, basins};
 /// use autobal::spatial::dynamics::{Initial, Settings, SpatialRotor};
-/// use std::sync::atomic::{AtomicBool, Ordering};
 /// // paper 000's base case at Ω = 1.6, 2 × 2 initial angles, a short run each
 /// let rotor = SpatialRotor::default();
 /// let cases = angle_grid(&Initial::at_rest(&rotor), &Drive::Speed { omega0: 1.6 }, 2, 2);
 /// let settings = Settings { t_end: 20.0, ..Settings::default() };
-/// let cancel = AtomicBool::new(false);
-/// let ends = basins(&rotor, &cases, &settings, |_| {}, &cancel).unwrap();
-/// assert!(ends.iter().all(|e| e.as_ref().is_some_and(|s| s.status.is_completed())));
+/// let ends = basins(&rotor, &cases, &settings, &Control::none()).unwrap();
+/// assert!(ends.is_complete());
+/// assert!(ends.value.iter().all(|e| e.as_ref().is_some_and(|s| s.status.is_completed())));
 /// // cancelled: no run is reported as if it had ended
-/// cancel.store(true, Ordering::Relaxed);
-/// assert!(basins(&rotor, &cases, &settings, |_| {}, &cancel).unwrap().iter().all(Option::is_none));
+/// let control = Control::new();
+/// control.cancel();
+/// let ends = basins(&rotor, &cases, &settings, &control).unwrap();
+/// assert_eq!(ends.stopped, Some(StopReason::Interrupted));
+/// assert!(ends.value.iter().all(Option::is_none));
 /// ```
-pub fn basins(rotor: &SpatialRotor, cases: &[Case], settings: &Settings, progress: impl Fn(usize) + Sync, cancel: &AtomicBool) -> Result<Vec<Option<Summary>>> {
+pub fn basins(rotor: &SpatialRotor, cases: &[Case], settings: &Settings, control: &Control) -> Result<Outcome<Vec<Option<Summary>>>> {
     rotor.validate()?;
     settings.validate()?;
     for c in cases {
@@ -79,16 +85,24 @@ pub fn basins(rotor: &SpatialRotor, cases: &[Case], settings: &Settings, progres
         super::simulate::initial_state(&eq, &c.initial)?;
     }
     let done = AtomicUsize::new(0);
-    cases
+    let total = cases.len() as u64;
+    let runs: Vec<Option<Summary>> = cases
         .par_iter()
         .map(|c| {
-            if cancel.load(Ordering::Relaxed) {
+            if control.should_stop().is_some() {
                 return Ok(None);
             }
             // summaries only, from the same steps as `simulate` (dt is the automatic method's time resolution)
-            let s = simulate_summary(rotor, &c.drive, &c.initial, settings, Some(&|| cancel.load(Ordering::Relaxed)))?;
-            progress(done.fetch_add(1, Ordering::Relaxed) + 1);
-            Ok((s.stopped.is_none() || !cancel.load(Ordering::Relaxed)).then_some(s))
+            let s = simulate_summary(rotor, &c.drive, &c.initial, settings, control)?;
+            control.report(done.fetch_add(1, Ordering::Relaxed) as u64 + 1, total);
+            // a run the control stopped is no run that ended
+            let by_control = matches!(s.status.stop_reason(), Some(StopReason::Interrupted | StopReason::Budget { .. }));
+            Ok((!by_control).then_some(s))
         })
-        .collect()
+        .collect::<Result<_>>()?;
+    let skipped = runs.iter().any(Option::is_none);
+    Ok(match control.should_stop() {
+        Some(why) if skipped => Outcome::stopped(runs, why),
+        _ => Outcome::complete(runs),
+    })
 }

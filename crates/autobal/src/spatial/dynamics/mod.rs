@@ -26,4 +26,4 @@ pub mod stationary;
 pub use equations::Equations;
 pub use field::SpatialField;
 pub use rotor::{BallPlane, PointMass, RigidRotor, SpatialRotor, Support};
-pub use simulate::{simulate, simulate_summary, Initial, RunOutcome, Sample, Settings, Summary};
+pub use simulate::{simulate, simulate_summary, simulate_with, Initial, RunOutcome, Sample, Settings, Summary};

@@ -6,7 +6,7 @@ use super::rotor::SpatialRotor;
 use crate::balls::EventCounter;
 use crate::drive::Drive;
 use crate::error::{finite, positive, Error, Result};
-use crate::ode::{Control, Method, Options, Outcome, Solver, Stats, Status};
+use crate::ode::{Control, Method, Options, Outcome, Solver, Stats, Status, StopReason};
 use crate::simulation::{run, Hooks, Timeline};
 use serde::Serialize;
 
@@ -525,26 +525,38 @@ fn phase_moments(delta: f64) -> ([f64; 2], [f64; 2]) {
 /// assert!(s.balanced && s.residual_unbalance < 1e-3);
 /// ```
 pub fn simulate(rotor: &SpatialRotor, drive: &Drive, init: &Initial, settings: &Settings, sink: impl FnMut(&Sample) -> bool) -> Result<Summary> {
-    simulate_sampled(rotor, drive, init, settings, None, settings.dt, sink)
+    simulate_with(rotor, drive, init, settings, &crate::control::Control::none(), sink)
+}
+
+/// [`simulate`] under `control` (its cancel flag is asked before every integrator step, so a
+/// run with sparse samples stops as promptly as any; its budget every few hundred steps): an
+/// early stop is the summary's [`Summary::status`], the summary covering what was computed.
+pub fn simulate_with(
+    rotor: &SpatialRotor,
+    drive: &Drive,
+    init: &Initial,
+    settings: &Settings,
+    control: &crate::control::Control,
+    sink: impl FnMut(&Sample) -> bool,
+) -> Result<Summary> {
+    simulate_sampled(rotor, drive, init, settings, control, settings.dt, sink)
 }
 
 /// The run of [`simulate`] with samples only at its start and end, for its summary (basins):
 /// the same settings, `dt` included, so the same steps and the same summary (`dt` is also the
-/// automatic method's time resolution, see [`tolerances`]). `cancel` is asked before every
-/// step; `true` stops the run (an interruption, as in [`simulate`]), as in
-/// [`crate::planar::simulate_summary`].
-pub fn simulate_summary(rotor: &SpatialRotor, drive: &Drive, init: &Initial, settings: &Settings, cancel: Option<&dyn Fn() -> bool>) -> Result<Summary> {
-    simulate_sampled(rotor, drive, init, settings, cancel, settings.t_end, |_| true)
+/// automatic method's time resolution, see [`tolerances`]), under `control` as
+/// [`simulate_with`] and [`crate::planar::simulate_summary`].
+pub fn simulate_summary(rotor: &SpatialRotor, drive: &Drive, init: &Initial, settings: &Settings, control: &crate::control::Control) -> Result<Summary> {
+    simulate_sampled(rotor, drive, init, settings, control, settings.t_end, |_| true)
 }
 
-/// [`simulate`], stopping when `cancel()` returns true and sampling every `sample_dt` (the
-/// integrator's settings unchanged).
+/// [`simulate_with`], sampling every `sample_dt` (the integrator's settings unchanged).
 fn simulate_sampled(
     rotor: &SpatialRotor,
     drive: &Drive,
     init: &Initial,
     settings: &Settings,
-    cancel: Option<&dyn Fn() -> bool>,
+    control: &crate::control::Control,
     sample_dt: f64,
     mut sink: impl FnMut(&Sample) -> bool,
 ) -> Result<Summary> {
@@ -554,9 +566,7 @@ fn simulate_sampled(
     let eq = Equations::new(rotor, drive);
     let mut y = initial_state(&eq, init)?;
     let mut solver = Solver::new(&eq, tolerances(&eq, settings))?;
-    if let Some(c) = cancel {
-        solver.cancel_if(c);
-    }
+    solver.control(control);
     let breakpoints = drive.breakpoints();
     let timeline = Timeline { t_end: settings.t_end, dt: sample_dt, breakpoints: &breakpoints };
     let counters = vec![EventCounter::default(); eq.ball_forces().len()];
@@ -693,7 +703,7 @@ fn summarise(eq: &Equations, t: f64, y: &[f64], peak: (f64, f64, f64), stats: St
         t_end: t,
         stopped: match &out.status {
             Status::Completed => None,
-            Status::Stopped => Some(format!("interrupted at t = {}", crate::error::fmt_num(t))),
+            Status::Stopped(StopReason::Observer) => Some(format!("interrupted at t = {}", crate::error::fmt_num(t))),
             _ => Some(out.to_string()),
         },
         status: out.status.clone(),

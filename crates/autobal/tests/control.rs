@@ -1,0 +1,147 @@
+//! One way to stop long work ([`autobal::control`]): for each kind of long computation, a
+//! cancel flag set before it starts (or during it) returns the stopped outcome with what was
+//! computed so far, never a panic and never a plain success, and a zero wall-time budget stops
+//! it with [`StopReason::Budget`]. The boundary tracer, the general map and the sweep have theirs
+//! next to their other tests (`stability.rs`, `rotor_map.rs`, `sweep.rs`).
+
+use autobal::control::{Control, StopReason};
+use autobal::drive::Drive;
+use autobal::error::Error;
+use autobal::ode::Status;
+use std::time::Duration;
+
+fn zero_budget() -> Control {
+    Control::new().with_budget(Duration::ZERO)
+}
+
+fn cancelled() -> Control {
+    let c = Control::new();
+    c.cancel();
+    c
+}
+
+#[test]
+fn planar_simulation_stops_with_its_partial_summary() {
+    use autobal::planar::{simulate_summary, simulate_with, PlanarRotor, Settings};
+    let rotor = PlanarRotor::paper();
+    let drive = autobal::planar::Drive::Acceleration { omega0: 200.0, b: 20.0 };
+    let settings = Settings::new(&rotor, 15.0);
+    // cancelled from the sink at the tenth sample (as Ctrl-C from another thread would): the
+    // samples up to then were delivered, the summary ends there and says why
+    let control = Control::new();
+    let mut seen = 0;
+    let s = simulate_with(&rotor, &drive, &settings, &control, |_| {
+        seen += 1;
+        if seen == 10 {
+            control.cancel();
+        }
+        true
+    })
+    .unwrap();
+    assert_eq!(s.status, Status::Stopped(StopReason::Interrupted));
+    assert!(s.t_end >= 9.0 * settings.dt && s.t_end < 10.0 * settings.dt, "{}", s.t_end);
+    assert!(s.steps > 0 && s.peak_amplitude.is_finite(), "the partial run's summary is kept");
+    assert!(s.stopped.as_deref().is_some_and(|t| t.starts_with("interrupted at t = ")), "{:?}", s.stopped);
+    assert!(matches!(s.into_result(), Err(Error::Interrupted { .. })));
+    // cancelled before the start: no step, the initial state's summary
+    let s = simulate_summary(&rotor, &drive, &settings, &cancelled()).unwrap();
+    assert_eq!((s.status, s.t_end, s.steps), (Status::Stopped(StopReason::Interrupted), 0.0, 0));
+    // a zero budget
+    let s = simulate_summary(&rotor, &drive, &settings, &zero_budget()).unwrap();
+    assert_eq!(s.status, Status::Stopped(StopReason::Budget { seconds: 0.0 }));
+    assert!(s.stopped.as_deref().is_some_and(|t| t.starts_with("time budget of 0 s spent")), "{:?}", s.stopped);
+}
+
+#[test]
+fn spatial_simulation_stops_between_samples() {
+    use autobal::spatial::dynamics::{simulate_summary, simulate_with, Initial, Settings, SpatialRotor};
+    let rotor = SpatialRotor::default();
+    let drive = Drive::Speed { omega0: 1.6 };
+    let init = Initial::at_rest(&rotor);
+    // one sample at the start and one at the end: only the control can stop it in between
+    let settings = Settings { t_end: 200.0, dt: 200.0, ..Settings::default() };
+    let s = simulate_with(&rotor, &drive, &init, &settings, &cancelled(), |_| true).unwrap();
+    assert_eq!((s.status, s.t_end), (Status::Stopped(StopReason::Interrupted), 0.0));
+    let s = simulate_summary(&rotor, &drive, &init, &settings, &zero_budget()).unwrap();
+    assert_eq!(s.status, Status::Stopped(StopReason::Budget { seconds: 0.0 }));
+    assert!(s.into_result().is_err());
+    // the same run to its end under no control
+    assert!(simulate_summary(&rotor, &drive, &init, &settings, &Control::none()).unwrap().status.is_completed());
+}
+
+#[test]
+fn basins_keep_no_run_the_control_stopped() {
+    use autobal::spatial::dynamics::basins::{angle_grid, basins};
+    use autobal::spatial::dynamics::{Initial, Settings, SpatialRotor};
+    let rotor = SpatialRotor::default();
+    let cases = angle_grid(&Initial::at_rest(&rotor), &Drive::Speed { omega0: 1.6 }, 2, 2);
+    let settings = Settings { t_end: 20.0, ..Settings::default() };
+    for (control, why) in [(cancelled(), StopReason::Interrupted), (zero_budget(), StopReason::Budget { seconds: 0.0 })] {
+        let out = basins(&rotor, &cases, &settings, &control).unwrap();
+        assert_eq!(out.stopped, Some(why));
+        assert_eq!(out.value.len(), cases.len());
+        assert!(out.value.iter().all(Option::is_none));
+    }
+    // progress: one report per run, the last one all of them
+    let seen = std::sync::Arc::new(std::sync::Mutex::new(vec![]));
+    let s = seen.clone();
+    let out = basins(&rotor, &cases, &settings, &Control::new().with_progress(move |p| s.lock().unwrap().push(p))).unwrap();
+    assert!(out.is_complete());
+    let mut done: Vec<u64> = seen.lock().unwrap().iter().map(|p| p.done).collect();
+    done.sort();
+    assert_eq!(done, vec![1, 2, 3, 4]);
+}
+
+#[test]
+fn spatial_sweep_stops_as_the_planar_one() {
+    use autobal::sweep::{simulate_batch, SpatialSweep};
+    let mut root = autobal::config::parse(include_str!("../../../examples/spatial.toml"), "spatial.toml").unwrap();
+    autobal::config::set_number(&mut root, "drive.t_end", 20.0).unwrap();
+    let base = SpatialSweep::new(root).unwrap();
+    for (control, why) in [(cancelled(), StopReason::Interrupted), (zero_budget(), StopReason::Budget { seconds: 0.0 })] {
+        let out = simulate_batch(&base, &["drive.omega0"], &[1.5, 1.6], &mut |_, _, _| panic!("no point is delivered"), &control).unwrap();
+        assert_eq!((out.delivered, out.stopped), (0, Some(why)));
+        assert!(matches!(out.into_result(), Err(Error::Interrupted { .. })));
+    }
+}
+
+#[test]
+fn torque_outcomes_stop_with_a_typed_error() {
+    use autobal::planar::paper004::{torque_outcomes, TORQUE_C_THETA, TORQUE_I_G};
+    assert!(matches!(torque_outcomes(TORQUE_I_G, TORQUE_C_THETA, &cancelled()), Err(Error::Interrupted { .. })));
+    assert!(matches!(torque_outcomes(TORQUE_I_G, TORQUE_C_THETA, &zero_budget()), Err(Error::Interrupted { .. })));
+}
+
+#[test]
+fn spatial_stability_map_keeps_whole_rows() {
+    use autobal::spatial::map::{stability_map, Axis, MapSettings};
+    use autobal::spatial::paths::stability_map_units;
+    let root = autobal::config::parse(include_str!("../../../examples/washing_machine.toml"), "w").unwrap();
+    let c = autobal::config::spatial(&root).unwrap();
+    let x = Axis::linspace("balancer.z", 0.05, 0.15, 3);
+    let omega = Axis::linspace("omega", 0.1, 3.0, 40);
+    let rpm = Axis::linspace("speed_rpm", 300.0, 1500.0, 40);
+    for (control, why) in [(cancelled(), StopReason::Interrupted), (zero_budget(), StopReason::Budget { seconds: 0.0 })] {
+        let out = stability_map(&c.spec, &x, &omega, &MapSettings::default(), &control, &mut |_, _| panic!("no row")).unwrap();
+        assert_eq!((out.rows, out.complete, out.stopped), (0, false, Some(why)));
+        let out = stability_map_units(&c.spec, &x, &rpm, &MapSettings::default(), &control, &mut |_, _| panic!("no row")).unwrap();
+        assert_eq!((out.rows, out.complete, out.stopped), (0, false, Some(why)));
+    }
+    // cancelled while the rows arrive (from the receiver of the third row, as Ctrl-C would be):
+    // the rows handed over are whole, and the map stops after the third
+    let control = Control::new();
+    let mut rows = vec![];
+    let out = stability_map(&c.spec, &x, &omega, &MapSettings::default(), &control, &mut |_, r| {
+        rows.push(r.to_vec());
+        if rows.len() == 3 {
+            control.cancel();
+        }
+        true
+    })
+    .unwrap();
+    assert_eq!((out.rows, out.stopped), (3, Some(StopReason::Interrupted)));
+    assert!(rows.iter().all(|r| r.len() == 3));
+    // a complete map under no control says so
+    let out = stability_map(&c.spec, &x, &omega, &MapSettings::default(), &Control::none(), &mut |_, _| true).unwrap();
+    assert!(out.complete && out.stopped.is_none() && out.rows == 40);
+}
