@@ -18,6 +18,7 @@ pub mod figures;
 #[cfg(test)]
 mod fuzz;
 pub mod general;
+pub mod general_campbell;
 pub mod linear;
 pub mod map;
 pub mod mapfig;
