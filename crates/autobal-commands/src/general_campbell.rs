@@ -263,11 +263,12 @@ pub fn critical_json(g: &GeneralRotor, c: &GeneralCritical) -> Value {
             Ok(l) => json!({
                 "what": LOCKED_WHAT,
                 "speeds": l.speeds.iter().map(|s| {
-                    let mut e = json!({ "omega": s.omega, "multiplicity": s.multiplicity, "motion": s.motion });
+                    let mut e = json!({ "omega": s.omega, "multiplicity": s.multiplicity, "motion": s.motion, "whirl": s.whirl });
                     if g.si { e["rpm"] = json!(rpm(s.omega)); }
                     e
                 }).collect::<Vec<_>>(),
                 "grid": l.samples,
+                "ball_angles": l.ball_angles,
                 "speeds_without_balanced_state": l.unlocked,
             }),
             Err(e) => json!({ "what": LOCKED_WHAT, "speeds": Value::Null, "not_located": e }),
@@ -300,12 +301,8 @@ pub fn critical_table(g: &GeneralRotor, c: &GeneralCritical) -> String {
         }
         Ok(l) => {
             for (i, k) in l.speeds.iter().enumerate() {
-                let what = match k.multiplicity {
-                    2 => "circular whirl (double)".to_string(),
-                    1 => "one of a split pair".to_string(),
-                    m => format!("{m} eigenvalues cross"),
-                };
-                let _ = writeln!(s, "  {:>2}. {}  {}, {}", i + 1, speed_text(g, k.omega), serde_json::to_string(&k.motion).unwrap_or_default().trim_matches('"'), what);
+                let motion = serde_json::to_string(&k.motion).unwrap_or_default();
+                let _ = writeln!(s, "  {:>2}. {}  {} whirl, {} (multiplicity {})", i + 1, speed_text(g, k.omega), whirl_name(k.whirl), motion.trim_matches('"'), k.multiplicity);
             }
         }
         Err(e) => {
@@ -313,6 +310,10 @@ pub fn critical_table(g: &GeneralRotor, c: &GeneralCritical) -> String {
         }
     }
     if let Ok(l) = &c.locked {
+        if !l.ball_angles.is_empty() {
+            let deg: Vec<String> = l.ball_angles.iter().map(|p| format!("{:.2}°", p.to_degrees().rem_euclid(360.0))).collect();
+            let _ = writeln!(s, "  balls locked at {} (with 3 or more balls in a plane the balanced states form a family: these speeds are the named member's)", deg.join(", "));
+        }
         if l.unlocked > 0 {
             let _ = writeln!(s, "  ({} of {} speeds have no balanced state to lock the balls in and were not searched)", l.unlocked, l.samples);
         }

@@ -34,18 +34,29 @@
 //!
 //! # Critical speeds ([`locked_critical_speeds`])
 //! The rotor with its balls **locked** at the closed-form balanced position (each ball becomes
-//! a point mass of the rotor: [`locked_rotor`]) and **without damping** (as 000 eq (16)). In
-//! turning axes its linearisation about the centred rotor is `q̈ = A q + B q̇`; a critical
-//! speed is where a natural frequency in fixed axes equals the speed, i.e. where a whirl at
-//! `Ω` stands still in turning axes: `A(Ω) q = 0` has a solution. `A = M⁻¹ S` (`M` the mass
-//! matrix, `S` symmetric without damping) has real eigenvalues; the number of positive ones
-//! changes exactly at the critical speeds, by the number of eigenvalues crossing 0 (2 for the
-//! circular whirl of an axisymmetric rotor). The changes are bracketed on a grid and bisected
-//! to `1e-12` relative. `A` is read from the exact (AD) Jacobian `[[0, I], [A, B]]` of the
-//! model's field. With supports that differ by direction `A` turns with the rotor (no constant
-//! `A`): [`crate::Error::NoLinearisation`] says so (the Floquet Campbell diagram still applies).
-//! Gravity moves the stationary state (the sag) but not this linearisation about the centred
-//! rotor, which is checked (`J(0) = J(T/4)` to 1e-9).
+//! a point mass of the rotor: [`locked_rotor`]) and **without damping** (as 000 eq (16)),
+//! linearised about the centred rotor (exact AD Jacobian `[[0, I], [A, B]]` of the model's
+//! field). A critical speed is where a natural frequency in fixed axes equals the speed:
+//! - **turning axes**, where this Jacobian does not depend on time (supports equal in every
+//!   direction; gravity moves the stationary state, the sag, but not this linearisation, which
+//!   is checked: `J(0) = J(T/4)` to 1e-9): a forward whirl at `Ω` stands still in turning axes,
+//!   `A(Ω) q = 0`. `A = M⁻¹ S` (`S` symmetric without damping) has real eigenvalues; the number
+//!   of positive ones changes exactly at the critical speeds, by the number crossing zero (2 for
+//!   the circular whirl of an axisymmetric rotor, 1 for each of the split pair of a rotor whose
+//!   inertia differs by direction);
+//! - **fixed axes**, where the supports differ by direction (the Jacobian turns with the rotor):
+//!   the coordinate pairs (translation, tilt) are rotated into fixed axes, where the locked
+//!   rotor's linearisation `[[0, I], [A_f, B_f]]` is constant if its inertia is the same in
+//!   every direction (checked at `t = 0` and `T/4`); `λ = iΩ` is an eigenvalue iff
+//!   `Q(Ω) = −A_f − iΩ B_f − Ω² I = M⁻¹(K − Ω² M + iΩ² G)` is singular, whose eigenvalues are
+//!   real (Hermitian up to `M`): the same count. Here backward modes whose frequency equals the
+//!   speed are critical too (the supports' anisotropy lets an unbalance excite them), each
+//!   labelled by its whirl. Where the inertia **and** the supports differ by direction (locked
+//!   balls or unbalance masses on anisotropic supports) the linearisation is periodic in both
+//!   frames, no single frequency defines a critical speed, and
+//!   [`crate::Error::NoLinearisation`] says so (the Floquet Campbell diagram still applies).
+//!
+//! The changes of the count are bracketed on a grid and bisected to `1e-12` relative.
 
 use crate::analysis::{mode, stability, stationary, stationary_near, Kind, NewtonOptions, StationaryState, VectorField};
 use crate::error::{Error, Result};
@@ -234,7 +245,10 @@ pub fn campbell_over_speed(rotor: &Rotor, speeds: &[f64]) -> Result<RotorCampbel
         let guess = Rotor::guess(&f);
         let near = previous.as_ref().map(|p| p.x.clone());
         let hint = previous.as_ref().and_then(|p| p.monodromy.clone());
-        let mut result = Err("no starting point (no closed-form state and no previous one)".to_string());
+        let mut result = Err(match no_balance(rotor) {
+            Error::InvalidParameter { reason, .. } => reason,
+            e => e.to_string(),
+        });
         for start in [guess, near].into_iter().flatten() {
             match stationary_near(&f, &start, hint.as_deref(), &opts) {
                 Ok(s) => {
@@ -388,11 +402,16 @@ pub enum Motion {
 pub struct LockedCriticalSpeed {
     /// The speed (rad/s, or the papers' unit `ω0`).
     pub omega: f64,
-    /// How many eigenvalues of `A` cross zero there (2: the circular whirl of an axisymmetric
-    /// rotor; 1: one of the split pair of an anisotropic one).
+    /// How many eigenvalues cross zero there: in turning axes 2 for the circular whirl of an
+    /// axisymmetric rotor, 1 for one of the split pair of a rotor whose inertia differs by
+    /// direction; in fixed axes 1 per (elliptical) whirl.
     pub multiplicity: usize,
-    /// What moves most in the standing whirl (null vector of `A`, tilt at the radius of gyration).
+    /// What moves most in the synchronous whirl (tilt at the radius of gyration).
     pub motion: Motion,
+    /// Forward (the rotor's own sense: what an unbalance excites on supports equal in every
+    /// direction) or backward (a backward mode whose frequency equals the speed: excited by an
+    /// unbalance only through supports that differ by direction).
+    pub whirl: Whirl,
 }
 
 /// The critical speeds of the locked rotor up to `omega_max` ([`locked_critical_speeds`]).
@@ -408,10 +427,20 @@ pub struct LockedCriticalSpeeds {
     /// Speeds of the grid where the closed form has no balanced state to lock the balls in
     /// (too little capacity; paper 004's eccentric race at low speed): not searched.
     pub unlocked: usize,
+    /// The balls' locked angles (rad, all planes in order) at the first speed searched: with
+    /// `n ≥ 3` balls in a plane the balanced states form a family, and the critical speeds
+    /// depend on the member (its inertia), which these angles name (the closed form's).
+    pub ball_angles: Vec<f64>,
 }
 
-/// `A(Ω)` of the locked undamped rotor linearised about the centred rotor, `m × m`.
-fn stiffness_block(rotor: &Rotor, omega: f64) -> Result<(Vec<f64>, usize, Field)> {
+/// The matrix whose eigenvalues change sign at the critical speeds, for the locked undamped
+/// rotor linearised about the centred rotor: `(matrix, dim, copies, field)`. Turning axes, where
+/// the Jacobian is constant there: `A(Ω)`, `m × m`, each eigenvalue once. Otherwise (supports that
+/// differ by direction) fixed axes, where the balanced locked rotor's linearisation is constant:
+/// `Q(Ω) = −A_f − iΩ B_f − Ω² I` (`λ = iΩ` an eigenvalue of `[[0, I], [A_f, B_f]]` iff `Q` is
+/// singular; `Q = M⁻¹ (K − Ω² M + iΩ² G)`, Hermitian up to `M`, real eigenvalues) as its real
+/// `2m × 2m` embedding `[[Re Q, −Im Q], [Im Q, Re Q]]`, each eigenvalue twice.
+fn stiffness_block(rotor: &Rotor, omega: f64) -> Result<(Vec<f64>, usize, usize, Field)> {
     let locked = locked_rotor(rotor, omega, true)?;
     let f = locked.field(omega)?;
     let n = f.dim();
@@ -419,16 +448,6 @@ fn stiffness_block(rotor: &Rotor, omega: f64) -> Result<(Vec<f64>, usize, Field)
     let x = vec![0.0; n];
     let mut j = vec![0.0; n * n];
     f.jacobian(0.0, &x, &mut j);
-    if let Some(t) = f.period() {
-        let mut j4 = vec![0.0; n * n];
-        f.jacobian(0.25 * t, &x, &mut j4);
-        let big = j.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-        if j.iter().zip(&j4).any(|(a, b)| (a - b).abs() > 1e-9 * big) {
-            return Err(Error::NoLinearisation {
-                reason: "the locked rotor's linearisation turns with the rotor (supports that differ by direction): its critical speeds are not located by this version; `autobal campbell` shows the Floquet exponents".into(),
-            });
-        }
-    }
     // the field is q' = q̇, q̇' = A q + B q̇
     for i in 0..m {
         for k in 0..n {
@@ -438,8 +457,104 @@ fn stiffness_block(rotor: &Rotor, omega: f64) -> Result<(Vec<f64>, usize, Field)
             }
         }
     }
-    let a: Vec<f64> = (0..m).flat_map(|i| j[(m + i) * n..(m + i) * n + m].to_vec()).collect();
-    Ok((a, m, f))
+    let big = j.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    let rotating = match f.period() {
+        None => false,
+        Some(t) => {
+            let mut j4 = vec![0.0; n * n];
+            f.jacobian(0.25 * t, &x, &mut j4);
+            j.iter().zip(&j4).any(|(a, b)| (a - b).abs() > 1e-9 * big)
+        }
+    };
+    if !rotating {
+        let a: Vec<f64> = (0..m).flat_map(|i| j[(m + i) * n..(m + i) * n + m].to_vec()).collect();
+        return Ok((a, m, 1, f));
+    }
+    // fixed axes: constant for the balanced locked rotor (checked at t = 0 and T/4)
+    let t4 = 0.25 * f.period().unwrap_or(0.0);
+    let jf0 = fixed_axes_jacobian(&f, omega, 0.0)?;
+    let jf4 = fixed_axes_jacobian(&f, omega, t4)?;
+    let bigf = jf0.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    if jf0.iter().zip(&jf4).any(|(a, b)| (a - b).abs() > 1e-9 * bigf) {
+        return Err(Error::NoLinearisation {
+            reason: "the locked rotor's linearisation is periodic in both turning and fixed axes (supports that differ by direction, and an inertia that differs by direction: the locked balls and unbalance masses); critical speeds are not defined by one frequency there and are not located; `autobal campbell` shows the Floquet exponents".into(),
+        });
+    }
+    let mut q = vec![0.0; 4 * m * m];
+    let d = 2 * m;
+    for r in 0..m {
+        for c in 0..m {
+            let re = -jf0[(m + r) * n + c] - if r == c { omega * omega } else { 0.0 };
+            let im = -omega * jf0[(m + r) * n + m + c];
+            q[r * d + c] = re;
+            q[r * d + m + c] = -im;
+            q[(m + r) * d + c] = im;
+            q[(m + r) * d + m + c] = re;
+        }
+    }
+    Ok((q, d, 2, f))
+}
+
+/// The Jacobian of `f` (a rotor without balls: every coordinate in rotating pairs `(0, 1)` and,
+/// with the tilt free, `(2, 3)`) at the centred rotor and time `t`, in fixed axes:
+/// `z = T(t) x` with positions `p_f = R p` and rates `v_f = R (v + Ω J p)` (`R` the rotation by
+/// `Ωt`, `J` by a right angle), so `J_f = (Ṫ + T J(t)) T⁻¹`.
+fn fixed_axes_jacobian(f: &Field, omega: f64, t: f64) -> Result<Vec<f64>> {
+    let n = f.dim();
+    let m = n / 2;
+    if m % 2 != 0 {
+        return Err(Error::invalid("critical", "the locked rotor's coordinates do not come in pairs"));
+    }
+    // T is linear in (cos Ωt, sin Ωt): Ṫ = Ω T(−sin, cos)
+    let transform = |c: f64, s: f64| {
+        let mut tm = vec![0.0; n * n];
+        for p in (0..m).step_by(2) {
+            let (a, b) = (p, p + 1);
+            tm[a * n + a] = c;
+            tm[a * n + b] = -s;
+            tm[b * n + a] = s;
+            tm[b * n + b] = c;
+            let (va, vb) = (m + a, m + b);
+            // v_f,a = c (v_a − Ω p_b) − s (v_b + Ω p_a); v_f,b = s (v_a − Ω p_b) + c (v_b + Ω p_a)
+            tm[va * n + va] = c;
+            tm[va * n + vb] = -s;
+            tm[va * n + b] = -c * omega;
+            tm[va * n + a] = -s * omega;
+            tm[vb * n + va] = s;
+            tm[vb * n + vb] = c;
+            tm[vb * n + b] = -s * omega;
+            tm[vb * n + a] = c * omega;
+        }
+        tm
+    };
+    let (s, c) = (omega * t).sin_cos();
+    let tm = transform(c, s);
+    let td: Vec<f64> = transform(-s, c).iter().map(|v| v * omega).collect();
+    let x = vec![0.0; n];
+    let mut j = vec![0.0; n * n];
+    f.jacobian(t, &x, &mut j);
+    // X = Ṫ + T J; J_f = X T⁻¹, i.e. Tᵀ J_fᵀ = Xᵀ
+    let mut xm = td;
+    for r in 0..n {
+        for k in 0..n {
+            let mut acc = 0.0;
+            for l in 0..n {
+                acc += tm[r * n + l] * j[l * n + k];
+            }
+            xm[r * n + k] += acc;
+        }
+    }
+    let tt: Vec<f64> = (0..n * n).map(|i| tm[(i % n) * n + i / n]).collect();
+    let lu = crate::ode::lu::Lu::factored(tt, n).ok_or_else(|| Error::invalid("critical", "singular axes transformation"))?;
+    let mut jf = vec![0.0; n * n];
+    let mut col = vec![0.0; n];
+    for r in 0..n {
+        // row r of J_f is column r of J_fᵀ = T⁻ᵀ (row r of X)ᵀ
+        col.copy_from_slice(&xm[r * n..(r + 1) * n]);
+        lu.solve(&mut col);
+        jf[r * n..(r + 1) * n].copy_from_slice(&col);
+    }
+    Ok(jf)
 }
 
 /// The number of eigenvalues of `A(Ω)` with a positive real part; `None` where the closed form
@@ -452,9 +567,9 @@ fn positive_count(rotor: &Rotor, omega: f64) -> Result<Option<usize>> {
     if has_balls && Rotor::guess(&rotor.field(omega)?).is_none() {
         return Ok(None);
     }
-    let (a, m, _) = stiffness_block(rotor, omega)?;
-    let ev = eigenvalues(&a, m).map_err(|e| Error::invalid("critical", format!("the eigenvalues of the stiffness block did not converge: {e}")))?;
-    Ok(Some(ev.iter().filter(|z| z.re > 0.0).count()))
+    let (a, d, copies, _) = stiffness_block(rotor, omega)?;
+    let ev = eigenvalues(&a, d).map_err(|e| Error::invalid("critical", format!("the eigenvalues of the stiffness block did not converge: {e}")))?;
+    Ok(Some(ev.iter().filter(|z| z.re > 0.0).count().div_ceil(copies)))
 }
 
 /// The critical speeds of `rotor` with its balls locked at balance and no damping, in
@@ -488,7 +603,8 @@ pub fn locked_critical_speeds(rotor: &Rotor, omega_max: f64, samples: usize) -> 
                 }
             }
             let w = 0.5 * (lo + hi);
-            out.push(LockedCriticalSpeed { omega: w, multiplicity: c_lo.abs_diff(c_hi), motion: motion_at(rotor, w)? });
+            let (motion, whirl) = motion_at(rotor, w)?;
+            out.push(LockedCriticalSpeed { omega: w, multiplicity: c_lo.abs_diff(c_hi), motion, whirl });
             if hi >= speeds[k + 1] {
                 break;
             }
@@ -497,20 +613,43 @@ pub fn locked_critical_speeds(rotor: &Rotor, omega_max: f64, samples: usize) -> 
         }
     }
     let gaps = counts.iter().filter(|c| c.is_none()).count();
-    Ok(LockedCriticalSpeeds { speeds: out, omega_max, samples: speeds.len(), unlocked: gaps })
+    let ball_angles = speeds
+        .iter()
+        .zip(&counts)
+        .find(|(_, c)| c.is_some())
+        .and_then(|(&w, _)| {
+            let f = rotor.field(w).ok()?;
+            let x = Rotor::guess(&f)?;
+            Some(match &f {
+                Field::Planar(p) => x[2..2 + p.rotor().n].to_vec(),
+                Field::Spatial(s) => x[s.coords() - s.rotor().balls()..s.coords()].to_vec(),
+            })
+        })
+        .unwrap_or_default();
+    Ok(LockedCriticalSpeeds { speeds: out, omega_max, samples: speeds.len(), unlocked: gaps, ball_angles })
 }
 
-/// What moves most in the standing whirl at a critical speed `w`.
-fn motion_at(rotor: &Rotor, w: f64) -> Result<Motion> {
-    let (a, m, f) = stiffness_block(rotor, w)?;
-    let ev = eigenvalues(&a, m).map_err(|e| Error::invalid("critical", e.to_string()))?;
+/// What moves most in the synchronous whirl at a critical speed `w`, and its sense: from the
+/// null vector of `A` (turning axes: a whirl standing still there is forward) or of `Q` (fixed
+/// axes: `u e^{iΩt}`, forward where `Σ|u_a + i u_b|² > Σ|u_a − i u_b|²` over the pairs).
+fn motion_at(rotor: &Rotor, w: f64) -> Result<(Motion, Whirl)> {
+    let (a, d, copies, f) = stiffness_block(rotor, w)?;
+    let ev = eigenvalues(&a, d).map_err(|e| Error::invalid("critical", e.to_string()))?;
     let zero = ev.iter().copied().min_by(|p, q| p.norm().total_cmp(&q.norm())).unwrap_or_default();
-    let v = mode(&a, m, zero);
-    Ok(match (&f, rotor) {
-        (Field::Spatial(_), Rotor::Spatial(r)) if m >= 4 => {
-            let gyration = (r.rotor.equatorial_moment / r.total_mass()).sqrt();
-            let tr = v[0].norm().max(v[1].norm());
-            let tilt = gyration * v[2].norm().max(v[3].norm());
+    let v = mode(&a, d, zero);
+    let m = d / copies;
+    // a real null vector; for Q's embedding [Re u; Im u]
+    let re: Vec<f64> = v.iter().map(|z| z.re).collect();
+    let real: Vec<f64> = if re.iter().any(|x| *x != 0.0) { re } else { v.iter().map(|z| z.im).collect() };
+    let u: Vec<Complex64> = (0..m).map(|i| if copies == 2 { Complex64::new(real[i], real[m + i]) } else { Complex64::new(real[i], 0.0) }).collect();
+    let gyration = match rotor {
+        Rotor::Spatial(r) => (r.rotor.equatorial_moment / r.total_mass()).sqrt(),
+        Rotor::Planar(_) => 0.0,
+    };
+    let motion = match &f {
+        Field::Spatial(_) if m >= 4 => {
+            let tr = u[0].norm().max(u[1].norm());
+            let tilt = gyration * u[2].norm().max(u[3].norm());
             if tilt > tr {
                 Motion::Tilt
             } else {
@@ -518,7 +657,25 @@ fn motion_at(rotor: &Rotor, w: f64) -> Result<Motion> {
             }
         }
         _ => Motion::Translation,
-    })
+    };
+    let whirl = if copies == 1 {
+        Whirl::Forward
+    } else {
+        let i = Complex64::new(0.0, 1.0);
+        let (mut fw, mut bw) = (0.0, 0.0);
+        for (p, weight) in [(0, 1.0), (2, gyration)] {
+            if p + 1 < m {
+                fw += weight * weight * (u[p] + i * u[p + 1]).norm_sqr();
+                bw += weight * weight * (u[p] - i * u[p + 1]).norm_sqr();
+            }
+        }
+        if fw >= bw {
+            Whirl::Forward
+        } else {
+            Whirl::Backward
+        }
+    };
+    Ok((motion, whirl))
 }
 
 /// The stationary state of `rotor` at `omega` from its closed form (for tests and figures).

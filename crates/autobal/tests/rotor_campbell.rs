@@ -191,3 +191,58 @@ fn floquet_exponents_on_their_branch_continue_the_isotropic_eigenvalues() {
         }
     }
 }
+
+#[test]
+fn critical_speeds_on_supports_that_differ_by_direction() {
+    // Supports stiffer along x by 1.3: the locked rotor's linearisation turns with the rotor, so
+    // the critical speeds come from fixed axes (Q(Ω) = −A_f − iΩB_f − Ω²I singular).
+    // (1) The tilt locked: a mass M_total on Σk_x and Σk_y, critical at sqrt(Σk_x/M) and
+    //     sqrt(Σk_y/M) (closed form), each simple.
+    let mut r = si_rotor(1.3);
+    r.lock_tilt = true;
+    let m = r.total_mass();
+    let kx: f64 = r.supports.iter().map(|s| s.stiffness[0]).sum();
+    let ky: f64 = r.supports.iter().map(|s| s.stiffness[1]).sum();
+    let want = [(ky / m).sqrt(), (kx / m).sqrt()];
+    let got = locked_critical_speeds(&Rotor::Spatial(r), 1.5 * want[1], 600).unwrap();
+    let w: Vec<f64> = got.speeds.iter().map(|s| s.omega).collect();
+    assert_eq!(w.len(), 2, "{w:?} vs {want:?}");
+    for (a, b) in w.iter().zip(want) {
+        assert!((a - b).abs() <= 1e-9 * b, "{a} vs sqrt(k/M) = {b}");
+    }
+    assert!(got.speeds.iter().all(|s| s.multiplicity == 1));
+    // (2) The tilt free, supports differing by 1e-7, and a rotor whose inertia is the same in
+    //     every direction (no balls, no unbalance: locked balls and unbalance masses make it
+    //     differ, and then the linearisation is periodic in both axes): the fixed-axes route
+    //     (translation and tilt pairs rotated into fixed axes) against the turning-axes route of
+    //     the isotropic rotor. Turning axes count a circular whirl standing still as two real
+    //     eigenvalues of A (multiplicity 2); fixed axes as one complex null vector of Q
+    //     (multiplicity 1): the same forward critical speeds, moved by ~1e-7 at most.
+    let bare = |ratio: f64| {
+        let mut r = si_rotor(ratio);
+        r.planes.iter_mut().for_each(|p| p.n = 0);
+        r.unbalances.iter_mut().for_each(|u| u.mass = 0.0);
+        Rotor::Spatial(r)
+    };
+    let iso = locked_critical_speeds(&bare(1.0), 400.0, 800).unwrap();
+    let near = locked_critical_speeds(&bare(1.0 + 1e-7), 400.0, 800).unwrap();
+    // (3) Supports and inertia both differing by direction: said, not guessed.
+    let e = locked_critical_speeds(&Rotor::Spatial(si_rotor(1.3)), 400.0, 100).unwrap_err();
+    assert!(e.to_string().contains("periodic in both"), "{e}");
+    // In fixed axes the backward modes whose frequency equals the speed are critical too (an
+    // unbalance excites them through the supports' anisotropy); in the isotropic limit they are
+    // not excited, and the turning-axes route does not report them: compared are the forward ones.
+    assert!(!iso.speeds.is_empty());
+    assert!(iso.speeds.iter().all(|s| s.whirl == Whirl::Forward));
+    let forward: Vec<_> = near.speeds.iter().filter(|s| s.whirl == Whirl::Forward).collect();
+    assert!(near.speeds.iter().any(|s| s.whirl == Whirl::Backward), "{:?}", near.speeds);
+    assert_eq!(forward.len(), iso.speeds.len(), "iso {:?}, near {:?}", iso.speeds, near.speeds);
+    for (k, s) in iso.speeds.iter().enumerate() {
+        assert_eq!(s.multiplicity, 2);
+        assert_eq!(forward[k].multiplicity, 1);
+        for t in &forward[k..k + 1] {
+            assert!((t.omega - s.omega).abs() <= 1e-7 * s.omega, "{} vs isotropic {}: {:?} {:?}", t.omega, s.omega, iso.speeds, near.speeds);
+            assert_eq!(t.motion, s.motion);
+        }
+    }
+}
