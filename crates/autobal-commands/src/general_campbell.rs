@@ -218,8 +218,9 @@ pub fn campbell_plot(g: &GeneralRotor, c: &RotorCampbell, omega_max: f64) -> Plo
 pub struct GeneralCritical {
     /// The critical speeds with the balls locked at balance, or why they were not located.
     pub locked: std::result::Result<LockedCriticalSpeeds, String>,
-    /// The exact stability of the stationary state over speed.
-    pub stability: RotorStability,
+    /// The exact stability of the stationary state over speed, or why there is none (real
+    /// balls: no linearisation).
+    pub stability: std::result::Result<RotorStability, String>,
     /// 003's necessary ranges in the speed unit of the route (`(lo, hi)`, `hi = None` for
     /// `+∞`), where they apply (one plane, isotropic, no gravity).
     pub necessary: Option<Vec<(f64, Option<f64>)>>,
@@ -235,7 +236,11 @@ pub fn critical(root: &Table, g: &GeneralRotor, omega_max: f64) -> Result<Genera
         Err(e) => return Err(e.into()),
     };
     let samples = if g.rotor.is_periodic() { 50 } else { 200 };
-    let stability = stability_over_speed(&g.rotor, &speed_grid(omega_max, samples)?)?;
+    let stability = match stability_over_speed(&g.rotor, &speed_grid(omega_max, samples)?) {
+        Ok(s) => Ok(s),
+        Err(e @ autobal::Error::NoLinearisation { .. }) => Err(e.to_string()),
+        Err(e) => return Err(e.into()),
+    };
     let necessary = if autobal::config::is_spatial(root) && autobal::config::ignored_by_linear_model(root).is_empty() {
         let cfg = autobal::config::spatial(root)?;
         Some(autobal::spatial::ranges::autobalancing_ranges(&cfg.model).ranges.iter().map(|r| (r.lo * g.omega0, r.hi.map(|h| h * g.omega0))).collect())
@@ -245,7 +250,9 @@ pub fn critical(root: &Table, g: &GeneralRotor, omega_max: f64) -> Result<Genera
     if let Ok(l) = &locked {
         autobal::limits::check_finite("critical.locked", l)?;
     }
-    autobal::limits::check_finite("critical.stability", &stability.stable_ranges)?;
+    if let Ok(st) = &stability {
+        autobal::limits::check_finite("critical.stability", &st.stable_ranges)?;
+    }
     Ok(GeneralCritical { locked, stability, necessary, omega_max })
 }
 
@@ -273,13 +280,21 @@ pub fn critical_json(g: &GeneralRotor, c: &GeneralCritical) -> Value {
             }),
             Err(e) => json!({ "what": LOCKED_WHAT, "speeds": Value::Null, "not_located": e }),
         },
-        "exact_stable_ranges": c.stability.stable_ranges.iter().map(|s| {
-            json!({ "from": s.from, "to": s.to, "from_is_boundary": s.from_is_boundary, "to_is_boundary": s.to_is_boundary, "from_si": to_si(s.from), "to_si": to_si(s.to) })
-        }).collect::<Vec<_>>(),
-        "stationary_state": c.stability.kind,
-        "family_dimension": c.stability.family_dimension,
-        "member_psi": c.stability.member_psi,
     });
+    match &c.stability {
+        Ok(st) => {
+            v["exact_stable_ranges"] = json!(st.stable_ranges.iter().map(|s| {
+                json!({ "from": s.from, "to": s.to, "from_is_boundary": s.from_is_boundary, "to_is_boundary": s.to_is_boundary, "from_si": to_si(s.from), "to_si": to_si(s.to) })
+            }).collect::<Vec<_>>());
+            v["stationary_state"] = json!(st.kind);
+            v["family_dimension"] = json!(st.family_dimension);
+            v["member_psi"] = json!(st.member_psi);
+        }
+        Err(e) => {
+            v["exact_stable_ranges"] = Value::Null;
+            v["stability_not_analysed"] = json!(e);
+        }
+    }
     v["necessary_condition_003"] = match &c.necessary {
         Some(r) => json!({
             "what": "necessary condition for autobalancing (003 eqs (1)-(3)), not sufficient: the exact ranges above decide",
@@ -318,11 +333,21 @@ pub fn critical_table(g: &GeneralRotor, c: &GeneralCritical) -> String {
             let _ = writeln!(s, "  ({} of {} speeds have no balanced state to lock the balls in and were not searched)", l.unlocked, l.samples);
         }
     }
-    let st = &c.stability;
+    let st = match &c.stability {
+        Ok(st) => st,
+        Err(e) => {
+            let _ = writeln!(s, "\nexact stability: not analysed: {e}");
+            return s;
+        }
+    };
     let _ = writeln!(
         s,
         "\nexact stability of the {} (balls free; {}):",
-        if st.kind == Kind::PeriodicOrbit { "stationary periodic orbit" } else { "balanced state" },
+        match (&g.rotor, st.kind) {
+            (_, Kind::PeriodicOrbit) => "stationary periodic orbit",
+            (Rotor::Planar(p), _) if p.s2 != 0.0 => "semi-balanced state (race centre on the axis)",
+            _ => "balanced state",
+        },
         if st.kind == Kind::PeriodicOrbit { "Floquet multipliers" } else { "eigenvalues of the exact Jacobian" }
     );
     if st.stable_ranges.is_empty() {

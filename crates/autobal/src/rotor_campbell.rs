@@ -331,7 +331,9 @@ fn per_speed_omega(p: CampbellPoint) -> f64 {
 /// critical speeds. The planar rotor's balls join its housing (`m2`, at the race centre) as one
 /// mass at their common centre; the spatial rotor's become unbalance masses in their planes.
 pub fn locked_rotor(rotor: &Rotor, omega: f64, undamped: bool) -> Result<Rotor> {
-    let f = rotor.field(omega)?;
+    // the closed form does not depend on the balls' contact and rolling physics (which have no
+    // linearisation): it is taken on point-mass balls, which are locked anyway
+    let f = point_mass_balls(rotor).field(omega)?;
     let guess = Rotor::guess(&f);
     Ok(match rotor {
         Rotor::Planar(p) => {
@@ -375,6 +377,22 @@ pub fn locked_rotor(rotor: &Rotor, omega: f64, undamped: bool) -> Result<Rotor> 
             Rotor::Spatial(q)
         }
     })
+}
+
+/// `rotor` with its balls as the papers' point masses (no contact, no rolling resistance).
+fn point_mass_balls(rotor: &Rotor) -> Rotor {
+    match rotor {
+        Rotor::Planar(p) => {
+            let mut q = p.clone();
+            q.balls = Default::default();
+            Rotor::Planar(q)
+        }
+        Rotor::Spatial(s) => {
+            let mut q = s.clone();
+            q.planes.iter_mut().for_each(|p| p.physics = Default::default());
+            Rotor::Spatial(q)
+        }
+    }
 }
 
 fn no_balance(rotor: &Rotor) -> Error {
@@ -564,7 +582,7 @@ fn positive_count(rotor: &Rotor, omega: f64) -> Result<Option<usize>> {
         Rotor::Planar(p) => p.n > 0,
         Rotor::Spatial(s) => s.balls() > 0,
     };
-    if has_balls && Rotor::guess(&rotor.field(omega)?).is_none() {
+    if has_balls && Rotor::guess(&point_mass_balls(rotor).field(omega)?).is_none() {
         return Ok(None);
     }
     let (a, d, copies, _) = stiffness_block(rotor, omega)?;
@@ -618,7 +636,7 @@ pub fn locked_critical_speeds(rotor: &Rotor, omega_max: f64, samples: usize) -> 
         .zip(&counts)
         .find(|(_, c)| c.is_some())
         .and_then(|(&w, _)| {
-            let f = rotor.field(w).ok()?;
+            let f = point_mass_balls(rotor).field(w).ok()?;
             let x = Rotor::guess(&f)?;
             Some(match &f {
                 Field::Planar(p) => x[2..2 + p.rotor().n].to_vec(),
