@@ -357,7 +357,14 @@ fn run(cli: Cli) -> Result<()> {
 }
 
 /// `campbell` by the general route ([`general_campbell`]): any planar or spatial config.
-fn run_general_campbell(root: &toml::Table, format: Format, lin: LinearArgs, points: Option<usize>, svg: Option<PathBuf>, view: linear::CampbellView) -> Result<()> {
+fn run_general_campbell(
+    root: &toml::Table,
+    format: Format,
+    lin: LinearArgs,
+    points: Option<usize>,
+    svg: Option<PathBuf>,
+    view: linear::CampbellView,
+) -> Result<()> {
     if lin.balls == BallsArg::Locked {
         anyhow::bail!("--balls locked: the general route's Campbell diagram has the balls free (`autobal critical` gives the locked rotor's critical speeds)");
     }

@@ -56,8 +56,10 @@ fn general_campbell_equals_the_12_state_campbell_on_a_one_plane_config() {
     assert_eq!(wa.len(), wb.len());
     for (k, (x, y)) in wa.iter().zip(&wb).enumerate() {
         assert!((x - y).abs() <= 1e-15 * x, "speed {k}: {x} vs {y}");
-        let theirs: Vec<(f64, f64)> = a["lines"].as_array().unwrap().iter().map(|l| (l["modes"][k]["re"].as_f64().unwrap(), l["modes"][k]["im"].as_f64().unwrap())).collect();
-        let ours: Vec<(f64, f64)> = b["lines"].as_array().unwrap().iter().map(|l| (l["points"][k]["re"].as_f64().unwrap(), l["points"][k]["im"].as_f64().unwrap())).collect();
+        let theirs: Vec<(f64, f64)> =
+            a["lines"].as_array().unwrap().iter().map(|l| (l["modes"][k]["re"].as_f64().unwrap(), l["modes"][k]["im"].as_f64().unwrap())).collect();
+        let ours: Vec<(f64, f64)> =
+            b["lines"].as_array().unwrap().iter().map(|l| (l["points"][k]["re"].as_f64().unwrap(), l["points"][k]["im"].as_f64().unwrap())).collect();
         assert_eq!(ours.len(), theirs.len());
         for o in &ours {
             let d = theirs.iter().map(|t| (t.0 - o.0).hypot(t.1 - o.1)).fold(f64::INFINITY, f64::min);

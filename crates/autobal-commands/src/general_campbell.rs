@@ -139,7 +139,8 @@ pub fn campbell_table(g: &GeneralRotor, c: &RotorCampbell) -> String {
         let _ = writeln!(s, "branch: {FLOQUET_BRANCH}");
     }
     let rate = if g.si { "1/s" } else { "ω0" };
-    let _ = writeln!(s, "ν, σ in {rate} (turning axes); fixed f = Ω ± ν of the dominant whirl component (fixed axes, > 0 forward); log dec per fixed-axes cycle");
+    let _ =
+        writeln!(s, "ν, σ in {rate} (turning axes); fixed f = Ω ± ν of the dominant whirl component (fixed axes, > 0 forward); log dec per fixed-axes cycle");
     let n = c.omega.len();
     let mut at = vec![0, n / 4, n / 2, 3 * n / 4, n.saturating_sub(1)];
     at.dedup();
@@ -300,7 +301,9 @@ pub fn critical_json(g: &GeneralRotor, c: &GeneralCritical) -> Value {
             "what": "necessary condition for autobalancing (003 eqs (1)-(3)), not sufficient: the exact ranges above decide",
             "ranges": r.iter().map(|(lo, hi)| json!({ "from": lo, "to": hi })).collect::<Vec<_>>(),
         }),
-        None => json!({ "what": "003's necessary condition does not apply to this configuration (it assumes one balancer plane, supports equal in x and y, no gravity)", "ranges": Value::Null }),
+        None => {
+            json!({ "what": "003's necessary condition does not apply to this configuration (it assumes one balancer plane, supports equal in x and y, no gravity)", "ranges": Value::Null })
+        }
     };
     v
 }
@@ -317,7 +320,15 @@ pub fn critical_table(g: &GeneralRotor, c: &GeneralCritical) -> String {
         Ok(l) => {
             for (i, k) in l.speeds.iter().enumerate() {
                 let motion = serde_json::to_string(&k.motion).unwrap_or_default();
-                let _ = writeln!(s, "  {:>2}. {}  {} whirl, {} (multiplicity {})", i + 1, speed_text(g, k.omega), whirl_name(k.whirl), motion.trim_matches('"'), k.multiplicity);
+                let _ = writeln!(
+                    s,
+                    "  {:>2}. {}  {} whirl, {} (multiplicity {})",
+                    i + 1,
+                    speed_text(g, k.omega),
+                    whirl_name(k.whirl),
+                    motion.trim_matches('"'),
+                    k.multiplicity
+                );
             }
         }
         Err(e) => {
@@ -327,7 +338,11 @@ pub fn critical_table(g: &GeneralRotor, c: &GeneralCritical) -> String {
     if let Ok(l) = &c.locked {
         if !l.ball_angles.is_empty() {
             let deg: Vec<String> = l.ball_angles.iter().map(|p| format!("{:.2}°", p.to_degrees().rem_euclid(360.0))).collect();
-            let _ = writeln!(s, "  balls locked at {} (with 3 or more balls in a plane the balanced states form a family: these speeds are the named member's)", deg.join(", "));
+            let _ = writeln!(
+                s,
+                "  balls locked at {} (with 3 or more balls in a plane the balanced states form a family: these speeds are the named member's)",
+                deg.join(", ")
+            );
         }
         if l.unlocked > 0 {
             let _ = writeln!(s, "  ({} of {} speeds have no balanced state to lock the balls in and were not searched)", l.unlocked, l.samples);

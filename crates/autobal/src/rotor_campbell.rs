@@ -289,7 +289,7 @@ pub fn track(per_speed: &[Option<Vec<CampbellPoint>>]) -> Vec<CampbellLine> {
             let last = l.points.last().copied().flatten()?;
             match l.points.len().checked_sub(2).and_then(|i| l.points[i]) {
                 Some(p2) if k >= 2 => {
-                    let (w0, w1, w2) = (per_speed_omega(p2), last.omega, vals.first().map_or(last.omega, |p| p.omega));
+                    let (w0, w1, w2) = (p2.omega, last.omega, vals.first().map_or(last.omega, |p| p.omega));
                     let t = if w1 != w0 { (w2 - w1) / (w1 - w0) } else { 0.0 };
                     Some(z(&last) + (z(&last) - z(&p2)) * t)
                 }
@@ -320,10 +320,6 @@ pub fn track(per_speed: &[Option<Vec<CampbellPoint>>]) -> Vec<CampbellLine> {
         }
     }
     lines
-}
-
-fn per_speed_omega(p: CampbellPoint) -> f64 {
-    p.omega
 }
 
 /// The rotor with its balls locked where the closed form at speed `omega` puts them (each ball a
@@ -520,7 +516,7 @@ fn stiffness_block(rotor: &Rotor, omega: f64) -> Result<(Vec<f64>, usize, usize,
 fn fixed_axes_jacobian(f: &Field, omega: f64, t: f64) -> Result<Vec<f64>> {
     let n = f.dim();
     let m = n / 2;
-    if m % 2 != 0 {
+    if !m.is_multiple_of(2) {
         return Err(Error::invalid("critical", "the locked rotor's coordinates do not come in pairs"));
     }
     // T is linear in (cos Ωt, sin Ωt): Ṫ = Ω T(−sin, cos)
