@@ -2,7 +2,7 @@
 //! `autobal-commands`, which reads the config, runs the library's analyses and writes tables,
 //! JSON, figures and the HTML report.
 
-use autobal_commands::{config, figures, general, linear, map, outfile, output, parquet, report, sim, spatial_sim, sweep};
+use autobal_commands::{config, figures, general, general_campbell, linear, map, outfile, output, parquet, report, sim, spatial_sim, sweep};
 
 use anyhow::Result;
 use autobal::control::Control;
@@ -118,6 +118,14 @@ enum Command {
         /// Output on standard output: a table to read or JSON
         #[arg(long, value_enum, default_value = "table")]
         format: Format,
+        /// `auto`: paper 000's closed forms where they represent the config, else the general
+        /// route (locked critical speeds from the nonlinear equations' linearisation, exact
+        /// stability ranges); `general`: the general route always
+        #[arg(long, value_enum, default_value = "auto")]
+        route: RouteArg,
+        /// Upper end of the general route's speed axis (a speed with its unit, or a bare Ω)
+        #[arg(long, allow_negative_numbers = true, value_name = "SPEED")]
+        omega_max: Option<String>,
     },
     /// Speed ranges where autobalancing is possible (003, eqs (1)-(3))
     Ranges {
@@ -158,9 +166,9 @@ enum Command {
         format: Format,
         #[command(flatten)]
         lin: LinearArgs,
-        /// Number of speeds
-        #[arg(long, default_value_t = 300)]
-        points: usize,
+        /// Number of speeds (default 300; 60 where the general route shoots periodic orbits)
+        #[arg(long)]
+        points: Option<usize>,
         /// Write the figure: PREFIX.svg (`--view fixed`) or PREFIX_rotating.svg and
         /// PREFIX_fixed.svg (`--view components`)
         #[arg(long, value_name = "PREFIX")]
@@ -174,6 +182,11 @@ enum Command {
         /// speeds, e.g. 1,2
         #[arg(long, value_delimiter = ',', default_value = "1")]
         harmonics: Vec<u32>,
+        /// `auto`: paper 000's 12-state model where it represents the config, else the general
+        /// route (eigenvalues, or Floquet exponents of the periodic orbit, of the nonlinear
+        /// equations' exact linearisation); `general`: the general route always
+        #[arg(long, value_enum, default_value = "auto")]
+        route: RouteArg,
     },
     /// Stability map over two parameters: margin heatmap with exact and necessary boundaries (SVG, PNG, CSV)
     Map {
@@ -305,7 +318,17 @@ fn run(cli: Cli, control: &Control) -> Result<()> {
             output::check_results(&cfg)?;
             emit(format, output::inertia_json(&cfg), output::inertia_table(&cfg))
         }
-        Command::Critical { common, format } => {
+        Command::Critical { common, format, route, omega_max } => {
+            let (root, _) = config::read_set(common.config.as_deref(), &common.set)?;
+            if route == RouteArg::General || general::needs_general_route(&root) {
+                let g = general::rotor_of(&root)?;
+                let w = general_campbell::omega_max(&root, &g, omega_max.as_deref())?;
+                let c = general_campbell::critical(&root, &g, w)?;
+                return emit(format, general_campbell::critical_json(&g, &c), general_campbell::critical_table(&g, &c));
+            }
+            if omega_max.is_some() {
+                anyhow::bail!("--omega-max: only the general route (--route general) takes a speed axis; eq (16) gives every critical speed");
+            }
             let cfg = config::load_analytic("critical", common.config.as_deref(), &common.set)?;
             output::check_results(&cfg)?;
             emit(format, output::critical_json(&cfg), output::critical_table(&cfg))
@@ -340,7 +363,12 @@ fn run(cli: Cli, control: &Control) -> Result<()> {
             }
             emit(format, linear::stability_json(&cfg, &c, lin.balls.into()), linear::stability_table(&cfg, &c, lin.balls.into()))
         }
-        Command::Campbell { common, format, lin, points, svg, view, harmonics } => {
+        Command::Campbell { common, format, lin, points, svg, view, harmonics, route } => {
+            let (root, _) = config::read_set(common.config.as_deref(), &common.set)?;
+            if route == RouteArg::General || general::needs_general_route(&root) {
+                return run_general_campbell(&root, format, lin, points, svg, view);
+            }
+            let points = points.unwrap_or(300);
             let cfg = config::load_analytic("campbell", common.config.as_deref(), &common.set)?;
             let w = linear::omega_max(&cfg, lin.omega_max.as_deref())?;
             if lin.omega_max.is_some() {
@@ -376,6 +404,39 @@ fn run(cli: Cli, control: &Control) -> Result<()> {
             output::print(&format!("report written to {}\n", index.display()))
         }
     }
+}
+
+/// `campbell` by the general route ([`general_campbell`]): any planar or spatial config.
+fn run_general_campbell(
+    root: &toml::Table,
+    format: Format,
+    lin: LinearArgs,
+    points: Option<usize>,
+    svg: Option<PathBuf>,
+    view: linear::CampbellView,
+) -> Result<()> {
+    if lin.balls == BallsArg::Locked {
+        anyhow::bail!("--balls locked: the general route's Campbell diagram has the balls free (`autobal critical` gives the locked rotor's critical speeds)");
+    }
+    if view == linear::CampbellView::Components {
+        anyhow::bail!("--view components: the general route draws the fixed-axes view only");
+    }
+    let g = general::rotor_of(root)?;
+    let points = points.unwrap_or(if g.rotor.is_periodic() { 60 } else { 300 });
+    if !(3..=100_000).contains(&points) {
+        anyhow::bail!("--points: must lie between 3 and 100000 on the general route, got {points}");
+    }
+    let w = general_campbell::omega_max(root, &g, lin.omega_max.as_deref())?;
+    let svg = svg.map(|p| outfile::resolve(&p, "campbell"));
+    let svg = svg.map(|p| linear::campbell_svg_paths(&p, linear::CampbellView::Fixed).remove(0));
+    if let Some(p) = &svg {
+        outfile::Outputs::new().output("--svg", p).check()?;
+    }
+    let c = general_campbell::campbell(&g, w, points)?;
+    if let Some(p) = &svg {
+        outfile::write_atomic("--svg", p, general_campbell::campbell_plot(&g, &c, w).to_svg())?;
+    }
+    emit(format, general_campbell::campbell_json(&g, &c, w), general_campbell::campbell_table(&g, &c))
 }
 
 /// `stability` by the general route ([`general`]): any planar or spatial config.

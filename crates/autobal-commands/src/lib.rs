@@ -20,6 +20,7 @@ pub mod figures_api;
 #[cfg(test)]
 mod fuzz;
 pub mod general;
+pub mod general_campbell;
 pub mod linear;
 pub mod map;
 pub mod mapfig;

@@ -112,6 +112,7 @@ pub mod ode;
 pub mod paths;
 pub mod planar;
 pub mod reports;
+pub mod rotor_campbell;
 pub mod rotor_map;
 pub mod rotor_stability;
 pub mod simulation;

@@ -1,0 +1,701 @@
+//! The Campbell diagram and the locked critical speeds of **every rotor autobal can run**
+//! (issue "Analyse every rotor", §3): the general route of `autobal campbell` and
+//! `autobal critical`, through the model-agnostic pipeline of [`crate::analysis`] on the
+//! models' own equations ([`Rotor`]: the planar rotor, the spatial rotor with one or two ball
+//! planes, couple unbalance, supports that differ by direction, gravity).
+//!
+//! # Campbell diagram ([`campbell_over_speed`])
+//! At each speed the stationary state is found as `stability` finds it
+//! ([`crate::rotor_stability`]: Newton from the closed-form balanced state, else from the
+//! previous speed's state; shooting for a periodic orbit). Its linearisation gives, in axes
+//! turning with the rotor:
+//! - **an equilibrium**: the eigenvalues `λ = σ + iν` of the exact (AD) Jacobian;
+//! - **a periodic orbit** (supports that differ by direction, gravity across the axis): the
+//!   Floquet exponents `ρ = ln μ / T` of the monodromy matrix's multipliers `μ`. Their
+//!   imaginary parts are defined only modulo `Ω = 2π/T`. **Branch**: with `v` the multiplier's
+//!   eigenvector (the Floquet mode's state at `t = 0`, scaled by the field's
+//!   [`scales`](crate::analysis::VectorField::scales)), the branch `ρ = ρ₀ + i k Ω` (`ρ₀` the
+//!   principal logarithm) is the one whose `Im ρ` is nearest `Im` of the Rayleigh quotient
+//!   `vᴴ J(0) v / vᴴ v` of the Jacobian at the orbit's start. A Floquet mode is
+//!   `p(t) e^{ρt}` with `p` periodic, and `ρ v + ṗ(0) = J(0) v`: when the field is autonomous
+//!   (`ṗ = 0`) the quotient is the eigenvalue itself, so the branch continues the equilibrium
+//!   case exactly as the anisotropy or gravity vanishes and is `λ` to the Floquet accuracy on a
+//!   nearly isotropic rotor (tests/rotor_campbell.rs); for a strongly periodic mode (`p` with
+//!   several harmonics) it is a convention, said in every output.
+//!
+//! Eigenvalues are tracked into continuous lines by matching each speed's values to the
+//! previous lines' linear extrapolations, nearest pair first. The fixed-axes view is that of
+//! [`crate::spatial::campbell`]: in turning axes a mode moves the rotor's circular coordinate
+//! `ξ + iη` (and, for the spatial rotor, the spin axis' tip `θ − iδ` times the radius of
+//! gyration) as components at `Ω + ν` (amplitude `|x_ξ + i x_η|`) and `Ω − ν`
+//! (`|x_ξ − i x_η|`); the curve's signed fixed-axes frequency `f` is that of the dominant
+//! component (`f > 0` forward whirl, `f < 0` backward), the log decrement per fixed-axes cycle
+//! `δ = −2π σ/|f|`. Modes with no rotor motion (the balls alone) have no whirl.
+//!
+//! # Critical speeds ([`locked_critical_speeds`])
+//! The rotor with its balls **locked** at the closed-form balanced position (each ball becomes
+//! a point mass of the rotor: [`locked_rotor`]) and **without damping** (as 000 eq (16)),
+//! linearised about the centred rotor (exact AD Jacobian `[[0, I], [A, B]]` of the model's
+//! field). A critical speed is where a natural frequency in fixed axes equals the speed:
+//! - **turning axes**, where this Jacobian does not depend on time (supports equal in every
+//!   direction; gravity moves the stationary state, the sag, but not this linearisation, which
+//!   is checked: `J(0) = J(T/4)` to 1e-9): a forward whirl at `Ω` stands still in turning axes,
+//!   `A(Ω) q = 0`. `A = M⁻¹ S` (`S` symmetric without damping) has real eigenvalues; the number
+//!   of positive ones changes exactly at the critical speeds, by the number crossing zero (2 for
+//!   the circular whirl of an axisymmetric rotor, 1 for each of the split pair of a rotor whose
+//!   inertia differs by direction);
+//! - **fixed axes**, where the supports differ by direction (the Jacobian turns with the rotor):
+//!   the coordinate pairs (translation, tilt) are rotated into fixed axes, where the locked
+//!   rotor's linearisation `[[0, I], [A_f, B_f]]` is constant if its inertia is the same in
+//!   every direction (checked at `t = 0` and `T/4`); `λ = iΩ` is an eigenvalue iff
+//!   `Q(Ω) = −A_f − iΩ B_f − Ω² I = M⁻¹(K − Ω² M + iΩ² G)` is singular, whose eigenvalues are
+//!   real (Hermitian up to `M`): the same count. Here backward modes whose frequency equals the
+//!   speed are critical too (the supports' anisotropy lets an unbalance excite them), each
+//!   labelled by its whirl. Where the inertia **and** the supports differ by direction (locked
+//!   balls or unbalance masses on anisotropic supports) the linearisation is periodic in both
+//!   frames, no single frequency defines a critical speed, and
+//!   [`crate::Error::NoLinearisation`] says so (the Floquet Campbell diagram still applies).
+//!
+//! The changes of the count are bracketed on a grid and bisected to `1e-12` relative.
+
+use crate::analysis::{mode, stability, stationary, stationary_near, Kind, NewtonOptions, StationaryState, VectorField};
+use crate::error::{Error, Result};
+use crate::linalg::eigen_dyn::eigenvalues;
+use crate::rotor_stability::{Field, Rotor};
+use crate::spatial::dynamics::PointMass;
+use num_complex::Complex64;
+use serde::Serialize;
+
+/// The branch rule of the Floquet exponents' imaginary parts, as every output states it.
+pub const FLOQUET_BRANCH: &str = "Floquet exponents ρ = ln μ / T are defined modulo iΩ: the branch shown is the one whose Im ρ is nearest Im of the Rayleigh quotient vᴴJ(0)v/vᴴv of the Floquet mode's start vector v (exact continuation of the equilibrium eigenvalues as the anisotropy or gravity vanishes; a convention for strongly periodic modes)";
+
+/// Whirl direction in fixed axes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Whirl {
+    /// `f > 0`: the mode whirls with the rotor.
+    Forward,
+    /// `f < 0`: against it.
+    Backward,
+    /// No rotor motion (a ball mode), or `f = 0`.
+    None,
+}
+
+/// One eigenvalue (or Floquet exponent) at one speed.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct CampbellPoint {
+    /// Speed `Ω` (rad/s, or the papers' unit).
+    pub omega: f64,
+    /// `σ = Re λ` in turning axes (1/s).
+    pub re: f64,
+    /// `ν = Im λ` in turning axes (for a periodic orbit on the branch of [`FLOQUET_BRANCH`]).
+    pub im: f64,
+    /// Signed natural frequency in fixed axes `f = Ω ± ν` of the dominant circular component
+    /// (rad/s; `> 0` forward).
+    pub fixed_frequency: f64,
+    /// Share of the forward component `|x_ξ + i x_η|²` in the rotor's amplitude squared (½
+    /// where the rotor does not move).
+    pub forward_share: f64,
+    /// Whirl direction in fixed axes.
+    pub whirl: Whirl,
+    /// Logarithmic decrement per fixed-axes cycle `−2π σ/|f|` (`None` where `|f|` is 0).
+    pub log_decrement: Option<f64>,
+    /// A structural eigenvalue (the family of balanced states: 0, multiplier 1), not a mode.
+    pub structural: bool,
+}
+
+/// One tracked line.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CampbellLine {
+    /// One entry per speed of the diagram (`None` where no stationary state was found).
+    pub points: Vec<Option<CampbellPoint>>,
+}
+
+/// The Campbell diagram of the general route ([`campbell_over_speed`]).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RotorCampbell {
+    /// `"planar"` or `"spatial"`.
+    pub model: &'static str,
+    /// Equilibrium (eigenvalues) or periodic orbit (Floquet exponents).
+    pub kind: Kind,
+    /// The speeds.
+    pub omega: Vec<f64>,
+    /// The tracked lines (one per eigenvalue).
+    pub lines: Vec<CampbellLine>,
+    /// Why a speed has no state, per speed (`None` where it has one).
+    pub failures: Vec<Option<String>>,
+}
+
+/// The eigenvalues (or Floquet exponents) of the stationary state at one speed, with their
+/// fixed-axes data, unsorted: `field` at its speed `omega`, `state` its stationary state.
+pub fn spectrum_at(rotor: &Rotor, field: &Field, omega: f64, state: &StationaryState) -> Result<Vec<CampbellPoint>> {
+    let st = stability(field, state).map_err(|e| Error::invalid("campbell", e.to_string()))?;
+    let n = field.dim();
+    let scales = field.scales();
+    let jac0 = {
+        let mut j = vec![0.0; n * n];
+        field.jacobian(0.0, &state.x, &mut j);
+        j
+    };
+    let pairs = whirl_pairs(rotor, field);
+    let mut out = Vec::with_capacity(n);
+    let all = st.spectrum.iter().map(|e| (e.complex(), false)).chain(st.structural.iter().map(|e| (e.complex(), true)));
+    for (value, structural) in all {
+        let v = mode(&st.matrix, n, value);
+        let lam = match state.period {
+            None => value,
+            Some(t) => {
+                let rho0 = Complex64::new(value.norm().max(f64::MIN_POSITIVE).ln(), value.arg()) / t;
+                // the Rayleigh quotient of J(0) in scaled coordinates
+                let w: Vec<Complex64> = v.iter().zip(&scales).map(|(z, s)| z / s).collect();
+                let (mut num, mut den) = (Complex64::new(0.0, 0.0), 0.0);
+                for i in 0..n {
+                    let mut jw = Complex64::new(0.0, 0.0);
+                    for j in 0..n {
+                        jw += jac0[i * n + j] * scales[j] / scales[i] * w[j];
+                    }
+                    num += w[i].conj() * jw;
+                    den += w[i].norm_sqr();
+                }
+                let q = if den > 0.0 { num / den } else { rho0 };
+                let big = 2.0 * std::f64::consts::PI / t;
+                let k = ((q.im - rho0.im) / big).round();
+                Complex64::new(rho0.re, rho0.im + k * big)
+            }
+        };
+        let (fwd, bwd) = pairs.iter().fold((0.0, 0.0), |(f, b), &(a, bi, sign, w)| {
+            let (xa, xb) = (v[a] * w, v[bi] * (sign * w));
+            let i = Complex64::new(0.0, 1.0);
+            (f + (xa + i * xb).norm_sqr(), b + (xa - i * xb).norm_sqr())
+        });
+        let total = fwd + bwd;
+        let vmax = v.iter().zip(&scales).map(|(z, s)| z.norm() / s).fold(0.0, f64::max);
+        // the rotor's share of the mode, in scaled units: below 1e-9 it is a ball mode
+        let rotor_amp = pairs.iter().map(|&(a, b, _, _)| (v[a].norm() / scales[a]).max(v[b].norm() / scales[b])).fold(0.0, f64::max);
+        let moves = total > 0.0 && rotor_amp > 1e-9 * vmax;
+        let share = if moves { fwd / total } else { 0.5 };
+        let f = if share >= 0.5 { omega + lam.im } else { omega - lam.im };
+        let whirl = if !moves || f == 0.0 {
+            Whirl::None
+        } else if f > 0.0 {
+            Whirl::Forward
+        } else {
+            Whirl::Backward
+        };
+        out.push(CampbellPoint {
+            omega,
+            re: lam.re,
+            im: lam.im,
+            fixed_frequency: f,
+            forward_share: share,
+            whirl,
+            log_decrement: (f.abs() > 0.0).then(|| -2.0 * std::f64::consts::PI * lam.re / f.abs()),
+            structural,
+        });
+    }
+    Ok(out)
+}
+
+/// The rotor's circular coordinate pairs `(a, b, sign, weight)`: the whirl is `x_a + i sign x_b`
+/// times `weight` (a length per unit of the coordinate, so that pairs add up in metres).
+fn whirl_pairs(rotor: &Rotor, field: &Field) -> Vec<(usize, usize, f64, f64)> {
+    match (rotor, field) {
+        (_, Field::Planar(_)) => vec![(0, 1, 1.0, 1.0)],
+        (Rotor::Spatial(r), Field::Spatial(s)) => {
+            let mut p = vec![(0, 1, 1.0, 1.0)];
+            if s.coords() - r.balls() == 4 {
+                // tilt δ about x, then θ about y': the axis' tip moves by (θ, −δ) per unit length
+                let gyration = (r.rotor.equatorial_moment / r.total_mass()).sqrt();
+                p.push((3, 2, -1.0, gyration));
+            }
+            p
+        }
+        _ => vec![(0, 1, 1.0, 1.0)],
+    }
+}
+
+/// Newton's options of the general route (as [`crate::rotor_stability::stability_over_speed`]).
+fn newton_options(periodic: bool) -> NewtonOptions {
+    let mut o = NewtonOptions::default();
+    if periodic {
+        o.max_iterations = 20;
+        o.rtol = 1e-10;
+    }
+    o
+}
+
+/// The Campbell diagram of `rotor` over `speeds` (module docs): at each speed the stationary
+/// state (closed form first, then the previous speed's state), its eigenvalues or Floquet
+/// exponents with their fixed-axes data, tracked into lines.
+pub fn campbell_over_speed(rotor: &Rotor, speeds: &[f64]) -> Result<RotorCampbell> {
+    if speeds.is_empty() {
+        return Err(Error::invalid("speeds", "no speed to analyse"));
+    }
+    if let Some(w) = speeds.iter().find(|w| !(w.is_finite() && **w != 0.0)) {
+        return Err(Error::invalid("speeds", format!("{w} is not a finite non-zero speed")));
+    }
+    let first = rotor.field(speeds[0])?;
+    let kind = if first.period().is_some() { Kind::PeriodicOrbit } else { Kind::Equilibrium };
+    let opts = newton_options(kind == Kind::PeriodicOrbit);
+    let mut previous: Option<StationaryState> = None;
+    let mut per_speed: Vec<Option<Vec<CampbellPoint>>> = Vec::with_capacity(speeds.len());
+    let mut failures = Vec::with_capacity(speeds.len());
+    for &w in speeds {
+        let f = rotor.field(w)?;
+        let guess = Rotor::guess(&f);
+        let near = previous.as_ref().map(|p| p.x.clone());
+        let hint = previous.as_ref().and_then(|p| p.monodromy.clone());
+        let mut result = Err(match no_balance(rotor) {
+            Error::InvalidParameter { reason, .. } => reason,
+            e => e.to_string(),
+        });
+        for start in [guess, near].into_iter().flatten() {
+            match stationary_near(&f, &start, hint.as_deref(), &opts) {
+                Ok(s) => {
+                    result = Ok(s);
+                    break;
+                }
+                Err(e) => result = Err(e.to_string()),
+            }
+        }
+        match result.and_then(|s| spectrum_at(rotor, &f, w, &s).map(|p| (s, p)).map_err(|e| e.to_string())) {
+            Ok((s, p)) => {
+                previous = Some(s);
+                per_speed.push(Some(p));
+                failures.push(None);
+            }
+            Err(e) => {
+                previous = None;
+                per_speed.push(None);
+                failures.push(Some(e));
+            }
+        }
+    }
+    Ok(RotorCampbell { model: rotor.model_name(), kind, omega: speeds.to_vec(), lines: track(&per_speed), failures })
+}
+
+/// Continuous lines through each speed's values: each line's next value predicted by linear
+/// extrapolation of its last two, pairs matched nearest first.
+pub fn track(per_speed: &[Option<Vec<CampbellPoint>>]) -> Vec<CampbellLine> {
+    let n = per_speed.iter().flatten().map(|v| v.len()).max().unwrap_or(0);
+    let mut lines: Vec<CampbellLine> = (0..n).map(|_| CampbellLine { points: Vec::with_capacity(per_speed.len()) }).collect();
+    let z = |p: &CampbellPoint| Complex64::new(p.re, p.im);
+    for (k, vals) in per_speed.iter().enumerate() {
+        let Some(vals) = vals else {
+            lines.iter_mut().for_each(|l| l.points.push(None));
+            continue;
+        };
+        let predict = |l: &CampbellLine| -> Option<Complex64> {
+            let last = l.points.last().copied().flatten()?;
+            match l.points.len().checked_sub(2).and_then(|i| l.points[i]) {
+                Some(p2) if k >= 2 => {
+                    let (w0, w1, w2) = (p2.omega, last.omega, vals.first().map_or(last.omega, |p| p.omega));
+                    let t = if w1 != w0 { (w2 - w1) / (w1 - w0) } else { 0.0 };
+                    Some(z(&last) + (z(&last) - z(&p2)) * t)
+                }
+                _ => Some(z(&last)),
+            }
+        };
+        let preds: Vec<Option<Complex64>> = lines.iter().map(predict).collect();
+        let mut cand: Vec<(f64, usize, usize)> = vec![];
+        for (li, p) in preds.iter().enumerate() {
+            for (vi, v) in vals.iter().enumerate() {
+                let d = p.map_or(f64::INFINITY, |p| (p - z(v)).norm());
+                cand.push((d, li, vi));
+            }
+        }
+        cand.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)).then(a.2.cmp(&b.2)));
+        let mut line_used = vec![false; n];
+        let mut val_used = vec![false; vals.len()];
+        let mut assigned: Vec<Option<CampbellPoint>> = vec![None; n];
+        for (_, li, vi) in cand {
+            if !line_used[li] && !val_used[vi] {
+                line_used[li] = true;
+                val_used[vi] = true;
+                assigned[li] = Some(vals[vi]);
+            }
+        }
+        for (l, a) in lines.iter_mut().zip(assigned) {
+            l.points.push(a);
+        }
+    }
+    lines
+}
+
+/// The rotor with its balls locked where the closed form at speed `omega` puts them (each ball a
+/// point mass of the rotor) and, with `undamped`, no support damping: the rotor of the
+/// critical speeds. The planar rotor's balls join its housing (`m2`, at the race centre) as one
+/// mass at their common centre; the spatial rotor's become unbalance masses in their planes.
+pub fn locked_rotor(rotor: &Rotor, omega: f64, undamped: bool) -> Result<Rotor> {
+    // the closed form does not depend on the balls' contact and rolling physics (which have no
+    // linearisation): it is taken on point-mass balls, which are locked anyway
+    let f = point_mass_balls(rotor).field(omega)?;
+    let guess = Rotor::guess(&f);
+    Ok(match rotor {
+        Rotor::Planar(p) => {
+            let mut q = p.clone();
+            if p.n > 0 {
+                let x = guess.ok_or_else(|| no_balance(rotor))?;
+                let e = Complex64::from_polar(p.s2, p.gamma);
+                let balls: Complex64 = x[2..2 + p.n].iter().map(|&psi| e + Complex64::from_polar(p.r, psi)).sum();
+                let m = p.m2 + p.n as f64 * p.m3;
+                let centre = (e * p.m2 + balls * p.m3) / m;
+                q.m2 = m;
+                q.s2 = centre.norm();
+                q.gamma = if centre.norm() > 0.0 { centre.arg() } else { 0.0 };
+                q.n = 0;
+            }
+            if undamped {
+                q.c = 0.0;
+            }
+            Rotor::Planar(q)
+        }
+        Rotor::Spatial(s) => {
+            let mut q = s.clone();
+            if s.balls() > 0 {
+                let x = guess.ok_or_else(|| no_balance(rotor))?;
+                let Field::Spatial(sf) = &f else { unreachable!("a spatial rotor's field is spatial") };
+                let m = sf.coords();
+                let mut psi = x[m - s.balls()..m].iter();
+                for plane in q.planes.iter_mut() {
+                    for _ in 0..plane.n {
+                        let angle = psi.next().copied().unwrap_or(0.0);
+                        q.unbalances.push(PointMass { mass: plane.ball_mass, radius: plane.race_radius, angle, z: plane.z });
+                    }
+                    plane.n = 0;
+                }
+            }
+            if undamped {
+                for sup in q.supports.iter_mut() {
+                    sup.damping = [0.0, 0.0];
+                }
+            }
+            Rotor::Spatial(q)
+        }
+    })
+}
+
+/// `rotor` with its balls as the papers' point masses (no contact, no rolling resistance).
+fn point_mass_balls(rotor: &Rotor) -> Rotor {
+    match rotor {
+        Rotor::Planar(p) => {
+            let mut q = p.clone();
+            q.balls = Default::default();
+            Rotor::Planar(q)
+        }
+        Rotor::Spatial(s) => {
+            let mut q = s.clone();
+            q.planes.iter_mut().for_each(|p| p.physics = Default::default());
+            Rotor::Spatial(q)
+        }
+    }
+}
+
+fn no_balance(rotor: &Rotor) -> Error {
+    Error::invalid(
+        "balancer",
+        match rotor {
+            Rotor::Planar(_) => "no semi-balanced state to lock the balls in: the balls cannot supply the unbalance (|B| > n m3 r)",
+            Rotor::Spatial(_) => "no balanced state to lock the balls in: the balls' capacity Σ m R of a plane is below the unbalance it must cancel",
+        },
+    )
+}
+
+/// What moves most at a critical speed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Motion {
+    /// Translation of the rotor (the tilt's tip motion, at the radius of gyration, smaller).
+    Translation,
+    /// Tilt of the rotor.
+    Tilt,
+}
+
+/// A critical speed of the locked rotor.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct LockedCriticalSpeed {
+    /// The speed (rad/s, or the papers' unit `ω0`).
+    pub omega: f64,
+    /// How many eigenvalues cross zero there: in turning axes 2 for the circular whirl of an
+    /// axisymmetric rotor, 1 for one of the split pair of a rotor whose inertia differs by
+    /// direction; in fixed axes 1 per (elliptical) whirl.
+    pub multiplicity: usize,
+    /// What moves most in the synchronous whirl (tilt at the radius of gyration).
+    pub motion: Motion,
+    /// Forward (the rotor's own sense: what an unbalance excites on supports equal in every
+    /// direction) or backward (a backward mode whose frequency equals the speed: excited by an
+    /// unbalance only through supports that differ by direction).
+    pub whirl: Whirl,
+}
+
+/// The critical speeds of the locked rotor up to `omega_max` ([`locked_critical_speeds`]).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct LockedCriticalSpeeds {
+    /// Ascending.
+    pub speeds: Vec<LockedCriticalSpeed>,
+    /// The top of the speed range searched.
+    pub omega_max: f64,
+    /// The grid's number of speeds (a crossing and its return within one grid step cancel in
+    /// the count and are missed).
+    pub samples: usize,
+    /// Speeds of the grid where the closed form has no balanced state to lock the balls in
+    /// (too little capacity; paper 004's eccentric race at low speed): not searched.
+    pub unlocked: usize,
+    /// The balls' locked angles (rad, all planes in order) at the first speed searched: with
+    /// `n ≥ 3` balls in a plane the balanced states form a family, and the critical speeds
+    /// depend on the member (its inertia), which these angles name (the closed form's).
+    pub ball_angles: Vec<f64>,
+}
+
+/// The matrix whose eigenvalues change sign at the critical speeds, for the locked undamped
+/// rotor linearised about the centred rotor: `(matrix, dim, copies, field)`. Turning axes, where
+/// the Jacobian is constant there: `A(Ω)`, `m × m`, each eigenvalue once. Otherwise (supports that
+/// differ by direction) fixed axes, where the balanced locked rotor's linearisation is constant:
+/// `Q(Ω) = −A_f − iΩ B_f − Ω² I` (`λ = iΩ` an eigenvalue of `[[0, I], [A_f, B_f]]` iff `Q` is
+/// singular; `Q = M⁻¹ (K − Ω² M + iΩ² G)`, Hermitian up to `M`, real eigenvalues) as its real
+/// `2m × 2m` embedding `[[Re Q, −Im Q], [Im Q, Re Q]]`, each eigenvalue twice.
+fn stiffness_block(rotor: &Rotor, omega: f64) -> Result<(Vec<f64>, usize, usize, Field)> {
+    let locked = locked_rotor(rotor, omega, true)?;
+    let f = locked.field(omega)?;
+    let n = f.dim();
+    let m = n / 2;
+    let x = vec![0.0; n];
+    let mut j = vec![0.0; n * n];
+    f.jacobian(0.0, &x, &mut j);
+    // the field is q' = q̇, q̇' = A q + B q̇
+    for i in 0..m {
+        for k in 0..n {
+            let want = if k == m + i { 1.0 } else { 0.0 };
+            if j[i * n + k] != want {
+                return Err(Error::invalid("critical", "the model's state is not (positions, their rates): no stiffness block"));
+            }
+        }
+    }
+    let big = j.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    let rotating = match f.period() {
+        None => false,
+        Some(t) => {
+            let mut j4 = vec![0.0; n * n];
+            f.jacobian(0.25 * t, &x, &mut j4);
+            j.iter().zip(&j4).any(|(a, b)| (a - b).abs() > 1e-9 * big)
+        }
+    };
+    if !rotating {
+        let a: Vec<f64> = (0..m).flat_map(|i| j[(m + i) * n..(m + i) * n + m].to_vec()).collect();
+        return Ok((a, m, 1, f));
+    }
+    // fixed axes: constant for the balanced locked rotor (checked at t = 0 and T/4)
+    let t4 = 0.25 * f.period().unwrap_or(0.0);
+    let jf0 = fixed_axes_jacobian(&f, omega, 0.0)?;
+    let jf4 = fixed_axes_jacobian(&f, omega, t4)?;
+    let bigf = jf0.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    if jf0.iter().zip(&jf4).any(|(a, b)| (a - b).abs() > 1e-9 * bigf) {
+        return Err(Error::NoLinearisation {
+            reason: "the locked rotor's linearisation is periodic in both turning and fixed axes (supports that differ by direction, and an inertia that differs by direction: the locked balls and unbalance masses); critical speeds are not defined by one frequency there and are not located; `autobal campbell` shows the Floquet exponents".into(),
+        });
+    }
+    let mut q = vec![0.0; 4 * m * m];
+    let d = 2 * m;
+    for r in 0..m {
+        for c in 0..m {
+            let re = -jf0[(m + r) * n + c] - if r == c { omega * omega } else { 0.0 };
+            let im = -omega * jf0[(m + r) * n + m + c];
+            q[r * d + c] = re;
+            q[r * d + m + c] = -im;
+            q[(m + r) * d + c] = im;
+            q[(m + r) * d + m + c] = re;
+        }
+    }
+    Ok((q, d, 2, f))
+}
+
+/// The Jacobian of `f` (a rotor without balls: every coordinate in rotating pairs `(0, 1)` and,
+/// with the tilt free, `(2, 3)`) at the centred rotor and time `t`, in fixed axes:
+/// `z = T(t) x` with positions `p_f = R p` and rates `v_f = R (v + Ω J p)` (`R` the rotation by
+/// `Ωt`, `J` by a right angle), so `J_f = (Ṫ + T J(t)) T⁻¹`.
+fn fixed_axes_jacobian(f: &Field, omega: f64, t: f64) -> Result<Vec<f64>> {
+    let n = f.dim();
+    let m = n / 2;
+    if !m.is_multiple_of(2) {
+        return Err(Error::invalid("critical", "the locked rotor's coordinates do not come in pairs"));
+    }
+    // T is linear in (cos Ωt, sin Ωt): Ṫ = Ω T(−sin, cos)
+    let transform = |c: f64, s: f64| {
+        let mut tm = vec![0.0; n * n];
+        for p in (0..m).step_by(2) {
+            let (a, b) = (p, p + 1);
+            tm[a * n + a] = c;
+            tm[a * n + b] = -s;
+            tm[b * n + a] = s;
+            tm[b * n + b] = c;
+            let (va, vb) = (m + a, m + b);
+            // v_f,a = c (v_a − Ω p_b) − s (v_b + Ω p_a); v_f,b = s (v_a − Ω p_b) + c (v_b + Ω p_a)
+            tm[va * n + va] = c;
+            tm[va * n + vb] = -s;
+            tm[va * n + b] = -c * omega;
+            tm[va * n + a] = -s * omega;
+            tm[vb * n + va] = s;
+            tm[vb * n + vb] = c;
+            tm[vb * n + b] = -s * omega;
+            tm[vb * n + a] = c * omega;
+        }
+        tm
+    };
+    let (s, c) = (omega * t).sin_cos();
+    let tm = transform(c, s);
+    let td: Vec<f64> = transform(-s, c).iter().map(|v| v * omega).collect();
+    let x = vec![0.0; n];
+    let mut j = vec![0.0; n * n];
+    f.jacobian(t, &x, &mut j);
+    // X = Ṫ + T J; J_f = X T⁻¹, i.e. Tᵀ J_fᵀ = Xᵀ
+    let mut xm = td;
+    for r in 0..n {
+        for k in 0..n {
+            let mut acc = 0.0;
+            for l in 0..n {
+                acc += tm[r * n + l] * j[l * n + k];
+            }
+            xm[r * n + k] += acc;
+        }
+    }
+    let tt: Vec<f64> = (0..n * n).map(|i| tm[(i % n) * n + i / n]).collect();
+    let lu = crate::ode::lu::Lu::factored(tt, n).ok_or_else(|| Error::invalid("critical", "singular axes transformation"))?;
+    let mut jf = vec![0.0; n * n];
+    let mut col = vec![0.0; n];
+    for r in 0..n {
+        // row r of J_f is column r of J_fᵀ = T⁻ᵀ (row r of X)ᵀ
+        col.copy_from_slice(&xm[r * n..(r + 1) * n]);
+        lu.solve(&mut col);
+        jf[r * n..(r + 1) * n].copy_from_slice(&col);
+    }
+    Ok(jf)
+}
+
+/// The number of eigenvalues of `A(Ω)` with a positive real part; `None` where the closed form
+/// has no balanced state to lock the balls in.
+fn positive_count(rotor: &Rotor, omega: f64) -> Result<Option<usize>> {
+    let has_balls = match rotor {
+        Rotor::Planar(p) => p.n > 0,
+        Rotor::Spatial(s) => s.balls() > 0,
+    };
+    if has_balls && Rotor::guess(&point_mass_balls(rotor).field(omega)?).is_none() {
+        return Ok(None);
+    }
+    let (a, d, copies, _) = stiffness_block(rotor, omega)?;
+    let ev = eigenvalues(&a, d).map_err(|e| Error::invalid("critical", format!("the eigenvalues of the stiffness block did not converge: {e}")))?;
+    Ok(Some(ev.iter().filter(|z| z.re > 0.0).count().div_ceil(copies)))
+}
+
+/// The critical speeds of `rotor` with its balls locked at balance and no damping, in
+/// `(0, omega_max]` on a grid of `samples` speeds (module docs): where the count of positive
+/// eigenvalues of the turning-axes stiffness block `A(Ω)` changes, bisected to `1e-12`
+/// (several crossings in one grid step are found one after the other where the count moves
+/// one way; a crossing and its return within one step cancel and are missed).
+pub fn locked_critical_speeds(rotor: &Rotor, omega_max: f64, samples: usize) -> Result<LockedCriticalSpeeds> {
+    let speeds = crate::rotor_stability::speed_grid(omega_max, samples)?;
+    let counts: Vec<Option<usize>> = speeds.iter().map(|&w| positive_count(rotor, w)).collect::<Result<_>>()?;
+    let mut out = vec![];
+    for k in 0..speeds.len() - 1 {
+        let (Some(c0), Some(c1)) = (counts[k], counts[k + 1]) else { continue };
+        let (mut start, mut c_lo) = (speeds[k], c0);
+        // one crossing after the other while the count still differs from the step's end
+        while c_lo != c1 {
+            let (mut lo, mut hi) = (start, speeds[k + 1]);
+            let mut c_hi = c1;
+            while hi - lo > 1e-12 * hi {
+                let mid = 0.5 * (lo + hi);
+                if mid <= lo || mid >= hi {
+                    break;
+                }
+                match positive_count(rotor, mid)? {
+                    Some(c) if c == c_lo => lo = mid,
+                    Some(c) => {
+                        hi = mid;
+                        c_hi = c;
+                    }
+                    None => break,
+                }
+            }
+            let w = 0.5 * (lo + hi);
+            let (motion, whirl) = motion_at(rotor, w)?;
+            out.push(LockedCriticalSpeed { omega: w, multiplicity: c_lo.abs_diff(c_hi), motion, whirl });
+            if hi >= speeds[k + 1] {
+                break;
+            }
+            start = hi;
+            c_lo = c_hi;
+        }
+    }
+    let gaps = counts.iter().filter(|c| c.is_none()).count();
+    let ball_angles = speeds
+        .iter()
+        .zip(&counts)
+        .find(|(_, c)| c.is_some())
+        .and_then(|(&w, _)| {
+            let f = point_mass_balls(rotor).field(w).ok()?;
+            let x = Rotor::guess(&f)?;
+            Some(match &f {
+                Field::Planar(p) => x[2..2 + p.rotor().n].to_vec(),
+                Field::Spatial(s) => x[s.coords() - s.rotor().balls()..s.coords()].to_vec(),
+            })
+        })
+        .unwrap_or_default();
+    Ok(LockedCriticalSpeeds { speeds: out, omega_max, samples: speeds.len(), unlocked: gaps, ball_angles })
+}
+
+/// What moves most in the synchronous whirl at a critical speed `w`, and its sense: from the
+/// null vector of `A` (turning axes: a whirl standing still there is forward) or of `Q` (fixed
+/// axes: `u e^{iΩt}`, forward where `Σ|u_a + i u_b|² > Σ|u_a − i u_b|²` over the pairs).
+fn motion_at(rotor: &Rotor, w: f64) -> Result<(Motion, Whirl)> {
+    let (a, d, copies, f) = stiffness_block(rotor, w)?;
+    let ev = eigenvalues(&a, d).map_err(|e| Error::invalid("critical", e.to_string()))?;
+    let zero = ev.iter().copied().min_by(|p, q| p.norm().total_cmp(&q.norm())).unwrap_or_default();
+    let v = mode(&a, d, zero);
+    let m = d / copies;
+    // a real null vector; for Q's embedding [Re u; Im u]
+    let re: Vec<f64> = v.iter().map(|z| z.re).collect();
+    let real: Vec<f64> = if re.iter().any(|x| *x != 0.0) { re } else { v.iter().map(|z| z.im).collect() };
+    let u: Vec<Complex64> = (0..m).map(|i| if copies == 2 { Complex64::new(real[i], real[m + i]) } else { Complex64::new(real[i], 0.0) }).collect();
+    let gyration = match rotor {
+        Rotor::Spatial(r) => (r.rotor.equatorial_moment / r.total_mass()).sqrt(),
+        Rotor::Planar(_) => 0.0,
+    };
+    let motion = match &f {
+        Field::Spatial(_) if m >= 4 => {
+            let tr = u[0].norm().max(u[1].norm());
+            let tilt = gyration * u[2].norm().max(u[3].norm());
+            if tilt > tr {
+                Motion::Tilt
+            } else {
+                Motion::Translation
+            }
+        }
+        _ => Motion::Translation,
+    };
+    let whirl = if copies == 1 {
+        Whirl::Forward
+    } else {
+        let i = Complex64::new(0.0, 1.0);
+        let (mut fw, mut bw) = (0.0, 0.0);
+        for (p, weight) in [(0, 1.0), (2, gyration)] {
+            if p + 1 < m {
+                fw += weight * weight * (u[p] + i * u[p + 1]).norm_sqr();
+                bw += weight * weight * (u[p] - i * u[p + 1]).norm_sqr();
+            }
+        }
+        if fw >= bw {
+            Whirl::Forward
+        } else {
+            Whirl::Backward
+        }
+    };
+    Ok((motion, whirl))
+}
+
+/// The stationary state of `rotor` at `omega` from its closed form (for tests and figures).
+pub fn stationary_at(rotor: &Rotor, omega: f64) -> Result<(Field, StationaryState)> {
+    let f = rotor.field(omega)?;
+    let guess = Rotor::guess(&f).unwrap_or_else(|| vec![0.0; f.dim()]);
+    let s = stationary(&f, &guess, &newton_options(f.period().is_some())).map_err(|e| Error::invalid("speeds", e.to_string()))?;
+    Ok((f, s))
+}
