@@ -162,6 +162,7 @@ pub fn run(a: SweepArgs) -> Result<()> {
     if autobal::config::is_spatial(&root) && !root.contains_key("planar") {
         // the spatial rotor of papers 000/003: the config's keys are the paths
         let sim = crate::spatial_sim::build(&root, &source)?;
+        config::check_entries(&root, "sweep", &[config::Model::Spatial])?;
         let base = SpatialSweep::new(root.clone())?;
         for (flag, ax) in &axes {
             // an unknown key, or one the config cannot take, before anything runs
@@ -172,6 +173,7 @@ pub fn run(a: SweepArgs) -> Result<()> {
         return sweep_on(&a, &root, &base, axes, problem, units);
     }
     let cfg = config::build_planar(&root, &source)?;
+    config::check_entries(&root, "sweep", &[config::Model::Planar])?;
     let base = PlanarProblem { rotor: cfg.rotor, drive: cfg.drive, settings: cfg.settings };
     for (flag, ax) in &axes {
         // an unknown path, or one the drive does not have, before anything runs
