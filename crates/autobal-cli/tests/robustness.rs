@@ -521,3 +521,72 @@ fn regression_spatial_sample_count_was_printed_with_303_digits() {
     let line = err.lines().find(|l| l.contains("samples is too many")).unwrap_or_else(|| panic!("{err}"));
     assert!(line.len() < 120, "{line}");
 }
+
+/// The command must succeed and say, on one warning line, that `key` has no effect.
+#[track_caller]
+fn warns(args: &[&str], key: &str) -> String {
+    let (code, out, err) = run_for(Duration::from_secs(60), args);
+    assert_eq!(code, 0, "autobal {}: exit {code}, stdout {out}, stderr {err}", args.join(" "));
+    let line = err.lines().find(|l| l.starts_with("warning: ") && l.contains(key)).unwrap_or_else(|| panic!("autobal {}: no warning naming {key}: {err}", args.join(" ")));
+    line.to_string()
+}
+
+/// Entries silently ignored (issue 23): every entry of a config is used by the model that runs
+/// it, or an error (another rotor's entry) or a warning (moot with the rest of the config)
+/// names it, for every command family (autobal::config::entry_use, docs/robustness.md).
+#[test]
+fn regression_entries_of_another_model_passed_silently() {
+    let planar = ["--set", "drive.t_end=0.05", "--set", "integration.dt=0.01"];
+    // the spatial rotor's entries on the planar rotor: simulate, sweep, stability, map
+    for (set, key) in [("spatial.gravity=[0,-9.81,0]", "spatial.gravity"), ("initial.position=[1e-3,0]", "initial.position"), ("couple.mass=0.01", "couple.mass")] {
+        let mut a = vec!["simulate", "--set", set, "--out", "s"];
+        a.extend(planar);
+        let line = rejects(&a, key);
+        assert!(line.contains("belongs to the spatial rotor"), "{line}");
+        rejects(&["sweep", "--set", set, "--x", "drive.b=1:2:2", "--out", "sw"], key);
+        let p = examples("planar.toml");
+        rejects(&["stability", "--config", &p, "--set", set, "--samples", "10"], key);
+        rejects(&["map", "--config", &p, "--set", set, "--x", "planar.c_psi=0.1:0.2:2", "--y", "omega=100:200:2", "--out", "m"], key);
+    }
+    // the planar rotor's entries on the spatial rotor: simulate, sweep, basins, the analytic
+    // commands, the report
+    let spatial = examples("spatial.toml");
+    let sp = |v: &[&'static str]| -> Vec<String> { v.iter().map(|s| s.to_string()).collect() };
+    for (set, key, why) in [("drive.xy0=[1e-3,0]", "drive.xy0", "starts from [initial]"), ("planar.m1=1", "planar.m1", "planar rotor of paper 004")] {
+        let short = ["--set", "drive.t_end=2", "--set", "integration.dt=1"];
+        let runs: Vec<Vec<String>> = vec![
+            [sp(&["simulate", "--out", "s"]), sp(&short)].concat(),
+            [sp(&["sweep", "--x", "drive.omega0=1.5:1.6:2", "--out", "sw"]), sp(&short)].concat(),
+            [sp(&["basins", "--n", "2", "--out", "b"]), sp(&short)].concat(),
+            sp(&["critical"]),
+            sp(&["campbell", "--points", "3"]),
+            sp(&["report", "--quick", "--out", "rep"]),
+        ];
+        for mut a in runs {
+            a.extend(["--config".to_string(), spatial.clone(), "--set".to_string(), set.to_string()]);
+            let line = rejects(&args(&a), key);
+            assert!(line.contains(why), "{line}");
+        }
+    }
+}
+
+#[test]
+fn regression_moot_entries_passed_silently() {
+    // a second plane with zero balls but a ball mass (the spatial simulation)
+    let two = examples("spatial_two_plane.toml");
+    let line = warns(&["simulate", "--config", &two, "--set", "balancer2.balls=0", "--set", "drive.t_end=0.01", "--set", "integration.dt=0.005", "--out", "s"], "balancer2.ball_mass");
+    assert!(line.contains("(with balancer2.balls = 0)") && line.contains("no effect"), "{line}");
+    // real-ball keys without contact (the planar rotor)
+    let line = warns(&["simulate", "--set", "planar.restitution=0.9", "--set", "drive.t_end=0.05", "--set", "integration.dt=0.01", "--out", "s"], "planar.restitution");
+    assert!(line.contains("(with planar.contact = false)"), "{line}");
+    // the analytic commands: ball keys with no balls
+    let line = warns(&["critical", "--config", &examples("dimensional.toml"), "--set", "balancer.balls=0"], "balancer.ball_mass");
+    assert!(line.contains("(with balancer.balls = 0)"), "{line}");
+    // neutral values are no entry to report: the spatial rotor's zero gravity on the planar one
+    let (code, _, err) = run_for(
+        Duration::from_secs(60),
+        &["simulate", "--set", "spatial.gravity=[0,0,0]", "--set", "spatial.lock_tilt=false", "--set", "drive.t_end=0.05", "--set", "integration.dt=0.01", "--out", "s"],
+    );
+    assert_eq!(code, 0, "{err}");
+    assert!(!err.contains("warning: simulate"), "{err}");
+}

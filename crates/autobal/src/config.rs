@@ -94,7 +94,7 @@ pub const SCHEMA: &[(&str, &[&str])] = &[
 ];
 
 /// The keys read as whole numbers (numbers of balls).
-const COUNTS: &[&str] = &["balancer.balls", "dimensionless.n", "planar.n"];
+const COUNTS: &[&str] = &["balancer.balls", "balancer2.balls", "dimensionless.n", "planar.n"];
 
 /// Longest array in a config (`drive.schedule` points).
 pub const MAX_ARRAY_LEN: usize = 100_000;
