@@ -159,7 +159,9 @@ fn parse_axes(a: &SweepArgs) -> Result<Vec<(&'static str, Axis)>> {
 pub fn run(a: SweepArgs) -> Result<()> {
     let (root, source) = config::read_planar_set(a.config.as_deref(), &a.set)?;
     let axes = parse_axes(&a)?;
-    if autobal::config::is_spatial(&root) && !root.contains_key("planar") {
+    // the same rotor `simulate` runs on this config; another rotor's tables are refused by
+    // config::check_entries
+    if autobal::config::is_spatial(&root) {
         // the spatial rotor of papers 000/003: the config's keys are the paths
         let sim = crate::spatial_sim::build(&root, &source)?;
         config::check_entries(&root, "sweep", &[config::Model::Spatial])?;

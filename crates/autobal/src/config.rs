@@ -821,6 +821,10 @@ pub fn spatial_simulation(root: &Table) -> Result<SpatialSimulation> {
                     drag: b.f64("drag")?.unwrap_or(0.0),
                     physics: ball_physics_of(&b)?,
                 };
+                // as the first plane (spatial::params): a ball mass without balls is a mistake
+                if plane.n == 0 && plane.ball_mass != 0.0 {
+                    return Err(Error::invalid("balancer2.balls", "is 0 but balancer2.ball_mass is given: set the number of balls, or ball_mass = 0"));
+                }
                 b.used_only_if(plane.n > 0, &BALL_KEYS, "with balancer2.balls = 0");
                 r.planes.push(plane);
             }
