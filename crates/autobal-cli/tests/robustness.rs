@@ -637,6 +637,15 @@ fn regression_the_resource_limits_are_reached_and_one_past_them_refused() {
     std::fs::write(&past, with_psi(",0")).unwrap();
     let e = rejects(&["simulate", "--config", past.to_str().unwrap(), "--out", "s"], "drive.psi0");
     assert!(e.contains("exceeds the limit of 100000"), "{e}");
+    // real balls under a method that takes implicit steps (a dense Jacobian): 300; with the
+    // explicit method the planar limit, 100 000 balls in contact checked for overlaps at the
+    // start in O(n log n) (that check and the contact events were O(n²))
+    let real = ["--set", "planar.m3=1e-4", "--set", "planar.contact=true", "--set", "planar.ball_diameter=1e-3"];
+    ok(&[&["simulate", "--set", "planar.n=300", "--out", "s"][..], &real, &tiny].concat());
+    let e = rejects(&[&["simulate", "--set", "planar.n=301", "--out", "s"][..], &real].concat(), "integration.method");
+    assert!(e.contains("at most 300 balls") && e.contains("dop853"), "{e}");
+    let many_real = ["--set", "planar.n=100000", "--set", "planar.m3=1e-3", "--set", "planar.c_psi=0", "--set", "planar.ball_diameter=1e-6", "--set", "planar.contact=true"];
+    ok(&[&["simulate", "--set", "integration.method=\"dop853\"", "--set", "drive.t_end=1e-5", "--set", "integration.dt=1e-5", "--out", "s"][..], &many_real].concat());
     // balls of the spatial model: 100 per plane, in the analytic commands and the simulation
     ok(&["critical", "--set", "dimensionless.n=100"]);
     rejects(&["critical", "--set", "dimensionless.n=101"], "dimensionless.n");

@@ -249,24 +249,28 @@ impl BallPhysics {
             return Ok(());
         }
         let d = self.diameter(mass);
-        for a in 0..psi.len() {
-            for b in a + 1..psi.len() {
-                let c = chord(r, psi[b] - psi[a]);
-                if c < d * (1.0 - 1e-9) {
-                    return Err(Error::invalid(
-                        field,
-                        format!(
-                            "balls {} and {} overlap at the start ({} m apart, diameter {} m)",
-                            a + 1,
-                            b + 1,
-                            crate::error::fmt_num(c),
-                            crate::error::fmt_num(d)
-                        ),
-                    ));
-                }
+        // the pairs that can touch (neighbours on the race above ALL_PAIRS_UP_TO balls: if two
+        // balls overlap, so do two neighbours), O(n log n) instead of O(n²)
+        let mut first = None;
+        for_each_contact_pair(psi.len(), psi, |a, b| {
+            let (a, b) = (a.min(b), a.max(b));
+            if first.is_none_or(|f| (a, b) < f) && chord(r, psi[b] - psi[a]) < d * (1.0 - 1e-9) {
+                first = Some((a, b));
             }
+        });
+        match first {
+            Some((a, b)) => Err(Error::invalid(
+                field,
+                format!(
+                    "balls {} and {} overlap at the start ({} m apart, diameter {} m)",
+                    a + 1,
+                    b + 1,
+                    crate::error::fmt_num(chord(r, psi[b] - psi[a])),
+                    crate::error::fmt_num(d)
+                ),
+            )),
+            None => Ok(()),
         }
-        Ok(())
     }
 }
 
