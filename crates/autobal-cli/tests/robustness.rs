@@ -668,3 +668,21 @@ fn regression_the_resource_limits_are_reached_and_one_past_them_refused() {
     assert!(e.contains("too many"), "{e}");
     std::fs::remove_dir_all(&d).ok();
 }
+
+/// Ranges that contradicted themselves (issue 23): `map --boundary` over a field's full
+/// documented range was refused by that range, the tracer stepping past the axis's ends (a
+/// difference quotient beyond the closed end: "must lie in [-10000, 10000] m, got 10000"; a
+/// rounding below 0: "got -9.54715e-33"; a predictor: "got -0.624512"). Found by
+/// scripts/hostile.sh's generated rows over every field's range.
+#[test]
+fn regression_boundary_axis_over_a_fields_full_range_was_refused_by_it() {
+    let dim = examples("dimensional.toml");
+    for ax in ["balancer.z=-10000:10000:3", "unbalance.radius=0:1000:3", "supports.stiffness_left=10000:1e13:3"] {
+        let (code, _, err) = run_for(Duration::from_secs(120), &["map", "--config", &dim, "--x", ax, "--y", "speed_rpm=100:20000:3", "--boundary", "--out", "mb"]);
+        assert_eq!(code, 0, "--x {ax}: {err}");
+    }
+    for ax in ["dimensionless.h_s=0:1000:3", "dimensionless.delta_a=0:0.999999999:3"] {
+        let (code, _, err) = run_for(Duration::from_secs(120), &["map", "--x", ax, "--y", "omega=0.05:4.5:3", "--boundary", "--out", "mb"]);
+        assert_eq!(code, 0, "--x {ax}: {err}");
+    }
+}
