@@ -527,7 +527,10 @@ fn regression_spatial_sample_count_was_printed_with_303_digits() {
 fn warns(args: &[&str], key: &str) -> String {
     let (code, out, err) = run_for(Duration::from_secs(60), args);
     assert_eq!(code, 0, "autobal {}: exit {code}, stdout {out}, stderr {err}", args.join(" "));
-    let line = err.lines().find(|l| l.starts_with("warning: ") && l.contains(key)).unwrap_or_else(|| panic!("autobal {}: no warning naming {key}: {err}", args.join(" ")));
+    let line = err
+        .lines()
+        .find(|l| l.starts_with("warning: ") && l.contains(key))
+        .unwrap_or_else(|| panic!("autobal {}: no warning naming {key}: {err}", args.join(" ")));
     line.to_string()
 }
 
@@ -538,7 +541,9 @@ fn warns(args: &[&str], key: &str) -> String {
 fn regression_entries_of_another_model_passed_silently() {
     let planar = ["--set", "drive.t_end=0.05", "--set", "integration.dt=0.01"];
     // the spatial rotor's entries on the planar rotor: simulate, sweep, stability, map
-    for (set, key) in [("spatial.gravity=[0,-9.81,0]", "spatial.gravity"), ("initial.position=[1e-3,0]", "initial.position"), ("couple.mass=0.01", "couple.mass")] {
+    for (set, key) in
+        [("spatial.gravity=[0,-9.81,0]", "spatial.gravity"), ("initial.position=[1e-3,0]", "initial.position"), ("couple.mass=0.01", "couple.mass")]
+    {
         let mut a = vec!["simulate", "--set", set, "--out", "s"];
         a.extend(planar);
         let line = rejects(&a, key);
@@ -580,18 +585,35 @@ fn regression_moot_entries_passed_silently() {
     let two = examples("spatial_two_plane.toml");
     let short = ["--set", "drive.t_end=0.01", "--set", "integration.dt=0.005", "--out", "s"];
     rejects(&[&["simulate", "--config", &two, "--set", "balancer2.balls=0"][..], &short].concat(), "balancer2.balls");
-    let line = warns(&[&["simulate", "--config", &two, "--set", "balancer2.balls=0", "--set", "balancer2.ball_mass=0"][..], &short].concat(), "balancer2.race_radius");
+    let line =
+        warns(&[&["simulate", "--config", &two, "--set", "balancer2.balls=0", "--set", "balancer2.ball_mass=0"][..], &short].concat(), "balancer2.race_radius");
     assert!(line.contains("balancer2.drag, balancer2.race_radius (with balancer2.balls = 0)") && line.contains("no effect"), "{line}");
     // real-ball keys without contact (the planar rotor)
-    let line = warns(&["simulate", "--set", "planar.restitution=0.9", "--set", "drive.t_end=0.05", "--set", "integration.dt=0.01", "--out", "s"], "planar.restitution");
+    let line = warns(
+        &["simulate", "--set", "planar.restitution=0.9", "--set", "drive.t_end=0.05", "--set", "integration.dt=0.01", "--out", "s"],
+        "planar.restitution",
+    );
     assert!(line.contains("(with planar.contact = false)"), "{line}");
     // the analytic commands: ball keys with no balls
-    let line = warns(&["critical", "--config", &examples("dimensional.toml"), "--set", "balancer.balls=0", "--set", "balancer.ball_mass=0"], "balancer.race_radius");
+    let line =
+        warns(&["critical", "--config", &examples("dimensional.toml"), "--set", "balancer.balls=0", "--set", "balancer.ball_mass=0"], "balancer.race_radius");
     assert!(line.contains("(with balancer.balls = 0)"), "{line}");
     // neutral values are no entry to report: the spatial rotor's zero gravity on the planar one
     let (code, _, err) = run_for(
         Duration::from_secs(60),
-        &["simulate", "--set", "spatial.gravity=[0,0,0]", "--set", "spatial.lock_tilt=false", "--set", "drive.t_end=0.05", "--set", "integration.dt=0.01", "--out", "s"],
+        &[
+            "simulate",
+            "--set",
+            "spatial.gravity=[0,0,0]",
+            "--set",
+            "spatial.lock_tilt=false",
+            "--set",
+            "drive.t_end=0.05",
+            "--set",
+            "integration.dt=0.01",
+            "--out",
+            "s",
+        ],
     );
     assert_eq!(code, 0, "{err}");
     assert!(!err.contains("warning: simulate"), "{err}");
@@ -644,8 +666,20 @@ fn regression_the_resource_limits_are_reached_and_one_past_them_refused() {
     ok(&[&["simulate", "--set", "planar.n=300", "--out", "s"][..], &real, &tiny].concat());
     let e = rejects(&[&["simulate", "--set", "planar.n=301", "--out", "s"][..], &real].concat(), "integration.method");
     assert!(e.contains("at most 300 balls") && e.contains("dop853"), "{e}");
-    let many_real = ["--set", "planar.n=100000", "--set", "planar.m3=1e-3", "--set", "planar.c_psi=0", "--set", "planar.ball_diameter=1e-6", "--set", "planar.contact=true"];
-    ok(&[&["simulate", "--set", "integration.method=\"dop853\"", "--set", "drive.t_end=1e-5", "--set", "integration.dt=1e-5", "--out", "s"][..], &many_real].concat());
+    let many_real = [
+        "--set",
+        "planar.n=100000",
+        "--set",
+        "planar.m3=1e-3",
+        "--set",
+        "planar.c_psi=0",
+        "--set",
+        "planar.ball_diameter=1e-6",
+        "--set",
+        "planar.contact=true",
+    ];
+    ok(&[&["simulate", "--set", "integration.method=\"dop853\"", "--set", "drive.t_end=1e-5", "--set", "integration.dt=1e-5", "--out", "s"][..], &many_real]
+        .concat());
     // balls of the spatial model: 100 per plane, in the analytic commands and the simulation
     ok(&["critical", "--set", "dimensionless.n=100"]);
     rejects(&["critical", "--set", "dimensionless.n=101"], "dimensionless.n");
@@ -661,8 +695,11 @@ fn regression_the_resource_limits_are_reached_and_one_past_them_refused() {
     assert!(rejects(&["campbell", "--points", "2"], "--points").contains("between 3 and 10000000"));
     assert!(rejects(&["campbell", "--points", "10000001"], "--points").contains("between 3 and 10000000"));
     ok(&["map", "--x", "dimensionless.z_a=0:1:2", "--y", "omega=1:2:2", "--out", "m"]);
-    assert!(rejects(&["map", "--x", "dimensionless.z_a=0:1:1", "--y", "omega=1:2:2", "--out", "m"], "--x dimensionless.z_a=0:1:1").contains("between 2 and 100000"));
-    assert!(rejects(&["map", "--x", "dimensionless.z_a=0:1:100001", "--y", "omega=1:2:2", "--out", "m"], "--x dimensionless.z_a=0:1:100001").contains("between 2 and 100000"));
+    assert!(
+        rejects(&["map", "--x", "dimensionless.z_a=0:1:1", "--y", "omega=1:2:2", "--out", "m"], "--x dimensionless.z_a=0:1:1").contains("between 2 and 100000")
+    );
+    assert!(rejects(&["map", "--x", "dimensionless.z_a=0:1:100001", "--y", "omega=1:2:2", "--out", "m"], "--x dimensionless.z_a=0:1:100001")
+        .contains("between 2 and 100000"));
     // simulation samples: t_end/dt ≤ 5e7
     let e = rejects(&["simulate", "--set", "drive.t_end=5.0001", "--set", "integration.dt=1e-7", "--out", "s"], "integration.dt");
     assert!(e.contains("too many"), "{e}");
@@ -678,7 +715,8 @@ fn regression_the_resource_limits_are_reached_and_one_past_them_refused() {
 fn regression_boundary_axis_over_a_fields_full_range_was_refused_by_it() {
     let dim = examples("dimensional.toml");
     for ax in ["balancer.z=-10000:10000:3", "unbalance.radius=0:1000:3", "supports.stiffness_left=10000:1e13:3"] {
-        let (code, _, err) = run_for(Duration::from_secs(120), &["map", "--config", &dim, "--x", ax, "--y", "speed_rpm=100:20000:3", "--boundary", "--out", "mb"]);
+        let (code, _, err) =
+            run_for(Duration::from_secs(120), &["map", "--config", &dim, "--x", ax, "--y", "speed_rpm=100:20000:3", "--boundary", "--out", "mb"]);
         assert_eq!(code, 0, "--x {ax}: {err}");
     }
     for ax in ["dimensionless.h_s=0:1000:3", "dimensionless.delta_a=0:0.999999999:3"] {

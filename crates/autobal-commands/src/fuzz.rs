@@ -182,12 +182,8 @@ fn outcome(root: &Table) -> Result<(), String> {
 /// The round-2 configs as bases: the spatial simulation (one plane, and two planes with a couple
 /// unbalance, y supports and gravity) and the planar rotor.
 fn base_round_two() -> impl Strategy<Value = Table> {
-    prop::sample::select(vec![
-        include_str!("../../../examples/spatial.toml"),
-        include_str!("../../../examples/spatial_two_plane.toml"),
-        config::DEFAULT_PLANAR,
-    ])
-    .prop_map(|t| t.parse::<Table>().expect("examples parse"))
+    prop::sample::select(vec![include_str!("../../../examples/spatial.toml"), include_str!("../../../examples/spatial_two_plane.toml"), config::DEFAULT_PLANAR])
+        .prop_map(|t| t.parse::<Table>().expect("examples parse"))
 }
 
 /// Up to six random assignments on a round-2 base, drawn mostly from the tables round 2 added
@@ -201,7 +197,19 @@ fn config_tree_round_two() -> impl Strategy<Value = Table> {
             .filter(|(t, k)| {
                 matches!(t.as_str(), "couple" | "balancer2" | "spatial" | "initial" | "planar")
                     || k.ends_with("_y")
-                    || ["ball_diameter", "contact", "restitution", "contact_stiffness", "rolling_resistance", "slip_rate", "xy0", "xy_rate0", "axis_tilt", "balls"].contains(&k.as_str())
+                    || [
+                        "ball_diameter",
+                        "contact",
+                        "restitution",
+                        "contact_stiffness",
+                        "rolling_resistance",
+                        "slip_rate",
+                        "xy0",
+                        "xy_rate0",
+                        "axis_tilt",
+                        "balls",
+                    ]
+                    .contains(&k.as_str())
             })
             .collect::<Vec<_>>(),
     );

@@ -414,7 +414,8 @@ pub fn ball_physics_of(sec: &Section) -> Result<crate::balls::BallPhysics> {
 
 /// The keys of a ball set (`[balancer]`, `[balancer2]`) that describe its balls: no effect
 /// without balls.
-const BALL_KEYS: [&str; 9] = ["ball_mass", "race_radius", "drag", "ball_diameter", "contact", "restitution", "contact_stiffness", "rolling_resistance", "slip_rate"];
+const BALL_KEYS: [&str; 9] =
+    ["ball_mass", "race_radius", "drag", "ball_diameter", "contact", "restitution", "contact_stiffness", "rolling_resistance", "slip_rate"];
 
 const DIMENSIONAL_TABLES: [&str; 4] = ["rotor", "supports", "unbalance", "balancer"];
 
@@ -557,7 +558,11 @@ pub fn planar(root: &Table) -> Result<PlanarProblem> {
         balls: ball_physics_of(&p)?,
     };
     rotor.validate()?;
-    p.used_only_if(rotor.n > 0, &["m3", "r", "c_psi", "ball_diameter", "contact", "restitution", "contact_stiffness", "rolling_resistance", "slip_rate"], "with planar.n = 0");
+    p.used_only_if(
+        rotor.n > 0,
+        &["m3", "r", "c_psi", "ball_diameter", "contact", "restitution", "contact_stiffness", "rolling_resistance", "slip_rate"],
+        "with planar.n = 0",
+    );
     crate::planar::problem::check_natural_frequency(&rotor)?;
     let (drive, t_end) = drive(&d)?;
     let ig = integration(&ig, t_end)?;
@@ -885,7 +890,6 @@ pub fn spatial_simulation(root: &Table) -> Result<SpatialSimulation> {
     initial_state(&Equations::new(&rotor, &drive), &initial)?;
     Ok(SpatialSimulation { config, rotor, drive, initial, settings, default_drive })
 }
-
 
 /// Which entries the model being built reads: [`Section::get`] records every given key while a
 /// [`track`] is running on this thread, [`Section::used_only_if`] takes back those the rest of

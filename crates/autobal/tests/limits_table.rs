@@ -72,8 +72,17 @@ fn every_limit_is_reached_and_one_past_it_is_refused_with_its_message() {
                 continue;
             }
             // past the end: refused with this limit's message, naming the field
-            let past = if is_count { if past < l.lo { continue } else { l.hi + 1.0 } } else { past };
-            let own = if is_count { format!("{}: {} exceeds the limit of {}", l.field, past, l.hi) } else { format!("{}: must lie in {}", l.field, l.describe()) };
+            let past = if is_count {
+                if past < l.lo {
+                    continue;
+                } else {
+                    l.hi + 1.0
+                }
+            } else {
+                past
+            };
+            let own =
+                if is_count { format!("{}: {} exceeds the limit of {}", l.field, past, l.hi) } else { format!("{}: must lie in {}", l.field, l.describe()) };
             match build(&with(text, l.field, value(l.field, past))) {
                 Ok(()) => wrong.push(format!("{} = {past:e} accepted", l.field)),
                 Err(e) if !e.to_string().starts_with(&own) => wrong.push(format!("{} = {past:e}: `{e}` is not the limit's message `{own}`", l.field)),
