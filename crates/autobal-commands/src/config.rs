@@ -107,7 +107,7 @@ pub fn load(path: Option<&std::path::Path>, sets: &[String]) -> Result<Config> {
     build(&root, &source)
 }
 
-/// [`load`] for the analytic `command` (the linear model), checking that every entry is used
+/// `load` for the analytic `command` (the linear model), checking that every entry is used
 /// ([`check_entries`]).
 pub fn load_analytic(command: &str, path: Option<&std::path::Path>, sets: &[String]) -> Result<Config> {
     let (root, source) = read_set(path, sets)?;

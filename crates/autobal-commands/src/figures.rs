@@ -203,7 +203,7 @@ const LOG_DEC_CLASSES: [(f64, &str, &str); 4] = [
     (f64::INFINITY, "#0072B2", "δ ≥ 0.5: well damped"),
 ];
 
-/// Colour of a log decrement `δ` ([`LOG_DEC_CLASSES`]; grey where it is undefined, `f = 0`).
+/// Colour of a log decrement `δ` (`LOG_DEC_CLASSES`; grey where it is undefined, `f = 0`).
 pub fn log_dec_color(d: Option<f64>) -> &'static str {
     match d {
         Some(d) => LOG_DEC_CLASSES.iter().find(|c| d < c.0).map_or(LOG_DEC_CLASSES[3].1, |c| c.1),

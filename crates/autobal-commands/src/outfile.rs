@@ -155,7 +155,7 @@ impl Outputs {
     }
 }
 
-/// A file being written under a temporary name ([`temp_for`]); [`Staged::commit`] renames it
+/// A file being written under a temporary name (`temp_for`); [`Staged::commit`] renames it
 /// into place, dropping it uncommitted removes it.
 pub struct Staged {
     option: String,

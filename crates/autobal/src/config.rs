@@ -1044,7 +1044,8 @@ fn neutral(root: &Table, table: &str, key: &str, value: &Value) -> bool {
 /// into one class (docs/robustness.md, "Every entry is used"):
 ///
 /// - read by a model (through [`Section`]): used, but see `simulation_only`;
-/// - at its neutral value ([`neutral`]): nothing to report;
+/// - at its neutral value (0, `false`, an array of zeros, a y support equal to x): nothing to
+///   report;
 /// - of no model of the command (`[planar]` for the spatial rotor; `[spatial]`, `[initial]`,
 ///   `[couple]`, … for the planar one; the planar start `drive.xy0` on a spatial run):
 ///   [`EntryUse::foreign`], an error: the user wrote physics that would silently not happen;
