@@ -1075,11 +1075,13 @@ pub fn entry_use(root: &Table, models: &[Model]) -> EntryUse {
     let mut moot = std::collections::BTreeMap::new();
     let mut linear = None;
     let mut simulation = None;
+    let mut any_built = false;
     for &m in models {
         let (ok, u) = uses::track(|| m.build(root));
         if ok.is_err() {
             continue;
         }
+        any_built = true;
         read.extend(u.read.iter().cloned());
         for (k, v) in &u.moot {
             moot.entry(k.clone()).or_insert_with(|| v.clone());
@@ -1089,6 +1091,10 @@ pub fn entry_use(root: &Table, models: &[Model]) -> EntryUse {
             Model::Spatial => simulation = Some(u.read),
             Model::Planar => {}
         }
+    }
+    if !any_built {
+        // no model accepts the config: its build error is what to report
+        return EntryUse::default();
     }
     // the spatial simulation is what the linear model's omissions are measured against
     if linear.is_some() && simulation.is_none() {
@@ -1230,8 +1236,10 @@ mod tests {
         // neutral values are nothing to report, wherever they are
         assert!(entry_use(&with(DEFAULT_PLANAR, &[("spatial.gravity", "[0, 0, 0]"), ("spatial.lock_tilt", "false")]), &[Model::Planar]).is_empty());
         // moot: a second plane with no balls but a ball mass; real-ball keys without contact
-        let u = entry_use(&with(two, &[("balancer2.balls", "0")]), &[Model::Spatial]);
-        assert_eq!(keys(&u.moot), ["balancer2.ball_mass", "balancer2.drag", "balancer2.race_radius"]);
+        let u = entry_use(&with(two, &[("balancer2.balls", "0"), ("balancer2.ball_mass", "0")]), &[Model::Spatial]);
+        assert_eq!(keys(&u.moot), ["balancer2.drag", "balancer2.race_radius"]);
+        // (with a ball mass it is the build's error, as on the first plane: nothing to sort)
+        assert!(entry_use(&with(two, &[("balancer2.balls", "0")]), &[Model::Spatial]).is_empty());
         assert_eq!(u.moot[0].why, "with balancer2.balls = 0");
         let u = entry_use(&with(DEFAULT_PLANAR, &[("planar.ball_diameter", "0.01"), ("planar.slip_rate", "1e-3")]), &[Model::Planar]);
         assert_eq!(keys(&u.moot), ["planar.ball_diameter", "planar.slip_rate"]);
