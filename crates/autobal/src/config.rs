@@ -1112,9 +1112,10 @@ pub fn entry_use(root: &Table, models: &[Model]) -> EntryUse {
             let sim_has = simulation.as_ref().map(|s| s.contains(&field));
             let linear_has = linear.as_ref().map(|l| l.contains(&field));
             if read.contains(&field) {
-                any_read = true;
                 if linear_has == Some(false) && sim_has == Some(true) && !RUN_TABLES.contains(table) && !neutral(root, table, key, value) {
                     classes.push((1, Unused { key: field, why: String::new() }));
+                } else {
+                    any_read = true;
                 }
                 continue;
             }
@@ -1251,8 +1252,11 @@ mod tests {
         assert_eq!(u.simulation_only, ["spatial.lock_tilt"]);
         assert!(u.foreign.is_empty() && u.moot.is_empty());
         assert!(entry_use(&root, &[Model::Spatial]).is_empty());
-        // the report runs both: the linear sections' omissions are still named
+        // the report runs both: the linear sections' omissions are still named, as the linear
+        // model alone names them
         assert_eq!(entry_use(&root, &[Model::Linear, Model::Spatial]).simulation_only, ["spatial.lock_tilt"]);
+        let two = parse(two, "two").unwrap();
+        assert_eq!(entry_use(&two, &[Model::Linear, Model::Spatial]).simulation_only, entry_use(&two, &[Model::Linear]).simulation_only);
     }
 
     #[test]
