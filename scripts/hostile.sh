@@ -35,6 +35,7 @@ mkdir -p adir
 mkdir -p inputs
 cp "$EX/planar.toml" inputs/cfg.csv
 cp "$EX/planar.toml" sw.json
+cp "$EX/default.toml" inputs/d.toml
 # merges: two shards of one sweep, and damaged ones
 mkdir -p shards
 Q="--threads 1 --set drive.t_end=0.05 --x drive.b=2:3:4000"
@@ -47,6 +48,22 @@ sed '3s/,/,x/' shards/s2.csv > shards/nan.csv; cp shards/s2.json shards/nan.json
 sed 's/"definition_checksum": "fnv1a64:[0-9a-f]*"/"definition_checksum": "fnv1a64:0123456789abcdef"/' shards/s2.json > shards/sum.json; cp shards/s2.csv shards/sum.csv
 : > shards/empty.csv; : > shards/empty.json
 SH=$WORK/shards
+# more damaged shards: a JSON cut short, a CSV with another header, CRLF line ends, a shard given twice
+head -c 100 shards/s2.json > shards/jcut.json; cp shards/s2.csv shards/jcut.csv
+sed '1s/^[^,]*,/renamed,/' shards/s2.csv > shards/hdr.csv; cp shards/s2.json shards/hdr.json
+sed 's/$/\r/' shards/s2.csv > shards/crlf.csv; cp shards/s2.json shards/crlf.json
+# the spatial rotor with every optional table and real balls on two planes (round 2)
+TWO="--config $EX/spatial_two_plane.toml"
+FULL="$TWO --set rotor.axis_tilt=0.001 --set rotor.axis_tilt_angle=0.5 --set spatial.spin_drag=0.01 --set spatial.lock_tilt=false --set initial.tilt=[0.001,0] --set initial.velocity=[0.001,0] --set balancer.contact=true --set balancer.rolling_resistance=1e-3 --set balancer.restitution=0.8 --set balancer2.contact=true --set balancer2.ball_diameter=0.02 --set balancer2.rolling_resistance=1e-4 --set balancer2.slip_rate=1e-3"
+# --boundary axes over each field's full documented range (docs/robustness.md's table, from
+# autobal::limits): every dimensionless key, and every key of the SI tables on the dimensional
+# example, at the ends of its range (an open end nudged in by 1e-9 of the span)
+boundary_axes() {
+    grep -E '^\| `(dimensionless|rotor|supports|unbalance|balancer)\.[a-z_0-9]*` \| [[(]' "$EX/../docs/robustness.md" |
+        grep -v 'balls`\|dimensionless.n`\|axis_tilt\|_y`\|unbalance.angle\|ball_diameter\|restitution\|contact_stiffness\|rolling_resistance\|slip_rate' |
+        sed -E 's/^\| `([a-z_.0-9]*)` \| ([[(])([-0-9.e]*), ([-0-9.e]*)([])]).*/\1 \2 \3 \4 \5/' |
+        awk '{ lo = $3; hi = $4; d = (hi - lo) * 1e-9; if ($2 == "(") lo += d; if ($5 == ")") hi -= d; printf "%s=%.12g:%.12g:3\n", $1, lo, hi }'
+}
 
 DIM="--config $EX/dimensional.toml"
 cases=(
@@ -246,7 +263,77 @@ cases=(
 "INTFAST:merge $SH/s1.csv $SH/s2.csv --parquet --out merged"
 # --set with a whole table as the value of a table
 "critical --set dimensionless={c_sigma=1}"
+# round 3 (issue 23). Entries the model that runs them does not have: the spatial rotor's on the
+# planar one (simulate, sweep, stability, map), the planar rotor's on the spatial one (every command)
+"simulate --set spatial.gravity=[0,-9.81,0] --set drive.t_end=0.1"
+"simulate --set initial.position=[0.001,0] --set drive.t_end=0.1"
+"sweep --set couple.mass=0.01 --x drive.b=1:2:2 --out swc"
+"stability --config $EX/planar.toml --set spatial.lock_tilt=true"
+"map --config $EX/planar.toml --set balancer2.balls=2 --x planar.c_psi=0.1:0.2:3 --y omega=100:300:3 --out mp"
+"simulate $SP --set drive.xy0=[0.001,0] --set drive.t_end=10"
+"basins $SP --set drive.xy_rate0=[0.1,0] --n 2"
+"sweep $SP --set planar.m1=1 --x drive.omega0=1.5:1.6:2 --out sws"
+"critical $SP --set planar.k=1e5"
+"report --quick --out rep2 $SP --set drive.xy0=[0.001,0]"
+# entries moot with the rest of the config: a warning naming them
+"simulate $TWO --set balancer2.balls=0 --set drive.t_end=0.1"
+"simulate $TWO --set balancer2.balls=0 --set balancer2.ball_mass=0 --set drive.t_end=0.1"
+"simulate --set planar.restitution=0.9 --set planar.slip_rate=1e-3 --set drive.t_end=0.1"
+"critical $DIM --set balancer.balls=0 --set balancer.ball_mass=0"
+"simulate $TWO --set rotor.axis_tilt_angle=1 --set drive.t_end=0.1"
+# the spatial rotor with every optional table, real balls on two planes, in every command
+"simulate $FULL --set drive.t_end=0.2"
+"simulate $FULL --set drive.t_end=0.2 --parquet --out full"
+"basins $FULL --set drive.t_end=0.05 --n 3"
+"sweep $FULL --set drive.t_end=0.05 --x balancer2.balls=0:4:5 --set balancer2.ball_mass=0 --out swf"
+"sweep $FULL --set drive.t_end=0.05 --x balancer.restitution=0:1:3 --y balancer2.ball_diameter=0.001:0.3:3 --out swf2"
+"critical $FULL"
+"ranges $FULL"
+"inertia $FULL"
+"stability $FULL --samples 10"
+"campbell $FULL --points 5"
+"map $FULL --x balancer.ball_mass=0.01:0.05:3 --y speed_rpm=100:3000:3 --out mf"
+"report --quick --out repf $FULL"
+"simulate $TWO --set balancer.balls=100 --set balancer2.balls=100 --set balancer.ball_mass=1e-4 --set balancer2.ball_mass=1e-4 --set balancer.contact=true --set balancer2.contact=true --set drive.t_end=0.02"
+"simulate $TWO --set balancer.balls=101"
+# planar real balls: the implicit limit, many balls in contact under the explicit method
+"simulate --set planar.n=301 --set planar.m3=1e-4 --set planar.contact=true --set planar.ball_diameter=1e-3"
+"simulate --set planar.n=300 --set planar.m3=1e-4 --set planar.contact=true --set planar.ball_diameter=1e-3 --set drive.t_end=0.01"
+"simulate --set planar.n=100000 --set planar.m3=1e-3 --set planar.c_psi=0 --set planar.contact=true --set planar.ball_diameter=1e-6 --set integration.method=dop853 --set drive.t_end=1e-5 --set integration.dt=1e-5"
+"simulate --set planar.n=20000 --set planar.contact=true --set planar.ball_diameter=1e-6 --set planar.m3=1e-6 --set integration.method=rodas"
+# merges of more damaged shards
+"merge $SH/s1.csv $SH/jcut.csv --out m11"
+"merge $SH/s1.csv $SH/hdr.csv --out m12"
+"merge $SH/s1.csv $SH/crlf.csv --out m13"
+"merge $SH/s1.csv $SH/s1.csv $SH/s2.csv --out m14"
+"merge $SH/s1.csv $SH/s2.csv --out $SH/s2.csv"
+"merge $SH/s1.json $SH/s2.json --out m15"
+# --out variants
+"simulate --set drive.t_end=0.1 --out ''"
+"simulate --set drive.t_end=0.1 --out ."
+"simulate --set drive.t_end=0.1 --out /"
+"simulate --set drive.t_end=0.1 --out adir/../adir/"
+"sweep --config inputs/cfg.csv --x drive.b=1:2:2 --set drive.t_end=0.1 --out inputs/cfg"
+"campbell --points 5 --svg adir/c.svg"
+"stability --config inputs/d.toml --svg inputs/d.toml"
+# Ctrl-C at a random time in every command
+"INTFAST:critical $FULL"
+"INTFAST:ranges"
+"INTFAST:inertia"
+"INT:stability $FULL --samples 200"
+"INT:campbell --points 1000000 --svg camp"
+"INT:report --quick --out repi"
+"INT:report --quick --out repi2 $FULL"
+"INT:simulate $FULL --set drive.t_end=1e6 --parquet --out fulli"
+"INT:sweep $FULL --x drive.omega0=1:2:1000 --parquet --out swfi"
+"INT:map $FULL --x balancer.ball_mass=0.01:0.05:100 --y speed_rpm=100:3000:100 --out mfi"
+"INT:basins $FULL --n 100 --out bfi.csv"
 )
+# --boundary over each field's full range (generated, see boundary_axes)
+while read -r ax; do
+    case $ax in dimensionless.*) cases+=("map --x $ax --y omega=0.05:4.5:3 --boundary --out mb") ;;
+    *) cases+=("map $DIM --x $ax --y speed_rpm=100:20000:3 --boundary --out mb") ;; esac
+done < <(boundary_axes)
 
 RANDOM=${HOSTILE_SEED:-23}
 

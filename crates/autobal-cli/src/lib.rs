@@ -322,6 +322,7 @@ fn run(cli: Cli, control: &Control) -> Result<()> {
             let (root, _) = config::read_set(common.config.as_deref(), &common.set)?;
             if route == RouteArg::General || general::needs_general_route(&root) {
                 let g = general::rotor_of(&root)?;
+                config::check_entries(&root, "critical", &[config::simulation_model(&root)])?;
                 let w = general_campbell::omega_max(&root, &g, omega_max.as_deref())?;
                 let c = general_campbell::critical(&root, &g, w)?;
                 return emit(format, general_campbell::critical_json(&g, &c), general_campbell::critical_table(&g, &c));
@@ -422,6 +423,7 @@ fn run_general_campbell(
         anyhow::bail!("--view components: the general route draws the fixed-axes view only");
     }
     let g = general::rotor_of(root)?;
+    config::check_entries(root, "campbell", &[config::simulation_model(root)])?;
     let points = points.unwrap_or(if g.rotor.is_periodic() { 60 } else { 300 });
     if !(3..=100_000).contains(&points) {
         anyhow::bail!("--points: must lie between 3 and 100000 on the general route, got {points}");
@@ -445,6 +447,7 @@ fn run_general_stability(root: &toml::Table, format: Format, lin: LinearArgs, sa
         anyhow::bail!("--balls locked: the general route analyses the balls free (use the closed-form route of a one-plane config for the locked rotor)");
     }
     let g = general::rotor_of(root)?;
+    config::check_entries(root, "stability", &[config::simulation_model(root)])?;
     // a periodic orbit costs a shooting (the variational equations over a revolution) per speed
     let samples = samples.unwrap_or(if g.rotor.is_periodic() { 50 } else { 200 });
     if !(10..=1_000_000).contains(&samples) {
@@ -499,10 +502,12 @@ fn run_map(
             anyhow::bail!("--balls locked: the general route maps the balls free (use the 12-state route of a one-plane config for the locked rotor)");
         }
         let verdict_only = quantity == QuantityArg::Verdict;
+        config::check_entries(&root, "map", &[config::simulation_model(&root)])?;
         return map::run_general(&root, common.config.as_deref(), &x, &y, omega.as_deref(), verdict_only, &out, threads, boundary, control);
     }
     // the speeds need the config's ω0: it is read (and checked) first
     let cfg = config::build(&root, &source)?;
+    config::check_entries(&root, "map", &[config::Model::Linear])?;
     let omega_text = omega;
     let omega = omega_text.as_deref().map(|t| linear::speed_arg(&cfg, "--omega", t)).transpose()?;
     if let Some(w) = omega {
@@ -553,7 +558,6 @@ fn run_map(
     let mut w = outfile::Staged::create("--out", &csv_path)?;
     let q = if quantity == QuantityArg::Margin { map::Quantity::Margin } else { map::Quantity::Verdict };
     let progress = std::io::IsTerminal::is_terminal(&std::io::stderr());
-    config::warn_ignored(&root, "map");
     let traced = if boundary {
         // the checks the map makes, before the tracing (whose messages would not name the flags)
         for (flag, a) in [("--x", &xa), ("--y", &ya)] {
@@ -646,6 +650,7 @@ fn run_simulate(config: Option<PathBuf>, set: Vec<String>, dt: Option<f64>, out:
         return run_spatial(&root, &source, config.as_deref(), dt, out, parquet, format, control);
     }
     let mut cfg = config::build_planar(&root, &source)?;
+    config::check_entries(&root, "simulate", &[config::Model::Planar])?;
     if let Some(d) = dt {
         cfg.settings.dt = d;
         cfg.settings.validate(&cfg.rotor).map_err(|e| anyhow::anyhow!("--dt: {e}"))?;
@@ -693,6 +698,7 @@ fn run_spatial(
     control: &Control,
 ) -> Result<()> {
     let mut sim = spatial_sim::build(root, source)?;
+    config::check_entries(root, "simulate", &[config::Model::Spatial])?;
     if sim.default_drive {
         let (w_end, _) = sim.drive.kinematics(sim.settings.t_end);
         let unit = if sim.config.dimensional { " rad/s" } else { " (Ω)" };
@@ -733,6 +739,7 @@ fn run_spatial(
 fn run_basins(config: Option<PathBuf>, set: Vec<String>, n: usize, out: PathBuf, format: Format, threads: Option<usize>, control: &Control) -> Result<()> {
     let (root, source) = config::read_set(config.as_deref(), &set)?;
     let sim = spatial_sim::build(&root, &source)?;
+    config::check_entries(&root, "basins", &[config::Model::Spatial])?;
     if let Some(t) = threads {
         if t == 0 {
             anyhow::bail!("--threads: must be at least 1");

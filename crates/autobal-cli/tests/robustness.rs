@@ -521,3 +521,206 @@ fn regression_spatial_sample_count_was_printed_with_303_digits() {
     let line = err.lines().find(|l| l.contains("samples is too many")).unwrap_or_else(|| panic!("{err}"));
     assert!(line.len() < 120, "{line}");
 }
+
+/// The command must succeed and say, on one warning line, that `key` has no effect.
+#[track_caller]
+fn warns(args: &[&str], key: &str) -> String {
+    let (code, out, err) = run_for(Duration::from_secs(60), args);
+    assert_eq!(code, 0, "autobal {}: exit {code}, stdout {out}, stderr {err}", args.join(" "));
+    let line = err
+        .lines()
+        .find(|l| l.starts_with("warning: ") && l.contains(key))
+        .unwrap_or_else(|| panic!("autobal {}: no warning naming {key}: {err}", args.join(" ")));
+    line.to_string()
+}
+
+/// Entries silently ignored (issue 23): every entry of a config is used by the model that runs
+/// it, or an error (another rotor's entry) or a warning (moot with the rest of the config)
+/// names it, for every command family (autobal::config::entry_use, docs/robustness.md).
+#[test]
+fn regression_entries_of_another_model_passed_silently() {
+    let planar = ["--set", "drive.t_end=0.05", "--set", "integration.dt=0.01"];
+    // the spatial rotor's entries on the planar rotor: simulate, sweep, stability, map
+    for (set, key) in
+        [("spatial.gravity=[0,-9.81,0]", "spatial.gravity"), ("initial.position=[1e-3,0]", "initial.position"), ("couple.mass=0.01", "couple.mass")]
+    {
+        let mut a = vec!["simulate", "--set", set, "--out", "s"];
+        a.extend(planar);
+        let line = rejects(&a, key);
+        assert!(line.contains("belongs to the spatial rotor"), "{line}");
+        rejects(&["sweep", "--set", set, "--x", "drive.b=1:2:2", "--out", "sw"], key);
+        let p = examples("planar.toml");
+        rejects(&["stability", "--config", &p, "--set", set, "--samples", "10"], key);
+        rejects(&["map", "--config", &p, "--set", set, "--x", "planar.c_psi=0.1:0.2:2", "--y", "omega=100:200:2", "--out", "m"], key);
+    }
+    // the planar rotor's entries on the spatial rotor: simulate, sweep, basins, the analytic
+    // commands, the report
+    let spatial = examples("spatial.toml");
+    let sp = |v: &[&'static str]| -> Vec<String> { v.iter().map(|s| s.to_string()).collect() };
+    for (set, key, why) in [("drive.xy0=[1e-3,0]", "drive.xy0", "starts from [initial]"), ("planar.m1=1", "planar.m1", "planar rotor of paper 004")] {
+        let short = ["--set", "drive.t_end=2", "--set", "integration.dt=1"];
+        let runs: Vec<Vec<String>> = vec![
+            [sp(&["simulate", "--out", "s"]), sp(&short)].concat(),
+            [sp(&["sweep", "--x", "drive.omega0=1.5:1.6:2", "--out", "sw"]), sp(&short)].concat(),
+            [sp(&["basins", "--n", "2", "--out", "b"]), sp(&short)].concat(),
+            sp(&["critical"]),
+            sp(&["campbell", "--points", "3"]),
+            sp(&["report", "--quick", "--out", "rep"]),
+        ];
+        for mut a in runs {
+            if a[0] == "report" && key == "planar.m1" {
+                continue; // the report runs every rotor its config describes, [planar] too
+            }
+            a.extend(["--config".to_string(), spatial.clone(), "--set".to_string(), set.to_string()]);
+            let line = rejects(&args(&a), key);
+            assert!(line.contains(why), "{line}");
+        }
+    }
+}
+
+#[test]
+fn regression_moot_entries_passed_silently() {
+    // a second plane with zero balls but a ball mass: an error, as on the first plane; its other
+    // ball keys then have no effect (the spatial simulation)
+    let two = examples("spatial_two_plane.toml");
+    let short = ["--set", "drive.t_end=0.01", "--set", "integration.dt=0.005", "--out", "s"];
+    rejects(&[&["simulate", "--config", &two, "--set", "balancer2.balls=0"][..], &short].concat(), "balancer2.balls");
+    let line =
+        warns(&[&["simulate", "--config", &two, "--set", "balancer2.balls=0", "--set", "balancer2.ball_mass=0"][..], &short].concat(), "balancer2.race_radius");
+    assert!(line.contains("balancer2.drag, balancer2.race_radius (with balancer2.balls = 0)") && line.contains("no effect"), "{line}");
+    // real-ball keys without contact (the planar rotor)
+    let line = warns(
+        &["simulate", "--set", "planar.restitution=0.9", "--set", "drive.t_end=0.05", "--set", "integration.dt=0.01", "--out", "s"],
+        "planar.restitution",
+    );
+    assert!(line.contains("(with planar.contact = false)"), "{line}");
+    // the analytic commands: ball keys with no balls
+    let line =
+        warns(&["critical", "--config", &examples("dimensional.toml"), "--set", "balancer.balls=0", "--set", "balancer.ball_mass=0"], "balancer.race_radius");
+    assert!(line.contains("(with balancer.balls = 0)"), "{line}");
+    // neutral values are no entry to report: the spatial rotor's zero gravity on the planar one
+    let (code, _, err) = run_for(
+        Duration::from_secs(60),
+        &[
+            "simulate",
+            "--set",
+            "spatial.gravity=[0,0,0]",
+            "--set",
+            "spatial.lock_tilt=false",
+            "--set",
+            "drive.t_end=0.05",
+            "--set",
+            "integration.dt=0.01",
+            "--out",
+            "s",
+        ],
+    );
+    assert_eq!(code, 0, "{err}");
+    assert!(!err.contains("warning: simulate"), "{err}");
+}
+
+/// Limits stated once and true (issue 23): every limit of docs/robustness.md's "Bounded cost
+/// and resources" table is reached by a run that succeeds (small runs: tiny `t_end`, the
+/// smallest grids) and one past it is refused with that limit's message. The input ranges
+/// (`autobal::limits::LIMITS`) have their own test, crates/autobal/tests/limits_table.rs. Not
+/// run at the limit, only past it (each would take minutes): `t_end/dt = 5e7` samples, axes of
+/// 100 000 points, `--samples 1000000`, `--points 10000000`.
+#[test]
+fn regression_the_resource_limits_are_reached_and_one_past_them_refused() {
+    let tiny = ["--set", "drive.t_end=1e-4", "--set", "integration.dt=1e-4"];
+    let ok = |a: &[&str]| {
+        let (code, out, err) = run_for(Duration::from_secs(120), a);
+        assert_eq!(code, 0, "autobal {}: exit {code}, {out}{err}", a.join(" "));
+    };
+    // the config file: 1 MiB
+    let d = std::env::temp_dir().join(format!("autobal-limits-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    let text = std::fs::read_to_string(examples("planar.toml")).unwrap();
+    let at = d.join("at.toml");
+    let pad = (1usize << 20) - text.len() - 2;
+    std::fs::write(&at, format!("{text}\n#{}", "x".repeat(pad))).unwrap();
+    assert_eq!(std::fs::metadata(&at).unwrap().len(), 1 << 20);
+    let (at_s, past_s) = (at.to_str().unwrap().to_string(), d.join("past.toml").to_str().unwrap().to_string());
+    std::fs::write(&past_s, format!("{text}\n#{}", "x".repeat(pad + 1))).unwrap();
+    ok(&[&["simulate", "--config", &at_s, "--out", "s"][..], &tiny].concat());
+    let e = rejects(&["simulate", "--config", &past_s, "--out", "s"], &format!("--config {past_s}"));
+    assert!(e.contains("exceeds the limit of 1048576"), "{e}");
+    // balls of the planar model, and array entries (drive.psi0): 100 000 each, together (in a
+    // file: the command line is too short for them)
+    let psi: Vec<String> = (0..100_000).map(|i| format!("{:.6}", i as f64 * 6.283e-5)).collect();
+    let many = d.join("many.toml");
+    let with_psi = |extra: &str| text.replace("[drive]\n", &format!("[drive]\npsi0 = [{}{extra}]\n", psi.join(",")));
+    std::fs::write(&many, with_psi("")).unwrap();
+    let many = many.to_str().unwrap().to_string();
+    ok(&[&["simulate", "--config", &many, "--set", "planar.n=100000", "--out", "s"][..], &tiny].concat());
+    let e = rejects(&["simulate", "--set", "planar.n=100001", "--out", "s"], "planar.n");
+    assert!(e.contains("exceeds the limit of 100000"), "{e}");
+    let past = d.join("many_past.toml");
+    std::fs::write(&past, with_psi(",0")).unwrap();
+    let e = rejects(&["simulate", "--config", past.to_str().unwrap(), "--out", "s"], "drive.psi0");
+    assert!(e.contains("exceeds the limit of 100000"), "{e}");
+    // real balls under a method that takes implicit steps (a dense Jacobian): 300; with the
+    // explicit method the planar limit, 100 000 balls in contact checked for overlaps at the
+    // start in O(n log n) (that check and the contact events were O(n²))
+    let real = ["--set", "planar.m3=1e-4", "--set", "planar.contact=true", "--set", "planar.ball_diameter=1e-3"];
+    ok(&[&["simulate", "--set", "planar.n=300", "--out", "s"][..], &real, &tiny].concat());
+    let e = rejects(&[&["simulate", "--set", "planar.n=301", "--out", "s"][..], &real].concat(), "integration.method");
+    assert!(e.contains("at most 300 balls") && e.contains("dop853"), "{e}");
+    let many_real = [
+        "--set",
+        "planar.n=100000",
+        "--set",
+        "planar.m3=1e-3",
+        "--set",
+        "planar.c_psi=0",
+        "--set",
+        "planar.ball_diameter=1e-6",
+        "--set",
+        "planar.contact=true",
+    ];
+    ok(&[&["simulate", "--set", "integration.method=\"dop853\"", "--set", "drive.t_end=1e-5", "--set", "integration.dt=1e-5", "--out", "s"][..], &many_real]
+        .concat());
+    // balls of the spatial model: 100 per plane, in the analytic commands and the simulation
+    ok(&["critical", "--set", "dimensionless.n=100"]);
+    rejects(&["critical", "--set", "dimensionless.n=101"], "dimensionless.n");
+    let two = examples("spatial_two_plane.toml");
+    let planes = ["--set", "balancer.balls=100", "--set", "balancer2.balls=100", "--set", "balancer.ball_mass=1e-4", "--set", "balancer2.ball_mass=1e-4"];
+    ok(&[&["simulate", "--config", &two, "--out", "s"][..], &planes, &tiny].concat());
+    rejects(&["simulate", "--config", &two, "--set", "balancer2.balls=101", "--out", "s"], "balancer2.balls");
+    // the commands' own counts
+    ok(&["stability", "--samples", "10"]);
+    assert!(rejects(&["stability", "--samples", "9"], "--samples").contains("between 10 and 1000000"));
+    assert!(rejects(&["stability", "--samples", "1000001"], "--samples").contains("between 10 and 1000000"));
+    ok(&["campbell", "--points", "3"]);
+    assert!(rejects(&["campbell", "--points", "2"], "--points").contains("between 3 and 10000000"));
+    assert!(rejects(&["campbell", "--points", "10000001"], "--points").contains("between 3 and 10000000"));
+    ok(&["map", "--x", "dimensionless.z_a=0:1:2", "--y", "omega=1:2:2", "--out", "m"]);
+    assert!(
+        rejects(&["map", "--x", "dimensionless.z_a=0:1:1", "--y", "omega=1:2:2", "--out", "m"], "--x dimensionless.z_a=0:1:1").contains("between 2 and 100000")
+    );
+    assert!(rejects(&["map", "--x", "dimensionless.z_a=0:1:100001", "--y", "omega=1:2:2", "--out", "m"], "--x dimensionless.z_a=0:1:100001")
+        .contains("between 2 and 100000"));
+    // simulation samples: t_end/dt ≤ 5e7
+    let e = rejects(&["simulate", "--set", "drive.t_end=5.0001", "--set", "integration.dt=1e-7", "--out", "s"], "integration.dt");
+    assert!(e.contains("too many"), "{e}");
+    std::fs::remove_dir_all(&d).ok();
+}
+
+/// Ranges that contradicted themselves (issue 23): `map --boundary` over a field's full
+/// documented range was refused by that range, the tracer stepping past the axis's ends (a
+/// difference quotient beyond the closed end: "must lie in [-10000, 10000] m, got 10000"; a
+/// rounding below 0: "got -9.54715e-33"; a predictor: "got -0.624512"). Found by
+/// scripts/hostile.sh's generated rows over every field's range.
+#[test]
+fn regression_boundary_axis_over_a_fields_full_range_was_refused_by_it() {
+    let dim = examples("dimensional.toml");
+    for ax in ["balancer.z=-10000:10000:3", "unbalance.radius=0:1000:3", "supports.stiffness_left=10000:1e13:3"] {
+        let (code, _, err) =
+            run_for(Duration::from_secs(120), &["map", "--config", &dim, "--x", ax, "--y", "speed_rpm=100:20000:3", "--boundary", "--out", "mb"]);
+        assert_eq!(code, 0, "--x {ax}: {err}");
+    }
+    for ax in ["dimensionless.h_s=0:1000:3", "dimensionless.delta_a=0:0.999999999:3"] {
+        let (code, _, err) = run_for(Duration::from_secs(120), &["map", "--x", ax, "--y", "omega=0.05:4.5:3", "--boundary", "--out", "mb"]);
+        assert_eq!(code, 0, "--x {ax}: {err}");
+    }
+}

@@ -107,20 +107,21 @@ pub fn load(path: Option<&std::path::Path>, sets: &[String]) -> Result<Config> {
     build(&root, &source)
 }
 
-/// `load` for the analytic `command`, warning (one line on standard error) about the entries
-/// it ignores ([`ignored_warning`]).
+/// `load` for the analytic `command` (the linear model), checking that every entry is used
+/// ([`check_entries`]).
 pub fn load_analytic(command: &str, path: Option<&std::path::Path>, sets: &[String]) -> Result<Config> {
     let (root, source) = read_set(path, sets)?;
     let cfg = build(&root, &source)?;
-    warn_ignored(&root, command);
+    check_entries(&root, command, &[Model::Linear])?;
     Ok(cfg)
 }
 
+pub use autobal::config::Model;
+
 /// The warning of an analytic `command` (`critical`, `map`, `report`, ...) on a config with
-/// entries that only the spatial simulation uses ([`autobal::config::ignored_by_linear_model`]),
+/// `keys` that only the spatial simulation uses ([`autobal::config::EntryUse::simulation_only`]),
 /// or `None`.
-pub fn ignored_warning(root: &Table, command: &str) -> Option<String> {
-    let keys = autobal::config::ignored_by_linear_model(root);
+pub fn ignored_warning(keys: &[String], command: &str) -> Option<String> {
     if keys.is_empty() {
         return None;
     }
@@ -135,13 +136,56 @@ pub fn ignored_warning(root: &Table, command: &str) -> Option<String> {
     ))
 }
 
-/// Print [`ignored_warning`], if any, and [`bare_speed_notes`].
-pub fn warn_ignored(root: &Table, command: &str) {
-    if let Some(w) = ignored_warning(root, command) {
-        crate::output::note(&w);
+/// The one check every command makes on its config after building its model(s): that every
+/// entry is used by the `models` `command` runs ([`autobal::config::entry_use`]; the classes in
+/// docs/robustness.md, "Every entry is used"). An entry no model of the command has (another
+/// rotor's table or key) is an error naming it; entries only the spatial simulation uses (for
+/// the linear model) and entries the rest of the config makes moot are one warning line each
+/// on standard error; a bare speed in a dimensional config gets its note ([`bare_speed_notes`]).
+pub fn check_entries(root: &Table, command: &str, models: &[Model]) -> Result<()> {
+    let u = autobal::config::entry_use(root, models);
+    if let Some(first) = u.foreign.first() {
+        let runs: Vec<&str> = models.iter().map(|m| m.describe()).collect();
+        let also = match &u.foreign[1..] {
+            [] => String::new(),
+            rest => format!(" (and {})", rest.iter().map(|u| u.key.as_str()).collect::<Vec<_>>().join(", ")),
+        };
+        bail!("{}: not used by `{command}`, which runs {}: this entry {}; remove it{also}", first.key, runs.join(" and "), first.why);
+    }
+    if models.contains(&Model::Linear) {
+        if let Some(w) = ignored_warning(&u.simulation_only, command) {
+            crate::output::note(&w);
+        }
+    }
+    if !u.moot.is_empty() {
+        // grouped by reason, in the order of the config
+        let mut groups: Vec<(&str, Vec<&str>)> = vec![];
+        for m in &u.moot {
+            match groups.iter_mut().find(|(why, _)| *why == m.why) {
+                Some((_, keys)) => keys.push(&m.key),
+                None => groups.push((&m.why, vec![&m.key])),
+            }
+        }
+        let list: Vec<String> = groups.iter().map(|(why, keys)| format!("{} ({why})", keys.join(", "))).collect();
+        crate::output::note(&format!(
+            "warning: {command}: {} {} no effect with the rest of this config",
+            list.join(", "),
+            if u.moot.len() == 1 { "has" } else { "have" }
+        ));
     }
     for n in bare_speed_notes(root) {
         crate::output::note(&n);
+    }
+    Ok(())
+}
+
+/// The models `command` runs on a simulation config: the spatial simulation for a spatial
+/// config ([`autobal::config::is_spatial`]), else the planar rotor.
+pub fn simulation_model(root: &Table) -> Model {
+    if autobal::config::is_spatial(root) {
+        Model::Spatial
+    } else {
+        Model::Planar
     }
 }
 

@@ -104,7 +104,7 @@ fn base() -> impl Strategy<Value = Table> {
 fn assignment() -> impl Strategy<Value = ((String, String), Value)> {
     key().prop_flat_map(|(t, k)| {
         let field = format!("{t}.{k}");
-        let number = if ["balancer.balls", "dimensionless.n", "planar.n"].contains(&field.as_str()) {
+        let number = if ["balancer.balls", "balancer2.balls", "dimensionless.n", "planar.n"].contains(&field.as_str()) {
             prop_oneof![3 => 0i64..12, 1 => 0i64..=110, 1 => any::<i64>()].prop_map(Value::Integer).boxed()
         } else {
             value_for(&field).prop_map(Value::Float).boxed()
@@ -179,6 +179,101 @@ fn outcome(root: &Table) -> Result<(), String> {
     Ok(())
 }
 
+/// The round-2 configs as bases: the spatial simulation (one plane, and two planes with a couple
+/// unbalance, y supports and gravity) and the planar rotor.
+fn base_round_two() -> impl Strategy<Value = Table> {
+    prop::sample::select(vec![include_str!("../../../examples/spatial.toml"), include_str!("../../../examples/spatial_two_plane.toml"), config::DEFAULT_PLANAR])
+        .prop_map(|t| t.parse::<Table>().expect("examples parse"))
+}
+
+/// Up to six random assignments on a round-2 base, drawn mostly from the tables round 2 added
+/// (`[couple]`, `[balancer2]`, `[spatial]`, `[initial]`, the real-ball keys, `drive.xy0`), so
+/// that every optional table meets every model.
+fn config_tree_round_two() -> impl Strategy<Value = Table> {
+    let round_two = prop::sample::select(
+        SCHEMA
+            .iter()
+            .flat_map(|(t, ks)| ks.iter().map(move |k| (t.to_string(), k.to_string())))
+            .filter(|(t, k)| {
+                matches!(t.as_str(), "couple" | "balancer2" | "spatial" | "initial" | "planar")
+                    || k.ends_with("_y")
+                    || [
+                        "ball_diameter",
+                        "contact",
+                        "restitution",
+                        "contact_stiffness",
+                        "rolling_resistance",
+                        "slip_rate",
+                        "xy0",
+                        "xy_rate0",
+                        "axis_tilt",
+                        "balls",
+                    ]
+                    .contains(&k.as_str())
+            })
+            .collect::<Vec<_>>(),
+    );
+    let assignment2 = prop_oneof![
+        3 => round_two.prop_flat_map(|(t, k)| {
+            let field = format!("{t}.{k}");
+            let v = match k.as_str() {
+                "contact" | "lock_tilt" => any::<bool>().prop_map(Value::Boolean).boxed(),
+                "balls" | "n" => prop_oneof![3 => 0i64..6, 1 => 0i64..=110].prop_map(Value::Integer).boxed(),
+                _ if ["gravity"].contains(&k.as_str()) => prop::collection::vec(value_for(&field), 3).prop_map(|v| Value::Array(v.into_iter().map(Value::Float).collect())).boxed(),
+                _ if ["position", "velocity", "tilt", "tilt_rate", "xy0", "xy_rate0"].contains(&k.as_str()) => {
+                    prop::collection::vec(value_for(&field), 2).prop_map(|v| Value::Array(v.into_iter().map(Value::Float).collect())).boxed()
+                }
+                _ => value_for(&field).prop_map(Value::Float).boxed(),
+            };
+            (Just((t, k)), v)
+        }),
+        1 => assignment(),
+    ];
+    (base_round_two(), prop::collection::vec(assignment2, 0..6)).prop_map(|(mut root, sets)| {
+        for ((t, k), v) in sets {
+            if let Value::Table(tab) = root.entry(t).or_insert_with(|| Value::Table(Table::new())) {
+                tab.insert(k, v);
+            }
+        }
+        root
+    })
+}
+
+/// Every model on a round-2 tree: each build is accepted or names a real key; on an accepted
+/// one, [`autobal::config::entry_use`] sorts every entry into its classes, naming only real keys
+/// and tables, and the spatial rotor's state is finite.
+fn outcome_round_two(root: &Table) -> Result<(), String> {
+    use autobal::config::Model;
+    let keys: Vec<String> = SCHEMA.iter().flat_map(|(t, ks)| ks.iter().map(move |k| format!("{t}.{k}"))).collect();
+    let real = |k: &str| keys.iter().any(|x| x == k) || SCHEMA.iter().any(|(t, _)| format!("[{t}]") == k);
+    let built = [
+        (Model::Linear, autobal::config::spatial(root).map(drop)),
+        (Model::Spatial, autobal::config::spatial_simulation(root).map(drop)),
+        (Model::Planar, autobal::config::planar(root).map(drop)),
+    ];
+    for (model, b) in built {
+        match b {
+            Err(e) => assert_names_a_field(&e.to_string()),
+            Ok(()) => {
+                let u = autobal::config::entry_use(root, &[model]);
+                for k in u.foreign.iter().chain(&u.moot).map(|u| u.key.as_str()).chain(u.simulation_only.iter().map(String::as_str)) {
+                    assert!(real(k), "{model:?}: entry_use names `{k}`, no key of the config");
+                    // a reported entry is one the config has
+                    let table = k.trim_start_matches('[').trim_end_matches(']').split('.').next().unwrap();
+                    assert!(root.contains_key(table), "{model:?}: `{k}` is not in the config");
+                }
+                if model != Model::Linear {
+                    assert!(u.simulation_only.is_empty(), "{model:?}: {:?}", u.simulation_only);
+                }
+            }
+        }
+    }
+    if let Ok(sim) = autobal::config::spatial_simulation(root) {
+        autobal::limits::check_finite("rotor", &sim.rotor).map_err(|e| e.to_string())?;
+    }
+    Ok(())
+}
+
 /// The SI fields in the order of [`autobal::spatial::params::SpatialRotorSi`].
 const SI_FIELDS: [&str; 16] = [
     "rotor.mass",
@@ -249,6 +344,17 @@ proptest! {
     }
 
     /// Random `--set` assignments (key and value as typed on the command line).
+    /// Round-2 trees (every optional table of the spatial simulation, two planes, real balls,
+    /// the planar start) against every model and the entry-use check.
+    #[test]
+    fn random_round_two_trees(root in config_tree_round_two()) {
+        let t0 = std::time::Instant::now();
+        if let Err(e) = outcome_round_two(&root) {
+            panic!("accepted, but: {e}\nconfig:\n{}", toml::to_string(&root).unwrap_or_default());
+        }
+        prop_assert!(t0.elapsed().as_secs() < 60, "case took {:?}", t0.elapsed());
+    }
+
     #[test]
     fn random_set_overrides(
         sets in prop::collection::vec(

@@ -159,9 +159,12 @@ fn parse_axes(a: &SweepArgs) -> Result<Vec<(&'static str, Axis)>> {
 pub fn run(a: SweepArgs, control: &Control) -> Result<()> {
     let (root, source) = config::read_planar_set(a.config.as_deref(), &a.set)?;
     let axes = parse_axes(&a)?;
-    if autobal::config::is_spatial(&root) && !root.contains_key("planar") {
+    // the same rotor `simulate` runs on this config; another rotor's tables are refused by
+    // config::check_entries
+    if autobal::config::is_spatial(&root) {
         // the spatial rotor of papers 000/003: the config's keys are the paths
         let sim = crate::spatial_sim::build(&root, &source)?;
+        config::check_entries(&root, "sweep", &[config::Model::Spatial])?;
         let base = SpatialSweep::new(root.clone())?;
         for (flag, ax) in &axes {
             // an unknown key, or one the config cannot take, before anything runs
@@ -172,6 +175,7 @@ pub fn run(a: SweepArgs, control: &Control) -> Result<()> {
         return sweep_on(&a, &root, &base, axes, problem, units, control);
     }
     let cfg = config::build_planar(&root, &source)?;
+    config::check_entries(&root, "sweep", &[config::Model::Planar])?;
     let base = PlanarProblem { rotor: cfg.rotor, drive: cfg.drive, settings: cfg.settings };
     for (flag, ax) in &axes {
         // an unknown path, or one the drive does not have, before anything runs

@@ -94,7 +94,7 @@ pub const SCHEMA: &[(&str, &[&str])] = &[
 ];
 
 /// The keys read as whole numbers (numbers of balls).
-const COUNTS: &[&str] = &["balancer.balls", "dimensionless.n", "planar.n"];
+const COUNTS: &[&str] = &["balancer.balls", "balancer2.balls", "dimensionless.n", "planar.n"];
 
 /// Longest array in a config (`drive.schedule` points).
 pub const MAX_ARRAY_LEN: usize = 100_000;
@@ -245,9 +245,24 @@ impl<'a> Section<'a> {
     pub fn field(&self, key: &str) -> String {
         format!("{}.{key}", self.name)
     }
-    /// The raw value of `key`.
+    /// The raw value of `key`; a given key counts as used by the model being built
+    /// ([`entry_use`]).
     pub fn get(&self, key: &str) -> Option<&'a Value> {
-        self.table.and_then(|t| t.get(key))
+        let v = self.table.and_then(|t| t.get(key));
+        if v.is_some() {
+            uses::record(&self.field(key));
+        }
+        v
+    }
+    /// Unless `cond`, the `keys` read so far count as not used by the model being built, because
+    /// of `why` (`"with balancer2.balls = 0"`): they were read (and checked) but, with the rest
+    /// of the config, have no effect on the model ([`entry_use`]).
+    pub fn used_only_if(&self, cond: bool, keys: &[&str], why: &str) {
+        if !cond {
+            for k in keys {
+                uses::unuse(&self.field(k), why);
+            }
+        }
     }
     /// A number, if given.
     pub fn f64(&self, key: &str) -> Result<Option<f64>> {
@@ -382,15 +397,25 @@ pub struct SpatialConfig {
 /// ([`crate::balls::BallPhysics`]; absent keys: its defaults, the papers' point masses).
 pub fn ball_physics_of(sec: &Section) -> Result<crate::balls::BallPhysics> {
     let d = crate::balls::BallPhysics::default();
-    Ok(crate::balls::BallPhysics {
+    let b = crate::balls::BallPhysics {
         diameter: sec.f64("ball_diameter")?,
         contact: sec.boolean("contact")?.unwrap_or(d.contact),
         restitution: sec.f64("restitution")?.unwrap_or(d.restitution),
         contact_stiffness: sec.f64("contact_stiffness")?,
         rolling_resistance: sec.f64("rolling_resistance")?.unwrap_or(d.rolling_resistance),
         slip_rate: sec.f64("slip_rate")?.unwrap_or(d.slip_rate),
-    })
+    };
+    // the size and the contact law act only through contact, the slip rate only with rolling
+    // resistance (crate::balls)
+    sec.used_only_if(b.contact, &["ball_diameter", "restitution", "contact_stiffness"], &format!("with {} = false", sec.field("contact")));
+    sec.used_only_if(b.rolling_resistance != 0.0, &["slip_rate"], &format!("with {} = 0", sec.field("rolling_resistance")));
+    Ok(b)
 }
+
+/// The keys of a ball set (`[balancer]`, `[balancer2]`) that describe its balls: no effect
+/// without balls.
+const BALL_KEYS: [&str; 9] =
+    ["ball_mass", "race_radius", "drag", "ball_diameter", "contact", "restitution", "contact_stiffness", "rolling_resistance", "slip_rate"];
 
 const DIMENSIONAL_TABLES: [&str; 4] = ["rotor", "supports", "unbalance", "balancer"];
 
@@ -434,7 +459,10 @@ pub fn spatial(root: &Table) -> Result<SpatialConfig> {
 
 fn rotor_si(root: &Table) -> Result<SpatialRotorSi> {
     let (r, s, u, b) = (Section::of(root, "rotor"), Section::of(root, "supports"), Section::of(root, "unbalance"), Section::of(root, "balancer"));
-    Ok(SpatialRotorSi {
+    // the phase of the one unbalance: a rotation of the rotor frame, which the linear model's
+    // results do not depend on (the spatial simulation reads it again with [couple])
+    u.f64("angle")?;
+    let si = SpatialRotorSi {
         rotor_mass: r.req("mass")?,
         equatorial_moment: r.req("equatorial_moment")?,
         polar_moment: r.req("polar_moment")?,
@@ -457,7 +485,10 @@ fn rotor_si(root: &Table) -> Result<SpatialRotorSi> {
         ball_mass: b.f64("ball_mass")?.unwrap_or(0.0),
         race_radius: b.f64("race_radius")?.unwrap_or(0.0),
         ball_drag: b.f64("drag")?.unwrap_or(0.0),
-    })
+    };
+    b.used_only_if(si.balls > 0, &BALL_KEYS, "with balancer.balls = 0");
+    u.used_only_if(si.unbalance_mass != 0.0, &["radius", "angle"], "with unbalance.mass = 0");
+    Ok(si)
 }
 
 fn dimensionless(root: &Table, method: AnisotropyMethod) -> Result<SpatialSpec> {
@@ -527,6 +558,11 @@ pub fn planar(root: &Table) -> Result<PlanarProblem> {
         balls: ball_physics_of(&p)?,
     };
     rotor.validate()?;
+    p.used_only_if(
+        rotor.n > 0,
+        &["m3", "r", "c_psi", "ball_diameter", "contact", "restitution", "contact_stiffness", "rolling_resistance", "slip_rate"],
+        "with planar.n = 0",
+    );
     crate::planar::problem::check_natural_frequency(&rotor)?;
     let (drive, t_end) = drive(&d)?;
     let ig = integration(&ig, t_end)?;
@@ -588,6 +624,12 @@ pub fn drive(d: &Section) -> Result<(Drive, f64)> {
         o => return Err(Error::invalid("drive.kind", format!("must be one of \"speed\", \"acceleration\", \"torque\", \"motor\", \"schedule\", got \"{o}\""))),
     };
     drive.validate()?;
+    // the parameters of the other kinds are a menu (examples/planar.toml keeps `torque` and
+    // `omega_idle` beside kind = "acceleration", so that `--set drive.kind=motor` switches):
+    // they count as used (docs/robustness.md, "Every entry is used")
+    for key in ["b", "torque", "omega_idle", "t_off", "schedule", "schedule_of"] {
+        d.get(key);
+    }
     let t_end = d.f64("t_end")?.unwrap_or(10.0);
     Ok((drive, t_end))
 }
@@ -656,8 +698,9 @@ pub fn is_spatial(root: &Table) -> bool {
 ///
 /// Keys at the value that reproduces the linear model are not listed (an example written out
 /// in full, `gravity = [0, 0, 0]`, is not a difference); nor are the run's settings (`[drive]`,
-/// `[integration]`, `[initial]`), which describe a run rather than the rotor. The entries are
-/// read without validation: call it on a config that [`spatial`] accepted.
+/// `[integration]`, `[initial]`), which describe a run rather than the rotor. It is
+/// [`entry_use`]'s `simulation_only` for [`Model::Linear`]: the entries the spatial simulation
+/// reads and the linear model does not (none for a config [`spatial`] rejects).
 ///
 /// ```
 /// use autobal::config;
@@ -670,59 +713,7 @@ pub fn is_spatial(root: &Table) -> bool {
 /// assert!(config::ignored_by_linear_model(&one).is_empty()); // gravity 0, no tilt lock
 /// ```
 pub fn ignored_by_linear_model(root: &Table) -> Vec<String> {
-    let get = |t: &str, k: &str| root.get(t).and_then(Value::as_table).and_then(|tab| tab.get(k));
-    let f = |t: &str, k: &str| get(t, k).and_then(|v| number(v, "").ok());
-    let nonzero = |t: &str, k: &str| f(t, k).is_some_and(|x| x != 0.0);
-    let mut out = vec![];
-    for (table, _) in SCHEMA {
-        if !root.contains_key(*table) {
-            continue;
-        }
-        match *table {
-            "couple" | "balancer2" => out.push(format!("[{table}]")),
-            "rotor" if nonzero("rotor", "axis_tilt") => {
-                out.push("rotor.axis_tilt".into());
-                if get("rotor", "axis_tilt_angle").is_some() {
-                    out.push("rotor.axis_tilt_angle".into());
-                }
-            }
-            "supports" => {
-                for q in ["stiffness", "damping"] {
-                    for side in ["left", "right"] {
-                        let y = format!("{q}_{side}_y");
-                        if let Some(v) = f("supports", &y) {
-                            if v != f("supports", &format!("{q}_{side}")).unwrap_or(0.0) {
-                                out.push(format!("supports.{y}"));
-                            }
-                        }
-                    }
-                }
-            }
-            "balancer" => {
-                if matches!(get("balancer", "contact"), Some(Value::Boolean(true))) {
-                    out.push("balancer.contact".into());
-                }
-                if nonzero("balancer", "rolling_resistance") {
-                    out.push("balancer.rolling_resistance".into());
-                }
-            }
-            "spatial" => {
-                if let Some(Value::Array(g)) = get("spatial", "gravity") {
-                    if g.iter().any(|v| number(v, "").ok() != Some(0.0)) {
-                        out.push("spatial.gravity".into());
-                    }
-                }
-                if matches!(get("spatial", "lock_tilt"), Some(Value::Boolean(true))) {
-                    out.push("spatial.lock_tilt".into());
-                }
-                if nonzero("spatial", "spin_drag") {
-                    out.push("spatial.spin_drag".into());
-                }
-            }
-            _ => {}
-        }
-    }
-    out
+    entry_use(root, &[Model::Linear]).simulation_only
 }
 
 /// A spatial simulation's config converted (`autobal simulate` and `autobal basins` on the
@@ -827,18 +818,25 @@ pub fn spatial_simulation(root: &Table) -> Result<SpatialSimulation> {
             }
             let b = sec("balancer2");
             if b.table.is_some() {
-                r.planes.push(BallPlane {
+                let plane = BallPlane {
                     z: b.req("z")?,
                     n: b.count("balls")?.ok_or_else(|| Error::invalid("balancer2.balls", "missing (required)"))? as usize,
                     ball_mass: b.req("ball_mass")?,
                     race_radius: b.req("race_radius")?,
                     drag: b.f64("drag")?.unwrap_or(0.0),
                     physics: ball_physics_of(&b)?,
-                });
+                };
+                // as the first plane (spatial::params): a ball mass without balls is a mistake
+                if plane.n == 0 && plane.ball_mass != 0.0 {
+                    return Err(Error::invalid("balancer2.balls", "is 0 but balancer2.ball_mass is given: set the number of balls, or ball_mass = 0"));
+                }
+                b.used_only_if(plane.n > 0, &BALL_KEYS, "with balancer2.balls = 0");
+                r.planes.push(plane);
             }
             if let Some(p) = r.planes.first_mut() {
                 p.physics = ball_physics_of(&sec("balancer"))?;
             }
+            ro.used_only_if(r.rotor.axis_tilt != 0.0, &["axis_tilt_angle"], "with rotor.axis_tilt = 0");
             r
         }
         SpatialInput::Dimensionless(_) => {
@@ -891,6 +889,270 @@ pub fn spatial_simulation(root: &Table) -> Result<SpatialSimulation> {
     }
     initial_state(&Equations::new(&rotor, &drive), &initial)?;
     Ok(SpatialSimulation { config, rotor, drive, initial, settings, default_drive })
+}
+
+/// Which entries the model being built reads: [`Section::get`] records every given key while a
+/// [`track`] is running on this thread, [`Section::used_only_if`] takes back those the rest of
+/// the config makes moot. A thread-local, so that every reader (and every reader added later)
+/// reports through [`Section`] without passing a recorder along; outside [`track`] it costs a
+/// branch.
+mod uses {
+    use std::cell::RefCell;
+    use std::collections::{BTreeMap, BTreeSet};
+
+    /// What one build read.
+    #[derive(Debug, Default, Clone)]
+    pub struct Uses {
+        /// `table.key` of every given entry the model used.
+        pub read: BTreeSet<String>,
+        /// Entries read but of no effect, with why (`"with balancer2.balls = 0"`).
+        pub moot: BTreeMap<String, String>,
+    }
+
+    thread_local! {
+        static USES: RefCell<Option<Uses>> = const { RefCell::new(None) };
+    }
+
+    pub fn record(field: &str) {
+        USES.with(|u| {
+            if let Some(u) = u.borrow_mut().as_mut() {
+                u.read.insert(field.to_string());
+            }
+        })
+    }
+
+    pub fn unuse(field: &str, why: &str) {
+        USES.with(|u| {
+            if let Some(u) = u.borrow_mut().as_mut() {
+                u.read.remove(field);
+                u.moot.entry(field.to_string()).or_insert_with(|| why.to_string());
+            }
+        })
+    }
+
+    /// Run `f`, recording what it reads (a [`track`] inside another records for both).
+    pub fn track<T>(f: impl FnOnce() -> T) -> (T, Uses) {
+        let outer = USES.with(|u| u.borrow_mut().replace(Uses::default()));
+        let out = f();
+        let mine = USES.with(|u| u.borrow_mut().take()).unwrap_or_default();
+        if let Some(mut o) = outer {
+            o.read.extend(mine.read.iter().cloned());
+            o.moot.extend(mine.moot.clone());
+            USES.with(|u| *u.borrow_mut() = Some(o));
+        }
+        (out, mine)
+    }
+}
+
+/// A model a command runs on a config ([`entry_use`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Model {
+    /// The linear model of papers 000/003 ([`spatial`]): the analytic commands.
+    Linear,
+    /// The spatial simulation ([`spatial_simulation`]): `simulate`, `sweep`, `basins`, the
+    /// general route of `stability` and `map` on a spatial config.
+    Spatial,
+    /// The planar rotor of paper 004 ([`planar`]).
+    Planar,
+}
+
+impl Model {
+    /// The model as messages name it.
+    pub fn describe(self) -> &'static str {
+        match self {
+            Model::Linear => "the linear model of papers 000/003",
+            Model::Spatial => "the spatial simulation of papers 000/003",
+            Model::Planar => "the planar rotor of paper 004",
+        }
+    }
+
+    fn build(self, root: &Table) -> Result<()> {
+        match self {
+            Model::Linear => spatial(root).map(drop),
+            Model::Spatial => spatial_simulation(root).map(drop),
+            Model::Planar => planar(root).map(drop),
+        }
+    }
+
+    /// Whether `table.key` belongs to this model's rotor at all (with some value of the other
+    /// entries): the spatial rotor has no `[planar]` and starts from `[initial]`, not from the
+    /// planar rotor's `drive.xy0`; the planar rotor has only `[planar]`, `[drive]`,
+    /// `[integration]`.
+    fn owns(self, table: &str, key: &str) -> bool {
+        match self {
+            Model::Planar => matches!(table, "planar" | "drive" | "integration"),
+            Model::Linear | Model::Spatial => table != "planar" && !(table == "drive" && matches!(key, "xy0" | "xy_rate0")),
+        }
+    }
+}
+
+/// The tables that describe a run (its drive, integrator and start) rather than the rotor.
+pub const RUN_TABLES: [&str; 3] = ["drive", "integration", "initial"];
+
+/// An entry of a config that the command's model does not use, and why.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Unused {
+    /// As the config spells it: `spatial.gravity`, or `[couple]` for a whole table.
+    pub key: String,
+    /// Why, e.g. `belongs to the spatial rotor of papers 000/003` or `with drive.kind = "speed"`.
+    pub why: String,
+}
+
+/// How the entries of a config are used by the models a command runs ([`entry_use`]).
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct EntryUse {
+    /// Entries no model of the command has (another rotor's tables and keys): an error.
+    pub foreign: Vec<Unused>,
+    /// Entries of the rotor that the linear model leaves out and the spatial simulation uses
+    /// ([`ignored_by_linear_model`]): a warning of the analytic commands.
+    pub simulation_only: Vec<String>,
+    /// Entries the model has, of no effect with the rest of the config (`drive.b` with
+    /// `kind = "speed"`, a ball mass with no balls, a restitution without contact): a warning.
+    pub moot: Vec<Unused>,
+}
+
+impl EntryUse {
+    /// Whether every entry is used.
+    pub fn is_empty(&self) -> bool {
+        self.foreign.is_empty() && self.simulation_only.is_empty() && self.moot.is_empty()
+    }
+}
+
+/// Whether `value` of `table.key` is what the models assume without it: 0, `false`, an array of
+/// zeros, a y support value equal to its x value. Such an entry (an example written out in full,
+/// `gravity = [0, 0, 0]`) changes nothing whichever model runs it, so it is never reported.
+fn neutral(root: &Table, table: &str, key: &str, value: &Value) -> bool {
+    fn zero(v: &Value) -> bool {
+        match v {
+            Value::Boolean(b) => !b,
+            Value::Integer(i) => *i == 0,
+            Value::Float(f) => *f == 0.0,
+            Value::Array(a) => a.iter().all(zero),
+            _ => false,
+        }
+    }
+    if table == "supports" {
+        if let Some(x) = key.strip_suffix("_y") {
+            let xv = root.get("supports").and_then(|t| t.get(x)).and_then(|v| number(v, "").ok()).unwrap_or(0.0);
+            return number(value, "").ok() == Some(xv);
+        }
+    }
+    zero(value)
+}
+
+/// Which entries of `root` the `models` a command runs use, every entry of the config sorted
+/// into one class (docs/robustness.md, "Every entry is used"):
+///
+/// - read by a model (through [`Section`]): used, but see `simulation_only`;
+/// - at its neutral value (0, `false`, an array of zeros, a y support equal to x): nothing to
+///   report;
+/// - of no model of the command (`[planar]` for the spatial rotor; `[spatial]`, `[initial]`,
+///   `[couple]`, … for the planar one; the planar start `drive.xy0` on a spatial run):
+///   [`EntryUse::foreign`], an error: the user wrote physics that would silently not happen;
+/// - a run's settings (`[drive]`, `[integration]`, `[initial]`) when the only model is the
+///   linear one: not reported (the analytic commands describe the rotor; the same config serves
+///   `simulate`);
+/// - read by the spatial simulation but not by the linear model ([`Model::Linear`] among
+///   `models`): [`EntryUse::simulation_only`], a warning;
+/// - otherwise the model has the entry but the rest of the config makes it moot:
+///   [`EntryUse::moot`], a warning saying why.
+///
+/// A table all of whose entries land in one class, none read, is reported once as `[table]`.
+/// A model whose build fails is left out (its command reports the error). Keys appear in the
+/// order of [`SCHEMA`]'s tables, alphabetically within a table.
+///
+/// ```
+/// use autobal::config::{self, Model};
+/// let mut root = config::parse(config::DEFAULT_PLANAR, "planar").unwrap();
+/// config::set(&mut root, "spatial.gravity", config::parse_value("[0, -9.81, 0]")).unwrap();
+/// config::set(&mut root, "planar.restitution", 0.9.into()).unwrap(); // planar.contact = false
+/// let u = config::entry_use(&root, &[Model::Planar]);
+/// assert_eq!(u.foreign[0].key, "spatial.gravity");
+/// assert_eq!((u.moot[0].key.as_str(), u.moot[0].why.as_str()), ("planar.restitution", "with planar.contact = false"));
+/// ```
+pub fn entry_use(root: &Table, models: &[Model]) -> EntryUse {
+    let mut read = std::collections::BTreeSet::new();
+    let mut moot = std::collections::BTreeMap::new();
+    let mut linear = None;
+    let mut simulation = None;
+    let mut any_built = false;
+    for &m in models {
+        let (ok, u) = uses::track(|| m.build(root));
+        if ok.is_err() {
+            continue;
+        }
+        any_built = true;
+        read.extend(u.read.iter().cloned());
+        for (k, v) in &u.moot {
+            moot.entry(k.clone()).or_insert_with(|| v.clone());
+        }
+        match m {
+            Model::Linear => linear = Some(u.read),
+            Model::Spatial => simulation = Some(u.read),
+            Model::Planar => {}
+        }
+    }
+    if !any_built {
+        // no model accepts the config: its build error is what to report
+        return EntryUse::default();
+    }
+    // the spatial simulation is what the linear model's omissions are measured against
+    if linear.is_some() && simulation.is_none() {
+        let (ok, u) = uses::track(|| Model::Spatial.build(root));
+        simulation = ok.is_ok().then_some(u.read);
+    }
+    let only_linear = models.iter().all(|m| *m == Model::Linear);
+    let mut out = EntryUse::default();
+    for (table, _) in SCHEMA {
+        let Some(t) = root.get(*table).and_then(Value::as_table) else { continue };
+        let mut classes: Vec<(u8, Unused)> = vec![];
+        let mut any_read = false;
+        for (key, value) in t {
+            let field = format!("{table}.{key}");
+            let sim_has = simulation.as_ref().map(|s| s.contains(&field));
+            let linear_has = linear.as_ref().map(|l| l.contains(&field));
+            if read.contains(&field) {
+                if linear_has == Some(false) && sim_has == Some(true) && !RUN_TABLES.contains(table) && !neutral(root, table, key, value) {
+                    classes.push((1, Unused { key: field, why: String::new() }));
+                } else {
+                    any_read = true;
+                }
+                continue;
+            }
+            if neutral(root, table, key, value) {
+                any_read = true; // a neutral entry keeps the others from reading as the whole table
+                continue;
+            }
+            if !models.iter().any(|m| m.owns(table, key)) {
+                let owner = match (*table, key.as_str()) {
+                    ("planar", _) => "belongs to the planar rotor of paper 004 ([planar] configs)".to_string(),
+                    ("drive", "xy0" | "xy_rate0") => "is the planar rotor's start; the spatial rotor starts from [initial]".to_string(),
+                    _ => "belongs to the spatial rotor of papers 000/003".to_string(),
+                };
+                classes.push((0, Unused { key: field, why: owner }));
+            } else if only_linear && RUN_TABLES.contains(table) {
+                any_read = true;
+            } else if only_linear && sim_has != Some(false) && !moot.contains_key(&field) {
+                classes.push((1, Unused { key: field, why: String::new() }));
+            } else {
+                let why = moot.get(&field).cloned().unwrap_or_else(|| "not used with the rest of this config".to_string());
+                classes.push((2, Unused { key: field, why }));
+            }
+        }
+        let whole = !any_read && classes.len() == t.len() && t.len() > 1 && classes.iter().all(|(c, _)| *c == classes[0].0 && *c != 2);
+        if whole {
+            let (c, first) = classes.swap_remove(0);
+            classes = vec![(c, Unused { key: format!("[{table}]"), why: first.why })];
+        }
+        for (c, u) in classes {
+            match c {
+                0 => out.foreign.push(u),
+                1 => out.simulation_only.push(u.key),
+                _ => out.moot.push(u),
+            }
+        }
+    }
+    out
 }
 
 #[cfg(test)]
@@ -946,6 +1208,55 @@ mod tests {
             let e = spatial(&root).unwrap_err().to_string();
             assert!(e.starts_with("analysis.omega_max: ") && e.contains(why) && !e.contains('\n'), "{v}: {e}");
         }
+    }
+
+    /// One test per class of [`entry_use`], on the three models.
+    #[test]
+    fn every_entry_is_used_or_classed() {
+        let with = |text: &str, sets: &[(&str, &str)]| {
+            let mut root = parse(text, "t").unwrap();
+            for (k, v) in sets {
+                set(&mut root, k, parse_value(v)).unwrap();
+            }
+            root
+        };
+        let keys = |u: &[Unused]| u.iter().map(|u| u.key.clone()).collect::<Vec<_>>();
+        // the examples use every entry with the models that run them
+        assert!(entry_use(&parse(DEFAULT_PLANAR, "p").unwrap(), &[Model::Planar]).is_empty());
+        let two = include_str!("../../../examples/spatial_two_plane.toml");
+        assert!(entry_use(&parse(two, "two").unwrap(), &[Model::Spatial]).is_empty());
+        let one = include_str!("../../../examples/spatial.toml");
+        assert!(entry_use(&parse(one, "one").unwrap(), &[Model::Linear]).is_empty());
+        // foreign: the spatial rotor's tables on the planar rotor, and the reverse
+        let u = entry_use(&with(DEFAULT_PLANAR, &[("spatial.gravity", "[0, -9.81, 0]"), ("initial.position", "[1e-3, 0]")]), &[Model::Planar]);
+        assert_eq!(keys(&u.foreign), ["spatial.gravity", "initial.position"]);
+        assert!(u.foreign[0].why.contains("spatial rotor"));
+        let u = entry_use(&with(one, &[("planar.m1", "1"), ("planar.k", "1e5"), ("drive.xy0", "[1e-3, 0]")]), &[Model::Spatial]);
+        assert_eq!(keys(&u.foreign), ["[planar]", "drive.xy0"]);
+        assert!(u.foreign[1].why.contains("[initial]"), "{:?}", u.foreign);
+        // neutral values are nothing to report, wherever they are
+        assert!(entry_use(&with(DEFAULT_PLANAR, &[("spatial.gravity", "[0, 0, 0]"), ("spatial.lock_tilt", "false")]), &[Model::Planar]).is_empty());
+        // moot: a second plane with no balls but a ball mass; real-ball keys without contact
+        let u = entry_use(&with(two, &[("balancer2.balls", "0"), ("balancer2.ball_mass", "0")]), &[Model::Spatial]);
+        assert_eq!(keys(&u.moot), ["balancer2.drag", "balancer2.race_radius"]);
+        // (with a ball mass it is the build's error, as on the first plane: nothing to sort)
+        assert!(entry_use(&with(two, &[("balancer2.balls", "0")]), &[Model::Spatial]).is_empty());
+        assert_eq!(u.moot[0].why, "with balancer2.balls = 0");
+        let u = entry_use(&with(DEFAULT_PLANAR, &[("planar.ball_diameter", "0.01"), ("planar.slip_rate", "1e-3")]), &[Model::Planar]);
+        assert_eq!(keys(&u.moot), ["planar.ball_diameter", "planar.slip_rate"]);
+        assert_eq!(u.moot[1].why, "with planar.rolling_resistance = 0");
+        // what the simulation uses and the linear model does not; a run's settings are silent
+        // for the linear model, used by the simulation
+        let root = with(one, &[("initial.position", "[0.1, 0]"), ("spatial.lock_tilt", "true")]);
+        let u = entry_use(&root, &[Model::Linear]);
+        assert_eq!(u.simulation_only, ["spatial.lock_tilt"]);
+        assert!(u.foreign.is_empty() && u.moot.is_empty());
+        assert!(entry_use(&root, &[Model::Spatial]).is_empty());
+        // the report runs both: the linear sections' omissions are still named, as the linear
+        // model alone names them
+        assert_eq!(entry_use(&root, &[Model::Linear, Model::Spatial]).simulation_only, ["spatial.lock_tilt"]);
+        let two = parse(two, "two").unwrap();
+        assert_eq!(entry_use(&two, &[Model::Linear, Model::Spatial]).simulation_only, entry_use(&two, &[Model::Linear]).simulation_only);
     }
 
     #[test]

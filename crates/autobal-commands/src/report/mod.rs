@@ -173,9 +173,16 @@ pub fn run(path: Option<&Path>, sets: &[String], dir: &Path, quick: bool, kind: 
     if spatial.is_none() && planar.is_none() {
         bail!("config: describes no rotor: give [dimensionless] or [rotor], [supports], [unbalance], [balancer] (papers 000/003), or [planar] (paper 004)");
     }
+    // the linear sections, the spatial simulation's (stability by the general route, run-up),
+    // the planar rotor's
+    let mut models = vec![];
     if spatial.is_some() {
-        config::warn_ignored(&root, "report");
+        models.extend([config::Model::Linear, config::Model::Spatial]);
     }
+    if planar.is_some() {
+        models.push(config::Model::Planar);
+    }
+    config::check_entries(&root, "report", &models)?;
     // the comparison with eq (17) stays in the report's inertia section (and `inertia`)
     for w in spatial.iter().flat_map(|c| autobal::reports::actionable_warnings(&c.model.anisotropy)) {
         crate::output::note(&format!("warning: {w}"));

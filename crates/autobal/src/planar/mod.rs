@@ -229,6 +229,18 @@ impl Settings {
             finite("drive.psi_rate0", *a)?;
         }
         rotor.balls.check_initial("drive.psi0", rotor.m3, rotor.r, &self.psi0)?;
+        // real balls make the implicit step's Jacobian dense (equations.rs): O(n³) per step,
+        // O(n²) memory
+        let max = crate::limits::MAX_BALLS_IMPLICIT_REAL;
+        if rotor.balls.is_active() && rotor.n > max && self.method != Method::Dop853 {
+            return Err(Error::invalid(
+                "integration.method",
+                format!(
+                    "with real balls (contact or rolling resistance) an implicit step costs O(n³) in the balls (a dense Jacobian): at most {max} balls with \"rodas\" or \"auto\", got planar.n = {}; use \"dop853\" (O(n log n) per step)",
+                    rotor.n
+                ),
+            ));
+        }
         for a in self.xy0 {
             finite("drive.xy0", a)?;
         }

@@ -200,8 +200,20 @@ struct Plane<'a> {
 const D: usize = 13;
 
 impl Plane<'_> {
+    /// The axis value at the scaled coordinate `u`, never outside the axis's `[lo, hi]` (which
+    /// was checked against the field's range): the ends exactly at `u = 0, 1`, and a point the
+    /// tracer steps to beyond an edge (a predictor, a difference quotient, a rounding below 0)
+    /// evaluates the model on that edge. Without it an axis over a field's full documented range
+    /// was refused by that range (`balancer.z=-10000:10000:3`: "must lie in [-10000, 10000] m,
+    /// got 10000", `dimensionless.h_s=0:1000:3`: "got -9.5e-33", issue 23).
     fn value(a: &PlaneAxis, u: f64) -> f64 {
-        a.lo + (a.hi - a.lo) * u
+        if u <= 0.0 {
+            a.lo
+        } else if u >= 1.0 {
+            a.hi
+        } else {
+            (a.lo + (a.hi - a.lo) * u).clamp(a.lo.min(a.hi), a.lo.max(a.hi))
+        }
     }
 
     /// Ascending coefficients `a_0..a_N` (`a_N = 1`) at scaled coordinates `(u, v)`.
@@ -305,7 +317,9 @@ fn jacobian(pl: &Plane, kind: CurveKind, z: &[f64; 3], f0: &[f64; 2]) -> Result<
         j[1][2] = r[3];
     }
     for c in 0..2 {
+        // a forward difference, backward on the square's far edge (inside the axis range)
         let h = 1e-7 * (1.0 + z[c].abs());
+        let h = if z[c] + h > 1.0 { -h } else { h };
         let mut zz = *z;
         zz[c] += h;
         let f = pl.residual(kind, &zz)?;
