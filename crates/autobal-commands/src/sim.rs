@@ -67,6 +67,7 @@ pub fn run_to_csv(
 ) -> Result<(Summary, Envelope, f64)> {
     writeln!(csv, "{}", sample_columns(cfg.rotor.n).join(","))?;
     let mut row = vec![];
+    let mut line: Vec<u8> = Vec::with_capacity(64 + 24 * cfg.rotor.n);
     let expected = (cfg.settings.t_end / cfg.settings.dt) as usize + 1;
     let mut env = Envelope::new(expected, 6000);
     let bar = progress.then(|| {
@@ -81,14 +82,16 @@ pub fn run_to_csv(
     let mut count = 0u64;
     let t0 = std::time::Instant::now();
     let summary = simulate_with(&cfg.rotor, &cfg.drive, &cfg.settings, Some(&|| INTERRUPTED.load(Ordering::Relaxed)), |s| {
-        let mut line =
-            format!("{},{},{},{},{}", crate::num::Csv(s.t), crate::num::Csv(s.omega), crate::num::Csv(s.x), crate::num::Csv(s.y), crate::num::Csv(s.amplitude));
-        for p in &s.psi {
-            line.push(',');
-            line.push_str(&crate::num::Csv(*p).to_string());
+        // one buffer for every row, the floats appended as bytes (no `format!` per row)
+        line.clear();
+        for (i, v) in [s.t, s.omega, s.x, s.y, s.amplitude].into_iter().chain(s.psi.iter().copied()).enumerate() {
+            if i > 0 {
+                line.push(b',');
+            }
+            crate::num::Csv(v).push_to(&mut line);
         }
-        line.push('\n');
-        if let Err(e) = csv.write_all(line.as_bytes()) {
+        line.push(b'\n');
+        if let Err(e) = csv.write_all(&line) {
             io_error = Some(e.into());
             return false;
         }
