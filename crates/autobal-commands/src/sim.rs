@@ -64,7 +64,7 @@ const BATCH_ROWS: usize = 256;
 /// given, and keeping an envelope for the plots. Returns the summary, the envelope and the wall time.
 ///
 /// The rows are formatted and written on a second thread while the integration goes on (the
-/// samples travel in batches of [`BATCH_ROWS`]): the CSV costs the run's thread nothing but the
+/// samples travel in batches of `BATCH_ROWS` (256)): the CSV costs the run's thread nothing but the
 /// copy of the floats. When the run stops (Ctrl-C, a budget) every row sampled so far is still
 /// written before this returns; a write error stops the run (the next batch finds the writer
 /// gone) and is returned.
