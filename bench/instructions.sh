@@ -29,8 +29,13 @@ incl() { # profile, function name pattern: its inclusive count (sum over matchin
 row() { printf '| %s | %s | %s | %.2f |\n' "$1" "$2" "$3" "$(echo "$2 / $3" | bc -l)"; }
 echo "| command | process (instructions) | library's share (instructions) | process / library |"
 echo "| --- | ---: | ---: | ---: |"
+# simulate writes its CSV on a second thread and two of its figures on another: the process's
+# count (all threads: its CPU) and the main thread's (the run's: what its wall time follows)
+(cd "$W" && valgrind --tool=callgrind --separate-threads=yes --callgrind-out-file="$W/simt.cg" "$EXE" simulate --out "$W/simt.csv" >/dev/null 2>&1) || true
 c=$(count sim "$EXE" simulate --out "$W/sim.csv"); l=$(count passage "$EX/passage")
-row "simulate (paper 004 passage, CSV + 4 SVG)" "$c" "$l"
+m=$(grep -h '^summary:' "$W"/simt.cg-01 | tr -dc '0-9')
+row "simulate (paper 004 passage, CSV + 4 SVG), all threads" "$c" "$l"
+row "simulate, its main thread (the integration's)" "$m" "$l"
 c=$(count map "$EXE" map --threads 1 --x dimensionless.z_a=-2:2:400 --y omega=0.05:4.5:400 --out "$W/map")
 l=$(incl "$W/map.cg" 'spatial::map::Line::(new|cells) \[')
 row "map --threads 1, 400 x 400 margin (CSV + SVG + PNG)" "$c" "$l"

@@ -26,8 +26,14 @@ Needs the bench environment (not CI's): python3 -m venv .venv-bench &&
 .venv-bench/bin/pip install -r bench/requirements-bench.txt (numbalsoda builds from source with
 CMake and gfortran: apt-get install -y gfortran cmake).
 
+The slowest passage of paper 004 (Fig. 4c): `--b 0.04` (from rest to 600 rad/s: 15 000 s; the
+samples every `--dt`, default 5 s there, 3 001 samples, as bench/passage.py --balls times it).
+autobal's command runs with `--set drive.b=… drive.t_end=… integration.dt=…` (the same samples;
+`dt` is also its implicit steps' resolution, 4 dt).
+
 Usage:
   .venv-bench/bin/python bench/peers_passage.py [--repeats 3] [--peers numbalsoda,diffrax] [--json FILE]
+  .venv-bench/bin/python bench/peers_passage.py --b 0.04 --methods DOP853,LSODA,Tsit5 --repeats 3
   .venv-bench/bin/python bench/peers_passage.py --check    # right-hand sides vs bench/passage.py
 """
 import argparse
@@ -57,6 +63,21 @@ ME, EX, EY, M3R = P.ME, P.EX, P.EY, P.M3R
 def weights(atol_unit=1.0):
     """Per-component scale w: autobal's atol vector for atol = 1 (the state is integrated as y / w)."""
     return P.atol_vector(atol_unit) / atol_unit
+
+
+def set_problem(b, dt):
+    """The passage at acceleration `b` from rest to 600 rad/s, samples every `dt` (module
+    constants, read by the peers' right-hand sides when they are compiled)."""
+    global B, T_END, DT
+    B, T_END, DT = b, 600.0 / b, dt
+
+
+def command_sets():
+    """`--set` arguments that make `autobal simulate`'s default config this problem."""
+    out = []
+    for kv in (f"drive.b={B!r}", f"drive.omega0={OMEGA0!r}", f"drive.t_end={T_END!r}", f"integration.dt={DT!r}"):
+        out += ["--set", kv]
+    return out
 
 
 def t_eval():
@@ -203,6 +224,8 @@ def diffrax_peer():
     z0 = jnp.asarray(P.initial_state()) / w
     term = diffrax.ODETerm(f)
     solvers = {"Tsit5": diffrax.Tsit5(), "Dopri8": diffrax.Dopri8(), "Kvaerno5": diffrax.Kvaerno5()}
+    # 4 million steps for 240 s at b = 2.5; the slow passage needs proportionally more
+    max_steps = int(4_000_000 * max(1.0, T_END / 240.0))
     compiled = {}
 
     def make(name):
@@ -211,7 +234,7 @@ def diffrax_peer():
         @jax.jit
         def solve(rtol, atol):
             sol = diffrax.diffeqsolve(term, solver, t0=0.0, t1=T_END, dt0=1e-4, y0=z0, saveat=diffrax.SaveAt(ts=te),
-                                      stepsize_controller=diffrax.PIDController(rtol=rtol, atol=atol), max_steps=4_000_000,
+                                      stepsize_controller=diffrax.PIDController(rtol=rtol, atol=atol), max_steps=max_steps,
                                       throw=False)
             return sol.ys, sol.result, sol.stats["num_steps"]
 
@@ -262,12 +285,16 @@ def check():
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--peers", default="numbalsoda,diffrax")
+    ap.add_argument("--methods", default="", help="only these methods (comma-separated, e.g. DOP853,LSODA,Tsit5); default all")
+    ap.add_argument("--b", type=float, default=2.5, help="acceleration (1/s^2), from rest to 600 rad/s (default 2.5; 0.04: the slowest passage)")
+    ap.add_argument("--dt", type=float, default=None, help="sample interval (s); default 0.05 at b = 2.5, else (600/b)/3000")
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--cap", type=float, default=30.0, help="stop a ladder after a run longer than this (s)")
     ap.add_argument("--exe", default=os.path.join(ROOT, "target", "release", "autobal"))
     ap.add_argument("--check", action="store_true")
     measure.add_args(ap)
     a = ap.parse_args()
+    set_problem(a.b, a.dt if a.dt is not None else (0.05 if a.b == 2.5 else 600.0 / a.b / 3000.0))
     if a.check:
         check()
         return
@@ -287,7 +314,7 @@ def main():
     cmd_runs, lib_runs = [], []
     with tempfile.TemporaryDirectory() as d:
         for _ in range(a.repeats):
-            cmd_runs.append(measure.run_cmd([a.exe, "simulate", "--out", os.path.join(d, "sim.csv")], cwd=d))
+            cmd_runs.append(measure.run_cmd([a.exe, "simulate", "--out", os.path.join(d, "sim.csv")] + command_sets(), cwd=d))
             c0 = measure.children_cpu()
             wall_in, s, _ = P.run_autobal(OMEGA0, B, T_END, DT, 1e-8, 1e-9, samples=False)
             lib_runs.append((wall_in[0], measure.children_cpu() - c0))
@@ -312,6 +339,8 @@ def main():
             print(f"{name}: {e}", file=sys.stderr)
             continue
         for m, run in methods.items():
+            if a.methods and m not in a.methods.split(","):
+                continue
             key = f"{name} {m}"
             ladder, chosen, first = [], None, True
             for rtol in LADDER:

@@ -238,39 +238,71 @@ impl Csv {
     }
 }
 
-impl std::fmt::Display for Csv {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+impl Csv {
+    /// The text of a finite, non-zero value into `buf`: its length. Zero and non-finite values
+    /// (None) are left to Rust's `{}`.
+    fn encode(&self, buf: &mut [u8; 40]) -> Option<usize> {
         let v = self.0;
-        if v.is_finite() && v != 0.0 {
-            // most values of a run: zmij's positional text is already the answer
-            let mut z = zmij::Buffer::new();
-            let s = z.format_finite(v);
-            if Self::verbatim(v, s) {
-                return f.write_str(s);
+        if !v.is_finite() || v == 0.0 {
+            return None;
+        }
+        // most values of a run: zmij's positional text is already the answer
+        let mut z = zmij::Buffer::new();
+        let s = z.format_finite(v);
+        if Self::verbatim(v, s) {
+            buf[..s.len()].copy_from_slice(s.as_bytes());
+            return Some(s.len());
+        }
+        // 1e-5 ≤ |v| < 1e-3, zmij's `0.000F` or `0.0000F`: the exponent form is shorter
+        // (`n + 3 + [n > 1]` against `n + 5` or more) and is a byte move
+        let (neg, m) = (v < 0.0, s.as_bytes());
+        let m = &m[usize::from(neg)..];
+        let zeros = m.iter().skip(2).take_while(|&&c| c == b'0').count();
+        if m.starts_with(b"0.") && (3..=7).contains(&zeros) && m.len() > 2 + zeros {
+            let d = &m[2 + zeros..];
+            let mut k = usize::from(neg);
+            buf[0] = b'-';
+            buf[k] = d[0];
+            k += 1;
+            if d.len() > 1 {
+                buf[k] = b'.';
+                buf[k + 1..k + d.len()].copy_from_slice(&d[1..]);
+                k += d.len();
             }
-            // 1e-5 ≤ |v| < 1e-3, zmij's `0.000F` or `0.0000F`: the exponent form is shorter
-            // (`n + 3 + [n > 1]` against `n + 5` or more) and is a byte move
-            let (neg, m) = (v < 0.0, s.as_bytes());
-            let m = &m[usize::from(neg)..];
-            let z = m.iter().skip(2).take_while(|&&c| c == b'0').count();
-            if m.starts_with(b"0.") && (3..=7).contains(&z) && m.len() > 2 + z {
-                let d = &m[2 + z..];
-                let mut buf = [0u8; 32];
-                let mut k = usize::from(neg);
-                buf[0] = b'-';
-                buf[k] = d[0];
-                k += 1;
-                if d.len() > 1 {
-                    buf[k] = b'.';
-                    buf[k + 1..k + d.len()].copy_from_slice(&d[1..]);
-                    k += d.len();
-                }
-                buf[k..k + 3].copy_from_slice(&[b'e', b'-', b'1' + z as u8]);
-                return f.write_str(std::str::from_utf8(&buf[..k + 3]).map_err(|_| std::fmt::Error)?);
+            buf[k..k + 3].copy_from_slice(&[b'e', b'-', b'1' + zeros as u8]);
+            return Some(k + 3);
+        }
+        self.layout(buf)
+    }
+
+    /// Append the text (the same as `Display`'s) to `out`, without the formatting machinery:
+    /// what the CSV writers use, row after row into one reused buffer.
+    pub fn push_to(&self, out: &mut Vec<u8>) {
+        let mut buf = [0u8; 40];
+        match self.encode(&mut buf) {
+            Some(n) => out.extend_from_slice(&buf[..n]),
+            None => {
+                let v = self.0;
+                out.extend_from_slice(if v.is_nan() {
+                    b"NaN"
+                } else if v == f64::INFINITY {
+                    b"inf"
+                } else if v == f64::NEG_INFINITY {
+                    b"-inf"
+                } else if v.is_sign_negative() {
+                    b"-0"
+                } else {
+                    b"0"
+                })
             }
         }
+    }
+}
+
+impl std::fmt::Display for Csv {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let mut buf = [0u8; 40];
-        match self.layout(&mut buf) {
+        match self.encode(&mut buf) {
             Some(n) => f.write_str(std::str::from_utf8(&buf[..n]).map_err(|_| std::fmt::Error)?),
             None => write!(f, "{}", self.0),
         }
@@ -335,6 +367,9 @@ mod tests {
 
     fn check_csv(v: f64) {
         let s = Csv(v).to_string();
+        let mut pushed = b"x".to_vec();
+        Csv(v).push_to(&mut pushed);
+        assert_eq!(&pushed[1..], s.as_bytes(), "push_to of {v:e}");
         let reference = csv_reference(v);
         if v.abs() < 1e9 || !v.is_finite() {
             assert_eq!(s, reference, "{v:e}");

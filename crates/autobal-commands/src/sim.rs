@@ -54,17 +54,26 @@ pub fn sample_columns(n: usize) -> Vec<String> {
     c
 }
 
+/// Rows handed to the writer thread at a time (each `5 + n` floats).
+const BATCH_ROWS: usize = 256;
+
 /// Run one simulation, writing every sample to `csv` (flushed as it goes) and to `parquet` if
 /// given, and keeping an envelope for the plots. Returns the summary, the envelope and the wall time.
+///
+/// The rows are formatted and written on a second thread while the integration goes on (the
+/// samples travel in batches of `BATCH_ROWS` (256)): the CSV costs the run's thread nothing but the
+/// copy of the floats. When the run stops (Ctrl-C, a budget) every row sampled so far is still
+/// written before this returns; a write error stops the run (the next batch finds the writer
+/// gone) and is returned.
 pub fn run_to_csv(
     cfg: &PlanarConfig,
-    csv: &mut dyn Write,
-    mut parquet: Option<&mut crate::parquet::Table>,
+    csv: &mut (dyn Write + Send),
+    parquet: Option<&mut crate::parquet::Table>,
     progress: bool,
     control: &Control,
 ) -> Result<(Summary, Envelope, f64)> {
     writeln!(csv, "{}", sample_columns(cfg.rotor.n).join(","))?;
-    let mut row = vec![];
+    let width = 5 + cfg.rotor.n;
     let expected = (cfg.settings.t_end / cfg.settings.dt) as usize + 1;
     let mut env = Envelope::new(expected, 6000);
     let bar = progress.then(|| {
@@ -75,51 +84,87 @@ pub fn run_to_csv(
         );
         b
     });
-    let mut io_error: Option<anyhow::Error> = None;
     let mut count = 0u64;
-    let t0 = std::time::Instant::now();
-    let summary = simulate_with(&cfg.rotor, &cfg.drive, &cfg.settings, control, |s| {
-        let mut line =
-            format!("{},{},{},{},{}", crate::num::Csv(s.t), crate::num::Csv(s.omega), crate::num::Csv(s.x), crate::num::Csv(s.y), crate::num::Csv(s.amplitude));
-        for p in &s.psi {
-            line.push(',');
-            line.push_str(&crate::num::Csv(*p).to_string());
-        }
-        line.push('\n');
-        if let Err(e) = csv.write_all(line.as_bytes()) {
-            io_error = Some(e.into());
-            return false;
-        }
-        if let Some(t) = parquet.as_deref_mut() {
-            row.clear();
-            row.extend([s.t, s.omega, s.x, s.y, s.amplitude]);
-            row.extend(&s.psi);
-            if let Err(e) = t.push(&row) {
-                io_error = Some(e);
-                return false;
+    let (tx, rx) = std::sync::mpsc::sync_channel::<Vec<f64>>(16);
+    let (summary, wall, written) = std::thread::scope(|scope| {
+        let writer = scope.spawn(move || write_rows(rx, csv, parquet, width));
+        let mut batch: Vec<f64> = Vec::with_capacity(BATCH_ROWS * width);
+        let mut writer_gone = false;
+        let t0 = std::time::Instant::now();
+        let summary = simulate_with(&cfg.rotor, &cfg.drive, &cfg.settings, control, |s| {
+            batch.extend_from_slice(&[s.t, s.omega, s.x, s.y, s.amplitude]);
+            batch.extend_from_slice(&s.psi);
+            if batch.len() >= BATCH_ROWS * width {
+                let full = std::mem::replace(&mut batch, Vec::with_capacity(BATCH_ROWS * width));
+                if tx.send(full).is_err() {
+                    // the writer stopped on an error: it is reported below
+                    writer_gone = true;
+                    return false;
+                }
             }
-        }
-        env.push(s);
-        count += 1;
-        if count.is_multiple_of(1000) {
-            let _ = csv.flush();
-            if let Some(b) = &bar {
-                b.set_position((1000.0 * s.t / cfg.settings.t_end) as u64);
-                b.set_message(format!("{:.1} s of {:.1} s", s.t, cfg.settings.t_end));
+            env.push(s);
+            count += 1;
+            if count.is_multiple_of(1000) {
+                if let Some(b) = &bar {
+                    b.set_position((1000.0 * s.t / cfg.settings.t_end) as u64);
+                    b.set_message(format!("{:.1} s of {:.1} s", s.t, cfg.settings.t_end));
+                }
             }
+            true
+        });
+        let wall = t0.elapsed().as_secs_f64();
+        // the rows of a run that stopped early are kept: send what is left, then wait
+        if !writer_gone && !batch.is_empty() {
+            let _ = tx.send(batch);
         }
-        true
-    })?;
-    let wall = t0.elapsed().as_secs_f64();
-    env.flush();
-    csv.flush()?;
+        drop(tx);
+        let written = writer.join().unwrap_or_else(|_| Err(anyhow::anyhow!("the CSV writer panicked")));
+        (summary, wall, written)
+    });
     if let Some(b) = bar {
         b.finish_and_clear();
     }
-    if let Some(e) = io_error {
+    if let Err(e) = written {
         bail!("--out: cannot write: {e:#}");
     }
+    let summary = summary?;
+    env.flush();
     Ok((summary, env, wall))
+}
+
+/// The writer thread of [`run_to_csv`]: each batch's rows (`width` floats each) as CSV lines
+/// (one reused buffer, the floats appended as bytes) and Parquet rows; flushed every 1000 rows
+/// and at the end. Returns at the first error, which drops the channel and so stops the run.
+fn write_rows(
+    rx: std::sync::mpsc::Receiver<Vec<f64>>,
+    csv: &mut (dyn Write + Send),
+    mut parquet: Option<&mut crate::parquet::Table>,
+    width: usize,
+) -> Result<()> {
+    let mut line: Vec<u8> = Vec::with_capacity(24 * width);
+    let mut count = 0u64;
+    for batch in rx {
+        for row in batch.chunks_exact(width) {
+            line.clear();
+            for (i, v) in row.iter().enumerate() {
+                if i > 0 {
+                    line.push(b',');
+                }
+                crate::num::Csv(*v).push_to(&mut line);
+            }
+            line.push(b'\n');
+            csv.write_all(&line)?;
+            if let Some(t) = parquet.as_deref_mut() {
+                t.push(row)?;
+            }
+            count += 1;
+            if count.is_multiple_of(1000) {
+                csv.flush()?;
+            }
+        }
+    }
+    csv.flush()?;
+    Ok(())
 }
 
 pub fn summary_json(cfg: &PlanarConfig, s: &Summary, wall: f64) -> Value {
@@ -286,12 +331,17 @@ pub fn plot_paths(stem: &Path) -> Vec<PathBuf> {
     PLOTS.iter().map(|s| plot_path(stem, s)).collect()
 }
 
+/// Write the four figures ([`plots`]), the last two on a second thread (each SVG is
+/// independent; the two with the most points, amplitude against ω and the ball angles, go to
+/// different threads).
 pub fn write_plots(cfg: &PlanarConfig, env: &Envelope, stem: &Path, title: &str) -> Result<Vec<PathBuf>> {
-    let mut files = vec![];
-    for (suffix, plot) in plots(cfg, env, title) {
-        let path = plot_path(stem, &suffix);
-        crate::outfile::write_atomic("--out", &path, plot.to_svg())?;
-        files.push(path);
-    }
-    Ok(files)
+    let figures: Vec<(PathBuf, Plot)> = plots(cfg, env, title).into_iter().map(|(suffix, plot)| (plot_path(stem, &suffix), plot)).collect();
+    let write = |(path, plot): &(PathBuf, Plot)| crate::outfile::write_atomic("--out", path, plot.to_svg());
+    let (mine, theirs): (Vec<_>, Vec<_>) = figures.iter().enumerate().partition(|(i, _)| *i < 2);
+    std::thread::scope(|scope| {
+        let other = scope.spawn(|| theirs.iter().try_for_each(|(_, f)| write(f)));
+        mine.iter().try_for_each(|(_, f)| write(f))?;
+        other.join().unwrap_or_else(|_| Err(anyhow::anyhow!("writing a figure panicked")))
+    })?;
+    Ok(figures.into_iter().map(|(path, _)| path).collect())
 }

@@ -266,24 +266,45 @@ fn hqr(a: &mut A1, n: usize, wr: &mut [f64], wi: &mut [f64]) -> Result<(), NoCon
                             z = r / s;
                             q /= p;
                             r /= p;
-                            for j in k..=nu {
-                                p = a[k][j] + q * a[k + 1][j];
-                                if k != nu - 1 {
-                                    p += r * a[k + 2][j];
-                                    a[k + 2][j] -= p * z;
+                            // rows k, k+1 (, k+2), columns k..=nu; then columns k, k+1
+                            // (, k+2), rows l..=mmin: the same operations in the same order
+                            // as the indexed form, over slices (no bounds check per entry)
+                            let (rk, rest) = a[k..].split_at_mut(1);
+                            let (rk1, rest) = rest.split_at_mut(1);
+                            let (rk, rk1) = (&mut rk[0][k..=nu], &mut rk1[0][k..=nu]);
+                            if k != nu - 1 {
+                                let rk2 = &mut rest[0][k..=nu];
+                                for ((u0, u1), u2) in rk.iter_mut().zip(rk1.iter_mut()).zip(rk2.iter_mut()) {
+                                    p = *u0 + q * *u1;
+                                    p += r * *u2;
+                                    *u2 -= p * z;
+                                    *u1 -= p * y;
+                                    *u0 -= p * x;
                                 }
-                                a[k + 1][j] -= p * y;
-                                a[k][j] -= p * x;
+                            } else {
+                                for (u0, u1) in rk.iter_mut().zip(rk1.iter_mut()) {
+                                    p = *u0 + q * *u1;
+                                    *u1 -= p * y;
+                                    *u0 -= p * x;
+                                }
                             }
                             let mmin = if nu < k + 3 { nu } else { k + 3 };
-                            for i in l..=mmin {
-                                p = x * a[i][k] + y * a[i][k + 1];
-                                if k != nu - 1 {
-                                    p += z * a[i][k + 2];
-                                    a[i][k + 2] -= p * r;
+                            if k != nu - 1 {
+                                for row in a[l..=mmin].iter_mut() {
+                                    let c = &mut row[k..k + 3];
+                                    p = x * c[0] + y * c[1];
+                                    p += z * c[2];
+                                    c[2] -= p * r;
+                                    c[1] -= p * q;
+                                    c[0] -= p;
                                 }
-                                a[i][k + 1] -= p * q;
-                                a[i][k] -= p;
+                            } else {
+                                for row in a[l..=mmin].iter_mut() {
+                                    let c = &mut row[k..k + 2];
+                                    p = x * c[0] + y * c[1];
+                                    c[1] -= p * q;
+                                    c[0] -= p;
+                                }
                             }
                         }
                         k += 1;
