@@ -165,6 +165,12 @@ pub const LIMITS: &[Limit] = &[
     lim("planar.r", 0.0, false, 1e3, false, "m", RADIUS),
     lim("planar.k", 0.0, true, 1e13, false, "N/m", STIFF),
     lim("planar.c", 0.0, false, 1e12, false, "kg/s", "as support damping"),
+    lim("planar.k_x", 0.0, true, 1e13, false, "N/m", "as planar.k (supports that differ by direction)"),
+    lim("planar.k_y", 0.0, true, 1e13, false, "N/m", "as planar.k (supports that differ by direction)"),
+    lim("planar.c_x", 0.0, false, 1e12, false, "kg/s", "as planar.c (supports that differ by direction)"),
+    lim("planar.c_y", 0.0, false, 1e12, false, "kg/s", "as planar.c (supports that differ by direction)"),
+    lim("planar.ball_masses", 0.0, true, 1e9, false, "kg", "each, as planar.m3; one per ball"),
+    lim("planar.ball_drags", 0.0, false, 1e12, false, "N·m·s", "each, as planar.c_psi; one per ball"),
     lim("planar.c_psi", 0.0, false, 1e12, false, "N·m·s", "as support damping"),
     lim("planar.c_theta", 0.0, false, 1e12, false, "N·m·s", "as support damping"),
     lim("planar.i_g", 0.0, true, 1e12, false, "kg·m²", MOMENT),
@@ -281,6 +287,17 @@ pub fn check_planar_rotor(r: &crate::planar::PlanarRotor) -> Result<()> {
         ("planar.c_theta", r.c_theta),
         ("planar.i_g", r.i_g),
     ])?;
+    if let Some(v) = r.k_y {
+        check("planar.k_y", v)?;
+    }
+    if let Some(v) = r.c_y {
+        check("planar.c_y", v)?;
+    }
+    for (field, list) in [("planar.ball_masses", &r.ball_masses), ("planar.ball_drags", &r.ball_drags)] {
+        for (j, v) in list.iter().flatten().enumerate() {
+            check_as(&format!("{field}[{}]", j + 1), field, *v)?;
+        }
+    }
     check_count("planar.n", r.n as u64)?;
     let wn = r.natural_frequency();
     if !(1e-3..=1e7).contains(&wn) {
