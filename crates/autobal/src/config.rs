@@ -594,8 +594,12 @@ fn planar_direction_pair(p: &Section, key: &str, default: Option<f64>) -> Result
     match (iso, x, y) {
         (Some(v), _, _) => Ok((v, None)),
         (None, Some(a), Some(b)) => Ok((a, Some(b))),
-        (None, Some(_), None) => Err(Error::invalid(p.field(&ky), format!("missing: {} needs {} (or give {} alone)", p.field(&kx), p.field(&ky), p.field(key)))),
-        (None, None, Some(_)) => Err(Error::invalid(p.field(&kx), format!("missing: {} needs {} (or give {} alone)", p.field(&ky), p.field(&kx), p.field(key)))),
+        (None, Some(_), None) => {
+            Err(Error::invalid(p.field(&ky), format!("missing: {} needs {} (or give {} alone)", p.field(&kx), p.field(&ky), p.field(key))))
+        }
+        (None, None, Some(_)) => {
+            Err(Error::invalid(p.field(&kx), format!("missing: {} needs {} (or give {} alone)", p.field(&ky), p.field(&kx), p.field(key))))
+        }
         (None, None, None) => default.map(|v| (v, None)).ok_or_else(|| Error::invalid(p.field(key), format!("missing (required; or give {kx} and {ky})"))),
     }
 }

@@ -299,17 +299,22 @@ pub fn check_planar_rotor(r: &crate::planar::PlanarRotor) -> Result<()> {
         }
     }
     check_count("planar.n", r.n as u64)?;
-    let wn = r.natural_frequency();
-    if !(1e-3..=1e7).contains(&wn) {
-        return Err(Error::invalid(
-            "planar.k",
-            format!(
-                "the natural frequency sqrt(k/m0) = {} rad/s (k = {} N/m, m0 = {} kg) lies outside [0.001, 1e7] rad/s",
-                fmt_num(wn),
-                fmt_num(r.k),
-                fmt_num(r.total_mass())
-            ),
-        ));
+    // each direction's natural frequency (supports that differ by direction: k_x, k_y)
+    let (kx, ky) = r.stiffness_xy();
+    let directions: &[(&str, &str, f64)] = if r.k_y.is_some() { &[("planar.k_x", "k_x", kx), ("planar.k_y", "k_y", ky)] } else { &[("planar.k", "k", kx)] };
+    for &(field, key, k) in directions {
+        let wn = (k / r.total_mass()).sqrt();
+        if !(1e-3..=1e7).contains(&wn) {
+            return Err(Error::invalid(
+                field,
+                format!(
+                    "the natural frequency sqrt({key}/m0) = {} rad/s ({key} = {} N/m, m0 = {} kg) lies outside [0.001, 1e7] rad/s",
+                    fmt_num(wn),
+                    fmt_num(k),
+                    fmt_num(r.total_mass())
+                ),
+            ));
+        }
     }
     Ok(())
 }

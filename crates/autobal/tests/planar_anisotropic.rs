@@ -20,7 +20,15 @@ fn jeffcott() -> PlanarRotor {
 /// damping 40 / 60 kg/s, and two balls of 0.025 and 0.035 kg with drags 0.08 and 0.12 N·m·s.
 fn anisotropic() -> PlanarRotor {
     let p = jeffcott();
-    PlanarRotor { k: 0.85 * p.k, k_y: Some(1.15 * p.k), c: 40.0, c_y: Some(60.0), ball_masses: Some(vec![0.025, 0.035]), ball_drags: Some(vec![0.08, 0.12]), ..p }
+    PlanarRotor {
+        k: 0.85 * p.k,
+        k_y: Some(1.15 * p.k),
+        c: 40.0,
+        c_y: Some(60.0),
+        ball_masses: Some(vec![0.025, 0.035]),
+        ball_drags: Some(vec![0.08, 0.12]),
+        ..p
+    }
 }
 
 fn rel(a: f64, b: f64) -> f64 {
@@ -44,13 +52,8 @@ fn equal_directions_and_equal_per_ball_values_reproduce_the_model() {
     // two eliminations sum the same terms in a different order).
     for base in [PlanarRotor::paper(), PlanarRotor { n: 3, m3: 0.02, gamma: 0.7, ..PlanarRotor::paper() }] {
         let n = base.n;
-        let twin = PlanarRotor {
-            k_y: Some(base.k),
-            c_y: Some(base.c),
-            ball_masses: Some(vec![base.m3; n]),
-            ball_drags: Some(vec![base.c_psi; n]),
-            ..base.clone()
-        };
+        let twin =
+            PlanarRotor { k_y: Some(base.k), c_y: Some(base.c), ball_masses: Some(vec![base.m3; n]), ball_drags: Some(vec![base.c_psi; n]), ..base.clone() };
         assert!(!twin.anisotropic() && !twin.equal_balls());
         let w = 400.0;
         let (f0, f1) = (PlanarField::new(&base, w).unwrap(), PlanarField::new(&twin, w).unwrap());
@@ -444,4 +447,87 @@ fn support_anisotropy_moves_the_lowest_stable_speed_as_an_independent_floquet_an
     let python_lowest = v["lowest"][0].as_f64().unwrap();
     eprintln!("SymPy/SciPy lowest stable speed {python_lowest:.6} rad/s, autobal {w_aniso:.6}");
     assert!(rel(w_aniso, python_lowest) < 1e-6, "autobal {w_aniso}, SymPy/SciPy {python_lowest}");
+}
+
+#[test]
+fn config_keys_per_direction_and_per_ball_are_read_and_checked() {
+    use autobal::config::{parse, planar};
+    use autobal::paths::Parameters;
+    let base = "[planar]\nm1 = 1.0\nm2 = 0.2\ns1 = 0.003\nr = 0.06\ni_g = 0.0025\n";
+    let read = |extra: &str| planar(&parse(&format!("{base}{extra}[drive]\nkind = \"speed\"\nomega0 = 300.0\n"), "t.toml").unwrap());
+    let err = |extra: &str| read(extra).unwrap_err().to_string();
+    // per direction
+    let p = read("k_x = 9e4\nk_y = 1.2e5\nc_x = 40.0\nc_y = 60.0\nm3 = 0.03\n").unwrap();
+    assert_eq!((p.rotor.stiffness_xy(), p.rotor.damping_xy()), ((9e4, 1.2e5), (40.0, 60.0)));
+    assert!(p.rotor.anisotropic());
+    // isotropic keys: the same in both directions
+    let p = read("k = 1e5\nc = 50.0\nm3 = 0.03\n").unwrap();
+    assert_eq!((p.rotor.stiffness_xy(), p.rotor.damping_xy()), ((1e5, 1e5), (50.0, 50.0)));
+    assert!(!p.rotor.anisotropic());
+    // both kinds, or half a pair: errors naming both keys
+    let e = err("k = 1e5\nk_y = 1.2e5\nm3 = 0.03\n");
+    assert!(e.starts_with("planar.k_y: conflicts with planar.k"), "{e}");
+    let e = err("k = 1e5\nc = 5.0\nc_x = 4.0\nm3 = 0.03\n");
+    assert!(e.starts_with("planar.c_x: conflicts with planar.c"), "{e}");
+    let e = err("k_x = 1e5\nm3 = 0.03\n");
+    assert!(e.starts_with("planar.k_y: missing") && e.contains("planar.k_x"), "{e}");
+    let e = err("m3 = 0.03\n");
+    assert!(e.starts_with("planar.k: missing"), "{e}");
+    let e = err("k_x = 1e5\nk_y = -1.0\nm3 = 0.03\n");
+    assert!(e.starts_with("planar.k_y:"), "{e}");
+    // per ball
+    let p = read("k = 1e5\nball_masses = [0.025, 0.035]\nball_drags = [0.08, 0.12]\n").unwrap();
+    assert_eq!((p.rotor.ball_mass(1), p.rotor.ball_drag(0)), (0.035, 0.08));
+    assert!((p.rotor.total_mass() - 1.26).abs() < 1e-15);
+    let e = err("k = 1e5\nn = 3\nball_masses = [0.025, 0.035]\nm3 = 0.03\n");
+    assert!(e.starts_with("planar.ball_masses: conflicts with planar.m3"), "{e}");
+    let e = err("k = 1e5\nn = 3\nball_masses = [0.025, 0.035]\n");
+    assert!(e.starts_with("planar.ball_masses: needs one mass per ball (planar.n = 3), got 2"), "{e}");
+    let e = err("k = 1e5\nm3 = 0.03\nball_drags = [0.1, -0.1]\n");
+    assert!(e.starts_with("planar.ball_drags") && e.contains("-0.1"), "{e}");
+    let e = err("k = 1e5\nball_masses = [0.03, 0.03]\ncontact = true\n");
+    assert!(e.starts_with("planar.ball_masses: real balls"), "{e}");
+    // parameter paths: maps and sweeps vary them
+    let mut p = read("k = 1e5\nm3 = 0.03\nn = 2\n").unwrap();
+    p.set("planar.k_y", 1.3e5).unwrap();
+    assert_eq!(p.rotor.stiffness_xy(), (1e5, 1.3e5));
+    assert!(p.get("planar.k").unwrap_err().to_string().starts_with("planar.k: the supports differ by direction"));
+    assert!(p.set("planar.k", 2e5).unwrap_err().to_string().starts_with("planar.k: the supports are given per direction"));
+    p.set("planar.k_x", 1.1e5).unwrap();
+    p.set("planar.c_y", 70.0).unwrap();
+    assert_eq!((p.rotor.stiffness_xy(), p.rotor.damping_xy()), ((1.1e5, 1.3e5), (0.0, 70.0)));
+    p.set("planar.ball_masses[2]", 0.04).unwrap();
+    assert_eq!(p.rotor.ball_masses, Some(vec![0.03, 0.04]));
+    assert!((p.rotor.m3 - 0.035).abs() < 1e-15 && p.get("planar.ball_masses[2]").unwrap() == 0.04);
+    assert!(p.set("planar.m3", 0.02).unwrap_err().to_string().starts_with("planar.m3: the balls have their own masses"));
+    assert!(p.set("planar.ball_drags[3]", 0.1).unwrap_err().to_string().starts_with("planar.ball_drags[3]: ball 3 does not exist"));
+    p.validate().unwrap();
+    p.set("planar.k_y", 0.0).unwrap();
+    assert!(p.validate().unwrap_err().to_string().starts_with("planar.k_y"));
+}
+
+#[test]
+fn the_simulation_runs_the_anisotropic_rotor_with_unequal_balls_to_its_balanced_state() {
+    // A run at constant speed above the lowest stable speed (800 rad/s, where (d) finds the
+    // balanced state stable, multiplier 0.955 per half revolution) from balls spread across the
+    // unbalance: C ends on the axis (whirl below 1 % of m1 s1/m0, the unbalanced whirl's scale)
+    // with the balls at the closed-form angles (or their mirror image) to 1e-3 rad.
+    use autobal::planar::{simulate, Method, Settings};
+    let p = anisotropic();
+    let drive = Drive::Speed { omega0: 800.0 };
+    let settings = Settings { method: Method::Dop853, rtol: 1e-9, atol: 1e-12, ..Settings::new(&p, 6.0) };
+    let mut last = None;
+    let s = simulate(&p, &drive, &settings, |x| {
+        last = Some(x.clone());
+        true
+    })
+    .unwrap();
+    assert!(s.status.is_completed());
+    let last = last.unwrap();
+    assert!(s.final_amplitude < 0.01 * p.m1 * p.s1 / p.total_mass(), "{s:?}");
+    let (pa, pb) = two_ball_angles(0.025 * p.r, 0.035 * p.r, C::new(-p.m1 * p.s1, 0.0)).unwrap();
+    let d = |x: f64, y: f64| ((x - y + std::f64::consts::PI).rem_euclid(2.0 * std::f64::consts::PI) - std::f64::consts::PI).abs();
+    let direct = d(last.psi[0], pa).max(d(last.psi[1], pb));
+    let mirror = d(last.psi[0], -pa).max(d(last.psi[1], -pb));
+    assert!(direct.min(mirror) < 1e-3, "balls at {:?}, closed form ({pa}, {pb}) or mirrored", last.psi);
 }

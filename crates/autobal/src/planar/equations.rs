@@ -272,7 +272,8 @@ impl<'a> Equations<'a> {
             qdd[2] = a;
         }
         let mut out = vec![0.0; nc];
-        let r = self.residual::<f64>(t, y[2], Cx::new(y[0], y[1]), Cx::new(y[nc], y[nc + 1]), w, &qdd, |j| (y[3 + j], y[nc + 3 + j]), |j, _, rb| out[3 + j] = rb);
+        let r =
+            self.residual::<f64>(t, y[2], Cx::new(y[0], y[1]), Cx::new(y[nc], y[nc + 1]), w, &qdd, |j| (y[3 + j], y[nc + 3 + j]), |j, _, rb| out[3 + j] = rb);
         out[..3].copy_from_slice(&r);
         for (j, q) in self.ball_torques(t, y).iter().enumerate() {
             out[3 + j] += q;
