@@ -222,7 +222,7 @@ pub fn unequal_balls_balancing(masses: &[f64], r: f64, b: C) -> Option<Vec<f64>>
         Box::new(|_| beta + std::f64::consts::PI),
     ];
     for place in placements.iter().take(if rest == 0 { 1 } else { 3 }) {
-        let angles: Vec<f64> = (0..rest).map(|i| place(i)).collect();
+        let angles: Vec<f64> = (0..rest).map(place).collect();
         let sum: C = angles.iter().zip(&masses[2..]).map(|(a, m)| C::from_polar(m * r, *a)).sum();
         if let Some((pa, pb)) = two_ball_angles(masses[0] * r, masses[1] * r, b - sum) {
             let mut psi = vec![pa, pb];
