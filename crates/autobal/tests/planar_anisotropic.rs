@@ -531,3 +531,36 @@ fn the_simulation_runs_the_anisotropic_rotor_with_unequal_balls_to_its_balanced_
     let mirror = d(last.psi[0], -pa).max(d(last.psi[1], -pb));
     assert!(direct.min(mirror) < 1e-3, "balls at {:?}, closed form ({pa}, {pb}) or mirrored", last.psi);
 }
+
+#[test]
+fn the_jacobian_at_the_balanced_state_is_a_fixed_trigonometric_combination() {
+    // At a state held fixed the rotor angle enters only through cos 2θ, sin 2θ of the support
+    // force, so the field caches J(t) = J_a + cos 2Ωt J_c + sin 2Ωt J_s at the balanced state
+    // (two calls there build it). Its values at other instants equal a fresh field's direct
+    // Jacobian (each call on a new field is computed, not cached) to 1e-12 of the largest
+    // entry; at a state off balance too (the accelerations are affine in cos 2θ, sin 2θ as
+    // well, so the formula is exact at any fixed x).
+    let p = anisotropic();
+    let w = 500.0;
+    let f = PlanarField::new(&p, w).unwrap();
+    let g = f.semi_balanced_guess().unwrap();
+    let mut off = g.clone();
+    off[0] += 3e-5;
+    off[5] = 2.0;
+    for x in [g, off] {
+        let n = f.dim();
+        let mut j = vec![0.0; n * n];
+        f.jacobian(0.0, &x, &mut j);
+        f.jacobian(0.0, &x, &mut j); // builds the decomposition
+        for k in 0..7 {
+            let t = 0.37 * k as f64 / w;
+            f.jacobian(t, &x, &mut j);
+            let mut direct = vec![0.0; n * n];
+            PlanarField::new(&p, w).unwrap().jacobian(t, &x, &mut direct);
+            let big = direct.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            for i in 0..n * n {
+                assert!((j[i] - direct[i]).abs() <= 1e-12 * big, "t = {t}: J[{i}] {} vs {}", j[i], direct[i]);
+            }
+        }
+    }
+}
