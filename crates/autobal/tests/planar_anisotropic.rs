@@ -511,25 +511,28 @@ fn the_simulation_runs_the_anisotropic_rotor_with_unequal_balls_to_its_balanced_
     // A run at constant speed above the lowest stable speed (800 rad/s, where (d) finds the
     // balanced state stable, multiplier 0.955 per half revolution) from balls spread across the
     // unbalance: C ends on the axis (whirl below 1 % of m1 s1/m0, the unbalanced whirl's scale)
-    // with the balls at the closed-form angles (or their mirror image) to 1e-3 rad.
+    // with the balls at the closed-form angles (or their mirror image) to 1e-3 rad; by DOP853
+    // and by RODAS (whose Jacobian has the rotor angle's column, the supports' ∂F/∂θ).
     use autobal::planar::{simulate, Method, Settings};
     let p = anisotropic();
     let drive = Drive::Speed { omega0: 800.0 };
-    let settings = Settings { method: Method::Dop853, rtol: 1e-9, atol: 1e-12, ..Settings::new(&p, 6.0) };
-    let mut last = None;
-    let s = simulate(&p, &drive, &settings, |x| {
-        last = Some(x.clone());
-        true
-    })
-    .unwrap();
-    assert!(s.status.is_completed());
-    let last = last.unwrap();
-    assert!(s.final_amplitude < 0.01 * p.m1 * p.s1 / p.total_mass(), "{s:?}");
-    let (pa, pb) = two_ball_angles(0.025 * p.r, 0.035 * p.r, C::new(-p.m1 * p.s1, 0.0)).unwrap();
-    let d = |x: f64, y: f64| ((x - y + std::f64::consts::PI).rem_euclid(2.0 * std::f64::consts::PI) - std::f64::consts::PI).abs();
-    let direct = d(last.psi[0], pa).max(d(last.psi[1], pb));
-    let mirror = d(last.psi[0], -pa).max(d(last.psi[1], -pb));
-    assert!(direct.min(mirror) < 1e-3, "balls at {:?}, closed form ({pa}, {pb}) or mirrored", last.psi);
+    for method in [Method::Dop853, Method::Rodas] {
+        let settings = Settings { method, rtol: 1e-9, atol: 1e-12, ..Settings::new(&p, 6.0) };
+        let mut last = None;
+        let s = simulate(&p, &drive, &settings, |x| {
+            last = Some(x.clone());
+            true
+        })
+        .unwrap();
+        assert!(s.status.is_completed());
+        let last = last.unwrap();
+        assert!(s.final_amplitude < 0.01 * p.m1 * p.s1 / p.total_mass(), "{s:?}");
+        let (pa, pb) = two_ball_angles(0.025 * p.r, 0.035 * p.r, C::new(-p.m1 * p.s1, 0.0)).unwrap();
+        let d = |x: f64, y: f64| ((x - y + std::f64::consts::PI).rem_euclid(2.0 * std::f64::consts::PI) - std::f64::consts::PI).abs();
+        let direct = d(last.psi[0], pa).max(d(last.psi[1], pb));
+        let mirror = d(last.psi[0], -pa).max(d(last.psi[1], -pb));
+        assert!(direct.min(mirror) < 1e-3, "{method:?}: balls at {:?}, closed form ({pa}, {pb}) or mirrored", last.psi);
+    }
 }
 
 #[test]
