@@ -281,6 +281,16 @@ fn two_unequal_balls_balance_at_the_closed_form_angles() {
         assert!(dpsi(s.x[2], pa) < 1e-9 && dpsi(s.x[3], pb) < 1e-9, "Ω = {w}: {:?} vs ({pa}, {pb})", &s.x[2..4]);
         let sum = C::from_polar(a, s.x[2]) + C::from_polar(b, s.x[3]);
         assert!((sum - d).norm() < 1e-12 * d.norm() * 1e3, "Ω = {w}: {sum}");
+        // the mirror image is a balanced state too (stationary at every instant), a distinct one
+        let mut m = g.clone();
+        m[2] = -pa;
+        m[3] = -pb;
+        for k in 0..8 {
+            f.rhs(k as f64 * 0.1 / w, &m, &mut dx);
+            assert!(dx.iter().all(|v| v.abs() < 1e-9), "mirror, t = {}: {dx:?}", k as f64 * 0.1 / w);
+        }
+        let (a1, a2) = (stability(&f, &s).unwrap().abscissa, stability(&f, &stationary(&f, &m, &NewtonOptions::default()).unwrap()).unwrap().abscissa);
+        eprintln!("Ω = {w}: Floquet abscissa {a1:.6} 1/s (closed form's branch), {a2:.6} 1/s (mirror image)");
     }
 }
 
@@ -566,4 +576,57 @@ fn the_jacobian_at_the_balanced_state_is_a_fixed_trigonometric_combination() {
             }
         }
     }
+}
+
+#[test]
+fn the_eccentric_race_on_unequal_supports_settles_on_the_shot_orbit() {
+    // Paper 004's eccentric race (s2 = 0.5 mm) on the supports and balls of `anisotropic()`:
+    // the stationary motion is a periodic orbit of half a revolution (the race centre cannot
+    // stay on the axis: the support force on it turns), found by shooting from the
+    // semi-balanced state of the mean supports. A constant-speed run of the simulator from
+    // balls spread across the unbalance, ended at t = K π/Ω (θ = Kπ, so u = (−1)^K z), is on
+    // one of them: C and the balls' angles to 1e-6 of their scales (the run's tolerance is
+    // 1e-10; K is long enough for the slowest transient to fall by e^{-25}). Two orbits: the
+    // unequal balls balance in a pair of mirror-image arrangements, which the supports'
+    // anisotropy (and the Coriolis terms) make distinct states: C differs by 6e-5 of its whirl
+    // between them. The closed form's guess and its mirror image (ψ → −ψ) start the shooting of
+    // each; both are stable here, and the run from this start ends on the mirrored one.
+    use autobal::planar::{simulate, Method, Settings};
+    let p = PlanarRotor { s2: 0.0005, ..anisotropic() };
+    let w = 600.0;
+    let f = PlanarField::new(&p, w).unwrap();
+    let g = f.semi_balanced_guess().unwrap();
+    let mut mirrored = g.clone();
+    mirrored[2] = -g[2];
+    mirrored[3] = -g[3];
+    let orbits: Vec<StationaryState> = [g, mirrored].iter().map(|x| stationary(&f, x, &NewtonOptions::default()).unwrap()).collect();
+    assert!((orbits[0].x[0] - orbits[1].x[0]).abs() > 1e-9, "two distinct orbits");
+    let mut slowest = f64::NEG_INFINITY;
+    for o in &orbits {
+        let st = stability(&f, o).unwrap();
+        assert_eq!((st.kind, st.verdict), (Kind::PeriodicOrbit, Verdict::Stable), "{:?}", st.abscissa);
+        slowest = slowest.max(st.abscissa);
+    }
+    let t = orbits[0].period.unwrap();
+    // the race centre is off the axis on both: no semi-balanced state
+    assert!(orbits.iter().all(|s| (s.x[0] + p.s2).hypot(s.x[1]) > 1e-3 * p.s2));
+    let k = (25.0 / (-slowest) / t).round();
+    let drive = Drive::Speed { omega0: w };
+    let settings = Settings { method: Method::Dop853, rtol: 1e-10, atol: 1e-14, dt: t, ..Settings::new(&p, k * t) };
+    let mut samples = vec![];
+    let out = simulate(&p, &drive, &settings, |x| {
+        samples.push(x.clone());
+        true
+    })
+    .unwrap();
+    assert!(out.status.is_completed());
+    let last = samples.last().unwrap().clone();
+    assert!((last.t - k * t).abs() < 1e-9 * k * t, "{} vs {}", last.t, k * t);
+    let sign = if k as u64 % 2 == 0 { 1.0 } else { -1.0 };
+    let (ux, uy) = (sign * last.x, sign * last.y);
+    let len = p.s1;
+    let angle = |a: f64, b: f64| ((a - b + std::f64::consts::PI).rem_euclid(2.0 * std::f64::consts::PI) - std::f64::consts::PI).abs();
+    let on =
+        |s: &StationaryState| (ux - s.x[0]).abs() < 1e-6 * len && (uy - s.x[1]).abs() < 1e-6 * len && (0..2).all(|j| angle(last.psi[j], s.x[2 + j]) < 1e-6);
+    assert!(orbits.iter().any(on), "run ends at C ({ux}, {uy}), balls {:?}; orbits {:?}, {:?}", last.psi, &orbits[0].x[..4], &orbits[1].x[..4]);
 }
