@@ -622,7 +622,7 @@ fn the_eccentric_race_on_unequal_supports_settles_on_the_shot_orbit() {
     assert!(out.status.is_completed());
     let last = samples.last().unwrap().clone();
     assert!((last.t - k * t).abs() < 1e-9 * k * t, "{} vs {}", last.t, k * t);
-    let sign = if k as u64 % 2 == 0 { 1.0 } else { -1.0 };
+    let sign = if (k as u64).is_multiple_of(2) { 1.0 } else { -1.0 };
     let (ux, uy) = (sign * last.x, sign * last.y);
     let len = p.s1;
     let angle = |a: f64, b: f64| ((a - b + std::f64::consts::PI).rem_euclid(2.0 * std::f64::consts::PI) - std::f64::consts::PI).abs();
