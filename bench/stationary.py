@@ -21,9 +21,10 @@ Problems:
            axes periodic with the revolution), per speed shooting by scipy.optimize.root (hybr)
            on x0 - x(T; x0) with solve_ivp (DOP853, rtol 1e-10), then the monodromy matrix by
            solve_ivp of the 8 + 64 variational equations with the exact (SymPy) Jacobian, and
-           numpy.linalg.eigvals. NOT the same problem as autobal's (autobal's planar model has
-           no direction-dependent supports, and a NumPy version of the 16-state spatial rotor is
-           not written): the two are printed for scale, without a ratio.
+           numpy.linalg.eigvals. NOT the same problem as autobal's (a NumPy version of the 16-state
+           spatial rotor is not written): the two are printed for scale, without a ratio.
+           (autobal's planar rotor now takes direction-dependent supports, `planar.k_x`,
+           `planar.k_y`: the like-for-like comparison is not yet wired in here.)
 
 Autobal is timed as whole processes (wall and CPU of the child); its per-speed cost is the CPU
 time over the grid's speeds (the location of the range ends to 1e-9 included: a few trial

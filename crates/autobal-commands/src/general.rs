@@ -84,9 +84,16 @@ fn what_is_analysed(g: &GeneralRotor, r: &RotorStability) -> String {
         }
         Rotor::Spatial(_) => "the spatial rotor: the state where the balls cancel the static unbalance",
     };
-    let how = match r.kind {
-        Kind::Equilibrium => "an equilibrium in axes turning with the rotor (Newton on the nonlinear equations; eigenvalues of their exact Jacobian by automatic differentiation)",
-        Kind::PeriodicOrbit => {
+    let how = match (r.kind, &g.rotor) {
+        (Kind::Equilibrium, _) => "an equilibrium in axes turning with the rotor (Newton on the nonlinear equations; eigenvalues of their exact Jacobian by automatic differentiation)",
+        // the planar rotor's equations turn with its supports only, through e^{-2iθ}
+        (Kind::PeriodicOrbit, Rotor::Planar(p)) if p.s2 == 0.0 => {
+            "a state at rest in axes turning with the rotor whose equations vary with half a revolution (supports that differ by direction; no support force acts on the balanced state, so it is stationary at every instant); Floquet multipliers over T = π/Ω from the variational equations"
+        }
+        (Kind::PeriodicOrbit, Rotor::Planar(_)) => {
+            "a periodic orbit of half a revolution (supports that differ by direction: the whirl is elliptic; shooting with the variational equations; Floquet multipliers)"
+        }
+        (Kind::PeriodicOrbit, _) => {
             "a periodic orbit of one revolution (supports that differ by direction or gravity turn against the rotor: the rotor sags and the balls swing; shooting with the variational equations; Floquet multipliers)"
         }
     };

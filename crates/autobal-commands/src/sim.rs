@@ -178,9 +178,14 @@ pub fn summary_table(cfg: &PlanarConfig, s: &Summary, wall: f64) -> String {
     let _ = writeln!(o, "config: {}", cfg.source);
     let _ = writeln!(
         o,
-        "rotor: m0 = {:.4} kg, sqrt(k/m0) = {:.2} rad/s, capacity ratio α∞ = {:.3} ({})",
+        "rotor: m0 = {:.4} kg, {}, capacity ratio α∞ = {:.3} ({})",
         cfg.rotor.total_mass(),
-        cfg.rotor.natural_frequency(),
+        if cfg.rotor.k_y.is_some() {
+            let (wx, wy) = cfg.rotor.natural_frequencies_xy();
+            format!("sqrt(k_x/m0) = {wx:.2} rad/s, sqrt(k_y/m0) = {wy:.2} rad/s")
+        } else {
+            format!("sqrt(k/m0) = {:.2} rad/s", cfg.rotor.natural_frequency())
+        },
         capacity_ratio(&cfg.rotor),
         if capacity_ratio(&cfg.rotor) > 1.0 { "the balls can balance at high speed" } else { "too little ball mass to balance" }
     );

@@ -78,7 +78,13 @@ pub const SCHEMA: &[(&str, &[&str])] = &[
             "r",
             "k",
             "c",
+            "k_x",
+            "k_y",
+            "c_x",
+            "c_y",
             "c_psi",
+            "ball_masses",
+            "ball_drags",
             "c_theta",
             "i_g",
             "ball_diameter",
@@ -541,18 +547,32 @@ pub fn planar(root: &Table) -> Result<PlanarProblem> {
         return Err(Error::invalid("planar", "missing: `simulate` needs a [planar] table (see examples/planar.toml)"));
     }
     let (p, d, ig) = (Section::of(root, "planar"), Section::of(root, "drive"), Section::of(root, "integration"));
+    let (k, k_y) = planar_direction_pair(&p, "k", None)?;
+    let (c, c_y) = planar_direction_pair(&p, "c", Some(0.0))?;
+    let ball_masses = planar_per_ball(&p, "m3", "ball_masses")?;
+    let ball_drags = planar_per_ball(&p, "c_psi", "ball_drags")?;
+    let n = match (p.count("n")?, ball_masses.as_ref().or(ball_drags.as_ref())) {
+        (Some(n), _) => n as usize,
+        (None, Some(v)) => v.len(),
+        (None, None) => 0,
+    };
+    let mean = |v: &Option<Vec<f64>>| v.as_ref().filter(|v| !v.is_empty()).map(|v| v.iter().sum::<f64>() / v.len() as f64);
     let rotor = PlanarRotor {
         m1: p.req("m1")?,
         m2: p.f64("m2")?.unwrap_or(0.0),
-        m3: p.f64("m3")?.unwrap_or(0.0),
-        n: p.count("n")?.unwrap_or(0) as usize,
+        m3: mean(&ball_masses).map_or_else(|| p.f64("m3").map(|v| v.unwrap_or(0.0)), Ok)?,
+        n,
         s1: p.req("s1")?,
         s2: p.f64("s2")?.unwrap_or(0.0),
         gamma: p.f64("gamma")?.unwrap_or(0.0),
         r: p.f64("r")?.unwrap_or(0.0),
-        k: p.req("k")?,
-        c: p.f64("c")?.unwrap_or(0.0),
-        c_psi: p.f64("c_psi")?.unwrap_or(0.0),
+        k,
+        c,
+        k_y,
+        c_y,
+        c_psi: mean(&ball_drags).map_or_else(|| p.f64("c_psi").map(|v| v.unwrap_or(0.0)), Ok)?,
+        ball_masses,
+        ball_drags,
         c_theta: p.f64("c_theta")?.unwrap_or(0.0),
         i_g: p.req("i_g")?,
         balls: ball_physics_of(&p)?,
@@ -589,6 +609,49 @@ pub fn planar(root: &Table) -> Result<PlanarProblem> {
     };
     settings.validate(&rotor)?;
     Ok(PlanarProblem { rotor, drive, settings })
+}
+
+/// A support coefficient of `[planar]` given once (`k`, the same in every direction) or per
+/// direction (`k_x` and `k_y`): `(x value, Some(y value))` for the pair, `(value, None)` for the
+/// isotropic key, `default` when neither is given (`None`: required). Giving the isotropic key
+/// and a per-direction one, or one of the pair alone, is an error naming both keys.
+fn planar_direction_pair(p: &Section, key: &str, default: Option<f64>) -> Result<(f64, Option<f64>)> {
+    let (kx, ky) = (format!("{key}_x"), format!("{key}_y"));
+    let iso = p.f64(key)?;
+    let (x, y) = (p.f64(&kx)?, p.f64(&ky)?);
+    if iso.is_some() {
+        if let Some(given) = [(&kx, x), (&ky, y)].iter().find(|(_, v)| v.is_some()).map(|(k, _)| k) {
+            return Err(Error::invalid(
+                p.field(given),
+                format!("conflicts with {}: give {key} (the same in every direction) or {kx} and {ky}, not both", p.field(key)),
+            ));
+        }
+    }
+    match (iso, x, y) {
+        (Some(v), _, _) => Ok((v, None)),
+        (None, Some(a), Some(b)) => Ok((a, Some(b))),
+        (None, Some(_), None) => {
+            Err(Error::invalid(p.field(&ky), format!("missing: {} needs {} (or give {} alone)", p.field(&kx), p.field(&ky), p.field(key))))
+        }
+        (None, None, Some(_)) => {
+            Err(Error::invalid(p.field(&kx), format!("missing: {} needs {} (or give {} alone)", p.field(&ky), p.field(&kx), p.field(key))))
+        }
+        (None, None, None) => default.map(|v| (v, None)).ok_or_else(|| Error::invalid(p.field(key), format!("missing (required; or give {kx} and {ky})"))),
+    }
+}
+
+/// A per-ball list of `[planar]` (`ball_masses`, `ball_drags`), if given; giving it beside the
+/// common value `common` (`m3`, `c_psi`) is an error naming both. Its length is checked against
+/// `planar.n` by [`PlanarRotor::validate`].
+fn planar_per_ball(p: &Section, common: &str, key: &str) -> Result<Option<Vec<f64>>> {
+    let v = p.array_f64(key)?;
+    if v.is_some() && p.get(common).is_some() {
+        return Err(Error::invalid(p.field(key), format!("conflicts with {}: give one value for every ball or one per ball, not both", p.field(common))));
+    }
+    if v.as_ref().is_some_and(|v| v.is_empty()) {
+        return Err(Error::invalid(p.field(key), "empty: give one value per ball"));
+    }
+    Ok(v)
 }
 
 /// `[drive]`: the drive (shared by the planar and the spatial simulation) and `t_end`

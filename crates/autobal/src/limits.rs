@@ -175,6 +175,12 @@ pub const LIMITS: &[Limit] = &[
     lim("planar.r", 0.0, false, 1e3, false, "m", RADIUS),
     lim("planar.k", 0.0, true, 1e13, false, "N/m", STIFF),
     lim("planar.c", 0.0, false, 1e12, false, "kg/s", "as support damping"),
+    lim("planar.k_x", 0.0, true, 1e13, false, "N/m", "as planar.k (supports that differ by direction)"),
+    lim("planar.k_y", 0.0, true, 1e13, false, "N/m", "as planar.k (supports that differ by direction)"),
+    lim("planar.c_x", 0.0, false, 1e12, false, "kg/s", "as planar.c (supports that differ by direction)"),
+    lim("planar.c_y", 0.0, false, 1e12, false, "kg/s", "as planar.c (supports that differ by direction)"),
+    lim("planar.ball_masses", 0.0, true, 1e9, false, "kg", "each, as planar.m3; one per ball"),
+    lim("planar.ball_drags", 0.0, false, 1e12, false, "N·m·s", "each, as planar.c_psi; one per ball"),
     lim("planar.c_psi", 0.0, false, 1e12, false, "N·m·s", "as support damping"),
     lim("planar.c_theta", 0.0, false, 1e12, false, "N·m·s", "as support damping"),
     lim("planar.i_g", 0.0, true, 1e12, false, "kg·m²", MOMENT),
@@ -291,18 +297,34 @@ pub fn check_planar_rotor(r: &crate::planar::PlanarRotor) -> Result<()> {
         ("planar.c_theta", r.c_theta),
         ("planar.i_g", r.i_g),
     ])?;
+    if let Some(v) = r.k_y {
+        check("planar.k_y", v)?;
+    }
+    if let Some(v) = r.c_y {
+        check("planar.c_y", v)?;
+    }
+    for (field, list) in [("planar.ball_masses", &r.ball_masses), ("planar.ball_drags", &r.ball_drags)] {
+        for (j, v) in list.iter().flatten().enumerate() {
+            check_as(&format!("{field}[{}]", j + 1), field, *v)?;
+        }
+    }
     check_count("planar.n", r.n as u64)?;
-    let wn = r.natural_frequency();
-    if !(1e-3..=1e7).contains(&wn) {
-        return Err(Error::invalid(
-            "planar.k",
-            format!(
-                "the natural frequency sqrt(k/m0) = {} rad/s (k = {} N/m, m0 = {} kg) lies outside [0.001, 1e7] rad/s",
-                fmt_num(wn),
-                fmt_num(r.k),
-                fmt_num(r.total_mass())
-            ),
-        ));
+    // each direction's natural frequency (supports that differ by direction: k_x, k_y)
+    let (kx, ky) = r.stiffness_xy();
+    let directions: &[(&str, &str, f64)] = if r.k_y.is_some() { &[("planar.k_x", "k_x", kx), ("planar.k_y", "k_y", ky)] } else { &[("planar.k", "k", kx)] };
+    for &(field, key, k) in directions {
+        let wn = (k / r.total_mass()).sqrt();
+        if !(1e-3..=1e7).contains(&wn) {
+            return Err(Error::invalid(
+                field,
+                format!(
+                    "the natural frequency sqrt({key}/m0) = {} rad/s ({key} = {} N/m, m0 = {} kg) lies outside [0.001, 1e7] rad/s",
+                    fmt_num(wn),
+                    fmt_num(k),
+                    fmt_num(r.total_mass())
+                ),
+            ));
+        }
     }
     Ok(())
 }

@@ -84,7 +84,8 @@ pub trait VectorField {
     /// The exact Jacobian `∂f/∂x` at `(t, x)`, row-major `dim × dim` into `jac`: by automatic
     /// (forward-mode) differentiation of the equations, never by difference quotients.
     fn jacobian(&self, t: f64, x: &[f64], jac: &mut [f64]);
-    /// The period of the explicit time dependence, `Some(2π/Ω)`, or `None` when autonomous.
+    /// The period of the explicit time dependence, `Some(2π/Ω)` (or a fraction of it: `π/Ω` for
+    /// the planar rotor's supports that differ by direction), or `None` when autonomous.
     fn period(&self) -> Option<f64>;
     /// The number of zero eigenvalues (Floquet multipliers 1) that a stationary state `x` has by
     /// the model's structure rather than by instability: the dimension of a family of stationary

@@ -260,6 +260,12 @@ impl LinearRotor {
         if p.balls.is_active() {
             return Err(Error::invalid("planar.balls", "real balls (contact, rolling resistance) are not modelled on the linear rotor"));
         }
+        if p.anisotropic() {
+            return Err(Error::invalid("planar.k_y", "the linear rotor's Jeffcott form has equal supports: k_x = k_y and c_x = c_y"));
+        }
+        if !p.equal_balls() {
+            return Err(Error::invalid("planar.ball_masses", "the linear rotor's balancer has equal balls: give m3 and c_psi"));
+        }
         Ok(LinearRotor::jeffcott(
             p.m1 + p.m2,
             p.k,

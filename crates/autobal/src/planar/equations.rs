@@ -54,6 +54,11 @@ impl<T: Real> Cx<T> {
     fn mul_i(self) -> Self {
         Cx::new(-self.im, self.re)
     }
+    /// `conj(self) · (c + i s)`: the mirror image in the x axis turned by the constant angle
+    /// whose cosine and sine are `c`, `s`.
+    fn conj_turn(self, c: f64, s: f64) -> Self {
+        Cx::new(self.re * c + self.im * s, self.re * s - self.im * c)
+    }
     /// `Re(conj(self) · o)`: the dot product of two plane vectors.
     fn dot(self, o: Self) -> T {
         self.re * o.re + self.im * o.im
@@ -73,10 +78,27 @@ pub struct Equations<'a> {
     pub drive: &'a Drive,
     e: (f64, f64),
     prescribed: bool,
+    /// The supports: mean stiffness and damping `(k̄, c̄)`, and where they differ by direction
+    /// `(Δk, Δc) = ((k_x − k_y)/2, (c_x − c_y)/2)` (module docs of [`Equations::support_force`]).
+    supports: (f64, f64, Option<(f64, f64)>),
+    /// Per-ball masses and `κ_j = c_ψj/(m_j r)`, where the balls differ (`None`: all `m3`, `c_ψ`).
+    unequal: Option<UnequalBalls>,
     /// Contact and rolling resistance of real balls, when switched on (`None`: point masses).
     pub(crate) balls: Option<BallForces>,
     /// The balls' generalised forces of the current right-hand side (scratch).
     ball_q: RefCell<Vec<f64>>,
+}
+
+/// The balls' own masses and drags ([`PlanarRotor::ball_masses`], [`PlanarRotor::ball_drags`]).
+struct UnequalBalls {
+    /// `m_j` (kg).
+    masses: Vec<f64>,
+    /// `c_ψj / r`.
+    drags: Vec<f64>,
+    /// `κ_j = c_ψj/(m_j r)`.
+    kappa: Vec<f64>,
+    /// `Σ m_j`.
+    total: f64,
 }
 
 impl<'a> Equations<'a> {
@@ -85,7 +107,58 @@ impl<'a> Equations<'a> {
         let e = (rotor.s2 * rotor.gamma.cos(), rotor.s2 * rotor.gamma.sin());
         let balls = BallForces::new(&rotor.balls, rotor.m3, rotor.r, rotor.n, rotor.natural_frequency());
         let ball_q = RefCell::new(vec![0.0; if balls.is_some() { rotor.n } else { 0 }]);
-        Equations { rotor, drive, e, prescribed: drive.prescribed(), balls, ball_q }
+        let supports = if rotor.anisotropic() {
+            let ((kx, ky), (cx, cy)) = (rotor.stiffness_xy(), rotor.damping_xy());
+            let (k, c) = rotor.mean_supports();
+            (k, c, Some((0.5 * (kx - ky), 0.5 * (cx - cy))))
+        } else {
+            (rotor.k, rotor.c, None)
+        };
+        let unequal = (!rotor.equal_balls()).then(|| {
+            let masses: Vec<f64> = (0..rotor.n).map(|j| rotor.ball_mass(j)).collect();
+            let drags: Vec<f64> = (0..rotor.n).map(|j| rotor.ball_drag(j) / rotor.r).collect();
+            let kappa = (0..rotor.n).map(|j| rotor.ball_drag(j) / (masses[j] * rotor.r)).collect();
+            UnequalBalls { total: masses.iter().sum(), masses, drags, kappa }
+        });
+        Equations { rotor, drive, e, prescribed: drive.prescribed(), supports, unequal, balls, ball_q }
+    }
+
+    /// The support force on C in rotor axes, `−K(θ) u − C(θ)(u̇ + iθ̇u)`, generic over the
+    /// number type. In fixed axes the force is `−(k_x X, k_y Y) − (c_x Ẋ, c_y Ẏ)`, i.e. with
+    /// `z = X + iY`: `−(k̄ z + Δk z̄) − (c̄ ż + Δc conj(ż))`; with `z = u e^{iθ}`,
+    /// `ż = (u̇ + iθ̇u) e^{iθ}` and the force turned back by `e^{−iθ}`:
+    ///
+    /// ```text
+    /// F = −k̄ u − c̄ v − (Δk ū + Δc v̄) e^{−2iθ},   v = u̇ + iθ̇ u
+    /// ```
+    ///
+    /// so the equations depend on the rotor angle through `e^{−2iθ}` alone: period `π` in `θ`
+    /// (`π/Ω` in time at constant speed). Equal supports: the first two terms, as before.
+    fn support_force<T: Real>(&self, u: Cx<T>, ud: Cx<T>, w: T, theta: f64) -> Cx<T> {
+        let (k, c, aniso) = self.supports;
+        let v = ud.add(u.mul_i().scale(w));
+        let f = u.scalef(-k).sub(v.scalef(c));
+        match aniso {
+            None => f,
+            Some((dk, dc)) => {
+                let (s2, c2) = (2.0 * theta).sin_cos();
+                // conj(a) e^{−2iθ} = conj(a e^{2iθ})
+                f.sub(u.conj_turn(c2, -s2).scalef(dk)).sub(v.conj_turn(c2, -s2).scalef(dc))
+            }
+        }
+    }
+
+    /// `∂F/∂θ` of [`Equations::support_force`] at a plain state: `2i (Δk ū + Δc v̄) e^{−2iθ}`
+    /// (zero for equal supports).
+    fn support_force_theta(&self, u: Cx<f64>, ud: Cx<f64>, w: f64, theta: f64) -> Cx<f64> {
+        match self.supports.2 {
+            None => Cx::new(0.0, 0.0),
+            Some((dk, dc)) => {
+                let (s2, c2) = (2.0 * theta).sin_cos();
+                let v = ud.add(u.mul_i().scalef(w));
+                u.conj_turn(c2, -s2).scalef(dk).add(v.conj_turn(c2, -s2).scalef(dc)).mul_i().scalef(2.0)
+            }
+        }
     }
 
     /// The real balls' generalised forces `Q_j` at `(y, θ̇ = w)` into `q` ([`crate::balls`]):
@@ -138,6 +211,7 @@ impl<'a> Equations<'a> {
     fn residual<T: Real>(
         &self,
         t: f64,
+        theta: f64,
         u: Cx<T>,
         ud: Cx<T>,
         w: T,
@@ -153,7 +227,7 @@ impl<'a> Equations<'a> {
         let zero = Cx::<T>::c(0.0, 0.0);
         // absolute acceleration of a body at offset a (rate ad, acceleration add), rotor axes
         let acc = |pos: Cx<T>, ad: Cx<T>, add: Cx<T>| udd.add(add).add(pos.mul_i().scale(wd)).add(ud.add(ad).mul_i().scale(w * 2.0)).sub(pos.scale(w * w));
-        let force = u.scalef(-p.k).sub(ud.add(u.mul_i().scale(w)).scalef(p.c));
+        let force = self.support_force(u, ud, w, theta);
         let mut trans = force;
         let mut rot = u.mul_i().dot(force) - w * p.c_theta - wd * p.i_g;
         if !self.prescribed {
@@ -174,9 +248,10 @@ impl<'a> Equations<'a> {
             let ad = t_j.scale(psid);
             let add = t_j.scalef(qdd[3 + j]).sub(d.scale(psid * psid).scalef(p.r));
             let ab = acc(pos, ad, add);
-            let r_tr = ab.scalef(-p.m3);
-            let r_rot = pos.mul_i().dot(ab) * (-p.m3);
-            let r_ball = psid * (-p.c_psi) - t_j.dot(ab) * p.m3;
+            let mj = p.ball_mass(j);
+            let r_tr = ab.scalef(-mj);
+            let r_rot = pos.mul_i().dot(ab) * (-mj);
+            let r_ball = psid * (-p.ball_drag(j)) - t_j.dot(ab) * mj;
             on_ball(j, [r_tr.re, r_tr.im, r_rot], r_ball);
             trans = trans.add(r_tr);
             rot = rot + r_rot;
@@ -197,7 +272,8 @@ impl<'a> Equations<'a> {
             qdd[2] = a;
         }
         let mut out = vec![0.0; nc];
-        let r = self.residual::<f64>(t, Cx::new(y[0], y[1]), Cx::new(y[nc], y[nc + 1]), w, &qdd, |j| (y[3 + j], y[nc + 3 + j]), |j, _, rb| out[3 + j] = rb);
+        let r =
+            self.residual::<f64>(t, y[2], Cx::new(y[0], y[1]), Cx::new(y[nc], y[nc + 1]), w, &qdd, |j| (y[3 + j], y[nc + 3 + j]), |j, _, rb| out[3 + j] = rb);
         out[..3].copy_from_slice(&r);
         for (j, q) in self.ball_torques(t, y).iter().enumerate() {
             out[3 + j] += q;
@@ -222,7 +298,7 @@ impl<'a> Equations<'a> {
         let e = Cx::<f64>::new(self.e.0, self.e.1);
         let mut m = vec![0.0; nc * nc];
         let mut f = vec![0.0; nc];
-        let force = u.scalef(-p.k).sub(ud.add(u.mul_i().scalef(w)).scalef(p.c));
+        let force = self.support_force(u, ud, w, y[2]);
         f[0] = force.re;
         f[1] = force.im;
         f[2] = u.mul_i().dot(force) - p.c_theta * w + self.drive.torque(t, w);
@@ -234,7 +310,7 @@ impl<'a> Equations<'a> {
             let d = Cx::new(c, s);
             let tj = d.mul_i().scalef(p.r);
             let psid = y[nc + 3 + j];
-            bodies.push((p.m3, e.add(d.scalef(p.r)), tj.scalef(psid), d.scalef(-p.r * psid * psid), Some((j, tj))));
+            bodies.push((p.ball_mass(j), e.add(d.scalef(p.r)), tj.scalef(psid), d.scalef(-p.r * psid * psid), Some((j, tj))));
         }
         for (mb, a, ad, add_v, ball) in bodies {
             let pos = u.add(a);
@@ -258,7 +334,7 @@ impl<'a> Equations<'a> {
             }
         }
         for j in 0..n {
-            f[3 + j] -= p.c_psi * y[nc + 3 + j];
+            f[3 + j] -= p.ball_drag(j) * y[nc + 3 + j];
         }
         for (j, q) in self.ball_torques(t, y).iter().enumerate() {
             f[3 + j] += q;
@@ -375,6 +451,10 @@ impl Equations<'_> {
     /// `Σ c ψ̇`, `Σ s ψ̇`, `Σ c ψ̇²`, `Σ s ψ̇²`, `Σ ψ̇`), and `ψ̈_j` is affine in
     /// `(ψ̇_j, cos ψ_j, sin ψ_j)` again. Two passes over the balls of a few operations each (and
     /// one `sin_cos`); `dy`'s ball slots hold `cos ψ_j`, `sin ψ_j` between them.
+    ///
+    /// Balls of unequal mass or drag ([`PlanarRotor::ball_masses`]): the same moments weighted
+    /// by `m_j` (the mass factor `m3` taken as 1), the drag terms `κ ψ̇` summed with their own
+    /// weights `c_ψj / r`, and `κ_j` per ball in the second pass.
     #[inline(always)]
     fn rhs_balls<const FREE: bool>(&self, t: f64, y: &[f64], dy: &mut [f64]) {
         let p = self.rotor;
@@ -384,7 +464,8 @@ impl Equations<'_> {
         let (ux, uy) = (y[0], y[1]);
         let (vx, vy) = (y[nc], y[nc + 1]);
         let (px, py) = (ux + self.e.0, uy + self.e.1); // P = u + a_E
-        let (m3, m3r, r) = (p.m3, p.m3 * p.r, p.r);
+        let weighted = self.unequal.as_ref();
+        let (m3, m3r, r) = if weighted.is_some() { (1.0, p.r, p.r) } else { (p.m3, p.m3 * p.r, p.r) };
         let wd_b = wd_known.unwrap_or(0.0);
         let (two_w, w2) = (2.0 * w, w * w);
         // pass 1: the moments of the balls
@@ -402,29 +483,54 @@ impl Equations<'_> {
                 (*sin_j, *cos_j) = sin_cos(psi_j);
             }
         }
-        for ((&d, &c), &s) in rates.iter().zip(cos_j.iter()).zip(sin_j.iter()) {
-            s_c += c;
-            s_s += s;
-            s_cc += c * c;
-            s_sc += s * c;
-            s_ss += s * s;
-            let (cd, sd) = (c * d, s * d);
-            s_cd += cd;
-            s_sd += sd;
-            s_cq += cd * d;
-            s_sq += sd * d;
-            if FREE {
-                s_d += d;
+        // the drag moments Σ κ c ψ̇, Σ κ s ψ̇, Σ κ ψ̇ (times m3)
+        let (kd_c, kd_s, kd_d, nf, kappa);
+        if let Some(wb) = weighted {
+            let (mut dc, mut ds, mut dd) = (0.0, 0.0, 0.0);
+            for j in 0..n {
+                let (d, c, s, mu, cr) = (rates[j], cos_j[j], sin_j[j], wb.masses[j], wb.drags[j]);
+                s_c += mu * c;
+                s_s += mu * s;
+                s_cc += mu * c * c;
+                s_sc += mu * s * c;
+                s_ss += mu * s * s;
+                let (cd, sd) = (c * d, s * d);
+                s_cd += mu * cd;
+                s_sd += mu * sd;
+                s_cq += mu * cd * d;
+                s_sq += mu * sd * d;
+                dc += cr * cd;
+                ds += cr * sd;
+                dd += cr * d;
             }
+            (kd_c, kd_s, kd_d, nf, kappa) = (dc, ds, dd, wb.total, 0.0);
+        } else {
+            for ((&d, &c), &s) in rates.iter().zip(cos_j.iter()).zip(sin_j.iter()) {
+                s_c += c;
+                s_s += s;
+                s_cc += c * c;
+                s_sc += s * c;
+                s_ss += s * s;
+                let (cd, sd) = (c * d, s * d);
+                s_cd += cd;
+                s_sd += sd;
+                s_cq += cd * d;
+                s_sq += sd * d;
+                if FREE {
+                    s_d += d;
+                }
+            }
+            nf = n as f64;
+            // no balls: no drag (m3 may be 0 then)
+            kappa = if n > 0 { p.c_psi / m3r } else { 0.0 };
+            (kd_c, kd_s, kd_d) = (kappa * s_cd, kappa * s_sd, kappa * s_d);
         }
-        let nf = n as f64;
-        let kappa = p.c_psi / m3r;
         let alpha = -two_w * vx + w2 * py - wd_b * px;
         let beta = -two_w * vy - w2 * px - wd_b * py;
         let gamma0 = -wd_b * r;
         // Σ s_j h_j/(m3 r), Σ c_j h_j/(m3 r)
-        let mut hs = -kappa * s_sd + alpha * s_sc + beta * s_ss + gamma0 * s_s;
-        let mut hc = -kappa * s_cd + alpha * s_cc + beta * s_sc + gamma0 * s_c;
+        let mut hs = -kd_s + alpha * s_sc + beta * s_ss + gamma0 * s_s;
+        let mut hc = -kd_c + alpha * s_cc + beta * s_sc + gamma0 * s_c;
         // real balls (contact, rolling resistance): generalised forces Q_j added to h_j, their
         // moments to the sums; nothing for point masses
         let mut q_buf = self.ball_q.borrow_mut();
@@ -443,8 +549,8 @@ impl Equations<'_> {
         let sx = m0 * ux + p.m1 * p.s1 + me * self.e.0 + m3r * s_c;
         let sy = m0 * uy + me * self.e.1 + m3r * s_s;
         // forces and velocity-dependent inertia terms
-        let fx = -p.k * ux - p.c * (vx - w * uy);
-        let fy = -p.k * uy - p.c * (vy + w * ux);
+        let force = self.support_force(Cx::new(ux, uy), Cx::new(vx, vy), w, y[2]);
+        let (fx, fy) = (force.re, force.im);
         let (bx, by) = (m0 * vx - m3r * s_sd, m0 * vy + m3r * s_cd); // m0 u̇ + m3 r Σ i d ψ̇
         let rx = -two_w * by - w2 * sx - m3r * s_cq;
         let ry = two_w * bx - w2 * sy - m3r * s_sq;
@@ -459,7 +565,7 @@ impl Equations<'_> {
             let rot_b = two_w * (py * s_cd - px * s_sd) + py * s_cq - px * s_sq; // Σ ψ̇ (2θ̇ + ψ̇) P·(i d)
             let rot_r = two_w * ((p.m1 * gx + me * px) * vx + (p.m1 * gy + me * py) * vy + m3r * (vx * s_c + vy * s_s)) + m3r * rot_b;
             let bbeta = px * px * s_cc + 2.0 * px * py * s_sc + py * py * s_ss + 2.0 * r * (px * s_c + py * s_s) + nf * r * r;
-            let hb = px * hc + py * hs + r * (-kappa * s_d + alpha * s_c + beta * s_s + gamma0 * nf + q_1);
+            let hb = px * hc + py * hs + r * (-kd_d + alpha * s_c + beta * s_s + gamma0 * nf + q_1);
             g[2] = self.drive.torque(t, w) + (-uy * fx + ux * fy) - p.c_theta * w - rot_r - m3 * hb;
             let a = [a[0], a[1], [a[0][2], a[1][2], inertia - m3 * bbeta]];
             solve_spd(a, g, 3)
@@ -475,8 +581,14 @@ impl Equations<'_> {
         let k_c = (alpha - x[1] - px * x2) * inv_r;
         let k_s = (beta + x[0] - py * x2) * inv_r;
         let k_1 = (gamma0 - r * x2) * inv_r;
-        for ((out, &d), &c) in sin_j.iter_mut().zip(rates).zip(cos_j.iter()) {
-            *out = k_d * d + k_c * c + k_s * *out + k_1;
+        if let Some(wb) = weighted {
+            for (((out, &d), &c), &kj) in sin_j.iter_mut().zip(rates).zip(cos_j.iter()).zip(&wb.kappa) {
+                *out = -kj * inv_r * d + k_c * c + k_s * *out + k_1;
+            }
+        } else {
+            for ((out, &d), &c) in sin_j.iter_mut().zip(rates).zip(cos_j.iter()) {
+                *out = k_d * d + k_c * c + k_s * *out + k_1;
+            }
         }
         if self.balls.is_some() {
             for j in 0..n {
@@ -550,34 +662,37 @@ impl ArrowSystem for Equations<'_> {
         lin.g_v.clear();
         // mass matrix (arrow): rotor block, border columns m3 r b_j, diagonal m3 r²
         let m0 = p.total_mass();
-        let me = p.m2 + n as f64 * p.m3;
+        let mb = p.balls_mass();
+        let me = p.m2 + mb;
         let (px, py) = (y[0] + self.e.0, y[1] + self.e.1);
         let m = &mut lin.mass;
         m.clear();
+        // Σ m_j e^{iψ_j}
         let (mut sdx, mut sdy) = (0.0, 0.0);
         for j in 0..n {
             let (s, c) = y[3 + j].sin_cos();
-            sdx += c;
-            sdy += s;
+            let mj = p.ball_mass(j);
+            sdx += mj * c;
+            sdy += mj * s;
             let beta = if self.prescribed { 0.0 } else { px * c + py * s + p.r };
-            let col = [-s * p.m3 * p.r, c * p.m3 * p.r, beta * p.m3 * p.r];
+            let col = [-s * mj * p.r, c * mj * p.r, beta * mj * p.r];
             m.rb[3 * j..3 * j + 3].copy_from_slice(&col);
             m.br[3 * j..3 * j + 3].copy_from_slice(&col);
-            m.bb[j] = p.m3 * p.r * p.r;
+            m.bb[j] = mj * p.r * p.r;
         }
         m.rr[0] = m0;
         m.rr[4] = m0;
         if self.prescribed {
             m.rr[8] = 1.0;
         } else {
-            let sx = m0 * y[0] + p.m1 * p.s1 + me * self.e.0 + p.m3 * p.r * sdx;
-            let sy = m0 * y[1] + me * self.e.1 + p.m3 * p.r * sdy;
+            let sx = m0 * y[0] + p.m1 * p.s1 + me * self.e.0 + p.r * sdx;
+            let sy = m0 * y[1] + me * self.e.1 + p.r * sdy;
             let (gx, gy) = (y[0] + p.s1, y[1]);
             m.rr[2] = -sy;
             m.rr[6] = -sy;
             m.rr[5] = sx;
             m.rr[7] = sx;
-            m.rr[8] = p.i_g + p.m1 * (gx * gx + gy * gy) + me * (px * px + py * py) + p.m3 * (2.0 * p.r * (px * sdx + py * sdy) + n as f64 * p.r * p.r);
+            m.rr[8] = p.i_g + p.m1 * (gx * gx + gy * gy) + me * (px * px + py * py) + 2.0 * p.r * (px * sdx + py * sdy) + mb * p.r * p.r;
         }
         // residual derivatives by forward differentiation of the equations themselves
         let u = Cx::new(D7::var(y[0], 0), D7::var(y[1], 1));
@@ -586,6 +701,7 @@ impl ArrowSystem for Equations<'_> {
         let (gq, gv) = (&mut lin.g_q, &mut lin.g_v);
         let rows = self.residual::<D7>(
             t,
+            y[2],
             u,
             ud,
             wv,
@@ -619,6 +735,17 @@ impl ArrowSystem for Equations<'_> {
             gv.rr[3 * i + 1] = r.d[3];
             gv.rr[3 * i + 2] = r.d[4];
         }
+        // the rotor angle enters only through supports that differ by direction: ∂R/∂θ is the
+        // support force's (translation rows, and its moment about the axis in the rotation row)
+        if self.supports.2.is_some() {
+            let (u, ud) = (Cx::new(y[0], y[1]), Cx::new(y[nc], y[nc + 1]));
+            let df = self.support_force_theta(u, ud, w, y[2]);
+            gq.rr[2] = df.re;
+            gq.rr[5] = df.im;
+            if !self.prescribed {
+                gq.rr[8] = u.mul_i().dot(df);
+            }
+        }
     }
 }
 
@@ -633,6 +760,11 @@ pub fn energy(rotor: &PlanarRotor, y: &[f64]) -> f64 {
     let e_off = Cx::<f64>::new(rotor.s2 * rotor.gamma.cos(), rotor.s2 * rotor.gamma.sin());
     let vel = |a: Cx<f64>, ad: Cx<f64>| ud.add(ad).add(u.add(a).mul_i().scalef(w));
     let mut t = 0.5 * rotor.i_g * w * w;
+    // the supports' elastic energy ½(k_x X² + k_y Y²), (X, Y) = u e^{iθ} in fixed axes
+    let (kx, ky) = rotor.stiffness_xy();
+    let (st, ct) = y[2].sin_cos();
+    let (xf, yf) = (u.re * ct - u.im * st, u.re * st + u.im * ct);
+    let elastic = if rotor.anisotropic() { 0.5 * (kx * xf * xf + ky * yf * yf) } else { 0.5 * rotor.k * u.dot(u) };
     let v_g = vel(Cx::new(rotor.s1, 0.0), Cx::new(0.0, 0.0));
     t += 0.5 * rotor.m1 * v_g.dot(v_g);
     let v_e = vel(e_off, Cx::new(0.0, 0.0));
@@ -641,10 +773,10 @@ pub fn energy(rotor: &PlanarRotor, y: &[f64]) -> f64 {
         let (s, c) = y[3 + j].sin_cos();
         let d = Cx::new(c, s);
         let v = vel(e_off.add(d.scalef(rotor.r)), d.mul_i().scalef(rotor.r * y[nc + 3 + j]));
-        t += 0.5 * rotor.m3 * v.dot(v);
+        t += 0.5 * rotor.ball_mass(j) * v.dot(v);
     }
     let contact = BallForces::new(&rotor.balls, rotor.m3, rotor.r, n, rotor.natural_frequency()).map_or(0.0, |f| f.contact_energy(&y[3..nc]));
-    t + 0.5 * rotor.k * u.dot(u) + contact
+    t + elastic + contact
 }
 
 #[cfg(test)]

@@ -49,6 +49,44 @@ pub struct PlanarField {
     rotor: PlanarRotor,
     drive: Drive,
     omega: f64,
+    cache: TrigJacobian,
+}
+
+/// Supports that differ by direction, at a state `x` held fixed: the rotor angle enters the
+/// equations only through the support force, affine in `cos 2θ`, `sin 2θ` (the mass matrix not
+/// at all; the accelerations, and the `∂M/∂q q̈` terms with them, are affine in the same two), so
+/// `J(t, x) = J_a + cos(2Ωt) J_c + sin(2Ωt) J_s` exactly. At the balanced state, stationary at
+/// every instant, the variational equations over a period then need three Jacobians, not one
+/// per right-hand side (3x faster Floquet scans). Built when two calls in a row come at the same state (to `1e-13` in units
+/// of the scales, far below the integration's error); used while calls stay there; a state that
+/// moves (a periodic orbit, a shooting iterate) never builds it.
+#[derive(Default)]
+struct TrigJacobian(std::sync::Mutex<TrigState>);
+
+#[derive(Default)]
+struct TrigState {
+    /// The state of the previous call.
+    last: Vec<f64>,
+    /// The state and `(J_a, J_c, J_s)` of the decomposition.
+    built: Option<(Vec<f64>, [Vec<f64>; 3])>,
+}
+
+impl Clone for TrigJacobian {
+    fn clone(&self) -> Self {
+        TrigJacobian::default()
+    }
+}
+
+impl PartialEq for TrigJacobian {
+    fn eq(&self, _: &Self) -> bool {
+        true // a cache: no part of the field's value
+    }
+}
+
+impl std::fmt::Debug for TrigJacobian {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("TrigJacobian")
+    }
 }
 
 impl PlanarField {
@@ -63,7 +101,7 @@ impl PlanarField {
                 reason: "planar.contact / planar.rolling_resistance make the balls' stationary set a friction dead zone or a resting contact; switch them off to analyse the point-mass balls".into(),
             });
         }
-        Ok(PlanarField { rotor: rotor.clone(), drive: Drive::Speed { omega0: omega }, omega })
+        Ok(PlanarField { rotor: rotor.clone(), drive: Drive::Speed { omega0: omega }, omega, cache: TrigJacobian::default() })
     }
 
     /// The rotor.
@@ -92,6 +130,12 @@ impl PlanarField {
 
     /// The full state `y = (ξ, η, θ, ψ, ξ̇, η̇, θ̇, ψ̇)` of [`Equations`] at `θ = 0`, `θ̇ = Ω`.
     pub fn full_state(&self, x: &[f64]) -> Vec<f64> {
+        self.full_state_at(0.0, x)
+    }
+
+    /// The full state at time `t`: `θ = Ω t` (which only supports that differ by direction
+    /// feel), `θ̇ = Ω`.
+    pub fn full_state_at(&self, t: f64, x: &[f64]) -> Vec<f64> {
         let (nr, nc) = (self.nr(), self.nr() + 1);
         let mut y = vec![0.0; 2 * nc];
         for i in 0..nr {
@@ -99,6 +143,7 @@ impl PlanarField {
             y[nc + Self::full_coord(i)] = x[nr + i];
         }
         y[nc + 2] = self.omega;
+        y[2] = self.omega * t;
         y
     }
 
@@ -117,7 +162,7 @@ impl PlanarField {
     /// when all vanish.
     fn length(&self) -> f64 {
         let p = &self.rotor;
-        let l = p.s1 + p.s2 + p.n as f64 * p.m3 * p.r / p.total_mass();
+        let l = p.s1 + p.s2 + p.balls_mass() * p.r / p.total_mass();
         if l > 0.0 {
             l
         } else {
@@ -138,7 +183,22 @@ impl PlanarField {
             return None;
         }
         let e = C::from_polar(p.s2, p.gamma);
-        let b = -e * C::new(p.k / (w * w), p.c / w) + (e - C::new(p.s1, 0.0)) * p.m1;
+        // supports that differ by direction: the mean ones (exact for the balanced state,
+        // s2 = 0, where no support force acts; a start for the shooting otherwise)
+        let (k, c) = p.mean_supports();
+        let b = -e * C::new(k / (w * w), c / w) + (e - C::new(p.s1, 0.0)) * p.m1;
+        let nr = self.nr();
+        let state = |psi: &[f64]| {
+            let mut x = vec![0.0; 2 * nr];
+            x[0] = -e.re;
+            x[1] = -e.im;
+            x[2..nr].copy_from_slice(psi);
+            x
+        };
+        if !p.equal_balls() {
+            let masses: Vec<f64> = (0..n).map(|j| p.ball_mass(j)).collect();
+            return unequal_balls_balancing(&masses, p.r, b).map(|psi| state(&psi));
+        }
         let ratio = b.norm() / (p.m3 * p.r);
         if ratio > n as f64 {
             return None;
@@ -155,13 +215,60 @@ impl PlanarField {
             psi.push(phase + phi);
             psi.push(phase - phi);
         }
-        let nr = self.nr();
-        let mut x = vec![0.0; 2 * nr];
-        x[0] = -e.re;
-        x[1] = -e.im;
-        x[2..nr].copy_from_slice(&psi);
-        Some(x)
+        Some(state(&psi))
     }
+}
+
+/// The two angles `(φ_a, φ_b)` at which two balls of unbalances `a = m_a r`, `b = m_b r`
+/// (kg·m) sum to the unbalance `d = |D| e^{iβ}`: the triangle with sides `a`, `b`, `|D|`,
+/// `φ_a = β + δ_a`, `φ_b = β − δ_b`, `cos δ_a = (|D|² + a² − b²)/(2|D| a)`,
+/// `cos δ_b = (|D|² + b² − a²)/(2|D| b)` (the other solution is its mirror image in `β`).
+/// Exists while `|a − b| ≤ |D| ≤ a + b`: unequal balls cannot cancel an unbalance smaller than
+/// their difference. `None` otherwise.
+pub fn two_ball_angles(a: f64, b: f64, d: C) -> Option<(f64, f64)> {
+    let dn = d.norm();
+    // 1e-12 relative slack: the triangle's degenerate ends are reached to round-off
+    let slack = 1e-12 * (a + b);
+    if !(dn >= (a - b).abs() - slack && dn <= a + b + slack) || a <= 0.0 || b <= 0.0 {
+        return None;
+    }
+    let beta = if dn > 0.0 { d.arg() } else { 0.0 };
+    if dn == 0.0 {
+        // a = b: opposite
+        return Some((beta + std::f64::consts::FRAC_PI_2, beta - std::f64::consts::FRAC_PI_2));
+    }
+    let ca = ((dn * dn + a * a - b * b) / (2.0 * dn * a)).clamp(-1.0, 1.0);
+    let cb = ((dn * dn + b * b - a * a) / (2.0 * dn * b)).clamp(-1.0, 1.0);
+    Some((beta + ca.acos(), beta - cb.acos()))
+}
+
+/// Ball angles at which balls of masses `masses` on a race of radius `r` sum to the unbalance
+/// `b` (`r Σ m_j e^{iψ_j} = b`): for two balls the closed form [`two_ball_angles`]; for more,
+/// balls 3.. placed first (spread evenly, or all along `b`, or all against it: the first of
+/// these that leaves the remainder within reach of balls 1 and 2), then balls 1 and 2 by the
+/// closed form. One member of the family (`n ≥ 3`); `None` where none of the placements works.
+pub fn unequal_balls_balancing(masses: &[f64], r: f64, b: C) -> Option<Vec<f64>> {
+    let n = masses.len();
+    if n < 2 {
+        return None;
+    }
+    let beta = if b.norm() > 0.0 { b.arg() } else { 0.0 };
+    let rest = n - 2;
+    let placements: [Box<dyn Fn(usize) -> f64>; 3] = [
+        Box::new(|i| beta + 2.0 * std::f64::consts::PI * (i as f64 + 0.5) / rest.max(1) as f64),
+        Box::new(|_| beta),
+        Box::new(|_| beta + std::f64::consts::PI),
+    ];
+    for place in placements.iter().take(if rest == 0 { 1 } else { 3 }) {
+        let angles: Vec<f64> = (0..rest).map(place).collect();
+        let sum: C = angles.iter().zip(&masses[2..]).map(|(a, m)| C::from_polar(m * r, *a)).sum();
+        if let Some((pa, pb)) = two_ball_angles(masses[0] * r, masses[1] * r, b - sum) {
+            let mut psi = vec![pa, pb];
+            psi.extend(angles);
+            return Some(psi);
+        }
+    }
+    None
 }
 
 impl VectorField for PlanarField {
@@ -169,54 +276,52 @@ impl VectorField for PlanarField {
         2 * self.nr()
     }
 
-    fn rhs(&self, _t: f64, x: &[f64], dx: &mut [f64]) {
+    fn rhs(&self, t: f64, x: &[f64], dx: &mut [f64]) {
         let eq = Equations::new(&self.rotor, &self.drive);
-        let y = self.full_state(x);
+        let y = self.full_state_at(t, x);
         let mut dy = vec![0.0; y.len()];
         eq.rhs(0.0, &y, &mut dy);
         dx.copy_from_slice(&self.reduced_state(&dy));
     }
 
-    fn jacobian(&self, _t: f64, x: &[f64], jac: &mut [f64]) {
-        let eq = Equations::new(&self.rotor, &self.drive);
-        let (nr, nc) = (self.nr(), self.nr() + 1);
-        let n = 2 * nr;
-        let y = self.full_state(x);
-        let mut dy = vec![0.0; y.len()];
-        eq.rhs(0.0, &y, &mut dy);
-        let z = Arrow::zeros(3, self.rotor.n);
-        let mut lin = ArrowLinearization { mass: z.clone(), g_q: z.clone(), g_v: z };
-        eq.linearize(0.0, &y, &dy[nc..], &mut lin);
-        // M X = [G_q | G_v] for the reduced columns
-        let m = lin.mass.to_dense();
-        let (gq, gv) = (lin.g_q.to_dense(), lin.g_v.to_dense());
-        jac.iter_mut().for_each(|v| *v = 0.0);
-        // the mass matrix is symmetric positive definite; were it singular, the rows of the
-        // accelerations are not finite, as the right-hand side's would be
-        let Some(lu) = Lu::factored(m, nc) else {
-            jac[nr * n..].iter_mut().for_each(|v| *v = f64::NAN);
-            return;
-        };
-        for i in 0..nr {
-            jac[i * n + nr + i] = 1.0;
+    fn jacobian(&self, t: f64, x: &[f64], jac: &mut [f64]) {
+        if self.period().is_none() {
+            return self.jacobian_at(t, x, jac);
         }
-        let mut col = vec![0.0; nc];
-        for (half, g) in [(0, &gq), (nr, &gv)] {
-            for j in 0..nr {
-                let cj = Self::full_coord(j);
-                for (r, c) in col.iter_mut().enumerate() {
-                    *c = g[r * nc + cj];
-                }
-                lu.solve(&mut col);
-                for i in 0..nr {
-                    jac[(nr + i) * n + half + j] = col[Self::full_coord(i)];
-                }
+        let s = self.scales();
+        let same = |a: &[f64]| a.len() == x.len() && a.iter().zip(x).zip(&s).all(|((a, b), s)| (a - b).abs() <= 1e-13 * s);
+        let mut c = self.cache.0.lock().unwrap_or_else(|e| e.into_inner());
+        if c.built.as_ref().is_none_or(|(key, _)| !same(key)) {
+            if !same(&c.last) {
+                c.last = x.to_vec();
+                drop(c);
+                return self.jacobian_at(t, x, jac);
             }
+            // J(θ) = J_a + cos 2θ J_c + sin 2θ J_s from θ = 0, π/2, π/4
+            let n = x.len();
+            let w = self.omega;
+            let mut j = [vec![0.0; n * n], vec![0.0; n * n], vec![0.0; n * n]];
+            for (m, th) in j.iter_mut().zip([0.0, std::f64::consts::FRAC_PI_2, std::f64::consts::FRAC_PI_4]) {
+                self.jacobian_at(th / w, x, m);
+            }
+            let [j0, j90, j45] = j;
+            let ja: Vec<f64> = j0.iter().zip(&j90).map(|(a, b)| 0.5 * (a + b)).collect();
+            let jc: Vec<f64> = j0.iter().zip(&j90).map(|(a, b)| 0.5 * (a - b)).collect();
+            let js: Vec<f64> = j45.iter().zip(&ja).map(|(a, b)| a - b).collect();
+            c.built = Some((x.to_vec(), [ja, jc, js]));
+        }
+        let (_, [ja, jc, js]) = c.built.as_ref().expect("built above");
+        let (sn, cs) = (2.0 * self.omega * t).sin_cos();
+        for (i, o) in jac.iter_mut().enumerate() {
+            *o = ja[i] + cs * jc[i] + sn * js[i];
         }
     }
 
+    /// `None` for equal supports; where they differ by direction, `π/Ω`: the equations
+    /// depend on the rotor angle through `e^{−2iθ}` alone ([`Equations`]' support force), so the
+    /// field's period is half a revolution. (At `Ω = 0` nothing turns: `None`.)
     fn period(&self) -> Option<f64> {
-        None
+        (self.rotor.anisotropic() && self.omega != 0.0).then(|| std::f64::consts::PI / self.omega.abs())
     }
 
     fn structural_zeros(&self, x: &[f64]) -> usize {
@@ -262,5 +367,46 @@ impl VectorField for PlanarField {
                 }
             })
             .collect()
+    }
+}
+
+impl PlanarField {
+    /// The exact Jacobian at `(t, x)` (the [`VectorField::jacobian`] of the module docs).
+    fn jacobian_at(&self, t: f64, x: &[f64], jac: &mut [f64]) {
+        let eq = Equations::new(&self.rotor, &self.drive);
+        let (nr, nc) = (self.nr(), self.nr() + 1);
+        let n = 2 * nr;
+        let y = self.full_state_at(t, x);
+        let mut dy = vec![0.0; y.len()];
+        eq.rhs(0.0, &y, &mut dy);
+        let z = Arrow::zeros(3, self.rotor.n);
+        let mut lin = ArrowLinearization { mass: z.clone(), g_q: z.clone(), g_v: z };
+        eq.linearize(0.0, &y, &dy[nc..], &mut lin);
+        // M X = [G_q | G_v] for the reduced columns
+        let m = lin.mass.to_dense();
+        let (gq, gv) = (lin.g_q.to_dense(), lin.g_v.to_dense());
+        jac.iter_mut().for_each(|v| *v = 0.0);
+        // the mass matrix is symmetric positive definite; were it singular, the rows of the
+        // accelerations are not finite, as the right-hand side's would be
+        let Some(lu) = Lu::factored(m, nc) else {
+            jac[nr * n..].iter_mut().for_each(|v| *v = f64::NAN);
+            return;
+        };
+        for i in 0..nr {
+            jac[i * n + nr + i] = 1.0;
+        }
+        let mut col = vec![0.0; nc];
+        for (half, g) in [(0, &gq), (nr, &gv)] {
+            for j in 0..nr {
+                let cj = Self::full_coord(j);
+                for (r, c) in col.iter_mut().enumerate() {
+                    *c = g[r * nc + cj];
+                }
+                lu.solve(&mut col);
+                for i in 0..nr {
+                    jac[(nr + i) * n + half + j] = col[Self::full_coord(i)];
+                }
+            }
+        }
     }
 }

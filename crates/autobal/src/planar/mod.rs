@@ -78,12 +78,21 @@ pub struct PlanarRotor {
     pub gamma: f64,
     /// Race radius `r` (m).
     pub r: f64,
-    /// Shaft stiffness `k` (N/m).
+    /// Shaft stiffness `k` (N/m): along the fixed x axis, and along y too unless `k_y` is set.
     pub k: f64,
-    /// External viscous damping `c` (kg/s).
+    /// External viscous damping `c` (kg/s): along x, and along y too unless `c_y` is set.
     pub c: f64,
+    /// Stiffness along the fixed y axis (N/m) where the supports differ by direction
+    /// (`planar.k_x`, `planar.k_y`: then `k` is `k_x`); `None`: `k` in every direction.
+    pub k_y: Option<f64>,
+    /// Damping along the fixed y axis (kg/s), as `k_y`; `None`: `c` in every direction.
+    pub c_y: Option<f64>,
     /// Ball drag `c_ψ` (N·m·s).
     pub c_psi: f64,
+    /// The mass of each ball (kg, `planar.ball_masses`, one per ball); `None`: `m3` each.
+    pub ball_masses: Option<Vec<f64>>,
+    /// The drag on each ball (N·m·s, `planar.ball_drags`, one per ball); `None`: `c_ψ` each.
+    pub ball_drags: Option<Vec<f64>>,
     /// Bearing drag `c_θ` (N·m·s).
     pub c_theta: f64,
     /// Central moment of inertia of the disk (and housing) `I_G` (kg·m²).
@@ -111,7 +120,11 @@ impl PlanarRotor {
             r: 0.06,
             k: 288.0 * 288.0 * m0,
             c: 50.0,
+            k_y: None,
+            c_y: None,
             c_psi: 0.1,
+            ball_masses: None,
+            ball_drags: None,
             c_theta: 0.0,
             i_g: 0.0025,
             balls: BallPhysics::default(),
@@ -139,23 +152,106 @@ impl PlanarRotor {
             positive("planar.r", self.r)?;
             non_negative("planar.c_psi", self.c_psi)?;
         }
+        if let Some(ky) = self.k_y {
+            positive("planar.k_y", ky)?;
+        }
+        if let Some(cy) = self.c_y {
+            non_negative("planar.c_y", cy)?;
+        }
+        for (key, list, what) in [("planar.ball_masses", &self.ball_masses, "mass"), ("planar.ball_drags", &self.ball_drags, "drag")] {
+            let Some(v) = list else { continue };
+            if v.len() != self.n {
+                return Err(Error::invalid(key, format!("needs one {what} per ball (planar.n = {}), got {}", self.n, v.len())));
+            }
+            for (j, x) in v.iter().enumerate() {
+                let field = format!("{key}[{}]", j + 1);
+                if what == "mass" {
+                    positive(&field, *x)?;
+                } else {
+                    non_negative(&field, *x)?;
+                }
+            }
+            if self.balls.is_active() {
+                return Err(Error::invalid(
+                    key,
+                    "real balls (planar.contact, planar.rolling_resistance) are modelled as equal balls: give m3 and c_psi instead of one value per ball",
+                ));
+            }
+        }
         self.balls.validate("planar", self.m3, self.r, self.n)?;
         Ok(())
     }
 
-    /// `m0 = m1 + m2 + n m3`.
+    /// The mass of ball `j` (`ball_masses[j]`, else `m3`).
+    #[inline]
+    pub fn ball_mass(&self, j: usize) -> f64 {
+        self.ball_masses.as_ref().map_or(self.m3, |m| m[j])
+    }
+
+    /// The drag on ball `j` (`ball_drags[j]`, else `c_ψ`).
+    #[inline]
+    pub fn ball_drag(&self, j: usize) -> f64 {
+        self.ball_drags.as_ref().map_or(self.c_psi, |c| c[j])
+    }
+
+    /// Whether every ball has the same mass and drag (`m3`, `c_ψ`): the fast elimination of
+    /// [`Equations`] applies.
+    pub fn equal_balls(&self) -> bool {
+        self.ball_masses.is_none() && self.ball_drags.is_none()
+    }
+
+    /// The mass of all balls `Σ m_j` (`n m3` for equal balls).
+    pub fn balls_mass(&self) -> f64 {
+        match &self.ball_masses {
+            Some(m) => m.iter().sum(),
+            None => self.n as f64 * self.m3,
+        }
+    }
+
+    /// Stiffness along the fixed x and y axes `(k_x, k_y)` (N/m).
+    pub fn stiffness_xy(&self) -> (f64, f64) {
+        (self.k, self.k_y.unwrap_or(self.k))
+    }
+
+    /// Damping along the fixed x and y axes `(c_x, c_y)` (kg/s).
+    pub fn damping_xy(&self) -> (f64, f64) {
+        (self.c, self.c_y.unwrap_or(self.c))
+    }
+
+    /// Whether the supports differ by direction (`k_x ≠ k_y` or `c_x ≠ c_y`): then the
+    /// equations in rotor axes depend on the rotor angle, with period `π` in it.
+    pub fn anisotropic(&self) -> bool {
+        let ((kx, ky), (cx, cy)) = (self.stiffness_xy(), self.damping_xy());
+        kx != ky || cx != cy
+    }
+
+    /// The mean support stiffness and damping `(k̄, c̄) = ((k_x + k_y)/2, (c_x + c_y)/2)`.
+    pub fn mean_supports(&self) -> (f64, f64) {
+        let ((kx, ky), (cx, cy)) = (self.stiffness_xy(), self.damping_xy());
+        (0.5 * (kx + ky), 0.5 * (cx + cy))
+    }
+
+    /// `m0 = m1 + m2 + Σ m_j` (`m1 + m2 + n m3` for equal balls).
     pub fn total_mass(&self) -> f64 {
-        self.m1 + self.m2 + self.n as f64 * self.m3
+        self.m1 + self.m2 + self.balls_mass()
     }
 
-    /// `J_C = I_G + m1 s1² + (m2 + n m3) s2²` (the paper's polar moment about C).
+    /// `J_C = I_G + m1 s1² + (m2 + Σ m_j) s2²` (the paper's polar moment about C).
     pub fn polar_moment(&self) -> f64 {
-        self.i_g + self.m1 * self.s1 * self.s1 + (self.m2 + self.n as f64 * self.m3) * self.s2 * self.s2
+        self.i_g + self.m1 * self.s1 * self.s1 + (self.m2 + self.balls_mass()) * self.s2 * self.s2
     }
 
-    /// Natural frequency `sqrt(k/m0)` (rad/s).
+    /// Natural frequency `sqrt(k/m0)` (rad/s); for supports that differ by direction the lower
+    /// one, `sqrt(min(k_x, k_y)/m0)` (the first resonance of a run-up).
     pub fn natural_frequency(&self) -> f64 {
-        (self.k / self.total_mass()).sqrt()
+        let (kx, ky) = self.stiffness_xy();
+        (kx.min(ky) / self.total_mass()).sqrt()
+    }
+
+    /// The natural frequencies along x and y, `(sqrt(k_x/m0), sqrt(k_y/m0))` (rad/s).
+    pub fn natural_frequencies_xy(&self) -> (f64, f64) {
+        let (kx, ky) = self.stiffness_xy();
+        ((kx / self.total_mass()).sqrt(), (ky / self.total_mass()).sqrt())
     }
 }
 

@@ -183,6 +183,13 @@ impl PlanarProblem {
         if self.settings.psi_rate0.len() != n {
             self.settings.psi_rate0 = vec![0.0; n];
         }
+        // per-ball masses and drags: new balls get the mean (`m3`, `c_ψ`)
+        let (m3, c_psi) = (self.rotor.m3, self.rotor.c_psi);
+        for (list, fill) in [(&mut self.rotor.ball_masses, m3), (&mut self.rotor.ball_drags, c_psi)] {
+            if let Some(v) = list {
+                v.resize(n, fill);
+            }
+        }
     }
 }
 
@@ -269,7 +276,18 @@ macro_rules! settings_path {
 static PLANAR_PATHS: &[ParameterPath<PlanarProblem>] = &[
     rotor_path!("planar.m1", "disk mass m1 (kg)", m1),
     rotor_path!("planar.m2", "balancer housing mass m2 (kg)", m2),
-    rotor_path!("planar.m3", "mass of one ball m3 (kg)", m3),
+    ParameterPath {
+        path: "planar.m3",
+        doc: "mass of one ball m3 (kg)",
+        set: |p, v| {
+            if p.rotor.ball_masses.is_some() {
+                return Err("the balls have their own masses (planar.ball_masses): set planar.ball_masses[j]".into());
+            }
+            p.rotor.m3 = v;
+            Ok(())
+        },
+        get: |p| Ok(p.rotor.m3),
+    },
     ParameterPath {
         path: "planar.n",
         doc: "number of balls (initial angles spread evenly when their number changes)",
@@ -283,9 +301,86 @@ static PLANAR_PATHS: &[ParameterPath<PlanarProblem>] = &[
     rotor_path!("planar.s2", "eccentricity of the balancer s2 = |CE| (m)", s2),
     rotor_path!("planar.gamma", "angle γ between CG and CE (rad)", gamma),
     rotor_path!("planar.r", "race radius r (m)", r),
-    rotor_path!("planar.k", "shaft stiffness k (N/m)", k),
-    rotor_path!("planar.c", "external damping c (kg/s)", c),
-    rotor_path!("planar.c_psi", "drag on each ball c_ψ (N·m·s)", c_psi),
+    ParameterPath {
+        path: "planar.k",
+        doc: "shaft stiffness k (N/m), the same in every direction",
+        set: |p, v| {
+            if p.rotor.k_y.is_some() {
+                return Err("the supports are given per direction (planar.k_x, planar.k_y): set one of those".into());
+            }
+            p.rotor.k = v;
+            Ok(())
+        },
+        get: |p| match p.rotor.k_y {
+            Some(ky) if ky != p.rotor.k => Err("the supports differ by direction: read planar.k_x or planar.k_y".into()),
+            _ => Ok(p.rotor.k),
+        },
+    },
+    ParameterPath {
+        path: "planar.k_x",
+        doc: "support stiffness along the fixed x axis k_x (N/m)",
+        set: |p, v| {
+            p.rotor.k_y = Some(p.rotor.k_y.unwrap_or(p.rotor.k));
+            p.rotor.k = v;
+            Ok(())
+        },
+        get: |p| Ok(p.rotor.k),
+    },
+    ParameterPath {
+        path: "planar.k_y",
+        doc: "support stiffness along the fixed y axis k_y (N/m)",
+        set: |p, v| {
+            p.rotor.k_y = Some(v);
+            Ok(())
+        },
+        get: |p| Ok(p.rotor.k_y.unwrap_or(p.rotor.k)),
+    },
+    ParameterPath {
+        path: "planar.c",
+        doc: "external damping c (kg/s), the same in every direction",
+        set: |p, v| {
+            if p.rotor.c_y.is_some() {
+                return Err("the damping is given per direction (planar.c_x, planar.c_y): set one of those".into());
+            }
+            p.rotor.c = v;
+            Ok(())
+        },
+        get: |p| match p.rotor.c_y {
+            Some(cy) if cy != p.rotor.c => Err("the damping differs by direction: read planar.c_x or planar.c_y".into()),
+            _ => Ok(p.rotor.c),
+        },
+    },
+    ParameterPath {
+        path: "planar.c_x",
+        doc: "support damping along the fixed x axis c_x (kg/s)",
+        set: |p, v| {
+            p.rotor.c_y = Some(p.rotor.c_y.unwrap_or(p.rotor.c));
+            p.rotor.c = v;
+            Ok(())
+        },
+        get: |p| Ok(p.rotor.c),
+    },
+    ParameterPath {
+        path: "planar.c_y",
+        doc: "support damping along the fixed y axis c_y (kg/s)",
+        set: |p, v| {
+            p.rotor.c_y = Some(v);
+            Ok(())
+        },
+        get: |p| Ok(p.rotor.c_y.unwrap_or(p.rotor.c)),
+    },
+    ParameterPath {
+        path: "planar.c_psi",
+        doc: "drag on each ball c_ψ (N·m·s)",
+        set: |p, v| {
+            if p.rotor.ball_drags.is_some() {
+                return Err("the balls have their own drags (planar.ball_drags): set planar.ball_drags[j]".into());
+            }
+            p.rotor.c_psi = v;
+            Ok(())
+        },
+        get: |p| Ok(p.rotor.c_psi),
+    },
     rotor_path!("planar.c_theta", "bearing drag c_θ (N·m·s)", c_theta),
     rotor_path!("planar.i_g", "central moment of inertia I_G (kg·m²)", i_g),
     ParameterPath {
@@ -419,6 +514,18 @@ static PLANAR_PATHS: &[ParameterPath<PlanarProblem>] = &[
         get: |_| Err("give the ball's number, e.g. drive.psi0[1]".into()),
     },
     ParameterPath {
+        path: "planar.ball_masses[j]",
+        doc: "mass of ball j = 1…n (kg; the others keep m3 when first set)",
+        set: |_, _| Err("give the ball's number, e.g. planar.ball_masses[1]".into()),
+        get: |_| Err("give the ball's number, e.g. planar.ball_masses[1]".into()),
+    },
+    ParameterPath {
+        path: "planar.ball_drags[j]",
+        doc: "drag on ball j = 1…n (N·m·s; the others keep c_psi when first set)",
+        set: |_, _| Err("give the ball's number, e.g. planar.ball_drags[1]".into()),
+        get: |_| Err("give the ball's number, e.g. planar.ball_drags[1]".into()),
+    },
+    ParameterPath {
         path: "drive.psi_rate0[j]",
         doc: "initial rate of ball j = 1…n relative to the disk (rad/s)",
         set: |_, _| Err("give the ball's number, e.g. drive.psi_rate0[1]".into()),
@@ -433,6 +540,8 @@ fn ball_slot<'a>(p: &'a mut PlanarProblem, path: &str) -> Option<Result<&'a mut 
     let v = match name {
         "drive.psi0" => &mut p.settings.psi0,
         "drive.psi_rate0" => &mut p.settings.psi_rate0,
+        "planar.ball_masses" => p.rotor.ball_masses.get_or_insert_with(|| vec![p.rotor.m3; n]),
+        "planar.ball_drags" => p.rotor.ball_drags.get_or_insert_with(|| vec![p.rotor.c_psi; n]),
         _ => return None,
     };
     Some(match j {
@@ -450,6 +559,14 @@ impl Parameters for PlanarProblem {
     fn set(&mut self, path: &str, value: f64) -> Result<()> {
         if let Some(slot) = ball_slot(self, path) {
             *slot? = value;
+            // m3 and c_ψ stay the balls' means (the reference of tolerances and scales)
+            let mean = |v: &[f64]| if v.is_empty() { None } else { Some(v.iter().sum::<f64>() / v.len() as f64) };
+            if let Some(m) = self.rotor.ball_masses.as_deref().and_then(mean) {
+                self.rotor.m3 = m;
+            }
+            if let Some(c) = self.rotor.ball_drags.as_deref().and_then(mean) {
+                self.rotor.c_psi = c;
+            }
             return Ok(());
         }
         let p = crate::paths::find::<Self>(path)?;

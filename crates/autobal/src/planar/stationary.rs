@@ -16,12 +16,20 @@
 //!   `q = n_far − n_near` and `w = u + s2 e^{iγ} = ρ e^{iφ}`:
 //!   `e^{iφ}(ρ D − m3 r q ω²) = ω² U0 + s2 e^{iγ} D`, `D = k + icω − m0 ω²`,
 //!   `U0 = m1 s1 + (m2 + n m3) s2 e^{iγ}`, a quadratic in `ρ ≥ 0`.
+//!
+//! These are the closed forms of **equal supports**: where they differ by direction
+//! (`planar.k_x ≠ planar.k_y`, `c_x ≠ c_y`) a steady whirl is elliptic, periodic in rotor axes,
+//! and the forms below use the mean stiffness and damping `k̄ = (k_x + k_y)/2`, `c̄` (the
+//! dashed guide curves of the plots; the exact stationary motion is [`crate::planar::field`]'s
+//! periodic orbit). Balls of unequal mass enter through their sums (`Σ m_j`, `Σ m_j e^{iψ_j}`);
+//! the aligned whirls take each ball as the mean `m3`.
 
 use super::PlanarRotor;
 use num_complex::Complex64 as C;
 
 fn d_of(p: &PlanarRotor, w: f64) -> C {
-    C::new(p.k - p.total_mass() * w * w, p.c * w)
+    let (k, c) = p.mean_supports();
+    C::new(k - p.total_mass() * w * w, c * w)
 }
 
 /// Steady whirl radius of C with the balls locked at angles `psi` (closed form).
@@ -33,9 +41,9 @@ pub fn locked_amplitude(p: &PlanarRotor, w: f64, psi: &[f64]) -> f64 {
 /// `H = ω²/(k − m0 ω² + i c ω)` ([`receptance`]), `U` the total unbalance about C.
 pub fn locked_whirl(p: &PlanarRotor, w: f64, psi: &[f64]) -> C {
     let e = C::from_polar(p.s2, p.gamma);
-    let mut u = C::new(p.m1 * p.s1, 0.0) + e * (p.m2 + p.n as f64 * p.m3);
-    for a in psi {
-        u += C::from_polar(p.m3 * p.r, *a);
+    let mut u = C::new(p.m1 * p.s1, 0.0) + e * (p.m2 + p.balls_mass());
+    for (j, a) in psi.iter().enumerate() {
+        u += C::from_polar(p.ball_mass(j) * p.r, *a);
     }
     receptance(p, w) * u
 }
@@ -48,7 +56,8 @@ pub fn receptance(p: &PlanarRotor, w: f64) -> C {
 /// The unbalance the balls must supply in the semi-balanced whirl at speed `w`.
 pub fn semi_balanced_demand(p: &PlanarRotor, w: f64) -> f64 {
     let e = C::from_polar(p.s2, p.gamma);
-    (-e * C::new(p.k / (w * w), p.c / w) + (e - C::new(p.s1, 0.0)) * p.m1).norm()
+    let (k, c) = p.mean_supports();
+    (-e * C::new(k / (w * w), c / w) + (e - C::new(p.s1, 0.0)) * p.m1).norm()
 }
 
 /// The largest unbalance the balls can supply (kg·m): `n m3 r` for point masses, and for balls
@@ -58,7 +67,7 @@ pub fn ball_capacity(p: &PlanarRotor) -> f64 {
     if p.balls.contact {
         crate::balls::capacity(p.n, p.m3, p.balls.diameter(p.m3), p.r)
     } else {
-        p.n as f64 * p.m3 * p.r
+        p.balls_mass() * p.r
     }
 }
 
@@ -102,7 +111,7 @@ pub fn aligned_whirls(p: &PlanarRotor, w: f64) -> Vec<Aligned> {
 pub fn aligned_whirls_of(p: &PlanarRotor, w: f64, q: i32, out: &mut Vec<Aligned>) {
     let e = C::from_polar(p.s2, p.gamma);
     let d = d_of(p, w);
-    let u0 = C::new(p.m1 * p.s1, 0.0) + e * (p.m2 + p.n as f64 * p.m3);
+    let u0 = C::new(p.m1 * p.s1, 0.0) + e * (p.m2 + p.balls_mass());
     let rhs = u0 * (w * w) + e * d;
     let qq = p.m3 * p.r * q as f64 * w * w;
     // |ρ D − qq|² = |rhs|²  →  ρ²|D|² − 2ρ qq Re D + qq² − |rhs|² = 0
