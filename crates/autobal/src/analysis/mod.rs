@@ -59,10 +59,12 @@
 //!   absorbs that. Structural zeros are removed by count, not by tolerance: exactly `k` of
 //!   them, the nearest to 0 (or 1), whatever their size, and they are reported.
 
+mod family;
 mod linear;
 mod stability;
 mod stationary;
 
+pub use family::{family, Family, FamilyMember, FamilyOptions, FamilyVerdict, ParameterRange, Sampling};
 pub use stability::{
     mode, speed_scan, stability, Eigenvalue, Kind, ScanOptions, ScanPoint, SpeedScan, Stability, StableRange, Verdict, FLOQUET_TOLERANCE, NEUTRAL_TOLERANCE,
 };
