@@ -147,10 +147,17 @@ pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64) -> String {
                 v.iter().map(|st| format!("{} to {}", speed_text(g, st.from), speed_text(g, st.to))).collect::<Vec<_>>().join(", ")
             }
         };
-        s.push_str(&format!("family ({}): all members sampled stable: {}
-", f.parameterisation.split(':').next().unwrap_or(""), list(&f.all_members_stable)));
-        s.push_str(&format!("family: at least one member sampled stable (some members, which is not \"stable\"): {}
-", list(&f.some_members_stable)));
+        s.push_str(&format!(
+            "family ({}): all members sampled stable: {}
+",
+            f.parameterisation.split(':').next().unwrap_or(""),
+            list(&f.all_members_stable)
+        ));
+        s.push_str(&format!(
+            "family: at least one member sampled stable (some members, which is not \"stable\"): {}
+",
+            list(&f.some_members_stable)
+        ));
     }
     let partial: Vec<&autobal::rotor_stability::SpeedPoint> =
         r.points.iter().filter(|p| p.state == Some(autobal::rotor_stability::StateKind::PartiallyBalanced)).collect();

@@ -325,35 +325,69 @@ fn integrate_period<S: System>(sys: &S, y: &mut [f64], period: f64, rtol: f64, a
 const MAX_CHEBYSHEV: usize = 128;
 
 /// `Φ' = J̃(t) Φ`: the variational equations with the Jacobian along the orbit replaced by its
-/// Chebyshev interpolant in `t` on `[0, T]` (barycentric form on the Lobatto points).
+/// Chebyshev interpolant in `t` on `[0, T]` (barycentric form on the Lobatto points). Entries
+/// equal at every node (the kinematic rows `∂q̇/∂(q, v) = (0, I)`, structural zeros) are kept
+/// as constants; only the others are interpolated.
 struct InterpolatedVariational {
     n: usize,
     /// The Lobatto points `t_j`.
     nodes: Vec<f64>,
     /// The barycentric weights `(−1)^j`, halved at the ends.
     weights: Vec<f64>,
-    /// `J(t_j, x(t_j))`, row-major, one per node.
-    jacobians: Vec<Vec<f64>>,
+    /// `J` with its constant entries, row-major.
+    constant: Vec<f64>,
+    /// The indices of the entries that vary between nodes.
+    varying: Vec<usize>,
+    /// Those entries of `J(t_j, x(t_j))`, one vector per node.
+    values: Vec<Vec<f64>>,
     jac: RefCell<Vec<f64>>,
+    coef: RefCell<Vec<f64>>,
 }
 
 impl InterpolatedVariational {
+    fn new(n: usize, nodes: Vec<f64>, weights: Vec<f64>, jacobians: Vec<Vec<f64>>) -> Self {
+        let first = &jacobians[0];
+        let varying: Vec<usize> = (0..n * n).filter(|&e| jacobians.iter().any(|j| j[e] != first[e])).collect();
+        let values = jacobians.iter().map(|j| varying.iter().map(|&e| j[e]).collect()).collect();
+        let m = nodes.len();
+        InterpolatedVariational {
+            n,
+            nodes,
+            weights,
+            constant: first.clone(),
+            varying,
+            values,
+            jac: RefCell::new(first.clone()),
+            coef: RefCell::new(vec![0.0; m]),
+        }
+    }
+
     /// `J̃(t)` into `out`.
     fn eval(&self, t: f64, out: &mut [f64]) {
-        if let Some(j) = self.nodes.iter().position(|tj| *tj == t) {
-            out.copy_from_slice(&self.jacobians[j]);
+        out.copy_from_slice(&self.constant);
+        if self.varying.is_empty() {
             return;
         }
-        out.iter_mut().for_each(|v| *v = 0.0);
-        let mut den = 0.0;
-        for (j, tj) in self.nodes.iter().enumerate() {
-            let c = self.weights[j] / (t - tj);
-            den += c;
-            for (o, v) in out.iter_mut().zip(&self.jacobians[j]) {
-                *o += c * v;
+        let mut acc = vec![0.0; self.varying.len()];
+        if let Some(j) = self.nodes.iter().position(|tj| *tj == t) {
+            acc.copy_from_slice(&self.values[j]);
+        } else {
+            let mut coef = self.coef.borrow_mut();
+            let mut den = 0.0;
+            for (j, tj) in self.nodes.iter().enumerate() {
+                coef[j] = self.weights[j] / (t - tj);
+                den += coef[j];
+            }
+            for (c, v) in coef.iter().zip(&self.values) {
+                let c = c / den;
+                for (a, x) in acc.iter_mut().zip(v) {
+                    *a += c * x;
+                }
             }
         }
-        out.iter_mut().for_each(|v| *v /= den);
+        for (&e, a) in self.varying.iter().zip(&acc) {
+            out[e] = *a;
+        }
     }
 }
 
@@ -434,7 +468,7 @@ fn interpolated_variational<F: VectorField + ?Sized>(f: &F, x0: &[f64], period: 
         let stride = big / intervals;
         let nodes: Vec<f64> = (0..=intervals).map(|j| times[j * stride]).collect();
         let weights: Vec<f64> = (0..=intervals).map(|j| if j % 2 == 0 { 1.0 } else { -1.0 } * if j == 0 || j == intervals { 0.5 } else { 1.0 }).collect();
-        InterpolatedVariational { n, nodes, weights, jacobians: jac, jac: RefCell::new(vec![0.0; n * n]) }
+        InterpolatedVariational::new(n, nodes, weights, jac)
     };
     let mut intervals = 8;
     let mut coarse: Vec<Vec<f64>> = (0..=intervals).map(|j| jac_at(j * big / intervals)).collect::<Result<_>>()?;
