@@ -43,6 +43,7 @@ use crate::planar::field::PlanarField;
 use crate::planar::PlanarRotor;
 use crate::spatial::dynamics::field::SpatialField;
 use crate::spatial::dynamics::SpatialRotor;
+use rayon::prelude::*;
 use serde::Serialize;
 
 /// A rotor that the stationary analysis can take: either model as the simulation runs it.
@@ -476,7 +477,7 @@ pub fn stability_over_speed(rotor: &Rotor, speeds: &[f64]) -> Result<RotorStabil
     Ok(RotorStability { model: rotor.model_name(), kind, stable_ranges: scan.stable_ranges, points, family_dimension, member_psi, family })
 }
 
-/// The sampling of a family in [`stability_over_speed`]: continuation at steps of 0.05 rad
+/// The sampling of a family in [`stability_over_speed`]: continuation at steps of 0.1 rad
 /// (scaled arclength) for one parameter, 200 random members for more
 /// ([`crate::analysis::FamilyOptions`]); a periodic orbit's family at 0.2 and 40 members (each
 /// member is a shooting).
@@ -490,7 +491,7 @@ fn family_options(field: &Field, newton: &NewtonOptions) -> FamilyOptions {
         }
     };
     FamilyOptions {
-        step: if periodic { 0.2 } else { 0.05 },
+        step: if periodic { 0.2 } else { 0.1 },
         samples: if periodic { 40 } else { 200 },
         max_members: if periodic { 400 } else { 2000 },
         angles,
@@ -536,10 +537,14 @@ fn family_over_speed(
     dimension: usize,
     newton: &NewtonOptions,
 ) -> FamilyStability {
-    for (p, st) in points.iter_mut().zip(states) {
-        if let Some(st) = st.filter(|s| s.family_dimension > 0) {
-            p.family = family_point(rotor, p.omega, st, newton);
-        }
+    // the grid's speeds in parallel (each family is independent of the others)
+    let families: Vec<Option<FamilyPoint>> = points
+        .par_iter()
+        .zip(states.par_iter())
+        .map(|(p, st)| st.filter(|s| s.family_dimension > 0).and_then(|st| family_point(rotor, p.omega, st, newton)))
+        .collect();
+    for (p, f) in points.iter_mut().zip(families) {
+        p.family = f;
     }
     // the family's extreme abscissas at a speed off the grid
     let extremes_at = |omega: f64, near: Option<&[f64]>| -> Option<(f64, f64)> {
@@ -587,7 +592,7 @@ fn family_over_speed(
     let parameterisation = if dimension == 1 {
         "one-parameter family (n − 2 = 1 free parameter): the balls' angles move together keeping Σ m r e^{iψ} (the balancing condition) fixed; \
          parameter s = arclength along the family in the balls' angles (rad, the other states scaled by the model's scales), s = 0 at the member Newton reaches from the closed form (member_psi); \
-         swept by continuation at steps of 0.05 until it closes (all round) or ends"
+         swept by continuation at steps of 0.1 until it closes (all round) or ends"
             .to_string()
     } else {
         format!(
