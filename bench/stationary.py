@@ -21,10 +21,12 @@ Problems:
            axes periodic with the revolution), per speed shooting by scipy.optimize.root (hybr)
            on x0 - x(T; x0) with solve_ivp (DOP853, rtol 1e-10), then the monodromy matrix by
            solve_ivp of the 8 + 64 variational equations with the exact (SymPy) Jacobian, and
-           numpy.linalg.eigvals. NOT the same problem as autobal's (a NumPy version of the 16-state
-           spatial rotor is not written): the two are printed for scale, without a ratio.
-           (autobal's planar rotor now takes direction-dependent supports, `planar.k_x`,
-           `planar.k_y`: the like-for-like comparison is not yet wired in here.)
+           numpy.linalg.eigvals. NOT the same problem as autobal's (autobal's planar model has
+           no direction-dependent supports, and a NumPy version of the 16-state spatial rotor is
+           not written): the two are printed for scale, without a ratio. Also the SciPy user
+           without SymPy: the monodromy by central differences of 2n solve_ivp flows. Where
+           autobal's planar model takes per-direction supports (planar.k_y), autobal runs
+           SciPy's own problem (k along x, 1.3 k along y) and the CPU ratios are printed.
 
 Autobal is timed as whole processes (wall and CPU of the child); its per-speed cost is the CPU
 time over the grid's speeds (the location of the range ends to 1e-9 included: a few trial
@@ -193,6 +195,56 @@ def scipy_floquet(fns, p, W, a=0.3, rtol=1e-10):
     return float(np.log(np.abs(mu).max()) / T), sol.success
 
 
+def scipy_floquet_fd(fns, p, W, a=0.3, rtol=1e-10):
+    """What a SciPy user without a symbolic Jacobian writes: the orbit by scipy.optimize.root
+    (hybr, its own finite-difference Jacobian) on x0 - x(T; x0) with solve_ivp (DOP853), then the
+    monodromy matrix column by column by central differences of the flow,
+    (x(T; x0 + h e_j) - x(T; x0 - h e_j)) / 2h (2n more solve_ivp calls), and numpy.linalg.eigvals.
+    Its multipliers are good to ~sqrt(rtol) at best (the difference quotient of an integrated flow)."""
+    m = Planar(fns, p, W, a)
+    T = 2 * math.pi / W
+    n = 8
+    atol = 1e-12
+
+    def flow(x0):
+        s = solve_ivp(m.rhs, (0.0, T), x0, method="DOP853", rtol=rtol, atol=atol)
+        return s.y[:, -1]
+
+    sol = root(lambda x0: x0 - flow(x0), balanced_guess(p), method="hybr", options={"xtol": 1e-11})
+    phi = np.empty((n, n))
+    for j in range(n):
+        h = 1e-6 * max(abs(sol.x[j]), 1e-3)
+        e = np.zeros(n)
+        e[j] = h
+        phi[:, j] = (flow(sol.x + e) - flow(sol.x - e)) / (2 * h)
+    mu = np.linalg.eigvals(phi)
+    return float(np.log(np.abs(mu).max()) / T), sol.success
+
+
+# the planar config keys of direction-dependent supports (issue 18 item 3: k_x and k_y, given
+# together and instead of k); where the autobal in use does not take them, the same problem
+# cannot be run by autobal and the SciPy Floquet figures are printed for scale only
+PLANAR_KY = "planar.k_y"
+
+
+def autobal_planar_anisotropic(p, a, speeds):
+    """autobal stability on SciPy's anisotropic planar problem (k along x, k (1 + a) along y), or
+    None where this autobal has no per-direction planar supports."""
+    import re
+    import tempfile
+    with open(os.path.join(ROOT, "examples", "planar.toml")) as f:
+        text = re.sub(r"(?m)^k\s*=.*$", f"k_x = {p['k']!r}\nk_y = {p['k'] * (1 + a)!r}", f.read(), count=1)
+    cfg = tempfile.NamedTemporaryFile("w", suffix=".toml", delete=False)
+    cfg.write(text)
+    cfg.close()
+    args = ["--config", cfg.name, "--set", "planar.s2=0", "--route", "general", "--omega-max", str(max(speeds)), "--samples", str(len(speeds))]
+    try:
+        subprocess.run([EXE, "stability", "--format", "json", *args], check=True, capture_output=True, text=True)
+    except subprocess.CalledProcessError:
+        return None
+    return args
+
+
 def autobal(args):
     out = subprocess.run([EXE, "stability", "--format", "json", *args], check=True, capture_output=True, text=True).stdout
     return json.loads(out)
@@ -278,6 +330,16 @@ def main():
     wn = math.sqrt(p["k"] / (p["m1"] + p["m2"] + p["n"] * p["m3"]))
     fl_speeds = [1.5 * wn, 2.0 * wn, 2.5 * wn, 3.0 * wn, 3.5 * wn]
     (fw, fc), fl = measure.cpu_of(lambda: [scipy_floquet(fns, p, W) for W in fl_speeds])
+    (fdw, fdc), fld = measure.cpu_of(lambda: [scipy_floquet_fd(fns, p, W) for W in fl_speeds])
+    same = autobal_planar_anisotropic(p, 0.3, [wn * 3.5 * (i + 1) / 50 for i in range(50)])
+    same_report = None
+    if same is not None:
+        # autobal on the same problem as SciPy: 50 speeds up to 3.5 omega_n (CPU per speed)
+        sw_, sc_ = timed_autobal(same, 50, repeats=2)
+        a_same = max(sc_ - start_cpu, 0.0) / 50
+        same_report = {"cpu_s": sc_, "wall_s": sw_, "cpu_per_speed_ms": 1e3 * a_same,
+                       "scipy_exact_jacobian_over_autobal": (fc / len(fl_speeds)) / a_same if a_same > 0 else None,
+                       "scipy_fd_over_autobal": (fdc / len(fl_speeds)) / a_same if a_same > 0 else None}
     report["floquet"] = {
         "autobal_two_plane": {"speeds": N_FLOQUET, "evaluations": ev, "wall_s": wall, "cpu_s": cpu, "cpu_per_speed_ms": 1e3 * f_per,
                               "stable_ranges": d["stable_ranges"], "failures": sum(1 for pt in d["points"] if pt["failure"])},
@@ -289,11 +351,21 @@ def main():
         "floquet_over_equilibrium_10": f10 / e_per if e_per > 0 else None,
         "scipy_planar_anisotropic": {"speeds": fl_speeds, "cpu_s": fc, "wall_s": fw, "cpu_per_speed_ms": 1e3 * fc / len(fl_speeds),
                                      "largest_exponents": [x[0] for x in fl], "converged": [x[1] for x in fl]},
+        "scipy_planar_anisotropic_fd": {"cpu_s": fdc, "wall_s": fdw, "cpu_per_speed_ms": 1e3 * fdc / len(fl_speeds),
+                                        "largest_exponents": [x[0] for x in fld], "converged": [x[1] for x in fld]},
+        "autobal_planar_anisotropic": same_report,
     }
     print(f"Floquet: autobal two-plane {1e3 * f_per:.2f} ms CPU per speed ({ev} evaluations, {cpu:.2f} s CPU); its autonomous "
           f"twin {1e3 * e_per:.4f} ms per speed (2000-speed run): {f_per / e_per:.0f}x; on 10 speeds (all found) "
           f"{1e3 * f10:.2f} ms per speed: {f10 / e_per:.0f}x; SciPy planar anisotropic (8 states) "
-          f"{1e3 * fc / len(fl_speeds):.0f} ms CPU per speed", file=sys.stderr)
+          f"{1e3 * fc / len(fl_speeds):.0f} ms CPU per speed (exact SymPy Jacobian), "
+          f"{1e3 * fdc / len(fl_speeds):.0f} ms (monodromy by differences of solve_ivp flows)", file=sys.stderr)
+    if same_report:
+        print(f"Floquet, same problem (planar, k_y = 1.3 k): autobal {same_report['cpu_per_speed_ms']:.2f} ms CPU per speed; "
+              f"SciPy / autobal {same_report['scipy_exact_jacobian_over_autobal']:.0f}x (exact Jacobian), "
+              f"{same_report['scipy_fd_over_autobal']:.0f}x (differences)", file=sys.stderr)
+    else:
+        print(f"Floquet, same problem: this autobal has no {PLANAR_KY} (per-direction planar supports): no ratio", file=sys.stderr)
     ok = s.finish(report)
     print(json.dumps(report, indent=2))
     measure.write_table(OPTS.json, report, ok)

@@ -124,6 +124,7 @@ pub fn json(g: &GeneralRotor, r: &RotorStability, omega_max: f64) -> Value {
         "stable_ranges": ranges,
         "family_dimension": r.family_dimension,
         "member_psi": r.member_psi,
+        "family": r.family,
         "neutral_tolerance": match r.kind {
             Kind::Equilibrium => format!("|max Re λ| ≤ {} · max|λ| is neutral", fmt_num(autobal::analysis::NEUTRAL_TOLERANCE)),
             Kind::PeriodicOrbit => format!("|max|μ| − 1| ≤ {} is neutral", fmt_num(autobal::analysis::FLOQUET_TOLERANCE)),
@@ -145,6 +146,37 @@ pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64) -> String {
             r.member_psi.iter().map(|p| fmt_num(round(p.rem_euclid(std::f64::consts::TAU)))).collect::<Vec<_>>().join(", ")
         ));
     }
+    if let Some(f) = &r.family {
+        let list = |v: &[autobal::analysis::StableRange]| {
+            if v.is_empty() {
+                "nowhere on the axis".to_string()
+            } else {
+                v.iter().map(|st| format!("{} to {}", speed_text(g, st.from), speed_text(g, st.to))).collect::<Vec<_>>().join(", ")
+            }
+        };
+        s.push_str(&format!(
+            "family ({}): all members sampled stable: {}
+",
+            f.parameterisation.split(':').next().unwrap_or(""),
+            list(&f.all_members_stable)
+        ));
+        s.push_str(&format!(
+            "family: at least one member sampled stable (some members, which is not \"stable\"): {}
+",
+            list(&f.some_members_stable)
+        ));
+    }
+    let partial: Vec<&autobal::rotor_stability::SpeedPoint> =
+        r.points.iter().filter(|p| p.state == Some(autobal::rotor_stability::StateKind::PartiallyBalanced)).collect();
+    if let (Some(a), Some(b)) = (partial.first(), partial.last()) {
+        s.push_str(&format!(
+            "partially balanced (the balls cannot cancel the unbalance: bunched, a residual unbalance) at {} of {} speeds, {} to {}: the verdicts there are the partially balanced state's\n",
+            partial.len(),
+            r.points.len(),
+            speed_text(g, a.omega),
+            speed_text(g, b.omega)
+        ));
+    }
     let missing = r.points.iter().filter(|p| p.verdict.is_none()).count();
     let solved = r.points.len() - missing;
     if r.stable_ranges.is_empty() && solved == 0 {
@@ -159,7 +191,20 @@ pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64) -> String {
         for st in &r.stable_ranges {
             let to = if st.to_is_boundary { speed_text(g, st.to) } else { format!("{} (end of the axis)", speed_text(g, st.to)) };
             let from = if st.from_is_boundary { speed_text(g, st.from) } else { format!("{} (start of the axis)", speed_text(g, st.from)) };
-            s.push_str(&format!("stable: {from} to {to}\n"));
+            // the states the range covers: "partially balanced, stable" never reads "stable"
+            let kinds: Vec<&str> = {
+                let mut k: Vec<&str> = r.points.iter().filter(|p| p.omega >= st.from && p.omega <= st.to).filter_map(|p| p.state.map(|k| k.name())).collect();
+                k.dedup();
+                k
+            };
+            let label = if kinds.contains(&"partially balanced") {
+                format!("{}, stable", kinds.join(" then "))
+            } else if r.family.is_some() {
+                "stable (the one member per speed reached from the closed form)".to_string()
+            } else {
+                "stable".to_string()
+            };
+            s.push_str(&format!("{label}: {from} to {to}\n"));
         }
     }
     let neutral = r.points.iter().filter(|p| p.verdict == Some(Verdict::Neutral)).count();

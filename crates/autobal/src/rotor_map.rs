@@ -13,10 +13,14 @@
 //!
 //! At each cell the stationary state is found as in [`crate::rotor_stability`]: Newton's method
 //! on the equations in turning axes ([`crate::analysis::stationary`]: an equilibrium, or the
-//! periodic orbit of the revolution by shooting) from the closed-form balanced state
-//! ([`Rotor::guess`]), and where that fails from the state of the cell before it in the row
-//! (continuation; the closed form first for a periodic orbit too, as `rotor_stability` does:
-//! continuation from a neighbour can land on another orbit). Its stability ([`crate::analysis::stability()`]) gives the verdict
+//! periodic orbit of the revolution by shooting). An equilibrium starts from the closed-form
+//! balanced state ([`Rotor::guess`]; it names the branch), and where that fails from the state
+//! of the cell before it in the row (continuation). A periodic orbit starts from the neighbouring
+//! cell's converged orbit, with that orbit's monodromy matrix as the shooting's starting matrix
+//! (one integration of the variational equations per cell instead of two), then from the closed
+//! form. A cell left without a state is tried once more from its right-hand neighbour's state, so
+//! that a row whose first state lies at larger `x` (the two-plane example at 1200 rpm, below the
+//! closed form's reach) continues it back. Its stability ([`crate::analysis::stability()`]) gives the verdict
 //! and the margin: the spectral abscissa `α = max Re λ` without the family's structural zeros,
 //! or the largest Floquet exponent `max ln|μ| / T`. The margin is written in the time unit of
 //! the speed axis `omega`: per unit `τ = ω0 t` for a spatial config (`α / ω0`, as the 12-state
@@ -41,7 +45,7 @@
 //! assert!(rows.iter().all(|r| r[0].verdict == Some(Verdict::Unstable)));
 //! ```
 
-use crate::analysis::{stability, stationary, NewtonOptions, VectorField};
+use crate::analysis::{stability, stationary_near, NewtonOptions, StationaryState, VectorField};
 pub use crate::analysis::{Kind, Verdict};
 use crate::config;
 use crate::control::{Control, StopReason};
@@ -148,12 +152,17 @@ fn model_speed(c: &CellRotor, s: Speed, field: &str) -> Result<f64> {
     }
 }
 
-/// The stationary state at model speed `w` from the closed form or `previous`, and its cell.
-fn solve(c: &CellRotor, w: f64, previous: Option<&[f64]>) -> (GeneralCell, Option<Vec<f64>>) {
+/// The stationary state at model speed `w` from the closed form (with `closed_form`) or the
+/// neighbouring cell's state `previous`, and its cell. For a periodic orbit the neighbour's converged orbit is
+/// tried first, its monodromy matrix the shooting's starting matrix (as the speed scan
+/// continues; one variational integration per cell instead of two), then the closed form
+/// (also with that matrix); for an equilibrium the closed form first (it names the branch).
+fn solve(c: &CellRotor, w: f64, previous: Option<&StationaryState>, closed_form: bool) -> (GeneralCell, Option<StationaryState>) {
     let Ok(field) = c.rotor.field(w) else { return (GeneralCell::NONE, None) };
     let periodic = field.period().is_some();
-    let guess = Rotor::guess(&field);
-    let previous = previous.filter(|p| p.len() == field.dim());
+    let guess = if closed_form { Rotor::guess(&field) } else { None };
+    let previous = previous.filter(|p| p.x.len() == field.dim());
+    let hint = previous.and_then(|p| p.monodromy.as_deref());
     let mut opts = NewtonOptions::default();
     if periodic {
         // as rotor_stability: the shooting at rtol 1e-10 keeps multipliers near 1 good to ~1e-9,
@@ -161,22 +170,21 @@ fn solve(c: &CellRotor, w: f64, previous: Option<&[f64]>) -> (GeneralCell, Optio
         opts.max_iterations = 20;
         opts.rtol = 1e-10;
     }
-    // the closed form first, as rotor_stability does for both kinds: continuation from a
-    // neighbouring cell can land on another orbit (the balls elsewhere) near a bifurcation
-    let starts = [(guess.as_deref(), false), (previous, true)];
+    let near = previous.map(|p| p.x.as_slice());
+    let starts = if periodic { [(near, true), (guess.as_deref(), false)] } else { [(guess.as_deref(), false), (near, true)] };
     for (start, continued) in starts {
         let Some(start) = start else { continue };
-        let Ok(state) = stationary(&field, start, &opts) else { continue };
+        let Ok(state) = stationary_near(&field, start, hint, &opts) else { continue };
         let Ok(st) = stability(&field, &state) else { continue };
         let cell =
             GeneralCell { margin: st.abscissa / c.scale, verdict: Some(st.verdict), kind: Some(st.kind), family_dimension: state.family_dimension, continued };
-        return (cell, Some(state.x));
+        return (cell, Some(state));
     }
     (GeneralCell::NONE, None)
 }
 
 /// One end of a bisection: `x`, the verdict, the state, the cell.
-type Side = (f64, Option<Verdict>, Option<Vec<f64>>, GeneralCell);
+type Side = (f64, Option<Verdict>, Option<StationaryState>, GeneralCell);
 
 /// Which side of the stability boundary a cell lies on: 0 without a stationary state, 1 where
 /// the margin is negative, 2 where it is not. The boundary is where the margin crosses 0 (as
@@ -249,21 +257,31 @@ impl Plane<'_> {
         })
     }
 
-    /// Row `j`: every `x` at `y_j`, continued along the row; with `trace`, the points where
-    /// the verdict changes between neighbouring cells, bisected along `x`.
+    /// Row `j`: every `x` at `y_j`, continued along the row (then, for a cell left without a
+    /// state, once more from its right-hand neighbour's state: a row that finds its first
+    /// state only at larger `x` continues it back); with `trace`, the points where the verdict
+    /// changes between neighbouring cells, bisected along `x`.
     fn row(&self, j: usize, trace: bool) -> Result<(Vec<GeneralCell>, Vec<BoundaryPoint>)> {
         let yv = self.y.values[j];
-        let mut previous: Option<Vec<f64>> = None;
+        let mut previous: Option<StationaryState> = None;
         let mut out = Vec::with_capacity(self.x.values.len());
-        let mut states = Vec::with_capacity(if trace { self.x.values.len() } else { 0 });
+        let mut states: Vec<Option<StationaryState>> = Vec::with_capacity(self.x.values.len());
         for (i, &xv) in self.x.values.iter().enumerate() {
             let (c, w) = self.cell(Some(i), j, xv, yv)?;
-            let (cell, x) = solve(&c, w, previous.as_deref());
-            if trace {
-                states.push(x.clone());
-            }
+            let (cell, x) = solve(&c, w, previous.as_ref(), true);
+            states.push(x.clone());
             previous = x.or(previous);
             out.push(cell);
+        }
+        for i in (0..out.len().saturating_sub(1)).rev() {
+            if out[i].verdict.is_none() && states[i + 1].is_some() {
+                let (c, w) = self.cell(Some(i), j, self.x.values[i], yv)?;
+                let (cell, x) = solve(&c, w, states[i + 1].as_ref(), false);
+                if cell.verdict.is_some() {
+                    out[i] = cell;
+                    states[i] = x;
+                }
+            }
         }
         let mut points = vec![];
         if trace {
@@ -291,7 +309,7 @@ impl Plane<'_> {
                 break;
             }
             let (c, w) = self.cell(None, j, mid, yv)?;
-            let (cell, x) = solve(&c, w, xa.as_deref().or(xb.as_deref()));
+            let (cell, x) = solve(&c, w, xa.as_ref().or(xb.as_ref()), true);
             if side(&cell) == side_lo {
                 a = mid;
                 xa = x.or(xa);

@@ -34,12 +34,16 @@
 //! assert!(!r.stable_ranges.is_empty());
 //! ```
 
-use crate::analysis::{speed_scan, Kind, ScanOptions, StableRange, VectorField, Verdict};
+use crate::analysis::{
+    family, speed_scan, stationary, Family, FamilyOptions, FamilyVerdict, Kind, NewtonOptions, ParameterRange, ScanOptions, StableRange, StationaryState,
+    VectorField, Verdict,
+};
 use crate::error::{Error, Result};
 use crate::planar::field::PlanarField;
 use crate::planar::PlanarRotor;
 use crate::spatial::dynamics::field::SpatialField;
 use crate::spatial::dynamics::SpatialRotor;
+use rayon::prelude::*;
 use serde::Serialize;
 
 /// A rotor that the stationary analysis can take: either model as the simulation runs it.
@@ -122,6 +126,137 @@ impl Rotor {
         }
     }
 
+    /// The second guess, where [`Rotor::guess`] has none (the balls' capacity falls short of
+    /// the unbalance the balanced or semi-balanced state needs): **the balls bunched**, all at
+    /// one angle, leaving a residual unbalance (the partially balanced state).
+    ///
+    /// Planar rotor: the aligned whirl with every ball on the far side of the line through
+    /// the axis and the race centre E ([`crate::planar::stationary::aligned_whirls_of`] with
+    /// `q = n`, a closed form: `e^{iφ}(ρD − n m3 r Ω²) = Ω² U0 + s2 e^{iγ} D`, `ρ e^{iφ}` the
+    /// position of E), of the (at most two) roots the one of least whirl radius: the balls
+    /// opposite the unbalance. It joins the semi-balanced state where that ceases to exist
+    /// (all its balls bunched, E on the axis), so a speed scan follows one branch across.
+    /// Spatial rotor: each plane's balls bunched at the angle of its share of the unbalance
+    /// ([`SpatialField::balanced_guess`]'s targets), the rotor on the axis at rest: not itself
+    /// stationary (the residual unbalance makes the rotor whirl), a start for Newton.
+    pub fn bunched_guess(field: &Field) -> Option<Vec<f64>> {
+        match field {
+            Field::Planar(f) => {
+                use num_complex::Complex64 as C;
+                let p = f.rotor();
+                let w = f.omega();
+                if p.n == 0 || w == 0.0 {
+                    return None;
+                }
+                // |ρD − qq| = |rhs| for ρ = |E| ≥ 0 (as aligned_whirls_of), then φ from the phase
+                let e = C::from_polar(p.s2, p.gamma);
+                let d = C::new(p.k - p.total_mass() * w * w, p.c * w);
+                let u0 = C::new(p.m1 * p.s1, 0.0) + e * (p.m2 + p.n as f64 * p.m3);
+                let rhs = u0 * (w * w) + e * d;
+                let qq = p.m3 * p.r * p.n as f64 * w * w;
+                let (a, b, c) = (d.norm_sqr(), -2.0 * qq * d.re, qq * qq - rhs.norm_sqr());
+                let disc = b * b - 4.0 * a * c;
+                if !(disc >= 0.0 && a > 0.0) {
+                    return None;
+                }
+                let u = [-1.0, 1.0]
+                    .iter()
+                    .map(|sg| (-b + sg * disc.sqrt()) / (2.0 * a))
+                    .filter(|rho| *rho > 0.0)
+                    .map(|rho| {
+                        let phase = rhs.arg() - (d * rho - qq).arg();
+                        (C::from_polar(rho, phase) - e, phase)
+                    })
+                    .min_by(|x, y| x.0.norm().total_cmp(&y.0.norm()))?;
+                let nr = 2 + p.n;
+                let mut x = vec![0.0; 2 * nr];
+                x[0] = u.0.re;
+                x[1] = u.0.im;
+                x[2..nr].iter_mut().for_each(|v| *v = u.1);
+                Some(x)
+            }
+            Field::Spatial(f) => {
+                let r = f.rotor();
+                let planes: Vec<_> = r.planes.iter().filter(|p| p.n > 0).collect();
+                let s0 = r.static_unbalance();
+                let targets: Vec<[f64; 2]> = match planes.len() {
+                    1 => vec![[-s0[0], -s0[1]]],
+                    2 => {
+                        let zr = r.z_reference();
+                        let (z1, z2) = (planes[0].z - zr, planes[1].z - zr);
+                        if z1 == z2 {
+                            return None;
+                        }
+                        let c0 = r.couple_unbalance();
+                        let b1 = [(z2 * s0[0] - c0[0]) / (z1 - z2), (z2 * s0[1] - c0[1]) / (z1 - z2)];
+                        vec![b1, [-s0[0] - b1[0], -s0[1] - b1[1]]]
+                    }
+                    _ => return None,
+                };
+                let mut psi = vec![];
+                for (p, t) in planes.iter().zip(targets) {
+                    let a = if t[0] == 0.0 && t[1] == 0.0 { 0.0 } else { t[1].atan2(t[0]) };
+                    psi.extend(std::iter::repeat_n(a, p.n));
+                }
+                let m = f.coords();
+                let mut x = vec![0.0; 2 * m];
+                x[m - psi.len()..m].copy_from_slice(&psi);
+                Some(x)
+            }
+        }
+    }
+
+    /// What the stationary state `x` of `field` is ([`StateKind`]).
+    pub fn state_kind(field: &Field, x: &[f64]) -> StateKind {
+        match field {
+            Field::Planar(f) => {
+                let p = f.rotor();
+                let off = (x[0] + p.s2 * p.gamma.cos()).hypot(x[1] + p.s2 * p.gamma.sin());
+                // E on the axis (to 1e-6 of the unbalances' length scale): (semi-)balanced
+                let l = p.s1 + p.s2 + p.n as f64 * p.m3 * p.r / p.total_mass();
+                if off <= 1e-6 * l.max(f64::MIN_POSITIVE) {
+                    if p.s2 == 0.0 {
+                        StateKind::Balanced
+                    } else {
+                        StateKind::SemiBalanced
+                    }
+                } else {
+                    StateKind::PartiallyBalanced
+                }
+            }
+            Field::Spatial(s) => {
+                // the residual static and couple unbalance of the unbalance masses and the balls
+                // (planes in order), against the unbalances' scale
+                let r = s.rotor();
+                let (st, cp) = (r.static_unbalance(), r.couple_unbalance());
+                let zr = r.z_reference();
+                let psi = ball_angles(field, x);
+                let (mut rs, mut rc, mut scale, mut zl) = (st, cp, st[0].hypot(st[1]), 0.0f64);
+                let mut j = 0;
+                for p in r.planes.iter().filter(|p| p.n > 0) {
+                    let mr = p.ball_mass * p.race_radius;
+                    let z = p.z - zr;
+                    zl = zl.max(z.abs());
+                    for _ in 0..p.n {
+                        let (sn, cs) = psi[j].sin_cos();
+                        rs[0] += mr * cs;
+                        rs[1] += mr * sn;
+                        rc[0] += z * mr * cs;
+                        rc[1] += z * mr * sn;
+                        scale += mr;
+                        j += 1;
+                    }
+                }
+                let zl = if zl > 0.0 { zl } else { 1.0 };
+                if rs[0].hypot(rs[1]) <= 1e-6 * scale && rc[0].hypot(rc[1]) <= 1e-6 * scale * zl {
+                    StateKind::Balanced
+                } else {
+                    StateKind::PartiallyBalanced
+                }
+            }
+        }
+    }
+
     /// `sqrt(k/M)`: the rotor's translational natural frequency on its supports (a scale for
     /// default speed axes).
     pub fn natural_frequency(&self) -> f64 {
@@ -158,6 +293,94 @@ pub struct SpeedPoint {
     pub amplitude: Option<f64>,
     /// Why there is no state or verdict (a one-line message).
     pub failure: Option<String>,
+    /// What the state analysed here is: balanced, semi-balanced, or partially balanced (the
+    /// balls' capacity short: balls bunched, a residual unbalance); `None` without a state.
+    pub state: Option<StateKind>,
+    /// The balls' angles of the state analysed here (rad, all planes in order): with a family
+    /// (`family_dimension > 0`), the member that `verdict` and `abscissa` refer to.
+    pub member_psi: Vec<f64>,
+    /// With a family: its stability over the members sampled at this speed
+    /// ([`FamilyPoint`]); `None` for an isolated state.
+    pub family: Option<FamilyPoint>,
+}
+
+/// What a stationary state is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum StateKind {
+    /// The balls cancel the unbalance: the rotor turns about its axis (planar: the race
+    /// centred, `s2 = 0`; spatial: static and couple residual below `1e-6` of the unbalances).
+    Balanced,
+    /// Paper 004's eccentric race: the race centre E on the axis, the disk whirling at `s2`.
+    SemiBalanced,
+    /// The balls cannot cancel the unbalance (capacity short, or below the speed where the
+    /// semi-balanced state exists): a residual unbalance, the balls bunched.
+    PartiallyBalanced,
+}
+
+impl StateKind {
+    /// `"balanced"`, `"semi-balanced"`, `"partially balanced"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            StateKind::Balanced => "balanced",
+            StateKind::SemiBalanced => "semi-balanced",
+            StateKind::PartiallyBalanced => "partially balanced",
+        }
+    }
+}
+
+/// One member of a family, named by its balls' angles.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Member {
+    /// Its parameter on the family ([`crate::analysis::FamilyMember::parameter`]: the scaled
+    /// arclength `s` from the member Newton reached from the closed form, `s = 0`).
+    pub parameter: Vec<f64>,
+    /// The balls' angles (rad, all planes in order).
+    pub psi: Vec<f64>,
+    /// Its spectral abscissa without the structural zeros (1/s, or per unit τ).
+    pub abscissa: f64,
+    /// Its verdict.
+    pub verdict: Verdict,
+}
+
+/// The family of stationary states at one speed ([`crate::analysis::family`]): which of its
+/// sampled members are stable.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FamilyPoint {
+    /// Members sampled.
+    pub members: usize,
+    /// Of which stable.
+    pub stable_members: usize,
+    /// All, some, or none of the sampled members stable.
+    pub verdict: FamilyVerdict,
+    /// For a one-parameter family: whether the continuation closed (the family sampled all
+    /// round), and its length in the parameter `s`.
+    pub closed: bool,
+    /// The family's length in `s` (one-parameter family).
+    pub length: f64,
+    /// The least stable member sampled (largest abscissa).
+    pub least_stable: Member,
+    /// The most stable member sampled (smallest abscissa).
+    pub most_stable: Member,
+    /// The ranges of `s` whose members are stable (one-parameter family; ends at the sampling
+    /// step: the first and last stable member of each run).
+    pub stable_parameter_ranges: Vec<ParameterRange>,
+}
+
+/// The family's stability over speed ([`RotorStability::family`]).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FamilyStability {
+    /// Its dimension `k` (`n − 2` for `n ≥ 3` balls in one plane).
+    pub dimension: usize,
+    /// How it is parameterised and sampled, in words.
+    pub parameterisation: String,
+    /// The speed ranges where **every** sampled member is stable (ends located to 1e-9
+    /// relative where the largest abscissa over the sampled members crosses 0).
+    pub all_members_stable: Vec<StableRange>,
+    /// The speed ranges where **at least one** sampled member is stable ("some members
+    /// stable", not "stable": other members are not), ends where the smallest abscissa over
+    /// the sampled members crosses 0.
+    pub some_members_stable: Vec<StableRange>,
 }
 
 /// The stationary state's stability over speed ([`stability_over_speed`]).
@@ -167,18 +390,24 @@ pub struct RotorStability {
     pub model: &'static str,
     /// Equilibrium (eigenvalues) or periodic orbit (Floquet multipliers).
     pub kind: Kind,
-    /// The speed ranges where the stationary state is stable (ends bisected to 1e-9 relative).
+    /// The speed ranges where the stationary state analysed is stable (ends located to 1e-9
+    /// relative): with a family, of **one member per speed**, the one Newton's method reaches
+    /// from the closed form ([`SpeedPoint::member_psi`]); the family's own ranges are in
+    /// [`RotorStability::family`].
     pub stable_ranges: Vec<StableRange>,
     /// Every speed of the grid.
     pub points: Vec<SpeedPoint>,
     /// The largest family dimension met (0: isolated states; `n − 2` for `n ≥ 3` balls in one
     /// plane at balance): that many eigenvalues 0 (multipliers 1) are structural at each point
-    /// and left out of the verdict, which therefore holds for every member of the family that
-    /// Newton's method reached from the closed-form guess (one member per speed).
+    /// and left out of the verdict.
     pub family_dimension: usize,
     /// The balls' angles of the member analysed at the first speed where a state was found
-    /// (rad, all planes in order): the member any single number refers to.
+    /// (rad, all planes in order): the member that `stable_ranges` follows from there
+    /// (each point's own member in [`SpeedPoint::member_psi`]).
     pub member_psi: Vec<f64>,
+    /// With a family (`family_dimension > 0`): its stability over all the members sampled,
+    /// the speed ranges where all and where some members are stable.
+    pub family: Option<FamilyStability>,
 }
 
 /// The stationary state of `rotor` and its stability at each of `speeds` (ascending), with the
@@ -202,25 +431,29 @@ pub fn stability_over_speed(rotor: &Rotor, speeds: &[f64]) -> Result<RotorStabil
         opts.newton.max_iterations = 20;
         opts.newton.rtol = 1e-10;
     }
-    let scan = speed_scan(|w| rotor.field(w), |f: &Field, _| Rotor::guess(f), speeds, &opts).map_err(|e| match e {
+    // where the closed form has no (semi-)balanced state, the balls bunched: the partially
+    // balanced state (Rotor::bunched_guess)
+    let guess = |f: &Field, _| Rotor::guess(f).or_else(|| Rotor::bunched_guess(f));
+    let scan = speed_scan(|w| rotor.field(w), guess, speeds, &opts).map_err(|e| match e {
         crate::analysis::AnalysisError::Model(e) => e,
         e => Error::invalid("speeds", e.to_string()),
     })?;
     let mut member_psi = vec![];
     let mut family_dimension = 0;
-    let points = scan
+    let mut points: Vec<SpeedPoint> = scan
         .points
         .iter()
         .map(|p| {
             let fam = p.state.as_ref().map_or(0, |s| s.family_dimension);
             family_dimension = family_dimension.max(fam);
-            let amplitude = p.state.as_ref().and_then(|s| {
-                let f = rotor.field(p.omega).ok()?;
-                if member_psi.is_empty() {
-                    member_psi = ball_angles(&f, &s.x);
-                }
-                Some(amplitude(&f, &s.x))
-            });
+            let field = p.state.as_ref().and_then(|_| rotor.field(p.omega).ok());
+            let (amplitude, state, psi) = match (&field, &p.state) {
+                (Some(f), Some(s)) => (Some(amplitude(f, &s.x)), Some(Rotor::state_kind(f, &s.x)), ball_angles(f, &s.x)),
+                _ => (None, None, vec![]),
+            };
+            if member_psi.is_empty() {
+                member_psi = psi.clone();
+            }
             SpeedPoint {
                 omega: p.omega,
                 verdict: p.stability.as_ref().map(|s| s.verdict),
@@ -229,10 +462,192 @@ pub fn stability_over_speed(rotor: &Rotor, speeds: &[f64]) -> Result<RotorStabil
                 family_dimension: fam,
                 amplitude,
                 failure: p.failure.as_ref().map(|f| explain_failure(rotor, f)),
+                state,
+                member_psi: psi,
+                family: None,
             }
         })
         .collect();
-    Ok(RotorStability { model: rotor.model_name(), kind, stable_ranges: scan.stable_ranges, points, family_dimension, member_psi })
+    let family = if family_dimension > 0 {
+        let states: Vec<Option<&StationaryState>> = scan.points.iter().map(|p| p.state.as_ref()).collect();
+        Some(family_over_speed(rotor, &mut points, &states, family_dimension, &opts.newton))
+    } else {
+        None
+    };
+    Ok(RotorStability { model: rotor.model_name(), kind, stable_ranges: scan.stable_ranges, points, family_dimension, member_psi, family })
+}
+
+/// The sampling of a family in [`stability_over_speed`]: continuation at steps of 0.1 rad
+/// (scaled arclength) for one parameter, 200 random members for more
+/// ([`crate::analysis::FamilyOptions`]); a periodic orbit's family at 0.2 and 40 members (each
+/// member is a shooting).
+fn family_options(field: &Field, newton: &NewtonOptions) -> FamilyOptions {
+    let periodic = field.period().is_some();
+    let angles = match field {
+        Field::Planar(p) => (2..2 + p.rotor().n).collect(),
+        Field::Spatial(s) => {
+            let m = s.coords();
+            (m - s.rotor().balls()..m).collect()
+        }
+    };
+    FamilyOptions {
+        step: if periodic { 0.2 } else { 0.1 },
+        samples: if periodic { 40 } else { 200 },
+        max_members: if periodic { 400 } else { 2000 },
+        angles,
+        newton: newton.clone(),
+        ..FamilyOptions::default()
+    }
+}
+
+/// The family through the member `state` at speed `omega`, summarised; `None` where it
+/// cannot be followed.
+fn family_point(rotor: &Rotor, omega: f64, state: &StationaryState, newton: &NewtonOptions) -> Option<FamilyPoint> {
+    let f = rotor.field(omega).ok()?;
+    let fam: Family = family(&f, state, &family_options(&f, newton)).ok()?;
+    let (hi, lo) = fam.extremes()?;
+    let name = |m: &crate::analysis::FamilyMember| Member {
+        parameter: m.parameter.clone(),
+        psi: ball_angles(&f, &m.state.x),
+        abscissa: m.stability.abscissa,
+        verdict: m.stability.verdict,
+    };
+    Some(FamilyPoint {
+        members: fam.members.len(),
+        stable_members: fam.stable_count(),
+        verdict: fam.verdict(),
+        closed: fam.closed,
+        length: fam.length,
+        least_stable: name(hi),
+        most_stable: name(lo),
+        stable_parameter_ranges: fam.stable_ranges(),
+    })
+}
+
+/// The family's stability at each point of the scan, and the speed ranges where all and where
+/// some sampled members are stable: between two grid speeds whose family verdicts differ, the
+/// end is located to `1e-9` relative in `Ω` where the largest (all) or the smallest (some)
+/// abscissa over the sampled members crosses 0, by regula falsi (Illinois) safeguarded by
+/// bisection, each trial's family followed from the member Newton reaches from the closed form
+/// there (else from the neighbour's member).
+fn family_over_speed(
+    rotor: &Rotor,
+    points: &mut [SpeedPoint],
+    states: &[Option<&StationaryState>],
+    dimension: usize,
+    newton: &NewtonOptions,
+) -> FamilyStability {
+    // the grid's speeds in parallel (each family is independent of the others)
+    let families: Vec<Option<FamilyPoint>> = points
+        .par_iter()
+        .zip(states.par_iter())
+        .map(|(p, st)| st.filter(|s| s.family_dimension > 0).and_then(|st| family_point(rotor, p.omega, st, newton)))
+        .collect();
+    for (p, f) in points.iter_mut().zip(families) {
+        p.family = f;
+    }
+    // the family's extreme abscissas at a speed off the grid
+    let extremes_at = |omega: f64, near: Option<&[f64]>| -> Option<(f64, f64)> {
+        let f = rotor.field(omega).ok()?;
+        let starts = [Rotor::guess(&f), near.map(|x| x.to_vec())];
+        let state = starts.iter().flatten().find_map(|g| stationary(&f, g, newton).ok().filter(|s| s.family_dimension > 0))?;
+        let fp = family_point(rotor, omega, &state, newton)?;
+        Some((fp.least_stable.abscissa, fp.most_stable.abscissa))
+    };
+    let mut ranges = [vec![], vec![]];
+    for (which, out) in ranges.iter_mut().enumerate() {
+        // which = 0: all members (largest abscissa < 0); 1: some (smallest < 0)
+        let value = |p: &SpeedPoint| p.family.as_ref().map(|f| if which == 0 { f.least_stable.abscissa } else { f.most_stable.abscissa });
+        let good = |p: &SpeedPoint| {
+            p.family.as_ref().is_some_and(|f| if which == 0 { f.verdict == FamilyVerdict::AllStable } else { f.verdict != FamilyVerdict::NoneStable })
+        };
+        let mut boundary = vec![None; points.len()];
+        for i in 0..points.len().saturating_sub(1) {
+            let (a, b) = (&points[i], &points[i + 1]);
+            if good(a) == good(b) {
+                continue;
+            }
+            let near = states[i].or(states[i + 1]).map(|s| s.x.clone());
+            let g = |w: f64| extremes_at(w, near.as_deref()).map(|e| if which == 0 { e.0 } else { e.1 });
+            boundary[i] = Some(locate(a.omega, b.omega, value(a), value(b), good(a), g));
+        }
+        let mut i = 0;
+        while i < points.len() {
+            if !good(&points[i]) {
+                i += 1;
+                continue;
+            }
+            let start = if i > 0 { boundary[i - 1].map(|w| (w, true)) } else { None }.unwrap_or((points[i].omega, false));
+            let mut j = i;
+            while j + 1 < points.len() && good(&points[j + 1]) {
+                j += 1;
+            }
+            let end = boundary[j].map(|w| (w, true)).unwrap_or((points[j].omega, false));
+            let (from, to, fb, tb) = if start.0 <= end.0 { (start.0, end.0, start.1, end.1) } else { (end.0, start.0, end.1, start.1) };
+            out.push(StableRange { from, to, from_is_boundary: fb, to_is_boundary: tb });
+            i = j + 1;
+        }
+    }
+    let [all, some] = ranges;
+    let parameterisation = if dimension == 1 {
+        "one-parameter family (n − 2 = 1 free parameter): the balls' angles move together keeping Σ m r e^{iψ} (the balancing condition) fixed; \
+         parameter s = arclength along the family in the balls' angles (rad, the other states scaled by the model's scales), s = 0 at the member Newton reaches from the closed form (member_psi); \
+         swept by continuation at steps of 0.1 until it closes (all round) or ends"
+            .to_string()
+    } else {
+        format!(
+            "{dimension}-parameter family (n − 2 = {dimension} free parameters): sampled at 200 members, each the member given displaced along the family's tangent space by π times coefficients uniform in [−1, 1]^{dimension} (fixed seed) and corrected onto the family by minimum-norm Newton; not a sweep: a stable or unstable island smaller than the sampling can be missed"
+        )
+    };
+    FamilyStability { dimension, parameterisation, all_members_stable: all, some_members_stable: some }
+}
+
+/// Where `g` (the family's largest or smallest abscissa) crosses 0 between `lo` and `hi`
+/// (`good_lo`: whether `lo` is on the side where it is negative), to `1e-9` relative:
+/// regula falsi (Illinois) on `g`, bisection where `g` is missing or the bracket stops halving.
+fn locate(lo: f64, hi: f64, g_lo: Option<f64>, g_hi: Option<f64>, good_lo: bool, g: impl Fn(f64) -> Option<f64>) -> f64 {
+    let (mut lo, mut hi, mut f_lo, mut f_hi) = (lo, hi, g_lo, g_hi);
+    let mut last_side = 0i8;
+    let mut slow = 0;
+    for _ in 0..100 {
+        let width = (hi - lo).abs();
+        let tol = 1e-9 * lo.abs().max(hi.abs());
+        if width <= tol {
+            break;
+        }
+        let mut mid = 0.5 * (lo + hi);
+        if let (Some(fl), Some(fh), true) = (f_lo, f_hi, slow < 2) {
+            if fl * fh < 0.0 {
+                let secant = lo - fl * (hi - lo) / (fh - fl);
+                let (a, b) = (lo.min(hi) + 0.5 * tol, lo.max(hi) - 0.5 * tol);
+                if a < b && secant.is_finite() {
+                    mid = secant.clamp(a, b);
+                }
+            }
+        }
+        if mid == lo || mid == hi {
+            break;
+        }
+        let v = g(mid);
+        let good = v.is_some_and(|v| v < 0.0);
+        if good == good_lo {
+            if last_side == -1 {
+                f_hi = f_hi.map(|f| 0.5 * f);
+            }
+            lo = mid;
+            f_lo = v;
+            last_side = -1;
+        } else {
+            if last_side == 1 {
+                f_lo = f_lo.map(|f| 0.5 * f);
+            }
+            hi = mid;
+            f_hi = v;
+            last_side = 1;
+        }
+        slow = if (hi - lo).abs() > 0.5 * width { slow + 1 } else { 0 };
+    }
+    0.5 * (lo + hi)
 }
 
 /// A scan's failure in the user's terms: where the closed form gives no state, say which state

@@ -48,6 +48,40 @@ pub(crate) fn lu_solve(a: &mut [f64], n: usize, b: &mut [f64]) -> bool {
 /// Where `A` is the Jacobian at a family of equilibria (rank `n − drop`), this Newton step
 /// moves to the member of the family nearest the current point.
 pub(crate) fn min_norm_solve(a: &[f64], n: usize, b: &[f64], drop: usize) -> Vec<f64> {
+    let (w, v, sigma) = svd(a, n);
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by(|&i, &j| sigma[i].total_cmp(&sigma[j]));
+    let cut = 1e-12 * sigma.iter().fold(0.0f64, |m, v| m.max(*v));
+    let mut x = vec![0.0; n];
+    for &j in order.iter().skip(drop) {
+        if sigma[j] <= cut {
+            continue;
+        }
+        // u_j = w_j / σ_j; coefficient (u_j · b)/σ_j
+        let coef = w[j * n..(j + 1) * n].iter().zip(b).map(|(u, bb)| u * bb).sum::<f64>() / (sigma[j] * sigma[j]);
+        for i in 0..n {
+            x[i] += coef * v[j * n + i];
+        }
+    }
+    x
+}
+
+/// The right singular vectors of the `k` smallest singular values of `A` (row-major `n × n`),
+/// each of unit length, smallest first: where `A` is the (scaled) Jacobian at a member of a
+/// family of stationary states of dimension `k`, an orthonormal basis of the family's tangent
+/// space there.
+pub(crate) fn null_space(a: &[f64], n: usize, k: usize) -> Vec<Vec<f64>> {
+    let (_, v, sigma) = svd(a, n);
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by(|&i, &j| sigma[i].total_cmp(&sigma[j]));
+    order.iter().take(k.min(n)).map(|&j| v[j * n..(j + 1) * n].to_vec()).collect()
+}
+
+/// The singular value decomposition of `A` (row-major `n × n`) by one-sided Jacobi rotations
+/// on the columns of `A V` (Hestenes), to relative orthogonality `n ε` (a tighter test is not
+/// met in floating point and only spends sweeps): `(W, V, σ)`, `W = A V` and `V` column-major
+/// (column `j` at `[j n .. (j + 1) n]`), `σ_j = |w_j|`, unordered.
+fn svd(a: &[f64], n: usize) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
     // columns of W = A V, stored column-major for the rotations
     let mut w: Vec<f64> = (0..n * n).map(|k| a[(k % n) * n + k / n]).collect();
     let mut v = vec![0.0; n * n];
@@ -90,21 +124,7 @@ pub(crate) fn min_norm_solve(a: &[f64], n: usize, b: &[f64], drop: usize) -> Vec
         }
     }
     let sigma: Vec<f64> = (0..n).map(|j| w[j * n..(j + 1) * n].iter().map(|x| x * x).sum::<f64>().sqrt()).collect();
-    let mut order: Vec<usize> = (0..n).collect();
-    order.sort_by(|&i, &j| sigma[i].total_cmp(&sigma[j]));
-    let cut = 1e-12 * sigma.iter().fold(0.0f64, |m, v| m.max(*v));
-    let mut x = vec![0.0; n];
-    for &j in order.iter().skip(drop) {
-        if sigma[j] <= cut {
-            continue;
-        }
-        // u_j = w_j / σ_j; coefficient (u_j · b)/σ_j
-        let coef = w[j * n..(j + 1) * n].iter().zip(b).map(|(u, bb)| u * bb).sum::<f64>() / (sigma[j] * sigma[j]);
-        for i in 0..n {
-            x[i] += coef * v[j * n + i];
-        }
-    }
-    x
+    (w, v, sigma)
 }
 
 #[cfg(test)]

@@ -320,8 +320,201 @@ fn integrate_period<S: System>(sys: &S, y: &mut [f64], period: f64, rtol: f64, a
     Ok(())
 }
 
+/// Most Chebyshev intervals of the interpolated Jacobian ([`interpolated_variational`]) before
+/// the full variational equations are integrated instead.
+const MAX_CHEBYSHEV: usize = 128;
+
+/// `Φ' = J̃(t) Φ`: the variational equations with the Jacobian along the orbit replaced by its
+/// Chebyshev interpolant in `t` on `[0, T]` (barycentric form on the Lobatto points). Entries
+/// equal at every node (the kinematic rows `∂q̇/∂(q, v) = (0, I)`, structural zeros) are kept
+/// as constants; only the others are interpolated.
+struct InterpolatedVariational {
+    n: usize,
+    /// The Lobatto points `t_j`.
+    nodes: Vec<f64>,
+    /// The barycentric weights `(−1)^j`, halved at the ends.
+    weights: Vec<f64>,
+    /// `J` with its constant entries, row-major.
+    constant: Vec<f64>,
+    /// The indices of the entries that vary between nodes.
+    varying: Vec<usize>,
+    /// Those entries of `J(t_j, x(t_j))`, one vector per node.
+    values: Vec<Vec<f64>>,
+    jac: RefCell<Vec<f64>>,
+    coef: RefCell<Vec<f64>>,
+}
+
+impl InterpolatedVariational {
+    fn new(n: usize, nodes: Vec<f64>, weights: Vec<f64>, jacobians: Vec<Vec<f64>>) -> Self {
+        let first = &jacobians[0];
+        let varying: Vec<usize> = (0..n * n).filter(|&e| jacobians.iter().any(|j| j[e] != first[e])).collect();
+        let values = jacobians.iter().map(|j| varying.iter().map(|&e| j[e]).collect()).collect();
+        let m = nodes.len();
+        InterpolatedVariational {
+            n,
+            nodes,
+            weights,
+            constant: first.clone(),
+            varying,
+            values,
+            jac: RefCell::new(first.clone()),
+            coef: RefCell::new(vec![0.0; m]),
+        }
+    }
+
+    /// `J̃(t)` into `out`.
+    fn eval(&self, t: f64, out: &mut [f64]) {
+        out.copy_from_slice(&self.constant);
+        if self.varying.is_empty() {
+            return;
+        }
+        let mut acc = vec![0.0; self.varying.len()];
+        if let Some(j) = self.nodes.iter().position(|tj| *tj == t) {
+            acc.copy_from_slice(&self.values[j]);
+        } else {
+            let mut coef = self.coef.borrow_mut();
+            let mut den = 0.0;
+            for (j, tj) in self.nodes.iter().enumerate() {
+                coef[j] = self.weights[j] / (t - tj);
+                den += coef[j];
+            }
+            for (c, v) in coef.iter().zip(&self.values) {
+                let c = c / den;
+                for (a, x) in acc.iter_mut().zip(v) {
+                    *a += c * x;
+                }
+            }
+        }
+        for (&e, a) in self.varying.iter().zip(&acc) {
+            out[e] = *a;
+        }
+    }
+}
+
+impl System for InterpolatedVariational {
+    fn dim(&self) -> usize {
+        self.n * self.n
+    }
+    fn rhs(&self, t: f64, phi: &[f64], dphi: &mut [f64]) {
+        let n = self.n;
+        let mut j = self.jac.borrow_mut();
+        self.eval(t, &mut j);
+        for a in 0..n {
+            let row = &mut dphi[a * n..(a + 1) * n];
+            row.iter_mut().for_each(|v| *v = 0.0);
+            for c in 0..n {
+                let jac = j[a * n + c];
+                if jac != 0.0 {
+                    for (o, p) in row.iter_mut().zip(&phi[c * n..(c + 1) * n]) {
+                        *o += jac * p;
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// `x(T; x0)` and `Φ(T)` with the Jacobian evaluated only at the Chebyshev–Lobatto points of
+/// `[0, T]` and interpolated between them (module docs of [`crate::analysis`], "Floquet"): the
+/// orbit `x(t)` by DOP853 (dense output at the points), `J(t_j, x(t_j))` there by the model's
+/// automatic differentiation, and `Φ' = J̃(t) Φ` by DOP853 at the same tolerances as the full
+/// variational equations. The number of intervals `N` doubles from 16 (reusing the points)
+/// until the interpolant on `N/2` intervals, evaluated at the `N/2` new points, is within
+/// `1e-2 · rtol` of the Jacobian there in the scaled max-row-sum norm `‖S⁻¹ · S‖∞` relative to
+/// `‖S⁻¹ J S‖∞` (the interpolant on `N` intervals is then much closer still: the error of
+/// Chebyshev interpolation of an analytic function falls geometrically in `N`); `None` when
+/// `N` = [`MAX_CHEBYSHEV`] does not reach it (the full variational equations are integrated).
+fn interpolated_variational<F: VectorField + ?Sized>(f: &F, x0: &[f64], period: f64, s: &[f64], rtol: f64) -> Result<Option<(Vec<f64>, Vec<f64>)>> {
+    let n = f.dim();
+    // the orbit at the Lobatto points of MAX_CHEBYSHEV intervals (coarser sets are subsets)
+    let big = MAX_CHEBYSHEV;
+    let times: Vec<f64> = (0..=big).map(|j| 0.5 * period * (1.0 - (std::f64::consts::PI * j as f64 / big as f64).cos())).collect();
+    let mut samples: Vec<Option<Vec<f64>>> = vec![None; big + 1];
+    samples[0] = Some(x0.to_vec());
+    let plain = Plain(f);
+    // the orbit 100x tighter than the tolerance: the sampled Jacobians' own error (through
+    // x's) then stays below the interpolation test's threshold
+    let tight = 1e-2 * rtol;
+    let opts = Options::new(tight, tight).method(Method::Dop853).atol_per_component(s.iter().map(|v| tight * v).collect());
+    let mut solver = Solver::new(&plain, opts)?;
+    let mut y = x0.to_vec();
+    let mut next = 1;
+    let out = solver.integrate(0.0, &mut y, period, |step| {
+        while next < big && times[next] <= step.t_new {
+            let mut v = vec![0.0; n];
+            step.interpolate(times[next], &mut v);
+            samples[next] = Some(v);
+            next += 1;
+        }
+        Control::Continue
+    });
+    if !out.status.is_completed() {
+        return Err(AnalysisError::Integration { period, reason: out.to_string() });
+    }
+    samples[big] = Some(y.clone());
+    let scaled_norm = |m: &[f64]| (0..n).map(|a| (0..n).map(|b| (m[a * n + b] * s[b] / s[a]).abs()).sum::<f64>()).fold(0.0, f64::max);
+    let mut jacobians: Vec<Option<Vec<f64>>> = vec![None; big + 1];
+    let mut jac_at = |k: usize| -> Result<Vec<f64>> {
+        if let Some(j) = &jacobians[k] {
+            return Ok(j.clone());
+        }
+        let mut j = vec![0.0; n * n];
+        f.jacobian(times[k], samples[k].as_ref().expect("sampled"), &mut j);
+        non_finite(f, &j, "Jacobian")?;
+        jacobians[k] = Some(j.clone());
+        Ok(j)
+    };
+    let system = |intervals: usize, jac: Vec<Vec<f64>>| {
+        let stride = big / intervals;
+        let nodes: Vec<f64> = (0..=intervals).map(|j| times[j * stride]).collect();
+        let weights: Vec<f64> = (0..=intervals).map(|j| if j % 2 == 0 { 1.0 } else { -1.0 } * if j == 0 || j == intervals { 0.5 } else { 1.0 }).collect();
+        InterpolatedVariational::new(n, nodes, weights, jac)
+    };
+    let mut intervals = 8;
+    let mut coarse: Vec<Vec<f64>> = (0..=intervals).map(|j| jac_at(j * big / intervals)).collect::<Result<_>>()?;
+    let accepted = loop {
+        let fine_n = 2 * intervals;
+        let stride = big / fine_n;
+        let fine: Vec<Vec<f64>> = (0..=fine_n).map(|j| jac_at(j * stride)).collect::<Result<_>>()?;
+        let interp = system(intervals, coarse);
+        let mut worst: f64 = 0.0;
+        let mut size: f64 = 0.0;
+        let mut tmp = vec![0.0; n * n];
+        for (j, jf) in fine.iter().enumerate() {
+            size = size.max(scaled_norm(jf));
+            if j % 2 == 1 {
+                interp.eval(times[j * stride], &mut tmp);
+                tmp.iter_mut().zip(jf).for_each(|(a, b)| *a -= b);
+                worst = worst.max(scaled_norm(&tmp));
+            }
+        }
+        if worst <= rtol * size {
+            break Some(system(fine_n, fine));
+        }
+        if fine_n >= big {
+            break None;
+        }
+        intervals = fine_n;
+        coarse = fine;
+    };
+    let Some(sys) = accepted else { return Ok(None) };
+    let mut atol = Vec::with_capacity(n * n);
+    for a in 0..n {
+        for b in 0..n {
+            atol.push(rtol * s[a] / s[b]);
+        }
+    }
+    let mut phi = vec![0.0; n * n];
+    for a in 0..n {
+        phi[a * n + a] = 1.0;
+    }
+    integrate_period(&sys, &mut phi, period, rtol, atol)?;
+    Ok(Some((y, phi)))
+}
+
 /// `x(T; x0)`, and with `variational` also `Φ(T)`, by DOP853 from `t = 0` (module docs of
-/// [`crate::analysis`]).
+/// [`crate::analysis`]): `Φ` with the interpolated Jacobian where it converges
+/// ([`interpolated_variational`]), else by the full variational equations.
 fn flow<F: VectorField + ?Sized>(f: &F, x0: &[f64], period: f64, s: &[f64], rtol: f64, variational: bool) -> Result<(Vec<f64>, Option<Vec<f64>>)> {
     let n = f.dim();
     let atol_x = s.iter().map(|v| rtol * v);
@@ -329,6 +522,9 @@ fn flow<F: VectorField + ?Sized>(f: &F, x0: &[f64], period: f64, s: &[f64], rtol
         let mut y = x0.to_vec();
         integrate_period(&Plain(f), &mut y, period, rtol, atol_x.collect())?;
         return Ok((y, None));
+    }
+    if let Some((y, phi)) = interpolated_variational(f, x0, period, s, rtol)? {
+        return Ok((y, Some(phi)));
     }
     let sys = VariationalSystem::new(f);
     let mut atol: Vec<f64> = atol_x.collect();

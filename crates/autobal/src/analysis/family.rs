@@ -1,0 +1,309 @@
+//! The family of stationary states through one member, and its stability member by member
+//! (module docs of [`crate::analysis`], "Families").
+
+// Index loops follow the formulas.
+#![allow(clippy::needless_range_loop)]
+
+use super::linear::null_space;
+use super::stability::{stability, Stability, Verdict};
+use super::stationary::{stationary_near, NewtonOptions, StationaryState};
+use super::{AnalysisError, Result, VectorField};
+use serde::Serialize;
+
+/// Options of [`family`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct FamilyOptions {
+    /// Step along a one-parameter family, in scaled arclength (the state in units of
+    /// [`VectorField::scales`]; for ball angles, radians): default `0.05`, so that a family
+    /// whose balls turn by `2π` is sampled at ~125 members per ball angle's turn.
+    pub step: f64,
+    /// Most members sampled (default 2000): a one-parameter family that has not closed by then
+    /// is reported as open ([`Family::closed`] false).
+    pub max_members: usize,
+    /// Members sampled on a family of dimension `k ≥ 2` (default 200).
+    pub samples: usize,
+    /// Seed of the sampling of a family of dimension `k ≥ 2`.
+    pub seed: u64,
+    /// The state components that are angles (ball angles): a one-parameter family closes when it
+    /// returns to its first member modulo `2π` in these.
+    pub angles: Vec<usize>,
+    /// Newton's tolerances for each member.
+    pub newton: NewtonOptions,
+}
+
+impl Default for FamilyOptions {
+    fn default() -> Self {
+        FamilyOptions { step: 0.05, max_members: 2000, samples: 200, seed: 1, angles: vec![], newton: NewtonOptions::default() }
+    }
+}
+
+/// How the family was sampled.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case", tag = "method")]
+pub enum Sampling {
+    /// No family (an isolated state): the one member.
+    Isolated,
+    /// A one-parameter family followed by continuation along its tangent (pseudo-arclength
+    /// predictor, minimum-norm Newton corrector) at a fixed step in scaled arclength `s`,
+    /// from `s = 0` (the member given) in both directions until it closes or ends.
+    Continuation {
+        /// The step in scaled arclength.
+        step: f64,
+    },
+    /// A family of dimension `k ≥ 2`: members from the member given displaced along the
+    /// family's tangent space by `π` times coefficients drawn uniformly in `[−1, 1]^k`
+    /// (a fixed-seed generator), each corrected onto the family by minimum-norm Newton.
+    Random {
+        /// The seed.
+        seed: u64,
+    },
+}
+
+/// One member of a [`Family`].
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FamilyMember {
+    /// Where on the family: for a continuation the scaled arclength `s` from the member given
+    /// (one number); for a random sample the `k` coefficients along the tangent basis at the
+    /// member given (before Newton's correction); `[]` for an isolated state.
+    pub parameter: Vec<f64>,
+    /// The member's state.
+    pub state: StationaryState,
+    /// Its stability (the family's `k` structural exponents left out).
+    pub stability: Stability,
+}
+
+/// A family of stationary states through one member ([`family`]).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Family {
+    /// Its dimension `k` ([`VectorField::structural_zeros`] at the member given).
+    pub dimension: usize,
+    /// How it was sampled.
+    pub sampling: Sampling,
+    /// The members, in order of the parameter for a continuation.
+    pub members: Vec<FamilyMember>,
+    /// For a continuation: whether it returned to the member given (a closed family, sampled
+    /// all round) rather than ending (Newton failing, or `max_members`).
+    pub closed: bool,
+    /// For a continuation: its length in scaled arclength (all round when `closed`).
+    pub length: f64,
+}
+
+/// A range of the family's parameter where its members are stable.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ParameterRange {
+    /// First stable member's parameter `s`.
+    pub from: f64,
+    /// Last stable member's parameter `s`.
+    pub to: f64,
+}
+
+/// Which members of a family are stable.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FamilyVerdict {
+    /// Every member sampled is stable.
+    AllStable,
+    /// Some members sampled are stable, others not.
+    SomeStable,
+    /// No member sampled is stable.
+    NoneStable,
+}
+
+impl Family {
+    /// How many members are stable.
+    pub fn stable_count(&self) -> usize {
+        self.members.iter().filter(|m| m.stability.verdict == Verdict::Stable).count()
+    }
+
+    /// Which members are stable.
+    pub fn verdict(&self) -> FamilyVerdict {
+        match self.stable_count() {
+            0 => FamilyVerdict::NoneStable,
+            c if c == self.members.len() => FamilyVerdict::AllStable,
+            _ => FamilyVerdict::SomeStable,
+        }
+    }
+
+    /// The member with the largest abscissa (the least stable), and the one with the smallest.
+    pub fn extremes(&self) -> Option<(&FamilyMember, &FamilyMember)> {
+        let by = |a: &&FamilyMember, b: &&FamilyMember| a.stability.abscissa.total_cmp(&b.stability.abscissa);
+        Some((self.members.iter().max_by(by)?, self.members.iter().min_by(by)?))
+    }
+
+    /// For a continuation, the ranges of the parameter `s` whose members are stable (ends at
+    /// the sampling's resolution: the first and last stable member of each run; a run through
+    /// the ends of a closed family is split there).
+    pub fn stable_ranges(&self) -> Vec<ParameterRange> {
+        if !matches!(self.sampling, Sampling::Continuation { .. }) {
+            return vec![];
+        }
+        let mut out = vec![];
+        let mut start: Option<f64> = None;
+        let mut last = 0.0;
+        for m in &self.members {
+            let s = m.parameter[0];
+            if m.stability.verdict == Verdict::Stable {
+                start.get_or_insert(s);
+                last = s;
+            } else if let Some(a) = start.take() {
+                out.push(ParameterRange { from: a, to: last });
+            }
+        }
+        if let Some(a) = start {
+            out.push(ParameterRange { from: a, to: last });
+        }
+        out
+    }
+}
+
+/// The matrix whose null space is the family's tangent space, scaled: `S⁻¹ J S` at an
+/// equilibrium, `S⁻¹ (I − Φ(T)) S` at a periodic orbit.
+fn scaled_matrix<F: VectorField + ?Sized>(f: &F, state: &StationaryState, s: &[f64]) -> Result<Vec<f64>> {
+    let n = f.dim();
+    let mut m = vec![0.0; n * n];
+    match (&state.period, &state.monodromy) {
+        (None, _) => f.jacobian(0.0, &state.x, &mut m),
+        (Some(_), Some(phi)) => {
+            for ab in 0..n * n {
+                m[ab] = if ab / n == ab % n { 1.0 } else { 0.0 } - phi[ab];
+            }
+        }
+        (Some(_), None) => return Err(AnalysisError::InvalidInput { field: "state".into(), reason: "a periodic orbit without its monodromy matrix".into() }),
+    }
+    for a in 0..n {
+        for b in 0..n {
+            m[a * n + b] *= s[b] / s[a];
+        }
+    }
+    if m.iter().any(|v| !v.is_finite()) {
+        return Err(AnalysisError::NonFinite { component: "the family's tangent".into(), what: "Jacobian".into() });
+    }
+    Ok(m)
+}
+
+/// The scaled distance between two states, angles (`angles`) modulo `2π`.
+fn distance(a: &[f64], b: &[f64], s: &[f64], angles: &[usize]) -> f64 {
+    (0..a.len())
+        .map(|i| {
+            let mut d = (a[i] - b[i]) / s[i];
+            if angles.contains(&i) {
+                let tau = std::f64::consts::TAU / s[i];
+                d -= tau * (d / tau).round();
+            }
+            d * d
+        })
+        .sum::<f64>()
+        .sqrt()
+}
+
+/// The family of stationary states of `f` through `member` (a state found by
+/// [`super::stationary`]) and the stability of each member sampled (module docs of
+/// [`crate::analysis`], "Families"): the member alone when it is isolated; a continuation
+/// along a one-parameter family; a random sample of a larger one ([`Sampling`]).
+pub fn family<F: VectorField + ?Sized>(f: &F, member: &StationaryState, opts: &FamilyOptions) -> Result<Family> {
+    let n = f.dim();
+    let k = member.family_dimension;
+    let first = FamilyMember { parameter: vec![], stability: stability(f, member)?, state: member.clone() };
+    if k == 0 {
+        return Ok(Family { dimension: 0, sampling: Sampling::Isolated, members: vec![first], closed: false, length: 0.0 });
+    }
+    if !(opts.step > 0.0 && opts.step.is_finite()) {
+        return Err(AnalysisError::InvalidInput { field: "step".into(), reason: "must be positive and finite".into() });
+    }
+    let s = f.scales();
+    // one corrector: minimum-norm Newton from the predicted point (the member of the family
+    // nearest it), a periodic orbit's shooting started from the neighbour's monodromy matrix
+    let correct = |x: &[f64], near: &StationaryState| -> Option<FamilyMember> {
+        let state = stationary_near(f, x, near.monodromy.as_deref(), &opts.newton).ok()?;
+        if state.family_dimension != k {
+            return None; // left the family (a member where it meets another branch)
+        }
+        let stability = stability(f, &state).ok()?;
+        Some(FamilyMember { parameter: vec![], state, stability })
+    };
+    if k >= 2 {
+        let basis = null_space(&scaled_matrix(f, member, &s)?, n, k);
+        let mut seed = opts.seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        let mut uniform = || {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            ((seed >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
+        };
+        let mut members = vec![FamilyMember { parameter: vec![0.0; k], ..first }];
+        for _ in 1..opts.samples.max(1) {
+            let a: Vec<f64> = (0..k).map(|_| uniform()).collect();
+            let x: Vec<f64> = (0..n).map(|i| member.x[i] + std::f64::consts::PI * s[i] * (0..k).map(|j| a[j] * basis[j][i]).sum::<f64>()).collect();
+            if let Some(mut m) = correct(&x, member) {
+                m.parameter = a;
+                members.push(m);
+            }
+        }
+        return Ok(Family { dimension: k, sampling: Sampling::Random { seed: opts.seed }, members, closed: false, length: 0.0 });
+    }
+    // k = 1: continuation both ways from the member given, until the family closes (returns
+    // to the member given) or ends
+    let h = opts.step;
+    let tangent_at = |state: &StationaryState, previous: Option<&[f64]>| -> Result<Vec<f64>> {
+        let mut t = null_space(&scaled_matrix(f, state, &s)?, n, 1).remove(0);
+        let sign = match previous {
+            Some(p) => p.iter().zip(&t).map(|(a, b)| a * b).sum::<f64>().signum(),
+            // the first direction: the largest component positive (a fixed orientation)
+            None => t.iter().copied().max_by(|a, b| a.abs().total_cmp(&b.abs())).map_or(1.0, f64::signum),
+        };
+        if sign < 0.0 {
+            t.iter_mut().for_each(|v| *v = -*v);
+        }
+        Ok(t)
+    };
+    let t0 = tangent_at(member, None)?;
+    // one direction: the members met, whether it closed, and the arclength walked
+    let walk = |dir: f64, budget: usize| -> Result<(Vec<FamilyMember>, bool, f64)> {
+        let mut out: Vec<FamilyMember> = vec![];
+        let mut current = member.clone();
+        let mut t: Vec<f64> = t0.iter().map(|v| dir * v).collect();
+        let mut arc = 0.0;
+        while out.len() < budget {
+            // predictor along the tangent, corrector onto the family; a step whose member lies
+            // much farther (or nearer) than the step is halved (down to h / 64)
+            let mut step = h;
+            let next = loop {
+                let x: Vec<f64> = (0..n).map(|i| current.x[i] + step * t[i] * s[i]).collect();
+                if let Some(m) = correct(&x, &current) {
+                    let d = distance(&m.state.x, &current.x, &s, &[]);
+                    if d > 0.25 * step && d < 2.0 * step {
+                        break Some((m, d));
+                    }
+                }
+                step *= 0.5;
+                if step < h / 64.0 {
+                    break None;
+                }
+            };
+            let Some((mut m, d)) = next else { return Ok((out, false, arc)) };
+            arc += d;
+            m.parameter = vec![dir * arc];
+            // closed: back at the member given (modulo 2π in the angles), after leaving it
+            if arc > 3.0 * h && distance(&m.state.x, &member.x, &s, &opts.angles) < 0.75 * h {
+                return Ok((out, true, arc));
+            }
+            t = tangent_at(&m.state, Some(&t))?;
+            current = m.state.clone();
+            out.push(m);
+        }
+        Ok((out, false, arc))
+    };
+    let budget = opts.max_members.max(2) - 1;
+    let (forward, closed, arc) = walk(1.0, budget)?;
+    if closed {
+        // the whole family, s ∈ [0, length)
+        let mut members = vec![FamilyMember { parameter: vec![0.0], ..first }];
+        members.extend(forward);
+        return Ok(Family { dimension: 1, sampling: Sampling::Continuation { step: h }, members, closed: true, length: arc });
+    }
+    // open: the other direction too, members ordered by s
+    let (mut backward, _, back_arc) = walk(-1.0, budget.saturating_sub(forward.len()))?;
+    backward.reverse();
+    let mut members = backward;
+    members.push(FamilyMember { parameter: vec![0.0], ..first });
+    members.extend(forward);
+    Ok(Family { dimension: 1, sampling: Sampling::Continuation { step: h }, members, closed: false, length: arc + back_arc })
+}
