@@ -19,7 +19,7 @@ fn a_periodic_cell_below_the_closed_forms_reach_is_continued_from_its_neighbour(
     let x = Axis { path: "speed_rpm".into(), values: vec![1200.0, 1300.0] };
     let y = Axis { path: "balancer.drag".into(), values: vec![0.5] };
     let mut cells = vec![];
-    general_map(&root, &x, &y, None, &|| false, &mut |_, r| {
+    general_map(&root, &x, &y, None, &autobal::control::Control::none(), &mut |_, r| {
         cells.extend_from_slice(r);
         true
     })
