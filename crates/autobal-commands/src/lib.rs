@@ -19,6 +19,7 @@ pub mod figures;
 mod fuzz;
 pub mod general;
 pub mod linear;
+pub mod linear_rotor;
 pub mod map;
 pub mod mapfig;
 pub mod num;
