@@ -207,7 +207,8 @@ enum Command {
     /// Merge the outputs of `autobal sweep --shard K/N` into the unsharded sweep's STEM.csv/json
     Merge(sweep::MergeArgs),
     /// Write a linear rotor ([linear_rotor]) as a config plus Matrix Market files (M, C, G, K):
-    /// the config's rotor, or without --config paper 004's rotor (race centred) as a Jeffcott rotor
+    /// the config's rotor (reduced if it sets linear_rotor.modes), or without --config paper
+    /// 004's rotor (race centred) as a Jeffcott rotor
     ExportModel {
         #[command(flatten)]
         common: Common,
@@ -331,7 +332,8 @@ fn run(cli: Cli) -> Result<()> {
         Command::Simulate { config, set, dt, out, parquet, format } => run_simulate(config, set, dt, out, parquet, format),
         Command::ExportModel { common, out, stem } => {
             let rotor = match common.config.as_deref() {
-                Some(p) => linear_rotor::load(p, &common.set)?.rotor,
+                // the model the commands run: reduced where the config asks for it
+                Some(p) => linear_rotor::model(&linear_rotor::load(p, &common.set)?)?.0,
                 None => linear_rotor::preset()?,
             };
             let paths = linear_rotor::export_model(&rotor, &out, &stem)?;
@@ -672,8 +674,8 @@ fn run_linear_rotor_stability(
         }
         None => linear_rotor::default_omega_max(&cfg)?,
     };
-    let r = linear_rotor::stability(&cfg, omega_max, samples)?;
-    emit(format, linear_rotor::stability_json(&cfg, &r, omega_max)?, linear_rotor::stability_table(&cfg, &r, omega_max)?)
+    let (r, red) = linear_rotor::stability(&cfg, omega_max, samples)?;
+    emit(format, linear_rotor::stability_json(&cfg, &r, &red, omega_max)?, linear_rotor::stability_table(&cfg, &r, &red, omega_max)?)
 }
 
 /// `simulate` on a linear rotor config ([`linear_rotor`]).
@@ -687,7 +689,8 @@ fn run_linear_rotor_simulate(root: &toml::Table, config: Option<&std::path::Path
     let out = outfile::resolve(&out, "simulation.csv");
     outfile::Outputs::new().inputs(config).output("--out", &out).check()?;
     let _ = ctrlc::set_handler(|| sim::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
-    let (summary, path, wall, default) = linear_rotor::run_to_csv(&cfg, omega_max, dt, &out, &|| sim::INTERRUPTED.load(std::sync::atomic::Ordering::Relaxed))?;
+    let (summary, path, wall, default, red) =
+        linear_rotor::run_to_csv(&cfg, omega_max, dt, &out, &|| sim::INTERRUPTED.load(std::sync::atomic::Ordering::Relaxed))?;
     if default {
         output::note(&format!(
             "note: the config has no [drive]: running up from rest at constant acceleration to {} rad/s in 1000 revolutions; give [drive] to choose the run",
@@ -695,7 +698,7 @@ fn run_linear_rotor_simulate(root: &toml::Table, config: Option<&std::path::Path
         ));
     }
     autobal::limits::check_finite("the summary", &summary)?;
-    emit(format, linear_rotor::simulate_json(&cfg, &summary, wall), linear_rotor::simulate_table(&summary, wall))?;
+    emit(format, linear_rotor::simulate_json(&cfg, &summary, &red, wall), linear_rotor::simulate_table(&summary, &red, wall))?;
     output::note(&format!("wrote {}", path.display()));
     if let Some(st) = summary.stopped {
         anyhow::bail!("{st}: the samples up to then are kept in {}", path.display());

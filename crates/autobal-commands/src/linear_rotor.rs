@@ -11,6 +11,7 @@ use anyhow::{anyhow, bail, Result};
 use autobal::analysis::{Kind, Verdict};
 use autobal::error::fmt_num;
 use autobal::linear_rotor::config::{export, linear_rotor, LinearRotorConfig};
+use autobal::linear_rotor::reduce::{reduce, Reduction};
 use autobal::linear_rotor::runup::{simulate, RunSample, RunSettings, RunSummary};
 use autobal::linear_rotor::LinearRotor;
 use autobal::rotor_stability::{speed_grid, RotorStability};
@@ -102,10 +103,68 @@ fn speed_text(w: f64) -> String {
     format!("{} rad/s ({} rpm)", fmt_num(crate::num::round_sig(w, 6).unwrap_or(w)), fmt_num(crate::num::round_sig(rpm(w), 6).unwrap_or(w)))
 }
 
-/// `stability`: the balanced state over `(0, omega_max]` with `samples` speeds.
-pub fn stability(cfg: &LinearRotorConfig, omega_max: f64, samples: usize) -> Result<RotorStability> {
+/// The rotor the commands run: the config's, or its reduction (`linear_rotor.modes`).
+pub fn model(cfg: &LinearRotorConfig) -> Result<(LinearRotor, Option<Reduction>)> {
+    match cfg.modes {
+        None => Ok((cfg.rotor.clone(), None)),
+        Some(p) => {
+            let r = reduce(&cfg.rotor, p, &[])?;
+            Ok((r.rotor.clone(), Some(r)))
+        }
+    }
+}
+
+/// The reduction's JSON: sizes, cut-off, and the lowest natural frequencies with their interval
+/// and estimated error.
+pub fn reduction_json(r: &Option<Reduction>) -> Value {
+    match r {
+        None => Value::Null,
+        Some(r) => json!({
+            "dofs_full": r.dofs.0,
+            "dofs_reduced": r.dofs.1,
+            "boundary_nodes": r.boundary,
+            "mode_pairs": r.mode_pairs,
+            "cutoff": r.cutoff,
+            "first_neglected": r.first_neglected,
+            "frequencies": r.frequencies.iter().take(8).collect::<Vec<_>>(),
+        }),
+    }
+}
+
+/// The reduction in one or two lines of the table.
+pub fn reduction_text(r: &Option<Reduction>) -> String {
+    let Some(r) = r else { return String::new() };
+    let mut s = format!(
+        "reduced: {} of {} DOFs (boundary nodes {:?} physical, {} interior mode pairs up to {}; first neglected {})\n",
+        r.dofs.1,
+        r.dofs.0,
+        r.boundary,
+        r.mode_pairs,
+        r.cutoff.map_or("-".into(), speed_text),
+        r.first_neglected.map_or("none".into(), speed_text)
+    );
+    let est: Vec<String> = r
+        .frequencies
+        .iter()
+        .take(4)
+        .map(|f| {
+            format!(
+                "{} ± {}",
+                fmt_num(crate::num::round_sig(f.omega, 6).unwrap_or(f.omega)),
+                f.estimate.map_or("?".into(), |e| fmt_num(crate::num::round_sig(e, 2).unwrap_or(e)))
+            )
+        })
+        .collect();
+    s.push_str(&format!("reduced natural frequencies at rest without the balls (rad/s, ± the estimated error): {}\n", est.join(", ")));
+    s
+}
+
+/// `stability`: the balanced state over `(0, omega_max]` with `samples` speeds, on the model of
+/// [`model`].
+pub fn stability(cfg: &LinearRotorConfig, omega_max: f64, samples: usize) -> Result<(RotorStability, Option<Reduction>)> {
     let speeds = speed_grid(omega_max, samples)?;
-    Ok(autobal::linear_rotor::stability::stability_over_speed(&cfg.rotor, &speeds)?)
+    let (rotor, red) = model(cfg)?;
+    Ok((autobal::linear_rotor::stability::stability_over_speed(&rotor, &speeds)?, red))
 }
 
 /// The undamped natural frequencies (rad/s) of the rotor at rest with its balls as rings, the
@@ -116,8 +175,9 @@ pub fn natural_frequencies(rotor: &LinearRotor, count: usize) -> Result<Vec<f64>
     Ok(w)
 }
 
-/// The JSON of `stability`.
-pub fn stability_json(cfg: &LinearRotorConfig, r: &RotorStability, omega_max: f64) -> Result<Value> {
+/// The JSON of `stability`; the natural frequencies (with the balls as rings) are those of the
+/// model analysed (the reduced one where the config reduces).
+pub fn stability_json(cfg: &LinearRotorConfig, r: &RotorStability, red: &Option<Reduction>, omega_max: f64) -> Result<Value> {
     let ranges: Vec<Value> = r
         .stable_ranges
         .iter()
@@ -129,7 +189,8 @@ pub fn stability_json(cfg: &LinearRotorConfig, r: &RotorStability, omega_max: f6
         "source": cfg.source,
         "dofs": cfg.rotor.dofs(),
         "balls": cfg.rotor.total_balls(),
-        "natural_frequencies": natural_frequencies(&cfg.rotor, 6)?,
+        "natural_frequencies": natural_frequencies(red.as_ref().map_or(&cfg.rotor, |r| &r.rotor), 6)?,
+        "reduction": reduction_json(red),
         "stationary_state": r.kind,
         "speed_unit": "rad/s",
         "omega_max": omega_max,
@@ -141,7 +202,7 @@ pub fn stability_json(cfg: &LinearRotorConfig, r: &RotorStability, omega_max: f6
 }
 
 /// The table of `stability`.
-pub fn stability_table(cfg: &LinearRotorConfig, r: &RotorStability, omega_max: f64) -> Result<String> {
+pub fn stability_table(cfg: &LinearRotorConfig, r: &RotorStability, red: &Option<Reduction>, omega_max: f64) -> Result<String> {
     let mut s = String::from("Linear rotor: the balanced state's exact linear stability over speed\n");
     s.push_str(&format!(
         "model: {} DOFs ({}), {} balancer plane(s) with {} balls, {} unbalance(s); {}\n",
@@ -155,8 +216,9 @@ pub fn stability_table(cfg: &LinearRotorConfig, r: &RotorStability, omega_max: f
             Kind::PeriodicOrbit => "anisotropic: a periodic orbit of half a revolution (Floquet multipliers)",
         }
     ));
-    let wn = natural_frequencies(&cfg.rotor, 4)?;
+    let wn = natural_frequencies(red.as_ref().map_or(&cfg.rotor, |r| &r.rotor), 4)?;
     s.push_str(&format!("natural frequencies at rest, balls as rings: {}\n", wn.iter().map(|w| speed_text(*w)).collect::<Vec<_>>().join(", ")));
+    s.push_str(&reduction_text(red));
     if r.stable_ranges.is_empty() {
         s.push_str(&format!("stable: nowhere in (0, {}]\n", speed_text(omega_max)));
     }
@@ -216,17 +278,32 @@ fn csv_row(s: &RunSample) -> String {
 }
 
 /// `simulate`: run and write the samples as CSV to `out` (complete rows, also when stopped).
-pub fn run_to_csv(cfg: &LinearRotorConfig, omega_max: f64, dt: Option<f64>, out: &Path, cancel: &dyn Fn() -> bool) -> Result<(RunSummary, PathBuf, f64, bool)> {
+pub fn run_to_csv(
+    cfg: &LinearRotorConfig,
+    omega_max: f64,
+    dt: Option<f64>,
+    out: &Path,
+    cancel: &dyn Fn() -> bool,
+) -> Result<(RunSummary, PathBuf, f64, bool, Option<Reduction>)> {
     let (drive, t_end, default) = drive_of(cfg, omega_max);
+    let (rotor, red) = model(cfg)?;
     let ig = &cfg.integration;
     let dt = dt.unwrap_or(if cfg.drive.is_some() { ig.dt } else { t_end / 2000.0 });
-    let settings =
-        RunSettings { t_end, dt, rtol: ig.rtol, atol: ig.atol, method: ig.method, max_steps: ig.max_steps.unwrap_or(10_000_000), max_wall_s: ig.max_wall_s };
+    let settings = RunSettings {
+        t_end,
+        dt,
+        rtol: ig.rtol,
+        atol: ig.atol,
+        method: ig.method,
+        max_steps: ig.max_steps.unwrap_or(10_000_000),
+        max_wall_s: ig.max_wall_s,
+        physical_nodes: red.as_ref().map(|r| r.boundary.len()),
+    };
     let mut w = outfile::Staged::create("--out", out)?;
     writeln!(w, "{}", csv_header(&cfg.rotor))?;
     let mut err = None;
     let start = std::time::Instant::now();
-    let summary = simulate(&cfg.rotor, &drive, &settings, Some(cancel), |s| match writeln!(w, "{}", csv_row(s)) {
+    let summary = simulate(&rotor, &drive, &settings, Some(cancel), |s| match writeln!(w, "{}", csv_row(s)) {
         Ok(()) => true,
         Err(e) => {
             err = Some(e);
@@ -237,13 +314,14 @@ pub fn run_to_csv(cfg: &LinearRotorConfig, omega_max: f64, dt: Option<f64>, out:
         bail!("--out {}: cannot write: {e}", out.display());
     }
     let wall = start.elapsed().as_secs_f64();
-    Ok((summary, w.commit()?, wall, default))
+    Ok((summary, w.commit()?, wall, default, red))
 }
 
 /// The JSON summary of `simulate`.
-pub fn simulate_json(cfg: &LinearRotorConfig, s: &RunSummary, wall: f64) -> Value {
+pub fn simulate_json(cfg: &LinearRotorConfig, s: &RunSummary, red: &Option<Reduction>, wall: f64) -> Value {
     json!({
         "model": "linear",
+        "reduction": reduction_json(red),
         "dofs": cfg.rotor.dofs(),
         "balls": cfg.rotor.total_balls(),
         "t_end_reached": s.t,
@@ -257,8 +335,9 @@ pub fn simulate_json(cfg: &LinearRotorConfig, s: &RunSummary, wall: f64) -> Valu
 }
 
 /// The table of `simulate`.
-pub fn simulate_table(s: &RunSummary, wall: f64) -> String {
+pub fn simulate_table(s: &RunSummary, red: &Option<Reduction>, wall: f64) -> String {
     let mut t = String::from("Linear rotor: run in time (fixed axes, prescribed speed)\n");
+    t.push_str(&reduction_text(red));
     t.push_str(&format!("reached t = {} s in {} steps ({} s)\n", fmt_num(s.t), s.steps, fmt_num(crate::num::round_sig(wall, 3).unwrap_or(wall))));
     if s.peak.value.is_finite() {
         t.push_str(&format!(

@@ -140,7 +140,7 @@ fn errors_name_key_file_and_line() {
                 // a torque drive is read, and refused where a run needs it
                 assert!(want.is_empty());
                 let (d, t) = c.drive.unwrap();
-                let s = RunSettings { t_end: t, dt: 0.1, rtol: 1e-8, atol: 1e-9, method: Method::Auto, max_steps: 10, max_wall_s: None };
+                let s = RunSettings { t_end: t, dt: 0.1, rtol: 1e-8, atol: 1e-9, method: Method::Auto, max_steps: 10, max_wall_s: None, physical_nodes: None };
                 let e = simulate(&c.rotor, &d, &s, None, |_| true).unwrap_err().to_string();
                 assert!(e.starts_with("drive.kind: the linear rotor runs under a prescribed speed"), "{e}");
             }
@@ -245,7 +245,8 @@ fn jeffcott_run_up_equals_the_planar_model() {
     })
     .unwrap();
     let mut ours = vec![];
-    let rs = RunSettings { t_end, dt: settings.dt, rtol: 1e-10, atol: 1e-12, method: Method::Auto, max_steps: 10_000_000, max_wall_s: None };
+    let rs =
+        RunSettings { t_end, dt: settings.dt, rtol: 1e-10, atol: 1e-12, method: Method::Auto, max_steps: 10_000_000, max_wall_s: None, physical_nodes: None };
     let sum = simulate(&rotor, &drive, &rs, None, |s| {
         ours.push((s.t, s.planes[0].0, s.planes[0].1, s.psi.clone()));
         true

@@ -52,7 +52,7 @@ use toml::{Table, Value};
 const KEYS: &[(&str, &[&str])] = &[
     (
         "linear_rotor",
-        &["layout", "m", "c", "g", "k", "dofs", "rotary_inertia", "gyroscopic", "omega_max", "elements", "disks", "bearings", "unbalance", "balancer"],
+        &["layout", "m", "c", "g", "k", "dofs", "rotary_inertia", "gyroscopic", "omega_max", "modes", "elements", "disks", "bearings", "unbalance", "balancer"],
     ),
     ("elements", &["length", "diameter", "inner_diameter", "area", "inertia", "e", "rho", "count"]),
     ("disks", &["node", "mass", "id", "ip"]),
@@ -70,6 +70,9 @@ pub struct LinearRotorConfig {
     pub source: &'static str,
     /// `linear_rotor.omega_max` (rad/s): the top of speed axes, if given.
     pub omega_max: Option<f64>,
+    /// `linear_rotor.modes`: reduce to this many interior mode pairs ([`super::reduce`]);
+    /// `None` (absent or 0): the full model.
+    pub modes: Option<usize>,
     /// `[drive]` and its `t_end`, if the config has the table.
     pub drive: Option<(Drive, f64)>,
     /// `[integration]` (its `dt` default from `t_end`).
@@ -363,11 +366,13 @@ pub fn linear_rotor(root: &Table, load: &mut dyn FnMut(&str) -> std::result::Res
     if let Some(w) = omega_max {
         crate::error::positive("linear_rotor.omega_max", w)?;
     }
+    // 0: the full model (so that `--set linear_rotor.modes=0` undoes a config's reduction)
+    let modes = top.usize("modes")?.filter(|m| *m > 0);
     let d = Section::of(root, "drive");
     let drive = if d.table.is_some() { Some(drive(&d)?) } else { None };
     let t_end = drive.as_ref().map_or(10.0, |d| d.1);
     let integration = integration(&Section::of(root, "integration"), t_end)?;
-    Ok(LinearRotorConfig { rotor, source, omega_max, drive, integration })
+    Ok(LinearRotorConfig { rotor, source, omega_max, modes, drive, integration })
 }
 
 /// The DOF table: `names[i]` must name DOF `i` in ROSS's order (`x3`, `alpha3`, …).

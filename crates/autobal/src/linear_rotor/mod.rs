@@ -105,6 +105,7 @@
 
 pub mod config;
 pub mod field;
+pub mod reduce;
 pub mod runup;
 pub mod shaft;
 pub mod stability;

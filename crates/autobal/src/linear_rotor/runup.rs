@@ -131,6 +131,9 @@ pub struct RunSettings {
     pub max_steps: u64,
     /// Wall-clock budget (s).
     pub max_wall_s: Option<f64>,
+    /// The first nodes that are physical (a reduced rotor's boundary nodes,
+    /// [`super::reduce`]); `None`: every node. [`RunSample::max_radius`] looks at these.
+    pub physical_nodes: Option<usize>,
 }
 
 /// One sample of a run.
@@ -142,7 +145,7 @@ pub struct RunSample {
     pub omega: f64,
     /// Per balancer plane, the race centre's `(x, y)` in fixed axes (m).
     pub planes: Vec<(f64, f64)>,
-    /// The largest translation radius `sqrt(x² + y²)` over the nodes (m).
+    /// The largest translation radius `sqrt(x² + y²)` over the (physical) nodes (m).
     pub max_radius: f64,
     /// The balls' angles relative to the rotor (rad, all planes in order).
     pub psi: Vec<f64>,
@@ -185,6 +188,7 @@ pub fn plane_positions(rotor: &LinearRotor, y: &[f64]) -> Vec<(f64, f64)> {
 
 struct RunHooks<'a, F: FnMut(&RunSample) -> bool> {
     rotor: &'a LinearRotor,
+    nodes: usize,
     drive: &'a Drive,
     sink: F,
     peak: Peak<f64>,
@@ -200,7 +204,7 @@ impl<F: FnMut(&RunSample) -> bool> Hooks for RunHooks<'_, F> {
         let omega = self.drive.kinematics(t).0;
         let planes = plane_positions(r, y);
         let per = r.layout.per_node();
-        let max_radius = (0..r.nodes).map(|k| y[k * per].hypot(y[k * per + 1])).fold(0.0, f64::max);
+        let max_radius = (0..self.nodes).map(|k| y[k * per].hypot(y[k * per + 1])).fold(0.0, f64::max);
         if let Some(p) = planes.first() {
             self.last_radius = p.0.hypot(p.1);
             self.peak.observe(self.last_radius, t, omega);
@@ -266,7 +270,15 @@ pub fn simulate(
     let mut y = initial_state(rotor);
     let breakpoints = drive.breakpoints();
     let timeline = Timeline { t_end: settings.t_end, dt: settings.dt, breakpoints: &breakpoints };
-    let mut hooks = RunHooks { rotor, drive, sink, peak: Peak::new(0.0), peak_any: Peak::new(0.0), last_radius: 0.0 };
+    let mut hooks = RunHooks {
+        rotor,
+        nodes: settings.physical_nodes.unwrap_or(rotor.nodes).min(rotor.nodes),
+        drive,
+        sink,
+        peak: Peak::new(0.0),
+        peak_any: Peak::new(0.0),
+        last_radius: 0.0,
+    };
     let out = run(&mut solver, &mut y, &timeline, &mut hooks);
     let stopped = match &out.status {
         Status::Completed | Status::Event(_) => None,
