@@ -103,6 +103,7 @@
 //! - [`shaft::ShaftBuilder`]: Euler–Bernoulli beam elements, rigid disks, linear isotropic
 //!   bearings.
 
+pub mod campbell;
 pub mod config;
 pub mod field;
 pub mod reduce;
