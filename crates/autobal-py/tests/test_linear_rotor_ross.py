@@ -1,4 +1,5 @@
-"""``autobal.from_ross`` and the built-in shaft builder against ROSS (issue 19).
+"""``autobal.from_ross`` and the built-in shaft builder against ROSS (issue 19), and
+``autobal.LinearRotor`` against the CLI (no ROSS needed).
 
 ROSS (``pip install ross-rotordynamics``) is not in requirements-test.txt: it pulls about
 1.2 GB (numba, llvmlite, scikit-learn, pyarrow, matplotlib, CoolProp, google-generativeai, …;
@@ -90,3 +91,39 @@ def test_builder_equals_ross_on_the_same_rotor(tmp_path):
         scale = np.max(np.abs(theirs))
         assert np.max(np.abs(ours - theirs)) <= 1e-12 * scale, (name, np.max(np.abs(ours - theirs)) / scale)
     assert ref.dofs == 28
+
+
+def test_linear_rotor_stability_equals_the_cli(tmp_path):
+    """Without ROSS: paper 004's rotor (race centred) exported by ``autobal export-model`` and
+    built in Python from the same matrices: the same stable ranges and points as the CLI's
+    ``stability`` on the exported config, number for number."""
+    exe = os.environ.get("AUTOBAL_BIN", str(ROOT / "target" / "debug" / "autobal"))
+    if not Path(exe).exists():
+        if os.environ.get("AUTOBAL_REQUIRE_PYTHON"):
+            raise FileNotFoundError(f"{exe}: build the CLI first (cargo build -p autobal-cli)")
+        pytest.skip("needs the autobal binary")
+    subprocess.run([exe, "export-model", "--out", str(tmp_path), "--stem", "j"], check=True, capture_output=True)
+    cli = json.loads(subprocess.run([exe, "stability", "--config", str(tmp_path / "j.toml"), "--omega-max", "600 rad/s", "--samples", "20", "--format", "json"], check=True, capture_output=True, text=True).stdout)
+
+    def mtx(name):
+        lines = [l for l in (tmp_path / f"j_{name}.mtx").read_text().splitlines() if not l.startswith("%")]
+        n = int(lines[0].split()[0])
+        a = np.zeros((n, n))
+        for l in lines[1:]:
+            i, j, v = l.split()
+            a[int(i) - 1, int(j) - 1] = float(v)
+        return a
+
+    lr = autobal.LinearRotor(mtx("M"), mtx("C"), mtx("G"), mtx("K"), per_node=2)
+    import tomllib
+
+    cfg = tomllib.loads((tmp_path / "j.toml").read_text())["linear_rotor"]
+    for u in cfg["unbalance"]:
+        lr.add_unbalance(u["node"], u["me"], u["phase"], u["offset"])
+    for b in cfg["balancer"]:
+        lr.add_balancer(b["node"], b["radius"], b["balls"], b["ball_mass"], b["drag"], b["offset"])
+    py = json.loads(lr.stability(600.0, samples=20))
+    # the CLI's ranges also carry rpm
+    assert [(s["from"], s["to"]) for s in py["stable_ranges"]] == [(s["from"], s["to"]) for s in cli["stable_ranges"]]
+    assert py["points"] == cli["points"]
+    assert py["stable_ranges"], "paper 004's rotor balances above its critical speed"
