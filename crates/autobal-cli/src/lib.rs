@@ -2,7 +2,7 @@
 //! `autobal-commands`, which reads the config, runs the library's analyses and writes tables,
 //! JSON, figures and the HTML report.
 
-use autobal_commands::{config, figures, general, general_campbell, linear, map, outfile, output, parquet, report, sim, spatial_sim, sweep};
+use autobal_commands::{config, figures, general, general_campbell, linear, linear_rotor, map, outfile, output, parquet, report, sim, spatial_sim, sweep};
 
 use anyhow::Result;
 use autobal::control::Control;
@@ -254,6 +254,19 @@ enum Command {
     Sweep(sweep::SweepArgs),
     /// Merge the outputs of `autobal sweep --shard K/N` into the unsharded sweep's STEM.csv/json
     Merge(sweep::MergeArgs),
+    /// Write a linear rotor ([linear_rotor]) as a config plus Matrix Market files (M, C, G, K):
+    /// the config's rotor (reduced if it sets linear_rotor.modes), or without --config paper
+    /// 004's rotor (race centred) as a Jeffcott rotor
+    ExportModel {
+        #[command(flatten)]
+        common: Common,
+        /// Folder to write STEM.toml and STEM_{M,C,G,K}.mtx into (created if missing)
+        #[arg(long, short, default_value = "model")]
+        out: PathBuf,
+        /// File name stem
+        #[arg(long, default_value = "rotor")]
+        stem: String,
+    },
     /// Basins of the spatial rotor: where runs end over a grid of the first two balls' initial angles (parallel; CSV)
     Basins {
         /// Config file with the spatial rotor's tables plus [drive] (e.g. examples/spatial.toml);
@@ -340,7 +353,10 @@ fn run(cli: Cli, control: &Control) -> Result<()> {
             emit(format, output::ranges_json(&cfg), output::ranges_table(&cfg))
         }
         Command::Stability { common, format, lin, samples, svg, route } => {
-            let (root, _) = config::read_set(common.config.as_deref(), &common.set)?;
+            let (root, _) = linear_rotor::read_set(common.config.as_deref(), &common.set)?;
+            if linear_rotor::is_linear(&root) {
+                return run_linear_rotor_stability(&root, common.config.as_deref(), format, lin, samples, svg);
+            }
             if route == RouteArg::General || general::needs_general_route(&root) {
                 return run_general_stability(&root, format, lin, samples, svg);
             }
@@ -394,6 +410,15 @@ fn run(cli: Cli, control: &Control) -> Result<()> {
             run_map(common, x, y, omega, balls, quantity, out, threads, boundary, route, control)
         }
         Command::Simulate { config, set, dt, out, parquet, format } => run_simulate(config, set, dt, out, parquet, format, control),
+        Command::ExportModel { common, out, stem } => {
+            let rotor = match common.config.as_deref() {
+                // the model the commands run: reduced where the config asks for it
+                Some(p) => linear_rotor::model(&linear_rotor::load(p, &common.set)?)?.0,
+                None => linear_rotor::preset()?,
+            };
+            let paths = linear_rotor::export_model(&rotor, &out, &stem)?;
+            output::print(&format!("wrote {}\n", paths.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")))
+        }
         Command::Sweep(a) => sweep::run(a, control),
         Command::Merge(a) => sweep::merge(a, control),
         Command::Basins { config, set, n, out, format, threads } => run_basins(config, set, n, out, format, threads, control),
@@ -643,8 +668,16 @@ fn simulation_outputs(config: Option<&std::path::Path>, out: &std::path::Path, p
 
 fn run_simulate(config: Option<PathBuf>, set: Vec<String>, dt: Option<f64>, out: PathBuf, parquet: bool, format: Format, control: &Control) -> Result<()> {
     let (mut root, source) = config::read_with_default(config.as_deref(), config::DEFAULT_PLANAR, "embedded default (examples/planar.toml)")?;
+    let linear = linear_rotor::is_linear(&root);
     for s in &set {
-        config::apply_set(&mut root, s)?;
+        if linear {
+            linear_rotor::apply_set(&mut root, s)?;
+        } else {
+            config::apply_set(&mut root, s)?;
+        }
+    }
+    if linear {
+        return run_linear_rotor_simulate(&root, config.as_deref(), dt, out, parquet, format, control);
     }
     if autobal::config::is_spatial(&root) {
         return run_spatial(&root, &source, config.as_deref(), dt, out, parquet, format, control);
@@ -732,6 +765,74 @@ fn run_spatial(
     eprintln!("wrote {} and {} plots ({})", out.display(), plots.len(), plots.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", "));
     if let Some(st) = summary.stopped {
         anyhow::bail!("{st}: the samples up to then are kept in {}", out.display());
+    }
+    Ok(())
+}
+
+/// `stability` on a linear rotor config ([`linear_rotor`]).
+fn run_linear_rotor_stability(
+    root: &toml::Table,
+    config: Option<&std::path::Path>,
+    format: Format,
+    lin: LinearArgs,
+    samples: Option<usize>,
+    svg: Option<PathBuf>,
+) -> Result<()> {
+    if lin.balls == BallsArg::Locked {
+        anyhow::bail!("--balls locked: a linear rotor is analysed with its balls free");
+    }
+    if svg.is_some() {
+        anyhow::bail!("--svg: not yet drawn for a linear rotor config (use --format json)");
+    }
+    let dir = config.and_then(|p| p.parent()).unwrap_or(std::path::Path::new("."));
+    let cfg = linear_rotor::from_table(root, dir)?;
+    let samples = samples.unwrap_or(if cfg.rotor.is_isotropic() { 200 } else { 50 });
+    if !(10..=1_000_000).contains(&samples) {
+        anyhow::bail!("--samples: must lie between 10 and 1000000, got {samples}");
+    }
+    let omega_max = match lin.omega_max {
+        Some(t) => {
+            let s = autobal::units::parse_speed("--omega-max", &t)?;
+            let w = s.value * s.unit.rad_s().ok_or_else(|| anyhow::anyhow!("--omega-max: give a speed with its unit (rad/s, rpm, Hz) for a linear rotor"))?;
+            check_speed("--omega-max", w)?;
+            w
+        }
+        None => linear_rotor::default_omega_max(&cfg)?,
+    };
+    let (r, red) = linear_rotor::stability(&cfg, omega_max, samples)?;
+    emit(format, linear_rotor::stability_json(&cfg, &r, &red, omega_max)?, linear_rotor::stability_table(&cfg, &r, &red, omega_max)?)
+}
+
+/// `simulate` on a linear rotor config ([`linear_rotor`]).
+fn run_linear_rotor_simulate(
+    root: &toml::Table,
+    config: Option<&std::path::Path>,
+    dt: Option<f64>,
+    out: PathBuf,
+    parquet: bool,
+    format: Format,
+    control: &Control,
+) -> Result<()> {
+    if parquet {
+        anyhow::bail!("--parquet: not yet written for a linear rotor config (the CSV is)");
+    }
+    let dir = config.and_then(|p| p.parent()).unwrap_or(std::path::Path::new("."));
+    let cfg = linear_rotor::from_table(root, dir)?;
+    let omega_max = linear_rotor::default_omega_max(&cfg)?;
+    let out = outfile::resolve(&out, "simulation.csv");
+    outfile::Outputs::new().inputs(config).output("--out", &out).check()?;
+    let (summary, path, wall, default, red) = linear_rotor::run_to_csv(&cfg, omega_max, dt, &out, control)?;
+    if default {
+        output::note(&format!(
+            "note: the config has no [drive]: running up from rest at constant acceleration to {} rad/s in 1000 revolutions; give [drive] to choose the run",
+            autobal::error::fmt_num(omega_max)
+        ));
+    }
+    autobal::limits::check_finite("the summary", &summary)?;
+    emit(format, linear_rotor::simulate_json(&cfg, &summary, &red, wall), linear_rotor::simulate_table(&summary, &red, wall))?;
+    output::note(&format!("wrote {}", path.display()));
+    if let Some(st) = summary.stopped {
+        anyhow::bail!("{st}: the samples up to then are kept in {}", path.display());
     }
     Ok(())
 }

@@ -22,6 +22,7 @@ mod fuzz;
 pub mod general;
 pub mod general_campbell;
 pub mod linear;
+pub mod linear_rotor;
 pub mod map;
 pub mod mapfig;
 pub mod num;

@@ -16,6 +16,8 @@ use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 use std::time::Duration;
 
+mod linear_rotor;
+
 /// Most cells of a stability map returned as arrays (10 bytes each: 500 MB).
 const MAX_MAP_CELLS: usize = 50_000_000;
 
@@ -733,6 +735,7 @@ fn _autobal(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("DEFAULT_PLANAR", config::DEFAULT_PLANAR)?;
     m.add_class::<PySpatial>()?;
     m.add_class::<PyPlanar>()?;
+    m.add_class::<linear_rotor::PyLinearRotor>()?;
     m.add_function(wrap_pyfunction!(spatial_config, m)?)?;
     m.add_function(wrap_pyfunction!(planar_config, m)?)?;
     m.add_function(wrap_pyfunction!(spatial_report, m)?)?;

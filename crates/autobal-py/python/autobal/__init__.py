@@ -36,6 +36,8 @@ from . import _autobal
 from .errors import AutobalError, Interrupted, InvalidParameter, NoConvergence, SimulationError, TooLarge
 from ._sweep import _axes, columns, simulate_batch, sweep, grid
 from ._results import COMMANDS, COMMANDS_WITH_FIGURES, Report, Result, report
+from ._ross import from_ross
+from ._autobal import LinearRotor
 
 __version__: str = _autobal.__version__
 #: Columns of a planar run's summary in :func:`simulate_batch` and :func:`sweep`, in order.
@@ -68,6 +70,8 @@ __all__ = [
     "NoConvergence",
     "SimulationError",
     "Interrupted",
+    "from_ross",
+    "LinearRotor",
 ]
 
 ConfigLike = Union[None, str, "os.PathLike[str]", Mapping[str, Any]]

@@ -60,11 +60,22 @@ pub struct LinearRotorField {
     d: Vec<f64>,
 }
 
+/// The rotor's motion at one time: speed `Ω`, acceleration `Ω̇`, the frame's rate `ν` and the
+/// rotor's angle in the frame `χ` (`(Ω − ν) t` at constant speed; `φ(t)` of a drive in fixed
+/// axes, [`super::runup`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Kin {
+    pub w: f64,
+    pub wdot: f64,
+    pub nu: f64,
+    pub chi: f64,
+}
+
 /// The structure's matrices in the frame at one time: `M_r`, `(C + ΩG)_r`, `K_r`.
-struct Mats<'a> {
-    m: std::borrow::Cow<'a, [f64]>,
-    d: std::borrow::Cow<'a, [f64]>,
-    k: std::borrow::Cow<'a, [f64]>,
+pub(crate) struct Mats<'a> {
+    pub m: std::borrow::Cow<'a, [f64]>,
+    pub d: std::borrow::Cow<'a, [f64]>,
+    pub k: std::borrow::Cow<'a, [f64]>,
 }
 
 impl LinearRotorField {
@@ -72,6 +83,8 @@ impl LinearRotorField {
     pub fn new(rotor: &LinearRotor, omega: f64, frame: Frame) -> Result<Self> {
         rotor.validate()?;
         finite("omega", omega)?;
+        // the speed-dependent bearings at this speed, folded into C and K
+        let rotor = &if rotor.speed_bearings.is_empty() { rotor.clone() } else { rotor.at_speed(omega) };
         let mut balls = vec![];
         for b in &rotor.balancers {
             let (ix, iy) = (rotor.dof(b.node, super::Direction::X), rotor.dof(b.node, super::Direction::Y));
@@ -113,6 +126,12 @@ impl LinearRotorField {
         }
     }
 
+    /// The kinematics at constant speed at time `t`.
+    fn kin(&self, t: f64) -> Kin {
+        let nu = self.nu();
+        Kin { w: self.omega, wdot: 0.0, nu, chi: (self.omega - nu) * t }
+    }
+
     /// `M_r = Tᵀ M T` etc. at time `t`, `T = T(ν t)` (the matrices themselves where the frame
     /// does not turn or the structure is isotropic).
     fn mats(&self, t: f64) -> Mats<'_> {
@@ -147,11 +166,16 @@ impl LinearRotorField {
     /// The unbalance forces in the frame's axes at time `t` (length `N`): `m e Ω² e^{i(phase + χ)}`
     /// at the node, `f_α = −z F_y`, `f_β = z F_x`; `χ = (Ω − ν) t`.
     pub fn forcing(&self, t: f64) -> Vec<f64> {
+        self.forcing_kin(&self.kin(t))
+    }
+
+    /// The unbalance forces for kinematics `k`: `m e (Ω² − i Ω̇) e^{i(phase + χ)}` (the
+    /// unbalance mass's inertia force `−m r̈`, `r = e e^{iφ}`).
+    pub(crate) fn forcing_kin(&self, k: &Kin) -> Vec<f64> {
         let r = &self.rotor;
-        let chi = (self.omega - self.nu()) * t;
         let mut f = vec![0.0; r.dofs()];
         for u in &r.unbalances {
-            let force = C::from_polar(u.me * self.omega * self.omega, u.phase + chi);
+            let force = C::new(u.me * k.w * k.w, -u.me * k.wdot) * C::from_polar(1.0, u.phase + k.chi);
             let per = r.layout.per_node();
             f[u.node * per] += force.re;
             f[u.node * per + 1] += force.im;
@@ -165,12 +189,12 @@ impl LinearRotorField {
 
     /// The residual `R(x) − A a` of the `N + Σ n` equations (generalised forces minus inertia
     /// forces, module docs) at state `x` and accelerations `acc`, generic over the number type.
-    fn residual<T: Real>(&self, mats: &Mats, t: f64, x: &[T], acc: &[f64], out: &mut [T]) {
+    pub(crate) fn residual<T: Real>(&self, mats: &Mats, kin: &Kin, x: &[T], acc: &[f64], out: &mut [T]) {
         let n = self.rotor.dofs();
         let nc = self.coords();
-        let nu = self.nu();
-        let w = self.omega;
-        let chi = (w - nu) * t;
+        let nu = kin.nu;
+        let w = kin.w;
+        let chi = kin.chi;
         let (p, pd) = (&x[..n], &x[nc..nc + n]);
         // v = ṗ + ν J p, a_s = p̈ + 2ν J ṗ − ν² p (J (a, b) = (−b, a) per pair)
         let mut v = Vec::with_capacity(n);
@@ -182,7 +206,7 @@ impl LinearRotorField {
             a.push(pd[j] * (-2.0 * nu) - p[i] * (nu * nu) + acc[i]);
             a.push(pd[i] * (2.0 * nu) - p[j] * (nu * nu) + acc[j]);
         }
-        let f = self.forcing(t);
+        let f = self.forcing_kin(kin);
         for i in 0..n {
             let mut s = T::cst(f[i]);
             let (mr, dr, kr) = (&mats.m[i * n..(i + 1) * n], &mats.d[i * n..(i + 1) * n], &mats.k[i * n..(i + 1) * n]);
@@ -204,7 +228,8 @@ impl LinearRotorField {
             let (s, c) = (psi + chi).sin_cos();
             let rate = psid + w;
             let w2 = rate * rate;
-            let pdd = acc[n + g];
+            // θ̈ = ψ̈ + Ω̇
+            let pdd = acc[n + g] + kin.wdot;
             let mr2 = b.m * b.r * b.r;
             // the race centre's acceleration a_u − z J ω̇ (J (a, b) = (−b, a))
             let (mut ax, mut ay) = (a[b.ix], a[b.iy]);
@@ -241,10 +266,9 @@ impl LinearRotorField {
     }
 
     /// The symmetric mass matrix `A(ψ)` of the `N + Σ n` accelerations at time `t` (module docs).
-    fn mass_matrix(&self, mats: &Mats, t: f64, x: &[f64]) -> Vec<f64> {
+    pub(crate) fn mass_matrix(&self, mats: &Mats, chi: f64, x: &[f64]) -> Vec<f64> {
         let n = self.rotor.dofs();
         let nc = self.coords();
-        let chi = (self.omega - self.nu()) * t;
         let mut a = vec![0.0; nc * nc];
         for i in 0..n {
             a[i * nc..i * nc + n].copy_from_slice(&mats.m[i * n..(i + 1) * n]);
@@ -289,11 +313,15 @@ impl LinearRotorField {
     /// The accelerations `(p̈, ψ̈)` at `(t, x)`: `A⁻¹ R` (`None` if `A` is singular, which a
     /// validated rotor's positive definite `M` rules out).
     pub fn accelerations(&self, t: f64, x: &[f64]) -> Option<Vec<f64>> {
-        let mats = self.mats(t);
+        self.accelerations_with(&self.mats(t), &self.kin(t), x)
+    }
+
+    /// [`LinearRotorField::accelerations`] for given matrices and kinematics.
+    pub(crate) fn accelerations_with(&self, mats: &Mats, kin: &Kin, x: &[f64]) -> Option<Vec<f64>> {
         let nc = self.coords();
         let mut r = vec![0.0; nc];
-        self.residual::<f64>(&mats, t, x, &vec![0.0; nc], &mut r);
-        let lu = Lu::factored(self.mass_matrix(&mats, t, x), nc)?;
+        self.residual::<f64>(mats, kin, x, &vec![0.0; nc], &mut r);
+        let lu = Lu::factored(self.mass_matrix(mats, kin.chi, x), nc)?;
         lu.solve(&mut r);
         Some(r)
     }
@@ -303,13 +331,13 @@ impl LinearRotorField {
     pub fn residuals(&self, t: f64, x: &[f64], acc: &[f64]) -> Vec<f64> {
         let mats = self.mats(t);
         let mut r = vec![0.0; self.coords()];
-        self.residual::<f64>(&mats, t, x, acc, &mut r);
+        self.residual::<f64>(&mats, &self.kin(t), x, acc, &mut r);
         r
     }
 
     /// The mass matrix `A(ψ)` at `(t, x)` (row-major, `(N + Σ n)²`). For checks.
     pub fn mass(&self, t: f64, x: &[f64]) -> Vec<f64> {
-        self.mass_matrix(&self.mats(t), t, x)
+        self.mass_matrix(&self.mats(t), self.kin(t).chi, x)
     }
 
     /// Displacement scale: `(Σ|m e| + Σ n m_b R) / m̄`, `m̄` the mean diagonal of `M` over the
@@ -430,6 +458,47 @@ impl LinearRotorField {
         }
         y
     }
+
+    /// The Jacobian of the first `2 N_c` components for given matrices and kinematics into the
+    /// row-major `jac` with row length `dim ≥ 2 N_c` (the columns beyond `2 N_c` untouched).
+    pub(crate) fn jacobian_with(&self, mats: &Mats, kin: &Kin, x: &[f64], jac: &mut [f64], dim: usize) {
+        let nc = self.coords();
+        let d2 = 2 * nc;
+        for r in 0..d2 {
+            jac[r * dim..r * dim + d2].iter_mut().for_each(|v| *v = 0.0);
+        }
+        for i in 0..nc {
+            jac[i * dim + nc + i] = 1.0;
+        }
+        let Some(lu) = Lu::factored(self.mass_matrix(mats, kin.chi, x), nc) else {
+            for r in nc..d2 {
+                jac[r * dim..r * dim + d2].iter_mut().for_each(|v| *v = f64::NAN);
+            }
+            return;
+        };
+        let mut acc = vec![0.0; nc];
+        self.residual::<f64>(mats, kin, x, &vec![0.0; nc], &mut acc);
+        lu.solve(&mut acc);
+        // ∂(R − A a)/∂x at the current a, SEEDS directions per pass; then A⁻¹ of each column
+        let mut xd = vec![Dual::<SEEDS>::cst(0.0); d2];
+        let mut out = vec![Dual::<SEEDS>::cst(0.0); nc];
+        let mut col = vec![0.0; nc];
+        for start in (0..d2).step_by(SEEDS) {
+            for (i, v) in xd.iter_mut().enumerate() {
+                *v = if i >= start && i < start + SEEDS { Dual::var(x[i], i - start) } else { Dual::cst(x[i]) };
+            }
+            self.residual(mats, kin, &xd, &acc, &mut out);
+            for k in 0..SEEDS.min(d2 - start) {
+                for (c, o) in col.iter_mut().zip(&out) {
+                    *c = o.d[k];
+                }
+                lu.solve(&mut col);
+                for (r, c) in col.iter().enumerate() {
+                    jac[(nc + r) * dim + start + k] = *c;
+                }
+            }
+        }
+    }
 }
 
 impl VectorField for LinearRotorField {
@@ -447,39 +516,7 @@ impl VectorField for LinearRotorField {
     }
 
     fn jacobian(&self, t: f64, x: &[f64], jac: &mut [f64]) {
-        let nc = self.coords();
-        let dim = 2 * nc;
-        let mats = self.mats(t);
-        jac.iter_mut().for_each(|v| *v = 0.0);
-        for i in 0..nc {
-            jac[i * dim + nc + i] = 1.0;
-        }
-        let Some(lu) = Lu::factored(self.mass_matrix(&mats, t, x), nc) else {
-            jac[nc * dim..].iter_mut().for_each(|v| *v = f64::NAN);
-            return;
-        };
-        let mut acc = vec![0.0; nc];
-        self.residual::<f64>(&mats, t, x, &vec![0.0; nc], &mut acc);
-        lu.solve(&mut acc);
-        // ∂(R − A a)/∂x at the current a, SEEDS directions per pass; then A⁻¹ of each column
-        let mut xd = vec![Dual::<SEEDS>::cst(0.0); dim];
-        let mut out = vec![Dual::<SEEDS>::cst(0.0); nc];
-        let mut col = vec![0.0; nc];
-        for start in (0..dim).step_by(SEEDS) {
-            for (i, v) in xd.iter_mut().enumerate() {
-                *v = if i >= start && i < start + SEEDS { Dual::var(x[i], i - start) } else { Dual::cst(x[i]) };
-            }
-            self.residual(&mats, t, &xd, &acc, &mut out);
-            for k in 0..SEEDS.min(dim - start) {
-                for (c, o) in col.iter_mut().zip(&out) {
-                    *c = o.d[k];
-                }
-                lu.solve(&mut col);
-                for (r, c) in col.iter().enumerate() {
-                    jac[(nc + r) * dim + start + k] = *c;
-                }
-            }
-        }
+        self.jacobian_with(&self.mats(t), &self.kin(t), x, jac, 2 * self.coords())
     }
 
     fn period(&self) -> Option<f64> {

@@ -103,8 +103,13 @@
 //! - [`shaft::ShaftBuilder`]: Euler–Bernoulli beam elements, rigid disks, linear isotropic
 //!   bearings.
 
+pub mod campbell;
+pub mod config;
 pub mod field;
+pub mod reduce;
+pub mod runup;
 pub mod shaft;
+pub mod stability;
 
 use crate::error::{finite, non_negative, positive, Error, Result};
 use crate::linalg::eigen_dyn;
@@ -200,6 +205,45 @@ pub struct BalancerPlane {
     pub offset: f64,
 }
 
+/// A bearing whose stiffness and damping depend on the speed: tables over `speeds` (rad/s,
+/// increasing), interpolated linearly between them and held constant outside; each entry
+/// `[xx, xy, yx, yy]` acts on the node's `(x, y)` (`K[x][y] = k_xy`, …), added to `K` and `C`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SpeedBearing {
+    /// Node index.
+    pub node: usize,
+    /// The speeds of the table (rad/s), increasing.
+    pub speeds: Vec<f64>,
+    /// Stiffness `[k_xx, k_xy, k_yx, k_yy]` at each speed (N/m).
+    pub k: Vec<[f64; 4]>,
+    /// Damping `[c_xx, c_xy, c_yx, c_yy]` at each speed (N·s/m).
+    pub c: Vec<[f64; 4]>,
+}
+
+impl SpeedBearing {
+    /// `(k, c)` at speed `omega` (linear interpolation in the table, held outside).
+    pub fn at(&self, omega: f64) -> ([f64; 4], [f64; 4]) {
+        let s = &self.speeds;
+        let last = s.len() - 1;
+        let (i, f) = if omega <= s[0] {
+            (0, 0.0)
+        } else if omega >= s[last] {
+            (last, 0.0)
+        } else {
+            let i = s.partition_point(|v| *v <= omega) - 1;
+            (i, (omega - s[i]) / (s[i + 1] - s[i]))
+        };
+        let lerp = |a: &[[f64; 4]]| -> [f64; 4] {
+            if f == 0.0 {
+                a[i]
+            } else {
+                std::array::from_fn(|j| a[i][j] + f * (a[i + 1][j] - a[i][j]))
+            }
+        };
+        (lerp(&self.k), lerp(&self.c))
+    }
+}
+
 /// The structural model `M q̈ + (C + Ω G) q̇ + K q = f` in fixed axes with its unbalances and
 /// balancer planes (module docs). Matrices row-major `N × N`, `N = nodes · layout.per_node()`.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -220,6 +264,8 @@ pub struct LinearRotor {
     pub unbalances: Vec<Unbalance>,
     /// Balancer planes.
     pub balancers: Vec<BalancerPlane>,
+    /// Bearings whose `k`, `c` depend on the speed, added to `K`, `C` at each speed.
+    pub speed_bearings: Vec<SpeedBearing>,
 }
 
 /// Largest number of DOFs accepted (dense matrices of `N²` entries).
@@ -229,7 +275,17 @@ impl LinearRotor {
     /// A structure of `nodes` nodes with zero matrices, no unbalance and no balancer.
     pub fn zeros(nodes: usize, layout: Layout) -> Self {
         let n = nodes * layout.per_node();
-        LinearRotor { nodes, layout, m: vec![0.0; n * n], c: vec![0.0; n * n], g: vec![0.0; n * n], k: vec![0.0; n * n], unbalances: vec![], balancers: vec![] }
+        LinearRotor {
+            nodes,
+            layout,
+            m: vec![0.0; n * n],
+            c: vec![0.0; n * n],
+            g: vec![0.0; n * n],
+            k: vec![0.0; n * n],
+            unbalances: vec![],
+            balancers: vec![],
+            speed_bearings: vec![],
+        }
     }
 
     /// A Jeffcott rotor: one node (`x, y`), `M = m I`, `K = k I`, `C = c I`, `G = 0`, one
@@ -273,6 +329,28 @@ impl LinearRotor {
             p.m1 * p.s1,
             BalancerPlane { node: 0, radius: p.r, balls: p.n, ball_mass: p.m3, drag: p.c_psi, offset: 0.0 },
         ))
+    }
+
+    /// `C(Ω)` and `K(Ω)`: `C`, `K` plus the speed-dependent bearings at `omega`.
+    pub fn damping_stiffness_at(&self, omega: f64) -> (Vec<f64>, Vec<f64>) {
+        let (mut c, mut k) = (self.c.clone(), self.k.clone());
+        let n = self.dofs();
+        for b in &self.speed_bearings {
+            let (kb, cb) = b.at(omega);
+            let i = b.node * self.layout.per_node();
+            for (j, (r, col)) in [(0, 0), (0, 1), (1, 0), (1, 1)].into_iter().enumerate() {
+                k[(i + r) * n + i + col] += kb[j];
+                c[(i + r) * n + i + col] += cb[j];
+            }
+        }
+        (c, k)
+    }
+
+    /// The rotor at speed `omega` with its speed-dependent bearings folded into `C` and `K`
+    /// (and removed from the list).
+    pub fn at_speed(&self, omega: f64) -> LinearRotor {
+        let (c, k) = self.damping_stiffness_at(omega);
+        LinearRotor { c, k, speed_bearings: vec![], ..self.clone() }
     }
 
     /// Number of structural DOFs `N`.
@@ -342,6 +420,31 @@ impl LinearRotor {
             finite(&f("offset"), u.offset)?;
             if u.offset != 0.0 && self.layout == Layout::Translation {
                 return Err(Error::invalid(f("offset"), "an axial offset needs the tilt DOFs (layout x, y, α, β)"));
+            }
+        }
+        for (i, b) in self.speed_bearings.iter().enumerate() {
+            let f = |s: &str| format!("linear_rotor.bearings[{i}].{s}");
+            if b.node >= self.nodes {
+                return Err(Error::invalid(f("node"), format!("{} is not a node (0..{})", b.node, self.nodes)));
+            }
+            if b.speeds.is_empty() {
+                return Err(Error::invalid(f("speeds"), "needs at least one speed"));
+            }
+            for (name, len) in [("k", b.k.len()), ("c", b.c.len())] {
+                if len != b.speeds.len() {
+                    return Err(Error::invalid(f(name), format!("has {len} entries, one per speed: {}", b.speeds.len())));
+                }
+            }
+            for (j, w) in b.speeds.iter().enumerate() {
+                finite(&format!("{}[{j}]", f("speeds")), *w)?;
+                if j > 0 && *w <= b.speeds[j - 1] {
+                    return Err(Error::invalid(f("speeds"), "must increase strictly"));
+                }
+                for (name, t) in [("k", &b.k[j]), ("c", &b.c[j])] {
+                    for v in t {
+                        finite(&format!("{}[{j}]", f(name)), *v)?;
+                    }
+                }
             }
         }
         for (i, b) in self.balancers.iter().enumerate() {

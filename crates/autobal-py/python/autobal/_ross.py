@@ -1,0 +1,82 @@
+"""``autobal.from_ross``: a ROSS rotor (``ross.Rotor``) as an autobal :class:`LinearRotor`, with
+ball balancers and unbalances added (issue 19, docs/linear_rotor.md).
+
+ROSS is not a dependency of autobal: the function takes the rotor object and calls ROSS's own
+matrix methods, ``rotor.M()``, ``rotor.K(speed)``, ``rotor.C(speed)``, ``rotor.G()``. ROSS 2
+numbers 6 DOFs per node (``x, y, z, alpha, beta, theta``), ROSS 1 four (``x, y, alpha, beta``);
+the lateral ones, ``x, y, alpha, beta``, are kept (the axial and torsional DOFs of ROSS's shaft
+elements are not coupled to them). Bearings whose coefficients ROSS tabulates over frequency
+become speed-dependent bearings: ``K(speed) - K(speeds[0])`` and the same for ``C`` at each
+speed of the table (the union of the bearings' ``frequency`` arrays, or ``speeds=``), on the
+bearing's node, interpolated linearly between them (ROSS interpolates its tables itself).
+"""
+
+from __future__ import annotations
+
+from typing import Any, Iterable, Mapping, Optional, Sequence
+
+import numpy as np
+
+from . import _autobal
+
+
+def _lateral(per_node: int) -> Sequence[int]:
+    if per_node == 6:
+        return (0, 1, 3, 4)
+    if per_node == 4:
+        return (0, 1, 2, 3)
+    raise ValueError(f"rotor.number_dof = {per_node}: expected 4 (x, y, alpha, beta) or 6 (x, y, z, alpha, beta, theta)")
+
+
+def from_ross(
+    rotor: Any,
+    balancers: Iterable[Mapping[str, float]] = (),
+    unbalance: Iterable[Mapping[str, float]] = (),
+    speeds: Optional[Sequence[float]] = None,
+) -> "_autobal.LinearRotor":
+    """The ROSS rotor ``rotor`` as a :class:`autobal.LinearRotor` (DOFs ``x, y, alpha, beta``
+    per node in ROSS's order and node numbers).
+
+    ``balancers``: dicts with ``node``, ``radius`` (m), ``balls``, ``ball_mass`` (kg), and
+    optionally ``drag`` (N m s per ball) and ``offset`` (m). ``unbalance``: dicts with ``node``,
+    ``me`` (kg m; or ``magnitude`` as ROSS calls it), optionally ``phase`` (rad) and ``offset``.
+    ``speeds``: where the bearings' speed dependence is sampled (rad/s); default the union of
+    the bearings' ``frequency`` tables.
+
+    >>> import ross, autobal                                     # doctest: +SKIP
+    >>> r = autobal.from_ross(ross.rotor_example(), balancers=[dict(node=2, radius=0.1, balls=2, ball_mass=0.05, drag=0.01)],
+    ...                       unbalance=[dict(node=2, me=1e-4)])  # doctest: +SKIP
+    >>> r.stability(omega_max=1000.0)                             # doctest: +SKIP
+    """
+    per = int(getattr(rotor, "number_dof", 4))
+    lat = _lateral(per)
+    m_full = np.asarray(rotor.M(), dtype=float)
+    n_nodes = m_full.shape[0] // per
+    idx = [k * per + j for k in range(n_nodes) for j in lat]
+    sel = np.ix_(idx, idx)
+    if speeds is None:
+        table = set()
+        for b in getattr(rotor, "bearing_elements", []):
+            f = getattr(b, "frequency", None)
+            if f is not None and np.size(f) > 1:
+                table.update(float(v) for v in np.atleast_1d(f))
+        speeds = sorted(table) or [0.0]
+    speeds = [float(w) for w in speeds]
+    k0 = np.asarray(rotor.K(speeds[0]), dtype=float)[sel]
+    c0 = np.asarray(rotor.C(speeds[0]), dtype=float)[sel]
+    g = np.asarray(rotor.G(), dtype=float)[sel]
+    out = _autobal.LinearRotor(np.ascontiguousarray(m_full[sel]), np.ascontiguousarray(c0), np.ascontiguousarray(g), np.ascontiguousarray(k0), per_node=4)
+    if len(speeds) > 1:
+        ks = [np.asarray(rotor.K(w), dtype=float)[sel] - k0 for w in speeds]
+        cs = [np.asarray(rotor.C(w), dtype=float)[sel] - c0 for w in speeds]
+        nodes = sorted({int(b.n) for b in getattr(rotor, "bearing_elements", [])})
+        for node in nodes:
+            i = 4 * node
+            blk = lambda a: [a[i, i], a[i, i + 1], a[i + 1, i], a[i + 1, i + 1]]
+            out.add_speed_bearing(node, speeds, np.array([blk(a) for a in ks]), np.array([blk(a) for a in cs]))
+    for b in balancers:
+        out.add_balancer(int(b["node"]), float(b["radius"]), int(b["balls"]), float(b["ball_mass"]), float(b.get("drag", 0.0)), float(b.get("offset", 0.0)))
+    for u in unbalance:
+        me = u["me"] if "me" in u else u["magnitude"]
+        out.add_unbalance(int(u["node"]), float(me), float(u.get("phase", 0.0)), float(u.get("offset", 0.0)))
+    return out

@@ -1,0 +1,146 @@
+//! `autobal._autobal.LinearRotor`: a linear rotor–bearing model from its matrices (issue 19;
+//! `autobal.from_ross` in `python/autobal/_ross.py` builds one from a `ross.Rotor`), with its
+//! unbalances, balancer planes and speed-dependent bearings; the structure's Campbell
+//! eigenvalues, the balanced state's stability over speed, the reduction, the export.
+
+use autobal::linear_rotor::{BalancerPlane, Layout, LinearRotor, SpeedBearing, Unbalance};
+use numpy::{PyReadonlyArray2, PyUntypedArrayMethods};
+use pyo3::prelude::*;
+
+/// A linear rotor `M q'' + (C + Ω G) q' + K q = f` (DOFs per node `x, y` or `x, y, α, β`).
+#[pyclass(name = "LinearRotor", module = "autobal._autobal")]
+pub struct PyLinearRotor {
+    rotor: LinearRotor,
+}
+
+fn square(py: Python<'_>, name: &str, a: &PyReadonlyArray2<'_, f64>) -> PyResult<(usize, Vec<f64>)> {
+    let s = a.shape();
+    if s[0] != s[1] {
+        return Err(crate::py_err(py, autobal::Error::invalid(format!("linear_rotor.{name}"), format!("is {} × {}, must be square", s[0], s[1]))));
+    }
+    let v: Vec<f64> = a.as_array().iter().copied().collect();
+    Ok((s[0], v))
+}
+
+#[pymethods]
+impl PyLinearRotor {
+    /// `LinearRotor(m, c, g, k, per_node=4)`: the matrices as 2-D float arrays (`N × N`).
+    #[new]
+    #[pyo3(signature = (m, c, g, k, per_node=4))]
+    fn new(
+        py: Python<'_>,
+        m: PyReadonlyArray2<'_, f64>,
+        c: PyReadonlyArray2<'_, f64>,
+        g: PyReadonlyArray2<'_, f64>,
+        k: PyReadonlyArray2<'_, f64>,
+        per_node: usize,
+    ) -> PyResult<Self> {
+        let layout = match per_node {
+            2 => Layout::Translation,
+            4 => Layout::TranslationTilt,
+            o => return Err(crate::py_err(py, autobal::Error::invalid("per_node", format!("must be 2 (x, y) or 4 (x, y, alpha, beta), got {o}")))),
+        };
+        let (n, m) = square(py, "m", &m)?;
+        if n % per_node != 0 {
+            return Err(crate::py_err(py, autobal::Error::invalid("linear_rotor.m", format!("{n} DOFs is no multiple of {per_node}"))));
+        }
+        let mut r = LinearRotor::zeros(n / per_node, layout);
+        r.m = m;
+        for (name, a) in [("c", &c), ("g", &g), ("k", &k)] {
+            let (nn, v) = square(py, name, a)?;
+            if nn != n {
+                return Err(crate::py_err(py, autobal::Error::invalid(format!("linear_rotor.{name}"), format!("is {nn} × {nn}, m is {n} × {n}"))));
+            }
+            match name {
+                "c" => r.c = v,
+                "g" => r.g = v,
+                _ => r.k = v,
+            }
+        }
+        Ok(PyLinearRotor { rotor: r })
+    }
+
+    /// Add an unbalance `m·e` (kg·m) at `node`, angle `phase` (rad), axial `offset` (m).
+    #[pyo3(signature = (node, me, phase=0.0, offset=0.0))]
+    fn add_unbalance(&mut self, node: usize, me: f64, phase: f64, offset: f64) {
+        self.rotor.unbalances.push(Unbalance { node, me, phase, offset });
+    }
+
+    /// Add a balancer plane at `node`: race `radius` (m), `balls`, `ball_mass` (kg), `drag`
+    /// per ball (N·m·s), axial `offset` (m).
+    #[pyo3(signature = (node, radius, balls, ball_mass, drag=0.0, offset=0.0))]
+    fn add_balancer(&mut self, node: usize, radius: f64, balls: usize, ball_mass: f64, drag: f64, offset: f64) {
+        self.rotor.balancers.push(BalancerPlane { node, radius, balls, ball_mass, drag, offset });
+    }
+
+    /// Add a bearing at `node` tabulated over `speeds` (rad/s): `k` and `c` are `len(speeds) × 4`
+    /// (`xx, xy, yx, yy`), added to `K`, `C` at each speed (linear interpolation).
+    fn add_speed_bearing(&mut self, py: Python<'_>, node: usize, speeds: Vec<f64>, k: PyReadonlyArray2<'_, f64>, c: PyReadonlyArray2<'_, f64>) -> PyResult<()> {
+        let rows = |a: &PyReadonlyArray2<'_, f64>, name: &str| -> PyResult<Vec<[f64; 4]>> {
+            let s = a.shape();
+            if s[1] != 4 || s[0] != speeds.len() {
+                return Err(crate::py_err(
+                    py,
+                    autobal::Error::invalid(format!("bearing.{name}"), format!("must be len(speeds) × 4 = {} × 4, got {} × {}", speeds.len(), s[0], s[1])),
+                ));
+            }
+            let a = a.as_array();
+            Ok((0..s[0]).map(|i| [a[[i, 0]], a[[i, 1]], a[[i, 2]], a[[i, 3]]]).collect())
+        };
+        let (k, c) = (rows(&k, "k")?, rows(&c, "c")?);
+        self.rotor.speed_bearings.push(SpeedBearing { node, speeds: speeds.clone(), k, c });
+        Ok(())
+    }
+
+    /// Number of DOFs.
+    #[getter]
+    fn dofs(&self) -> usize {
+        self.rotor.dofs()
+    }
+
+    /// Undamped natural frequencies at rest (rad/s), optionally with the balls as rings.
+    #[pyo3(signature = (with_balls=false))]
+    fn natural_frequencies(&self, py: Python<'_>, with_balls: bool) -> PyResult<Vec<f64>> {
+        self.rotor.at_speed(0.0).natural_frequencies(&[], with_balls).map_err(|e| crate::py_err(py, e))
+    }
+
+    /// The structure's eigenvalues (no balls) at each speed (rad/s): `(real, imag)` lists,
+    /// `len(speeds) × 2N`, sorted by imaginary part (ROSS's `run_campbell` without balls).
+    fn campbell(&self, py: Python<'_>, speeds: Vec<f64>) -> PyResult<(Vec<Vec<f64>>, Vec<Vec<f64>>)> {
+        let r = self.rotor.clone();
+        let out = crate::interruptible(py, move |_| speeds.iter().map(|w| r.structure_eigenvalues(*w)).collect::<autobal::Result<Vec<_>>>())?
+            .map_err(|e| crate::py_err(py, e))?;
+        Ok((out.iter().map(|v| v.iter().map(|z| z.re).collect()).collect(), out.iter().map(|v| v.iter().map(|z| z.im).collect()).collect()))
+    }
+
+    /// The balanced state's stability over `(0, omega_max]` at `samples` speeds, on the model
+    /// reduced to `modes` mode pairs (`None`: the full model): the JSON of `autobal stability`'s
+    /// general route (`model`, `stationary_state`, `stable_ranges`, `points`, …) plus `reduction`.
+    #[pyo3(signature = (omega_max, samples=200, modes=None))]
+    fn stability(&self, py: Python<'_>, omega_max: f64, samples: usize, modes: Option<usize>) -> PyResult<String> {
+        let r = self.rotor.clone();
+        let res = crate::interruptible(py, move |_| -> autobal::Result<serde_json::Value> {
+            let speeds = autobal::rotor_stability::speed_grid(omega_max, samples)?;
+            let (rotor, red) = match modes.filter(|m| *m > 0) {
+                Some(p) => {
+                    let red = autobal::linear_rotor::reduce::reduce(&r, p, &[])?;
+                    (red.rotor.clone(), Some(red))
+                }
+                None => (r, None),
+            };
+            let st = autobal::linear_rotor::stability::stability_over_speed(&rotor, &speeds)?;
+            let mut v = serde_json::to_value(&st).map_err(|e| autobal::Error::invalid("stability", e.to_string()))?;
+            v["omega_max"] = serde_json::json!(omega_max);
+            v["reduction"] = serde_json::to_value(&red).map_err(|e| autobal::Error::invalid("reduction", e.to_string()))?;
+            Ok(v)
+        })?
+        .map_err(|e| crate::py_err(py, e))?;
+        Ok(res.to_string())
+    }
+
+    /// The config text and Matrix Market files (`[(name, text)]`) of the rotor, as
+    /// `autobal export-model` writes them (read by `autobal stability --config STEM.toml`).
+    fn export(&self, stem: &str) -> (String, Vec<(String, String)>) {
+        autobal::linear_rotor::config::export(&self.rotor, stem)
+    }
+}

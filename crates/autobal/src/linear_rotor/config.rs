@@ -1,0 +1,533 @@
+//! The `[linear_rotor]` config: a [`LinearRotor`] from matrix files (Matrix Market text, the
+//! DOFs in ROSS's order) or from the built-in shaft builder ([`super::shaft`]), with its
+//! unbalances, balancer planes and bearings (constant or tabulated over speed), plus the
+//! `[drive]` and `[integration]` tables of the simulations. Errors name the key
+//! (`linear_rotor.elements[2].length`), or the key, the file and the line
+//! (`linear_rotor.k: rotor_K.mtx: line 7: …`).
+//!
+//! The library reads no files: [`linear_rotor`] takes a loader that returns a named file's text
+//! (the front end resolves the path against the config's folder).
+//!
+//! ```
+//! use autobal::linear_rotor::config::{linear_rotor, export, parse_matrix_market};
+//! let text = r#"
+//! [linear_rotor]
+//! [[linear_rotor.elements]]
+//! length = 0.1
+//! diameter = 0.02
+//! e = 2.1e11
+//! rho = 7850.0
+//! count = 6
+//! [[linear_rotor.bearings]]
+//! node = 0
+//! k = 1e6
+//! [[linear_rotor.bearings]]
+//! node = 6
+//! k = 1e6
+//! [[linear_rotor.balancer]]
+//! node = 3
+//! radius = 0.05
+//! balls = 2
+//! ball_mass = 0.01
+//! drag = 0.001
+//! "#;
+//! let root: toml::Table = text.parse().unwrap();
+//! let cfg = linear_rotor(&root, &mut |_| Err("no files".into())).unwrap();
+//! assert_eq!(cfg.rotor.nodes, 7);
+//! // exported to Matrix Market and read back: the same matrices, bit for bit
+//! let (toml_text, files) = export(&cfg.rotor, "shaft");
+//! let back: toml::Table = toml_text.parse().unwrap();
+//! let again = linear_rotor(&back, &mut |p| files.iter().find(|f| f.0 == p).map(|f| f.1.clone()).ok_or("missing".into())).unwrap();
+//! assert_eq!(again.rotor, cfg.rotor);
+//! ```
+
+use super::shaft::{Bearing, Disk, Element, ShaftBuilder};
+use super::{BalancerPlane, Layout, LinearRotor, SpeedBearing, Unbalance};
+use crate::config::{drive, integration, Integration, Section};
+use crate::drive::Drive;
+use crate::error::{Error, Result};
+use toml::{Table, Value};
+
+/// The keys of `[linear_rotor]` and of its arrays of tables.
+const KEYS: &[(&str, &[&str])] = &[
+    (
+        "linear_rotor",
+        &["layout", "m", "c", "g", "k", "dofs", "rotary_inertia", "gyroscopic", "omega_max", "modes", "elements", "disks", "bearings", "unbalance", "balancer"],
+    ),
+    ("elements", &["length", "diameter", "inner_diameter", "area", "inertia", "e", "rho", "count"]),
+    ("disks", &["node", "mass", "id", "ip"]),
+    ("bearings", &["node", "k", "c", "speeds", "kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy"]),
+    ("unbalance", &["node", "me", "phase", "offset"]),
+    ("balancer", &["node", "radius", "balls", "ball_mass", "drag", "offset"]),
+];
+
+/// A linear rotor config.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LinearRotorConfig {
+    /// The rotor with its unbalances, balancers and bearings.
+    pub rotor: LinearRotor,
+    /// Where the structure came from: `"matrices"` (files) or `"shaft"` (the builder).
+    pub source: &'static str,
+    /// `linear_rotor.omega_max` (rad/s): the top of speed axes, if given.
+    pub omega_max: Option<f64>,
+    /// `linear_rotor.modes`: reduce to this many interior mode pairs ([`super::reduce`]);
+    /// `None` (absent or 0): the full model.
+    pub modes: Option<usize>,
+    /// `[drive]` and its `t_end`, if the config has the table.
+    pub drive: Option<(Drive, f64)>,
+    /// `[integration]` (its `dt` default from `t_end`).
+    pub integration: Integration,
+}
+
+/// Whether a config describes a linear rotor (has `[linear_rotor]`).
+pub fn is_linear_rotor(root: &Table) -> bool {
+    root.contains_key("linear_rotor")
+}
+
+fn num(v: &Value, field: &str) -> Result<f64> {
+    match v {
+        Value::Float(f) => Ok(*f),
+        Value::Integer(i) => Ok(*i as f64),
+        _ => Err(Error::invalid(field, "expected a number")),
+    }
+}
+
+/// A table of an array of tables with its keys checked.
+struct Item<'a> {
+    name: String,
+    t: &'a Table,
+}
+
+impl<'a> Item<'a> {
+    fn field(&self, k: &str) -> String {
+        format!("{}.{k}", self.name)
+    }
+    fn f64(&self, k: &str) -> Result<Option<f64>> {
+        self.t.get(k).map(|v| num(v, &self.field(k))).transpose()
+    }
+    fn req(&self, k: &str) -> Result<f64> {
+        self.f64(k)?.ok_or_else(|| Error::invalid(self.field(k), "missing (required)"))
+    }
+    fn usize(&self, k: &str) -> Result<Option<usize>> {
+        match self.t.get(k) {
+            None => Ok(None),
+            Some(Value::Integer(i)) if *i >= 0 => Ok(Some(*i as usize)),
+            Some(_) => Err(Error::invalid(self.field(k), "expected a whole number ≥ 0 (written without a decimal point)")),
+        }
+    }
+    fn req_usize(&self, k: &str) -> Result<usize> {
+        self.usize(k)?.ok_or_else(|| Error::invalid(self.field(k), "missing (required)"))
+    }
+    fn array(&self, k: &str) -> Result<Option<Vec<f64>>> {
+        match self.t.get(k) {
+            None => Ok(None),
+            Some(Value::Array(a)) => a.iter().enumerate().map(|(i, v)| num(v, &format!("{}[{i}]", self.field(k)))).collect::<Result<Vec<_>>>().map(Some),
+            Some(_) => Err(Error::invalid(self.field(k), "expected an array of numbers")),
+        }
+    }
+}
+
+fn check_keys(name: &str, kind: &str, t: &Table) -> Result<()> {
+    let keys = KEYS.iter().find(|(k, _)| *k == kind).map(|(_, k)| *k).unwrap_or(&[]);
+    for k in t.keys() {
+        if !keys.contains(&k.as_str()) {
+            return Err(Error::invalid(format!("{name}.{k}"), format!("unknown key (known keys: {})", keys.join(", "))));
+        }
+    }
+    Ok(())
+}
+
+fn items<'a>(lr: &'a Table, kind: &str) -> Result<Vec<Item<'a>>> {
+    let name = format!("linear_rotor.{kind}");
+    match lr.get(kind) {
+        None => Ok(vec![]),
+        Some(Value::Array(a)) => a
+            .iter()
+            .enumerate()
+            .map(|(i, v)| {
+                let item_name = format!("{name}[{i}]");
+                let t = v.as_table().ok_or_else(|| Error::invalid(&item_name, format!("expected a table ([[{name}]])")))?;
+                check_keys(&item_name, kind, t)?;
+                Ok(Item { name: item_name, t })
+            })
+            .collect(),
+        Some(_) => Err(Error::invalid(name.clone(), format!("expected an array of tables ([[{name}]])"))),
+    }
+}
+
+/// Read `[linear_rotor]`, `[drive]`, `[integration]` of `root` into a validated rotor. `load`
+/// returns the text of a matrix file named in the config (or a one-line reason it cannot).
+pub fn linear_rotor(root: &Table, load: &mut dyn FnMut(&str) -> std::result::Result<String, String>) -> Result<LinearRotorConfig> {
+    for k in root.keys() {
+        if !["linear_rotor", "drive", "integration"].contains(&k.as_str()) {
+            return Err(Error::invalid(
+                k.as_str(),
+                "unknown table in a linear rotor config (known: [linear_rotor] with its arrays of tables, [drive], [integration])",
+            ));
+        }
+    }
+    let lr = root.get("linear_rotor").and_then(Value::as_table).ok_or_else(|| Error::invalid("linear_rotor", "expected a table [linear_rotor]"))?;
+    check_keys("linear_rotor", "linear_rotor", lr)?;
+    let top = Item { name: "linear_rotor".into(), t: lr };
+    let string = |k: &str| -> Result<Option<&str>> {
+        match lr.get(k) {
+            None => Ok(None),
+            Some(Value::String(s)) => Ok(Some(s.as_str())),
+            Some(_) => Err(Error::invalid(format!("linear_rotor.{k}"), "expected a string (a file name)")),
+        }
+    };
+    let boolean = |k: &str| -> Result<Option<bool>> {
+        match lr.get(k) {
+            None => Ok(None),
+            Some(Value::Boolean(b)) => Ok(Some(*b)),
+            Some(_) => Err(Error::invalid(format!("linear_rotor.{k}"), "expected true or false")),
+        }
+    };
+    let has_files = ["m", "c", "g", "k"].iter().any(|k| lr.contains_key(*k));
+    let elements = items(lr, "elements")?;
+    let disks = items(lr, "disks")?;
+    let (mut rotor, source) = if has_files {
+        if !elements.is_empty() || !disks.is_empty() {
+            return Err(Error::invalid("linear_rotor.elements", "give either matrix files (m, k, …) or the shaft builder's elements and disks, not both"));
+        }
+        let layout = match string("layout")?.unwrap_or("x,y,alpha,beta") {
+            "x,y" => Layout::Translation,
+            "x,y,alpha,beta" => Layout::TranslationTilt,
+            o => return Err(Error::invalid("linear_rotor.layout", format!("must be \"x,y\" or \"x,y,alpha,beta\" (ROSS's order), got \"{o}\""))),
+        };
+        let mut read = |k: &str, required: bool| -> Result<Option<(usize, Vec<f64>)>> {
+            let Some(path) = string(k)? else {
+                return if required { Err(Error::invalid(format!("linear_rotor.{k}"), "missing (required with matrix files)")) } else { Ok(None) };
+            };
+            let field = format!("linear_rotor.{k}");
+            if path.ends_with(".npz") || path.ends_with(".npy") {
+                return Err(Error::invalid(
+                    field,
+                    format!(
+                        "{path}: NumPy files are not read; write Matrix Market text (scipy.io.mmwrite(\"{}.mtx\", A))",
+                        path.trim_end_matches(".npz").trim_end_matches(".npy")
+                    ),
+                ));
+            }
+            let text = load(path).map_err(|e| Error::invalid(&field, format!("{path}: {e}")))?;
+            let (rows, cols, a) = parse_matrix_market(&text).map_err(|e| Error::invalid(&field, format!("{path}: {e}")))?;
+            if rows != cols {
+                return Err(Error::invalid(field, format!("{path}: is {rows} × {cols}, must be square")));
+            }
+            Ok(Some((rows, a)))
+        };
+        let (n, m) = read("m", true)?.expect("required");
+        if n % layout.per_node() != 0 {
+            return Err(Error::invalid("linear_rotor.m", format!("{n} DOFs is no multiple of {} DOFs per node (layout)", layout.per_node())));
+        }
+        let mut r = LinearRotor::zeros(n / layout.per_node(), layout);
+        r.m = m;
+        for (k, required) in [("k", true), ("c", false), ("g", false)] {
+            if let Some((nk, a)) = read(k, required)? {
+                if nk != n {
+                    return Err(Error::invalid(format!("linear_rotor.{k}"), format!("is {nk} × {nk}, M is {n} × {n}")));
+                }
+                match k {
+                    "k" => r.k = a,
+                    "c" => r.c = a,
+                    _ => r.g = a,
+                }
+            }
+        }
+        (r, "matrices")
+    } else {
+        if let Some(l) = string("layout")? {
+            if l != "x,y,alpha,beta" {
+                return Err(Error::invalid("linear_rotor.layout", "the shaft builder's nodes have x, y, alpha, beta"));
+            }
+        }
+        if elements.is_empty() {
+            return Err(Error::invalid("linear_rotor", "give matrix files (m, k, and optionally c, g) or [[linear_rotor.elements]] for the shaft builder"));
+        }
+        let mut b = ShaftBuilder {
+            rotary_inertia: boolean("rotary_inertia")?.unwrap_or(true),
+            gyroscopic: boolean("gyroscopic")?.unwrap_or(true),
+            ..Default::default()
+        };
+        for el in &elements {
+            let length = el.req("length")?;
+            let (e, rho) = (el.req("e")?, el.req("rho")?);
+            let count = el.usize("count")?.unwrap_or(1);
+            if count == 0 || count > 10_000 {
+                return Err(Error::invalid(el.field("count"), "must be from 1 to 10000"));
+            }
+            let element = match (el.f64("diameter")?, el.f64("area")?, el.f64("inertia")?) {
+                (Some(d), None, None) => {
+                    let di = el.f64("inner_diameter")?.unwrap_or(0.0);
+                    if !(di >= 0.0 && di < d) {
+                        return Err(Error::invalid(el.field("inner_diameter"), "must lie in [0, diameter)"));
+                    }
+                    let (o, i) = (Element::circular(length, d, e, rho), Element::circular(length, di, e, rho));
+                    Element { area: o.area - i.area, inertia: o.inertia - i.inertia, ..o }
+                }
+                (None, Some(area), Some(inertia)) => Element { length, e, rho, area, inertia },
+                _ => return Err(Error::invalid(el.field("diameter"), "give either diameter (and optionally inner_diameter) or both area and inertia")),
+            };
+            for _ in 0..count {
+                b.elements.push(element);
+            }
+        }
+        for d in &disks {
+            b.disks.push(Disk { node: d.req_usize("node")?, mass: d.req("mass")?, id: d.f64("id")?.unwrap_or(0.0), ip: d.f64("ip")?.unwrap_or(0.0) });
+        }
+        let r = b.build().map_err(|e| rename(e, "shaft.", "linear_rotor."))?;
+        (r, "shaft")
+    };
+    // bearings: constant isotropic ones into K, C; tables over speed kept as speed bearings
+    for (i, br) in items(lr, "bearings")?.iter().enumerate() {
+        let node = br.req_usize("node")?;
+        if node >= rotor.nodes {
+            return Err(Error::invalid(br.field("node"), format!("{node} is not a node (0..{})", rotor.nodes)));
+        }
+        match br.array("speeds")? {
+            None => {
+                for k in ["kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy"] {
+                    if br.t.contains_key(k) {
+                        return Err(Error::invalid(br.field(k), "tables over speed need `speeds`; a constant isotropic bearing has `k` and `c`"));
+                    }
+                }
+                let (k, c) = (br.req("k")?, br.f64("c")?.unwrap_or(0.0));
+                crate::error::non_negative(&br.field("k"), k)?;
+                crate::error::non_negative(&br.field("c"), c)?;
+                let Bearing { node, k, c } = Bearing { node, k, c };
+                let n = rotor.dofs();
+                let base = node * rotor.layout.per_node();
+                for d in [base, base + 1] {
+                    rotor.k[d * n + d] += k;
+                    rotor.c[d * n + d] += c;
+                }
+            }
+            Some(speeds) => {
+                let len = speeds.len();
+                let col = |k: &str, fallback: Option<&str>| -> Result<Vec<f64>> {
+                    let v = match br.array(k)? {
+                        Some(v) => v,
+                        None => match fallback.map(|f| br.array(f)).transpose()?.flatten() {
+                            Some(v) => v,
+                            None => vec![0.0; len],
+                        },
+                    };
+                    if v.len() != len {
+                        return Err(Error::invalid(br.field(k), format!("has {} entries, one per speed: {len}", v.len())));
+                    }
+                    Ok(v)
+                };
+                if br.t.contains_key("k") || br.t.contains_key("c") {
+                    return Err(Error::invalid(br.field("k"), "a bearing tabulated over speed takes kxx, kyy (kxy, kyx) and cxx, cyy (cxy, cyx), not k and c"));
+                }
+                if !br.t.contains_key("kxx") {
+                    return Err(Error::invalid(br.field("kxx"), "missing (required with speeds)"));
+                }
+                let (kxx, kxy, kyx) = (col("kxx", None)?, col("kxy", None)?, col("kyx", None)?);
+                let kyy = col("kyy", Some("kxx"))?;
+                let (cxx, cxy, cyx) = (col("cxx", None)?, col("cxy", None)?, col("cyx", None)?);
+                let cyy = col("cyy", Some("cxx"))?;
+                let _ = i;
+                rotor.speed_bearings.push(SpeedBearing {
+                    node,
+                    speeds,
+                    k: (0..len).map(|j| [kxx[j], kxy[j], kyx[j], kyy[j]]).collect(),
+                    c: (0..len).map(|j| [cxx[j], cxy[j], cyx[j], cyy[j]]).collect(),
+                });
+            }
+        }
+    }
+    for u in items(lr, "unbalance")? {
+        rotor.unbalances.push(Unbalance {
+            node: u.req_usize("node")?,
+            me: u.req("me")?,
+            phase: u.f64("phase")?.unwrap_or(0.0),
+            offset: u.f64("offset")?.unwrap_or(0.0),
+        });
+    }
+    for b in items(lr, "balancer")? {
+        rotor.balancers.push(BalancerPlane {
+            node: b.req_usize("node")?,
+            radius: b.req("radius")?,
+            balls: b.req_usize("balls")?,
+            ball_mass: b.req("ball_mass")?,
+            drag: b.f64("drag")?.unwrap_or(0.0),
+            offset: b.f64("offset")?.unwrap_or(0.0),
+        });
+    }
+    if let Some(Value::Array(names)) = lr.get("dofs") {
+        check_dofs(&rotor, names)?;
+    } else if lr.contains_key("dofs") {
+        return Err(Error::invalid("linear_rotor.dofs", "expected an array of DOF names (\"x0\", \"y0\", \"alpha0\", \"beta0\", \"x1\", …)"));
+    }
+    // the model's names: linear_rotor.unbalances[i] -> the config's linear_rotor.unbalance[i]
+    rotor.validate().map_err(|e| rename(rename(e, "linear_rotor.unbalances", "linear_rotor.unbalance"), "linear_rotor.balancers", "linear_rotor.balancer"))?;
+    let omega_max = top.f64("omega_max")?;
+    if let Some(w) = omega_max {
+        crate::error::positive("linear_rotor.omega_max", w)?;
+    }
+    // 0: the full model (so that `--set linear_rotor.modes=0` undoes a config's reduction)
+    let modes = top.usize("modes")?.filter(|m| *m > 0);
+    let d = Section::of(root, "drive");
+    let drive = if d.table.is_some() { Some(drive(&d)?) } else { None };
+    let t_end = drive.as_ref().map_or(10.0, |d| d.1);
+    let integration = integration(&Section::of(root, "integration"), t_end)?;
+    Ok(LinearRotorConfig { rotor, source, omega_max, modes, drive, integration })
+}
+
+/// The DOF table: `names[i]` must name DOF `i` in ROSS's order (`x3`, `alpha3`, …).
+fn check_dofs(rotor: &LinearRotor, names: &[Value]) -> Result<()> {
+    let n = rotor.dofs();
+    if names.len() != n {
+        return Err(Error::invalid("linear_rotor.dofs", format!("has {} names, the matrices {n} DOFs", names.len())));
+    }
+    let per = rotor.layout.per_node();
+    for (i, v) in names.iter().enumerate() {
+        let want = format!("{}{}", ["x", "y", "alpha", "beta"][i % per], i / per);
+        if v.as_str() != Some(want.as_str()) {
+            return Err(Error::invalid(format!("linear_rotor.dofs[{i}]"), format!("is {v}, ROSS's order has \"{want}\" there (x, y, alpha, beta per node)")));
+        }
+    }
+    Ok(())
+}
+
+fn rename(e: Error, from: &str, to: &str) -> Error {
+    match e {
+        Error::InvalidParameter { field, reason } if field.starts_with(from) => Error::InvalidParameter { field: field.replacen(from, to, 1), reason },
+        e => e,
+    }
+}
+
+/// Parse Matrix Market text (`%%MatrixMarket matrix coordinate|array real|integer
+/// general|symmetric|skew-symmetric`) into `(rows, cols, row-major entries)`. Errors say the line.
+pub fn parse_matrix_market(text: &str) -> std::result::Result<(usize, usize, Vec<f64>), String> {
+    let mut lines = text.lines().enumerate();
+    let (_, header) = lines.next().ok_or("empty file: expected the header %%MatrixMarket matrix coordinate real general")?;
+    let h: Vec<String> = header.split_whitespace().map(|s| s.to_ascii_lowercase()).collect();
+    if h.len() != 5 || h[0] != "%%matrixmarket" || h[1] != "matrix" {
+        return Err(format!(
+            "line 1: expected the header %%MatrixMarket matrix coordinate real general, got \"{}\"",
+            header.chars().take(60).collect::<String>()
+        ));
+    }
+    let coordinate = match h[2].as_str() {
+        "coordinate" => true,
+        "array" => false,
+        o => return Err(format!("line 1: format \"{o}\" is not read (coordinate or array)")),
+    };
+    if !["real", "integer", "double"].contains(&h[3].as_str()) {
+        return Err(format!("line 1: field \"{}\" is not read (real or integer)", h[3]));
+    }
+    let sym: i8 = match h[4].as_str() {
+        "general" => 0,
+        "symmetric" => 1,
+        "skew-symmetric" => -1,
+        o => return Err(format!("line 1: symmetry \"{o}\" is not read (general, symmetric, skew-symmetric)")),
+    };
+    let mut data = lines.filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('%'));
+    let (ln, size) = data.next().ok_or("no size line after the header")?;
+    let sz: Vec<usize> = size
+        .split_whitespace()
+        .map(|s| s.parse::<usize>().map_err(|_| format!("line {}: size: \"{s}\" is not a whole number", ln + 1)))
+        .collect::<std::result::Result<_, _>>()?;
+    let (rows, cols, count) = match (coordinate, sz.as_slice()) {
+        (true, [r, c, nnz]) => (*r, *c, *nnz),
+        (false, [r, c]) => (*r, *c, r * c),
+        _ => return Err(format!("line {}: expected the size line \"{}\"", ln + 1, if coordinate { "rows cols entries" } else { "rows cols" })),
+    };
+    if rows == 0 || cols == 0 || rows > super::MAX_DOFS || cols > super::MAX_DOFS {
+        return Err(format!("line {}: size {rows} × {cols} outside 1..{}", ln + 1, super::MAX_DOFS));
+    }
+    let mut a = vec![0.0; rows * cols];
+    let value = |s: &str, ln: usize| -> std::result::Result<f64, String> {
+        let v: f64 = s.parse().map_err(|_| format!("line {}: \"{s}\" is not a number", ln + 1))?;
+        if !v.is_finite() {
+            return Err(format!("line {}: {s} is not finite", ln + 1));
+        }
+        Ok(v)
+    };
+    let mut seen = 0;
+    for (ln, line) in data {
+        let f: Vec<&str> = line.split_whitespace().collect();
+        if seen == count {
+            return Err(format!("line {}: more entries than the {count} the size line announces", ln + 1));
+        }
+        if coordinate {
+            let [i, j, v] = f.as_slice() else { return Err(format!("line {}: expected \"row col value\", got {} fields", ln + 1, f.len())) };
+            let idx = |s: &str, max: usize| -> std::result::Result<usize, String> {
+                match s.parse::<usize>() {
+                    Ok(k) if k >= 1 && k <= max => Ok(k - 1),
+                    _ => Err(format!("line {}: index \"{s}\" outside 1..{max}", ln + 1)),
+                }
+            };
+            let (i, j, v) = (idx(i, rows)?, idx(j, cols)?, value(v, ln)?);
+            a[i * cols + j] += v;
+            if sym != 0 && i != j {
+                a[j * cols + i] += sym as f64 * v;
+            }
+        } else {
+            let [v] = f.as_slice() else { return Err(format!("line {}: expected one value, got {} fields", ln + 1, f.len())) };
+            // column-major
+            let (i, j) = (seen % rows, seen / rows);
+            a[i * cols + j] = value(v, ln)?;
+        }
+        seen += 1;
+    }
+    if seen != count {
+        return Err(format!("{seen} entries, the size line announces {count}"));
+    }
+    Ok((rows, cols, a))
+}
+
+/// Matrix Market text (`coordinate real general`, the nonzero entries, numbers written so that
+/// they read back exactly) of the row-major `n × n` matrix `a`, with a comment line.
+pub fn write_matrix_market(a: &[f64], n: usize, comment: &str) -> String {
+    let nz: Vec<(usize, f64)> = a.iter().copied().enumerate().filter(|(_, v)| *v != 0.0).collect();
+    let mut s = format!("%%MatrixMarket matrix coordinate real general\n% {comment}\n{n} {n} {}\n", nz.len());
+    for (ij, v) in nz {
+        s.push_str(&format!("{} {} {v:e}\n", ij / n + 1, ij % n + 1));
+    }
+    s
+}
+
+/// The config text and the matrix files (`STEM_M.mtx`, `STEM_C.mtx`, `STEM_G.mtx`,
+/// `STEM_K.mtx`: name and text) of `rotor`: reading them back with [`linear_rotor`] gives the
+/// same rotor.
+pub fn export(rotor: &LinearRotor, stem: &str) -> (String, Vec<(String, String)>) {
+    let n = rotor.dofs();
+    let mut files = vec![];
+    let mut t = String::from("# A linear rotor (autobal export-model): M q'' + (C + Ω G) q' + K q = f, DOFs in ROSS's order\n[linear_rotor]\n");
+    t.push_str(&format!("layout = \"{}\"\n", if rotor.layout == Layout::Translation { "x,y" } else { "x,y,alpha,beta" }));
+    for (key, a, what) in [
+        ("m", &rotor.m, "mass matrix M (kg, kg m²)"),
+        ("c", &rotor.c, "damping matrix C"),
+        ("g", &rotor.g, "gyroscopic matrix G (multiplied by Ω)"),
+        ("k", &rotor.k, "stiffness matrix K"),
+    ] {
+        let name = format!("{stem}_{}.mtx", key.to_uppercase());
+        t.push_str(&format!("{key} = \"{name}\"\n"));
+        files.push((name, write_matrix_market(a, n, &format!("{what}, {n} DOFs"))));
+    }
+    let per = rotor.layout.per_node();
+    let names: Vec<String> = (0..n).map(|i| format!("\"{}{}\"", ["x", "y", "alpha", "beta"][i % per], i / per)).collect();
+    t.push_str(&format!("dofs = [{}]\n", names.join(", ")));
+    for b in &rotor.speed_bearings {
+        t.push_str(&format!("\n[[linear_rotor.bearings]]\nnode = {}\nspeeds = {:?}\n", b.node, b.speeds));
+        for (j, k) in ["kxx", "kxy", "kyx", "kyy"].iter().enumerate() {
+            t.push_str(&format!("{k} = {:?}\n", b.k.iter().map(|v| v[j]).collect::<Vec<_>>()));
+        }
+        for (j, k) in ["cxx", "cxy", "cyx", "cyy"].iter().enumerate() {
+            t.push_str(&format!("{k} = {:?}\n", b.c.iter().map(|v| v[j]).collect::<Vec<_>>()));
+        }
+    }
+    for u in &rotor.unbalances {
+        t.push_str(&format!("\n[[linear_rotor.unbalance]]\nnode = {}\nme = {:?}\nphase = {:?}\noffset = {:?}\n", u.node, u.me, u.phase, u.offset));
+    }
+    for b in &rotor.balancers {
+        t.push_str(&format!(
+            "\n[[linear_rotor.balancer]]\nnode = {}\nradius = {:?}\nballs = {}\nball_mass = {:?}\ndrag = {:?}\noffset = {:?}\n",
+            b.node, b.radius, b.balls, b.ball_mass, b.drag, b.offset
+        ));
+    }
+    (t, files)
+}

@@ -1,0 +1,286 @@
+//! Run-ups and run-downs of a [`LinearRotor`] with its balls in time, in fixed axes, under a
+//! prescribed speed history ([`Drive::Speed`], [`Drive::Acceleration`], [`Drive::SpeedSchedule`]).
+//!
+//! With the rotor's angle `φ(t) = ∫ Ω dt` (exact for the drive's piecewise-linear speed), the
+//! equations of [`crate::linear_rotor`] in fixed axes hold with `Ω(t)` in place of `Ω`, the
+//! gyroscopic `Ω(t) G`, the speed-dependent bearings at `Ω(t)`, and two terms from the
+//! acceleration `Ω̇`: the unbalance's inertia force `m e (Ω² − i Ω̇) e^{i(φ + phase)}` and the
+//! balls' absolute angular acceleration `θ̈_j = Ω̇ + ψ̈_j` (`ψ_j` stays the angle relative to the
+//! rotor). A torque drive would need the rotor's polar moment, which `M, C, G, K` do not hold:
+//! it is refused with an error naming `drive.kind`.
+
+use super::field::{Frame, Kin, LinearRotorField, Mats};
+use super::{Direction, LinearRotor};
+use crate::drive::Drive;
+use crate::error::{Error, Result};
+use crate::ode::{Control, Method, Options, Solver, Status, System};
+use crate::simulation::{run, Hooks, Peak, Timeline};
+use serde::Serialize;
+use std::borrow::Cow;
+
+/// `∫₀ᵗ Ω dt` of a prescribed drive (piecewise linear in `t`, held outside a schedule, a run-down
+/// held at rest once it stops).
+pub fn drive_angle(drive: &Drive, t: f64) -> f64 {
+    match drive {
+        Drive::Speed { omega0 } => omega0 * t,
+        Drive::Acceleration { omega0, b } => {
+            let stop = if *b < 0.0 && *omega0 > 0.0 { omega0 / -b } else { f64::INFINITY };
+            let s = t.min(stop);
+            omega0 * s + 0.5 * b * s * s
+        }
+        Drive::SpeedSchedule { points } => {
+            // trapezoids of the piecewise-linear speed, held constant outside the points
+            let (t0, w0) = points[0];
+            if t <= t0 {
+                return w0 * t;
+            }
+            let mut phi = w0 * t0;
+            for w in points.windows(2) {
+                let (a, b) = (w[0], w[1]);
+                if t <= b.0 {
+                    let wt = a.1 + (b.1 - a.1) * (t - a.0) / (b.0 - a.0);
+                    return phi + 0.5 * (a.1 + wt) * (t - a.0);
+                }
+                phi += 0.5 * (a.1 + b.1) * (b.0 - a.0);
+            }
+            let last = points[points.len() - 1];
+            phi + last.1 * (t - last.0)
+        }
+        _ => 0.0,
+    }
+}
+
+/// The equations of a run in fixed axes as an ODE system: state `(q, ψ, q̇, ψ̇)`.
+pub struct RunUpSystem<'a> {
+    field: LinearRotorField,
+    /// The rotor with its speed-dependent bearings (the field's has them at `Ω(0)`).
+    rotor: &'a LinearRotor,
+    drive: &'a Drive,
+}
+
+impl<'a> RunUpSystem<'a> {
+    /// The system of `rotor` under `drive`; errors for a drive that is not prescribed.
+    pub fn new(rotor: &'a LinearRotor, drive: &'a Drive) -> Result<Self> {
+        drive.validate()?;
+        if !drive.prescribed() {
+            return Err(Error::invalid(
+                "drive.kind",
+                "the linear rotor runs under a prescribed speed (\"speed\", \"acceleration\", or a speed \"schedule\"): a torque drive needs the rotor's polar moment, which M, C, G, K do not hold",
+            ));
+        }
+        Ok(RunUpSystem { field: LinearRotorField::new(rotor, drive.omega0(), Frame::Fixed)?, rotor, drive })
+    }
+
+    /// The field (at the drive's initial speed; for the rotor and the coordinates).
+    pub fn field(&self) -> &LinearRotorField {
+        &self.field
+    }
+
+    fn at(&self, t: f64) -> (Mats<'_>, Kin) {
+        let (w, wdot) = self.drive.kinematics(t);
+        let r = self.rotor;
+        let (c, k) = r.damping_stiffness_at(w);
+        let d: Vec<f64> = c.iter().zip(&r.g).map(|(c, g)| c + w * g).collect();
+        (Mats { m: Cow::Borrowed(&r.m), d: Cow::Owned(d), k: Cow::Owned(k) }, Kin { w, wdot, nu: 0.0, chi: drive_angle(self.drive, t) })
+    }
+}
+
+impl System for RunUpSystem<'_> {
+    fn dim(&self) -> usize {
+        2 * self.field.coords()
+    }
+
+    fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
+        let nc = self.field.coords();
+        dy[..nc].copy_from_slice(&y[nc..]);
+        let (mats, kin) = self.at(t);
+        match self.field.accelerations_with(&mats, &kin, y) {
+            Some(a) => dy[nc..].copy_from_slice(&a),
+            None => dy[nc..].iter_mut().for_each(|v| *v = f64::NAN),
+        }
+    }
+
+    fn jacobian(&self) -> Box<dyn crate::ode::Jacobian + '_> {
+        Box::new(crate::ode::DenseJacobian::analytic(self, move |t, y, j| {
+            let (mats, kin) = self.at(t);
+            let dim = 2 * self.field.coords();
+            self.field.jacobian_with(&mats, &kin, y, j, dim)
+        }))
+    }
+
+    fn component_name(&self, i: usize) -> String {
+        crate::analysis::VectorField::component_name(&self.field, i)
+    }
+}
+
+/// Settings of a run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunSettings {
+    /// End of the run (s).
+    pub t_end: f64,
+    /// Output interval (s).
+    pub dt: f64,
+    /// Relative tolerance.
+    pub rtol: f64,
+    /// Absolute tolerance on displacements (m; angles: divided by the race radius; rates: times
+    /// the largest speed of the drive).
+    pub atol: f64,
+    /// Integrator.
+    pub method: Method,
+    /// Step budget.
+    pub max_steps: u64,
+    /// Wall-clock budget (s).
+    pub max_wall_s: Option<f64>,
+    /// The first nodes that are physical (a reduced rotor's boundary nodes,
+    /// [`super::reduce`]); `None`: every node. [`RunSample::max_radius`] looks at these.
+    pub physical_nodes: Option<usize>,
+}
+
+/// One sample of a run.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RunSample {
+    /// Time (s).
+    pub t: f64,
+    /// Speed `Ω` (rad/s).
+    pub omega: f64,
+    /// Per balancer plane, the race centre's `(x, y)` in fixed axes (m).
+    pub planes: Vec<(f64, f64)>,
+    /// The largest translation radius `sqrt(x² + y²)` over the (physical) nodes (m).
+    pub max_radius: f64,
+    /// The balls' angles relative to the rotor (rad, all planes in order).
+    pub psi: Vec<f64>,
+}
+
+/// The summary of a run.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RunSummary {
+    /// The time reached (s).
+    pub t: f64,
+    /// Why it ended, when it ended early (a one-line message).
+    pub stopped: Option<String>,
+    /// The largest whirl radius of the first balancer plane's race centre seen at the samples,
+    /// with the speed then (rad/s).
+    pub peak: Peak<f64>,
+    /// The largest translation radius of any node at the samples, with the speed then.
+    pub peak_any_node: Peak<f64>,
+    /// The first plane's whirl radius at the end (m).
+    pub final_radius: f64,
+    /// Accepted steps.
+    pub steps: u64,
+}
+
+/// The race centre `(x + z β, y − z α)` of each balancer plane in the state `y`.
+pub fn plane_positions(rotor: &LinearRotor, y: &[f64]) -> Vec<(f64, f64)> {
+    rotor
+        .balancers
+        .iter()
+        .map(|b| {
+            let ix = rotor.dof(b.node, Direction::X).unwrap_or(0);
+            let (mut x, mut yy) = (y[ix], y[ix + 1]);
+            if let (Some(ia), Some(ib)) = (rotor.dof(b.node, Direction::Alpha), rotor.dof(b.node, Direction::Beta)) {
+                x += b.offset * y[ib];
+                yy -= b.offset * y[ia];
+            }
+            (x, yy)
+        })
+        .collect()
+}
+
+struct RunHooks<'a, F: FnMut(&RunSample) -> bool> {
+    rotor: &'a LinearRotor,
+    nodes: usize,
+    drive: &'a Drive,
+    sink: F,
+    peak: Peak<f64>,
+    peak_any: Peak<f64>,
+    last_radius: f64,
+}
+
+impl<F: FnMut(&RunSample) -> bool> Hooks for RunHooks<'_, F> {
+    fn sample(&mut self, t: f64, y: &[f64]) -> Control {
+        let r = self.rotor;
+        let n = r.dofs();
+        let nc = n + r.total_balls();
+        let omega = self.drive.kinematics(t).0;
+        let planes = plane_positions(r, y);
+        let per = r.layout.per_node();
+        let max_radius = (0..self.nodes).map(|k| y[k * per].hypot(y[k * per + 1])).fold(0.0, f64::max);
+        if let Some(p) = planes.first() {
+            self.last_radius = p.0.hypot(p.1);
+            self.peak.observe(self.last_radius, t, omega);
+        }
+        self.peak_any.observe(max_radius, t, omega);
+        let s = RunSample { t, omega, planes, max_radius, psi: y[n..nc].to_vec() };
+        if (self.sink)(&s) {
+            Control::Continue
+        } else {
+            Control::Stop
+        }
+    }
+}
+
+/// The initial state: the structure at rest on the axis, the balls evenly spread at rest
+/// relative to the rotor (`ψ_j = 2π j/n` in each plane).
+pub fn initial_state(rotor: &LinearRotor) -> Vec<f64> {
+    let n = rotor.dofs();
+    let nc = n + rotor.total_balls();
+    let mut y = vec![0.0; 2 * nc];
+    let mut g = n;
+    for b in &rotor.balancers {
+        for j in 0..b.balls {
+            y[g] = std::f64::consts::TAU * j as f64 / b.balls as f64;
+            g += 1;
+        }
+    }
+    y
+}
+
+/// Run `rotor` under `drive` from [`initial_state`]; `sink` gets every sample and may return
+/// `false` to stop. The run stops at the `control`'s cancel or budget (checked by the solver).
+pub fn simulate(
+    rotor: &LinearRotor,
+    drive: &Drive,
+    settings: &RunSettings,
+    control: &crate::control::Control,
+    sink: impl FnMut(&RunSample) -> bool,
+) -> Result<RunSummary> {
+    crate::error::positive("drive.t_end", settings.t_end)?;
+    crate::error::positive("integration.dt", settings.dt)?;
+    let sys = RunUpSystem::new(rotor, drive)?;
+    let n = rotor.dofs();
+    let nc = sys.field().coords();
+    let w_max =
+        drive.breakpoints().iter().chain([0.0, settings.t_end].iter()).map(|&t| drive.kinematics(t).0.abs()).fold(drive.omega0().abs(), f64::max).max(1.0);
+    let r_min = rotor.balancers.iter().map(|b| b.radius).fold(f64::INFINITY, f64::min);
+    let r_min = if r_min.is_finite() { r_min } else { 1.0 };
+    let mut atol = vec![0.0; 2 * nc];
+    for i in 0..nc {
+        let base = if i < n { settings.atol } else { settings.atol / r_min };
+        atol[i] = base;
+        atol[nc + i] = base * w_max;
+    }
+    let mut o = Options::new(settings.rtol, settings.atol).method(settings.method).atol_per_component(atol);
+    o.h_max_implicit = 4.0 * settings.dt;
+    o.max_steps = settings.max_steps;
+    o.max_wall = settings.max_wall_s.map(std::time::Duration::from_secs_f64);
+    let mut solver = Solver::new(&sys, o)?;
+    solver.control(control);
+    let mut y = initial_state(rotor);
+    let breakpoints = drive.breakpoints();
+    let timeline = Timeline { t_end: settings.t_end, dt: settings.dt, breakpoints: &breakpoints };
+    let mut hooks = RunHooks {
+        rotor,
+        nodes: settings.physical_nodes.unwrap_or(rotor.nodes).min(rotor.nodes),
+        drive,
+        sink,
+        peak: Peak::new(0.0),
+        peak_any: Peak::new(0.0),
+        last_radius: 0.0,
+    };
+    let out = run(&mut solver, &mut y, &timeline, &mut hooks);
+    let stopped = match &out.status {
+        Status::Completed | Status::Event(_) => None,
+        _ => Some(out.to_string()),
+    };
+    Ok(RunSummary { t: out.t, stopped, peak: hooks.peak, peak_any_node: hooks.peak_any, final_radius: hooks.last_radius, steps: out.stats.steps })
+}
