@@ -147,7 +147,8 @@ pub fn whole_rotor_table(w: &autobal::reports::WholeRotor) -> String {
             "  principal axis nearest the shaft: tilted {:.6e} rad ({:.4}°) from it, towards {:.2}° (rotor frame)",
             p.axis_tilt,
             p.axis_tilt.to_degrees(),
-            p.axis_tilt_angle.to_degrees()
+            // to the printed digits, without a "-0.00"
+            (p.axis_tilt_angle.to_degrees() * 100.0).round() / 100.0 + 0.0
         );
     }
     let _ = writeln!(
