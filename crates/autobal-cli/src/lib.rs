@@ -2,7 +2,9 @@
 //! `autobal-commands`, which reads the config, runs the library's analyses and writes tables,
 //! JSON, figures and the HTML report.
 
-use autobal_commands::{config, figures, general, general_campbell, linear, linear_rotor, map, outfile, output, parquet, report, sim, spatial_sim, sweep};
+use autobal_commands::{
+    any_config, config, figures, general, general_campbell, linear, linear_rotor, map, outfile, output, parquet, report, sim, spatial_sim, sweep,
+};
 
 use anyhow::Result;
 use autobal::control::Control;
@@ -103,7 +105,7 @@ enum QuantityArg {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Mass-inertia properties and anisotropy of the composite rotor (000, eqs (4), (5), (17))
+    /// Mass properties of the whole rotor with its balls at balance; 000's composite inertia (eqs (4), (5), (17)) where it applies
     Inertia {
         #[command(flatten)]
         common: Common,
@@ -127,7 +129,7 @@ enum Command {
         #[arg(long, allow_negative_numbers = true, value_name = "SPEED")]
         omega_max: Option<String>,
     },
-    /// Speed ranges where autobalancing is possible (003, eqs (1)-(3))
+    /// Exact stable speed ranges, and 003's necessary ranges (eqs (1)-(3)) where they are defined
     Ranges {
         #[command(flatten)]
         common: Common,
@@ -327,9 +329,11 @@ impl Command {
 fn run(cli: Cli, control: &Control) -> Result<()> {
     match cli.command {
         Command::Inertia { common, format } => {
-            let cfg = config::load_analytic("inertia", common.config.as_deref(), &common.set)?;
-            output::check_results(&cfg)?;
-            emit(format, output::inertia_json(&cfg), output::inertia_table(&cfg))
+            // every spatial config: nothing is ignored (supports and gravity are not part of the
+            // rotor's mass); a planar config is refused with one line
+            let (root, source) = config::read_set(common.config.as_deref(), &common.set)?;
+            let (json, table) = any_config::inertia(&root, &source)?;
+            emit(format, json, table)
         }
         Command::Critical { common, format, route, omega_max } => {
             let (root, _) = config::read_set(common.config.as_deref(), &common.set)?;
@@ -348,9 +352,14 @@ fn run(cli: Cli, control: &Control) -> Result<()> {
             emit(format, output::critical_json(&cfg), output::critical_table(&cfg))
         }
         Command::Ranges { common, format } => {
-            let cfg = config::load_analytic("ranges", common.config.as_deref(), &common.set)?;
-            output::check_results(&cfg)?;
-            emit(format, output::ranges_json(&cfg), output::ranges_table(&cfg))
+            // 003's necessary ranges where they are defined, the exact ones (general route where
+            // the one-plane model does not describe the config) always
+            let (root, source) = config::read_set(common.config.as_deref(), &common.set)?;
+            for n in config::bare_speed_notes(&root) {
+                output::note(&n);
+            }
+            let (json, table) = any_config::ranges(&root, &source)?;
+            emit(format, json, table)
         }
         Command::Stability { common, format, lin, samples, svg, route } => {
             let (root, _) = linear_rotor::read_set(common.config.as_deref(), &common.set)?;
@@ -474,12 +483,12 @@ fn run_general_stability(root: &toml::Table, format: Format, lin: LinearArgs, sa
     let g = general::rotor_of(root)?;
     config::check_entries(root, "stability", &[config::simulation_model(root)])?;
     // a periodic orbit costs a shooting (the variational equations over a revolution) per speed
-    let samples = samples.unwrap_or(if g.rotor.is_periodic() { 50 } else { 200 });
+    let samples = samples.unwrap_or(general::default_samples(&g));
     if !(10..=1_000_000).contains(&samples) {
         anyhow::bail!("--samples: must lie between 10 and 1000000, got {samples}");
     }
-    let omega_max = match (&g.rotor, lin.omega_max) {
-        (_, Some(t)) => {
+    let omega_max = match lin.omega_max {
+        Some(t) => {
             // rad/s: a speed with its unit on an SI config, a bare number times the unit of its
             // speeds (ω0 of a spatial config, 1 rad/s of a planar one)
             let s = autobal::units::parse_speed("--omega-max", &t)?;
@@ -491,14 +500,7 @@ fn run_general_stability(root: &toml::Table, format: Format, lin: LinearArgs, sa
             check_speed("--omega-max", w / g.omega0)?;
             w
         }
-        (autobal::rotor_stability::Rotor::Planar(_), None) => 3.0 * g.rotor.natural_frequency(),
-        (autobal::rotor_stability::Rotor::Spatial(_), None) => {
-            let cfg = autobal::config::spatial(root)?;
-            // the 12-state model's automatic axis covers its critical speeds; a second plane,
-            // supports that differ by direction or gravity move the modes, so twice that
-            let w = cfg.analysis.speed_axis_max(2.0 * autobal::reports::default_omega_max(&cfg.model));
-            w * g.omega0
-        }
+        None => general::default_omega_max(&g, root)?,
     };
     let r = general::analyse(&g, omega_max, samples)?;
     if let Some(p) = svg {

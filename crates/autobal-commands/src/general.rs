@@ -247,3 +247,29 @@ pub fn margin_plot(g: &GeneralRotor, r: &RotorStability, omega_max: f64) -> Plot
 pub fn write_svg(g: &GeneralRotor, r: &RotorStability, omega_max: f64, path: &Path) -> Result<()> {
     std::fs::write(path, margin_plot(g, r, omega_max).to_svg()).with_context(|| format!("--svg {}: cannot write", path.display()))
 }
+
+/// The number of speeds of the general route's grid when none is given: 200, or 50 for a
+/// periodic orbit (a shooting with the variational equations over a revolution per speed).
+pub fn default_samples(g: &GeneralRotor) -> usize {
+    if g.rotor.is_periodic() {
+        50
+    } else {
+        200
+    }
+}
+
+/// The end of the general route's speed axis when none is given, in the rotor's units (rad/s;
+/// the papers' units for a dimensionless config): 3 times the
+/// planar rotor's natural frequency; for a spatial rotor `analysis.omega_max` if given, else
+/// twice paper 000's automatic axis (it covers the 12-state model's critical speeds; a second
+/// plane, supports that differ by direction or gravity move the modes), extended to cover the
+/// operating speed.
+pub fn default_omega_max(g: &GeneralRotor, root: &Table) -> Result<f64> {
+    Ok(match &g.rotor {
+        Rotor::Planar(_) => 3.0 * g.rotor.natural_frequency(),
+        Rotor::Spatial(_) => {
+            let cfg = autobal::config::spatial(root)?;
+            cfg.analysis.speed_axis_max(2.0 * autobal::reports::default_omega_max(&cfg.model)) * g.omega0
+        }
+    })
+}

@@ -14,6 +14,7 @@
 //! The front ends parse arguments and own the terminal: `autobal-cli` maps each subcommand to
 //! the functions here; `autobal-py` converts to NumPy and Python exceptions.
 
+pub mod any_config;
 pub mod config;
 pub mod figures;
 pub mod figures_api;

@@ -109,6 +109,58 @@ pub fn inertia_table(cfg: &Config) -> String {
     s
 }
 
+/// The whole rotor's mass properties ([`autobal::reports::WholeRotor`]) as a table.
+pub fn whole_rotor_table(w: &autobal::reports::WholeRotor) -> String {
+    let p = &w.properties;
+    let (kg, m, kgm2, kgm) = if w.si { (" kg", " m", " kg·m²", " kg·m") } else { ("", "", "", "") };
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "\nwhole rotor as the simulation builds it (rotor, every unbalance mass, every ball){}",
+        if w.si { "" } else { ", in the papers' units M_s = 1, ρ_s = 1" }
+    );
+    let _ = writeln!(s, "  balls: {}", w.placement.note);
+    if !w.placement.angles.is_empty() {
+        let deg: Vec<String> = w.placement.angles.iter().map(|a| format!("{:.2}°", ((a.to_degrees() * 100.0).round() / 100.0).rem_euclid(360.0))).collect();
+        let _ = writeln!(s, "  ball angles (rotor frame, from its x axis): {}", deg.join(", "));
+    }
+    let _ = writeln!(s, "  total mass M = {:.6}{kg}", p.total_mass);
+    let c = p.centre_of_mass;
+    let _ = writeln!(s, "  centre of mass (x, y, z) = ({:.6e}, {:.6e}, {:.6}){m}", c[0], c[1], c[2]);
+    let _ = writeln!(s, "  inertia tensor about it (rotor frame x, y, z){}:", if w.si { ", kg·m²" } else { "" });
+    for row in &p.inertia {
+        let _ = writeln!(s, "    [{:>14.6e} {:>14.6e} {:>14.6e}]", row[0], row[1], row[2]);
+    }
+    let _ = writeln!(
+        s,
+        "  principal moments: polar {:.6}{kgm2}; equatorial {:.6}, {:.6}{kgm2} (difference {:.6e})",
+        p.polar_moment,
+        p.equatorial_moments[0],
+        p.equatorial_moments[1],
+        p.equatorial_moments[0] - p.equatorial_moments[1]
+    );
+    if p.axis_tilt < 1e-12 {
+        let _ = writeln!(s, "  principal axis nearest the shaft: along the shaft (tilt {:.1e} rad, round-off)", p.axis_tilt);
+    } else {
+        let _ = writeln!(
+            s,
+            "  principal axis nearest the shaft: tilted {:.6e} rad ({:.4}°) from it, towards {:.2}° (rotor frame)",
+            p.axis_tilt,
+            p.axis_tilt.to_degrees(),
+            // to the printed digits, without a "-0.00"
+            (p.axis_tilt_angle.to_degrees() * 100.0).round() / 100.0 + 0.0
+        );
+    }
+    let _ = writeln!(
+        s,
+        "  residual static unbalance |M c| = {:.6e}{kgm}; residual couple |(−I_xz, −I_yz)| = {:.6e}{kgm2}",
+        p.static_unbalance[0].hypot(p.static_unbalance[1]),
+        p.couple_unbalance[0].hypot(p.couple_unbalance[1])
+    );
+    let _ = writeln!(s, "  (supports and gravity act on the rotor: they are not part of its mass and do not enter)");
+    s
+}
+
 pub fn critical_rows(cs: &CriticalSpeeds, dimensional: bool) -> Vec<[String; 8]> {
     cs.speeds
         .iter()

@@ -280,9 +280,13 @@ fn spatial_report(py: Python<'_>, command: &str, cfg: &PySpatial, omega_max: Opt
     let err = |e| py_err(py, e);
     autobal::reports::check_results(c).map_err(err)?;
     let v = match command {
-        "inertia" => autobal::reports::inertia(c, src),
+        // every spatial config, as the CLI (autobal_commands::any_config)
+        "inertia" => autobal::reports::inertia_of(&cfg.root, src).map_err(err)?,
         "critical" => autobal::reports::critical(c, src),
-        "ranges" => autobal::reports::ranges(c, src),
+        "ranges" => {
+            let (root, src) = (cfg.root.clone(), src.to_string());
+            commands_call(py, move |_| autobal_commands::any_config::ranges(&root, &src))?.0
+        }
         "stability" => {
             if !(10..=1_000_000).contains(&samples) {
                 return Err(err(autobal::Error::invalid("samples", format!("must lie between 10 and 1000000, got {samples}"))));

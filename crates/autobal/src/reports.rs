@@ -287,6 +287,118 @@ pub fn inertia(c: &SpatialConfig, source: &str) -> Value {
     })
 }
 
+/// The entries of a spatial config that make paper 000's composite inertia (one plane, static
+/// unbalance, principal axis along the shaft) not that of the rotor: `[couple]`, `[balancer2]`,
+/// `rotor.axis_tilt` (with its angle) where not 0. Supports, gravity and the balls' physics are
+/// not among them: they do not change the rotor's mass properties.
+pub fn beyond_paper_000_inertia(root: &toml::Table) -> Vec<String> {
+    crate::config::ignored_by_linear_model(root)
+        .into_iter()
+        .filter(|k| matches!(k.as_str(), "[couple]" | "[balancer2]" | "rotor.axis_tilt" | "rotor.axis_tilt_angle"))
+        .collect()
+}
+
+/// The whole rotor's mass properties ([`crate::spatial::dynamics::mass_properties`]) with its
+/// balls placed, as `autobal inertia` reports them.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct WholeRotor {
+    /// Where the balls are and what state that is.
+    pub placement: crate::spatial::dynamics::BallPlacement,
+    /// The mass properties.
+    pub properties: crate::spatial::dynamics::MassProperties,
+    /// Units: SI, or the papers' (`M_s = 1`, `ρ_s = 1`, so `A_Σ = 1`) for a dimensionless config.
+    pub si: bool,
+}
+
+/// The rotor the simulation builds from `root` ([`crate::config::spatial_simulation`], its
+/// run's tables `[drive]`, `[initial]`, `[integration]` left out: they do not describe the
+/// rotor), its balls at the balanced state. On a config paper 000's composite inertia describes
+/// ([`beyond_paper_000_inertia`] empty) the balls sit at the position that inertia refers to
+/// (for `n ≥ 3` the member of the family with the largest anisotropy); otherwise
+/// [`SpatialRotor::balanced_ball_angles`](crate::spatial::dynamics::SpatialRotor::balanced_ball_angles).
+pub fn whole_rotor(root: &toml::Table, c: &SpatialConfig) -> Result<WholeRotor> {
+    let mut rotor_only = root.clone();
+    for t in ["drive", "initial", "integration"] {
+        rotor_only.remove(t);
+    }
+    let rotor = crate::config::spatial_simulation(&rotor_only)?.rotor;
+    let one_plane = rotor.planes.iter().filter(|p| p.n > 0).count() == 1;
+    let from_000 = match (&c.model.anisotropy.ball_angles, beyond_paper_000_inertia(root).is_empty() && one_plane) {
+        (Some(a), true) if a.len() == rotor.balls() && a.len() >= 3 => {
+            let u = rotor.unbalances.first().map_or(0.0, |u| u.angle);
+            Some(crate::spatial::dynamics::BallPlacement {
+                angles: a.iter().map(|x| x + u).collect(),
+                placement: crate::spatial::dynamics::Placement::Balanced,
+                note: "balanced state: the balls cancel the static unbalance (n ≥ 3: the member of the family with the largest anisotropy, the one paper 000's composite inertia and the 12-state model refer to)".into(),
+            })
+        }
+        _ => None,
+    };
+    let placement = from_000.unwrap_or_else(|| rotor.balanced_ball_angles());
+    let properties = rotor.mass_properties(&placement.angles)?;
+    check_finite("inertia.whole_rotor", &properties)?;
+    Ok(WholeRotor { placement, properties, si: c.dimensional })
+}
+
+/// `autobal inertia` of any spatial config: paper 000's composite inertia and anisotropy where
+/// they describe the rotor (`null` and the reason otherwise), and the whole rotor's mass
+/// properties as the simulation builds it ([`whole_rotor`]; `null` with the reason where the
+/// simulation cannot build it, e.g. a dimensionless config without masses).
+pub fn inertia_of(root: &toml::Table, source: &str) -> Result<Value> {
+    let c = crate::config::spatial(root)?;
+    let beyond = beyond_paper_000_inertia(root);
+    let whole = whole_rotor(root, &c);
+    if beyond.is_empty() {
+        check_results(&c)?;
+    } else if let Err(e) = whole {
+        return Err(e);
+    }
+    let mut v = inertia(&c, source);
+    if !beyond.is_empty() {
+        v["inertia"] = Value::Null;
+        v["anisotropy"] = Value::Null;
+    }
+    v["paper_000_not_applicable"] = if beyond.is_empty() {
+        Value::Null
+    } else {
+        json!(format!("paper 000's composite inertia is that of one balancer plane cancelling a static unbalance; this config has {}", beyond.join(", ")))
+    };
+    match whole {
+        Ok(w) => {
+            v["whole_rotor"] = json!(w);
+            v["whole_rotor_unavailable"] = Value::Null;
+        }
+        Err(e) => {
+            v["whole_rotor"] = Value::Null;
+            v["whole_rotor_unavailable"] = json!(e.to_string());
+        }
+    }
+    Ok(v)
+}
+
+/// `autobal ranges` of a config paper 003 describes: its necessary ranges ([`ranges`]) labelled
+/// as a necessary condition, beside the exact stable ranges of the 12-state linear model
+/// (balls free) over `autobal stability`'s default axis and grid ([`speed_axis_max`], 2000
+/// speeds).
+pub fn ranges_with_exact(c: &SpatialConfig, source: &str) -> Result<Value> {
+    let w = speed_axis_max(c);
+    // `autobal stability`'s default `--samples`
+    let cmp = crate::spatial::comparison::compare(&c.model, w, 2000, Balls::Free)?;
+    check_finite("ranges.exact", &cmp.exact)?;
+    let mut v = ranges(c, source);
+    let r = &cmp.exact.stable_ranges;
+    v["autobalancing_ranges_are"] = json!("necessary condition (paper 003, eqs (1)-(3)): not a verdict");
+    v["exact"] = json!({
+        "route": "the 12-state linear model of paper 000, balls free (as `autobal stability`)",
+        "omega_max": w,
+        "omega_max_rpm": si_units(&c.model).map(|(_, rpm)| w * rpm),
+        "stable_ranges": ranges_value(r),
+        "stable_ranges_rpm": ranges_rpm(&c.model, r),
+        "tolerance": cmp.exact.tolerance,
+    });
+    Ok(v)
+}
+
 /// `autobal critical`: critical speeds, sensitivity and autobalancing ranges.
 pub fn critical(c: &SpatialConfig, source: &str) -> Value {
     let cs = critical_speeds(&c.model);

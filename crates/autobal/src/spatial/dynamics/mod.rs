@@ -10,6 +10,8 @@
 //!   energy and dissipated power, the exact Jacobian by forward-mode differentiation.
 //! - [`field`]: the rotor at a constant speed as an [`crate::analysis::VectorField`]
 //!   ([`SpatialField`]: reduced state, exact Jacobian, period, family of balanced states).
+//! - [`mass_properties`]: total mass, centre of mass, inertia tensor, principal axes of the
+//!   whole rotor with its balls placed ([`SpatialRotor::mass_properties`]).
 //! - [`simulate`](mod@simulate): initial conditions, integration under a drive, samples, the
 //!   verdict ([`simulate()`]).
 //! - [`stationary`]: steady synchronous whirls with the balls held (the stationary response
@@ -19,11 +21,13 @@
 pub mod basins;
 pub mod equations;
 pub mod field;
+pub mod mass_properties;
 pub mod rotor;
 pub mod simulate;
 pub mod stationary;
 
 pub use equations::Equations;
 pub use field::SpatialField;
+pub use mass_properties::{BallPlacement, MassProperties, Placement};
 pub use rotor::{BallPlane, PointMass, RigidRotor, SpatialRotor, Support};
 pub use simulate::{simulate, simulate_summary, simulate_with, Initial, RunOutcome, Sample, Settings, Summary};
