@@ -696,9 +696,14 @@ fn analytic_commands_warn_about_entries_only_the_simulation_uses() {
     assert_eq!(code, 0, "{err}");
     assert!(!err.contains("warning: critical uses"), "{err}");
     assert_eq!(serde_json::from_str::<serde_json::Value>(&out).unwrap()["route"], "general");
-    let (code, _, err) = autobal(&["critical", "--config", &dim, "--set", "balancer.contact=true"]);
+    // real balls too: the locked critical speeds by the general route, the stability said to be
+    // not analysed (no linearisation), nothing ignored
+    let (code, out, err) = autobal(&["critical", "--format", "json", "--config", &dim, "--set", "balancer.contact=true"]);
     assert_eq!(code, 0, "{err}");
-    assert!(err.contains(&ignored_warning("critical", "balancer.contact", "is")), "{err}");
+    assert!(!err.contains("warning: critical uses"), "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["route"], "general");
+    assert!(v["stability_not_analysed"].is_string(), "{v}");
     let (code, _, err) = autobal(&["critical", "--config", &dim, "--set", "rotor.axis_tilt=0", "--set", "supports.stiffness_left_y=2.0e6"]);
     assert_eq!(code, 0, "{err}");
     assert!(!err.contains("warning: critical uses"), "{err}");

@@ -272,12 +272,63 @@ fn omega_span(py: Python<'_>, c: &PySpatial, omega_max: Option<SpeedArg>) -> PyR
 /// The JSON text of an analytic command (`inertia`, `critical`, `ranges`, `stability`,
 /// `campbell`) on a spatial config: what `autobal COMMAND --format json` prints.
 #[pyfunction]
-#[pyo3(signature = (command, cfg, omega_max=None, samples=2000, points=300, balls="free"))]
-fn spatial_report(py: Python<'_>, command: &str, cfg: &PySpatial, omega_max: Option<SpeedArg>, samples: usize, points: usize, balls: &str) -> PyResult<String> {
+#[pyo3(signature = (command, cfg, omega_max=None, samples=None, points=None, balls="free"))]
+fn spatial_report(
+    py: Python<'_>,
+    command: &str,
+    cfg: &PySpatial,
+    omega_max: Option<SpeedArg>,
+    samples: Option<usize>,
+    points: Option<usize>,
+    balls: &str,
+) -> PyResult<String> {
     let c = &cfg.cfg;
     let src = cfg.source.as_str();
     let b = self::balls(py, balls)?;
     let err = |e| py_err(py, e);
+    if matches!(command, "stability" | "campbell" | "critical") && autobal_commands::general::needs_general_route(&cfg.root) {
+        // the configs the 12-state model does not represent: the general route, as the CLI
+        // takes it (autobal_commands::general, general_campbell)
+        if b == autobal::spatial::linear_model::Balls::Locked {
+            return Err(err(autobal::Error::invalid(
+                "balls",
+                "the general route analyses the balls free (a one-plane config's 12-state route has the locked rotor)",
+            )));
+        }
+        let arg = match omega_max {
+            None => None,
+            Some(SpeedArg::Number(w)) => Some(format!("{w}")),
+            Some(SpeedArg::Text(t)) => Some(t),
+        };
+        let (root, command) = (cfg.root.clone(), command.to_string());
+        let v = commands_call(py, move |_| {
+            use autobal_commands::{general, general_campbell};
+            let g = general::rotor_of(&root)?;
+            Ok(match command.as_str() {
+                "stability" => {
+                    let samples = samples.unwrap_or(general::default_samples(&g));
+                    anyhow::ensure!((10..=1_000_000).contains(&samples), "samples: must lie between 10 and 1000000, got {samples}");
+                    let w = match &arg {
+                        Some(t) => general_campbell::omega_max(&root, &g, Some(t))?,
+                        None => general::default_omega_max(&g, &root)?,
+                    };
+                    general::json(&g, &general::analyse(&g, w, samples)?, w)
+                }
+                "campbell" => {
+                    let points = points.unwrap_or(if g.rotor.is_periodic() { 60 } else { 300 });
+                    anyhow::ensure!((3..=100_000).contains(&points), "points: must lie between 3 and 100000 on the general route, got {points}");
+                    let w = general_campbell::omega_max(&root, &g, arg.as_deref())?;
+                    general_campbell::campbell_json(&g, &general_campbell::campbell(&g, w, points)?, w)
+                }
+                _ => {
+                    let w = general_campbell::omega_max(&root, &g, arg.as_deref())?;
+                    general_campbell::critical_json(&g, &general_campbell::critical(&root, &g, w)?)
+                }
+            })
+        })?;
+        return Ok(v.to_string());
+    }
+    let (samples, points) = (samples.unwrap_or(2000), points.unwrap_or(300));
     autobal::reports::check_results(c).map_err(err)?;
     let v = match command {
         // every spatial config, as the CLI (autobal_commands::any_config)

@@ -102,6 +102,24 @@ def case_linear(command):
     return check
 
 
+def test_the_general_route_from_python_equals_the_clis():
+    # a config the 12-state model does not represent (two planes, couple unbalance, supports
+    # that differ by direction, gravity): stability, campbell and critical take the general
+    # route from Python as the CLI does (the same commands-crate functions)
+    two = str(EX / "spatial_two_plane.toml")
+    got = autobal.run("stability", config=two, omega_max=1.5, samples=10)
+    assert got["route"] == "general"
+    assert without_walls(got) == without_walls(cli_json("stability", "--config", two, "--omega-max", "1.5", "--samples", "10"))
+    got = autobal.run("campbell", config=two, omega_max=1.5, points=3)
+    assert got["route"] == "general"
+    assert without_walls(got) == without_walls(cli_json("campbell", "--config", two, "--omega-max", "1.5", "--points", "3"))
+    dim = str(EX / "dimensional.toml")
+    sets = {"rotor.axis_tilt": 0.01}
+    got = autobal.run("critical", config=dim, set=sets)
+    assert got["route"] == "general"
+    assert without_walls(got) == without_walls(cli_json("critical", "--config", dim, *setargs(sets)))
+
+
 def case_stability(tmp_path):
     assert autobal.run("stability", omega_max=4.0, samples=200) == cli_json("stability", "--omega-max", "4", "--samples", "200")
     dim = str(EX / "washing_machine.toml")

@@ -203,24 +203,32 @@ class SpatialModel(_Config):
         """Antiresonance and autobalancing ranges of 003 (``autobal ranges``)."""
         return self._report("ranges")
 
-    def stability(self, omega_max: Optional[Union[float, str]] = None, samples: int = 2000, balls: str = "free") -> Dict[str, Any]:
+    def stability(self, omega_max: Optional[Union[float, str]] = None, samples: Optional[int] = None, balls: str = "free") -> Dict[str, Any]:
         """Exact stability ranges of the balanced state against 003's necessary ranges over
         ``0 < Ω ≤ omega_max`` (``autobal stability``); ``balls``: ``"free"`` or ``"locked"``.
         ``omega_max``: a number is the dimensionless Ω; a dimensional config also takes a speed
         with its unit, ``"1500 rpm"``, ``"157 rad/s"``, ``"25 Hz"``. With
         ``analysis.operating_speed`` the result's ``operating_speed`` says whether the balanced
-        state is stable there, with the margin; ``*_rpm`` keys give the ranges in rpm."""
+        state is stable there, with the margin; ``*_rpm`` keys give the ranges in rpm. On a
+        config the 12-state model does not represent (two planes, couple unbalance, supports
+        that differ by direction, gravity) the general route's result, as the CLI gives it
+        (``"route": "general"``). ``samples``: default 2000, on the general route 200 (50 for a
+        periodic orbit)."""
         return self._report("stability", omega_max=omega_max, samples=samples, balls=balls)
 
-    def campbell(self, omega_max: Optional[Union[float, str]] = None, points: int = 300, balls: str = "free") -> Dict[str, Any]:
+    def campbell(self, omega_max: Optional[Union[float, str]] = None, points: Optional[int] = None, balls: str = "free") -> Dict[str, Any]:
         """Campbell data: ``omega`` (speeds), and per tracked line (rows) and speed (columns)
         ``re``, ``im`` (rotating axes), ``fixed_frequency``, ``log_decrement`` (NaN where
         undefined) as arrays, ``whirl`` and ``group`` as lists of lists; ``raw`` is the JSON of
         ``autobal campbell``. For a dimensional config also ``omega_rpm``, ``omega_rad_s`` and
         per mode ``fixed_frequency_hz``, ``fixed_frequency_rpm``, ``fixed_frequency_rad_s``,
         ``im_hz``, ``im_rad_s``, ``re_per_s`` (Ω-units times ω0). ``omega_max`` as for
-        :meth:`stability`."""
+        :meth:`stability`. ``points``: default 300. On a config the 12-state model does not
+        represent, the general route's JSON as the CLI prints it (``"route": "general"``, 60
+        points by default for a periodic orbit), returned as it is."""
         raw = self._report("campbell", omega_max=omega_max, points=points, balls=balls)
+        if raw.get("route") == "general":
+            return raw
         lines = [line["modes"] for line in raw["lines"]]
 
         def arr(key: str) -> np.ndarray:
