@@ -389,7 +389,9 @@ pub struct Summary {
     /// `s2` (or below 5 % of `s1` when `s2 = 0`) and the motion settled (see `settled`).
     pub balanced: bool,
     /// Whether the motion had settled at the end: the whirl radius and the balls' angles change
-    /// no faster (relative rate, 1/s) than `3 |ω̇/ω| + 1e-4 sqrt(k/m0)`, i.e. quasi-statically.
+    /// no faster (relative rate, 1/s) than `3 |ω̇/ω| + 1e-4 sqrt(k/m0)`, i.e. quasi-statically;
+    /// the radius's rate relative to the radius, or to the balance tolerance of `balanced` where
+    /// the radius is smaller (a balanced whirl near 0).
     pub settled: bool,
     /// Integrator steps (accepted).
     pub steps: u64,
@@ -584,11 +586,15 @@ fn simulate_sampled(
     eq.rhs(out.t, &y, &mut f);
     let w_dot = f[nc + 2];
     let rate_limit = 3.0 * if final_omega.abs() > 0.0 { (w_dot / final_omega).abs() } else { 0.0 } + 1e-4 * rotor.natural_frequency();
-    let radius_rate = if final_amp > 0.0 { (y[0] * y[nc] + y[1] * y[nc + 1]).abs() / (final_amp * final_amp) } else { 0.0 };
-    let rates_small = (0..rotor.n).all(|j| y[nc + 3 + j].abs() <= rate_limit);
-    let settled = rates_small && radius_rate <= rate_limit;
     let target = if rotor.s2 > 0.0 { rotor.s2 } else { 0.0 };
     let tolerance = if rotor.s2 > 0.0 { 0.05 * rotor.s2 } else { 0.05 * rotor.s1.max(1e-9) };
+    // the radius's rate d|u|/dt = u·u̇/|u| relative to the radius, or to the balance tolerance
+    // where the radius is smaller: a balanced whirl of 1e-18 m changing by 1e-20 m/s has
+    // settled (relative to its own radius it would read as a fast change)
+    let r_ref = final_amp.max(tolerance);
+    let radius_rate = if final_amp > 0.0 { (y[0] * y[nc] + y[1] * y[nc + 1]).abs() / (final_amp * r_ref) } else { 0.0 };
+    let rates_small = (0..rotor.n).all(|j| y[nc + 3 + j].abs() <= rate_limit);
+    let settled = rates_small && radius_rate <= rate_limit;
     let balanced = rotor.n > 0 && (final_amp - target).abs() <= tolerance && rates_small;
     let completed = out.status.is_completed();
     let stopped = match &out.status {
