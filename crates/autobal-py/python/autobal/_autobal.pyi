@@ -33,6 +33,7 @@ __all__ = [
     "report",
     "COMMANDS_WITH_FIGURES",
     "COMMANDS",
+    "LinearRotor",
 ]
 __version__: str
 SUMMARY_COLUMNS: List[str]
@@ -77,8 +78,9 @@ def figures(command: str, text: Optional[str], dict: Optional[Mapping[str, Any]]
 def report(config: Optional[str], sets: Sequence[str], out: str, quick: bool = False, papers: bool = False) -> str: ...
 
 # the linear rotor (linear_rotor.rs; autobal.from_ross in _ross.py builds one from a ross.Rotor)
+@final
 class LinearRotor:
-    def __init__(self, m: npt.NDArray[np.float64], c: npt.NDArray[np.float64], g: npt.NDArray[np.float64], k: npt.NDArray[np.float64], per_node: int = 4) -> None: ...
+    def __new__(cls, m: npt.NDArray[np.float64], c: npt.NDArray[np.float64], g: npt.NDArray[np.float64], k: npt.NDArray[np.float64], per_node: int = 4) -> "LinearRotor": ...
     @property
     def dofs(self) -> int: ...
     def add_unbalance(self, node: int, me: float, phase: float = 0.0, offset: float = 0.0) -> None: ...
