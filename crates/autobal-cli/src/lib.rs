@@ -544,7 +544,7 @@ fn run_map(
     let ya = map::Axis::parse("--y", &y)?;
     distinct_axes(&xa.key, Some(&ya.key))?;
     // a speed axis in SI (speed_rpm, speed, speed_hz) is converted to Ω point by point by the
-    // library (autobal::spatial::paths::stability_map_units); a fixed speed in SI must mean one Ω
+    // library (autobal::spatial::map::stability_map_units); a fixed speed in SI must mean one Ω
     let is_speed = |a: &map::Axis| autobal::units::speed_path_unit(&a.key).is_some();
     for (flag, a) in [("--x", &xa), ("--y", &ya)] {
         if is_speed(a) && a.key != "omega" && !cfg.dimensional {

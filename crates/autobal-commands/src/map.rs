@@ -180,7 +180,7 @@ pub fn compute(
         csv.flush()
     };
     let batch = (1 << 16) / x.n.max(1) + 1;
-    let outcome = autobal::spatial::paths::stability_map_units(&cfg.spec, &lx, &ly, &settings, control, &mut |j, cells| {
+    let outcome = autobal::spatial::map::stability_map_units(&cfg.spec, &lx, &ly, &settings, control, &mut |j, cells| {
         if j % ky == 0 && j / ky < dy.n {
             kept[j / ky] = Some(cells.iter().step_by(kx).take(dx.n).copied().collect());
         }
@@ -276,7 +276,7 @@ pub fn boundary_csv(b: &Boundary, x: &str, y: &str) -> String {
 pub fn trace(cfg: &Config, x: &Axis, y: &Axis, omega: Option<f64>, balls: Balls, control: &Control) -> Result<Boundary> {
     let ax = |a: &Axis| PlaneAxis { path: a.key.clone(), lo: a.lo, hi: a.hi };
     let s = TraceSettings { balls, omega, ..Default::default() };
-    autobal::spatial::paths::trace_boundary_units(&cfg.spec, &ax(x), &ax(y), &s, control).map_err(|e| anyhow!("--boundary: {e}"))
+    autobal::spatial::boundary::trace_boundary_units(&cfg.spec, &ax(x), &ax(y), &s, control).map_err(|e| anyhow!("--boundary: {e}"))
 }
 
 /// `autobal map` by the general route ([`autobal::rotor_map`]): any planar or spatial config,

@@ -678,7 +678,7 @@ fn stability_map<'py>(
             let mut margin = vec![f64::NAN; cells];
             let mut stable = vec![false; cells];
             let mut necessary = vec![false; cells];
-            let o = autobal::spatial::paths::stability_map_units(&spec, &ax, &ay, &settings, cancel, &mut |j, row| {
+            let o = autobal::spatial::map::stability_map_units(&spec, &ax, &ay, &settings, cancel, &mut |j, row| {
                 for (i, c) in row.iter().enumerate() {
                     margin[j * nx + i] = c.margin;
                     stable[j * nx + i] = c.stable;

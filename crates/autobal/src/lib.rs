@@ -65,10 +65,10 @@
 //! | [`spatial::dynamics::simulate_with`], [`spatial::dynamics::simulate_summary`] | `&Control` | [`spatial::dynamics::Summary::status`]; [`spatial::dynamics::Summary::into_result`] |
 //! | [`sweep::simulate_grid`], [`sweep::simulate_batch`] ([`sweep::SweepModel::run`]) | `&Control` | [`sweep::SweepOutcome::stopped`] (`into_result`: [`Error::Interrupted`] with the fraction done); each point's summary has its own `completed` and `t_reached` |
 //! | [`rotor_map::general_map`], [`rotor_map::general_map_traced`] | `&Control` | [`rotor_map::GeneralMapOutcome::stopped`] (the rows handed over are whole) |
-//! | [`spatial::boundary::trace_boundary_with`], [`spatial::paths::trace_boundary_units`] | `&Control` | [`spatial::boundary::Boundary::stopped`] (the curves traced are whole) |
+//! | [`spatial::boundary::trace_boundary_with`], [`spatial::boundary::trace_boundary_units`] | `&Control` | [`spatial::boundary::Boundary::stopped`] (the curves traced are whole) |
 //! | [`spatial::dynamics::basins::basins`] | `&Control` | [`control::Outcome::stopped`]; `None` for each run not run or cut short |
 //! | [`planar::paper004::torque_run_with`] / [`planar::paper004::torque_outcomes`] | `&Control` | the run's `summary.status` / a typed error |
-//! | [`spatial::map::stability_map`], [`spatial::paths::stability_map_units`] | `&Control` (asked between rows) | [`spatial::map::MapOutcome::stopped`] (the rows handed over are whole) |
+//! | [`spatial::map::stability_map`], [`spatial::map::stability_map_units`] | `&Control` (asked between rows) | [`spatial::map::MapOutcome::stopped`] (the rows handed over are whole) |
 //! | [`spatial::stability::campbell_stream`] | `on_speed` returns `false` (likewise) | [`spatial::stability::CampbellStats::complete`] |
 //! | [`planar::friction::residual`] | none (one bounded run; callers ask the control between runs) | [`planar::friction::Residual::completed`] |
 //!

@@ -114,8 +114,8 @@ fn torque_outcomes_stop_with_a_typed_error() {
 
 #[test]
 fn spatial_stability_map_keeps_whole_rows() {
+    use autobal::spatial::map::stability_map_units;
     use autobal::spatial::map::{stability_map, Axis, MapSettings};
-    use autobal::spatial::paths::stability_map_units;
     let root = autobal::config::parse(include_str!("../../../examples/washing_machine.toml"), "w").unwrap();
     let c = autobal::config::spatial(&root).unwrap();
     let x = Axis::linspace("balancer.z", 0.05, 0.15, 3);

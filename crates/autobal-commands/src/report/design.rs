@@ -3,7 +3,7 @@
 //! the position of the balancer plane, the mass of a ball and the drag on the balls, each
 //! around the config's own value, with the operating speed and the config's value marked.
 //!
-//! Each map is the library's stability map ([`autobal::spatial::paths::stability_map_units`],
+//! Each map is the library's stability map ([`autobal::spatial::map::stability_map_units`],
 //! the one `autobal map` runs) over the config's own parameter path (`balancer.z`,
 //! `balancer.ball_mass`, `balancer.drag` of a dimensional config, `dimensionless.z_a`, `.m`,
 //! `.h_s` of a dimensionless one) and the speed (`speed_rpm`, or `omega`), so a map's row at the
@@ -177,7 +177,7 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
 fn map(spec: &SpatialSpec, x: Axis, y: Axis, balls: Balls, control: &autobal::control::Control) -> Result<MapResult> {
     let settings = MapSettings { balls, quantity: Quantity::Margin, omega: None };
     let mut rows = vec![None; y.n];
-    autobal::spatial::paths::stability_map_units(spec, &x.to_library(), &y.to_library(), &settings, control, &mut |j, cells| {
+    autobal::spatial::map::stability_map_units(spec, &x.to_library(), &y.to_library(), &settings, control, &mut |j, cells| {
         rows[j] = Some(cells.to_vec());
         true
     })?;

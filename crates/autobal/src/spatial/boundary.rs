@@ -883,6 +883,53 @@ fn march(pl: &Plane, kind: CurveKind, z0: [f64; 3], t0: [f64; 3], max_step: f64)
     Ok((pts, false))
 }
 
+/// The stability boundary ([`trace_boundary_with`]) over a plane
+/// whose speed axis may be in SI (as [`crate::spatial::map::stability_map_units`]): traced in the plane of `Ω`
+/// (from the slowest speed over the largest `ω0` to the fastest over the smallest, `ω0` sampled
+/// at 65 points of the other axis) and every point carried to the SI speed `Ω ω0/k` with the
+/// `ω0` of its own model; the boundary's axes are the SI ones.
+pub fn trace_boundary_units(spec: &SpatialSpec, x: &PlaneAxis, y: &PlaneAxis, s: &TraceSettings, control: &crate::control::Control) -> Result<Boundary> {
+    use crate::spatial::paths::{omega0_at, si_speed_axis};
+    let Some((i, k)) = si_speed_axis(spec, [&x.path, &y.path])? else { return trace_boundary_with(spec, x, y, s, control) };
+    let (speed, other) = if i == 0 { (x, y) } else { (y, x) };
+    if !(speed.lo >= 0.0 && speed.hi > speed.lo && speed.hi.is_finite()) {
+        return Err(Error::invalid(speed.path.clone(), "the speeds must be finite, non-negative, with hi > lo"));
+    }
+    let mut w0s = vec![];
+    for n in 0..=64 {
+        w0s.push(omega0_at(spec, &other.path, other.lo + (other.hi - other.lo) * n as f64 / 64.0)?);
+    }
+    let (lo, hi) = w0s.iter().fold((f64::INFINITY, 0.0f64), |(a, b), w| (a.min(*w), b.max(*w)));
+    let om = PlaneAxis { path: OMEGA.into(), lo: speed.lo * k / hi, hi: speed.hi * k / lo };
+    let mut b = if i == 0 { trace_boundary_with(spec, &om, y, s, control)? } else { trace_boundary_with(spec, x, &om, s, control)? };
+    let carry = |sp: &mut f64, ot: f64| -> Result<()> {
+        *sp *= omega0_at(spec, &other.path, ot)? / k;
+        Ok(())
+    };
+    for c in &mut b.curves {
+        for p in &mut c.points {
+            if i == 0 {
+                carry(&mut p.x, p.y)?
+            } else {
+                carry(&mut p.y, p.x)?
+            }
+        }
+    }
+    for p in &mut b.codim2 {
+        if i == 0 {
+            carry(&mut p.x, p.y)?
+        } else {
+            carry(&mut p.y, p.x)?
+        }
+    }
+    if i == 0 {
+        b.x = x.clone();
+    } else {
+        b.y = y.clone();
+    }
+    Ok(b)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -517,6 +517,108 @@ fn map_fixed_speed<F: ModelFamily>(
     Ok(out)
 }
 
+/// A stability map ([`stability_map`]) whose speed axis may be given in SI:
+/// `speed_rpm`, `speed` (rad/s) or `speed_hz` beside `omega` (`Ω`), for a dimensional config.
+/// Each speed is converted to `Ω = ω/ω0` with the `ω0 = sqrt(c_x/M_s)` of the model at that
+/// point: where the other axis does not change `ω0` (a position, a drag, a damping), the map is
+/// the map over the `omega` axis of the converted speeds, cell for cell; where it does (a mass,
+/// a stiffness), every line of the other axis is mapped over its own `Ω` values. The cells
+/// are the same either way; rows go to `on_row` in order.
+///
+/// ```
+/// use autobal::spatial::map::{stability_map, stability_map_units, Axis, MapSettings};
+/// let root = autobal::config::parse(include_str!("../../../../examples/washing_machine.toml"), "w").unwrap();
+/// let c = autobal::config::spatial(&root).unwrap();
+/// let w0 = c.model.scale.unwrap().omega0;
+/// let x = Axis::linspace("balancer.z", 0.05, 0.15, 3);
+/// let rpm = Axis::linspace("speed_rpm", 300.0, 1500.0, 5);
+/// let omega = Axis { path: "omega".into(), values: rpm.values.iter().map(|n| n * std::f64::consts::PI / 30.0 / w0).collect() };
+/// let (mut a, mut b) = (vec![], vec![]);
+/// let none = autobal::control::Control::none();
+/// stability_map_units(&c.spec, &x, &rpm, &MapSettings::default(), &none, &mut |_, r| { a.push(r.to_vec()); true }).unwrap();
+/// stability_map(&c.spec, &x, &omega, &MapSettings::default(), &none, &mut |_, r| { b.push(r.to_vec()); true }).unwrap();
+/// assert_eq!(a, b);
+/// ```
+pub fn stability_map_units(
+    spec: &SpatialSpec,
+    x: &Axis,
+    y: &Axis,
+    s: &MapSettings,
+    control: &crate::control::Control,
+    on_row: &mut dyn FnMut(usize, &[Cell]) -> bool,
+) -> Result<MapOutcome> {
+    use crate::control::{Control, StopReason};
+    use crate::spatial::paths::{omega0_at, si_speed_axis};
+    use rayon::prelude::*;
+    let Some((i, k)) = si_speed_axis(spec, [&x.path, &y.path])? else { return stability_map(spec, x, y, s, control, on_row) };
+    let (speed, other) = if i == 0 { (x, y) } else { (y, x) };
+    if speed.values.iter().any(|v| !(v.is_finite() && *v >= 0.0)) || speed.values.windows(2).any(|w| w[1] < w[0]) {
+        return Err(Error::invalid(speed.path.clone(), "the speeds must be finite, non-negative and ascending"));
+    }
+    let w0: Vec<f64> = other.values.par_iter().map(|&v| omega0_at(spec, &other.path, v)).collect::<Result<_>>()?;
+    let to_omega = |w0: f64| Axis { path: OMEGA.into(), values: speed.values.iter().map(|v| v * k / w0).collect() };
+    if w0.iter().all(|w| *w == w0[0]) {
+        // ω0 the same on every line: one map over the converted speeds
+        let om = to_omega(w0[0]);
+        return if i == 0 { stability_map(spec, &om, y, s, control, on_row) } else { stability_map(spec, x, &om, s, control, on_row) };
+    }
+    // ω0 changes with the other axis: each line over its own Ω values
+    let line = |j: usize, speeds: std::ops::Range<usize>| -> Result<(Vec<Cell>, MapOutcome)> {
+        let one = Axis { path: other.path.clone(), values: vec![other.values[j]] };
+        let mut om = to_omega(w0[j]);
+        om.values = om.values[speeds].to_vec();
+        let mut cells = vec![];
+        let out = stability_map(spec, &om, &one, s, &Control::none(), &mut |_, r| {
+            cells.extend_from_slice(r);
+            true
+        })?;
+        Ok((cells, out))
+    };
+    let nx = x.values.len();
+    if let Some(why) = control.should_stop() {
+        return Ok(MapOutcome { stopped: Some(why), ..Default::default() });
+    }
+    let mut why = None;
+    let mut on_row = ask_control(control, y.values.len(), on_row, &mut why);
+    let mut out = MapOutcome { complete: true, ..Default::default() };
+    let block = ((1usize << 18) / nx).max(2 * rayon::current_num_threads());
+    let mut j0 = 0;
+    while j0 < y.values.len() {
+        let j1 = (j0 + block).min(y.values.len());
+        let rows: Vec<Vec<Cell>> = if i == 0 {
+            // rows are the lines
+            let lines: Vec<_> = (j0..j1).into_par_iter().map(|j| line(j, 0..nx)).collect::<Result<_>>()?;
+            lines
+                .into_iter()
+                .map(|(c, o)| {
+                    out.continued += o.continued;
+                    out.direct += o.direct;
+                    c
+                })
+                .collect()
+        } else {
+            // rows are speeds: every line over this block of speeds
+            let cols: Vec<_> = (0..nx).into_par_iter().map(|j| line(j, j0..j1)).collect::<Result<_>>()?;
+            for (_, o) in &cols {
+                out.continued += o.continued;
+                out.direct += o.direct;
+            }
+            (0..j1 - j0).map(|jj| cols.iter().map(|(c, _)| c[jj]).collect()).collect()
+        };
+        for (jj, row) in rows.iter().enumerate() {
+            out.rows += 1;
+            if !on_row(j0 + jj, row) {
+                out.complete = false;
+                drop(on_row);
+                out.stopped = Some(why.unwrap_or(StopReason::Observer));
+                return Ok(out);
+            }
+        }
+        j0 = j1;
+    }
+    Ok(out)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -320,7 +320,7 @@ pub static PARAMETER_PATHS: &[ParameterPath] = &[
 /// The speed axis in SI of a map or boundary (`speed_rpm`, `speed` in rad/s, `speed_hz`,
 /// [`crate::units::SPEED_PATHS`]): its index (0 = x, 1 = y) and rad/s per unit; `None` when
 /// neither axis is one. Errors: both axes speeds, or a unit on a dimensionless model.
-fn si_speed_axis(spec: &SpatialSpec, paths: [&str; 2]) -> Result<Option<(usize, f64)>> {
+pub(crate) fn si_speed_axis(spec: &SpatialSpec, paths: [&str; 2]) -> Result<Option<(usize, f64)>> {
     let units = paths.map(crate::units::speed_path_unit);
     let si = units.iter().position(|u| u.is_some_and(|u| u != crate::units::SpeedUnit::Omega));
     let Some(i) = si else { return Ok(None) };
@@ -338,166 +338,10 @@ fn si_speed_axis(spec: &SpatialSpec, paths: [&str; 2]) -> Result<Option<(usize, 
 }
 
 /// `ω0` (rad/s) of the model with the parameter at `path` set to `v`.
-fn omega0_at(spec: &SpatialSpec, path: &str, v: f64) -> Result<f64> {
+pub(crate) fn omega0_at(spec: &SpatialSpec, path: &str, v: f64) -> Result<f64> {
     let mut t = spec.clone();
     t.set(path, v)?;
     t.build()?.scale.map(|s| s.omega0).ok_or_else(|| Error::invalid(path, "the model has no SI scale ω0"))
-}
-
-/// A stability map ([`crate::spatial::map::stability_map`]) whose speed axis may be given in SI:
-/// `speed_rpm`, `speed` (rad/s) or `speed_hz` beside `omega` (`Ω`), for a dimensional config.
-/// Each speed is converted to `Ω = ω/ω0` with the `ω0 = sqrt(c_x/M_s)` of the model at that
-/// point: where the other axis does not change `ω0` (a position, a drag, a damping), the map is
-/// the map over the `omega` axis of the converted speeds, cell for cell; where it does (a mass,
-/// a stiffness), every line of the other axis is mapped over its own `Ω` values. The cells
-/// are the same either way; rows go to `on_row` in order.
-///
-/// ```
-/// use autobal::spatial::map::{stability_map, Axis, MapSettings};
-/// use autobal::spatial::paths::stability_map_units;
-/// let root = autobal::config::parse(include_str!("../../../../examples/washing_machine.toml"), "w").unwrap();
-/// let c = autobal::config::spatial(&root).unwrap();
-/// let w0 = c.model.scale.unwrap().omega0;
-/// let x = Axis::linspace("balancer.z", 0.05, 0.15, 3);
-/// let rpm = Axis::linspace("speed_rpm", 300.0, 1500.0, 5);
-/// let omega = Axis { path: "omega".into(), values: rpm.values.iter().map(|n| n * std::f64::consts::PI / 30.0 / w0).collect() };
-/// let (mut a, mut b) = (vec![], vec![]);
-/// let none = autobal::control::Control::none();
-/// stability_map_units(&c.spec, &x, &rpm, &MapSettings::default(), &none, &mut |_, r| { a.push(r.to_vec()); true }).unwrap();
-/// stability_map(&c.spec, &x, &omega, &MapSettings::default(), &none, &mut |_, r| { b.push(r.to_vec()); true }).unwrap();
-/// assert_eq!(a, b);
-/// ```
-pub fn stability_map_units(
-    spec: &SpatialSpec,
-    x: &crate::spatial::map::Axis,
-    y: &crate::spatial::map::Axis,
-    s: &crate::spatial::map::MapSettings,
-    control: &crate::control::Control,
-    on_row: &mut dyn FnMut(usize, &[crate::spatial::map::Cell]) -> bool,
-) -> Result<crate::spatial::map::MapOutcome> {
-    use crate::control::{Control, StopReason};
-    use crate::spatial::map::{ask_control, stability_map, Axis, MapOutcome, OMEGA};
-    use rayon::prelude::*;
-    let Some((i, k)) = si_speed_axis(spec, [&x.path, &y.path])? else { return stability_map(spec, x, y, s, control, on_row) };
-    let (speed, other) = if i == 0 { (x, y) } else { (y, x) };
-    if speed.values.iter().any(|v| !(v.is_finite() && *v >= 0.0)) || speed.values.windows(2).any(|w| w[1] < w[0]) {
-        return Err(Error::invalid(speed.path.clone(), "the speeds must be finite, non-negative and ascending"));
-    }
-    let w0: Vec<f64> = other.values.par_iter().map(|&v| omega0_at(spec, &other.path, v)).collect::<Result<_>>()?;
-    let to_omega = |w0: f64| Axis { path: OMEGA.into(), values: speed.values.iter().map(|v| v * k / w0).collect() };
-    if w0.iter().all(|w| *w == w0[0]) {
-        // ω0 the same on every line: one map over the converted speeds
-        let om = to_omega(w0[0]);
-        return if i == 0 { stability_map(spec, &om, y, s, control, on_row) } else { stability_map(spec, x, &om, s, control, on_row) };
-    }
-    // ω0 changes with the other axis: each line over its own Ω values
-    let line = |j: usize, speeds: std::ops::Range<usize>| -> Result<(Vec<crate::spatial::map::Cell>, MapOutcome)> {
-        let one = Axis { path: other.path.clone(), values: vec![other.values[j]] };
-        let mut om = to_omega(w0[j]);
-        om.values = om.values[speeds].to_vec();
-        let mut cells = vec![];
-        let out = stability_map(spec, &om, &one, s, &Control::none(), &mut |_, r| {
-            cells.extend_from_slice(r);
-            true
-        })?;
-        Ok((cells, out))
-    };
-    let nx = x.values.len();
-    if let Some(why) = control.should_stop() {
-        return Ok(MapOutcome { stopped: Some(why), ..Default::default() });
-    }
-    let mut why = None;
-    let mut on_row = ask_control(control, y.values.len(), on_row, &mut why);
-    let mut out = MapOutcome { complete: true, ..Default::default() };
-    let block = ((1usize << 18) / nx).max(2 * rayon::current_num_threads());
-    let mut j0 = 0;
-    while j0 < y.values.len() {
-        let j1 = (j0 + block).min(y.values.len());
-        let rows: Vec<Vec<crate::spatial::map::Cell>> = if i == 0 {
-            // rows are the lines
-            let lines: Vec<_> = (j0..j1).into_par_iter().map(|j| line(j, 0..nx)).collect::<Result<_>>()?;
-            lines
-                .into_iter()
-                .map(|(c, o)| {
-                    out.continued += o.continued;
-                    out.direct += o.direct;
-                    c
-                })
-                .collect()
-        } else {
-            // rows are speeds: every line over this block of speeds
-            let cols: Vec<_> = (0..nx).into_par_iter().map(|j| line(j, j0..j1)).collect::<Result<_>>()?;
-            for (_, o) in &cols {
-                out.continued += o.continued;
-                out.direct += o.direct;
-            }
-            (0..j1 - j0).map(|jj| cols.iter().map(|(c, _)| c[jj]).collect()).collect()
-        };
-        for (jj, row) in rows.iter().enumerate() {
-            out.rows += 1;
-            if !on_row(j0 + jj, row) {
-                out.complete = false;
-                drop(on_row);
-                out.stopped = Some(why.unwrap_or(StopReason::Observer));
-                return Ok(out);
-            }
-        }
-        j0 = j1;
-    }
-    Ok(out)
-}
-
-/// The stability boundary ([`crate::spatial::boundary::trace_boundary_with`]) over a plane
-/// whose speed axis may be in SI (as [`stability_map_units`]): traced in the plane of `Ω`
-/// (from the slowest speed over the largest `ω0` to the fastest over the smallest, `ω0` sampled
-/// at 65 points of the other axis) and every point carried to the SI speed `Ω ω0/k` with the
-/// `ω0` of its own model; the boundary's axes are the SI ones.
-pub fn trace_boundary_units(
-    spec: &SpatialSpec,
-    x: &crate::spatial::boundary::PlaneAxis,
-    y: &crate::spatial::boundary::PlaneAxis,
-    s: &crate::spatial::boundary::TraceSettings,
-    control: &crate::control::Control,
-) -> Result<crate::spatial::boundary::Boundary> {
-    use crate::spatial::boundary::{trace_boundary_with, PlaneAxis};
-    let Some((i, k)) = si_speed_axis(spec, [&x.path, &y.path])? else { return trace_boundary_with(spec, x, y, s, control) };
-    let (speed, other) = if i == 0 { (x, y) } else { (y, x) };
-    if !(speed.lo >= 0.0 && speed.hi > speed.lo && speed.hi.is_finite()) {
-        return Err(Error::invalid(speed.path.clone(), "the speeds must be finite, non-negative, with hi > lo"));
-    }
-    let mut w0s = vec![];
-    for n in 0..=64 {
-        w0s.push(omega0_at(spec, &other.path, other.lo + (other.hi - other.lo) * n as f64 / 64.0)?);
-    }
-    let (lo, hi) = w0s.iter().fold((f64::INFINITY, 0.0f64), |(a, b), w| (a.min(*w), b.max(*w)));
-    let om = PlaneAxis { path: crate::spatial::map::OMEGA.into(), lo: speed.lo * k / hi, hi: speed.hi * k / lo };
-    let mut b = if i == 0 { trace_boundary_with(spec, &om, y, s, control)? } else { trace_boundary_with(spec, x, &om, s, control)? };
-    let carry = |sp: &mut f64, ot: f64| -> Result<()> {
-        *sp *= omega0_at(spec, &other.path, ot)? / k;
-        Ok(())
-    };
-    for c in &mut b.curves {
-        for p in &mut c.points {
-            if i == 0 {
-                carry(&mut p.x, p.y)?
-            } else {
-                carry(&mut p.y, p.x)?
-            }
-        }
-    }
-    for p in &mut b.codim2 {
-        if i == 0 {
-            carry(&mut p.x, p.y)?
-        } else {
-            carry(&mut p.y, p.x)?
-        }
-    }
-    if i == 0 {
-        b.x = x.clone();
-    } else {
-        b.y = y.clone();
-    }
-    Ok(b)
 }
 
 #[cfg(test)]
