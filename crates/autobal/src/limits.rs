@@ -38,6 +38,10 @@ pub const MAX_BALLS_SPATIAL: u32 = 100;
 /// `planar::MAX_BALLS`.
 pub const MAX_BALLS_IMPLICIT_REAL: usize = 300;
 
+/// Most balls of the planar rotor (`planar.n`; `crate::planar::MAX_BALLS`): a step costs
+/// `O(n)`, the limit keeps a mistyped number from allocating gigabytes.
+pub const PLANAR_MAX_BALLS: usize = 100_000;
+
 /// The range of one input field.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Limit {
@@ -168,7 +172,7 @@ pub const LIMITS: &[Limit] = &[
     lim("planar.m1", 0.0, true, 1e9, false, "kg", MASS),
     lim("planar.m2", 0.0, false, 1e9, false, "kg", MASS),
     lim("planar.m3", 0.0, false, 1e9, false, "kg", MASS),
-    lim("planar.n", 0.0, false, crate::planar::MAX_BALLS as f64, false, "", "a step costs O(n); the limit keeps a mistyped number from allocating gigabytes"),
+    lim("planar.n", 0.0, false, PLANAR_MAX_BALLS as f64, false, "", "a step costs O(n); the limit keeps a mistyped number from allocating gigabytes"),
     lim("planar.s1", 0.0, false, 1e3, false, "m", RADIUS),
     lim("planar.s2", 0.0, false, 1e3, false, "m", RADIUS),
     lim("planar.gamma", -1e3, false, 1e3, false, "rad", ANGLE),
@@ -277,58 +281,6 @@ pub fn check_count(field: &str, value: u64) -> Result<u64> {
     }
 }
 
-/// The planar rotor (paper 004): every field in its range, and the shaft's natural frequency
-/// `sqrt(k/m0)` within `[1e-3, 1e7]` rad/s (0.16 mHz to 1.6 MHz): below, the shaft has no
-/// stiffness on any drive's time scale; above, it is rigid on them, and an integrator would
-/// need ~100 steps per period of a vibration that plays no part. [`crate::planar::PlanarRotor::validate`]
-/// calls it.
-pub fn check_planar_rotor(r: &crate::planar::PlanarRotor) -> Result<()> {
-    check_all(&[
-        ("planar.m1", r.m1),
-        ("planar.m2", r.m2),
-        ("planar.m3", r.m3),
-        ("planar.s1", r.s1),
-        ("planar.s2", r.s2),
-        ("planar.gamma", r.gamma),
-        ("planar.r", r.r),
-        ("planar.k", r.k),
-        ("planar.c", r.c),
-        ("planar.c_psi", r.c_psi),
-        ("planar.c_theta", r.c_theta),
-        ("planar.i_g", r.i_g),
-    ])?;
-    if let Some(v) = r.k_y {
-        check("planar.k_y", v)?;
-    }
-    if let Some(v) = r.c_y {
-        check("planar.c_y", v)?;
-    }
-    for (field, list) in [("planar.ball_masses", &r.ball_masses), ("planar.ball_drags", &r.ball_drags)] {
-        for (j, v) in list.iter().flatten().enumerate() {
-            check_as(&format!("{field}[{}]", j + 1), field, *v)?;
-        }
-    }
-    check_count("planar.n", r.n as u64)?;
-    // each direction's natural frequency (supports that differ by direction: k_x, k_y)
-    let (kx, ky) = r.stiffness_xy();
-    let directions: &[(&str, &str, f64)] = if r.k_y.is_some() { &[("planar.k_x", "k_x", kx), ("planar.k_y", "k_y", ky)] } else { &[("planar.k", "k", kx)] };
-    for &(field, key, k) in directions {
-        let wn = (k / r.total_mass()).sqrt();
-        if !(1e-3..=1e7).contains(&wn) {
-            return Err(Error::invalid(
-                field,
-                format!(
-                    "the natural frequency sqrt({key}/m0) = {} rad/s ({key} = {} N/m, m0 = {} kg) lies outside [0.001, 1e7] rad/s",
-                    fmt_num(wn),
-                    fmt_num(k),
-                    fmt_num(r.total_mass())
-                ),
-            ));
-        }
-    }
-    Ok(())
-}
-
 /// Every number of a description that has a limit, read through its parameter paths
 /// ([`crate::paths::Parameters`]): what a sweep or a front end may have set.
 pub fn check_parameters<T: crate::paths::Parameters>(t: &T) -> Result<()> {
@@ -340,22 +292,6 @@ pub fn check_parameters<T: crate::paths::Parameters>(t: &T) -> Result<()> {
         }
     }
     Ok(())
-}
-
-/// A planar problem: rotor ([`check_planar_rotor`]), drive and integration settings through
-/// their parameter paths, the initial ball angles and rates and the rotor's initial position and
-/// velocity one by one, and the step and wall-clock budgets.
-/// [`crate::planar::problem::PlanarProblem::validate`] calls it.
-pub fn check_planar_problem(p: &crate::planar::problem::PlanarProblem) -> Result<()> {
-    check_planar_rotor(&p.rotor)?;
-    check_parameters(p)?;
-    let s = &p.settings;
-    s.psi0.iter().try_for_each(|v| check("drive.psi0", *v).map(|_| ()))?;
-    s.psi_rate0.iter().try_for_each(|v| check("drive.psi_rate0", *v).map(|_| ()))?;
-    s.xy0.iter().try_for_each(|v| check("drive.xy0", *v).map(|_| ()))?;
-    s.xy_rate0.iter().try_for_each(|v| check("drive.xy_rate0", *v).map(|_| ()))?;
-    check("integration.max_steps", s.max_steps as f64)?;
-    s.max_wall_s.map_or(Ok(()), |w| check("integration.max_wall_s", w).map(|_| ()))
 }
 
 /// Check a derived dimensionless quantity against the range of the dimensionless field

@@ -57,7 +57,7 @@ use serde::Serialize;
 /// Most balls the simulator takes. The cost of a step is linear in `n` (about 110 instructions
 /// per ball and right-hand side, as many again in the integrators' vector operations: 64 balls
 /// cost about 9× two); the limit only keeps a mistyped number from allocating gigabytes.
-pub const MAX_BALLS: usize = 100_000;
+pub const MAX_BALLS: usize = crate::limits::PLANAR_MAX_BALLS;
 
 /// The planar rotor of paper 004, SI units.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -133,7 +133,7 @@ impl PlanarRotor {
 
     /// Check every field; errors name it as `planar.<field>`.
     pub fn validate(&self) -> Result<()> {
-        crate::limits::check_planar_rotor(self)?;
+        check_ranges(self)?;
         positive("planar.m1", self.m1)?;
         non_negative("planar.m2", self.m2)?;
         non_negative("planar.m3", self.m3)?;
@@ -370,6 +370,60 @@ pub struct Sample {
     pub amplitude: f64,
     /// Ball angles in the disk frame (rad).
     pub psi: Vec<f64>,
+}
+
+/// The planar rotor (paper 004): every field in its range, and the shaft's natural frequency
+/// `sqrt(k/m0)` within `[1e-3, 1e7]` rad/s (0.16 mHz to 1.6 MHz): below, the shaft has no
+/// stiffness on any drive's time scale; above, it is rigid on them, and an integrator would
+/// need ~100 steps per period of a vibration that plays no part. [`PlanarRotor::validate`]
+/// calls it.
+pub(crate) fn check_ranges(r: &PlanarRotor) -> Result<()> {
+    use crate::error::fmt_num;
+    use crate::limits::{check, check_all, check_as, check_count};
+    check_all(&[
+        ("planar.m1", r.m1),
+        ("planar.m2", r.m2),
+        ("planar.m3", r.m3),
+        ("planar.s1", r.s1),
+        ("planar.s2", r.s2),
+        ("planar.gamma", r.gamma),
+        ("planar.r", r.r),
+        ("planar.k", r.k),
+        ("planar.c", r.c),
+        ("planar.c_psi", r.c_psi),
+        ("planar.c_theta", r.c_theta),
+        ("planar.i_g", r.i_g),
+    ])?;
+    if let Some(v) = r.k_y {
+        check("planar.k_y", v)?;
+    }
+    if let Some(v) = r.c_y {
+        check("planar.c_y", v)?;
+    }
+    for (field, list) in [("planar.ball_masses", &r.ball_masses), ("planar.ball_drags", &r.ball_drags)] {
+        for (j, v) in list.iter().flatten().enumerate() {
+            check_as(&format!("{field}[{}]", j + 1), field, *v)?;
+        }
+    }
+    check_count("planar.n", r.n as u64)?;
+    // each direction's natural frequency (supports that differ by direction: k_x, k_y)
+    let (kx, ky) = r.stiffness_xy();
+    let directions: &[(&str, &str, f64)] = if r.k_y.is_some() { &[("planar.k_x", "k_x", kx), ("planar.k_y", "k_y", ky)] } else { &[("planar.k", "k", kx)] };
+    for &(field, key, k) in directions {
+        let wn = (k / r.total_mass()).sqrt();
+        if !(1e-3..=1e7).contains(&wn) {
+            return Err(Error::invalid(
+                field,
+                format!(
+                    "the natural frequency sqrt({key}/m0) = {} rad/s ({key} = {} N/m, m0 = {} kg) lies outside [0.001, 1e7] rad/s",
+                    fmt_num(wn),
+                    fmt_num(k),
+                    fmt_num(r.total_mass())
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Summary of a run.

@@ -159,7 +159,7 @@ impl PlanarProblem {
 
     /// Check rotor, drive and settings (errors name the field).
     pub fn validate(&self) -> Result<()> {
-        crate::limits::check_planar_problem(self)?;
+        check_ranges(self)?;
         self.rotor.validate()?;
         check_natural_frequency(&self.rotor)?;
         self.drive.validate()?;
@@ -581,6 +581,23 @@ impl Parameters for PlanarProblem {
         let p = crate::paths::find::<Self>(path)?;
         (p.get)(self).map_err(|reason| Error::invalid(path, reason))
     }
+}
+
+/// A planar problem: rotor ([`PlanarRotor::validate`]'s ranges), drive and integration settings through
+/// their parameter paths, the initial ball angles and rates and the rotor's initial position and
+/// velocity one by one, and the step and wall-clock budgets.
+/// [`PlanarProblem::validate`] calls it.
+fn check_ranges(p: &PlanarProblem) -> Result<()> {
+    use crate::limits::{check, check_parameters};
+    super::check_ranges(&p.rotor)?;
+    check_parameters(p)?;
+    let s = &p.settings;
+    s.psi0.iter().try_for_each(|v| check("drive.psi0", *v).map(|_| ()))?;
+    s.psi_rate0.iter().try_for_each(|v| check("drive.psi_rate0", *v).map(|_| ()))?;
+    s.xy0.iter().try_for_each(|v| check("drive.xy0", *v).map(|_| ()))?;
+    s.xy_rate0.iter().try_for_each(|v| check("drive.xy_rate0", *v).map(|_| ()))?;
+    check("integration.max_steps", s.max_steps as f64)?;
+    s.max_wall_s.map_or(Ok(()), |w| check("integration.max_wall_s", w).map(|_| ()))
 }
 
 #[cfg(test)]
