@@ -3,12 +3,12 @@
 //! JSON, figures and the HTML report.
 
 use autobal_commands::{
-    any_config, config, figures, general, general_campbell, linear, linear_rotor, map, outfile, output, parquet, report, sim, spatial_sim, sweep,
+    any_config, config, figures, general, general_campbell, linear, linear_rotor, map, outfile, output, parquet, report, sim, spatial_sim, sweep, term,
 };
 
 use anyhow::Result;
 use autobal::control::Control;
-use autobal_commands::output::{emit, Format};
+use autobal_commands::term::{emit, Format};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
 
@@ -356,7 +356,7 @@ fn run(cli: Cli, control: &Control) -> Result<()> {
             // the one-plane model does not describe the config) always
             let (root, source) = config::read_set(common.config.as_deref(), &common.set)?;
             for n in config::bare_speed_notes(&root) {
-                output::note(&n);
+                term::note(&n);
             }
             let (json, table) = any_config::ranges(&root, &source)?;
             emit(format, json, table)
@@ -426,7 +426,7 @@ fn run(cli: Cli, control: &Control) -> Result<()> {
                 None => linear_rotor::preset()?,
             };
             let paths = linear_rotor::export_model(&rotor, &out, &stem)?;
-            output::print(&format!("wrote {}\n", paths.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")))
+            term::print(&format!("wrote {}\n", paths.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")))
         }
         Command::Sweep(a) => sweep::run(a, control),
         Command::Merge(a) => sweep::merge(a, control),
@@ -436,7 +436,7 @@ fn run(cli: Cli, control: &Control) -> Result<()> {
             outfile::Outputs::new().inputs(common.config.as_deref()).output("--out", &out.join("index.html")).check()?;
             let kind = if papers || common.config.is_none() { report::Kind::Papers } else { report::Kind::User };
             let index = report::run(common.config.as_deref(), &common.set, &out, quick, kind, control)?;
-            output::print(&format!("report written to {}\n", index.display()))
+            term::print(&format!("report written to {}\n", index.display()))
         }
     }
 }
@@ -568,8 +568,8 @@ fn run_map(
         }
         rayon::ThreadPoolBuilder::new().num_threads(t).build_global().ok();
     }
-    let out = output::out_stem(&outfile::resolve(&out, "stability-map"), &["csv", "svg", "png"]);
-    let csv_path = output::with_suffix(&out, "csv");
+    let out = term::out_stem(&outfile::resolve(&out, "stability-map"), &["csv", "svg", "png"]);
+    let csv_path = term::with_suffix(&out, "csv");
     let boundary_path = PathBuf::from(format!("{}_boundary.csv", out.display()));
     let mut o = outfile::Outputs::new();
     o.inputs(common.config.as_deref());
@@ -599,7 +599,7 @@ fn run_map(
         let b = map::trace(&cfg, &xa, &ya, omega, balls.into(), control)?;
         let path = boundary_path;
         outfile::write_atomic("--out", &path, map::boundary_csv(&b, &xa.key, &ya.key))?;
-        output::note(&format!(
+        term::note(&format!(
             "boundary: {} curves, {} codimension-two points, {} characteristic polynomials, {:.3} s; wrote {}",
             b.curves.len(),
             b.codim2.len(),
@@ -627,7 +627,7 @@ fn run_map(
     let done = run.rows_done;
     map::write_plots(&r, &out, &format!("Stability map, balls {}", if balls == BallsArg::Free { "free" } else { "locked" }), traced.as_ref())?;
     let points = done * run.row_len;
-    output::print(&format!(
+    term::print(&format!(
         "{} rows × {} points in {:.2} s ({:.2} µs per point; {} by continuation, {} direct solves); wrote {}, {}, {}\n",
         done,
         run.row_len,
@@ -636,8 +636,8 @@ fn run_map(
         run.continued,
         run.direct,
         csv_path.display(),
-        output::with_suffix(&out, "svg").display(),
-        output::with_suffix(&out, "png").display()
+        term::with_suffix(&out, "svg").display(),
+        term::with_suffix(&out, "png").display()
     ))?;
     if done < run.rows_total {
         anyhow::bail!("interrupted: {done} of {} rows computed and kept in {}", run.rows_total, csv_path.display());
@@ -649,8 +649,8 @@ fn run_map(
 /// map), `STEM.csv`; a folder (`runs/`) gets `runs/simulation.csv`. Returns the CSV's path and
 /// the stem of the files beside it.
 fn csv_and_stem(out: &std::path::Path) -> (PathBuf, PathBuf) {
-    let stem = output::out_stem(&outfile::resolve(out, "simulation.csv"), &["csv", "parquet", "svg"]);
-    (output::with_suffix(&stem, "csv"), stem)
+    let stem = term::out_stem(&outfile::resolve(out, "simulation.csv"), &["csv", "parquet", "svg"]);
+    (term::with_suffix(&stem, "csv"), stem)
 }
 
 /// `simulate`'s outputs (the CSV, the Parquet file, the figures), checked before the run.
@@ -659,7 +659,7 @@ fn simulation_outputs(config: Option<&std::path::Path>, out: &std::path::Path, p
     let mut o = outfile::Outputs::new();
     o.inputs(config).output("--out", &csv);
     if parquet {
-        o.output("--parquet", &output::with_suffix(&stem, "parquet"));
+        o.output("--parquet", &term::with_suffix(&stem, "parquet"));
     }
     for p in sim::plot_paths(&stem) {
         o.output("--out", &p);
@@ -693,7 +693,7 @@ fn run_simulate(config: Option<PathBuf>, set: Vec<String>, dt: Option<f64>, out:
     let (out, stem) = simulation_outputs(config.as_deref(), &out, parquet)?;
     let mut w = outfile::Staged::create("--out", &out)?;
     let mut table = match parquet {
-        true => Some(parquet::Table::create(&output::with_suffix(&stem, "parquet"), &sim::sample_columns(cfg.rotor.n), false)?),
+        true => Some(parquet::Table::create(&term::with_suffix(&stem, "parquet"), &sim::sample_columns(cfg.rotor.n), false)?),
         false => None,
     };
     let progress = std::io::IsTerminal::is_terminal(&std::io::stderr());
@@ -702,18 +702,18 @@ fn run_simulate(config: Option<PathBuf>, set: Vec<String>, dt: Option<f64>, out:
     // complete rows (also when stopped early): renamed into place
     let out = w.commit()?;
     if let Some(t) = table {
-        output::note(&format!("wrote {}", t.finish()?.display()));
+        term::note(&format!("wrote {}", t.finish()?.display()));
     }
     let plots = sim::write_plots(&cfg, &env, &stem, "Passage")?;
     emit(format, sim::summary_json(&cfg, &summary, wall), sim::summary_table(&cfg, &summary, wall))?;
-    output::note(&format!(
+    term::note(&format!(
         "wrote {} and {} plots ({})",
         out.display(),
         plots.len(),
         plots.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")
     ));
     for w in &summary.warnings {
-        output::note(&format!("warning: {w}"));
+        term::note(&format!("warning: {w}"));
     }
     if let Some(st) = summary.stopped {
         anyhow::bail!("{st}: the samples up to then are kept in {}", out.display());
@@ -737,7 +737,7 @@ fn run_spatial(
     if sim.default_drive {
         let (w_end, _) = sim.drive.kinematics(sim.settings.t_end);
         let unit = if sim.config.dimensional { " rad/s" } else { " (Ω)" };
-        output::note(&format!(
+        term::note(&format!(
             "note: the config has no [drive]: running up from rest at constant acceleration through the critical speeds to {}{unit} in {} revolutions (t_end = {}{}); give [drive] to choose the run",
             autobal::error::fmt_num(w_end),
             autobal::config::DEFAULT_RUN_UP_REVOLUTIONS,
@@ -752,7 +752,7 @@ fn run_spatial(
     let (out, stem) = simulation_outputs(config, &out, parquet)?;
     let mut w = outfile::Staged::create("--out", &out)?;
     let mut table = match parquet {
-        true => Some(parquet::Table::create(&output::with_suffix(&stem, "parquet"), &spatial_sim::columns(&sim), false)?),
+        true => Some(parquet::Table::create(&term::with_suffix(&stem, "parquet"), &spatial_sim::columns(&sim), false)?),
         false => None,
     };
     let progress = std::io::IsTerminal::is_terminal(&std::io::stderr());
@@ -760,7 +760,7 @@ fn run_spatial(
     // complete rows (also when stopped early): renamed into place
     let out = w.commit()?;
     if let Some(t) = table {
-        output::note(&format!("wrote {}", t.finish()?.display()));
+        term::note(&format!("wrote {}", t.finish()?.display()));
     }
     let plots = spatial_sim::write_plots(&sim, &kept, &stem, "Spatial rotor")?;
     emit(format, spatial_sim::summary_json(&sim, &summary, wall), spatial_sim::summary_table(&sim, &summary, wall))?;
@@ -825,14 +825,14 @@ fn run_linear_rotor_simulate(
     outfile::Outputs::new().inputs(config).output("--out", &out).check()?;
     let (summary, path, wall, default, red) = linear_rotor::run_to_csv(&cfg, omega_max, dt, &out, control)?;
     if default {
-        output::note(&format!(
+        term::note(&format!(
             "note: the config has no [drive]: running up from rest at constant acceleration to {} rad/s in 1000 revolutions; give [drive] to choose the run",
             autobal::error::fmt_num(omega_max)
         ));
     }
     autobal::limits::check_finite("the summary", &summary)?;
     emit(format, linear_rotor::simulate_json(&cfg, &summary, &red, wall), linear_rotor::simulate_table(&summary, &red, wall))?;
-    output::note(&format!("wrote {}", path.display()));
+    term::note(&format!("wrote {}", path.display()));
     if let Some(st) = summary.stopped {
         anyhow::bail!("{st}: the samples up to then are kept in {}", path.display());
     }
@@ -908,11 +908,11 @@ where
     };
     let control = interrupt::control(cli.command.polls_the_control());
     if let Err(e) = run(cli, &control) {
-        if output::is_broken_pipe(&e) {
+        if term::is_broken_pipe(&e) {
             // the reader has what it wanted (`autobal critical | head -1`): end quietly
             return 0;
         }
-        output::note(&format!("error: {}", format!("{e:#}").replace('\n', " ")));
+        term::note(&format!("error: {}", format!("{e:#}").replace('\n', " ")));
         return 2;
     }
     0

@@ -74,7 +74,7 @@ pub fn ranges(root: &Table, source: &str) -> Result<(Value, String)> {
     let _ = writeln!(s, "    {}", autobal::spatial::comparison::fmt_ranges_in(&exact, 4, Some(w)));
     if let Some(sc) = cfg.model.scale {
         let k = sc.omega0 * 30.0 / std::f64::consts::PI;
-        let _ = writeln!(s, "    {} rpm", autobal::spatial::comparison::fmt_ranges_in(&output::scale_ranges(&exact, k), 0, Some(w * k)));
+        let _ = writeln!(s, "    {} rpm", autobal::spatial::comparison::fmt_ranges_in(&autobal::reports::scale_ranges(&exact, k), 0, Some(w * k)));
     }
     Ok((v, s))
 }

@@ -154,7 +154,7 @@ pub fn check_entries(root: &Table, command: &str, models: &[Model]) -> Result<()
     }
     if models.contains(&Model::Linear) {
         if let Some(w) = ignored_warning(&u.simulation_only, command) {
-            crate::output::note(&w);
+            crate::term::note(&w);
         }
     }
     if !u.moot.is_empty() {
@@ -167,14 +167,14 @@ pub fn check_entries(root: &Table, command: &str, models: &[Model]) -> Result<()
             }
         }
         let list: Vec<String> = groups.iter().map(|(why, keys)| format!("{} ({why})", keys.join(", "))).collect();
-        crate::output::note(&format!(
+        crate::term::note(&format!(
             "warning: {command}: {} {} no effect with the rest of this config",
             list.join(", "),
             if u.moot.len() == 1 { "has" } else { "have" }
         ));
     }
     for n in bare_speed_notes(root) {
-        crate::output::note(&n);
+        crate::term::note(&n);
     }
     Ok(())
 }

@@ -1,10 +1,10 @@
 //! Figure builders shared by the commands and the report: speed axes, the papers' layouts,
 //! Campbell diagrams and the stability margin along the speed.
 
-use crate::linear::Comparison;
 use crate::num::RPM_PER_RAD_S;
 use crate::plot::{Plot, SecondAxis, Series, Shade, PALETTE};
 use autobal::spatial::campbell::{FixedCampbell, FixedPoint};
+use autobal::spatial::comparison::Comparison;
 use autobal::spatial::critical_speeds::critical_speeds;
 use autobal::spatial::params::{identical_support_coefficients, SpatialModel};
 use autobal::spatial::stability::{Campbell, Group, Whirl};

@@ -144,7 +144,7 @@ pub fn figures(command: &str, root: &Table, source: &str, o: &Options, control: 
                 bail!("interrupted: {} of {} rows computed", run.rows_done, run.rows_total);
             }
             let title = format!("Stability map, balls {}", if b == Balls::Free { "free" } else { "locked" });
-            Ok(vec![fig("stability_map", crate::mapfig::plot(&r, &title))])
+            Ok(vec![fig("stability_map", crate::map::plot(&r, &title))])
         }
         "simulate" => {
             let stopped = |s: &Option<String>| -> Result<()> {

@@ -8,7 +8,7 @@
 //! [`spatial_sim`] for runs in time, [`map`], [`sweep`]), the output files ([`outfile`]: checked
 //! before the work, written under a temporary name and renamed when complete; [`num`] for CSV,
 //! [`parquet`]), the figure descriptions that SVG, PNG and Plotly all draw ([`plot`],
-//! [`figures`], [`mapfig`]; each command's figures for a front end that draws them itself:
+//! [`figures`], [`map`]; each command's figures for a front end that draws them itself:
 //! [`figures_api`]) and the HTML report ([`report`]).
 //!
 //! The front ends parse arguments and own the terminal: `autobal-cli` maps each subcommand to
@@ -25,7 +25,6 @@ pub mod general_campbell;
 pub mod linear;
 pub mod linear_rotor;
 pub mod map;
-pub mod mapfig;
 pub mod num;
 pub mod outfile;
 pub mod output;
@@ -35,3 +34,4 @@ pub mod report;
 pub mod sim;
 pub mod spatial_sim;
 pub mod sweep;
+pub mod term;

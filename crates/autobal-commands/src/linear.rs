@@ -122,8 +122,8 @@ pub fn stability_table(cfg: &Config, c: &Comparison, balls: Balls) -> String {
     let _ = writeln!(s, "  difference: {}", c.difference());
     if let Some(sc) = cfg.model.scale {
         let k = sc.omega0 * 30.0 / std::f64::consts::PI;
-        let _ = writeln!(s, "  stable in rpm: {}", fmt_ranges_in(&crate::output::scale_ranges(&c.exact.stable_ranges, k), 0, Some(c.omega_max * k)));
-        let _ = writeln!(s, "  necessary in rpm: {}", fmt_ranges_in(&crate::output::scale_ranges(&c.necessary, k), 0, Some(c.omega_max * k)));
+        let _ = writeln!(s, "  stable in rpm: {}", fmt_ranges_in(&autobal::reports::scale_ranges(&c.exact.stable_ranges, k), 0, Some(c.omega_max * k)));
+        let _ = writeln!(s, "  necessary in rpm: {}", fmt_ranges_in(&autobal::reports::scale_ranges(&c.necessary, k), 0, Some(c.omega_max * k)));
     }
     let worst = c.exact.max_real_part.iter().map(|x| x.1).fold(f64::NEG_INFINITY, f64::max);
     let best = c.exact.max_real_part.iter().map(|x| x.1).fold(f64::INFINITY, f64::min);
@@ -150,10 +150,7 @@ pub fn speed_arg(cfg: &Config, flag: &str, text: &str) -> Result<f64> {
     let s = autobal::units::parse_speed(flag, text)?;
     let w = s.to_omega(flag, cfg.model.scale.map(|sc| sc.omega0))?;
     if !s.is_si() && cfg.dimensional && w.is_finite() {
-        crate::output::note(&format!(
-            "note: {flag} {text} is the dimensionless Ω = {text}, i.e. {}; give a unit (rpm, rad/s or Hz) for SI",
-            speed_text(cfg, w)
-        ));
+        crate::term::note(&format!("note: {flag} {text} is the dimensionless Ω = {text}, i.e. {}; give a unit (rpm, rad/s or Hz) for SI", speed_text(cfg, w)));
     }
     Ok(w)
 }

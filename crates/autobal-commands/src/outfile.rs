@@ -22,7 +22,7 @@ use std::path::{Path, PathBuf};
 
 /// The file names of an `--out` stem: `STEM.ext` for each `exts`.
 pub fn stem_files(stem: &Path, exts: &[&str]) -> Vec<PathBuf> {
-    exts.iter().map(|e| crate::output::with_suffix(stem, e)).collect()
+    exts.iter().map(|e| crate::term::with_suffix(stem, e)).collect()
 }
 
 /// Whether `p` was written as a folder: it ends with a path separator (`runs/`), is `.`/`..`,

@@ -3,7 +3,7 @@
 //! they arrive and prints the table), sharded for batch systems and merged back.
 
 use crate::config;
-use crate::output::{emit, Format};
+use crate::term::{emit, Format};
 use anyhow::{anyhow, bail, Context, Result};
 use autobal::control::Control;
 use autobal::planar::problem::PlanarProblem;
@@ -210,13 +210,13 @@ where
     }
     autobal::sweep::check_grid(base, &grid, range.clone())?;
     let checksum = definition_checksum(root, &grid);
-    let out = &crate::output::out_stem(&crate::outfile::resolve(&a.out, "sweep"), &["csv", "json", "parquet"]);
-    let csv_path = crate::output::with_suffix(out, "csv");
-    let json_path = crate::output::with_suffix(out, "json");
+    let out = &crate::term::out_stem(&crate::outfile::resolve(&a.out, "sweep"), &["csv", "json", "parquet"]);
+    let csv_path = crate::term::with_suffix(out, "csv");
+    let json_path = crate::term::with_suffix(out, "json");
     let mut outputs = crate::outfile::Outputs::new();
     outputs.inputs(a.config.as_deref()).output("--out", &csv_path).output("--out", &json_path);
     if a.parquet {
-        outputs.output("--parquet", &crate::output::with_suffix(out, "parquet"));
+        outputs.output("--parquet", &crate::term::with_suffix(out, "parquet"));
     }
     outputs.check()?;
     // rows go to a temporary file, renamed into place when the sweep ends or is interrupted
@@ -226,7 +226,7 @@ where
     let cols = columns(&paths, <M::Summary as SweepSummary>::COLUMNS);
     writeln!(csv, "{}", cols.join(","))?;
     let mut pq = match a.parquet {
-        true => Some(crate::parquet::Table::create(&crate::output::with_suffix(out, "parquet"), &cols, true)?),
+        true => Some(crate::parquet::Table::create(&crate::term::with_suffix(out, "parquet"), &cols, true)?),
         false => None,
     };
     let mut table = String::new();
@@ -273,7 +273,7 @@ where
                 warned += 1;
                 if warned <= PRINTED_WARNINGS {
                     for w in &warnings {
-                        crate::output::note(&format!("warning: point {i} ({}): {w}", values.iter().map(|v| v.to_string()).collect::<Vec<_>>().join(", ")));
+                        crate::term::note(&format!("warning: point {i} ({}): {w}", values.iter().map(|v| v.to_string()).collect::<Vec<_>>().join(", ")));
                     }
                 }
             }
@@ -289,10 +289,10 @@ where
         b.finish_and_clear();
     }
     if warned > PRINTED_WARNINGS {
-        crate::output::note(&format!(
+        crate::term::note(&format!(
             "warning: {} more points have warnings (each run's warnings and stop reason are in {})",
             warned - PRINTED_WARNINGS,
-            crate::output::with_suffix(out, "json").display()
+            crate::term::with_suffix(out, "json").display()
         ));
     }
     if let Some(e) = io_error {
@@ -302,7 +302,7 @@ where
     json["definition_checksum"] = json!(checksum);
     let csv_path = csv.commit()?;
     if let Some(t) = pq {
-        crate::output::note(&format!("wrote {}", t.finish()?.display()));
+        crate::term::note(&format!("wrote {}", t.finish()?.display()));
     }
     crate::outfile::write_atomic("--out", &json_path, serde_json::to_string_pretty(&json)?)?;
     emit(a.format, json, table)?;
@@ -440,8 +440,8 @@ fn verify_rows(s: &Shard, head: &str, control: &Control) -> Result<Vec<String>> 
 
 pub fn merge(a: MergeArgs, control: &Control) -> Result<()> {
     // the outputs, checked against each other and the shards before anything is read
-    let out = crate::output::out_stem(&crate::outfile::resolve(&a.out, "sweep"), &["csv", "json", "parquet"]);
-    let (cp, jp, pp) = (crate::output::with_suffix(&out, "csv"), crate::output::with_suffix(&out, "json"), crate::output::with_suffix(&out, "parquet"));
+    let out = crate::term::out_stem(&crate::outfile::resolve(&a.out, "sweep"), &["csv", "json", "parquet"]);
+    let (cp, jp, pp) = (crate::term::with_suffix(&out, "csv"), crate::term::with_suffix(&out, "json"), crate::term::with_suffix(&out, "parquet"));
     let mut outputs = crate::outfile::Outputs::new();
     for s in &a.shards {
         outputs.input("shard", s).input("shard JSON", &json_of(s));
@@ -567,9 +567,9 @@ pub fn merge(a: MergeArgs, control: &Control) -> Result<()> {
     c.commit()?;
     j.commit()?;
     if let Some(t) = pq {
-        crate::output::note(&format!("wrote {}", t.finish()?.display()));
+        crate::term::note(&format!("wrote {}", t.finish()?.display()));
     }
-    crate::output::print(&format!("merged {n} shards, {points} points: wrote {}, {}\n", cp.display(), jp.display()))
+    crate::term::print(&format!("merged {n} shards, {points} points: wrote {}, {}\n", cp.display(), jp.display()))
 }
 
 #[cfg(test)]

@@ -129,7 +129,7 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
         };
         let complete = r.rows.iter().all(|r| r.is_some());
         s.complete &= complete;
-        let mut p = crate::mapfig::plot(&r, d.title);
+        let mut p = crate::map::plot(&r, d.title);
         if ykey == "speed_rpm" {
             // Re λ in 1/s: units of each column's ω0
             let k: Vec<f64> = (0..r.x.n)

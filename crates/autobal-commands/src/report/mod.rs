@@ -185,7 +185,7 @@ pub fn run(path: Option<&Path>, sets: &[String], dir: &Path, quick: bool, kind: 
     config::check_entries(&root, "report", &models)?;
     // the comparison with eq (17) stays in the report's inertia section (and `inertia`)
     for w in spatial.iter().flat_map(|c| autobal::reports::actionable_warnings(&c.model.anisotropy)) {
-        crate::output::note(&format!("warning: {w}"));
+        crate::term::note(&format!("warning: {w}"));
     }
     let spatial_text = spatial.as_ref().map(|c| c.text.clone());
     let mut source_line = source.clone();
@@ -215,7 +215,7 @@ pub fn write(ctx: &Ctx, dir: &Path) -> Result<PathBuf> {
     let done = AtomicUsize::new(0);
     let list = if ctx.kind == Kind::User { USER_SECTIONS } else { PAPER_SECTIONS };
     let n = list.len();
-    crate::output::note(&format!(
+    crate::term::note(&format!(
         "report: {} with {n} sections on {} threads{}",
         if ctx.kind == Kind::User { "about the config's rotor" } else { "the papers' reproductions" },
         rayon::current_num_threads(),
@@ -234,14 +234,14 @@ pub fn write(ctx: &Ctx, dir: &Path) -> Result<PathBuf> {
                 Ok(None) => "not applicable".to_string(),
                 Err(_) => "failed".to_string(),
             };
-            crate::output::note(&format!("report: [{k}/{n}] {name}: {what} in {:.1} s", t.elapsed().as_secs_f64()));
+            crate::term::note(&format!("report: [{k}/{n}] {name}: {what} in {:.1} s", t.elapsed().as_secs_f64()));
             r
         })
         .collect();
     let sections: Vec<Section> = built.into_iter().collect::<Result<Vec<_>>>()?.into_iter().flatten().collect();
     let compute_s = t0.elapsed().as_secs_f64();
     for line in summary_lines(&sections) {
-        crate::output::note(&format!("report: summary: {}", html::strip(line)));
+        crate::term::note(&format!("report: summary: {}", html::strip(line)));
     }
     // figure files, in parallel (rasterising is the slow part)
     let figs: Vec<&Figure> = sections.iter().flat_map(|s| s.figures()).collect();
@@ -264,7 +264,7 @@ pub fn write(ctx: &Ctx, dir: &Path) -> Result<PathBuf> {
     let page = page(ctx, &sections, interrupted, &incomplete, t0.elapsed().as_secs_f64());
     let index = dir.join("index.html");
     crate::outfile::write_atomic("--out", &index, page)?;
-    crate::output::note(&format!(
+    crate::term::note(&format!(
         "report: {} sections, {} figures in {:.1} s (computing {:.1} s, figures {:.1} s)",
         sections.len(),
         figs.len(),

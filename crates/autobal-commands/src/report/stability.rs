@@ -254,7 +254,7 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
         let r = map(m, x, y, set, balls, &ctx.control)?;
         let complete = r.rows.iter().all(|r| r.is_some());
         s.complete &= complete;
-        let mut p = crate::mapfig::plot(&r, title);
+        let mut p = crate::map::plot(&r, title);
         if u.factor != 1.0 {
             // a dimensional rotor: speed in rad/s, growth rate in 1/s
             if let Some(h) = p.heatmap.as_mut() {
