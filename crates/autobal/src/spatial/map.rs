@@ -547,7 +547,7 @@ pub fn stability_map_units(
     control: &crate::control::Control,
     on_row: &mut dyn FnMut(usize, &[Cell]) -> bool,
 ) -> Result<MapOutcome> {
-    use crate::control::{Control, StopReason};
+    use crate::control::StopReason;
     use crate::spatial::paths::{omega0_at, si_speed_axis};
     use rayon::prelude::*;
     let Some((i, k)) = si_speed_axis(spec, [&x.path, &y.path])? else { return stability_map(spec, x, y, s, control, on_row) };
@@ -568,7 +568,9 @@ pub fn stability_map_units(
         let mut om = to_omega(w0[j]);
         om.values = om.values[speeds].to_vec();
         let mut cells = vec![];
-        let out = stability_map(spec, &om, &one, s, &Control::none(), &mut |_, r| {
+        // the line stops before it starts once the control says so (a Ctrl-C during a block
+        // of lines computed in parallel); the block is then dropped whole, below
+        let out = stability_map(spec, &om, &one, s, control, &mut |_, r| {
             cells.extend_from_slice(r);
             true
         })?;
@@ -585,9 +587,22 @@ pub fn stability_map_units(
     let mut j0 = 0;
     while j0 < y.values.len() {
         let j1 = (j0 + block).min(y.values.len());
+        let stopped = |out: &mut MapOutcome| -> bool {
+            match control.should_stop() {
+                Some(why) => {
+                    out.complete = false;
+                    out.stopped = Some(why);
+                    true
+                }
+                None => false,
+            }
+        };
         let rows: Vec<Vec<Cell>> = if i == 0 {
             // rows are the lines
             let lines: Vec<_> = (j0..j1).into_par_iter().map(|j| line(j, 0..nx)).collect::<Result<_>>()?;
+            if stopped(&mut out) {
+                return Ok(out);
+            }
             lines
                 .into_iter()
                 .map(|(c, o)| {
@@ -599,6 +614,9 @@ pub fn stability_map_units(
         } else {
             // rows are speeds: every line over this block of speeds
             let cols: Vec<_> = (0..nx).into_par_iter().map(|j| line(j, j0..j1)).collect::<Result<_>>()?;
+            if stopped(&mut out) {
+                return Ok(out);
+            }
             for (_, o) in &cols {
                 out.continued += o.continued;
                 out.direct += o.direct;
