@@ -724,3 +724,18 @@ fn regression_boundary_axis_over_a_fields_full_range_was_refused_by_it() {
         assert_eq!(code, 0, "--x {ax}: {err}");
     }
 }
+
+#[test]
+fn regression_a_tiny_slip_rate_was_a_non_finite_state_and_a_misfit_ball_a_contact_stiffness() {
+    // issue 23's "messages that mislead": a legal but absurd slip_rate (1e-300) ended in "the
+    // state became non-finite (rate of ξ)"; the range now starts at 1e-12 rad/s and says why
+    for set in ["planar.slip_rate=1e-300", "planar.slip_rate=1e-13"] {
+        let line = rejects(&["simulate", "--set", "planar.rolling_resistance=0.01", "--set", set, "--set", "drive.t_end=0.05"], "planar.slip_rate");
+        assert!(line.contains("1e-12"), "{line}");
+    }
+    // a sweep over a ball diameter that does not fit the race named a negative
+    // contact_stiffness nobody gave (derived from the misfit); it names the diameter now
+    let line =
+        rejects(&["sweep", "--x", "planar.ball_diameter=0.001:0.5:3", "--set", "planar.contact=true", "--set", "drive.t_end=0.05"], "planar.ball_diameter");
+    assert!(line.contains("does not fit"), "{line}");
+}

@@ -159,8 +159,11 @@ impl PlanarProblem {
 
     /// Check rotor, drive and settings (errors name the field).
     pub fn validate(&self) -> Result<()> {
-        check_ranges(self)?;
+        // the rotor first (its ranges, then what its fields must satisfy together, e.g. a ball
+        // diameter that fits the race), then every parameter path, derived ones included (the
+        // default contact stiffness is derived from the ball's fit: checked after it)
         self.rotor.validate()?;
+        check_ranges(self)?;
         check_natural_frequency(&self.rotor)?;
         self.drive.validate()?;
         self.settings.validate(&self.rotor)
@@ -583,13 +586,12 @@ impl Parameters for PlanarProblem {
     }
 }
 
-/// A planar problem: rotor ([`PlanarRotor::validate`]'s ranges), drive and integration settings through
+/// A planar problem (after [`PlanarRotor::validate`]), drive and integration settings through
 /// their parameter paths, the initial ball angles and rates and the rotor's initial position and
 /// velocity one by one, and the step and wall-clock budgets.
 /// [`PlanarProblem::validate`] calls it.
 fn check_ranges(p: &PlanarProblem) -> Result<()> {
     use crate::limits::{check, check_parameters};
-    super::check_ranges(&p.rotor)?;
     check_parameters(p)?;
     let s = &p.settings;
     s.psi0.iter().try_for_each(|v| check("drive.psi0", *v).map(|_| ()))?;
