@@ -487,19 +487,11 @@ fn run_general_stability(root: &toml::Table, format: Format, lin: LinearArgs, sa
     if !(10..=1_000_000).contains(&samples) {
         anyhow::bail!("--samples: must lie between 10 and 1000000, got {samples}");
     }
-    let omega_max = match lin.omega_max {
-        Some(t) => {
-            // rad/s: a speed with its unit on an SI config, a bare number times the unit of its
-            // speeds (ω0 of a spatial config, 1 rad/s of a planar one)
-            let s = autobal::units::parse_speed("--omega-max", &t)?;
-            let w = match s.unit.rad_s() {
-                Some(k) if g.si => s.value * k,
-                Some(_) => s.to_omega("--omega-max", None)?,
-                None => s.value * g.omega0,
-            };
-            check_speed("--omega-max", w / g.omega0)?;
-            w
-        }
+    // rad/s: a speed with its unit on an SI config, a bare number times the unit of its speeds
+    // (ω0 of a spatial config, 1 rad/s of a planar one): general_campbell::omega_max's reading,
+    // shared with campbell, critical and Python
+    let omega_max = match lin.omega_max.as_deref() {
+        Some(t) => general_campbell::omega_max(root, &g, Some(t))?,
         None => general::default_omega_max(&g, root)?,
     };
     let r = general::analyse(&g, omega_max, samples)?;
