@@ -7,7 +7,7 @@ use crate::config::Config;
 use crate::plot::Series;
 use anyhow::{anyhow, bail, Result};
 use autobal::control::Control;
-use autobal::spatial::boundary::{Boundary, Codim2Kind, CurveKind, PlaneAxis, TraceSettings};
+use autobal::spatial::boundary::{Boundary, Codim2Kind, CurveKind, TraceSettings};
 use autobal::spatial::linear_model::Balls;
 use rayon::prelude::*;
 use std::io::Write;
@@ -274,7 +274,7 @@ pub fn boundary_csv(b: &Boundary, x: &str, y: &str) -> String {
 /// Trace the stability boundary over the map's plane ([`autobal::spatial::boundary`]); the
 /// control (Ctrl-C) stops it with the curves traced so far (`complete` false).
 pub fn trace(cfg: &Config, x: &Axis, y: &Axis, omega: Option<f64>, balls: Balls, control: &Control) -> Result<Boundary> {
-    let ax = |a: &Axis| PlaneAxis { path: a.key.clone(), lo: a.lo, hi: a.hi };
+    let ax = |a: &Axis| autobal::paths::Axis::range(a.key.clone(), a.lo, a.hi);
     let s = TraceSettings { balls, omega, ..Default::default() };
     autobal::spatial::boundary::trace_boundary_units(&cfg.spec, &ax(x), &ax(y), &s, control).map_err(|e| anyhow!("--boundary: {e}"))
 }

@@ -17,7 +17,7 @@
 //! (u8), row-major (row = speed).
 
 use autobal::linalg::eigen::{characteristic_polynomial, routh_hurwitz_stable, spectral_abscissa};
-use autobal::spatial::boundary::{trace_boundary, PlaneAxis, TraceSettings};
+use autobal::spatial::boundary::{trace_boundary, TraceSettings};
 use autobal::spatial::inertia::AnisotropyMethod;
 use autobal::spatial::linear_model::{Balls, StateSpace};
 use autobal::spatial::map::{stability_map, Axis, MapSettings, Quantity};
@@ -69,13 +69,8 @@ fn main() {
     let (verdict, t_verdict, ov) = run(Quantity::Verdict);
     // the stability boundary of the same plane, traced as curves (single-threaded)
     let t = Instant::now();
-    let b = trace_boundary(
-        &spec,
-        &PlaneAxis { path: x.path.clone(), lo: -2.0, hi: 2.0 },
-        &PlaneAxis { path: y.path.clone(), lo: 0.05, hi: 4.5 },
-        &TraceSettings::default(),
-    )
-    .expect("boundary");
+    let b =
+        trace_boundary(&spec, &Axis::range(x.path.clone(), -2.0, 2.0), &Axis::range(y.path.clone(), 0.05, 4.5), &TraceSettings::default()).expect("boundary");
     let t_boundary = t.elapsed().as_secs_f64();
     // per-point reference paths (skipped with a fourth argument `maps`, for instruction counts)
     let maps_only = args.get(4).is_some_and(|a| a == "maps");

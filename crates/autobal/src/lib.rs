@@ -46,8 +46,9 @@
 //! the settings of `examples/`); the models and the simulations' settings have builders whose
 //! `build()` validates (errors name the field as the config spells it). Parameters are
 //! addressed by path (`planar.c_psi`, `drive.psi0[2]`, `dimensionless.z_a`, `rotor.mass`):
-//! [`paths::Parameters`] for the planar problem, [`spatial::paths::SpatialSpec`] for the spatial
-//! model; [`sweep`] and [`spatial::map`] vary them in parallel.
+//! [`paths::Parameters`] (one [`paths::ParameterPath`] table each) for the planar problem and
+//! the spatial model ([`spatial::paths::SpatialSpec`]); [`sweep`], [`spatial::map`] and
+//! [`spatial::boundary`] vary them along a [`paths::Axis`], the one axis type.
 //!
 //! ## How long computations end
 //! Every long computation runs under one [`control::Control`] (a cancel flag shared across

@@ -2,10 +2,17 @@
 //! config spells it (`planar.c_psi`, `drive.b`, `dimensionless.z_a`), so that sweeps, maps and
 //! front ends change a parameter without going back through a config file.
 //!
-//! Each description type has **one table** of its paths ([`Parameters::parameter_paths`]); a
-//! path is read and written through it, and every error names the path. Setting a path changes
-//! the description only; validation happens when the description is used (a simulation, a
-//! model derivation), where the error names the field again.
+//! Each description type has **one table** of its paths ([`Parameters::parameter_paths`]) of
+//! one entry type, [`ParameterPath`] (paper 004's [`crate::planar::problem::PlanarProblem`],
+//! the spatial rotor's [`crate::spatial::paths::SpatialSpec`]); a path is read and written
+//! through it, and every error names the path. Setting a path changes the description only;
+//! validation happens when the description is used (a simulation, a model derivation), where
+//! the error names the field again.
+//!
+//! An [`Axis`] is a path and the values it takes: the one axis type of sweeps
+//! ([`crate::sweep::Grid`]), stability maps ([`crate::spatial::map`], [`crate::rotor_map`]) and
+//! traced boundaries ([`crate::spatial::boundary`], which follow curves over the axis's range
+//! `[first, last]` instead of visiting its values).
 //!
 //! ```
 //! use autobal::paths::Parameters;
@@ -20,6 +27,7 @@
 //! ```
 
 use crate::error::{fmt_num, Error, Result};
+use serde::Serialize;
 
 /// One settable number of a description `T`: its path, what it is, and how to read and write it.
 /// The accessors return a bare reason; [`Parameters::set`] and [`Parameters::get`] put the path
@@ -39,6 +47,13 @@ pub struct ParameterPath<T: 'static> {
 pub trait Parameters: Sized + 'static {
     /// The table of every path of this description.
     fn parameter_paths() -> &'static [ParameterPath<Self>];
+
+    /// Names an axis may take beside the table's paths, which are not fields of the
+    /// description (the spatial maps' speed axes `omega`, `speed_rpm`, ...): listed first in the
+    /// error for an unknown path. None by default.
+    fn other_paths() -> &'static [&'static str] {
+        &[]
+    }
 
     /// Set the number at `path` to `value`.
     fn set(&mut self, path: &str, value: f64) -> Result<()> {
@@ -68,9 +83,132 @@ pub trait Parameters: Sized + 'static {
 /// The entry of `path` in `T`'s table; an unknown path is an error listing the known ones.
 pub fn find<T: Parameters>(path: &str) -> Result<&'static ParameterPath<T>> {
     T::parameter_paths().iter().find(|p| p.path == path).ok_or_else(|| {
-        let known: Vec<&str> = T::parameter_paths().iter().map(|p| p.path).collect();
+        let known: Vec<&str> = T::other_paths().iter().copied().chain(T::parameter_paths().iter().map(|p| p.path)).collect();
         Error::invalid(path, format!("unknown parameter path (known: {})", known.join(", ")))
     })
+}
+
+/// One axis of a sweep, a map or a traced boundary: a parameter path (or a map's speed axis,
+/// `omega`, `speed_rpm`, ...) and its values in order. A linear range `lo..=hi` of `n` points is
+/// [`Axis::linspace`]; a list is [`Axis::new`]; the text forms are [`Axis::parse`]. Serialised
+/// as its range `{path, lo, hi}` (a large map's values are not repeated in a JSON).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Axis {
+    /// Parameter path (`planar.c_psi`, `drive.b`, `dimensionless.z_a`, `omega`, ...).
+    pub path: String,
+    /// The values, in order.
+    pub values: Vec<f64>,
+}
+
+impl Serialize for Axis {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        use serde::ser::SerializeStruct;
+        let mut st = s.serialize_struct("Axis", 3)?;
+        st.serialize_field("path", &self.path)?;
+        st.serialize_field("lo", &self.lo())?;
+        st.serialize_field("hi", &self.hi())?;
+        st.end()
+    }
+}
+
+impl Axis {
+    /// An axis with the given values.
+    pub fn new(path: impl Into<String>, values: Vec<f64>) -> Self {
+        Axis { path: path.into(), values }
+    }
+
+    /// `n` equally spaced values from `lo` to `hi` (both included, exactly; `n = 1` gives `lo`):
+    /// `v_i = lo + (hi − lo) i/(n − 1)`. Inner values are rounded to 12 significant digits so
+    /// that they read as typed (`0.4`, not `0.39999999999999997`): a grid value is the same
+    /// number whichever process computes it.
+    pub fn linspace(path: impl Into<String>, lo: f64, hi: f64, n: usize) -> Self {
+        let values = (0..n)
+            .map(|i| {
+                if i == 0 {
+                    return lo;
+                }
+                if i + 1 == n {
+                    return hi;
+                }
+                round12(lo + (hi - lo) * i as f64 / (n - 1) as f64)
+            })
+            .collect();
+        Axis { path: path.into(), values }
+    }
+
+    /// A range `[lo, hi]` for the boundary tracer, which needs no values between: the two ends.
+    pub fn range(path: impl Into<String>, lo: f64, hi: f64) -> Self {
+        Axis { path: path.into(), values: vec![lo, hi] }
+    }
+
+    /// The first value (NaN for an axis without values).
+    pub fn lo(&self) -> f64 {
+        self.values.first().copied().unwrap_or(f64::NAN)
+    }
+
+    /// The last value (NaN for an axis without values).
+    pub fn hi(&self) -> f64 {
+        self.values.last().copied().unwrap_or(f64::NAN)
+    }
+
+    /// An axis from its text form: `PATH=LO:HI:N` (`N ≥ 2` equally spaced values, see
+    /// [`Axis::linspace`]), `PATH=V1,V2,…` (a list) or `PATH=V` (one value). Errors quote the
+    /// spec (the caller puts the option in front).
+    ///
+    /// ```
+    /// use autobal::paths::Axis;
+    /// assert_eq!(Axis::parse("drive.b=0.5:2.5:3").unwrap().values, vec![0.5, 1.5, 2.5]);
+    /// assert_eq!(Axis::parse("planar.m3=0.01,0.03").unwrap().values, vec![0.01, 0.03]);
+    /// assert!(Axis::parse("drive.b=2:1:3").unwrap_err().to_string().contains("HI must exceed LO"));
+    /// ```
+    pub fn parse(spec: &str) -> Result<Self> {
+        let bad = |why: String| Error::invalid(spec, why);
+        let (path, range) = spec.split_once('=').ok_or_else(|| bad("expected PATH=LO:HI:N, PATH=V1,V2,… or PATH=V, e.g. drive.b=0.5:12.5:5".into()))?;
+        let path = path.trim();
+        if path.is_empty() {
+            return Err(bad("the parameter path is empty".into()));
+        }
+        let num = |s: &str, what: &str| -> Result<f64> {
+            match s.trim().parse::<f64>() {
+                Ok(v) if v.is_finite() => Ok(v),
+                Ok(_) => Err(bad(format!("{what} must be finite"))),
+                Err(_) => Err(bad(format!("{what} `{}` is not a number", s.trim()))),
+            }
+        };
+        let parts: Vec<&str> = range.split(':').collect();
+        match parts.len() {
+            3 => {
+                let (lo, hi) = (num(parts[0], "LO")?, num(parts[1], "HI")?);
+                let n: usize = parts[2].trim().parse().map_err(|_| bad(format!("N `{}` is not a whole number", parts[2].trim())))?;
+                if !(2..=1_000_000).contains(&n) {
+                    return Err(bad(format!("N must lie between 2 and 1000000, got {n}")));
+                }
+                if !(hi > lo) {
+                    return Err(bad("HI must exceed LO".into()));
+                }
+                Ok(Axis::linspace(path, lo, hi, n))
+            }
+            1 => {
+                let values = range.split(',').map(|s| num(s, "value")).collect::<Result<Vec<_>>>()?;
+                Ok(Axis::new(path, values))
+            }
+            _ => Err(bad("expected PATH=LO:HI:N".into())),
+        }
+    }
+}
+
+/// `v` rounded to 12 significant digits (0 stays 0).
+fn round12(v: f64) -> f64 {
+    if v == 0.0 || !v.is_finite() {
+        return v;
+    }
+    let mag = 10f64.powi(11 - v.abs().log10().floor() as i32);
+    let r = (v * mag).round() / mag;
+    if r.is_finite() {
+        r
+    } else {
+        v
+    }
 }
 
 /// A whole number from a path value (numbers of balls): `0 ≤ v ≤ max`, no fraction.

@@ -46,6 +46,7 @@
 use crate::config::Table;
 use crate::control::{Control, StopReason};
 use crate::error::{fmt_num, Error, Result};
+pub use crate::paths::Axis;
 use crate::paths::Parameters;
 use crate::planar::problem::PlanarProblem;
 use crate::planar::{simulate_summary, Summary};
@@ -56,100 +57,6 @@ use std::ops::Range;
 /// Most points of one grid (a bound on what a mistyped axis can ask for, not on what a cluster
 /// can run: 1e9 passages of 10 ms are 115 CPU-days).
 pub const MAX_POINTS: usize = 1_000_000_000;
-
-/// One axis of a sweep or map: a parameter path and its values.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Axis {
-    /// Parameter path (`planar.c_psi`, `drive.b`, `dimensionless.z_a`, ...).
-    pub path: String,
-    /// The values, in order.
-    pub values: Vec<f64>,
-}
-
-impl Axis {
-    /// An axis with the given values.
-    pub fn new(path: impl Into<String>, values: Vec<f64>) -> Self {
-        Axis { path: path.into(), values }
-    }
-
-    /// `n` equally spaced values from `lo` to `hi` (both included; `n = 1` gives `lo`). Inner
-    /// values are rounded to 12 significant digits so that they read as typed (`0.4`, not
-    /// `0.39999999999999997`): a grid value is the same number whichever process computes it.
-    pub fn linspace(path: impl Into<String>, lo: f64, hi: f64, n: usize) -> Self {
-        let values = (0..n)
-            .map(|i| {
-                if i == 0 {
-                    return lo;
-                }
-                if i + 1 == n {
-                    return hi;
-                }
-                let v = lo + (hi - lo) * i as f64 / (n - 1) as f64;
-                round12(v)
-            })
-            .collect();
-        Axis { path: path.into(), values }
-    }
-
-    /// An axis from its text form: `PATH=LO:HI:N` (`N ≥ 2` equally spaced values, see
-    /// [`Axis::linspace`]), `PATH=V1,V2,…` (a list) or `PATH=V` (one value). Errors quote the
-    /// spec (the caller puts the option in front).
-    ///
-    /// ```
-    /// use autobal::sweep::Axis;
-    /// assert_eq!(Axis::parse("drive.b=0.5:2.5:3").unwrap().values, vec![0.5, 1.5, 2.5]);
-    /// assert_eq!(Axis::parse("planar.m3=0.01,0.03").unwrap().values, vec![0.01, 0.03]);
-    /// assert!(Axis::parse("drive.b=2:1:3").unwrap_err().to_string().contains("HI must exceed LO"));
-    /// ```
-    pub fn parse(spec: &str) -> Result<Self> {
-        let bad = |why: String| Error::invalid(spec, why);
-        let (path, range) = spec.split_once('=').ok_or_else(|| bad("expected PATH=LO:HI:N, PATH=V1,V2,… or PATH=V, e.g. drive.b=0.5:12.5:5".into()))?;
-        let path = path.trim();
-        if path.is_empty() {
-            return Err(bad("the parameter path is empty".into()));
-        }
-        let num = |s: &str, what: &str| -> Result<f64> {
-            match s.trim().parse::<f64>() {
-                Ok(v) if v.is_finite() => Ok(v),
-                Ok(_) => Err(bad(format!("{what} must be finite"))),
-                Err(_) => Err(bad(format!("{what} `{}` is not a number", s.trim()))),
-            }
-        };
-        let parts: Vec<&str> = range.split(':').collect();
-        match parts.len() {
-            3 => {
-                let (lo, hi) = (num(parts[0], "LO")?, num(parts[1], "HI")?);
-                let n: usize = parts[2].trim().parse().map_err(|_| bad(format!("N `{}` is not a whole number", parts[2].trim())))?;
-                if !(2..=1_000_000).contains(&n) {
-                    return Err(bad(format!("N must lie between 2 and 1000000, got {n}")));
-                }
-                if !(hi > lo) {
-                    return Err(bad("HI must exceed LO".into()));
-                }
-                Ok(Axis::linspace(path, lo, hi, n))
-            }
-            1 => {
-                let values = range.split(',').map(|s| num(s, "value")).collect::<Result<Vec<_>>>()?;
-                Ok(Axis::new(path, values))
-            }
-            _ => Err(bad("expected PATH=LO:HI:N".into())),
-        }
-    }
-}
-
-/// `v` rounded to 12 significant digits (0 stays 0).
-fn round12(v: f64) -> f64 {
-    if v == 0.0 || !v.is_finite() {
-        return v;
-    }
-    let mag = 10f64.powi(11 - v.abs().log10().floor() as i32);
-    let r = (v * mag).round() / mag;
-    if r.is_finite() {
-        r
-    } else {
-        v
-    }
-}
 
 /// The product of axes; point `i` takes value `i mod n_0` of the first axis, and so on (the
 /// first axis varies fastest).

@@ -720,12 +720,12 @@ fn campbell_of_the_default_rotor_has_continuous_lines() {
 
 // ---- stability boundaries traced as curves ----
 
-use autobal::spatial::boundary::{trace_boundary, Boundary, CurveKind, PlaneAxis, TraceSettings};
+use autobal::spatial::boundary::{trace_boundary, Boundary, CurveKind, TraceSettings};
 
 /// Distance (in the plane scaled to the unit square) from `(x, y)` to the stability-boundary
 /// parts of the traced curves (segments with both ends on the boundary) and codim-2 points.
 fn distance_to_boundary(b: &Boundary, x: f64, y: f64) -> f64 {
-    let (sx, sy) = (b.x.hi - b.x.lo, b.y.hi - b.y.lo);
+    let (sx, sy) = (b.x.hi() - b.x.lo(), b.y.hi() - b.y.lo());
     let mut best = f64::INFINITY;
     for c in &b.curves {
         for w in c.points.windows(2) {
@@ -774,8 +774,8 @@ fn traced_boundary_is_located_to_1e_8_and_agrees_with_a_fine_grid() {
     let mut total = 0;
     for (d, path, lo, hi) in cases {
         let spec = spec_of(d);
-        let x = PlaneAxis { path: path.into(), lo, hi };
-        let y = PlaneAxis { path: "omega".into(), lo: 0.05, hi: 4.5 };
+        let x = Axis::range(path, lo, hi);
+        let y = Axis::range("omega", 0.05, 4.5);
         let b = trace_boundary(&spec, &x, &y, &TraceSettings::default()).unwrap();
         let model_at = |v: f64| {
             let mut s = spec.clone();
@@ -823,8 +823,8 @@ fn cancelled_boundary_keeps_whole_curves_and_says_it_is_incomplete() {
     use autobal::control::{Control, StopReason};
     use autobal::spatial::boundary::trace_boundary_with;
     let spec = spec_of(boundary_base());
-    let x = PlaneAxis { path: "dimensionless.z_a".into(), lo: -2.0, hi: 2.0 };
-    let y = PlaneAxis { path: "omega".into(), lo: 0.05, hi: 4.5 };
+    let x = Axis::range("dimensionless.z_a", -2.0, 2.0);
+    let y = Axis::range("omega", 0.05, 4.5);
     let s = TraceSettings::default();
     let full = trace_boundary(&spec, &x, &y, &s).unwrap();
     assert!(full.complete && full.curves.len() >= 3, "{} curves", full.curves.len());

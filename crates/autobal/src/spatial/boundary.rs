@@ -31,23 +31,13 @@ use crate::control::{Control, StopReason};
 use crate::error::{Error, Result};
 use crate::linalg::charpoly::{pencil_polynomial, routh_count_right_of, SpeedPolynomial};
 use crate::linalg::eigen::eigenvalues;
+pub use crate::paths::Axis;
 use crate::spatial::critical_speeds::{critical_speeds_at, ModeKind};
 use crate::spatial::linear_model::{Balls, Pencil};
 use crate::spatial::map::OMEGA;
 use crate::spatial::paths::SpatialSpec;
 use num_complex::Complex64;
 use serde::Serialize;
-
-/// One axis of the plane: a parameter path or [`OMEGA`], and its range.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct PlaneAxis {
-    /// Parameter path or `omega`.
-    pub path: String,
-    /// Lower end.
-    pub lo: f64,
-    /// Upper end.
-    pub hi: f64,
-}
 
 /// Settings of [`trace_boundary`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -168,9 +158,9 @@ pub struct Codim2Point {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Boundary {
     /// The plane.
-    pub x: PlaneAxis,
+    pub x: Axis,
     /// The plane.
-    pub y: PlaneAxis,
+    pub y: Axis,
     /// Every curve traced.
     pub curves: Vec<BoundaryCurve>,
     /// Codimension-two points found on them.
@@ -188,8 +178,8 @@ pub struct Boundary {
 /// Points of the plane → characteristic polynomials.
 struct Plane<'a> {
     spec: &'a SpatialSpec,
-    x: &'a PlaneAxis,
-    y: &'a PlaneAxis,
+    x: &'a Axis,
+    y: &'a Axis,
     balls: Balls,
     omega: Option<f64>,
     evaluations: std::cell::Cell<usize>,
@@ -206,13 +196,13 @@ impl Plane<'_> {
     /// evaluates the model on that edge. Without it an axis over a field's full documented range
     /// was refused by that range (`balancer.z=-10000:10000:3`: "must lie in [-10000, 10000] m,
     /// got 10000", `dimensionless.h_s=0:1000:3`: "got -9.5e-33", issue 23).
-    fn value(a: &PlaneAxis, u: f64) -> f64 {
+    fn value(a: &Axis, u: f64) -> f64 {
         if u <= 0.0 {
-            a.lo
+            a.lo()
         } else if u >= 1.0 {
-            a.hi
+            a.hi()
         } else {
-            (a.lo + (a.hi - a.lo) * u).clamp(a.lo.min(a.hi), a.lo.max(a.hi))
+            (a.lo() + (a.hi() - a.lo()) * u).clamp(a.lo().min(a.hi()), a.lo().max(a.hi()))
         }
     }
 
@@ -425,11 +415,12 @@ fn correct(pl: &Plane, kind: CurveKind, z0: [f64; 3], t: &[f64; 3], j0: Option<&
     Ok(None)
 }
 
-/// Trace the stability boundary of `spec` over the plane `x × y` (each axis a parameter path or
-/// `omega`, ranges `[lo, hi]`).
+/// Trace the stability boundary of `spec` over the plane `x × y`: each an [`Axis`] (a parameter
+/// path or `omega`) of which the range `[first, last]` is traced (the values between are not
+/// visited; [`Axis::range`] gives the two ends alone, a map's axis may be passed as it is).
 ///
 /// ```
-/// use autobal::spatial::boundary::{trace_boundary, PlaneAxis, TraceSettings};
+/// use autobal::spatial::boundary::{trace_boundary, Axis, TraceSettings};
 /// use autobal::spatial::params::{AnisotropyInput, DimensionlessInput};
 /// use autobal::spatial::paths::{SpatialInput, SpatialSpec};
 /// use autobal::spatial::inertia::AnisotropyMethod;
@@ -442,12 +433,12 @@ fn correct(pl: &Plane, kind: CurveKind, z0: [f64; 3], t: &[f64; 3], j0: Option<&
 ///     }),
 ///     delta_a_override: None,
 /// };
-/// let x = PlaneAxis { path: "dimensionless.z_a".into(), lo: -2.0, hi: 2.0 };
-/// let y = PlaneAxis { path: "omega".into(), lo: 0.05, hi: 4.5 };
+/// let x = Axis::range("dimensionless.z_a", -2.0, 2.0);
+/// let y = Axis::range("omega", 0.05, 4.5);
 /// let b = trace_boundary(&spec, &x, &y, &TraceSettings::default()).unwrap();
 /// assert!(b.curves.iter().any(|c| c.points.iter().any(|p| p.on_boundary)));
 /// ```
-pub fn trace_boundary(spec: &SpatialSpec, x: &PlaneAxis, y: &PlaneAxis, s: &TraceSettings) -> Result<Boundary> {
+pub fn trace_boundary(spec: &SpatialSpec, x: &Axis, y: &Axis, s: &TraceSettings) -> Result<Boundary> {
     trace_boundary_with(spec, x, y, s, &Control::none())
 }
 
@@ -455,15 +446,15 @@ pub fn trace_boundary(spec: &SpatialSpec, x: &PlaneAxis, y: &PlaneAxis, s: &Trac
 /// each curve is traced): when it stops, the result holds the curves traced so far, `complete`
 /// is `false` and `stopped` says why. Its progress observer hears `(lines searched, lines)`
 /// after each line and after each curve traced.
-pub fn trace_boundary_with(spec: &SpatialSpec, x: &PlaneAxis, y: &PlaneAxis, s: &TraceSettings, control: &Control) -> Result<Boundary> {
+pub fn trace_boundary_with(spec: &SpatialSpec, x: &Axis, y: &Axis, s: &TraceSettings, control: &Control) -> Result<Boundary> {
     s.validate()?;
     for a in [x, y] {
-        if !(a.lo.is_finite() && a.hi.is_finite() && a.hi > a.lo) {
+        if !(a.lo().is_finite() && a.hi().is_finite() && a.hi() > a.lo()) {
             return Err(Error::invalid(a.path.clone(), "the range must be finite with hi > lo"));
         }
         if a.path != OMEGA {
             let mut t = spec.clone();
-            t.set(&a.path, a.lo)?;
+            t.set(&a.path, a.lo())?;
         }
     }
     if x.path == OMEGA && y.path == OMEGA {
@@ -504,7 +495,7 @@ pub fn trace_boundary_with(spec: &SpatialSpec, x: &PlaneAxis, y: &PlaneAxis, s: 
     // one codimension-two point found from both of its curves is one point
     let mut merged: Vec<Codim2Point> = vec![];
     for p in out.codim2.drain(..) {
-        let dup = merged.iter().any(|q| q.kind == p.kind && ((q.x - p.x) / (x.hi - x.lo)).abs() < 1e-6 && ((q.y - p.y) / (y.hi - y.lo)).abs() < 1e-6);
+        let dup = merged.iter().any(|q| q.kind == p.kind && ((q.x - p.x) / (x.hi() - x.lo())).abs() < 1e-6 && ((q.y - p.y) / (y.hi() - y.lo())).abs() < 1e-6);
         if !dup {
             merged.push(p);
         }
@@ -546,7 +537,7 @@ fn process(
 
 /// Whether the segment `a → b` (scaled) crosses the stability-boundary part of a traced curve.
 fn crossed(curves: &[BoundaryCurve], pl: &Plane, a: (f64, f64), b: (f64, f64)) -> bool {
-    let sc = |p: &CurvePoint| ((p.x - pl.x.lo) / (pl.x.hi - pl.x.lo), (p.y - pl.y.lo) / (pl.y.hi - pl.y.lo));
+    let sc = |p: &CurvePoint| ((p.x - pl.x.lo()) / (pl.x.hi() - pl.x.lo()), (p.y - pl.y.lo()) / (pl.y.hi() - pl.y.lo()));
     let cross = |o: (f64, f64), p: (f64, f64), q: (f64, f64)| (p.0 - o.0) * (q.1 - o.1) - (p.1 - o.1) * (q.0 - o.0);
     curves.iter().any(|c| {
         c.points.windows(2).filter(|w| w[0].on_boundary && w[1].on_boundary).any(|w| {
@@ -562,7 +553,7 @@ fn crossed(curves: &[BoundaryCurve], pl: &Plane, a: (f64, f64), b: (f64, f64)) -
 
 /// Whether `z` (scaled) lies on the curve already traced (within the step of its points).
 fn near_curve(c: &BoundaryCurve, pl: &Plane, z: &[f64; 3]) -> bool {
-    let sc = |p: &CurvePoint| ((p.x - pl.x.lo) / (pl.x.hi - pl.x.lo), (p.y - pl.y.lo) / (pl.y.hi - pl.y.lo));
+    let sc = |p: &CurvePoint| ((p.x - pl.x.lo()) / (pl.x.hi() - pl.x.lo()), (p.y - pl.y.lo()) / (pl.y.hi() - pl.y.lo()));
     for k in 0..c.points.len().saturating_sub(1) {
         let (a, b) = (sc(&c.points[k]), sc(&c.points[k + 1]));
         // distance from z to the segment ab, and the same pair frequency
@@ -610,7 +601,7 @@ fn line_crossings(pl: &Plane, s: &TraceSettings, dir: usize, li: usize, traced: 
                     let pair: Vec<f64> = roots.iter().filter(|r| r.1 == kind).map(|r| r.0).collect();
                     let mid = if pair.len() == 2 { Some(0.5 * (pair[0] + pair[1])) } else { None };
                     for w in pair.iter().chain(mid.iter()) {
-                        ts.push((w - along.lo) / (along.hi - along.lo));
+                        ts.push((w - along.lo()) / (along.hi() - along.lo()));
                     }
                 }
             }
@@ -888,19 +879,19 @@ fn march(pl: &Plane, kind: CurveKind, z0: [f64; 3], t0: [f64; 3], max_step: f64)
 /// (from the slowest speed over the largest `ω0` to the fastest over the smallest, `ω0` sampled
 /// at 65 points of the other axis) and every point carried to the SI speed `Ω ω0/k` with the
 /// `ω0` of its own model; the boundary's axes are the SI ones.
-pub fn trace_boundary_units(spec: &SpatialSpec, x: &PlaneAxis, y: &PlaneAxis, s: &TraceSettings, control: &crate::control::Control) -> Result<Boundary> {
+pub fn trace_boundary_units(spec: &SpatialSpec, x: &Axis, y: &Axis, s: &TraceSettings, control: &crate::control::Control) -> Result<Boundary> {
     use crate::spatial::paths::{omega0_at, si_speed_axis};
     let Some((i, k)) = si_speed_axis(spec, [&x.path, &y.path])? else { return trace_boundary_with(spec, x, y, s, control) };
     let (speed, other) = if i == 0 { (x, y) } else { (y, x) };
-    if !(speed.lo >= 0.0 && speed.hi > speed.lo && speed.hi.is_finite()) {
+    if !(speed.lo() >= 0.0 && speed.hi() > speed.lo() && speed.hi().is_finite()) {
         return Err(Error::invalid(speed.path.clone(), "the speeds must be finite, non-negative, with hi > lo"));
     }
     let mut w0s = vec![];
     for n in 0..=64 {
-        w0s.push(omega0_at(spec, &other.path, other.lo + (other.hi - other.lo) * n as f64 / 64.0)?);
+        w0s.push(omega0_at(spec, &other.path, other.lo() + (other.hi() - other.lo()) * n as f64 / 64.0)?);
     }
     let (lo, hi) = w0s.iter().fold((f64::INFINITY, 0.0f64), |(a, b), w| (a.min(*w), b.max(*w)));
-    let om = PlaneAxis { path: OMEGA.into(), lo: speed.lo * k / hi, hi: speed.hi * k / lo };
+    let om = Axis::range(OMEGA, speed.lo() * k / hi, speed.hi() * k / lo);
     let mut b = if i == 0 { trace_boundary_with(spec, &om, y, s, control)? } else { trace_boundary_with(spec, x, &om, s, control)? };
     let carry = |sp: &mut f64, ot: f64| -> Result<()> {
         *sp *= omega0_at(spec, &other.path, ot)? / k;
@@ -939,8 +930,8 @@ mod tests {
     #[test]
     fn tracing_refuses_invalid_settings_naming_them() {
         let spec = SpatialSpec { input: SpatialInput::Dimensionless(DimensionlessInput::default()), delta_a_override: None };
-        let x = PlaneAxis { path: "dimensionless.z_a".into(), lo: -1.0, hi: 1.0 };
-        let y = PlaneAxis { path: OMEGA.into(), lo: 0.1, hi: 2.0 };
+        let x = Axis::range("dimensionless.z_a", -1.0, 1.0);
+        let y = Axis::range(OMEGA, 0.1, 2.0);
         for (s, field) in [
             (TraceSettings { max_step: f64::NAN, ..Default::default() }, "max_step"),
             (TraceSettings { coarse: (24, 0), ..Default::default() }, "coarse"),

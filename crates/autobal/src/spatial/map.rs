@@ -2,8 +2,8 @@
 //! verdict) of the balanced state at every point of a grid, computed in parallel and delivered
 //! row by row in grid order, in bounded memory.
 //!
-//! An axis is a parameter path ([`crate::spatial::paths`], e.g. `dimensionless.z_a`) or
-//! [`OMEGA`], the speed. Along the speed axis a model is fixed, and the work is done per *line*
+//! An axis ([`Axis`], the one of [`crate::paths`]) is a parameter path ([`crate::spatial::paths`],
+//! e.g. `dimensionless.z_a`) or [`OMEGA`], the speed, with its values. Along the speed axis a model is fixed, and the work is done per *line*
 //! (one model, all speeds) with the exact characteristic polynomial in `Ω`
 //! ([`crate::linalg::charpoly`]):
 //! - the **margin** by continuation of the rightmost eigenvalue with a Routh certificate at
@@ -29,6 +29,7 @@ use crate::control::{Control, StopReason};
 use crate::error::{Error, Result};
 use crate::linalg::charpoly::{AbscissaTracker, SpeedPolynomial};
 use crate::linalg::eigen::{eigenvalues, routh_hurwitz_stable, spectral_abscissa};
+pub use crate::paths::Axis;
 use crate::spatial::linear_model::{Balls, Pencil, StateSpace};
 use crate::spatial::params::SpatialModel;
 use crate::spatial::paths::SpatialSpec;
@@ -43,25 +44,10 @@ pub const OMEGA: &str = "omega";
 /// eigenvalues multiple).
 pub const OMEGA_FLOOR: f64 = 1e-9;
 
-/// One axis of a map: a parameter path (or [`OMEGA`]) and its values.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Axis {
-    /// Parameter path or `omega`.
-    pub path: String,
-    /// Grid values (the speed axis must be ascending and non-negative).
-    pub values: Vec<f64>,
-}
-
-impl Axis {
-    /// `n` equally spaced values from `lo` to `hi`.
-    pub fn linspace(path: &str, lo: f64, hi: f64, n: usize) -> Self {
-        let values = (0..n).map(|i| if i + 1 == n { hi } else { lo + (hi - lo) * i as f64 / (n.max(2) - 1) as f64 }).collect();
-        Axis { path: path.to_string(), values }
-    }
-
-    fn is_omega(&self) -> bool {
-        self.path == OMEGA
-    }
+/// Whether the axis is the speed [`OMEGA`] (the speed axes in SI are
+/// [`stability_map_units`]'s).
+fn is_omega(a: &Axis) -> bool {
+    a.path == OMEGA
 }
 
 /// What each point stores.
@@ -341,7 +327,7 @@ pub fn stability_map<F: ModelFamily>(
         if a.values.iter().any(|v| !v.is_finite()) {
             return Err(Error::invalid(a.path.clone(), "axis values must be finite"));
         }
-        if a.is_omega() {
+        if is_omega(a) {
             if a.values.iter().any(|v| *v < 0.0) || a.values.windows(2).any(|w| w[1] < w[0]) {
                 return Err(Error::invalid(OMEGA, "the speeds must be non-negative and ascending"));
             }
@@ -350,10 +336,10 @@ pub fn stability_map<F: ModelFamily>(
             spec.with(&a.path, a.values[0])?.model()?;
         }
     }
-    if x.is_omega() && y.is_omega() {
+    if is_omega(x) && is_omega(y) {
         return Err(Error::invalid(OMEGA, "only one axis can be the speed"));
     }
-    let w = match (x.is_omega(), y.is_omega()) {
+    let w = match (is_omega(x), is_omega(y)) {
         (false, false) => Some(s.omega.ok_or_else(|| Error::invalid(OMEGA, "required when neither axis is the speed (the speed at which to map)"))?),
         _ => None,
     };
@@ -362,7 +348,7 @@ pub fn stability_map<F: ModelFamily>(
     }
     let mut why = None;
     let mut asked = ask_control(control, y.values.len(), on_row, &mut why);
-    let mut out = match (x.is_omega(), w) {
+    let mut out = match (is_omega(x), w) {
         (false, None) => map_speed_rows(spec, x, y, s, &mut asked),
         (true, _) => map_speed_columns(spec, x, y, s, &mut asked),
         (false, Some(w)) => map_fixed_speed(spec, x, y, w, s, &mut asked),

@@ -5,9 +5,11 @@
 //! A path is spelled as the config spells the field (`table.key`); setting one changes the input
 //! and [`SpatialSpec::build`] derives the model again (microseconds: the derivation of 000,
 //! eqs (4), (5), (8), (10), and the anisotropy). Errors name the path. The table
-//! ([`PARAMETER_PATHS`]) is the single place to add a parameter.
+//! ([`PARAMETER_PATHS`]: entries of the one [`ParameterPath`] type, read and written through
+//! [`Parameters`] as the planar problem's are) is the single place to add a parameter.
 
 use crate::error::{Error, Result};
+use crate::paths::{ParameterPath, Parameters};
 use crate::spatial::inertia::{Anisotropy, AnisotropyMethod};
 use crate::spatial::params::{AnisotropyInput, DimensionlessInput, SpatialModel, SpatialRotorSi};
 
@@ -61,34 +63,27 @@ impl SpatialSpec {
         Ok(m)
     }
 
-    /// Set the parameter at `path` to `value` (the model is derived again by [`Self::build`]).
+    /// Set the parameter at `path` to `value` (the model is derived again by [`Self::build`]);
+    /// [`Parameters::set`] on [`PARAMETER_PATHS`], callable without the trait in scope.
     pub fn set(&mut self, path: &str, value: f64) -> Result<()> {
-        let p = find(path)?;
-        (p.set)(self, value).map_err(|reason| Error::invalid(path, reason))
+        <Self as Parameters>::set(self, path, value)
     }
 
-    /// The value of the parameter at `path`.
+    /// The value of the parameter at `path` ([`Parameters::get`]).
     pub fn get(&self, path: &str) -> Result<f64> {
-        let p = find(path)?;
-        (p.get)(self).map_err(|reason| Error::invalid(path, reason))
+        <Self as Parameters>::get(self, path)
     }
 }
 
-/// One settable parameter: its path and how to read and write it.
-pub struct ParameterPath {
-    /// Dotted path as the config spells it.
-    pub path: &'static str,
-    /// What it is (for listings).
-    pub doc: &'static str,
-    set: fn(&mut SpatialSpec, f64) -> std::result::Result<(), String>,
-    get: fn(&SpatialSpec) -> std::result::Result<f64, String>,
-}
-
-fn find(path: &str) -> Result<&'static ParameterPath> {
-    PARAMETER_PATHS.iter().find(|p| p.path == path).ok_or_else(|| {
-        let known: Vec<&str> = PARAMETER_PATHS.iter().map(|p| p.path).collect();
-        Error::invalid(path, format!("unknown parameter path (known: omega, speed_rpm, speed, speed_hz, {})", known.join(", ")))
-    })
+/// The spatial description's paths are [`PARAMETER_PATHS`]; an unknown path's error also lists
+/// the speed axes of maps and boundaries (`omega`, `speed_rpm`, ...), which are not fields.
+impl Parameters for SpatialSpec {
+    fn parameter_paths() -> &'static [ParameterPath<Self>] {
+        PARAMETER_PATHS
+    }
+    fn other_paths() -> &'static [&'static str] {
+        &["omega", "speed_rpm", "speed", "speed_hz"]
+    }
 }
 
 fn dimless(s: &mut SpatialSpec) -> std::result::Result<&mut DimensionlessInput, String> {
@@ -123,12 +118,9 @@ fn masses_only() -> String {
     "the model gives delta_a directly: this field belongs to a description by masses (m0, r0, m, r, n)".into()
 }
 
+/// A number of balls: a whole number in `0..=10000` ([`crate::paths::whole`]).
 fn whole(v: f64) -> std::result::Result<u32, String> {
-    if v.fract() == 0.0 && (0.0..=10_000.0).contains(&v) {
-        Ok(v as u32)
-    } else {
-        Err(format!("must be a whole number between 0 and 10000, got {v}"))
-    }
+    crate::paths::whole(v, 10_000).map(|n| n as u32)
 }
 
 macro_rules! dimless_field {
@@ -160,7 +152,7 @@ macro_rules! si_field {
 }
 
 /// Every parameter a path can name, as the config spells it.
-pub static PARAMETER_PATHS: &[ParameterPath] = &[
+pub static PARAMETER_PATHS: &[ParameterPath<SpatialSpec>] = &[
     dimless_field!("dimensionless.c_sigma", "C̄Σ, polar over equatorial moment", c_sigma),
     dimless_field!("dimensionless.rho_s", "ρ̄s, radius of gyration over the span", rho_s),
     dimless_field!("dimensionless.l_left", "l̄_L, centre of mass from the left support", l_left),
