@@ -44,7 +44,7 @@ fn one_plane_general_map_equals_the_12_state_map_cell_by_cell() {
     let (ha, ra) = csv(&a);
     let (hg, rg) = csv(&g);
     assert_eq!(ha, "omega,balancer.ball_mass,max_real_part,stable,necessary");
-    assert_eq!(hg, "omega,balancer.ball_mass,max_real_part,verdict,family_dimension");
+    assert_eq!(hg, "omega,balancer.ball_mass,max_real_part,verdict,family_dimension,family");
     assert_eq!(ra.len(), 90);
     assert_eq!(ra.len(), rg.len());
     // the same Ω per cell (each route converts with the ω0 of the rotor at that ball mass)
@@ -96,7 +96,7 @@ fn planar_jeffcott_map_is_unstable_below_the_critical_speed_in_every_row() {
     // sqrt(k/M) from examples/planar.toml's numbers: k = 104509.44 N/m, M = m1 + m2 + n m3
     let wn = (104509.44f64 / (1.0 + 0.2 + 2.0 * 0.03)).sqrt();
     let (header, rows) = csv(&stem);
-    assert_eq!(header, "omega,planar.c_psi,max_real_part,verdict,family_dimension");
+    assert_eq!(header, "omega,planar.c_psi,max_real_part,verdict,family_dimension,family");
     assert_eq!(rows.len(), 45 * 8);
     for row in rows.chunks(45) {
         for c in row {
@@ -175,4 +175,37 @@ fn general_route_refuses_what_it_cannot_do_with_one_line() {
     let (code, _, err) = autobal(&["map", "-c", &example("planar.toml"), "--x", "planar.nope=1:2:3", "--y", "omega=100:200:2", "-o", stem.to_str().unwrap()]);
     assert_ne!(code, 0);
     assert!(err.contains("--x") && err.contains("planar.nope"), "{err}");
+}
+
+#[test]
+fn a_three_ball_map_says_which_members_of_the_family_are_stable() {
+    // the Jeffcott rotor (race centred) with three balls: some members stable from 300.41 rad/s,
+    // all from 307.08 (docs/stability.md, the speed scan's family); 290, 305 and 320 rad/s lie
+    // on either side of both by more than the map's sampling can move them (< 0.01 rad/s)
+    let stem = tmp("three-balls");
+    let (code, out, err) = autobal(&[
+        "map",
+        "-c",
+        &example("planar.toml"),
+        "--set",
+        "planar.s2=0",
+        "--set",
+        "planar.n=3",
+        "--x",
+        "omega=290:320:3",
+        "--y",
+        "planar.c=50:60:2",
+        "-o",
+        stem.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("general route"), "{out}");
+    assert!(err.contains("family") && err.contains("one member"), "{err}");
+    let (header, rows) = csv(&stem);
+    assert_eq!(header, "omega,planar.c,max_real_part,verdict,family_dimension,family");
+    let at = |w: &str| rows.iter().find(|r| r[0] == w && r[1] == "50").unwrap_or_else(|| panic!("{rows:?}"));
+    assert_eq!(at("290")[5], "none_stable", "{rows:?}");
+    assert_eq!(at("305")[5], "some_stable", "{rows:?}");
+    assert_eq!(at("320")[5], "all_stable", "{rows:?}");
+    assert!(rows.iter().all(|r| r[4] == "1"), "{rows:?}");
 }

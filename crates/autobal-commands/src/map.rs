@@ -322,7 +322,7 @@ pub fn run_general(
     }
     o.check()?;
     let mut w = crate::outfile::Staged::create("--out", &csv_path)?;
-    writeln!(w, "{},{},max_real_part,verdict,family_dimension", xa.key, ya.key)?;
+    writeln!(w, "{},{},max_real_part,verdict,family_dimension,family", xa.key, ya.key)?;
     let mut traced: Vec<BoundaryPoint> = vec![];
     let verdict_name = |v: Option<Verdict>| match v {
         None => "",
@@ -361,7 +361,14 @@ pub fn run_general(
                     (if verdict_only { String::new() } else { crate::num::Csv(c.margin).to_string() }, verdict_name(Some(v)), c.family_dimension.to_string())
                 }
             };
-            let _ = writeln!(t, "{xs},{yv},{margin},{verdict},{fam}");
+            // with a family: all, some or none of its members stable (empty for an isolated state)
+            let family = match c.family {
+                None => "",
+                Some(autobal::rotor_map::FamilyVerdict::AllStable) => "all_stable",
+                Some(autobal::rotor_map::FamilyVerdict::SomeStable) => "some_stable",
+                Some(autobal::rotor_map::FamilyVerdict::NoneStable) => "none_stable",
+            };
+            let _ = writeln!(t, "{xs},{yv},{margin},{verdict},{fam},{family}");
         }
         if let Err(e) = w.write_all(t.as_bytes()).and_then(|_| w.flush()) {
             io_error = Some(e);
@@ -457,6 +464,12 @@ pub fn run_general(
         crate::term::with_suffix(&out, "svg").display(),
         crate::term::with_suffix(&out, "png").display()
     ))?;
+    if outcome.families > 0 {
+        crate::term::note(&format!(
+            "{} cells have a family of balanced states (n ≥ 3 balls): max_real_part and verdict are those of one member, the one reached from the closed form (balls in a symmetric arc); the column family says whether all, some or none of the family's members are stable",
+            outcome.families
+        ));
+    }
     if !outcome.complete {
         bail!("interrupted: {} of {} rows computed and kept in {}", outcome.rows, ya.n, csv_path.display());
     }

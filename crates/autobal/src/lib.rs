@@ -115,6 +115,7 @@ pub mod planar;
 pub mod reports;
 pub mod rotor_campbell;
 pub mod rotor_map;
+pub mod rotor_partial;
 pub mod rotor_stability;
 pub mod simulation;
 pub mod spatial;

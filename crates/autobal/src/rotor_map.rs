@@ -27,6 +27,22 @@
 //! map writes it), 1/s for a planar one. A cell without a stationary state has margin NaN and no
 //! verdict.
 //!
+//! # Families
+//! With `n ≥ 3` balls in a plane the balanced states form a family of dimension `k`
+//! ([`VectorField::structural_zeros`]), and one member's verdict says nothing of the others. At
+//! such a cell the margin and verdict stay those of the member Newton reaches (from the closed
+//! form: [`GeneralCell::margin`] names it), and the family through it is followed with
+//! [`crate::analysis::family`] as the speed scan of [`crate::rotor_stability`] follows it, more
+//! coarsely to stay cheap: continuation at steps of [`MAP_FAMILY_STEP`] in scaled arclength for
+//! `k = 1`, with the least and the most stable member refined by a parabolic step
+//! ([`FamilyOptions::refine_extremes`]), and [`MAP_FAMILY_SAMPLES`] members drawn for `k ≥ 2`.
+//! The cell's [`GeneralCell::family`] says whether all, some or none of the members are stable,
+//! and [`GeneralCell::family_max_margin`], [`GeneralCell::family_min_margin`] give the margins
+//! of the least and the most stable member. "Some members stable" is not "stable": a run can
+//! settle on an unstable member and leave it. The traced boundary (`trace`) is that of the
+//! member's margin. Cost: a family of `m` members costs about `m` cells (a Newton solve and
+//! eigenvalues each): ~40 on the three-ball Jeffcott rotor.
+//!
 //! Rows (all `x` at one `y`) are computed in parallel (rayon) in blocks and handed to `on_row`
 //! in order; the [`Control`] is asked before each row is started (an early stop is
 //! [`GeneralMapOutcome::stopped`]) and its progress observer hears `(rows done, rows)`.
@@ -45,12 +61,12 @@
 //! assert!(rows.iter().all(|r| r[0].verdict == Some(Verdict::Unstable)));
 //! ```
 
-use crate::analysis::{stability, stationary_near, NewtonOptions, StationaryState, VectorField};
-pub use crate::analysis::{Kind, Verdict};
+use crate::analysis::{family, stability, stationary_near, FamilyOptions, NewtonOptions, StationaryState, VectorField};
+pub use crate::analysis::{FamilyVerdict, Kind, Verdict};
 use crate::config;
 use crate::control::{Control, StopReason};
 use crate::error::{fmt_num, Error, Result};
-use crate::rotor_stability::Rotor;
+use crate::rotor_stability::{Field, Rotor};
 use crate::spatial::map::Axis;
 use crate::units::{speed_path_unit, Speed, SpeedUnit};
 use rayon::prelude::*;
@@ -61,20 +77,82 @@ use toml::Table;
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct GeneralCell {
     /// Spectral abscissa `max Re λ` (or the largest Floquet exponent `max ln|μ| / T`) without
-    /// the structural zeros, per unit `τ` (spatial) or 1/s (planar); NaN without a state.
+    /// the structural zeros, per unit `τ` (spatial) or 1/s (planar); NaN without a state. With
+    /// a family (`family_dimension > 0`) it is that of **one member**, the one Newton's method
+    /// reaches from the closed form ([`Rotor::guess`]: the planar rotor's balls one on the
+    /// direction of the unbalance they cancel and the others in mirror pairs about it, the
+    /// spatial rotor's balls of each plane in an equally spaced arc), else from the neighbouring
+    /// cell's state ([`GeneralCell::continued`]); the family's verdict is [`GeneralCell::family`].
     pub margin: f64,
-    /// The verdict; `None` where no stationary state was found.
+    /// The verdict of the state whose margin is `margin` (with a family, that one member's);
+    /// `None` where no stationary state was found.
     pub verdict: Option<Verdict>,
     /// Equilibrium or periodic orbit; `None` without a state.
     pub kind: Option<Kind>,
     /// Dimension of the family of stationary states ([`VectorField::structural_zeros`]).
     pub family_dimension: usize,
+    /// With a family: whether all, some or none of its members are stable (module docs,
+    /// "Families"); `None` for an isolated state, without a state, or where the family could
+    /// not be followed from the member.
+    pub family: Option<FamilyVerdict>,
+    /// With a family: the largest margin over its members (the least stable member: all are
+    /// stable when it is negative beyond the neutral band), in `margin`'s unit; NaN otherwise.
+    pub family_max_margin: f64,
+    /// With a family: the smallest margin over its members (the most stable member: some are
+    /// stable when it is negative beyond the neutral band); NaN otherwise.
+    pub family_min_margin: f64,
     /// Whether the state was reached from the neighbouring cell rather than the closed form.
     pub continued: bool,
 }
 
 impl GeneralCell {
-    const NONE: GeneralCell = GeneralCell { margin: f64::NAN, verdict: None, kind: None, family_dimension: 0, continued: false };
+    const NONE: GeneralCell = GeneralCell {
+        margin: f64::NAN,
+        verdict: None,
+        kind: None,
+        family_dimension: 0,
+        family: None,
+        family_max_margin: f64::NAN,
+        family_min_margin: f64::NAN,
+        continued: false,
+    };
+}
+
+/// Step in scaled arclength of a map cell's one-parameter family (0.3; a periodic orbit's
+/// 0.5), the least and most stable member then refined by one parabolic step each
+/// ([`FamilyOptions::refine_extremes`]): on the three-ball Jeffcott rotor ~40 members instead of
+/// the speed scan's 119 at 0.1, and the extremes of the abscissa still found to well within the
+/// sampling (tests/family_map.rs).
+pub const MAP_FAMILY_STEP: f64 = 0.3;
+
+/// Members drawn on a map cell's family of dimension `k ≥ 2` (40; a periodic orbit's 12): a
+/// sample, as the speed scan's 200, so "all stable" there means all members drawn.
+pub const MAP_FAMILY_SAMPLES: usize = 40;
+
+/// The family through `state` (of dimension `k ≥ 1`) at one cell, sampled as
+/// [`MAP_FAMILY_STEP`] and [`MAP_FAMILY_SAMPLES`] say: `(verdict, largest abscissa, smallest
+/// abscissa)` over its members; `None` where it cannot be followed.
+fn cell_family(field: &Field, state: &StationaryState, newton: &NewtonOptions) -> Option<(FamilyVerdict, f64, f64)> {
+    let periodic = field.period().is_some();
+    let angles = match field {
+        Field::Planar(p) => (2..2 + p.rotor().n).collect(),
+        Field::Spatial(s) => {
+            let m = s.coords();
+            (m - s.rotor().balls()..m).collect()
+        }
+    };
+    let opts = FamilyOptions {
+        step: if periodic { 0.5 } else { MAP_FAMILY_STEP },
+        samples: if periodic { 12 } else { MAP_FAMILY_SAMPLES },
+        max_members: if periodic { 200 } else { 1000 },
+        angles,
+        newton: newton.clone(),
+        refine_extremes: true,
+        ..FamilyOptions::default()
+    };
+    let fam = family(field, state, &opts).ok()?;
+    let (hi, lo) = fam.extremes()?;
+    Some((fam.verdict(), hi.stability.abscissa, lo.stability.abscissa))
 }
 
 /// How far a general map got.
@@ -96,6 +174,9 @@ pub struct GeneralMapOutcome {
     pub none: usize,
     /// Cells whose stationary state is a periodic orbit.
     pub periodic: usize,
+    /// Cells whose state belongs to a family whose members were followed
+    /// ([`GeneralCell::family`] set).
+    pub families: usize,
 }
 
 /// The rotor of one cell and the speed unit of its `omega`.
@@ -157,7 +238,11 @@ fn model_speed(c: &CellRotor, s: Speed, field: &str) -> Result<f64> {
 /// tried first, its monodromy matrix the shooting's starting matrix (as the speed scan
 /// continues; one variational integration per cell instead of two), then the closed form
 /// (also with that matrix); for an equilibrium the closed form first (it names the branch).
-fn solve(c: &CellRotor, w: f64, previous: Option<&StationaryState>, closed_form: bool) -> (GeneralCell, Option<StationaryState>) {
+///
+/// With `families`, a state of a family ([`VectorField::structural_zeros`] `> 0`) gets its
+/// family's verdict too ([`cell_family`]); a bisection, which follows the member's margin,
+/// goes without.
+fn solve(c: &CellRotor, w: f64, previous: Option<&StationaryState>, closed_form: bool, families: bool) -> (GeneralCell, Option<StationaryState>) {
     let Ok(field) = c.rotor.field(w) else { return (GeneralCell::NONE, None) };
     let periodic = field.period().is_some();
     let guess = if closed_form { Rotor::guess(&field) } else { None };
@@ -176,8 +261,19 @@ fn solve(c: &CellRotor, w: f64, previous: Option<&StationaryState>, closed_form:
         let Some(start) = start else { continue };
         let Ok(state) = stationary_near(&field, start, hint, &opts) else { continue };
         let Ok(st) = stability(&field, &state) else { continue };
-        let cell =
-            GeneralCell { margin: st.abscissa / c.scale, verdict: Some(st.verdict), kind: Some(st.kind), family_dimension: state.family_dimension, continued };
+        let mut cell = GeneralCell {
+            margin: st.abscissa / c.scale,
+            verdict: Some(st.verdict),
+            kind: Some(st.kind),
+            family_dimension: state.family_dimension,
+            continued,
+            ..GeneralCell::NONE
+        };
+        if families && state.family_dimension > 0 {
+            if let Some((v, hi, lo)) = cell_family(&field, &state, &opts) {
+                (cell.family, cell.family_max_margin, cell.family_min_margin) = (Some(v), hi / c.scale, lo / c.scale);
+            }
+        }
         return (cell, Some(state));
     }
     (GeneralCell::NONE, None)
@@ -268,7 +364,7 @@ impl Plane<'_> {
         let mut states: Vec<Option<StationaryState>> = Vec::with_capacity(self.x.values.len());
         for (i, &xv) in self.x.values.iter().enumerate() {
             let (c, w) = self.cell(Some(i), j, xv, yv)?;
-            let (cell, x) = solve(&c, w, previous.as_ref(), true);
+            let (cell, x) = solve(&c, w, previous.as_ref(), true, true);
             states.push(x.clone());
             previous = x.or(previous);
             out.push(cell);
@@ -276,7 +372,7 @@ impl Plane<'_> {
         for i in (0..out.len().saturating_sub(1)).rev() {
             if out[i].verdict.is_none() && states[i + 1].is_some() {
                 let (c, w) = self.cell(Some(i), j, self.x.values[i], yv)?;
-                let (cell, x) = solve(&c, w, states[i + 1].as_ref(), false);
+                let (cell, x) = solve(&c, w, states[i + 1].as_ref(), false, true);
                 if cell.verdict.is_some() {
                     out[i] = cell;
                     states[i] = x;
@@ -309,7 +405,7 @@ impl Plane<'_> {
                 break;
             }
             let (c, w) = self.cell(None, j, mid, yv)?;
-            let (cell, x) = solve(&c, w, xa.as_ref().or(xb.as_ref()), true);
+            let (cell, x) = solve(&c, w, xa.as_ref().or(xb.as_ref()), true, false);
             if side(&cell) == side_lo {
                 a = mid;
                 xa = x.or(xa);
@@ -428,6 +524,9 @@ pub fn general_map_traced(
                 }
                 if c.kind == Some(Kind::PeriodicOrbit) {
                     out.periodic += 1;
+                }
+                if c.family.is_some() {
+                    out.families += 1;
                 }
             }
             out.rows += 1;

@@ -663,7 +663,7 @@ fn explain_failure(rotor: &Rotor, failure: &str) -> String {
 }
 
 /// The balls' angles in a reduced state.
-fn ball_angles(f: &Field, x: &[f64]) -> Vec<f64> {
+pub(crate) fn ball_angles(f: &Field, x: &[f64]) -> Vec<f64> {
     match f {
         Field::Planar(p) => {
             let n = p.rotor().n;
@@ -679,7 +679,7 @@ fn ball_angles(f: &Field, x: &[f64]) -> Vec<f64> {
 
 /// Whirl radius at the first balancer plane in turning axes: `|u|` of the planar rotor's C, the
 /// spatial shaft's displacement at the first ball plane (or the first unbalance's plane).
-fn amplitude(f: &Field, x: &[f64]) -> f64 {
+pub(crate) fn amplitude(f: &Field, x: &[f64]) -> f64 {
     match f {
         Field::Planar(_) => x[0].hypot(x[1]),
         Field::Spatial(s) => {

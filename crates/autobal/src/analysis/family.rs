@@ -29,11 +29,17 @@ pub struct FamilyOptions {
     pub angles: Vec<usize>,
     /// Newton's tolerances for each member.
     pub newton: NewtonOptions,
+    /// For a one-parameter family: after the continuation, refine the least and the most
+    /// stable member sampled by one parabolic step each ([`family`]: the vertex of the parabola
+    /// through the abscissae of the extreme member and its two neighbours, corrected onto the
+    /// family), so that a coarse step still finds the extremes of the abscissa along the family
+    /// to well within the step (default `false`).
+    pub refine_extremes: bool,
 }
 
 impl Default for FamilyOptions {
     fn default() -> Self {
-        FamilyOptions { step: 0.05, max_members: 2000, samples: 200, seed: 1, angles: vec![], newton: NewtonOptions::default() }
+        FamilyOptions { step: 0.05, max_members: 2000, samples: 200, seed: 1, angles: vec![], newton: NewtonOptions::default(), refine_extremes: false }
     }
 }
 
@@ -293,17 +299,100 @@ pub fn family<F: VectorField + ?Sized>(f: &F, member: &StationaryState, opts: &F
     };
     let budget = opts.max_members.max(2) - 1;
     let (forward, closed, arc) = walk(1.0, budget)?;
-    if closed {
+    let mut fam = if closed {
         // the whole family, s ∈ [0, length)
         let mut members = vec![FamilyMember { parameter: vec![0.0], ..first }];
         members.extend(forward);
-        return Ok(Family { dimension: 1, sampling: Sampling::Continuation { step: h }, members, closed: true, length: arc });
+        Family { dimension: 1, sampling: Sampling::Continuation { step: h }, members, closed: true, length: arc }
+    } else {
+        // open: the other direction too, members ordered by s
+        let (mut backward, _, back_arc) = walk(-1.0, budget.saturating_sub(forward.len()))?;
+        backward.reverse();
+        let mut members = backward;
+        members.push(FamilyMember { parameter: vec![0.0], ..first });
+        members.extend(forward);
+        Family { dimension: 1, sampling: Sampling::Continuation { step: h }, members, closed: false, length: arc + back_arc }
+    };
+    if opts.refine_extremes {
+        refine_extremes(f, &mut fam, &s, opts);
     }
-    // open: the other direction too, members ordered by s
-    let (mut backward, _, back_arc) = walk(-1.0, budget.saturating_sub(forward.len()))?;
-    backward.reverse();
-    let mut members = backward;
-    members.push(FamilyMember { parameter: vec![0.0], ..first });
-    members.extend(forward);
-    Ok(Family { dimension: 1, sampling: Sampling::Continuation { step: h }, members, closed: false, length: arc + back_arc })
+    Ok(fam)
+}
+
+/// The vertex `σ*` of the parabola through `(σ_j, a_j)`, `σ_0 < σ_1 < σ_2`, where it is an
+/// extreme of the kind wanted (`sign` `+1`: a maximum, `−1`: a minimum) strictly inside
+/// `(σ_0, σ_2)`: with `d_1`, `d_2` the slopes of the two chords and `c = (d_2 − d_1)/(σ_2 − σ_0)`
+/// (half the second derivative), `σ* = (σ_0 + σ_1 − d_1/c)/2`.
+fn vertex(sig: [f64; 3], a: [f64; 3], sign: f64) -> Option<f64> {
+    let d1 = (a[1] - a[0]) / (sig[1] - sig[0]);
+    let d2 = (a[2] - a[1]) / (sig[2] - sig[1]);
+    let c = (d2 - d1) / (sig[2] - sig[0]);
+    if !(sign * c < 0.0) {
+        return None;
+    }
+    let v = 0.5 * (sig[0] + sig[1] - d1 / c);
+    (v.is_finite() && v > sig[0] && v < sig[2]).then_some(v)
+}
+
+/// [`FamilyOptions::refine_extremes`]: for the member of largest abscissa (then of smallest)
+/// with a neighbour on either side (across the ends of a closed family), the parabola through
+/// the three abscissae against the local arclength `σ` (the scaled distances to the neighbours,
+/// angles modulo `2π`) gives `σ*`; the three states interpolated quadratically at `σ*` (the
+/// neighbours' angles moved by whole turns next to the middle one's) are corrected onto the
+/// family by minimum-norm Newton and the member added, at `s + σ*`. The abscissa along the
+/// family is smooth where one eigenvalue leads, so the vertex is off the true extreme by
+/// `O(h³)` and its abscissa by less; where the lead changes (a kink) the extra member is still
+/// a member: the extremes can only grow towards the true ones.
+fn refine_extremes<F: VectorField + ?Sized>(f: &F, fam: &mut Family, sc: &[f64], opts: &FamilyOptions) {
+    let n = fam.members.len();
+    if fam.dimension != 1 || n < 3 {
+        return;
+    }
+    let tau = std::f64::consts::TAU;
+    let mut extra: Vec<FamilyMember> = vec![];
+    for sign in [1.0, -1.0] {
+        let Some(i) = (0..n).max_by(|&a, &b| (sign * fam.members[a].stability.abscissa).total_cmp(&(sign * fam.members[b].stability.abscissa))) else {
+            continue;
+        };
+        let (prev, next) = match (i, fam.closed) {
+            (0, true) => (n - 1, 1),
+            (i, true) if i == n - 1 => (i - 1, 0),
+            (0, false) => continue,
+            (i, false) if i == n - 1 => continue,
+            (i, _) => (i - 1, i + 1),
+        };
+        let mid = &fam.members[i];
+        let xm = &mid.state.x;
+        // a neighbour's state with its angles moved by whole turns next to the middle one's
+        let unwrap = |x: &[f64]| -> Vec<f64> {
+            let mut y = x.to_vec();
+            for &a in &opts.angles {
+                y[a] -= tau * ((y[a] - xm[a]) / tau).round();
+            }
+            y
+        };
+        let (xp, xn) = (unwrap(&fam.members[prev].state.x), unwrap(&fam.members[next].state.x));
+        let sig = [-distance(&xp, xm, sc, &[]), 0.0, distance(xm, &xn, sc, &[])];
+        let a = [fam.members[prev].stability.abscissa, mid.stability.abscissa, fam.members[next].stability.abscissa];
+        let Some(v) = vertex(sig, a, sign) else { continue };
+        // Lagrange's quadratic through the three states at σ*
+        let l = [
+            (v - sig[1]) * (v - sig[2]) / ((sig[0] - sig[1]) * (sig[0] - sig[2])),
+            (v - sig[0]) * (v - sig[2]) / ((sig[1] - sig[0]) * (sig[1] - sig[2])),
+            (v - sig[0]) * (v - sig[1]) / ((sig[2] - sig[0]) * (sig[2] - sig[1])),
+        ];
+        let x: Vec<f64> = (0..xm.len()).map(|j| l[0] * xp[j] + l[1] * xm[j] + l[2] * xn[j]).collect();
+        let Ok(state) = stationary_near(f, &x, mid.state.monodromy.as_deref(), &opts.newton) else { continue };
+        if state.family_dimension != 1 || distance(&state.x, xm, sc, &opts.angles) > 2.0 * sig[2].max(-sig[0]) {
+            continue; // left the family, or landed elsewhere on it
+        }
+        let Ok(stability) = stability(f, &state) else { continue };
+        let mut s = mid.parameter[0] + v;
+        if fam.closed {
+            s = s.rem_euclid(fam.length);
+        }
+        extra.push(FamilyMember { parameter: vec![s], state, stability });
+    }
+    fam.members.extend(extra);
+    fam.members.sort_by(|a, b| a.parameter[0].total_cmp(&b.parameter[0]));
 }
