@@ -89,9 +89,10 @@ fn conservative_shaft() -> LinearRotor {
 /// Without damping, `T + V` changes by the drive's work, which under a constant torque `M0` is
 /// `M0 Δφ` exactly. A run from 100 rad/s under `M0 = 2 N m` for 0.1 s (the speed rises by about
 /// 24 %) from a state off equilibrium (balls bunched, the shaft displaced and moving): the
-/// imbalance `|ΔE − M0 Δφ|` is below `1e-7` of the energy exchanged plus the initial kinetic
-/// energy (DOP853 at rtol 1e-11: the global error of the states over ~10⁴ steps is a few 1e-9 of
-/// their scale, the energy's the same relative order, 10-100× margin); a missing term of the
+/// imbalance `|ΔE − M0 Δφ|` is below `1e-9` of the energy exchanged plus the initial kinetic
+/// energy (DOP853 at rtol 1e-11 over 3.5e4 steps, most of them set by the shaft's stiff modes:
+/// the states' global error is some 1e-10 of their scale at most, and so the energy's; observed
+/// 2.4e-11 J of 22.4 J exchanged, 1e-12); a missing term of the
 /// spin coupling (the `½ φ̈ G q` pair, a ball's `θ̈ = ψ̈ + φ̈`, the unbalance's `e⊥·c̈`) breaks
 /// the balance by far more.
 #[test]
@@ -130,7 +131,7 @@ fn undamped_torque_run_up_conserves_energy() {
     let kinetic0 = 0.5 * r.polar_inertia * 100.0f64.powi(2);
     let imbalance = (e1 - e0 - work).abs();
     eprintln!("ΔE = {:e} J, work = {work:e} J, imbalance {imbalance:e} J, steps {}", e1 - e0, out.stats.steps);
-    assert!(imbalance < 1e-7 * (work.abs() + kinetic0), "ΔE = {}, work {work}, imbalance {imbalance:e}", e1 - e0);
+    assert!(imbalance < 1e-9 * (work.abs() + kinetic0), "ΔE = {}, work {work}, imbalance {imbalance:e}", e1 - e0);
 }
 
 /// The torque-driven Jeffcott preset (paper 004's rotor with its race centred, `I_p = I_G + m1 s1²`,
@@ -149,7 +150,7 @@ fn torque_driven_jeffcott_equals_the_planar_model() {
     let inertia = rotor.polar_inertia + p.n as f64 * p.m3 * p.r * p.r;
     // a motor strong enough not to be caught at the critical speed (Sommerfeld effect: with a
     // third of this torque the run stays below 0.8 ω_n)
-    let drive = Drive::Motor { omega0: 0.2 * wn, torque: inertia * 6.0 * wn, omega_idle: 2.0 * wn, t_off: None };
+    let drive = Drive::Motor { omega0: 0.2 * wn, torque: inertia * 20.0 * wn, omega_idle: 2.0 * wn, t_off: None };
     let mut settings = Settings::new(&p, t_end);
     settings.dt = t_end / 200.0;
     settings.rtol = 1e-10;
@@ -172,8 +173,6 @@ fn torque_driven_jeffcott_equals_the_planar_model() {
     assert!(sum.stopped.is_none(), "{:?}", sum.stopped);
     assert_eq!(native.len(), ours.len());
     let peak = native.iter().map(|s| s.1.hypot(s.2)).fold(0.0, f64::max);
-    // the run passes the critical speed
-    assert!(native.last().unwrap().3 > 1.2 * wn, "end speed {} vs ω_n {wn}", native.last().unwrap().3);
     let (mut worst, mut worst_w, mut worst_psi): (f64, f64, f64) = (0.0, 0.0, 0.0);
     for (a, b) in native.iter().zip(&ours) {
         assert!((a.0 - b.0).abs() < 1e-12);
@@ -187,6 +186,8 @@ fn torque_driven_jeffcott_equals_the_planar_model() {
     assert!(worst < 1e-8 * peak, "largest difference {worst:e} m, peak {peak:e} m");
     assert!(worst_w < 1e-8, "speeds differ by {worst_w:e}");
     assert!(worst_psi < 1e-8, "ball angles differ by {worst_psi:e} rad");
+    // the run passes the critical speed
+    assert!(native.last().unwrap().3 > 1.2 * wn, "end speed {} vs ω_n {wn}", native.last().unwrap().3);
 }
 
 /// Gravity on a Jeffcott rotor at rest with a two-ball balancer: the node settles at the static
