@@ -130,19 +130,20 @@ fn errors_name_key_file_and_line() {
         (shaft_config().replace("node = 3\nradius", "node = 9\nradius"), "linear_rotor.balancer[0].node: 9 is not a node"),
         (shaft_config().replace("balls = 2", "balls = 2.0"), "linear_rotor.balancer[0].balls: expected a whole number"),
         (shaft_config() + "[planar]\nm1 = 1\n", "planar: unknown table in a linear rotor config"),
-        (shaft_config() + "[drive]\nkind = \"torque\"\ntorque = 1.0\n", ""),
+        (shaft_config().replace("[linear_rotor]\n", "[linear_rotor]\npolar_inertia = 0.0\n") + "[drive]\nkind = \"torque\"\ntorque = 1.0\n", ""),
         (shaft_config().replace("[linear_rotor]\n", "[linear_rotor]\ndofs = [\"x0\"]\n"), "linear_rotor.dofs: has 1 names, the matrices 28 DOFs"),
     ];
     for (text, want) in cases {
         match load(&parse(&text), &HashMap::new()) {
             Err(e) => assert!(e.to_string().starts_with(want), "{e}"),
             Ok(c) => {
-                // a torque drive is read, and refused where a run needs it
+                // a torque drive is read, and refused where a run needs it when the rotor's
+                // polar moment is not known (here set to 0 over the builder's)
                 assert!(want.is_empty());
                 let (d, t) = c.drive.unwrap();
                 let s = RunSettings { t_end: t, dt: 0.1, rtol: 1e-8, atol: 1e-9, method: Method::Auto, max_steps: 10, max_wall_s: None, physical_nodes: None };
                 let e = simulate(&c.rotor, &d, &s, &autobal::control::Control::none(), |_| true).unwrap_err().to_string();
-                assert!(e.starts_with("drive.kind: the linear rotor runs under a prescribed speed"), "{e}");
+                assert!(e.starts_with("linear_rotor.polar_inertia: a torque drive"), "{e}");
             }
         }
     }

@@ -1,9 +1,15 @@
-//! The `[linear_rotor]` config: a [`LinearRotor`] from matrix files (Matrix Market text, the
-//! DOFs in ROSS's order) or from the built-in shaft builder ([`super::shaft`]), with its
+//! The `[linear_rotor]` config: a [`LinearRotor`] from matrix files (Matrix Market text or
+//! NumPy `.npy` arrays, or one `.npz` archive as `matrices`, the DOFs in ROSS's order) or from the built-in shaft builder ([`super::shaft`]), with its
 //! unbalances, balancer planes and bearings (constant or tabulated over speed), plus the
 //! `[drive]` and `[integration]` tables of the simulations. Errors name the key
 //! (`linear_rotor.elements[2].length`), or the key, the file and the line
 //! (`linear_rotor.k: rotor_K.mtx: line 7: …`).
+//!
+//! Further keys of `[linear_rotor]`: `polar_inertia` (kg m², the spin's inertia for torque
+//! drives; the shaft builder computes it, the key replaces that), `spin_damping` (N m s) and
+//! `gravity = [g_x, g_y]` (m/s², fixed axes; [`super::Gravity`]); of the elements, `g_s` (the
+//! shear modulus: Timoshenko elements) and `kappa` (their shear coefficient; Cowper's for a
+//! circular section when absent, [`super::shaft::cowper_kappa`]).
 //!
 //! The library reads no files: [`linear_rotor`] takes a loader that returns a named file's text
 //! (the front end resolves the path against the config's folder).
@@ -41,6 +47,7 @@
 //! assert_eq!(again.rotor, cfg.rotor);
 //! ```
 
+use super::npz::{parse_npy, parse_npz, NpyArray};
 use super::shaft::{Bearing, Disk, Element, ShaftBuilder};
 use super::{BalancerPlane, Layout, LinearRotor, SpeedBearing, Unbalance};
 use crate::config::{drive, integration, Integration, Section};
@@ -52,9 +59,29 @@ use toml::{Table, Value};
 const KEYS: &[(&str, &[&str])] = &[
     (
         "linear_rotor",
-        &["layout", "m", "c", "g", "k", "dofs", "rotary_inertia", "gyroscopic", "omega_max", "modes", "elements", "disks", "bearings", "unbalance", "balancer"],
+        &[
+            "layout",
+            "m",
+            "c",
+            "g",
+            "k",
+            "dofs",
+            "rotary_inertia",
+            "gyroscopic",
+            "omega_max",
+            "modes",
+            "matrices",
+            "polar_inertia",
+            "spin_damping",
+            "gravity",
+            "elements",
+            "disks",
+            "bearings",
+            "unbalance",
+            "balancer",
+        ],
     ),
-    ("elements", &["length", "diameter", "inner_diameter", "area", "inertia", "e", "rho", "count"]),
+    ("elements", &["length", "diameter", "inner_diameter", "area", "inertia", "e", "rho", "g_s", "kappa", "count"]),
     ("disks", &["node", "mass", "id", "ip"]),
     ("bearings", &["node", "k", "c", "speeds", "kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy"]),
     ("unbalance", &["node", "me", "phase", "offset"]),
@@ -156,8 +183,54 @@ fn items<'a>(lr: &'a Table, kind: &str) -> Result<Vec<Item<'a>>> {
 }
 
 /// Read `[linear_rotor]`, `[drive]`, `[integration]` of `root` into a validated rotor. `load`
-/// returns the text of a matrix file named in the config (or a one-line reason it cannot).
+/// returns the text of a matrix file named in the config (or a one-line reason it cannot); NumPy
+/// files need [`linear_rotor_bytes`].
 pub fn linear_rotor(root: &Table, load: &mut dyn FnMut(&str) -> std::result::Result<String, String>) -> Result<LinearRotorConfig> {
+    linear_rotor_bytes(root, &mut |p| load(p).map(String::into_bytes))
+}
+
+/// The matrices of a `.npz` archive named by `linear_rotor.matrices`: `M`, `K` (required), `C`,
+/// `G` and the DOF table `dofs` (optional), by these names (or lower case).
+fn npz_arrays(path: &str, bytes: &[u8]) -> Result<Vec<(String, NpyArray)>> {
+    let field = "linear_rotor.matrices";
+    let members = parse_npz(bytes).map_err(|e| Error::invalid(field, format!("{path}: {e}")))?;
+    let mut out = vec![];
+    for (name, data) in members {
+        let key = match name.as_str() {
+            "M" | "m" => "m",
+            "C" | "c" => "c",
+            "G" | "g" => "g",
+            "K" | "k" => "k",
+            "dofs" | "DOFS" => "dofs",
+            o => return Err(Error::invalid(field, format!("{path}: array \"{o}\" is not read (M, C, G, K, dofs)"))),
+        };
+        let a = parse_npy(&data).map_err(|e| Error::invalid(field, format!("{path}: {name}: {e}")))?;
+        out.push((key.to_string(), a));
+    }
+    Ok(out)
+}
+
+/// A square real matrix from a parsed NumPy array: `(n, row-major entries)`.
+fn npy_matrix(a: NpyArray, field: &str, what: &str) -> Result<(usize, Vec<f64>)> {
+    match a {
+        NpyArray::Real { shape, data } if shape.len() == 2 => {
+            if shape[0] != shape[1] || shape[0] == 0 || shape[0] > super::MAX_DOFS {
+                return Err(Error::invalid(field, format!("{what}: is {} × {}, must be square, 1..{} rows", shape[0], shape[1], super::MAX_DOFS)));
+            }
+            if let Some(i) = data.iter().position(|v| !v.is_finite()) {
+                return Err(Error::invalid(field, format!("{what}: entry [{}, {}] is {}, not finite", i / shape[1], i % shape[1], data[i])));
+            }
+            Ok((shape[0], data))
+        }
+        NpyArray::Real { shape, .. } => Err(Error::invalid(field, format!("{what}: has {} dimensions, a matrix has 2", shape.len()))),
+        NpyArray::Strings(_) => Err(Error::invalid(field, format!("{what}: is an array of strings, expected numbers"))),
+    }
+}
+
+/// [`linear_rotor`] with a loader of bytes: matrix files are Matrix Market text, `.npy` arrays
+/// (`m = "M.npy"`), or one `.npz` archive for all (`matrices = "rotor.npz"`, with the arrays
+/// `M`, `K` and optionally `C`, `G`, `dofs`; [`super::npz`]).
+pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::result::Result<Vec<u8>, String>) -> Result<LinearRotorConfig> {
     for k in root.keys() {
         if !["linear_rotor", "drive", "integration"].contains(&k.as_str()) {
             return Err(Error::invalid(
@@ -183,7 +256,22 @@ pub fn linear_rotor(root: &Table, load: &mut dyn FnMut(&str) -> std::result::Res
             Some(_) => Err(Error::invalid(format!("linear_rotor.{k}"), "expected true or false")),
         }
     };
-    let has_files = ["m", "c", "g", "k"].iter().any(|k| lr.contains_key(*k));
+    let has_files = ["m", "c", "g", "k", "matrices"].iter().any(|k| lr.contains_key(*k));
+    // the .npz archive, read once: its arrays by key
+    let mut archive: Option<Vec<(String, NpyArray)>> = None;
+    if let Some(path) = string("matrices")? {
+        if let Some(k) = ["m", "c", "g", "k"].iter().find(|k| lr.contains_key(**k)) {
+            return Err(Error::invalid(format!("linear_rotor.{k}"), "give the matrices either in the archive linear_rotor.matrices or one by one, not both"));
+        }
+        if !path.ends_with(".npz") {
+            return Err(Error::invalid(
+                "linear_rotor.matrices",
+                format!("{path}: expected a NumPy .npz archive (np.savez(\"rotor.npz\", M=M, K=K, C=C, G=G))"),
+            ));
+        }
+        let bytes = load(path).map_err(|e| Error::invalid("linear_rotor.matrices", format!("{path}: {e}")))?;
+        archive = Some(npz_arrays(path, &bytes)?);
+    }
     let elements = items(lr, "elements")?;
     let disks = items(lr, "disks")?;
     let (mut rotor, source) = if has_files {
@@ -195,21 +283,33 @@ pub fn linear_rotor(root: &Table, load: &mut dyn FnMut(&str) -> std::result::Res
             "x,y,alpha,beta" => Layout::TranslationTilt,
             o => return Err(Error::invalid("linear_rotor.layout", format!("must be \"x,y\" or \"x,y,alpha,beta\" (ROSS's order), got \"{o}\""))),
         };
+        let matrices_path = string("matrices")?.unwrap_or("");
         let mut read = |k: &str, required: bool| -> Result<Option<(usize, Vec<f64>)>> {
+            if let Some(arrays) = archive.as_mut() {
+                let Some(i) = arrays.iter().position(|(key, _)| key == k) else {
+                    return if required {
+                        Err(Error::invalid("linear_rotor.matrices", format!("{matrices_path}: has no array {} (required)", k.to_uppercase())))
+                    } else {
+                        Ok(None)
+                    };
+                };
+                let (_, a) = arrays.remove(i);
+                return npy_matrix(a, "linear_rotor.matrices", &format!("{matrices_path}: {}", k.to_uppercase())).map(Some);
+            }
             let Some(path) = string(k)? else {
                 return if required { Err(Error::invalid(format!("linear_rotor.{k}"), "missing (required with matrix files)")) } else { Ok(None) };
             };
             let field = format!("linear_rotor.{k}");
-            if path.ends_with(".npz") || path.ends_with(".npy") {
-                return Err(Error::invalid(
-                    field,
-                    format!(
-                        "{path}: NumPy files are not read; write Matrix Market text (scipy.io.mmwrite(\"{}.mtx\", A))",
-                        path.trim_end_matches(".npz").trim_end_matches(".npy")
-                    ),
-                ));
+            if path.ends_with(".npz") {
+                return Err(Error::invalid(field, format!("{path}: an .npz archive holds all the matrices: name it as linear_rotor.matrices")));
             }
-            let text = load(path).map_err(|e| Error::invalid(&field, format!("{path}: {e}")))?;
+            let bytes = load(path).map_err(|e| Error::invalid(&field, format!("{path}: {e}")))?;
+            if path.ends_with(".npy") {
+                let a = parse_npy(&bytes).map_err(|e| Error::invalid(&field, format!("{path}: {e}")))?;
+                return npy_matrix(a, &field, path).map(Some);
+            }
+            let text =
+                String::from_utf8(bytes).map_err(|e| Error::invalid(&field, format!("{path}: not UTF-8 text (byte {})", e.utf8_error().valid_up_to())))?;
             let (rows, cols, a) = parse_matrix_market(&text).map_err(|e| Error::invalid(&field, format!("{path}: {e}")))?;
             if rows != cols {
                 return Err(Error::invalid(field, format!("{path}: is {rows} × {cols}, must be square")));
@@ -222,6 +322,7 @@ pub fn linear_rotor(root: &Table, load: &mut dyn FnMut(&str) -> std::result::Res
         }
         let mut r = LinearRotor::zeros(n / layout.per_node(), layout);
         r.m = m;
+        r.polar_inertia = top.f64("polar_inertia")?.unwrap_or(0.0);
         for (k, required) in [("k", true), ("c", false), ("g", false)] {
             if let Some((nk, a)) = read(k, required)? {
                 if nk != n {
@@ -256,6 +357,18 @@ pub fn linear_rotor(root: &Table, load: &mut dyn FnMut(&str) -> std::result::Res
             if count == 0 || count > 10_000 {
                 return Err(Error::invalid(el.field("count"), "must be from 1 to 10000"));
             }
+            // Timoshenko with the shear modulus g_s (κ: Cowper's for a circular section)
+            let g_s = el.f64("g_s")?;
+            if let Some(g) = g_s {
+                crate::error::positive(&el.field("g_s"), g)?;
+            }
+            let kappa = el.f64("kappa")?;
+            if let Some(k) = kappa {
+                crate::error::positive(&el.field("kappa"), k)?;
+                if g_s.is_none() {
+                    return Err(Error::invalid(el.field("kappa"), "is the shear coefficient of a Timoshenko element: give the shear modulus g_s too"));
+                }
+            }
             let element = match (el.f64("diameter")?, el.f64("area")?, el.f64("inertia")?) {
                 (Some(d), None, None) => {
                     let di = el.f64("inner_diameter")?.unwrap_or(0.0);
@@ -263,9 +376,20 @@ pub fn linear_rotor(root: &Table, load: &mut dyn FnMut(&str) -> std::result::Res
                         return Err(Error::invalid(el.field("inner_diameter"), "must lie in [0, diameter)"));
                     }
                     let (o, i) = (Element::circular(length, d, e, rho), Element::circular(length, di, e, rho));
-                    Element { area: o.area - i.area, inertia: o.inertia - i.inertia, ..o }
+                    let area = o.area - i.area;
+                    let shear = g_s.map(|g| kappa.unwrap_or_else(|| super::shaft::cowper_kappa(e / (2.0 * g) - 1.0, di / d)) * g * area);
+                    Element { area, inertia: o.inertia - i.inertia, shear, ..o }
                 }
-                (None, Some(area), Some(inertia)) => Element { length, e, rho, area, inertia },
+                (None, Some(area), Some(inertia)) => {
+                    let shear = match (g_s, kappa) {
+                        (Some(g), Some(k)) => Some(k * g * area),
+                        (Some(_), None) => {
+                            return Err(Error::invalid(el.field("kappa"), "required with g_s and area/inertia (the shear coefficient of the section)"))
+                        }
+                        _ => None,
+                    };
+                    Element { length, e, rho, area, inertia, shear }
+                }
                 _ => return Err(Error::invalid(el.field("diameter"), "give either diameter (and optionally inner_diameter) or both area and inertia")),
             };
             for _ in 0..count {
@@ -275,7 +399,11 @@ pub fn linear_rotor(root: &Table, load: &mut dyn FnMut(&str) -> std::result::Res
         for d in &disks {
             b.disks.push(Disk { node: d.req_usize("node")?, mass: d.req("mass")?, id: d.f64("id")?.unwrap_or(0.0), ip: d.f64("ip")?.unwrap_or(0.0) });
         }
-        let r = b.build().map_err(|e| rename(e, "shaft.", "linear_rotor."))?;
+        let mut r = b.build().map_err(|e| rename(e, "shaft.", "linear_rotor."))?;
+        if let Some(ip) = top.f64("polar_inertia")? {
+            // the config's value replaces the builder's Σ ρ J L + Σ I_p
+            r.polar_inertia = ip;
+        }
         (r, "shaft")
     };
     // bearings: constant isotropic ones into K, C; tables over speed kept as speed bearings
@@ -354,6 +482,22 @@ pub fn linear_rotor(root: &Table, load: &mut dyn FnMut(&str) -> std::result::Res
             drag: b.f64("drag")?.unwrap_or(0.0),
             offset: b.f64("offset")?.unwrap_or(0.0),
         });
+    }
+    rotor.spin_damping = top.f64("spin_damping")?.unwrap_or(0.0);
+    match top.array("gravity")? {
+        None => {}
+        Some(g) if g.len() == 2 => rotor.set_gravity([g[0], g[1]]),
+        Some(g) => {
+            return Err(Error::invalid("linear_rotor.gravity", format!("expected [g_x, g_y] (m/s², across the axis in fixed axes), got {} numbers", g.len())))
+        }
+    }
+    let archive_dofs = archive.iter().flatten().find(|(k, _)| k == "dofs").map(|(_, a)| a.clone());
+    if let Some(a) = archive_dofs {
+        let NpyArray::Strings(names) = a else {
+            return Err(Error::invalid("linear_rotor.matrices", "dofs: expected an array of strings (np.array([\"x0\", \"y0\", …]))"));
+        };
+        let names: Vec<Value> = names.into_iter().map(Value::String).collect();
+        check_dofs(&rotor, &names).map_err(|e| rename(e, "linear_rotor.dofs", "linear_rotor.matrices: dofs"))?;
     }
     if let Some(Value::Array(names)) = lr.get("dofs") {
         check_dofs(&rotor, names)?;
@@ -511,6 +655,16 @@ pub fn export(rotor: &LinearRotor, stem: &str) -> (String, Vec<(String, String)>
     let per = rotor.layout.per_node();
     let names: Vec<String> = (0..n).map(|i| format!("\"{}{}\"", ["x", "y", "alpha", "beta"][i % per], i / per)).collect();
     t.push_str(&format!("dofs = [{}]\n", names.join(", ")));
+    if rotor.polar_inertia != 0.0 {
+        t.push_str(&format!("polar_inertia = {:?}\n", rotor.polar_inertia));
+    }
+    if rotor.spin_damping != 0.0 {
+        t.push_str(&format!("spin_damping = {:?}\n", rotor.spin_damping));
+    }
+    if let Some(g) = &rotor.gravity {
+        // the weight is recomputed from M on reading (M r_g)
+        t.push_str(&format!("gravity = [{:?}, {:?}]\n", g.g[0], g.g[1]));
+    }
     for b in &rotor.speed_bearings {
         t.push_str(&format!("\n[[linear_rotor.bearings]]\nnode = {}\nspeeds = {:?}\n", b.node, b.speeds));
         for (j, k) in ["kxx", "kxy", "kyx", "kyy"].iter().enumerate() {

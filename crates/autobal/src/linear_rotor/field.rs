@@ -83,6 +83,12 @@ impl LinearRotorField {
     pub fn new(rotor: &LinearRotor, omega: f64, frame: Frame) -> Result<Self> {
         rotor.validate()?;
         finite("omega", omega)?;
+        if rotor.gravity.is_some() && frame == Frame::Rotating && omega != 0.0 {
+            return Err(Error::invalid(
+                "linear_rotor.gravity",
+                "turns in axes turning with the rotor, so the balanced state is no equilibrium there: gravity is modelled in time simulation (fixed axes) only",
+            ));
+        }
         // the speed-dependent bearings at this speed, folded into C and K
         let rotor = &if rotor.speed_bearings.is_empty() { rotor.clone() } else { rotor.at_speed(omega) };
         let mut balls = vec![];
@@ -223,6 +229,26 @@ impl LinearRotorField {
             }
             out[i] = s;
         }
+        if kin.wdot != 0.0 {
+            // ½ Ω̇ G q from the gyroscopic term ½ φ̇ q̇ᵀ G q of the kinetic energy (module docs of
+            // crate::linear_rotor, "Torque drives and gravity"); run-ups are in fixed axes
+            let g = &self.rotor.g;
+            for i in 0..n {
+                for j in 0..n {
+                    let gij = g[i * n + j];
+                    if gij != 0.0 {
+                        out[i] = out[i] - p[j] * (0.5 * kin.wdot * gij);
+                    }
+                }
+            }
+        }
+        // gravity (fixed axes only, LinearRotorField::new): the structure's weight
+        let grav = self.rotor.gravity.as_ref();
+        if let Some(gr) = grav {
+            for i in 0..n {
+                out[i] = out[i] + gr.load[i];
+            }
+        }
         for (g, b) in self.balls.iter().enumerate() {
             let (psi, psid) = (x[n + g], x[nc + n + g]);
             let (s, c) = (psi + chi).sin_cos();
@@ -242,6 +268,18 @@ impl LinearRotorField {
             out[b.ix] = out[b.ix] - ax * b.m;
             out[b.iy] = out[b.iy] - ay * b.m;
             out[n + g] = psid * (-b.drag) - (c * ay - s * ax) * (b.m * b.r);
+            if let Some(gr) = grav {
+                // the ball's weight m_b g on the race centre (x + z β, y − z α) and its torque
+                // m_b R e⊥·g about the axis
+                let [gx, gy] = gr.g;
+                out[b.ix] = out[b.ix] + b.m * gx;
+                out[b.iy] = out[b.iy] + b.m * gy;
+                if let Some((ia, ib)) = b.tilt {
+                    out[ib] = out[ib] + b.z * b.m * gx;
+                    out[ia] = out[ia] + (-b.z * b.m * gy);
+                }
+                out[n + g] = out[n + g] + (s * (-gx) + c * gy) * (b.m * b.r);
+            }
             if let Some((ia, ib)) = b.tilt {
                 // generalised inertia on the tilts through the offset: z J F, F = m a_j
                 out[ia] = out[ia] + ay * (b.m * b.z);

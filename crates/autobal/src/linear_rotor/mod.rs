@@ -100,12 +100,31 @@
 //! - [`LinearRotor::from_planar`]: paper 004's planar rotor with its race centred (a Jeffcott
 //!   rotor: one node, `M = (m1 + m2) I`, `K = k I`, `C = c I`, the disk's `m1 s1` as unbalance):
 //!   equal to [`crate::planar::field::PlanarField`] at `s2 = 0`.
-//! - [`shaft::ShaftBuilder`]: Euler–Bernoulli beam elements, rigid disks, linear isotropic
-//!   bearings.
+//! - [`shaft::ShaftBuilder`]: Euler–Bernoulli or Timoshenko beam elements, rigid disks, linear
+//!   isotropic bearings.
+//!
+//! # Torque drives and gravity
+//! Under a torque drive ([`runup`]) the spin angle `φ` is a coordinate: the kinetic energy adds
+//! `½ I_p φ̇²` ([`LinearRotor::polar_inertia`]) and each unbalance's `m e φ̇ e⊥_u·ċ_u`
+//! (`ċ_u` the velocity of its plane's centre), the gyroscopic term is `½ φ̇ q̇ᵀ G q` (which gives
+//! `φ̇ G q̇ + ½ φ̈ G q` in the structure's equations), and the balls' absolute angles are
+//! `θ_j = φ + ψ_j`. Lagrange's equation for `φ` in the coordinates `(q, φ, ψ)` is the sum of the
+//! rotor's and of every ball's (`∂/∂φ̇` at fixed `ψ̇` is `∂/∂φ̇ + Σ_j ∂/∂θ̇_j`), the balls'
+//! drag `−c_b ψ̇_j` does no work on it, and:
+//!
+//! ```text
+//! I_p φ̈ + Σ_u m e e⊥_u·c̈_u + ½ q̈ᵀ G q + Σ_j I_j = M(t, φ̇) − c_θ φ̇ + Σ_u m e e⊥_u·g + Σ_j m_b R e⊥_j·g,
+//! ```
+//!
+//! `I_j` the inertia side of ball `j`'s equation. The kinetic energy is a quadratic form in the
+//! velocities `(q̇, ψ̇, φ̇)`, so without damping the energy `T + V` changes by the drive's work
+//! `∫ M φ̇ dt`. [`Gravity`] is a constant load in fixed axes (time simulation only: in axes turning
+//! with the rotor it turns, and the balanced state is no equilibrium).
 
 pub mod campbell;
 pub mod config;
 pub mod field;
+pub mod npz;
 pub mod reduce;
 pub mod runup;
 pub mod shaft;
@@ -266,6 +285,31 @@ pub struct LinearRotor {
     pub balancers: Vec<BalancerPlane>,
     /// Bearings whose `k`, `c` depend on the speed, added to `K`, `C` at each speed.
     pub speed_bearings: Vec<SpeedBearing>,
+    /// The rotor's polar moment of inertia about its spin axis `I_p` (kg·m², the unbalance
+    /// masses' `m e²` included, the balls excluded): the speed's inertia under a torque drive
+    /// ([`runup`]); 0: not known (torque drives are refused).
+    pub polar_inertia: f64,
+    /// Viscous drag on the spin `c_θ` (N·m·s): the torque `−c_θ Ω` under a torque drive.
+    pub spin_damping: f64,
+    /// Gravity, a constant load across the axis (`None`: none).
+    pub gravity: Option<Gravity>,
+}
+
+/// Gravity across the axis: the acceleration `g = (g_x, g_y)` (m/s², fixed axes) and the
+/// structure's weight `load` (N, length `N`), `M r_g` for a structure that can translate
+/// rigidly (`r_g` the rigid translation by `g`: `g_x` on every `x`, `g_y` on every `y`, 0 on the
+/// tilts; the consistent load of the beam elements and the exact one of lumped masses), the
+/// same projected (`Bᵀ load`) for a reduced rotor. The balls' weight `m_b g` acts on their race
+/// centre and gives each ball the torque `m_b R e⊥_j·g` about the axis; the unbalances' weight
+/// is in `load` (their masses are in `M`), and under a torque drive gives the spin the torque
+/// `Σ m e e⊥·g` (`e⊥ = (−sin θ_u, cos θ_u)`, `θ_u` the unbalance's angle). The potential is
+/// `V_g = −loadᵀ q − Σ_j m_b g·(c + R e_j) − Σ m e g·e_u`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Gravity {
+    /// `(g_x, g_y)` (m/s²) in fixed axes.
+    pub g: [f64; 2],
+    /// The structure's weight on each DOF (N, N·m on the tilts).
+    pub load: Vec<f64>,
 }
 
 /// Largest number of DOFs accepted (dense matrices of `N²` entries).
@@ -285,7 +329,30 @@ impl LinearRotor {
             unbalances: vec![],
             balancers: vec![],
             speed_bearings: vec![],
+            polar_inertia: 0.0,
+            spin_damping: 0.0,
+            gravity: None,
         }
+    }
+
+    /// Set gravity `g = (g_x, g_y)` (m/s², fixed axes) with the weight `M r_g` ([`Gravity`]);
+    /// `g = (0, 0)` removes it.
+    pub fn set_gravity(&mut self, g: [f64; 2]) {
+        if g == [0.0, 0.0] {
+            self.gravity = None;
+            return;
+        }
+        let n = self.dofs();
+        let per = self.layout.per_node();
+        let r: Vec<f64> = (0..n)
+            .map(|i| match i % per {
+                0 => g[0],
+                1 => g[1],
+                _ => 0.0,
+            })
+            .collect();
+        let load = (0..n).map(|i| (0..n).map(|j| self.m[i * n + j] * r[j]).sum()).collect();
+        self.gravity = Some(Gravity { g, load });
     }
 
     /// A Jeffcott rotor: one node (`x, y`), `M = m I`, `K = k I`, `C = c I`, `G = 0`, one
@@ -306,8 +373,9 @@ impl LinearRotor {
     /// `M = (m1 + m2) I` (the balls' `n m3` come with the balancer), `K = k I`, `C = c I`, the
     /// disk's eccentric mass as the unbalance `m·e = m1 s1` at phase 0 (exact at constant speed:
     /// the disk's inertia force `m1 (ü + 2iΩu̇ − Ω²(u + s1))` is `m1 ü + …` plus the unbalance
-    /// force `m1 s1 Ω²`), and the balancer `(r, n, m3, c_ψ)`. `c_θ` and `I_G` act on the spin only,
-    /// which is prescribed. Errors: `planar.s2` nonzero, real balls, or the rotor's own checks.
+    /// force `m1 s1 Ω²`), and the balancer `(r, n, m3, c_ψ)`; the spin's polar moment
+    /// `I_p = I_G + m1 s1²` and drag `c_θ` for torque drives (the kinetic energy in fixed axes
+    /// is then the planar model's term by term). Errors: `planar.s2` nonzero, real balls, or the rotor's own checks.
     pub fn from_planar(p: &PlanarRotor) -> Result<Self> {
         p.validate()?;
         if p.s2 != 0.0 {
@@ -322,13 +390,18 @@ impl LinearRotor {
         if !p.equal_balls() {
             return Err(Error::invalid("planar.ball_masses", "the linear rotor's balancer has equal balls: give m3 and c_psi"));
         }
-        Ok(LinearRotor::jeffcott(
+        let mut r = LinearRotor::jeffcott(
             p.m1 + p.m2,
             p.k,
             p.c,
             p.m1 * p.s1,
             BalancerPlane { node: 0, radius: p.r, balls: p.n, ball_mass: p.m3, drag: p.c_psi, offset: 0.0 },
-        ))
+        );
+        // the spin under a torque drive: the disk's I_G about its centre of mass plus m1 s1²
+        // about the shaft (the kinetic energy ½(I_G + m1 s1²) θ̇² of the planar model)
+        r.polar_inertia = p.i_g + p.m1 * p.s1 * p.s1;
+        r.spin_damping = p.c_theta;
+        Ok(r)
     }
 
     /// `C(Ω)` and `K(Ω)`: `C`, `K` plus the speed-dependent bearings at `omega`.
@@ -391,6 +464,18 @@ impl LinearRotor {
             }
             for (i, v) in a.iter().enumerate() {
                 finite(&format!("linear_rotor.{name}[{},{}]", i / n, i % n), *v)?;
+            }
+        }
+        non_negative("linear_rotor.polar_inertia", self.polar_inertia)?;
+        non_negative("linear_rotor.spin_damping", self.spin_damping)?;
+        if let Some(g) = &self.gravity {
+            finite("linear_rotor.gravity[0]", g.g[0])?;
+            finite("linear_rotor.gravity[1]", g.g[1])?;
+            if g.load.len() != n {
+                return Err(Error::invalid("linear_rotor.gravity.load", format!("has {} entries, one per DOF: {n}", g.load.len())));
+            }
+            for (i, v) in g.load.iter().enumerate() {
+                finite(&format!("linear_rotor.gravity.load[{i}]"), *v)?;
             }
         }
         let scale = |a: &[f64]| a.iter().fold(0.0f64, |s, v| s.max(v.abs()));

@@ -18,6 +18,9 @@
 //! Craig–Bampton one); the speed-dependent bearings sit on boundary nodes, on which the basis
 //! does not depend, so one basis serves every speed.
 //!
+//! The polar moment and spin drag carry over unchanged, and gravity's weight is projected
+//! (`Bᵀ load`, its virtual work on `q = B z`).
+//!
 //! **The error it states.** For each undamped natural frequency `ω̃_k` of the reduced rotor
 //! at rest (symmetric part of `K`, no gyroscopic or damping terms), the Krylov–Weinstein bound:
 //! with `x = B z` the mode in full coordinates (`xᵀ M x = 1`) and `r = K x − ω̃² M x`, the full
@@ -403,6 +406,10 @@ fn assemble(rotor: &LinearRotor, boundary: &[usize], bd: &[usize], id: &[usize],
     red.unbalances = rotor.unbalances.iter().map(|u| super::Unbalance { node: node_of(u.node), ..*u }).collect();
     red.balancers = rotor.balancers.iter().map(|p| super::BalancerPlane { node: node_of(p.node), ..*p }).collect();
     red.speed_bearings = rotor.speed_bearings.iter().map(|s| super::SpeedBearing { node: node_of(s.node), ..s.clone() }).collect();
+    red.polar_inertia = rotor.polar_inertia;
+    red.spin_damping = rotor.spin_damping;
+    // the weight's virtual work on q = B z: Bᵀ load
+    red.gravity = rotor.gravity.as_ref().map(|g| super::Gravity { g: g.g, load: (0..r).map(|j| (0..n).map(|i| b[i * r + j] * g.load[i]).sum()).collect() });
     (red, b, r)
 }
 

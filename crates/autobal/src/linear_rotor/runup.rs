@@ -1,18 +1,29 @@
 //! Run-ups and run-downs of a [`LinearRotor`] with its balls in time, in fixed axes, under a
-//! prescribed speed history ([`Drive::Speed`], [`Drive::Acceleration`], [`Drive::SpeedSchedule`]).
+//! prescribed speed history ([`Drive::Speed`], [`Drive::Acceleration`], [`Drive::SpeedSchedule`])
+//! or a torque ([`Drive::Torque`], [`Drive::Motor`], [`Drive::TorqueSchedule`]).
 //!
-//! With the rotor's angle `φ(t) = ∫ Ω dt` (exact for the drive's piecewise-linear speed), the
-//! equations of [`crate::linear_rotor`] in fixed axes hold with `Ω(t)` in place of `Ω`, the
-//! gyroscopic `Ω(t) G`, the speed-dependent bearings at `Ω(t)`, and two terms from the
+//! **Prescribed speed.** With the rotor's angle `φ(t) = ∫ Ω dt` (exact for the drive's
+//! piecewise-linear speed), the equations of [`crate::linear_rotor`] in fixed axes hold with
+//! `Ω(t)` in place of `Ω`, the gyroscopic `Ω(t) G` with `½ Ω̇ G q` (from the kinetic energy's
+//! `½ φ̇ q̇ᵀ G q`), the speed-dependent bearings at `Ω(t)`, and two more terms from the
 //! acceleration `Ω̇`: the unbalance's inertia force `m e (Ω² − i Ω̇) e^{i(φ + phase)}` and the
 //! balls' absolute angular acceleration `θ̈_j = Ω̇ + ψ̈_j` (`ψ_j` stays the angle relative to the
-//! rotor). A torque drive would need the rotor's polar moment, which `M, C, G, K` do not hold:
-//! it is refused with an error naming `drive.kind`.
+//! rotor). State `(q, ψ, q̇, ψ̇)`.
+//!
+//! **Torque.** The spin is a coordinate: state `(q, ψ, φ, q̇, ψ̇, φ̇)`, the speed `Ω = φ̇`, and the
+//! spin's equation of [`crate::linear_rotor`] ("Torque drives and gravity") with the rotor's
+//! polar moment [`LinearRotor::polar_inertia`] (required, > 0) and spin drag
+//! [`LinearRotor::spin_damping`]. The structure's and balls' equations are those above with
+//! `Ω̇ = φ̈` unknown; they are linear in `φ̈`, with the column `a_φ` of `φ̈` in the mass matrix,
+//! which is also the spin equation's row (the mass matrix of a Lagrangian is symmetric), and
+//! the spin's diagonal `I_p + Σ_j m_b R²`. The accelerations solve the bordered system
+//! `[[A, a_φ], [a_φᵀ, I_p + Σ m_b R²]] (q̈, ψ̈, φ̈) = (R, R_φ)`.
 
 use super::field::{Frame, Kin, LinearRotorField, Mats};
 use super::{Direction, LinearRotor};
 use crate::drive::Drive;
 use crate::error::{Error, Result};
+use crate::ode::lu::Lu;
 use crate::ode::{Control, Method, Options, Solver, Status, System};
 use crate::simulation::{run, Hooks, Peak, Timeline};
 use serde::Serialize;
@@ -50,25 +61,34 @@ pub fn drive_angle(drive: &Drive, t: f64) -> f64 {
     }
 }
 
-/// The equations of a run in fixed axes as an ODE system: state `(q, ψ, q̇, ψ̇)`.
+/// The equations of a run in fixed axes as an ODE system: state `(q, ψ, q̇, ψ̇)` under a
+/// prescribed speed, `(q, ψ, φ, q̇, ψ̇, φ̇)` under a torque (module docs).
 pub struct RunUpSystem<'a> {
     field: LinearRotorField,
     /// The rotor with its speed-dependent bearings (the field's has them at `Ω(0)`).
     rotor: &'a LinearRotor,
     drive: &'a Drive,
+    /// The spin is a coordinate (torque drives).
+    spin: bool,
 }
 
+/// `Ω̇` used to read the column of `φ̈` off the residual, which is affine in `Ω̇` (a power of 2:
+/// the difference quotient is the column to the rounding of the residual at that `Ω̇`).
+const WDOT_PROBE: f64 = 1073741824.0;
+
 impl<'a> RunUpSystem<'a> {
-    /// The system of `rotor` under `drive`; errors for a drive that is not prescribed.
+    /// The system of `rotor` under `drive`; a torque drive needs the rotor's polar moment
+    /// ([`LinearRotor::polar_inertia`] > 0, the error names it).
     pub fn new(rotor: &'a LinearRotor, drive: &'a Drive) -> Result<Self> {
         drive.validate()?;
-        if !drive.prescribed() {
+        let spin = !drive.prescribed();
+        if spin && rotor.polar_inertia <= 0.0 {
             return Err(Error::invalid(
-                "drive.kind",
-                "the linear rotor runs under a prescribed speed (\"speed\", \"acceleration\", or a speed \"schedule\"): a torque drive needs the rotor's polar moment, which M, C, G, K do not hold",
+                "linear_rotor.polar_inertia",
+                "a torque drive (\"torque\", \"motor\", a torque \"schedule\") needs the rotor's polar moment of inertia about its axis (kg m², > 0): M, C, G, K do not hold it",
             ));
         }
-        Ok(RunUpSystem { field: LinearRotorField::new(rotor, drive.omega0(), Frame::Fixed)?, rotor, drive })
+        Ok(RunUpSystem { field: LinearRotorField::new(rotor, drive.omega0(), Frame::Fixed)?, rotor, drive, spin })
     }
 
     /// The field (at the drive's initial speed; for the rotor and the coordinates).
@@ -76,21 +96,102 @@ impl<'a> RunUpSystem<'a> {
         &self.field
     }
 
-    fn at(&self, t: f64) -> (Mats<'_>, Kin) {
-        let (w, wdot) = self.drive.kinematics(t);
+    /// Whether the spin `(φ, φ̇)` is part of the state (torque drives): then `φ` follows the
+    /// coordinates `(q, ψ)` and `φ̇` their rates.
+    pub fn spin(&self) -> bool {
+        self.spin
+    }
+
+    /// The speed `Ω` at `(t, y)`: the drive's, or `φ̇` of the state under a torque.
+    pub fn omega(&self, t: f64, y: &[f64]) -> f64 {
+        if self.spin {
+            y[y.len() - 1]
+        } else {
+            self.drive.kinematics(t).0
+        }
+    }
+
+    fn mats(&self, w: f64) -> Mats<'_> {
         let r = self.rotor;
         let (c, k) = r.damping_stiffness_at(w);
         let d: Vec<f64> = c.iter().zip(&r.g).map(|(c, g)| c + w * g).collect();
-        (Mats { m: Cow::Borrowed(&r.m), d: Cow::Owned(d), k: Cow::Owned(k) }, Kin { w, wdot, nu: 0.0, chi: drive_angle(self.drive, t) })
+        Mats { m: Cow::Borrowed(&r.m), d: Cow::Owned(d), k: Cow::Owned(k) }
+    }
+
+    fn at(&self, t: f64) -> (Mats<'_>, Kin) {
+        let (w, wdot) = self.drive.kinematics(t);
+        (self.mats(w), Kin { w, wdot, nu: 0.0, chi: drive_angle(self.drive, t) })
+    }
+
+    /// The accelerations `(q̈, ψ̈, φ̈)` under a torque at `(t, y)`, `y = (q, ψ, φ, q̇, ψ̇, φ̇)`: the
+    /// bordered system of the module docs.
+    pub fn spin_accelerations(&self, t: f64, y: &[f64]) -> Option<Vec<f64>> {
+        let f = &self.field;
+        let r = self.rotor;
+        let n = r.dofs();
+        let nc = f.coords();
+        let n1 = nc + 1;
+        let (phi, w) = (y[nc], y[n1 + nc]);
+        let mut x = Vec::with_capacity(2 * nc);
+        x.extend_from_slice(&y[..nc]);
+        x.extend_from_slice(&y[n1..n1 + nc]);
+        let mats = self.mats(w);
+        let kin = Kin { w, wdot: 0.0, nu: 0.0, chi: phi };
+        let zero = vec![0.0; nc];
+        let mut r0 = vec![0.0; nc];
+        f.residual::<f64>(&mats, &kin, &x, &zero, &mut r0);
+        let mut r1 = vec![0.0; nc];
+        f.residual::<f64>(&mats, &Kin { wdot: WDOT_PROBE, ..kin }, &x, &zero, &mut r1);
+        // the column of φ̈: the residual is R − A a − a_φ φ̈
+        let a_phi: Vec<f64> = r0.iter().zip(&r1).map(|(a, b)| (a - b) / WDOT_PROBE).collect();
+        let a = f.mass_matrix(&mats, phi, &x);
+        let mut big = vec![0.0; n1 * n1];
+        for i in 0..nc {
+            big[i * n1..i * n1 + nc].copy_from_slice(&a[i * nc..(i + 1) * nc]);
+            big[i * n1 + nc] = a_phi[i];
+            big[nc * n1 + i] = a_phi[i];
+        }
+        let balls: f64 = r.balancers.iter().map(|b| b.balls as f64 * b.ball_mass * b.radius * b.radius).sum();
+        big[nc * n1 + nc] = r.polar_inertia + balls;
+        // R_φ: the drive, the spin drag, gravity on the unbalances, and the balls' equations'
+        // non-inertial parts without their drag (which does no work on φ)
+        let mut rphi = self.drive.torque(t, w) - r.spin_damping * w;
+        if let Some(g) = &r.gravity {
+            for u in &r.unbalances {
+                let (s, c) = (phi + u.phase).sin_cos();
+                rphi += u.me * (-s * g.g[0] + c * g.g[1]);
+            }
+        }
+        let mut k = n;
+        for b in &r.balancers {
+            for _ in 0..b.balls {
+                rphi += r0[k] + b.drag * y[n1 + k];
+                k += 1;
+            }
+        }
+        let mut rhs = r0;
+        rhs.push(rphi);
+        let lu = Lu::factored(big, n1)?;
+        lu.solve(&mut rhs);
+        Some(rhs)
     }
 }
 
 impl System for RunUpSystem<'_> {
     fn dim(&self) -> usize {
-        2 * self.field.coords()
+        2 * (self.field.coords() + usize::from(self.spin))
     }
 
     fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
+        if self.spin {
+            let n1 = self.field.coords() + 1;
+            dy[..n1].copy_from_slice(&y[n1..]);
+            match self.spin_accelerations(t, y) {
+                Some(a) => dy[n1..].copy_from_slice(&a),
+                None => dy[n1..].iter_mut().for_each(|v| *v = f64::NAN),
+            }
+            return;
+        }
         let nc = self.field.coords();
         dy[..nc].copy_from_slice(&y[nc..]);
         let (mats, kin) = self.at(t);
@@ -101,6 +202,11 @@ impl System for RunUpSystem<'_> {
     }
 
     fn jacobian(&self) -> Box<dyn crate::ode::Jacobian + '_> {
+        if self.spin {
+            // forward differences of the right-hand side (the bordered system has no closed
+            // form Jacobian here); used only by the implicit method
+            return Box::new(crate::ode::DenseJacobian::differences(self));
+        }
         Box::new(crate::ode::DenseJacobian::analytic(self, move |t, y, j| {
             let (mats, kin) = self.at(t);
             let dim = 2 * self.field.coords();
@@ -190,6 +296,7 @@ struct RunHooks<'a, F: FnMut(&RunSample) -> bool> {
     rotor: &'a LinearRotor,
     nodes: usize,
     drive: &'a Drive,
+    spin: bool,
     sink: F,
     peak: Peak<f64>,
     peak_any: Peak<f64>,
@@ -201,7 +308,7 @@ impl<F: FnMut(&RunSample) -> bool> Hooks for RunHooks<'_, F> {
         let r = self.rotor;
         let n = r.dofs();
         let nc = n + r.total_balls();
-        let omega = self.drive.kinematics(t).0;
+        let omega = if self.spin { y[y.len() - 1] } else { self.drive.kinematics(t).0 };
         let planes = plane_positions(r, y);
         let per = r.layout.per_node();
         let max_radius = (0..self.nodes).map(|k| y[k * per].hypot(y[k * per + 1])).fold(0.0, f64::max);
@@ -220,7 +327,20 @@ impl<F: FnMut(&RunSample) -> bool> Hooks for RunHooks<'_, F> {
 }
 
 /// The initial state: the structure at rest on the axis, the balls evenly spread at rest
-/// relative to the rotor (`ψ_j = 2π j/n` in each plane).
+/// relative to the rotor (`ψ_j = 2π j/n` in each plane); under a torque `drive` the spin
+/// `(φ, φ̇) = (0, ω0)` too (state `(q, ψ, φ, q̇, ψ̇, φ̇)`).
+pub fn initial_state_for(rotor: &LinearRotor, drive: &Drive) -> Vec<f64> {
+    let mut y = initial_state(rotor);
+    if !drive.prescribed() {
+        let nc = y.len() / 2;
+        y.insert(nc, 0.0);
+        y.push(drive.omega0());
+    }
+    y
+}
+
+/// The initial state under a prescribed speed ([`initial_state_for`]): the structure at rest on
+/// the axis, the balls evenly spread at rest relative to the rotor (`ψ_j = 2π j/n` in each plane).
 pub fn initial_state(rotor: &LinearRotor) -> Vec<f64> {
     let n = rotor.dofs();
     let nc = n + rotor.total_balls();
@@ -235,7 +355,7 @@ pub fn initial_state(rotor: &LinearRotor) -> Vec<f64> {
     y
 }
 
-/// Run `rotor` under `drive` from [`initial_state`]; `sink` gets every sample and may return
+/// Run `rotor` under `drive` from [`initial_state_for`]; `sink` gets every sample and may return
 /// `false` to stop. The run stops at the `control`'s cancel or budget (checked by the solver).
 pub fn simulate(
     rotor: &LinearRotor,
@@ -249,15 +369,19 @@ pub fn simulate(
     let sys = RunUpSystem::new(rotor, drive)?;
     let n = rotor.dofs();
     let nc = sys.field().coords();
+    let spin = sys.spin();
+    // coordinates including the spin angle under a torque
+    let ncs = nc + usize::from(spin);
     let w_max =
         drive.breakpoints().iter().chain([0.0, settings.t_end].iter()).map(|&t| drive.kinematics(t).0.abs()).fold(drive.omega0().abs(), f64::max).max(1.0);
     let r_min = rotor.balancers.iter().map(|b| b.radius).fold(f64::INFINITY, f64::min);
     let r_min = if r_min.is_finite() { r_min } else { 1.0 };
-    let mut atol = vec![0.0; 2 * nc];
-    for i in 0..nc {
+    let mut atol = vec![0.0; 2 * ncs];
+    for i in 0..ncs {
+        // displacements; angles (the balls', the spin's) as the race's arc length
         let base = if i < n { settings.atol } else { settings.atol / r_min };
         atol[i] = base;
-        atol[nc + i] = base * w_max;
+        atol[ncs + i] = base * w_max;
     }
     let mut o = Options::new(settings.rtol, settings.atol).method(settings.method).atol_per_component(atol);
     o.h_max_implicit = 4.0 * settings.dt;
@@ -265,13 +389,14 @@ pub fn simulate(
     o.max_wall = settings.max_wall_s.map(std::time::Duration::from_secs_f64);
     let mut solver = Solver::new(&sys, o)?;
     solver.control(control);
-    let mut y = initial_state(rotor);
+    let mut y = initial_state_for(rotor, drive);
     let breakpoints = drive.breakpoints();
     let timeline = Timeline { t_end: settings.t_end, dt: settings.dt, breakpoints: &breakpoints };
     let mut hooks = RunHooks {
         rotor,
         nodes: settings.physical_nodes.unwrap_or(rotor.nodes).min(rotor.nodes),
         drive,
+        spin,
         sink,
         peak: Peak::new(0.0),
         peak_any: Peak::new(0.0),
