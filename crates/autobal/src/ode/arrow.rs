@@ -23,7 +23,6 @@
 //! linear in the number of balls, where a dense LU costs `O(n³)`.
 
 use super::{Jacobian, System};
-use crate::linalg::dense::Lu;
 
 /// Largest border handled (rotor coordinates coupled to every ball).
 pub const MAX_BORDER: usize = 6;
@@ -58,22 +57,45 @@ impl Arrow {
 
     /// `out += s · A x` (`x` and `out` of length `p + m`).
     pub fn mul_add(&self, s: f64, x: &[f64], out: &mut [f64]) {
-        let p = self.p;
-        let (xr, xb) = x.split_at(p);
-        let (or, ob) = out.split_at_mut(p);
-        for i in 0..p {
+        match self.p {
+            0 => self.mul_add_p::<0>(s, x, out),
+            1 => self.mul_add_p::<1>(s, x, out),
+            2 => self.mul_add_p::<2>(s, x, out),
+            3 => self.mul_add_p::<3>(s, x, out),
+            4 => self.mul_add_p::<4>(s, x, out),
+            5 => self.mul_add_p::<5>(s, x, out),
+            6 => self.mul_add_p::<6>(s, x, out),
+            p => panic!("arrow border {p} above MAX_BORDER"),
+        }
+    }
+
+    /// [`Arrow::mul_add`] for the border size `P == self.p` known at compile time (the loops
+    /// over the border unroll); the same operations in the same order.
+    #[inline(always)]
+    fn mul_add_p<const P: usize>(&self, s: f64, x: &[f64], out: &mut [f64]) {
+        let m = self.m;
+        let (xr, xb) = x.split_at(P);
+        let (or, ob) = out.split_at_mut(P);
+        let (xb, ob, bb) = (&xb[..m], &mut ob[..m], &self.bb[..m]);
+        let rr = &self.rr[..P * P];
+        for i in 0..P {
             let mut v = 0.0;
-            for k in 0..p {
-                v += self.rr[i * p + k] * xr[k];
+            for k in 0..P {
+                v += rr[i * P + k] * xr[k];
             }
             or[i] += s * v;
         }
-        for j in 0..self.m {
-            let rb = &self.rb[j * p..(j + 1) * p];
-            let br = &self.br[j * p..(j + 1) * p];
-            let mut v = self.bb[j] * xb[j];
-            for i in 0..p {
-                or[i] += s * rb[i] * xb[j];
+        if P == 0 {
+            for j in 0..m {
+                ob[j] += s * (bb[j] * xb[j]);
+            }
+            return;
+        }
+        for (j, (rb, br)) in self.rb.chunks_exact(P).zip(self.br.chunks_exact(P)).take(m).enumerate() {
+            let xj = xb[j];
+            let mut v = bb[j] * xj;
+            for i in 0..P {
+                or[i] += s * rb[i] * xj;
                 v += br[i] * xr[i];
             }
             ob[j] += s * v;
@@ -98,6 +120,65 @@ impl Arrow {
             a[(p + j) * n + p + j] = self.bb[j];
         }
         a
+    }
+}
+
+/// LU factors (partial pivoting, LAPACK `getrf`/`getrs` order: the largest `|a_ik|` of the
+/// column as pivot, the first on ties; whole rows swapped) of the `p × p` Schur complement of an
+/// arrow matrix. The algorithm of `linalg::dense::Lu`, operation for operation, with a solve
+/// for the border size known at compile time (its loops unroll).
+struct BorderLu {
+    a: [[f64; MAX_BORDER]; MAX_BORDER],
+    piv: [usize; MAX_BORDER],
+}
+
+impl BorderLu {
+    /// Factor the leading `p × p` block; `None` when a pivot is exactly zero.
+    fn new(mut a: [[f64; MAX_BORDER]; MAX_BORDER], p: usize) -> Option<Self> {
+        let mut piv = [0usize; MAX_BORDER];
+        for k in 0..p {
+            let mut r = k;
+            for i in k + 1..p {
+                if a[i][k].abs() > a[r][k].abs() {
+                    r = i;
+                }
+            }
+            if a[r][k] == 0.0 {
+                return None;
+            }
+            a.swap(k, r);
+            piv[k] = r;
+            for i in k + 1..p {
+                let f = a[i][k] / a[k][k];
+                a[i][k] = f;
+                if f != 0.0 {
+                    for j in k + 1..p {
+                        a[i][j] -= f * a[k][j];
+                    }
+                }
+            }
+        }
+        Some(BorderLu { a, piv })
+    }
+
+    /// Solve `A x = b` in place (the first `P` entries of `b`, `P` the factored size): every
+    /// interchange first, then the unit lower triangle, then the upper one.
+    #[inline(always)]
+    fn solve<const P: usize>(&self, b: &mut [f64; MAX_BORDER]) {
+        for k in 0..P {
+            b.swap(k, self.piv[k]);
+        }
+        for k in 0..P {
+            for i in k + 1..P {
+                b[i] -= self.a[i][k] * b[k];
+            }
+        }
+        for k in (0..P).rev() {
+            for j in k + 1..P {
+                b[k] -= self.a[k][j] * b[j];
+            }
+            b[k] /= self.a[k][k];
+        }
     }
 }
 
@@ -130,7 +211,7 @@ pub struct ArrowJacobian<'a, S: ArrowSystem> {
     sys: &'a S,
     lin: ArrowLinearization,
     k: Arrow,
-    schur: Option<Lu<MAX_BORDER>>,
+    schur: Option<BorderLu>,
     alpha: f64,
     rhs: Vec<f64>,
 }
@@ -196,43 +277,71 @@ impl<S: ArrowSystem> Jacobian for ArrowJacobian<'_, S> {
             }
         }
         self.alpha = alpha;
-        self.schur = Lu::new(s, p);
+        self.schur = BorderLu::new(s, p);
         self.schur.is_some()
     }
 
     fn solve(&mut self, b: &mut [f64]) {
-        let (p, m) = (self.k.p, self.k.m);
-        let nq = p + m;
+        match self.k.p {
+            0 => self.solve_p::<0>(b),
+            1 => self.solve_p::<1>(b),
+            2 => self.solve_p::<2>(b),
+            3 => self.solve_p::<3>(b),
+            4 => self.solve_p::<4>(b),
+            5 => self.solve_p::<5>(b),
+            6 => self.solve_p::<6>(b),
+            p => panic!("arrow border {p} above MAX_BORDER"),
+        }
+    }
+}
+
+impl<S: ArrowSystem> ArrowJacobian<'_, S> {
+    /// [`Jacobian::solve`] for the border size `P == p` known at compile time (the loops over
+    /// the border unroll); the same operations in the same order as for any `p`.
+    #[inline(always)]
+    fn solve_p<const P: usize>(&mut self, b: &mut [f64]) {
+        let m = self.k.m;
+        let nq = P + m;
         let alpha = self.alpha;
         let (bq, bv) = b.split_at_mut(nq);
+        let (bq, bv) = (&mut bq[..nq], &mut bv[..nq]);
         // r = M (b_v + α b_q) − G_v b_q (b_v is overwritten below anyway)
         self.rhs.iter_mut().for_each(|x| *x = 0.0);
         for (v, q) in bv.iter_mut().zip(bq.iter()) {
             *v += alpha * q;
         }
-        self.lin.mass.mul_add(1.0, bv, &mut self.rhs);
-        self.lin.g_v.mul_add(-1.0, bq, &mut self.rhs);
+        self.lin.mass.mul_add_p::<P>(1.0, bv, &mut self.rhs);
+        self.lin.g_v.mul_add_p::<P>(-1.0, bq, &mut self.rhs);
         // K x = r by the Schur complement
-        let (rr, rb) = self.rhs.split_at_mut(p);
+        let (rr, rb) = self.rhs.split_at_mut(P);
+        let (rb, kbb) = (&mut rb[..m], &self.k.bb[..m]);
         let mut g = [0.0; MAX_BORDER];
-        g[..p].copy_from_slice(rr);
-        for j in 0..m {
-            let yj = rb[j] / self.k.bb[j];
-            for i in 0..p {
-                g[i] -= self.k.rb[j * p + i] * yj;
+        g[..P].copy_from_slice(rr);
+        if P > 0 {
+            for (j, krb) in self.k.rb.chunks_exact(P).take(m).enumerate() {
+                let yj = rb[j] / kbb[j];
+                for i in 0..P {
+                    g[i] -= krb[i] * yj;
+                }
             }
         }
         if let Some(lu) = &self.schur {
-            lu.solve(&mut g);
+            lu.solve::<P>(&mut g);
         }
-        for j in 0..m {
-            let mut v = rb[j];
-            for i in 0..p {
-                v -= self.k.br[j * p + i] * g[i];
+        if P > 0 {
+            for (j, kbr) in self.k.br.chunks_exact(P).take(m).enumerate() {
+                let mut v = rb[j];
+                for i in 0..P {
+                    v -= kbr[i] * g[i];
+                }
+                rb[j] = v / kbb[j];
             }
-            rb[j] = v / self.k.bb[j];
+        } else {
+            for j in 0..m {
+                rb[j] /= kbb[j];
+            }
         }
-        rr.copy_from_slice(&g[..p]);
+        rr.copy_from_slice(&g[..P]);
         // x_v = α x_q − b_q
         for i in 0..nq {
             let xq = self.rhs[i];

@@ -35,6 +35,76 @@ const D: [f64; 6] = [0.25, -0.1043, 0.1035, -0.0362, 0.0, 0.0];
 const H2: [f64; 5] = [10.12623508344586, -7.487995877610167, -34.80091861555747, -7.992771707568823, 1.025137723295662];
 const H3: [f64; 5] = [-0.6762803392801253, 6.087714651680015, 16.43084320892478, 24.76722511418386, -6.594389125716872];
 
+/// The stage state `y + Σ_{j<i} a_ij k_j` of stage `st` (1 ≤ st ≤ 5) into `ys`; the sixth stage
+/// (stiffly accurate) starts from the fifth's result `y + Σ a_5j k_j + k_5`. One pass over the
+/// components, the terms added in the order of `j` (as a pass per `j` would: the same
+/// rounding); the stage is a compile-time constant in the kernel dispatched to.
+fn stage_state(st: usize, k: &[f64], y: &[f64], ys: &mut [f64]) {
+    match st {
+        1 => stage_state_of::<1>(k, y, ys),
+        2 => stage_state_of::<2>(k, y, ys),
+        3 => stage_state_of::<3>(k, y, ys),
+        4 => stage_state_of::<4>(k, y, ys),
+        5 => stage_state_of::<5>(k, y, ys),
+        _ => panic!("RODAS has no stage {st}"),
+    }
+}
+
+/// `J` stage increments as slices of length `n` each.
+#[inline(always)]
+fn increments<const J: usize>(k: &[f64], n: usize) -> [&[f64]; J] {
+    std::array::from_fn(|j| &k[j * n..j * n + n])
+}
+
+#[inline(always)]
+fn stage_state_of<const ST: usize>(k: &[f64], y: &[f64], ys: &mut [f64]) {
+    let n = ys.len();
+    let ks = increments::<5>(k, n);
+    let y = &y[..n];
+    let row = if ST < 4 { ST } else { 4 };
+    for i in 0..n {
+        let mut x = y[i];
+        for j in 0..row {
+            x += A[row][j] * ks[j][i];
+        }
+        if ST == 5 {
+            x += ks[4][i];
+        }
+        ys[i] = x;
+    }
+}
+
+/// The right-hand side `f(stage) + h d_i ∂f/∂t + Σ_{j<i} (C_ij/h) k_j` of stage `st`'s linear
+/// system into `ki` (`done`: the increments `k_0..k_{st−1}`). One pass over the components, the
+/// terms added in the order of `j` (bit for bit what a pass per `j` gives).
+fn stage_rhs(st: usize, done: &[f64], fs: &[f64], dfdt: &[f64], h: f64, ki: &mut [f64]) {
+    match st {
+        0 => stage_rhs_of::<0>(done, fs, dfdt, h, ki),
+        1 => stage_rhs_of::<1>(done, fs, dfdt, h, ki),
+        2 => stage_rhs_of::<2>(done, fs, dfdt, h, ki),
+        3 => stage_rhs_of::<3>(done, fs, dfdt, h, ki),
+        4 => stage_rhs_of::<4>(done, fs, dfdt, h, ki),
+        5 => stage_rhs_of::<5>(done, fs, dfdt, h, ki),
+        _ => panic!("RODAS has no stage {st}"),
+    }
+}
+
+#[inline(always)]
+fn stage_rhs_of<const ST: usize>(done: &[f64], fs: &[f64], dfdt: &[f64], h: f64, ki: &mut [f64]) {
+    let n = ki.len();
+    let ks = increments::<ST>(done, n);
+    let (fs, dfdt) = (&fs[..n], &dfdt[..n]);
+    let hd = h * D[ST];
+    let c: [f64; ST] = std::array::from_fn(|j| CC[ST][j] / h);
+    for i in 0..n {
+        let mut x = fs[i] + hd * dfdt[i];
+        for j in 0..ST {
+            x += c[j] * ks[j][i];
+        }
+        ki[i] = x;
+    }
+}
+
 /// Buffers: the six stage increments, `∂f/∂t`, stage state and derivative, the two dense-output
 /// coefficient vectors.
 pub(crate) struct Work {
@@ -75,40 +145,15 @@ impl Work {
             return None;
         }
         for st in 0..6 {
-            if st == 0 {
-                self.fs.copy_from_slice(f);
-            } else {
-                // stage state: y + Σ a_ij k_j; the sixth stage (stiffly accurate) starts from the
-                // fifth's result y + Σ a_5j k_j + k_5
-                self.ys.copy_from_slice(y);
-                let row = st.min(4);
-                for j in 0..row {
-                    let a = A[row][j];
-                    for (x, kj) in self.ys.iter_mut().zip(&self.k[j * n..(j + 1) * n]) {
-                        *x += a * kj;
-                    }
-                }
-                if st == 5 {
-                    for (x, k4) in self.ys.iter_mut().zip(&self.k[4 * n..5 * n]) {
-                        *x += k4;
-                    }
-                }
+            if st > 0 {
+                stage_state(st, &self.k, y, &mut self.ys);
                 sys.rhs(t + C[st] * h, &self.ys, &mut self.fs);
                 *rhs_count += 1;
             }
             // (1/(γh) − J) k_i = f(stage) + h d_i ∂f/∂t + Σ_j (C_ij/h) k_j
             let (done, rest) = self.k.split_at_mut(st * n);
             let ki = &mut rest[..n];
-            let hd = h * D[st];
-            for i in 0..n {
-                ki[i] = self.fs[i] + hd * self.dfdt[i];
-            }
-            for j in 0..st {
-                let c = CC[st][j] / h;
-                for (x, kj) in ki.iter_mut().zip(&done[j * n..(j + 1) * n]) {
-                    *x += c * kj;
-                }
-            }
+            stage_rhs(st, done, if st == 0 { f } else { &self.fs }, &self.dfdt, h, ki);
             jac.solve(ki);
         }
         let mut err = 0.0;

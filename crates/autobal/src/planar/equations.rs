@@ -21,7 +21,7 @@
 use super::{Drive, PlanarRotor};
 use crate::balls::BallForces;
 use crate::ode::arrow::{ArrowJacobian, ArrowLinearization, ArrowSystem};
-use crate::ode::dual::{Dual, Real};
+use crate::ode::dual::{sin_cos, sin_cos_reduced, Dual, Real, SIN_COS_LIMIT};
 use crate::ode::{DenseJacobian, Jacobian, System};
 use std::cell::RefCell;
 
@@ -352,68 +352,6 @@ impl<'a> Equations<'a> {
         }
         (m, f)
     }
-}
-
-/// `(sin x, cos x)` to within 2 ulp of 1 in absolute error (what the equations need: the
-/// sines enter sums of terms of order one), about a quarter of the instructions of the C
-/// library's `sincos` (which is 30 % of a right-hand side with many balls): Cody–Waite
-/// reduction by π/2 with the constant split in three (33 + 33 + 53 bits, so `k·P1` and `k·P2`
-/// are exact for `|k| < 2^20`), then fdlibm's minimax kernels on `[−π/4, π/4]`. Outside
-/// `|x| ≤ 2^19 π/2` (and for NaN) the library's `sin_cos`. The constants are fdlibm's bit for
-/// bit (shortest decimals that round to them).
-#[inline(always)]
-pub(crate) fn sin_cos(x: f64) -> (f64, f64) {
-    if !(x.abs() <= SIN_COS_LIMIT) {
-        return x.sin_cos();
-    }
-    sin_cos_reduced(x)
-}
-
-/// Arguments up to this magnitude take [`sin_cos_reduced`] (`2^19 π/2`).
-const SIN_COS_LIMIT: f64 = 823_549.656_552_477_6;
-
-/// [`sin_cos`] without the range check (`|x| ≤ SIN_COS_LIMIT`): no branch, so a loop over the
-/// balls vectorises.
-#[inline(always)]
-fn sin_cos_reduced(x: f64) -> (f64, f64) {
-    const INV_PIO2: f64 = std::f64::consts::FRAC_2_PI;
-    const P1: f64 = 1.570_796_326_734_125_6; // first 33 bits of π/2
-    const P2: f64 = 6.077_100_506_303_966e-11; // next 33 bits
-    const P3: f64 = 2.022_266_248_795_950_6e-21; // π/2 − P1 − P2
-    const ROUND: f64 = 6_755_399_441_055_744.0; // 1.5 · 2^52: adding it rounds to an integer
-    const S: [f64; 6] = [
-        -0.166_666_666_666_666_32,
-        0.008_333_333_333_322_49,
-        -1.984_126_982_985_795e-4,
-        2.755_731_370_707_006_8e-6,
-        -2.505_076_025_340_686_3e-8,
-        1.589_690_995_211_55e-10,
-    ];
-    const C: [f64; 6] = [
-        0.041_666_666_666_666_6,
-        -0.001_388_888_888_887_411,
-        2.480_158_728_947_673e-5,
-        -2.755_731_435_139_066_3e-7,
-        2.087_572_321_298_175e-9,
-        -1.135_964_755_778_819_5e-11,
-    ];
-    let shifted = x * INV_PIO2 + ROUND;
-    let k = shifted - ROUND;
-    // the quadrant k mod 4 sits in the low bits of the shifted sum (two's complement)
-    let q = shifted.to_bits() & 3;
-    let r = ((x - k * P1) - k * P2) - k * P3;
-    let z = r * r;
-    let sin = r + r * z * (S[0] + z * (S[1] + z * (S[2] + z * (S[3] + z * (S[4] + z * S[5])))));
-    let hz = 0.5 * z;
-    let w = 1.0 - hz;
-    let cos = w + (((1.0 - w) - hz) + z * z * (C[0] + z * (C[1] + z * (C[2] + z * (C[3] + z * (C[4] + z * C[5]))))));
-    // (sin, cos), (cos, −sin), (−sin, −cos), (−cos, sin) for q = 0..3, without branches (a
-    // jump per ball mispredicts when the balls lie in different quadrants)
-    let swap = 0u64.wrapping_sub(q & 1);
-    let (sb, cb) = (sin.to_bits(), cos.to_bits());
-    let first = (sb & !swap) | (cb & swap);
-    let second = (cb & !swap) | (sb & swap);
-    (f64::from_bits(first ^ ((q & 2) << 62)), f64::from_bits(second ^ (((q + 1) & 2) << 62)))
 }
 
 /// `x` of the symmetric positive definite `a x = g` (3×3 or, with `p = 2`, the leading 2×2),

@@ -94,6 +94,110 @@ fn add_point_inertia<T: Real>(j: &mut M3<T>, m: f64, r: V3<T>) {
     }
 }
 
+/// Ball `b` at angle `ψ`: its position `r = R_t (R cos ψ, R sin ψ, ζ)` from O, the tangent
+/// `t = ∂r/∂ψ = R_t (−R sin ψ, R cos ψ, 0)` and `n = ∂t/∂ψ = −R_t (R cos ψ, R sin ψ, 0)`, in F
+/// components. The in-plane part `p = R_t (R cos ψ, R sin ψ, 0)` is formed once (`r = p +
+/// ζ R_t e_z`, `n = −p`) and the zero third terms are not multiplied: the same sums in the same
+/// order as the full products `R_t v` (so the same numbers, up to the sign of a zero).
+#[inline(always)]
+fn ball_geometry<T: Real>(k: &Kin<T>, b: &Ball, psi: T) -> (V3<T>, V3<T>, V3<T>) {
+    let (sp, cp) = psi.sin_cos_fast();
+    let (x, y) = (cp * b.r, sp * b.r);
+    let rt = &k.rt;
+    let p = [rt[0][0] * x + rt[0][1] * y, rt[1][0] * x + rt[1][1] * y, rt[2][0] * x + rt[2][1] * y];
+    let r = [p[0] + rt[0][2] * b.zeta, p[1] + rt[1][2] * b.zeta, p[2] + rt[2][2] * b.zeta];
+    let ny = -y;
+    let t = [rt[0][0] * ny + rt[0][1] * x, rt[1][0] * ny + rt[1][1] * x, rt[2][0] * ny + rt[2][1] * x];
+    (r, t, [-p[0], -p[1], -p[2]])
+}
+
+/// `(V_c·f + G_c·τ)` for the five rotor coordinates `c`: the generalised force of a force `f`
+/// and a moment `τ` about O (or, with `f = t_j`, `τ = r_j × t_j`, ball `j`'s row of the mass
+/// matrix over its mass). The partial velocities are sparse: `V = (e_x, e_y, 0, 0, (−η, ξ, 0))`,
+/// `G = (0, 0, e_x, (0, cos δ, sin δ), e_z)` ([`Model::kin`]), so the dot products reduce to
+/// their nonzero terms, added in the same order (the dropped terms are exact zeros: the same
+/// number as the full dot products, up to the sign of a zero).
+#[inline(always)]
+fn partial_sums<T: Real>(k: &Kin<T>, f: V3<T>, tau: V3<T>) -> [T; ROTOR_COORDS] {
+    let (neta, xi) = (k.v[4][0], k.v[4][1]);
+    [f[0], f[1], tau[0], k.cd * tau[1] + k.sd * tau[2], (neta * f[0] + xi * f[1]) + tau[2]]
+}
+
+/// The rotor block of the mass matrix, `M_ab = (V_a·V_b) m + V_a·(G_b × s) + V_b·(G_a × s) +
+/// G_a·(J G_b)` (`m`, `s`, `J`: total mass, first moment and inertia tensor about O, balls
+/// included), written out for the sparse partial velocities of [`partial_sums`] term by term
+/// in the order of the full sum (so the same numbers up to the sign of a zero).
+#[inline(always)]
+fn rotor_block<T: Real>(k: &Kin<T>, mt: f64, s: V3<T>, j: &M3<T>) -> [[T; ROTOR_COORDS]; ROTOR_COORDS] {
+    let (neta, xi) = (k.v[4][0], k.v[4][1]);
+    let (sd, cd) = (k.sd, k.cd);
+    let zero = T::cst(0.0);
+    // G_3 × s and J G_3 (G_3 = (0, cos δ, sin δ)); G_2 × s = (0, −s_z, s_y), G_4 × s = (−s_y, s_x, 0)
+    let gxs3 = [cd * s[2] - sd * s[1], sd * s[0], -(cd * s[0])];
+    let jg3 = [j[0][1] * cd + j[0][2] * sd, j[1][1] * cd + j[1][2] * sd, j[2][1] * cd + j[2][2] * sd];
+    // V_4·(G_4 × s)
+    let v4g4 = neta * -s[1] + xi * s[0];
+    let m00 = T::cst(mt);
+    let m03 = gxs3[0];
+    let m04 = neta * mt + -s[1];
+    let m12 = -s[2];
+    let m13 = gxs3[1];
+    let m14 = xi * mt + s[0];
+    let m22 = j[0][0];
+    let m23 = jg3[0];
+    let m24 = xi * -s[2] + j[0][2];
+    let m33 = cd * jg3[1] + sd * jg3[2];
+    let m34 = (neta * gxs3[0] + xi * gxs3[1]) + (cd * j[1][2] + sd * j[2][2]);
+    let m44 = (neta * neta + xi * xi) * mt + v4g4 + v4g4 + j[2][2];
+    [[m00, zero, zero, m03, m04], [zero, m00, m12, m13, m14], [zero, m12, m22, m23, m24], [m03, m13, m23, m33, m34], [m04, m14, m24, m34, m44]]
+}
+
+/// `x` of `A x = b` (in place in `b`) for the leading `N × N` block of `A`, symmetric positive
+/// definite (the Schur complement of the mass matrix on the free rotor coordinates: kinetic
+/// energy), by `LDLᵀ` without pivoting, which is backward stable for such matrices (Higham,
+/// *Accuracy and Stability of Numerical Algorithms*, 2nd ed., §10.1); only the lower triangle is
+/// read. `false` when a pivot is not positive and finite (not positive definite, or a
+/// non-finite state): the caller then reports a non-finite derivative.
+#[inline(always)]
+fn solve_spd<const N: usize>(a: &[[f64; ROTOR_COORDS]; ROTOR_COORDS], b: &mut [f64; ROTOR_COORDS]) -> bool {
+    // l[i][k] = L_ik below the diagonal; ld[i][k] = L_ik d_k
+    let mut l = [[0.0; N]; N];
+    let mut ld = [[0.0; N]; N];
+    let mut d = [0.0; N];
+    for j in 0..N {
+        let mut dj = a[j][j];
+        for k in 0..j {
+            dj -= ld[j][k] * l[j][k];
+        }
+        if !(dj > 0.0 && dj.is_finite()) {
+            return false;
+        }
+        d[j] = dj;
+        for i in j + 1..N {
+            let mut v = a[i][j];
+            for k in 0..j {
+                v -= ld[i][k] * l[j][k];
+            }
+            ld[i][j] = v;
+            l[i][j] = v / dj;
+        }
+    }
+    for i in 0..N {
+        for k in 0..i {
+            b[i] -= l[i][k] * b[k];
+        }
+    }
+    for i in 0..N {
+        b[i] /= d[i];
+    }
+    for i in (0..N).rev() {
+        for k in i + 1..N {
+            b[i] -= l[k][i] * b[k];
+        }
+    }
+    true
+}
+
 /// Number of rotor coordinates `(ξ, η, δ, θ, φ)`.
 pub const ROTOR_COORDS: usize = 5;
 /// Index of the spin angle `φ` among the coordinates.
@@ -190,7 +294,8 @@ struct Kin<T> {
     v_o: V3<T>,
     w: V3<T>,
     rt: M3<T>,
-    g: [V3<T>; ROTOR_COORDS],
+    /// Partial velocities `V_c = ∂v_O/∂q̇_c` (those of the angular velocity, `G_c = ∂ω/∂q̇_c`,
+    /// are `(0, 0, e_x, (0, cos δ, sin δ), e_z)`: [`partial_sums`]).
     v: [V3<T>; ROTOR_COORDS],
     phi_d: T,
     sd: T,
@@ -234,26 +339,21 @@ impl Model {
         let nc = self.coords();
         let (xi, eta, de, th) = (y[0], y[1], y[2], y[3]);
         let (xid, etad, ded, thd) = (y[nc], y[nc + 1], y[nc + 2], y[nc + 3]);
-        let (sd, cd) = de.sin_cos();
-        let (st, ct) = th.sin_cos();
+        let (sd, cd) = de.sin_cos_fast();
+        let (st, ct) = th.sin_cos_fast();
         let (zero, one) = (T::cst(0.0), T::cst(1.0));
         let rt = [[ct, zero, st], [sd * st, cd, -(sd * ct)], [-(cd * st), sd, cd * ct]];
         let u = [xi, eta, zero];
         let v_o = [xid - phi_d * eta, etad + phi_d * xi, zero];
         let w = [ded, thd * cd, phi_d + thd * sd];
         let z = [zero; 3];
-        let g = [z, z, [one, zero, zero], [zero, cd, sd], [zero, zero, one]];
         let v = [[one, zero, zero], [zero, one, zero], z, z, [-eta, xi, zero]];
-        Kin { u, v_o, w, rt, g, v, phi_d, sd, cd }
+        Kin { u, v_o, w, rt, v, phi_d, sd, cd }
     }
 
     #[inline(always)]
     fn ball_geometry<T: Real>(&self, k: &Kin<T>, b: &Ball, psi: T) -> (V3<T>, V3<T>, V3<T>) {
-        let (sp, cp) = psi.sin_cos();
-        let r = mat_vec(&k.rt, [cp * b.r, sp * b.r, T::cst(b.zeta)]);
-        let t = mat_vec(&k.rt, [-(sp * b.r), cp * b.r, T::cst(0.0)]);
-        let n = mat_vec(&k.rt, [-(cp * b.r), -(sp * b.r), T::cst(0.0)]);
-        (r, t, n)
+        ball_geometry(k, b, psi)
     }
 
     /// First moment `s` and inertia tensor `J` of the carrier about O in F components.
@@ -325,7 +425,7 @@ impl Model {
         let mut t_in = add(add(cross(s, a_o), mat_vec(&j, alpha)), cross(w, mat_vec(&j, w)));
         let mut s_tot = s;
         let mut j_tot = j;
-        let (sp, cp) = y[PHI].sin_cos();
+        let (sp, cp) = y[PHI].sin_cos_fast();
         let gr = self.gravity;
         let g_f = [cp * gr[0] + sp * gr[1], -(sp * gr[0]) + cp * gr[1], T::cst(gr[2])];
         // balls: inertia forces, rows of the arrow
@@ -339,10 +439,7 @@ impl Model {
             t_in = add(t_in, cross(r, ma));
             s_tot = add(s_tot, scalef(r, b.m));
             add_point_inertia(&mut j_tot, b.m, r);
-            let rxt = cross(r, t_j);
-            for c in 0..ROTOR_COORDS {
-                brow[i][c] = (dot(k.v[c], t_j) + dot(k.g[c], rxt)) * b.m;
-            }
+            brow[i] = partial_sums(&k, t_j, cross(r, t_j)).map(|x| x * b.m);
             bf[i] = psi_d * (-b.drag * b.r * b.r) + dot(g_f, t_j) * b.m - dot(t_j, ma);
             if real_balls {
                 // the race's normal force: the centripetal part of the ball's acceleration
@@ -363,26 +460,9 @@ impl Model {
             t_ex = add(t_ex, cross(rho, f));
         }
         let (df, dt_) = (sub(f_ex, f_in), sub(t_ex, t_in));
-        let mut q = [zero; ROTOR_COORDS];
-        for c in 0..ROTOR_COORDS {
-            q[c] = dot(k.v[c], df) + dot(k.g[c], dt_);
-        }
+        let mut q = partial_sums(&k, df, dt_);
         // rotor block of the mass matrix
-        let mt = self.total_mass;
-        let mut m = [[zero; ROTOR_COORDS]; ROTOR_COORDS];
-        let mut gxs = [[zero; 3]; ROTOR_COORDS];
-        let mut jg = [[zero; 3]; ROTOR_COORDS];
-        for c in 0..ROTOR_COORDS {
-            gxs[c] = cross(k.g[c], s_tot);
-            jg[c] = mat_vec(&j_tot, k.g[c]);
-        }
-        for a in 0..ROTOR_COORDS {
-            for b in a..ROTOR_COORDS {
-                let v = dot(k.v[a], k.v[b]) * mt + dot(k.v[a], gxs[b]) + dot(k.v[b], gxs[a]) + dot(k.g[a], jg[b]);
-                m[a][b] = v;
-                m[b][a] = v;
-            }
-        }
+        let m = rotor_block(&k, self.total_mass, s_tot, &j_tot);
         match spin {
             Spin::Prescribed { acc, .. } => {
                 for c in 0..ROTOR_COORDS {
@@ -424,8 +504,17 @@ impl Model {
         let prescribed = matches!(spin, Spin::Prescribed { .. });
         let (idx_buf, nf) = self.free_indices(prescribed);
         let idx = &idx_buf[..nf];
-        let (mut a, mut rhs) = self.schur(&m, brow, idx, &q, bf);
-        let ok = crate::linalg::dense::solve_once(&mut a, &mut rhs, nf);
+        let (a, mut rhs) = self.schur(&m, brow, idx, &q, bf);
+        let ok = match nf {
+            2 => solve_spd::<2>(&a, &mut rhs),
+            3 => solve_spd::<3>(&a, &mut rhs),
+            4 => solve_spd::<4>(&a, &mut rhs),
+            5 => solve_spd::<5>(&a, &mut rhs),
+            _ => {
+                let mut a = a;
+                crate::linalg::dense::solve_once(&mut a, &mut rhs, nf)
+            }
+        };
         let mut acc = [0.0; ROTOR_COORDS];
         for (ia, &ca) in idx.iter().enumerate() {
             acc[ca] = rhs[ia];
@@ -724,7 +813,7 @@ impl<'a> Equations<'a> {
     pub fn displacement_at(&self, y: &[f64], z: f64) -> [f64; 2] {
         let k = self.model.kin(y, 0.0);
         let (_, r, _) = self.model.shaft_point(&k, z - self.model.z_ref);
-        let (sp, cp) = y[PHI].sin_cos();
+        let (sp, cp) = y[PHI].sin_cos_fast();
         [cp * r[0] - sp * r[1], sp * r[0] + cp * r[1]]
     }
 
@@ -769,7 +858,7 @@ pub(super) fn real_balls_error() -> Error {
 pub(super) fn residual_unbalance(rotor: &SpatialRotor, model: &Model, y: &[f64]) -> ([f64; 2], [f64; 2]) {
     let (mut st, mut cp) = (rotor.static_unbalance(), rotor.couple_unbalance());
     for (i, b) in model.balls.iter().enumerate() {
-        let (s, c) = y[ROTOR_COORDS + i].sin_cos();
+        let (s, c) = y[ROTOR_COORDS + i].sin_cos_fast();
         st[0] += b.m * b.r * c;
         st[1] += b.m * b.r * s;
         cp[0] += b.m * b.r * b.zeta * c;
@@ -785,5 +874,113 @@ impl System for Equations<'_> {
 
     fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
         self.model.rhs(self.spin(t, y, false), y, dy, &self.ball_forces, &self.scratch);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Deterministic numbers in [−1, 1) (xorshift).
+    fn numbers(seed: u64, len: usize) -> Vec<f64> {
+        let mut x = seed;
+        (0..len)
+            .map(|_| {
+                x ^= x << 13;
+                x ^= x >> 7;
+                x ^= x << 17;
+                (x >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+            })
+            .collect()
+    }
+
+    #[test]
+    fn ldlt_solves_positive_definite_systems_as_partial_pivoting_does() {
+        // a second route: the same systems by Gaussian elimination with partial pivoting
+        // (linalg::dense::solve_once). A = Bᵀ B + 0.05 I (B random, entries in [−1, 1]: the
+        // eigenvalues lie in [0.05, 25], condition number ≤ 500); both solvers are backward
+        // stable here, so their solutions agree to a few κ ε ≈ 1e-12 of |x|: 1e-10 leaves room
+        for seed in 1..100u64 {
+            let r = numbers(seed, 60);
+            for nf in 2..=ROTOR_COORDS {
+                let mut a = [[0.0; ROTOR_COORDS]; ROTOR_COORDS];
+                for i in 0..nf {
+                    for j in 0..nf {
+                        a[i][j] = (0..nf).map(|k| r[k * 5 + i] * r[k * 5 + j]).sum::<f64>() + if i == j { 0.05 } else { 0.0 };
+                    }
+                }
+                let mut b = [0.0; ROTOR_COORDS];
+                b[..nf].copy_from_slice(&r[40..40 + nf]);
+                let mut x = b;
+                let ok = match nf {
+                    2 => solve_spd::<2>(&a, &mut x),
+                    3 => solve_spd::<3>(&a, &mut x),
+                    4 => solve_spd::<4>(&a, &mut x),
+                    _ => solve_spd::<5>(&a, &mut x),
+                };
+                assert!(ok, "seed {seed}, size {nf}: positive definite");
+                let (mut y, mut a2) = (b, a);
+                assert!(crate::linalg::dense::solve_once(&mut a2, &mut y, nf));
+                let scale = y[..nf].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                for i in 0..nf {
+                    assert!((x[i] - y[i]).abs() <= 1e-10 * scale, "seed {seed}, size {nf}: x[{i}] {} vs {}", x[i], y[i]);
+                }
+            }
+        }
+        // not positive definite, or not finite: refused
+        let mut a = [[0.0; ROTOR_COORDS]; ROTOR_COORDS];
+        a[0][0] = 1.0;
+        a[1][1] = -1.0;
+        assert!(!solve_spd::<2>(&a, &mut [1.0; ROTOR_COORDS]));
+        a[1][1] = f64::NAN;
+        assert!(!solve_spd::<2>(&a, &mut [1.0; ROTOR_COORDS]));
+    }
+
+    #[test]
+    fn sparse_partial_velocities_give_the_full_dot_products_exactly() {
+        // the written-out generalised forces and rotor block against the definitions with the
+        // full partial velocities V_c, G_c (every zero multiplied and added): the dropped terms
+        // are exact zeros, so the numbers are equal (`==`: up to the sign of a zero), not close
+        for seed in 1..200u64 {
+            let r = numbers(seed, 40);
+            let (xi, eta, de) = (r[0], r[1], 1.5 * r[2]);
+            let (sd, cd) = de.sin_cos();
+            let zero = 0.0;
+            let z = [zero; 3];
+            let v = [[1.0, zero, zero], [zero, 1.0, zero], z, z, [-eta, xi, zero]];
+            let g = [z, z, [1.0, zero, zero], [zero, cd, sd], [zero, zero, 1.0]];
+            let k = Kin { u: [xi, eta, 0.0], v_o: z, w: z, rt: [z; 3], v, phi_d: 0.0, sd, cd };
+            let (f, tau, s) = ([r[3], r[4], r[5]], [r[6], r[7], r[8]], [r[9], r[10], r[11]]);
+            let mut j = [[0.0; 3]; 3];
+            for a in 0..3 {
+                for b in a..3 {
+                    j[a][b] = r[12 + 3 * a + b] + if a == b { 3.0 } else { 0.0 };
+                    j[b][a] = j[a][b];
+                }
+            }
+            let mt = 2.0 + r[30];
+            let q = partial_sums(&k, f, tau);
+            for c in 0..ROTOR_COORDS {
+                assert_eq!(q[c], dot(v[c], f) + dot(g[c], tau), "seed {seed}, coordinate {c}");
+            }
+            // the ball's geometry against the full products R_t v
+            let (st, ct) = (1.3 * r[31]).sin_cos();
+            let rt = [[ct, zero, st], [sd * st, cd, -(sd * ct)], [-(cd * st), sd, cd * ct]];
+            let kb = Kin { u: k.u, v_o: z, w: z, rt, v, phi_d: 0.0, sd, cd };
+            let b = Ball { m: 1.0, r: 1.0 + r[32], zeta: r[33], drag: 0.0 };
+            let psi = 7.0 * r[34];
+            let (sp, cp) = psi.sin_cos_fast();
+            let (rb, tb, nb) = ball_geometry(&kb, &b, psi);
+            let full = (mat_vec(&rt, [cp * b.r, sp * b.r, b.zeta]), mat_vec(&rt, [-(sp * b.r), cp * b.r, 0.0]), mat_vec(&rt, [-(cp * b.r), -(sp * b.r), 0.0]));
+            assert_eq!((rb, tb, nb), full, "seed {seed}: ball geometry");
+            let m = rotor_block(&k, mt, s, &j);
+            for a in 0..ROTOR_COORDS {
+                for b in 0..ROTOR_COORDS {
+                    let (lo, hi) = (a.min(b), a.max(b));
+                    let want = dot(v[lo], v[hi]) * mt + dot(v[lo], cross(g[hi], s)) + dot(v[hi], cross(g[lo], s)) + dot(g[lo], mat_vec(&j, g[hi]));
+                    assert_eq!(m[a][b], want, "seed {seed}, entry ({a}, {b})");
+                }
+            }
+        }
     }
 }

@@ -372,11 +372,12 @@ impl Window {
         self.data[i * self.stride + k]
     }
 
-    fn push(&mut self, eq: &Equations, t: f64, y: &[f64]) {
+    /// Record the step end `(t, y)`; `r`: the displacement at the balancer plane in fixed axes
+    /// (`eq.displacement_at(y, amplitude_z(eq))`, which the caller has at hand).
+    fn push(&mut self, eq: &Equations, t: f64, y: &[f64], r: [f64; 2]) {
         let phi = y[PHI];
         let (st, cp) = eq.residual_unbalance(y);
-        let r = eq.displacement_at(y, amplitude_z(eq));
-        let (sp, c) = phi.sin_cos();
+        let (sp, c) = crate::ode::dual::sin_cos(phi);
         let w = [c * r[0] + sp * r[1], -sp * r[0] + c * r[1]];
         self.data.extend([t, phi, st[0], st[1], cp[0], cp[1], w[0], w[1]]);
         self.data.extend(&y[ROTOR_COORDS..eq.coords()]);
@@ -571,7 +572,7 @@ fn simulate_sampled(
     let timeline = Timeline { t_end: settings.t_end, dt: sample_dt, breakpoints: &breakpoints };
     let counters = vec![EventCounter::default(); eq.ball_forces().len()];
     let mut window = Window::new(rotor.balls());
-    window.push(&eq, 0.0, &y);
+    window.push(&eq, 0.0, &y, eq.displacement_at(&y, amplitude_z(&eq)));
     let mut hooks = SpatialHooks { eq: &eq, sink: &mut sink, peak: (plane_amplitude(&eq, &y), drive.omega0(), 0.0), counters, window };
     let out = run(&mut solver, &mut y, &timeline, &mut hooks);
     let peak = hooks.peak;
@@ -600,7 +601,8 @@ impl<F: FnMut(&Sample) -> bool> Hooks for SpatialHooks<'_, F> {
     }
 
     fn step(&mut self, t: f64, y: &[f64]) {
-        let a = plane_amplitude(self.eq, y);
+        let d = self.eq.displacement_at(y, amplitude_z(self.eq));
+        let a = d[0].hypot(d[1]);
         if a > self.peak.0 {
             self.peak = (a, self.eq.spin_rate(t, y), t);
         }
@@ -609,7 +611,7 @@ impl<F: FnMut(&Sample) -> bool> Hooks for SpatialHooks<'_, F> {
             let a = ROTOR_COORDS + first;
             c.observe(f, &y[a..a + f.n], &y[nc + a..nc + a + f.n]);
         }
-        self.window.push(self.eq, t, y);
+        self.window.push(self.eq, t, y, d);
     }
 
     fn sample(&mut self, t: f64, y: &[f64]) -> Control {
