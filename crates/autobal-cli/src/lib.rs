@@ -392,7 +392,7 @@ fn run(cli: Cli, control: &Control) -> Result<()> {
         Command::Campbell { common, format, lin, points, svg, view, harmonics, route } => {
             let (root, _) = config::read_set(common.config.as_deref(), &common.set)?;
             if route == RouteArg::General || general::needs_general_route(&root) {
-                return run_general_campbell(&root, format, lin, points, svg, view);
+                return run_general_campbell(&root, format, lin, points, svg, view, &harmonics);
             }
             let points = points.unwrap_or(300);
             let cfg = config::load_analytic("campbell", common.config.as_deref(), &common.set)?;
@@ -441,7 +441,8 @@ fn run(cli: Cli, control: &Control) -> Result<()> {
     }
 }
 
-/// `campbell` by the general route ([`general_campbell`]): any planar or spatial config.
+/// `campbell` by the general route ([`general_campbell`]): any planar or spatial config, the
+/// balls free or locked, either view, the crossings with `--harmonics`.
 fn run_general_campbell(
     root: &toml::Table,
     format: Format,
@@ -449,28 +450,36 @@ fn run_general_campbell(
     points: Option<usize>,
     svg: Option<PathBuf>,
     view: linear::CampbellView,
+    harmonics: &[u32],
 ) -> Result<()> {
-    if lin.balls == BallsArg::Locked {
-        anyhow::bail!("--balls locked: the general route's Campbell diagram has the balls free (`autobal critical` gives the locked rotor's critical speeds)");
-    }
-    if view == linear::CampbellView::Components {
-        anyhow::bail!("--view components: the general route draws the fixed-axes view only");
-    }
     let g = general::rotor_of(root)?;
     config::check_entries(root, "campbell", &[config::simulation_model(root)])?;
     let points = points.unwrap_or(if g.rotor.is_periodic() { 60 } else { 300 });
     if !(3..=100_000).contains(&points) {
         anyhow::bail!("--points: must lie between 3 and 100000 on the general route, got {points}");
     }
+    let harmonics = linear::check_harmonics(harmonics)?;
     let w = general_campbell::omega_max(root, &g, lin.omega_max.as_deref())?;
-    let svg = svg.map(|p| outfile::resolve(&p, "campbell"));
-    let svg = svg.map(|p| linear::campbell_svg_paths(&p, linear::CampbellView::Fixed).remove(0));
-    if let Some(p) = &svg {
-        outfile::Outputs::new().output("--svg", p).check()?;
+    let svg = svg.map(|p| linear::campbell_svg_paths(&outfile::resolve(&p, "campbell"), view));
+    if let Some(paths) = &svg {
+        let mut o = outfile::Outputs::new();
+        for p in paths {
+            o.output("--svg", p);
+        }
+        o.check()?;
     }
-    let c = general_campbell::campbell(&g, w, points)?;
-    if let Some(p) = &svg {
-        outfile::write_atomic("--svg", p, general_campbell::campbell_plot(&g, &c, w).to_svg())?;
+    let c = general_campbell::campbell_with(&g, w, points, lin.balls.into(), &harmonics)?;
+    if let Some(paths) = &svg {
+        let plots = match view {
+            linear::CampbellView::Fixed => vec![general_campbell::campbell_plot(&g, &c, w)],
+            linear::CampbellView::Components => {
+                let (rot, fixed) = general_campbell::components_plots(&g, &c);
+                vec![rot, fixed]
+            }
+        };
+        for (p, plot) in paths.iter().zip(plots) {
+            outfile::write_atomic("--svg", p, plot.to_svg())?;
+        }
     }
     emit(format, general_campbell::campbell_json(&g, &c, w), general_campbell::campbell_table(&g, &c))
 }

@@ -366,7 +366,7 @@ fn report_takes_the_general_route_as_stability_does() {
     let (code, _, err) = autobal(&["report", "--quick", "--config", &cfg, "--set", "spatial.spin_drag=0.01", "--out", dir.to_str().unwrap()]);
     assert_eq!(code, 0, "{err}");
     assert!(
-        err.contains("warning: the report's critical speeds and design maps use the rotor of papers 000/003 (isotropic supports, one balancer plane of point-mass balls, static unbalance): spatial.spin_drag is used only by `simulate`/`basins` and the report's stability (general route) and run-up"),
+        err.contains("warning: the report's tables of papers 000/003 (parameters, eq (16) critical speeds, sensitivity, 003's ranges) use the rotor of papers 000/003 (isotropic supports, one balancer plane of point-mass balls, static unbalance): spatial.spin_drag is used only by `simulate`/`basins` and the report's general-route sections (stability, Campbell diagrams, critical speeds of the rotor as given, design maps) and run-up"),
         "{err}"
     );
     let index = std::fs::read_to_string(dir.join("index.html")).unwrap();
@@ -376,8 +376,10 @@ fn report_takes_the_general_route_as_stability_does() {
     let op = 1400.0 * std::f64::consts::PI / 30.0;
     let inside = st["stable_ranges"].as_array().unwrap().iter().any(|r| r["from"].as_f64().unwrap() <= op && op <= r["to"].as_f64().unwrap());
     assert_eq!(report_verdict(&index), Some(inside));
-    // the design maps say they are of the one-plane model, which leaves the spin drag out
+    // the 000/003 tables say they are of the one-plane model, which leaves the spin drag out;
+    // the critical speeds, Campbell diagrams and design maps are the rotor's as given
     assert!(index.contains("which leaves out spatial.spin_drag"));
+    assert!(index.contains("Critical speeds of the rotor as given (general route)") && index.contains("by the general map on the rotor as given"));
 }
 
 #[test]

@@ -126,7 +126,10 @@ pub fn ignored_warning(keys: &[String], command: &str) -> Option<String> {
         return None;
     }
     let (who, also) = match command {
-        "report" => ("the report's critical speeds and design maps use".to_string(), " and the report's stability (general route) and run-up"),
+        "report" => (
+            "the report's tables of papers 000/003 (parameters, eq (16) critical speeds, sensitivity, 003's ranges) use".to_string(),
+            " and the report's general-route sections (stability, Campbell diagrams, critical speeds of the rotor as given, design maps) and run-up",
+        ),
         _ => (format!("{command} uses"), ""),
     };
     Some(format!(

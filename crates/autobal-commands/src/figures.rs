@@ -68,7 +68,7 @@ pub fn curve_color(i: usize) -> &'static str {
     MORE[i % MORE.len()]
 }
 
-fn group_name(g: Group) -> &'static str {
+pub(crate) fn group_name(g: Group) -> &'static str {
     match g {
         Group::Translation => "translation",
         Group::Tilt => "tilt",
@@ -77,7 +77,7 @@ fn group_name(g: Group) -> &'static str {
 }
 
 /// Share of a circular component below which it is not drawn in fixed axes.
-const COMPONENT_SHARE: f64 = 0.1;
+pub(crate) const COMPONENT_SHARE: f64 = 0.1;
 
 /// Campbell diagrams (rotating axes, fixed axes) with one colour and legend entry per tracked
 /// mode ("mode 3: tilt, forward", from the dominant motion and whirl over the line), the 1×
@@ -211,16 +211,69 @@ pub fn log_dec_color(d: Option<f64>) -> &'static str {
     }
 }
 
+/// The axes of a fixed-axes Campbell diagram: speeds and frequencies as stored times `kx`
+/// and `ky` give the axes' units; `si` writes the legend's speeds in rpm and frequencies in Hz.
+#[derive(Debug, Clone)]
+pub struct FixedAxes {
+    /// Multiplier from the stored speed to the axis unit.
+    pub kx: f64,
+    /// Title of the speed axis.
+    pub x_label: String,
+    /// Multiplier from the stored frequency to the axis unit.
+    pub ky: f64,
+    /// Title of the frequency axis.
+    pub y_label: String,
+    /// Speeds in rpm and frequencies in Hz in the legend (else `Ω = …`, `f = …`).
+    pub si: bool,
+}
+
+impl FixedAxes {
+    /// Speeds in rad/s drawn in rpm and frequencies in rad/s drawn in Hz, given `omega0` (rad/s
+    /// per stored unit: `ω0` of a dimensional model, 1 for the general route's SI speeds).
+    pub fn si(omega0: f64) -> Self {
+        FixedAxes {
+            kx: omega0 * 30.0 / std::f64::consts::PI,
+            x_label: "rotor speed n (rpm)".into(),
+            ky: omega0 / (2.0 * std::f64::consts::PI),
+            y_label: "natural frequency (Hz)".into(),
+            si: true,
+        }
+    }
+    /// Dimensionless speeds `Ω` and frequencies `f/ω0`.
+    pub fn dimensionless() -> Self {
+        FixedAxes { kx: 1.0, x_label: "Ω = ω/ω0".into(), ky: 1.0, y_label: "natural frequency / ω0".into(), si: false }
+    }
+    /// A speed as the legend writes it.
+    fn speed(&self, w: f64) -> String {
+        if self.si {
+            format!("{:.0} rpm", w * self.kx)
+        } else {
+            format!("Ω = {}", crate::num::fmt(w, 4))
+        }
+    }
+    /// A frequency as the legend writes it.
+    fn freq(&self, f: f64) -> String {
+        if self.si {
+            format!("{} Hz", crate::num::fmt(f * self.ky, 4))
+        } else {
+            format!("f = {}", crate::num::fmt(f, 4))
+        }
+    }
+}
+
 /// The axes of the fixed-axes Campbell diagram: (speed factor and label, frequency factor and
 /// label): rpm and Hz for a dimensional model (`n = Ω ω0 · 30/π`, `f_Hz = f ω0 / 2π`), `Ω` and
 /// `f/ω0` otherwise.
 pub fn campbell_axes(model: &SpatialModel) -> ((f64, String), (f64, String)) {
+    let a = fixed_axes_of(model);
+    ((a.kx, a.x_label), (a.ky, a.y_label))
+}
+
+/// [`FixedAxes`] of a model of papers 000/003 (rpm and Hz where it is dimensional).
+pub fn fixed_axes_of(model: &SpatialModel) -> FixedAxes {
     match model.scale {
-        Some(sc) => (
-            (sc.omega0 * 30.0 / std::f64::consts::PI, "rotor speed n (rpm)".into()),
-            (sc.omega0 / (2.0 * std::f64::consts::PI), "natural frequency (Hz)".into()),
-        ),
-        None => ((1.0, "Ω = ω/ω0".into()), (1.0, "natural frequency / ω0".into())),
+        Some(sc) => FixedAxes::si(sc.omega0),
+        None => FixedAxes::dimensionless(),
     }
 }
 
@@ -230,7 +283,13 @@ pub fn campbell_axes(model: &SpatialModel) -> ((f64, String), (f64, String)) {
 /// excitation lines `h Ω` dashed grey; the critical speeds (crossings with them) as points,
 /// each listed in the legend. Axes in rpm and Hz for a dimensional model ([`campbell_axes`]).
 pub fn campbell_fixed_plot(model: &SpatialModel, f: &FixedCampbell) -> Plot {
-    let ((kx, x_label), (ky, y_label)) = campbell_axes(model);
+    campbell_fixed_plot_in(&fixed_axes_of(model), f)
+}
+
+/// [`campbell_fixed_plot`] on any axes: the 12-state route's and the general route's
+/// ([`autobal::rotor_campbell::fixed_view`]) fixed-axes view, one drawing.
+pub fn campbell_fixed_plot_in(axes: &FixedAxes, f: &FixedCampbell) -> Plot {
+    let (kx, ky) = (axes.kx, axes.ky);
     let mut series = vec![];
     let w_max = f.omega.last().copied().unwrap_or(1.0);
     let f_max = f.curves.iter().flat_map(|c| c.points.iter().map(|p| p.frequency)).fold(0.0, f64::max);
@@ -239,7 +298,7 @@ pub fn campbell_fixed_plot(model: &SpatialModel, f: &FixedCampbell) -> Plot {
         let p0 = &cv.points[0];
         let fwd = cv.points.iter().filter(|p| p.whirl == Whirl::Forward).count();
         let whirl = if 2 * fwd >= cv.points.len() { "forward" } else { "backward" };
-        let name = format!("mode {}: {whirl}, {} at {}", i + 1, fmt_freq(model, p0.frequency), fmt_speed(model, p0.omega));
+        let name = format!("mode {}: {whirl}, {} at {}", i + 1, axes.freq(p0.frequency), axes.speed(p0.omega));
         // runs of one whirl direction and one colour; each run starts at the previous run's
         // last point so that the curve has no gaps
         let key = |p: &FixedPoint| (p.whirl, log_dec_color(p.log_decrement));
@@ -269,7 +328,7 @@ pub fn campbell_fixed_plot(model: &SpatialModel, f: &FixedCampbell) -> Plot {
     for (j, cs) in f.critical_speeds.iter().enumerate() {
         let whirl = if cs.whirl == Whirl::Backward { "backward" } else { "forward" };
         let label = if j < LISTED {
-            format!("critical {}: {} (mode {}, {whirl}, {}×)", j + 1, fmt_speed(model, cs.omega), cs.curve + 1, cs.harmonic)
+            format!("critical {}: {} (mode {}, {whirl}, {}×)", j + 1, axes.speed(cs.omega), cs.curve + 1, cs.harmonic)
         } else if j == LISTED {
             format!("further critical speeds ({})", f.critical_speeds.len() - LISTED)
         } else {
@@ -286,28 +345,12 @@ pub fn campbell_fixed_plot(model: &SpatialModel, f: &FixedCampbell) -> Plot {
     }
     Plot {
         title: "Campbell diagram (fixed axes): natural frequencies, forward solid, backward dashed, coloured by log decrement".into(),
-        x_label,
-        y_label,
+        x_label: axes.x_label.clone(),
+        y_label: axes.y_label.clone(),
         series,
         x_range: Some((0.0, kx * w_max)),
         y_range: Some((0.0, ky * y_top)),
         ..Default::default()
-    }
-}
-
-/// A speed `Ω` as the figure's legend writes it: rpm for a dimensional model.
-fn fmt_speed(model: &SpatialModel, w: f64) -> String {
-    match model.scale {
-        Some(sc) => format!("{:.0} rpm", w * sc.omega0 * 30.0 / std::f64::consts::PI),
-        None => format!("Ω = {}", crate::num::fmt(w, 4)),
-    }
-}
-
-/// A frequency `f` (unit `ω0`) as the figure's legend writes it: Hz for a dimensional model.
-fn fmt_freq(model: &SpatialModel, f: f64) -> String {
-    match model.scale {
-        Some(sc) => format!("{} Hz", crate::num::fmt(f * sc.omega0 / (2.0 * std::f64::consts::PI), 4)),
-        None => format!("f = {}", crate::num::fmt(f, 4)),
     }
 }
 

@@ -5,12 +5,15 @@
 //! `--route general`.
 
 use crate::general::GeneralRotor;
-use crate::plot::{Plot, Series, PALETTE};
+use crate::plot::{Plot, Series};
 use anyhow::Result;
 use autobal::analysis::Kind;
 use autobal::error::fmt_num;
-use autobal::rotor_campbell::{campbell_over_speed, locked_critical_speeds, LockedCriticalSpeeds, RotorCampbell, Whirl, FLOQUET_BRANCH};
+use autobal::rotor_campbell::{
+    campbell_locked, campbell_over_speed, fixed_view, locked_critical_speeds, Balls, LockedCriticalSpeeds, RotorCampbell, Whirl, FLOQUET_BRANCH,
+};
 use autobal::rotor_stability::{speed_grid, stability_over_speed, Rotor, RotorStability};
+use autobal::spatial::campbell::FixedCampbell;
 use serde_json::{json, Value};
 use std::fmt::Write as _;
 use toml::Table;
@@ -74,11 +77,61 @@ pub fn speeds(omega_max: f64, points: usize) -> Vec<f64> {
     (0..n).map(|k| omega_max * (k as f64 + 0.5) / n as f64).collect()
 }
 
-/// The Campbell diagram of the general route, its numbers checked finite once.
-pub fn campbell(g: &GeneralRotor, omega_max: f64, points: usize) -> Result<RotorCampbell> {
-    let c = campbell_over_speed(&g.rotor, &speeds(omega_max, points))?;
+/// The general route's Campbell diagram with what the 12-state route gives beside it
+/// ([`crate::linear::run_campbell`]): the fixed-axes view (one curve per mode, its log
+/// decrement) and the crossings with the excitation lines `h×Ω`, for the balls free or locked.
+pub struct GeneralCampbell {
+    /// The tracked eigenvalues (or Floquet exponents) over speed.
+    pub diagram: RotorCampbell,
+    /// Free, or locked at the closed-form balanced position.
+    pub balls: Balls,
+    /// The harmonics `h` of the excitation lines.
+    pub harmonics: Vec<u32>,
+    /// The fixed-axes view (crossings empty where [`GeneralCampbell::crossings_not_given`]
+    /// says why), `None` where it could not be formed.
+    pub fixed: Option<FixedCampbell>,
+    /// Why the crossings (critical speeds) are not given, where they are not: Floquet
+    /// exponents (defined modulo Ω), or a crossing whose stationary state was not found.
+    pub crossings_not_given: Option<String>,
+}
+
+/// Why a periodic orbit's diagram has no crossing speeds.
+pub const FLOQUET_CROSSINGS: &str = "not defined for Floquet exponents: their imaginary parts are defined modulo Ω, so a curve's crossing of h×Ω is a crossing of every other harmonic on another branch; `autobal critical` gives the locked rotor's critical speeds where they are defined";
+
+/// The Campbell diagram of the general route with the balls free and the `1×` crossings (what
+/// `autobal campbell` and Python's `campbell` give by default), its numbers checked finite.
+pub fn campbell(g: &GeneralRotor, omega_max: f64, points: usize) -> Result<GeneralCampbell> {
+    campbell_with(g, omega_max, points, Balls::Free, &[1])
+}
+
+/// The Campbell diagram of the general route with the balls `balls` (`--balls`), its fixed-axes
+/// view and the crossings with `h×Ω` for each of `harmonics` (`--harmonics`, checked by
+/// [`crate::linear::check_harmonics`]), its numbers checked finite once.
+pub fn campbell_with(g: &GeneralRotor, omega_max: f64, points: usize, balls: Balls, harmonics: &[u32]) -> Result<GeneralCampbell> {
+    let sp = speeds(omega_max, points);
+    let c = match balls {
+        Balls::Free => campbell_over_speed(&g.rotor, &sp)?,
+        Balls::Locked => campbell_locked(&g.rotor, &sp)?,
+    };
     autobal::limits::check_finite("campbell", &c)?;
-    Ok(c)
+    let (fixed, mut why) = match fixed_view(&g.rotor, balls, &c, harmonics) {
+        Ok(f) => (Some(f), None),
+        // a crossing's stationary state not found: the curves without the crossings, and why
+        Err(e) => match fixed_view(&g.rotor, balls, &c, &[]) {
+            Ok(mut f) => {
+                f.harmonics = harmonics.to_vec();
+                (Some(f), Some(format!("not located: {e}")))
+            }
+            Err(e) => (None, Some(format!("no fixed-axes view: {e}"))),
+        },
+    };
+    if c.kind == Kind::PeriodicOrbit {
+        why = Some(FLOQUET_CROSSINGS.into());
+    }
+    if let Some(f) = &fixed {
+        autobal::limits::check_finite("campbell.critical_speeds", &f.critical_speeds)?;
+    }
+    Ok(GeneralCampbell { diagram: c, balls, harmonics: harmonics.to_vec(), fixed, crossings_not_given: why })
 }
 
 fn what(c: &RotorCampbell) -> &'static str {
@@ -98,8 +151,76 @@ fn kept(l: &autobal::rotor_campbell::CampbellLine) -> bool {
     !pts.is_empty() && 2 * up >= pts.len() && !pts.iter().all(|p| p.structural)
 }
 
-/// The JSON of the general Campbell diagram.
-pub fn campbell_json(g: &GeneralRotor, c: &RotorCampbell, omega_max: f64) -> Value {
+/// The JSON of the general Campbell diagram: the tracked lines, and the fixed-axes view with
+/// the 12-state route's columns ([`autobal::reports::campbell_fixed`]: `harmonics`,
+/// `fixed_axes_modes`, `critical_speeds`, in rpm and Hz on an SI config), `critical_speeds`
+/// null with `critical_speeds_not_given` saying why where they are not given.
+pub fn campbell_json(g: &GeneralRotor, gc: &GeneralCampbell, omega_max: f64) -> Value {
+    let mut v = lines_json(g, &gc.diagram, omega_max);
+    v["balls"] = json!(match gc.balls {
+        Balls::Free => "free",
+        Balls::Locked => "locked",
+    });
+    if gc.balls == Balls::Locked {
+        v["locked"] = json!("the balls locked where the closed form puts them at each speed (point masses of the rotor), damping kept");
+    }
+    v["harmonics"] = json!(gc.harmonics);
+    let tau = 2.0 * std::f64::consts::PI;
+    match &gc.fixed {
+        Some(f) => {
+            let modes: Vec<Value> = f
+                .curves
+                .iter()
+                .enumerate()
+                .map(|(i, cv)| {
+                    let pts: Vec<Value> = cv
+                        .points
+                        .iter()
+                        .map(|p| {
+                            let mut e = json!(p);
+                            if let (true, Some(o)) = (g.si, e.as_object_mut()) {
+                                o.insert("frequency_hz".into(), json!(p.frequency / tau));
+                                o.insert("fixed_frequency_hz".into(), json!(p.fixed_frequency / tau));
+                                o.insert("re_per_s".into(), json!(p.re));
+                                o.insert("omega_rpm".into(), json!(rpm(p.omega)));
+                            }
+                            e
+                        })
+                        .collect();
+                    json!({ "mode": i + 1, "line": cv.line, "points": pts })
+                })
+                .collect();
+            v["fixed_axes_modes"] = json!(modes);
+        }
+        None => v["fixed_axes_modes"] = Value::Null,
+    }
+    match (&gc.fixed, &gc.crossings_not_given) {
+        (Some(f), None) => {
+            let crit: Vec<Value> = f
+                .critical_speeds
+                .iter()
+                .map(|k| {
+                    let mut e = json!({ "omega": k.omega, "mode": k.curve + 1, "whirl": k.whirl, "harmonic": k.harmonic, "frequency": k.frequency });
+                    if let (true, Some(o)) = (g.si, e.as_object_mut()) {
+                        o.insert("omega_rad_s".into(), json!(k.omega));
+                        o.insert("omega_rpm".into(), json!(rpm(k.omega)));
+                        o.insert("frequency_hz".into(), json!(k.frequency / tau));
+                    }
+                    e
+                })
+                .collect();
+            v["critical_speeds"] = json!(crit);
+        }
+        (_, why) => {
+            v["critical_speeds"] = Value::Null;
+            v["critical_speeds_not_given"] = json!(why.clone().unwrap_or_default());
+        }
+    }
+    v
+}
+
+/// The tracked lines' part of [`campbell_json`].
+fn lines_json(g: &GeneralRotor, c: &RotorCampbell, omega_max: f64) -> Value {
     let mut v = json!({
         "route": "general",
         "model": c.model,
@@ -131,9 +252,15 @@ fn whirl_name(w: Whirl) -> &'static str {
 
 /// The table of the general Campbell diagram: at five speeds, each mode (one of each conjugate
 /// pair, structural zeros left out) with its rotating-axes and fixed-axes numbers.
-pub fn campbell_table(g: &GeneralRotor, c: &RotorCampbell) -> String {
+pub fn campbell_table(g: &GeneralRotor, gc: &GeneralCampbell) -> String {
+    let c = &gc.diagram;
     let mut s = String::new();
-    let _ = writeln!(s, "Campbell diagram (general route, {} rotor)", c.model);
+    let _ = writeln!(
+        s,
+        "Campbell diagram (general route, {} rotor, balls {})",
+        c.model,
+        if gc.balls == Balls::Locked { "locked at the closed-form balanced position, damping kept" } else { "free" }
+    );
     let _ = writeln!(s, "values: {}", what(c));
     if c.kind == Kind::PeriodicOrbit {
         let _ = writeln!(s, "branch: {FLOQUET_BRANCH}");
@@ -151,18 +278,19 @@ pub fn campbell_table(g: &GeneralRotor, c: &RotorCampbell) -> String {
             continue;
         }
         let hz = if g.si { format!(" {:>11}", "fixed Hz") } else { String::new() };
-        let _ = writeln!(s, "  {:>12} {:>12} {:>10} {:>12}{hz}  {:<9}", "ν", "σ", "log dec", "fixed f", "whirl");
+        let _ = writeln!(s, "  {:>12} {:>12} {:>10} {:>12}{hz}  {:<12} {:<9}", "ν", "σ", "log dec", "fixed f", "group", "whirl");
         let mut pts: Vec<_> = c.lines.iter().filter(|l| kept(l)).filter_map(|l| l.points[k]).filter(|p| !p.structural && p.im >= 0.0).collect();
         pts.sort_by(|a, b| a.fixed_frequency.abs().total_cmp(&b.fixed_frequency.abs()));
         for p in pts {
             let hz = if g.si { format!(" {:>11}", fmt_num(round(p.fixed_frequency / (2.0 * std::f64::consts::PI)))) } else { String::new() };
             let _ = writeln!(
                 s,
-                "  {:>12} {:>12} {:>10} {:>12}{hz}  {:<9}",
+                "  {:>12} {:>12} {:>10} {:>12}{hz}  {:<12} {:<9}",
                 fmt_num(round(p.im)),
                 fmt_num(round(p.re)),
                 p.log_decrement.map_or("—".into(), |d| format!("{d:.4}")),
                 fmt_num(round(p.fixed_frequency)),
+                crate::figures::group_name(p.group),
                 whirl_name(p.whirl)
             );
         }
@@ -172,46 +300,160 @@ pub fn campbell_table(g: &GeneralRotor, c: &RotorCampbell) -> String {
         let first = c.failures.iter().flatten().next().cloned().unwrap_or_default();
         let _ = writeln!(s, "\nno stationary state at {missing} of {n} speeds (first: {first})");
     }
+    s.push_str(&crossings_table(g, gc));
     s
 }
 
-/// The fixed-axes Campbell figure: `|f|` of each mode over speed, forward whirl solid, backward
-/// dashed, and the line `1×Ω`.
-pub fn campbell_plot(g: &GeneralRotor, c: &RotorCampbell, omega_max: f64) -> Plot {
-    let mut series = vec![];
-    let mut top = omega_max;
-    for (i, l) in c.lines.iter().filter(|l| kept(l)).enumerate() {
-        let color = PALETTE[i % PALETTE.len()];
-        for (dir, dashed) in [(Whirl::Forward, false), (Whirl::Backward, true)] {
-            let pts: Vec<(f64, f64)> = l
-                .points
+/// The crossings part of [`campbell_table`] (as the 12-state route's
+/// [`crate::linear::fixed_table`] lists them).
+fn crossings_table(g: &GeneralRotor, gc: &GeneralCampbell) -> String {
+    let mut s = String::new();
+    let hs: Vec<String> = gc.harmonics.iter().map(|h| format!("{h}×")).collect();
+    let _ = writeln!(s, "\ncritical speeds (a mode's natural frequency in fixed axes crosses {}):", hs.join(", "));
+    let f = match (&gc.fixed, &gc.crossings_not_given) {
+        (Some(f), None) => f,
+        (_, why) => {
+            let _ = writeln!(s, "  {}", why.as_deref().unwrap_or("not given"));
+            return s;
+        }
+    };
+    if f.critical_speeds.is_empty() {
+        let _ = writeln!(s, "  none up to {}", speed_text(g, gc.diagram.omega.last().copied().unwrap_or(0.0)));
+    }
+    for (j, k) in f.critical_speeds.iter().enumerate() {
+        let hz = if g.si { format!(" ({} Hz)", fmt_num(round(k.frequency / (2.0 * std::f64::consts::PI)))) } else { String::new() };
+        let _ = writeln!(
+            s,
+            "  {:>2}. {}  mode {}, {}, {}×, frequency {}{hz}",
+            j + 1,
+            speed_text(g, k.omega),
+            k.curve + 1,
+            match k.whirl {
+                autobal::spatial::stability::Whirl::Backward => "backward",
+                _ => "forward",
+            },
+            k.harmonic,
+            fmt_num(round(k.frequency)),
+        );
+    }
+    s
+}
+
+/// The axes of the general route's fixed-axes figure: rpm and Hz on an SI config (speeds in
+/// rad/s), `Ω` and `f/ω0` on a dimensionless one.
+fn fixed_axes_of(g: &GeneralRotor) -> crate::figures::FixedAxes {
+    if g.si {
+        crate::figures::FixedAxes::si(1.0)
+    } else {
+        crate::figures::FixedAxes::dimensionless()
+    }
+}
+
+/// The fixed-axes Campbell figure (`--view fixed`), drawn as the 12-state route draws it
+/// ([`crate::figures::campbell_fixed_plot_in`]): one curve per mode of natural frequency `|f|`,
+/// forward solid, backward dashed, coloured by log decrement, the excitation lines and the
+/// crossings marked (none for Floquet exponents, the title says so).
+pub fn campbell_plot(g: &GeneralRotor, gc: &GeneralCampbell, omega_max: f64) -> Plot {
+    let axes = fixed_axes_of(g);
+    let empty = FixedCampbell { omega: gc.diagram.omega.clone(), curves: vec![], critical_speeds: vec![], harmonics: gc.harmonics.clone() };
+    let mut p = crate::figures::campbell_fixed_plot_in(&axes, gc.fixed.as_ref().unwrap_or(&empty));
+    p.x_range = Some((0.0, axes.kx * omega_max));
+    p.title = format!(
+        "Campbell diagram in fixed axes (general route, {}{}): forward solid, backward dashed, coloured by log decrement",
+        match gc.diagram.kind {
+            Kind::PeriodicOrbit => "Floquet exponents on their branch, no crossings: defined modulo Ω",
+            Kind::Equilibrium => "eigenvalues",
+        },
+        if gc.balls == Balls::Locked { ", balls locked" } else { "" }
+    );
+    p
+}
+
+/// The components view (`--view components`), as the 12-state route's
+/// [`crate::figures::campbell_plots`]: in rotating axes `Im λ` of each kept line (one of each
+/// conjugate pair); in fixed axes its two circular components `Ω + ν` (solid) and `Ω − ν`
+/// (dashed) wherever the component carries at least 10 % of the rotor's motion, one colour and
+/// legend entry per mode ("mode 3: tilt, forward, from …"), the `1×` line, and the `1×`
+/// crossings as vertical lines. Speeds in rad/s (rpm on top) on an SI config.
+pub fn components_plots(g: &GeneralRotor, gc: &GeneralCampbell) -> (Plot, Plot) {
+    use autobal::rotor_campbell::Group;
+    let c = &gc.diagram;
+    let mut rot = vec![];
+    let mut fixed = vec![];
+    let mut shown = 0;
+    for l in c.lines.iter().filter(|l| kept(l)) {
+        let upper: Vec<_> = l.points.iter().flatten().filter(|p| p.im >= 0.0 && !p.structural).collect();
+        if upper.is_empty() {
+            continue;
+        }
+        let count = |gr: Group| upper.iter().filter(|p| p.group == gr).count();
+        let gr = [Group::Translation, Group::Tilt, Group::Balls].into_iter().max_by_key(|&gr| count(gr)).unwrap_or(Group::Translation);
+        let fwd = upper.iter().filter(|p| p.whirl == Whirl::Forward).count();
+        let bwd = upper.iter().filter(|p| p.whirl == Whirl::Backward).count();
+        let whirl = if fwd >= bwd { "forward" } else { "backward" };
+        let pts_r: Vec<(f64, f64)> =
+            l.points.iter().zip(&c.omega).map(|(p, &w)| (w, p.filter(|p| p.im >= 0.0 && !p.structural).map_or(f64::NAN, |p| p.im))).collect();
+        let start = |p: &[(f64, f64)]| p.iter().find(|q| q.1.is_finite()).map(|q| q.1);
+        let Some(from) = start(&pts_r) else { continue };
+        let component = |sign: f64| -> Vec<(f64, f64)> {
+            l.points
                 .iter()
                 .zip(&c.omega)
-                .map(|(p, &w)| match p {
-                    Some(p) if p.whirl == dir && !p.structural => (w, p.fixed_frequency.abs()),
-                    _ => (w, f64::NAN),
+                .map(|(p, &w)| {
+                    let y = p.filter(|p| {
+                        let share = if sign > 0.0 { p.forward_share } else { 1.0 - p.forward_share };
+                        p.im >= 0.0 && !p.structural && p.whirl != Whirl::None && share >= crate::figures::COMPONENT_SHARE
+                    });
+                    (w, y.map_or(f64::NAN, |p| w + sign * p.im))
                 })
-                .collect();
-            if pts.iter().all(|p| p.1.is_nan()) {
-                continue;
+                .collect()
+        };
+        shown += 1;
+        let col = crate::figures::curve_color(shown - 1);
+        let name = format!("mode {shown}: {}, {whirl}, from {}", crate::figures::group_name(gr), crate::num::fmt(from, 3));
+        rot.push(Series::new(name.clone(), pts_r, col));
+        let mut labelled = false;
+        for sign in [1.0, -1.0] {
+            let pts = component(sign);
+            if start(&pts).is_some() {
+                let label = if labelled { String::new() } else { name.clone() };
+                labelled = true;
+                let se = Series::new(label, pts, col).group(format!("mode {shown}"));
+                fixed.push(if sign < 0.0 { se.dashed() } else { se });
             }
-            top = top.max(pts.iter().map(|p| p.1).filter(|v| v.is_finite() && *v <= 4.0 * omega_max).fold(0.0, f64::max));
-            let label = format!("mode {} {}", i + 1, whirl_name(dir));
-            let s = Series::new(label, pts, color).group(format!("mode {}", i + 1));
-            series.push(if dashed { s.dashed() } else { s });
         }
     }
-    series.push(Series::new("1×Ω", vec![(0.0, 0.0), (omega_max, omega_max)], "#888888").dashed());
-    let u = if g.si { "rad/s" } else { "ω0" };
-    Plot {
-        title: format!("Campbell diagram in fixed axes (general route, {})", if c.kind == Kind::PeriodicOrbit { "Floquet exponents" } else { "eigenvalues" }),
-        x_label: if g.si { "speed ω (rad/s)".into() } else { "speed Ω".into() },
-        y_label: format!("natural frequency |f| ({u}); dashed: backward whirl"),
-        series,
-        x_range: Some((0.0, omega_max)),
-        y_range: Some((0.0, 1.05 * top)),
-        ..Default::default()
-    }
+    let w = c.omega.last().copied().unwrap_or(1.0);
+    fixed.push(Series::new("1× (synchronous)", vec![(0.0, 0.0), (w, w)], "#000000").dashed());
+    let vlines: Vec<(f64, String)> = match (&gc.fixed, &gc.crossings_not_given) {
+        (Some(f), None) => f.critical_speeds.iter().filter(|k| k.harmonic == 1).enumerate().map(|(i, k)| (k.omega, format!("1× crossing {}", i + 1))).collect(),
+        _ => vec![],
+    };
+    let (x_label, unit) = if g.si { ("ω (rad/s)", " (rad/s)") } else { ("Ω = ω/ω0", " / ω0") };
+    let x2 = g.si.then(|| crate::plot::SecondAxis { factor: crate::num::RPM_PER_RAD_S, label: "n (rpm)".into() });
+    let floquet = if c.kind == Kind::PeriodicOrbit { " (Floquet exponents: Im ρ on its branch, defined modulo Ω)" } else { "" };
+    (
+        Plot {
+            title: format!("Campbell diagram, rotating axes (general route){floquet}"),
+            x_label: x_label.into(),
+            y_label: format!("Im λ, rotating axes{unit}"),
+            series: rot,
+            vlines: vlines.clone(),
+            x_range: Some((0.0, w)),
+            x2: x2.clone(),
+            ..Default::default()
+        },
+        Plot {
+            title: format!("Campbell diagram, fixed axes: Ω + ν (solid) and Ω − ν (dashed) of each mode (general route){floquet}"),
+            x_label: x_label.into(),
+            y_label: if g.si { "whirl frequency (rad/s)".into() } else { "whirl frequency / ω0".into() },
+            series: fixed,
+            vlines,
+            x_range: Some((0.0, w)),
+            x2,
+            ..Default::default()
+        },
+    )
 }
 
 /// `critical` by the general route: the locked critical speeds, the exact stability ranges and,

@@ -32,6 +32,18 @@
 //! component (`f > 0` forward whirl, `f < 0` backward), the log decrement per fixed-axes cycle
 //! `δ = −2π σ/|f|`. Modes with no rotor motion (the balls alone) have no whirl.
 //!
+//! # Locked balls and the fixed-axes view ([`campbell_locked`], [`fixed_view`])
+//! What the 12-state route ([`crate::spatial::campbell`]) gives, on every configuration:
+//! [`campbell_locked`] is the diagram of the rotor with its balls locked where the closed form
+//! puts them ([`locked_rotor`], damping kept: paper 000's 8-state model on a one-plane config);
+//! [`fixed_view`] turns a diagram into one continuous curve per mode in fixed axes with its log
+//! decrement, and the speeds where a curve crosses an excitation line `h Ω`, bisected on the
+//! stationary state's spectrum (with the balls locked and no damping, the crossings of `1×` are
+//! the critical speeds of eq (16) on a one-plane rotor). Each mode also carries its dominant
+//! coordinate group ([`CampbellPoint::group`]). For a periodic orbit the crossings are not
+//! defined (a Floquet exponent's `Im ρ` is defined modulo `Ω`, so a crossing of `h×` is one of
+//! every other harmonic on another branch) and are not computed.
+//!
 //! # Critical speeds ([`locked_critical_speeds`])
 //! The rotor with its balls **locked** at the closed-form balanced position (each ball becomes
 //! a point mass of the rotor: [`locked_rotor`]) and **without damping** (as 000 eq (16)),
@@ -62,7 +74,11 @@ use crate::analysis::{mode, stability, stationary, stationary_near, Kind, Newton
 use crate::error::{Error, Result};
 use crate::linalg::eigen_dyn::eigenvalues;
 use crate::rotor_stability::{Field, Rotor};
+use crate::spatial::campbell::{CriticalSpeed, FixedCampbell, FixedCurve, FixedPoint};
 use crate::spatial::dynamics::PointMass;
+pub use crate::spatial::linear_model::Balls;
+pub use crate::spatial::stability::Group;
+use crate::spatial::stability::Whirl as FixedWhirl;
 use num_complex::Complex64;
 use serde::Serialize;
 
@@ -102,6 +118,11 @@ pub struct CampbellPoint {
     pub log_decrement: Option<f64>,
     /// A structural eigenvalue (the family of balanced states: 0, multiplier 1), not a mode.
     pub structural: bool,
+    /// The coordinates that carry most of the mode's kinetic energy per unit of `M_s`: the
+    /// translation `|x_ξ|² + |x_η|²`, the tilt `ρ² (|x_δ|² + |x_θ|²)` (`ρ` the rotor's radius
+    /// of gyration) or the balls `Σ_j (m_j/M_s) R_j² |x_ψj|²` (as the 12-state route's
+    /// [`Group`], which weighs the balls' unbalance `s` alike).
+    pub group: Group,
 }
 
 /// One tracked line.
@@ -173,6 +194,7 @@ pub fn spectrum_at(rotor: &Rotor, field: &Field, omega: f64, state: &StationaryS
         // the rotor's share of the mode, in scaled units: below 1e-9 it is a ball mode
         let rotor_amp = pairs.iter().map(|&(a, b, _, _)| (v[a].norm() / scales[a]).max(v[b].norm() / scales[b])).fold(0.0, f64::max);
         let moves = total > 0.0 && rotor_amp > 1e-9 * vmax;
+        let group = group_of(rotor, field, &pairs, &v);
         let share = if moves { fwd / total } else { 0.5 };
         let f = if share >= 0.5 { omega + lam.im } else { omega - lam.im };
         let whirl = if !moves || f == 0.0 {
@@ -191,9 +213,47 @@ pub fn spectrum_at(rotor: &Rotor, field: &Field, omega: f64, state: &StationaryS
             whirl,
             log_decrement: (f.abs() > 0.0).then(|| -2.0 * std::f64::consts::PI * lam.re / f.abs()),
             structural,
+            group,
         });
     }
     Ok(out)
+}
+
+/// The coordinate group of a mode `v` ([`CampbellPoint::group`]): translation (the first
+/// whirl pair), tilt (the second, weighted by the radius of gyration), or the balls (each
+/// angle `ψ_j` weighted by `m_j R_j² / M_s`); ties go to the first.
+fn group_of(rotor: &Rotor, field: &Field, pairs: &[(usize, usize, f64, f64)], v: &[Complex64]) -> Group {
+    let pair = |k: usize| pairs.get(k).map_or(0.0, |&(a, b, _, w)| w * w * (v[a].norm_sqr() + v[b].norm_sqr()));
+    let balls: f64 = ball_coordinates(rotor, field).iter().map(|&(i, w)| w * v[i].norm_sqr()).sum();
+    let (t, c) = (pair(0), pair(1));
+    if balls > t && balls > c {
+        Group::Balls
+    } else if c > t {
+        Group::Tilt
+    } else {
+        Group::Translation
+    }
+}
+
+/// The balls' angle coordinates and their weights `(index, m_j R_j² / M_s)`.
+fn ball_coordinates(rotor: &Rotor, field: &Field) -> Vec<(usize, f64)> {
+    match (rotor, field) {
+        (Rotor::Planar(p), Field::Planar(_)) => {
+            let m = p.total_mass();
+            (0..p.n).map(|j| (2 + j, p.ball_mass(j) * p.r * p.r / m)).collect()
+        }
+        (Rotor::Spatial(r), Field::Spatial(s)) => {
+            let m = r.total_mass();
+            let start = s.coords() - r.balls();
+            r.planes
+                .iter()
+                .flat_map(|p| std::iter::repeat_n(p.ball_mass * p.race_radius * p.race_radius / m, p.n))
+                .enumerate()
+                .map(|(j, w)| (start + j, w))
+                .collect()
+        }
+        _ => vec![],
+    }
 }
 
 /// The rotor's circular coordinate pairs `(a, b, sign, weight)`: the whirl is `x_a + i sign x_b`
@@ -698,4 +758,368 @@ pub fn stationary_at(rotor: &Rotor, omega: f64) -> Result<(Field, StationaryStat
     let guess = Rotor::guess(&f).unwrap_or_else(|| vec![0.0; f.dim()]);
     let s = stationary(&f, &guess, &newton_options(f.period().is_some())).map_err(|e| Error::invalid("speeds", e.to_string()))?;
     Ok((f, s))
+}
+
+/// The stationary state of the rotor the diagram is of (`rotor` itself with its balls free, or
+/// [`locked_rotor`] at `omega`, damping kept, with them locked) and its spectrum at `omega`
+/// ([`spectrum_at`]); `near` is a state to start Newton from where the closed form fails (the
+/// previous speed's), `hint` that state's monodromy matrix.
+fn state_and_spectrum(
+    rotor: &Rotor,
+    balls: Balls,
+    omega: f64,
+    near: Option<&StationaryState>,
+) -> std::result::Result<(StationaryState, Vec<CampbellPoint>), String> {
+    let reason = |e: Error| match e {
+        Error::InvalidParameter { reason, .. } => reason,
+        e => e.to_string(),
+    };
+    let of = match balls {
+        Balls::Free => rotor.clone(),
+        Balls::Locked => locked_rotor(rotor, omega, false).map_err(reason)?,
+    };
+    let f = of.field(omega).map_err(reason)?;
+    let opts = newton_options(f.period().is_some());
+    let guess = match balls {
+        Balls::Free => Rotor::guess(&f),
+        // the locked rotor has no balls left: its balanced state is the centred rotor (or, with
+        // gravity, its sag), reached by Newton from rest
+        Balls::Locked => Rotor::guess(&f).or_else(|| Some(vec![0.0; f.dim()])),
+    };
+    let hint = near.and_then(|p| p.monodromy.clone());
+    let mut result = Err(reason(no_balance(rotor)));
+    for start in [guess, near.map(|p| p.x.clone())].into_iter().flatten() {
+        match stationary_near(&f, &start, hint.as_deref(), &opts) {
+            Ok(s) => {
+                result = Ok(s);
+                break;
+            }
+            Err(e) => result = Err(e.to_string()),
+        }
+    }
+    let s = result?;
+    let p = spectrum_at(&of, &f, omega, &s).map_err(reason)?;
+    Ok((s, p))
+}
+
+/// The Campbell diagram of `rotor` with its balls **locked** (`--balls locked`): at each speed
+/// the balls are fixed where the closed form puts them at that speed and become point masses of
+/// the rotor ([`locked_rotor`], damping kept), and the spectrum is that of the locked rotor's
+/// stationary state (the centred rotor, or its sag and once-per-revolution motion under
+/// gravity or on supports that differ by direction: Floquet exponents, [`FLOQUET_BRANCH`]),
+/// tracked into lines as [`campbell_over_speed`] does. With one plane, supports equal in every
+/// direction and no gravity this is paper 000's 8-state locked model (eq (6) without the ball
+/// rows, the exact inertia tensor of the locked composite rotor). A speed without a balanced
+/// state to lock the balls in (too little capacity) has no point, with the reason in
+/// [`RotorCampbell::failures`].
+pub fn campbell_locked(rotor: &Rotor, speeds: &[f64]) -> Result<RotorCampbell> {
+    if speeds.is_empty() {
+        return Err(Error::invalid("speeds", "no speed to analyse"));
+    }
+    if let Some(w) = speeds.iter().find(|w| !(w.is_finite() && **w != 0.0)) {
+        return Err(Error::invalid("speeds", format!("{w} is not a finite non-zero speed")));
+    }
+    // the kind: the locked rotor's field turns with the rotor where the supports differ by
+    // direction or gravity acts across the axis (whether or not the balls can be locked)
+    let kind = match locked_rotor(rotor, speeds[0], false) {
+        Ok(l) => l.field(speeds[0])?.period(),
+        Err(_) => rotor.field(speeds[0])?.period(),
+    }
+    .map_or(Kind::Equilibrium, |_| Kind::PeriodicOrbit);
+    let mut previous: Option<StationaryState> = None;
+    let mut per_speed = Vec::with_capacity(speeds.len());
+    let mut failures = Vec::with_capacity(speeds.len());
+    for &w in speeds {
+        match state_and_spectrum(rotor, Balls::Locked, w, previous.as_ref()) {
+            Ok((s, p)) => {
+                previous = Some(s);
+                per_speed.push(Some(p));
+                failures.push(None);
+            }
+            Err(e) => {
+                previous = None;
+                per_speed.push(None);
+                failures.push(Some(e));
+            }
+        }
+    }
+    Ok(RotorCampbell { model: rotor.model_name(), kind, omega: speeds.to_vec(), lines: track(&per_speed), failures })
+}
+
+/// `|Im λ|` at most this times `max(1, |λ|)` counts as a real eigenvalue (QR round-off).
+const REAL_TOL: f64 = 1e-9;
+/// `|g| = ||f| − hΩ|` at most this times `max(1, hΩ)` counts as on the excitation line (as
+/// [`crate::spatial::campbell`]: a linear crossing is then located to ~1e-10 relative by the
+/// band's midpoint; at a split critical speed, `g ~ sqrt(Ω − Ω_K)`, to the square of that).
+const ON_LINE_TOL: f64 = 1e-10;
+/// Bisection stops at this width relative to `max(1, Ω)`.
+const BISECT_TOL: f64 = 1e-13;
+/// Entry and exit of an excitation line closer than this (relative) are one crossing.
+const MERGE_TOL: f64 = 1e-9;
+
+/// The fixed-axes view of a general-route Campbell diagram `c` of `rotor` (computed with
+/// `balls`), as [`crate::spatial::campbell::fixed_axes`] gives it for paper 000's 12-state
+/// model and with its types: one continuous curve of natural frequency `|f|` in fixed axes per
+/// pair of conjugate lines (the kept line of each pair found by 2-colouring the graph of lines
+/// that are conjugate somewhere; structural zeros and speeds without a state left out), the
+/// followed component `f = Ω ± ν` the dominant one unless the other continues the curve better
+/// by more than two speed steps, `δ = −2π σ/|f|` per fixed-axes cycle, and the crossings with
+/// the excitation lines `h Ω` for each `h` of `harmonics`, located by bisection on the
+/// stationary state's spectrum recomputed at each trial speed (to `1e-13` relative; the ends of
+/// a run along the line, as between split critical speeds, both reported).
+///
+/// **Periodic orbits**: the Floquet exponents' imaginary parts are defined modulo `Ω`, so
+/// `|f| = hΩ` for one harmonic is `|f| = h'Ω` on another branch: crossings are not defined, and
+/// `critical_speeds` is empty (the commands say so); the curves are drawn on the branch of
+/// [`FLOQUET_BRANCH`].
+pub fn fixed_view(rotor: &Rotor, balls: Balls, c: &RotorCampbell, harmonics: &[u32]) -> Result<FixedCampbell> {
+    if let Some(h) = harmonics.iter().find(|&&h| h == 0) {
+        return Err(Error::invalid("harmonics", format!("must be positive integers, got {h}")));
+    }
+    let n = c.omega.len();
+    if c.lines.iter().any(|l| l.points.len() != n) || c.failures.len() != n {
+        return Err(Error::invalid("campbell", "every line needs one entry per speed"));
+    }
+    let nl = c.lines.len();
+    let at = |i: usize, k: usize| c.lines[i].points[k].filter(|p| !p.structural);
+    let z = |p: &CampbellPoint| Complex64::new(p.re, p.im);
+    let is_real = |p: &CampbellPoint| p.im.abs() <= REAL_TOL * z(p).norm().max(1.0);
+    let conj = |i: usize, j: usize, k: usize| match (at(i, k), at(j, k)) {
+        (Some(a), Some(b)) if !is_real(&a) && !is_real(&b) => (z(&b) - z(&a).conj()).norm() <= 1e-7 * (1.0 + z(&a).norm()),
+        _ => false,
+    };
+    let mut edges: Vec<Vec<usize>> = vec![vec![]; nl];
+    for i in 0..nl {
+        for j in i + 1..nl {
+            if (0..n).any(|k| conj(i, j, k)) {
+                edges[i].push(j);
+                edges[j].push(i);
+            }
+        }
+    }
+    // the kept colour of each component: the one with more points of Im λ ≥ 0
+    let mut colour: Vec<Option<bool>> = vec![None; nl];
+    let mut component = vec![0usize; nl];
+    let mut dropped = vec![false; nl];
+    let up = |l: usize| (0..n).filter_map(|k| at(l, k)).filter(|p| p.im >= 0.0).count() as i64;
+    for start in 0..nl {
+        if colour[start].is_some() {
+            continue;
+        }
+        colour[start] = Some(true);
+        component[start] = start;
+        let mut members = vec![start];
+        let mut q = 0;
+        while q < members.len() {
+            let i = members[q];
+            q += 1;
+            for &j in &edges[i] {
+                if colour[j].is_none() {
+                    colour[j] = Some(!colour[i].unwrap_or(true));
+                    component[j] = start;
+                    members.push(j);
+                }
+            }
+        }
+        if members.len() > 1 {
+            let score: i64 = members.iter().map(|&l| if colour[l] == Some(true) { up(l) } else { -up(l) }).sum();
+            for &l in &members {
+                dropped[l] = (colour[l] == Some(true)) != (score >= 0);
+            }
+        }
+    }
+    // (curve, the speed index of each of its points)
+    let mut curves: Vec<(FixedCurve, Vec<usize>)> = vec![];
+    for (li, &left_out) in dropped.iter().enumerate() {
+        if left_out {
+            continue;
+        }
+        let mut pts: Vec<FixedPoint> = vec![];
+        let mut idx = vec![];
+        for k in 0..n {
+            let Some(m) = at(li, k) else { continue };
+            let w = c.omega[k];
+            let cand = [(w + m.im, m.forward_share), (w - m.im, 1.0 - m.forward_share)];
+            let dominant = if m.forward_share >= 0.5 { 0 } else { 1 };
+            let pick = match pts.len() {
+                0 => dominant,
+                len => {
+                    let prev = pts[len - 1].fixed_frequency;
+                    let pred = if len >= 2 {
+                        let (w1, w2) = (pts[len - 2].omega, pts[len - 1].omega);
+                        prev + (prev - pts[len - 2].fixed_frequency) * (w - w2) / (w2 - w1).max(1e-300)
+                    } else {
+                        prev
+                    };
+                    let h = (w - pts[len - 1].omega).abs();
+                    let d = |i: usize| (cand[i].0 - pred).abs();
+                    if d(dominant) > d(1 - dominant) + 2.0 * h {
+                        1 - dominant
+                    } else {
+                        dominant
+                    }
+                }
+            };
+            let (f, share) = cand[pick];
+            let mut sigma = m.re;
+            if is_real(&m) {
+                // the real eigenvalues of the component left out here: their decay counts
+                for j in (0..nl).filter(|&j| dropped[j] && component[j] == component[li]) {
+                    if let Some(p) = at(j, k).filter(|p| is_real(p)) {
+                        sigma = sigma.max(p.re);
+                    }
+                }
+            }
+            let whirl = if f > 0.0 {
+                FixedWhirl::Forward
+            } else if f < 0.0 {
+                FixedWhirl::Backward
+            } else {
+                pts.last().map_or(FixedWhirl::Forward, |p| p.whirl)
+            };
+            pts.push(FixedPoint {
+                omega: w,
+                frequency: f.abs(),
+                fixed_frequency: f,
+                whirl,
+                re: sigma,
+                nu: m.im,
+                log_decrement: (f.abs() >= 1e-12 * w.abs().max(1.0)).then(|| -2.0 * std::f64::consts::PI * sigma / f.abs()),
+                share,
+            });
+            idx.push(k);
+        }
+        if !pts.is_empty() {
+            curves.push((FixedCurve { line: li, points: pts }, idx));
+        }
+    }
+    curves.sort_by(|a, b| a.0.points[0].frequency.total_cmp(&b.0.points[0].frequency).then(a.0.line.cmp(&b.0.line)));
+    let mut crit = vec![];
+    if c.kind == Kind::Equilibrium {
+        for &h in harmonics {
+            for (ci, (cv, idx)) in curves.iter().enumerate() {
+                let ctx = Crossing { rotor, balls, c, cv, idx, h };
+                ctx.crossings(ci, &mut crit)?;
+            }
+        }
+    }
+    crit.sort_by(|a: &CriticalSpeed, b| a.omega.total_cmp(&b.omega));
+    Ok(FixedCampbell { omega: c.omega.clone(), curves: curves.into_iter().map(|c| c.0).collect(), critical_speeds: crit, harmonics: harmonics.to_vec() })
+}
+
+/// One curve's crossings with `h Ω` ([`fixed_view`]).
+struct Crossing<'a> {
+    rotor: &'a Rotor,
+    balls: Balls,
+    c: &'a RotorCampbell,
+    cv: &'a FixedCurve,
+    /// The speed index in `c` of each point of the curve.
+    idx: &'a [usize],
+    h: u32,
+}
+
+impl Crossing<'_> {
+    /// Sign of `g = |f| − hΩ` with the on-line band: −1, 0 or 1.
+    fn side(&self, f: f64, omega: f64) -> i8 {
+        let target = self.h as f64 * omega;
+        let g = f.abs() - target;
+        if g.abs() <= ON_LINE_TOL * target.max(1.0) {
+            0
+        } else if g > 0.0 {
+            1
+        } else {
+            -1
+        }
+    }
+
+    /// The curve's signed frequency at `w` between its points `k` and `k + 1`: the eigenvalue
+    /// of the stationary state at `w` nearest the line's interpolated one, its component with
+    /// the share nearest the interpolated share of the followed component (the nearer frequency
+    /// where the two shares are within 0.1 of ½).
+    fn frequency_at(&self, k: usize, w: f64) -> Result<f64> {
+        let (p0, p1) = (&self.cv.points[k], &self.cv.points[k + 1]);
+        let t = if p1.omega != p0.omega { (w - p0.omega) / (p1.omega - p0.omega) } else { 0.0 };
+        let line = &self.c.lines[self.cv.line];
+        let lam = |i: usize| line.points[self.idx[i]].map_or(Complex64::new(0.0, 0.0), |p| Complex64::new(p.re, p.im));
+        let guess = lam(k) * (1.0 - t) + lam(k + 1) * t;
+        let f_guess = p0.fixed_frequency * (1.0 - t) + p1.fixed_frequency * t;
+        let (_, pts) = state_and_spectrum(self.rotor, self.balls, w, None)
+            .map_err(|e| Error::invalid("campbell", format!("no stationary state at {w} to locate a critical speed: {e}")))?;
+        let m = pts
+            .iter()
+            .filter(|p| !p.structural)
+            .min_by(|a, b| (Complex64::new(a.re, a.im) - guess).norm().total_cmp(&(Complex64::new(b.re, b.im) - guess).norm()))
+            .ok_or_else(|| Error::invalid("campbell", format!("no eigenvalue at {w}")))?;
+        let share_guess = p0.share * (1.0 - t) + p1.share * t;
+        let cand = [(w + m.im, m.forward_share), (w - m.im, 1.0 - m.forward_share)];
+        let pick = if (2.0 * m.forward_share - 1.0).abs() > 0.2 {
+            usize::from((cand[0].1 - share_guess).abs() > (cand[1].1 - share_guess).abs())
+        } else {
+            usize::from((cand[0].0 - f_guess).abs() > (cand[1].0 - f_guess).abs())
+        };
+        Ok(cand[pick].0)
+    }
+
+    /// Bisection between points `k` and `k + 1` for the end of side `keep` (from the left), or
+    /// mirrored (`from_left = false`) for the start of the right-hand point's side.
+    fn bisect(&self, k: usize, keep: i8, from_left: bool) -> Result<f64> {
+        let (mut lo, mut hi) = (self.cv.points[k].omega, self.cv.points[k + 1].omega);
+        while hi - lo > BISECT_TOL * hi.abs().max(1.0) {
+            let mid = 0.5 * (lo + hi);
+            if mid <= lo || mid >= hi {
+                break;
+            }
+            let s = self.side(self.frequency_at(k, mid)?, mid);
+            if (s == keep) == from_left {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        Ok(0.5 * (lo + hi))
+    }
+
+    /// The crossings of the curve (number `ci`) with `h Ω`, appended to `out` (as
+    /// [`crate::spatial::campbell`]): each step of the curve where the side of `g` changes
+    /// gives the end of the old side and the start of the new one; two ends closer than the
+    /// on-line band of a linear crossing are one crossing at their midpoint.
+    fn crossings(&self, ci: usize, out: &mut Vec<CriticalSpeed>) -> Result<()> {
+        let pts = &self.cv.points;
+        let h = self.h as f64;
+        let g = |k: usize| pts[k].frequency - h * pts[k].omega;
+        let sides: Vec<i8> = pts.iter().map(|p| self.side(p.fixed_frequency, p.omega)).collect();
+        let mut ends: Vec<(f64, FixedWhirl, f64)> = vec![];
+        for k in 0..pts.len().saturating_sub(1) {
+            // a gap in the curve (speeds without a state) is not bracketed
+            if self.idx[k + 1] != self.idx[k] + 1 {
+                continue;
+            }
+            let (a, b) = (sides[k], sides[k + 1]);
+            if a == b {
+                continue;
+            }
+            let slope = ((g(k + 1) - g(k)) / (pts[k + 1].omega - pts[k].omega)).abs().max(1e-3);
+            let band = ON_LINE_TOL * (h * pts[k + 1].omega).max(1.0) / slope;
+            let first_run = sides[..=k].iter().all(|&s| s == 0);
+            let last_run = sides[k + 1..].iter().all(|&s| s == 0);
+            if a != 0 && !last_run {
+                ends.push((self.bisect(k, a, true)?, pts[k].whirl, band));
+            }
+            if b != 0 && !first_run {
+                ends.push((self.bisect(k, b, false)?, pts[k + 1].whirl, band));
+            }
+        }
+        let mut i = 0;
+        while i < ends.len() {
+            let (t1, whirl, band) = ends[i];
+            let (t, step) = if i + 1 < ends.len() && ends[i + 1].0 - t1 <= 2.0 * band.max(ends[i + 1].2) + MERGE_TOL * t1.abs().max(1.0) {
+                (0.5 * (t1 + ends[i + 1].0), 2)
+            } else {
+                (t1, 1)
+            };
+            out.push(CriticalSpeed { omega: t, harmonic: self.h, curve: ci, whirl, frequency: h * t });
+            i += step;
+        }
+        Ok(())
+    }
 }

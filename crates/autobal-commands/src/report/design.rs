@@ -9,6 +9,13 @@
 //! `.h_s` of a dimensionless one) and the speed (`speed_rpm`, or `omega`), so a map's row at the
 //! config's value is the stability section's margin line. A dimensional map's growth rate is
 //! `max Re λ · ω0` in 1/s, with the `ω0 = sqrt(c_x/M_s)` of each column (a ball's mass moves it).
+//!
+//! A config that model does not represent (two planes, gravity, supports that differ by
+//! direction, a planar rotor) gets the same maps by the general map
+//! ([`autobal::rotor_map::general_map`], the one `autobal map` runs for it) on the rotor as
+//! given: the stationary state (an equilibrium, or the periodic orbit of the revolution) and its
+//! eigenvalues or Floquet multipliers at every cell; the planar rotor over its ball mass and
+//! drag (`planar.m3`, `planar.c_psi`).
 
 use super::{rotor::operating_vlines, Ctx, Section};
 use crate::map::{Axis, MapResult, Quantity};
@@ -84,6 +91,9 @@ fn designs(spec: &SpatialSpec, si: bool) -> (Vec<Design>, Vec<String>) {
 }
 
 pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
+    if crate::general::needs_general_route(&ctx.root) {
+        return general(ctx);
+    }
     let Some(cfg) = &ctx.spatial else {
         return Ok(Some(Section::not_applicable(
             "design",
@@ -182,4 +192,159 @@ fn map(spec: &SpatialSpec, x: Axis, y: Axis, balls: Balls, control: &autobal::co
         true
     })?;
     Ok(MapResult { x, y, rows, quantity: Quantity::Margin })
+}
+
+/// Grid of the general maps per axis: (equilibrium, periodic orbit), full and quick; 0: not
+/// drawn. A periodic orbit's cell is a shooting over one revolution with its variational
+/// equations (measured on examples/spatial_two_plane.toml: 3 maps of 21 x 21 cost 90 s of CPU
+/// in a dev build), so the quick report leaves those maps out and says so.
+const GENERAL_N: [(usize, usize); 2] = [(121, 41), (21, 0)];
+
+/// A number of the config by its path (`balancer.z`), if it is one.
+fn number(root: &toml::Table, path: &str) -> Option<f64> {
+    let (table, key) = path.split_once('.')?;
+    match root.get(table)?.get(key)? {
+        toml::Value::Float(v) => Some(*v),
+        toml::Value::Integer(v) => Some(*v as f64),
+        _ => None,
+    }
+}
+
+/// The design maps of the rotor as given, by the general map (module docs).
+fn general(ctx: &Ctx) -> Result<Option<Section>> {
+    use autobal::rotor_map::{general_map, Verdict};
+    let g = crate::general::rotor_of(&ctx.root)?;
+    let planar = matches!(g.rotor, autobal::rotor_stability::Rotor::Planar(_));
+    let periodic = g.rotor.is_periodic();
+    let mut s = Section::new("design", "Design maps: balancer position, ball mass, ball drag");
+    let what = autobal::config::ignored_by_linear_model(&ctx.root);
+    s.p(format!(
+        "The exact stability of the {} over the speed and one design parameter at a time, the others the config's, by the general map on the rotor as given{} (what <code>autobal map</code> computes for this config): at every cell the stationary state from the nonlinear equations and its {}. Colour: the {} (blue stable, red unstable, white near zero, square-root scale on each side), per unit {}; solid black: the stability boundary; the vertical line is the config's value{}; blank: no stationary state found there (too little ball mass to cancel the unbalance) or a row not computed.",
+        if periodic { "stationary periodic orbit" } else { "balanced state" },
+        if planar { " (the planar rotor)".to_string() } else if what.is_empty() { String::new() } else { format!(" (with {})", super::esc(&what.join(", "))) },
+        if periodic { "Floquet multipliers (monodromy matrix over a revolution)" } else { "eigenvalues (exact Jacobian)" },
+        if periodic { "largest Floquet exponent ln|μ|/T" } else { "largest real part of the eigenvalues" },
+        if planar { "time (1/s)" } else if g.si { "τ = ω0 t (ω0 of the column's rotor)" } else { "τ = ω0 t" },
+        if planar { "" } else { ", the horizontal one the operating speed" }
+    ));
+    let omega_max = crate::general::default_omega_max(&g, &ctx.root)?;
+    let n = {
+        let (full, quick) = GENERAL_N[usize::from(periodic)];
+        if ctx.quick {
+            quick
+        } else {
+            full
+        }
+    };
+    // the speed axis: rpm for an SI spatial config, else `omega` (Ω; rad/s for the planar rotor)
+    let (ykey, yk) = if g.si && !planar { ("speed_rpm", RPM_PER_RAD_S) } else { ("omega", 1.0) };
+    let mut list = vec![];
+    let mut skipped = vec![];
+    let get = |p: &str| number(&ctx.root, p).filter(|v| v.is_finite());
+    if planar {
+        for (path, title, what, lo, hi) in [
+            ("planar.m3", "Design map: ball mass × speed", "over the mass of one ball, from a quarter to three times the config's", 0.25, 3.0),
+            ("planar.c_psi", "Design map: ball drag × speed", "over the drag on the balls, from a tenth to five times the config's", 0.1, 5.0),
+        ] {
+            match get(path) {
+                Some(v) if v > 0.0 => list.push(Design { path, lo: lo * v, hi: hi * v, title, what }),
+                _ => skipped.push(format!("{path}: zero or not given; a map around zero has no scale")),
+            }
+        }
+    } else {
+        let spec = ctx.spatial.as_ref().map(|c| &c.spec);
+        match spec {
+            Some(spec) => {
+                let (l, sk) = designs(spec, g.si);
+                list = l;
+                skipped = sk;
+            }
+            None => skipped.push("the config's balancer parameters could not be read".into()),
+        }
+    }
+    let op = if planar {
+        None
+    } else {
+        autobal::config::spatial(&ctx.root).ok().and_then(|c| c.analysis.operating_speed).map(|[a, b]| [a * g.omega0, b * g.omega0])
+    };
+    if n == 0 {
+        s.p(format!(
+            "Not drawn in the quick report: the stationary state is a periodic orbit, and each cell of a map costs a shooting over one revolution; the full report draws {} × {} cells, <code>autobal map</code> any grid.",
+            GENERAL_N[1].0, GENERAL_N[1].0
+        ));
+        list.clear();
+    }
+    for d in list {
+        let x = Axis { key: d.path.into(), lo: d.lo, hi: d.hi, n };
+        let y = Axis { key: ykey.into(), lo: 0.02 * omega_max * yk, hi: omega_max * yk, n };
+        let mut rows: Vec<Option<Vec<autobal::rotor_map::GeneralCell>>> = vec![None; y.n];
+        let outcome = general_map(&ctx.root, &x.to_library(), &y.to_library(), None, &ctx.control, &mut |j, cells| {
+            rows[j] = Some(cells.to_vec());
+            true
+        });
+        if let Err(e) = outcome {
+            s.p(format!("{}: not computed ({}).", d.title, super::esc(&e.to_string())));
+            continue;
+        }
+        let complete = rows.iter().all(|r| r.is_some());
+        s.complete &= complete;
+        let cells: Vec<Option<Vec<crate::map::Cell>>> = rows
+            .iter()
+            .map(|r| {
+                r.as_ref()
+                    .map(|r| r.iter().map(|c| crate::map::Cell { margin: c.margin, stable: c.verdict == Some(Verdict::Stable), necessary: false }).collect())
+            })
+            .collect();
+        let r = MapResult { x, y, rows: cells, quantity: Quantity::Margin };
+        let mut p = crate::map::plot(&r, d.title);
+        // no 003 necessary condition off the 12-state model
+        p.series.retain(|se| se.label != "003 necessary boundary");
+        if let Some(h) = p.heatmap.as_mut() {
+            // cells without a stationary state stay blank
+            for (zr, kr) in h.z.iter_mut().zip(&rows) {
+                if let Some(kr) = kr {
+                    for (z, c) in zr.iter_mut().zip(kr) {
+                        if c.verdict.is_none() {
+                            *z = f64::NAN;
+                        }
+                    }
+                }
+            }
+            h.label = format!("{} ({}; < 0 stable)", if periodic { "largest Floquet exponent" } else { "max Re λ" }, if planar { "1/s" } else { "per unit τ" });
+        }
+        if planar {
+            p.y_label = "speed ω (rad/s)".into();
+        }
+        if let Some(v) = get(d.path) {
+            p.vlines.push((v, "this rotor".into()));
+        }
+        for (yv, label) in operating_vlines(op, yk) {
+            p.series.push(Series::new(label, vec![(d.lo, yv), (d.hi, yv)], "#E69F00").width(1.5));
+        }
+        s.figure(
+            format!("design_{}", d.path.replace('.', "_")),
+            p,
+            format!(
+                "Stability map {} and the speed{}, by the general route on the rotor as given.{}",
+                d.what,
+                if ykey == "speed_rpm" {
+                    " (rpm)"
+                } else if planar {
+                    " (rad/s)"
+                } else {
+                    " (Ω)"
+                },
+                if complete { "" } else { " <b>Interrupted: grey rows were not computed.</b>" }
+            ),
+        );
+    }
+    for why in skipped {
+        s.p(format!("Not drawn: {}.", super::esc(&why)));
+    }
+    s.p(format!(
+        "Other parameters: <code>autobal map --config FILE --x PATH=LO:HI:N --y {ykey}={}:{}:{n}</code> (docs/stability.md lists the paths).",
+        fmt(0.02 * omega_max * yk, 4),
+        fmt(omega_max * yk, 4)
+    ));
+    Ok(Some(s))
 }

@@ -1,7 +1,10 @@
 //! Section "Your rotor": the config's spatial rotor (papers 000/003 model): parameters,
 //! composite inertia, critical speeds, sensitivity criterion, autobalancing ranges and the
 //! signed response of the balancer plane. With a dimensional config, speeds are given in rad/s
-//! and rpm and the response in mm.
+//! and rpm and the response in mm. A config that model does not represent (two planes, gravity,
+//! supports that differ by direction, a planar rotor) also gets the critical speeds of the rotor
+//! as given, by the general route (`autobal critical`'s locked critical speeds), which the
+//! summary quotes; the 000/003 numbers stay, labelled as the one-plane model's.
 
 use super::{Ctx, Section};
 use crate::num::{fmt, grouped, speed, RPM_PER_RAD_S};
@@ -65,14 +68,91 @@ pub fn operating_vlines(op: Option<[f64; 2]>, k: f64) -> Vec<(f64, String)> {
     }
 }
 
+/// The critical speeds of the rotor as the config gives it, by the general route
+/// ([`autobal::rotor_campbell::locked_critical_speeds`], as `autobal critical` computes them for
+/// this config): a subsection, and the summary's line when `summary`.
+fn general_critical(ctx: &Ctx, s: &mut Section, summary: bool) -> Result<()> {
+    let g = crate::general::rotor_of(&ctx.root)?;
+    let omega_max = crate::general::default_omega_max(&g, &ctx.root)?;
+    let speed = |w: f64| {
+        if g.si {
+            format!("{} rpm ({} rad/s)", grouped(w * RPM_PER_RAD_S, 0), fmt(w, 5))
+        } else {
+            format!("Ω = {}", fmt(w, 5))
+        }
+    };
+    s.h3("rotor-critical-general", "Critical speeds of the rotor as given (general route)");
+    let what: Vec<String> = autobal::config::ignored_by_linear_model(&ctx.root);
+    s.p(format!(
+        "The {} rotor as the config gives it{}, its balls locked where they balance it (point masses of the rotor) and no damping: the speeds up to {} where a natural frequency in fixed axes equals the speed, from the exact Jacobian of its nonlinear equations (what <code>autobal critical</code> prints for this config).",
+        g.rotor.model_name(),
+        if what.is_empty() { String::new() } else { format!(" (with {})", super::esc(&what.join(", "))) },
+        speed(omega_max)
+    ));
+    let line = match autobal::rotor_campbell::locked_critical_speeds(&g.rotor, omega_max, 2000) {
+        Ok(l) => {
+            autobal::limits::check_finite("critical.locked", &l)?;
+            let rows: Vec<Vec<String>> = l
+                .speeds
+                .iter()
+                .enumerate()
+                .map(|(i, k)| {
+                    let mut r = vec![format!("{}", i + 1)];
+                    if g.si {
+                        r.push(fmt(k.omega, 6));
+                        r.push(grouped(k.omega * RPM_PER_RAD_S, 0));
+                    } else {
+                        r.push(fmt(k.omega, 6));
+                    }
+                    r.push(name(&k.whirl));
+                    r.push(name(&k.motion));
+                    r.push(k.multiplicity.to_string());
+                    r
+                })
+                .collect();
+            if rows.is_empty() {
+                s.p(format!("None up to {}.", speed(omega_max)));
+            } else if g.si {
+                s.table(&["", "ω (rad/s)", "n (rpm)", "whirl", "motion", "multiplicity (–)"], &rows);
+            } else {
+                s.table(&["", "Ω (–)", "whirl", "motion", "multiplicity (–)"], &rows);
+            }
+            if l.unlocked > 0 {
+                s.p(format!("{} of {} speeds of the grid have no balanced state to lock the balls in and were not searched.", l.unlocked, l.samples));
+            }
+            let list: Vec<String> = l.speeds.iter().map(|k| speed(k.omega).split(" (").next().unwrap_or_default().to_string()).collect();
+            format!(
+                "Critical speeds of the rotor as given (balls held at balance, general route): {}.",
+                if list.is_empty() { format!("none up to {}", speed(omega_max)) } else { list.join(", ") }
+            )
+        }
+        Err(e @ autobal::Error::NoLinearisation { .. }) => {
+            s.p(format!("Not located: {}.", super::esc(&e.to_string())));
+            "Critical speeds of the rotor as given: not defined by one frequency (its linearisation turns in fixed and in rotating axes); see the Floquet Campbell diagram of the stability section.".into()
+        }
+        Err(e) => return Err(e.into()),
+    };
+    if summary {
+        s.summary.push(line);
+    }
+    Ok(())
+}
+
+/// The name of a value whose JSON is a string (`forward`, `translation`, …).
+fn name<T: serde::Serialize>(v: &T) -> String {
+    serde_json::to_value(v).ok().and_then(|v| v.as_str().map(str::to_string)).unwrap_or_default()
+}
+
 pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
     let Some(cfg) = &ctx.spatial else {
-        return Ok(Some(Section::not_applicable(
-            "rotor",
-            "Your rotor",
-            "the critical speeds and autobalancing ranges (papers 000/003) need a spatial rotor ([rotor], [supports], [unbalance], [balancer] or [dimensionless]); this config has only a [planar] rotor, analysed in the passage and stability sections",
-        )));
+        // a planar rotor: what the general route gives (papers 000/003's analyses need a
+        // spatial rotor)
+        let mut s = Section::new("rotor", "Your rotor (planar config)");
+        s.p("The config's planar rotor (paper 004 model). The parameters, critical speeds, sensitivity criterion and autobalancing ranges of papers 000/003 need a spatial rotor; its balanced state's stability over speed is the next section, its run the section on the rotor's passage.");
+        general_critical(ctx, &mut s, ctx.kind == super::Kind::User)?;
+        return Ok(Some(s));
     };
+    let general = crate::general::needs_general_route(&ctx.root);
     let m = &cfg.model;
     let w0 = m.scale.map(|s| s.omega0);
     let mut s = Section::new("rotor", if cfg.dimensional { "Your rotor (dimensional config)" } else { "Your rotor (dimensionless config)" });
@@ -144,9 +224,22 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
         &[vec![fmt(ci.a_sigma, 5), fmt(ci.c_sigma, 5), fmt(ci.a_c1, 5), fmt(ci.a_c2, 5), fmt(ci.delta_a, 4)]],
     );
 
-    s.h3("rotor-critical", "Critical speeds");
+    if general {
+        general_critical(ctx, &mut s, ctx.kind == super::Kind::User)?;
+    }
+    s.h3("rotor-critical", if general { "Critical speeds of the one-plane model (000)" } else { "Critical speeds" });
     let cs = critical_speeds(m);
-    s.p("Exact roots of Δ1Δ2 = 0 (000, eq (16)) beside the approximations (18) symmetric, (19) near-symmetric and (20) small anisotropy.");
+    s.p(format!(
+        "Exact roots of Δ1Δ2 = 0 (000, eq (16)) beside the approximations (18) symmetric, (19) near-symmetric and (20) small anisotropy.{}",
+        if general {
+            format!(
+                " <b>Of the one-plane rotor of papers 000/003, which leaves out {}</b>: the critical speeds of the rotor as given are above.",
+                super::esc(&autobal::config::ignored_by_linear_model(&ctx.root).join(", "))
+            )
+        } else {
+            String::new()
+        }
+    ));
     let rows: Vec<Vec<String>> = cs
         .speeds
         .iter()
@@ -184,7 +277,7 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
         cs.table1_count
     ));
 
-    if ctx.kind == super::Kind::User {
+    if ctx.kind == super::Kind::User && !general {
         let list: Vec<String> = cs
             .speeds
             .iter()

@@ -8,7 +8,8 @@
 //! the operating speed in the summary, and the operating speed marked; a config that paper 000's
 //! 12-state model does not represent (two planes, gravity, supports that differ by direction,
 //! a planar rotor; [`crate::general::needs_general_route`]) is analysed as given by the general
-//! route ([`crate::general::analyse`]), as `autobal stability` does.
+//! route ([`crate::general::analyse`]), as `autobal stability` does, with its Campbell diagrams
+//! by the general route ([`crate::general_campbell`], as `autobal campbell` draws them).
 
 use super::{rotor::ranges_text_in, Ctx, Section};
 use crate::figures::{campbell_plots, margin_plot, omega_limit, with_layout, SpeedUnit};
@@ -158,8 +159,68 @@ fn general_route(ctx: &Ctx) -> Result<Option<Section>> {
         p.x2 = Some(crate::plot::SecondAxis { factor: crate::num::RPM_PER_RAD_S, label: "n (rpm)".into() });
     }
     s.figure("stability_margin", p, "The stationary state's margin over speed by the general route (largest Re λ, or largest Floquet exponent for a periodic orbit), the stable ranges shaded and the operating speed marked.");
+    general_campbell(ctx, &g, omega_max, op, &mut s)?;
     Ok(Some(s))
 }
+
+/// Speeds of the report's general-route Campbell diagram: an equilibrium costs a Newton solve
+/// and an eigenvalue problem per speed, a periodic orbit a shooting over a revolution.
+fn general_campbell_points(periodic: bool, quick: bool) -> usize {
+    match (periodic, quick) {
+        (false, false) => 240,
+        (false, true) => 120,
+        (true, false) => 40,
+        (true, true) => 16,
+    }
+}
+
+/// The Campbell diagrams of the user's rotor as given, by the general route (as `autobal
+/// campbell` draws them for this config: the fixed-axes view with its `1×` crossings, and the
+/// components view), the operating speed marked.
+fn general_campbell(ctx: &Ctx, g: &crate::general::GeneralRotor, omega_max: f64, op: Option<[f64; 2]>, s: &mut Section) -> Result<()> {
+    use autobal::analysis::Kind;
+    let points = general_campbell_points(g.rotor.is_periodic(), ctx.quick);
+    s.h3("campbell", "Campbell diagrams");
+    let c = crate::general_campbell::campbell(g, omega_max, points)?;
+    let periodic = c.diagram.kind == Kind::PeriodicOrbit;
+    s.p(format!(
+        "The {} of the stationary state at {points} speeds, balls free, by the general route (what <code>autobal campbell</code> computes for this config){}.",
+        if periodic { "Floquet exponents" } else { "eigenvalues" },
+        if periodic {
+            format!(
+                "; a Floquet exponent's imaginary part is defined modulo the speed Ω, so the curves are drawn on one branch ({}) and <b>no crossing speeds are given</b>: the critical speeds of the locked rotor are in the section above where they are defined",
+                super::esc(autobal::rotor_campbell::FLOQUET_BRANCH)
+            )
+        } else {
+            String::new()
+        }
+    ));
+    let kx = if g.si { crate::num::RPM_PER_RAD_S } else { 1.0 };
+    if let (Some(f), None) = (&c.fixed, &c.crossings_not_given) {
+        let speed = |w: f64| if g.si { format!("{} rpm", crate::num::grouped(w * kx, 0)) } else { format!("Ω = {}", fmt(w, 4)) };
+        let list: Vec<String> = f.critical_speeds.iter().filter(|k| k.harmonic == 1).map(|k| speed(k.omega)).collect();
+        s.p(format!(
+            "Speeds where a mode's natural frequency in fixed axes crosses 1× (bisected on the spectrum; the balls free, damping kept): {}.",
+            if list.is_empty() { "none on the axis".to_string() } else { list.join(", ") }
+        ));
+    }
+    let mut modes = crate::general_campbell::campbell_plot(g, &c, omega_max);
+    modes.vlines.extend(super::rotor::operating_vlines(op, kx));
+    let (mut rot, mut fixed) = crate::general_campbell::components_plots(g, &c);
+    for p in [&mut rot, &mut fixed] {
+        p.vlines.extend(super::rotor::operating_vlines(op, 1.0));
+    }
+    s.figure(
+        "campbell_modes",
+        modes,
+        "Campbell diagram as engineers read it (general route): one curve per mode of natural frequency in fixed axes (forward whirl solid, backward dashed), coloured by log decrement, the 1x line and its crossings marked (none for Floquet exponents).",
+    );
+    s.figure("campbell_fixed", fixed, CAMPBELL_FIXED_GENERAL_CAPTION);
+    s.figure("campbell_rotating", rot, "Campbell diagram in rotating axes (general route): Im λ of each tracked eigenvalue, or Im ρ of each Floquet exponent on its branch (the frequency seen from the rotor).");
+    Ok(())
+}
+
+const CAMPBELL_FIXED_GENERAL_CAPTION: &str = "Campbell diagram in fixed axes (general route): a mode whirls in fixed axes at Ω + ν (solid) and Ω − ν (dashed), ν its frequency seen from the rotor; a component is drawn where it carries at least 10 % of the rotor's motion. Legend: the coordinates that carry most of the mode's kinetic energy and its whirl. Also drawn: the synchronous 1× line and its crossings.";
 
 const CAMPBELL_FIXED_CAPTION: &str = "Campbell diagram in fixed axes: whirl frequency of each tracked eigenvalue (forward above zero, backward below; legend: the motion that dominates the mode and its whirl). A mode whirls in fixed axes at Ω + ν (solid) and Ω − ν (dashed), ν its frequency seen from the rotor; a component is drawn where it carries at least 10 % of the mode's motion, so curves start and stop where a whirl turns circular. Clicking a legend entry hides both components. Also drawn: the synchronous 1× line, and the analytic critical speeds K1-K4 of the locked rotor. Where a mode crosses 1× near a K line the locked rotor is at a critical speed.";
 
