@@ -8,6 +8,7 @@ use crate::general::GeneralRotor;
 use crate::plot::{Plot, Series, PALETTE};
 use anyhow::Result;
 use autobal::analysis::Kind;
+use autobal::control::Control;
 use autobal::error::fmt_num;
 use autobal::rotor_campbell::{campbell_over_speed, locked_critical_speeds, LockedCriticalSpeeds, RotorCampbell, Whirl, FLOQUET_BRANCH};
 use autobal::rotor_stability::{speed_grid, stability_over_speed, Rotor, RotorStability};
@@ -75,7 +76,12 @@ pub fn speeds(omega_max: f64, points: usize) -> Vec<f64> {
 }
 
 /// The Campbell diagram of the general route, its numbers checked finite once.
-pub fn campbell(g: &GeneralRotor, omega_max: f64, points: usize) -> Result<RotorCampbell> {
+pub fn campbell(g: &GeneralRotor, omega_max: f64, points: usize, control: &Control) -> Result<RotorCampbell> {
+    // the library's scan takes the control when it is wired (rotor_campbell); until then it
+    // is asked before the scan
+    if let Some(why) = control.should_stop() {
+        anyhow::bail!("{why} before the Campbell scan");
+    }
     let c = campbell_over_speed(&g.rotor, &speeds(omega_max, points))?;
     autobal::limits::check_finite("campbell", &c)?;
     Ok(c)
@@ -230,7 +236,12 @@ pub struct GeneralCritical {
 }
 
 /// Run `critical` by the general route over `(0, omega_max]`.
-pub fn critical(root: &Table, g: &GeneralRotor, omega_max: f64) -> Result<GeneralCritical> {
+pub fn critical(root: &Table, g: &GeneralRotor, omega_max: f64, control: &Control) -> Result<GeneralCritical> {
+    // the library's scans take the control when it is wired (rotor_campbell, rotor_stability);
+    // until then it is asked before them
+    if let Some(why) = control.should_stop() {
+        anyhow::bail!("{why} before the critical speeds");
+    }
     let locked = match locked_critical_speeds(&g.rotor, omega_max, 2000) {
         Ok(l) => Ok(l),
         Err(e @ autobal::Error::NoLinearisation { .. }) => Err(e.to_string()),
