@@ -2,8 +2,9 @@
 //! `autobal-commands`, which reads the config, runs the library's analyses and writes tables,
 //! JSON, figures and the HTML report.
 
+use autobal_commands::command::{check_speed, Command as _, ConfigSource, Output, Route};
 use autobal_commands::{
-    any_config, config, figures, general, general_campbell, linear, linear_rotor, map, outfile, output, parquet, report, sim, spatial_sim, sweep, term,
+    basins, campbell, config, critical, inertia, linear, linear_rotor, map, outfile, parquet, ranges, report, sim, spatial_sim, stability, sweep, term,
 };
 
 use anyhow::Result;
@@ -63,6 +64,13 @@ struct Common {
     set: Vec<String>,
 }
 
+impl Common {
+    /// The config a command reads (once).
+    fn source(&self) -> ConfigSource {
+        ConfigSource::file(self.config.as_deref(), &self.set)
+    }
+}
+
 #[derive(Args, Clone)]
 struct LinearArgs {
     /// Upper end of the speed axis: a speed with its unit (1500rpm, "157 rad/s", 25Hz) for a
@@ -92,12 +100,6 @@ impl From<BallsArg> for autobal::spatial::linear_model::Balls {
 }
 
 #[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
-enum RouteArg {
-    Auto,
-    General,
-}
-
-#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
 enum QuantityArg {
     Margin,
     Verdict,
@@ -124,7 +126,7 @@ enum Command {
         /// route (locked critical speeds from the nonlinear equations' linearisation, exact
         /// stability ranges); `general`: the general route always
         #[arg(long, value_enum, default_value = "auto")]
-        route: RouteArg,
+        route: Route,
         /// Upper end of the general route's speed axis (a speed with its unit, or a bare Ω)
         #[arg(long, allow_negative_numbers = true, value_name = "SPEED")]
         omega_max: Option<String>,
@@ -157,7 +159,7 @@ enum Command {
         /// the general route (the nonlinear equations: planar rotor, two planes, couple,
         /// direction-dependent supports, gravity); `general`: the general route always
         #[arg(long, value_enum, default_value = "auto")]
-        route: RouteArg,
+        route: Route,
     },
     /// Campbell diagram: eigenvalues along Ω, tracked, with whirl direction and dominant motion
     Campbell {
@@ -188,7 +190,7 @@ enum Command {
         /// route (eigenvalues, or Floquet exponents of the periodic orbit, of the nonlinear
         /// equations' exact linearisation); `general`: the general route always
         #[arg(long, value_enum, default_value = "auto")]
-        route: RouteArg,
+        route: Route,
     },
     /// Stability map over two parameters: margin heatmap with exact and necessary boundaries (SVG, PNG, CSV)
     Map {
@@ -226,7 +228,7 @@ enum Command {
         /// route (the stationary state of the nonlinear equations: planar rotor, two planes,
         /// couple, direction-dependent supports, gravity); `general`: the general route always
         #[arg(long, value_enum, default_value = "auto")]
-        route: RouteArg,
+        route: Route,
     },
     /// Simulate in time: the planar rotor of paper 004 ([planar]) or the spatial rotor of 000/003 (the analytic commands' config plus [drive])
     Simulate {
@@ -328,92 +330,34 @@ impl Command {
 
 fn run(cli: Cli, control: &Control) -> Result<()> {
     match cli.command {
-        Command::Inertia { common, format } => {
-            // every spatial config: nothing is ignored (supports and gravity are not part of the
-            // rotor's mass); a planar config is refused with one line
-            let (root, source) = config::read_set(common.config.as_deref(), &common.set)?;
-            let (json, table) = any_config::inertia(&root, &source)?;
-            emit(format, json, table)
-        }
-        Command::Critical { common, format, route, omega_max } => {
-            let (root, _) = config::read_set(common.config.as_deref(), &common.set)?;
-            if route == RouteArg::General || general::needs_general_route(&root) {
-                let g = general::rotor_of(&root)?;
-                config::check_entries(&root, "critical", &[config::simulation_model(&root)])?;
-                let w = general_campbell::omega_max(&root, &g, omega_max.as_deref())?;
-                let c = general_campbell::critical(&root, &g, w)?;
-                return emit(format, general_campbell::critical_json(&g, &c), general_campbell::critical_table(&g, &c));
-            }
-            if omega_max.is_some() {
-                anyhow::bail!("--omega-max: only the general route (--route general) takes a speed axis; eq (16) gives every critical speed");
-            }
-            let cfg = config::load_analytic("critical", common.config.as_deref(), &common.set)?;
-            output::check_results(&cfg)?;
-            emit(format, output::critical_json(&cfg), output::critical_table(&cfg))
-        }
-        Command::Ranges { common, format } => {
-            // 003's necessary ranges where they are defined, the exact ones (general route where
-            // the one-plane model does not describe the config) always
-            let (root, source) = config::read_set(common.config.as_deref(), &common.set)?;
-            for n in config::bare_speed_notes(&root) {
-                term::note(&n);
-            }
-            let (json, table) = any_config::ranges(&root, &source)?;
-            emit(format, json, table)
-        }
+        Command::Inertia { common, format } => show(&inertia::Args { config: common.source() }.run(control)?, format),
+        Command::Critical { common, format, route, omega_max } => show(&critical::Args { config: common.source(), route, omega_max }.run(control)?, format),
+        Command::Ranges { common, format } => show(&ranges::Args { config: common.source() }.run(control)?, format),
         Command::Stability { common, format, lin, samples, svg, route } => {
-            let (root, _) = linear_rotor::read_set(common.config.as_deref(), &common.set)?;
-            if linear_rotor::is_linear(&root) {
-                return run_linear_rotor_stability(&root, common.config.as_deref(), format, lin, samples, svg);
-            }
-            if route == RouteArg::General || general::needs_general_route(&root) {
-                return run_general_stability(&root, format, lin, samples, svg);
-            }
-            let samples = samples.unwrap_or(2000);
-            let cfg = config::load_analytic("stability", common.config.as_deref(), &common.set)?;
-            let w = linear::omega_max(&cfg, lin.omega_max.as_deref())?;
-            if lin.omega_max.is_some() {
-                check_speed("--omega-max", w)?;
-            }
-            if !(10..=1_000_000).contains(&samples) {
-                anyhow::bail!("--samples: must lie between 10 and 1000000, got {samples}");
-            }
-            let svg = svg.map(|p| outfile::resolve(&p, "stability.svg"));
-            if let Some(p) = &svg {
-                outfile::Outputs::new().inputs(common.config.as_deref()).output("--svg", p).check()?;
-            }
-            let c = linear::compare(&cfg.model, w, samples, lin.balls.into())?;
-            autobal::limits::check_finite("stability", &c.exact)?;
-            if let Some(p) = svg {
-                outfile::write_atomic("--svg", &p, figures::margin_plot(&cfg.model, &c).to_svg())?;
-            }
-            emit(format, linear::stability_json(&cfg, &c, lin.balls.into()), linear::stability_table(&cfg, &c, lin.balls.into()))
+            // the output is checked before the run
+            let svg: Vec<(PathBuf, &str)> = svg.map(|p| (outfile::resolve(&p, "stability.svg"), "stability_margin")).into_iter().collect();
+            check_outputs(common.config.as_deref(), "--svg", &svg)?;
+            let args = stability::Args { config: common.source(), omega_max: lin.omega_max, balls: lin.balls.into(), samples, route };
+            let out = args.run(control)?;
+            write_figures(&out, "--svg", &svg, "not yet drawn for a linear rotor config (use --format json)")?;
+            show(&out, format)
         }
         Command::Campbell { common, format, lin, points, svg, view, harmonics, route } => {
-            let (root, _) = config::read_set(common.config.as_deref(), &common.set)?;
-            if route == RouteArg::General || general::needs_general_route(&root) {
-                return run_general_campbell(&root, format, lin, points, svg, view, &harmonics);
-            }
-            let points = points.unwrap_or(300);
-            let cfg = config::load_analytic("campbell", common.config.as_deref(), &common.set)?;
-            let w = linear::omega_max(&cfg, lin.omega_max.as_deref())?;
-            if lin.omega_max.is_some() {
-                check_speed("--omega-max", w)?;
-            }
-            if !(3..=10_000_000).contains(&points) {
-                anyhow::bail!("--points: must lie between 3 and 10000000, got {points}");
-            }
-            let svg = svg.map(|p| outfile::resolve(&p, "campbell"));
-            if let Some(p) = &svg {
-                let mut o = outfile::Outputs::new();
-                o.inputs(common.config.as_deref());
-                for path in linear::campbell_svg_paths(p, view) {
-                    o.output("--svg", &path);
-                }
-                o.check()?;
-            }
-            let harmonics = linear::check_harmonics(&harmonics)?;
-            linear::run_campbell(&cfg, w, points, lin.balls.into(), format == Format::Json, svg.as_deref(), view, &harmonics, control)
+            let svg = svg.map(|p| campbell::svg_files(&outfile::resolve(&p, "campbell"), view)).unwrap_or_default();
+            check_outputs(common.config.as_deref(), "--svg", &svg)?;
+            let args = campbell::Args {
+                config: common.source(),
+                omega_max: lin.omega_max,
+                balls: lin.balls.into(),
+                points,
+                harmonics,
+                view,
+                route,
+                json: format == Format::Json,
+            };
+            let out = args.run(control)?;
+            write_figures(&out, "--svg", &svg, "not drawn for this config")?;
+            show(&out, format)
         }
         Command::Map { common, x, y, omega, balls, quantity, out, threads, boundary, route } => {
             run_map(common, x, y, omega, balls, quantity, out, threads, boundary, route, control)
@@ -430,7 +374,22 @@ fn run(cli: Cli, control: &Control) -> Result<()> {
         }
         Command::Sweep(a) => sweep::run(a, control),
         Command::Merge(a) => sweep::merge(a, control),
-        Command::Basins { config, set, n, out, format, threads } => run_basins(config, set, n, out, format, threads, control),
+        Command::Basins { config, set, n, out, format, threads } => {
+            set_threads(threads)?;
+            // checked before the grid is computed
+            let path = outfile::resolve(&out, "basins.csv");
+            outfile::Outputs::new().inputs(config.as_deref()).output("--out", &path).check()?;
+            let (shown, bar) = term::progress_bar(control);
+            let result = basins::Args { config: ConfigSource::file(config.as_deref(), &set), n }.run(&shown);
+            if let Some(b) = bar {
+                b.finish_and_clear();
+            }
+            let mut o = result?;
+            // whole or not at all (an interrupted grid keeps its complete runs, and says so)
+            outfile::write_atomic("--out", &path, o.csv())?;
+            o.written = Some(path);
+            show(&o, format)
+        }
         Command::Report { common, out, quick, papers } => {
             // the folder is created and checked before any section runs
             outfile::Outputs::new().inputs(common.config.as_deref()).output("--out", &out.join("index.html")).check()?;
@@ -441,73 +400,50 @@ fn run(cli: Cli, control: &Control) -> Result<()> {
     }
 }
 
-/// `campbell` by the general route ([`general_campbell`]): any planar or spatial config, the
-/// balls free or locked, either view, the crossings with `--harmonics`.
-fn run_general_campbell(
-    root: &toml::Table,
-    format: Format,
-    lin: LinearArgs,
-    points: Option<usize>,
-    svg: Option<PathBuf>,
-    view: linear::CampbellView,
-    harmonics: &[u32],
-) -> Result<()> {
-    let g = general::rotor_of(root)?;
-    config::check_entries(root, "campbell", &[config::simulation_model(root)])?;
-    let points = points.unwrap_or(if g.rotor.is_periodic() { 60 } else { 300 });
-    if !(3..=100_000).contains(&points) {
-        anyhow::bail!("--points: must lie between 3 and 100000 on the general route, got {points}");
-    }
-    let harmonics = linear::check_harmonics(harmonics)?;
-    let w = general_campbell::omega_max(root, &g, lin.omega_max.as_deref())?;
-    let svg = svg.map(|p| linear::campbell_svg_paths(&outfile::resolve(&p, "campbell"), view));
-    if let Some(paths) = &svg {
-        let mut o = outfile::Outputs::new();
-        for p in paths {
-            o.output("--svg", p);
+/// Print a command's output on stdout in `format` (the JSON streamed where the output streams
+/// it); an output cut short (Ctrl-C) is then an error saying what was kept.
+fn show(out: &impl Output, format: Format) -> Result<()> {
+    match format {
+        Format::Json => {
+            use std::io::Write;
+            let stdout = std::io::stdout();
+            let mut lock = stdout.lock();
+            out.write_json(&mut lock)?;
+            lock.flush()?;
         }
-        o.check()?;
+        Format::Table => term::print(&out.table()?)?,
     }
-    let c = general_campbell::campbell_with(&g, w, points, lin.balls.into(), &harmonics)?;
-    if let Some(paths) = &svg {
-        let plots = match view {
-            linear::CampbellView::Fixed => vec![general_campbell::campbell_plot(&g, &c, w)],
-            linear::CampbellView::Components => {
-                let (rot, fixed) = general_campbell::components_plots(&g, &c);
-                vec![rot, fixed]
-            }
-        };
-        for (p, plot) in paths.iter().zip(plots) {
-            outfile::write_atomic("--svg", p, plot.to_svg())?;
-        }
+    match out.stopped() {
+        Some(why) => Err(anyhow::anyhow!(why)),
+        None => Ok(()),
     }
-    emit(format, general_campbell::campbell_json(&g, &c, w), general_campbell::campbell_table(&g, &c))
 }
 
-/// `stability` by the general route ([`general`]): any planar or spatial config.
-fn run_general_stability(root: &toml::Table, format: Format, lin: LinearArgs, samples: Option<usize>, svg: Option<PathBuf>) -> Result<()> {
-    if lin.balls == BallsArg::Locked {
-        anyhow::bail!("--balls locked: the general route analyses the balls free (use the closed-form route of a one-plane config for the locked rotor)");
+/// Check the files a command will write (`(path, figure id)`), before it runs.
+fn check_outputs(config: Option<&std::path::Path>, flag: &str, files: &[(PathBuf, &str)]) -> Result<()> {
+    if files.is_empty() {
+        return Ok(());
     }
-    let g = general::rotor_of(root)?;
-    config::check_entries(root, "stability", &[config::simulation_model(root)])?;
-    // a periodic orbit costs a shooting (the variational equations over a revolution) per speed
-    let samples = samples.unwrap_or(general::default_samples(&g));
-    if !(10..=1_000_000).contains(&samples) {
-        anyhow::bail!("--samples: must lie between 10 and 1000000, got {samples}");
+    let mut o = outfile::Outputs::new();
+    o.inputs(config);
+    for (p, _) in files {
+        o.output(flag, p);
     }
-    // rad/s: a speed with its unit on an SI config, a bare number times the unit of its speeds
-    // (ω0 of a spatial config, 1 rad/s of a planar one): general_campbell::omega_max's reading,
-    // shared with campbell, critical and Python
-    let omega_max = match lin.omega_max.as_deref() {
-        Some(t) => general_campbell::omega_max(root, &g, Some(t))?,
-        None => general::default_omega_max(&g, root)?,
-    };
-    let r = general::analyse(&g, omega_max, samples)?;
-    if let Some(p) = svg {
-        general::write_svg(&g, &r, omega_max, &p)?;
+    o.check()
+}
+
+/// Write the output's figures named in `files` as SVG (`missing`: why a figure the output does
+/// not have is not drawn).
+fn write_figures(out: &impl Output, flag: &str, files: &[(PathBuf, &str)], missing: &str) -> Result<()> {
+    if files.is_empty() {
+        return Ok(());
     }
-    emit(format, general::json(&g, &r, omega_max), general::table(&g, &r, omega_max))
+    let figures = out.figures()?;
+    for (path, id) in files {
+        let f = figures.iter().find(|f| f.id == *id).ok_or_else(|| anyhow::anyhow!("{flag}: {missing}"))?;
+        outfile::write_atomic(flag, path, f.plot.to_svg())?;
+    }
+    Ok(())
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -521,11 +457,11 @@ fn run_map(
     out: PathBuf,
     threads: Option<usize>,
     boundary: bool,
-    route: RouteArg,
+    route: Route,
     control: &Control,
 ) -> Result<()> {
     let (root, source) = config::read_set(common.config.as_deref(), &common.set)?;
-    if route == RouteArg::General || general::needs_general_route(&root) {
+    if route.is_general(&root) {
         if balls == BallsArg::Locked {
             anyhow::bail!("--balls locked: the general route maps the balls free (use the 12-state route of a one-plane config for the locked rotor)");
         }
@@ -563,12 +499,7 @@ fn run_map(
             check_speed(&format!("{flag} {}", a.key), a.hi * k / sc.omega0)?;
         }
     }
-    if let Some(t) = threads {
-        if t == 0 {
-            anyhow::bail!("--threads: must be at least 1");
-        }
-        rayon::ThreadPoolBuilder::new().num_threads(t).build_global().ok();
-    }
+    set_threads(threads)?;
     let out = term::out_stem(&outfile::resolve(&out, "stability-map"), &["csv", "svg", "png"]);
     let csv_path = term::with_suffix(&out, "csv");
     let boundary_path = PathBuf::from(format!("{}_boundary.csv", out.display()));
@@ -772,40 +703,6 @@ fn run_spatial(
     Ok(())
 }
 
-/// `stability` on a linear rotor config ([`linear_rotor`]).
-fn run_linear_rotor_stability(
-    root: &toml::Table,
-    config: Option<&std::path::Path>,
-    format: Format,
-    lin: LinearArgs,
-    samples: Option<usize>,
-    svg: Option<PathBuf>,
-) -> Result<()> {
-    if lin.balls == BallsArg::Locked {
-        anyhow::bail!("--balls locked: a linear rotor is analysed with its balls free");
-    }
-    if svg.is_some() {
-        anyhow::bail!("--svg: not yet drawn for a linear rotor config (use --format json)");
-    }
-    let dir = config.and_then(|p| p.parent()).unwrap_or(std::path::Path::new("."));
-    let cfg = linear_rotor::from_table(root, dir)?;
-    let samples = samples.unwrap_or(if cfg.rotor.is_isotropic() { 200 } else { 50 });
-    if !(10..=1_000_000).contains(&samples) {
-        anyhow::bail!("--samples: must lie between 10 and 1000000, got {samples}");
-    }
-    let omega_max = match lin.omega_max {
-        Some(t) => {
-            let s = autobal::units::parse_speed("--omega-max", &t)?;
-            let w = s.value * s.unit.rad_s().ok_or_else(|| anyhow::anyhow!("--omega-max: give a speed with its unit (rad/s, rpm, Hz) for a linear rotor"))?;
-            check_speed("--omega-max", w)?;
-            w
-        }
-        None => linear_rotor::default_omega_max(&cfg)?,
-    };
-    let (r, red) = linear_rotor::stability(&cfg, omega_max, samples)?;
-    emit(format, linear_rotor::stability_json(&cfg, &r, &red, omega_max)?, linear_rotor::stability_table(&cfg, &r, &red, omega_max)?)
-}
-
 /// `simulate` on a linear rotor config ([`linear_rotor`]).
 fn run_linear_rotor_simulate(
     root: &toml::Table,
@@ -840,30 +737,15 @@ fn run_linear_rotor_simulate(
     Ok(())
 }
 
-fn run_basins(config: Option<PathBuf>, set: Vec<String>, n: usize, out: PathBuf, format: Format, threads: Option<usize>, control: &Control) -> Result<()> {
-    let (root, source) = config::read_set(config.as_deref(), &set)?;
-    let sim = spatial_sim::build(&root, &source)?;
-    config::check_entries(&root, "basins", &[config::Model::Spatial])?;
+/// `--threads`: the global pool's size (at least 1; default all cores).
+fn set_threads(threads: Option<usize>) -> Result<()> {
     if let Some(t) = threads {
         if t == 0 {
             anyhow::bail!("--threads: must be at least 1");
         }
         rayon::ThreadPoolBuilder::new().num_threads(t).build_global().ok();
     }
-    // checked before the grid is computed
-    let out = outfile::resolve(&out, "basins.csv");
-    outfile::Outputs::new().inputs(config.as_deref()).output("--out", &out).check()?;
-    let progress = std::io::IsTerminal::is_terminal(&std::io::stderr());
-    let v = spatial_sim::run_basins(&sim, n, &out, progress, control)?;
-    let table = format!(
-        "{} of {} runs balanced ({:.1} %), {:.2} s; wrote {}\n",
-        v["balanced"],
-        v["runs"],
-        100.0 * v["fraction_balanced"].as_f64().unwrap_or(0.0),
-        v["wall_time_s"].as_f64().unwrap_or(0.0),
-        out.display()
-    );
-    emit(format, v, table)
+    Ok(())
 }
 
 /// The two axes of a map or sweep must set different fields (else one would silently win).
@@ -871,16 +753,6 @@ fn distinct_axes(x: &str, y: Option<&str>) -> Result<()> {
     if y == Some(x) {
         anyhow::bail!("--y {x}: the same key as --x; give the second axis another field");
     }
-    Ok(())
-}
-
-/// A dimensionless speed option (`--omega`, `--omega-max`): finite, ≥ 0 and within the range of
-/// `analysis.omega_max`.
-fn check_speed(flag: &str, w: f64) -> Result<()> {
-    if w == 0.0 && !flag.ends_with("--omega-max") {
-        return Ok(());
-    }
-    autobal::limits::check_as(flag, "analysis.omega_max", w)?;
     Ok(())
 }
 

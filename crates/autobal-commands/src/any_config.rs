@@ -17,6 +17,7 @@
 use crate::general;
 use crate::output;
 use anyhow::{bail, Result};
+use autobal::control::Control;
 use autobal::spatial::ranges::SpeedRange;
 use serde_json::{json, Value};
 use std::fmt::Write;
@@ -58,9 +59,10 @@ fn ranges_of(v: &Value) -> Vec<SpeedRange> {
 }
 
 /// `autobal ranges` of `root`: the JSON and the table.
-pub fn ranges(root: &Table, source: &str) -> Result<(Value, String)> {
+/// The general route's scan runs under `control`.
+pub fn ranges(root: &Table, source: &str, control: &Control) -> Result<(Value, String)> {
     if general::needs_general_route(root) {
-        return ranges_general(root, source);
+        return ranges_general(root, source, control);
     }
     let cfg = crate::config::build(root, source)?;
     output::check_results(&cfg)?;
@@ -88,10 +90,10 @@ fn not_defined(root: &Table) -> String {
     format!("{} (003's conditions are those of the rotor of papers 000/003: one plane of point-mass balls, static unbalance, supports equal in x and y, no gravity)", keys.join(", "))
 }
 
-fn ranges_general(root: &Table, source: &str) -> Result<(Value, String)> {
+fn ranges_general(root: &Table, source: &str, control: &Control) -> Result<(Value, String)> {
     let g = general::rotor_of(root)?;
     let omega_max = general::default_omega_max(&g, root)?;
-    let r = general::analyse(&g, omega_max, general::default_samples(&g))?;
+    let r = general::analyse(&g, omega_max, general::default_samples(&g), control)?;
     let why = not_defined(root);
     let model =
         if autobal::config::is_spatial(root) { autobal::reports::inertia(&autobal::config::spatial(root)?, source)["model"].clone() } else { Value::Null };

@@ -107,15 +107,6 @@ pub fn load(path: Option<&std::path::Path>, sets: &[String]) -> Result<Config> {
     build(&root, &source)
 }
 
-/// `load` for the analytic `command` (the linear model), checking that every entry is used
-/// ([`check_entries`]).
-pub fn load_analytic(command: &str, path: Option<&std::path::Path>, sets: &[String]) -> Result<Config> {
-    let (root, source) = read_set(path, sets)?;
-    let cfg = build(&root, &source)?;
-    check_entries(&root, command, &[Model::Linear])?;
-    Ok(cfg)
-}
-
 pub use autobal::config::Model;
 
 /// The warning of an analytic `command` (`critical`, `map`, `report`, ...) on a config with

@@ -15,6 +15,7 @@
 //! The other commands draw no figure ([`COMMANDS_WITH_FIGURES`]). Every function takes the
 //! [`Control`] the long computations run under (the front end's Ctrl-C).
 
+use crate::command::{Command as _, ConfigSource, Output as _};
 use crate::config;
 use crate::map::{Axis, Quantity};
 use crate::plot::Plot;
@@ -22,7 +23,7 @@ use anyhow::{bail, Result};
 use autobal::control::Control;
 use autobal::spatial::linear_model::Balls;
 use serde::Deserialize;
-use serde_json::{json, Value};
+use serde_json::Value;
 use toml::Table;
 
 /// The commands whose results have figures, in the CLI's order.
@@ -55,20 +56,19 @@ pub struct Options {
     pub quick: Option<bool>,
     /// `report --papers`.
     pub papers: Option<bool>,
+    /// `stability`, `campbell --route`: `auto` (default) or `general`.
+    pub route: Option<String>,
 }
 
-/// One figure: its id (the report's figure id, or the command's) and its description.
-pub struct Figure {
-    pub id: String,
-    pub plot: Plot,
-}
-
-impl Figure {
-    /// `{"id", "title", "figure"}`, the figure as Plotly JSON (`{data, layout}`).
-    pub fn to_json(&self) -> Value {
-        json!({"id": self.id, "title": self.plot.title, "figure": self.plot.to_plotly()})
+fn route(o: &Options) -> Result<crate::command::Route> {
+    match o.route.as_deref().unwrap_or("auto") {
+        "auto" => Ok(crate::command::Route::Auto),
+        "general" => Ok(crate::command::Route::General),
+        r => bail!("route: must be \"auto\" or \"general\", got \"{r}\""),
     }
 }
+
+pub use crate::command::Figure;
 
 fn balls(o: &Options) -> Result<Balls> {
     match o.balls.as_deref().unwrap_or("free") {
@@ -88,42 +88,38 @@ pub fn figures_json(command: &str, root: &Table, source: &str, o: &Options, cont
 pub fn figures(command: &str, root: &Table, source: &str, o: &Options, control: &Control) -> Result<Vec<Figure>> {
     let fig = |id: &str, plot: Plot| Figure { id: id.to_string(), plot };
     match command {
+        // the commands' own outputs: the figures the CLI writes, by construction
         "stability" => {
-            let b = balls(o)?;
-            if crate::general::needs_general_route(root) {
-                if b == Balls::Locked {
-                    bail!("balls: the general route analyses the balls free");
-                }
-                let g = crate::general::rotor_of(root)?;
-                let samples = o.samples.unwrap_or(if g.rotor.is_periodic() { 50 } else { 200 });
-                let omega_max = general_omega_max(root, &g, o.omega_max.as_deref())?;
-                let r = crate::general::analyse(&g, omega_max, samples)?;
-                return Ok(vec![fig("stability_margin", crate::general::margin_plot(&g, &r, omega_max))]);
+            let args = crate::stability::Args {
+                config: ConfigSource::tables(root.clone(), source),
+                omega_max: o.omega_max.clone(),
+                balls: balls(o)?,
+                samples: o.samples,
+                route: route(o)?,
+            };
+            let out = args.run(control)?;
+            let figs = out.figures()?;
+            if figs.is_empty() {
+                bail!("stability: no figure yet for a linear rotor config");
             }
-            let cfg = config::build(root, source)?;
-            let w = crate::linear::omega_max(&cfg, o.omega_max.as_deref())?;
-            let samples = o.samples.unwrap_or(2000);
-            if !(10..=1_000_000).contains(&samples) {
-                bail!("samples: must lie between 10 and 1000000, got {samples}");
-            }
-            let c = crate::linear::compare(&cfg.model, w, samples, b)?;
-            autobal::limits::check_finite("stability", &c.exact)?;
-            Ok(vec![fig("stability_margin", crate::figures::margin_plot(&cfg.model, &c))])
+            Ok(figs)
         }
         "campbell" => {
-            let b = balls(o)?;
-            let cfg = config::build(root, source)?;
-            let w = crate::linear::omega_max(&cfg, o.omega_max.as_deref())?;
-            let points = o.points.unwrap_or(300);
-            if !(3..=crate::linear::PLOT_SPEEDS).contains(&points) {
-                bail!("points: the figures take between 3 and {} speeds, got {points}", crate::linear::PLOT_SPEEDS);
+            let args = crate::campbell::Args {
+                config: ConfigSource::tables(root.clone(), source),
+                omega_max: o.omega_max.clone(),
+                balls: balls(o)?,
+                points: o.points,
+                harmonics: o.harmonics.clone().unwrap_or_else(|| vec![1]),
+                json: false,
+                route: route(o)?,
+                ..Default::default()
+            };
+            let out = args.run(control)?;
+            if let Some(why) = out.stopped() {
+                bail!("{why}");
             }
-            let harmonics = crate::linear::check_harmonics(o.harmonics.as_deref().unwrap_or(&[1]))?;
-            let c = crate::linear::campbell_of(&cfg, w, points, b)?;
-            autobal::limits::check_finite("campbell", &c)?;
-            let fixed = autobal::spatial::campbell::fixed_axes(&cfg.model, &c, b, &harmonics)?;
-            let (rot, fx) = crate::figures::campbell_plots(&cfg.model, &c);
-            Ok(vec![fig("campbell_modes", crate::figures::campbell_fixed_plot(&cfg.model, &fixed)), fig("campbell_fixed", fx), fig("campbell_rotating", rot)])
+            out.figures()
         }
         "map" => {
             if crate::general::needs_general_route(root) {
@@ -188,29 +184,6 @@ fn crate_commands() -> &'static [&'static str] {
     &["inertia", "critical", "ranges", "stability", "campbell", "map", "simulate", "sweep", "merge", "basins", "report"]
 }
 
-/// `--omega-max` of the general route in rad/s (1 rad/s for a planar rotor), as `autobal
-/// stability` takes it; the CLI's automatic axis without it.
-fn general_omega_max(root: &Table, g: &crate::general::GeneralRotor, arg: Option<&str>) -> Result<f64> {
-    use autobal::rotor_stability::Rotor;
-    Ok(match (&g.rotor, arg) {
-        (_, Some(t)) => {
-            let s = autobal::units::parse_speed("omega_max", t)?;
-            let w = match s.unit.rad_s() {
-                Some(k) if g.si => s.value * k,
-                Some(_) => s.to_omega("omega_max", None)?,
-                None => s.value * g.omega0,
-            };
-            autobal::limits::check_as("omega_max", "analysis.omega_max", w / g.omega0)?;
-            w
-        }
-        (Rotor::Planar(_), None) => 3.0 * g.rotor.natural_frequency(),
-        (Rotor::Spatial(_), None) => {
-            let cfg = autobal::config::spatial(root)?;
-            cfg.analysis.speed_axis_max(2.0 * autobal::reports::default_omega_max(&cfg.model)) * g.omega0
-        }
-    })
-}
-
 /// Every figure of the HTML report on the config `root` (its sections built as `autobal
 /// report` builds them, no file written), in page order.
 pub fn report_figures(root: &Table, source: &str, quick: bool, kind: crate::report::Kind, control: &Control) -> Result<Vec<Figure>> {
@@ -252,6 +225,7 @@ mod tests {
         let f = figures("stability", &root, "default", &Options { samples: Some(100), ..Default::default() }, &Control::none()).unwrap();
         assert_eq!(f.len(), 1);
         assert_eq!(f[0].id, "stability_margin");
+        // the figure of a comparison computed here, not through the command
         let cfg = config::build(&root, "default").unwrap();
         let w = crate::linear::omega_max(&cfg, None).unwrap();
         let c = crate::linear::compare(&cfg.model, w, 100, Balls::Free).unwrap();

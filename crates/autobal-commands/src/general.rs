@@ -4,12 +4,12 @@
 //! direction, gravity, a tilted principal axis), or for any config with `--route general`.
 
 use crate::plot::{Plot, Series, Shade, PALETTE};
-use anyhow::{Context, Result};
+use anyhow::Result;
 use autobal::analysis::{Kind, Verdict};
+use autobal::control::Control;
 use autobal::error::fmt_num;
 use autobal::rotor_stability::{speed_grid, stability_over_speed, Rotor, RotorStability};
 use serde_json::{json, Value};
-use std::path::Path;
 use toml::Table;
 
 /// A rotor built from a config for the general route, with its speed unit.
@@ -69,9 +69,15 @@ fn round(x: f64) -> f64 {
     (x * p).round() / p
 }
 
-/// Run the general route over `(0, omega_max]` (model units) with `samples` speeds.
-pub fn analyse(g: &GeneralRotor, omega_max: f64, samples: usize) -> Result<RotorStability> {
+/// Run the general route over `(0, omega_max]` (model units) with `samples` speeds, under
+/// `control`.
+pub fn analyse(g: &GeneralRotor, omega_max: f64, samples: usize, control: &Control) -> Result<RotorStability> {
     let speeds = speed_grid(omega_max, samples)?;
+    // the library's scan takes the control when it is wired (rotor_stability); until then
+    // it is asked before the scan
+    if let Some(why) = control.should_stop() {
+        anyhow::bail!("{why} before the stability scan");
+    }
     Ok(stability_over_speed(&g.rotor, &speeds)?)
 }
 
@@ -241,11 +247,6 @@ pub fn margin_plot(g: &GeneralRotor, r: &RotorStability, omega_max: f64) -> Plot
         y_range: Some((lo - pad, hi + pad)),
         ..Default::default()
     }
-}
-
-/// Write the margin plot as SVG to `path`.
-pub fn write_svg(g: &GeneralRotor, r: &RotorStability, omega_max: f64, path: &Path) -> Result<()> {
-    std::fs::write(path, margin_plot(g, r, omega_max).to_svg()).with_context(|| format!("--svg {}: cannot write", path.display()))
 }
 
 /// The number of speeds of the general route's grid when none is given: 200, or 50 for a

@@ -8,6 +8,7 @@ use crate::general::GeneralRotor;
 use crate::plot::{Plot, Series};
 use anyhow::Result;
 use autobal::analysis::Kind;
+use autobal::control::Control;
 use autobal::error::fmt_num;
 use autobal::rotor_campbell::{
     campbell_locked, campbell_over_speed, fixed_view, locked_critical_speeds, Balls, LockedCriticalSpeeds, RotorCampbell, Whirl, FLOQUET_BRANCH,
@@ -100,14 +101,19 @@ pub const FLOQUET_CROSSINGS: &str = "not defined for Floquet exponents: their im
 
 /// The Campbell diagram of the general route with the balls free and the `1×` crossings (what
 /// `autobal campbell` and Python's `campbell` give by default), its numbers checked finite.
-pub fn campbell(g: &GeneralRotor, omega_max: f64, points: usize) -> Result<GeneralCampbell> {
-    campbell_with(g, omega_max, points, Balls::Free, &[1])
+pub fn campbell(g: &GeneralRotor, omega_max: f64, points: usize, control: &Control) -> Result<GeneralCampbell> {
+    campbell_with(g, omega_max, points, Balls::Free, &[1], control)
 }
 
 /// The Campbell diagram of the general route with the balls `balls` (`--balls`), its fixed-axes
 /// view and the crossings with `h×Ω` for each of `harmonics` (`--harmonics`, checked by
 /// [`crate::linear::check_harmonics`]), its numbers checked finite once.
-pub fn campbell_with(g: &GeneralRotor, omega_max: f64, points: usize, balls: Balls, harmonics: &[u32]) -> Result<GeneralCampbell> {
+pub fn campbell_with(g: &GeneralRotor, omega_max: f64, points: usize, balls: Balls, harmonics: &[u32], control: &Control) -> Result<GeneralCampbell> {
+    // the library's scan takes the control when it is wired (rotor_campbell); until then it
+    // is asked before the scan
+    if let Some(why) = control.should_stop() {
+        anyhow::bail!("{why} before the Campbell scan");
+    }
     let sp = speeds(omega_max, points);
     let c = match balls {
         Balls::Free => campbell_over_speed(&g.rotor, &sp)?,
@@ -472,7 +478,12 @@ pub struct GeneralCritical {
 }
 
 /// Run `critical` by the general route over `(0, omega_max]`.
-pub fn critical(root: &Table, g: &GeneralRotor, omega_max: f64) -> Result<GeneralCritical> {
+pub fn critical(root: &Table, g: &GeneralRotor, omega_max: f64, control: &Control) -> Result<GeneralCritical> {
+    // the library's scans take the control when it is wired (rotor_campbell, rotor_stability);
+    // until then it is asked before them
+    if let Some(why) = control.should_stop() {
+        anyhow::bail!("{why} before the critical speeds");
+    }
     let locked = match locked_critical_speeds(&g.rotor, omega_max, 2000) {
         Ok(l) => Ok(l),
         Err(e @ autobal::Error::NoLinearisation { .. }) => Err(e.to_string()),

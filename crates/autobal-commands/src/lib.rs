@@ -3,25 +3,35 @@
 //! `autobal-py`).
 //!
 //! Everything a command needs beyond the physics lives here once, so that the CLI and Python
-//! cannot differ: reading a config and `--set` ([`config`]), each command's run, table and JSON
-//! ([`linear`] for the analytic commands, [`general`] for the general route, [`sim`] and
-//! [`spatial_sim`] for runs in time, [`map`], [`sweep`]), the output files ([`outfile`]: checked
+//! cannot differ. A command is one module: `Args` (its options with their defaults and checks)
+//! `-> run(&Args, &Control) -> Output` (typed, computed once; its JSON, table and figures), the
+//! pattern of [`command`]: [`inertia`], [`critical`], [`ranges`], [`stability`], [`campbell`],
+//! [`basins`].
+//! Beside them: reading a config and `--set` ([`config`]), the computations and tables the
+//! commands share ([`linear`] for paper 000's model, [`general`] for the general route, [`sim`]
+//! and [`spatial_sim`] for runs in time, [`map`], [`sweep`]), the output files ([`outfile`]: checked
 //! before the work, written under a temporary name and renamed when complete; [`num`] for CSV,
 //! [`parquet`]), the figure descriptions that SVG, PNG and Plotly all draw ([`plot`],
 //! [`figures`], [`map`]; each command's figures for a front end that draws them itself:
 //! [`figures_api`]) and the HTML report ([`report`]).
 //!
-//! The front ends parse arguments and own the terminal: `autobal-cli` maps each subcommand to
-//! the functions here; `autobal-py` converts to NumPy and Python exceptions.
+//! The front ends parse arguments and own the terminal: `autobal-cli` maps each subcommand's
+//! flags to its `Args`, runs it and prints or writes the `Output`; `autobal-py` maps keyword
+//! arguments to the same `Args` and converts the `Output` to Python objects and exceptions.
 
 pub mod any_config;
+pub mod basins;
+pub mod campbell;
+pub mod command;
 pub mod config;
+pub mod critical;
 pub mod figures;
 pub mod figures_api;
 #[cfg(test)]
 mod fuzz;
 pub mod general;
 pub mod general_campbell;
+pub mod inertia;
 pub mod linear;
 pub mod linear_rotor;
 pub mod map;
@@ -30,8 +40,10 @@ pub mod outfile;
 pub mod output;
 pub mod parquet;
 pub mod plot;
+pub mod ranges;
 pub mod report;
 pub mod sim;
 pub mod spatial_sim;
+pub mod stability;
 pub mod sweep;
 pub mod term;

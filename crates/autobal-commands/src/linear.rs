@@ -341,22 +341,20 @@ pub fn campbell_of(cfg: &Config, w: f64, points: usize, balls: Balls) -> Result<
 /// Largest number of speeds kept for the figures of `autobal campbell`.
 pub const PLOT_SPEEDS: usize = 2000;
 
-/// `autobal campbell`, streamed: JSON lines go to one temporary file per tracked line as the
-/// speeds are computed and are joined on standard output at the end; the table keeps its five
-/// speeds and the figures a decimated copy (at most [`PLOT_SPEEDS`] speeds). Memory does not
-/// grow with `points`.
-#[allow(clippy::too_many_arguments)]
-pub fn run_campbell(
+/// `autobal campbell` on the 12-state model, streamed: with `json`, JSON lines go to one
+/// temporary file per tracked line as the speeds are computed (joined by
+/// [`CampbellRun::write_json`]); the table keeps its five speeds and the figures a decimated
+/// copy (at most [`PLOT_SPEEDS`] speeds). Memory does not grow with `points`. Ctrl-C (or a
+/// budget) on `control` ends it at the last speed computed, which is kept.
+pub fn campbell_run(
     cfg: &Config,
     w: f64,
     points: usize,
     balls: Balls,
     json: bool,
-    svg: Option<&std::path::Path>,
-    view: CampbellView,
     harmonics: &[u32],
     control: &autobal::control::Control,
-) -> Result<()> {
+) -> Result<CampbellRun> {
     use anyhow::Context;
     use std::io::Write as _;
     let n = points.max(3);
@@ -365,15 +363,31 @@ pub fn run_campbell(
     let table_at = [0, n / 4, n / 2, 3 * n / 4, n - 1];
     let mut plot = Campbell { omega: vec![], lines: vec![] };
     let mut table = Campbell { omega: vec![], lines: vec![] };
-    let dir = std::env::temp_dir().join(format!(
-        "autobal-campbell-{}-{}",
-        std::process::id(),
-        std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_nanos())
-    ));
-    let mut files: Vec<std::io::BufWriter<std::fs::File>> = vec![];
-    if json {
-        std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    let dir = json.then(|| {
+        std::env::temp_dir().join(format!(
+            "autobal-campbell-{}-{}",
+            std::process::id(),
+            std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_nanos())
+        ))
+    });
+    if let Some(dir) = &dir {
+        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     }
+    // from here the folder is removed when the run is dropped, whatever happens
+    let mut run = CampbellRun {
+        cfg: cfg.clone(),
+        omega_max: w,
+        n,
+        done: 0,
+        complete: false,
+        balls,
+        plot: Campbell { omega: vec![], lines: vec![] },
+        table: Campbell { omega: vec![], lines: vec![] },
+        fixed: None,
+        dir,
+        lines: 0,
+    };
+    let mut files: Vec<std::io::BufWriter<std::fs::File>> = vec![];
     let mut io_err: Option<anyhow::Error> = None;
     let keep = |c: &mut Campbell, wk: f64, modes: &[autobal::spatial::stability::Mode]| {
         if c.lines.is_empty() {
@@ -392,7 +406,7 @@ pub fn run_campbell(
             io_err = Some(e.into());
             return false;
         }
-        if json {
+        if let Some(dir) = &run.dir {
             if files.is_empty() {
                 for i in 0..modes.len() {
                     match std::fs::File::create(dir.join(format!("{i}.json"))) {
@@ -421,81 +435,136 @@ pub fn run_campbell(
         }
         !stop
     });
-    let finish = || -> Result<()> {
-        if let Some(e) = io_err {
-            return Err(e);
-        }
-        // an interrupted run writes what it computed: the speeds done, the figures and the
-        // table up to the last of them
-        let stats = result?;
-        let done = stats.speeds;
-        // the fixed-axes curves and the critical speeds, on the figures' speeds
-        let fixed = fixed_axes(&cfg.model, &plot, balls, harmonics)?;
-        autobal::limits::check_finite("campbell.critical_speeds", &fixed.critical_speeds)?;
-        if let Some(prefix) = svg {
-            let paths = campbell_svg_paths(prefix, view);
-            match view {
-                CampbellView::Fixed => {
-                    crate::outfile::write_atomic("--svg", &paths[0], crate::figures::campbell_fixed_plot(&cfg.model, &fixed).to_svg())?;
-                }
-                CampbellView::Components => {
-                    let (rot, fx) = crate::figures::campbell_plots(&cfg.model, &plot);
-                    for (path, p) in paths.iter().zip([rot, fx]) {
-                        crate::outfile::write_atomic("--svg", path, p.to_svg())?;
-                    }
-                }
-            }
-        }
-        let stdout = std::io::stdout();
-        let mut out = std::io::BufWriter::new(stdout.lock());
-        if json {
-            write!(out, "{{\n\"omega\": [")?;
-            for k in 0..done {
-                write!(out, "{}{}", if k == 0 { "" } else { ", " }, serde_json::to_string(&speed(k))?)?;
-            }
-            write!(out, "]")?;
-            if let Some(sc) = cfg.model.scale {
-                // the speeds in SI, as autobal::reports::campbell_of writes them
-                for (key, k) in [("omega_rad_s", sc.omega0), ("omega_rpm", sc.omega0 * 30.0 / std::f64::consts::PI)] {
-                    write!(out, ",\n\"{key}\": [")?;
-                    for j in 0..done {
-                        write!(out, "{}{}", if j == 0 { "" } else { ", " }, serde_json::to_string(&(speed(j) * k))?)?;
-                    }
-                    write!(out, "]")?;
-                }
-            }
-            write!(out, ",\n\"lines\": [\n")?;
-            for (i, f) in files.into_iter().enumerate() {
-                let f = f.into_inner().map_err(|e| e.into_error())?;
-                drop(f);
-                writeln!(out, "{}{{\"modes\": [", if i == 0 { "" } else { ",\n" })?;
-                let mut r = std::fs::File::open(dir.join(format!("{i}.json")))?;
-                std::io::copy(&mut r, &mut out)?;
-                write!(out, "\n]}}")?;
-            }
-            write!(out, "\n]")?;
-            if let Value::Object(o) = fixed_json(cfg, &fixed) {
-                for (key, v) in o {
-                    write!(out, ",\n\"{key}\": {}", serde_json::to_string(&v)?)?;
-                }
-            }
-            writeln!(out, ",\n\"complete\": {}\n}}", stats.complete)?;
-        } else if done > 0 {
-            write!(out, "{}", campbell_table(cfg, &table))?;
-            write!(out, "{}", fixed_table(cfg, &fixed, &table.omega))?;
-        }
-        out.flush()?;
-        if !stats.complete {
-            anyhow::bail!(
-                "interrupted: {done} of {n} speeds computed (up to Ω = {}); what was computed is written",
-                crate::num::fmt(speed(done.saturating_sub(1)), 4)
-            );
-        }
-        Ok(())
-    };
-    let r = finish();
-    if json {
-        let _ = std::fs::remove_dir_all(&dir);
+    if let Some(e) = io_err {
+        return Err(e);
     }
-    r
+    // an interrupted run keeps what it computed: the speeds done, the figures and the table up
+    // to the last of them
+    let stats = result?;
+    run.lines = files.len();
+    for f in files {
+        f.into_inner().map_err(|e| e.into_error())?;
+    }
+    // the fixed-axes curves and the critical speeds, on the figures' speeds
+    let fixed = fixed_axes(&cfg.model, &plot, balls, harmonics)?;
+    autobal::limits::check_finite("campbell.critical_speeds", &fixed.critical_speeds)?;
+    run.done = stats.speeds;
+    run.complete = stats.complete;
+    run.plot = plot;
+    run.table = table;
+    run.fixed = Some(fixed);
+    Ok(run)
+}
+
+/// A Campbell diagram of the 12-state model computed by [`campbell_run`]: the speeds done, the
+/// figures' and the table's speeds, the fixed-axes curves, and the JSON lines in a temporary
+/// folder (removed when the run is dropped).
+pub struct CampbellRun {
+    cfg: Config,
+    omega_max: f64,
+    n: usize,
+    done: usize,
+    complete: bool,
+    balls: Balls,
+    plot: Campbell,
+    table: Campbell,
+    fixed: Option<FixedCampbell>,
+    dir: Option<std::path::PathBuf>,
+    lines: usize,
+}
+
+impl Drop for CampbellRun {
+    fn drop(&mut self) {
+        if let Some(dir) = &self.dir {
+            let _ = std::fs::remove_dir_all(dir);
+        }
+    }
+}
+
+impl CampbellRun {
+    fn speed(&self, k: usize) -> f64 {
+        self.omega_max * (k as f64 + 0.5) / self.n as f64
+    }
+
+    fn fixed(&self) -> &FixedCampbell {
+        self.fixed.as_ref().expect("a finished run has its fixed-axes curves")
+    }
+
+    /// The JSON (as `autobal::reports::campbell_of` and `campbell_fixed` write it), streamed
+    /// from the temporary files: `omega` (and in SI), `lines`, the fixed-axes keys, `complete`.
+    pub fn write_json(&self, out: &mut dyn std::io::Write) -> Result<()> {
+        use std::io::Write as _;
+        let dir = self.dir.as_ref().ok_or_else(|| anyhow::anyhow!("campbell: run without its JSON (json = false)"))?;
+        let mut out = std::io::BufWriter::new(out);
+        let done = self.done;
+        write!(out, "{{\n\"omega\": [")?;
+        for k in 0..done {
+            write!(out, "{}{}", if k == 0 { "" } else { ", " }, serde_json::to_string(&self.speed(k))?)?;
+        }
+        write!(out, "]")?;
+        if let Some(sc) = self.cfg.model.scale {
+            // the speeds in SI, as autobal::reports::campbell_of writes them
+            for (key, k) in [("omega_rad_s", sc.omega0), ("omega_rpm", sc.omega0 * 30.0 / std::f64::consts::PI)] {
+                write!(out, ",\n\"{key}\": [")?;
+                for j in 0..done {
+                    write!(out, "{}{}", if j == 0 { "" } else { ", " }, serde_json::to_string(&(self.speed(j) * k))?)?;
+                }
+                write!(out, "]")?;
+            }
+        }
+        write!(out, ",\n\"lines\": [\n")?;
+        for i in 0..self.lines {
+            writeln!(out, "{}{{\"modes\": [", if i == 0 { "" } else { ",\n" })?;
+            let mut r = std::fs::File::open(dir.join(format!("{i}.json")))?;
+            std::io::copy(&mut r, &mut out)?;
+            write!(out, "\n]}}")?;
+        }
+        write!(out, "\n]")?;
+        if let Value::Object(o) = fixed_json(&self.cfg, self.fixed()) {
+            for (key, v) in o {
+                write!(out, ",\n\"{key}\": {}", serde_json::to_string(&v)?)?;
+            }
+        }
+        writeln!(out, ",\n\"complete\": {}\n}}", self.complete)?;
+        out.flush()?;
+        Ok(())
+    }
+
+    /// The table: at five speeds, each mode in rotating and fixed axes, then the fixed-axes
+    /// view (empty when no speed was computed).
+    pub fn table(&self) -> String {
+        if self.done == 0 {
+            return String::new();
+        }
+        campbell_table(&self.cfg, &self.table) + &fixed_table(&self.cfg, self.fixed(), &self.table.omega)
+    }
+
+    /// The figures: `campbell_modes` (fixed axes, one curve per mode: `--view fixed`),
+    /// `campbell_fixed` and `campbell_rotating` (`--view components`).
+    pub fn figures(&self) -> Vec<crate::command::Figure> {
+        use crate::command::Figure;
+        let (rot, fx) = crate::figures::campbell_plots(&self.cfg.model, &self.plot);
+        vec![
+            Figure::new("campbell_modes", crate::figures::campbell_fixed_plot(&self.cfg.model, self.fixed())),
+            Figure::new("campbell_fixed", fx),
+            Figure::new("campbell_rotating", rot),
+        ]
+    }
+
+    /// Why the run is incomplete, or `None`.
+    pub fn stopped(&self) -> Option<String> {
+        (!self.complete).then(|| {
+            format!(
+                "interrupted: {} of {} speeds computed (up to Ω = {}); what was computed is written",
+                self.done,
+                self.n,
+                crate::num::fmt(self.speed(self.done.saturating_sub(1)), 4)
+            )
+        })
+    }
+
+    /// Balls free or locked.
+    pub fn balls(&self) -> Balls {
+        self.balls
+    }
 }

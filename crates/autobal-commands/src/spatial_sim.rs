@@ -1,15 +1,14 @@
 //! `autobal simulate` on the spatial rotor of papers 000/003 (the analytic commands' config
 //! plus `[drive]`, `[integration]`, optionally `[initial]`, `[spatial]`, `[couple]`,
-//! `[balancer2]`), and `autobal basins`.
+//! `[balancer2]`) (`autobal basins`: [`crate::basins`]).
 
 use crate::plot::{Plot, Series, PALETTE};
 use anyhow::{bail, Result};
 use autobal::config::SpatialSimulation;
 use autobal::control::Control;
-use autobal::spatial::dynamics::basins::{angle_grid, basins, check_angle_grid};
 use autobal::spatial::dynamics::stationary::response_curve;
 use autobal::spatial::dynamics::{simulate_with, Sample, Summary};
-use serde_json::{json, Value};
+use serde_json::Value;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use toml::Table;
@@ -304,45 +303,4 @@ pub fn write_plots(sim: &SpatialSim, kept: &[Sample], stem: &Path, title: &str) 
         files.push(path);
     }
     Ok(files)
-}
-
-/// `autobal basins`: runs over a grid of the first two balls' initial angles; CSV row by row
-/// (`psi_1, psi_2, balanced, residual_unbalance, final_amplitude`) and a JSON summary.
-pub fn run_basins(sim: &SpatialSim, n: usize, out: &Path, progress: bool, control: &Control) -> Result<Value> {
-    check_angle_grid(&sim.rotor, n, "--n")?;
-    let cases = angle_grid(&sim.initial, &sim.drive, n, n);
-    let bar = progress.then(|| indicatif::ProgressBar::new(cases.len() as u64));
-    let t0 = std::time::Instant::now();
-    // the same flag and budget, with the progress bar as its observer
-    let shown = match bar.clone() {
-        Some(b) => control.clone().with_progress(move |p| b.set_position(p.done)),
-        None => control.clone(),
-    };
-    let res = basins(&sim.rotor, &cases, &sim.settings, &shown)?.value;
-    if let Some(b) = bar {
-        b.finish_and_clear();
-    }
-    let wall = t0.elapsed().as_secs_f64();
-    let mut csv = String::from("psi_1,psi_2,balanced,residual_unbalance,final_amplitude\n");
-    for (c, r) in cases.iter().zip(&res) {
-        if let Some(s) = r {
-            csv.push_str(&format!(
-                "{},{},{},{},{}\n",
-                crate::num::Csv(c.initial.psi[0]),
-                crate::num::Csv(c.initial.psi[1]),
-                s.balanced as u8,
-                crate::num::Csv(s.residual_unbalance),
-                crate::num::Csv(s.final_amplitude)
-            ));
-        }
-    }
-    // whole or not at all (an interrupted run keeps its complete runs, and says so below)
-    crate::outfile::write_atomic("--out", out, csv)?;
-    let mut v = autobal::reports::basins(&res, wall);
-    v["csv"] = json!(out.display().to_string());
-    let done = res.iter().flatten().count();
-    if done < cases.len() {
-        bail!("interrupted: {done} of {} runs complete, kept in {}", cases.len(), out.display());
-    }
-    Ok(v)
 }

@@ -57,3 +57,18 @@ pub fn with_suffix(stem: &std::path::Path, ext: &str) -> std::path::PathBuf {
     s.push(ext);
     s.into()
 }
+
+/// A progress bar on standard error when it is a terminal: `control` with the bar as its
+/// progress observer (the same flag and budget), and the bar to clear when the work ends.
+pub fn progress_bar(control: &autobal::control::Control) -> (autobal::control::Control, Option<indicatif::ProgressBar>) {
+    if !std::io::IsTerminal::is_terminal(&std::io::stderr()) {
+        return (control.clone(), None);
+    }
+    let bar = indicatif::ProgressBar::new(0);
+    let b = bar.clone();
+    let shown = control.clone().with_progress(move |p| {
+        b.set_length(p.total);
+        b.set_position(p.done);
+    });
+    (shown, Some(bar))
+}

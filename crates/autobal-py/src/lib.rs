@@ -76,6 +76,11 @@ fn with_threads<R: Send>(threads: Option<usize>, work: impl FnOnce() -> autobal:
 /// field in `.field`).
 fn py_err(py: Python<'_>, e: autobal::Error) -> PyErr {
     use autobal::Error as E;
+    // the commands name their options as the CLI's flags; Python's are its keywords
+    let e = match e {
+        E::InvalidParameter { field, reason } if field.starts_with("--") => E::InvalidParameter { field: keyword(&field), reason },
+        e => e,
+    };
     let (class, field, reason) = match &e {
         E::InvalidParameter { field, reason } => ("InvalidParameter", Some(field.clone()), Some(reason.clone())),
         E::TooLarge { what, .. } => ("TooLarge", Some(what.clone()), None),
@@ -94,13 +99,29 @@ fn py_err(py: Python<'_>, e: autobal::Error) -> PyErr {
     made.unwrap_or_else(|err| err)
 }
 
+/// An option named as the CLI's flag (`--omega-max`) as Python's keyword (`omega_max`).
+fn keyword(flag: &str) -> String {
+    flag.strip_prefix("--").map_or(flag.to_string(), |n| n.replace('-', "_"))
+}
+
+/// A message that starts with a CLI flag (`--balls locked: ...`), with Python's keyword.
+fn keyword_message(msg: &str) -> String {
+    match msg.strip_prefix("--") {
+        Some(rest) => {
+            let end = rest.find(|c: char| !(c.is_ascii_alphanumeric() || c == '-')).unwrap_or(rest.len());
+            format!("{}{}", rest[..end].replace('-', "_"), &rest[end..])
+        }
+        None => msg.to_string(),
+    }
+}
+
 /// An error of the commands crate: a library error as its exception of `autobal.errors`, any
 /// other (a file, a Ctrl-C) as `AutobalError` with the CLI's one-line message.
 fn any_err(py: Python<'_>, e: anyhow::Error) -> PyErr {
     match e.downcast::<autobal::Error>() {
         Ok(e) => py_err(py, e),
         Err(e) => {
-            let msg = format!("{e:#}").replace('\n', " ");
+            let msg = keyword_message(&format!("{e:#}").replace('\n', " "));
             match py.import("autobal.errors").and_then(|m| m.getattr("AutobalError")).and_then(|c| c.call1((msg,))) {
                 Ok(exc) => PyErr::from_value(exc),
                 Err(err) => err,
@@ -256,23 +277,56 @@ enum SpeedArg {
     Text(String),
 }
 
-/// The speed span of the linear commands: `omega_max` (Ω, or a speed with its unit for a
-/// dimensional config), else the config's, else automatic (covering the operating speed).
-fn omega_span(py: Python<'_>, c: &PySpatial, omega_max: Option<SpeedArg>) -> PyResult<f64> {
-    let w = match omega_max {
-        None => return Ok(autobal::reports::speed_axis_max(&c.cfg)),
-        Some(SpeedArg::Number(w)) => w,
-        Some(SpeedArg::Text(t)) => autobal::units::parse_speed("omega_max", &t)
-            .and_then(|s| s.to_omega("omega_max", c.cfg.model.scale.map(|sc| sc.omega0)))
-            .map_err(|e| py_err(py, e))?,
+/// The options of the analytic commands, as Python's keywords (`None`: the command's default,
+/// its `Args::default()`).
+struct AnalyticOptions {
+    omega_max: Option<SpeedArg>,
+    samples: Option<usize>,
+    points: Option<usize>,
+    balls: String,
+    route: String,
+}
+
+/// Run the analytic `command` (`inertia`, `critical`, `ranges`, `stability`, `campbell`) on
+/// `config` as the CLI runs it (the same `Args`, the same `run`): its JSON text.
+fn analytic_json(py: Python<'_>, command: &str, config: autobal_commands::command::ConfigSource, o: AnalyticOptions) -> PyResult<String> {
+    use autobal_commands::command::{Command, Output, Route};
+    use autobal_commands::{campbell, critical, inertia, ranges, stability};
+    let b = self::balls(py, &o.balls)?;
+    let route = match o.route.as_str() {
+        "auto" => Route::Auto,
+        "general" => Route::General,
+        r => return Err(py_err(py, autobal::Error::invalid("route", format!("must be \"auto\" or \"general\", got \"{r}\"")))),
     };
-    autobal::limits::check_as("omega_max", "analysis.omega_max", w).map_err(|e| py_err(py, e))
+    // a number is the dimensionless Ω (or rad/s of the planar rotor), as a bare number on the
+    // CLI; Rust's shortest representation gives the same f64 back
+    let omega_max = o.omega_max.map(|w| match w {
+        SpeedArg::Number(w) => format!("{w}"),
+        SpeedArg::Text(t) => t,
+    });
+    let (samples, points) = (o.samples, o.points);
+    let v = match command {
+        "inertia" => commands_call(py, move |c| inertia::Args { config }.run(c)?.json())?,
+        "ranges" => commands_call(py, move |c| ranges::Args { config }.run(c)?.json())?,
+        "critical" => commands_call(py, move |c| critical::Args { config, route, omega_max }.run(c)?.json())?,
+        "stability" => commands_call(py, move |c| stability::Args { config, omega_max, balls: b, samples, route }.run(c)?.json())?,
+        "campbell" => commands_call(py, move |c| {
+            let out = campbell::Args { config, omega_max, balls: b, points, route, ..Default::default() }.run(c)?;
+            if let Some(why) = out.stopped() {
+                anyhow::bail!("{why}");
+            }
+            out.json()
+        })?,
+        o => return Err(PyValueError::new_err(format!("command: unknown analytic command \"{o}\" (inertia, critical, ranges, stability, campbell)"))),
+    };
+    Ok(v.to_string())
 }
 
 /// The JSON text of an analytic command (`inertia`, `critical`, `ranges`, `stability`,
 /// `campbell`) on a spatial config: what `autobal COMMAND --format json` prints.
 #[pyfunction]
-#[pyo3(signature = (command, cfg, omega_max=None, samples=None, points=None, balls="free"))]
+#[pyo3(signature = (command, cfg, omega_max=None, samples=None, points=None, balls="free", route="auto"))]
+#[allow(clippy::too_many_arguments)]
 fn spatial_report(
     py: Python<'_>,
     command: &str,
@@ -281,95 +335,34 @@ fn spatial_report(
     samples: Option<usize>,
     points: Option<usize>,
     balls: &str,
+    route: &str,
 ) -> PyResult<String> {
-    let c = &cfg.cfg;
-    let src = cfg.source.as_str();
-    let b = self::balls(py, balls)?;
-    let err = |e| py_err(py, e);
-    if matches!(command, "stability" | "campbell" | "critical") && autobal_commands::general::needs_general_route(&cfg.root) {
-        // the configs the 12-state model does not represent: the general route, as the CLI
-        // takes it (autobal_commands::general, general_campbell)
-        if b == autobal::spatial::linear_model::Balls::Locked {
-            return Err(err(autobal::Error::invalid(
-                "balls",
-                "the general route analyses the balls free (a one-plane config's 12-state route has the locked rotor)",
-            )));
-        }
-        let arg = match omega_max {
-            None => None,
-            Some(SpeedArg::Number(w)) => Some(format!("{w}")),
-            Some(SpeedArg::Text(t)) => Some(t),
-        };
-        let (root, command) = (cfg.root.clone(), command.to_string());
-        let v = commands_call(py, move |_| {
-            use autobal_commands::{general, general_campbell};
-            let g = general::rotor_of(&root)?;
-            Ok(match command.as_str() {
-                "stability" => {
-                    let samples = samples.unwrap_or(general::default_samples(&g));
-                    anyhow::ensure!((10..=1_000_000).contains(&samples), "samples: must lie between 10 and 1000000, got {samples}");
-                    let w = match &arg {
-                        Some(t) => general_campbell::omega_max(&root, &g, Some(t))?,
-                        None => general::default_omega_max(&g, &root)?,
-                    };
-                    general::json(&g, &general::analyse(&g, w, samples)?, w)
-                }
-                "campbell" => {
-                    let points = points.unwrap_or(if g.rotor.is_periodic() { 60 } else { 300 });
-                    anyhow::ensure!((3..=100_000).contains(&points), "points: must lie between 3 and 100000 on the general route, got {points}");
-                    let w = general_campbell::omega_max(&root, &g, arg.as_deref())?;
-                    general_campbell::campbell_json(&g, &general_campbell::campbell(&g, w, points)?, w)
-                }
-                _ => {
-                    let w = general_campbell::omega_max(&root, &g, arg.as_deref())?;
-                    general_campbell::critical_json(&g, &general_campbell::critical(&root, &g, w)?)
-                }
-            })
-        })?;
-        return Ok(v.to_string());
-    }
-    let (samples, points) = (samples.unwrap_or(2000), points.unwrap_or(300));
-    autobal::reports::check_results(c).map_err(err)?;
-    let v = match command {
-        // every spatial config, as the CLI (autobal_commands::any_config)
-        "inertia" => autobal::reports::inertia_of(&cfg.root, src).map_err(err)?,
-        "critical" => autobal::reports::critical(c, src),
-        "ranges" => {
-            let (root, src) = (cfg.root.clone(), src.to_string());
-            commands_call(py, move |_| autobal_commands::any_config::ranges(&root, &src))?.0
-        }
-        "stability" => {
-            if !(10..=1_000_000).contains(&samples) {
-                return Err(err(autobal::Error::invalid("samples", format!("must lie between 10 and 1000000, got {samples}"))));
-            }
-            let w = omega_span(py, cfg, omega_max)?;
-            let model = c.model.clone();
-            let cmp = interruptible(py, move |_| autobal::spatial::comparison::compare(&model, w, samples, b))?.map_err(err)?;
-            autobal::limits::check_finite("stability", &cmp.exact).map_err(err)?;
-            autobal::reports::stability_of(c, &cmp, b)
-        }
-        "campbell" => {
-            if !(3..=100_000).contains(&points) {
-                return Err(err(autobal::Error::invalid("points", format!("must lie between 3 and 100000, got {points}"))));
-            }
-            let w = omega_span(py, cfg, omega_max)?;
-            let model = c.model.clone();
-            let grid = autobal::reports::campbell_speeds(w, points);
-            let cb = interruptible(py, move |_| autobal::spatial::stability::campbell(&model, &grid, b))?.map_err(err)?;
-            autobal::limits::check_finite("campbell", &cb).map_err(err)?;
-            // the fixed-axes curves and critical speeds, as the CLI adds them (on every speed: the
-            // CLI draws them on its figures' speeds, every speed up to 2000)
-            let fixed = autobal::spatial::campbell::fixed_axes(&c.model, &cb, b, &[1]).map_err(err)?;
-            autobal::limits::check_finite("campbell.critical_speeds", &fixed.critical_speeds).map_err(err)?;
-            let mut v = autobal::reports::campbell_of(&c.model, &cb);
-            if let (Some(o), serde_json::Value::Object(extra)) = (v.as_object_mut(), autobal::reports::campbell_fixed(&c.model, &fixed)) {
-                o.extend(extra);
-            }
-            v
-        }
-        o => return Err(PyValueError::new_err(format!("command: unknown analytic command \"{o}\" (inertia, critical, ranges, stability, campbell)"))),
-    };
-    Ok(v.to_string())
+    let config = autobal_commands::command::ConfigSource::tables(cfg.root.clone(), &cfg.source);
+    analytic_json(py, command, config, AnalyticOptions { omega_max, samples, points, balls: balls.into(), route: route.into() })
+}
+
+/// The JSON text of an analytic command on any config autobal runs (a planar config included:
+/// `ranges`, `stability`, `campbell` and `critical` take the general route there, as the CLI):
+/// the config as [`figures`] takes it.
+#[pyfunction]
+#[pyo3(signature = (command, text, dict, source, sets, omega_max=None, samples=None, points=None, balls="free", route="auto"))]
+#[allow(clippy::too_many_arguments)]
+fn command_json(
+    py: Python<'_>,
+    command: &str,
+    text: Option<&str>,
+    dict: Option<&Bound<'_, PyDict>>,
+    source: &str,
+    sets: Vec<(String, Bound<'_, PyAny>)>,
+    omega_max: Option<SpeedArg>,
+    samples: Option<usize>,
+    points: Option<usize>,
+    balls: &str,
+    route: &str,
+) -> PyResult<String> {
+    let root = table(py, text, dict, source, sets)?;
+    let config = autobal_commands::command::ConfigSource::tables(root, source);
+    analytic_json(py, command, config, AnalyticOptions { omega_max, samples, points, balls: balls.into(), route: route.into() })
 }
 
 /// Run a planar problem: `(columns, summary JSON)`, columns `t, omega, x, y, amplitude` and
@@ -461,26 +454,22 @@ fn spatial_simulate<'py>(py: Python<'py>, cfg: &PySpatial, dt: Option<f64>) -> P
 #[pyfunction]
 #[pyo3(signature = (cfg, n=16))]
 fn spatial_basins<'py>(py: Python<'py>, cfg: &PySpatial, n: usize) -> PyResult<(Bound<'py, PyDict>, String)> {
-    use autobal::spatial::dynamics::basins::{angle_grid, basins, check_angle_grid};
-    let sim = config::spatial_simulation(&cfg.root).map_err(|e| py_err(py, e))?;
-    check_angle_grid(&sim.rotor, n, "n").map_err(|e| py_err(py, e))?;
-    let cases = angle_grid(&sim.initial, &sim.drive, n, n);
-    let (res, wall) = interruptible(py, |cancel| {
-        let t0 = std::time::Instant::now();
-        (basins(&sim.rotor, &cases, &sim.settings, cancel).map(|o| o.value), t0.elapsed().as_secs_f64())
-    })?;
-    let res = res.map_err(|e| py_err(py, e))?;
-    if res.iter().any(Option::is_none) {
+    use autobal_commands::command::{Command, Output};
+    // the CLI's `basins` (its Args and run): the JSON is the CLI's but the CSV's name
+    let args = autobal_commands::basins::Args { config: autobal_commands::command::ConfigSource::tables(cfg.root.clone(), &cfg.source), n };
+    let o = commands_call(py, move |control| args.run(control))?;
+    if o.stopped().is_some() {
         return Err(py_err(py, autobal::Error::Interrupted { t: 0.0 }));
     }
-    let ends: Vec<_> = res.iter().flatten().collect();
+    let ends: Vec<_> = o.ends.iter().flatten().collect();
     let out = PyDict::new(py);
-    out.set_item("psi_1", PyArray1::from_vec(py, cases.iter().map(|c| c.initial.psi[0]).collect()))?;
-    out.set_item("psi_2", PyArray1::from_vec(py, cases.iter().map(|c| c.initial.psi[1]).collect()))?;
+    out.set_item("psi_1", PyArray1::from_vec(py, o.angles.iter().map(|a| a[0]).collect()))?;
+    out.set_item("psi_2", PyArray1::from_vec(py, o.angles.iter().map(|a| a[1]).collect()))?;
     out.set_item("balanced_runs", PyArray1::from_vec(py, ends.iter().map(|s| s.balanced).collect()))?;
     out.set_item("residual_unbalance", PyArray1::from_vec(py, ends.iter().map(|s| s.residual_unbalance).collect()))?;
     out.set_item("final_amplitude", PyArray1::from_vec(py, ends.iter().map(|s| s.final_amplitude).collect()))?;
-    Ok((out, autobal::reports::basins(&res, wall).to_string()))
+    let summary = o.json().map_err(|e| any_err(py, e))?;
+    Ok((out, summary.to_string()))
 }
 
 /// The base of a batch or sweep: a planar problem or a spatial config (one per call: the
@@ -794,6 +783,7 @@ fn _autobal(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(spatial_config, m)?)?;
     m.add_function(wrap_pyfunction!(planar_config, m)?)?;
     m.add_function(wrap_pyfunction!(spatial_report, m)?)?;
+    m.add_function(wrap_pyfunction!(command_json, m)?)?;
     m.add_function(wrap_pyfunction!(stability_map, m)?)?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(simulate_batch, m)?)?;

@@ -110,7 +110,7 @@ fn general_route(ctx: &Ctx) -> Result<Option<Section>> {
             )
         }
     };
-    let r = crate::general::analyse(&g, omega_max, samples)?;
+    let r = crate::general::analyse(&g, omega_max, samples, &ctx.control)?;
     let mut s = Section::new("stability", "Exact stability of the stationary state over speed (general route)");
     let what: Vec<String> = autobal::config::ignored_by_linear_model(&ctx.root);
     s.p(format!(

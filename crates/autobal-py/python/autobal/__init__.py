@@ -399,9 +399,11 @@ def run(command: str, config: ConfigLike = None, set: Optional[Mapping[str, Any]
 
     Commands and their options (as the CLI's, with ``_`` for ``-``):
 
-    - ``inertia``, ``critical``, ``ranges``;
-    - ``stability`` (``omega_max``, ``samples``, ``balls``), ``campbell`` (``omega_max``,
-      ``points``, ``balls``);
+    - ``inertia``, ``ranges``, ``critical`` (``omega_max``, ``route``) on any config (a planar
+      one takes the general route, as on the CLI);
+    - ``stability`` (``omega_max``, ``samples``, ``balls``, ``route``), ``campbell``
+      (``omega_max``, ``points``, ``balls``, ``route``); ``route``: ``"auto"`` (default) or
+      ``"general"``, the CLI's ``--route``; the defaults are the CLI's;
     - ``simulate`` (``dt``): the summary (no files are written), of the planar rotor
       (``[planar]``) or of the spatial rotor in time (the analytic config plus ``[drive]``);
     - ``basins`` (``n``): the JSON of ``autobal basins`` (no CSV is written; the runs' arrays:
@@ -417,7 +419,10 @@ def run(command: str, config: ConfigLike = None, set: Optional[Mapping[str, Any]
     """
     if command in _REPORT_OPTIONS:
         _no_more(command, {k: v for k, v in options.items() if k not in _REPORT_OPTIONS[command]})
-        return SpatialModel(config, set=set)._report(command, **options)
+        # the config as the CLI reads it (any rotor: a planar config takes the general route),
+        # the command's own defaults and checks (autobal_commands' Args)
+        text, table, source = _read(config, _autobal.DEFAULT_SPATIAL, SpatialModel._DEFAULT_NAME)
+        return json.loads(_autobal.command_json(command, text, table, source, list((set or {}).items()), **options))
     if command == "simulate":
         dt = options.pop("dt", None)
         _no_more(command, options)
@@ -480,10 +485,10 @@ def run(command: str, config: ConfigLike = None, set: Optional[Mapping[str, Any]
 # the options of the analytic commands (the others take theirs from ``options`` one by one)
 _REPORT_OPTIONS: Dict[str, Tuple[str, ...]] = {
     "inertia": (),
-    "critical": (),
+    "critical": ("omega_max", "route"),
     "ranges": (),
-    "stability": ("omega_max", "samples", "balls"),
-    "campbell": ("omega_max", "points", "balls"),
+    "stability": ("omega_max", "samples", "balls", "route"),
+    "campbell": ("omega_max", "points", "balls", "route"),
 }
 
 

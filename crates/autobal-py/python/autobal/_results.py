@@ -32,8 +32,8 @@ COMMANDS_WITH_FIGURES: List[str] = list(_autobal.COMMANDS_WITH_FIGURES)
 
 # the options that change each command's figures, as the CLI's flags (figures_api::Options)
 _FIGURE_OPTIONS: Dict[str, Tuple[str, ...]] = {
-    "stability": ("omega_max", "samples", "balls"),
-    "campbell": ("omega_max", "points", "balls", "harmonics"),
+    "stability": ("omega_max", "samples", "balls", "route"),
+    "campbell": ("omega_max", "points", "balls", "harmonics", "route"),
     "map": ("x", "y", "omega", "balls", "quantity"),
     "simulate": ("dt",),
 }
@@ -137,11 +137,15 @@ class Result:
     def to_pandas(self) -> Any:
         """The result's table as a pandas DataFrame (needs pandas):
 
-        - ``critical``: one row per critical speed; ``ranges``: one row per range (``kind``
-          autobalancing, instability or antiresonance-free, ``from``, ``to``); ``stability``:
-          the largest real part of the eigenvalues per speed (``omega``, ``max_real_part``);
+        - ``critical``: one row per critical speed (on the general route, per locked critical
+          speed); ``ranges``: one row per range (``kind`` ``autobalancing_ranges``,
+          ``instability_ranges`` (003's, where defined) or ``exact_stable_ranges``, ``from``,
+          ``to``); ``stability``: the largest real part of the eigenvalues (on the general
+          route, of the Floquet exponents of a periodic orbit) per speed (``omega``,
+          ``max_real_part``; the general route adds ``verdict`` and ``state``);
         - ``campbell``: one row per speed and tracked line (``omega``, ``line`` and the mode's
-          fields); ``map``: one row per cell, as the CLI's CSV;
+          fields; on the general route, the speeds where the line has a point); ``map``: one
+          row per cell, as the CLI's CSV;
         - ``simulate``: the samples (the CLI's CSV columns); ``sweep``: one row per run;
           ``basins``: one row per run (the CLI's CSV).
 
@@ -149,7 +153,11 @@ class Result:
         import pandas as pd
 
         r, c = self.result, self.command
+        general = isinstance(r, Mapping) and r.get("route") == "general"
         if c == "critical":
+            if general:
+                speeds = (r.get("locked_critical_speeds") or {}).get("speeds") or []
+                return pd.DataFrame(speeds) if speeds else pd.DataFrame(columns=["omega", "multiplicity", "motion", "whirl"])
             return pd.DataFrame(r["critical_speeds"])
         if c == "ranges":
             rows = [
@@ -157,10 +165,21 @@ class Result:
                 for kind in ("autobalancing_ranges", "instability_ranges")
                 for lo, hi in (r.get(kind) or [])
             ]
+            # the exact ranges: pairs on the closed-form route, {"from", "to", ...} on the general
+            for e in (r.get("exact") or {}).get("stable_ranges") or []:
+                lo, hi = (e["from"], e["to"]) if isinstance(e, Mapping) else (e[0], e[1])
+                rows.append({"kind": "exact_stable_ranges", "from": lo, "to": hi})
             return pd.DataFrame(rows, columns=["kind", "from", "to"])
         if c == "stability":
+            if general:
+                return pd.DataFrame(
+                    [{"omega": p["omega"], "max_real_part": p.get("abscissa"), "verdict": p.get("verdict"), "state": p.get("state")} for p in r["points"]],
+                    columns=["omega", "max_real_part", "verdict", "state"],
+                )
             return pd.DataFrame(r["max_real_part"], columns=["omega", "max_real_part"])
         if c == "campbell":
+            if general:
+                return pd.DataFrame([{"line": i, **p} for i, line in enumerate(r["lines"]) for p in line["points"] if p is not None])
             rows = [
                 {"omega": w, "line": i, **m}
                 for i, line in enumerate(r["lines"])

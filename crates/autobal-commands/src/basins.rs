@@ -1,0 +1,134 @@
+//! `autobal basins`: where runs of the spatial rotor end over an `n × n` grid of the first two
+//! balls' initial angles (the rest of the initial state from the config), in parallel
+//! ([`autobal::spatial::dynamics::basins`]).
+
+use crate::command::{self, ConfigSource};
+use anyhow::Result;
+use autobal::control::Control;
+use autobal::spatial::dynamics::basins::{angle_grid, basins, check_angle_grid};
+use autobal::spatial::dynamics::Summary;
+use serde_json::{json, Value};
+use std::path::PathBuf;
+
+/// `--n` when none is given (Python's `basins(n=16)` keeps its smaller default).
+pub const DEFAULT_N: usize = 24;
+
+/// `autobal basins`' arguments.
+#[derive(Debug, Clone)]
+pub struct Args {
+    /// The config (the spatial rotor's tables plus `[drive]`).
+    pub config: ConfigSource,
+    /// Grid points per angle (`n × n` runs).
+    pub n: usize,
+}
+
+impl Default for Args {
+    fn default() -> Self {
+        Args { config: ConfigSource::default(), n: DEFAULT_N }
+    }
+}
+
+/// `basins`' result: each run's initial angles and end (`None`: not run, the grid was stopped).
+pub struct Output {
+    /// The first two balls' initial angles of each run, `psi_2` outer.
+    pub angles: Vec<[f64; 2]>,
+    /// Each run's end.
+    pub ends: Vec<Option<Summary>>,
+    /// Wall time of the grid (s).
+    pub wall: f64,
+    /// Where the front end wrote the CSV ([`Output::csv`]), named in the JSON and the table.
+    pub written: Option<PathBuf>,
+}
+
+impl command::Command for Args {
+    const NAME: &'static str = "basins";
+    type Output = Output;
+
+    fn run(&self, control: &Control) -> Result<Output> {
+        let (root, source) = self.config.read()?;
+        let sim = crate::spatial_sim::build(&root, &source)?;
+        crate::config::check_entries(&root, "basins", &[crate::config::Model::Spatial])?;
+        check_angle_grid(&sim.rotor, self.n, "--n")?;
+        let cases = angle_grid(&sim.initial, &sim.drive, self.n, self.n);
+        let t0 = std::time::Instant::now();
+        let ends = basins(&sim.rotor, &cases, &sim.settings, control)?.value;
+        let wall = t0.elapsed().as_secs_f64();
+        Ok(Output { angles: cases.iter().map(|c| [c.initial.psi[0], c.initial.psi[1]]).collect(), ends, wall, written: None })
+    }
+}
+
+impl Output {
+    /// The CSV of the complete runs: `psi_1,psi_2,balanced,residual_unbalance,final_amplitude`.
+    pub fn csv(&self) -> String {
+        let mut csv = String::from("psi_1,psi_2,balanced,residual_unbalance,final_amplitude\n");
+        for (a, r) in self.angles.iter().zip(&self.ends) {
+            if let Some(s) = r {
+                csv.push_str(&format!(
+                    "{},{},{},{},{}\n",
+                    crate::num::Csv(a[0]),
+                    crate::num::Csv(a[1]),
+                    s.balanced as u8,
+                    crate::num::Csv(s.residual_unbalance),
+                    crate::num::Csv(s.final_amplitude)
+                ));
+            }
+        }
+        csv
+    }
+}
+
+impl command::Output for Output {
+    fn json(&self) -> Result<Value> {
+        let mut v = autobal::reports::basins(&self.ends, self.wall);
+        if let Some(p) = &self.written {
+            v["csv"] = json!(p.display().to_string());
+        }
+        Ok(v)
+    }
+    fn table(&self) -> Result<String> {
+        let done = self.ends.iter().flatten().count();
+        let balanced = self.ends.iter().flatten().filter(|s| s.balanced).count();
+        Ok(format!(
+            "{balanced} of {} runs balanced ({:.1} %), {:.2} s{}\n",
+            self.ends.len(),
+            100.0 * balanced as f64 / done.max(1) as f64,
+            self.wall,
+            self.written.as_ref().map_or(String::new(), |p| format!("; wrote {}", p.display()))
+        ))
+    }
+    fn stopped(&self) -> Option<String> {
+        let done = self.ends.iter().flatten().count();
+        (done < self.ends.len()).then(|| {
+            format!(
+                "interrupted: {done} of {} runs complete{}",
+                self.ends.len(),
+                self.written.as_ref().map_or(String::new(), |p| format!(", kept in {}", p.display()))
+            )
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::command::{Command as _, Output as _};
+
+    /// A grid stopped before any run ends keeps nothing, and says so: no CSV rows, the JSON
+    /// counts no completed run, `stopped` names the count (and the file, once written).
+    #[test]
+    fn a_stopped_grid_says_what_it_kept() {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/spatial.toml");
+        let control = Control::new();
+        control.cancel();
+        let mut o = Args { config: ConfigSource::file(Some(&path), &[]), n: 2 }.run(&control).unwrap();
+        assert_eq!(o.ends.len(), 4);
+        let done = o.ends.iter().flatten().count();
+        assert_eq!(o.csv().lines().count(), 1 + done);
+        assert_eq!(o.json().unwrap()["completed"], json!(done));
+        assert!(done < 4);
+        assert_eq!(o.stopped().unwrap(), format!("interrupted: {done} of 4 runs complete"));
+        o.written = Some("b.csv".into());
+        assert!(o.stopped().unwrap().ends_with(", kept in b.csv"));
+        assert!(o.table().unwrap().ends_with("; wrote b.csv\n"));
+    }
+}

@@ -1,0 +1,238 @@
+//! `autobal campbell`: eigenvalues along the speed, tracked, with whirl direction and dominant
+//! motion: paper 000's 12-state model, streamed ([`crate::linear::campbell_run`]), or the
+//! general route ([`crate::general_campbell`]: eigenvalues, or Floquet exponents of the
+//! periodic orbit, of the nonlinear equations' exact linearisation).
+
+use crate::command::{self, check_count, check_speed, ConfigSource, Figure, Route};
+use crate::config;
+use crate::general::GeneralRotor;
+use crate::general_campbell;
+use crate::linear::{self, CampbellRun, CampbellView};
+use anyhow::{bail, Result};
+use autobal::control::Control;
+use autobal::spatial::linear_model::Balls;
+use serde_json::Value;
+
+/// The range of `--points` on the closed-form route (streamed: memory does not grow with it).
+pub const POINTS: std::ops::RangeInclusive<usize> = 3..=10_000_000;
+
+/// The range of `--points` on the general route (held in memory).
+pub const GENERAL_POINTS: std::ops::RangeInclusive<usize> = 3..=100_000;
+
+/// `--points` when none is given (the general route: 60 where it shoots periodic orbits).
+pub const DEFAULT_POINTS: usize = 300;
+
+/// `autobal campbell`'s arguments.
+#[derive(Debug, Clone)]
+pub struct Args {
+    /// The config.
+    pub config: ConfigSource,
+    /// The top of the speed axis: a speed with its unit, or a bare number Ω; `None`: the
+    /// config's `analysis.omega_max`, else automatic.
+    pub omega_max: Option<String>,
+    /// Balls free (12 states) or locked (8 states; on the general route locked at the closed-form
+    /// balanced position).
+    pub balls: Balls,
+    /// The number of speeds; `None`: [`DEFAULT_POINTS`] (60 where the general route shoots
+    /// periodic orbits).
+    pub points: Option<usize>,
+    /// Excitation harmonics `h` whose lines `h×Ω` are crossed for the critical speeds.
+    pub harmonics: Vec<u32>,
+    /// The figure view.
+    pub view: CampbellView,
+    /// The route.
+    pub route: Route,
+    /// Whether the JSON is kept (the closed-form route streams it to temporary files; `false`
+    /// for the table and figures alone).
+    pub json: bool,
+}
+
+impl Default for Args {
+    fn default() -> Self {
+        Args {
+            config: ConfigSource::default(),
+            omega_max: None,
+            balls: Balls::Free,
+            points: None,
+            harmonics: vec![1],
+            view: CampbellView::Fixed,
+            route: Route::Auto,
+            json: true,
+        }
+    }
+}
+
+/// `campbell`'s result, by route.
+pub enum Output {
+    /// The 12-state model's diagram, streamed.
+    Closed(Box<CampbellRun>),
+    /// The general route over `(0, omega_max]`.
+    General {
+        /// The rotor.
+        g: Box<GeneralRotor>,
+        /// Its diagram, fixed-axes view and crossings.
+        c: Box<general_campbell::GeneralCampbell>,
+        /// The top of the axis (model units).
+        omega_max: f64,
+        /// The figure view (`--view`).
+        view: CampbellView,
+    },
+}
+
+impl command::Command for Args {
+    const NAME: &'static str = "campbell";
+    type Output = Output;
+
+    fn run(&self, control: &Control) -> Result<Output> {
+        let (root, source) = self.config.read()?;
+        let harmonics = linear::check_harmonics(&self.harmonics)?;
+        if self.route.is_general(&root) {
+            let g = crate::general::rotor_of(&root)?;
+            config::check_entries(&root, "campbell", &[config::simulation_model(&root)])?;
+            let points = self.points.unwrap_or(if g.rotor.is_periodic() { 60 } else { DEFAULT_POINTS });
+            if !GENERAL_POINTS.contains(&points) {
+                return Err(autobal::Error::invalid(
+                    "--points",
+                    format!("must lie between {} and {} on the general route, got {points}", GENERAL_POINTS.start(), GENERAL_POINTS.end()),
+                )
+                .into());
+            }
+            let w = general_campbell::omega_max(&root, &g, self.omega_max.as_deref())?;
+            let c = general_campbell::campbell_with(&g, w, points, self.balls, &harmonics, control)?;
+            return Ok(Output::General { g: Box::new(g), c: Box::new(c), omega_max: w, view: self.view });
+        }
+        let cfg = config::build(&root, &source)?;
+        config::check_entries(&root, "campbell", &[config::Model::Linear])?;
+        let w = linear::omega_max(&cfg, self.omega_max.as_deref())?;
+        if self.omega_max.is_some() {
+            check_speed("--omega-max", w)?;
+        }
+        let points = check_count("--points", self.points.unwrap_or(DEFAULT_POINTS), POINTS)?;
+        let run = linear::campbell_run(&cfg, w, points, self.balls, self.json, &harmonics, control)?;
+        Ok(Output::Closed(Box::new(run)))
+    }
+}
+
+impl command::Output for Output {
+    fn json(&self) -> Result<Value> {
+        match self {
+            Output::Closed(run) => {
+                let mut text = vec![];
+                run.write_json(&mut text)?;
+                Ok(serde_json::from_slice(&text)?)
+            }
+            Output::General { g, c, omega_max, .. } => Ok(general_campbell::campbell_json(g, c, *omega_max)),
+        }
+    }
+    fn write_json(&self, out: &mut dyn std::io::Write) -> Result<()> {
+        match self {
+            // streamed from the temporary files: the whole JSON is never in memory
+            Output::Closed(run) => run.write_json(out),
+            Output::General { .. } => {
+                let text = serde_json::to_string_pretty(&self.json()?)?;
+                writeln!(out, "{text}")?;
+                Ok(())
+            }
+        }
+    }
+    fn table(&self) -> Result<String> {
+        Ok(match self {
+            Output::Closed(run) => run.table(),
+            Output::General { g, c, .. } => general_campbell::campbell_table(g, c),
+        })
+    }
+    /// `campbell_modes` (fixed axes, one curve per mode), and on the closed-form route
+    /// `campbell_fixed`, `campbell_rotating` (`--view components`).
+    fn figures(&self) -> Result<Vec<Figure>> {
+        Ok(match self {
+            Output::Closed(run) => run.figures(),
+            Output::General { g, c, omega_max, view } => match view {
+                CampbellView::Fixed => vec![Figure::new("campbell_modes", general_campbell::campbell_plot(g, c, *omega_max))],
+                CampbellView::Components => {
+                    let (rotating, fixed) = general_campbell::components_plots(g, c);
+                    vec![Figure::new("campbell_rotating", rotating), Figure::new("campbell_fixed", fixed)]
+                }
+            },
+        })
+    }
+    fn stopped(&self) -> Option<String> {
+        match self {
+            Output::Closed(run) => run.stopped(),
+            Output::General { .. } => None,
+        }
+    }
+}
+
+/// The figures `--svg PREFIX` writes for `view`: `(path, figure id)` ([`linear::campbell_svg_paths`]).
+pub fn svg_files(prefix: &std::path::Path, view: CampbellView) -> Vec<(std::path::PathBuf, &'static str)> {
+    let ids: &[&'static str] = match view {
+        CampbellView::Fixed => &["campbell_modes"],
+        CampbellView::Components => &["campbell_rotating", "campbell_fixed"],
+    };
+    linear::campbell_svg_paths(prefix, view).into_iter().zip(ids.iter().copied()).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::command::{Command as _, Output as _};
+    use autobal::spatial::campbell::fixed_axes;
+
+    /// The streamed JSON of the closed-form route equals the library's JSON of the same
+    /// diagram computed in memory in one call (`reports::campbell_of` and `campbell_fixed`, the
+    /// route Python took before it ran the command), and the figure `campbell_modes` is the
+    /// fixed-axes plot of that in-memory diagram: streaming and decimation (none below
+    /// `PLOT_SPEEDS` speeds) lose nothing.
+    #[test]
+    fn the_streamed_json_and_figure_equal_the_in_memory_diagram() {
+        let points = 40;
+        let out = Args { points: Some(points), omega_max: Some("3".into()), ..Default::default() }.run(&Control::none()).unwrap();
+        assert!(out.stopped().is_none());
+        let got = out.json().unwrap();
+        let cfg = crate::config::build(&crate::config::parse_text(crate::config::DEFAULT_CONFIG, "d").unwrap(), "d").unwrap();
+        let c = autobal::spatial::stability::campbell(&cfg.model, &crate::linear::campbell_grid(3.0, points), Balls::Free).unwrap();
+        let fixed = fixed_axes(&cfg.model, &c, Balls::Free, &[1]).unwrap();
+        let mut want = autobal::reports::campbell_of(&cfg.model, &c);
+        if let (Some(o), Value::Object(extra)) = (want.as_object_mut(), autobal::reports::campbell_fixed(&cfg.model, &fixed)) {
+            o.extend(extra);
+        }
+        assert_eq!(got, want);
+        let figs = out.figures().unwrap();
+        let ids: Vec<&str> = figs.iter().map(|f| f.id.as_str()).collect();
+        assert_eq!(ids, ["campbell_modes", "campbell_fixed", "campbell_rotating"]);
+        assert_eq!(figs[0].plot.to_plotly(), crate::figures::campbell_fixed_plot(&cfg.model, &fixed).to_plotly());
+        // the table's format: streamed or not, the same text
+        let table_only = Args { points: Some(points), omega_max: Some("3".into()), json: false, ..Default::default() }.run(&Control::none()).unwrap();
+        assert_eq!(table_only.table().unwrap(), out.table().unwrap());
+        assert!(table_only.json().is_err(), "no JSON was kept");
+    }
+
+    /// Stopped at once (the control already cancelled, as by a Ctrl-C during the first speed),
+    /// the run keeps the speed it computed and says it is incomplete: the JSON has as many
+    /// speeds as each line has modes, `complete: false`, and `stopped` names the count.
+    #[test]
+    fn a_stopped_run_keeps_what_it_computed_and_says_so() {
+        let control = Control::new();
+        control.cancel();
+        let out = Args { points: Some(30), omega_max: Some("3".into()), ..Default::default() }.run(&control).unwrap();
+        let why = out.stopped().expect("incomplete");
+        assert!(why.starts_with("interrupted: 1 of 30 speeds computed"), "{why}");
+        let v = out.json().unwrap();
+        assert_eq!(v["complete"], Value::Bool(false));
+        let n = v["omega"].as_array().unwrap().len();
+        assert_eq!(n, 1);
+        for l in v["lines"].as_array().unwrap() {
+            assert_eq!(l["modes"].as_array().unwrap().len(), n);
+        }
+    }
+
+    /// `--points` is checked with the route's own range.
+    #[test]
+    fn points_are_checked_with_the_route_s_range() {
+        let e = |args: Args| format!("{:#}", args.run(&Control::none()).err().expect("out of range"));
+        assert_eq!(e(Args { points: Some(2), ..Default::default() }), "--points: must lie between 3 and 10000000, got 2");
+        let planar = crate::config::parse_text(include_str!("../../../examples/planar.toml"), "p").unwrap();
+        let general = Args { config: ConfigSource::tables(planar, "p"), points: Some(100_001), ..Default::default() };
+        assert_eq!(e(general), "--points: must lie between 3 and 100000 on the general route, got 100001");
+    }
+}

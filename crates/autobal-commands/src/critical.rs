@@ -1,0 +1,70 @@
+//! `autobal critical`: paper 000's critical speeds (eq (16)), sensitivity criterion and
+//! autobalancing ranges where its 12-state model represents the config ([`crate::output`]),
+//! else the general route ([`crate::general_campbell::critical`]: the locked critical speeds
+//! and the exact stability ranges of the nonlinear equations' linearisation).
+
+use crate::command::{self, ConfigSource, Route};
+use crate::config::{self, Config};
+use crate::general::GeneralRotor;
+use crate::general_campbell::{self, GeneralCritical};
+use anyhow::{bail, Result};
+use autobal::control::Control;
+use serde_json::Value;
+
+/// `autobal critical`'s arguments.
+#[derive(Debug, Clone, Default)]
+pub struct Args {
+    /// The config.
+    pub config: ConfigSource,
+    /// The route.
+    pub route: Route,
+    /// The top of the general route's speed axis (a speed with its unit, or a bare number Ω);
+    /// `None`: automatic. The closed forms give every critical speed and take none.
+    pub omega_max: Option<String>,
+}
+
+/// `critical`'s result, by route.
+pub enum Output {
+    /// Paper 000's closed forms on the config (the JSON and table evaluate them).
+    Closed(Box<Config>),
+    /// The general route.
+    General(Box<(GeneralRotor, GeneralCritical)>),
+}
+
+impl command::Command for Args {
+    const NAME: &'static str = "critical";
+    type Output = Output;
+
+    fn run(&self, control: &Control) -> Result<Output> {
+        let (root, source) = self.config.read()?;
+        if self.route.is_general(&root) {
+            let g = crate::general::rotor_of(&root)?;
+            config::check_entries(&root, "critical", &[config::simulation_model(&root)])?;
+            let w = general_campbell::omega_max(&root, &g, self.omega_max.as_deref())?;
+            let c = general_campbell::critical(&root, &g, w, control)?;
+            return Ok(Output::General(Box::new((g, c))));
+        }
+        if self.omega_max.is_some() {
+            bail!("--omega-max: only the general route (--route general) takes a speed axis; eq (16) gives every critical speed");
+        }
+        let cfg = config::build(&root, &source)?;
+        config::check_entries(&root, "critical", &[config::Model::Linear])?;
+        crate::output::check_results(&cfg)?;
+        Ok(Output::Closed(Box::new(cfg)))
+    }
+}
+
+impl command::Output for Output {
+    fn json(&self) -> Result<Value> {
+        Ok(match self {
+            Output::Closed(cfg) => crate::output::critical_json(cfg),
+            Output::General(b) => general_campbell::critical_json(&b.0, &b.1),
+        })
+    }
+    fn table(&self) -> Result<String> {
+        Ok(match self {
+            Output::Closed(cfg) => crate::output::critical_table(cfg),
+            Output::General(b) => general_campbell::critical_table(&b.0, &b.1),
+        })
+    }
+}

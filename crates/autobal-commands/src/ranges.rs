@@ -1,0 +1,44 @@
+//! `autobal ranges`: the exact stable speed ranges on every config, and paper 003's necessary
+//! ranges (eqs (1)-(3)) where they are defined ([`crate::any_config::ranges`]: the general route
+//! where the one-plane model does not describe the config, a planar config included).
+
+use crate::command::{self, ConfigSource};
+use anyhow::Result;
+use autobal::control::Control;
+use serde_json::Value;
+
+/// `autobal ranges`' arguments.
+#[derive(Debug, Clone, Default)]
+pub struct Args {
+    /// The config.
+    pub config: ConfigSource,
+}
+
+/// `ranges`' result: the JSON and the table, each built once.
+pub struct Output {
+    json: Value,
+    table: String,
+}
+
+impl command::Command for Args {
+    const NAME: &'static str = "ranges";
+    type Output = Output;
+
+    fn run(&self, control: &Control) -> Result<Output> {
+        let (root, source) = self.config.read()?;
+        for n in crate::config::bare_speed_notes(&root) {
+            crate::term::note(&n);
+        }
+        let (json, table) = crate::any_config::ranges(&root, &source, control)?;
+        Ok(Output { json, table })
+    }
+}
+
+impl command::Output for Output {
+    fn json(&self) -> Result<Value> {
+        Ok(self.json.clone())
+    }
+    fn table(&self) -> Result<String> {
+        Ok(self.table.clone())
+    }
+}
