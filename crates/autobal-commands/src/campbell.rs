@@ -8,7 +8,7 @@ use crate::config;
 use crate::general::GeneralRotor;
 use crate::general_campbell;
 use crate::linear::{self, CampbellRun, CampbellView};
-use anyhow::{bail, Result};
+use anyhow::Result;
 use autobal::control::Control;
 use autobal::spatial::linear_model::Balls;
 use serde_json::Value;

@@ -181,7 +181,7 @@ fn general_campbell(ctx: &Ctx, g: &crate::general::GeneralRotor, omega_max: f64,
     use autobal::analysis::Kind;
     let points = general_campbell_points(g.rotor.is_periodic(), ctx.quick);
     s.h3("campbell", "Campbell diagrams");
-    let c = crate::general_campbell::campbell(g, omega_max, points)?;
+    let c = crate::general_campbell::campbell(g, omega_max, points, &ctx.control)?;
     let periodic = c.diagram.kind == Kind::PeriodicOrbit;
     s.p(format!(
         "The {} of the stationary state at {points} speeds, balls free, by the general route (what <code>autobal campbell</code> computes for this config){}.",
