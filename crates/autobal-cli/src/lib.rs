@@ -775,11 +775,13 @@ fn run_linear_rotor_stability(
     if lin.balls == BallsArg::Locked {
         anyhow::bail!("--balls locked: a linear rotor is analysed with its balls free");
     }
-    if svg.is_some() {
-        anyhow::bail!("--svg: not yet drawn for a linear rotor config (use --format json)");
-    }
     let dir = config.and_then(|p| p.parent()).unwrap_or(std::path::Path::new("."));
     let cfg = linear_rotor::from_table(root, dir)?;
+    // checked before the computation
+    let svg = svg.map(|p| outfile::resolve(&p, "stability.svg"));
+    if let Some(p) = &svg {
+        outfile::Outputs::new().inputs(config).output("--svg", p).check()?;
+    }
     let samples = samples.unwrap_or(if cfg.rotor.is_isotropic() { 200 } else { 50 });
     if !(10..=1_000_000).contains(&samples) {
         anyhow::bail!("--samples: must lie between 10 and 1000000, got {samples}");
@@ -794,6 +796,9 @@ fn run_linear_rotor_stability(
         None => linear_rotor::default_omega_max(&cfg)?,
     };
     let (r, red) = linear_rotor::stability(&cfg, omega_max, samples)?;
+    if let Some(p) = &svg {
+        linear_rotor::write_svg(&r, omega_max, p)?;
+    }
     emit(format, linear_rotor::stability_json(&cfg, &r, &red, omega_max)?, linear_rotor::stability_table(&cfg, &r, &red, omega_max)?)
 }
 
@@ -807,25 +812,52 @@ fn run_linear_rotor_simulate(
     format: Format,
     control: &Control,
 ) -> Result<()> {
-    if parquet {
-        anyhow::bail!("--parquet: not yet written for a linear rotor config (the CSV is)");
-    }
     let dir = config.and_then(|p| p.parent()).unwrap_or(std::path::Path::new("."));
     let cfg = linear_rotor::from_table(root, dir)?;
     let omega_max = linear_rotor::default_omega_max(&cfg)?;
-    let out = outfile::resolve(&out, "simulation.csv");
-    outfile::Outputs::new().inputs(config).output("--out", &out).check()?;
-    let (summary, path, wall, default, red) = linear_rotor::run_to_csv(&cfg, omega_max, dt, &out, control)?;
-    if default {
+    let setup = linear_rotor::setup(&cfg, omega_max, dt)?;
+    // every output checked before the run: the CSV, the Parquet file, the figures
+    let (csv, stem) = csv_and_stem(&out);
+    let mut o = outfile::Outputs::new();
+    o.inputs(config).output("--out", &csv);
+    if parquet {
+        o.output("--parquet", &term::with_suffix(&stem, "parquet"));
+    }
+    for p in linear_rotor::plot_paths(&stem) {
+        o.output("--out", &p);
+    }
+    o.check()?;
+    if setup.default_drive {
         term::note(&format!(
             "note: the config has no [drive]: running up from rest at constant acceleration to {} rad/s in 1000 revolutions; give [drive] to choose the run",
             autobal::error::fmt_num(omega_max)
         ));
     }
-    autobal::limits::check_finite("the summary", &summary)?;
-    emit(format, linear_rotor::simulate_json(&cfg, &summary, &red, wall), linear_rotor::simulate_table(&summary, &red, wall))?;
-    term::note(&format!("wrote {}", path.display()));
-    if let Some(st) = summary.stopped {
+    let mut w = outfile::Staged::create("--out", &csv)?;
+    let mut table = match parquet {
+        true => Some(parquet::Table::create(&term::with_suffix(&stem, "parquet"), &setup.columns, false)?),
+        false => None,
+    };
+    let run = linear_rotor::run_to_files(&setup, &mut w, table.as_mut(), control)?;
+    autobal::limits::check_finite("the summary", &run.summary)?;
+    // complete rows (also when stopped early): renamed into place
+    let path = w.commit()?;
+    if let Some(t) = table {
+        term::note(&format!("wrote {}", t.finish()?.display()));
+    }
+    let plots = linear_rotor::write_plots(&setup, &run.kept, &stem)?;
+    emit(
+        format,
+        linear_rotor::simulate_json(&cfg, &run.summary, &setup.reduction, run.wall),
+        linear_rotor::simulate_table(&run.summary, &setup.reduction, run.wall),
+    )?;
+    term::note(&format!(
+        "wrote {} and {} plots ({})",
+        path.display(),
+        plots.len(),
+        plots.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")
+    ));
+    if let Some(st) = run.summary.stopped {
         anyhow::bail!("{st}: the samples up to then are kept in {}", path.display());
     }
     Ok(())
