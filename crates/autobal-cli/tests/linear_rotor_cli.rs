@@ -133,9 +133,11 @@ fn simulate_writes_csv_parquet_and_figures_and_stability_draws_its_margin() {
     assert_ne!(code, 0);
     assert!(err.contains("--dt"), "{err}");
     assert_eq!(std::fs::read_dir(&bad).unwrap().count(), 1);
-    let (code, _, err) = autobal(&["stability", "--config", &cfg, "--samples", "20", "--svg", bad.join("run.parquet").to_str().unwrap()]);
+    // --svg in a "folder" that is a file: named before the computation
+    std::fs::write(bad.join("file"), "").unwrap();
+    let (code, _, err) = autobal(&["stability", "--config", &cfg, "--samples", "20", "--svg", bad.join("file").join("m.svg").to_str().unwrap()]);
     assert_ne!(code, 0);
-    assert!(err.contains("--svg") && err.contains("is a folder"), "{err}");
+    assert!(err.contains("--svg") && err.contains("is not a folder"), "{err}");
 }
 
 /// The report on a linear rotor config: its own section (modes at the balancer plane, the
