@@ -269,7 +269,7 @@ def main() -> None:
         samples = 200
         (w3, c3), st = measure.cpu_of(lambda: json.loads(lr.stability(w_top, samples, modes=4)))
         (w3, c3), st = measure.cpu_of(lambda: json.loads(lr.stability(w_top, samples, modes=4)))
-        wall_cli_s, cpu_cli_s = measure.run_cmd([exe, "stability", "--config", str(cfg), "--omega-max", f"{w_top!r} rad/s", "--samples", str(samples), "--format", "json"])
+        wall_cli_s, cpu_cli_s = measure.run_cmd([exe, "stability", "--config", str(cfg), "--omega-max", f"{float(w_top)!r} rad/s", "--samples", str(samples), "--format", "json"])
         speeds = [p["omega"] for p in st["points"]]
         verdict_ab = [p.get("verdict") for p in st["points"]]
         t0c, t0w = time.process_time(), time.perf_counter()
