@@ -35,6 +35,23 @@ fi
 export AUTOBAL_PYTHON="$PWD/.venv/bin/python"
 export AUTOBAL_REQUIRE_PYTHON=1
 
+# ROSS, for the cross-checks of autobal.from_ross and the shaft builder against it, in a venv of
+# its own (.venv-ross: ROSS 2.3.0 needs plotly<6, .venv has plotly 7): ROSS and ccp-performance
+# without their declared dependencies (requirements-ross.txt), what their import needs
+# (requirements-ross-deps.txt). Measured into a fresh venv (docs/linear_rotor.md). Where it
+# installs, its tests are required (AUTOBAL_REQUIRE_ROSS=1); AUTOBAL_SKIP_ROSS=1 leaves it out.
+ross=""
+if [ "${AUTOBAL_SKIP_ROSS:-}" != 1 ]; then
+    if { [ -x .venv-ross/bin/python ] || python3 -m venv .venv-ross >/dev/null 2>&1; } &&
+        .venv-ross/bin/python -m pip install --quiet --disable-pip-version-check -r requirements-ross-deps.txt &&
+        .venv-ross/bin/python -m pip install --quiet --disable-pip-version-check --no-deps -r requirements-ross.txt &&
+        .venv-ross/bin/python -c "import ross" >/dev/null 2>&1; then
+        ross=1
+    else
+        say "ROSS could not be installed into .venv-ross (no network to PyPI?): its cross-checks will be skipped"
+    fi
+fi
+
 # The report's browser test: Debian's Chromium driven by playwright-core (npm, pinned in
 # crates/autobal-cli/tests/browser/package-lock.json; it never downloads a browser of its own).
 # Installed here when run as root; otherwise the test says what to install and is skipped,
@@ -67,6 +84,12 @@ rm -rf target/wheels
 .venv/bin/maturin build --quiet --profile dev -m crates/autobal-py/Cargo.toml -i .venv/bin/python -o target/wheels
 .venv/bin/python -m pip install --quiet --disable-pip-version-check --force-reinstall --no-deps target/wheels/autobal-*.whl
 AUTOBAL_BIN="$PWD/target/debug/autobal" .venv/bin/python -m pytest -q -p no:cacheprovider crates/autobal-py/tests
+
+# The ROSS cross-checks, with ROSS required, on the same wheel in .venv-ross.
+if [ -n "$ross" ]; then
+    .venv-ross/bin/python -m pip install --quiet --disable-pip-version-check --force-reinstall --no-deps target/wheels/autobal-*.whl
+    AUTOBAL_REQUIRE_ROSS=1 AUTOBAL_BIN="$PWD/target/debug/autobal" .venv-ross/bin/python -m pytest -q -p no:cacheprovider crates/autobal-py/tests/test_linear_rotor_ross.py
+fi
 
 # The wheel's `autobal` command (the console script into the same Rust front end) passes the CLI's
 # end-to-end tests: one test binary again, with AUTOBAL_BIN pointing at the installed script.

@@ -339,7 +339,7 @@ fn run(cli: Cli, control: &Control) -> Result<()> {
             check_outputs(common.config.as_deref(), "--svg", &svg)?;
             let args = stability::Args { config: common.source(), omega_max: lin.omega_max, balls: lin.balls.into(), samples, route };
             let out = args.run(control)?;
-            write_figures(&out, "--svg", &svg, "not yet drawn for a linear rotor config (use --format json)")?;
+            write_figures(&out, "--svg", &svg, "not drawn for this config")?;
             show(&out, format)
         }
         Command::Campbell { common, format, lin, points, svg, view, harmonics, route } => {
@@ -713,25 +713,52 @@ fn run_linear_rotor_simulate(
     format: Format,
     control: &Control,
 ) -> Result<()> {
-    if parquet {
-        anyhow::bail!("--parquet: not yet written for a linear rotor config (the CSV is)");
-    }
     let dir = config.and_then(|p| p.parent()).unwrap_or(std::path::Path::new("."));
     let cfg = linear_rotor::from_table(root, dir)?;
     let omega_max = linear_rotor::default_omega_max(&cfg)?;
-    let out = outfile::resolve(&out, "simulation.csv");
-    outfile::Outputs::new().inputs(config).output("--out", &out).check()?;
-    let (summary, path, wall, default, red) = linear_rotor::run_to_csv(&cfg, omega_max, dt, &out, control)?;
-    if default {
+    let setup = linear_rotor::setup(&cfg, omega_max, dt)?;
+    // every output checked before the run: the CSV, the Parquet file, the figures
+    let (csv, stem) = csv_and_stem(&out);
+    let mut o = outfile::Outputs::new();
+    o.inputs(config).output("--out", &csv);
+    if parquet {
+        o.output("--parquet", &term::with_suffix(&stem, "parquet"));
+    }
+    for p in linear_rotor::plot_paths(&stem) {
+        o.output("--out", &p);
+    }
+    o.check()?;
+    if setup.default_drive {
         term::note(&format!(
             "note: the config has no [drive]: running up from rest at constant acceleration to {} rad/s in 1000 revolutions; give [drive] to choose the run",
             autobal::error::fmt_num(omega_max)
         ));
     }
-    autobal::limits::check_finite("the summary", &summary)?;
-    emit(format, linear_rotor::simulate_json(&cfg, &summary, &red, wall), linear_rotor::simulate_table(&summary, &red, wall))?;
-    term::note(&format!("wrote {}", path.display()));
-    if let Some(st) = summary.stopped {
+    let mut w = outfile::Staged::create("--out", &csv)?;
+    let mut table = match parquet {
+        true => Some(parquet::Table::create(&term::with_suffix(&stem, "parquet"), &setup.columns, false)?),
+        false => None,
+    };
+    let run = linear_rotor::run_to_files(&setup, &mut w, table.as_mut(), control)?;
+    autobal::limits::check_finite("the summary", &run.summary)?;
+    // complete rows (also when stopped early): renamed into place
+    let path = w.commit()?;
+    if let Some(t) = table {
+        term::note(&format!("wrote {}", t.finish()?.display()));
+    }
+    let plots = linear_rotor::write_plots(&setup, &run.kept, &stem)?;
+    emit(
+        format,
+        linear_rotor::simulate_json(&cfg, &run.summary, &setup.reduction, run.wall),
+        linear_rotor::simulate_table(&run.summary, &setup.reduction, run.wall),
+    )?;
+    term::note(&format!(
+        "wrote {} and {} plots ({})",
+        path.display(),
+        plots.len(),
+        plots.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")
+    ));
+    if let Some(st) = run.summary.stopped {
         anyhow::bail!("{st}: the samples up to then are kept in {}", path.display());
     }
     Ok(())

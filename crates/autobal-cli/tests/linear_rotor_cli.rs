@@ -90,3 +90,72 @@ fn errors_name_the_key_file_and_line() {
     assert_ne!(code, 0);
     assert!(err.contains("linear_rotor.gyroscopic: expected true or false"), "{err}");
 }
+
+/// `simulate` writes what it writes for the other models: the CSV, the Parquet file
+/// (`--parquet`) with the same columns, the four figures beside the stem, the JSON summary;
+/// `stability --svg` draws the margin. Every file through outfile: an output that cannot be
+/// written is named before the run and nothing is left behind.
+#[test]
+fn simulate_writes_csv_parquet_and_figures_and_stability_draws_its_margin() {
+    let dir = tmp("files");
+    let cfg = example("linear_rotor_shaft.toml");
+    let stem = dir.join("run");
+    let v = json(&["simulate", "--config", &cfg, "--set", "drive.t_end=0.2", "--parquet", "--format", "json", "--out", stem.to_str().unwrap()]);
+    assert_eq!(v["t_end_reached"], 0.2);
+    let csv = std::fs::read_to_string(dir.join("run.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 102);
+    let parquet = std::fs::read(dir.join("run.parquet")).unwrap();
+    // a complete Parquet file: the magic at both ends (the footer written), the column names
+    assert!(parquet.starts_with(b"PAR1") && parquet.ends_with(b"PAR1"));
+    for name in csv.lines().next().unwrap().split(',') {
+        assert!(parquet.windows(name.len()).any(|w| w == name.as_bytes()), "{name} not in the Parquet schema");
+    }
+    for suffix in ["amplitude_omega", "amplitude_t", "psi_t", "omega_t"] {
+        let svg = std::fs::read_to_string(dir.join(format!("run_{suffix}.svg"))).unwrap();
+        assert!(svg.starts_with("<svg") && svg.contains("Linear rotor"), "{suffix}");
+    }
+    // the figure of stability
+    let svg = dir.join("margin.svg");
+    let s = json(&["stability", "--config", &cfg, "--samples", "20", "--svg", svg.to_str().unwrap(), "--format", "json"]);
+    let drawn = std::fs::read_to_string(&svg).unwrap();
+    assert!(drawn.contains("stability margin") && !s["stable_ranges"].as_array().unwrap().is_empty());
+    // an output that cannot be written (the Parquet name is a folder): refused before the run,
+    // nothing written, no temporary file left
+    let bad = tmp("files-bad");
+    std::fs::create_dir_all(bad.join("run.parquet")).unwrap();
+    let (code, _, err) = autobal(&["simulate", "--config", &cfg, "--set", "drive.t_end=0.2", "--parquet", "--out", bad.join("run").to_str().unwrap()]);
+    assert_ne!(code, 0);
+    assert!(err.contains("--parquet") && err.contains("is a folder"), "{err}");
+    let left: Vec<_> = std::fs::read_dir(&bad).unwrap().map(|e| e.unwrap().file_name().into_string().unwrap()).collect();
+    assert_eq!(left, vec!["run.parquet".to_string()]);
+    // a run that fails (a bad --dt) leaves no file either
+    let (code, _, err) = autobal(&["simulate", "--config", &cfg, "--dt=-1", "--out", bad.join("x").to_str().unwrap()]);
+    assert_ne!(code, 0);
+    assert!(err.contains("--dt"), "{err}");
+    assert_eq!(std::fs::read_dir(&bad).unwrap().count(), 1);
+    // --svg in a "folder" that is a file: named before the computation
+    std::fs::write(bad.join("file"), "").unwrap();
+    let (code, _, err) = autobal(&["stability", "--config", &cfg, "--samples", "20", "--svg", bad.join("file").join("m.svg").to_str().unwrap()]);
+    assert_ne!(code, 0);
+    assert!(err.contains("--svg") && err.contains("is not a folder"), "{err}");
+}
+
+/// The report on a linear rotor config: its own section (modes at the balancer plane, the
+/// stability over speed, the Campbell diagram, the run-up), every figure as SVG and PNG.
+#[test]
+fn the_report_has_a_section_for_the_linear_rotor() {
+    let dir = tmp("report");
+    let (code, _, err) =
+        autobal(&["report", "--config", &example("linear_rotor_shaft.toml"), "--set", "drive.t_end=0.5", "--quick", "--out", dir.join("r").to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    let page = std::fs::read_to_string(dir.join("r").join("index.html")).unwrap();
+    for id in ["linear_rotor_modes", "linear_rotor_stability", "linear_rotor_campbell", "linear_rotor_runup"] {
+        assert!(page.contains(&format!("id=\"{id}\"")), "{id}");
+    }
+    assert!(page.contains("Linear rotor: the balanced state is stable"), "the summary");
+    for fig in ["linear_rotor_modes_0", "linear_rotor_stability_margin", "linear_rotor_campbell_diagram", "linear_rotor_runup_amplitude_omega"] {
+        for ext in ["svg", "png"] {
+            assert!(dir.join("r").join(format!("{fig}.{ext}")).exists(), "{fig}.{ext}");
+        }
+    }
+}

@@ -196,7 +196,7 @@ pub fn report_figures(root: &Table, source: &str, quick: bool, kind: crate::repo
         Some(c) => c.text.clone(),
         None => toml::to_string(root).unwrap_or_default(),
     };
-    let ctx = crate::report::Ctx { kind, spatial, planar, quick, source: source.to_string(), text, root: root.clone(), control: control.clone() };
+    let ctx = crate::report::Ctx { kind, spatial, planar, linear: None, quick, source: source.to_string(), text, root: root.clone(), control: control.clone() };
     let list = if kind == crate::report::Kind::User { crate::report::USER_SECTIONS } else { crate::report::PAPER_SECTIONS };
     let mut out = vec![];
     for (name, build) in list {

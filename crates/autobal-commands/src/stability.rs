@@ -161,7 +161,7 @@ impl command::Output for Output {
         Ok(match self {
             Output::Closed { cfg, c, .. } => vec![Figure::new("stability_margin", crate::figures::margin_plot(&cfg.model, c))],
             Output::General { g, r, omega_max } => vec![Figure::new("stability_margin", general::margin_plot(g, r, *omega_max))],
-            Output::LinearRotor { .. } => vec![],
+            Output::LinearRotor { r, omega_max, .. } => vec![Figure::new("stability_margin", crate::linear_rotor::margin_plot(r, *omega_max))],
         })
     }
 }

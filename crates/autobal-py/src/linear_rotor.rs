@@ -1,16 +1,40 @@
 //! `autobal._autobal.LinearRotor`: a linear rotor–bearing model from its matrices (issue 19;
 //! `autobal.from_ross` in `python/autobal/_ross.py` builds one from a `ross.Rotor`), with its
-//! unbalances, balancer planes and speed-dependent bearings; the structure's Campbell
-//! eigenvalues, the balanced state's stability over speed, the reduction, the export.
+//! unbalances, balancer planes and speed-dependent bearings, or from a `[linear_rotor]` config
+//! (`LinearRotor.from_config`); the structure's Campbell eigenvalues, the balanced state's
+//! stability over speed, the run-up in time (`simulate`: the CLI's run, through the same
+//! `autobal_commands::linear_rotor` functions), the reduction, the export.
 
+use autobal::linear_rotor::config::LinearRotorConfig;
 use autobal::linear_rotor::{BalancerPlane, Layout, LinearRotor, SpeedBearing, Unbalance};
-use numpy::{PyReadonlyArray2, PyUntypedArrayMethods};
+use autobal_commands::linear_rotor as cmd;
+use numpy::{PyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
+use pyo3::types::PyDict;
 
 /// A linear rotor `M q'' + (C + Ω G) q' + K q = f` (DOFs per node `x, y` or `x, y, α, β`).
 #[pyclass(name = "LinearRotor", module = "autobal._autobal")]
 pub struct PyLinearRotor {
     rotor: LinearRotor,
+    /// The rest of the config (`omega_max`, `modes`, `[drive]`, `[integration]`) when read from
+    /// a file ([`PyLinearRotor::from_config`]); its `rotor` is not used (`rotor` is).
+    cfg: Option<LinearRotorConfig>,
+}
+
+impl PyLinearRotor {
+    /// The config the commands run: the file's settings with this rotor, or (a rotor built from
+    /// matrices) a config without `[drive]` and with `[integration]`'s defaults, as
+    /// `autobal export-model` writes it.
+    fn config(&self) -> autobal::Result<LinearRotorConfig> {
+        match &self.cfg {
+            Some(c) => Ok(LinearRotorConfig { rotor: self.rotor.clone(), ..c.clone() }),
+            None => {
+                let empty = autobal::config::Table::new();
+                let integration = autobal::config::integration(&autobal::config::Section::of(&empty, "integration"), 10.0)?;
+                Ok(LinearRotorConfig { rotor: self.rotor.clone(), source: "matrices", omega_max: None, modes: None, drive: None, integration })
+            }
+        }
+    }
 }
 
 fn square(py: Python<'_>, name: &str, a: &PyReadonlyArray2<'_, f64>) -> PyResult<(usize, Vec<f64>)> {
@@ -57,7 +81,72 @@ impl PyLinearRotor {
                 _ => r.k = v,
             }
         }
-        Ok(PyLinearRotor { rotor: r })
+        Ok(PyLinearRotor { rotor: r, cfg: None })
+    }
+
+    /// `LinearRotor.from_config(path, set=None)`: the rotor of a `[linear_rotor]` config file
+    /// (matrix files relative to it, or the shaft builder's tables) with its `omega_max`,
+    /// `modes`, `[drive]` and `[integration]`, as `autobal simulate --config PATH` reads it;
+    /// `set`: `{"table.key": value}`, the CLI's `--set` (`linear_rotor.KEY`, `drive.KEY`,
+    /// `integration.KEY`).
+    #[staticmethod]
+    #[pyo3(signature = (path, set=None))]
+    fn from_config(py: Python<'_>, path: std::path::PathBuf, set: Option<Bound<'_, PyDict>>) -> PyResult<Self> {
+        let mut sets = vec![];
+        for (k, v) in set.iter().flat_map(|d| d.iter()) {
+            let k: String = k.extract()?;
+            let v = crate::to_toml(&v, &k)?;
+            sets.push(format!("{k}={v}"));
+        }
+        let cfg = crate::commands_call(py, move |_| {
+            let (root, _) = cmd::read_set(Some(path.as_path()), &sets)?;
+            if !cmd::is_linear(&root) {
+                anyhow::bail!("config {}: not a linear rotor config (it has no [linear_rotor] table)", path.display());
+            }
+            cmd::from_table(&root, path.parent().unwrap_or(std::path::Path::new(".")))
+        })?;
+        Ok(PyLinearRotor { rotor: cfg.rotor.clone(), cfg: Some(cfg) })
+    }
+
+    /// Run the rotor in time as `autobal simulate` does (the same functions): the config's
+    /// `[drive]`, or from rest at constant acceleration to `omega_max` (default the config's,
+    /// else 1.5 × the 4th natural frequency) in 1000 revolutions; the config's reduction, or
+    /// `modes` interior mode pairs (0: the full model); samples every `dt` s. Returns an
+    /// `autobal.LinearSimulation`: the CSV's columns as arrays, the JSON summary, the figures.
+    /// A run that stops before its end raises `SimulationError` (`.result`: the samples).
+    #[pyo3(signature = (dt=None, omega_max=None, modes=None))]
+    fn simulate<'py>(&self, py: Python<'py>, dt: Option<f64>, omega_max: Option<f64>, modes: Option<usize>) -> PyResult<Bound<'py, PyAny>> {
+        let mut cfg = self.config().map_err(|e| crate::py_err(py, e))?;
+        if let Some(w) = omega_max {
+            autobal::error::positive("omega_max", w).map_err(|e| crate::py_err(py, e))?;
+            cfg.omega_max = Some(w);
+        }
+        if let Some(p) = modes {
+            cfg.modes = (p > 0).then_some(p);
+        }
+        let (cols, summary, figures) = crate::commands_call(py, move |control| {
+            let w = cmd::default_omega_max(&cfg)?;
+            let setup = cmd::setup(&cfg, w, dt)?;
+            let mut cols: Vec<Vec<f64>> = vec![vec![]; setup.columns.len()];
+            let run = cmd::run(&setup, control, |r| {
+                for (c, v) in cols.iter_mut().zip(r) {
+                    c.push(*v);
+                }
+                Ok(())
+            })?;
+            autobal::limits::check_finite("the summary", &run.summary)?;
+            let figures: Vec<serde_json::Value> = cmd::plots(&setup, &run.kept)
+                .into_iter()
+                .map(|(suffix, plot)| serde_json::json!({ "id": format!("simulation_{suffix}"), "figure": plot.to_plotly() }))
+                .collect();
+            let summary = cmd::simulate_json(&cfg, &run.summary, &setup.reduction, run.wall);
+            Ok((setup.columns.into_iter().zip(cols).collect::<Vec<_>>(), summary.to_string(), serde_json::Value::from(figures).to_string()))
+        })?;
+        let out = PyDict::new(py);
+        for (name, c) in cols {
+            out.set_item(name, PyArray1::from_vec(py, c))?;
+        }
+        py.import("autobal._linear_rotor")?.getattr("_simulation")?.call1((out, summary, figures))
     }
 
     /// Add an unbalance `m·e` (kg·m) at `node`, angle `phase` (rad), axial `offset` (m).

@@ -21,6 +21,7 @@ mod basins;
 mod design;
 mod friction;
 mod html;
+mod linear_rotor;
 mod paper000;
 mod paper003;
 mod paper004;
@@ -64,6 +65,8 @@ pub struct Ctx {
     pub spatial: Option<Config>,
     /// The config's planar rotor (paper 004 model), if it has `[planar]`.
     pub planar: Option<PlanarConfig>,
+    /// The config's linear rotor, if it has `[linear_rotor]` ([`LINEAR_SECTIONS`]).
+    pub linear: Option<autobal::linear_rotor::config::LinearRotorConfig>,
     /// Shorter simulations (tests, a first look).
     pub quick: bool,
     /// The config file's name and the `--set` overrides, for the page.
@@ -153,6 +156,9 @@ pub const USER_SECTIONS: &[(&str, Builder)] = &[
     ("the balls' basins", basins::build),
 ];
 
+/// The report about a linear rotor config (`[linear_rotor]`).
+pub const LINEAR_SECTIONS: &[(&str, Builder)] = &[("your linear rotor", linear_rotor::build)];
+
 /// The papers' reproductions, in page order (the exact stability of paper 000's base case,
 /// the embedded default example, with 003's maps beside the papers' own figures).
 pub const PAPER_SECTIONS: &[(&str, Builder)] = &[
@@ -167,11 +173,16 @@ pub const PAPER_SECTIONS: &[(&str, Builder)] = &[
 /// Read the config (spatial and/or planar), build every section in parallel under `control`,
 /// write the folder.
 pub fn run(path: Option<&Path>, sets: &[String], dir: &Path, quick: bool, kind: Kind, control: &autobal::control::Control) -> Result<PathBuf> {
-    let (root, source) = config::read_set(path, sets)?;
+    // a linear rotor config reads its `--set`s and matrix files its own way
+    let (root, source) = crate::linear_rotor::read_set(path, sets)?;
+    let linear = match crate::linear_rotor::is_linear(&root) {
+        true => Some(crate::linear_rotor::from_table(&root, path.and_then(|p| p.parent()).unwrap_or(Path::new(".")))?),
+        false => None,
+    };
     let spatial = if autobal::config::is_spatial(&root) { Some(config::build(&root, &source)?) } else { None };
     let planar = if root.contains_key("planar") { Some(config::build_planar(&root, &source)?) } else { None };
-    if spatial.is_none() && planar.is_none() {
-        bail!("config: describes no rotor: give [dimensionless] or [rotor], [supports], [unbalance], [balancer] (papers 000/003), or [planar] (paper 004)");
+    if spatial.is_none() && planar.is_none() && linear.is_none() {
+        bail!("config: describes no rotor: give [dimensionless] or [rotor], [supports], [unbalance], [balancer] (papers 000/003), or [planar] (paper 004), or [linear_rotor] (your own rotor-bearing model)");
     }
     // the linear sections, the spatial simulation's (stability by the general route, run-up),
     // the planar rotor's
@@ -182,7 +193,9 @@ pub fn run(path: Option<&Path>, sets: &[String], dir: &Path, quick: bool, kind: 
     if planar.is_some() {
         models.push(config::Model::Planar);
     }
-    config::check_entries(&root, "report", &models)?;
+    if linear.is_none() {
+        config::check_entries(&root, "report", &models)?;
+    }
     // the comparison with eq (17) stays in the report's inertia section (and `inertia`)
     for w in spatial.iter().flat_map(|c| autobal::reports::actionable_warnings(&c.model.anisotropy)) {
         crate::term::note(&format!("warning: {w}"));
@@ -196,6 +209,7 @@ pub fn run(path: Option<&Path>, sets: &[String], dir: &Path, quick: bool, kind: 
         kind,
         spatial,
         planar,
+        linear,
         quick,
         source: source_line,
         text: match &spatial_text {
@@ -213,7 +227,11 @@ pub fn write(ctx: &Ctx, dir: &Path) -> Result<PathBuf> {
     std::fs::create_dir_all(dir).with_context(|| format!("--out {}: cannot create the folder", dir.display()))?;
     let t0 = Instant::now();
     let done = AtomicUsize::new(0);
-    let list = if ctx.kind == Kind::User { USER_SECTIONS } else { PAPER_SECTIONS };
+    let list = match ctx.kind {
+        Kind::User if ctx.linear.is_some() => LINEAR_SECTIONS,
+        Kind::User => USER_SECTIONS,
+        Kind::Papers => PAPER_SECTIONS,
+    };
     let n = list.len();
     crate::term::note(&format!(
         "report: {} with {n} sections on {} threads{}",

@@ -38,6 +38,7 @@ from ._sweep import _axes, columns, simulate_batch, sweep, grid
 from ._results import COMMANDS, COMMANDS_WITH_FIGURES, Report, Result, report
 from ._ross import from_ross
 from ._autobal import LinearRotor
+from ._linear_rotor import LinearSimulation
 
 __version__: str = _autobal.__version__
 #: Columns of a planar run's summary in :func:`simulate_batch` and :func:`sweep`, in order.
@@ -72,6 +73,7 @@ __all__ = [
     "Interrupted",
     "from_ross",
     "LinearRotor",
+    "LinearSimulation",
 ]
 
 ConfigLike = Union[None, str, "os.PathLike[str]", Mapping[str, Any]]

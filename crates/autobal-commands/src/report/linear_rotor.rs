@@ -1,0 +1,206 @@
+//! The report's section on the user's linear rotor (`[linear_rotor]`, issue 19 "your own
+//! rotor"): the undamped modes at the balancer planes ([`crate::linear_rotor::modes_at_plane`]:
+//! where a plane sits at a node of a mode, the balls cannot act on that mode), where the
+//! balanced state is stable over speed (`autobal stability`'s computation and figure), the
+//! structure's Campbell diagram without the balls (ROSS's `run_campbell`), and the run-up in
+//! time (`autobal simulate`'s run and figures).
+
+use super::{Ctx, Section};
+use crate::linear_rotor as lr;
+use crate::num::fmt;
+use crate::plot::{Plot, Series, PALETTE};
+use anyhow::Result;
+use autobal::rotor_stability::speed_grid;
+
+/// Modes listed per balancer plane.
+const MODES: usize = 8;
+/// A plane whose translation and tilt in a mode are below this fraction of the mode's largest
+/// translation (tilt: times 0.1 m) sits at a node of the mode.
+const NODE_OF_MODE: f64 = 0.05;
+
+fn rpm(w: f64) -> f64 {
+    w * 30.0 / std::f64::consts::PI
+}
+
+fn speed(w: f64) -> String {
+    format!("{} rad/s ({} rpm)", fmt(w, 4), fmt(rpm(w), 4))
+}
+
+pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
+    let Some(cfg) = &ctx.linear else {
+        return Ok(Some(Section::not_applicable("linear_rotor", "Your linear rotor", "the config has no [linear_rotor] table")));
+    };
+    let rotor = &cfg.rotor;
+    let mut s = Section::new("linear_rotor", "Your linear rotor");
+    let omega_max = lr::default_omega_max(cfg)?;
+    let (model, red) = lr::model(cfg)?;
+    s.p(format!(
+        "A linear rotor–bearing model <code>M q̈ + (C(Ω) + Ω G) q̇ + K(Ω) q = f</code> ({}): {} DOFs on {} nodes, {} balancer plane(s) with {} balls, {} unbalance(s), {} speed-dependent bearing(s). {}",
+        if cfg.source == "shaft" { "the built-in shaft builder" } else { "matrix files" },
+        rotor.dofs(),
+        rotor.nodes,
+        rotor.balancers.len(),
+        rotor.total_balls(),
+        rotor.unbalances.len(),
+        rotor.speed_bearings.len(),
+        match &red {
+            None => "Every analysis below runs on the full model.".to_string(),
+            Some(r) => format!(
+                "The stability, the Campbell diagram and the run-up run on its reduction to {} DOFs ({} interior mode pairs up to {}; first neglected {}).",
+                r.dofs.1,
+                r.mode_pairs,
+                r.cutoff.map_or("-".into(), speed),
+                r.first_neglected.map_or("none".into(), speed)
+            ),
+        }
+    ));
+
+    // the modes at the balancer planes, on the full model (the nodes are physical)
+    s.h3("linear_rotor_modes", "Mode shapes at the balancer plane");
+    s.p("The undamped modes of the rotor at rest with the balls as rings (symmetric part of <code>K</code> at Ω = 0): how far each balancer plane moves in each mode, as a fraction of the mode's largest translation of any node (1: the plane sits at the mode's antinode; 0: at a node of the mode, where the balls can neither feel nor counter that mode's whirl), and the plane's tilt in that mode (rad per metre of that largest translation). Above a critical speed whose mode barely moves the plane, the balls cannot balance that mode's response.");
+    for (i, b) in rotor.balancers.iter().enumerate() {
+        let modes = lr::modes_at_plane(rotor, i, MODES)?;
+        let rows: Vec<Vec<String>> = modes
+            .iter()
+            .enumerate()
+            .map(|(k, m)| {
+                let at_node = m.translation < NODE_OF_MODE && 0.1 * m.tilt < NODE_OF_MODE;
+                vec![
+                    format!("{}", k + 1),
+                    fmt(m.omega, 5),
+                    fmt(rpm(m.omega), 5),
+                    fmt(m.translation, 3),
+                    fmt(m.tilt, 3),
+                    if at_node { "near a node of the mode".into() } else { String::new() },
+                ]
+            })
+            .collect();
+        s.p(format!("Balancer plane {i} at node {} (race radius {} m, {} balls):", b.node, fmt(b.radius, 4), b.balls));
+        s.table(&["mode", "ω (rad/s)", "ω (rpm)", "translation at the plane (of the largest)", "tilt at the plane (rad/m)", ""], &rows);
+        // one curve per distinct frequency (a pair of equal ones has one shape)
+        let mut series = vec![];
+        let mut last = f64::NAN;
+        for m in &modes {
+            if (m.omega - last).abs() <= 1e-9 * m.omega.abs().max(1e-300) {
+                continue;
+            }
+            last = m.omega;
+            let c = PALETTE[series.len() % 7];
+            series.push(Series::new(format!("{} rad/s", fmt(m.omega, 4)), m.shape.iter().enumerate().map(|(k, v)| (k as f64, *v)).collect(), c).markers());
+        }
+        s.figure(
+            format!("linear_rotor_modes_{i}"),
+            Plot {
+                title: format!("Mode shapes at rest, balancer plane {i} at node {}", b.node),
+                x_label: "node".into(),
+                y_label: "translation (of the mode's largest)".into(),
+                series,
+                vlines: vec![(b.node as f64, format!("balancer plane {i}"))],
+                ..Default::default()
+            },
+            "The lowest undamped modes at rest (balls as rings), each as its translation at every node along the direction of its largest one; the balancer plane's node is marked. A pair of equal frequencies (an isotropic rotor's x and y whirl) is drawn once.",
+        );
+    }
+
+    // stability over speed: `autobal stability`'s computation and figure
+    s.h3("linear_rotor_stability", "Where the balanced state is stable");
+    let samples = match (ctx.quick, rotor.is_isotropic()) {
+        (false, true) => 200,
+        (false, false) => 50,
+        (true, true) => 60,
+        (true, false) => 20,
+    };
+    let (st, _) = lr::stability(cfg, omega_max, samples)?;
+    let ranges: Vec<String> = st.stable_ranges.iter().map(|r| format!("{} to {}", speed(r.from), speed(r.to))).collect();
+    let verdict = if ranges.is_empty() { format!("nowhere in (0, {}]", speed(omega_max)) } else { ranges.join("; ") };
+    s.p(format!(
+        "The balanced state (the balls where they cancel the unbalance) by its exact linearisation at {samples} speeds up to {} ({}), as <code>autobal stability</code> computes it: stable {verdict}.",
+        speed(omega_max),
+        if rotor.is_isotropic() { "an equilibrium in axes turning with the rotor: eigenvalues" } else { "anisotropic: a periodic orbit, Floquet multipliers" }
+    ));
+    s.summary.push(format!("Linear rotor: the balanced state is stable {verdict}."));
+    s.figure("linear_rotor_stability_margin", lr::margin_plot(&st, omega_max), "The balanced state's stability margin over speed (largest Re λ, or the largest Floquet exponent of a periodic orbit), the exactly stable ranges shaded: <code>autobal stability --svg</code>'s figure.");
+
+    // the structure's Campbell diagram without the balls
+    s.h3("linear_rotor_campbell", "Campbell diagram");
+    let points = if ctx.quick { 40 } else { 120 };
+    let speeds = speed_grid(omega_max, points)?;
+    let mut lines: Vec<Vec<(f64, f64)>> = vec![];
+    let mut top = 0.0f64;
+    for &w in std::iter::once(&0.0).chain(&speeds) {
+        if ctx.control.should_stop().is_some() {
+            s.complete = false;
+            break;
+        }
+        let mut f: Vec<f64> = model.structure_eigenvalues(w)?.iter().map(|z| z.im).filter(|v| *v > 1e-9).collect();
+        f.sort_by(f64::total_cmp);
+        f.truncate(MODES);
+        for (i, v) in f.iter().enumerate() {
+            if lines.len() <= i {
+                lines.push(vec![]);
+            }
+            lines[i].push((w, *v));
+            top = top.max(*v);
+        }
+    }
+    let mut series: Vec<Series> = lines.into_iter().enumerate().map(|(i, p)| Series::new(format!("mode {}", i + 1), p, PALETTE[i % 6])).collect();
+    series.push(Series::new("1× (synchronous)", vec![(0.0, 0.0), (omega_max, omega_max)], PALETTE[7]).dashed());
+    s.figure(
+        "linear_rotor_campbell_diagram",
+        Plot {
+            title: "Campbell diagram of the structure without its balls".into(),
+            x_label: "speed ω (rad/s)".into(),
+            y_label: "damped natural frequency (rad/s)".into(),
+            series,
+            x_range: Some((0.0, omega_max)),
+            y_range: Some((0.0, 1.05 * top.max(omega_max))),
+            ..Default::default()
+        },
+        "The damped natural frequencies (imaginary parts of the eigenvalues, ascending, the lowest 8) of the structure without its balls at each speed, with its speed-dependent bearings and gyroscopic terms: ROSS's <code>run_campbell</code>. Where a line crosses the 1× line the rotor passes a critical speed.",
+    );
+
+    // the run-up: `autobal simulate`'s run and figures
+    s.h3("linear_rotor_runup", "Run-up");
+    // the quick report samples the same run more coarsely
+    let dt = ctx.quick.then(|| lr::drive_of(cfg, omega_max).1 / 500.0);
+    let setup = lr::setup(cfg, omega_max, dt)?;
+    let run = lr::run(&setup, &ctx.control, |_| Ok(()))?;
+    let sum = &run.summary;
+    if sum.stopped.is_some() {
+        s.complete = false;
+    }
+    s.p(format!(
+        "{}: the peak whirl radius of the first balancer plane's race centre is {} mm at {} (t = {} s), {} mm at the end; the largest radius of any node {} mm at {}.{}",
+        if setup.default_drive {
+            format!("From rest at constant acceleration to {} in 1000 revolutions (the config has no <code>[drive]</code>)", speed(omega_max))
+        } else {
+            "The config's <code>[drive]</code>".to_string()
+        },
+        fmt(1e3 * sum.peak.value, 4),
+        speed(sum.peak.with),
+        fmt(sum.peak.t, 4),
+        fmt(1e3 * sum.final_radius, 4),
+        fmt(1e3 * sum.peak_any_node.value, 4),
+        speed(sum.peak_any_node.with),
+        sum.stopped.as_ref().map_or(String::new(), |st| format!(" Stopped early: {st}."))
+    ));
+    if sum.stopped.is_none() {
+        s.summary.push(format!(
+            "Linear rotor run-up: peak whirl radius at the balancer plane {} mm at {}, {} mm at the end.",
+            fmt(1e3 * sum.peak.value, 3),
+            speed(sum.peak.with),
+            fmt(1e3 * sum.final_radius, 3)
+        ));
+    }
+    for (suffix, plot) in lr::plots(&setup, &run.kept) {
+        if suffix == "amplitude_omega" || suffix == "psi_t" {
+            let caption = if suffix == "psi_t" {
+                "The balls' angles relative to the rotor during the run-up."
+            } else {
+                "The whirl radius of each balancer plane's race centre and the largest of any node against speed during the run-up: <code>autobal simulate</code>'s figure."
+            };
+            s.figure(format!("linear_rotor_runup_{suffix}"), plot, caption);
+        }
+    }
+    Ok(Some(s))
+}

@@ -1,0 +1,144 @@
+"""A linear rotor's run in time from Python (``LinearRotor.simulate``) against the CLI's
+``simulate`` (its CSV, Parquet file and JSON, bit for bit), its figures, and the report about a
+``[linear_rotor]`` config from Python against the CLI's, file by file (issue 19).
+
+The CLI comparisons need the `autobal` binary cargo built: $AUTOBAL_BIN, else target/debug/autobal.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import autobal
+
+ROOT = Path(__file__).resolve().parents[3]
+SHAFT = str(ROOT / "examples" / "linear_rotor_shaft.toml")
+SHORT = {"drive.t_end": 0.2}
+
+
+def binary() -> str:
+    exe = os.environ.get("AUTOBAL_BIN", str(ROOT / "target" / "debug" / "autobal"))
+    if not Path(exe).exists():
+        if os.environ.get("AUTOBAL_REQUIRE_PYTHON"):
+            raise FileNotFoundError(f"{exe}: build the CLI first (cargo build -p autobal-cli)")
+        pytest.skip("needs the autobal binary")
+    return exe
+
+
+def cli(*args: str) -> subprocess.CompletedProcess:
+    out = subprocess.run([binary(), *args], capture_output=True, text=True, cwd=os.environ.get("TMPDIR", "/tmp"))
+    assert out.returncode == 0, out.stderr
+    return out
+
+
+def without_walls(d):
+    if isinstance(d, dict):
+        return {k: without_walls(v) for k, v in d.items() if not k.startswith("wall")}
+    return d
+
+
+def test_simulate_equals_the_clis_csv_parquet_and_json(tmp_path):
+    # the same run (the shaft example, reduced, a run-up of 0.2 s): every sample of every
+    # column equal bit for bit (the CSV holds the shortest string that reads back to the same
+    # double), the summary equal but for the wall time
+    want = json.loads(cli("simulate", "--config", SHAFT, "--set", "drive.t_end=0.2", "--parquet", "--format", "json", "--out", str(tmp_path / "s")).stdout)
+    sim = autobal.LinearRotor.from_config(SHAFT, set=SHORT).simulate()
+    assert isinstance(sim, autobal.LinearSimulation) and isinstance(sim, autobal.Result)
+    assert without_walls(sim.summary) == without_walls(want)
+    lines = (tmp_path / "s.csv").read_text().splitlines()
+    header = lines[0].split(",")
+    assert list(sim.columns) == header == ["t", "omega", "x_0", "y_0", "r_0", "r_max", "psi_0", "psi_1"]
+    rows = np.array([[float(v) for v in line.split(",")] for line in lines[1:]])
+    got = np.column_stack([sim.columns[c] for c in header])
+    assert got.shape == rows.shape == (101, 8)
+    assert np.array_equal(got, rows)
+    # the Parquet file: the same columns and doubles
+    pd = pytest.importorskip("pandas")
+    pytest.importorskip("pyarrow")
+    df = pd.read_parquet(tmp_path / "s.parquet")
+    assert list(df.columns) == header and np.array_equal(df.to_numpy(), rows)
+    assert list(sim.to_pandas().columns) == header and np.array_equal(sim.to_pandas().to_numpy(), rows)
+
+
+def test_simulate_from_matrices_equals_the_config(tmp_path):
+    # a rotor built from NumPy matrices (as from_ross builds one) runs as the config it was
+    # exported from (export-model writes every digit; a rotor without a config gets the CLI's
+    # defaults: no [drive], [integration]'s defaults)
+    import tomllib
+
+    text, files = autobal.LinearRotor.from_config(SHAFT).export("e")
+    for name, body in files:
+        (tmp_path / name).write_text(body)
+    (tmp_path / "e.toml").write_text(text)
+    mmread = pytest.importorskip("scipy.io").mmread
+
+    def dense(x: str) -> np.ndarray:
+        a = mmread(str(tmp_path / f"e_{x}.mtx"))
+        return np.ascontiguousarray(np.asarray(a.todense() if hasattr(a, "todense") else a, dtype=float))
+
+    lr = autobal.LinearRotor(*(dense(x) for x in "MCGK"), per_node=4)
+    t = tomllib.loads(text)["linear_rotor"]
+    for b in t.get("bearings", []):
+        k = np.array([b[x] for x in ("kxx", "kxy", "kyx", "kyy")]).T.copy()
+        c = np.array([b[x] for x in ("cxx", "cxy", "cyx", "cyy")]).T.copy()
+        lr.add_speed_bearing(b["node"], b["speeds"], k, c)
+    for u in t["unbalance"]:
+        lr.add_unbalance(u["node"], u["me"], u["phase"], u["offset"])
+    for b in t["balancer"]:
+        lr.add_balancer(b["node"], b["radius"], b["balls"], b["ball_mass"], b["drag"], b["offset"])
+    a = lr.simulate(omega_max=300.0, dt=0.5, modes=2)
+    b = autobal.LinearRotor.from_config(tmp_path / "e.toml").simulate(omega_max=300.0, dt=0.5, modes=2)
+    assert list(a.columns) == list(b.columns)
+    for col in a.columns:
+        assert np.array_equal(a.columns[col], b.columns[col]), col
+    assert without_walls(a.summary) == without_walls(b.summary)
+    # without [drive]: from rest to omega_max in 1000 revolutions, t_end = 4π·1000/omega_max
+    t_end = 4 * np.pi * 1000 / 300.0
+    assert a.summary["t_end_reached"] == pytest.approx(t_end, rel=1e-12)
+    # the speed rises linearly, Ω = 300 t / t_end; the last sample within dt = 0.5 s of the end
+    assert np.allclose(a.columns["omega"], 300.0 * a.columns["t"] / t_end, rtol=1e-12, atol=0)
+    assert a.columns["t"][-1] > t_end - 0.5 - 1e-9
+    assert a.summary["reduction"]["mode_pairs"] == 2
+
+
+def test_simulate_plots_and_errors():
+    pytest.importorskip("plotly")
+    sim = autobal.LinearRotor.from_config(SHAFT, set=SHORT).simulate()
+    assert set(sim.figures()) == {"simulation_amplitude_omega", "simulation_amplitude_t", "simulation_psi_t", "simulation_omega_t"}
+    fig = sim.plot()
+    assert "against speed" in fig.layout.title.text and len(fig.data) == 2
+    assert "<table>" in sim._repr_html_()
+    with pytest.raises(autobal.AutobalError, match="not a linear rotor config"):
+        autobal.LinearRotor.from_config(ROOT / "examples" / "spatial.toml")
+    with pytest.raises(autobal.AutobalError, match="drive.t_end"):
+        autobal.LinearRotor.from_config(SHAFT, set={"drive.t_end": -1.0}).simulate()
+    with pytest.raises(autobal.AutobalError, match="--set"):
+        autobal.LinearRotor.from_config(SHAFT, set={"rotor.mass": 1.0})
+    # a run cut short by its budget: SimulationError with the samples up to then
+    with pytest.raises(autobal.SimulationError) as e:
+        autobal.LinearRotor.from_config(SHAFT, set={"integration.max_steps": 20}).simulate()
+    assert isinstance(e.value.result, autobal.LinearSimulation) and e.value.result.summary["stopped"]
+
+
+def test_the_report_from_python_equals_the_clis(tmp_path):
+    # a [linear_rotor] config: the same files from `autobal report` and `autobal.report`, but
+    # for the page's wall time
+    cli("report", "--config", SHAFT, "--set", "drive.t_end=0.5", "--quick", "--out", str(tmp_path / "cli"))
+    rep = autobal.report(SHAFT, out=tmp_path / "py", set={"drive.t_end": 0.5}, quick=True)
+    names = sorted(p.name for p in (tmp_path / "cli").iterdir())
+    assert names == sorted(p.name for p in (tmp_path / "py").iterdir())
+    assert "linear_rotor_modes_0.svg" in names and "linear_rotor_runup_amplitude_omega.png" in names
+    timed = re.compile(r"(computed in |right-hand sides, |\()[0-9.]+ s")
+    for name in names:
+        a, b = (tmp_path / "cli" / name).read_bytes(), (tmp_path / "py" / name).read_bytes()
+        if name == "index.html":
+            a, b = (timed.sub("", x.decode()) for x in (a, b))
+        assert a == b, name
+    assert "linear_rotor_campbell_diagram" in rep.figures()
