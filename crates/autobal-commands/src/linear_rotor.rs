@@ -11,7 +11,7 @@ use crate::plot::{Plot, Series, Shade, PALETTE};
 use anyhow::{anyhow, bail, Result};
 use autobal::analysis::{Kind, Verdict};
 use autobal::error::fmt_num;
-use autobal::linear_rotor::config::{export, linear_rotor, LinearRotorConfig};
+use autobal::linear_rotor::config::{export, linear_rotor_bytes, LinearRotorConfig};
 use autobal::linear_rotor::reduce::{reduce, Reduction};
 use autobal::linear_rotor::runup::{simulate, RunSample, RunSettings, RunSummary};
 use autobal::linear_rotor::LinearRotor;
@@ -30,7 +30,9 @@ pub fn is_linear(root: &Table) -> bool {
 }
 
 /// Read a matrix file named in the config, relative to the config's folder.
-fn read_matrix(dir: &Path, name: &str) -> std::result::Result<String, String> {
+/// The bytes of a matrix file named in the config (Matrix Market text, `.npy` or `.npz`: the
+/// library parses them), relative to the config's folder, at most [`MAX_MATRIX_BYTES`].
+fn read_matrix(dir: &Path, name: &str) -> std::result::Result<Vec<u8>, String> {
     use std::io::Read;
     let p = dir.join(name);
     let f = std::fs::File::open(&p).map_err(|e| format!("cannot read {}: {e}", p.display()))?;
@@ -39,12 +41,12 @@ fn read_matrix(dir: &Path, name: &str) -> std::result::Result<String, String> {
     if bytes.len() as u64 > MAX_MATRIX_BYTES {
         return Err(format!("larger than {} bytes", MAX_MATRIX_BYTES));
     }
-    String::from_utf8(bytes).map_err(|e| format!("not UTF-8 text (byte {})", e.utf8_error().valid_up_to()))
+    Ok(bytes)
 }
 
 /// The linear rotor config of a parsed table; matrix files are read relative to `dir`.
 pub fn from_table(root: &Table, dir: &Path) -> Result<LinearRotorConfig> {
-    Ok(linear_rotor(root, &mut |name| read_matrix(dir, name))?)
+    Ok(linear_rotor_bytes(root, &mut |name| read_matrix(dir, name))?)
 }
 
 /// Apply one `--set table.key=value` to a linear rotor config (its own tables, not the schema of
