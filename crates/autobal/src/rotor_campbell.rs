@@ -71,6 +71,7 @@
 //! The changes of the count are bracketed on a grid and bisected to `1e-12` relative.
 
 use crate::analysis::{mode, stability, stationary, stationary_near, Kind, NewtonOptions, StationaryState, VectorField};
+use crate::control::{Control, Outcome};
 use crate::error::{Error, Result};
 use crate::linalg::eigen_dyn::eigenvalues;
 use crate::rotor_stability::{Field, Rotor};
@@ -286,8 +287,16 @@ fn newton_options(periodic: bool) -> NewtonOptions {
 
 /// The Campbell diagram of `rotor` over `speeds` (module docs): at each speed the stationary
 /// state (closed form first, then the previous speed's state), its eigenvalues or Floquet
-/// exponents with their fixed-axes data, tracked into lines.
+/// exponents with their fixed-axes data, tracked into lines. Runs to the end:
+/// [`campbell_over_speed_with`] under a [`Control`].
 pub fn campbell_over_speed(rotor: &Rotor, speeds: &[f64]) -> Result<RotorCampbell> {
+    campbell_over_speed_with(rotor, speeds, &Control::none()).map(|o| o.value)
+}
+
+/// [`campbell_over_speed`] under `control`, asked once per speed; the progress observer is told
+/// the speeds done. Stopped, the outcome holds the diagram over the speeds done until then
+/// (`omega`, `lines` and `failures` of those speeds).
+pub fn campbell_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Control) -> Result<Outcome<RotorCampbell>> {
     if speeds.is_empty() {
         return Err(Error::invalid("speeds", "no speed to analyse"));
     }
@@ -300,7 +309,12 @@ pub fn campbell_over_speed(rotor: &Rotor, speeds: &[f64]) -> Result<RotorCampbel
     let mut previous: Option<StationaryState> = None;
     let mut per_speed: Vec<Option<Vec<CampbellPoint>>> = Vec::with_capacity(speeds.len());
     let mut failures = Vec::with_capacity(speeds.len());
+    let mut stopped = None;
     for &w in speeds {
+        if let Some(why) = control.should_stop() {
+            stopped = Some(why);
+            break;
+        }
         let f = rotor.field(w)?;
         let guess = Rotor::guess(&f);
         let near = previous.as_ref().map(|p| p.x.clone());
@@ -330,8 +344,11 @@ pub fn campbell_over_speed(rotor: &Rotor, speeds: &[f64]) -> Result<RotorCampbel
                 failures.push(Some(e));
             }
         }
+        control.report(per_speed.len() as u64, speeds.len() as u64);
     }
-    Ok(RotorCampbell { model: rotor.model_name(), kind, omega: speeds.to_vec(), lines: track(&per_speed), failures })
+    let done = per_speed.len();
+    let value = RotorCampbell { model: rotor.model_name(), kind, omega: speeds[..done].to_vec(), lines: track(&per_speed), failures };
+    Ok(Outcome { value, stopped })
 }
 
 /// Continuous lines through each speed's values: each line's next value predicted by linear

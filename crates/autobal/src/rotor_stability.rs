@@ -35,9 +35,10 @@
 //! ```
 
 use crate::analysis::{
-    family, speed_scan, stationary, Family, FamilyOptions, FamilyVerdict, Kind, NewtonOptions, ParameterRange, ScanOptions, StableRange, StationaryState,
+    family, speed_scan_with, stationary, Family, FamilyOptions, FamilyVerdict, Kind, NewtonOptions, ParameterRange, ScanOptions, StableRange, StationaryState,
     VectorField, Verdict,
 };
+use crate::control::{Control, Outcome, StopReason};
 use crate::error::{Error, Result};
 use crate::planar::field::PlanarField;
 use crate::planar::PlanarRotor;
@@ -300,8 +301,14 @@ pub struct SpeedPoint {
     /// (`family_dimension > 0`), the member that `verdict` and `abscissa` refer to.
     pub member_psi: Vec<f64>,
     /// With a family: its stability over the members sampled at this speed
-    /// ([`FamilyPoint`]); `None` for an isolated state.
+    /// ([`FamilyPoint`]), where the family was followed; `None` for an isolated state, and
+    /// where `family_verdict` was certain without following it.
     pub family: Option<FamilyPoint>,
+    /// With a family: which of its members are stable (all, some, none). Where `family` is
+    /// `None` this is "some", certain from members already analysed at this speed, one stable
+    /// and one unstable (the member analysed here and the neighbouring followed speeds' least
+    /// and most stable members continued to this speed: [`stability_over_speed_with`]).
+    pub family_verdict: Option<FamilyVerdict>,
 }
 
 /// What a stationary state is.
@@ -411,8 +418,18 @@ pub struct RotorStability {
 }
 
 /// The stationary state of `rotor` and its stability at each of `speeds` (ascending), with the
-/// ends of the stable ranges located (module docs).
+/// ends of the stable ranges located (module docs). Runs to the end: [`stability_over_speed_with`]
+/// under a [`Control`].
 pub fn stability_over_speed(rotor: &Rotor, speeds: &[f64]) -> Result<RotorStability> {
+    stability_over_speed_with(rotor, speeds, &Control::none()).map(|o| o.value)
+}
+
+/// [`stability_over_speed`] under `control`, asked once per speed (each grid speed, each trial
+/// speed of a range end's location, each speed's family); the progress observer is told the
+/// grid speeds done. Stopped, the outcome holds the speeds done until then: their points, the
+/// stable ranges among them (an end whose location the stop cut short reported as not located,
+/// at the grid speed), the families followed until then.
+pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Control) -> Result<Outcome<RotorStability>> {
     if speeds.is_empty() {
         return Err(Error::invalid("speeds", "no speed to analyse"));
     }
@@ -434,7 +451,7 @@ pub fn stability_over_speed(rotor: &Rotor, speeds: &[f64]) -> Result<RotorStabil
     // where the closed form has no (semi-)balanced state, the balls bunched: the partially
     // balanced state (Rotor::bunched_guess)
     let guess = |f: &Field, _| Rotor::guess(f).or_else(|| Rotor::bunched_guess(f));
-    let scan = speed_scan(|w| rotor.field(w), guess, speeds, &opts).map_err(|e| match e {
+    let Outcome { value: scan, mut stopped } = speed_scan_with(|w| rotor.field(w), guess, speeds, &opts, control).map_err(|e| match e {
         crate::analysis::AnalysisError::Model(e) => e,
         e => Error::invalid("speeds", e.to_string()),
     })?;
@@ -465,16 +482,20 @@ pub fn stability_over_speed(rotor: &Rotor, speeds: &[f64]) -> Result<RotorStabil
                 state,
                 member_psi: psi,
                 family: None,
+                family_verdict: None,
             }
         })
         .collect();
     let family = if family_dimension > 0 {
         let states: Vec<Option<&StationaryState>> = scan.points.iter().map(|p| p.state.as_ref()).collect();
-        Some(family_over_speed(rotor, &mut points, &states, family_dimension, &opts.newton))
+        let (fam, why) = family_over_speed(rotor, &mut points, &states, family_dimension, &opts.newton, control);
+        stopped = stopped.or(why);
+        Some(fam)
     } else {
         None
     };
-    Ok(RotorStability { model: rotor.model_name(), kind, stable_ranges: scan.stable_ranges, points, family_dimension, member_psi, family })
+    let value = RotorStability { model: rotor.model_name(), kind, stable_ranges: scan.stable_ranges, points, family_dimension, member_psi, family };
+    Ok(Outcome { value, stopped })
 }
 
 /// The sampling of a family in [`stability_over_speed`]: continuation at steps of 0.1 rad
@@ -503,16 +524,22 @@ fn family_options(field: &Field, newton: &NewtonOptions) -> FamilyOptions {
 /// The family through the member `state` at speed `omega`, summarised; `None` where it
 /// cannot be followed.
 fn family_point(rotor: &Rotor, omega: f64, state: &StationaryState, newton: &NewtonOptions) -> Option<FamilyPoint> {
+    followed(rotor, omega, state, newton).map(|(p, _)| p)
+}
+
+/// [`family_point`], with the states of its least and most stable members.
+fn followed(rotor: &Rotor, omega: f64, state: &StationaryState, newton: &NewtonOptions) -> Option<(FamilyPoint, [Vec<f64>; 2])> {
     let f = rotor.field(omega).ok()?;
     let fam: Family = family(&f, state, &family_options(&f, newton)).ok()?;
     let (hi, lo) = fam.extremes()?;
+    let extremes = [hi.state.x.clone(), lo.state.x.clone()];
     let name = |m: &crate::analysis::FamilyMember| Member {
         parameter: m.parameter.clone(),
         psi: ball_angles(&f, &m.state.x),
         abscissa: m.stability.abscissa,
         verdict: m.stability.verdict,
     };
-    Some(FamilyPoint {
+    let point = FamilyPoint {
         members: fam.members.len(),
         stable_members: fam.stable_count(),
         verdict: fam.verdict(),
@@ -521,8 +548,14 @@ fn family_point(rotor: &Rotor, omega: f64, state: &StationaryState, newton: &New
         least_stable: name(hi),
         most_stable: name(lo),
         stable_parameter_ranges: fam.stable_ranges(),
-    })
+    };
+    Some((point, extremes))
 }
+
+/// How many grid speeds with a family apart the speeds are whose family is always followed in
+/// [`stability_over_speed_with`] (the first and last of them too): the others take their
+/// neighbours' extreme members.
+const FOLLOW_EVERY: usize = 8;
 
 /// The family's stability at each point of the scan, and the speed ranges where all and where
 /// some sampled members are stable: between two grid speeds whose family verdicts differ, the
@@ -536,16 +569,89 @@ fn family_over_speed(
     states: &[Option<&StationaryState>],
     dimension: usize,
     newton: &NewtonOptions,
-) -> FamilyStability {
-    // the grid's speeds in parallel (each family is independent of the others)
-    let families: Vec<Option<FamilyPoint>> = points
+    control: &Control,
+) -> (FamilyStability, Option<StopReason>) {
+    // The family is followed where its verdict is not already certain. Every FOLLOW_EVERY-th
+    // grid speed with a family (the anchors, and the last) is followed, in parallel. At each
+    // other speed the members known there are the member analysed (its verdict from the scan)
+    // and the least and most stable members of the nearest anchors below and above, continued
+    // to this speed by Newton (each a member of this speed's family: the minimum-norm step
+    // lands on the family, and its dimension is checked); where one of them is stable and
+    // another unstable the verdict "some members stable" is certain, for the family itself
+    // (sampled or not: more members cannot make it "all" or "none"), and the family is not
+    // followed; elsewhere (all known stable, or all unstable: "all" or "none" need every
+    // member) it is followed, in parallel. The control is asked before each speed.
+    let skipped = std::sync::atomic::AtomicBool::new(false);
+    let stop_here = || {
+        let stop = control.should_stop().is_some();
+        if stop {
+            skipped.store(true, std::sync::atomic::Ordering::Relaxed);
+        }
+        stop
+    };
+    let with_family: Vec<usize> = (0..points.len()).filter(|&i| states[i].is_some_and(|s| s.family_dimension > 0)).collect();
+    let anchors: Vec<usize> = with_family.iter().enumerate().filter(|(k, _)| k % FOLLOW_EVERY == 0 || k + 1 == with_family.len()).map(|(_, &i)| i).collect();
+    let follow = |i: usize| -> Option<(FamilyPoint, [Vec<f64>; 2])> {
+        if stop_here() {
+            return None;
+        }
+        followed(rotor, points[i].omega, states[i]?, newton)
+    };
+    let first: Vec<Option<(FamilyPoint, [Vec<f64>; 2])>> = anchors.par_iter().map(|&i| follow(i)).collect();
+    // at a speed between anchors: whether the members known there are both stable and unstable
+    let certain_some = |i: usize| -> bool {
+        let mut stable = points[i].verdict == Some(Verdict::Stable);
+        let mut unstable = points[i].verdict == Some(Verdict::Unstable);
+        let Ok(f) = rotor.field(points[i].omega) else { return false };
+        let below = anchors.iter().rposition(|&a| a < i);
+        let above = anchors.iter().position(|&a| a > i);
+        for k in [below, above].into_iter().flatten() {
+            let Some((_, extremes)) = &first[k] else { continue };
+            for x in extremes {
+                if stable && unstable {
+                    return true;
+                }
+                let Ok(state) = stationary(&f, x, newton) else { continue };
+                if state.family_dimension == 0 {
+                    continue;
+                }
+                match crate::analysis::stability(&f, &state).map(|s| s.verdict) {
+                    Ok(Verdict::Stable) => stable = true,
+                    Ok(Verdict::Unstable) => unstable = true,
+                    _ => {}
+                }
+            }
+        }
+        stable && unstable
+    };
+    let rest: Vec<(usize, Option<FamilyPoint>, bool)> = with_family
         .par_iter()
-        .zip(states.par_iter())
-        .map(|(p, st)| st.filter(|s| s.family_dimension > 0).and_then(|st| family_point(rotor, p.omega, st, newton)))
+        .filter(|&&i| !anchors.contains(&i))
+        .map(|&i| {
+            if stop_here() {
+                return (i, None, false);
+            }
+            if certain_some(i) {
+                return (i, None, true);
+            }
+            (i, follow(i).map(|(p, _)| p), false)
+        })
         .collect();
-    for (p, f) in points.iter_mut().zip(families) {
-        p.family = f;
+    for (&i, f) in anchors.iter().zip(first) {
+        points[i].family = f.map(|(p, _)| p);
     }
+    for (i, f, some) in rest {
+        points[i].family = f;
+        if some {
+            points[i].family_verdict = Some(FamilyVerdict::SomeStable);
+        }
+    }
+    for p in points.iter_mut() {
+        if let Some(f) = &p.family {
+            p.family_verdict = Some(f.verdict);
+        }
+    }
+    let mut stopped = skipped.into_inner().then(|| control.should_stop().unwrap_or(StopReason::Interrupted));
     // the family's extreme abscissas at a speed off the grid
     let extremes_at = |omega: f64, near: Option<&[f64]>| -> Option<(f64, f64)> {
         let f = rotor.field(omega).ok()?;
@@ -558,18 +664,22 @@ fn family_over_speed(
     for (which, out) in ranges.iter_mut().enumerate() {
         // which = 0: all members (largest abscissa < 0); 1: some (smallest < 0)
         let value = |p: &SpeedPoint| p.family.as_ref().map(|f| if which == 0 { f.least_stable.abscissa } else { f.most_stable.abscissa });
-        let good = |p: &SpeedPoint| {
-            p.family.as_ref().is_some_and(|f| if which == 0 { f.verdict == FamilyVerdict::AllStable } else { f.verdict != FamilyVerdict::NoneStable })
-        };
+        let good = |p: &SpeedPoint| p.family_verdict.is_some_and(|v| if which == 0 { v == FamilyVerdict::AllStable } else { v != FamilyVerdict::NoneStable });
         let mut boundary = vec![None; points.len()];
         for i in 0..points.len().saturating_sub(1) {
             let (a, b) = (&points[i], &points[i + 1]);
             if good(a) == good(b) {
                 continue;
             }
+            if stopped.is_some() {
+                continue;
+            }
             let near = states[i].or(states[i + 1]).map(|s| s.x.clone());
             let g = |w: f64| extremes_at(w, near.as_deref()).map(|e| if which == 0 { e.0 } else { e.1 });
-            boundary[i] = Some(locate(a.omega, b.omega, value(a), value(b), good(a), g));
+            match locate(a.omega, b.omega, value(a), value(b), good(a), g, control) {
+                Ok(w) => boundary[i] = Some(w),
+                Err(why) => stopped = Some(why),
+            }
         }
         let mut i = 0;
         while i < points.len() {
@@ -592,20 +702,31 @@ fn family_over_speed(
     let parameterisation = if dimension == 1 {
         "one-parameter family (n − 2 = 1 free parameter): the balls' angles move together keeping Σ m r e^{iψ} (the balancing condition) fixed; \
          parameter s = arclength along the family in the balls' angles (rad, the other states scaled by the model's scales), s = 0 at the member Newton reaches from the closed form (member_psi); \
-         swept by continuation at steps of 0.1 until it closes (all round) or ends"
+         swept by continuation at steps of 0.1 until it closes (all round) or ends; followed at every 8th grid speed and wherever its verdict is not already certain \
+         (points[].family absent where a stable and an unstable member were known without it: family_verdict \"some\")"
             .to_string()
     } else {
         format!(
-            "{dimension}-parameter family (n − 2 = {dimension} free parameters): sampled at 200 members, each the member given displaced along the family's tangent space by π times coefficients uniform in [−1, 1]^{dimension} (fixed seed) and corrected onto the family by minimum-norm Newton; not a sweep: a stable or unstable island smaller than the sampling can be missed"
+            "{dimension}-parameter family (n − 2 = {dimension} free parameters): sampled at 200 members, each the member given displaced along the family's tangent space by π times coefficients uniform in [−1, 1]^{dimension} (fixed seed) and corrected onto the family by minimum-norm Newton; not a sweep: a stable or unstable island smaller than the sampling can be missed; \
+             followed at every 8th grid speed and wherever its verdict is not already certain (points[].family absent where a stable and an unstable member were known without it: family_verdict \"some\")"
         )
     };
-    FamilyStability { dimension, parameterisation, all_members_stable: all, some_members_stable: some }
+    (FamilyStability { dimension, parameterisation, all_members_stable: all, some_members_stable: some }, stopped)
 }
 
 /// Where `g` (the family's largest or smallest abscissa) crosses 0 between `lo` and `hi`
 /// (`good_lo`: whether `lo` is on the side where it is negative), to `1e-9` relative:
-/// regula falsi (Illinois) on `g`, bisection where `g` is missing or the bracket stops halving.
-fn locate(lo: f64, hi: f64, g_lo: Option<f64>, g_hi: Option<f64>, good_lo: bool, g: impl Fn(f64) -> Option<f64>) -> f64 {
+/// regula falsi (Illinois) on `g`, bisection where `g` is missing or the bracket stops halving;
+/// `control` asked before each trial (stopped: why, and no end).
+fn locate(
+    lo: f64,
+    hi: f64,
+    g_lo: Option<f64>,
+    g_hi: Option<f64>,
+    good_lo: bool,
+    g: impl Fn(f64) -> Option<f64>,
+    control: &Control,
+) -> std::result::Result<f64, StopReason> {
     let (mut lo, mut hi, mut f_lo, mut f_hi) = (lo, hi, g_lo, g_hi);
     let mut last_side = 0i8;
     let mut slow = 0;
@@ -628,6 +749,9 @@ fn locate(lo: f64, hi: f64, g_lo: Option<f64>, g_hi: Option<f64>, good_lo: bool,
         if mid == lo || mid == hi {
             break;
         }
+        if let Some(why) = control.should_stop() {
+            return Err(why);
+        }
         let v = g(mid);
         let good = v.is_some_and(|v| v < 0.0);
         if good == good_lo {
@@ -647,7 +771,7 @@ fn locate(lo: f64, hi: f64, g_lo: Option<f64>, g_hi: Option<f64>, good_lo: bool,
         }
         slow = if (hi - lo).abs() > 0.5 * width { slow + 1 } else { 0 };
     }
-    0.5 * (lo + hi)
+    Ok(0.5 * (lo + hi))
 }
 
 /// A scan's failure in the user's terms: where the closed form gives no state, say which state
@@ -702,4 +826,36 @@ pub fn speed_grid(omega_max: f64, samples: usize) -> Result<Vec<f64>> {
     }
     let n = samples.max(2);
     Ok((1..=n).map(|i| omega_max * i as f64 / n as f64).collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_family_verdict_where_it_is_not_followed_is_the_followed_familys() {
+        // The Jeffcott rotor (paper 004, race centred) with three balls on a grid of 0.5 rad/s
+        // across its "some members stable" band (~300.4 to ~307.1 rad/s): every grid speed's
+        // verdict equals that of its family followed there (family_point), the speeds decided
+        // without following are in the band, and at least one was (the saving is real)
+        let p = PlanarRotor { n: 3, s2: 0.0, ..PlanarRotor::paper() };
+        let rotor = Rotor::Planar(p);
+        let speeds: Vec<f64> = (0..=40).map(|i| 295.0 + 0.5 * i as f64).collect();
+        let r = stability_over_speed(&rotor, &speeds).unwrap();
+        let newton = NewtonOptions::default();
+        let mut decided = 0;
+        for pt in &r.points {
+            let f = rotor.field(pt.omega).unwrap();
+            let state = stationary(&f, &Rotor::guess(&f).unwrap(), &newton).unwrap();
+            let full = family_point(&rotor, pt.omega, &state, &newton).unwrap();
+            assert_eq!(pt.family_verdict, Some(full.verdict), "at {} rad/s", pt.omega);
+            if pt.family.is_none() {
+                assert_eq!(full.verdict, FamilyVerdict::SomeStable);
+                decided += 1;
+            }
+        }
+        assert!(decided >= 3, "{decided} speeds decided without following the family");
+        let fam = r.family.as_ref().unwrap();
+        assert_eq!((fam.all_members_stable.len(), fam.some_members_stable.len()), (1, 1), "{fam:?}");
+    }
 }

@@ -145,3 +145,85 @@ fn spatial_stability_map_keeps_whole_rows() {
     let out = stability_map(&c.spec, &x, &omega, &MapSettings::default(), &Control::none(), &mut |_, _| true).unwrap();
     assert!(out.complete && out.stopped.is_none() && out.rows == 40);
 }
+
+/// A control whose progress observer cancels it once `after` items are done (as Ctrl-C from
+/// another thread would, between two speeds).
+fn cancelled_after(after: u64) -> Control {
+    let c = Control::new();
+    let flag = c.flag().clone();
+    c.with_progress(move |p| {
+        if p.done >= after {
+            flag.store(true, std::sync::atomic::Ordering::Relaxed);
+        }
+    })
+}
+
+#[test]
+fn speed_scans_stop_between_speeds_with_the_speeds_done() {
+    use autobal::analysis::{speed_scan, speed_scan_with, ScanOptions};
+    use autobal::planar::field::PlanarField;
+    use autobal::planar::PlanarRotor;
+    use autobal::rotor_campbell::{campbell_over_speed, campbell_over_speed_with};
+    use autobal::rotor_stability::{stability_over_speed, stability_over_speed_with, Rotor};
+    // the Jeffcott rotor of paper 004 (race centred): stable above ~1.05 ω_n, so the full grid
+    // has a range end to locate
+    let mut p = PlanarRotor::paper();
+    p.s2 = 0.0;
+    let wn = p.natural_frequency();
+    let speeds: Vec<f64> = (1..=12).map(|i| 0.25 * wn * i as f64).collect();
+    let field = |w| PlanarField::new(&p, w);
+    let guess = |f: &PlanarField, _| f.semi_balanced_guess();
+    let full = speed_scan(field, guess, &speeds, &ScanOptions::default()).unwrap();
+    assert_eq!(full.points.len(), speeds.len());
+    assert!(full.stable_ranges.iter().any(|r| r.from_is_boundary), "{:?}", full.stable_ranges);
+    // cancelled before the start, or a zero budget: no speed done, and it says why
+    for (control, why) in [(cancelled(), StopReason::Interrupted), (zero_budget(), StopReason::Budget { seconds: 0.0 })] {
+        let out = speed_scan_with(field, guess, &speeds, &ScanOptions::default(), &control).unwrap();
+        assert_eq!((out.value.points.len(), out.stopped), (0, Some(why)));
+        assert!(out.into_result().is_err());
+        let out = stability_over_speed_with(&Rotor::Planar(p.clone()), &speeds, &control).unwrap();
+        assert_eq!((out.value.points.len(), out.stopped), (0, Some(why)));
+        let out = campbell_over_speed_with(&Rotor::Planar(p.clone()), &speeds, &control).unwrap();
+        assert_eq!((out.value.omega.len(), out.stopped), (0, Some(why)));
+    }
+    // cancelled after the fifth speed: those five, equal to the full scan's, and the stable
+    // range among them ends at the grid (its end is not located)
+    let out = speed_scan_with(field, guess, &speeds, &ScanOptions::default(), &cancelled_after(5)).unwrap();
+    assert_eq!((out.value.points.len(), out.stopped), (5, Some(StopReason::Interrupted)));
+    assert_eq!(out.value.points[..], full.points[..5]);
+    let rotor = Rotor::Planar(p.clone());
+    let out = stability_over_speed_with(&rotor, &speeds, &cancelled_after(5)).unwrap();
+    let whole = stability_over_speed(&rotor, &speeds).unwrap();
+    assert_eq!((out.value.points.len(), out.stopped), (5, Some(StopReason::Interrupted)));
+    assert_eq!(out.value.points[..], whole.points[..5]);
+    assert!(out.value.stable_ranges.iter().all(|r| !r.to_is_boundary), "{:?}", out.value.stable_ranges);
+    let out = campbell_over_speed_with(&rotor, &speeds, &cancelled_after(5)).unwrap();
+    let whole = campbell_over_speed(&rotor, &speeds).unwrap();
+    assert_eq!((out.value.omega.len(), out.stopped), (5, Some(StopReason::Interrupted)));
+    assert_eq!(out.value.omega[..], whole.omega[..5]);
+    assert!(out.value.lines.iter().all(|l| l.points.len() == 5));
+    // under no control, complete
+    assert!(speed_scan_with(field, guess, &speeds, &ScanOptions::default(), &Control::none()).unwrap().is_complete());
+}
+
+#[test]
+fn a_family_scan_stops_with_the_families_followed() {
+    use autobal::planar::PlanarRotor;
+    use autobal::rotor_stability::{stability_over_speed_with, Rotor};
+    // three balls: a one-parameter family at each speed
+    let mut p = PlanarRotor::paper();
+    p.s2 = 0.0;
+    p.n = 3;
+    let wn = p.natural_frequency();
+    let rotor = Rotor::Planar(p);
+    let speeds = [1.2 * wn, 1.5 * wn, 2.0 * wn];
+    for (control, why) in [(cancelled(), StopReason::Interrupted), (zero_budget(), StopReason::Budget { seconds: 0.0 })] {
+        let out = stability_over_speed_with(&rotor, &speeds, &control).unwrap();
+        assert_eq!((out.value.points.len(), out.stopped), (0, Some(why)));
+    }
+    // stopped after the scan's speeds (the observer cancels at the last): the points are all
+    // there, no family is followed, and it says so
+    let out = stability_over_speed_with(&rotor, &speeds, &cancelled_after(3)).unwrap();
+    assert_eq!((out.value.points.len(), out.stopped), (3, Some(StopReason::Interrupted)));
+    assert!(out.value.points.iter().all(|p| p.family.is_none()));
+}

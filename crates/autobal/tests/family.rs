@@ -256,7 +256,7 @@ fn over_speed_the_family_says_where_all_and_where_some_members_are_stable() {
     assert!(all.from_is_boundary && some.from_is_boundary);
     assert!(some.from < all.from && all.from < 1.1 * wn, "some from {} all from {}", some.from, all.from);
     for pt in &r.points {
-        let v = pt.family.as_ref().unwrap().verdict;
+        let v = pt.family_verdict.unwrap();
         assert_eq!(pt.state, Some(StateKind::Balanced));
         assert_eq!(pt.member_psi.len(), 3);
         if pt.omega > some.from && pt.omega < all.from {

@@ -24,15 +24,17 @@
 //!   the flow of `x`; the matrix is integrated again where a step fails to halve the residual,
 //!   and once at the orbit found: its monodromy matrix.
 //! - **Floquet**: the monodromy matrix `Φ(T)` is integrated with the Jacobian along the orbit
-//!   sampled at the Chebyshev–Lobatto points of `[0, T]` and interpolated (barycentric form):
-//!   `x(t)` by DOP853 at `1e-2 · rtol` (dense output at the points), `J(t_j, x(t_j))` by the
-//!   model's automatic differentiation, the number of intervals doubled from 16 until the
-//!   interpolant on half of them is within `rtol ‖S⁻¹JS‖∞` of `J` at the other half, then
-//!   `Φ' = J̃(t) Φ` by DOP853 at `rtol`. The full variational equations `n + n²` (a Jacobian per
-//!   stage: ~290 per revolution on the 16-state two-plane rotor, against 65 here) are integrated
-//!   where 128 intervals do not reach that. The multipliers equal those of the full equations at
-//!   `rtol = 1e-13` to ~4e-9 at `rtol = 1e-10` (tests/floquet.rs), inside
-//!   [`FLOQUET_TOLERANCE`].
+//!   sampled at equispaced times `t_j = j T / N` and interpolated by the trigonometric
+//!   polynomial through the samples (`J(t, x(t))` is periodic with the orbit, so its
+//!   interpolant converges geometrically, at the rate its Fourier coefficients decay): `x(t_j)`
+//!   by DOP853 at `1e-2 · rtol` (dense output at the samples), `J(t_j, x(t_j))` by the model's
+//!   automatic differentiation, `N` doubled from 8 until the interpolant on half of the samples is within
+//!   `rtol ‖S⁻¹JS‖∞` of `J` at the other half, harmonics whose sizes sum to under
+//!   `0.1 rtol ‖S⁻¹JS‖∞` dropped, then `Φ' = J̃(t) Φ` by DOP853 at `rtol`. The full variational
+//!   equations `n + n²` (a Jacobian per stage: ~290 per revolution on the 16-state two-plane
+//!   rotor, against 16-32 here) are integrated where 64 samples do not reach that. The
+//!   multipliers equal those of the full equations at `rtol = 1e-13` to the bound of
+//!   tests/floquet.rs at `rtol = 1e-10`, inside [`FLOQUET_TOLERANCE`].
 //! - [`family()`]: the family of stationary states through a member (dimension `k =`
 //!   [`VectorField::structural_zeros`]), each member with its own stability: for `k = 1` a
 //!   continuation along the family's tangent (the null vector of the scaled Jacobian, or of
@@ -81,7 +83,8 @@ mod stationary;
 
 pub use family::{family, Family, FamilyMember, FamilyOptions, FamilyVerdict, ParameterRange, Sampling};
 pub use stability::{
-    mode, speed_scan, stability, Eigenvalue, Kind, ScanOptions, ScanPoint, SpeedScan, Stability, StableRange, Verdict, FLOQUET_TOLERANCE, NEUTRAL_TOLERANCE,
+    mode, speed_scan, speed_scan_with, stability, Eigenvalue, Kind, ScanOptions, ScanPoint, SpeedScan, Stability, StableRange, Verdict, FLOQUET_TOLERANCE,
+    NEUTRAL_TOLERANCE,
 };
 pub use stationary::{stationary, stationary_near, NewtonOptions, StationaryState, VariationalSystem};
 

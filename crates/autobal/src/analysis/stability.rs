@@ -3,6 +3,7 @@
 
 use super::stationary::{stationary_near, NewtonOptions, StationaryState};
 use super::{AnalysisError, Result, VectorField};
+use crate::control::{Control, Outcome};
 use crate::linalg::eigen::complex_solve;
 use crate::linalg::eigen_dyn::eigenvalues;
 use num_complex::Complex64;
@@ -262,8 +263,22 @@ fn solve_at<F: VectorField>(
 /// zero), each trial continued from the solution on the side it joins: regula falsi on `α`
 /// (Illinois variant), kept `boundary_rtol · Ω / 2` inside the bracket, falling back to
 /// bisection where `α` is missing or the bracket stops halving (typically 3-6 trials where
-/// bisection takes ~25).
+/// bisection takes ~25). Runs to the end: [`speed_scan_with`] under a [`Control`].
 pub fn speed_scan<F, M, G>(field_at: M, guess_at: G, speeds: &[f64], opts: &ScanOptions) -> Result<SpeedScan>
+where
+    F: VectorField,
+    M: Fn(f64) -> crate::Result<F>,
+    G: Fn(&F, f64) -> Option<Vec<f64>>,
+{
+    speed_scan_with(field_at, guess_at, speeds, opts, &Control::none()).map(|o| o.value)
+}
+
+/// [`speed_scan`] under `control`, asked once per speed (each grid speed, each trial speed of
+/// a boundary's location); the progress observer is told the grid speeds done. Stopped, the
+/// outcome holds the grid speeds done until then, with the stable ranges among them (an end
+/// whose location the stop cut short is reported as not located: `from_is_boundary` /
+/// `to_is_boundary` false, at the grid speed).
+pub fn speed_scan_with<F, M, G>(field_at: M, guess_at: G, speeds: &[f64], opts: &ScanOptions, control: &Control) -> Result<Outcome<SpeedScan>>
 where
     F: VectorField,
     M: Fn(f64) -> crate::Result<F>,
@@ -290,7 +305,12 @@ where
     };
     let mut points: Vec<ScanPoint> = Vec::with_capacity(speeds.len());
     let mut previous: Option<StationaryState> = None;
+    let mut stopped = None;
     for &omega in speeds {
+        if let Some(why) = control.should_stop() {
+            stopped = Some(why);
+            break;
+        }
         match evaluate(omega, previous.as_ref()) {
             Ok((state, st)) => {
                 previous = Some(state.clone());
@@ -301,12 +321,13 @@ where
                 points.push(ScanPoint { omega, state: None, stability: None, failure: Some(e) });
             }
         }
+        control.report(points.len() as u64, speeds.len() as u64);
     }
     // boundaries between neighbours whose verdicts differ
     let mut boundary = vec![None; points.len()];
     for i in 0..points.len().saturating_sub(1) {
         let (a, b) = (&points[i], &points[i + 1]);
-        if a.is_stable() == b.is_stable() {
+        if a.is_stable() == b.is_stable() || stopped.is_some() {
             continue;
         }
         let stable_lo = a.is_stable();
@@ -341,6 +362,10 @@ where
             if mid == lo || mid == hi {
                 break;
             }
+            if let Some(why) = control.should_stop() {
+                stopped = Some(why);
+                break;
+            }
             let near = x_lo.as_ref().or(x_hi.as_ref());
             let r = evaluate(mid, near).or_else(|_| evaluate(mid, x_hi.as_ref()));
             // the side is decided by the sign of α, so the end is where α crosses zero (not
@@ -369,7 +394,9 @@ where
             }
             slow_steps = if (hi - lo).abs() > 0.5 * width { slow_steps + 1 } else { 0 };
         }
-        boundary[i] = Some(0.5 * (lo + hi));
+        if stopped.is_none() {
+            boundary[i] = Some(0.5 * (lo + hi));
+        }
     }
     let mut stable_ranges = vec![];
     let mut i = 0;
@@ -388,5 +415,5 @@ where
         stable_ranges.push(StableRange { from, to, from_is_boundary: fb, to_is_boundary: tb });
         i = j + 1;
     }
-    Ok(SpeedScan { points, stable_ranges })
+    Ok(Outcome { value: SpeedScan { points, stable_ranges }, stopped })
 }

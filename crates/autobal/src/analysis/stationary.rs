@@ -320,75 +320,155 @@ fn integrate_period<S: System>(sys: &S, y: &mut [f64], period: f64, rtol: f64, a
     Ok(())
 }
 
-/// Most Chebyshev intervals of the interpolated Jacobian ([`interpolated_variational`]) before
-/// the full variational equations are integrated instead.
-const MAX_CHEBYSHEV: usize = 128;
+/// Most equispaced samples per period of the interpolated Jacobian ([`monodromy`]) before the
+/// full variational equations are integrated instead (a power of two: the coarser sets are its
+/// subsets).
+const MAX_NODES: usize = 64;
 
-/// `Φ' = J̃(t) Φ`: the variational equations with the Jacobian along the orbit replaced by its
-/// Chebyshev interpolant in `t` on `[0, T]` (barycentric form on the Lobatto points). Entries
-/// equal at every node (the kinematic rows `∂q̇/∂(q, v) = (0, I)`, structural zeros) are kept
-/// as constants; only the others are interpolated.
-struct InterpolatedVariational {
-    n: usize,
-    /// The Lobatto points `t_j`.
-    nodes: Vec<f64>,
-    /// The barycentric weights `(−1)^j`, halved at the ends.
-    weights: Vec<f64>,
-    /// `J` with its constant entries, row-major.
-    constant: Vec<f64>,
-    /// The indices of the entries that vary between nodes.
-    varying: Vec<usize>,
-    /// Those entries of `J(t_j, x(t_j))`, one vector per node.
-    values: Vec<Vec<f64>>,
-    jac: RefCell<Vec<f64>>,
-    coef: RefCell<Vec<f64>>,
+/// The fewest samples tried (the interpolant on half of them is checked at the other half).
+const FIRST_NODES: usize = 8;
+
+/// A period's orbit `x(t)` from `x(0) = x0`: its end `x(T)`, and its samples at the
+/// [`MAX_NODES`] equispaced times `t_j = j T / MAX_NODES`, `j = 0 .. MAX_NODES − 1` (row-major,
+/// `j = 0` is `x0`), from DOP853's dense output.
+struct Orbit {
+    end: Vec<f64>,
+    samples: Vec<f64>,
 }
 
-impl InterpolatedVariational {
-    fn new(n: usize, nodes: Vec<f64>, weights: Vec<f64>, jacobians: Vec<Vec<f64>>) -> Self {
-        let first = &jacobians[0];
-        let varying: Vec<usize> = (0..n * n).filter(|&e| jacobians.iter().any(|j| j[e] != first[e])).collect();
-        let values = jacobians.iter().map(|j| varying.iter().map(|&e| j[e]).collect()).collect();
-        let m = nodes.len();
-        InterpolatedVariational {
-            n,
-            nodes,
-            weights,
-            constant: first.clone(),
-            varying,
-            values,
-            jac: RefCell::new(first.clone()),
-            coef: RefCell::new(vec![0.0; m]),
+/// `x(T; x0)` by DOP853 at `1e-2 · rtol` (absolute tolerances that times `S`), sampled at the
+/// nodes of [`Orbit`] by the step's 7th-order dense output (three more right-hand sides per
+/// step). 100x tighter than the shooting's flows: the sampled Jacobians' own error (through
+/// `x`'s) then stays below the interpolation test's threshold. (Sampled at `rtol`, the test
+/// stalls at ~2e-10 of `‖S⁻¹JS‖∞` on the two-plane example at `rtol = 1e-10`, the samples'
+/// noise, where it must reach 1e-10.)
+fn orbit<F: VectorField + ?Sized>(f: &F, x0: &[f64], period: f64, s: &[f64], rtol: f64) -> Result<Orbit> {
+    let n = f.dim();
+    let mut samples = vec![0.0; MAX_NODES * n];
+    samples[..n].copy_from_slice(x0);
+    let plain = Plain(f);
+    let tight = 1e-2 * rtol;
+    let opts = Options::new(tight, tight).method(Method::Dop853).atol_per_component(s.iter().map(|v| tight * v).collect());
+    let mut solver = Solver::new(&plain, opts)?;
+    let mut y = x0.to_vec();
+    let mut next = 1;
+    let node = |j: usize| period * j as f64 / MAX_NODES as f64;
+    let out = solver.integrate(0.0, &mut y, period, |step| {
+        while next < MAX_NODES && node(next) <= step.t_new {
+            step.interpolate(node(next), &mut samples[next * n..(next + 1) * n]);
+            next += 1;
+        }
+        Control::Continue
+    });
+    if !out.status.is_completed() || next < MAX_NODES {
+        return Err(AnalysisError::Integration { period, reason: out.to_string() });
+    }
+    Ok(Orbit { end: y, samples })
+}
+
+/// The trigonometric interpolant of a periodic matrix function `J(t)` (period `T`) from its
+/// values at `N` equispaced times `t_j = j T / N` (`N` even):
+/// `J̃(t) = A_0 + Σ_{k=1}^{N/2} (A_k cos kθ + B_k sin kθ)`, `θ = 2π t / T`, with
+/// `A_0 = Σ_j J_j / N`, `A_k = 2 Σ_j J_j cos kθ_j / N`, `B_k = 2 Σ_j J_j sin kθ_j / N` (`k < N/2`)
+/// and `A_{N/2} = Σ_j (−1)^j J_j / N`, `B_{N/2} = 0` (the discrete Fourier transform; `J̃(t_j) =
+/// J_j`). For a function analytic on the real line its error falls geometrically in `N` at the
+/// rate of the Fourier coefficients' decay (Trefethen, *Spectral Methods in MATLAB*, ch. 4),
+/// where a Chebyshev interpolant, which ignores the periodicity, needs ~π/2 times the samples.
+/// Entries equal at every sample (the kinematic rows `(0, I)`, structural zeros) are kept as
+/// constants; only the others are transformed and evaluated.
+struct TrigInterpolant {
+    n: usize,
+    /// `2π / T`.
+    frequency: f64,
+    /// `J` with its constant entries, row-major.
+    constant: Vec<f64>,
+    /// The indices of the entries that vary between samples.
+    varying: Vec<usize>,
+    /// `A_k` then `B_k` over `varying`, for `k = 0 ..= K` (`K` the harmonics kept).
+    coefficients: Vec<(Vec<f64>, Vec<f64>)>,
+}
+
+impl TrigInterpolant {
+    /// From `values[j] = J(j T / N)`, `N = values.len()` even.
+    fn new(n: usize, period: f64, values: &[&[f64]]) -> Self {
+        let m = values.len();
+        let first = values[0];
+        let varying: Vec<usize> = (0..n * n).filter(|&e| values.iter().any(|j| j[e] != first[e])).collect();
+        let (cos, sin): (Vec<f64>, Vec<f64>) = (0..m).map(|p| (std::f64::consts::TAU * p as f64 / m as f64).sin_cos()).map(|(s, c)| (c, s)).unzip();
+        let half = m / 2;
+        let coefficients = (0..=half)
+            .map(|k| {
+                let mut a = vec![0.0; varying.len()];
+                let mut b = vec![0.0; varying.len()];
+                for (j, v) in values.iter().enumerate() {
+                    let w = if k == 0 || k == half { 1.0 } else { 2.0 } / m as f64;
+                    let (c, s) = (w * cos[(k * j) % m], w * sin[(k * j) % m]);
+                    for ((ae, be), &e) in a.iter_mut().zip(b.iter_mut()).zip(&varying) {
+                        *ae += c * v[e];
+                        *be += s * v[e];
+                    }
+                }
+                if k == 0 || k == half {
+                    b.iter_mut().for_each(|x| *x = 0.0); // sin 0 and sin(N/2 θ_j) vanish at the samples
+                }
+                (a, b)
+            })
+            .collect();
+        TrigInterpolant { n, frequency: std::f64::consts::TAU / period, constant: first.to_vec(), varying, coefficients }
+    }
+
+    /// Drop the highest harmonics while the sum of their scaled sizes `Σ ‖S⁻¹(|A_k| + |B_k|)S‖∞`
+    /// (a bound on the change of `J̃` at every `t`, in the scaled max-row-sum norm) stays within
+    /// `budget`.
+    fn truncate(&mut self, s: &[f64], budget: f64) {
+        let n = self.n;
+        let mut dropped = 0.0;
+        while self.coefficients.len() > 1 {
+            let (a, b) = self.coefficients.last().expect("non-empty");
+            let mut rows = vec![0.0; n];
+            for ((&e, x), y) in self.varying.iter().zip(a).zip(b) {
+                rows[e / n] += (x.abs() + y.abs()) * s[e % n] / s[e / n];
+            }
+            let size = rows.iter().fold(0.0f64, |m, v| m.max(*v));
+            if dropped + size > budget {
+                break;
+            }
+            dropped += size;
+            self.coefficients.pop();
         }
     }
 
-    /// `J̃(t)` into `out`.
-    fn eval(&self, t: f64, out: &mut [f64]) {
+    /// `J̃(t)` into `out` (`cos kθ`, `sin kθ` by the three-term recurrence from `k = 1`; the
+    /// varying entries summed in `acc`, contiguous, then scattered).
+    fn eval(&self, t: f64, out: &mut [f64], acc: &mut Vec<f64>) {
         out.copy_from_slice(&self.constant);
         if self.varying.is_empty() {
             return;
         }
-        let mut acc = vec![0.0; self.varying.len()];
-        if let Some(j) = self.nodes.iter().position(|tj| *tj == t) {
-            acc.copy_from_slice(&self.values[j]);
-        } else {
-            let mut coef = self.coef.borrow_mut();
-            let mut den = 0.0;
-            for (j, tj) in self.nodes.iter().enumerate() {
-                coef[j] = self.weights[j] / (t - tj);
-                den += coef[j];
+        let (s1, c1) = (self.frequency * t).sin_cos();
+        acc.clear();
+        acc.extend_from_slice(&self.coefficients[0].0);
+        let (mut c_prev, mut s_prev, mut c, mut s) = (1.0, 0.0, c1, s1);
+        for (a, b) in &self.coefficients[1..] {
+            for ((x, ak), bk) in acc.iter_mut().zip(a).zip(b) {
+                *x += c * ak + s * bk;
             }
-            for (c, v) in coef.iter().zip(&self.values) {
-                let c = c / den;
-                for (a, x) in acc.iter_mut().zip(v) {
-                    *a += c * x;
-                }
-            }
+            let (cn, sn) = (2.0 * c1 * c - c_prev, 2.0 * c1 * s - s_prev);
+            (c_prev, s_prev, c, s) = (c, s, cn, sn);
         }
-        for (&e, a) in self.varying.iter().zip(&acc) {
-            out[e] = *a;
+        for (&e, v) in self.varying.iter().zip(acc.iter()) {
+            out[e] = *v;
         }
     }
+}
+
+/// `Φ' = J̃(t) Φ`: the variational equations with the Jacobian along the orbit replaced by its
+/// trigonometric interpolant ([`TrigInterpolant`]).
+struct InterpolatedVariational {
+    n: usize,
+    interpolant: TrigInterpolant,
+    jac: RefCell<Vec<f64>>,
+    acc: RefCell<Vec<f64>>,
 }
 
 impl System for InterpolatedVariational {
@@ -398,7 +478,7 @@ impl System for InterpolatedVariational {
     fn rhs(&self, t: f64, phi: &[f64], dphi: &mut [f64]) {
         let n = self.n;
         let mut j = self.jac.borrow_mut();
-        self.eval(t, &mut j);
+        self.interpolant.eval(t, &mut j, &mut self.acc.borrow_mut());
         for a in 0..n {
             let row = &mut dphi[a * n..(a + 1) * n];
             row.iter_mut().for_each(|v| *v = 0.0);
@@ -414,90 +494,77 @@ impl System for InterpolatedVariational {
     }
 }
 
-/// `x(T; x0)` and `Φ(T)` with the Jacobian evaluated only at the Chebyshev–Lobatto points of
-/// `[0, T]` and interpolated between them (module docs of [`crate::analysis`], "Floquet"): the
-/// orbit `x(t)` by DOP853 (dense output at the points), `J(t_j, x(t_j))` there by the model's
-/// automatic differentiation, and `Φ' = J̃(t) Φ` by DOP853 at the same tolerances as the full
-/// variational equations. The number of intervals `N` doubles from 16 (reusing the points)
-/// until the interpolant on `N/2` intervals, evaluated at the `N/2` new points, is within
-/// `1e-2 · rtol` of the Jacobian there in the scaled max-row-sum norm `‖S⁻¹ · S‖∞` relative to
-/// `‖S⁻¹ J S‖∞` (the interpolant on `N` intervals is then much closer still: the error of
-/// Chebyshev interpolation of an analytic function falls geometrically in `N`); `None` when
-/// `N` = [`MAX_CHEBYSHEV`] does not reach it (the full variational equations are integrated).
-fn interpolated_variational<F: VectorField + ?Sized>(f: &F, x0: &[f64], period: f64, s: &[f64], rtol: f64) -> Result<Option<(Vec<f64>, Vec<f64>)>> {
+/// The monodromy matrix `Φ(T)` of the orbit `x` (its samples from [`orbit`]) with the Jacobian
+/// evaluated only at equispaced times and interpolated between them (module docs of
+/// [`crate::analysis`], "Floquet"): `J(t_j, x(t_j))` by the model's automatic differentiation,
+/// the trigonometric interpolant of the `N` samples ([`TrigInterpolant`]; `J(t, x(t))` is
+/// periodic with the orbit), `N` doubled from [`FIRST_NODES`] (reusing the samples) until the
+/// interpolant on `N/2` of them, evaluated at the `N/2` others, is within `rtol ‖S⁻¹ J S‖∞`
+/// (plus twice the periodicity defect `‖S⁻¹(J(T, x(T)) − J(0, x(0)))S‖∞`, the jump that the
+/// shooting's residual leaves) of the Jacobian there in the scaled max-row-sum norm (the interpolant on `N` is then closer
+/// still: the error falls geometrically in `N`); its harmonics above what `0.1 rtol ‖S⁻¹ J S‖∞`
+/// bounds are dropped; then `Φ' = J̃(t) Φ`, `Φ(0) = I`, by DOP853 at `rtol` (absolute tolerances
+/// `rtol s_a / s_b`). `None` when [`MAX_NODES`] samples do not pass the check.
+fn interpolated_monodromy<F: VectorField + ?Sized>(f: &F, orbit: &Orbit, period: f64, s: &[f64], rtol: f64) -> Result<Option<Vec<f64>>> {
     let n = f.dim();
-    // the orbit at the Lobatto points of MAX_CHEBYSHEV intervals (coarser sets are subsets)
-    let big = MAX_CHEBYSHEV;
-    let times: Vec<f64> = (0..=big).map(|j| 0.5 * period * (1.0 - (std::f64::consts::PI * j as f64 / big as f64).cos())).collect();
-    let mut samples: Vec<Option<Vec<f64>>> = vec![None; big + 1];
-    samples[0] = Some(x0.to_vec());
-    let plain = Plain(f);
-    // the orbit 100x tighter than the tolerance: the sampled Jacobians' own error (through
-    // x's) then stays below the interpolation test's threshold
-    let tight = 1e-2 * rtol;
-    let opts = Options::new(tight, tight).method(Method::Dop853).atol_per_component(s.iter().map(|v| tight * v).collect());
-    let mut solver = Solver::new(&plain, opts)?;
-    let mut y = x0.to_vec();
-    let mut next = 1;
-    let out = solver.integrate(0.0, &mut y, period, |step| {
-        while next < big && times[next] <= step.t_new {
-            let mut v = vec![0.0; n];
-            step.interpolate(times[next], &mut v);
-            samples[next] = Some(v);
-            next += 1;
-        }
-        Control::Continue
-    });
-    if !out.status.is_completed() {
-        return Err(AnalysisError::Integration { period, reason: out.to_string() });
-    }
-    samples[big] = Some(y.clone());
     let scaled_norm = |m: &[f64]| (0..n).map(|a| (0..n).map(|b| (m[a * n + b] * s[b] / s[a]).abs()).sum::<f64>()).fold(0.0, f64::max);
-    let mut jacobians: Vec<Option<Vec<f64>>> = vec![None; big + 1];
-    let mut jac_at = |k: usize| -> Result<Vec<f64>> {
-        if let Some(j) = &jacobians[k] {
-            return Ok(j.clone());
-        }
-        let mut j = vec![0.0; n * n];
-        f.jacobian(times[k], samples[k].as_ref().expect("sampled"), &mut j);
-        non_finite(f, &j, "Jacobian")?;
-        jacobians[k] = Some(j.clone());
-        Ok(j)
-    };
-    let system = |intervals: usize, jac: Vec<Vec<f64>>| {
-        let stride = big / intervals;
-        let nodes: Vec<f64> = (0..=intervals).map(|j| times[j * stride]).collect();
-        let weights: Vec<f64> = (0..=intervals).map(|j| if j % 2 == 0 { 1.0 } else { -1.0 } * if j == 0 || j == intervals { 0.5 } else { 1.0 }).collect();
-        InterpolatedVariational::new(n, nodes, weights, jac)
-    };
-    let mut intervals = 8;
-    let mut coarse: Vec<Vec<f64>> = (0..=intervals).map(|j| jac_at(j * big / intervals)).collect::<Result<_>>()?;
-    let accepted = loop {
-        let fine_n = 2 * intervals;
-        let stride = big / fine_n;
-        let fine: Vec<Vec<f64>> = (0..=fine_n).map(|j| jac_at(j * stride)).collect::<Result<_>>()?;
-        let interp = system(intervals, coarse);
-        let mut worst: f64 = 0.0;
-        let mut size: f64 = 0.0;
-        let mut tmp = vec![0.0; n * n];
-        for (j, jf) in fine.iter().enumerate() {
-            size = size.max(scaled_norm(jf));
-            if j % 2 == 1 {
-                interp.eval(times[j * stride], &mut tmp);
-                tmp.iter_mut().zip(jf).for_each(|(a, b)| *a -= b);
-                worst = worst.max(scaled_norm(&tmp));
+    let mut jacobians: Vec<Option<Vec<f64>>> = vec![None; MAX_NODES];
+    let node = |j: usize| period * j as f64 / MAX_NODES as f64;
+    let fill = |jacobians: &mut [Option<Vec<f64>>], stride: usize| -> Result<()> {
+        for k in (0..MAX_NODES).step_by(stride) {
+            if jacobians[k].is_none() {
+                let mut j = vec![0.0; n * n];
+                f.jacobian(node(k), &orbit.samples[k * n..(k + 1) * n], &mut j);
+                non_finite(f, &j, "Jacobian")?;
+                jacobians[k] = Some(j);
             }
         }
-        if worst <= rtol * size {
-            break Some(system(fine_n, fine));
+        Ok(())
+    };
+    let at = |jacobians: &[Option<Vec<f64>>], stride: usize| -> Vec<Vec<f64>> {
+        (0..MAX_NODES).step_by(stride).map(|k| jacobians[k].clone().expect("filled")).collect()
+    };
+    // the periodicity defect of the sampled J: x(T) differs from x(0) by the shooting's
+    // residual, so J(t, x(t)) has a jump of this size at t = T, which no periodic interpolant
+    // resolves (its error near the jump is of the jump's order) and which bounds how well J
+    // along the computed orbit is known anyway: the test allows twice it
+    let defect = {
+        let mut jt = vec![0.0; n * n];
+        f.jacobian(period, &orbit.end, &mut jt);
+        non_finite(f, &jt, "Jacobian")?;
+        fill(&mut jacobians, MAX_NODES)?;
+        jt.iter_mut().zip(jacobians[0].as_ref().expect("filled")).for_each(|(a, b)| *a -= b);
+        scaled_norm(&jt)
+    };
+    let mut nodes = FIRST_NODES;
+    let accepted = loop {
+        let stride = MAX_NODES / nodes;
+        fill(&mut jacobians, stride)?;
+        let fine = at(&jacobians, stride);
+        let coarse: Vec<&[f64]> = fine.iter().step_by(2).map(|v| v.as_slice()).collect();
+        let interp = TrigInterpolant::new(n, period, &coarse);
+        let size = fine.iter().map(|j| scaled_norm(j)).fold(0.0, f64::max);
+        let mut worst: f64 = 0.0;
+        let mut tmp = vec![0.0; n * n];
+        let mut acc = vec![];
+        for (j, jf) in fine.iter().enumerate().skip(1).step_by(2) {
+            interp.eval(node(j * stride), &mut tmp, &mut acc);
+            tmp.iter_mut().zip(jf).for_each(|(a, b)| *a -= b);
+            worst = worst.max(scaled_norm(&tmp));
         }
-        if fine_n >= big {
+        if worst <= rtol * size + 2.0 * defect {
+            let values: Vec<&[f64]> = fine.iter().map(|v| v.as_slice()).collect();
+            let mut interp = TrigInterpolant::new(n, period, &values);
+            interp.truncate(s, 0.1 * rtol * size);
+            break Some(interp);
+        }
+        if nodes >= MAX_NODES {
             break None;
         }
-        intervals = fine_n;
-        coarse = fine;
+        nodes *= 2;
     };
-    let Some(sys) = accepted else { return Ok(None) };
+    let Some(interpolant) = accepted else { return Ok(None) };
+    let sys = InterpolatedVariational { n, interpolant, jac: RefCell::new(vec![0.0; n * n]), acc: RefCell::new(vec![]) };
     let mut atol = Vec::with_capacity(n * n);
     for a in 0..n {
         for b in 0..n {
@@ -509,25 +576,19 @@ fn interpolated_variational<F: VectorField + ?Sized>(f: &F, x0: &[f64], period: 
         phi[a * n + a] = 1.0;
     }
     integrate_period(&sys, &mut phi, period, rtol, atol)?;
-    Ok(Some((y, phi)))
+    Ok(Some(phi))
 }
 
-/// `x(T; x0)`, and with `variational` also `Φ(T)`, by DOP853 from `t = 0` (module docs of
-/// [`crate::analysis`]): `Φ` with the interpolated Jacobian where it converges
-/// ([`interpolated_variational`]), else by the full variational equations.
-fn flow<F: VectorField + ?Sized>(f: &F, x0: &[f64], period: f64, s: &[f64], rtol: f64, variational: bool) -> Result<(Vec<f64>, Option<Vec<f64>>)> {
+/// The monodromy matrix `Φ(T)` of the orbit from `x0` (its [`orbit`]): with the interpolated
+/// Jacobian where that converges ([`interpolated_monodromy`]), else by the full variational
+/// equations `n + n²` from `x0`.
+fn monodromy<F: VectorField + ?Sized>(f: &F, x0: &[f64], orbit: &Orbit, period: f64, s: &[f64], rtol: f64) -> Result<Vec<f64>> {
+    if let Some(phi) = interpolated_monodromy(f, orbit, period, s, rtol)? {
+        return Ok(phi);
+    }
     let n = f.dim();
-    let atol_x = s.iter().map(|v| rtol * v);
-    if !variational {
-        let mut y = x0.to_vec();
-        integrate_period(&Plain(f), &mut y, period, rtol, atol_x.collect())?;
-        return Ok((y, None));
-    }
-    if let Some((y, phi)) = interpolated_variational(f, x0, period, s, rtol)? {
-        return Ok((y, Some(phi)));
-    }
     let sys = VariationalSystem::new(f);
-    let mut atol: Vec<f64> = atol_x.collect();
+    let mut atol: Vec<f64> = s.iter().map(|v| rtol * v).collect();
     for a in 0..n {
         for b in 0..n {
             atol.push(rtol * s[a] / s[b]);
@@ -539,8 +600,22 @@ fn flow<F: VectorField + ?Sized>(f: &F, x0: &[f64], period: f64, s: &[f64], rtol
         y[n + a * n + a] = 1.0;
     }
     integrate_period(&sys, &mut y, period, rtol, atol)?;
-    let phi = y.split_off(n);
-    Ok((y, Some(phi)))
+    Ok(y.split_off(n))
+}
+
+/// `x(T; x0)` by DOP853 at `rtol` (absolute tolerances `rtol · S`): a shooting trial.
+fn flow<F: VectorField + ?Sized>(f: &F, x0: &[f64], period: f64, s: &[f64], rtol: f64) -> Result<Vec<f64>> {
+    let mut y = x0.to_vec();
+    integrate_period(&Plain(f), &mut y, period, rtol, s.iter().map(|v| rtol * v).collect())?;
+    Ok(y)
+}
+
+/// `x(T; x0)` and `Φ(T)` (module docs of [`crate::analysis`]): the [`orbit`], then its
+/// [`monodromy`].
+fn variational_flow<F: VectorField + ?Sized>(f: &F, x0: &[f64], period: f64, s: &[f64], rtol: f64) -> Result<(Orbit, Vec<f64>)> {
+    let o = orbit(f, x0, period, s, rtol)?;
+    let phi = monodromy(f, x0, &o, period, s, rtol)?;
+    Ok((o, phi))
 }
 
 /// `S⁻¹ (I − Φ) S`: the shooting residual's Jacobian in scaled variables.
@@ -576,16 +651,16 @@ fn periodic<F: VectorField + ?Sized>(
         detail: detail.into(),
     };
     let mut x = guess.to_vec();
-    // the matrix, and Φ(T) at x where it was integrated there (then the matrix is exact)
+    // the residual, the matrix, and Φ(T) at x where it was integrated there (then the matrix
+    // is exact)
     let (mut r, mut b, mut phi_at_x) = match hint.filter(|h| h.len() == n * n && h.iter().all(|v| v.is_finite())) {
         Some(h) => {
-            let (xt, _) = flow(f, &x, period, s, opts.rtol, false)?;
+            let xt = flow(f, &x, period, s, opts.rtol)?;
             (residual(&x, &xt), shooting_matrix(h, s, n), None)
         }
         None => {
-            let (xt, phi) = flow(f, &x, period, s, opts.rtol, true)?;
-            let phi = phi.expect("variational flow");
-            (residual(&x, &xt), shooting_matrix(&phi, s, n), Some(phi))
+            let (o, phi) = variational_flow(f, &x, period, s, opts.rtol)?;
+            (residual(&x, &o.end), shooting_matrix(&phi, s, n), Some(phi))
         }
     };
     let mut it = 0;
@@ -607,9 +682,8 @@ fn periodic<F: VectorField + ?Sized>(
                     // the quasi-Newton iteration stops just below the tolerance), taken only
                     // if it is a small move (≤ 1e3 tolerances, scaled), with the residual
                     // before it reported
-                    let (xt, phi) = flow(f, &x, period, s, opts.rtol, true)?;
-                    let phi = phi.expect("variational flow");
-                    let rv = residual(&x, &xt);
+                    let (o, phi) = variational_flow(f, &x, period, s, opts.rtol)?;
+                    let rv = residual(&x, &o.end);
                     if let Some(d) = direction(&shooting_matrix(&phi, s, n), n, &rv, k) {
                         if norm_inf(&d) <= 1e3 * tol {
                             x.iter_mut().zip(&d).zip(s).for_each(|((xi, di), si)| *xi += di * si);
@@ -639,7 +713,7 @@ fn periodic<F: VectorField + ?Sized>(
             let mut lambda = 1.0;
             while lambda >= shortest {
                 let xn: Vec<f64> = x.iter().zip(&d).zip(s).map(|((xi, di), si)| xi + lambda * di * si).collect();
-                if let Ok((xt, _)) = flow(f, &xn, period, s, opts.rtol, false) {
+                if let Ok(xt) = flow(f, &xn, period, s, opts.rtol) {
                     let rn = residual(&xn, &xt);
                     if norm2(&rn) < (1.0 - 1e-4 * lambda) * r0 {
                         return Some((xn, rn, lambda, d));
@@ -669,7 +743,7 @@ fn periodic<F: VectorField + ?Sized>(
                 x = xn;
                 r = rn;
                 phi_at_x = None;
-                if stalled {
+                if stalled && norm_inf(&r) > tol {
                     refreshes += 1;
                     if refreshes > max_refreshes {
                         return Err(fail(
@@ -678,9 +752,8 @@ fn periodic<F: VectorField + ?Sized>(
                             &format!("stagnates ({max_refreshes} integrations of the variational equations without converging)"),
                         ));
                     }
-                    let (xt, phi) = flow(f, &x, period, s, opts.rtol, true)?;
-                    let phi = phi.expect("variational flow");
-                    r = residual(&x, &xt);
+                    let (o, phi) = variational_flow(f, &x, period, s, opts.rtol)?;
+                    r = residual(&x, &o.end);
                     b = shooting_matrix(&phi, s, n);
                     phi_at_x = Some(phi);
                 }
@@ -691,9 +764,8 @@ fn periodic<F: VectorField + ?Sized>(
                 if refreshes > max_refreshes {
                     return Err(fail(it, res, &format!("stagnates ({max_refreshes} integrations of the variational equations without converging)")));
                 }
-                let (xt, phi) = flow(f, &x, period, s, opts.rtol, true)?;
-                let phi = phi.expect("variational flow");
-                r = residual(&x, &xt);
+                let (o, phi) = variational_flow(f, &x, period, s, opts.rtol)?;
+                r = residual(&x, &o.end);
                 b = shooting_matrix(&phi, s, n);
                 phi_at_x = Some(phi);
             }
@@ -710,6 +782,86 @@ fn periodic<F: VectorField + ?Sized>(
                 });
             }
             None => return Err(fail(it, res, "no step along the Newton direction reduces the residual")),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::TrigInterpolant;
+    use std::f64::consts::TAU;
+
+    /// A 2 × 2 matrix function of θ = 2π t / T, row-major.
+    fn sample(g: &dyn Fn(f64) -> [f64; 4], m: usize) -> Vec<Vec<f64>> {
+        (0..m).map(|j| g(TAU * j as f64 / m as f64).to_vec()).collect()
+    }
+
+    #[test]
+    fn the_trigonometric_interpolant_reproduces_a_trigonometric_polynomial() {
+        // degree 3 (< N/2 = 4) from 8 samples: exact up to round-off at every t, the constant
+        // entry kept as a constant
+        let g = |th: f64| [1.0 + th.cos(), 2.0 * (3.0 * th).sin(), 5.0, 0.5 * (2.0 * th).cos() - 0.25 * th.sin()];
+        let period = 0.7;
+        let v = sample(&g, 8);
+        let refs: Vec<&[f64]> = v.iter().map(|x| x.as_slice()).collect();
+        let p = TrigInterpolant::new(2, period, &refs);
+        assert_eq!(p.varying, vec![0, 1, 3]);
+        let mut out = [0.0; 4];
+        for k in 0..50 {
+            let t = period * (k as f64 * 0.137).fract();
+            p.eval(t, &mut out, &mut vec![]);
+            let want = g(TAU * t / period);
+            for e in 0..4 {
+                assert!((out[e] - want[e]).abs() < 1e-14, "t = {t}, entry {e}: {} against {}", out[e], want[e]);
+            }
+        }
+    }
+
+    #[test]
+    fn the_interpolation_error_falls_as_the_aliasing_bound_and_truncation_stays_in_its_budget() {
+        // f(θ) = 1/(a − cos θ): Fourier coefficients ρ^|k| / sqrt(a² − 1), ρ = a − sqrt(a² − 1)
+        // (Gradshteyn & Ryzhik 1.447), so the interpolant on N samples errs by at most twice the
+        // coefficients it cannot represent, 2 Σ_{|k| ≥ N/2} ρ^|k| / sqrt(a² − 1)
+        // = 4 ρ^{N/2} / ((1 − ρ) sqrt(a² − 1)) (Trefethen, Spectral Methods in MATLAB, thm 3):
+        // the measured error must lie under that bound, and within 1e3 of it (the bound is
+        // reached up to a modest factor: the geometric rate is real, not an accident of t)
+        let a: f64 = 1.5;
+        let rho = a - (a * a - 1.0).sqrt();
+        let g = |th: f64| [1.0 / (a - th.cos()), 0.0, 1.0, (th.sin()).exp()];
+        let period = 2.0;
+        let mut last = f64::INFINITY;
+        for m in [8, 16, 32] {
+            let v = sample(&g, m);
+            let refs: Vec<&[f64]> = v.iter().map(|x| x.as_slice()).collect();
+            let p = TrigInterpolant::new(2, period, &refs);
+            let mut out = [0.0; 4];
+            let mut err: f64 = 0.0;
+            for k in 0..400 {
+                let t = period * (k as f64 + 0.5) / 400.0;
+                p.eval(t, &mut out, &mut vec![]);
+                err = err.max((out[0] - g(TAU * t / period)[0]).abs());
+            }
+            let bound = 4.0 * rho.powi(m as i32 / 2) / ((1.0 - rho) * (a * a - 1.0).sqrt());
+            assert!(err <= bound && err >= 1e-3 * bound, "N = {m}: error {err:e}, bound {bound:e}");
+            assert!(err < last);
+            last = err;
+            // dropping the top harmonics within a budget moves J̃ by at most that budget
+            // (scaled max-row-sum norm, unit scales: row 0 holds entry 0 alone)
+            let mut q = TrigInterpolant::new(2, period, &refs);
+            let budget = 1e-4;
+            q.truncate(&[1.0, 1.0], budget);
+            if m == 32 {
+                assert!(q.coefficients.len() < p.coefficients.len(), "harmonics near 16 are ~1e-7: dropped");
+            }
+            let mut o2 = [0.0; 4];
+            for k in 0..100 {
+                let t = period * k as f64 / 100.0;
+                p.eval(t, &mut out, &mut vec![]);
+                q.eval(t, &mut o2, &mut vec![]);
+                let row0 = (out[0] - o2[0]).abs() + (out[1] - o2[1]).abs();
+                let row1 = (out[2] - o2[2]).abs() + (out[3] - o2[3]).abs();
+                assert!(row0.max(row1) <= budget, "N = {m}: truncation moved J̃ by {} > {budget}", row0.max(row1));
+            }
         }
     }
 }

@@ -57,6 +57,7 @@ pub fn stability_over_speed(rotor: &LinearRotor, speeds: &[f64]) -> Result<Rotor
                 state: p.state.as_ref().map(|_| crate::rotor_stability::StateKind::Balanced),
                 member_psi: psi,
                 family: None,
+                family_verdict: None,
                 failure: p.failure.as_ref().map(|f| {
                     if f.starts_with("no starting point") {
                         "no balanced state: one balancer plane with at least 2 balls whose capacity n m_b R covers the unbalance is needed (LinearRotorField::balanced_guess)".to_string()
