@@ -8,7 +8,7 @@ use anyhow::Result;
 use autobal::analysis::{Kind, Verdict};
 use autobal::control::Control;
 use autobal::error::fmt_num;
-use autobal::rotor_stability::{speed_grid, stability_over_speed, Rotor, RotorStability};
+use autobal::rotor_stability::{speed_grid, Rotor, RotorStability};
 use serde_json::{json, Value};
 use toml::Table;
 
@@ -73,12 +73,13 @@ fn round(x: f64) -> f64 {
 /// `control`.
 pub fn analyse(g: &GeneralRotor, omega_max: f64, samples: usize, control: &Control) -> Result<RotorStability> {
     let speeds = speed_grid(omega_max, samples)?;
-    // the library's scan takes the control when it is wired (rotor_stability); until then
-    // it is asked before the scan
-    if let Some(why) = control.should_stop() {
-        anyhow::bail!("{why} before the stability scan");
+    // the scan asks the control once per speed; a stopped scan prints nothing (its ranges
+    // would end where it stopped, not where the stability does)
+    let out = autobal::rotor_stability::stability_over_speed_with(&g.rotor, &speeds, control)?;
+    if let Some(why) = out.stopped {
+        anyhow::bail!("{why}: the stability scan stopped after {} of {} speeds; nothing is printed", out.value.points.len(), speeds.len());
     }
-    Ok(stability_over_speed(&g.rotor, &speeds)?)
+    Ok(out.value)
 }
 
 fn what_is_analysed(g: &GeneralRotor, r: &RotorStability) -> String {

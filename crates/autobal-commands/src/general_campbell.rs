@@ -11,7 +11,7 @@ use autobal::analysis::Kind;
 use autobal::control::Control;
 use autobal::error::fmt_num;
 use autobal::rotor_campbell::{
-    campbell_locked, campbell_over_speed, fixed_view, locked_critical_speeds, Balls, LockedCriticalSpeeds, RotorCampbell, Whirl, FLOQUET_BRANCH,
+    campbell_locked, fixed_view, locked_critical_speeds, Balls, LockedCriticalSpeeds, RotorCampbell, Whirl, FLOQUET_BRANCH,
 };
 use autobal::rotor_stability::{speed_grid, stability_over_speed, Rotor, RotorStability};
 use autobal::spatial::campbell::FixedCampbell;
@@ -109,14 +109,16 @@ pub fn campbell(g: &GeneralRotor, omega_max: f64, points: usize, control: &Contr
 /// view and the crossings with `h×Ω` for each of `harmonics` (`--harmonics`, checked by
 /// [`crate::linear::check_harmonics`]), its numbers checked finite once.
 pub fn campbell_with(g: &GeneralRotor, omega_max: f64, points: usize, balls: Balls, harmonics: &[u32], control: &Control) -> Result<GeneralCampbell> {
-    // the library's scan takes the control when it is wired (rotor_campbell); until then it
-    // is asked before the scan
-    if let Some(why) = control.should_stop() {
-        anyhow::bail!("{why} before the Campbell scan");
-    }
     let sp = speeds(omega_max, points);
     let c = match balls {
-        Balls::Free => campbell_over_speed(&g.rotor, &sp)?,
+        // the scan asks the control once per speed; a stopped scan prints nothing
+        Balls::Free => {
+            let out = autobal::rotor_campbell::campbell_over_speed_with(&g.rotor, &sp, control)?;
+            if let Some(why) = out.stopped {
+                anyhow::bail!("{why}: the Campbell scan stopped after {} of {} speeds; nothing is printed", out.value.omega.len(), sp.len());
+            }
+            out.value
+        }
         Balls::Locked => campbell_locked(&g.rotor, &sp)?,
     };
     autobal::limits::check_finite("campbell", &c)?;
