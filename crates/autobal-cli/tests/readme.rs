@@ -231,7 +231,15 @@ fn anchors(md: &str) -> Vec<String> {
             .trim()
             .to_lowercase()
             .chars()
-            .filter_map(|c| if c == ' ' { Some('-') } else if c.is_alphanumeric() || c == '-' || c == '_' { Some(c) } else { None })
+            .filter_map(|c| {
+                if c == ' ' {
+                    Some('-')
+                } else if c.is_alphanumeric() || c == '-' || c == '_' {
+                    Some(c)
+                } else {
+                    None
+                }
+            })
             .collect();
         let n = out.iter().filter(|a| **a == slug || a.strip_prefix(&slug).is_some_and(|r| r.starts_with('-') && r[1..].parse::<u32>().is_ok())).count();
         out.push(if n == 0 { slug } else { format!("{slug}-{n}") });

@@ -124,7 +124,7 @@ pub struct ToleranceCheck<S> {
 /// Run `model`'s point again with both tolerances divided by [`TIGHTENING`] (multiplied when
 /// `rtol / 10` would pass below 1e-14) and compare the end state with `first`, the summary of
 /// the run at `rtol`, `atol`. `model` is the run's own description (a [`SweepModel`] is also
-/// its own point: [`crate::planar::PlanarProblem`]; for the spatial rotor
+/// its own point: [`crate::planar::problem::PlanarProblem`]; for the spatial rotor
 /// [`crate::sweep::SpatialSweep`]). A run the control stops is reported as
 /// [`EndState::Stopped`].
 pub fn check_tolerance<M>(model: &M, first: &M::Summary, rtol: f64, atol: f64, control: &Control) -> Result<ToleranceCheck<M::Summary>>
