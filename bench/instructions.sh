@@ -16,7 +16,7 @@
 #
 # Needs valgrind and the release example (cargo build --release -p autobal --example passage).
 # Prints a markdown table. Instruction counts miss system calls and cache misses: they are the
-# floor of a process's cost, not its time (docs/benchmarks.md).
+# floor of a process's cost, not its time (docs/notes/benchmarks.md).
 set -euo pipefail
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
 EXE="${1:-$ROOT/target/release/autobal}"

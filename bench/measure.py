@@ -1,7 +1,7 @@
 """How every bench/ script measures: the load on the machine, CPU time beside wall time, and a
 refusal to publish numbers taken on a loaded machine.
 
-Rules (docs/benchmarks.md):
+Rules (docs/notes/benchmarks.md):
 - the 1-, 5- and 15-minute load averages are printed (to stderr) before and after the run;
 - a run is LOADED when the 1-minute load average, before or after, is above 1 per core
   (`os.cpu_count()`): other work then shares the cores and slows the two sides of a comparison

@@ -64,7 +64,7 @@ WN = math.sqrt(K / M0)
 
 # ---------------------------------------------------------------------------------------------
 # Fixed axes: the paper's eq (1) (X, Y of C, ball angles psi_j; theta prescribed), with the sign
-# of the translation right-hand side corrected (docs/simulation.md). Independent of autobal and
+# of the translation right-hand side corrected (docs/notes/simulation.md). Independent of autobal and
 # of the rotor-axes form below; used by --check.
 
 def rhs_fixed_factory(omega0, b):

@@ -3,7 +3,7 @@
 numbalsoda's DOP853 with a numba-compiled right-hand side, at equal accuracy, the compile time
 reported apart; beside it the `autobal simulate` command (whole process, CSV + 4 SVG).
 
-The equations are bench/spatial.py's `make_rhs` (Kane's form of docs/spatial.md, checked there
+The equations are bench/spatial.py's `make_rhs` (Kane's form of docs/notes/spatial.md, checked there
 against the tests' independent SymPy derivation to 7e-16) written out in scalar loops for numba
 (no allocation but the mass matrix's elimination): the same coordinates (q = ξ, η, δ, θ, φ,
 ψ_1..N in axes turning with the rotor; state (q, q̇)), the same per-component absolute

@@ -16,7 +16,7 @@
 #
 # Each script prints its load before/after and CPU beside wall (bench/measure.py) to stderr and
 # writes its JSON table into target/bench/; the summary below is built from those files. Rules
-# and the published results: docs/benchmarks.md.
+# and the published results: docs/notes/benchmarks.md.
 set -uo pipefail
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
 cd "$ROOT"

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Spatial-rotor benchmark: autobal against SciPy's solve_ivp (DOP853, Radau, LSODA).
 
-The problem: the nonlinear spatial rotor of papers 000/003 (docs/spatial.md) with paper 000's
+The problem: the nonlinear spatial rotor of papers 000/003 (docs/notes/spatial.md) with paper 000's
 base case (examples/spatial.toml: C̄Σ = 0.75, ρ̄s = 0.4, l̄_L = 0.8, z̄_A = 0.8, m̄0 = 0.025,
 two balls m̄ = 0.05, R̄ = R̄0 = 2, h̄x = 0.05, h̄s = 0.1), in the papers' units (M_s = ω0 = ρ_s = 1):
 
@@ -12,7 +12,7 @@ two balls m̄ = 0.05, R̄ = R̄0 = 2, h̄x = 0.05, h̄s = 0.1), in the papers' u
 
 SciPy side: the same equations in the same coordinates (q = ξ, η, δ, θ, φ, ψ_1..N in axes
 turning with the rotor, state (q, q̇) with the prescribed spin's φ̇ in it), written here with
-NumPy from the d'Alembert form of docs/spatial.md: the generalised inertia forces for all
+NumPy from the d'Alembert form of docs/notes/spatial.md: the generalised inertia forces for all
 unit accelerations at once (one array expression per body, balls vectorised), then
 `np.linalg.solve` on the mass matrix; the same per-component absolute tolerances as autobal
 (atol on displacements, atol/R on angles, times ω0 on rates) and `t_eval` at the sample
@@ -131,7 +131,7 @@ def rot_t(de, th):
 
 def make_rhs(rot, drive):
     """dy/dt of the state (q, q̇) for a drive ("speed", ω0), ("acceleration", ω0, b) or
-    ("torque", ω0, M): Kane's form of docs/spatial.md, vectorised over balls and over the
+    ("torque", ω0, M): Kane's form of docs/notes/spatial.md, vectorised over balls and over the
     unit accelerations that give the mass matrix's columns."""
     n, nq, unit = rot.n, rot.nq, rot.unit
     bm, bR, bz, bh = rot.bm, rot.bR, rot.bz, rot.bh

@@ -2,7 +2,7 @@
 """Stability-map benchmark: autobal against NumPy on the same problem and the same outputs, in
 paired, interleaved runs.
 
-The problem: the 12-state linearised model of paper 000, eq (6) (docs/model.md section 1), balls
+The problem: the 12-state linearised model of paper 000, eq (6) (docs/notes/model.md section 1), balls
 free, over an N x N grid of z_A in [-2, 2] and Omega in [0.05, 4.5] (the layout of paper 003,
 Fig. 5a), with C_Sigma = 0.75, rho_s = 0.4, l_L = 0.8, dA = 0.1, m = 0.05, D_A = 0.5,
 h_x = 0.05, h_s = 0.1.

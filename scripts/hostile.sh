@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Hostile inputs against every command, each with a time and a memory limit; prints a Markdown
-# table of outcomes (docs/robustness.md keeps the latest). Usage:
+# table of outcomes (docs/reference/robustness.md keeps the latest). Usage:
 #   scripts/hostile.sh [path/to/autobal] > hostile.md
 # Environment: HOSTILE_TIME_LIMIT (s, default 60), HOSTILE_MEMORY_KB (default 2000000),
 # HOSTILE_ONLY (row numbers to run, e.g. "3 71").
@@ -55,11 +55,11 @@ sed 's/$/\r/' shards/s2.csv > shards/crlf.csv; cp shards/s2.json shards/crlf.jso
 # the spatial rotor with every optional table and real balls on two planes (round 2)
 TWO="--config $EX/spatial_two_plane.toml"
 FULL="$TWO --set rotor.axis_tilt=0.001 --set rotor.axis_tilt_angle=0.5 --set spatial.spin_drag=0.01 --set spatial.lock_tilt=false --set initial.tilt=[0.001,0] --set initial.velocity=[0.001,0] --set balancer.contact=true --set balancer.rolling_resistance=1e-3 --set balancer.restitution=0.8 --set balancer2.contact=true --set balancer2.ball_diameter=0.02 --set balancer2.rolling_resistance=1e-4 --set balancer2.slip_rate=1e-3"
-# --boundary axes over each field's full documented range (docs/robustness.md's table, from
+# --boundary axes over each field's full documented range (docs/reference/robustness.md's table, from
 # autobal::limits): every dimensionless key, and every key of the SI tables on the dimensional
 # example, at the ends of its range (an open end nudged in by 1e-9 of the span)
 boundary_axes() {
-    grep -E '^\| `(dimensionless|rotor|supports|unbalance|balancer)\.[a-z_0-9]*` \| [[(]' "$EX/../docs/robustness.md" |
+    grep -E '^\| `(dimensionless|rotor|supports|unbalance|balancer)\.[a-z_0-9]*` \| [[(]' "$EX/../docs/reference/robustness.md" |
         grep -v 'balls`\|dimensionless.n`\|axis_tilt\|_y`\|unbalance.angle\|ball_diameter\|restitution\|contact_stiffness\|rolling_resistance\|slip_rate' |
         sed -E 's/^\| `([a-z_.0-9]*)` \| ([[(])([-0-9.e]*), ([-0-9.e]*)([])]).*/\1 \2 \3 \4 \5/' |
         awk '{ lo = $3; hi = $4; d = (hi - lo) * 1e-9; if ($2 == "(") lo += d; if ($5 == ")") hi -= d; printf "%s=%.12g:%.12g:3\n", $1, lo, hi }'

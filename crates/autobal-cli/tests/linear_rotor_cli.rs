@@ -1,5 +1,5 @@
 //! `autobal stability`, `simulate` and `export-model` on a linear rotor config
-//! (`[linear_rotor]`, docs/linear_rotor.md).
+//! (`[linear_rotor]`, docs/guide/your-own-rotor.md).
 
 use std::process::Command;
 

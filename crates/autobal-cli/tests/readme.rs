@@ -19,8 +19,9 @@
 //!   `cargo test`. (With a wheel left from an earlier build this checks the README against that
 //!   build.) The longer session under `## Python` is run by the Python package's tests
 //!   (`test_the_readme_session_runs_as_printed`), on the wheel just built.
-//! - Every relative link and image of the README and of docs/README.md (the documentation's
-//!   index) names a file of the repository.
+//! - Every relative link and image of the README, the top-level pages and every page of docs/
+//!   names a file of the repository, and a link to a heading (`FILE.md#anchor`) names one of its
+//!   headings.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -181,43 +182,116 @@ fn the_readme_python_quick_start_runs_as_printed() {
 /// merged: once a target exists the entry is harmless, and should then be removed.
 const PENDING: &[&str] = &[];
 
-#[test]
-fn the_readme_links_resolve() {
-    // the README and the documentation's index, each link relative to its file's folder
-    for (name, folder) in [("README.md", root()), ("docs/README.md", root().join("docs"))] {
-        let md = std::fs::read_to_string(root().join(name)).unwrap_or_else(|e| panic!("{name}: {e}"));
-        // the prose only: code blocks hold no links, and `](` can occur in code
-        let mut text = String::new();
-        let mut code = false;
-        for line in md.lines() {
-            if line.starts_with("```") {
-                code = !code;
-            } else if !code {
-                text.push_str(line);
-                text.push('\n');
+/// The markdown files whose links are checked: the README, the top-level pages and every page of
+/// docs/ (guide/, reference/, notes/ and the index).
+fn markdown_files() -> Vec<PathBuf> {
+    let mut files: Vec<PathBuf> = ["README.md", "ARCHITECTURE.md", "CONTRIBUTING.md", "CHANGELOG.md"].iter().map(|f| root().join(f)).collect();
+    let mut dirs = vec![root().join("docs")];
+    while let Some(d) = dirs.pop() {
+        for e in std::fs::read_dir(&d).unwrap_or_else(|e| panic!("{}: {e}", d.display())) {
+            let p = e.expect("a directory entry").path();
+            if p.is_dir() {
+                dirs.push(p);
+            } else if p.extension().is_some_and(|x| x == "md") {
+                files.push(p);
             }
         }
+    }
+    files.sort();
+    files
+}
+
+/// A markdown text without its fenced code blocks (they hold no links, and `](` can occur in
+/// code).
+fn prose(md: &str) -> String {
+    let mut text = String::new();
+    let mut code = false;
+    for line in md.lines() {
+        if line.trim_start().starts_with("```") {
+            code = !code;
+        } else if !code {
+            text.push_str(line);
+            text.push('\n');
+        }
+    }
+    text
+}
+
+/// GitHub's anchors of a markdown file's headings: lower case, letters, digits, `-` and `_`
+/// kept, spaces to `-`, everything else dropped; a repeated anchor gets `-1`, `-2`, ...
+fn anchors(md: &str) -> Vec<String> {
+    let mut out: Vec<String> = Vec::new();
+    for line in prose(md).lines() {
+        let Some(h) = line.strip_prefix('#') else { continue };
+        let h = h.trim_start_matches('#');
+        if !h.starts_with(' ') {
+            continue;
+        }
+        let slug: String = h
+            .trim()
+            .to_lowercase()
+            .chars()
+            .filter_map(|c| {
+                if c == ' ' {
+                    Some('-')
+                } else if c.is_alphanumeric() || c == '-' || c == '_' {
+                    Some(c)
+                } else {
+                    None
+                }
+            })
+            .collect();
+        let n = out.iter().filter(|a| **a == slug || a.strip_prefix(&slug).is_some_and(|r| r.starts_with('-') && r[1..].parse::<u32>().is_ok())).count();
+        out.push(if n == 0 { slug } else { format!("{slug}-{n}") });
+    }
+    out
+}
+
+#[test]
+fn the_readme_links_resolve() {
+    // every page, each link relative to its file's folder; a link with an anchor into a
+    // markdown file must name one of its headings
+    let files = markdown_files();
+    assert!(files.len() >= 20, "only {} markdown files found", files.len());
+    for path in files {
+        let name = path.strip_prefix(root()).map(|p| p.display().to_string()).unwrap_or_default();
+        let md = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let folder = path.parent().expect("a file's folder");
+        let text = prose(&md);
         let mut targets = Vec::new();
         for (i, _) in text.match_indices("](") {
             let rest = &text[i + 2..];
-            targets.push(rest[..rest.find(')').expect("a link's closing parenthesis")].to_string());
+            let Some(end) = rest.find(')') else { continue };
+            targets.push(rest[..end].to_string());
         }
-        assert!(targets.len() >= 10, "{name}: only {} links found", targets.len());
+        if name == "README.md" || name == "docs/README.md" {
+            assert!(targets.len() >= 10, "{name}: only {} links found", targets.len());
+        }
         for t in targets {
-            if t.starts_with("http://") || t.starts_with("https://") || t.starts_with('#') || t.starts_with("mailto:") {
+            if t.starts_with("http://") || t.starts_with("https://") || t.starts_with("mailto:") || t.contains(' ') || t.is_empty() {
                 continue;
             }
-            let file = t.split('#').next().expect("split gives one part");
-            let path = folder.join(file);
-            if path.exists() {
+            let (file, anchor) = t.split_once('#').unwrap_or((&t, ""));
+            let target = if file.is_empty() { path.clone() } else { folder.join(file) };
+            if !target.exists() {
+                let from_root = target.strip_prefix(root()).map(|p| p.display().to_string()).unwrap_or_default();
+                let pending = PENDING.iter().any(|p| root().join(p) == target || from_root == *p);
+                assert!(pending, "{name} links to {t}, which is not in the repository");
+                eprintln!("note: {name} links to {t}, written on another branch (PENDING)");
                 continue;
             }
-            let from_root = path.strip_prefix(root()).map(|p| p.display().to_string()).unwrap_or_default();
-            let pending = PENDING.iter().any(|p| root().join(p) == path || from_root == *p);
-            assert!(pending, "{name} links to {t}, which is not in the repository");
-            eprintln!("note: {name} links to {t}, written on another branch (PENDING)");
+            if !anchor.is_empty() && target.extension().is_some_and(|x| x == "md") {
+                let heads = anchors(&std::fs::read_to_string(&target).expect("a linked markdown file"));
+                assert!(heads.iter().any(|h| h == anchor), "{name} links to {t}: no heading with that anchor in {}", target.display());
+            }
         }
     }
+}
+
+#[test]
+fn anchors_are_githubs() {
+    let md = "# Title\n## The general route: every rotor (`autobal::analysis`)\n## Repeat\n## Repeat\n```\n# not a heading\n```\n";
+    assert_eq!(anchors(md), ["title", "the-general-route-every-rotor-autobalanalysis", "repeat", "repeat-1"]);
 }
 
 #[test]

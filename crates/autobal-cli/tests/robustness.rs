@@ -1,6 +1,6 @@
 //! Regression tests for hostile input, end to end, each named after the defect it guards
 //! against (issue 12). Every run has a wall-clock limit: a hang fails the test instead of
-//! hanging the suite. The ranges are stated in `autobal::limits` and docs/robustness.md.
+//! hanging the suite. The ranges are stated in `autobal::limits` and docs/reference/robustness.md.
 
 use std::io::Read;
 use std::process::{Command, Stdio};
@@ -536,7 +536,7 @@ fn warns(args: &[&str], key: &str) -> String {
 
 /// Entries silently ignored (issue 23): every entry of a config is used by the model that runs
 /// it, or an error (another rotor's entry) or a warning (moot with the rest of the config)
-/// names it, for every command family (autobal::config::entry_use, docs/robustness.md).
+/// names it, for every command family (autobal::config::entry_use, docs/reference/robustness.md).
 #[test]
 fn regression_entries_of_another_model_passed_silently() {
     let planar = ["--set", "drive.t_end=0.05", "--set", "integration.dt=0.01"];
@@ -619,7 +619,7 @@ fn regression_moot_entries_passed_silently() {
     assert!(!err.contains("warning: simulate"), "{err}");
 }
 
-/// Limits stated once and true (issue 23): every limit of docs/robustness.md's "Bounded cost
+/// Limits stated once and true (issue 23): every limit of docs/reference/robustness.md's "Bounded cost
 /// and resources" table is reached by a run that succeeds (small runs: tiny `t_end`, the
 /// smallest grids) and one past it is refused with that limit's message. The input ranges
 /// (`autobal::limits::LIMITS`) have their own test, crates/autobal/tests/limits_table.rs. Not

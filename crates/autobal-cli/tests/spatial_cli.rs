@@ -42,7 +42,7 @@ fn simulate_runs_the_spatial_model_on_the_analytic_config() {
 #[test]
 fn a_config_without_drive_runs_up_through_its_critical_speeds() {
     // the SI rotor an engineer analysed with `critical`, simulated as it is: no [drive] gives
-    // the library's default run-up (docs/spatial.md), said on stderr and in the JSON
+    // the library's default run-up (docs/notes/spatial.md), said on stderr and in the JSON
     let dir = std::env::temp_dir().join(format!("autobal-runup-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let cfg = example("dimensional.toml");
@@ -65,7 +65,7 @@ fn a_config_without_drive_runs_up_through_its_critical_speeds() {
 
 #[test]
 fn spatial_real_balls_from_the_balancer_tables() {
-    // [balancer] and [balancer2] take the real-ball keys of [planar] (docs/balls.md): each plane
+    // [balancer] and [balancer2] take the real-ball keys of [planar] (docs/notes/balls.md): each plane
     // its own; the summary counts contacts and stick-slip transitions
     let cfg = example("spatial_two_plane.toml");
     let dir = std::env::temp_dir().join(format!("autobal-spatial-balls-{}", std::process::id()));

@@ -132,7 +132,7 @@ pub fn ignored_warning(keys: &[String], command: &str) -> Option<String> {
 
 /// The one check every command makes on its config after building its model(s): that every
 /// entry is used by the `models` `command` runs ([`autobal::config::entry_use`]; the classes in
-/// docs/robustness.md, "Every entry is used"). An entry no model of the command has (another
+/// docs/reference/robustness.md, "Every entry is used"). An entry no model of the command has (another
 /// rotor's table or key) is an error naming it; entries only the spatial simulation uses (for
 /// the linear model) and entries the rest of the config makes moot are one warning line each
 /// on standard error; a bare speed in a dimensional config gets its note ([`bare_speed_notes`]).

@@ -55,7 +55,7 @@ pub const SCHEMA: &[(&str, &[&str])] = &[
         "balancer",
         &["z", "balls", "ball_mass", "race_radius", "drag", "ball_diameter", "contact", "restitution", "contact_stiffness", "rolling_resistance", "slip_rate"],
     ),
-    // spatial simulation only (docs/spatial.md, examples/spatial_two_plane.toml)
+    // spatial simulation only (docs/notes/spatial.md, examples/spatial_two_plane.toml)
     ("couple", &["mass", "radius", "angle", "z"]),
     (
         "balancer2",
@@ -689,7 +689,7 @@ pub fn drive(d: &Section) -> Result<(Drive, f64)> {
     drive.validate()?;
     // the parameters of the other kinds are a menu (examples/planar.toml keeps `torque` and
     // `omega_idle` beside kind = "acceleration", so that `--set drive.kind=motor` switches):
-    // they count as used (docs/robustness.md, "Every entry is used")
+    // they count as used (docs/reference/robustness.md, "Every entry is used")
     for key in ["b", "torque", "omega_idle", "t_off", "schedule", "schedule_of"] {
         d.get(key);
     }
@@ -781,7 +781,7 @@ pub fn ignored_by_linear_model(root: &Table) -> Vec<String> {
 
 /// A spatial simulation's config converted (`autobal simulate` and `autobal basins` on the
 /// rotor of papers 000/003): the analytic config plus `[drive]`, `[integration]` and, optionally,
-/// `[initial]`, `[spatial]`, `[couple]`, `[balancer2]` (docs/spatial.md).
+/// `[initial]`, `[spatial]`, `[couple]`, `[balancer2]` (docs/notes/spatial.md).
 #[derive(Debug, Clone, PartialEq)]
 pub struct SpatialSimulation {
     /// The analytic config the rotor was built from (units, source of the model).
@@ -1104,7 +1104,7 @@ fn neutral(root: &Table, table: &str, key: &str, value: &Value) -> bool {
 }
 
 /// Which entries of `root` the `models` a command runs use, every entry of the config sorted
-/// into one class (docs/robustness.md, "Every entry is used"):
+/// into one class (docs/reference/robustness.md, "Every entry is used"):
 ///
 /// - read by a model (through [`Section`]): used, but see `simulation_only`;
 /// - at its neutral value (0, `false`, an array of zeros, a y support equal to x): nothing to

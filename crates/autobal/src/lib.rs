@@ -120,6 +120,7 @@ pub mod rotor_stability;
 pub mod simulation;
 pub mod spatial;
 pub mod sweep;
+pub mod tolerance;
 pub mod units;
 
 pub use error::{Error, Result};

@@ -1,6 +1,6 @@
 //! The range of every input: where the physics means something and double precision still
 //! carries it. One table ([`LIMITS`]) serves the model constructors, the CLI's config check and
-//! the documentation (`docs/robustness.md` shows [`markdown_table`], a test keeps them equal).
+//! the documentation (`docs/reference/robustness.md` shows [`markdown_table`], a test keeps them equal).
 //!
 //! Two kinds of bound:
 //! - **SI inputs** get generous physical bounds (a rotor of at most 1e9 kg, lengths within
@@ -103,7 +103,7 @@ pub const LIMITS: &[Limit] = &[
     lim("balancer.ball_mass", 0.0, false, 1e9, false, "kg", MASS),
     lim("balancer.race_radius", 0.0, false, 1e3, false, "m", RADIUS),
     lim("balancer.drag", 0.0, false, 1e12, false, "N·s/m", DAMP),
-    // spatial simulation only (docs/spatial.md)
+    // spatial simulation only (docs/notes/spatial.md)
     lim("rotor.axis_tilt", -1e3, false, 1e3, false, "rad", ANGLE),
     lim("rotor.axis_tilt_angle", -1e3, false, 1e3, false, "rad", ANGLE),
     lim("supports.stiffness_left_y", 0.0, true, 1e13, false, "N/m", STIFF),
@@ -505,7 +505,7 @@ mod finite_walk {
     structure!(SerializeStruct, SerializeStructVariant);
 }
 
-/// The table of ranges as Markdown (docs/robustness.md shows it).
+/// The table of ranges as Markdown (docs/reference/robustness.md shows it).
 pub fn markdown_table() -> String {
     let mut s = String::from("| field | range | why |\n|---|---|---|\n");
     for l in LIMITS {
@@ -531,8 +531,8 @@ mod tests {
 
     #[test]
     fn the_docs_state_these_ranges() {
-        let docs = include_str!("../../../docs/robustness.md");
-        assert!(docs.contains(&markdown_table()), "docs/robustness.md must contain limits::markdown_table() verbatim:\n{}", markdown_table());
+        let docs = include_str!("../../../docs/reference/robustness.md");
+        assert!(docs.contains(&markdown_table()), "docs/reference/robustness.md must contain limits::markdown_table() verbatim:\n{}", markdown_table());
     }
 
     #[test]

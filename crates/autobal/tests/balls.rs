@@ -449,7 +449,7 @@ fn passage(p: &PlanarRotor, forward: bool, rtol: f64) -> (Summary, Sample) {
 #[test]
 fn paper_004s_findings_with_real_balls() {
     // Paper 004's passages re-run with steel balls of the default diameter and the default
-    // contact stiffness (docs/balls.md, "Paper 004's cases with real balls").
+    // contact stiffness (docs/notes/balls.md, "Paper 004's cases with real balls").
     let real = |m3: f64| PlanarRotor { balls: BallPhysics { contact: true, ..Default::default() }, ..PlanarRotor::paper_004(m3) };
     // The capacity condition with the packed capacity: two touching balls resultant
     // 2 cos(Δc/2) instead of 2, so α∞ shrinks by cos(Δc/2) = sqrt(1 − (d/2r)²)
@@ -512,7 +512,7 @@ fn paper_004s_findings_with_real_balls() {
 
 #[test]
 fn rolling_resistance_stops_the_balls_short_of_s2_after_a_passage() {
-    // docs/balls.md, "Which of 004's findings survive": with μ_r = 1e-3 (point masses otherwise)
+    // docs/notes/balls.md, "Which of 004's findings survive": with μ_r = 1e-3 (point masses otherwise)
     // the 30 g balls stop before E reaches the axis during the forward passage, and C ends at
     // 0.820 s2 (0.410 mm) instead of s2, E 90 µm = 1.50 μ_r r off the axis. Measured
     // 0.819874-0.819878 s2 and 1.5010-1.5011 μ_r r at rtol 1e-6 to 1e-10; the tolerances are

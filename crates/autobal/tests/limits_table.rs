@@ -1,4 +1,4 @@
-//! The input ranges of docs/robustness.md (`autobal::limits::LIMITS`) are true: every field at
+//! The input ranges of docs/reference/robustness.md (`autobal::limits::LIMITS`) are true: every field at
 //! each end of its range (the end itself where it is closed, the nearest double inside where it
 //! is open) is accepted by the model that reads it, on the example config of that model, and
 //! the nearest value outside is refused with that limit's own message (issue 23, "limits stated

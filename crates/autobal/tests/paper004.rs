@@ -1,6 +1,6 @@
 //! Paper 004's findings that depend on choices the paper leaves open (the disk inertia and
 //! bearing drag of its torque runs) and its trends that the equations do not give as stated:
-//! each verdict of docs/paper004.md as a test that fails if the finding changes.
+//! each verdict of docs/notes/paper004.md as a test that fails if the finding changes.
 
 use autobal::planar::paper004::{settling_time, torque_outcomes, torque_rotor, torque_run, SWITCH_OFF, TORQUE_C_THETA, TORQUE_I_G};
 use autobal::planar::stationary::{aligned_whirls, capacity_ratio, locked_amplitude};
@@ -108,7 +108,7 @@ fn reverse_passage_at_a_quarter_is_lower_but_not_far_lower() {
     // 004 Fig. 3: "the maximum at the reverse passage is substantially lower". At the paper's
     // |b| = 0.25 1/s² the converged reverse peak is 6 % lower: DOP853 gives 0.938-0.940 of the
     // forward peak from 400, 600 or 1000 rad/s, at rtol 1e-8 to 1e-12, with the balls' initial
-    // angles moved by 1e-3 rad (docs/paper004.md); the automatic method 0.947 at the default
+    // angles moved by 1e-3 rad (docs/notes/paper004.md); the automatic method 0.947 at the default
     // tolerance (it converges to DOP853's as atol falls: tests/simulation.rs). It is far lower
     // only for faster passages (0.54-0.75 at 2.5 1/s², tests/simulation.rs).
     let p = PlanarRotor::paper();
@@ -140,7 +140,7 @@ fn reverse_peak_falls_with_the_deceleration_then_stays_flat() {
         .collect();
     // the fall, each step by a margin the runs' sensitivity cannot bridge. The 2.5 1/s² peak
     // has no converged value: 17.1-22.3 mm here with the method (auto, DOP853), rtol 1e-8 or
-    // 1e-10, dt, and a ball started 1e-10 rad away, 17.1-24.6 mm in docs/simulation.md; the
+    // 1e-10, dt, and a ball started 1e-10 rad away, 17.1-24.6 mm in docs/notes/simulation.md; the
     // others move by less than 1.7 % (0.25: 29.7-30.2 mm; 12.5 and 25: to 0.1 mm). So
     // 0.25 → 2.5: measured 1.58×, at least 29.7/24.6 = 1.21× → asserted 1.15×; 2.5 → 12.5:
     // measured 1.63×, at least 17.1/11.7 = 1.46× → 1.3×; 12.5 → 25: measured 1.09× → 1.05×
@@ -288,7 +288,7 @@ fn the_printed_sign_of_the_translation_equation_gives_no_semi_balancing() {
     // trends the correct sign does not give come from the printed one? No: with the printed sign
     // the balls balance the rotor below resonance and gather near the unbalance above it, so
     // the rotor never settles semi-balanced at s2 after the passage, which the paper's Figs 3-8
-    // all show. (docs/paper004.md: its peaks also fall with b from 0.25 1/s², with no rise.)
+    // all show. (docs/notes/paper004.md: its peaks also fall with b from 0.25 1/s², with no rise.)
     let p = PlanarRotor::paper();
     let b = 12.5;
     // Newton's sign in fixed axes: the planar model's passage (a second route), semi-balanced

@@ -104,7 +104,7 @@ fn paper_003_ranges_typical_order() {
 fn paper_000_sensitivity_of_base_case() {
     // 000 says installing the balancer changes the critical speeds "by up to 16 %" in its base
     // case (m̄ = 0.05, ΔĀ = 0.1). Eqs (21)/(16) give 22.0 % at l_L = 0.8 and eq (22) gives
-    // 22.5 %; the 16 % does not follow from the printed formulas (see docs/papers.md).
+    // 22.5 %; the 16 % does not follow from the printed formulas (see docs/notes/papers.md).
     let s = sensitivity(&base(0.8), 0.15);
     assert_eq!(r(s.coefficient.unwrap(), 3), 0.220);
     assert_eq!(r(s.coefficient_approx.unwrap(), 3), 0.225);
@@ -113,7 +113,7 @@ fn paper_000_sensitivity_of_base_case() {
 
 #[test]
 fn paper_000_thresholds_by_the_exact_roots_at_three_layouts() {
-    // docs/papers.md, finding 5: the exact roots of (16) change the angular critical speed by
+    // docs/notes/papers.md, finding 5: the exact roots of (16) change the angular critical speed by
     // 22.5 % at l̄_L = 0.5 (eq (22)'s value too), and δΩ_Kα reaches 0.15 at ΔĀ = 0.0694
     // (l̄_L = 0.5), 0.0712 (0.8), 0.0712 (1.2), not at 000's 0.095: bisection on ΔĀ (the
     // coefficient grows with it) to 1e-12, against the printed 4 decimals.

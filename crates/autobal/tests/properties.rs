@@ -53,7 +53,7 @@ fn det4(mut a: [[f64; 4]; 4]) -> f64 {
 }
 
 /// Stiffness matrix of the locked, undamped rotor in rotating axes (000, eqs (6), (14)),
-/// assembled entry by entry from docs/model.md §1, coordinates (ξ, η, δ, θ).
+/// assembled entry by entry from docs/notes/model.md §1, coordinates (ξ, η, δ, θ).
 fn stiffness(m: &SpatialModel, w: f64) -> [[f64; 4]; 4] {
     let x = w * w;
     let kw = 1.0 - x;

@@ -26,7 +26,7 @@ fn run(p: &PlanarRotor, d: &Drive, t_end: f64) -> (Summary, Vec<(f64, f64, f64)>
 #[test]
 fn equations_satisfy_the_papers_fixed_frame_eq_1() {
     // Random states: our rotor-frame accelerations, mapped to fixed axes, must satisfy 004's
-    // eq (1) as docs/model.md §2 states it, with the translation right-hand side −d²/dt²[…]
+    // eq (1) as docs/notes/model.md §2 states it, with the translation right-hand side −d²/dt²[…]
     // (the paper prints +, which would make an unbalance push the shaft towards the axis below
     // resonance).
     let mut rng = Rng(41);
@@ -201,7 +201,7 @@ fn paper_004_forward_passage_overshoots_and_reverse_is_lower() {
     // leave the semi-balanced state near resonance is sensitive to perturbations far below any
     // tolerance: moving one ball's initial angle by 1e-10 rad already changes the reverse peak
     // from 17.1 to 20.8 mm, and the looser the tolerance the more often the outcome is the
-    // higher one (docs/simulation.md). So the claim is checked over a family of imperceptibly
+    // higher one (docs/notes/simulation.md). So the claim is checked over a family of imperceptibly
     // different starts: every reverse peak far below the forward one (measured: 17.1-23.8 mm
     // against 31.7), and none below 0.9 of the stationary peak (the balls cannot keep the rotor
     // out of resonance on the way down either).
@@ -580,7 +580,7 @@ fn automatic_switching_gives_the_dop853_passage() {
     }
     let ((dop, a_dop), (auto, a_auto)) = (&res[0], &res[1]);
     let peak = dop.peak_amplitude;
-    // both are within ~5e-8 of the peak of a reference at rtol 1e-12 (docs/simulation.md)
+    // both are within ~5e-8 of the peak of a reference at rtol 1e-12 (docs/notes/simulation.md)
     assert!((auto.peak_amplitude - peak).abs() < 1e-7 * peak, "peaks {} vs {}", auto.peak_amplitude, peak);
     let worst = a_dop.iter().zip(a_auto).filter(|(a, _)| a.0 <= dop.t_at_peak).map(|(a, b)| (a.1 - b.1).abs()).fold(0.0, f64::max);
     assert!(worst < 1e-7 * peak, "samples before the peak differ by {worst:e} m");
@@ -603,7 +603,7 @@ fn implicit_steps_do_not_hold_back_a_slow_instability() {
     // tolerances (its step, pinned by the balls' drag, resolves the oscillation; 0.938-0.940 at
     // any tolerance). When the departure sets in depends on the perturbation present there
     // (bifurcation delay, logarithmically): RODAS leaves perturbations of the order of atol,
-    // so the automatic method converges as atol does (docs/simulation.md).
+    // so the automatic method converges as atol does (docs/notes/simulation.md).
     let p = PlanarRotor::paper();
     let d = Drive::Acceleration { omega0: 400.0, b: -0.25 };
     let peak = |method: Method, rtol: f64, atol: f64| {
@@ -672,7 +672,7 @@ fn a_sweep_point_and_a_basin_run_are_the_simulation_of_the_same_config() {
     // the settings `simulate` uses: dt is also the automatic method's time resolution (implicit
     // steps of at most 4 dt; oscillations that do not decay within 4 dt are resolved). Sweeps
     // used to set dt = t_end for their one sample; in the reverse passage at b = −2.5 1/s² from
-    // 600 rad/s, whose peak depends on any perturbation (docs/simulation.md), a sweep then gave
+    // 600 rad/s, whose peak depends on any perturbation (docs/notes/simulation.md), a sweep then gave
     // 24.83 mm where `simulate` gave 19.81 mm. Equal here means bit for bit: the same steps from
     // the same settings, the samples only read the dense output.
     use autobal::paths::Parameters;

@@ -258,7 +258,7 @@ fn jacobian_at_balance_equals_the_linear_model_paper_anisotropy_where_it_holds()
     // With anisotropy = "paper" (eq (17), d_A = diag(1 ∓ D_A)) the linear model is the
     // linearisation of the physics only while the balls' principal axes line up with the
     // unbalance's (two balls: E ≤ √2); beyond, eq (17) adds anisotropies that cancel and the
-    // Jacobian departs from it (docs/papers.md), which this test also pins.
+    // Jacobian departs from it (docs/notes/papers.md), which this test also pins.
     let mut rng = Rng(5);
     for _ in 0..12 {
         let (model, mut rotor) = random_model(&mut rng, AnisotropyMethod::Paper, (1.02, 1.40));
@@ -618,7 +618,7 @@ fn run_up_through_the_split_critical_speeds_follows_the_locked_ball_curve() {
     //   measured 3.9 %);
     // - at the transverse critical speeds it peaks later and lower than the stationary curve
     //   (the classic passage result). Near the angular ones the run-up rises far above this
-    //   curve (docs/spatial.md): not asserted;
+    //   curve (docs/notes/spatial.md): not asserted;
     // - under constant torques: captured below the pair (small torques) or through it so fast
     //   that the whirl stays far below the curve (below).
     let (model, rotor) = base_case(0.8);
@@ -793,7 +793,7 @@ fn two_ball_sets_cancel_static_plus_couple_unbalance_above_both_critical_speeds(
     // The example's layout (couple mass in the second ball plane) under gravity across the axis
     // (−9.81 m/s² along y) at 1400 rad/s: balanced on average over a revolution; the weight
     // seen by the turning balls makes them swing, a residual of 3.9e-4 static and 5.8e-5
-    // couple at the run's end that averages out (docs/spatial.md; measured 1.5e-6 and 2.9e-7
+    // couple at the run's end that averages out (docs/notes/spatial.md; measured 1.5e-6 and 2.9e-7
     // averaged over the last revolution): asserted below 1e-5.
     let mut heavy = two_plane_rotor();
     heavy.unbalances[1].z = 0.05;

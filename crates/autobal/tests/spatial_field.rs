@@ -437,7 +437,7 @@ fn real_balls_have_no_linearisation() {
 
 #[test]
 fn the_simulation_takes_up_to_the_documented_100_balls_per_plane() {
-    // The spatial limits table (docs/robustness.md, limits.rs) gives 100 balls per plane; the
+    // The spatial limits table (docs/reference/robustness.md, limits.rs) gives 100 balls per plane; the
     // simulation refused more than 7 in all planes. 8 and 100 run; 101 is refused with the
     // limit's own message.
     let settings = Settings { method: Default::default(), t_end: 0.05, dt: 0.01, rtol: 1e-6, atol: 1e-9 };

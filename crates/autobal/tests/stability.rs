@@ -316,7 +316,7 @@ fn light_balls_leave_the_rotor_modes_unchanged() {
 
 #[test]
 fn exact_ranges_of_the_three_layouts_are_the_printed_table() {
-    // docs/stability.md, "What the exact analysis shows that the papers do not": 000's base case
+    // docs/notes/stability.md, "What the exact analysis shows that the papers do not": 000's base case
     // with masses at l̄_L = 0.5, 0.8, 1.2, computed as `autobal stability` does (its default
     // Ω_max and 2000 grid speeds, ends bisected to 1e-9), against the table's 4 decimals.
     use autobal::reports::default_omega_max;

@@ -66,7 +66,7 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
     let mu_max = mus.iter().copied().fold(0.0, f64::max);
     let y_max = series.iter().flat_map(|s| s.points.iter().map(|p| p.1)).filter(|y| y.is_finite()).fold(0.0, f64::max);
     s.p(format!(
-        "Balls that roll with resistance stop as soon as every ball can rest: |P| |sin(ψ_j − arg P)| ≤ μ_r (r + P·e^{{iψ_j}}), P the race centre E's offset from the axis (docs/balls.md). The runs hold the rotor ({} balls of {} g on r = {} mm, sqrt(k/m0) = {} rad/s) at constant speed for {} s from balls spread evenly, the shaft started in its steady whirl; the end states are checked against that condition on the closed-form steady whirl (column 'at rest').",
+        "Balls that roll with resistance stop as soon as every ball can rest: |P| |sin(ψ_j − arg P)| ≤ μ_r (r + P·e^{{iψ_j}}), P the race centre E's offset from the axis (docs/notes/balls.md). The runs hold the rotor ({} balls of {} g on r = {} mm, sqrt(k/m0) = {} rad/s) at constant speed for {} s from balls spread evenly, the shaft started in its steady whirl; the end states are checked against that condition on the closed-form steady whirl (column 'at rest').",
         rotor.n,
         fmt(1e3 * rotor.m3, 3),
         fmt(1e3 * rotor.r, 3),

@@ -78,7 +78,7 @@ fn printed_markers(points: Vec<(f64, f64)>) -> Series {
 
 pub fn build(_ctx: &Ctx) -> Result<Option<Section>> {
     let mut s = Section::new("paper000", "Paper 000: critical speeds of a rotor with a ball balancer");
-    s.p("Gorbenko 2016. Base case of the paper (text before Figs 4-8): C̄Σ = 0.75, ρ̄s = 0.4, l̄_L = 0.8, m̄ = 0.05, R̄ = 2, m̄0 = 0.025, R̄0 = 2, two balls, capacity E = 2, D_A = 0.5, so Ā_m = 0.2, Ā_m0 = 0.1 and ΔĀ = 0.1 by the paper's eq (17). The exact inertia tensor of the balls at balance gives ΔĀ = 0 for this case (for E &gt; √2 the balls' anisotropy opposes the unbalance's: docs/papers.md), so where the paper's curves assume ΔĀ = 0.1 the exact curve is the isotropic one. Black dots: numbers printed in the paper.");
+    s.p("Gorbenko 2016. Base case of the paper (text before Figs 4-8): C̄Σ = 0.75, ρ̄s = 0.4, l̄_L = 0.8, m̄ = 0.05, R̄ = 2, m̄0 = 0.025, R̄0 = 2, two balls, capacity E = 2, D_A = 0.5, so Ā_m = 0.2, Ā_m0 = 0.1 and ΔĀ = 0.1 by the paper's eq (17). The exact inertia tensor of the balls at balance gives ΔĀ = 0 for this case (for E &gt; √2 the balls' anisotropy opposes the unbalance's: docs/notes/papers.md), so where the paper's curves assume ΔĀ = 0.1 the exact curve is the isotropic one. Black dots: numbers printed in the paper.");
     let base = base_model(0.8);
 
     // printed vs computed

@@ -54,7 +54,7 @@ fn range_shades(xs: &[f64], at: &dyn Fn(f64) -> SpatialModel) -> Vec<Shade> {
 
 pub fn build(_ctx: &Ctx) -> Result<Option<Section>> {
     let mut s = Section::new("paper003", "Paper 003: where autobalancing is possible, with the unbalance mass");
-    s.p("Gorbenko, Shmelev, Strautmanis 2019. Base case of the paper (text before Figs 3-5): C̄Σ0 = 0.75, ρ̄s = 0.4, ΔĀ0 = 0.1, z̄_A0 = 0.8, m̄0 = 0.05, R̄0 = 2 (Ā_m0 = 0.2), long rotor at l̄_L = 0.8 unless stated. Ranges from the necessary conditions (1)-(3) of 003; black dots are the numbers printed in the paper. The exact linear stability of the balanced state, which these conditions only bound, is in the stability section and in docs/stability.md.");
+    s.p("Gorbenko, Shmelev, Strautmanis 2019. Base case of the paper (text before Figs 3-5): C̄Σ0 = 0.75, ρ̄s = 0.4, ΔĀ0 = 0.1, z̄_A0 = 0.8, m̄0 = 0.05, R̄0 = 2 (Ā_m0 = 0.2), long rotor at l̄_L = 0.8 unless stated. Ranges from the necessary conditions (1)-(3) of 003; black dots are the numbers printed in the paper. The exact linear stability of the balanced state, which these conditions only bound, is in the stability section and in docs/notes/stability.md.");
     let base = base_model(0.8);
 
     let mut rows = vec![];

@@ -189,9 +189,9 @@ fn acc(m3: f64, b: f64, w0: f64, t_end: f64, method: &str) -> Vec<String> {
 /// The runs of the section. Light balls (m3 = 0.01 kg), heavy ball drag (c_ψ = 0.4) and slow
 /// forward passages are stiff for an explicit method (the balls relax in well under a
 /// millisecond): RODAS integrates them 2-100× faster than DOP853 at the same accuracy
-/// (measured; docs/report.md). Reverse passages of the heavy balls take the automatic method
+/// (measured; docs/notes/report.md). Reverse passages of the heavy balls take the automatic method
 /// (RODAS while the balls sit semi-balanced, its step capped where the state's slow instability
-/// sets in: docs/simulation.md); ball drag as light as c_ψ = 0.01 stays with DOP853 (RODAS
+/// sets in: docs/notes/simulation.md); ball drag as light as c_ψ = 0.01 stays with DOP853 (RODAS
 /// would take more steps).
 fn runs(quick: bool) -> Vec<Run> {
     let f = if quick { 10.0 } else { 1.0 };
@@ -209,7 +209,7 @@ fn runs(quick: bool) -> Vec<Run> {
         v.push(run("4a", format!("forward, b = {} 1/s²", b(bb)), acc(0.03, b(bb), 0.0, 600.0 / b(bb), fwd(b(bb)))));
         v.push(run("4b", format!("reverse, b = {} 1/s²", -b(bb)), acc(0.03, -b(bb), 1000.0, 1000.0 / b(bb), "auto")));
     }
-    // beyond the paper's accelerations: where the forward peak finally falls (docs/paper004.md)
+    // beyond the paper's accelerations: where the forward peak finally falls (docs/notes/paper004.md)
     if !quick {
         for bb in [25.0, 50.0] {
             v.push(run("4x", format!("forward, b = {bb} 1/s²"), acc(0.03, bb, 0.0, 600.0 / bb, "dop853")));
@@ -264,7 +264,7 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
         s.figure(
             format!("fig004_{tag}_amplitude_omega"),
             Plot { title: format!("004 Fig. {tag}a: radius of C against speed, m3 = {m3} kg"), x_label: "ω (rad/s)".into(), y_label: "radius of C (mm)".into(), series: ser, x_range: Some((0.0, 1000.0)), ..Default::default() },
-            format!("004 Fig. {tag}a: whirl radius of the shaft point C against the speed for the forward (solid) and reverse (dashed) passages at |b| = 0.25 1/s² with m3 = {m3} kg, and two stationary curves: the rotor whose balls are held at their initial, evenly spread positions (grey dashed), and the free balls' stationary whirl with both balls on the far side of the line through the axis and E (orange dashed). {}", if tag == "2" { "Too little ball mass: after resonance the rotor keeps an unbalanced whirl (2.05 mm at 600 rad/s). Forward and reverse passages coincide (the forward curve is drawn wide underneath): the balls stay on the far-side stationary whirl throughout, so the peak is that curve's maximum, below the held-balls curve's; the paper's overshoot above its stationary curve does not follow (docs/paper004.md)." } else { "After the passage the balls hold C at the radius s2 = 0.5 mm (semi-balanced)." }),
+            format!("004 Fig. {tag}a: whirl radius of the shaft point C against the speed for the forward (solid) and reverse (dashed) passages at |b| = 0.25 1/s² with m3 = {m3} kg, and two stationary curves: the rotor whose balls are held at their initial, evenly spread positions (grey dashed), and the free balls' stationary whirl with both balls on the far side of the line through the axis and E (orange dashed). {}", if tag == "2" { "Too little ball mass: after resonance the rotor keeps an unbalanced whirl (2.05 mm at 600 rad/s). Forward and reverse passages coincide (the forward curve is drawn wide underneath): the balls stay on the far-side stationary whirl throughout, so the peak is that curve's maximum, below the held-balls curve's; the paper's overshoot above its stationary curve does not follow (docs/notes/paper004.md)." } else { "After the passage the balls hold C at the radius s2 = 0.5 mm (semi-balanced)." }),
         );
         let psi = ball_angles(&runs, &done, &[tag]);
         s.figure(
@@ -293,7 +293,7 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
                 match tag {
                     "4a" => "The peak, where the balls leave their sub-critical positions, is the same at every b: the paper says it first rises, then falls (see the trends below). It lies far above the stationary curve of the held balls (Fig. 3a).",
                     "4b" => "Reverse passages peak lower the faster they are: the semi-balanced state turns unstable near 300 rad/s, the balls leave it the later the faster the speed falls (a delayed loss of stability: 295 rad/s at 0.25 1/s², about 255 rad/s at 12.5 1/s²), and the whirl has the less time to grow before the speed is past resonance.",
-                    _ => "The slow passages reach the same peak as the fast ones of Fig. 4a: every passage the paper computed is quasi-static for the whirl and the balls (docs/paper004.md).",
+                    _ => "The slow passages reach the same peak as the fast ones of Fig. 4a: every passage the paper computed is quasi-static for the whirl and the balls (docs/notes/paper004.md).",
                 }
             ),
         );
@@ -344,7 +344,7 @@ pub fn ball_angles(runs: &[Run], done: &[std::sync::Arc<Done>], tags: &[&str]) -
         .collect()
 }
 
-/// The paper's trends that the equations do or do not give (docs/paper004.md): the peak
+/// The paper's trends that the equations do or do not give (docs/notes/paper004.md): the peak
 /// against the acceleration, the reverse passage, the settling with heavy ball drag, the
 /// overshoot with light balls; numbers from the runs above.
 fn trends(s: &mut Section, runs: &[Run], done: &[std::sync::Arc<Done>], quick: bool) {
@@ -434,5 +434,5 @@ fn trends(s: &mut Section, runs: &[Run], done: &[std::sync::Arc<Done>], quick: b
             "does not follow at b = 0.25 1/s²: the balls follow the far-side stationary whirl and the peak is its maximum (to 0.1 %), below the held-balls curve; the overshoot appears only for fast passages (above the held-balls maximum from about 12.5 1/s²)".into(),
         ]);
     }
-    s.table(&["the paper says", "autobal finds", "verdict and evidence (docs/paper004.md)"], &rows);
+    s.table(&["the paper says", "autobal finds", "verdict and evidence (docs/notes/paper004.md)"], &rows);
 }

@@ -1,5 +1,5 @@
 //! Section "Your rotor in time": the config's spatial rotor (papers 000/003 model) simulated
-//! with its balls by the nonlinear spatial model (docs/spatial.md): its own `[drive]` when the
+//! with its balls by the nonlinear spatial model (docs/notes/spatial.md): its own `[drive]` when the
 //! config has one for this rotor, else a run-up at constant acceleration from rest through its
 //! critical speeds. The whirl radius at the balancer plane against speed is drawn beside the
 //! stationary curve of the rotor with the balls held where they start; SI (mm, rad/s) for a
@@ -66,7 +66,7 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
         )
     };
     s.p(format!(
-        "The rotor of the config simulated in time with its {} balls free on their race (full nonlinear equations: translation, tilt, spin and balls; docs/spatial.md), {drive_text}. The balls start spread evenly across the unbalance unless <code>drive.psi0</code> says otherwise. The critical speeds of the balanced rotor (linear analysis) are {}.",
+        "The rotor of the config simulated in time with its {} balls free on their race (full nonlinear equations: translation, tilt, spin and balls; docs/notes/spatial.md), {drive_text}. The balls start spread evenly across the unbalance unless <code>drive.psi0</code> says otherwise. The critical speeds of the balanced rotor (linear analysis) are {}.",
         sim.rotor.balls(),
         crit.speeds.iter().map(|c| format!("{} {speed_unit}{}", fmt(c.omega * w0, 4), rpm(c.omega * w0))).collect::<Vec<_>>().join(", ")
     ));

@@ -257,7 +257,7 @@ class SpatialModel(_Config):
         return out
 
     def simulate(self, dt: Optional[float] = None) -> "Simulation":
-        """Run this rotor in time: the nonlinear spatial model (docs/spatial.md) with the
+        """Run this rotor in time: the nonlinear spatial model (docs/notes/spatial.md) with the
         config's ``[drive]`` and ``[integration]`` (and ``[initial]``, ``[spatial]``,
         ``[couple]``, ``[balancer2]`` where given), as ``autobal simulate`` does; ``dt``
         overrides the output interval. Columns ``t, omega, x, y, tilt_x, tilt_y``,

@@ -1,5 +1,5 @@
 """``autobal.from_ross``: a ROSS rotor (``ross.Rotor``) as an autobal :class:`LinearRotor`, with
-ball balancers and unbalances added (issue 19, docs/linear_rotor.md).
+ball balancers and unbalances added (issue 19, docs/guide/your-own-rotor.md).
 
 ROSS is not a dependency of autobal: the function takes the rotor object and calls ROSS's own
 matrix methods, ``rotor.M()``, ``rotor.K(speed)``, ``rotor.C(speed)``, ``rotor.G()``. ROSS 2

@@ -26,7 +26,7 @@
 //! the overlap under the tangential loads of a balancer (a few N; tens at the highest speeds) is
 //! then below 0.2 % of the diameter, an error of the positions below 1e-3 rad. The cost grows
 //! as `sqrt(k_c)` while balls touch (the explicit method's step is bounded by the contact's
-//! period; measured in docs/balls.md): 25 times the default moves paper 004's forward peak by
+//! period; measured in docs/notes/balls.md): 25 times the default moves paper 004's forward peak by
 //! 2.4e-5 of its value.
 
 //! Why compliant and not event-driven impacts: the state that matters is balls *resting* against
@@ -34,7 +34,7 @@
 //! infinite sequence of ever smaller impacts, which needs a separate sticking mode, its own
 //! release condition, and an impulse through the rotor's mass matrix at every impact); a
 //! compliant contact gives resting contact, impacts and release from one smooth law, and its
-//! cost is that of resolving the contact's period while balls touch (measured in docs/balls.md;
+//! cost is that of resolving the contact's period while balls touch (measured in docs/notes/balls.md;
 //! event-driven impacts were not built, so not measured).
 
 //! ## Rolling resistance
@@ -434,7 +434,7 @@ pub const ALL_PAIRS_UP_TO: usize = 16;
 /// 2π, the last with the first), so the cost is `O(n log n)` instead of `O(n²)`. The two agree
 /// whenever only neighbours overlap: a ball overlapping a ball two places away would have to
 /// pass through the one between (an overlap of a whole diameter against a contact stiffness
-/// chosen so that overlaps stay a small fraction of it, docs/balls.md).
+/// chosen so that overlaps stay a small fraction of it, docs/notes/balls.md).
 fn for_each_contact_pair(n: usize, psi: &[f64], mut f: impl FnMut(usize, usize)) {
     if n <= ALL_PAIRS_UP_TO {
         for a in 0..n {

@@ -3,7 +3,7 @@
 //! error norm, stiffness test). The step loop is shared with RODAS ([`super::Solver`]); this
 //! module holds the method's kernels.
 //!
-//! Why our own: of the crates measured (docs/dependencies.md), `ode_solvers` has a wrong node
+//! Why our own: of the crates measured (docs/notes/dependencies.md), `ode_solvers` has a wrong node
 //! `c₁₂` in its DOP853 tableau and wrong dense output, and `differential-equations` swaps `s` and
 //! `1 − s` in the 7th-order dense-output correction. Tests check the tableau's order conditions
 //! and measure the orders of the step (8) and of the dense output (7) under step halving.

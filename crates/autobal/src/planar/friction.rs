@@ -1,6 +1,6 @@
 //! Where rolling resistance leaves the balls: the end state of the planar rotor held at a
 //! constant speed with rolling-resistant balls, and the residual unbalance it keeps
-//! ([`residual`]); the data of the report's friction figure and of docs/balls.md.
+//! ([`residual`]); the data of the report's friction figure and of docs/notes/balls.md.
 //!
 //! The balls start spread evenly, at rest relative to the disk, with the shaft point C already in
 //! the steady whirl of that configuration (no shaft transient), and move towards the balanced

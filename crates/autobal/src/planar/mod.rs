@@ -1,5 +1,5 @@
 //! Nonlinear passage through resonance of the planar rotor with an eccentric ball balancer
-//! (paper 004; docs/model.md §2), in coordinates rotating with the rotor.
+//! (paper 004; docs/notes/model.md §2), in coordinates rotating with the rotor.
 //!
 //! ## Model
 //! A disk (mass `m1`, centre of mass G at `s1` from the shaft point C, central moment `I_G`)
@@ -7,7 +7,7 @@
 //! at `s2` from C at angle `γ` from CG) and `n` balls (mass `m3`) on a race of radius `r` about
 //! E, drag `c_ψ` on their motion relative to the housing, bearing drag `c_θ`.
 //!
-//! ## Equations (re-derived by d'Alembert's principle; see docs/simulation.md)
+//! ## Equations (re-derived by d'Alembert's principle; see docs/notes/simulation.md)
 //! With `u = (X + iY) e^{−iθ}` the shaft point in rotor axes and body-frame offsets
 //! `a_G = s1`, `a_E = s2 e^{iγ}`, `a_j = s2 e^{iγ} + r e^{iψ_j}`, each mass point has absolute
 //! acceleration `e^{iθ} A_b`,

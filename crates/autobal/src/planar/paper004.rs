@@ -1,7 +1,7 @@
 //! Paper 004's runs under a constant torque (its section 3, Figs 6-8), and the measures in
 //! which the paper states its findings: whether a torque passes resonance, how long the rotor
 //! takes to settle into the semi-balanced whirl, whether the whirl is re-excited on the way down
-//! after the torque is switched off (docs/paper004.md).
+//! after the torque is switched off (docs/notes/paper004.md).
 //!
 //! The paper gives neither the disk's moment of inertia `I_G` nor the bearing drag `c_θ`, and
 //! its torques (18-183 N·m on a 1 kg disk) say that both are far from what a 1 kg disk would

@@ -572,7 +572,7 @@ pub struct CompositeInertia {
     pub si: bool,
 }
 
-/// Ball-coupling matrix `d_A` of the ball equation (000, eq (6); docs/model.md §1) in the principal
+/// Ball-coupling matrix `d_A` of the ball equation (000, eq (6); docs/notes/model.md §1) in the principal
 /// frame of the composite rotor, where the inertia reads `I_C = E + ΔĀ E_A` with `ΔĀ ≥ 0`.
 ///
 /// With `D = (1/n) Σ exp(2 i α_j)` (angles from the unbalance) and the complex anisotropy

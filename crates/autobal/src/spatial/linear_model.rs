@@ -1,5 +1,5 @@
 //! The linearised equations of the balanced state in axes rotating with the rotor
-//! (000, eq (6); docs/model.md §1), as a quadratic pencil `M q'' + G q' + K q = 0` and as the
+//! (000, eq (6); docs/notes/model.md §1), as a quadratic pencil `M q'' + G q' + K q = 0` and as the
 //! first-order system `y' = A y`.
 //!
 //! Coordinates `q = (ξ_c, η_c, δ, θ, s_ξ, s_η)`: translation `w` of the common centre of mass,

@@ -1,5 +1,5 @@
 //! The equations of motion of the spatial rotor with balls, in axes turning with the rotor
-//! (docs/spatial.md derives them).
+//! (docs/notes/spatial.md derives them).
 //!
 //! Coordinates `q = (ξ, η, δ, θ, φ, ψ_1..N)`: the frame F turns by `φ` about the fixed
 //! bearing axis z; `u = (ξ, η, 0)` is the displacement of the reference point O (the axis point

@@ -1,5 +1,5 @@
 //! Nonlinear dynamics of the spatial rotor of papers 000/003 with its balls, in time
-//! (docs/spatial.md): a rigid rotor on one or two elastic supports (translation and tilt,
+//! (docs/notes/spatial.md): a rigid rotor on one or two elastic supports (translation and tilt,
 //! 4 DOF), its spin (prescribed or driven by any [`crate::drive::Drive`]), unbalance as static
 //! plus couple, and any number of balls in one or more balancer planes, with no small-angle
 //! or small-displacement assumption on the balls and an exact rigid-body kinetic energy.
