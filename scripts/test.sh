@@ -38,7 +38,7 @@ export AUTOBAL_REQUIRE_PYTHON=1
 # ROSS, for the cross-checks of autobal.from_ross and the shaft builder against it, in a venv of
 # its own (.venv-ross: ROSS 2.3.0 needs plotly<6, .venv has plotly 7): ROSS and ccp-performance
 # without their declared dependencies (requirements-ross.txt), what their import needs
-# (requirements-ross-deps.txt). Measured into a fresh venv (docs/linear_rotor.md). Where it
+# (requirements-ross-deps.txt). Measured into a fresh venv (docs/guide/your-own-rotor.md). Where it
 # installs, its tests are required (AUTOBAL_REQUIRE_ROSS=1); AUTOBAL_SKIP_ROSS=1 leaves it out.
 ross=""
 if [ "${AUTOBAL_SKIP_ROSS:-}" != 1 ]; then

@@ -180,7 +180,7 @@ fn general_route_refuses_what_it_cannot_do_with_one_line() {
 #[test]
 fn a_three_ball_map_says_which_members_of_the_family_are_stable() {
     // the Jeffcott rotor (race centred) with three balls: some members stable from 300.41 rad/s,
-    // all from 307.08 (docs/stability.md, the speed scan's family); 290, 305 and 320 rad/s lie
+    // all from 307.08 (docs/notes/stability.md, the speed scan's family); 290, 305 and 320 rad/s lie
     // on either side of both by more than the map's sampling can move them (< 0.01 rad/s)
     let stem = tmp("three-balls");
     let (code, out, err) = autobal(&[

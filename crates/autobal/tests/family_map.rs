@@ -57,7 +57,7 @@ fn a_map_cell_says_what_the_speed_scans_family_says_at_the_same_parameters() {
     // its largest and smallest abscissa cross 0: some members stable from 300.41 rad/s, all
     // from 307.08. The map follows it at 0.3 with the extremes refined, so the two locate
     // those ends within ~1e-3 rad/s of each other (the scan's own sampling moves them by
-    // ~1e-3: docs/stability.md); every speed here is at least 0.1 rad/s from both ends, so a
+    // ~1e-3: docs/notes/stability.md); every speed here is at least 0.1 rad/s from both ends, so a
     // disagreement is a wrong verdict, not resolution.
     let root = three_ball_root();
     let (all, some) = scan_ends(&root);
@@ -186,7 +186,7 @@ fn near_the_all_some_boundary_a_cell_agrees_with_sympy_eigenvalues_along_the_fam
     }
 }
 
-/// Instruction counts per cell (docs/stability.md, "Families in maps"): `valgrind
+/// Instruction counts per cell (docs/notes/stability.md, "Families in maps"): `valgrind
 /// --tool=callgrind` on this test alone, `--ignored`. 20 cells of the three-ball Jeffcott rotor.
 #[test]
 #[ignore]

@@ -342,7 +342,7 @@ fn general(ctx: &Ctx) -> Result<Option<Section>> {
         s.p(format!("Not drawn: {}.", super::esc(&why)));
     }
     s.p(format!(
-        "Other parameters: <code>autobal map --config FILE --x PATH=LO:HI:N --y {ykey}={}:{}:{n}</code> (docs/stability.md lists the paths).",
+        "Other parameters: <code>autobal map --config FILE --x PATH=LO:HI:N --y {ykey}={}:{}:{n}</code> (docs/notes/stability.md lists the paths).",
         fmt(0.02 * omega_max * yk, 4),
         fmt(omega_max * yk, 4)
     ));

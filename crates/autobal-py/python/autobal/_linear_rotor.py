@@ -1,4 +1,4 @@
-"""The run in time of a :class:`autobal.LinearRotor` (issue 19, docs/linear_rotor.md):
+"""The run in time of a :class:`autobal.LinearRotor` (issue 19, docs/guide/your-own-rotor.md):
 ``LinearRotor.simulate()`` returns a :class:`LinearSimulation`, a :class:`autobal.Result` of
 ``simulate`` whose samples are the CLI's CSV (``autobal simulate --config FILE``), column for
 column and bit for bit, and whose figures are the SVGs the CLI writes beside it.

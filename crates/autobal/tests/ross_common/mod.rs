@@ -1,6 +1,6 @@
 //! Running a Python script that uses ROSS (`ross-rotordynamics`) for the cross-checks against it.
 //!
-//! ROSS is not in requirements-test.txt (about 1.2 GB of dependencies; docs/linear_rotor.md), so
+//! ROSS is not in requirements-test.txt (about 1.2 GB of dependencies; docs/guide/your-own-rotor.md), so
 //! these checks skip without it, and fail instead when `AUTOBAL_REQUIRE_ROSS` is set. The
 //! interpreter is `$AUTOBAL_ROSS_PYTHON`, else `$AUTOBAL_PYTHON`, the repository's `.venv`,
 //! `.venv-bench` (made by bench/ for the peer comparisons, which has ROSS), or `python3`: the
