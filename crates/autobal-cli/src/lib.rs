@@ -253,6 +253,11 @@ enum Command {
         /// Summary format on standard output
         #[arg(long, value_enum, default_value = "table")]
         format: Format,
+        /// Run again with integration.rtol and atol divided by 10 and say whether the end state
+        /// (balanced, not balanced, not settled, ...) depends on the tolerance (a start near a
+        /// basin boundary, a chaotic transient); costs a second, tighter run
+        #[arg(long)]
+        check_tolerance: bool,
     },
     /// Many simulations over a grid of parameter paths, in parallel; summaries as CSV/JSON (--shard K/N for batch systems)
     Sweep(sweep::SweepArgs),
@@ -362,7 +367,9 @@ fn run(cli: Cli, control: &Control) -> Result<()> {
         Command::Map { common, x, y, omega, balls, quantity, out, threads, boundary, route } => {
             run_map(common, x, y, omega, balls, quantity, out, threads, boundary, route, control)
         }
-        Command::Simulate { config, set, dt, out, parquet, format } => run_simulate(config, set, dt, out, parquet, format, control),
+        Command::Simulate { config, set, dt, out, parquet, format, check_tolerance } => {
+            run_simulate(config, set, dt, out, parquet, format, check_tolerance, control)
+        }
         Command::ExportModel { common, out, stem } => {
             let rotor = match common.config.as_deref() {
                 // the model the commands run: reduced where the config asks for it
@@ -600,7 +607,17 @@ fn simulation_outputs(config: Option<&std::path::Path>, out: &std::path::Path, p
     Ok((csv, stem))
 }
 
-fn run_simulate(config: Option<PathBuf>, set: Vec<String>, dt: Option<f64>, out: PathBuf, parquet: bool, format: Format, control: &Control) -> Result<()> {
+#[allow(clippy::too_many_arguments)]
+fn run_simulate(
+    config: Option<PathBuf>,
+    set: Vec<String>,
+    dt: Option<f64>,
+    out: PathBuf,
+    parquet: bool,
+    format: Format,
+    check_tolerance: bool,
+    control: &Control,
+) -> Result<()> {
     let (mut root, source) = config::read_with_default(config.as_deref(), config::DEFAULT_PLANAR, "embedded default (examples/planar.toml)")?;
     let linear = linear_rotor::is_linear(&root);
     for s in &set {
@@ -610,11 +627,14 @@ fn run_simulate(config: Option<PathBuf>, set: Vec<String>, dt: Option<f64>, out:
             config::apply_set(&mut root, s)?;
         }
     }
+    if linear && check_tolerance {
+        anyhow::bail!("--check-tolerance: not yet for a linear rotor config");
+    }
     if linear {
         return run_linear_rotor_simulate(&root, config.as_deref(), dt, out, parquet, format, control);
     }
     if autobal::config::is_spatial(&root) {
-        return run_spatial(&root, &source, config.as_deref(), dt, out, parquet, format, control);
+        return run_spatial(&root, &source, config.as_deref(), dt, out, parquet, format, check_tolerance, control);
     }
     let mut cfg = config::build_planar(&root, &source)?;
     config::check_entries(&root, "simulate", &[config::Model::Planar])?;
@@ -637,7 +657,12 @@ fn run_simulate(config: Option<PathBuf>, set: Vec<String>, dt: Option<f64>, out:
         term::note(&format!("wrote {}", t.finish()?.display()));
     }
     let plots = sim::write_plots(&cfg, &env, &stem, "Passage")?;
-    emit(format, sim::summary_json(&cfg, &summary, wall), sim::summary_table(&cfg, &summary, wall))?;
+    let (mut json, mut table) = (sim::summary_json(&cfg, &summary, wall), sim::summary_table(&cfg, &summary, wall));
+    if check_tolerance && summary.stopped.is_none() {
+        let c = autobal_commands::tolerance::planar(&cfg, &summary, control)?;
+        add_tolerance_check(&mut json, &mut table, &c);
+    }
+    emit(format, json, table)?;
     term::note(&format!(
         "wrote {} and {} plots ({})",
         out.display(),
@@ -653,6 +678,19 @@ fn run_simulate(config: Option<PathBuf>, set: Vec<String>, dt: Option<f64>, out:
     Ok(())
 }
 
+/// `--check-tolerance`'s result into the summary: `tolerance_check` in the JSON, a line in the
+/// table.
+fn add_tolerance_check(json: &mut serde_json::Value, table: &mut String, c: &autobal_commands::tolerance::Check) {
+    if let Some(o) = json.as_object_mut() {
+        o.insert("tolerance_check".into(), c.json());
+    }
+    if !table.ends_with('\n') {
+        table.push('\n');
+    }
+    table.push_str(&c.line());
+    table.push('\n');
+}
+
 #[allow(clippy::too_many_arguments)]
 fn run_spatial(
     root: &toml::Table,
@@ -662,6 +700,7 @@ fn run_spatial(
     out: PathBuf,
     parquet: bool,
     format: Format,
+    check_tolerance: bool,
     control: &Control,
 ) -> Result<()> {
     let mut sim = spatial_sim::build(root, source)?;
@@ -695,7 +734,12 @@ fn run_spatial(
         term::note(&format!("wrote {}", t.finish()?.display()));
     }
     let plots = spatial_sim::write_plots(&sim, &kept, &stem, "Spatial rotor")?;
-    emit(format, spatial_sim::summary_json(&sim, &summary, wall), spatial_sim::summary_table(&sim, &summary, wall))?;
+    let (mut json, mut table) = (spatial_sim::summary_json(&sim, &summary, wall), spatial_sim::summary_table(&sim, &summary, wall));
+    if check_tolerance && summary.stopped.is_none() {
+        let c = autobal_commands::tolerance::spatial(&sim, &summary, control)?;
+        add_tolerance_check(&mut json, &mut table, &c);
+    }
+    emit(format, json, table)?;
     eprintln!("wrote {} and {} plots ({})", out.display(), plots.len(), plots.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", "));
     if let Some(st) = summary.stopped {
         anyhow::bail!("{st}: the samples up to then are kept in {}", out.display());

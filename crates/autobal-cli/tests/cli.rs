@@ -854,3 +854,31 @@ fn regression_stability_gave_a_verdict_on_a_balanced_state_that_cannot_exist() {
     assert_eq!(v["balanced_state_exists"], true);
     assert!(v["balancer_capacity"].as_f64().unwrap() > 1.0);
 }
+
+/// `simulate --check-tolerance` (issue 18: say where the end state depends on the tolerance):
+/// paper 004's passage (the embedded default, balanced at its end) and the spatial example give
+/// the same end state at rtol 1e-8 and 1e-9, reported in the JSON with both classes, and the
+/// runs' own summary is unchanged by the check (same `steps` as without it).
+#[test]
+fn check_tolerance_reports_both_end_states() {
+    let dir = std::env::temp_dir().join(format!("autobal-tol-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("run.csv");
+    let o = out.to_str().unwrap();
+    let plain = json(&["simulate", "--format", "json", "--out", o]);
+    let v = json(&["simulate", "--format", "json", "--out", o, "--check-tolerance"]);
+    let c = &v["tolerance_check"];
+    assert_eq!(c["end_state"], "balanced", "{c}");
+    assert_eq!(c["tighter_end_state"], "balanced", "{c}");
+    assert_eq!(c["depends_on_tolerance"], false);
+    assert_eq!(c["rtol"], 1e-8);
+    assert_eq!(c["tighter_rtol"], 1e-9);
+    assert_eq!(v["steps"], plain["steps"]);
+    assert!(plain.get("tolerance_check").is_none());
+    let s = json(&["simulate", "--config", &examples("spatial.toml"), "--set", "drive.t_end=200", "--format", "json", "--out", o, "--check-tolerance"]);
+    assert_eq!(s["tolerance_check"]["end_state"], s["outcome"], "{s}");
+    let (code, _, err) = autobal(&["simulate", "--config", &examples("linear_rotor_shaft.toml"), "--out", o, "--check-tolerance"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("--check-tolerance:"), "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

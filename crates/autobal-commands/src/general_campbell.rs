@@ -10,9 +10,7 @@ use anyhow::Result;
 use autobal::analysis::Kind;
 use autobal::control::Control;
 use autobal::error::fmt_num;
-use autobal::rotor_campbell::{
-    campbell_locked, fixed_view, locked_critical_speeds, Balls, LockedCriticalSpeeds, RotorCampbell, Whirl, FLOQUET_BRANCH,
-};
+use autobal::rotor_campbell::{campbell_locked, fixed_view, locked_critical_speeds, Balls, LockedCriticalSpeeds, RotorCampbell, Whirl, FLOQUET_BRANCH};
 use autobal::rotor_stability::{speed_grid, stability_over_speed, Rotor, RotorStability};
 use autobal::spatial::campbell::FixedCampbell;
 use serde_json::{json, Value};

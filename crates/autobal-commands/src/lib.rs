@@ -47,3 +47,4 @@ pub mod spatial_sim;
 pub mod stability;
 pub mod sweep;
 pub mod term;
+pub mod tolerance;

@@ -1,0 +1,75 @@
+//! `simulate --check-tolerance`: the run again at a tenth of its tolerances, and whether its end
+//! state changes class ([`autobal::tolerance`]): where it does, the first run's outcome is not
+//! the answer, and the summary says so.
+
+use crate::config::PlanarConfig;
+use crate::spatial_sim::SpatialSim;
+use anyhow::Result;
+use autobal::control::Control;
+use autobal::planar::problem::PlanarProblem;
+use autobal::tolerance::{check_tolerance, Classified, EndState, TIGHTENING};
+use serde_json::{json, Value};
+
+/// The check of a run's outcome against the tolerance: both end states and the verdict.
+#[derive(Debug, Clone)]
+pub struct Check {
+    /// The first run's relative tolerance and end state.
+    pub first: (f64, EndState),
+    /// The second run's.
+    pub second: (f64, EndState),
+    /// The classes differ.
+    pub depends: bool,
+}
+
+impl Check {
+    /// The `tolerance_check` object of the summary's JSON.
+    pub fn json(&self) -> Value {
+        json!({
+            "rtol": self.first.0,
+            "end_state": self.first.1,
+            "tighter_rtol": self.second.0,
+            "tighter_end_state": self.second.1,
+            "depends_on_tolerance": self.depends,
+            "what": "the run again with integration.rtol and integration.atol divided by 10: different end states prove the first is not the answer; equal ones are evidence, not proof",
+        })
+    }
+
+    /// The line the table adds.
+    pub fn line(&self) -> String {
+        let name = |s: EndState| serde_json::to_value(s).ok().and_then(|v| v.as_str().map(str::to_string)).unwrap_or_default();
+        if self.depends {
+            format!(
+                "tolerance check: the END STATE DEPENDS ON THE TOLERANCE ({} at rtol {}, {} at rtol {}): the outcome above is not the answer",
+                name(self.first.1),
+                autobal::error::fmt_num(self.first.0),
+                name(self.second.1),
+                autobal::error::fmt_num(self.second.0)
+            )
+        } else {
+            format!(
+                "tolerance check: the same end state ({}) at rtol {} and {}",
+                name(self.first.1),
+                autobal::error::fmt_num(self.first.0),
+                autobal::error::fmt_num(self.second.0)
+            )
+        }
+    }
+}
+
+/// Paper 004's planar rotor: `cfg`'s run at its tolerances ended in `first`.
+pub fn planar(cfg: &PlanarConfig, first: &autobal::planar::Summary, control: &Control) -> Result<Check> {
+    let p = PlanarProblem { rotor: cfg.rotor.clone(), drive: cfg.drive.clone(), settings: cfg.settings.clone() };
+    let c = check_tolerance(&p, first, cfg.settings.rtol, cfg.settings.atol, control)?;
+    Ok(Check { first: (c.first_rtol, c.first), second: (c.second_rtol, c.second), depends: c.depends_on_tolerance })
+}
+
+/// The spatial rotor: `sim`'s run at its tolerances ended in `first`.
+pub fn spatial(sim: &SpatialSim, first: &autobal::spatial::dynamics::Summary, control: &Control) -> Result<Check> {
+    let mut s = sim.lib.settings.clone();
+    let factor = if s.rtol / TIGHTENING >= 1e-14 { 1.0 / TIGHTENING } else { TIGHTENING };
+    s.rtol *= factor;
+    s.atol *= factor;
+    let second = autobal::spatial::dynamics::simulate_with(&sim.lib.rotor, &sim.lib.drive, &sim.lib.initial, &s, control, |_| true)?;
+    let (c1, c2) = (first.end_state(), second.end_state());
+    Ok(Check { first: (sim.lib.settings.rtol, c1), second: (s.rtol, c2), depends: c1 != c2 && c1 != EndState::Stopped && c2 != EndState::Stopped })
+}
