@@ -130,7 +130,7 @@ impl ConfigSource {
         }
     }
 
-    /// [`read`](Self::read), where a linear rotor config ([linear_rotor]) takes its own
+    /// [`read`](Self::read), where a linear rotor config (`[linear_rotor]`) takes its own
     /// overrides ([`crate::linear_rotor::read_set`]).
     pub fn read_any(&self) -> Result<(Table, String)> {
         match self {

@@ -77,7 +77,7 @@ pub fn speeds(omega_max: f64, points: usize) -> Vec<f64> {
 }
 
 /// The general route's Campbell diagram with what the 12-state route gives beside it
-/// ([`crate::linear::run_campbell`]): the fixed-axes view (one curve per mode, its log
+/// ([`crate::linear::campbell_run`]): the fixed-axes view (one curve per mode, its log
 /// decrement) and the crossings with the excitation lines `h×Ω`, for the balls free or locked.
 pub struct GeneralCampbell {
     /// The tracked eigenvalues (or Floquet exponents) over speed.
