@@ -75,7 +75,13 @@ if [ -x "$chromium" ] && [ -d "$browser_dir/node_modules/playwright-core" ]; the
 else
     echo "scripts/test.sh: the report's browser test will be skipped: it needs Chromium (sudo apt-get install chromium) and Node.js with npm (sudo apt-get install nodejs npm)" >&2
 fi
-cargo test --workspace "$@"
+# With ROSS installed, the Rust tests against it (the shaft builder's Timoshenko elements, a second
+# example rotor's Campbell diagram) are required too, with ROSS's Python.
+if [ -n "$ross" ]; then
+    AUTOBAL_ROSS_PYTHON="$PWD/.venv-ross/bin/python" AUTOBAL_REQUIRE_ROSS=1 cargo test --workspace "$@"
+else
+    cargo test --workspace "$@"
+fi
 
 # The Python package: its wheel built by maturin with the workspace's dev profile (reusing the
 # build above), installed into .venv (with the `autobal` command), and its tests (pytest) on the installed wheel, including
