@@ -127,6 +127,31 @@ impl Rotor {
         }
     }
 
+    /// The first guess where [`Rotor::guess`] has none, for a spatial rotor with two ball
+    /// planes: each plane's balls placed on its share of the unbalance
+    /// ([`crate::spatial::dynamics::SpatialRotor::balanced_ball_angles`]: a plane short of its
+    /// share bunched towards it, the other on the arc of its share), the rotor at rest on the
+    /// axis, a start for Newton. On the rotor of `tests/partial_two_plane.rs` Newton reaches
+    /// the stable partially balanced state from here and the unstable one from
+    /// [`Rotor::bunched_guess`] (every plane bunched). `None` for the planar rotor and one plane
+    /// (where [`Rotor::bunched_guess`] is the same placement).
+    pub fn placed_guess(field: &Field) -> Option<Vec<f64>> {
+        let Field::Spatial(f) = field else { return None };
+        let r = f.rotor();
+        if r.planes.iter().filter(|p| p.n > 0).count() != 2 {
+            return None;
+        }
+        let m = f.coords();
+        let nb = r.balls();
+        let placed = r.balanced_ball_angles();
+        if placed.angles.len() != nb {
+            return None;
+        }
+        let mut x = vec![0.0; 2 * m];
+        x[m - nb..m].copy_from_slice(&placed.angles);
+        Some(x)
+    }
+
     /// The second guess, where [`Rotor::guess`] has none (the balls' capacity falls short of
     /// the unbalance the balanced or semi-balanced state needs): **the balls bunched**, all at
     /// one angle, leaving a residual unbalance (the partially balanced state).
@@ -448,9 +473,10 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
         opts.newton.max_iterations = 20;
         opts.newton.rtol = 1e-10;
     }
-    // where the closed form has no (semi-)balanced state, the balls bunched: the partially
-    // balanced state (Rotor::bunched_guess)
-    let guess = |f: &Field, _| Rotor::guess(f).or_else(|| Rotor::bunched_guess(f));
+    // where the closed form has no (semi-)balanced state, the partially balanced state: from
+    // each plane's balls placed on its share, a short plane's bunched (Rotor::placed_guess),
+    // else every plane's balls bunched (Rotor::bunched_guess)
+    let guess = |f: &Field, _| Rotor::guess(f).or_else(|| Rotor::placed_guess(f)).or_else(|| Rotor::bunched_guess(f));
     let Outcome { value: scan, mut stopped } = speed_scan_with(|w| rotor.field(w), guess, speeds, &opts, control).map_err(|e| match e {
         crate::analysis::AnalysisError::Model(e) => e,
         e => Error::invalid("speeds", e.to_string()),

@@ -129,3 +129,20 @@ fn one_plane_short_of_capacity_leaves_at_least_the_shortfall() {
     assert!(s.planes[0].bunched, "{:?}", s.planes);
     assert!(s.residual_static_fraction > 0.2 - 1e-9 && s.residual_static_fraction < 0.25, "{}", s.residual_static_fraction);
 }
+
+/// The speed scan (`stability` of the general route) follows the stable partially balanced
+/// state, not the unstable one with both planes bunched: its point at 400 rad/s equals
+/// `partially_balanced`'s stable state (the growth rate to 1e-6 1/s, the same Newton on the same
+/// equations from a start in the same basin), and says `partially_balanced`.
+#[test]
+fn the_speed_scan_follows_the_stable_partial_state() {
+    let r = Rotor::Spatial(short_rotor());
+    let states = partially_balanced(&r, SPEED).unwrap();
+    let stable = &states[0];
+    assert_eq!(stable.stability.verdict, Verdict::Stable);
+    let scan = autobal::rotor_stability::stability_over_speed(&r, &[SPEED]).unwrap();
+    let p = &scan.points[0];
+    assert_eq!(p.verdict, Some(Verdict::Stable), "{p:?}");
+    let a = p.abscissa.unwrap();
+    assert!((a - stable.stability.abscissa).abs() < 1e-6, "scan {a} against rotor_partial {}", stable.stability.abscissa);
+}
