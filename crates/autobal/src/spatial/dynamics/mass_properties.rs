@@ -311,7 +311,7 @@ impl SpatialRotor {
                         angles,
                         placement: Placement::Bunched,
                         note: format!(
-                            "no balanced state: {} cannot carry its share of the static and couple unbalance; its balls are bunched towards the share (a placement, not the partially balanced state of two planes, which is not computed here)",
+                            "no balanced state: {} cannot carry its share of the static and couple unbalance; its balls are bunched towards the share (a placement: the partially balanced state itself is `autobal::rotor_partial`, and the general route of `stability` starts from this placement)",
                             short.join(" and ")
                         ),
                     }
