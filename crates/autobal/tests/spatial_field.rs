@@ -202,8 +202,43 @@ fn at_balance(model: &SpatialModel, rotor: &mut SpatialRotor) -> Vec<f64> {
     vec![-psi + std::f64::consts::PI - beta, -psi + std::f64::consts::PI + beta]
 }
 
+/// The eigenvalues of the `n x n` row-major `a` by nalgebra's Schur iteration, after a balancing
+/// step (Parlett-Reinsch: diagonal similarity by powers of two until each row and column have
+/// comparable norms; exact in floating point), which ../shared/DEPENDENCIES.md records that
+/// nalgebra needs on matrices in physical units: without it the iteration on this test's
+/// Jacobian did not converge once the right-hand side's rounding changed (a fast sin_cos).
 fn eigenvalues(a: &[f64], n: usize) -> Vec<Complex64> {
-    let m = nalgebra::DMatrix::from_row_slice(n, n, a);
+    let mut m = nalgebra::DMatrix::from_row_slice(n, n, a);
+    loop {
+        let mut changed = false;
+        for i in 0..n {
+            let c: f64 = (0..n).filter(|&k| k != i).map(|k| m[(k, i)].abs()).sum();
+            let r: f64 = (0..n).filter(|&k| k != i).map(|k| m[(i, k)].abs()).sum();
+            if c == 0.0 || r == 0.0 {
+                continue;
+            }
+            // Numerical Recipes' balanc (radix 2): f with c f ≈ r / f
+            let (mut c, s, mut f) = (c, c + r, 1.0);
+            while c < r / 2.0 {
+                f *= 2.0;
+                c *= 4.0;
+            }
+            while c > r * 2.0 {
+                f /= 2.0;
+                c /= 4.0;
+            }
+            if (c + r) / f < 0.95 * s {
+                changed = true;
+                for k in 0..n {
+                    m[(i, k)] /= f;
+                    m[(k, i)] *= f;
+                }
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
     let s = nalgebra::linalg::Schur::try_new(m, f64::EPSILON, 100_000).expect("nalgebra converges");
     s.complex_eigenvalues().iter().map(|z| Complex64::new(z.re, z.im)).collect()
 }
