@@ -905,46 +905,12 @@ pub fn fixed_view(rotor: &Rotor, balls: Balls, c: &RotorCampbell, harmonics: &[u
         (Some(a), Some(b)) if !is_real(&a) && !is_real(&b) => (z(&b) - z(&a).conj()).norm() <= 1e-7 * (1.0 + z(&a).norm()),
         _ => false,
     };
-    let mut edges: Vec<Vec<usize>> = vec![vec![]; nl];
-    for i in 0..nl {
-        for j in i + 1..nl {
-            if (0..n).any(|k| conj(i, j, k)) {
-                edges[i].push(j);
-                edges[j].push(i);
-            }
-        }
-    }
     // the kept colour of each component: the one with more points of Im λ ≥ 0
-    let mut colour: Vec<Option<bool>> = vec![None; nl];
-    let mut component = vec![0usize; nl];
-    let mut dropped = vec![false; nl];
-    let up = |l: usize| (0..n).filter_map(|k| at(l, k)).filter(|p| p.im >= 0.0).count() as i64;
-    for start in 0..nl {
-        if colour[start].is_some() {
-            continue;
-        }
-        colour[start] = Some(true);
-        component[start] = start;
-        let mut members = vec![start];
-        let mut q = 0;
-        while q < members.len() {
-            let i = members[q];
-            q += 1;
-            for &j in &edges[i] {
-                if colour[j].is_none() {
-                    colour[j] = Some(!colour[i].unwrap_or(true));
-                    component[j] = start;
-                    members.push(j);
-                }
-            }
-        }
-        if members.len() > 1 {
-            let score: i64 = members.iter().map(|&l| if colour[l] == Some(true) { up(l) } else { -up(l) }).sum();
-            for &l in &members {
-                dropped[l] = (colour[l] == Some(true)) != (score >= 0);
-            }
-        }
-    }
+    let (component, dropped) = crate::spatial::campbell::keep_one_of_each_pair(
+        nl,
+        |i, j| (0..n).any(|k| conj(i, j, k)),
+        |l| (0..n).filter_map(|k| at(l, k)).filter(|p| p.im >= 0.0).count() as i64,
+    );
     // (curve, the speed index of each of its points)
     let mut curves: Vec<(FixedCurve, Vec<usize>)> = vec![];
     for (li, &left_out) in dropped.iter().enumerate() {

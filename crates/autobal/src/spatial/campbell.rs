@@ -137,45 +137,11 @@ pub fn fixed_axes(model: &SpatialModel, c: &Campbell, balls: Balls, harmonics: &
     // the colour with more points of Im λ ≥ 0; a line never complex is kept (a real mode).
     let nl = c.lines.len();
     let is_real = |i: usize, k: usize| c.lines[i].modes[k].im.abs() <= REAL_TOL;
-    let mut edges: Vec<Vec<usize>> = vec![vec![]; nl];
-    for i in 0..nl {
-        for j in i + 1..nl {
-            if (0..n).any(|k| !is_real(i, k) && !is_real(j, k) && conj_at(c, i, j, k)) {
-                edges[i].push(j);
-                edges[j].push(i);
-            }
-        }
-    }
-    let mut colour: Vec<Option<bool>> = vec![None; nl];
-    let mut component = vec![0usize; nl];
-    let mut dropped = vec![false; nl];
-    let up = |l: usize| c.lines[l].modes.iter().filter(|m| m.im >= 0.0).count() as i64;
-    for start in 0..nl {
-        if colour[start].is_some() {
-            continue;
-        }
-        colour[start] = Some(true);
-        component[start] = start;
-        let mut members = vec![start];
-        let mut q = 0;
-        while q < members.len() {
-            let i = members[q];
-            q += 1;
-            for &j in &edges[i] {
-                if colour[j].is_none() {
-                    colour[j] = Some(!colour[i].unwrap_or(true));
-                    component[j] = start;
-                    members.push(j);
-                }
-            }
-        }
-        if members.len() > 1 {
-            let score: i64 = members.iter().map(|&l| if colour[l] == Some(true) { up(l) } else { -up(l) }).sum();
-            for &l in &members {
-                dropped[l] = (colour[l] == Some(true)) != (score >= 0);
-            }
-        }
-    }
+    let (component, dropped) = keep_one_of_each_pair(
+        nl,
+        |i, j| (0..n).any(|k| !is_real(i, k) && !is_real(j, k) && conj_at(c, i, j, k)),
+        |l| c.lines[l].modes.iter().filter(|m| m.im >= 0.0).count() as i64,
+    );
     let mut curves = vec![];
     for (li, line) in c.lines.iter().enumerate() {
         if dropped[li] || n == 0 {
@@ -351,4 +317,52 @@ fn crossings(model: &SpatialModel, c: &Campbell, balls: Balls, cv: &FixedCurve, 
         }
     }
     Ok(())
+}
+
+/// Which tracked lines to keep so that each complex-conjugate pair is drawn once: the lines are
+/// the nodes of a graph whose edges join lines `i`, `j` that are conjugates at some speed
+/// (`conjugate(i, j)`), the graph is 2-coloured by breadth-first search, and each connected
+/// component keeps the colour whose lines have more points with Im λ ≥ 0 (`up(l)` points for
+/// line `l`); a line with no edge is kept. Returns each line's component (its first line) and
+/// whether it is left out.
+pub(crate) fn keep_one_of_each_pair(nl: usize, conjugate: impl Fn(usize, usize) -> bool, up: impl Fn(usize) -> i64) -> (Vec<usize>, Vec<bool>) {
+    let mut edges: Vec<Vec<usize>> = vec![vec![]; nl];
+    for i in 0..nl {
+        for j in i + 1..nl {
+            if conjugate(i, j) {
+                edges[i].push(j);
+                edges[j].push(i);
+            }
+        }
+    }
+    let mut colour: Vec<Option<bool>> = vec![None; nl];
+    let mut component = vec![0usize; nl];
+    let mut dropped = vec![false; nl];
+    for start in 0..nl {
+        if colour[start].is_some() {
+            continue;
+        }
+        colour[start] = Some(true);
+        component[start] = start;
+        let mut members = vec![start];
+        let mut q = 0;
+        while q < members.len() {
+            let i = members[q];
+            q += 1;
+            for &j in &edges[i] {
+                if colour[j].is_none() {
+                    colour[j] = Some(!colour[i].unwrap_or(true));
+                    component[j] = start;
+                    members.push(j);
+                }
+            }
+        }
+        if members.len() > 1 {
+            let score: i64 = members.iter().map(|&l| if colour[l] == Some(true) { up(l) } else { -up(l) }).sum();
+            for &l in &members {
+                dropped[l] = (colour[l] == Some(true)) != (score >= 0);
+            }
+        }
+    }
+    (component, dropped)
 }
