@@ -7,7 +7,7 @@ use crate::spatial_sim::SpatialSim;
 use anyhow::Result;
 use autobal::control::Control;
 use autobal::planar::problem::PlanarProblem;
-use autobal::tolerance::{check_tolerance, Classified, EndState, TIGHTENING};
+use autobal::tolerance::{check_tolerance, depends, second_tolerances, Classified, EndState};
 use serde_json::{json, Value};
 
 /// The check of a run's outcome against the tolerance: both end states and the verdict.
@@ -66,9 +66,7 @@ pub fn planar(cfg: &PlanarConfig, first: &autobal::planar::Summary, control: &Co
 /// The spatial rotor: `sim`'s run at its tolerances ended in `first`.
 pub fn spatial(sim: &SpatialSim, first: &autobal::spatial::dynamics::Summary, control: &Control) -> Result<Check> {
     let mut s = sim.lib.settings.clone();
-    let factor = if s.rtol / TIGHTENING >= 1e-14 { 1.0 / TIGHTENING } else { TIGHTENING };
-    s.rtol *= factor;
-    s.atol *= factor;
+    (s.rtol, s.atol) = second_tolerances(s.rtol, s.atol);
     let second = autobal::spatial::dynamics::simulate_with(&sim.lib.rotor, &sim.lib.drive, &sim.lib.initial, &s, control, |_| true)?;
     let (c1, c2) = (first.end_state(), second.end_state());
     Ok(Check { first: (sim.lib.settings.rtol, c1), second: (s.rtol, c2), depends: c1 != c2 && c1 != EndState::Stopped && c2 != EndState::Stopped })

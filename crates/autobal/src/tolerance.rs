@@ -121,6 +121,19 @@ pub struct ToleranceCheck<S> {
     pub second_summary: S,
 }
 
+/// The second run's `(rtol, atol)`: both divided by [`TIGHTENING`], or multiplied where
+/// `rtol / 10` would pass below the double-precision floor of 1e-14.
+pub fn second_tolerances(rtol: f64, atol: f64) -> (f64, f64) {
+    let factor = if rtol / TIGHTENING >= RTOL_FLOOR { 1.0 / TIGHTENING } else { TIGHTENING };
+    (rtol * factor, atol * factor)
+}
+
+/// Whether two end states show the outcome depends on the tolerance: different classes, neither
+/// run stopped early.
+pub fn depends(first: EndState, second: EndState) -> bool {
+    first != second && first != EndState::Stopped && second != EndState::Stopped
+}
+
 /// Run `model`'s point again with both tolerances divided by [`TIGHTENING`] (multiplied when
 /// `rtol / 10` would pass below 1e-14) and compare the end state with `first`, the summary of
 /// the run at `rtol`, `atol`. `model` is the run's own description (a [`SweepModel`] is also
@@ -132,19 +145,11 @@ where
     M: SweepModel,
     M::Summary: Classified + Clone,
 {
-    let factor = if rtol / TIGHTENING >= RTOL_FLOOR { 1.0 / TIGHTENING } else { TIGHTENING };
-    let (r2, a2) = (rtol * factor, atol * factor);
+    let (r2, a2) = second_tolerances(rtol, atol);
     let point = model.at(&["integration.rtol", "integration.atol"], &[r2, a2])?;
     let second = model.run(&point, control)?;
     let (c1, c2) = (first.end_state(), second.end_state());
-    Ok(ToleranceCheck {
-        first_rtol: rtol,
-        first: c1,
-        second_rtol: r2,
-        second: c2,
-        depends_on_tolerance: c1 != c2 && c1 != EndState::Stopped && c2 != EndState::Stopped,
-        second_summary: second,
-    })
+    Ok(ToleranceCheck { first_rtol: rtol, first: c1, second_rtol: r2, second: c2, depends_on_tolerance: depends(c1, c2), second_summary: second })
 }
 
 #[cfg(test)]
