@@ -69,5 +69,5 @@ pub fn spatial(sim: &SpatialSim, first: &autobal::spatial::dynamics::Summary, co
     (s.rtol, s.atol) = second_tolerances(s.rtol, s.atol);
     let second = autobal::spatial::dynamics::simulate_with(&sim.lib.rotor, &sim.lib.drive, &sim.lib.initial, &s, control, |_| true)?;
     let (c1, c2) = (first.end_state(), second.end_state());
-    Ok(Check { first: (sim.lib.settings.rtol, c1), second: (s.rtol, c2), depends: c1 != c2 && c1 != EndState::Stopped && c2 != EndState::Stopped })
+    Ok(Check { first: (sim.lib.settings.rtol, c1), second: (s.rtol, c2), depends: depends(c1, c2) })
 }
