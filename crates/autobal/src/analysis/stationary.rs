@@ -435,11 +435,13 @@ impl TrigInterpolant {
     }
 
     /// The highest harmonic kept, `K`.
+    #[cfg(test)]
     fn degree(&self) -> usize {
         self.harmonics.len()
     }
 
     /// The terms kept (over every entry and harmonic `k ≥ 1`).
+    #[cfg(test)]
     fn terms(&self) -> usize {
         self.harmonics.iter().map(Vec::len).sum()
     }
