@@ -148,6 +148,8 @@ fn cell_family(field: &Field, state: &StationaryState, newton: &NewtonOptions) -
         angles,
         newton: newton.clone(),
         refine_extremes: true,
+        // three equal balls: a third of the family, the rest its relabellings (3x fewer members)
+        relabellings: crate::rotor_stability::ball_rotations(field),
         ..FamilyOptions::default()
     };
     let fam = family(field, state, &opts).ok()?;

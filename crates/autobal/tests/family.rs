@@ -340,3 +340,59 @@ fn below_its_semi_balanced_speed_paper_004s_rotor_is_partially_balanced_where_a_
     assert!(!autobal::planar::stationary::semi_balanced_exists(&p, 200.0));
     partially_balanced_against_a_run(&p, 200.0, 16.0);
 }
+
+#[test]
+fn a_family_walked_to_a_relabelling_covers_the_whole_family_by_relabelling() {
+    // Three equal balls: the cyclic relabellings ψ_j → ψ_{j+1}, ψ_{j+2} (with their rates) map
+    // the balancing set Σ e^{iψ_j} = b onto itself. The continuation stopped at the first image
+    // of the member given walks a third of the closed family; every member of the whole family
+    // (walked all round without relabellings) is then, relabelled, within one step (0.05 rad)
+    // of a member of the third (the continuation's own sampling resolution: a member lies at
+    // most half a step from the nearest sampled one, doubled for the two samplings' offsets),
+    // at 1.00, 1.06 and 1.2 ω_n (none, some and all members stable); the verdict is the whole
+    // family's, and the third's extreme abscissae equal the whole family's to the abscissa's
+    // change over one step (1e-2 of its range over the family).
+    let p = three_balls();
+    let wn = p.natural_frequency();
+    let cyc = |shift: usize| -> Vec<usize> {
+        let mut q: Vec<usize> = (0..10).collect();
+        for j in 0..3 {
+            q[2 + j] = 2 + (j + shift) % 3;
+            q[7 + j] = 7 + (j + shift) % 3;
+        }
+        q
+    };
+    for w in [1.0 * wn, 1.06 * wn, 1.2 * wn] {
+        let (f, whole) = family_at(&p, w);
+        let s = stationary(&f, &f.semi_balanced_guess().unwrap(), &NewtonOptions::default()).unwrap();
+        let third = family(&f, &s, &FamilyOptions { relabellings: vec![cyc(1), cyc(2)], ..opts(&p) }).unwrap();
+        assert!(whole.closed && third.closed);
+        assert!((third.length - whole.length / 3.0).abs() < 2.0 * 0.05, "Ω = {w}: {} against {} / 3", third.length, whole.length);
+        let angle_gap = |a: &[f64], b: &[f64]| (2..5).map(|i| ((a[i] - b[i] + PI).rem_euclid(2.0 * PI) - PI).abs()).fold(0.0, f64::max);
+        for m in &whole.members {
+            let near = third
+                .members
+                .iter()
+                .flat_map(|t| [0, 1, 2].map(|k| if k == 0 { t.state.x.clone() } else { cyc(k).iter().map(|&j| t.state.x[j]).collect::<Vec<f64>>() }))
+                .map(|y| angle_gap(&m.state.x, &y))
+                .fold(f64::INFINITY, f64::min);
+            assert!(near <= 0.05, "Ω = {w}: a member {:?} is {near} rad from every relabelled member of the third", &m.state.x[2..5]);
+        }
+        assert_eq!(whole.verdict(), third.verdict(), "Ω = {w}");
+        let (wh, wl) = whole.extremes().unwrap();
+        let (th, tl) = third.extremes().unwrap();
+        let range = wh.stability.abscissa - wl.stability.abscissa;
+        assert!(
+            (wh.stability.abscissa - th.stability.abscissa).abs() <= 1e-2 * range,
+            "Ω = {w}: largest {} against {}",
+            th.stability.abscissa,
+            wh.stability.abscissa
+        );
+        assert!(
+            (wl.stability.abscissa - tl.stability.abscissa).abs() <= 1e-2 * range,
+            "Ω = {w}: smallest {} against {}",
+            tl.stability.abscissa,
+            wl.stability.abscissa
+        );
+    }
+}

@@ -243,7 +243,7 @@ pub fn write(ctx: &Ctx, dir: &Path) -> Result<PathBuf> {
         .par_iter()
         .map(|(name, build)| {
             let t = Instant::now();
-            let r = build(ctx).with_context(|| format!("report section {name}"));
+            let r = build(ctx).or_else(|e| no_linearisation(name, e)).with_context(|| format!("report section {name}"));
             let k = done.fetch_add(1, Ordering::Relaxed) + 1;
             let what = match &r {
                 Ok(Some(s)) if !s.complete => "interrupted".to_string(),
@@ -298,6 +298,31 @@ pub fn write(ctx: &Ctx, dir: &Path) -> Result<PathBuf> {
         );
     }
     Ok(index)
+}
+
+/// A section whose analysis needs the linearisation of a stationary state the config's rotor
+/// does not have (real balls: `autobal::Error::NoLinearisation`) says so in one line instead
+/// of failing the report; any other error stays an error.
+fn no_linearisation(name: &str, e: anyhow::Error) -> Result<Option<Section>> {
+    let why = e.chain().find_map(|c| match (c.downcast_ref::<autobal::Error>(), c.downcast_ref::<autobal::analysis::AnalysisError>()) {
+        (Some(l @ autobal::Error::NoLinearisation { .. }), _)
+        | (_, Some(autobal::analysis::AnalysisError::Model(l @ autobal::Error::NoLinearisation { .. }))) => Some(l.to_string()),
+        // carried as text by a layer that formats its errors (the typed error's message)
+        _ => {
+            let m = c.to_string();
+            m.find("no linearisation: ").map(|i| m[i..].to_string())
+        }
+    });
+    let Some(why) = why else { return Err(e) };
+    let id = match name {
+        "your rotor" => "rotor",
+        "stability over speed" => "stability",
+        "design maps" => "design",
+        _ => "no-linearisation",
+    };
+    let mut title = name.to_string();
+    title[..1].make_ascii_uppercase();
+    Ok(Some(Section::not_applicable(id, title, why)))
 }
 
 /// The summary's lines: the verdict at the operating speed (section `stability`) first, then

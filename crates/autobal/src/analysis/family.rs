@@ -35,11 +35,28 @@ pub struct FamilyOptions {
     /// family), so that a coarse step still finds the extremes of the abscissa along the family
     /// to well within the step (default `false`).
     pub refine_extremes: bool,
+    /// Relabellings of the state that map the family onto itself and fix none of its members
+    /// (the cyclic relabellings of three equal balls in a plane: a member fixed by one would
+    /// have all three balls at one angle), each a permutation `p` of the state's components,
+    /// `y[i] = x[p[i]]`. A one-parameter family's continuation then stops at the first member
+    /// within `0.75 step` of the image of the member given under one of them: the arc walked
+    /// is a fundamental domain (every member of the family is a relabelling of a member on
+    /// it, the same physical state, with the same stability), reported `closed`. Default none.
+    pub relabellings: Vec<Vec<usize>>,
 }
 
 impl Default for FamilyOptions {
     fn default() -> Self {
-        FamilyOptions { step: 0.05, max_members: 2000, samples: 200, seed: 1, angles: vec![], newton: NewtonOptions::default(), refine_extremes: false }
+        FamilyOptions {
+            step: 0.05,
+            max_members: 2000,
+            samples: 200,
+            seed: 1,
+            angles: vec![],
+            newton: NewtonOptions::default(),
+            refine_extremes: false,
+            relabellings: vec![],
+        }
     }
 }
 
@@ -169,12 +186,21 @@ fn scaled_matrix<F: VectorField + ?Sized>(f: &F, state: &StationaryState, s: &[f
     let mut m = vec![0.0; n * n];
     match (&state.period, &state.monodromy) {
         (None, _) => f.jacobian(0.0, &state.x, &mut m),
-        (Some(_), Some(phi)) => {
-            for ab in 0..n * n {
-                m[ab] = if ab / n == ab % n { 1.0 } else { 0.0 } - phi[ab];
-            }
-        }
+        (Some(_), Some(phi)) => m.copy_from_slice(phi),
         (Some(_), None) => return Err(AnalysisError::InvalidInput { field: "state".into(), reason: "a periodic orbit without its monodromy matrix".into() }),
+    }
+    scaled_from(m, state.period.is_some(), s)
+}
+
+/// [`scaled_matrix`] from the matrix [`stability`] analysed at the state (its
+/// [`Stability::matrix`]: the Jacobian, or the monodromy matrix where `periodic`), which is
+/// the same matrix: no Jacobian evaluated again.
+fn scaled_from(mut m: Vec<f64>, periodic: bool, s: &[f64]) -> Result<Vec<f64>> {
+    let n = s.len();
+    if periodic {
+        for ab in 0..n * n {
+            m[ab] = if ab / n == ab % n { 1.0 } else { 0.0 } - m[ab];
+        }
     }
     for a in 0..n {
         for b in 0..n {
@@ -248,8 +274,13 @@ pub fn family<F: VectorField + ?Sized>(f: &F, member: &StationaryState, opts: &F
     // k = 1: continuation both ways from the member given, until the family closes (returns
     // to the member given) or ends
     let h = opts.step;
-    let tangent_at = |state: &StationaryState, previous: Option<&[f64]>| -> Result<Vec<f64>> {
-        let mut t = null_space(&scaled_matrix(f, state, &s)?, n, 1).remove(0);
+    let tangent_at = |m: &FamilyMember, previous: Option<&[f64]>| -> Result<Vec<f64>> {
+        let scaled = if m.stability.matrix.len() == n * n {
+            scaled_from(m.stability.matrix.clone(), m.state.period.is_some(), &s)?
+        } else {
+            scaled_matrix(f, &m.state, &s)?
+        };
+        let mut t = null_space(&scaled, n, 1).remove(0);
         let sign = match previous {
             Some(p) => p.iter().zip(&t).map(|(a, b)| a * b).sum::<f64>().signum(),
             // the first direction: the largest component positive (a fixed orientation)
@@ -260,7 +291,11 @@ pub fn family<F: VectorField + ?Sized>(f: &F, member: &StationaryState, opts: &F
         }
         Ok(t)
     };
-    let t0 = tangent_at(member, None)?;
+    let t0 = tangent_at(&first, None)?;
+    // the member given relabelled ([`FamilyOptions::relabellings`])
+    let images: Vec<Vec<f64>> =
+        opts.relabellings.iter().filter(|p| p.len() == n && p.iter().all(|&j| j < n)).map(|p| p.iter().map(|&j| member.x[j]).collect()).collect();
+    let relabelled = std::cell::Cell::new(false);
     // one direction: the members met, whether it closed, and the arclength walked
     let walk = |dir: f64, budget: usize| -> Result<(Vec<FamilyMember>, bool, f64)> {
         let mut out: Vec<FamilyMember> = vec![];
@@ -291,7 +326,12 @@ pub fn family<F: VectorField + ?Sized>(f: &F, member: &StationaryState, opts: &F
             if arc > 3.0 * h && distance(&m.state.x, &member.x, &s, &opts.angles) < 0.75 * h {
                 return Ok((out, true, arc));
             }
-            t = tangent_at(&m.state, Some(&t))?;
+            // or at a relabelling of it: a fundamental domain walked
+            if arc > 3.0 * h && images.iter().any(|y| distance(&m.state.x, y, &s, &opts.angles) < 0.75 * h) {
+                relabelled.set(true);
+                return Ok((out, true, arc));
+            }
+            t = tangent_at(&m, Some(&t))?;
             current = m.state.clone();
             out.push(m);
         }
@@ -314,7 +354,12 @@ pub fn family<F: VectorField + ?Sized>(f: &F, member: &StationaryState, opts: &F
         Family { dimension: 1, sampling: Sampling::Continuation { step: h }, members, closed: false, length: arc + back_arc }
     };
     if opts.refine_extremes {
+        // across the ends of an arc closed at a relabelling the neighbours are not the same
+        // balls: refined as an open arc
+        let closed = fam.closed;
+        fam.closed &= !relabelled.get();
         refine_extremes(f, &mut fam, &s, opts);
+        fam.closed = closed;
     }
     Ok(fam)
 }

@@ -19,18 +19,21 @@
 //!   `x0 − x(T; x0) = 0`, `x(T; x0)` integrated by DOP853 at `rtol = 1e-12` (absolute
 //!   tolerances `1e-12` times [`VectorField::scales`]). The matrix of the iteration is
 //!   `I − Φ(T)`, `Φ` from the variational equations `Φ' = J(t, x) Φ`, `Φ(0) = I`, integrated
-//!   with `x` — exact at the start, or a neighbouring orbit's ([`stationary_near`]) — and
-//!   updated by Broyden's rank-one formula after each step, so that the iterations need only
-//!   the flow of `x`; the matrix is integrated again where a step fails to halve the residual,
-//!   and once at the orbit found: its monodromy matrix.
+//!   at the start, or a neighbouring orbit's ([`stationary_near`]), and updated by Broyden's
+//!   rank-one formula after each step, so that the iterations need only the flow of `x`; the
+//!   matrix is integrated again where a step fails to halve the residual. These matrices only
+//!   steer the iteration and are integrated at `rtol = 1e-6` (3x fewer steps, half the
+//!   Jacobian samples); the orbit found gets its monodromy matrix at the shooting's `rtol`,
+//!   once.
 //! - **Floquet**: the monodromy matrix `Φ(T)` is integrated with the Jacobian along the orbit
 //!   sampled at equispaced times `t_j = j T / N` and interpolated by the trigonometric
 //!   polynomial through the samples (`J(t, x(t))` is periodic with the orbit, so its
 //!   interpolant converges geometrically, at the rate its Fourier coefficients decay): `x(t_j)`
 //!   by DOP853 at `1e-2 · rtol` (dense output at the samples), `J(t_j, x(t_j))` by the model's
 //!   automatic differentiation, `N` doubled from 8 until the interpolant on half of the samples is within
-//!   `rtol ‖S⁻¹JS‖∞` of `J` at the other half, harmonics whose sizes sum to under
-//!   `0.1 rtol ‖S⁻¹JS‖∞` dropped, then `Φ' = J̃(t) Φ` by DOP853 at `rtol`. The full variational
+//!   `rtol ‖S⁻¹JS‖∞` of `J` at the other half, the smallest terms `A_k[e] cos kθ + B_k[e] sin kθ`
+//!   of each row whose sizes sum to under `0.1 rtol ‖S⁻¹JS‖∞` dropped (entry by entry: an
+//!   entry varying with `2θ` alone keeps one term), then `Φ' = J̃(t) Φ` by DOP853 at `rtol`. The full variational
 //!   equations `n + n²` (a Jacobian per stage: ~290 per revolution on the 16-state two-plane
 //!   rotor, against 16-32 here) are integrated where 64 samples do not reach that. The
 //!   multipliers equal those of the full equations at `rtol = 1e-13` to the bound of
