@@ -191,7 +191,6 @@ fn table(py: Python<'_>, text: Option<&str>, dict: Option<&Bound<'_, PyDict>>, s
 /// A spatial config (papers 000/003), validated.
 #[pyclass(module = "autobal._autobal", name = "SpatialConfig", frozen)]
 struct PySpatial {
-    cfg: config::SpatialConfig,
     source: String,
     /// The tables it was built from (the simulation reads `[drive]`, `[initial]`, ... from them).
     root: Table,
@@ -240,8 +239,9 @@ fn spatial_config(
     sets: Vec<(String, Bound<'_, PyAny>)>,
 ) -> PyResult<PySpatial> {
     let root = table(py, text, dict, source, sets)?;
-    let cfg = config::spatial(&root).map_err(|e| py_err(py, e))?;
-    Ok(PySpatial { cfg, source: source.to_string(), root })
+    // validated here (errors name the key); the commands read the tables again
+    config::spatial(&root).map_err(|e| py_err(py, e))?;
+    Ok(PySpatial { source: source.to_string(), root })
 }
 
 #[pyfunction]
