@@ -2,9 +2,9 @@
 //! `autobal-commands`, which reads the config, runs the library's analyses and writes tables,
 //! JSON, figures and the HTML report.
 
-use autobal_commands::command::{check_speed, Command as _, ConfigSource, Output, Route};
+use autobal_commands::command::{Command as _, ConfigSource, Output, Route};
 use autobal_commands::{
-    basins, campbell, config, critical, inertia, linear, linear_rotor, map, outfile, parquet, ranges, report, sim, spatial_sim, stability, sweep, term,
+    basins, campbell, config, critical, inertia, linear, linear_rotor, map, merge, outfile, parquet, ranges, report, sim, spatial_sim, stability, sweep, term,
 };
 
 use anyhow::Result;
@@ -260,9 +260,9 @@ enum Command {
         check_tolerance: bool,
     },
     /// Many simulations over a grid of parameter paths, in parallel; summaries as CSV/JSON (--shard K/N for batch systems)
-    Sweep(sweep::SweepArgs),
+    Sweep(SweepFlags),
     /// Merge the outputs of `autobal sweep --shard K/N` into the unsharded sweep's STEM.csv/json
-    Merge(sweep::MergeArgs),
+    Merge(MergeFlags),
     /// Write a linear rotor ([linear_rotor]) as a config plus Matrix Market files (M, C, G, K):
     /// the config's rotor (reduced if it sets linear_rotor.modes), or without --config paper
     /// 004's rotor (race centred) as a Jeffcott rotor
@@ -316,6 +316,59 @@ enum Command {
     },
 }
 
+#[derive(Args)]
+struct SweepFlags {
+    /// Config file: the planar rotor of paper 004 ([planar], [drive], [integration]) or the
+    /// spatial rotor of papers 000/003 (the analytic commands' tables plus [drive],
+    /// [integration]); default: the embedded examples/planar.toml
+    #[arg(long, short)]
+    config: Option<PathBuf>,
+    /// Override a config field for every run, e.g. --set planar.c_psi=0.1 (repeatable)
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    set: Vec<String>,
+    /// First axis (varies fastest): PATH=LO:HI:N, PATH=V1,V2,… or PATH=V (e.g. drive.b=0.5:12.5:5;
+    /// for a spatial config any of its keys, e.g. balancer.ball_mass=0.01:0.05:5, drive.psi0[2]=3:4:3)
+    #[arg(long, value_name = "PATH=LO:HI:N")]
+    x: String,
+    /// Second axis (e.g. planar.c_psi=0.01:0.4:4)
+    #[arg(long, value_name = "PATH=LO:HI:N")]
+    y: Option<String>,
+    /// More axes after x and y (repeatable), e.g. --axis 'drive.psi0[1]=0:3:4'
+    #[arg(long = "axis", value_name = "PATH=LO:HI:N")]
+    axes: Vec<String>,
+    /// Run only shard K of N (1 ≤ K ≤ N): a contiguous part of the grid's points; merge the
+    /// shards' outputs with `autobal merge`
+    #[arg(long, value_name = "K/N")]
+    shard: Option<String>,
+    /// Output stem: STEM.csv (one row per run, written as runs finish, to a temporary name
+    /// renamed when done or stopped) and STEM.json; a folder (`DIR/`): DIR/sweep.*
+    #[arg(long, short, default_value = "sweep")]
+    out: PathBuf,
+    /// Also write the rows as Parquet, STEM.parquet (row groups written as runs finish)
+    #[arg(long)]
+    parquet: bool,
+    /// Output on standard output: a table to read or JSON
+    #[arg(long, value_enum, default_value = "table")]
+    format: Format,
+    /// Worker threads (default: all cores)
+    #[arg(long)]
+    threads: Option<usize>,
+}
+
+#[derive(Args)]
+struct MergeFlags {
+    /// The shards' CSV files (each with its STEM.json beside it), in any order
+    #[arg(required = true, value_name = "SHARD.csv")]
+    shards: Vec<PathBuf>,
+    /// Output stem: STEM.csv and STEM.json, as the unsharded sweep writes them (a folder,
+    /// `DIR/`: DIR/sweep.*); written only when every shard checks out
+    #[arg(long, short)]
+    out: PathBuf,
+    /// Also write STEM.parquet, as `autobal sweep --parquet` does
+    #[arg(long)]
+    parquet: bool,
+}
+
 impl Command {
     /// Whether the command's long work asks the [`Control`] (so Ctrl-C stops it keeping what
     /// it computed); the others end at once on Ctrl-C.
@@ -365,7 +418,20 @@ fn run(cli: Cli, control: &Control) -> Result<()> {
             show(&out, format)
         }
         Command::Map { common, x, y, omega, balls, quantity, out, threads, boundary, route } => {
-            run_map(common, x, y, omega, balls, quantity, out, threads, boundary, route, control)
+            let args = map::Args {
+                config: common.source(),
+                x: map::parse_axis("--x", &x)?,
+                y: map::parse_axis("--y", &y)?,
+                omega,
+                balls: balls.into(),
+                quantity: match quantity {
+                    QuantityArg::Margin => map::Quantity::Margin,
+                    QuantityArg::Verdict => map::Quantity::Verdict,
+                },
+                boundary,
+                route,
+            };
+            run_map(&args, common.config.as_deref(), &out, threads, control)
         }
         Command::Simulate { config, set, dt, out, parquet, format, check_tolerance } => {
             run_simulate(config, set, dt, out, parquet, format, check_tolerance, control)
@@ -379,8 +445,14 @@ fn run(cli: Cli, control: &Control) -> Result<()> {
             let paths = linear_rotor::export_model(&rotor, &out, &stem)?;
             term::print(&format!("wrote {}\n", paths.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")))
         }
-        Command::Sweep(a) => sweep::run(a, control),
-        Command::Merge(a) => sweep::merge(a, control),
+        Command::Sweep(a) => run_sweep(a, control),
+        Command::Merge(a) => {
+            let out = merge::Args { shards: a.shards, out: a.out, parquet: a.parquet }.run(control)?;
+            if let Some(p) = &out.parquet {
+                term::note(&format!("wrote {}", p.display()));
+            }
+            show(&out, Format::Table)
+        }
         Command::Basins { config, set, n, out, format, threads } => {
             set_threads(threads)?;
             // checked before the grid is computed
@@ -398,11 +470,9 @@ fn run(cli: Cli, control: &Control) -> Result<()> {
             show(&o, format)
         }
         Command::Report { common, out, quick, papers } => {
-            // the folder is created and checked before any section runs
-            outfile::Outputs::new().inputs(common.config.as_deref()).output("--out", &out.join("index.html")).check()?;
-            let kind = if papers || common.config.is_none() { report::Kind::Papers } else { report::Kind::User };
-            let index = report::run(common.config.as_deref(), &common.set, &out, quick, kind, control)?;
-            term::print(&format!("report written to {}\n", index.display()))
+            // the folder is created and checked before any section runs (report::Args::run);
+            // an interrupted report is still written, and says so
+            show(&report::Args { config: common.source(), out, quick, papers }.run(control)?, Format::Table)
         }
     }
 }
@@ -453,135 +523,94 @@ fn write_figures(out: &impl Output, flag: &str, files: &[(PathBuf, &str)], missi
     Ok(())
 }
 
-#[allow(clippy::too_many_arguments)]
-fn run_map(
-    common: Common,
-    x: String,
-    y: String,
-    omega: Option<String>,
-    balls: BallsArg,
-    quantity: QuantityArg,
-    out: PathBuf,
-    threads: Option<usize>,
-    boundary: bool,
-    route: Route,
-    control: &Control,
-) -> Result<()> {
-    let (root, source) = config::read_set(common.config.as_deref(), &common.set)?;
-    if route.is_general(&root) {
-        if balls == BallsArg::Locked {
-            anyhow::bail!("--balls locked: the general route maps the balls free (use the 12-state route of a one-plane config for the locked rotor)");
-        }
-        let verdict_only = quantity == QuantityArg::Verdict;
-        config::check_entries(&root, "map", &[config::simulation_model(&root)])?;
-        return map::run_general(&root, common.config.as_deref(), &x, &y, omega.as_deref(), verdict_only, &out, threads, boundary, control);
-    }
-    // the speeds need the config's ω0: it is read (and checked) first
-    let cfg = config::build(&root, &source)?;
-    config::check_entries(&root, "map", &[config::Model::Linear])?;
-    let omega_text = omega;
-    let omega = omega_text.as_deref().map(|t| linear::speed_arg(&cfg, "--omega", t)).transpose()?;
-    if let Some(w) = omega {
-        check_speed("--omega", w)?;
-    }
-    let xa = map::Axis::parse("--x", &x)?;
-    let ya = map::Axis::parse("--y", &y)?;
-    distinct_axes(&xa.key, Some(&ya.key))?;
-    // a speed axis in SI (speed_rpm, speed, speed_hz) is converted to Ω point by point by the
-    // library (autobal::spatial::map::stability_map_units); a fixed speed in SI must mean one Ω
-    let is_speed = |a: &map::Axis| autobal::units::speed_path_unit(&a.key).is_some();
-    for (flag, a) in [("--x", &xa), ("--y", &ya)] {
-        if is_speed(a) && a.key != "omega" && !cfg.dimensional {
-            anyhow::bail!("{flag} {}: a speed in SI needs a dimensional config (the rotor's ω0); this config is dimensionless: use omega=LO:HI:N (Ω)", a.key);
-        }
-    }
-    if omega_text.as_deref().is_some_and(|t| autobal::units::parse_speed("--omega", t).is_ok_and(|s| s.is_si())) && !is_speed(&xa) && !is_speed(&ya) {
-        linear::check_fixed_speed(&cfg, [(&xa.key, xa.lo, xa.hi), (&ya.key, ya.lo, ya.hi)])?;
-    }
-    for (flag, a) in [("--x", &xa), ("--y", &ya)] {
-        if a.key == "omega" {
-            check_speed(&format!("{flag} omega"), a.hi)?;
-        } else if let (Some(k), Some(sc)) = (autobal::units::speed_path_unit(&a.key).and_then(|u| u.rad_s()), cfg.model.scale) {
-            // the same range as Ω (at the config's ω0; a mass axis moves it a little)
-            check_speed(&format!("{flag} {}", a.key), a.hi * k / sc.omega0)?;
-        }
-    }
-    set_threads(threads)?;
-    let out = term::out_stem(&outfile::resolve(&out, "stability-map"), &["csv", "svg", "png"]);
-    let csv_path = term::with_suffix(&out, "csv");
-    let boundary_path = PathBuf::from(format!("{}_boundary.csv", out.display()));
+/// `sweep`: the arguments, config and grid checked, then the outputs (`STEM.csv`, `STEM.json`,
+/// `STEM.parquet`), then the runs streamed to the CSV (renamed into place when the sweep ends or
+/// is interrupted: complete rows, with its JSON; an error removes it), the JSON written, the
+/// table or JSON printed.
+fn run_sweep(a: SweepFlags, control: &Control) -> Result<()> {
+    let args = sweep::Args {
+        config: ConfigSource::file(a.config.as_deref(), &a.set),
+        x: sweep::parse_axis("--x", &a.x)?,
+        y: a.y.as_deref().map(|y| sweep::parse_axis("--y", y)).transpose()?,
+        more: a.axes.iter().map(|s| sweep::parse_axis("--axis", s)).collect::<Result<_>>()?,
+        shard: a.shard.as_deref().map(sweep::parse_shard).transpose()?,
+    };
+    let plan = args.prepare()?;
+    set_threads(a.threads)?;
+    let stem = term::out_stem(&outfile::resolve(&a.out, "sweep"), &["csv", "json", "parquet"]);
+    let (csv_path, json_path, pq_path) = (term::with_suffix(&stem, "csv"), term::with_suffix(&stem, "json"), term::with_suffix(&stem, "parquet"));
     let mut o = outfile::Outputs::new();
-    o.inputs(common.config.as_deref());
-    for p in outfile::stem_files(&out, &["csv", "svg", "png"]) {
-        o.output("--out", &p);
-    }
-    if boundary {
-        o.output("--out", &boundary_path);
+    o.inputs(a.config.as_deref()).output("--out", &csv_path).output("--out", &json_path);
+    if a.parquet {
+        o.output("--parquet", &pq_path);
     }
     o.check()?;
-    // the rows go to a temporary file, renamed into place when the map ends or is interrupted
-    // (complete rows only); an error removes it
-    let mut w = outfile::Staged::create("--out", &csv_path)?;
-    let q = if quantity == QuantityArg::Margin { map::Quantity::Margin } else { map::Quantity::Verdict };
-    let progress = std::io::IsTerminal::is_terminal(&std::io::stderr());
-    let traced = if boundary {
-        // the checks the map makes, before the tracing (whose messages would not name the flags)
-        for (flag, a) in [("--x", &xa), ("--y", &ya)] {
-            if !is_speed(a) {
-                cfg.spec.clone().set(&a.key, a.lo).map_err(|e| anyhow::anyhow!("{flag}: {e}"))?;
-            }
-        }
-        if !is_speed(&xa) && !is_speed(&ya) && omega.is_none() {
-            anyhow::bail!("--omega: required when neither axis is omega (the speed at which to map)");
-        }
-        let t = std::time::Instant::now();
-        let b = map::trace(&cfg, &xa, &ya, omega, balls.into(), control)?;
-        let path = boundary_path;
-        outfile::write_atomic("--out", &path, map::boundary_csv(&b, &xa.key, &ya.key))?;
-        term::note(&format!(
-            "boundary: {} curves, {} codimension-two points, {} characteristic polynomials, {:.3} s; wrote {}",
-            b.curves.len(),
-            b.codim2.len(),
-            b.evaluations,
-            t.elapsed().as_secs_f64(),
-            path.display()
-        ));
-        if !b.complete {
-            // nothing of the map was computed: no empty CSV left behind
-            drop(w);
-            anyhow::bail!(
-                "interrupted while tracing the boundary: the {} curves traced are kept in {}; the map was not computed",
-                b.curves.len(),
-                path.display()
-            );
-        }
-        Some(b)
-    } else {
-        None
+    let mut csv = outfile::Staged::create("--out", &csv_path)?;
+    let mut pq = match a.parquet {
+        true => Some(parquet::Table::create(&pq_path, &plan.columns(), true)?),
+        false => None,
     };
-    let t0 = std::time::Instant::now();
-    let (r, run) = map::compute(&cfg, xa, ya, omega, balls.into(), q, &mut w, progress, control)?;
-    let csv_path = w.commit()?;
-    let secs = t0.elapsed().as_secs_f64();
-    let done = run.rows_done;
-    map::write_plots(&r, &out, &format!("Stability map, balls {}", if balls == BallsArg::Free { "free" } else { "locked" }), traced.as_ref())?;
-    let points = done * run.row_len;
-    term::print(&format!(
-        "{} rows × {} points in {:.2} s ({:.2} µs per point; {} by continuation, {} direct solves); wrote {}, {}, {}\n",
-        done,
-        run.row_len,
-        secs,
-        1e6 * secs / points.max(1) as f64,
-        run.continued,
-        run.direct,
-        csv_path.display(),
-        term::with_suffix(&out, "svg").display(),
-        term::with_suffix(&out, "png").display()
-    ))?;
-    if done < run.rows_total {
-        anyhow::bail!("interrupted: {done} of {} rows computed and kept in {}", run.rows_total, csv_path.display());
+    let (shown, bar) = term::progress_bar(control);
+    let result = plan.run(&shown, sweep::Rows::Files { csv: &mut csv, parquet: pq.as_mut() });
+    if let Some(b) = bar {
+        b.finish_and_clear();
     }
-    Ok(())
+    let mut out = result?;
+    out.written = Some(stem);
+    for n in out.notes() {
+        term::note(&n);
+    }
+    csv.commit()?;
+    if let Some(t) = pq {
+        term::note(&format!("wrote {}", t.finish()?.display()));
+    }
+    outfile::write_atomic("--out", &json_path, serde_json::to_string_pretty(&out.json)?)?;
+    show(&out, a.format)
+}
+
+/// `map`: the arguments and config checked, then the outputs (`STEM.csv`, `.svg`, `.png`,
+/// `STEM_boundary.csv`), then the rows streamed to the CSV (renamed into place when the map
+/// ends or is interrupted: complete rows only; an error removes it), the figure and the
+/// boundary written, the summary line printed.
+fn run_map(args: &map::Args, config: Option<&std::path::Path>, out: &std::path::Path, threads: Option<usize>, control: &Control) -> Result<()> {
+    let plan = args.prepare()?;
+    set_threads(threads)?;
+    let stem = term::out_stem(&outfile::resolve(out, "stability-map"), &["csv", "svg", "png"]);
+    let mut o = outfile::Outputs::new();
+    o.inputs(config);
+    for p in outfile::stem_files(&stem, &["csv", "svg", "png"]) {
+        o.output("--out", &p);
+    }
+    if args.boundary {
+        o.output("--out", &map::boundary_path(&stem));
+    }
+    o.check()?;
+    let mut w = outfile::Staged::create("--out", &term::with_suffix(&stem, "csv"))?;
+    let (shown, bar) = term::progress_bar(control);
+    let result = plan.run(&shown, map::Rows::Csv(&mut w));
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
+    let mut out = result?;
+    out.written = Some(stem.clone());
+    if let Some(text) = out.boundary_csv() {
+        outfile::write_atomic("--out", &map::boundary_path(&stem), text)?;
+    }
+    if out.map_computed() {
+        w.commit()?;
+        for f in out.figures()? {
+            let svg = f.plot.to_svg();
+            outfile::write_atomic("--out", &term::with_suffix(&stem, "png"), autobal_commands::plot::svg_to_png(&svg, 1.5)?)?;
+            outfile::write_atomic("--out", &term::with_suffix(&stem, "svg"), svg)?;
+        }
+    } else {
+        // nothing of the map was computed: no empty CSV left behind
+        drop(w);
+    }
+    for n in out.notes() {
+        term::note(&n);
+    }
+    show(&out, Format::Table)
 }
 
 /// `simulate --out`: `file.csv` is written as given; any other name is a stem (as for sweep and
@@ -815,14 +844,6 @@ fn set_threads(threads: Option<usize>) -> Result<()> {
             anyhow::bail!("--threads: must be at least 1");
         }
         rayon::ThreadPoolBuilder::new().num_threads(t).build_global().ok();
-    }
-    Ok(())
-}
-
-/// The two axes of a map or sweep must set different fields (else one would silently win).
-fn distinct_axes(x: &str, y: Option<&str>) -> Result<()> {
-    if y == Some(x) {
-        anyhow::bail!("--y {x}: the same key as --x; give the second axis another field");
     }
     Ok(())
 }

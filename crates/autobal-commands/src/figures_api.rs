@@ -7,7 +7,8 @@
 //!   the CLI takes it: [`crate::general::needs_general_route`]);
 //! - `campbell`: `campbell_modes` (fixed axes, one curve per mode: what `--svg` draws by
 //!   default), `campbell_fixed`, `campbell_rotating` (`--view components`);
-//! - `map`: `stability_map` (the closed-form route's map; `x`, `y` as `KEY=LO:HI:N`);
+//! - `map`: `stability_map` (the command's figure on either route, with the traced boundary
+//!   where `boundary` asks for it; `x`, `y` as `KEY=LO:HI:N`);
 //! - `simulate`: `simulation_amplitude_omega`, `simulation_amplitude_t`, `simulation_psi_t`,
 //!   `simulation_omega_t` (the plots `simulate` writes beside its CSV);
 //! - `report`: every figure of the HTML report, by its id ([`report_figures`]).
@@ -17,7 +18,7 @@
 
 use crate::command::{Command as _, ConfigSource, Output as _};
 use crate::config;
-use crate::map::{Axis, Quantity};
+use crate::map::Quantity;
 use crate::plot::Plot;
 use anyhow::{bail, Result};
 use autobal::control::Control;
@@ -50,13 +51,15 @@ pub struct Options {
     pub omega: Option<String>,
     /// `map --quantity`: `margin` (default) or `verdict`.
     pub quantity: Option<String>,
+    /// `map --boundary`: also trace the stability boundary.
+    pub boundary: Option<bool>,
     /// `simulate --dt`.
     pub dt: Option<f64>,
     /// `report --quick`.
     pub quick: Option<bool>,
     /// `report --papers`.
     pub papers: Option<bool>,
-    /// `stability`, `campbell --route`: `auto` (default) or `general`.
+    /// `stability`, `campbell`, `map --route`: `auto` (default) or `general`.
     pub route: Option<String>,
 }
 
@@ -122,25 +125,30 @@ pub fn figures(command: &str, root: &Table, source: &str, o: &Options, control: 
             out.figures()
         }
         "map" => {
-            if crate::general::needs_general_route(root) {
-                bail!("map: the figures of the general route's map are written by the CLI only (autobal map --out STEM)");
-            }
-            let cfg = config::build(root, source)?;
+            // the command's own output: the CLI's figure, by construction (either route, the
+            // traced boundary with `boundary`)
             let (Some(x), Some(y)) = (&o.x, &o.y) else { bail!("x: required, with y (KEY=LO:HI:N, e.g. x='dimensionless.z_a=-2:2:41')") };
-            let (xa, ya) = (Axis::parse("x", x)?, Axis::parse("y", y)?);
-            let omega = o.omega.as_deref().map(|t| crate::linear::speed_arg(&cfg, "omega", t)).transpose()?;
-            let q = match o.quantity.as_deref().unwrap_or("margin") {
+            let quantity = match o.quantity.as_deref().unwrap_or("margin") {
                 "margin" => Quantity::Margin,
                 "verdict" => Quantity::Verdict,
                 q => bail!("quantity: must be \"margin\" or \"verdict\", got \"{q}\""),
             };
-            let b = balls(o)?;
-            let (r, run) = crate::map::compute(&cfg, xa, ya, omega, b, q, &mut std::io::sink(), false, control)?;
-            if run.rows_done < run.rows_total {
-                bail!("interrupted: {} of {} rows computed", run.rows_done, run.rows_total);
+            let args = crate::map::Args {
+                config: ConfigSource::tables(root.clone(), source),
+                x: crate::map::parse_axis("--x", x)?,
+                y: crate::map::parse_axis("--y", y)?,
+                omega: o.omega.clone(),
+                balls: balls(o)?,
+                quantity,
+                boundary: o.boundary.unwrap_or(false),
+                route: route(o)?,
+            };
+            // the figure's decimated copy alone: no CSV, no cells kept
+            let out = args.prepare()?.run(control, crate::map::Rows::Figure)?;
+            if let Some(why) = out.stopped() {
+                bail!("{why}");
             }
-            let title = format!("Stability map, balls {}", if b == Balls::Free { "free" } else { "locked" });
-            Ok(vec![fig("stability_map", crate::map::plot(&r, &title))])
+            out.figures()
         }
         "simulate" => {
             let stopped = |s: &Option<String>| -> Result<()> {
@@ -230,6 +238,27 @@ mod tests {
         let w = crate::linear::omega_max(&cfg, None).unwrap();
         let c = crate::linear::compare(&cfg.model, w, 100, Balls::Free).unwrap();
         assert_eq!(f[0].plot.to_plotly(), crate::figures::margin_plot(&cfg.model, &c).to_plotly());
+    }
+
+    /// The map's figure from Python is the CLI's: the same description (the run that streams
+    /// the CSV and the one that keeps the figure's copy alone), the traced boundary included.
+    #[test]
+    fn map_figure_is_the_clis() {
+        let root = default_root();
+        let o = Options { x: Some("dimensionless.z_a=-2:2:9".into()), y: Some("omega=0.05:4.5:7".into()), boundary: Some(true), ..Default::default() };
+        let f = figures("map", &root, "default", &o, &Control::none()).unwrap();
+        assert_eq!(f.len(), 1);
+        assert_eq!(f[0].id, "stability_map");
+        let args = crate::map::Args {
+            config: ConfigSource::tables(root, "default"),
+            x: crate::map::parse_axis("--x", "dimensionless.z_a=-2:2:9").unwrap(),
+            y: crate::map::parse_axis("--y", "omega=0.05:4.5:7").unwrap(),
+            boundary: true,
+            ..Default::default()
+        };
+        let cli = args.prepare().unwrap().run(&Control::none(), crate::map::Rows::Csv(&mut std::io::sink())).unwrap().figures().unwrap();
+        assert_eq!(f[0].plot.to_plotly(), cli[0].plot.to_plotly());
+        assert!(f[0].plot.series.iter().any(|s| s.label.starts_with("traced boundary")), "the traced curves are drawn");
     }
 
     #[test]

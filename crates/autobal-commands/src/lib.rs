@@ -6,7 +6,7 @@
 //! cannot differ. A command is one module: `Args` (its options with their defaults and checks)
 //! `-> run(&Args, &Control) -> Output` (typed, computed once; its JSON, table and figures), the
 //! pattern of [`command`]: [`inertia`], [`critical`], [`ranges`], [`stability`], [`campbell`],
-//! [`basins`].
+//! [`basins`], [`map`], [`sweep`], [`merge`], [`report`].
 //! Beside them: reading a config and `--set` ([`config`]), the computations and tables the
 //! commands share ([`linear`] for paper 000's model, [`general`] for the general route, [`sim`]
 //! and [`spatial_sim`] for runs in time, [`map`], [`sweep`]), the output files ([`outfile`]: checked
@@ -35,6 +35,7 @@ pub mod inertia;
 pub mod linear;
 pub mod linear_rotor;
 pub mod map;
+pub mod merge;
 pub mod num;
 pub mod outfile;
 pub mod output;

@@ -1,80 +1,512 @@
-//! `autobal map`: stability margin over two parameters (Ω and/or parameter paths), computed by
-//! the library in parallel ([`autobal::spatial::map`]), with a progress bar, written as CSV in
-//! grid order as rows complete (an interrupted run keeps what it has computed), SVG and PNG
-//! from a decimated copy.
+//! `autobal map`: the stability margin over two parameters (a speed and/or parameter paths),
+//! as one command ([`Args`] -> `run` -> [`Output`]): paper 000's 12-state model where it
+//! represents the config ([`autobal::spatial::map`], with 003's necessary ranges and, with
+//! `boundary`, the traced Hopf and fold curves), else the general route (the nonlinear
+//! equations' stationary state: [`autobal::rotor_map`]). Rows are computed in parallel and
+//! handed over in grid order: the CLI streams them to its CSV ([`Rows::Csv`]; an interrupted
+//! map keeps its complete rows), Python keeps every cell ([`Rows::Keep`]); the figure is drawn
+//! from a decimated copy ([`PLOT_CELLS`] per axis), so memory does not grow with the grid.
+//!
+//! The axes are the library's [`Axis`] (a parameter path and its values); a map's axes are
+//! evenly spaced (the heatmap's cells), at most [`MAX_N`] values each.
 
-use crate::config::Config;
+use crate::command::{self, check_speed, ConfigSource, Figure, Route};
+use crate::config::{self, Config};
 use crate::plot::Series;
 use anyhow::{anyhow, bail, Result};
 use autobal::control::Control;
+use autobal::paths::Axis;
+use autobal::rotor_map::{BoundaryPoint, FamilyVerdict, GeneralCell, GeneralMapOutcome, Kind, Verdict};
 use autobal::spatial::boundary::{Boundary, Codim2Kind, CurveKind, TraceSettings};
 use autobal::spatial::linear_model::Balls;
-use rayon::prelude::*;
-use std::io::Write;
-use std::path::Path;
-
-/// One axis: `key=lo:hi:n`, key `omega` or a config field.
-#[derive(Debug, Clone)]
-pub struct Axis {
-    pub key: String,
-    pub lo: f64,
-    pub hi: f64,
-    pub n: usize,
-}
-
-impl Axis {
-    pub fn parse(flag: &str, spec: &str) -> Result<Self> {
-        let (key, range) = spec.split_once('=').ok_or_else(|| anyhow!("{flag} {spec}: expected KEY=LO:HI:N, e.g. {flag} omega=0.1:6:400"))?;
-        let parts: Vec<&str> = range.split(':').collect();
-        if parts.len() != 3 {
-            bail!("{flag} {spec}: expected KEY=LO:HI:N");
-        }
-        let num = |s: &str, what: &str| -> Result<f64> {
-            let v: f64 = s.trim().parse().map_err(|_| anyhow!("{flag} {spec}: {what} `{s}` is not a number"))?;
-            if !v.is_finite() {
-                bail!("{flag} {spec}: {what} must be finite");
-            }
-            Ok(v)
-        };
-        let (lo, hi) = (num(parts[0], "LO")?, num(parts[1], "HI")?);
-        let n: usize = parts[2].trim().parse().map_err(|_| anyhow!("{flag} {spec}: N `{}` is not a whole number", parts[2]))?;
-        if !(2..=100_000).contains(&n) {
-            bail!("{flag} {spec}: N must lie between 2 and 100000, got {n}");
-        }
-        if hi <= lo {
-            bail!("{flag} {spec}: HI must exceed LO");
-        }
-        let key = key.trim().to_string();
-        if key == "omega" && lo < 0.0 {
-            bail!("{flag} {spec}: the speed Ω must not be negative");
-        }
-        Ok(Axis { key, lo, hi, n })
-    }
-    /// The `i`-th grid value, rounded to 12 significant digits so that printed values read as
-    /// typed (0.4, not 0.39999999999999997); the ends are exact.
-    pub fn value(&self, i: usize) -> f64 {
-        if i + 1 >= self.n {
-            return self.hi;
-        }
-        let v = self.lo + (self.hi - self.lo) * i as f64 / (self.n - 1) as f64;
-        if v == 0.0 {
-            return 0.0;
-        }
-        let mag = 10f64.powi(11 - v.abs().log10().floor() as i32);
-        (v * mag).round() / mag
-    }
-    /// Whether the axis is the speed: `omega` (Ω) or, for a dimensional config, `speed_rpm`,
-    /// `speed` (rad/s), `speed_hz` ([`autobal::units::SPEED_PATHS`]).
-    fn is_omega(&self) -> bool {
-        autobal::units::speed_path_unit(&self.key).is_some()
-    }
-    /// The library's axis: the path and every value.
-    pub fn to_library(&self) -> autobal::spatial::map::Axis {
-        autobal::spatial::map::Axis { path: self.key.clone(), values: (0..self.n).map(|i| self.value(i)).collect() }
-    }
-}
-
 pub use autobal::spatial::map::{Cell, Quantity};
+use rayon::prelude::*;
+use serde_json::{json, Value};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// Most values per axis.
+pub const MAX_N: usize = 100_000;
+
+/// Most cells a map keeps in memory ([`Rows::Keep`], Python's arrays: about 16 bytes each).
+pub const MAX_KEPT_CELLS: usize = 50_000_000;
+
+/// `autobal map`'s arguments (`Default`: the CLI's defaults; the axes have none and are
+/// required).
+#[derive(Debug, Clone)]
+pub struct Args {
+    /// The config.
+    pub config: ConfigSource,
+    /// The horizontal axis: a speed (`omega`: Ω of a spatial config, rad/s of the planar rotor;
+    /// `speed_rpm`, `speed`, `speed_hz` of a dimensional one) or a parameter path.
+    pub x: Axis,
+    /// The vertical axis.
+    pub y: Axis,
+    /// The speed when neither axis is one: a speed with its unit, or a bare number (Ω).
+    pub omega: Option<String>,
+    /// Balls free (12 states) or locked (8 states; the closed-form route only).
+    pub balls: Balls,
+    /// The margin (max Re λ) or the verdict alone (Routh–Hurwitz: faster, no margin).
+    pub quantity: Quantity,
+    /// Also trace the stability boundary (closed form: Hopf and fold curves; general route:
+    /// each row's verdict changes bisected along `x`).
+    pub boundary: bool,
+    /// The route.
+    pub route: Route,
+}
+
+impl Default for Args {
+    fn default() -> Self {
+        Args {
+            config: ConfigSource::default(),
+            x: Axis::new("", vec![]),
+            y: Axis::new("", vec![]),
+            omega: None,
+            balls: Balls::Free,
+            quantity: Quantity::Margin,
+            boundary: false,
+            route: Route::Auto,
+        }
+    }
+}
+
+/// A map's axis from its text form `KEY=LO:HI:N` (`flag` names it in errors): the library's
+/// [`Axis::parse`], evenly spaced, checked as `run` checks it.
+pub fn parse_axis(flag: &str, spec: &str) -> Result<Axis> {
+    let a = Axis::parse(spec).map_err(|e| anyhow!("{flag} {e}"))?;
+    if spec.split_once('=').is_none_or(|(_, r)| r.split(':').count() != 3) {
+        bail!("{flag} {spec}: expected KEY=LO:HI:N (a map's axis is evenly spaced), e.g. {flag} omega=0.1:6:400");
+    }
+    check_axis(flag, spec, &a)?;
+    Ok(a)
+}
+
+/// The checks of a map's axis (`name`: the spec or the path, in messages): a path, 2 to
+/// [`MAX_N`] finite increasing values, a speed `omega` not negative.
+fn check_axis(flag: &str, name: &str, a: &Axis) -> Result<()> {
+    if a.path.is_empty() {
+        return Err(autobal::Error::invalid(flag, format!("required: KEY=LO:HI:N, e.g. {flag} omega=0.1:6:400")).into());
+    }
+    let n = a.values.len();
+    if !(2..=MAX_N).contains(&n) {
+        return Err(autobal::Error::invalid(format!("{flag} {name}"), format!("N must lie between 2 and {MAX_N}, got {n}")).into());
+    }
+    if a.values.iter().any(|v| !v.is_finite()) || a.values.windows(2).any(|w| w[1] <= w[0]) {
+        return Err(autobal::Error::invalid(format!("{flag} {name}"), "the values must be finite and increasing").into());
+    }
+    if a.path == "omega" && a.lo() < 0.0 {
+        return Err(autobal::Error::invalid(format!("{flag} {name}"), "the speed Ω must not be negative").into());
+    }
+    Ok(())
+}
+
+/// Whether the axis is a speed: `omega` or, for a dimensional config, `speed_rpm`, `speed`
+/// (rad/s), `speed_hz` ([`autobal::units::SPEED_PATHS`]).
+fn is_speed(a: &Axis) -> bool {
+    autobal::units::speed_path_unit(&a.path).is_some()
+}
+
+/// Where a map's rows go as they are computed.
+pub enum Rows<'a> {
+    /// Written as CSV in grid order (row `j` = every `x` at `y_j`), the header first; only the
+    /// figure's decimated copy is kept.
+    Csv(&'a mut dyn Write),
+    /// Every cell kept in the [`Output`] (at most [`MAX_KEPT_CELLS`]).
+    Keep,
+    /// Only the figure's decimated copy kept.
+    Figure,
+}
+
+/// A map whose arguments and config are checked, ready to compute ([`Args::prepare`]): a
+/// front end checks its output files between the two.
+pub struct Plan {
+    args: Args,
+    route: PlanRoute,
+}
+
+enum PlanRoute {
+    Closed { cfg: Box<Config>, omega: Option<f64> },
+    General { root: Box<toml::Table>, speed: Option<autobal::units::Speed>, planar: bool },
+}
+
+impl command::Command for Args {
+    const NAME: &'static str = "map";
+    type Output = Output;
+
+    /// Every cell kept ([`Rows::Keep`]).
+    fn run(&self, control: &Control) -> Result<Output> {
+        self.prepare()?.run(control, Rows::Keep)
+    }
+}
+
+impl Args {
+    /// Check the axes, read the config once and check the options against it (the speeds'
+    /// ranges, the paths), before anything is computed or written.
+    pub fn prepare(&self) -> Result<Plan> {
+        check_axis("--x", &self.x.path, &self.x)?;
+        check_axis("--y", &self.y.path, &self.y)?;
+        if self.x.path == self.y.path {
+            bail!("--y {}: the same key as --x; give the second axis another field", self.y.path);
+        }
+        let (root, source) = self.config.read()?;
+        if self.route.is_general(&root) {
+            if self.balls == Balls::Locked {
+                bail!("--balls locked: the general route maps the balls free (use the 12-state route of a one-plane config for the locked rotor)");
+            }
+            config::check_entries(&root, "map", &[config::simulation_model(&root)])?;
+            let speed = self.omega.as_deref().map(|t| autobal::units::parse_speed("--omega", t)).transpose()?;
+            let planar = !autobal::config::is_spatial(&root);
+            return Ok(Plan { args: self.clone(), route: PlanRoute::General { root: Box::new(root), speed, planar } });
+        }
+        // the speeds need the config's ω0: it is read (and checked) first
+        let cfg = config::build(&root, &source)?;
+        config::check_entries(&root, "map", &[config::Model::Linear])?;
+        let omega = self.omega.as_deref().map(|t| crate::linear::speed_arg(&cfg, "--omega", t)).transpose()?;
+        if let Some(w) = omega {
+            check_speed("--omega", w)?;
+        }
+        let (xa, ya) = (&self.x, &self.y);
+        // a speed axis in SI (speed_rpm, speed, speed_hz) is converted to Ω point by point by the
+        // library (autobal::spatial::map::stability_map_units); a fixed speed in SI must mean one Ω
+        for (flag, a) in [("--x", xa), ("--y", ya)] {
+            if is_speed(a) && a.path != "omega" && !cfg.dimensional {
+                bail!("{flag} {}: a speed in SI needs a dimensional config (the rotor's ω0); this config is dimensionless: use omega=LO:HI:N (Ω)", a.path);
+            }
+        }
+        if self.omega.as_deref().is_some_and(|t| autobal::units::parse_speed("--omega", t).is_ok_and(|s| s.is_si())) && !is_speed(xa) && !is_speed(ya) {
+            crate::linear::check_fixed_speed(&cfg, [(&xa.path, xa.lo(), xa.hi()), (&ya.path, ya.lo(), ya.hi())])?;
+        }
+        for (flag, a) in [("--x", xa), ("--y", ya)] {
+            if a.path == "omega" {
+                check_speed(&format!("{flag} omega"), a.hi())?;
+            } else if let (Some(k), Some(sc)) = (autobal::units::speed_path_unit(&a.path).and_then(|u| u.rad_s()), cfg.model.scale) {
+                // the same range as Ω (at the config's ω0; a mass axis moves it a little)
+                check_speed(&format!("{flag} {}", a.path), a.hi() * k / sc.omega0)?;
+            }
+        }
+        for (flag, a) in [("--x", xa), ("--y", ya)] {
+            if !is_speed(a) {
+                cfg.spec.clone().set(&a.path, a.lo()).map_err(|e| anyhow!("{flag}: {e}"))?;
+            }
+        }
+        if is_speed(xa) && is_speed(ya) {
+            bail!("--x, --y: only one axis can be omega");
+        }
+        if !is_speed(xa) && !is_speed(ya) && omega.is_none() {
+            return Err(autobal::Error::invalid("--omega", "required when neither axis is omega (the speed at which to map)").into());
+        }
+        Ok(Plan { args: self.clone(), route: PlanRoute::Closed { cfg: Box::new(cfg), omega } })
+    }
+}
+
+impl Plan {
+    /// Compute the map under `control` (Ctrl-C keeps the complete rows; progress is reported in
+    /// rows), its rows going to `rows`.
+    pub fn run(&self, control: &Control, rows: Rows<'_>) -> Result<Output> {
+        let a = &self.args;
+        if matches!(rows, Rows::Keep) {
+            let cells = a.x.values.len().saturating_mul(a.y.values.len());
+            if cells > MAX_KEPT_CELLS {
+                return Err(autobal::Error::TooLarge {
+                    what: "x × y".into(),
+                    size: cells as u64,
+                    limit: MAX_KEPT_CELLS as u64,
+                    reason: "cells of the map held in memory".into(),
+                }
+                .into());
+            }
+        }
+        let t0 = std::time::Instant::now();
+        let route = match &self.route {
+            PlanRoute::Closed { cfg, omega } => {
+                let traced = match a.boundary {
+                    true => {
+                        let t = std::time::Instant::now();
+                        let b = trace(cfg, &a.x, &a.y, *omega, a.balls, control)?;
+                        Some((b, t.elapsed().as_secs_f64()))
+                    }
+                    false => None,
+                };
+                if traced.as_ref().is_some_and(|(b, _)| !b.complete) {
+                    // nothing of the map is computed after an interrupted trace
+                    let (dx, dy) = (decimate(&a.x).1, decimate(&a.y).1);
+                    let n = dy.values.len();
+                    let figure = MapResult { x: dx, y: dy, rows: vec![None; n], quantity: a.quantity };
+                    RouteOutput::Closed { figure, cells: None, rows_done: 0, continued: 0, direct: 0, traced }
+                } else {
+                    let (figure, run, cells) = compute(cfg, &a.x, &a.y, *omega, a.balls, a.quantity, rows, control)?;
+                    RouteOutput::Closed { figure, cells, rows_done: run.rows_done, continued: run.continued, direct: run.direct, traced }
+                }
+            }
+            PlanRoute::General { root, speed, planar } => general(root, a, *speed, *planar, rows, control)?,
+        };
+        Ok(Output { x: a.x.clone(), y: a.y.clone(), balls: a.balls, quantity: a.quantity, secs: t0.elapsed().as_secs_f64(), route, written: None })
+    }
+}
+
+/// `map`'s result.
+pub struct Output {
+    /// The axes, every value.
+    pub x: Axis,
+    pub y: Axis,
+    /// Free or locked.
+    pub balls: Balls,
+    /// What the cells hold.
+    pub quantity: Quantity,
+    /// Wall time (s).
+    pub secs: f64,
+    /// The route's cells and counts.
+    pub route: RouteOutput,
+    /// The stem the front end wrote the files to (`STEM.csv`, `.svg`, `.png`,
+    /// `STEM_boundary.csv`), named in the table and the messages.
+    pub written: Option<PathBuf>,
+}
+
+/// The cells and counts of each route.
+pub enum RouteOutput {
+    /// Paper 000's 12-state model.
+    Closed {
+        /// The figure's decimated copy.
+        figure: MapResult,
+        /// Every row ([`Rows::Keep`]): `cells[j][i]` at `(x_i, y_j)`.
+        cells: Option<Vec<Vec<Cell>>>,
+        /// Rows computed.
+        rows_done: usize,
+        /// Points from continuation or the characteristic polynomial, and direct solves.
+        continued: usize,
+        direct: usize,
+        /// The traced boundary and its wall time (s), with `boundary`; the map is not computed
+        /// when the trace was interrupted.
+        traced: Option<(Boundary, f64)>,
+    },
+    /// The general route.
+    General {
+        /// The figure's decimated axes and rows.
+        fx: Axis,
+        fy: Axis,
+        frows: Vec<Option<Vec<GeneralCell>>>,
+        /// Every row ([`Rows::Keep`]).
+        cells: Option<Vec<Vec<GeneralCell>>>,
+        /// The library's counts.
+        outcome: GeneralMapOutcome,
+        /// The planar rotor (ω in rad/s), else the spatial one.
+        planar: bool,
+        /// The bisected boundary points, with `boundary`.
+        traced: Option<Vec<BoundaryPoint>>,
+    },
+}
+
+/// `STEM_boundary.csv`: the traced boundary beside the map.
+pub fn boundary_path(stem: &Path) -> PathBuf {
+    PathBuf::from(format!("{}_boundary.csv", stem.display()))
+}
+
+fn verdict_name(v: Option<Verdict>) -> &'static str {
+    match v {
+        None => "",
+        Some(Verdict::Stable) => "stable",
+        Some(Verdict::Unstable) => "unstable",
+        Some(Verdict::Neutral) => "neutral",
+    }
+}
+
+impl Output {
+    /// Rows computed.
+    pub fn rows_done(&self) -> usize {
+        match &self.route {
+            RouteOutput::Closed { rows_done, .. } => *rows_done,
+            RouteOutput::General { outcome, .. } => outcome.rows,
+        }
+    }
+
+    /// Whether the map was computed (not after an interrupted boundary trace).
+    pub fn map_computed(&self) -> bool {
+        match &self.route {
+            RouteOutput::Closed { traced, .. } => traced.as_ref().is_none_or(|(b, _)| b.complete),
+            RouteOutput::General { .. } => true,
+        }
+    }
+
+    /// The traced boundary as CSV (`STEM_boundary.csv`), with `boundary`: the closed form's
+    /// curves ([`boundary_csv`]), or the general route's bisected points `x,y,from,to` (`x` to
+    /// 1e-9 relative where the margin changes sign or a stationary state appears, with the
+    /// verdicts on either side).
+    pub fn boundary_csv(&self) -> Option<String> {
+        match &self.route {
+            RouteOutput::Closed { traced, .. } => traced.as_ref().map(|(b, _)| boundary_csv(b, &self.x.path, &self.y.path)),
+            RouteOutput::General { traced, .. } => traced.as_ref().map(|pts| {
+                use std::fmt::Write as _;
+                let mut t = format!("{},{},from,to\n", self.x.path, self.y.path);
+                for b in pts {
+                    let _ = writeln!(t, "{},{},{},{}", crate::num::Csv(b.x), crate::num::Csv(b.y), verdict_name(b.from), verdict_name(b.to));
+                }
+                t
+            }),
+        }
+    }
+
+    /// Lines for standard error: the boundary's counts, the general route's families.
+    pub fn notes(&self) -> Vec<String> {
+        let wrote = |what: String| self.written.as_ref().map_or(what.clone(), |s| format!("{what}; wrote {}", boundary_path(s).display()));
+        let mut out = vec![];
+        match &self.route {
+            RouteOutput::Closed { traced: Some((b, secs)), .. } => out.push(wrote(format!(
+                "boundary: {} curves, {} codimension-two points, {} characteristic polynomials, {secs:.3} s",
+                b.curves.len(),
+                b.codim2.len(),
+                b.evaluations
+            ))),
+            RouteOutput::General { traced, outcome, .. } => {
+                if let Some(t) = traced {
+                    out.push(wrote(format!("boundary: {} points bisected along {} to 1e-9 relative", t.len(), self.x.path)));
+                }
+                if outcome.families > 0 {
+                    out.push(format!(
+                        "{} cells have a family of balanced states (n ≥ 3 balls): max_real_part and verdict are those of one member, the one reached from the closed form (balls in a symmetric arc); the column family says whether all, some or none of the family's members are stable",
+                        outcome.families
+                    ));
+                }
+            }
+            _ => {}
+        }
+        out
+    }
+
+    /// The files written, as the table names them.
+    fn wrote(&self) -> String {
+        match &self.written {
+            Some(s) => format!(
+                "; wrote {}, {}, {}",
+                crate::term::with_suffix(s, "csv").display(),
+                crate::term::with_suffix(s, "svg").display(),
+                crate::term::with_suffix(s, "png").display()
+            ),
+            None => String::new(),
+        }
+    }
+
+    /// The state the general route maps.
+    fn state(outcome: &GeneralMapOutcome) -> &'static str {
+        match outcome.periodic > 0 {
+            false => "equilibrium (eigenvalues)",
+            true => "periodic orbit (Floquet multipliers)",
+        }
+    }
+}
+
+/// An axis as the JSON gives it: its path, ends and number of values.
+fn axis_json(a: &Axis) -> Value {
+    json!({"path": a.path, "lo": a.lo(), "hi": a.hi(), "n": a.values.len()})
+}
+
+impl command::Output for Output {
+    /// The map's summary (its cells are the CSV's, or Python's arrays): the route, the axes, the
+    /// rows computed and how, the boundary's counts, the files written.
+    fn json(&self) -> Result<Value> {
+        let mut v = json!({
+            "x": axis_json(&self.x),
+            "y": axis_json(&self.y),
+            "balls": if self.balls == Balls::Free { "free" } else { "locked" },
+            "quantity": if self.quantity == Quantity::Margin { "margin" } else { "verdict" },
+            "rows_computed": self.rows_done(),
+            "rows": self.y.values.len(),
+            "wall_s": self.secs,
+            "stopped": command::Output::stopped(self),
+        });
+        match &self.route {
+            RouteOutput::Closed { continued, direct, traced, .. } => {
+                v["route"] = json!("closed_form");
+                v["continued"] = json!(continued);
+                v["direct"] = json!(direct);
+                if let Some((b, _)) = traced {
+                    v["boundary"] =
+                        json!({"curves": b.curves.len(), "codimension_two_points": b.codim2.len(), "evaluations": b.evaluations, "complete": b.complete});
+                }
+            }
+            RouteOutput::General { outcome, traced, .. } => {
+                v["route"] = json!("general");
+                v["state"] = json!(if outcome.periodic > 0 { "periodic_orbit" } else { "equilibrium" });
+                v["closed_form"] = json!(outcome.closed_form);
+                v["continued"] = json!(outcome.continued);
+                v["without_stationary_state"] = json!(outcome.none);
+                v["families"] = json!(outcome.families);
+                if let Some(t) = traced {
+                    v["boundary"] = json!({"bisected_points": t.len()});
+                }
+            }
+        }
+        if let Some(s) = &self.written {
+            v["csv"] = json!(crate::term::with_suffix(s, "csv").display().to_string());
+        }
+        Ok(v)
+    }
+
+    /// One line: rows × points, the time, how the points were answered, the files written
+    /// (nothing when the map was not computed).
+    fn table(&self) -> Result<String> {
+        if !self.map_computed() {
+            return Ok(String::new());
+        }
+        let n = self.x.values.len();
+        let done = self.rows_done();
+        let per_point = 1e6 * self.secs / (done * n).max(1) as f64;
+        Ok(match &self.route {
+            RouteOutput::Closed { continued, direct, .. } => format!(
+                "{done} rows × {n} points in {:.2} s ({per_point:.2} µs per point; {continued} by continuation, {direct} direct solves){}\n",
+                self.secs,
+                self.wrote()
+            ),
+            RouteOutput::General { outcome, .. } => format!(
+                "general route: {done} rows × {n} points in {:.2} s ({per_point:.2} µs per point; {} from the closed form, {} continued from a neighbour, {} without a stationary state); stationary state: {}{}\n",
+                self.secs,
+                outcome.closed_form,
+                outcome.continued,
+                outcome.none,
+                Output::state(outcome),
+                self.wrote()
+            ),
+        })
+    }
+
+    /// `stability_map`: the margin (or verdict) heatmap with the stability boundary; the closed
+    /// form adds 003's necessary boundary and, with `boundary`, the traced curves; the general
+    /// route the bisected boundary points. None when the map was not computed.
+    fn figures(&self) -> Result<Vec<Figure>> {
+        if !self.map_computed() {
+            return Ok(vec![]);
+        }
+        let p = match &self.route {
+            RouteOutput::Closed { figure, traced, .. } => {
+                let mut p = plot(figure, &format!("Stability map, balls {}", if self.balls == Balls::Free { "free" } else { "locked" }));
+                if let Some((b, _)) = traced {
+                    p.series.extend(boundary_series(b));
+                }
+                p
+            }
+            RouteOutput::General { fx, fy, frows, outcome, planar, traced, .. } => {
+                general_plot(fx, fy, frows, outcome, *planar, self.quantity, traced.as_deref())
+            }
+        };
+        Ok(vec![Figure::new("stability_map", p)])
+    }
+
+    fn stopped(&self) -> Option<String> {
+        let kept = |p: PathBuf| format!(" and kept in {}", p.display());
+        if let RouteOutput::Closed { traced: Some((b, _)), .. } = &self.route {
+            if !b.complete {
+                return Some(format!(
+                    "interrupted while tracing the boundary: the {} curves traced are kept{}; the map was not computed",
+                    b.curves.len(),
+                    self.written.as_ref().map_or(String::new(), |s| format!(" in {}", boundary_path(s).display()))
+                ));
+            }
+        }
+        let (done, total) = (self.rows_done(), self.y.values.len());
+        (done < total).then(|| {
+            format!("interrupted: {done} of {total} rows computed{}", self.written.as_ref().map_or(String::new(), |s| kept(crate::term::with_suffix(s, "csv"))))
+        })
+    }
+}
 
 /// The data the figures are drawn from: the whole map, or a decimated copy of a large one
 /// (every k-th row and column, at most [`PLOT_CELLS`] per axis).
@@ -88,12 +520,8 @@ pub struct MapResult {
 
 /// How far a map got.
 pub struct MapRun {
-    /// Rows written to the CSV.
+    /// Rows computed.
     pub rows_done: usize,
-    /// Rows of the full grid.
-    pub rows_total: usize,
-    /// Points per row.
-    pub row_len: usize,
     /// Points from continuation / characteristic polynomial, and direct solves.
     pub continued: usize,
     pub direct: usize,
@@ -102,58 +530,46 @@ pub struct MapRun {
 /// Largest number of cells per axis kept for the figures.
 pub const PLOT_CELLS: usize = 500;
 
-/// Stride and decimated axis: indices `0, k, 2k, …` of `a`.
+/// Stride and decimated axis: the values `0, k, 2k, …` of `a`.
 fn decimate(a: &Axis) -> (usize, Axis) {
-    let k = a.n.div_ceil(PLOT_CELLS).max(1);
+    let k = a.values.len().div_ceil(PLOT_CELLS).max(1);
     if k == 1 {
         return (1, a.clone());
     }
-    let m = (a.n - 1) / k;
-    (k, Axis { key: a.key.clone(), lo: a.value(0), hi: a.value(m * k), n: m + 1 })
+    (k, Axis::new(a.path.clone(), a.values.iter().copied().step_by(k).collect()))
 }
 
-/// Compute the map with the library ([`autobal::spatial::map::stability_map`]), writing the
-/// CSV in grid order (row `j` = all `x` at `y_j`) as rows complete, and keeping a decimated copy
-/// for the figures: memory does not grow with the grid.
+/// Compute the map with the library ([`autobal::spatial::map::stability_map_units`]), handing
+/// the rows to `rows` in grid order and keeping a decimated copy for the figures.
 #[allow(clippy::too_many_arguments)]
 pub fn compute(
     cfg: &Config,
-    x: Axis,
-    y: Axis,
+    x: &Axis,
+    y: &Axis,
     omega: Option<f64>,
     balls: Balls,
     quantity: Quantity,
-    csv: &mut dyn Write,
-    progress: bool,
+    rows: Rows<'_>,
     control: &Control,
-) -> Result<(MapResult, MapRun)> {
-    for (flag, a) in [("--x", &x), ("--y", &y)] {
-        if !a.is_omega() {
-            let mut s = cfg.spec.clone();
-            s.set(&a.key, a.lo).map_err(|e| anyhow!("{flag}: {e}"))?;
-        }
-    }
-    if x.is_omega() && y.is_omega() {
-        bail!("--x, --y: only one axis can be omega");
-    }
-    if !x.is_omega() && !y.is_omega() && omega.is_none() {
-        bail!("--omega: required when neither axis is omega (the speed at which to map)");
-    }
-    writeln!(csv, "{},{},max_real_part,stable,necessary", x.key, y.key)?;
-    let (lx, ly) = (x.to_library(), y.to_library());
+) -> Result<(MapResult, MapRun, Option<Vec<Vec<Cell>>>)> {
     let settings = autobal::spatial::map::MapSettings { balls, quantity, omega };
-    let bar = progress.then(|| {
-        let b = indicatif::ProgressBar::new(y.n as u64);
-        b.set_style(
-            indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} rows  {elapsed_precise} (eta {eta})")
-                .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-        );
-        b
-    });
-    let (kx, dx) = decimate(&x);
-    let (ky, dy) = decimate(&y);
-    let mut kept: Vec<Option<Vec<Cell>>> = vec![None; dy.n];
-    let xs: Vec<String> = lx.values.iter().map(|v| crate::num::Csv(*v).to_string()).collect();
+    let (kx, dx) = decimate(x);
+    let (ky, dy) = decimate(y);
+    let (nx, ny) = (x.values.len(), y.values.len());
+    let mut kept: Vec<Option<Vec<Cell>>> = vec![None; dy.values.len()];
+    let keep_all = matches!(rows, Rows::Keep);
+    let mut all: Vec<Vec<Cell>> = vec![];
+    let mut csv = match rows {
+        Rows::Csv(w) => Some(w),
+        _ => None,
+    };
+    if let Some(w) = csv.as_mut() {
+        writeln!(w, "{},{},max_real_part,stable,necessary", x.path, y.path)?;
+    }
+    let xs: Vec<String> = match csv {
+        Some(_) => x.values.iter().map(|v| crate::num::Csv(*v).to_string()).collect(),
+        None => vec![],
+    };
     let verdict_only = quantity == Quantity::Verdict;
     // rows are formatted in parallel in batches (the pool is idle between the library's blocks)
     let mut pending: Vec<(usize, Vec<Cell>)> = vec![];
@@ -162,7 +578,7 @@ pub fn compute(
         let texts: Vec<String> = pending
             .par_iter()
             .map(|(j, cells)| {
-                let yv = crate::num::Csv(ly.values[*j]).to_string();
+                let yv = crate::num::Csv(y.values[*j]).to_string();
                 let mut t = String::with_capacity(cells.len() * 40);
                 for (xs, c) in xs.iter().zip(cells) {
                     use std::fmt::Write as _;
@@ -179,44 +595,169 @@ pub fn compute(
         }
         csv.flush()
     };
-    let batch = (1 << 16) / x.n.max(1) + 1;
-    let outcome = autobal::spatial::map::stability_map_units(&cfg.spec, &lx, &ly, &settings, control, &mut |j, cells| {
-        if j % ky == 0 && j / ky < dy.n {
-            kept[j / ky] = Some(cells.iter().step_by(kx).take(dx.n).copied().collect());
+    let batch = (1 << 16) / nx.max(1) + 1;
+    let outcome = autobal::spatial::map::stability_map_units(&cfg.spec, x, y, &settings, control, &mut |j, cells| {
+        if j % ky == 0 && j / ky < kept.len() {
+            kept[j / ky] = Some(cells.iter().step_by(kx).take(dx.values.len()).copied().collect());
         }
-        pending.push((j, cells.to_vec()));
-        if pending.len() >= batch || j + 1 == ly.values.len() {
-            if let Err(e) = flush(&mut pending, csv) {
-                io_error = Some(e);
-                return false;
+        if keep_all {
+            all.push(cells.to_vec());
+        }
+        if let Some(w) = csv.as_mut() {
+            pending.push((j, cells.to_vec()));
+            if pending.len() >= batch || j + 1 == ny {
+                if let Err(e) = flush(&mut pending, &mut **w) {
+                    io_error = Some(e);
+                    return false;
+                }
             }
         }
-        if let Some(b) = &bar {
-            b.set_position(j as u64 + 1);
-        }
+        control.report(j as u64 + 1, ny as u64);
         true
     });
     if let Some(e) = io_error {
         return Err(e.into());
     }
     let outcome = outcome.map_err(|e| anyhow!("{e}"))?;
-    if !pending.is_empty() {
-        flush(&mut pending, csv)?;
+    if let Some(w) = csv {
+        if !pending.is_empty() {
+            flush(&mut pending, w)?;
+        }
     }
-    if let Some(b) = bar {
-        b.finish_and_clear();
-    }
-    let run = MapRun { rows_done: outcome.rows, rows_total: y.n, row_len: x.n, continued: outcome.continued, direct: outcome.direct };
-    Ok((MapResult { x: dx, y: dy, rows: kept, quantity }, run))
+    let run = MapRun { rows_done: outcome.rows, continued: outcome.continued, direct: outcome.direct };
+    Ok((MapResult { x: dx, y: dy, rows: kept, quantity }, run, keep_all.then_some(all)))
 }
 
-/// Write `<stem>.svg` and `<stem>.png` (drawn by [`plot`]), with the traced boundary when given.
-pub fn write_plots(r: &MapResult, stem: &Path, title: &str, traced: Option<&Boundary>) -> Result<()> {
-    let Some(b) = traced else { return write_heatmap(r, stem, title) };
-    let mut p = plot(r, title);
-    p.series.extend(boundary_series(b));
-    crate::outfile::write_atomic("--out", &crate::term::with_suffix(stem, "svg"), p.to_svg())?;
-    crate::outfile::write_atomic("--out", &crate::term::with_suffix(stem, "png"), p.to_png(1.5)?)
+/// The general route ([`autobal::rotor_map::general_map_traced`]) over the plan's axes: any
+/// planar or spatial config; CSV columns: the two axes, `max_real_part`, `verdict`,
+/// `family_dimension`, `family` (empty fields where no stationary state was found).
+fn general(root: &toml::Table, a: &Args, speed: Option<autobal::units::Speed>, planar: bool, rows: Rows<'_>, control: &Control) -> Result<RouteOutput> {
+    use autobal::rotor_map::general_map_traced;
+    let (x, y) = (&a.x, &a.y);
+    let verdict_only = a.quantity == Quantity::Verdict;
+    let keep_all = matches!(rows, Rows::Keep);
+    let mut all: Vec<Vec<GeneralCell>> = vec![];
+    let mut csv = match rows {
+        Rows::Csv(w) => Some(w),
+        _ => None,
+    };
+    if let Some(w) = csv.as_mut() {
+        writeln!(w, "{},{},max_real_part,verdict,family_dimension,family", x.path, y.path)?;
+    }
+    let mut traced: Vec<BoundaryPoint> = vec![];
+    let (kx, dx) = decimate(x);
+    let (ky, dy) = decimate(y);
+    let mut kept: Vec<Option<Vec<GeneralCell>>> = vec![None; dy.values.len()];
+    let xs: Vec<String> = x.values.iter().map(|v| crate::num::Csv(*v).to_string()).collect();
+    let ny = y.values.len();
+    let mut io_error: Option<std::io::Error> = None;
+    let outcome = general_map_traced(root, x, y, speed, a.boundary, control, &mut |j, cells, points| {
+        traced.extend_from_slice(points);
+        if j % ky == 0 && j / ky < kept.len() {
+            kept[j / ky] = Some(cells.iter().step_by(kx).take(dx.values.len()).copied().collect());
+        }
+        if keep_all {
+            all.push(cells.to_vec());
+        }
+        if let Some(w) = csv.as_mut() {
+            use std::fmt::Write as _;
+            let yv = crate::num::Csv(y.values[j]).to_string();
+            let mut t = String::with_capacity(cells.len() * 48);
+            for (xs, c) in xs.iter().zip(cells) {
+                // no stationary state: empty fields, never `NaN`
+                let (margin, verdict, fam) = match c.verdict {
+                    None => (String::new(), "", String::new()),
+                    Some(v) => (
+                        if verdict_only { String::new() } else { crate::num::Csv(c.margin).to_string() },
+                        verdict_name(Some(v)),
+                        c.family_dimension.to_string(),
+                    ),
+                };
+                // with a family: all, some or none of its members stable (empty for an isolated state)
+                let family = match c.family {
+                    None => "",
+                    Some(FamilyVerdict::AllStable) => "all_stable",
+                    Some(FamilyVerdict::SomeStable) => "some_stable",
+                    Some(FamilyVerdict::NoneStable) => "none_stable",
+                };
+                let _ = writeln!(t, "{xs},{yv},{margin},{verdict},{fam},{family}");
+            }
+            if let Err(e) = w.write_all(t.as_bytes()).and_then(|_| w.flush()) {
+                io_error = Some(e);
+                return false;
+            }
+        }
+        control.report(j as u64 + 1, ny as u64);
+        true
+    });
+    if let Some(e) = io_error {
+        return Err(e.into());
+    }
+    let outcome = outcome.map_err(|e| match e.field() {
+        Some(f) if f == x.path => anyhow!("--x: {e}"),
+        Some(f) if f == y.path => anyhow!("--y: {e}"),
+        Some("omega") => anyhow!("--omega: {e}"),
+        _ => anyhow!("{e}"),
+    })?;
+    Ok(RouteOutput::General { fx: dx, fy: dy, frows: kept, cells: keep_all.then_some(all), outcome, planar, traced: a.boundary.then_some(traced) })
+}
+
+/// The general route's figure: the heatmap of [`plot`] (cells without a stationary state
+/// blank, no 003 necessary boundary), the margin named by the state (max Re λ, or the largest
+/// Floquet exponent), the bisected boundary points as markers.
+fn general_plot(
+    fx: &Axis,
+    fy: &Axis,
+    frows: &[Option<Vec<GeneralCell>>],
+    outcome: &GeneralMapOutcome,
+    planar: bool,
+    quantity: Quantity,
+    traced: Option<&[BoundaryPoint]>,
+) -> crate::plot::Plot {
+    let periodic = outcome.periodic > 0;
+    let rows: Vec<Option<Vec<Cell>>> = frows
+        .iter()
+        .map(|r| r.as_ref().map(|r| r.iter().map(|c| Cell { margin: c.margin, stable: c.verdict == Some(Verdict::Stable), necessary: false }).collect()))
+        .collect();
+    let r = MapResult { x: fx.clone(), y: fy.clone(), rows, quantity };
+    let state = match if periodic { Kind::PeriodicOrbit } else { Kind::Equilibrium } {
+        Kind::Equilibrium => "equilibrium (eigenvalues)",
+        Kind::PeriodicOrbit => "periodic orbit (Floquet multipliers)",
+    };
+    let title = format!("Stability map of the {} rotor's stationary state (general route: {state})", if planar { "planar" } else { "spatial" });
+    let mut p = plot(&r, &title);
+    // no 003 necessary ranges off the 12-state model
+    p.series.retain(|s| s.label != "003 necessary boundary");
+    if planar {
+        // the planar model's `omega` is ω itself (no ω0)
+        for (key, label) in [(&r.x.path, &mut p.x_label), (&r.y.path, &mut p.y_label)] {
+            if key == "omega" {
+                *label = "speed ω (rad/s)".into();
+            }
+        }
+    }
+    if let Some(h) = p.heatmap.as_mut() {
+        // cells without a stationary state stay blank
+        for (zr, kr) in h.z.iter_mut().zip(frows) {
+            if let Some(kr) = kr {
+                for (z, c) in zr.iter_mut().zip(kr) {
+                    if c.verdict.is_none() {
+                        *z = f64::NAN;
+                    }
+                }
+            }
+        }
+        if quantity == Quantity::Margin {
+            let what = if periodic { "largest Floquet exponent" } else { "max Re λ" };
+            h.label = format!("{what} ({}; < 0 stable)", if planar { "1/s" } else { "per unit τ" });
+        }
+    }
+    if let Some(t) = traced {
+        if !t.is_empty() {
+            p.series.push(Series::new("bisected boundary points", t.iter().map(|b| (b.x, b.y)).collect(), "#0072B2").markers());
+        }
+    }
+    p
 }
 
 /// The traced curves as figure series: the stability boundary solid (Hopf blue, fold orange),
@@ -271,216 +812,19 @@ pub fn boundary_csv(b: &Boundary, x: &str, y: &str) -> String {
     s
 }
 
-/// Trace the stability boundary over the map's plane ([`autobal::spatial::boundary`]); the
-/// control (Ctrl-C) stops it with the curves traced so far (`complete` false).
+/// Trace the stability boundary over the map's plane ([`autobal::spatial::boundary`]; the
+/// tracer needs the ends of the axes alone); the control (Ctrl-C) stops it with the curves
+/// traced so far (`complete` false).
 pub fn trace(cfg: &Config, x: &Axis, y: &Axis, omega: Option<f64>, balls: Balls, control: &Control) -> Result<Boundary> {
-    let ax = |a: &Axis| autobal::paths::Axis::range(a.key.clone(), a.lo, a.hi);
+    let ends = |a: &Axis| Axis::range(a.path.clone(), a.lo(), a.hi());
     let s = TraceSettings { balls, omega, ..Default::default() };
-    autobal::spatial::boundary::trace_boundary_units(&cfg.spec, &ax(x), &ax(y), &s, control).map_err(|e| anyhow!("--boundary: {e}"))
-}
-
-/// `autobal map` by the general route ([`autobal::rotor_map`]): any planar or spatial config,
-/// written as `STEM.csv` (columns: the two axes, `max_real_part`, `verdict`,
-/// `family_dimension`; empty fields where no stationary state was found), `STEM.svg`,
-/// `STEM.png`.
-#[allow(clippy::too_many_arguments)]
-pub fn run_general(
-    root: &toml::Table,
-    config: Option<&Path>,
-    x: &str,
-    y: &str,
-    omega: Option<&str>,
-    verdict_only: bool,
-    out: &Path,
-    threads: Option<usize>,
-    boundary: bool,
-    control: &Control,
-) -> Result<()> {
-    use autobal::rotor_map::{general_map_traced, BoundaryPoint, Kind, Verdict};
-    let xa = Axis::parse("--x", x)?;
-    let ya = Axis::parse("--y", y)?;
-    if xa.key == ya.key {
-        bail!("--y {}: the same key as --x; map over two different keys", ya.key);
-    }
-    let speed = omega.map(|t| autobal::units::parse_speed("--omega", t)).transpose()?;
-    if let Some(t) = threads {
-        if t == 0 {
-            bail!("--threads: must be at least 1");
-        }
-        rayon::ThreadPoolBuilder::new().num_threads(t).build_global().ok();
-    }
-    let out = crate::term::out_stem(&crate::outfile::resolve(out, "stability-map"), &["csv", "svg", "png"]);
-    let csv_path = crate::term::with_suffix(&out, "csv");
-    let mut o = crate::outfile::Outputs::new();
-    o.inputs(config);
-    for p in crate::outfile::stem_files(&out, &["csv", "svg", "png"]) {
-        o.output("--out", &p);
-    }
-    let boundary_path = std::path::PathBuf::from(format!("{}_boundary.csv", out.display()));
-    if boundary {
-        o.output("--out", &boundary_path);
-    }
-    o.check()?;
-    let mut w = crate::outfile::Staged::create("--out", &csv_path)?;
-    writeln!(w, "{},{},max_real_part,verdict,family_dimension,family", xa.key, ya.key)?;
-    let mut traced: Vec<BoundaryPoint> = vec![];
-    let verdict_name = |v: Option<Verdict>| match v {
-        None => "",
-        Some(Verdict::Stable) => "stable",
-        Some(Verdict::Unstable) => "unstable",
-        Some(Verdict::Neutral) => "neutral",
-    };
-    let (lx, ly) = (xa.to_library(), ya.to_library());
-    let bar = std::io::IsTerminal::is_terminal(&std::io::stderr()).then(|| {
-        let b = indicatif::ProgressBar::new(ya.n as u64);
-        b.set_style(
-            indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} rows  {elapsed_precise} (eta {eta})")
-                .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-        );
-        b
-    });
-    let (kx, dx) = decimate(&xa);
-    let (ky, dy) = decimate(&ya);
-    let mut kept: Vec<Option<Vec<autobal::rotor_map::GeneralCell>>> = vec![None; dy.n];
-    let xs: Vec<String> = lx.values.iter().map(|v| crate::num::Csv(*v).to_string()).collect();
-    let mut io_error: Option<std::io::Error> = None;
-    let t0 = std::time::Instant::now();
-    let outcome = general_map_traced(root, &lx, &ly, speed, boundary, control, &mut |j, cells, points| {
-        traced.extend_from_slice(points);
-        if j % ky == 0 && j / ky < dy.n {
-            kept[j / ky] = Some(cells.iter().step_by(kx).take(dx.n).copied().collect());
-        }
-        use std::fmt::Write as _;
-        let yv = crate::num::Csv(ly.values[j]).to_string();
-        let mut t = String::with_capacity(cells.len() * 48);
-        for (xs, c) in xs.iter().zip(cells) {
-            // no stationary state: empty fields, never `NaN`
-            let (margin, verdict, fam) = match c.verdict {
-                None => (String::new(), "", String::new()),
-                Some(v) => {
-                    (if verdict_only { String::new() } else { crate::num::Csv(c.margin).to_string() }, verdict_name(Some(v)), c.family_dimension.to_string())
-                }
-            };
-            // with a family: all, some or none of its members stable (empty for an isolated state)
-            let family = match c.family {
-                None => "",
-                Some(autobal::rotor_map::FamilyVerdict::AllStable) => "all_stable",
-                Some(autobal::rotor_map::FamilyVerdict::SomeStable) => "some_stable",
-                Some(autobal::rotor_map::FamilyVerdict::NoneStable) => "none_stable",
-            };
-            let _ = writeln!(t, "{xs},{yv},{margin},{verdict},{fam},{family}");
-        }
-        if let Err(e) = w.write_all(t.as_bytes()).and_then(|_| w.flush()) {
-            io_error = Some(e);
-            return false;
-        }
-        if let Some(b) = &bar {
-            b.set_position(j as u64 + 1);
-        }
-        true
-    });
-    if let Some(e) = io_error {
-        return Err(e.into());
-    }
-    let outcome = outcome.map_err(|e| match e.field() {
-        Some(f) if f == xa.key => anyhow!("--x: {e}"),
-        Some(f) if f == ya.key => anyhow!("--y: {e}"),
-        Some("omega") => anyhow!("--omega: {e}"),
-        _ => anyhow!("{e}"),
-    })?;
-    if let Some(b) = bar {
-        b.finish_and_clear();
-    }
-    let csv_path = w.commit()?;
-    let secs = t0.elapsed().as_secs_f64();
-    let planar = !autobal::config::is_spatial(root);
-    let periodic = outcome.periodic > 0;
-    let kind = if periodic { Kind::PeriodicOrbit } else { Kind::Equilibrium };
-    let rows: Vec<Option<Vec<Cell>>> = kept
-        .iter()
-        .map(|r| r.as_ref().map(|r| r.iter().map(|c| Cell { margin: c.margin, stable: c.verdict == Some(Verdict::Stable), necessary: false }).collect()))
-        .collect();
-    let q = if verdict_only { Quantity::Verdict } else { Quantity::Margin };
-    let r = MapResult { x: dx, y: dy, rows, quantity: q };
-    let state = match kind {
-        Kind::Equilibrium => "equilibrium (eigenvalues)",
-        Kind::PeriodicOrbit => "periodic orbit (Floquet multipliers)",
-    };
-    let title = format!("Stability map of the {} rotor's stationary state (general route: {state})", if planar { "planar" } else { "spatial" });
-    let mut p = plot(&r, &title);
-    // no 003 necessary ranges off the 12-state model
-    p.series.retain(|s| s.label != "003 necessary boundary");
-    if planar {
-        // the planar model's `omega` is ω itself (no ω0)
-        for (key, label) in [(&r.x.key, &mut p.x_label), (&r.y.key, &mut p.y_label)] {
-            if key == "omega" {
-                *label = "speed ω (rad/s)".into();
-            }
-        }
-    }
-    if let Some(h) = p.heatmap.as_mut() {
-        // cells without a stationary state stay blank
-        for (zr, kr) in h.z.iter_mut().zip(&kept) {
-            if let Some(kr) = kr {
-                for (z, c) in zr.iter_mut().zip(kr) {
-                    if c.verdict.is_none() {
-                        *z = f64::NAN;
-                    }
-                }
-            }
-        }
-        if !verdict_only {
-            let what = if periodic { "largest Floquet exponent" } else { "max Re λ" };
-            h.label = format!("{what} ({}; < 0 stable)", if planar { "1/s" } else { "per unit τ" });
-        }
-    }
-    if boundary {
-        // the bisected points: `x` to 1e-9 relative where the margin changes sign (or a
-        // stationary state appears), with the verdicts on either side
-        let mut t = format!("{},{},from,to\n", xa.key, ya.key);
-        for b in &traced {
-            use std::fmt::Write as _;
-            let _ = writeln!(t, "{},{},{},{}", crate::num::Csv(b.x), crate::num::Csv(b.y), verdict_name(b.from), verdict_name(b.to));
-        }
-        crate::outfile::write_atomic("--out", &boundary_path, t)?;
-        crate::term::note(&format!("boundary: {} points bisected along {} to 1e-9 relative; wrote {}", traced.len(), xa.key, boundary_path.display()));
-        if !traced.is_empty() {
-            p.series.push(Series::new("bisected boundary points", traced.iter().map(|b| (b.x, b.y)).collect(), "#0072B2").markers());
-        }
-    }
-    crate::outfile::write_atomic("--out", &crate::term::with_suffix(&out, "svg"), p.to_svg())?;
-    crate::outfile::write_atomic("--out", &crate::term::with_suffix(&out, "png"), p.to_png(1.5)?)?;
-    let points = outcome.rows * xa.n;
-    crate::term::print(&format!(
-        "general route: {} rows × {} points in {:.2} s ({:.2} µs per point; {} from the closed form, {} continued from a neighbour, {} without a stationary state); stationary state: {state}; wrote {}, {}, {}\n",
-        outcome.rows,
-        xa.n,
-        secs,
-        1e6 * secs / points.max(1) as f64,
-        outcome.closed_form,
-        outcome.continued,
-        outcome.none,
-        csv_path.display(),
-        crate::term::with_suffix(&out, "svg").display(),
-        crate::term::with_suffix(&out, "png").display()
-    ))?;
-    if outcome.families > 0 {
-        crate::term::note(&format!(
-            "{} cells have a family of balanced states (n ≥ 3 balls): max_real_part and verdict are those of one member, the one reached from the closed form (balls in a symmetric arc); the column family says whether all, some or none of the family's members are stable",
-            outcome.families
-        ));
-    }
-    if !outcome.complete {
-        bail!("interrupted: {} of {} rows computed and kept in {}", outcome.rows, ya.n, csv_path.display());
-    }
-    Ok(())
+    autobal::spatial::boundary::trace_boundary_units(&cfg.spec, &ends(x), &ends(y), &s, control).map_err(|e| anyhow!("--boundary: {e}"))
 }
 
 // The map's figure: Figures of stability maps (`autobal map` and the report): the margin heatmap
 // with its colour bar, the exact stability boundary and 003's necessary boundary as lines, axes
 // named by the physics (not by config keys). Written as SVG and PNG from one [`Plot`].
 use crate::plot::{ColorScale, Heatmap, Plot};
-use anyhow::Context;
 
 /// Axis title of a map axis: the physical quantity for the keys autobal knows, else the key.
 pub fn axis_label(key: &str) -> String {
@@ -560,19 +904,18 @@ pub fn chain(segments: &[Segment]) -> Vec<(f64, f64)> {
     out
 }
 
-/// Cell-edge segments between cells whose `flag` differs.
+/// Cell-edge segments between cells whose `flag` differs (the grid evenly spaced).
 fn boundary(r: &MapResult, flag: impl Fn(&Cell) -> bool) -> Vec<(f64, f64)> {
-    let dx = (r.x.hi - r.x.lo) / (r.x.n - 1) as f64;
-    let dy = (r.y.hi - r.y.lo) / (r.y.n - 1) as f64;
-    // the grid values once (each `value` call rounds through log10: 320 000 calls per figure)
-    let xs: Vec<f64> = (0..r.x.n).map(|i| r.x.value(i)).collect();
-    let ys: Vec<f64> = (0..r.y.n).map(|j| r.y.value(j)).collect();
+    let (xs, ys) = (&r.x.values, &r.y.values);
+    let (nx, ny) = (xs.len(), ys.len());
+    let dx = (r.x.hi() - r.x.lo()) / (nx - 1) as f64;
+    let dy = (r.y.hi() - r.y.lo()) / (ny - 1) as f64;
     let mut segs = vec![];
-    for j in 0..r.y.n {
+    for j in 0..ny {
         let Some(row) = &r.rows[j] else { continue };
-        for i in 0..r.x.n {
+        for i in 0..nx {
             let (x, y) = (xs[i], ys[j]);
-            if i + 1 < r.x.n && flag(&row[i]) != flag(&row[i + 1]) {
+            if i + 1 < nx && flag(&row[i]) != flag(&row[i + 1]) {
                 segs.push(((x + dx / 2.0, y - dy / 2.0), (x + dx / 2.0, y + dy / 2.0)));
             }
             if let Some(Some(up)) = r.rows.get(j + 1) {
@@ -608,63 +951,186 @@ pub fn plot(r: &MapResult, title: &str) -> Plot {
                     }
                 })
                 .collect(),
-            None => vec![f64::NAN; r.x.n],
+            None => vec![f64::NAN; r.x.values.len()],
         })
         .collect();
     let (scale, label) = match r.quantity {
         Quantity::Margin => (ColorScale::Diverging { neg, pos }, "max Re λ (< 0 stable)".to_string()),
         Quantity::Verdict => (ColorScale::Verdict, "verdict".to_string()),
     };
-    let dx = (r.x.hi - r.x.lo) / (r.x.n - 1) as f64;
-    let dy = (r.y.hi - r.y.lo) / (r.y.n - 1) as f64;
+    let dx = (r.x.hi() - r.x.lo()) / (r.x.values.len() - 1) as f64;
+    let dy = (r.y.hi() - r.y.lo()) / (r.y.values.len() - 1) as f64;
     Plot {
         title: title.to_string(),
-        x_label: axis_label(&r.x.key),
-        y_label: axis_label(&r.y.key),
+        x_label: axis_label(&r.x.path),
+        y_label: axis_label(&r.y.path),
         series: vec![
             Series::new("exact stability boundary", boundary(r, |c| c.stable), "#000000"),
             Series::new("003 necessary boundary", boundary(r, |c| c.necessary), "#CC79A7").dashed(),
         ],
-        x_range: Some((r.x.lo - dx / 2.0, r.x.hi + dx / 2.0)),
-        y_range: Some((r.y.lo - dy / 2.0, r.y.hi + dy / 2.0)),
-        heatmap: Some(Heatmap { x: (0..r.x.n).map(|i| r.x.value(i)).collect(), y: (0..r.y.n).map(|j| r.y.value(j)).collect(), z, scale, label }),
+        x_range: Some((r.x.lo() - dx / 2.0, r.x.hi() + dx / 2.0)),
+        y_range: Some((r.y.lo() - dy / 2.0, r.y.hi() + dy / 2.0)),
+        heatmap: Some(Heatmap { x: r.x.values.clone(), y: r.y.values.clone(), z, scale, label }),
         ..Default::default()
     }
-}
-
-/// Write `<stem>.svg` and `<stem>.png` (the PNG rasterised from the SVG: legend, colour bar
-/// and tick labels included).
-fn write_heatmap(r: &MapResult, stem: &Path, title: &str) -> Result<()> {
-    let p = plot(r, title);
-    let svg_path = crate::term::with_suffix(stem, "svg");
-    // one SVG (the heatmap's PNG encoded once), rasterised for the PNG
-    let svg = p.to_svg();
-    std::fs::write(&svg_path, &svg).with_context(|| format!("cannot write {}", svg_path.display()))?;
-    let png_path = crate::term::with_suffix(stem, "png");
-    std::fs::write(&png_path, crate::plot::svg_to_png(&svg, 1.5)?).with_context(|| format!("cannot write {}", png_path.display()))?;
-    Ok(())
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::command::{Command as _, Output as _};
+
+    fn tables(text: &str) -> ConfigSource {
+        ConfigSource::tables(crate::config::parse_text(text, "test").unwrap(), "test")
+    }
 
     #[test]
     fn axis_values_read_as_typed() {
-        let a = Axis::parse("--x", "planar.c_psi=0.01:0.4:4").unwrap();
-        let v: Vec<f64> = (0..4).map(|i| a.value(i)).collect();
-        assert_eq!(v, vec![0.01, 0.14, 0.27, 0.4]);
-        let a = Axis::parse("--x", "omega=0:6:401").unwrap();
-        assert_eq!(a.value(0), 0.0);
-        assert!((a.value(123) - 6.0 * 123.0 / 400.0).abs() < 1e-11);
+        let a = parse_axis("--x", "planar.c_psi=0.01:0.4:4").unwrap();
+        assert_eq!(a.values, vec![0.01, 0.14, 0.27, 0.4]);
+        let a = parse_axis("--x", "omega=0:6:401").unwrap();
+        assert_eq!(a.values[0], 0.0);
+        assert!((a.values[123] - 6.0 * 123.0 / 400.0).abs() < 1e-11);
     }
 
     #[test]
     fn bad_axis_specs_are_rejected_with_the_flag() {
-        for spec in ["omega", "omega=1:2", "omega=2:1:5", "omega=0:1:1", "omega=a:1:3", "omega=-1:1:3", "x=0:1:9999999"] {
-            let e = Axis::parse("--y", spec).unwrap_err().to_string();
-            assert!(e.starts_with("--y"), "{e}");
+        for spec in ["omega", "omega=1:2", "omega=2:1:5", "omega=0:1:1", "omega=a:1:3", "omega=-1:1:3", "x=0:1:9999999", "omega=0.1,0.2", "x=0:1:100001"] {
+            let e = parse_axis("--y", spec).unwrap_err().to_string();
+            assert!(e.starts_with(&format!("--y {spec}")), "{e}");
         }
+        assert!(parse_axis("--x", "x=0:1:100001").unwrap_err().to_string().ends_with("N must lie between 2 and 100000, got 100001"));
+        // the same checks on an axis given as values (Python's lists), naming the path
+        for (a, why) in [
+            (Axis::new("omega", vec![0.1]), "between 2"),
+            (Axis::new("omega", vec![0.2, 0.1]), "increasing"),
+            (Axis::new("omega", vec![-0.1, 0.1]), "negative"),
+        ] {
+            let args = Args { x: a, y: Axis::linspace("dimensionless.z_a", 0.0, 1.0, 2), ..Default::default() };
+            let e = args.run(&Control::none()).err().expect("refused").to_string();
+            assert!(e.starts_with("--x omega: ") && e.contains(why), "{e}");
+        }
+        let e = Args::default().run(&Control::none()).err().expect("refused").to_string();
+        assert!(e.starts_with("--x: required"), "{e}");
+    }
+
+    /// A figure's decimated axis is a subset of the computed values (every k-th, the first
+    /// included), never values between them: the figure draws cells that were computed.
+    #[test]
+    fn decimation_keeps_computed_values() {
+        let a = Axis::linspace("omega", 0.05, 4.5, 1501);
+        let (k, d) = decimate(&a);
+        assert_eq!(k, 4);
+        assert_eq!(d.values.len(), 376);
+        assert!(d.values.iter().enumerate().all(|(i, v)| v.to_bits() == a.values[i * k].to_bits()));
+        assert_eq!(decimate(&Axis::linspace("omega", 0.0, 1.0, 500)).0, 1);
+    }
+
+    /// The CSV the CLI streams and the cells Python keeps are one computation: the same cells,
+    /// bit for bit, and the figure's heatmap is the kept margins (a map small enough not to be
+    /// decimated).
+    #[test]
+    fn csv_kept_cells_and_figure_agree() {
+        let args = Args { x: parse_axis("--x", "dimensionless.z_a=-2:2:7").unwrap(), y: parse_axis("--y", "omega=0.05:4.5:5").unwrap(), ..Default::default() };
+        let plan = args.prepare().unwrap();
+        let mut csv = vec![];
+        let streamed = plan.run(&Control::none(), Rows::Csv(&mut csv)).unwrap();
+        let kept = args.run(&Control::none()).unwrap();
+        let RouteOutput::Closed { cells: Some(cells), .. } = &kept.route else { panic!("closed route, cells kept") };
+        let text = String::from_utf8(csv).unwrap();
+        let mut lines = text.lines();
+        assert_eq!(lines.next(), Some("dimensionless.z_a,omega,max_real_part,stable,necessary"));
+        let flat: Vec<&Cell> = cells.iter().flatten().collect();
+        assert_eq!(flat.len(), 35);
+        for (l, c) in lines.zip(&flat) {
+            let f: Vec<&str> = l.split(',').collect();
+            assert_eq!(f[2].parse::<f64>().unwrap().to_bits(), c.margin.to_bits(), "{l}");
+            assert_eq!((f[3] == "1", f[4] == "1"), (c.stable, c.necessary), "{l}");
+        }
+        assert_eq!(streamed.table().unwrap().split(" in ").next(), kept.table().unwrap().split(" in ").next());
+        let figs = kept.figures().unwrap();
+        assert_eq!(figs.len(), 1);
+        let h = figs[0].plot.heatmap.as_ref().unwrap();
+        assert_eq!((h.x.clone(), h.y.clone()), (args.x.values.clone(), args.y.values.clone()));
+        assert!(h.z.iter().flatten().zip(&flat).all(|(z, c)| z.to_bits() == c.margin.to_bits()));
+        assert_eq!(kept.stopped(), None);
+        assert_eq!(kept.json().unwrap()["rows_computed"], json!(5));
+    }
+
+    /// A second route to the same verdicts: the map's cells along the speed at the config's own
+    /// parameters lie where `stability` (eigenvalues on a grid, range ends bisected to 1e-9)
+    /// finds the balanced state stable, and outside where it does not. Cells within 1e-6 of a
+    /// range end are skipped (the two computations may round the margin's sign differently
+    /// there; the grid's spacing, 4.45/199, keeps such cells rare).
+    #[test]
+    fn the_maps_verdicts_are_stabilitys_ranges() {
+        let source = tables(crate::config::DEFAULT_CONFIG);
+        let (root, _) = source.read().unwrap();
+        let l = root["dimensionless"]["l_left"].as_float().unwrap();
+        let args = Args {
+            config: source.clone(),
+            x: Axis::linspace("omega", 0.05, 4.5, 200),
+            y: Axis::new("dimensionless.l_left", vec![l, l + 0.1]),
+            ..Default::default()
+        };
+        let out = args.run(&Control::none()).unwrap();
+        let RouteOutput::Closed { cells: Some(cells), .. } = &out.route else { panic!("closed route, cells kept") };
+        let st =
+            crate::stability::Args { config: source, omega_max: Some("4.5".into()), samples: Some(2000), ..Default::default() }.run(&Control::none()).unwrap();
+        let crate::stability::Output::Closed { c, .. } = st else { panic!("closed route") };
+        let ranges = &c.exact.stable_ranges;
+        assert!(!ranges.is_empty());
+        let mut checked = 0;
+        for (w, cell) in args.x.values.iter().zip(&cells[0]) {
+            let near_end = ranges.iter().any(|r| (w - r.lo).abs() < 1e-6 || r.hi.is_some_and(|h| (w - h).abs() < 1e-6));
+            if near_end {
+                continue;
+            }
+            let inside = ranges.iter().any(|r| *w > r.lo && r.hi.is_none_or(|h| *w < h));
+            assert_eq!(cell.stable, inside, "Ω = {w}: the map says stable = {}, stability's ranges {ranges:?}", cell.stable);
+            checked += 1;
+        }
+        assert!(checked > 190, "{checked}");
+    }
+
+    /// A map stopped before its first row keeps nothing and says so, naming the CSV once the
+    /// front end has written it.
+    #[test]
+    fn a_stopped_map_says_what_it_kept() {
+        let control = Control::new();
+        control.cancel();
+        let args = Args { x: parse_axis("--x", "dimensionless.z_a=-2:2:3").unwrap(), y: parse_axis("--y", "omega=0.05:4.5:3").unwrap(), ..Default::default() };
+        let mut out = args.run(&control).unwrap();
+        assert!(out.rows_done() < 3);
+        assert_eq!(out.stopped().unwrap(), format!("interrupted: {} of 3 rows computed", out.rows_done()));
+        out.written = Some("m".into());
+        assert!(out.stopped().unwrap().ends_with(" and kept in m.csv"));
+        assert!(out.table().unwrap().ends_with("; wrote m.csv, m.svg, m.png\n"));
+    }
+
+    /// The general route's map (a planar config): its own figure (the general route's title, no
+    /// 003 necessary boundary, the bisected boundary points with `boundary`) for the CLI and
+    /// Python alike; its CSV columns.
+    #[test]
+    fn the_general_route_has_its_own_figure() {
+        let args = Args {
+            config: tables(crate::config::DEFAULT_PLANAR),
+            x: parse_axis("--x", "omega=100:400:4").unwrap(),
+            y: parse_axis("--y", "planar.c_psi=0.05:0.2:2").unwrap(),
+            boundary: true,
+            ..Default::default()
+        };
+        let mut csv = vec![];
+        let out = args.prepare().unwrap().run(&Control::none(), Rows::Csv(&mut csv)).unwrap();
+        assert!(String::from_utf8(csv).unwrap().starts_with("omega,planar.c_psi,max_real_part,verdict,family_dimension,family\n"));
+        let p = &out.figures().unwrap()[0].plot;
+        assert!(p.title.contains("general route"), "{}", p.title);
+        assert_eq!(p.x_label, "speed ω (rad/s)");
+        assert!(p.series.iter().all(|s| s.label != "003 necessary boundary"));
+        let RouteOutput::General { traced: Some(t), .. } = &out.route else { panic!("general route, traced") };
+        assert_eq!(p.series.iter().any(|s| s.label == "bisected boundary points"), !t.is_empty());
+        assert_eq!(out.json().unwrap()["route"], json!("general"));
+        assert!(out.boundary_csv().unwrap().starts_with("omega,planar.c_psi,from,to\n"));
     }
 
     #[test]

@@ -18,9 +18,6 @@ use std::time::Duration;
 
 mod linear_rotor;
 
-/// Most cells of a stability map returned as arrays (10 bytes each: 500 MB).
-const MAX_MAP_CELLS: usize = 50_000_000;
-
 /// How often the waiting thread looks for signals (Ctrl-C).
 const SIGNAL_POLL: Duration = Duration::from_millis(50);
 
@@ -194,7 +191,6 @@ fn table(py: Python<'_>, text: Option<&str>, dict: Option<&Bound<'_, PyDict>>, s
 /// A spatial config (papers 000/003), validated.
 #[pyclass(module = "autobal._autobal", name = "SpatialConfig", frozen)]
 struct PySpatial {
-    cfg: config::SpatialConfig,
     source: String,
     /// The tables it was built from (the simulation reads `[drive]`, `[initial]`, ... from them).
     root: Table,
@@ -243,8 +239,9 @@ fn spatial_config(
     sets: Vec<(String, Bound<'_, PyAny>)>,
 ) -> PyResult<PySpatial> {
     let root = table(py, text, dict, source, sets)?;
-    let cfg = config::spatial(&root).map_err(|e| py_err(py, e))?;
-    Ok(PySpatial { cfg, source: source.to_string(), root })
+    // validated here (errors name the key); the commands read the tables again
+    config::spatial(&root).map_err(|e| py_err(py, e))?;
+    Ok(PySpatial { source: source.to_string(), root })
 }
 
 #[pyfunction]
@@ -560,31 +557,10 @@ fn simulate_batch<'py>(
     PyArray1::from_vec(py, out).reshape([rows, ncol])
 }
 
-/// The runs of `range` of `grid` on `base` as the sweep's JSON lists them.
-fn run_grid<M: autobal::sweep::SweepModel>(
-    base: &M,
-    grid: &autobal::sweep::Grid,
-    range: std::ops::Range<usize>,
-    cancel: &Control,
-) -> autobal::Result<Vec<serde_json::Value>> {
-    let mut runs = vec![];
-    let o = autobal::sweep::simulate_grid(
-        base,
-        grid,
-        range,
-        &mut |i, v, res| {
-            runs.push(autobal::sweep::run_json(i, v, res));
-            true
-        },
-        cancel,
-    )?;
-    o.into_result()?;
-    Ok(runs)
-}
-
 /// `autobal sweep --format json` on the problem (a `PlanarConfig`, or a `SpatialConfig` with
-/// `[drive]`): `axes` as `[(path, values), ...]` (first fastest), `shard` as `(k, n)` 1-based.
-/// The JSON text, with the CLI's `definition_checksum`.
+/// `[drive]`): `axes` as `[(path, values), ...]` (first fastest: the CLI's `--x`, `--y`, then
+/// `--axis`), `shard` as `(k, n)` 1-based. The same `sweep::Args` and `run` as the CLI: the JSON
+/// text, with its `definition_checksum`.
 #[pyfunction]
 #[pyo3(signature = (cfg, axes, shard=None, threads=None))]
 fn sweep_report(
@@ -594,34 +570,90 @@ fn sweep_report(
     shard: Option<(usize, usize)>,
     threads: Option<usize>,
 ) -> PyResult<String> {
-    let err = |e| py_err(py, e);
-    let grid = autobal::sweep::Grid::new(axes.into_iter().map(|(p, v)| autobal::sweep::Axis::new(p, v)).collect()).map_err(err)?;
-    let range = match shard {
-        Some((k, n)) if k >= 1 => autobal::sweep::shard(grid.len(), k - 1, n).map_err(err)?,
-        Some((k, n)) => return Err(err(autobal::Error::invalid("shard", format!("shard {k} of {n} does not exist (k from 1 to N)")))),
-        None => 0..grid.len(),
+    use autobal_commands::command::{Command, ConfigSource, Output};
+    // the config's tables, as the CLI reads them
+    let config = if let Ok(p) = cfg.extract::<PyRef<'_, PyPlanar>>() {
+        ConfigSource::tables(config::parse(&p.toml, "config").map_err(|e| py_err(py, e))?, "config")
+    } else if let Ok(c) = cfg.extract::<PyRef<'_, PySpatial>>() {
+        ConfigSource::tables(c.root.clone(), &c.source)
+    } else {
+        return Err(PyTypeError::new_err("cfg: expected a PlanarConfig or a SpatialConfig (PlanarProblem._cfg, SpatialModel._cfg)"));
     };
-    let base = base_of(py, cfg)?;
-    // the config's tables, for the checksum of the sweep's definition (as the CLI's)
-    let root = match &base {
-        Base::Planar(_) => config::parse(&cfg.extract::<PyRef<'_, PyPlanar>>()?.toml, "config").map_err(err)?,
-        Base::Spatial(s) => s.root().clone(),
-    };
-    let problem = match &base {
-        Base::Planar(p) => serde_json::to_value(p).map_err(|e| PyRuntimeError::new_err(e.to_string()))?,
-        Base::Spatial(s) => s.to_json().map_err(err)?,
-    };
-    let (g, r) = (&grid, range.clone());
-    let out = interruptible(py, move |cancel| {
-        with_threads(threads, || match &base {
-            Base::Planar(p) => run_grid(p, g, r.clone(), cancel),
-            Base::Spatial(s) => run_grid(s, g, r.clone(), cancel),
-        })
+    let mut axes = axes.into_iter().map(|(p, v)| autobal::sweep::Axis::new(p, v));
+    let Some(x) = axes.next() else { return Err(py_err(py, autobal::Error::invalid("x", "required (the first axis, e.g. x='drive.b=0.5:12.5:5')"))) };
+    let args = autobal_commands::sweep::Args { config, x, y: axes.next(), more: axes.collect(), shard };
+    let v = commands_call(py, move |c| {
+        let out = in_pool(threads, || args.run(c))?;
+        if let Some(why) = out.stopped() {
+            anyhow::bail!("{why}");
+        }
+        out.json()
     })?;
-    let runs = out.map_err(err)?;
-    let mut json = autobal::sweep::report(&grid, shard, &range, true, problem, runs);
-    json["definition_checksum"] = autobal::sweep::definition_checksum(&root, &grid).into();
-    Ok(json.to_string())
+    Ok(v.to_string())
+}
+
+/// `work` (a command of the commands crate) in a pool of `threads` threads ([`with_threads`]).
+fn in_pool<R: Send>(threads: Option<usize>, work: impl FnOnce() -> anyhow::Result<R> + Send) -> anyhow::Result<R> {
+    with_threads(threads, || Ok(work()))?
+}
+
+/// A map's cells as arrays `len(y) × len(x)` (row `j` at `y[j]`): `margin` (max Re λ, or the
+/// largest Floquet exponent on the general route; NaN with `quantity="verdict"` or where no
+/// stationary state was found), `stable`; on the closed-form route `necessary` (inside 003's
+/// necessary ranges), on the general route `verdict` (`"stable"`, `"unstable"`, `"neutral"`,
+/// `""`: no stationary state) and `family_dimension`.
+fn map_dict<'py>(py: Python<'py>, args: autobal_commands::map::Args, threads: Option<usize>) -> PyResult<Bound<'py, PyDict>> {
+    use autobal_commands::command::{Command, Output};
+    use autobal_commands::map::RouteOutput;
+    let (xs, ys) = (args.x.values.clone(), args.y.values.clone());
+    let (nx, ny) = (xs.len(), ys.len());
+    let out = commands_call(py, move |c| {
+        let out = in_pool(threads, || args.run(c))?;
+        if let Some(why) = out.stopped() {
+            anyhow::bail!("{why}");
+        }
+        Ok(out)
+    })?;
+    let d = PyDict::new(py);
+    d.set_item("x", PyArray1::from_vec(py, xs))?;
+    d.set_item("y", PyArray1::from_vec(py, ys))?;
+    match out.route {
+        RouteOutput::Closed { cells: Some(cells), .. } => {
+            let flat = || cells.iter().flatten();
+            d.set_item("margin", PyArray1::from_vec(py, flat().map(|c| c.margin).collect()).reshape([ny, nx])?)?;
+            d.set_item("stable", PyArray1::from_vec(py, flat().map(|c| c.stable).collect()).reshape([ny, nx])?)?;
+            d.set_item("necessary", PyArray1::from_vec(py, flat().map(|c| c.necessary).collect()).reshape([ny, nx])?)?;
+        }
+        RouteOutput::General { cells: Some(cells), .. } => {
+            use autobal::rotor_map::Verdict;
+            let flat = || cells.iter().flatten();
+            let margin = flat().map(|c| if c.verdict.is_some() { c.margin } else { f64::NAN }).collect();
+            d.set_item("margin", PyArray1::from_vec(py, margin).reshape([ny, nx])?)?;
+            d.set_item("stable", PyArray1::from_vec(py, flat().map(|c| c.verdict == Some(Verdict::Stable)).collect()).reshape([ny, nx])?)?;
+            let name = |v: Option<Verdict>| match v {
+                None => "",
+                Some(Verdict::Stable) => "stable",
+                Some(Verdict::Unstable) => "unstable",
+                Some(Verdict::Neutral) => "neutral",
+            };
+            let rows: Vec<Vec<&str>> = cells.iter().map(|r| r.iter().map(|c| name(c.verdict)).collect()).collect();
+            d.set_item("verdict", rows)?;
+            d.set_item("family_dimension", PyArray1::from_vec(py, flat().map(|c| c.family_dimension as u64).collect()).reshape([ny, nx])?)?;
+            d.set_item("route", "general")?;
+        }
+        _ => return Err(PyRuntimeError::new_err("autobal: the map kept no cells")),
+    }
+    Ok(d)
+}
+
+/// The map's `quantity` keyword.
+fn quantity(py: Python<'_>, q: &str) -> PyResult<autobal_commands::map::Quantity> {
+    use autobal_commands::map::Quantity;
+    match q {
+        "margin" => Ok(Quantity::Margin),
+        "verdict" => Ok(Quantity::Verdict),
+        o => Err(py_err(py, autobal::Error::invalid("quantity", format!("must be \"margin\" or \"verdict\", got \"{o}\"")))),
+    }
 }
 
 /// A stability map of the spatial model (what `autobal map` writes as CSV): `x` and `y` as
@@ -641,55 +673,65 @@ fn stability_map<'py>(
     quantity: &str,
     threads: Option<usize>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    use autobal::spatial::map::{Axis, MapSettings, Quantity};
-    let err = |e| py_err(py, e);
-    let quantity = match quantity {
-        "margin" => Quantity::Margin,
-        "verdict" => Quantity::Verdict,
-        o => return Err(err(autobal::Error::invalid("quantity", format!("must be \"margin\" or \"verdict\", got \"{o}\"")))),
+    // the same `map::Args` and `run` as the CLI (a bare number is Ω, as on the CLI)
+    let args = autobal_commands::map::Args {
+        config: autobal_commands::command::ConfigSource::tables(cfg.root.clone(), &cfg.source),
+        x: autobal::paths::Axis::new(x.0, x.1),
+        y: autobal::paths::Axis::new(y.0, y.1),
+        omega: omega.map(|w| format!("{w}")),
+        balls: self::balls(py, balls)?,
+        quantity: self::quantity(py, quantity)?,
+        ..Default::default()
     };
-    let settings = MapSettings { balls: self::balls(py, balls)?, quantity, omega };
-    let (nx, ny) = (x.1.len(), y.1.len());
-    let cells = nx.saturating_mul(ny);
-    if cells > MAX_MAP_CELLS {
-        return Err(err(autobal::Error::TooLarge {
-            what: "x × y".into(),
-            size: cells as u64,
-            limit: MAX_MAP_CELLS as u64,
-            reason: "cells of the map held in memory".into(),
-        }));
+    map_dict(py, args, threads)
+}
+
+/// `autobal map` on any config (as [`figures`] takes it), by the CLI's `map::Args`: the cells
+/// as arrays ([`map_dict`]); `x`, `y` as `(path, values)`; `omega` a speed with its unit or a
+/// bare number (Ω); `route` `"auto"` or `"general"`.
+#[pyfunction]
+#[pyo3(signature = (text, dict, source, sets, x, y, omega=None, balls=None, quantity=None, route=None, threads=None))]
+#[allow(clippy::too_many_arguments)]
+fn map_cells<'py>(
+    py: Python<'py>,
+    text: Option<&str>,
+    dict: Option<&Bound<'_, PyDict>>,
+    source: &str,
+    sets: Vec<(String, Bound<'_, PyAny>)>,
+    x: (String, Vec<f64>),
+    y: (String, Vec<f64>),
+    omega: Option<SpeedArg>,
+    balls: Option<&str>,
+    quantity: Option<&str>,
+    route: Option<&str>,
+    threads: Option<usize>,
+) -> PyResult<Bound<'py, PyDict>> {
+    use autobal_commands::command::Route;
+    let root = table(py, text, dict, source, sets)?;
+    // the options not given: the CLI's defaults (map::Args::default())
+    let mut args = autobal_commands::map::Args {
+        config: autobal_commands::command::ConfigSource::tables(root, source),
+        x: autobal::paths::Axis::new(x.0, x.1),
+        y: autobal::paths::Axis::new(y.0, y.1),
+        omega: omega.map(|w| match w {
+            SpeedArg::Number(w) => format!("{w}"),
+            SpeedArg::Text(t) => t,
+        }),
+        ..Default::default()
+    };
+    if let Some(b) = balls {
+        args.balls = self::balls(py, b)?;
     }
-    let (ax, ay) = (Axis { path: x.0, values: x.1 }, Axis { path: y.0, values: y.1 });
-    let spec = cfg.cfg.spec.clone();
-    let (xs, ys) = (ax.values.clone(), ay.values.clone());
-    let out = interruptible(py, move |cancel| {
-        let work = || {
-            let mut margin = vec![f64::NAN; cells];
-            let mut stable = vec![false; cells];
-            let mut necessary = vec![false; cells];
-            let o = autobal::spatial::map::stability_map_units(&spec, &ax, &ay, &settings, cancel, &mut |j, row| {
-                for (i, c) in row.iter().enumerate() {
-                    margin[j * nx + i] = c.margin;
-                    stable[j * nx + i] = c.stable;
-                    necessary[j * nx + i] = c.necessary;
-                }
-                !cancel.is_cancelled()
-            })?;
-            if !o.complete {
-                return Err(autobal::Error::Interrupted { t: o.rows as f64 / ny.max(1) as f64 });
-            }
-            Ok((margin, stable, necessary))
-        };
-        with_threads(threads, work)
-    })?;
-    let (margin, stable, necessary) = out.map_err(err)?;
-    let d = PyDict::new(py);
-    d.set_item("x", PyArray1::from_vec(py, xs))?;
-    d.set_item("y", PyArray1::from_vec(py, ys))?;
-    d.set_item("margin", PyArray1::from_vec(py, margin).reshape([ny, nx])?)?;
-    d.set_item("stable", PyArray1::from_vec(py, stable).reshape([ny, nx])?)?;
-    d.set_item("necessary", PyArray1::from_vec(py, necessary).reshape([ny, nx])?)?;
-    Ok(d)
+    if let Some(q) = quantity {
+        args.quantity = self::quantity(py, q)?;
+    }
+    match route {
+        None => {}
+        Some("auto") => args.route = Route::Auto,
+        Some("general") => args.route = Route::General,
+        Some(r) => return Err(py_err(py, autobal::Error::invalid("route", format!("must be \"auto\" or \"general\", got \"{r}\"")))),
+    }
+    map_dict(py, args, threads)
 }
 
 /// The points of a grid (`[(path, values), ...]`, first axis fastest), rows `lo..hi`.
@@ -751,12 +793,15 @@ fn figures(
 #[pyfunction]
 #[pyo3(signature = (config, sets, out, quick=false, papers=false))]
 fn report(py: Python<'_>, config: Option<std::path::PathBuf>, sets: Vec<String>, out: std::path::PathBuf, quick: bool, papers: bool) -> PyResult<String> {
-    use autobal_commands::{outfile, report};
-    let kind = if papers || config.is_none() { report::Kind::Papers } else { report::Kind::User };
+    use autobal_commands::command::{Command, ConfigSource, Output};
+    // the same `report::Args` and `run` as the CLI (the folder checked before any section runs)
+    let args = autobal_commands::report::Args { config: ConfigSource::file(config.as_deref(), &sets), out, quick, papers };
     let index = commands_call(py, move |control| {
-        // the folder is created and checked before any section runs, as the CLI does
-        outfile::Outputs::new().inputs(config.as_deref()).output("out", &out.join("index.html")).check()?;
-        report::run(config.as_deref(), &sets, &out, quick, kind, control)
+        let out = args.run(control)?;
+        if let Some(why) = out.stopped() {
+            anyhow::bail!("{why}");
+        }
+        Ok(out.index)
     })?;
     Ok(index.display().to_string())
 }
@@ -785,6 +830,7 @@ fn _autobal(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(spatial_report, m)?)?;
     m.add_function(wrap_pyfunction!(command_json, m)?)?;
     m.add_function(wrap_pyfunction!(stability_map, m)?)?;
+    m.add_function(wrap_pyfunction!(map_cells, m)?)?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(simulate_batch, m)?)?;
     m.add_function(wrap_pyfunction!(spatial_simulate, m)?)?;

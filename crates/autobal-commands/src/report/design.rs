@@ -18,10 +18,11 @@
 //! drag (`planar.m3`, `planar.c_psi`).
 
 use super::{rotor::operating_vlines, Ctx, Section};
-use crate::map::{Axis, MapResult, Quantity};
+use crate::map::{MapResult, Quantity};
 use crate::num::{fmt, RPM_PER_RAD_S};
 use crate::plot::{ColorScale, Series};
 use anyhow::Result;
+use autobal::paths::Axis;
 use autobal::spatial::linear_model::Balls;
 use autobal::spatial::map::{MapSettings, ModelFamily};
 use autobal::spatial::paths::SpatialSpec;
@@ -128,8 +129,8 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
     };
     let (list, skipped) = designs(&cfg.spec, si);
     for d in list {
-        let x = Axis { key: d.path.into(), lo: d.lo, hi: d.hi, n };
-        let y = Axis { key: ykey.into(), lo: 0.02 * w * yk, hi: w * yk, n };
+        let x = Axis::linspace(d.path, d.lo, d.hi, n);
+        let y = Axis::linspace(ykey, 0.02 * w * yk, w * yk, n);
         let r = match map(&cfg.spec, x, y, balls, &ctx.control) {
             Ok(r) => r,
             Err(e) => {
@@ -142,9 +143,11 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
         let mut p = crate::map::plot(&r, d.title);
         if ykey == "speed_rpm" {
             // Re λ in 1/s: units of each column's ω0
-            let k: Vec<f64> = (0..r.x.n)
-                .map(|i| cfg.spec.with(d.path, r.x.value(i)).and_then(|f| f.model()).map_or(f64::NAN, |m| m.scale.map_or(f64::NAN, |s| s.omega0)))
-                .collect();
+            let k: Vec<f64> =
+                r.x.values
+                    .iter()
+                    .map(|&v| cfg.spec.with(d.path, v).and_then(|f| f.model()).map_or(f64::NAN, |m| m.scale.map_or(f64::NAN, |s| s.omega0)))
+                    .collect();
             if let Some(h) = p.heatmap.as_mut() {
                 for row in h.z.iter_mut() {
                     row.iter_mut().zip(&k).for_each(|(v, k)| *v *= k);
@@ -186,8 +189,8 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
 /// The library's map over `x` and the speed `y` (rows not computed when Ctrl-C came: `None`).
 fn map(spec: &SpatialSpec, x: Axis, y: Axis, balls: Balls, control: &autobal::control::Control) -> Result<MapResult> {
     let settings = MapSettings { balls, quantity: Quantity::Margin, omega: None };
-    let mut rows = vec![None; y.n];
-    autobal::spatial::map::stability_map_units(spec, &x.to_library(), &y.to_library(), &settings, control, &mut |j, cells| {
+    let mut rows = vec![None; y.values.len()];
+    autobal::spatial::map::stability_map_units(spec, &x, &y, &settings, control, &mut |j, cells| {
         rows[j] = Some(cells.to_vec());
         true
     })?;
@@ -275,10 +278,10 @@ fn general(ctx: &Ctx) -> Result<Option<Section>> {
         list.clear();
     }
     for d in list {
-        let x = Axis { key: d.path.into(), lo: d.lo, hi: d.hi, n };
-        let y = Axis { key: ykey.into(), lo: 0.02 * omega_max * yk, hi: omega_max * yk, n };
-        let mut rows: Vec<Option<Vec<autobal::rotor_map::GeneralCell>>> = vec![None; y.n];
-        let outcome = general_map(&ctx.root, &x.to_library(), &y.to_library(), None, &ctx.control, &mut |j, cells| {
+        let x = Axis::linspace(d.path, d.lo, d.hi, n);
+        let y = Axis::linspace(ykey, 0.02 * omega_max * yk, omega_max * yk, n);
+        let mut rows: Vec<Option<Vec<autobal::rotor_map::GeneralCell>>> = vec![None; y.values.len()];
+        let outcome = general_map(&ctx.root, &x, &y, None, &ctx.control, &mut |j, cells| {
             rows[j] = Some(cells.to_vec());
             true
         });

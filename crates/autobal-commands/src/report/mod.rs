@@ -31,6 +31,7 @@ mod rotor;
 mod spatial_run;
 mod stability;
 
+use crate::command::{self, ConfigSource};
 use crate::config::{self, Config, PlanarConfig};
 use crate::plot::Plot;
 use anyhow::{bail, Context, Result};
@@ -170,13 +171,81 @@ pub const PAPER_SECTIONS: &[(&str, Builder)] = &[
     ("rolling resistance", friction::build),
 ];
 
-/// Read the config (spatial and/or planar), build every section in parallel under `control`,
-/// write the folder.
-pub fn run(path: Option<&Path>, sets: &[String], dir: &Path, quick: bool, kind: Kind, control: &autobal::control::Control) -> Result<PathBuf> {
+/// `autobal report`'s arguments (`Default`: the CLI's defaults).
+#[derive(Debug, Clone)]
+pub struct Args {
+    /// The config; [`ConfigSource::File`] without a path (no `--config`): the papers' report.
+    pub config: ConfigSource,
+    /// The folder written (created if missing).
+    pub out: PathBuf,
+    /// Shorter runs in time.
+    pub quick: bool,
+    /// The papers' reproductions instead of a report about the config's rotor.
+    pub papers: bool,
+}
+
+impl Default for Args {
+    fn default() -> Self {
+        Args { config: ConfigSource::default(), out: PathBuf::from("autobal-report"), quick: false, papers: false }
+    }
+}
+
+impl Args {
+    /// Which report: the papers' with `papers` or without a config.
+    pub fn kind(&self) -> Kind {
+        match self.papers || matches!(&self.config, ConfigSource::File { path: None, .. }) {
+            true => Kind::Papers,
+            false => Kind::User,
+        }
+    }
+}
+
+/// The report written: its `index.html`, and why it is incomplete where it is.
+pub struct Output {
+    /// The page.
+    pub index: PathBuf,
+    /// Sections and figures on the page.
+    pub sections: usize,
+    pub figures: usize,
+    /// Why the page is incomplete (Ctrl-C), or `None`.
+    pub incomplete: Option<String>,
+}
+
+impl command::Command for Args {
+    const NAME: &'static str = "report";
+    type Output = Output;
+
+    /// Check the folder (created and checked before any section runs), read the config once,
+    /// build every section in parallel under `control`, write the folder (also when
+    /// interrupted: the page says which sections were cut short).
+    fn run(&self, control: &autobal::control::Control) -> Result<Output> {
+        crate::outfile::Outputs::new().inputs(self.config.path()).output("--out", &self.out.join("index.html")).check()?;
+        let ctx = context(&self.config, self.quick, self.kind(), control)?;
+        write(&ctx, &self.out)
+    }
+}
+
+impl command::Output for Output {
+    fn json(&self) -> Result<serde_json::Value> {
+        Ok(
+            serde_json::json!({"index": self.index.display().to_string(), "sections": self.sections, "figures": self.figures, "complete": self.incomplete.is_none()}),
+        )
+    }
+    fn table(&self) -> Result<String> {
+        Ok(format!("report written to {}\n", self.index.display()))
+    }
+    fn stopped(&self) -> Option<String> {
+        self.incomplete.clone()
+    }
+}
+
+/// Read the config (spatial and/or planar, or a linear rotor) once and check its entries: what
+/// the sections analyse.
+fn context(cs: &ConfigSource, quick: bool, kind: Kind, control: &autobal::control::Control) -> Result<Ctx> {
     // a linear rotor config reads its `--set`s and matrix files its own way
-    let (root, source) = crate::linear_rotor::read_set(path, sets)?;
+    let (root, source) = cs.read_any()?;
     let linear = match crate::linear_rotor::is_linear(&root) {
-        true => Some(crate::linear_rotor::from_table(&root, path.and_then(|p| p.parent()).unwrap_or(Path::new(".")))?),
+        true => Some(crate::linear_rotor::from_table(&root, cs.dir())?),
         false => None,
     };
     let spatial = if autobal::config::is_spatial(&root) { Some(config::build(&root, &source)?) } else { None };
@@ -202,10 +271,12 @@ pub fn run(path: Option<&Path>, sets: &[String], dir: &Path, quick: bool, kind: 
     }
     let spatial_text = spatial.as_ref().map(|c| c.text.clone());
     let mut source_line = source.clone();
-    for s in sets {
-        source_line.push_str(&format!(" --set {s}"));
+    if let ConfigSource::File { sets, .. } = cs {
+        for s in sets {
+            source_line.push_str(&format!(" --set {s}"));
+        }
     }
-    let ctx = Ctx {
+    Ok(Ctx {
         kind,
         spatial,
         planar,
@@ -218,12 +289,12 @@ pub fn run(path: Option<&Path>, sets: &[String], dir: &Path, quick: bool, kind: 
         },
         root,
         control: control.clone(),
-    };
-    write(&ctx, dir)
+    })
 }
 
-/// Build every section and write the folder; returns the path of `index.html`.
-pub fn write(ctx: &Ctx, dir: &Path) -> Result<PathBuf> {
+/// Build every section and write the folder (also when interrupted: the page says which
+/// sections were cut short, and the output why).
+pub fn write(ctx: &Ctx, dir: &Path) -> Result<Output> {
     std::fs::create_dir_all(dir).with_context(|| format!("--out {}: cannot create the folder", dir.display()))?;
     let t0 = Instant::now();
     let done = AtomicUsize::new(0);
@@ -290,14 +361,14 @@ pub fn write(ctx: &Ctx, dir: &Path) -> Result<PathBuf> {
         compute_s,
         t0.elapsed().as_secs_f64() - compute_s
     ));
-    if interrupted {
-        bail!(
+    let incomplete = interrupted.then(|| {
+        format!(
             "interrupted: the report in {} is incomplete ({})",
             index.display(),
             if incomplete.is_empty() { "stopped while writing".to_string() } else { incomplete.join(", ") }
-        );
-    }
-    Ok(index)
+        )
+    });
+    Ok(Output { index, sections: sections.len(), figures: figs.len(), incomplete })
 }
 
 /// A section whose analysis needs the linearisation of a stationary state the config's rotor

@@ -14,9 +14,10 @@
 use super::{rotor::ranges_text_in, Ctx, Section};
 use crate::figures::{campbell_plots, margin_plot, omega_limit, with_layout, SpeedUnit};
 use crate::linear;
-use crate::map::{Axis, MapResult, Quantity};
+use crate::map::{MapResult, Quantity};
 use crate::num::fmt;
 use anyhow::Result;
+use autobal::paths::Axis;
 use autobal::spatial::linear_model::Balls;
 use autobal::spatial::map::{stability_map, MapSettings, ModelFamily};
 use autobal::spatial::params::SpatialModel;
@@ -288,21 +289,21 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
         (
             "stability_map_c_sigma",
             "Stability map C̄Σ × speed",
-            Axis { key: "dimensionless.c_sigma".into(), lo: 0.2, hi: 2.0, n: MAP_N },
+            Axis::linspace("dimensionless.c_sigma", 0.2, 2.0, MAP_N),
             |m, v| m.c_sigma = v,
             "in the layout of 003 Fig. 4: over the rotor type C̄Σ (long &lt; 1 &lt; short) and the speed",
         ),
         (
             "stability_map_z_a",
             "Stability map z̄_A × speed",
-            Axis { key: "dimensionless.z_a".into(), lo: -2.0, hi: 2.0, n: MAP_N },
+            Axis::linspace("dimensionless.z_a", -2.0, 2.0, MAP_N),
             |m, v| m.z_a = v,
             "in the layout of 003 Fig. 5a: over the position of the balancer plane z̄_A and the speed",
         ),
         (
             "stability_map_delta_a0",
             "Stability map ΔĀ0 × speed",
-            Axis { key: "dimensionless.delta_a".into(), lo: 0.0, hi: 0.24, n: MAP_N },
+            Axis::linspace("dimensionless.delta_a", 0.0, 0.24, MAP_N),
             |m, v| {
                 m.anisotropy.used = v;
                 m.delta_a0 = v;
@@ -311,7 +312,7 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
         ),
     ];
     for (stem, title, x, set, what) in maps {
-        let y = Axis { key: "omega".into(), lo: 0.02 * w, hi: w, n: MAP_N };
+        let y = Axis::linspace("omega", 0.02 * w, w, MAP_N);
         let r = map(m, x, y, set, balls, &ctx.control)?;
         let complete = r.rows.iter().all(|r| r.is_some());
         s.complete &= complete;
@@ -375,10 +376,10 @@ impl ModelFamily for Varied<'_> {
 /// A stability map over one model parameter (`set`) and the speed, by the library's map
 /// ([`autobal::spatial::map::stability_map`]); rows not computed when Ctrl-C came are `None`.
 fn map(m: &SpatialModel, x: Axis, y: Axis, set: fn(&mut SpatialModel, f64), balls: Balls, control: &autobal::control::Control) -> Result<MapResult> {
-    let family = Varied { model: m, path: &x.key, set, value: None };
+    let family = Varied { model: m, path: &x.path, set, value: None };
     let settings = MapSettings { balls, quantity: Quantity::Margin, omega: None };
-    let mut rows = vec![None; y.n];
-    stability_map(&family, &x.to_library(), &y.to_library(), &settings, control, &mut |j, cells| {
+    let mut rows = vec![None; y.values.len()];
+    stability_map(&family, &x, &y, &settings, control, &mut |j, cells| {
         rows[j] = Some(cells.to_vec());
         true
     })?;

@@ -412,9 +412,11 @@ def run(command: str, config: ConfigLike = None, set: Optional[Mapping[str, Any]
       :meth:`SpatialModel.basins`);
     - ``sweep`` (``x``, ``y``, ``axis`` (a list), ``shard`` (``"K/N"``), ``threads``): the JSON
       of the sweep (no files are written), of either rotor;
-    - ``map`` (``x``, ``y``, ``omega``, ``balls``, ``quantity``, ``threads``): the CLI writes
-      CSV and figures, no JSON; this returns :meth:`SpatialModel.stability_map`'s arrays, the
-      cells of the CLI's CSV.
+    - ``map`` (``x``, ``y``, ``omega``, ``balls``, ``quantity``, ``route``, ``threads``) on any
+      config (a planar one takes the general route, as on the CLI): the CLI writes CSV and
+      figures; this returns the cells of its CSV as arrays ``len(y) × len(x)``: ``x``, ``y``,
+      ``margin``, ``stable`` and ``necessary`` (closed form) or ``verdict`` and
+      ``family_dimension`` (general route, with ``route: "general"``).
 
     >>> run("critical", set={"dimensionless.delta_a": 0.1})["critical_speeds"][3]["omega"] > 3.79
     True
@@ -477,7 +479,17 @@ def run(command: str, config: ConfigLike = None, set: Optional[Mapping[str, Any]
     if command == "map":
         if "x" not in options or "y" not in options:
             raise _invalid("x", "required, with y (e.g. x='dimensionless.z_a=-2:2:41', y='omega=0.05:4.5:41')")
-        return SpatialModel(config, set=set).stability_map(options.pop("x"), options.pop("y"), **options)
+        (xp, xv), (yp, yv) = _axes([options.pop("x"), options.pop("y")])
+        kw = {k: options.pop(k) for k in ("omega", "balls", "quantity", "route", "threads") if k in options}
+        _no_more(command, options)
+        # the config as the CLI reads it (any rotor: a planar or two-plane config takes the
+        # general route, as on the CLI), the command's own defaults and checks (map::Args)
+        text, table, source = _read(config, _autobal.DEFAULT_SPATIAL, SpatialModel._DEFAULT_NAME)
+        out = _autobal.map_cells(text, table, source, list((set or {}).items()), (xp, xv), (yp, yv), **kw)
+        if "verdict" in out:
+            out["verdict"] = np.array(out["verdict"], dtype=object)
+        out["x_path"], out["y_path"] = xp, yp
+        return out
     raise InvalidParameter(
         f"command: \"{command}\" is not a command of autobal.run (inertia, critical, ranges, stability, campbell, simulate, sweep, basins, map); "
         "report and merge write files: use the CLI"
@@ -505,7 +517,8 @@ def analyse(command: str, config: ConfigLike = None, set: Optional[Mapping[str, 
     Plotly figures (those the CLI writes and the report draws, from the same description;
     ``stability``, ``campbell``, ``map`` with text axes, ``simulate``), ``.to_pandas()`` its
     table, and Jupyter shows a summary table and the main figure. Options as for :func:`run`;
-    ``campbell`` also takes ``harmonics`` (its figures' excitation lines). ``analyse("report",
+    ``campbell`` also takes ``harmonics`` (its figures' excitation lines), ``map``
+    ``boundary=True`` (the traced boundary on its figure, as the CLI's ``--boundary``). ``analyse("report",
     config, out=..., quick=..., papers=...)`` is :func:`report`.
 
     The figures are computed on the first ``.plot()`` (for ``simulate`` the run is repeated:
@@ -533,6 +546,9 @@ def analyse(command: str, config: ConfigLike = None, set: Optional[Mapping[str, 
         _no_more(command, {k: v for k, v in options.items() if k != "n"})
         arrays, summary = _autobal.spatial_basins(SpatialModel(config, set=set)._cfg, options.get("n", 16))
         result = json.loads(summary)
+    elif command == "map":
+        # `boundary` draws the traced boundary on the figure; the cells are the same
+        result = run(command, config, set, **{k: v for k, v in options.items() if k != "boundary"})
     else:
         result = run(command, config, set, **options)
     planar_default = command in ("simulate", "sweep")

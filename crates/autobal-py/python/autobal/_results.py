@@ -34,7 +34,7 @@ COMMANDS_WITH_FIGURES: List[str] = list(_autobal.COMMANDS_WITH_FIGURES)
 _FIGURE_OPTIONS: Dict[str, Tuple[str, ...]] = {
     "stability": ("omega_max", "samples", "balls", "route"),
     "campbell": ("omega_max", "points", "balls", "harmonics", "route"),
-    "map": ("x", "y", "omega", "balls", "quantity"),
+    "map": ("x", "y", "omega", "balls", "quantity", "boundary", "route"),
     "simulate": ("dt",),
 }
 
@@ -190,15 +190,13 @@ class Result:
             import numpy as np
 
             xs, ys = np.meshgrid(r["x"], r["y"])
-            return pd.DataFrame(
-                {
-                    r["x_path"]: xs.ravel(),
-                    r["y_path"]: ys.ravel(),
-                    "max_real_part": r["margin"].ravel(),
-                    "stable": r["stable"].ravel(),
-                    "necessary": r["necessary"].ravel(),
-                }
-            )
+            cols = {r["x_path"]: xs.ravel(), r["y_path"]: ys.ravel(), "max_real_part": r["margin"].ravel()}
+            if "necessary" in r:
+                cols.update(stable=r["stable"].ravel(), necessary=r["necessary"].ravel())
+            else:
+                # the general route's CSV columns
+                cols.update(verdict=r["verdict"].ravel(), family_dimension=r["family_dimension"].ravel())
+            return pd.DataFrame(cols)
         if c == "simulate" and self.arrays is not None:
             data = {k: v for k, v in self.arrays.items() if k != "psi"}
             psi = self.arrays["psi"]
