@@ -23,6 +23,7 @@ __all__ = [
     "simulate",
     "simulate_batch",
     "spatial_simulate",
+    "simulate_command",
     "spatial_basins",
     "sweep_report",
     "check_batch",
@@ -63,6 +64,9 @@ def command_json(command: str, text: Optional[str], dict: Optional[Mapping[str, 
 def stability_map(cfg: SpatialConfig, x: Tuple[str, Sequence[float]], y: Tuple[str, Sequence[float]], omega: Optional[float] = None, balls: str = "free", quantity: str = "margin", threads: Optional[int] = None) -> Dict[str, npt.NDArray[Any]]: ...
 def simulate(cfg: PlanarConfig, dt: Optional[float] = None) -> Tuple[Dict[str, npt.NDArray[np.float64]], str]: ...
 def spatial_simulate(cfg: SpatialConfig, dt: Optional[float] = None) -> Tuple[Dict[str, npt.NDArray[np.float64]], str]: ...
+# `autobal simulate` on any config (planar, spatial, linear rotor): the CSV's columns (a planar or
+# spatial run's psi_1 ... as one array `psi`) and the summary JSON; columns=False: no columns
+def simulate_command(text: Optional[str], dict: Optional[Mapping[str, Any]], source: str, sets: Sequence[Tuple[str, Any]], dt: Optional[float] = None, columns: bool = True) -> Tuple[Dict[str, npt.NDArray[np.float64]], str]: ...
 # arrays: psi_1, psi_2, balanced_runs (bool per run), residual_unbalance, final_amplitude; the JSON's
 # `balanced` is the count of balanced runs
 def spatial_basins(cfg: SpatialConfig, n: int = 16) -> Tuple[Dict[str, npt.NDArray[Any]], str]: ...
