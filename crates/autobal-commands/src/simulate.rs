@@ -497,7 +497,10 @@ mod tests {
         assert!(msg.starts_with("--dt: "), "{msg}");
         assert!(matches!(e.downcast_ref::<autobal::Error>(), Some(autobal::Error::InvalidParameter { field, .. }) if field == "--dt"));
         let shaft = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/linear_rotor_shaft.toml");
-        let e = Args { config: ConfigSource::file(Some(&shaft), &[]), check_tolerance: true, files: out, ..Default::default() }.run(&Control::none()).err().unwrap();
+        let e = Args { config: ConfigSource::file(Some(&shaft), &[]), check_tolerance: true, files: out, ..Default::default() }
+            .run(&Control::none())
+            .err()
+            .unwrap();
         assert!(format!("{e:#}").starts_with("--check-tolerance: not yet"), "{e:#}");
         assert!(std::fs::read_dir(&d).unwrap().next().is_none(), "no file made");
         let _ = std::fs::remove_dir_all(&d);
