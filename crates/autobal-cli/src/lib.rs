@@ -4,12 +4,12 @@
 
 use autobal_commands::command::{Command as _, ConfigSource, Output, Route};
 use autobal_commands::{
-    basins, campbell, config, critical, inertia, linear, linear_rotor, map, merge, outfile, parquet, ranges, report, sim, spatial_sim, stability, sweep, term,
+    basins, campbell, critical, export_model, inertia, linear, map, merge, outfile, parquet, ranges, report, simulate, stability, sweep, term,
 };
 
 use anyhow::Result;
 use autobal::control::Control;
-use autobal_commands::term::{emit, Format};
+use autobal_commands::term::Format;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
 
@@ -434,17 +434,10 @@ fn run(cli: Cli, control: &Control) -> Result<()> {
             run_map(&args, common.config.as_deref(), &out, threads, control)
         }
         Command::Simulate { config, set, dt, out, parquet, format, check_tolerance } => {
-            run_simulate(config, set, dt, out, parquet, format, check_tolerance, control)
+            let files = Some(simulate::Files { out, parquet });
+            run_simulate(&simulate::Args { config: ConfigSource::file(config.as_deref(), &set), dt, check_tolerance, files, columns: false }, format, control)
         }
-        Command::ExportModel { common, out, stem } => {
-            let rotor = match common.config.as_deref() {
-                // the model the commands run: reduced where the config asks for it
-                Some(p) => linear_rotor::model(&linear_rotor::load(p, &common.set)?)?.0,
-                None => linear_rotor::preset()?,
-            };
-            let paths = linear_rotor::export_model(&rotor, &out, &stem)?;
-            term::print(&format!("wrote {}\n", paths.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")))
-        }
+        Command::ExportModel { common, out, stem } => show(&export_model::Args { config: common.source(), out, stem }.run(control)?, Format::Table),
         Command::Sweep(a) => run_sweep(a, control),
         Command::Merge(a) => {
             let out = merge::Args { shards: a.shards, out: a.out, parquet: a.parquet }.run(control)?;
@@ -613,228 +606,25 @@ fn run_map(args: &map::Args, config: Option<&std::path::Path>, out: &std::path::
     show(&out, Format::Table)
 }
 
-/// `simulate --out`: `file.csv` is written as given; any other name is a stem (as for sweep and
-/// map), `STEM.csv`; a folder (`runs/`) gets `runs/simulation.csv`. Returns the CSV's path and
-/// the stem of the files beside it.
-fn csv_and_stem(out: &std::path::Path) -> (PathBuf, PathBuf) {
-    let stem = term::out_stem(&outfile::resolve(out, "simulation.csv"), &["csv", "parquet", "svg"]);
-    (term::with_suffix(&stem, "csv"), stem)
-}
-
-/// `simulate`'s outputs (the CSV, the Parquet file, the figures), checked before the run.
-fn simulation_outputs(config: Option<&std::path::Path>, out: &std::path::Path, parquet: bool) -> Result<(PathBuf, PathBuf)> {
-    let (csv, stem) = csv_and_stem(out);
-    let mut o = outfile::Outputs::new();
-    o.inputs(config).output("--out", &csv);
-    if parquet {
-        o.output("--parquet", &term::with_suffix(&stem, "parquet"));
+/// `simulate`: the run planned (the config read, every option and output checked), its notes,
+/// the run under a progress bar, the result, the files written; a run stopped early (Ctrl-C)
+/// keeps its rows and is then an error naming the CSV.
+fn run_simulate(args: &simulate::Args, format: Format, control: &Control) -> Result<()> {
+    let plan = args.plan()?;
+    for n in plan.notes() {
+        term::note(n);
     }
-    for p in sim::plot_paths(&stem) {
-        o.output("--out", &p);
+    let (shown, bar) = term::progress_bar(control);
+    let out = plan.run(&shown);
+    if let Some(b) = bar {
+        b.finish_and_clear();
     }
-    o.check()?;
-    Ok((csv, stem))
-}
-
-#[allow(clippy::too_many_arguments)]
-fn run_simulate(
-    config: Option<PathBuf>,
-    set: Vec<String>,
-    dt: Option<f64>,
-    out: PathBuf,
-    parquet: bool,
-    format: Format,
-    check_tolerance: bool,
-    control: &Control,
-) -> Result<()> {
-    let (mut root, source) = config::read_with_default(config.as_deref(), config::DEFAULT_PLANAR, "embedded default (examples/planar.toml)")?;
-    let linear = linear_rotor::is_linear(&root);
-    for s in &set {
-        if linear {
-            linear_rotor::apply_set(&mut root, s)?;
-        } else {
-            config::apply_set(&mut root, s)?;
-        }
+    let out = out?;
+    let shown = show(&out, format);
+    for n in out.notes() {
+        term::note(&n);
     }
-    if linear && check_tolerance {
-        anyhow::bail!("--check-tolerance: not yet for a linear rotor config");
-    }
-    if linear {
-        return run_linear_rotor_simulate(&root, config.as_deref(), dt, out, parquet, format, control);
-    }
-    if autobal::config::is_spatial(&root) {
-        return run_spatial(&root, &source, config.as_deref(), dt, out, parquet, format, check_tolerance, control);
-    }
-    let mut cfg = config::build_planar(&root, &source)?;
-    config::check_entries(&root, "simulate", &[config::Model::Planar])?;
-    if let Some(d) = dt {
-        cfg.settings.dt = d;
-        cfg.settings.validate(&cfg.rotor).map_err(|e| anyhow::anyhow!("--dt: {e}"))?;
-    }
-    let (out, stem) = simulation_outputs(config.as_deref(), &out, parquet)?;
-    let mut w = outfile::Staged::create("--out", &out)?;
-    let mut table = match parquet {
-        true => Some(parquet::Table::create(&term::with_suffix(&stem, "parquet"), &sim::sample_columns(cfg.rotor.n), false)?),
-        false => None,
-    };
-    let progress = std::io::IsTerminal::is_terminal(&std::io::stderr());
-    let (summary, env, wall) = sim::run_to_csv(&cfg, &mut w, table.as_mut(), progress, control)?;
-    autobal::limits::check_finite("the summary", &summary)?;
-    // complete rows (also when stopped early): renamed into place
-    let out = w.commit()?;
-    if let Some(t) = table {
-        term::note(&format!("wrote {}", t.finish()?.display()));
-    }
-    let plots = sim::write_plots(&cfg, &env, &stem, "Passage")?;
-    let (mut json, mut table) = (sim::summary_json(&cfg, &summary, wall), sim::summary_table(&cfg, &summary, wall));
-    if check_tolerance && summary.stopped.is_none() {
-        let c = autobal_commands::tolerance::planar(&cfg, &summary, control)?;
-        add_tolerance_check(&mut json, &mut table, &c);
-    }
-    emit(format, json, table)?;
-    term::note(&format!(
-        "wrote {} and {} plots ({})",
-        out.display(),
-        plots.len(),
-        plots.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")
-    ));
-    for w in &summary.warnings {
-        term::note(&format!("warning: {w}"));
-    }
-    if let Some(st) = summary.stopped {
-        anyhow::bail!("{st}: the samples up to then are kept in {}", out.display());
-    }
-    Ok(())
-}
-
-/// `--check-tolerance`'s result into the summary: `tolerance_check` in the JSON, a line in the
-/// table.
-fn add_tolerance_check(json: &mut serde_json::Value, table: &mut String, c: &autobal_commands::tolerance::Check) {
-    if let Some(o) = json.as_object_mut() {
-        o.insert("tolerance_check".into(), c.json());
-    }
-    if !table.ends_with('\n') {
-        table.push('\n');
-    }
-    table.push_str(&c.line());
-    table.push('\n');
-}
-
-#[allow(clippy::too_many_arguments)]
-fn run_spatial(
-    root: &toml::Table,
-    source: &str,
-    config: Option<&std::path::Path>,
-    dt: Option<f64>,
-    out: PathBuf,
-    parquet: bool,
-    format: Format,
-    check_tolerance: bool,
-    control: &Control,
-) -> Result<()> {
-    let mut sim = spatial_sim::build(root, source)?;
-    config::check_entries(root, "simulate", &[config::Model::Spatial])?;
-    if sim.default_drive {
-        let (w_end, _) = sim.drive.kinematics(sim.settings.t_end);
-        let unit = if sim.config.dimensional { " rad/s" } else { " (Ω)" };
-        term::note(&format!(
-            "note: the config has no [drive]: running up from rest at constant acceleration through the critical speeds to {}{unit} in {} revolutions (t_end = {}{}); give [drive] to choose the run",
-            autobal::error::fmt_num(w_end),
-            autobal::config::DEFAULT_RUN_UP_REVOLUTIONS,
-            autobal::error::fmt_num(sim.settings.t_end),
-            if sim.config.dimensional { " s" } else { " τ" }
-        ));
-    }
-    if let Some(d) = dt {
-        sim.settings.dt = d;
-        sim.settings.validate().map_err(|e| anyhow::anyhow!("--dt: {e}"))?;
-    }
-    let (out, stem) = simulation_outputs(config, &out, parquet)?;
-    let mut w = outfile::Staged::create("--out", &out)?;
-    let mut table = match parquet {
-        true => Some(parquet::Table::create(&term::with_suffix(&stem, "parquet"), &spatial_sim::columns(&sim), false)?),
-        false => None,
-    };
-    let progress = std::io::IsTerminal::is_terminal(&std::io::stderr());
-    let (summary, kept, wall) = spatial_sim::run_to_files(&sim, &mut w, table.as_mut(), progress, control)?;
-    // complete rows (also when stopped early): renamed into place
-    let out = w.commit()?;
-    if let Some(t) = table {
-        term::note(&format!("wrote {}", t.finish()?.display()));
-    }
-    let plots = spatial_sim::write_plots(&sim, &kept, &stem, "Spatial rotor")?;
-    let (mut json, mut table) = (spatial_sim::summary_json(&sim, &summary, wall), spatial_sim::summary_table(&sim, &summary, wall));
-    if check_tolerance && summary.stopped.is_none() {
-        let c = autobal_commands::tolerance::spatial(&sim, &summary, control)?;
-        add_tolerance_check(&mut json, &mut table, &c);
-    }
-    emit(format, json, table)?;
-    eprintln!("wrote {} and {} plots ({})", out.display(), plots.len(), plots.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", "));
-    if let Some(st) = summary.stopped {
-        anyhow::bail!("{st}: the samples up to then are kept in {}", out.display());
-    }
-    Ok(())
-}
-
-/// `simulate` on a linear rotor config ([`linear_rotor`]).
-fn run_linear_rotor_simulate(
-    root: &toml::Table,
-    config: Option<&std::path::Path>,
-    dt: Option<f64>,
-    out: PathBuf,
-    parquet: bool,
-    format: Format,
-    control: &Control,
-) -> Result<()> {
-    let dir = config.and_then(|p| p.parent()).unwrap_or(std::path::Path::new("."));
-    let cfg = linear_rotor::from_table(root, dir)?;
-    let omega_max = linear_rotor::default_omega_max(&cfg)?;
-    let setup = linear_rotor::setup(&cfg, omega_max, dt)?;
-    // every output checked before the run: the CSV, the Parquet file, the figures
-    let (csv, stem) = csv_and_stem(&out);
-    let mut o = outfile::Outputs::new();
-    o.inputs(config).output("--out", &csv);
-    if parquet {
-        o.output("--parquet", &term::with_suffix(&stem, "parquet"));
-    }
-    for p in linear_rotor::plot_paths(&stem) {
-        o.output("--out", &p);
-    }
-    o.check()?;
-    if setup.default_drive {
-        term::note(&format!(
-            "note: the config has no [drive]: running up from rest at constant acceleration to {} rad/s in 1000 revolutions; give [drive] to choose the run",
-            autobal::error::fmt_num(omega_max)
-        ));
-    }
-    let mut w = outfile::Staged::create("--out", &csv)?;
-    let mut table = match parquet {
-        true => Some(parquet::Table::create(&term::with_suffix(&stem, "parquet"), &setup.columns, false)?),
-        false => None,
-    };
-    let run = linear_rotor::run_to_files(&setup, &mut w, table.as_mut(), control)?;
-    autobal::limits::check_finite("the summary", &run.summary)?;
-    // complete rows (also when stopped early): renamed into place
-    let path = w.commit()?;
-    if let Some(t) = table {
-        term::note(&format!("wrote {}", t.finish()?.display()));
-    }
-    let plots = linear_rotor::write_plots(&setup, &run.kept, &stem)?;
-    emit(
-        format,
-        linear_rotor::simulate_json(&cfg, &run.summary, &setup.reduction, run.wall),
-        linear_rotor::simulate_table(&run.summary, &setup.reduction, run.wall),
-    )?;
-    term::note(&format!(
-        "wrote {} and {} plots ({})",
-        path.display(),
-        plots.len(),
-        plots.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")
-    ));
-    if let Some(st) = run.summary.stopped {
-        anyhow::bail!("{st}: the samples up to then are kept in {}", path.display());
-    }
-    Ok(())
+    shown
 }
 
 /// `--threads`: the global pool's size (at least 1; default all cores).

@@ -10,7 +10,8 @@
 //! A command is one module with its `Args` (a struct, `Default` giving the CLI's defaults),
 //! `impl` [`Command`] for it, and its `Output` (`impl` [`Output`]): [`inertia`](crate::inertia),
 //! [`critical`](crate::critical), [`ranges`](crate::ranges), [`stability`](crate::stability),
-//! [`campbell`](crate::campbell), [`basins`](crate::basins). The front ends add only what is theirs: the CLI its flags,
+//! [`campbell`](crate::campbell), [`basins`](crate::basins), [`simulate`](crate::simulate),
+//! [`export_model`](crate::export_model). The front ends add only what is theirs: the CLI its flags,
 //! files and terminal, Python its keyword arguments and NumPy. Options are named as the CLI's
 //! flags (`--omega-max`) in errors; Python shows them as its keywords (`omega_max`).
 

@@ -19,7 +19,6 @@
 use crate::command::{Command as _, ConfigSource, Output as _};
 use crate::config;
 use crate::map::Quantity;
-use crate::plot::Plot;
 use anyhow::{bail, Result};
 use autobal::control::Control;
 use autobal::spatial::linear_model::Balls;
@@ -89,7 +88,6 @@ pub fn figures_json(command: &str, root: &Table, source: &str, o: &Options, cont
 
 /// The figures of `command` on the config `root`, computed as the CLI computes them.
 pub fn figures(command: &str, root: &Table, source: &str, o: &Options, control: &Control) -> Result<Vec<Figure>> {
-    let fig = |id: &str, plot: Plot| Figure { id: id.to_string(), plot };
     match command {
         // the commands' own outputs: the figures the CLI writes, by construction
         "stability" => {
@@ -151,32 +149,12 @@ pub fn figures(command: &str, root: &Table, source: &str, o: &Options, control: 
             out.figures()
         }
         "simulate" => {
-            let stopped = |s: &Option<String>| -> Result<()> {
-                match s {
-                    Some(st) => bail!("{st}"),
-                    None => Ok(()),
-                }
-            };
-            let plots = if autobal::config::is_spatial(root) {
-                let mut sim = crate::spatial_sim::build(root, source)?;
-                if let Some(d) = o.dt {
-                    sim.settings.dt = d;
-                    sim.settings.validate().map_err(|e| anyhow::anyhow!("dt: {e}"))?;
-                }
-                let (summary, kept, _) = crate::spatial_sim::run_to_csv(&sim, &mut std::io::sink(), false, control)?;
-                stopped(&summary.stopped)?;
-                crate::spatial_sim::plots(&sim, &kept, "Spatial rotor")
-            } else {
-                let mut cfg = config::build_planar(root, source)?;
-                if let Some(d) = o.dt {
-                    cfg.settings.dt = d;
-                    cfg.settings.validate(&cfg.rotor).map_err(|e| anyhow::anyhow!("dt: {e}"))?;
-                }
-                let (summary, env, _) = crate::sim::run_to_csv(&cfg, &mut std::io::sink(), None, false, control)?;
-                stopped(&summary.stopped)?;
-                crate::sim::plots(&cfg, &env, "Passage")
-            };
-            Ok(plots.into_iter().map(|(suffix, p)| fig(&format!("simulation_{suffix}"), p)).collect())
+            // the command's own figures (`simulate::Output::figures`), of a run without files
+            let out = crate::simulate::Args { config: ConfigSource::tables(root.clone(), source), dt: o.dt, ..Default::default() }.run(control)?;
+            if let Some(why) = out.stopped() {
+                bail!("{why}");
+            }
+            out.figures()
         }
         "report" => {
             let kind = if o.papers.unwrap_or(false) { crate::report::Kind::Papers } else { crate::report::Kind::User };

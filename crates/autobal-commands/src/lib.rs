@@ -6,7 +6,7 @@
 //! cannot differ. A command is one module: `Args` (its options with their defaults and checks)
 //! `-> run(&Args, &Control) -> Output` (typed, computed once; its JSON, table and figures), the
 //! pattern of [`command`]: [`inertia`], [`critical`], [`ranges`], [`stability`], [`campbell`],
-//! [`basins`], [`map`], [`sweep`], [`merge`], [`report`].
+//! [`basins`], [`map`], [`sweep`], [`merge`], [`report`], [`simulate`], [`export_model`].
 //! Beside them: reading a config and `--set` ([`config`]), the computations and tables the
 //! commands share ([`linear`] for paper 000's model, [`general`] for the general route, [`sim`]
 //! and [`spatial_sim`] for runs in time, [`map`], [`sweep`]), the output files ([`outfile`]: checked
@@ -25,6 +25,7 @@ pub mod campbell;
 pub mod command;
 pub mod config;
 pub mod critical;
+pub mod export_model;
 pub mod figures;
 pub mod figures_api;
 #[cfg(test)]
@@ -44,6 +45,7 @@ pub mod plot;
 pub mod ranges;
 pub mod report;
 pub mod sim;
+pub mod simulate;
 pub mod spatial_sim;
 pub mod stability;
 pub mod sweep;

@@ -5,7 +5,6 @@
 //! matrix files, [`autobal::linear_rotor::config::export`]).
 
 use crate::config;
-use crate::num::Csv;
 use crate::outfile;
 use crate::plot::{Plot, Series, Shade, PALETTE};
 use anyhow::{anyhow, bail, Result};
@@ -288,10 +287,6 @@ pub fn row(s: &RunSample) -> Vec<f64> {
     v
 }
 
-fn csv_line(row: &[f64]) -> String {
-    row.iter().map(|v| Csv(*v).to_string()).collect::<Vec<_>>().join(",")
-}
-
 /// A run of `simulate` set up from a config: the model run (the config's rotor, or its
 /// reduction), the drive, the solver settings.
 pub struct RunSetup {
@@ -397,18 +392,13 @@ pub fn run(setup: &RunSetup, control: &autobal::control::Control, mut sink: impl
 pub fn run_to_files(
     setup: &RunSetup,
     csv: &mut dyn Write,
-    mut parquet: Option<&mut crate::parquet::Table>,
+    parquet: Option<&mut crate::parquet::Table>,
     control: &autobal::control::Control,
 ) -> Result<RunOutput> {
-    writeln!(csv, "{}", setup.columns.join(","))?;
-    let out = run(setup, control, |r| {
-        writeln!(csv, "{}", csv_line(r)).map_err(|e| anyhow!("--out: cannot write: {e}"))?;
-        if let Some(t) = parquet.as_deref_mut() {
-            t.push(r)?;
-        }
-        Ok(())
-    })?;
-    csv.flush().map_err(|e| anyhow!("--out: cannot write: {e}"))?;
+    let mut sink = crate::sim::RowSink::new(Some(csv), parquet, None);
+    sink.header(&setup.columns)?;
+    let out = run(setup, control, |r| sink.push(r).map_err(|e| anyhow!("--out: cannot write: {e}")))?;
+    sink.finish().map_err(|e| anyhow!("--out: cannot write: {e}"))?;
     Ok(out)
 }
 

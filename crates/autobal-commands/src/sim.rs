@@ -1,4 +1,6 @@
-//! `autobal simulate` and `autobal sweep`: the nonlinear passage through resonance (paper 004).
+//! `autobal simulate` of paper 004's planar rotor (the nonlinear passage through resonance: the
+//! run, its rows, its summary and figures; the command itself: [`crate::simulate`]), also used by
+//! `autobal sweep` and the report.
 
 use crate::config::PlanarConfig;
 use crate::plot::{Plot, Series, PALETTE};
@@ -57,14 +59,74 @@ pub fn sample_columns(n: usize) -> Vec<String> {
 /// Rows handed to the writer thread at a time (each `5 + n` floats).
 const BATCH_ROWS: usize = 256;
 
+/// Where a run's rows go, one row (the values of the run's columns) at a time: CSV lines (one
+/// reused buffer, the floats as their shortest round-trip text, [`crate::num::Csv`]), Parquet
+/// rows, and columns kept in memory (Python's arrays), each where given. The CSV is flushed
+/// every 1000 rows and by [`RowSink::finish`].
+pub struct RowSink<'a, W: Write + ?Sized> {
+    csv: Option<&'a mut W>,
+    parquet: Option<&'a mut crate::parquet::Table>,
+    columns: Option<&'a mut Vec<Vec<f64>>>,
+    line: Vec<u8>,
+    count: u64,
+}
+
+impl<'a, W: Write + ?Sized> RowSink<'a, W> {
+    /// A sink into any of a CSV writer, a Parquet table and columns (one `Vec` per column,
+    /// sized by the caller).
+    pub fn new(csv: Option<&'a mut W>, parquet: Option<&'a mut crate::parquet::Table>, columns: Option<&'a mut Vec<Vec<f64>>>) -> Self {
+        RowSink { csv, parquet, columns, line: vec![], count: 0 }
+    }
+
+    /// The CSV's header line (the column names joined by commas).
+    pub fn header(&mut self, names: &[String]) -> Result<()> {
+        if let Some(csv) = self.csv.as_deref_mut() {
+            writeln!(csv, "{}", names.join(","))?;
+        }
+        Ok(())
+    }
+
+    /// One row.
+    pub fn push(&mut self, row: &[f64]) -> Result<()> {
+        if let Some(csv) = self.csv.as_deref_mut() {
+            self.line.clear();
+            for (i, v) in row.iter().enumerate() {
+                if i > 0 {
+                    self.line.push(b',');
+                }
+                crate::num::Csv(*v).push_to(&mut self.line);
+            }
+            self.line.push(b'\n');
+            csv.write_all(&self.line)?;
+            self.count += 1;
+            if self.count.is_multiple_of(1000) {
+                csv.flush()?;
+            }
+        }
+        if let Some(t) = self.parquet.as_deref_mut() {
+            t.push(row)?;
+        }
+        if let Some(c) = self.columns.as_deref_mut() {
+            for (c, v) in c.iter_mut().zip(row) {
+                c.push(*v);
+            }
+        }
+        Ok(())
+    }
+
+    /// Flush the CSV.
+    pub fn finish(&mut self) -> Result<()> {
+        if let Some(csv) = self.csv.as_deref_mut() {
+            csv.flush()?;
+        }
+        Ok(())
+    }
+}
+
 /// Run one simulation, writing every sample to `csv` (flushed as it goes) and to `parquet` if
-/// given, and keeping an envelope for the plots. Returns the summary, the envelope and the wall time.
-///
-/// The rows are formatted and written on a second thread while the integration goes on (the
-/// samples travel in batches of `BATCH_ROWS` (256)): the CSV costs the run's thread nothing but the
-/// copy of the floats. When the run stops (Ctrl-C, a budget) every row sampled so far is still
-/// written before this returns; a write error stops the run (the next batch finds the writer
-/// gone) and is returned.
+/// given, and keeping an envelope for the plots ([`run_rows`] into a [`RowSink`]; `progress`:
+/// a bar on standard error when it is a terminal). Returns the summary, the envelope and the
+/// wall time.
 pub fn run_to_csv(
     cfg: &PlanarConfig,
     csv: &mut (dyn Write + Send),
@@ -72,22 +134,42 @@ pub fn run_to_csv(
     progress: bool,
     control: &Control,
 ) -> Result<(Summary, Envelope, f64)> {
-    writeln!(csv, "{}", sample_columns(cfg.rotor.n).join(","))?;
+    let (shown, bar) = if progress { crate::term::progress_bar(control) } else { (control.clone(), None) };
+    let mut sink = RowSink::new(Some(csv), parquet, None);
+    sink.header(&sample_columns(cfg.rotor.n))?;
+    let out = run_rows(cfg, &mut |r| sink.push(r), &shown);
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
+    let out = out?;
+    sink.finish().map_err(|e| anyhow::anyhow!("--out: cannot write: {e:#}"))?;
+    Ok(out)
+}
+
+/// Run one simulation, handing every sample's row (`t, omega, x, y, amplitude, psi_1 … psi_n`,
+/// [`sample_columns`]) to `rows`, and keeping an envelope for the plots. Returns the summary,
+/// the envelope and the wall time. Progress (per mille of `t_end`) goes to `control`'s observer.
+///
+/// `rows` runs on a second thread while the integration goes on (the samples travel in batches
+/// of `BATCH_ROWS` (256)): formatting and writing the CSV costs the run's thread nothing but
+/// the copy of the floats. When the run stops (Ctrl-C, a budget) every row sampled so far is
+/// still handed over before this returns; an error of `rows` stops the run (the next batch
+/// finds the writer gone) and is returned as `--out: cannot write: ...`.
+pub fn run_rows(cfg: &PlanarConfig, rows: &mut (dyn FnMut(&[f64]) -> Result<()> + Send), control: &Control) -> Result<(Summary, Envelope, f64)> {
     let width = 5 + cfg.rotor.n;
     let expected = (cfg.settings.t_end / cfg.settings.dt) as usize + 1;
     let mut env = Envelope::new(expected, 6000);
-    let bar = progress.then(|| {
-        let b = indicatif::ProgressBar::new(1000);
-        b.set_style(
-            indicatif::ProgressStyle::with_template("{bar:40} simulated {msg}  {elapsed_precise} (eta {eta})")
-                .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-        );
-        b
-    });
     let mut count = 0u64;
     let (tx, rx) = std::sync::mpsc::sync_channel::<Vec<f64>>(16);
     let (summary, wall, written) = std::thread::scope(|scope| {
-        let writer = scope.spawn(move || write_rows(rx, csv, parquet, width));
+        let writer = scope.spawn(move || -> Result<()> {
+            for batch in rx {
+                for row in batch.chunks_exact(width) {
+                    rows(row)?;
+                }
+            }
+            Ok(())
+        });
         let mut batch: Vec<f64> = Vec::with_capacity(BATCH_ROWS * width);
         let mut writer_gone = false;
         let t0 = std::time::Instant::now();
@@ -105,10 +187,7 @@ pub fn run_to_csv(
             env.push(s);
             count += 1;
             if count.is_multiple_of(1000) {
-                if let Some(b) = &bar {
-                    b.set_position((1000.0 * s.t / cfg.settings.t_end) as u64);
-                    b.set_message(format!("{:.1} s of {:.1} s", s.t, cfg.settings.t_end));
-                }
+                control.report((1000.0 * s.t / cfg.settings.t_end) as u64, 1000);
             }
             true
         });
@@ -121,50 +200,12 @@ pub fn run_to_csv(
         let written = writer.join().unwrap_or_else(|_| Err(anyhow::anyhow!("the CSV writer panicked")));
         (summary, wall, written)
     });
-    if let Some(b) = bar {
-        b.finish_and_clear();
-    }
     if let Err(e) = written {
         bail!("--out: cannot write: {e:#}");
     }
     let summary = summary?;
     env.flush();
     Ok((summary, env, wall))
-}
-
-/// The writer thread of [`run_to_csv`]: each batch's rows (`width` floats each) as CSV lines
-/// (one reused buffer, the floats appended as bytes) and Parquet rows; flushed every 1000 rows
-/// and at the end. Returns at the first error, which drops the channel and so stops the run.
-fn write_rows(
-    rx: std::sync::mpsc::Receiver<Vec<f64>>,
-    csv: &mut (dyn Write + Send),
-    mut parquet: Option<&mut crate::parquet::Table>,
-    width: usize,
-) -> Result<()> {
-    let mut line: Vec<u8> = Vec::with_capacity(24 * width);
-    let mut count = 0u64;
-    for batch in rx {
-        for row in batch.chunks_exact(width) {
-            line.clear();
-            for (i, v) in row.iter().enumerate() {
-                if i > 0 {
-                    line.push(b',');
-                }
-                crate::num::Csv(*v).push_to(&mut line);
-            }
-            line.push(b'\n');
-            csv.write_all(&line)?;
-            if let Some(t) = parquet.as_deref_mut() {
-                t.push(row)?;
-            }
-            count += 1;
-            if count.is_multiple_of(1000) {
-                csv.flush()?;
-            }
-        }
-    }
-    csv.flush()?;
-    Ok(())
 }
 
 pub fn summary_json(cfg: &PlanarConfig, s: &Summary, wall: f64) -> Value {

@@ -89,79 +89,62 @@ pub fn columns(sim: &SpatialSim) -> Vec<String> {
     c
 }
 
-/// Run, writing every sample to `csv` (flushed as it goes).
+/// Run, writing every sample to `csv` (flushed as it goes; `progress`: a bar on standard error
+/// when it is a terminal).
 pub fn run_to_csv(sim: &SpatialSim, csv: &mut dyn Write, progress: bool, control: &Control) -> Result<(Summary, Vec<Sample>, f64)> {
     run_to_files(sim, csv, None, progress, control)
 }
 
-/// Run, writing every sample to `csv` (flushed as it goes) and to `parquet` if given.
+/// Run, writing every sample to `csv` (flushed as it goes) and to `parquet` if given
+/// ([`run_rows`] into a [`crate::sim::RowSink`]).
 pub fn run_to_files(
     sim: &SpatialSim,
     csv: &mut dyn Write,
-    mut parquet: Option<&mut crate::parquet::Table>,
+    parquet: Option<&mut crate::parquet::Table>,
     progress: bool,
     control: &Control,
 ) -> Result<(Summary, Vec<Sample>, f64)> {
-    writeln!(csv, "{}", columns(sim).join(","))?;
+    let (shown, bar) = if progress { crate::term::progress_bar(control) } else { (control.clone(), None) };
+    let mut sink = crate::sim::RowSink::new(Some(csv), parquet, None);
+    sink.header(&columns(sim))?;
+    let out = run_rows(sim, &mut |r| sink.push(r), &shown);
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
+    let out = out?;
+    sink.finish().map_err(|e| anyhow::anyhow!("--out: cannot write: {e:#}"))?;
+    Ok(out)
+}
+
+/// Run, handing every sample's row (the values of [`columns`]) to `rows`; an error of `rows`
+/// stops the run and is returned as `--out: cannot write: ...`. Returns the summary, the
+/// samples kept for the figures (per bucket of consecutive samples the smallest and largest
+/// whirl radius at the balancer plane) and the wall time. Progress (per mille of `t_end`) goes
+/// to `control`'s observer.
+pub fn run_rows(sim: &SpatialSim, rows: &mut dyn FnMut(&[f64]) -> Result<()>, control: &Control) -> Result<(Summary, Vec<Sample>, f64)> {
     let mut row = vec![];
     let expected = (sim.settings.t_end / sim.settings.dt) as usize + 1;
     let mut env = Envelope { bucket: expected.div_ceil(6000).max(1), current: vec![], kept: vec![] };
-    let bar = progress.then(|| {
-        let b = indicatif::ProgressBar::new(1000);
-        b.set_style(
-            indicatif::ProgressStyle::with_template("{bar:40} simulated {msg}  {elapsed_precise} (eta {eta})")
-                .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-        );
-        b
-    });
     let mut io_error = None;
     let mut count = 0u64;
     let t0 = std::time::Instant::now();
     let summary = simulate_with(&sim.rotor, &sim.drive, &sim.initial, &sim.settings, control, |s| {
-        let mut line = format!(
-            "{},{},{},{},{},{}",
-            crate::num::Csv(s.t),
-            crate::num::Csv(s.omega),
-            crate::num::Csv(s.x),
-            crate::num::Csv(s.y),
-            crate::num::Csv(s.tilt_x),
-            crate::num::Csv(s.tilt_y)
-        );
-        for v in s.amplitude_supports.iter().chain(&s.amplitude_planes).chain(&s.psi) {
-            line.push(',');
-            line.push_str(&crate::num::Csv(*v).to_string());
-        }
-        line.push('\n');
-        if let Err(e) = csv.write_all(line.as_bytes()) {
-            io_error = Some(anyhow::Error::from(e));
+        row.clear();
+        row.extend([s.t, s.omega, s.x, s.y, s.tilt_x, s.tilt_y]);
+        row.extend(s.amplitude_supports.iter().chain(&s.amplitude_planes).chain(&s.psi));
+        if let Err(e) = rows(&row) {
+            io_error = Some(e);
             return false;
-        }
-        if let Some(t) = parquet.as_deref_mut() {
-            row.clear();
-            row.extend([s.t, s.omega, s.x, s.y, s.tilt_x, s.tilt_y]);
-            row.extend(s.amplitude_supports.iter().chain(&s.amplitude_planes).chain(&s.psi));
-            if let Err(e) = t.push(&row) {
-                io_error = Some(e);
-                return false;
-            }
         }
         env.push(s);
         count += 1;
         if count.is_multiple_of(1000) {
-            let _ = csv.flush();
-            if let Some(b) = &bar {
-                b.set_position((1000.0 * s.t / sim.settings.t_end) as u64);
-                b.set_message(format!("{:.1} of {:.1}", s.t, sim.settings.t_end));
-            }
+            control.report((1000.0 * s.t / sim.settings.t_end) as u64, 1000);
         }
         true
     })?;
     let wall = t0.elapsed().as_secs_f64();
     env.flush();
-    csv.flush()?;
-    if let Some(b) = bar {
-        b.finish_and_clear();
-    }
     if let Some(e) = io_error {
         bail!("--out: cannot write: {e:#}");
     }

@@ -3,7 +3,8 @@
 //! (the typed `autobal::Error::NoLinearisation`'s message) and the report is written; the
 //! sections that simulate still run.
 
-use autobal_commands::report::{run, Kind};
+use autobal_commands::command::{Command as _, ConfigSource};
+use autobal_commands::report;
 use std::path::Path;
 
 fn report_of(config: &str, sets: &[&str], name: &str) -> String {
@@ -11,8 +12,9 @@ fn report_of(config: &str, sets: &[&str], name: &str) -> String {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
     let _ = std::fs::remove_dir_all(&dir);
     let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
-    let index = run(Some(&root.join(config)), &sets, &dir, true, Kind::User, &autobal::control::Control::none()).unwrap_or_else(|e| panic!("{config}: {e:#}"));
-    std::fs::read_to_string(index).unwrap()
+    let args = report::Args { config: ConfigSource::file(Some(&root.join(config)), &sets), out: dir, quick: true, papers: false };
+    let out = args.run(&autobal::control::Control::none()).unwrap_or_else(|e| panic!("{config}: {e:#}"));
+    std::fs::read_to_string(out.index).unwrap()
 }
 
 #[test]

@@ -362,85 +362,83 @@ fn command_json(
     analytic_json(py, command, config, AnalyticOptions { omega_max, samples, points, balls: balls.into(), route: route.into() })
 }
 
-/// Run a planar problem: `(columns, summary JSON)`, columns `t, omega, x, y, amplitude` and
-/// `psi` (samples × balls) as arrays, the summary as `autobal simulate --format json` prints
-/// it. `dt` overrides the output interval.
+/// `autobal simulate` (the CLI's `Args` and `run`, without files) on `config`, keeping the
+/// samples as columns: `(columns, summary JSON)`, the summary as `autobal simulate --format json`
+/// prints it, the columns as arrays named as the CLI's CSV columns, except that a planar or
+/// spatial run's ball angles `psi_1 … psi_n` are one array `psi` (samples × balls). `dt`
+/// overrides the output interval; `columns = false` keeps none (the summary alone).
+fn simulate_columns<'py>(
+    py: Python<'py>,
+    config: autobal_commands::command::ConfigSource,
+    dt: Option<f64>,
+    columns: bool,
+) -> PyResult<(Bound<'py, PyDict>, String)> {
+    use autobal_commands::command::{Command, Output};
+    let args = autobal_commands::simulate::Args { config, dt, columns, ..Default::default() };
+    let (cols, balls_model, summary) = commands_call(py, move |control| {
+        let o = args.run(control)?;
+        let (summary, balls_model) = (o.json()?.to_string(), o.is_ball_model());
+        Ok((o.columns.unwrap_or_default(), balls_model, summary))
+    })?;
+    let out = PyDict::new(py);
+    if !columns {
+        return Ok((out, summary));
+    }
+    let (names, cols) = cols;
+    let rows = cols.first().map_or(0, Vec::len);
+    let mut psi: Vec<Vec<f64>> = vec![];
+    for (name, c) in names.into_iter().zip(cols) {
+        if balls_model && name.starts_with("psi_") {
+            psi.push(c);
+        } else {
+            out.set_item(name, PyArray1::from_vec(py, c))?;
+        }
+    }
+    if balls_model {
+        // samples × balls, row-major
+        let flat: Vec<f64> = (0..rows).flat_map(|i| psi.iter().map(move |c| c[i])).collect();
+        out.set_item("psi", PyArray1::from_vec(py, flat).reshape([rows, psi.len()])?)?;
+    }
+    Ok((out, summary))
+}
+
+/// Run a planar problem as `autobal simulate` does ([`simulate_columns`]): columns `t, omega,
+/// x, y, amplitude` and `psi` (samples × balls) as arrays, the summary JSON. `dt` overrides the
+/// output interval.
 #[pyfunction]
 #[pyo3(signature = (cfg, dt=None))]
 fn simulate<'py>(py: Python<'py>, cfg: &PyPlanar, dt: Option<f64>) -> PyResult<(Bound<'py, PyDict>, String)> {
-    let mut p = cfg.problem.clone();
-    if let Some(d) = dt {
-        p.settings.dt = d;
-        p.settings.validate(&p.rotor).map_err(|e| py_err(py, e))?;
-    }
-    let n = p.rotor.n;
-    let run = interruptible(py, |cancel| {
-        let mut cols: [Vec<f64>; 5] = Default::default();
-        let mut psi = vec![];
-        let t0 = std::time::Instant::now();
-        let s = autobal::planar::simulate_with(&p.rotor, &p.drive, &p.settings, cancel, |s| {
-            for (c, v) in cols.iter_mut().zip([s.t, s.omega, s.x, s.y, s.amplitude]) {
-                c.push(v);
-            }
-            psi.extend_from_slice(&s.psi);
-            !cancel.is_cancelled()
-        });
-        (s, cols, psi, t0.elapsed().as_secs_f64())
-    })?;
-    let (s, cols, psi, wall) = run;
-    let s = s.map_err(|e| py_err(py, e))?;
-    let out = PyDict::new(py);
-    let rows = cols[0].len();
-    for (name, c) in ["t", "omega", "x", "y", "amplitude"].iter().zip(cols) {
-        out.set_item(name, PyArray1::from_vec(py, c))?;
-    }
-    out.set_item("psi", PyArray1::from_vec(py, psi).reshape([rows, n])?)?;
-    Ok((out, autobal::reports::simulation(&p, &s, wall).to_string()))
+    let root = config::parse(&cfg.toml, "PlanarProblem").map_err(|e| py_err(py, e))?;
+    simulate_columns(py, autobal_commands::command::ConfigSource::tables(root, "PlanarProblem"), dt, true)
 }
 
 /// Run the spatial rotor of papers 000/003 of a spatial config with `[drive]` (and
-/// `[integration]`, ...): `(columns, summary JSON)`, columns `t, omega, x, y, tilt_x, tilt_y`,
-/// `amplitude_left`, `amplitude_right` (supports), `amplitude_plane1`, ... (balancer planes)
-/// and `psi` (samples × balls) as arrays, the summary as `autobal simulate --format json`
-/// prints it. `dt` overrides the output interval.
+/// `[integration]`, ...) as `autobal simulate` does ([`simulate_columns`]): columns `t, omega,
+/// x, y, tilt_x, tilt_y`, `amplitude_left`, `amplitude_right` (supports), `amplitude_plane1`,
+/// ... (balancer planes) and `psi` (samples × balls) as arrays, the summary JSON. `dt`
+/// overrides the output interval.
 #[pyfunction]
 #[pyo3(signature = (cfg, dt=None))]
 fn spatial_simulate<'py>(py: Python<'py>, cfg: &PySpatial, dt: Option<f64>) -> PyResult<(Bound<'py, PyDict>, String)> {
-    let mut sim = config::spatial_simulation(&cfg.root).map_err(|e| py_err(py, e))?;
-    if let Some(d) = dt {
-        sim.settings.dt = d;
-        sim.settings.validate().map_err(|e| py_err(py, e))?;
-    }
-    let (supports, planes, balls) = (sim.rotor.supports.len(), sim.rotor.planes.len().max(1), sim.rotor.balls());
-    let (s, cols, amps, psi, wall) = interruptible(py, |cancel| {
-        let mut cols: [Vec<f64>; 6] = Default::default();
-        let mut amps: Vec<Vec<f64>> = vec![vec![]; supports + planes];
-        let mut psi = vec![];
-        let t0 = std::time::Instant::now();
-        let s = autobal::spatial::dynamics::simulate_with(&sim.rotor, &sim.drive, &sim.initial, &sim.settings, cancel, |s| {
-            for (c, v) in cols.iter_mut().zip([s.t, s.omega, s.x, s.y, s.tilt_x, s.tilt_y]) {
-                c.push(v);
-            }
-            for (c, v) in amps.iter_mut().zip(s.amplitude_supports.iter().chain(&s.amplitude_planes)) {
-                c.push(*v);
-            }
-            psi.extend_from_slice(&s.psi);
-            !cancel.is_cancelled()
-        });
-        (s, cols, amps, psi, t0.elapsed().as_secs_f64())
-    })?;
-    let s = s.map_err(|e| py_err(py, e))?;
-    let out = PyDict::new(py);
-    let rows = cols[0].len();
-    for (name, c) in ["t", "omega", "x", "y", "tilt_x", "tilt_y"].iter().zip(cols) {
-        out.set_item(name, PyArray1::from_vec(py, c))?;
-    }
-    let names = ["amplitude_left", "amplitude_right"].iter().take(supports).map(|n| n.to_string()).chain((1..=planes).map(|p| format!("amplitude_plane{p}")));
-    for (name, c) in names.zip(amps) {
-        out.set_item(name, PyArray1::from_vec(py, c))?;
-    }
-    out.set_item("psi", PyArray1::from_vec(py, psi).reshape([rows, balls])?)?;
-    Ok((out, autobal::reports::spatial_simulation(&sim, &s, wall).to_string()))
+    simulate_columns(py, autobal_commands::command::ConfigSource::tables(cfg.root.clone(), &cfg.source), dt, true)
+}
+
+/// `autobal simulate` on any config it runs (planar, spatial, linear rotor), read as
+/// [`command_json`] reads it: `(columns, summary JSON)` of [`simulate_columns`].
+#[pyfunction]
+#[pyo3(signature = (text, dict, source, sets, dt=None, columns=true))]
+#[allow(clippy::too_many_arguments)]
+fn simulate_command<'py>(
+    py: Python<'py>,
+    text: Option<&str>,
+    dict: Option<&Bound<'_, PyDict>>,
+    source: &str,
+    sets: Vec<(String, Bound<'_, PyAny>)>,
+    dt: Option<f64>,
+    columns: bool,
+) -> PyResult<(Bound<'py, PyDict>, String)> {
+    let root = table(py, text, dict, source, sets)?;
+    simulate_columns(py, autobal_commands::command::ConfigSource::tables(root, source), dt, columns)
 }
 
 /// `autobal basins` on a spatial config with `[drive]`: runs over an `n × n` grid of the first two balls'
@@ -834,6 +832,7 @@ fn _autobal(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(simulate_batch, m)?)?;
     m.add_function(wrap_pyfunction!(spatial_simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(simulate_command, m)?)?;
     m.add_function(wrap_pyfunction!(spatial_basins, m)?)?;
     m.add_function(wrap_pyfunction!(sweep_report, m)?)?;
     m.add_function(wrap_pyfunction!(check_batch, m)?)?;

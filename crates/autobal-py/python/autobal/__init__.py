@@ -407,7 +407,8 @@ def run(command: str, config: ConfigLike = None, set: Optional[Mapping[str, Any]
       (``omega_max``, ``points``, ``balls``, ``route``); ``route``: ``"auto"`` (default) or
       ``"general"``, the CLI's ``--route``; the defaults are the CLI's;
     - ``simulate`` (``dt``): the summary (no files are written), of the planar rotor
-      (``[planar]``) or of the spatial rotor in time (the analytic config plus ``[drive]``);
+      (``[planar]``), of the spatial rotor in time (the analytic config plus ``[drive]``) or of
+      a linear rotor (``[linear_rotor]``);
     - ``basins`` (``n``): the JSON of ``autobal basins`` (no CSV is written; the runs' arrays:
       :meth:`SpatialModel.basins`);
     - ``sweep`` (``x``, ``y``, ``axis`` (a list), ``shard`` (``"K/N"``), ``threads``): the JSON
@@ -430,15 +431,9 @@ def run(command: str, config: ConfigLike = None, set: Optional[Mapping[str, Any]
     if command == "simulate":
         dt = options.pop("dt", None)
         _no_more(command, options)
-        try:
-            p = PlanarProblem(config, set=set)
-        except InvalidParameter as e:
-            if not (e.field == "planar" and "missing" in str(e)):
-                raise
-            # the analytic commands' config: the spatial rotor in time
-            _, summary = _autobal.spatial_simulate(SpatialModel(config, set=set)._cfg, dt)
-        else:
-            _, summary = _autobal.simulate(p._cfg, dt)
+        # the CLI's command (its Args and run): the planar, spatial or linear rotor by the config
+        text, table, source = _read(config, _autobal.DEFAULT_PLANAR, PlanarProblem._DEFAULT_NAME)
+        _, summary = _autobal.simulate_command(text, table, source, list((set or {}).items()), dt, False)
         out = json.loads(summary)
         if out.get("stopped"):
             e = SimulationError(out["stopped"])
@@ -533,14 +528,9 @@ def analyse(command: str, config: ConfigLike = None, set: Optional[Mapping[str, 
         return report(config, options.pop("out", "autobal-report"), set=set, **options)
     if command == "simulate":
         _no_more(command, {k: v for k, v in options.items() if k != "dt"})
-        try:
-            p = PlanarProblem(config, set=set)
-        except InvalidParameter as e:
-            if not (e.field == "planar" and "missing" in str(e)):
-                raise
-            sim = SpatialModel(config, set=set).simulate(options.get("dt"))
-        else:
-            sim = p.simulate(options.get("dt"))
+        text, table, source = _read(config, _autobal.DEFAULT_PLANAR, PlanarProblem._DEFAULT_NAME)
+        columns, summary = _autobal.simulate_command(text, table, source, list((set or {}).items()), options.get("dt"))
+        sim = _finished(Simulation(columns, json.loads(summary)))
         result, arrays = sim.summary, sim.columns
     elif command == "basins":
         _no_more(command, {k: v for k, v in options.items() if k != "n"})

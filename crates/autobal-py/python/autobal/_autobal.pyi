@@ -24,6 +24,7 @@ __all__ = [
     "simulate",
     "simulate_batch",
     "spatial_simulate",
+    "simulate_command",
     "spatial_basins",
     "sweep_report",
     "check_batch",
@@ -65,6 +66,9 @@ def stability_map(cfg: SpatialConfig, x: Tuple[str, Sequence[float]], y: Tuple[s
 def map_cells(text: Optional[str], dict: Optional[Mapping[str, Any]], source: str, sets: Sequence[Tuple[str, Any]], x: Tuple[str, Sequence[float]], y: Tuple[str, Sequence[float]], omega: Union[None, float, str] = None, balls: Optional[str] = None, quantity: Optional[str] = None, route: Optional[str] = None, threads: Optional[int] = None) -> Dict[str, Any]: ...
 def simulate(cfg: PlanarConfig, dt: Optional[float] = None) -> Tuple[Dict[str, npt.NDArray[np.float64]], str]: ...
 def spatial_simulate(cfg: SpatialConfig, dt: Optional[float] = None) -> Tuple[Dict[str, npt.NDArray[np.float64]], str]: ...
+# `autobal simulate` on any config (planar, spatial, linear rotor): the CSV's columns (a planar or
+# spatial run's psi_1 ... as one array `psi`) and the summary JSON; columns=False: no columns
+def simulate_command(text: Optional[str], dict: Optional[Mapping[str, Any]], source: str, sets: Sequence[Tuple[str, Any]], dt: Optional[float] = None, columns: bool = True) -> Tuple[Dict[str, npt.NDArray[np.float64]], str]: ...
 # arrays: psi_1, psi_2, balanced_runs (bool per run), residual_unbalance, final_amplitude; the JSON's
 # `balanced` is the count of balanced runs
 def spatial_basins(cfg: SpatialConfig, n: int = 16) -> Tuple[Dict[str, npt.NDArray[Any]], str]: ...

@@ -199,8 +199,10 @@ class Result:
             return pd.DataFrame(cols)
         if c == "simulate" and self.arrays is not None:
             data = {k: v for k, v in self.arrays.items() if k != "psi"}
-            psi = self.arrays["psi"]
-            for j in range(psi.shape[1]):
+            # the ball angles of a planar or spatial run are one array (a linear rotor's are
+            # columns psi_0 ... already)
+            psi = self.arrays.get("psi")
+            for j in range(0 if psi is None else psi.shape[1]):
                 data[f"psi_{j + 1}"] = psi[:, j]
             return pd.DataFrame(data)
         if c == "sweep":
