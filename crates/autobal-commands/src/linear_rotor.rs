@@ -215,6 +215,8 @@ pub fn stability_table(cfg: &LinearRotorConfig, r: &RotorStability, red: &Option
         cfg.rotor.unbalances.len(),
         match r.kind {
             Kind::Equilibrium => "isotropic: an equilibrium in axes turning with the rotor (eigenvalues)",
+            Kind::PeriodicOrbit if cfg.rotor.gravity.is_some() =>
+                "gravity: a periodic orbit of one revolution, the rotor sagging and the balls swinging (Floquet multipliers)",
             Kind::PeriodicOrbit => "anisotropic: a periodic orbit of half a revolution (Floquet multipliers)",
         }
     ));

@@ -7,7 +7,8 @@
 //!
 //! Further keys of `[linear_rotor]`: `polar_inertia` (kg m², the spin's inertia for torque
 //! drives; the shaft builder computes it, the key replaces that), `spin_damping` (N m s) and
-//! `gravity = [g_x, g_y]` (m/s², fixed axes; [`super::Gravity`]); of the elements, `g_s` (the
+//! `gravity = [g_x, g_y]` (m/s², fixed axes; [`super::Gravity`]), `gravity_load` (N, one per
+//! DOF: the weight, where it is not `M r_g`, as export writes it for a reduced rotor); of the elements, `g_s` (the
 //! shear modulus: Timoshenko elements) and `kappa` (their shear coefficient; Cowper's for a
 //! circular section when absent, [`super::shaft::cowper_kappa`]).
 //!
@@ -74,6 +75,7 @@ const KEYS: &[(&str, &[&str])] = &[
             "polar_inertia",
             "spin_damping",
             "gravity",
+            "gravity_load",
             "elements",
             "disks",
             "bearings",
@@ -85,7 +87,23 @@ const KEYS: &[(&str, &[&str])] = &[
     ("disks", &["node", "mass", "id", "ip"]),
     ("bearings", &["node", "k", "c", "speeds", "kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy"]),
     ("unbalance", &["node", "me", "phase", "offset"]),
-    ("balancer", &["node", "radius", "balls", "ball_mass", "drag", "offset"]),
+    (
+        "balancer",
+        &[
+            "node",
+            "radius",
+            "balls",
+            "ball_mass",
+            "drag",
+            "offset",
+            "ball_diameter",
+            "contact",
+            "restitution",
+            "contact_stiffness",
+            "rolling_resistance",
+            "slip_rate",
+        ],
+    ),
 ];
 
 /// A linear rotor config.
@@ -482,6 +500,24 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
             drag: b.f64("drag")?.unwrap_or(0.0),
             offset: b.f64("offset")?.unwrap_or(0.0),
         });
+        // real balls (crate::balls), as the planar and spatial configs' keys
+        let d = crate::balls::BallPhysics::default();
+        let contact = match b.t.get("contact") {
+            None => d.contact,
+            Some(Value::Boolean(c)) => *c,
+            Some(_) => return Err(Error::invalid(b.field("contact"), "expected true or false")),
+        };
+        rotor.ball_physics.push(crate::balls::BallPhysics {
+            diameter: b.f64("ball_diameter")?,
+            contact,
+            restitution: b.f64("restitution")?.unwrap_or(d.restitution),
+            contact_stiffness: b.f64("contact_stiffness")?,
+            rolling_resistance: b.f64("rolling_resistance")?.unwrap_or(d.rolling_resistance),
+            slip_rate: b.f64("slip_rate")?.unwrap_or(d.slip_rate),
+        });
+    }
+    if rotor.ball_physics.iter().all(|p| !p.is_active()) {
+        rotor.ball_physics.clear();
     }
     rotor.spin_damping = top.f64("spin_damping")?.unwrap_or(0.0);
     match top.array("gravity")? {
@@ -490,6 +526,14 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
         Some(g) => {
             return Err(Error::invalid("linear_rotor.gravity", format!("expected [g_x, g_y] (m/s², across the axis in fixed axes), got {} numbers", g.len())))
         }
+    }
+    if let Some(load) = top.array("gravity_load")? {
+        // the weight as written by export (a reduced rotor's Bᵀ load is not its M r_g)
+        let Some(g) = rotor.gravity.as_mut() else { return Err(Error::invalid("linear_rotor.gravity_load", "needs gravity = [g_x, g_y]")) };
+        if load.len() != g.load.len() {
+            return Err(Error::invalid("linear_rotor.gravity_load", format!("has {} entries, one per DOF: {}", load.len(), g.load.len())));
+        }
+        g.load = load;
     }
     let archive_dofs = archive.iter().flatten().find(|(k, _)| k == "dofs").map(|(_, a)| a.clone());
     if let Some(a) = archive_dofs {
@@ -662,8 +706,14 @@ pub fn export(rotor: &LinearRotor, stem: &str) -> (String, Vec<(String, String)>
         t.push_str(&format!("spin_damping = {:?}\n", rotor.spin_damping));
     }
     if let Some(g) = &rotor.gravity {
-        // the weight is recomputed from M on reading (M r_g)
+        // the weight is recomputed from M on reading (M r_g), or written where it is not that
+        // (a reduced rotor's Bᵀ load)
         t.push_str(&format!("gravity = [{:?}, {:?}]\n", g.g[0], g.g[1]));
+        let mut again = rotor.clone();
+        again.set_gravity(g.g);
+        if again.gravity.as_ref().map(|a| &a.load) != Some(&g.load) {
+            t.push_str(&format!("gravity_load = {:?}\n", g.load));
+        }
     }
     for b in &rotor.speed_bearings {
         t.push_str(&format!("\n[[linear_rotor.bearings]]\nnode = {}\nspeeds = {:?}\n", b.node, b.speeds));
@@ -677,11 +727,23 @@ pub fn export(rotor: &LinearRotor, stem: &str) -> (String, Vec<(String, String)>
     for u in &rotor.unbalances {
         t.push_str(&format!("\n[[linear_rotor.unbalance]]\nnode = {}\nme = {:?}\nphase = {:?}\noffset = {:?}\n", u.node, u.me, u.phase, u.offset));
     }
-    for b in &rotor.balancers {
+    for (i, b) in rotor.balancers.iter().enumerate() {
         t.push_str(&format!(
             "\n[[linear_rotor.balancer]]\nnode = {}\nradius = {:?}\nballs = {}\nball_mass = {:?}\ndrag = {:?}\noffset = {:?}\n",
             b.node, b.radius, b.balls, b.ball_mass, b.drag, b.offset
         ));
+        if let Some(p) = rotor.ball_physics.get(i).filter(|p| p.is_active()) {
+            t.push_str(&format!(
+                "contact = {}\nrestitution = {:?}\nrolling_resistance = {:?}\nslip_rate = {:?}\n",
+                p.contact, p.restitution, p.rolling_resistance, p.slip_rate
+            ));
+            if let Some(d) = p.diameter {
+                t.push_str(&format!("ball_diameter = {d:?}\n"));
+            }
+            if let Some(k) = p.contact_stiffness {
+                t.push_str(&format!("contact_stiffness = {k:?}\n"));
+            }
+        }
     }
     (t, files)
 }

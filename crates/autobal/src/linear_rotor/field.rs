@@ -25,15 +25,17 @@ use std::f64::consts::PI;
 /// The axes the equations are written in.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Frame {
-    /// Axes turning with the rotor (`ν = Ω`): autonomous for an isotropic structure, else
-    /// periodic with `π/Ω`; the balanced state is an equilibrium (isotropic).
+    /// Axes turning with the rotor (`ν = Ω`): autonomous for an isotropic structure without
+    /// gravity, else periodic with `π/Ω` (anisotropic structure) or `2π/Ω` (gravity, which turns
+    /// once per revolution in these axes); the balanced state is an equilibrium (isotropic, no
+    /// gravity) or a periodic orbit (the rotor sags, the balls swing).
     Rotating,
     /// Fixed axes (`ν = 0`): periodic with `2π/Ω`; the form for time simulation.
     Fixed,
 }
 
 /// Directions seeded per forward-mode pass of the Jacobian.
-const SEEDS: usize = 8;
+pub(crate) const SEEDS: usize = 8;
 
 /// One ball: its plane's node DOFs `(x, y)` and `(α, β)` (where the layout has them), race
 /// radius, mass, drag, axial offset of the race plane.
@@ -58,17 +60,32 @@ pub struct LinearRotorField {
     balls: Vec<Ball>,
     /// `C + Ω G`.
     d: Vec<f64>,
+    /// The reference frequency of the real balls' default contact stiffness (rad/s): the
+    /// lowest nonzero undamped natural frequency with the balls as rings; 0 without real balls.
+    reference: f64,
 }
 
-/// The rotor's motion at one time: speed `Ω`, acceleration `Ω̇`, the frame's rate `ν` and the
+/// The rotor's motion at one time: speed `Ω`, acceleration `Ω̇`, the frame's rate `ν`, the
 /// rotor's angle in the frame `χ` (`(Ω − ν) t` at constant speed; `φ(t)` of a drive in fixed
-/// axes, [`super::runup`]).
+/// axes, [`super::runup`]) and the frame's angle from the fixed axes `ν t` (0 in fixed axes),
+/// by which gravity turns in the frame.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Kin {
     pub w: f64,
     pub wdot: f64,
     pub nu: f64,
     pub chi: f64,
+    pub frame: f64,
+}
+
+/// Increments `δχ`, `δΩ` (value 0) of the rotor's angle and speed carried by the residual
+/// ([`LinearRotorField::residual_spin`]), with `∂(C + ΩG)/∂Ω = G + C'(Ω)` (`dd`) and
+/// `∂K/∂Ω = K'(Ω)` (`dk`), row-major `N × N` (fixed axes).
+pub(crate) struct SpinVar<'a, T> {
+    pub chi: T,
+    pub w: T,
+    pub dd: &'a [f64],
+    pub dk: &'a [f64],
 }
 
 /// The structure's matrices in the frame at one time: `M_r`, `(C + ΩG)_r`, `K_r`.
@@ -80,15 +97,25 @@ pub(crate) struct Mats<'a> {
 
 impl LinearRotorField {
     /// The field of `rotor` at speed `omega` (rad/s) in `frame`; the rotor is validated.
+    /// Real balls ([`LinearRotor::ball_physics`]) are refused with [`Error::NoLinearisation`]:
+    /// a friction dead zone or a resting contact has no linearisation (they run in
+    /// [`super::runup`]).
     pub fn new(rotor: &LinearRotor, omega: f64, frame: Frame) -> Result<Self> {
+        if rotor.ball_physics.iter().any(|p| p.is_active()) {
+            rotor.validate()?;
+            return Err(Error::NoLinearisation {
+                reason: "real balls (linear_rotor.balancer contact, rolling_resistance) have friction dead zones and resting contacts".into(),
+            });
+        }
+        Self::with_real_balls(rotor, omega, frame)
+    }
+
+    /// [`LinearRotorField::new`] with real balls allowed, for time simulation: their torques
+    /// enter the accelerations ([`LinearRotorField::accelerations`]) but not the exact Jacobian
+    /// of [`VectorField::jacobian`] (the run-ups use differences then).
+    pub(crate) fn with_real_balls(rotor: &LinearRotor, omega: f64, frame: Frame) -> Result<Self> {
         rotor.validate()?;
         finite("omega", omega)?;
-        if rotor.gravity.is_some() && frame == Frame::Rotating && omega != 0.0 {
-            return Err(Error::invalid(
-                "linear_rotor.gravity",
-                "turns in axes turning with the rotor, so the balanced state is no equilibrium there: gravity is modelled in time simulation (fixed axes) only",
-            ));
-        }
         // the speed-dependent bearings at this speed, folded into C and K
         let rotor = &if rotor.speed_bearings.is_empty() { rotor.clone() } else { rotor.at_speed(omega) };
         let mut balls = vec![];
@@ -101,7 +128,75 @@ impl LinearRotorField {
             }
         }
         let d = rotor.c.iter().zip(&rotor.g).map(|(c, g)| c + omega * g).collect();
-        Ok(LinearRotorField { isotropic: rotor.is_isotropic(), rotor: rotor.clone(), omega, frame, balls, d })
+        let reference = if rotor.ball_physics.iter().any(|p| p.is_active()) {
+            // as the planar model's sqrt(k/m0): the lowest mode with the balls as rings
+            rotor.natural_frequencies(&[], true).ok().and_then(|w| w.into_iter().find(|v| *v > 0.0)).unwrap_or(1.0)
+        } else {
+            0.0
+        };
+        Ok(LinearRotorField { isotropic: rotor.is_isotropic(), rotor: rotor.clone(), omega, frame, balls, d, reference })
+    }
+
+    /// Whether real balls act ([`LinearRotor::ball_physics`]).
+    pub fn real_balls(&self) -> bool {
+        self.reference > 0.0
+    }
+
+    /// Add the real balls' generalised forces on their angles ([`crate::balls`]: contact
+    /// between balls, rolling resistance) to `out[N..N + Σ n]` at state `x` and kinematics `kin`.
+    /// The rolling resistance's normal force is the centripetal part of the ball's acceleration
+    /// as in the planar model, `N_j = m_b (R θ̇_j² − Ω² c·e_j − 2Ω (J ċ)·e_j + g·e_j)` (`c`, `ċ`
+    /// the race centre's position and absolute velocity, `e_j` the ball's direction, all in the
+    /// frame's components: the dot products do not depend on the frame); the race centre's
+    /// acceleration relative to axes turning with the rotor (terms of relative size `|c|/R`)
+    /// is left out. Ball–ball and ball–race forces are internal to the rotor with its balls:
+    /// they act on the relative angles `ψ_j` only, not on the spin.
+    pub(crate) fn add_real_balls(&self, kin: &Kin, x: &[f64], out: &mut [f64]) {
+        if !self.real_balls() {
+            return;
+        }
+        let n = self.rotor.dofs();
+        let nc = self.coords();
+        let nu = kin.nu;
+        let w = kin.w;
+        let (gx, gy) = match &self.rotor.gravity {
+            Some(gr) => {
+                let (s, c) = kin.frame.sin_cos();
+                (c * gr.g[0] + s * gr.g[1], c * gr.g[1] - s * gr.g[0])
+            }
+            None => (0.0, 0.0),
+        };
+        let mut first = n;
+        for (k, plane) in self.rotor.balancers.iter().enumerate() {
+            let nb = plane.balls;
+            let forces = self.rotor.ball_physics.get(k).and_then(|p| crate::balls::BallForces::new(p, plane.ball_mass, plane.radius, nb, self.reference));
+            if let Some(f) = forces {
+                let b = self.balls[first - n];
+                let abs_v = |i: usize, j: usize| (x[nc + i] - nu * x[j], x[nc + j] + nu * x[i]);
+                let (mut cx, mut cy) = (x[b.ix], x[b.iy]);
+                let (mut vx, mut vy) = abs_v(b.ix, b.iy);
+                if let Some((ia, ib)) = b.tilt {
+                    let (va, vb) = abs_v(ia, ib);
+                    cx += b.z * x[ib];
+                    cy -= b.z * x[ia];
+                    vx += b.z * vb;
+                    vy -= b.z * va;
+                }
+                let psi = &x[first..first + nb];
+                let rate = &x[nc + first..nc + first + nb];
+                let normal = |j: usize| {
+                    let (s, c) = (psi[j] + kin.chi).sin_cos();
+                    let wr = w + rate[j];
+                    b.m * (b.r * wr * wr - w * w * (cx * c + cy * s) - 2.0 * w * (vx * s - vy * c) + gx * c + gy * s)
+                };
+                let mut q = vec![0.0; nb];
+                f.torques(psi, rate, normal, &mut q);
+                for (o, v) in out[first..first + nb].iter_mut().zip(&q) {
+                    *o += v;
+                }
+            }
+            first += nb;
+        }
     }
 
     /// The rotor.
@@ -135,7 +230,7 @@ impl LinearRotorField {
     /// The kinematics at constant speed at time `t`.
     fn kin(&self, t: f64) -> Kin {
         let nu = self.nu();
-        Kin { w: self.omega, wdot: 0.0, nu, chi: (self.omega - nu) * t }
+        Kin { w: self.omega, wdot: 0.0, nu, chi: (self.omega - nu) * t, frame: nu * t }
     }
 
     /// `M_r = Tᵀ M T` etc. at time `t`, `T = T(ν t)` (the matrices themselves where the frame
@@ -193,14 +288,45 @@ impl LinearRotorField {
         f
     }
 
+    /// [`LinearRotorField::forcing_kin`] with the speed `w` and the rotor's angle `chi` of type
+    /// `T`: `m e (Ω² − i Ω̇) e^{i(phase + χ)}` at the node, the offset's moments.
+    fn forcing_generic<T: Real>(&self, w: T, wdot: f64, chi: T) -> Vec<T> {
+        let r = &self.rotor;
+        let mut f = vec![T::cst(0.0); r.dofs()];
+        let per = r.layout.per_node();
+        for u in &r.unbalances {
+            let (s, c) = (chi + u.phase).sin_cos();
+            let w2 = w * w * u.me;
+            // (m e Ω² − i m e Ω̇)(cos + i sin)
+            let re = w2 * c + s * (u.me * wdot);
+            let im = w2 * s - c * (u.me * wdot);
+            f[u.node * per] = f[u.node * per] + re;
+            f[u.node * per + 1] = f[u.node * per + 1] + im;
+            if per == 4 {
+                f[u.node * per + 2] = f[u.node * per + 2] - im * u.offset;
+                f[u.node * per + 3] = f[u.node * per + 3] + re * u.offset;
+            }
+        }
+        f
+    }
+
     /// The residual `R(x) − A a` of the `N + Σ n` equations (generalised forces minus inertia
     /// forces, module docs) at state `x` and accelerations `acc`, generic over the number type.
     pub(crate) fn residual<T: Real>(&self, mats: &Mats, kin: &Kin, x: &[T], acc: &[f64], out: &mut [T]) {
+        self.residual_spin(mats, kin, None, x, acc, out)
+    }
+
+    /// [`LinearRotorField::residual`] with the rotor's angle and speed carried as numbers of
+    /// type `T` too (`spin`: `χ + δχ`, `Ω + δΩ`, the increments of value 0; in fixed axes, for
+    /// the exact Jacobian of a torque-driven run-up, [`super::runup`]).
+    pub(crate) fn residual_spin<T: Real>(&self, mats: &Mats, kin: &Kin, spin: Option<&SpinVar<T>>, x: &[T], acc: &[f64], out: &mut [T]) {
         let n = self.rotor.dofs();
         let nc = self.coords();
         let nu = kin.nu;
-        let w = kin.w;
-        let chi = kin.chi;
+        let (w, chi) = match spin {
+            None => (T::cst(kin.w), T::cst(kin.chi)),
+            Some(sp) => (sp.w + kin.w, sp.chi + kin.chi),
+        };
         let (p, pd) = (&x[..n], &x[nc..nc + n]);
         // v = ṗ + ν J p, a_s = p̈ + 2ν J ṗ − ν² p (J (a, b) = (−b, a) per pair)
         let mut v = Vec::with_capacity(n);
@@ -212,9 +338,12 @@ impl LinearRotorField {
             a.push(pd[j] * (-2.0 * nu) - p[i] * (nu * nu) + acc[i]);
             a.push(pd[i] * (2.0 * nu) - p[j] * (nu * nu) + acc[j]);
         }
-        let f = self.forcing_kin(kin);
+        let f: Vec<T> = match spin {
+            None => self.forcing_kin(kin).into_iter().map(T::cst).collect(),
+            Some(_) => self.forcing_generic(w, kin.wdot, chi),
+        };
         for i in 0..n {
-            let mut s = T::cst(f[i]);
+            let mut s = f[i];
             let (mr, dr, kr) = (&mats.m[i * n..(i + 1) * n], &mats.d[i * n..(i + 1) * n], &mats.k[i * n..(i + 1) * n]);
             for j in 0..n {
                 if mr[j] != 0.0 {
@@ -229,6 +358,22 @@ impl LinearRotorField {
             }
             out[i] = s;
         }
+        if let Some(sp) = spin {
+            // the speed's increment through C(Ω) + Ω G and K(Ω)
+            for i in 0..n {
+                let mut s = T::cst(0.0);
+                for j in 0..n {
+                    let (dd, dk) = (sp.dd[i * n + j], sp.dk[i * n + j]);
+                    if dd != 0.0 {
+                        s = s + v[j] * dd;
+                    }
+                    if dk != 0.0 {
+                        s = s + p[j] * dk;
+                    }
+                }
+                out[i] = out[i] - sp.w * s;
+            }
+        }
         if kin.wdot != 0.0 {
             // ½ Ω̇ G q from the gyroscopic term ½ φ̇ q̇ᵀ G q of the kinetic energy (module docs of
             // crate::linear_rotor, "Torque drives and gravity"); run-ups are in fixed axes
@@ -242,13 +387,19 @@ impl LinearRotorField {
                 }
             }
         }
-        // gravity (fixed axes only, LinearRotorField::new): the structure's weight
-        let grav = self.rotor.gravity.as_ref();
-        if let Some(gr) = grav {
-            for i in 0..n {
-                out[i] = out[i] + gr.load[i];
+        // gravity: the structure's weight, constant in fixed axes; in the frame's components
+        // each pair (x, y), (α, β) of the load and g itself turn by R(−ν t) (Tᵀ f)
+        let grav = self.rotor.gravity.as_ref().map(|gr| {
+            let (s, c) = kin.frame.sin_cos();
+            let turn = |a: f64, b: f64| if kin.frame == 0.0 { (a, b) } else { (c * a + s * b, c * b - s * a) };
+            for m in 0..n / 2 {
+                let (lx, ly) = turn(gr.load[2 * m], gr.load[2 * m + 1]);
+                out[2 * m] = out[2 * m] + lx;
+                out[2 * m + 1] = out[2 * m + 1] + ly;
             }
-        }
+            let (gx, gy) = turn(gr.g[0], gr.g[1]);
+            [gx, gy]
+        });
         for (g, b) in self.balls.iter().enumerate() {
             let (psi, psid) = (x[n + g], x[nc + n + g]);
             let (s, c) = (psi + chi).sin_cos();
@@ -268,10 +419,9 @@ impl LinearRotorField {
             out[b.ix] = out[b.ix] - ax * b.m;
             out[b.iy] = out[b.iy] - ay * b.m;
             out[n + g] = psid * (-b.drag) - (c * ay - s * ax) * (b.m * b.r);
-            if let Some(gr) = grav {
+            if let Some([gx, gy]) = grav {
                 // the ball's weight m_b g on the race centre (x + z β, y − z α) and its torque
-                // m_b R e⊥·g about the axis
-                let [gx, gy] = gr.g;
+                // m_b R e⊥·g about the axis (g in the frame's components)
                 out[b.ix] = out[b.ix] + b.m * gx;
                 out[b.iy] = out[b.iy] + b.m * gy;
                 if let Some((ia, ib)) = b.tilt {
@@ -359,6 +509,7 @@ impl LinearRotorField {
         let nc = self.coords();
         let mut r = vec![0.0; nc];
         self.residual::<f64>(mats, kin, x, &vec![0.0; nc], &mut r);
+        self.add_real_balls(kin, x, &mut r);
         let lu = Lu::factored(self.mass_matrix(mats, kin.chi, x), nc)?;
         lu.solve(&mut r);
         Some(r)
@@ -369,7 +520,9 @@ impl LinearRotorField {
     pub fn residuals(&self, t: f64, x: &[f64], acc: &[f64]) -> Vec<f64> {
         let mats = self.mats(t);
         let mut r = vec![0.0; self.coords()];
-        self.residual::<f64>(&mats, &self.kin(t), x, acc, &mut r);
+        let kin = self.kin(t);
+        self.residual::<f64>(&mats, &kin, x, acc, &mut r);
+        self.add_real_balls(&kin, x, &mut r);
         r
     }
 
@@ -399,8 +552,11 @@ impl LinearRotorField {
     /// resultant), the structure from the linear stationary equations in turning axes at `t = 0`,
     /// `(K_r − Ω² M_r − Ω² M_b + Ω D_r J) p = f_r + f_balls` (`M_b` the balls' lumped mass), which is
     /// `p = 0` when the unbalances sit at the balancer node without offset; transformed to
-    /// fixed axes (`q̇ = Ω J p`) for [`Frame::Fixed`]. `None` where no arrangement cancels the
-    /// resultant (`|B| > n m_b R`), for several planes, or at `Ω = 0`.
+    /// fixed axes (`q̇ = Ω J p`) for [`Frame::Fixed`]. With gravity the static sag
+    /// `q_s = K⁻¹ (load + Σ m_b Pᵀ g)` (fixed axes: at rest there, so `ṗ = −Ω J q_s` in turning
+    /// axes) is added, the balls' swing is left to the shooting (zero where `K` is singular).
+    /// `None` where no arrangement cancels the resultant (`|B| > n m_b R`), for several planes,
+    /// or at `Ω = 0`.
     pub fn balanced_guess(&self) -> Option<Vec<f64>> {
         let r = &self.rotor;
         if r.balancers.len() != 1 || r.balancers[0].balls < 2 || self.omega == 0.0 {
@@ -474,7 +630,39 @@ impl LinearRotorField {
                 x[nc + 2 * m + 1] = w * p[2 * m];
             }
         }
+        if let Some(sag) = self.sag() {
+            for i in 0..n {
+                x[i] += sag[i];
+            }
+            if self.frame == Frame::Rotating {
+                // at rest in fixed axes: ṗ = −Ω J q_s
+                for m in 0..n / 2 {
+                    x[nc + 2 * m] += w * sag[2 * m + 1];
+                    x[nc + 2 * m + 1] -= w * sag[2 * m];
+                }
+            }
+        }
         Some(x)
+    }
+
+    /// The static sag under gravity in fixed axes, `q_s = K⁻¹ (load + Σ_planes n m_b Pᵀ g)`
+    /// (`P` the map to the race centre `(x + z β, y − z α)`): `None` without gravity or where `K`
+    /// is singular.
+    pub fn sag(&self) -> Option<Vec<f64>> {
+        let gr = self.rotor.gravity.as_ref()?;
+        let n = self.rotor.dofs();
+        let mut f = gr.load.clone();
+        for b in &self.balls {
+            f[b.ix] += b.m * gr.g[0];
+            f[b.iy] += b.m * gr.g[1];
+            if let Some((ia, ib)) = b.tilt {
+                f[ib] += b.z * b.m * gr.g[0];
+                f[ia] -= b.z * b.m * gr.g[1];
+            }
+        }
+        let lu = Lu::factored(self.rotor.k.clone(), n)?;
+        lu.solve(&mut f);
+        f.iter().all(|v| v.is_finite()).then_some(f)
     }
 
     /// The state in fixed axes at time `t` of the state `x` in turning axes at `t` (same ball
@@ -562,6 +750,8 @@ impl VectorField for LinearRotorField {
             return None;
         }
         match self.frame {
+            // gravity across the axis turns once per revolution in these axes
+            Frame::Rotating if self.rotor.gravity.is_some() => Some(2.0 * PI / self.omega.abs()),
             Frame::Rotating if self.isotropic => None,
             Frame::Rotating => Some(PI / self.omega.abs()),
             Frame::Fixed => Some(2.0 * PI / self.omega.abs()),

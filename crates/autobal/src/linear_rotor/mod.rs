@@ -118,8 +118,9 @@
 //!
 //! `I_j` the inertia side of ball `j`'s equation. The kinetic energy is a quadratic form in the
 //! velocities `(q̇, ψ̇, φ̇)`, so without damping the energy `T + V` changes by the drive's work
-//! `∫ M φ̇ dt`. [`Gravity`] is a constant load in fixed axes (time simulation only: in axes turning
-//! with the rotor it turns, and the balanced state is no equilibrium).
+//! `∫ M φ̇ dt`. [`Gravity`] is a constant load in fixed axes; in axes turning with the rotor each
+//! pair of it turns as `R(−Ω t)`, the field is periodic with `2π/Ω` and the balanced state is a
+//! periodic orbit (the rotor sags, the balls swing), analysed by its Floquet multipliers.
 
 pub mod campbell;
 pub mod config;
@@ -293,6 +294,10 @@ pub struct LinearRotor {
     pub spin_damping: f64,
     /// Gravity, a constant load across the axis (`None`: none).
     pub gravity: Option<Gravity>,
+    /// Real balls of each balancer plane, in order (planes beyond the list: point masses):
+    /// contact and rolling resistance ([`crate::balls`]), in run-ups ([`runup`]); the
+    /// stationary analyses refuse them ([`Error::NoLinearisation`]).
+    pub ball_physics: Vec<crate::balls::BallPhysics>,
 }
 
 /// Gravity across the axis: the acceleration `g = (g_x, g_y)` (m/s², fixed axes) and the
@@ -332,6 +337,7 @@ impl LinearRotor {
             polar_inertia: 0.0,
             spin_damping: 0.0,
             gravity: None,
+            ball_physics: vec![],
         }
     }
 
@@ -375,14 +381,11 @@ impl LinearRotor {
     /// the disk's inertia force `m1 (ü + 2iΩu̇ − Ω²(u + s1))` is `m1 ü + …` plus the unbalance
     /// force `m1 s1 Ω²`), and the balancer `(r, n, m3, c_ψ)`; the spin's polar moment
     /// `I_p = I_G + m1 s1²` and drag `c_θ` for torque drives (the kinetic energy in fixed axes
-    /// is then the planar model's term by term). Errors: `planar.s2` nonzero, real balls, or the rotor's own checks.
+    /// is then the planar model's term by term). Real balls carry over ([`LinearRotor::ball_physics`]). Errors: `planar.s2` nonzero, or the rotor's own checks.
     pub fn from_planar(p: &PlanarRotor) -> Result<Self> {
         p.validate()?;
         if p.s2 != 0.0 {
             return Err(Error::invalid("planar.s2", "the linear rotor's race is centred on the node: s2 must be 0"));
-        }
-        if p.balls.is_active() {
-            return Err(Error::invalid("planar.balls", "real balls (contact, rolling resistance) are not modelled on the linear rotor"));
         }
         if p.anisotropic() {
             return Err(Error::invalid("planar.k_y", "the linear rotor's Jeffcott form has equal supports: k_x = k_y and c_x = c_y"));
@@ -401,6 +404,9 @@ impl LinearRotor {
         // about the shaft (the kinetic energy ½(I_G + m1 s1²) θ̇² of the planar model)
         r.polar_inertia = p.i_g + p.m1 * p.s1 * p.s1;
         r.spin_damping = p.c_theta;
+        if p.balls.is_active() {
+            r.ball_physics = vec![p.balls];
+        }
         Ok(r)
     }
 
@@ -550,6 +556,15 @@ impl LinearRotor {
             if b.balls > crate::planar::MAX_BALLS {
                 return Err(Error::TooLarge { what: f("balls"), size: b.balls as u64, limit: crate::planar::MAX_BALLS as u64, reason: String::new() });
             }
+            if let Some(p) = self.ball_physics.get(i) {
+                p.validate(&format!("linear_rotor.balancers[{i}]"), b.ball_mass, b.radius, b.balls)?;
+            }
+        }
+        if self.ball_physics.len() > self.balancers.len() {
+            return Err(Error::invalid(
+                "linear_rotor.ball_physics",
+                format!("has {} entries, one per balancer plane: {}", self.ball_physics.len(), self.balancers.len()),
+            ));
         }
         Ok(())
     }

@@ -18,7 +18,7 @@
 //! Craig–Bampton one); the speed-dependent bearings sit on boundary nodes, on which the basis
 //! does not depend, so one basis serves every speed.
 //!
-//! The polar moment and spin drag carry over unchanged, and gravity's weight is projected
+//! The polar moment, spin drag and real balls carry over unchanged, and gravity's weight is projected
 //! (`Bᵀ load`, its virtual work on `q = B z`).
 //!
 //! **The error it states.** For each undamped natural frequency `ω̃_k` of the reduced rotor
@@ -408,6 +408,7 @@ fn assemble(rotor: &LinearRotor, boundary: &[usize], bd: &[usize], id: &[usize],
     red.speed_bearings = rotor.speed_bearings.iter().map(|s| super::SpeedBearing { node: node_of(s.node), ..s.clone() }).collect();
     red.polar_inertia = rotor.polar_inertia;
     red.spin_damping = rotor.spin_damping;
+    red.ball_physics = rotor.ball_physics.clone();
     // the weight's virtual work on q = B z: Bᵀ load
     red.gravity = rotor.gravity.as_ref().map(|g| super::Gravity { g: g.g, load: (0..r).map(|j| (0..n).map(|i| b[i * r + j] * g.load[i]).sum()).collect() });
     (red, b, r)

@@ -18,11 +18,18 @@
 //! which is also the spin equation's row (the mass matrix of a Lagrangian is symmetric), and
 //! the spin's diagonal `I_p + Σ_j m_b R²`. The accelerations solve the bordered system
 //! `[[A, a_φ], [a_φᵀ, I_p + Σ m_b R²]] (q̈, ψ̈, φ̈) = (R, R_φ)`.
+//!
+//! **Real balls** ([`LinearRotor::ball_physics`]): the contact and rolling-resistance torques
+//! of [`crate::balls`] are added to the balls' equations (their relative angles only: they are
+//! internal to the rotor with its balls, so not in `R_φ`), with the normal force of
+//! [`LinearRotorField`]'s real-ball forces; the implicit method then uses a Jacobian by
+//! differences, and the balls' rates get the tolerance of [`crate::balls::BallPhysics::rate_tolerance`].
 
-use super::field::{Frame, Kin, LinearRotorField, Mats};
+use super::field::{Frame, Kin, LinearRotorField, Mats, SpinVar, SEEDS};
 use super::{Direction, LinearRotor};
 use crate::drive::Drive;
 use crate::error::{Error, Result};
+use crate::ode::dual::{Dual, Real};
 use crate::ode::lu::Lu;
 use crate::ode::{Control, Method, Options, Solver, Status, System};
 use crate::simulation::{run, Hooks, Peak, Timeline};
@@ -88,7 +95,7 @@ impl<'a> RunUpSystem<'a> {
                 "a torque drive (\"torque\", \"motor\", a torque \"schedule\") needs the rotor's polar moment of inertia about its axis (kg m², > 0): M, C, G, K do not hold it",
             ));
         }
-        Ok(RunUpSystem { field: LinearRotorField::new(rotor, drive.omega0(), Frame::Fixed)?, rotor, drive, spin })
+        Ok(RunUpSystem { field: LinearRotorField::with_real_balls(rotor, drive.omega0(), Frame::Fixed)?, rotor, drive, spin })
     }
 
     /// The field (at the drive's initial speed; for the rotor and the coordinates).
@@ -120,7 +127,7 @@ impl<'a> RunUpSystem<'a> {
 
     fn at(&self, t: f64) -> (Mats<'_>, Kin) {
         let (w, wdot) = self.drive.kinematics(t);
-        (self.mats(w), Kin { w, wdot, nu: 0.0, chi: drive_angle(self.drive, t) })
+        (self.mats(w), Kin { w, wdot, nu: 0.0, chi: drive_angle(self.drive, t), frame: 0.0 })
     }
 
     /// The accelerations `(q̈, ψ̈, φ̈)` under a torque at `(t, y)`, `y = (q, ψ, φ, q̇, ψ̇, φ̇)`: the
@@ -136,7 +143,7 @@ impl<'a> RunUpSystem<'a> {
         x.extend_from_slice(&y[..nc]);
         x.extend_from_slice(&y[n1..n1 + nc]);
         let mats = self.mats(w);
-        let kin = Kin { w, wdot: 0.0, nu: 0.0, chi: phi };
+        let kin = Kin { w, wdot: 0.0, nu: 0.0, chi: phi, frame: 0.0 };
         let zero = vec![0.0; nc];
         let mut r0 = vec![0.0; nc];
         f.residual::<f64>(&mats, &kin, &x, &zero, &mut r0);
@@ -170,10 +177,156 @@ impl<'a> RunUpSystem<'a> {
             }
         }
         let mut rhs = r0;
+        // real balls' torques act on their relative angles only (not in R_φ)
+        f.add_real_balls(&kin, &x, &mut rhs);
         rhs.push(rphi);
         let lu = Lu::factored(big, n1)?;
         lu.solve(&mut rhs);
         Some(rhs)
+    }
+}
+
+impl RunUpSystem<'_> {
+    /// The exact Jacobian `∂f/∂y` at `(t, y)` (row-major `dim²`) that the implicit method uses,
+    /// by forward-mode dual numbers, under a prescribed speed and under a torque (module docs);
+    /// `None` with real balls (the method takes differences then).
+    pub fn jacobian_matrix(&self, t: f64, y: &[f64]) -> Option<Vec<f64>> {
+        let d = System::dim(self);
+        let mut j = vec![0.0; d * d];
+        if self.field.real_balls() {
+            return None;
+        }
+        if self.spin {
+            self.spin_jacobian(t, y, &mut j);
+        } else {
+            let (mats, kin) = self.at(t);
+            let dim = 2 * self.field.coords();
+            self.field.jacobian_with(&mats, &kin, y, &mut j, dim);
+        }
+        Some(j)
+    }
+
+    /// `∂C/∂Ω` and `∂K/∂Ω` of the speed-dependent bearings at `w`: the slopes of their tables
+    /// (0 outside; at a table speed the interval above it, as [`super::SpeedBearing::at`]
+    /// interpolates), plus `G` in the first: `(G + C'(Ω), K'(Ω))`.
+    fn speed_derivatives(&self, w: f64) -> (Vec<f64>, Vec<f64>) {
+        let r = self.rotor;
+        let n = r.dofs();
+        let (mut dd, mut dk) = (r.g.clone(), vec![0.0; n * n]);
+        for b in &r.speed_bearings {
+            let sp = &b.speeds;
+            if sp.len() < 2 || w < sp[0] || w >= sp[sp.len() - 1] {
+                continue;
+            }
+            let i = sp.partition_point(|v| *v <= w) - 1;
+            let h = sp[i + 1] - sp[i];
+            let node = b.node * r.layout.per_node();
+            for (j, (row, col)) in [(0, 0), (0, 1), (1, 0), (1, 1)].into_iter().enumerate() {
+                dk[(node + row) * n + node + col] += (b.k[i + 1][j] - b.k[i][j]) / h;
+                dd[(node + row) * n + node + col] += (b.c[i + 1][j] - b.c[i][j]) / h;
+            }
+        }
+        (dd, dk)
+    }
+
+    /// The exact Jacobian under a torque, `y = (q, ψ, φ, q̇, ψ̇, φ̇)` (module docs): with
+    /// `a = (q̈, ψ̈, φ̈)` the solution of `B(y) a = F(y)` (the bordered system), `∂a/∂y =
+    /// B⁻¹ ∂(F − B a)/∂y` at the current `a`; `F − B a` is the structure's and balls' residual
+    /// at `a` (with `Ω̇ = φ̈`) and the spin's row `R_φ − a_φᵀ (q̈, ψ̈) − (I_p + Σ m_b R²) φ̈`, all
+    /// differentiated by forward-mode dual numbers in every state, the spin angle and speed
+    /// included ([`SpinVar`]; the drive's torque by [`Drive::torque_slope`]).
+    fn spin_jacobian(&self, t: f64, y: &[f64], jac: &mut [f64]) {
+        let f = &self.field;
+        let r = self.rotor;
+        let n = r.dofs();
+        let nc = f.coords();
+        let n1 = nc + 1;
+        let dim = 2 * n1;
+        jac.iter_mut().for_each(|v| *v = 0.0);
+        for i in 0..n1 {
+            jac[i * dim + n1 + i] = 1.0;
+        }
+        let (phi, w) = (y[nc], y[n1 + nc]);
+        let Some(acc) = self.spin_accelerations(t, y) else {
+            jac[n1 * dim..].iter_mut().for_each(|v| *v = f64::NAN);
+            return;
+        };
+        let (qa, phidd) = (&acc[..nc], acc[nc]);
+        let mut x = Vec::with_capacity(2 * nc);
+        x.extend_from_slice(&y[..nc]);
+        x.extend_from_slice(&y[n1..n1 + nc]);
+        let mats = self.mats(w);
+        let kin = Kin { w, wdot: phidd, nu: 0.0, chi: phi, frame: 0.0 };
+        let kin0 = Kin { wdot: 0.0, ..kin };
+        let kin1 = Kin { wdot: WDOT_PROBE, ..kin };
+        let zero = vec![0.0; nc];
+        // the bordered matrix B at y, as in spin_accelerations
+        let mut r0 = vec![0.0; nc];
+        f.residual::<f64>(&mats, &kin0, &x, &zero, &mut r0);
+        let mut r1 = vec![0.0; nc];
+        f.residual::<f64>(&mats, &kin1, &x, &zero, &mut r1);
+        let a = f.mass_matrix(&mats, phi, &x);
+        let mut big = vec![0.0; n1 * n1];
+        for i in 0..nc {
+            big[i * n1..i * n1 + nc].copy_from_slice(&a[i * nc..(i + 1) * nc]);
+            let ap = (r0[i] - r1[i]) / WDOT_PROBE;
+            big[i * n1 + nc] = ap;
+            big[nc * n1 + i] = ap;
+        }
+        let balls: f64 = r.balancers.iter().map(|b| b.balls as f64 * b.ball_mass * b.radius * b.radius).sum();
+        let inertia = r.polar_inertia + balls;
+        big[nc * n1 + nc] = inertia;
+        let Some(lu) = Lu::factored(big, n1) else {
+            jac[n1 * dim..].iter_mut().for_each(|v| *v = f64::NAN);
+            return;
+        };
+        let (dd, dk) = self.speed_derivatives(w);
+        let slope = self.drive.torque_slope(t, w);
+        type D = Dual<SEEDS>;
+        let mut xd = vec![D::cst(0.0); 2 * nc];
+        let (mut g, mut g0, mut g1) = (vec![D::cst(0.0); nc], vec![D::cst(0.0); nc], vec![D::cst(0.0); nc]);
+        let mut col = vec![0.0; n1];
+        for start in (0..dim).step_by(SEEDS) {
+            // state index k of y seeded in direction k − start
+            let seed = |k: usize, v: f64| if k >= start && k < start + SEEDS { D::var(v, k - start) } else { D::cst(v) };
+            for i in 0..nc {
+                xd[i] = seed(i, y[i]);
+                xd[nc + i] = seed(n1 + i, y[n1 + i]);
+            }
+            let sv = SpinVar { chi: seed(nc, 0.0), w: seed(n1 + nc, 0.0), dd: &dd, dk: &dk };
+            f.residual_spin(&mats, &kin, Some(&sv), &xd, qa, &mut g);
+            f.residual_spin(&mats, &kin0, Some(&sv), &xd, &zero, &mut g0);
+            f.residual_spin(&mats, &kin1, Some(&sv), &xd, &zero, &mut g1);
+            // the spin's row: R_φ − a_φᵀ (q̈, ψ̈) − (I_p + Σ m_b R²) φ̈
+            let phid = sv.chi + phi;
+            let mut gs = sv.w * (slope - r.spin_damping) + (self.drive.torque(t, w) - r.spin_damping * w - inertia * phidd);
+            if let Some(gr) = &r.gravity {
+                for u in &r.unbalances {
+                    let (s, c) = (phid + u.phase).sin_cos();
+                    gs = gs + (c * gr.g[1] - s * gr.g[0]) * u.me;
+                }
+            }
+            let mut k = n;
+            for b in &r.balancers {
+                for _ in 0..b.balls {
+                    gs = gs + g0[k] + xd[nc + k] * b.drag;
+                    k += 1;
+                }
+            }
+            for i in 0..nc {
+                gs = gs - (g0[i] - g1[i]) * (qa[i] / WDOT_PROBE);
+            }
+            for kk in 0..SEEDS.min(dim - start) {
+                for i in 0..nc {
+                    col[i] = g[i].d[kk];
+                }
+                col[nc] = gs.d[kk];
+                lu.solve(&mut col);
+                for (i, c) in col.iter().enumerate() {
+                    jac[(n1 + i) * dim + start + kk] = *c;
+                }
+            }
+        }
     }
 }
 
@@ -202,10 +355,13 @@ impl System for RunUpSystem<'_> {
     }
 
     fn jacobian(&self) -> Box<dyn crate::ode::Jacobian + '_> {
-        if self.spin {
-            // forward differences of the right-hand side (the bordered system has no closed
-            // form Jacobian here); used only by the implicit method
+        if self.field.real_balls() {
+            // forward differences of the right-hand side (the real balls' contact and friction
+            // are not written for dual numbers); used only by the implicit method
             return Box::new(crate::ode::DenseJacobian::differences(self));
+        }
+        if self.spin {
+            return Box::new(crate::ode::DenseJacobian::analytic(self, move |t, y, j| self.spin_jacobian(t, y, j)));
         }
         Box::new(crate::ode::DenseJacobian::analytic(self, move |t, y, j| {
             let (mats, kin) = self.at(t);
@@ -382,6 +538,17 @@ pub fn simulate(
         let base = if i < n { settings.atol } else { settings.atol / r_min };
         atol[i] = base;
         atol[ncs + i] = base * w_max;
+    }
+    // real balls' rates: below a tenth of the slip rate with rolling resistance, so that the
+    // regularised sign is resolved (crate::balls)
+    let mut first = n;
+    for (k, b) in rotor.balancers.iter().enumerate() {
+        if let Some(p) = rotor.ball_physics.get(k) {
+            for a in &mut atol[ncs + first..ncs + first + b.balls] {
+                *a = p.rate_tolerance(*a);
+            }
+        }
+        first += b.balls;
     }
     let mut o = Options::new(settings.rtol, settings.atol).method(settings.method).atol_per_component(atol);
     o.h_max_implicit = 4.0 * settings.dt;
