@@ -467,13 +467,17 @@ fn run_map(
     route: Route,
     control: &Control,
 ) -> Result<()> {
-    let (root, source) = config::read_set(common.config.as_deref(), &common.set)?;
-    if route.is_general(&root) {
+    // a linear rotor config takes its own --set (linear_rotor::read_set) and the general route
+    let (root, source) = linear_rotor::read_set(common.config.as_deref(), &common.set)?;
+    let linear = linear_rotor::is_linear(&root);
+    if linear || route.is_general(&root) {
         if balls == BallsArg::Locked {
             anyhow::bail!("--balls locked: the general route maps the balls free (use the 12-state route of a one-plane config for the locked rotor)");
         }
         let verdict_only = quantity == QuantityArg::Verdict;
-        config::check_entries(&root, "map", &[config::simulation_model(&root)])?;
+        if !linear {
+            config::check_entries(&root, "map", &[config::simulation_model(&root)])?;
+        }
         return map::run_general(&root, common.config.as_deref(), &x, &y, omega.as_deref(), verdict_only, &out, threads, boundary, control);
     }
     // the speeds need the config's ω0: it is read (and checked) first

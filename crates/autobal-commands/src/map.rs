@@ -345,7 +345,7 @@ pub fn run_general(
     let xs: Vec<String> = lx.values.iter().map(|v| crate::num::Csv(*v).to_string()).collect();
     let mut io_error: Option<std::io::Error> = None;
     let t0 = std::time::Instant::now();
-    let outcome = general_map_traced(root, &lx, &ly, speed, boundary, control, &mut |j, cells, points| {
+    let mut on_row = |j: usize, cells: &[autobal::rotor_map::GeneralCell], points: &[BoundaryPoint]| {
         traced.extend_from_slice(points);
         if j % ky == 0 && j / ky < dy.n {
             kept[j / ky] = Some(cells.iter().step_by(kx).take(dx.n).copied().collect());
@@ -378,7 +378,14 @@ pub fn run_general(
             b.set_position(j as u64 + 1);
         }
         true
-    });
+    };
+    // a linear rotor config ([linear_rotor]): its own paths and rotor (crate::linear_rotor)
+    let linear = crate::linear_rotor::is_linear(root);
+    let outcome = if linear {
+        crate::linear_rotor::map_traced(root, config, &lx, &ly, speed, boundary, control, &mut on_row)
+    } else {
+        general_map_traced(root, &lx, &ly, speed, boundary, control, &mut on_row)
+    };
     if let Some(e) = io_error {
         return Err(e.into());
     }
@@ -406,7 +413,8 @@ pub fn run_general(
         Kind::Equilibrium => "equilibrium (eigenvalues)",
         Kind::PeriodicOrbit => "periodic orbit (Floquet multipliers)",
     };
-    let title = format!("Stability map of the {} rotor's stationary state (general route: {state})", if planar { "planar" } else { "spatial" });
+    let model = if linear { "linear" } else if planar { "planar" } else { "spatial" };
+    let title = format!("Stability map of the {model} rotor's stationary state (general route: {state})");
     let mut p = plot(&r, &title);
     // no 003 necessary ranges off the 12-state model
     p.series.retain(|s| s.label != "003 necessary boundary");

@@ -91,7 +91,7 @@ fn columns(paths: &[&str], summary: &[&str]) -> Vec<String> {
 const PRINTED_WARNINGS: usize = 10;
 
 /// A run's summary as the sweep's table shows it.
-trait Row: SweepSummary {
+pub(crate) trait Row: SweepSummary {
     /// The table's header after the axes (`lu`: the unit of lengths).
     fn header(lu: &str) -> String;
     /// The row after the axes (`ls`: lengths in that unit per config unit).
@@ -157,6 +157,10 @@ fn parse_axes(a: &SweepArgs) -> Result<Vec<(&'static str, Axis)>> {
 }
 
 pub fn run(a: SweepArgs, control: &Control) -> Result<()> {
+    // a linear rotor config ([linear_rotor]): its parameter paths (crate::linear_rotor::sweep_base)
+    if let Some((root, base, problem)) = crate::linear_rotor::sweep_base(a.config.as_deref(), &a.set)? {
+        return sweep_on(&a, &root, &base, parse_axes(&a)?, problem, ("mm", 1e3), control);
+    }
     let (root, source) = config::read_planar_set(a.config.as_deref(), &a.set)?;
     let axes = parse_axes(&a)?;
     // the same rotor `simulate` runs on this config; another rotor's tables are refused by

@@ -121,6 +121,7 @@
 //! `∫ M φ̇ dt`. [`Gravity`] is a constant load in fixed axes (time simulation only: in axes turning
 //! with the rotor it turns, and the balanced state is no equilibrium).
 
+pub mod basins;
 pub mod campbell;
 pub mod config;
 pub mod field;
@@ -128,6 +129,7 @@ pub mod npz;
 pub mod reduce;
 pub mod runup;
 pub mod shaft;
+pub mod spec;
 pub mod stability;
 
 use crate::error::{finite, non_negative, positive, Error, Result};
