@@ -52,7 +52,8 @@ fn the_presets_basins_end_where_the_planar_runs_end() {
             assert!(d.abs() < 1e-7, "start {start:?}: ψ {a} vs {b}");
         }
         assert!((end.final_amplitude - r).abs() < 1e-7 * p.s1, "start {start:?}: r {} vs {r}", end.final_amplitude);
-        assert_eq!(end.residual_unbalance, residual_unbalance(&rotor, &end.psi));
+        // from the wrapped angles: the same to round-off (the residual is relative to m e)
+        assert!((end.residual_unbalance - residual_unbalance(&rotor, &end.psi)).abs() < 1e-12);
         if end.balanced {
             balanced += 1;
             assert!(end.final_amplitude <= BALANCED_FRACTION * p.m1 * p.s1 / (p.m1 + p.m2));
