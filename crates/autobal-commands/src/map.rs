@@ -347,7 +347,7 @@ pub fn run_general(
     let t0 = std::time::Instant::now();
     let mut on_row = |j: usize, cells: &[autobal::rotor_map::GeneralCell], points: &[BoundaryPoint]| {
         traced.extend_from_slice(points);
-        if j % ky == 0 && j / ky < dy.n {
+        if j.is_multiple_of(ky) && j / ky < dy.n {
             kept[j / ky] = Some(cells.iter().step_by(kx).take(dx.n).copied().collect());
         }
         use std::fmt::Write as _;

@@ -330,7 +330,7 @@ pub fn linear_rotor_run(py: Python<'_>, command: &str, path: std::path::PathBuf,
             None => None,
         };
         let within = |f: &mut (dyn FnMut() -> anyhow::Result<serde_json::Value> + Send)| match &pool {
-            Some(p) => p.install(|| f()),
+            Some(p) => p.install(&mut *f),
             None => f(),
         };
         match command.as_str() {
