@@ -114,10 +114,7 @@ impl command::Output for Output {
             None => (self.ends.len(), self.ends.iter().flatten().count()),
         };
         (done < runs).then(|| {
-            format!(
-                "interrupted: {done} of {runs} runs complete{}",
-                self.written.as_ref().map_or(String::new(), |p| format!(", kept in {}", p.display()))
-            )
+            format!("interrupted: {done} of {runs} runs complete{}", self.written.as_ref().map_or(String::new(), |p| format!(", kept in {}", p.display())))
         })
     }
 }

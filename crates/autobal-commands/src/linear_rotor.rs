@@ -15,8 +15,8 @@ use autobal::analysis::{Kind, Verdict};
 use autobal::error::fmt_num;
 use autobal::linear_rotor::config::{export, linear_rotor_bytes, LinearRotorConfig};
 use autobal::linear_rotor::reduce::{reduce, Reduction};
-use autobal::linear_rotor::spec::LinearRotorSpec;
 use autobal::linear_rotor::runup::{simulate, RunSample, RunSettings, RunSummary};
+use autobal::linear_rotor::spec::LinearRotorSpec;
 use autobal::linear_rotor::LinearRotor;
 use autobal::rotor_stability::{speed_grid, RotorStability};
 use serde_json::{json, Value};
@@ -308,7 +308,13 @@ pub fn basins(root: &Table, dir: &Path, n: usize, control: &autobal::control::Co
     let starts = angle_grid(&run.rotor, n, "--n")?;
     let t0 = std::time::Instant::now();
     let ends = basins(&run, &starts, control)?.value;
-    Ok(crate::basins::Output { angles: starts.iter().map(|p| [p[0], p[1]]).collect(), ends: vec![], wall: t0.elapsed().as_secs_f64(), written: None, linear: Some(ends) })
+    Ok(crate::basins::Output {
+        angles: starts.iter().map(|p| [p[0], p[1]]).collect(),
+        ends: vec![],
+        wall: t0.elapsed().as_secs_f64(),
+        written: None,
+        linear: Some(ends),
+    })
 }
 
 /// The CSV of a linear rotor's basins (the complete runs):

@@ -413,7 +413,13 @@ pub fn run_general(
         Kind::Equilibrium => "equilibrium (eigenvalues)",
         Kind::PeriodicOrbit => "periodic orbit (Floquet multipliers)",
     };
-    let model = if linear { "linear" } else if planar { "planar" } else { "spatial" };
+    let model = if linear {
+        "linear"
+    } else if planar {
+        "planar"
+    } else {
+        "spatial"
+    };
     let title = format!("Stability map of the {model} rotor's stationary state (general route: {state})");
     let mut p = plot(&r, &title);
     // no 003 necessary ranges off the 12-state model

@@ -289,13 +289,17 @@ impl Options {
     fn texts(&mut self, key: &str) -> anyhow::Result<Vec<String>> {
         match self.take(key) {
             None => Ok(vec![]),
-            Some(serde_json::Value::Array(a)) => a.into_iter().map(|v| v.as_str().map(String::from).ok_or_else(|| autobal::Error::invalid(key, "expected a list of strings").into())).collect(),
+            Some(serde_json::Value::Array(a)) => {
+                a.into_iter().map(|v| v.as_str().map(String::from).ok_or_else(|| autobal::Error::invalid(key, "expected a list of strings").into())).collect()
+            }
             Some(v) => Err(autobal::Error::invalid(key, format!("expected a list of strings, got {v}")).into()),
         }
     }
     fn done(self) -> anyhow::Result<()> {
         match self.map.keys().next() {
-            Some(k) => Err(autobal::Error::invalid(k.as_str(), format!("not an option of {} on a linear rotor config (see help(autobal.run))", self.command)).into()),
+            Some(k) => {
+                Err(autobal::Error::invalid(k.as_str(), format!("not an option of {} on a linear rotor config (see help(autobal.run))", self.command)).into())
+            }
             None => Ok(()),
         }
     }

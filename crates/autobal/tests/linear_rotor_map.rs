@@ -26,12 +26,15 @@ fn planar_root() -> Table {
 fn preset_spec(root: &Table) -> LinearRotorSpec {
     let p = config::planar(root).unwrap().rotor;
     let (text, files) = export(&LinearRotor::from_planar(&p).unwrap(), "jeffcott");
-    LinearRotorSpec::new(text.parse().unwrap(), &mut |name| files.iter().find(|f| f.0 == name).map(|f| f.1.clone().into_bytes()).ok_or("missing".into())).unwrap()
+    LinearRotorSpec::new(text.parse().unwrap(), &mut |name| files.iter().find(|f| f.0 == name).map(|f| f.1.clone().into_bytes()).ok_or("missing".into()))
+        .unwrap()
 }
 
 type Rows = (Vec<Vec<GeneralCell>>, Vec<BoundaryPoint>);
 
-fn collect(run: impl FnOnce(&mut dyn FnMut(usize, &[GeneralCell], &[BoundaryPoint]) -> bool) -> autobal::Result<autobal::rotor_map::GeneralMapOutcome>) -> autobal::Result<Rows> {
+fn collect(
+    run: impl FnOnce(&mut dyn FnMut(usize, &[GeneralCell], &[BoundaryPoint]) -> bool) -> autobal::Result<autobal::rotor_map::GeneralMapOutcome>,
+) -> autobal::Result<Rows> {
     let (mut rows, mut pts) = (vec![], vec![]);
     let out = run(&mut |_, r, p| {
         rows.push(r.to_vec());
@@ -89,7 +92,15 @@ fn a_fixed_speed_map_over_two_paths_matches_the_planar_route() {
     let drags = vec![0.05, 0.2];
     let speed = Some(Speed::omega(1.6 * wn));
     let (a, _) = collect(|f| {
-        general_map_traced(&root, &Axis { path: "planar.m3".into(), values: masses.clone() }, &Axis { path: "planar.c_psi".into(), values: drags.clone() }, speed, false, &Control::none(), f)
+        general_map_traced(
+            &root,
+            &Axis { path: "planar.m3".into(), values: masses.clone() },
+            &Axis { path: "planar.c_psi".into(), values: drags.clone() },
+            speed,
+            false,
+            &Control::none(),
+            f,
+        )
     })
     .unwrap();
     let (b, _) = collect(|f| {

@@ -105,13 +105,19 @@ fn a_sweep_over_the_drag_is_the_config_run_by_hand_and_the_native_sweep() {
         let cfg = linear_rotor(&root, &mut |name| files.iter().find(|f| f.0 == name).map(|f| f.1.clone()).ok_or_else(|| "missing".into())).unwrap();
         assert_eq!(cfg.rotor.balancers[0].drag, drags[*i]);
         let drive = Drive::Acceleration { omega0: 0.2 * wn, b: 1.6 * wn / T_END };
-        let rs = RunSettings { t_end: T_END, dt: DT, rtol: 1e-10, atol: 1e-12, method: Method::Auto, max_steps: 10_000_000, max_wall_s: None, physical_nodes: None };
+        let rs =
+            RunSettings { t_end: T_END, dt: DT, rtol: 1e-10, atol: 1e-12, method: Method::Auto, max_steps: 10_000_000, max_wall_s: None, physical_nodes: None };
         let direct = simulate(&cfg.rotor, &drive, &rs, &Control::none(), |_| true).unwrap();
         assert_eq!(*s, direct, "point {i}");
         let l = linear_summary_values(s);
         assert_eq!((l[lcol("completed")], l[lcol("t_reached")]), (1.0, T_END));
         let peak = n[col("peak_amplitude")];
-        assert!((l[lcol("final_amplitude")] - n[col("final_amplitude")]).abs() <= 1e-7 * peak, "point {i}: {} vs {}", l[lcol("final_amplitude")], n[col("final_amplitude")]);
+        assert!(
+            (l[lcol("final_amplitude")] - n[col("final_amplitude")]).abs() <= 1e-7 * peak,
+            "point {i}: {} vs {}",
+            l[lcol("final_amplitude")],
+            n[col("final_amplitude")]
+        );
         let w = n[col("omega_at_peak")];
         let low = (peak - l[lcol("peak_amplitude")]) / peak;
         assert!(low >= -1e-7 && low <= (w * DT).powi(2) / 8.0, "point {i}: peak {} vs native {peak} ({low:e})", l[lcol("peak_amplitude")]);

@@ -94,12 +94,12 @@ impl LinearRotorSpec {
         for (p, v) in set {
             set_path(&mut root, p, *v)?;
         }
-        linear_rotor_bytes(&root, &mut |p| self.files.get(p).cloned().ok_or_else(|| format!("{p}: not among the files read with the config"))).map_err(
-            |e| match set {
+        linear_rotor_bytes(&root, &mut |p| self.files.get(p).cloned().ok_or_else(|| format!("{p}: not among the files read with the config"))).map_err(|e| {
+            match set {
                 [(p, v)] if e.field() != Some(*p) => Error::invalid(*p, format!("at {p} = {}: {e}", fmt_num(*v))),
                 _ => e,
-            },
-        )
+            }
+        })
     }
 
     /// The model the analyses run at that point ([`model`]).
@@ -140,7 +140,8 @@ pub fn default_omega_max(cfg: &LinearRotorConfig) -> Result<f64> {
     }
     let w = cfg.rotor.at_speed(0.0).natural_frequencies(&[], true)?;
     let pos: Vec<f64> = w.into_iter().filter(|v| *v > 0.0).collect();
-    let first = *pos.first().ok_or_else(|| Error::invalid("linear_rotor.omega_max", "the rotor has no positive natural frequency: give linear_rotor.omega_max"))?;
+    let first =
+        *pos.first().ok_or_else(|| Error::invalid("linear_rotor.omega_max", "the rotor has no positive natural frequency: give linear_rotor.omega_max"))?;
     Ok((1.5 * pos[pos.len().min(4) - 1]).max(3.0 * first))
 }
 
