@@ -866,15 +866,20 @@ mod tests {
 
     /// A sweep's point without values is the run `simulate` makes (this module's [`setup`]): the
     /// library's `run_of` repeats its rules (reduction, default run-up to `default_omega_max`,
-    /// `dt`), here with the example's reduction and its default drive, then with a `[drive]`.
+    /// `dt`), here with the example's reduction, without its `[drive]` (the default run-up),
+    /// then with it (`drive.b` set by its path).
     #[test]
     fn a_sweep_point_is_the_run_of_simulate() {
         let (root, path) = example();
         let dir = path.parent().unwrap();
         for extra in [None, Some(("drive.b", 40.0))] {
             let mut root = root.clone();
-            if let Some((k, v)) = extra {
-                autobal::linear_rotor::spec::set_path(&mut root, k, v).unwrap();
+            match extra {
+                // without [drive]: simulate's default run-up
+                None => {
+                    root.remove("drive");
+                }
+                Some((k, v)) => autobal::linear_rotor::spec::set_path(&mut root, k, v).unwrap(),
             }
             let cfg = from_table(&root, dir).unwrap();
             let s = setup(&cfg, default_omega_max(&cfg).unwrap(), None).unwrap();
