@@ -38,6 +38,8 @@ pub struct Output {
     pub wall: f64,
     /// Where the front end wrote the CSV ([`Output::csv`]), named in the JSON and the table.
     pub written: Option<PathBuf>,
+    /// A linear rotor config's ends (`ends` is then empty): [`crate::linear_rotor::basins`].
+    pub linear: Option<Vec<Option<autobal::linear_rotor::basins::BasinEnd>>>,
 }
 
 impl command::Command for Args {
@@ -46,6 +48,9 @@ impl command::Command for Args {
 
     fn run(&self, control: &Control) -> Result<Output> {
         let (root, source) = self.config.read()?;
+        if crate::linear_rotor::is_linear(&root) {
+            return crate::linear_rotor::basins(&root, self.config.dir(), self.n, control);
+        }
         let sim = crate::spatial_sim::build(&root, &source)?;
         crate::config::check_entries(&root, "basins", &[crate::config::Model::Spatial])?;
         check_angle_grid(&sim.rotor, self.n, "--n")?;
@@ -53,13 +58,16 @@ impl command::Command for Args {
         let t0 = std::time::Instant::now();
         let ends = basins(&sim.rotor, &cases, &sim.settings, control)?.value;
         let wall = t0.elapsed().as_secs_f64();
-        Ok(Output { angles: cases.iter().map(|c| [c.initial.psi[0], c.initial.psi[1]]).collect(), ends, wall, written: None })
+        Ok(Output { angles: cases.iter().map(|c| [c.initial.psi[0], c.initial.psi[1]]).collect(), ends, wall, written: None, linear: None })
     }
 }
 
 impl Output {
     /// The CSV of the complete runs: `psi_1,psi_2,balanced,residual_unbalance,final_amplitude`.
     pub fn csv(&self) -> String {
+        if let Some(l) = &self.linear {
+            return crate::linear_rotor::basins_csv(l);
+        }
         let mut csv = String::from("psi_1,psi_2,balanced,residual_unbalance,final_amplitude\n");
         for (a, r) in self.angles.iter().zip(&self.ends) {
             if let Some(s) = r {
@@ -79,31 +87,34 @@ impl Output {
 
 impl command::Output for Output {
     fn json(&self) -> Result<Value> {
-        let mut v = autobal::reports::basins(&self.ends, self.wall);
+        let mut v = match &self.linear {
+            Some(l) => crate::linear_rotor::basins_json(l, self.wall),
+            None => autobal::reports::basins(&self.ends, self.wall),
+        };
         if let Some(p) = &self.written {
             v["csv"] = json!(p.display().to_string());
         }
         Ok(v)
     }
     fn table(&self) -> Result<String> {
-        let done = self.ends.iter().flatten().count();
-        let balanced = self.ends.iter().flatten().filter(|s| s.balanced).count();
+        let (runs, done, balanced) = match &self.linear {
+            Some(l) => (l.len(), l.iter().flatten().count(), l.iter().flatten().filter(|s| s.balanced).count()),
+            None => (self.ends.len(), self.ends.iter().flatten().count(), self.ends.iter().flatten().filter(|s| s.balanced).count()),
+        };
         Ok(format!(
-            "{balanced} of {} runs balanced ({:.1} %), {:.2} s{}\n",
-            self.ends.len(),
+            "{balanced} of {runs} runs balanced ({:.1} %), {:.2} s{}\n",
             100.0 * balanced as f64 / done.max(1) as f64,
             self.wall,
             self.written.as_ref().map_or(String::new(), |p| format!("; wrote {}", p.display()))
         ))
     }
     fn stopped(&self) -> Option<String> {
-        let done = self.ends.iter().flatten().count();
-        (done < self.ends.len()).then(|| {
-            format!(
-                "interrupted: {done} of {} runs complete{}",
-                self.ends.len(),
-                self.written.as_ref().map_or(String::new(), |p| format!(", kept in {}", p.display()))
-            )
+        let (runs, done) = match &self.linear {
+            Some(l) => (l.len(), l.iter().flatten().count()),
+            None => (self.ends.len(), self.ends.iter().flatten().count()),
+        };
+        (done < runs).then(|| {
+            format!("interrupted: {done} of {runs} runs complete{}", self.written.as_ref().map_or(String::new(), |p| format!(", kept in {}", p.display())))
         })
     }
 }

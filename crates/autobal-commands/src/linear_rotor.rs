@@ -1,10 +1,13 @@
 //! The commands on a linear rotor config (`[linear_rotor]`, issue 19 "your own rotor"): reading
 //! the config and its Matrix Market files ([`load`]), `stability` (the balanced state over
 //! speed, [`autobal::linear_rotor::stability`]), `simulate` (a run in time with a prescribed
-//! speed, [`autobal::linear_rotor::runup`]) and `export-model` (a rotor written as config plus
-//! matrix files, [`autobal::linear_rotor::config::export`]).
+//! speed, [`autobal::linear_rotor::runup`]), `export-model` (a rotor written as config plus
+//! matrix files, [`autobal::linear_rotor::config::export`]), and the bases of `map`
+//! ([`map_traced`]) and `sweep` ([`sweep_base`]) over the config's parameter paths
+//! ([`autobal::linear_rotor::spec`]).
 
 use crate::config;
+use crate::num::Csv;
 use crate::outfile;
 use crate::plot::{Plot, Series, Shade, PALETTE};
 use anyhow::{anyhow, bail, Result};
@@ -13,6 +16,7 @@ use autobal::error::fmt_num;
 use autobal::linear_rotor::config::{export, linear_rotor_bytes, LinearRotorConfig};
 use autobal::linear_rotor::reduce::{reduce, Reduction};
 use autobal::linear_rotor::runup::{simulate, RunSample, RunSettings, RunSummary};
+use autobal::linear_rotor::spec::LinearRotorSpec;
 use autobal::linear_rotor::LinearRotor;
 use autobal::rotor_stability::{speed_grid, RotorStability};
 use serde_json::{json, Value};
@@ -239,6 +243,131 @@ pub fn stability_table(cfg: &LinearRotorConfig, r: &RotorStability, red: &Option
         s.push_str(&format!("no balanced state found at {} of {} speeds (first: {})\n", missing.len(), r.points.len(), p.failure.clone().unwrap_or_default()));
     }
     Ok(s)
+}
+
+/// The config's parameter paths with its matrix files read once, relative to `dir`
+/// ([`autobal::linear_rotor::spec`]): the base of `map` and `sweep`.
+pub fn spec(root: &Table, dir: &Path) -> autobal::Result<LinearRotorSpec> {
+    LinearRotorSpec::new(root.clone(), &mut |name| read_matrix(dir, name))
+}
+
+/// `map` on a linear rotor config: the library's [`autobal::rotor_map::linear_map_traced`] over
+/// its parameter paths or the speed (rad/s), the matrix files read relative to `config`'s
+/// folder; `on_row` as [`autobal::rotor_map::general_map_traced`]'s (`crate::map::run_general`
+/// writes the rows, the figures and the bisected boundary as for any config).
+#[allow(clippy::too_many_arguments, clippy::type_complexity)]
+pub fn map_traced(
+    root: &Table,
+    config: Option<&Path>,
+    x: &autobal::spatial::map::Axis,
+    y: &autobal::spatial::map::Axis,
+    speed: Option<autobal::units::Speed>,
+    trace: bool,
+    control: &autobal::control::Control,
+    on_row: &mut dyn FnMut(usize, &[autobal::rotor_map::GeneralCell], &[autobal::rotor_map::BoundaryPoint]) -> bool,
+) -> autobal::Result<autobal::rotor_map::GeneralMapOutcome> {
+    let base = spec(root, config.and_then(Path::parent).unwrap_or(Path::new(".")))?;
+    autobal::rotor_map::linear_map_traced(&base, x, y, speed, trace, control, on_row)
+}
+
+/// The base of `sweep` when the config at `path` (after `--set`) is a linear rotor config: its
+/// tables, its [`LinearRotorSpec`] and the sweep JSON's `problem` (`model: "linear"`, the config's
+/// tables, the model's DOFs and balls, and the run of a point without values: drive, settings);
+/// `None` for any other config.
+pub fn sweep_base(path: Option<&Path>, sets: &[String]) -> Result<Option<(Table, LinearRotorSpec, Value)>> {
+    let Some(p) = path else { return Ok(None) };
+    let (root, _) = read_set(Some(p), sets)?;
+    if !is_linear(&root) {
+        return Ok(None);
+    }
+    let base = spec(&root, p.parent().unwrap_or(Path::new(".")))?;
+    let cfg = base.config_at(&[])?;
+    let run = autobal::linear_rotor::spec::run_of(&cfg)?;
+    let problem = json!({
+        "model": "linear",
+        "config": root,
+        "source": cfg.source,
+        "dofs": run.rotor.dofs(),
+        "dofs_full": cfg.rotor.dofs(),
+        "balls": cfg.rotor.total_balls(),
+        "drive": run.drive,
+        "drive_is_default": run.default_drive,
+        "t_end": run.settings.t_end,
+        "dt": run.settings.dt,
+        "rtol": run.settings.rtol,
+        "atol": run.settings.atol,
+    });
+    Ok(Some((root, base, problem)))
+}
+
+/// `basins` on a linear rotor config: the runs of `simulate` (its drive, its reduction) from an
+/// `n × n` grid of the first two balls' initial angles ([`autobal::linear_rotor::basins`]),
+/// matrix files read relative to `dir`.
+pub fn basins(root: &Table, dir: &Path, n: usize, control: &autobal::control::Control) -> Result<crate::basins::Output> {
+    use autobal::linear_rotor::basins::{angle_grid, basins};
+    let cfg = from_table(root, dir)?;
+    let run = autobal::linear_rotor::spec::run_of(&cfg)?;
+    let starts = angle_grid(&run.rotor, n, "--n")?;
+    let t0 = std::time::Instant::now();
+    let ends = basins(&run, &starts, control)?.value;
+    Ok(crate::basins::Output {
+        angles: starts.iter().map(|p| [p[0], p[1]]).collect(),
+        ends: vec![],
+        wall: t0.elapsed().as_secs_f64(),
+        written: None,
+        linear: Some(ends),
+    })
+}
+
+/// The CSV of a linear rotor's basins (the complete runs):
+/// `psi_1,psi_2,balanced,residual_unbalance,final_amplitude` as the spatial rotor's, then
+/// `completed` and every ball's final angle `psi_end_j` (rad, relative to the rotor).
+pub fn basins_csv(ends: &[Option<autobal::linear_rotor::basins::BasinEnd>]) -> String {
+    let balls = ends.iter().flatten().next().map_or(0, |e| e.psi.len());
+    let mut csv = String::from("psi_1,psi_2,balanced,residual_unbalance,final_amplitude,completed");
+    for j in 0..balls {
+        csv.push_str(&format!(",psi_end_{}", j + 1));
+    }
+    csv.push('\n');
+    for e in ends.iter().flatten() {
+        let mut row = vec![Csv(e.psi0[0]).to_string(), Csv(e.psi0[1]).to_string(), (e.balanced as u8).to_string()];
+        row.extend([e.residual_unbalance, e.final_amplitude].map(|v| Csv(v).to_string()));
+        row.push((e.summary.stopped.is_none() as u8).to_string());
+        row.extend(e.psi.iter().map(|v| Csv(*v).to_string()));
+        csv.push_str(&row.join(","));
+        csv.push('\n');
+    }
+    csv
+}
+
+/// The JSON of a linear rotor's basins: the spatial rotor's keys (`runs`, `completed`,
+/// `balanced`, `fraction_balanced`, `wall_time_s`) with `model: "linear"` and the verdict's
+/// threshold.
+pub fn basins_json(ends: &[Option<autobal::linear_rotor::basins::BasinEnd>], wall: f64) -> Value {
+    let done = ends.iter().flatten().count();
+    let balanced = ends.iter().flatten().filter(|s| s.balanced).count();
+    json!({
+        "model": "linear",
+        "runs": ends.len(),
+        "completed": done,
+        "balanced": balanced,
+        "fraction_balanced": balanced as f64 / done.max(1) as f64,
+        "balanced_fraction_of_eccentricity": autobal::linear_rotor::basins::BALANCED_FRACTION,
+        "wall_time_s": wall,
+    })
+}
+
+impl crate::sweep::Row for RunSummary {
+    fn header(lu: &str) -> String {
+        format!("{:>12} {:>12} {:>12} {:>12} {:>10}\n", format!("peak ({lu})"), "ω at peak", format!("any node ({lu})"), format!("final ({lu})"), "steps")
+    }
+    fn cells(&self, ls: f64) -> String {
+        let v = autobal::sweep::linear_summary_values(self);
+        format!("{:>12.4} {:>12.2} {:>12.4} {:>12.4} {:>10}", ls * v[0], v[1], ls * v[3], ls * v[5], self.steps)
+    }
+    fn warnings(&self) -> Vec<String> {
+        self.stopped.iter().cloned().collect()
+    }
 }
 
 /// The drive of `simulate`: `[drive]`, or a run-up at constant acceleration from rest to
@@ -722,6 +851,54 @@ pub fn export_model(rotor: &LinearRotor, dir: &Path, stem: &str) -> Result<Vec<P
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn example() -> (Table, PathBuf) {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/linear_rotor_shaft.toml");
+        (read_set(Some(&path), &[]).unwrap().0, path)
+    }
+
+    /// A sweep's point without values is the run `simulate` makes (this module's [`setup`]): the
+    /// library's `run_of` repeats its rules (reduction, default run-up to `default_omega_max`,
+    /// `dt`), here with the example's reduction, without its `[drive]` (the default run-up),
+    /// then with it (`drive.b` set by its path).
+    #[test]
+    fn a_sweep_point_is_the_run_of_simulate() {
+        let (root, path) = example();
+        let dir = path.parent().unwrap();
+        for extra in [None, Some(("drive.b", 40.0))] {
+            let mut root = root.clone();
+            match extra {
+                // without [drive]: simulate's default run-up
+                None => {
+                    root.remove("drive");
+                }
+                Some((k, v)) => autobal::linear_rotor::spec::set_path(&mut root, k, v).unwrap(),
+            }
+            let cfg = from_table(&root, dir).unwrap();
+            let s = setup(&cfg, default_omega_max(&cfg).unwrap(), None).unwrap();
+            let base = spec(&root, dir).unwrap();
+            let run = autobal::sweep::SweepModel::at(&base, &[], &[]).unwrap();
+            assert_eq!((&run.rotor, &run.drive, &run.settings, run.default_drive), (&s.rotor, &s.drive, &s.settings, s.default_drive));
+            assert_eq!(run.default_drive, extra.is_none());
+        }
+    }
+
+    /// `basins` on a linear rotor config through the command: stopped before any run, it keeps
+    /// nothing and says so; the CSV has the linear rotor's columns.
+    #[test]
+    fn basins_on_a_linear_config_say_what_they_kept() {
+        use crate::command::{Command as _, ConfigSource, Output as _};
+        let (_, path) = example();
+        let control = autobal::control::Control::new();
+        control.cancel();
+        let o = crate::basins::Args { config: ConfigSource::file(Some(&path), &[]), n: 2 }.run(&control).unwrap();
+        assert_eq!(o.angles.len(), 4);
+        assert!(o.csv().starts_with("psi_1,psi_2,balanced,residual_unbalance,final_amplitude,completed"));
+        assert_eq!(o.json().unwrap()["model"], json!("linear"));
+        assert_eq!(o.stopped().unwrap(), "interrupted: 0 of 4 runs complete");
+        let e = crate::basins::Args { config: ConfigSource::file(Some(&path), &[]), n: 1 }.run(&control).err().unwrap().to_string();
+        assert!(e.starts_with("--n"), "{e}");
+    }
 
     /// A uniform steel shaft of 12 Euler–Bernoulli elements (1.2 m, 25 mm) pinned at both ends
     /// (bearings of 1e12 N/m: their compliance is 1e-9 of the shaft's, EI/L³ ≈ 2.3e3 N/m), a

@@ -126,7 +126,7 @@ pub struct Plan {
 
 enum PlanRoute {
     Closed { cfg: Box<Config>, omega: Option<f64> },
-    General { root: Box<toml::Table>, speed: Option<autobal::units::Speed>, planar: bool },
+    General { root: Box<toml::Table>, speed: Option<autobal::units::Speed>, planar: bool, linear: bool },
 }
 
 impl command::Command for Args {
@@ -148,15 +148,20 @@ impl Args {
         if self.x.path == self.y.path {
             bail!("--y {}: the same key as --x; give the second axis another field", self.y.path);
         }
-        let (root, source) = self.config.read()?;
-        if self.route.is_general(&root) {
+        // a linear rotor config ([linear_rotor]) takes its own --set and the general route
+        let (root, source) = self.config.read_any()?;
+        let linear = crate::linear_rotor::is_linear(&root);
+        if linear || self.route.is_general(&root) {
             if self.balls == Balls::Locked {
                 bail!("--balls locked: the general route maps the balls free (use the 12-state route of a one-plane config for the locked rotor)");
             }
-            config::check_entries(&root, "map", &[config::simulation_model(&root)])?;
+            if !linear {
+                config::check_entries(&root, "map", &[config::simulation_model(&root)])?;
+            }
             let speed = self.omega.as_deref().map(|t| autobal::units::parse_speed("--omega", t)).transpose()?;
-            let planar = !autobal::config::is_spatial(&root);
-            return Ok(Plan { args: self.clone(), route: PlanRoute::General { root: Box::new(root), speed, planar } });
+            // the linear rotor's speed is ω in rad/s, as the planar rotor's
+            let planar = linear || !autobal::config::is_spatial(&root);
+            return Ok(Plan { args: self.clone(), route: PlanRoute::General { root: Box::new(root), speed, planar, linear } });
         }
         // the speeds need the config's ω0: it is read (and checked) first
         let cfg = config::build(&root, &source)?;
@@ -238,7 +243,7 @@ impl Plan {
                     RouteOutput::Closed { figure, cells, rows_done: run.rows_done, continued: run.continued, direct: run.direct, traced }
                 }
             }
-            PlanRoute::General { root, speed, planar } => general(root, a, *speed, *planar, rows, control)?,
+            PlanRoute::General { root, speed, planar, linear } => general(root, a, *speed, *planar, *linear, rows, control)?,
         };
         Ok(Output { x: a.x.clone(), y: a.y.clone(), balls: a.balls, quantity: a.quantity, secs: t0.elapsed().as_secs_f64(), route, written: None })
     }
@@ -289,8 +294,10 @@ pub enum RouteOutput {
         cells: Option<Vec<Vec<GeneralCell>>>,
         /// The library's counts.
         outcome: GeneralMapOutcome,
-        /// The planar rotor (ω in rad/s), else the spatial one.
+        /// The planar or a linear rotor (ω in rad/s), else the spatial one.
         planar: bool,
+        /// A linear rotor ([linear_rotor]).
+        linear: bool,
         /// The bisected boundary points, with `boundary`.
         traced: Option<Vec<BoundaryPoint>>,
     },
@@ -483,8 +490,8 @@ impl command::Output for Output {
                 }
                 p
             }
-            RouteOutput::General { fx, fy, frows, outcome, planar, traced, .. } => {
-                general_plot(fx, fy, frows, outcome, *planar, self.quantity, traced.as_deref())
+            RouteOutput::General { fx, fy, frows, outcome, planar, linear, traced, .. } => {
+                general_plot(fx, fy, frows, outcome, *planar, *linear, self.quantity, traced.as_deref())
             }
         };
         Ok(vec![Figure::new("stability_map", p)])
@@ -631,7 +638,8 @@ pub fn compute(
 /// The general route ([`autobal::rotor_map::general_map_traced`]) over the plan's axes: any
 /// planar or spatial config; CSV columns: the two axes, `max_real_part`, `verdict`,
 /// `family_dimension`, `family` (empty fields where no stationary state was found).
-fn general(root: &toml::Table, a: &Args, speed: Option<autobal::units::Speed>, planar: bool, rows: Rows<'_>, control: &Control) -> Result<RouteOutput> {
+#[allow(clippy::too_many_arguments)]
+fn general(root: &toml::Table, a: &Args, speed: Option<autobal::units::Speed>, planar: bool, linear: bool, rows: Rows<'_>, control: &Control) -> Result<RouteOutput> {
     use autobal::rotor_map::general_map_traced;
     let (x, y) = (&a.x, &a.y);
     let verdict_only = a.quantity == Quantity::Verdict;
@@ -651,9 +659,9 @@ fn general(root: &toml::Table, a: &Args, speed: Option<autobal::units::Speed>, p
     let xs: Vec<String> = x.values.iter().map(|v| crate::num::Csv(*v).to_string()).collect();
     let ny = y.values.len();
     let mut io_error: Option<std::io::Error> = None;
-    let outcome = general_map_traced(root, x, y, speed, a.boundary, control, &mut |j, cells, points| {
+    let mut on_row = |j: usize, cells: &[GeneralCell], points: &[BoundaryPoint]| {
         traced.extend_from_slice(points);
-        if j % ky == 0 && j / ky < kept.len() {
+        if j.is_multiple_of(ky) && j / ky < kept.len() {
             kept[j / ky] = Some(cells.iter().step_by(kx).take(dx.values.len()).copied().collect());
         }
         if keep_all {
@@ -689,7 +697,13 @@ fn general(root: &toml::Table, a: &Args, speed: Option<autobal::units::Speed>, p
         }
         control.report(j as u64 + 1, ny as u64);
         true
-    });
+    };
+    // a linear rotor config ([linear_rotor]): its own paths and rotor (crate::linear_rotor)
+    let outcome = if linear {
+        crate::linear_rotor::map_traced(root, a.config.path(), x, y, speed, a.boundary, control, &mut on_row)
+    } else {
+        general_map_traced(root, x, y, speed, a.boundary, control, &mut on_row)
+    };
     if let Some(e) = io_error {
         return Err(e.into());
     }
@@ -699,18 +713,20 @@ fn general(root: &toml::Table, a: &Args, speed: Option<autobal::units::Speed>, p
         Some("omega") => anyhow!("--omega: {e}"),
         _ => anyhow!("{e}"),
     })?;
-    Ok(RouteOutput::General { fx: dx, fy: dy, frows: kept, cells: keep_all.then_some(all), outcome, planar, traced: a.boundary.then_some(traced) })
+    Ok(RouteOutput::General { fx: dx, fy: dy, frows: kept, cells: keep_all.then_some(all), outcome, planar, linear, traced: a.boundary.then_some(traced) })
 }
 
 /// The general route's figure: the heatmap of [`plot`] (cells without a stationary state
 /// blank, no 003 necessary boundary), the margin named by the state (max Re λ, or the largest
 /// Floquet exponent), the bisected boundary points as markers.
+#[allow(clippy::too_many_arguments)]
 fn general_plot(
     fx: &Axis,
     fy: &Axis,
     frows: &[Option<Vec<GeneralCell>>],
     outcome: &GeneralMapOutcome,
     planar: bool,
+    linear: bool,
     quantity: Quantity,
     traced: Option<&[BoundaryPoint]>,
 ) -> crate::plot::Plot {
@@ -724,7 +740,14 @@ fn general_plot(
         Kind::Equilibrium => "equilibrium (eigenvalues)",
         Kind::PeriodicOrbit => "periodic orbit (Floquet multipliers)",
     };
-    let title = format!("Stability map of the {} rotor's stationary state (general route: {state})", if planar { "planar" } else { "spatial" });
+    let model = if linear {
+        "linear"
+    } else if planar {
+        "planar"
+    } else {
+        "spatial"
+    };
+    let title = format!("Stability map of the {model} rotor's stationary state (general route: {state})");
     let mut p = plot(&r, &title);
     // no 003 necessary ranges off the 12-state model
     p.series.retain(|s| s.label != "003 necessary boundary");

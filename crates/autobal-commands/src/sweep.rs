@@ -73,7 +73,7 @@ pub fn columns(paths: &[&str], summary: &[&str]) -> Vec<String> {
 const PRINTED_WARNINGS: usize = 10;
 
 /// A run's summary as the sweep's table shows it.
-trait Row: SweepSummary {
+pub(crate) trait Row: SweepSummary {
     /// The table's header after the axes (`lu`: the unit of lengths).
     fn header(lu: &str) -> String;
     /// The row after the axes (`ls`: lengths in that unit per config unit).
@@ -139,6 +139,7 @@ pub struct Plan {
 enum Base {
     Planar(Box<PlanarProblem>),
     Spatial(Box<SpatialSweep>),
+    Linear(Box<autobal::linear_rotor::spec::LinearRotorSpec>),
 }
 
 impl command::Command for Args {
@@ -174,6 +175,13 @@ impl Args {
     /// (an unknown path, or a value it cannot take) and the grid, before anything runs or is
     /// written.
     pub fn prepare(&self) -> Result<Plan> {
+        // a linear rotor config ([linear_rotor]): its parameter paths (crate::linear_rotor::sweep_base)
+        if let ConfigSource::File { path, sets } = &self.config {
+            if let Some((root, base, problem)) = crate::linear_rotor::sweep_base(path.as_deref(), sets)? {
+                let axes = self.axes()?;
+                return self.plan(Base::Linear(Box::new(base)), root, axes, problem, ("mm", 1e3));
+            }
+        }
         let (root, source) = match &self.config {
             ConfigSource::File { path, sets } => config::read_planar_set(path.as_deref(), sets)?,
             c => c.read()?,
@@ -203,6 +211,11 @@ impl Args {
             let problem = serde_json::to_value(&base)?;
             (Base::Planar(Box::new(base)), problem, ("mm", 1e3))
         };
+        self.plan(base, root, axes, problem, units)
+    }
+
+    /// The grid and the shard's points, checked on `base`.
+    fn plan(&self, base: Base, root: toml::Table, axes: Vec<(&'static str, &Axis)>, problem: Value, units: (&'static str, f64)) -> Result<Plan> {
         let grid = Grid::new(axes.into_iter().map(|(_, a)| a.clone()).collect())?;
         let range = match self.shard {
             Some((k, n)) if k >= 1 && k <= n => shard(grid.len(), k - 1, n)?,
@@ -212,6 +225,7 @@ impl Args {
         match &base {
             Base::Planar(b) => autobal::sweep::check_grid(&**b, &grid, range.clone())?,
             Base::Spatial(b) => autobal::sweep::check_grid(&**b, &grid, range.clone())?,
+            Base::Linear(b) => autobal::sweep::check_grid(&**b, &grid, range.clone())?,
         }
         Ok(Plan { base, root, grid, shard: self.shard, range, problem, units })
     }
@@ -223,6 +237,7 @@ impl Plan {
         let summary = match &self.base {
             Base::Planar(_) => SUMMARY_COLUMNS,
             Base::Spatial(_) => SPATIAL_SUMMARY_COLUMNS,
+            Base::Linear(_) => autobal::sweep::LINEAR_SUMMARY_COLUMNS,
         };
         columns(&self.grid.paths(), summary)
     }
@@ -233,6 +248,7 @@ impl Plan {
         match &self.base {
             Base::Planar(b) => self.run_on(&**b, control, rows),
             Base::Spatial(b) => self.run_on(&**b, control, rows),
+            Base::Linear(b) => self.run_on(&**b, control, rows),
         }
     }
 

@@ -823,6 +823,7 @@ fn _autobal(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PySpatial>()?;
     m.add_class::<PyPlanar>()?;
     m.add_class::<linear_rotor::PyLinearRotor>()?;
+    m.add_function(wrap_pyfunction!(linear_rotor::linear_rotor_run, m)?)?;
     m.add_function(wrap_pyfunction!(spatial_config, m)?)?;
     m.add_function(wrap_pyfunction!(planar_config, m)?)?;
     m.add_function(wrap_pyfunction!(spatial_report, m)?)?;

@@ -181,6 +181,33 @@ impl PyLinearRotor {
         Ok(())
     }
 
+    /// The rotor's polar moment of inertia about its spin axis `I_p` (kg m², the balls
+    /// excluded): the spin's inertia under a torque drive (0: not known, torque drives refused).
+    #[getter]
+    fn polar_inertia(&self) -> f64 {
+        self.rotor.polar_inertia
+    }
+
+    #[setter]
+    fn set_polar_inertia(&mut self, py: Python<'_>, v: f64) -> PyResult<()> {
+        autobal::error::non_negative("linear_rotor.polar_inertia", v).map_err(|e| crate::py_err(py, e))?;
+        self.rotor.polar_inertia = v;
+        Ok(())
+    }
+
+    /// The drag on the spin `c_θ` (N m s): the torque `−c_θ Ω` under a torque drive.
+    #[getter]
+    fn spin_damping(&self) -> f64 {
+        self.rotor.spin_damping
+    }
+
+    #[setter]
+    fn set_spin_damping(&mut self, py: Python<'_>, v: f64) -> PyResult<()> {
+        autobal::error::non_negative("linear_rotor.spin_damping", v).map_err(|e| crate::py_err(py, e))?;
+        self.rotor.spin_damping = v;
+        Ok(())
+    }
+
     /// Number of DOFs.
     #[getter]
     fn dofs(&self) -> usize {
@@ -232,4 +259,198 @@ impl PyLinearRotor {
     fn export(&self, stem: &str) -> (String, Vec<(String, String)>) {
         autobal::linear_rotor::config::export(&self.rotor, stem)
     }
+}
+
+/// Options of [`linear_rotor_run`] as JSON (`{"x": "path=lo:hi:n", "n": 8, ...}`), taken one by
+/// one; what is left is an error naming the first unknown option.
+struct Options {
+    command: String,
+    map: serde_json::Map<String, serde_json::Value>,
+}
+
+impl Options {
+    fn take(&mut self, key: &str) -> Option<serde_json::Value> {
+        self.map.remove(key).filter(|v| !v.is_null())
+    }
+    fn text(&mut self, key: &str) -> anyhow::Result<Option<String>> {
+        Ok(match self.take(key) {
+            None => None,
+            Some(serde_json::Value::String(s)) => Some(s),
+            Some(serde_json::Value::Number(n)) => Some(n.to_string()),
+            Some(v) => return Err(autobal::Error::invalid(key, format!("expected a string or a number, got {v}")).into()),
+        })
+    }
+    fn count(&mut self, key: &str) -> anyhow::Result<Option<usize>> {
+        Ok(match self.take(key) {
+            None => None,
+            Some(v) => Some(v.as_u64().ok_or_else(|| autobal::Error::invalid(key, format!("expected a whole number ≥ 0, got {v}")))? as usize),
+        })
+    }
+    fn texts(&mut self, key: &str) -> anyhow::Result<Vec<String>> {
+        match self.take(key) {
+            None => Ok(vec![]),
+            Some(serde_json::Value::Array(a)) => {
+                a.into_iter().map(|v| v.as_str().map(String::from).ok_or_else(|| autobal::Error::invalid(key, "expected a list of strings").into())).collect()
+            }
+            Some(v) => Err(autobal::Error::invalid(key, format!("expected a list of strings, got {v}")).into()),
+        }
+    }
+    fn done(self) -> anyhow::Result<()> {
+        match self.map.keys().next() {
+            Some(k) => {
+                Err(autobal::Error::invalid(k.as_str(), format!("not an option of {} on a linear rotor config (see help(autobal.run))", self.command)).into())
+            }
+            None => Ok(()),
+        }
+    }
+}
+
+/// A `[linear_rotor]` config's command for `autobal.run(COMMAND, config=PATH)` (issue 19): the
+/// JSON text of `stability` (`omega_max`, `samples`), `simulate` (`dt`: the summary),
+/// `basins` (`n`), `sweep` (`x`, `y`, `axis`, `shard` "K/N", `threads`: the sweep's JSON) and
+/// `map` (`x`, `y`, `omega`, `boundary`, `threads`: the axes, `margin` and `verdict` per cell as
+/// `len(y) × len(x)` lists, the bisected boundary points), as the CLI computes them; `sets`: the
+/// CLI's `--set` (`linear_rotor.KEY`, `drive.KEY`, `integration.KEY`); `options`: the keyword
+/// options as JSON.
+#[pyfunction]
+#[pyo3(signature = (command, path, sets, options))]
+pub fn linear_rotor_run(py: Python<'_>, command: &str, path: std::path::PathBuf, sets: Vec<(String, Bound<'_, PyAny>)>, options: &str) -> PyResult<String> {
+    let mut set = vec![];
+    for (k, v) in &sets {
+        set.push(format!("{k}={}", crate::to_toml(v, k)?));
+    }
+    let map = match serde_json::from_str::<serde_json::Value>(options) {
+        Ok(serde_json::Value::Object(m)) => m,
+        _ => return Err(crate::py_err(py, autobal::Error::invalid("options", "expected keyword options"))),
+    };
+    let mut o = Options { command: command.to_string(), map };
+    let command = command.to_string();
+    let v = crate::commands_call(py, move |control| -> anyhow::Result<serde_json::Value> {
+        use autobal_commands::command::{Command as _, ConfigSource, Output as _};
+        let threads = o.count("threads")?;
+        let pool = match threads {
+            Some(0) => anyhow::bail!("threads: must be at least 1"),
+            Some(t) => Some(rayon::ThreadPoolBuilder::new().num_threads(t).build()?),
+            None => None,
+        };
+        let within = |f: &mut (dyn FnMut() -> anyhow::Result<serde_json::Value> + Send)| match &pool {
+            Some(p) => p.install(&mut *f),
+            None => f(),
+        };
+        match command.as_str() {
+            "stability" => {
+                let args = autobal_commands::stability::Args {
+                    config: ConfigSource::file(Some(path.as_path()), &set),
+                    omega_max: o.text("omega_max")?,
+                    samples: o.count("samples")?,
+                    ..Default::default()
+                };
+                o.done()?;
+                args.run(control)?.json()
+            }
+            "simulate" => {
+                let dt = o.take("dt").map(|v| v.as_f64().ok_or_else(|| autobal::Error::invalid("dt", "expected a number"))).transpose()?;
+                o.done()?;
+                let cfg = cmd::load(&path, &set)?;
+                let w = cmd::default_omega_max(&cfg)?;
+                let setup = cmd::setup(&cfg, w, dt)?;
+                let run = cmd::run(&setup, control, |_| Ok(()))?;
+                let mut v = cmd::simulate_json(&cfg, &run.summary, &setup.reduction, run.wall);
+                if let Some(s) = &run.summary.stopped {
+                    v["stopped"] = serde_json::json!(s);
+                }
+                Ok(v)
+            }
+            "basins" => {
+                let n = o.count("n")?.unwrap_or(16);
+                o.done()?;
+                let args = autobal_commands::basins::Args { config: ConfigSource::file(Some(path.as_path()), &set), n };
+                within(&mut || args.run(control)?.json())
+            }
+            "sweep" => {
+                let mut specs: Vec<String> = o.text("x")?.into_iter().collect();
+                if specs.is_empty() {
+                    return Err(autobal::Error::invalid("x", "required (the first axis, e.g. x='linear_rotor.drag=0.01:0.1:4')").into());
+                }
+                specs.extend(o.text("y")?);
+                specs.extend(o.texts("axis")?);
+                let shard = o.text("shard")?;
+                o.done()?;
+                let axes = specs.iter().map(|s| autobal::paths::Axis::parse(s)).collect::<autobal::Result<Vec<_>>>()?;
+                let grid = autobal::sweep::Grid::new(axes)?;
+                let range = match &shard {
+                    None => 0..grid.len(),
+                    Some(s) => {
+                        let bad = || autobal::Error::invalid("shard", format!("{s}: expected K/N with 1 ≤ K ≤ N, e.g. shard='3/8'"));
+                        let (k, n) = s.split_once('/').ok_or_else(bad)?;
+                        let (k, n): (usize, usize) = (k.trim().parse().map_err(|_| bad())?, n.trim().parse().map_err(|_| bad())?);
+                        if k == 0 {
+                            return Err(bad().into());
+                        }
+                        autobal::sweep::shard(grid.len(), k - 1, n)?
+                    }
+                };
+                let (root, base, problem) = cmd::sweep_base(Some(path.as_path()), &set)?.ok_or_else(|| anyhow::anyhow!("config {}: not a linear rotor config", path.display()))?;
+                let kn = shard.as_deref().and_then(|s| s.split_once('/')).and_then(|(k, n)| Some((k.trim().parse().ok()?, n.trim().parse().ok()?)));
+                within(&mut || {
+                    let mut runs = vec![];
+                    let out = autobal::sweep::simulate_grid(
+                        &base,
+                        &grid,
+                        range.clone(),
+                        &mut |i, v, r| {
+                            runs.push(autobal::sweep::run_json(i, v, r));
+                            true
+                        },
+                        control,
+                    )?;
+                    let mut json = autobal::sweep::report(&grid, kn, &range, out.complete(), problem.clone(), std::mem::take(&mut runs));
+                    json["definition_checksum"] = serde_json::json!(autobal::sweep::definition_checksum(&root, &grid));
+                    json["columns"] = serde_json::json!(autobal::sweep::LINEAR_SUMMARY_COLUMNS);
+                    json["values"] = serde_json::json!(json["runs"].as_array().map(|r| r.iter().map(|r| r["values"].clone()).collect::<Vec<_>>()));
+                    out.into_result()?;
+                    Ok(json)
+                })
+            }
+            "map" => {
+                let (Some(x), Some(y)) = (o.text("x")?, o.text("y")?) else {
+                    return Err(autobal::Error::invalid("x", "required, with y (e.g. x='omega=100:2000:40', y='linear_rotor.ball_mass=0.01:0.05:5')").into());
+                };
+                let speed = o.text("omega")?.map(|t| autobal::units::parse_speed("omega", &t)).transpose()?;
+                let boundary = match o.take("boundary") {
+                    None => false,
+                    Some(v) => v.as_bool().ok_or_else(|| autobal::Error::invalid("boundary", "expected True or False"))?,
+                };
+                o.done()?;
+                let (xa, ya) = (autobal::paths::Axis::parse(&x)?, autobal::paths::Axis::parse(&y)?);
+                let (root, _) = cmd::read_set(Some(path.as_path()), &set)?;
+                let (mut margin, mut verdict, mut family, mut points) = (vec![], vec![], vec![], vec![]);
+                within(&mut || {
+                    let out = cmd::map_traced(&root, Some(path.as_path()), &xa, &ya, speed, boundary, control, &mut |_, cells, pts| {
+                        margin.push(cells.iter().map(|c| c.margin).collect::<Vec<_>>());
+                        verdict.push(cells.iter().map(|c| c.verdict).collect::<Vec<_>>());
+                        family.push(cells.iter().map(|c| c.family_dimension).collect::<Vec<_>>());
+                        points.extend_from_slice(pts);
+                        true
+                    })?;
+                    if !out.complete {
+                        return Err(autobal::Error::Interrupted { t: out.rows as f64 / ya.values.len().max(1) as f64 }.into());
+                    }
+                    // NaN (no stationary state) as null in the JSON; Python turns it back
+                    Ok(serde_json::json!({
+                        "model": "linear",
+                        "x_path": &xa.path, "y_path": &ya.path, "x": &xa.values, "y": &ya.values,
+                        "margin": margin.iter().map(|r| r.iter().map(|m| m.is_finite().then_some(*m)).collect::<Vec<_>>()).collect::<Vec<_>>(),
+                        "verdict": &verdict, "family_dimension": &family, "boundary": &points,
+                    }))
+                })
+            }
+            o => Err(autobal::Error::invalid(
+                "command",
+                format!("\"{o}\" on a linear rotor config: autobal.run takes stability, simulate, map, sweep, basins (campbell, export-model: LinearRotor's methods and the CLI)"),
+            )
+            .into()),
+        }
+    })?;
+    Ok(v.to_string())
 }

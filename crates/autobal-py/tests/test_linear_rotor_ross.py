@@ -127,3 +127,48 @@ def test_linear_rotor_stability_equals_the_cli(tmp_path):
     assert [(s["from"], s["to"]) for s in py["stable_ranges"]] == [(s["from"], s["to"]) for s in cli["stable_ranges"]]
     assert py["points"] == cli["points"]
     assert py["stable_ranges"], "paper 004's rotor balances above its critical speed"
+
+
+def test_from_ross_takes_the_polar_moment_of_disks_and_shaft():
+    """``from_ross`` gives the rotor its polar moment of inertia (the spin's inertia under a
+    torque drive): the disks' ``DiskElement.Ip`` plus ``ρ π/32 ∫ (d_o⁴ − d_i⁴) dz`` of each shaft
+    element, here against the closed form ``∫₀ᴸ (a + (b − a) z/L)⁴ dz = L (b⁵ − a⁵)/(5 (b − a))``
+    of a tapered element (the 3-point Gauss rule is exact for the quartic: 1e-12 relative is
+    round-off). A duck-typed rotor with ROSS's attribute names stands in for ``ross.Rotor``
+    (no ROSS needed); ``polar_inertia=`` overrides the sum."""
+
+    class Obj:
+        def __init__(self, **kw: object) -> None:
+            self.__dict__.update(kw)
+
+    class Rotor:
+        number_dof = 4
+        disk_elements = [Obj(n=1, Ip=0.3), Obj(n=0, Ip=0.05)]
+        shaft_elements = [
+            Obj(L=0.2, odl=0.05, idl=0.01, odr=0.05, idr=0.01, material=Obj(rho=7800.0)),
+            Obj(L=0.3, odl=0.05, idl=0.0, odr=0.03, idr=0.02, material=Obj(rho=7800.0)),
+        ]
+        bearing_elements: list = []
+
+        def M(self) -> np.ndarray:
+            return np.eye(8)
+
+        def K(self, speed: float) -> np.ndarray:
+            return 1e6 * np.eye(8)
+
+        def C(self, speed: float) -> np.ndarray:
+            return np.zeros((8, 8))
+
+        def G(self) -> np.ndarray:
+            return np.zeros((8, 8))
+
+    def quartic(a: float, b: float, length: float) -> float:
+        return length * a**4 if a == b else length * (b**5 - a**5) / (5.0 * (b - a))
+
+    rho, c = 7800.0, np.pi / 32.0
+    want = 0.35 + rho * c * (0.2 * (0.05**4 - 0.01**4)) + rho * c * (quartic(0.05, 0.03, 0.3) - quartic(0.0, 0.02, 0.3))
+    lr = autobal.from_ross(Rotor())
+    assert abs(lr.polar_inertia / want - 1.0) < 1e-12, (lr.polar_inertia, want)
+    assert autobal.from_ross(Rotor(), polar_inertia=2.5).polar_inertia == 2.5
+    with pytest.raises(autobal.InvalidParameter, match="linear_rotor.polar_inertia"):
+        autobal.from_ross(Rotor(), polar_inertia=-1.0)

@@ -3,6 +3,10 @@
 //! rotors with what paper 000's 12-state model ([`crate::spatial::map`]) does not represent (a
 //! second plane, couple unbalance, supports that differ by direction, gravity, a tilted axis).
 //!
+//! A linear rotor config (`[linear_rotor]`, [`crate::linear_rotor`]) is mapped by
+//! [`linear_map_traced`] over its parameter paths ([`crate::linear_rotor::spec`]), its balanced
+//! state in axes turning with the rotor ([`LinearRotorField`]), margins in 1/s.
+//!
 //! Each axis is a config key (`balancer.ball_mass`, `planar.c_psi`, `supports.stiffness_left`, …),
 //! set in the TOML table with [`crate::config::set_number`], the rotor rebuilt by
 //! [`crate::config::planar`] or [`crate::config::spatial_simulation`] as the simulation would
@@ -66,6 +70,8 @@ pub use crate::analysis::{FamilyVerdict, Kind, Verdict};
 use crate::config;
 use crate::control::{Control, StopReason};
 use crate::error::{fmt_num, Error, Result};
+use crate::linear_rotor::spec::LinearRotorSpec;
+use crate::linear_rotor::{Frame, LinearRotor, LinearRotorField};
 use crate::rotor_stability::{Field, Rotor};
 use crate::spatial::map::Axis;
 use crate::units::{speed_path_unit, Speed, SpeedUnit};
@@ -132,14 +138,15 @@ pub const MAP_FAMILY_SAMPLES: usize = 40;
 /// The family through `state` (of dimension `k ≥ 1`) at one cell, sampled as
 /// [`MAP_FAMILY_STEP`] and [`MAP_FAMILY_SAMPLES`] say: `(verdict, largest abscissa, smallest
 /// abscissa)` over its members; `None` where it cannot be followed.
-fn cell_family(field: &Field, state: &StationaryState, newton: &NewtonOptions) -> Option<(FamilyVerdict, f64, f64)> {
+fn cell_family(field: &MapField, state: &StationaryState, newton: &NewtonOptions) -> Option<(FamilyVerdict, f64, f64)> {
     let periodic = field.period().is_some();
     let angles = match field {
-        Field::Planar(p) => (2..2 + p.rotor().n).collect(),
-        Field::Spatial(s) => {
+        MapField::General(Field::Planar(p)) => (2..2 + p.rotor().n).collect(),
+        MapField::General(Field::Spatial(s)) => {
             let m = s.coords();
             (m - s.rotor().balls()..m).collect()
         }
+        MapField::Linear(f) => (f.rotor().dofs()..f.coords()).collect(),
     };
     let opts = FamilyOptions {
         step: if periodic { 0.5 } else { MAP_FAMILY_STEP },
@@ -149,7 +156,11 @@ fn cell_family(field: &Field, state: &StationaryState, newton: &NewtonOptions) -
         newton: newton.clone(),
         refine_extremes: true,
         // three equal balls: a third of the family, the rest its relabellings (3x fewer members)
-        relabellings: crate::rotor_stability::ball_rotations(field),
+        // (the linear rotor's balls: every member followed)
+        relabellings: match field {
+            MapField::General(f) => crate::rotor_stability::ball_rotations(f),
+            MapField::Linear(_) => vec![],
+        },
         ..FamilyOptions::default()
     };
     let fam = family(field, state, &opts).ok()?;
@@ -181,10 +192,79 @@ pub struct GeneralMapOutcome {
     pub families: usize,
 }
 
+/// A map's rotor: either model of [`crate::rotor_stability`], or a linear rotor
+/// ([`crate::linear_rotor`]) in axes turning with it.
+#[derive(Debug, Clone)]
+enum MapRotor {
+    General(Rotor),
+    Linear(LinearRotor),
+}
+
+/// The field of a [`MapRotor`] at one speed ([`VectorField`] by delegation).
+#[allow(clippy::large_enum_variant)]
+#[derive(Debug)]
+enum MapField {
+    General(Field),
+    Linear(LinearRotorField),
+}
+
+macro_rules! delegate {
+    ($self:ident, $f:ident => $e:expr) => {
+        match $self {
+            MapField::General($f) => $e,
+            MapField::Linear($f) => $e,
+        }
+    };
+}
+
+impl VectorField for MapField {
+    fn dim(&self) -> usize {
+        delegate!(self, f => f.dim())
+    }
+    fn rhs(&self, t: f64, x: &[f64], dx: &mut [f64]) {
+        delegate!(self, f => f.rhs(t, x, dx))
+    }
+    fn jacobian(&self, t: f64, x: &[f64], jac: &mut [f64]) {
+        delegate!(self, f => f.jacobian(t, x, jac))
+    }
+    fn period(&self) -> Option<f64> {
+        delegate!(self, f => f.period())
+    }
+    fn structural_zeros(&self, x: &[f64]) -> usize {
+        delegate!(self, f => f.structural_zeros(x))
+    }
+    fn component_name(&self, i: usize) -> String {
+        delegate!(self, f => f.component_name(i))
+    }
+    fn scales(&self) -> Vec<f64> {
+        delegate!(self, f => f.scales())
+    }
+}
+
+impl MapRotor {
+    /// The field at model speed `omega`: the linear rotor's in axes turning with it
+    /// ([`Frame::Rotating`]: the balanced state is an equilibrium, or a periodic orbit of half a
+    /// revolution for anisotropic supports).
+    fn field(&self, omega: f64) -> Result<MapField> {
+        match self {
+            MapRotor::General(r) => r.field(omega).map(MapField::General),
+            MapRotor::Linear(r) => LinearRotorField::new(r, omega, Frame::Rotating).map(MapField::Linear),
+        }
+    }
+
+    /// The closed-form start ([`Rotor::guess`], [`LinearRotorField::balanced_guess`]).
+    fn guess(field: &MapField) -> Option<Vec<f64>> {
+        match field {
+            MapField::General(f) => Rotor::guess(f),
+            MapField::Linear(f) => f.balanced_guess(),
+        }
+    }
+}
+
 /// The rotor of one cell and the speed unit of its `omega`.
 #[derive(Debug, Clone)]
 struct CellRotor {
-    rotor: Rotor,
+    rotor: MapRotor,
     /// Model speed units per unit of `omega`: `ω0` (rad/s) of an SI spatial rotor, else 1.
     scale: f64,
     /// Whether the model's speeds are rad/s (planar, SI spatial) rather than `Ω`.
@@ -196,10 +276,10 @@ fn build(root: &Table) -> Result<CellRotor> {
     if config::is_spatial(root) {
         let sim = config::spatial_simulation(root)?;
         let scale = sim.config.model.scale.map_or(1.0, |s| s.omega0);
-        Ok(CellRotor { rotor: Rotor::Spatial(sim.rotor), scale, si: sim.config.dimensional })
+        Ok(CellRotor { rotor: MapRotor::General(Rotor::Spatial(sim.rotor)), scale, si: sim.config.dimensional })
     } else {
         let p = config::planar(root)?;
-        Ok(CellRotor { rotor: Rotor::Planar(p.rotor), scale: 1.0, si: true })
+        Ok(CellRotor { rotor: MapRotor::General(Rotor::Planar(p.rotor)), scale: 1.0, si: true })
     }
 }
 
@@ -247,7 +327,7 @@ fn model_speed(c: &CellRotor, s: Speed, field: &str) -> Result<f64> {
 fn solve(c: &CellRotor, w: f64, previous: Option<&StationaryState>, closed_form: bool, families: bool) -> (GeneralCell, Option<StationaryState>) {
     let Ok(field) = c.rotor.field(w) else { return (GeneralCell::NONE, None) };
     let periodic = field.period().is_some();
-    let guess = if closed_form { Rotor::guess(&field) } else { None };
+    let guess = if closed_form { MapRotor::guess(&field) } else { None };
     let previous = previous.filter(|p| p.x.len() == field.dim());
     let hint = previous.and_then(|p| p.monodromy.as_deref());
     let mut opts = NewtonOptions::default();
@@ -303,7 +383,7 @@ fn speed_unit(a: &Axis) -> Option<SpeedUnit> {
 /// The map's plane: the config, the axes, the fixed speed, and the rotors prebuilt along the
 /// parameter axis when the other is the speed.
 struct Plane<'a> {
-    root: &'a Table,
+    src: Source<'a>,
     x: &'a Axis,
     y: &'a Axis,
     speed: Option<Speed>,
@@ -343,12 +423,24 @@ impl Plane<'_> {
     }
 
     fn build_at(&self, set: &[(&str, f64)]) -> Result<CellRotor> {
-        let mut t = self.root.clone();
-        for (p, v) in set {
-            t = with(&t, p, *v)?;
-        }
+        let built = match self.src {
+            Source::Config(root) => {
+                let mut t = root.clone();
+                for (p, v) in set {
+                    t = with(&t, p, *v)?;
+                }
+                build(&t)
+            }
+            Source::Linear(spec) => {
+                // errors naming a path (and its value) pass as they are
+                match spec.model_at(set) {
+                    Err(e) if set.iter().any(|(p, _)| e.field() == Some(*p)) => return Err(e),
+                    r => r.map(|r| CellRotor { rotor: MapRotor::Linear(r), scale: 1.0, si: true }),
+                }
+            }
+        };
         let v = set.last().map_or(0.0, |s| s.1);
-        build(&t).map_err(|e| match set {
+        built.map_err(|e| match set {
             [(p, v)] => name_axis(e, p, *v),
             [(p, pv), (q, qv)] => Error::invalid(*p, format!("at {p} = {}, {q} = {}: {e}", fmt_num(*pv), fmt_num(*qv))),
             _ => name_axis(e, "config", v),
@@ -420,8 +512,16 @@ impl Plane<'_> {
     }
 }
 
+/// Where a map's rotors come from: a planar or spatial config ([`build`]), or a linear rotor's
+/// ([`LinearRotorSpec`]).
+#[derive(Clone, Copy)]
+enum Source<'a> {
+    Config(&'a Table),
+    Linear(&'a LinearRotorSpec),
+}
+
 /// Check an axis: a speed, or a config path that the config takes (at its first value).
-fn check_axis(root: &Table, a: &Axis) -> Result<()> {
+fn check_axis(src: Source, a: &Axis) -> Result<()> {
     if a.values.is_empty() {
         return Err(Error::invalid(a.path.clone(), "the axis has no value"));
     }
@@ -431,7 +531,10 @@ fn check_axis(root: &Table, a: &Axis) -> Result<()> {
     match speed_unit(a) {
         Some(_) if a.values.iter().any(|v| *v < 0.0) => Err(Error::invalid(a.path.clone(), "the speed must not be negative")),
         Some(_) => Ok(()),
-        None => with(root, &a.path, a.values[0]).map(|_| ()),
+        None => match src {
+            Source::Config(root) => with(root, &a.path, a.values[0]).map(|_| ()),
+            Source::Linear(spec) => crate::linear_rotor::spec::set_path(&mut spec.root().clone(), &a.path, a.values[0]),
+        },
     }
 }
 
@@ -481,8 +584,42 @@ pub fn general_map_traced(
     control: &Control,
     on_row: &mut dyn FnMut(usize, &[GeneralCell], &[BoundaryPoint]) -> bool,
 ) -> Result<GeneralMapOutcome> {
-    check_axis(root, x)?;
-    check_axis(root, y)?;
+    map_on(Source::Config(root), x, y, speed, trace, control, on_row)
+}
+
+/// [`general_map_traced`] on a linear rotor config ([`crate::linear_rotor`]): the axes are its
+/// parameter paths ([`crate::linear_rotor::spec`]: `linear_rotor.ball_mass`,
+/// `linear_rotor.support_stiffness_scale`, …) or the speed (`omega` and `speed` in rad/s,
+/// `speed_rpm`, `speed_hz`); each cell's rotor is the config with those values set, read
+/// again and reduced as `stability` runs it ([`crate::linear_rotor::spec::model`]); its
+/// balanced state is an equilibrium in axes turning with the rotor (isotropic structure) or a
+/// periodic orbit of half a revolution ([`LinearRotorField`]), started from
+/// [`LinearRotorField::balanced_guess`]. Margins are in 1/s.
+#[allow(clippy::type_complexity)]
+pub fn linear_map_traced(
+    spec: &LinearRotorSpec,
+    x: &Axis,
+    y: &Axis,
+    speed: Option<Speed>,
+    trace: bool,
+    control: &Control,
+    on_row: &mut dyn FnMut(usize, &[GeneralCell], &[BoundaryPoint]) -> bool,
+) -> Result<GeneralMapOutcome> {
+    map_on(Source::Linear(spec), x, y, speed, trace, control, on_row)
+}
+
+#[allow(clippy::type_complexity)]
+fn map_on(
+    src: Source,
+    x: &Axis,
+    y: &Axis,
+    speed: Option<Speed>,
+    trace: bool,
+    control: &Control,
+    on_row: &mut dyn FnMut(usize, &[GeneralCell], &[BoundaryPoint]) -> bool,
+) -> Result<GeneralMapOutcome> {
+    check_axis(src, x)?;
+    check_axis(src, y)?;
     let (sx, sy) = (speed_unit(x), speed_unit(y));
     if sx.is_some() && sy.is_some() {
         return Err(Error::invalid(y.path.clone(), "only one axis can be the speed"));
@@ -490,7 +627,7 @@ pub fn general_map_traced(
     if sx.is_none() && sy.is_none() && speed.is_none() {
         return Err(Error::invalid("omega", "required when neither axis is the speed (the speed at which to map)"));
     }
-    let mut plane = Plane { root, x, y, speed, line: None };
+    let mut plane = Plane { src, x, y, speed, line: None };
     // the rotors along the parameter axis, once, when the other axis is the speed
     let other = match (sx, sy) {
         (Some(_), None) => Some(y),

@@ -3,8 +3,10 @@
 //! [`PlanarProblem`] (paths of [`crate::paths`]: `planar.c_psi`, `drive.b`, `drive.psi0[1]`),
 //! or the spatial rotor of papers 000/003, a [`SpatialSweep`] (the config's own keys,
 //! `balancer.ball_mass`, `drive.omega0`, `dimensionless.z_a`, …, set in its tables and the
-//! rotor converted again per point). Their rows are [`SUMMARY_COLUMNS`] and
-//! [`SPATIAL_SUMMARY_COLUMNS`].
+//! rotor converted again per point), or a linear rotor config ([`LinearRotorSpec`], issue 19:
+//! the paths of [`crate::linear_rotor::spec`], `linear_rotor.ball_mass`, `drive.b`, …, each
+//! point the config with those values set, run as `simulate` runs it). Their rows are
+//! [`SUMMARY_COLUMNS`], [`SPATIAL_SUMMARY_COLUMNS`] and [`LINEAR_SUMMARY_COLUMNS`].
 //!
 //! - A [`Grid`] is the product of [`Axis`] values (the first axis varies fastest); its points
 //!   are numbered `0..len`, and a [`shard`] is a contiguous range of them, so that shards run
@@ -46,6 +48,7 @@
 use crate::config::Table;
 use crate::control::{Control, StopReason};
 use crate::error::{fmt_num, Error, Result};
+use crate::linear_rotor::spec::{LinearRotorSpec, LinearRun};
 pub use crate::paths::Axis;
 use crate::paths::Parameters;
 use crate::planar::problem::PlanarProblem;
@@ -242,6 +245,60 @@ pub fn spatial_summary_values(s: &crate::spatial::dynamics::Summary) -> [f64; 17
         s.residual_couple.unwrap_or(f64::NAN),
         s.static_sag,
     ]
+}
+
+/// Columns of a linear rotor's run ([`crate::linear_rotor::runup::RunSummary`]), in this order:
+/// `peak_amplitude`, `omega_at_peak`, `t_at_peak` (the first balancer plane's radius, m; NaN
+/// without a plane), `peak_any_node`, `omega_at_peak_any_node` (the largest translation of any
+/// physical node), `final_amplitude` (the first plane's radius at the end), `completed` (0 or
+/// 1), `t_reached`, `steps`.
+pub const LINEAR_SUMMARY_COLUMNS: &[&str] =
+    &["peak_amplitude", "omega_at_peak", "t_at_peak", "peak_any_node", "omega_at_peak_any_node", "final_amplitude", "completed", "t_reached", "steps"];
+
+/// A linear rotor's run summary in the order of [`LINEAR_SUMMARY_COLUMNS`] (a peak never
+/// observed, −∞, is NaN).
+pub fn linear_summary_values(s: &crate::linear_rotor::runup::RunSummary) -> [f64; 9] {
+    let seen = |v: f64| if v.is_finite() { v } else { f64::NAN };
+    let has_plane = s.peak.value.is_finite();
+    [
+        seen(s.peak.value),
+        if has_plane { s.peak.with } else { f64::NAN },
+        if has_plane { s.peak.t } else { f64::NAN },
+        seen(s.peak_any_node.value),
+        if s.peak_any_node.value.is_finite() { s.peak_any_node.with } else { f64::NAN },
+        if has_plane { s.final_radius } else { f64::NAN },
+        f64::from(u8::from(s.stopped.is_none())),
+        s.t,
+        s.steps as f64,
+    ]
+}
+
+impl SweepSummary for crate::linear_rotor::runup::RunSummary {
+    const COLUMNS: &'static [&'static str] = LINEAR_SUMMARY_COLUMNS;
+    fn values(&self) -> Vec<f64> {
+        linear_summary_values(self).to_vec()
+    }
+    fn stopped(&self) -> Option<&str> {
+        self.stopped.as_deref()
+    }
+}
+
+/// A linear rotor config as a sweep's base ([`crate::linear_rotor::spec`]): a point is the
+/// config with its values set at paths, read again, and run as `autobal simulate` runs it
+/// ([`crate::linear_rotor::spec::run_of`]: the reduction, the default run-up where the config
+/// has no `[drive]`), sampled at every `dt` as `simulate` samples it.
+impl SweepModel for LinearRotorSpec {
+    type Point = LinearRun;
+    type Summary = crate::linear_rotor::runup::RunSummary;
+    fn at(&self, paths: &[&str], values: &[f64]) -> Result<LinearRun> {
+        let at = || point_text(paths, values);
+        let set: Vec<(&str, f64)> = paths.iter().copied().zip(values.iter().copied()).collect();
+        let cfg = self.config_at(&set).map_err(|e| with_point(e, &at()))?;
+        crate::linear_rotor::spec::run_of(&cfg).map_err(|e| with_point(e, &at()))
+    }
+    fn run(&self, p: &LinearRun, control: &Control) -> Result<Self::Summary> {
+        crate::linear_rotor::runup::simulate(&p.rotor, &p.drive, &p.settings, control, |_| true)
+    }
 }
 
 /// A run's summary as a sweep's row: its columns' names and numbers (and as JSON, its

@@ -37,6 +37,7 @@ from .errors import AutobalError, Interrupted, InvalidParameter, NoConvergence, 
 from ._sweep import _axes, columns, simulate_batch, sweep, grid
 from ._results import COMMANDS, COMMANDS_WITH_FIGURES, Report, Result, report
 from ._ross import from_ross
+from . import _linear_config
 from ._autobal import LinearRotor
 from ._linear_rotor import LinearSimulation
 
@@ -422,6 +423,9 @@ def run(command: str, config: ConfigLike = None, set: Optional[Mapping[str, Any]
     >>> run("critical", set={"dimensionless.delta_a": 0.1})["critical_speeds"][3]["omega"] > 3.79
     True
     """
+    if _linear_config.is_linear(config):
+        # a [linear_rotor] config file: stability, simulate, map, sweep, basins (_linear_config)
+        return _linear_config.run(command, config, set, **options)
     if command in _REPORT_OPTIONS:
         _no_more(command, {k: v for k, v in options.items() if k not in _REPORT_OPTIONS[command]})
         # the config as the CLI reads it (any rotor: a planar config takes the general route),
@@ -524,6 +528,10 @@ def analyse(command: str, config: ConfigLike = None, set: Optional[Mapping[str, 
     (True, 4)
     """
     arrays: Optional[Dict[str, Any]] = None
+    if command != "report" and _linear_config.is_linear(config):
+        lin = _linear_config.run(command, config, set, **options)
+        text = Path(config).read_text(encoding="utf-8")
+        return Result(command, lin, (text, None, str(config), list((set or {}).items())), options, lin if command == "map" else None)
     if command == "report":
         return report(config, options.pop("out", "autobal-report"), set=set, **options)
     if command == "simulate":

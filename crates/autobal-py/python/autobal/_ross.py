@@ -9,6 +9,10 @@ elements are not coupled to them). Bearings whose coefficients ROSS tabulates ov
 become speed-dependent bearings: ``K(speed) - K(speeds[0])`` and the same for ``C`` at each
 speed of the table (the union of the bearings' ``frequency`` arrays, or ``speeds=``), on the
 bearing's node, interpolated linearly between them (ROSS interpolates its tables itself).
+The rotor's polar moment of inertia about its axis (the spin's inertia under a torque drive,
+``LinearRotor.polar_inertia``) is the disks' ``DiskElement.Ip`` plus the shaft elements'
+``ρ ∫ J dz``, ``J = π (d_o⁴ − d_i⁴)/32`` along each (tapered) element, by :func:`polar_inertia_of`;
+the gyroscopic matrix is ROSS's ``rotor.G()``, which holds the same moments.
 """
 
 from __future__ import annotations
@@ -28,11 +32,45 @@ def _lateral(per_node: int) -> Sequence[int]:
     raise ValueError(f"rotor.number_dof = {per_node}: expected 4 (x, y, alpha, beta) or 6 (x, y, z, alpha, beta, theta)")
 
 
+def _gauss3(f: Any, length: float) -> float:
+    # 3-point Gauss-Legendre on [0, length]: exact for polynomials up to degree 5, so for the
+    # quartic d(z)⁴ of a linearly tapered diameter
+    r = (3.0 / 5.0) ** 0.5
+    return 0.5 * length * sum(w * f(0.5 * length * (1.0 + x)) for x, w in ((-r, 5.0 / 9.0), (0.0, 8.0 / 9.0), (r, 5.0 / 9.0)))
+
+
+def polar_inertia_of(rotor: Any) -> float:
+    """The polar moment of inertia (kg m²) of a ROSS rotor about its axis: ``Σ DiskElement.Ip``
+    plus, for each shaft element, ``ρ ∫₀ᴸ π (d_o(z)⁴ − d_i(z)⁴)/32 dz`` with the diameters
+    linear from the left end (``odl``, ``idl``) to the right (``odr``, ``idr``), integrated
+    exactly (3-point Gauss). Elements without these attributes (point masses, bearings) add
+    nothing."""
+    total = 0.0
+    for d in getattr(rotor, "disk_elements", []):
+        total += float(getattr(d, "Ip", 0.0))
+    for e in getattr(rotor, "shaft_elements", []):
+        try:
+            length, rho = float(e.L), float(e.material.rho)
+            odl, idl = float(e.odl), float(e.idl)
+            odr, idr = float(getattr(e, "odr", odl)), float(getattr(e, "idr", idl))
+        except AttributeError:
+            continue
+
+        def j(z: float) -> float:
+            s = z / length
+            do, di = odl + (odr - odl) * s, idl + (idr - idl) * s
+            return np.pi * (do**4 - di**4) / 32.0
+
+        total += rho * _gauss3(j, length)
+    return total
+
+
 def from_ross(
     rotor: Any,
     balancers: Iterable[Mapping[str, float]] = (),
     unbalance: Iterable[Mapping[str, float]] = (),
     speeds: Optional[Sequence[float]] = None,
+    polar_inertia: Optional[float] = None,
 ) -> "_autobal.LinearRotor":
     """The ROSS rotor ``rotor`` as a :class:`autobal.LinearRotor` (DOFs ``x, y, alpha, beta``
     per node in ROSS's order and node numbers).
@@ -41,7 +79,8 @@ def from_ross(
     optionally ``drag`` (N m s per ball) and ``offset`` (m). ``unbalance``: dicts with ``node``,
     ``me`` (kg m; or ``magnitude`` as ROSS calls it), optionally ``phase`` (rad) and ``offset``.
     ``speeds``: where the bearings' speed dependence is sampled (rad/s); default the union of
-    the bearings' ``frequency`` tables.
+    the bearings' ``frequency`` tables. ``polar_inertia``: the rotor's polar moment (kg m²)
+    for torque drives instead of :func:`polar_inertia_of`'s (disks' ``Ip`` and the shaft's).
 
     >>> import ross, autobal                                     # doctest: +SKIP
     >>> r = autobal.from_ross(ross.rotor_example(), balancers=[dict(node=2, radius=0.1, balls=2, ball_mass=0.05, drag=0.01)],
@@ -66,6 +105,7 @@ def from_ross(
     c0 = np.asarray(rotor.C(speeds[0]), dtype=float)[sel]
     g = np.asarray(rotor.G(), dtype=float)[sel]
     out = _autobal.LinearRotor(np.ascontiguousarray(m_full[sel]), np.ascontiguousarray(c0), np.ascontiguousarray(g), np.ascontiguousarray(k0), per_node=4)
+    out.polar_inertia = float(polar_inertia_of(rotor) if polar_inertia is None else polar_inertia)
     if len(speeds) > 1:
         ks = [np.asarray(rotor.K(w), dtype=float)[sel] - k0 for w in speeds]
         cs = [np.asarray(rotor.C(w), dtype=float)[sel] - c0 for w in speeds]

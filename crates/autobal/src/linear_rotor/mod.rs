@@ -122,6 +122,7 @@
 //! pair of it turns as `R(−Ω t)`, the field is periodic with `2π/Ω` and the balanced state is a
 //! periodic orbit (the rotor sags, the balls swing), analysed by its Floquet multipliers.
 
+pub mod basins;
 pub mod campbell;
 pub mod config;
 pub mod field;
@@ -129,6 +130,7 @@ pub mod npz;
 pub mod reduce;
 pub mod runup;
 pub mod shaft;
+pub mod spec;
 pub mod stability;
 
 use crate::error::{finite, non_negative, positive, Error, Result};

@@ -520,6 +520,19 @@ pub fn simulate(
     control: &crate::control::Control,
     sink: impl FnMut(&RunSample) -> bool,
 ) -> Result<RunSummary> {
+    simulate_from(rotor, drive, settings, None, control, sink)
+}
+
+/// [`simulate`] with the balls' initial angles relative to the rotor `psi0` (one per ball, plane
+/// by plane; `None`: [`initial_state_for`]'s even spread), the rest of the initial state as there.
+pub fn simulate_from(
+    rotor: &LinearRotor,
+    drive: &Drive,
+    settings: &RunSettings,
+    psi0: Option<&[f64]>,
+    control: &crate::control::Control,
+    sink: impl FnMut(&RunSample) -> bool,
+) -> Result<RunSummary> {
     crate::error::positive("drive.t_end", settings.t_end)?;
     crate::error::positive("integration.dt", settings.dt)?;
     let sys = RunUpSystem::new(rotor, drive)?;
@@ -557,6 +570,12 @@ pub fn simulate(
     let mut solver = Solver::new(&sys, o)?;
     solver.control(control);
     let mut y = initial_state_for(rotor, drive);
+    if let Some(p) = psi0 {
+        if p.len() != nc - n {
+            return Err(Error::invalid("drive.psi0", format!("has {} angles, the rotor {} balls", p.len(), nc - n)));
+        }
+        y[n..nc].copy_from_slice(p);
+    }
     let breakpoints = drive.breakpoints();
     let timeline = Timeline { t_end: settings.t_end, dt: settings.dt, breakpoints: &breakpoints };
     let mut hooks = RunHooks {

@@ -1,0 +1,51 @@
+"""``autobal.run`` and ``autobal.analyse`` on a ``[linear_rotor]`` config file (issue 19, "your
+own rotor"): ``stability``, ``simulate``, ``map``, ``sweep`` and ``basins`` as the CLI computes
+them, through ``_autobal.linear_rotor_run`` (the commands crate's functions, with the GIL
+released and Ctrl-C stopping the work)."""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+from pathlib import Path
+from typing import Any, Dict, Mapping, Optional
+
+import numpy as np
+
+from . import _autobal
+
+_TABLE = re.compile(r"^\s*\[\[?\s*linear_rotor\s*[.\]]", re.MULTILINE)
+
+
+def is_linear(config: Any) -> bool:
+    """Whether ``config`` is the path of a TOML file with a ``[linear_rotor]`` table (a dict or
+    the default config is not: the matrix files are named relative to the file)."""
+    if not isinstance(config, (str, os.PathLike)):
+        return False
+    p = Path(config)
+    try:
+        if not p.is_file() or p.stat().st_size > 1 << 20:
+            return False
+        return bool(_TABLE.search(p.read_text(encoding="utf-8", errors="replace")))
+    except OSError:
+        return False
+
+
+def run(command: str, config: Any, set: Optional[Mapping[str, Any]] = None, **options: Any) -> Dict[str, Any]:
+    """The dict ``autobal COMMAND --config CONFIG --format json`` prints (``map``: the axes'
+    values, ``margin`` (1/s, NaN without a balanced state) and ``stable`` as arrays
+    ``len(y) × len(x)``, ``verdict`` as lists, the bisected ``boundary`` points with
+    ``boundary=True``)."""
+    out = json.loads(_autobal.linear_rotor_run(command, os.fspath(config), list((set or {}).items()), json.dumps(options)))
+    if command == "map":
+        out["margin"] = np.array([[np.nan if v is None else v for v in row] for row in out["margin"]], dtype=float)
+        out["stable"] = np.array([[v == "stable" for v in row] for row in out["verdict"]], dtype=bool)
+        out["x"], out["y"] = np.asarray(out["x"], dtype=float), np.asarray(out["y"], dtype=float)
+    if command == "simulate" and out.get("stopped"):
+        from .errors import SimulationError
+
+        e = SimulationError(out["stopped"])
+        e.result = out  # type: ignore[attr-defined]
+        raise e
+    return out

@@ -1,0 +1,280 @@
+//! Parameter paths of a linear rotor config (`[linear_rotor]`, issue 19): a [`LinearRotorSpec`]
+//! is the config's tables with the bytes of its matrix files (read once, by the front end), and
+//! a point of a map or a sweep is that config with numbers set at paths, read again by
+//! [`super::config::linear_rotor_bytes`] as `simulate` and `stability` read it, so that every
+//! value a path takes is checked (and its error named) as the config's own.
+//!
+//! The paths ([`PATHS`], [`crate::paths`]' style; each acts on the config's tables):
+//!
+//! | path | what it sets |
+//! |---|---|
+//! | `linear_rotor.ball_mass`, `.radius`, `.drag`, `.balls` | that key of **every** `[[linear_rotor.balancer]]` |
+//! | `linear_rotor.me` | `me` of the config's only `[[linear_rotor.unbalance]]` |
+//! | `linear_rotor.unbalance_scale` | a factor on every unbalance's `me` |
+//! | `linear_rotor.support_stiffness_scale` | a factor on every `[[linear_rotor.bearings]]`' stiffness (`k`, or the tables `kxx`, `kxy`, `kyx`, `kyy`) |
+//! | `linear_rotor.support_damping_scale` | the same on their damping (`c`, `cxx`, …) |
+//! | `linear_rotor.polar_inertia`, `.spin_damping`, `.omega_max`, `.modes` | that key of `[linear_rotor]` |
+//! | `drive.KEY`, `integration.KEY` | a number of `[drive]` (`omega0`, `b`, `torque`, `omega_idle`, `t_off`, `t_end`) or `[integration]` (`dt`, `rtol`, `atol`, `max_steps`, `max_wall_s`) |
+//!
+//! A map's speed axis is `omega` or `speed` (rad/s), `speed_rpm`, `speed_hz`
+//! ([`crate::units::SPEED_PATHS`]). Bearings inside matrix files are part of `K`, `C`: the scales
+//! act on the bearings the config lists, and a config without any is an error naming the path.
+//!
+//! ```
+//! use autobal::linear_rotor::spec::LinearRotorSpec;
+//! let text = "[linear_rotor]\n[[linear_rotor.elements]]\nlength = 0.1\ndiameter = 0.02\ne = 2.1e11\nrho = 7850.0\ncount = 4\n\
+//!             [[linear_rotor.bearings]]\nnode = 0\nk = 1e6\n[[linear_rotor.bearings]]\nnode = 4\nk = 1e6\n\
+//!             [[linear_rotor.balancer]]\nnode = 2\nradius = 0.05\nballs = 2\nball_mass = 0.01\n";
+//! let spec = LinearRotorSpec::new(toml::from_str(text).unwrap(), &mut |_| Err("no files".into())).unwrap();
+//! let cfg = spec.config_at(&[("linear_rotor.ball_mass", 0.02), ("linear_rotor.support_stiffness_scale", 2.0)]).unwrap();
+//! assert_eq!(cfg.rotor.balancers[0].ball_mass, 0.02);
+//! let e = spec.config_at(&[("linear_rotor.nope", 1.0)]).unwrap_err().to_string();
+//! assert!(e.starts_with("linear_rotor.nope: unknown parameter path"));
+//! ```
+
+use super::config::{linear_rotor_bytes, LinearRotorConfig};
+use super::runup::RunSettings;
+use super::LinearRotor;
+use crate::drive::Drive;
+use crate::error::{fmt_num, Error, Result};
+use crate::paths::whole;
+use std::collections::BTreeMap;
+use toml::{Table, Value};
+
+/// Every parameter path of a linear rotor config with what it sets (module docs); `drive.KEY`
+/// and `integration.KEY` are listed as such.
+pub const PATHS: &[(&str, &str)] = &[
+    ("linear_rotor.ball_mass", "mass of one ball m_b (kg), in every balancer plane"),
+    ("linear_rotor.radius", "race radius R (m), in every balancer plane"),
+    ("linear_rotor.drag", "viscous drag per ball c_b (N m s), in every balancer plane"),
+    ("linear_rotor.balls", "number of balls n (whole), in every balancer plane"),
+    ("linear_rotor.me", "m·e (kg m) of the config's only unbalance"),
+    ("linear_rotor.unbalance_scale", "factor on every unbalance's m·e"),
+    ("linear_rotor.support_stiffness_scale", "factor on the stiffness of every [[linear_rotor.bearings]] (k or kxx, kxy, kyx, kyy)"),
+    ("linear_rotor.support_damping_scale", "factor on the damping of every [[linear_rotor.bearings]] (c or cxx, cxy, cyx, cyy)"),
+    ("linear_rotor.polar_inertia", "polar moment of inertia I_p (kg m²) for torque drives"),
+    ("linear_rotor.spin_damping", "drag on the spin c_θ (N m s)"),
+    ("linear_rotor.omega_max", "top of the speed axis (rad/s)"),
+    ("linear_rotor.modes", "interior mode pairs of the reduction (whole; 0: the full model)"),
+    ("drive.KEY", "omega0, b, torque, omega_idle, t_off, t_end"),
+    ("integration.KEY", "dt, rtol, atol, max_steps, max_wall_s"),
+];
+
+const DRIVE_KEYS: &[&str] = &["omega0", "b", "torque", "omega_idle", "t_off", "t_end"];
+const INTEGRATION_KEYS: &[&str] = &["dt", "rtol", "atol", "max_steps", "max_wall_s"];
+
+/// A linear rotor config and the bytes of the matrix files it names (module docs).
+#[derive(Debug, Clone, PartialEq)]
+pub struct LinearRotorSpec {
+    root: Table,
+    files: BTreeMap<String, Vec<u8>>,
+}
+
+impl LinearRotorSpec {
+    /// The config `root` (it must read as it is), its files read once through `load`.
+    pub fn new(root: Table, load: &mut dyn FnMut(&str) -> std::result::Result<Vec<u8>, String>) -> Result<Self> {
+        let mut files = BTreeMap::new();
+        linear_rotor_bytes(&root, &mut |p| {
+            let b = load(p)?;
+            files.insert(p.to_string(), b.clone());
+            Ok(b)
+        })?;
+        Ok(LinearRotorSpec { root, files })
+    }
+
+    /// The config's tables.
+    pub fn root(&self) -> &Table {
+        &self.root
+    }
+
+    /// The config with every `(path, value)` set, in order, read again; errors name the path
+    /// (and the value where the config refuses it).
+    pub fn config_at(&self, set: &[(&str, f64)]) -> Result<LinearRotorConfig> {
+        let mut root = self.root.clone();
+        for (p, v) in set {
+            set_path(&mut root, p, *v)?;
+        }
+        linear_rotor_bytes(&root, &mut |p| self.files.get(p).cloned().ok_or_else(|| format!("{p}: not among the files read with the config"))).map_err(|e| {
+            match set {
+                [(p, v)] if e.field() != Some(*p) => Error::invalid(*p, format!("at {p} = {}: {e}", fmt_num(*v))),
+                _ => e,
+            }
+        })
+    }
+
+    /// The model the analyses run at that point ([`model`]).
+    pub fn model_at(&self, set: &[(&str, f64)]) -> Result<LinearRotor> {
+        model(&self.config_at(set)?)
+    }
+}
+
+/// The rotor the analyses run on a config: its rotor, or the reduction to `linear_rotor.modes`
+/// interior mode pairs ([`super::reduce::reduce`], as `stability` and `simulate` run it).
+pub fn model(cfg: &LinearRotorConfig) -> Result<LinearRotor> {
+    match cfg.modes {
+        None => Ok(cfg.rotor.clone()),
+        Some(p) => Ok(super::reduce::reduce(&cfg.rotor, p, &[])?.rotor),
+    }
+}
+
+/// One run of `simulate` on a config: the model ([`model`]), the drive and the solver settings.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LinearRun {
+    /// The model integrated.
+    pub rotor: LinearRotor,
+    /// The drive: `[drive]`, or from rest to [`default_omega_max`] at constant acceleration in
+    /// 1000 revolutions (`φ = ½ b t² = 2π·1000` at `Ω = b t = ω_max`).
+    pub drive: Drive,
+    /// `t_end`, `dt` (`integration.dt`, or `t_end/2000` with the default drive), tolerances,
+    /// budgets; the physical nodes of a reduction.
+    pub settings: RunSettings,
+    /// Whether the drive is the default run-up.
+    pub default_drive: bool,
+}
+
+/// The top of the speed axis: `linear_rotor.omega_max`, else 1.5 × the highest undamped natural
+/// frequency (balls as rings, at rest) among the lowest four, at least 3 × the first.
+pub fn default_omega_max(cfg: &LinearRotorConfig) -> Result<f64> {
+    if let Some(w) = cfg.omega_max {
+        return Ok(w);
+    }
+    let w = cfg.rotor.at_speed(0.0).natural_frequencies(&[], true)?;
+    let pos: Vec<f64> = w.into_iter().filter(|v| *v > 0.0).collect();
+    let first =
+        *pos.first().ok_or_else(|| Error::invalid("linear_rotor.omega_max", "the rotor has no positive natural frequency: give linear_rotor.omega_max"))?;
+    Ok((1.5 * pos[pos.len().min(4) - 1]).max(3.0 * first))
+}
+
+/// The run `autobal simulate` makes on `cfg` (without `--dt`).
+pub fn run_of(cfg: &LinearRotorConfig) -> Result<LinearRun> {
+    let (drive, t_end, default_drive) = match &cfg.drive {
+        Some((d, t)) => (d.clone(), *t, false),
+        None => {
+            let w = default_omega_max(cfg)?;
+            let t_end = 2.0 * std::f64::consts::TAU * 1000.0 / w;
+            (Drive::Acceleration { omega0: 0.0, b: w / t_end }, t_end, true)
+        }
+    };
+    let (rotor, physical_nodes) = match cfg.modes {
+        None => (cfg.rotor.clone(), None),
+        Some(p) => {
+            let r = super::reduce::reduce(&cfg.rotor, p, &[])?;
+            let nodes = r.boundary.len();
+            (r.rotor, Some(nodes))
+        }
+    };
+    let ig = &cfg.integration;
+    let settings = RunSettings {
+        t_end,
+        dt: if default_drive { t_end / 2000.0 } else { ig.dt },
+        rtol: ig.rtol,
+        atol: ig.atol,
+        method: ig.method,
+        max_steps: ig.max_steps.unwrap_or(10_000_000),
+        max_wall_s: ig.max_wall_s,
+        physical_nodes,
+    };
+    Ok(LinearRun { rotor, drive, settings, default_drive })
+}
+
+/// Set `path` to `value` in the config's tables (module docs); an unknown path is an error
+/// naming it and listing the known ones.
+pub fn set_path(root: &mut Table, path: &str, value: f64) -> Result<()> {
+    let bad = |why: String| Error::invalid(path, why);
+    if !value.is_finite() {
+        return Err(bad(format!("{} is not a finite value", fmt_num(value))));
+    }
+    let (table, key) = path.split_once('.').unwrap_or((path, ""));
+    let unknown = || {
+        let known: Vec<&str> = PATHS.iter().map(|p| p.0).collect();
+        Error::invalid(path, format!("unknown parameter path (known: omega, speed, speed_rpm, speed_hz, {})", known.join(", ")))
+    };
+    match table {
+        "drive" | "integration" => {
+            let keys = if table == "drive" { DRIVE_KEYS } else { INTEGRATION_KEYS };
+            if !keys.contains(&key) {
+                return Err(unknown());
+            }
+            let t = root.entry(table.to_string()).or_insert_with(|| Value::Table(Table::new()));
+            let t = t.as_table_mut().ok_or_else(|| bad(format!("`{table}` is not a table")))?;
+            t.insert(key.to_string(), Value::Float(value));
+            Ok(())
+        }
+        "linear_rotor" => {
+            let lr = root.get_mut("linear_rotor").and_then(Value::as_table_mut).ok_or_else(|| bad("the config has no [linear_rotor] table".into()))?;
+            match key {
+                "ball_mass" | "radius" | "drag" => each(lr, "balancer", path)?.iter_mut().try_for_each(|t| insert(t, key, Value::Float(value), path)),
+                "balls" => {
+                    let n = whole(value, crate::planar::MAX_BALLS as u64).map_err(bad)?;
+                    each(lr, "balancer", path)?.iter_mut().try_for_each(|t| insert(t, key, Value::Integer(n as i64), path))
+                }
+                "me" => {
+                    let u = each(lr, "unbalance", path)?;
+                    if u.len() != 1 {
+                        return Err(bad(format!("the config has {} unbalances: scale them together with linear_rotor.unbalance_scale", u.len())));
+                    }
+                    insert(&mut u[0], "me", Value::Float(value), path)
+                }
+                "unbalance_scale" => scale(each(lr, "unbalance", path)?, &["me"], value, path),
+                "support_stiffness_scale" => scale(each(lr, "bearings", path)?, &["k", "kxx", "kxy", "kyx", "kyy"], value, path),
+                "support_damping_scale" => scale(each(lr, "bearings", path)?, &["c", "cxx", "cxy", "cyx", "cyy"], value, path),
+                "polar_inertia" | "spin_damping" | "omega_max" => {
+                    lr.insert(key.to_string(), Value::Float(value));
+                    Ok(())
+                }
+                "modes" => {
+                    let n = whole(value, super::MAX_DOFS as u64).map_err(bad)?;
+                    lr.insert(key.to_string(), Value::Integer(n as i64));
+                    Ok(())
+                }
+                _ => Err(unknown()),
+            }
+        }
+        _ => Err(unknown()),
+    }
+}
+
+/// The tables of `[[linear_rotor.KIND]]`; none is an error naming `path`.
+fn each<'a>(lr: &'a mut Table, kind: &str, path: &str) -> Result<&'a mut Vec<Value>> {
+    match lr.get_mut(kind) {
+        Some(Value::Array(a)) if !a.is_empty() => Ok(a),
+        _ => Err(Error::invalid(
+            path,
+            format!(
+                "the config has no [[linear_rotor.{kind}]] to set{}",
+                if kind == "bearings" { " (bearings inside the matrices K, C are part of the structure)" } else { "" }
+            ),
+        )),
+    }
+}
+
+fn insert(t: &mut Value, key: &str, v: Value, path: &str) -> Result<()> {
+    t.as_table_mut().ok_or_else(|| Error::invalid(path, "an entry of the array is not a table"))?.insert(key.to_string(), v);
+    Ok(())
+}
+
+/// Multiply `keys` (numbers or arrays of numbers) of every table by `factor` (finite, ≥ 0).
+fn scale(tables: &mut [Value], keys: &[&str], factor: f64, path: &str) -> Result<()> {
+    if factor < 0.0 {
+        return Err(Error::invalid(path, format!("a factor must not be negative, got {}", fmt_num(factor))));
+    }
+    let times = |v: &Value| -> Result<Value> {
+        match v {
+            Value::Float(f) => Ok(Value::Float(f * factor)),
+            Value::Integer(i) => Ok(Value::Float(*i as f64 * factor)),
+            _ => Err(Error::invalid(path, "the value to scale is not a number")),
+        }
+    };
+    for t in tables {
+        let t = t.as_table_mut().ok_or_else(|| Error::invalid(path, "an entry of the array is not a table"))?;
+        for k in keys {
+            let new = match t.get(*k) {
+                None => continue,
+                Some(Value::Array(a)) => Value::Array(a.iter().map(times).collect::<Result<_>>()?),
+                Some(v) => times(v)?,
+            };
+            t.insert(k.to_string(), new);
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,74 @@
+//! Basins of a linear rotor (issue 19 item 4): the Jeffcott preset's runs from a grid of ball
+//! start angles against the native planar model's runs from the same angles.
+
+use autobal::control::Control;
+use autobal::drive::Drive;
+use autobal::linear_rotor::basins::{angle_grid, basins, residual_unbalance, BALANCED_FRACTION};
+use autobal::linear_rotor::runup::RunSettings;
+use autobal::linear_rotor::spec::LinearRun;
+use autobal::linear_rotor::LinearRotor;
+use autobal::ode::Method;
+use autobal::planar::{PlanarRotor, Settings};
+
+/// Each end of the preset's 3 × 3 grid at constant speed above the critical one equals the
+/// planar model's run from the same start: the balls' final angles to 1e-7 rad and the whirl
+/// radius to 1e-7 of the unbalanced eccentricity (both integrate at rtol 1e-10; run-ups agree
+/// to 1e-8 of the peak, tests/linear_rotor_config.rs; 3 s at constant speed lets the angles'
+/// error grow at most tenfold while the motion settles). Balanced ends have a small static
+/// residual: with the node whirling at `r ≤ 0.05 me/M`, the force balance far above the critical
+/// speed leaves `|me + Σ m_b R e^{iψ}| ≈ M r`, so the residual is at most ~0.05 (0.1 allows the
+/// damping's and the stiffness's share `(c/Ω + k/Ω²) r`).
+#[test]
+fn the_presets_basins_end_where_the_planar_runs_end() {
+    let p = PlanarRotor { s2: 0.0, ..PlanarRotor::paper() };
+    let rotor = LinearRotor::from_planar(&p).unwrap();
+    let wn = p.natural_frequency();
+    let (t_end, dt) = (3.0, 0.01);
+    let drive = Drive::Speed { omega0: 2.5 * wn };
+    let settings = RunSettings { t_end, dt, rtol: 1e-10, atol: 1e-12, method: Method::Auto, max_steps: 10_000_000, max_wall_s: None, physical_nodes: None };
+    let run = LinearRun { rotor: rotor.clone(), drive: drive.clone(), settings, default_drive: false };
+    let starts = angle_grid(&rotor, 3, "n").unwrap();
+    let ends = basins(&run, &starts, &Control::none()).unwrap();
+    assert!(ends.is_complete());
+    let mut balanced = 0;
+    for (start, end) in starts.iter().zip(&ends.value) {
+        let end = end.as_ref().unwrap();
+        assert_eq!(&end.psi0, start);
+        let mut s = Settings::new(&p, t_end);
+        s.dt = dt;
+        s.rtol = 1e-10;
+        s.atol = 1e-12;
+        s.psi0 = start.clone();
+        let mut last = None;
+        autobal::planar::simulate(&p, &drive, &s, |x| {
+            last = Some((x.x.hypot(x.y), x.psi.clone()));
+            true
+        })
+        .unwrap();
+        let (r, psi) = last.unwrap();
+        for (a, b) in end.psi.iter().zip(&psi) {
+            let mut d = a - b;
+            d -= (d / std::f64::consts::TAU).round() * std::f64::consts::TAU;
+            assert!(d.abs() < 1e-7, "start {start:?}: ψ {a} vs {b}");
+        }
+        assert!((end.final_amplitude - r).abs() < 1e-7 * p.s1, "start {start:?}: r {} vs {r}", end.final_amplitude);
+        // from the wrapped angles: the same to round-off (the residual is relative to m e)
+        assert!((end.residual_unbalance - residual_unbalance(&rotor, &end.psi)).abs() < 1e-12);
+        if end.balanced {
+            balanced += 1;
+            assert!(end.final_amplitude <= BALANCED_FRACTION * p.m1 * p.s1 / (p.m1 + p.m2));
+            assert!(end.residual_unbalance < 0.1, "start {start:?}: {end:?}");
+        }
+    }
+    assert!(balanced > 0, "no run balanced: {:?}", ends.value);
+    // fewer than two balls, or a grid outside 2..=1000, are refused naming the field
+    assert_eq!(angle_grid(&rotor, 1, "--n").unwrap_err().field(), Some("--n"));
+    let mut one = rotor.clone();
+    one.balancers[0].balls = 1;
+    assert_eq!(angle_grid(&one, 3, "--n").unwrap_err().field(), Some("linear_rotor.balancer"));
+    // cancelled: no run is reported as if it had ended
+    let c = Control::new();
+    c.cancel();
+    let out = basins(&run, &starts, &c).unwrap();
+    assert!(!out.is_complete() && out.value.iter().all(Option::is_none));
+}
