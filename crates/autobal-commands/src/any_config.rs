@@ -31,31 +31,27 @@ pub fn inertia(root: &Table, source: &str) -> Result<(Value, String)> {
     if !autobal::config::is_spatial(root) {
         bail!(PLANAR_INERTIA);
     }
-    let v = autobal::reports::inertia_of(root, source)?;
+    let r = autobal::reports::inertia_of(root, source)?;
     let mut s = String::new();
-    if v["paper_000_not_applicable"].is_null() {
-        s.push_str(&output::inertia_table(&crate::config::build(root, source)?));
-    } else {
-        let _ = writeln!(s, "config: {source}");
-        let _ = writeln!(s, "{}: the whole rotor below is the config's", v["paper_000_not_applicable"].as_str().unwrap_or_default());
+    match &r.paper_000_not_applicable {
+        None => s.push_str(&output::inertia_table(&crate::config::build(root, source)?)),
+        Some(why) => {
+            let _ = writeln!(s, "config: {source}");
+            let _ = writeln!(s, "{why}: the whole rotor below is the config's");
+        }
     }
-    // the typed result again (cheap: no analysis), for the table
-    match autobal::reports::whole_rotor(root, &autobal::config::spatial(root)?) {
-        Ok(w) => s.push_str(&output::whole_rotor_table(&w)),
-        Err(e) => {
+    match (&r.whole_rotor, &r.whole_rotor_unavailable) {
+        (Some(w), _) => s.push_str(&output::whole_rotor_table(w)),
+        (None, e) => {
             let _ = writeln!(
                 s,
                 "
-whole rotor as the simulation builds it: not available ({e})"
+whole rotor as the simulation builds it: not available ({})",
+                e.as_deref().unwrap_or_default()
             );
         }
     }
-    Ok((v, s))
-}
-
-/// Speed ranges of a JSON list of `[lo, hi]` pairs (`hi = null`: unbounded).
-fn ranges_of(v: &Value) -> Vec<SpeedRange> {
-    v.as_array().map_or(vec![], |a| a.iter().filter_map(|p| Some(SpeedRange { lo: p.get(0)?.as_f64()?, hi: p.get(1).and_then(Value::as_f64) })).collect())
+    Ok((autobal::reports::to_json(&r), s))
 }
 
 /// `autobal ranges` of `root`: the JSON and the table.
@@ -68,17 +64,17 @@ pub fn ranges(root: &Table, source: &str, control: &Control) -> Result<(Value, S
     output::check_results(&cfg)?;
     let spatial =
         autobal::config::SpatialConfig { model: cfg.model.clone(), spec: cfg.spec.clone(), analysis: cfg.analysis.clone(), dimensional: cfg.dimensional };
-    let v = autobal::reports::ranges_with_exact(&spatial, source)?;
+    let r = autobal::reports::ranges_with_exact(&spatial, source)?;
     let mut s = output::ranges_table(&cfg);
-    let exact = ranges_of(&v["exact"]["stable_ranges"]);
-    let w = v["exact"]["omega_max"].as_f64().unwrap_or(f64::NAN);
+    let (exact, w) =
+        r.exact.as_ref().map_or((vec![], f64::NAN), |e| (e.stable_ranges.iter().map(|&(lo, hi)| SpeedRange { lo, hi }).collect::<Vec<_>>(), e.omega_max));
     let _ = writeln!(s, "  exact stable ranges (eigenvalues of 000's 12-state model, balls free, as `autobal stability`), 0 < Ω ≤ {w:.4}:");
     let _ = writeln!(s, "    {}", autobal::spatial::comparison::fmt_ranges_in(&exact, 4, Some(w)));
     if let Some(sc) = cfg.model.scale {
         let k = sc.omega0 * 30.0 / std::f64::consts::PI;
         let _ = writeln!(s, "    {} rpm", autobal::spatial::comparison::fmt_ranges_in(&autobal::reports::scale_ranges(&exact, k), 0, Some(w * k)));
     }
-    Ok((v, s))
+    Ok((autobal::reports::to_json(&r), s))
 }
 
 /// The entries for which 003's ranges are not defined, as a phrase.
@@ -95,8 +91,11 @@ fn ranges_general(root: &Table, source: &str, control: &Control) -> Result<(Valu
     let omega_max = general::default_omega_max(&g, root)?;
     let r = general::analyse(&g, omega_max, general::default_samples(&g), control)?;
     let why = not_defined(root);
-    let model =
-        if autobal::config::is_spatial(root) { autobal::reports::inertia(&autobal::config::spatial(root)?, source)["model"].clone() } else { Value::Null };
+    let model = if autobal::config::is_spatial(root) {
+        autobal::reports::to_json(&autobal::reports::model_report(&autobal::config::spatial(root)?, source))
+    } else {
+        Value::Null
+    };
     let v = json!({
         "model": model,
         "source": source,

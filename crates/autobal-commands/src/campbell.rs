@@ -192,8 +192,8 @@ mod tests {
         let cfg = crate::config::build(&crate::config::parse_text(crate::config::DEFAULT_CONFIG, "d").unwrap(), "d").unwrap();
         let c = autobal::spatial::stability::campbell(&cfg.model, &crate::linear::campbell_grid(3.0, points), Balls::Free).unwrap();
         let fixed = fixed_axes(&cfg.model, &c, Balls::Free, &[1]).unwrap();
-        let mut want = autobal::reports::campbell_of(&cfg.model, &c);
-        if let (Some(o), Value::Object(extra)) = (want.as_object_mut(), autobal::reports::campbell_fixed(&cfg.model, &fixed)) {
+        let mut want = serde_json::to_value(autobal::reports::campbell_of(&cfg.model, &c)).unwrap();
+        if let (Some(o), Value::Object(extra)) = (want.as_object_mut(), serde_json::to_value(autobal::reports::campbell_fixed(&cfg.model, &fixed)).unwrap()) {
             o.extend(extra);
         }
         assert_eq!(got, want);

@@ -4,7 +4,6 @@
 use crate::command::{self, ConfigSource};
 use anyhow::Result;
 use autobal::control::Control;
-use serde_json::Value;
 
 /// `autobal inertia`'s arguments.
 #[derive(Debug, Clone, Default)]
@@ -13,11 +12,8 @@ pub struct Args {
     pub config: ConfigSource,
 }
 
-/// `inertia`'s result: the JSON and the table, each built once from the config.
-pub struct Output {
-    json: Value,
-    table: String,
-}
+/// Its result: the JSON and the table, each built once from the config.
+pub type Output = crate::output::JsonTable;
 
 impl command::Command for Args {
     const NAME: &'static str = "inertia";
@@ -29,14 +25,5 @@ impl command::Command for Args {
         let (root, source) = self.config.read()?;
         let (json, table) = crate::any_config::inertia(&root, &source)?;
         Ok(Output { json, table })
-    }
-}
-
-impl command::Output for Output {
-    fn json(&self) -> Result<Value> {
-        Ok(self.json.clone())
-    }
-    fn table(&self) -> Result<String> {
-        Ok(self.table.clone())
     }
 }

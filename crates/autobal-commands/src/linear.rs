@@ -17,7 +17,7 @@ pub fn library(cfg: &Config) -> autobal::config::SpatialConfig {
 }
 
 pub fn stability_json(cfg: &Config, c: &Comparison, balls: Balls) -> Value {
-    autobal::reports::stability_of(&library(cfg), c, balls)
+    autobal::reports::to_json(&autobal::reports::stability_of(&library(cfg), c, balls))
 }
 
 /// A speed `Ω` as the config's user reads it: `Ω = 1.5 (157.1 rad/s, 1500 rpm)` for a
@@ -329,8 +329,8 @@ pub fn fixed_table(cfg: &Config, f: &FixedCampbell, at: &[f64]) -> String {
     s
 }
 
-/// The fixed-axes view as JSON ([`autobal::reports::campbell_fixed`], shared with Python).
-pub fn fixed_json(cfg: &Config, f: &FixedCampbell) -> Value {
+/// The fixed-axes view as its JSON's type ([`autobal::reports::campbell_fixed`], shared with Python).
+pub fn fixed_json(cfg: &Config, f: &FixedCampbell) -> autobal::reports::FixedReport {
     autobal::reports::campbell_fixed(&cfg.model, f)
 }
 
@@ -419,9 +419,15 @@ pub fn campbell_run(
                 }
             }
             for (f, m) in files.iter_mut().zip(modes) {
-                let text = serde_json::to_string(&autobal::reports::mode_json(&cfg.model, m)).unwrap_or_default();
-                if let Err(e) = write!(f, "{}{text}", if k == 0 { "" } else { ",\n" }) {
-                    io_err = Some(e.into());
+                // the typed mode written straight to the file (no JSON value tree per mode)
+                let sep: &[u8] = if k == 0 { b"" } else { b",\n" };
+                let mut write = || -> Result<()> {
+                    f.write_all(sep)?;
+                    serde_json::to_writer(&mut *f, &autobal::reports::mode_report(&cfg.model, m))?;
+                    Ok(())
+                };
+                if let Err(e) = write() {
+                    io_err = Some(e);
                     return false;
                 }
             }
@@ -520,11 +526,14 @@ impl CampbellRun {
             write!(out, "\n]}}")?;
         }
         write!(out, "\n]")?;
-        if let Value::Object(o) = fixed_json(&self.cfg, self.fixed()) {
-            for (key, v) in o {
-                write!(out, ",\n\"{key}\": {}", serde_json::to_string(&v)?)?;
-            }
-        }
+        // the fixed-axes view's fields, in the order of FixedReport (that of their names)
+        let f = fixed_json(&self.cfg, self.fixed());
+        write!(out, ",\n\"critical_speeds\": ")?;
+        serde_json::to_writer(&mut out, &f.critical_speeds)?;
+        write!(out, ",\n\"fixed_axes_modes\": ")?;
+        serde_json::to_writer(&mut out, &f.fixed_axes_modes)?;
+        write!(out, ",\n\"harmonics\": ")?;
+        serde_json::to_writer(&mut out, &f.harmonics)?;
         writeln!(out, ",\n\"complete\": {}\n}}", self.complete)?;
         out.flush()?;
         Ok(())

@@ -15,16 +15,27 @@ fn spatial(cfg: &Config) -> autobal::config::SpatialConfig {
     autobal::config::SpatialConfig { model: cfg.model.clone(), spec: cfg.spec.clone(), analysis: cfg.analysis.clone(), dimensional: cfg.dimensional }
 }
 
-pub fn inertia_json(cfg: &Config) -> Value {
-    autobal::reports::inertia(&spatial(cfg), &cfg.source)
-}
-
+/// `autobal critical`'s JSON on the 12-state model ([`autobal::reports::CriticalReport`]).
 pub fn critical_json(cfg: &Config) -> Value {
-    autobal::reports::critical(&spatial(cfg), &cfg.source)
+    autobal::reports::to_json(&autobal::reports::critical(&spatial(cfg), &cfg.source))
 }
 
-pub fn ranges_json(cfg: &Config) -> Value {
-    autobal::reports::ranges(&spatial(cfg), &cfg.source)
+/// The result of a command whose JSON and table are both built once from the config
+/// (`inertia`, `ranges`: [`crate::any_config`]).
+pub struct JsonTable {
+    /// The JSON.
+    pub json: Value,
+    /// The text table.
+    pub table: String,
+}
+
+impl crate::command::Output for JsonTable {
+    fn json(&self) -> anyhow::Result<Value> {
+        Ok(self.json.clone())
+    }
+    fn table(&self) -> anyhow::Result<String> {
+        Ok(self.table.clone())
+    }
 }
 
 fn opt(x: Option<f64>, prec: usize) -> String {

@@ -5,7 +5,6 @@
 use crate::command::{self, ConfigSource};
 use anyhow::Result;
 use autobal::control::Control;
-use serde_json::Value;
 
 /// `autobal ranges`' arguments.
 #[derive(Debug, Clone, Default)]
@@ -14,11 +13,8 @@ pub struct Args {
     pub config: ConfigSource,
 }
 
-/// `ranges`' result: the JSON and the table, each built once.
-pub struct Output {
-    json: Value,
-    table: String,
-}
+/// Its result: the JSON and the table, each built once from the config.
+pub type Output = crate::output::JsonTable;
 
 impl command::Command for Args {
     const NAME: &'static str = "ranges";
@@ -31,14 +27,5 @@ impl command::Command for Args {
         }
         let (json, table) = crate::any_config::ranges(&root, &source, control)?;
         Ok(Output { json, table })
-    }
-}
-
-impl command::Output for Output {
-    fn json(&self) -> Result<Value> {
-        Ok(self.json.clone())
-    }
-    fn table(&self) -> Result<String> {
-        Ok(self.table.clone())
     }
 }

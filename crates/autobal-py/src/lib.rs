@@ -447,11 +447,12 @@ fn simulate_command<'py>(
 /// `residual_unbalance`, `final_amplitude` per run (the CLI's CSV, row-major with `psi_2` outer;
 /// not `balanced`, which the summary uses for the count of balanced runs), the summary as `autobal basins --format json` prints it (without `csv`).
 #[pyfunction]
-#[pyo3(signature = (cfg, n=16))]
-fn spatial_basins<'py>(py: Python<'py>, cfg: &PySpatial, n: usize) -> PyResult<(Bound<'py, PyDict>, String)> {
+#[pyo3(signature = (cfg, n=None))]
+fn spatial_basins<'py>(py: Python<'py>, cfg: &PySpatial, n: Option<usize>) -> PyResult<(Bound<'py, PyDict>, String)> {
     use autobal_commands::command::{Command, Output};
-    // the CLI's `basins` (its Args and run): the JSON is the CLI's but the CSV's name
-    let args = autobal_commands::basins::Args { config: autobal_commands::command::ConfigSource::tables(cfg.root.clone(), &cfg.source), n };
+    // the CLI's `basins` (its Args and run, its default n): the JSON is the CLI's but the CSV's name
+    let config = autobal_commands::command::ConfigSource::tables(cfg.root.clone(), &cfg.source);
+    let args = autobal_commands::basins::Args { config, n: n.unwrap_or(autobal_commands::basins::Args::default().n) };
     let o = commands_call(py, move |control| args.run(control))?;
     if o.stopped().is_some() {
         return Err(py_err(py, autobal::Error::Interrupted { t: 0.0 }));

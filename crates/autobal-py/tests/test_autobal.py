@@ -121,6 +121,11 @@ def test_spatial_simulate_and_basins_equal_the_cli_json(tmp_path):
     # no [drive]: the default run-up through the critical speeds, as the CLI runs it
     run_up = autobal.run("simulate", config=str(ROOT / "examples" / "dimensional.toml"))
     assert run_up["drive_is_default"] and run_up["drive"]["kind"] == "acceleration"
+    # one default grid: without n, Python runs the CLI's `--n` default (basins::Args::default())
+    short = {"drive.t_end": 0.5}
+    dflt = cli("basins", "--config", spatial, "--out", str(tmp_path / "d.csv"), "--set", "drive.t_end=0.5")["runs"]
+    assert autobal.run("basins", config=spatial, set=short)["runs"] == dflt == 24 * 24
+    assert autobal.SpatialModel(spatial, set=short).basins()["runs"] == dflt
     # errors name the field: too small a grid
     with pytest.raises(autobal.InvalidParameter) as e:
         autobal.run("basins", config=spatial, n=1)

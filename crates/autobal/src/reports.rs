@@ -1,13 +1,21 @@
-//! The result of each front-end command as one JSON value: what `autobal <command> --format
-//! json` prints and what the Python package's `autobal.run(command, ...)` returns, built here
-//! once so that the two cannot differ.
+//! The result of each front-end command as typed data that serialises to its JSON: what
+//! `autobal <command> --format json` prints and what the Python package's
+//! `autobal.run(command, ...)` returns, built here once so that the two cannot differ.
+//!
+//! Each report is a struct (`#[derive(Serialize)]`: [`InertiaReport`], [`CriticalReport`],
+//! [`RangesReport`], [`StabilityReport`], [`CampbellReport`], [`FixedReport`]) whose fields are
+//! declared in the order of their names, the order in which a `serde_json::Value` object writes
+//! its keys (the front ends' JSON goes through [`to_json`]). The Campbell reports, which the CLI
+//! writes straight to its output as it streams them, are in that order all the way down, so
+//! written directly they give the same text as through a `Value`.
 //!
 //! ```
 //! use autobal::{config, reports};
 //! let c = config::spatial(&config::parse(config::DEFAULT_SPATIAL, "default").unwrap()).unwrap();
-//! let v = reports::critical(&c, "default");
+//! let r = reports::critical(&c, "default");
+//! assert_eq!(r.critical_speeds.len(), 4);
+//! let v = serde_json::to_value(&r).unwrap();
 //! assert_eq!(v["rotor_type"], "long");
-//! assert_eq!(v["critical_speeds"].as_array().unwrap().len(), 4);
 //! ```
 
 use crate::config::SpatialConfig;
@@ -25,9 +33,11 @@ use crate::spatial::sensitivity::sensitivity;
 use crate::spatial::stability::Campbell;
 use serde_json::{json, Value};
 
-/// `[lo, hi]` pairs with `null` for an unbounded end.
-pub fn ranges_value(r: &[SpeedRange]) -> Value {
-    Value::Array(r.iter().map(|x| json!([x.lo, x.hi])).collect())
+/// A report as a JSON value (keys in the order of their names). Serialising a report cannot
+/// fail: its maps are structs with string keys, and a non-finite number becomes `null` (which
+/// [`check_finite`] rules out before).
+pub fn to_json<T: serde::Serialize>(report: &T) -> Value {
+    serde_json::to_value(report).expect("a report has only string keys")
 }
 
 /// Whether the last of ranges computed over a span reaches the span's end (`hi = None` there).
@@ -46,17 +56,16 @@ fn si_units(m: &SpatialModel) -> Option<(f64, f64)> {
     m.scale.map(|s| (s.omega0, s.omega0 * 30.0 / std::f64::consts::PI))
 }
 
-/// A speed (or speeds) Ω in rad/s and rpm: `(rad_s, rpm)`, `null`s without a scale.
-fn speed_si(m: &SpatialModel, w: &[f64]) -> (Value, Value) {
-    match si_units(m) {
-        Some((rad, rpm)) => (json!(w.iter().map(|x| x * rad).collect::<Vec<_>>()), json!(w.iter().map(|x| x * rpm).collect::<Vec<_>>())),
-        None => (Value::Null, Value::Null),
-    }
+/// Speeds Ω in rad/s and rpm: `(rad_s, rpm)`, `None`s (`null`) without a scale.
+fn speed_si(m: &SpatialModel, w: &[f64]) -> (Option<Vec<f64>>, Option<Vec<f64>>) {
+    let si = si_units(m);
+    (si.map(|(rad, _)| w.iter().map(|x| x * rad).collect()), si.map(|(_, rpm)| w.iter().map(|x| x * rpm).collect()))
 }
 
-/// Ranges of Ω in rpm, `null` without a scale.
-fn ranges_rpm(m: &SpatialModel, r: &[SpeedRange]) -> Value {
-    si_units(m).map_or(Value::Null, |(_, rpm)| ranges_value(&scale_ranges(r, rpm)))
+/// One speed Ω (if any) in rad/s and rpm: `(rad_s, rpm)`, `None`s without a scale.
+fn one_speed_si(m: &SpatialModel, w: Option<f64>) -> (Option<f64>, Option<f64>) {
+    let si = si_units(m);
+    (si.and_then(|(rad, _)| w.map(|w| w * rad)), si.and_then(|(_, rpm)| w.map(|w| w * rpm)))
 }
 
 /// The upper end of the speed axis when none is given: 1.3 times the highest critical,
@@ -207,14 +216,26 @@ pub fn operating_of(c: &SpatialConfig, balls: Balls) -> Option<Result<OperatingV
     }))
 }
 
-/// The operating verdict as JSON: `null` without an operating speed, `{"error": ...}` where the
-/// eigenvalues did not converge.
-fn operating_json(v: Option<Result<OperatingVerdict>>) -> Value {
-    match v {
-        None => Value::Null,
-        Some(Ok(v)) => json!(v),
-        Some(Err(e)) => json!({ "error": e.to_string() }),
-    }
+/// The verdict at the operating speed as JSON: the verdict, or `{"error": ...}` where the
+/// eigenvalues did not converge (`null`, `None`, without an operating speed).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[serde(untagged)]
+pub enum OperatingReport {
+    /// The verdict.
+    Verdict(Box<OperatingVerdict>),
+    /// Why there is none.
+    Error {
+        /// The error's message.
+        error: String,
+    },
+}
+
+/// [`OperatingReport`] of a verdict, if there is an operating speed.
+fn operating_report(v: Option<Result<OperatingVerdict>>) -> Option<OperatingReport> {
+    v.map(|v| match v {
+        Ok(v) => OperatingReport::Verdict(Box::new(v)),
+        Err(e) => OperatingReport::Error { error: e.to_string() },
+    })
 }
 
 /// Warnings about the anisotropy a user can act on: all but the comparison of the exact tensor
@@ -229,42 +250,114 @@ pub fn is_eq17_comparison(w: &str) -> bool {
     w.contains("paper 000's eq (17) gives")
 }
 
-fn model_json(c: &SpatialConfig, source: &str) -> Value {
+/// A list of speed ranges as JSON: `[lo, hi]` pairs, `hi = null` for an unbounded end.
+pub type RangePairs = Vec<(f64, Option<f64>)>;
+
+/// `[lo, hi]` pairs ([`RangePairs`]).
+pub fn range_pairs(r: &[SpeedRange]) -> RangePairs {
+    r.iter().map(|x| (x.lo, x.hi)).collect()
+}
+
+/// Ranges of Ω in rpm, `None` (`null`) without a scale.
+fn ranges_rpm(m: &SpatialModel, r: &[SpeedRange]) -> Option<RangePairs> {
+    si_units(m).map(|(_, rpm)| range_pairs(&scale_ranges(r, rpm)))
+}
+
+/// The 12-state model's parameters as the analytic commands report them (`model`): paper 000's
+/// dimensionless parameters, `p_alpha = sqrt(p̄α²)`, the masses, the SI scale and the config's
+/// name.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct ModelReport {
+    /// `C̄Σ`.
+    pub c_sigma: f64,
+    /// `c̄yα`.
+    pub c_y_alpha: f64,
+    /// The dimensionless damping.
+    pub damping: crate::spatial::params::Damping,
+    /// `ΔĀ0`.
+    pub delta_a0: f64,
+    /// `l̄_L`.
+    pub l_left: Option<f64>,
+    /// Unbalance and balls.
+    pub masses: Option<crate::spatial::params::MassSet>,
+    /// `p̄α`.
+    pub p_alpha: f64,
+    /// `p̄α²`.
+    pub p_alpha_sq: f64,
+    /// `ρ̄s`.
+    pub rho_s: Option<f64>,
+    /// The SI scale (dimensional configs).
+    pub scale: Option<crate::spatial::params::Scale>,
+    /// The config's name.
+    pub source: String,
+    /// `z̄_A`.
+    pub z_a: f64,
+}
+
+/// [`ModelReport`] of a config.
+pub fn model_report(c: &SpatialConfig, source: &str) -> ModelReport {
     let m = &c.model;
-    json!({
-        "c_sigma": m.c_sigma,
-        "rho_s": m.rho_s,
-        "l_left": m.l_left,
-        "z_a": m.z_a,
-        "p_alpha": m.p_alpha_sq.sqrt(),
-        "p_alpha_sq": m.p_alpha_sq,
-        "c_y_alpha": m.c_y_alpha,
-        "delta_a0": m.delta_a0,
-        "damping": m.damping,
-        "masses": m.masses,
-        "scale": m.scale,
-        "source": source,
-    })
+    ModelReport {
+        c_sigma: m.c_sigma,
+        c_y_alpha: m.c_y_alpha,
+        damping: m.damping,
+        delta_a0: m.delta_a0,
+        l_left: m.l_left,
+        masses: m.masses,
+        p_alpha: m.p_alpha_sq.sqrt(),
+        p_alpha_sq: m.p_alpha_sq,
+        rho_s: m.rho_s,
+        scale: m.scale,
+        source: source.to_string(),
+        z_a: m.z_a,
+    }
+}
+
+/// The anisotropy `ΔĀ` as the analytic commands report it
+/// ([`crate::spatial::inertia::Anisotropy`]; `exact` the upper end of the exact interval).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct AnisotropyReport {
+    /// The balls' angles at the balanced state the anisotropy refers to (rad).
+    pub ball_angles_rad: Option<Vec<f64>>,
+    /// Whether the balls can cancel the unbalance.
+    pub can_balance: bool,
+    /// `d_A` of paper 000's eq (17).
+    pub d_a: Option<f64>,
+    /// The exact tensor's `ΔĀ` (the upper end of its interval).
+    pub exact: f64,
+    /// The exact interval over the balanced family.
+    pub exact_interval: [f64; 2],
+    /// How the anisotropy in use was chosen.
+    pub method: crate::spatial::inertia::AnisotropyMethod,
+    /// Paper 000's eq (17).
+    pub paper: f64,
+    /// Eq (17)'s interval.
+    pub paper_interval: [f64; 2],
+    /// The anisotropy in use.
+    pub used: f64,
+    /// Its interval.
+    pub used_interval: [f64; 2],
+    /// Warnings ([`actionable_warnings`], or all of them for `inertia`).
+    pub warnings: Vec<String>,
 }
 
 /// The anisotropy; `eq17`: with the comparison of the exact tensor and eq (17) among the
 /// warnings (`inertia` only, [`actionable_warnings`]).
-fn anisotropy_json(m: &SpatialModel, eq17: bool) -> Value {
+fn anisotropy_report(m: &SpatialModel, eq17: bool) -> AnisotropyReport {
     let a = &m.anisotropy;
-    let warnings = if eq17 { a.warnings.clone() } else { actionable_warnings(a) };
-    json!({
-        "paper": a.paper,
-        "exact": a.exact[1],
-        "used": a.used,
-        "method": a.method,
-        "exact_interval": a.exact,
-        "paper_interval": a.paper_interval,
-        "used_interval": a.used_interval,
-        "d_a": a.d_a,
-        "ball_angles_rad": a.ball_angles,
-        "can_balance": a.can_balance,
-        "warnings": warnings,
-    })
+    AnisotropyReport {
+        ball_angles_rad: a.ball_angles.clone(),
+        can_balance: a.can_balance,
+        d_a: a.d_a,
+        exact: a.exact[1],
+        exact_interval: a.exact,
+        method: a.method,
+        paper: a.paper,
+        paper_interval: a.paper_interval,
+        used: a.used,
+        used_interval: a.used_interval,
+        warnings: if eq17 { a.warnings.clone() } else { actionable_warnings(a) },
+    }
 }
 
 /// Every number the analytic commands report is finite (else the error names the quantity);
@@ -278,13 +371,24 @@ pub fn check_results(c: &SpatialConfig) -> Result<()> {
     Ok(())
 }
 
-/// `autobal inertia`: composite inertia and anisotropy.
-pub fn inertia(c: &SpatialConfig, source: &str) -> Value {
-    json!({
-        "model": model_json(c, source),
-        "inertia": c.model.composite_inertia(),
-        "anisotropy": anisotropy_json(&c.model, true),
-    })
+/// `autobal inertia`: paper 000's composite inertia and anisotropy (`null` where they do not
+/// describe the rotor, `paper_000_not_applicable` saying why), and the whole rotor's mass
+/// properties as the simulation builds it ([`WholeRotor`]; `null` with the reason in
+/// `whole_rotor_unavailable` where it cannot).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct InertiaReport {
+    /// The anisotropy, every warning included.
+    pub anisotropy: Option<AnisotropyReport>,
+    /// Paper 000's composite inertia (eqs (4), (5)).
+    pub inertia: Option<crate::spatial::inertia::CompositeInertia>,
+    /// The 12-state model's parameters.
+    pub model: ModelReport,
+    /// Why paper 000's composite inertia is not the rotor's (`None`: it is).
+    pub paper_000_not_applicable: Option<String>,
+    /// The whole rotor's mass properties.
+    pub whole_rotor: Option<WholeRotor>,
+    /// Why they are not given (`None`: they are).
+    pub whole_rotor_unavailable: Option<String>,
 }
 
 /// The entries of a spatial config that make paper 000's composite inertia (one plane, static
@@ -340,11 +444,11 @@ pub fn whole_rotor(root: &toml::Table, c: &SpatialConfig) -> Result<WholeRotor> 
     Ok(WholeRotor { placement, properties, si: c.dimensional })
 }
 
-/// `autobal inertia` of any spatial config: paper 000's composite inertia and anisotropy where
-/// they describe the rotor (`null` and the reason otherwise), and the whole rotor's mass
-/// properties as the simulation builds it ([`whole_rotor`]; `null` with the reason where the
-/// simulation cannot build it, e.g. a dimensionless config without masses).
-pub fn inertia_of(root: &toml::Table, source: &str) -> Result<Value> {
+/// `autobal inertia` of any spatial config ([`InertiaReport`]): paper 000's composite inertia
+/// and anisotropy where they describe the rotor (`null` and the reason otherwise), and the whole
+/// rotor's mass properties as the simulation builds it ([`whole_rotor`]; `null` with the reason
+/// where the simulation cannot build it, e.g. a dimensionless config without masses).
+pub fn inertia_of(root: &toml::Table, source: &str) -> Result<InertiaReport> {
     let c = crate::config::spatial(root)?;
     let beyond = beyond_paper_000_inertia(root);
     let whole = whole_rotor(root, &c);
@@ -353,113 +457,220 @@ pub fn inertia_of(root: &toml::Table, source: &str) -> Result<Value> {
     } else if let Err(e) = whole {
         return Err(e);
     }
-    let mut v = inertia(&c, source);
-    if !beyond.is_empty() {
-        v["inertia"] = Value::Null;
-        v["anisotropy"] = Value::Null;
-    }
-    v["paper_000_not_applicable"] = if beyond.is_empty() {
-        Value::Null
-    } else {
-        json!(format!("paper 000's composite inertia is that of one balancer plane cancelling a static unbalance; this config has {}", beyond.join(", ")))
+    let paper = beyond.is_empty();
+    let (whole_rotor, whole_rotor_unavailable) = match whole {
+        Ok(w) => (Some(w), None),
+        Err(e) => (None, Some(e.to_string())),
     };
-    match whole {
-        Ok(w) => {
-            v["whole_rotor"] = json!(w);
-            v["whole_rotor_unavailable"] = Value::Null;
-        }
-        Err(e) => {
-            v["whole_rotor"] = Value::Null;
-            v["whole_rotor_unavailable"] = json!(e.to_string());
-        }
-    }
-    Ok(v)
+    Ok(InertiaReport {
+        anisotropy: paper.then(|| anisotropy_report(&c.model, true)),
+        inertia: paper.then(|| c.model.composite_inertia()),
+        model: model_report(&c, source),
+        paper_000_not_applicable: (!paper).then(|| {
+            format!("paper 000's composite inertia is that of one balancer plane cancelling a static unbalance; this config has {}", beyond.join(", "))
+        }),
+        whole_rotor,
+        whole_rotor_unavailable,
+    })
+}
+
+/// `autobal ranges`: the speed ranges where autobalancing is possible (paper 003), with the
+/// exact stable ranges of the 12-state linear model beside them ([`ranges_with_exact`]).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct RangesReport {
+    /// The antiresonance speed (003, eq (1)).
+    pub antiresonance_speed: Option<f64>,
+    /// The same in rad/s (dimensional configs).
+    pub antiresonance_speed_rad_s: Option<f64>,
+    /// The same in rpm (dimensional configs).
+    pub antiresonance_speed_rpm: Option<f64>,
+    /// Where autobalancing is possible (003's necessary condition).
+    pub autobalancing_ranges: RangePairs,
+    /// What they are: a necessary condition ([`ranges_with_exact`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub autobalancing_ranges_are: Option<&'static str>,
+    /// The same in rpm.
+    pub autobalancing_ranges_rpm: Option<RangePairs>,
+    /// 003's class of the rotor.
+    pub balancing_class: crate::spatial::ranges::BalancingClass,
+    /// The critical speeds of the unbalanced rotor (balls locked, 003).
+    pub critical_speeds_unbalanced_rotor: Vec<f64>,
+    /// The same in rad/s.
+    pub critical_speeds_unbalanced_rotor_rad_s: Option<Vec<f64>>,
+    /// The same in rpm.
+    pub critical_speeds_unbalanced_rotor_rpm: Option<Vec<f64>>,
+    /// `ΔĀ0`.
+    pub delta_a0: f64,
+    /// The exact stable ranges ([`ranges_with_exact`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub exact: Option<ExactRangesReport>,
+    /// 003's instability ranges.
+    pub instability_ranges: RangePairs,
+    /// The same in rpm.
+    pub instability_ranges_rpm: Option<RangePairs>,
+    /// The 12-state model's parameters.
+    pub model: ModelReport,
+    /// Where 003's phase condition holds.
+    pub phase_condition_ranges: RangePairs,
+    /// The same in rpm.
+    pub phase_condition_ranges_rpm: Option<RangePairs>,
+}
+
+/// The exact stable ranges of [`RangesReport`]: the 12-state linear model, balls free, as
+/// `autobal stability` computes them over `(0, omega_max]`.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct ExactRangesReport {
+    /// The top of the speed axis (`Ω`).
+    pub omega_max: f64,
+    /// The same in rpm (dimensional configs).
+    pub omega_max_rpm: Option<f64>,
+    /// How they were computed.
+    pub route: &'static str,
+    /// The stable ranges (`hi = null`: reaches `omega_max`).
+    pub stable_ranges: RangePairs,
+    /// The same in rpm.
+    pub stable_ranges_rpm: Option<RangePairs>,
+    /// The bisection's tolerance on the ends.
+    pub tolerance: f64,
 }
 
 /// `autobal ranges` of a config paper 003 describes: its necessary ranges ([`ranges`]) labelled
 /// as a necessary condition, beside the exact stable ranges of the 12-state linear model
 /// (balls free) over `autobal stability`'s default axis and grid ([`speed_axis_max`], 2000
 /// speeds).
-pub fn ranges_with_exact(c: &SpatialConfig, source: &str) -> Result<Value> {
+pub fn ranges_with_exact(c: &SpatialConfig, source: &str) -> Result<RangesReport> {
     let w = speed_axis_max(c);
     // `autobal stability`'s default `--samples`
     let cmp = crate::spatial::comparison::compare(&c.model, w, 2000, Balls::Free)?;
     check_finite("ranges.exact", &cmp.exact)?;
-    let mut v = ranges(c, source);
     let r = &cmp.exact.stable_ranges;
-    v["autobalancing_ranges_are"] = json!("necessary condition (paper 003, eqs (1)-(3)): not a verdict");
-    v["exact"] = json!({
-        "route": "the 12-state linear model of paper 000, balls free (as `autobal stability`)",
-        "omega_max": w,
-        "omega_max_rpm": si_units(&c.model).map(|(_, rpm)| w * rpm),
-        "stable_ranges": ranges_value(r),
-        "stable_ranges_rpm": ranges_rpm(&c.model, r),
-        "tolerance": cmp.exact.tolerance,
-    });
-    Ok(v)
+    Ok(RangesReport {
+        autobalancing_ranges_are: Some("necessary condition (paper 003, eqs (1)-(3)): not a verdict"),
+        exact: Some(ExactRangesReport {
+            omega_max: w,
+            omega_max_rpm: si_units(&c.model).map(|(_, rpm)| w * rpm),
+            route: "the 12-state linear model of paper 000, balls free (as `autobal stability`)",
+            stable_ranges: range_pairs(r),
+            stable_ranges_rpm: ranges_rpm(&c.model, r),
+            tolerance: cmp.exact.tolerance,
+        }),
+        ..ranges(c, source)
+    })
+}
+
+/// `autobal ranges`: the speed ranges where autobalancing is possible (003), without the
+/// exact ones ([`ranges_with_exact`]).
+pub fn ranges(c: &SpatialConfig, source: &str) -> RangesReport {
+    let m = &c.model;
+    let ar = autobalancing_ranges(m);
+    let (a_rad, a_rpm) = one_speed_si(m, ar.antiresonance_speed);
+    let (cs_rad, cs_rpm) = speed_si(m, &ar.critical_speeds);
+    RangesReport {
+        antiresonance_speed: ar.antiresonance_speed,
+        antiresonance_speed_rad_s: a_rad,
+        antiresonance_speed_rpm: a_rpm,
+        autobalancing_ranges: range_pairs(&ar.ranges),
+        autobalancing_ranges_are: None,
+        autobalancing_ranges_rpm: ranges_rpm(m, &ar.ranges),
+        balancing_class: ar.class,
+        critical_speeds_unbalanced_rotor_rad_s: cs_rad,
+        critical_speeds_unbalanced_rotor_rpm: cs_rpm,
+        critical_speeds_unbalanced_rotor: ar.critical_speeds,
+        delta_a0: m.delta_a0,
+        exact: None,
+        instability_ranges: range_pairs(&ar.instability),
+        instability_ranges_rpm: ranges_rpm(m, &ar.instability),
+        model: model_report(c, source),
+        phase_condition_ranges: range_pairs(&ar.phase_condition),
+        phase_condition_ranges_rpm: ranges_rpm(m, &ar.phase_condition),
+    }
 }
 
 /// `autobal critical`: critical speeds, sensitivity and autobalancing ranges.
-pub fn critical(c: &SpatialConfig, source: &str) -> Value {
-    let cs = critical_speeds(&c.model);
-    let ar = autobalancing_ranges(&c.model);
-    let s = sensitivity(&c.model, c.analysis.sensitivity_limit);
-    let (a_rad, a_rpm) = speed_si(&c.model, &ar.antiresonance_speed.into_iter().collect::<Vec<_>>());
-    let mut speeds = json!(cs.speeds);
-    if let (Some((_, rpm)), Some(list)) = (si_units(&c.model), speeds.as_array_mut()) {
-        // every dimensionless speed of an entry beside its rpm (exact value: omega_rad_s, rpm)
-        for e in list.iter_mut().filter_map(Value::as_object_mut) {
-            for k in ["approx_symmetric", "approx_near_symmetric", "approx_small_anisotropy"] {
-                let v = e.get(k).and_then(Value::as_f64).map_or(Value::Null, |w| json!(w * rpm));
-                e.insert(format!("{k}_rpm"), v);
-            }
-            let iv = e
-                .get("interval")
-                .and_then(Value::as_array)
-                .map_or(Value::Null, |iv| json!(iv.iter().filter_map(Value::as_f64).map(|w| w * rpm).collect::<Vec<_>>()));
-            e.insert("interval_rpm".into(), iv);
-        }
-    }
-    json!({
-        "critical_speeds": speeds,
-        "distinct_count": cs.distinct_count,
-        "table1_count": cs.table1_count,
-        "rotor_type": cs.rotor_class,
-        "antiresonance_speed": ar.antiresonance_speed,
-        "antiresonance_speed_rad_s": a_rad[0],
-        "antiresonance_speed_rpm": a_rpm[0],
-        "autobalancing_ranges": ranges_value(&ar.ranges),
-        "autobalancing_ranges_rpm": ranges_rpm(&c.model, &ar.ranges),
-        "balancing_class": ar.class,
-        "operating_speed": operating_json(operating_of(c, Balls::Free)),
-        "sensitivity": s,
-        "anisotropy": anisotropy_json(&c.model, false),
-        "model": model_json(c, source),
-    })
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct CriticalReport {
+    /// The anisotropy (the actionable warnings).
+    pub anisotropy: AnisotropyReport,
+    /// The antiresonance speed (003, eq (1)).
+    pub antiresonance_speed: Option<f64>,
+    /// The same in rad/s (dimensional configs).
+    pub antiresonance_speed_rad_s: Option<f64>,
+    /// The same in rpm (dimensional configs).
+    pub antiresonance_speed_rpm: Option<f64>,
+    /// Where autobalancing is possible (003's necessary condition).
+    pub autobalancing_ranges: RangePairs,
+    /// The same in rpm.
+    pub autobalancing_ranges_rpm: Option<RangePairs>,
+    /// 003's class of the rotor.
+    pub balancing_class: crate::spatial::ranges::BalancingClass,
+    /// The critical speeds (000, Table 1).
+    pub critical_speeds: Vec<CriticalSpeedReport>,
+    /// How many are distinct.
+    pub distinct_count: usize,
+    /// The 12-state model's parameters.
+    pub model: ModelReport,
+    /// The verdict at the operating speed (`null` without one).
+    pub operating_speed: Option<OperatingReport>,
+    /// The rotor's type (000, Table 1).
+    pub rotor_type: crate::spatial::critical_speeds::RotorClass,
+    /// The critical speeds' sensitivity to the anisotropy.
+    pub sensitivity: crate::spatial::sensitivity::Sensitivity,
+    /// How many Table 1 lists.
+    pub table1_count: usize,
 }
 
-/// `autobal ranges`: the speed ranges where autobalancing is possible (003).
-pub fn ranges(c: &SpatialConfig, source: &str) -> Value {
-    let ar = autobalancing_ranges(&c.model);
-    let (a_rad, a_rpm) = speed_si(&c.model, &ar.antiresonance_speed.into_iter().collect::<Vec<_>>());
-    let (cs_rad, cs_rpm) = speed_si(&c.model, &ar.critical_speeds);
-    json!({
-        "antiresonance_speed": ar.antiresonance_speed,
-        "antiresonance_speed_rad_s": a_rad[0],
-        "antiresonance_speed_rpm": a_rpm[0],
-        "autobalancing_ranges": ranges_value(&ar.ranges),
-        "autobalancing_ranges_rpm": ranges_rpm(&c.model, &ar.ranges),
-        "phase_condition_ranges": ranges_value(&ar.phase_condition),
-        "phase_condition_ranges_rpm": ranges_rpm(&c.model, &ar.phase_condition),
-        "instability_ranges": ranges_value(&ar.instability),
-        "instability_ranges_rpm": ranges_rpm(&c.model, &ar.instability),
-        "critical_speeds_unbalanced_rotor": ar.critical_speeds,
-        "critical_speeds_unbalanced_rotor_rad_s": cs_rad,
-        "critical_speeds_unbalanced_rotor_rpm": cs_rpm,
-        "balancing_class": ar.class,
-        "delta_a0": c.model.delta_a0,
-        "model": model_json(c, source),
-    })
+/// One critical speed ([`crate::spatial::critical_speeds::CriticalSpeed`]) and, for a
+/// dimensional config, every dimensionless speed of it in rpm (`null` where that speed is).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct CriticalSpeedReport {
+    /// The critical speed.
+    #[serde(flatten)]
+    pub speed: crate::spatial::critical_speeds::CriticalSpeed,
+    /// `approx_symmetric` in rpm (dimensional configs).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub approx_symmetric_rpm: Option<Option<f64>>,
+    /// `approx_near_symmetric` in rpm (dimensional configs).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub approx_near_symmetric_rpm: Option<Option<f64>>,
+    /// `approx_small_anisotropy` in rpm (dimensional configs).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub approx_small_anisotropy_rpm: Option<Option<f64>>,
+    /// `interval` in rpm (dimensional configs).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub interval_rpm: Option<Option<[f64; 2]>>,
+}
+
+/// `autobal critical` ([`CriticalReport`]).
+pub fn critical(c: &SpatialConfig, source: &str) -> CriticalReport {
+    let m = &c.model;
+    let cs = critical_speeds(m);
+    let ar = autobalancing_ranges(m);
+    let (a_rad, a_rpm) = one_speed_si(m, ar.antiresonance_speed);
+    let rpm = si_units(m).map(|(_, rpm)| rpm);
+    // every dimensionless speed of an entry beside its rpm (exact value: omega_rad_s, rpm)
+    let speed = |e: &crate::spatial::critical_speeds::CriticalSpeed| CriticalSpeedReport {
+        speed: e.clone(),
+        approx_symmetric_rpm: rpm.map(|k| e.approx_symmetric.map(|w| w * k)),
+        approx_near_symmetric_rpm: rpm.map(|k| e.approx_near_symmetric.map(|w| w * k)),
+        approx_small_anisotropy_rpm: rpm.map(|k| e.approx_small_anisotropy.map(|w| w * k)),
+        interval_rpm: rpm.map(|k| e.interval.map(|[a, b]| [a * k, b * k])),
+    };
+    CriticalReport {
+        anisotropy: anisotropy_report(m, false),
+        antiresonance_speed: ar.antiresonance_speed,
+        antiresonance_speed_rad_s: a_rad,
+        antiresonance_speed_rpm: a_rpm,
+        autobalancing_ranges: range_pairs(&ar.ranges),
+        autobalancing_ranges_rpm: ranges_rpm(m, &ar.ranges),
+        balancing_class: ar.class,
+        critical_speeds: cs.speeds.iter().map(speed).collect(),
+        distinct_count: cs.distinct_count,
+        model: model_report(c, source),
+        operating_speed: operating_report(operating_of(c, Balls::Free)),
+        rotor_type: cs.rotor_class,
+        sensitivity: sensitivity(m, c.analysis.sensitivity_limit),
+        table1_count: cs.table1_count,
+    }
 }
 
 fn balls_name(balls: Balls) -> &'static str {
@@ -470,10 +681,81 @@ fn balls_name(balls: Balls) -> &'static str {
     }
 }
 
+/// `autobal stability`: exact stability ranges against 003's necessary ranges; speeds in `Ω`
+/// and, for a dimensional config, in rpm (`*_rpm`) and rad/s (`omega_max_rad_s`); the grid's
+/// `max Re λ` also as `[rpm, 1/s]` pairs (`max_real_part_si`). The ranges are computed over
+/// `(0, omega_max]` only: a `null` upper end means "reaches `omega_max`", not "unbounded"
+/// (`open_at_span_end`).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct StabilityReport {
+    /// The anisotropy in use `ΔĀ`.
+    pub anisotropy_used: f64,
+    /// The balls' coupling in the linear model.
+    pub ball_coupling: Option<crate::spatial::params::BallCoupling>,
+    /// Whether a balanced state exists (capacity `E ≥ 1`; [`stability_of`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub balanced_state_exists: Option<bool>,
+    /// The balancer's capacity `E` ([`stability_of`]; `null` without masses).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub balancer_capacity: Option<Option<f64>>,
+    /// `free` or `locked`.
+    pub balls: &'static str,
+    /// The difference between the exact and the necessary ranges, in one sentence.
+    pub difference: String,
+    /// `[Ω, max Re λ]` over the grid.
+    pub max_real_part: Vec<(f64, f64)>,
+    /// `[rpm, 1/s]` pairs (dimensional configs).
+    pub max_real_part_si: Option<Vec<(f64, f64)>>,
+    /// Where 003's condition holds but the state is unstable.
+    pub necessary_not_stable: RangePairs,
+    /// The same in rpm.
+    pub necessary_not_stable_rpm: Option<RangePairs>,
+    /// 003's necessary ranges.
+    pub necessary_ranges: RangePairs,
+    /// The same in rpm.
+    pub necessary_ranges_rpm: Option<RangePairs>,
+    /// The top of the speed axis (`Ω`).
+    pub omega_max: f64,
+    /// The same in rad/s.
+    pub omega_max_rad_s: Option<f64>,
+    /// The same in rpm.
+    pub omega_max_rpm: Option<f64>,
+    /// Which lists' last range reaches `omega_max`.
+    pub open_at_span_end: OpenAtSpanEnd,
+    /// The verdict at the operating speed ([`stability_of`]; `null` without one).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub operating_speed: Option<Option<OperatingReport>>,
+    /// The threshold on `max Re λ` of the verdict.
+    pub stability_threshold: f64,
+    /// Where the state is stable but 003's condition fails.
+    pub stable_not_necessary: RangePairs,
+    /// The same in rpm.
+    pub stable_not_necessary_rpm: Option<RangePairs>,
+    /// The exact stable ranges.
+    pub stable_ranges: RangePairs,
+    /// The same in rpm.
+    pub stable_ranges_rpm: Option<RangePairs>,
+    /// The bisection's tolerance on the ends.
+    pub tolerance: f64,
+}
+
+/// Whether the last range of each list of a [`StabilityReport`] reaches `omega_max`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+pub struct OpenAtSpanEnd {
+    /// `necessary_not_stable`.
+    pub necessary_not_stable: bool,
+    /// `necessary_ranges`.
+    pub necessary_ranges: bool,
+    /// `stable_not_necessary`.
+    pub stable_not_necessary: bool,
+    /// `stable_ranges`.
+    pub stable_ranges: bool,
+}
+
 /// `autobal stability` of a config: [`stability`] with the verdict at the config's operating
-/// speed (`operating_speed`, `null` without one; [`OperatingVerdict`]).
-pub fn stability_of(cfg: &SpatialConfig, c: &Comparison, balls: Balls) -> Value {
-    let mut v = stability(&cfg.model, c, balls);
+/// speed (`operating_speed`, `null` without one; [`OperatingVerdict`]), the balancer's capacity
+/// and whether a balanced state exists.
+pub fn stability_of(cfg: &SpatialConfig, c: &Comparison, balls: Balls) -> StabilityReport {
     let op = cfg.analysis.operating_speed.map(|op| {
         if op[1] <= c.omega_max {
             operating_verdict(&cfg.model, op, &c.exact.stable_ranges, c.omega_max, balls)
@@ -482,13 +764,51 @@ pub fn stability_of(cfg: &SpatialConfig, c: &Comparison, balls: Balls) -> Value 
             operating_of(cfg, balls).unwrap_or_else(|| operating_verdict(&cfg.model, op, &c.exact.stable_ranges, c.omega_max, balls))
         }
     });
-    v["operating_speed"] = operating_json(op);
     // a balancer that cannot cancel the unbalance has no balanced state: the verdicts above are
     // about the linear model's state, not about balancing (said, not left to be inferred)
     let capacity = cfg.model.masses.as_ref().map(|m| m.capacity());
-    v["balancer_capacity"] = json!(capacity);
-    v["balanced_state_exists"] = json!(capacity.is_none_or(|e| e >= 1.0));
-    v
+    StabilityReport {
+        balanced_state_exists: Some(capacity.is_none_or(|e| e >= 1.0)),
+        balancer_capacity: Some(capacity),
+        operating_speed: Some(operating_report(op)),
+        ..stability(&cfg.model, c, balls)
+    }
+}
+
+/// `autobal stability` of a model ([`StabilityReport`], without the config's operating speed:
+/// [`stability_of`]).
+pub fn stability(model: &SpatialModel, c: &Comparison, balls: Balls) -> StabilityReport {
+    let si = si_units(model);
+    StabilityReport {
+        anisotropy_used: model.anisotropy.used,
+        ball_coupling: model.balls,
+        balanced_state_exists: None,
+        balancer_capacity: None,
+        balls: balls_name(balls),
+        difference: c.difference(),
+        max_real_part: c.exact.max_real_part.clone(),
+        max_real_part_si: si.map(|(k, rpm)| c.exact.max_real_part.iter().map(|(w, a)| (w * rpm, a * k)).collect()),
+        necessary_not_stable: range_pairs(&c.necessary_not_stable),
+        necessary_not_stable_rpm: ranges_rpm(model, &c.necessary_not_stable),
+        necessary_ranges: range_pairs(&c.necessary),
+        necessary_ranges_rpm: ranges_rpm(model, &c.necessary),
+        omega_max: c.omega_max,
+        omega_max_rad_s: si.map(|(k, _)| c.omega_max * k),
+        omega_max_rpm: si.map(|(_, k)| c.omega_max * k),
+        open_at_span_end: OpenAtSpanEnd {
+            necessary_not_stable: open_at(&c.necessary_not_stable),
+            necessary_ranges: open_at(&c.necessary),
+            stable_not_necessary: open_at(&c.stable_not_necessary),
+            stable_ranges: open_at(&c.exact.stable_ranges),
+        },
+        operating_speed: None,
+        stability_threshold: crate::spatial::stability::STABILITY_TOLERANCE,
+        stable_not_necessary: range_pairs(&c.stable_not_necessary),
+        stable_not_necessary_rpm: ranges_rpm(model, &c.stable_not_necessary),
+        stable_ranges: range_pairs(&c.exact.stable_ranges),
+        stable_ranges_rpm: ranges_rpm(model, &c.exact.stable_ranges),
+        tolerance: c.exact.tolerance,
+    }
 }
 
 /// The line a report of the exact stability prints when the balancer's capacity `E < 1`: no
@@ -503,80 +823,262 @@ pub fn no_balanced_state_warning(model: &SpatialModel) -> Option<String> {
     })
 }
 
-/// `autobal stability`: exact stability ranges against 003's necessary ranges; speeds in `Ω`
-/// and, for a dimensional config, in rpm (`*_rpm`) and rad/s (`omega_max_rad_s`); the grid's
-/// `max Re λ` also as `[rpm, 1/s]` pairs (`max_real_part_si`).
-pub fn stability(model: &SpatialModel, c: &Comparison, balls: Balls) -> Value {
-    let si = si_units(model);
-    json!({
-        "balls": balls_name(balls),
-        "omega_max": c.omega_max,
-        "omega_max_rad_s": si.map(|(k, _)| c.omega_max * k),
-        "omega_max_rpm": si.map(|(_, k)| c.omega_max * k),
-        "necessary_not_stable_rpm": ranges_rpm(model, &c.necessary_not_stable),
-        "stable_not_necessary_rpm": ranges_rpm(model, &c.stable_not_necessary),
-        "max_real_part_si": si.map(|(k, rpm)| c.exact.max_real_part.iter().map(|(w, a)| json!([w * rpm, a * k])).collect::<Vec<_>>()),
-        "stable_ranges": ranges_value(&c.exact.stable_ranges),
-        "necessary_ranges": ranges_value(&c.necessary),
-        "stable_ranges_rpm": ranges_rpm(model, &c.exact.stable_ranges),
-        "necessary_ranges_rpm": ranges_rpm(model, &c.necessary),
-        "necessary_not_stable": ranges_value(&c.necessary_not_stable),
-        "stable_not_necessary": ranges_value(&c.stable_not_necessary),
-        // the ranges are computed over (0, omega_max] only: a null upper end means "reaches
-        // omega_max", not "unbounded"; true for the lists whose last range reaches it
-        "open_at_span_end": {
-            "stable_ranges": open_at(&c.exact.stable_ranges),
-            "necessary_ranges": open_at(&c.necessary),
-            "necessary_not_stable": open_at(&c.necessary_not_stable),
-            "stable_not_necessary": open_at(&c.stable_not_necessary),
-        },
-        "difference": c.difference(),
-        "max_real_part": c.exact.max_real_part.iter().map(|(w, a)| json!([w, a])).collect::<Vec<_>>(),
-        "tolerance": c.exact.tolerance,
-        "stability_threshold": crate::spatial::stability::STABILITY_TOLERANCE,
-        "anisotropy_used": model.anisotropy.used,
-        "ball_coupling": model.balls,
-    })
+/// `autobal campbell` as JSON: the speeds, the tracked lines, whether every speed was computed,
+/// and for a dimensional model the speeds in rad/s and rpm. The fields are in the order of
+/// their names (as a `serde_json::Value` object writes its keys), so the text streamed by the
+/// CLI and the value Python gets agree key by key.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct CampbellReport {
+    /// Whether every speed was computed (`false`: the run was stopped, Ctrl-C or a budget).
+    pub complete: bool,
+    /// The tracked lines, each one mode per speed.
+    pub lines: Vec<LineReport>,
+    /// The speeds `Ω`.
+    pub omega: Vec<f64>,
+    /// `Ω ω0` (rad/s; dimensional models only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub omega_rad_s: Option<Vec<f64>>,
+    /// `30 Ω ω0 / π` (rpm; dimensional models only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub omega_rpm: Option<Vec<f64>>,
 }
 
-/// `autobal campbell` of a complete run: the speeds, the tracked lines and `complete: true`
-/// (the CLI streams the same JSON, with `complete: false` after Ctrl-C). Dimensionless: for a
+/// One tracked line of a [`CampbellReport`].
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct LineReport {
+    /// Its mode at each speed.
+    pub modes: Vec<ModeReport>,
+}
+
+/// One mode of a Campbell diagram ([`crate::spatial::stability::Mode`], unit `ω0`) and, for a
+/// dimensional model, its frequencies in SI: `re_per_s = σ ω0` (1/s), `im_rad_s = ν ω0`,
+/// `im_hz = ν ω0/2π`, `decay_rate_per_s`, and the whirl in fixed axes `ω = f ω0` as
+/// `fixed_frequency_rad_s`, `_hz` and `_rpm` (cycles per minute). Fields in the order of their
+/// names, the SI ones left out of the JSON for a dimensionless model.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct ModeReport {
+    /// Decay rate `−σ`.
+    pub decay_rate: f64,
+    /// `−σ ω0` (1/s).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub decay_rate_per_s: Option<f64>,
+    /// Whirl frequency in fixed axes `f` (positive: forward).
+    pub fixed_frequency: f64,
+    /// `f ω0/2π` (Hz).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fixed_frequency_hz: Option<f64>,
+    /// `f ω0` (rad/s).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fixed_frequency_rad_s: Option<f64>,
+    /// `60 f ω0/2π` (rpm).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fixed_frequency_rpm: Option<f64>,
+    /// Share of the forward circular component.
+    pub forward_share: f64,
+    /// Dominant coordinate group.
+    pub group: crate::spatial::stability::Group,
+    /// `ν = Im λ` in rotating axes.
+    pub im: f64,
+    /// `ν ω0/2π` (Hz).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub im_hz: Option<f64>,
+    /// `ν ω0` (rad/s).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub im_rad_s: Option<f64>,
+    /// Logarithmic decrement `−2π σ/|ν|` (`null` for a real eigenvalue).
+    pub log_decrement: Option<f64>,
+    /// `σ = Re λ`.
+    pub re: f64,
+    /// `σ ω0` (1/s).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub re_per_s: Option<f64>,
+    /// Whirl direction in fixed axes.
+    pub whirl: crate::spatial::stability::Whirl,
+}
+
+/// `autobal campbell` of a complete run, dimensionless: the speeds, the tracked lines and
+/// `complete: true` (the CLI streams the same JSON, with `complete: false` after Ctrl-C). For a
 /// dimensional model see [`campbell_of`].
-pub fn campbell(c: &Campbell) -> Value {
-    json!({ "omega": c.omega, "lines": c.lines, "complete": true })
+pub fn campbell(c: &Campbell) -> CampbellReport {
+    campbell_in(None, c)
 }
 
 /// [`campbell`] in the model's units: for a dimensional model also the speeds in rad/s and rpm
-/// (`omega_rad_s`, `omega_rpm`) and every mode with its frequencies in SI ([`mode_json`]).
-pub fn campbell_of(model: &SpatialModel, c: &Campbell) -> Value {
-    let Some((rad, rpm)) = si_units(model) else { return campbell(c) };
-    let lines: Vec<Value> = c.lines.iter().map(|l| json!({ "modes": l.modes.iter().map(|m| mode_json(model, m)).collect::<Vec<_>>() })).collect();
-    json!({
-        "omega": c.omega,
-        "omega_rad_s": c.omega.iter().map(|w| w * rad).collect::<Vec<_>>(),
-        "omega_rpm": c.omega.iter().map(|w| w * rpm).collect::<Vec<_>>(),
-        "lines": lines,
-        "complete": true,
-    })
+/// (`omega_rad_s`, `omega_rpm`) and every mode with its frequencies in SI ([`mode_report`]).
+pub fn campbell_of(model: &SpatialModel, c: &Campbell) -> CampbellReport {
+    campbell_in(si_units(model), c)
 }
 
-/// One mode of a Campbell diagram as JSON: its fields (`Ω`-units, unit `ω0`) and, for a
-/// dimensional model, `im_rad_s`, `im_hz` (`ν ω0`, `ν ω0/2π`), `re_per_s` (`σ ω0`, 1/s),
-/// `decay_rate_per_s`, `fixed_frequency_rad_s`, `fixed_frequency_hz`, `fixed_frequency_rpm`
-/// (whirl in fixed axes, `ω = f ω0`; in rpm, cycles per minute).
-pub fn mode_json(model: &SpatialModel, m: &crate::spatial::stability::Mode) -> Value {
-    let mut v = json!(m);
-    if let (Some((k, _)), Some(o)) = (si_units(model), v.as_object_mut()) {
-        let tau = 2.0 * std::f64::consts::PI;
-        o.insert("re_per_s".into(), json!(m.re * k));
-        o.insert("im_rad_s".into(), json!(m.im * k));
-        o.insert("im_hz".into(), json!(m.im * k / tau));
-        o.insert("decay_rate_per_s".into(), json!(m.decay_rate * k));
-        o.insert("fixed_frequency_rad_s".into(), json!(m.fixed_frequency * k));
-        o.insert("fixed_frequency_hz".into(), json!(m.fixed_frequency * k / tau));
-        o.insert("fixed_frequency_rpm".into(), json!(m.fixed_frequency * k * 60.0 / tau));
+fn campbell_in(si: Option<(f64, f64)>, c: &Campbell) -> CampbellReport {
+    let scaled = |k: f64| c.omega.iter().map(|w| w * k).collect::<Vec<_>>();
+    CampbellReport {
+        complete: true,
+        lines: c.lines.iter().map(|l| LineReport { modes: l.modes.iter().map(|m| mode_in(si.map(|s| s.0), m)).collect() }).collect(),
+        omega: c.omega.clone(),
+        omega_rad_s: si.map(|(rad, _)| scaled(rad)),
+        omega_rpm: si.map(|(_, rpm)| scaled(rpm)),
     }
-    v
+}
+
+/// One mode of a Campbell diagram in the model's units ([`ModeReport`]): the SI frequencies
+/// `re_per_s = σ ω0`, `im_rad_s = ν ω0`, `im_hz = ν ω0/2π`, `decay_rate_per_s`,
+/// `fixed_frequency_rad_s = f ω0`, `fixed_frequency_hz`, `fixed_frequency_rpm` for a
+/// dimensional model.
+pub fn mode_report(model: &SpatialModel, m: &crate::spatial::stability::Mode) -> ModeReport {
+    mode_in(si_units(model).map(|s| s.0), m)
+}
+
+/// [`mode_report`] with `ω0` (rad/s per unit of Ω) or none.
+fn mode_in(omega0: Option<f64>, m: &crate::spatial::stability::Mode) -> ModeReport {
+    let tau = 2.0 * std::f64::consts::PI;
+    ModeReport {
+        decay_rate: m.decay_rate,
+        decay_rate_per_s: omega0.map(|k| m.decay_rate * k),
+        fixed_frequency: m.fixed_frequency,
+        fixed_frequency_hz: omega0.map(|k| m.fixed_frequency * k / tau),
+        fixed_frequency_rad_s: omega0.map(|k| m.fixed_frequency * k),
+        fixed_frequency_rpm: omega0.map(|k| m.fixed_frequency * k * 60.0 / tau),
+        forward_share: m.forward_share,
+        group: m.group,
+        im: m.im,
+        im_hz: omega0.map(|k| m.im * k / tau),
+        im_rad_s: omega0.map(|k| m.im * k),
+        log_decrement: m.log_decrement,
+        re: m.re,
+        re_per_s: omega0.map(|k| m.re * k),
+        whirl: m.whirl,
+    }
+}
+
+/// The fixed-axes Campbell view ([`crate::spatial::campbell::fixed_axes`]) as `autobal campbell
+/// --format json` prints it beside the tracked lines. Fields in the order of their names.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct FixedReport {
+    /// The crossings with the excitation lines, by speed.
+    pub critical_speeds: Vec<CrossingReport>,
+    /// One curve per mode.
+    pub fixed_axes_modes: Vec<FixedModeReport>,
+    /// The harmonics `h` searched.
+    pub harmonics: Vec<u32>,
+}
+
+/// One mode's curve of a [`FixedReport`].
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct FixedModeReport {
+    /// The tracked line it follows.
+    pub line: usize,
+    /// The mode number (1: the lowest frequency at the first speed).
+    pub mode: usize,
+    /// One point per speed.
+    pub points: Vec<FixedPointReport>,
+}
+
+/// One speed of a fixed-axes curve ([`crate::spatial::campbell::FixedPoint`], unit `ω0`) and,
+/// for a dimensional model, `frequency_hz = |f| ω0/2π`, `fixed_frequency_hz = f ω0/2π`,
+/// `re_per_s = σ ω0`, `omega_rpm = 60 Ω ω0/2π`. Fields in the order of their names.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct FixedPointReport {
+    /// The signed frequency `f` in fixed axes (positive: forward whirl).
+    pub fixed_frequency: f64,
+    /// `f ω0/2π` (Hz).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fixed_frequency_hz: Option<f64>,
+    /// The natural frequency `|f|`.
+    pub frequency: f64,
+    /// `|f| ω0/2π` (Hz).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub frequency_hz: Option<f64>,
+    /// Logarithmic decrement per fixed-axes cycle `−2π σ/|f|`.
+    pub log_decrement: Option<f64>,
+    /// `ν = Im λ` in rotating axes.
+    pub nu: f64,
+    /// The speed `Ω`.
+    pub omega: f64,
+    /// `60 Ω ω0/2π` (rpm).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub omega_rpm: Option<f64>,
+    /// `σ = Re λ`.
+    pub re: f64,
+    /// `σ ω0` (1/s).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub re_per_s: Option<f64>,
+    /// Share of the followed circular component.
+    pub share: f64,
+    /// Whirl direction.
+    pub whirl: crate::spatial::stability::Whirl,
+}
+
+/// A crossing of a fixed-axes curve with an excitation line `h Ω`
+/// ([`crate::spatial::campbell::CriticalSpeed`]) and, for a dimensional model, its speed in
+/// rad/s and rpm and its frequency in Hz. Fields in the order of their names.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct CrossingReport {
+    /// The natural frequency there, `h Ω`.
+    pub frequency: f64,
+    /// `h Ω ω0/2π` (Hz).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub frequency_hz: Option<f64>,
+    /// The harmonic `h`.
+    pub harmonic: u32,
+    /// The mode number of the curve.
+    pub mode: usize,
+    /// The speed `Ω`.
+    pub omega: f64,
+    /// `Ω ω0` (rad/s).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub omega_rad_s: Option<f64>,
+    /// `60 Ω ω0/2π` (rpm).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub omega_rpm: Option<f64>,
+    /// Whirl direction of the curve there.
+    pub whirl: crate::spatial::stability::Whirl,
+}
+
+/// The fixed-axes Campbell view ([`crate::spatial::campbell::fixed_axes`]) as [`FixedReport`]:
+/// `fixed_axes_modes` (per mode: its number, tracked line and per speed `omega`, `frequency`,
+/// `fixed_frequency`, `whirl`, `log_decrement`, ...; for a dimensional config `frequency_hz`,
+/// `fixed_frequency_hz`, `re_per_s`, `omega_rpm`) and `critical_speeds` (speed, mode number,
+/// whirl, harmonic; in rpm and Hz for a dimensional config).
+pub fn campbell_fixed(model: &SpatialModel, f: &crate::spatial::campbell::FixedCampbell) -> FixedReport {
+    let w0 = model.scale.map(|sc| sc.omega0);
+    let tau = 2.0 * std::f64::consts::PI;
+    let point = |p: &crate::spatial::campbell::FixedPoint| FixedPointReport {
+        fixed_frequency: p.fixed_frequency,
+        fixed_frequency_hz: w0.map(|w0| p.fixed_frequency * w0 / tau),
+        frequency: p.frequency,
+        frequency_hz: w0.map(|w0| p.frequency * w0 / tau),
+        log_decrement: p.log_decrement,
+        nu: p.nu,
+        omega: p.omega,
+        omega_rpm: w0.map(|w0| p.omega * w0 * 60.0 / tau),
+        re: p.re,
+        re_per_s: w0.map(|w0| p.re * w0),
+        share: p.share,
+        whirl: p.whirl,
+    };
+    FixedReport {
+        critical_speeds: f
+            .critical_speeds
+            .iter()
+            .map(|k| CrossingReport {
+                frequency: k.frequency,
+                frequency_hz: w0.map(|w0| k.frequency * w0 / tau),
+                harmonic: k.harmonic,
+                mode: k.curve + 1,
+                omega: k.omega,
+                omega_rad_s: w0.map(|w0| k.omega * w0),
+                omega_rpm: w0.map(|w0| k.omega * w0 * 60.0 / tau),
+                whirl: k.whirl,
+            })
+            .collect(),
+        fixed_axes_modes: f
+            .curves
+            .iter()
+            .enumerate()
+            .map(|(i, cv)| FixedModeReport { line: cv.line, mode: i + 1, points: cv.points.iter().map(point).collect() })
+            .collect(),
+        harmonics: f.harmonics.clone(),
+    }
 }
 
 /// `autobal simulate`: the run's summary, with the rotor, drive and tolerances it ran with.
@@ -674,47 +1176,35 @@ pub fn campbell_speeds(omega_max: f64, points: usize) -> Vec<f64> {
     (0..n).map(|i| omega_max * (i as f64 + 0.5) / n as f64).collect()
 }
 
-/// The fixed-axes Campbell view ([`crate::spatial::campbell::fixed_axes`]) as JSON, as `autobal campbell --format json` prints it beside the tracked lines: `fixed_axes_modes` (per mode: its number, tracked line and per
-/// speed `omega`, `frequency`, `fixed_frequency`, `whirl`, `log_decrement`, ...; for a
-/// dimensional config `frequency_hz`, `fixed_frequency_hz`, `re_per_s`, `omega_rpm`) and `critical_speeds` (speed, mode
-/// number, whirl, harmonic; in rpm and Hz for a dimensional config).
-pub fn campbell_fixed(model: &SpatialModel, f: &crate::spatial::campbell::FixedCampbell) -> Value {
-    let w0 = model.scale.map(|sc| sc.omega0);
-    let tau = 2.0 * std::f64::consts::PI;
-    let modes: Vec<Value> = f
-        .curves
-        .iter()
-        .enumerate()
-        .map(|(i, cv)| {
-            let pts: Vec<Value> = cv
-                .points
-                .iter()
-                .map(|p| {
-                    let mut v = json!(p);
-                    if let (Some(w0), Some(o)) = (w0, v.as_object_mut()) {
-                        o.insert("frequency_hz".into(), json!(p.frequency * w0 / tau));
-                        o.insert("fixed_frequency_hz".into(), json!(p.fixed_frequency * w0 / tau));
-                        o.insert("re_per_s".into(), json!(p.re * w0));
-                        o.insert("omega_rpm".into(), json!(p.omega * w0 * 60.0 / tau));
-                    }
-                    v
-                })
-                .collect();
-            json!({"mode": i + 1, "line": cv.line, "points": pts})
-        })
-        .collect();
-    let crit: Vec<Value> = f
-        .critical_speeds
-        .iter()
-        .map(|k| {
-            let mut v = json!({"omega": k.omega, "mode": k.curve + 1, "whirl": k.whirl, "harmonic": k.harmonic, "frequency": k.frequency});
-            if let (Some(w0), Some(o)) = (w0, v.as_object_mut()) {
-                o.insert("omega_rad_s".into(), json!(k.omega * w0));
-                o.insert("omega_rpm".into(), json!(k.omega * w0 * 60.0 / tau));
-                o.insert("frequency_hz".into(), json!(k.frequency * w0 / tau));
-            }
-            v
-        })
-        .collect();
-    json!({"harmonics": f.harmonics, "fixed_axes_modes": modes, "critical_speeds": crit})
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spatial::params::{DimensionlessInput, SpatialModel};
+
+    /// The Campbell reports, which the CLI writes straight to its output as it streams them,
+    /// give the same text as through a `serde_json::Value` (whose objects write their keys
+    /// sorted, the form the JSON had when it was built as a value tree): their fields are in the
+    /// order of their names, nested ones included. Checked on a dimensional model (every SI
+    /// field present) and a dimensionless one (none). Exact text equality: the same numbers
+    /// are formatted by the same code either way.
+    #[test]
+    fn the_streamed_campbell_reports_keep_the_value_tree_s_key_order() {
+        let text = include_str!("../../../examples/dimensional.toml");
+        let si = crate::config::spatial(&crate::config::parse(text, "dimensional").unwrap()).unwrap().model;
+        assert!(si.scale.is_some());
+        let bare = SpatialModel::from_dimensionless(&DimensionlessInput::paper_000(0.8)).unwrap();
+        assert!(bare.scale.is_none());
+        for m in [&si, &bare] {
+            let c = crate::spatial::stability::campbell(m, &campbell_speeds(default_omega_max(m), 40), Balls::Free).unwrap();
+            let f = crate::spatial::campbell::fixed_axes(m, &c, Balls::Free, &[1, 2]).unwrap();
+            assert!(!f.critical_speeds.is_empty() && !f.curves.is_empty());
+            let same = |a: String, b: String| assert_eq!(a, b);
+            let r = campbell_of(m, &c);
+            same(serde_json::to_string(&r).unwrap(), to_json(&r).to_string());
+            let r = campbell_fixed(m, &f);
+            same(serde_json::to_string(&r).unwrap(), to_json(&r).to_string());
+            let n = if m.scale.is_some() { 15 } else { 8 };
+            assert_eq!(to_json(&mode_report(m, &c.lines[0].modes[0])).as_object().unwrap().len(), n);
+        }
+    }
 }

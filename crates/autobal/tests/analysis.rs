@@ -10,7 +10,7 @@ use autobal::analysis::{
 use autobal::planar::field::PlanarField;
 use autobal::planar::PlanarRotor;
 use autobal::planar::{simulate, Drive, Method, Settings};
-use common::python_with;
+use common::{match_distance, planar_case as case_json, python_with, sympy_linearisation};
 use num_complex::Complex64;
 
 /// Paper 004's rotor with the race centred (`s2 = 0`): the Jeffcott rotor with two balls.
@@ -29,47 +29,6 @@ fn analyse(p: &PlanarRotor, omega: f64) -> (PlanarField, StationaryState, Stabil
 /// The spectrum at a state, structural members included.
 fn all_eigenvalues(st: &Stability) -> Vec<Complex64> {
     st.spectrum.iter().chain(&st.structural).map(|e| e.complex()).collect()
-}
-
-/// Greatest distance from a member of `a` to the member of `b` paired with it (closest first).
-fn match_distance(a: &[Complex64], b: &[Complex64]) -> f64 {
-    assert_eq!(a.len(), b.len());
-    let mut used = vec![false; b.len()];
-    let mut worst: f64 = 0.0;
-    for x in a {
-        let (k, d) = b.iter().enumerate().filter(|(k, _)| !used[*k]).map(|(k, y)| (k, (x - y).norm())).min_by(|p, q| p.1.total_cmp(&q.1)).unwrap();
-        used[k] = true;
-        worst = worst.max(d);
-    }
-    worst
-}
-
-/// One case for tests/planar_linearisation.py.
-fn case_json(p: &PlanarRotor, omega: f64, x: &[f64]) -> serde_json::Value {
-    serde_json::json!({
-        "p": {"m1": p.m1, "m2": p.m2, "m3": p.m3, "n": p.n, "s1": p.s1, "s2": p.s2, "gamma": p.gamma, "r": p.r, "k": p.k, "c": p.c, "c_psi": p.c_psi},
-        "omega": omega,
-        "x": x,
-    })
-}
-
-/// The independent SymPy/numpy linearisation of each case: (eigenvalues, right-hand side).
-fn sympy_linearisation(python: &str, cases: &[serde_json::Value]) -> Vec<(Vec<Complex64>, Vec<f64>)> {
-    let script = format!("{}/tests/planar_linearisation.py", env!("CARGO_MANIFEST_DIR"));
-    let mut child =
-        std::process::Command::new(python).arg(script).stdin(std::process::Stdio::piped()).stdout(std::process::Stdio::piped()).spawn().expect("python runs");
-    use std::io::Write;
-    child.stdin.take().unwrap().write_all(serde_json::to_string(cases).unwrap().as_bytes()).unwrap();
-    let out = child.wait_with_output().unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    let v: Vec<serde_json::Value> = serde_json::from_slice(&out.stdout).unwrap();
-    v.iter()
-        .map(|c| {
-            let l = c["eigenvalues"].as_array().unwrap().iter().map(|e| Complex64::new(e[0].as_f64().unwrap(), e[1].as_f64().unwrap())).collect();
-            let f = c["rhs"].as_array().unwrap().iter().map(|e| e.as_f64().unwrap()).collect();
-            (l, f)
-        })
-        .collect()
 }
 
 #[test]

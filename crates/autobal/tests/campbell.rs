@@ -4,30 +4,13 @@
 
 use autobal::spatial::campbell::fixed_axes;
 use autobal::spatial::critical_speeds::critical_speeds_at;
-use autobal::spatial::inertia::AnisotropyMethod;
 use autobal::spatial::linear_model::Balls;
-use autobal::spatial::params::{AnisotropyInput, DimensionlessInput, SpatialModel};
+use autobal::spatial::params::{DimensionlessInput, SpatialModel};
 use autobal::spatial::stability::{campbell, margin, Whirl};
 use num_complex::Complex64;
 
 mod common;
-use common::Rng;
-
-#[allow(clippy::too_many_arguments)]
-fn model(c_sigma: f64, rho: f64, l: f64, z: f64, delta_a: f64, h_x: f64, h_s: f64, balls: Option<(f64, f64)>) -> SpatialModel {
-    SpatialModel::from_dimensionless(&DimensionlessInput {
-        c_sigma,
-        rho_s: rho,
-        l_left: l,
-        z_a: z,
-        anisotropy: AnisotropyInput::Direct(delta_a),
-        h_x,
-        h_s,
-        method: AnisotropyMethod::Exact,
-        direct_balls: balls,
-    })
-    .unwrap()
-}
+use common::{direct_model as model, Rng};
 
 #[test]
 fn locked_rotor_critical_speeds_are_eq_16() {

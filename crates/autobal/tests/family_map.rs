@@ -10,7 +10,7 @@ use autobal::control::Control;
 use autobal::rotor_map::{general_map, FamilyVerdict, GeneralCell, Verdict};
 use autobal::rotor_stability::{stability_over_speed, Rotor};
 use autobal::spatial::map::Axis;
-use common::python_with;
+use common::{planar_case, python_with, sympy_linearisation};
 use num_complex::Complex64;
 use std::f64::consts::PI;
 use toml::Table;
@@ -118,31 +118,7 @@ fn closed_form_family(p: &autobal::planar::PlanarRotor, samples: usize) -> Vec<V
 /// SymPy's linearisation (tests/planar_linearisation.py) at each state: the eigenvalues and
 /// the right-hand side.
 fn sympy(python: &str, p: &autobal::planar::PlanarRotor, omega: f64, xs: &[Vec<f64>]) -> Vec<(Vec<Complex64>, Vec<f64>)> {
-    let cases: Vec<_> = xs
-        .iter()
-        .map(|x| {
-            serde_json::json!({
-                "p": {"m1": p.m1, "m2": p.m2, "m3": p.m3, "n": p.n, "s1": p.s1, "s2": p.s2, "gamma": p.gamma, "r": p.r, "k": p.k, "c": p.c, "c_psi": p.c_psi},
-                "omega": omega,
-                "x": x,
-            })
-        })
-        .collect();
-    let script = format!("{}/tests/planar_linearisation.py", env!("CARGO_MANIFEST_DIR"));
-    let mut child =
-        std::process::Command::new(python).arg(script).stdin(std::process::Stdio::piped()).stdout(std::process::Stdio::piped()).spawn().expect("python runs");
-    use std::io::Write;
-    child.stdin.take().unwrap().write_all(serde_json::to_string(&cases).unwrap().as_bytes()).unwrap();
-    let out = child.wait_with_output().unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    let v: Vec<serde_json::Value> = serde_json::from_slice(&out.stdout).unwrap();
-    v.iter()
-        .map(|c| {
-            let l = c["eigenvalues"].as_array().unwrap().iter().map(|e| Complex64::new(e[0].as_f64().unwrap(), e[1].as_f64().unwrap())).collect();
-            let f = c["rhs"].as_array().unwrap().iter().map(|e| e.as_f64().unwrap()).collect();
-            (l, f)
-        })
-        .collect()
+    sympy_linearisation(python, &xs.iter().map(|x| planar_case(p, omega, x)).collect::<Vec<_>>())
 }
 
 #[test]

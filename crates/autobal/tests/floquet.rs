@@ -5,19 +5,9 @@
 use autobal::analysis::{stability, stationary, NewtonOptions, StationaryState, VariationalSystem, VectorField};
 use autobal::ode::{Control, Method, Options, Solver};
 use autobal::rotor_stability::Rotor;
-use num_complex::Complex64;
 
-/// Greatest distance from a member of `a` to the member of `b` paired with it (closest first).
-fn match_distance(a: &[Complex64], b: &[Complex64]) -> f64 {
-    let mut used = vec![false; b.len()];
-    let mut worst: f64 = 0.0;
-    for x in a {
-        let (k, d) = b.iter().enumerate().filter(|(k, _)| !used[*k]).map(|(k, y)| (k, (x - y).norm())).min_by(|p, q| p.1.total_cmp(&q.1)).unwrap();
-        used[k] = true;
-        worst = worst.max(d);
-    }
-    worst
-}
+mod common;
+use common::match_distance;
 
 /// The multipliers of the monodromy matrix of the orbit `s` of `f` by the full variational
 /// equations `n + n²` integrated at rtol 1e-13 from the same orbit, against ours: their

@@ -8,87 +8,14 @@ use autobal::drive::Drive;
 use autobal::error::Error;
 use autobal::ode::System;
 use autobal::spatial::dynamics::field::{arc_angles, SpatialField};
-use autobal::spatial::dynamics::{simulate, BallPlane, Equations, Initial, PointMass, RigidRotor, Settings, SpatialRotor, Support};
+use autobal::spatial::dynamics::{simulate, Equations, Initial, Settings, SpatialRotor};
 use autobal::spatial::inertia::AnisotropyMethod;
 use autobal::spatial::linear_model::{Balls, Pencil};
 use autobal::spatial::params::{SpatialModel, SpatialRotorSi};
 use num_complex::Complex64;
 
 mod common;
-use common::Rng;
-
-/// A rotor with everything the model has: tilted principal axis, static and couple unbalance,
-/// two ball planes (3 and 2 balls), anisotropic supports, gravity off the axes (the helper of
-/// tests/spatial_dynamics.rs with one ball more per plane).
-fn general_rotor(rng: &mut Rng) -> SpatialRotor {
-    SpatialRotor {
-        rotor: RigidRotor {
-            mass: rng.range(1.0, 5.0),
-            equatorial_moment: rng.range(0.1, 0.5),
-            polar_moment: rng.range(0.05, 0.4),
-            z: rng.range(-0.2, 0.2),
-            axis_tilt: rng.range(-0.2, 0.2),
-            axis_tilt_angle: rng.range(-3.0, 3.0),
-        },
-        supports: vec![
-            Support {
-                z: rng.range(-0.8, -0.4),
-                stiffness: [rng.range(50.0, 200.0), rng.range(50.0, 200.0)],
-                damping: [rng.range(0.0, 3.0), rng.range(0.0, 3.0)],
-            },
-            Support {
-                z: rng.range(0.4, 0.8),
-                stiffness: [rng.range(50.0, 200.0), rng.range(50.0, 200.0)],
-                damping: [rng.range(0.0, 3.0), rng.range(0.0, 3.0)],
-            },
-        ],
-        unbalances: vec![
-            PointMass { mass: rng.range(0.01, 0.2), radius: rng.range(0.05, 0.3), angle: rng.range(-3.0, 3.0), z: rng.range(-0.5, 0.5) },
-            PointMass { mass: rng.range(0.01, 0.2), radius: rng.range(0.05, 0.3), angle: rng.range(-3.0, 3.0), z: rng.range(-0.5, 0.5) },
-        ],
-        planes: vec![
-            BallPlane {
-                z: rng.range(0.1, 0.5),
-                n: 3,
-                ball_mass: rng.range(0.01, 0.1),
-                race_radius: rng.range(0.1, 0.3),
-                drag: rng.range(0.0, 0.5),
-                physics: Default::default(),
-            },
-            BallPlane {
-                z: rng.range(-0.5, -0.1),
-                n: 2,
-                ball_mass: rng.range(0.01, 0.1),
-                race_radius: rng.range(0.1, 0.3),
-                drag: rng.range(0.0, 0.5),
-                physics: Default::default(),
-            },
-        ],
-        gravity: [rng.range(-3.0, 3.0), rng.range(-10.0, 10.0), rng.range(-3.0, 3.0)],
-        spin_drag: rng.range(0.0, 0.05),
-        lock_tilt: false,
-    }
-}
-
-/// A random full state far from balance (tilts up to 0.4 rad, balls anywhere), as in
-/// tests/spatial_dynamics.rs.
-fn random_state(rng: &mut Rng, nc: usize, lock_tilt: bool) -> Vec<f64> {
-    let mut y: Vec<f64> = (0..2 * nc).map(|_| rng.range(-1.0, 1.0)).collect();
-    for i in [0, 1, nc, nc + 1] {
-        y[i] *= 0.05;
-    }
-    for i in [2, 3] {
-        y[i] *= if lock_tilt { 0.0 } else { 0.4 };
-        y[nc + i] *= if lock_tilt { 0.0 } else { 3.0 };
-    }
-    y[4] = rng.range(-3.0, 3.0);
-    y[nc + 4] = rng.range(-30.0, 30.0);
-    for i in 5..nc {
-        y[i] *= 3.0;
-        y[nc + i] *= 5.0;
-    }
-    y
-}
+use common::{general_rotor, random_state, Rng};
 
 /// Central differences of `f` at `x`, step `h_i = 1e-6 max(|x_i|, 0.1)`, row-major.
 fn central_differences(dim: usize, x: &[f64], f: impl Fn(&[f64], &mut [f64])) -> Vec<f64> {
@@ -131,7 +58,7 @@ fn exact_jacobian_equals_central_differences_on_random_rotors_far_from_balance()
     // term (a missing derivative is of order one of the row).
     let mut rng = Rng(11);
     for i in 0..24 {
-        let mut r = general_rotor(&mut rng);
+        let mut r = general_rotor(&mut rng, [3, 2]);
         r.lock_tilt = i % 3 == 2;
         let omega = rng.range(-30.0, 30.0);
         let field = SpatialField::new(&r, omega).unwrap();
@@ -164,7 +91,7 @@ fn full_state_jacobian_equals_central_differences_under_every_drive() {
     // and reason as above.
     let mut rng = Rng(12);
     for i in 0..12 {
-        let mut r = general_rotor(&mut rng);
+        let mut r = general_rotor(&mut rng, [3, 2]);
         r.lock_tilt = i % 4 == 3;
         let drive = match i % 3 {
             0 => Drive::Motor { omega0: 0.0, torque: rng.range(0.5, 5.0), omega_idle: rng.range(20.0, 40.0), t_off: None },
@@ -400,7 +327,7 @@ fn two_planes_cancel_static_and_couple_unbalance_with_a_family_of_dimension_n_mi
     // axis (Rodrigues et al. 2008): the closed-form guess is stationary, and the balanced
     // states form a family of dimension 6 − 4 = 2 (4 conditions: static and couple).
     let mut rng = Rng(21);
-    let mut r = general_rotor(&mut rng);
+    let mut r = general_rotor(&mut rng, [3, 2]);
     r.gravity = [0.0; 3];
     for s in &mut r.supports {
         s.stiffness[1] = s.stiffness[0];

@@ -13,23 +13,7 @@ use autobal::spatial::stability::{campbell, eigenvalues_at, margin, stability_ra
 use num_complex::Complex64;
 
 mod common;
-use common::Rng;
-
-#[allow(clippy::too_many_arguments)]
-fn model(c_sigma: f64, rho: f64, l: f64, z: f64, delta_a: f64, h_x: f64, h_s: f64, balls: Option<(f64, f64)>) -> SpatialModel {
-    SpatialModel::from_dimensionless(&DimensionlessInput {
-        c_sigma,
-        rho_s: rho,
-        l_left: l,
-        z_a: z,
-        anisotropy: AnisotropyInput::Direct(delta_a),
-        h_x,
-        h_s,
-        method: AnisotropyMethod::Exact,
-        direct_balls: balls,
-    })
-    .unwrap()
-}
+use common::{direct_model as model, Rng};
 
 /// Random physical parameters: `2 ΔĀ ≤ C̄Σ` (triangle inequality of the principal moments).
 fn random_model(rng: &mut Rng) -> SpatialModel {

@@ -273,10 +273,10 @@ class SpatialModel(_Config):
         columns, summary = _autobal.spatial_simulate(self._cfg, dt)
         return _finished(Simulation(columns, json.loads(summary)))
 
-    def basins(self, n: int = 16) -> Dict[str, Any]:
-        """Where runs from an ``n × n`` grid of the first two balls' initial angles end (the
-        config's drive and integration; in parallel in Rust, Ctrl-C stops it), as ``autobal
-        basins`` computes them: ``runs``, ``completed``, ``balanced`` (how many runs ended
+    def basins(self, n: Optional[int] = None) -> Dict[str, Any]:
+        """Where runs from an ``n × n`` grid of the first two balls' initial angles end (``n``
+        ``None``: the CLI's default, ``--n 24``; the config's drive and integration; in parallel
+        in Rust, Ctrl-C stops it), as ``autobal basins`` computes them: ``runs``, ``completed``, ``balanced`` (how many runs ended
         balanced), ``fraction_balanced``, ``wall_time_s`` (its JSON) and per run the arrays
         ``psi_1``, ``psi_2`` (initial angles), ``balanced_runs`` (bool: this run ended balanced;
         the CSV's ``balanced`` column), ``residual_unbalance``, ``final_amplitude`` (its CSV)."""
@@ -472,7 +472,7 @@ def run(command: str, config: ConfigLike = None, set: Optional[Mapping[str, Any]
         _no_more(command, options)
         return json.loads(_autobal.sweep_report(p._cfg, axes, kn, threads))
     if command == "basins":
-        n = options.pop("n", 16)
+        n = options.pop("n", None)
         _no_more(command, options)
         return json.loads(_autobal.spatial_basins(SpatialModel(config, set=set)._cfg, n)[1])
     if command == "map":
@@ -542,7 +542,7 @@ def analyse(command: str, config: ConfigLike = None, set: Optional[Mapping[str, 
         result, arrays = sim.summary, sim.columns
     elif command == "basins":
         _no_more(command, {k: v for k, v in options.items() if k != "n"})
-        arrays, summary = _autobal.spatial_basins(SpatialModel(config, set=set)._cfg, options.get("n", 16))
+        arrays, summary = _autobal.spatial_basins(SpatialModel(config, set=set)._cfg, options.get("n"))
         result = json.loads(summary)
     elif command == "map":
         # `boundary` draws the traced boundary on the figure; the cells are the same

@@ -111,3 +111,146 @@ pub fn random_spatial_model(
         }
     }
 }
+
+/// Greatest distance from a member of `a` to the member of `b` paired with it (closest first).
+pub fn match_distance(a: &[num_complex::Complex64], b: &[num_complex::Complex64]) -> f64 {
+    assert_eq!(a.len(), b.len());
+    let mut used = vec![false; b.len()];
+    let mut worst: f64 = 0.0;
+    for x in a {
+        let (k, d) = b.iter().enumerate().filter(|(k, _)| !used[*k]).map(|(k, y)| (k, (x - y).norm())).min_by(|p, q| p.1.total_cmp(&q.1)).unwrap();
+        used[k] = true;
+        worst = worst.max(d);
+    }
+    worst
+}
+
+/// One case for tests/planar_linearisation.py: the planar rotor `p` at speed `omega` in state `x`.
+pub fn planar_case(p: &PlanarRotor, omega: f64, x: &[f64]) -> serde_json::Value {
+    serde_json::json!({
+        "p": {"m1": p.m1, "m2": p.m2, "m3": p.m3, "n": p.n, "s1": p.s1, "s2": p.s2, "gamma": p.gamma, "r": p.r, "k": p.k, "c": p.c, "c_psi": p.c_psi},
+        "omega": omega,
+        "x": x,
+    })
+}
+
+/// The independent SymPy/numpy linearisation of each case ([`planar_case`],
+/// tests/planar_linearisation.py): (eigenvalues, right-hand side).
+pub fn sympy_linearisation(python: &str, cases: &[serde_json::Value]) -> Vec<(Vec<num_complex::Complex64>, Vec<f64>)> {
+    let script = format!("{}/tests/planar_linearisation.py", env!("CARGO_MANIFEST_DIR"));
+    let mut child =
+        std::process::Command::new(python).arg(script).stdin(std::process::Stdio::piped()).stdout(std::process::Stdio::piped()).spawn().expect("python runs");
+    use std::io::Write;
+    child.stdin.take().unwrap().write_all(serde_json::to_string(cases).unwrap().as_bytes()).unwrap();
+    let out = child.wait_with_output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let v: Vec<serde_json::Value> = serde_json::from_slice(&out.stdout).unwrap();
+    v.iter()
+        .map(|c| {
+            let l = c["eigenvalues"].as_array().unwrap().iter().map(|e| num_complex::Complex64::new(e[0].as_f64().unwrap(), e[1].as_f64().unwrap())).collect();
+            let f = c["rhs"].as_array().unwrap().iter().map(|e| e.as_f64().unwrap()).collect();
+            (l, f)
+        })
+        .collect()
+}
+
+/// A random rotor with everything the spatial model has: tilted principal axis, static and
+/// couple unbalance, two ball planes (`balls[0]` and `balls[1]` balls), anisotropic supports,
+/// gravity off the axes.
+pub fn general_rotor(rng: &mut Rng, balls: [usize; 2]) -> SpatialRotor {
+    SpatialRotor {
+        rotor: RigidRotor {
+            mass: rng.range(1.0, 5.0),
+            equatorial_moment: rng.range(0.1, 0.5),
+            polar_moment: rng.range(0.05, 0.4),
+            z: rng.range(-0.2, 0.2),
+            axis_tilt: rng.range(-0.2, 0.2),
+            axis_tilt_angle: rng.range(-3.0, 3.0),
+        },
+        supports: vec![
+            Support {
+                z: rng.range(-0.8, -0.4),
+                stiffness: [rng.range(50.0, 200.0), rng.range(50.0, 200.0)],
+                damping: [rng.range(0.0, 3.0), rng.range(0.0, 3.0)],
+            },
+            Support {
+                z: rng.range(0.4, 0.8),
+                stiffness: [rng.range(50.0, 200.0), rng.range(50.0, 200.0)],
+                damping: [rng.range(0.0, 3.0), rng.range(0.0, 3.0)],
+            },
+        ],
+        unbalances: vec![
+            PointMass { mass: rng.range(0.01, 0.2), radius: rng.range(0.05, 0.3), angle: rng.range(-3.0, 3.0), z: rng.range(-0.5, 0.5) },
+            PointMass { mass: rng.range(0.01, 0.2), radius: rng.range(0.05, 0.3), angle: rng.range(-3.0, 3.0), z: rng.range(-0.5, 0.5) },
+        ],
+        planes: vec![
+            BallPlane {
+                z: rng.range(0.1, 0.5),
+                n: balls[0],
+                ball_mass: rng.range(0.01, 0.1),
+                race_radius: rng.range(0.1, 0.3),
+                drag: rng.range(0.0, 0.5),
+                physics: Default::default(),
+            },
+            BallPlane {
+                z: rng.range(-0.5, -0.1),
+                n: balls[1],
+                ball_mass: rng.range(0.01, 0.1),
+                race_radius: rng.range(0.1, 0.3),
+                drag: rng.range(0.0, 0.5),
+                physics: Default::default(),
+            },
+        ],
+        gravity: [rng.range(-3.0, 3.0), rng.range(-10.0, 10.0), rng.range(-3.0, 3.0)],
+        spin_drag: rng.range(0.0, 0.05),
+        lock_tilt: false,
+    }
+}
+
+/// A random full state of a spatial rotor with `nc` coordinates, far from balance (tilts up to
+/// 0.4 rad, none with `lock_tilt`; balls anywhere).
+pub fn random_state(rng: &mut Rng, nc: usize, lock_tilt: bool) -> Vec<f64> {
+    let mut y: Vec<f64> = (0..2 * nc).map(|_| rng.range(-1.0, 1.0)).collect();
+    for i in [0, 1, nc, nc + 1] {
+        y[i] *= 0.05;
+    }
+    for i in [2, 3] {
+        y[i] *= if lock_tilt { 0.0 } else { 0.4 };
+        y[nc + i] *= if lock_tilt { 0.0 } else { 3.0 };
+    }
+    y[4] = rng.range(-3.0, 3.0);
+    y[nc + 4] = rng.range(-30.0, 30.0);
+    for i in 5..nc {
+        y[i] *= 3.0;
+        y[nc + i] *= 5.0;
+    }
+    y
+}
+
+/// Paper 000's dimensionless model with the anisotropy `ΔĀ` given directly (exact method) and,
+/// optionally, the balls' `(m̄, d_A)`.
+#[allow(clippy::too_many_arguments)]
+pub fn direct_model(
+    c_sigma: f64,
+    rho: f64,
+    l: f64,
+    z: f64,
+    delta_a: f64,
+    h_x: f64,
+    h_s: f64,
+    balls: Option<(f64, f64)>,
+) -> autobal::spatial::params::SpatialModel {
+    use autobal::spatial::params::{AnisotropyInput, DimensionlessInput, SpatialModel};
+    SpatialModel::from_dimensionless(&DimensionlessInput {
+        c_sigma,
+        rho_s: rho,
+        l_left: l,
+        z_a: z,
+        anisotropy: AnisotropyInput::Direct(delta_a),
+        h_x,
+        h_s,
+        method: autobal::spatial::inertia::AnisotropyMethod::Exact,
+        direct_balls: balls,
+    })
+    .unwrap()
+}
