@@ -11,7 +11,8 @@
 //! `impl` [`Command`] for it, and its `Output` (`impl` [`Output`]): [`inertia`](crate::inertia),
 //! [`critical`](crate::critical), [`ranges`](crate::ranges), [`stability`](crate::stability),
 //! [`campbell`](crate::campbell), [`basins`](crate::basins), [`simulate`](crate::simulate),
-//! [`export_model`](crate::export_model). The front ends add only what is theirs: the CLI its flags,
+//! [`export_model`](crate::export_model), [`map`](crate::map), [`sweep`](crate::sweep),
+//! [`merge`](crate::merge), [`report`](crate::report). The front ends add only what is theirs: the CLI its flags,
 //! files and terminal, Python its keyword arguments and NumPy. Options are named as the CLI's
 //! flags (`--omega-max`) in errors; Python shows them as its keywords (`omega_max`).
 
