@@ -15,7 +15,8 @@ Two measures, both independent of wall time:
 
 Usage:
     cargo build --release -p autobal --example bench_boundary
-    python3 bench/boundary.py [N] [REPS] [--json FILE] [--allow-loaded]     (default 400 5)
+    python3 bench/boundary.py [N] [REPS] [--docs] [--json FILE] [--allow-loaded]     (default 400 5)
+    (--docs: the default rotor, the plane of the docs' `map --boundary` example)
 """
 
 from __future__ import annotations
@@ -35,12 +36,12 @@ EXE = os.path.join(ROOT, "target", "release", "examples", "bench_boundary")
 MODES = ["none", "verdict", "margin", "boundary"]
 
 
-def instructions(mode: str, n: int) -> int | None:
+def instructions(mode: str, n: int, extra: list[str]) -> int | None:
     """Instructions of one run of `mode` (callgrind's I refs), or None without valgrind."""
     if not shutil.which("valgrind"):
         return None
     r = subprocess.run(
-        ["valgrind", "--tool=callgrind", "--callgrind-out-file=/dev/null", EXE, mode, str(n)],
+        ["valgrind", "--tool=callgrind", "--callgrind-out-file=/dev/null", EXE, mode, str(n), *extra],
         capture_output=True,
         text=True,
         check=True,
@@ -50,17 +51,21 @@ def instructions(mode: str, n: int) -> int | None:
 
 
 def main() -> None:
+    docs = "--docs" in sys.argv
+    if docs:
+        sys.argv.remove("--docs")
+    extra = ["docs"] if docs else []
     opts = strip_args(sys.argv)
     n = int(sys.argv[1]) if len(sys.argv) > 1 else 400
     reps = int(sys.argv[2]) if len(sys.argv) > 2 else 5
     if not os.path.exists(EXE):
         sys.exit(f"{EXE} missing: cargo build --release -p autobal --example bench_boundary")
     s = Session("boundary", allow_loaded=opts.allow_loaded)
-    report: dict = {"n": n, "reps": reps, "modes": {}}
+    report: dict = {"n": n, "reps": reps, "model": "docs" if docs else "bench", "modes": {}}
     for mode in MODES:
-        out = subprocess.run([EXE, mode, str(n)], capture_output=True, text=True, check=True).stdout
-        cpu = [run_cmd([EXE, mode, str(n)])[1] for _ in range(reps)]
-        report["modes"][mode] = {"result": json.loads(out), "instructions": instructions(mode, n), "cpu_s": median_spread(cpu)}
+        out = subprocess.run([EXE, mode, str(n), *extra], capture_output=True, text=True, check=True).stdout
+        cpu = [run_cmd([EXE, mode, str(n), *extra])[1] for _ in range(reps)]
+        report["modes"][mode] = {"result": json.loads(out), "instructions": instructions(mode, n, extra), "cpu_s": median_spread(cpu)}
     base = report["modes"]["none"]
     for mode in MODES[1:]:
         m = report["modes"][mode]

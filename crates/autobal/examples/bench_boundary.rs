@@ -3,12 +3,14 @@
 //! z̄_A ∈ [−2, 2] × Ω ∈ [0.05, 4.5] (003 Fig. 5a's layout, the plane of `bench_map`), on one
 //! thread.
 //!
-//! Usage: `cargo run --release --example bench_boundary -p autobal -- MODE [N]`, MODE one of
+//! Usage: `cargo run --release --example bench_boundary -p autobal -- MODE [N] [docs]`, MODE one of
 //! - `verdict`: the library's verdict map on an N × N grid (default 400; Routh–Hurwitz on the
 //!   characteristic polynomial in Ω, changes confirmed directly);
 //! - `margin`: the margin map on the same grid;
 //! - `boundary`: the traced stability boundary of the plane (default settings);
-//! - `none`: the set-up alone (the process, the thread pool, the spec), to subtract.
+//! - `none`: the set-up alone (the process, the thread pool, the spec), to subtract;
+//!
+//! and `docs` the default rotor (the docs' example) instead of the benchmark's.
 //!
 //! Prints one JSON line: what was computed and its counts.
 
@@ -25,17 +27,24 @@ fn main() {
     let mode = args.get(1).map(String::as_str).unwrap_or("boundary").to_string();
     let n: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(400);
     let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("pool");
+    // a third argument `docs`: the default rotor (paper 000's, the plane of the docs' example
+    // `autobal map --x dimensionless.z_a=-2:2:100 --y omega=0.05:4.5:100 --boundary`)
+    let docs = args.get(3).is_some_and(|a| a == "docs");
     let spec = SpatialSpec {
-        input: SpatialInput::Dimensionless(DimensionlessInput {
-            c_sigma: 0.75,
-            rho_s: 0.4,
-            l_left: 0.8,
-            z_a: 0.0,
-            anisotropy: AnisotropyInput::Direct(0.1),
-            h_x: 0.05,
-            h_s: 0.1,
-            method: AnisotropyMethod::Exact,
-            direct_balls: Some((0.05, 0.5)),
+        input: SpatialInput::Dimensionless(if docs {
+            DimensionlessInput::default()
+        } else {
+            DimensionlessInput {
+                c_sigma: 0.75,
+                rho_s: 0.4,
+                l_left: 0.8,
+                z_a: 0.0,
+                anisotropy: AnisotropyInput::Direct(0.1),
+                h_x: 0.05,
+                h_s: 0.1,
+                method: AnisotropyMethod::Exact,
+                direct_balls: Some((0.05, 0.5)),
+            }
         }),
         delta_a_override: None,
     };

@@ -115,13 +115,19 @@ impl SpeedPolynomial {
 
 /// The memoised Laplace expansion along rows over column subsets, shared by [`expand`] and
 /// [`pencil_polynomial`]: `minors[S] = Σ_{j ∈ S} ± P[r][j] minors[S \ {j}]` with `r = |S| − 1`,
-/// `minors[∅]` given. Subsets in increasing order of their bit masks: a subset's minors come
-/// from subsets with one column less, whose masks are smaller. `add(acc, minor, r, j, sign)`
-/// adds the term of column `j`.
-fn laplace<T: Copy>(n: usize, minors: &mut [T], zero: T, add: impl Fn(&mut T, &T, usize, usize, f64)) {
+/// `minors[∅]` given (`minors` holds it alone on entry, every subset's minor on return, by bit
+/// mask). Subsets in increasing order of their bit masks: a subset's minors come from subsets
+/// with one column less, whose masks are smaller, so each is built in place at the end of the
+/// list (no zeroed table of all `2ⁿ`, no copy). `add(acc, minor, r, j, sign)` adds the term of
+/// column `j`.
+fn laplace<T: Copy>(n: usize, minors: &mut Vec<T>, zero: T, add: impl Fn(&mut T, &T, usize, usize, f64)) {
+    debug_assert_eq!(minors.len(), 1);
+    minors.reserve((1 << n) - 1);
     for mask in 1usize..1 << n {
         let r = mask.count_ones() as usize - 1;
-        let mut acc = zero;
+        minors.push(zero);
+        let (done, cur) = minors.split_at_mut(mask);
+        let acc = &mut cur[0];
         let mut pos = 0;
         for j in 0..n {
             if mask & (1 << j) == 0 {
@@ -129,9 +135,8 @@ fn laplace<T: Copy>(n: usize, minors: &mut [T], zero: T, add: impl Fn(&mut T, &T
             }
             let sign = if (r + pos).is_multiple_of(2) { 1.0 } else { -1.0 };
             pos += 1;
-            add(&mut acc, &minors[mask & !(1 << j)], r, j, sign);
+            add(acc, &done[mask & !(1 << j)], r, j, sign);
         }
-        minors[mask] = acc;
     }
 }
 
@@ -146,8 +151,9 @@ fn expand<const B: usize>(t: &PencilTerms) -> Option<[[f64; B]; D]> {
     let entry = |i: usize, j: usize| -> [(usize, usize, f64); 6] {
         [(2, 0, t.m[i][j]), (1, 0, t.g[0][i][j]), (1, 1, t.g[1][i][j]), (0, 0, t.k[0][i][j]), (0, 1, t.k[1][i][j]), (0, 2, t.k[2][i][j])]
     };
-    let mut minors = vec![[[0.0; B]; D]; 1 << n];
-    minors[0][0][0] = 1.0;
+    let mut empty = [[0.0; B]; D];
+    empty[0][0] = 1.0;
+    let mut minors = vec![empty];
     laplace(n, &mut minors, [[0.0; B]; D], |acc, minor, r, j, sign| {
         let deg = 2 * r; // total degree of the minors of size r
         for (ea, eb, v) in entry(r, j) {
@@ -172,25 +178,24 @@ fn expand<const B: usize>(t: &PencilTerms) -> Option<[[f64; B]; D]> {
 /// pencil (the characteristic polynomial of its state matrix), by the exact expansion;
 /// `None` when `M` is singular.
 ///
-/// The expansion of [`SpeedPolynomial::new`] without the speed, specialised: the `2⁶` minors on
-/// the stack, the subsets in increasing order (no sort), zero entries skipped (the same sums in
+/// The expansion of [`SpeedPolynomial::new`] without the speed, specialised: the subsets in increasing order (no sort), zero entries skipped (the same sums in
 /// the same order as the general expansion, a fraction of its instructions; the boundary
 /// tracer calls it thousands of times).
 pub fn pencil_polynomial(p: &super::small::Pencil) -> Option<[f64; D]> {
     let n = p.n;
-    let mut minors = [[0.0f64; D]; 1 << 6];
-    minors[0][0] = 1.0;
+    let mut empty = [0.0f64; D];
+    empty[0] = 1.0;
+    let mut minors = vec![empty];
     laplace(n, &mut minors, [0.0; D], |acc, minor, r, j, sign| {
-        // most entries of M, G, K are 0
+        // most entries of M, G, K are 0; a minor of r rows has degree ≤ 2r, so only its
+        // 2r + 1 lowest slots can be non-zero (the slots above hold exact zeros, whose terms
+        // would add nothing: the same sums as over all 11 slots, about half the work)
+        let len = 2 * r + 1;
         for (shift, v) in [(2, p.m[r][j]), (1, p.g[r][j]), (0, p.k[r][j])] {
             if v != 0.0 {
                 let f = sign * v;
-                // all 11 slots (those above the minor's degree 2r hold exact zeros): a
-                // fixed-length loop the compiler vectorises
-                let dst: &mut [f64; 11] = (&mut acc[shift..shift + 11]).try_into().expect("11");
-                let src: &[f64; 11] = minor[..11].try_into().expect("11");
-                for t in 0..11 {
-                    dst[t] += f * src[t];
+                for (d, x) in acc[shift..shift + len].iter_mut().zip(&minor[..len]) {
+                    *d += f * x;
                 }
             }
         }
@@ -218,8 +223,9 @@ pub fn pencil_polynomial(p: &super::small::Pencil) -> Option<[f64; D]> {
 /// `∂a_j = (∂det_j − a_j ∂det M)/det M` for the normalisation. `None` when `M` is singular.
 pub fn pencil_polynomial_dual<const K: usize>(p: &super::small::Pencil, dp: &[super::small::Pencil; K]) -> Option<([f64; D], [[f64; D]; K])> {
     let n = p.n;
-    let mut minors = [([0.0f64; D], [[0.0f64; D]; K]); 1 << 6];
-    minors[0].0[0] = 1.0;
+    let mut empty = ([0.0f64; D], [[0.0f64; D]; K]);
+    empty.0[0] = 1.0;
+    let mut minors = vec![empty];
     laplace(n, &mut minors, ([0.0; D], [[0.0; D]; K]), |acc, minor, r, j, sign| {
         for (shift, v, dv) in [
             (2, p.m[r][j], std::array::from_fn::<f64, K, _>(|k| dp[k].m[r][j])),
@@ -353,6 +359,10 @@ pub fn routh_right_half_plane(c: &[f64]) -> Option<usize> {
     }
     let mut changes = 0;
     let mut last = r0[0];
+    // entries that can be non-zero: r0 holds ⌊n/2⌋ + 1, and each new row one less than the
+    // row two above it (the entries beyond are exact zeros, `0 − q·0`, left out)
+    let mut len0 = n / 2 + 1;
+    let mut len1 = n.div_ceil(2);
     for _ in 0..n {
         if r1[0] == 0.0 {
             return None;
@@ -363,11 +373,13 @@ pub fn routh_right_half_plane(c: &[f64]) -> Option<usize> {
         last = r1[0];
         let q = r0[0] / r1[0];
         let mut next = [0.0; W];
-        for j in 0..W - 1 {
+        let len = len0.saturating_sub(1);
+        for j in 0..len {
             next[j] = r0[j + 1] - q * r1[j + 1];
         }
         r0 = r1;
         r1 = next;
+        (len0, len1) = (len1, len);
     }
     Some(changes)
 }
@@ -471,7 +483,7 @@ fn converge(c: &[f64], mut z: Complex64, accept: f64) -> Option<(Complex64, f64)
 /// certificate at every speed and a fall-back to a full eigen-solver.
 ///
 /// At each speed: Newton's method on the characteristic polynomial from the rightmost root of
-/// the previous speeds (linear extrapolation), then Routh's count of the roots right of
+/// the previous speeds (extrapolated by the parabola through the last three), then Routh's count of the roots right of
 /// `Re z + δ` must be zero (`δ` = the Newton inclusion radius plus [`AbscissaTracker::GAP`]).
 /// If Newton fails or the count is not zero (another eigenvalue has overtaken, or two roots
 /// collided), the caller's full solver gives all eigenvalues and the continuation restarts from
@@ -479,7 +491,7 @@ fn converge(c: &[f64], mut z: Complex64, accept: f64) -> Option<(Complex64, f64)
 /// certificate holds, and exact to the full solver's accuracy otherwise.
 #[derive(Debug, Clone, Default)]
 pub struct AbscissaTracker {
-    hist: [(f64, Complex64); 2],
+    hist: [(f64, Complex64); 3],
     len: usize,
     /// Number of speeds that fell back to the full solver.
     pub fallbacks: usize,
@@ -520,8 +532,34 @@ impl AbscissaTracker {
                 best = z;
             }
         }
-        self.push(omega, Complex64::new(best.re, best.im.abs()));
+        let best = Complex64::new(best.re, best.im.abs());
+        // the history extrapolates to the new point only if it is the same root (the rightmost
+        // one may have changed: then it restarts from this point)
+        if self.predict(omega).is_some_and(|p| modulus(p - best) > 1e-2 * (1.0 + modulus(best))) {
+            self.len = 0;
+        }
+        self.push(omega, best);
         Ok(best.re)
+    }
+
+    /// The rightmost root at `omega` extrapolated from the history: the parabola through the
+    /// last three speeds (Lagrange; error O(h³)), the line through two, or the last root.
+    fn predict(&self, omega: f64) -> Option<Complex64> {
+        let (w1, z1) = *self.hist[..self.len].last()?;
+        Some(match self.len {
+            3 => {
+                let [(a, za), (b, zb), (c, zc)] = self.hist;
+                let la = (omega - b) * (omega - c) / ((a - b) * (a - c));
+                let lb = (omega - a) * (omega - c) / ((b - a) * (b - c));
+                let lc = (omega - a) * (omega - b) / ((c - a) * (c - b));
+                za * la + zb * lb + zc * lc
+            }
+            2 => {
+                let (w0, z0) = self.hist[0];
+                z1 + (z1 - z0) * ((omega - w1) / (w1 - w0))
+            }
+            _ => z1,
+        })
     }
 
     fn push(&mut self, omega: f64, z: Complex64) {
@@ -529,25 +567,16 @@ impl AbscissaTracker {
             self.hist[self.len - 1] = (omega, z);
             return;
         }
-        if self.len == 2 {
-            self.hist[0] = self.hist[1];
-            self.len = 1;
+        if self.len == 3 {
+            self.hist = [self.hist[1], self.hist[2], self.hist[2]];
+            self.len = 2;
         }
         self.hist[self.len] = (omega, z);
         self.len += 1;
     }
 
     fn try_continue(&mut self, omega: f64, c: &[f64]) -> Option<f64> {
-        if self.len == 0 {
-            return None;
-        }
-        let (w1, z1) = self.hist[self.len - 1];
-        let mut z0 = if self.len == 2 {
-            let (w0, z0) = self.hist[0];
-            z1 + (z1 - z0) * ((omega - w1) / (w1 - w0))
-        } else {
-            z1
-        };
+        let mut z0 = self.predict(omega)?;
         if z0.im.abs() < 1e-300 {
             // a real start stays real under Newton: nudge it so that a pair can form
             z0.im = 1e-7 * (1.0 + z0.re.abs());

@@ -21,15 +21,24 @@
 //!
 //! Curves are seeded from the changes of verdict on a coarse grid (along the speed axis, if
 //! there is one, with the analytic critical speeds and the middles of their split pairs added,
-//! as [`crate::spatial::stability::stability_ranges`] does), each seed located by bisection and
-//! then corrected by Newton's method onto its condition. Every point of a curve satisfies its
-//! condition to the corrector's tolerance (steps below 1e-12 in the plane scaled to the unit
-//! square): it is located to ~1e-10, far inside the 1e-8 required.
+//! as [`crate::spatial::stability::stability_ranges`] does; the lines across the speed take
+//! their nodes' verdicts from those lines' polynomials in `Ω`), each seed located by bisection
+//! and then corrected by Newton's method onto its condition.
+//!
+//! **Cost.** The corrector's residuals are determinants of the pencil at `λ = iω` (or `±√(−w)`,
+//! or 0) by elimination, a fraction of an expansion's cost; the model is held as a pencil in
+//! the speed, so a step along the speed derives no model; the Jacobian (forward differences) is
+//! refreshed while the steps are large and then kept (the chord method). The expansion is
+//! needed once per traced point (Routh's count: is it on the stability boundary?) and for the
+//! bisections across the speed. Every point of a curve satisfies its condition to the
+//! corrector's tolerance (a last step below 1e-10 in the plane scaled to the unit square, after
+//! which the error is ~1e-15): it is located far inside the 1e-8 required.
 
 use crate::builder::builder;
 use crate::control::{Control, StopReason};
 use crate::error::{Error, Result};
-use crate::linalg::charpoly::{pencil_polynomial, routh_count_right_of, SpeedPolynomial};
+use crate::linalg::charpoly::{det_dual, pencil_polynomial, routh_count_right_of, PencilTerms, SpeedPolynomial};
+use crate::linalg::dense::Lu;
 use crate::linalg::eigen::eigenvalues;
 pub use crate::paths::Axis;
 use crate::spatial::critical_speeds::{critical_speeds_at, ModeKind};
@@ -165,7 +174,9 @@ pub struct Boundary {
     pub curves: Vec<BoundaryCurve>,
     /// Codimension-two points found on them.
     pub codim2: Vec<Codim2Point>,
-    /// Characteristic polynomials evaluated (the cost).
+    /// Characteristic polynomials evaluated (the cost): expanded at one point (the seed search
+    /// across the speed, every traced point's stability flag) or as determinants at one point
+    /// (the corrector's residuals).
     pub evaluations: usize,
     /// Whether the whole plane was searched (`false`: stopped by [`trace_boundary_with`]'s
     /// control; the curves traced until then are complete curves); `stopped.is_none()`.
@@ -183,11 +194,44 @@ struct Plane<'a> {
     balls: Balls,
     omega: Option<f64>,
     evaluations: std::cell::Cell<usize>,
+    /// Residuals evaluated as determinants ([`Plane::residual`]).
+    determinants: std::cell::Cell<usize>,
     /// The last point evaluated and its polynomial.
     last: std::cell::Cell<Option<(f64, f64, [f64; D], usize)>>,
+    /// The two models used last (most recent first), by the values of the axes that are not the
+    /// speed, as pencils in the speed: a step along the speed, or back to the point of a
+    /// difference quotient, derives no model.
+    models: std::cell::RefCell<[Option<([f64; 2], PencilTerms)>; 2]>,
+    /// `∂T/∂u`, `∂T/∂v` of the model's [`PencilTerms`] along the axes that are not the speed,
+    /// by a forward difference at the first iterate of the current correction
+    /// ([`correct`] clears them): the later Jacobians of that correction derive no model.
+    dterms: std::cell::RefCell<[Option<PencilTerms>; 2]>,
 }
 
 const D: usize = 13;
+
+/// Where `|w| = |ω²|` is at most this, a Hopf residual is evaluated on the expanded
+/// polynomial (`E(w)`, `O(w)` by Horner) instead of determinants at `λ = ±iω` or `λ = ±√(−w)`,
+/// whose `O = Im p(iω)/ω` (or `(p(s) − p(−s))/2s`) loses `log10(1/ω)` digits to cancellation as
+/// `ω → 0` (near a Bogdanov–Takens point): at most one digit here.
+const W_EXPANDED: f64 = 1e-2;
+
+/// The pencil `M λ² + (G0 + Ω G1) λ + K0 + Ω K1 + Ω² K2` of [`PencilTerms`] at the speed `Ω`.
+fn pencil_at(t: &PencilTerms, omega: f64) -> Pencil {
+    let mut p = Pencil { n: t.n, m: t.m, g: t.g[0], k: t.k[0] };
+    for i in 0..t.n {
+        for j in 0..t.n {
+            p.g[i][j] += omega * t.g[1][i][j];
+            p.k[i][j] += omega * (t.k[1][i][j] + omega * t.k[2][i][j]);
+        }
+    }
+    p
+}
+
+/// `det A` of the leading `n × n` block (LU with partial pivoting; 0 when a pivot is exactly 0).
+fn det_real(a: &crate::spatial::linear_model::Mat6, n: usize) -> f64 {
+    Lu::new(*a, n).map_or(0.0, |lu| lu.det())
+}
 
 impl Plane<'_> {
     /// The axis value at the scaled coordinate `u`, never outside the axis's `[lo, hi]` (which
@@ -221,18 +265,45 @@ impl Plane<'_> {
         Ok((c, n))
     }
 
-    fn pencil(&self, u: f64, v: f64) -> Result<Pencil> {
-        let (xv, yv) = (Self::value(self.x, u), Self::value(self.y, v));
-        let mut spec = self.spec.clone();
+    /// The model at scaled coordinates `(u, v)` as a pencil in the speed ([`Pencil::terms`],
+    /// exact: eq (6) is quadratic in `Ω`), and the speed there. The model is derived only when
+    /// the axes that are not the speed moved since the last two models.
+    fn terms(&self, u: f64, v: f64) -> Result<(PencilTerms, f64)> {
+        let vals = [Self::value(self.x, u), Self::value(self.y, v)];
         let mut omega = self.omega.unwrap_or(0.0);
-        for (a, val) in [(self.x, xv), (self.y, yv)] {
+        let mut key = [0.0; 2];
+        for (c, a) in [self.x, self.y].into_iter().enumerate() {
             if a.path == OMEGA {
-                omega = val;
+                omega = vals[c];
             } else {
-                spec.set(&a.path, val)?;
+                key[c] = vals[c];
             }
         }
-        Pencil::new(&spec.build()?, omega.max(crate::spatial::map::OMEGA_FLOOR), self.balls)
+        let omega = omega.max(crate::spatial::map::OMEGA_FLOOR);
+        let mut cache = self.models.borrow_mut();
+        for slot in 0..2 {
+            if let Some((k, t)) = cache[slot] {
+                if k == key {
+                    cache.swap(0, slot);
+                    return Ok((t, omega));
+                }
+            }
+        }
+        let mut spec = self.spec.clone();
+        for (c, a) in [self.x, self.y].into_iter().enumerate() {
+            if a.path != OMEGA {
+                spec.set(&a.path, vals[c])?;
+            }
+        }
+        let t = Pencil::terms(&spec.build()?, self.balls)?;
+        cache[1] = cache[0];
+        cache[0] = Some((key, t));
+        Ok((t, omega))
+    }
+
+    fn pencil(&self, u: f64, v: f64) -> Result<Pencil> {
+        let (t, omega) = self.terms(u, v)?;
+        Ok(pencil_at(&t, omega))
     }
 
     fn eigen(&self, u: f64, v: f64) -> Result<Vec<Complex64>> {
@@ -240,14 +311,66 @@ impl Plane<'_> {
         eigenvalues(&p.state_matrix(), p.states()).map_err(|_| Error::NoConvergence { omega: Plane::value(self.y, v) })
     }
 
-    /// Residual of a condition at `z` (`(u, v)` for a fold, `(u, v, w)` for Hopf).
+    /// Residual of a condition at `z` (`(u, v)` for a fold, `(u, v, w)` for Hopf), with
+    /// `p(λ) = det(M λ² + G λ + K)/det M` (the characteristic polynomial, `a_N = 1`) evaluated
+    /// as determinants by elimination (a fraction of an expansion's cost):
+    /// - fold: `a_0 = p(0) = det K/det M`;
+    /// - Hopf, `w > 0`: `p(iω) = E(w) + iω O(w)` with `ω = √w`, so `E = Re p(iω)`,
+    ///   `O = Im p(iω)/ω`;
+    /// - Hopf, `w < 0` (a real pair `±s`, `s = √(−w)`): `p(±s) = E(w) ± s O(w)`, so
+    ///   `E = (p(s) + p(−s))/2`, `O = (p(s) − p(−s))/2s`;
+    /// - Hopf, `|w| ≤` [`W_EXPANDED`]: `E`, `O` by Horner on the expanded polynomial.
     fn residual(&self, kind: CurveKind, z: &[f64]) -> Result<[f64; 2]> {
-        let (a, n) = self.poly(z[0], z[1])?;
+        if kind == CurveKind::Hopf && z[2].abs() <= W_EXPANDED {
+            let (a, n) = self.poly(z[0], z[1])?;
+            let r = eo(&a, n, z[2]);
+            return Ok([r[0], r[1]]);
+        }
+        let p = self.pencil(z[0], z[1])?;
+        self.residual_of(&p, kind, z[2])
+    }
+
+    /// [`Plane::residual`] of the pencil `p` (with `w` for Hopf).
+    fn residual_of(&self, p: &Pencil, kind: CurveKind, w: f64) -> Result<[f64; 2]> {
+        if kind == CurveKind::Hopf && w.abs() <= W_EXPANDED {
+            self.evaluations.set(self.evaluations.get() + 1);
+            let a = pencil_polynomial(p).ok_or_else(|| Error::invalid(self.x.path.clone(), "the mass matrix is singular here"))?;
+            let r = eo(&a, p.states(), w);
+            return Ok([r[0], r[1]]);
+        }
+        self.determinants.set(self.determinants.get() + 1);
+        let n = p.n;
+        let dm = det_real(&p.m, n);
+        if dm == 0.0 || !dm.is_finite() {
+            return Err(Error::invalid(self.x.path.clone(), "the mass matrix is singular here"));
+        }
         Ok(match kind {
-            CurveKind::Fold => [a[0], 0.0],
+            CurveKind::Fold => [det_real(&p.k, n) / dm, 0.0],
+            CurveKind::Hopf if w > 0.0 => {
+                // P(iω) = K − w M + iω G
+                let om = w.sqrt();
+                let mut a = [[Complex64::new(0.0, 0.0); 6]; 6];
+                for i in 0..n {
+                    for j in 0..n {
+                        a[i][j] = Complex64::new(p.k[i][j] - w * p.m[i][j], om * p.g[i][j]);
+                    }
+                }
+                let q = det_dual::<0>(&a, &[], n).0 / dm;
+                [q.re, q.im / om]
+            }
             CurveKind::Hopf => {
-                let r = eo(&a, n, z[2]);
-                [r[0], r[1]]
+                // P(±s) = K − w M ± s G (s² = −w)
+                let s = (-w).sqrt();
+                let (mut ap, mut am) = (p.k, p.k);
+                for i in 0..n {
+                    for j in 0..n {
+                        let base = p.k[i][j] - w * p.m[i][j];
+                        ap[i][j] = base + s * p.g[i][j];
+                        am[i][j] = base - s * p.g[i][j];
+                    }
+                }
+                let (qp, qm) = (det_real(&ap, n) / dm, det_real(&am, n) / dm);
+                [0.5 * (qp + qm), (qp - qm) / (2.0 * s)]
             }
         })
     }
@@ -295,24 +418,67 @@ fn dims(kind: CurveKind) -> (usize, usize) {
 }
 
 /// Jacobian of the residual by forward differences (the corrector's accuracy does not depend
-/// on it, only its speed).
+/// on it, only its speed): a step along the speed or `w` derives no model ([`Plane::terms`]);
+/// in `w` exact where the residual is the expanded polynomial's.
 fn jacobian(pl: &Plane, kind: CurveKind, z: &[f64; 3], f0: &[f64; 2]) -> Result<[[f64; 3]; 2]> {
-    let (_, nf) = dims(kind);
+    let (nz, nf) = dims(kind);
     let mut j = [[0.0; 3]; 2];
-    if kind == CurveKind::Hopf {
+    let exact_w = kind == CurveKind::Hopf && z[2].abs() <= W_EXPANDED;
+    if exact_w {
         // in w: exact (the polynomial does not depend on w)
         let (a, n) = pl.poly(z[0], z[1])?;
         let r = eo(&a, n, z[2]);
         j[0][2] = r[2];
         j[1][2] = r[3];
     }
-    for c in 0..2 {
+    for c in 0..nz {
+        if c == 2 && exact_w {
+            continue;
+        }
         // a forward difference, backward on the square's far edge (inside the axis range)
         let h = 1e-7 * (1.0 + z[c].abs());
-        let h = if z[c] + h > 1.0 { -h } else { h };
+        let h = if c < 2 && z[c] + h > 1.0 { -h } else { h };
         let mut zz = *z;
         zz[c] += h;
-        let f = pl.residual(kind, &zz)?;
+        let along_parameter = c < 2 && [pl.x, pl.y][c].path != OMEGA;
+        let f = match along_parameter.then(|| pl.dterms.borrow()[c]).flatten() {
+            // the pencil moved along the stored derivative: no model derived
+            Some(dt) => {
+                let (t, om) = pl.terms(z[0], z[1])?;
+                let (mut p, dp) = (pencil_at(&t, om), pencil_at(&dt, om));
+                for i in 0..p.n {
+                    for k in 0..p.n {
+                        p.m[i][k] += h * dp.m[i][k];
+                        p.g[i][k] += h * dp.g[i][k];
+                        p.k[i][k] += h * dp.k[i][k];
+                    }
+                }
+                pl.residual_of(&p, kind, z[2])?
+            }
+            None => {
+                if along_parameter {
+                    let (t0, _) = pl.terms(z[0], z[1])?;
+                    let (t1, _) = pl.terms(zz[0], zz[1])?;
+                    let mut dt = t1;
+                    let d = |a: &mut [[f64; 6]; 6], b: &[[f64; 6]; 6]| {
+                        for i in 0..t0.n {
+                            for k in 0..t0.n {
+                                a[i][k] = (a[i][k] - b[i][k]) / h;
+                            }
+                        }
+                    };
+                    d(&mut dt.m, &t0.m);
+                    for q in 0..2 {
+                        d(&mut dt.g[q], &t0.g[q]);
+                    }
+                    for q in 0..3 {
+                        d(&mut dt.k[q], &t0.k[q]);
+                    }
+                    pl.dterms.borrow_mut()[c] = Some(dt);
+                }
+                pl.residual(kind, &zz)?
+            }
+        };
         for r in 0..nf {
             j[r][c] = (f[r] - f0[r]) / h;
         }
@@ -369,30 +535,37 @@ fn solve3(mut a: [[f64; 3]; 3], mut b: [f64; 3], n: usize) -> Option<[f64; 3]> {
 }
 
 /// Newton's method on the condition plus the hyperplane `t · (z − z0) = 0` (pseudo-arclength
-/// corrector; with `t` a coordinate vector it holds that coordinate fixed). With `j0` (the
-/// Jacobian at the previous point) it iterates as the chord method and refreshes the Jacobian
-/// only if that stalls. Returns the point and the Jacobian there.
+/// corrector; with `t` a coordinate vector it holds that coordinate fixed). The Jacobian is
+/// `j0` (the previous point's, when given) for the first iteration, then refreshed at every
+/// iterate while the steps are above 1e-5 or stop contracting, and kept once they are small
+/// (the chord method: its contraction is then ~1e-5 times the curvature). Stops once a step is
+/// below 1e-10 in the plane scaled to the unit square (the next would be below ~1e-15).
+/// Returns the point and the Jacobian there (computed at the point, or at an iterate within
+/// 1e-6 of it: the tangent is the curve's).
 fn correct(pl: &Plane, kind: CurveKind, z0: [f64; 3], t: &[f64; 3], j0: Option<&[[f64; 3]; 2]>) -> Result<Option<([f64; 3], [[f64; 3]; 2])>> {
+    // the derivatives of the model stored by this correction's first Jacobian serve it alone
+    pl.dterms.replace([None, None]);
+    let r = newton(pl, kind, z0, t, j0);
+    pl.dterms.replace([None, None]);
+    r
+}
+
+/// The iteration of [`correct`].
+fn newton(pl: &Plane, kind: CurveKind, z0: [f64; 3], t: &[f64; 3], j0: Option<&[[f64; 3]; 2]>) -> Result<Option<([f64; 3], [[f64; 3]; 2])>> {
     let (nz, nf) = dims(kind);
     let mut z = z0;
-    let mut j = match j0 {
-        Some(j) => *j,
-        None => {
-            let f = pl.residual(kind, &z)?;
-            jacobian(pl, kind, &z, &f)?
-        }
-    };
-    let mut fresh = j0.is_none();
-    for it in 0..12 {
+    let mut j = j0.map(|j| (*j, [f64::INFINITY; 3]));
+    let mut last = f64::INFINITY;
+    for _ in 0..16 {
         let f = pl.residual(kind, &z)?;
-        if it == 4 && !fresh {
-            j = jacobian(pl, kind, &z, &f)?;
-            fresh = true;
-        }
+        let (jz, at) = match j {
+            Some(j) => j,
+            None => (jacobian(pl, kind, &z, &f)?, z),
+        };
         let mut a = [[0.0; 3]; 3];
         let mut b = [0.0; 3];
         for r in 0..nf {
-            a[r][..nz].copy_from_slice(&j[r][..nz]);
+            a[r][..nz].copy_from_slice(&jz[r][..nz]);
             b[r] = -f[r];
         }
         a[nf][..nz].copy_from_slice(&t[..nz]);
@@ -406,11 +579,17 @@ fn correct(pl: &Plane, kind: CurveKind, z0: [f64; 3], t: &[f64; 3], j0: Option<&
         if !z.iter().all(|x| x.is_finite()) || step > 0.5 {
             return Ok(None);
         }
-        if step < 1e-12 {
-            let f = pl.residual(kind, &z)?;
-            let j = jacobian(pl, kind, &z, &f)?;
-            return Ok(Some((z, j)));
+        if step < 1e-10 {
+            // the tangent at the point: from a Jacobian computed there (or within 1e-6)
+            if (0..nz).any(|c| (z[c] - at[c]).abs() > 1e-6) {
+                let f = pl.residual(kind, &z)?;
+                return Ok(Some((z, jacobian(pl, kind, &z, &f)?)));
+            }
+            return Ok(Some((z, jz)));
         }
+        // a fresh Jacobian at the next iterate unless the steps are small and contracting
+        j = (step < 1e-5 && step < 0.25 * last).then_some((jz, at));
+        last = step;
     }
     Ok(None)
 }
@@ -463,11 +642,24 @@ pub fn trace_boundary_with(spec: &SpatialSpec, x: &Axis, y: &Axis, s: &TraceSett
     if x.path != OMEGA && y.path != OMEGA && s.omega.is_none() {
         return Err(Error::invalid(OMEGA, "required when neither axis is the speed"));
     }
-    let pl = Plane { spec, x, y, balls: s.balls, omega: s.omega, evaluations: std::cell::Cell::new(0), last: std::cell::Cell::new(None) };
+    let pl = Plane {
+        spec,
+        x,
+        y,
+        balls: s.balls,
+        omega: s.omega,
+        evaluations: std::cell::Cell::new(0),
+        determinants: std::cell::Cell::new(0),
+        last: std::cell::Cell::new(None),
+        models: std::cell::RefCell::new([None, None]),
+        dterms: std::cell::RefCell::new([None, None]),
+    };
     let mut out = Boundary { x: x.clone(), y: y.clone(), curves: vec![], codim2: vec![], evaluations: 0, complete: true, stopped: None };
     // 1. lines across the plane (along the speed if there is one): changes of verdict
     let first_dir = if x.path == OMEGA { 1 } else { 0 };
     let mut queue: Vec<(CurveKind, [f64; 3])> = vec![];
+    // the first pass's polynomials in Ω, one per line along the speed
+    let mut speed_lines: Vec<Option<SpeedPolynomial>> = vec![];
     // 2. then lines the other way (closed curves between the first lines); a change of verdict
     // that a traced boundary already crosses is not looked at again
     let all_lines = (s.coarse.0.max(2) + s.coarse.1.max(2)) as u64;
@@ -479,7 +671,7 @@ pub fn trace_boundary_with(spec: &SpatialSpec, x: &Axis, y: &Axis, s: &TraceSett
                 (out.complete, out.stopped) = (false, Some(why));
                 break 'search;
             }
-            for raw in line_crossings(&pl, s, dir, li, &out.curves)? {
+            for raw in line_crossings(&pl, s, dir, li, &out.curves, &mut speed_lines)? {
                 if let Some(seed) = seed_at(&pl, raw.0, raw.1, dir)? {
                     queue.push(seed);
                 }
@@ -501,7 +693,7 @@ pub fn trace_boundary_with(spec: &SpatialSpec, x: &Axis, y: &Axis, s: &TraceSett
         }
     }
     out.codim2 = merged;
-    out.evaluations = pl.evaluations.get();
+    out.evaluations = pl.evaluations.get() + pl.determinants.get();
     Ok(out)
 }
 
@@ -574,13 +766,23 @@ fn near_curve(c: &BoundaryCurve, pl: &Plane, z: &[f64; 3]) -> bool {
 
 /// Changes of verdict along the lines of a coarse grid in direction `dir` (0: lines along the
 /// second axis at fixed first coordinate; 1: the other way), located by bisection to 1e-9 of the
-/// unit square: points `(u, v)`. Along the speed the line's exact polynomial in `Ω` answers
+/// unit square along the speed and to 1e-6 across it (the seed is then corrected by Newton's
+/// method): points `(u, v)`. Along the speed the line's exact polynomial in `Ω` answers
 /// every point, and the analytic critical speeds and the middles of their split pairs are added
-/// to the line. A segment that a traced curve crosses is not bisected.
-fn line_crossings(pl: &Plane, s: &TraceSettings, dir: usize, li: usize, traced: &[BoundaryCurve]) -> Result<Vec<(f64, f64)>> {
+/// to the line; across it, the nodes are those lines' (`speed_lines`, filled by the first pass)
+/// and are answered by their polynomials. A segment that a traced curve crosses is not bisected.
+fn line_crossings(
+    pl: &Plane,
+    s: &TraceSettings,
+    dir: usize,
+    li: usize,
+    traced: &[BoundaryCurve],
+    speed_lines: &mut Vec<Option<SpeedPolynomial>>,
+) -> Result<Vec<(f64, f64)>> {
     let (nx, ny) = (s.coarse.0.max(2), s.coarse.1.max(2));
     let (nl, np) = if dir == 0 { (nx, ny) } else { (ny, nx) };
     let along = if dir == 0 { pl.y } else { pl.x };
+    let fixed = if dir == 0 { pl.x } else { pl.y };
     let mut out = vec![];
     {
         let c = li as f64 / (nl - 1) as f64;
@@ -630,12 +832,28 @@ fn line_crossings(pl: &Plane, s: &TraceSettings, dir: usize, li: usize, traced: 
             };
             Ok(crate::linalg::eigen::routh_hurwitz_stable(&c.0[..=c.1]))
         };
-        let mut prev = stable(ts[0])?;
+        // a line at a fixed speed across the lines along the speed: its nodes are theirs, each
+        // answered by that line's polynomial in Ω (no expansion)
+        let reuse = fixed.path == OMEGA && along.path != OMEGA && speed_lines.len() == np && ts.len() == np;
+        let node = |k: usize| -> Result<bool> {
+            match speed_lines.get(k) {
+                Some(Some(sp)) if reuse => {
+                    let c = sp.at(Plane::value(fixed, c).max(crate::spatial::map::OMEGA_FLOOR));
+                    Ok(crate::linalg::eigen::routh_hurwitz_stable(&c[..=sp.states]))
+                }
+                _ => stable(ts[k]),
+            }
+        };
+        // bisection to 1e-9 of the line along the speed (its polynomial answers each point),
+        // to 1e-6 across it (each point an expansion): the seed is then corrected onto its
+        // condition by Newton's method from there
+        let tol = if line_poly.is_some() { 1e-9 } else { 1e-6 };
+        let mut prev = node(0)?;
         for k in 1..ts.len() {
-            let cur = stable(ts[k])?;
+            let cur = node(k)?;
             if cur != prev && !crossed(traced, pl, at(ts[k - 1]), at(ts[k])) {
                 let (mut lo, mut hi) = (ts[k - 1], ts[k]);
-                while hi - lo > 1e-9 {
+                while hi - lo > tol {
                     let mid = 0.5 * (lo + hi);
                     if stable(mid)? == prev {
                         lo = mid;
@@ -646,6 +864,12 @@ fn line_crossings(pl: &Plane, s: &TraceSettings, dir: usize, li: usize, traced: 
                 out.push(at(0.5 * (lo + hi)));
             }
             prev = cur;
+        }
+        if along.path == OMEGA {
+            if speed_lines.len() <= li {
+                speed_lines.resize(li + 1, None);
+            }
+            speed_lines[li] = line_poly;
         }
     }
     Ok(out)
@@ -754,12 +978,34 @@ fn locate_crossing(pl: &Plane, kind: CurveKind, a: [f64; 3], b: [f64; 3]) -> Res
         }
         Ok(cand.into_iter().max_by(|x, y| x.re.total_cmp(&y.re)).unwrap_or_default())
     };
+    // the same from the polynomial: the critical pair (or zero) divided out, the rightmost root
+    // of the quotient by Newton's method from `guess`, certified by Routh's count right of it
+    // (no root of the quotient beyond its inclusion disk); `None` when the certificate fails
+    let other_poly = |z: &[f64; 3], guess: Complex64| -> Result<Option<Complex64>> {
+        let (a, n) = pl.poly(z[0], z[1])?;
+        let mut c = [0.0; D];
+        for k in 0..=n {
+            c[k] = a[n - k];
+        }
+        let m = if kind == CurveKind::Hopf { n - 2 } else { n - 1 };
+        let mut q = [0.0; D];
+        for k in 0..=m {
+            q[k] = c[k] - if kind == CurveKind::Hopf && k >= 2 { z[2] * q[k - 2] } else { 0.0 };
+        }
+        let mut g = guess;
+        if g.im == 0.0 {
+            g.im = 1e-7;
+        }
+        let Some((r, rad)) = crate::linalg::charpoly::polish_root(&q[..=m], g, 30, 1e-14 * (1.0 + g.norm())) else { return Ok(None) };
+        Ok((routh_count_right_of(&q[..=m], r.re + rad + 1e-12) == Some(0)).then_some(Complex64::new(r.re, r.im.abs())))
+    };
     let point = |s: f64| -> Result<Option<[f64; 3]>> {
         let z0 = [a[0] + s * d[0], a[1] + s * d[1], a[2] + s * d[2]];
         Ok(correct(pl, kind, z0, &t, None)?.map(|r| r.0))
     };
     let (mut s0, mut s1) = (0.0, 1.0);
-    let (mut g0, mut g1) = (other(&a)?.re, other(&b)?.re);
+    let (oa, ob) = (other(&a)?, other(&b)?);
+    let (mut g0, mut g1) = (oa.re, ob.re);
     if g0.signum() == g1.signum() {
         return Ok(None);
     }
@@ -768,7 +1014,11 @@ fn locate_crossing(pl: &Plane, kind: CurveKind, a: [f64; 3], b: [f64; 3]) -> Res
     for _ in 0..40 {
         let s = (s0 * g1 - s1 * g0) / (g1 - g0);
         let Some(z) = point(s)? else { return Ok(None) };
-        let o = other(&z)?;
+        let guess = oa + (ob - oa) * s;
+        let o = match other_poly(&z, guess)? {
+            Some(o) => o,
+            None => other(&z)?,
+        };
         best = (z, o);
         if o.re.abs() < 1e-10 || (s1 - s0) < 1e-10 {
             break;
@@ -852,7 +1102,16 @@ fn march(pl: &Plane, kind: CurveKind, z0: [f64; 3], t0: [f64; 3], max_step: f64)
                 travelled += dist;
                 let back = ((zn[0] - z0[0]).powi(2) + (zn[1] - z0[1]).powi(2) + (zn[2] - z0[2]).powi(2)).sqrt();
                 pts.push(zn);
-                if travelled > 4.0 * h && back < 1.5 * h {
+                // closed: the chord z → zn passes through the start (within the sagitta of a
+                // step, ≤ h·turn/8 ≤ 1e-3; near the start alone is not enough, the curve may
+                // still have a tip to go round)
+                let through_start = {
+                    let d = [zn[0] - z[0], zn[1] - z[1], zn[2] - z[2]];
+                    let l2 = d.iter().map(|x| x * x).sum::<f64>();
+                    let s = if l2 > 0.0 { ((0..3).map(|c| (z0[c] - z[c]) * d[c]).sum::<f64>() / l2).clamp(0.0, 1.0) } else { 0.0 };
+                    (0..3).map(|c| (z[c] + s * d[c] - z0[c]).powi(2)).sum::<f64>().sqrt() < 2e-3
+                };
+                if travelled > 4.0 * h && back < 1.5 * h && through_start {
                     pts.push(z0);
                     return Ok((pts, true));
                 }
@@ -939,6 +1198,121 @@ mod tests {
         ] {
             let e = trace_boundary(&spec, &x, &y, &s).unwrap_err();
             assert_eq!(e.field(), Some(field), "{e}");
+        }
+    }
+
+    #[test]
+    fn residuals_by_determinants_are_the_expanded_polynomials() {
+        // The corrector's residuals (determinants by elimination at λ = iω, at λ = ±√(−w), at
+        // λ = 0) against `E(w)`, `O(w)` by Horner on the exact expansion of the same pencil
+        // (`pencil_polynomial`, a second route): both exact but for rounding, a few ulp of the
+        // terms summed (Σ_j |a_j| |w|^(j/2) ≤ ~1e3 here), so 1e-11 of that size. A wrong sign
+        // (E − iωO), a missing 1/ω or normalisation by det M errs at O(1). Points on both
+        // sides of W_EXPANDED, off the curves (the residual not small) and at both ends of z̄_A.
+        let d = DimensionlessInput {
+            anisotropy: crate::spatial::params::AnisotropyInput::Direct(0.1),
+            direct_balls: Some((0.05, 0.5)),
+            ..DimensionlessInput::default()
+        };
+        let spec = SpatialSpec { input: SpatialInput::Dimensionless(d), delta_a_override: None };
+        let x = Axis::range("dimensionless.z_a", -2.0, 2.0);
+        let y = Axis::range(OMEGA, 0.05, 4.5);
+        for balls in [Balls::Free, Balls::Locked] {
+            let pl = Plane {
+                spec: &spec,
+                x: &x,
+                y: &y,
+                balls,
+                omega: None,
+                evaluations: std::cell::Cell::new(0),
+                determinants: std::cell::Cell::new(0),
+                last: std::cell::Cell::new(None),
+                models: std::cell::RefCell::new([None, None]),
+                dterms: std::cell::RefCell::new([None, None]),
+            };
+            for z in [[0.4, 0.3, 0.8], [0.7, 0.55, 2.3], [0.0, 0.9, 0.05], [1.0, 0.1, 5.0], [0.6, 0.2, -0.3], [0.2, 0.7, -2.0], [0.45, 0.35, 0.0]] {
+                let (a, n) = pl.poly(z[0], z[1]).unwrap();
+                let size = (0..=n).map(|j| a[j].abs() * z[2].abs().sqrt().powi(j as i32)).sum::<f64>();
+                let r = eo(&a, n, z[2]);
+                let hopf = pl.residual(CurveKind::Hopf, &z).unwrap();
+                let om = z[2].abs().sqrt();
+                assert!((hopf[0] - r[0]).abs() < 1e-11 * size, "{balls:?} E at {z:?}: {} against {}", hopf[0], r[0]);
+                assert!((hopf[1] - r[1]).abs() * om < 1e-11 * size, "{balls:?} O at {z:?}: {} against {}", hopf[1], r[1]);
+                let fold = pl.residual(CurveKind::Fold, &z).unwrap();
+                assert!((fold[0] - a[0]).abs() < 1e-11 * a.iter().map(|x| x.abs()).fold(0.0, f64::max), "{balls:?} a_0 at {z:?}: {} against {}", fold[0], a[0]);
+            }
+            assert!(pl.determinants.get() > 0);
+        }
+    }
+
+    #[test]
+    fn every_change_of_verdict_of_the_map_lies_on_the_traced_boundary() {
+        // Coverage of the coarse seed grid (24 × 24), checked against the map of the same plane
+        // (an independent route: Routh–Hurwitz on each cell's polynomial, changes confirmed on
+        // the state matrix): wherever two neighbouring cells of a 120 × 120 verdict map differ,
+        // the stability boundary crosses the segment between their centres, so a traced
+        // stability-boundary segment must pass within half that segment (0.5/119 of the plane)
+        // plus the polyline's chord error (2e-3: steps ≤ 0.05 turning ≤ 0.15 rad) of its
+        // middle. A piece of boundary the seeds missed is a run of such cells far from every
+        // traced curve. Planes: the benchmark's and the docs' (`map --x dimensionless.z_a=-2:2
+        // --y omega=0.05:4.5 --boundary` on the default rotor).
+        use crate::spatial::map::{stability_map, MapSettings, Quantity};
+        let bench = DimensionlessInput {
+            c_sigma: 0.75,
+            rho_s: 0.4,
+            l_left: 0.8,
+            anisotropy: crate::spatial::params::AnisotropyInput::Direct(0.1),
+            h_x: 0.05,
+            h_s: 0.1,
+            method: crate::spatial::inertia::AnisotropyMethod::Exact,
+            direct_balls: Some((0.05, 0.5)),
+            ..DimensionlessInput::default()
+        };
+        for d in [bench, DimensionlessInput::default()] {
+            let spec = SpatialSpec { input: SpatialInput::Dimensionless(d), delta_a_override: None };
+            let n = 120;
+            let x = Axis::linspace("dimensionless.z_a", -2.0, 2.0, n);
+            let y = Axis::linspace(OMEGA, 0.05, 4.5, n);
+            let mut v = vec![];
+            let s = MapSettings { quantity: Quantity::Verdict, ..MapSettings::default() };
+            stability_map(&spec, &x, &y, &s, &Control::none(), &mut |_, row| {
+                v.push(row.iter().map(|c| c.stable).collect::<Vec<_>>());
+                true
+            })
+            .unwrap();
+            let b = trace_boundary(&spec, &x, &y, &TraceSettings::default()).unwrap();
+            let segs: Vec<[f64; 4]> = b
+                .curves
+                .iter()
+                .flat_map(|c| c.points.windows(2).filter(|w| w[0].on_boundary || w[1].on_boundary).map(|w| [w[0].x, w[0].y, w[1].x, w[1].y]))
+                .map(|[a, b, c, d]| [(a + 2.0) / 4.0, (b - 0.05) / 4.45, (c + 2.0) / 4.0, (d - 0.05) / 4.45])
+                .collect();
+            let dist = |px: f64, py: f64| {
+                segs.iter()
+                    .map(|&[ax, ay, bx, by]| {
+                        let (dx, dy) = (bx - ax, by - ay);
+                        let l2 = dx * dx + dy * dy;
+                        let t = if l2 > 0.0 { (((px - ax) * dx + (py - ay) * dy) / l2).clamp(0.0, 1.0) } else { 0.0 };
+                        ((ax + t * dx - px).powi(2) + (ay + t * dy - py).powi(2)).sqrt()
+                    })
+                    .fold(f64::INFINITY, f64::min)
+            };
+            let cell = 1.0 / (n - 1) as f64;
+            let tol = 0.5 * cell + 2e-3;
+            let mut changes = 0;
+            for j in 0..n {
+                for i in 0..n {
+                    for (i2, j2) in [(i + 1, j), (i, j + 1)] {
+                        if i2 < n && j2 < n && v[j][i] != v[j2][i2] {
+                            changes += 1;
+                            let (px, py) = (0.5 * (i + i2) as f64 * cell, 0.5 * (j + j2) as f64 * cell);
+                            let d = dist(px, py);
+                            assert!(d < tol, "the verdict changes between cells ({i}, {j}) and ({i2}, {j2}), {d} from the traced boundary");
+                        }
+                    }
+                }
+            }
+            assert!(changes > 50, "{changes} changes of verdict");
         }
     }
 }
