@@ -204,11 +204,23 @@ fn bad_paths_and_refusals_name_the_path() {
     // the Jeffcott preset has its support inside K: no bearing table to scale
     let e = run(&preset_spec(&planar_root()), &Axis { path: "linear_rotor.support_stiffness_scale".into(), values: vec![1.0, 2.0] });
     assert!(e.starts_with("linear_rotor.support_stiffness_scale") && e.contains("no [[linear_rotor.bearings]]"), "{e}");
-    // gravity turns in axes turning with the rotor: the map refuses it, naming the key
+}
+
+/// Gravity turns once per revolution in axes turning with the rotor: the map's stationary
+/// state is then a periodic orbit, judged by its Floquet multipliers (never an equilibrium's
+/// eigenvalues), in every cell where one is found.
+#[test]
+fn with_gravity_the_map_judges_periodic_orbits() {
     let mut text = shaft_text(2e6);
     text = text.replacen("[linear_rotor]\n", "[linear_rotor]\ngravity = [0.0, -9.81]\n", 1);
     let g = LinearRotorSpec::new(text.parse().unwrap(), &mut |_| Err("no files".into())).unwrap();
-    let e = run(&g, &Axis { path: "linear_rotor.drag".into(), values: vec![0.01, 0.02] });
-    assert!(e.starts_with("linear_rotor.gravity"), "{e}");
-    assert!(!e.contains('\n'));
+    let speeds = Axis { path: "omega".into(), values: vec![100.0, 200.0] };
+    let drag = Axis { path: "linear_rotor.drag".into(), values: vec![0.01, 0.02] };
+    let (rows, _) = collect(|f| linear_map_traced(&g, &speeds, &drag, None, false, &Control::none(), f)).unwrap();
+    let cells: Vec<&GeneralCell> = rows.iter().flatten().collect();
+    assert!(cells.iter().any(|c| c.verdict.is_some()), "no stationary state found: {rows:?}");
+    for c in cells.iter().filter(|c| c.verdict.is_some()) {
+        assert_eq!(c.kind, Some(autobal::analysis::Kind::PeriodicOrbit), "{c:?}");
+        assert!(c.margin.is_finite(), "{c:?}");
+    }
 }
