@@ -639,15 +639,7 @@ pub fn compute(
 /// planar or spatial config; CSV columns: the two axes, `max_real_part`, `verdict`,
 /// `family_dimension`, `family` (empty fields where no stationary state was found).
 #[allow(clippy::too_many_arguments)]
-fn general(
-    root: &toml::Table,
-    a: &Args,
-    speed: Option<autobal::units::Speed>,
-    planar: bool,
-    linear: bool,
-    rows: Rows<'_>,
-    control: &Control,
-) -> Result<RouteOutput> {
+fn general(root: &toml::Table, a: &Args, speed: Option<autobal::units::Speed>, planar: bool, linear: bool, rows: Rows<'_>, control: &Control) -> Result<RouteOutput> {
     use autobal::rotor_map::general_map_traced;
     let (x, y) = (&a.x, &a.y);
     let verdict_only = a.quantity == Quantity::Verdict;
