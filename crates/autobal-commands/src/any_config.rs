@@ -62,9 +62,7 @@ pub fn ranges(root: &Table, source: &str, control: &Control) -> Result<(Value, S
     }
     let cfg = crate::config::build(root, source)?;
     output::check_results(&cfg)?;
-    let spatial =
-        autobal::config::SpatialConfig { model: cfg.model.clone(), spec: cfg.spec.clone(), analysis: cfg.analysis.clone(), dimensional: cfg.dimensional };
-    let r = autobal::reports::ranges_with_exact(&spatial, source)?;
+    let r = autobal::reports::ranges_with_exact(&cfg.config, source)?;
     let mut s = output::ranges_table(&cfg);
     let (exact, w) =
         r.exact.as_ref().map_or((vec![], f64::NAN), |e| (e.stable_ranges.iter().map(|&(lo, hi)| SpeedRange { lo, hi }).collect::<Vec<_>>(), e.omega_max));

@@ -3,8 +3,7 @@
 //! defaults and every check live).
 
 use anyhow::{anyhow, bail, Result};
-use autobal::spatial::params::SpatialModel;
-use autobal::spatial::paths::SpatialSpec;
+use autobal::config::SpatialConfig;
 use toml::Table;
 
 /// The embedded default example (paper 000's base case).
@@ -17,18 +16,23 @@ pub use autobal::config::Analysis;
 #[cfg(test)]
 pub use autobal::config::SCHEMA;
 
-/// A loaded, validated config.
+/// A loaded, validated spatial config: the library's [`SpatialConfig`] (model, spec, analysis,
+/// units) and where it came from (`source`: the file's name or the embedded default, for the
+/// tables and the report). It dereferences to the [`SpatialConfig`], so that `cfg.model`,
+/// `cfg.analysis`, ... read the library's one copy.
 #[derive(Debug, Clone)]
 pub struct Config {
-    pub model: SpatialModel,
-    /// What the model was built from: parameter paths act on it (maps).
-    pub spec: SpatialSpec,
-    pub analysis: Analysis,
-    /// Where it came from, for the report.
+    /// The converted config ([`autobal::config::spatial`]).
+    pub config: SpatialConfig,
+    /// Where it came from, for the tables and the report.
     pub source: String,
-    /// The merged TOML text, for the report.
-    pub text: String,
-    pub dimensional: bool,
+}
+
+impl std::ops::Deref for Config {
+    type Target = SpatialConfig;
+    fn deref(&self) -> &SpatialConfig {
+        &self.config
+    }
 }
 
 /// Apply one `key=value` override with a dotted key.
@@ -202,19 +206,7 @@ pub fn bare_speed_notes(root: &Table) -> Vec<String> {
 
 /// Validate a config table and build the model.
 pub fn build(root: &Table, source: &str) -> Result<Config> {
-    Ok(from_library(autobal::config::spatial(root)?, root, source))
-}
-
-/// The CLI's config of a converted library config (`root`: its tables, kept as text for the report).
-pub fn from_library(c: autobal::config::SpatialConfig, root: &Table, source: &str) -> Config {
-    Config {
-        model: c.model,
-        spec: c.spec,
-        analysis: c.analysis,
-        source: source.to_string(),
-        text: toml::to_string(root).unwrap_or_default(),
-        dimensional: c.dimensional,
-    }
+    Ok(Config { config: autobal::config::spatial(root)?, source: source.to_string() })
 }
 
 #[cfg(test)]

@@ -178,10 +178,7 @@ pub fn report_figures(root: &Table, source: &str, quick: bool, kind: crate::repo
     if spatial.is_none() && planar.is_none() {
         bail!("config: describes no rotor: give [dimensionless] or [rotor], [supports], [unbalance], [balancer] (papers 000/003), or [planar] (paper 004)");
     }
-    let text = match &spatial {
-        Some(c) => c.text.clone(),
-        None => toml::to_string(root).unwrap_or_default(),
-    };
+    let text = toml::to_string(root).unwrap_or_default();
     let ctx = crate::report::Ctx { kind, spatial, planar, linear: None, quick, source: source.to_string(), text, root: root.clone(), control: control.clone() };
     let list = if kind == crate::report::Kind::User { crate::report::USER_SECTIONS } else { crate::report::PAPER_SECTIONS };
     let mut out = vec![];

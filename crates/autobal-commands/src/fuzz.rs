@@ -424,7 +424,7 @@ proptest! {
             match SpatialModel::from_si(&r, method) {
                 Ok(model) => {
                     let spec = autobal::spatial::paths::SpatialSpec { input: autobal::spatial::paths::SpatialInput::Si { rotor: r.clone(), method }, delta_a_override: None };
-                    let cfg = config::Config { model, spec, analysis: config::Analysis { sensitivity_limit: 0.15, omega_max: None, operating_speed: None }, source: String::new(), text: String::new(), dimensional: true };
+                    let cfg = config::Config { config: autobal::config::SpatialConfig { model, spec, analysis: config::Analysis { sensitivity_limit: 0.15, omega_max: None, operating_speed: None }, dimensional: true }, source: String::new() };
                     if let Err(e) = analyse_spatial(&cfg) {
                         panic!("accepted {r:?}, but: {e}");
                     }
@@ -459,7 +459,7 @@ proptest! {
         match SpatialModel::from_dimensionless(&inp) {
             Ok(model) => {
                 let spec = autobal::spatial::paths::SpatialSpec { input: autobal::spatial::paths::SpatialInput::Dimensionless(inp), delta_a_override: None };
-                let cfg = config::Config { model, spec, analysis: config::Analysis { sensitivity_limit: 0.15, omega_max: None, operating_speed: None }, source: String::new(), text: String::new(), dimensional: false };
+                let cfg = config::Config { config: autobal::config::SpatialConfig { model, spec, analysis: config::Analysis { sensitivity_limit: 0.15, omega_max: None, operating_speed: None }, dimensional: false }, source: String::new() };
                 if let Err(e) = analyse_spatial(&cfg) {
                     panic!("accepted {inp:?}, but: {e}");
                 }

@@ -11,13 +11,8 @@ use std::fmt::Write;
 
 pub use autobal::spatial::comparison::{compare, Comparison};
 
-/// The library's view of a loaded config.
-pub fn library(cfg: &Config) -> autobal::config::SpatialConfig {
-    autobal::config::SpatialConfig { model: cfg.model.clone(), spec: cfg.spec.clone(), analysis: cfg.analysis.clone(), dimensional: cfg.dimensional }
-}
-
 pub fn stability_json(cfg: &Config, c: &Comparison, balls: Balls) -> Value {
-    autobal::reports::to_json(&autobal::reports::stability_of(&library(cfg), c, balls))
+    autobal::reports::to_json(&autobal::reports::stability_of(&cfg.config, c, balls))
 }
 
 /// A speed `Ω` as the config's user reads it: `Ω = 1.5 (157.1 rad/s, 1500 rpm)` for a
@@ -95,7 +90,7 @@ pub fn stability_table(cfg: &Config, c: &Comparison, balls: Balls) -> String {
         if op[1] <= c.omega_max {
             autobal::reports::operating_verdict(&cfg.model, op, &c.exact.stable_ranges, c.omega_max, balls)
         } else {
-            autobal::reports::operating_of(&library(cfg), balls).expect("an operating speed")
+            autobal::reports::operating_of(&cfg.config, balls).expect("an operating speed")
         }
     });
     if let Some(w) = autobal::reports::no_balanced_state_warning(&cfg.model) {

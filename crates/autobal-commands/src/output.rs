@@ -10,14 +10,9 @@ use std::fmt::Write;
 pub use autobal::reports::scale_ranges;
 pub use autobal::spatial::comparison::fmt_ranges;
 
-/// The library's view of a loaded config.
-fn spatial(cfg: &Config) -> autobal::config::SpatialConfig {
-    autobal::config::SpatialConfig { model: cfg.model.clone(), spec: cfg.spec.clone(), analysis: cfg.analysis.clone(), dimensional: cfg.dimensional }
-}
-
 /// `autobal critical`'s JSON on the 12-state model ([`autobal::reports::CriticalReport`]).
 pub fn critical_json(cfg: &Config) -> Value {
-    autobal::reports::to_json(&autobal::reports::critical(&spatial(cfg), &cfg.source))
+    autobal::reports::to_json(&autobal::reports::critical(&cfg.config, &cfg.source))
 }
 
 /// The result of a command whose JSON and table are both built once from the config
@@ -182,7 +177,7 @@ pub fn critical_rows(cs: &CriticalSpeeds, dimensional: bool) -> Vec<[String; 8]>
 pub fn critical_table(cfg: &Config) -> String {
     let mut s = String::new();
     header(cfg, &mut s);
-    let op = autobal::reports::operating_of(&crate::linear::library(cfg), autobal::spatial::linear_model::Balls::Free);
+    let op = autobal::reports::operating_of(&cfg.config, autobal::spatial::linear_model::Balls::Free);
     let exact = op.as_ref().and_then(|v| v.as_ref().ok()).map(|v| (v.stable_ranges.clone(), v.span));
     s.push_str(&crate::linear::operating_lines(cfg, op));
     let cs = critical_speeds(&cfg.model);
@@ -256,5 +251,5 @@ pub fn ranges_table(cfg: &Config) -> String {
 
 /// Every number the analytic commands report is finite (else the error names the quantity).
 pub fn check_results(cfg: &Config) -> anyhow::Result<()> {
-    Ok(autobal::reports::check_results(&spatial(cfg))?)
+    Ok(autobal::reports::check_results(&cfg.config)?)
 }

@@ -269,27 +269,13 @@ fn context(cs: &ConfigSource, quick: bool, kind: Kind, control: &autobal::contro
     for w in spatial.iter().flat_map(|c| autobal::reports::actionable_warnings(&c.model.anisotropy)) {
         crate::term::note(&format!("warning: {w}"));
     }
-    let spatial_text = spatial.as_ref().map(|c| c.text.clone());
     let mut source_line = source.clone();
     if let ConfigSource::File { sets, .. } = cs {
         for s in sets {
             source_line.push_str(&format!(" --set {s}"));
         }
     }
-    Ok(Ctx {
-        kind,
-        spatial,
-        planar,
-        linear,
-        quick,
-        source: source_line,
-        text: match &spatial_text {
-            Some(t) => t.clone(),
-            None => toml::to_string(&root).unwrap_or_default(),
-        },
-        root,
-        control: control.clone(),
-    })
+    Ok(Ctx { kind, spatial, planar, linear, quick, source: source_line, text: toml::to_string(&root).unwrap_or_default(), root, control: control.clone() })
 }
 
 /// Build every section and write the folder (also when interrupted: the page says which
