@@ -518,8 +518,9 @@ fn write_figures(out: &impl Output, flag: &str, files: &[(PathBuf, &str)], missi
 
 /// `sweep`: the arguments, config and grid checked, then the outputs (`STEM.csv`, `STEM.json`,
 /// `STEM.parquet`), then the runs streamed to the CSV (renamed into place when the sweep ends or
-/// is interrupted: complete rows, with its JSON; an error removes it), the JSON written, the
-/// table or JSON printed.
+/// is interrupted: complete rows, with its JSON; an error removes it) and each run's JSON to a
+/// scratch file ([`sweep::Spill`]), the JSON streamed from it to `STEM.json`, the table (its
+/// first rows) or the JSON (streamed from `STEM.json`) printed: memory flat in the points.
 fn run_sweep(a: SweepFlags, control: &Control) -> Result<()> {
     let args = sweep::Args {
         config: ConfigSource::file(a.config.as_deref(), &a.set),
@@ -543,8 +544,9 @@ fn run_sweep(a: SweepFlags, control: &Control) -> Result<()> {
         true => Some(parquet::Table::create(&pq_path, &plan.columns(), true)?),
         false => None,
     };
+    let mut spill = sweep::Spill::create(&json_path)?;
     let (shown, bar) = term::progress_bar(control);
-    let result = plan.run(&shown, sweep::Rows::Files { csv: &mut csv, parquet: pq.as_mut() });
+    let result = plan.run(&shown, sweep::Rows::Files { csv: &mut csv, parquet: pq.as_mut(), runs: Some(&mut spill) });
     if let Some(b) = bar {
         b.finish_and_clear();
     }
@@ -557,7 +559,18 @@ fn run_sweep(a: SweepFlags, control: &Control) -> Result<()> {
     if let Some(t) = pq {
         term::note(&format!("wrote {}", t.finish()?.display()));
     }
-    outfile::write_atomic("--out", &json_path, serde_json::to_string_pretty(&out.json)?)?;
+    let mut json = outfile::Staged::create("--out", &json_path)?;
+    out.write_report(&mut json, Some(&mut spill.reader()?)).map_err(|e| anyhow::anyhow!("--out: cannot write {}: {e:#}", json_path.display()))?;
+    json.commit()?;
+    drop(spill);
+    if let Format::Json = a.format {
+        use std::io::Write;
+        let stdout = std::io::stdout();
+        let mut lock = stdout.lock();
+        std::io::copy(&mut std::fs::File::open(&json_path)?, &mut lock)?;
+        lock.flush()?;
+        return out.stopped().map_or(Ok(()), |why| Err(anyhow::anyhow!(why)));
+    }
     show(&out, a.format)
 }
 

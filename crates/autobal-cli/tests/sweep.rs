@@ -273,3 +273,23 @@ fn spatial_sweep_points_are_simulate_runs_and_shards_merge() {
     assert!(err.contains("a different sweep") && err.contains("problem"), "{err}");
     std::fs::remove_dir_all(&d).ok();
 }
+
+/// `--format json` prints `STEM.json` as written (streamed from the runs spilled to a scratch
+/// file, which is gone afterwards), valid JSON with every run, one run per line.
+#[test]
+fn printed_json_is_the_json_file_and_no_scratch_is_left() {
+    let d = dir("stream");
+    let stem = d.join("s").to_str().unwrap().to_string();
+    let mut args = vec!["sweep", "--out", &stem, "--format", "json"];
+    args.extend(GRID);
+    let printed = ok(&args);
+    let file = std::fs::read_to_string(d.join("s.json")).unwrap();
+    assert_eq!(printed, file);
+    let j: serde_json::Value = serde_json::from_str(&file).unwrap();
+    assert_eq!(j["runs"].as_array().unwrap().len(), 12);
+    assert_eq!(file.lines().filter(|l| l.starts_with("    {\"point\":")).count(), 12);
+    let mut names: Vec<String> = std::fs::read_dir(&d).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+    names.sort();
+    assert_eq!(names, ["s.csv", "s.json"], "only the outputs are left");
+    std::fs::remove_dir_all(&d).ok();
+}

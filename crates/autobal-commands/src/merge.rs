@@ -347,10 +347,10 @@ mod tests {
         for k in [2, 1] {
             let plan = sweep::Args { shard: Some((k, 2)), ..args.clone() }.prepare().unwrap();
             let mut csv = vec![];
-            let out = plan.run(&Control::none(), sweep::Rows::Files { csv: &mut csv, parquet: None }).unwrap();
+            let out = plan.run(&Control::none(), sweep::Rows::Files { csv: &mut csv, parquet: None, runs: None }).unwrap();
             let p = dir.join(format!("p{k}.csv"));
             std::fs::write(&p, csv).unwrap();
-            std::fs::write(p.with_extension("json"), serde_json::to_string_pretty(&out.json).unwrap()).unwrap();
+            std::fs::write(p.with_extension("json"), serde_json::to_string_pretty(&out.json().unwrap()).unwrap()).unwrap();
             shards.push(p);
         }
         let merged = Args { shards: shards.clone(), out: dir.join("merged"), parquet: false }.run(&Control::none()).unwrap();
@@ -358,7 +358,7 @@ mod tests {
             merged.table().unwrap(),
             format!("merged 2 shards, 6 points: wrote {}, {}\n", dir.join("merged.csv").display(), dir.join("merged.json").display())
         );
-        let whole = args.run(&Control::none()).unwrap().json;
+        let whole = args.run(&Control::none()).unwrap().json().unwrap();
         let runs = |v: &Value| -> Vec<Value> {
             v["runs"]
                 .as_array()

@@ -1,8 +1,9 @@
 //! `autobal sweep`: simulations over a grid of parameter paths, as one command ([`Args`] ->
 //! [`Args::prepare`] -> [`Plan::run`] -> [`Output`]): the library's [`autobal::sweep`] runs them
 //! in parallel and hands the runs over in order; the CLI streams them to its CSV (and Parquet)
-//! as they arrive, Python takes the JSON. Sharded for batch systems (`shard`), merged back by
-//! [`crate::merge`].
+//! as they arrive and spills each run's JSON to a scratch file ([`Spill`]), so that its memory
+//! does not grow with the number of points; Python takes the JSON. Sharded for batch systems
+//! (`shard`), merged back by [`crate::merge`].
 
 use crate::command::{self, ConfigSource};
 use crate::config;
@@ -12,9 +13,10 @@ use autobal::planar::problem::PlanarProblem;
 use autobal::sweep::{definition_checksum, shard, simulate_grid, Axis, Grid, SpatialSweep, SweepModel, SweepSummary};
 pub use autobal::sweep::{SPATIAL_SUMMARY_COLUMNS, SUMMARY_COLUMNS};
 use serde_json::{json, Value};
-use std::io::Write;
+use std::fs::File;
+use std::io::{BufRead, BufReader, BufWriter, Seek, Write};
 use std::ops::Range;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// `autobal sweep`'s arguments (`Default`: the CLI's defaults; `x` has none and is required).
 #[derive(Debug, Clone)]
@@ -72,6 +74,10 @@ pub fn columns(paths: &[&str], summary: &[&str]) -> Vec<String> {
 /// Points whose warnings the notes list one by one; the others are counted.
 const PRINTED_WARNINGS: usize = 10;
 
+/// Rows the table shows (the first ones, in order); the others are counted in its last line
+/// (`... N more rows in STEM.csv`), so that the table's memory does not grow with the grid.
+pub const TABLE_ROWS: usize = 100;
+
 /// A run's summary as the sweep's table shows it.
 pub(crate) trait Row: SweepSummary {
     /// The table's header after the axes (`lu`: the unit of lengths).
@@ -117,10 +123,66 @@ impl Row for autobal::spatial::dynamics::Summary {
 
 /// Where a sweep's runs go as they arrive, besides the JSON.
 pub enum Rows<'a> {
-    /// The CSV (header first) and, where given, the Parquet table.
-    Files { csv: &'a mut dyn Write, parquet: Option<&'a mut crate::parquet::Table> },
-    /// Nowhere else (Python's JSON).
+    /// The CSV (header first) and, where given, the Parquet table; with `runs`, each run's JSON
+    /// (compact, one line each: [`autobal::sweep::run_json`]) goes there instead of memory,
+    /// and [`Output::write_report`] reads it back.
+    Files { csv: &'a mut dyn Write, parquet: Option<&'a mut crate::parquet::Table>, runs: Option<&'a mut dyn Write> },
+    /// Nowhere else (Python's JSON: the runs are kept in the [`Output`], one compact JSON
+    /// line each).
     None,
+}
+
+/// A scratch file for the runs' JSON lines ([`Rows::Files`]' `runs`), beside the outputs
+/// (`NAME.runs.PID.part`): removed when dropped (on Unix at once, so that not even a killed
+/// process leaves it behind: the open handle keeps it).
+pub struct Spill {
+    path: PathBuf,
+    file: BufWriter<File>,
+}
+
+impl Spill {
+    /// Create the scratch file beside `beside` (the JSON it is for).
+    pub fn create(beside: &Path) -> Result<Self> {
+        let mut name = beside.file_name().map(|n| n.to_os_string()).unwrap_or_default();
+        name.push(format!(".runs.{}.part", std::process::id()));
+        let path = beside.with_file_name(name);
+        let f = File::options()
+            .read(true)
+            .write(true)
+            .create(true)
+            .truncate(true)
+            .open(&path)
+            .map_err(|e| anyhow!("--out: cannot create {}: {e}", path.display()))?;
+        #[cfg(unix)]
+        let _ = std::fs::remove_file(&path);
+        Ok(Spill { path, file: BufWriter::with_capacity(1 << 16, f) })
+    }
+
+    /// The lines written, from the start.
+    pub fn reader(&mut self) -> Result<BufReader<&File>> {
+        self.file.flush().map_err(|e| anyhow!("--out: cannot write {}: {e}", self.path.display()))?;
+        let mut f = self.file.get_ref();
+        f.rewind()?;
+        Ok(BufReader::with_capacity(1 << 16, f))
+    }
+}
+
+impl Write for Spill {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        self.file.write(buf)
+    }
+    fn write_all(&mut self, buf: &[u8]) -> std::io::Result<()> {
+        self.file.write_all(buf)
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        self.file.flush()
+    }
+}
+
+impl Drop for Spill {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_file(&self.path);
+    }
 }
 
 /// A sweep whose arguments, config and grid are checked ([`Args::prepare`]): a front end
@@ -258,9 +320,9 @@ impl Plan {
         M::Summary: Row,
     {
         let (lu, ls) = self.units;
-        let (mut csv, mut pq) = match rows {
-            Rows::Files { csv, parquet } => (Some(csv), parquet),
-            Rows::None => (None, None),
+        let (mut csv, mut pq, mut spill) = match rows {
+            Rows::Files { csv, parquet, runs } => (Some(csv), parquet, runs),
+            Rows::None => (None, None, None),
         };
         let cols = self.columns();
         if let Some(w) = csv.as_mut() {
@@ -272,7 +334,9 @@ impl Plan {
             table.push_str(&format!("{k:>14} "));
         }
         table.push_str(&<M::Summary as Row>::header(lu));
-        let mut runs = vec![];
+        // the runs' JSON, one compact line each: kept here, or spilled (then only counted)
+        let (mut runs, mut spilled) = (vec![], 0usize);
+        let mut more_rows = 0usize;
         // points whose runs have warnings: the first few listed, the rest counted (every run's
         // warnings are in the JSON)
         let (mut warned, mut warnings) = (0usize, vec![]);
@@ -305,11 +369,15 @@ impl Plan {
                     }
                 }
                 let s = &r.summary;
-                for v in values.iter().take(2) {
-                    table.push_str(&format!("{v:>14} "));
-                }
                 let ws = s.warnings();
-                table.push_str(&format!("{}{}\n", s.cells(ls), ws.first().map_or(String::new(), |w| format!("  ({w})"))));
+                if done < TABLE_ROWS as u64 {
+                    for v in values.iter().take(2) {
+                        table.push_str(&format!("{v:>14} "));
+                    }
+                    table.push_str(&format!("{}{}\n", s.cells(ls), ws.first().map_or(String::new(), |w| format!("  ({w})"))));
+                } else {
+                    more_rows += 1;
+                }
                 if !ws.is_empty() {
                     warned += 1;
                     if warned <= PRINTED_WARNINGS {
@@ -318,7 +386,17 @@ impl Plan {
                         }
                     }
                 }
-                runs.push(autobal::sweep::run_json(i, values, r));
+                let line = autobal::sweep::run_json(i, values, r).to_string();
+                match spill.as_mut() {
+                    Some(w) => {
+                        if let Err(e) = w.write_all(line.as_bytes()).and_then(|()| w.write_all(b"\n")) {
+                            io_error = Some(anyhow!("--out: cannot write the runs' JSON: {e}"));
+                            return false;
+                        }
+                        spilled += 1;
+                    }
+                    None => runs.push(line.into_boxed_str()),
+                }
                 done += 1;
                 control.report(done, total);
                 true
@@ -328,11 +406,13 @@ impl Plan {
         if let Some(e) = io_error {
             return Err(e);
         }
-        let mut json = autobal::sweep::report(&self.grid, self.shard, &self.range, outcome.complete(), self.problem.clone(), runs);
-        json["definition_checksum"] = json!(definition_checksum(&self.root, &self.grid));
+        let mut header = autobal::sweep::report(&self.grid, self.shard, &self.range, outcome.complete(), self.problem.clone(), vec![]);
+        header["definition_checksum"] = json!(definition_checksum(&self.root, &self.grid));
         Ok(Output {
-            json,
+            header,
+            runs: if spill.is_some() { Runs::Spilled(spilled) } else { Runs::Kept(runs) },
             table,
+            more_rows,
             warnings,
             more_warned: warned.saturating_sub(PRINTED_WARNINGS),
             delivered: outcome.delivered,
@@ -342,11 +422,23 @@ impl Plan {
     }
 }
 
+/// The runs' JSON ([`autobal::sweep::run_json`], compact, one line each, in order).
+enum Runs {
+    /// Kept in memory.
+    Kept(Vec<Box<str>>),
+    /// Written to [`Rows::Files`]' `runs` (this many lines).
+    Spilled(usize),
+}
+
 /// `sweep`'s result: its JSON (every run, in order), its table, its runs' warnings.
 pub struct Output {
-    /// The JSON (`STEM.json`, `--format json`, Python's `autobal.run("sweep")`).
-    pub json: Value,
+    /// The JSON but its runs (`runs` empty): the grid, the part, the problem, the checksum.
+    header: Value,
+    runs: Runs,
+    /// The table's header and its first [`TABLE_ROWS`] rows.
     table: String,
+    /// Rows beyond those in the table.
+    more_rows: usize,
     /// The first runs' warnings, one line each.
     pub warnings: Vec<String>,
     /// Points with warnings beyond those listed.
@@ -359,6 +451,48 @@ pub struct Output {
 }
 
 impl Output {
+    /// Write the JSON (`STEM.json`, `--format json`), pretty-printed as
+    /// `serde_json::to_string_pretty` would (keys in its order) but each run on one line, with
+    /// a final newline, streamed: the runs from `spilled` (the lines written to
+    /// [`Rows::Files`]' `runs`), or those kept. The whole JSON is never held in memory.
+    pub fn write_report(&self, w: &mut dyn Write, spilled: Option<&mut dyn BufRead>) -> Result<()> {
+        let mut lines: Box<dyn Iterator<Item = Result<String>> + '_> = match (&self.runs, spilled) {
+            (Runs::Kept(runs), _) => Box::new(runs.iter().map(|l| Ok(l.to_string()))),
+            (Runs::Spilled(n), Some(r)) => {
+                let n = *n;
+                Box::new(r.lines().take(n).map(|l| l.map_err(|e| anyhow!("cannot read the runs back: {e}"))))
+            }
+            (Runs::Spilled(_), None) => bail!("the runs were written to a file: give it to write the JSON"),
+        };
+        let header = self.header.as_object().ok_or_else(|| anyhow!("a sweep's JSON is an object"))?;
+        w.write_all(b"{")?;
+        for (i, (k, v)) in header.iter().enumerate() {
+            w.write_all(if i == 0 { b"\n  " } else { b",\n  " })?;
+            serde_json::to_writer(&mut *w, k)?;
+            w.write_all(b": ")?;
+            if k != "runs" {
+                w.write_all(serde_json::to_string_pretty(v)?.replace('\n', "\n  ").as_bytes())?;
+                continue;
+            }
+            let mut n = 0usize;
+            for line in lines.by_ref() {
+                w.write_all(if n == 0 { b"[\n    " } else { b",\n    " })?;
+                w.write_all(line?.trim_end().as_bytes())?;
+                n += 1;
+            }
+            w.write_all(if n == 0 { b"[]" } else { b"\n  ]" })?;
+            let want = match &self.runs {
+                Runs::Kept(r) => r.len(),
+                Runs::Spilled(s) => *s,
+            };
+            if n != want {
+                bail!("the runs' JSON: {n} of {want} runs read back");
+            }
+        }
+        w.write_all(b"\n}\n")?;
+        Ok(())
+    }
+
     /// Lines for standard error: the first runs' warnings, the count of the others.
     pub fn notes(&self) -> Vec<String> {
         let mut out = self.warnings.clone();
@@ -371,11 +505,24 @@ impl Output {
 }
 
 impl command::Output for Output {
+    /// The JSON, every run parsed back from its line (exactly: `float_roundtrip`); an output
+    /// whose runs were spilled to a file has none to give (the CLI streams its `STEM.json`).
     fn json(&self) -> Result<Value> {
-        Ok(self.json.clone())
+        let Runs::Kept(runs) = &self.runs else { bail!("the runs were written to a file, not kept: read STEM.json") };
+        let mut json = self.header.clone();
+        json["runs"] = Value::Array(runs.iter().map(|l| serde_json::from_str(l)).collect::<serde_json::Result<_>>()?);
+        Ok(json)
+    }
+    fn write_json(&self, out: &mut dyn Write) -> Result<()> {
+        self.write_report(out, None)
     }
     fn table(&self) -> Result<String> {
-        Ok(self.table.clone())
+        let mut t = self.table.clone();
+        if self.more_rows > 0 {
+            let whole = self.written.as_ref().map_or("the JSON".to_string(), |s| crate::term::with_suffix(s, "csv").display().to_string());
+            t.push_str(&format!("... {} more rows in {whole}\n", self.more_rows));
+        }
+        Ok(t)
     }
     fn stopped(&self) -> Option<String> {
         (self.delivered < self.points).then(|| {
@@ -423,10 +570,11 @@ mod tests {
         };
         let plan = args.prepare().unwrap();
         let mut csv = vec![];
-        let out = plan.run(&Control::none(), Rows::Files { csv: &mut csv, parquet: None }).unwrap();
+        let out = plan.run(&Control::none(), Rows::Files { csv: &mut csv, parquet: None, runs: None }).unwrap();
         assert_eq!(out.stopped(), None);
         let text = String::from_utf8(csv).unwrap();
-        let runs = out.json["runs"].as_array().unwrap();
+        let json = out.json().unwrap();
+        let runs = json["runs"].as_array().unwrap();
         assert_eq!(text.lines().count(), 1 + 6);
         assert_eq!(text.lines().next().unwrap(), plan.columns().join(","));
         for (l, r) in text.lines().skip(1).zip(runs) {
@@ -436,7 +584,7 @@ mod tests {
             assert_eq!(&f[1..3], &values[..]);
             assert_eq!(f.last().unwrap().to_bits(), r["wall_time_s"].as_f64().unwrap().to_bits());
         }
-        let shard = |k| Args { shard: Some((k, 2)), ..args.clone() }.run(&Control::none()).unwrap().json;
+        let shard = |k| Args { shard: Some((k, 2)), ..args.clone() }.run(&Control::none()).unwrap().json().unwrap();
         let (a, b) = (shard(1), shard(2));
         // the runs but for their wall times (they differ between runs)
         let summary =
@@ -445,8 +593,8 @@ mod tests {
             |v: &Value| v["runs"].as_array().unwrap().iter().map(|r| (r["point"].clone(), r["values"].clone(), summary(&r["summary"]))).collect::<Vec<_>>();
         let mut joined = strip(&a);
         joined.extend(strip(&b));
-        assert_eq!(joined, strip(&out.json));
-        assert_eq!(a["definition_checksum"], out.json["definition_checksum"]);
+        assert_eq!(joined, strip(&json));
+        assert_eq!(a["definition_checksum"], json["definition_checksum"]);
     }
 
     /// Bad axes and shards name their option, before anything runs.
@@ -472,9 +620,71 @@ mod tests {
         control.cancel();
         let args = Args { config: short(), x: parse_axis("--x", "planar.c_psi=0.05:0.15:3").unwrap(), ..Default::default() };
         let mut out = args.run(&control).unwrap();
-        assert_eq!(out.json["complete"], json!(false));
+        assert_eq!(out.json().unwrap()["complete"], json!(false));
         assert_eq!(out.stopped().unwrap(), format!("interrupted: {} of 3 runs complete", out.delivered));
         out.written = Some("sw".into());
         assert!(out.stopped().unwrap().ends_with(", kept in sw.csv"));
+    }
+
+    /// The JSON streamed from the spilled runs ([`Output::write_report`], the CLI's
+    /// `STEM.json`) is, as parsed JSON, the one built in memory the way it was before the
+    /// spill (`report` with every run's `run_json` value, pretty-printed by serde_json):
+    /// every key and value, the same runs in order, exactly (the spill's numbers are read back
+    /// with `float_roundtrip`); a sweep kept in memory (Python's) writes the same text as
+    /// its `json()`. Past [`TABLE_ROWS`] rows, the table counts the others.
+    #[test]
+    fn streamed_json_equals_the_json_built_in_memory() {
+        let mut root = crate::config::parse_text(crate::config::DEFAULT_PLANAR, "test").unwrap();
+        // short runs: the test is about the files, not the physics
+        for s in ["drive.t_end=0.05", "drive.omega0=250.0", "drive.b=100.0"] {
+            crate::config::apply_set(&mut root, s).unwrap();
+        }
+        let args = Args {
+            config: ConfigSource::tables(root, "test"),
+            x: parse_axis("--x", "planar.c_psi=0.05:0.15:3").unwrap(),
+            y: Some(parse_axis("--y", &format!("drive.b=80:120:{}", TABLE_ROWS / 3 + 2)).unwrap()),
+            shard: Some((1, 1)),
+            ..Default::default()
+        };
+        let plan = args.prepare().unwrap();
+        let (mut csv, mut spill) = (vec![], vec![]);
+        let mut out = plan.run(&Control::none(), Rows::Files { csv: &mut csv, parquet: None, runs: Some(&mut spill) }).unwrap();
+        let points = plan.grid.len();
+        assert!(points > TABLE_ROWS);
+        // one compact run per line
+        let spilled = String::from_utf8(spill.clone()).unwrap();
+        assert_eq!(spilled.lines().count(), points);
+        assert!(out.json().is_err(), "the runs were not kept");
+        let mut text = vec![];
+        out.write_report(&mut text, Some(&mut &spill[..])).unwrap();
+        let text = String::from_utf8(text).unwrap();
+        let streamed: Value = serde_json::from_str(&text).unwrap();
+        // built in memory, as before: every run a Value, the report pretty-printed
+        let runs: Vec<Value> = spilled.lines().map(|l| serde_json::from_str(l).unwrap()).collect();
+        let mut built = autobal::sweep::report(&plan.grid, plan.shard, &plan.range, true, plan.problem.clone(), runs);
+        built["definition_checksum"] = json!(definition_checksum(&plan.root, &plan.grid));
+        let built: Value = serde_json::from_str(&serde_json::to_string_pretty(&built).unwrap()).unwrap();
+        assert_eq!(streamed, built);
+        assert_eq!(streamed["runs"].as_array().unwrap().len(), points);
+        assert_eq!(streamed["shard"], json!([1, 1]));
+        // the keys in serde_json's order, each run on one line, a final newline
+        let keys: Vec<&str> = text.lines().filter(|l| l.starts_with("  \"")).map(|l| &l[3..l[3..].find('"').unwrap() + 3]).collect();
+        assert_eq!(keys, built.as_object().unwrap().keys().map(String::as_str).collect::<Vec<_>>());
+        assert_eq!(text.lines().filter(|l| l.starts_with("    {\"point\":")).count(), points);
+        assert!(text.ends_with("\n}\n"));
+        // a spill cut short is an error, not a JSON with runs missing
+        let cut = &spill[..spill.len() / 2];
+        assert!(out.write_report(&mut vec![], Some(&mut &cut[..])).is_err());
+        // the table: the first TABLE_ROWS rows, then the count of the others
+        let table = out.table().unwrap();
+        assert_eq!(table.lines().count(), 1 + TABLE_ROWS + 1);
+        assert!(table.ends_with(&format!("... {} more rows in the JSON\n", points - TABLE_ROWS)), "{table}");
+        out.written = Some("sw".into());
+        assert!(out.table().unwrap().ends_with(&format!("... {} more rows in sw.csv\n", points - TABLE_ROWS)));
+        // kept in memory (Python's route): write_json is json(), pretty-printed
+        let kept = plan.run(&Control::none(), Rows::None).unwrap();
+        let mut text = vec![];
+        kept.write_json(&mut text).unwrap();
+        assert_eq!(serde_json::from_slice::<Value>(&text).unwrap(), kept.json().unwrap());
     }
 }
