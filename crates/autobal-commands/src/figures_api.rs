@@ -1,7 +1,7 @@
 //! The figures of each command's result, for a front end that draws them itself (the Python
-//! module's `.plot()`, which builds `plotly.graph_objects.Figure`s): the same [`Plot`]
+//! module's `.plot()`, which builds `plotly.graph_objects.Figure`s): the same [`Plot`](crate::plot::Plot)
 //! descriptions the CLI writes as SVG/PNG and the report embeds as Plotly JSON, computed as the
-//! CLI computes them (same routes, same defaults), returned as [`Plot::to_plotly`]'s JSON.
+//! CLI computes them (same routes, same defaults), returned as [`Plot::to_plotly`](crate::plot::Plot::to_plotly)'s JSON.
 //!
 //! - `stability`: `stability_margin` (paper 000's 12-state model, or the general route where
 //!   the CLI takes it: [`crate::general::needs_general_route`]);

@@ -296,7 +296,7 @@ pub enum RouteOutput {
         outcome: GeneralMapOutcome,
         /// The planar or a linear rotor (ω in rad/s), else the spatial one.
         planar: bool,
-        /// A linear rotor ([linear_rotor]).
+        /// A linear rotor (`[linear_rotor]`).
         linear: bool,
         /// The bisected boundary points, with `boundary`.
         traced: Option<Vec<BoundaryPoint>>,
