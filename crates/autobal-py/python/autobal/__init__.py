@@ -10,14 +10,14 @@ same tables and keys as the ``autobal`` command line, ``examples/*.toml``):
   (:func:`simulate_batch`, :func:`sweep`, on a Dask cluster with ``client=``), which also run
   the spatial rotor of a :class:`SpatialModel` with ``[drive]``.
 
-:func:`run` is every analytic and simulation command of the CLI as one call, returning the
-dict that ``autobal COMMAND --format json`` prints; :func:`analyse` returns the same as a
-:class:`Result` with ``.plot()`` (Plotly figures, the report's), ``.to_pandas()`` and a rich
-display in Jupyter; :func:`report` writes the HTML report of ``autobal report``, :func:`merge` joins the
-shards of ``autobal sweep --shard K/N`` as ``autobal merge`` does, and :func:`export_model`
-writes a linear rotor's config and matrices as ``autobal export-model`` does. The wheel also
-installs the ``autobal`` command itself. Errors are :mod:`autobal.errors`
-exceptions naming the field. Long calls release the GIL and stop on Ctrl-C.
+:func:`run` is every command of the CLI but ``report`` as one call, returning the dict that
+``autobal COMMAND --format json`` prints (for ``merge`` and ``export-model``, their JSON);
+:func:`analyse` returns the same as a :class:`Result` with ``.plot()`` (Plotly figures, the
+report's), ``.to_pandas()`` and a rich display in Jupyter; :func:`report` writes the HTML report
+of ``autobal report``, :func:`merge` joins the shards of ``autobal sweep --shard K/N`` as
+``autobal merge`` does, and :func:`export_model` writes a linear rotor's config and matrices as
+``autobal export-model`` does. The wheel also installs the ``autobal`` command itself. Errors are
+:mod:`autobal.errors` exceptions naming the field. Long calls release the GIL and stop on Ctrl-C.
 
 >>> import autobal
 >>> m = autobal.SpatialModel(delta_a=0.1)          # paper 000's base case, 003's anisotropy
@@ -537,7 +537,9 @@ def analyse(command: str, config: ConfigLike = None, set: Optional[Mapping[str, 
     table, and Jupyter shows a summary table and the main figure. Options as for :func:`run`;
     ``campbell`` also takes ``harmonics`` (its figures' excitation lines), ``map``
     ``boundary=True`` (the traced boundary on its figure, as the CLI's ``--boundary``). ``analyse("report",
-    config, out=..., quick=..., papers=...)`` is :func:`report`.
+    config, out=..., quick=..., papers=...)`` is :func:`report`; ``analyse("merge", shards=...,
+    out=...)`` is :func:`merge`, ``analyse("export-model", config, out=..., stem=...)``
+    :func:`export_model`.
 
     The figures are computed on the first ``.plot()`` (for ``simulate`` the run is repeated:
     its samples are not kept in Rust between the calls).
