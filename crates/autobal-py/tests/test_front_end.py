@@ -217,6 +217,8 @@ def case_merge(tmp_path):
     assert autobal.analyse("merge", shards=shards, out=str(tmp_path / "an")).result == merged
     df = got.to_pandas()
     assert list(df.point) == list(range(6)) and len((tmp_path / "py.csv").read_text().splitlines()) == 7
+    pq = autobal.merge(shards, out=tmp_path / "pq", parquet=True)
+    assert pq.files == [tmp_path / "pq.csv", tmp_path / "pq.json", tmp_path / "pq.parquet"] and pq.files[-1].stat().st_size > 0
     # the CLI's checks and messages: a shard given twice (nothing written), no shards
     with pytest.raises(autobal.AutobalError, match=r"^shard 2 of 2 is given twice"):
         autobal.merge([shards[0], shards[0]], out=tmp_path / "twice")

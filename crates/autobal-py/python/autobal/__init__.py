@@ -582,9 +582,9 @@ def analyse(command: str, config: ConfigLike = None, set: Optional[Mapping[str, 
 
 
 def merge(shards: Sequence[Union[str, "os.PathLike[str]"]], out: Union[str, "os.PathLike[str]"], parquet: bool = False) -> Result:
-    """Join the outputs of ``autobal sweep --shard K/N`` (or of ``run("sweep", shard="K/N")``
-    written to files) into the unsharded sweep's ``STEM.csv`` and ``STEM.json`` at the stem
-    ``out`` (a folder ``DIR/``: ``DIR/sweep.*``), as ``autobal merge SHARDS --out OUT`` does (the
+    """Join the outputs of ``autobal sweep --shard K/N`` (each shard's ``STEM.csv`` and
+    ``STEM.json``) into the unsharded sweep's ``STEM.csv`` and ``STEM.json`` at the stem ``out``
+    (a folder ``DIR/``: ``DIR/sweep.*``), as ``autobal merge SHARDS --out OUT`` does (the
     same code): ``shards`` are the shards' CSV files, each with its ``STEM.json`` beside it, in
     any order; ``parquet=True`` also writes ``STEM.parquet`` (the CLI's ``--parquet``).
     Every shard is checked first (the same sweep, each shard once and complete, every row its
