@@ -805,6 +805,56 @@ fn report(py: Python<'_>, config: Option<std::path::PathBuf>, sets: Vec<String>,
     Ok(index.display().to_string())
 }
 
+/// `autobal merge`: the shards' CSV files (each with its `STEM.json` beside it, in any order)
+/// checked and joined into the unsharded sweep's `STEM.csv` and `STEM.json` at the stem `out`
+/// (and `STEM.parquet` with `parquet`, the CLI's `--parquet`), by the CLI's `merge::Args` and
+/// `run`. Returns the merged JSON text (the `STEM.json` written) and the paths written.
+#[pyfunction]
+#[pyo3(signature = (shards, out, parquet=false))]
+fn merge(py: Python<'_>, shards: Vec<std::path::PathBuf>, out: std::path::PathBuf, parquet: bool) -> PyResult<(String, Vec<String>)> {
+    use autobal_commands::command::{Command, Output};
+    let args = autobal_commands::merge::Args { shards, out, parquet };
+    commands_call(py, move |c| {
+        let o = args.run(c)?;
+        let files = [Some(&o.csv), Some(&o.json_path), o.parquet.as_ref()].into_iter().flatten().map(|p| p.display().to_string()).collect();
+        Ok((o.json()?.to_string(), files))
+    })
+}
+
+/// `autobal export-model`: a linear rotor written as `STEM.toml` and `STEM_{M,C,G,K}.mtx` into
+/// the folder `out`, by the CLI's `export_model::Args` and `run`: the rotor of the config file
+/// `config` (with `sets`, the CLI's `--set`), or of the tables `dict`, or without either paper
+/// 004's rotor; `out`, `stem` `None`: the CLI's defaults (`Args::default()`). Returns the
+/// command's JSON text, `{"files": [...]}` (the paths written).
+#[pyfunction]
+#[pyo3(signature = (config, dict, sets, out=None, stem=None))]
+fn export_model(
+    py: Python<'_>,
+    config: Option<std::path::PathBuf>,
+    dict: Option<&Bound<'_, PyDict>>,
+    sets: Vec<(String, Bound<'_, PyAny>)>,
+    out: Option<std::path::PathBuf>,
+    stem: Option<String>,
+) -> PyResult<String> {
+    use autobal_commands::command::{Command, ConfigSource, Output};
+    let config = match dict {
+        // tables: the overrides applied here, the matrices' files read from the working folder
+        Some(d) => ConfigSource::tables(table(py, None, Some(d), "dict", sets)?, "dict"),
+        // a file (or none): the CLI's `--config` and `--set`, read by the same code
+        None => {
+            let mut set = vec![];
+            for (k, v) in &sets {
+                set.push(format!("{k}={}", to_toml(v, k)?));
+            }
+            ConfigSource::file(config.as_deref(), &set)
+        }
+    };
+    let d = autobal_commands::export_model::Args { config, ..Default::default() };
+    let args = autobal_commands::export_model::Args { out: out.unwrap_or(d.out), stem: stem.unwrap_or(d.stem), config: d.config };
+    let v = commands_call(py, move |c| args.run(c)?.json())?;
+    Ok(v.to_string())
+}
+
 /// The `autobal` command line on `argv` (the program name first): what the binary does, with
 /// the GIL released; returns the exit code. The wheel's `autobal` console script
 /// (`autobal._cli:main`) calls it.
@@ -845,6 +895,8 @@ fn _autobal(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(cli_main, m)?)?;
     m.add_function(wrap_pyfunction!(figures, m)?)?;
     m.add_function(wrap_pyfunction!(report, m)?)?;
+    m.add_function(wrap_pyfunction!(merge, m)?)?;
+    m.add_function(wrap_pyfunction!(export_model, m)?)?;
     m.add("COMMANDS_WITH_FIGURES", autobal_commands::figures_api::COMMANDS_WITH_FIGURES.to_vec())?;
     m.add("COMMANDS", autobal_cli::command_names())?;
     Ok(())

@@ -199,13 +199,36 @@ def case_merge(tmp_path):
     for k in (1, 2):
         r = run(binary(), "sweep", "--out", str(tmp_path / f"p{k}"), "--shard", f"{k}/2", "--x", GRID["x"], "--y", GRID["y"], *setargs(SHORT_PLANAR))
         assert r.returncode == 0, r.stderr
-    r = run(binary(), "merge", str(tmp_path / "p2.csv"), str(tmp_path / "p1.csv"), "--out", str(tmp_path / "merged"))
+    shards = [str(tmp_path / "p2.csv"), str(tmp_path / "p1.csv")]
+    r = run(binary(), "merge", *shards, "--out", str(tmp_path / "merged"))
     assert r.returncode == 0, r.stderr
     merged = json.loads((tmp_path / "merged.json").read_text())
     # bit for bit: merge reads the shards' JSON back with serde_json's correctly rounded parser
     # (feature float_roundtrip; the default one once missed by 1 ulp: 0.0019022483945061678 in
     # the shard, 0.001902248394506168 in merged.json)
     assert without_walls(merged) == without_walls(autobal.run("sweep", set=SHORT_PLANAR, **GRID))
+    # Python's merge of the same shards: the CLI's JSON, wall times included (they are the
+    # shards'), and the same files byte for byte; run and analyse give the same
+    got = autobal.merge(shards, out=tmp_path / "py")
+    assert got.result == merged == autobal.run("merge", shards=shards, out=str(tmp_path / "run"))
+    assert got.files == [tmp_path / "py.csv", tmp_path / "py.json"]
+    for ext in ("csv", "json"):
+        assert (tmp_path / f"py.{ext}").read_bytes() == (tmp_path / f"merged.{ext}").read_bytes(), ext
+    assert autobal.analyse("merge", shards=shards, out=str(tmp_path / "an")).result == merged
+    df = got.to_pandas()
+    assert list(df.point) == list(range(6)) and len((tmp_path / "py.csv").read_text().splitlines()) == 7
+    pq = autobal.merge(shards, out=tmp_path / "pq", parquet=True)
+    assert pq.files == [tmp_path / "pq.csv", tmp_path / "pq.json", tmp_path / "pq.parquet"] and pq.files[-1].stat().st_size > 0
+    # the CLI's checks and messages: a shard given twice (nothing written), no shards
+    with pytest.raises(autobal.AutobalError, match=r"^shard 2 of 2 is given twice"):
+        autobal.merge([shards[0], shards[0]], out=tmp_path / "twice")
+    assert not (tmp_path / "twice.csv").exists()
+    with pytest.raises(autobal.InvalidParameter) as e:
+        autobal.merge([], out=tmp_path / "none")
+    assert e.value.field == "shards"
+    with pytest.raises(autobal.InvalidParameter) as e:
+        autobal.run("merge", config=SPATIAL, shards=shards, out=str(tmp_path / "x"))
+    assert e.value.field == "config"
 
 
 def case_basins(tmp_path):
@@ -237,16 +260,44 @@ def case_report(tmp_path):
 
 
 def case_export_model(tmp_path):
-    # export-model writes files only (no JSON): the wheel's `autobal` writes the binary's, byte
-    # for byte; Python reads them back (scipy.io.mmread) into a LinearRotor whose undamped
-    # natural frequencies are NumPy's sqrt(eig(M⁻¹ K)) of the same matrices
+    # export-model prints the files it wrote: the wheel's `autobal` writes the binary's, byte
+    # for byte, and so do autobal.export_model and run("export-model"), whose {"files"} are the
+    # paths the CLI printed; Python reads them back (scipy.io.mmread) into a LinearRotor whose
+    # undamped natural frequencies are NumPy's sqrt(eig(M⁻¹ K)) of the same matrices
+    printed = {}
     for exe, d in ((binary(), "cli"), (script(), "py")):
         r = run(exe, "export-model", "--out", str(tmp_path / d))
         assert r.returncode == 0, r.stderr
+        printed[d] = r.stdout
     names = sorted(p.name for p in (tmp_path / "cli").iterdir())
     assert names == sorted(p.name for p in (tmp_path / "py").iterdir()) and len(names) == 5
+    got = autobal.export_model(out=tmp_path / "fn")
+    ran = autobal.run("export-model", out=str(tmp_path / "py"))
+    assert printed["py"] == "wrote " + ", ".join(ran["files"]) + "\n"
+    assert got.files == [tmp_path / "fn" / f for f in ("rotor.toml", "rotor_M.mtx", "rotor_C.mtx", "rotor_G.mtx", "rotor_K.mtx")]
+    assert got.result == {"files": [str(p) for p in got.files]}
     for name in names:
-        assert (tmp_path / "cli" / name).read_bytes() == (tmp_path / "py" / name).read_bytes(), name
+        for d in ("py", "fn"):
+            assert (tmp_path / "cli" / name).read_bytes() == (tmp_path / d / name).read_bytes(), (d, name)
+    # a config with --set and --stem: the same files as the CLI's
+    cfg = tmp_path / "fn" / "rotor.toml"
+    r = run(binary(), "export-model", "--config", str(cfg), "--set", "linear_rotor.polar_inertia=0.5", "--out", str(tmp_path / "c2"), "--stem", "s")
+    assert r.returncode == 0, r.stderr
+    again = autobal.analyse("export-model", config=cfg, set={"linear_rotor.polar_inertia": 0.5}, out=tmp_path / "p2", stem="s")
+    assert [p.name for p in again.files] == ["s.toml", "s_M.mtx", "s_C.mtx", "s_G.mtx", "s_K.mtx"]
+    for p in again.files:
+        assert p.read_bytes() == (tmp_path / "c2" / p.name).read_bytes(), p.name
+    with pytest.raises(autobal.AutobalError, match=r'^stem "a/b": a file name stem without a folder'):
+        autobal.export_model(out=tmp_path / "never", stem="a/b")
+    assert not (tmp_path / "never").exists()
+    # errors as for the other commands: a missing config file, --set without a config
+    with pytest.raises(FileNotFoundError, match="nope.toml"):
+        autobal.export_model(config=tmp_path / "nope.toml", out=tmp_path / "never")
+    with pytest.raises(autobal.InvalidParameter) as e:
+        autobal.run("export-model", set={"linear_rotor.polar_inertia": 0.5}, out=str(tmp_path / "never"))
+    assert e.value.field == "set" and not (tmp_path / "never").exists()
+    with pytest.raises(TypeError, match="no table"):
+        got.to_pandas()
     mmread = pytest.importorskip("scipy.io").mmread
 
     def dense(x: str) -> np.ndarray:

@@ -10,12 +10,14 @@ same tables and keys as the ``autobal`` command line, ``examples/*.toml``):
   (:func:`simulate_batch`, :func:`sweep`, on a Dask cluster with ``client=``), which also run
   the spatial rotor of a :class:`SpatialModel` with ``[drive]``.
 
-:func:`run` is every analytic and simulation command of the CLI as one call, returning the
-dict that ``autobal COMMAND --format json`` prints; :func:`analyse` returns the same as a
-:class:`Result` with ``.plot()`` (Plotly figures, the report's), ``.to_pandas()`` and a rich
-display in Jupyter; :func:`report` writes the HTML report of ``autobal report``. The wheel also
-installs the ``autobal`` command itself. Errors are :mod:`autobal.errors`
-exceptions naming the field. Long calls release the GIL and stop on Ctrl-C.
+:func:`run` is every command of the CLI but ``report`` as one call, returning the dict that
+``autobal COMMAND --format json`` prints (for ``merge`` and ``export-model``, their JSON);
+:func:`analyse` returns the same as a :class:`Result` with ``.plot()`` (Plotly figures, the
+report's), ``.to_pandas()`` and a rich display in Jupyter; :func:`report` writes the HTML report
+of ``autobal report``, :func:`merge` joins the shards of ``autobal sweep --shard K/N`` as
+``autobal merge`` does, and :func:`export_model` writes a linear rotor's config and matrices as
+``autobal export-model`` does. The wheel also installs the ``autobal`` command itself. Errors are
+:mod:`autobal.errors` exceptions naming the field. Long calls release the GIL and stop on Ctrl-C.
 
 >>> import autobal
 >>> m = autobal.SpatialModel(delta_a=0.1)          # paper 000's base case, 003's anisotropy
@@ -56,6 +58,8 @@ __all__ = [
     "run",
     "analyse",
     "report",
+    "merge",
+    "export_model",
     "Result",
     "Report",
     "COMMANDS",
@@ -115,6 +119,12 @@ def _read(config: ConfigLike, default: str, default_name: str) -> Tuple[Optional
         return default, None, default_name
     if isinstance(config, Mapping):
         return None, dict(config), "dict"
+    p = _config_file(config)
+    return p.read_text(encoding="utf-8"), None, str(p)
+
+
+def _config_file(config: Union[str, "os.PathLike[str]"]) -> Path:
+    """The config file ``config``, checked: it exists and holds at most 1 MiB."""
     p = Path(config)
     try:
         size = p.stat().st_size
@@ -124,7 +134,7 @@ def _read(config: ConfigLike, default: str, default_name: str) -> Tuple[Optional
         raise type(e)(e.errno, f"config {p}: cannot read: {e.strerror}", str(p)) from None
     if size > 1 << 20:
         raise TooLarge(f"config {p}: {size} bytes exceeds the limit of 1048576 (a config is a few dozen lines)")
-    return p.read_text(encoding="utf-8"), None, str(p)
+    return p
 
 
 class _Config:
@@ -418,11 +428,18 @@ def run(command: str, config: ConfigLike = None, set: Optional[Mapping[str, Any]
       config (a planar one takes the general route, as on the CLI): the CLI writes CSV and
       figures; this returns the cells of its CSV as arrays ``len(y) × len(x)``: ``x``, ``y``,
       ``margin``, ``stable`` and ``necessary`` (closed form) or ``verdict`` and
-      ``family_dimension`` (general route, with ``route: "general"``).
+      ``family_dimension`` (general route, with ``route: "general"``);
+    - ``merge`` (``shards``, ``out``, ``parquet``; no config): writes the merged sweep as
+      :func:`merge` does and returns its JSON (the ``STEM.json`` written, the unsharded sweep's);
+    - ``export-model`` (``out``, ``stem``): writes the files as :func:`export_model` does and
+      returns ``{"files": [...]}``, the paths written.
 
     >>> run("critical", set={"dimensionless.delta_a": 0.1})["critical_speeds"][3]["omega"] > 3.79
     True
     """
+    if command in _FILE_COMMANDS:
+        # the commands that write files: their Result's JSON (the CLI's Output::json)
+        return _FILE_COMMANDS[command](config, set, options).result
     if _linear_config.is_linear(config):
         # a [linear_rotor] config file: stability, simulate, map, sweep, basins (_linear_config)
         return _linear_config.run(command, config, set, **options)
@@ -489,9 +506,11 @@ def run(command: str, config: ConfigLike = None, set: Optional[Mapping[str, Any]
             out["verdict"] = np.array(out["verdict"], dtype=object)
         out["x_path"], out["y_path"] = xp, yp
         return out
-    raise InvalidParameter(
-        f"command: \"{command}\" is not a command of autobal.run (inertia, critical, ranges, stability, campbell, simulate, sweep, basins, map); "
-        "report and merge write files: use the CLI"
+    if command == "report":
+        raise _invalid("command", "report writes a folder of pages: autobal.report(config, out=...) (or autobal.analyse(\"report\", ...))")
+    raise _invalid(
+        "command",
+        f"\"{command}\" is not a command of autobal.run (inertia, critical, ranges, stability, campbell, simulate, sweep, merge, basins, map, export-model)",
     )
 
 
@@ -518,7 +537,9 @@ def analyse(command: str, config: ConfigLike = None, set: Optional[Mapping[str, 
     table, and Jupyter shows a summary table and the main figure. Options as for :func:`run`;
     ``campbell`` also takes ``harmonics`` (its figures' excitation lines), ``map``
     ``boundary=True`` (the traced boundary on its figure, as the CLI's ``--boundary``). ``analyse("report",
-    config, out=..., quick=..., papers=...)`` is :func:`report`.
+    config, out=..., quick=..., papers=...)`` is :func:`report`; ``analyse("merge", shards=...,
+    out=...)`` is :func:`merge`, ``analyse("export-model", config, out=..., stem=...)``
+    :func:`export_model`.
 
     The figures are computed on the first ``.plot()`` (for ``simulate`` the run is repeated:
     its samples are not kept in Rust between the calls).
@@ -528,6 +549,8 @@ def analyse(command: str, config: ConfigLike = None, set: Optional[Mapping[str, 
     (True, 4)
     """
     arrays: Optional[Dict[str, Any]] = None
+    if command in _FILE_COMMANDS:
+        return _FILE_COMMANDS[command](config, set, options)
     if command != "report" and _linear_config.is_linear(config):
         lin = _linear_config.run(command, config, set, **options)
         text = Path(config).read_text(encoding="utf-8")
@@ -556,3 +579,79 @@ def analyse(command: str, config: ConfigLike = None, set: Optional[Mapping[str, 
         "embedded default (examples/planar.toml)" if planar_default else SpatialModel._DEFAULT_NAME,
     )
     return Result(command, result, (text, table, source, list((set or {}).items())), options, arrays)
+
+
+def merge(shards: Sequence[Union[str, "os.PathLike[str]"]], out: Union[str, "os.PathLike[str]"], parquet: bool = False) -> Result:
+    """Join the outputs of ``autobal sweep --shard K/N`` (each shard's ``STEM.csv`` and
+    ``STEM.json``) into the unsharded sweep's ``STEM.csv`` and ``STEM.json`` at the stem ``out``
+    (a folder ``DIR/``: ``DIR/sweep.*``), as ``autobal merge SHARDS --out OUT`` does (the
+    same code): ``shards`` are the shards' CSV files, each with its ``STEM.json`` beside it, in
+    any order; ``parquet=True`` also writes ``STEM.parquet`` (the CLI's ``--parquet``).
+    Every shard is checked first (the same sweep, each shard once and complete, every row its
+    JSON's run), and nothing is written unless all hold: otherwise :class:`AutobalError` naming
+    the shard and line (:class:`InvalidParameter` for no shards or no ``out``). Ctrl-C stops it
+    before anything is renamed into place.
+
+    Returns a :class:`Result`: ``.result`` the merged JSON (the ``STEM.json`` written, the
+    unsharded sweep's), ``.files`` the paths written, ``.to_pandas()`` one row per run as for
+    ``sweep``."""
+    shards = [shards] if isinstance(shards, (str, os.PathLike)) else list(shards)
+    text, files = _autobal.merge([os.fspath(s) for s in shards], os.fspath(out), bool(parquet))
+    return Result("merge", json.loads(text), (None, None, "", []), {"shards": list(shards), "out": out, "parquet": parquet}, files=[Path(f) for f in files])
+
+
+def export_model(
+    config: ConfigLike = None,
+    out: Union[None, str, "os.PathLike[str]"] = None,
+    stem: Optional[str] = None,
+    *,
+    set: Optional[Mapping[str, Any]] = None,
+) -> Result:
+    """Write a linear rotor as a config plus Matrix Market files, ``STEM.toml`` and
+    ``STEM_M.mtx``, ``STEM_C.mtx``, ``STEM_G.mtx``, ``STEM_K.mtx``, into the folder ``out``
+    (created if missing), as ``autobal export-model --config CONFIG --out OUT --stem STEM`` does
+    (the same code, the same bytes): the rotor of a ``[linear_rotor]`` config (a TOML file, or a
+    dict of its tables, whose matrix files are then read from the working folder), reduced
+    where it sets ``linear_rotor.modes``; without a config, paper 004's rotor with its race
+    centred as a Jeffcott rotor. ``out`` and ``stem`` ``None``: the CLI's defaults (``model``,
+    ``rotor``); ``set``: ``{"table.key": value}``, the CLI's ``--set`` (needs a config). Every
+    file is checked before any is written.
+
+    Returns a :class:`Result`: ``.result`` ``{"files": [...]}`` (the paths written, the config
+    first), ``.files`` the same as paths; :meth:`LinearRotor.from_config` reads them back."""
+    path: Optional[str] = None
+    table: Optional[dict] = None
+    if isinstance(config, Mapping):
+        table = dict(config)
+    elif config is not None:
+        _config_file(config)
+        path = os.fspath(config)
+    elif set:
+        raise _invalid("set", "needs a config (without one, export_model writes paper 004's rotor as it is)")
+    text = _autobal.export_model(path, table, list((set or {}).items()), None if out is None else os.fspath(out), stem)
+    result = json.loads(text)
+    return Result("export-model", result, (None, None, "", []), {"out": out, "stem": stem}, files=[Path(f) for f in result["files"]])
+
+
+def _merge_command(config: ConfigLike, set: Optional[Mapping[str, Any]], options: Dict[str, Any]) -> Result:
+    if config is not None or set:
+        raise _invalid("config" if config is not None else "set", "merge takes no config: its shards carry their sweep's")
+    o = dict(options)
+    if "shards" not in o:
+        raise _invalid("shards", "required: the shards' CSV files (each with its STEM.json beside it)")
+    if "out" not in o:
+        raise _invalid("out", "required: the merged sweep's stem")
+    shards, out, parquet = o.pop("shards"), o.pop("out"), bool(o.pop("parquet", False))
+    _no_more("merge", o)
+    return merge(shards, out, parquet)
+
+
+def _export_model_command(config: ConfigLike, set: Optional[Mapping[str, Any]], options: Dict[str, Any]) -> Result:
+    o = dict(options)
+    out, stem = o.pop("out", None), o.pop("stem", None)
+    _no_more("export-model", o)
+    return export_model(config, out, stem, set=set)
+
+
+# the commands that write files, as run and analyse take them (config, set, options)
+_FILE_COMMANDS = {"merge": _merge_command, "export-model": _export_model_command}

@@ -19,6 +19,7 @@ __all__ = [
     "planar_config",
     "spatial_report",
     "command_json",
+    "linear_rotor_run",
     "stability_map",
     "map_cells",
     "simulate",
@@ -35,6 +36,8 @@ __all__ = [
     "cli_main",
     "figures",
     "report",
+    "merge",
+    "export_model",
     "COMMANDS_WITH_FIGURES",
     "COMMANDS",
     "LinearRotor",
@@ -86,6 +89,11 @@ COMMANDS_WITH_FIGURES: List[str]
 # JSON [{"id", "title", "figure"}], `figure` Plotly's {data, layout}; `options` JSON of the CLI's flags
 def figures(command: str, text: Optional[str], dict: Optional[Mapping[str, Any]], source: str, sets: Sequence[Tuple[str, Any]], options: str = "{}") -> str: ...
 def report(config: Optional[str], sets: Sequence[str], out: str, quick: bool = False, papers: bool = False) -> str: ...
+# `autobal merge`: the merged JSON text and the paths written (STEM.csv, STEM.json, STEM.parquet)
+def merge(shards: Sequence[Union[str, "os.PathLike[str]"]], out: Union[str, "os.PathLike[str]"], parquet: bool = False) -> Tuple[str, List[str]]: ...
+# `autobal export-model`: a config file (with `sets`, the CLI's --set) or tables, or neither (paper
+# 004's rotor); out, stem None: the CLI's defaults; the JSON text {"files": [...]}
+def export_model(config: Union[None, str, "os.PathLike[str]"], dict: Optional[Mapping[str, Any]], sets: Sequence[Tuple[str, Any]], out: Union[None, str, "os.PathLike[str]"] = None, stem: Optional[str] = None) -> str: ...
 
 # the linear rotor (linear_rotor.rs; autobal.from_ross in _ross.py builds one from a ross.Rotor)
 @final

@@ -81,9 +81,11 @@ class Result:
     """The result of one command (:func:`analyse`).
 
     ``command``: its name; ``result``: what :func:`autobal.run` returns for it (for every command
-    but ``map``, the dict ``autobal COMMAND --format json`` prints); ``arrays``: per-sample or
-    per-run arrays where the command has them (``simulate``'s columns, ``basins``' runs).
-    ``result[key]`` reads the result.
+    but ``map``, the dict ``autobal COMMAND --format json`` prints; for ``merge`` and
+    ``export-model``, which print a line, their JSON: the merged ``STEM.json``,
+    ``{"files": [...]}``); ``arrays``: per-sample or per-run arrays where the command has them
+    (``simulate``'s columns, ``basins``' runs); ``files``: the paths a command that writes files
+    wrote (``merge``, ``export-model``; else empty). ``result[key]`` reads the result.
     """
 
     def __init__(
@@ -93,10 +95,12 @@ class Result:
         config: Tuple[Optional[str], Optional[dict], str, List[Tuple[str, Any]]],
         options: Mapping[str, Any],
         arrays: Optional[Dict[str, Any]] = None,
+        files: Sequence[Path] = (),
     ) -> None:
         self.command = command
         self.result = result
         self.arrays = arrays
+        self.files: List[Path] = list(files)
         self._config = config
         self._options = dict(options)
         self._figures: Optional[Dict[str, Dict[str, Any]]] = None
@@ -146,10 +150,11 @@ class Result:
         - ``campbell``: one row per speed and tracked line (``omega``, ``line`` and the mode's
           fields; on the general route, the speeds where the line has a point); ``map``: one
           row per cell, as the CLI's CSV;
-        - ``simulate``: the samples (the CLI's CSV columns); ``sweep``: one row per run;
-          ``basins``: one row per run (the CLI's CSV).
+        - ``simulate``: the samples (the CLI's CSV columns); ``sweep`` and ``merge``: one row
+          per run; ``basins``: one row per run (the CLI's CSV).
 
-        ``inertia`` has no table (its result is a few numbers: ``.result``)."""
+        ``inertia`` and ``export-model`` have no table (their results are a few numbers, or
+        the files written: ``.result``, ``.files``)."""
         import pandas as pd
 
         r, c = self.result, self.command
@@ -205,12 +210,14 @@ class Result:
             for j in range(0 if psi is None else psi.shape[1]):
                 data[f"psi_{j + 1}"] = psi[:, j]
             return pd.DataFrame(data)
-        if c == "sweep":
+        if c in ("sweep", "merge"):
             return pd.json_normalize(r["runs"])
         if c == "basins" and self.arrays is not None:
             return pd.DataFrame({k: self.arrays[k] for k in ("psi_1", "psi_2", "balanced_runs", "residual_unbalance", "final_amplitude")}).rename(
                 columns={"balanced_runs": "balanced"}
             )
+        if c == "export-model":
+            raise TypeError(f"{c} has no table: it writes files ({', '.join(str(p) for p in self.files)}; .files)")
         raise TypeError(f"{c} has no table: its result is a few numbers (.result)")
 
     # -- Jupyter -----------------------------------------------------------------------------
@@ -224,7 +231,8 @@ class Result:
                 ("y", f"{r['y_path']}: {len(r['y'])} values"),
                 ("stable cells", f"{int(np.sum(r['stable']))} of {r['stable'].size}"),
             ]
-        return _scalars(self.result)
+        written = [("files", ", ".join(str(p) for p in self.files))] if self.files else []
+        return written + _scalars(self.result)
 
     def _repr_html_(self) -> str:
         global _PLOTLYJS_SENT
