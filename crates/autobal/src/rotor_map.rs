@@ -244,7 +244,7 @@ impl VectorField for MapField {
 impl MapRotor {
     /// The field at model speed `omega`: the linear rotor's in axes turning with it
     /// ([`Frame::Rotating`]: the balanced state is an equilibrium, or a periodic orbit of half a
-    /// revolution for anisotropic supports).
+    /// revolution for anisotropic supports, of one under gravity).
     fn field(&self, omega: f64) -> Result<MapField> {
         match self {
             MapRotor::General(r) => r.field(omega).map(MapField::General),
@@ -593,7 +593,8 @@ pub fn general_map_traced(
 /// `speed_rpm`, `speed_hz`); each cell's rotor is the config with those values set, read
 /// again and reduced as `stability` runs it ([`crate::linear_rotor::spec::model`]); its
 /// balanced state is an equilibrium in axes turning with the rotor (isotropic structure) or a
-/// periodic orbit of half a revolution ([`LinearRotorField`]), started from
+/// periodic orbit (half a revolution for direction-dependent supports, one under gravity:
+/// [`LinearRotorField`]), started from
 /// [`LinearRotorField::balanced_guess`]. Margins are in 1/s.
 #[allow(clippy::type_complexity)]
 pub fn linear_map_traced(

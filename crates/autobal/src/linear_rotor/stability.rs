@@ -1,7 +1,8 @@
 //! The balanced state of a [`LinearRotor`] and its stability over speed: the pipeline of
 //! [`crate::rotor_stability`] (the same [`RotorStability`] result, model `"linear"`) on
 //! [`LinearRotorField`] in axes turning with the rotor — an equilibrium (eigenvalues) for an
-//! isotropic structure, a periodic orbit of half a revolution (Floquet multipliers) otherwise —
+//! isotropic structure without gravity, a periodic orbit (Floquet multipliers) otherwise: of
+//! half a revolution for direction-dependent supports, of one under gravity —
 //! started at each speed from [`LinearRotorField::balanced_guess`].
 
 use super::field::{Frame, LinearRotorField};
