@@ -172,3 +172,48 @@ def test_from_ross_takes_the_polar_moment_of_disks_and_shaft():
     assert autobal.from_ross(Rotor(), polar_inertia=2.5).polar_inertia == 2.5
     with pytest.raises(autobal.InvalidParameter, match="linear_rotor.polar_inertia"):
         autobal.from_ross(Rotor(), polar_inertia=-1.0)
+
+
+def _linked_rotor(rs, point_masses):
+    """ROSS's example shaft on bearings linked to support nodes 7 (and 8), each a point mass on
+    a stiff spring to ground: ROSS gives each support node x, y, z only."""
+    steel = rs.materials.steel
+    shaft = [rs.ShaftElement(L=0.25, idl=0.0, odl=0.05, material=steel) for _ in range(6)]
+    disk = rs.DiskElement.from_geometry(n=3, material=steel, width=0.07, i_d=0.05, o_d=0.28)
+    bearings = [rs.BearingElement(n=0, kxx=1e6, cxx=0.0, n_link=7), rs.BearingElement(n=7, kxx=1e7, cxx=0.0)]
+    masses = [rs.PointMass(n=7, m=2.0)]
+    if point_masses == 2:
+        bearings += [rs.BearingElement(n=6, kxx=1e6, cxx=0.0, n_link=8), rs.BearingElement(n=8, kxx=1e7, cxx=0.0)]
+        masses.append(rs.PointMass(n=8, m=2.0))
+    else:
+        bearings.append(rs.BearingElement(n=6, kxx=1e6, cxx=0.0))
+    return rs.Rotor(shaft, [disk], bearings, masses)
+
+
+@pytest.mark.parametrize("point_masses", [1, 2])
+def test_support_nodes_of_linked_bearings_are_refused_by_name(point_masses):
+    """A support node of an ``n_link`` bearing has x, y, z only in ROSS; autobal's nodes have
+    x, y, alpha, beta. Before, ``from_ross`` cut ROSS's matrices into 6-DOF nodes regardless:
+    with one support node its 3 DOFs were dropped without a word (a different rotor), with two
+    they filled a made-up node 7 whose "alpha, beta" were node 8's x, y. Now it refuses, saying
+    which nodes."""
+    rs = ross()
+    rotor = _linked_rotor(rs, point_masses)
+    with pytest.raises(ValueError, match=r"from_ross: the rotor has %d DOFs beyond its 7 shaft nodes \(support nodes of n_link bearings \[7" % (3 * point_masses)):
+        autobal.from_ross(rotor)
+
+
+def test_speed_dependent_bearing_between_two_nodes_is_refused():
+    """A speed-dependent bearing linking two shaft nodes changes K off the bearing node's own
+    x, y block; ``add_speed_bearing`` acts on one node, so that part would be lost: refused."""
+    rs = ross()
+    steel = rs.materials.steel
+    shaft = [rs.ShaftElement(L=0.25, idl=0.0, odl=0.05, material=steel) for _ in range(6)]
+    bearings = [
+        rs.BearingElement(n=0, kxx=1e6, cxx=0.0),
+        rs.BearingElement(n=6, kxx=1e6, cxx=0.0),
+        rs.BearingElement(n=2, n_link=4, kxx=[1e5, 2e5], cxx=[0.0, 0.0], frequency=[0.0, 1000.0]),
+    ]
+    rotor = rs.Rotor(shaft, [], bearings)
+    with pytest.raises(ValueError, match="stiffness changes with speed .* outside the x, y block"):
+        autobal.from_ross(rotor)

@@ -13,6 +13,10 @@ The rotor's polar moment of inertia about its axis (the spin's inertia under a t
 ``LinearRotor.polar_inertia``) is the disks' ``DiskElement.Ip`` plus the shaft elements'
 ``ρ ∫ J dz``, ``J = π (d_o⁴ − d_i⁴)/32`` along each (tapered) element, by :func:`polar_inertia_of`;
 the gyroscopic matrix is ROSS's ``rotor.G()``, which holds the same moments.
+Refused with a ``ValueError`` naming the cause: support (link) nodes of ``n_link`` bearings
+(ROSS's ``PointMass`` nodes carry x, y, z only, autobal's nodes x, y, alpha, beta), and a
+speed-dependent bearing whose change with speed is not on its own node's x, y block (between
+two nodes, or with tilt terms).
 """
 
 from __future__ import annotations
@@ -90,7 +94,17 @@ def from_ross(
     per = int(getattr(rotor, "number_dof", 4))
     lat = _lateral(per)
     m_full = np.asarray(rotor.M(), dtype=float)
-    n_nodes = m_full.shape[0] // per
+    n_nodes = len(getattr(rotor, "nodes", ())) or m_full.shape[0] // per
+    if m_full.shape[0] != per * n_nodes:
+        # ROSS gives the support (link) node of an ``n_link`` bearing, a ``PointMass``, half a
+        # node's DOFs (x, y, z) after the shaft's nodes; autobal's nodes all have x, y, alpha, beta
+        extra = m_full.shape[0] - per * n_nodes
+        links = sorted({int(b.n_link) for b in getattr(rotor, "bearing_elements", []) if getattr(b, "n_link", None) is not None})
+        raise ValueError(
+            f"from_ross: the rotor has {extra} DOFs beyond its {n_nodes} shaft nodes (support nodes of n_link bearings {links}, "
+            "point masses with x, y, z only); autobal's linear rotor has x, y, alpha, beta at every node and cannot take them: "
+            "export M, C, G, K with a 4-DOF layout (docs/guide/your-own-rotor.md) or put the support's stiffness in series into the bearing"
+        )
     idx = [k * per + j for k in range(n_nodes) for j in lat]
     sel = np.ix_(idx, idx)
     if speeds is None:
@@ -114,6 +128,21 @@ def from_ross(
             i = 4 * node
             blk = lambda a: [a[i, i], a[i, i + 1], a[i + 1, i], a[i + 1, i + 1]]
             out.add_speed_bearing(node, speeds, np.array([blk(a) for a in ks]), np.array([blk(a) for a in cs]))
+        # what changes with speed must sit in the x, y blocks of the bearings' own nodes (one
+        # node each); a speed-dependent bearing between two nodes (n_link) or with tilt terms
+        # would be dropped here, so it is refused
+        on = np.zeros(ks[0].shape, dtype=bool)
+        for node in nodes:
+            on[4 * node : 4 * node + 2, 4 * node : 4 * node + 2] = True
+        for name, table in (("stiffness", ks), ("damping", cs)):
+            for w, a in zip(speeds, table):
+                scale = max(float(np.max(np.abs(a))), 1e-300)
+                if np.max(np.abs(np.where(on, 0.0, a))) > 1e-12 * scale:
+                    raise ValueError(
+                        f"from_ross: the bearings' {name} changes with speed (at {w} rad/s) outside the x, y block of a bearing's "
+                        "own node (a speed-dependent bearing between two nodes, n_link, or with tilt terms); autobal's "
+                        "speed-dependent bearings act on one node's x, y"
+                    )
     for b in balancers:
         out.add_balancer(int(b["node"]), float(b["radius"]), int(b["balls"]), float(b["ball_mass"]), float(b.get("drag", 0.0)), float(b.get("offset", 0.0)))
     for u in unbalance:
