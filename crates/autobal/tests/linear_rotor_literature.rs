@@ -204,7 +204,7 @@ fn the_receptance_vanishes_where_the_shaft_pinned_at_the_balancer_plane_resonate
 /// rotor (damped, gyroscopic), for the balancer at node 2 (the second mode's antinode), 3 and 4
 /// (mid-span, the second mode's node: its window runs to the antiresonance of the third mode,
 /// past the second critical speed). The edge is a pair of the balls' exponents crossing at a
-/// frequency `ν ≈ (m R Ω²)² |Im H| sin Δ / c` far below the structure's (table in the guide); the
+/// frequency `ν ≈ (m R Ω²)² |Im H| sin Δ / c` far below the structure's (~4e-3 1/s here); the
 /// quasi-static argument (the structure's response at the crossing taken as at `ν = 0`, the two
 /// balls' tilt inertia as a ring's) leaves a gap, observed 3e-6 to 1.4e-4 of the edge: bound
 /// 3e-4. Every scanned speed that is stable has `Re H < 0` (the necessary condition); the lower
@@ -297,7 +297,7 @@ fn run(fix: &LinearRotorField, y: &mut [f64], t_end: f64) -> u64 {
 /// Time simulation through the window, in fixed axes (the time-periodic equations, integrated;
 /// nothing from the turning axes' Jacobian): from the balanced orbit with the two balls moved
 /// apart by ±1e-4 rad (a residual unbalance of 2.4e-3 m e), at 1.8 ω1 (first window) and 4.5 ω1
-/// (second) the balls return (residual below 1/50 of the start after 3 s, ~300 and ~750
+/// (second) the balls return (residual below 1/50 of the start after 3 s, ~150 and ~380
 /// revolutions; the fast mode decays as `e^{−1.79 t}`, the slow one, the balls turning together,
 /// is barely excited), at 2.6 ω1 (above the edge, below `ω2`) they leave: the residual exceeds
 /// the unbalance itself within 1.5 s (the balls' mode grows as `e^{6.84 t}`).
