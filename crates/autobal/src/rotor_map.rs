@@ -5,7 +5,8 @@
 //!
 //! A linear rotor config (`[linear_rotor]`, [`crate::linear_rotor`]) is mapped by
 //! [`linear_map_traced`] over its parameter paths ([`crate::linear_rotor::spec`]), its balanced
-//! state in axes turning with the rotor ([`crate::linear_rotor::LinearRotorField`]), margins in 1/s.
+//! state in axes turning with the rotor ([`Rotor::Linear`],
+//! [`crate::linear_rotor::LinearRotorField`]), margins in 1/s.
 //!
 //! Each axis is a config key (`balancer.ball_mass`, `planar.c_psi`, `supports.stiffness_left`, …),
 //! set in the TOML table with [`crate::config::set_number`], the rotor rebuilt by
