@@ -90,6 +90,7 @@ fn what_is_analysed(g: &GeneralRotor, r: &RotorStability) -> String {
             "the spatial rotor with two ball planes: the state where the balls cancel static and couple unbalance"
         }
         Rotor::Spatial(_) => "the spatial rotor: the state where the balls cancel the static unbalance",
+        Rotor::Linear(_) => "the linear rotor-bearing model: its balanced state (the balancer's race centre on the axis)",
     };
     let how = match (r.kind, &g.rotor) {
         (Kind::Equilibrium, _) => "an equilibrium in axes turning with the rotor (Newton on the nonlinear equations; eigenvalues of their exact Jacobian by automatic differentiation)",
@@ -268,7 +269,7 @@ pub fn default_samples(g: &GeneralRotor) -> usize {
 /// operating speed.
 pub fn default_omega_max(g: &GeneralRotor, root: &Table) -> Result<f64> {
     Ok(match &g.rotor {
-        Rotor::Planar(_) => 3.0 * g.rotor.natural_frequency(),
+        Rotor::Planar(_) | Rotor::Linear(_) => 3.0 * g.rotor.natural_frequency(),
         Rotor::Spatial(_) => {
             let cfg = autobal::config::spatial(root)?;
             cfg.analysis.speed_axis_max(2.0 * autobal::reports::default_omega_max(&cfg.model)) * g.omega0

@@ -62,7 +62,7 @@ pub fn omega_max(root: &Table, g: &GeneralRotor, arg: Option<&str>) -> Result<f6
             autobal::limits::check_as("--omega-max", "analysis.omega_max", w / g.omega0)?;
             w
         }
-        (Rotor::Planar(_), None) => 3.0 * g.rotor.natural_frequency(),
+        (Rotor::Planar(_) | Rotor::Linear(_), None) => 3.0 * g.rotor.natural_frequency(),
         (Rotor::Spatial(_), None) => {
             let cfg = autobal::config::spatial(root)?;
             cfg.analysis.speed_axis_max(2.0 * autobal::reports::default_omega_max(&cfg.model)) * g.omega0

@@ -203,6 +203,7 @@ pub fn stability_json(cfg: &LinearRotorConfig, r: &RotorStability, red: &Option<
         "stable_ranges": ranges,
         "family_dimension": r.family_dimension,
         "member_psi": r.member_psi,
+        "family": r.family,
         "points": r.points,
     }))
 }
@@ -233,6 +234,21 @@ pub fn stability_table(cfg: &LinearRotorConfig, r: &RotorStability, red: &Option
     for st in &r.stable_ranges {
         let to = if st.to_is_boundary { speed_text(st.to) } else { format!("{} (end of the axis)", speed_text(st.to)) };
         s.push_str(&format!("stable: {} to {to}\n", speed_text(st.from)));
+    }
+    if let Some(f) = &r.family {
+        let list = |v: &[autobal::analysis::StableRange]| {
+            if v.is_empty() {
+                "nowhere on the axis".to_string()
+            } else {
+                v.iter().map(|st| format!("{} to {}", speed_text(st.from), speed_text(st.to))).collect::<Vec<_>>().join(", ")
+            }
+        };
+        s.push_str(&format!(
+            "the balanced states form a family of dimension {} (the ranges above are one member's): all members sampled stable: {}; at least one member sampled stable (which is not \"stable\"): {}\n",
+            f.dimension,
+            list(&f.all_members_stable),
+            list(&f.some_members_stable)
+        ));
     }
     let neutral = r.points.iter().filter(|p| p.verdict == Some(Verdict::Neutral)).count();
     if neutral > 0 {
@@ -855,6 +871,35 @@ mod tests {
     fn example() -> (Table, PathBuf) {
         let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/linear_rotor_shaft.toml");
         (read_set(Some(&path), &[]).unwrap().0, path)
+    }
+
+    /// With three balls the balanced states form a one-parameter family, which `stability`
+    /// follows at each speed (the general route, as for the other models): the JSON has it and
+    /// the table names it, and at each speed the member analysed lies in the family, its
+    /// abscissa between the family's most and least stable members' (to 1e-9 1/s: the same
+    /// eigenvalue computation on the same Newton-converged member, round-off of |λ| ≲ 1e3 1/s).
+    #[test]
+    fn stability_with_three_balls_follows_the_family() {
+        let (mut root, path) = example();
+        let mut bal = root["linear_rotor"]["balancer"][0].as_table().cloned().unwrap();
+        bal.insert("balls".into(), toml::Value::Integer(3));
+        root.get_mut("linear_rotor").and_then(|t| t.get_mut("balancer")).and_then(|b| b.as_array_mut()).unwrap()[0] = toml::Value::Table(bal);
+        let cfg = from_table(&root, path.parent().unwrap()).unwrap();
+        let omega_max = default_omega_max(&cfg).unwrap();
+        let (r, red) = stability(&cfg, omega_max, 6).unwrap();
+        assert_eq!(r.family_dimension, 1);
+        let fam = r.family.as_ref().unwrap();
+        assert_eq!(fam.dimension, 1);
+        let mut followed = 0;
+        for p in &r.points {
+            let (Some(a), Some(f)) = (p.abscissa, p.family.as_ref()) else { continue };
+            followed += 1;
+            assert!(f.most_stable.abscissa <= a + 1e-9 && a <= f.least_stable.abscissa + 1e-9, "Ω {}: {a} outside {f:?}", p.omega);
+        }
+        assert!(followed > 0);
+        let json = stability_json(&cfg, &r, &red, omega_max).unwrap();
+        assert_eq!(json["family"]["dimension"], 1);
+        assert!(stability_table(&cfg, &r, &red, omega_max).unwrap().contains("family of dimension 1"));
     }
 
     /// A sweep's point without values is the run `simulate` makes (this module's [`setup`]): the

@@ -5,7 +5,8 @@
 //!
 //! A linear rotor config (`[linear_rotor]`, [`crate::linear_rotor`]) is mapped by
 //! [`linear_map_traced`] over its parameter paths ([`crate::linear_rotor::spec`]), its balanced
-//! state in axes turning with the rotor ([`LinearRotorField`]), margins in 1/s.
+//! state in axes turning with the rotor ([`Rotor::Linear`],
+//! [`crate::linear_rotor::LinearRotorField`]), margins in 1/s.
 //!
 //! Each axis is a config key (`balancer.ball_mass`, `planar.c_psi`, `supports.stiffness_left`, …),
 //! set in the TOML table with [`crate::config::set_number`], the rotor rebuilt by
@@ -71,7 +72,6 @@ use crate::config;
 use crate::control::{Control, StopReason};
 use crate::error::{fmt_num, Error, Result};
 use crate::linear_rotor::spec::LinearRotorSpec;
-use crate::linear_rotor::{Frame, LinearRotor, LinearRotorField};
 use crate::rotor_stability::{Field, Rotor};
 use crate::spatial::map::Axis;
 use crate::units::{speed_path_unit, Speed, SpeedUnit};
@@ -138,16 +138,9 @@ pub const MAP_FAMILY_SAMPLES: usize = 40;
 /// The family through `state` (of dimension `k ≥ 1`) at one cell, sampled as
 /// [`MAP_FAMILY_STEP`] and [`MAP_FAMILY_SAMPLES`] say: `(verdict, largest abscissa, smallest
 /// abscissa)` over its members; `None` where it cannot be followed.
-fn cell_family(field: &MapField, state: &StationaryState, newton: &NewtonOptions) -> Option<(FamilyVerdict, f64, f64)> {
+fn cell_family(field: &Field, state: &StationaryState, newton: &NewtonOptions) -> Option<(FamilyVerdict, f64, f64)> {
     let periodic = field.period().is_some();
-    let angles = match field {
-        MapField::General(Field::Planar(p)) => (2..2 + p.rotor().n).collect(),
-        MapField::General(Field::Spatial(s)) => {
-            let m = s.coords();
-            (m - s.rotor().balls()..m).collect()
-        }
-        MapField::Linear(f) => (f.rotor().dofs()..f.coords()).collect(),
-    };
+    let angles = crate::rotor_stability::ball_coordinates(field).collect();
     let opts = FamilyOptions {
         step: if periodic { 0.5 } else { MAP_FAMILY_STEP },
         samples: if periodic { 12 } else { MAP_FAMILY_SAMPLES },
@@ -157,10 +150,7 @@ fn cell_family(field: &MapField, state: &StationaryState, newton: &NewtonOptions
         refine_extremes: true,
         // three equal balls: a third of the family, the rest its relabellings (3x fewer members)
         // (the linear rotor's balls: every member followed)
-        relabellings: match field {
-            MapField::General(f) => crate::rotor_stability::ball_rotations(f),
-            MapField::Linear(_) => vec![],
-        },
+        relabellings: crate::rotor_stability::ball_rotations(field),
         ..FamilyOptions::default()
     };
     let fam = family(field, state, &opts).ok()?;
@@ -192,79 +182,10 @@ pub struct GeneralMapOutcome {
     pub families: usize,
 }
 
-/// A map's rotor: either model of [`crate::rotor_stability`], or a linear rotor
-/// ([`crate::linear_rotor`]) in axes turning with it.
-#[derive(Debug, Clone)]
-enum MapRotor {
-    General(Rotor),
-    Linear(LinearRotor),
-}
-
-/// The field of a [`MapRotor`] at one speed ([`VectorField`] by delegation).
-#[allow(clippy::large_enum_variant)]
-#[derive(Debug)]
-enum MapField {
-    General(Field),
-    Linear(LinearRotorField),
-}
-
-macro_rules! delegate {
-    ($self:ident, $f:ident => $e:expr) => {
-        match $self {
-            MapField::General($f) => $e,
-            MapField::Linear($f) => $e,
-        }
-    };
-}
-
-impl VectorField for MapField {
-    fn dim(&self) -> usize {
-        delegate!(self, f => f.dim())
-    }
-    fn rhs(&self, t: f64, x: &[f64], dx: &mut [f64]) {
-        delegate!(self, f => f.rhs(t, x, dx))
-    }
-    fn jacobian(&self, t: f64, x: &[f64], jac: &mut [f64]) {
-        delegate!(self, f => f.jacobian(t, x, jac))
-    }
-    fn period(&self) -> Option<f64> {
-        delegate!(self, f => f.period())
-    }
-    fn structural_zeros(&self, x: &[f64]) -> usize {
-        delegate!(self, f => f.structural_zeros(x))
-    }
-    fn component_name(&self, i: usize) -> String {
-        delegate!(self, f => f.component_name(i))
-    }
-    fn scales(&self) -> Vec<f64> {
-        delegate!(self, f => f.scales())
-    }
-}
-
-impl MapRotor {
-    /// The field at model speed `omega`: the linear rotor's in axes turning with it
-    /// ([`Frame::Rotating`]: the balanced state is an equilibrium, or a periodic orbit of half a
-    /// revolution for anisotropic supports, of one under gravity).
-    fn field(&self, omega: f64) -> Result<MapField> {
-        match self {
-            MapRotor::General(r) => r.field(omega).map(MapField::General),
-            MapRotor::Linear(r) => LinearRotorField::new(r, omega, Frame::Rotating).map(MapField::Linear),
-        }
-    }
-
-    /// The closed-form start ([`Rotor::guess`], [`LinearRotorField::balanced_guess`]).
-    fn guess(field: &MapField) -> Option<Vec<f64>> {
-        match field {
-            MapField::General(f) => Rotor::guess(f),
-            MapField::Linear(f) => f.balanced_guess(),
-        }
-    }
-}
-
 /// The rotor of one cell and the speed unit of its `omega`.
 #[derive(Debug, Clone)]
 struct CellRotor {
-    rotor: MapRotor,
+    rotor: Rotor,
     /// Model speed units per unit of `omega`: `ω0` (rad/s) of an SI spatial rotor, else 1.
     scale: f64,
     /// Whether the model's speeds are rad/s (planar, SI spatial) rather than `Ω`.
@@ -276,10 +197,10 @@ fn build(root: &Table) -> Result<CellRotor> {
     if config::is_spatial(root) {
         let sim = config::spatial_simulation(root)?;
         let scale = sim.config.model.scale.map_or(1.0, |s| s.omega0);
-        Ok(CellRotor { rotor: MapRotor::General(Rotor::Spatial(sim.rotor)), scale, si: sim.config.dimensional })
+        Ok(CellRotor { rotor: Rotor::Spatial(sim.rotor), scale, si: sim.config.dimensional })
     } else {
         let p = config::planar(root)?;
-        Ok(CellRotor { rotor: MapRotor::General(Rotor::Planar(p.rotor)), scale: 1.0, si: true })
+        Ok(CellRotor { rotor: Rotor::Planar(p.rotor), scale: 1.0, si: true })
     }
 }
 
@@ -327,7 +248,7 @@ fn model_speed(c: &CellRotor, s: Speed, field: &str) -> Result<f64> {
 fn solve(c: &CellRotor, w: f64, previous: Option<&StationaryState>, closed_form: bool, families: bool) -> (GeneralCell, Option<StationaryState>) {
     let Ok(field) = c.rotor.field(w) else { return (GeneralCell::NONE, None) };
     let periodic = field.period().is_some();
-    let guess = if closed_form { MapRotor::guess(&field) } else { None };
+    let guess = if closed_form { Rotor::guess(&field) } else { None };
     let previous = previous.filter(|p| p.x.len() == field.dim());
     let hint = previous.and_then(|p| p.monodromy.as_deref());
     let mut opts = NewtonOptions::default();
@@ -435,7 +356,7 @@ impl Plane<'_> {
                 // errors naming a path (and its value) pass as they are
                 match spec.model_at(set) {
                     Err(e) if set.iter().any(|(p, _)| e.field() == Some(*p)) => return Err(e),
-                    r => r.map(|r| CellRotor { rotor: MapRotor::Linear(r), scale: 1.0, si: true }),
+                    r => r.map(|r| CellRotor { rotor: Rotor::Linear(r), scale: 1.0, si: true }),
                 }
             }
         };
@@ -594,8 +515,8 @@ pub fn general_map_traced(
 /// again and reduced as `stability` runs it ([`crate::linear_rotor::spec::model`]); its
 /// balanced state is an equilibrium in axes turning with the rotor (isotropic structure) or a
 /// periodic orbit (half a revolution for direction-dependent supports, one under gravity:
-/// [`LinearRotorField`]), started from
-/// [`LinearRotorField::balanced_guess`]. Margins are in 1/s.
+/// [`crate::linear_rotor::LinearRotorField`]), started from
+/// [`crate::linear_rotor::LinearRotorField::balanced_guess`]. Margins are in 1/s.
 #[allow(clippy::type_complexity)]
 pub fn linear_map_traced(
     spec: &LinearRotorSpec,

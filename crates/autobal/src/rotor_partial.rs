@@ -116,6 +116,8 @@ pub struct PartialState {
 fn residuals(field: &Field, x: &[f64]) -> ([f64; 2], [f64; 2], f64, f64) {
     let psi = ball_angles(field, x);
     match field {
+        // refused by partially_balanced
+        Field::Linear(_) => ([0.0; 2], [0.0; 2], 0.0, 0.0),
         Field::Planar(f) => {
             let p = f.rotor();
             let (es, ec) = p.gamma.sin_cos();
@@ -154,6 +156,8 @@ fn residuals(field: &Field, x: &[f64]) -> ([f64; 2], [f64; 2], f64, f64) {
 fn plane_shares(field: &Field, psi: &[f64]) -> Vec<PlaneShare> {
     let bunched = |a: &[f64]| a.iter().all(|v| wrap(v - a[0]).abs() <= 1e-6);
     match field {
+        // refused by partially_balanced
+        Field::Linear(_) => vec![],
         Field::Planar(f) => {
             let p = f.rotor();
             let cap = (0..p.n).map(|j| p.ball_mass(j) * p.r).sum();
@@ -193,7 +197,7 @@ fn plane_shares(field: &Field, psi: &[f64]) -> Vec<PlaneShare> {
 /// The whirl radius at each ball plane ([`PartialState::whirl`]).
 fn whirl(field: &Field, x: &[f64]) -> Vec<f64> {
     match field {
-        Field::Planar(_) => vec![amplitude(field, x)],
+        Field::Planar(_) | Field::Linear(_) => vec![amplitude(field, x)],
         Field::Spatial(f) => {
             let r = f.rotor();
             let y = f.full_state(0.0, x);
@@ -253,8 +257,15 @@ fn starts(field: &Field) -> Vec<(Start, Vec<f64>)> {
 /// stationary state Newton's method reaches from the starts of [`Start`], each with its
 /// residual unbalance and its stability, **stable states first** (then by residual static
 /// unbalance). Errors: the model's refusals ([`Rotor::field`]: real balls have no
-/// linearisation), and `omega` when no start converges.
+/// linearisation), the linear rotor ([`Rotor::Linear`]: no partially balanced branch yet,
+/// [`Error::InvalidParameter`] naming `linear_rotor`), and `omega` when no start converges.
 pub fn partially_balanced(rotor: &Rotor, omega: f64) -> Result<Vec<PartialState>> {
+    if let Rotor::Linear(_) = rotor {
+        return Err(Error::invalid(
+            "linear_rotor",
+            "the partially balanced states are not available for the linear rotor yet (its stationary analyses start from the balanced state only)",
+        ));
+    }
     let field = rotor.field(omega)?;
     let periodic = field.period().is_some();
     let mut opts = NewtonOptions::default();

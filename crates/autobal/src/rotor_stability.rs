@@ -2,10 +2,13 @@
 //! (issue "Analyse every rotor"): the planar rotor (paper 004, and with the race centred the
 //! Jeffcott rotor with balls) and the spatial rotor as the simulation runs it (one or two ball
 //! planes, static and couple unbalance, supports that differ by direction, gravity, a tilted
-//! principal axis), through the model-agnostic pipeline of [`crate::analysis`].
+//! principal axis), and the linear rotor-bearing model with its balancer planes
+//! ([`crate::linear_rotor`], [`Rotor::Linear`]), through the model-agnostic pipeline of
+//! [`crate::analysis`]: one [`Rotor`] type for every model, which the maps
+//! ([`crate::rotor_map`]) take too.
 //!
 //! At each speed `Ω` of a grid the model's equations in axes turning with the rotor
-//! ([`PlanarField`], [`SpatialField`]) are solved for the stationary state — an equilibrium
+//! ([`PlanarField`], [`SpatialField`], [`LinearRotorField`]) are solved for the stationary state — an equilibrium
 //! (Newton with the exact Jacobian by automatic differentiation) when nothing turns against the
 //! rotor, else the periodic orbit of the revolution (shooting with the variational equations) —
 //! continued from the previous speed and started from the closed-form balanced (or, for the
@@ -40,6 +43,7 @@ use crate::analysis::{
 };
 use crate::control::{Control, Outcome, StopReason};
 use crate::error::{Error, Result};
+use crate::linear_rotor::{Frame, LinearRotor, LinearRotorField};
 use crate::planar::field::PlanarField;
 use crate::planar::PlanarRotor;
 use crate::spatial::dynamics::field::SpatialField;
@@ -47,16 +51,22 @@ use crate::spatial::dynamics::SpatialRotor;
 use rayon::prelude::*;
 use serde::Serialize;
 
-/// A rotor that the stationary analysis can take: either model as the simulation runs it.
+/// A rotor that the stationary analysis can take: any model as the simulation runs it.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Rotor {
     /// The planar rotor (paper 004; SI: rad/s).
     Planar(PlanarRotor),
     /// The spatial rotor (papers 000/003 and beyond; SI, or the papers' dimensionless units).
     Spatial(SpatialRotor),
+    /// The linear rotor-bearing model with its balancer planes ([`crate::linear_rotor`]; SI:
+    /// rad/s), in axes turning with the rotor ([`Frame::Rotating`]). The speed scan, the maps
+    /// and [`crate::rotor_campbell::stationary_at`] take it; the Campbell diagram with the
+    /// balls, the locked critical speeds and the partially balanced states refuse it (with an
+    /// [`Error::InvalidParameter`] naming `linear_rotor`).
+    Linear(LinearRotor),
 }
 
-/// Either model's field at one speed ([`VectorField`] by delegation).
+/// The model's field at one speed ([`VectorField`] by delegation).
 // one field per speed, built and dropped in the scan's loop: the variants' sizes do not matter
 #[allow(clippy::large_enum_variant)]
 #[derive(Debug)]
@@ -65,6 +75,8 @@ pub enum Field {
     Planar(PlanarField),
     /// [`SpatialField`].
     Spatial(SpatialField),
+    /// [`LinearRotorField`] in axes turning with the rotor.
+    Linear(LinearRotorField),
 }
 
 macro_rules! delegate {
@@ -72,6 +84,7 @@ macro_rules! delegate {
         match $self {
             Field::Planar($f) => $e,
             Field::Spatial($f) => $e,
+            Field::Linear($f) => $e,
         }
     };
 }
@@ -101,29 +114,36 @@ impl VectorField for Field {
 }
 
 impl Rotor {
-    /// The model's name in outputs: `"planar"` or `"spatial"`.
+    /// The model's name in outputs: `"planar"`, `"spatial"` or `"linear"`.
     pub fn model_name(&self) -> &'static str {
         match self {
             Rotor::Planar(_) => "planar",
             Rotor::Spatial(_) => "spatial",
+            Rotor::Linear(_) => "linear",
         }
     }
 
-    /// The field at speed `omega`; [`Error::NoLinearisation`] for real balls.
+    /// The field at speed `omega`; [`Error::NoLinearisation`] for real balls. The linear
+    /// rotor's is in axes turning with it ([`Frame::Rotating`]: the balanced state is an
+    /// equilibrium, or a periodic orbit of half a revolution for direction-dependent supports,
+    /// of one under gravity).
     pub fn field(&self, omega: f64) -> Result<Field> {
         Ok(match self {
             Rotor::Planar(p) => Field::Planar(PlanarField::new(p, omega)?),
             Rotor::Spatial(s) => Field::Spatial(SpatialField::new(s, omega)?),
+            Rotor::Linear(r) => Field::Linear(LinearRotorField::new(r, omega, Frame::Rotating)?),
         })
     }
 
     /// The closed-form starting state at the field's speed: the planar rotor's semi-balanced
     /// state ([`PlanarField::semi_balanced_guess`], the balanced state when the race is centred),
-    /// the spatial rotor's balanced state ([`SpatialField::balanced_guess`]).
+    /// the spatial and the linear rotor's balanced state ([`SpatialField::balanced_guess`],
+    /// [`LinearRotorField::balanced_guess`]).
     pub fn guess(field: &Field) -> Option<Vec<f64>> {
         match field {
             Field::Planar(f) => f.semi_balanced_guess(),
             Field::Spatial(f) => f.balanced_guess(),
+            Field::Linear(f) => f.balanced_guess(),
         }
     }
 
@@ -164,9 +184,11 @@ impl Rotor {
     /// (all its balls bunched, E on the axis), so a speed scan follows one branch across.
     /// Spatial rotor: each plane's balls bunched at the angle of its share of the unbalance
     /// ([`SpatialField::balanced_guess`]'s targets), the rotor on the axis at rest: not itself
-    /// stationary (the residual unbalance makes the rotor whirl), a start for Newton.
+    /// stationary (the residual unbalance makes the rotor whirl), a start for Newton. Linear
+    /// rotor: `None` (no partially balanced branch yet).
     pub fn bunched_guess(field: &Field) -> Option<Vec<f64>> {
         match field {
+            Field::Linear(_) => None,
             Field::Planar(f) => {
                 use num_complex::Complex64 as C;
                 let p = f.rotor();
@@ -232,9 +254,11 @@ impl Rotor {
         }
     }
 
-    /// What the stationary state `x` of `field` is ([`StateKind`]).
+    /// What the stationary state `x` of `field` is ([`StateKind`]). The linear rotor's states
+    /// all come from its balanced guess ([`Rotor::bunched_guess`] has none for it): balanced.
     pub fn state_kind(field: &Field, x: &[f64]) -> StateKind {
         match field {
+            Field::Linear(_) => StateKind::Balanced,
             Field::Planar(f) => {
                 let p = f.rotor();
                 let off = (x[0] + p.s2 * p.gamma.cos()).hypot(x[1] + p.s2 * p.gamma.sin());
@@ -284,11 +308,14 @@ impl Rotor {
     }
 
     /// `sqrt(k/M)`: the rotor's translational natural frequency on its supports (a scale for
-    /// default speed axes).
+    /// default speed axes); the linear rotor's lowest undamped natural frequency with its balls
+    /// as rings ([`LinearRotor::natural_frequencies`]), NaN where it has none (`M` not
+    /// positive definite: refused by [`Rotor::field`] too).
     pub fn natural_frequency(&self) -> f64 {
         match self {
             Rotor::Planar(p) => p.natural_frequency(),
             Rotor::Spatial(s) => s.natural_frequency(),
+            Rotor::Linear(r) => r.natural_frequencies(&[], true).ok().and_then(|w| w.first().copied()).unwrap_or(f64::NAN),
         }
     }
 
@@ -416,7 +443,7 @@ pub struct FamilyStability {
 /// The stationary state's stability over speed ([`stability_over_speed`]).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct RotorStability {
-    /// `"planar"` or `"spatial"`.
+    /// `"planar"`, `"spatial"` or `"linear"` ([`Rotor::model_name`]).
     pub model: &'static str,
     /// Equilibrium (eigenvalues) or periodic orbit (Floquet multipliers).
     pub kind: Kind,
@@ -528,13 +555,7 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
 /// member is a shooting).
 fn family_options(field: &Field, newton: &NewtonOptions) -> FamilyOptions {
     let periodic = field.period().is_some();
-    let angles = match field {
-        Field::Planar(p) => (2..2 + p.rotor().n).collect(),
-        Field::Spatial(s) => {
-            let m = s.coords();
-            (m - s.rotor().balls()..m).collect()
-        }
-    };
+    let angles = ball_coordinates(field).collect();
     FamilyOptions {
         step: if periodic { 0.2 } else { 0.1 },
         samples: if periodic { 40 } else { 200 },
@@ -736,6 +757,9 @@ fn explain_failure(rotor: &Rotor, failure: &str) -> String {
     match rotor {
         Rotor::Planar(_) => "no semi-balanced state at this speed: the balls cannot supply the unbalance it needs (|B| > n m3 r, planar::stationary)".into(),
         Rotor::Spatial(_) => "no balanced state: the balls' capacity Σ m R of a plane is below the unbalance it must cancel".into(),
+        Rotor::Linear(_) => {
+            "no balanced state: one balancer plane with at least 2 balls whose capacity n m_b R covers the unbalance is needed (LinearRotorField::balanced_guess)".into()
+        }
     }
 }
 
@@ -744,9 +768,10 @@ fn explain_failure(rotor: &Rotor, failure: &str) -> String {
 /// they map the one-parameter family of balanced states onto itself and fix none of its
 /// members (a member fixed by one has its three balls at one angle: `|Σ e^{iψ}| = 3`, the
 /// capacity limit, not a family). Empty where the balls differ (planar `ball_masses`,
-/// `ball_drags`) or no plane has three.
+/// `ball_drags`) or no plane has three, and for the linear rotor (every member followed).
 pub(crate) fn ball_rotations(f: &Field) -> Vec<Vec<usize>> {
     let (n, m, planes): (usize, usize, Vec<(usize, usize)>) = match f {
+        Field::Linear(_) => return vec![],
         Field::Planar(p) => {
             let r = p.rotor();
             let equal = (0..r.n).all(|j| r.ball_mass(j) == r.ball_mass(0) && r.ball_drag(j) == r.ball_drag(0));
@@ -780,26 +805,29 @@ pub(crate) fn ball_rotations(f: &Field) -> Vec<Vec<usize>> {
     out
 }
 
-/// The balls' angles in a reduced state.
-pub(crate) fn ball_angles(f: &Field, x: &[f64]) -> Vec<f64> {
+/// The indices of the balls' angles in a reduced state (all planes in order): the planar
+/// rotor's `2..2 + n`, the spatial and the linear rotor's last `n` coordinates.
+pub(crate) fn ball_coordinates(f: &Field) -> std::ops::Range<usize> {
     match f {
-        Field::Planar(p) => {
-            let n = p.rotor().n;
-            x[2..2 + n].to_vec()
-        }
-        Field::Spatial(s) => {
-            let nb = s.rotor().balls();
-            let m = s.coords();
-            x[m - nb..m].to_vec()
-        }
+        Field::Planar(p) => 2..2 + p.rotor().n,
+        Field::Spatial(s) => s.coords() - s.rotor().balls()..s.coords(),
+        Field::Linear(l) => l.rotor().dofs()..l.coords(),
     }
 }
 
+/// The balls' angles in a reduced state.
+pub(crate) fn ball_angles(f: &Field, x: &[f64]) -> Vec<f64> {
+    x[ball_coordinates(f)].to_vec()
+}
+
 /// Whirl radius at the first balancer plane in turning axes: `|u|` of the planar rotor's C, the
-/// spatial shaft's displacement at the first ball plane (or the first unbalance's plane).
+/// spatial shaft's displacement at the first ball plane (or the first unbalance's plane), the
+/// linear rotor's race centre of its first balancer plane
+/// ([`crate::linear_rotor::runup::plane_positions`]; 0 without one).
 pub(crate) fn amplitude(f: &Field, x: &[f64]) -> f64 {
     match f {
         Field::Planar(_) => x[0].hypot(x[1]),
+        Field::Linear(l) => crate::linear_rotor::runup::plane_positions(l.rotor(), x).first().map_or(0.0, |c| c.0.hypot(c.1)),
         Field::Spatial(s) => {
             let r = s.rotor();
             let y = s.full_state(0.0, x);
@@ -825,6 +853,93 @@ pub fn speed_grid(omega_max: f64, samples: usize) -> Result<Vec<f64>> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Paper 004's rotor with its race centred and `n` balls, as the planar model and as the
+    /// linear rotor-bearing model ([`LinearRotor::from_planar`]: the same Jeffcott rotor with
+    /// balls, a second route through other equations and another field).
+    fn jeffcott(n: usize) -> (Rotor, Rotor) {
+        let p = PlanarRotor { n, s2: 0.0, ..PlanarRotor::paper() };
+        (Rotor::Planar(p.clone()), Rotor::Linear(LinearRotor::from_planar(&p).unwrap()))
+    }
+
+    #[test]
+    fn the_linear_rotor_is_one_rotor_of_the_general_route() {
+        let (planar, linear) = jeffcott(2);
+        assert_eq!(linear.model_name(), "linear");
+        // the same M = m1 + m2 + n m3 and k: sqrt(k/M) to round-off
+        let (wp, wl) = (planar.natural_frequency(), linear.natural_frequency());
+        assert!((wp - wl).abs() <= 1e-12 * wp, "{wp} vs {wl}");
+        assert!(!linear.is_periodic());
+        // the balanced state from each model's closed form: the balls at the same angles (Newton
+        // to ~1e-12 on both: 1e-9 rad), the race centre on the axis (amplitude 0 to 1e-12 of the
+        // unbalance's eccentricity s1 = m1 s1 / m1)
+        for w in [150.0, 400.0] {
+            let (fp, sp) = crate::rotor_campbell::stationary_at(&planar, w).unwrap();
+            let (fl, sl) = crate::rotor_campbell::stationary_at(&linear, w).unwrap();
+            let (ap, al) = (ball_angles(&fp, &sp.x), ball_angles(&fl, &sl.x));
+            assert_eq!(ap.len(), 2);
+            for (a, b) in ap.iter().zip(&al) {
+                assert!((a - b).abs() <= 1e-9, "Ω {w}: ψ {ap:?} vs {al:?}");
+            }
+            let Rotor::Planar(p) = &planar else { unreachable!() };
+            assert!(amplitude(&fl, &sl.x) <= 1e-12 * p.s1, "Ω {w}: {}", amplitude(&fl, &sl.x));
+            assert_eq!(Rotor::state_kind(&fl, &sl.x), StateKind::Balanced);
+        }
+    }
+
+    #[test]
+    fn analyses_that_do_not_take_the_linear_rotor_refuse_it_by_name() {
+        let (_, linear) = jeffcott(2);
+        let w = 400.0;
+        let errors = [
+            crate::rotor_campbell::campbell_over_speed(&linear, &[w]).unwrap_err(),
+            crate::rotor_campbell::campbell_locked(&linear, &[w]).unwrap_err(),
+            crate::rotor_campbell::locked_critical_speeds(&linear, w, 10).unwrap_err(),
+            crate::rotor_campbell::locked_rotor(&linear, w, true).unwrap_err(),
+            crate::rotor_partial::partially_balanced(&linear, w).unwrap_err(),
+        ];
+        for e in errors {
+            assert_eq!(e.field(), Some("linear_rotor"), "{e}");
+            assert!(!e.to_string().contains('\n'), "{e}");
+        }
+    }
+
+    #[test]
+    fn the_linear_rotors_family_is_the_planar_rotors() {
+        // the three-ball Jeffcott rotor on both models over the "none", "some" and "all" bands
+        // of its family (as below): the same equations in other coordinates, so at each speed
+        // the member Newton reaches from the closed form has the same verdict and abscissa, and
+        // the family, followed at the same steps (0.1 in scaled arclength, the angles' scale 1
+        // rad in both), the same members, verdict and extreme abscissas: to 1e-9 1/s (round-off
+        // of eigenvalues of size |λ| ~ 300 1/s after Newton to ~1e-12: observed 5e-12). The
+        // band ends are each bisected to 1e-9 relative in Ω: they agree to 2e-9 relative
+        // (observed 4e-14)
+        let (planar, linear) = jeffcott(3);
+        let speeds: Vec<f64> = (0..=14).map(|i| 296.0 + i as f64).collect();
+        let a = stability_over_speed(&planar, &speeds).unwrap();
+        let b = stability_over_speed(&linear, &speeds).unwrap();
+        assert_eq!((b.model, b.family_dimension), ("linear", 1));
+        let close = |x: f64, y: f64| (x - y).abs() <= 1e-9;
+        for (x, y) in a.points.iter().zip(&b.points) {
+            assert_eq!(x.verdict, y.verdict, "Ω {}", x.omega);
+            let (ax, ay) = (x.abscissa.unwrap(), y.abscissa.unwrap());
+            assert!(close(ax, ay), "Ω {}: {ax} vs {ay}", x.omega);
+            assert_eq!(x.family_verdict, y.family_verdict, "Ω {}", x.omega);
+            let (fx, fy) = (x.family.as_ref().unwrap(), y.family.as_ref().unwrap());
+            assert_eq!((fx.members, fx.stable_members), (fy.members, fy.stable_members), "Ω {}", x.omega);
+            assert!(close(fx.least_stable.abscissa, fy.least_stable.abscissa), "Ω {}: {fx:?} vs {fy:?}", x.omega);
+            assert!(close(fx.most_stable.abscissa, fy.most_stable.abscissa), "Ω {}: {fx:?} vs {fy:?}", x.omega);
+        }
+        let (fa, fb) = (a.family.unwrap(), b.family.unwrap());
+        for (ra, rb) in [(&fa.all_members_stable, &fb.all_members_stable), (&fa.some_members_stable, &fb.some_members_stable)] {
+            assert_eq!(ra.len(), 1, "{ra:?}");
+            assert_eq!(ra.len(), rb.len(), "{ra:?} vs {rb:?}");
+            for (p, q) in ra.iter().zip(rb.iter()) {
+                assert!((p.from - q.from).abs() <= 2e-9 * p.from && (p.to - q.to).abs() <= 2e-9 * p.to, "{p:?} vs {q:?}");
+                assert_eq!((p.from_is_boundary, p.to_is_boundary), (q.from_is_boundary, q.to_is_boundary));
+            }
+        }
+    }
 
     #[test]
     fn every_point_with_a_family_says_which_members_are_stable_in_every_band() {

@@ -102,7 +102,7 @@ fn general_route(ctx: &Ctx) -> Result<Option<Section>> {
     let g = crate::general::rotor_of(&ctx.root)?;
     let samples = if g.rotor.is_periodic() { 50 } else { 200 };
     let (omega_max, op) = match &g.rotor {
-        Rotor::Planar(_) => (3.0 * g.rotor.natural_frequency(), None),
+        Rotor::Planar(_) | Rotor::Linear(_) => (3.0 * g.rotor.natural_frequency(), None),
         Rotor::Spatial(_) => {
             let cfg = autobal::config::spatial(&ctx.root)?;
             (
