@@ -348,3 +348,156 @@ fn rotor_fixed_inertia_gives_the_closed_form_tilt_eigenvalues() {
         }
     }
 }
+
+/// The energy `T + V` of a linear rotor with one node (`x, y, α, β`) and its balls at state
+/// `y = (q, ψ, φ, q̇, ψ̇, φ̇)` under a torque, written out from the Lagrangian of the module docs
+/// of `autobal::linear_rotor` (as `tests/linear_rotor_torque.rs`) plus the rotor-fixed inertia's
+/// `½ v_rᵀ M_rot v_r`, `v_r = T(φ)ᵀ q̇` (the velocity in the rotor's axes):
+///
+/// ```text
+/// T = ½ q̇ᵀMq̇ + ½ v_rᵀ M_rot v_r + ½ φ̇ q̇ᵀGq + ½ I_p φ̇² + Σ_u m e φ̇ e⊥_u·ċ_u
+///     + Σ_j [½ m_b |ċ + R θ̇_j e⊥_j|² + ½ m_b R² σ_j² + ½ m_b R² θ̇_j (α̇β − β̇α)],
+/// V = ½ qᵀKq − loadᵀq − Σ_j m_b g·(c + R e_j) − Σ_u m e g·e_u.
+/// ```
+fn energy(r: &LinearRotor, y: &[f64]) -> f64 {
+    let n = r.dofs();
+    let nc = n + r.total_balls();
+    let n1 = nc + 1;
+    let (q, psi, phi) = (&y[..n], &y[n..nc], y[nc]);
+    let (qd, psid, w) = (&y[n1..n1 + n], &y[n1 + n..n1 + nc], y[n1 + nc]);
+    let quad = |a: &[f64], u: &[f64], v: &[f64]| -> f64 { (0..n).map(|i| (0..n).map(|j| u[i] * a[i * n + j] * v[j]).sum::<f64>()).sum() };
+    let g = r.gravity.as_ref().map_or([0.0, 0.0], |g| g.g);
+    let (sp, cp) = phi.sin_cos();
+    let vr: Vec<f64> = (0..n).map(|i| if i % 2 == 0 { cp * qd[i] + sp * qd[i + 1] } else { -sp * qd[i - 1] + cp * qd[i] }).collect();
+    let mut t = 0.5 * quad(&r.m, qd, qd) + 0.5 * quad(&r.rotor_fixed_mass, &vr, &vr) + 0.5 * w * quad(&r.g, qd, q) + 0.5 * r.polar_inertia * w * w;
+    let mut v = 0.5 * quad(&r.k, q, q) - r.gravity.as_ref().map_or(0.0, |g| g.load.iter().zip(q).map(|(a, b)| a * b).sum());
+    let centre = |z: f64| ([q[0] + z * q[3], q[1] - z * q[2]], [qd[0] + z * qd[3], qd[1] - z * qd[2]]);
+    let (tau, taud) = ([q[2], q[3]], [qd[2], qd[3]]);
+    for u in &r.unbalances {
+        let (_, cd) = centre(u.offset);
+        let (s, c) = (phi + u.phase).sin_cos();
+        t += u.me * w * (-s * cd[0] + c * cd[1]);
+        v -= u.me * (g[0] * c + g[1] * s);
+    }
+    let mut j = 0;
+    for b in &r.balancers {
+        let (c0, cd) = centre(b.offset);
+        for _ in 0..b.balls {
+            let thd = w + psid[j];
+            let (s, c) = (phi + psi[j]).sin_cos();
+            let (vx, vy) = (cd[0] - b.radius * thd * s, cd[1] + b.radius * thd * c);
+            let sigma = taud[0] * s - taud[1] * c;
+            let mr2 = b.ball_mass * b.radius * b.radius;
+            t += 0.5 * b.ball_mass * (vx * vx + vy * vy) + 0.5 * mr2 * sigma * sigma + 0.5 * mr2 * thd * (taud[0] * tau[1] - taud[1] * tau[0]);
+            v -= b.ball_mass * (g[0] * (c0[0] + b.radius * c) + g[1] * (c0[1] + b.radius * s));
+            j += 1;
+        }
+    }
+    t + v
+}
+
+/// The preset without damping (supports, balls, spin), with `ΔA`, couple unbalance, two planes
+/// and gravity across the axis.
+fn conservative() -> LinearRotor {
+    let mut s = rotor([1e5, 1.3e5], 2, true, 2);
+    for sup in &mut s.supports {
+        sup.damping = [0.0, 0.0];
+    }
+    for p in &mut s.planes {
+        p.drag = 0.0;
+    }
+    s.gravity = [0.5, -9.81, 0.0];
+    LinearRotor::from_spatial(&s).unwrap()
+}
+
+/// Under a constant torque `M0` and no damping, `T + V` changes by `M0 Δφ` exactly; the
+/// rotor-fixed inertia makes `T` depend on the spin angle, and its torque `∂T/∂φ` on the spin
+/// ([`LinearRotor::rotor_fixed_mass`]) is what keeps the balance (without it the imbalance is of
+/// the order of `ΔA |ω_⊥|²` per radian, checked below to be far above the tolerance). From a
+/// state off equilibrium (balls bunched and moving, the rotor displaced, tilted and moving), 0.1 s
+/// from 100 rad/s: the imbalance is below `1e-9` of the energy exchanged plus the initial kinetic
+/// energy (DOP853 at rtol 1e-11, as `tests/linear_rotor_torque.rs`).
+#[test]
+fn undamped_torque_run_up_of_the_preset_conserves_energy() {
+    use autobal::drive::Drive;
+    use autobal::linear_rotor::runup::{initial_state_for, RunUpSystem};
+    use autobal::ode::{Control, Method, Options, Solver};
+    let r = conservative();
+    assert!(!r.rotor_fixed_mass.is_empty());
+    let m0 = 2.0;
+    let drive = Drive::Torque { omega0: 100.0, torque: m0, t_off: None };
+    let sys = RunUpSystem::new(&r, &drive).unwrap();
+    let mut y = initial_state_for(&r, &drive);
+    let n = r.dofs();
+    let nc = n + r.total_balls();
+    let n1 = nc + 1;
+    y[n] = 0.1;
+    y[n + 1] = 0.5;
+    y[n + 2] = 1.2;
+    y[n1 + n] = 3.0;
+    y[0] = 1e-4;
+    y[2] = 2e-3;
+    y[n1 + 1] = 0.02;
+    y[n1 + 3] = -0.5;
+    y[n1 + 2] = 0.3;
+    let e0 = energy(&r, &y);
+    let phi0 = y[nc];
+    let mut o = Options::new(1e-11, 1e-14).method(Method::Dop853);
+    o.max_steps = 10_000_000;
+    let mut solver = Solver::new(&sys, o).unwrap();
+    let out = solver.integrate(0.0, &mut y, 0.1, |_| Control::Continue);
+    assert_eq!(out.t, 0.1);
+    let work = m0 * (y[nc] - phi0);
+    let e1 = energy(&r, &y);
+    let kinetic0 = 0.5 * r.polar_inertia * 100.0f64.powi(2);
+    let imbalance = (e1 - e0 - work).abs();
+    // the term the rotor-fixed torque balances: ΔA times the tilt rate squared, over the run
+    let da = r.rotor_fixed_mass[2 * 4 + 2].hypot(r.rotor_fixed_mass[2 * 4 + 3]);
+    eprintln!("ΔE = {:e} J, work = {work:e} J, imbalance {imbalance:e} J, ΔA/2 ω² = {:e} J", e1 - e0, da * 0.5f64.powi(2));
+    assert!(imbalance < 1e-9 * (work.abs() + kinetic0), "ΔE = {}, work {work}, imbalance {imbalance:e}", e1 - e0);
+    assert!(da * 0.5f64.powi(2) > 1e3 * 1e-9 * (work.abs() + kinetic0));
+}
+
+/// The run-ups' exact Jacobians with the rotor-fixed inertia (its angle-dependent matrix, the
+/// spin's torque `∂T/∂φ`, under a torque and a prescribed acceleration) against central
+/// differences: step `1e-6` of each component's scale, `1e-6` of the row's size (as
+/// `tests/linear_rotor_torque_jacobian.rs`: truncation and round-off are ~1e-10 of it).
+#[test]
+fn run_up_jacobians_with_rotor_fixed_inertia_are_exact() {
+    use autobal::drive::Drive;
+    use autobal::linear_rotor::runup::RunUpSystem;
+    use autobal::ode::System;
+    let r = conservative();
+    let w = 250.0;
+    for drive in [Drive::Torque { omega0: w, torque: 3.0, t_off: None }, Drive::Acceleration { omega0: w, b: 40.0 }] {
+        let sys = RunUpSystem::new(&r, &drive).unwrap();
+        let d = sys.dim();
+        let spin = sys.spin();
+        let nc = d / 2 - usize::from(spin);
+        let ncs = d / 2;
+        let scale: Vec<f64> = (0..d).map(|i| if i % ncs < 2 { 1e-4 } else if i % ncs < 4 { 1e-3 } else { 1.0 } * if i >= ncs { w } else { 1.0 }).collect();
+        let u = numbers(7, d);
+        let mut y: Vec<f64> = (0..d).map(|i| scale[i] * u[i]).collect();
+        if spin {
+            y[d - 1] = w;
+        }
+        let _ = nc;
+        let t = 0.013;
+        let jac = sys.jacobian_matrix(t, &y).unwrap();
+        let (mut fp, mut fm) = (vec![0.0; d], vec![0.0; d]);
+        for j in 0..d {
+            let h = 1e-6 * scale[j];
+            let mut yp = y.clone();
+            yp[j] += h;
+            sys.rhs(t, &yp, &mut fp);
+            yp[j] -= 2.0 * h;
+            sys.rhs(t, &yp, &mut fm);
+            let col: Vec<f64> = (0..d).map(|i| (fp[i] - fm[i]) / (2.0 * h)).collect();
+            for i in 0..d {
+                let row = (0..d).map(|k| (jac[i * d + k] * scale[k]).abs()).fold(0.0, f64::max);
+                let e = (jac[i * d + j] - col[i]).abs() * scale[j];
+                assert!(e <= 1e-6 * row.max(f64::MIN_POSITIVE), "{drive:?}: J[{i}][{j}] ({}, by {}) {} vs {}", sys.component_name(i), sys.component_name(j), jac[i * d + j], col[i]);
+            }
+        }
+    }
+}
