@@ -368,7 +368,7 @@ fn energy(r: &LinearRotor, y: &[f64]) -> f64 {
     let quad = |a: &[f64], u: &[f64], v: &[f64]| -> f64 { (0..n).map(|i| (0..n).map(|j| u[i] * a[i * n + j] * v[j]).sum::<f64>()).sum() };
     let g = r.gravity.as_ref().map_or([0.0, 0.0], |g| g.g);
     let (sp, cp) = phi.sin_cos();
-    let vr: Vec<f64> = (0..n).map(|i| if i % 2 == 0 { cp * qd[i] + sp * qd[i + 1] } else { -sp * qd[i - 1] + cp * qd[i] }).collect();
+    let vr: Vec<f64> = (0..n).map(|i| if i.is_multiple_of(2) { cp * qd[i] + sp * qd[i + 1] } else { -sp * qd[i - 1] + cp * qd[i] }).collect();
     let mut t = 0.5 * quad(&r.m, qd, qd) + 0.5 * quad(&r.rotor_fixed_mass, &vr, &vr) + 0.5 * w * quad(&r.g, qd, q) + 0.5 * r.polar_inertia * w * w;
     let mut v = 0.5 * quad(&r.k, q, q) - r.gravity.as_ref().map_or(0.0, |g| g.load.iter().zip(q).map(|(a, b)| a * b).sum());
     let centre = |z: f64| ([q[0] + z * q[3], q[1] - z * q[2]], [qd[0] + z * qd[3], qd[1] - z * qd[2]]);
@@ -496,7 +496,14 @@ fn run_up_jacobians_with_rotor_fixed_inertia_are_exact() {
             for i in 0..d {
                 let row = (0..d).map(|k| (jac[i * d + k] * scale[k]).abs()).fold(0.0, f64::max);
                 let e = (jac[i * d + j] - col[i]).abs() * scale[j];
-                assert!(e <= 1e-6 * row.max(f64::MIN_POSITIVE), "{drive:?}: J[{i}][{j}] ({}, by {}) {} vs {}", sys.component_name(i), sys.component_name(j), jac[i * d + j], col[i]);
+                assert!(
+                    e <= 1e-6 * row.max(f64::MIN_POSITIVE),
+                    "{drive:?}: J[{i}][{j}] ({}, by {}) {} vs {}",
+                    sys.component_name(i),
+                    sys.component_name(j),
+                    jac[i * d + j],
+                    col[i]
+                );
             }
         }
     }

@@ -362,7 +362,7 @@ impl LinearRotorField {
             // inertia fixed to the rotor (LinearRotor::rotor_fixed_mass): with M_f = T(χ) M_rot
             // T(χ)ᵀ, the force M_f a + Ω (J M_f − M_f J) v in the frame's components
             let mf = super::turn_blocks(&self.rotor.rotor_fixed_mass, n, chi);
-            let jv: Vec<T> = (0..n).map(|i| if i % 2 == 0 { -v[i + 1] } else { v[i - 1] }).collect();
+            let jv: Vec<T> = (0..n).map(|i| if i.is_multiple_of(2) { -v[i + 1] } else { v[i - 1] }).collect();
             let mut mv = vec![T::cst(0.0); n];
             let mut rest = vec![T::cst(0.0); n];
             for i in 0..n {
@@ -376,7 +376,7 @@ impl LinearRotorField {
                 rest[i] = sr;
             }
             for i in 0..n {
-                let jmv = if i % 2 == 0 { -mv[i + 1] } else { mv[i - 1] };
+                let jmv = if i.is_multiple_of(2) { -mv[i + 1] } else { mv[i - 1] };
                 out[i] = out[i] - rest[i] - jmv * w;
             }
         }
@@ -645,10 +645,10 @@ impl LinearRotorField {
         if !r.rotor_fixed_mass.is_empty() {
             // the rotor-fixed inertia's Ω² J M_rot J p (LinearRotor::rotor_fixed_mass)
             let mr = &r.rotor_fixed_mass;
-            let mj = |i: usize, j: usize| if j % 2 == 0 { mr[i * n + j + 1] } else { -mr[i * n + j - 1] };
+            let mj = |i: usize, j: usize| if j.is_multiple_of(2) { mr[i * n + j + 1] } else { -mr[i * n + j - 1] };
             for i in 0..n {
                 for j in 0..n {
-                    let jmj = if i % 2 == 0 { -mj(i + 1, j) } else { mj(i - 1, j) };
+                    let jmj = if i.is_multiple_of(2) { -mj(i + 1, j) } else { mj(i - 1, j) };
                     a[i * n + j] += w * w * jmj;
                 }
             }

@@ -100,8 +100,22 @@
 //! - [`LinearRotor::from_planar`]: paper 004's planar rotor with its race centred (a Jeffcott
 //!   rotor: one node, `M = (m1 + m2) I`, `K = k I`, `C = c I`, the disk's `m1 s1` as unbalance):
 //!   equal to [`crate::planar::field::PlanarField`] at `s2 = 0`.
+//! - [`LinearRotor::from_spatial`]: the rigid rotor on two supports of papers 000/003 (one node
+//!   `x, y, α, β` at the centre of mass, supports as stiffness at their offsets, the balancer
+//!   planes at theirs, the inertia that turns with the rotor in [`LinearRotor::rotor_fixed_mass`]):
+//!   its linearisation at the balanced state equals the native
+//!   [`crate::spatial::dynamics::SpatialField`]'s (the charts agree to first order; see the
+//!   function's docs for where they part).
 //! - [`shaft::ShaftBuilder`]: Euler–Bernoulli or Timoshenko beam elements, rigid disks, linear
 //!   isotropic bearings.
+//!
+//! # Inertia fixed to the rotor
+//! [`LinearRotor::rotor_fixed_mass`] `M_rot` is constant in axes turning with the rotor: kinetic
+//! energy `½ q̇ᵀ T(φ) M_rot T(φ)ᵀ q̇`, so in the residual, in a frame in which the rotor has
+//! turned by `χ`, the inertia force `M_f a + Ω (J M_f − M_f J) v` with `M_f = T(χ) M_rot T(χ)ᵀ`
+//! (`a`, `v` the absolute acceleration and velocity in the frame's components), `M_f` in the
+//! mass matrix, and under a torque drive the spin's torque `∂T/∂φ = q̇ᵀ J M_f q̇`. At constant
+//! speed in turning axes it is autonomous (`χ = 0`): it changes neither frame's period.
 //!
 //! # Torque drives and gravity
 //! Under a torque drive ([`runup`]) the spin angle `φ` is a coordinate: the kinetic energy adds
