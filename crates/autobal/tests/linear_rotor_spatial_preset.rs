@@ -545,7 +545,8 @@ fn constant_speed_run_equals_the_native_simulation_to_second_order() {
         })
         .unwrap();
         let lin = LinearRotor::from_spatial(&s).unwrap();
-        let rs = RunSettings { t_end, dt, rtol: 1e-11, atol: 1e-13 * eps, method: Method::Dop853, max_steps: 10_000_000, max_wall_s: None, physical_nodes: None };
+        let rs =
+            RunSettings { t_end, dt, rtol: 1e-11, atol: 1e-13 * eps, method: Method::Dop853, max_steps: 10_000_000, max_wall_s: None, physical_nodes: None };
         let mut linear = vec![];
         simulate_from(&lin, &drive, &rs, Some(&init.psi), &autobal::control::Control::none(), |smp| {
             linear.push((smp.t, smp.planes.iter().map(|p| p.0.hypot(p.1)).collect::<Vec<f64>>(), smp.psi.clone()));
