@@ -330,3 +330,18 @@ fn tilting_preset_under_gravity_against_the_spatial_model() {
         assert_eq!(ss.verdict, sl.verdict);
     }
 }
+
+/// The preset of the tilt-locked spatial rotor ([`LinearRotor::from_spatial`] with
+/// `lock_tilt`) is the rotor written by hand above (`linear`): one node `x, y`, the same
+/// matrices, unbalance, balls and weight, bit for bit; its polar moment is the carrier's
+/// (`C_r + m_u ρ²`), which the hand-written one leaves at 0.
+#[test]
+fn tilt_locked_preset_is_the_hand_written_rotor() {
+    for (k, g) in [([1e5, 1e5], [0.0, -9.81]), ([1e5, 1.3e5], [-2.0, -9.81])] {
+        let s = spatial(k, g);
+        let p = LinearRotor::from_spatial(&s).unwrap();
+        let mut h = linear(&s);
+        h.polar_inertia = s.rotor.polar_moment + s.unbalances[0].mass * s.unbalances[0].radius.powi(2);
+        assert_eq!(p, h);
+    }
+}

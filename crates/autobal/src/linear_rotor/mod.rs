@@ -328,6 +328,7 @@ pub struct LinearRotor {
     /// Used by the time and stationary analyses of [`LinearRotorField`] and [`runup`];
     /// [`LinearRotor::natural_frequencies`] and [`LinearRotor::ball_mass_matrix`] leave it out
     /// (their models are fixed in space), and model reduction refuses it.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
     pub rotor_fixed_mass: Vec<f64>,
 }
 
