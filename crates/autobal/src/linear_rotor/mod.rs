@@ -727,8 +727,9 @@ impl LinearRotor {
                     }
                 }
             }
-            // M + T(φ) M_rot T(φ)ᵀ: its anisotropic part turns by 2φ; checked at φ = 0 and π/4,
-            // the extremes of a single pair's anisotropy
+            // M + T(φ) M_rot T(φ)ᵀ at φ = 0 and π/4 (its anisotropic part turns by 2φ): necessary;
+            // sufficient where M is isotropic on the pairs M_rot acts on (the presets' case), since
+            // then the spectrum does not depend on φ
             for phi in [0.0, std::f64::consts::FRAC_PI_4] {
                 let mut sum = self.rotor_fixed_in(phi);
                 sum.iter_mut().zip(&self.m).for_each(|(s, m)| *s += m);
