@@ -358,6 +358,28 @@ impl LinearRotorField {
             }
             out[i] = s;
         }
+        if !self.rotor.rotor_fixed_mass.is_empty() {
+            // inertia fixed to the rotor (LinearRotor::rotor_fixed_mass): with M_f = T(χ) M_rot
+            // T(χ)ᵀ, the force M_f a + Ω (J M_f − M_f J) v in the frame's components
+            let mf = super::turn_blocks(&self.rotor.rotor_fixed_mass, n, chi);
+            let jv: Vec<T> = (0..n).map(|i| if i.is_multiple_of(2) { -v[i + 1] } else { v[i - 1] }).collect();
+            let mut mv = vec![T::cst(0.0); n];
+            let mut rest = vec![T::cst(0.0); n];
+            for i in 0..n {
+                let row = &mf[i * n..(i + 1) * n];
+                let (mut sv, mut sr) = (T::cst(0.0), T::cst(0.0));
+                for j in 0..n {
+                    sv = sv + row[j] * v[j];
+                    sr = sr + row[j] * a[j] - row[j] * jv[j] * w;
+                }
+                mv[i] = sv;
+                rest[i] = sr;
+            }
+            for i in 0..n {
+                let jmv = if i.is_multiple_of(2) { -mv[i + 1] } else { mv[i - 1] };
+                out[i] = out[i] - rest[i] - jmv * w;
+            }
+        }
         if let Some(sp) = spin {
             // the speed's increment through C(Ω) + Ω G and K(Ω)
             for i in 0..n {
@@ -460,6 +482,14 @@ impl LinearRotorField {
         let mut a = vec![0.0; nc * nc];
         for i in 0..n {
             a[i * nc..i * nc + n].copy_from_slice(&mats.m[i * n..(i + 1) * n]);
+        }
+        if !self.rotor.rotor_fixed_mass.is_empty() {
+            let mf = self.rotor.rotor_fixed_in(chi);
+            for i in 0..n {
+                for j in 0..n {
+                    a[i * nc + j] += mf[i * n + j];
+                }
+            }
         }
         for (g, b) in self.balls.iter().enumerate() {
             let (s, c) = (x[n + g] + chi).sin_cos();
@@ -610,6 +640,17 @@ impl LinearRotorField {
                 // (D J)_{ij}: column j of D J is D times column j of J
                 let dj = if j.is_multiple_of(2) { self.d[i * n + j + 1] } else { -self.d[i * n + j - 1] };
                 a[i * n + j] = r.k[i * n + j] - w * w * (r.m[i * n + j] + mb[i * n + j]) + w * dj;
+            }
+        }
+        if !r.rotor_fixed_mass.is_empty() {
+            // the rotor-fixed inertia's Ω² J M_rot J p (LinearRotor::rotor_fixed_mass)
+            let mr = &r.rotor_fixed_mass;
+            let mj = |i: usize, j: usize| if j.is_multiple_of(2) { mr[i * n + j + 1] } else { -mr[i * n + j - 1] };
+            for i in 0..n {
+                for j in 0..n {
+                    let jmj = if i.is_multiple_of(2) { -mj(i + 1, j) } else { mj(i - 1, j) };
+                    a[i * n + j] += w * w * jmj;
+                }
             }
         }
         let p = if f.iter().all(|v| *v == 0.0) {

@@ -100,8 +100,22 @@
 //! - [`LinearRotor::from_planar`]: paper 004's planar rotor with its race centred (a Jeffcott
 //!   rotor: one node, `M = (m1 + m2) I`, `K = k I`, `C = c I`, the disk's `m1 s1` as unbalance):
 //!   equal to [`crate::planar::field::PlanarField`] at `s2 = 0`.
+//! - [`LinearRotor::from_spatial`]: the rigid rotor on two supports of papers 000/003 (one node
+//!   `x, y, α, β` at the centre of mass, supports as stiffness at their offsets, the balancer
+//!   planes at theirs, the inertia that turns with the rotor in [`LinearRotor::rotor_fixed_mass`]):
+//!   its linearisation at the balanced state equals the native
+//!   [`crate::spatial::dynamics::SpatialField`]'s (the charts agree to first order; see the
+//!   function's docs for where they part).
 //! - [`shaft::ShaftBuilder`]: Euler–Bernoulli or Timoshenko beam elements, rigid disks, linear
 //!   isotropic bearings.
+//!
+//! # Inertia fixed to the rotor
+//! [`LinearRotor::rotor_fixed_mass`] `M_rot` is constant in axes turning with the rotor: kinetic
+//! energy `½ q̇ᵀ T(φ) M_rot T(φ)ᵀ q̇`, so in the residual, in a frame in which the rotor has
+//! turned by `χ`, the inertia force `M_f a + Ω (J M_f − M_f J) v` with `M_f = T(χ) M_rot T(χ)ᵀ`
+//! (`a`, `v` the absolute acceleration and velocity in the frame's components), `M_f` in the
+//! mass matrix, and under a torque drive the spin's torque `∂T/∂φ = q̇ᵀ J M_f q̇`. At constant
+//! speed in turning axes it is autonomous (`χ = 0`): it changes neither frame's period.
 //!
 //! # Torque drives and gravity
 //! Under a torque drive ([`runup`]) the spin angle `φ` is a coordinate: the kinetic energy adds
@@ -136,6 +150,7 @@ pub mod stability;
 use crate::error::{finite, non_negative, positive, Error, Result};
 use crate::linalg::eigen_dyn;
 use crate::planar::PlanarRotor;
+use crate::spatial::dynamics::SpatialRotor;
 use serde::Serialize;
 
 pub use field::{Frame, LinearRotorField, TimeSystem};
@@ -300,6 +315,21 @@ pub struct LinearRotor {
     /// contact and rolling resistance ([`crate::balls`]), in run-ups ([`runup`]); the
     /// stationary analyses refuse them ([`Error::NoLinearisation`]).
     pub ball_physics: Vec<crate::balls::BallPhysics>,
+    /// Inertia fixed to the rotor `M_rot` (row-major `N × N`, symmetric; empty: none): a mass
+    /// matrix constant in axes turning with the rotor, for the inertia that turns with it (an
+    /// unbalance mass's or a rigid body's inertia anisotropy `ΔA`, paper 000's eq (17)). Its
+    /// kinetic energy is `½ q̇ᵀ T(φ) M_rot T(φ)ᵀ q̇` in fixed axes (`T(φ)` the block rotation
+    /// of every pair `(x, y)`, `(α, β)` by the rotor's angle `φ`), so it adds to the structure's
+    /// inertia forces `T(φ) [M_rot a_r + φ̇ (J M_rot − M_rot J) v_r]` (`a_r = T(φ)ᵀ q̈`,
+    /// `v_r = T(φ)ᵀ q̇`; in axes turning with the rotor at constant speed
+    /// `M_rot p̈ + Ω (M_rot J + J M_rot) ṗ + Ω² J M_rot J p`) and, under a torque drive, the
+    /// torque `½ v_rᵀ (J M_rot − M_rot J) v_r` to the spin's equation (`−∂T/∂φ`). `M` is the
+    /// part fixed in space: `M + T(φ) M_rot T(φ)ᵀ` must be positive definite at every `φ`.
+    /// Used by the time and stationary analyses of [`LinearRotorField`] and [`runup`];
+    /// [`LinearRotor::natural_frequencies`] and [`LinearRotor::ball_mass_matrix`] leave it out
+    /// (their models are fixed in space), and model reduction refuses it.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub rotor_fixed_mass: Vec<f64>,
 }
 
 /// Gravity across the axis: the acceleration `g = (g_x, g_y)` (m/s², fixed axes) and the
@@ -340,6 +370,7 @@ impl LinearRotor {
             spin_damping: 0.0,
             gravity: None,
             ball_physics: vec![],
+            rotor_fixed_mass: vec![],
         }
     }
 
@@ -412,6 +443,170 @@ impl LinearRotor {
         Ok(r)
     }
 
+    /// The rigid rotor on one or two supports of papers 000/003 ([`SpatialRotor`], the native
+    /// model of [`crate::spatial::dynamics`]) as a one-node rotor.
+    ///
+    /// **Coordinates.** The node is the native reference point O, the common centre of mass C
+    /// of the rotor with its balls at balance (`z_C` = [`SpatialRotor::z_reference`]); every
+    /// axial position becomes the offset `ζ = z − z_C`. The native state in axes turning with
+    /// the rotor, `(ξ, η, δ, θ, ψ_j)` with the tilt `R_x(δ) R_y(θ)` relative to those axes, maps
+    /// to this model's `(x, y, α, β, ψ_j)` in [`Frame::Rotating`] one to one to first order (a
+    /// shaft point at `ζ` sits at `(ξ + ζ sin θ, η − ζ sin δ cos θ)`, here `(x + ζ β, y − ζ α)`;
+    /// `ψ_j` is the ball's angle from the rotor's x axis in both), so the two linearisations at a
+    /// stationary state with the rotor on the axis are the same matrices. Beyond first order the
+    /// charts differ: the sequence `R_x(δ) R_y(θ)` is the rotation vector `(δ, θ, δθ/2)`, i.e.
+    /// the native spin angle is this model's less `δθ/2`, and the native model is exact in the
+    /// tilt and displacement where this one keeps the kinetic energy to second order. So time
+    /// histories agree to second order in the amplitudes (and, in a run-up, to terms in
+    /// `Ω̇ δθ`), not to round-off.
+    ///
+    /// **Carrier.** The rotor with its unbalance masses is a rigid body with mass `M_c`, first
+    /// moment `s = (s_x, s_y, s_z)` and inertia tensor `J` about O in rotor axes (the rotor's
+    /// `A_r I + (C_r − A_r) e eᵀ` about G, `e` its tilted principal axis, moved to O, plus each
+    /// unbalance mass). Its kinetic energy to second order in the small motions, with the body's
+    /// rates `ω_⊥ = τ̇ + Ω J τ` across the axis and `ω_3 = Ω (1 − |τ|²/2) + δ̇ θ`, is
+    /// `½ M_c |ċ|² + s_z ċ·(β̇, −α̇) + ½ ω_⊥ᵀ J_⊥ ω_⊥ + ½ J_33 ω_3² + Ω (J_13, J_23)·ω_⊥`:
+    /// - `M`: `M_c` on `x, y`, `M[x][β] = s_z`, `M[y][α] = −s_z`, the mean `A = (J_11 + J_22)/2`
+    ///   on `α, β`;
+    /// - [`LinearRotor::rotor_fixed_mass`]: the rest of `J_⊥`, `[[J_11 − A, J_12], [J_12, J_22 − A]]`
+    ///   on `α, β` (the inertia anisotropy `ΔA` of paper 000's eq (17) that turns with the rotor);
+    /// - `G[α][β] = −G[β][α] = J_33`, also [`LinearRotor::polar_inertia`] (its `½ Ω q̇ᵀ G q`
+    ///   equals `½ J_33 ω_3²` to second order up to the time derivative `½ J_33 Ω d(δθ)/dt`);
+    /// - the lateral first moment and `(J_13, J_23)` enter only linearly: each unbalance mass is
+    ///   an [`Unbalance`] `m ρ` at its angle and offset `ζ` (whose couple is its `−J_13, −J_23`), and
+    ///   the tilted principal axis's products `(C_r − A_r) sin κ cos κ (cos β_κ, sin β_κ)` are a
+    ///   pair of opposite unbalances at offsets `±1` m (a pure couple).
+    ///
+    /// **Supports** at offsets `ζ`: `k_x`, `c_x` on `x + ζ β` and `k_y`, `c_y` on `y − ζ α` (fixed
+    /// axes, so direction-dependent supports are anisotropic `K`, `C`). **Balls**: one
+    /// [`BalancerPlane`] per plane with balls, at offset `ζ_p`, drag `h_A R²` (the native force
+    /// `h_A R ψ̇` on the race). Spin drag [`SpatialRotor::spin_drag`] becomes
+    /// [`LinearRotor::spin_damping`]; gravity across the axis the load `M r_g` ([`LinearRotor::set_gravity`]).
+    /// With the tilt locked ([`SpatialRotor::lock_tilt`]) the node has `x, y` only.
+    ///
+    /// Errors: the rotor's own checks, gravity along the axis (`spatial.gravity[2]`, which this
+    /// model does not carry).
+    pub fn from_spatial(s: &SpatialRotor) -> Result<Self> {
+        s.validate()?;
+        if s.gravity[2] != 0.0 {
+            return Err(Error::invalid("spatial.gravity[2]", "the linear rotor carries gravity across the axis only: set it to 0"));
+        }
+        let zc = s.z_reference();
+        let r = &s.rotor;
+        // the carrier about O in rotor axes (as the native model's carrier)
+        let (sk, ck) = r.axis_tilt.sin_cos();
+        let (sb, cb) = r.axis_tilt_angle.sin_cos();
+        let e = [sk * cb, sk * sb, ck];
+        let mut j = [[0.0; 3]; 3];
+        for (a, row) in j.iter_mut().enumerate() {
+            for (b, v) in row.iter_mut().enumerate() {
+                *v = if a == b { r.equatorial_moment } else { 0.0 } + (r.polar_moment - r.equatorial_moment) * e[a] * e[b];
+            }
+        }
+        // products of the rotor's own tensor (before the point masses): a pure couple
+        let own_products = [j[0][2], j[1][2]];
+        let point = |j: &mut [[f64; 3]; 3], m: f64, p: [f64; 3]| {
+            let p2 = p[0] * p[0] + p[1] * p[1] + p[2] * p[2];
+            for a in 0..3 {
+                for b in 0..3 {
+                    j[a][b] += m * (if a == b { p2 } else { 0.0 } - p[a] * p[b]);
+                }
+            }
+        };
+        let zr = r.z - zc;
+        point(&mut j, r.mass, [0.0, 0.0, zr]);
+        let (mut mc, mut sz) = (r.mass, r.mass * zr);
+        let mut unbalances = vec![];
+        for u in &s.unbalances {
+            let zeta = u.z - zc;
+            point(&mut j, u.mass, [u.radius * u.angle.cos(), u.radius * u.angle.sin(), zeta]);
+            mc += u.mass;
+            sz += u.mass * zeta;
+            unbalances.push(Unbalance { node: 0, me: u.mass * u.radius, phase: u.angle, offset: zeta });
+        }
+        let mut planes = vec![];
+        let mut physics = vec![];
+        for p in s.planes.iter().filter(|p| p.n > 0) {
+            planes.push(BalancerPlane {
+                node: 0,
+                radius: p.race_radius,
+                balls: p.n,
+                ball_mass: p.ball_mass,
+                drag: p.drag * p.race_radius * p.race_radius,
+                offset: p.z - zc,
+            });
+            physics.push(p.physics);
+        }
+        let mut lr = if s.lock_tilt {
+            let mut lr = LinearRotor::zeros(1, Layout::Translation);
+            for i in 0..2 {
+                lr.m[i * 3] = mc;
+                for sup in &s.supports {
+                    lr.k[i * 3] += sup.stiffness[i];
+                    lr.c[i * 3] += sup.damping[i];
+                }
+            }
+            for u in &mut unbalances {
+                u.offset = 0.0;
+            }
+            for b in &mut planes {
+                b.offset = 0.0;
+            }
+            lr
+        } else {
+            let mut lr = LinearRotor::zeros(1, Layout::TranslationTilt);
+            let n = 4;
+            let a = 0.5 * (j[0][0] + j[1][1]);
+            let mm = [[mc, 0.0, 0.0, sz], [0.0, mc, -sz, 0.0], [0.0, -sz, a, 0.0], [sz, 0.0, 0.0, a]];
+            for i in 0..n {
+                for k in 0..n {
+                    lr.m[i * n + k] = mm[i][k];
+                }
+            }
+            let mut mrot = vec![0.0; n * n];
+            mrot[2 * n + 2] = j[0][0] - a;
+            mrot[2 * n + 3] = j[0][1];
+            mrot[3 * n + 2] = j[1][0];
+            mrot[3 * n + 3] = j[1][1] - a;
+            if mrot.iter().any(|v| *v != 0.0) {
+                lr.rotor_fixed_mass = mrot;
+            }
+            lr.g[2 * n + 3] = j[2][2];
+            lr.g[3 * n + 2] = -j[2][2];
+            for sup in &s.supports {
+                let z = sup.z - zc;
+                // x + ζ β with k_x, c_x; y − ζ α with k_y, c_y
+                for (d, rows) in [(0, [(0, 1.0), (3, z)]), (1, [(1, 1.0), (2, -z)])] {
+                    for &(i, ci) in &rows {
+                        for &(k, ckk) in &rows {
+                            lr.k[i * n + k] += sup.stiffness[d] * ci * ckk;
+                            lr.c[i * n + k] += sup.damping[d] * ci * ckk;
+                        }
+                    }
+                }
+            }
+            // the tilted principal axis's products (J_13, J_23) as two opposite unbalances at
+            // offsets ±1 m: −Σ m e z e_u = (J_13, J_23) (module docs of from_spatial)
+            let pc = own_products[0].hypot(own_products[1]);
+            if pc > 0.0 {
+                let phase = (-own_products[1]).atan2(-own_products[0]);
+                unbalances.push(Unbalance { node: 0, me: 0.5 * pc, phase, offset: 1.0 });
+                unbalances.push(Unbalance { node: 0, me: 0.5 * pc, phase: phase + std::f64::consts::PI, offset: -1.0 });
+            }
+            lr
+        };
+        lr.unbalances = unbalances;
+        lr.balancers = planes;
+        if physics.iter().any(|p| p.is_active()) {
+            lr.ball_physics = physics;
+        }
+        lr.polar_inertia = j[2][2];
+        lr.spin_damping = s.spin_drag;
+        lr.set_gravity([s.gravity[0], s.gravity[1]]);
+        lr.validate()?;
+        Ok(lr)
+    }
+
     /// `C(Ω)` and `K(Ω)`: `C`, `K` plus the speed-dependent bearings at `omega`.
     pub fn damping_stiffness_at(&self, omega: f64) -> (Vec<f64>, Vec<f64>) {
         let (mut c, mut k) = (self.c.clone(), self.k.clone());
@@ -437,6 +632,16 @@ impl LinearRotor {
     /// Number of structural DOFs `N`.
     pub fn dofs(&self) -> usize {
         self.nodes * self.layout.per_node()
+    }
+
+    /// `T(φ) M_rot T(φ)ᵀ`: the rotor-fixed inertia ([`LinearRotor::rotor_fixed_mass`]) in the
+    /// axes from which the rotor has turned by `φ` (row-major `N × N`; zeros when there is none).
+    pub fn rotor_fixed_in(&self, phi: f64) -> Vec<f64> {
+        let n = self.dofs();
+        if self.rotor_fixed_mass.is_empty() {
+            return vec![0.0; n * n];
+        }
+        turn_blocks(&self.rotor_fixed_mass, n, phi)
     }
 
     /// Index of DOF `(node, direction)`, `None` where the layout has no such DOF.
@@ -502,6 +707,39 @@ impl LinearRotor {
         }
         if let Err(i) = cholesky(&self.m, n) {
             return Err(Error::invalid("linear_rotor.m", format!("is not positive definite (pivot {i}, {})", self.dof_name(i))));
+        }
+        if !self.rotor_fixed_mass.is_empty() {
+            let a = &self.rotor_fixed_mass;
+            if a.len() != n * n {
+                return Err(Error::invalid("linear_rotor.rotor_fixed_mass", format!("has {} entries, N² = {} for N = {n} DOFs", a.len(), n * n)));
+            }
+            for (i, v) in a.iter().enumerate() {
+                finite(&format!("linear_rotor.rotor_fixed_mass[{},{}]", i / n, i % n), *v)?;
+            }
+            let sa = scale(a);
+            for i in 0..n {
+                for j in 0..i {
+                    if (a[i * n + j] - a[j * n + i]).abs() > 1e-12 * sa {
+                        return Err(Error::invalid(
+                            format!("linear_rotor.rotor_fixed_mass[{i},{j}]"),
+                            format!("must equal rotor_fixed_mass[{j},{i}] (symmetric)"),
+                        ));
+                    }
+                }
+            }
+            // M + T(φ) M_rot T(φ)ᵀ at φ = 0 and π/4 (its anisotropic part turns by 2φ): necessary;
+            // sufficient where M is isotropic on the pairs M_rot acts on (the presets' case), since
+            // then the spectrum does not depend on φ
+            for phi in [0.0, std::f64::consts::FRAC_PI_4] {
+                let mut sum = self.rotor_fixed_in(phi);
+                sum.iter_mut().zip(&self.m).for_each(|(s, m)| *s += m);
+                if let Err(i) = cholesky(&sum, n) {
+                    return Err(Error::invalid(
+                        "linear_rotor.rotor_fixed_mass",
+                        format!("M + T(φ) M_rot T(φ)ᵀ is not positive definite at φ = {phi:.4} (pivot {i}, {})", self.dof_name(i)),
+                    ));
+                }
+            }
         }
         for (i, u) in self.unbalances.iter().enumerate() {
             let f = |s: &str| format!("linear_rotor.unbalances[{i}].{s}");
@@ -647,6 +885,28 @@ impl LinearRotor {
         }
         a
     }
+}
+
+/// `T(φ) A T(φ)ᵀ` of a row-major `n × n` matrix `A`, `T(φ)` block-diagonal with the 2×2
+/// rotations `R(φ) = [[cos, −sin], [sin, cos]]` (every pair `(x, y)`, `(α, β)`), generic over
+/// the number type (the angle carried as a dual number in the exact Jacobians).
+pub(crate) fn turn_blocks<T: crate::ode::dual::Real>(a: &[f64], n: usize, phi: T) -> Vec<T> {
+    let (s, c) = phi.sin_cos();
+    let mut out = vec![T::cst(0.0); n * n];
+    for bi in 0..n / 2 {
+        for bj in 0..n / 2 {
+            let e = |r: usize, cc: usize| a[(2 * bi + r) * n + 2 * bj + cc];
+            // B Rᵀ, then R (B Rᵀ)
+            let br = [[c * e(0, 0) - s * e(0, 1), s * e(0, 0) + c * e(0, 1)], [c * e(1, 0) - s * e(1, 1), s * e(1, 0) + c * e(1, 1)]];
+            let o = [[c * br[0][0] - s * br[1][0], c * br[0][1] - s * br[1][1]], [s * br[0][0] + c * br[1][0], s * br[0][1] + c * br[1][1]]];
+            for r in 0..2 {
+                for cc in 0..2 {
+                    out[(2 * bi + r) * n + 2 * bj + cc] = o[r][cc];
+                }
+            }
+        }
+    }
+    out
 }
 
 /// Cholesky factor `L` (row-major, lower) of a symmetric positive definite `n × n` matrix, or

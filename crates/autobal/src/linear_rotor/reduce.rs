@@ -216,6 +216,9 @@ fn project(x: &[f64], b: &[f64], n: usize, r: usize) -> Vec<f64> {
 /// speed-dependent bearing.
 pub fn reduce(rotor: &LinearRotor, mode_pairs: usize, extra_boundary: &[usize]) -> Result<Reduction> {
     rotor.validate()?;
+    if !rotor.rotor_fixed_mass.is_empty() {
+        return Err(Error::invalid("linear_rotor.rotor_fixed_mass", "inertia fixed to the rotor is not reduced: reduce the structure without it"));
+    }
     let n = rotor.dofs();
     let per = rotor.layout.per_node();
     let mut boundary: Vec<usize> = rotor

@@ -169,6 +169,7 @@ impl<'a> RunUpSystem<'a> {
                 rphi += u.me * (-s * g.g[0] + c * g.g[1]);
             }
         }
+        rphi += rotor_fixed_torque(r, phi, &x[nc..nc + n]);
         let mut k = n;
         for b in &r.balancers {
             for _ in 0..b.balls {
@@ -306,6 +307,7 @@ impl RunUpSystem<'_> {
                     gs = gs + (c * gr.g[1] - s * gr.g[0]) * u.me;
                 }
             }
+            gs = gs + rotor_fixed_torque(r, phid, &xd[nc..nc + n]);
             let mut k = n;
             for b in &r.balancers {
                 for _ in 0..b.balls {
@@ -328,6 +330,28 @@ impl RunUpSystem<'_> {
             }
         }
     }
+}
+
+/// The spin's torque from the inertia fixed to the rotor ([`LinearRotor::rotor_fixed_mass`]):
+/// `∂T/∂φ = ½ q̇ᵀ (∂/∂φ T(φ) M_rot T(φ)ᵀ) q̇ = q̇ᵀ J M_f q̇`, `M_f = T(φ) M_rot T(φ)ᵀ` (the
+/// kinetic energy depends on the rotor's angle, not on its rate), fixed axes; 0 without it.
+fn rotor_fixed_torque<T: Real>(r: &LinearRotor, phi: T, v: &[T]) -> T {
+    let n = r.dofs();
+    let mut t = T::cst(0.0);
+    if r.rotor_fixed_mass.is_empty() {
+        return t;
+    }
+    let mf = super::turn_blocks(&r.rotor_fixed_mass, n, phi);
+    for m in 0..n / 2 {
+        let (mut u0, mut u1) = (T::cst(0.0), T::cst(0.0));
+        for j in 0..n {
+            u0 = u0 + mf[2 * m * n + j] * v[j];
+            u1 = u1 + mf[(2 * m + 1) * n + j] * v[j];
+        }
+        // (J u)_{2m} = −u_{2m+1}, (J u)_{2m+1} = u_{2m}: vᵀ J u
+        t = t + v[2 * m + 1] * u0 - v[2 * m] * u1;
+    }
+    t
 }
 
 impl System for RunUpSystem<'_> {
