@@ -336,14 +336,21 @@ pub static PARAMETER_PATHS: &[ParameterPath<SpatialSpec>] = &[
     ParameterPath {
         path: "balancer.z",
         doc: "axial position of the balancer plane (m)",
-        // plane A carries the balls and the unbalance: both move
+        // plane A carries the balls and the unbalance: both move (the plane's z, else the
+        // unbalance's, as SpatialRotor::to_dimensionless reads it)
         set: |s, v| {
             let r = si(s)?;
-            unbalance_mut(r)?.z = v;
-            plane_mut(r)?.z = v;
+            if r.planes.is_empty() && r.unbalances.is_empty() {
+                return Err("the rotor has no balancer plane".into());
+            }
+            r.planes.iter_mut().take(1).for_each(|p| p.z = v);
+            r.unbalances.iter_mut().take(1).for_each(|u| u.z = v);
             Ok(())
         },
-        get: |s| Ok(plane(si_ref(s)?)?.z),
+        get: |s| {
+            let r = si_ref(s)?;
+            plane(r).map(|p| p.z).or_else(|e| unbalance(r).map(|u| u.z).map_err(|_| e))
+        },
     },
     si_field!("supports.z_left", "left support position (m)", left / left_mut, z),
     si_field!("supports.z_right", "right support position (m)", right / right_mut, z),
@@ -487,6 +494,16 @@ mod tests {
         }
         let e = bare.set("balancer.drag", 1.0).unwrap_err().to_string();
         assert_eq!(e, "balancer.drag: the rotor has no balancer plane");
+        // ... and its balancer plane is the unbalance's, as to_dimensionless reads it
+        bare.set("balancer.z", 0.3).unwrap();
+        assert_eq!(bare.get("balancer.z").unwrap(), 0.3);
+        assert_eq!(bare.build().unwrap().scale, {
+            let mut t = si_base();
+            t.set("balancer.z", 0.3).unwrap();
+            t.set("balancer.balls", 0.0).unwrap();
+            t.set("balancer.ball_mass", 0.0).unwrap();
+            t.build().unwrap().scale
+        });
     }
 
     #[test]

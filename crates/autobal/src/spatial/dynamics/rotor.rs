@@ -243,8 +243,8 @@ impl SpatialRotor {
         Ok(())
     }
 
-    /// The dimensionless model of papers 000/003 of this rotor, in SI (000, eqs (4), (5), (8),
-    /// (10)): `M_s = M_r + m0 + n m`, `z_C` from `M_r z_G + (m0 + n m) z_A = 0`,
+    /// The papers' dimensionless model of this SI rotor, with its SI scale (000, eqs (4), (5),
+    /// (8), (10)): `M_s = M_r + m0 + n m`, `z_C` from `M_r z_G + (m0 + n m) z_A = 0`,
     /// `A_Σ = A_r + M_r z_G² + (m0 + n m) z_A² + ½ m0 R0² + ½ n m R²`,
     /// `C_Σ = C_r + m0 R0² + n m R²`, `c_x = c_L + c_R`, `c_α = c_L l_cL² + c_R l_cR²`,
     /// `c_yα = c_L l_cL − c_R l_cR` (and likewise for damping), `ω0 = sqrt(c_x/M_s)`.
