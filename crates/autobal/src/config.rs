@@ -862,6 +862,7 @@ pub fn spatial_simulation(root: &Table) -> Result<SpatialSimulation> {
             let mut r = si.clone();
             // the simulation's rotor has no empty ball plane (its [balancer2] is then the first)
             r.planes.retain(|p| p.n > 0);
+            let balancer_has_balls = !r.planes.is_empty();
             let (ro, su, un) = (sec("rotor"), sec("supports"), sec("unbalance"));
             r.rotor.axis_tilt = ro.f64("axis_tilt")?.unwrap_or(0.0);
             r.rotor.axis_tilt_angle = ro.f64("axis_tilt_angle")?.unwrap_or(0.0);
@@ -895,8 +896,10 @@ pub fn spatial_simulation(root: &Table) -> Result<SpatialSimulation> {
                 b.used_only_if(plane.n > 0, &BALL_KEYS, "with balancer2.balls = 0");
                 r.planes.push(plane);
             }
-            if let Some(p) = r.planes.first_mut() {
-                p.physics = ball_physics_of(&sec("balancer"))?;
+            // [balancer]'s own plane only (without balls, the first plane is [balancer2]'s)
+            let balancer_physics = ball_physics_of(&sec("balancer"))?;
+            if balancer_has_balls {
+                r.planes[0].physics = balancer_physics;
             }
             ro.used_only_if(r.rotor.axis_tilt != 0.0, &["axis_tilt_angle"], "with rotor.axis_tilt = 0");
             r

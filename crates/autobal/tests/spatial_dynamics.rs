@@ -704,3 +704,24 @@ fn two_ball_sets_cancel_static_plus_couple_unbalance_above_both_critical_speeds(
     let couple = s.residual_couple.unwrap();
     assert!(s.balanced && s.residual_unbalance < 1e-5 && couple < 1e-5, "gravity: {s:?}");
 }
+
+/// A config's `[balancer]` without balls leaves `[balancer2]` as the simulation's only plane,
+/// with its own ball physics (before, the first plane took `[balancer]`'s, silently dropping
+/// `[balancer2]`'s contact).
+#[test]
+fn the_second_plane_keeps_its_ball_physics_when_the_first_has_no_balls() {
+    let text = include_str!("../../../examples/spatial_two_plane.toml")
+        .replace("balls = 2                   # n", "balls = 0")
+        .replace("ball_mass = 0.020           # m (kg), each ball", "ball_mass = 0.0")
+        .replace("[balancer2]                 # second ball set", "[balancer2]\ncontact = true\nrolling_resistance = 1e-3");
+    let root = autobal::config::parse(&text, "two_plane.toml").unwrap();
+    let sim = autobal::config::spatial_simulation(&root).unwrap();
+    assert_eq!(sim.rotor.planes.len(), 1);
+    let p = &sim.rotor.planes[0];
+    assert_eq!((p.z, p.n), (0.05, 2));
+    assert!(p.physics.contact && p.physics.rolling_resistance == 1e-3, "{:?}", p.physics);
+    // and the example as given: each plane its own (default) physics
+    let root = autobal::config::parse(include_str!("../../../examples/spatial_two_plane.toml"), "two_plane.toml").unwrap();
+    let sim = autobal::config::spatial_simulation(&root).unwrap();
+    assert_eq!(sim.rotor.planes.iter().map(|p| (p.z, p.n)).collect::<Vec<_>>(), [(0.45, 2), (0.05, 2)]);
+}
