@@ -274,7 +274,7 @@ fn outcome_round_two(root: &Table) -> Result<(), String> {
     Ok(())
 }
 
-/// The SI fields in the order of [`autobal::spatial::params::SpatialRotorSi`].
+/// The SI parameter paths ([`autobal::spatial::paths::PARAMETER_PATHS`]) but `balancer.balls`.
 const SI_FIELDS: [&str; 16] = [
     "rotor.mass",
     "rotor.equatorial_moment",
@@ -413,17 +413,18 @@ proptest! {
         ],
         balls in prop_oneof![4 => 0u32..6, 1 => 0u32..=110],
     ) {
-        use autobal::spatial::params::{SpatialModel, SpatialRotorSi};
-        let r = SpatialRotorSi {
-            rotor_mass: v[0], equatorial_moment: v[1], polar_moment: v[2], z_rotor: v[3], z_balancer: v[4],
-            z_left: v[5], z_right: v[6], stiffness_left: v[7], stiffness_right: v[8], damping_left: v[9],
-            damping_right: v[10], unbalance_mass: v[11], unbalance_radius: v[12], balls,
-            ball_mass: v[13], race_radius: v[14], ball_drag: v[15],
-        };
+        use autobal::spatial::paths::{SpatialInput, SpatialSpec};
+        // the example rotor with every SI field set through its parameter path
+        let mut spec = SpatialSpec { input: SpatialInput::Si { rotor: autobal::spatial::dynamics::SpatialRotor::dimensional_example(), method: autobal::spatial::inertia::AnisotropyMethod::Exact }, delta_a_override: None };
+        for (path, x) in SI_FIELDS.iter().zip(&v) {
+            spec.set(path, *x).unwrap();
+        }
+        spec.set("balancer.balls", balls as f64).unwrap();
+        let SpatialInput::Si { rotor: r, .. } = &spec.input else { unreachable!() };
         for method in [autobal::spatial::inertia::AnisotropyMethod::Exact, autobal::spatial::inertia::AnisotropyMethod::Paper] {
-            match SpatialModel::from_si(&r, method) {
+            match r.to_dimensionless(method) {
                 Ok(model) => {
-                    let spec = autobal::spatial::paths::SpatialSpec { input: autobal::spatial::paths::SpatialInput::Si { rotor: r.clone(), method }, delta_a_override: None };
+                    let spec = SpatialSpec { input: SpatialInput::Si { rotor: r.clone(), method }, delta_a_override: None };
                     let cfg = config::Config { config: autobal::config::SpatialConfig { model, spec, analysis: config::Analysis { sensitivity_limit: 0.15, omega_max: None, operating_speed: None }, dimensional: true }, source: String::new() };
                     if let Err(e) = analyse_spatial(&cfg) {
                         panic!("accepted {r:?}, but: {e}");

@@ -21,8 +21,9 @@
 use crate::error::{Error, Result};
 use crate::planar::problem::PlanarProblem;
 use crate::planar::{Drive, Method, PlanarRotor, Settings};
+use crate::spatial::dynamics::{BallPlane, PointMass, RigidRotor, SpatialRotor, Support};
 use crate::spatial::inertia::AnisotropyMethod;
-use crate::spatial::params::{check_delta_a, AnisotropyInput, DimensionlessInput, MassSet, SpatialModel, SpatialRotorSi};
+use crate::spatial::params::{check_delta_a, AnisotropyInput, DimensionlessInput, MassSet, SpatialModel};
 use crate::spatial::paths::{SpatialInput, SpatialSpec};
 pub use toml::{Table, Value};
 
@@ -463,38 +464,34 @@ pub fn spatial(root: &Table) -> Result<SpatialConfig> {
     Ok(SpatialConfig { model, spec, analysis: Analysis { sensitivity_limit, omega_max, operating_speed }, dimensional: has_dim })
 }
 
-fn rotor_si(root: &Table) -> Result<SpatialRotorSi> {
+/// The SI rotor of `[rotor]`, `[supports]`, `[unbalance]`, `[balancer]`: two isotropic supports,
+/// the unbalance mass at angle 0 and the balancer plane (with its ball mass, race radius and
+/// drag even when `balls = 0`, so that `balancer.balls = 0` with a ball mass is an error), both
+/// in plane A ([`SpatialRotor::to_dimensionless`]).
+fn rotor_si(root: &Table) -> Result<SpatialRotor> {
     let (r, s, u, b) = (Section::of(root, "rotor"), Section::of(root, "supports"), Section::of(root, "unbalance"), Section::of(root, "balancer"));
     // the phase of the one unbalance: a rotation of the rotor frame, which the linear model's
     // results do not depend on (the spatial simulation reads it again with [couple])
     u.f64("angle")?;
-    let si = SpatialRotorSi {
-        rotor_mass: r.req("mass")?,
-        equatorial_moment: r.req("equatorial_moment")?,
-        polar_moment: r.req("polar_moment")?,
-        z_rotor: r.req("z")?,
-        // plane A carries balls and unbalance: required when either is described
-        z_balancer: match b.f64("z")? {
-            Some(z) => z,
-            None if b.table.is_some() || u.table.is_some() => return Err(Error::invalid("balancer.z", "missing (required: the plane of balls and unbalance)")),
-            None => 0.0,
-        },
-        z_left: s.req("z_left")?,
-        z_right: s.req("z_right")?,
-        stiffness_left: s.req("stiffness_left")?,
-        stiffness_right: s.req("stiffness_right")?,
-        damping_left: s.f64("damping_left")?.unwrap_or(0.0),
-        damping_right: s.f64("damping_right")?.unwrap_or(0.0),
-        unbalance_mass: u.f64("mass")?.unwrap_or(0.0),
-        unbalance_radius: u.f64("radius")?.unwrap_or(0.0),
-        balls: b.count("balls")?.unwrap_or(0),
-        ball_mass: b.f64("ball_mass")?.unwrap_or(0.0),
-        race_radius: b.f64("race_radius")?.unwrap_or(0.0),
-        ball_drag: b.f64("drag")?.unwrap_or(0.0),
+    // read in this order, so that the first missing or wrong key is the one named
+    let rigid = RigidRotor::aligned(r.req("mass")?, r.req("equatorial_moment")?, r.req("polar_moment")?, r.req("z")?);
+    // plane A carries balls and unbalance: required when either is described
+    let z_balancer = match b.f64("z")? {
+        Some(z) => z,
+        None if b.table.is_some() || u.table.is_some() => return Err(Error::invalid("balancer.z", "missing (required: the plane of balls and unbalance)")),
+        None => 0.0,
     };
-    b.used_only_if(si.balls > 0, &BALL_KEYS, "with balancer.balls = 0");
-    u.used_only_if(si.unbalance_mass != 0.0, &["radius", "angle"], "with unbalance.mass = 0");
-    Ok(si)
+    let (z_left, z_right) = (s.req("z_left")?, s.req("z_right")?);
+    let (stiffness_left, stiffness_right) = (s.req("stiffness_left")?, s.req("stiffness_right")?);
+    let (damping_left, damping_right) = (s.f64("damping_left")?.unwrap_or(0.0), s.f64("damping_right")?.unwrap_or(0.0));
+    let unbalance = PointMass { mass: u.f64("mass")?.unwrap_or(0.0), radius: u.f64("radius")?.unwrap_or(0.0), angle: 0.0, z: z_balancer };
+    let balls = b.count("balls")?.unwrap_or(0) as usize;
+    let plane =
+        BallPlane::point_masses(z_balancer, balls, b.f64("ball_mass")?.unwrap_or(0.0), b.f64("race_radius")?.unwrap_or(0.0), b.f64("drag")?.unwrap_or(0.0));
+    b.used_only_if(balls > 0, &BALL_KEYS, "with balancer.balls = 0");
+    u.used_only_if(unbalance.mass != 0.0, &["radius", "angle"], "with unbalance.mass = 0");
+    let supports = vec![Support::isotropic(z_left, stiffness_left, damping_left), Support::isotropic(z_right, stiffness_right, damping_right)];
+    Ok(SpatialRotor::new(rigid, supports, vec![unbalance], vec![plane]))
 }
 
 fn dimensionless(root: &Table, method: AnisotropyMethod) -> Result<SpatialSpec> {
@@ -850,7 +847,7 @@ pub fn default_run_up(model: &SpatialModel, omega_max: Option<f64>, integration:
 /// assert!(run_up.default_drive && matches!(run_up.drive, autobal::drive::Drive::Acceleration { .. }));
 /// ```
 pub fn spatial_simulation(root: &Table) -> Result<SpatialSimulation> {
-    use crate::spatial::dynamics::{simulate::initial_state, BallPlane, Equations, Initial, PointMass, Settings as SpatialSettings, SpatialRotor};
+    use crate::spatial::dynamics::{simulate::initial_state, Equations, Initial, Settings as SpatialSettings};
     let config = spatial(root)?;
     let sec = |name: &'static str| Section::of(root, name);
     let pair = |s: &Section, key: &str| -> Result<Option<[f64; 2]>> {
@@ -862,7 +859,10 @@ pub fn spatial_simulation(root: &Table) -> Result<SpatialSimulation> {
     };
     let mut rotor = match &config.spec.input {
         SpatialInput::Si { rotor: si, .. } => {
-            let mut r = SpatialRotor::from_si(si);
+            let mut r = si.clone();
+            // the simulation's rotor has no empty ball plane (its [balancer2] is then the first)
+            r.planes.retain(|p| p.n > 0);
+            let balancer_has_balls = !r.planes.is_empty();
             let (ro, su, un) = (sec("rotor"), sec("supports"), sec("unbalance"));
             r.rotor.axis_tilt = ro.f64("axis_tilt")?.unwrap_or(0.0);
             r.rotor.axis_tilt_angle = ro.f64("axis_tilt_angle")?.unwrap_or(0.0);
@@ -896,8 +896,10 @@ pub fn spatial_simulation(root: &Table) -> Result<SpatialSimulation> {
                 b.used_only_if(plane.n > 0, &BALL_KEYS, "with balancer2.balls = 0");
                 r.planes.push(plane);
             }
-            if let Some(p) = r.planes.first_mut() {
-                p.physics = ball_physics_of(&sec("balancer"))?;
+            // [balancer]'s own plane only (without balls, the first plane is [balancer2]'s)
+            let balancer_physics = ball_physics_of(&sec("balancer"))?;
+            if balancer_has_balls {
+                r.planes[0].physics = balancer_physics;
             }
             ro.used_only_if(r.rotor.axis_tilt != 0.0, &["axis_tilt_angle"], "with rotor.axis_tilt = 0");
             r

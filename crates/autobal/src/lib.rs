@@ -19,9 +19,9 @@
 //! - [`error`], [`limits`]: typed errors, and the range of every input.
 //!
 //! Inside [`spatial`]:
-//! - [`spatial::params`]: the SI description of a rigid rotor on two supports with an unbalance mass
-//!   and an n-ball balancer ([`spatial::params::SpatialRotorSi`]) and the papers' dimensionless model
-//!   ([`spatial::params::SpatialModel`]) every analysis works on.
+//! - [`spatial::params`]: the papers' dimensionless model ([`spatial::params::SpatialModel`]) every
+//!   analysis works on, derived from the SI rotor ([`spatial::dynamics::SpatialRotor::to_dimensionless`])
+//!   or given in the papers' symbols ([`spatial::params::DimensionlessInput`]).
 //! - [`spatial::inertia`]: composite inertia and its anisotropy `ΔĀ`, by paper 000's eq (17) and by
 //!   the exact inertia tensor of the point masses at their balancing positions.
 //! - [`spatial::critical_speeds`]: exact roots of `Δ1 Δ2 = 0` (000, eq (16)), approximations (18)-(20),
@@ -34,15 +34,17 @@
 //! - [`linalg::eigen`]: eigenvalues of small dense matrices (balancing, Hessenberg, Francis QR),
 //!   characteristic polynomial and Routh–Hurwitz test.
 //! - [`spatial::stability`]: exact stability ranges, Campbell diagrams, stability verdicts for maps.
-//! - [`spatial::dynamics`]: the nonlinear equations of the rotor with its balls in time (one or
-//!   two supports and balancer planes, static and couple unbalance, anisotropic supports,
-//!   gravity, any drive), whose linearisation is 000's eq (6); simulation.
+//! - [`spatial::dynamics`]: the SI rotor ([`spatial::dynamics::SpatialRotor`], also what an SI
+//!   config's `[rotor]`, `[supports]`, `[unbalance]`, `[balancer]` describe) and its nonlinear
+//!   equations with its balls in time (one or two supports and balancer planes, static and couple
+//!   unbalance, anisotropic supports, gravity, any drive), whose linearisation is 000's eq (6);
+//!   simulation.
 //!
 //! ## Starting points
 //! Every model and settings type has a `Default` (each paper's base case) and presets named
 //! after the papers ([`planar::PlanarRotor::paper_004`], [`planar::problem::PlanarProblem::paper_004`],
 //! [`spatial::params::DimensionlessInput::paper_000`] and `paper_003`,
-//! [`spatial::dynamics::SpatialRotor::paper_000`], [`spatial::params::SpatialRotorSi::default`],
+//! [`spatial::dynamics::SpatialRotor::paper_000`], [`spatial::dynamics::SpatialRotor::dimensional_example`],
 //! the settings of `examples/`); the models and the simulations' settings have builders whose
 //! `build()` validates (errors name the field as the config spells it). Parameters are
 //! addressed by path (`planar.c_psi`, `drive.psi0[2]`, `dimensionless.z_a`, `rotor.mass`):

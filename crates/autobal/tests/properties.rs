@@ -1,8 +1,9 @@
 //! Property tests over seeded random parameters: limit cases, second routes, invariants.
 
 use autobal::spatial::critical_speeds::{branch_roots, critical_speeds, critical_speeds_at, delta_k, ModeKind, RotorClass};
+use autobal::spatial::dynamics::{BallPlane, PointMass, RigidRotor, SpatialRotor, Support};
 use autobal::spatial::inertia::{anisotropy, complete_configuration, exact_anisotropy_of, exact_interval, exact_interval_families, AnisotropyMethod, BallSet};
-use autobal::spatial::params::{identical_support_coefficients, AnisotropyInput, DimensionlessInput, SpatialModel, SpatialRotorSi};
+use autobal::spatial::params::{identical_support_coefficients, AnisotropyInput, DimensionlessInput, SpatialModel};
 use autobal::spatial::ranges::{antiresonance_speed, autobalancing_ranges, point_a_response};
 
 mod common;
@@ -420,34 +421,26 @@ fn dimensional_identical_supports_match_the_closed_form() {
         let equatorial_moment = rng.range(0.01, 5.0);
         // a rigid body's polar moment is at most the sum of its equatorial ones
         let polar_moment = rng.range(0.01, 5.0).min(2.0 * equatorial_moment);
-        let r = SpatialRotorSi {
-            rotor_mass,
-            equatorial_moment,
-            polar_moment,
-            z_rotor: rng.range(-0.5, 1.5),
-            z_balancer: rng.range(-0.5, 1.5),
-            z_left: 0.0,
-            z_right: rng.range(0.2, 1.0),
-            stiffness_left: k,
-            stiffness_right: k,
-            damping_left: 10.0,
-            damping_right: 10.0,
-            unbalance_mass: rng.range(0.0, 0.1),
-            unbalance_radius: rng.range(0.01, 0.2),
-            balls: 2,
-            ball_mass: rng.range(0.01, 0.2),
-            race_radius: rng.range(0.05, 0.3),
-            ball_drag: 1.0,
-        };
-        let m = SpatialModel::from_si(&r, AnisotropyMethod::Exact).unwrap();
+        // drawn in this order: z_G, z_A, z_R, m0, R0, m, R
+        let (z_rotor, z_balancer, z_right) = (rng.range(-0.5, 1.5), rng.range(-0.5, 1.5), rng.range(0.2, 1.0));
+        let unbalance = PointMass { mass: rng.range(0.0, 0.1), radius: rng.range(0.01, 0.2), angle: 0.0, z: z_balancer };
+        let plane = BallPlane::point_masses(z_balancer, 2, rng.range(0.01, 0.2), rng.range(0.05, 0.3), 1.0);
+        let (unbalance_mass, ball_mass) = (unbalance.mass, plane.ball_mass);
+        let r = SpatialRotor::new(
+            RigidRotor::aligned(rotor_mass, equatorial_moment, polar_moment, z_rotor),
+            vec![Support::isotropic(0.0, k, 10.0), Support::isotropic(z_right, k, 10.0)],
+            vec![unbalance],
+            vec![plane],
+        );
+        let m = r.to_dimensionless(AnisotropyMethod::Exact).unwrap();
         let (p, c) = identical_support_coefficients(m.l_left.unwrap(), m.rho_s.unwrap());
         assert!((m.p_alpha_sq - p).abs() <= 1e-12 * p);
         assert!((m.c_y_alpha - c).abs() <= 1e-12 * p.sqrt());
         // centre of mass: M_r z_G + (m0 + n m) z_A = 0
         let s = m.scale.unwrap();
         let z_a = m.z_a * s.rho_s;
-        let z_g = r.z_rotor - (r.z_balancer - z_a);
-        let resid = r.rotor_mass * z_g + (r.unbalance_mass + 2.0 * r.ball_mass) * z_a;
+        let z_g = z_rotor - (z_balancer - z_a);
+        let resid = rotor_mass * z_g + (unbalance_mass + 2.0 * ball_mass) * z_a;
         assert!(resid.abs() < 1e-12 * s.total_mass);
         // damping follows the stiffness pattern for identical supports
         assert!((m.damping.h_alpha / m.damping.h_x - m.p_alpha_sq).abs() < 1e-9 * m.p_alpha_sq);

@@ -8,10 +8,10 @@ use autobal::planar::PlanarRotor;
 use autobal::rotor_campbell::{campbell_over_speed, locked_critical_speeds, Whirl};
 use autobal::rotor_stability::Rotor;
 use autobal::spatial::critical_speeds::critical_speeds;
-use autobal::spatial::dynamics::SpatialRotor;
+use autobal::spatial::dynamics::{BallPlane, PointMass, RigidRotor, SpatialRotor, Support};
 use autobal::spatial::inertia::AnisotropyMethod;
 use autobal::spatial::linear_model::Balls;
-use autobal::spatial::params::{AnisotropyInput, DimensionlessInput, MassSet, SpatialModel, SpatialRotorSi};
+use autobal::spatial::params::{AnisotropyInput, DimensionlessInput, MassSet, SpatialModel};
 use autobal::spatial::stability::eigenvalues_at;
 use num_complex::Complex64;
 
@@ -143,25 +143,12 @@ fn the_jeffcott_campbell_curves_whirl_at_the_natural_frequency() {
 }
 
 fn si_rotor(ratio: f64) -> SpatialRotor {
-    let mut r = SpatialRotor::from_si(&SpatialRotorSi {
-        rotor_mass: 10.0,
-        equatorial_moment: 0.5,
-        polar_moment: 0.2,
-        z_rotor: 0.0,
-        z_left: -0.3,
-        z_right: 0.3,
-        stiffness_left: 1e5,
-        stiffness_right: 1.5e5,
-        damping_left: 40.0,
-        damping_right: 60.0,
-        unbalance_mass: 0.01,
-        unbalance_radius: 0.1,
-        z_balancer: 0.1,
-        balls: 2,
-        ball_mass: 0.02,
-        race_radius: 0.08,
-        ball_drag: 0.02,
-    });
+    let mut r = SpatialRotor::new(
+        RigidRotor::aligned(10.0, 0.5, 0.2, 0.0),
+        vec![Support::isotropic(-0.3, 1e5, 40.0), Support::isotropic(0.3, 1.5e5, 60.0)],
+        vec![PointMass { mass: 0.01, radius: 0.1, angle: 0.0, z: 0.1 }],
+        vec![BallPlane::point_masses(0.1, 2, 0.02, 0.08, 0.02)],
+    );
     for s in &mut r.supports {
         s.stiffness[0] *= ratio;
     }

@@ -8,9 +8,8 @@ use autobal::rotor_campbell::{campbell_locked, campbell_over_speed, fixed_view, 
 use autobal::rotor_stability::Rotor;
 use autobal::spatial::campbell::fixed_axes;
 use autobal::spatial::critical_speeds::critical_speeds;
-use autobal::spatial::dynamics::SpatialRotor;
+use autobal::spatial::dynamics::{BallPlane, PointMass, RigidRotor, SpatialRotor, Support};
 use autobal::spatial::inertia::AnisotropyMethod;
-use autobal::spatial::params::SpatialRotorSi;
 use autobal::spatial::stability::{campbell, eigenvalues_at, Whirl};
 use num_complex::Complex64;
 
@@ -146,25 +145,12 @@ fn the_locked_undamped_rotors_crossings_of_1x_are_paper_000s_eq_16() {
 
 /// A rigid rotor without balls or unbalance on two supports, stiffer along x by `ratio`.
 fn bare_rotor(ratio: f64) -> SpatialRotor {
-    let mut r = SpatialRotor::from_si(&SpatialRotorSi {
-        rotor_mass: 10.0,
-        equatorial_moment: 0.5,
-        polar_moment: 0.2,
-        z_rotor: 0.0,
-        z_left: -0.3,
-        z_right: 0.2,
-        stiffness_left: 1e5,
-        stiffness_right: 1.5e5,
-        damping_left: 40.0,
-        damping_right: 60.0,
-        unbalance_mass: 0.01,
-        unbalance_radius: 0.1,
-        z_balancer: 0.1,
-        balls: 2,
-        ball_mass: 0.02,
-        race_radius: 0.08,
-        ball_drag: 0.02,
-    });
+    let mut r = SpatialRotor::new(
+        RigidRotor::aligned(10.0, 0.5, 0.2, 0.0),
+        vec![Support::isotropic(-0.3, 1e5, 40.0), Support::isotropic(0.2, 1.5e5, 60.0)],
+        vec![PointMass { mass: 0.01, radius: 0.1, angle: 0.0, z: 0.1 }],
+        vec![BallPlane::point_masses(0.1, 2, 0.02, 0.08, 0.02)],
+    );
     r.planes.iter_mut().for_each(|p| p.n = 0);
     r.unbalances.iter_mut().for_each(|u| u.mass = 0.0);
     for s in &mut r.supports {

@@ -8,10 +8,10 @@ use autobal::analysis::{Kind, VectorField, Verdict};
 use autobal::planar::PlanarRotor;
 use autobal::rotor_stability::{speed_grid, stability_over_speed, Rotor, StateKind};
 use autobal::spatial::dynamics::field::SpatialField;
-use autobal::spatial::dynamics::SpatialRotor;
+use autobal::spatial::dynamics::{BallPlane, PointMass, RigidRotor, SpatialRotor, Support};
 use autobal::spatial::inertia::AnisotropyMethod;
 use autobal::spatial::linear_model::Balls;
-use autobal::spatial::params::{SpatialModel, SpatialRotorSi};
+use autobal::spatial::params::SpatialModel;
 use autobal::spatial::stability::stability_ranges;
 
 mod common;
@@ -103,25 +103,12 @@ fn jeffcott_rotor_balances_only_above_its_critical_speed() {
 /// An SI rotor with anisotropic supports (x stiffer than y by `ratio`) and optional gravity
 /// across the axis; one plane with `n` balls.
 fn anisotropic_rotor(n: u32, ratio: f64, gravity: f64) -> SpatialRotor {
-    let mut r = SpatialRotor::from_si(&SpatialRotorSi {
-        rotor_mass: 10.0,
-        equatorial_moment: 0.5,
-        polar_moment: 0.2,
-        z_rotor: 0.0,
-        z_left: -0.3,
-        z_right: 0.3,
-        stiffness_left: 1e5,
-        stiffness_right: 1.5e5,
-        damping_left: 40.0,
-        damping_right: 60.0,
-        unbalance_mass: 0.01,
-        unbalance_radius: 0.1,
-        z_balancer: 0.1,
-        balls: n,
-        ball_mass: 0.02,
-        race_radius: 0.08,
-        ball_drag: 0.02,
-    });
+    let mut r = SpatialRotor::new(
+        RigidRotor::aligned(10.0, 0.5, 0.2, 0.0),
+        vec![Support::isotropic(-0.3, 1e5, 40.0), Support::isotropic(0.3, 1.5e5, 60.0)],
+        vec![PointMass { mass: 0.01, radius: 0.1, angle: 0.0, z: 0.1 }],
+        vec![BallPlane::point_masses(0.1, n as usize, 0.02, 0.08, 0.02)],
+    );
     for s in &mut r.supports {
         s.stiffness[0] *= ratio;
     }

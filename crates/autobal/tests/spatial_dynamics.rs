@@ -5,10 +5,10 @@
 
 use autobal::drive::Drive;
 use autobal::ode::System;
-use autobal::spatial::dynamics::{BallPlane, Equations, PointMass, SpatialRotor};
+use autobal::spatial::dynamics::{BallPlane, Equations, PointMass, RigidRotor, SpatialRotor, Support};
 use autobal::spatial::inertia::AnisotropyMethod;
 use autobal::spatial::linear_model::{Balls, Pencil};
-use autobal::spatial::params::{AnisotropyInput, DimensionlessInput, MassSet, SpatialModel, SpatialRotorSi};
+use autobal::spatial::params::{AnisotropyInput, DimensionlessInput, MassSet, SpatialModel};
 use serde_json::json;
 
 mod common;
@@ -213,31 +213,20 @@ fn dimensional_jacobian_scales_to_the_dimensionless_linear_model() {
     // dimensionless config is this model in the units M_s = 1, ω0 = 1, ρ_s = 1.
     let mut rng = Rng(11);
     for _ in 0..6 {
-        let si = SpatialRotorSi {
-            rotor_mass: rng.range(5.0, 40.0),
-            equatorial_moment: rng.range(0.2, 1.0),
-            polar_moment: rng.range(0.05, 0.6),
-            z_rotor: rng.range(0.15, 0.35),
-            z_balancer: rng.range(0.0, 0.6),
-            z_left: 0.0,
-            z_right: 0.5,
-            stiffness_left: rng.range(1e6, 4e6),
-            stiffness_right: rng.range(1e6, 4e6),
-            damping_left: rng.range(0.0, 800.0),
-            damping_right: rng.range(0.0, 800.0),
-            unbalance_mass: rng.range(0.005, 0.05),
-            unbalance_radius: rng.range(0.05, 0.15),
-            balls: 2,
-            ball_mass: rng.range(0.01, 0.05),
-            race_radius: rng.range(0.08, 0.15),
-            ball_drag: rng.range(0.1, 2.0),
-        };
-        let model = SpatialModel::from_si(&si, AnisotropyMethod::Exact).unwrap();
+        // drawn in this order: mass, A_r, C_r, z_G, z_A, c_L, c_R, h_L, h_R, m0, R0, m, R, h_A
+        let rigid = RigidRotor::aligned(rng.range(5.0, 40.0), rng.range(0.2, 1.0), rng.range(0.05, 0.6), rng.range(0.15, 0.35));
+        let z_balancer = rng.range(0.0, 0.6);
+        let (stiffness_left, stiffness_right) = (rng.range(1e6, 4e6), rng.range(1e6, 4e6));
+        let (damping_left, damping_right) = (rng.range(0.0, 800.0), rng.range(0.0, 800.0));
+        let unbalance = PointMass { mass: rng.range(0.005, 0.05), radius: rng.range(0.05, 0.15), angle: 0.0, z: z_balancer };
+        let plane = BallPlane::point_masses(z_balancer, 2, rng.range(0.01, 0.05), rng.range(0.08, 0.15), rng.range(0.1, 2.0));
+        let supports = vec![Support::isotropic(0.0, stiffness_left, damping_left), Support::isotropic(0.5, stiffness_right, damping_right)];
+        let mut rotor = SpatialRotor::new(rigid, supports, vec![unbalance], vec![plane]);
+        let model = rotor.to_dimensionless(AnisotropyMethod::Exact).unwrap();
         let Some(ms) = model.masses else { unreachable!() };
         if ms.capacity() < 1.0 {
             continue;
         }
-        let mut rotor = SpatialRotor::from_si(&si);
         let psi = at_balance(&model, &mut rotor);
         let sc = model.scale.unwrap();
         let omega = rng.range(0.2, 4.0);
@@ -636,26 +625,8 @@ fn run_up_through_the_split_critical_speeds_follows_the_locked_ball_curve() {
 /// gravity, the couple unbalance mass moved to mid-span (so that neither ball set sits in the
 /// plane of an unbalance mass alone).
 fn two_plane_rotor() -> SpatialRotor {
-    let si = SpatialRotorSi {
-        rotor_mass: 20.0,
-        equatorial_moment: 0.6,
-        polar_moment: 0.15,
-        z_rotor: 0.25,
-        z_balancer: 0.45,
-        z_left: 0.0,
-        z_right: 0.5,
-        stiffness_left: 2.0e6,
-        stiffness_right: 3.0e6,
-        damping_left: 300.0,
-        damping_right: 300.0,
-        unbalance_mass: 0.01,
-        unbalance_radius: 0.1,
-        balls: 2,
-        ball_mass: 0.02,
-        race_radius: 0.12,
-        ball_drag: 0.5,
-    };
-    let mut r = SpatialRotor::from_si(&si);
+    // the rotor of examples/dimensional.toml, whose [balancer] is the first plane
+    let mut r = SpatialRotor::dimensional_example();
     r.unbalances.push(PointMass { mass: 0.01, radius: 0.1, angle: 2.5, z: 0.25 });
     r.planes.push(BallPlane { z: 0.05, n: 2, ball_mass: 0.02, race_radius: 0.12, drag: 0.5, physics: Default::default() });
     r
@@ -732,4 +703,25 @@ fn two_ball_sets_cancel_static_plus_couple_unbalance_above_both_critical_speeds(
     let s = simulate(&heavy, &Drive::Speed { omega0: 1400.0 }, &Initial::at_rest(&heavy), &set, |_| true).unwrap();
     let couple = s.residual_couple.unwrap();
     assert!(s.balanced && s.residual_unbalance < 1e-5 && couple < 1e-5, "gravity: {s:?}");
+}
+
+/// A config's `[balancer]` without balls leaves `[balancer2]` as the simulation's only plane,
+/// with its own ball physics (before, the first plane took `[balancer]`'s, silently dropping
+/// `[balancer2]`'s contact).
+#[test]
+fn the_second_plane_keeps_its_ball_physics_when_the_first_has_no_balls() {
+    let text = include_str!("../../../examples/spatial_two_plane.toml")
+        .replace("balls = 2                   # n", "balls = 0")
+        .replace("ball_mass = 0.020           # m (kg), each ball", "ball_mass = 0.0")
+        .replace("[balancer2]                 # second ball set", "[balancer2]\ncontact = true\nrolling_resistance = 1e-3");
+    let root = autobal::config::parse(&text, "two_plane.toml").unwrap();
+    let sim = autobal::config::spatial_simulation(&root).unwrap();
+    assert_eq!(sim.rotor.planes.len(), 1);
+    let p = &sim.rotor.planes[0];
+    assert_eq!((p.z, p.n), (0.05, 2));
+    assert!(p.physics.contact && p.physics.rolling_resistance == 1e-3, "{:?}", p.physics);
+    // and the example as given: each plane its own (default) physics
+    let root = autobal::config::parse(include_str!("../../../examples/spatial_two_plane.toml"), "two_plane.toml").unwrap();
+    let sim = autobal::config::spatial_simulation(&root).unwrap();
+    assert_eq!(sim.rotor.planes.iter().map(|p| (p.z, p.n)).collect::<Vec<_>>(), [(0.45, 2), (0.05, 2)]);
 }

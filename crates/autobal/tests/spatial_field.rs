@@ -8,10 +8,10 @@ use autobal::drive::Drive;
 use autobal::error::Error;
 use autobal::ode::System;
 use autobal::spatial::dynamics::field::{arc_angles, SpatialField};
-use autobal::spatial::dynamics::{simulate, Equations, Initial, Settings, SpatialRotor};
+use autobal::spatial::dynamics::{simulate, BallPlane, Equations, Initial, PointMass, RigidRotor, Settings, SpatialRotor, Support};
 use autobal::spatial::inertia::AnisotropyMethod;
 use autobal::spatial::linear_model::{Balls, Pencil};
-use autobal::spatial::params::{SpatialModel, SpatialRotorSi};
+use autobal::spatial::params::SpatialModel;
 use num_complex::Complex64;
 
 mod common;
@@ -240,25 +240,12 @@ fn the_field_is_periodic_exactly_when_something_turns_against_the_rotor() {
 
 /// An SI rotor with `n` balls in the unbalance's plane, isotropic supports, no gravity.
 fn si_rotor(n: u32) -> SpatialRotor {
-    SpatialRotor::from_si(&SpatialRotorSi {
-        rotor_mass: 10.0,
-        equatorial_moment: 0.5,
-        polar_moment: 0.2,
-        z_rotor: 0.0,
-        z_left: -0.3,
-        z_right: 0.3,
-        stiffness_left: 1e5,
-        stiffness_right: 1.5e5,
-        damping_left: 20.0,
-        damping_right: 30.0,
-        unbalance_mass: 0.01,
-        unbalance_radius: 0.1,
-        z_balancer: 0.1,
-        balls: n,
-        ball_mass: 0.02 / n as f64 * 2.0,
-        race_radius: 0.08,
-        ball_drag: 0.01,
-    })
+    SpatialRotor::new(
+        RigidRotor::aligned(10.0, 0.5, 0.2, 0.0),
+        vec![Support::isotropic(-0.3, 1e5, 20.0), Support::isotropic(0.3, 1.5e5, 30.0)],
+        vec![PointMass { mass: 0.01, radius: 0.1, angle: 0.0, z: 0.1 }],
+        vec![BallPlane::point_masses(0.1, n as usize, 0.02 / n as f64 * 2.0, 0.08, 0.01)],
+    )
 }
 
 /// The eigenvalues of the field's Jacobian at `x`, their largest modulus, and how many lie

@@ -4,33 +4,19 @@
 //! is `partially_balanced` with the closed-form residual.
 
 use autobal::drive::Drive;
-use autobal::spatial::dynamics::{simulate, simulate_summary, Initial, RunOutcome, Settings, SpatialRotor, Summary};
-use autobal::spatial::params::SpatialRotorSi;
+use autobal::spatial::dynamics::{simulate, simulate_summary, BallPlane, Initial, PointMass, RigidRotor, RunOutcome, Settings, SpatialRotor, Summary, Support};
 
 const G: f64 = 9.81;
 
 /// examples/washing_machine.toml: drum, tub and counterweights on their suspension, 0.3 kg of
 /// laundry at the drum wall, three 120 g balls at 250 mm.
 fn washer(ball_mass: f64) -> SpatialRotor {
-    SpatialRotor::from_si(&SpatialRotorSi {
-        rotor_mass: 32.0,
-        equatorial_moment: 0.9,
-        polar_moment: 0.75,
-        z_rotor: 0.22,
-        z_balancer: 0.26,
-        z_left: 0.0,
-        z_right: 0.45,
-        stiffness_left: 1.8e4,
-        stiffness_right: 1.2e4,
-        damping_left: 180.0,
-        damping_right: 120.0,
-        unbalance_mass: 0.30,
-        unbalance_radius: 0.22,
-        balls: 3,
-        ball_mass,
-        race_radius: 0.25,
-        ball_drag: 1.5,
-    })
+    SpatialRotor::new(
+        RigidRotor::aligned(32.0, 0.9, 0.75, 0.22),
+        vec![Support::isotropic(0.0, 1.8e4, 180.0), Support::isotropic(0.45, 1.2e4, 120.0)],
+        vec![PointMass { mass: 0.30, radius: 0.22, angle: 0.0, z: 0.26 }],
+        vec![BallPlane::point_masses(0.26, 3, ball_mass, 0.25, 1.5)],
+    )
 }
 
 fn horizontal(mut r: SpatialRotor) -> SpatialRotor {

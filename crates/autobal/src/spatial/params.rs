@@ -1,6 +1,8 @@
-//! Parameters of the spatial rotor of papers 000 and 003: the SI description an engineer
-//! writes down, and the papers' dimensionless parameters derived from it (000, eqs (4), (5),
-//! (8), (10)).
+//! Parameters of the spatial rotor of papers 000 and 003: the papers' dimensionless model
+//! ([`SpatialModel`]) and its inputs in the papers' symbols ([`DimensionlessInput`]). The SI
+//! rotor an engineer writes down is [`crate::spatial::dynamics::SpatialRotor`]; its
+//! [`to_dimensionless`](crate::spatial::dynamics::SpatialRotor::to_dimensionless) derives the
+//! model (000, eqs (4), (5), (8), (10)).
 //!
 //! Axis convention: `z` runs along the shaft from the left support towards the right one.
 //! `l_cL = z_C − z_L`, `l_cR = z_R − z_C` (negative for an overhung rotor beyond the right
@@ -9,49 +11,9 @@
 //! forced response of the locked rotor (see `ranges::antiresonance_speed`).
 
 use crate::error::{fmt_num, positive, Error, Result};
-use crate::limits::{check, check_all, check_count, check_derived};
+use crate::limits::{check, check_all, check_count};
 use crate::spatial::inertia::{self, Anisotropy, AnisotropyMethod, BallSet, CompositeInertia};
 use serde::Serialize;
-
-/// A rigid rotor on two isotropic elastic-viscous supports, with a point unbalance mass and an
-/// n-ball autobalancer in one plane A. SI units throughout.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct SpatialRotorSi {
-    /// Rotor mass `M_r` (kg), without unbalance mass and balls.
-    pub rotor_mass: f64,
-    /// Equatorial moment of inertia `A_r` about the rotor's own centre of mass G (kg·m²).
-    pub equatorial_moment: f64,
-    /// Polar moment of inertia `C_r` (kg·m²).
-    pub polar_moment: f64,
-    /// Axial position of G (m).
-    pub z_rotor: f64,
-    /// Axial position of the balancer plane A, which also carries the unbalance (m).
-    pub z_balancer: f64,
-    /// Axial position of the left support (m).
-    pub z_left: f64,
-    /// Axial position of the right support (m); must exceed `z_left`.
-    pub z_right: f64,
-    /// Left support stiffness `c_L` (N/m).
-    pub stiffness_left: f64,
-    /// Right support stiffness `c_R` (N/m).
-    pub stiffness_right: f64,
-    /// Left support viscous damping `h_L` (N·s/m).
-    pub damping_left: f64,
-    /// Right support viscous damping `h_R` (N·s/m).
-    pub damping_right: f64,
-    /// Unbalance mass `m0` (kg).
-    pub unbalance_mass: f64,
-    /// Radius of the unbalance mass `R0` (m).
-    pub unbalance_radius: f64,
-    /// Number of balls `n` (0 for a rotor without balancer).
-    pub balls: u32,
-    /// Mass of one ball `m` (kg).
-    pub ball_mass: f64,
-    /// Race radius `R` (radius of the balls' centres) (m).
-    pub race_radius: f64,
-    /// Viscous drag on each ball's motion relative to the rotor `h_A` (N·s/m).
-    pub ball_drag: f64,
-}
 
 /// Masses and radii of unbalance and balls in the papers' dimensionless form (000, eq (17)):
 /// `m̄0 = m0/M_s`, `R̄0 = R0/ρ_s`, `m̄ = n m/M_s` (all balls together), `R̄ = R/ρ_s`.
@@ -271,114 +233,6 @@ impl SpatialModel {
         })
     }
 
-    /// Build from an SI rotor (000, eqs (4), (5), (8), (10)):
-    /// `M_s = M_r + m0 + n m`, `z_C` from `M_r z_G + (m0 + n m) z_A = 0`,
-    /// `A_Σ = A_r + M_r z_G² + (m0 + n m) z_A² + ½ m0 R0² + ½ n m R²`,
-    /// `C_Σ = C_r + m0 R0² + n m R²`, `c_x = c_L + c_R`, `c_α = c_L l_cL² + c_R l_cR²`,
-    /// `c_yα = c_L l_cL − c_R l_cR` (and likewise for damping), `ω0 = sqrt(c_x/M_s)`.
-    pub fn from_si(r: &SpatialRotorSi, method: AnisotropyMethod) -> Result<Self> {
-        check_all(&[
-            ("rotor.mass", r.rotor_mass),
-            ("rotor.equatorial_moment", r.equatorial_moment),
-            ("rotor.polar_moment", r.polar_moment),
-            ("rotor.z", r.z_rotor),
-            ("balancer.z", r.z_balancer),
-            ("supports.z_left", r.z_left),
-            ("supports.z_right", r.z_right),
-        ])?;
-        if r.polar_moment > 2.0 * r.equatorial_moment {
-            return Err(Error::invalid(
-                "rotor.polar_moment",
-                format!(
-                    "C_r = {} kg·m² exceeds twice the equatorial moment A_r = {} kg·m²: no rigid body has a polar moment above the sum of its equatorial ones",
-                    fmt_num(r.polar_moment),
-                    fmt_num(r.equatorial_moment)
-                ),
-            ));
-        }
-        if r.z_right <= r.z_left {
-            return Err(Error::invalid(
-                "supports.z_right",
-                format!(
-                    "the right support must lie beyond the left one (z_right = {} ≤ z_left = {}): the span l = z_right − z_left must be positive",
-                    fmt_num(r.z_right),
-                    fmt_num(r.z_left)
-                ),
-            ));
-        }
-        check_all(&[
-            ("supports.stiffness_left", r.stiffness_left),
-            ("supports.stiffness_right", r.stiffness_right),
-            ("supports.damping_left", r.damping_left),
-            ("supports.damping_right", r.damping_right),
-            ("unbalance.mass", r.unbalance_mass),
-            ("unbalance.radius", r.unbalance_radius),
-            ("balancer.ball_mass", r.ball_mass),
-            ("balancer.race_radius", r.race_radius),
-            ("balancer.drag", r.ball_drag),
-        ])?;
-        check_count("balancer.balls", r.balls as u64)?;
-        if r.balls == 0 && r.ball_mass > 0.0 {
-            return Err(Error::invalid("balancer.balls", "is 0 but balancer.ball_mass is given: set the number of balls, or ball_mass = 0"));
-        }
-        if r.balls > 0 && r.ball_mass == 0.0 {
-            return Err(Error::invalid("balancer.ball_mass", "must be positive when balancer.balls > 0"));
-        }
-        if r.balls > 0 && r.race_radius == 0.0 {
-            return Err(Error::invalid("balancer.race_radius", "must be positive when balancer.balls > 0"));
-        }
-        let n = r.balls as f64;
-        let m_ab = r.unbalance_mass + n * r.ball_mass; // mass in plane A
-        let ms = r.rotor_mass + m_ab;
-        let z_c = (r.rotor_mass * r.z_rotor + m_ab * r.z_balancer) / ms;
-        let z_g = r.z_rotor - z_c;
-        let z_a = r.z_balancer - z_c;
-        let l_cl = z_c - r.z_left;
-        let l_cr = r.z_right - z_c;
-        let span = r.z_right - r.z_left;
-        let a_m0 = r.unbalance_mass * r.unbalance_radius.powi(2);
-        let a_m = n * r.ball_mass * r.race_radius.powi(2);
-        let a_s = r.equatorial_moment + r.rotor_mass * z_g * z_g + m_ab * z_a * z_a;
-        let a_sigma = a_s + 0.5 * a_m0 + 0.5 * a_m;
-        let c_sigma_abs = r.polar_moment + a_m0 + a_m;
-        let (cl, cr) = (r.stiffness_left, r.stiffness_right);
-        let c_x = cl + cr;
-        let c_alpha = cl * l_cl * l_cl + cr * l_cr * l_cr;
-        let c_ya = cl * l_cl - cr * l_cr;
-        let (hl, hr) = (r.damping_left, r.damping_right);
-        let h_x = hl + hr;
-        let h_alpha = hl * l_cl * l_cl + hr * l_cr * l_cr;
-        let h_ya = hl * l_cl - hr * l_cr;
-        let omega0 = (c_x / ms).sqrt();
-        let rho = (a_sigma / ms).sqrt();
-        let masses = MassSet { m0: r.unbalance_mass / ms, r0: r.unbalance_radius / rho, m: n * r.ball_mass / ms, r: r.race_radius / rho, n: r.balls };
-        let anisotropy = inertia::anisotropy(&masses.ball_set(), None, method)?;
-        let h_s = if r.balls > 0 { r.ball_drag / (r.ball_mass * omega0) } else { 0.0 };
-        // the ratios of the SI inputs, through the dimensionless parameters they imply
-        let rho_bar = rho / span;
-        let what_rho = format!("the radius of gyration sqrt(A_Σ/M_s) = {} m over the span {} m", fmt_num(rho), fmt_num(span));
-        check_derived(if rho_bar < 1.0 { "supports.z_right" } else { "rotor.equatorial_moment" }, "dimensionless.rho_s", rho_bar, &what_rho)?;
-        check_derived("rotor.z", "dimensionless.l_left", l_cl / span, "the centre of mass's distance from the left support over the span")?;
-        check_derived("balancer.z", "dimensionless.z_a", z_a / rho, "the balancer plane's distance from the centre of mass over the radius of gyration")?;
-        let worse_support = if r.damping_left >= r.damping_right { "supports.damping_left" } else { "supports.damping_right" };
-        check_derived(worse_support, "dimensionless.h_x", h_x / (ms * omega0), "(damping_left + damping_right)/(M_s ω0)")?;
-        check_derived("balancer.drag", "dimensionless.h_s", h_s, "drag/(ball_mass ω0)")?;
-        Ok(SpatialModel {
-            balls: ball_coupling(&masses, &anisotropy),
-            c_sigma: c_sigma_abs / a_sigma,
-            rho_s: Some(rho / span),
-            l_left: Some(l_cl / span),
-            p_alpha_sq: c_alpha / (a_sigma * omega0 * omega0),
-            c_y_alpha: c_ya / (omega0 * omega0 * (ms * a_sigma).sqrt()),
-            z_a: z_a / rho,
-            anisotropy,
-            delta_a0: 0.5 * masses.a_m0(),
-            damping: Damping { h_x: h_x / (ms * omega0), h_alpha: h_alpha / (a_sigma * omega0), h_y_alpha: h_ya / (omega0 * (ms * a_sigma).sqrt()), h_s },
-            masses: Some(masses),
-            scale: Some(Scale { omega0, total_mass: ms, rho_s: rho, span }),
-        })
-    }
-
     /// `ΔĪ_1,2 = 1 − C̄Σ ± ΔĀ` (000, eq (15)) for the anisotropy in use.
     pub fn delta_i(&self) -> [f64; 2] {
         let d = self.anisotropy.used;
@@ -394,8 +248,10 @@ impl SpatialModel {
     }
 }
 
-/// Ball coupling of the linear model from the masses and the anisotropy in use.
-fn ball_coupling(ms: &MassSet, a: &Anisotropy) -> Option<BallCoupling> {
+/// Ball coupling of the linear model from the masses and the anisotropy in use: none without
+/// balls; else `m̄` and `d_A`, by eq (17)'s `D_A` (`diag(1 − D_A, 1 + D_A)`) or from the balls'
+/// balancing angles ([`inertia::ball_coupling_exact`]).
+pub(crate) fn ball_coupling(ms: &MassSet, a: &Anisotropy) -> Option<BallCoupling> {
     if ms.n == 0 || ms.m == 0.0 {
         return None;
     }

@@ -10,8 +10,9 @@
 
 use crate::error::{Error, Result};
 use crate::paths::{ParameterPath, Parameters};
+use crate::spatial::dynamics::{BallPlane, PointMass, RigidRotor, SpatialRotor, Support};
 use crate::spatial::inertia::{Anisotropy, AnisotropyMethod};
-use crate::spatial::params::{AnisotropyInput, DimensionlessInput, SpatialModel, SpatialRotorSi};
+use crate::spatial::params::{AnisotropyInput, DimensionlessInput, SpatialModel};
 
 /// The two ways to describe a spatial model.
 #[derive(Debug, Clone, PartialEq)]
@@ -21,8 +22,9 @@ pub enum SpatialInput {
     /// An SI rotor (`[rotor]`, `[supports]`, `[unbalance]`, `[balancer]`) and the anisotropy
     /// method of `[analysis]`.
     Si {
-        /// The rotor.
-        rotor: SpatialRotorSi,
+        /// The rotor: what [`SpatialRotor::to_dimensionless`] takes (two isotropic supports, the
+        /// unbalance mass and the balancer plane, with `n = 0` balls when `[balancer]` has none).
+        rotor: SpatialRotor,
         /// Which anisotropy the analyses use.
         method: AnisotropyMethod,
     },
@@ -44,7 +46,7 @@ impl SpatialSpec {
     pub fn build(&self) -> Result<SpatialModel> {
         let mut m = match &self.input {
             SpatialInput::Dimensionless(d) => SpatialModel::from_dimensionless(d)?,
-            SpatialInput::Si { rotor, method } => SpatialModel::from_si(rotor, *method)?,
+            SpatialInput::Si { rotor, method } => rotor.to_dimensionless(*method)?,
         };
         if let Some(v) = self.delta_a_override {
             if !(v >= 0.0 && v.is_finite()) {
@@ -100,18 +102,54 @@ fn dimless_ref(s: &SpatialSpec) -> std::result::Result<&DimensionlessInput, Stri
     }
 }
 
-fn si(s: &mut SpatialSpec) -> std::result::Result<&mut SpatialRotorSi, String> {
+fn si(s: &mut SpatialSpec) -> std::result::Result<&mut SpatialRotor, String> {
     match &mut s.input {
         SpatialInput::Si { rotor, .. } => Ok(rotor),
         SpatialInput::Dimensionless(_) => Err("the model is dimensionless ([dimensionless]): vary its dimensionless fields instead".into()),
     }
 }
 
-fn si_ref(s: &SpatialSpec) -> std::result::Result<&SpatialRotorSi, String> {
+fn si_ref(s: &SpatialSpec) -> std::result::Result<&SpatialRotor, String> {
     match &s.input {
         SpatialInput::Si { rotor, .. } => Ok(rotor),
         SpatialInput::Dimensionless(_) => Err("the model is dimensionless ([dimensionless]): vary its dimensionless fields instead".into()),
     }
+}
+
+// The parts of the SI rotor the paths name (an SI config's rotor has them all; one built
+// otherwise may lack a support, the unbalance or the plane: an error, not a panic).
+fn rigid(r: &SpatialRotor) -> std::result::Result<&RigidRotor, String> {
+    Ok(&r.rotor)
+}
+fn rigid_mut(r: &mut SpatialRotor) -> std::result::Result<&mut RigidRotor, String> {
+    Ok(&mut r.rotor)
+}
+fn no_support(i: usize) -> String {
+    format!("the rotor has no {} support", ["left", "right"][i])
+}
+fn left(r: &SpatialRotor) -> std::result::Result<&Support, String> {
+    r.supports.first().ok_or_else(|| no_support(0))
+}
+fn left_mut(r: &mut SpatialRotor) -> std::result::Result<&mut Support, String> {
+    r.supports.first_mut().ok_or_else(|| no_support(0))
+}
+fn right(r: &SpatialRotor) -> std::result::Result<&Support, String> {
+    r.supports.get(1).ok_or_else(|| no_support(1))
+}
+fn right_mut(r: &mut SpatialRotor) -> std::result::Result<&mut Support, String> {
+    r.supports.get_mut(1).ok_or_else(|| no_support(1))
+}
+fn unbalance(r: &SpatialRotor) -> std::result::Result<&PointMass, String> {
+    r.unbalances.first().ok_or_else(|| "the rotor has no unbalance mass".into())
+}
+fn unbalance_mut(r: &mut SpatialRotor) -> std::result::Result<&mut PointMass, String> {
+    r.unbalances.first_mut().ok_or_else(|| "the rotor has no unbalance mass".into())
+}
+fn plane(r: &SpatialRotor) -> std::result::Result<&BallPlane, String> {
+    r.planes.first().ok_or_else(|| "the rotor has no balancer plane".into())
+}
+fn plane_mut(r: &mut SpatialRotor) -> std::result::Result<&mut BallPlane, String> {
+    r.planes.first_mut().ok_or_else(|| "the rotor has no balancer plane".into())
 }
 
 fn masses_only() -> String {
@@ -137,16 +175,25 @@ macro_rules! dimless_field {
     };
 }
 
+/// A field of one part of the SI rotor: `$part`/`$part_mut` find the part, the field is read
+/// as `$get` and written by `$set` (both a plain field unless given).
 macro_rules! si_field {
-    ($path:literal, $doc:literal, $field:ident) => {
+    ($path:literal, $doc:literal, $part:ident / $part_mut:ident, $field:ident) => {
+        si_field!($path, $doc, $part / $part_mut, |p| p.$field, |q, v| q.$field = v)
+    };
+    ($path:literal, $doc:literal, $part:ident / $part_mut:ident, |$p:ident| $get:expr, |$q:ident, $v:ident| $set:expr) => {
         ParameterPath {
             path: $path,
             doc: $doc,
-            set: |s, v| {
-                si(s)?.$field = v;
+            set: |s, $v| {
+                let $q = $part_mut(si(s)?)?;
+                $set;
                 Ok(())
             },
-            get: |s| Ok(si_ref(s)?.$field),
+            get: |s| {
+                let $p = $part(si_ref(s)?)?;
+                Ok($get)
+            },
         }
     };
 }
@@ -282,30 +329,50 @@ pub static PARAMETER_PATHS: &[ParameterPath<SpatialSpec>] = &[
             }
         },
     },
-    si_field!("rotor.mass", "rotor mass M_r (kg)", rotor_mass),
-    si_field!("rotor.equatorial_moment", "A_r (kg·m²)", equatorial_moment),
-    si_field!("rotor.polar_moment", "C_r (kg·m²)", polar_moment),
-    si_field!("rotor.z", "axial position of G (m)", z_rotor),
-    si_field!("balancer.z", "axial position of the balancer plane (m)", z_balancer),
-    si_field!("supports.z_left", "left support position (m)", z_left),
-    si_field!("supports.z_right", "right support position (m)", z_right),
-    si_field!("supports.stiffness_left", "c_L (N/m)", stiffness_left),
-    si_field!("supports.stiffness_right", "c_R (N/m)", stiffness_right),
-    si_field!("supports.damping_left", "h_L (N·s/m)", damping_left),
-    si_field!("supports.damping_right", "h_R (N·s/m)", damping_right),
-    si_field!("unbalance.mass", "m0 (kg)", unbalance_mass),
-    si_field!("unbalance.radius", "R0 (m)", unbalance_radius),
-    si_field!("balancer.ball_mass", "mass of one ball (kg)", ball_mass),
-    si_field!("balancer.race_radius", "race radius R (m)", race_radius),
-    si_field!("balancer.drag", "drag on each ball h_A (N·s/m)", ball_drag),
+    si_field!("rotor.mass", "rotor mass M_r (kg)", rigid / rigid_mut, mass),
+    si_field!("rotor.equatorial_moment", "A_r (kg·m²)", rigid / rigid_mut, equatorial_moment),
+    si_field!("rotor.polar_moment", "C_r (kg·m²)", rigid / rigid_mut, polar_moment),
+    si_field!("rotor.z", "axial position of G (m)", rigid / rigid_mut, z),
+    ParameterPath {
+        path: "balancer.z",
+        doc: "axial position of the balancer plane (m)",
+        // plane A carries the balls and the unbalance: both move (the plane's z, else the
+        // unbalance's, as SpatialRotor::to_dimensionless reads it)
+        set: |s, v| {
+            let r = si(s)?;
+            if r.planes.is_empty() && r.unbalances.is_empty() {
+                return Err("the rotor has no balancer plane".into());
+            }
+            r.planes.iter_mut().take(1).for_each(|p| p.z = v);
+            r.unbalances.iter_mut().take(1).for_each(|u| u.z = v);
+            Ok(())
+        },
+        get: |s| {
+            let r = si_ref(s)?;
+            plane(r).map(|p| p.z).or_else(|e| unbalance(r).map(|u| u.z).map_err(|_| e))
+        },
+    },
+    si_field!("supports.z_left", "left support position (m)", left / left_mut, z),
+    si_field!("supports.z_right", "right support position (m)", right / right_mut, z),
+    // an SI config's supports are isotropic: x and y together
+    si_field!("supports.stiffness_left", "c_L (N/m)", left / left_mut, |p| p.stiffness[0], |q, v| q.stiffness = [v; 2]),
+    si_field!("supports.stiffness_right", "c_R (N/m)", right / right_mut, |p| p.stiffness[0], |q, v| q.stiffness = [v; 2]),
+    si_field!("supports.damping_left", "h_L (N·s/m)", left / left_mut, |p| p.damping[0], |q, v| q.damping = [v; 2]),
+    si_field!("supports.damping_right", "h_R (N·s/m)", right / right_mut, |p| p.damping[0], |q, v| q.damping = [v; 2]),
+    si_field!("unbalance.mass", "m0 (kg)", unbalance / unbalance_mut, mass),
+    si_field!("unbalance.radius", "R0 (m)", unbalance / unbalance_mut, radius),
+    si_field!("balancer.ball_mass", "mass of one ball (kg)", plane / plane_mut, ball_mass),
+    si_field!("balancer.race_radius", "race radius R (m)", plane / plane_mut, race_radius),
+    si_field!("balancer.drag", "drag on each ball h_A (N·s/m)", plane / plane_mut, drag),
     ParameterPath {
         path: "balancer.balls",
         doc: "number of balls",
         set: |s, v| {
-            si(s)?.balls = whole(v)?;
+            let n = whole(v)?;
+            plane_mut(si(s)?)?.n = n as usize;
             Ok(())
         },
-        get: |s| Ok(si_ref(s)?.balls as f64),
+        get: |s| Ok(plane(si_ref(s)?)?.n as f64),
     },
 ];
 
@@ -374,6 +441,69 @@ mod tests {
         assert!(e.starts_with("dimensionless.zz: unknown parameter path"), "{e}");
         let e = base().set("dimensionless.n", 2.5).unwrap_err().to_string();
         assert!(e.starts_with("dimensionless.n: must be a whole number"), "{e}");
+    }
+
+    fn si_base() -> SpatialSpec {
+        SpatialSpec { input: SpatialInput::Si { rotor: SpatialRotor::dimensional_example(), method: AnisotropyMethod::Exact }, delta_a_override: None }
+    }
+
+    #[test]
+    fn every_si_path_round_trips_and_the_other_kind_names_itself() {
+        let si_paths: Vec<_> = PARAMETER_PATHS.iter().filter(|p| !p.path.starts_with("dimensionless.")).collect();
+        assert_eq!(si_paths.len(), 17);
+        for p in &si_paths {
+            let mut s = si_base();
+            let v = s.get(p.path).unwrap();
+            s.set(p.path, v + 1.0).unwrap();
+            assert_eq!(s.get(p.path).unwrap(), v + 1.0, "{}", p.path);
+            let e = base().set(p.path, 1.0).unwrap_err().to_string();
+            assert_eq!(e, format!("{}: the model is dimensionless ([dimensionless]): vary its dimensionless fields instead", p.path));
+        }
+        let e = si_base().get("dimensionless.z_a").unwrap_err().to_string();
+        assert_eq!(e, "dimensionless.z_a: the model is dimensional ([rotor], [supports], ...): vary its SI fields instead");
+    }
+
+    #[test]
+    fn si_paths_change_the_rotor_as_the_config_keys_do() {
+        let mut s = si_base();
+        // a support's stiffness and damping: both directions (the config's isotropic support)
+        s.set("supports.stiffness_right", 4.0e6).unwrap();
+        s.set("supports.damping_left", 100.0).unwrap();
+        // the balancer plane carries the unbalance: both move
+        s.set("balancer.z", 0.40).unwrap();
+        let SpatialInput::Si { rotor, .. } = &s.input else { unreachable!() };
+        assert_eq!((rotor.supports[1].stiffness, rotor.supports[0].damping), ([4.0e6; 2], [100.0; 2]));
+        assert_eq!((rotor.planes[0].z, rotor.unbalances[0].z), (0.40, 0.40));
+        // ω0 = sqrt((c_L + c_R)/M_s) follows (M_s = 20 kg + 10 g + 2 × 20 g)
+        let w0 = s.build().unwrap().scale.unwrap().omega0;
+        assert!((w0 - (6.0e6_f64 / 20.05).sqrt()).abs() < 1e-12 * w0, "{w0}");
+        // balancer.balls = 0 keeps the ball mass: a ball mass without balls is an error, as in a config
+        s.set("balancer.balls", 0.0).unwrap();
+        let e = s.build().unwrap_err().to_string();
+        assert_eq!(e, "balancer.balls: is 0 but balancer.ball_mass is given: set the number of balls, or ball_mass = 0");
+        s.set("balancer.ball_mass", 0.0).unwrap();
+        let m = s.build().unwrap();
+        assert!(m.balls.is_none() && m.masses.unwrap().n == 0);
+        // a whole number of balls
+        let e = s.set("balancer.balls", 2.5).unwrap_err().to_string();
+        assert!(e.starts_with("balancer.balls: must be a whole number"), "{e}");
+        // a rotor without a balancer plane: an error naming the path, no panic
+        let mut bare = si_base();
+        if let SpatialInput::Si { rotor, .. } = &mut bare.input {
+            rotor.planes.clear();
+        }
+        let e = bare.set("balancer.drag", 1.0).unwrap_err().to_string();
+        assert_eq!(e, "balancer.drag: the rotor has no balancer plane");
+        // ... and its balancer plane is the unbalance's, as to_dimensionless reads it
+        bare.set("balancer.z", 0.3).unwrap();
+        assert_eq!(bare.get("balancer.z").unwrap(), 0.3);
+        assert_eq!(bare.build().unwrap().scale, {
+            let mut t = si_base();
+            t.set("balancer.z", 0.3).unwrap();
+            t.set("balancer.balls", 0.0).unwrap();
+            t.set("balancer.ball_mass", 0.0).unwrap();
+            t.build().unwrap().scale
+        });
     }
 
     #[test]

@@ -18,7 +18,7 @@
 use crate::builder::builder;
 use crate::error::Result;
 use crate::spatial::inertia::AnisotropyMethod;
-use crate::spatial::params::{AnisotropyInput, DimensionlessInput, MassSet, SpatialModel, SpatialRotorSi};
+use crate::spatial::params::{AnisotropyInput, DimensionlessInput, MassSet, SpatialModel};
 
 /// Unbalance and balls of paper 000's base case: `m̄0 = 0.025`, `R̄0 = 2`, two balls of
 /// `m̄ = 0.05` in all on `R̄ = 2` (capacity `E = 2`).
@@ -78,59 +78,20 @@ impl DimensionlessInputBuilder {
     }
 }
 
-/// The rotor of `examples/dimensional.toml`: 20 kg on supports 0.5 m apart (2 and 3 MN/m),
-/// 10 g of unbalance at 100 mm and two 20 g balls on a 120 mm race in the plane at 0.45 m.
-impl Default for SpatialRotorSi {
-    fn default() -> Self {
-        SpatialRotorSi {
-            rotor_mass: 20.0,
-            equatorial_moment: 0.60,
-            polar_moment: 0.15,
-            z_rotor: 0.25,
-            z_balancer: 0.45,
-            z_left: 0.0,
-            z_right: 0.50,
-            stiffness_left: 2.0e6,
-            stiffness_right: 3.0e6,
-            damping_left: 300.0,
-            damping_right: 300.0,
-            unbalance_mass: 0.010,
-            unbalance_radius: 0.10,
-            balls: 2,
-            ball_mass: 0.020,
-            race_radius: 0.12,
-            ball_drag: 0.5,
-        }
-    }
-}
-
-impl SpatialRotorSi {
-    /// A builder starting from [`SpatialRotorSi::default`].
-    pub fn builder() -> SpatialRotorSiBuilder {
-        SpatialRotorSiBuilder::default()
-    }
-}
-
-builder!(
-    /// Builder of a [`SpatialRotorSi`]; `build()` checks it by deriving the model (exact
-    /// anisotropy).
-    SpatialRotorSiBuilder for SpatialRotorSi, |r| SpatialModel::from_si(r, AnisotropyMethod::Exact).map(|_| ());
-    rotor_mass: f64, equatorial_moment: f64, polar_moment: f64, z_rotor: f64, z_balancer: f64, z_left: f64, z_right: f64,
-    stiffness_left: f64, stiffness_right: f64, damping_left: f64, damping_right: f64, unbalance_mass: f64, unbalance_radius: f64,
-    balls: u32, ball_mass: f64, race_radius: f64, ball_drag: f64,
-);
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::spatial::dynamics::SpatialRotor;
 
     #[test]
     fn builders_validate_and_name_the_field() {
         let e = DimensionlessInput::builder().rho_s(-1.0).build().unwrap_err().to_string();
         assert!(e.starts_with("dimensionless.rho_s"), "{e}");
-        let e = SpatialRotorSi::builder().z_right(-1.0).build().unwrap_err().to_string();
+        let mut r = SpatialRotor::dimensional_example();
+        r.to_dimensionless(AnisotropyMethod::Exact).unwrap();
+        r.supports[1].z = -1.0;
+        let e = r.to_dimensionless(AnisotropyMethod::Exact).unwrap_err().to_string();
         assert!(e.starts_with("supports.z_right"), "{e}");
-        SpatialRotorSi::builder().build().unwrap();
     }
 }
 
@@ -154,6 +115,27 @@ mod dynamics_presets {
         /// ```
         pub fn paper_000(l_left: f64) -> Result<Self> {
             SpatialRotor::from_dimensionless(&SpatialModel::from_dimensionless(&DimensionlessInput::paper_000(l_left))?)
+        }
+
+        /// The rotor of `examples/dimensional.toml`, in SI: 20 kg on supports 0.5 m apart (2 and
+        /// 3 MN/m, 300 N·s/m each), 10 g of unbalance at 100 mm and two 20 g balls on a 120 mm
+        /// race (drag 0.5 N·s/m) in the plane at 0.45 m; the rotor's G at 0.25 m, `A_r = 0.6`,
+        /// `C_r = 0.15 kg·m²`.
+        ///
+        /// ```
+        /// use autobal::spatial::dynamics::SpatialRotor;
+        /// use autobal::spatial::paths::SpatialInput;
+        /// let root = autobal::config::parse(include_str!("../../../../examples/dimensional.toml"), "dimensional.toml").unwrap();
+        /// let SpatialInput::Si { rotor, .. } = autobal::config::spatial(&root).unwrap().spec.input else { panic!() };
+        /// assert_eq!(rotor, SpatialRotor::dimensional_example());
+        /// ```
+        pub fn dimensional_example() -> Self {
+            SpatialRotor::new(
+                RigidRotor::aligned(20.0, 0.60, 0.15, 0.25),
+                vec![Support::isotropic(0.0, 2.0e6, 300.0), Support::isotropic(0.50, 3.0e6, 300.0)],
+                vec![PointMass { mass: 0.010, radius: 0.10, angle: 0.0, z: 0.45 }],
+                vec![BallPlane::point_masses(0.45, 2, 0.020, 0.12, 0.5)],
+            )
         }
 
         /// A builder starting from [`SpatialRotor::default`].

@@ -13,12 +13,14 @@
 //! use autobal::analysis::VectorField;
 //! use autobal::spatial::dynamics::field::SpatialField;
 //! use autobal::spatial::dynamics::SpatialRotor;
-//! use autobal::spatial::params::SpatialRotorSi;
-//! let si = SpatialRotorSi { rotor_mass: 10.0, equatorial_moment: 0.5, polar_moment: 0.2, z_rotor: 0.0,
-//!     z_left: -0.3, z_right: 0.3, stiffness_left: 1e5, stiffness_right: 1e5, damping_left: 20.0,
-//!     damping_right: 20.0, unbalance_mass: 0.01, unbalance_radius: 0.1, z_balancer: 0.1,
-//!     balls: 3, ball_mass: 0.02, race_radius: 0.1, ball_drag: 0.01 };
-//! let field = SpatialField::new(&SpatialRotor::from_si(&si), 300.0).unwrap();
+//! use autobal::spatial::dynamics::{BallPlane, PointMass, RigidRotor, Support};
+//! let rotor = SpatialRotor::new(
+//!     RigidRotor::aligned(10.0, 0.5, 0.2, 0.0),
+//!     vec![Support::isotropic(-0.3, 1e5, 20.0), Support::isotropic(0.3, 1e5, 20.0)],
+//!     vec![PointMass { mass: 0.01, radius: 0.1, angle: 0.0, z: 0.1 }],
+//!     vec![BallPlane::point_masses(0.1, 3, 0.02, 0.1, 0.01)],
+//! );
+//! let field = SpatialField::new(&rotor, 300.0).unwrap();
 //! let x = field.balanced_guess().unwrap(); // balls cancel the unbalance: an equilibrium
 //! let mut f = vec![0.0; field.dim()];
 //! field.rhs(0.0, &x, &mut f);
