@@ -364,6 +364,77 @@ pub fn basins_json(ends: &[Option<autobal::linear_rotor::basins::BasinEnd>], wal
     })
 }
 
+/// The figure of a linear rotor's basins (`basins`, id `basins`): each run of the `n × n` grid a
+/// cell at the first two balls' initial angles (degrees), green where the run ends balanced,
+/// orange where it does not, grey where it was not run (stopped) — the report's basins figure
+/// (`report::basins`) for a linear rotor. `angles` and `ends` as [`basins`]' output.
+pub fn basins_plot(angles: &[[f64; 2]], ends: &[Option<autobal::linear_rotor::basins::BasinEnd>]) -> Plot {
+    use crate::plot::{ColorScale, Heatmap};
+    let n = (angles.len() as f64).sqrt().round() as usize;
+    let n = n.max(1);
+    let tau = std::f64::consts::TAU;
+    let xs: Vec<f64> = (0..n).map(|i| (tau * i as f64 / n as f64).to_degrees()).collect();
+    let mut z = vec![vec![f64::NAN; n]; n];
+    for (a, e) in angles.iter().zip(ends) {
+        if let Some(e) = e {
+            let cell = |psi: f64| ((psi / tau * n as f64).round() as usize).min(n - 1);
+            z[cell(a[1])][cell(a[0])] = if e.balanced { -1.0 } else { 1.0 };
+        }
+    }
+    let step = 360.0 / n as f64;
+    Plot {
+        title: "Linear rotor: where the balls end, by their initial angles".into(),
+        x_label: "initial angle of ball 1 (°, relative to the rotor)".into(),
+        y_label: "initial angle of ball 2 (°, relative to the rotor)".into(),
+        x_range: Some((-step / 2.0, 360.0 - step / 2.0)),
+        y_range: Some((-step / 2.0, 360.0 - step / 2.0)),
+        heatmap: Some(Heatmap { x: xs.clone(), y: xs, z, scale: ColorScale::Verdict, label: "end (stable = balanced)".into() }),
+        ..Default::default()
+    }
+}
+
+/// The figures of a linear rotor's sweep (`sweep`): the first balancer plane's peak whirl radius
+/// (id `sweep_peak`) and its final radius (id `sweep_final`, mm) against the first axis' value,
+/// one curve per combination of the other axes' values (in the grid's order), a point per run
+/// (`runs`: each run's values, in the order of `paths`, and its summary; a run without a
+/// balancer plane's radius is a gap).
+pub fn sweep_plots(paths: &[String], runs: &[(Vec<f64>, RunSummary)]) -> Vec<(String, Plot)> {
+    let Some(x_path) = paths.first() else { return vec![] };
+    // the curves: runs grouped by the values of the other axes, in the order met
+    let mut groups: Vec<(Vec<f64>, Vec<usize>)> = vec![];
+    for (i, (v, _)) in runs.iter().enumerate() {
+        let key = v.get(1..).unwrap_or(&[]).to_vec();
+        match groups.iter_mut().find(|g| g.0 == key) {
+            Some(g) => g.1.push(i),
+            None => groups.push((key, vec![i])),
+        }
+    }
+    let label = |key: &[f64]| -> String {
+        if key.is_empty() {
+            "first balancer plane".into()
+        } else {
+            paths[1..].iter().zip(key).map(|(p, v)| format!("{p} = {}", fmt_num(*v))).collect::<Vec<_>>().join(", ")
+        }
+    };
+    let figure = |what: &str, col: usize| -> Plot {
+        let series = groups
+            .iter()
+            .enumerate()
+            .map(|(k, (key, idx))| {
+                let pts = idx.iter().map(|&i| (runs[i].0[0], 1e3 * autobal::sweep::linear_summary_values(&runs[i].1)[col])).collect();
+                let mut s = Series::new(label(key), pts, PALETTE[k % PALETTE.len()]);
+                s.markers = idx.len() < 2;
+                s
+            })
+            .collect();
+        Plot { title: format!("Linear rotor sweep: {what}"), x_label: x_path.clone(), y_label: format!("{what} (mm)"), series, ..Default::default() }
+    };
+    vec![
+        ("sweep_peak".into(), figure("peak whirl radius of the first balancer plane", 0)),
+        ("sweep_final".into(), figure("final whirl radius of the first balancer plane", 5)),
+    ]
+}
+
 impl crate::sweep::Row for RunSummary {
     fn header(lu: &str) -> String {
         format!("{:>12} {:>12} {:>12} {:>12} {:>10}\n", format!("peak ({lu})"), "ω at peak", format!("any node ({lu})"), format!("final ({lu})"), "steps")

@@ -314,7 +314,13 @@ impl Options {
 /// options as JSON.
 #[pyfunction]
 #[pyo3(signature = (command, path, sets, options))]
-pub fn linear_rotor_run(py: Python<'_>, command: &str, path: std::path::PathBuf, sets: Vec<(String, Bound<'_, PyAny>)>, options: &str) -> PyResult<String> {
+pub fn linear_rotor_run(
+    py: Python<'_>,
+    command: &str,
+    path: std::path::PathBuf,
+    sets: Vec<(String, Bound<'_, PyAny>)>,
+    options: &str,
+) -> PyResult<(String, String)> {
     let mut set = vec![];
     for (k, v) in &sets {
         set.push(format!("{k}={}", crate::to_toml(v, k)?));
@@ -325,6 +331,10 @@ pub fn linear_rotor_run(py: Python<'_>, command: &str, path: std::path::PathBuf,
     };
     let mut o = Options { command: command.to_string(), map };
     let command = command.to_string();
+    // what the result object draws and tabulates beside the JSON: `figures` ([{id, figure}]),
+    // `csv` (basins: the CLI's CSV)
+    let mut extra = serde_json::json!({});
+    let extra_out = &mut extra;
     let v = crate::commands_call(py, move |control| -> anyhow::Result<serde_json::Value> {
         use autobal_commands::command::{Command as _, ConfigSource, Output as _};
         let threads = o.count("threads")?;
@@ -346,7 +356,10 @@ pub fn linear_rotor_run(py: Python<'_>, command: &str, path: std::path::PathBuf,
                     ..Default::default()
                 };
                 o.done()?;
-                args.run(control)?.json()
+                let out = args.run(control)?;
+                let figures: Vec<serde_json::Value> = out.figures()?.iter().map(|f| f.to_json()).collect();
+                *extra_out = serde_json::json!({ "figures": figures });
+                out.json()
             }
             "simulate" => {
                 let dt = o.take("dt").map(|v| v.as_f64().ok_or_else(|| autobal::Error::invalid("dt", "expected a number"))).transpose()?;
@@ -365,7 +378,14 @@ pub fn linear_rotor_run(py: Python<'_>, command: &str, path: std::path::PathBuf,
                 let n = o.count("n")?.unwrap_or(16);
                 o.done()?;
                 let args = autobal_commands::basins::Args { config: ConfigSource::file(Some(path.as_path()), &set), n };
-                within(&mut || args.run(control)?.json())
+                within(&mut || {
+                    let out = args.run(control)?;
+                    if let Some(ends) = &out.linear {
+                        let plot = cmd::basins_plot(&out.angles, ends);
+                        *extra_out = serde_json::json!({"figures": [{"id": "basins", "figure": plot.to_plotly()}], "csv": out.csv()});
+                    }
+                    out.json()
+                })
             }
             "sweep" => {
                 let mut specs: Vec<String> = o.text("x")?.into_iter().collect();
@@ -393,17 +413,23 @@ pub fn linear_rotor_run(py: Python<'_>, command: &str, path: std::path::PathBuf,
                 let (root, base, problem) = cmd::sweep_base(Some(path.as_path()), &set)?.ok_or_else(|| anyhow::anyhow!("config {}: not a linear rotor config", path.display()))?;
                 let kn = shard.as_deref().and_then(|s| s.split_once('/')).and_then(|(k, n)| Some((k.trim().parse().ok()?, n.trim().parse().ok()?)));
                 within(&mut || {
-                    let mut runs = vec![];
+                    let (mut runs, mut kept) = (vec![], vec![]);
                     let out = autobal::sweep::simulate_grid(
                         &base,
                         &grid,
                         range.clone(),
                         &mut |i, v, r| {
                             runs.push(autobal::sweep::run_json(i, v, r));
+                            kept.push((v.to_vec(), r.summary.clone()));
                             true
                         },
                         control,
                     )?;
+                    let figures: Vec<serde_json::Value> = cmd::sweep_plots(&grid.paths().iter().map(|p| p.to_string()).collect::<Vec<_>>(), &kept)
+                        .into_iter()
+                        .map(|(id, plot)| serde_json::json!({"id": id, "figure": plot.to_plotly()}))
+                        .collect();
+                    *extra_out = serde_json::json!({ "figures": figures });
                     let mut json = autobal::sweep::report(&grid, kn, &range, out.complete(), problem.clone(), std::mem::take(&mut runs));
                     json["definition_checksum"] = serde_json::json!(autobal::sweep::definition_checksum(&root, &grid));
                     json["columns"] = serde_json::json!(autobal::sweep::LINEAR_SUMMARY_COLUMNS);
@@ -451,6 +477,99 @@ pub fn linear_rotor_run(py: Python<'_>, command: &str, path: std::path::PathBuf,
             )
             .into()),
         }
+    })?;
+    Ok((v.to_string(), extra.to_string()))
+}
+
+/// A `[linear_rotor]` config with the bytes of its matrix files, read once
+/// ([`autobal::linear_rotor::spec::LinearRotorSpec`]): the base of `autobal.sweep` and
+/// `autobal.simulate_batch` on a linear rotor config. What a Dask worker needs to rebuild it
+/// is its TOML text (`toml`) and the files' bytes by the names the config gives them (`files()`):
+/// `LinearSpec.from_parts(toml, files)` reads the same config again, without the file system.
+#[pyclass(name = "LinearSpec", module = "autobal._autobal", frozen)]
+pub struct PyLinearSpec {
+    /// The config and its files.
+    pub spec: autobal::linear_rotor::spec::LinearRotorSpec,
+}
+
+#[pymethods]
+impl PyLinearSpec {
+    /// `LinearSpec(path, sets)`: the config file `path` with `sets` (`[(key, value)]`, the
+    /// CLI's `--set`), its matrix files read relative to its folder.
+    #[new]
+    fn new(py: Python<'_>, path: std::path::PathBuf, sets: Vec<(String, Bound<'_, PyAny>)>) -> PyResult<Self> {
+        let mut set = vec![];
+        for (k, v) in &sets {
+            set.push(format!("{k}={}", crate::to_toml(v, k)?));
+        }
+        let spec = crate::commands_call(py, move |_| {
+            let (root, _) = cmd::read_set(Some(path.as_path()), &set)?;
+            if !cmd::is_linear(&root) {
+                anyhow::bail!("config {}: not a linear rotor config (it has no [linear_rotor] table)", path.display());
+            }
+            Ok(cmd::spec(&root, path.parent().unwrap_or(std::path::Path::new(".")))?)
+        })?;
+        Ok(PyLinearSpec { spec })
+    }
+
+    /// The config from its TOML text and its files' bytes (`{name: bytes}`), as
+    /// [`PyLinearSpec::toml`] and [`PyLinearSpec::files`] give them.
+    #[staticmethod]
+    fn from_parts(py: Python<'_>, toml: &str, files: std::collections::HashMap<String, Bound<'_, pyo3::types::PyBytes>>) -> PyResult<Self> {
+        let root = autobal::config::parse(toml, "linear rotor config").map_err(|e| crate::py_err(py, e))?;
+        let bytes: std::collections::HashMap<String, Vec<u8>> = files.iter().map(|(k, v)| (k.clone(), v.as_bytes().to_vec())).collect();
+        let spec =
+            autobal::linear_rotor::spec::LinearRotorSpec::new(root, &mut |p| bytes.get(p).cloned().ok_or_else(|| format!("{p}: not among the files given")))
+                .map_err(|e| crate::py_err(py, e))?;
+        Ok(PyLinearSpec { spec })
+    }
+
+    /// The config's tables as TOML text.
+    #[getter]
+    fn toml(&self) -> String {
+        toml::to_string(self.spec.root()).unwrap_or_default()
+    }
+
+    /// The matrix files' bytes by the names the config gives them.
+    fn files<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        for (k, v) in self.spec.files() {
+            d.set_item(k, pyo3::types::PyBytes::new(py, v))?;
+        }
+        Ok(d)
+    }
+}
+
+/// The map's figure of a `[linear_rotor]` config file (`stability_map`, what `autobal map
+/// --config PATH --out STEM` draws): JSON `[{"id", "title", "figure"}]`, computed by the CLI's
+/// `map::Args` on the file (its matrix files relative to it, `sets` its `--set`); `options` the
+/// JSON of [`autobal_commands::figures_api::Options`] (`x`, `y` as `KEY=LO:HI:N`, `omega`,
+/// `boundary`).
+#[pyfunction]
+#[pyo3(signature = (path, sets, options))]
+pub fn linear_rotor_map_figures(py: Python<'_>, path: std::path::PathBuf, sets: Vec<(String, Bound<'_, PyAny>)>, options: &str) -> PyResult<String> {
+    use autobal_commands::command::{ConfigSource, Output as _};
+    let mut set = vec![];
+    for (k, v) in &sets {
+        set.push(format!("{k}={}", crate::to_toml(v, k)?));
+    }
+    let o: autobal_commands::figures_api::Options =
+        serde_json::from_str(options).map_err(|e| crate::py_err(py, autobal::Error::invalid("options", e.to_string())))?;
+    let v = crate::commands_call(py, move |control| {
+        let (Some(x), Some(y)) = (&o.x, &o.y) else { anyhow::bail!("x: required, with y (KEY=LO:HI:N, e.g. x='speed=100:2000:40')") };
+        let args = autobal_commands::map::Args {
+            config: ConfigSource::file(Some(path.as_path()), &set),
+            x: autobal_commands::map::parse_axis("--x", x)?,
+            y: autobal_commands::map::parse_axis("--y", y)?,
+            omega: o.omega.clone(),
+            boundary: o.boundary.unwrap_or(false),
+            ..Default::default()
+        };
+        let out = args.prepare()?.run(control, autobal_commands::map::Rows::Figure)?;
+        if let Some(why) = out.stopped() {
+            anyhow::bail!("{why}");
+        }
+        Ok(serde_json::Value::Array(out.figures()?.iter().map(|f| f.to_json()).collect()))
     })?;
     Ok(v.to_string())
 }

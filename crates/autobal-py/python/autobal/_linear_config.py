@@ -9,7 +9,7 @@ import json
 import os
 import re
 from pathlib import Path
-from typing import Any, Dict, Mapping, Optional
+from typing import Any, Dict, Mapping, Optional, Tuple
 
 import numpy as np
 
@@ -37,7 +37,15 @@ def run(command: str, config: Any, set: Optional[Mapping[str, Any]] = None, **op
     values, ``margin`` (1/s, NaN without a balanced state) and ``stable`` as arrays
     ``len(y) × len(x)``, ``verdict`` as lists, the bisected ``boundary`` points with
     ``boundary=True``)."""
-    out = json.loads(_autobal.linear_rotor_run(command, os.fspath(config), list((set or {}).items()), json.dumps(options)))
+    return run_with_extra(command, config, set, **options)[0]
+
+
+def run_with_extra(command: str, config: Any, set: Optional[Mapping[str, Any]] = None, **options: Any) -> Tuple[Dict[str, Any], Dict[str, Any]]:
+    """:func:`run`'s dict, and what the result object draws and tabulates beside it:
+    ``figures`` (``[{"id", "figure"}]``: ``stability``'s margin, ``sweep``'s and ``basins'``
+    figures, computed in the same run) and ``csv`` (``basins``: the CLI's CSV)."""
+    text, extra = _autobal.linear_rotor_run(command, os.fspath(config), list((set or {}).items()), json.dumps(options))
+    out = json.loads(text)
     if command == "map":
         out["margin"] = np.array([[np.nan if v is None else v for v in row] for row in out["margin"]], dtype=float)
         out["stable"] = np.array([[v == "stable" for v in row] for row in out["verdict"]], dtype=bool)
@@ -48,4 +56,4 @@ def run(command: str, config: Any, set: Optional[Mapping[str, Any]] = None, **op
         e = SimulationError(out["stopped"])
         e.result = out  # type: ignore[attr-defined]
         raise e
-    return out
+    return out, json.loads(extra)

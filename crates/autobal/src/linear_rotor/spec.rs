@@ -107,6 +107,12 @@ impl LinearRotorSpec {
         &self.root
     }
 
+    /// The bytes of the matrix files the config names, by the name it gives them (what a
+    /// process without the files needs, with [`LinearRotorSpec::root`], to rebuild the spec).
+    pub fn files(&self) -> &BTreeMap<String, Vec<u8>> {
+        &self.files
+    }
+
     /// The config with every `(path, value)` set, in order, read again; errors name the path
     /// (and the value where the config refuses it).
     pub fn config_at(&self, set: &[(&str, f64)]) -> Result<LinearRotorConfig> {
