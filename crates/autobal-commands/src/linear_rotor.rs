@@ -287,7 +287,13 @@ pub fn sweep_base(path: Option<&Path>, sets: &[String]) -> Result<Option<(Table,
     if !is_linear(&root) {
         return Ok(None);
     }
-    let base = spec(&root, p.parent().unwrap_or(Path::new(".")))?;
+    sweep_base_of(root, p.parent().unwrap_or(Path::new("."))).map(Some)
+}
+
+/// [`sweep_base`] of a linear rotor config's tables `root` (after any `--set`), its matrix
+/// files read relative to `dir`.
+pub fn sweep_base_of(root: Table, dir: &Path) -> Result<(Table, LinearRotorSpec, Value)> {
+    let base = spec(&root, dir)?;
     let cfg = base.config_at(&[])?;
     let run = autobal::linear_rotor::spec::run_of(&cfg)?;
     let problem = json!({
@@ -304,7 +310,7 @@ pub fn sweep_base(path: Option<&Path>, sets: &[String]) -> Result<Option<(Table,
         "rtol": run.settings.rtol,
         "atol": run.settings.atol,
     });
-    Ok(Some((root, base, problem)))
+    Ok((root, base, problem))
 }
 
 /// `basins` on a linear rotor config: the runs of `simulate` (its drive, its reduction) from an

@@ -313,18 +313,20 @@ impl Options {
 /// CLI's `--set` (`linear_rotor.KEY`, `drive.KEY`, `integration.KEY`); `options`: the keyword
 /// options as JSON.
 #[pyfunction]
-#[pyo3(signature = (command, path, sets, options))]
+#[pyo3(signature = (command, path, sets, options, dict=None))]
 pub fn linear_rotor_run(
     py: Python<'_>,
     command: &str,
-    path: std::path::PathBuf,
+    path: Option<std::path::PathBuf>,
     sets: Vec<(String, Bound<'_, PyAny>)>,
     options: &str,
+    dict: Option<Bound<'_, PyDict>>,
 ) -> PyResult<(String, String)> {
     let mut set = vec![];
     for (k, v) in &sets {
         set.push(format!("{k}={}", crate::to_toml(v, k)?));
     }
+    let dict = dict_table(dict)?;
     let map = match serde_json::from_str::<serde_json::Value>(options) {
         Ok(serde_json::Value::Object(m)) => m,
         _ => return Err(crate::py_err(py, autobal::Error::invalid("options", "expected keyword options"))),
@@ -336,7 +338,9 @@ pub fn linear_rotor_run(
     let mut extra = serde_json::json!({});
     let extra_out = &mut extra;
     let v = crate::commands_call(py, move |control| -> anyhow::Result<serde_json::Value> {
-        use autobal_commands::command::{Command as _, ConfigSource, Output as _};
+        use autobal_commands::command::{Command as _, Output as _};
+        let config = LinearSource::read(path, dict, &set)?;
+        let path = config.file.clone();
         let threads = o.count("threads")?;
         let pool = match threads {
             Some(0) => anyhow::bail!("threads: must be at least 1"),
@@ -350,7 +354,7 @@ pub fn linear_rotor_run(
         match command.as_str() {
             "stability" => {
                 let args = autobal_commands::stability::Args {
-                    config: ConfigSource::file(Some(path.as_path()), &set),
+                    config: config.source(),
                     omega_max: o.text("omega_max")?,
                     samples: o.count("samples")?,
                     ..Default::default()
@@ -364,7 +368,7 @@ pub fn linear_rotor_run(
             "simulate" => {
                 let dt = o.take("dt").map(|v| v.as_f64().ok_or_else(|| autobal::Error::invalid("dt", "expected a number"))).transpose()?;
                 o.done()?;
-                let cfg = cmd::load(&path, &set)?;
+                let cfg = cmd::from_table(&config.root, &config.dir)?;
                 let w = cmd::default_omega_max(&cfg)?;
                 let setup = cmd::setup(&cfg, w, dt)?;
                 let run = cmd::run(&setup, control, |_| Ok(()))?;
@@ -377,7 +381,7 @@ pub fn linear_rotor_run(
             "basins" => {
                 let n = o.count("n")?.unwrap_or(16);
                 o.done()?;
-                let args = autobal_commands::basins::Args { config: ConfigSource::file(Some(path.as_path()), &set), n };
+                let args = autobal_commands::basins::Args { config: config.source(), n };
                 within(&mut || {
                     let out = args.run(control)?;
                     if let Some(ends) = &out.linear {
@@ -410,7 +414,7 @@ pub fn linear_rotor_run(
                         autobal::sweep::shard(grid.len(), k - 1, n)?
                     }
                 };
-                let (root, base, problem) = cmd::sweep_base(Some(path.as_path()), &set)?.ok_or_else(|| anyhow::anyhow!("config {}: not a linear rotor config", path.display()))?;
+                let (root, base, problem) = cmd::sweep_base_of(config.root.clone(), &config.dir)?;
                 let kn = shard.as_deref().and_then(|s| s.split_once('/')).and_then(|(k, n)| Some((k.trim().parse().ok()?, n.trim().parse().ok()?)));
                 within(&mut || {
                     let (mut runs, mut kept) = (vec![], vec![]);
@@ -449,10 +453,10 @@ pub fn linear_rotor_run(
                 };
                 o.done()?;
                 let (xa, ya) = (autobal::paths::Axis::parse(&x)?, autobal::paths::Axis::parse(&y)?);
-                let (root, _) = cmd::read_set(Some(path.as_path()), &set)?;
+                let root = config.root.clone();
                 let (mut margin, mut verdict, mut family, mut points) = (vec![], vec![], vec![], vec![]);
                 within(&mut || {
-                    let out = cmd::map_traced(&root, Some(path.as_path()), &xa, &ya, speed, boundary, control, &mut |_, cells, pts| {
+                    let out = cmd::map_traced(&root, path.as_deref(), &xa, &ya, speed, boundary, control, &mut |_, cells, pts| {
                         margin.push(cells.iter().map(|c| c.margin).collect::<Vec<_>>());
                         verdict.push(cells.iter().map(|c| c.verdict).collect::<Vec<_>>());
                         family.push(cells.iter().map(|c| c.family_dimension).collect::<Vec<_>>());
@@ -546,19 +550,31 @@ impl PyLinearSpec {
 /// JSON of [`autobal_commands::figures_api::Options`] (`x`, `y` as `KEY=LO:HI:N`, `omega`,
 /// `boundary`).
 #[pyfunction]
-#[pyo3(signature = (path, sets, options))]
-pub fn linear_rotor_map_figures(py: Python<'_>, path: std::path::PathBuf, sets: Vec<(String, Bound<'_, PyAny>)>, options: &str) -> PyResult<String> {
-    use autobal_commands::command::{ConfigSource, Output as _};
+#[pyo3(signature = (path, sets, options, dict=None))]
+pub fn linear_rotor_map_figures(
+    py: Python<'_>,
+    path: Option<std::path::PathBuf>,
+    sets: Vec<(String, Bound<'_, PyAny>)>,
+    options: &str,
+    dict: Option<Bound<'_, PyDict>>,
+) -> PyResult<String> {
+    use autobal_commands::command::Output as _;
     let mut set = vec![];
     for (k, v) in &sets {
         set.push(format!("{k}={}", crate::to_toml(v, k)?));
     }
+    let dict = dict_table(dict)?;
     let o: autobal_commands::figures_api::Options =
         serde_json::from_str(options).map_err(|e| crate::py_err(py, autobal::Error::invalid("options", e.to_string())))?;
     let v = crate::commands_call(py, move |control| {
         let (Some(x), Some(y)) = (&o.x, &o.y) else { anyhow::bail!("x: required, with y (KEY=LO:HI:N, e.g. x='speed=100:2000:40')") };
+        let config = LinearSource::read(path, dict, &set)?;
         let args = autobal_commands::map::Args {
-            config: ConfigSource::file(Some(path.as_path()), &set),
+            config: match &config.file {
+                // the file and its --set, as the CLI reads them (the matrix files beside it)
+                Some(p) => autobal_commands::command::ConfigSource::file(Some(p.as_path()), &set),
+                None => config.source(),
+            },
             x: autobal_commands::map::parse_axis("--x", x)?,
             y: autobal_commands::map::parse_axis("--y", y)?,
             omega: o.omega.clone(),
@@ -572,4 +588,58 @@ pub fn linear_rotor_map_figures(py: Python<'_>, path: std::path::PathBuf, sets: 
         Ok(serde_json::Value::Array(out.figures()?.iter().map(|f| f.to_json()).collect()))
     })?;
     Ok(v.to_string())
+}
+
+/// A dict of tables (a `[linear_rotor]` config from Python) as a TOML table.
+fn dict_table(dict: Option<Bound<'_, PyDict>>) -> PyResult<Option<autobal::config::Table>> {
+    match dict {
+        None => Ok(None),
+        Some(d) => match crate::to_toml(d.as_any(), "")? {
+            toml::Value::Table(t) => Ok(Some(t)),
+            _ => unreachable!("a dict converts to a table"),
+        },
+    }
+}
+
+/// A `[linear_rotor]` config as the Python functions take it: a file (its matrix files relative
+/// to its folder) or a dict of tables (its matrix files relative to the working folder), with
+/// the overrides applied as the CLI's `--set` applies them ([`cmd::apply_set`]).
+struct LinearSource {
+    root: autobal::config::Table,
+    /// The folder the matrix files are read relative to.
+    dir: std::path::PathBuf,
+    /// The config file, if the config is one.
+    file: Option<std::path::PathBuf>,
+}
+
+impl LinearSource {
+    fn read(path: Option<std::path::PathBuf>, dict: Option<autobal::config::Table>, set: &[String]) -> anyhow::Result<Self> {
+        let (root, dir, file) = match (path, dict) {
+            (Some(p), _) => {
+                let (root, _) = cmd::read_set(Some(p.as_path()), set)?;
+                let dir = p.parent().unwrap_or(std::path::Path::new(".")).to_path_buf();
+                (root, dir, Some(p))
+            }
+            (None, Some(mut root)) => {
+                for s in set {
+                    cmd::apply_set(&mut root, s)?;
+                }
+                (root, std::path::PathBuf::from("."), None)
+            }
+            (None, None) => anyhow::bail!("config: give a [linear_rotor] config file or a dict of its tables"),
+        };
+        if !cmd::is_linear(&root) {
+            anyhow::bail!(
+                "config {}: not a linear rotor config (it has no [linear_rotor] table)",
+                file.as_ref().map_or("dict".to_string(), |p| p.display().to_string())
+            );
+        }
+        Ok(LinearSource { root, dir, file })
+    }
+
+    /// The config as the commands' `Args` take it (the tables read once, the folder of its files).
+    fn source(&self) -> autobal_commands::command::ConfigSource {
+        let name = self.file.as_ref().map_or("dict".to_string(), |p| p.display().to_string());
+        autobal_commands::command::ConfigSource::Tables { root: self.root.clone(), source: name, dir: self.dir.clone() }
+    }
 }

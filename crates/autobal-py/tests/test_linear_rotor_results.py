@@ -202,3 +202,30 @@ def test_dask_sweep_of_a_linear_config_equals_the_serial_one_and_the_clis(tmp_pa
         assert row.final_amplitude == run["summary"]["final_radius"]
     with pytest.raises(autobal.InvalidParameter, match="not a \\[linear_rotor\\] config"):
         autobal.sweep(str(ROOT / "examples" / "planar.toml"), axes)
+
+
+def test_a_dict_config_reads_its_matrix_files_from_the_working_folder(tmp_path, monkeypatch):
+    """``run``/``analyse`` on a dict of a ``[linear_rotor]`` config's tables: its matrix files
+    are read relative to the working folder (as ``export_model`` reads a dict's). From the
+    folder of the files, the same results as the file (stability, a sweep's runs, the map's
+    cells and figure); from another folder an error naming the key and the file."""
+    tomllib = pytest.importorskip("tomllib")
+    cfg = short_matrix_config(tmp_path)
+    tables = tomllib.loads(cfg.read_text())
+    monkeypatch.chdir(cfg.parent)
+    for command, opts in (("stability", {"omega_max": "2500 rad/s", "samples": 20}), ("sweep", {"x": "linear_rotor.balancer[0].ball_mass=0.02,0.03"})):
+        a = autobal.run(command, tables, **opts)
+        b = autobal.run(command, str(cfg), **opts)
+        if command == "sweep":
+            assert [r["summary"] for r in a["runs"]] == [r["summary"] for r in b["runs"]]
+            assert a["definition_checksum"] == b["definition_checksum"]
+        else:
+            assert a == b
+    m = autobal.analyse("map", tables, x="speed=300:1500:3", y="linear_rotor.ball_mass=0.02:0.03:2")
+    mf = autobal.analyse("map", str(cfg), x="speed=300:1500:3", y="linear_rotor.ball_mass=0.02:0.03:2")
+    np.testing.assert_array_equal(m.result["margin"], mf.result["margin"])
+    if pytest.importorskip("plotly"):
+        assert m.figures() == mf.figures()
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(autobal.AutobalError, match=r"linear_rotor\.m: .*shaft_M\.mtx"):
+        autobal.run("stability", tables, omega_max="2500 rad/s", samples=20)

@@ -9,7 +9,7 @@ from __future__ import annotations
 import io
 import json
 import os
-from typing import Any, Dict, List, Optional, Tuple
+from typing import Any, Dict, List, Mapping, Optional, Tuple
 
 import numpy as np
 
@@ -71,8 +71,11 @@ class LinearConfigResult(Result):
     """
 
     def __init__(self, command: str, result: Dict[str, Any], path: Any, sets: Any, options: Dict[str, Any], extra: Dict[str, Any]) -> None:
-        super().__init__(command, result, (None, None, str(path), list((sets or {}).items())), options, result if command == "map" else None)
-        self._path = os.fspath(path)
+        name = "dict" if isinstance(path, Mapping) else str(path)
+        super().__init__(command, result, (None, None, name, list((sets or {}).items())), options, result if command == "map" else None)
+        # a file, or a dict of tables (its matrix files relative to the working folder)
+        self._path: Optional[str] = None if isinstance(path, Mapping) else os.fspath(path)
+        self._dict: Optional[Dict[str, Any]] = dict(path) if isinstance(path, Mapping) else None
         self._sets = list((sets or {}).items())
         figs = extra.get("figures")
         if figs is not None:
@@ -83,7 +86,7 @@ class LinearConfigResult(Result):
         """The figures by id, as Plotly JSON (module docs of the class)."""
         if self._figures is None:
             if self.command == "map":
-                raw = _autobal.linear_rotor_map_figures(self._path, self._sets, _figure_options("map", self._options))
+                raw = _autobal.linear_rotor_map_figures(self._path, self._sets, _figure_options("map", self._options), self._dict)
                 self._figures = {f["id"]: f["figure"] for f in json.loads(raw)}
             else:
                 self._figures = {}
