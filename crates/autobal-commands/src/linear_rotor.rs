@@ -941,6 +941,53 @@ mod tests {
         (read_set(Some(&path), &[]).unwrap().0, path)
     }
 
+    fn summary(peak: f64, last: f64) -> RunSummary {
+        let p = autobal::simulation::Peak { value: peak, t: 1.0, with: 100.0 };
+        RunSummary { t: 1.0, stopped: None, peak: p, peak_any_node: p, final_radius: last, steps: 10 }
+    }
+
+    /// The sweep's figures: a curve per value of the second axis, its points the runs at that
+    /// value in the grid's order, the radii in mm; a run never sampled is a gap (NaN).
+    #[test]
+    fn sweep_figures_have_a_curve_per_value_of_the_other_axes() {
+        let paths = vec!["linear_rotor.ball_mass".to_string(), "linear_rotor.drag".to_string()];
+        let runs: Vec<(Vec<f64>, RunSummary)> = [(0.02, 0.1, 1e-3), (0.03, 0.1, 2e-3), (0.02, 0.2, 3e-3), (0.03, 0.2, f64::NEG_INFINITY)]
+            .iter()
+            .map(|&(m, c, r)| (vec![m, c], summary(r, r / 2.0)))
+            .collect();
+        let figs = sweep_plots(&paths, &runs);
+        assert_eq!(figs.iter().map(|f| f.0.as_str()).collect::<Vec<_>>(), ["sweep_peak", "sweep_final"]);
+        let s = &figs[0].1.series;
+        assert_eq!(s.len(), 2);
+        assert_eq!(s[0].label, "linear_rotor.drag = 0.1");
+        assert_eq!(s[0].points, vec![(0.02, 1.0), (0.03, 2.0)]);
+        assert_eq!(s[1].points[0], (0.02, 3.0));
+        assert!(s[1].points[1].1.is_nan(), "a peak never seen is a gap");
+        assert_eq!(figs[1].1.series[0].points, vec![(0.02, 0.5), (0.03, 1.0)]);
+        assert_eq!(figs[0].1.x_label, "linear_rotor.ball_mass");
+        // one axis: one curve
+        let one: Vec<(Vec<f64>, RunSummary)> = runs.iter().take(2).map(|(v, s)| (vec![v[0]], s.clone())).collect();
+        assert_eq!(sweep_plots(&paths[..1], &one)[0].1.series.len(), 1);
+    }
+
+    /// The basins' figure: each run a cell at its initial angles (ψ1 the column, ψ2 the row),
+    /// balanced -1, not +1, not run NaN.
+    #[test]
+    fn basins_figure_places_each_run_at_its_angles() {
+        use autobal::linear_rotor::basins::BasinEnd;
+        let pi = std::f64::consts::PI;
+        let angles = [[0.0, 0.0], [pi, 0.0], [0.0, pi], [pi, pi]];
+        let end = |balanced: bool| {
+            Some(BasinEnd { summary: summary(1e-3, 1e-4), psi0: vec![], psi: vec![], final_amplitude: 1e-4, residual_unbalance: 0.0, balanced })
+        };
+        let ends = vec![end(true), end(false), end(true), None];
+        let p = basins_plot(&angles, &ends);
+        let z = &p.heatmap.as_ref().unwrap().z;
+        assert_eq!((z[0][0], z[0][1], z[1][0]), (-1.0, 1.0, -1.0));
+        assert!(z[1][1].is_nan());
+        assert_eq!(p.heatmap.as_ref().unwrap().x, vec![0.0, 180.0]);
+    }
+
     /// A sweep's point without values is the run `simulate` makes (this module's [`setup`]): the
     /// library's `run_of` repeats its rules (reduction, default run-up to `default_omega_max`,
     /// `dt`), here with the example's reduction, without its `[drive]` (the default run-up),
