@@ -53,12 +53,19 @@ pub fn from_table(root: &Table, dir: &Path) -> Result<LinearRotorConfig> {
 }
 
 /// Apply one `--set table.key=value` to a linear rotor config (its own tables, not the schema of
-/// the papers' configs): `linear_rotor.KEY`, `drive.KEY`, `integration.KEY`.
+/// the papers' configs): `linear_rotor.KEY`, `drive.KEY`, `integration.KEY`, and the number of
+/// one entry of its arrays of tables by its parameter path, `linear_rotor.balancer[j].KEY`,
+/// `linear_rotor.unbalance[j].KEY` ([`autobal::linear_rotor::spec::set_path`]).
 pub fn apply_set(root: &mut Table, assignment: &str) -> Result<()> {
     let (key, value) = assignment.split_once('=').ok_or_else(|| anyhow!("--set {assignment}: expected key=value, e.g. --set linear_rotor.omega_max=1500"))?;
     let (t, k) = key.trim().split_once('.').ok_or_else(|| anyhow!("--set {key}: expected a dotted key table.field, e.g. --set drive.t_end=2"))?;
+    if t == "linear_rotor" && k.contains('[') {
+        // one entry of an array of tables: the parameter path linear_rotor.balancer[j].KEY
+        let v: f64 = value.trim().parse().map_err(|_| anyhow!("--set {key}: `{}` is not a number", value.trim()))?;
+        return Ok(autobal::linear_rotor::spec::set_path(root, key.trim(), v)?);
+    }
     if !["linear_rotor", "drive", "integration"].contains(&t) || k.is_empty() || k.contains('.') {
-        bail!("--set {key}: a linear rotor config sets linear_rotor.KEY, drive.KEY or integration.KEY (entries of [[linear_rotor.balancer]] and the like are edited in the file)");
+        bail!("--set {key}: a linear rotor config sets linear_rotor.KEY, drive.KEY, integration.KEY, or one entry's number as linear_rotor.balancer[j].KEY, linear_rotor.unbalance[j].KEY (j from 0)");
     }
     let table = root.entry(t.to_string()).or_insert_with(|| toml::Value::Table(Table::new()));
     let table = table.as_table_mut().ok_or_else(|| anyhow!("--set {key}: `{t}` is not a table"))?;
@@ -296,7 +303,13 @@ pub fn sweep_base(path: Option<&Path>, sets: &[String]) -> Result<Option<(Table,
     if !is_linear(&root) {
         return Ok(None);
     }
-    let base = spec(&root, p.parent().unwrap_or(Path::new(".")))?;
+    sweep_base_of(root, p.parent().unwrap_or(Path::new("."))).map(Some)
+}
+
+/// [`sweep_base`] of a linear rotor config's tables `root` (after any `--set`), its matrix
+/// files read relative to `dir`.
+pub fn sweep_base_of(root: Table, dir: &Path) -> Result<(Table, LinearRotorSpec, Value)> {
+    let base = spec(&root, dir)?;
     let cfg = base.config_at(&[])?;
     let run = autobal::linear_rotor::spec::run_of(&cfg)?;
     let problem = json!({
@@ -313,7 +326,7 @@ pub fn sweep_base(path: Option<&Path>, sets: &[String]) -> Result<Option<(Table,
         "rtol": run.settings.rtol,
         "atol": run.settings.atol,
     });
-    Ok(Some((root, base, problem)))
+    Ok((root, base, problem))
 }
 
 /// `basins` on a linear rotor config: the runs of `simulate` (its drive, its reduction) from an
@@ -371,6 +384,77 @@ pub fn basins_json(ends: &[Option<autobal::linear_rotor::basins::BasinEnd>], wal
         "balanced_fraction_of_eccentricity": autobal::linear_rotor::basins::BALANCED_FRACTION,
         "wall_time_s": wall,
     })
+}
+
+/// The figure of a linear rotor's basins (`basins`, id `basins`): each run of the `n × n` grid a
+/// cell at the first two balls' initial angles (degrees), green where the run ends balanced,
+/// orange where it does not, grey where it was not run (stopped) — the report's basins figure
+/// (`report::basins`) for a linear rotor. `angles` and `ends` as [`basins`]' output.
+pub fn basins_plot(angles: &[[f64; 2]], ends: &[Option<autobal::linear_rotor::basins::BasinEnd>]) -> Plot {
+    use crate::plot::{ColorScale, Heatmap};
+    let n = (angles.len() as f64).sqrt().round() as usize;
+    let n = n.max(1);
+    let tau = std::f64::consts::TAU;
+    let xs: Vec<f64> = (0..n).map(|i| (tau * i as f64 / n as f64).to_degrees()).collect();
+    let mut z = vec![vec![f64::NAN; n]; n];
+    for (a, e) in angles.iter().zip(ends) {
+        if let Some(e) = e {
+            let cell = |psi: f64| ((psi / tau * n as f64).round() as usize).min(n - 1);
+            z[cell(a[1])][cell(a[0])] = if e.balanced { -1.0 } else { 1.0 };
+        }
+    }
+    let step = 360.0 / n as f64;
+    Plot {
+        title: "Linear rotor: where the balls end, by their initial angles".into(),
+        x_label: "initial angle of ball 1 (°, relative to the rotor)".into(),
+        y_label: "initial angle of ball 2 (°, relative to the rotor)".into(),
+        x_range: Some((-step / 2.0, 360.0 - step / 2.0)),
+        y_range: Some((-step / 2.0, 360.0 - step / 2.0)),
+        heatmap: Some(Heatmap { x: xs.clone(), y: xs, z, scale: ColorScale::Verdict, label: "end (stable = balanced)".into() }),
+        ..Default::default()
+    }
+}
+
+/// The figures of a linear rotor's sweep (`sweep`): the first balancer plane's peak whirl radius
+/// (id `sweep_peak`) and its final radius (id `sweep_final`, mm) against the first axis' value,
+/// one curve per combination of the other axes' values (in the grid's order), a point per run
+/// (`runs`: each run's values, in the order of `paths`, and its summary; a run without a
+/// balancer plane's radius is a gap).
+pub fn sweep_plots(paths: &[String], runs: &[(Vec<f64>, RunSummary)]) -> Vec<(String, Plot)> {
+    let Some(x_path) = paths.first() else { return vec![] };
+    // the curves: runs grouped by the values of the other axes, in the order met
+    let mut groups: Vec<(Vec<f64>, Vec<usize>)> = vec![];
+    for (i, (v, _)) in runs.iter().enumerate() {
+        let key = v.get(1..).unwrap_or(&[]).to_vec();
+        match groups.iter_mut().find(|g| g.0 == key) {
+            Some(g) => g.1.push(i),
+            None => groups.push((key, vec![i])),
+        }
+    }
+    let label = |key: &[f64]| -> String {
+        if key.is_empty() {
+            "first balancer plane".into()
+        } else {
+            paths[1..].iter().zip(key).map(|(p, v)| format!("{p} = {}", fmt_num(*v))).collect::<Vec<_>>().join(", ")
+        }
+    };
+    let figure = |what: &str, col: usize| -> Plot {
+        let series = groups
+            .iter()
+            .enumerate()
+            .map(|(k, (key, idx))| {
+                let pts = idx.iter().map(|&i| (runs[i].0[0], 1e3 * autobal::sweep::linear_summary_values(&runs[i].1)[col])).collect();
+                let mut s = Series::new(label(key), pts, PALETTE[k % PALETTE.len()]);
+                s.markers = idx.len() < 2;
+                s
+            })
+            .collect();
+        Plot { title: format!("Linear rotor sweep: {what}"), x_label: x_path.clone(), y_label: format!("{what} (mm)"), series, ..Default::default() }
+    };
+    vec![
+        ("sweep_peak".into(), figure("peak whirl radius of the first balancer plane", 0)),
+        ("sweep_final".into(), figure("final whirl radius of the first balancer plane", 5)),
+    ]
 }
 
 impl crate::sweep::Row for RunSummary {
@@ -900,6 +984,53 @@ mod tests {
         let json = stability_json(&cfg, &r, &red, omega_max).unwrap();
         assert_eq!(json["family"]["dimension"], 1);
         assert!(stability_table(&cfg, &r, &red, omega_max).unwrap().contains("family of dimension 1"));
+    }
+
+    fn summary(peak: f64, last: f64) -> RunSummary {
+        let p = autobal::simulation::Peak { value: peak, t: 1.0, with: 100.0 };
+        RunSummary { t: 1.0, stopped: None, peak: p, peak_any_node: p, final_radius: last, steps: 10 }
+    }
+
+    /// The sweep's figures: a curve per value of the second axis, its points the runs at that
+    /// value in the grid's order, the radii in mm; a run never sampled is a gap (NaN).
+    #[test]
+    fn sweep_figures_have_a_curve_per_value_of_the_other_axes() {
+        let paths = vec!["linear_rotor.ball_mass".to_string(), "linear_rotor.drag".to_string()];
+        let runs: Vec<(Vec<f64>, RunSummary)> = [(0.02, 0.1, 1e-3), (0.03, 0.1, 2e-3), (0.02, 0.2, 3e-3), (0.03, 0.2, f64::NEG_INFINITY)]
+            .iter()
+            .map(|&(m, c, r)| (vec![m, c], summary(r, r / 2.0)))
+            .collect();
+        let figs = sweep_plots(&paths, &runs);
+        assert_eq!(figs.iter().map(|f| f.0.as_str()).collect::<Vec<_>>(), ["sweep_peak", "sweep_final"]);
+        let s = &figs[0].1.series;
+        assert_eq!(s.len(), 2);
+        assert_eq!(s[0].label, "linear_rotor.drag = 0.1");
+        assert_eq!(s[0].points, vec![(0.02, 1.0), (0.03, 2.0)]);
+        assert_eq!(s[1].points[0], (0.02, 3.0));
+        assert!(s[1].points[1].1.is_nan(), "a peak never seen is a gap");
+        assert_eq!(figs[1].1.series[0].points, vec![(0.02, 0.5), (0.03, 1.0)]);
+        assert_eq!(figs[0].1.x_label, "linear_rotor.ball_mass");
+        // one axis: one curve
+        let one: Vec<(Vec<f64>, RunSummary)> = runs.iter().take(2).map(|(v, s)| (vec![v[0]], s.clone())).collect();
+        assert_eq!(sweep_plots(&paths[..1], &one)[0].1.series.len(), 1);
+    }
+
+    /// The basins' figure: each run a cell at its initial angles (ψ1 the column, ψ2 the row),
+    /// balanced -1, not +1, not run NaN.
+    #[test]
+    fn basins_figure_places_each_run_at_its_angles() {
+        use autobal::linear_rotor::basins::BasinEnd;
+        let pi = std::f64::consts::PI;
+        let angles = [[0.0, 0.0], [pi, 0.0], [0.0, pi], [pi, pi]];
+        let end = |balanced: bool| {
+            Some(BasinEnd { summary: summary(1e-3, 1e-4), psi0: vec![], psi: vec![], final_amplitude: 1e-4, residual_unbalance: 0.0, balanced })
+        };
+        let ends = vec![end(true), end(false), end(true), None];
+        let p = basins_plot(&angles, &ends);
+        let z = &p.heatmap.as_ref().unwrap().z;
+        assert_eq!((z[0][0], z[0][1], z[1][0]), (-1.0, 1.0, -1.0));
+        assert!(z[1][1].is_nan());
+        assert_eq!(p.heatmap.as_ref().unwrap().x, vec![0.0, 180.0]);
     }
 
     /// A sweep's point without values is the run `simulate` makes (this module's [`setup`]): the

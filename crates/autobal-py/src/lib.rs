@@ -474,6 +474,7 @@ fn spatial_basins<'py>(py: Python<'py>, cfg: &PySpatial, n: Option<usize>) -> Py
 enum Base {
     Planar(PlanarProblem),
     Spatial(autobal::sweep::SpatialSweep),
+    Linear(autobal::linear_rotor::spec::LinearRotorSpec),
 }
 
 /// `cfg` (a `PlanarConfig` or a `SpatialConfig`) as the base of a batch or sweep; a spatial
@@ -485,7 +486,10 @@ fn base_of(py: Python<'_>, cfg: &Bound<'_, PyAny>) -> PyResult<Base> {
     if let Ok(c) = cfg.extract::<PyRef<'_, PySpatial>>() {
         return autobal::sweep::SpatialSweep::new(c.root.clone()).map(Base::Spatial).map_err(|e| py_err(py, e));
     }
-    Err(PyTypeError::new_err("cfg: expected a PlanarConfig or a SpatialConfig (PlanarProblem._cfg, SpatialModel._cfg)"))
+    if let Ok(l) = cfg.extract::<PyRef<'_, linear_rotor::PyLinearSpec>>() {
+        return Ok(Base::Linear(l.spec.clone()));
+    }
+    Err(PyTypeError::new_err("cfg: expected a PlanarConfig, a SpatialConfig or a LinearSpec (PlanarProblem._cfg, SpatialModel._cfg)"))
 }
 
 /// Check every row of `params` (points × paths) as a batch would before running.
@@ -499,6 +503,7 @@ fn check_batch(py: Python<'_>, cfg: &Bound<'_, PyAny>, paths: Vec<String>, param
     let r = match base_of(py, cfg)? {
         Base::Planar(p) => autobal::sweep::check_batch(&p, &refs, &flat),
         Base::Spatial(s) => autobal::sweep::check_batch(&s, &refs, &flat),
+        Base::Linear(l) => autobal::sweep::check_batch(&l, &refs, &flat),
     };
     r.map_err(|e| py_err(py, e))
 }
@@ -545,11 +550,13 @@ fn simulate_batch<'py>(
     let ncol = match base {
         Base::Planar(_) => autobal::sweep::SUMMARY_COLUMNS.len(),
         Base::Spatial(_) => autobal::sweep::SPATIAL_SUMMARY_COLUMNS.len(),
+        Base::Linear(_) => autobal::sweep::LINEAR_SUMMARY_COLUMNS.len(),
     };
     let result = interruptible(py, move |cancel| {
         with_threads(threads, || match &base {
             Base::Planar(p) => run_batch(p, &paths, &flat, rows, cancel),
             Base::Spatial(s) => run_batch(s, &paths, &flat, rows, cancel),
+            Base::Linear(l) => run_batch(l, &paths, &flat, rows, cancel),
         })
     })?;
     let out = result.map_err(|e| py_err(py, e))?;
@@ -868,13 +875,16 @@ fn _autobal(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("SUMMARY_COLUMNS", autobal::sweep::SUMMARY_COLUMNS.to_vec())?;
     m.add("SPATIAL_SUMMARY_COLUMNS", autobal::sweep::SPATIAL_SUMMARY_COLUMNS.to_vec())?;
+    m.add("LINEAR_SUMMARY_COLUMNS", autobal::sweep::LINEAR_SUMMARY_COLUMNS.to_vec())?;
     m.add("SCHEMA", config::SCHEMA.iter().map(|(t, ks)| (*t, ks.to_vec())).collect::<Vec<_>>())?;
     m.add("DEFAULT_SPATIAL", config::DEFAULT_SPATIAL)?;
     m.add("DEFAULT_PLANAR", config::DEFAULT_PLANAR)?;
     m.add_class::<PySpatial>()?;
     m.add_class::<PyPlanar>()?;
     m.add_class::<linear_rotor::PyLinearRotor>()?;
+    m.add_class::<linear_rotor::PyLinearSpec>()?;
     m.add_function(wrap_pyfunction!(linear_rotor::linear_rotor_run, m)?)?;
+    m.add_function(wrap_pyfunction!(linear_rotor::linear_rotor_map_figures, m)?)?;
     m.add_function(wrap_pyfunction!(spatial_config, m)?)?;
     m.add_function(wrap_pyfunction!(planar_config, m)?)?;
     m.add_function(wrap_pyfunction!(spatial_report, m)?)?;

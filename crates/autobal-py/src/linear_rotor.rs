@@ -313,20 +313,34 @@ impl Options {
 /// CLI's `--set` (`linear_rotor.KEY`, `drive.KEY`, `integration.KEY`); `options`: the keyword
 /// options as JSON.
 #[pyfunction]
-#[pyo3(signature = (command, path, sets, options))]
-pub fn linear_rotor_run(py: Python<'_>, command: &str, path: std::path::PathBuf, sets: Vec<(String, Bound<'_, PyAny>)>, options: &str) -> PyResult<String> {
+#[pyo3(signature = (command, path, sets, options, dict=None))]
+pub fn linear_rotor_run(
+    py: Python<'_>,
+    command: &str,
+    path: Option<std::path::PathBuf>,
+    sets: Vec<(String, Bound<'_, PyAny>)>,
+    options: &str,
+    dict: Option<Bound<'_, PyDict>>,
+) -> PyResult<(String, String)> {
     let mut set = vec![];
     for (k, v) in &sets {
         set.push(format!("{k}={}", crate::to_toml(v, k)?));
     }
+    let dict = dict_table(dict)?;
     let map = match serde_json::from_str::<serde_json::Value>(options) {
         Ok(serde_json::Value::Object(m)) => m,
         _ => return Err(crate::py_err(py, autobal::Error::invalid("options", "expected keyword options"))),
     };
     let mut o = Options { command: command.to_string(), map };
     let command = command.to_string();
+    // what the result object draws and tabulates beside the JSON: `figures` ([{id, figure}]),
+    // `csv` (basins: the CLI's CSV)
+    let mut extra = serde_json::json!({});
+    let extra_out = &mut extra;
     let v = crate::commands_call(py, move |control| -> anyhow::Result<serde_json::Value> {
-        use autobal_commands::command::{Command as _, ConfigSource, Output as _};
+        use autobal_commands::command::{Command as _, Output as _};
+        let config = LinearSource::read(path, dict, &set)?;
+        let path = config.file.clone();
         let threads = o.count("threads")?;
         let pool = match threads {
             Some(0) => anyhow::bail!("threads: must be at least 1"),
@@ -340,18 +354,21 @@ pub fn linear_rotor_run(py: Python<'_>, command: &str, path: std::path::PathBuf,
         match command.as_str() {
             "stability" => {
                 let args = autobal_commands::stability::Args {
-                    config: ConfigSource::file(Some(path.as_path()), &set),
+                    config: config.source(),
                     omega_max: o.text("omega_max")?,
                     samples: o.count("samples")?,
                     ..Default::default()
                 };
                 o.done()?;
-                args.run(control)?.json()
+                let out = args.run(control)?;
+                let figures: Vec<serde_json::Value> = out.figures()?.iter().map(|f| f.to_json()).collect();
+                *extra_out = serde_json::json!({ "figures": figures });
+                out.json()
             }
             "simulate" => {
                 let dt = o.take("dt").map(|v| v.as_f64().ok_or_else(|| autobal::Error::invalid("dt", "expected a number"))).transpose()?;
                 o.done()?;
-                let cfg = cmd::load(&path, &set)?;
+                let cfg = cmd::from_table(&config.root, &config.dir)?;
                 let w = cmd::default_omega_max(&cfg)?;
                 let setup = cmd::setup(&cfg, w, dt)?;
                 let run = cmd::run(&setup, control, |_| Ok(()))?;
@@ -364,8 +381,15 @@ pub fn linear_rotor_run(py: Python<'_>, command: &str, path: std::path::PathBuf,
             "basins" => {
                 let n = o.count("n")?.unwrap_or(16);
                 o.done()?;
-                let args = autobal_commands::basins::Args { config: ConfigSource::file(Some(path.as_path()), &set), n };
-                within(&mut || args.run(control)?.json())
+                let args = autobal_commands::basins::Args { config: config.source(), n };
+                within(&mut || {
+                    let out = args.run(control)?;
+                    if let Some(ends) = &out.linear {
+                        let plot = cmd::basins_plot(&out.angles, ends);
+                        *extra_out = serde_json::json!({"figures": [{"id": "basins", "figure": plot.to_plotly()}], "csv": out.csv()});
+                    }
+                    out.json()
+                })
             }
             "sweep" => {
                 let mut specs: Vec<String> = o.text("x")?.into_iter().collect();
@@ -390,20 +414,26 @@ pub fn linear_rotor_run(py: Python<'_>, command: &str, path: std::path::PathBuf,
                         autobal::sweep::shard(grid.len(), k - 1, n)?
                     }
                 };
-                let (root, base, problem) = cmd::sweep_base(Some(path.as_path()), &set)?.ok_or_else(|| anyhow::anyhow!("config {}: not a linear rotor config", path.display()))?;
+                let (root, base, problem) = cmd::sweep_base_of(config.root.clone(), &config.dir)?;
                 let kn = shard.as_deref().and_then(|s| s.split_once('/')).and_then(|(k, n)| Some((k.trim().parse().ok()?, n.trim().parse().ok()?)));
                 within(&mut || {
-                    let mut runs = vec![];
+                    let (mut runs, mut kept) = (vec![], vec![]);
                     let out = autobal::sweep::simulate_grid(
                         &base,
                         &grid,
                         range.clone(),
                         &mut |i, v, r| {
                             runs.push(autobal::sweep::run_json(i, v, r));
+                            kept.push((v.to_vec(), r.summary.clone()));
                             true
                         },
                         control,
                     )?;
+                    let figures: Vec<serde_json::Value> = cmd::sweep_plots(&grid.paths().iter().map(|p| p.to_string()).collect::<Vec<_>>(), &kept)
+                        .into_iter()
+                        .map(|(id, plot)| serde_json::json!({"id": id, "figure": plot.to_plotly()}))
+                        .collect();
+                    *extra_out = serde_json::json!({ "figures": figures });
                     let mut json = autobal::sweep::report(&grid, kn, &range, out.complete(), problem.clone(), std::mem::take(&mut runs));
                     json["definition_checksum"] = serde_json::json!(autobal::sweep::definition_checksum(&root, &grid));
                     json["columns"] = serde_json::json!(autobal::sweep::LINEAR_SUMMARY_COLUMNS);
@@ -423,10 +453,10 @@ pub fn linear_rotor_run(py: Python<'_>, command: &str, path: std::path::PathBuf,
                 };
                 o.done()?;
                 let (xa, ya) = (autobal::paths::Axis::parse(&x)?, autobal::paths::Axis::parse(&y)?);
-                let (root, _) = cmd::read_set(Some(path.as_path()), &set)?;
+                let root = config.root.clone();
                 let (mut margin, mut verdict, mut family, mut points) = (vec![], vec![], vec![], vec![]);
                 within(&mut || {
-                    let out = cmd::map_traced(&root, Some(path.as_path()), &xa, &ya, speed, boundary, control, &mut |_, cells, pts| {
+                    let out = cmd::map_traced(&root, path.as_deref(), &xa, &ya, speed, boundary, control, &mut |_, cells, pts| {
                         margin.push(cells.iter().map(|c| c.margin).collect::<Vec<_>>());
                         verdict.push(cells.iter().map(|c| c.verdict).collect::<Vec<_>>());
                         family.push(cells.iter().map(|c| c.family_dimension).collect::<Vec<_>>());
@@ -452,5 +482,164 @@ pub fn linear_rotor_run(py: Python<'_>, command: &str, path: std::path::PathBuf,
             .into()),
         }
     })?;
+    Ok((v.to_string(), extra.to_string()))
+}
+
+/// A `[linear_rotor]` config with the bytes of its matrix files, read once
+/// ([`autobal::linear_rotor::spec::LinearRotorSpec`]): the base of `autobal.sweep` and
+/// `autobal.simulate_batch` on a linear rotor config. What a Dask worker needs to rebuild it
+/// is its TOML text (`toml`) and the files' bytes by the names the config gives them (`files()`):
+/// `LinearSpec.from_parts(toml, files)` reads the same config again, without the file system.
+#[pyclass(name = "LinearSpec", module = "autobal._autobal", frozen)]
+pub struct PyLinearSpec {
+    /// The config and its files.
+    pub spec: autobal::linear_rotor::spec::LinearRotorSpec,
+}
+
+#[pymethods]
+impl PyLinearSpec {
+    /// `LinearSpec(path, sets)`: the config file `path` with `sets` (`[(key, value)]`, the
+    /// CLI's `--set`), its matrix files read relative to its folder.
+    #[new]
+    fn new(py: Python<'_>, path: std::path::PathBuf, sets: Vec<(String, Bound<'_, PyAny>)>) -> PyResult<Self> {
+        let mut set = vec![];
+        for (k, v) in &sets {
+            set.push(format!("{k}={}", crate::to_toml(v, k)?));
+        }
+        let spec = crate::commands_call(py, move |_| {
+            let (root, _) = cmd::read_set(Some(path.as_path()), &set)?;
+            if !cmd::is_linear(&root) {
+                anyhow::bail!("config {}: not a linear rotor config (it has no [linear_rotor] table)", path.display());
+            }
+            Ok(cmd::spec(&root, path.parent().unwrap_or(std::path::Path::new(".")))?)
+        })?;
+        Ok(PyLinearSpec { spec })
+    }
+
+    /// The config from its TOML text and its files' bytes (`{name: bytes}`), as
+    /// [`PyLinearSpec::toml`] and [`PyLinearSpec::files`] give them.
+    #[staticmethod]
+    fn from_parts(py: Python<'_>, toml: &str, files: std::collections::HashMap<String, Bound<'_, pyo3::types::PyBytes>>) -> PyResult<Self> {
+        let root = autobal::config::parse(toml, "linear rotor config").map_err(|e| crate::py_err(py, e))?;
+        let bytes: std::collections::HashMap<String, Vec<u8>> = files.iter().map(|(k, v)| (k.clone(), v.as_bytes().to_vec())).collect();
+        let spec =
+            autobal::linear_rotor::spec::LinearRotorSpec::new(root, &mut |p| bytes.get(p).cloned().ok_or_else(|| format!("{p}: not among the files given")))
+                .map_err(|e| crate::py_err(py, e))?;
+        Ok(PyLinearSpec { spec })
+    }
+
+    /// The config's tables as TOML text.
+    #[getter]
+    fn toml(&self) -> String {
+        toml::to_string(self.spec.root()).unwrap_or_default()
+    }
+
+    /// The matrix files' bytes by the names the config gives them.
+    fn files<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        for (k, v) in self.spec.files() {
+            d.set_item(k, pyo3::types::PyBytes::new(py, v))?;
+        }
+        Ok(d)
+    }
+}
+
+/// The map's figure of a `[linear_rotor]` config file (`stability_map`, what `autobal map
+/// --config PATH --out STEM` draws): JSON `[{"id", "title", "figure"}]`, computed by the CLI's
+/// `map::Args` on the file (its matrix files relative to it, `sets` its `--set`); `options` the
+/// JSON of [`autobal_commands::figures_api::Options`] (`x`, `y` as `KEY=LO:HI:N`, `omega`,
+/// `boundary`).
+#[pyfunction]
+#[pyo3(signature = (path, sets, options, dict=None))]
+pub fn linear_rotor_map_figures(
+    py: Python<'_>,
+    path: Option<std::path::PathBuf>,
+    sets: Vec<(String, Bound<'_, PyAny>)>,
+    options: &str,
+    dict: Option<Bound<'_, PyDict>>,
+) -> PyResult<String> {
+    use autobal_commands::command::Output as _;
+    let mut set = vec![];
+    for (k, v) in &sets {
+        set.push(format!("{k}={}", crate::to_toml(v, k)?));
+    }
+    let dict = dict_table(dict)?;
+    let o: autobal_commands::figures_api::Options =
+        serde_json::from_str(options).map_err(|e| crate::py_err(py, autobal::Error::invalid("options", e.to_string())))?;
+    let v = crate::commands_call(py, move |control| {
+        let (Some(x), Some(y)) = (&o.x, &o.y) else { anyhow::bail!("x: required, with y (KEY=LO:HI:N, e.g. x='speed=100:2000:40')") };
+        let config = LinearSource::read(path, dict, &set)?;
+        let args = autobal_commands::map::Args {
+            config: match &config.file {
+                // the file and its --set, as the CLI reads them (the matrix files beside it)
+                Some(p) => autobal_commands::command::ConfigSource::file(Some(p.as_path()), &set),
+                None => config.source(),
+            },
+            x: autobal_commands::map::parse_axis("--x", x)?,
+            y: autobal_commands::map::parse_axis("--y", y)?,
+            omega: o.omega.clone(),
+            boundary: o.boundary.unwrap_or(false),
+            ..Default::default()
+        };
+        let out = args.prepare()?.run(control, autobal_commands::map::Rows::Figure)?;
+        if let Some(why) = out.stopped() {
+            anyhow::bail!("{why}");
+        }
+        Ok(serde_json::Value::Array(out.figures()?.iter().map(|f| f.to_json()).collect()))
+    })?;
     Ok(v.to_string())
+}
+
+/// A dict of tables (a `[linear_rotor]` config from Python) as a TOML table.
+fn dict_table(dict: Option<Bound<'_, PyDict>>) -> PyResult<Option<autobal::config::Table>> {
+    match dict {
+        None => Ok(None),
+        Some(d) => match crate::to_toml(d.as_any(), "")? {
+            toml::Value::Table(t) => Ok(Some(t)),
+            _ => unreachable!("a dict converts to a table"),
+        },
+    }
+}
+
+/// A `[linear_rotor]` config as the Python functions take it: a file (its matrix files relative
+/// to its folder) or a dict of tables (its matrix files relative to the working folder), with
+/// the overrides applied as the CLI's `--set` applies them ([`cmd::apply_set`]).
+struct LinearSource {
+    root: autobal::config::Table,
+    /// The folder the matrix files are read relative to.
+    dir: std::path::PathBuf,
+    /// The config file, if the config is one.
+    file: Option<std::path::PathBuf>,
+}
+
+impl LinearSource {
+    fn read(path: Option<std::path::PathBuf>, dict: Option<autobal::config::Table>, set: &[String]) -> anyhow::Result<Self> {
+        let (root, dir, file) = match (path, dict) {
+            (Some(p), _) => {
+                let (root, _) = cmd::read_set(Some(p.as_path()), set)?;
+                let dir = p.parent().unwrap_or(std::path::Path::new(".")).to_path_buf();
+                (root, dir, Some(p))
+            }
+            (None, Some(mut root)) => {
+                for s in set {
+                    cmd::apply_set(&mut root, s)?;
+                }
+                (root, std::path::PathBuf::from("."), None)
+            }
+            (None, None) => anyhow::bail!("config: give a [linear_rotor] config file or a dict of its tables"),
+        };
+        if !cmd::is_linear(&root) {
+            anyhow::bail!(
+                "config {}: not a linear rotor config (it has no [linear_rotor] table)",
+                file.as_ref().map_or("dict".to_string(), |p| p.display().to_string())
+            );
+        }
+        Ok(LinearSource { root, dir, file })
+    }
+
+    /// The config as the commands' `Args` take it (the tables read once, the folder of its files).
+    fn source(&self) -> autobal_commands::command::ConfigSource {
+        let name = self.file.as_ref().map_or("dict".to_string(), |p| p.display().to_string());
+        autobal_commands::command::ConfigSource::Tables { root: self.root.clone(), source: name, dir: self.dir.clone() }
+    }
 }

@@ -41,7 +41,7 @@ from ._results import COMMANDS, COMMANDS_WITH_FIGURES, Report, Result, report
 from ._ross import from_ross
 from . import _linear_config
 from ._autobal import LinearRotor
-from ._linear_rotor import LinearSimulation
+from ._linear_rotor import LinearConfigResult, LinearSimulation
 
 __version__: str = _autobal.__version__
 #: Columns of a planar run's summary in :func:`simulate_batch` and :func:`sweep`, in order.
@@ -552,9 +552,8 @@ def analyse(command: str, config: ConfigLike = None, set: Optional[Mapping[str, 
     if command in _FILE_COMMANDS:
         return _FILE_COMMANDS[command](config, set, options)
     if command != "report" and _linear_config.is_linear(config):
-        lin = _linear_config.run(command, config, set, **options)
-        text = Path(config).read_text(encoding="utf-8")
-        return Result(command, lin, (text, None, str(config), list((set or {}).items())), options, lin if command == "map" else None)
+        lin, extra = _linear_config.run_with_extra(command, config, set, **options)
+        return LinearConfigResult(command, lin, config, set, options, extra)
     if command == "report":
         return report(config, options.pop("out", "autobal-report"), set=set, **options)
     if command == "simulate":

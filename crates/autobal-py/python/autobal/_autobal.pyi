@@ -10,6 +10,7 @@ __all__ = [
     "__version__",
     "SUMMARY_COLUMNS",
     "SPATIAL_SUMMARY_COLUMNS",
+    "LINEAR_SUMMARY_COLUMNS",
     "SCHEMA",
     "DEFAULT_SPATIAL",
     "DEFAULT_PLANAR",
@@ -20,6 +21,7 @@ __all__ = [
     "spatial_report",
     "command_json",
     "linear_rotor_run",
+    "linear_rotor_map_figures",
     "stability_map",
     "map_cells",
     "simulate",
@@ -41,10 +43,12 @@ __all__ = [
     "COMMANDS_WITH_FIGURES",
     "COMMANDS",
     "LinearRotor",
+    "LinearSpec",
 ]
 __version__: str
 SUMMARY_COLUMNS: List[str]
 SPATIAL_SUMMARY_COLUMNS: List[str]
+LINEAR_SUMMARY_COLUMNS: List[str]
 SCHEMA: List[Tuple[str, List[str]]]
 DEFAULT_SPATIAL: str
 DEFAULT_PLANAR: str
@@ -65,7 +69,10 @@ def spatial_config(text: Optional[str], dict: Optional[Mapping[str, Any]], sourc
 def planar_config(text: Optional[str], dict: Optional[Mapping[str, Any]], source: str, sets: Sequence[Tuple[str, Any]]) -> PlanarConfig: ...
 def spatial_report(command: str, cfg: SpatialConfig, omega_max: Optional[Union[float, str]] = None, samples: Optional[int] = None, points: Optional[int] = None, balls: str = "free", route: str = "auto") -> str: ...
 def command_json(command: str, text: Optional[str], dict: Optional[Mapping[str, Any]], source: str, sets: Sequence[Tuple[str, Any]], omega_max: Optional[Union[float, str]] = None, samples: Optional[int] = None, points: Optional[int] = None, balls: str = "free", route: str = "auto") -> str: ...
-def linear_rotor_run(command: str, path: str, sets: Sequence[Tuple[str, Any]], options: str) -> str: ...
+# the JSON text and the extras' JSON text ({"figures": [...], "csv": ...})
+# path None: the dict of tables (matrix files relative to the working folder)
+def linear_rotor_run(command: str, path: Optional[str], sets: Sequence[Tuple[str, Any]], options: str, dict: Optional[Mapping[str, Any]] = None) -> Tuple[str, str]: ...
+def linear_rotor_map_figures(path: Optional[str], sets: Sequence[Tuple[str, Any]], options: str, dict: Optional[Mapping[str, Any]] = None) -> str: ...
 def stability_map(cfg: SpatialConfig, x: Tuple[str, Sequence[float]], y: Tuple[str, Sequence[float]], omega: Optional[float] = None, balls: str = "free", quantity: str = "margin", threads: Optional[int] = None) -> Dict[str, npt.NDArray[Any]]: ...
 def map_cells(text: Optional[str], dict: Optional[Mapping[str, Any]], source: str, sets: Sequence[Tuple[str, Any]], x: Tuple[str, Sequence[float]], y: Tuple[str, Sequence[float]], omega: Union[None, float, str] = None, balls: Optional[str] = None, quantity: Optional[str] = None, route: Optional[str] = None, threads: Optional[int] = None) -> Dict[str, Any]: ...
 def simulate(cfg: PlanarConfig, dt: Optional[float] = None) -> Tuple[Dict[str, npt.NDArray[np.float64]], str]: ...
@@ -120,3 +127,13 @@ class LinearRotor:
     def from_config(path: Union[str, "os.PathLike[str]"], set: Optional[Mapping[str, Any]] = None) -> "LinearRotor": ...
     # an autobal._linear_rotor.LinearSimulation
     def simulate(self, dt: Optional[float] = None, omega_max: Optional[float] = None, modes: Optional[int] = None) -> Any: ...
+
+# a [linear_rotor] config with its matrix files' bytes: the base of sweeps and batches
+@final
+class LinearSpec:
+    def __new__(cls, path: Union[str, "os.PathLike[str]"], sets: Sequence[Tuple[str, Any]]) -> "LinearSpec": ...
+    @staticmethod
+    def from_parts(toml: str, files: Mapping[str, bytes]) -> "LinearSpec": ...
+    @property
+    def toml(self) -> str: ...
+    def files(self) -> Dict[str, bytes]: ...

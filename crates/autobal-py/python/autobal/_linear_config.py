@@ -1,6 +1,7 @@
-"""``autobal.run`` and ``autobal.analyse`` on a ``[linear_rotor]`` config file (issue 19, "your
-own rotor"): ``stability``, ``simulate``, ``map``, ``sweep`` and ``basins`` as the CLI computes
-them, through ``_autobal.linear_rotor_run`` (the commands crate's functions, with the GIL
+"""``autobal.run`` and ``autobal.analyse`` on a ``[linear_rotor]`` config file or a dict of its
+tables (issue 19, "your own rotor"; a dict's matrix files are read relative to the working
+folder, ``os.getcwd()``, as ``autobal.export_model`` reads them): ``stability``, ``simulate``,
+``map``, ``sweep`` and ``basins`` as the CLI computes them, through ``_autobal.linear_rotor_run`` (the commands crate's functions, with the GIL
 released and Ctrl-C stopping the work)."""
 
 from __future__ import annotations
@@ -9,7 +10,7 @@ import json
 import os
 import re
 from pathlib import Path
-from typing import Any, Dict, Mapping, Optional
+from typing import Any, Dict, Mapping, Optional, Tuple
 
 import numpy as np
 
@@ -19,8 +20,11 @@ _TABLE = re.compile(r"^\s*\[\[?\s*linear_rotor\s*[.\]]", re.MULTILINE)
 
 
 def is_linear(config: Any) -> bool:
-    """Whether ``config`` is the path of a TOML file with a ``[linear_rotor]`` table (a dict or
-    the default config is not: the matrix files are named relative to the file)."""
+    """Whether ``config`` is the path of a TOML file with a ``[linear_rotor]`` table, or a dict
+    of tables with a ``linear_rotor`` table (its matrix files named relative to the working
+    folder)."""
+    if isinstance(config, Mapping):
+        return "linear_rotor" in config
     if not isinstance(config, (str, os.PathLike)):
         return False
     p = Path(config)
@@ -37,7 +41,20 @@ def run(command: str, config: Any, set: Optional[Mapping[str, Any]] = None, **op
     values, ``margin`` (1/s, NaN without a balanced state) and ``stable`` as arrays
     ``len(y) × len(x)``, ``verdict`` as lists, the bisected ``boundary`` points with
     ``boundary=True``)."""
-    out = json.loads(_autobal.linear_rotor_run(command, os.fspath(config), list((set or {}).items()), json.dumps(options)))
+    return run_with_extra(command, config, set, **options)[0]
+
+
+def run_with_extra(command: str, config: Any, set: Optional[Mapping[str, Any]] = None, **options: Any) -> Tuple[Dict[str, Any], Dict[str, Any]]:
+    """:func:`run`'s dict, and what the result object draws and tabulates beside it:
+    ``figures`` (``[{"id", "figure"}]``: ``stability``'s margin, ``sweep``'s and ``basins'``
+    figures, computed in the same run) and ``csv`` (``basins``: the CLI's CSV)."""
+    sets = list((set or {}).items())
+    if isinstance(config, Mapping):
+        # a dict of tables: its matrix files relative to the working folder
+        text, extra = _autobal.linear_rotor_run(command, None, sets, json.dumps(options), dict(config))
+    else:
+        text, extra = _autobal.linear_rotor_run(command, os.fspath(config), sets, json.dumps(options))
+    out = json.loads(text)
     if command == "map":
         out["margin"] = np.array([[np.nan if v is None else v for v in row] for row in out["margin"]], dtype=float)
         out["stable"] = np.array([[v == "stable" for v in row] for row in out["verdict"]], dtype=bool)
@@ -48,4 +65,4 @@ def run(command: str, config: Any, set: Optional[Mapping[str, Any]] = None, **op
         e = SimulationError(out["stopped"])
         e.result = out  # type: ignore[attr-defined]
         raise e
-    return out
+    return out, json.loads(extra)

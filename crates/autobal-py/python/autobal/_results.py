@@ -238,7 +238,7 @@ class Result:
         global _PLOTLYJS_SENT
         rows = "".join(f"<tr><th style='text-align:left'>{html.escape(k)}</th><td style='text-align:left'>{html.escape(str(v))}</td></tr>" for k, v in self._summary_rows()[:40])
         out = f"<div><b>autobal {html.escape(self.command)}</b><table>{rows}</table>"
-        if self.command in COMMANDS_WITH_FIGURES:
+        if self.command in COMMANDS_WITH_FIGURES or self._figures:
             try:
                 fig = self.plot()
             except ImportError as e:

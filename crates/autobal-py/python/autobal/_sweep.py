@@ -1,10 +1,14 @@
-"""Batches and sweeps of simulations, of the planar rotor (:class:`PlanarProblem`) or of the
-spatial rotor (:class:`SpatialModel` of a config with ``[drive]``): in-process (Rust threads) or
-on a Dask cluster, streamed to disk chunk by chunk so that an interrupted sweep keeps what
-finished and resumes."""
+"""Batches and sweeps of simulations, of the planar rotor (:class:`PlanarProblem`), of the
+spatial rotor (:class:`SpatialModel` of a config with ``[drive]``) or of a linear rotor (the
+path of a ``[linear_rotor]`` config file): in-process (Rust threads) or on a Dask cluster,
+streamed to disk chunk by chunk so that an interrupted sweep keeps what finished and resumes.
+
+A linear rotor config travels to the Dask workers as its TOML text and the bytes of the matrix
+files it names (read once, here): the workers need no shared file system."""
 
 from __future__ import annotations
 
+import hashlib
 import json
 import os
 import tempfile
@@ -20,7 +24,29 @@ from .errors import InvalidParameter
 if TYPE_CHECKING:  # pragma: no cover
     from . import PlanarProblem, SpatialModel
 
-Problem = Union["PlanarProblem", "SpatialModel"]
+Problem = Union["PlanarProblem", "SpatialModel", str, "os.PathLike[str]"]
+
+
+class _LinearProblem:
+    """A ``[linear_rotor]`` config file with its matrix files read once (``_autobal.LinearSpec``)."""
+
+    def __init__(self, spec: Any) -> None:
+        self._cfg = spec
+
+    @property
+    def toml(self) -> str:
+        return str(self._cfg.toml)
+
+
+def _problem(problem: Any) -> Any:
+    """``problem``, or the path of a ``[linear_rotor]`` config file as its :class:`_LinearProblem`."""
+    if isinstance(problem, (str, os.PathLike)):
+        from . import _linear_config
+
+        if not _linear_config.is_linear(problem):
+            raise InvalidParameter(f"problem: {os.fspath(problem)} is not a [linear_rotor] config file (a planar or spatial config: PlanarProblem(path), SpatialModel(path))")
+        return _LinearProblem(_autobal.LinearSpec(os.fspath(problem), []))
+    return problem
 
 Axes = Union[Mapping[str, Sequence[float]], Sequence[Union[str, Tuple[str, Sequence[float]]]]]
 
@@ -49,21 +75,31 @@ def grid(axes: Axes) -> np.ndarray:
 
 
 def _kind(problem: Any) -> str:
-    """``"spatial"`` for a :class:`SpatialModel`, ``"planar"`` for a :class:`PlanarProblem`."""
+    """``"spatial"`` for a :class:`SpatialModel`, ``"planar"`` for a :class:`PlanarProblem`,
+    ``"linear"`` for a linear rotor config."""
     cfg = getattr(problem, "_cfg", None)
+    if isinstance(cfg, _autobal.LinearSpec):
+        return "linear"
     if isinstance(cfg, _autobal.SpatialConfig):
         return "spatial"
     if isinstance(cfg, _autobal.PlanarConfig):
         return "planar"
-    raise InvalidParameter(f"problem: expected an autobal.PlanarProblem or autobal.SpatialModel, got {type(problem).__name__}")
+    raise InvalidParameter(f"problem: expected an autobal.PlanarProblem, an autobal.SpatialModel or the path of a [linear_rotor] config, got {type(problem).__name__}")
 
 
 def columns(problem: Problem) -> List[str]:
     """The summary columns of ``problem``'s runs: ``SUMMARY_COLUMNS`` (planar) or
     ``SPATIAL_SUMMARY_COLUMNS`` (spatial: the planar ones, then ``outcome`` (0 not settled,
     1 not balanced, 2 partially balanced, 3 balanced), ``residual_unbalance``,
-    ``residual_couple`` (NaN without a couple unbalance), ``static_sag``)."""
-    return list(_autobal.SPATIAL_SUMMARY_COLUMNS if _kind(problem) == "spatial" else _autobal.SUMMARY_COLUMNS)
+    ``residual_couple`` (NaN without a couple unbalance), ``static_sag``) or
+    ``LINEAR_SUMMARY_COLUMNS`` (a linear rotor: the first balancer plane's ``peak_amplitude``
+    with ``omega_at_peak``, ``t_at_peak``, ``peak_any_node`` with ``omega_at_peak_any_node``,
+    ``final_amplitude`` (m), ``completed``, ``t_reached``, ``steps``: the CLI's sweep
+    columns)."""
+    kind = _kind(_problem(problem))
+    if kind == "linear":
+        return list(_autobal.LINEAR_SUMMARY_COLUMNS)
+    return list(_autobal.SPATIAL_SUMMARY_COLUMNS if kind == "spatial" else _autobal.SUMMARY_COLUMNS)
 
 
 def simulate_batch(problem: Problem, paths: Sequence[str], params: Any, threads: Optional[int] = None) -> np.ndarray:
@@ -76,7 +112,11 @@ def simulate_batch(problem: Problem, paths: Sequence[str], params: Any, threads:
     For a :class:`SpatialModel` (a config with ``[drive]``; without one, the default run-up)
     the paths are the config's keys (``balancer.ball_mass``, ``drive.omega0``,
     ``dimensionless.z_a``, ``drive.psi0[2]`` for one element of an array), and a row is
-    exactly ``autobal simulate`` of the config with those keys set."""
+    exactly ``autobal simulate`` of the config with those keys set. For a linear rotor (the
+    path of a ``[linear_rotor]`` config) the paths are its parameter paths
+    (``linear_rotor.ball_mass``, ``linear_rotor.balancer[0].drag``, ``drive.b``, ...), and a
+    row is ``autobal sweep``'s run of that point."""
+    problem = _problem(problem)
     p = np.require(np.asarray(params, dtype=float), requirements=["C", "A"])
     if p.ndim == 1 and len(paths) == 1:
         p = p.reshape(-1, 1)
@@ -85,10 +125,15 @@ def simulate_batch(problem: Problem, paths: Sequence[str], params: Any, threads:
     return _autobal.simulate_batch(problem._cfg, list(paths), p, threads)
 
 
-def _run_chunk(kind: str, problem_toml: str, paths: List[str], params: np.ndarray, threads: Optional[int]) -> np.ndarray:
-    """One chunk on a worker: the problem (``kind``: planar or spatial) from its TOML, then a batch."""
-    make = _autobal.spatial_config if kind == "spatial" else _autobal.planar_config
-    cfg = make(problem_toml, None, "sweep", [])
+def _run_chunk(kind: str, problem_toml: Any, paths: List[str], params: np.ndarray, threads: Optional[int]) -> np.ndarray:
+    """One chunk on a worker: the problem (``kind``: planar, spatial or linear) from its TOML
+    (a linear rotor's: ``(toml, {file name: bytes})``), then a batch."""
+    if kind == "linear":
+        text, files = problem_toml
+        cfg = _autobal.LinearSpec.from_parts(text, files)
+    else:
+        make = _autobal.spatial_config if kind == "spatial" else _autobal.planar_config
+        cfg = make(problem_toml, None, "sweep", [])
     # arrays unpickled on a worker may be unaligned views of the message buffer
     return _autobal.simulate_batch(cfg, paths, np.require(params, dtype=float, requirements=["C", "A"]), threads)
 
@@ -186,7 +231,10 @@ def sweep(
 
     ``problem``: a :class:`PlanarProblem` (paths such as ``planar.c_psi``, ``drive.b``) or a
     :class:`SpatialModel` of a config with ``[drive]`` (paths: the config's keys, such as
-    ``balancer.ball_mass``, ``drive.omega0``, ``dimensionless.z_a``; see :func:`simulate_batch`).
+    ``balancer.ball_mass``, ``drive.omega0``, ``dimensionless.z_a``; see :func:`simulate_batch`),
+    or the path of a ``[linear_rotor]`` config file (paths: ``linear_rotor.ball_mass``,
+    ``linear_rotor.balancer[0].drag``, ``drive.b``, ...; its matrix files read here once and
+    sent to the workers with the config's text).
 
     - ``client``: a ``dask.distributed.Client``; the grid is cut into chunks of ``chunk_size``
       points, each submitted as one :func:`simulate_batch` call (``threads`` per task, default
@@ -198,6 +246,7 @@ def sweep(
 
     The results are the same bits whatever the client, workers, chunks or threads.
     """
+    problem = _problem(problem)
     kind = _kind(problem)
     names = columns(problem)
     ax = _axes(axes)
@@ -218,6 +267,9 @@ def sweep(
         if table_path.suffix not in (".csv", ".parquet"):
             raise InvalidParameter(f"out: {table_path} must end in .csv or .parquet")
         manifest = {"problem": toml, "axes": ax, "chunk_size": chunk_size, "columns": names}
+        if kind == "linear":
+            # the matrix files are part of the problem
+            manifest["files"] = {k: hashlib.sha256(v).hexdigest() for k, v in sorted(problem._cfg.files().items())}
         parts = _Parts(table_path.with_suffix(".parts"), manifest, resume)
     results: Dict[int, np.ndarray] = {}
     todo = []
@@ -241,8 +293,9 @@ def sweep(
         # interrupted call cancelled (the scheduler may still be forgetting it, and would
         # cancel the new one too; `id(points)` had been reused by the next call)
         run = uuid.uuid4().hex
+        payload: Any = (toml, dict(problem._cfg.files())) if kind == "linear" else toml
         futures = {
-            client.submit(_run_chunk, kind, toml, paths, points[lo:hi], threads or 1, pure=False, key=f"autobal-sweep-{run}-{i}"): i
+            client.submit(_run_chunk, kind, payload, paths, points[lo:hi], threads or 1, pure=False, key=f"autobal-sweep-{run}-{i}"): i
             for i, lo, hi in todo
         }
         try:

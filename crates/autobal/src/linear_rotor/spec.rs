@@ -9,12 +9,19 @@
 //! | path | what it sets |
 //! |---|---|
 //! | `linear_rotor.ball_mass`, `.radius`, `.drag`, `.balls` | that key of **every** `[[linear_rotor.balancer]]` |
+//! | `linear_rotor.balancer[j].KEY` | that key of balancer plane `j` alone (`node`, `radius`, `balls`, `ball_mass`, `drag`, `offset`, `ball_diameter`, `restitution`, `contact_stiffness`, `rolling_resistance`, `slip_rate`) |
 //! | `linear_rotor.me` | `me` of the config's only `[[linear_rotor.unbalance]]` |
+//! | `linear_rotor.unbalance[j].KEY` | that key of unbalance `j` alone (`node`, `me`, `phase`, `offset`) |
 //! | `linear_rotor.unbalance_scale` | a factor on every unbalance's `me` |
 //! | `linear_rotor.support_stiffness_scale` | a factor on every `[[linear_rotor.bearings]]`' stiffness (`k`, or the tables `kxx`, `kxy`, `kyx`, `kyy`) |
 //! | `linear_rotor.support_damping_scale` | the same on their damping (`c`, `cxx`, …) |
 //! | `linear_rotor.polar_inertia`, `.spin_damping`, `.omega_max`, `.modes` | that key of `[linear_rotor]` |
 //! | `drive.KEY`, `integration.KEY` | a number of `[drive]` (`omega0`, `b`, `torque`, `omega_idle`, `t_off`, `t_end`) or `[integration]` (`dt`, `rtol`, `atol`, `max_steps`, `max_wall_s`) |
+//!
+//! The index `j` counts the config's `[[linear_rotor.balancer]]` (or `unbalance`) tables from 0, in
+//! their order, as the config's own errors name them (`linear_rotor.balancer[0].ball_mass`) and
+//! as nodes are numbered; an index past the last is an error naming the path and the count.
+//! `node` and `balls` take whole numbers.
 //!
 //! A map's speed axis is `omega` or `speed` (rad/s), `speed_rpm`, `speed_hz`
 //! ([`crate::units::SPEED_PATHS`]). Bearings inside matrix files are part of `K`, `C`: the scales
@@ -30,6 +37,11 @@
 //! assert_eq!(cfg.rotor.balancers[0].ball_mass, 0.02);
 //! let e = spec.config_at(&[("linear_rotor.nope", 1.0)]).unwrap_err().to_string();
 //! assert!(e.starts_with("linear_rotor.nope: unknown parameter path"));
+//! // one plane of several: the config's own index, from 0
+//! let cfg = spec.config_at(&[("linear_rotor.balancer[0].drag", 0.3)]).unwrap();
+//! assert_eq!(cfg.rotor.balancers[0].drag, 0.3);
+//! let e = spec.config_at(&[("linear_rotor.balancer[1].drag", 0.3)]).unwrap_err().to_string();
+//! assert!(e.starts_with("linear_rotor.balancer[1].drag: the config has 1 [[linear_rotor.balancer]]"), "{e}");
 //! ```
 
 use super::config::{linear_rotor_bytes, LinearRotorConfig};
@@ -48,7 +60,9 @@ pub const PATHS: &[(&str, &str)] = &[
     ("linear_rotor.radius", "race radius R (m), in every balancer plane"),
     ("linear_rotor.drag", "viscous drag per ball c_b (N m s), in every balancer plane"),
     ("linear_rotor.balls", "number of balls n (whole), in every balancer plane"),
+    ("linear_rotor.balancer[j].KEY", "KEY of balancer plane j alone (from 0): node, radius, balls, ball_mass, drag, offset, ball_diameter, restitution, contact_stiffness, rolling_resistance, slip_rate"),
     ("linear_rotor.me", "m·e (kg m) of the config's only unbalance"),
+    ("linear_rotor.unbalance[j].KEY", "KEY of unbalance j alone (from 0): node, me, phase, offset"),
     ("linear_rotor.unbalance_scale", "factor on every unbalance's m·e"),
     ("linear_rotor.support_stiffness_scale", "factor on the stiffness of every [[linear_rotor.bearings]] (k or kxx, kxy, kyx, kyy)"),
     ("linear_rotor.support_damping_scale", "factor on the damping of every [[linear_rotor.bearings]] (c or cxx, cxy, cyx, cyy)"),
@@ -62,6 +76,12 @@ pub const PATHS: &[(&str, &str)] = &[
 
 const DRIVE_KEYS: &[&str] = &["omega0", "b", "torque", "omega_idle", "t_off", "t_end"];
 const INTEGRATION_KEYS: &[&str] = &["dt", "rtol", "atol", "max_steps", "max_wall_s"];
+/// The numbers of one `[[linear_rotor.balancer]]` a path `linear_rotor.balancer[j].KEY` sets
+/// (`contact`, a boolean, is not a number).
+const BALANCER_KEYS: &[&str] =
+    &["node", "radius", "balls", "ball_mass", "drag", "offset", "ball_diameter", "restitution", "contact_stiffness", "rolling_resistance", "slip_rate"];
+/// The numbers of one `[[linear_rotor.unbalance]]` (`linear_rotor.unbalance[j].KEY`).
+const UNBALANCE_KEYS: &[&str] = &["node", "me", "phase", "offset"];
 
 /// A linear rotor config and the bytes of the matrix files it names (module docs).
 #[derive(Debug, Clone, PartialEq)]
@@ -85,6 +105,12 @@ impl LinearRotorSpec {
     /// The config's tables.
     pub fn root(&self) -> &Table {
         &self.root
+    }
+
+    /// The bytes of the matrix files the config names, by the name it gives them (what a
+    /// process without the files needs, with [`LinearRotorSpec::root`], to rebuild the spec).
+    pub fn files(&self) -> &BTreeMap<String, Vec<u8>> {
+        &self.files
     }
 
     /// The config with every `(path, value)` set, in order, read again; errors name the path
@@ -202,6 +228,9 @@ pub fn set_path(root: &mut Table, path: &str, value: f64) -> Result<()> {
         }
         "linear_rotor" => {
             let lr = root.get_mut("linear_rotor").and_then(Value::as_table_mut).ok_or_else(|| bad("the config has no [linear_rotor] table".into()))?;
+            if let Some((item, field)) = key.split_once('.') {
+                return set_entry(lr, path, item, field, value).unwrap_or_else(|| Err(unknown()));
+            }
             match key {
                 "ball_mass" | "radius" | "drag" => each(lr, "balancer", path)?.iter_mut().try_for_each(|t| insert(t, key, Value::Float(value), path)),
                 "balls" => {
@@ -211,7 +240,10 @@ pub fn set_path(root: &mut Table, path: &str, value: f64) -> Result<()> {
                 "me" => {
                     let u = each(lr, "unbalance", path)?;
                     if u.len() != 1 {
-                        return Err(bad(format!("the config has {} unbalances: scale them together with linear_rotor.unbalance_scale", u.len())));
+                        return Err(bad(format!(
+                            "the config has {} unbalances: set one with linear_rotor.unbalance[j].me (j from 0), or scale them together with linear_rotor.unbalance_scale",
+                            u.len()
+                        )));
                     }
                     insert(&mut u[0], "me", Value::Float(value), path)
                 }
@@ -232,6 +264,36 @@ pub fn set_path(root: &mut Table, path: &str, value: f64) -> Result<()> {
         }
         _ => Err(unknown()),
     }
+}
+
+/// Set `field` of one entry `item` (`balancer[j]`, `unbalance[j]`, `j` from 0) of
+/// `[linear_rotor]`; `None` where `item` is not of that form (the caller then lists the known
+/// paths).
+fn set_entry(lr: &mut Table, path: &str, item: &str, field: &str, value: f64) -> Option<Result<()>> {
+    let (kind, j) = item.strip_suffix(']').and_then(|s| s.split_once('['))?;
+    let keys = match kind {
+        "balancer" => BALANCER_KEYS,
+        "unbalance" => UNBALANCE_KEYS,
+        _ => return None,
+    };
+    Some(set_entry_of(lr, path, kind, keys, j, field, value))
+}
+
+fn set_entry_of(lr: &mut Table, path: &str, kind: &str, keys: &[&str], j: &str, field: &str, value: f64) -> Result<()> {
+    let bad = |why: String| Error::invalid(path, why);
+    if !keys.contains(&field) {
+        return Err(bad(format!("unknown key of [[linear_rotor.{kind}]] (known: {})", keys.join(", "))));
+    }
+    let j: usize = j.trim().parse().map_err(|_| bad(format!("the index in [{j}] must be a whole number from 0 (the first [[linear_rotor.{kind}]])")))?;
+    let entries = each(lr, kind, path)?;
+    let n = entries.len();
+    let entry = entries.get_mut(j).ok_or_else(|| bad(format!("the config has {n} [[linear_rotor.{kind}]] (j from 0 to {})", n - 1)))?;
+    let v = match field {
+        "balls" => Value::Integer(whole(value, crate::planar::MAX_BALLS as u64).map_err(bad)? as i64),
+        "node" => Value::Integer(whole(value, super::MAX_DOFS as u64).map_err(bad)? as i64),
+        _ => Value::Float(value),
+    };
+    insert(entry, field, v, path)
 }
 
 /// The tables of `[[linear_rotor.KIND]]`; none is an error naming `path`.
@@ -277,4 +339,71 @@ fn scale(tables: &mut [Value], keys: &[&str], factor: f64, path: &str) -> Result
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A pinned shaft of 6 elements with two balancer planes and two unbalances.
+    fn two_planes() -> LinearRotorSpec {
+        let text = "[linear_rotor]\n[[linear_rotor.elements]]\nlength = 0.1\ndiameter = 0.02\ne = 2.1e11\nrho = 7850.0\ncount = 6\n\
+                    [[linear_rotor.bearings]]\nnode = 0\nk = 1e6\n[[linear_rotor.bearings]]\nnode = 6\nk = 1e6\n\
+                    [[linear_rotor.unbalance]]\nnode = 2\nme = 1e-4\n[[linear_rotor.unbalance]]\nnode = 4\nme = 2e-4\nphase = 1.0\n\
+                    [[linear_rotor.balancer]]\nnode = 2\nradius = 0.05\nballs = 2\nball_mass = 0.01\n\
+                    [[linear_rotor.balancer]]\nnode = 4\nradius = 0.04\nballs = 3\nball_mass = 0.02\ndrag = 0.1\n";
+        LinearRotorSpec::new(toml::from_str(text).unwrap(), &mut |_| Err("no files".into())).unwrap()
+    }
+
+    /// A path of one plane sets that plane and no other; the same value in every plane, set
+    /// plane by plane, is the config `linear_rotor.KEY` gives (a second route to the same tables).
+    #[test]
+    fn one_plane_or_unbalance_of_several() {
+        let s = two_planes();
+        let base = s.config_at(&[]).unwrap().rotor;
+        for key in ["ball_mass", "radius", "drag", "offset"] {
+            let one = s.config_at(&[(&format!("linear_rotor.balancer[1].{key}"), 0.03)]).unwrap().rotor;
+            assert_eq!(one.balancers[0], base.balancers[0], "{key}: plane 0 untouched");
+            assert_ne!(one.balancers[1], base.balancers[1], "{key}: plane 1 set");
+            if key != "offset" {
+                let each = s.config_at(&[(&format!("linear_rotor.balancer[0].{key}"), 0.03), (&format!("linear_rotor.balancer[1].{key}"), 0.03)]).unwrap();
+                assert_eq!(each, s.config_at(&[(&format!("linear_rotor.{key}"), 0.03)]).unwrap(), "{key}");
+            }
+        }
+        let r = s.config_at(&[("linear_rotor.balancer[0].balls", 4.0), ("linear_rotor.balancer[1].node", 3.0)]).unwrap().rotor;
+        assert_eq!((r.balancers[0].balls, r.balancers[1].balls, r.balancers[1].node), (4, 3, 3));
+        assert_eq!(r.balancers[1].ball_mass, 0.02);
+        // the balls' states follow the planes: 4 + 3 balls
+        assert_eq!(r.balancers.iter().map(|b| b.balls).sum::<usize>(), 7);
+        let r = s.config_at(&[("linear_rotor.unbalance[1].me", 5e-4), ("linear_rotor.unbalance[0].phase", 0.5)]).unwrap().rotor;
+        assert_eq!((r.unbalances[0].me, r.unbalances[0].phase, r.unbalances[1].me, r.unbalances[1].phase), (1e-4, 0.5, 5e-4, 1.0));
+        // the real-ball keys reach the plane's ball physics
+        let r = s.config_at(&[("linear_rotor.balancer[1].rolling_resistance", 1e-3)]).unwrap().rotor;
+        assert_eq!(r.ball_physics.len(), 2);
+        assert_eq!(r.ball_physics[1].rolling_resistance, 1e-3);
+        assert_ne!(r.ball_physics[0].rolling_resistance, 1e-3);
+    }
+
+    /// Errors name the path: an index past the last (with the count), an unknown key, an index
+    /// that is no number, a fraction where a whole number goes, a value the config refuses.
+    #[test]
+    fn errors_name_the_path() {
+        let s = two_planes();
+        let err = |p: &str, v: f64| s.config_at(&[(p, v)]).unwrap_err().to_string();
+        assert_eq!(
+            err("linear_rotor.balancer[2].ball_mass", 0.1),
+            "linear_rotor.balancer[2].ball_mass: the config has 2 [[linear_rotor.balancer]] (j from 0 to 1)"
+        );
+        assert_eq!(err("linear_rotor.unbalance[5].me", 0.1), "linear_rotor.unbalance[5].me: the config has 2 [[linear_rotor.unbalance]] (j from 0 to 1)");
+        assert!(err("linear_rotor.balancer[0].mass", 0.1)
+            .starts_with("linear_rotor.balancer[0].mass: unknown key of [[linear_rotor.balancer]] (known: node, radius"));
+        assert!(err("linear_rotor.balancer[x].drag", 0.1).starts_with("linear_rotor.balancer[x].drag: the index in [x] must be a whole number from 0"));
+        assert!(err("linear_rotor.balancer[-1].drag", 0.1).contains("must be a whole number from 0"));
+        assert!(err("linear_rotor.disks[0].mass", 0.1).starts_with("linear_rotor.disks[0].mass: unknown parameter path"));
+        assert!(err("linear_rotor.balancer[0].balls", 2.5).starts_with("linear_rotor.balancer[0].balls: must be a whole number"));
+        assert!(err("linear_rotor.balancer[1].node", 9.0).starts_with("linear_rotor.balancer[1].node"), "{}", err("linear_rotor.balancer[1].node", 9.0));
+        let e = err("linear_rotor.balancer[1].ball_mass", -1.0);
+        assert!(e.starts_with("linear_rotor.balancer[1].ball_mass"), "{e}");
+        assert!(err("linear_rotor.me", 1.0).contains("linear_rotor.unbalance[j].me"));
+    }
 }
