@@ -49,7 +49,7 @@ impl command::Command for Args {
     fn run(&self, control: &Control) -> Result<Output> {
         let (root, source) = self.config.read()?;
         if crate::linear_rotor::is_linear(&root) {
-            return crate::linear_rotor::basins(&root, self.config.dir(), self.n, control);
+            return linear(&root, self.config.dir(), self.n, control);
         }
         let sim = crate::spatial_sim::build(&root, &source)?;
         crate::config::check_entries(&root, "basins", &[crate::config::Model::Spatial])?;
@@ -119,10 +119,40 @@ impl command::Output for Output {
     }
 }
 
+/// `basins` on a linear rotor config: the runs of `simulate` (its drive, its reduction) from an
+/// `n × n` grid of the first two balls' initial angles ([`autobal::linear_rotor::basins`]),
+/// matrix files read relative to `dir`.
+fn linear(root: &toml::Table, dir: &std::path::Path, n: usize, control: &Control) -> Result<Output> {
+    use autobal::linear_rotor::basins::{angle_grid, basins};
+    let cfg = crate::linear_rotor::from_table(root, dir)?;
+    let run = autobal::linear_rotor::spec::run_of(&cfg)?;
+    let starts = angle_grid(&run.rotor, n, "--n")?;
+    let t0 = std::time::Instant::now();
+    let ends = basins(&run, &starts, control)?.value;
+    Ok(Output { angles: starts.iter().map(|p| [p[0], p[1]]).collect(), ends: vec![], wall: t0.elapsed().as_secs_f64(), written: None, linear: Some(ends) })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::command::{Command as _, Output as _};
+
+    /// `basins` on a linear rotor config through the command: stopped before any run, it keeps
+    /// nothing and says so; the CSV has the linear rotor's columns.
+    #[test]
+    fn basins_on_a_linear_config_say_what_they_kept() {
+        use crate::command::ConfigSource;
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/linear_rotor_shaft.toml");
+        let control = autobal::control::Control::new();
+        control.cancel();
+        let o = Args { config: ConfigSource::file(Some(&path), &[]), n: 2 }.run(&control).unwrap();
+        assert_eq!(o.angles.len(), 4);
+        assert!(o.csv().starts_with("psi_1,psi_2,balanced,residual_unbalance,final_amplitude,completed"));
+        assert_eq!(o.json().unwrap()["model"], json!("linear"));
+        assert_eq!(o.stopped().unwrap(), "interrupted: 0 of 4 runs complete");
+        let e = Args { config: ConfigSource::file(Some(&path), &[]), n: 1 }.run(&control).err().unwrap().to_string();
+        assert!(e.starts_with("--n"), "{e}");
+    }
 
     /// A grid stopped before any run ends keeps nothing, and says so: no CSV rows, the JSON
     /// counts no completed run, `stopped` names the count (and the file, once written).

@@ -329,25 +329,6 @@ pub fn sweep_base_of(root: Table, dir: &Path) -> Result<(Table, LinearRotorSpec,
     Ok((root, base, problem))
 }
 
-/// `basins` on a linear rotor config: the runs of `simulate` (its drive, its reduction) from an
-/// `n × n` grid of the first two balls' initial angles ([`autobal::linear_rotor::basins`]),
-/// matrix files read relative to `dir`.
-pub fn basins(root: &Table, dir: &Path, n: usize, control: &autobal::control::Control) -> Result<crate::basins::Output> {
-    use autobal::linear_rotor::basins::{angle_grid, basins};
-    let cfg = from_table(root, dir)?;
-    let run = autobal::linear_rotor::spec::run_of(&cfg)?;
-    let starts = angle_grid(&run.rotor, n, "--n")?;
-    let t0 = std::time::Instant::now();
-    let ends = basins(&run, &starts, control)?.value;
-    Ok(crate::basins::Output {
-        angles: starts.iter().map(|p| [p[0], p[1]]).collect(),
-        ends: vec![],
-        wall: t0.elapsed().as_secs_f64(),
-        written: None,
-        linear: Some(ends),
-    })
-}
-
 /// The CSV of a linear rotor's basins (the complete runs):
 /// `psi_1,psi_2,balanced,residual_unbalance,final_amplitude` as the spatial rotor's, then
 /// `completed` and every ball's final angle `psi_end_j` (rad, relative to the rotor).
@@ -455,19 +436,6 @@ pub fn sweep_plots(paths: &[String], runs: &[(Vec<f64>, RunSummary)]) -> Vec<(St
         ("sweep_peak".into(), figure("peak whirl radius of the first balancer plane", 0)),
         ("sweep_final".into(), figure("final whirl radius of the first balancer plane", 5)),
     ]
-}
-
-impl crate::sweep::Row for RunSummary {
-    fn header(lu: &str) -> String {
-        format!("{:>12} {:>12} {:>12} {:>12} {:>10}\n", format!("peak ({lu})"), "ω at peak", format!("any node ({lu})"), format!("final ({lu})"), "steps")
-    }
-    fn cells(&self, ls: f64) -> String {
-        let v = autobal::sweep::linear_summary_values(self);
-        format!("{:>12.4} {:>12.2} {:>12.4} {:>12.4} {:>10}", ls * v[0], v[1], ls * v[3], ls * v[5], self.steps)
-    }
-    fn warnings(&self) -> Vec<String> {
-        self.stopped.iter().cloned().collect()
-    }
 }
 
 /// The drive of `simulate`: `[drive]`, or a run-up at constant acceleration from rest to
@@ -1057,23 +1025,6 @@ mod tests {
             assert_eq!((&run.rotor, &run.drive, &run.settings, run.default_drive), (&s.rotor, &s.drive, &s.settings, s.default_drive));
             assert_eq!(run.default_drive, extra.is_none());
         }
-    }
-
-    /// `basins` on a linear rotor config through the command: stopped before any run, it keeps
-    /// nothing and says so; the CSV has the linear rotor's columns.
-    #[test]
-    fn basins_on_a_linear_config_say_what_they_kept() {
-        use crate::command::{Command as _, ConfigSource, Output as _};
-        let (_, path) = example();
-        let control = autobal::control::Control::new();
-        control.cancel();
-        let o = crate::basins::Args { config: ConfigSource::file(Some(&path), &[]), n: 2 }.run(&control).unwrap();
-        assert_eq!(o.angles.len(), 4);
-        assert!(o.csv().starts_with("psi_1,psi_2,balanced,residual_unbalance,final_amplitude,completed"));
-        assert_eq!(o.json().unwrap()["model"], json!("linear"));
-        assert_eq!(o.stopped().unwrap(), "interrupted: 0 of 4 runs complete");
-        let e = crate::basins::Args { config: ConfigSource::file(Some(&path), &[]), n: 1 }.run(&control).err().unwrap().to_string();
-        assert!(e.starts_with("--n"), "{e}");
     }
 
     /// A uniform steel shaft of 12 Euler–Bernoulli elements (1.2 m, 25 mm) pinned at both ends

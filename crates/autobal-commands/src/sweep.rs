@@ -100,6 +100,20 @@ impl Row for autobal::planar::Summary {
     }
 }
 
+/// A linear rotor's run ([`crate::linear_rotor`] sweeps).
+impl Row for autobal::linear_rotor::runup::RunSummary {
+    fn header(lu: &str) -> String {
+        format!("{:>12} {:>12} {:>12} {:>12} {:>10}\n", format!("peak ({lu})"), "ω at peak", format!("any node ({lu})"), format!("final ({lu})"), "steps")
+    }
+    fn cells(&self, ls: f64) -> String {
+        let v = autobal::sweep::linear_summary_values(self);
+        format!("{:>12.4} {:>12.2} {:>12.4} {:>12.4} {:>10}", ls * v[0], v[1], ls * v[3], ls * v[5], self.steps)
+    }
+    fn warnings(&self) -> Vec<String> {
+        self.stopped.iter().cloned().collect()
+    }
+}
+
 impl Row for autobal::spatial::dynamics::Summary {
     fn header(lu: &str) -> String {
         format!("{:>12} {:>12} {:>12} {:>12} {:>19} {:>10}\n", format!("peak ({lu})"), "ω at peak", format!("final ({lu})"), "residual", "outcome", "steps")
