@@ -589,9 +589,21 @@ pub fn compute(
                 let mut t = String::with_capacity(cells.len() * 40);
                 for (xs, c) in xs.iter().zip(cells) {
                     use std::fmt::Write as _;
+                    // pieces pushed as they are (no String per cell, no format string parsed)
+                    t.push_str(xs);
+                    t.push(',');
+                    t.push_str(&yv);
+                    t.push(',');
                     // `--quantity verdict` computes no margin: an empty field, never `NaN`
-                    let margin = if verdict_only { String::new() } else { crate::num::Csv(c.margin).to_string() };
-                    let _ = writeln!(t, "{xs},{yv},{margin},{},{}", c.stable as u8, c.necessary as u8);
+                    if !verdict_only {
+                        let _ = write!(t, "{}", crate::num::Csv(c.margin));
+                    }
+                    t.push_str(match (c.stable, c.necessary) {
+                        (false, false) => ",0,0\n",
+                        (false, true) => ",0,1\n",
+                        (true, false) => ",1,0\n",
+                        (true, true) => ",1,1\n",
+                    });
                 }
                 t
             })

@@ -65,7 +65,11 @@ impl SpeedPolynomial {
     /// `n = 6`).
     pub fn new(t: &PencilTerms) -> Option<Self> {
         let det = expand::<D>(t)?;
-        let nn = 2 * t.n;
+        Self::from_expansion(&det, 2 * t.n)
+    }
+
+    /// From `det[k][j]`, the coefficient of `λ^k Ω^j` of `det P` (`N = nn` states).
+    fn from_expansion(det: &[[f64; D]; D], nn: usize) -> Option<Self> {
         let lead = det[nn][0];
         if lead == 0.0 || !lead.is_finite() {
             return None;
@@ -172,6 +176,182 @@ fn expand<const B: usize>(t: &PencilTerms) -> Option<[[f64; B]; D]> {
         }
     });
     minors.pop()
+}
+
+/// Highest degree in the parameter of the matrices of a [`PlanePolynomial`].
+pub const PLANE_PARAM_DEGREE: usize = 2;
+/// Slots per power of `λ` and `Ω` in a [`PlanePolynomial`]'s minors, one per power of the
+/// parameter (`6 ·` [`PLANE_PARAM_DEGREE`]` + 1`).
+const U3: usize = 6 * PLANE_PARAM_DEGREE + 1;
+/// Pairs `(k, j)`, `j ≤ N − k`, for `N =` [`MAX_N`].
+const PAIRS: usize = D * (D + 1) / 2;
+
+/// The characteristic polynomial of a [`PencilTerms`] family whose matrices are polynomials in
+/// a parameter `u`, `T(u) = Σ_l T_l u^l` (degree ≤ [`PLANE_PARAM_DEGREE`]): the exact expansion
+///
+/// ```text
+/// det P(λ, Ω, u) = Σ_{k,j,l} b_kjl λ^k Ω^j u^l,   P = M(u) λ² + (G0(u) + Ω G1(u)) λ + K0(u) + Ω K1(u) + Ω² K2(u)
+/// ```
+///
+/// (Laplace along rows memoised over column subsets, as [`SpeedPolynomial::new`], with a third
+/// variable), so that the characteristic polynomial over a whole plane of one speed and one
+/// parameter costs one expansion, and each point `~N²·deg/2` multiply-adds with its exact
+/// derivatives in `Ω` and `u` ([`PlanePolynomial::at`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlanePolynomial {
+    /// State dimension `N = 2n`.
+    pub states: usize,
+    /// Degree in `u` (`≤ n ·` the matrices' degree).
+    du: usize,
+    /// Number of pairs `(k, j)` with `j ≤ N − k` (the powers of `λ` and `Ω` that occur).
+    pairs: usize,
+    /// `b[l·pairs + off_k + j]`: coefficient of `λ^k Ω^j u^l` (ascending in `λ`; `off_k` the
+    /// pairs before `k`), one block per power of `u`: Horner in `u` runs over whole blocks.
+    b: Vec<f64>,
+}
+
+impl PlanePolynomial {
+    /// Expand `det P(λ, Ω, u)` for the family `T(u) = Σ_l terms[l] u^l`; `None` with more than
+    /// [`PLANE_PARAM_DEGREE`]` + 1` terms or none.
+    pub fn new(terms: &[PencilTerms]) -> Option<Self> {
+        let dp = terms.len().checked_sub(1)?;
+        if dp > PLANE_PARAM_DEGREE {
+            return None;
+        }
+        let n = terms[0].n;
+        let idx = |a: usize, b: usize, c: usize| (a * D + b) * U3 + c;
+        let mut empty = [0.0f64; D * D * U3];
+        empty[0] = 1.0;
+        let mut minors = vec![empty];
+        laplace(n, &mut minors, [0.0; D * D * U3], |acc, minor, r, j, sign| {
+            // a minor of r rows: degree ≤ 2r in (λ, Ω) together, ≤ r·dp in u
+            for (l, t) in terms.iter().enumerate() {
+                for (ea, eb, v) in
+                    [(2, 0, t.m[r][j]), (1, 0, t.g[0][r][j]), (1, 1, t.g[1][r][j]), (0, 0, t.k[0][r][j]), (0, 1, t.k[1][r][j]), (0, 2, t.k[2][r][j])]
+                {
+                    if v == 0.0 {
+                        continue;
+                    }
+                    let f = sign * v;
+                    let lu = r * dp + 1;
+                    for a in 0..=2 * r {
+                        for b in 0..=2 * r - a {
+                            let (src, dst) = (idx(a, b, 0), idx(a + ea, b + eb, l));
+                            for c in 0..lu {
+                                acc[dst + c] += f * minor[src + c];
+                            }
+                        }
+                    }
+                }
+            }
+        });
+        let det = minors.pop()?;
+        let nn = 2 * n;
+        // the degree in u: the highest power with a coefficient not exactly 0 (entries that do
+        // not depend on u have exactly zero higher terms, and zero entries are skipped)
+        let du = (0..=n * dp).rev().find(|&l| (0..=nn).any(|k| (0..=nn).any(|j| det[idx(k, j, l)] != 0.0))).unwrap_or(0);
+        let pairs = (nn + 1) * (nn + 2) / 2;
+        let mut b = Vec::with_capacity(pairs * (du + 1));
+        for l in 0..=du {
+            for k in 0..=nn {
+                for j in 0..=nn - k {
+                    b.push(det[idx(k, j, l)]);
+                }
+            }
+        }
+        Some(PlanePolynomial { states: nn, du, pairs, b })
+    }
+
+    /// `g_kj(u) = Σ_l b_kjl u^l` for every pair (Horner over whole blocks), and with
+    /// `derivative` also `dg_kj/du`.
+    fn in_u(&self, u: f64, derivative: bool) -> ([f64; PAIRS], [f64; PAIRS]) {
+        let p = self.pairs;
+        let (mut g, mut gu) = ([0.0; PAIRS], [0.0; PAIRS]);
+        for block in self.b.chunks_exact(p).rev() {
+            if derivative {
+                for (d, x) in gu[..p].iter_mut().zip(&g[..p]) {
+                    *d = *d * u + x;
+                }
+            }
+            for (x, c) in g[..p].iter_mut().zip(block) {
+                *x = *x * u + c;
+            }
+        }
+        (g, gu)
+    }
+
+    /// Ascending coefficients `a_0..a_N` (`a_N = 1`) of `det P(λ, Ω, u)/det M(u)` (Horner in
+    /// `u`, then in `Ω`; the value of [`PlanePolynomial::at`] without its derivatives). `None`
+    /// where `M(u)` is singular.
+    pub fn value(&self, omega: f64, u: f64) -> Option<[f64; D]> {
+        let nn = self.states;
+        let (g, _) = self.in_u(u, false);
+        let mut a = [0.0; D];
+        let mut off = 0;
+        for k in 0..=nn {
+            let len = nn - k + 1;
+            a[k] = g[off..off + len].iter().rev().fold(0.0, |v, c| v * omega + c);
+            off += len;
+        }
+        let lead = a[nn];
+        if lead == 0.0 || !lead.is_finite() {
+            return None;
+        }
+        for x in &mut a[..=nn] {
+            *x /= lead;
+        }
+        Some(a)
+    }
+
+    /// The [`SpeedPolynomial`] of the family at `u` (its coefficients in `Ω` from the plane's,
+    /// Horner in `u`: no expansion). `None` where `M(u)` is singular.
+    pub fn speed_polynomial(&self, u: f64) -> Option<SpeedPolynomial> {
+        let nn = self.states;
+        let (g, _) = self.in_u(u, false);
+        let mut det = [[0.0; D]; D];
+        let mut off = 0;
+        for k in 0..=nn {
+            let len = nn - k + 1;
+            det[k][..len].copy_from_slice(&g[off..off + len]);
+            off += len;
+        }
+        SpeedPolynomial::from_expansion(&det, nn)
+    }
+
+    /// Ascending coefficients `a_0..a_N` (`a_N = 1`) of `det P(λ, Ω, u)/det M(u)` and their
+    /// exact derivatives `∂a/∂Ω`, `∂a/∂u` (`∂a = (∂b − a ∂b_N)/b_N`, `b_N = det M(u)` free of
+    /// `Ω`); Horner in `u`, then in `Ω`. `None` where `M(u)` is singular.
+    #[allow(clippy::type_complexity)]
+    pub fn at(&self, omega: f64, u: f64) -> Option<([f64; D], [f64; D], [f64; D])> {
+        let nn = self.states;
+        let (g, gu) = self.in_u(u, true);
+        let (mut a, mut da_w, mut da_u) = ([0.0; D], [0.0; D], [0.0; D]);
+        let mut off = 0;
+        for k in 0..=nn {
+            // Σ_j g_kj(u) Ω^j: degree ≤ N − k in Ω (total degree ≤ N in (λ, Ω))
+            let len = nn - k + 1;
+            let (mut v, mut vw, mut vu) = (0.0, 0.0, 0.0);
+            for (x, xu) in g[off..off + len].iter().zip(&gu[off..off + len]).rev() {
+                vw = vw * omega + v;
+                v = v * omega + x;
+                vu = vu * omega + xu;
+            }
+            off += len;
+            a[k] = v;
+            da_w[k] = vw;
+            da_u[k] = vu;
+        }
+        let (lead, dlead) = (a[nn], da_u[nn]);
+        if lead == 0.0 || !lead.is_finite() {
+            return None;
+        }
+        for k in 0..=nn {
+            a[k] /= lead;
+            da_w[k] /= lead;
+            da_u[k] = (da_u[k] - a[k] * dlead) / lead;
+        }
+        Some((a, da_w, da_u))
+    }
 }
 
 /// Ascending coefficients `a_0..a_N` (`a_N = 1`) of `det(M λ² + G λ + K) / det M` for one
@@ -692,6 +872,77 @@ mod tests {
             }
         }
         (p, d)
+    }
+
+    #[test]
+    fn plane_polynomial_is_the_expansion_at_each_point_and_its_derivatives() {
+        // A family quadratic in u (`family`'s θ, its terms from its values at θ = 0, ±1) with the
+        // speed's terms added (G1, K1, K2 from a second family), against the expansion of the
+        // pencil at each (Ω, u) (`pencil_polynomial`, a second route): both exact but for
+        // rounding of the terms summed (size ≤ ~1e3 here), 1e-11 relative to the largest
+        // coefficient. Derivatives against central differences of that expansion (h = 1e-5:
+        // truncation h²/6 |a‴| ~ 1e-11, rounding ε/h ~ 1e-11; 1e-7 of the size fails any
+        // wrong term, which errs at O(1)).
+        let n = 6;
+        let terms_at = |theta: f64| {
+            let (p, _) = family(n, theta);
+            let (q, _) = family(n, 0.5 * theta - 0.2);
+            PencilTerms { n, m: p.m, g: [p.g, q.g], k: [p.k, q.m, q.k] }
+        };
+        let (t0, tp, tm) = (terms_at(0.0), terms_at(1.0), terms_at(-1.0));
+        let mut c = [t0, t0, t0];
+        let get = |t: &PencilTerms, q: usize| -> [[f64; 6]; 6] { [t.m, t.g[0], t.g[1], t.k[0], t.k[1], t.k[2]][q] };
+        for q in 0..6 {
+            let (a0, ap, am) = (get(&t0, q), get(&tp, q), get(&tm, q));
+            for i in 0..n {
+                for j in 0..n {
+                    let (d1, d2) = (0.5 * (ap[i][j] - am[i][j]), 0.5 * (ap[i][j] + am[i][j]) - a0[i][j]);
+                    for (e, v) in [(1, d1), (2, d2)] {
+                        let t = &mut c[e];
+                        match q {
+                            0 => t.m[i][j] = v,
+                            1 | 2 => t.g[q - 1][i][j] = v,
+                            _ => t.k[q - 3][i][j] = v,
+                        }
+                    }
+                }
+            }
+        }
+        let pp = PlanePolynomial::new(&c).unwrap();
+        let direct = |omega: f64, u: f64| {
+            let t = terms_at(u);
+            let mut p = Pencil { n, m: t.m, g: t.g[0], k: t.k[0] };
+            for i in 0..n {
+                for j in 0..n {
+                    p.g[i][j] += omega * t.g[1][i][j];
+                    p.k[i][j] += omega * t.k[1][i][j] + omega * omega * t.k[2][i][j];
+                }
+            }
+            pencil_polynomial(&p).unwrap()
+        };
+        // (u ≤ 0.5: `M(u)` well conditioned; near a singular `M` the coefficients and their
+        // third derivatives grow and the central difference is no reference)
+        for (omega, u) in [(0.3, 0.1), (1.7, -0.4), (0.05, 0.3), (2.5, 0.5)] {
+            let (a, dw, du) = pp.at(omega, u).unwrap();
+            let e = direct(omega, u);
+            let size = e.iter().map(|x| x.abs()).fold(0.0, f64::max);
+            let h = 1e-5;
+            let (wp, wm, up, um) = (direct(omega + h, u), direct(omega - h, u), direct(omega, u + h), direct(omega, u - h));
+            for k in 0..=2 * n {
+                assert!((a[k] - e[k]).abs() < 1e-11 * size, "a_{k} at ({omega}, {u}): {} against {}", a[k], e[k]);
+                let (fw, fu) = ((wp[k] - wm[k]) / (2.0 * h), (up[k] - um[k]) / (2.0 * h));
+                assert!((dw[k] - fw).abs() < 1e-7 * size, "da_{k}/dΩ at ({omega}, {u}): {} against {fw}", dw[k]);
+                assert!((du[k] - fu).abs() < 1e-7 * size, "da_{k}/du at ({omega}, {u}): {} against {fu}", du[k]);
+            }
+        }
+        // the value alone and the line's polynomial in Ω are the same sums
+        let (a, _, _) = pp.at(1.3, 0.2).unwrap();
+        assert_eq!(pp.value(1.3, 0.2).unwrap(), a);
+        let sp = pp.speed_polynomial(0.2).unwrap().at(1.3);
+        for k in 0..=2 * n {
+            assert!((sp[k] - a[2 * n - k]).abs() < 1e-12 * a.iter().map(|x| x.abs()).fold(0.0, f64::max), "c_{k}: {} against {}", sp[k], a[2 * n - k]);
+        }
+        assert!(PlanePolynomial::new(&[t0; 4]).is_none());
     }
 
     #[test]

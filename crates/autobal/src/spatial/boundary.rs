@@ -25,7 +25,12 @@
 //! their nodes' verdicts from those lines' polynomials in `Ω`), each seed located by bisection
 //! and then corrected by Newton's method onto its condition.
 //!
-//! **Cost.** The corrector's residuals are determinants of the pencil at `λ = iω` (or `±√(−w)`,
+//! **Cost.** When one axis is the speed and the model is a polynomial of degree ≤ 2 along the
+//! other (checked against the derived model: `z̄_A`, the damping coefficients, ...), the whole
+//! plane's characteristic polynomial is expanded once
+//! ([`crate::linalg::charpoly::PlanePolynomial`]): every point's coefficients, residual, exact
+//! Jacobian and stability flag then cost a few hundred multiply-adds, and no model is derived.
+//! Otherwise the corrector's residuals are determinants of the pencil at `λ = iω` (or `±√(−w)`,
 //! or 0) by elimination, a fraction of an expansion's cost; the model is held as a pencil in
 //! the speed, so a step along the speed derives no model; the Jacobian (forward differences) is
 //! refreshed while the steps are large and then kept (the chord method). The expansion is
@@ -37,7 +42,7 @@
 use crate::builder::builder;
 use crate::control::{Control, StopReason};
 use crate::error::{Error, Result};
-use crate::linalg::charpoly::{det_dual, pencil_polynomial, routh_count_right_of, PencilTerms, SpeedPolynomial};
+use crate::linalg::charpoly::{det_dual, pencil_polynomial, routh_count_right_of, PencilTerms, PlanePolynomial, SpeedPolynomial};
 use crate::linalg::dense::Lu;
 use crate::linalg::eigen::eigenvalues;
 pub use crate::paths::Axis;
@@ -174,9 +179,9 @@ pub struct Boundary {
     pub curves: Vec<BoundaryCurve>,
     /// Codimension-two points found on them.
     pub codim2: Vec<Codim2Point>,
-    /// Characteristic polynomials evaluated (the cost): expanded at one point (the seed search
-    /// across the speed, every traced point's stability flag) or as determinants at one point
-    /// (the corrector's residuals).
+    /// Characteristic polynomials evaluated (the cost): from the plane's polynomial, or
+    /// (without one) expanded at one point (the seed search across the speed, every traced
+    /// point's stability flag) or as determinants at one point (the corrector's residuals).
     pub evaluations: usize,
     /// Whether the whole plane was searched (`false`: stopped by [`trace_boundary_with`]'s
     /// control; the curves traced until then are complete curves); `stopped.is_none()`.
@@ -206,9 +211,163 @@ struct Plane<'a> {
     /// by a forward difference at the first iterate of the current correction
     /// ([`correct`] clears them): the later Jacobians of that correction derive no model.
     dterms: std::cell::RefCell<[Option<PencilTerms>; 2]>,
+    /// The model along the one axis that is not the speed as an exact polynomial in its scaled
+    /// coordinate, where it is one ([`ParamTerms::fit`]): no model is derived while tracing.
+    param: Option<ParamTerms>,
+    /// With `param` of degree ≤ 2: the characteristic polynomial of the whole plane
+    /// ([`PlanePolynomial`]), so that a point's polynomial, residual and exact Jacobian cost a
+    /// few hundred multiply-adds instead of an expansion or determinants.
+    plane: Option<PlanePolynomial>,
 }
 
 const D: usize = 13;
+
+/// The six matrices of [`PencilTerms`] (`M`, `G0`, `G1`, `K0`, `K1`, `K2`).
+fn mats(t: &PencilTerms) -> [&[[f64; 6]; 6]; 6] {
+    [&t.m, &t.g[0], &t.g[1], &t.k[0], &t.k[1], &t.k[2]]
+}
+
+/// [`mats`], mutable.
+fn mats_mut(t: &mut PencilTerms) -> [&mut [[f64; 6]; 6]; 6] {
+    let PencilTerms { m, g, k, .. } = t;
+    let [g0, g1] = g;
+    let [k0, k1, k2] = k;
+    [m, g0, g1, k0, k1, k2]
+}
+
+/// Where the model along a parameter axis is sampled ([`ParamTerms::fit`]): a polynomial of
+/// degree `d` interpolates the first `d + 1` and is checked at the other `9 − d` (at least 5;
+/// irrational points, so that no check coincides with a node).
+const PARAM_SAMPLES: [f64; 10] =
+    [0.0, 1.0, 0.5, 0.146_446_609_4, 0.853_553_390_6, 0.309_016_994_4, std::f64::consts::FRAC_1_SQRT_2, 0.073_223_304_7, 0.951_056_516_3, 0.414_213_562_4];
+
+/// Highest degree tried by [`ParamTerms::fit`].
+const PARAM_DEGREE: usize = 4;
+
+/// The model's [`PencilTerms`] along one axis that is a parameter (the other being the speed),
+/// `T(u) = Σ_d C_d u^d` in the axis's scaled coordinate `u ∈ [0, 1]`: eq (6) is affine in
+/// `z̄_A` and in the damping coefficients, and most paths enter it polynomially. Exact where
+/// it is used: [`ParamTerms::fit`] accepts the polynomial only when it reproduces the derived
+/// model at every check point to 1e-12 of each matrix's size (rounding of the model's own
+/// arithmetic; a dependence that is not polynomial of degree ≤ 4 misses by far more).
+#[derive(Debug, Clone)]
+struct ParamTerms {
+    /// The coordinate of the parameter axis (0: `x`, 1: `y`).
+    axis: usize,
+    /// `C_0..C_d`.
+    coef: Vec<PencilTerms>,
+}
+
+impl ParamTerms {
+    /// Sample `terms(u)` at [`PARAM_SAMPLES`] and find the lowest degree `d ≤` [`PARAM_DEGREE`]
+    /// whose interpolant (Newton's divided differences on the first `d + 1` samples, then
+    /// monomial coefficients) reproduces every other sample within `1e-12` of the largest
+    /// entry of that matrix over the samples; `None` when none does or a sample is refused.
+    fn fit(axis: usize, terms: impl Fn(f64) -> Result<PencilTerms>) -> Option<ParamTerms> {
+        let mut s = Vec::with_capacity(PARAM_SAMPLES.len());
+        for u in PARAM_SAMPLES {
+            s.push(terms(u).ok()?);
+        }
+        let n = s[0].n;
+        if s.iter().any(|t| t.n != n) {
+            return None;
+        }
+        let mut scale = [0.0f64; 6];
+        for t in &s {
+            for (q, m) in mats(t).into_iter().enumerate() {
+                for row in &m[..n] {
+                    for x in &row[..n] {
+                        scale[q] = scale[q].max(x.abs());
+                    }
+                }
+            }
+        }
+        'degree: for d in 0..=PARAM_DEGREE {
+            let nodes = &PARAM_SAMPLES[..=d];
+            let zero = PencilTerms { n, m: [[0.0; 6]; 6], g: [[[0.0; 6]; 6]; 2], k: [[[0.0; 6]; 6]; 3] };
+            let mut coef = vec![zero; d + 1];
+            for q in 0..6 {
+                for i in 0..n {
+                    for j in 0..n {
+                        // divided differences, then the Newton form expanded into monomials
+                        let mut dd: Vec<f64> = (0..=d).map(|k| mats(&s[k])[q][i][j]).collect();
+                        for l in 1..=d {
+                            for k in (l..=d).rev() {
+                                dd[k] = (dd[k] - dd[k - 1]) / (nodes[k] - nodes[k - l]);
+                            }
+                        }
+                        let mut c = vec![0.0; d + 1];
+                        c[0] = dd[d];
+                        for k in (0..d).rev() {
+                            // c ← c · (u − nodes[k]) + dd[k]
+                            for e in (1..=d).rev() {
+                                c[e] = c[e - 1] - nodes[k] * c[e];
+                            }
+                            c[0] = dd[k] - nodes[k] * c[0];
+                        }
+                        for (e, ce) in c.into_iter().enumerate() {
+                            mats_mut(&mut coef[e])[q][i][j] = ce;
+                        }
+                    }
+                }
+            }
+            let p = ParamTerms { axis, coef };
+            for (k, &u) in PARAM_SAMPLES.iter().enumerate().skip(d + 1) {
+                let t = p.at(u);
+                for q in 0..6 {
+                    let (a, b) = (mats(&t)[q], mats(&s[k])[q]);
+                    for i in 0..n {
+                        for j in 0..n {
+                            if (a[i][j] - b[i][j]).abs() > 1e-12 * scale[q] {
+                                continue 'degree;
+                            }
+                        }
+                    }
+                }
+            }
+            return Some(p);
+        }
+        None
+    }
+
+    /// `T(u)` (Horner).
+    fn at(&self, u: f64) -> PencilTerms {
+        let d = self.coef.len() - 1;
+        let mut t = self.coef[d];
+        let n = t.n;
+        for e in (0..d).rev() {
+            let c = &self.coef[e];
+            let (src, dst) = (mats(c), mats_mut(&mut t));
+            for (a, b) in dst.into_iter().zip(src) {
+                for i in 0..n {
+                    for j in 0..n {
+                        a[i][j] = a[i][j] * u + b[i][j];
+                    }
+                }
+            }
+        }
+        t
+    }
+
+    /// `dT/du` (Horner on the derivative).
+    fn derivative(&self, u: f64) -> PencilTerms {
+        let d = self.coef.len() - 1;
+        let n = self.coef[0].n;
+        let mut t = PencilTerms { n, m: [[0.0; 6]; 6], g: [[[0.0; 6]; 6]; 2], k: [[[0.0; 6]; 6]; 3] };
+        for e in (1..=d).rev() {
+            let c = &self.coef[e];
+            let (src, dst) = (mats(c), mats_mut(&mut t));
+            for (a, b) in dst.into_iter().zip(src) {
+                for i in 0..n {
+                    for j in 0..n {
+                        a[i][j] = a[i][j] * u + e as f64 * b[i][j];
+                    }
+                }
+            }
+        }
+        t
+    }
+}
 
 /// Where `|w| = |ω²|` is at most this, a Hopf residual is evaluated on the expanded
 /// polynomial (`E(w)`, `O(w)` by Horner) instead of determinants at `λ = ±iω` or `λ = ±√(−w)`,
@@ -233,7 +392,67 @@ fn det_real(a: &crate::spatial::linear_model::Mat6, n: usize) -> f64 {
     Lu::new(*a, n).map_or(0.0, |lu| lu.det())
 }
 
-impl Plane<'_> {
+impl<'a> Plane<'a> {
+    /// The plane, with its model along the parameter axis fitted as a polynomial
+    /// ([`ParamTerms::fit`]) when the other axis is the speed.
+    fn new(spec: &'a SpatialSpec, x: &'a Axis, y: &'a Axis, balls: Balls, omega: Option<f64>) -> Self {
+        let mut pl = Plane {
+            spec,
+            x,
+            y,
+            balls,
+            omega,
+            evaluations: std::cell::Cell::new(0),
+            determinants: std::cell::Cell::new(0),
+            last: std::cell::Cell::new(None),
+            models: std::cell::RefCell::new([None, None]),
+            dterms: std::cell::RefCell::new([None, None]),
+            param: None,
+            plane: None,
+        };
+        if (x.path == OMEGA) != (y.path == OMEGA) {
+            let axis = if x.path == OMEGA { 1 } else { 0 };
+            pl.param = ParamTerms::fit(axis, |u| {
+                let mut vals = [0.0; 2];
+                vals[axis] = Plane::value([x, y][axis], u);
+                pl.derive(vals)
+            });
+            pl.plane = pl.param.as_ref().and_then(|p| PlanePolynomial::new(&p.coef));
+        }
+        pl
+    }
+
+    /// The speed `Ω` and the parameter's clamped coordinate at scaled `(u, v)` (with `param`).
+    fn plane_coords(&self, u: f64, v: f64) -> (f64, f64) {
+        let pa = self.param.as_ref().map_or(0, |p| p.axis);
+        let c = [u, v];
+        let omega = Plane::value([self.x, self.y][1 - pa], c[1 - pa]).max(crate::spatial::map::OMEGA_FLOOR);
+        (omega, c[pa].clamp(0.0, 1.0))
+    }
+
+    /// With the plane's polynomial: the coefficients `a_0..a_N` at scaled `(u, v)` and their
+    /// exact derivatives along `u` and along `v` (the speed's from `∂a/∂Ω` times its span;
+    /// at the clamped ends the derivative of the polynomial continued).
+    fn plane_at(&self, u: f64, v: f64) -> Option<Result<([f64; D], [[f64; D]; 2])>> {
+        let (pp, param) = (self.plane.as_ref()?, self.param.as_ref()?);
+        let (pa, sa) = (param.axis, 1 - param.axis);
+        let speed = [self.x, self.y][sa];
+        let (omega, pu) = self.plane_coords(u, v);
+        self.evaluations.set(self.evaluations.get() + 1);
+        Some(match pp.at(omega, pu) {
+            None => Err(Error::invalid(self.x.path.clone(), "the mass matrix is singular here")),
+            Some((a, dw, du)) => {
+                let mut d = [[0.0; D]; 2];
+                let span = speed.hi() - speed.lo();
+                for k in 0..D {
+                    d[sa][k] = dw[k] * span;
+                    d[pa][k] = du[k];
+                }
+                Ok((a, d))
+            }
+        })
+    }
+
     /// The axis value at the scaled coordinate `u`, never outside the axis's `[lo, hi]` (which
     /// was checked against the field's range): the ends exactly at `u = 0, 1`, and a point the
     /// tracer steps to beyond an edge (a predictor, a difference quotient, a rounding below 0)
@@ -256,6 +475,13 @@ impl Plane<'_> {
             if lu == u && lv == v {
                 return Ok((c, n));
             }
+        }
+        if let Some(pp) = &self.plane {
+            let (omega, pu) = self.plane_coords(u, v);
+            self.evaluations.set(self.evaluations.get() + 1);
+            let c = pp.value(omega, pu).ok_or_else(|| Error::invalid(self.x.path.clone(), "the mass matrix is singular here"))?;
+            self.last.set(Some((u, v, c, pp.states)));
+            return Ok((c, pp.states));
         }
         self.evaluations.set(self.evaluations.get() + 1);
         let p = self.pencil(u, v)?;
@@ -289,16 +515,24 @@ impl Plane<'_> {
                 }
             }
         }
+        let t = match &self.param {
+            Some(p) => p.at([u, v][p.axis].clamp(0.0, 1.0)),
+            None => self.derive(vals)?,
+        };
+        cache[1] = cache[0];
+        cache[0] = Some((key, t));
+        Ok((t, omega))
+    }
+
+    /// The model's terms derived from the spec at the axis values `vals` (the speed's ignored).
+    fn derive(&self, vals: [f64; 2]) -> Result<PencilTerms> {
         let mut spec = self.spec.clone();
         for (c, a) in [self.x, self.y].into_iter().enumerate() {
             if a.path != OMEGA {
                 spec.set(&a.path, vals[c])?;
             }
         }
-        let t = Pencil::terms(&spec.build()?, self.balls)?;
-        cache[1] = cache[0];
-        cache[0] = Some((key, t));
-        Ok((t, omega))
+        Pencil::terms(&spec.build()?, self.balls)
     }
 
     fn pencil(&self, u: f64, v: f64) -> Result<Pencil> {
@@ -321,6 +555,17 @@ impl Plane<'_> {
     ///   `E = (p(s) + p(−s))/2`, `O = (p(s) − p(−s))/2s`;
     /// - Hopf, `|w| ≤` [`W_EXPANDED`]: `E`, `O` by Horner on the expanded polynomial.
     fn residual(&self, kind: CurveKind, z: &[f64]) -> Result<[f64; 2]> {
+        if self.plane.is_some() {
+            // the plane's polynomial: a_0 (fold), E(w) and O(w) by Horner (Hopf)
+            let (a, n) = self.poly(z[0], z[1])?;
+            return Ok(match kind {
+                CurveKind::Fold => [a[0], 0.0],
+                CurveKind::Hopf => {
+                    let r = eo(&a, n, z[2]);
+                    [r[0], r[1]]
+                }
+            });
+        }
         if kind == CurveKind::Hopf && z[2].abs() <= W_EXPANDED {
             let (a, n) = self.poly(z[0], z[1])?;
             let r = eo(&a, n, z[2]);
@@ -423,6 +668,28 @@ fn dims(kind: CurveKind) -> (usize, usize) {
 fn jacobian(pl: &Plane, kind: CurveKind, z: &[f64; 3], f0: &[f64; 2]) -> Result<[[f64; 3]; 2]> {
     let (nz, nf) = dims(kind);
     let mut j = [[0.0; 3]; 2];
+    if let Some(r) = pl.plane_at(z[0], z[1]) {
+        // exact: the residuals are linear in the coefficients, whose derivatives are exact
+        let (a, d) = r?;
+        let n = pl.plane.as_ref().map_or(0, |p| p.states);
+        match kind {
+            CurveKind::Fold => {
+                j[0][0] = d[0][0];
+                j[0][1] = d[1][0];
+            }
+            CurveKind::Hopf => {
+                for c in 0..2 {
+                    let r = eo(&d[c], n, z[2]);
+                    j[0][c] = r[0];
+                    j[1][c] = r[1];
+                }
+                let r = eo(&a, n, z[2]);
+                j[0][2] = r[2];
+                j[1][2] = r[3];
+            }
+        }
+        return Ok(j);
+    }
     let exact_w = kind == CurveKind::Hopf && z[2].abs() <= W_EXPANDED;
     if exact_w {
         // in w: exact (the polynomial does not depend on w)
@@ -441,6 +708,12 @@ fn jacobian(pl: &Plane, kind: CurveKind, z: &[f64; 3], f0: &[f64; 2]) -> Result<
         let mut zz = *z;
         zz[c] += h;
         let along_parameter = c < 2 && [pl.x, pl.y][c].path != OMEGA;
+        if along_parameter {
+            // the model's polynomial along the axis: its exact derivative at this iterate
+            if let Some(p) = pl.param.as_ref().filter(|p| p.axis == c) {
+                pl.dterms.borrow_mut()[c] = Some(p.derivative(z[c].clamp(0.0, 1.0)));
+            }
+        }
         let f = match along_parameter.then(|| pl.dterms.borrow()[c]).flatten() {
             // the pencil moved along the stored derivative: no model derived
             Some(dt) => {
@@ -642,18 +915,7 @@ pub fn trace_boundary_with(spec: &SpatialSpec, x: &Axis, y: &Axis, s: &TraceSett
     if x.path != OMEGA && y.path != OMEGA && s.omega.is_none() {
         return Err(Error::invalid(OMEGA, "required when neither axis is the speed"));
     }
-    let pl = Plane {
-        spec,
-        x,
-        y,
-        balls: s.balls,
-        omega: s.omega,
-        evaluations: std::cell::Cell::new(0),
-        determinants: std::cell::Cell::new(0),
-        last: std::cell::Cell::new(None),
-        models: std::cell::RefCell::new([None, None]),
-        dterms: std::cell::RefCell::new([None, None]),
-    };
+    let pl = Plane::new(spec, x, y, s.balls, s.omega);
     let mut out = Boundary { x: x.clone(), y: y.clone(), curves: vec![], codim2: vec![], evaluations: 0, complete: true, stopped: None };
     // 1. lines across the plane (along the speed if there is one): changes of verdict
     let first_dir = if x.path == OMEGA { 1 } else { 0 };
@@ -810,7 +1072,11 @@ fn line_crossings(
             ts.retain(|t| (0.0..=1.0).contains(t));
             ts.sort_by(f64::total_cmp);
             ts.dedup();
-            SpeedPolynomial::new(&Pencil::terms(&m, pl.balls)?)
+            match &pl.plane {
+                // the plane's polynomial at the line's parameter value: no expansion
+                Some(pp) => pp.speed_polynomial(pl.plane_coords(at(0.0).0, at(0.0).1).1),
+                None => SpeedPolynomial::new(&Pencil::terms(&m, pl.balls)?),
+            }
         } else {
             None
         };
@@ -1202,9 +1468,57 @@ mod tests {
     }
 
     #[test]
+    fn the_model_along_a_parameter_is_its_polynomial_or_is_derived() {
+        // ParamTerms against the model derived from the spec (a second route) at points that
+        // are none of its samples: z̄_A and h̄s enter eq (6) affinely, so the fit must be found
+        // and reproduce every matrix to a few ulp of its size (1e-13: the model's own rounding),
+        // and its derivative must be the central difference of the derived model (step 1e-4 in
+        // the scaled coordinate: exact for an affine model but for rounding, ~1e-12/1e-4 of the
+        // size). ρ̄s enters through p̄α² ∝ 1/ρ̄s²: no polynomial of degree ≤ 4 reproduces it over
+        // [0.2, 0.8] to 1e-12, so the plane must derive the model at every point (None).
+        let d = DimensionlessInput {
+            anisotropy: crate::spatial::params::AnisotropyInput::Direct(0.1),
+            direct_balls: Some((0.05, 0.5)),
+            ..DimensionlessInput::default()
+        };
+        let spec = SpatialSpec { input: SpatialInput::Dimensionless(d), delta_a_override: None };
+        let y = Axis::range(OMEGA, 0.05, 4.5);
+        for (path, lo, hi) in [("dimensionless.z_a", -2.0, 2.0), ("dimensionless.h_s", 0.01, 0.5)] {
+            let x = Axis::range(path, lo, hi);
+            let pl = Plane::new(&spec, &x, &y, Balls::Free, None);
+            let p = pl.param.as_ref().unwrap_or_else(|| panic!("{path}: no polynomial fitted"));
+            assert_eq!(p.axis, 0);
+            assert!(p.coef.len() <= 2, "{path}: degree {}", p.coef.len() - 1);
+            let derived = |u: f64| pl.derive([Plane::value(&x, u), 0.0]).unwrap();
+            for u in [0.123, 0.618, 0.987] {
+                let (a, b) = (p.at(u), derived(u));
+                let (da, h) = (p.derivative(u), 1e-4);
+                let (bp, bm) = (derived(u + h), derived(u - h));
+                for q in 0..6 {
+                    let size = mats(&b)[q].iter().flatten().fold(0.0f64, |m, x| m.max(x.abs())).max(1e-300);
+                    for i in 0..6 {
+                        for j in 0..6 {
+                            let e = (mats(&a)[q][i][j] - mats(&b)[q][i][j]).abs();
+                            assert!(e <= 1e-13 * size, "{path} matrix {q} ({i}, {j}) at {u}: {e}");
+                            let fd = (mats(&bp)[q][i][j] - mats(&bm)[q][i][j]) / (2.0 * h);
+                            let e = (mats(&da)[q][i][j] - fd).abs();
+                            assert!(e <= 1e-8 * size, "{path} d/du of matrix {q} ({i}, {j}) at {u}: {e}");
+                        }
+                    }
+                }
+            }
+        }
+        let x = Axis::range("dimensionless.rho_s", 0.2, 0.8);
+        assert!(Plane::new(&spec, &x, &y, Balls::Free, None).param.is_none());
+        // neither axis the speed: no polynomial (the model is derived at every point)
+        let (x, y2) = (Axis::range("dimensionless.z_a", -1.0, 1.0), Axis::range("dimensionless.h_s", 0.01, 0.5));
+        assert!(Plane::new(&spec, &x, &y2, Balls::Free, Some(1.0)).param.is_none());
+    }
+
+    #[test]
     fn residuals_by_determinants_are_the_expanded_polynomials() {
         // The corrector's residuals (determinants by elimination at λ = iω, at λ = ±√(−w), at
-        // λ = 0) against `E(w)`, `O(w)` by Horner on the exact expansion of the same pencil
+        // λ = 0; and Horner on the plane's polynomial, PlanePolynomial) against `E(w)`, `O(w)` by Horner on the exact expansion of the same pencil
         // (`pencil_polynomial`, a second route): both exact but for rounding, a few ulp of the
         // terms summed (Σ_j |a_j| |w|^(j/2) ≤ ~1e3 here), so 1e-11 of that size. A wrong sign
         // (E − iωO), a missing 1/ω or normalisation by det M errs at O(1). Points on both
@@ -1218,18 +1532,11 @@ mod tests {
         let x = Axis::range("dimensionless.z_a", -2.0, 2.0);
         let y = Axis::range(OMEGA, 0.05, 4.5);
         for balls in [Balls::Free, Balls::Locked] {
-            let pl = Plane {
-                spec: &spec,
-                x: &x,
-                y: &y,
-                balls,
-                omega: None,
-                evaluations: std::cell::Cell::new(0),
-                determinants: std::cell::Cell::new(0),
-                last: std::cell::Cell::new(None),
-                models: std::cell::RefCell::new([None, None]),
-                dterms: std::cell::RefCell::new([None, None]),
-            };
+            // the derived model at every point (determinants), and the plane's polynomial
+            let mut pl = Plane::new(&spec, &x, &y, balls, None);
+            let whole = Plane::new(&spec, &x, &y, balls, None);
+            assert!(whole.plane.is_some());
+            (pl.param, pl.plane) = (None, None);
             for z in [[0.4, 0.3, 0.8], [0.7, 0.55, 2.3], [0.0, 0.9, 0.05], [1.0, 0.1, 5.0], [0.6, 0.2, -0.3], [0.2, 0.7, -2.0], [0.45, 0.35, 0.0]] {
                 let (a, n) = pl.poly(z[0], z[1]).unwrap();
                 let size = (0..=n).map(|j| a[j].abs() * z[2].abs().sqrt().powi(j as i32)).sum::<f64>();
@@ -1240,6 +1547,15 @@ mod tests {
                 assert!((hopf[1] - r[1]).abs() * om < 1e-11 * size, "{balls:?} O at {z:?}: {} against {}", hopf[1], r[1]);
                 let fold = pl.residual(CurveKind::Fold, &z).unwrap();
                 assert!((fold[0] - a[0]).abs() < 1e-11 * a.iter().map(|x| x.abs()).fold(0.0, f64::max), "{balls:?} a_0 at {z:?}: {} against {}", fold[0], a[0]);
+                let (hw, fw) = (whole.residual(CurveKind::Hopf, &z).unwrap(), whole.residual(CurveKind::Fold, &z).unwrap());
+                assert!((hw[0] - r[0]).abs() < 1e-11 * size, "{balls:?} plane's E at {z:?}: {} against {}", hw[0], r[0]);
+                assert!((hw[1] - r[1]).abs() * om < 1e-11 * size, "{balls:?} plane's O at {z:?}: {} against {}", hw[1], r[1]);
+                assert!(
+                    (fw[0] - a[0]).abs() < 1e-11 * a.iter().map(|x| x.abs()).fold(0.0, f64::max),
+                    "{balls:?} plane's a_0 at {z:?}: {} against {}",
+                    fw[0],
+                    a[0]
+                );
             }
             assert!(pl.determinants.get() > 0);
         }
