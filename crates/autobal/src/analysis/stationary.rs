@@ -710,6 +710,27 @@ fn matrix_monodromy<F: VectorField + ?Sized>(f: &F, x0: &[f64], period: f64, s: 
 /// Newton's; at most `max_iterations / 2` times, then the search is reported as stagnating).
 /// Those matrices only steer the iteration and are integrated at [`MATRIX_RTOL`]; the
 /// monodromy matrix of the orbit found, whose multipliers are its stability, at `rtol`, once.
+/// What a failed shooting adds to its message when its last matrix `S⁻¹(I − Φ)S` (`n × n`,
+/// the variational equations' or its rank-one updates) has an eigenvalue `1 − μ` within
+/// `1e-2` of zero: a Floquet multiplier near 1 makes `I − Φ` nearly singular, as at a fold of
+/// periodic orbits, where the orbit ceases to exist as a parameter moves (or a family the model
+/// does not declare); else nothing.
+fn near_unit_multiplier(b: &[f64], n: usize) -> String {
+    if b.len() != n * n {
+        return String::new();
+    }
+    let Ok(values) = crate::linalg::eigen_dyn::eigenvalues(b, n) else { return String::new() };
+    let d = values.iter().map(|z| z.norm()).fold(f64::INFINITY, f64::min);
+    if d <= 1e-2 {
+        format!(
+            "; a Floquet multiplier lies within {} of 1 there (I − Φ nearly singular): near a fold, where the periodic orbit ceases to exist, or with no orbit near the start; following the orbit in a parameter from where one is found tells which",
+            crate::error::fmt_num(d)
+        )
+    } else {
+        String::new()
+    }
+}
+
 fn periodic<F: VectorField + ?Sized>(
     f: &F,
     guess: &[f64],
@@ -769,7 +790,7 @@ fn periodic<F: VectorField + ?Sized>(
             return finish(x, it, res);
         }
         if it >= opts.max_iterations {
-            return Err(fail(it, res, "iteration limit"));
+            return Err(fail(it, res, &format!("iteration limit{}", near_unit_multiplier(&b, n))));
         }
         it += 1;
         // backtracking on the scaled residual, as in `newton`; with an updated or carried (not
@@ -813,7 +834,7 @@ fn periodic<F: VectorField + ?Sized>(
                 if stalled && norm_inf(&r) > tol {
                     refreshes += 1;
                     if refreshes > max_refreshes {
-                        return Err(fail(it, norm_inf(&r), &stagnates()));
+                        return Err(fail(it, norm_inf(&r), &format!("{}{}", stagnates(), near_unit_multiplier(&b, n))));
                     }
                     b = shooting_matrix(&matrix_monodromy(f, &x, period, s, opts.rtol)?, s, n);
                     fresh = true;
@@ -823,14 +844,14 @@ fn periodic<F: VectorField + ?Sized>(
                 // the updated matrix gives no descent: a fresh one at x
                 refreshes += 1;
                 if refreshes > max_refreshes {
-                    return Err(fail(it, res, &stagnates()));
+                    return Err(fail(it, res, &format!("{}{}", stagnates(), near_unit_multiplier(&b, n))));
                 }
                 b = shooting_matrix(&matrix_monodromy(f, &x, period, s, opts.rtol)?, s, n);
                 fresh = true;
             }
             // round-off level of the integration: no step can reduce it further
             None if res <= 1e3 * tol => return finish(x, it, res),
-            None => return Err(fail(it, res, "no step along the Newton direction reduces the residual")),
+            None => return Err(fail(it, res, &format!("no step along the Newton direction reduces the residual{}", near_unit_multiplier(&b, n)))),
         }
     }
 }
