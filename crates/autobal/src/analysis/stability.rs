@@ -339,7 +339,10 @@ where
             let (fa, fb, fc) = (pa.alpha.unwrap_or(f64::NAN), pb.alpha.unwrap_or(f64::NAN), pc.alpha.unwrap_or(f64::NAN));
             let tol1 = tolerance(pb.omega, pc.omega);
             let xm = 0.5 * (pc.omega - pb.omega);
-            if xm.abs() <= tol1 || fb == 0.0 {
+            if fb == 0.0 {
+                return (Some(pb.omega), None); // α vanishes here: the end itself
+            }
+            if xm.abs() <= tol1 {
                 return (Some(0.5 * (pb.omega + pc.omega)), None);
             }
             if e.abs() >= tol1 && fa.abs() > fb.abs() {
