@@ -54,7 +54,9 @@
 //!   the model's closed-form guess, else from the previous speed's solution, per
 //!   [`ScanOptions::prefer_guess`]; a periodic orbit's shooting starting from the previous
 //!   orbit's monodromy matrix), its stability at each, and the ends of the stable ranges
-//!   located to `1e-9` relative in `Ω` (regula falsi on the abscissa, safeguarded by bisection).
+//!   located to `1e-9` relative in `Ω` (Brent's method on the abscissa, safeguarded by
+//!   bisection; a periodic orbit's trial speeds shot from the state interpolated between the
+//!   two nearest solutions, with the nearest one's monodromy matrix).
 //!
 //! # Tolerances, and why
 //! - **Newton** stops when the scaled residual is below `1e-12` (equilibrium:

@@ -254,16 +254,184 @@ fn solve_at<F: VectorField>(
     Err(last)
 }
 
+/// A speed tried while locating a range end: its abscissa `α` and state where one was found.
+#[derive(Clone)]
+struct Trial {
+    omega: f64,
+    alpha: Option<f64>,
+    state: Option<StationaryState>,
+}
+
+impl Trial {
+    fn of(p: &ScanPoint) -> Self {
+        Trial { omega: p.omega, alpha: p.stability.as_ref().map(|s| s.abscissa).filter(|v| v.is_finite()), state: p.state.clone() }
+    }
+
+    /// The side of the end it lies on: stable where `α < 0` (so the end is where `α` crosses
+    /// zero, not the neutral threshold, which would shift it by the tolerance); no state or no
+    /// `α` counts as not stable.
+    fn stable(&self) -> bool {
+        self.alpha.is_some_and(|v| v < 0.0)
+    }
+}
+
+/// The start predicted for a periodic orbit at `omega` from two neighbouring trials on its
+/// branch: the linear interpolation (or extrapolation) of their states, and their spread
+/// `|x_p − x_q|` (the state found is taken only within `‖S⁻¹(x_p − x_q)‖∞ + 1e-6` of the
+/// prediction, scaled: one farther off than the neighbours are from each other is not on
+/// their branch). `None` for equilibria (the closed form is their exact start) or where a
+/// neighbour has no state.
+fn predict(p: &Trial, q: &Trial, omega: f64) -> Option<(Vec<f64>, Vec<f64>)> {
+    let (xp, xq) = (p.state.as_ref()?, q.state.as_ref()?);
+    if xp.period.is_none() || xq.period.is_none() || xp.x.len() != xq.x.len() || p.omega == q.omega {
+        return None;
+    }
+    let w = (omega - p.omega) / (q.omega - p.omega);
+    let x: Vec<f64> = xp.x.iter().zip(&xq.x).map(|(a, b)| a + w * (b - a)).collect();
+    let spread: Vec<f64> = xp.x.iter().zip(&xq.x).map(|(a, b)| (b - a).abs()).collect();
+    x.iter().all(|v| v.is_finite()).then_some((x, spread))
+}
+
+/// The end of a stable range between the grid speeds `a` and `b` (verdicts differ), located to
+/// `rtol · Ω` on the sign of the abscissa `α` by Brent's method (inverse quadratic
+/// interpolation and secant steps on `α`, safeguarded by bisection, every step at least half
+/// the tolerance: Brent, *Algorithms for Minimization without Derivatives*, 1973, ch. 4,
+/// `zeroin`); by bisection on the side where `α` is missing at an end, has one sign at both
+/// (an end whose verdict is neutral) or a trial finds no state. Each trial starts from its two
+/// nearest solutions ([`predict`]) and the nearest one's monodromy matrix. Returns the middle
+/// of the last bracket (`None` if stopped) and why it stopped.
+fn locate_end<E>(a: &ScanPoint, b: &ScanPoint, rtol: f64, control: &Control, evaluate: E) -> (Option<f64>, Option<crate::control::StopReason>)
+where
+    E: Fn(f64, Option<&StationaryState>, Option<(&[f64], &[f64])>) -> std::result::Result<(StationaryState, Stability), String>,
+{
+    let tolerance = |x: f64, y: f64| (0.5 * rtol * x.abs().max(y.abs())).max(4.0 * f64::EPSILON * x.abs().max(y.abs()));
+    // one trial at `omega`, from its nearest neighbours among `near`
+    let trial = |omega: f64, near: &[&Trial]| -> Trial {
+        let mut by_distance: Vec<&Trial> = near.iter().copied().filter(|t| t.state.is_some()).collect();
+        by_distance.sort_by(|p, q| (p.omega - omega).abs().total_cmp(&(q.omega - omega).abs()));
+        let nearest = by_distance.first().and_then(|t| t.state.as_ref());
+        let predicted = match by_distance.as_slice() {
+            [p, q, ..] => predict(p, q, omega),
+            _ => None,
+        };
+        let r = evaluate(omega, nearest, predicted.as_ref().map(|(x, spread)| (x.as_slice(), spread.as_slice())));
+        let r = r.or_else(|_| evaluate(omega, near.iter().rev().find_map(|t| t.state.as_ref()), None));
+        match r {
+            Ok((state, st)) => Trial { omega, alpha: Some(st.abscissa).filter(|v| v.is_finite()), state: Some(state) },
+            Err(_) => Trial { omega, alpha: None, state: None },
+        }
+    };
+    let (ta, tb) = (Trial::of(a), Trial::of(b));
+    // Brent's variables: `b` the best estimate, `c` the other end of the bracket [b, c], `a`
+    // the previous `b`
+    let (mut pa, mut pb) = (ta.clone(), tb.clone());
+    let mut pc = pa.clone();
+    let brent = matches!((pa.alpha, pb.alpha), (Some(x), Some(y)) if x * y < 0.0);
+    let (mut d, mut e) = (pb.omega - pa.omega, pb.omega - pa.omega);
+    if brent {
+        loop {
+            let (fb, fc) = (pb.alpha.unwrap_or(f64::NAN), pc.alpha.unwrap_or(f64::NAN));
+            if fc.abs() < fb.abs() {
+                pa = pb.clone();
+                pb = pc.clone();
+                pc = pa.clone();
+            }
+            let (fa, fb, fc) = (pa.alpha.unwrap_or(f64::NAN), pb.alpha.unwrap_or(f64::NAN), pc.alpha.unwrap_or(f64::NAN));
+            let tol1 = tolerance(pb.omega, pc.omega);
+            let xm = 0.5 * (pc.omega - pb.omega);
+            if fb == 0.0 {
+                return (Some(pb.omega), None); // α vanishes here: the end itself
+            }
+            if xm.abs() <= tol1 {
+                return (Some(0.5 * (pb.omega + pc.omega)), None);
+            }
+            if e.abs() >= tol1 && fa.abs() > fb.abs() {
+                let s = fb / fa;
+                let (mut p, mut q);
+                if pa.omega == pc.omega {
+                    // secant
+                    p = 2.0 * xm * s;
+                    q = 1.0 - s;
+                } else {
+                    // inverse quadratic interpolation
+                    let (qq, r) = (fa / fc, fb / fc);
+                    p = s * (2.0 * xm * qq * (qq - r) - (pb.omega - pa.omega) * (r - 1.0));
+                    q = (qq - 1.0) * (r - 1.0) * (s - 1.0);
+                }
+                if p > 0.0 {
+                    q = -q;
+                } else {
+                    p = -p;
+                }
+                if 2.0 * p < (3.0 * xm * q - (tol1 * q).abs()).min((e * q).abs()) {
+                    e = d;
+                    d = p / q;
+                } else {
+                    d = xm;
+                    e = d;
+                }
+            } else {
+                d = xm;
+                e = d;
+            }
+            let omega = pb.omega + if d.abs() > tol1 { d } else { tol1.copysign(xm) };
+            if let Some(why) = control.should_stop() {
+                return (None, Some(why));
+            }
+            let t = trial(omega, &[&pb, &pc, &pa]);
+            pa = pb.clone();
+            if t.alpha.is_none() {
+                // no α here: bisection on the verdict from the bracket [b, c]
+                let (lo, hi) = if t.stable() == pb.stable() { (t, pc) } else { (t, pb) };
+                return bisect(lo, hi, rtol, control, &trial);
+            }
+            pb = t;
+            if (pb.alpha.unwrap_or(0.0) > 0.0) == (pc.alpha.unwrap_or(0.0) > 0.0) {
+                pc = pa.clone();
+                d = pb.omega - pa.omega;
+                e = d;
+            }
+        }
+    }
+    bisect(ta, tb, rtol, control, &trial)
+}
+
+/// Bisection of the bracket `[p, q]` (sides differ) on the verdict, to `rtol · Ω`.
+fn bisect(
+    mut p: Trial,
+    mut q: Trial,
+    rtol: f64,
+    control: &Control,
+    trial: &dyn Fn(f64, &[&Trial]) -> Trial,
+) -> (Option<f64>, Option<crate::control::StopReason>) {
+    loop {
+        let width = (q.omega - p.omega).abs();
+        let mid = 0.5 * (p.omega + q.omega);
+        if width <= rtol * p.omega.abs().max(q.omega.abs()) || mid == p.omega || mid == q.omega {
+            return (Some(mid), None);
+        }
+        if let Some(why) = control.should_stop() {
+            return (None, Some(why));
+        }
+        let t = trial(mid, &[&p, &q]);
+        if t.stable() == p.stable() {
+            p = Trial { state: t.state.or(p.state), ..t };
+        } else {
+            q = Trial { state: t.state.or(q.state), ..t };
+        }
+    }
+}
+
 /// The stationary state and its stability along `speeds` (ascending or descending), and the
 /// ends of the stable ranges (module docs of [`crate::analysis`]): `field_at(Ω)` builds the
 /// model at speed `Ω`; `guess_at(&field, Ω)` gives its closed-form stationary state where one
 /// exists. At each speed Newton starts from the previous speed's solution, else from the
 /// guess; between two speeds whose verdicts differ (stable or not), the boundary is bracketed
 /// to `boundary_rtol · Ω` on the sign of the abscissa `α` (so an end is where `α` crosses
-/// zero), each trial continued from the solution on the side it joins: regula falsi on `α`
-/// (Illinois variant), kept `boundary_rtol · Ω / 2` inside the bracket, falling back to
-/// bisection where `α` is missing or the bracket stops halving (typically 3-6 trials where
-/// bisection takes ~25). Runs to the end: [`speed_scan_with`] under a [`Control`].
+/// zero) by Brent's method on `α` (inverse quadratic interpolation and secant steps,
+/// safeguarded by bisection; bisection on the verdict where `α` is missing), a periodic orbit's
+/// trial started from the state interpolated between its two nearest solutions (typically 4-8
+/// trials where bisection takes ~28). Runs to the end: [`speed_scan_with`] under a [`Control`].
 pub fn speed_scan<F, M, G>(field_at: M, guess_at: G, speeds: &[f64], opts: &ScanOptions) -> Result<SpeedScan>
 where
     F: VectorField,
@@ -290,19 +458,38 @@ where
     if let Some(w) = speeds.iter().find(|w| !w.is_finite()) {
         return Err(AnalysisError::InvalidInput { field: "speeds".into(), reason: format!("{w} is not a finite speed") });
     }
-    let evaluate = |omega: f64, previous: Option<&StationaryState>| -> std::result::Result<(StationaryState, Stability), String> {
-        let f = field_at(omega).map_err(|e| e.to_string())?;
-        let guess = guess_at(&f, omega);
-        // the closed-form state first where the model has one: near a bifurcation (a real
-        // eigenvalue crossing zero, where another branch of stationary states crosses the
-        // balanced one) Newton from a neighbour's solution can land on the other branch, whose
-        // stability is the opposite; the closed form pins the branch the user asked about
-        let near = previous.map(|p| p.x.as_slice());
-        let starts = if opts.prefer_guess { [guess.as_deref(), near] } else { [near, guess.as_deref()] };
-        // a periodic orbit's shooting starts from the neighbour's monodromy matrix (no
-        // variational integration until the orbit is found)
-        solve_at(&f, &starts, previous.and_then(|p| p.monodromy.as_deref()), &opts.newton)
-    };
+    // `predicted`: a start from the neighbours of a range end's trial speed, and their spread
+    // `|x_p − x_q|` (how far from it the state found may lie: below)
+    let evaluate =
+        |omega: f64, previous: Option<&StationaryState>, predicted: Option<(&[f64], &[f64])>| -> std::result::Result<(StationaryState, Stability), String> {
+            let f = field_at(omega).map_err(|e| e.to_string())?;
+            let hint = previous.and_then(|p| p.monodromy.as_deref());
+            // a trial speed of a periodic orbit's range end: from the state interpolated between its
+            // two nearest solutions on the branch, a far better start than the closed form (which
+            // is the autonomous neighbour, not the orbit: 4-6 shooting flows and a steering
+            // monodromy against 1-2 flows), taken only if the state found stays within the
+            // neighbours' spread of the prediction (else the closed form, as at a grid speed)
+            if let Some((x_pred, spread)) = predicted {
+                if let Ok(state) = stationary_near(&f, x_pred, hint, &opts.newton) {
+                    let sc = f.scales();
+                    let scaled = |v: &mut dyn Iterator<Item = f64>| v.zip(&sc).map(|(d, s)| (d / s).abs()).fold(0.0, f64::max);
+                    let off = scaled(&mut state.x.iter().zip(x_pred).map(|(a, b)| a - b));
+                    if off <= scaled(&mut spread.iter().copied()) + 1e-6 {
+                        return stability(&f, &state).map(|st| (state, st)).map_err(|e| e.to_string());
+                    }
+                }
+            }
+            let guess = guess_at(&f, omega);
+            // the closed-form state first where the model has one: near a bifurcation (a real
+            // eigenvalue crossing zero, where another branch of stationary states crosses the
+            // balanced one) Newton from a neighbour's solution can land on the other branch, whose
+            // stability is the opposite; the closed form pins the branch the user asked about
+            let near = previous.map(|p| p.x.as_slice());
+            let starts = if opts.prefer_guess { [guess.as_deref(), near] } else { [near, guess.as_deref()] };
+            // a periodic orbit's shooting starts from the neighbour's monodromy matrix (no
+            // variational integration until the orbit is found)
+            solve_at(&f, &starts, hint, &opts.newton)
+        };
     let mut points: Vec<ScanPoint> = Vec::with_capacity(speeds.len());
     let mut previous: Option<StationaryState> = None;
     let mut stopped = None;
@@ -311,7 +498,7 @@ where
             stopped = Some(why);
             break;
         }
-        match evaluate(omega, previous.as_ref()) {
+        match evaluate(omega, previous.as_ref(), None) {
             Ok((state, st)) => {
                 previous = Some(state.clone());
                 points.push(ScanPoint { omega, state: Some(state), stability: Some(st), failure: None });
@@ -330,72 +517,10 @@ where
         if a.is_stable() == b.is_stable() || stopped.is_some() {
             continue;
         }
-        let stable_lo = a.is_stable();
-        let (mut lo, mut hi) = (a.omega, b.omega);
-        let mut x_lo = a.state.clone();
-        let mut x_hi = b.state.clone();
-        // the abscissa at the bracket's ends, for the secant (Illinois) step
-        let alpha_of = |p: &ScanPoint| p.stability.as_ref().map(|s| s.abscissa).filter(|v| v.is_finite());
-        let (mut f_lo, mut f_hi) = (alpha_of(a), alpha_of(b));
-        let mut last_side = 0i8;
-        let mut slow_steps = 0;
-        loop {
-            let width = (hi - lo).abs();
-            let tol = opts.boundary_rtol * lo.abs().max(hi.abs());
-            if width <= tol {
-                break;
-            }
-            // the regula falsi point where α's signs bracket zero, kept tol/2 inside the
-            // bracket (so that once it sits next to the crossing the bracket closes on it);
-            // the midpoint when α is missing at an end, or after two steps that did not halve
-            // the bracket (so never more than ~3x the evaluations of bisection)
-            let mut mid = 0.5 * (lo + hi);
-            if let (Some(fl), Some(fh), true) = (f_lo, f_hi, slow_steps < 2) {
-                if fl * fh < 0.0 {
-                    let secant = lo - fl * (hi - lo) / (fh - fl);
-                    let (a_, b_) = (lo.min(hi) + 0.5 * tol, lo.max(hi) - 0.5 * tol);
-                    if a_ < b_ && secant.is_finite() {
-                        mid = secant.clamp(a_, b_);
-                    }
-                }
-            }
-            if mid == lo || mid == hi {
-                break;
-            }
-            if let Some(why) = control.should_stop() {
-                stopped = Some(why);
-                break;
-            }
-            let near = x_lo.as_ref().or(x_hi.as_ref());
-            let r = evaluate(mid, near).or_else(|_| evaluate(mid, x_hi.as_ref()));
-            // the side is decided by the sign of α, so the end is where α crosses zero (not
-            // where it crosses the neutral threshold, which would shift it by the tolerance)
-            let (stable, x, alpha) = match r {
-                Ok((state, st)) => (st.abscissa < 0.0, Some(state), Some(st.abscissa).filter(|v| v.is_finite())),
-                Err(_) => (false, None, None),
-            };
-            // Illinois: an end kept twice running has its α halved, so the secant moves it
-            if stable == stable_lo {
-                if last_side == -1 {
-                    f_hi = f_hi.map(|f| 0.5 * f);
-                }
-                lo = mid;
-                x_lo = x.or(x_lo);
-                f_lo = alpha;
-                last_side = -1;
-            } else {
-                if last_side == 1 {
-                    f_lo = f_lo.map(|f| 0.5 * f);
-                }
-                hi = mid;
-                x_hi = x.or(x_hi);
-                f_hi = alpha;
-                last_side = 1;
-            }
-            slow_steps = if (hi - lo).abs() > 0.5 * width { slow_steps + 1 } else { 0 };
-        }
-        if stopped.is_none() {
-            boundary[i] = Some(0.5 * (lo + hi));
+        let (end, why) = locate_end(a, b, opts.boundary_rtol, control, evaluate);
+        match why {
+            Some(why) => stopped = Some(why),
+            None => boundary[i] = end,
         }
     }
     let mut stable_ranges = vec![];

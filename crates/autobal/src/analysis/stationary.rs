@@ -530,8 +530,36 @@ impl TrigInterpolant {
 struct InterpolatedVariational {
     n: usize,
     interpolant: TrigInterpolant,
+    /// How each row of `J̃ Φ` is formed ([`Row`]).
+    rows: Vec<Row>,
     jac: RefCell<Vec<f64>>,
     acc: RefCell<Vec<f64>>,
+}
+
+/// A row `a` of `J̃ Φ`: `Copy(c)` where row `a` of `J̃` is the constant unit row `e_c` (a
+/// kinematic row `ẋ_a = x_c`: row `c` of `Φ`, exactly what the sum gives), else `Sum` over the
+/// columns where `J̃` can be non-zero (its constant non-zero entries and those that vary), in
+/// increasing order as the full sum, so the same numbers without the `n²` tests of zero.
+enum Row {
+    Copy(usize),
+    Sum(Vec<usize>),
+}
+
+impl InterpolatedVariational {
+    fn new(n: usize, interpolant: TrigInterpolant) -> Self {
+        let mut live = interpolant.constant.iter().map(|v| *v != 0.0).collect::<Vec<bool>>();
+        interpolant.varying.iter().for_each(|&e| live[e] = true);
+        let rows = (0..n)
+            .map(|a| {
+                let cols: Vec<usize> = (0..n).filter(|&c| live[a * n + c]).collect();
+                match cols.as_slice() {
+                    [c] if interpolant.constant[a * n + c] == 1.0 && !interpolant.varying.contains(&(a * n + c)) => Row::Copy(*c),
+                    _ => Row::Sum(cols),
+                }
+            })
+            .collect();
+        InterpolatedVariational { n, interpolant, rows, jac: RefCell::new(vec![0.0; n * n]), acc: RefCell::new(vec![]) }
+    }
 }
 
 impl System for InterpolatedVariational {
@@ -542,14 +570,19 @@ impl System for InterpolatedVariational {
         let n = self.n;
         let mut j = self.jac.borrow_mut();
         self.interpolant.eval(t, &mut j, &mut self.acc.borrow_mut());
-        for a in 0..n {
+        for (a, r) in self.rows.iter().enumerate() {
             let row = &mut dphi[a * n..(a + 1) * n];
-            row.iter_mut().for_each(|v| *v = 0.0);
-            for c in 0..n {
-                let jac = j[a * n + c];
-                if jac != 0.0 {
-                    for (o, p) in row.iter_mut().zip(&phi[c * n..(c + 1) * n]) {
-                        *o += jac * p;
+            match r {
+                Row::Copy(c) => row.copy_from_slice(&phi[c * n..(c + 1) * n]),
+                Row::Sum(cols) => {
+                    row.iter_mut().for_each(|v| *v = 0.0);
+                    for &c in cols {
+                        let jac = j[a * n + c];
+                        if jac != 0.0 {
+                            for (o, p) in row.iter_mut().zip(&phi[c * n..(c + 1) * n]) {
+                                *o += jac * p;
+                            }
+                        }
                     }
                 }
             }
@@ -627,7 +660,7 @@ fn interpolated_monodromy<F: VectorField + ?Sized>(f: &F, orbit: &Orbit, period:
         nodes *= 2;
     };
     let Some(interpolant) = accepted else { return Ok(None) };
-    let sys = InterpolatedVariational { n, interpolant, jac: RefCell::new(vec![0.0; n * n]), acc: RefCell::new(vec![]) };
+    let sys = InterpolatedVariational::new(n, interpolant);
     let mut atol = Vec::with_capacity(n * n);
     for a in 0..n {
         for b in 0..n {
@@ -692,7 +725,9 @@ fn shooting_matrix(phi: &[f64], s: &[f64], n: usize) -> Vec<f64> {
 /// to round-off, which the next flow absorbs; the orbit's own monodromy matrix, which the
 /// multipliers come from, is integrated at the shooting's `rtol`. At `1e-6` DOP853 takes
 /// ~`(1e-6 / 1e-10)^{1/8}` ≈ 3x fewer steps than at `1e-10` and 8 Jacobian samples pass
-/// where 16 were needed.
+/// where 16 were needed. (At `1e-4`, 6 % fewer instructions on the two-plane scan, the
+/// shooting stagnated at 150 rad/s on that rotor, where `I − Φ` has a singular value ~3.5e-4:
+/// the matrix's error must stay well below it.)
 const MATRIX_RTOL: f64 = 1e-6;
 
 /// `Φ(T)` at `x0` for the shooting's matrix alone: [`variational_flow`] at
@@ -710,6 +745,27 @@ fn matrix_monodromy<F: VectorField + ?Sized>(f: &F, x0: &[f64], period: f64, s: 
 /// Newton's; at most `max_iterations / 2` times, then the search is reported as stagnating).
 /// Those matrices only steer the iteration and are integrated at [`MATRIX_RTOL`]; the
 /// monodromy matrix of the orbit found, whose multipliers are its stability, at `rtol`, once.
+/// What a failed shooting adds to its message when its last matrix `S⁻¹(I − Φ)S` (`n × n`,
+/// the variational equations' or its rank-one updates) has an eigenvalue `1 − μ` within
+/// `1e-2` of zero: a Floquet multiplier near 1 makes `I − Φ` nearly singular, as at a fold of
+/// periodic orbits, where the orbit ceases to exist as a parameter moves (or a family the model
+/// does not declare); else nothing.
+fn near_unit_multiplier(b: &[f64], n: usize) -> String {
+    if b.len() != n * n {
+        return String::new();
+    }
+    let Ok(values) = crate::linalg::eigen_dyn::eigenvalues(b, n) else { return String::new() };
+    let d = values.iter().map(|z| z.norm()).fold(f64::INFINITY, f64::min);
+    if d <= 1e-2 {
+        format!(
+            "; a Floquet multiplier lies within {} of 1 there (I − Φ nearly singular): near a fold, where the periodic orbit ceases to exist, or with no orbit near the start; following the orbit in a parameter from where one is found tells which",
+            crate::error::fmt_num(d)
+        )
+    } else {
+        String::new()
+    }
+}
+
 fn periodic<F: VectorField + ?Sized>(
     f: &F,
     guess: &[f64],
@@ -769,7 +825,7 @@ fn periodic<F: VectorField + ?Sized>(
             return finish(x, it, res);
         }
         if it >= opts.max_iterations {
-            return Err(fail(it, res, "iteration limit"));
+            return Err(fail(it, res, &format!("iteration limit{}", near_unit_multiplier(&b, n))));
         }
         it += 1;
         // backtracking on the scaled residual, as in `newton`; with an updated or carried (not
@@ -813,7 +869,7 @@ fn periodic<F: VectorField + ?Sized>(
                 if stalled && norm_inf(&r) > tol {
                     refreshes += 1;
                     if refreshes > max_refreshes {
-                        return Err(fail(it, norm_inf(&r), &stagnates()));
+                        return Err(fail(it, norm_inf(&r), &format!("{}{}", stagnates(), near_unit_multiplier(&b, n))));
                     }
                     b = shooting_matrix(&matrix_monodromy(f, &x, period, s, opts.rtol)?, s, n);
                     fresh = true;
@@ -823,14 +879,14 @@ fn periodic<F: VectorField + ?Sized>(
                 // the updated matrix gives no descent: a fresh one at x
                 refreshes += 1;
                 if refreshes > max_refreshes {
-                    return Err(fail(it, res, &stagnates()));
+                    return Err(fail(it, res, &format!("{}{}", stagnates(), near_unit_multiplier(&b, n))));
                 }
                 b = shooting_matrix(&matrix_monodromy(f, &x, period, s, opts.rtol)?, s, n);
                 fresh = true;
             }
             // round-off level of the integration: no step can reduce it further
             None if res <= 1e3 * tol => return finish(x, it, res),
-            None => return Err(fail(it, res, "no step along the Newton direction reduces the residual")),
+            None => return Err(fail(it, res, &format!("no step along the Newton direction reduces the residual{}", near_unit_multiplier(&b, n)))),
         }
     }
 }

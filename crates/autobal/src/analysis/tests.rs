@@ -221,3 +221,60 @@ fn shooting_from_a_neighbours_monodromy_finds_the_same_orbit_and_multipliers() {
         }
     }
 }
+
+#[test]
+fn a_periodic_range_end_is_located_to_1e_9_in_few_trials() {
+    // The rotating field above with C(p) = C0 + (p − 1.3)/4 · I: the orbit's exact Floquet
+    // abscissa α(p) = Re λ_max(K(p)) (K = C + 2β y* y*ᵀ, y* = −C⁻¹ g0: nonlinear in p) crosses
+    // zero once in [1, 2]; its root p* by bisection on the closed form to round-off. The scan
+    // (shooting, monodromy, Floquet) over a grid of 5 must place the end at p* to
+    // 1e-9 p* (the bracket's 1e-9 relative width, plus the computed α's own error over its
+    // slope: multipliers exact to ~1e-10 at rtol 1e-12 (test above: < 1e-9), so α to
+    // ~1e-10 / T = 2e-11, over α' ≈ 0.25: 1e-10 in p), in at most 10 trial speeds where
+    // bisection on the verdict would take log2(0.25 / 1.5e-9) ≈ 28.
+    let g0 = [0.5, 0.2];
+    let c_at = |p: f64| {
+        let d = 0.25 * (p - 1.3);
+        [[-0.1 + d, 1.3], [-0.6, -0.3 + d]]
+    };
+    let exact_alpha = |p: f64| {
+        let f = Rotating::new(c_at(p), g0, 0.3, 1.0);
+        let mu = f.multipliers();
+        mu.iter().map(|m| m.norm().ln()).fold(f64::NEG_INFINITY, f64::max) / f.period().unwrap()
+    };
+    let (mut lo, mut hi) = (1.0, 2.0);
+    assert!(exact_alpha(lo) < 0.0 && exact_alpha(hi) > 0.0, "{} {}", exact_alpha(lo), exact_alpha(hi));
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if mid == lo || mid == hi {
+            break;
+        }
+        if exact_alpha(mid) < 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let root = 0.5 * (lo + hi);
+    let calls = std::cell::Cell::new(0);
+    let grid = [1.0, 1.25, 1.5, 1.75, 2.0];
+    let scan = speed_scan(
+        |p| {
+            calls.set(calls.get() + 1);
+            Ok(Rotating::new(c_at(p), g0, 0.3, 1.0))
+        },
+        |f, _| {
+            let y = f.orbit_start();
+            Some(vec![y[0] + 1e-3, y[1] - 1e-3])
+        },
+        &grid,
+        &ScanOptions::default(),
+    )
+    .unwrap();
+    let ends: Vec<f64> = scan.stable_ranges.iter().filter(|r| r.to_is_boundary).map(|r| r.to).collect();
+    assert_eq!(ends.len(), 1, "{:?}", scan.stable_ranges);
+    let trials = calls.get() - grid.len();
+    eprintln!("end {} against {root}: {:.1e} relative, {trials} trials", ends[0], (ends[0] - root).abs() / root);
+    assert!((ends[0] - root).abs() <= 1e-9 * root, "end {} against {root}", ends[0]);
+    assert!(trials <= 10, "{trials} trial speeds");
+}
