@@ -38,7 +38,7 @@ pub struct Output {
     pub wall: f64,
     /// Where the front end wrote the CSV ([`Output::csv`]), named in the JSON and the table.
     pub written: Option<PathBuf>,
-    /// A linear rotor config's ends (`ends` is then empty): [`crate::linear_rotor::basins`].
+    /// A linear rotor config's ends (`ends` is then empty): the runs of [`autobal::linear_rotor::basins`].
     pub linear: Option<Vec<Option<autobal::linear_rotor::basins::BasinEnd>>>,
 }
 

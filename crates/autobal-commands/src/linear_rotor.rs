@@ -370,7 +370,7 @@ pub fn basins_json(ends: &[Option<autobal::linear_rotor::basins::BasinEnd>], wal
 /// The figure of a linear rotor's basins (`basins`, id `basins`): each run of the `n × n` grid a
 /// cell at the first two balls' initial angles (degrees), green where the run ends balanced,
 /// orange where it does not, grey where it was not run (stopped) — the report's basins figure
-/// (`report::basins`) for a linear rotor. `angles` and `ends` as [`basins`]' output.
+/// (`report::basins`) for a linear rotor. `angles` and `ends` as the `basins` command's output (`crate::basins::Output`).
 pub fn basins_plot(angles: &[[f64; 2]], ends: &[Option<autobal::linear_rotor::basins::BasinEnd>]) -> Plot {
     use crate::plot::{ColorScale, Heatmap};
     let n = (angles.len() as f64).sqrt().round() as usize;
