@@ -3,6 +3,7 @@
 //! ([`autobal::spatial::dynamics::basins`]).
 
 use crate::command::{self, ConfigSource};
+use crate::plot::{ColorScale, Heatmap, Plot};
 use anyhow::Result;
 use autobal::control::Control;
 use autobal::spatial::dynamics::basins::{angle_grid, basins, check_angle_grid};
@@ -63,6 +64,36 @@ impl command::Command for Args {
 }
 
 impl Output {
+    /// The basins' figure (the report's `basins`, `autobal basins`' and Python's): a cell of
+    /// an `n × n` heatmap per run at its first two balls' initial angles (ψ1 the column, ψ2
+    /// the row, °), -1 (green) where it ends balanced, +1 (orange) where not, NaN (grey) not
+    /// run; a linear rotor config's is [`crate::linear_rotor::basins_plot`].
+    pub fn plot(&self) -> Plot {
+        if let Some(l) = &self.linear {
+            return crate::linear_rotor::basins_plot(&self.angles, l);
+        }
+        let tau = std::f64::consts::TAU;
+        let n = ((self.angles.len() as f64).sqrt().round() as usize).max(1);
+        let xs: Vec<f64> = (0..n).map(|i| (tau * i as f64 / n as f64).to_degrees()).collect();
+        let mut z = vec![vec![f64::NAN; n]; n];
+        let cell = |psi: f64| ((psi / tau * n as f64).round() as usize).min(n - 1);
+        for (a, r) in self.angles.iter().zip(&self.ends) {
+            if let Some(r) = r {
+                z[cell(a[1])][cell(a[0])] = if r.balanced { -1.0 } else { 1.0 };
+            }
+        }
+        let step = 360.0 / n as f64;
+        Plot {
+            title: "Where the balls end, by their initial angles".into(),
+            x_label: "initial angle of ball 1 (°)".into(),
+            y_label: "initial angle of ball 2 (°)".into(),
+            x_range: Some((-step / 2.0, 360.0 - step / 2.0)),
+            y_range: Some((-step / 2.0, 360.0 - step / 2.0)),
+            heatmap: Some(Heatmap { x: xs.clone(), y: xs, z, scale: ColorScale::Verdict, label: "end (stable = balanced)".into() }),
+            ..Default::default()
+        }
+    }
+
     /// The CSV of the complete runs: `psi_1,psi_2,balanced,residual_unbalance,final_amplitude`.
     pub fn csv(&self) -> String {
         if let Some(l) = &self.linear {
@@ -107,6 +138,10 @@ impl command::Output for Output {
             self.wall,
             self.written.as_ref().map_or(String::new(), |p| format!("; wrote {}", p.display()))
         ))
+    }
+    /// `basins`: [`Output::plot`].
+    fn figures(&self) -> Result<Vec<command::Figure>> {
+        Ok(vec![command::Figure { id: "basins".into(), plot: self.plot() }])
     }
     fn stopped(&self) -> Option<String> {
         let (runs, done) = match &self.linear {

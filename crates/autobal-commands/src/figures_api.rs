@@ -11,6 +11,11 @@
 //!   where `boundary` asks for it; `x`, `y` as `KEY=LO:HI:N`);
 //! - `simulate`: `simulation_amplitude_omega`, `simulation_amplitude_t`, `simulation_psi_t`,
 //!   `simulation_omega_t` (the plots `simulate` writes beside its CSV);
+//! - `sweep`: `sweep_peak`, `sweep_final` (each run's peak and final whirl radius against the
+//!   first axis, a curve per value of the other axes; `x`, `y`, `axis` as `PATH=LO:HI:N`,
+//!   `shard` as `K/N`), on every rotor (planar, spatial, linear);
+//! - `basins`: `basins` (the report's figure: where each run of the `n × n` grid ends;
+//!   `n` defaults to the CLI's), on a spatial or linear rotor config;
 //! - `report`: every figure of the HTML report, by its id ([`report_figures`]).
 //!
 //! The other commands draw no figure ([`COMMANDS_WITH_FIGURES`]). Every function takes the
@@ -27,7 +32,7 @@ use serde_json::Value;
 use toml::Table;
 
 /// The commands whose results have figures, in the CLI's order.
-pub const COMMANDS_WITH_FIGURES: &[&str] = &["stability", "campbell", "map", "simulate", "report"];
+pub const COMMANDS_WITH_FIGURES: &[&str] = &["stability", "campbell", "map", "simulate", "sweep", "basins", "report"];
 
 /// A command's options that change its figures, as the CLI's flags (`None`: the CLI's default).
 #[derive(Debug, Clone, Default, Deserialize)]
@@ -43,9 +48,15 @@ pub struct Options {
     pub balls: Option<String>,
     /// `campbell --harmonics` (default `[1]`).
     pub harmonics: Option<Vec<u32>>,
-    /// `map --x`, `--y` (`KEY=LO:HI:N`).
+    /// `map --x`, `--y` (`KEY=LO:HI:N`); `sweep --x`, `--y` (`PATH=LO:HI:N`, `PATH=V1,V2,…`).
     pub x: Option<String>,
     pub y: Option<String>,
+    /// `sweep --axis` (more axes after `x` and `y`).
+    pub axis: Option<Vec<String>>,
+    /// `sweep --shard` (`K/N`).
+    pub shard: Option<String>,
+    /// `basins --n`.
+    pub n: Option<usize>,
     /// `map --omega`.
     pub omega: Option<String>,
     /// `map --quantity`: `margin` (default) or `verdict`.
@@ -156,6 +167,31 @@ pub fn figures(command: &str, root: &Table, source: &str, o: &Options, control: 
             }
             out.figures()
         }
+        "sweep" => {
+            // the command's own output (its runs kept, no file): `sweep::Output::figures`
+            let Some(x) = &o.x else { bail!("x: required (the first axis, e.g. x='drive.b=0.5:12.5:5')") };
+            let args = crate::sweep::Args {
+                config: ConfigSource::tables(root.clone(), source),
+                x: crate::sweep::parse_axis("--x", x)?,
+                y: o.y.as_deref().map(|y| crate::sweep::parse_axis("--y", y)).transpose()?,
+                more: o.axis.iter().flatten().map(|a| crate::sweep::parse_axis("--axis", a)).collect::<Result<_>>()?,
+                shard: o.shard.as_deref().map(crate::sweep::parse_shard).transpose()?,
+            };
+            let out = args.run(control)?;
+            if let Some(why) = out.stopped() {
+                bail!("{why}");
+            }
+            out.figures()
+        }
+        "basins" => {
+            // the command's own output: `basins::Output::plot`, the report's figure
+            let args = crate::basins::Args { config: ConfigSource::tables(root.clone(), source), n: o.n.unwrap_or(crate::basins::DEFAULT_N) };
+            let out = args.run(control)?;
+            if let Some(why) = out.stopped() {
+                bail!("{why}");
+            }
+            out.figures()
+        }
         "report" => {
             let kind = if o.papers.unwrap_or(false) { crate::report::Kind::Papers } else { crate::report::Kind::User };
             report_figures(root, source, o.quick.unwrap_or(false), kind, control)
@@ -234,6 +270,69 @@ mod tests {
         let cli = args.prepare().unwrap().run(&Control::none(), crate::map::Rows::Csv(&mut std::io::sink())).unwrap().figures().unwrap();
         assert_eq!(f[0].plot.to_plotly(), cli[0].plot.to_plotly());
         assert!(f[0].plot.series.iter().any(|s| s.label.starts_with("traced boundary")), "the traced curves are drawn");
+    }
+
+    /// examples/spatial.toml with a short run (`t_end` τ): the tiny grids' runs.
+    fn spatial_root(t_end: f64) -> Table {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/spatial.toml");
+        let mut root = config::parse_text(&std::fs::read_to_string(path).unwrap(), "spatial.toml").unwrap();
+        root["drive"].as_table_mut().unwrap().insert("t_end".into(), toml::Value::Float(t_end));
+        root
+    }
+
+    /// The basins' figure from Python is the report's: the description the report's section
+    /// draws from its runs (`basins::Output::plot`) of the same config and grid, and each
+    /// cell the end of the run started at its angles (placed here independently: with n = 2
+    /// the angles are 0 and π, cells 0 and 1).
+    #[test]
+    fn basins_figure_is_the_reports() {
+        let root = spatial_root(20.0);
+        let f = figures("basins", &root, "spatial.toml", &Options { n: Some(2), ..Default::default() }, &Control::none()).unwrap();
+        assert_eq!(f.len(), 1);
+        assert_eq!(f[0].id, "basins");
+        // the report's route: the library's runs over the grid, the section's figure
+        let sim = crate::spatial_sim::build(&root, "spatial.toml").unwrap();
+        let cases = autobal::spatial::dynamics::basins::angle_grid(&sim.initial, &sim.drive, 2, 2);
+        let ends = autobal::spatial::dynamics::basins::basins(&sim.rotor, &cases, &sim.settings, &Control::none()).unwrap().value;
+        let angles: Vec<[f64; 2]> = cases.iter().map(|c| [c.initial.psi[0], c.initial.psi[1]]).collect();
+        let report = crate::basins::Output { angles: angles.clone(), ends: ends.clone(), wall: 0.0, written: None, linear: None }.plot();
+        assert_eq!(f[0].plot.to_plotly()["data"], report.to_plotly()["data"]);
+        assert_eq!(f[0].plot.title, report.title);
+        let z = &f[0].plot.heatmap.as_ref().unwrap().z;
+        for (a, e) in angles.iter().zip(&ends) {
+            let cell = |psi: f64| usize::from(psi > 1.0);
+            let want = if e.as_ref().unwrap().balanced { -1.0 } else { 1.0 };
+            assert_eq!(z[cell(a[1])][cell(a[0])], want, "run at {a:?}");
+        }
+    }
+
+    /// The sweep's figures from Python: a curve per value of the second axis, each point a run
+    /// (the first axis' value, its summary's peak and final whirl radius, ρ_s: the factor is 1
+    /// in the dimensionless example), as the sweep's JSON gives them.
+    #[test]
+    fn sweep_figures_points_are_the_runs() {
+        let root = spatial_root(10.0);
+        let o = Options { x: Some("drive.omega0=1.5,1.6".into()), y: Some("drive.t_end=5,10".into()), ..Default::default() };
+        let f = figures("sweep", &root, "spatial.toml", &o, &Control::none()).unwrap();
+        assert_eq!(f.iter().map(|f| f.id.as_str()).collect::<Vec<_>>(), ["sweep_peak", "sweep_final"]);
+        let args = crate::sweep::Args {
+            config: ConfigSource::tables(root, "spatial.toml"),
+            x: crate::sweep::parse_axis("--x", "drive.omega0=1.5,1.6").unwrap(),
+            y: Some(crate::sweep::parse_axis("--y", "drive.t_end=5,10").unwrap()),
+            ..Default::default()
+        };
+        let runs = args.run(&Control::none()).unwrap().json().unwrap()["runs"].as_array().unwrap().clone();
+        assert_eq!(runs.len(), 4);
+        for (fig, key) in [(&f[0].plot, "peak_amplitude"), (&f[1].plot, "final_amplitude")] {
+            assert_eq!(fig.series.len(), 2, "a curve per value of drive.t_end");
+            assert!(fig.y_label.ends_with("(ρ_s)"), "{}", fig.y_label);
+            for (k, s) in fig.series.iter().enumerate() {
+                assert_eq!(s.label, format!("drive.t_end = {}", [5, 10][k]));
+                let want: Vec<(f64, f64)> =
+                    runs[2 * k..2 * k + 2].iter().map(|r| (r["values"][0].as_f64().unwrap(), r["summary"][key].as_f64().unwrap())).collect();
+                assert_eq!(s.points, want);
+            }
+        }
     }
 
     #[test]

@@ -400,9 +400,28 @@ pub fn basins_plot(angles: &[[f64; 2]], ends: &[Option<autobal::linear_rotor::ba
 /// (id `sweep_peak`) and its final radius (id `sweep_final`, mm) against the first axis' value,
 /// one curve per combination of the other axes' values (in the grid's order), a point per run
 /// (`runs`: each run's values, in the order of `paths`, and its summary; a run without a
-/// balancer plane's radius is a gap).
+/// balancer plane's radius is a gap): [`sweep_plots_of`] on each run's `peak_amplitude` and
+/// `final_amplitude` ([`autobal::sweep::linear_summary_values`]).
 pub fn sweep_plots(paths: &[String], runs: &[(Vec<f64>, RunSummary)]) -> Vec<(String, Plot)> {
+    let runs: Vec<(Vec<f64>, [f64; 2])> = runs
+        .iter()
+        .map(|(v, s)| {
+            let x = autobal::sweep::linear_summary_values(s);
+            (v.clone(), [x[0], x[5]])
+        })
+        .collect();
+    sweep_plots_of("Linear rotor", "first balancer plane", paths, &runs, ("mm", 1e3))
+}
+
+/// The figures of a sweep of any rotor: the peak whirl radius (id `sweep_peak`) and the final
+/// radius (id `sweep_final`) of the `of` (e.g. "first balancer plane"), in `unit.0` (`unit.1`
+/// of them per config unit), against the first axis' value, one curve per combination of the
+/// other axes' values (in the grid's order), a point per run (`runs`: each run's values, in
+/// the order of `paths`, and its `[peak, final]` radius; a NaN is a gap); `model` starts the
+/// titles ("Linear rotor": "Linear rotor sweep: …").
+pub fn sweep_plots_of(model: &str, of: &str, paths: &[String], runs: &[(Vec<f64>, [f64; 2])], unit: (&str, f64)) -> Vec<(String, Plot)> {
     let Some(x_path) = paths.first() else { return vec![] };
+    let (lu, ls) = unit;
     // the curves: runs grouped by the values of the other axes, in the order met
     let mut groups: Vec<(Vec<f64>, Vec<usize>)> = vec![];
     for (i, (v, _)) in runs.iter().enumerate() {
@@ -414,7 +433,7 @@ pub fn sweep_plots(paths: &[String], runs: &[(Vec<f64>, RunSummary)]) -> Vec<(St
     }
     let label = |key: &[f64]| -> String {
         if key.is_empty() {
-            "first balancer plane".into()
+            of.to_string()
         } else {
             paths[1..].iter().zip(key).map(|(p, v)| format!("{p} = {}", fmt_num(*v))).collect::<Vec<_>>().join(", ")
         }
@@ -424,17 +443,17 @@ pub fn sweep_plots(paths: &[String], runs: &[(Vec<f64>, RunSummary)]) -> Vec<(St
             .iter()
             .enumerate()
             .map(|(k, (key, idx))| {
-                let pts = idx.iter().map(|&i| (runs[i].0[0], 1e3 * autobal::sweep::linear_summary_values(&runs[i].1)[col])).collect();
+                let pts = idx.iter().map(|&i| (runs[i].0[0], ls * runs[i].1[col])).collect();
                 let mut s = Series::new(label(key), pts, PALETTE[k % PALETTE.len()]);
                 s.markers = idx.len() < 2;
                 s
             })
             .collect();
-        Plot { title: format!("Linear rotor sweep: {what}"), x_label: x_path.clone(), y_label: format!("{what} (mm)"), series, ..Default::default() }
+        Plot { title: format!("{model} sweep: {what}"), x_label: x_path.clone(), y_label: format!("{what} ({lu})"), series, ..Default::default() }
     };
     vec![
-        ("sweep_peak".into(), figure("peak whirl radius of the first balancer plane", 0)),
-        ("sweep_final".into(), figure("final whirl radius of the first balancer plane", 5)),
+        ("sweep_peak".into(), figure(&format!("peak whirl radius of the {of}"), 0)),
+        ("sweep_final".into(), figure(&format!("final whirl radius of the {of}"), 1)),
     ]
 }
 

@@ -86,6 +86,9 @@ pub(crate) trait Row: SweepSummary {
     fn cells(&self, ls: f64) -> String;
     /// The run's warnings (its early stop first).
     fn warnings(&self) -> Vec<String>;
+    /// The run's peak and final whirl radius (config units: `peak_amplitude` and
+    /// `final_amplitude` of its summary's values), the points of [`Output`]'s figures.
+    fn peak_final(&self) -> [f64; 2];
 }
 
 impl Row for autobal::planar::Summary {
@@ -97,6 +100,10 @@ impl Row for autobal::planar::Summary {
     }
     fn warnings(&self) -> Vec<String> {
         self.stopped.iter().chain(&self.warnings).cloned().collect()
+    }
+    fn peak_final(&self) -> [f64; 2] {
+        let v = autobal::sweep::summary_values(self);
+        [v[0], v[3]]
     }
 }
 
@@ -111,6 +118,10 @@ impl Row for autobal::linear_rotor::runup::RunSummary {
     }
     fn warnings(&self) -> Vec<String> {
         self.stopped.iter().cloned().collect()
+    }
+    fn peak_final(&self) -> [f64; 2] {
+        let v = autobal::sweep::linear_summary_values(self);
+        [v[0], v[5]]
     }
 }
 
@@ -132,6 +143,10 @@ impl Row for autobal::spatial::dynamics::Summary {
     }
     fn warnings(&self) -> Vec<String> {
         self.stopped.iter().cloned().collect()
+    }
+    fn peak_final(&self) -> [f64; 2] {
+        let v = autobal::sweep::spatial_summary_values(self);
+        [v[0], v[3]]
     }
 }
 
@@ -258,6 +273,13 @@ impl Args {
                 return self.plan(Base::Linear(Box::new(base)), root, axes, problem, ("mm", 1e3));
             }
         }
+        if let ConfigSource::Tables { root, dir, .. } = &self.config {
+            if crate::linear_rotor::is_linear(root) {
+                let (root, base, problem) = crate::linear_rotor::sweep_base_of(root.clone(), dir)?;
+                let axes = self.axes()?;
+                return self.plan(Base::Linear(Box::new(base)), root, axes, problem, ("mm", 1e3));
+            }
+        }
         let (root, source) = match &self.config {
             ConfigSource::File { path, sets } => config::read_planar_set(path.as_deref(), sets)?,
             c => c.read()?,
@@ -350,6 +372,8 @@ impl Plan {
         table.push_str(&<M::Summary as Row>::header(lu));
         // the runs' JSON, one compact line each: kept here, or spilled (then only counted)
         let (mut runs, mut spilled) = (vec![], 0usize);
+        // the figures' points, kept with the runs (not when they are spilled)
+        let mut peaks = vec![];
         let mut more_rows = 0usize;
         // points whose runs have warnings: the first few listed, the rest counted (every run's
         // warnings are in the JSON)
@@ -409,7 +433,10 @@ impl Plan {
                         }
                         spilled += 1;
                     }
-                    None => runs.push(line.into_boxed_str()),
+                    None => {
+                        runs.push(line.into_boxed_str());
+                        peaks.push((values.to_vec(), s.peak_final()));
+                    }
                 }
                 done += 1;
                 control.report(done, total);
@@ -422,6 +449,11 @@ impl Plan {
         }
         let mut header = autobal::sweep::report(&self.grid, self.shard, &self.range, outcome.complete(), self.problem.clone(), vec![]);
         header["definition_checksum"] = json!(definition_checksum(&self.root, &self.grid));
+        let model = match &self.base {
+            Base::Planar(_) => ("Planar rotor", "rotor"),
+            Base::Spatial(_) => ("Spatial rotor", "first balancer plane"),
+            Base::Linear(_) => ("Linear rotor", "first balancer plane"),
+        };
         Ok(Output {
             header,
             runs: if spill.is_some() { Runs::Spilled(spilled) } else { Runs::Kept(runs) },
@@ -432,6 +464,10 @@ impl Plan {
             delivered: outcome.delivered,
             points: outcome.points,
             written: None,
+            peaks,
+            paths: paths.iter().map(|p| p.to_string()).collect(),
+            units: self.units,
+            model,
         })
     }
 }
@@ -462,6 +498,15 @@ pub struct Output {
     pub points: usize,
     /// The stem the front end wrote (`STEM.csv`, `STEM.json`), named in the messages.
     pub written: Option<PathBuf>,
+    /// Each kept run's values and `[peak, final]` whirl radius ([`Row::peak_final`]; none
+    /// when the runs were spilled), the figures' points.
+    peaks: Vec<(Vec<f64>, [f64; 2])>,
+    /// The axes' paths.
+    paths: Vec<String>,
+    /// The unit of lengths and its factor.
+    units: (&'static str, f64),
+    /// The rotor (the titles) and where its radii are taken (the curves).
+    model: (&'static str, &'static str),
 }
 
 impl Output {
@@ -537,6 +582,19 @@ impl command::Output for Output {
             t.push_str(&format!("... {} more rows in {whole}\n", self.more_rows));
         }
         Ok(t)
+    }
+    /// `sweep_peak` and `sweep_final`: each run's peak and final whirl radius against the first
+    /// axis' value, a curve per value of the other axes
+    /// ([`crate::linear_rotor::sweep_plots_of`]); none when the runs were spilled to a file.
+    fn figures(&self) -> Result<Vec<command::Figure>> {
+        if self.peaks.is_empty() {
+            return Ok(vec![]);
+        }
+        let (model, of) = self.model;
+        Ok(crate::linear_rotor::sweep_plots_of(model, of, &self.paths, &self.peaks, self.units)
+            .into_iter()
+            .map(|(id, plot)| command::Figure { id, plot })
+            .collect())
     }
     fn stopped(&self) -> Option<String> {
         (self.delivered < self.points).then(|| {

@@ -7,7 +7,6 @@
 
 use super::{Ctx, Section};
 use crate::num::fmt;
-use crate::plot::{ColorScale, Heatmap, Plot};
 use anyhow::Result;
 use autobal::spatial::dynamics::basins::{angle_grid, basins, check_angle_grid};
 use toml::Value;
@@ -72,9 +71,17 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
     let t0 = std::time::Instant::now();
     let out = basins(&sim.rotor, &cases, &sim.settings, &ctx.control)?;
     let wall = t0.elapsed().as_secs_f64();
-    let res = out.value;
-    let done: Vec<_> = res.iter().flatten().collect();
-    s.complete = done.len() == cases.len() && out.stopped.is_none();
+    let stopped = out.stopped.is_some();
+    // the command's output, and its figure (`crate::basins::Output::plot`, as Python draws it)
+    let out = crate::basins::Output {
+        angles: cases.iter().map(|c| [c.initial.psi[0], c.initial.psi[1]]).collect(),
+        ends: out.value,
+        wall,
+        written: None,
+        linear: None,
+    };
+    let done: Vec<_> = out.ends.iter().flatten().collect();
+    s.complete = done.len() == cases.len() && !stopped;
     let balanced = done.iter().filter(|r| r.balanced).count();
     let (lu, ls) = if cfg.dimensional { ("mm", 1e3) } else { ("ρ_s", 1.0) };
     let worst = done.iter().map(|r| r.final_amplitude).fold(0.0, f64::max);
@@ -89,26 +96,7 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
         fmt(ls * worst, 3)
     ));
     s.summary.push(format!("At {speed}, {balanced} of {} starts of the balls (a {n} × {n} grid of the first two balls' angles) end balanced.", done.len()));
-    let deg = |r: f64| r.to_degrees();
-    let xs: Vec<f64> = (0..n).map(|i| deg(std::f64::consts::TAU * i as f64 / n as f64)).collect();
-    let mut z = vec![vec![f64::NAN; n]; n];
-    for (c, r) in cases.iter().zip(&res) {
-        if let Some(r) = r {
-            let i = ((c.initial.psi[0] / std::f64::consts::TAU * n as f64).round() as usize).min(n - 1);
-            let j = ((c.initial.psi[1] / std::f64::consts::TAU * n as f64).round() as usize).min(n - 1);
-            z[j][i] = if r.balanced { -1.0 } else { 1.0 };
-        }
-    }
-    let step = 360.0 / n as f64;
-    let plot = Plot {
-        title: "Where the balls end, by their initial angles".into(),
-        x_label: "initial angle of ball 1 (°)".into(),
-        y_label: "initial angle of ball 2 (°)".into(),
-        x_range: Some((-step / 2.0, 360.0 - step / 2.0)),
-        y_range: Some((-step / 2.0, 360.0 - step / 2.0)),
-        heatmap: Some(Heatmap { x: xs.clone(), y: xs, z, scale: ColorScale::Verdict, label: "end (stable = balanced)".into() }),
-        ..Default::default()
-    };
+    let plot = out.plot();
     s.figure(
         "basins",
         plot,

@@ -36,6 +36,8 @@ _FIGURE_OPTIONS: Dict[str, Tuple[str, ...]] = {
     "campbell": ("omega_max", "points", "balls", "harmonics", "route"),
     "map": ("x", "y", "omega", "balls", "quantity", "boundary", "route"),
     "simulate": ("dt",),
+    "sweep": ("x", "y", "axis", "shard"),
+    "basins": ("n",),
 }
 
 
@@ -48,7 +50,11 @@ def _figure_options(command: str, options: Mapping[str, Any]) -> str:
         if k in ("omega_max", "omega"):
             v = v if isinstance(v, str) else repr(float(v))
         if k in ("x", "y") and not isinstance(v, str):
-            raise TypeError(f"{k}: the map's figure takes the axis as text, 'KEY=LO:HI:N' (as the CLI's --{k})")
+            raise TypeError(f"{k}: the {command}'s figure takes the axis as text, 'KEY=LO:HI:N' (as the CLI's --{k})")
+        if k == "axis":
+            v = [str(a) for a in v]
+        if k == "shard":
+            v = str(v)
         out[k] = v
     return json.dumps(out)
 
