@@ -543,9 +543,10 @@ impl PyLinearSpec {
     }
 }
 
-/// The map's figure of a `[linear_rotor]` config file (`stability_map`, what `autobal map
-/// --config PATH --out STEM` draws): JSON `[{"id", "title", "figure"}]`, computed by the CLI's
-/// `map::Args` on the file (its matrix files relative to it, `sets` its `--set`); `options` the
+/// The map's figure of a `[linear_rotor]` config file or dict (`stability_map`, what `autobal
+/// map --config PATH --out STEM` draws): JSON `[{"id", "title", "figure"}]`, computed by the
+/// CLI's `map::Args` on the config's tables (a file's matrix files relative to it, a dict's to
+/// the working folder; `sets` its `--set`); `options` the
 /// JSON of [`autobal_commands::figures_api::Options`] (`x`, `y` as `KEY=LO:HI:N`, `omega`,
 /// `boundary`).
 #[pyfunction]
