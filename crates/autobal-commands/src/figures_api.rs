@@ -3,8 +3,9 @@
 //! descriptions the CLI writes as SVG/PNG and the report embeds as Plotly JSON, computed as the
 //! CLI computes them (same routes, same defaults), returned as [`Plot::to_plotly`](crate::plot::Plot::to_plotly)'s JSON.
 //!
-//! - `stability`: `stability_margin` (paper 000's 12-state model, or the general route where
-//!   the CLI takes it: [`crate::general::needs_general_route`]);
+//! - `stability`: `stability_margin` (paper 000's 12-state model, the general route where
+//!   the CLI takes it: [`crate::general::needs_general_route`], or a linear rotor config's
+//!   margin over speed: [`crate::linear_rotor::margin_plot`]);
 //! - `campbell`: `campbell_modes` (fixed axes, one curve per mode: what `--svg` draws by
 //!   default), `campbell_fixed`, `campbell_rotating` (`--view components`);
 //! - `map`: `stability_map` (the command's figure on either route, with the traced boundary
@@ -109,12 +110,8 @@ pub fn figures(command: &str, root: &Table, source: &str, o: &Options, control: 
                 samples: o.samples,
                 route: route(o)?,
             };
-            let out = args.run(control)?;
-            let figs = out.figures()?;
-            if figs.is_empty() {
-                bail!("stability: no figure yet for a linear rotor config");
-            }
-            Ok(figs)
+            // every route draws its `stability_margin`, a linear rotor config's included
+            args.run(control)?.figures()
         }
         "campbell" => {
             let args = crate::campbell::Args {
@@ -333,6 +330,32 @@ mod tests {
                 assert_eq!(s.points, want);
             }
         }
+    }
+
+    /// A linear rotor config's `stability` figure from Python is the CLI's (`autobal stability
+    /// --config FILE --svg`): the same description as the command run on the file, and as the
+    /// margin plot of the linear rotor's stability computed here from the config (the same
+    /// functions, so equal to the last bit). The config's matrix files lie beside it, in another
+    /// folder than the working one: the tables are read with the file's folder.
+    #[test]
+    fn linear_rotor_stability_figure_is_the_clis() {
+        let d = std::env::temp_dir().join(format!("autobal-figures-linear-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&d);
+        crate::linear_rotor::export_model(&crate::linear_rotor::preset().unwrap(), &d, "rotor").unwrap();
+        let file = d.join("rotor.toml");
+        let (root, _) = crate::linear_rotor::read_set(Some(&file), &[]).unwrap();
+        let o = Options { samples: Some(40), ..Default::default() };
+        let f = figures("stability", &root, &file.display().to_string(), &o, &Control::none()).unwrap();
+        assert_eq!(f.len(), 1);
+        assert_eq!(f[0].id, "stability_margin");
+        let args = crate::stability::Args { config: ConfigSource::file(Some(&file), &[]), samples: Some(40), ..Default::default() };
+        let cli = args.run(&Control::none()).unwrap().figures().unwrap();
+        assert_eq!(f[0].plot.to_plotly(), cli[0].plot.to_plotly());
+        let cfg = crate::linear_rotor::load(&file, &[]).unwrap();
+        let w = crate::linear_rotor::default_omega_max(&cfg).unwrap();
+        let (r, _) = crate::linear_rotor::stability(&cfg, w, 40).unwrap();
+        assert_eq!(f[0].plot.to_plotly(), crate::linear_rotor::margin_plot(&r, w).to_plotly());
+        let _ = std::fs::remove_dir_all(&d);
     }
 
     #[test]

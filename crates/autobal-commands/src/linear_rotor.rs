@@ -275,13 +275,13 @@ pub fn spec(root: &Table, dir: &Path) -> autobal::Result<LinearRotorSpec> {
 }
 
 /// `map` on a linear rotor config: the library's [`autobal::rotor_map::linear_map_traced`] over
-/// its parameter paths or the speed (rad/s), the matrix files read relative to `config`'s
-/// folder; `on_row` as [`autobal::rotor_map::general_map_traced`]'s (`crate::map::run_general`
+/// its parameter paths or the speed (rad/s), the matrix files read relative to `dir` (the
+/// config's folder, [`crate::command::ConfigSource::dir`]); `on_row` as [`autobal::rotor_map::general_map_traced`]'s (`crate::map::run_general`
 /// writes the rows, the figures and the bisected boundary as for any config).
 #[allow(clippy::too_many_arguments, clippy::type_complexity)]
 pub fn map_traced(
     root: &Table,
-    config: Option<&Path>,
+    dir: &Path,
     x: &autobal::spatial::map::Axis,
     y: &autobal::spatial::map::Axis,
     speed: Option<autobal::units::Speed>,
@@ -289,7 +289,7 @@ pub fn map_traced(
     control: &autobal::control::Control,
     on_row: &mut dyn FnMut(usize, &[autobal::rotor_map::GeneralCell], &[autobal::rotor_map::BoundaryPoint]) -> bool,
 ) -> autobal::Result<autobal::rotor_map::GeneralMapOutcome> {
-    let base = spec(root, config.and_then(Path::parent).unwrap_or(Path::new(".")))?;
+    let base = spec(root, dir)?;
     autobal::rotor_map::linear_map_traced(&base, x, y, speed, trace, control, on_row)
 }
 

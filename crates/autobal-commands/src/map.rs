@@ -718,9 +718,10 @@ fn general(
         control.report(j as u64 + 1, ny as u64);
         true
     };
-    // a linear rotor config ([linear_rotor]): its own paths and rotor (crate::linear_rotor)
+    // a linear rotor config ([linear_rotor]): its own paths and rotor (crate::linear_rotor), its
+    // matrix files read relative to the config's folder (a file's, or the tables' own `dir`)
     let outcome = if linear {
-        crate::linear_rotor::map_traced(root, a.config.path(), x, y, speed, a.boundary, control, &mut on_row)
+        crate::linear_rotor::map_traced(root, a.config.dir(), x, y, speed, a.boundary, control, &mut on_row)
     } else {
         general_map_traced(root, x, y, speed, a.boundary, control, &mut on_row)
     };
@@ -1174,6 +1175,41 @@ mod tests {
         assert_eq!(p.series.iter().any(|s| s.label == "bisected boundary points"), !t.is_empty());
         assert_eq!(out.json().unwrap()["route"], json!("general"));
         assert!(out.boundary_csv().unwrap().starts_with("omega,planar.c_psi,from,to\n"));
+    }
+
+    /// A linear rotor config given as tables (Python's) reads its matrix files relative to the
+    /// tables' folder, not the working folder: tables with the folder of the file they came from
+    /// map exactly (bit for bit: the same matrices, the same computation) as the file itself,
+    /// whatever the working folder (here the crate's, which has no `rotor_*.mtx`); tables whose
+    /// folder is the working folder (a dict's, as documented) do not find the files there.
+    #[test]
+    fn a_linear_configs_matrix_files_are_read_beside_it() {
+        let d = std::env::temp_dir().join(format!("autobal-map-linear-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&d);
+        let preset = crate::linear_rotor::preset().unwrap();
+        let drag = preset.balancers[0].drag;
+        crate::linear_rotor::export_model(&preset, &d, "rotor").unwrap();
+        let file = d.join("rotor.toml");
+        let (root, _) = crate::linear_rotor::read_set(Some(&file), &[]).unwrap();
+        let map = |config: ConfigSource| {
+            let args = Args {
+                config,
+                x: parse_axis("--x", "omega=50:150:3").unwrap(),
+                y: parse_axis("--y", &format!("linear_rotor.drag={}:{}:2", 0.5 * drag, 2.0 * drag)).unwrap(),
+                boundary: true,
+                ..Default::default()
+            };
+            let mut csv = vec![];
+            args.prepare()?.run(&Control::none(), Rows::Csv(&mut csv))?;
+            anyhow::Ok(String::from_utf8(csv).unwrap())
+        };
+        let from_file = map(ConfigSource::file(Some(&file), &[])).unwrap();
+        let beside = map(ConfigSource::Tables { root: root.clone(), source: "dict".into(), dir: d.clone() }).unwrap();
+        assert_eq!(beside, from_file);
+        assert_eq!(from_file.lines().count(), 1 + 3 * 2, "{from_file}");
+        let e = map(ConfigSource::Tables { root, source: "dict".into(), dir: ".".into() }).unwrap_err();
+        assert!(format!("{e:#}").contains("rotor_M.mtx"), "{e:#}");
+        let _ = std::fs::remove_dir_all(&d);
     }
 
     #[test]

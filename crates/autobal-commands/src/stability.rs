@@ -155,8 +155,8 @@ impl command::Output for Output {
             Output::LinearRotor { cfg, r, red, omega_max } => crate::linear_rotor::stability_table(cfg, r, red, *omega_max),
         }
     }
-    /// `stability_margin`: the margin over speed with the stable ranges shaded (none yet for a
-    /// linear rotor config).
+    /// `stability_margin`: the margin over speed with the stable ranges shaded (a linear rotor
+    /// config's: [`crate::linear_rotor::margin_plot`]).
     fn figures(&self) -> Result<Vec<Figure>> {
         Ok(match self {
             Output::Closed { cfg, c, .. } => vec![Figure::new("stability_margin", crate::figures::margin_plot(&cfg.model, c))],

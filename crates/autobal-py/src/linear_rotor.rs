@@ -340,7 +340,6 @@ pub fn linear_rotor_run(
     let v = crate::commands_call(py, move |control| -> anyhow::Result<serde_json::Value> {
         use autobal_commands::command::{Command as _, Output as _};
         let config = LinearSource::read(path, dict, &set)?;
-        let path = config.file.clone();
         let threads = o.count("threads")?;
         let pool = match threads {
             Some(0) => anyhow::bail!("threads: must be at least 1"),
@@ -456,7 +455,7 @@ pub fn linear_rotor_run(
                 let root = config.root.clone();
                 let (mut margin, mut verdict, mut family, mut points) = (vec![], vec![], vec![], vec![]);
                 within(&mut || {
-                    let out = cmd::map_traced(&root, path.as_deref(), &xa, &ya, speed, boundary, control, &mut |_, cells, pts| {
+                    let out = cmd::map_traced(&root, &config.dir, &xa, &ya, speed, boundary, control, &mut |_, cells, pts| {
                         margin.push(cells.iter().map(|c| c.margin).collect::<Vec<_>>());
                         verdict.push(cells.iter().map(|c| c.verdict).collect::<Vec<_>>());
                         family.push(cells.iter().map(|c| c.family_dimension).collect::<Vec<_>>());
@@ -544,9 +543,10 @@ impl PyLinearSpec {
     }
 }
 
-/// The map's figure of a `[linear_rotor]` config file (`stability_map`, what `autobal map
-/// --config PATH --out STEM` draws): JSON `[{"id", "title", "figure"}]`, computed by the CLI's
-/// `map::Args` on the file (its matrix files relative to it, `sets` its `--set`); `options` the
+/// The map's figure of a `[linear_rotor]` config file or dict (`stability_map`, what `autobal
+/// map --config PATH --out STEM` draws): JSON `[{"id", "title", "figure"}]`, computed by the
+/// CLI's `map::Args` on the config's tables (a file's matrix files relative to it, a dict's to
+/// the working folder; `sets` its `--set`); `options` the
 /// JSON of [`autobal_commands::figures_api::Options`] (`x`, `y` as `KEY=LO:HI:N`, `omega`,
 /// `boundary`).
 #[pyfunction]
@@ -570,11 +570,9 @@ pub fn linear_rotor_map_figures(
         let (Some(x), Some(y)) = (&o.x, &o.y) else { anyhow::bail!("x: required, with y (KEY=LO:HI:N, e.g. x='speed=100:2000:40')") };
         let config = LinearSource::read(path, dict, &set)?;
         let args = autobal_commands::map::Args {
-            config: match &config.file {
-                // the file and its --set, as the CLI reads them (the matrix files beside it)
-                Some(p) => autobal_commands::command::ConfigSource::file(Some(p.as_path()), &set),
-                None => config.source(),
-            },
+            // the tables read once, the matrix files relative to the file's folder (a dict's: the
+            // working folder)
+            config: config.source(),
             x: autobal_commands::map::parse_axis("--x", x)?,
             y: autobal_commands::map::parse_axis("--y", y)?,
             omega: o.omega.clone(),

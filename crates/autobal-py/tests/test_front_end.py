@@ -411,6 +411,8 @@ def test_results_plot_and_tabulate():
         autobal.analyse("stability", samples=3).plot()
     with pytest.raises(TypeError, match="TOML file"):
         autobal.report({"dimensionless": {}}, out="never-written")
+    with pytest.raises(TypeError, match="TOML file"):
+        autobal.analyse("report", {"dimensionless": {}}, out="never-written")
 
 
 def test_the_stubs_are_the_module():
@@ -528,4 +530,15 @@ def test_the_stubs_pass_mypy_stubtest():
     `__all__` of the stub against the compiled module."""
     need("mypy")
     out = subprocess.run([sys.executable, "-m", "mypy.stubtest", "autobal._autobal"], capture_output=True, text=True, cwd=os.environ.get("TMPDIR", "/tmp"), timeout=300)
+    assert out.returncode == 0, out.stdout + out.stderr
+
+
+def test_the_package_passes_mypy(tmp_path):
+    """mypy on the package's Python source (``crates/autobal-py/python/autobal``, typed against
+    the stubs ``_autobal.pyi``), with the settings of ``crates/autobal-py/pyproject.toml``
+    (the optional pandas, plotly and dask used untyped): no error."""
+    need("mypy")
+    pkg = Path(__file__).resolve().parents[1]
+    cmd = [sys.executable, "-m", "mypy", "--config-file", str(pkg / "pyproject.toml"), "--cache-dir", str(tmp_path / "mypy-cache"), str(pkg / "python" / "autobal")]
+    out = subprocess.run(cmd, capture_output=True, text=True, cwd=pkg, timeout=300)
     assert out.returncode == 0, out.stdout + out.stderr

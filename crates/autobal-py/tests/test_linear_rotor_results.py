@@ -227,5 +227,11 @@ def test_a_dict_config_reads_its_matrix_files_from_the_working_folder(tmp_path, 
     if pytest.importorskip("plotly"):
         assert m.figures() == mf.figures()
     monkeypatch.chdir(tmp_path)
+    # a file's matrix files are read beside it from any working folder: the map's cells and
+    # figure (the commands' map on the file's tables with the file's folder) as from its own
+    mr = autobal.analyse("map", os.path.relpath(cfg), x="speed=300:1500:3", y="linear_rotor.ball_mass=0.02:0.03:2")
+    np.testing.assert_array_equal(mr.result["margin"], mf.result["margin"])
+    assert mr.figures() == mf.figures()
+    monkeypatch.chdir(tmp_path)
     with pytest.raises(autobal.AutobalError, match=r"linear_rotor\.m: .*shaft_M\.mtx"):
         autobal.run("stability", tables, omega_max="2500 rad/s", samples=20)

@@ -37,7 +37,7 @@ import numpy as np
 from . import _autobal
 from .errors import AutobalError, Interrupted, InvalidParameter, NoConvergence, SimulationError, TooLarge
 from ._sweep import _axes, columns, simulate_batch, sweep, grid
-from ._results import COMMANDS, COMMANDS_WITH_FIGURES, Report, Result, report
+from ._results import COMMANDS, COMMANDS_WITH_FIGURES, Report, Result, _report_path, report
 from ._ross import from_ross
 from . import _linear_config
 from ._autobal import LinearRotor
@@ -152,7 +152,7 @@ class _Config:
         self._cfg = self._make(text, table, source, _sets(keys, set, self._FLAT))
 
     @staticmethod
-    def _make(text: Optional[str], table: Optional[dict], source: str, sets: List[Tuple[str, Any]]) -> Any:
+    def _make(text: Optional[str], dict: Optional[Mapping[str, Any]], source: str, sets: Sequence[Tuple[str, Any]]) -> Any:
         raise NotImplementedError
 
     @classmethod
@@ -318,7 +318,8 @@ class SpatialModel(_Config):
         ((4, 5), True)
         """
         (xp, xv), (yp, yv) = _axes([x, y])
-        out = _autobal.stability_map(self._cfg, (xp, xv), (yp, yv), omega, balls, quantity, threads)
+        # the arrays, and the axes' paths
+        out: Dict[str, Any] = _autobal.stability_map(self._cfg, (xp, xv), (yp, yv), omega, balls, quantity, threads)
         out["x_path"], out["y_path"] = xp, yp
         return out
 
@@ -555,7 +556,8 @@ def analyse(command: str, config: ConfigLike = None, set: Optional[Mapping[str, 
         lin, extra = _linear_config.run_with_extra(command, config, set, **options)
         return LinearConfigResult(command, lin, config, set, options, extra)
     if command == "report":
-        return report(config, options.pop("out", "autobal-report"), set=set, **options)
+        # a dict of tables is refused there (TypeError), as by report itself
+        return report(_report_path(config), options.pop("out", "autobal-report"), set=set, **options)
     if command == "simulate":
         _no_more(command, {k: v for k, v in options.items() if k != "dt"})
         text, table, source = _read(config, _autobal.DEFAULT_PLANAR, PlanarProblem._DEFAULT_NAME)

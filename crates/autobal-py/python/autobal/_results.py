@@ -213,8 +213,9 @@ class Result:
             # the ball angles of a planar or spatial run are one array (a linear rotor's are
             # columns psi_0 ... already)
             psi = self.arrays.get("psi")
-            for j in range(0 if psi is None else psi.shape[1]):
-                data[f"psi_{j + 1}"] = psi[:, j]
+            if psi is not None:
+                for j in range(psi.shape[1]):
+                    data[f"psi_{j + 1}"] = psi[:, j]
             return pd.DataFrame(data)
         if c in ("sweep", "merge"):
             return pd.json_normalize(r["runs"])
@@ -292,11 +293,16 @@ def report(
     reproductions with ``papers=True`` or without a config. ``set``: ``{"table.key": value}``,
     the CLI's ``--set``; ``quick``: shorter runs in time. Ctrl-C stops it (the page is still
     written, marked incomplete, and :class:`KeyboardInterrupt` is raised)."""
+    sets = [f"{k}={_toml_value(v)}" for k, v in (set or {}).items()]
+    return Report(_autobal.report(_report_path(config), sets, os.fspath(out), quick, papers))
+
+
+def _report_path(config: Any) -> Optional[str]:
+    """The report's config file, as the CLI's ``--config`` (``None``: the papers' or the
+    default); a dict of tables is refused (:class:`TypeError`)."""
     if isinstance(config, Mapping):
         raise TypeError("config: the report reads a TOML file, as the CLI's --config (a dict of tables: write it to a file first)")
-    sets = [f"{k}={_toml_value(v)}" for k, v in (set or {}).items()]
-    path = None if config is None else os.fspath(config)
-    return Report(_autobal.report(path, sets, os.fspath(out), quick, papers))
+    return None if config is None else os.fspath(config)
 
 
 def _toml_value(v: Any) -> str:

@@ -21,7 +21,7 @@ two nodes, or with tilt terms).
 
 from __future__ import annotations
 
-from typing import Any, Iterable, Mapping, Optional, Sequence
+from typing import Any, Iterable, Mapping, Optional, Sequence, Set
 
 import numpy as np
 
@@ -108,12 +108,12 @@ def from_ross(
     idx = [k * per + j for k in range(n_nodes) for j in lat]
     sel = np.ix_(idx, idx)
     if speeds is None:
-        table = set()
+        tabulated: Set[float] = set()
         for b in getattr(rotor, "bearing_elements", []):
             f = getattr(b, "frequency", None)
             if f is not None and np.size(f) > 1:
-                table.update(float(v) for v in np.atleast_1d(f))
-        speeds = sorted(table) or [0.0]
+                tabulated.update(float(v) for v in np.atleast_1d(f))
+        speeds = sorted(tabulated) or [0.0]
     speeds = [float(w) for w in speeds]
     k0 = np.asarray(rotor.K(speeds[0]), dtype=float)[sel]
     c0 = np.asarray(rotor.C(speeds[0]), dtype=float)[sel]

@@ -38,7 +38,11 @@ class _LinearProblem:
         return str(self._cfg.toml)
 
 
-def _problem(problem: Any) -> Any:
+# a problem with a linear rotor config's path read (:func:`_problem`)
+_Resolved = Union["PlanarProblem", "SpatialModel", _LinearProblem]
+
+
+def _problem(problem: Union[Problem, _LinearProblem]) -> _Resolved:
     """``problem``, or the path of a ``[linear_rotor]`` config file as its :class:`_LinearProblem`."""
     if isinstance(problem, (str, os.PathLike)):
         from . import _linear_config
@@ -96,7 +100,11 @@ def columns(problem: Problem) -> List[str]:
     with ``omega_at_peak``, ``t_at_peak``, ``peak_any_node`` with ``omega_at_peak_any_node``,
     ``final_amplitude`` (m), ``completed``, ``t_reached``, ``steps``: the CLI's sweep
     columns)."""
-    kind = _kind(_problem(problem))
+    return _columns(_kind(_problem(problem)))
+
+
+def _columns(kind: str) -> List[str]:
+    """:func:`columns` of a problem of ``kind`` (:func:`_kind`)."""
     if kind == "linear":
         return list(_autobal.LINEAR_SUMMARY_COLUMNS)
     return list(_autobal.SPATIAL_SUMMARY_COLUMNS if kind == "spatial" else _autobal.SUMMARY_COLUMNS)
@@ -116,18 +124,19 @@ def simulate_batch(problem: Problem, paths: Sequence[str], params: Any, threads:
     path of a ``[linear_rotor]`` config) the paths are its parameter paths
     (``linear_rotor.ball_mass``, ``linear_rotor.balancer[0].drag``, ``drive.b``, ...), and a
     row is ``autobal sweep``'s run of that point."""
-    problem = _problem(problem)
+    resolved = _problem(problem)
     p = np.require(np.asarray(params, dtype=float), requirements=["C", "A"])
     if p.ndim == 1 and len(paths) == 1:
         p = p.reshape(-1, 1)
     if p.ndim != 2:
         raise InvalidParameter(f"params: expected a 2-D array (points × {len(paths)} paths), got shape {p.shape}")
-    return _autobal.simulate_batch(problem._cfg, list(paths), p, threads)
+    return _autobal.simulate_batch(resolved._cfg, list(paths), p, threads)
 
 
 def _run_chunk(kind: str, problem_toml: Any, paths: List[str], params: np.ndarray, threads: Optional[int]) -> np.ndarray:
     """One chunk on a worker: the problem (``kind``: planar, spatial or linear) from its TOML
     (a linear rotor's: ``(toml, {file name: bytes})``), then a batch."""
+    cfg: Union[_autobal.LinearSpec, _autobal.PlanarConfig, _autobal.SpatialConfig]
     if kind == "linear":
         text, files = problem_toml
         cfg = _autobal.LinearSpec.from_parts(text, files)
@@ -246,9 +255,9 @@ def sweep(
 
     The results are the same bits whatever the client, workers, chunks or threads.
     """
-    problem = _problem(problem)
-    kind = _kind(problem)
-    names = columns(problem)
+    resolved = _problem(problem)
+    kind = _kind(resolved)
+    names = _columns(kind)
     ax = _axes(axes)
     paths = [p for p, _ in ax]
     points = _autobal.grid_points(ax)
@@ -259,7 +268,7 @@ def sweep(
     if chunk_size < 1:
         raise InvalidParameter(f"chunk_size: must be at least 1, got {chunk_size}")
     chunks = [(i, i * chunk_size, min(n, (i + 1) * chunk_size)) for i in range(-(-n // chunk_size))]
-    toml = problem.toml
+    toml = resolved.toml
     parts: Optional[_Parts] = None
     table_path: Optional[Path] = None
     if out is not None:
@@ -269,7 +278,7 @@ def sweep(
         manifest = {"problem": toml, "axes": ax, "chunk_size": chunk_size, "columns": names}
         if kind == "linear":
             # the matrix files are part of the problem
-            manifest["files"] = {k: hashlib.sha256(v).hexdigest() for k, v in sorted(problem._cfg.files().items())}
+            manifest["files"] = {k: hashlib.sha256(v).hexdigest() for k, v in sorted(resolved._cfg.files().items())}
         parts = _Parts(table_path.with_suffix(".parts"), manifest, resume)
     results: Dict[int, np.ndarray] = {}
     todo = []
@@ -279,10 +288,10 @@ def sweep(
         else:
             todo.append((i, lo, hi))
     # every point is checked before anything runs (errors name the path and the point)
-    _autobal.check_batch(problem._cfg, paths, points)
+    _autobal.check_batch(resolved._cfg, paths, points)
     if client is None:
         for i, lo, hi in todo:
-            r = _autobal.simulate_batch(problem._cfg, paths, points[lo:hi], threads)
+            r = _autobal.simulate_batch(resolved._cfg, paths, points[lo:hi], threads)
             results[i] = r
             if parts is not None:
                 parts.save(i, r)
@@ -293,7 +302,7 @@ def sweep(
         # interrupted call cancelled (the scheduler may still be forgetting it, and would
         # cancel the new one too; `id(points)` had been reused by the next call)
         run = uuid.uuid4().hex
-        payload: Any = (toml, dict(problem._cfg.files())) if kind == "linear" else toml
+        payload: Any = (toml, dict(resolved._cfg.files())) if kind == "linear" else toml
         futures = {
             client.submit(_run_chunk, kind, payload, paths, points[lo:hi], threads or 1, pure=False, key=f"autobal-sweep-{run}-{i}"): i
             for i, lo, hi in todo
