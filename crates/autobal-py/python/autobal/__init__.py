@@ -534,7 +534,8 @@ def analyse(command: str, config: ConfigLike = None, set: Optional[Mapping[str, 
     """Run a CLI command as :func:`run` does and return its :class:`Result`: ``.result`` is what
     :func:`run` returns (``autobal COMMAND --format json``), ``.plot(name=None)`` its figures as
     Plotly figures (those the CLI writes and the report draws, from the same description;
-    ``stability``, ``campbell``, ``map`` with text axes, ``simulate``), ``.to_pandas()`` its
+    ``stability``, ``campbell``, ``map`` with text axes, ``simulate``, ``sweep``, ``basins``),
+    ``.to_pandas()`` its
     table, and Jupyter shows a summary table and the main figure. Options as for :func:`run`;
     ``campbell`` also takes ``harmonics`` (its figures' excitation lines), ``map``
     ``boundary=True`` (the traced boundary on its figure, as the CLI's ``--boundary``). ``analyse("report",
@@ -542,8 +543,8 @@ def analyse(command: str, config: ConfigLike = None, set: Optional[Mapping[str, 
     out=...)`` is :func:`merge`, ``analyse("export-model", config, out=..., stem=...)``
     :func:`export_model`.
 
-    The figures are computed on the first ``.plot()`` (for ``simulate`` the run is repeated:
-    its samples are not kept in Rust between the calls).
+    The figures are computed on the first ``.plot()`` (for ``simulate``, ``sweep`` and
+    ``basins`` the runs are repeated: they are not kept in Rust between the calls).
 
     >>> r = analyse("critical", set={"dimensionless.delta_a": 0.1})
     >>> r.result == run("critical", set={"dimensionless.delta_a": 0.1}), len(r.to_pandas())
