@@ -11,8 +11,10 @@ use autobal::linear_rotor::{BalancerPlane, Frame, Layout, LinearRotor, LinearRot
 use autobal::ode::{Control, Method, Options, Solver, System};
 use autobal::rotor_stability::Rotor;
 use autobal::spatial::dynamics::{BallPlane, PointMass, RigidRotor, SpatialField, SpatialRotor, Support};
-use num_complex::Complex64;
 use std::f64::consts::PI;
+
+mod common;
+use common::{all_eigenvalues, match_distance, per_revolution};
 
 /// The spatial rotor with its tilt locked on one support: mass `M_r` plus an unbalance mass
 /// `m_u` at radius `ρ`, supports `k_x, k_y`, damping `c`, two balls `m_b` on a race of radius
@@ -55,33 +57,6 @@ fn linear(s: &SpatialRotor) -> LinearRotor {
     r
 }
 
-/// Every eigenvalue (or multiplier), the structural ones included.
-fn all(st: &Stability) -> Vec<Complex64> {
-    st.spectrum.iter().chain(&st.structural).map(|e| e.complex()).collect()
-}
-
-/// The multipliers over one revolution `T = 2π/Ω`: `exp(λ T)` of an equilibrium's eigenvalues,
-/// `μ^(T/τ)` of an orbit of period `τ` (`π/Ω` for the linear rotor's unequal supports).
-fn per_revolution(st: &Stability, t: f64) -> Vec<Complex64> {
-    match st.period {
-        None => all(st).iter().map(|l| (l * t).exp()).collect(),
-        Some(p) => all(st).iter().map(|m| m.powi((t / p).round() as i32)).collect(),
-    }
-}
-
-/// Largest distance from each of `a` to its nearest unused member of `b` (greedy matching).
-fn distance(a: &[Complex64], b: &[Complex64]) -> f64 {
-    assert_eq!(a.len(), b.len());
-    let mut used = vec![false; b.len()];
-    let mut worst = 0.0f64;
-    for x in a {
-        let (j, d) = b.iter().enumerate().filter(|(j, _)| !used[*j]).map(|(j, y)| (j, (x - y).norm())).min_by(|p, q| p.1.total_cmp(&q.1)).unwrap();
-        used[j] = true;
-        worst = worst.max(d);
-    }
-    worst
-}
-
 /// The balanced state (equilibrium or periodic orbit) of `f` from `guess`, and its stability.
 fn analyse<F: VectorField>(f: &F, guess: &[f64]) -> (Vec<f64>, Stability) {
     let s = stationary(f, guess, &NewtonOptions::default()).unwrap_or_else(|e| panic!("{e}"));
@@ -121,9 +96,9 @@ fn gravity_orbit_and_multipliers_equal_the_spatial_models() {
         let (_, sl0) = analyse(&fl0, &fl0.balanced_guess().unwrap());
         let t = 2.0 * PI / w;
         let (d0, tol0) = if ss0.kind == Kind::Equilibrium {
-            (distance(&all(&ss0), &all(&sl0)), 1e-10 * sl0.rate)
+            (match_distance(&all_eigenvalues(&ss0), &all_eigenvalues(&sl0)), 1e-10 * sl0.rate)
         } else {
-            (distance(&per_revolution(&ss0, t), &per_revolution(&sl0, t)), 1e-8)
+            (match_distance(&per_revolution(&ss0, t), &per_revolution(&sl0, t)), 1e-8)
         };
         assert!(d0 <= tol0, "k {k:?} Ω {w}, no gravity: spectra differ by {d0:e}");
         // with gravity: periodic orbits of one revolution; the spatial model's shooting starts
@@ -137,7 +112,7 @@ fn gravity_orbit_and_multipliers_equal_the_spatial_models() {
         for i in 0..xl.len() {
             assert!((xs[i] - xl[i]).abs() <= 1e-8 * sc[i], "k {k:?} Ω {w}: {} {} (spatial) vs {} (linear)", fl.component_name(i), xs[i], xl[i]);
         }
-        let d = distance(&all(&ss), &all(&sl));
+        let d = match_distance(&all_eigenvalues(&ss), &all_eigenvalues(&sl));
         eprintln!(
             "k {k:?} g {g:?} Ω {w}: multipliers agree to {d:.2e}; verdicts {:?} {:?}, abscissae {:.6e} {:.6e}",
             ss.verdict, sl.verdict, ss.abscissa, sl.abscissa
@@ -146,7 +121,7 @@ fn gravity_orbit_and_multipliers_equal_the_spatial_models() {
         assert_eq!(ss.verdict, sl.verdict);
         // gravity matters at this tolerance: the multipliers without it (over the same period:
         // exp(λ T), or the π/Ω orbit's squared) are far from those with it
-        let moved = distance(&per_revolution(&sl0, t), &all(&sl));
+        let moved = match_distance(&per_revolution(&sl0, t), &all_eigenvalues(&sl));
         eprintln!("  gravity moves the multipliers by {moved:.2e}");
         assert!(moved > 1e-6, "k {k:?} Ω {w}: gravity moved the multipliers by only {moved:e}");
     }
@@ -314,12 +289,12 @@ fn tilting_preset_under_gravity_against_the_spatial_model() {
         let (xs, ss) = analyse(&fs, &xl);
         let sc = fl.scales();
         let dx = (0..xl.len()).map(|i| (xs[i] - xl[i]).abs() / sc[i]).fold(0.0, f64::max);
-        let d = distance(&all(&ss), &all(&sl));
+        let d = match_distance(&all_eigenvalues(&ss), &all_eigenvalues(&sl));
         let mut nograv = sp.clone();
         nograv.gravity = [0.0; 3];
         let fl0 = LinearRotorField::new(&LinearRotor::from_spatial(&nograv).unwrap(), w, Frame::Rotating).unwrap();
         let (_, sl0) = analyse(&fl0, &fl0.balanced_guess().unwrap());
-        let moved = distance(&per_revolution(&sl0, 2.0 * PI / w), &all(&sl));
+        let moved = match_distance(&per_revolution(&sl0, 2.0 * PI / w), &all_eigenvalues(&sl));
         let sag = fl.sag().unwrap();
         eprintln!("k {k:?} Ω {w}: orbit differs by {dx:.2e} of the scales, multipliers by {d:.2e}; gravity moves them by {moved:.2e}; sag {sag:?}");
         assert_eq!(ss.kind, Kind::PeriodicOrbit);

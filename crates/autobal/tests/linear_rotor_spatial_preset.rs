@@ -9,11 +9,14 @@
 //! inertia has its own check against a closed form (a rigid rotor with unequal equatorial
 //! moments, whose tilt eigenvalues solve a biquadratic) and against its fixed-axes form.
 
-use autobal::analysis::{stability, stationary, Kind, NewtonOptions, Stability, VectorField};
+use autobal::analysis::{stability, stationary, Kind, NewtonOptions, VectorField};
 use autobal::linear_rotor::{Frame, Layout, LinearRotor, LinearRotorField};
 use autobal::spatial::dynamics::{BallPlane, PointMass, RigidRotor, SpatialField, SpatialRotor, Support};
 use num_complex::Complex64;
 use std::f64::consts::PI;
+
+mod common;
+use common::{all_eigenvalues, match_distance, per_revolution};
 
 /// A rigid rotor (`M_r = 10` kg, `A_r = 0.5`, `C_r = 0.2` kg m², so two tilt critical speeds) on
 /// two supports at `−0.3` and `0.4` m (stiffness `k` and `1.2 k` per direction, damping 20 and
@@ -48,33 +51,6 @@ fn rotor(k: [f64; 2], planes: usize, da: bool, balls: usize) -> SpatialRotor {
         spin_drag: 0.0,
         lock_tilt: false,
     }
-}
-
-/// Every eigenvalue (or multiplier), the structural ones included.
-fn all(st: &Stability) -> Vec<Complex64> {
-    st.spectrum.iter().chain(&st.structural).map(|e| e.complex()).collect()
-}
-
-/// The multipliers over one revolution `T = 2π/Ω` (`μ^(T/τ)` of an orbit of period `τ`: the
-/// native model's unequal supports have `2π/Ω`, the linear rotor's `π/Ω`).
-fn per_revolution(st: &Stability, t: f64) -> Vec<Complex64> {
-    match st.period {
-        None => all(st).iter().map(|l| (l * t).exp()).collect(),
-        Some(p) => all(st).iter().map(|m| m.powi((t / p).round() as i32)).collect(),
-    }
-}
-
-/// Largest distance from each of `a` to its nearest unused member of `b` (greedy matching).
-fn distance(a: &[Complex64], b: &[Complex64]) -> f64 {
-    assert_eq!(a.len(), b.len());
-    let mut used = vec![false; b.len()];
-    let mut worst = 0.0f64;
-    for x in a {
-        let (j, d) = b.iter().enumerate().filter(|(j, _)| !used[*j]).map(|(j, y)| (j, (x - y).norm())).min_by(|p, q| p.1.total_cmp(&q.1)).unwrap();
-        used[j] = true;
-        worst = worst.max(d);
-    }
-    worst
 }
 
 /// Deterministic numbers in [−1, 1) (xorshift).
@@ -204,9 +180,9 @@ fn balanced_states_jacobians_and_eigenvalues_equal_the_native_models() {
         let t = 2.0 * PI / w;
         let (d, tol) = if sts.kind == Kind::Equilibrium {
             assert_eq!(stl.kind, Kind::Equilibrium);
-            (distance(&all(&sts), &all(&stl)), 1e-10 * stl.rate)
+            (match_distance(&all_eigenvalues(&sts), &all_eigenvalues(&stl)), 1e-10 * stl.rate)
         } else {
-            (distance(&per_revolution(&sts, t), &per_revolution(&stl, t)), 1e-8)
+            (match_distance(&per_revolution(&sts, t), &per_revolution(&stl, t)), 1e-8)
         };
         eprintln!(
             "Ω {w}, {} planes, k_y/k_x {}: {:?}, spectra differ by {d:.2e} (tolerance {tol:.1e}), verdicts {:?} {:?}",
@@ -312,7 +288,7 @@ fn rotor_fixed_inertia_gives_the_closed_form_tilt_eigenvalues() {
         }
         let got: Vec<Complex64> = ev.iter().map(|e| Complex64::new(e.re, e.im)).collect();
         let scale = want.iter().map(|z| z.norm()).fold(0.0, f64::max);
-        let d = distance(&got, &want);
+        let d = match_distance(&got, &want);
         eprintln!("Ω {w}: tilt eigenvalues {got:?}, closed form differs by {d:.2e}");
         assert!(d <= 1e-12 * scale, "Ω {w}: {got:?} vs {want:?}");
         let unstable = got.iter().any(|z| z.re > 1e-9 * scale);

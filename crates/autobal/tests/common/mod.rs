@@ -125,6 +125,21 @@ pub fn match_distance(a: &[num_complex::Complex64], b: &[num_complex::Complex64]
     worst
 }
 
+/// Every eigenvalue (or Floquet multiplier) of `st`, the structural ones included.
+pub fn all_eigenvalues(st: &autobal::analysis::Stability) -> Vec<num_complex::Complex64> {
+    st.spectrum.iter().chain(&st.structural).map(|e| e.complex()).collect()
+}
+
+/// The multipliers over one revolution `T = 2π/Ω`: `exp(λ T)` of an equilibrium's eigenvalues,
+/// `μ^(T/τ)` of an orbit of period `τ` (the native spatial model's unequal supports have
+/// `2π/Ω`, the linear rotor's `π/Ω`).
+pub fn per_revolution(st: &autobal::analysis::Stability, t: f64) -> Vec<num_complex::Complex64> {
+    match st.period {
+        None => all_eigenvalues(st).iter().map(|l| (l * t).exp()).collect(),
+        Some(p) => all_eigenvalues(st).iter().map(|m| m.powi((t / p).round() as i32)).collect(),
+    }
+}
+
 /// One case for tests/planar_linearisation.py: the planar rotor `p` at speed `omega` in state `x`.
 pub fn planar_case(p: &PlanarRotor, omega: f64, x: &[f64]) -> serde_json::Value {
     serde_json::json!({
