@@ -18,18 +18,10 @@ import numpy as np
 import pytest
 
 import autobal
+from _cli import binary
 
 ROOT = Path(__file__).resolve().parents[3]
 REQUIRE = bool(os.environ.get("AUTOBAL_REQUIRE_PYTHON"))
-
-
-def binary() -> str:
-    exe = os.environ.get("AUTOBAL_BIN", str(ROOT / "target" / "debug" / "autobal"))
-    if not Path(exe).exists():
-        if REQUIRE:
-            raise FileNotFoundError(f"{exe}: build the CLI first (cargo build -p autobal-cli)")
-        pytest.skip("needs the autobal binary")
-    return exe
 
 
 def need(module: str):

@@ -8,34 +8,18 @@ The CLI comparisons need the `autobal` binary cargo built: $AUTOBAL_BIN, else ta
 from __future__ import annotations
 
 import json
-import os
 import re
-import subprocess
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 import autobal
+from _cli import binary, cli
 
 ROOT = Path(__file__).resolve().parents[3]
 SHAFT = str(ROOT / "examples" / "linear_rotor_shaft.toml")
 SHORT = {"drive.t_end": 0.2}
-
-
-def binary() -> str:
-    exe = os.environ.get("AUTOBAL_BIN", str(ROOT / "target" / "debug" / "autobal"))
-    if not Path(exe).exists():
-        if os.environ.get("AUTOBAL_REQUIRE_PYTHON"):
-            raise FileNotFoundError(f"{exe}: build the CLI first (cargo build -p autobal-cli)")
-        pytest.skip("needs the autobal binary")
-    return exe
-
-
-def cli(*args: str) -> subprocess.CompletedProcess:
-    out = subprocess.run([binary(), *args], capture_output=True, text=True, cwd=os.environ.get("TMPDIR", "/tmp"))
-    assert out.returncode == 0, out.stderr
-    return out
 
 
 def without_walls(d):
