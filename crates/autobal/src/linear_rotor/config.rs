@@ -10,7 +10,10 @@
 //! `gravity = [g_x, g_y]` (m/s², fixed axes; [`super::Gravity`]), `gravity_load` (N, one per
 //! DOF: the weight, where it is not `M r_g`, as export writes it for a reduced rotor); of the elements, `g_s` (the
 //! shear modulus: Timoshenko elements) and `kappa` (their shear coefficient; Cowper's for a
-//! circular section when absent, [`super::shaft::cowper_kappa`]).
+//! circular section when absent, [`super::shaft::cowper_kappa`]); `rotor_fixed_mass` (a matrix
+//! file as `m`, or the array `M_rot` of the `.npz` archive; with matrix files or the shaft
+//! builder): the inertia fixed to the rotor `M_rot`, constant in axes turning with it
+//! ([`LinearRotor::rotor_fixed_mass`]: symmetric, `M + T(φ) M_rot T(φ)ᵀ` positive definite).
 //!
 //! The library reads no files: [`linear_rotor`] takes a loader that returns a named file's text
 //! (the front end resolves the path against the config's folder).
@@ -76,6 +79,7 @@ const KEYS: &[(&str, &[&str])] = &[
             "spin_damping",
             "gravity",
             "gravity_load",
+            "rotor_fixed_mass",
             "elements",
             "disks",
             "bearings",
@@ -219,8 +223,9 @@ fn npz_arrays(path: &str, bytes: &[u8]) -> Result<Vec<(String, NpyArray)>> {
             "C" | "c" => "c",
             "G" | "g" => "g",
             "K" | "k" => "k",
+            "M_rot" | "m_rot" | "rotor_fixed_mass" => "rotor_fixed_mass",
             "dofs" | "DOFS" => "dofs",
-            o => return Err(Error::invalid(field, format!("{path}: array \"{o}\" is not read (M, C, G, K, dofs)"))),
+            o => return Err(Error::invalid(field, format!("{path}: array \"{o}\" is not read (M, C, G, K, M_rot, dofs)"))),
         };
         let a = parse_npy(&data).map_err(|e| Error::invalid(field, format!("{path}: {name}: {e}")))?;
         out.push((key.to_string(), a));
@@ -243,6 +248,25 @@ fn npy_matrix(a: NpyArray, field: &str, what: &str) -> Result<(usize, Vec<f64>)>
         NpyArray::Real { shape, .. } => Err(Error::invalid(field, format!("{what}: has {} dimensions, a matrix has 2", shape.len()))),
         NpyArray::Strings(_) => Err(Error::invalid(field, format!("{what}: is an array of strings, expected numbers"))),
     }
+}
+
+/// A square matrix from the file `path` named by the key `field`: Matrix Market text or a
+/// `.npy` array (`(n, row-major entries)`).
+fn matrix_file(field: &str, path: &str, load: &mut dyn FnMut(&str) -> std::result::Result<Vec<u8>, String>) -> Result<(usize, Vec<f64>)> {
+    if path.ends_with(".npz") {
+        return Err(Error::invalid(field, format!("{path}: an .npz archive holds all the matrices: name it as linear_rotor.matrices")));
+    }
+    let bytes = load(path).map_err(|e| Error::invalid(field, format!("{path}: {e}")))?;
+    if path.ends_with(".npy") {
+        let a = parse_npy(&bytes).map_err(|e| Error::invalid(field, format!("{path}: {e}")))?;
+        return npy_matrix(a, field, path);
+    }
+    let text = String::from_utf8(bytes).map_err(|e| Error::invalid(field, format!("{path}: not UTF-8 text (byte {})", e.utf8_error().valid_up_to())))?;
+    let (rows, cols, a) = parse_matrix_market(&text).map_err(|e| Error::invalid(field, format!("{path}: {e}")))?;
+    if rows != cols {
+        return Err(Error::invalid(field, format!("{path}: is {rows} × {cols}, must be square")));
+    }
+    Ok((rows, a))
 }
 
 /// [`linear_rotor`] with a loader of bytes: matrix files are Matrix Market text, `.npy` arrays
@@ -317,22 +341,7 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
             let Some(path) = string(k)? else {
                 return if required { Err(Error::invalid(format!("linear_rotor.{k}"), "missing (required with matrix files)")) } else { Ok(None) };
             };
-            let field = format!("linear_rotor.{k}");
-            if path.ends_with(".npz") {
-                return Err(Error::invalid(field, format!("{path}: an .npz archive holds all the matrices: name it as linear_rotor.matrices")));
-            }
-            let bytes = load(path).map_err(|e| Error::invalid(&field, format!("{path}: {e}")))?;
-            if path.ends_with(".npy") {
-                let a = parse_npy(&bytes).map_err(|e| Error::invalid(&field, format!("{path}: {e}")))?;
-                return npy_matrix(a, &field, path).map(Some);
-            }
-            let text =
-                String::from_utf8(bytes).map_err(|e| Error::invalid(&field, format!("{path}: not UTF-8 text (byte {})", e.utf8_error().valid_up_to())))?;
-            let (rows, cols, a) = parse_matrix_market(&text).map_err(|e| Error::invalid(&field, format!("{path}: {e}")))?;
-            if rows != cols {
-                return Err(Error::invalid(field, format!("{path}: is {rows} × {cols}, must be square")));
-            }
-            Ok(Some((rows, a)))
+            matrix_file(&format!("linear_rotor.{k}"), path, load).map(Some)
         };
         let (n, m) = read("m", true)?.expect("required");
         if n % layout.per_node() != 0 {
@@ -424,6 +433,25 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
         }
         (r, "shaft")
     };
+    // the inertia fixed to the rotor (LinearRotor::rotor_fixed_mass), with matrix files or the
+    // shaft builder: a file of its own, or the archive's array M_rot
+    let archived = archive.as_mut().and_then(|a| a.iter().position(|(k, _)| k == "rotor_fixed_mass").map(|i| a.remove(i).1));
+    let matrices_path = string("matrices")?.unwrap_or("");
+    let fixed = match (string("rotor_fixed_mass")?, archived) {
+        (Some(_), Some(_)) => {
+            return Err(Error::invalid("linear_rotor.rotor_fixed_mass", format!("{matrices_path} has M_rot too: give it either in the archive or as a file, not both")))
+        }
+        (Some(path), None) => Some(("linear_rotor.rotor_fixed_mass", matrix_file("linear_rotor.rotor_fixed_mass", path, load)?)),
+        (None, Some(a)) => Some(("linear_rotor.matrices", npy_matrix(a, "linear_rotor.matrices", &format!("{matrices_path}: M_rot"))?)),
+        (None, None) => None,
+    };
+    if let Some((field, (nf, a))) = fixed {
+        let n = rotor.dofs();
+        if nf != n {
+            return Err(Error::invalid(field, format!("rotor_fixed_mass is {nf} × {nf}, M is {n} × {n}")));
+        }
+        rotor.rotor_fixed_mass = a;
+    }
     // bearings: constant isotropic ones into K, C; tables over speed kept as speed bearings
     for (i, br) in items(lr, "bearings")?.iter().enumerate() {
         let node = br.req_usize("node")?;
@@ -679,8 +707,9 @@ pub fn write_matrix_market(a: &[f64], n: usize, comment: &str) -> String {
 }
 
 /// The config text and the matrix files (`STEM_M.mtx`, `STEM_C.mtx`, `STEM_G.mtx`,
-/// `STEM_K.mtx`: name and text) of `rotor`: reading them back with [`linear_rotor`] gives the
-/// same rotor.
+/// `STEM_K.mtx`, and `STEM_M_rot.mtx` where the rotor has inertia fixed to it,
+/// [`LinearRotor::rotor_fixed_mass`]: name and text) of `rotor`: reading them back with
+/// [`linear_rotor`] gives the same rotor.
 pub fn export(rotor: &LinearRotor, stem: &str) -> (String, Vec<(String, String)>) {
     let n = rotor.dofs();
     let mut files = vec![];
@@ -695,6 +724,11 @@ pub fn export(rotor: &LinearRotor, stem: &str) -> (String, Vec<(String, String)>
         let name = format!("{stem}_{}.mtx", key.to_uppercase());
         t.push_str(&format!("{key} = \"{name}\"\n"));
         files.push((name, write_matrix_market(a, n, &format!("{what}, {n} DOFs"))));
+    }
+    if !rotor.rotor_fixed_mass.is_empty() {
+        let name = format!("{stem}_M_rot.mtx");
+        t.push_str(&format!("rotor_fixed_mass = \"{name}\"\n"));
+        files.push((name, write_matrix_market(&rotor.rotor_fixed_mass, n, &format!("inertia fixed to the rotor M_rot (kg, kg m², in axes turning with it), {n} DOFs"))));
     }
     let per = rotor.layout.per_node();
     let names: Vec<String> = (0..n).map(|i| format!("\"{}{}\"", ["x", "y", "alpha", "beta"][i % per], i / per)).collect();

@@ -327,7 +327,8 @@ pub struct LinearRotor {
     /// part fixed in space: `M + T(φ) M_rot T(φ)ᵀ` must be positive definite at every `φ`.
     /// Used by the time and stationary analyses of [`LinearRotorField`] and [`runup`];
     /// [`LinearRotor::natural_frequencies`] and [`LinearRotor::ball_mass_matrix`] leave it out
-    /// (their models are fixed in space), and model reduction refuses it.
+    /// (their models are fixed in space); model reduction projects it ([`reduce`]); configs read
+    /// it as `linear_rotor.rotor_fixed_mass` ([`config`]).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub rotor_fixed_mass: Vec<f64>,
 }

@@ -21,6 +21,16 @@
 //! The polar moment, spin drag and real balls carry over unchanged, and gravity's weight is projected
 //! (`Bᵀ load`, its virtual work on `q = B z`).
 //!
+//! **Inertia fixed to the rotor** ([`LinearRotor::rotor_fixed_mass`] `M_rot`, kinetic energy
+//! `½ q̇ᵀ T(φ) M_rot T(φ)ᵀ q̇`). `T(φ) = cos φ I + sin φ J` pair by pair, so `J B = B J_r` gives
+//! `T(φ) B = B T_r(φ)` and the projection `Bᵀ T(φ) M_rot T(φ)ᵀ B = T_r(φ) (Bᵀ M_rot B) T_r(φ)ᵀ`:
+//! the reduced rotor's rotor-fixed inertia is `Bᵀ M_rot B`, exact at every angle, because the
+//! basis is closed under `J` (boundary nodes whole, `Ψ` from the isotropic `K`, modes in pairs
+//! `(φ, J φ)`) whatever the bearings. The modes are those of `M` plus `M_rot`'s mean over a
+//! turn (its part that commutes with `J`, `(M_rot + Jᵀ M_rot J)/2`); the part that turns with
+//! the rotor is only projected. The stated frequencies and their intervals are those of the
+//! rotor fixed in space (`M` alone, as [`LinearRotor::natural_frequencies`]).
+//!
 //! **The error it states.** For each undamped natural frequency `ω̃_k` of the reduced rotor
 //! at rest (symmetric part of `K`, no gyroscopic or damping terms), the Krylov–Weinstein bound:
 //! with `x = B z` the mode in full coordinates (`xᵀ M x = 1`) and `r = K x − ω̃² M x`, the full
@@ -216,9 +226,6 @@ fn project(x: &[f64], b: &[f64], n: usize, r: usize) -> Vec<f64> {
 /// speed-dependent bearing.
 pub fn reduce(rotor: &LinearRotor, mode_pairs: usize, extra_boundary: &[usize]) -> Result<Reduction> {
     rotor.validate()?;
-    if !rotor.rotor_fixed_mass.is_empty() {
-        return Err(Error::invalid("linear_rotor.rotor_fixed_mass", "inertia fixed to the rotor is not reduced: reduce the structure without it"));
-    }
     let n = rotor.dofs();
     let per = rotor.layout.per_node();
     let mut boundary: Vec<usize> = rotor
@@ -237,7 +244,14 @@ pub fn reduce(rotor: &LinearRotor, mode_pairs: usize, extra_boundary: &[usize]) 
     let bd: Vec<usize> = boundary.iter().flat_map(|k| (0..per).map(move |d| k * per + d)).collect();
     let id: Vec<usize> = (0..n).filter(|i| !boundary.contains(&(i / per))).collect();
     let (nb, ni) = (bd.len(), id.len());
-    let ms = iso_sym(&rotor.m, n);
+    // the modes' mass: M plus the rotor-fixed inertia's mean over a turn (its part that
+    // commutes with J; the rest turns with the rotor and is only projected)
+    let ms = if rotor.rotor_fixed_mass.is_empty() {
+        iso_sym(&rotor.m, n)
+    } else {
+        let sum: Vec<f64> = rotor.m.iter().zip(&rotor.rotor_fixed_mass).map(|(a, b)| a + b).collect();
+        iso_sym(&sum, n)
+    };
     let ks = iso_sym(&rotor.k, n);
     let sub = |a: &[f64], r: &[usize], c: &[usize]| -> Vec<f64> { r.iter().flat_map(|&i| c.iter().map(move |&j| a[i * n + j])).collect() };
     // static correction Ψ = −K_ii⁻¹ K_ib (ni × nb)
@@ -393,12 +407,21 @@ fn assemble(rotor: &LinearRotor, boundary: &[usize], bd: &[usize], id: &[usize],
     red.c = project(&rotor.c, &b, n, r);
     red.g = project(&rotor.g, &b, n, r);
     red.k = project(&rotor.k, &b, n, r);
+    if !rotor.rotor_fixed_mass.is_empty() {
+        // J B = B J_r, so Bᵀ T(φ) M_rot T(φ)ᵀ B = T_r(φ) (Bᵀ M_rot B) T_r(φ)ᵀ (module docs)
+        red.rotor_fixed_mass = project(&rotor.rotor_fixed_mass, &b, n, r);
+    }
     // exact symmetry of the projected M and skew-symmetry of G (round-off of the sums)
     for i in 0..r {
         for j in 0..i {
             let v = 0.5 * (red.m[i * r + j] + red.m[j * r + i]);
             red.m[i * r + j] = v;
             red.m[j * r + i] = v;
+            if !red.rotor_fixed_mass.is_empty() {
+                let v = 0.5 * (red.rotor_fixed_mass[i * r + j] + red.rotor_fixed_mass[j * r + i]);
+                red.rotor_fixed_mass[i * r + j] = v;
+                red.rotor_fixed_mass[j * r + i] = v;
+            }
             let g = 0.5 * (red.g[i * r + j] - red.g[j * r + i]);
             red.g[i * r + j] = g;
             red.g[j * r + i] = -g;
