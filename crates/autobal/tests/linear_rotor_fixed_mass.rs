@@ -190,8 +190,13 @@ fn spatial_preset_with_rotor_fixed_inertia_round_trips_through_export() {
         bytes.insert("Mrot.npy".into(), npy(&preset.rotor_fixed_mass, n));
         let npy_text = text.replace("rotor_fixed_mass = \"p_M_rot.mtx\"", "rotor_fixed_mass = \"Mrot.npy\"");
         assert_eq!(read(&npy_text, &bytes).unwrap(), preset, "from .npy");
-        let archive =
-            npz(&[("M", npy(&preset.m, n)), ("C", npy(&preset.c, n)), ("G", npy(&preset.g, n)), ("K", npy(&preset.k, n)), ("M_rot", npy(&preset.rotor_fixed_mass, n))]);
+        let archive = npz(&[
+            ("M", npy(&preset.m, n)),
+            ("C", npy(&preset.c, n)),
+            ("G", npy(&preset.g, n)),
+            ("K", npy(&preset.k, n)),
+            ("M_rot", npy(&preset.rotor_fixed_mass, n)),
+        ]);
         bytes.insert("p.npz".into(), archive);
         let npz_text: String = text
             .lines()
@@ -394,4 +399,42 @@ fn reduction_keeps_the_rotor_fixed_inertia() {
     }
     eprintln!("without the rotor-fixed inertia: {effect:.1e} ω1");
     assert!(effect > 100.0 * last, "{effect:e}");
+}
+
+/// Positive definiteness of `M + T(φ) M_rot T(φ)ᵀ` at every angle, decided where `M` does not
+/// commute with the quarter turn (a mass that differs in `x` and `y`, where the spectrum depends
+/// on `φ`). One node `(x, y)`, `M = diag(1, 3)`, `M_rot = q [[cos 2γ, sin 2γ], [sin 2γ, −cos 2γ]]`:
+/// with `ψ = 2φ + 2γ`, `det = m1 m2 − q² + q (m2 − m1) cos ψ` and the `x` pivot `1 + q cos ψ`, so
+/// the matrix is positive definite at every angle iff `3 − q² − 2q > 0`, i.e. `q < 1`. With
+/// `2γ = 20°` and `q = 1.2` it fails only for `cos ψ < −0.65` (`φ` from 55° to 105°), not at
+/// `φ = 0` or 45°: refused, at the first of the sampled angles `πk/8` inside that band
+/// (`φ = 3π/8`, `ψ = 155°`). `q = 0.9` (`det ≥ 0.39`) and `q = 0.999` (`det ≥ 0.004`, decided at
+/// the 64 angles) are accepted; `q = 0.9999` (`det ≥ 0.0004`, positive definite, but the `x`
+/// pivot's margin `1 − q` is below `1 − cos(π/64)`) is refused as undecided.
+#[test]
+fn positive_definiteness_at_every_angle_with_a_direction_dependent_mass() {
+    let rotor = |q: f64| {
+        let mut r = LinearRotor::zeros(1, autobal::linear_rotor::Layout::Translation);
+        r.m = vec![1.0, 0.0, 0.0, 3.0];
+        r.k = vec![1e3, 0.0, 0.0, 1e3];
+        let (s, c) = 20f64.to_radians().sin_cos();
+        r.rotor_fixed_mass = vec![q * c, q * s, q * s, -q * c];
+        r
+    };
+    let e = rotor(1.2).validate().unwrap_err().to_string();
+    assert!(e.starts_with("linear_rotor.rotor_fixed_mass: M + T(φ) M_rot T(φ)ᵀ is not positive definite at φ = 1.1781"), "{e}");
+    assert!(rotor(0.9).validate().is_ok());
+    assert!(rotor(0.999).validate().is_ok());
+    let e = rotor(0.9999).validate().unwrap_err().to_string();
+    assert!(e.starts_with("linear_rotor.rotor_fixed_mass: M + T(φ) M_rot T(φ)ᵀ is within 0.12 % of singular"), "{e}");
+    // the same matrices checked by hand at 3600 angles: the verdicts above are the truth
+    for (q, want) in [(1.2, false), (0.9, true), (0.999, true), (0.9999, true)] {
+        let r = rotor(q);
+        let pd = (0..3600).all(|k| {
+            let t = r.rotor_fixed_in(PI * k as f64 / 3600.0);
+            let (a, b, d) = (r.m[0] + t[0], r.m[1] + t[1], r.m[3] + t[3]);
+            a > 0.0 && a * d - b * b > 0.0
+        });
+        assert_eq!(pd, want, "q {q}");
+    }
 }

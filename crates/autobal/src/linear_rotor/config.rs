@@ -439,7 +439,10 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
     let matrices_path = string("matrices")?.unwrap_or("");
     let fixed = match (string("rotor_fixed_mass")?, archived) {
         (Some(_), Some(_)) => {
-            return Err(Error::invalid("linear_rotor.rotor_fixed_mass", format!("{matrices_path} has M_rot too: give it either in the archive or as a file, not both")))
+            return Err(Error::invalid(
+                "linear_rotor.rotor_fixed_mass",
+                format!("{matrices_path} has M_rot too: give it either in the archive or as a file, not both"),
+            ))
         }
         (Some(path), None) => Some(("linear_rotor.rotor_fixed_mass", matrix_file("linear_rotor.rotor_fixed_mass", path, load)?)),
         (None, Some(a)) => Some(("linear_rotor.matrices", npy_matrix(a, "linear_rotor.matrices", &format!("{matrices_path}: M_rot"))?)),
@@ -728,7 +731,10 @@ pub fn export(rotor: &LinearRotor, stem: &str) -> (String, Vec<(String, String)>
     if !rotor.rotor_fixed_mass.is_empty() {
         let name = format!("{stem}_M_rot.mtx");
         t.push_str(&format!("rotor_fixed_mass = \"{name}\"\n"));
-        files.push((name, write_matrix_market(&rotor.rotor_fixed_mass, n, &format!("inertia fixed to the rotor M_rot (kg, kg m², in axes turning with it), {n} DOFs"))));
+        files.push((
+            name,
+            write_matrix_market(&rotor.rotor_fixed_mass, n, &format!("inertia fixed to the rotor M_rot (kg, kg m², in axes turning with it), {n} DOFs")),
+        ));
     }
     let per = rotor.layout.per_node();
     let names: Vec<String> = (0..n).map(|i| format!("\"{}{}\"", ["x", "y", "alpha", "beta"][i % per], i / per)).collect();
