@@ -263,9 +263,10 @@ enum Command {
     Sweep(SweepFlags),
     /// Merge the outputs of `autobal sweep --shard K/N` into the unsharded sweep's STEM.csv/json
     Merge(MergeFlags),
-    /// Write a linear rotor ([linear_rotor]) as a config plus Matrix Market files (M, C, G, K):
-    /// the config's rotor (reduced if it sets linear_rotor.modes), or without --config paper
-    /// 004's rotor (race centred) as a Jeffcott rotor
+    /// Write a linear rotor ([linear_rotor]) as a config plus Matrix Market files (M, C, G, K,
+    /// M_rot): the config's rotor (reduced if it sets linear_rotor.modes), a spatial config's
+    /// rotor as its linear preset, or without --config paper 004's rotor (race centred) as a
+    /// Jeffcott rotor
     ExportModel {
         #[command(flatten)]
         common: Common,
