@@ -3,8 +3,9 @@
 //! [`autobal::linear_rotor::config::export`]): a linear rotor config's rotor (reduced where it
 //! sets `linear_rotor.modes`, the model the other commands run), a spatial config's rotor of
 //! papers 000/003 as its linear preset ([`LinearRotor::from_spatial`]), or without a config
-//! paper 004's rotor with its race centred as a Jeffcott rotor ([`linear_rotor::preset`]). Every file is checked before any is written, and each is written
-//! under a temporary name and renamed ([`crate::outfile`]).
+//! paper 004's rotor with its race centred as a Jeffcott rotor ([`linear_rotor::preset`]).
+//! Every file is checked before any is written, and each is written under a temporary name and
+//! renamed ([`crate::outfile`]).
 
 use crate::command::{self, ConfigSource};
 use crate::linear_rotor;
