@@ -14,6 +14,7 @@ use autobal::linear_rotor::config::{export, linear_rotor_bytes, write_matrix_mar
 use autobal::linear_rotor::reduce::reduce;
 use autobal::linear_rotor::runup::{simulate, RunSample, RunSettings};
 use autobal::linear_rotor::shaft::{Bearing, Disk, ShaftBuilder};
+use autobal::linear_rotor::spec::LinearRotorSpec;
 use autobal::linear_rotor::{BalancerPlane, Frame, LinearRotor, LinearRotorField, Unbalance};
 use autobal::spatial::dynamics::{BallPlane, PointMass, RigidRotor, SpatialField, SpatialRotor, Support};
 use common::match_distance;
@@ -139,7 +140,8 @@ fn balanced_eigenvalues(r: &LinearRotor, omega: f64, guess: Option<&[f64]>) -> V
 /// read back through a config it is the preset bit for bit, so its balanced state's eigenvalues
 /// and a run of 20 revolutions at constant speed are the preset's exactly (0 difference: the
 /// same numbers through the same code; any key lost or rounded by the files shows here). The
-/// same inertia from a `.npy` file and as the array `M_rot` of an `.npz` archive: the same rotor.
+/// same inertia from a `.npy` file and as the array `M_rot` of an `.npz` archive: the same rotor,
+/// also at a point of a map or sweep ([`LinearRotorSpec`]).
 #[test]
 fn spatial_preset_with_rotor_fixed_inertia_round_trips_through_export() {
     for (k, gravity) in [([1e5, 1e5], [0.0; 3]), ([1e5, 1.3e5], [0.5, -9.81, 0.0])] {
@@ -204,6 +206,11 @@ fn spatial_preset_with_rotor_fixed_inertia_round_trips_through_export() {
             .map(|l| if l == "[linear_rotor]" { "[linear_rotor]\nmatrices = \"p.npz\"\n".to_string() } else { format!("{l}\n") })
             .collect();
         assert_eq!(read(&npz_text, &bytes).unwrap(), preset, "from .npz");
+        // a map's or sweep's point reads the config again from the bytes read once: the
+        // inertia comes with them
+        let spec = LinearRotorSpec::new(npz_text.parse().unwrap(), &mut |p| bytes.get(p).cloned().ok_or_else(|| format!("{p}: missing"))).unwrap();
+        let point = spec.model_at(&[("linear_rotor.ball_mass", 0.03)]).unwrap();
+        assert_eq!((point.rotor_fixed_mass.as_slice(), point.balancers[1].ball_mass), (preset.rotor_fixed_mass.as_slice(), 0.03));
         // the archive's M_rot and a file too: refused
         let both = npz_text.replace("matrices = \"p.npz\"\n", "matrices = \"p.npz\"\nrotor_fixed_mass = \"p_M_rot.mtx\"\n");
         let e = read(&both, &bytes).unwrap_err().to_string();
