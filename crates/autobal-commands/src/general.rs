@@ -101,6 +101,10 @@ fn what_is_analysed(g: &GeneralRotor, r: &RotorStability) -> String {
         (Kind::PeriodicOrbit, Rotor::Planar(_)) => {
             "a periodic orbit of half a revolution (supports that differ by direction: the whirl is elliptic; shooting with the variational equations; Floquet multipliers)"
         }
+        // without gravity across the axis the spatial equations repeat after half a revolution
+        (Kind::PeriodicOrbit, Rotor::Spatial(s)) if s.gravity[0] == 0.0 && s.gravity[1] == 0.0 => {
+            "a periodic orbit of half a revolution (supports that differ by direction turn against the rotor: the whirl is elliptic; shooting with the variational equations; Floquet multipliers over T = π/Ω)"
+        }
         (Kind::PeriodicOrbit, _) => {
             "a periodic orbit of one revolution (supports that differ by direction or gravity turn against the rotor: the rotor sags and the balls swing; shooting with the variational equations; Floquet multipliers)"
         }

@@ -4,17 +4,20 @@
 //!
 //! Cases: `two-plane` (examples/spatial_two_plane.toml, 10 speeds 250-2500 rad/s: a periodic
 //! orbit, Floquet), `two-plane-autonomous` (the same rotor without gravity and with equal
-//! supports: an equilibrium), `planar-anisotropic` and `planar-isotropic` (paper 004's Jeffcott
+//! supports: an equilibrium), `two-plane-no-gravity` (without gravity, the supports as given:
+//! an orbit of half a revolution), `planar-anisotropic` and `planar-isotropic` (paper 004's Jeffcott
 //! rotor, race centred, with `k_x, k_y = (1 ∓ 0.15) k` or equal, 200 speeds up to 3 ω_n),
 //! `washer` (examples/washing_machine.toml by the general route, 200 speeds: a three-ball
 //! family followed over speed).
 use autobal::planar::PlanarRotor;
 use autobal::rotor_stability::{speed_grid, stability_over_speed, Rotor};
 
-fn two_plane(autonomous: bool) -> Rotor {
+fn two_plane(case: &str) -> Rotor {
     let mut root = autobal::config::parse(include_str!("../../../examples/spatial_two_plane.toml"), "two-plane").unwrap();
-    if autonomous {
+    if case != "two-plane" {
         autobal::config::set(&mut root, "spatial.gravity", autobal::config::parse_value("[0.0, 0.0, 0.0]")).unwrap();
+    }
+    if case == "two-plane-autonomous" {
         autobal::config::set_number(&mut root, "supports.stiffness_left_y", 2.0e6).unwrap();
         autobal::config::set_number(&mut root, "supports.stiffness_right_y", 3.0e6).unwrap();
     }
@@ -24,7 +27,7 @@ fn two_plane(autonomous: bool) -> Rotor {
 fn main() {
     let case = std::env::args().nth(1).unwrap_or_else(|| "two-plane".into());
     let (rotor, speeds) = match case.as_str() {
-        "two-plane" | "two-plane-autonomous" => (two_plane(case.ends_with("autonomous")), (1..=10).map(|i| 250.0 * i as f64).collect()),
+        "two-plane" | "two-plane-autonomous" | "two-plane-no-gravity" => (two_plane(&case), (1..=10).map(|i| 250.0 * i as f64).collect()),
         "planar-anisotropic" | "planar-isotropic" => {
             let mut p = PlanarRotor::paper();
             p.s2 = 0.0;

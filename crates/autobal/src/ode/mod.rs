@@ -65,6 +65,7 @@ pub mod dop853;
 pub mod dop853_tableau;
 pub mod dual;
 mod events;
+pub mod lean;
 pub(crate) mod lu;
 pub mod rosenbrock;
 mod solver;

@@ -3,7 +3,8 @@
 //! `φ̇ = Ω`, and the coordinates that do not move (`φ`, `φ̇`, and the tilt when locked)
 //! removed from the state, so that a stationary motion of the rotor in its turning axes is an
 //! equilibrium (isotropic supports, gravity along the axis) or a periodic orbit of the
-//! revolution's period `2π/Ω` (supports that differ by direction, gravity across the axis).
+//! revolution's period `2π/Ω` (gravity across the axis), or of half of it, `π/Ω` (supports that
+//! differ by direction, without gravity across the axis: [`SpatialField`]'s `period`).
 //!
 //! The reduced state is `x = (ξ, η[, δ, θ], ψ_1..N, ξ̇, η̇[, δ̇, θ̇], ψ̇_1..N)` (tilt omitted when
 //! locked); its Jacobian is exact, by forward-mode differentiation of the same code that
@@ -303,13 +304,23 @@ impl VectorField for SpatialField {
         }
     }
 
-    /// `Some(2π/|Ω|)` when a support's stiffness or damping differs between x and y or gravity
-    /// has a component across the spin axis (both turn at `−Ω` in the rotor's axes), else
-    /// `None` (also at `Ω = 0`, where nothing turns).
+    /// `Some(2π/|Ω|)` when gravity has a component across the spin axis (it turns at `−Ω` in
+    /// the rotor's axes: `g(t + π/Ω) = −g(t)`, one revolution to repeat); `Some(π/|Ω|)` when
+    /// only a support's stiffness or damping differs between x and y: the support force in
+    /// turning axes is `R(φ)ᵀ K R(φ) r` with `R(φ + π) = −R(φ)`, so the equations repeat after
+    /// half a revolution (the orbit's multipliers over a revolution are the squares of these);
+    /// else `None` (also at `Ω = 0`, where nothing turns).
     fn period(&self) -> Option<f64> {
         let anisotropic = self.rotor.supports.iter().any(|s| s.stiffness[0] != s.stiffness[1] || s.damping[0] != s.damping[1]);
         let across = self.rotor.gravity[0] != 0.0 || self.rotor.gravity[1] != 0.0;
-        ((anisotropic || across) && self.omega != 0.0).then(|| 2.0 * std::f64::consts::PI / self.omega.abs())
+        if self.omega == 0.0 {
+            return None;
+        }
+        if across {
+            Some(2.0 * std::f64::consts::PI / self.omega.abs())
+        } else {
+            anisotropic.then(|| std::f64::consts::PI / self.omega.abs())
+        }
     }
 
     /// Typical magnitudes for Newton's scaled residual and the shooting's absolute tolerances:
