@@ -1,5 +1,6 @@
 //! `autobal export-model`: a linear rotor written as a config plus Matrix Market files
-//! (`STEM.toml`, `STEM_{M,C,G,K}.mtx`, [`autobal::linear_rotor::config::export`]): the config's
+//! (`STEM.toml`, `STEM_{M,C,G,K}.mtx`, and `STEM_KST.mtx` where the rotor has an
+//! angular-acceleration stiffness, [`autobal::linear_rotor::config::export`]): the config's
 //! rotor (reduced where it sets `linear_rotor.modes`, the model the other commands run), or
 //! without a config paper 004's rotor with its race centred as a Jeffcott rotor
 //! ([`linear_rotor::preset`]). Every file is checked before any is written, and each is written

@@ -66,6 +66,7 @@ const KEYS: &[(&str, &[&str])] = &[
             "c",
             "g",
             "k",
+            "kst",
             "dofs",
             "rotary_inertia",
             "gyroscopic",
@@ -219,8 +220,9 @@ fn npz_arrays(path: &str, bytes: &[u8]) -> Result<Vec<(String, NpyArray)>> {
             "C" | "c" => "c",
             "G" | "g" => "g",
             "K" | "k" => "k",
+            "Kst" | "KST" | "kst" => "kst",
             "dofs" | "DOFS" => "dofs",
-            o => return Err(Error::invalid(field, format!("{path}: array \"{o}\" is not read (M, C, G, K, dofs)"))),
+            o => return Err(Error::invalid(field, format!("{path}: array \"{o}\" is not read (M, C, G, K, Kst, dofs)"))),
         };
         let a = parse_npy(&data).map_err(|e| Error::invalid(field, format!("{path}: {name}: {e}")))?;
         out.push((key.to_string(), a));
@@ -278,7 +280,7 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
     // the .npz archive, read once: its arrays by key
     let mut archive: Option<Vec<(String, NpyArray)>> = None;
     if let Some(path) = string("matrices")? {
-        if let Some(k) = ["m", "c", "g", "k"].iter().find(|k| lr.contains_key(**k)) {
+        if let Some(k) = ["m", "c", "g", "k", "kst"].iter().find(|k| lr.contains_key(**k)) {
             return Err(Error::invalid(format!("linear_rotor.{k}"), "give the matrices either in the archive linear_rotor.matrices or one by one, not both"));
         }
         if !path.ends_with(".npz") {
@@ -341,7 +343,7 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
         let mut r = LinearRotor::zeros(n / layout.per_node(), layout);
         r.m = m;
         r.polar_inertia = top.f64("polar_inertia")?.unwrap_or(0.0);
-        for (k, required) in [("k", true), ("c", false), ("g", false)] {
+        for (k, required) in [("k", true), ("c", false), ("g", false), ("kst", false)] {
             if let Some((nk, a)) = read(k, required)? {
                 if nk != n {
                     return Err(Error::invalid(format!("linear_rotor.{k}"), format!("is {nk} × {nk}, M is {n} × {n}")));
@@ -349,12 +351,17 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
                 match k {
                     "k" => r.k = a,
                     "c" => r.c = a,
+                    // the angular-acceleration stiffness K_st (LinearRotor::spin_stiffness)
+                    "kst" => r.spin_stiffness = a,
                     _ => r.g = a,
                 }
             }
         }
         (r, "matrices")
     } else {
+        if lr.contains_key("kst") {
+            return Err(Error::invalid("linear_rotor.kst", "is read with matrix files (m, k, …); the shaft builder's rotor has K_st = G/2"));
+        }
         if let Some(l) = string("layout")? {
             if l != "x,y,alpha,beta" {
                 return Err(Error::invalid("linear_rotor.layout", "the shaft builder's nodes have x, y, alpha, beta"));
@@ -679,8 +686,8 @@ pub fn write_matrix_market(a: &[f64], n: usize, comment: &str) -> String {
 }
 
 /// The config text and the matrix files (`STEM_M.mtx`, `STEM_C.mtx`, `STEM_G.mtx`,
-/// `STEM_K.mtx`: name and text) of `rotor`: reading them back with [`linear_rotor`] gives the
-/// same rotor.
+/// `STEM_K.mtx`, and `STEM_KST.mtx` where the rotor has a [`LinearRotor::spin_stiffness`]: name
+/// and text) of `rotor`: reading them back with [`linear_rotor`] gives the same rotor.
 pub fn export(rotor: &LinearRotor, stem: &str) -> (String, Vec<(String, String)>) {
     let n = rotor.dofs();
     let mut files = vec![];
@@ -691,7 +698,12 @@ pub fn export(rotor: &LinearRotor, stem: &str) -> (String, Vec<(String, String)>
         ("c", &rotor.c, "damping matrix C"),
         ("g", &rotor.g, "gyroscopic matrix G (multiplied by Ω)"),
         ("k", &rotor.k, "stiffness matrix K"),
+        ("kst", &rotor.spin_stiffness, "angular-acceleration stiffness K_st (multiplied by dΩ/dt)"),
     ] {
+        if a.is_empty() {
+            // no K_st: G/2 (LinearRotor::spin_stiffness)
+            continue;
+        }
         let name = format!("{stem}_{}.mtx", key.to_uppercase());
         t.push_str(&format!("{key} = \"{name}\"\n"));
         files.push((name, write_matrix_market(a, n, &format!("{what}, {n} DOFs"))));

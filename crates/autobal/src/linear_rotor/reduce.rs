@@ -219,6 +219,9 @@ pub fn reduce(rotor: &LinearRotor, mode_pairs: usize, extra_boundary: &[usize]) 
     if !rotor.rotor_fixed_mass.is_empty() {
         return Err(Error::invalid("linear_rotor.rotor_fixed_mass", "inertia fixed to the rotor is not reduced: reduce the structure without it"));
     }
+    if !rotor.spin_chart.is_empty() {
+        return Err(Error::invalid("linear_rotor.spin_chart", "a tilt chart fixed to the rotor is not reduced: reduce the structure without it"));
+    }
     let n = rotor.dofs();
     let per = rotor.layout.per_node();
     let mut boundary: Vec<usize> = rotor
@@ -393,6 +396,10 @@ fn assemble(rotor: &LinearRotor, boundary: &[usize], bd: &[usize], id: &[usize],
     red.c = project(&rotor.c, &b, n, r);
     red.g = project(&rotor.g, &b, n, r);
     red.k = project(&rotor.k, &b, n, r);
+    if !rotor.spin_stiffness.is_empty() {
+        // Bᵀ K_st B: the kinetic energy's ½ φ̇ q̇ᵀ G' q on q = B z (LinearRotor::spin_stiffness)
+        red.spin_stiffness = project(&rotor.spin_stiffness, &b, n, r);
+    }
     // exact symmetry of the projected M and skew-symmetry of G (round-off of the sums)
     for i in 0..r {
         for j in 0..i {
