@@ -121,7 +121,8 @@
 //! Under a torque drive ([`runup`]) the spin angle `φ` is a coordinate: the kinetic energy adds
 //! `½ I_p φ̇²` ([`LinearRotor::polar_inertia`]) and each unbalance's `m e φ̇ e⊥_u·ċ_u`
 //! (`ċ_u` the velocity of its plane's centre), the gyroscopic term is `½ φ̇ q̇ᵀ G q` (which gives
-//! `φ̇ G q̇ + ½ φ̈ G q` in the structure's equations), and the balls' absolute angles are
+//! `φ̇ G q̇ + ½ φ̈ G q` in the structure's equations; another tilt chart adds a symmetric part,
+//! [`LinearRotor::spin_stiffness`] and [`LinearRotor::spin_chart`]), and the balls' absolute angles are
 //! `θ_j = φ + ψ_j`. Lagrange's equation for `φ` in the coordinates `(q, φ, ψ)` is the sum of the
 //! rotor's and of every ball's (`∂/∂φ̇` at fixed `ψ̇` is `∂/∂φ̇ + Σ_j ∂/∂θ̇_j`), the balls'
 //! drag `−c_b ψ̇_j` does no work on it, and:

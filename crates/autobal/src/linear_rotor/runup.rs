@@ -4,8 +4,10 @@
 //!
 //! **Prescribed speed.** With the rotor's angle `φ(t) = ∫ Ω dt` (exact for the drive's
 //! piecewise-linear speed), the equations of [`crate::linear_rotor`] in fixed axes hold with
-//! `Ω(t)` in place of `Ω`, the gyroscopic `Ω(t) G` with `½ Ω̇ G q` (from the kinetic energy's
-//! `½ φ̇ q̇ᵀ G q`), the speed-dependent bearings at `Ω(t)`, and two more terms from the
+//! `Ω(t)` in place of `Ω`, the gyroscopic `Ω(t) G` with `Ω̇ K_st q` (from the kinetic energy's
+//! `½ φ̇ q̇ᵀ G' q`, [`LinearRotor::spin_stiffness`]; `K_st = ½ G` by default; the rotor-fixed
+//! chart's terms of [`LinearRotor::spin_chart`] where there is one), the speed-dependent
+//! bearings at `Ω(t)`, and two more terms from the
 //! acceleration `Ω̇`: the unbalance's inertia force `m e (Ω² − i Ω̇) e^{i(φ + phase)}` and the
 //! balls' absolute angular acceleration `θ̈_j = Ω̇ + ψ̈_j` (`ψ_j` stays the angle relative to the
 //! rotor). State `(q, ψ, q̇, ψ̇)`.
@@ -16,7 +18,8 @@
 //! [`LinearRotor::spin_damping`]. The structure's and balls' equations are those above with
 //! `Ω̇ = φ̈` unknown; they are linear in `φ̈`, with the column `a_φ` of `φ̈` in the mass matrix,
 //! which is also the spin equation's row (the mass matrix of a Lagrangian is symmetric), and
-//! the spin's diagonal `I_p + Σ_j m_b R²`. The accelerations solve the bordered system
+//! the spin's diagonal `I_p + Σ_j m_b R²`, plus the spin's own terms of `K_st` and of the chart
+//! (`q̇ᵀ K_st q̇`, `(I_p + Σ_j m_b R²)(2 ∂s/∂φ φ̈ + …)`: `spin_extra`). The accelerations solve the bordered system
 //! `[[A, a_φ], [a_φᵀ, I_p + Σ m_b R²]] (q̈, ψ̈, φ̈) = (R, R_φ)`.
 //!
 //! **Real balls** ([`LinearRotor::ball_physics`]): the contact and rolling-resistance torques
