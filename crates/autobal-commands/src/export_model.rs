@@ -1,5 +1,6 @@
 //! `autobal export-model`: a linear rotor written as a config plus Matrix Market files
-//! (`STEM.toml`, `STEM_{M,C,G,K}.mtx`, and `STEM_M_rot.mtx` for inertia fixed to the rotor,
+//! (`STEM.toml`, `STEM_{M,C,G,K}.mtx`, `STEM_M_rot.mtx` for inertia fixed to the rotor and
+//! `STEM_KST.mtx` for an angular-acceleration stiffness,
 //! [`autobal::linear_rotor::config::export`]): a linear rotor config's rotor (reduced where it
 //! sets `linear_rotor.modes`, the model the other commands run), a spatial config's rotor of
 //! papers 000/003 as its linear preset ([`LinearRotor::from_spatial`]), or without a config

@@ -208,6 +208,28 @@ impl PyLinearRotor {
         Ok(())
     }
 
+    /// The angular-acceleration stiffness `K_st` of the run-ups' `Ω̇ K_st q` (ROSS's `Ksdt`;
+    /// `N × N` nested lists, empty where none is set: then `G/2`).
+    #[getter]
+    fn spin_stiffness(&self) -> Vec<Vec<f64>> {
+        let n = self.rotor.dofs();
+        self.rotor.spin_stiffness.chunks(n.max(1)).map(<[f64]>::to_vec).collect()
+    }
+
+    #[setter]
+    fn set_spin_stiffness(&mut self, py: Python<'_>, v: PyReadonlyArray2<'_, f64>) -> PyResult<()> {
+        let (nn, a) = square(py, "spin_stiffness", &v)?;
+        let n = self.rotor.dofs();
+        if nn != n {
+            return Err(crate::py_err(py, autobal::Error::invalid("linear_rotor.spin_stiffness", format!("is {nn} × {nn}, m is {n} × {n}"))));
+        }
+        if let Some(i) = a.iter().position(|x| !x.is_finite()) {
+            return Err(crate::py_err(py, autobal::Error::invalid(format!("linear_rotor.spin_stiffness[{},{}]", i / n, i % n), "must be finite")));
+        }
+        self.rotor.spin_stiffness = a;
+        Ok(())
+    }
+
     /// Number of DOFs.
     #[getter]
     fn dofs(&self) -> usize {

@@ -174,6 +174,30 @@ def test_from_ross_takes_the_polar_moment_of_disks_and_shaft():
         autobal.from_ross(Rotor(), polar_inertia=-1.0)
 
 
+def test_from_ross_passes_ross_ksdt_as_its_time_response_uses_it():
+    """``from_ross`` passes ROSS's angular-acceleration stiffness ``rotor.Ksdt()`` (its lateral
+    block) as ``LinearRotor.spin_stiffness``, bit for bit: the ``K_st`` of
+    ``M q'' + (C + Ω G) q' + (K + Ω̇ K_st) q = f``, which ROSS's time response solves
+    (``K1 + K2 * accel``); the run-up's equations with a given ``K_st`` are checked against an
+    independent integration in ``crates/autobal/tests/linear_rotor_spin_stiffness.rs``. ROSS's
+    sign is not a Lagrangian's: a kinetic energy ``½ φ̇ q̇ᵀ G' q`` gives ``K_st − K_stᵀ = G``, and
+    ROSS's disk has ``Kdt − Kdtᵀ = −G`` exactly (its shaft elements' ``Kst`` also leave out the
+    shear terms of their ``G``): recorded here, so that a change in ROSS shows."""
+    rs = ross()
+    rotor = rs.rotor_example()
+    lr = autobal.from_ross(rotor)
+    per = int(rotor.number_dof)
+    lat = (0, 1, 3, 4) if per == 6 else (0, 1, 2, 3)
+    idx = [k * per + j for k in range(lr.dofs // 4) for j in lat]
+    want = np.asarray(rotor.Ksdt(), dtype=float)[np.ix_(idx, idx)]
+    got = np.array(lr.spin_stiffness)
+    assert got.shape == want.shape and np.array_equal(got, want)
+    d = rotor.disk_elements[0]
+    kdt, g = np.asarray(d.Kdt(), dtype=float), np.asarray(d.G(), dtype=float)
+    assert np.max(np.abs(kdt - kdt.T + g)) <= 1e-15 * d.Ip, (kdt, g)
+    assert np.max(np.abs(kdt - kdt.T - g)) >= d.Ip
+
+
 def _linked_rotor(rs, point_masses):
     """ROSS's example shaft on bearings linked to support nodes 7 (and 8), each a point mass on
     a stiff spring to ground: ROSS gives each support node x, y, z only."""

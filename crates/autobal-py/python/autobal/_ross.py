@@ -12,7 +12,14 @@ bearing's node, interpolated linearly between them (ROSS interpolates its tables
 The rotor's polar moment of inertia about its axis (the spin's inertia under a torque drive,
 ``LinearRotor.polar_inertia``) is the disks' ``DiskElement.Ip`` plus the shaft elements'
 ``ρ ∫ J dz``, ``J = π (d_o⁴ − d_i⁴)/32`` along each (tapered) element, by :func:`polar_inertia_of`;
-the gyroscopic matrix is ROSS's ``rotor.G()``, which holds the same moments.
+the gyroscopic matrix is ROSS's ``rotor.G()``, which holds the same moments. The
+angular-acceleration stiffness of run-ups, ``LinearRotor.spin_stiffness`` (``K_st`` in
+``M q'' + (C + Ω G) q' + (K + Ω̇ K_st) q = f``), is ROSS's ``rotor.Ksdt()`` as ROSS's time
+response uses it (``K + Ksdt * dΩ/dt``), so that a run-up under a prescribed speed solves ROSS's
+equations. Note that ROSS's ``Ksdt`` is not the ``K_st`` of a kinetic energy with ROSS's ``G``:
+its disks give ``Ksdt − Ksdtᵀ = −G`` (a Lagrangian ``½ φ̇ q̇ᵀ G' q`` gives ``K_st − K_stᵀ = G``),
+and its shaft elements leave out the shear terms of their ``G``; a torque-driven run-up of such
+a rotor then does not conserve energy exactly (docs/reference/config.md, ``kst``).
 Refused with a ``ValueError`` naming the cause: support (link) nodes of ``n_link`` bearings
 (ROSS's ``PointMass`` nodes carry x, y, z only, autobal's nodes x, y, alpha, beta), and a
 speed-dependent bearing whose change with speed is not on its own node's x, y block (between
@@ -120,6 +127,10 @@ def from_ross(
     g = np.asarray(rotor.G(), dtype=float)[sel]
     out = _autobal.LinearRotor(np.ascontiguousarray(m_full[sel]), np.ascontiguousarray(c0), np.ascontiguousarray(g), np.ascontiguousarray(k0), per_node=4)
     out.polar_inertia = float(polar_inertia_of(rotor) if polar_inertia is None else polar_inertia)
+    ksdt = getattr(rotor, "Ksdt", None)
+    if callable(ksdt):
+        # ROSS's angular-acceleration stiffness, as its time response applies it: K + Ksdt dΩ/dt
+        out.spin_stiffness = np.ascontiguousarray(np.asarray(ksdt(), dtype=float)[sel])
     if len(speeds) > 1:
         ks = [np.asarray(rotor.K(w), dtype=float)[sel] - k0 for w in speeds]
         cs = [np.asarray(rotor.C(w), dtype=float)[sel] - c0 for w in speeds]

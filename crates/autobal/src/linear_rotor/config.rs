@@ -69,6 +69,8 @@ const KEYS: &[(&str, &[&str])] = &[
             "c",
             "g",
             "k",
+            "kst",
+            "spin_chart",
             "dofs",
             "rotary_inertia",
             "gyroscopic",
@@ -224,8 +226,10 @@ fn npz_arrays(path: &str, bytes: &[u8]) -> Result<Vec<(String, NpyArray)>> {
             "G" | "g" => "g",
             "K" | "k" => "k",
             "M_rot" | "m_rot" | "rotor_fixed_mass" => "rotor_fixed_mass",
+            "Kst" | "KST" | "kst" => "kst",
+            "spin_chart" | "Sigma" => "spin_chart",
             "dofs" | "DOFS" => "dofs",
-            o => return Err(Error::invalid(field, format!("{path}: array \"{o}\" is not read (M, C, G, K, M_rot, dofs)"))),
+            o => return Err(Error::invalid(field, format!("{path}: array \"{o}\" is not read (M, C, G, K, M_rot, Kst, spin_chart, dofs)"))),
         };
         let a = parse_npy(&data).map_err(|e| Error::invalid(field, format!("{path}: {name}: {e}")))?;
         out.push((key.to_string(), a));
@@ -302,7 +306,7 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
     // the .npz archive, read once: its arrays by key
     let mut archive: Option<Vec<(String, NpyArray)>> = None;
     if let Some(path) = string("matrices")? {
-        if let Some(k) = ["m", "c", "g", "k"].iter().find(|k| lr.contains_key(**k)) {
+        if let Some(k) = ["m", "c", "g", "k", "kst", "spin_chart"].iter().find(|k| lr.contains_key(**k)) {
             return Err(Error::invalid(format!("linear_rotor.{k}"), "give the matrices either in the archive linear_rotor.matrices or one by one, not both"));
         }
         if !path.ends_with(".npz") {
@@ -350,7 +354,7 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
         let mut r = LinearRotor::zeros(n / layout.per_node(), layout);
         r.m = m;
         r.polar_inertia = top.f64("polar_inertia")?.unwrap_or(0.0);
-        for (k, required) in [("k", true), ("c", false), ("g", false)] {
+        for (k, required) in [("k", true), ("c", false), ("g", false), ("kst", false), ("spin_chart", false)] {
             if let Some((nk, a)) = read(k, required)? {
                 if nk != n {
                     return Err(Error::invalid(format!("linear_rotor.{k}"), format!("is {nk} × {nk}, M is {n} × {n}")));
@@ -358,12 +362,22 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
                 match k {
                     "k" => r.k = a,
                     "c" => r.c = a,
+                    // the angular-acceleration stiffness K_st (LinearRotor::spin_stiffness)
+                    "kst" => r.spin_stiffness = a,
+                    // the tilt chart fixed to the rotor (LinearRotor::spin_chart)
+                    "spin_chart" => r.spin_chart = a,
                     _ => r.g = a,
                 }
             }
         }
         (r, "matrices")
     } else {
+        if lr.contains_key("kst") {
+            return Err(Error::invalid("linear_rotor.kst", "is read with matrix files (m, k, …); the shaft builder's rotor has K_st = G/2"));
+        }
+        if lr.contains_key("spin_chart") {
+            return Err(Error::invalid("linear_rotor.spin_chart", "is read with matrix files (m, k, …); the shaft builder's rotor has no chart of its own"));
+        }
         if let Some(l) = string("layout")? {
             if l != "x,y,alpha,beta" {
                 return Err(Error::invalid("linear_rotor.layout", "the shaft builder's nodes have x, y, alpha, beta"));
@@ -710,8 +724,10 @@ pub fn write_matrix_market(a: &[f64], n: usize, comment: &str) -> String {
 }
 
 /// The config text and the matrix files (`STEM_M.mtx`, `STEM_C.mtx`, `STEM_G.mtx`,
-/// `STEM_K.mtx`, and `STEM_M_rot.mtx` where the rotor has inertia fixed to it,
-/// [`LinearRotor::rotor_fixed_mass`]: name and text) of `rotor`: reading them back with
+/// `STEM_K.mtx`, `STEM_M_rot.mtx` where the rotor has inertia fixed to it
+/// ([`LinearRotor::rotor_fixed_mass`]), `STEM_KST.mtx` where it has a
+/// [`LinearRotor::spin_stiffness`] and `STEM_chart.mtx` where it has a
+/// [`LinearRotor::spin_chart`]: name and text) of `rotor`: reading them back with
 /// [`linear_rotor`] gives the same rotor.
 pub fn export(rotor: &LinearRotor, stem: &str) -> (String, Vec<(String, String)>) {
     let n = rotor.dofs();
@@ -723,8 +739,14 @@ pub fn export(rotor: &LinearRotor, stem: &str) -> (String, Vec<(String, String)>
         ("c", &rotor.c, "damping matrix C"),
         ("g", &rotor.g, "gyroscopic matrix G (multiplied by Ω)"),
         ("k", &rotor.k, "stiffness matrix K"),
+        ("kst", &rotor.spin_stiffness, "angular-acceleration stiffness K_st (multiplied by dΩ/dt)"),
+        ("spin_chart", &rotor.spin_chart, "tilt chart Σ fixed to the rotor (spin angle s = ½ q_rᵀ Σ q_r)"),
     ] {
-        let name = format!("{stem}_{}.mtx", key.to_uppercase());
+        if a.is_empty() {
+            // no K_st: G/2 (LinearRotor::spin_stiffness); no chart (LinearRotor::spin_chart)
+            continue;
+        }
+        let name = if key == "spin_chart" { format!("{stem}_chart.mtx") } else { format!("{stem}_{}.mtx", key.to_uppercase()) };
         t.push_str(&format!("{key} = \"{name}\"\n"));
         files.push((name, write_matrix_market(a, n, &format!("{what}, {n} DOFs"))));
     }

@@ -397,14 +397,15 @@ impl LinearRotorField {
             }
         }
         if kin.wdot != 0.0 {
-            // ½ Ω̇ G q from the gyroscopic term ½ φ̇ q̇ᵀ G q of the kinetic energy (module docs of
-            // crate::linear_rotor, "Torque drives and gravity"); run-ups are in fixed axes
-            let g = &self.rotor.g;
+            // Ω̇ K_st q, K_st = ½ G by default, from the term ½ φ̇ q̇ᵀ G' q of the kinetic energy
+            // (LinearRotor::spin_stiffness; module docs of crate::linear_rotor, "Torque drives
+            // and gravity"); run-ups are in fixed axes
+            let ks = self.rotor.spin_stiffness_matrix();
             for i in 0..n {
                 for j in 0..n {
-                    let gij = g[i * n + j];
-                    if gij != 0.0 {
-                        out[i] = out[i] - p[j] * (0.5 * kin.wdot * gij);
+                    let kij = ks[i * n + j];
+                    if kij != 0.0 {
+                        out[i] = out[i] - p[j] * (kin.wdot * kij);
                     }
                 }
             }
@@ -473,6 +474,59 @@ impl LinearRotorField {
                 out[n + g] = out[n + g] - (da * tb - db * ta) * (0.5 * mr2) + sigma * o_e * mr2;
             }
         }
+        if let Some((y, s_phi, rest)) = self.chart(chi, w, p, &v) {
+            // the rotor-fixed chart (LinearRotor::spin_chart): (I_p Ω̇ + Σ_j m_b R² θ̈_j) Σ_χ q
+            // on the structure, m_b R² s̈ on each ball, s̈ = a·Y + Ω̇ ∂s/∂φ + V (after the balls'
+            // own terms, which set their rows)
+            let mut theta = self.rotor.polar_inertia * kin.wdot;
+            for (g, b) in self.balls.iter().enumerate() {
+                let mr2 = b.m * b.r * b.r;
+                theta += mr2 * (kin.wdot + acc[n + g]);
+            }
+            let ay = (0..n).fold(T::cst(0.0), |acc_, i| acc_ + a[i] * y[i]);
+            let sdd = ay + s_phi * kin.wdot + rest;
+            for i in 0..n {
+                out[i] = out[i] - y[i] * theta;
+            }
+            for (g, b) in self.balls.iter().enumerate() {
+                out[n + g] = out[n + g] - sdd * (b.m * b.r * b.r);
+            }
+        }
+    }
+
+    /// The rotor-fixed chart's terms ([`LinearRotor::spin_chart`]) at positions `p` and absolute
+    /// velocities `v` in the frame's components, the rotor's angle in the frame `chi` and its
+    /// speed `w`: `Y = Σ_χ p` (`Σ_χ = T(χ) Σ T(χ)ᵀ`), `∂s/∂φ = −(J p)·Y` and the rest of `s̈`
+    /// beyond the accelerations, `V = −2Ω (J v)·Y − Ω² p·Y + uᵀ Σ_χ u` (`u = v − Ω J p`): from
+    /// `s = ½ q_rᵀ Σ q_r` with `q_r = T(χ)ᵀ p`, `q̇_r = T(χ)ᵀ u`,
+    /// `q̈_r = T(χ)ᵀ (a − Ω̇ J p − 2Ω J v − Ω² p)`, so `s̈ = a·Y + Ω̇ ∂s/∂φ + V`. `None` without a
+    /// chart.
+    pub(crate) fn chart<T: Real>(&self, chi: T, w: T, p: &[T], v: &[T]) -> Option<(Vec<T>, T, T)> {
+        if self.rotor.spin_chart.is_empty() {
+            return None;
+        }
+        let n = self.rotor.dofs();
+        let sf = super::turn_blocks(&self.rotor.spin_chart, n, chi);
+        let jm = |z: &[T], i: usize| if i.is_multiple_of(2) { -z[i + 1] } else { z[i - 1] };
+        let u: Vec<T> = (0..n).map(|i| v[i] - jm(p, i) * w).collect();
+        let (mut y, mut quad) = (vec![T::cst(0.0); n], T::cst(0.0));
+        for i in 0..n {
+            let (mut yi, mut ui) = (T::cst(0.0), T::cst(0.0));
+            for j in 0..n {
+                yi = yi + sf[i * n + j] * p[j];
+                ui = ui + sf[i * n + j] * u[j];
+            }
+            y[i] = yi;
+            quad = quad + u[i] * ui;
+        }
+        let (mut jpy, mut jvy, mut py) = (T::cst(0.0), T::cst(0.0), T::cst(0.0));
+        for i in 0..n {
+            jpy = jpy + jm(p, i) * y[i];
+            jvy = jvy + jm(v, i) * y[i];
+            py = py + p[i] * y[i];
+        }
+        let rest = quad - w * jvy * 2.0 - w * w * py;
+        Some((y, -jpy, rest))
     }
 
     /// The symmetric mass matrix `A(ψ)` of the `N + Σ n` accelerations at time `t` (module docs).
@@ -482,6 +536,18 @@ impl LinearRotorField {
         let mut a = vec![0.0; nc * nc];
         for i in 0..n {
             a[i * nc..i * nc + n].copy_from_slice(&mats.m[i * n..(i + 1) * n]);
+        }
+        if !self.rotor.spin_chart.is_empty() {
+            // the chart's m_b R² Σ_χ q between the structure and each ball
+            let sf = super::turn_blocks(&self.rotor.spin_chart, n, chi);
+            let y: Vec<f64> = (0..n).map(|i| (0..n).map(|j| sf[i * n + j] * x[j]).sum()).collect();
+            for (g, b) in self.balls.iter().enumerate() {
+                let mr2 = b.m * b.r * b.r;
+                for i in 0..n {
+                    a[i * nc + n + g] += mr2 * y[i];
+                    a[(n + g) * nc + i] += mr2 * y[i];
+                }
+            }
         }
         if !self.rotor.rotor_fixed_mass.is_empty() {
             let mf = self.rotor.rotor_fixed_in(chi);

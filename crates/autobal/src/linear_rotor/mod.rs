@@ -121,7 +121,8 @@
 //! Under a torque drive ([`runup`]) the spin angle `φ` is a coordinate: the kinetic energy adds
 //! `½ I_p φ̇²` ([`LinearRotor::polar_inertia`]) and each unbalance's `m e φ̇ e⊥_u·ċ_u`
 //! (`ċ_u` the velocity of its plane's centre), the gyroscopic term is `½ φ̇ q̇ᵀ G q` (which gives
-//! `φ̇ G q̇ + ½ φ̈ G q` in the structure's equations), and the balls' absolute angles are
+//! `φ̇ G q̇ + ½ φ̈ G q` in the structure's equations; another tilt chart adds a symmetric part,
+//! [`LinearRotor::spin_stiffness`] and [`LinearRotor::spin_chart`]), and the balls' absolute angles are
 //! `θ_j = φ + ψ_j`. Lagrange's equation for `φ` in the coordinates `(q, φ, ψ)` is the sum of the
 //! rotor's and of every ball's (`∂/∂φ̇` at fixed `ψ̇` is `∂/∂φ̇ + Σ_j ∂/∂θ̇_j`), the balls'
 //! drag `−c_b ψ̇_j` does no work on it, and:
@@ -331,6 +332,35 @@ pub struct LinearRotor {
     /// it as `linear_rotor.rotor_fixed_mass` ([`config`]).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub rotor_fixed_mass: Vec<f64>,
+    /// The angular-acceleration stiffness `K_st` of rotordynamics FE codes (ROSS's `Ksdt`;
+    /// row-major `N × N`, fixed axes; empty: `½ G`): the structure's equations under a changing
+    /// speed are `M q̈ + (C + Ω G) q̇ + (K + Ω̇ K_st) q = f`. It comes from the kinetic energy's
+    /// `½ φ̇ q̇ᵀ G' q` (`φ` the rotor's angle), which gives `Ω ½(G' − G'ᵀ) q̇ + ½ Ω̇ G' q`: so
+    /// `K_st = ½ G'` with `K_st − K_stᵀ = G`, and its symmetric part is the choice of the tilt
+    /// chart (what "the rotor's angle" means for a tilted rotor; `½ G`, no symmetric part, is
+    /// the symmetric chart of the module docs, a sequence `R_x(α) R_y(β)` of a disk of polar
+    /// moment `I_p` has `K_st[α][β] = I_p`). Under a torque drive ([`runup`]) the spin's equation
+    /// gets the matching `q̈ᵀ K_st q + q̇ᵀ K_st q̇` (`d/dt ∂T/∂φ̇`), so that energy is conserved
+    /// when `K_st − K_stᵀ = G`; a matrix that does not satisfy it (ROSS's `Ksdt` has
+    /// `Ksdt − Ksdtᵀ = −G` for its disks, and its shaft elements leave out the shear terms of
+    /// their `G`) gives the FE code's equations under a prescribed speed, but no Lagrangian.
+    /// Constant-speed analyses do not see it.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub spin_stiffness: Vec<f64>,
+    /// A tilt chart fixed to the rotor `Σ` (row-major `N × N`, symmetric; empty: none): the
+    /// rotor's angle in the symmetric chart of the module docs is `φ + s`, `s = ½ q_rᵀ Σ q_r` (`q_r = T(φ)ᵀ q` the
+    /// coordinates in the rotor's axes), the same for the rotor and for its balls, so the
+    /// kinetic energy gains `(I_p φ̇ + Σ_j m_b R² θ̇_j) ṡ` ([`LinearRotor::polar_inertia`] `I_p`;
+    /// `θ_j = φ + ψ_j`). Then, with `Σ_f = T(φ) Σ T(φ)ᵀ`, the structure's equations gain
+    /// `(I_p Ω̇ + Σ_j m_b R² θ̈_j) Σ_f q` (an angular-acceleration stiffness `I_p Σ_f` that turns
+    /// with the rotor, plus the balls'), each ball's `m_b R² s̈`, and under a torque drive the
+    /// spin's `(I_p + Σ_j m_b R²) s̈ + (I_p φ̈ + Σ_j m_b R² θ̈_j) ∂s/∂φ` (Lagrange's equations of
+    /// that term; the total derivative `I_p Ω ṡ` it adds at constant speed changes nothing
+    /// there, the balls' `m_b R² ψ̇_j ṡ` acts at second order in the amplitudes). A native
+    /// chart `R_x(δ) R_y(θ)` in the rotor's axes is `s = δθ/2`: `Σ[α][β] = Σ[β][α] = ½`
+    /// ([`LinearRotor::from_spatial`]). Not read from configs and not reduced (reduction refuses it).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub spin_chart: Vec<f64>,
 }
 
 /// Gravity across the axis: the acceleration `g = (g_x, g_y)` (m/s², fixed axes) and the
@@ -372,6 +402,18 @@ impl LinearRotor {
             gravity: None,
             ball_physics: vec![],
             rotor_fixed_mass: vec![],
+            spin_stiffness: vec![],
+            spin_chart: vec![],
+        }
+    }
+
+    /// The angular-acceleration stiffness `K_st` ([`LinearRotor::spin_stiffness`]), `½ G` where
+    /// none is given (row-major `N × N`).
+    pub fn spin_stiffness_matrix(&self) -> std::borrow::Cow<'_, [f64]> {
+        if self.spin_stiffness.is_empty() {
+            std::borrow::Cow::Owned(self.g.iter().map(|g| 0.5 * g).collect())
+        } else {
+            std::borrow::Cow::Borrowed(&self.spin_stiffness)
         }
     }
 
@@ -456,10 +498,12 @@ impl LinearRotor {
     /// `ψ_j` is the ball's angle from the rotor's x axis in both), so the two linearisations at a
     /// stationary state with the rotor on the axis are the same matrices. Beyond first order the
     /// charts differ: the sequence `R_x(δ) R_y(θ)` is the rotation vector `(δ, θ, δθ/2)`, i.e.
-    /// the native spin angle is this model's less `δθ/2`, and the native model is exact in the
-    /// tilt and displacement where this one keeps the kinetic energy to second order. So time
-    /// histories agree to second order in the amplitudes (and, in a run-up, to terms in
-    /// `Ω̇ δθ`), not to round-off.
+    /// the native spin angle is the symmetric chart's less `δθ/2`; the preset carries that
+    /// chart ([`LinearRotor::spin_chart`] `Σ[α][β] = Σ[β][α] = ½`), without which a changing
+    /// speed would leave the moment `½ C Ω̇ τ` between the two (first order in the amplitude).
+    /// The native model is exact in the tilt and displacement where this one keeps the kinetic
+    /// energy to second order, so time histories, run-ups included, agree to second order in
+    /// the amplitudes, not to round-off.
     ///
     /// **Carrier.** The rotor with its unbalance masses is a rigid body with mass `M_c`, first
     /// moment `s = (s_x, s_y, s_z)` and inertia tensor `J` about O in rotor axes (the rotor's
@@ -574,6 +618,12 @@ impl LinearRotor {
             }
             lr.g[2 * n + 3] = j[2][2];
             lr.g[3 * n + 2] = -j[2][2];
+            // the native tilt R_x(δ) R_y(θ) in the rotor's axes: the rotation vector
+            // (δ, θ, δθ/2): the rotor's angle in the symmetric chart is the native one plus
+            // s = δθ/2 (LinearRotor::spin_chart)
+            lr.spin_chart = vec![0.0; n * n];
+            lr.spin_chart[2 * n + 3] = 0.5;
+            lr.spin_chart[3 * n + 2] = 0.5;
             for sup in &s.supports {
                 let z = sup.z - zc;
                 // x + ζ β with k_x, c_x; y − ζ α with k_y, c_y
@@ -777,6 +827,25 @@ impl LinearRotor {
                         "linear_rotor.rotor_fixed_mass",
                         "M + T(φ) M_rot T(φ)ᵀ is within 0.12 % of singular at some angle φ (positive definiteness not decided)",
                     ));
+                }
+            }
+        }
+        for (name, a) in [("spin_stiffness", &self.spin_stiffness), ("spin_chart", &self.spin_chart)] {
+            if a.is_empty() {
+                continue;
+            }
+            if a.len() != n * n {
+                return Err(Error::invalid(format!("linear_rotor.{name}"), format!("has {} entries, N² = {} for N = {n} DOFs", a.len(), n * n)));
+            }
+            for (i, v) in a.iter().enumerate() {
+                finite(&format!("linear_rotor.{name}[{},{}]", i / n, i % n), *v)?;
+            }
+        }
+        let sc = scale(&self.spin_chart);
+        for i in 0..n {
+            for j in 0..i {
+                if !self.spin_chart.is_empty() && (self.spin_chart[i * n + j] - self.spin_chart[j * n + i]).abs() > 1e-12 * sc {
+                    return Err(Error::invalid(format!("linear_rotor.spin_chart[{i},{j}]"), format!("must equal spin_chart[{j},{i}] (symmetric)")));
                 }
             }
         }

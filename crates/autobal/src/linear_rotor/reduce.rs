@@ -411,6 +411,15 @@ fn assemble(rotor: &LinearRotor, boundary: &[usize], bd: &[usize], id: &[usize],
         // J B = B J_r, so Bᵀ T(φ) M_rot T(φ)ᵀ B = T_r(φ) (Bᵀ M_rot B) T_r(φ)ᵀ (module docs)
         red.rotor_fixed_mass = project(&rotor.rotor_fixed_mass, &b, n, r);
     }
+    if !rotor.spin_chart.is_empty() {
+        // the chart's s = ½ q_rᵀ Σ q_r in the rotor's axes: with J B = B J_r, q_r = B z_r, so
+        // s = ½ z_rᵀ (Bᵀ Σ B) z_r exactly (LinearRotor::spin_chart)
+        red.spin_chart = project(&rotor.spin_chart, &b, n, r);
+    }
+    if !rotor.spin_stiffness.is_empty() {
+        // Bᵀ K_st B: the kinetic energy's ½ φ̇ q̇ᵀ G' q on q = B z (LinearRotor::spin_stiffness)
+        red.spin_stiffness = project(&rotor.spin_stiffness, &b, n, r);
+    }
     // exact symmetry of the projected M and skew-symmetry of G (round-off of the sums)
     for i in 0..r {
         for j in 0..i {
@@ -421,6 +430,11 @@ fn assemble(rotor: &LinearRotor, boundary: &[usize], bd: &[usize], id: &[usize],
                 let v = 0.5 * (red.rotor_fixed_mass[i * r + j] + red.rotor_fixed_mass[j * r + i]);
                 red.rotor_fixed_mass[i * r + j] = v;
                 red.rotor_fixed_mass[j * r + i] = v;
+            }
+            if !red.spin_chart.is_empty() {
+                let v = 0.5 * (red.spin_chart[i * r + j] + red.spin_chart[j * r + i]);
+                red.spin_chart[i * r + j] = v;
+                red.spin_chart[j * r + i] = v;
             }
             let g = 0.5 * (red.g[i * r + j] - red.g[j * r + i]);
             red.g[i * r + j] = g;

@@ -4,8 +4,10 @@
 //!
 //! **Prescribed speed.** With the rotor's angle `φ(t) = ∫ Ω dt` (exact for the drive's
 //! piecewise-linear speed), the equations of [`crate::linear_rotor`] in fixed axes hold with
-//! `Ω(t)` in place of `Ω`, the gyroscopic `Ω(t) G` with `½ Ω̇ G q` (from the kinetic energy's
-//! `½ φ̇ q̇ᵀ G q`), the speed-dependent bearings at `Ω(t)`, and two more terms from the
+//! `Ω(t)` in place of `Ω`, the gyroscopic `Ω(t) G` with `Ω̇ K_st q` (from the kinetic energy's
+//! `½ φ̇ q̇ᵀ G' q`, [`LinearRotor::spin_stiffness`]; `K_st = ½ G` by default; the rotor-fixed
+//! chart's terms of [`LinearRotor::spin_chart`] where there is one), the speed-dependent
+//! bearings at `Ω(t)`, and two more terms from the
 //! acceleration `Ω̇`: the unbalance's inertia force `m e (Ω² − i Ω̇) e^{i(φ + phase)}` and the
 //! balls' absolute angular acceleration `θ̈_j = Ω̇ + ψ̈_j` (`ψ_j` stays the angle relative to the
 //! rotor). State `(q, ψ, q̇, ψ̇)`.
@@ -16,7 +18,8 @@
 //! [`LinearRotor::spin_damping`]. The structure's and balls' equations are those above with
 //! `Ω̇ = φ̈` unknown; they are linear in `φ̈`, with the column `a_φ` of `φ̈` in the mass matrix,
 //! which is also the spin equation's row (the mass matrix of a Lagrangian is symmetric), and
-//! the spin's diagonal `I_p + Σ_j m_b R²`. The accelerations solve the bordered system
+//! the spin's diagonal `I_p + Σ_j m_b R²`, plus the spin's own terms of `K_st` and of the chart
+//! (`q̇ᵀ K_st q̇`, `(I_p + Σ_j m_b R²)(2 ∂s/∂φ φ̈ + …)`: `spin_extra`). The accelerations solve the bordered system
 //! `[[A, a_φ], [a_φᵀ, I_p + Σ m_b R²]] (q̈, ψ̈, φ̈) = (R, R_φ)`.
 //!
 //! **Real balls** ([`LinearRotor::ball_physics`]): the contact and rolling-resistance torques
@@ -159,10 +162,11 @@ impl<'a> RunUpSystem<'a> {
             big[nc * n1 + i] = a_phi[i];
         }
         let balls: f64 = r.balancers.iter().map(|b| b.balls as f64 * b.ball_mass * b.radius * b.radius).sum();
-        big[nc * n1 + nc] = r.polar_inertia + balls;
+        let (diag, extra) = spin_extra(f, r, phi, w, &x[..n], &x[nc..nc + n]);
+        big[nc * n1 + nc] = r.polar_inertia + balls + diag;
         // R_φ: the drive, the spin drag, gravity on the unbalances, and the balls' equations'
         // non-inertial parts without their drag (which does no work on φ)
-        let mut rphi = self.drive.torque(t, w) - r.spin_damping * w;
+        let mut rphi = self.drive.torque(t, w) - r.spin_damping * w + extra;
         if let Some(g) = &r.gravity {
             for u in &r.unbalances {
                 let (s, c) = (phi + u.phase).sin_cos();
@@ -276,7 +280,7 @@ impl RunUpSystem<'_> {
         }
         let balls: f64 = r.balancers.iter().map(|b| b.balls as f64 * b.ball_mass * b.radius * b.radius).sum();
         let inertia = r.polar_inertia + balls;
-        big[nc * n1 + nc] = inertia;
+        big[nc * n1 + nc] = inertia + spin_extra(f, r, phi, w, &x[..n], &x[nc..nc + n]).0;
         let Some(lu) = Lu::factored(big, n1) else {
             jac[n1 * dim..].iter_mut().for_each(|v| *v = f64::NAN);
             return;
@@ -308,6 +312,8 @@ impl RunUpSystem<'_> {
                 }
             }
             gs = gs + rotor_fixed_torque(r, phid, &xd[nc..nc + n]);
+            let (diag, extra) = spin_extra(f, r, phid, sv.w + w, &xd[..n], &xd[nc..nc + n]);
+            gs = gs + extra - diag * phidd;
             let mut k = n;
             for b in &r.balancers {
                 for _ in 0..b.balls {
@@ -330,6 +336,36 @@ impl RunUpSystem<'_> {
             }
         }
     }
+}
+
+/// The spin equation's terms of [`LinearRotor::spin_stiffness`] and [`LinearRotor::spin_chart`]
+/// beyond the column of `φ̈` (which the structure's and balls' equations give, the mass matrix
+/// being symmetric) and beyond the balls' own `m_b R² s̈` (in their equations' non-inertial
+/// parts): `(d, τ)` with `d φ̈` on the inertia side and `τ` on the torque side, at the rotor's
+/// angle `phi` and speed `w`, positions `q` and velocities `v` (fixed axes). From
+/// `T ⊃ φ̇ q̇ᵀ K_st q + (I_p φ̇ + Σ_j m_b R² θ̇_j) ṡ`: `d/dt ∂T/∂φ̇ − ∂T/∂φ` adds
+/// `q̈ᵀ K_st q + q̇ᵀ K_st q̇` (so `τ ⊃ −q̇ᵀ K_st q̇`, zero for the default skew `½ G`) and
+/// `I_c s̈ + (I_p φ̈ + Σ_j m_b R² θ̈_j) ∂s/∂φ` (`I_c = I_p + Σ_j m_b R²`), of which
+/// `d = 2 I_c ∂s/∂φ` and `τ ⊃ −I_p V` ([`LinearRotorField::chart`]) are left.
+fn spin_extra<T: Real>(f: &LinearRotorField, r: &LinearRotor, phi: T, w: T, q: &[T], v: &[T]) -> (T, T) {
+    let n = r.dofs();
+    let (mut d, mut tau) = (T::cst(0.0), T::cst(0.0));
+    if !r.spin_stiffness.is_empty() {
+        for i in 0..n {
+            for j in 0..n {
+                let k = r.spin_stiffness[i * n + j];
+                if k != 0.0 {
+                    tau = tau - v[i] * v[j] * k;
+                }
+            }
+        }
+    }
+    if let Some((_, s_phi, rest)) = f.chart(phi, w, q, v) {
+        let balls: f64 = r.balancers.iter().map(|b| b.balls as f64 * b.ball_mass * b.radius * b.radius).sum();
+        d = s_phi * (2.0 * (r.polar_inertia + balls));
+        tau = tau - rest * r.polar_inertia;
+    }
+    (d, tau)
 }
 
 /// The spin's torque from the inertia fixed to the rotor ([`LinearRotor::rotor_fixed_mass`]):
