@@ -121,7 +121,7 @@ mod tests {
 
     /// A spatial config (papers 000/003, SI, with a couple and unequal supports) is written as
     /// its linear preset ([`LinearRotor::from_spatial`]), the inertia that turns with the rotor
-    /// (its unbalance masses') as `STEM_M_rot.mtx`; read back through the linear rotor route it
+    /// (its unbalance masses') as `STEM_M_rot.mtx`, its tilt chart as `STEM_chart.mtx`; read back through the linear rotor route it
     /// is the preset bit for bit, and export-model of the written config writes the same files
     /// byte for byte.
     #[test]
@@ -132,7 +132,7 @@ mod tests {
         let args = |config: &Path, out: PathBuf| Args { config: ConfigSource::File { path: Some(config.to_path_buf()), sets: vec![] }, out, stem: "s".into() };
         let o = args(&cfg, d.join("a")).run(&Control::none()).unwrap();
         let names: Vec<String> = o.written.iter().map(|p| p.file_name().unwrap().to_string_lossy().into_owned()).collect();
-        assert_eq!(names, ["s.toml", "s_M.mtx", "s_C.mtx", "s_G.mtx", "s_K.mtx", "s_M_rot.mtx"]);
+        assert_eq!(names, ["s.toml", "s_M.mtx", "s_C.mtx", "s_G.mtx", "s_K.mtx", "s_chart.mtx", "s_M_rot.mtx"]);
         let (root, _) = linear_rotor::read_set(Some(&cfg), &[]).unwrap();
         let want = LinearRotor::from_spatial(&autobal::config::spatial_simulation(&root).unwrap().rotor).unwrap();
         assert!(!want.rotor_fixed_mass.is_empty());

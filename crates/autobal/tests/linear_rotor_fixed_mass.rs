@@ -150,7 +150,7 @@ fn spatial_preset_with_rotor_fixed_inertia_round_trips_through_export() {
         let (text, files) = export(&preset, "p");
         assert!(text.contains("rotor_fixed_mass = \"p_M_rot.mtx\"\n"), "{text}");
         let names: Vec<&str> = files.iter().map(|f| f.0.as_str()).collect();
-        assert_eq!(names, ["p_M.mtx", "p_C.mtx", "p_G.mtx", "p_K.mtx", "p_M_rot.mtx"]);
+        assert_eq!(names, ["p_M.mtx", "p_C.mtx", "p_G.mtx", "p_K.mtx", "p_chart.mtx", "p_M_rot.mtx"]);
         let mut bytes: HashMap<String, Vec<u8>> = files.into_iter().map(|(n, t)| (n, t.into_bytes())).collect();
         let back = read(&text, &bytes).unwrap();
         assert_eq!(back, preset, "supports {k:?}");
@@ -198,11 +198,12 @@ fn spatial_preset_with_rotor_fixed_inertia_round_trips_through_export() {
             ("G", npy(&preset.g, n)),
             ("K", npy(&preset.k, n)),
             ("M_rot", npy(&preset.rotor_fixed_mass, n)),
+            ("spin_chart", npy(&preset.spin_chart, n)),
         ]);
         bytes.insert("p.npz".into(), archive);
         let npz_text: String = text
             .lines()
-            .filter(|l| !["m = ", "c = ", "g = ", "k = ", "rotor_fixed_mass = "].iter().any(|p| l.starts_with(p)))
+            .filter(|l| !["m = ", "c = ", "g = ", "k = ", "spin_chart = ", "rotor_fixed_mass = "].iter().any(|p| l.starts_with(p)))
             .map(|l| if l == "[linear_rotor]" { "[linear_rotor]\nmatrices = \"p.npz\"\n".to_string() } else { format!("{l}\n") })
             .collect();
         assert_eq!(read(&npz_text, &bytes).unwrap(), preset, "from .npz");
