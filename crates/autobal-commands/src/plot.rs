@@ -339,7 +339,11 @@ impl Plot {
         let h = (mt + PH.max(legend_h) + MB).ceil();
         let sx = |x: f64| ml + (x - x0) / (x1 - x0) * PW;
         let sy = |y: f64| mt + (1.0 - (y - y0) / (y1 - y0)) * PH;
-        let mut s = String::new();
+        // the text's size known ahead, one allocation: the frame, ~16 bytes a drawn point (at
+        // most 4 a pixel column of each unbroken line, `pixel_columns`), a raster's base64
+        let drawn: usize = self.series.iter().map(|se| se.points.len().min(4 * PW as usize + 64)).sum();
+        let raster = self.heatmap.as_ref().map_or(0, |h| 4 * h.x.len() * h.y.len());
+        let mut s = String::with_capacity(8192 + 16 * drawn + raster);
         let _ = writeln!(
             s,
             r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="DejaVu Sans, Verdana, sans-serif" font-size="{FONT}">
@@ -462,7 +466,7 @@ impl Plot {
             let dash = if se.dashed { r#" stroke-dasharray="7 4""# } else { "" };
             // pixel coordinates of one unbroken piece of the curve (NaN breaks it), reduced to
             // what a pixel column shows (`pixel_columns`), written with two decimals
-            let mut seg: Vec<(f64, f64)> = Vec::new();
+            let mut seg: Vec<(f64, f64)> = Vec::with_capacity(se.points.len());
             let flush = |seg: &mut Vec<(f64, f64)>, s: &mut String| {
                 if se.markers {
                     for &(x, y) in seg.iter() {
@@ -474,14 +478,18 @@ impl Plot {
                     }
                 } else if seg.len() >= 2 {
                     s.push_str(r#"<polyline points=""#);
-                    for (k, &(x, y)) in pixel_columns(seg).iter().enumerate() {
+                    let kept = pixel_columns(seg);
+                    let mut text: Vec<u8> = Vec::with_capacity(16 * kept.len());
+                    for (k, &(x, y)) in kept.iter().enumerate() {
                         if k > 0 {
-                            s.push(' ');
+                            text.push(b' ');
                         }
-                        push_px(s, x);
-                        s.push(',');
-                        push_px(s, y);
+                        push_px_bytes(&mut text, x);
+                        text.push(b',');
+                        push_px_bytes(&mut text, y);
                     }
+                    // digits, '.', '-', ',' and ' ': ASCII
+                    s.push_str(std::str::from_utf8(&text).unwrap_or(""));
                     let _ = writeln!(s, r#"" stroke="{}" stroke-width="{}"{dash}/>"#, se.color, se.width.unwrap_or(2.0));
                 } else if let Some(&(x, y)) = seg.first() {
                     s.push_str(r#"<circle cx=""#);
@@ -731,14 +739,27 @@ impl Plot {
     }
 }
 
-/// Split `s` into lines of at most about `max` characters at spaces.
 /// Append a pixel coordinate with two decimals (a hundredth of a pixel, below what any
 /// renderer resolves): `round(100 v)` split into integer and hundredths, the same text as
 /// `format!("{v:.2}")` but without its exact-decimal machinery (the figures of a 4 801-sample
 /// run write tens of thousands of them). `|v| ≤ 1e4` here (the caller clamps).
 fn push_px(s: &mut String, v: f64) {
-    let c = (v * 100.0).round();
-    let c = if c.is_finite() { c as i64 } else { 0 };
+    let (buf, k) = px_text(v);
+    s.push_str(std::str::from_utf8(&buf[k..]).unwrap_or("0"));
+}
+
+/// [`push_px`]'s text appended to bytes: a polyline's coordinates are written into one byte
+/// buffer and checked as UTF-8 once (a check per coordinate cost more than the digits).
+fn push_px_bytes(out: &mut Vec<u8>, v: f64) {
+    let (buf, k) = px_text(v);
+    out.extend_from_slice(&buf[k..]);
+}
+
+/// [`push_px`]'s text: it is `buf[k..]`.
+#[inline]
+fn px_text(v: f64) -> ([u8; 24], usize) {
+    let c = v * 100.0;
+    let c = if c.abs() < 1e15 { round_i64(c) } else { 0 };
     let a = c.unsigned_abs();
     // written backwards: hundredths, tenths, point, integer digits, sign
     let mut buf = [b'0'; 24];
@@ -759,7 +780,31 @@ fn push_px(s: &mut String, v: f64) {
         k -= 1;
         buf[k] = b'-';
     }
-    s.push_str(std::str::from_utf8(&buf[k..]).unwrap_or("0"));
+    (buf, k)
+}
+
+/// `v.round()` (half away from zero) for `|v| < 2^52`, as an integer, without the C library's
+/// call: `v − trunc(v)` is exact there, so the comparison with ½ is the rounding's own.
+fn round_i64(v: f64) -> i64 {
+    let i = v as i64;
+    let f = v - i as f64;
+    if f >= 0.5 {
+        i + 1
+    } else if f <= -0.5 {
+        i - 1
+    } else {
+        i
+    }
+}
+
+/// `⌊v⌋` for `|v| < 2^52`, as an integer, without the C library's call.
+fn floor_i64(v: f64) -> i64 {
+    let i = v as i64;
+    if (i as f64) > v {
+        i - 1
+    } else {
+        i
+    }
 }
 
 /// A polyline in pixel coordinates reduced to what a one-pixel column shows: each run of
@@ -772,9 +817,10 @@ fn pixel_columns(pts: &[(f64, f64)]) -> Vec<(f64, f64)> {
     let mut keep: Vec<usize> = Vec::with_capacity(pts.len().min(4 * PW as usize + 8));
     let mut i = 0;
     while i < pts.len() {
-        let col = pts[i].0.floor();
+        // the caller clamps to ±1e4: the column as an integer is `⌊x⌋` exactly
+        let col = floor_i64(pts[i].0);
         let (mut lo, mut hi, mut j) = (i, i, i + 1);
-        while j < pts.len() && pts[j].0.floor() == col {
+        while j < pts.len() && floor_i64(pts[j].0) == col {
             if pts[j].1 < pts[lo].1 {
                 lo = j;
             }
@@ -794,6 +840,7 @@ fn pixel_columns(pts: &[(f64, f64)]) -> Vec<(f64, f64)> {
     keep.into_iter().map(|k| pts[k]).collect()
 }
 
+/// Split `s` into lines of at most about `max` characters at spaces.
 fn wrap(s: &str, max: usize) -> Vec<String> {
     let mut lines = vec![];
     let mut cur = String::new();
@@ -865,6 +912,29 @@ mod tests {
         assert_eq!(t.first(), Some(&0.0));
         assert!(t.windows(2).all(|w| ((w[1] - w[0]) - 0.5).abs() < 1e-12));
         assert!(*t.last().unwrap() <= 3.7);
+    }
+
+    /// The integer rounding and floor of the pixel writer are the C library's, value for value:
+    /// on random values, every exact half (where `round` goes away from zero), the neighbours of
+    /// integers and halves, and ±0.
+    #[test]
+    fn integer_round_and_floor_match_the_library() {
+        let mut x = 0x9E37_79B9_7F4A_7C15u64;
+        let mut vals = vec![0.0, -0.0, 0.5, -0.5, 1.5, -1.5, 2.5, -2.5, 1e6 + 0.5, -1e6 - 0.5, 0.49999999999999994, -0.49999999999999994];
+        for k in -3000..3000 {
+            let h = k as f64 * 0.5;
+            vals.extend([h, h.next_up(), h.next_down()]);
+        }
+        for _ in 0..20_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            vals.push(((x >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 2e6);
+        }
+        for v in vals {
+            assert_eq!(round_i64(v), v.round() as i64, "round {v}");
+            assert_eq!(floor_i64(v), v.floor() as i64, "floor {v}");
+        }
     }
 
     #[test]

@@ -13,39 +13,73 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 /// Samples kept for plotting: per bucket of consecutive samples, the ones with the smallest and
-/// largest amplitude (so peaks survive decimation).
+/// largest amplitude (so peaks survive decimation), in their order; a bucket of one or two
+/// samples keeps them all. The bucket's extremes are tracked as the samples come (the first
+/// smallest and the last largest, as `Iterator::min_by`/`max_by` pick them), copied into two
+/// reused samples, and `kept` is sized from the expected count once: no allocation per sample
+/// beyond the kept ones' own ball angles, no growth of `kept` while the run goes (a run of up to
+/// `target` samples keeps every one of them).
 pub struct Envelope {
     bucket: usize,
-    current: Vec<Sample>,
+    /// Samples of the current bucket so far.
+    count: usize,
+    /// The current bucket's first smallest and last largest sample, with their positions in it.
+    lo: (usize, Sample),
+    hi: (usize, Sample),
     pub kept: Vec<Sample>,
 }
 
+/// `dst` becomes a copy of `src`, reusing `dst`'s ball angles' allocation (every field named:
+/// a field added to `Sample` fails to compile here rather than be left out).
+fn copy_sample(dst: &mut Sample, src: &Sample) {
+    let Sample { t, omega, theta, x, y, amplitude, psi } = src;
+    (dst.t, dst.omega, dst.theta, dst.x, dst.y, dst.amplitude) = (*t, *omega, *theta, *x, *y, *amplitude);
+    dst.psi.clone_from(psi);
+}
+
 impl Envelope {
+    /// An envelope for a run of about `expected` samples, keeping about `target` of them at most
+    /// (two per bucket of `ceil(expected / target)` samples).
     pub fn new(expected: usize, target: usize) -> Self {
-        Envelope { bucket: expected.div_ceil(target.max(1)).max(1), current: vec![], kept: vec![] }
+        let bucket = expected.div_ceil(target.max(1)).max(1);
+        // every sample of a run of one-sample buckets (and the end sample off the grid), else two
+        // a bucket; at most the target's worth reserved ahead (a run longer than expected grows)
+        let reserve = if bucket == 1 { expected + 2 } else { 2 * expected.div_ceil(bucket) + 2 };
+        let blank = || (0, Sample { t: 0.0, omega: 0.0, theta: 0.0, x: 0.0, y: 0.0, amplitude: 0.0, psi: vec![] });
+        Envelope { bucket, count: 0, lo: blank(), hi: blank(), kept: Vec::with_capacity(reserve.min(2 * target.max(1) + 2)) }
     }
+
     pub fn push(&mut self, s: &Sample) {
-        self.current.push(s.clone());
-        if self.current.len() >= self.bucket {
+        if self.bucket == 1 {
+            self.kept.push(s.clone());
+            return;
+        }
+        let k = self.count;
+        if k == 0 || s.amplitude.total_cmp(&self.lo.1.amplitude).is_lt() {
+            self.lo.0 = k;
+            copy_sample(&mut self.lo.1, s);
+        }
+        if k == 0 || !s.amplitude.total_cmp(&self.hi.1.amplitude).is_lt() {
+            self.hi.0 = k;
+            copy_sample(&mut self.hi.1, s);
+        }
+        self.count += 1;
+        if self.count >= self.bucket {
             self.flush();
         }
     }
+
+    /// Keep the current bucket's extremes (in their order; one sample where they are the same).
     pub fn flush(&mut self) {
-        if self.current.is_empty() {
+        if self.count == 0 {
             return;
         }
-        if self.current.len() <= 2 {
-            self.kept.append(&mut self.current);
-            return;
+        let (a, b) = if self.lo.0 <= self.hi.0 { (&self.lo, &self.hi) } else { (&self.hi, &self.lo) };
+        self.kept.push(a.1.clone());
+        if b.0 != a.0 {
+            self.kept.push(b.1.clone());
         }
-        let imin = (0..self.current.len()).min_by(|&a, &b| self.current[a].amplitude.total_cmp(&self.current[b].amplitude)).unwrap();
-        let imax = (0..self.current.len()).max_by(|&a, &b| self.current[a].amplitude.total_cmp(&self.current[b].amplitude)).unwrap();
-        let (a, b) = (imin.min(imax), imin.max(imax));
-        self.kept.push(self.current[a].clone());
-        if b != a {
-            self.kept.push(self.current[b].clone());
-        }
-        self.current.clear();
+        self.count = 0;
     }
 }
 
@@ -265,9 +299,12 @@ pub fn summary_table(cfg: &PlanarConfig, s: &Summary, wall: f64) -> String {
 /// Ball angles in degrees wrapped to (−180°, 180°], the line broken where it wraps (a ball
 /// slipping round the race would otherwise run off to thousands of degrees).
 pub fn wrapped_degrees(points: impl Iterator<Item = (f64, f64)>) -> Vec<(f64, f64)> {
-    let mut out: Vec<(f64, f64)> = vec![];
+    // room for the points and a few breaks: one allocation for most runs
+    let mut out: Vec<(f64, f64)> = Vec::with_capacity(points.size_hint().0 + 16);
     for (t, a) in points {
-        let d = (a.to_degrees() + 180.0).rem_euclid(360.0) - 180.0;
+        let v = a.to_degrees() + 180.0;
+        // `rem_euclid` is `v` itself on [0, 360) (fmod's exact result there), without its call
+        let d = if (0.0..360.0).contains(&v) { v } else { v.rem_euclid(360.0) } - 180.0;
         if let Some(&(_, prev)) = out.last() {
             if prev.is_finite() && (d - prev).abs() > 180.0 {
                 out.push((t, f64::NAN));
@@ -301,11 +338,12 @@ pub fn plots(cfg: &PlanarConfig, env: &Envelope, title: &str) -> Vec<(String, Pl
     if p.n >= 1 {
         let q = p.n as i32;
         for (label, qq, col) in [("balls free, far side", q, PALETTE[1]), ("balls free, near side", -q, PALETTE[3])] {
+            let mut a = vec![];
             let pts = ws
                 .iter()
                 .map(|&w| {
                     // only the branch with every ball on one side: O(1) per speed, whatever n
-                    let mut a = vec![];
+                    a.clear();
                     aligned_whirls_of(p, w, qq, &mut a);
                     (w, a.iter().map(|a| mm * a.amplitude).fold(f64::NAN, f64::min))
                 })
@@ -390,4 +428,81 @@ pub fn write_plots(cfg: &PlanarConfig, env: &Envelope, stem: &Path, title: &str)
         other.join().unwrap_or_else(|_| Err(anyhow::anyhow!("writing a figure panicked")))
     })?;
     Ok(figures.into_iter().map(|(path, _)| path).collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sample(t: f64, amplitude: f64) -> Sample {
+        Sample { t, omega: 2.0 * t, theta: 0.5 * t, x: amplitude, y: -amplitude, amplitude, psi: vec![t, -t] }
+    }
+
+    /// The envelope as it was written first (every sample of a bucket cloned, the extremes picked
+    /// by `min_by`/`max_by` when the bucket is full): the reference the streaming one must equal.
+    fn reference(samples: &[Sample], expected: usize, target: usize) -> Vec<Sample> {
+        let bucket = expected.div_ceil(target.max(1)).max(1);
+        let mut kept = vec![];
+        for chunk in samples.chunks(bucket) {
+            if chunk.len() <= 2 {
+                kept.extend_from_slice(chunk);
+                continue;
+            }
+            let imin = (0..chunk.len()).min_by(|&a, &b| chunk[a].amplitude.total_cmp(&chunk[b].amplitude)).unwrap();
+            let imax = (0..chunk.len()).max_by(|&a, &b| chunk[a].amplitude.total_cmp(&chunk[b].amplitude)).unwrap();
+            let (a, b) = (imin.min(imax), imin.max(imax));
+            kept.push(chunk[a].clone());
+            if b != a {
+                kept.push(chunk[b].clone());
+            }
+        }
+        kept
+    }
+
+    /// The streaming envelope keeps exactly the samples of the reference, in order, for buckets
+    /// of 1 to 7 samples, runs shorter and longer than expected, a partial last bucket, ties
+    /// (amplitudes drawn from 5 values, so buckets hold equal minima and maxima: the first
+    /// smallest and the last largest are kept) and NaN amplitudes (ordered by `total_cmp`).
+    #[test]
+    fn the_streaming_envelope_keeps_what_the_buffered_one_kept() {
+        let mut x = 0x2545_F491_4F6C_DD1Du64;
+        for case in 0..400 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let expected = 1 + (x % 60) as usize;
+            let target = 1 + (x >> 8) as usize % 12;
+            let count = (x >> 16) as usize % 80;
+            let samples: Vec<Sample> = (0..count)
+                .map(|k| {
+                    let v = (x.rotate_left(k as u32 * 7) >> 3) % 6;
+                    sample(k as f64, if v == 5 && case % 3 == 0 { f64::NAN } else { v as f64 })
+                })
+                .collect();
+            let mut env = Envelope::new(expected, target);
+            samples.iter().for_each(|s| env.push(s));
+            env.flush();
+            let want = reference(&samples, expected, target);
+            assert_eq!(env.kept.len(), want.len(), "case {case}: expected {expected}, target {target}, {count} samples");
+            for (k, (a, b)) in env.kept.iter().zip(&want).enumerate() {
+                // compared as bits: NaN amplitudes are kept too
+                assert!(a.t == b.t && a.amplitude.to_bits() == b.amplitude.to_bits() && a.psi == b.psi && a.omega == b.omega, "case {case}, kept {k}");
+            }
+        }
+    }
+
+    /// Wrapping ball angles: the fast path (already in [−180°, 180°)) is `rem_euclid`'s value,
+    /// and a ball that slips round the race has its line broken where it wraps.
+    #[test]
+    fn wrapped_degrees_match_rem_euclid_and_break_at_the_wrap() {
+        for k in -4000..4000 {
+            let a = k as f64 * 0.0123;
+            let got = wrapped_degrees([(0.0, a)].into_iter())[0].1;
+            let want = (a.to_degrees() + 180.0).rem_euclid(360.0) - 180.0;
+            assert_eq!(got.to_bits(), want.to_bits(), "{a}");
+        }
+        let w = wrapped_degrees([(0.0, 3.0), (1.0, 3.3), (2.0, 3.6)].into_iter());
+        assert_eq!(w.len(), 4);
+        assert!(w[1].1.is_nan() && w[2].1 < -170.0 && w[3].1 < -150.0);
+    }
 }

@@ -509,13 +509,16 @@ impl Summary {
     }
 }
 
-fn sample_of(rotor: &PlanarRotor, drive: &Drive, t: f64, y: &[f64]) -> Sample {
+/// The sample at `(t, y)` into `out` (its ball angles' allocation reused from sample to sample).
+fn sample_into(rotor: &PlanarRotor, drive: &Drive, t: f64, y: &[f64], out: &mut Sample) {
     let nc = 3 + rotor.n;
     let omega = if drive.prescribed() { drive.kinematics(t).0 } else { y[nc + 2] };
     let (s, c) = y[2].sin_cos();
     let x = y[0] * c - y[1] * s;
     let yy = y[0] * s + y[1] * c;
-    Sample { t, omega, theta: y[2], x, y: yy, amplitude: y[0].hypot(y[1]), psi: y[3..3 + rotor.n].to_vec() }
+    (out.t, out.omega, out.theta, out.x, out.y, out.amplitude) = (t, omega, y[2], x, yy, y[0].hypot(y[1]));
+    out.psi.clear();
+    out.psi.extend_from_slice(&y[3..3 + rotor.n]);
 }
 
 /// Initial state from the drive and settings: C at `xy0` with velocity `xy_rate0` (fixed axes,
@@ -627,6 +630,7 @@ fn simulate_sampled(
         speed: (f64::INFINITY, f64::NEG_INFINITY),
         nc,
         balls: eq.balls.as_ref().map(|f| (f, EventCounter::default())),
+        sample: Sample { t: 0.0, omega: 0.0, theta: 0.0, x: 0.0, y: 0.0, amplitude: 0.0, psi: Vec::with_capacity(rotor.n) },
     };
     let out = run(&mut solver, &mut y, &timeline, &mut hooks);
     let peak = hooks.peak;
@@ -740,6 +744,8 @@ struct PlanarHooks<'a, F: FnMut(&Sample) -> bool> {
     speed: (f64, f64),
     nc: usize,
     balls: Option<(&'a BallForces, EventCounter)>,
+    /// The sample handed to the sink, refilled at each sample time.
+    sample: Sample,
 }
 
 impl<F: FnMut(&Sample) -> bool> Hooks for PlanarHooks<'_, F> {
@@ -764,10 +770,11 @@ impl<F: FnMut(&Sample) -> bool> Hooks for PlanarHooks<'_, F> {
     }
 
     fn sample(&mut self, t: f64, y: &[f64]) -> Control {
-        let s = sample_of(self.rotor, self.drive, t, y);
+        sample_into(self.rotor, self.drive, t, y, &mut self.sample);
+        let s = &self.sample;
         self.peak.observe(s.amplitude, t, s.omega);
         self.speed = (self.speed.0.min(s.omega), self.speed.1.max(s.omega));
-        if (self.sink)(&s) {
+        if (self.sink)(s) {
             Control::Continue
         } else {
             Control::Stop
