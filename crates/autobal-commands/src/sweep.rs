@@ -125,11 +125,11 @@ impl Row for autobal::planar::Summary {
 /// A linear rotor's run ([`crate::linear_rotor`] sweeps).
 impl Row for autobal::linear_rotor::runup::RunSummary {
     fn header(lu: &str) -> String {
-        format!("{:>12} {:>12} {:>12} {:>12} {:>10}\n", format!("peak ({lu})"), "ω at peak", format!("any node ({lu})"), format!("final ({lu})"), "steps")
+        format!("{:>12} {:>12} {:>15} {:>12} {:>10}\n", format!("peak ({lu})"), "ω at peak", format!("any node ({lu})"), format!("final ({lu})"), "steps")
     }
     fn cells(&self, ls: f64) -> String {
         let v = autobal::sweep::linear_summary_values(self);
-        format!("{:>12.4} {:>12.2} {:>12.4} {:>12.4} {:>10}", ls * v[0], v[1], ls * v[3], ls * v[5], self.steps)
+        format!("{:>12.4} {:>12.2} {:>15.4} {:>12.4} {:>10}", ls * v[0], v[1], ls * v[3], ls * v[5], self.steps)
     }
     fn warnings(&self) -> Vec<String> {
         self.stopped.iter().cloned().collect()
@@ -348,8 +348,8 @@ impl Args {
 }
 
 impl Plan {
-    /// The plan keeping no point for the figures (`--no-plots`): its [`Output::figures`] are
-    /// none.
+    /// The plan keeping no point for the figures (`--no-plots`): its output's figures
+    /// ([`command::Output::figures`]) are none.
     pub fn without_figures(mut self) -> Self {
         self.figure_points = 0;
         self
