@@ -289,9 +289,13 @@ enum Command {
         /// Grid points per angle (N × N runs)
         #[arg(long, default_value_t = 24)]
         n: usize,
-        /// CSV of the runs' ends (a folder, `DIR/`: DIR/basins.csv); checked before the runs
+        /// CSV of the runs' ends (a folder, `DIR/`: DIR/basins.csv), and beside it the figure,
+        /// STEM.svg (each run's end at its two initial angles); checked before the runs
         #[arg(long, short, default_value = "basins.csv")]
         out: PathBuf,
+        /// Write no figure (STEM.svg)
+        #[arg(long)]
+        no_plots: bool,
         /// Output on standard output: a table to read or JSON
         #[arg(long, value_enum, default_value = "table")]
         format: Format,
@@ -342,9 +346,14 @@ struct SweepFlags {
     #[arg(long, value_name = "K/N")]
     shard: Option<String>,
     /// Output stem: STEM.csv (one row per run, written as runs finish, to a temporary name
-    /// renamed when done or stopped) and STEM.json; a folder (`DIR/`): DIR/sweep.*
+    /// renamed when done or stopped), STEM.json and the figures STEM_peak.svg and
+    /// STEM_final.svg (each run's peak and final whirl radius against the first axis, a curve
+    /// per value of the other axes); a folder (`DIR/`): DIR/sweep.*
     #[arg(long, short, default_value = "sweep")]
     out: PathBuf,
+    /// Write no figures (STEM_peak.svg, STEM_final.svg)
+    #[arg(long)]
+    no_plots: bool,
     /// Also write the rows as Parquet, STEM.parquet (row groups written as runs finish)
     #[arg(long)]
     parquet: bool,
@@ -447,20 +456,31 @@ fn run(cli: Cli, control: &Control) -> Result<()> {
             }
             show(&out, Format::Table)
         }
-        Command::Basins { config, set, n, out, format, threads } => {
+        Command::Basins { config, set, n, out, format, threads, no_plots } => {
             set_threads(threads)?;
             // checked before the grid is computed
             let path = outfile::resolve(&out, "basins.csv");
-            outfile::Outputs::new().inputs(config.as_deref()).output("--out", &path).check()?;
+            let svg = (!no_plots).then(|| basins::figure_path(&path));
+            let mut files = outfile::Outputs::new();
+            files.inputs(config.as_deref()).output("--out", &path);
+            if let Some(p) = &svg {
+                files.output("--out", p);
+            }
+            files.check()?;
             let (shown, bar) = term::progress_bar(control);
             let result = basins::Args { config: ConfigSource::file(config.as_deref(), &set), n }.run(&shown);
             if let Some(b) = bar {
                 b.finish_and_clear();
             }
             let mut o = result?;
-            // whole or not at all (an interrupted grid keeps its complete runs, and says so)
+            // whole or not at all (an interrupted grid keeps its complete runs, and says so; its
+            // figure draws the runs not done grey)
             outfile::write_atomic("--out", &path, o.csv())?;
             o.written = Some(path);
+            if let Some(p) = svg {
+                outfile::write_atomic("--out", &p, o.plot().to_svg())?;
+                o.svg = Some(p);
+            }
             show(&o, format)
         }
         Command::Report { common, out, quick, papers } => {
@@ -518,10 +538,13 @@ fn write_figures(out: &impl Output, flag: &str, files: &[(PathBuf, &str)], missi
 }
 
 /// `sweep`: the arguments, config and grid checked, then the outputs (`STEM.csv`, `STEM.json`,
-/// `STEM.parquet`), then the runs streamed to the CSV (renamed into place when the sweep ends or
-/// is interrupted: complete rows, with its JSON; an error removes it) and each run's JSON to a
-/// scratch file ([`sweep::Spill`]), the JSON streamed from it to `STEM.json`, the table (its
-/// first rows) or the JSON (streamed from `STEM.json`) printed: memory flat in the points.
+/// `STEM.parquet`, the figures `STEM_peak.svg` and `STEM_final.svg` unless `--no-plots`), then
+/// the runs streamed to the CSV (renamed into place when the sweep ends or is interrupted:
+/// complete rows, with its JSON; an error removes it) and each run's JSON to a scratch file
+/// ([`sweep::Spill`]), the figures of the runs finished written, the JSON streamed from the
+/// scratch file to `STEM.json`, the table (its first rows) or the JSON (streamed from
+/// `STEM.json`) printed: memory flat in the points (the figures keep at most
+/// [`sweep::FIGURE_POINTS`] runs' points).
 fn run_sweep(a: SweepFlags, control: &Control) -> Result<()> {
     let args = sweep::Args {
         config: ConfigSource::file(a.config.as_deref(), &a.set),
@@ -530,14 +553,18 @@ fn run_sweep(a: SweepFlags, control: &Control) -> Result<()> {
         more: a.axes.iter().map(|s| sweep::parse_axis("--axis", s)).collect::<Result<_>>()?,
         shard: a.shard.as_deref().map(sweep::parse_shard).transpose()?,
     };
-    let plan = args.prepare()?;
+    let plan = if a.no_plots { args.prepare()?.without_figures() } else { args.prepare()? };
     set_threads(a.threads)?;
     let stem = term::out_stem(&outfile::resolve(&a.out, "sweep"), &["csv", "json", "parquet"]);
     let (csv_path, json_path, pq_path) = (term::with_suffix(&stem, "csv"), term::with_suffix(&stem, "json"), term::with_suffix(&stem, "parquet"));
+    let svg = if a.no_plots { vec![] } else { sweep::figure_paths(&stem) };
     let mut o = outfile::Outputs::new();
     o.inputs(a.config.as_deref()).output("--out", &csv_path).output("--out", &json_path);
     if a.parquet {
         o.output("--parquet", &pq_path);
+    }
+    for (p, _) in &svg {
+        o.output("--out", p);
     }
     o.check()?;
     let mut csv = outfile::Staged::create("--out", &csv_path)?;
@@ -559,6 +586,18 @@ fn run_sweep(a: SweepFlags, control: &Control) -> Result<()> {
     csv.commit()?;
     if let Some(t) = pq {
         term::note(&format!("wrote {}", t.finish()?.display()));
+    }
+    // the figures of the runs finished (none without runs, or past sweep::FIGURE_POINTS)
+    let figures = out.figures()?;
+    let mut drawn = vec![];
+    for (path, id) in &svg {
+        if let Some(f) = figures.iter().find(|f| f.id == *id) {
+            outfile::write_atomic("--out", path, f.plot.to_svg())?;
+            drawn.push(path.display().to_string());
+        }
+    }
+    if !drawn.is_empty() {
+        term::note(&format!("wrote {}", drawn.join(" and ")));
     }
     let mut json = outfile::Staged::create("--out", &json_path)?;
     out.write_report(&mut json, Some(&mut spill.reader()?)).map_err(|e| anyhow::anyhow!("--out: cannot write {}: {e:#}", json_path.display()))?;

@@ -290,6 +290,6 @@ fn printed_json_is_the_json_file_and_no_scratch_is_left() {
     assert_eq!(file.lines().filter(|l| l.starts_with("    {\"point\":")).count(), 12);
     let mut names: Vec<String> = std::fs::read_dir(&d).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
     names.sort();
-    assert_eq!(names, ["s.csv", "s.json"], "only the outputs are left");
+    assert_eq!(names, ["s.csv", "s.json", "s_final.svg", "s_peak.svg"], "only the outputs are left");
     std::fs::remove_dir_all(&d).ok();
 }

@@ -9,7 +9,7 @@ use autobal::control::Control;
 use autobal::spatial::dynamics::basins::{angle_grid, basins, check_angle_grid};
 use autobal::spatial::dynamics::Summary;
 use serde_json::{json, Value};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// `--n` when none is given (Python's `basins(n=16)` keeps its smaller default).
 pub const DEFAULT_N: usize = 24;
@@ -29,6 +29,12 @@ impl Default for Args {
     }
 }
 
+/// The figure's file beside the CSV `csv` (`basins.csv` -> `basins.svg`; a name without
+/// `.csv`, `b` -> `b.svg`): [`Output::plot`] as SVG, what the CLI writes.
+pub fn figure_path(csv: &Path) -> PathBuf {
+    crate::term::with_suffix(&crate::term::out_stem(csv, &["csv"]), "svg")
+}
+
 /// `basins`' result: each run's initial angles and end (`None`: not run, the grid was stopped).
 pub struct Output {
     /// The first two balls' initial angles of each run, `psi_2` outer.
@@ -39,6 +45,9 @@ pub struct Output {
     pub wall: f64,
     /// Where the front end wrote the CSV ([`Output::csv`]), named in the JSON and the table.
     pub written: Option<PathBuf>,
+    /// Where the front end wrote the figure ([`Output::plot`] as SVG, [`figure_path`]), named
+    /// in the JSON (`svg`) and the table.
+    pub svg: Option<PathBuf>,
     /// A linear rotor config's ends (`ends` is then empty): the runs of [`autobal::linear_rotor::basins`].
     pub linear: Option<Vec<Option<autobal::linear_rotor::basins::BasinEnd>>>,
 }
@@ -59,7 +68,7 @@ impl command::Command for Args {
         let t0 = std::time::Instant::now();
         let ends = basins(&sim.rotor, &cases, &sim.settings, control)?.value;
         let wall = t0.elapsed().as_secs_f64();
-        Ok(Output { angles: cases.iter().map(|c| [c.initial.psi[0], c.initial.psi[1]]).collect(), ends, wall, written: None, linear: None })
+        Ok(Output { angles: cases.iter().map(|c| [c.initial.psi[0], c.initial.psi[1]]).collect(), ends, wall, written: None, svg: None, linear: None })
     }
 }
 
@@ -125,6 +134,9 @@ impl command::Output for Output {
         if let Some(p) = &self.written {
             v["csv"] = json!(p.display().to_string());
         }
+        if let Some(p) = &self.svg {
+            v["svg"] = json!(p.display().to_string());
+        }
         Ok(v)
     }
     fn table(&self) -> Result<String> {
@@ -136,7 +148,11 @@ impl command::Output for Output {
             "{balanced} of {runs} runs balanced ({:.1} %), {:.2} s{}\n",
             100.0 * balanced as f64 / done.max(1) as f64,
             self.wall,
-            self.written.as_ref().map_or(String::new(), |p| format!("; wrote {}", p.display()))
+            match (&self.written, &self.svg) {
+                (Some(c), Some(f)) => format!("; wrote {} and {}", c.display(), f.display()),
+                (Some(p), None) | (None, Some(p)) => format!("; wrote {}", p.display()),
+                (None, None) => String::new(),
+            }
         ))
     }
     /// `basins`: [`Output::plot`].
@@ -164,7 +180,14 @@ fn linear(root: &toml::Table, dir: &std::path::Path, n: usize, control: &Control
     let starts = angle_grid(&run.rotor, n, "--n")?;
     let t0 = std::time::Instant::now();
     let ends = basins(&run, &starts, control)?.value;
-    Ok(Output { angles: starts.iter().map(|p| [p[0], p[1]]).collect(), ends: vec![], wall: t0.elapsed().as_secs_f64(), written: None, linear: Some(ends) })
+    Ok(Output {
+        angles: starts.iter().map(|p| [p[0], p[1]]).collect(),
+        ends: vec![],
+        wall: t0.elapsed().as_secs_f64(),
+        written: None,
+        svg: None,
+        linear: Some(ends),
+    })
 }
 
 #[cfg(test)]

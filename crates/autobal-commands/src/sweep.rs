@@ -78,6 +78,21 @@ const PRINTED_WARNINGS: usize = 10;
 /// (`... N more rows in STEM.csv`), so that the table's memory does not grow with the grid.
 pub const TABLE_ROWS: usize = 100;
 
+/// Runs whose points a figure keeps when the runs are spilled to a file (the CLI's sweep):
+/// past this many the CLI draws no figure and says so, so that its memory stays flat in the
+/// points (a figure of more points is no longer read curve by curve anyway).
+pub const FIGURE_POINTS: usize = 100_000;
+
+/// The figures the CLI writes beside `STEM.csv`: `(figure id, file suffix)`, the file
+/// `STEM_SUFFIX.svg` ([`figure_paths`]).
+pub const FIGURES: [(&str, &str); 2] = [("sweep_peak", "peak"), ("sweep_final", "final")];
+
+/// The figures' files of the stem `stem` with their ids: `STEM_peak.svg` (`sweep_peak`),
+/// `STEM_final.svg` (`sweep_final`).
+pub fn figure_paths(stem: &Path) -> Vec<(PathBuf, &'static str)> {
+    FIGURES.iter().map(|(id, suffix)| (crate::sim::plot_path(stem, suffix), *id)).collect()
+}
+
 /// A run's summary as the sweep's table shows it.
 pub(crate) trait Row: SweepSummary {
     /// The table's header after the axes (`lu`: the unit of lengths).
@@ -110,11 +125,11 @@ impl Row for autobal::planar::Summary {
 /// A linear rotor's run ([`crate::linear_rotor`] sweeps).
 impl Row for autobal::linear_rotor::runup::RunSummary {
     fn header(lu: &str) -> String {
-        format!("{:>12} {:>12} {:>12} {:>12} {:>10}\n", format!("peak ({lu})"), "ω at peak", format!("any node ({lu})"), format!("final ({lu})"), "steps")
+        format!("{:>12} {:>12} {:>15} {:>12} {:>10}\n", format!("peak ({lu})"), "ω at peak", format!("any node ({lu})"), format!("final ({lu})"), "steps")
     }
     fn cells(&self, ls: f64) -> String {
         let v = autobal::sweep::linear_summary_values(self);
-        format!("{:>12.4} {:>12.2} {:>12.4} {:>12.4} {:>10}", ls * v[0], v[1], ls * v[3], ls * v[5], self.steps)
+        format!("{:>12.4} {:>12.2} {:>15.4} {:>12.4} {:>10}", ls * v[0], v[1], ls * v[3], ls * v[5], self.steps)
     }
     fn warnings(&self) -> Vec<String> {
         self.stopped.iter().cloned().collect()
@@ -225,6 +240,9 @@ pub struct Plan {
     problem: Value,
     /// The table's unit of lengths and its factor.
     units: (&'static str, f64),
+    /// The most runs whose points the figures keep when the runs are spilled
+    /// ([`FIGURE_POINTS`]); 0: none, whether spilled or not ([`Plan::without_figures`]).
+    figure_points: usize,
 }
 
 enum Base {
@@ -325,11 +343,18 @@ impl Args {
             Base::Spatial(b) => autobal::sweep::check_grid(&**b, &grid, range.clone())?,
             Base::Linear(b) => autobal::sweep::check_grid(&**b, &grid, range.clone())?,
         }
-        Ok(Plan { base, root, grid, shard: self.shard, range, problem, units })
+        Ok(Plan { base, root, grid, shard: self.shard, range, problem, units, figure_points: FIGURE_POINTS })
     }
 }
 
 impl Plan {
+    /// The plan keeping no point for the figures (`--no-plots`): its output's figures
+    /// ([`command::Output::figures`]) are none.
+    pub fn without_figures(mut self) -> Self {
+        self.figure_points = 0;
+        self
+    }
+
     /// The CSV's (and Parquet table's) columns.
     pub fn columns(&self) -> Vec<String> {
         let summary = match &self.base {
@@ -372,8 +397,10 @@ impl Plan {
         table.push_str(&<M::Summary as Row>::header(lu));
         // the runs' JSON, one compact line each: kept here, or spilled (then only counted)
         let (mut runs, mut spilled) = (vec![], 0usize);
-        // the figures' points, kept with the runs (not when they are spilled)
+        // the figures' points: every run's where the runs are kept, at most FIGURE_POINTS
+        // where they are spilled (past them none: `unplotted`)
         let mut peaks = vec![];
+        let mut unplotted = false;
         let mut more_rows = 0usize;
         // points whose runs have warnings: the first few listed, the rest counted (every run's
         // warnings are in the JSON)
@@ -433,8 +460,13 @@ impl Plan {
                         }
                         spilled += 1;
                     }
-                    None => {
-                        runs.push(line.into_boxed_str());
+                    None => runs.push(line.into_boxed_str()),
+                }
+                if self.figure_points > 0 && !unplotted {
+                    if spill.is_some() && peaks.len() >= self.figure_points {
+                        unplotted = true;
+                        peaks = vec![];
+                    } else {
                         peaks.push((values.to_vec(), s.peak_final()));
                     }
                 }
@@ -465,6 +497,7 @@ impl Plan {
             points: outcome.points,
             written: None,
             peaks,
+            unplotted: unplotted.then_some(self.figure_points),
             paths: paths.iter().map(|p| p.to_string()).collect(),
             units: self.units,
             model,
@@ -498,9 +531,11 @@ pub struct Output {
     pub points: usize,
     /// The stem the front end wrote (`STEM.csv`, `STEM.json`), named in the messages.
     pub written: Option<PathBuf>,
-    /// Each kept run's values and `[peak, final]` whirl radius ([`Row::peak_final`]; none
-    /// when the runs were spilled), the figures' points.
+    /// Each run's values and `[peak, final]` whirl radius ([`Row::peak_final`]), the figures'
+    /// points (none with [`Plan::without_figures`], or past [`FIGURE_POINTS`] spilled runs).
     peaks: Vec<(Vec<f64>, [f64; 2])>,
+    /// Where the runs were too many for the figures: the most they draw ([`FIGURE_POINTS`]).
+    unplotted: Option<usize>,
     /// The axes' paths.
     paths: Vec<String>,
     /// The unit of lengths and its factor.
@@ -559,6 +594,10 @@ impl Output {
             let json = self.written.as_ref().map_or("the JSON".to_string(), |s| crate::term::with_suffix(s, "json").display().to_string());
             out.push(format!("warning: {} more points have warnings (each run's warnings and stop reason are in {json})", self.more_warned));
         }
+        if let Some(most) = self.unplotted {
+            let csv = self.written.as_ref().map_or("the CSV".to_string(), |s| crate::term::with_suffix(s, "csv").display().to_string());
+            out.push(format!("note: no figures: {} runs, more than the {most} a figure draws (plot the columns of {csv})", self.delivered));
+        }
         out
     }
 }
@@ -585,7 +624,8 @@ impl command::Output for Output {
     }
     /// `sweep_peak` and `sweep_final`: each run's peak and final whirl radius against the first
     /// axis' value, a curve per value of the other axes
-    /// ([`crate::linear_rotor::sweep_plots_of`]); none when the runs were spilled to a file.
+    /// ([`crate::linear_rotor::sweep_plots_of`]), of the runs finished; none without runs, with
+    /// [`Plan::without_figures`], or past [`FIGURE_POINTS`] runs spilled to a file.
     fn figures(&self) -> Result<Vec<command::Figure>> {
         if self.peaks.is_empty() {
             return Ok(vec![]);
@@ -667,6 +707,49 @@ mod tests {
         joined.extend(strip(&b));
         assert_eq!(joined, strip(&json));
         assert_eq!(a["definition_checksum"], json["definition_checksum"]);
+    }
+
+    /// The figures of a sweep whose runs are spilled to a file (the CLI's): a vertex per run,
+    /// at the run's first axis value and its peak and final radius (mm) as its JSON gives them;
+    /// none with `without_figures`; none, and a note saying so, past the most a figure keeps.
+    #[test]
+    fn spilled_runs_keep_their_figures_points() {
+        let args = Args {
+            config: short(),
+            x: parse_axis("--x", "planar.c_psi=0.05:0.15:3").unwrap(),
+            y: Some(parse_axis("--y", "drive.b=80,120").unwrap()),
+            ..Default::default()
+        };
+        let run = |plan: &Plan| {
+            let (mut csv, mut spill) = (vec![], vec![]);
+            let out = plan.run(&Control::none(), Rows::Files { csv: &mut csv, parquet: None, runs: Some(&mut spill) }).unwrap();
+            (out, spill)
+        };
+        let plan = args.prepare().unwrap();
+        let (out, spill) = run(&plan);
+        let runs: Vec<Value> = String::from_utf8(spill).unwrap().lines().map(|l| serde_json::from_str(l).unwrap()).collect();
+        let figures = out.figures().unwrap();
+        assert_eq!(figures.iter().map(|f| f.id.as_str()).collect::<Vec<_>>(), ["sweep_peak", "sweep_final"]);
+        for (f, key) in figures.iter().zip(["peak_amplitude", "final_amplitude"]) {
+            assert_eq!(f.plot.series.len(), 2, "a curve per drive.b");
+            let got: Vec<(f64, f64)> = f.plot.series.iter().flat_map(|s| s.points.clone()).collect();
+            // mm: the config's metres times 1e3, as the table shows them
+            let want: Vec<(f64, f64)> = runs.iter().map(|r| (r["values"][0].as_f64().unwrap(), 1e3 * r["summary"][key].as_f64().unwrap())).collect();
+            assert_eq!(got, want, "{key}");
+        }
+        assert!(out.notes().iter().all(|n| !n.contains("no figures")));
+        let (none, _) = run(&args.prepare().unwrap().without_figures());
+        assert!(none.figures().unwrap().is_empty());
+        let mut capped = args.prepare().unwrap();
+        capped.figure_points = 5;
+        let (mut capped, _) = run(&capped);
+        assert!(capped.figures().unwrap().is_empty(), "6 runs, at most 5 drawn");
+        capped.written = Some("sw".into());
+        assert!(
+            capped.notes().contains(&"note: no figures: 6 runs, more than the 5 a figure draws (plot the columns of sw.csv)".to_string()),
+            "{:?}",
+            capped.notes()
+        );
     }
 
     /// Bad axes and shards name their option, before anything runs.

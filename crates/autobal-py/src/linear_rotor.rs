@@ -537,6 +537,23 @@ impl PyLinearSpec {
         Ok(PyLinearSpec { spec })
     }
 
+    /// `LinearSpec.from_dict(tables, sets)`: a dict of a `[linear_rotor]` config's tables with
+    /// `sets` (the CLI's `--set`), its matrix files read relative to the working folder (as
+    /// `autobal.run` reads a dict's).
+    #[staticmethod]
+    fn from_dict(py: Python<'_>, tables: Bound<'_, PyDict>, sets: Vec<(String, Bound<'_, PyAny>)>) -> PyResult<Self> {
+        let mut set = vec![];
+        for (k, v) in &sets {
+            set.push(format!("{k}={}", crate::to_toml(v, k)?));
+        }
+        let root = dict_table(Some(tables))?;
+        let spec = crate::commands_call(py, move |_| {
+            let src = LinearSource::read(None, root, &set)?;
+            Ok(cmd::spec(&src.root, &src.dir)?)
+        })?;
+        Ok(PyLinearSpec { spec })
+    }
+
     /// The config from its TOML text and its files' bytes (`{name: bytes}`), as
     /// [`PyLinearSpec::toml`] and [`PyLinearSpec::files`] give them.
     #[staticmethod]

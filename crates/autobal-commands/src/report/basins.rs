@@ -78,6 +78,7 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
         ends: out.value,
         wall,
         written: None,
+        svg: None,
         linear: None,
     };
     let done: Vec<_> = out.ends.iter().flatten().collect();

@@ -3,8 +3,9 @@ spatial rotor (:class:`SpatialModel` of a config with ``[drive]``) or of a linea
 path of a ``[linear_rotor]`` config file): in-process (Rust threads) or on a Dask cluster,
 streamed to disk chunk by chunk so that an interrupted sweep keeps what finished and resumes.
 
-A linear rotor config travels to the Dask workers as its TOML text and the bytes of the matrix
-files it names (read once, here): the workers need no shared file system."""
+A config travels to the Dask workers as its TOML text (a dict of tables too), and a linear
+rotor config with the bytes of the matrix files it names (read once, here): the workers need no
+shared file system."""
 
 from __future__ import annotations
 
@@ -24,7 +25,7 @@ from .errors import InvalidParameter
 if TYPE_CHECKING:  # pragma: no cover
     from . import PlanarProblem, SpatialModel
 
-Problem = Union["PlanarProblem", "SpatialModel", str, "os.PathLike[str]"]
+Problem = Union["PlanarProblem", "SpatialModel", str, "os.PathLike[str]", Mapping[str, Any]]
 
 
 class _LinearProblem:
@@ -43,7 +44,19 @@ _Resolved = Union["PlanarProblem", "SpatialModel", _LinearProblem]
 
 
 def _problem(problem: Union[Problem, _LinearProblem]) -> _Resolved:
-    """``problem``, or the path of a ``[linear_rotor]`` config file as its :class:`_LinearProblem`."""
+    """``problem``, the path of a ``[linear_rotor]`` config file as its :class:`_LinearProblem`,
+    or a dict of tables as its model: a ``[linear_rotor]`` config's (its matrix files read
+    relative to the working folder, as :func:`autobal.run` reads a dict's), else the planar
+    rotor's (``planar``, ``drive``, ``integration``) or, without ``planar``, the spatial
+    rotor's, as ``autobal.run("sweep", tables)`` takes it."""
+    if isinstance(problem, Mapping):
+        from . import PlanarProblem, SpatialModel, _linear_config
+
+        if _linear_config.is_linear(problem):
+            return _LinearProblem(_autobal.LinearSpec.from_dict(dict(problem), []))
+        if "planar" in problem:
+            return PlanarProblem(problem)
+        return SpatialModel(problem)
     if isinstance(problem, (str, os.PathLike)):
         from . import _linear_config
 
@@ -243,7 +256,9 @@ def sweep(
     ``balancer.ball_mass``, ``drive.omega0``, ``dimensionless.z_a``; see :func:`simulate_batch`),
     or the path of a ``[linear_rotor]`` config file (paths: ``linear_rotor.ball_mass``,
     ``linear_rotor.balancer[0].drag``, ``drive.b``, ...; its matrix files read here once and
-    sent to the workers with the config's text).
+    sent to the workers with the config's text), or a dict of any of these configs' tables (a
+    ``[linear_rotor]`` one's matrix files read relative to the working folder; the tables
+    sent to the workers as TOML text).
 
     - ``client``: a ``dask.distributed.Client``; the grid is cut into chunks of ``chunk_size``
       points, each submitted as one :func:`simulate_batch` call (``threads`` per task, default
