@@ -3,9 +3,13 @@ ball balancers and unbalances added (issue 19, docs/guide/your-own-rotor.md).
 
 ROSS is not a dependency of autobal: the function takes the rotor object and calls ROSS's own
 matrix methods, ``rotor.M()``, ``rotor.K(speed)``, ``rotor.C(speed)``, ``rotor.G()``. ROSS 2
-numbers 6 DOFs per node (``x, y, z, alpha, beta, theta``), ROSS 1 four (``x, y, alpha, beta``);
-the lateral ones, ``x, y, alpha, beta``, are kept (the axial and torsional DOFs of ROSS's shaft
-elements are not coupled to them). Bearings whose coefficients ROSS tabulates over frequency
+numbers 6 DOFs per shaft node (``x, y, z, alpha, beta, theta``), ROSS 1 four (``x, y, alpha,
+beta``); the lateral ones, ``x, y, alpha, beta``, are kept (the axial and torsional DOFs of
+ROSS's shaft elements are not coupled to them). After the shaft's nodes ROSS numbers the nodes
+of its point masses beyond the shaft (the support, "link", nodes of ``n_link`` bearings: a
+pedestal, a washer's tub, a drive's suspended base) with half a node's DOFs each (``x, y, z`` in
+ROSS 2, ``x, y`` in ROSS 1; ``Rotor.__init__``'s ``dof_global_index``); they become autobal nodes
+with ``x, y`` only, under the same node numbers. Bearings whose coefficients ROSS tabulates over frequency
 become speed-dependent bearings: ``K(speed) - K(speeds[0])`` and the same for ``C`` at each
 speed of the table (the union of the bearings' ``frequency`` arrays, or ``speeds=``), on the
 bearing's node, interpolated linearly between them (ROSS interpolates its tables itself).
@@ -13,10 +17,10 @@ The rotor's polar moment of inertia about its axis (the spin's inertia under a t
 ``LinearRotor.polar_inertia``) is the disks' ``DiskElement.Ip`` plus the shaft elements'
 ``ρ ∫ J dz``, ``J = π (d_o⁴ − d_i⁴)/32`` along each (tapered) element, by :func:`polar_inertia_of`;
 the gyroscopic matrix is ROSS's ``rotor.G()``, which holds the same moments.
-Refused with a ``ValueError`` naming the cause: support (link) nodes of ``n_link`` bearings
-(ROSS's ``PointMass`` nodes carry x, y, z only, autobal's nodes x, y, alpha, beta), and a
-speed-dependent bearing whose change with speed is not on its own node's x, y block (between
-two nodes, or with tilt terms).
+Refused with a ``ValueError`` naming the cause: DOFs that are neither the shaft nodes' nor
+the point-mass nodes' numbered after them (ROSS counts every ``PointMass`` as a new node, one
+placed on a shaft node leaves empty rows), and a speed-dependent bearing whose change with
+speed is not on its own node's x, y block (between two nodes, ``n_link``, or with tilt terms).
 """
 
 from __future__ import annotations
@@ -77,7 +81,8 @@ def from_ross(
     polar_inertia: Optional[float] = None,
 ) -> "_autobal.LinearRotor":
     """The ROSS rotor ``rotor`` as a :class:`autobal.LinearRotor` (DOFs ``x, y, alpha, beta``
-    per node in ROSS's order and node numbers).
+    per shaft node and ``x, y`` per point-mass node beyond the shaft, the support nodes of
+    ``n_link`` bearings, in ROSS's order and node numbers).
 
     ``balancers``: dicts with ``node``, ``radius`` (m), ``balls``, ``ball_mass`` (kg), and
     optionally ``drag`` (N m s per ball) and ``offset`` (m). ``unbalance``: dicts with ``node``,
@@ -95,17 +100,20 @@ def from_ross(
     lat = _lateral(per)
     m_full = np.asarray(rotor.M(), dtype=float)
     n_nodes = len(getattr(rotor, "nodes", ())) or m_full.shape[0] // per
-    if m_full.shape[0] != per * n_nodes:
-        # ROSS gives the support (link) node of an ``n_link`` bearing, a ``PointMass``, half a
-        # node's DOFs (x, y, z) after the shaft's nodes; autobal's nodes all have x, y, alpha, beta
-        extra = m_full.shape[0] - per * n_nodes
-        links = sorted({int(b.n_link) for b in getattr(rotor, "bearing_elements", []) if getattr(b, "n_link", None) is not None})
+    # the point masses' nodes beyond the shaft: ROSS numbers them on from the shaft's last node
+    # and gives each half a node's DOFs, node n at per * n_nodes + (per / 2) * (n - n_nodes)
+    half = per // 2
+    links = sorted({int(p.n) for p in getattr(rotor, "point_mass_elements", []) if int(p.n) >= n_nodes})
+    if m_full.shape[0] != per * n_nodes + half * len(links) or links != list(range(n_nodes, n_nodes + len(links))):
         raise ValueError(
-            f"from_ross: the rotor has {extra} DOFs beyond its {n_nodes} shaft nodes (support nodes of n_link bearings {links}, "
-            "point masses with x, y, z only); autobal's linear rotor has x, y, alpha, beta at every node and cannot take them: "
-            "export M, C, G, K with a 4-DOF layout (docs/guide/your-own-rotor.md) or put the support's stiffness in series into the bearing"
+            f"from_ross: the rotor has {m_full.shape[0]} DOFs, its {n_nodes} shaft nodes {per} each and the point-mass nodes "
+            f"{links} beyond them {half} each make {per * n_nodes + half * len(links)}; autobal takes shaft nodes and point-mass "
+            f"nodes numbered on from the shaft's last ({n_nodes}, {n_nodes + 1}, …), one point mass each"
         )
-    idx = [k * per + j for k in range(n_nodes) for j in lat]
+    idx = [k * per + j for k in range(n_nodes) for j in lat] + [per * n_nodes + half * i + j for i in range(len(links)) for j in (0, 1)]
+    # each node's first DOF (its x) among the kept ones
+    start = [4 * k for k in range(n_nodes)] + [4 * n_nodes + 2 * i for i in range(len(links))]
+    layout = [4] * n_nodes + [2] * len(links)
     sel = np.ix_(idx, idx)
     if speeds is None:
         tabulated: Set[float] = set()
@@ -118,14 +126,16 @@ def from_ross(
     k0 = np.asarray(rotor.K(speeds[0]), dtype=float)[sel]
     c0 = np.asarray(rotor.C(speeds[0]), dtype=float)[sel]
     g = np.asarray(rotor.G(), dtype=float)[sel]
-    out = _autobal.LinearRotor(np.ascontiguousarray(m_full[sel]), np.ascontiguousarray(c0), np.ascontiguousarray(g), np.ascontiguousarray(k0), per_node=4)
+    out = _autobal.LinearRotor(
+        np.ascontiguousarray(m_full[sel]), np.ascontiguousarray(c0), np.ascontiguousarray(g), np.ascontiguousarray(k0), per_node=layout if links else 4
+    )
     out.polar_inertia = float(polar_inertia_of(rotor) if polar_inertia is None else polar_inertia)
     if len(speeds) > 1:
         ks = [np.asarray(rotor.K(w), dtype=float)[sel] - k0 for w in speeds]
         cs = [np.asarray(rotor.C(w), dtype=float)[sel] - c0 for w in speeds]
         nodes = sorted({int(b.n) for b in getattr(rotor, "bearing_elements", [])})
         for node in nodes:
-            i = 4 * node
+            i = start[node]
             blk = lambda a: [a[i, i], a[i, i + 1], a[i + 1, i], a[i + 1, i + 1]]
             out.add_speed_bearing(node, speeds, np.array([blk(a) for a in ks]), np.array([blk(a) for a in cs]))
         # what changes with speed must sit in the x, y blocks of the bearings' own nodes (one
@@ -133,7 +143,7 @@ def from_ross(
         # would be dropped here, so it is refused
         on = np.zeros(ks[0].shape, dtype=bool)
         for node in nodes:
-            on[4 * node : 4 * node + 2, 4 * node : 4 * node + 2] = True
+            on[start[node] : start[node] + 2, start[node] : start[node] + 2] = True
         for name, table in (("stiffness", ks), ("damping", cs)):
             for w, a in zip(speeds, table):
                 scale = max(float(np.max(np.abs(a))), 1e-300)

@@ -29,7 +29,7 @@
 //! interior frequency `ω_c` is reported too: a forced response at frequency `ω` misses terms of
 //! relative size about `(ω/ω_c)²` (the static correction carries the rest).
 
-use super::{cholesky, LinearRotor};
+use super::{cholesky, Layout, LinearRotor};
 use crate::error::{Error, Result};
 use crate::ode::lu::Lu;
 use serde::Serialize;
@@ -220,7 +220,8 @@ pub fn reduce(rotor: &LinearRotor, mode_pairs: usize, extra_boundary: &[usize]) 
         return Err(Error::invalid("linear_rotor.rotor_fixed_mass", "inertia fixed to the rotor is not reduced: reduce the structure without it"));
     }
     let n = rotor.dofs();
-    let per = rotor.layout.per_node();
+    // DOFs per modal pseudo-node: as every node's where all are alike, else one pair (x, y)
+    let per = pseudo_layout(rotor).per_node();
     let mut boundary: Vec<usize> = rotor
         .balancers
         .iter()
@@ -234,8 +235,14 @@ pub fn reduce(rotor: &LinearRotor, mode_pairs: usize, extra_boundary: &[usize]) 
     if let Some(&k) = boundary.iter().find(|k| **k >= rotor.nodes) {
         return Err(Error::invalid("linear_rotor.reduce.boundary", format!("{k} is not a node (0..{})", rotor.nodes)));
     }
-    let bd: Vec<usize> = boundary.iter().flat_map(|k| (0..per).map(move |d| k * per + d)).collect();
-    let id: Vec<usize> = (0..n).filter(|i| !boundary.contains(&(i / per))).collect();
+    let bd: Vec<usize> = boundary
+        .iter()
+        .flat_map(|&k| {
+            let s = rotor.node_start(k);
+            s..s + rotor.node_layout(k).per_node()
+        })
+        .collect();
+    let id: Vec<usize> = (0..n).filter(|i| !bd.contains(i)).collect();
     let (nb, ni) = (bd.len(), id.len());
     let ms = iso_sym(&rotor.m, n);
     let ks = iso_sym(&rotor.k, n);
@@ -372,7 +379,7 @@ pub fn reduce(rotor: &LinearRotor, mode_pairs: usize, extra_boundary: &[usize]) 
 /// correction `psi` and the interior modes `phis` (module docs).
 fn assemble(rotor: &LinearRotor, boundary: &[usize], bd: &[usize], id: &[usize], psi: &[f64], phis: &[Vec<f64>]) -> (LinearRotor, Vec<f64>, usize) {
     let n = rotor.dofs();
-    let per = rotor.layout.per_node();
+    let pseudo = pseudo_layout(rotor);
     let nb = bd.len();
     let r = nb + phis.len();
     let mut b = vec![0.0; n * r];
@@ -387,8 +394,9 @@ fn assemble(rotor: &LinearRotor, boundary: &[usize], bd: &[usize], id: &[usize],
             b[d * r + nb + m] = phi[ii];
         }
     }
-    let nodes = r / per;
-    let mut red = LinearRotor::zeros(nodes, rotor.layout);
+    // the boundary nodes with their DOFs, then the modal pseudo-nodes
+    let layouts: Vec<Layout> = boundary.iter().map(|&k| rotor.node_layout(k)).chain(std::iter::repeat_n(pseudo, phis.len() / pseudo.per_node())).collect();
+    let mut red = LinearRotor::with_layouts(&layouts);
     red.m = project(&rotor.m, &b, n, r);
     red.c = project(&rotor.c, &b, n, r);
     red.g = project(&rotor.g, &b, n, r);
@@ -415,6 +423,16 @@ fn assemble(rotor: &LinearRotor, boundary: &[usize], bd: &[usize], id: &[usize],
     // the weight's virtual work on q = B z: Bᵀ load
     red.gravity = rotor.gravity.as_ref().map(|g| super::Gravity { g: g.g, load: (0..r).map(|j| (0..n).map(|i| b[i * r + j] * g.load[i]).sum()).collect() });
     (red, b, r)
+}
+
+/// The layout of the modal pseudo-nodes: every node's where all are alike, else `x, y` (one
+/// pair of modal coordinates each).
+fn pseudo_layout(rotor: &LinearRotor) -> Layout {
+    if rotor.node_layouts.is_empty() {
+        rotor.layout
+    } else {
+        Layout::Translation
+    }
 }
 
 /// The reduced natural frequencies at rest with their Krylov–Weinstein intervals (module docs).
