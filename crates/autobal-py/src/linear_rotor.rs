@@ -180,8 +180,18 @@ impl PyLinearRotor {
     }
 
     /// Add a bearing at `node` tabulated over `speeds` (rad/s): `k` and `c` are `len(speeds) × 4`
-    /// (`xx, xy, yx, yy`), added to `K`, `C` at each speed (linear interpolation).
-    fn add_speed_bearing(&mut self, py: Python<'_>, node: usize, speeds: Vec<f64>, k: PyReadonlyArray2<'_, f64>, c: PyReadonlyArray2<'_, f64>) -> PyResult<()> {
+    /// (`xx, xy, yx, yy`), added to `K`, `C` at each speed (linear interpolation); `link`: the
+    /// node at its other side (ROSS's `n_link`, blocks `[[B, −B], [−B, B]]`), `None`: ground.
+    #[pyo3(signature = (node, speeds, k, c, link=None))]
+    fn add_speed_bearing(
+        &mut self,
+        py: Python<'_>,
+        node: usize,
+        speeds: Vec<f64>,
+        k: PyReadonlyArray2<'_, f64>,
+        c: PyReadonlyArray2<'_, f64>,
+        link: Option<usize>,
+    ) -> PyResult<()> {
         let rows = |a: &PyReadonlyArray2<'_, f64>, name: &str| -> PyResult<Vec<[f64; 4]>> {
             let s = a.shape();
             if s[1] != 4 || s[0] != speeds.len() {
@@ -194,7 +204,7 @@ impl PyLinearRotor {
             Ok((0..s[0]).map(|i| [a[[i, 0]], a[[i, 1]], a[[i, 2]], a[[i, 3]]]).collect())
         };
         let (k, c) = (rows(&k, "k")?, rows(&c, "c")?);
-        self.rotor.speed_bearings.push(SpeedBearing { node, speeds: speeds.clone(), k, c });
+        self.rotor.speed_bearings.push(SpeedBearing { node, link, speeds: speeds.clone(), k, c });
         Ok(())
     }
 

@@ -4,7 +4,7 @@
 //! checks of offsets on nodes without tilts, the natural frequencies against the closed form of
 //! the two decoupled 2-DOF problems, the balanced state's eigenvalues against the same rotor with
 //! every node `x, y, α, β` (the supports given dummy tilts decoupled from the rest), the config's
-//! DOF table and export, and the modal reduction.
+//! DOF table and export, the modal reduction, and a speed-dependent bearing between two nodes.
 
 mod common;
 
@@ -250,6 +250,59 @@ fn reduction_keeps_each_nodes_layout() {
     assert_eq!(red.rotor.balancers[0].node, 0);
     let (a, b) = (r.natural_frequencies(&[], false).unwrap(), red.rotor.natural_frequencies(&[], false).unwrap());
     assert_eq!(a.len(), b.len());
+    for (x, y) in a.iter().zip(&b) {
+        assert!((x / y - 1.0).abs() < 1e-9, "{a:?} vs {b:?}");
+    }
+}
+
+/// A speed-dependent bearing between the rotor's node and a support (ROSS's `n_link`): its
+/// table `B(Ω)` acts on the difference of the two nodes' `x, y`, the blocks `[[B, −B], [−B, B]]`.
+/// At a speed between the table's the structure's eigenvalues equal those of the same rotor with
+/// the interpolated coefficients written into `K`, `C` by hand (1e-12 of the largest: the same
+/// numbers in the same places, the eigen-solver's round-off); export and reading back keep the
+/// link; the reduction keeps the link's node physical (one interior pair left, kept: exact, 1e-9
+/// relative as above).
+#[test]
+fn bearing_between_two_nodes_acts_on_their_difference() {
+    use autobal::linear_rotor::SpeedBearing;
+    let mut r = pedestal_rotor(false);
+    r.balancers.push(BalancerPlane { node: 1, radius: 0.06, balls: 2, ball_mass: 0.02, drag: 5e-3, offset: 0.02 });
+    let (kt, ct) = ([[1e5, 2e3, -1e3, 1.2e5], [3e5, 4e3, -3e3, 2.8e5]], [[50.0, 1.0, -2.0, 60.0], [20.0, 0.5, -1.0, 30.0]]);
+    r.speed_bearings.push(SpeedBearing { node: 1, link: Some(0), speeds: vec![0.0, 1000.0], k: kt.to_vec(), c: ct.to_vec() });
+    r.validate().unwrap();
+    let omega = 250.0;
+    let f = omega / 1000.0;
+    let mut hand = r.clone();
+    hand.speed_bearings.clear();
+    let n = hand.dofs();
+    let (x1, x0) = (hand.dof(1, Direction::X).unwrap(), hand.dof(0, Direction::X).unwrap());
+    for (j, (a, b)) in [(0, 0), (0, 1), (1, 0), (1, 1)].into_iter().enumerate() {
+        let (k, c) = (kt[0][j] + f * (kt[1][j] - kt[0][j]), ct[0][j] + f * (ct[1][j] - ct[0][j]));
+        for (r0, c0, s) in [(x1, x1, 1.0), (x0, x0, 1.0), (x1, x0, -1.0), (x0, x1, -1.0)] {
+            hand.k[(r0 + a) * n + c0 + b] += s * k;
+            hand.c[(r0 + a) * n + c0 + b] += s * c;
+        }
+    }
+    let (ea, eb) = (r.structure_eigenvalues(omega).unwrap(), hand.structure_eigenvalues(omega).unwrap());
+    let big = eb.iter().fold(0.0f64, |a, z| a.max(z.norm()));
+    assert!(match_distance(&ea, &eb) <= 1e-12 * big, "{ea:?} vs {eb:?}");
+    // a link to itself or to no node is refused by name
+    let mut bad = r.clone();
+    bad.speed_bearings[0].link = Some(1);
+    let e = bad.validate().unwrap_err().to_string();
+    assert!(e.starts_with("linear_rotor.bearings[0].link: 1 is not a node other than the bearing's 1"), "{e}");
+    // export and back
+    let (text, files) = export(&r, "ped");
+    assert!(text.contains("node = 1\nlink = 0\nspeeds"), "{text}");
+    let root: toml::Table = text.parse().unwrap();
+    let mut load = |p: &str| files.iter().find(|f| f.0 == p).map(|f| f.1.clone()).ok_or_else(|| format!("{p}: missing"));
+    assert_eq!(linear_rotor(&root, &mut load).unwrap().rotor, r);
+    // reduction: nodes 1 (balancer, bearing) and 0 (the link) stay, node 2's pair is kept
+    let red = reduce(&r, 1, &[]).unwrap();
+    assert_eq!(red.boundary, vec![0, 1]);
+    assert_eq!(red.rotor.speed_bearings[0].link, Some(0));
+    assert_eq!(red.rotor.speed_bearings[0].node, 1);
+    let (a, b) = (r.at_speed(omega).natural_frequencies(&[], false).unwrap(), red.rotor.at_speed(omega).natural_frequencies(&[], false).unwrap());
     for (x, y) in a.iter().zip(&b) {
         assert!((x / y - 1.0).abs() < 1e-9, "{a:?} vs {b:?}");
     }

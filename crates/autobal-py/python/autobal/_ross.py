@@ -12,7 +12,8 @@ ROSS 2, ``x, y`` in ROSS 1; ``Rotor.__init__``'s ``dof_global_index``); they bec
 with ``x, y`` only, under the same node numbers. Bearings whose coefficients ROSS tabulates over frequency
 become speed-dependent bearings: ``K(speed) - K(speeds[0])`` and the same for ``C`` at each
 speed of the table (the union of the bearings' ``frequency`` arrays, or ``speeds=``), on the
-bearing's node, interpolated linearly between them (ROSS interpolates its tables itself).
+bearing's node, and for an ``n_link`` bearing on both its nodes (``[[B, -B], [-B, B]]``), interpolated
+linearly between them (ROSS interpolates its tables itself).
 The rotor's polar moment of inertia about its axis (the spin's inertia under a torque drive,
 ``LinearRotor.polar_inertia``) is the disks' ``DiskElement.Ip`` plus the shaft elements'
 ``ρ ∫ J dz``, ``J = π (d_o⁴ − d_i⁴)/32`` along each (tapered) element, by :func:`polar_inertia_of`;
@@ -20,7 +21,7 @@ the gyroscopic matrix is ROSS's ``rotor.G()``, which holds the same moments.
 Refused with a ``ValueError`` naming the cause: DOFs that are neither the shaft nodes' nor
 the point-mass nodes' numbered after them (ROSS counts every ``PointMass`` as a new node, one
 placed on a shaft node leaves empty rows), and a speed-dependent bearing whose change with
-speed is not on its own node's x, y block (between two nodes, ``n_link``, or with tilt terms).
+speed is not on the x, y blocks of its bearings (tilt terms, or an element other than a bearing).
 """
 
 from __future__ import annotations
@@ -133,25 +134,43 @@ def from_ross(
     if len(speeds) > 1:
         ks = [np.asarray(rotor.K(w), dtype=float)[sel] - k0 for w in speeds]
         cs = [np.asarray(rotor.C(w), dtype=float)[sel] - c0 for w in speeds]
-        nodes = sorted({int(b.n) for b in getattr(rotor, "bearing_elements", [])})
-        for node in nodes:
-            i = start[node]
-            blk = lambda a: [a[i, i], a[i, i + 1], a[i + 1, i], a[i + 1, i + 1]]
-            out.add_speed_bearing(node, speeds, np.array([blk(a) for a in ks]), np.array([blk(a) for a in cs]))
-        # what changes with speed must sit in the x, y blocks of the bearings' own nodes (one
-        # node each); a speed-dependent bearing between two nodes (n_link) or with tilt terms
-        # would be dropped here, so it is refused
-        on = np.zeros(ks[0].shape, dtype=bool)
-        for node in nodes:
-            on[start[node] : start[node] + 2, start[node] : start[node] + 2] = True
-        for name, table in (("stiffness", ks), ("damping", cs)):
-            for w, a in zip(speeds, table):
+        # each bearing's change with speed, from its own K(w), C(w): the x, y block of its node
+        # (ROSS's link bearings have [[B, -B], [-B, B]] on the two nodes' x, y, z), summed over
+        # bearings between the same nodes
+        tables: dict = {}
+        for b in getattr(rotor, "bearing_elements", []):
+            link = getattr(b, "n_link", None)
+            key = (int(b.n), None if link is None else int(link))
+            kb = [np.asarray(b.K(w), dtype=float)[:2, :2] - np.asarray(b.K(speeds[0]), dtype=float)[:2, :2] for w in speeds]
+            cb = [np.asarray(b.C(w), dtype=float)[:2, :2] - np.asarray(b.C(speeds[0]), dtype=float)[:2, :2] for w in speeds]
+            if key in tables:
+                kb = [a + b2 for a, b2 in zip(tables[key][0], kb)]
+                cb = [a + b2 for a, b2 in zip(tables[key][1], cb)]
+            tables[key] = (kb, cb)
+        rebuilt_k = [np.zeros_like(k0) for _ in speeds]
+        rebuilt_c = [np.zeros_like(c0) for _ in speeds]
+        for (node, link), (kb, cb) in sorted(tables.items(), key=lambda t: (t[0][0], -1 if t[0][1] is None else t[0][1])):
+            if not any(np.any(a != 0.0) for a in kb + cb):
+                continue
+            out.add_speed_bearing(node, speeds, np.array([a.ravel() for a in kb]), np.array([a.ravel() for a in cb]), link=link)
+            i, j = start[node], None if link is None else start[link]
+            for table, rebuilt in ((kb, rebuilt_k), (cb, rebuilt_c)):
+                for a, r in zip(table, rebuilt):
+                    r[i : i + 2, i : i + 2] += a
+                    if j is not None:
+                        r[j : j + 2, j : j + 2] += a
+                        r[i : i + 2, j : j + 2] -= a
+                        r[j : j + 2, i : i + 2] -= a
+        # what changes with speed must be those blocks: a change elsewhere (tilt terms, an element
+        # that is not a bearing) would be dropped here, so it is refused
+        for name, table, rebuilt in (("stiffness", ks, rebuilt_k), ("damping", cs, rebuilt_c)):
+            for w, a, r in zip(speeds, table, rebuilt):
                 scale = max(float(np.max(np.abs(a))), 1e-300)
-                if np.max(np.abs(np.where(on, 0.0, a))) > 1e-12 * scale:
+                if np.max(np.abs(a - r)) > 1e-12 * scale:
                     raise ValueError(
-                        f"from_ross: the bearings' {name} changes with speed (at {w} rad/s) outside the x, y block of a bearing's "
-                        "own node (a speed-dependent bearing between two nodes, n_link, or with tilt terms); autobal's "
-                        "speed-dependent bearings act on one node's x, y"
+                        f"from_ross: the rotor's {name} changes with speed (at {w} rad/s) outside the x, y blocks of its bearings "
+                        "(tilt terms, or an element that is not a bearing); autobal's speed-dependent bearings act on the x, y of "
+                        "a node, or of two nodes (n_link)"
                     )
     for b in balancers:
         out.add_balancer(int(b["node"]), float(b["radius"]), int(b["balls"]), float(b["ball_mass"]), float(b.get("drag", 0.0)), float(b.get("offset", 0.0)))

@@ -85,7 +85,7 @@ const KEYS: &[(&str, &[&str])] = &[
     ),
     ("elements", &["length", "diameter", "inner_diameter", "area", "inertia", "e", "rho", "g_s", "kappa", "count"]),
     ("disks", &["node", "mass", "id", "ip"]),
-    ("bearings", &["node", "k", "c", "speeds", "kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy"]),
+    ("bearings", &["node", "link", "k", "c", "speeds", "kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy"]),
     ("unbalance", &["node", "me", "phase", "offset"]),
     (
         "balancer",
@@ -470,6 +470,13 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
         if node >= rotor.nodes {
             return Err(Error::invalid(br.field("node"), format!("{node} is not a node (0..{})", rotor.nodes)));
         }
+        // the node at the bearing's other side (a support mass), else ground
+        let link = br.usize("link")?;
+        if let Some(l) = link {
+            if l >= rotor.nodes || l == node {
+                return Err(Error::invalid(br.field("link"), format!("{l} is not a node other than the bearing's {node} (0..{})", rotor.nodes)));
+            }
+        }
         match br.array("speeds")? {
             None => {
                 for k in ["kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy"] {
@@ -481,12 +488,10 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
                 crate::error::non_negative(&br.field("k"), k)?;
                 crate::error::non_negative(&br.field("c"), c)?;
                 let Bearing { node, k, c } = Bearing { node, k, c };
-                let n = rotor.dofs();
-                let base = rotor.node_start(node);
-                for d in [base, base + 1] {
-                    rotor.k[d * n + d] += k;
-                    rotor.c[d * n + d] += c;
-                }
+                let (mut kk, mut cc) = (std::mem::take(&mut rotor.k), std::mem::take(&mut rotor.c));
+                rotor.add_bearing_block(node, link, &[k, 0.0, 0.0, k], &mut kk);
+                rotor.add_bearing_block(node, link, &[c, 0.0, 0.0, c], &mut cc);
+                (rotor.k, rotor.c) = (kk, cc);
             }
             Some(speeds) => {
                 let len = speeds.len();
@@ -516,6 +521,7 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
                 let _ = i;
                 rotor.speed_bearings.push(SpeedBearing {
                     node,
+                    link,
                     speeds,
                     k: (0..len).map(|j| [kxx[j], kxy[j], kyx[j], kyy[j]]).collect(),
                     c: (0..len).map(|j| [cxx[j], cxy[j], cyx[j], cyy[j]]).collect(),
@@ -799,7 +805,11 @@ pub fn export(rotor: &LinearRotor, stem: &str) -> (String, Vec<(String, String)>
         }
     }
     for b in &rotor.speed_bearings {
-        t.push_str(&format!("\n[[linear_rotor.bearings]]\nnode = {}\nspeeds = {:?}\n", b.node, b.speeds));
+        t.push_str(&format!("\n[[linear_rotor.bearings]]\nnode = {}\n", b.node));
+        if let Some(l) = b.link {
+            t.push_str(&format!("link = {l}\n"));
+        }
+        t.push_str(&format!("speeds = {:?}\n", b.speeds));
         for (j, k) in ["kxx", "kxy", "kyx", "kyy"].iter().enumerate() {
             t.push_str(&format!("{k} = {:?}\n", b.k.iter().map(|v| v[j]).collect::<Vec<_>>()));
         }

@@ -259,11 +259,16 @@ pub struct BalancerPlane {
 
 /// A bearing whose stiffness and damping depend on the speed: tables over `speeds` (rad/s,
 /// increasing), interpolated linearly between them and held constant outside; each entry
-/// `[xx, xy, yx, yy]` acts on the node's `(x, y)` (`K[x][y] = k_xy`, …), added to `K` and `C`.
+/// `B = [xx, xy, yx, yy]` acts on the node's `(x, y)` (`K[x][y] = k_xy`, …), added to `K` and
+/// `C`; with a `link` node on the difference `(x, y)_node − (x, y)_link` (ROSS's `n_link`: the
+/// support its outer race sits in), the blocks `[[B, −B], [−B, B]]` on the two nodes.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SpeedBearing {
     /// Node index.
     pub node: usize,
+    /// The node at the bearing's other side (`None`: ground).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub link: Option<usize>,
     /// The speeds of the table (rad/s), increasing.
     pub speeds: Vec<f64>,
     /// Stiffness `[k_xx, k_xy, k_yx, k_yy]` at each speed (N/m).
@@ -698,16 +703,32 @@ impl LinearRotor {
     /// `C(Ω)` and `K(Ω)`: `C`, `K` plus the speed-dependent bearings at `omega`.
     pub fn damping_stiffness_at(&self, omega: f64) -> (Vec<f64>, Vec<f64>) {
         let (mut c, mut k) = (self.c.clone(), self.k.clone());
-        let n = self.dofs();
         for b in &self.speed_bearings {
             let (kb, cb) = b.at(omega);
-            let i = self.node_start(b.node);
-            for (j, (r, col)) in [(0, 0), (0, 1), (1, 0), (1, 1)].into_iter().enumerate() {
-                k[(i + r) * n + i + col] += kb[j];
-                c[(i + r) * n + i + col] += cb[j];
-            }
+            self.add_bearing_block(b.node, b.link, &kb, &mut k);
+            self.add_bearing_block(b.node, b.link, &cb, &mut c);
         }
         (c, k)
+    }
+
+    /// Add a bearing's 2×2 block `B = [xx, xy, yx, yy]` to the row-major `N × N` matrix `a`:
+    /// `B` on `node`'s `(x, y)`, and with a `link` node `−B` on (node, link) and (link, node)
+    /// and `B` on the link's `(x, y)` ([`SpeedBearing`]).
+    pub(crate) fn add_bearing_block(&self, node: usize, link: Option<usize>, blk: &[f64; 4], a: &mut [f64]) {
+        let n = self.dofs();
+        let i = self.node_start(node);
+        let mut put = |r0: usize, c0: usize, s: f64| {
+            for (j, (r, col)) in [(0, 0), (0, 1), (1, 0), (1, 1)].into_iter().enumerate() {
+                a[(r0 + r) * n + c0 + col] += s * blk[j];
+            }
+        };
+        put(i, i, 1.0);
+        if let Some(l) = link {
+            let l = self.node_start(l);
+            put(i, l, -1.0);
+            put(l, i, -1.0);
+            put(l, l, 1.0);
+        }
     }
 
     /// The rotor at speed `omega` with its speed-dependent bearings folded into `C` and `K`
@@ -859,6 +880,11 @@ impl LinearRotor {
             let f = |s: &str| format!("linear_rotor.bearings[{i}].{s}");
             if b.node >= self.nodes {
                 return Err(Error::invalid(f("node"), format!("{} is not a node (0..{})", b.node, self.nodes)));
+            }
+            if let Some(l) = b.link {
+                if l >= self.nodes || l == b.node {
+                    return Err(Error::invalid(f("link"), format!("{l} is not a node other than the bearing's {} (0..{})", b.node, self.nodes)));
+                }
             }
             if b.speeds.is_empty() {
                 return Err(Error::invalid(f("speeds"), "needs at least one speed"));

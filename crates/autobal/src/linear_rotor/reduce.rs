@@ -227,7 +227,7 @@ pub fn reduce(rotor: &LinearRotor, mode_pairs: usize, extra_boundary: &[usize]) 
         .iter()
         .map(|b| b.node)
         .chain(rotor.unbalances.iter().map(|u| u.node))
-        .chain(rotor.speed_bearings.iter().map(|b| b.node))
+        .chain(rotor.speed_bearings.iter().flat_map(|b| std::iter::once(b.node).chain(b.link)))
         .chain(extra_boundary.iter().copied())
         .collect();
     boundary.sort_unstable();
@@ -416,7 +416,7 @@ fn assemble(rotor: &LinearRotor, boundary: &[usize], bd: &[usize], id: &[usize],
     let node_of = |k: usize| boundary.iter().position(|b| *b == k).expect("boundary node");
     red.unbalances = rotor.unbalances.iter().map(|u| super::Unbalance { node: node_of(u.node), ..*u }).collect();
     red.balancers = rotor.balancers.iter().map(|p| super::BalancerPlane { node: node_of(p.node), ..*p }).collect();
-    red.speed_bearings = rotor.speed_bearings.iter().map(|s| super::SpeedBearing { node: node_of(s.node), ..s.clone() }).collect();
+    red.speed_bearings = rotor.speed_bearings.iter().map(|s| super::SpeedBearing { node: node_of(s.node), link: s.link.map(node_of), ..s.clone() }).collect();
     red.polar_inertia = rotor.polar_inertia;
     red.spin_damping = rotor.spin_damping;
     red.ball_physics = rotor.ball_physics.clone();

@@ -221,11 +221,9 @@ impl RunUpSystem<'_> {
             }
             let i = sp.partition_point(|v| *v <= w) - 1;
             let h = sp[i + 1] - sp[i];
-            let node = r.node_start(b.node);
-            for (j, (row, col)) in [(0, 0), (0, 1), (1, 0), (1, 1)].into_iter().enumerate() {
-                dk[(node + row) * n + node + col] += (b.k[i + 1][j] - b.k[i][j]) / h;
-                dd[(node + row) * n + node + col] += (b.c[i + 1][j] - b.c[i][j]) / h;
-            }
+            let slope = |t: &[[f64; 4]]| -> [f64; 4] { std::array::from_fn(|j| (t[i + 1][j] - t[i][j]) / h) };
+            r.add_bearing_block(b.node, b.link, &slope(&b.k), &mut dk);
+            r.add_bearing_block(b.node, b.link, &slope(&b.c), &mut dd);
         }
         (dd, dk)
     }
