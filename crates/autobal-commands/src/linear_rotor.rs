@@ -801,7 +801,7 @@ pub fn modes_at_plane(rotor: &LinearRotor, plane: usize, count: usize) -> Result
     sym.k = k.clone();
     let w = sym.natural_frequencies(&[], true)?;
     let scale = w.iter().fold(0.0, |a: f64, b| a.max(b * b)).max(f64::MIN_POSITIVE);
-    let per = rotor.layout.per_node();
+    let starts = rotor.node_starts();
     let mut found: Vec<Vec<f64>> = vec![];
     let mut out = vec![];
     let mdot = |a: &[f64], b: &[f64]| -> f64 { (0..n).map(|i| a[i] * (0..n).map(|j| m[i * n + j] * b[j]).sum::<f64>()).sum() };
@@ -830,15 +830,15 @@ pub fn modes_at_plane(rotor: &LinearRotor, plane: usize, count: usize) -> Result
             }
             v.iter_mut().for_each(|x| *x /= norm);
         }
-        let radius = |node: usize| v[node * per].hypot(v[node * per + 1]);
+        let radius = |node: usize| v[starts[node]].hypot(v[starts[node] + 1]);
         let top = (0..rotor.nodes).max_by(|a, b| radius(*a).total_cmp(&radius(*b))).unwrap_or(0);
         let largest = radius(top);
         if largest.is_nan() || largest <= 0.0 {
             bail!("linear_rotor: mode {idx} at rest ({} rad/s) moves no node's translation", fmt_num(wk));
         }
-        let tilt = if per == 4 { v[b.node * per + 2].hypot(v[b.node * per + 3]) / largest } else { 0.0 };
-        let (ux, uy) = (v[top * per] / largest, v[top * per + 1] / largest);
-        let shape = (0..rotor.nodes).map(|k| (v[k * per] * ux + v[k * per + 1] * uy) / largest).collect();
+        let tilt = rotor.node_dofs(b.node).2.map_or(0.0, |(ia, ib)| v[ia].hypot(v[ib]) / largest);
+        let (ux, uy) = (v[starts[top]] / largest, v[starts[top] + 1] / largest);
+        let shape = starts.iter().map(|&s| (v[s] * ux + v[s + 1] * uy) / largest).collect();
         out.push(ModeAtPlane { omega: wk, translation: radius(b.node) / largest, tilt, node: b.node, shape });
         found.push(v);
     }

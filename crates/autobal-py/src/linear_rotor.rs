@@ -48,27 +48,44 @@ fn square(py: Python<'_>, name: &str, a: &PyReadonlyArray2<'_, f64>) -> PyResult
 
 #[pymethods]
 impl PyLinearRotor {
-    /// `LinearRotor(m, c, g, k, per_node=4)`: the matrices as 2-D float arrays (`N × N`).
+    /// `LinearRotor(m, c, g, k, per_node=4)`: the matrices as 2-D float arrays (`N × N`);
+    /// `per_node` the DOFs of every node (2: `x, y`; 4: `x, y, alpha, beta`) or a list of them,
+    /// one per node (e.g. a shaft's nodes 4 and the support masses of its bearings 2).
     #[new]
-    #[pyo3(signature = (m, c, g, k, per_node=4))]
+    #[pyo3(signature = (m, c, g, k, per_node=None))]
     fn new(
         py: Python<'_>,
         m: PyReadonlyArray2<'_, f64>,
         c: PyReadonlyArray2<'_, f64>,
         g: PyReadonlyArray2<'_, f64>,
         k: PyReadonlyArray2<'_, f64>,
-        per_node: usize,
+        per_node: Option<Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
-        let layout = match per_node {
-            2 => Layout::Translation,
-            4 => Layout::TranslationTilt,
-            o => return Err(crate::py_err(py, autobal::Error::invalid("per_node", format!("must be 2 (x, y) or 4 (x, y, alpha, beta), got {o}")))),
+        let layout = |p: usize| match p {
+            2 => Ok(Layout::Translation),
+            4 => Ok(Layout::TranslationTilt),
+            o => Err(crate::py_err(py, autobal::Error::invalid("per_node", format!("must be 2 (x, y) or 4 (x, y, alpha, beta), got {o}")))),
         };
         let (n, m) = square(py, "m", &m)?;
-        if n % per_node != 0 {
-            return Err(crate::py_err(py, autobal::Error::invalid("linear_rotor.m", format!("{n} DOFs is no multiple of {per_node}"))));
-        }
-        let mut r = LinearRotor::zeros(n / per_node, layout);
+        let mut r = match per_node {
+            Some(p) if p.extract::<usize>().is_err() => {
+                let each: Vec<usize> = p.extract()?;
+                let layouts = each.iter().map(|p| layout(*p)).collect::<PyResult<Vec<_>>>()?;
+                let r = LinearRotor::with_layouts(&layouts);
+                if r.dofs() != n || layouts.is_empty() {
+                    return Err(crate::py_err(py, autobal::Error::invalid("per_node", format!("gives {} DOFs, m is {n} × {n}", r.dofs()))));
+                }
+                r
+            }
+            p => {
+                let per = p.map(|p| p.extract::<usize>()).transpose()?.unwrap_or(4);
+                let l = layout(per)?;
+                if n % per != 0 {
+                    return Err(crate::py_err(py, autobal::Error::invalid("linear_rotor.m", format!("{n} DOFs is no multiple of {per}"))));
+                }
+                LinearRotor::zeros(n / per, l)
+            }
+        };
         r.m = m;
         for (name, a) in [("c", &c), ("g", &g), ("k", &k)] {
             let (nn, v) = square(py, name, a)?;
@@ -163,8 +180,18 @@ impl PyLinearRotor {
     }
 
     /// Add a bearing at `node` tabulated over `speeds` (rad/s): `k` and `c` are `len(speeds) × 4`
-    /// (`xx, xy, yx, yy`), added to `K`, `C` at each speed (linear interpolation).
-    fn add_speed_bearing(&mut self, py: Python<'_>, node: usize, speeds: Vec<f64>, k: PyReadonlyArray2<'_, f64>, c: PyReadonlyArray2<'_, f64>) -> PyResult<()> {
+    /// (`xx, xy, yx, yy`), added to `K`, `C` at each speed (linear interpolation); `link`: the
+    /// node at its other side (ROSS's `n_link`, blocks `[[B, −B], [−B, B]]`), `None`: ground.
+    #[pyo3(signature = (node, speeds, k, c, link=None))]
+    fn add_speed_bearing(
+        &mut self,
+        py: Python<'_>,
+        node: usize,
+        speeds: Vec<f64>,
+        k: PyReadonlyArray2<'_, f64>,
+        c: PyReadonlyArray2<'_, f64>,
+        link: Option<usize>,
+    ) -> PyResult<()> {
         let rows = |a: &PyReadonlyArray2<'_, f64>, name: &str| -> PyResult<Vec<[f64; 4]>> {
             let s = a.shape();
             if s[1] != 4 || s[0] != speeds.len() {
@@ -177,7 +204,7 @@ impl PyLinearRotor {
             Ok((0..s[0]).map(|i| [a[[i, 0]], a[[i, 1]], a[[i, 2]], a[[i, 3]]]).collect())
         };
         let (k, c) = (rows(&k, "k")?, rows(&c, "c")?);
-        self.rotor.speed_bearings.push(SpeedBearing { node, speeds: speeds.clone(), k, c });
+        self.rotor.speed_bearings.push(SpeedBearing { node, link, speeds: speeds.clone(), k, c });
         Ok(())
     }
 
@@ -234,6 +261,13 @@ impl PyLinearRotor {
     #[getter]
     fn dofs(&self) -> usize {
         self.rotor.dofs()
+    }
+
+    /// The DOFs' names in order, as the config's DOF table writes them (`"x0"`, `"alpha0"`, …;
+    /// a node without tilts has `x`, `y` only).
+    #[getter]
+    fn dof_names(&self) -> Vec<String> {
+        (0..self.rotor.dofs()).map(|i| autobal::linear_rotor::config::dof_key(&self.rotor, i)).collect()
     }
 
     /// Undamped natural frequencies at rest (rad/s), optionally with the balls as rings.

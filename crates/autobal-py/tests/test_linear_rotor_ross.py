@@ -215,29 +215,123 @@ def _linked_rotor(rs, point_masses):
 
 
 @pytest.mark.parametrize("point_masses", [1, 2])
-def test_support_nodes_of_linked_bearings_are_refused_by_name(point_masses):
-    """A support node of an ``n_link`` bearing has x, y, z only in ROSS; autobal's nodes have
-    x, y, alpha, beta. Before, ``from_ross`` cut ROSS's matrices into 6-DOF nodes regardless:
-    with one support node its 3 DOFs were dropped without a word (a different rotor), with two
-    they filled a made-up node 7 whose "alpha, beta" were node 8's x, y. Now it refuses, saying
-    which nodes."""
+def test_support_nodes_of_linked_bearings_come_in_with_x_y(point_masses):
+    """A support node of an ``n_link`` bearing has x, y, z in ROSS (numbered after the shaft's
+    nodes, half a node's DOFs); ``from_ross`` keeps it as an autobal node with x, y only. Before,
+    it cut ROSS's matrices into 6-DOF nodes regardless (dropping one support node, or merging two
+    into a made-up node), then refused. The Campbell diagram equals ROSS's ``run_campbell`` and
+    the natural frequencies at rest ``run_modal``'s to 1e-8 relative, the tolerance of the
+    rigidly supported rotor above (measured: 1.3e-10 and 1.5e-11 at most; ROSS's eigen-solver)."""
     rs = ross()
     rotor = _linked_rotor(rs, point_masses)
-    with pytest.raises(ValueError, match=r"from_ross: the rotor has %d DOFs beyond its 7 shaft nodes \(support nodes of n_link bearings \[7" % (3 * point_masses)):
-        autobal.from_ross(rotor)
+    lr = autobal.from_ross(rotor)
+    assert lr.dofs == 4 * 7 + 2 * point_masses
+    assert lr.dof_names[:4] == ["x0", "y0", "alpha0", "beta0"]
+    assert lr.dof_names[28:] == [f"{d}{7 + i}" for i in range(point_masses) for d in ("x", "y")]
+    count = 8
+    speeds = np.linspace(0.0, 1000.0, 6)
+    wd = np.asarray(rotor.run_campbell(speeds, frequencies=count).wd)
+    _, im = lr.campbell(list(speeds))
+    for i in range(len(speeds)):
+        ours = np.array(sorted(v for v in im[i] if v > 1e-6))[:count]
+        theirs = np.sort(wd[i][:count])
+        assert np.max(np.abs(ours - theirs) / theirs) < 1e-8, (speeds[i], ours, theirs)
+    wn = np.sort(np.asarray(rotor.run_modal(0.0, num_modes=2 * count).wn))[:count]
+    ours = np.array(lr.natural_frequencies())[:count]
+    assert np.max(np.abs(ours - wn) / wn) < 1e-8, (ours, wn)
 
 
-def test_speed_dependent_bearing_between_two_nodes_is_refused():
-    """A speed-dependent bearing linking two shaft nodes changes K off the bearing node's own
-    x, y block; ``add_speed_bearing`` acts on one node, so that part would be lost: refused."""
+def test_offset_on_a_support_node_is_refused_by_name():
+    """A support node has no tilts: a balancer plane with an axial offset on it is refused,
+    naming the entry; without offset it is taken (its race centre is the node)."""
+    rs = ross()
+    rotor = _linked_rotor(rs, 1)
+    with pytest.raises(autobal.InvalidParameter, match=r"linear_rotor.balancers\[0\].offset: an axial offset needs the tilt DOFs, node 7 has x, y only"):
+        autobal.from_ross(rotor, balancers=[dict(node=7, radius=0.1, balls=2, ball_mass=0.05, drag=0.01, offset=0.02)]).natural_frequencies()
+    lr = autobal.from_ross(rotor, balancers=[dict(node=7, radius=0.1, balls=2, ball_mass=0.05, drag=0.01)])
+    assert len(lr.natural_frequencies(with_balls=True)) == lr.dofs
+
+
+def test_point_mass_on_a_shaft_node_is_refused():
+    """ROSS counts a ``PointMass`` placed on a shaft node (where a bearing sits: ROSS needs one
+    there) as a new node's DOFs but gives them no entries (zero rows): refused, naming the
+    counts."""
     rs = ross()
     steel = rs.materials.steel
     shaft = [rs.ShaftElement(L=0.25, idl=0.0, odl=0.05, material=steel) for _ in range(6)]
-    bearings = [
-        rs.BearingElement(n=0, kxx=1e6, cxx=0.0),
-        rs.BearingElement(n=6, kxx=1e6, cxx=0.0),
-        rs.BearingElement(n=2, n_link=4, kxx=[1e5, 2e5], cxx=[0.0, 0.0], frequency=[0.0, 1000.0]),
-    ]
-    rotor = rs.Rotor(shaft, [], bearings)
-    with pytest.raises(ValueError, match="stiffness changes with speed .* outside the x, y block"):
+    bearings = [rs.BearingElement(n=0, kxx=1e6, cxx=0.0), rs.BearingElement(n=6, kxx=1e6, cxx=0.0), rs.BearingElement(n=3, kxx=1e5, cxx=0.0)]
+    rotor = rs.Rotor(shaft, [], bearings, [rs.PointMass(n=3, m=1.0)])
+    with pytest.raises(ValueError, match=r"from_ross: the rotor has 45 DOFs, its 7 shaft nodes 6 each and the point-mass nodes \[\] beyond them 3 each make 42"):
         autobal.from_ross(rotor)
+
+
+def _campbell_matches(rotor, lr, speeds, count, tol=1e-8):
+    wd = np.asarray(rotor.run_campbell(speeds, frequencies=count).wd)
+    _, im = lr.campbell(list(speeds))
+    worst = 0.0
+    for i in range(len(speeds)):
+        ours = np.array(sorted(v for v in im[i] if v > 1e-6))[:count]
+        theirs = np.sort(wd[i][:count])
+        worst = max(worst, float(np.max(np.abs(ours - theirs) / theirs)))
+    assert worst < tol, worst
+    return worst
+
+
+@pytest.mark.parametrize("support", [False, True])
+def test_speed_dependent_bearing_between_two_nodes(support):
+    """A bearing whose coefficients ROSS tabulates over frequency, between two nodes (``n_link``):
+    two shaft nodes, or the shaft and its support mass. Before, it was refused (autobal's
+    speed-dependent bearings acted on one node); now it is one with a link, the blocks
+    ``[[B, -B], [-B, B]]`` on both nodes' x, y. The Campbell diagram equals ROSS's
+    ``run_campbell`` at speeds inside the table (ROSS interpolates a 2-point table linearly, as
+    autobal does) to 1e-8 relative, the tolerance of the tests above (measured: 1.2e-11 between
+    shaft nodes, 4.3e-11 to the support mass)."""
+    rs = ross()
+    steel = rs.materials.steel
+    shaft = [rs.ShaftElement(L=0.25, idl=0.0, odl=0.05, material=steel) for _ in range(6)]
+    masses = []
+    if support:
+        bearings = [
+            rs.BearingElement(n=0, kxx=[1e6, 2e6], kyy=[1.5e6, 2.5e6], kxy=[0.0, 2e5], cxx=[10.0, 30.0], frequency=[0.0, 1000.0], n_link=7),
+            rs.BearingElement(n=7, kxx=1e7, cxx=0.0),
+            rs.BearingElement(n=6, kxx=1e6, cxx=0.0),
+        ]
+        masses = [rs.PointMass(n=7, m=2.0)]
+    else:
+        bearings = [
+            rs.BearingElement(n=0, kxx=1e6, cxx=0.0),
+            rs.BearingElement(n=6, kxx=1e6, cxx=0.0),
+            rs.BearingElement(n=2, n_link=4, kxx=[1e5, 2e5], cxx=[0.0, 0.0], frequency=[0.0, 1000.0]),
+        ]
+    rotor = rs.Rotor(shaft, [], bearings, masses)
+    lr = autobal.from_ross(rotor)
+    assert lr.dofs == 4 * 7 + (2 if support else 0)
+    _campbell_matches(rotor, lr, np.linspace(0.0, 1000.0, 5), 8)
+
+
+def test_speed_dependent_tilt_terms_are_refused():
+    """What changes with speed off the bearings' x, y blocks (here a tilt stiffness of a
+    duck-typed rotor with ROSS's method names) would be dropped: refused, naming it."""
+
+    class Rotor:
+        number_dof = 4
+        nodes = [0, 1]
+        bearing_elements: list = []
+        frequency = None
+
+        def M(self) -> np.ndarray:
+            return np.eye(8)
+
+        def K(self, speed: float) -> np.ndarray:
+            k = 1e6 * np.eye(8)
+            k[2, 2] += speed
+            return k
+
+        def C(self, speed: float) -> np.ndarray:
+            return np.zeros((8, 8))
+
+        def G(self) -> np.ndarray:
+            return np.zeros((8, 8))
+
+    with pytest.raises(ValueError, match="from_ross: the rotor's stiffness changes with speed .* outside the x, y blocks of its bearings"):
+        autobal.from_ross(Rotor(), speeds=[0.0, 100.0])

@@ -164,6 +164,7 @@ fn speed_dependent_bearing_interpolates() {
     let base = load(&parse(&shaft_config().replace("[[linear_rotor.bearings]]\nnode = 6\nk = 2e6\nc = 300.0\n", "")), &HashMap::new()).unwrap().rotor;
     let table = SpeedBearing {
         node: 6,
+        link: None,
         speeds: vec![100.0, 300.0, 700.0],
         k: vec![[1e6, 0.0, 0.0, 2e6], [2e6, 1e5, -1e5, 3e6], [4e6, 0.0, 0.0, 4e6]],
         c: vec![[100.0, 0.0, 0.0, 100.0], [300.0, 0.0, 0.0, 200.0], [500.0, 0.0, 0.0, 500.0]],

@@ -24,7 +24,7 @@ fn rotor() -> LinearRotor {
     r.k[20 * n + 21] += 3e5;
     r.k[21 * n + 20] -= 3e5;
     r.c[20 * n + 21] += 7.0;
-    r.speed_bearings.push(SpeedBearing { node: 5, speeds: vec![0.0, 100.0], k: vec![[1e5, 0.0, 0.0, 1e5]; 2], c: vec![[1.0, 0.0, 0.0, 1.0]; 2] });
+    r.speed_bearings.push(SpeedBearing { node: 5, link: None, speeds: vec![0.0, 100.0], k: vec![[1e5, 0.0, 0.0, 1e5]; 2], c: vec![[1.0, 0.0, 0.0, 1.0]; 2] });
     r.unbalances.push(Unbalance { node: 2, me: 1e-4, phase: 0.2, offset: 0.0 });
     r.balancers.push(BalancerPlane { node: 2, radius: 0.05, balls: 2, ball_mass: 0.01, drag: 0.01, offset: 0.0 });
     r

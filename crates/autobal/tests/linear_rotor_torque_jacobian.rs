@@ -29,6 +29,7 @@ fn torque_jacobian_is_exact() {
     let mut r = b.build().unwrap();
     r.speed_bearings.push(SpeedBearing {
         node: 0,
+        link: None,
         speeds: vec![100.0, 300.0, 700.0],
         k: vec![[1e6, 0.0, 0.0, 2e6], [2e6, 1e5, -1e5, 3e6], [4e6, 0.0, 0.0, 4e6]],
         c: vec![[100.0, 0.0, 0.0, 100.0], [300.0, 20.0, 0.0, 200.0], [500.0, 0.0, 0.0, 500.0]],

@@ -3,12 +3,17 @@ ball balancers and unbalances added (issue 19, docs/guide/your-own-rotor.md).
 
 ROSS is not a dependency of autobal: the function takes the rotor object and calls ROSS's own
 matrix methods, ``rotor.M()``, ``rotor.K(speed)``, ``rotor.C(speed)``, ``rotor.G()``. ROSS 2
-numbers 6 DOFs per node (``x, y, z, alpha, beta, theta``), ROSS 1 four (``x, y, alpha, beta``);
-the lateral ones, ``x, y, alpha, beta``, are kept (the axial and torsional DOFs of ROSS's shaft
-elements are not coupled to them). Bearings whose coefficients ROSS tabulates over frequency
+numbers 6 DOFs per shaft node (``x, y, z, alpha, beta, theta``), ROSS 1 four (``x, y, alpha,
+beta``); the lateral ones, ``x, y, alpha, beta``, are kept (the axial and torsional DOFs of
+ROSS's shaft elements are not coupled to them). After the shaft's nodes ROSS numbers the nodes
+of its point masses beyond the shaft (the support, "link", nodes of ``n_link`` bearings: a
+pedestal, a washer's tub, a drive's suspended base) with half a node's DOFs each (``x, y, z`` in
+ROSS 2, ``x, y`` in ROSS 1; ``Rotor.__init__``'s ``dof_global_index``); they become autobal nodes
+with ``x, y`` only, under the same node numbers. Bearings whose coefficients ROSS tabulates over frequency
 become speed-dependent bearings: ``K(speed) - K(speeds[0])`` and the same for ``C`` at each
 speed of the table (the union of the bearings' ``frequency`` arrays, or ``speeds=``), on the
-bearing's node, interpolated linearly between them (ROSS interpolates its tables itself).
+bearing's node, and for an ``n_link`` bearing on both its nodes (``[[B, -B], [-B, B]]``), interpolated
+linearly between them (ROSS interpolates its tables itself).
 The rotor's polar moment of inertia about its axis (the spin's inertia under a torque drive,
 ``LinearRotor.polar_inertia``) is the disks' ``DiskElement.Ip`` plus the shaft elements'
 ``ρ ∫ J dz``, ``J = π (d_o⁴ − d_i⁴)/32`` along each (tapered) element, by :func:`polar_inertia_of`;
@@ -20,10 +25,10 @@ equations. Note that ROSS's ``Ksdt`` is not the ``K_st`` of a kinetic energy wit
 its disks give ``Ksdt − Ksdtᵀ = −G`` (a Lagrangian ``½ φ̇ q̇ᵀ G' q`` gives ``K_st − K_stᵀ = G``),
 and its shaft elements leave out the shear terms of their ``G``; a torque-driven run-up of such
 a rotor then does not conserve energy exactly (docs/reference/config.md, ``kst``).
-Refused with a ``ValueError`` naming the cause: support (link) nodes of ``n_link`` bearings
-(ROSS's ``PointMass`` nodes carry x, y, z only, autobal's nodes x, y, alpha, beta), and a
-speed-dependent bearing whose change with speed is not on its own node's x, y block (between
-two nodes, or with tilt terms).
+Refused with a ``ValueError`` naming the cause: DOFs that are neither the shaft nodes' nor
+the point-mass nodes' numbered after them (ROSS counts every ``PointMass`` as a new node, one
+placed on a shaft node leaves empty rows), and a speed-dependent bearing whose change with
+speed is not on the x, y blocks of its bearings (tilt terms, or an element other than a bearing).
 """
 
 from __future__ import annotations
@@ -84,7 +89,8 @@ def from_ross(
     polar_inertia: Optional[float] = None,
 ) -> "_autobal.LinearRotor":
     """The ROSS rotor ``rotor`` as a :class:`autobal.LinearRotor` (DOFs ``x, y, alpha, beta``
-    per node in ROSS's order and node numbers).
+    per shaft node and ``x, y`` per point-mass node beyond the shaft, the support nodes of
+    ``n_link`` bearings, in ROSS's order and node numbers).
 
     ``balancers``: dicts with ``node``, ``radius`` (m), ``balls``, ``ball_mass`` (kg), and
     optionally ``drag`` (N m s per ball) and ``offset`` (m). ``unbalance``: dicts with ``node``,
@@ -102,17 +108,20 @@ def from_ross(
     lat = _lateral(per)
     m_full = np.asarray(rotor.M(), dtype=float)
     n_nodes = len(getattr(rotor, "nodes", ())) or m_full.shape[0] // per
-    if m_full.shape[0] != per * n_nodes:
-        # ROSS gives the support (link) node of an ``n_link`` bearing, a ``PointMass``, half a
-        # node's DOFs (x, y, z) after the shaft's nodes; autobal's nodes all have x, y, alpha, beta
-        extra = m_full.shape[0] - per * n_nodes
-        links = sorted({int(b.n_link) for b in getattr(rotor, "bearing_elements", []) if getattr(b, "n_link", None) is not None})
+    # the point masses' nodes beyond the shaft: ROSS numbers them on from the shaft's last node
+    # and gives each half a node's DOFs, node n at per * n_nodes + (per / 2) * (n - n_nodes)
+    half = per // 2
+    links = sorted({int(p.n) for p in getattr(rotor, "point_mass_elements", []) if int(p.n) >= n_nodes})
+    if m_full.shape[0] != per * n_nodes + half * len(links) or links != list(range(n_nodes, n_nodes + len(links))):
         raise ValueError(
-            f"from_ross: the rotor has {extra} DOFs beyond its {n_nodes} shaft nodes (support nodes of n_link bearings {links}, "
-            "point masses with x, y, z only); autobal's linear rotor has x, y, alpha, beta at every node and cannot take them: "
-            "export M, C, G, K with a 4-DOF layout (docs/guide/your-own-rotor.md) or put the support's stiffness in series into the bearing"
+            f"from_ross: the rotor has {m_full.shape[0]} DOFs, its {n_nodes} shaft nodes {per} each and the point-mass nodes "
+            f"{links} beyond them {half} each make {per * n_nodes + half * len(links)}; autobal takes shaft nodes and point-mass "
+            f"nodes numbered on from the shaft's last ({n_nodes}, {n_nodes + 1}, …), one point mass each"
         )
-    idx = [k * per + j for k in range(n_nodes) for j in lat]
+    idx = [k * per + j for k in range(n_nodes) for j in lat] + [per * n_nodes + half * i + j for i in range(len(links)) for j in (0, 1)]
+    # each node's first DOF (its x) among the kept ones
+    start = [4 * k for k in range(n_nodes)] + [4 * n_nodes + 2 * i for i in range(len(links))]
+    layout = [4] * n_nodes + [2] * len(links)
     sel = np.ix_(idx, idx)
     if speeds is None:
         tabulated: Set[float] = set()
@@ -125,7 +134,9 @@ def from_ross(
     k0 = np.asarray(rotor.K(speeds[0]), dtype=float)[sel]
     c0 = np.asarray(rotor.C(speeds[0]), dtype=float)[sel]
     g = np.asarray(rotor.G(), dtype=float)[sel]
-    out = _autobal.LinearRotor(np.ascontiguousarray(m_full[sel]), np.ascontiguousarray(c0), np.ascontiguousarray(g), np.ascontiguousarray(k0), per_node=4)
+    out = _autobal.LinearRotor(
+        np.ascontiguousarray(m_full[sel]), np.ascontiguousarray(c0), np.ascontiguousarray(g), np.ascontiguousarray(k0), per_node=layout if links else 4
+    )
     out.polar_inertia = float(polar_inertia_of(rotor) if polar_inertia is None else polar_inertia)
     ksdt = getattr(rotor, "Ksdt", None)
     if callable(ksdt):
@@ -134,25 +145,43 @@ def from_ross(
     if len(speeds) > 1:
         ks = [np.asarray(rotor.K(w), dtype=float)[sel] - k0 for w in speeds]
         cs = [np.asarray(rotor.C(w), dtype=float)[sel] - c0 for w in speeds]
-        nodes = sorted({int(b.n) for b in getattr(rotor, "bearing_elements", [])})
-        for node in nodes:
-            i = 4 * node
-            blk = lambda a: [a[i, i], a[i, i + 1], a[i + 1, i], a[i + 1, i + 1]]
-            out.add_speed_bearing(node, speeds, np.array([blk(a) for a in ks]), np.array([blk(a) for a in cs]))
-        # what changes with speed must sit in the x, y blocks of the bearings' own nodes (one
-        # node each); a speed-dependent bearing between two nodes (n_link) or with tilt terms
-        # would be dropped here, so it is refused
-        on = np.zeros(ks[0].shape, dtype=bool)
-        for node in nodes:
-            on[4 * node : 4 * node + 2, 4 * node : 4 * node + 2] = True
-        for name, table in (("stiffness", ks), ("damping", cs)):
-            for w, a in zip(speeds, table):
+        # each bearing's change with speed, from its own K(w), C(w): the x, y block of its node
+        # (ROSS's link bearings have [[B, -B], [-B, B]] on the two nodes' x, y, z), summed over
+        # bearings between the same nodes
+        tables: dict = {}
+        for b in getattr(rotor, "bearing_elements", []):
+            link = getattr(b, "n_link", None)
+            key = (int(b.n), None if link is None else int(link))
+            kb = [np.asarray(b.K(w), dtype=float)[:2, :2] - np.asarray(b.K(speeds[0]), dtype=float)[:2, :2] for w in speeds]
+            cb = [np.asarray(b.C(w), dtype=float)[:2, :2] - np.asarray(b.C(speeds[0]), dtype=float)[:2, :2] for w in speeds]
+            if key in tables:
+                kb = [a + b2 for a, b2 in zip(tables[key][0], kb)]
+                cb = [a + b2 for a, b2 in zip(tables[key][1], cb)]
+            tables[key] = (kb, cb)
+        rebuilt_k = [np.zeros_like(k0) for _ in speeds]
+        rebuilt_c = [np.zeros_like(c0) for _ in speeds]
+        for (node, link), (kb, cb) in sorted(tables.items(), key=lambda t: (t[0][0], -1 if t[0][1] is None else t[0][1])):
+            if not any(np.any(a != 0.0) for a in kb + cb):
+                continue
+            out.add_speed_bearing(node, speeds, np.array([a.ravel() for a in kb]), np.array([a.ravel() for a in cb]), link=link)
+            i, j = start[node], None if link is None else start[link]
+            for table, rebuilt in ((kb, rebuilt_k), (cb, rebuilt_c)):
+                for a, r in zip(table, rebuilt):
+                    r[i : i + 2, i : i + 2] += a
+                    if j is not None:
+                        r[j : j + 2, j : j + 2] += a
+                        r[i : i + 2, j : j + 2] -= a
+                        r[j : j + 2, i : i + 2] -= a
+        # what changes with speed must be those blocks: a change elsewhere (tilt terms, an element
+        # that is not a bearing) would be dropped here, so it is refused
+        for name, table, rebuilt in (("stiffness", ks, rebuilt_k), ("damping", cs, rebuilt_c)):
+            for w, a, r in zip(speeds, table, rebuilt):
                 scale = max(float(np.max(np.abs(a))), 1e-300)
-                if np.max(np.abs(np.where(on, 0.0, a))) > 1e-12 * scale:
+                if np.max(np.abs(a - r)) > 1e-12 * scale:
                     raise ValueError(
-                        f"from_ross: the bearings' {name} changes with speed (at {w} rad/s) outside the x, y block of a bearing's "
-                        "own node (a speed-dependent bearing between two nodes, n_link, or with tilt terms); autobal's "
-                        "speed-dependent bearings act on one node's x, y"
+                        f"from_ross: the rotor's {name} changes with speed (at {w} rad/s) outside the x, y blocks of its bearings "
+                        "(tilt terms, or an element that is not a bearing); autobal's speed-dependent bearings act on the x, y of "
+                        "a node, or of two nodes (n_link)"
                     )
     for b in balancers:
         out.add_balancer(int(b["node"]), float(b["radius"]), int(b["balls"]), float(b["ball_mass"]), float(b.get("drag", 0.0)), float(b.get("offset", 0.0)))

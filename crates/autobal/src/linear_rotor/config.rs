@@ -53,7 +53,7 @@
 
 use super::npz::{parse_npy, parse_npz, NpyArray};
 use super::shaft::{Bearing, Disk, Element, ShaftBuilder};
-use super::{BalancerPlane, Layout, LinearRotor, SpeedBearing, Unbalance};
+use super::{BalancerPlane, Direction, Layout, LinearRotor, SpeedBearing, Unbalance};
 use crate::config::{drive, integration, Integration, Section};
 use crate::drive::Drive;
 use crate::error::{Error, Result};
@@ -91,7 +91,7 @@ const KEYS: &[(&str, &[&str])] = &[
     ),
     ("elements", &["length", "diameter", "inner_diameter", "area", "inertia", "e", "rho", "g_s", "kappa", "count"]),
     ("disks", &["node", "mass", "id", "ip"]),
-    ("bearings", &["node", "k", "c", "speeds", "kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy"]),
+    ("bearings", &["node", "link", "k", "c", "speeds", "kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy"]),
     ("unbalance", &["node", "me", "phase", "offset"]),
     (
         "balancer",
@@ -318,17 +318,46 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
         let bytes = load(path).map_err(|e| Error::invalid("linear_rotor.matrices", format!("{path}: {e}")))?;
         archive = Some(npz_arrays(path, &bytes)?);
     }
+    // the DOF table: of the config (linear_rotor.dofs) or of the archive (its array dofs)
+    let mut tables: Vec<(Vec<Value>, &str)> = vec![];
+    if let Some(a) = archive.iter().flatten().find(|(k, _)| k == "dofs").map(|(_, a)| a.clone()) {
+        let NpyArray::Strings(names) = a else {
+            return Err(Error::invalid("linear_rotor.matrices", "dofs: expected an array of strings (np.array([\"x0\", \"y0\", …]))"));
+        };
+        tables.push((names.into_iter().map(Value::String).collect(), "linear_rotor.matrices: dofs"));
+    }
+    match lr.get("dofs") {
+        None => {}
+        Some(Value::Array(names)) => tables.push((names.clone(), "linear_rotor.dofs")),
+        Some(_) => return Err(Error::invalid("linear_rotor.dofs", "expected an array of DOF names (\"x0\", \"y0\", \"alpha0\", \"beta0\", \"x1\", …)")),
+    }
     let elements = items(lr, "elements")?;
     let disks = items(lr, "disks")?;
     let (mut rotor, source) = if has_files {
         if !elements.is_empty() || !disks.is_empty() {
             return Err(Error::invalid("linear_rotor.elements", "give either matrix files (m, k, …) or the shaft builder's elements and disks, not both"));
         }
-        let layout = match string("layout")?.unwrap_or("x,y,alpha,beta") {
-            "x,y" => Layout::Translation,
-            "x,y,alpha,beta" => Layout::TranslationTilt,
-            o => return Err(Error::invalid("linear_rotor.layout", format!("must be \"x,y\" or \"x,y,alpha,beta\" (ROSS's order), got \"{o}\""))),
+        let layout_key = match string("layout")? {
+            None => None,
+            Some("x,y") => Some(Layout::Translation),
+            Some("x,y,alpha,beta") => Some(Layout::TranslationTilt),
+            Some(o) => return Err(Error::invalid("linear_rotor.layout", format!("must be \"x,y\" or \"x,y,alpha,beta\" (ROSS's order), got \"{o}\""))),
         };
+        let layout = layout_key.unwrap_or(Layout::TranslationTilt);
+        // the nodes' DOFs from the DOF table, where it differs from node to node
+        let mut node_layouts: Option<Vec<Layout>> = None;
+        for (names, field) in &tables {
+            let l = match layout_key {
+                // alike at every node: the table must name them so (check_dofs below)
+                Some(l) => vec![l; names.len().div_ceil(l.per_node())],
+                // else the table says each node's DOFs
+                None => layouts_from_dofs(names).map_err(|e| rename(e, "linear_rotor.dofs", field))?,
+            };
+            if node_layouts.as_ref().is_some_and(|p| *p != l) {
+                return Err(Error::invalid(*field, "names other DOFs than linear_rotor.dofs: give the DOF table once"));
+            }
+            node_layouts = Some(l);
+        }
         let matrices_path = string("matrices")?.unwrap_or("");
         let mut read = |k: &str, required: bool| -> Result<Option<(usize, Vec<f64>)>> {
             if let Some(arrays) = archive.as_mut() {
@@ -348,10 +377,21 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
             matrix_file(&format!("linear_rotor.{k}"), path, load).map(Some)
         };
         let (n, m) = read("m", true)?.expect("required");
-        if n % layout.per_node() != 0 {
-            return Err(Error::invalid("linear_rotor.m", format!("{n} DOFs is no multiple of {} DOFs per node (layout)", layout.per_node())));
-        }
-        let mut r = LinearRotor::zeros(n / layout.per_node(), layout);
+        let mut r = match &node_layouts {
+            Some(l) => {
+                let r = LinearRotor::with_layouts(l);
+                if r.dofs() != n {
+                    return Err(Error::invalid(tables[0].1, format!("has {} names, the matrices {n} DOFs", tables[0].0.len())));
+                }
+                r
+            }
+            None => {
+                if n % layout.per_node() != 0 {
+                    return Err(Error::invalid("linear_rotor.m", format!("{n} DOFs is no multiple of {} DOFs per node (layout)", layout.per_node())));
+                }
+                LinearRotor::zeros(n / layout.per_node(), layout)
+            }
+        };
         r.m = m;
         r.polar_inertia = top.f64("polar_inertia")?.unwrap_or(0.0);
         for (k, required) in [("k", true), ("c", false), ("g", false), ("kst", false), ("spin_chart", false)] {
@@ -475,6 +515,13 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
         if node >= rotor.nodes {
             return Err(Error::invalid(br.field("node"), format!("{node} is not a node (0..{})", rotor.nodes)));
         }
+        // the node at the bearing's other side (a support mass), else ground
+        let link = br.usize("link")?;
+        if let Some(l) = link {
+            if l >= rotor.nodes || l == node {
+                return Err(Error::invalid(br.field("link"), format!("{l} is not a node other than the bearing's {node} (0..{})", rotor.nodes)));
+            }
+        }
         match br.array("speeds")? {
             None => {
                 for k in ["kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy"] {
@@ -486,12 +533,10 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
                 crate::error::non_negative(&br.field("k"), k)?;
                 crate::error::non_negative(&br.field("c"), c)?;
                 let Bearing { node, k, c } = Bearing { node, k, c };
-                let n = rotor.dofs();
-                let base = node * rotor.layout.per_node();
-                for d in [base, base + 1] {
-                    rotor.k[d * n + d] += k;
-                    rotor.c[d * n + d] += c;
-                }
+                let (mut kk, mut cc) = (std::mem::take(&mut rotor.k), std::mem::take(&mut rotor.c));
+                rotor.add_bearing_block(node, link, &[k, 0.0, 0.0, k], &mut kk);
+                rotor.add_bearing_block(node, link, &[c, 0.0, 0.0, c], &mut cc);
+                (rotor.k, rotor.c) = (kk, cc);
             }
             Some(speeds) => {
                 let len = speeds.len();
@@ -521,6 +566,7 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
                 let _ = i;
                 rotor.speed_bearings.push(SpeedBearing {
                     node,
+                    link,
                     speeds,
                     k: (0..len).map(|j| [kxx[j], kxy[j], kyx[j], kyy[j]]).collect(),
                     c: (0..len).map(|j| [cxx[j], cxy[j], cyx[j], cyy[j]]).collect(),
@@ -580,18 +626,8 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
         }
         g.load = load;
     }
-    let archive_dofs = archive.iter().flatten().find(|(k, _)| k == "dofs").map(|(_, a)| a.clone());
-    if let Some(a) = archive_dofs {
-        let NpyArray::Strings(names) = a else {
-            return Err(Error::invalid("linear_rotor.matrices", "dofs: expected an array of strings (np.array([\"x0\", \"y0\", …]))"));
-        };
-        let names: Vec<Value> = names.into_iter().map(Value::String).collect();
-        check_dofs(&rotor, &names).map_err(|e| rename(e, "linear_rotor.dofs", "linear_rotor.matrices: dofs"))?;
-    }
-    if let Some(Value::Array(names)) = lr.get("dofs") {
-        check_dofs(&rotor, names)?;
-    } else if lr.contains_key("dofs") {
-        return Err(Error::invalid("linear_rotor.dofs", "expected an array of DOF names (\"x0\", \"y0\", \"alpha0\", \"beta0\", \"x1\", …)"));
+    for (names, field) in &tables {
+        check_dofs(&rotor, names).map_err(|e| rename(e, "linear_rotor.dofs", field))?;
     }
     // the model's names: linear_rotor.unbalances[i] -> the config's linear_rotor.unbalance[i]
     rotor.validate().map_err(|e| rename(rename(e, "linear_rotor.unbalances", "linear_rotor.unbalance"), "linear_rotor.balancers", "linear_rotor.balancer"))?;
@@ -608,20 +644,71 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
     Ok(LinearRotorConfig { rotor, source, omega_max, modes, drive, integration })
 }
 
+/// The name of DOF `i` in the DOF table: direction and node, `x3`, `alpha3` (ROSS's spelling).
+pub fn dof_key(rotor: &LinearRotor, i: usize) -> String {
+    rotor.dof_node(i).map_or_else(|| format!("dof{i}"), |(k, d)| format!("{}{k}", d.key()))
+}
+
 /// The DOF table: `names[i]` must name DOF `i` in ROSS's order (`x3`, `alpha3`, …).
 fn check_dofs(rotor: &LinearRotor, names: &[Value]) -> Result<()> {
     let n = rotor.dofs();
     if names.len() != n {
         return Err(Error::invalid("linear_rotor.dofs", format!("has {} names, the matrices {n} DOFs", names.len())));
     }
-    let per = rotor.layout.per_node();
     for (i, v) in names.iter().enumerate() {
-        let want = format!("{}{}", ["x", "y", "alpha", "beta"][i % per], i / per);
+        let want = dof_key(rotor, i);
         if v.as_str() != Some(want.as_str()) {
             return Err(Error::invalid(format!("linear_rotor.dofs[{i}]"), format!("is {v}, ROSS's order has \"{want}\" there (x, y, alpha, beta per node)")));
         }
     }
     Ok(())
+}
+
+/// The nodes' DOFs named by a DOF table in ROSS's order: node after node from 0, each `x_k, y_k`
+/// followed by `alpha_k, beta_k` where the node has tilts (`["x0", "y0", "alpha0", "beta0",
+/// "x1", "y1"]`: node 0 `x, y, α, β`, node 1 `x, y`). Errors name the entry and what ROSS's
+/// order has there.
+pub fn layouts_from_dofs(names: &[Value]) -> Result<Vec<Layout>> {
+    let mut layouts = vec![];
+    // (node, DOFs of it seen so far)
+    let (mut node, mut seen) = (0usize, 0usize);
+    let is = |v: &Value, d: Direction, k: usize| v.as_str() == Some(format!("{}{k}", d.key()).as_str());
+    for (i, v) in names.iter().enumerate() {
+        let field = format!("linear_rotor.dofs[{i}]");
+        let want =
+            |w: String| Error::invalid(&field, format!("is {v}, ROSS's order has {w} there (x, y, then alpha, beta where the node has tilts, per node)"));
+        match seen {
+            0 | 1 => {
+                let d = Direction::ALL[seen];
+                if !is(v, d, node) {
+                    return Err(want(format!("\"{}{node}\"", d.key())));
+                }
+                seen += 1;
+            }
+            2 if is(v, Direction::X, node + 1) => {
+                layouts.push(Layout::Translation);
+                (node, seen) = (node + 1, 1);
+            }
+            2 if is(v, Direction::Alpha, node) => seen = 3,
+            2 => return Err(want(format!("\"alpha{node}\" or \"x{}\"", node + 1))),
+            _ => {
+                if !is(v, Direction::Beta, node) {
+                    return Err(want(format!("\"beta{node}\"")));
+                }
+                layouts.push(Layout::TranslationTilt);
+                (node, seen) = (node + 1, 0);
+            }
+        }
+    }
+    match seen {
+        0 if layouts.is_empty() => Err(Error::invalid("linear_rotor.dofs", "names no DOF")),
+        0 => Ok(layouts),
+        2 => {
+            layouts.push(Layout::Translation);
+            Ok(layouts)
+        }
+        _ => Err(Error::invalid("linear_rotor.dofs", format!("ends inside node {node}: ROSS's order has {} next", if seen == 1 { "y" } else { "beta" }))),
+    }
 }
 
 fn rename(e: Error, from: &str, to: &str) -> Error {
@@ -733,7 +820,10 @@ pub fn export(rotor: &LinearRotor, stem: &str) -> (String, Vec<(String, String)>
     let n = rotor.dofs();
     let mut files = vec![];
     let mut t = String::from("# A linear rotor (autobal export-model): M q'' + (C + Ω G) q' + K q = f, DOFs in ROSS's order\n[linear_rotor]\n");
-    t.push_str(&format!("layout = \"{}\"\n", if rotor.layout == Layout::Translation { "x,y" } else { "x,y,alpha,beta" }));
+    if rotor.node_layouts.is_empty() {
+        // alike at every node (else the DOF table below says each node's)
+        t.push_str(&format!("layout = \"{}\"\n", if rotor.layout == Layout::Translation { "x,y" } else { "x,y,alpha,beta" }));
+    }
     for (key, a, what) in [
         ("m", &rotor.m, "mass matrix M (kg, kg m²)"),
         ("c", &rotor.c, "damping matrix C"),
@@ -758,8 +848,7 @@ pub fn export(rotor: &LinearRotor, stem: &str) -> (String, Vec<(String, String)>
             write_matrix_market(&rotor.rotor_fixed_mass, n, &format!("inertia fixed to the rotor M_rot (kg, kg m², in axes turning with it), {n} DOFs")),
         ));
     }
-    let per = rotor.layout.per_node();
-    let names: Vec<String> = (0..n).map(|i| format!("\"{}{}\"", ["x", "y", "alpha", "beta"][i % per], i / per)).collect();
+    let names: Vec<String> = (0..n).map(|i| format!("\"{}\"", dof_key(rotor, i))).collect();
     t.push_str(&format!("dofs = [{}]\n", names.join(", ")));
     if rotor.polar_inertia != 0.0 {
         t.push_str(&format!("polar_inertia = {:?}\n", rotor.polar_inertia));
@@ -778,7 +867,11 @@ pub fn export(rotor: &LinearRotor, stem: &str) -> (String, Vec<(String, String)>
         }
     }
     for b in &rotor.speed_bearings {
-        t.push_str(&format!("\n[[linear_rotor.bearings]]\nnode = {}\nspeeds = {:?}\n", b.node, b.speeds));
+        t.push_str(&format!("\n[[linear_rotor.bearings]]\nnode = {}\n", b.node));
+        if let Some(l) = b.link {
+            t.push_str(&format!("link = {l}\n"));
+        }
+        t.push_str(&format!("speeds = {:?}\n", b.speeds));
         for (j, k) in ["kxx", "kxy", "kyx", "kyy"].iter().enumerate() {
             t.push_str(&format!("{k} = {:?}\n", b.k.iter().map(|v| v[j]).collect::<Vec<_>>()));
         }

@@ -277,12 +277,12 @@ impl LinearRotorField {
         let mut f = vec![0.0; r.dofs()];
         for u in &r.unbalances {
             let force = C::new(u.me * k.w * k.w, -u.me * k.wdot) * C::from_polar(1.0, u.phase + k.chi);
-            let per = r.layout.per_node();
-            f[u.node * per] += force.re;
-            f[u.node * per + 1] += force.im;
-            if per == 4 {
-                f[u.node * per + 2] += -u.offset * force.im;
-                f[u.node * per + 3] += u.offset * force.re;
+            let (ix, iy, tilt) = r.node_dofs(u.node);
+            f[ix] += force.re;
+            f[iy] += force.im;
+            if let Some((ia, ib)) = tilt {
+                f[ia] += -u.offset * force.im;
+                f[ib] += u.offset * force.re;
             }
         }
         f
@@ -293,18 +293,18 @@ impl LinearRotorField {
     fn forcing_generic<T: Real>(&self, w: T, wdot: f64, chi: T) -> Vec<T> {
         let r = &self.rotor;
         let mut f = vec![T::cst(0.0); r.dofs()];
-        let per = r.layout.per_node();
         for u in &r.unbalances {
             let (s, c) = (chi + u.phase).sin_cos();
             let w2 = w * w * u.me;
             // (m e Ω² − i m e Ω̇)(cos + i sin)
             let re = w2 * c + s * (u.me * wdot);
             let im = w2 * s - c * (u.me * wdot);
-            f[u.node * per] = f[u.node * per] + re;
-            f[u.node * per + 1] = f[u.node * per + 1] + im;
-            if per == 4 {
-                f[u.node * per + 2] = f[u.node * per + 2] - im * u.offset;
-                f[u.node * per + 3] = f[u.node * per + 3] + re * u.offset;
+            let (ix, iy, tilt) = r.node_dofs(u.node);
+            f[ix] = f[ix] + re;
+            f[iy] = f[iy] + im;
+            if let Some((ia, ib)) = tilt {
+                f[ia] = f[ia] - im * u.offset;
+                f[ib] = f[ib] + re * u.offset;
             }
         }
         f
@@ -632,8 +632,7 @@ impl LinearRotorField {
     fn length(&self) -> f64 {
         let r = &self.rotor;
         let n = r.dofs();
-        let per = r.layout.per_node();
-        let mass: f64 = (0..r.nodes).map(|k| r.m[(k * per) * n + k * per]).sum::<f64>() / r.nodes as f64 + self.balls.iter().map(|b| b.m).sum::<f64>();
+        let mass: f64 = r.node_starts().into_iter().map(|i| r.m[i * n + i]).sum::<f64>() / r.nodes as f64 + self.balls.iter().map(|b| b.m).sum::<f64>();
         let me: f64 = r.unbalances.iter().map(|u| u.me.abs()).sum::<f64>() + self.balls.iter().map(|b| b.m * b.r).sum::<f64>();
         let l = me / mass;
         if l > 0.0 && l.is_finite() {
@@ -683,12 +682,12 @@ impl LinearRotorField {
         let mut f = vec![0.0; n];
         for u in &r.unbalances {
             let force = C::from_polar(u.me * w * w, u.phase);
-            let per = r.layout.per_node();
-            f[u.node * per] += force.re;
-            f[u.node * per + 1] += force.im;
-            if per == 4 {
-                f[u.node * per + 2] -= u.offset * force.im;
-                f[u.node * per + 3] += u.offset * force.re;
+            let (ix, iy, tilt) = r.node_dofs(u.node);
+            f[ix] += force.re;
+            f[iy] += force.im;
+            if let Some((ia, ib)) = tilt {
+                f[ia] -= u.offset * force.im;
+                f[ib] += u.offset * force.re;
             }
         }
         let ball_f: C = psi.iter().map(|&p| C::from_polar(b.ball_mass * b.radius * w * w, p)).sum();

@@ -9,7 +9,9 @@
 //! ```
 //!
 //! `q` the `N` degrees of freedom named by node and direction in ROSS's order: per node
-//! `x, y` ([`Layout::Translation`]) or `x, y, α, β` ([`Layout::TranslationTilt`]), `α` the tilt
+//! `x, y` ([`Layout::Translation`]) or `x, y, α, β` ([`Layout::TranslationTilt`]), the same at
+//! every node ([`LinearRotor::layout`]) or node by node ([`LinearRotor::node_layouts`]: a
+//! support mass, ROSS's `PointMass` at the far end of an `n_link` bearing, has `x, y` only), `α` the tilt
 //! about `x` and `β` the tilt about `y` (a point at axial offset `z` from the node moves by
 //! `(x + z β, y − z α)`). `M` is symmetric positive definite, `G` skew (gyroscopic, multiplied
 //! by the spin speed `Ω`), `C` and `K` any real matrices (cross-coupled bearings give
@@ -156,7 +158,7 @@ use serde::Serialize;
 
 pub use field::{Frame, LinearRotorField, TimeSystem};
 
-/// The degrees of freedom of each node.
+/// The degrees of freedom of a node.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 pub enum Layout {
     /// `x, y` per node (2 DOFs).
@@ -189,6 +191,8 @@ pub enum Direction {
 }
 
 impl Direction {
+    /// The four directions in their order within a node.
+    pub const ALL: [Direction; 4] = [Direction::X, Direction::Y, Direction::Alpha, Direction::Beta];
     /// Offset within a node: `x 0, y 1, α 2, β 3`.
     fn offset(self) -> usize {
         match self {
@@ -207,6 +211,16 @@ impl Direction {
             Direction::Beta => "β",
         }
     }
+    /// The name in the config's DOF table (`linear_rotor.dofs`, ROSS's spelling): `x`, `y`,
+    /// `alpha`, `beta` (followed there by the node number).
+    pub fn key(self) -> &'static str {
+        match self {
+            Direction::X => "x",
+            Direction::Y => "y",
+            Direction::Alpha => "alpha",
+            Direction::Beta => "beta",
+        }
+    }
 }
 
 /// A static unbalance: the force `m e Ω² e^{i(φ + phase)}` at `node` (constant speed), and
@@ -219,7 +233,8 @@ pub struct Unbalance {
     pub me: f64,
     /// Angle of the unbalance in rotor axes (rad).
     pub phase: f64,
-    /// Axial offset `z` of its plane from the node (m); nonzero needs [`Layout::TranslationTilt`].
+    /// Axial offset `z` of its plane from the node (m); nonzero needs the node's tilts
+    /// ([`Layout::TranslationTilt`]).
     pub offset: f64,
 }
 
@@ -239,17 +254,22 @@ pub struct BalancerPlane {
     /// Drag per ball `c_b` (N·m·s).
     pub drag: f64,
     /// Axial offset `z` of the race plane from the node (m): the race centre is at
-    /// `(x + z β, y − z α)`; nonzero needs [`Layout::TranslationTilt`].
+    /// `(x + z β, y − z α)`; nonzero needs the node's tilts ([`Layout::TranslationTilt`]).
     pub offset: f64,
 }
 
 /// A bearing whose stiffness and damping depend on the speed: tables over `speeds` (rad/s,
 /// increasing), interpolated linearly between them and held constant outside; each entry
-/// `[xx, xy, yx, yy]` acts on the node's `(x, y)` (`K[x][y] = k_xy`, …), added to `K` and `C`.
+/// `B = [xx, xy, yx, yy]` acts on the node's `(x, y)` (`K[x][y] = k_xy`, …), added to `K` and
+/// `C`; with a `link` node on the difference `(x, y)_node − (x, y)_link` (ROSS's `n_link`: the
+/// support its outer race sits in), the blocks `[[B, −B], [−B, B]]` on the two nodes.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SpeedBearing {
     /// Node index.
     pub node: usize,
+    /// The node at the bearing's other side (`None`: ground).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub link: Option<usize>,
     /// The speeds of the table (rad/s), increasing.
     pub speeds: Vec<f64>,
     /// Stiffness `[k_xx, k_xy, k_yx, k_yy]` at each speed (N/m).
@@ -283,13 +303,20 @@ impl SpeedBearing {
 }
 
 /// The structural model `M q̈ + (C + Ω G) q̇ + K q = f` in fixed axes with its unbalances and
-/// balancer planes (module docs). Matrices row-major `N × N`, `N = nodes · layout.per_node()`.
+/// balancer planes (module docs). Matrices row-major `N × N`, `N` the sum of the nodes' DOFs
+/// (`nodes · layout.per_node()` where every node has `layout`), node after node in ROSS's order.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct LinearRotor {
     /// Number of nodes.
     pub nodes: usize,
-    /// DOFs per node.
+    /// The DOFs of every node where [`LinearRotor::node_layouts`] is empty; with per-node
+    /// layouts, the widest of them ([`LinearRotor::with_layouts`] sets both).
     pub layout: Layout,
+    /// The DOFs node by node (empty: every node has [`LinearRotor::layout`]), e.g. a shaft's
+    /// nodes `x, y, α, β` and the support masses of its bearings `x, y`: node `k`'s DOFs start at
+    /// `Σ_{j<k} per_node(j)` ([`LinearRotor::node_start`]).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub node_layouts: Vec<Layout>,
     /// Mass matrix `M` (symmetric positive definite, without the balls).
     pub m: Vec<f64>,
     /// Damping matrix `C`.
@@ -390,6 +417,7 @@ impl LinearRotor {
         LinearRotor {
             nodes,
             layout,
+            node_layouts: vec![],
             m: vec![0.0; n * n],
             c: vec![0.0; n * n],
             g: vec![0.0; n * n],
@@ -417,6 +445,72 @@ impl LinearRotor {
         }
     }
 
+    /// A structure with the nodes' DOFs `layouts` (one per node), zero matrices, no unbalance
+    /// and no balancer: [`LinearRotor::zeros`] where all are alike (`node_layouts` empty), else
+    /// `node_layouts = layouts` and `layout` the widest.
+    pub fn with_layouts(layouts: &[Layout]) -> Self {
+        let first = layouts.first().copied().unwrap_or(Layout::TranslationTilt);
+        if layouts.iter().all(|l| *l == first) {
+            return LinearRotor::zeros(layouts.len(), first);
+        }
+        let mut r = LinearRotor::zeros(0, Layout::TranslationTilt);
+        r.nodes = layouts.len();
+        r.node_layouts = layouts.to_vec();
+        let n = r.dofs();
+        for a in [&mut r.m, &mut r.c, &mut r.g, &mut r.k] {
+            *a = vec![0.0; n * n];
+        }
+        r
+    }
+
+    /// The DOFs of node `k` ([`LinearRotor::node_layouts`], else [`LinearRotor::layout`]).
+    pub fn node_layout(&self, k: usize) -> Layout {
+        self.node_layouts.get(k).copied().unwrap_or(self.layout)
+    }
+
+    /// Index of node `k`'s first DOF (its `x`): `Σ_{j<k} per_node(j)`.
+    pub fn node_start(&self, k: usize) -> usize {
+        if self.node_layouts.is_empty() {
+            k * self.layout.per_node()
+        } else {
+            self.node_layouts[..k.min(self.node_layouts.len())].iter().map(|l| l.per_node()).sum()
+        }
+    }
+
+    /// [`LinearRotor::node_start`] of every node.
+    pub fn node_starts(&self) -> Vec<usize> {
+        (0..self.nodes)
+            .scan(0, |start, k| {
+                let s = *start;
+                *start += self.node_layout(k).per_node();
+                Some(s)
+            })
+            .collect()
+    }
+
+    /// The node and direction of DOF `i` (`None` past the last DOF).
+    pub fn dof_node(&self, i: usize) -> Option<(usize, Direction)> {
+        if self.node_layouts.is_empty() {
+            let per = self.layout.per_node();
+            return (i < self.dofs()).then(|| (i / per, Direction::ALL[i % per]));
+        }
+        let mut start = 0;
+        for (k, l) in self.node_layouts.iter().enumerate() {
+            if i < start + l.per_node() {
+                return Some((k, Direction::ALL[i - start]));
+            }
+            start += l.per_node();
+        }
+        None
+    }
+
+    /// The DOFs `(x, y)` of node `k` and its tilts `(α, β)` where it has them (the place of a
+    /// balancer plane, an unbalance or a bearing).
+    pub fn node_dofs(&self, k: usize) -> (usize, usize, Option<(usize, usize)>) {
+        let s = self.node_start(k);
+        (s, s + 1, (self.node_layout(k) == Layout::TranslationTilt).then_some((s + 2, s + 3)))
+    }
+
     /// Set gravity `g = (g_x, g_y)` (m/s², fixed axes) with the weight `M r_g` ([`Gravity`]);
     /// `g = (0, 0)` removes it.
     pub fn set_gravity(&mut self, g: [f64; 2]) {
@@ -425,11 +519,10 @@ impl LinearRotor {
             return;
         }
         let n = self.dofs();
-        let per = self.layout.per_node();
         let r: Vec<f64> = (0..n)
-            .map(|i| match i % per {
-                0 => g[0],
-                1 => g[1],
+            .map(|i| match self.dof_node(i).map(|d| d.1) {
+                Some(Direction::X) => g[0],
+                Some(Direction::Y) => g[1],
                 _ => 0.0,
             })
             .collect();
@@ -661,16 +754,32 @@ impl LinearRotor {
     /// `C(Ω)` and `K(Ω)`: `C`, `K` plus the speed-dependent bearings at `omega`.
     pub fn damping_stiffness_at(&self, omega: f64) -> (Vec<f64>, Vec<f64>) {
         let (mut c, mut k) = (self.c.clone(), self.k.clone());
-        let n = self.dofs();
         for b in &self.speed_bearings {
             let (kb, cb) = b.at(omega);
-            let i = b.node * self.layout.per_node();
-            for (j, (r, col)) in [(0, 0), (0, 1), (1, 0), (1, 1)].into_iter().enumerate() {
-                k[(i + r) * n + i + col] += kb[j];
-                c[(i + r) * n + i + col] += cb[j];
-            }
+            self.add_bearing_block(b.node, b.link, &kb, &mut k);
+            self.add_bearing_block(b.node, b.link, &cb, &mut c);
         }
         (c, k)
+    }
+
+    /// Add a bearing's 2×2 block `B = [xx, xy, yx, yy]` to the row-major `N × N` matrix `a`:
+    /// `B` on `node`'s `(x, y)`, and with a `link` node `−B` on (node, link) and (link, node)
+    /// and `B` on the link's `(x, y)` ([`SpeedBearing`]).
+    pub(crate) fn add_bearing_block(&self, node: usize, link: Option<usize>, blk: &[f64; 4], a: &mut [f64]) {
+        let n = self.dofs();
+        let i = self.node_start(node);
+        let mut put = |r0: usize, c0: usize, s: f64| {
+            for (j, (r, col)) in [(0, 0), (0, 1), (1, 0), (1, 1)].into_iter().enumerate() {
+                a[(r0 + r) * n + c0 + col] += s * blk[j];
+            }
+        };
+        put(i, i, 1.0);
+        if let Some(l) = link {
+            let l = self.node_start(l);
+            put(i, l, -1.0);
+            put(l, i, -1.0);
+            put(l, l, 1.0);
+        }
     }
 
     /// The rotor at speed `omega` with its speed-dependent bearings folded into `C` and `K`
@@ -682,7 +791,11 @@ impl LinearRotor {
 
     /// Number of structural DOFs `N`.
     pub fn dofs(&self) -> usize {
-        self.nodes * self.layout.per_node()
+        if self.node_layouts.is_empty() {
+            self.nodes * self.layout.per_node()
+        } else {
+            self.node_layouts.iter().map(|l| l.per_node()).sum()
+        }
     }
 
     /// `T(φ) M_rot T(φ)ᵀ`: the rotor-fixed inertia ([`LinearRotor::rotor_fixed_mass`]) in the
@@ -695,17 +808,18 @@ impl LinearRotor {
         turn_blocks(&self.rotor_fixed_mass, n, phi)
     }
 
-    /// Index of DOF `(node, direction)`, `None` where the layout has no such DOF.
+    /// Index of DOF `(node, direction)`: `node_start(node) + offset` (`x 0, y 1, α 2, β 3`),
+    /// `None` where the node has no such DOF (a tilt of an `x, y` node, or no such node).
     pub fn dof(&self, node: usize, dir: Direction) -> Option<usize> {
-        let per = self.layout.per_node();
-        (node < self.nodes && dir.offset() < per).then(|| node * per + dir.offset())
+        (node < self.nodes && dir.offset() < self.node_layout(node).per_node()).then(|| self.node_start(node) + dir.offset())
     }
 
-    /// Name of DOF `i`, e.g. `"node 3 α"`.
+    /// Name of DOF `i`, e.g. `"node 3 α"` (`"DOF i"` past the last).
     pub fn dof_name(&self, i: usize) -> String {
-        let per = self.layout.per_node();
-        let dir = [Direction::X, Direction::Y, Direction::Alpha, Direction::Beta][i % per];
-        format!("node {} {}", i / per, dir.symbol())
+        match self.dof_node(i) {
+            Some((k, dir)) => format!("node {k} {}", dir.symbol()),
+            None => format!("DOF {i}"),
+        }
     }
 
     /// Total number of balls `Σ n` over the balancer planes.
@@ -717,6 +831,15 @@ impl LinearRotor {
     pub fn validate(&self) -> Result<()> {
         if self.nodes == 0 {
             return Err(Error::invalid("linear_rotor.nodes", "must be at least 1"));
+        }
+        if !self.node_layouts.is_empty() {
+            if self.node_layouts.len() != self.nodes {
+                return Err(Error::invalid("linear_rotor.node_layouts", format!("has {} entries, one per node: {}", self.node_layouts.len(), self.nodes)));
+            }
+            let widest = if self.node_layouts.contains(&Layout::TranslationTilt) { Layout::TranslationTilt } else { Layout::Translation };
+            if self.layout != widest {
+                return Err(Error::invalid("linear_rotor.layout", format!("must be the widest of node_layouts, {widest:?}")));
+            }
         }
         let n = self.dofs();
         if n > MAX_DOFS {
@@ -857,14 +980,19 @@ impl LinearRotor {
             finite(&f("me"), u.me)?;
             finite(&f("phase"), u.phase)?;
             finite(&f("offset"), u.offset)?;
-            if u.offset != 0.0 && self.layout == Layout::Translation {
-                return Err(Error::invalid(f("offset"), "an axial offset needs the tilt DOFs (layout x, y, α, β)"));
+            if u.offset != 0.0 && self.node_layout(u.node) == Layout::Translation {
+                return Err(Error::invalid(f("offset"), format!("an axial offset needs the tilt DOFs, node {} has x, y only", u.node)));
             }
         }
         for (i, b) in self.speed_bearings.iter().enumerate() {
             let f = |s: &str| format!("linear_rotor.bearings[{i}].{s}");
             if b.node >= self.nodes {
                 return Err(Error::invalid(f("node"), format!("{} is not a node (0..{})", b.node, self.nodes)));
+            }
+            if let Some(l) = b.link {
+                if l >= self.nodes || l == b.node {
+                    return Err(Error::invalid(f("link"), format!("{l} is not a node other than the bearing's {} (0..{})", b.node, self.nodes)));
+                }
             }
             if b.speeds.is_empty() {
                 return Err(Error::invalid(f("speeds"), "needs at least one speed"));
@@ -895,8 +1023,8 @@ impl LinearRotor {
             positive(&f("ball_mass"), b.ball_mass)?;
             non_negative(&f("drag"), b.drag)?;
             finite(&f("offset"), b.offset)?;
-            if b.offset != 0.0 && self.layout == Layout::Translation {
-                return Err(Error::invalid(f("offset"), "an axial offset needs the tilt DOFs (layout x, y, α, β)"));
+            if b.offset != 0.0 && self.node_layout(b.node) == Layout::Translation {
+                return Err(Error::invalid(f("offset"), format!("an axial offset needs the tilt DOFs, node {} has x, y only", b.node)));
             }
             if b.balls == 0 {
                 return Err(Error::invalid(f("balls"), "must be at least 1"));

@@ -39,7 +39,7 @@
 //! interior frequency `ω_c` is reported too: a forced response at frequency `ω` misses terms of
 //! relative size about `(ω/ω_c)²` (the static correction carries the rest).
 
-use super::{cholesky, LinearRotor};
+use super::{cholesky, Layout, LinearRotor};
 use crate::error::{Error, Result};
 use crate::ode::lu::Lu;
 use serde::Serialize;
@@ -227,13 +227,14 @@ fn project(x: &[f64], b: &[f64], n: usize, r: usize) -> Vec<f64> {
 pub fn reduce(rotor: &LinearRotor, mode_pairs: usize, extra_boundary: &[usize]) -> Result<Reduction> {
     rotor.validate()?;
     let n = rotor.dofs();
-    let per = rotor.layout.per_node();
+    // DOFs per modal pseudo-node: as every node's where all are alike, else one pair (x, y)
+    let per = pseudo_layout(rotor).per_node();
     let mut boundary: Vec<usize> = rotor
         .balancers
         .iter()
         .map(|b| b.node)
         .chain(rotor.unbalances.iter().map(|u| u.node))
-        .chain(rotor.speed_bearings.iter().map(|b| b.node))
+        .chain(rotor.speed_bearings.iter().flat_map(|b| std::iter::once(b.node).chain(b.link)))
         .chain(extra_boundary.iter().copied())
         .collect();
     boundary.sort_unstable();
@@ -241,8 +242,14 @@ pub fn reduce(rotor: &LinearRotor, mode_pairs: usize, extra_boundary: &[usize]) 
     if let Some(&k) = boundary.iter().find(|k| **k >= rotor.nodes) {
         return Err(Error::invalid("linear_rotor.reduce.boundary", format!("{k} is not a node (0..{})", rotor.nodes)));
     }
-    let bd: Vec<usize> = boundary.iter().flat_map(|k| (0..per).map(move |d| k * per + d)).collect();
-    let id: Vec<usize> = (0..n).filter(|i| !boundary.contains(&(i / per))).collect();
+    let bd: Vec<usize> = boundary
+        .iter()
+        .flat_map(|&k| {
+            let s = rotor.node_start(k);
+            s..s + rotor.node_layout(k).per_node()
+        })
+        .collect();
+    let id: Vec<usize> = (0..n).filter(|i| !bd.contains(i)).collect();
     let (nb, ni) = (bd.len(), id.len());
     // the modes' mass: M plus the rotor-fixed inertia's mean over a turn (its part that
     // commutes with J; the rest turns with the rotor and is only projected)
@@ -386,7 +393,7 @@ pub fn reduce(rotor: &LinearRotor, mode_pairs: usize, extra_boundary: &[usize]) 
 /// correction `psi` and the interior modes `phis` (module docs).
 fn assemble(rotor: &LinearRotor, boundary: &[usize], bd: &[usize], id: &[usize], psi: &[f64], phis: &[Vec<f64>]) -> (LinearRotor, Vec<f64>, usize) {
     let n = rotor.dofs();
-    let per = rotor.layout.per_node();
+    let pseudo = pseudo_layout(rotor);
     let nb = bd.len();
     let r = nb + phis.len();
     let mut b = vec![0.0; n * r];
@@ -401,8 +408,9 @@ fn assemble(rotor: &LinearRotor, boundary: &[usize], bd: &[usize], id: &[usize],
             b[d * r + nb + m] = phi[ii];
         }
     }
-    let nodes = r / per;
-    let mut red = LinearRotor::zeros(nodes, rotor.layout);
+    // the boundary nodes with their DOFs, then the modal pseudo-nodes
+    let layouts: Vec<Layout> = boundary.iter().map(|&k| rotor.node_layout(k)).chain(std::iter::repeat_n(pseudo, phis.len() / pseudo.per_node())).collect();
+    let mut red = LinearRotor::with_layouts(&layouts);
     red.m = project(&rotor.m, &b, n, r);
     red.c = project(&rotor.c, &b, n, r);
     red.g = project(&rotor.g, &b, n, r);
@@ -445,13 +453,23 @@ fn assemble(rotor: &LinearRotor, boundary: &[usize], bd: &[usize], id: &[usize],
     let node_of = |k: usize| boundary.iter().position(|b| *b == k).expect("boundary node");
     red.unbalances = rotor.unbalances.iter().map(|u| super::Unbalance { node: node_of(u.node), ..*u }).collect();
     red.balancers = rotor.balancers.iter().map(|p| super::BalancerPlane { node: node_of(p.node), ..*p }).collect();
-    red.speed_bearings = rotor.speed_bearings.iter().map(|s| super::SpeedBearing { node: node_of(s.node), ..s.clone() }).collect();
+    red.speed_bearings = rotor.speed_bearings.iter().map(|s| super::SpeedBearing { node: node_of(s.node), link: s.link.map(node_of), ..s.clone() }).collect();
     red.polar_inertia = rotor.polar_inertia;
     red.spin_damping = rotor.spin_damping;
     red.ball_physics = rotor.ball_physics.clone();
     // the weight's virtual work on q = B z: Bᵀ load
     red.gravity = rotor.gravity.as_ref().map(|g| super::Gravity { g: g.g, load: (0..r).map(|j| (0..n).map(|i| b[i * r + j] * g.load[i]).sum()).collect() });
     (red, b, r)
+}
+
+/// The layout of the modal pseudo-nodes: every node's where all are alike, else `x, y` (one
+/// pair of modal coordinates each).
+fn pseudo_layout(rotor: &LinearRotor) -> Layout {
+    if rotor.node_layouts.is_empty() {
+        rotor.layout
+    } else {
+        Layout::Translation
+    }
 }
 
 /// The reduced natural frequencies at rest with their Krylov–Weinstein intervals (module docs).

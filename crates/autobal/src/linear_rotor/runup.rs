@@ -225,11 +225,9 @@ impl RunUpSystem<'_> {
             }
             let i = sp.partition_point(|v| *v <= w) - 1;
             let h = sp[i + 1] - sp[i];
-            let node = b.node * r.layout.per_node();
-            for (j, (row, col)) in [(0, 0), (0, 1), (1, 0), (1, 1)].into_iter().enumerate() {
-                dk[(node + row) * n + node + col] += (b.k[i + 1][j] - b.k[i][j]) / h;
-                dd[(node + row) * n + node + col] += (b.c[i + 1][j] - b.c[i][j]) / h;
-            }
+            let slope = |t: &[[f64; 4]]| -> [f64; 4] { std::array::from_fn(|j| (t[i + 1][j] - t[i][j]) / h) };
+            r.add_bearing_block(b.node, b.link, &slope(&b.k), &mut dk);
+            r.add_bearing_block(b.node, b.link, &slope(&b.c), &mut dd);
         }
         (dd, dk)
     }
@@ -526,8 +524,7 @@ impl<F: FnMut(&RunSample) -> bool> Hooks for RunHooks<'_, F> {
         let nc = n + r.total_balls();
         let omega = if self.spin { y[y.len() - 1] } else { self.drive.kinematics(t).0 };
         let planes = plane_positions(r, y);
-        let per = r.layout.per_node();
-        let max_radius = (0..self.nodes).map(|k| y[k * per].hypot(y[k * per + 1])).fold(0.0, f64::max);
+        let max_radius = r.node_starts().into_iter().take(self.nodes).map(|i| y[i].hypot(y[i + 1])).fold(0.0, f64::max);
         if let Some(p) = planes.first() {
             self.last_radius = p.0.hypot(p.1);
             self.peak.observe(self.last_radius, t, omega);
