@@ -102,12 +102,12 @@ def test_spatial_simulate_and_basins_equal_the_cli_json(tmp_path):
     two = str(ROOT / "examples" / "spatial_two_plane.toml")
     s2 = autobal.SpatialModel(two, set={"drive.t_end": 0.05}).simulate()
     assert s2.summary["units"] == "SI" and "amplitude_plane2" in s2.columns and s2["psi"].shape[1] == 4
-    # basins: the CLI's JSON (but the CSV's name) and the CLI's CSV as arrays
+    # basins: the CLI's JSON (but the CSV's and SVG's names) and the CLI's CSV as arrays
     bsets = {"drive.t_end": 50.0}
     bargs = [a for k, v in bsets.items() for a in ("--set", f"{k}={v}")]
     got = autobal.run("basins", config=spatial, set=bsets, n=3)
     want = cli("basins", "--config", spatial, "--n", "3", "--out", str(tmp_path / "b.csv"), *bargs)
-    assert without(got, "wall_time_s") == without(without(want, "wall_time_s"), "csv")
+    assert without(got, "wall_time_s") == without(without(without(want, "wall_time_s"), "csv"), "svg")
     b = autobal.SpatialModel(spatial, set=bsets).basins(n=3)
     rows = np.genfromtxt(tmp_path / "b.csv", delimiter=",", names=True)
     for name in rows.dtype.names:
@@ -116,7 +116,7 @@ def test_spatial_simulate_and_basins_equal_the_cli_json(tmp_path):
         assert np.array_equal(np.asarray(b[key], dtype=float), rows[name]), name
     # the dict carries the JSON as the CLI prints it (balanced = how many runs ended balanced)
     arrays = ("psi_1", "psi_2", "balanced_runs", "residual_unbalance", "final_amplitude")
-    assert without({k: v for k, v in b.items() if k not in arrays}, "wall_time_s") == without(without(want, "wall_time_s"), "csv")
+    assert without({k: v for k, v in b.items() if k not in arrays}, "wall_time_s") == without(without(without(want, "wall_time_s"), "csv"), "svg")
     assert b["balanced"] == int(np.count_nonzero(b["balanced_runs"])) and b["balanced_runs"].dtype == bool
     # no [drive]: the default run-up through the critical speeds, as the CLI runs it
     run_up = autobal.run("simulate", config=str(ROOT / "examples" / "dimensional.toml"))

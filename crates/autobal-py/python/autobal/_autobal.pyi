@@ -105,8 +105,8 @@ def export_model(config: Union[None, str, "os.PathLike[str]"], dict: Optional[Ma
 # the linear rotor (linear_rotor.rs; autobal.from_ross in _ross.py builds one from a ross.Rotor)
 @final
 class LinearRotor:
-    # per_node: 2 or 4 DOFs at every node, or a list of them, one per node
-    def __new__(cls, m: npt.NDArray[np.float64], c: npt.NDArray[np.float64], g: npt.NDArray[np.float64], k: npt.NDArray[np.float64], per_node: Union[int, Sequence[int]] = 4) -> "LinearRotor": ...
+    # per_node: 2 or 4 DOFs at every node, or a list of them, one per node (None: 4)
+    def __new__(cls, m: npt.NDArray[np.float64], c: npt.NDArray[np.float64], g: npt.NDArray[np.float64], k: npt.NDArray[np.float64], per_node: Union[int, Sequence[int], None] = None) -> "LinearRotor": ...
     @property
     def dofs(self) -> int: ...
     # "x0", "y0", "alpha0", "beta0", …: the config's DOF table (a node without tilts: x, y only)
