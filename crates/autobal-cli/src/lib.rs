@@ -646,7 +646,7 @@ fn run_map(args: &map::Args, config: Option<&std::path::Path>, out: &std::path::
         w.commit()?;
         for f in out.figures()? {
             let svg = f.plot.to_svg();
-            outfile::write_atomic("--out", &term::with_suffix(&stem, "png"), autobal_commands::plot::svg_to_png(&svg, 1.5)?)?;
+            outfile::write_atomic("--out", &term::with_suffix(&stem, "png"), f.plot.to_png(1.5)?)?;
             outfile::write_atomic("--out", &term::with_suffix(&stem, "svg"), svg)?;
         }
     } else {

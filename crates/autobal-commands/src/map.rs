@@ -573,8 +573,16 @@ pub fn compute(
     if let Some(w) = csv.as_mut() {
         writeln!(w, "{},{},max_real_part,stable,necessary", x.path, y.path)?;
     }
-    let xs: Vec<String> = match csv {
-        Some(_) => x.values.iter().map(|v| crate::num::Csv(*v).to_string()).collect(),
+    let xs: Vec<Vec<u8>> = match csv {
+        Some(_) => x
+            .values
+            .iter()
+            .map(|v| {
+                let mut t = vec![];
+                crate::num::Csv(*v).push_to(&mut t);
+                t
+            })
+            .collect(),
         None => vec![],
     };
     let verdict_only = quantity == Quantity::Verdict;
@@ -582,27 +590,27 @@ pub fn compute(
     let mut pending: Vec<(usize, Vec<Cell>)> = vec![];
     let mut io_error: Option<std::io::Error> = None;
     let flush = |pending: &mut Vec<(usize, Vec<Cell>)>, csv: &mut dyn Write| -> std::io::Result<()> {
-        let texts: Vec<String> = pending
+        let texts: Vec<Vec<u8>> = pending
             .par_iter()
             .map(|(j, cells)| {
-                let yv = crate::num::Csv(y.values[*j]).to_string();
-                let mut t = String::with_capacity(cells.len() * 40);
+                let mut yv = vec![];
+                crate::num::Csv(y.values[*j]).push_to(&mut yv);
+                let mut t = Vec::with_capacity(cells.len() * 40);
                 for (xs, c) in xs.iter().zip(cells) {
-                    use std::fmt::Write as _;
-                    // pieces pushed as they are (no String per cell, no format string parsed)
-                    t.push_str(xs);
-                    t.push(',');
-                    t.push_str(&yv);
-                    t.push(',');
+                    // pieces pushed as they are (no String per cell, no formatting machinery)
+                    t.extend_from_slice(xs);
+                    t.push(b',');
+                    t.extend_from_slice(&yv);
+                    t.push(b',');
                     // `--quantity verdict` computes no margin: an empty field, never `NaN`
                     if !verdict_only {
-                        let _ = write!(t, "{}", crate::num::Csv(c.margin));
+                        crate::num::Csv(c.margin).push_to(&mut t);
                     }
-                    t.push_str(match (c.stable, c.necessary) {
-                        (false, false) => ",0,0\n",
-                        (false, true) => ",0,1\n",
-                        (true, false) => ",1,0\n",
-                        (true, true) => ",1,1\n",
+                    t.extend_from_slice(match (c.stable, c.necessary) {
+                        (false, false) => b",0,0\n",
+                        (false, true) => b",0,1\n",
+                        (true, false) => b",1,0\n",
+                        (true, true) => b",1,1\n",
                     });
                 }
                 t
@@ -610,7 +618,7 @@ pub fn compute(
             .collect();
         pending.clear();
         for t in texts {
-            csv.write_all(t.as_bytes())?;
+            csv.write_all(&t)?;
         }
         csv.flush()
     };

@@ -322,6 +322,14 @@ impl Plot {
 
     /// Render to an SVG document.
     pub fn to_svg(&self) -> String {
+        self.svg(true).0
+    }
+
+    /// The SVG document; without `embed` (the PNG's route) neither the white background nor the
+    /// heatmap's raster are in it, and the heatmap's placement is returned instead: its rectangle
+    /// `[x, y, w, h]` and the clip rectangle (the plot area) in the document's units.
+    fn svg(&self, embed: bool) -> (String, Option<HeatPlacement>) {
+        let mut placement = None;
         let ((x0, x1), (y0, y1)) = self.ranges();
         // left margin: room for named row ticks
         let ml = self.y_ticks.as_ref().map_or(ML, |v| ML.max(v.iter().map(|t| text_width(&t.1)).fold(0.0, f64::max) + 40.0));
@@ -344,11 +352,11 @@ impl Plot {
         let drawn: usize = self.series.iter().map(|se| se.points.len().min(4 * PW as usize + 64)).sum();
         let raster = self.heatmap.as_ref().map_or(0, |h| 4 * h.x.len() * h.y.len());
         let mut s = String::with_capacity(8192 + 16 * drawn + raster);
+        let background = if embed { "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n" } else { "" };
         let _ = writeln!(
             s,
             r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="DejaVu Sans, Verdana, sans-serif" font-size="{FONT}">
-<rect width="100%" height="100%" fill="white"/>
-<defs><clipPath id="plotarea"><rect x="{ml}" y="{mt}" width="{PW}" height="{PH}"/></clipPath></defs>"#
+{background}<defs><clipPath id="plotarea"><rect x="{ml}" y="{mt}" width="{PW}" height="{PH}"/></clipPath></defs>"#
         );
         for (k, line) in title_lines.iter().enumerate() {
             let _ = writeln!(
@@ -359,7 +367,13 @@ impl Plot {
                 esc(line)
             );
         }
-        if let Some(png) = self.heatmap.as_ref().and_then(Self::heat_png) {
+        if let (false, Some(h)) = (embed, self.heatmap.as_ref()) {
+            let half = |v: &[f64]| if v.len() > 1 { (v[1] - v[0]).abs() / 2.0 } else { 0.5 };
+            let (ha, hb) = (h.x[0] - half(&h.x), h.x[h.x.len() - 1] + half(&h.x));
+            let (va, vb) = (h.y[0] - half(&h.y), h.y[h.y.len() - 1] + half(&h.y));
+            placement = Some(HeatPlacement { rect: [sx(ha), sy(vb), sx(hb) - sx(ha), sy(va) - sy(vb)], clip: [ml, mt, PW, PH] });
+        }
+        if let Some(png) = self.heatmap.as_ref().filter(|_| embed).and_then(Self::heat_png) {
             let h = self.heatmap.as_ref().expect("heatmap present");
             // the raster's cells centred on the grid values
             let half = |v: &[f64]| if v.len() > 1 { (v[1] - v[0]).abs() / 2.0 } else { 0.5 };
@@ -568,13 +582,25 @@ impl Plot {
             ly += 24.0;
         }
         s.push_str("</svg>\n");
-        s
+        (s, placement)
     }
 
     /// Rasterise [`Plot::to_svg`] at `scale` (2 gives a sharp 150 dpi-like image), with the
-    /// DejaVu fonts compiled into the binary.
+    /// DejaVu fonts compiled into the binary. A heatmap's cells are painted straight into the
+    /// pixels (nearest cell at each pixel's centre, clipped to the plot area: what the SVG's
+    /// `image-rendering="optimizeSpeed"` raster gives) on white, and the rest of the figure is
+    /// rasterised over them, instead of the SVG's embedded PNG being decoded and resampled.
     pub fn to_png(&self, scale: f32) -> anyhow::Result<Vec<u8>> {
-        svg_to_png(&self.to_svg(), scale)
+        let (Some(h), (svg, Some(at))) = (&self.heatmap, self.svg(false)) else { return svg_to_png(&self.to_svg(), scale) };
+        let (nx, ny) = (h.x.len(), h.y.len());
+        if nx == 0 || ny == 0 || h.z.len() != ny || h.z.iter().any(|r| r.len() != nx) {
+            // a heatmap the SVG leaves out (ragged rows) is left out here too
+            return svg_to_png(&self.to_svg(), scale);
+        }
+        rasterise(&svg, scale, |pix| {
+            pix.fill(resvg::tiny_skia::Color::WHITE);
+            paint_heatmap(pix, h, &at, scale);
+        })
     }
 
     /// The figure as Plotly JSON `{data, layout}` for the interactive report. Values are
@@ -868,13 +894,66 @@ fn fontdb() -> &'static std::sync::Arc<resvg::usvg::fontdb::Database> {
     })
 }
 
+/// Where [`Plot::svg`] places a heatmap it leaves out: the raster's rectangle and the clip
+/// rectangle, each `[x, y, width, height]` in the document's units.
+struct HeatPlacement {
+    rect: [f64; 4],
+    clip: [f64; 4],
+}
+
+/// Paint the heatmap's cells into `pix` (document units times `scale`): each pixel whose centre
+/// lies in the raster's rectangle and the clip takes the colour of the cell under its centre
+/// (row 0 of the raster at the top is the last `y`). One colour per cell, computed once.
+fn paint_heatmap(pix: &mut resvg::tiny_skia::Pixmap, h: &Heatmap, at: &HeatPlacement, scale: f32) {
+    let (nx, ny) = (h.x.len(), h.y.len());
+    let s = f64::from(scale);
+    let [rx, ry, rw, rh] = at.rect;
+    let [cx, cy, cw, ch] = at.clip;
+    let (w, hgt) = (pix.width() as usize, pix.height() as usize);
+    // the pixels whose centres (p + 0.5) / s lie in [max(r0, c0), min(r1, c1))
+    let span = |r0: f64, r1: f64, c0: f64, c1: f64, n: usize| {
+        let (a, b) = (r0.max(c0) * s - 0.5, r1.min(c1) * s - 0.5);
+        let lo = a.ceil().max(0.0) as usize;
+        let hi = if b.ceil() > 0.0 { (b.ceil() as usize).min(n) } else { 0 };
+        lo..hi.max(lo)
+    };
+    let cols = span(rx, rx + rw, cx, cx + cw, w);
+    let rows = span(ry, ry + rh, cy, cy + ch, hgt);
+    // the cell of each pixel column
+    let cell_of = |p: usize, r0: f64, len: f64, n: usize| ((((p as f64 + 0.5) / s - r0) / len * n as f64).floor().max(0.0) as usize).min(n - 1);
+    let col_cell: Vec<usize> = cols.clone().map(|p| cell_of(p, rx, rw, nx)).collect();
+    let colours: Vec<resvg::tiny_skia::PremultipliedColorU8> =
+        h.z.iter()
+            .flatten()
+            .map(|&v| {
+                let [r, g, b] = heat_color(v, h.scale);
+                resvg::tiny_skia::PremultipliedColorU8::from_rgba(r, g, b, 255).expect("opaque")
+            })
+            .collect();
+    let px = pix.pixels_mut();
+    for p in rows {
+        let j = ny - 1 - cell_of(p, ry, rh, ny);
+        let line = &colours[j * nx..(j + 1) * nx];
+        let out = &mut px[p * w + cols.start..p * w + cols.end];
+        for (o, &i) in out.iter_mut().zip(&col_cell) {
+            *o = line[i];
+        }
+    }
+}
+
 /// Rasterise an SVG document to PNG bytes at `scale`.
 pub fn svg_to_png(svg: &str, scale: f32) -> anyhow::Result<Vec<u8>> {
+    rasterise(svg, scale, |_| {})
+}
+
+/// Rasterise `svg` at `scale` over what `under` paints first into the (transparent) pixels.
+fn rasterise(svg: &str, scale: f32, under: impl FnOnce(&mut resvg::tiny_skia::Pixmap)) -> anyhow::Result<Vec<u8>> {
     use resvg::{tiny_skia, usvg};
     let opt = usvg::Options { fontdb: fontdb().clone(), font_family: "DejaVu Sans".into(), ..Default::default() };
     let tree = usvg::Tree::from_str(svg, &opt).map_err(|e| anyhow::anyhow!("SVG not readable: {e}"))?;
     let size = tree.size().to_int_size().scale_by(scale).ok_or_else(|| anyhow::anyhow!("empty figure"))?;
     let mut pix = tiny_skia::Pixmap::new(size.width(), size.height()).ok_or_else(|| anyhow::anyhow!("figure too large"))?;
+    under(&mut pix);
     resvg::render(&tree, tiny_skia::Transform::from_scale(scale, scale), &mut pix.as_mut());
     // the figures are opaque (white background): RGB, with the png crate's fast deflate, a
     // third of the instructions of tiny-skia's RGBA `encode_png` at its default level
@@ -1046,6 +1125,59 @@ mod tests {
         assert_eq!(t[0].1, "-2");
         assert_eq!(t[1].1, "-0.5");
         assert_eq!(t[4].1, "0.5");
+    }
+
+    fn decode_rgb(png: &[u8]) -> (usize, usize, Vec<u8>) {
+        let mut rd = png::Decoder::new(std::io::Cursor::new(png)).read_info().unwrap();
+        let mut buf = vec![0; rd.output_buffer_size()];
+        let info = rd.next_frame(&mut buf).unwrap();
+        assert_eq!(info.color_type, png::ColorType::Rgb);
+        buf.truncate(info.buffer_size());
+        (info.width as usize, info.height as usize, buf)
+    }
+
+    #[test]
+    fn a_heatmaps_png_painted_directly_is_resvgs_raster_of_the_svg() {
+        // The PNG's heatmap painted cell by cell (then the rest of the figure rasterised over it)
+        // against resvg's rasterisation of the SVG with its embedded raster, the reference. At
+        // a cell edge the two may round a pixel's centre to different cells, so each pixel must
+        // equal the reference's pixel there or at one of its 8 neighbours (an edge moved by at
+        // most one pixel); away from the edges they are equal, so most pixels are identical.
+        let (nx, ny) = (13, 9);
+        let x: Vec<f64> = (0..nx).map(|i| -2.0 + 4.0 * i as f64 / (nx - 1) as f64).collect();
+        let y: Vec<f64> = (0..ny).map(|j| 0.05 + 4.45 * j as f64 / (ny - 1) as f64).collect();
+        let z: Vec<Vec<f64>> =
+            (0..ny).map(|j| (0..nx).map(|i| if (i, j) == (3, 4) { f64::NAN } else { (i as f64 - 6.0) * 0.1 + (j as f64 - 3.5) * 0.07 }).collect()).collect();
+        for (scale, range) in [(ColorScale::Diverging { neg: 0.8, pos: 0.7 }, None), (ColorScale::Verdict, Some((-1.0, 1.5)))] {
+            let p = Plot {
+                title: "map".into(),
+                // no curve: a line anti-aliased over a cell edge that moved by a pixel blends
+                // with the other cell's colour, which no reference pixel has
+                heatmap: Some(Heatmap { x: x.clone(), y: y.clone(), z: z.clone(), scale, label: "max Re λ".into() }),
+                // the second: the raster reaches outside the plot area (clipped)
+                x_range: range,
+                ..Default::default()
+            };
+            for k in [1.0, 1.5] {
+                let (w, h, fast) = decode_rgb(&p.to_png(k).unwrap());
+                let (w2, h2, want) = decode_rgb(&svg_to_png(&p.to_svg(), k).unwrap());
+                assert_eq!((w, h), (w2, h2));
+                let px = |v: &[u8], i: usize, j: usize| [v[3 * (j * w + i)], v[3 * (j * w + i) + 1], v[3 * (j * w + i) + 2]];
+                let mut same = 0;
+                for j in 0..h {
+                    for i in 0..w {
+                        let f = px(&fast, i, j);
+                        if f == px(&want, i, j) {
+                            same += 1;
+                            continue;
+                        }
+                        let near = (j.saturating_sub(1)..(j + 2).min(h)).any(|jj| (i.saturating_sub(1)..(i + 2).min(w)).any(|ii| px(&want, ii, jj) == f));
+                        assert!(near, "scale {k}: pixel ({i}, {j}) {f:?} is not the reference's there or next to it ({:?})", px(&want, i, j));
+                    }
+                }
+                assert!(same as f64 >= 0.99 * (w * h) as f64, "scale {k}: {same} of {} pixels identical", w * h);
+            }
+        }
     }
 
     #[test]

@@ -519,6 +519,19 @@ pub fn taylor_shift(c: &[f64], s: f64) -> [f64; D] {
     a
 }
 
+/// [`taylor_shift`] of a polynomial of degree `M − 1` held in an array (the same operations in
+/// the same order, the loop bounds known: unrolled, the coefficients in registers).
+#[inline(always)]
+fn taylor_shift_fixed<const M: usize>(c: &[f64; M], s: f64) -> [f64; M] {
+    let mut a = *c;
+    for i in 0..M - 1 {
+        for k in 1..M - i {
+            a[k] += s * a[k - 1];
+        }
+    }
+    a
+}
+
 /// Number of roots of `Σ_k c_k λ^{N−k}` (`c_0 > 0`) with `Re λ > 0`, by Routh's theorem (sign
 /// changes in the first column of the Routh array); `None` in the singular case (a zero in the
 /// first column: a root on the imaginary axis, or a pair symmetric about it).
@@ -527,39 +540,80 @@ pub fn routh_right_half_plane(c: &[f64]) -> Option<usize> {
     if c[0].is_nan() || c[0] <= 0.0 || c.iter().any(|x| !x.is_finite()) {
         return None;
     }
-    const W: usize = MAX_N / 2 + 2;
-    let mut r0 = [0.0; W];
-    let mut r1 = [0.0; W];
-    for (i, x) in c.iter().enumerate() {
-        if i % 2 == 0 {
-            r0[i / 2] = *x;
-        } else {
-            r1[i / 2] = *x;
-        }
+    match <&[f64; 13]>::try_from(c) {
+        Ok(c) => routh_rows_12(c),
+        Err(_) => routh_rows_n(c, n),
     }
+}
+
+/// [`routh_rows_n`] for degree 12 (the map's 12 states): the rows in two arrays of fixed length
+/// 7, written over in turn (`e` the even row, `o` the odd one), every entry computed (those
+/// beyond a row's length are `0 − q·0`, zeros as in [`routh_rows_n`]; the entries within are
+/// the same operations on the same values), so that the loops have fixed bounds.
+#[inline(always)]
+fn routh_rows_12(c: &[f64; 13]) -> Option<usize> {
+    let mut e = [c[0], c[2], c[4], c[6], c[8], c[10], c[12], 0.0];
+    let mut o = [c[1], c[3], c[5], c[7], c[9], c[11], 0.0, 0.0];
     let mut changes = 0;
-    let mut last = r0[0];
-    // entries that can be non-zero: r0 holds ⌊n/2⌋ + 1, and each new row one less than the
-    // row two above it (the entries beyond are exact zeros, `0 − q·0`, left out)
-    let mut len0 = n / 2 + 1;
-    let mut len1 = n.div_ceil(2);
-    for _ in 0..n {
-        if r1[0] == 0.0 {
+    let mut last = e[0];
+    // one step: the new row `t[j] = t[j+1] − q b[j+1]`, `q = t[0] / b[0]`, over the older `t`
+    let step = |t: &mut [f64; 8], b: &[f64; 8], last: &mut f64, changes: &mut usize| -> Option<()> {
+        let lead = b[0];
+        if lead == 0.0 {
             return None;
         }
-        if (r1[0] > 0.0) != (last > 0.0) {
+        if (lead > 0.0) != (*last > 0.0) {
+            *changes += 1;
+        }
+        *last = lead;
+        let q = t[0] / lead;
+        if !q.is_finite() {
+            return None;
+        }
+        for j in 0..7 {
+            t[j] = t[j + 1] - q * b[j + 1];
+        }
+        Some(())
+    };
+    for _ in 0..6 {
+        step(&mut e, &o, &mut last, &mut changes)?;
+        step(&mut o, &e, &mut last, &mut changes)?;
+    }
+    Some(changes)
+}
+
+/// The Routh array's first column, its sign changes counted (`c_0 > 0`, all finite). Two rows
+/// are kept, each new row written over the older one (`r[t][j] = r[t][j+1] − q r[b][j+1]`,
+/// `q = r[t][0] / r[b][0]`); only the entries that can be non-zero are computed: the first row
+/// holds `⌊n/2⌋ + 1`, and each new row one less than the row two above it (the entries beyond
+/// are exact zeros, `0 − q·0`).
+#[inline(always)]
+fn routh_rows_n(c: &[f64], n: usize) -> Option<usize> {
+    const W: usize = MAX_N / 2 + 2;
+    let mut r = [[0.0f64; W]; 2];
+    for i in 0..=n {
+        r[i % 2][i / 2] = c[i];
+    }
+    let mut len = [n / 2 + 1, n.div_ceil(2)];
+    let mut changes = 0;
+    let mut last = r[0][0];
+    for row in 0..n {
+        let (t, b) = (row % 2, 1 - row % 2);
+        let lead = r[b][0];
+        if lead == 0.0 {
+            return None;
+        }
+        if (lead > 0.0) != (last > 0.0) {
             changes += 1;
         }
-        last = r1[0];
-        let q = r0[0] / r1[0];
-        let mut next = [0.0; W];
-        let len = len0.saturating_sub(1);
-        for j in 0..len {
-            next[j] = r0[j + 1] - q * r1[j + 1];
+        last = lead;
+        let q = r[t][0] / lead;
+        let l = len[t].saturating_sub(1);
+        for j in 0..l {
+            r[t][j] = r[t][j + 1] - q * r[b][j + 1];
         }
-        r0 = r1;
-        r1 = next;
-        (len0, len1) = (len1, len);
+        r[t][l] = 0.0;
+        len[t] = l;
     }
     Some(changes)
 }
@@ -568,6 +622,10 @@ pub fn routh_right_half_plane(c: &[f64]) -> Option<usize> {
 /// singular case.
 pub fn routh_count_right_of(c: &[f64], s: f64) -> Option<usize> {
     let n = c.len() - 1;
+    if let Ok(c) = <&[f64; 13]>::try_from(c) {
+        // the 12 states of the balls-free model: unrolled
+        return routh_right_half_plane(&taylor_shift_fixed(c, s));
+    }
     routh_right_half_plane(&taylor_shift(c, s)[..=n])
 }
 
@@ -659,6 +717,42 @@ fn converge(c: &[f64], mut z: Complex64, accept: f64) -> Option<(Complex64, f64)
     None
 }
 
+/// Newton on the polynomial from `z` until the step certifies the root to `accept` (relative
+/// to `1 + |z|`): at a point `z` with step `σ = p(z)/p'(z)`, the disk of radius
+/// `r = N (|p| + e_p) / (|p'| − e_p')` ([`inclusion_radius`]) about `z` holds a root, so the
+/// disk of radius `r + |σ|` about `z − σ` does. Returns `z − σ` and that radius at the first
+/// point where it is at most `accept (1 + |z|)`; the radius is computed only once `N |σ|` is
+/// that small (`r ≥ N |σ|`). From a start a continuation predicts (`|z₀ − root| ≲ 1e-6`) this
+/// is two evaluations where iterating to round-off ([`converge`]) takes three or four; the point
+/// returned is Newton's next iterate, within `K σ²` of the root, the radius the certified bound.
+fn converge_to(c: &[f64], mut z: Complex64, accept: f64) -> Option<(Complex64, f64)> {
+    let n = (c.len() - 1) as f64;
+    let mut last = f64::INFINITY;
+    for it in 0..16 {
+        let (p, dp) = eval_with_derivative(c, z);
+        if dp == Complex64::new(0.0, 0.0) || !p.is_finite() || !dp.is_finite() {
+            return None;
+        }
+        let step = p / dp;
+        let s = modulus(step);
+        let tol = accept * (1.0 + modulus(z));
+        if n * s <= tol {
+            let r = inclusion_radius(c, z, p, dp)? + s;
+            if r <= tol {
+                return Some((z - step, r));
+            }
+        }
+        // not converging quadratically (a cluster of roots, or round-off): not certified here,
+        // as in `converge`
+        if it >= 2 && s > 0.5 * last {
+            return None;
+        }
+        z -= step;
+        last = s;
+    }
+    None
+}
+
 /// Spectral abscissa `max Re λ` along a speed axis by continuation of the rightmost root, with a
 /// certificate at every speed and a fall-back to a full eigen-solver.
 ///
@@ -685,6 +779,10 @@ impl AbscissaTracker {
     /// certified to this accuracy (far below the stability tolerance of 1e-11 in relative
     /// terms of the dimensionless eigenvalues, which are O(1)).
     pub const GAP: f64 = 1e-12;
+
+    /// Radius to which Newton's method certifies the tracked root (relative to `1 + |λ|`): the
+    /// abscissa returned by continuation is within `ACCEPT (1 + |λ|) + GAP` of the true one.
+    pub const ACCEPT: f64 = 1e-10;
 
     /// A fresh tracker (the first speed uses the full solver).
     pub fn new() -> Self {
@@ -761,7 +859,7 @@ impl AbscissaTracker {
             // a real start stays real under Newton: nudge it so that a pair can form
             z0.im = 1e-7 * (1.0 + z0.re.abs());
         }
-        let (z, r) = converge(c, z0, 1e-10)?;
+        let (z, r) = converge_to(c, z0, Self::ACCEPT)?;
         let z = Complex64::new(z.re, z.im.abs());
         let count = routh_count_right_of(c, z.re + r + Self::GAP)?;
         if count != 0 {

@@ -448,6 +448,9 @@ pub fn routh_hurwitz_stable(c: &[f64]) -> bool {
     if c.iter().any(|&x| x <= 0.0) {
         return false;
     }
+    if let Ok(c) = <&[f64; 13]>::try_from(c) {
+        return routh_hurwitz_12(c);
+    }
     let mut r0: [f64; MAX_STATES / 2 + 2] = [0.0; MAX_STATES / 2 + 2];
     let mut r1 = r0;
     for (i, x) in c.iter().enumerate() {
@@ -469,6 +472,32 @@ pub fn routh_hurwitz_stable(c: &[f64]) -> bool {
         r1 = next;
     }
     r1[0] > 0.0
+}
+
+/// [`routh_hurwitz_stable`]'s array for 12 states (coefficients checked positive and finite):
+/// the two rows in fixed arrays of 8, each new row written over the older one, so that the loops
+/// have fixed bounds (the same operations on the same values).
+fn routh_hurwitz_12(c: &[f64; 13]) -> bool {
+    let mut e = [c[0], c[2], c[4], c[6], c[8], c[10], c[12], 0.0];
+    let mut o = [c[1], c[3], c[5], c[7], c[9], c[11], 0.0, 0.0];
+    // `t[j] = t[j+1] − t[0] b[j+1] / b[0]` over the older row `t`; false when `b[0] ≤ 0`
+    let step = |t: &mut [f64; 8], b: &[f64; 8]| -> bool {
+        if b[0] <= 0.0 {
+            return false;
+        }
+        let t0 = t[0];
+        for j in 0..7 {
+            t[j] = t[j + 1] - t0 * b[j + 1] / b[0];
+        }
+        true
+    };
+    // rows 2 … 12 (11 steps, as `for _ in 1..n`), the newest row last in `e`
+    for _ in 0..5 {
+        if !step(&mut e, &o) || !step(&mut o, &e) {
+            return false;
+        }
+    }
+    step(&mut e, &o) && e[0] > 0.0
 }
 
 /// Gaussian elimination with partial pivoting of a complex matrix, applied alike to `x`:
