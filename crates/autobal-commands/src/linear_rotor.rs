@@ -53,19 +53,23 @@ pub fn from_table(root: &Table, dir: &Path) -> Result<LinearRotorConfig> {
 }
 
 /// Apply one `--set table.key=value` to a linear rotor config (its own tables, not the schema of
-/// the papers' configs): `linear_rotor.KEY`, `drive.KEY`, `integration.KEY`, and the number of
-/// one entry of its arrays of tables by its parameter path, `linear_rotor.balancer[j].KEY`,
-/// `linear_rotor.unbalance[j].KEY` ([`autobal::linear_rotor::spec::set_path`]).
+/// the papers' configs): `linear_rotor.KEY`, `drive.KEY`, `integration.KEY`; a map's or a
+/// sweep's parameter path under `linear_rotor` ([`autobal::linear_rotor::spec::PATHS`]: the
+/// number of one entry of its arrays of tables, `linear_rotor.balancer[j].KEY`,
+/// `linear_rotor.unbalance[j].KEY`, and the paths that act on every entry,
+/// `linear_rotor.drag`, `.ball_mass`, `.me`, `.unbalance_scale`, …) as the map sets it
+/// ([`autobal::linear_rotor::spec::set_path`]).
 pub fn apply_set(root: &mut Table, assignment: &str) -> Result<()> {
     let (key, value) = assignment.split_once('=').ok_or_else(|| anyhow!("--set {assignment}: expected key=value, e.g. --set linear_rotor.omega_max=1500"))?;
     let (t, k) = key.trim().split_once('.').ok_or_else(|| anyhow!("--set {key}: expected a dotted key table.field, e.g. --set drive.t_end=2"))?;
-    if t == "linear_rotor" && k.contains('[') {
-        // one entry of an array of tables: the parameter path linear_rotor.balancer[j].KEY
+    if t == "linear_rotor" && (k.contains('[') || autobal::linear_rotor::spec::PATHS.iter().any(|(p, _)| p.strip_prefix("linear_rotor.") == Some(k))) {
+        // a parameter path: one entry of an array of tables (linear_rotor.balancer[j].KEY), or a
+        // path on every entry (linear_rotor.drag: each [[linear_rotor.balancer]]'s drag)
         let v: f64 = value.trim().parse().map_err(|_| anyhow!("--set {key}: `{}` is not a number", value.trim()))?;
         return Ok(autobal::linear_rotor::spec::set_path(root, key.trim(), v)?);
     }
     if !["linear_rotor", "drive", "integration"].contains(&t) || k.is_empty() || k.contains('.') {
-        bail!("--set {key}: a linear rotor config sets linear_rotor.KEY, drive.KEY, integration.KEY, or one entry's number as linear_rotor.balancer[j].KEY, linear_rotor.unbalance[j].KEY (j from 0)");
+        bail!("--set {key}: a linear rotor config sets linear_rotor.KEY, drive.KEY, integration.KEY, a parameter path of its maps (linear_rotor.drag, .ball_mass, .radius, .balls, .me, …: every entry), or one entry's number as linear_rotor.balancer[j].KEY, linear_rotor.unbalance[j].KEY (j from 0)");
     }
     let table = root.entry(t.to_string()).or_insert_with(|| toml::Value::Table(Table::new()));
     let table = table.as_table_mut().ok_or_else(|| anyhow!("--set {key}: `{t}` is not a table"))?;

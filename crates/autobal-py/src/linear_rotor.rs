@@ -46,6 +46,18 @@ fn square(py: Python<'_>, name: &str, a: &PyReadonlyArray2<'_, f64>) -> PyResult
     Ok((s[0], v))
 }
 
+impl PyLinearRotor {
+    /// The `N × N` matrix `linear_rotor.NAME` as a row-major vector: square, the size of `m`.
+    fn checked(&self, py: Python<'_>, name: &str, v: &PyReadonlyArray2<'_, f64>) -> PyResult<Vec<f64>> {
+        let (nn, a) = square(py, name, v)?;
+        let n = self.rotor.dofs();
+        if nn != n {
+            return Err(crate::py_err(py, autobal::Error::invalid(format!("linear_rotor.{name}"), format!("is {nn} × {nn}, m is {n} × {n}"))));
+        }
+        Ok(a)
+    }
+}
+
 #[pymethods]
 impl PyLinearRotor {
     /// `LinearRotor(m, c, g, k, per_node=4)`: the matrices as 2-D float arrays (`N × N`);
@@ -254,6 +266,47 @@ impl PyLinearRotor {
             return Err(crate::py_err(py, autobal::Error::invalid(format!("linear_rotor.spin_stiffness[{},{}]", i / n, i % n), "must be finite")));
         }
         self.rotor.spin_stiffness = a;
+        Ok(())
+    }
+
+    /// The inertia fixed to the rotor `M_rot` (kg, kg m², in axes turning with it; the Rust
+    /// `LinearRotor::rotor_fixed_mass`, a config's `linear_rotor.rotor_fixed_mass`): `N × N`
+    /// nested lists, empty where none is set. Set: symmetric, `M + T(φ) M_rot T(φ)ᵀ` positive
+    /// definite at every angle `φ` (the library's `LinearRotor::validate`; refused, the rotor
+    /// is left as it was).
+    #[getter]
+    fn rotor_fixed_mass(&self) -> Vec<Vec<f64>> {
+        let n = self.rotor.dofs();
+        self.rotor.rotor_fixed_mass.chunks(n.max(1)).map(<[f64]>::to_vec).collect()
+    }
+
+    #[setter]
+    fn set_rotor_fixed_mass(&mut self, py: Python<'_>, v: PyReadonlyArray2<'_, f64>) -> PyResult<()> {
+        let a = self.checked(py, "rotor_fixed_mass", &v)?;
+        let mut r = self.rotor.clone();
+        r.rotor_fixed_mass = a;
+        r.validate().map_err(|e| crate::py_err(py, e))?;
+        self.rotor = r;
+        Ok(())
+    }
+
+    /// The tilt chart fixed to the rotor `Σ` (spin angle `s = ½ q_rᵀ Σ q_r`; the Rust
+    /// `LinearRotor::spin_chart`, a config's `linear_rotor.spin_chart`): `N × N` nested lists,
+    /// empty where none is set. Set: symmetric (the library's `LinearRotor::validate`; refused,
+    /// the rotor is left as it was).
+    #[getter]
+    fn spin_chart(&self) -> Vec<Vec<f64>> {
+        let n = self.rotor.dofs();
+        self.rotor.spin_chart.chunks(n.max(1)).map(<[f64]>::to_vec).collect()
+    }
+
+    #[setter]
+    fn set_spin_chart(&mut self, py: Python<'_>, v: PyReadonlyArray2<'_, f64>) -> PyResult<()> {
+        let a = self.checked(py, "spin_chart", &v)?;
+        let mut r = self.rotor.clone();
+        r.spin_chart = a;
+        r.validate().map_err(|e| crate::py_err(py, e))?;
+        self.rotor = r;
         Ok(())
     }
 

@@ -719,7 +719,9 @@ fn rename(e: Error, from: &str, to: &str) -> Error {
 }
 
 /// Parse Matrix Market text (`%%MatrixMarket matrix coordinate|array real|integer
-/// general|symmetric|skew-symmetric`) into `(rows, cols, row-major entries)`. Errors say the line.
+/// general|symmetric|skew-symmetric`) into `(rows, cols, row-major entries)`; symmetric storage
+/// holds the lower triangle (without the diagonal where skew), in the array format column by
+/// column (as SciPy's `mmwrite` writes a dense symmetric matrix). Errors say the line.
 pub fn parse_matrix_market(text: &str) -> std::result::Result<(usize, usize, Vec<f64>), String> {
     let mut lines = text.lines().enumerate();
     let (_, header) = lines.next().ok_or("empty file: expected the header %%MatrixMarket matrix coordinate real general")?;
@@ -752,12 +754,34 @@ pub fn parse_matrix_market(text: &str) -> std::result::Result<(usize, usize, Vec
         .collect::<std::result::Result<_, _>>()?;
     let (rows, cols, count) = match (coordinate, sz.as_slice()) {
         (true, [r, c, nnz]) => (*r, *c, *nnz),
-        (false, [r, c]) => (*r, *c, r * c),
+        // the array format of a symmetric (skew-symmetric) matrix holds its lower triangle
+        // (without the diagonal), column by column, as SciPy's `mmwrite` writes a dense one
+        (false, [r, c]) => (
+            *r,
+            *c,
+            if sym == 0 {
+                r * c
+            } else if sym > 0 {
+                r * (r + 1) / 2
+            } else {
+                r * r.saturating_sub(1) / 2
+            },
+        ),
         _ => return Err(format!("line {}: expected the size line \"{}\"", ln + 1, if coordinate { "rows cols entries" } else { "rows cols" })),
     };
     if rows == 0 || cols == 0 || rows > super::MAX_DOFS || cols > super::MAX_DOFS {
         return Err(format!("line {}: size {rows} × {cols} outside 1..{}", ln + 1, super::MAX_DOFS));
     }
+    if sym != 0 && rows != cols {
+        return Err(format!("line {}: a {} matrix must be square, got {rows} × {cols}", ln + 1, h[4]));
+    }
+    // the array format's (row, column) of each entry in turn: column-major, the lower triangle
+    // where the matrix is symmetric
+    let array_at: Vec<(usize, usize)> = if coordinate {
+        vec![]
+    } else {
+        (0..cols).flat_map(|j| (0..rows).filter(move |i| sym == 0 || (sym > 0 && *i >= j) || (sym < 0 && *i > j)).map(move |i| (i, j))).collect()
+    };
     let mut a = vec![0.0; rows * cols];
     let value = |s: &str, ln: usize| -> std::result::Result<f64, String> {
         let v: f64 = s.parse().map_err(|_| format!("line {}: \"{s}\" is not a number", ln + 1))?;
@@ -787,9 +811,12 @@ pub fn parse_matrix_market(text: &str) -> std::result::Result<(usize, usize, Vec
             }
         } else {
             let [v] = f.as_slice() else { return Err(format!("line {}: expected one value, got {} fields", ln + 1, f.len())) };
-            // column-major
-            let (i, j) = (seen % rows, seen / rows);
-            a[i * cols + j] = value(v, ln)?;
+            let (i, j) = array_at[seen];
+            let v = value(v, ln)?;
+            a[i * cols + j] = v;
+            if sym != 0 && i != j {
+                a[j * cols + i] = sym as f64 * v;
+            }
         }
         seen += 1;
     }
