@@ -385,7 +385,8 @@ pub struct LinearRotor {
     /// that term; the total derivative `I_p Ω ṡ` it adds at constant speed changes nothing
     /// there, the balls' `m_b R² ψ̇_j ṡ` acts at second order in the amplitudes). A native
     /// chart `R_x(δ) R_y(θ)` in the rotor's axes is `s = δθ/2`: `Σ[α][β] = Σ[β][α] = ½`
-    /// ([`LinearRotor::from_spatial`]). Not read from configs and not reduced (reduction refuses it).
+    /// ([`LinearRotor::from_spatial`]). Read from configs (`linear_rotor.spin_chart`), written by
+    /// `export-model` and reduced (`Bᵀ Σ B`: the reduction basis is closed under the quarter turn).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub spin_chart: Vec<f64>,
 }
