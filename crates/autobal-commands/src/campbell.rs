@@ -1,7 +1,8 @@
 //! `autobal campbell`: eigenvalues along the speed, tracked, with whirl direction and dominant
 //! motion: paper 000's 12-state model, streamed ([`crate::linear::campbell_run`]), or the
 //! general route ([`crate::general_campbell`]: eigenvalues, or Floquet exponents of the
-//! periodic orbit, of the nonlinear equations' exact linearisation).
+//! periodic orbit, of the nonlinear equations' exact linearisation; on a `[linear_rotor]`
+//! config always, the rotor with its balls free).
 
 use crate::command::{self, check_count, check_speed, ConfigSource, Figure, Route};
 use crate::config;
@@ -84,8 +85,11 @@ impl command::Command for Args {
     type Output = Output;
 
     fn run(&self, control: &Control) -> Result<Output> {
-        let (root, source) = self.config.read()?;
+        let (root, source) = self.config.read_any()?;
         let harmonics = linear::check_harmonics(&self.harmonics)?;
+        if crate::linear_rotor::is_linear(&root) {
+            return self.linear_rotor(&root, &harmonics, control);
+        }
         if self.route.is_general(&root) {
             let g = crate::general::rotor_of(&root)?;
             config::check_entries(&root, "campbell", &[config::simulation_model(&root)])?;
@@ -110,6 +114,41 @@ impl command::Command for Args {
         let points = check_count("--points", self.points.unwrap_or(DEFAULT_POINTS), POINTS)?;
         let run = linear::campbell_run(&cfg, w, points, self.balls, self.json, &harmonics, control)?;
         Ok(Output::Closed(Box::new(run)))
+    }
+}
+
+impl Args {
+    /// `campbell` on a linear rotor config ([`crate::linear_rotor`]): the general route's
+    /// diagram of the rotor **with its balls** free (the model analysed: the reduced one where
+    /// the config reduces), as `stability` analyses it; the structure's diagram without the
+    /// balls (ROSS's `run_campbell`) is the report's.
+    fn linear_rotor(&self, root: &toml::Table, harmonics: &[u32], control: &Control) -> Result<Output> {
+        if self.balls == Balls::Locked {
+            anyhow::bail!("--balls locked: a linear rotor is analysed with its balls free");
+        }
+        let cfg = crate::linear_rotor::from_table(root, self.config.dir())?;
+        let (rotor, _) = crate::linear_rotor::model(&cfg)?;
+        let g = GeneralRotor { rotor: autobal::rotor_stability::Rotor::Linear(rotor), si: true, omega0: 1.0 };
+        let points = self.points.unwrap_or(if g.rotor.is_periodic() { 60 } else { DEFAULT_POINTS });
+        if !GENERAL_POINTS.contains(&points) {
+            return Err(autobal::Error::invalid(
+                "--points",
+                format!("must lie between {} and {} on the general route, got {points}", GENERAL_POINTS.start(), GENERAL_POINTS.end()),
+            )
+            .into());
+        }
+        let w = match &self.omega_max {
+            Some(t) => {
+                let s = autobal::units::parse_speed("--omega-max", t)?;
+                let w =
+                    s.value * s.unit.rad_s().ok_or_else(|| anyhow::anyhow!("--omega-max: give a speed with its unit (rad/s, rpm, Hz) for a linear rotor"))?;
+                check_speed("--omega-max", w)?;
+                w
+            }
+            None => crate::linear_rotor::default_omega_max(&cfg)?,
+        };
+        let c = general_campbell::campbell_with(&g, w, points, Balls::Free, harmonics, control)?;
+        Ok(Output::General { g: Box::new(g), c: Box::new(c), omega_max: w, view: self.view })
     }
 }
 
@@ -224,6 +263,30 @@ mod tests {
         for l in v["lines"].as_array().unwrap() {
             assert_eq!(l["modes"].as_array().unwrap().len(), n);
         }
+    }
+
+    /// `campbell` on a linear rotor config with balls (examples/linear_rotor_shaft.toml, reduced
+    /// as the config says) is the general route's diagram of that rotor with its balls free: the
+    /// library's `campbell_over_speed` on the same model and speeds, line for line (the same
+    /// computation: equal to the bit), with `2 (N + Σn)` lines; `--balls locked` is refused.
+    #[test]
+    fn a_linear_rotor_config_gives_the_general_diagram_with_its_balls() {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/linear_rotor_shaft.toml");
+        let config = ConfigSource::file(Some(&path), &[]);
+        let args = Args { config: config.clone(), points: Some(4), omega_max: Some("400 rad/s".into()), ..Default::default() };
+        let out = args.run(&Control::none()).unwrap();
+        let v = out.json().unwrap();
+        assert_eq!(v["model"], "linear");
+        assert_eq!(v["balls"], "free");
+        let cfg = crate::linear_rotor::load(&path, &[]).unwrap();
+        let (rotor, _) = crate::linear_rotor::model(&cfg).unwrap();
+        let states = 2 * (rotor.dofs() + rotor.total_balls());
+        let want = autobal::rotor_campbell::campbell_over_speed(&autobal::rotor_stability::Rotor::Linear(rotor), &general_campbell::speeds(400.0, 4)).unwrap();
+        assert_eq!(want.lines.len(), states);
+        assert_eq!(v["lines"], serde_json::to_value(&want.lines).unwrap());
+        assert!(!out.table().unwrap().is_empty());
+        let locked = Args { config, balls: Balls::Locked, points: Some(4), ..Default::default() }.run(&Control::none()).err().expect("refused");
+        assert!(format!("{locked:#}").starts_with("--balls locked"), "{locked:#}");
     }
 
     /// `--points` is checked with the route's own range.

@@ -2,7 +2,10 @@
 //! (issue "Analyse every rotor", §3): the general route of `autobal campbell` and
 //! `autobal critical`, through the model-agnostic pipeline of [`crate::analysis`] on the
 //! models' own equations ([`Rotor`]: the planar rotor, the spatial rotor with one or two ball
-//! planes, couple unbalance, supports that differ by direction, gravity).
+//! planes, couple unbalance, supports that differ by direction, gravity; the linear
+//! rotor-bearing model with its balls free: [`crate::linear_rotor`], whose diagram without the
+//! balls is [`crate::linear_rotor::LinearRotor::structure_eigenvalues`]; the analyses with the
+//! balls locked refuse it).
 //!
 //! # Campbell diagram ([`campbell_over_speed`])
 //! At each speed the stationary state is found as `stability` finds it
@@ -27,8 +30,9 @@
 //! previous lines' linear extrapolations, nearest pair first. The fixed-axes view is that of
 //! [`crate::spatial::campbell`]: in turning axes a mode moves the rotor's circular coordinate
 //! `ξ + iη` (and, for the spatial rotor, the spin axis' tip `θ − iδ` times the radius of
-//! gyration) as components at `Ω + ν` (amplitude `|x_ξ + i x_η|`) and `Ω − ν`
-//! (`|x_ξ − i x_η|`); the curve's signed fixed-axes frequency `f` is that of the dominant
+//! gyration; for the linear rotor every node's `x + iy` and `α + iβ`, each weighted by its
+//! kinetic energy: `linear_whirl_pairs`) as components at `Ω + ν` (amplitude
+//! `|x_ξ + i x_η|`) and `Ω − ν` (`|x_ξ − i x_η|`, summed in squares over the pairs); the curve's signed fixed-axes frequency `f` is that of the dominant
 //! component (`f > 0` forward whirl, `f < 0` backward), the log decrement per fixed-axes cycle
 //! `δ = −2π σ/|f|`. Modes with no rotor motion (the balls alone) have no whirl.
 //!
@@ -136,7 +140,7 @@ pub struct CampbellLine {
 /// The Campbell diagram of the general route ([`campbell_over_speed`]).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct RotorCampbell {
-    /// `"planar"` or `"spatial"` ([`Rotor::model_name`]; the linear rotor is refused).
+    /// `"planar"`, `"spatial"` or `"linear"` ([`Rotor::model_name`]).
     pub model: &'static str,
     /// Equilibrium (eigenvalues) or periodic orbit (Floquet exponents).
     pub kind: Kind,
@@ -151,7 +155,6 @@ pub struct RotorCampbell {
 /// The eigenvalues (or Floquet exponents) of the stationary state at one speed, with their
 /// fixed-axes data, unsorted: `field` at its speed `omega`, `state` its stationary state.
 pub fn spectrum_at(rotor: &Rotor, field: &Field, omega: f64, state: &StationaryState) -> Result<Vec<CampbellPoint>> {
-    refuse_linear(rotor, "the Campbell diagram")?;
     let st = stability(field, state).map_err(|e| Error::invalid("campbell", e.to_string()))?;
     let n = field.dim();
     let scales = field.scales();
@@ -221,9 +224,10 @@ pub fn spectrum_at(rotor: &Rotor, field: &Field, omega: f64, state: &StationaryS
     Ok(out)
 }
 
-/// [`Error::InvalidParameter`] naming `linear_rotor` for [`Rotor::Linear`]: the analyses of this
-/// module read the whirl from the planar and spatial rotors' coordinates, which the linear
-/// rotor's (translations and tilts of many nodes) are not yet mapped to.
+/// [`Error::InvalidParameter`] naming `linear_rotor` for [`Rotor::Linear`]: the analyses with
+/// the balls **locked** (the locked rotor, its Campbell diagram and critical speeds) do not
+/// lock the linear rotor's balls into its structure yet (each ball a point mass of the node:
+/// mass on the translations, an inertia that turns with the rotor on the tilts).
 fn refuse_linear(rotor: &Rotor, what: &str) -> Result<()> {
     match rotor {
         Rotor::Linear(_) => Err(linear_refused(what)),
@@ -234,7 +238,7 @@ fn refuse_linear(rotor: &Rotor, what: &str) -> Result<()> {
 fn linear_refused(what: &str) -> Error {
     Error::invalid(
         "linear_rotor",
-        format!("{what} of the general route does not take the linear rotor yet (`autobal campbell` on a [linear_rotor] config gives the structure's: LinearRotor::structure_eigenvalues)"),
+        format!("{what} of the general route does not take the linear rotor yet: its balls are not locked into the structure (the Campbell diagram with the balls free does; without them, LinearRotor::structure_eigenvalues)"),
     )
 }
 
@@ -242,9 +246,18 @@ fn linear_refused(what: &str) -> Error {
 /// whirl pair), tilt (the second, weighted by the radius of gyration), or the balls (each
 /// angle `ψ_j` weighted by `m_j R_j² / M_s`); ties go to the first.
 fn group_of(rotor: &Rotor, field: &Field, pairs: &[(usize, usize, f64, f64)], v: &[Complex64]) -> Group {
-    let pair = |k: usize| pairs.get(k).map_or(0.0, |&(a, b, _, w)| w * w * (v[a].norm_sqr() + v[b].norm_sqr()));
+    let energy = |&(a, b, _, w): &(usize, usize, f64, f64)| w * w * (v[a].norm_sqr() + v[b].norm_sqr());
+    let pair = |k: usize| pairs.get(k).map_or(0.0, energy);
     let balls: f64 = ball_coordinates(rotor, field).iter().map(|&(i, w)| w * v[i].norm_sqr()).sum();
-    let (t, c) = (pair(0), pair(1));
+    let (t, c) = match field {
+        // the linear rotor: every node's translation pair, and every tilt pair
+        Field::Linear(l) => {
+            let tilt = |a: usize| matches!(l.rotor().dof_node(a), Some((_, crate::linear_rotor::Direction::Alpha)));
+            let sum = |want: bool| pairs.iter().filter(|p| tilt(p.0) == want).map(energy).sum::<f64>();
+            (sum(false), sum(true))
+        }
+        _ => (pair(0), pair(1)),
+    };
     if balls > t && balls > c {
         Group::Balls
     } else if c > t {
@@ -271,6 +284,16 @@ fn ball_coordinates(rotor: &Rotor, field: &Field) -> Vec<(usize, f64)> {
                 .map(|(j, w)| (start + j, w))
                 .collect()
         }
+        (_, Field::Linear(l)) => {
+            let r = l.rotor();
+            let m = linear_mass(r);
+            r.balancers
+                .iter()
+                .flat_map(|p| std::iter::repeat_n(p.ball_mass * p.radius * p.radius / m, p.balls))
+                .enumerate()
+                .map(|(j, w)| (r.dofs() + j, w))
+                .collect()
+        }
         _ => vec![],
     }
 }
@@ -289,8 +312,42 @@ fn whirl_pairs(rotor: &Rotor, field: &Field) -> Vec<(usize, usize, f64, f64)> {
             }
             p
         }
+        (_, Field::Linear(l)) => linear_whirl_pairs(l.rotor()),
         _ => vec![(0, 1, 1.0, 1.0)],
     }
+}
+
+/// The linear rotor's mass `M_s` for the weights of [`linear_whirl_pairs`] and the balls'
+/// [`ball_coordinates`]: `Σ M_ii` over the `x` DOFs (the structure's translating mass; each
+/// node's `M_xx`) plus the balls' `Σ n m_b`.
+fn linear_mass(r: &crate::linear_rotor::LinearRotor) -> f64 {
+    let n = r.dofs();
+    let structure: f64 = (0..n).filter(|&i| matches!(r.dof_node(i), Some((_, crate::linear_rotor::Direction::X)))).map(|i| r.m[i * n + i]).sum();
+    let balls: f64 = r.balancers.iter().map(|b| b.balls as f64 * b.ball_mass).sum();
+    structure + balls
+}
+
+/// The whirl pairs of the linear rotor ([`whirl_pairs`]): every DOF pair `(x, y)` and `(α, β)`
+/// of every node (the pairs that turn together with the frame: [`crate::linear_rotor::LinearRotorField::rotating_to_fixed`]),
+/// `x + i y` and `α + i β`, weighted by `sqrt(M̄/M_s)` with `M̄ = (M_aa + M_bb)/2` the pair's
+/// mean diagonal mass (inertia for the tilts) and `M_s` [`linear_mass`], so that each pair's
+/// `w² (|x_a|² + |x_b|²)` is its kinetic energy per unit of `M_s` alone (as the spatial rotor's
+/// tilt at its radius of gyration). The tilt pair counts as `α + iβ`: a point at offset `z`
+/// moves by `z (β, −α)`, whose circular components `|zβ ± i(−zα)|` are `z |α ± iβ|`, the
+/// same split (the spatial rotor's `θ − iδ`). Pairs of a reduced rotor's
+/// modal pseudo-nodes `(φ, Jφ)` split likewise: the forward part of `η_a φ + η_b Jφ` is
+/// `(η_a + iη_b)` times `φ`'s, the backward `(η_a − iη_b)` times `φ`'s, of equal size for a
+/// real `φ`.
+fn linear_whirl_pairs(r: &crate::linear_rotor::LinearRotor) -> Vec<(usize, usize, f64, f64)> {
+    let n = r.dofs();
+    let ms = linear_mass(r);
+    (0..n / 2)
+        .map(|p| {
+            let (a, b) = (2 * p, 2 * p + 1);
+            let mean = 0.5 * (r.m[a * n + a] + r.m[b * n + b]);
+            (a, b, 1.0, (mean.max(0.0) / ms).sqrt())
+        })
+        .collect()
 }
 
 /// Newton's options of the general route (as [`crate::rotor_stability::stability_over_speed`]).
@@ -321,7 +378,6 @@ pub fn campbell_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Control
     if let Some(w) = speeds.iter().find(|w| !(w.is_finite() && **w != 0.0)) {
         return Err(Error::invalid("speeds", format!("{w} is not a finite non-zero speed")));
     }
-    refuse_linear(rotor, "the Campbell diagram")?;
     let first = rotor.field(speeds[0])?;
     let kind = if first.period().is_some() { Kind::PeriodicOrbit } else { Kind::Equilibrium };
     let opts = newton_options(kind == Kind::PeriodicOrbit);
@@ -918,7 +974,6 @@ const MERGE_TOL: f64 = 1e-9;
 /// `critical_speeds` is empty (the commands say so); the curves are drawn on the branch of
 /// [`FLOQUET_BRANCH`].
 pub fn fixed_view(rotor: &Rotor, balls: Balls, c: &RotorCampbell, harmonics: &[u32]) -> Result<FixedCampbell> {
-    refuse_linear(rotor, "the fixed-axes Campbell diagram")?;
     if let Some(h) = harmonics.iter().find(|&&h| h == 0) {
         return Err(Error::invalid("harmonics", format!("must be positive integers, got {h}")));
     }
