@@ -642,44 +642,130 @@ impl LinearRotorField {
         }
     }
 
-    /// The balanced state's closed-form start (one balancer plane, `n ≥ 2`): the balls at rest
-    /// with `m_b R Σ e^{iψ_j} = −Σ m e e^{i phase}` (pairs at `arg ± φ`, an odd ball on the
-    /// resultant), the structure from the linear stationary equations in turning axes at `t = 0`,
-    /// `(K_r − Ω² M_r − Ω² M_b + Ω D_r J) p = f_r + f_balls` (`M_b` the balls' lumped mass), which is
-    /// `p = 0` when the unbalances sit at the balancer node without offset; transformed to
-    /// fixed axes (`q̇ = Ω J p`) for [`Frame::Fixed`]. With gravity the static sag
-    /// `q_s = K⁻¹ (load + Σ m_b Pᵀ g)` (fixed axes: at rest there, so `ṗ = −Ω J q_s` in turning
-    /// axes) is added, the balls' swing is left to the shooting (zero where `K` is singular).
-    /// `None` where no arrangement cancels the resultant (`|B| > n m_b R`), for several planes,
-    /// or at `Ω = 0`.
+    /// The balanced state's closed-form start.
+    ///
+    /// One balancer plane (`n ≥ 2`): the balls at rest with `m_b R Σ e^{iψ_j} = −Σ m e e^{i phase}`
+    /// (pairs at `arg ± φ`, an odd ball on the resultant), the structure from the linear
+    /// stationary equations in turning axes at `t = 0`, `A p = f_r + f_balls`,
+    /// `A = K_r − Ω² M_r − Ω² M_b + Ω D_r J` (+ the rotor-fixed inertia's `Ω² J M_rot J`; `M_b` the
+    /// balls' lumped mass), which is `p = 0` when the unbalances sit at the balancer node without
+    /// offset.
+    ///
+    /// `P ≥ 2` planes (each `n_p ≥ 2`): at a balanced state every ball rests relative to the
+    /// rotor, so the tangential force on each vanishes, `e⊥_j · u_p = 0` with `u_p = E_p p` the
+    /// race centre's displacement `(x + z β, y − z α)`; two non-collinear balls give `u_p = 0`.
+    /// With `b_q` plane `q`'s resultant ball force `m_b R Ω² Σ e^{iψ_j}` (two components) and
+    /// `G_q = E_qᵀ` its placement (the offset's moments included), `A p = f_r + Σ_q G_q b_q` and
+    /// `E_p p = 0` give the `2P × 2P` system `Σ_q (E_p A⁻¹ G_q) b_q = −E_p A⁻¹ f_r`; each plane's
+    /// balls then follow from its resultant by the one-plane rule and `p` from `A p = f_r + Σ G_q b_q`.
+    /// Exact where the balancer nodes do not tilt at balance (a rigid rotor: both race centres
+    /// on the axis put it on the axis); where they tilt (a flexible shaft) the tilted ring's
+    /// push `−m_b R² σ_j (ω·e_j)` on the balls and the balls' tilt inertia (lumped in `M_b`)
+    /// move the state at second and first order in the tilt: a start for Newton's method.
+    ///
+    /// Both: transformed to fixed axes (`q̇ = Ω J p`) for [`Frame::Fixed`]. With gravity the
+    /// static sag `q_s = K⁻¹ (load + Σ m_b Pᵀ g)` (fixed axes: at rest there, so `ṗ = −Ω J q_s`
+    /// in turning axes) is added, the balls' swing is left to the shooting (zero where `K` is
+    /// singular). `None` where a plane cannot supply its resultant (`|b_p| > n_p m_b R Ω²`), a
+    /// plane has fewer than 2 balls, the planes cannot hold the race centres on the axis (the
+    /// `2P × 2P` system singular, e.g. two planes at one node without offsets), or at `Ω = 0`.
     pub fn balanced_guess(&self) -> Option<Vec<f64>> {
         let r = &self.rotor;
-        if r.balancers.len() != 1 || r.balancers[0].balls < 2 || self.omega == 0.0 {
+        if r.balancers.is_empty() || r.balancers.iter().any(|b| b.balls < 2) || self.omega == 0.0 {
             return None;
+        }
+        if r.balancers.len() > 1 {
+            return self.balanced_guess_planes();
         }
         let b = r.balancers[0];
-        let nb = b.balls;
         let res: C = r.unbalances.iter().map(|u| C::from_polar(u.me, u.phase)).sum();
         let need = -res + C::new(0.0, 0.0); // no −0 imaginary part: arg(−a) = π
-        let ratio = need.norm() / (b.ball_mass * b.radius);
-        if ratio > nb as f64 {
-            return None;
-        }
-        let phase = if need.norm() > 0.0 { need.arg() } else { 0.0 };
-        let cos_phi = if nb.is_multiple_of(2) { ratio / nb as f64 } else { (ratio - 1.0) / (nb - 1) as f64 };
-        let phi = cos_phi.clamp(-1.0, 1.0).acos();
-        let mut psi = vec![];
-        if !nb.is_multiple_of(2) {
-            psi.push(phase);
-        }
-        for _ in 0..nb / 2 {
-            psi.push(phase + phi);
-            psi.push(phase - phi);
-        }
-        // structure: stationary linear equations in turning axes at t = 0
+        let psi = ball_angles(b.balls, b.ball_mass, b.radius, need)?;
+        let w = self.omega;
+        let ball_f: C = psi.iter().map(|&p| C::from_polar(b.ball_mass * b.radius * w * w, p)).sum();
+        let mut f = self.unbalance_forces();
+        self.add_plane_force(0, ball_f, &mut f);
+        let n = r.dofs();
+        let p = if f.iter().all(|v| *v == 0.0) {
+            vec![0.0; n]
+        } else {
+            let lu = Lu::factored(self.stationary_matrix(), n)?;
+            let mut p = f;
+            lu.solve(&mut p);
+            p
+        };
+        Some(self.guess_state(&p, &psi))
+    }
+
+    /// [`LinearRotorField::balanced_guess`] for `P ≥ 2` planes: the race centres on the axis.
+    fn balanced_guess_planes(&self) -> Option<Vec<f64>> {
+        let r = &self.rotor;
         let n = r.dofs();
         let w = self.omega;
-        let mut f = vec![0.0; n];
+        let np = r.balancers.len();
+        let lu = Lu::factored(self.stationary_matrix(), n)?;
+        let f = self.unbalance_forces();
+        let mut y0 = f.clone();
+        lu.solve(&mut y0);
+        // A⁻¹ G_q, columns (re, im) of each plane's unit force
+        let mut cols = vec![];
+        for q in 0..np {
+            for unit in [C::new(1.0, 0.0), C::new(0.0, 1.0)] {
+                let mut g = vec![0.0; n];
+                self.add_plane_force(q, unit, &mut g);
+                lu.solve(&mut g);
+                cols.push(g);
+            }
+        }
+        // E_p v: the race centre's displacement (x + z β, y − z α) of plane p
+        let race = |p: usize, v: &[f64]| -> [f64; 2] {
+            let mut e = vec![0.0; n];
+            self.add_plane_force(p, C::new(1.0, 0.0), &mut e);
+            let ex: f64 = e.iter().zip(v).map(|(a, b)| a * b).sum();
+            e.iter_mut().for_each(|x| *x = 0.0);
+            self.add_plane_force(p, C::new(0.0, 1.0), &mut e);
+            let ey: f64 = e.iter().zip(v).map(|(a, b)| a * b).sum();
+            [ex, ey]
+        };
+        let m = 2 * np;
+        let mut s = vec![0.0; m * m];
+        let mut rhs = vec![0.0; m];
+        for p in 0..np {
+            let u0 = race(p, &y0);
+            rhs[2 * p] = -u0[0];
+            rhs[2 * p + 1] = -u0[1];
+            for (k, col) in cols.iter().enumerate() {
+                let u = race(p, col);
+                s[2 * p * m + k] = u[0];
+                s[(2 * p + 1) * m + k] = u[1];
+            }
+        }
+        let lu_s = Lu::factored(s, m)?;
+        lu_s.solve(&mut rhs);
+        if rhs.iter().any(|v| !v.is_finite()) {
+            return None;
+        }
+        let mut psi = vec![];
+        let mut f = f;
+        for (q, b) in r.balancers.iter().enumerate() {
+            // the plane's resultant m_b R Σ e^{iψ} = b_q / Ω²
+            let need = C::new(rhs[2 * q], rhs[2 * q + 1]) / (w * w);
+            let angles = ball_angles(b.balls, b.ball_mass, b.radius, need)?;
+            let ball_f: C = angles.iter().map(|&p| C::from_polar(b.ball_mass * b.radius * w * w, p)).sum();
+            self.add_plane_force(q, ball_f, &mut f);
+            psi.extend(angles);
+        }
+        let mut p = f;
+        lu.solve(&mut p);
+        Some(self.guess_state(&p, &psi))
+    }
+
+    /// The unbalances' forces `Ω² m e e^{i phase}` in turning axes at `t = 0` with the moments
+    /// of their offsets (`N` components).
+    fn unbalance_forces(&self) -> Vec<f64> {
+        let r = &self.rotor;
+        let w = self.omega;
+        let mut f = vec![0.0; r.dofs()];
         for u in &r.unbalances {
             let force = C::from_polar(u.me * w * w, u.phase);
             let (ix, iy, tilt) = r.node_dofs(u.node);
@@ -690,14 +776,29 @@ impl LinearRotorField {
                 f[ib] += u.offset * force.re;
             }
         }
-        let ball_f: C = psi.iter().map(|&p| C::from_polar(b.ball_mass * b.radius * w * w, p)).sum();
-        let (ix, iy) = (self.balls[0].ix, self.balls[0].iy);
-        f[ix] += ball_f.re;
-        f[iy] += ball_f.im;
-        if let Some((ia, ib)) = self.balls[0].tilt {
-            f[ia] -= b.offset * ball_f.im;
-            f[ib] += b.offset * ball_f.re;
+        f
+    }
+
+    /// Adds `G_q F`: a force `F` (complex, turning axes) on the race centre of plane `q`, with
+    /// its offset's moments, to `f`.
+    fn add_plane_force(&self, q: usize, force: C, f: &mut [f64]) {
+        let first: usize = self.rotor.balancers[..q].iter().map(|b| b.balls).sum();
+        let ball = self.balls[first];
+        let z = self.rotor.balancers[q].offset;
+        f[ball.ix] += force.re;
+        f[ball.iy] += force.im;
+        if let Some((ia, ib)) = ball.tilt {
+            f[ia] -= z * force.im;
+            f[ib] += z * force.re;
         }
+    }
+
+    /// The stationary equations' matrix in turning axes at `t = 0`,
+    /// `A = K − Ω² (M + M_b) + Ω D J` (+ `Ω² J M_rot J`), row-major `N × N`.
+    fn stationary_matrix(&self) -> Vec<f64> {
+        let r = &self.rotor;
+        let n = r.dofs();
+        let w = self.omega;
         let mb = r.ball_mass_matrix();
         let mut a = vec![0.0; n * n];
         for i in 0..n {
@@ -718,18 +819,18 @@ impl LinearRotorField {
                 }
             }
         }
-        let p = if f.iter().all(|v| *v == 0.0) {
-            vec![0.0; n]
-        } else {
-            let lu = Lu::factored(a, n)?;
-            let mut p = f;
-            lu.solve(&mut p);
-            p
-        };
+        a
+    }
+
+    /// The state of the structure `p` (turning axes) and the balls `psi` at rest in the field's
+    /// frame, with gravity's sag added ([`LinearRotorField::balanced_guess`]).
+    fn guess_state(&self, p: &[f64], psi: &[f64]) -> Vec<f64> {
+        let n = self.rotor.dofs();
+        let w = self.omega;
         let nc = self.coords();
         let mut x = vec![0.0; 2 * nc];
-        x[..n].copy_from_slice(&p);
-        x[n..nc].copy_from_slice(&psi);
+        x[..n].copy_from_slice(p);
+        x[n..nc].copy_from_slice(psi);
         if self.frame == Frame::Fixed {
             for m in 0..n / 2 {
                 x[nc + 2 * m] = -w * p[2 * m + 1];
@@ -748,7 +849,7 @@ impl LinearRotorField {
                 }
             }
         }
-        Some(x)
+        x
     }
 
     /// The static sag under gravity in fixed axes, `q_s = K⁻¹ (load + Σ_planes n m_b Pᵀ g)`
@@ -939,4 +1040,27 @@ impl crate::ode::System for TimeSystem<'_> {
     fn component_name(&self, i: usize) -> String {
         VectorField::component_name(self.0, i)
     }
+}
+
+/// The angles of `nb ≥ 2` balls of mass `m` on a race of radius `radius` at rest with
+/// `m R Σ e^{iψ_j} = need`: pairs at `arg(need) ± φ`, an odd ball on `arg(need)`, with
+/// `cos φ = |need|/(n m R)` (even `n`) or `(|need|/(m R) − 1)/(n − 1)` (odd); `None` where
+/// `|need| > n m R`.
+fn ball_angles(nb: usize, m: f64, radius: f64, need: C) -> Option<Vec<f64>> {
+    let ratio = need.norm() / (m * radius);
+    if ratio > nb as f64 || !ratio.is_finite() {
+        return None;
+    }
+    let phase = if need.norm() > 0.0 { need.arg() } else { 0.0 };
+    let cos_phi = if nb.is_multiple_of(2) { ratio / nb as f64 } else { (ratio - 1.0) / (nb - 1) as f64 };
+    let phi = cos_phi.clamp(-1.0, 1.0).acos();
+    let mut psi = vec![];
+    if !nb.is_multiple_of(2) {
+        psi.push(phase);
+    }
+    for _ in 0..nb / 2 {
+        psi.push(phase + phi);
+        psi.push(phase - phi);
+    }
+    Some(psi)
 }
