@@ -758,7 +758,7 @@ fn explain_failure(rotor: &Rotor, failure: &str) -> String {
         Rotor::Planar(_) => "no semi-balanced state at this speed: the balls cannot supply the unbalance it needs (|B| > n m3 r, planar::stationary)".into(),
         Rotor::Spatial(_) => "no balanced state: the balls' capacity Σ m R of a plane is below the unbalance it must cancel".into(),
         Rotor::Linear(_) => {
-            "no balanced state: one balancer plane with at least 2 balls whose capacity n m_b R covers the unbalance is needed (LinearRotorField::balanced_guess)".into()
+            "no balanced state: every balancer plane needs at least 2 balls and the capacity n m_b R for its share of the unbalance (LinearRotorField::balanced_guess)".into()
         }
     }
 }
