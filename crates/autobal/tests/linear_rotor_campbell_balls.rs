@@ -76,8 +76,8 @@ fn the_jeffcott_preset_has_the_planar_rotors_diagram() {
 }
 
 /// A rigid rotor on two equal supports (the spatial preset's tests' rotor, `k_x = k_y`), an
-/// unbalance mass in the balancer plane (0.15 m) with `balls` balls (the linear rotor's balanced
-/// state is found for one balancer plane).
+/// unbalance mass in the balancer plane (0.15 m) with `balls` balls (one plane; two planes:
+/// tests/linear_rotor_two_planes.rs).
 fn spatial(balls: usize) -> SpatialRotor {
     let unbalances = vec![PointMass { mass: 0.01, radius: 0.1, angle: 0.4, z: 0.15 }];
     let p = vec![BallPlane { z: 0.15, n: balls, ball_mass: 0.02, race_radius: 0.1, drag: 0.01, physics: Default::default() }];
