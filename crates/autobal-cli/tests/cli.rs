@@ -450,13 +450,13 @@ fn interrupted_map_keeps_the_rows_written() {
     std::fs::create_dir_all(&dir).unwrap();
     let stem = dir.join("big");
     let (code, _, err) =
-        interrupted_after(&["map", "--x", "dimensionless.z_a=-2:2:1500", "--y", "omega=0.05:5:1500", "--threads", "1", "--out", stem.to_str().unwrap()], 1500);
+        interrupted_after(&["map", "--x", "dimensionless.z_a=-2:2:1500", "--y", "omega=0.05:5:8000", "--threads", "1", "--out", stem.to_str().unwrap()], 1500);
     assert_ne!(code, Some(0), "should report the interruption");
     assert!(err.contains("interrupted"), "{err}");
     let csv = std::fs::read_to_string(dir.join("big.csv")).unwrap();
     let lines = csv.lines().count() - 1;
     assert!(lines > 0 && lines.is_multiple_of(1500), "whole rows only: {lines} lines");
-    assert!(lines < 1500 * 1500);
+    assert!(lines < 1500 * 8000);
     assert!(dir.join("big.png").exists(), "plots of the rows computed are written");
     std::fs::remove_dir_all(&dir).ok();
 }
@@ -504,14 +504,14 @@ fn interrupted_campbell_writes_the_speeds_computed() {
 fn interrupted_map_with_boundary_keeps_what_it_wrote() {
     // Ctrl-C in `map --boundary`: while the curves are traced (about 0.4 s here), the curves
     // traced so far are written and no map is computed (no empty CSV left); later, in the
-    // 1500 × 1500 map, the whole boundary and the map's rows so far are kept. Either way the
+    // 1500 × 8000 map, the whole boundary and the map's rows so far are kept. Either way the
     // command exits with 2 saying it was interrupted. (The tracer's own stop is tested in
     // autobal's tests/stability.rs, where it does not depend on timing.)
     let dir = std::env::temp_dir().join(format!("autobal-boundary-int-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let stem = dir.join("b");
     let (code, _, err) = interrupted_after(
-        &["map", "--x", "dimensionless.z_a=-2:2:1500", "--y", "omega=0.05:4.5:1500", "--threads", "1", "--boundary", "--out", stem.to_str().unwrap()],
+        &["map", "--x", "dimensionless.z_a=-2:2:1500", "--y", "omega=0.05:4.5:8000", "--threads", "1", "--boundary", "--out", stem.to_str().unwrap()],
         1500,
     );
     assert_eq!(code, Some(2), "{err}");
@@ -522,7 +522,7 @@ fn interrupted_map_with_boundary_keeps_what_it_wrote() {
         assert!(!dir.join("b.csv").exists(), "no empty map");
     } else {
         let rows = std::fs::read_to_string(dir.join("b.csv")).unwrap().lines().count() - 1;
-        assert!(rows.is_multiple_of(1500) && rows < 1500 * 1500, "{rows} lines");
+        assert!(rows.is_multiple_of(1500) && rows < 1500 * 8000, "{rows} lines");
         assert!(dir.join("b.png").exists());
     }
     std::fs::remove_dir_all(&dir).ok();

@@ -449,7 +449,7 @@ def test_report_and_figures_stop_on_ctrl_c(tmp_path):
     cli_stop = time.perf_counter() - t0
     for work, bound in (
         (lambda: autobal.report(cfg, out=tmp_path / "r"), cli_stop + 3.0),
-        (lambda: autobal.analyse("map", x="dimensionless.z_a=-2:2:1500", y="omega=0.05:4.5:1500").figures(), 5.0),
+        (lambda: autobal.analyse("map", x="dimensionless.z_a=-2:2:1500", y="omega=0.05:4.5:8000").figures(), 5.0),
     ):
         ctrl_c = threading.Timer(1.0, _thread.interrupt_main)
         ctrl_c.start()
