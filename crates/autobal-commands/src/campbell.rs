@@ -137,16 +137,7 @@ impl Args {
             )
             .into());
         }
-        let w = match &self.omega_max {
-            Some(t) => {
-                let s = autobal::units::parse_speed("--omega-max", t)?;
-                let w =
-                    s.value * s.unit.rad_s().ok_or_else(|| anyhow::anyhow!("--omega-max: give a speed with its unit (rad/s, rpm, Hz) for a linear rotor"))?;
-                check_speed("--omega-max", w)?;
-                w
-            }
-            None => crate::linear_rotor::default_omega_max(&cfg)?,
-        };
+        let w = crate::linear_rotor::omega_max(self.omega_max.as_deref(), &cfg)?;
         let c = general_campbell::campbell_with(&g, w, points, Balls::Free, harmonics, control)?;
         Ok(Output::General { g: Box::new(g), c: Box::new(c), omega_max: w, view: self.view })
     }

@@ -112,6 +112,17 @@ pub fn default_omega_max(cfg: &LinearRotorConfig) -> Result<f64> {
     Ok((1.5 * pos[pos.len().min(4) - 1]).max(3.0 * first))
 }
 
+/// The top of the speed axis of `stability` and `campbell` on a linear rotor: `--omega-max`
+/// with its unit (rad/s, rpm, Hz; a bare number has no meaning for an SI rotor), checked as
+/// every speed flag is, else [`default_omega_max`].
+pub fn omega_max(flag: Option<&str>, cfg: &LinearRotorConfig) -> Result<f64> {
+    let Some(t) = flag else { return default_omega_max(cfg) };
+    let s = autobal::units::parse_speed("--omega-max", t)?;
+    let w = s.value * s.unit.rad_s().ok_or_else(|| anyhow!("--omega-max: give a speed with its unit (rad/s, rpm, Hz) for a linear rotor"))?;
+    crate::command::check_speed("--omega-max", w)?;
+    Ok(w)
+}
+
 fn rpm(w: f64) -> f64 {
     w * 30.0 / std::f64::consts::PI
 }

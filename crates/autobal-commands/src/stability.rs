@@ -125,16 +125,7 @@ impl Args {
         }
         let cfg = crate::linear_rotor::from_table(root, self.config.dir())?;
         let samples = check_count("--samples", self.samples.unwrap_or(if cfg.rotor.is_isotropic() { 200 } else { 50 }), SAMPLES)?;
-        let omega_max = match &self.omega_max {
-            Some(t) => {
-                let s = autobal::units::parse_speed("--omega-max", t)?;
-                let w =
-                    s.value * s.unit.rad_s().ok_or_else(|| anyhow::anyhow!("--omega-max: give a speed with its unit (rad/s, rpm, Hz) for a linear rotor"))?;
-                check_speed("--omega-max", w)?;
-                w
-            }
-            None => crate::linear_rotor::default_omega_max(&cfg)?,
-        };
+        let omega_max = crate::linear_rotor::omega_max(self.omega_max.as_deref(), &cfg)?;
         let (r, red) = crate::linear_rotor::stability(&cfg, omega_max, samples)?;
         Ok(Output::LinearRotor { cfg: Box::new(cfg), r: Box::new(r), red: Box::new(red), omega_max })
     }
