@@ -2,12 +2,11 @@
 //! (analysis::stationary: equispaced samples of J(t, x(t)), its trigonometric interpolant J̃,
 //! Φ' = J̃ Φ) against the full variational equations integrated at a tighter tolerance.
 
-use autobal::analysis::{stability, stationary, NewtonOptions, StationaryState, VariationalSystem, VectorField};
-use autobal::ode::{Control, Method, Options, Solver};
+use autobal::analysis::{stability, stationary, NewtonOptions, StationaryState, VectorField};
 use autobal::rotor_stability::Rotor;
 
 mod common;
-use common::match_distance;
+use common::{full_variational_flow, match_distance};
 
 /// The multipliers of the monodromy matrix of the orbit `s` of `f` by the full variational
 /// equations `n + n²` integrated at rtol 1e-13 from the same orbit, against ours: their
@@ -16,21 +15,7 @@ fn against_full_equations<F: VectorField>(f: &F, s: &StationaryState) -> (f64, f
     let st = stability(f, s).unwrap();
     let t = f.period().unwrap();
     let n = f.dim();
-    let sys = VariationalSystem::new(f);
-    let mut y = vec![0.0; n + n * n];
-    y[..n].copy_from_slice(&s.x);
-    for a in 0..n {
-        y[n + a * n + a] = 1.0;
-    }
-    let sc = f.scales();
-    let mut atol: Vec<f64> = sc.iter().map(|v| 1e-13 * v).collect();
-    for a in 0..n {
-        for b in 0..n {
-            atol.push(1e-13 * sc[a] / sc[b]);
-        }
-    }
-    let mut solver = Solver::new(&sys, Options::new(1e-13, 1e-13).method(Method::Dop853).atol_per_component(atol)).unwrap();
-    assert!(solver.integrate(0.0, &mut y, t, |_| Control::Continue).status.is_completed());
+    let y = full_variational_flow(f, &s.x, t);
     let reference = stability(f, &StationaryState { monodromy: Some(y[n..].to_vec()), ..s.clone() }).unwrap();
     let ours: Vec<_> = st.spectrum.iter().chain(&st.structural).map(|e| e.complex()).collect();
     let theirs: Vec<_> = reference.spectrum.iter().chain(&reference.structural).map(|e| e.complex()).collect();

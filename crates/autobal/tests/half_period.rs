@@ -7,13 +7,12 @@
 //! state, which use no symmetry: if the equations did not repeat after `π/Ω`, the state would
 //! not close after `2π/Ω`, or the squares would differ.
 
-use autobal::analysis::{stability, stationary, NewtonOptions, VariationalSystem, VectorField};
-use autobal::ode::{Control, Method, Options, Solver};
+use autobal::analysis::{stability, stationary, NewtonOptions, VectorField};
 use autobal::rotor_stability::Rotor;
 use std::f64::consts::PI;
 
 mod common;
-use common::{all_eigenvalues, match_distance};
+use common::{all_eigenvalues, full_variational_flow, match_distance};
 
 /// examples/spatial_two_plane.toml (16 states, supports stiffer in y), with gravity as given.
 fn two_plane(gravity: &str) -> Rotor {
@@ -50,21 +49,8 @@ fn multipliers_over_half_a_revolution_squared_are_those_over_a_revolution() {
         let squares: Vec<_> = all_eigenvalues(&st).iter().map(|m| m * m).collect();
         // the reference: x and Φ over a whole revolution, no symmetry used
         let n = f.dim();
-        let sys = VariationalSystem::new(&f);
-        let mut y = vec![0.0; n + n * n];
-        y[..n].copy_from_slice(&s.x);
-        for a in 0..n {
-            y[n + a * n + a] = 1.0;
-        }
+        let y = full_variational_flow(&f, &s.x, 2.0 * PI / w);
         let sc = f.scales();
-        let mut atol: Vec<f64> = sc.iter().map(|v| 1e-13 * v).collect();
-        for a in 0..n {
-            for b in 0..n {
-                atol.push(1e-13 * sc[a] / sc[b]);
-            }
-        }
-        let mut solver = Solver::new(&sys, Options::new(1e-13, 1e-13).method(Method::Dop853).atol_per_component(atol)).unwrap();
-        assert!(solver.integrate(0.0, &mut y, 2.0 * PI / w, |_| Control::Continue).status.is_completed());
         // the orbit closes after a revolution (to the shooting's 1e-10 of the scales, with room)
         for i in 0..n {
             assert!((y[i] - s.x[i]).abs() <= 1e-9 * sc[i], "Ω = {w}: {} moved by {:e} over a revolution", f.component_name(i), y[i] - s.x[i]);

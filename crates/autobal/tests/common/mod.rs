@@ -269,3 +269,28 @@ pub fn direct_model(
     })
     .unwrap()
 }
+
+/// `x(t)` and the monodromy `Φ(t)` from `x0` by the full variational equations `n + n²`
+/// (DOP853 at rtol 1e-13, absolute tolerances `1e-13` of each component's scale and
+/// `1e-13 S_a / S_b` for `Φ_ab`): the reference of the Floquet tests, no symmetry or
+/// interpolation used. Returns the state `n + n²` at `t` (`[..n]` the orbit, `[n..]` `Φ`).
+pub fn full_variational_flow<F: autobal::analysis::VectorField>(f: &F, x0: &[f64], t: f64) -> Vec<f64> {
+    use autobal::ode::{Control, Method, Options, Solver};
+    let n = f.dim();
+    let sys = autobal::analysis::VariationalSystem::new(f);
+    let mut y = vec![0.0; n + n * n];
+    y[..n].copy_from_slice(x0);
+    for a in 0..n {
+        y[n + a * n + a] = 1.0;
+    }
+    let sc = f.scales();
+    let mut atol: Vec<f64> = sc.iter().map(|v| 1e-13 * v).collect();
+    for a in 0..n {
+        for b in 0..n {
+            atol.push(1e-13 * sc[a] / sc[b]);
+        }
+    }
+    let mut solver = Solver::new(&sys, Options::new(1e-13, 1e-13).method(Method::Dop853).atol_per_component(atol)).unwrap();
+    assert!(solver.integrate(0.0, &mut y, t, |_| Control::Continue).status.is_completed());
+    y
+}
