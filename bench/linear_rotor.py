@@ -117,6 +117,10 @@ class Reduced:
             return np.asarray(a.todense() if hasattr(a, "todense") else a, dtype=float)
 
         self.M, self.C, self.G, self.K = (dense(x) for x in "MCGK")
+        # K_st: the term Omega' K_st q of a speed that changes (LinearRotor::spin_stiffness;
+        # empty = G / 2, from the kinetic energy's 1/2 phi' q'^T G' q)
+        self.Kst = dense("KST") if "kst" in cfg else 0.5 * self.G
+        assert "spin_chart" not in cfg and "rotor_fixed_mass" not in cfg, "terms this port leaves out"
         self.n = self.M.shape[0]
         (b,) = cfg["balancer"]
         (u,) = cfg["unbalance"]
@@ -128,7 +132,8 @@ class Reduced:
         self.nc = self.n + self.nb
 
     def accelerations(self, x, w, wdot, nu, chi, D):
-        """`A(psi)^-1 R(x)` (field.rs `residual` with a = 0 and `mass_matrix`; z = 0)."""
+        """`A(psi)^-1 R(x)` (field.rs `residual` with a = 0 and `mass_matrix`; z = 0; the term
+        `wdot K_st p` is written for fixed axes, nu = 0, where run-ups are integrated)."""
         n, nc, nb = self.n, self.nc, self.nb
         p, pd = x[:n], x[nc:nc + n]
         # v = pd + nu J p, a_s = 2 nu J pd - nu^2 p (J (a, b) = (-b, a))
@@ -143,7 +148,7 @@ class Reduced:
         f[self.ix] += force.real
         f[self.iy] += force.imag
         out = np.empty(nc)
-        out[:n] = f - self.M @ a - D @ v - self.Kc @ p
+        out[:n] = f - self.M @ a - D @ v - self.Kc @ p - wdot * (self.Kst @ p)
         A = np.zeros((nc, nc))
         A[:n, :n] = self.M
         m, r = self.m, self.r
