@@ -412,20 +412,26 @@ impl TrigInterpolant {
         let varying: Vec<usize> = (0..n * n).filter(|&e| values.iter().any(|j| j[e] != first[e])).collect();
         let (cos, sin): (Vec<f64>, Vec<f64>) = (0..m).map(|p| (std::f64::consts::TAU * p as f64 / m as f64).sin_cos()).map(|(s, c)| (c, s)).unzip();
         let half = m / 2;
+        // the varying entries of each sample, contiguous (row j: sample j)
+        let nv = varying.len();
+        let gathered: Vec<f64> = values.iter().flat_map(|v| varying.iter().map(|&e| v[e])).collect();
         let mut coefficients: Vec<(Vec<f64>, Vec<f64>)> = (0..=half)
             .map(|k| {
-                let mut a = vec![0.0; varying.len()];
-                let mut b = vec![0.0; varying.len()];
-                for (j, v) in values.iter().enumerate() {
-                    let w = if k == 0 || k == half { 1.0 } else { 2.0 } / m as f64;
+                let mut a = vec![0.0; nv];
+                let mut b = vec![0.0; nv];
+                // sin 0 and sin(N/2 θ_j) vanish at the samples: B_0 = B_{N/2} = 0
+                let odd = k != 0 && k != half;
+                for (j, v) in gathered.chunks_exact(nv.max(1)).enumerate() {
+                    let w = if odd { 2.0 } else { 1.0 } / m as f64;
                     let (c, s) = (w * cos[(k * j) % m], w * sin[(k * j) % m]);
-                    for ((ae, be), &e) in a.iter_mut().zip(b.iter_mut()).zip(&varying) {
-                        *ae += c * v[e];
-                        *be += s * v[e];
+                    for (ae, x) in a.iter_mut().zip(v) {
+                        *ae += c * x;
                     }
-                }
-                if k == 0 || k == half {
-                    b.iter_mut().for_each(|x| *x = 0.0); // sin 0 and sin(N/2 θ_j) vanish at the samples
+                    if odd {
+                        for (be, x) in b.iter_mut().zip(v) {
+                            *be += s * x;
+                        }
+                    }
                 }
                 (a, b)
             })
@@ -454,15 +460,27 @@ impl TrigInterpolant {
     /// norm `‖S⁻¹ · S‖∞`. An entry left with no term becomes a constant (its mean `A_0`).
     fn truncate(&mut self, s: &[f64], budget: f64) {
         let n = self.n;
-        // (row, scaled size, k, slot) of every term
-        let mut all: Vec<(usize, f64, usize, usize)> = vec![];
+        // (row, scaled size, k, slot) of every term, in the order row, size, then (k, slot) (the
+        // order of a stable sort on (row, size) of the terms listed by k and slot), sorted as
+        // one integer key: row above the size's bits (a non-negative float's bits order as its
+        // value) above k and slot
+        let mut keys: Vec<u128> = vec![];
+        let nv = self.varying.len() as u128;
         for (k, h) in self.harmonics.iter().enumerate() {
             for &(v, a, b) in h {
                 let e = self.varying[v];
-                all.push((e / n, (a.abs() + b.abs()) * s[e % n] / s[e / n], k, v));
+                let size = (a.abs() + b.abs()) * s[e % n] / s[e / n];
+                keys.push((((e / n) as u128) << 96) | ((size.to_bits() as u128) << 32) | (k as u128 * nv + v as u128));
             }
         }
-        all.sort_by(|p, q| p.0.cmp(&q.0).then(p.1.total_cmp(&q.1)));
+        keys.sort_unstable();
+        let all: Vec<(usize, f64, usize, usize)> = keys
+            .iter()
+            .map(|&key| {
+                let (row, size, kv) = ((key >> 96) as usize, f64::from_bits((key >> 32) as u64), (key & 0xffff_ffff) as usize);
+                (row, size, kv / self.varying.len(), kv % self.varying.len())
+            })
+            .collect();
         let mut dropped = vec![vec![false; self.varying.len()]; self.harmonics.len()];
         let mut i = 0;
         while i < all.len() {
@@ -605,6 +623,26 @@ impl System for InterpolatedVariational {
 /// `rtol s_a / s_b`). `None` when [`MAX_NODES`] samples do not pass the check.
 fn interpolated_monodromy<F: VectorField + ?Sized>(f: &F, orbit: &Orbit, period: f64, s: &[f64], rtol: f64) -> Result<Option<Vec<f64>>> {
     let n = f.dim();
+    let Some(interpolant) = jacobian_interpolant(f, orbit, period, s, rtol)? else { return Ok(None) };
+    let sys = InterpolatedVariational::new(n, interpolant);
+    let mut atol = Vec::with_capacity(n * n);
+    for a in 0..n {
+        for b in 0..n {
+            atol.push(rtol * s[a] / s[b]);
+        }
+    }
+    let mut phi = vec![0.0; n * n];
+    for a in 0..n {
+        phi[a * n + a] = 1.0;
+    }
+    integrate_period(&sys, &mut phi, period, rtol, atol)?;
+    Ok(Some(phi))
+}
+
+/// The interpolant `J̃` of [`interpolated_monodromy`] (its samples, test and truncation), `None`
+/// when [`MAX_NODES`] samples do not pass the test.
+fn jacobian_interpolant<F: VectorField + ?Sized>(f: &F, orbit: &Orbit, period: f64, s: &[f64], rtol: f64) -> Result<Option<TrigInterpolant>> {
+    let n = f.dim();
     let scaled_norm = |m: &[f64]| (0..n).map(|a| (0..n).map(|b| (m[a * n + b] * s[b] / s[a]).abs()).sum::<f64>()).fold(0.0, f64::max);
     let mut jacobians: Vec<Option<Vec<f64>>> = vec![None; MAX_NODES];
     let node = |j: usize| period * j as f64 / MAX_NODES as f64;
@@ -661,20 +699,7 @@ fn interpolated_monodromy<F: VectorField + ?Sized>(f: &F, orbit: &Orbit, period:
         }
         nodes *= 2;
     };
-    let Some(interpolant) = accepted else { return Ok(None) };
-    let sys = InterpolatedVariational::new(n, interpolant);
-    let mut atol = Vec::with_capacity(n * n);
-    for a in 0..n {
-        for b in 0..n {
-            atol.push(rtol * s[a] / s[b]);
-        }
-    }
-    let mut phi = vec![0.0; n * n];
-    for a in 0..n {
-        phi[a * n + a] = 1.0;
-    }
-    integrate_period(&sys, &mut phi, period, rtol, atol)?;
-    Ok(Some(phi))
+    Ok(accepted)
 }
 
 /// The monodromy matrix `Φ(T)` of the orbit from `x0` (its [`orbit`]): with the interpolated
@@ -977,3 +1002,9 @@ mod tests {
         }
     }
 }
+
+/// Magnus integrators on `Φ' = J̃ Φ`, measured against DOP853 (docs/notes/benchmarks.md,
+/// "Round 3, session 7 (magnus)").
+#[cfg(test)]
+#[path = "magnus_measurement.rs"]
+mod magnus_measurement;
