@@ -642,28 +642,31 @@ impl LinearRotorField {
         }
     }
 
-    /// The balanced state's closed-form start.
+    /// The balanced state's closed-form start: every race centre at rest on the axis.
     ///
-    /// One balancer plane (`n ≥ 2`): the balls at rest with `m_b R Σ e^{iψ_j} = −Σ m e e^{i phase}`
-    /// (pairs at `arg ± φ`, an odd ball on the resultant), the structure from the linear
-    /// stationary equations in turning axes at `t = 0`, `A p = f_r + f_balls`,
-    /// `A = K_r − Ω² M_r − Ω² M_b + Ω D_r J` (+ the rotor-fixed inertia's `Ω² J M_rot J`; `M_b` the
-    /// balls' lumped mass), which is `p = 0` when the unbalances sit at the balancer node without
-    /// offset.
-    ///
-    /// `P ≥ 2` planes (each `n_p ≥ 2`): at a balanced state every ball rests relative to the
-    /// rotor, so the tangential force on each vanishes, `e⊥_j · u_p = 0` with `u_p = E_p p` the
-    /// race centre's displacement `(x + z β, y − z α)`; two non-collinear balls give `u_p = 0`.
-    /// With `b_q` plane `q`'s resultant ball force `m_b R Ω² Σ e^{iψ_j}` (two components) and
-    /// `G_q = E_qᵀ` its placement (the offset's moments included), `A p = f_r + Σ_q G_q b_q` and
-    /// `E_p p = 0` give the `2P × 2P` system `Σ_q (E_p A⁻¹ G_q) b_q = −E_p A⁻¹ f_r`; each plane's
-    /// balls then follow from its resultant by the one-plane rule and `p` from `A p = f_r + Σ G_q b_q`.
+    /// At a balanced state every ball rests relative to the rotor, so the tangential force on
+    /// each vanishes, `e⊥_j · u_p = 0` with `u_p = E_p p` the race centre's displacement
+    /// `(x + z β, y − z α)`; two non-collinear balls give `u_p = 0`. With `b_q` plane `q`'s
+    /// resultant ball force `m_b R Ω² Σ e^{iψ_j}` (two components) and `G_q = E_qᵀ` its placement
+    /// (the offset's moments included), the linear stationary equations in turning axes at
+    /// `t = 0`, `A p = f_r + Σ_q G_q b_q` with `A = K_r − Ω² M_r − Ω² M_b + Ω D_r J` (+ the
+    /// rotor-fixed inertia's `Ω² J M_rot J`; `M_b` the balls' lumped mass), and `E_p p = 0` give
+    /// the `2P × 2P` system `Σ_q (E_p A⁻¹ G_q) b_q = −E_p A⁻¹ f_r`; each plane's balls then follow
+    /// from its resultant (`m_b R Σ e^{iψ_j} = b_q / Ω²`: pairs at `arg ± φ`, an odd ball on the
+    /// resultant) and `p` from `A p = f_r + Σ G_q b_q`. One plane is the case `P = 1`: where the
+    /// unbalances sit at the balancer node without offset its resultant is `−Ω² Σ m e e^{i phase}`
+    /// and `p = 0`; where they sit elsewhere on a flexible shaft the balls must cancel the
+    /// unbalances' response at the race, not their sum (`b = −(E A⁻¹ G)⁻¹ E A⁻¹ f_r`, which
+    /// grows without bound near an antiresonance of the race: no balanced state there once it
+    /// exceeds the capacity). Taking the sum instead (before 2026-11-28) started Newton's method
+    /// closer to the equilibrium with the balls opposite each other, which it then reported as
+    /// the balanced state.
     /// Exact where the balancer nodes do not tilt at balance (a rigid rotor: both race centres
     /// on the axis put it on the axis); where they tilt (a flexible shaft) the tilted ring's
     /// push `−m_b R² σ_j (ω·e_j)` on the balls and the balls' tilt inertia (lumped in `M_b`)
     /// move the state at second and first order in the tilt: a start for Newton's method.
     ///
-    /// Both: transformed to fixed axes (`q̇ = Ω J p`) for [`Frame::Fixed`]. With gravity the
+    /// Transformed to fixed axes (`q̇ = Ω J p`) for [`Frame::Fixed`]. With gravity the
     /// static sag `q_s = K⁻¹ (load + Σ m_b Pᵀ g)` (fixed axes: at rest there, so `ṗ = −Ω J q_s`
     /// in turning axes) is added, the balls' swing is left to the shooting (zero where `K` is
     /// singular). `None` where a plane cannot supply its resultant (`|b_p| > n_p m_b R Ω²`), a
@@ -674,30 +677,10 @@ impl LinearRotorField {
         if r.balancers.is_empty() || r.balancers.iter().any(|b| b.balls < 2) || self.omega == 0.0 {
             return None;
         }
-        if r.balancers.len() > 1 {
-            return self.balanced_guess_planes();
-        }
-        let b = r.balancers[0];
-        let res: C = r.unbalances.iter().map(|u| C::from_polar(u.me, u.phase)).sum();
-        let need = -res + C::new(0.0, 0.0); // no −0 imaginary part: arg(−a) = π
-        let psi = ball_angles(b.balls, b.ball_mass, b.radius, need)?;
-        let w = self.omega;
-        let ball_f: C = psi.iter().map(|&p| C::from_polar(b.ball_mass * b.radius * w * w, p)).sum();
-        let mut f = self.unbalance_forces();
-        self.add_plane_force(0, ball_f, &mut f);
-        let n = r.dofs();
-        let p = if f.iter().all(|v| *v == 0.0) {
-            vec![0.0; n]
-        } else {
-            let lu = Lu::factored(self.stationary_matrix(), n)?;
-            let mut p = f;
-            lu.solve(&mut p);
-            p
-        };
-        Some(self.guess_state(&p, &psi))
+        self.balanced_guess_planes()
     }
 
-    /// [`LinearRotorField::balanced_guess`] for `P ≥ 2` planes: the race centres on the axis.
+    /// [`LinearRotorField::balanced_guess`]: the race centres on the axis, `P ≥ 1` planes.
     fn balanced_guess_planes(&self) -> Option<Vec<f64>> {
         let r = &self.rotor;
         let n = r.dofs();
