@@ -1022,14 +1022,16 @@ fn rasterise(svg: &str, scale: f32, under: impl FnOnce(&mut resvg::tiny_skia::Pi
     resvg::render(&tree, tiny_skia::Transform::from_scale(scale, scale), &mut pix.as_mut());
     // the figures are opaque (white background): RGB, with the png crate's fast deflate, a
     // third of the instructions of tiny-skia's RGBA `encode_png` at its default level
-    let opaque = pix.pixels().iter().all(|p| p.alpha() == 255);
-    if !opaque {
-        return pix.encode_png().map_err(|e| anyhow::anyhow!("PNG encoding: {e}"));
-    }
-    // RGBA bytes to RGB (opaque: premultiplied is straight), one pass
+    // RGBA bytes to RGB (opaque: premultiplied is straight) and the opacity test in one pass:
+    // the AND of all alphas is 255 only if every one is
     let mut rgb = vec![0u8; 3 * pix.pixels().len()];
+    let mut alpha = 255u8;
     for (o, p) in rgb.chunks_exact_mut(3).zip(pix.data().chunks_exact(4)) {
         o.copy_from_slice(&p[..3]);
+        alpha &= p[3];
+    }
+    if alpha != 255 {
+        return pix.encode_png().map_err(|e| anyhow::anyhow!("PNG encoding: {e}"));
     }
     let mut out = vec![];
     {
