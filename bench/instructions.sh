@@ -3,7 +3,7 @@
 # machine, so a before/after comparison made on a busy machine still holds. For each command,
 # the whole process against the library's share of the same work:
 #   simulate  the library example examples/passage (the same passage, samples in memory)
-#   map       inside the command's own profile: Line::new + Line::cells (the map's library work)
+#   map       inside the command's own profile: Line::new + Line::cells + LinePlane::new (the map's library work)
 #   campbell  inside the command's own profile: campbell_stream less the command's callback
 #   sweep     inside the command's own profile: planar::simulate_summary
 #   spatial   `simulate` of bench/peers_spatial.py's 1000-revolution run-up (examples/spatial.toml):
@@ -47,7 +47,7 @@ row "simulate, its main thread (the integration's)" "$m" "$l"
 fi
 if want map; then
 c=$(count map "$EXE" map --threads 1 --x dimensionless.z_a=-2:2:400 --y omega=0.05:4.5:400 --out "$W/map")
-l=$(incl "$W/map.cg" 'spatial::map::Line::(new|cells) \[')
+l=$(incl "$W/map.cg" 'spatial::map::(Line::(new|cells)|LinePlane::new) \[')
 row "map --threads 1, 400 x 400 margin (CSV + SVG + PNG)" "$c" "$l"
 fi
 if want campbell; then

@@ -962,16 +962,20 @@ fn boundary(r: &MapResult, flag: impl Fn(&Cell) -> bool) -> Vec<(f64, f64)> {
     let (nx, ny) = (xs.len(), ys.len());
     let dx = (r.x.hi() - r.x.lo()) / (nx - 1) as f64;
     let dy = (r.y.hi() - r.y.lo()) / (ny - 1) as f64;
+    // each row's flags once (a cell is compared with its right and upper neighbours)
+    let flags: Vec<Option<Vec<bool>>> = r.rows.iter().map(|row| row.as_ref().map(|cells| cells.iter().map(&flag).collect())).collect();
     let mut segs = vec![];
     for j in 0..ny {
-        let Some(row) = &r.rows[j] else { continue };
+        let Some(row) = &flags[j] else { continue };
+        let up = flags.get(j + 1).and_then(Option::as_ref);
+        let y = ys[j];
         for i in 0..nx {
-            let (x, y) = (xs[i], ys[j]);
-            if i + 1 < nx && flag(&row[i]) != flag(&row[i + 1]) {
+            let x = xs[i];
+            if i + 1 < nx && row[i] != row[i + 1] {
                 segs.push(((x + dx / 2.0, y - dy / 2.0), (x + dx / 2.0, y + dy / 2.0)));
             }
-            if let Some(Some(up)) = r.rows.get(j + 1) {
-                if flag(&row[i]) != flag(&up[i]) {
+            if let Some(up) = up {
+                if row[i] != up[i] {
                     segs.push(((x - dx / 2.0, y + dy / 2.0), (x + dx / 2.0, y + dy / 2.0)));
                 }
             }
@@ -983,9 +987,15 @@ fn boundary(r: &MapResult, flag: impl Fn(&Cell) -> bool) -> Vec<(f64, f64)> {
 /// The map as a figure: heatmap (margin with a diverging colour bar, or the verdict), the exact
 /// boundary (solid black) and 003's necessary boundary (dashed), physics axis titles.
 pub fn plot(r: &MapResult, title: &str) -> Plot {
-    let cells = || r.rows.iter().flatten().flatten().filter(|c| c.margin.is_finite());
-    let neg = cells().filter(|c| c.margin < 0.0).map(|c| -c.margin).fold(1e-12, f64::max);
-    let pos = cells().filter(|c| c.margin >= 0.0).map(|c| c.margin).fold(1e-12, f64::max);
+    // the largest finite margin on each side, one pass (NaN, a verdict map's, on neither)
+    let (mut neg, mut pos) = (1e-12f64, 1e-12f64);
+    for c in r.rows.iter().flatten().flatten().filter(|c| c.margin.is_finite()) {
+        if c.margin < 0.0 {
+            neg = neg.max(-c.margin);
+        } else {
+            pos = pos.max(c.margin);
+        }
+    }
     let z: Vec<Vec<f64>> = r
         .rows
         .iter()

@@ -171,7 +171,9 @@ pub fn heat_color(v: f64, scale: ColorScale) -> [u8; 3] {
         }
         ColorScale::Diverging { neg, pos } => {
             let t = diverging_t(v, neg, pos).abs();
-            let lerp = |a: f64, b: f64| (a + (b - a) * t).round() as u8;
+            // `round_i64`: `round()` without the C library's call (a map's PNG and SVG colour
+            // every cell: 960 000 calls for 400 x 400), the same value in [0, 255]
+            let lerp = |a: f64, b: f64| round_i64(a + (b - a) * t) as u8;
             if v < 0.0 {
                 [lerp(247.0, 33.0), lerp(247.0, 102.0), lerp(247.0, 172.0)]
             } else {
@@ -393,7 +395,11 @@ impl Plot {
                 base64(&png)
             );
         }
+        // the shades, clipped to the plot area (no group when none is drawn: an empty clipped
+        // group still costs the PNG rasteriser a layer and a mask over the whole figure)
+        let shades_at = s.len();
         s.push_str("<g clip-path=\"url(#plotarea)\">\n");
+        let mut shaded = false;
         for sh in &self.shades {
             let (ya, yb) = (sh.y.0.unwrap_or(y0).max(y0), sh.y.1.unwrap_or(y1).min(y1));
             if yb <= ya {
@@ -409,8 +415,13 @@ impl Plot {
                 sy(ya) - sy(yb),
                 sh.color
             );
+            shaded = true;
         }
-        s.push_str("</g>\n");
+        if shaded {
+            s.push_str("</g>\n");
+        } else {
+            s.truncate(shades_at);
+        }
         // grid and ticks
         let grid = if self.heatmap.is_some() { "none" } else { "#e3e3e3" };
         for t in ticks(x0, x1, 7) {
@@ -461,8 +472,14 @@ impl Plot {
         let _ = writeln!(s, r##"<rect x="{ml}" y="{mt}" width="{PW}" height="{PH}" fill="none" stroke="#333"/>"##);
         let _ = writeln!(s, r#"<text x="{}" y="{}" text-anchor="middle">{}</text>"#, ml + PW / 2.0, mt + PH + 42.0, esc(&self.x_label));
         let _ = writeln!(s, r#"<text x="18" y="{0}" text-anchor="middle" transform="rotate(-90 18 {0})">{1}</text>"#, mt + PH / 2.0, esc(&self.y_label));
-        s.push_str("<g clip-path=\"url(#plotarea)\" fill=\"none\" stroke-width=\"2\">\n");
+        // the curves and vertical markers, written apart first: their group is clipped to the
+        // plot area only where something drawn reaches outside it (`drawn_inside`; a clip costs
+        // the PNG rasteriser a layer and a mask over the whole figure, a third of a map's PNG)
+        let doc = std::mem::replace(&mut s, String::with_capacity(1024 + 16 * drawn));
+        let area = [ml, ml + PW, mt, mt + PH];
         let vis: Vec<&(f64, String)> = self.vlines.iter().filter(|(x, _)| *x >= x0 && *x <= x1).collect();
+        // a marker's label may run past the plot area's right edge
+        let mut clip = !vis.is_empty();
         let rows = stagger(&vis.iter().map(|v| sx(v.0)).collect::<Vec<_>>(), 30.0);
         for ((x, label), row) in vis.iter().zip(rows) {
             let _ = writeln!(
@@ -481,8 +498,9 @@ impl Plot {
             // pixel coordinates of one unbroken piece of the curve (NaN breaks it), reduced to
             // what a pixel column shows (`pixel_columns`), written with two decimals
             let mut seg: Vec<(f64, f64)> = Vec::with_capacity(se.points.len());
-            let flush = |seg: &mut Vec<(f64, f64)>, s: &mut String| {
+            let flush = |seg: &mut Vec<(f64, f64)>, s: &mut String, clip: &mut bool| {
                 if se.markers {
+                    *clip |= !seg.iter().all(|&p| disk_inside(p, 3.5, area));
                     for &(x, y) in seg.iter() {
                         s.push_str(r#"<circle cx=""#);
                         push_px(s, x);
@@ -493,6 +511,7 @@ impl Plot {
                 } else if seg.len() >= 2 {
                     s.push_str(r#"<polyline points=""#);
                     let kept = pixel_columns(seg);
+                    *clip |= !drawn_inside(&kept, se.width.unwrap_or(2.0) / 2.0, area);
                     let mut text: Vec<u8> = Vec::with_capacity(16 * kept.len());
                     for (k, &(x, y)) in kept.iter().enumerate() {
                         if k > 0 {
@@ -506,6 +525,7 @@ impl Plot {
                     s.push_str(std::str::from_utf8(&text).unwrap_or(""));
                     let _ = writeln!(s, r#"" stroke="{}" stroke-width="{}"{dash}/>"#, se.color, se.width.unwrap_or(2.0));
                 } else if let Some(&(x, y)) = seg.first() {
+                    *clip |= !disk_inside((x, y), 2.0, area);
                     s.push_str(r#"<circle cx=""#);
                     push_px(s, x);
                     s.push_str(r#"" cy=""#);
@@ -519,11 +539,15 @@ impl Plot {
                     // keep far-off points finite in SVG while the clip path hides them
                     seg.push((sx(x).clamp(-1e4, 1e4), sy(y).clamp(-1e4, 1e4)));
                 } else {
-                    flush(&mut seg, &mut s);
+                    flush(&mut seg, &mut s, &mut clip);
                 }
             }
-            flush(&mut seg, &mut s);
+            flush(&mut seg, &mut s, &mut clip);
         }
+        // `s` holds the curves, `doc` the document before them
+        let curves = std::mem::replace(&mut s, doc);
+        s.push_str(if clip { "<g clip-path=\"url(#plotarea)\" fill=\"none\" stroke-width=\"2\">\n" } else { "<g fill=\"none\" stroke-width=\"2\">\n" });
+        s.push_str(&curves);
         s.push_str("</g>\n");
         // colour bar
         let mut lx = ml + PW + 16.0;
@@ -765,6 +789,47 @@ impl Plot {
     }
 }
 
+/// Slack of [`drawn_inside`] and [`disk_inside`] (px): coordinates are written with two
+/// decimals, so a point computed on the plot area's edge may be written up to 0.005 px past it.
+const EDGE_SLACK: f64 = 0.01;
+
+/// Whether a polyline stroked with half-width `half` (butt caps, miter joins: SVG's defaults)
+/// stays inside `area = [x0, x1, y0, y1]` (to [`EDGE_SLACK`]), so that clipping it to the plot
+/// area changes no pixel: every point at least `half` inside, except an end point on or
+/// near an edge whose segment is perpendicular to that edge (a map's cell-edge boundary ends
+/// on the plot area's edge: its butt cap lies along the edge, nothing is drawn past it).
+fn drawn_inside(pts: &[(f64, f64)], half: f64, area: [f64; 4]) -> bool {
+    let [x0, x1, y0, y1] = area;
+    let n = pts.len();
+    pts.iter().enumerate().all(|(k, &(x, y))| {
+        if !(x >= x0 - EDGE_SLACK && x <= x1 + EDGE_SLACK && y >= y0 - EDGE_SLACK && y <= y1 + EDGE_SLACK) {
+            return false;
+        }
+        let near_x = x < x0 + half || x > x1 - half;
+        let near_y = y < y0 + half || y > y1 - half;
+        if !near_x && !near_y {
+            return true;
+        }
+        // an end, and its segment perpendicular to the edge it is near
+        let other = match k {
+            0 if n > 1 => pts[1],
+            _ if k + 1 == n && n > 1 => pts[n - 2],
+            _ => return false,
+        };
+        // perpendicular to a millionth of a pixel (a map's cell edges meet at points computed
+        // from neighbouring cells, equal to rounding): the cap's corner then reaches past the
+        // edge by less than that
+        (!near_x || (other.1 - y).abs() <= 1e-6) && (!near_y || (other.0 - x).abs() <= 1e-6)
+    })
+}
+
+/// Whether a disk of radius `r` about `p` lies inside `area = [x0, x1, y0, y1]` (to
+/// [`EDGE_SLACK`]).
+fn disk_inside(p: (f64, f64), r: f64, area: [f64; 4]) -> bool {
+    let [x0, x1, y0, y1] = area;
+    p.0 - r >= x0 - EDGE_SLACK && p.0 + r <= x1 + EDGE_SLACK && p.1 - r >= y0 - EDGE_SLACK && p.1 + r <= y1 + EDGE_SLACK
+}
+
 /// Append a pixel coordinate with two decimals (a hundredth of a pixel, below what any
 /// renderer resolves): `round(100 v)` split into integer and hundredths, the same text as
 /// `format!("{v:.2}")` but without its exact-decimal machinery (the figures of a 4 801-sample
@@ -957,11 +1022,17 @@ fn rasterise(svg: &str, scale: f32, under: impl FnOnce(&mut resvg::tiny_skia::Pi
     resvg::render(&tree, tiny_skia::Transform::from_scale(scale, scale), &mut pix.as_mut());
     // the figures are opaque (white background): RGB, with the png crate's fast deflate, a
     // third of the instructions of tiny-skia's RGBA `encode_png` at its default level
-    let opaque = pix.pixels().iter().all(|p| p.alpha() == 255);
-    if !opaque {
+    // RGBA bytes to RGB (opaque: premultiplied is straight) and the opacity test in one pass:
+    // the AND of all alphas is 255 only if every one is
+    let mut rgb = vec![0u8; 3 * pix.pixels().len()];
+    let mut alpha = 255u8;
+    for (o, p) in rgb.chunks_exact_mut(3).zip(pix.data().chunks_exact(4)) {
+        o.copy_from_slice(&p[..3]);
+        alpha &= p[3];
+    }
+    if alpha != 255 {
         return pix.encode_png().map_err(|e| anyhow::anyhow!("PNG encoding: {e}"));
     }
-    let rgb: Vec<u8> = pix.pixels().iter().flat_map(|p| [p.red(), p.green(), p.blue()]).collect();
     let mut out = vec![];
     {
         let mut enc = png::Encoder::new(&mut out, pix.width(), pix.height());
@@ -1178,6 +1249,80 @@ mod tests {
                 assert!(same as f64 >= 0.99 * (w * h) as f64, "scale {k}: {same} of {} pixels identical", w * h);
             }
         }
+    }
+
+    #[test]
+    fn curves_inside_the_plot_area_are_drawn_unclipped_and_nothing_past_its_edges() {
+        // A map's figure: a heatmap and cell-edge boundaries (staircases whose ends lie on the
+        // plot area's edges, the segment there perpendicular to the edge), drawn without the
+        // clip path; the reference is the same SVG with the clip put back, both rasterised by
+        // resvg. Outside the plot area every pixel is equal (a butt cap along the edge draws
+        // nothing past it); inside, the clipped curves went through an 8-bit layer composited
+        // over the figure, one more rounding of their anti-aliased pixels: within 2 levels of
+        // 255 (measured: 2 on the 400 x 400 map's figure, 3 867 pixels of its curves).
+        let (nx, ny) = (9, 7);
+        let x: Vec<f64> = (0..nx).map(|i| -2.0 + 0.5 * i as f64).collect();
+        let y: Vec<f64> = (0..ny).map(|j| 0.5 + 0.5 * j as f64).collect();
+        let z: Vec<Vec<f64>> = (0..ny).map(|j| (0..nx).map(|i| if i + j > 7 { 0.3 } else { -0.2 }).collect()).collect();
+        // cell edges: x ± 0.25, y ± 0.25; the plot area is [-2.25, 2.25] x [0.25, 3.75]
+        let stair = vec![(-2.25, 1.25), (-1.25, 1.25), (-1.25, 2.25), (0.25, 2.25), (0.25, 3.25), (0.75, 3.25), (0.75, 3.75)];
+        let bottom = vec![(1.25, 0.25), (1.25, 1.75), (2.25, 1.75), (f64::NAN, f64::NAN), (-0.75, 0.25), (-0.75, 0.75)];
+        let p = Plot {
+            title: "map".into(),
+            series: vec![Series::new("exact", stair, "#000000"), Series::new("necessary", bottom, "#CC79A7").dashed()],
+            heatmap: Some(Heatmap { x, y, z, scale: ColorScale::Diverging { neg: 0.2, pos: 0.3 }, label: "max Re λ".into() }),
+            x_range: Some((-2.25, 2.25)),
+            y_range: Some((0.25, 3.75)),
+            ..Default::default()
+        };
+        let svg = p.to_svg();
+        let open = "<g fill=\"none\" stroke-width=\"2\">";
+        assert!(svg.contains(open) && !svg.contains("clip-path=\"url(#plotarea)\" fill"), "the curves' group is not clipped");
+        let clipped = svg.replace(open, "<g clip-path=\"url(#plotarea)\" fill=\"none\" stroke-width=\"2\">");
+        for k in [1.0, 1.5] {
+            let (w, h, got) = decode_rgb(&svg_to_png(&svg, k).unwrap());
+            let (w2, h2, want) = decode_rgb(&svg_to_png(&clipped, k).unwrap());
+            assert_eq!((w, h), (w2, h2));
+            // the plot area in pixels: [ML, ML + PW) x [44, 44 + PH) times the scale
+            let kf = f64::from(k);
+            let inside = |i: usize, j: usize| {
+                let (x, y) = (i as f64 + 0.5, j as f64 + 0.5);
+                x > ML * kf && x < (ML + PW) * kf && y > 44.0 * kf && y < (44.0 + PH) * kf
+            };
+            let mut differ = 0;
+            for (n, (a, b)) in got.chunks(3).zip(want.chunks(3)).enumerate() {
+                let (i, j) = (n % w, n / w);
+                let d = a.iter().zip(b).map(|(a, b)| a.abs_diff(*b)).max().unwrap_or(0);
+                assert!(d == 0 || (inside(i, j) && d <= 2), "scale {k}: pixel ({i}, {j}) {a:?} against the clipped figure's {b:?}");
+                differ += usize::from(d > 0);
+            }
+            // only the curves' anti-aliased pixels differ, by rounding
+            assert!(differ < w * h / 100, "scale {k}: {differ} pixels differ");
+        }
+        // a curve that crosses an edge, ends on it obliquely, or runs within half its width of
+        // it keeps the clip
+        for pts in [vec![(0.0, 1.0), (3.0, 2.0)], vec![(0.0, 1.0), (2.25, 2.0)], vec![(0.0, 3.74), (1.0, 3.74)]] {
+            let q = Plot { series: vec![Series::new("c", pts.clone(), "#000")], x_range: p.x_range, y_range: p.y_range, ..Default::default() };
+            assert!(q.to_svg().contains("<g clip-path=\"url(#plotarea)\" fill"), "{pts:?} is drawn clipped");
+        }
+    }
+
+    #[test]
+    fn a_stroke_is_inside_only_when_nothing_of_it_reaches_past_an_edge() {
+        let area = [0.0, 100.0, 0.0, 50.0];
+        // well inside; an end on the left edge with a horizontal segment; on the top edge with
+        // a vertical one
+        assert!(drawn_inside(&[(10.0, 10.0), (20.0, 30.0)], 1.0, area));
+        assert!(drawn_inside(&[(0.0, 10.0), (20.0, 10.0), (20.0, 30.0)], 1.0, area));
+        assert!(drawn_inside(&[(20.0, 30.0), (20.0, 0.0)], 1.0, area));
+        // written to two decimals: 0.005 past the edge is on it
+        assert!(drawn_inside(&[(-0.005, 10.0), (20.0, 10.0)], 1.0, area));
+        // an oblique end on the edge, a vertex within the half-width, a corner end, outside
+        assert!(!drawn_inside(&[(0.0, 10.0), (20.0, 12.0)], 1.0, area));
+        assert!(!drawn_inside(&[(10.0, 10.0), (99.5, 20.0), (10.0, 30.0)], 1.0, area));
+        assert!(!drawn_inside(&[(0.0, 0.0), (0.0, 10.0)], 1.0, area));
+        assert!(!drawn_inside(&[(10.0, 10.0), (20.0, 51.0)], 1.0, area));
+        assert!(disk_inside((10.0, 10.0), 3.5, area) && !disk_inside((2.0, 10.0), 3.5, area));
     }
 
     #[test]

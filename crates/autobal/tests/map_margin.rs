@@ -76,3 +76,66 @@ fn margin_map_cells_are_the_dense_solvers_abscissa() {
     assert_eq!(checked, 16 * 2 * 40);
     eprintln!("worst relative difference {worst:e}");
 }
+
+#[test]
+fn maps_of_many_lines_share_one_plane_polynomial_and_keep_every_cell() {
+    // With 16 or more lines along z̄_A (eq (6) is affine in it) each line's characteristic
+    // polynomial in Ω comes from one expansion of the whole plane (Horner in z̄_A) instead of
+    // its own. Every cell against independent routes: the margin against the QR abscissa of
+    // the state matrix at that point (bound as in the margin test above: the certified
+    // 1e-10 (1 + |λ|) + 1e-12, with |λ| ≤ 1 + Ω² for these dimensionless models), the verdict
+    // against the direct Routh–Hurwitz test on the state matrix (the map confirms every change
+    // of verdict by it, so they agree at every cell, whatever polynomial proposed them).
+    use autobal::linalg::eigen::spectral_abscissa;
+    use autobal::spatial::stability::strictly_stable_at;
+    let mut rng = Rng(20_261_129);
+    let mut worst = 0.0f64;
+    let mut stable = 0;
+    for _ in 0..3 {
+        let c_sigma = rng.range(0.2, 1.6);
+        let d = DimensionlessInput {
+            c_sigma,
+            rho_s: rng.range(0.2, 0.8),
+            l_left: rng.range(-0.3, 1.4),
+            z_a: 0.0,
+            anisotropy: AnisotropyInput::Direct(rng.range(0.0, 0.2).min(0.5 * c_sigma)),
+            h_x: rng.range(0.0, 0.2),
+            h_s: rng.range(0.01, 0.5),
+            method: AnisotropyMethod::Exact,
+            direct_balls: Some((rng.range(0.005, 0.1), rng.range(0.0, 1.0))),
+        };
+        let spec = SpatialSpec { input: SpatialInput::Dimensionless(d), delta_a_override: None };
+        let x = Axis::linspace("dimensionless.z_a", -1.5, 1.5, 17);
+        let y = Axis::linspace("omega", 0.05, 5.0, 150);
+        for q in [Quantity::Margin, Quantity::Verdict] {
+            let s = MapSettings { balls: Balls::Free, quantity: q, omega: None };
+            let mut rows = vec![];
+            stability_map(&spec, &x, &y, &s, &Control::none(), &mut |_, r| {
+                rows.push(r.to_vec());
+                true
+            })
+            .unwrap();
+            for (i, &z) in x.values.iter().enumerate() {
+                let mut di = d;
+                di.z_a = z;
+                let ss = StateSpace::new(&SpatialModel::from_dimensionless(&di).unwrap(), Balls::Free).unwrap();
+                for (j, &w) in y.values.iter().enumerate() {
+                    let cell = rows[j][i];
+                    match q {
+                        Quantity::Margin => {
+                            let want = spectral_abscissa(&ss.at(w), ss.states).unwrap();
+                            worst = worst.max((cell.margin - want).abs());
+                            assert!((cell.margin - want).abs() <= 1e-10 * (1.0 + w * w) + 1e-12, "z_a = {z}, Ω = {w}: {} vs QR {want}", cell.margin);
+                        }
+                        Quantity::Verdict => {
+                            assert_eq!(cell.stable, strictly_stable_at(&ss, w), "z_a = {z}, Ω = {w}");
+                            stable += usize::from(cell.stable);
+                        }
+                    }
+                }
+            }
+        }
+    }
+    assert!(stable > 100, "{stable}");
+    eprintln!("worst difference to QR {worst:e}");
+}

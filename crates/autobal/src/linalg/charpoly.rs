@@ -51,8 +51,9 @@ pub struct PencilTerms {
 pub struct SpeedPolynomial {
     /// State dimension `N = 2n`.
     pub states: usize,
-    /// `coef[k][j]`: coefficient of `Ω^j` in `c_k`.
-    coef: [[f64; D]; D],
+    /// `by_power[j][k]`: coefficient of `Ω^j` in `c_k` (exact zeros for `j > k` and `k > N`),
+    /// stored by power of `Ω` so that [`SpeedPolynomial::at`] runs Horner on all `c_k` at once.
+    by_power: [[f64; D]; D],
     /// `Σ_j |coef[k][j]| Ω^j` bounds rounding; kept per k for the error estimate.
     abs: [[f64; D]; D],
 }
@@ -74,28 +75,31 @@ impl SpeedPolynomial {
         if lead == 0.0 || !lead.is_finite() {
             return None;
         }
-        let mut coef = [[0.0; D]; D];
+        let mut by_power = [[0.0; D]; D];
         let mut abs = [[0.0; D]; D];
         for k in 0..=nn {
             for j in 0..=k {
-                coef[k][j] = det[nn - k][j] / lead;
-                abs[k][j] = coef[k][j].abs();
+                by_power[j][k] = det[nn - k][j] / lead;
+                abs[k][j] = by_power[j][k].abs();
             }
         }
-        Some(SpeedPolynomial { states: nn, coef, abs })
+        Some(SpeedPolynomial { states: nn, by_power, abs })
     }
 
-    /// Coefficients `c_0..c_N` at speed `omega` (Horner in `Ω`).
+    /// Coefficients `c_0..c_N` at speed `omega` (Horner in `Ω`; `c_k = 0` for `k > N`).
+    ///
+    /// All `c_k` at once, over the coefficients by power of `Ω` with fixed bounds (vectorised:
+    /// 13 steps of 13 multiply-adds, against 78 dependent scalar steps row by row). For each
+    /// `c_k` the powers above `k` are exact zeros, so the steps before `Ω^k` leave `0·Ω + 0 = 0`
+    /// and the one at `Ω^k` gives its coefficient exactly: the same operations in the same
+    /// order as Horner on `c_k` alone, the same doubles (a zero's sign aside).
     #[inline]
     pub fn at(&self, omega: f64) -> [f64; D] {
-        let mut c = [0.0; D];
-        for k in 0..=self.states {
-            let row = &self.coef[k];
-            let mut v = row[k];
-            for j in (0..k).rev() {
-                v = v * omega + row[j];
+        let mut c = self.by_power[D - 1];
+        for row in self.by_power[..D - 1].iter().rev() {
+            for (x, r) in c.iter_mut().zip(row) {
+                *x = *x * omega + r;
             }
-            c[k] = v;
         }
         c
     }

@@ -251,11 +251,11 @@ const PARAM_DEGREE: usize = 4;
 /// model at every check point to 1e-12 of each matrix's size (rounding of the model's own
 /// arithmetic; a dependence that is not polynomial of degree ≤ 4 misses by far more).
 #[derive(Debug, Clone)]
-struct ParamTerms {
+pub(crate) struct ParamTerms {
     /// The coordinate of the parameter axis (0: `x`, 1: `y`).
     axis: usize,
     /// `C_0..C_d`.
-    coef: Vec<PencilTerms>,
+    pub(crate) coef: Vec<PencilTerms>,
 }
 
 impl ParamTerms {
@@ -263,7 +263,7 @@ impl ParamTerms {
     /// whose interpolant (Newton's divided differences on the first `d + 1` samples, then
     /// monomial coefficients) reproduces every other sample within `1e-12` of the largest
     /// entry of that matrix over the samples; `None` when none does or a sample is refused.
-    fn fit(axis: usize, terms: impl Fn(f64) -> Result<PencilTerms>) -> Option<ParamTerms> {
+    pub(crate) fn fit(axis: usize, terms: impl Fn(f64) -> Result<PencilTerms>) -> Option<ParamTerms> {
         let mut s = Vec::with_capacity(PARAM_SAMPLES.len());
         for u in PARAM_SAMPLES {
             s.push(terms(u).ok()?);
@@ -331,7 +331,7 @@ impl ParamTerms {
     }
 
     /// `T(u)` (Horner).
-    fn at(&self, u: f64) -> PencilTerms {
+    pub(crate) fn at(&self, u: f64) -> PencilTerms {
         let d = self.coef.len() - 1;
         let mut t = self.coef[d];
         let n = t.n;

@@ -27,9 +27,10 @@
 use crate::builder::builder;
 use crate::control::{Control, StopReason};
 use crate::error::{Error, Result};
-use crate::linalg::charpoly::{AbscissaTracker, SpeedPolynomial};
+use crate::linalg::charpoly::{AbscissaTracker, PencilTerms, PlanePolynomial, SpeedPolynomial};
 use crate::linalg::eigen::{eigenvalues, routh_hurwitz_stable, spectral_abscissa};
 pub use crate::paths::Axis;
+use crate::spatial::boundary::ParamTerms;
 use crate::spatial::linear_model::{Balls, Pencil, StateSpace};
 use crate::spatial::params::SpatialModel;
 use crate::spatial::paths::SpatialSpec;
@@ -178,10 +179,17 @@ struct Line {
 }
 
 impl Line {
-    fn new(spec: &impl ModelFamily, balls: Balls) -> Result<Self> {
+    /// The line of `spec`; with `plane` (the family over the other axis and this line's value
+    /// on it) the speed polynomial is the plane's at that value where the plane reproduces this
+    /// model's pencil ([`LinePlane::speed_polynomial`]), and expanded from the model otherwise.
+    fn new(spec: &impl ModelFamily, balls: Balls, plane: Option<(&LinePlane, f64)>) -> Result<Self> {
         let model = spec.model()?;
         let ss = StateSpace::new(&model, balls)?;
-        let poly = SpeedPolynomial::new(&Pencil::terms(&model, balls)?);
+        let terms = Pencil::terms(&model, balls)?;
+        let poly = match plane.and_then(|(p, v)| p.speed_polynomial(v, &terms)) {
+            Some(p) => Some(p),
+            None => SpeedPolynomial::new(&terms),
+        };
         let nec = autobalancing_ranges(&model).ranges;
         Ok(Line { ss, poly, nec, tracker: AbscissaTracker::new(), last: None, continued: 0, direct: 0 })
     }
@@ -272,6 +280,76 @@ impl Line {
             }
         }
         self.last = Some(cells[k - 1].stable);
+    }
+}
+
+/// Fewest lines for which [`LinePlane`] is fitted: below, its ten sample models and the
+/// plane's expansion (~7 line expansions) cost more than expanding every line.
+const PLANE_LINES: usize = 16;
+
+/// Largest difference, relative to each matrix's largest entry, between a line's pencil and
+/// the fitted family's at its value for the line to take the plane's polynomial: the bound
+/// [`ParamTerms::fit`] accepts (rounding of the model's own arithmetic; the tracked abscissa is
+/// certified to `1e-10 (1 + |λ|)`, far above what a perturbation of the entries this small moves
+/// the eigenvalues of these well-conditioned 12-state models).
+const PLANE_MATCH: f64 = 1e-12;
+
+/// The family along the axis of the lines (the one that is not the speed) as an exact
+/// polynomial in its scaled coordinate `u = (v − lo)/(hi − lo)` ([`ParamTerms::fit`]: eq (6) is
+/// affine in `z̄_A` and the damping coefficients), and with degree ≤ 2 its characteristic
+/// polynomial over the whole plane `det P(λ, Ω, u)` ([`PlanePolynomial`]), expanded once: each
+/// line's [`SpeedPolynomial`] is then one Horner pass in `u` over its coefficients instead of a
+/// Laplace expansion of its own pencil (171 k instructions a line).
+struct LinePlane {
+    param: ParamTerms,
+    plane: PlanePolynomial,
+    lo: f64,
+    hi: f64,
+}
+
+impl LinePlane {
+    /// Fit the family over the values of `a` (at least [`PLANE_LINES`] of them, not all equal);
+    /// `None` where it is not a polynomial of degree ≤ 2 or a sample is refused.
+    fn new(spec: &impl ModelFamily, a: &Axis, balls: Balls) -> Option<Self> {
+        if a.values.len() < PLANE_LINES {
+            return None;
+        }
+        let lo = a.values.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = a.values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        if !(hi > lo) {
+            return None;
+        }
+        let param = ParamTerms::fit(0, |u| Pencil::terms(&spec.with(&a.path, (lo + (hi - lo) * u).clamp(lo, hi))?.model()?, balls))?;
+        let plane = PlanePolynomial::new(&param.coef)?;
+        Some(LinePlane { param, plane, lo, hi })
+    }
+
+    /// The speed polynomial of the line at `v` whose model's pencil is `t`, from the plane,
+    /// when the fitted family at `v` reproduces `t` (every entry within [`PLANE_MATCH`] of its
+    /// matrix's largest entry); `None` otherwise (the caller expands `t`).
+    fn speed_polynomial(&self, v: f64, t: &PencilTerms) -> Option<SpeedPolynomial> {
+        let u = ((v - self.lo) / (self.hi - self.lo)).clamp(0.0, 1.0);
+        let f = self.param.at(u);
+        if f.n != t.n {
+            return None;
+        }
+        let n = t.n;
+        let mats = |t: &PencilTerms| [t.m, t.g[0], t.g[1], t.k[0], t.k[1], t.k[2]];
+        for (a, b) in mats(&f).iter().zip(&mats(t)) {
+            let mut scale = 0.0f64;
+            let mut diff = 0.0f64;
+            for i in 0..n {
+                for j in 0..n {
+                    scale = scale.max(a[i][j].abs()).max(b[i][j].abs());
+                    diff = diff.max((a[i][j] - b[i][j]).abs());
+                }
+            }
+            // `!(≤)`: a NaN refuses the plane
+            if !(diff <= PLANE_MATCH * scale) {
+                return None;
+            }
+        }
+        self.plane.speed_polynomial(u)
     }
 }
 
@@ -386,7 +464,9 @@ pub(crate) fn ask_control<'a>(
 
 /// `y` is the speed: one line per `x`, rows are speeds.
 fn map_speed_rows<F: ModelFamily>(spec: &F, x: &Axis, y: &Axis, s: &MapSettings, on_row: &mut dyn FnMut(usize, &[Cell]) -> bool) -> Result<MapOutcome> {
-    let mut lines: Vec<Line> = x.values.par_iter().map(|&v| Line::new(&spec.with(&x.path, v)?, s.balls)).collect::<Result<_>>()?;
+    let plane = LinePlane::new(spec, x, s.balls);
+    let mut lines: Vec<Line> =
+        x.values.par_iter().map(|&v| Line::new(&spec.with(&x.path, v)?, s.balls, plane.as_ref().map(|p| (p, v)))).collect::<Result<_>>()?;
     let nx = x.values.len();
     let block = (BLOCK_CELLS / nx).max(1);
     let mut out = MapOutcome { complete: true, ..Default::default() };
@@ -427,6 +507,7 @@ fn map_speed_rows<F: ModelFamily>(spec: &F, x: &Axis, y: &Axis, s: &MapSettings,
 /// `x` is the speed: one line per row.
 fn map_speed_columns<F: ModelFamily>(spec: &F, x: &Axis, y: &Axis, s: &MapSettings, on_row: &mut dyn FnMut(usize, &[Cell]) -> bool) -> Result<MapOutcome> {
     let block = (BLOCK_CELLS / x.values.len()).max(2 * rayon::current_num_threads());
+    let plane = LinePlane::new(spec, y, s.balls);
     let mut out = MapOutcome { complete: true, ..Default::default() };
     let mut j0 = 0;
     while j0 < y.values.len() {
@@ -434,7 +515,7 @@ fn map_speed_columns<F: ModelFamily>(spec: &F, x: &Axis, y: &Axis, s: &MapSettin
         let rows: Vec<(Vec<Cell>, usize, usize)> = y.values[j0..j1]
             .par_iter()
             .map(|&v| {
-                let mut l = Line::new(&spec.with(&y.path, v)?, s.balls)?;
+                let mut l = Line::new(&spec.with(&y.path, v)?, s.balls, plane.as_ref().map(|p| (p, v)))?;
                 let mut cells = Vec::with_capacity(x.values.len());
                 l.cells(&x.values, s.quantity, s.balls, &mut cells)?;
                 Ok((cells, l.continued, l.direct))
@@ -628,6 +709,43 @@ mod tests {
     use super::*;
     use crate::spatial::params::DimensionlessInput;
     use crate::spatial::paths::SpatialInput;
+
+    #[test]
+    fn a_lines_polynomial_from_the_plane_is_its_own_expansion() {
+        // z̄_A enters eq (6) affinely, so the plane's polynomial at each line is the exact
+        // characteristic polynomial of that line's pencil, computed by other sums (Horner in u
+        // over the plane's expansion) than the line's own Laplace expansion: equal to rounding.
+        // Bound: 1e-11 of the size of the terms summed into each c_k(Ω)
+        // (`SpeedPolynomial::magnitudes`), a few hundred ε for the ≤ 12-fold products of the
+        // expansion and the fit's rounding (the pencil reproduced to ≤ 1e-15 of each matrix
+        // here; measured below 1e-13).
+        let spec = SpatialSpec { input: SpatialInput::Dimensionless(DimensionlessInput::default()), delta_a_override: None };
+        let x = Axis::linspace("dimensionless.z_a", -2.0, 2.0, 21);
+        let plane = LinePlane::new(&spec, &x, Balls::Free).expect("z_a is affine");
+        let mut worst = 0.0f64;
+        for &v in &x.values {
+            let t = Pencil::terms(&spec.with(&x.path, v).unwrap().model().unwrap(), Balls::Free).unwrap();
+            let got = plane.speed_polynomial(v, &t).expect("the plane reproduces the line's pencil");
+            let want = SpeedPolynomial::new(&t).unwrap();
+            for w in [0.05, 0.7, 1.3, 2.9, 4.5] {
+                let (a, b, size) = (got.at(w), want.at(w), want.magnitudes(w));
+                for k in 0..=12 {
+                    let e = (a[k] - b[k]).abs() / size[k];
+                    worst = worst.max(e);
+                    assert!(e <= 1e-11, "z_a = {v}, Ω = {w}: c_{k} {} vs {} (size {})", a[k], b[k], size[k]);
+                }
+            }
+            // a pencil the plane does not reproduce takes its own expansion
+            let mut off = t;
+            off.m[0][0] *= 1.0 + 1e-9;
+            assert!(plane.speed_polynomial(v, &off).is_none());
+        }
+        eprintln!("worst relative difference {worst:e}");
+        // too few lines, or a parameter the model does not follow as a polynomial of degree
+        // ≤ 2 (ρ̄s): no plane
+        assert!(LinePlane::new(&spec, &Axis::linspace("dimensionless.z_a", -2.0, 2.0, PLANE_LINES - 1), Balls::Free).is_none());
+        assert!(LinePlane::new(&spec, &Axis::linspace("dimensionless.rho_s", 0.2, 0.8, 20), Balls::Free).is_none());
+    }
 
     #[test]
     fn a_map_refuses_a_speed_that_is_not_one_even_with_a_speed_axis() {
