@@ -7,6 +7,7 @@ use crate::command;
 use crate::sweep::{columns, SPATIAL_SUMMARY_COLUMNS, SUMMARY_COLUMNS};
 use anyhow::{anyhow, bail, Context, Result};
 use autobal::control::Control;
+use autobal::sweep::LINEAR_SUMMARY_COLUMNS;
 use serde_json::{json, Value};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -259,7 +260,7 @@ impl command::Command for Args {
         shards.sort_by_key(|s| kn(s).map(|x| x.0).unwrap_or(0));
         let head = shards[0].csv.lines().next().unwrap_or_default().to_string();
         let paths: Vec<&str> = shards[0].json["paths"].as_array().map(|p| p.iter().filter_map(Value::as_str).collect()).unwrap_or_default();
-        if head != columns(&paths, SUMMARY_COLUMNS).join(",") && head != columns(&paths, SPATIAL_SUMMARY_COLUMNS).join(",") {
+        if ![SUMMARY_COLUMNS, SPATIAL_SUMMARY_COLUMNS, LINEAR_SUMMARY_COLUMNS].iter().any(|c| head == columns(&paths, c).join(",")) {
             bail!("{}: its CSV header is not a sweep's over {} (`{head}`)", name(&shards[0]), paths.join(", "));
         }
         let mut csv = String::with_capacity(shards.iter().map(|s| s.csv.len()).sum());
