@@ -183,3 +183,28 @@ fn merge_joins_a_linear_sweeps_shards() {
     assert_eq!(rows("merged.csv"), whole);
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// The windows example's natural frequencies at rest with the balls as rings are quoted as the
+/// command prints them, to the two decimals quoted: `ω2 = 535.21` as reduced (the example's
+/// `modes = 4`), `535.19` for the full model (the guide said `535.19` for the reduced rotor).
+#[test]
+fn the_docs_quote_the_windows_examples_natural_frequencies() {
+    let cfg = example("linear_rotor_windows.toml");
+    let w = |sets: &[&str]| -> Vec<f64> {
+        let mut a = vec!["critical", "--config", &cfg, "--format", "json"];
+        a.extend(sets);
+        json(&a)["natural_frequencies"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect()
+    };
+    let (red, full) = (w(&[]), w(&["--set", "linear_rotor.modes=0"]));
+    // pairs (x and y): the first and third of each list
+    let (r1, r2, f1, f2) = (format!("{:.2}", red[0]), format!("{:.2}", red[2]), format!("{:.2}", full[0]), format!("{:.2}", full[2]));
+    assert_eq!((r1.as_str(), r2.as_str(), f1.as_str(), f2.as_str()), ("175.21", "535.21", "175.21", "535.19"));
+    let root = format!("{}/../..", env!("CARGO_MANIFEST_DIR"));
+    let guide = std::fs::read_to_string(format!("{root}/docs/guide/your-own-rotor.md")).unwrap().replace('\n', " ");
+    let note = std::fs::read_to_string(format!("{root}/docs/notes/flexible-shaft-literature.md")).unwrap().replace('\n', " ");
+    for (name, text) in [("guide", &guide), ("note", &note)] {
+        assert!(text.contains(&format!("`ω1 = {r1}`, `ω2 = {r2} =")), "{name}: the reduced rotor's frequencies");
+        assert!(text.contains(&format!("`{f1}`, `{f2}` rad/s")), "{name}: the full model's frequencies");
+        assert!(!text.contains(&format!("`ω2 = {f2}")), "{name}: the full model's ω2 quoted as the reduced rotor's");
+    }
+}
