@@ -153,7 +153,8 @@ fn ranges_of_a_linear_rotor_are_the_exact_ranges_of_stability() {
 }
 
 /// `merge` joins the shards of a linear rotor's sweep (it refused their CSV header before):
-/// the merged CSV is the unsharded sweep's in every column but the wall time.
+/// the merged CSV is the unsharded sweep's in every column but the wall time, and it draws the
+/// sweep's figures beside it.
 #[test]
 fn merge_joins_a_linear_sweeps_shards() {
     let dir = tmp("merge");
@@ -181,6 +182,11 @@ fn merge_joins_a_linear_sweeps_shards() {
     let whole = rows("whole.csv");
     assert_eq!(whole.len(), 4);
     assert_eq!(rows("merged.csv"), whole);
+    // merge draws the sweep's figures from the merged table (it drew none before)
+    for f in ["merged_peak.svg", "merged_final.svg"] {
+        let svg = std::fs::read_to_string(dir.join(f)).unwrap();
+        assert!(svg.starts_with("<svg") && svg.contains("Linear rotor sweep"), "{f}");
+    }
     std::fs::remove_dir_all(&dir).ok();
 }
 
