@@ -321,7 +321,7 @@ pub fn partial_text(cfg: &LinearRotorConfig, r: &RotorStability) -> String {
         "a plane's capacity n m R is below its share of the unbalance".to_string()
     };
     format!(
-        "no balanced state at {} of {} speeds, {} to {} ({why}): the partially balanced state there (balls bunched, residual static unbalance {} to {} kg m), its verdicts below\n",
+        "no balanced state at {} of {} speeds, {} to {} ({why}): the verdicts there are the partially balanced state's (balls bunched, residual static unbalance {} to {} kg m)\n",
         partial.len(),
         r.points.len(),
         speed_text(a.omega),

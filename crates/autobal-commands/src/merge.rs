@@ -1,5 +1,6 @@
 //! `autobal merge`: the outputs of `autobal sweep --shard K/N` joined into the unsharded sweep's
-//! `STEM.csv` and `STEM.json` (and `STEM.parquet`), every shard checked first (the same sweep,
+//! `STEM.csv` and `STEM.json` (and `STEM.parquet`) with its figures `STEM_peak.svg` and
+//! `STEM_final.svg` ([`merged_figures`]), every shard checked first (the same sweep,
 //! each shard once and complete, every row its JSON's run), as one command ([`Args`] ->
 //! `run` -> [`Output`]).
 

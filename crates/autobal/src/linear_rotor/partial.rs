@@ -18,9 +18,9 @@
 //! docs of [`crate::rotor_partial`]).
 //!
 //! # What a state is
-//! Balanced where every plane's race centre is on the axis, `|d_k| ≤ 1e-6 ℓ`
-//! ([`state_kind`]; `ℓ = (Σ|m e| + Σ n m_b R)/m_t` an eccentricity scale, `m_t = u_xᵀ M u_x`),
-//! else partially balanced. Its residual static unbalance is `s0 + Σ_j m_b R e^{iψ_j}`
+//! Partially balanced where a plane's balls are bunched (one angle) with its race centre off
+//! the axis, `|d_k| > 1e-6 ℓ` ([`state_kind`]; `ℓ = (Σ|m e| + Σ n m_b R)/m_t` an eccentricity
+//! scale, `m_t = u_xᵀ M u_x`), else balanced. Its residual static unbalance is `s0 + Σ_j m_b R e^{iψ_j}`
 //! ([`residual_static`]); the rotor's nodes carry no axial positions, so no couple is formed.
 
 use super::runup::plane_positions;
@@ -91,16 +91,29 @@ pub fn plane_whirl(rotor: &LinearRotor, x: &[f64]) -> Vec<f64> {
     plane_positions(rotor, x).iter().map(|(a, b)| a.hypot(*b)).collect()
 }
 
-/// Balanced where every race centre is on the axis to `1e-6 ℓ`, else partially balanced
-/// (module docs).
+/// Partially balanced where a plane is at its capacity limit, its balls bunched (all at one
+/// angle to `1e-6` rad) with its race centre off the axis (more than `1e-6 ℓ`); else balanced
+/// (module docs). A balanced state's race centres are on the axis only to first order where the
+/// nodes tilt (the tilted ring pushes the balls at second order), so the balls' spread, not the
+/// displacement alone, tells the states apart.
 pub fn state_kind(field: &LinearRotorField, x: &[f64]) -> StateKind {
     let r = field.rotor();
     let tol = 1e-6 * length_scale(r);
-    if plane_whirl(r, x).iter().all(|d| *d <= tol) {
-        StateKind::Balanced
-    } else {
-        StateKind::PartiallyBalanced
+    let n = r.dofs();
+    let whirl = plane_whirl(r, x);
+    let mut j = n;
+    for (b, d) in r.balancers.iter().zip(whirl) {
+        let psi = &x[j..j + b.balls];
+        j += b.balls;
+        let bunched = psi.iter().all(|a| {
+            let w = (a - psi[0]).rem_euclid(std::f64::consts::TAU);
+            w.min(std::f64::consts::TAU - w) <= 1e-6
+        });
+        if b.balls > 0 && bunched && d > tol {
+            return StateKind::PartiallyBalanced;
+        }
     }
+    StateKind::Balanced
 }
 
 /// The structure's stationary displacement `p` (turning axes) with every ball at `psi` (rad,
