@@ -370,8 +370,9 @@ struct MergeFlags {
     /// The shards' CSV files (each with its STEM.json beside it), in any order
     #[arg(required = true, value_name = "SHARD.csv")]
     shards: Vec<PathBuf>,
-    /// Output stem: STEM.csv and STEM.json, as the unsharded sweep writes them (a folder,
-    /// `DIR/`: DIR/sweep.*); written only when every shard checks out
+    /// Output stem: STEM.csv, STEM.json and the figures STEM_peak.svg and STEM_final.svg, as
+    /// the unsharded sweep writes them (a folder, `DIR/`: DIR/sweep.*); written only when every
+    /// shard checks out
     #[arg(long, short)]
     out: PathBuf,
     /// Also write STEM.parquet, as `autobal sweep --parquet` does

@@ -1,7 +1,9 @@
 //! `autobal critical`: paper 000's critical speeds (eq (16)), sensitivity criterion and
 //! autobalancing ranges where its 12-state model represents the config ([`crate::output`]),
 //! else the general route ([`crate::general_campbell::critical`]: the locked critical speeds
-//! and the exact stability ranges of the nonlinear equations' linearisation).
+//! and the exact stability ranges of the nonlinear equations' linearisation); on a linear rotor
+//! config its natural frequencies at rest with the balls as rings
+//! ([`crate::linear_rotor_summary::critical`]).
 
 use crate::command::{self, ConfigSource, Route};
 use crate::config::{self, Config};
@@ -29,6 +31,9 @@ pub enum Output {
     Closed(Box<Config>),
     /// The general route.
     General(Box<(GeneralRotor, GeneralCritical)>),
+    /// A linear rotor config: its natural frequencies at rest with the balls as rings
+    /// ([`crate::linear_rotor_summary::critical`]).
+    LinearRotor(Box<crate::output::JsonTable>),
 }
 
 impl command::Command for Args {
@@ -36,7 +41,15 @@ impl command::Command for Args {
     type Output = Output;
 
     fn run(&self, control: &Control) -> Result<Output> {
-        let (root, source) = self.config.read()?;
+        let (root, source) = self.config.read_any()?;
+        if crate::linear_rotor::is_linear(&root) {
+            if self.omega_max.is_some() {
+                bail!("--omega-max: a linear rotor's `critical` gives its natural frequencies at rest and takes no speed axis (autobal campbell --omega-max gives the critical speeds over one)");
+            }
+            let cfg = crate::linear_rotor::from_table(&root, self.config.dir())?;
+            let (json, table) = crate::linear_rotor_summary::critical(&cfg)?;
+            return Ok(Output::LinearRotor(Box::new(crate::output::JsonTable { json, table })));
+        }
         if self.route.is_general(&root) {
             let g = crate::general::rotor_of(&root)?;
             config::check_entries(&root, "critical", &[config::simulation_model(&root)])?;
@@ -59,12 +72,14 @@ impl command::Output for Output {
         Ok(match self {
             Output::Closed(cfg) => crate::output::critical_json(cfg),
             Output::General(b) => general_campbell::critical_json(&b.0, &b.1),
+            Output::LinearRotor(t) => t.json.clone(),
         })
     }
     fn table(&self) -> Result<String> {
         Ok(match self {
             Output::Closed(cfg) => crate::output::critical_table(cfg),
             Output::General(b) => general_campbell::critical_table(&b.0, &b.1),
+            Output::LinearRotor(t) => t.table.clone(),
         })
     }
 }

@@ -35,6 +35,7 @@ pub mod general_campbell;
 pub mod inertia;
 pub mod linear;
 pub mod linear_rotor;
+pub mod linear_rotor_summary;
 pub mod map;
 pub mod merge;
 pub mod num;

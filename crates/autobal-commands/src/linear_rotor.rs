@@ -232,7 +232,7 @@ pub fn stability_json(cfg: &LinearRotorConfig, r: &RotorStability, red: &Option<
 
 /// The table of `stability`.
 pub fn stability_table(cfg: &LinearRotorConfig, r: &RotorStability, red: &Option<Reduction>, omega_max: f64) -> Result<String> {
-    let mut s = String::from("Linear rotor: the balanced state's exact linear stability over speed\n");
+    let mut s = String::from("Linear rotor: the stationary state's exact linear stability over speed (balanced, else partially balanced)\n");
     s.push_str(&format!(
         "model: {} DOFs ({}), {} balancer plane(s) with {} balls, {} unbalance(s); {}\n",
         cfg.rotor.dofs(),
@@ -250,12 +250,17 @@ pub fn stability_table(cfg: &LinearRotorConfig, r: &RotorStability, red: &Option
     let wn = natural_frequencies(red.as_ref().map_or(&cfg.rotor, |r| &r.rotor), 4)?;
     s.push_str(&format!("natural frequencies at rest, balls as rings: {}\n", wn.iter().map(|w| speed_text(*w)).collect::<Vec<_>>().join(", ")));
     s.push_str(&reduction_text(red));
+    s.push_str(&partial_text(cfg, r));
     if r.stable_ranges.is_empty() {
         s.push_str(&format!("stable: nowhere in (0, {}]\n", speed_text(omega_max)));
     }
     for st in &r.stable_ranges {
         let to = if st.to_is_boundary { speed_text(st.to) } else { format!("{} (end of the axis)", speed_text(st.to)) };
-        s.push_str(&format!("stable: {} to {to}\n", speed_text(st.from)));
+        // the states the range covers: "partially balanced, stable" never reads "stable"
+        let mut kinds: Vec<&str> = r.points.iter().filter(|p| p.omega >= st.from && p.omega <= st.to).filter_map(|p| p.state.map(|k| k.name())).collect();
+        kinds.dedup();
+        let label = if kinds.contains(&"partially balanced") { format!("{}, stable", kinds.join(" then ")) } else { "stable".to_string() };
+        s.push_str(&format!("{label}: {} to {to}\n", speed_text(st.from)));
     }
     if let Some(f) = &r.family {
         let list = |v: &[autobal::analysis::StableRange]| {
@@ -278,9 +283,63 @@ pub fn stability_table(cfg: &LinearRotorConfig, r: &RotorStability, red: &Option
     }
     let missing: Vec<_> = r.points.iter().filter(|p| p.verdict.is_none()).collect();
     if let Some(p) = missing.first() {
-        s.push_str(&format!("no balanced state found at {} of {} speeds (first: {})\n", missing.len(), r.points.len(), p.failure.clone().unwrap_or_default()));
+        s.push_str(&format!(
+            "no stationary state found at {} of {} speeds (first: {})\n",
+            missing.len(),
+            r.points.len(),
+            p.failure.clone().unwrap_or_default()
+        ));
     }
     Ok(s)
+}
+
+/// The line of `stability`'s table where the balls cannot balance: no balanced state where the
+/// capacity `n m_b R` falls short, the partially balanced state (balls bunched) analysed
+/// instead, with its residual static unbalance ([`autobal::linear_rotor::partial`]); empty
+/// where every state found is balanced.
+pub fn partial_text(cfg: &LinearRotorConfig, r: &RotorStability) -> String {
+    use autobal::linear_rotor::partial::{residual_static, static_unbalance};
+    use autobal::rotor_stability::StateKind;
+    let partial: Vec<_> = r.points.iter().filter(|p| p.state == Some(StateKind::PartiallyBalanced)).collect();
+    let (Some(a), Some(b)) = (partial.first(), partial.last()) else { return String::new() };
+    let rotor = &cfg.rotor;
+    let s0 = static_unbalance(rotor);
+    let cap: f64 = rotor.balancers.iter().map(|b| b.balls as f64 * b.ball_mass * b.radius).sum();
+    let res = |p: &autobal::rotor_stability::SpeedPoint| {
+        let v = residual_static(rotor, &p.member_psi);
+        v[0].hypot(v[1])
+    };
+    let (lo, hi) = partial.iter().map(|p| res(p)).fold((f64::INFINITY, 0.0f64), |(l, h), v| (l.min(v), h.max(v)));
+    let why = if rotor.balancers.len() == 1 {
+        format!(
+            "the balls' capacity n m R = {} kg m {} the static unbalance {} kg m",
+            fmt_num(crate::num::round_sig(cap, 6).unwrap_or(cap)),
+            if cap < s0[0].hypot(s0[1]) { "<" } else { "against" },
+            fmt_num(crate::num::round_sig(s0[0].hypot(s0[1]), 6).unwrap_or(0.0))
+        )
+    } else {
+        "a plane's capacity n m R is below its share of the unbalance".to_string()
+    };
+    format!(
+        "no balanced state at {} of {} speeds, {} to {} ({why}): the verdicts there are the partially balanced state's (balls bunched, residual static unbalance {} to {} kg m)\n",
+        partial.len(),
+        r.points.len(),
+        speed_text(a.omega),
+        speed_text(b.omega),
+        fmt_num(crate::num::round_sig(lo, 4).unwrap_or(lo)),
+        fmt_num(crate::num::round_sig(hi, 4).unwrap_or(hi))
+    )
+}
+
+/// Why a linear rotor's map has cells without a stationary state, for its summary line (empty
+/// for other rotors or where every cell has one): the map follows the balanced state, which
+/// does not exist where the balls' capacity falls short.
+pub fn map_none_reason(linear: bool, none: usize) -> &'static str {
+    if linear && none > 0 {
+        ": no balanced state where the balls' capacity n m_b R falls short of the unbalance (the map follows the balanced state; autobal stability analyses the partially balanced one)"
+    } else {
+        ""
+    }
 }
 
 /// The config's parameter paths with its matrix files read once, relative to `dir`

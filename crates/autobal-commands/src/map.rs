@@ -463,12 +463,13 @@ impl command::Output for Output {
                 self.secs,
                 self.wrote()
             ),
-            RouteOutput::General { outcome, .. } => format!(
-                "general route: {done} rows × {n} points in {:.2} s ({per_point:.2} µs per point; {} from the closed form, {} continued from a neighbour, {} without a stationary state); stationary state: {}{}\n",
+            RouteOutput::General { outcome, linear, .. } => format!(
+                "general route: {done} rows × {n} points in {:.2} s ({per_point:.2} µs per point; {} from the closed form, {} continued from a neighbour, {} without a stationary state{}); stationary state: {}{}\n",
                 self.secs,
                 outcome.closed_form,
                 outcome.continued,
                 outcome.none,
+                crate::linear_rotor::map_none_reason(*linear, outcome.none),
                 Output::state(outcome),
                 self.wrote()
             ),

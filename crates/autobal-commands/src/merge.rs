@@ -1,5 +1,6 @@
 //! `autobal merge`: the outputs of `autobal sweep --shard K/N` joined into the unsharded sweep's
-//! `STEM.csv` and `STEM.json` (and `STEM.parquet`), every shard checked first (the same sweep,
+//! `STEM.csv` and `STEM.json` (and `STEM.parquet`) with its figures `STEM_peak.svg` and
+//! `STEM_final.svg` ([`merged_figures`]), every shard checked first (the same sweep,
 //! each shard once and complete, every row its JSON's run), as one command ([`Args`] ->
 //! `run` -> [`Output`]).
 
@@ -7,6 +8,7 @@ use crate::command;
 use crate::sweep::{columns, SPATIAL_SUMMARY_COLUMNS, SUMMARY_COLUMNS};
 use anyhow::{anyhow, bail, Context, Result};
 use autobal::control::Control;
+use autobal::sweep::LINEAR_SUMMARY_COLUMNS;
 use serde_json::{json, Value};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -33,6 +35,10 @@ pub struct Output {
     pub csv: PathBuf,
     pub json_path: PathBuf,
     pub parquet: Option<PathBuf>,
+    /// The figures drawn from the merged table, as `sweep` draws them ([`merged_figures`]),
+    /// and the files they were written to (`STEM_peak.svg`, `STEM_final.svg`).
+    pub figures: Vec<command::Figure>,
+    pub figure_paths: Vec<PathBuf>,
 }
 
 impl command::Output for Output {
@@ -40,8 +46,48 @@ impl command::Output for Output {
         Ok(self.json.clone())
     }
     fn table(&self) -> Result<String> {
-        Ok(format!("merged {} shards, {} points: wrote {}, {}\n", self.shards, self.points, self.csv.display(), self.json_path.display()))
+        let figs: Vec<String> = self.figure_paths.iter().map(|p| format!(", {}", p.display())).collect();
+        Ok(format!("merged {} shards, {} points: wrote {}, {}{}\n", self.shards, self.points, self.csv.display(), self.json_path.display(), figs.concat()))
     }
+    /// `sweep_peak` and `sweep_final`, as the unsharded sweep's ([`merged_figures`]).
+    fn figures(&self) -> Result<Vec<command::Figure>> {
+        Ok(self.figures.iter().map(|f| command::Figure::new(&f.id, f.plot.clone())).collect())
+    }
+}
+
+/// The figures of a merged sweep, drawn from its table as `sweep` draws them
+/// ([`crate::linear_rotor::sweep_plots_of`]): each run's `peak_amplitude` and `final_amplitude`
+/// against the first axis' value, a curve per value of the other axes; the model and the unit
+/// of lengths from the header's columns and the JSON's problem (a spatial config with
+/// `[dimensionless]`: `ρ_s`, else mm). At most [`crate::sweep::FIGURE_POINTS`] runs are drawn
+/// (none past that, as `sweep`'s figures of a spilled sweep).
+pub fn merged_figures(head: &str, csv: &str, json: &Value) -> Vec<command::Figure> {
+    let paths: Vec<String> = json["paths"].as_array().map(|p| p.iter().filter_map(Value::as_str).map(String::from).collect()).unwrap_or_default();
+    let refs: Vec<&str> = paths.iter().map(String::as_str).collect();
+    let is = |c: &[&str]| head == columns(&refs, c).join(",");
+    let (model, of, units) = if is(LINEAR_SUMMARY_COLUMNS) {
+        ("Linear rotor", "first balancer plane", ("mm", 1e3))
+    } else if is(SPATIAL_SUMMARY_COLUMNS) {
+        let dimensionless = json["problem"]["config"].get("dimensionless").is_some();
+        ("Spatial rotor", "first balancer plane", if dimensionless { ("ρ_s", 1.0) } else { ("mm", 1e3) })
+    } else {
+        ("Planar rotor", "rotor", ("mm", 1e3))
+    };
+    let names: Vec<&str> = head.split(',').collect();
+    let col = |n: &str| names.iter().position(|h| *h == n);
+    let (Some(pk), Some(fi)) = (col("peak_amplitude"), col("final_amplitude")) else { return vec![] };
+    let rows: Vec<(Vec<f64>, [f64; 2])> = csv
+        .lines()
+        .skip(1)
+        .filter_map(|l| {
+            let f: Vec<f64> = l.split(',').map(|v| v.parse().unwrap_or(f64::NAN)).collect();
+            (f.len() == names.len()).then(|| (f[1..1 + paths.len()].to_vec(), [f[pk], f[fi]]))
+        })
+        .collect();
+    if rows.is_empty() || rows.len() > crate::sweep::FIGURE_POINTS {
+        return vec![];
+    }
+    crate::linear_rotor::sweep_plots_of(model, of, &paths, &rows, units).into_iter().map(|(id, plot)| command::Figure { id, plot }).collect()
 }
 
 /// Largest shard file `merge` reads (CSV or JSON), bytes: a row is well under 1 kB, so 1 GiB
@@ -193,6 +239,10 @@ impl command::Command for Args {
             outputs.input("shard", s).input("shard JSON", &json_of(s));
         }
         outputs.output("--out", &cp).output("--out", &jp);
+        let svg = crate::sweep::figure_paths(&out);
+        for (p, _) in &svg {
+            outputs.output("--out", p);
+        }
         if a.parquet {
             outputs.output("--parquet", &pp);
         }
@@ -259,7 +309,7 @@ impl command::Command for Args {
         shards.sort_by_key(|s| kn(s).map(|x| x.0).unwrap_or(0));
         let head = shards[0].csv.lines().next().unwrap_or_default().to_string();
         let paths: Vec<&str> = shards[0].json["paths"].as_array().map(|p| p.iter().filter_map(Value::as_str).collect()).unwrap_or_default();
-        if head != columns(&paths, SUMMARY_COLUMNS).join(",") && head != columns(&paths, SPATIAL_SUMMARY_COLUMNS).join(",") {
+        if ![SUMMARY_COLUMNS, SPATIAL_SUMMARY_COLUMNS, LINEAR_SUMMARY_COLUMNS].iter().any(|c| head == columns(&paths, c).join(",")) {
             bail!("{}: its CSV header is not a sweep's over {} (`{head}`)", name(&shards[0]), paths.join(", "));
         }
         let mut csv = String::with_capacity(shards.iter().map(|s| s.csv.len()).sum());
@@ -303,6 +353,15 @@ impl command::Command for Args {
             }
             pq = Some(t);
         }
+        let figures = merged_figures(&head, &csv, &json);
+        let mut staged_svg = vec![];
+        for (p, id) in &svg {
+            if let Some(f) = figures.iter().find(|f| f.id == *id) {
+                let mut s = crate::outfile::Staged::create("--out", p)?;
+                s.write_all(f.plot.to_svg().as_bytes()).with_context(|| format!("--out: cannot write {}", p.display()))?;
+                staged_svg.push((s, p.clone()));
+            }
+        }
         let mut c = crate::outfile::Staged::create("--out", &cp)?;
         c.write_all(csv.as_bytes()).with_context(|| format!("--out: cannot write {}", cp.display()))?;
         let mut j = crate::outfile::Staged::create("--out", &jp)?;
@@ -312,11 +371,16 @@ impl command::Command for Args {
         }
         c.commit()?;
         j.commit()?;
+        let mut figure_paths = vec![];
+        for (s, p) in staged_svg {
+            s.commit()?;
+            figure_paths.push(p);
+        }
         let parquet = match pq {
             Some(t) => Some(t.finish()?),
             None => None,
         };
-        Ok(Output { json, shards: n, points, csv: cp, json_path: jp, parquet })
+        Ok(Output { json, shards: n, points, csv: cp, json_path: jp, parquet, figures, figure_paths })
     }
 }
 
@@ -356,8 +420,22 @@ mod tests {
         let merged = Args { shards: shards.clone(), out: dir.join("merged"), parquet: false }.run(&Control::none()).unwrap();
         assert_eq!(
             merged.table().unwrap(),
-            format!("merged 2 shards, 6 points: wrote {}, {}\n", dir.join("merged.csv").display(), dir.join("merged.json").display())
+            format!(
+                "merged 2 shards, 6 points: wrote {}, {}, {}, {}\n",
+                dir.join("merged.csv").display(),
+                dir.join("merged.json").display(),
+                dir.join("merged_peak.svg").display(),
+                dir.join("merged_final.svg").display()
+            )
         );
+        // the figures are the unsharded sweep's, drawn from the merged table
+        let whole_figs = args.run(&Control::none()).unwrap().figures().unwrap();
+        let merged_figs = merged.figures().unwrap();
+        assert_eq!(merged_figs.len(), 2);
+        for (a, b) in whole_figs.iter().zip(&merged_figs) {
+            assert_eq!((a.id.as_str(), a.plot.to_svg()), (b.id.as_str(), b.plot.to_svg()));
+            assert_eq!(std::fs::read_to_string(dir.join(format!("merged_{}.svg", &a.id[6..]))).unwrap(), a.plot.to_svg());
+        }
         let whole = args.run(&Control::none()).unwrap().json().unwrap();
         let runs = |v: &Value| -> Vec<Value> {
             v["runs"]

@@ -555,9 +555,7 @@ fn no_balance(rotor: &Rotor) -> Error {
         match rotor {
             Rotor::Planar(_) => "no semi-balanced state to lock the balls in: the balls cannot supply the unbalance (|B| > n m3 r)",
             Rotor::Spatial(_) => "no balanced state to lock the balls in: the balls' capacity Σ m R of a plane is below the unbalance it must cancel",
-            Rotor::Linear(_) => {
-                "no balanced state to lock the balls in: every balancer plane needs at least 2 balls and the capacity n m_b R for its share of the unbalance"
-            }
+            Rotor::Linear(r) => return crate::linear_rotor::partial::no_balanced_state(r, "no balanced state to lock the balls in"),
         },
     )
 }

@@ -116,8 +116,11 @@ pub struct PartialState {
 fn residuals(field: &Field, x: &[f64]) -> ([f64; 2], [f64; 2], f64, f64) {
     let psi = ball_angles(field, x);
     match field {
-        // refused by partially_balanced
-        Field::Linear(_) => ([0.0; 2], [0.0; 2], 0.0, 0.0),
+        // no axial positions: no couple
+        Field::Linear(f) => {
+            let s0 = crate::linear_rotor::partial::static_unbalance(f.rotor());
+            (crate::linear_rotor::partial::residual_static(f.rotor(), &psi), [0.0; 2], s0[0].hypot(s0[1]), 0.0)
+        }
         Field::Planar(f) => {
             let p = f.rotor();
             let (es, ec) = p.gamma.sin_cos();
@@ -156,8 +159,22 @@ fn residuals(field: &Field, x: &[f64]) -> ([f64; 2], [f64; 2], f64, f64) {
 fn plane_shares(field: &Field, psi: &[f64]) -> Vec<PlaneShare> {
     let bunched = |a: &[f64]| a.iter().all(|v| wrap(v - a[0]).abs() <= 1e-6);
     match field {
-        // refused by partially_balanced
-        Field::Linear(_) => vec![],
+        // one plane's share is the static unbalance; with more it depends on the speed (NaN)
+        Field::Linear(f) => {
+            let r = f.rotor();
+            let s0 = crate::linear_rotor::partial::static_unbalance(r);
+            let mut j = 0;
+            r.balancers
+                .iter()
+                .filter(|b| b.balls > 0)
+                .map(|b| {
+                    let a = &psi[j..j + b.balls];
+                    j += b.balls;
+                    let share = if r.balancers.len() == 1 { s0[0].hypot(s0[1]) } else { f64::NAN };
+                    PlaneShare { capacity: b.balls as f64 * b.ball_mass * b.radius, share, bunched: bunched(a) }
+                })
+                .collect()
+        }
         Field::Planar(f) => {
             let p = f.rotor();
             let cap = (0..p.n).map(|j| p.ball_mass(j) * p.r).sum();
@@ -197,7 +214,8 @@ fn plane_shares(field: &Field, psi: &[f64]) -> Vec<PlaneShare> {
 /// The whirl radius at each ball plane ([`PartialState::whirl`]).
 fn whirl(field: &Field, x: &[f64]) -> Vec<f64> {
     match field {
-        Field::Planar(_) | Field::Linear(_) => vec![amplitude(field, x)],
+        Field::Planar(_) => vec![amplitude(field, x)],
+        Field::Linear(f) => crate::linear_rotor::partial::plane_whirl(f.rotor(), x),
         Field::Spatial(f) => {
             let r = f.rotor();
             let y = f.full_state(0.0, x);
@@ -257,15 +275,8 @@ fn starts(field: &Field) -> Vec<(Start, Vec<f64>)> {
 /// stationary state Newton's method reaches from the starts of [`Start`], each with its
 /// residual unbalance and its stability, **stable states first** (then by residual static
 /// unbalance). Errors: the model's refusals ([`Rotor::field`]: real balls have no
-/// linearisation), the linear rotor ([`Rotor::Linear`]: no partially balanced branch yet,
-/// [`Error::InvalidParameter`] naming `linear_rotor`), and `omega` when no start converges.
+/// linearisation), and `omega` when no start converges.
 pub fn partially_balanced(rotor: &Rotor, omega: f64) -> Result<Vec<PartialState>> {
-    if let Rotor::Linear(_) = rotor {
-        return Err(Error::invalid(
-            "linear_rotor",
-            "the partially balanced states are not available for the linear rotor yet (its stationary analyses start from the balanced state only)",
-        ));
-    }
     let field = rotor.field(omega)?;
     let periodic = field.period().is_some();
     let mut opts = NewtonOptions::default();

@@ -185,10 +185,11 @@ impl Rotor {
     /// Spatial rotor: each plane's balls bunched at the angle of its share of the unbalance
     /// ([`SpatialField::balanced_guess`]'s targets), the rotor on the axis at rest: not itself
     /// stationary (the residual unbalance makes the rotor whirl), a start for Newton. Linear
-    /// rotor: `None` (no partially balanced branch yet).
+    /// rotor: every ball opposite the static unbalance, the structure at its stationary
+    /// displacement under them ([`crate::linear_rotor::partial::bunched_guess`]).
     pub fn bunched_guess(field: &Field) -> Option<Vec<f64>> {
         match field {
-            Field::Linear(_) => None,
+            Field::Linear(f) => crate::linear_rotor::partial::bunched_guess(f),
             Field::Planar(f) => {
                 use num_complex::Complex64 as C;
                 let p = f.rotor();
@@ -254,11 +255,11 @@ impl Rotor {
         }
     }
 
-    /// What the stationary state `x` of `field` is ([`StateKind`]). The linear rotor's states
-    /// all come from its balanced guess ([`Rotor::bunched_guess`] has none for it): balanced.
+    /// What the stationary state `x` of `field` is ([`StateKind`]); the linear rotor's:
+    /// [`crate::linear_rotor::partial::state_kind`] (every race centre on the axis: balanced).
     pub fn state_kind(field: &Field, x: &[f64]) -> StateKind {
         match field {
-            Field::Linear(_) => StateKind::Balanced,
+            Field::Linear(f) => crate::linear_rotor::partial::state_kind(f, x),
             Field::Planar(f) => {
                 let p = f.rotor();
                 let off = (x[0] + p.s2 * p.gamma.cos()).hypot(x[1] + p.s2 * p.gamma.sin());
@@ -757,9 +758,10 @@ fn explain_failure(rotor: &Rotor, failure: &str) -> String {
     match rotor {
         Rotor::Planar(_) => "no semi-balanced state at this speed: the balls cannot supply the unbalance it needs (|B| > n m3 r, planar::stationary)".into(),
         Rotor::Spatial(_) => "no balanced state: the balls' capacity Σ m R of a plane is below the unbalance it must cancel".into(),
-        Rotor::Linear(_) => {
-            "no balanced state: every balancer plane needs at least 2 balls and the capacity n m_b R for its share of the unbalance (LinearRotorField::balanced_guess)".into()
-        }
+        Rotor::Linear(r) => format!(
+            "no balanced state ({}) and no start for the partially balanced one (no balls, no unbalance, or the structure singular at this speed)",
+            crate::linear_rotor::partial::why_not_balanced(r)
+        ),
     }
 }
 
@@ -895,7 +897,6 @@ mod tests {
             crate::rotor_campbell::campbell_locked(&linear, &[w]).unwrap_err(),
             crate::rotor_campbell::locked_critical_speeds(&linear, w, 10).unwrap_err(),
             crate::rotor_campbell::locked_rotor(&linear, w, true).unwrap_err(),
-            crate::rotor_partial::partially_balanced(&linear, w).unwrap_err(),
         ];
         for e in errors {
             assert_eq!(e.field(), Some("linear_rotor"), "{e}");

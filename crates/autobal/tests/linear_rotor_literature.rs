@@ -13,7 +13,8 @@
 //! gyroscopic terms, two 4 kg disks at the quarter points (nodes 2, 6), bearings 5e6 N/m,
 //! 2000 N s/m; a two-ball balancer (0.03 kg each, race 0.08 m, drag 0.05 N m s) in the plane of
 //! the unbalance (2e-4 kg m), reduced to 4 interior mode pairs as the example says. First two
-//! critical speeds `ω1 = 175.21`, `ω2 = 535.19 = 3.05 ω1` rad/s (balls as rings).
+//! natural frequencies at rest with the balls as rings `ω1 = 175.21`, `ω2 = 535.21 = 3.05 ω1` rad/s
+//! (the full model's: `175.21`, `535.19`; `ω1` below is the full model's).
 //!
 //! The finding: the balanced state is stable in windows, `[1.623, 2.225] ω1` and from `3.985 ω1`
 //! with the balancer at node 2. The window closes below the second critical speed, where the

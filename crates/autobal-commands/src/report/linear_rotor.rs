@@ -118,7 +118,13 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
         speed(omega_max),
         if rotor.is_isotropic() { "an equilibrium in axes turning with the rotor: eigenvalues" } else { "anisotropic: a periodic orbit, Floquet multipliers" }
     ));
-    s.summary.push(format!("Linear rotor: the balanced state is stable {verdict}."));
+    // balls too light: the partially balanced state, said so (lr::partial_text)
+    let partial = lr::partial_text(cfg, &st);
+    if !partial.is_empty() {
+        s.p(super::html::esc(partial.trim_end()));
+    }
+    let what = if partial.is_empty() { "the balanced state" } else { "the stationary state (balanced, else partially balanced)" };
+    s.summary.push(format!("Linear rotor: {what} is stable {verdict}."));
     s.figure("linear_rotor_stability_margin", lr::margin_plot(&st, omega_max), "The balanced state's stability margin over speed (largest Re λ, or the largest Floquet exponent of a periodic orbit), the exactly stable ranges shaded: <code>autobal stability --svg</code>'s figure.");
 
     // the structure's Campbell diagram without the balls

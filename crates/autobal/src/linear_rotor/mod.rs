@@ -144,6 +144,7 @@ pub mod campbell;
 pub mod config;
 pub mod field;
 pub mod npz;
+pub mod partial;
 pub mod reduce;
 pub mod runup;
 pub mod shaft;

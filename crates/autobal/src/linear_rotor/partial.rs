@@ -1,0 +1,350 @@
+//! The partially balanced state of a [`LinearRotor`] (issue 19): where the balls' capacity
+//! `n m_b R` falls short of the unbalance their plane must cancel, no balanced state exists
+//! ([`LinearRotorField::balanced_guess`] has none) and the balls come to rest bunched, leaving
+//! a residual unbalance. The state itself is found by the model-agnostic pipeline
+//! ([`crate::rotor_partial::partially_balanced`], and [`crate::rotor_stability`] over speed)
+//! from the start this module gives ([`bunched_guess`], [`crate::rotor_stability::Rotor::bunched_guess`]
+//! on [`crate::rotor_stability::Rotor::Linear`]), as for the planar and spatial rotors.
+//!
+//! # The start
+//! Every ball of every plane at one angle, opposite the static unbalance
+//! `s0 = Σ m e e^{i phase}` (`ψ = arg(−s0)`), at rest in axes turning with the rotor, and the
+//! structure at its stationary displacement under those balls: with the velocities and
+//! accelerations zero the structure's residual ([`LinearRotorField::residuals`]) is affine in
+//! its displacement `p`, `r(p) = b − S p` (the model is linear in `p` at fixed ball angles:
+//! module docs of [`super`]), so `S` is read column by column from `r(0) − r(e_j)` and
+//! `p = S⁻¹ b` exactly (to round-off). Newton's method then moves the balls and the structure
+//! together to the stationary state (the balls along the race centre's displacement, module
+//! docs of [`crate::rotor_partial`]).
+//!
+//! # What a state is
+//! Partially balanced where a plane's balls are bunched (one angle) with its race centre off
+//! the axis, `|d_k| > 1e-6 ℓ` ([`state_kind`]; `ℓ = (Σ|m e| + Σ n m_b R)/m_t` an eccentricity
+//! scale, `m_t = u_xᵀ M u_x`), else balanced. Its residual static unbalance is `s0 + Σ_j m_b R e^{iψ_j}`
+//! ([`residual_static`]); the rotor's nodes carry no axial positions, so no couple is formed.
+
+use super::runup::plane_positions;
+use super::{Direction, LinearRotor, LinearRotorField};
+use crate::ode::lu::Lu;
+use crate::rotor_stability::StateKind;
+
+/// The static unbalance `s0 = Σ m e e^{i phase}` (kg·m, rotor frame).
+pub fn static_unbalance(rotor: &LinearRotor) -> [f64; 2] {
+    rotor.unbalances.iter().fold([0.0, 0.0], |s, u| [s[0] + u.me * u.phase.cos(), s[1] + u.me * u.phase.sin()])
+}
+
+/// The residual static unbalance `s0 + Σ_j m_b R e^{iψ_j}` (kg·m) of the balls at `psi` (all
+/// planes in order, relative to the rotor).
+pub fn residual_static(rotor: &LinearRotor, psi: &[f64]) -> [f64; 2] {
+    let mut s = static_unbalance(rotor);
+    let mut j = 0;
+    for b in &rotor.balancers {
+        for _ in 0..b.balls {
+            let (sn, cs) = psi[j].sin_cos();
+            s[0] += b.ball_mass * b.radius * cs;
+            s[1] += b.ball_mass * b.radius * sn;
+            j += 1;
+        }
+    }
+    s
+}
+
+/// Why a linear rotor has no balanced state, in one line beginning with `what` (the field
+/// `balancer`): one plane, its capacity `n m_b R` against the static unbalance `|s0|`; several,
+/// the rule (each plane's share depends on the speed).
+pub fn no_balanced_state(rotor: &LinearRotor, what: &str) -> crate::error::Error {
+    crate::error::Error::invalid("balancer", format!("{what}: {} (autobal stability analyses the partially balanced state)", why_not_balanced(rotor)))
+}
+
+/// Why a linear rotor has no balanced state ([`no_balanced_state`]'s reason).
+pub fn why_not_balanced(rotor: &LinearRotor) -> String {
+    let fmt = crate::error::fmt_num;
+    match rotor.balancers.as_slice() {
+        [b] if b.balls < 2 => format!("the plane has {} ball(s), balancing needs 2", b.balls),
+        [b] => {
+            let s0 = static_unbalance(rotor);
+            let cap = b.balls as f64 * b.ball_mass * b.radius;
+            format!(
+                "the balls' capacity n m_b R = {} kg m {} the static unbalance {} kg m",
+                fmt(cap),
+                if cap < s0[0].hypot(s0[1]) { "<" } else { "against" },
+                fmt(s0[0].hypot(s0[1]))
+            )
+        }
+        _ => "every balancer plane needs at least 2 balls and the capacity n m_b R for its share of the unbalance".into(),
+    }
+}
+
+/// The eccentricity scale `ℓ = (Σ|m e| + Σ n m_b R) / m_t` (m), `m_t = u_xᵀ M u_x` (module docs).
+pub fn length_scale(rotor: &LinearRotor) -> f64 {
+    let n = rotor.dofs();
+    let xs: Vec<usize> = (0..n).filter(|&i| rotor.dof_node(i).is_some_and(|(_, d)| d == Direction::X)).collect();
+    let mt: f64 = xs.iter().map(|&i| xs.iter().map(|&j| rotor.m[i * n + j]).sum::<f64>()).sum();
+    let u: f64 =
+        rotor.unbalances.iter().map(|u| u.me.abs()).sum::<f64>() + rotor.balancers.iter().map(|b| b.balls as f64 * b.ball_mass * b.radius).sum::<f64>();
+    u / mt
+}
+
+/// The race centres' displacement `|d_k|` of every plane in the state `x` (turning axes: the
+/// whirl radius at each plane).
+pub fn plane_whirl(rotor: &LinearRotor, x: &[f64]) -> Vec<f64> {
+    plane_positions(rotor, x).iter().map(|(a, b)| a.hypot(*b)).collect()
+}
+
+/// Partially balanced where a plane is at its capacity limit, its balls bunched (all at one
+/// angle to `1e-6` rad) with its race centre off the axis (more than `1e-6 ℓ`); else balanced
+/// (module docs). A balanced state's race centres are on the axis only to first order where the
+/// nodes tilt (the tilted ring pushes the balls at second order), so the balls' spread, not the
+/// displacement alone, tells the states apart.
+pub fn state_kind(field: &LinearRotorField, x: &[f64]) -> StateKind {
+    let r = field.rotor();
+    let tol = 1e-6 * length_scale(r);
+    let n = r.dofs();
+    let whirl = plane_whirl(r, x);
+    let mut j = n;
+    for (b, d) in r.balancers.iter().zip(whirl) {
+        let psi = &x[j..j + b.balls];
+        j += b.balls;
+        let bunched = psi.iter().all(|a| {
+            let w = (a - psi[0]).rem_euclid(std::f64::consts::TAU);
+            w.min(std::f64::consts::TAU - w) <= 1e-6
+        });
+        if b.balls > 0 && bunched && d > tol {
+            return StateKind::PartiallyBalanced;
+        }
+    }
+    StateKind::Balanced
+}
+
+/// The structure's stationary displacement `p` (turning axes) with every ball at `psi` (rad,
+/// relative to the rotor), the velocities zero: `p = S⁻¹ b` from the affine residual (module
+/// docs). `None` where `S` is singular.
+fn structure_at(field: &LinearRotorField, psi: f64) -> Option<Vec<f64>> {
+    let r = field.rotor();
+    let (n, nb, nc) = (r.dofs(), r.total_balls(), field.coords());
+    let mut x = vec![0.0; 2 * nc];
+    x[n..n + nb].iter_mut().for_each(|v| *v = psi);
+    let acc = vec![0.0; nc];
+    let b: Vec<f64> = field.residuals(0.0, &x, &acc)[..n].to_vec();
+    // S e_j = r(0) − r(e_j): a unit displacement of one DOF (the residual is affine in p)
+    let mut s = vec![0.0; n * n];
+    for j in 0..n {
+        x[j] = 1.0;
+        let rj = field.residuals(0.0, &x, &acc);
+        x[j] = 0.0;
+        for i in 0..n {
+            s[i * n + j] = b[i] - rj[i];
+        }
+    }
+    let lu = Lu::factored(s, n)?;
+    let mut p = b;
+    lu.solve(&mut p);
+    p.iter().all(|v| v.is_finite()).then_some(p)
+}
+
+/// The start of the partially balanced state (module docs): every ball at one angle `ψ`, at
+/// rest in axes turning with the rotor, the structure at its stationary displacement under
+/// them. `ψ` is where the first plane's race centre displacement `d(ψ)` points along the balls
+/// (`d × e^{iψ} = 0`, `d · e^{iψ} > 0`: each ball pulled by `m_b Ω² d` towards where it sits, the
+/// branch that can be stable; on a Jeffcott rotor the balls at the heavy side below the critical
+/// speed and opposite it above), found on `d(ψ) = d̄ + cos ψ d_c + sin ψ d_s` from the
+/// displacements at `ψ = 0, π/2, π` (exact where the balls' tilt terms vanish, a start for
+/// Newton otherwise), the root nearest `arg(−s0)` (`s0` the static unbalance); with no such
+/// root, `ψ = arg(−s0)`. `None` without balls, at rest (`Ω = 0`), without an unbalance, or where
+/// the stationary equations at fixed balls are singular.
+pub fn bunched_guess(field: &LinearRotorField) -> Option<Vec<f64>> {
+    use std::f64::consts::{FRAC_PI_2, PI, TAU};
+    let r = field.rotor();
+    let nb = r.total_balls();
+    let s0 = static_unbalance(r);
+    if nb == 0 || field.omega() == 0.0 || s0 == [0.0, 0.0] {
+        return None;
+    }
+    let opposite = s0[1].atan2(s0[0]) + PI;
+    let plane = |p: &[f64]| plane_positions(r, p)[0];
+    let (d0, d1, d2) = (plane(&structure_at(field, 0.0)?), plane(&structure_at(field, FRAC_PI_2)?), plane(&structure_at(field, PI)?));
+    let mean = [(d0.0 + d2.0) / 2.0, (d0.1 + d2.1) / 2.0];
+    let (dc, ds) = ([d0.0 - mean[0], d0.1 - mean[1]], [d1.0 - mean[0], d1.1 - mean[1]]);
+    let d = |a: f64| [mean[0] + a.cos() * dc[0] + a.sin() * ds[0], mean[1] + a.cos() * dc[1] + a.sin() * ds[1]];
+    let cross = |a: f64| {
+        let v = d(a);
+        v[0] * a.sin() - v[1] * a.cos()
+    };
+    let along = |a: f64| {
+        let v = d(a);
+        v[0] * a.cos() + v[1] * a.sin()
+    };
+    // the sign changes of d × e on 360 steps, each bisected to round-off
+    let steps = 360;
+    let mut best: Option<f64> = None;
+    for k in 0..steps {
+        let (mut lo, mut hi) = (TAU * k as f64 / steps as f64, TAU * (k + 1) as f64 / steps as f64);
+        let (flo, fhi) = (cross(lo), cross(hi));
+        if flo == 0.0 || flo.signum() == fhi.signum() {
+            continue;
+        }
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            if cross(mid).signum() == flo.signum() {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        let a = 0.5 * (lo + hi);
+        let off = |x: f64| {
+            let w = (x - opposite).rem_euclid(TAU);
+            w.min(TAU - w)
+        };
+        if along(a) > 0.0 && best.is_none_or(|b| off(a) < off(b)) {
+            best = Some(a);
+        }
+    }
+    let psi = best.unwrap_or(opposite);
+    let p = structure_at(field, psi)?;
+    let n = r.dofs();
+    let mut x = vec![0.0; 2 * field.coords()];
+    x[..n].copy_from_slice(&p);
+    x[n..n + nb].iter_mut().for_each(|v| *v = psi);
+    Some(x)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::linear_rotor::{BalancerPlane, Frame};
+
+    /// On a Jeffcott rotor the start is the partially balanced state itself, in closed form:
+    /// `d = H Ω² (s0 + n m_b R e^{iψ})`, `H = 1/(k − m_t Ω² + i c Ω)` (`m_t = m + n m_b`: the balls
+    /// ride with the race centre), the balls where `d` points along them, `Im(d e^{−iψ}) = 0`,
+    /// i.e. `sin(ψ + δ) = −(n m_b R/s0) sin δ`, `δ = −arg H`, of the two roots the one with
+    /// `Re(d e^{−iψ}) > 0`: `ψ` to `1e-12` rad, `d` to `1e-12` of `|d|` (2 × 2 solves, a bisection
+    /// to round-off), and the field vanishes there; below the critical speed the balls sit on the
+    /// unbalance's side, above it opposite.
+    #[test]
+    fn the_start_is_the_jeffcott_rotors_partial_state_in_closed_form() {
+        use crate::analysis::VectorField;
+        use num_complex::Complex64 as C;
+        let (m, k, c, me) = (3.0, 4e5, 30.0, 2e-3);
+        let b = BalancerPlane { node: 0, radius: 0.05, balls: 2, ball_mass: 0.01, drag: 0.01, offset: 0.0 };
+        let r = LinearRotor::jeffcott(m, k, c, me, b);
+        let cap = 2.0 * 0.01 * 0.05;
+        let mt = m + 2.0 * 0.01;
+        let wn = (k / mt).sqrt();
+        for w in [0.7 * wn, 1.6 * wn] {
+            let f = LinearRotorField::new(&r, w, Frame::Rotating).unwrap();
+            assert!(f.balanced_guess().is_none(), "capacity 1e-3 < 2e-3: no balanced state");
+            let x = bunched_guess(&f).unwrap();
+            let h = 1.0 / C::new(k - w * w * mt, c * w);
+            let delta = -h.arg();
+            let beta = (cap / me * delta.sin()).asin();
+            let d_at = |psi: f64| h * (w * w) * (C::new(me, 0.0) + cap * C::from_polar(1.0, psi));
+            let psi = [std::f64::consts::PI - delta + beta, -delta - beta].into_iter().find(|&p| (d_at(p) * C::from_polar(1.0, -p)).re > 0.0).unwrap();
+            let off = (x[2] - psi).rem_euclid(std::f64::consts::TAU);
+            assert!(off.min(std::f64::consts::TAU - off) <= 1e-12 && x[2] == x[3], "Ω {w}: ψ {:?} vs {psi}", &x[2..4]);
+            let d = d_at(psi);
+            assert!((C::new(x[0], x[1]) - d).norm() <= 1e-12 * d.norm(), "{:?} vs {d}", &x[..2]);
+            let mut rhs = vec![0.0; f.dim()];
+            f.rhs(0.0, &x, &mut rhs);
+            let sc = f.scales();
+            assert!(rhs.iter().zip(&sc).all(|(v, s)| v.abs() <= 1e-9 * s * w), "Ω {w}: not stationary {rhs:?}");
+            assert_eq!(state_kind(&f, &x), StateKind::PartiallyBalanced);
+            // heavy side below ω_n (|ψ| < π/2), opposite above
+            assert_eq!(psi.cos() > 0.0, w < wn, "Ω {w}: ψ {psi}");
+        }
+    }
+
+    /// Paper 004's Jeffcott rotor with balls too light for its unbalance, as the planar model
+    /// and as its linear preset ([`LinearRotor::from_planar`]): other equations, other fields.
+    fn short_jeffcott() -> (crate::planar::PlanarRotor, crate::rotor_stability::Rotor) {
+        let p = crate::planar::PlanarRotor { s2: 0.0, m3: 0.02, ..crate::planar::PlanarRotor::paper() };
+        let l = crate::rotor_stability::Rotor::Linear(LinearRotor::from_planar(&p).unwrap());
+        (p, l)
+    }
+
+    /// The linear preset's partially balanced state is the planar model's: the balls' angles to
+    /// `1e-9` rad, the residual unbalance and the whirl radius to `1e-9` relative (Newton to
+    /// ~1e-12 on both), the verdict the same and the spectral abscissa to `1e-9` of the largest
+    /// rate (two linearisations of the same motion in other coordinates), at 0.8 and 2 `ω_n`.
+    #[test]
+    fn the_linear_presets_partial_state_is_the_planar_models() {
+        use crate::rotor_partial::partially_balanced;
+        use crate::rotor_stability::Rotor;
+        let (p, l) = short_jeffcott();
+        let wn = p.natural_frequency();
+        for w in [0.8 * wn, 2.0 * wn] {
+            let a = &partially_balanced(&Rotor::Planar(p.clone()), w).unwrap()[0];
+            let b = &partially_balanced(&l, w).unwrap()[0];
+            assert_eq!(b.kind, StateKind::PartiallyBalanced);
+            assert!(b.planes[0].bunched && (b.planes[0].share - p.m1 * p.s1).abs() < 1e-15, "{:?}", b.planes);
+            for (x, y) in a.psi.iter().zip(&b.psi) {
+                let d = (x - y).rem_euclid(std::f64::consts::TAU);
+                assert!(d.min(std::f64::consts::TAU - d) <= 1e-9, "Ω {w}: ψ {:?} vs {:?}", a.psi, b.psi);
+            }
+            let rel = |x: f64, y: f64| (x - y).abs() / y.abs();
+            assert!(rel(b.residual_static_fraction, a.residual_static_fraction) <= 1e-9, "{} vs {}", b.residual_static_fraction, a.residual_static_fraction);
+            assert!(rel(b.whirl[0], a.whirl[0]) <= 1e-9, "{:?} vs {:?}", b.whirl, a.whirl);
+            assert_eq!(a.stability.verdict, b.stability.verdict, "Ω {w}");
+            let rho = a.stability.threshold / crate::analysis::NEUTRAL_TOLERANCE;
+            assert!((a.stability.abscissa - b.stability.abscissa).abs() <= 1e-9 * rho, "Ω {w}: {} vs {}", a.stability.abscissa, b.stability.abscissa);
+            eprintln!(
+                "Ω/ω_n {}: ψ {:?}, residual {}, whirl {:?}, {:?} {}",
+                w / wn,
+                b.psi,
+                b.residual_static_fraction,
+                b.whirl,
+                b.stability.verdict,
+                b.stability.abscissa
+            );
+        }
+    }
+
+    /// A run in time at constant speed (fixed axes, DOP853 at `rtol = 1e-11`) from the balls near
+    /// the bunched angle ends on the stable partially balanced state found by Newton: the balls'
+    /// angles and the race centre's whirl radius and phase (`arg c − Ω t`) agree to the
+    /// integration tolerance (bound `1e-8`, the run's error over `Ω t ≈ 7000` rad at this `rtol`;
+    /// measured `3e-12` rad and `1.6e-10` of the radius; the transient left after `40/|λ|`,
+    /// `λ` the state's abscissa, is `e^{−40}` of the start's offset).
+    #[test]
+    fn a_run_in_time_ends_on_the_partial_state() {
+        use crate::rotor_partial::partially_balanced;
+        use crate::rotor_stability::Rotor;
+        let (p, l) = short_jeffcott();
+        let Rotor::Linear(r) = &l else { unreachable!() };
+        let w = 2.0 * p.natural_frequency();
+        let s = &partially_balanced(&l, w).unwrap()[0];
+        assert_eq!(s.stability.verdict, crate::analysis::Verdict::Stable);
+        let t_end = 40.0 / -s.stability.abscissa;
+        let settings = super::super::runup::RunSettings {
+            t_end,
+            dt: t_end / 100.0,
+            rtol: 1e-11,
+            atol: 1e-14,
+            method: crate::ode::Method::Dop853,
+            max_steps: 50_000_000,
+            max_wall_s: None,
+            physical_nodes: None,
+        };
+        let mut last = None;
+        let psi0 = [s.psi[0] - 0.3, s.psi[1] + 0.2];
+        super::super::runup::simulate_from(r, &crate::drive::Drive::Speed { omega0: w }, &settings, Some(&psi0), &crate::control::Control::none(), |x| {
+            last = Some(x.clone());
+            true
+        })
+        .unwrap();
+        let e = last.unwrap();
+        let tau = std::f64::consts::TAU;
+        let wrap = |a: f64| {
+            let d = a.rem_euclid(tau);
+            d.min(tau - d)
+        };
+        for (a, b) in e.psi.iter().zip(&s.psi) {
+            assert!(wrap(a - b) <= 1e-8, "ψ {:?} vs {:?} at t = {}", e.psi, s.psi, e.t);
+        }
+        let (x, y) = e.planes[0];
+        let d = &s.x;
+        assert!((x.hypot(y) - s.whirl[0]).abs() <= 1e-8 * s.whirl[0], "radius {} vs {}", x.hypot(y), s.whirl[0]);
+        assert!(wrap(y.atan2(x) - w * e.t - d[1].atan2(d[0])) <= 1e-8, "phase");
+        eprintln!("t_end {t_end}: ψ {:?} vs {:?}, radius {} vs {}", e.psi, s.psi, x.hypot(y), s.whirl[0]);
+    }
+}
