@@ -287,6 +287,7 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
     }
     let lr = root.get("linear_rotor").and_then(Value::as_table).ok_or_else(|| Error::invalid("linear_rotor", "expected a table [linear_rotor]"))?;
     check_keys("linear_rotor", "linear_rotor", lr)?;
+    check_run_keys(root)?;
     let top = Item { name: "linear_rotor".into(), t: lr };
     let string = |k: &str| -> Result<Option<&str>> {
         match lr.get(k) {
@@ -642,6 +643,32 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
     let t_end = drive.as_ref().map_or(10.0, |d| d.1);
     let integration = integration(&Section::of(root, "integration"), t_end)?;
     Ok(LinearRotorConfig { rotor, source, omega_max, modes, drive, integration })
+}
+
+/// The keys a linear rotor config's `[drive]` and `[integration]` take ([`crate::config::drive`],
+/// [`crate::config::integration`]); any other is refused by name, as the planar and spatial
+/// configs refuse theirs. The planar rotor's start (`psi0`, `psi_rate0`, `xy0`, `xy_rate0`) is
+/// refused with the linear rotor's: its run starts at rest with the balls spread evenly
+/// (`2π j / n` in each plane).
+fn check_run_keys(root: &Table) -> Result<()> {
+    const DRIVE: &[&str] = &["kind", "omega0", "b", "torque", "omega_idle", "t_off", "t_end", "schedule", "schedule_of"];
+    const INTEGRATION: &[&str] = &["method", "rtol", "atol", "dt", "max_steps", "max_wall_s"];
+    for (name, known) in [("drive", DRIVE), ("integration", INTEGRATION)] {
+        let Some(v) = root.get(name) else { continue };
+        let t = v.as_table().ok_or_else(|| Error::invalid(name, "expected a table"))?;
+        for k in t.keys() {
+            if known.contains(&k.as_str()) {
+                continue;
+            }
+            let field = format!("{name}.{k}");
+            return Err(if name == "drive" && ["psi0", "psi_rate0", "xy0", "xy_rate0"].contains(&k.as_str()) {
+                Error::invalid(field, "a linear rotor's run starts with the structure at rest on the axis and the balls spread evenly at rest relative to the rotor (2π j/n in each plane); its start is not set in the config (`autobal basins` varies the balls' angles)")
+            } else {
+                Error::invalid(field, format!("unknown key (known keys of [{name}] in a linear rotor config: {})", known.join(", ")))
+            });
+        }
+    }
+    Ok(())
 }
 
 /// The name of DOF `i` in the DOF table: direction and node, `x3`, `alpha3` (ROSS's spelling).
