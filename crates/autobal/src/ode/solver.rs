@@ -11,8 +11,23 @@ use crate::error::{Error, Result};
 const STIFF_STEPS: u32 = 15;
 /// Consecutive non-stiff tests that clear the count (Hairer: 6).
 const NONSTIFF_RESET: u32 = 6;
-/// In RODAS phases of [`Method::Auto`], the spectral radius is estimated every this many steps.
+/// In RODAS phases of [`Method::Auto`], the spectral radius is estimated every this many steps;
+/// so are the unresolved modes (the cap on the implicit step), unless they are far from
+/// binding ([`FAR`]).
 const TEST_EVERY: u64 = 5;
+/// Longest interval between two checks for unresolved modes, in implicit steps: the interval
+/// doubles from [`TEST_EVERY`] up to this after each check that finds every mode [`FAR`] from
+/// capping the step, and is back to [`TEST_EVERY`] after any other.
+const TEST_EVERY_FAR: u64 = 20;
+/// A check finds the modes far from capping the step when the longest implicit step allowed
+/// ([`super::Options::h_max_implicit`]; never where it is infinite) is at most `1/FAR` of the
+/// cap under more generous criteria (a mode counts from `Re(h_ref λ) > −(DECAYED + NEAR)`, and
+/// it oscillates from `|Im(h_ref λ)| > κ/2`, allowed `|hλ| ≤ κ/2`): a mode that could cap a step
+/// must first grow `2 FAR`-fold in `|λ|`, or its decay over `h_ref` weaken by `e^NEAR`, or its
+/// frequency double.
+const FAR: f64 = 4.0;
+/// See [`FAR`]: `e^{−0.5}` of decay over `h_ref` (a mode at `Re(h_ref λ) = −3.5` is near).
+const NEAR: f64 = 0.5;
 /// Power iterations per spectral-radius estimate.
 const POWER_ITERATIONS: usize = 10;
 /// Largest Krylov dimension of the check for unresolved modes (the Ritz values are the
@@ -69,6 +84,10 @@ pub struct Solver<'s, S: System> {
     nonstiff_count: u32,
     stiff_needed: u32,
     phase_steps: u64,
+    /// The implicit step (of the phase) at which the next check for unresolved modes runs.
+    next_cap_test: u64,
+    /// Implicit steps from one check for unresolved modes to the next.
+    cap_interval: u64,
     total: Stats,
     started: Option<std::time::Instant>,
 }
@@ -168,6 +187,8 @@ impl<'s, S: System> Solver<'s, S> {
             nonstiff_count: 0,
             stiff_needed: STIFF_STEPS,
             phase_steps: 0,
+            next_cap_test: TEST_EVERY,
+            cap_interval: TEST_EVERY,
             total: Stats::default(),
             started: None,
         })
@@ -215,6 +236,8 @@ impl<'s, S: System> Solver<'s, S> {
         self.stiff_count = 0;
         self.nonstiff_count = 0;
         self.phase_steps = 0;
+        self.next_cap_test = TEST_EVERY;
+        self.cap_interval = TEST_EVERY;
         self.mode_cap = f64::INFINITY;
         self.h_free = 0.0;
         self.mode = if self.opts.method == Method::Rodas { Mode::Implicit } else { Mode::Explicit };
@@ -504,20 +527,26 @@ impl<'s, S: System> Solver<'s, S> {
             rejected_last = false;
             // implicit steps must not step over a mode that grows or decays slowly: RODAS damps
             // an unresolved oscillation (|R(iy)| → 0 as y → ∞), so a slow instability would
-            // never get going. Every TEST_EVERY implicit steps: the modes of J, and a cap on h.
+            // never get going. Every TEST_EVERY implicit steps (up to TEST_EVERY_FAR while every
+            // mode is FAR from capping the step): the modes of J, and a cap on h.
             if self.mode == Mode::Implicit && !fixed {
                 self.phase_steps += 1;
                 if self.phase_steps.is_multiple_of(TEST_EVERY) {
                     self.h_implicit_max = self.h_implicit_max.max(h_old);
+                }
+                if self.phase_steps >= self.next_cap_test {
                     let hm = h_max(self.mode, &self.opts);
                     let h_ref = if hm.is_finite() { hm } else { h.max(self.h_free).max(self.h_implicit_max) };
-                    let cap = self.unresolved_mode_cap(h_old, h_ref);
+                    let (cap, loose) = self.unresolved_mode_cap(h_old, h_ref);
                     if cap.is_finite() && self.mode_cap.is_infinite() {
                         self.h_free = h_ref;
                     } else if cap.is_infinite() {
                         self.h_free = 0.0;
                     }
                     self.mode_cap = cap;
+                    let far = hm.is_finite() && loose >= FAR * hm;
+                    self.cap_interval = if far { (2 * self.cap_interval).min(TEST_EVERY_FAR) } else { TEST_EVERY };
+                    self.next_cap_test = self.phase_steps + self.cap_interval;
                 }
             }
             // automatic switching
@@ -533,6 +562,8 @@ impl<'s, S: System> Solver<'s, S> {
                                 self.mode = Mode::Implicit;
                                 self.stiff_count = 0;
                                 self.phase_steps = 0;
+                                self.next_cap_test = TEST_EVERY;
+                                self.cap_interval = TEST_EVERY;
                                 self.mode_cap = f64::INFINITY;
                                 self.h_free = 0.0;
                                 stats.switches += 1;
@@ -580,10 +611,11 @@ impl<'s, S: System> Solver<'s, S> {
     /// factorisation (`α = 1/(γ h)`, `h` the step just taken): it finds the eigenvalues nearest
     /// `α`, i.e. the slow ones, first; with at most [`KRYLOV`] states the Krylov space is the
     /// whole space and the eigenvalues are exact. In the weighted variables `y_i/(atol_i +
-    /// rtol |y_i|)`.
-    fn unresolved_mode_cap(&mut self, h: f64, h_ref: f64) -> f64 {
+    /// rtol |y_i|)`. Returns the cap and the same under twice as generous criteria (see
+    /// [`FAR`]; at most the cap).
+    fn unresolved_mode_cap(&mut self, h: f64, h_ref: f64) -> (f64, f64) {
         let n = self.n;
-        let Some(jac) = self.jac.as_mut() else { return f64::INFINITY };
+        let Some(jac) = self.jac.as_mut() else { return (f64::INFINITY, f64::INFINITY) };
         let m = n.min(KRYLOV);
         if self.krylov.len() < (KRYLOV + 1) * n {
             self.krylov = vec![0.0; (KRYLOV + 1) * n];
@@ -634,22 +666,28 @@ impl<'s, S: System> Solver<'s, S> {
             let (_, next) = v.split_at_mut((k + 1) * n);
             next[..n].iter_mut().zip(w.iter()).for_each(|(a, x)| *a = x / r);
         }
-        let Ok(mu) = crate::linalg::eigen::hessenberg_eigenvalues(&hess, size) else { return self.mode_cap };
+        let Ok(mu) = crate::linalg::eigen::hessenberg_eigenvalues(&hess, size) else { return (self.mode_cap, 0.0) };
         let alpha = 1.0 / (rosenbrock::GAMMA * h);
         let kappa = RESOLVED_AT_1E8 * (rtol / 1e-8).powf(1.0 / 6.0);
-        let mut cap = f64::INFINITY;
+        let (mut cap, mut loose) = (f64::INFINITY, f64::INFINITY);
         for mu in mu {
             if !(mu.norm() > 0.0) {
                 continue; // an eigenvalue at infinity
             }
             let lambda = alpha - mu.inv();
+            if !(lambda.norm() > 0.0) {
+                continue;
+            }
             // a real decaying mode is only damped faster (0 < R(z) < 1): harmless
             let oscillates = lambda.im.abs() * h_ref > kappa;
-            if lambda.re * h_ref > -DECAYED && (oscillates || lambda.re > 0.0) && lambda.norm() > 0.0 {
+            if lambda.re * h_ref > -DECAYED && (oscillates || lambda.re > 0.0) {
                 cap = cap.min(kappa / lambda.norm());
             }
+            if lambda.re * h_ref > -(DECAYED + NEAR) && (lambda.im.abs() * h_ref > 0.5 * kappa || lambda.re > 0.0) {
+                loose = loose.min(0.5 * kappa / lambda.norm());
+            }
         }
-        cap
+        (cap, loose)
     }
 
     /// Spectral radius of `J` at `(t, self.y)` by power iteration on difference products
