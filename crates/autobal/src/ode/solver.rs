@@ -88,6 +88,11 @@ pub struct Solver<'s, S: System> {
     next_cap_test: u64,
     /// Implicit steps from one check for unresolved modes to the next.
     cap_interval: u64,
+    /// The longest such interval ([`TEST_EVERY_FAR`]; [`TEST_EVERY`] in tests: the schedule
+    /// without the back-off).
+    far_interval: u64,
+    /// Checks for unresolved modes so far.
+    cap_checks: u64,
     total: Stats,
     started: Option<std::time::Instant>,
 }
@@ -189,6 +194,8 @@ impl<'s, S: System> Solver<'s, S> {
             phase_steps: 0,
             next_cap_test: TEST_EVERY,
             cap_interval: TEST_EVERY,
+            far_interval: TEST_EVERY_FAR,
+            cap_checks: 0,
             total: Stats::default(),
             started: None,
         })
@@ -538,6 +545,7 @@ impl<'s, S: System> Solver<'s, S> {
                     let hm = h_max(self.mode, &self.opts);
                     let h_ref = if hm.is_finite() { hm } else { h.max(self.h_free).max(self.h_implicit_max) };
                     let (cap, loose) = self.unresolved_mode_cap(h_old, h_ref);
+                    self.cap_checks += 1;
                     if cap.is_finite() && self.mode_cap.is_infinite() {
                         self.h_free = h_ref;
                     } else if cap.is_infinite() {
@@ -545,7 +553,7 @@ impl<'s, S: System> Solver<'s, S> {
                     }
                     self.mode_cap = cap;
                     let far = hm.is_finite() && loose >= FAR * hm;
-                    self.cap_interval = if far { (2 * self.cap_interval).min(TEST_EVERY_FAR) } else { TEST_EVERY };
+                    self.cap_interval = if far { (2 * self.cap_interval).min(self.far_interval) } else { TEST_EVERY };
                     self.next_cap_test = self.phase_steps + self.cap_interval;
                 }
             }
@@ -775,7 +783,53 @@ fn orthogonalize<const N: usize>(v: &[f64], n: usize, k: usize, w: &mut [f64], c
 
 #[cfg(test)]
 mod tests {
-    use super::{orthogonalize, KRYLOV};
+    use super::{orthogonalize, Solver, KRYLOV};
+    use crate::ode::{Control, Options, System};
+
+    /// A stiff decaying component (`z' = −1e4 z`: the automatic method goes implicit and stays)
+    /// beside an oscillator at 13 rad/s whose damping falls linearly through zero, driven by a
+    /// slow force: `x'' + 2σ(t) x' + 13² x = 1 + 0.1 t`, `σ = 10 − 0.25 t`. Strongly damped at
+    /// first (no mode near capping a step of 1 s: the checks back off), its mode counts for the
+    /// cap from `σ < 3` (t > 28 s) and grows from t = 40 s, from a seed below the tolerances.
+    struct Ramp;
+    impl System for Ramp {
+        fn dim(&self) -> usize {
+            3
+        }
+        fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
+            let sigma = 10.0 - 0.25 * t;
+            dy[0] = -1e4 * y[0];
+            dy[1] = y[2];
+            dy[2] = -169.0 * y[1] - 2.0 * sigma * y[2] + 1.0 + 0.1 * t;
+        }
+    }
+
+    /// Where no mode is near capping the step, checking less often changes nothing: on the ramp
+    /// (the mode arrives after a stretch of backed-off checks, and decides the run: without any
+    /// check RODAS's steps of 1 s damp it, and the oscillation at t = 55 s is ~1 450 times
+    /// smaller) the automatic method with the back-off takes the same steps and ends in the same
+    /// state, bit for bit, as with a check every `TEST_EVERY` steps, with fewer checks.
+    #[test]
+    fn checking_less_often_where_no_mode_is_near_changes_nothing() {
+        let run = |far_interval: u64| {
+            let mut opts = Options::new(1e-8, 1e-10);
+            opts.h_max_implicit = 1.0;
+            let mut s = Solver::new(&Ramp, opts).unwrap();
+            s.far_interval = far_interval;
+            let mut y = [1.0, 0.0, 0.0];
+            let out = s.integrate(0.0, &mut y, 55.0, |_| Control::Continue);
+            assert!(out.status.is_completed(), "{out:?}");
+            (y.map(f64::to_bits), out.stats, s.cap_checks)
+        };
+        let (y_far, stats_far, checks_far) = run(super::TEST_EVERY_FAR);
+        let (y_5, stats_5, checks_5) = run(super::TEST_EVERY);
+        assert!(stats_5.implicit_steps > 1000, "{stats_5:?}");
+        assert_eq!((y_far, stats_far), (y_5, stats_5));
+        assert!(checks_far < checks_5, "{checks_far} checks with the back-off, {checks_5} without");
+        // the oscillation grew (about 28 e-folds from t = 40 s): the checks decide this run
+        let amp = |y: [u64; 3]| (f64::from_bits(y[1]) - 6.5 / 169.0).hypot(f64::from_bits(y[2]) / 13.0);
+        assert!(amp(y_5) > 1e-2, "{}", amp(y_5));
+    }
 
     /// The two plain loops `orthogonalize` replaces (modified Gram–Schmidt, twice, then the
     /// norm), as the check for unresolved modes ran them before.
