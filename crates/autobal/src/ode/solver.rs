@@ -619,8 +619,8 @@ impl<'s, S: System> Solver<'s, S> {
     /// factorisation (`α = 1/(γ h)`, `h` the step just taken): it finds the eigenvalues nearest
     /// `α`, i.e. the slow ones, first; with at most [`KRYLOV`] states the Krylov space is the
     /// whole space and the eigenvalues are exact. In the weighted variables `y_i/(atol_i +
-    /// rtol |y_i|)`. Returns the cap and the same under twice as generous criteria (see
-    /// [`FAR`]; at most the cap).
+    /// rtol |y_i|)`. Returns the cap and the same under the more generous criteria of
+    /// [`FAR`] (at most the cap).
     fn unresolved_mode_cap(&mut self, h: f64, h_ref: f64) -> (f64, f64) {
         let n = self.n;
         let Some(jac) = self.jac.as_mut() else { return (f64::INFINITY, f64::INFINITY) };
