@@ -11,8 +11,23 @@ use crate::error::{Error, Result};
 const STIFF_STEPS: u32 = 15;
 /// Consecutive non-stiff tests that clear the count (Hairer: 6).
 const NONSTIFF_RESET: u32 = 6;
-/// In RODAS phases of [`Method::Auto`], the spectral radius is estimated every this many steps.
+/// In RODAS phases of [`Method::Auto`], the spectral radius is estimated every this many steps;
+/// so are the unresolved modes (the cap on the implicit step), unless they are far from
+/// binding ([`FAR`]).
 const TEST_EVERY: u64 = 5;
+/// Longest interval between two checks for unresolved modes, in implicit steps: the interval
+/// doubles from [`TEST_EVERY`] up to this after each check that finds every mode [`FAR`] from
+/// capping the step, and is back to [`TEST_EVERY`] after any other.
+const TEST_EVERY_FAR: u64 = 20;
+/// A check finds the modes far from capping the step when the longest implicit step allowed
+/// ([`super::Options::h_max_implicit`]; never where it is infinite) is at most `1/FAR` of the
+/// cap under more generous criteria (a mode counts from `Re(h_ref λ) > −(DECAYED + NEAR)`, and
+/// it oscillates from `|Im(h_ref λ)| > κ/2`, allowed `|hλ| ≤ κ/2`): a mode that could cap a step
+/// must first grow `2 FAR`-fold in `|λ|`, or its decay over `h_ref` weaken by `e^NEAR`, or its
+/// frequency double.
+const FAR: f64 = 4.0;
+/// See [`FAR`]: `e^{−0.5}` of decay over `h_ref` (a mode at `Re(h_ref λ) = −3.5` is near).
+const NEAR: f64 = 0.5;
 /// Power iterations per spectral-radius estimate.
 const POWER_ITERATIONS: usize = 10;
 /// Largest Krylov dimension of the check for unresolved modes (the Ritz values are the
@@ -69,6 +84,15 @@ pub struct Solver<'s, S: System> {
     nonstiff_count: u32,
     stiff_needed: u32,
     phase_steps: u64,
+    /// The implicit step (of the phase) at which the next check for unresolved modes runs.
+    next_cap_test: u64,
+    /// Implicit steps from one check for unresolved modes to the next.
+    cap_interval: u64,
+    /// The longest such interval ([`TEST_EVERY_FAR`]; [`TEST_EVERY`] in tests: the schedule
+    /// without the back-off).
+    far_interval: u64,
+    /// Checks for unresolved modes so far.
+    cap_checks: u64,
     total: Stats,
     started: Option<std::time::Instant>,
 }
@@ -168,6 +192,10 @@ impl<'s, S: System> Solver<'s, S> {
             nonstiff_count: 0,
             stiff_needed: STIFF_STEPS,
             phase_steps: 0,
+            next_cap_test: TEST_EVERY,
+            cap_interval: TEST_EVERY,
+            far_interval: TEST_EVERY_FAR,
+            cap_checks: 0,
             total: Stats::default(),
             started: None,
         })
@@ -215,6 +243,8 @@ impl<'s, S: System> Solver<'s, S> {
         self.stiff_count = 0;
         self.nonstiff_count = 0;
         self.phase_steps = 0;
+        self.next_cap_test = TEST_EVERY;
+        self.cap_interval = TEST_EVERY;
         self.mode_cap = f64::INFINITY;
         self.h_free = 0.0;
         self.mode = if self.opts.method == Method::Rodas { Mode::Implicit } else { Mode::Explicit };
@@ -504,20 +534,27 @@ impl<'s, S: System> Solver<'s, S> {
             rejected_last = false;
             // implicit steps must not step over a mode that grows or decays slowly: RODAS damps
             // an unresolved oscillation (|R(iy)| → 0 as y → ∞), so a slow instability would
-            // never get going. Every TEST_EVERY implicit steps: the modes of J, and a cap on h.
+            // never get going. Every TEST_EVERY implicit steps (up to TEST_EVERY_FAR while every
+            // mode is FAR from capping the step): the modes of J, and a cap on h.
             if self.mode == Mode::Implicit && !fixed {
                 self.phase_steps += 1;
                 if self.phase_steps.is_multiple_of(TEST_EVERY) {
                     self.h_implicit_max = self.h_implicit_max.max(h_old);
+                }
+                if self.phase_steps >= self.next_cap_test {
                     let hm = h_max(self.mode, &self.opts);
                     let h_ref = if hm.is_finite() { hm } else { h.max(self.h_free).max(self.h_implicit_max) };
-                    let cap = self.unresolved_mode_cap(h_old, h_ref);
+                    let (cap, loose) = self.unresolved_mode_cap(h_old, h_ref);
+                    self.cap_checks += 1;
                     if cap.is_finite() && self.mode_cap.is_infinite() {
                         self.h_free = h_ref;
                     } else if cap.is_infinite() {
                         self.h_free = 0.0;
                     }
                     self.mode_cap = cap;
+                    let far = hm.is_finite() && loose >= FAR * hm;
+                    self.cap_interval = if far { (2 * self.cap_interval).min(self.far_interval) } else { TEST_EVERY };
+                    self.next_cap_test = self.phase_steps + self.cap_interval;
                 }
             }
             // automatic switching
@@ -533,6 +570,8 @@ impl<'s, S: System> Solver<'s, S> {
                                 self.mode = Mode::Implicit;
                                 self.stiff_count = 0;
                                 self.phase_steps = 0;
+                                self.next_cap_test = TEST_EVERY;
+                                self.cap_interval = TEST_EVERY;
                                 self.mode_cap = f64::INFINITY;
                                 self.h_free = 0.0;
                                 stats.switches += 1;
@@ -580,10 +619,11 @@ impl<'s, S: System> Solver<'s, S> {
     /// factorisation (`α = 1/(γ h)`, `h` the step just taken): it finds the eigenvalues nearest
     /// `α`, i.e. the slow ones, first; with at most [`KRYLOV`] states the Krylov space is the
     /// whole space and the eigenvalues are exact. In the weighted variables `y_i/(atol_i +
-    /// rtol |y_i|)`.
-    fn unresolved_mode_cap(&mut self, h: f64, h_ref: f64) -> f64 {
+    /// rtol |y_i|)`. Returns the cap and the same under the more generous criteria of
+    /// [`FAR`] (at most the cap).
+    fn unresolved_mode_cap(&mut self, h: f64, h_ref: f64) -> (f64, f64) {
         let n = self.n;
-        let Some(jac) = self.jac.as_mut() else { return f64::INFINITY };
+        let Some(jac) = self.jac.as_mut() else { return (f64::INFINITY, f64::INFINITY) };
         let m = n.min(KRYLOV);
         if self.krylov.len() < (KRYLOV + 1) * n {
             self.krylov = vec![0.0; (KRYLOV + 1) * n];
@@ -613,16 +653,18 @@ impl<'s, S: System> Solver<'s, S> {
                 w[i] /= scale[i];
             }
             let before = norm(w);
-            // modified Gram–Schmidt, twice
-            for _ in 0..2 {
-                for j in 0..=k {
-                    let vj = &v[j * n..(j + 1) * n];
-                    let d: f64 = vj.iter().zip(w.iter()).map(|(a, b)| a * b).sum();
-                    hess[j][k] += d;
-                    w.iter_mut().zip(vj).for_each(|(x, a)| *x -= d * a);
-                }
+            // modified Gram–Schmidt, twice (the sizes of the models' states unrolled)
+            let mut col = [0.0; KRYLOV];
+            let r = match n {
+                6 => orthogonalize::<6>(v, n, k, w, &mut col),
+                8 => orthogonalize::<8>(v, n, k, w, &mut col),
+                10 => orthogonalize::<10>(v, n, k, w, &mut col),
+                12 => orthogonalize::<12>(v, n, k, w, &mut col),
+                _ => orthogonalize::<0>(v, n, k, w, &mut col),
+            };
+            for j in 0..=k {
+                hess[j][k] = col[j];
             }
-            let r = norm(w);
             if !(r > 1e-12 * before) || k + 1 == m {
                 // an invariant subspace (or the last column): the Ritz values of what is found
                 size = k + 1;
@@ -632,22 +674,28 @@ impl<'s, S: System> Solver<'s, S> {
             let (_, next) = v.split_at_mut((k + 1) * n);
             next[..n].iter_mut().zip(w.iter()).for_each(|(a, x)| *a = x / r);
         }
-        let Ok(mu) = crate::linalg::eigen::hessenberg_eigenvalues(&hess, size) else { return self.mode_cap };
+        let Ok(mu) = crate::linalg::eigen::hessenberg_eigenvalues(&hess, size) else { return (self.mode_cap, 0.0) };
         let alpha = 1.0 / (rosenbrock::GAMMA * h);
         let kappa = RESOLVED_AT_1E8 * (rtol / 1e-8).powf(1.0 / 6.0);
-        let mut cap = f64::INFINITY;
+        let (mut cap, mut loose) = (f64::INFINITY, f64::INFINITY);
         for mu in mu {
             if !(mu.norm() > 0.0) {
                 continue; // an eigenvalue at infinity
             }
             let lambda = alpha - mu.inv();
+            if !(lambda.norm() > 0.0) {
+                continue;
+            }
             // a real decaying mode is only damped faster (0 < R(z) < 1): harmless
             let oscillates = lambda.im.abs() * h_ref > kappa;
-            if lambda.re * h_ref > -DECAYED && (oscillates || lambda.re > 0.0) && lambda.norm() > 0.0 {
+            if lambda.re * h_ref > -DECAYED && (oscillates || lambda.re > 0.0) {
                 cap = cap.min(kappa / lambda.norm());
             }
+            if lambda.re * h_ref > -(DECAYED + NEAR) && (lambda.im.abs() * h_ref > 0.5 * kappa || lambda.re > 0.0) {
+                loose = loose.min(0.5 * kappa / lambda.norm());
+            }
         }
-        cap
+        (cap, loose)
     }
 
     /// Spectral radius of `J` at `(t, self.y)` by power iteration on difference products
@@ -691,5 +739,158 @@ impl<'s, S: System> Solver<'s, S> {
         }
         self.tmp1 = u;
         (log_sum / counted as f64).exp()
+    }
+}
+
+/// Column `k` of Arnoldi's Hessenberg matrix by modified Gram–Schmidt, twice, against the
+/// basis rows `v_0 … v_k` (row `j` at `v[j n..(j+1) n]`): for each pass and each `j ≤ k`,
+/// `d = v_j · w`, `H_jk += d`, `w ← w − d v_j`; the `H_jk` into `col` (from `+0`), `w` left
+/// orthogonal, and `‖w‖₂` returned. Each dot product is summed in index order from `−0`
+/// (as `Iterator::sum`), the next one fused into the loop of the update before it, and the norm
+/// into the last: the same operations in the same order as the two plain loops, so the same bits
+/// (tested against them), with fewer loads and, for `N = n > 0`, loops of known length. `N = 0`:
+/// any `n`.
+fn orthogonalize<const N: usize>(v: &[f64], n: usize, k: usize, w: &mut [f64], col: &mut [f64]) -> f64 {
+    let len = if N == 0 { n } else { N };
+    let w = &mut w[..len];
+    let row = |j: usize| &v[j * len..j * len + len];
+    let mut d = -0.0;
+    for (vi, wi) in row(0).iter().zip(w.iter()) {
+        d += vi * wi;
+    }
+    for pass in 0..2 {
+        for j in 0..=k {
+            col[j] += d;
+            let vj = row(j);
+            let mut s = -0.0;
+            if pass == 1 && j == k {
+                for i in 0..len {
+                    w[i] -= d * vj[i];
+                    s += w[i] * w[i];
+                }
+            } else {
+                let u = row(if j == k { 0 } else { j + 1 });
+                for i in 0..len {
+                    w[i] -= d * vj[i];
+                    s += u[i] * w[i];
+                }
+            }
+            d = s;
+        }
+    }
+    d.sqrt()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{orthogonalize, Solver, KRYLOV};
+    use crate::ode::{Control, Options, System};
+
+    /// A stiff decaying component (`z' = −1e4 z`: the automatic method goes implicit and stays)
+    /// beside an oscillator at 13 rad/s whose damping falls linearly through zero, driven by a
+    /// slow force: `x'' + 2σ(t) x' + 13² x = 1 + 0.1 t`, `σ = 10 − 0.25 t`. Strongly damped at
+    /// first (no mode near capping a step of 1 s: the checks back off), its mode counts for the
+    /// cap from `σ < 3` (t > 28 s) and grows from t = 40 s, from a seed below the tolerances.
+    struct Ramp;
+    impl System for Ramp {
+        fn dim(&self) -> usize {
+            3
+        }
+        fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
+            let sigma = 10.0 - 0.25 * t;
+            dy[0] = -1e4 * y[0];
+            dy[1] = y[2];
+            dy[2] = -169.0 * y[1] - 2.0 * sigma * y[2] + 1.0 + 0.1 * t;
+        }
+    }
+
+    /// Where no mode is near capping the step, checking less often changes nothing: on the ramp
+    /// (the mode arrives after a stretch of backed-off checks, and decides the run: without any
+    /// check RODAS's steps of 1 s damp it, and the oscillation at t = 55 s is ~1 450 times
+    /// smaller) the automatic method with the back-off takes the same steps and ends in the same
+    /// state, bit for bit, as with a check every `TEST_EVERY` steps, with fewer checks.
+    #[test]
+    fn checking_less_often_where_no_mode_is_near_changes_nothing() {
+        let run = |far_interval: u64| {
+            let mut opts = Options::new(1e-8, 1e-10);
+            opts.h_max_implicit = 1.0;
+            let mut s = Solver::new(&Ramp, opts).unwrap();
+            s.far_interval = far_interval;
+            let mut y = [1.0, 0.0, 0.0];
+            let out = s.integrate(0.0, &mut y, 55.0, |_| Control::Continue);
+            assert!(out.status.is_completed(), "{out:?}");
+            (y.map(f64::to_bits), out.stats, s.cap_checks)
+        };
+        let (y_far, stats_far, checks_far) = run(super::TEST_EVERY_FAR);
+        let (y_5, stats_5, checks_5) = run(super::TEST_EVERY);
+        assert!(stats_5.implicit_steps > 1000, "{stats_5:?}");
+        assert_eq!((y_far, stats_far), (y_5, stats_5));
+        assert!(checks_far < checks_5, "{checks_far} checks with the back-off, {checks_5} without");
+        // the oscillation grew (about 28 e-folds from t = 40 s): the checks decide this run
+        let amp = |y: [u64; 3]| (f64::from_bits(y[1]) - 6.5 / 169.0).hypot(f64::from_bits(y[2]) / 13.0);
+        assert!(amp(y_5) > 1e-2, "{}", amp(y_5));
+    }
+
+    /// The two plain loops `orthogonalize` replaces (modified Gram–Schmidt, twice, then the
+    /// norm), as the check for unresolved modes ran them before.
+    fn plain(v: &[f64], n: usize, k: usize, w: &mut [f64], col: &mut [f64]) -> f64 {
+        for _ in 0..2 {
+            for j in 0..=k {
+                let vj = &v[j * n..(j + 1) * n];
+                let d: f64 = vj.iter().zip(w.iter()).map(|(a, b)| a * b).sum();
+                col[j] += d;
+                w.iter_mut().zip(vj).for_each(|(x, a)| *x -= d * a);
+            }
+        }
+        w.iter().map(|a| a * a).sum::<f64>().sqrt()
+    }
+
+    /// Bit for bit the plain loops (the mode cap's eigenvalues, and so every run's steps, stay
+    /// the same), for every state size the dispatch unrolls and two it does not, every column,
+    /// on basis rows and vectors of mixed signs and magnitudes 1e-8..1e8, with exact zeros and
+    /// negative zeros among them (the sign of a zero sum is where a different start would show).
+    #[test]
+    fn orthogonalize_is_the_plain_loops_bit_for_bit() {
+        let mut seed = 0x2545_F491_4F6C_DD1Du64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            let u = (seed >> 11) as f64 / (1u64 << 53) as f64;
+            match seed % 11 {
+                0 => 0.0,
+                1 => -0.0,
+                _ => (2.0 * u - 1.0) * 10f64.powi((seed % 17) as i32 - 8),
+            }
+        };
+        let mut cases = 0;
+        for n in [3, 6, 8, 10, 12, 14] {
+            for k in 0..n.min(KRYLOV) {
+                for _ in 0..40 {
+                    let v: Vec<f64> = (0..(k + 1) * n).map(|_| next()).collect();
+                    let w0: Vec<f64> = (0..n).map(|_| next()).collect();
+                    let (mut w1, mut w2) = (w0.clone(), w0.clone());
+                    let (mut c1, mut c2) = ([0.0; KRYLOV], [0.0; KRYLOV]);
+                    let r1 = plain(&v, n, k, &mut w1, &mut c1);
+                    let r2 = match n {
+                        6 => orthogonalize::<6>(&v, n, k, &mut w2, &mut c2),
+                        8 => orthogonalize::<8>(&v, n, k, &mut w2, &mut c2),
+                        10 => orthogonalize::<10>(&v, n, k, &mut w2, &mut c2),
+                        12 => orthogonalize::<12>(&v, n, k, &mut w2, &mut c2),
+                        _ => orthogonalize::<0>(&v, n, k, &mut w2, &mut c2),
+                    };
+                    let bits = |x: &[f64]| x.iter().map(|a| a.to_bits()).collect::<Vec<_>>();
+                    assert_eq!(r1.to_bits(), r2.to_bits(), "norm, n {n} k {k}");
+                    assert_eq!(bits(&w1), bits(&w2), "w, n {n} k {k}");
+                    assert_eq!(bits(&c1), bits(&c2), "column, n {n} k {k}");
+                    // and the generic path agrees with the unrolled one
+                    let mut w3 = w0.clone();
+                    let mut c3 = [0.0; KRYLOV];
+                    assert_eq!(orthogonalize::<0>(&v, n, k, &mut w3, &mut c3).to_bits(), r1.to_bits());
+                    cases += 1;
+                }
+            }
+        }
+        assert_eq!(cases, 40 * (3 + 6 + 8 + 10 + 12 + 12));
     }
 }
