@@ -100,6 +100,13 @@ def from_ross(
     the bearings' ``frequency`` tables. ``polar_inertia``: the rotor's polar moment (kg m²)
     for torque drives instead of :func:`polar_inertia_of`'s (disks' ``Ip`` and the shaft's).
 
+    The dicts are read as the CLI reads a config's ``[[linear_rotor.balancer]]`` and
+    ``[[linear_rotor.unbalance]]`` tables, and the rotor is checked as it reads them
+    (``LinearRotor::validate``): an unknown or missing key, a node that does not exist, a
+    ball mass that is not positive, a number that is not finite raise
+    :class:`autobal.InvalidParameter` (a ``ValueError``) naming the entry as the config does,
+    ``linear_rotor.balancer[0].ball_mass: must be positive, got -0.05``.
+
     >>> import ross, autobal                                     # doctest: +SKIP
     >>> r = autobal.from_ross(ross.rotor_example(), balancers=[dict(node=2, radius=0.1, balls=2, ball_mass=0.05, drag=0.01)],
     ...                       unbalance=[dict(node=2, me=1e-4)])  # doctest: +SKIP
