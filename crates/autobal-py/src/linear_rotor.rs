@@ -37,10 +37,42 @@ impl PyLinearRotor {
     }
 }
 
+/// An error of the library named as a `[linear_rotor]` config names the field: the model's
+/// `linear_rotor.balancers[i]`, `linear_rotor.unbalances[i]` as the config's
+/// `linear_rotor.balancer[i]`, `linear_rotor.unbalance[i]` (the renames of the config reader,
+/// `autobal::linear_rotor::config`, so that Python's errors read as the CLI's).
+fn config_names(e: autobal::Error) -> autobal::Error {
+    use autobal::Error as E;
+    let rename =
+        |f: String| f.replacen("linear_rotor.balancers[", "linear_rotor.balancer[", 1).replacen("linear_rotor.unbalances[", "linear_rotor.unbalance[", 1);
+    match e {
+        E::InvalidParameter { field, reason } => E::InvalidParameter { field: rename(field), reason },
+        E::TooLarge { what, size, limit, reason } => E::TooLarge { what: rename(what), size, limit, reason },
+        e => e,
+    }
+}
+
+/// [`crate::py_err`] of an error named as the config names its field ([`config_names`]).
+fn err(py: Python<'_>, e: autobal::Error) -> PyErr {
+    crate::py_err(py, config_names(e))
+}
+
+/// The library's check of every field of `rotor` ([`LinearRotor::validate`], as the CLI's
+/// config reader calls it), its error named as the config names the field.
+fn validated(py: Python<'_>, rotor: &LinearRotor) -> PyResult<()> {
+    rotor.validate().map_err(|e| err(py, e))
+}
+
+/// A node or ball count from Python: a whole number ≥ 0, else the config reader's error on
+/// `field`.
+fn count(py: Python<'_>, field: String, v: i64) -> PyResult<usize> {
+    usize::try_from(v).map_err(|_| err(py, autobal::Error::invalid(field, format!("expected a whole number ≥ 0, got {v}"))))
+}
+
 fn square(py: Python<'_>, name: &str, a: &PyReadonlyArray2<'_, f64>) -> PyResult<(usize, Vec<f64>)> {
     let s = a.shape();
     if s[0] != s[1] {
-        return Err(crate::py_err(py, autobal::Error::invalid(format!("linear_rotor.{name}"), format!("is {} × {}, must be square", s[0], s[1]))));
+        return Err(err(py, autobal::Error::invalid(format!("linear_rotor.{name}"), format!("is {} × {}, must be square", s[0], s[1]))));
     }
     let v: Vec<f64> = a.as_array().iter().copied().collect();
     Ok((s[0], v))
@@ -52,7 +84,7 @@ impl PyLinearRotor {
         let (nn, a) = square(py, name, v)?;
         let n = self.rotor.dofs();
         if nn != n {
-            return Err(crate::py_err(py, autobal::Error::invalid(format!("linear_rotor.{name}"), format!("is {nn} × {nn}, m is {n} × {n}"))));
+            return Err(err(py, autobal::Error::invalid(format!("linear_rotor.{name}"), format!("is {nn} × {nn}, m is {n} × {n}"))));
         }
         Ok(a)
     }
@@ -76,7 +108,7 @@ impl PyLinearRotor {
         let layout = |p: usize| match p {
             2 => Ok(Layout::Translation),
             4 => Ok(Layout::TranslationTilt),
-            o => Err(crate::py_err(py, autobal::Error::invalid("per_node", format!("must be 2 (x, y) or 4 (x, y, alpha, beta), got {o}")))),
+            o => Err(err(py, autobal::Error::invalid("per_node", format!("must be 2 (x, y) or 4 (x, y, alpha, beta), got {o}")))),
         };
         let (n, m) = square(py, "m", &m)?;
         let mut r = match per_node {
@@ -85,7 +117,7 @@ impl PyLinearRotor {
                 let layouts = each.iter().map(|p| layout(*p)).collect::<PyResult<Vec<_>>>()?;
                 let r = LinearRotor::with_layouts(&layouts);
                 if r.dofs() != n || layouts.is_empty() {
-                    return Err(crate::py_err(py, autobal::Error::invalid("per_node", format!("gives {} DOFs, m is {n} × {n}", r.dofs()))));
+                    return Err(err(py, autobal::Error::invalid("per_node", format!("gives {} DOFs, m is {n} × {n}", r.dofs()))));
                 }
                 r
             }
@@ -93,7 +125,7 @@ impl PyLinearRotor {
                 let per = p.map(|p| p.extract::<usize>()).transpose()?.unwrap_or(4);
                 let l = layout(per)?;
                 if n % per != 0 {
-                    return Err(crate::py_err(py, autobal::Error::invalid("linear_rotor.m", format!("{n} DOFs is no multiple of {per}"))));
+                    return Err(err(py, autobal::Error::invalid("linear_rotor.m", format!("{n} DOFs is no multiple of {per}"))));
                 }
                 LinearRotor::zeros(n / per, l)
             }
@@ -102,7 +134,7 @@ impl PyLinearRotor {
         for (name, a) in [("c", &c), ("g", &g), ("k", &k)] {
             let (nn, v) = square(py, name, a)?;
             if nn != n {
-                return Err(crate::py_err(py, autobal::Error::invalid(format!("linear_rotor.{name}"), format!("is {nn} × {nn}, m is {n} × {n}"))));
+                return Err(err(py, autobal::Error::invalid(format!("linear_rotor.{name}"), format!("is {nn} × {nn}, m is {n} × {n}"))));
             }
             match name {
                 "c" => r.c = v,
@@ -110,6 +142,9 @@ impl PyLinearRotor {
                 _ => r.k = v,
             }
         }
+        // the library's check, as the CLI's config reader makes it (finite entries, M symmetric
+        // positive definite, G skew): refused here, not when the rotor is first used
+        validated(py, &r)?;
         Ok(PyLinearRotor { rotor: r, cfg: None })
     }
 
@@ -145,9 +180,9 @@ impl PyLinearRotor {
     /// A run that stops before its end raises `SimulationError` (`.result`: the samples).
     #[pyo3(signature = (dt=None, omega_max=None, modes=None))]
     fn simulate<'py>(&self, py: Python<'py>, dt: Option<f64>, omega_max: Option<f64>, modes: Option<usize>) -> PyResult<Bound<'py, PyAny>> {
-        let mut cfg = self.config().map_err(|e| crate::py_err(py, e))?;
+        let mut cfg = self.config().map_err(|e| err(py, e))?;
         if let Some(w) = omega_max {
-            autobal::error::positive("omega_max", w).map_err(|e| crate::py_err(py, e))?;
+            autobal::error::positive("omega_max", w).map_err(|e| err(py, e))?;
             cfg.omega_max = Some(w);
         }
         if let Some(p) = modes {
@@ -179,35 +214,60 @@ impl PyLinearRotor {
     }
 
     /// Add an unbalance `m·e` (kg·m) at `node`, angle `phase` (rad), axial `offset` (m).
+    /// Checked at once as the CLI checks a config's `[[linear_rotor.unbalance]]` (the node
+    /// exists, the numbers are finite): refused with `InvalidParameter` naming
+    /// `linear_rotor.unbalance[i].FIELD`, the rotor left as it was.
     #[pyo3(signature = (node, me, phase=0.0, offset=0.0))]
-    fn add_unbalance(&mut self, node: usize, me: f64, phase: f64, offset: f64) {
-        self.rotor.unbalances.push(Unbalance { node, me, phase, offset });
+    fn add_unbalance(&mut self, py: Python<'_>, node: i64, me: f64, phase: f64, offset: f64) -> PyResult<()> {
+        let i = self.rotor.unbalances.len();
+        let node = count(py, format!("linear_rotor.unbalance[{i}].node"), node)?;
+        let mut r = self.rotor.clone();
+        r.unbalances.push(Unbalance { node, me, phase, offset });
+        validated(py, &r)?;
+        self.rotor = r;
+        Ok(())
     }
 
     /// Add a balancer plane at `node`: race `radius` (m), `balls`, `ball_mass` (kg), `drag`
-    /// per ball (N·m·s), axial `offset` (m).
+    /// per ball (N·m·s), axial `offset` (m). Checked at once as the CLI checks a config's
+    /// `[[linear_rotor.balancer]]` (the node exists, radius and ball mass positive, drag not
+    /// negative, at least one ball): refused with `InvalidParameter` naming
+    /// `linear_rotor.balancer[i].FIELD`, the rotor left as it was.
     #[pyo3(signature = (node, radius, balls, ball_mass, drag=0.0, offset=0.0))]
-    fn add_balancer(&mut self, node: usize, radius: f64, balls: usize, ball_mass: f64, drag: f64, offset: f64) {
-        self.rotor.balancers.push(BalancerPlane { node, radius, balls, ball_mass, drag, offset });
+    #[allow(clippy::too_many_arguments)]
+    fn add_balancer(&mut self, py: Python<'_>, node: i64, radius: f64, balls: i64, ball_mass: f64, drag: f64, offset: f64) -> PyResult<()> {
+        let i = self.rotor.balancers.len();
+        let node = count(py, format!("linear_rotor.balancer[{i}].node"), node)?;
+        let balls = count(py, format!("linear_rotor.balancer[{i}].balls"), balls)?;
+        let mut r = self.rotor.clone();
+        r.balancers.push(BalancerPlane { node, radius, balls, ball_mass, drag, offset });
+        validated(py, &r)?;
+        self.rotor = r;
+        Ok(())
     }
 
     /// Add a bearing at `node` tabulated over `speeds` (rad/s): `k` and `c` are `len(speeds) × 4`
     /// (`xx, xy, yx, yy`), added to `K`, `C` at each speed (linear interpolation); `link`: the
     /// node at its other side (ROSS's `n_link`, blocks `[[B, −B], [−B, B]]`), `None`: ground.
+    /// Checked at once (the nodes exist, the speeds increase, the numbers are finite): refused
+    /// with `InvalidParameter` naming `linear_rotor.bearings[i].FIELD`, the rotor left as it was.
     #[pyo3(signature = (node, speeds, k, c, link=None))]
     fn add_speed_bearing(
         &mut self,
         py: Python<'_>,
-        node: usize,
+        node: i64,
         speeds: Vec<f64>,
         k: PyReadonlyArray2<'_, f64>,
         c: PyReadonlyArray2<'_, f64>,
-        link: Option<usize>,
+        link: Option<i64>,
     ) -> PyResult<()> {
+        let i = self.rotor.speed_bearings.len();
+        let node = count(py, format!("linear_rotor.bearings[{i}].node"), node)?;
+        let link = link.map(|l| count(py, format!("linear_rotor.bearings[{i}].link"), l)).transpose()?;
         let rows = |a: &PyReadonlyArray2<'_, f64>, name: &str| -> PyResult<Vec<[f64; 4]>> {
             let s = a.shape();
             if s[1] != 4 || s[0] != speeds.len() {
-                return Err(crate::py_err(
+                return Err(err(
                     py,
                     autobal::Error::invalid(format!("bearing.{name}"), format!("must be len(speeds) × 4 = {} × 4, got {} × {}", speeds.len(), s[0], s[1])),
                 ));
@@ -216,7 +276,10 @@ impl PyLinearRotor {
             Ok((0..s[0]).map(|i| [a[[i, 0]], a[[i, 1]], a[[i, 2]], a[[i, 3]]]).collect())
         };
         let (k, c) = (rows(&k, "k")?, rows(&c, "c")?);
-        self.rotor.speed_bearings.push(SpeedBearing { node, link, speeds: speeds.clone(), k, c });
+        let mut r = self.rotor.clone();
+        r.speed_bearings.push(SpeedBearing { node, link, speeds: speeds.clone(), k, c });
+        validated(py, &r)?;
+        self.rotor = r;
         Ok(())
     }
 
@@ -229,7 +292,7 @@ impl PyLinearRotor {
 
     #[setter]
     fn set_polar_inertia(&mut self, py: Python<'_>, v: f64) -> PyResult<()> {
-        autobal::error::non_negative("linear_rotor.polar_inertia", v).map_err(|e| crate::py_err(py, e))?;
+        autobal::error::non_negative("linear_rotor.polar_inertia", v).map_err(|e| err(py, e))?;
         self.rotor.polar_inertia = v;
         Ok(())
     }
@@ -242,7 +305,7 @@ impl PyLinearRotor {
 
     #[setter]
     fn set_spin_damping(&mut self, py: Python<'_>, v: f64) -> PyResult<()> {
-        autobal::error::non_negative("linear_rotor.spin_damping", v).map_err(|e| crate::py_err(py, e))?;
+        autobal::error::non_negative("linear_rotor.spin_damping", v).map_err(|e| err(py, e))?;
         self.rotor.spin_damping = v;
         Ok(())
     }
@@ -260,10 +323,10 @@ impl PyLinearRotor {
         let (nn, a) = square(py, "spin_stiffness", &v)?;
         let n = self.rotor.dofs();
         if nn != n {
-            return Err(crate::py_err(py, autobal::Error::invalid("linear_rotor.spin_stiffness", format!("is {nn} × {nn}, m is {n} × {n}"))));
+            return Err(err(py, autobal::Error::invalid("linear_rotor.spin_stiffness", format!("is {nn} × {nn}, m is {n} × {n}"))));
         }
         if let Some(i) = a.iter().position(|x| !x.is_finite()) {
-            return Err(crate::py_err(py, autobal::Error::invalid(format!("linear_rotor.spin_stiffness[{},{}]", i / n, i % n), "must be finite")));
+            return Err(err(py, autobal::Error::invalid(format!("linear_rotor.spin_stiffness[{},{}]", i / n, i % n), "must be finite")));
         }
         self.rotor.spin_stiffness = a;
         Ok(())
@@ -285,7 +348,7 @@ impl PyLinearRotor {
         let a = self.checked(py, "rotor_fixed_mass", &v)?;
         let mut r = self.rotor.clone();
         r.rotor_fixed_mass = a;
-        r.validate().map_err(|e| crate::py_err(py, e))?;
+        r.validate().map_err(|e| err(py, e))?;
         self.rotor = r;
         Ok(())
     }
@@ -305,7 +368,7 @@ impl PyLinearRotor {
         let a = self.checked(py, "spin_chart", &v)?;
         let mut r = self.rotor.clone();
         r.spin_chart = a;
-        r.validate().map_err(|e| crate::py_err(py, e))?;
+        r.validate().map_err(|e| err(py, e))?;
         self.rotor = r;
         Ok(())
     }
@@ -326,7 +389,7 @@ impl PyLinearRotor {
     /// Undamped natural frequencies at rest (rad/s), optionally with the balls as rings.
     #[pyo3(signature = (with_balls=false))]
     fn natural_frequencies(&self, py: Python<'_>, with_balls: bool) -> PyResult<Vec<f64>> {
-        self.rotor.at_speed(0.0).natural_frequencies(&[], with_balls).map_err(|e| crate::py_err(py, e))
+        self.rotor.at_speed(0.0).natural_frequencies(&[], with_balls).map_err(|e| err(py, e))
     }
 
     /// The structure's eigenvalues (no balls) at each speed (rad/s): `(real, imag)` lists,
@@ -334,7 +397,7 @@ impl PyLinearRotor {
     fn campbell(&self, py: Python<'_>, speeds: Vec<f64>) -> PyResult<(Vec<Vec<f64>>, Vec<Vec<f64>>)> {
         let r = self.rotor.clone();
         let out = crate::interruptible(py, move |_| speeds.iter().map(|w| r.structure_eigenvalues(*w)).collect::<autobal::Result<Vec<_>>>())?
-            .map_err(|e| crate::py_err(py, e))?;
+            .map_err(|e| err(py, e))?;
         Ok((out.iter().map(|v| v.iter().map(|z| z.re).collect()).collect(), out.iter().map(|v| v.iter().map(|z| z.im).collect()).collect()))
     }
 
@@ -359,14 +422,18 @@ impl PyLinearRotor {
             v["reduction"] = serde_json::to_value(&red).map_err(|e| autobal::Error::invalid("reduction", e.to_string()))?;
             Ok(v)
         })?
-        .map_err(|e| crate::py_err(py, e))?;
+        .map_err(|e| err(py, e))?;
         Ok(res.to_string())
     }
 
     /// The config text and Matrix Market files (`[(name, text)]`) of the rotor, as
     /// `autobal export-model` writes them (read by `autobal stability --config STEM.toml`).
-    fn export(&self, stem: &str) -> (String, Vec<(String, String)>) {
-        autobal::linear_rotor::config::export(&self.rotor, stem)
+    /// The rotor is checked first as the CLI's config reader checks what it reads
+    /// ([`LinearRotor::validate`]): a rotor that config could not hold (a non-finite number, a
+    /// node that does not exist) is refused with `InvalidParameter`, nothing written.
+    fn export(&self, py: Python<'_>, stem: &str) -> PyResult<(String, Vec<(String, String)>)> {
+        validated(py, &self.rotor)?;
+        Ok(autobal::linear_rotor::config::export(&self.rotor, stem))
     }
 }
 
@@ -438,7 +505,7 @@ pub fn linear_rotor_run(
     let dict = dict_table(dict)?;
     let map = match serde_json::from_str::<serde_json::Value>(options) {
         Ok(serde_json::Value::Object(m)) => m,
-        _ => return Err(crate::py_err(py, autobal::Error::invalid("options", "expected keyword options"))),
+        _ => return Err(err(py, autobal::Error::invalid("options", "expected keyword options"))),
     };
     let mut o = Options { command: command.to_string(), map };
     let command = command.to_string();
@@ -645,11 +712,11 @@ impl PyLinearSpec {
     /// [`PyLinearSpec::toml`] and [`PyLinearSpec::files`] give them.
     #[staticmethod]
     fn from_parts(py: Python<'_>, toml: &str, files: std::collections::HashMap<String, Bound<'_, pyo3::types::PyBytes>>) -> PyResult<Self> {
-        let root = autobal::config::parse(toml, "linear rotor config").map_err(|e| crate::py_err(py, e))?;
+        let root = autobal::config::parse(toml, "linear rotor config").map_err(|e| err(py, e))?;
         let bytes: std::collections::HashMap<String, Vec<u8>> = files.iter().map(|(k, v)| (k.clone(), v.as_bytes().to_vec())).collect();
         let spec =
             autobal::linear_rotor::spec::LinearRotorSpec::new(root, &mut |p| bytes.get(p).cloned().ok_or_else(|| format!("{p}: not among the files given")))
-                .map_err(|e| crate::py_err(py, e))?;
+                .map_err(|e| err(py, e))?;
         Ok(PyLinearSpec { spec })
     }
 
@@ -690,8 +757,7 @@ pub fn linear_rotor_map_figures(
         set.push(format!("{k}={}", crate::to_toml(v, k)?));
     }
     let dict = dict_table(dict)?;
-    let o: autobal_commands::figures_api::Options =
-        serde_json::from_str(options).map_err(|e| crate::py_err(py, autobal::Error::invalid("options", e.to_string())))?;
+    let o: autobal_commands::figures_api::Options = serde_json::from_str(options).map_err(|e| err(py, autobal::Error::invalid("options", e.to_string())))?;
     let v = crate::commands_call(py, move |control| {
         let (Some(x), Some(y)) = (&o.x, &o.y) else { anyhow::bail!("x: required, with y (KEY=LO:HI:N, e.g. x='speed=100:2000:40')") };
         let config = LinearSource::read(path, dict, &set)?;

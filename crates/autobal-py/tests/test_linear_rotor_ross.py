@@ -242,12 +242,12 @@ def test_support_nodes_of_linked_bearings_come_in_with_x_y(point_masses):
 
 
 def test_offset_on_a_support_node_is_refused_by_name():
-    """A support node has no tilts: a balancer plane with an axial offset on it is refused,
-    naming the entry; without offset it is taken (its race centre is the node)."""
+    """A support node has no tilts: a balancer plane with an axial offset on it is refused when
+    the rotor is built, naming the entry as the config does; without offset it is taken (its race centre is the node)."""
     rs = ross()
     rotor = _linked_rotor(rs, 1)
-    with pytest.raises(autobal.InvalidParameter, match=r"linear_rotor.balancers\[0\].offset: an axial offset needs the tilt DOFs, node 7 has x, y only"):
-        autobal.from_ross(rotor, balancers=[dict(node=7, radius=0.1, balls=2, ball_mass=0.05, drag=0.01, offset=0.02)]).natural_frequencies()
+    with pytest.raises(autobal.InvalidParameter, match=r"linear_rotor.balancer\[0\].offset: an axial offset needs the tilt DOFs, node 7 has x, y only"):
+        autobal.from_ross(rotor, balancers=[dict(node=7, radius=0.1, balls=2, ball_mass=0.05, drag=0.01, offset=0.02)])
     lr = autobal.from_ross(rotor, balancers=[dict(node=7, radius=0.1, balls=2, ball_mass=0.05, drag=0.01)])
     assert len(lr.natural_frequencies(with_balls=True)) == lr.dofs
 

@@ -33,11 +33,12 @@ speed is not on the x, y blocks of its bearings (tilt terms, or an element other
 
 from __future__ import annotations
 
-from typing import Any, Iterable, Mapping, Optional, Sequence, Set
+from typing import Any, Iterable, List, Mapping, Optional, Sequence, Set
 
 import numpy as np
 
 from . import _autobal
+from .errors import InvalidParameter
 
 
 def _lateral(per_node: int) -> Sequence[int]:
@@ -98,6 +99,13 @@ def from_ross(
     ``speeds``: where the bearings' speed dependence is sampled (rad/s); default the union of
     the bearings' ``frequency`` tables. ``polar_inertia``: the rotor's polar moment (kg m²)
     for torque drives instead of :func:`polar_inertia_of`'s (disks' ``Ip`` and the shaft's).
+
+    The dicts are read as the CLI reads a config's ``[[linear_rotor.balancer]]`` and
+    ``[[linear_rotor.unbalance]]`` tables, and the rotor is checked as it reads them
+    (``LinearRotor::validate``): an unknown or missing key, a node that does not exist, a
+    ball mass that is not positive, a number that is not finite raise
+    :class:`autobal.InvalidParameter` (a ``ValueError``) naming the entry as the config does,
+    ``linear_rotor.balancer[0].ball_mass: must be positive, got -0.05``.
 
     >>> import ross, autobal                                     # doctest: +SKIP
     >>> r = autobal.from_ross(ross.rotor_example(), balancers=[dict(node=2, radius=0.1, balls=2, ball_mass=0.05, drag=0.01)],
@@ -183,9 +191,79 @@ def from_ross(
                         "(tilt terms, or an element that is not a bearing); autobal's speed-dependent bearings act on the x, y of "
                         "a node, or of two nodes (n_link)"
                     )
-    for b in balancers:
-        out.add_balancer(int(b["node"]), float(b["radius"]), int(b["balls"]), float(b["ball_mass"]), float(b.get("drag", 0.0)), float(b.get("offset", 0.0)))
-    for u in unbalance:
-        me = u["me"] if "me" in u else u["magnitude"]
-        out.add_unbalance(int(u["node"]), float(me), float(u.get("phase", 0.0)), float(u.get("offset", 0.0)))
+    for i, b in enumerate(_entries("balancers", "balancer", balancers)):
+        field = f"linear_rotor.balancer[{i}]"
+        _known(field, b, _BALANCER_KEYS)
+        out.add_balancer(
+            _whole(field, b, "node"),
+            _number(field, b, "radius"),
+            _whole(field, b, "balls"),
+            _number(field, b, "ball_mass"),
+            _number(field, b, "drag", 0.0),
+            _number(field, b, "offset", 0.0),
+        )
+    for i, u in enumerate(_entries("unbalance", "unbalance", unbalance)):
+        field = f"linear_rotor.unbalance[{i}]"
+        _known(field, u, _UNBALANCE_KEYS)
+        if "me" in u and "magnitude" in u:
+            raise _invalid(f"{field}.magnitude", "give me or magnitude (ROSS's name for it), not both")
+        me = _number(field, u, "me") if "me" in u or "magnitude" not in u else _number(field, u, "magnitude")
+        out.add_unbalance(_whole(field, u, "node"), me, _number(field, u, "phase", 0.0), _number(field, u, "offset", 0.0))
     return out
+
+
+def _invalid(field: str, reason: str) -> InvalidParameter:
+    """The library's error on ``field`` (``FIELD: REASON``, ``.field``, ``.reason``)."""
+    e = InvalidParameter(f"{field}: {reason}")
+    e.field, e.reason = field, reason
+    return e
+
+
+# the keys of from_ross's dicts: the config's [[linear_rotor.balancer]] and
+# [[linear_rotor.unbalance]] keys that a LinearRotor holds (ROSS's "magnitude" for me)
+_BALANCER_KEYS = ("node", "radius", "balls", "ball_mass", "drag", "offset")
+_UNBALANCE_KEYS = ("node", "me", "magnitude", "phase", "offset")
+
+
+def _entries(argument: str, kind: str, items: Any) -> List[Mapping[str, Any]]:
+    """``balancers=`` or ``unbalance=`` as a list of dicts, or :class:`InvalidParameter`
+    naming the argument or the entry (``linear_rotor.balancer[1]``) that is not one."""
+    if isinstance(items, (Mapping, str, bytes)) or not isinstance(items, Iterable):
+        raise _invalid(argument, f"expected a list of dicts, got {type(items).__name__}")
+    out = list(items)
+    for i, e in enumerate(out):
+        if not isinstance(e, Mapping):
+            raise _invalid(f"linear_rotor.{kind}[{i}]", f"expected a dict (a [[linear_rotor.{kind}]] table), got {type(e).__name__}")
+    return out
+
+
+def _known(field: str, entry: Mapping[str, Any], keys: Sequence[str]) -> None:
+    """The config reader's check of a table's keys: the first unknown one is refused, naming
+    the known ones."""
+    for k in entry:
+        if k not in keys:
+            raise _invalid(f"{field}.{k}", f"unknown key (known keys: {', '.join(keys)})")
+
+
+def _number(field: str, entry: Mapping[str, Any], key: str, default: Optional[float] = None) -> float:
+    """``entry[key]`` as a float (``default`` where absent; required where ``default`` is
+    None), or the config reader's error naming ``FIELD.KEY``. Its range (finite, positive, …)
+    is the library's check, made by ``LinearRotor.add_*``."""
+    if key not in entry:
+        if default is None:
+            raise _invalid(f"{field}.{key}", "missing (required)")
+        return default
+    v = entry[key]
+    if isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating)):
+        raise _invalid(f"{field}.{key}", f"expected a number, got {v!r}")
+    return float(v)
+
+
+def _whole(field: str, entry: Mapping[str, Any], key: str) -> int:
+    """``entry[key]`` as a whole number ≥ 0 (required), or the config reader's error."""
+    if key not in entry:
+        raise _invalid(f"{field}.{key}", "missing (required)")
+    v = entry[key]
+    if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < 0:
+        raise _invalid(f"{field}.{key}", f"expected a whole number ≥ 0, got {v!r}")
+    return int(v)
