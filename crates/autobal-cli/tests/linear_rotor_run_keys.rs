@@ -52,3 +52,23 @@ fn unknown_drive_and_integration_keys_are_refused_by_name() {
     assert!(written);
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// 100 000 balls on a linear rotor (the planar rotor's limit) made every analysis allocate a
+/// dense Jacobian of (2 (N + n_b))² doubles, 320 GB, and abort; the balls are coordinates of
+/// the same dense matrices as the DOFs and share their limit of 2000 (found 2026-11-28).
+#[test]
+fn too_many_balls_for_the_dense_matrices_are_refused_by_name() {
+    let dir = std::env::temp_dir().join(format!("autobal-lr-many-balls-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let cfg = dir.join("rotor.toml");
+    std::fs::write(&cfg, SHAFT.replace("balls = 2\n", "balls = 100000\n")).unwrap();
+    let out_stem = dir.join("x");
+    for args in [vec!["stability"], vec!["campbell"], vec!["simulate", "--out", out_stem.to_str().unwrap()]] {
+        let cmd = args[0];
+        let out = Command::new(env!("CARGO_BIN_EXE_autobal")).args(&args).args(["--config", cfg.to_str().unwrap()]).output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{cmd}: {err}");
+        assert!(err.starts_with("error: linear_rotor.balancer[0].balls: 100000 exceeds the limit of 1980"), "{cmd}: {err}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

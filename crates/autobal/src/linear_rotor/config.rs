@@ -738,9 +738,12 @@ pub fn layouts_from_dofs(names: &[Value]) -> Result<Vec<Layout>> {
     }
 }
 
+/// The model's field names in an error (`linear_rotor.balancers[0]`) as the config spells them
+/// (`linear_rotor.balancer[0]`): a parameter's and a size limit's.
 fn rename(e: Error, from: &str, to: &str) -> Error {
     match e {
         Error::InvalidParameter { field, reason } if field.starts_with(from) => Error::InvalidParameter { field: field.replacen(from, to, 1), reason },
+        Error::TooLarge { what, size, limit, reason } if what.starts_with(from) => Error::TooLarge { what: what.replacen(from, to, 1), size, limit, reason },
         e => e,
     }
 }

@@ -1016,6 +1016,9 @@ impl LinearRotor {
                 }
             }
         }
+        // the balls are coordinates beside the N DOFs: the equations' mass matrix and the
+        // analyses' Jacobians are dense in N + n_b (the same limit as the DOFs')
+        let mut coordinates = n;
         for (i, b) in self.balancers.iter().enumerate() {
             let f = |s: &str| format!("linear_rotor.balancers[{i}].{s}");
             if b.node >= self.nodes {
@@ -1031,9 +1034,12 @@ impl LinearRotor {
             if b.balls == 0 {
                 return Err(Error::invalid(f("balls"), "must be at least 1"));
             }
-            if b.balls > crate::planar::MAX_BALLS {
-                return Err(Error::TooLarge { what: f("balls"), size: b.balls as u64, limit: crate::planar::MAX_BALLS as u64, reason: String::new() });
+            let room = MAX_DOFS.saturating_sub(coordinates);
+            if b.balls > room {
+                let reason = format!("the {n} DOFs and every plane's balls together at most {MAX_DOFS}: the matrices are dense");
+                return Err(Error::TooLarge { what: f("balls"), size: b.balls as u64, limit: room as u64, reason });
             }
+            coordinates += b.balls;
             if let Some(p) = self.ball_physics.get(i) {
                 p.validate(&format!("linear_rotor.balancers[{i}]"), b.ball_mass, b.radius, b.balls)?;
             }
