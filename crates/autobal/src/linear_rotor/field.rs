@@ -654,8 +654,8 @@ impl LinearRotorField {
     /// the `2P × 2P` system `Σ_q (E_p A⁻¹ G_q) b_q = −E_p A⁻¹ f_r`; each plane's balls then follow
     /// from its resultant (`m_b R Σ e^{iψ_j} = b_q / Ω²`: pairs at `arg ± φ`, an odd ball on the
     /// resultant) and `p` from `A p = f_r + Σ G_q b_q`. One plane is the case `P = 1`: where the
-    /// unbalances sit at the balancer node without offset its resultant is `−Ω² Σ m e e^{i phase}`
-    /// and `p = 0`; where they sit elsewhere on a flexible shaft the balls must cancel the
+    /// unbalances sit in the balancer's plane its resultant is `−Ω² Σ m e e^{i phase}` (taken so,
+    /// exactly) and `p = 0`; where they sit elsewhere on a flexible shaft the balls must cancel the
     /// unbalances' response at the race, not their sum (`b = −(E A⁻¹ G)⁻¹ E A⁻¹ f_r`, which
     /// grows without bound near an antiresonance of the race: no balanced state there once it
     /// exceeds the capacity). Taking the sum instead (before 2026-11-28) started Newton's method
@@ -677,7 +677,30 @@ impl LinearRotorField {
         if r.balancers.is_empty() || r.balancers.iter().any(|b| b.balls < 2) || self.omega == 0.0 {
             return None;
         }
-        self.balanced_guess_planes()
+        let b = r.balancers[0];
+        if r.balancers.len() > 1 || r.unbalances.iter().any(|u| u.node != b.node || u.offset != b.offset) {
+            return self.balanced_guess_planes();
+        }
+        // one plane with every unbalance in it: the resultant is −Σ m e e^{i phase} exactly
+        // (the P-plane solve gives it to round-off, whose sign of a zero imaginary part would
+        // move the balls' angles by 2π between calls: arg(−a) = π here)
+        let res: C = r.unbalances.iter().map(|u| C::from_polar(u.me, u.phase)).sum();
+        let need = -res + C::new(0.0, 0.0);
+        let psi = ball_angles(b.balls, b.ball_mass, b.radius, need)?;
+        let w = self.omega;
+        let ball_f: C = psi.iter().map(|&p| C::from_polar(b.ball_mass * b.radius * w * w, p)).sum();
+        let mut f = self.unbalance_forces();
+        self.add_plane_force(0, ball_f, &mut f);
+        let n = r.dofs();
+        let p = if f.iter().all(|v| *v == 0.0) {
+            vec![0.0; n]
+        } else {
+            let lu = Lu::factored(self.stationary_matrix(), n)?;
+            let mut p = f;
+            lu.solve(&mut p);
+            p
+        };
+        Some(self.guess_state(&p, &psi))
     }
 
     /// [`LinearRotorField::balanced_guess`]: the race centres on the axis, `P ≥ 1` planes.
