@@ -153,6 +153,16 @@ def numba_rhs(W):
     return f
 
 
+def unscaled(f, w):
+    """`f(t, z, out)` on the scaled state z = y / w as a right-hand side of y (for `--check`)."""
+    def rhs_py(t, y):
+        out = np.zeros(8)
+        f(t, y / w, out)
+        return out * w
+
+    return rhs_py
+
+
 def numbalsoda_peer():
     import numba as nb
     from numba import cfunc
@@ -182,12 +192,7 @@ def numbalsoda_peer():
         y = usol * w
         return np.hypot(y[:, 0], y[:, 1])
 
-    def rhs_py(t, y):
-        out = np.zeros(8)
-        f(t, y / w, out)
-        return out * w
-
-    return {"DOP853": lambda rtol: run("DOP853", rtol), "LSODA": lambda rtol: run("LSODA", rtol)}, rhs_py
+    return {"DOP853": lambda rtol: run("DOP853", rtol), "LSODA": lambda rtol: run("LSODA", rtol)}, unscaled(f, w)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -393,12 +398,7 @@ def sundials_peer():
         y = sol.y * w
         return np.hypot(y[:, 0], y[:, 1])
 
-    def rhs_py(t, y):
-        out = np.zeros(8)
-        rhs_nb(t, y / w, out)
-        return out * w
-
-    return {"CVODE-Adams": lambda rtol: run("Adams", rtol), "CVODE-BDF": lambda rtol: run("BDF", rtol)}, rhs_py
+    return {"CVODE-Adams": lambda rtol: run("Adams", rtol), "CVODE-BDF": lambda rtol: run("BDF", rtol)}, unscaled(rhs_nb, w)
 
 
 # ---------------------------------------------------------------------------------------------

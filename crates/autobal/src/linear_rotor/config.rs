@@ -651,17 +651,20 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
 /// refused with the linear rotor's: its run starts at rest with the balls spread evenly
 /// (`2π j / n` in each plane).
 fn check_run_keys(root: &Table) -> Result<()> {
-    const DRIVE: &[&str] = &["kind", "omega0", "b", "torque", "omega_idle", "t_off", "t_end", "schedule", "schedule_of"];
-    const INTEGRATION: &[&str] = &["method", "rtol", "atol", "dt", "max_steps", "max_wall_s"];
-    for (name, known) in [("drive", DRIVE), ("integration", INTEGRATION)] {
+    // the planar rotor's start, which a linear config's run does not take
+    const START: &[&str] = &["psi0", "psi_rate0", "xy0", "xy_rate0"];
+    for name in ["drive", "integration"] {
         let Some(v) = root.get(name) else { continue };
         let t = v.as_table().ok_or_else(|| Error::invalid(name, "expected a table"))?;
+        // the keys the shared readers take (crate::config::SCHEMA) but the start
+        let known: Vec<&str> =
+            crate::config::SCHEMA.iter().find(|(t, _)| *t == name).map_or(&[][..], |(_, k)| *k).iter().copied().filter(|k| !START.contains(k)).collect();
         for k in t.keys() {
             if known.contains(&k.as_str()) {
                 continue;
             }
             let field = format!("{name}.{k}");
-            return Err(if name == "drive" && ["psi0", "psi_rate0", "xy0", "xy_rate0"].contains(&k.as_str()) {
+            return Err(if START.contains(&k.as_str()) {
                 Error::invalid(field, "a linear rotor's run starts with the structure at rest on the axis and the balls spread evenly at rest relative to the rotor (2π j/n in each plane); its start is not set in the config (`autobal basins` varies the balls' angles)")
             } else {
                 Error::invalid(field, format!("unknown key (known keys of [{name}] in a linear rotor config: {})", known.join(", ")))

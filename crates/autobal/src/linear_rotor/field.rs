@@ -687,20 +687,34 @@ impl LinearRotorField {
         let res: C = r.unbalances.iter().map(|u| C::from_polar(u.me, u.phase)).sum();
         let need = -res + C::new(0.0, 0.0);
         let psi = ball_angles(b.balls, b.ball_mass, b.radius, need)?;
+        self.state_with_balls(self.unbalance_forces(), &psi, None)
+    }
+
+    /// The balanced state's start from the balls' angles `psi` (all planes in order): the
+    /// structure from `A p = f + Σ_q G_q m_b R Ω² Σ_j e^{iψ_j}` with `lu` the factored `A`
+    /// ([`Self::stationary_matrix`]; `None`: factored here, and `p = 0` without a solve where
+    /// the forces cancel), then [`Self::guess_state`].
+    fn state_with_balls(&self, mut f: Vec<f64>, psi: &[f64], lu: Option<&Lu>) -> Option<Vec<f64>> {
         let w = self.omega;
-        let ball_f: C = psi.iter().map(|&p| C::from_polar(b.ball_mass * b.radius * w * w, p)).sum();
-        let mut f = self.unbalance_forces();
-        self.add_plane_force(0, ball_f, &mut f);
-        let n = r.dofs();
-        let p = if f.iter().all(|v| *v == 0.0) {
-            vec![0.0; n]
-        } else {
-            let lu = Lu::factored(self.stationary_matrix(), n)?;
-            let mut p = f;
-            lu.solve(&mut p);
-            p
+        let mut first = 0;
+        for (q, b) in self.rotor.balancers.iter().enumerate() {
+            let ball_f: C = psi[first..first + b.balls].iter().map(|&p| C::from_polar(b.ball_mass * b.radius * w * w, p)).sum();
+            self.add_plane_force(q, ball_f, &mut f);
+            first += b.balls;
+        }
+        let n = self.rotor.dofs();
+        let p = match lu {
+            Some(lu) => {
+                lu.solve(&mut f);
+                f
+            }
+            None if f.iter().all(|v| *v == 0.0) => vec![0.0; n],
+            None => {
+                Lu::factored(self.stationary_matrix(), n)?.solve(&mut f);
+                f
+            }
         };
-        Some(self.guess_state(&p, &psi))
+        Some(self.guess_state(&p, psi))
     }
 
     /// [`LinearRotorField::balanced_guess`]: the race centres on the axis, `P ≥ 1` planes.
@@ -752,18 +766,12 @@ impl LinearRotorField {
             return None;
         }
         let mut psi = vec![];
-        let mut f = f;
         for (q, b) in r.balancers.iter().enumerate() {
             // the plane's resultant m_b R Σ e^{iψ} = b_q / Ω²
             let need = C::new(rhs[2 * q], rhs[2 * q + 1]) / (w * w);
-            let angles = ball_angles(b.balls, b.ball_mass, b.radius, need)?;
-            let ball_f: C = angles.iter().map(|&p| C::from_polar(b.ball_mass * b.radius * w * w, p)).sum();
-            self.add_plane_force(q, ball_f, &mut f);
-            psi.extend(angles);
+            psi.extend(ball_angles(b.balls, b.ball_mass, b.radius, need)?);
         }
-        let mut p = f;
-        lu.solve(&mut p);
-        Some(self.guess_state(&p, &psi))
+        self.state_with_balls(f, &psi, Some(&lu))
     }
 
     /// The unbalances' forces `Ω² m e e^{i phase}` in turning axes at `t = 0` with the moments
