@@ -547,6 +547,172 @@ fn decimate(a: &Axis) -> (usize, Axis) {
     (k, Axis::new(a.path.clone(), a.values.iter().copied().step_by(k).collect()))
 }
 
+/// The closed route's CSV rows, formatted into buffers kept for the whole map (no fresh
+/// megabytes per batch, no copy of a row's cells where the library's slice serves). On one
+/// thread each row is formatted as it comes, from the library's slice, into one text that is
+/// written once it holds [`CSV_CHUNK`] bytes (the staged file's buffer size: a write that large
+/// goes to the file without a copy into that buffer). On more threads the rows are formatted in
+/// parallel in batches of about 64 k cells (the pool is idle between the library's blocks),
+/// the batch's cells and its rows' texts reused from batch to batch. The bytes are the same
+/// either way.
+struct CsvRows<'a> {
+    /// The `x` values' CSV text, once.
+    xs: Vec<Piece>,
+    y: &'a [f64],
+    nx: usize,
+    /// `--quantity verdict`: an empty margin field.
+    verdict_only: bool,
+    /// Rows per batch (1: each row formatted as it comes).
+    batch: usize,
+    /// The batch's row indices and cells (`nx` a row).
+    rows: Vec<usize>,
+    cells: Vec<Cell>,
+    /// One text per row of a batch; on one thread `texts[0]`, the text being collected.
+    texts: Vec<Vec<u8>>,
+}
+
+/// A short text (at most [`Piece::N`] bytes) kept in a fixed-size array, so that appending it
+/// is one fixed-size copy (no call to a variable-length copy) and a cut back to its length.
+#[derive(Clone, Copy)]
+struct Piece {
+    bytes: [u8; Piece::N],
+    len: usize,
+}
+
+impl Piece {
+    const N: usize = 32;
+
+    /// `text` as a piece; `None` when it is longer than [`Piece::N`].
+    fn new(text: &[u8]) -> Option<Piece> {
+        let mut bytes = [0u8; Piece::N];
+        bytes.get_mut(..text.len())?.copy_from_slice(text);
+        Some(Piece { bytes, len: text.len() })
+    }
+
+    fn text(&self) -> &[u8] {
+        &self.bytes[..self.len]
+    }
+
+    /// Append the text to `t`: all [`Piece::N`] bytes, then `t` cut back by the padding.
+    #[inline]
+    fn push(&self, t: &mut Vec<u8>) {
+        t.extend_from_slice(&self.bytes);
+        t.truncate(t.len() - (Piece::N - self.len));
+    }
+}
+
+/// Bytes a single-thread text collects before it is written.
+const CSV_CHUNK: usize = 1 << 16;
+
+impl<'a> CsvRows<'a> {
+    fn new(x: &Axis, y: &'a Axis, verdict_only: bool, threads: usize) -> Self {
+        let nx = x.values.len();
+        let xs = x
+            .values
+            .iter()
+            .map(|v| {
+                let mut t = vec![];
+                crate::num::Csv(*v).push_to(&mut t);
+                Piece::new(&t).expect("a double's shortest text is at most 24 bytes")
+            })
+            .collect();
+        let batch = if threads > 1 { CSV_CHUNK / nx.max(1) + 1 } else { 1 };
+        CsvRows { xs, y: &y.values, nx, verdict_only, batch, rows: vec![], cells: vec![], texts: vec![vec![]] }
+    }
+
+    /// Append row `j`'s lines (`x,y,margin,stable,necessary`) to `t`: each line from fixed-size
+    /// pieces (the `x` text; `,y,` or, with no margin, `,y,,s,n` whole) copied 32 bytes at a
+    /// time and cut back to their length, instead of five variable-length copies a cell.
+    fn format(xs: &[Piece], y: f64, verdict_only: bool, cells: &[Cell], t: &mut Vec<u8>) {
+        let mut yv = Vec::with_capacity(24);
+        crate::num::Csv(y).push_to(&mut yv);
+        let flags = |s: bool, n: bool| [b',', b'0' + s as u8, b',', b'0' + n as u8, b'\n'];
+        let all = [flags(false, false), flags(false, true), flags(true, false), flags(true, true)];
+        let idx = |c: &Cell| 2 * c.stable as usize + c.necessary as usize;
+        t.reserve(cells.len() * (xs.iter().map(|p| p.len).max().unwrap_or(0) + yv.len() + 32));
+        if verdict_only {
+            // `--quantity verdict` computes no margin: an empty field, never `NaN`
+            let ends = all.map(|f| Piece::new(&[&b","[..], &yv, b",", &f].concat()));
+            if let Some(ends) = ends.into_iter().collect::<Option<Vec<Piece>>>() {
+                for (x, c) in xs.iter().zip(cells) {
+                    x.push(t);
+                    ends[idx(c)].push(t);
+                }
+                return;
+            }
+        } else if let Some(mid) = Piece::new(&[&b","[..], &yv, b","].concat()) {
+            for (x, c) in xs.iter().zip(cells) {
+                x.push(t);
+                mid.push(t);
+                crate::num::Csv(c.margin).push_to(t);
+                t.extend_from_slice(&all[idx(c)]);
+            }
+            return;
+        }
+        // a `y` text too long for a piece (never for a double's shortest form, at most 24 bytes)
+        for (x, c) in xs.iter().zip(cells) {
+            t.extend_from_slice(x.text());
+            t.push(b',');
+            t.extend_from_slice(&yv);
+            t.push(b',');
+            if !verdict_only {
+                crate::num::Csv(c.margin).push_to(t);
+            }
+            t.extend_from_slice(&all[idx(c)]);
+        }
+    }
+
+    /// Row `j` computed (`last`: the map's last row): formatted now (one thread) or with its
+    /// batch, and written when the text or the batch is full.
+    fn row(&mut self, j: usize, cells: &[Cell], last: bool, w: &mut dyn Write) -> std::io::Result<()> {
+        if self.batch == 1 {
+            let t = &mut self.texts[0];
+            Self::format(&self.xs, self.y[j], self.verdict_only, cells, t);
+            if t.len() >= CSV_CHUNK || last {
+                w.write_all(t)?;
+                t.clear();
+            }
+            return Ok(());
+        }
+        self.rows.push(j);
+        self.cells.extend_from_slice(cells);
+        if self.rows.len() >= self.batch || last {
+            self.flush(w)?;
+        }
+        Ok(())
+    }
+
+    /// Format the pending batch in parallel and write it.
+    fn flush(&mut self, w: &mut dyn Write) -> std::io::Result<()> {
+        let n = self.rows.len();
+        if n > 0 {
+            if self.texts.len() < n {
+                self.texts.resize_with(n, Vec::new);
+            }
+            let (xs, y, verdict_only) = (&self.xs, self.y, self.verdict_only);
+            self.texts[..n].par_iter_mut().zip(self.rows.par_iter()).zip(self.cells.par_chunks(self.nx)).for_each(|((t, &j), cells)| {
+                t.clear();
+                Self::format(xs, y[j], verdict_only, cells, t);
+            });
+            self.rows.clear();
+            self.cells.clear();
+            for t in &self.texts[..n] {
+                w.write_all(t)?;
+            }
+        }
+        w.flush()
+    }
+
+    /// Write what is still pending (an interrupted map's complete rows) and flush the writer.
+    fn finish(&mut self, w: &mut dyn Write) -> std::io::Result<()> {
+        if self.batch == 1 {
+            w.write_all(&self.texts[0])?;
+            self.texts[0].clear();
+        }
+        self.flush(w)
+    }
+}
+
 /// Compute the map with the library ([`autobal::spatial::map::stability_map_units`]), handing
 /// the rows to `rows` in grid order and keeping a decimated copy for the figures.
 #[allow(clippy::too_many_arguments)]
@@ -563,7 +729,7 @@ pub fn compute(
     let settings = autobal::spatial::map::MapSettings { balls, quantity, omega };
     let (kx, dx) = decimate(x);
     let (ky, dy) = decimate(y);
-    let (nx, ny) = (x.values.len(), y.values.len());
+    let ny = y.values.len();
     let mut kept: Vec<Option<Vec<Cell>>> = vec![None; dy.values.len()];
     let keep_all = matches!(rows, Rows::Keep);
     let mut all: Vec<Vec<Cell>> = vec![];
@@ -574,70 +740,24 @@ pub fn compute(
     if let Some(w) = csv.as_mut() {
         writeln!(w, "{},{},max_real_part,stable,necessary", x.path, y.path)?;
     }
-    let xs: Vec<Vec<u8>> = match csv {
-        Some(_) => x
-            .values
-            .iter()
-            .map(|v| {
-                let mut t = vec![];
-                crate::num::Csv(*v).push_to(&mut t);
-                t
-            })
-            .collect(),
-        None => vec![],
-    };
-    let verdict_only = quantity == Quantity::Verdict;
-    // rows are formatted in parallel in batches (the pool is idle between the library's blocks)
-    let mut pending: Vec<(usize, Vec<Cell>)> = vec![];
+    let mut out = csv.as_ref().map(|_| CsvRows::new(x, y, quantity == Quantity::Verdict, rayon::current_num_threads()));
     let mut io_error: Option<std::io::Error> = None;
-    let flush = |pending: &mut Vec<(usize, Vec<Cell>)>, csv: &mut dyn Write| -> std::io::Result<()> {
-        let texts: Vec<Vec<u8>> = pending
-            .par_iter()
-            .map(|(j, cells)| {
-                let mut yv = vec![];
-                crate::num::Csv(y.values[*j]).push_to(&mut yv);
-                let mut t = Vec::with_capacity(cells.len() * 40);
-                for (xs, c) in xs.iter().zip(cells) {
-                    // pieces pushed as they are (no String per cell, no formatting machinery)
-                    t.extend_from_slice(xs);
-                    t.push(b',');
-                    t.extend_from_slice(&yv);
-                    t.push(b',');
-                    // `--quantity verdict` computes no margin: an empty field, never `NaN`
-                    if !verdict_only {
-                        crate::num::Csv(c.margin).push_to(&mut t);
-                    }
-                    t.extend_from_slice(match (c.stable, c.necessary) {
-                        (false, false) => b",0,0\n",
-                        (false, true) => b",0,1\n",
-                        (true, false) => b",1,0\n",
-                        (true, true) => b",1,1\n",
-                    });
-                }
-                t
-            })
-            .collect();
-        pending.clear();
-        for t in texts {
-            csv.write_all(&t)?;
-        }
-        csv.flush()
-    };
-    let batch = (1 << 16) / nx.max(1) + 1;
     let outcome = autobal::spatial::map::stability_map_units(&cfg.spec, x, y, &settings, control, &mut |j, cells| {
         if j % ky == 0 && j / ky < kept.len() {
-            kept[j / ky] = Some(cells.iter().step_by(kx).take(dx.values.len()).copied().collect());
+            // undecimated: one copy of the row, not a strided gather
+            let row = match kx {
+                1 => cells[..dx.values.len().min(cells.len())].to_vec(),
+                _ => cells.iter().step_by(kx).take(dx.values.len()).copied().collect(),
+            };
+            kept[j / ky] = Some(row);
         }
         if keep_all {
             all.push(cells.to_vec());
         }
-        if let Some(w) = csv.as_mut() {
-            pending.push((j, cells.to_vec()));
-            if pending.len() >= batch || j + 1 == ny {
-                if let Err(e) = flush(&mut pending, &mut **w) {
-                    io_error = Some(e);
-                    return false;
-                }
+        if let (Some(w), Some(o)) = (csv.as_mut(), out.as_mut()) {
+            if let Err(e) = o.row(j, cells, j + 1 == ny, &mut **w) {
+                io_error = Some(e);
+                return false;
             }
         }
         control.report(j as u64 + 1, ny as u64);
@@ -647,10 +767,9 @@ pub fn compute(
         return Err(e.into());
     }
     let outcome = outcome.map_err(|e| anyhow!("{e}"))?;
-    if let Some(w) = csv {
-        if !pending.is_empty() {
-            flush(&mut pending, w)?;
-        }
+    if let (Some(w), Some(o)) = (csv, out.as_mut()) {
+        // the rows of an interrupted map still pending, and the staged file's buffer
+        o.finish(w)?;
     }
     let run = MapRun { rows_done: outcome.rows, continued: outcome.continued, direct: outcome.direct };
     Ok((MapResult { x: dx, y: dy, rows: kept, quantity }, run, keep_all.then_some(all)))
@@ -913,6 +1032,28 @@ pub fn axis_label(key: &str) -> String {
     known.iter().find(|k| k.0 == key).map_or_else(|| key.to_string(), |k| k.1.to_string())
 }
 
+/// The hash of a rounded point in [`chain`]: each integer multiplied into the state and mixed
+/// (Fibonacci hashing; the keys are ours, never an adversary's, so no SipHash is needed).
+#[derive(Default)]
+struct PointHasher(u64);
+
+impl std::hash::Hasher for PointHasher {
+    fn finish(&self) -> u64 {
+        self.0 ^ (self.0 >> 29)
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.write_u64(u64::from(b));
+        }
+    }
+    fn write_i64(&mut self, v: i64) {
+        self.write_u64(v as u64);
+    }
+    fn write_u64(&mut self, v: u64) {
+        self.0 = (self.0.rotate_left(5) ^ v).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+    }
+}
+
 /// Join cell-edge segments (pairs of points) that share ends into polylines, NaN-separated,
 /// so that a dashed line shows its dashes instead of restarting them on every cell edge.
 /// A straight piece of a boundary, end to end.
@@ -921,7 +1062,9 @@ pub type Segment = ((f64, f64), (f64, f64));
 pub fn chain(segments: &[Segment]) -> Vec<(f64, f64)> {
     use std::collections::HashMap;
     let key = |p: (f64, f64)| ((p.0 * 1e9).round() as i64, (p.1 * 1e9).round() as i64);
-    let mut ends: HashMap<(i64, i64), Vec<usize>> = HashMap::new();
+    // the ends are looked up, never iterated: a cheap hash gives the same chains as SipHash
+    let mut ends: HashMap<(i64, i64), Vec<usize>, std::hash::BuildHasherDefault<PointHasher>> =
+        HashMap::with_capacity_and_hasher(segments.len() + 1, Default::default());
     for (k, (a, b)) in segments.iter().enumerate() {
         ends.entry(key(*a)).or_default().push(k);
         ends.entry(key(*b)).or_default().push(k);
@@ -1229,6 +1372,84 @@ mod tests {
         let e = map(ConfigSource::Tables { root, source: "dict".into(), dir: ".".into() }).unwrap_err();
         assert!(format!("{e:#}").contains("rotor_M.mtx"), "{e:#}");
         let _ = std::fs::remove_dir_all(&d);
+    }
+
+    /// The CSV's rows are the same bytes whether formatted as they come (one thread: pieces
+    /// collected into 64 KB texts) or in parallel batches of reused buffers (three batches of
+    /// 219 rows here), and each line is the plain `format!` of its values: `x,y,margin,s,n`,
+    /// the margin empty for a verdict map. Values of every text length (the longest shortest
+    /// forms, 24 bytes, negative zero, NaN and infinities in the margin) and all four flag
+    /// pairs.
+    #[test]
+    fn csv_rows_are_the_same_bytes_on_one_thread_and_in_batches() {
+        let (nx, ny) = (300, 500);
+        let mut seed = 0x2545_F491_4F6C_DD1Du64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        let special = [-1.2345678901234567e-300, 1.7976931348623157e308, -0.0, 0.0, 5e-324, -2.2250738585072014e-308];
+        let mut value = |k: usize| match k % 97 {
+            i if i < special.len() => special[i],
+            _ => f64::from_bits(next() >> 2) * if next() % 2 == 0 { 1.0 } else { -1e-200 },
+        };
+        let x = Axis::new("x", (0..nx).map(&mut value).collect());
+        let y = Axis::new("y", (0..ny).map(|k| value(k + 3)).collect());
+        let mut next2 = {
+            let mut s = 88_172_645_463_325_252u64;
+            move || {
+                s ^= s << 13;
+                s ^= s >> 7;
+                s ^= s << 17;
+                s
+            }
+        };
+        let margins = [f64::NAN, f64::INFINITY, f64::NEG_INFINITY, -0.0, -1.2345678901234567e-300];
+        let rows: Vec<Vec<Cell>> = (0..ny)
+            .map(|j| {
+                (0..nx)
+                    .map(|i| {
+                        let r = next2();
+                        let margin = if (i + j) % 53 < margins.len() { margins[(i + j) % 53] } else { f64::from_bits(r >> 1) };
+                        Cell { margin, stable: r & 1 == 1, necessary: r & 2 == 2 }
+                    })
+                    .collect()
+            })
+            .collect();
+        for verdict_only in [false, true] {
+            let mut want = vec![];
+            for (j, row) in rows.iter().enumerate() {
+                for (xv, c) in x.values.iter().zip(row) {
+                    let m = if verdict_only { String::new() } else { crate::num::Csv(c.margin).to_string() };
+                    let line = format!("{},{},{m},{},{}\n", crate::num::Csv(*xv), crate::num::Csv(y.values[j]), c.stable as u8, c.necessary as u8);
+                    want.extend_from_slice(line.as_bytes());
+                }
+            }
+            for threads in [1, 4] {
+                let mut o = CsvRows::new(&x, &y, verdict_only, threads);
+                assert_eq!(o.batch, if threads == 1 { 1 } else { 219 });
+                let mut got = vec![];
+                for (j, row) in rows.iter().enumerate() {
+                    o.row(j, row, j + 1 == ny, &mut got).unwrap();
+                }
+                o.finish(&mut got).unwrap();
+                assert!(got == want, "verdict_only {verdict_only}, {threads} threads: the bytes differ");
+            }
+            // an interrupted map: the rows so far, nothing lost in a pending text or batch
+            for threads in [1, 4] {
+                let mut o = CsvRows::new(&x, &y, verdict_only, threads);
+                let mut got = vec![];
+                for (j, row) in rows.iter().take(250).enumerate() {
+                    o.row(j, row, false, &mut got).unwrap();
+                }
+                o.finish(&mut got).unwrap();
+                let lines = 250 * nx;
+                let end = want.iter().enumerate().filter(|(_, &b)| b == b'\n').nth(lines - 1).unwrap().0 + 1;
+                assert!(got == want[..end], "verdict_only {verdict_only}, {threads} threads: the interrupted map's rows differ");
+            }
+        }
     }
 
     #[test]
