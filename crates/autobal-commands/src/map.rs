@@ -1094,14 +1094,29 @@ pub fn chain(segments: &[Segment]) -> Vec<(f64, f64)> {
                 }
             }
         }
-        out.extend(line);
+        // a point inside a straight horizontal or vertical run (a boundary along a row or a
+        // column of cells) adds nothing to the line: left out, the ends and corners kept
+        let n = line.len();
+        out.extend((0..n).filter(|&k| k == 0 || k + 1 == n || !straight(line[k - 1], line[k], line[k + 1])).map(|k| line[k]));
         out.push((f64::NAN, f64::NAN));
     }
     out
 }
 
+/// Whether `b` lies strictly between `a` and `c` on one horizontal or vertical line (exact
+/// coordinates: the cell edges of one row or column are computed alike).
+fn straight(a: (f64, f64), b: (f64, f64), c: (f64, f64)) -> bool {
+    (a.0 == b.0 && b.0 == c.0 && (b.1 - a.1) * (c.1 - b.1) > 0.0) || (a.1 == b.1 && b.1 == c.1 && (b.0 - a.0) * (c.0 - b.0) > 0.0)
+}
+
 /// Cell-edge segments between cells whose `flag` differs (the grid evenly spaced).
 fn boundary(r: &MapResult, flag: impl Fn(&Cell) -> bool) -> Vec<(f64, f64)> {
+    chain(&boundary_segments(r, flag))
+}
+
+/// The cell-edge segments of [`boundary`], row by row, each cell's right edge before its upper
+/// one.
+fn boundary_segments(r: &MapResult, flag: impl Fn(&Cell) -> bool) -> Vec<Segment> {
     let (xs, ys) = (&r.x.values, &r.y.values);
     let (nx, ny) = (xs.len(), ys.len());
     let dx = (r.x.hi() - r.x.lo()) / (nx - 1) as f64;
@@ -1109,23 +1124,35 @@ fn boundary(r: &MapResult, flag: impl Fn(&Cell) -> bool) -> Vec<(f64, f64)> {
     // each row's flags once (a cell is compared with its right and upper neighbours)
     let flags: Vec<Option<Vec<bool>>> = r.rows.iter().map(|row| row.as_ref().map(|cells| cells.iter().map(&flag).collect())).collect();
     let mut segs = vec![];
+    // cells in blocks of 16: a block whose flags equal their right and upper neighbours' (two
+    // slice comparisons) has no segment and is skipped; the segments keep their order
+    const BLOCK: usize = 16;
     for j in 0..ny {
         let Some(row) = &flags[j] else { continue };
         let up = flags.get(j + 1).and_then(Option::as_ref);
         let y = ys[j];
-        for i in 0..nx {
-            let x = xs[i];
-            if i + 1 < nx && row[i] != row[i + 1] {
-                segs.push(((x + dx / 2.0, y - dy / 2.0), (x + dx / 2.0, y + dy / 2.0)));
-            }
-            if let Some(up) = up {
-                if row[i] != up[i] {
-                    segs.push(((x - dx / 2.0, y + dy / 2.0), (x + dx / 2.0, y + dy / 2.0)));
+        let mut b = 0;
+        while b < nx {
+            let e = (b + BLOCK).min(nx);
+            let h = e.min(nx - 1);
+            let flat = row[b..h] == row[b + 1..h + 1] && up.is_none_or(|u| row[b..e] == u[b..e]);
+            if !flat {
+                for i in b..e {
+                    let x = xs[i];
+                    if i + 1 < nx && row[i] != row[i + 1] {
+                        segs.push(((x + dx / 2.0, y - dy / 2.0), (x + dx / 2.0, y + dy / 2.0)));
+                    }
+                    if let Some(up) = up {
+                        if row[i] != up[i] {
+                            segs.push(((x - dx / 2.0, y + dy / 2.0), (x + dx / 2.0, y + dy / 2.0)));
+                        }
+                    }
                 }
             }
+            b = e;
         }
     }
-    chain(&segs)
+    segs
 }
 
 /// The map as a figure: heatmap (margin with a diverging colour bar, or the verdict), the exact
@@ -1448,6 +1475,117 @@ mod tests {
                 let lines = 250 * nx;
                 let end = want.iter().enumerate().filter(|(_, &b)| b == b'\n').nth(lines - 1).unwrap().0 + 1;
                 assert!(got == want[..end], "verdict_only {verdict_only}, {threads} threads: the interrupted map's rows differ");
+            }
+        }
+    }
+
+    /// The boundary's segments skip blocks of cells without a change, and are the plain
+    /// cell-by-cell scan's segments in its order: on grids of every width around the 16-cell
+    /// blocks, with flat regions, scattered single cells and rows not computed.
+    #[test]
+    fn boundary_segments_are_the_plain_scans() {
+        let mut seed = 0x9E37_79B9_7F4A_7C15u64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        for nx in [2, 3, 15, 16, 17, 31, 32, 33, 47, 70] {
+            for ny in [2, 5, 19] {
+                let rows: Vec<Option<Vec<Cell>>> = (0..ny)
+                    .map(|j| {
+                        (next() % 7 != 0).then(|| {
+                            (0..nx)
+                                .map(|i| {
+                                    let region = (i as f64 - 0.4 * nx as f64) * 0.3 + (j as f64 - 0.5 * ny as f64) > 0.0;
+                                    let stray = next() % 23 == 0;
+                                    Cell { margin: f64::NAN, stable: region != stray, necessary: i + j > nx }
+                                })
+                                .collect()
+                        })
+                    })
+                    .collect();
+                let r = MapResult { x: Axis::linspace("x", -1.0, 2.0, nx), y: Axis::linspace("y", 0.5, 3.0, ny), rows, quantity: Quantity::Verdict };
+                let (dx, dy) = (3.0 / (nx - 1) as f64, 2.5 / (ny - 1) as f64);
+                for flag in [(|c: &Cell| c.stable) as fn(&Cell) -> bool, |c: &Cell| c.necessary] {
+                    let mut want = vec![];
+                    for j in 0..ny {
+                        let Some(row) = &r.rows[j] else { continue };
+                        let up = r.rows.get(j + 1).and_then(Option::as_ref);
+                        let y = r.y.values[j];
+                        for i in 0..nx {
+                            let x = r.x.values[i];
+                            if i + 1 < nx && flag(&row[i]) != flag(&row[i + 1]) {
+                                want.push(((x + dx / 2.0, y - dy / 2.0), (x + dx / 2.0, y + dy / 2.0)));
+                            }
+                            if let Some(up) = up {
+                                if flag(&row[i]) != flag(&up[i]) {
+                                    want.push(((x - dx / 2.0, y + dy / 2.0), (x + dx / 2.0, y + dy / 2.0)));
+                                }
+                            }
+                        }
+                    }
+                    let got = boundary_segments(&r, flag);
+                    assert!(
+                        got.len() == want.len() && got.iter().zip(&want).all(|(a, b)| a == b),
+                        "{nx} x {ny}: {} segments against {}",
+                        got.len(),
+                        want.len()
+                    );
+                }
+            }
+        }
+    }
+
+    /// Chained boundaries leave out the points inside straight runs and draw the same line:
+    /// a straight run of five cell edges is one piece; on random maps the pieces' total length
+    /// is the segments', every segment lies on a piece, and no piece has a point inside a
+    /// horizontal or vertical run.
+    #[test]
+    fn chained_boundaries_draw_the_same_line_with_fewer_points() {
+        let run: Vec<Segment> = (0..5).map(|k| ((k as f64, 1.0), (k as f64 + 1.0, 1.0))).collect();
+        let c = chain(&run);
+        assert_eq!(c.len(), 3);
+        assert_eq!((c[0], c[1]), ((0.0, 1.0), (5.0, 1.0)));
+        assert!(c[2].0.is_nan() && c[2].1.is_nan());
+        let mut seed = 0x2545_F491_4F6C_DD1Du64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        for (nx, ny) in [(30, 20), (64, 48)] {
+            let rows: Vec<Option<Vec<Cell>>> = (0..ny)
+                .map(|j| {
+                    Some(
+                        (0..nx)
+                            .map(|i| {
+                                let (u, v) = (i as f64 / nx as f64 - 0.5, j as f64 / ny as f64 - 0.4);
+                                Cell { margin: f64::NAN, stable: u * u + 2.0 * v * v < 0.1 || next() % 41 == 0, necessary: false }
+                            })
+                            .collect(),
+                    )
+                })
+                .collect();
+            let r = MapResult { x: Axis::linspace("x", -2.0, 2.0, nx), y: Axis::linspace("y", 0.05, 4.5, ny), rows, quantity: Quantity::Verdict };
+            let segs = boundary_segments(&r, |c| c.stable);
+            let line = chain(&segs);
+            let pieces: Vec<((f64, f64), (f64, f64))> = line.windows(2).filter(|w| !w[0].0.is_nan() && !w[1].0.is_nan()).map(|w| (w[0], w[1])).collect();
+            let len = |(a, b): ((f64, f64), (f64, f64))| ((b.0 - a.0).powi(2) + (b.1 - a.1).powi(2)).sqrt();
+            let (total, drawn): (f64, f64) = (segs.iter().map(|&s| len(s)).sum(), pieces.iter().map(|&p| len(p)).sum());
+            // the lengths are sums of a few hundred cell edges of ~0.1: rounding ~1e-13
+            assert!((total - drawn).abs() < 1e-9 * total, "{total} against {drawn}");
+            assert!(pieces.len() < segs.len(), "{} pieces for {} segments", pieces.len(), segs.len());
+            for &(a, b) in &segs {
+                let m = ((a.0 + b.0) / 2.0, (a.1 + b.1) / 2.0);
+                // on a piece: the distances to its ends add up to its length (1e-9 of a cell edge)
+                let on = pieces.iter().any(|&(p, q)| (len((p, m)) + len((m, q)) - len((p, q))).abs() < 1e-10);
+                assert!(on, "segment {a:?}-{b:?} is on no piece");
+            }
+            for w in line.windows(3) {
+                assert!(w.iter().any(|p| p.0.is_nan()) || !straight(w[0], w[1], w[2]), "{w:?}");
             }
         }
     }
