@@ -658,7 +658,9 @@ fn run_map(args: &map::Args, config: Option<&std::path::Path>, out: &std::path::
     }
     if out.map_computed() {
         w.commit()?;
-        for f in out.figures()? {
+        let figures = out.figures()?;
+        out.release_figure_cells();
+        for f in figures {
             let svg = f.plot.to_svg();
             outfile::write_atomic("--out", &term::with_suffix(&stem, "png"), f.plot.to_png(1.5)?)?;
             outfile::write_atomic("--out", &term::with_suffix(&stem, "svg"), svg)?;
