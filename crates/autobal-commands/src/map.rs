@@ -326,9 +326,10 @@ impl Output {
         }
     }
 
-    /// Free the closed route's copy of the cells for the figure once [`Output::figures`] has
-    /// drawn it (the table, JSON and notes do not read it): its pages are then reused by the
-    /// figure's rendering (the PNG's 3.8 MB pixmap) instead of new ones being touched.
+    /// Free the closed route's copy of the cells for the figure once
+    /// [`command::Output::figures`] has drawn it (the table, JSON and notes do not read it): its
+    /// pages are then reused by the figure's rendering (the PNG's 3.8 MB pixmap) instead of new
+    /// ones being touched.
     pub fn release_figure_cells(&mut self) {
         if let RouteOutput::Closed { figure, .. } = &mut self.route {
             figure.rows = vec![];
