@@ -588,6 +588,9 @@ struct InterpolatedVariational {
     /// How each row of `J̃ Φ` is formed ([`Row`]).
     rows: Vec<Row>,
     jac: RefCell<Vec<f64>>,
+    /// The time `jac` holds `J̃` at (DOP853's last stage and the next step's first are at the
+    /// same `t`: `J̃` is evaluated once for both).
+    jac_time: std::cell::Cell<f64>,
     acc: RefCell<Vec<f64>>,
 }
 
@@ -631,7 +634,14 @@ impl InterpolatedVariational {
                 a += 1;
             }
         }
-        InterpolatedVariational { n, interpolant, rows, jac: RefCell::new(vec![0.0; n * n]), acc: RefCell::new(vec![]) }
+        InterpolatedVariational {
+            n,
+            interpolant,
+            rows,
+            jac: RefCell::new(vec![0.0; n * n]),
+            jac_time: std::cell::Cell::new(f64::NAN),
+            acc: RefCell::new(vec![]),
+        }
     }
 }
 
@@ -642,7 +652,10 @@ impl System for InterpolatedVariational {
     fn rhs(&self, t: f64, phi: &[f64], dphi: &mut [f64]) {
         let n = self.n;
         let mut j = self.jac.borrow_mut();
-        self.interpolant.eval(t, &mut j, &mut self.acc.borrow_mut());
+        if t != self.jac_time.get() {
+            self.interpolant.eval(t, &mut j, &mut self.acc.borrow_mut());
+            self.jac_time.set(t);
+        }
         for (a, r) in self.rows.iter().enumerate() {
             if let Row::Pair(cols) = r {
                 let (first, second) = dphi[a * n..(a + 2) * n].split_at_mut(n);
