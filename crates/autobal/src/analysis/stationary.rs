@@ -470,6 +470,9 @@ impl TrigInterpolant {
             for &(v, a, b) in h {
                 let e = self.varying[v];
                 let size = (a.abs() + b.abs()) * s[e % n] / s[e / n];
+                if size > budget {
+                    continue; // never dropped (nor counted): not sorted
+                }
                 keys.push((((e / n) as u128) << 96) | ((size.to_bits() as u128) << 32) | (k as u128 * nv + v as u128));
             }
         }
