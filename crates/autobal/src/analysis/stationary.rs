@@ -931,8 +931,10 @@ fn periodic<F: VectorField + ?Sized>(
         }
         it += 1;
         // backtracking on the scaled residual, as in `newton`; with an updated or carried (not
-        // integrated here) matrix only down to 1/16, then a fresh one is worth its integration
-        let shortest = if fresh { 1e-10 } else { 1.0 / 16.0 };
+        // integrated here) matrix only down to 1/2: a shorter step, if accepted, would not
+        // halve the residual either, and the fresh matrix that then follows (below) would cost
+        // the same after up to four more flows
+        let shortest = if fresh { 1e-10 } else { 0.5 };
         let step = direction(&b, n, &r, k).and_then(|d| {
             let r0 = norm2(&r);
             let mut lambda = 1.0;
