@@ -93,49 +93,83 @@ pub fn sample_columns(n: usize) -> Vec<String> {
 /// Rows handed to the writer thread at a time (each `5 + n` floats).
 const BATCH_ROWS: usize = 256;
 
-/// Where a run's rows go, one row (the values of the run's columns) at a time: CSV lines (one
-/// reused buffer, the floats as their shortest round-trip text, [`crate::num::Csv`]), Parquet
-/// rows, and columns kept in memory (Python's arrays), each where given. The CSV is flushed
-/// every 1000 rows and by [`RowSink::finish`].
+/// CSV text handed to the writer at a time (bytes, whole rows): the staged file's buffer is as
+/// large, so each chunk goes to the file without a second copy ([`std::io::BufWriter`] passes a
+/// write of its capacity or more straight through).
+pub const CSV_CHUNK: usize = 1 << 16;
+
+/// Room for one CSV value and its separator in the text buffer ([`crate::num::Csv::write_into`]'s
+/// window of 40 bytes, of which at most 24 are written).
+const VALUE_ROOM: usize = 41;
+
+/// Where a run's rows go, one row (the values of the run's columns) at a time: CSV lines (the
+/// floats as their shortest round-trip text, [`crate::num::Csv`], written in place into one
+/// reused buffer and handed to the writer in chunks of [`CSV_CHUNK`] bytes, so the file grows as
+/// the run goes), Parquet rows, and columns kept in memory (Python's arrays), each where given.
+/// [`RowSink::finish`] writes the last chunk and flushes.
 pub struct RowSink<'a, W: Write + ?Sized> {
     csv: Option<&'a mut W>,
     parquet: Option<&'a mut crate::parquet::Table>,
     columns: Option<&'a mut Vec<Vec<f64>>>,
-    line: Vec<u8>,
-    count: u64,
+    /// The CSV text not yet written: `text[..used]` (whole lines); the rest is room for a row.
+    text: Vec<u8>,
+    used: usize,
 }
 
 impl<'a, W: Write + ?Sized> RowSink<'a, W> {
     /// A sink into any of a CSV writer, a Parquet table and columns (one `Vec` per column,
     /// sized by the caller).
     pub fn new(csv: Option<&'a mut W>, parquet: Option<&'a mut crate::parquet::Table>, columns: Option<&'a mut Vec<Vec<f64>>>) -> Self {
-        RowSink { csv, parquet, columns, line: vec![], count: 0 }
+        RowSink { csv, parquet, columns, text: vec![], used: 0 }
+    }
+
+    /// Room for `bytes` more after the text in use (the buffer grows to a chunk plus that).
+    fn room(&mut self, bytes: usize) {
+        if self.used + bytes > self.text.len() {
+            self.text.resize(CSV_CHUNK.max(self.used) + bytes, 0);
+        }
+    }
+
+    /// Hand the text in use to the writer once it fills a chunk.
+    fn spill(&mut self, at_least: usize) -> std::io::Result<()> {
+        if let Some(csv) = self.csv.as_deref_mut() {
+            if self.used >= at_least && self.used > 0 {
+                csv.write_all(&self.text[..self.used])?;
+                self.used = 0;
+            }
+        }
+        Ok(())
     }
 
     /// The CSV's header line (the column names joined by commas).
     pub fn header(&mut self, names: &[String]) -> Result<()> {
-        if let Some(csv) = self.csv.as_deref_mut() {
-            writeln!(csv, "{}", names.join(","))?;
+        if self.csv.is_some() {
+            let line = names.join(",");
+            self.room(line.len() + 1);
+            self.text[self.used..self.used + line.len()].copy_from_slice(line.as_bytes());
+            self.text[self.used + line.len()] = b'\n';
+            self.used += line.len() + 1;
+            self.spill(CSV_CHUNK)?;
         }
         Ok(())
     }
 
     /// One row.
     pub fn push(&mut self, row: &[f64]) -> Result<()> {
-        if let Some(csv) = self.csv.as_deref_mut() {
-            self.line.clear();
+        if self.csv.is_some() {
+            self.room(row.len() * VALUE_ROOM + 1);
+            let mut k = self.used;
             for (i, v) in row.iter().enumerate() {
                 if i > 0 {
-                    self.line.push(b',');
+                    self.text[k] = b',';
+                    k += 1;
                 }
-                crate::num::Csv(*v).push_to(&mut self.line);
+                let window: &mut [u8; 40] = (&mut self.text[k..k + 40]).try_into().expect("room for a value");
+                k += crate::num::Csv(*v).write_into(window);
             }
-            self.line.push(b'\n');
-            csv.write_all(&self.line)?;
-            self.count += 1;
-            if self.count.is_multiple_of(1000) {
-                csv.flush()?;
-            }
+            self.text[k] = b'\n';
+            self.used = k + 1;
+            self.spill(CSV_CHUNK)?;
         }
         if let Some(t) = self.parquet.as_deref_mut() {
             t.push(row)?;
@@ -148,8 +182,9 @@ impl<'a, W: Write + ?Sized> RowSink<'a, W> {
         Ok(())
     }
 
-    /// Flush the CSV.
+    /// Write the CSV's last chunk and flush it.
     pub fn finish(&mut self) -> Result<()> {
+        self.spill(0)?;
         if let Some(csv) = self.csv.as_deref_mut() {
             csv.flush()?;
         }
@@ -302,9 +337,7 @@ pub fn wrapped_degrees(points: impl Iterator<Item = (f64, f64)>) -> Vec<(f64, f6
     // room for the points and a few breaks: one allocation for most runs
     let mut out: Vec<(f64, f64)> = Vec::with_capacity(points.size_hint().0 + 16);
     for (t, a) in points {
-        let v = a.to_degrees() + 180.0;
-        // `rem_euclid` is `v` itself on [0, 360) (fmod's exact result there), without its call
-        let d = if (0.0..360.0).contains(&v) { v } else { v.rem_euclid(360.0) } - 180.0;
+        let d = wrap_360(a.to_degrees() + 180.0) - 180.0;
         if let Some(&(_, prev)) = out.last() {
             if prev.is_finite() && (d - prev).abs() > 180.0 {
                 out.push((t, f64::NAN));
@@ -313,6 +346,44 @@ pub fn wrapped_degrees(points: impl Iterator<Item = (f64, f64)>) -> Vec<(f64, f6
         out.push((t, d));
     }
     out
+}
+
+/// `v.rem_euclid(360.0)`, bit for bit, without the `fmod` call where `|v| < 2^52` (the ball
+/// angles of a run that slips round the race are mostly outside one turn). On [0, 360) it is
+/// `v`; on (−360, 0) fmod returns `v` and `rem_euclid` adds 360: the same addition. Otherwise
+/// `v − 360 q` with `q = ⌊v / 360⌋` is exact: `v` and `360 q` (an integer below 2^53) are
+/// multiples of `ulp(v)` (at most 1 below 2^52) and the difference, below 720 in magnitude
+/// (`q` may be one off where `v / 360` rounds onto an integer), is representable; one exact
+/// correction by ±360 brings it into [0, 360). That is fmod's exact remainder, plus 360 where it
+/// is negative, and `rem_euclid`'s rounded sum of the two is exact as well (a multiple of
+/// `ulp(v)` below 360). The one difference, `-0` for `rem_euclid` where `v` is a negative
+/// multiple of 360 and `+0` here, is gone after the caller's `- 180`.
+fn wrap_360(v: f64) -> f64 {
+    if (0.0..360.0).contains(&v) {
+        v
+    } else if v > -360.0 && v < 0.0 {
+        v + 360.0
+    } else if v.abs() < 4_503_599_627_370_496.0 {
+        let q = v / 360.0;
+        let q = {
+            let i = q as i64;
+            if (i as f64) > q {
+                i - 1
+            } else {
+                i
+            }
+        };
+        let r = v - 360.0 * q as f64;
+        if r < 0.0 {
+            r + 360.0
+        } else if r >= 360.0 {
+            r - 360.0
+        } else {
+            r
+        }
+    } else {
+        v.rem_euclid(360.0)
+    }
 }
 
 /// Most ball-angle curves drawn in one figure.
@@ -491,12 +562,88 @@ mod tests {
         }
     }
 
+    /// The CSV text of a sink is the rows' values as `Csv`'s `Display` text, comma-joined, a line
+    /// each, after the header, whatever the row width (0 to 40 values: rows of up to 1 600
+    /// bytes) and wherever the chunks end; every chunk but the last reaches the writer whole, at
+    /// least `CSV_CHUNK` bytes (the staged file's buffer passes it through without a copy).
+    #[test]
+    fn a_sinks_csv_is_every_row_as_text_in_whole_chunks() {
+        struct Chunks(Vec<Vec<u8>>, bool);
+        impl Write for Chunks {
+            fn write(&mut self, b: &[u8]) -> std::io::Result<usize> {
+                self.0.push(b.to_vec());
+                Ok(b.len())
+            }
+            fn flush(&mut self) -> std::io::Result<()> {
+                self.1 = true;
+                Ok(())
+            }
+        }
+        let mut x = 0x2545_F491_4F6C_DD1Du64;
+        for width in [0usize, 1, 7, 40] {
+            let mut out = Chunks(vec![], false);
+            let mut want = String::new();
+            {
+                let mut sink = RowSink::new(Some(&mut out), None, None);
+                let names: Vec<String> = (0..width).map(|j| format!("c{j}")).collect();
+                sink.header(&names).unwrap();
+                want.push_str(&names.join(","));
+                want.push('\n');
+                for _ in 0..3000 {
+                    let row: Vec<f64> = (0..width)
+                        .map(|_| {
+                            x ^= x << 13;
+                            x ^= x >> 7;
+                            x ^= x << 17;
+                            match x % 17 {
+                                0 => 0.0,
+                                1 => f64::NAN,
+                                2 => -f64::INFINITY,
+                                3 => (x >> 20) as f64,
+                                _ => f64::from_bits(x >> 2) * if x & 2 == 0 { 1.0 } else { -1.0 },
+                            }
+                        })
+                        .collect();
+                    sink.push(&row).unwrap();
+                    want.push_str(&row.iter().map(|v| crate::num::Csv(*v).to_string()).collect::<Vec<_>>().join(","));
+                    want.push('\n');
+                }
+                sink.finish().unwrap();
+            }
+            assert!(out.1, "finish flushes");
+            let n = out.0.len();
+            assert!(out.0[..n - 1].iter().all(|c| c.len() >= CSV_CHUNK), "width {width}: a chunk short of CSV_CHUNK before the last");
+            assert!(out.0.iter().all(|c| c.ends_with(b"\n")), "width {width}: whole lines a chunk");
+            assert_eq!(String::from_utf8(out.0.concat()).unwrap(), want, "width {width}");
+        }
+    }
+
     /// Wrapping ball angles: the fast path (already in [−180°, 180°)) is `rem_euclid`'s value,
     /// and a ball that slips round the race has its line broken where it wraps.
     #[test]
     fn wrapped_degrees_match_rem_euclid_and_break_at_the_wrap() {
-        for k in -4000..4000 {
-            let a = k as f64 * 0.0123;
+        let mut x = 0x9E37_79B9_7F4A_7C15u64;
+        let mut angles: Vec<f64> = (-4000..4000).map(|k| k as f64 * 0.0123).collect();
+        // far-slipping balls (up to 1e12 rad), the multiples of a turn and their neighbours,
+        // the ends of the exact range
+        for _ in 0..200_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let u = (x >> 11) as f64 / (1u64 << 53) as f64;
+            angles.push((u - 0.5) * 10f64.powf(-2.0 + 14.0 * ((x & 0xff) as f64 / 255.0)));
+        }
+        for k in -3000..3000 {
+            let v = k as f64 * 360.0 - 180.0;
+            for w in [v, v.next_up(), v.next_down()] {
+                angles.push((w - 180.0).to_radians());
+                assert_eq!((wrap_360(w) - 180.0).to_bits(), (w.rem_euclid(360.0) - 180.0).to_bits(), "{w}");
+            }
+        }
+        for w in [4.5e15, -4.5e15, 4_503_599_627_370_495.0, -4_503_599_627_370_495.0, 1e300, -1e300, f64::INFINITY, f64::NAN, -0.0, 0.0, -360.0, 360.0] {
+            assert_eq!((wrap_360(w) - 180.0).to_bits(), (w.rem_euclid(360.0) - 180.0).to_bits(), "{w}");
+        }
+        for a in angles {
             let got = wrapped_degrees([(0.0, a)].into_iter())[0].1;
             let want = (a.to_degrees() + 180.0).rem_euclid(360.0) - 180.0;
             assert_eq!(got.to_bits(), want.to_bits(), "{a}");
