@@ -16,9 +16,11 @@ use std::path::{Path, PathBuf};
 /// largest amplitude (so peaks survive decimation), in their order; a bucket of one or two
 /// samples keeps them all. The bucket's extremes are tracked as the samples come (the first
 /// smallest and the last largest, as `Iterator::min_by`/`max_by` pick them), copied into two
-/// reused samples, and `kept` is sized from the expected count once: no allocation per sample
-/// beyond the kept ones' own ball angles, no growth of `kept` while the run goes (a run of up to
-/// `target` samples keeps every one of them).
+/// reused samples. The kept samples are stored flat, one row of floats each (`t, ω, θ, X, Y,
+/// amplitude, ψ_1 … ψ_n`, [`Envelope::rows`]), in one buffer sized from the expected count once:
+/// no allocation per sample (a `Sample` with its own heap `Vec` of ball angles each took 120
+/// bytes and a `malloc` a sample for a passage's two balls, 64 bytes flat), no growth while the
+/// run goes (a run of up to `target` samples keeps every one of them).
 pub struct Envelope {
     bucket: usize,
     /// Samples of the current bucket so far.
@@ -26,8 +28,22 @@ pub struct Envelope {
     /// The current bucket's first smallest and last largest sample, with their positions in it.
     lo: (usize, Sample),
     hi: (usize, Sample),
-    pub kept: Vec<Sample>,
+    /// Samples to reserve room for at the first one (when its width is known).
+    reserve: usize,
+    /// Floats a kept sample: `ROW_PSI` + its ball count (0 before the first sample).
+    width: usize,
+    /// The kept samples' rows, one after the other.
+    data: Vec<f64>,
 }
+
+/// A kept sample's row ([`Envelope::rows`]): time (s).
+pub const ROW_T: usize = 0;
+/// … speed `ω` (rad/s).
+pub const ROW_OMEGA: usize = 1;
+/// … whirl radius of C (m).
+pub const ROW_AMPLITUDE: usize = 5;
+/// … the first ball angle (rad); the others follow.
+pub const ROW_PSI: usize = 6;
 
 /// `dst` becomes a copy of `src`, reusing `dst`'s ball angles' allocation (every field named:
 /// a field added to `Sample` fails to compile here rather than be left out).
@@ -46,12 +62,25 @@ impl Envelope {
         // a bucket; at most the target's worth reserved ahead (a run longer than expected grows)
         let reserve = if bucket == 1 { expected + 2 } else { 2 * expected.div_ceil(bucket) + 2 };
         let blank = || (0, Sample { t: 0.0, omega: 0.0, theta: 0.0, x: 0.0, y: 0.0, amplitude: 0.0, psi: vec![] });
-        Envelope { bucket, count: 0, lo: blank(), hi: blank(), kept: Vec::with_capacity(reserve.min(2 * target.max(1) + 2)) }
+        Envelope { bucket, count: 0, lo: blank(), hi: blank(), reserve: reserve.min(2 * target.max(1) + 2), width: 0, data: vec![] }
+    }
+
+    /// Keep `s`: its row appended to `data` (`width` set, and room for `reserve` rows made, at
+    /// the first).
+    fn keep(data: &mut Vec<f64>, width: &mut usize, reserve: usize, s: &Sample) {
+        if *width == 0 {
+            *width = ROW_PSI + s.psi.len();
+            data.reserve_exact(reserve * *width);
+        }
+        debug_assert_eq!(*width, ROW_PSI + s.psi.len(), "one ball count a run");
+        let Sample { t, omega, theta, x, y, amplitude, psi } = s;
+        data.extend_from_slice(&[*t, *omega, *theta, *x, *y, *amplitude]);
+        data.extend_from_slice(psi);
     }
 
     pub fn push(&mut self, s: &Sample) {
         if self.bucket == 1 {
-            self.kept.push(s.clone());
+            Self::keep(&mut self.data, &mut self.width, self.reserve, s);
             return;
         }
         let k = self.count;
@@ -75,11 +104,33 @@ impl Envelope {
             return;
         }
         let (a, b) = if self.lo.0 <= self.hi.0 { (&self.lo, &self.hi) } else { (&self.hi, &self.lo) };
-        self.kept.push(a.1.clone());
+        Self::keep(&mut self.data, &mut self.width, self.reserve, &a.1);
         if b.0 != a.0 {
-            self.kept.push(b.1.clone());
+            Self::keep(&mut self.data, &mut self.width, self.reserve, &b.1);
         }
         self.count = 0;
+    }
+
+    /// The kept samples' rows in their order: `t, ω, θ, X, Y, amplitude, ψ_1 … ψ_n` (the
+    /// `ROW_*` indices).
+    pub fn rows(&self) -> std::slice::ChunksExact<'_, f64> {
+        self.data.chunks_exact(self.width.max(1))
+    }
+
+    /// How many samples are kept.
+    pub fn len(&self) -> usize {
+        self.data.len() / self.width.max(1)
+    }
+
+    /// Whether no sample is kept.
+    pub fn is_empty(&self) -> bool {
+        self.data.is_empty()
+    }
+
+    /// The kept samples as `Sample`s (each with its own ball angles' `Vec`: for the report's
+    /// figures, not the run's hot path).
+    pub fn kept(&self) -> Vec<Sample> {
+        self.rows().map(|r| Sample { t: r[0], omega: r[1], theta: r[2], x: r[3], y: r[4], amplitude: r[5], psi: r[ROW_PSI..].to_vec() }).collect()
     }
 }
 
@@ -392,13 +443,15 @@ pub const PSI_CURVES: usize = 24;
 /// The four figures of 004's kind: amplitude vs ω with stationary curves, amplitude vs t,
 /// ball angles vs t, ω vs t.
 pub fn plots(cfg: &PlanarConfig, env: &Envelope, title: &str) -> Vec<(String, Plot)> {
-    let k = &env.kept;
+    let k = || env.rows();
+    let (t, om, amp) = (|r: &[f64]| r[ROW_T], |r: &[f64]| r[ROW_OMEGA], |r: &[f64]| r[ROW_AMPLITUDE]);
+    let t_last = env.rows().last().map_or(1.0, t);
     let p = &cfg.rotor;
     let mm = 1e3;
-    let (wlo, whi) = k.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), s| (a.min(s.omega), b.max(s.omega)));
+    let (wlo, whi) = k().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), r| (a.min(om(r)), b.max(om(r))));
     let (wlo, whi) = if whi > wlo { (wlo.max(0.0), whi) } else { (0.0, 2.0 * p.natural_frequency()) };
     let ws: Vec<f64> = (0..=600).map(|i| wlo + (whi - wlo) * i as f64 / 600.0).collect();
-    let mut s1 = vec![Series::new("transient", k.iter().map(|s| (s.omega, mm * s.amplitude)).collect(), PALETTE[0])];
+    let mut s1 = vec![Series::new("transient", k().map(|r| (om(r), mm * amp(r))).collect(), PALETTE[0])];
     s1.push(Series::new("stationary (balls held)", ws.iter().map(|&w| (w, mm * locked_amplitude(p, w, &cfg.settings.psi0))).collect(), PALETTE[6]).dashed());
     if p.n >= 2 {
         s1.push(
@@ -422,7 +475,7 @@ pub fn plots(cfg: &PlanarConfig, env: &Envelope, title: &str) -> Vec<(String, Pl
             s1.push(Series::new(label, pts, col).dashed());
         }
     }
-    let peak = k.iter().map(|s| s.amplitude).fold(0.0, f64::max) * mm;
+    let peak = k().map(amp).fold(0.0, f64::max) * mm;
     let mut out = vec![(
         "amplitude_omega".to_string(),
         Plot {
@@ -441,8 +494,8 @@ pub fn plots(cfg: &PlanarConfig, env: &Envelope, title: &str) -> Vec<(String, Pl
             x_label: "t (s)".into(),
             y_label: "radius of C (mm)".into(),
             series: vec![
-                Series::new("radius of C", k.iter().map(|s| (s.t, mm * s.amplitude)).collect(), PALETTE[0]),
-                Series::new("s2", vec![(0.0, mm * p.s2), (k.last().map_or(1.0, |s| s.t), mm * p.s2)], PALETTE[7]).dashed(),
+                Series::new("radius of C", k().map(|r| (t(r), mm * amp(r))).collect(), PALETTE[0]),
+                Series::new("s2", vec![(0.0, mm * p.s2), (t_last, mm * p.s2)], PALETTE[7]).dashed(),
             ],
             ..Default::default()
         },
@@ -451,7 +504,7 @@ pub fn plots(cfg: &PlanarConfig, env: &Envelope, title: &str) -> Vec<(String, Pl
     // the CSV has every ball
     let drawn = p.n.min(PSI_CURVES);
     let psi: Vec<Series> =
-        (0..drawn).map(|j| Series::new(format!("ψ{}", j + 1), wrapped_degrees(k.iter().map(|s| (s.t, s.psi[j]))), PALETTE[(j + 1) % 7])).collect();
+        (0..drawn).map(|j| Series::new(format!("ψ{}", j + 1), wrapped_degrees(k().map(|r| (t(r), r[ROW_PSI + j]))), PALETTE[(j + 1) % 7])).collect();
     let psi_title = if drawn < p.n { format!("{title}: ball angles (balls 1-{drawn} of {})", p.n) } else { format!("{title}: ball angles") };
     out.push(("psi_t".into(), Plot { title: psi_title, x_label: "t (s)".into(), y_label: "ψ (degrees from CG)".into(), series: psi, ..Default::default() }));
     out.push((
@@ -461,8 +514,8 @@ pub fn plots(cfg: &PlanarConfig, env: &Envelope, title: &str) -> Vec<(String, Pl
             x_label: "t (s)".into(),
             y_label: "ω (rad/s)".into(),
             series: vec![
-                Series::new("ω", k.iter().map(|s| (s.t, s.omega)).collect(), PALETTE[0]),
-                Series::new("sqrt(k/m0)", vec![(0.0, p.natural_frequency()), (k.last().map_or(1.0, |s| s.t), p.natural_frequency())], PALETTE[7]).dashed(),
+                Series::new("ω", k().map(|r| (t(r), om(r))).collect(), PALETTE[0]),
+                Series::new("sqrt(k/m0)", vec![(0.0, p.natural_frequency()), (t_last, p.natural_frequency())], PALETTE[7]).dashed(),
             ],
             ..Default::default()
         },
@@ -554,10 +607,19 @@ mod tests {
             samples.iter().for_each(|s| env.push(s));
             env.flush();
             let want = reference(&samples, expected, target);
-            assert_eq!(env.kept.len(), want.len(), "case {case}: expected {expected}, target {target}, {count} samples");
-            for (k, (a, b)) in env.kept.iter().zip(&want).enumerate() {
+            let kept = env.kept();
+            assert_eq!(kept.len(), want.len(), "case {case}: expected {expected}, target {target}, {count} samples");
+            assert_eq!(env.len(), want.len());
+            for (k, (a, b)) in kept.iter().zip(&want).enumerate() {
                 // compared as bits: NaN amplitudes are kept too
-                assert!(a.t == b.t && a.amplitude.to_bits() == b.amplitude.to_bits() && a.psi == b.psi && a.omega == b.omega, "case {case}, kept {k}");
+                assert!(
+                    a.t == b.t
+                        && a.amplitude.to_bits() == b.amplitude.to_bits()
+                        && a.psi == b.psi
+                        && a.omega == b.omega
+                        && [a.theta, a.x, a.y].map(f64::to_bits) == [b.theta, b.x, b.y].map(f64::to_bits),
+                    "case {case}, kept {k}"
+                );
             }
         }
     }
