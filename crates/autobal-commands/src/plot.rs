@@ -517,7 +517,10 @@ impl Plot {
                 } else if seg.len() >= 2 {
                     s.push_str(r#"<polyline points=""#);
                     let mut kept = pixel_columns(seg);
-                    if thin && seg.len() > THIN_ABOVE {
+                    // (decided on the column points: the same for a line built from its columns,
+                    // `line_columns`)
+                    let dense = kept.len() > THIN_ABOVE;
+                    if thin && dense {
                         kept = chord_thin(&kept, THIN_PX);
                     }
                     *clip |= !drawn_inside(&kept, se.width.unwrap_or(2.0) / 2.0, area);
@@ -535,7 +538,7 @@ impl Plot {
                     // a dense curve's joins round: its column points turn sharply within a
                     // pixel, where a miter join would draw a spike of up to 4 px (SVG's miter
                     // limit) that the data do not have, and which thinning would move
-                    let join = if seg.len() > THIN_ABOVE { r#" stroke-linejoin="round""# } else { "" };
+                    let join = if dense { r#" stroke-linejoin="round""# } else { "" };
                     let _ = writeln!(s, r#"" stroke="{}" stroke-width="{}"{join}{dash}/>"#, se.color, se.width.unwrap_or(2.0));
                 } else if let Some(&(x, y)) = seg.first() {
                     *clip |= !disk_inside((x, y), 2.0, area);
@@ -944,9 +947,10 @@ fn pixel_columns(pts: &[(f64, f64)]) -> Vec<(f64, f64)> {
     keep.into_iter().map(|k| pts[k]).collect()
 }
 
-/// An unbroken piece of a curve of more points than this is drawn thinned by [`chord_thin`]:
-/// about 4 px apart or closer over the 540 px plot, its vertices are not visible as such (a
-/// sweep's curve of a few dozen runs keeps a vertex per run).
+/// An unbroken piece of a curve of more points than this in its pixel columns
+/// ([`pixel_columns`]) is drawn thinned by [`chord_thin`]: about 4 px apart or closer over the
+/// 540 px plot, its vertices are not visible as such (a sweep's curve of a few dozen runs
+/// keeps a vertex per run).
 const THIN_ABOVE: usize = 128;
 
 /// How far (px) a dropped vertex may lie from the line drawn instead ([`chord_thin`]): a
@@ -1011,6 +1015,71 @@ fn chord_thin(pts: &[(f64, f64)], tol: f64) -> Vec<(f64, f64)> {
         k += 1;
     }
     out.push(pts[pts.len() - 1]);
+    out
+}
+
+/// The points of a line that its own figure draws ([`pixel_columns`] of each unbroken piece,
+/// with the pixel columns of the points' own x-range, `x_range` when given): for building a
+/// dense series from many samples (a run's 4 801) without holding every one, when the figure's
+/// x-range is the points' (the drawing is then the same; otherwise the columns are off by less
+/// than one, which moves no drawn point by more than a pixel's column). Per run of points in one
+/// column: the first, the first largest and first smallest `y` and the last, in their order;
+/// a non-finite point is kept as the break it is. Two passes over `points` (the range, then the
+/// columns).
+pub fn line_columns<I: Iterator<Item = (f64, f64)> + Clone>(points: I) -> Vec<(f64, f64)> {
+    let (mut x0, mut x1) = (f64::INFINITY, f64::NEG_INFINITY);
+    for (x, y) in points.clone() {
+        if x.is_finite() && y.is_finite() {
+            x0 = x0.min(x);
+            x1 = x1.max(x);
+        }
+    }
+    if !(x1 - x0 >= 1e-12) {
+        return points.collect();
+    }
+    // `Plot::svg`'s column of x (its `sx`, clamped, floored) with the left margin of a figure
+    // without named row ticks
+    let col = |x: f64| floor_i64((ML + (x - x0) / (x1 - x0) * PW).clamp(-1e4, 1e4));
+    let mut out: Vec<(f64, f64)> = Vec::with_capacity(4 * PW as usize + 64);
+    // the current run: its column, and (position, point) of its first, largest, smallest, last
+    type Run = (i64, [(usize, (f64, f64)); 4]);
+    let flush = |run: &mut Option<Run>, out: &mut Vec<(f64, f64)>| {
+        if let Some((_, mut four)) = run.take() {
+            four.sort_by_key(|e| e.0);
+            let mut last = usize::MAX;
+            for (k, p) in four {
+                if k != last {
+                    out.push(p);
+                    last = k;
+                }
+            }
+        }
+    };
+    let mut run: Option<Run> = None;
+    for (k, p) in points.enumerate() {
+        if !(p.0.is_finite() && p.1.is_finite()) {
+            flush(&mut run, &mut out);
+            out.push(p);
+            continue;
+        }
+        let c = col(p.0);
+        match &mut run {
+            Some((rc, four)) if *rc == c => {
+                if p.1 > four[1].1 .1 {
+                    four[1] = (k, p);
+                }
+                if p.1 < four[2].1 .1 {
+                    four[2] = (k, p);
+                }
+                four[3] = (k, p);
+            }
+            _ => {
+                flush(&mut run, &mut out);
+                run = Some((c, [(k, p); 4]));
+            }
+        }
+    }
+    flush(&mut run, &mut out);
     out
 }
 
@@ -1224,6 +1293,28 @@ mod tests {
         // a curve going back and forth keeps its turning points
         let zig = [(10.2, 1.0), (10.8, 5.0), (10.1, 2.0), (12.5, 0.0), (10.3, 9.0)];
         assert_eq!(pixel_columns(&zig), zig.to_vec());
+    }
+
+    /// A figure of lines built from `line_columns` is the figure of the whole lines, byte for
+    /// byte, where the figure's x-range is theirs: a 4 801-point peak with noise (ties in y
+    /// included), a zigzag, a curve going back in x, and one broken by NaN.
+    #[test]
+    fn a_line_built_from_its_columns_draws_the_same_figure() {
+        let n = 4801;
+        let t = |k: usize| 300.0 * k as f64 / (n - 1) as f64;
+        let lines: Vec<Vec<(f64, f64)>> = vec![
+            (0..n).map(|k| (t(k), 2.0 / (1.0 + ((t(k) - 120.0) / 6.0).powi(2)) + 0.05 * ((k * 7919 % 13) as f64 / 13.0).round())).collect(),
+            (0..n).map(|k| (t(k), if k % 2 == 0 { 1.0 } else { -1.0 } * (t(k) / 50.0).sin())).collect(),
+            (0..n).map(|k| (t(k) + 20.0 * (t(k) / 9.0).sin(), (t(k) / 30.0).cos())).collect(),
+            (0..n).map(|k| (t(k), if k % 700 == 350 { f64::NAN } else { (t(k) * 3.0) % 180.0 - 90.0 })).collect(),
+        ];
+        for (i, line) in lines.iter().enumerate() {
+            let whole = Plot { title: format!("line {i}"), series: vec![Series::new("a", line.clone(), "#000")], ..Default::default() };
+            let thin = Plot { series: vec![Series::new("a", line_columns(line.iter().copied()), "#000")], ..whole.clone() };
+            assert!(thin.series[0].points.len() * 2 < line.len(), "line {i}: {} points kept", thin.series[0].points.len());
+            assert_eq!(thin.ranges(), whole.ranges(), "line {i}");
+            assert!(thin.to_svg() == whole.to_svg(), "line {i}: the figures differ");
+        }
     }
 
     /// Every vertex `chord_thin` drops lies within the tolerance of the chord (the segment)

@@ -443,6 +443,20 @@ pub const PSI_CURVES: usize = 24;
 /// The four figures of 004's kind: amplitude vs ω with stationary curves, amplitude vs t,
 /// ball angles vs t, ω vs t.
 pub fn plots(cfg: &PlanarConfig, env: &Envelope, title: &str) -> Vec<(String, Plot)> {
+    plots_with(cfg, env, title, false)
+}
+
+/// [`plots`], the run's curves built from what their SVG draws ([`crate::plot::line_columns`],
+/// the same SVG) where `columns`: `simulate`'s figure files; the report and Python's figures
+/// keep every sample (Plotly's zoom and hover show them).
+fn plots_with(cfg: &PlanarConfig, env: &Envelope, title: &str, columns: bool) -> Vec<(String, Plot)> {
+    fn line<I: Iterator<Item = (f64, f64)> + Clone>(points: I, columns: bool) -> Vec<(f64, f64)> {
+        if columns {
+            crate::plot::line_columns(points)
+        } else {
+            points.collect()
+        }
+    }
     let k = || env.rows();
     let (t, om, amp) = (|r: &[f64]| r[ROW_T], |r: &[f64]| r[ROW_OMEGA], |r: &[f64]| r[ROW_AMPLITUDE]);
     let t_last = env.rows().last().map_or(1.0, t);
@@ -451,7 +465,7 @@ pub fn plots(cfg: &PlanarConfig, env: &Envelope, title: &str) -> Vec<(String, Pl
     let (wlo, whi) = k().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), r| (a.min(om(r)), b.max(om(r))));
     let (wlo, whi) = if whi > wlo { (wlo.max(0.0), whi) } else { (0.0, 2.0 * p.natural_frequency()) };
     let ws: Vec<f64> = (0..=600).map(|i| wlo + (whi - wlo) * i as f64 / 600.0).collect();
-    let mut s1 = vec![Series::new("transient", k().map(|r| (om(r), mm * amp(r))).collect(), PALETTE[0])];
+    let mut s1 = vec![Series::new("transient", line(k().map(|r| (om(r), mm * amp(r))), columns), PALETTE[0])];
     s1.push(Series::new("stationary (balls held)", ws.iter().map(|&w| (w, mm * locked_amplitude(p, w, &cfg.settings.psi0))).collect(), PALETTE[6]).dashed());
     if p.n >= 2 {
         s1.push(
@@ -494,7 +508,7 @@ pub fn plots(cfg: &PlanarConfig, env: &Envelope, title: &str) -> Vec<(String, Pl
             x_label: "t (s)".into(),
             y_label: "radius of C (mm)".into(),
             series: vec![
-                Series::new("radius of C", k().map(|r| (t(r), mm * amp(r))).collect(), PALETTE[0]),
+                Series::new("radius of C", line(k().map(|r| (t(r), mm * amp(r))), columns), PALETTE[0]),
                 Series::new("s2", vec![(0.0, mm * p.s2), (t_last, mm * p.s2)], PALETTE[7]).dashed(),
             ],
             ..Default::default()
@@ -503,8 +517,22 @@ pub fn plots(cfg: &PlanarConfig, env: &Envelope, title: &str) -> Vec<(String, Pl
     // at most PSI_CURVES balls drawn (a figure of 1e5 curves is tens of MB and unreadable);
     // the CSV has every ball
     let drawn = p.n.min(PSI_CURVES);
-    let psi: Vec<Series> =
-        (0..drawn).map(|j| Series::new(format!("ψ{}", j + 1), wrapped_degrees(k().map(|r| (t(r), r[ROW_PSI + j]))), PALETTE[(j + 1) % 7])).collect();
+    let psi: Vec<Series> = (0..drawn)
+        .map(|j| {
+            Series::new(
+                format!("ψ{}", j + 1),
+                {
+                    let w = wrapped_degrees(k().map(|r| (t(r), r[ROW_PSI + j])));
+                    if columns {
+                        crate::plot::line_columns(w.iter().copied())
+                    } else {
+                        w
+                    }
+                },
+                PALETTE[(j + 1) % 7],
+            )
+        })
+        .collect();
     let psi_title = if drawn < p.n { format!("{title}: ball angles (balls 1-{drawn} of {})", p.n) } else { format!("{title}: ball angles") };
     out.push(("psi_t".into(), Plot { title: psi_title, x_label: "t (s)".into(), y_label: "ψ (degrees from CG)".into(), series: psi, ..Default::default() }));
     out.push((
@@ -514,7 +542,7 @@ pub fn plots(cfg: &PlanarConfig, env: &Envelope, title: &str) -> Vec<(String, Pl
             x_label: "t (s)".into(),
             y_label: "ω (rad/s)".into(),
             series: vec![
-                Series::new("ω", k().map(|r| (t(r), om(r))).collect(), PALETTE[0]),
+                Series::new("ω", line(k().map(|r| (t(r), om(r))), columns), PALETTE[0]),
                 Series::new("sqrt(k/m0)", vec![(0.0, p.natural_frequency()), (t_last, p.natural_frequency())], PALETTE[7]).dashed(),
             ],
             ..Default::default()
@@ -543,7 +571,7 @@ pub fn plot_paths(stem: &Path) -> Vec<PathBuf> {
 /// independent; the two with the most points, amplitude against ω and the ball angles, go to
 /// different threads).
 pub fn write_plots(cfg: &PlanarConfig, env: &Envelope, stem: &Path, title: &str) -> Result<Vec<PathBuf>> {
-    let figures: Vec<(PathBuf, Plot)> = plots(cfg, env, title).into_iter().map(|(suffix, plot)| (plot_path(stem, &suffix), plot)).collect();
+    let figures: Vec<(PathBuf, Plot)> = plots_with(cfg, env, title, true).into_iter().map(|(suffix, plot)| (plot_path(stem, &suffix), plot)).collect();
     let write = |(path, plot): &(PathBuf, Plot)| crate::outfile::write_atomic("--out", path, plot.to_svg());
     let (mine, theirs): (Vec<_>, Vec<_>) = figures.iter().enumerate().partition(|(i, _)| *i < 2);
     std::thread::scope(|scope| {
