@@ -1018,14 +1018,14 @@ fn chord_thin(pts: &[(f64, f64)], tol: f64) -> Vec<(f64, f64)> {
     out
 }
 
-/// The points of a line that its own figure draws ([`pixel_columns`] of each unbroken piece,
-/// with the pixel columns of the points' own x-range, `x_range` when given): for building a
-/// dense series from many samples (a run's 4 801) without holding every one, when the figure's
-/// x-range is the points' (the drawing is then the same; otherwise the columns are off by less
-/// than one, which moves no drawn point by more than a pixel's column). Per run of points in one
-/// column: the first, the first largest and first smallest `y` and the last, in their order;
-/// a non-finite point is kept as the break it is. Two passes over `points` (the range, then the
-/// columns).
+/// The points of a line that its own figure draws (the pixel columns `Plot::svg` reduces each
+/// unbroken piece to, for the points' own x-range): for building a dense series from many
+/// samples (a run's 4 801) without holding every one. When the figure's x-range is the
+/// points' the drawing is the same (a test compares the SVG bytes); otherwise the columns are
+/// off by less than one, which moves no drawn point by more than a pixel's column. Per run of
+/// points in one column: the first, the first largest and first smallest `y` and the last, in
+/// their order; a non-finite point is kept as the break it is. Two passes over `points` (the
+/// range, then the columns).
 pub fn line_columns<I: Iterator<Item = (f64, f64)> + Clone>(points: I) -> Vec<(f64, f64)> {
     let (mut x0, mut x1) = (f64::INFINITY, f64::NEG_INFINITY);
     for (x, y) in points.clone() {
