@@ -567,18 +567,14 @@ pub fn plot_paths(stem: &Path) -> Vec<PathBuf> {
     PLOTS.iter().map(|s| plot_path(stem, s)).collect()
 }
 
-/// Write the four figures ([`plots`]), the last two on a second thread (each SVG is
-/// independent; the two with the most points, amplitude against ω and the ball angles, go to
-/// different threads).
+/// Write the four figures ([`plots`], each curve built from its pixel columns,
+/// [`crate::plot::line_columns`]), one after the other: drawn from a few hundred points a
+/// curve they cost less than a thread's start, stack and malloc arena.
 pub fn write_plots(cfg: &PlanarConfig, env: &Envelope, stem: &Path, title: &str) -> Result<Vec<PathBuf>> {
     let figures: Vec<(PathBuf, Plot)> = plots_with(cfg, env, title, true).into_iter().map(|(suffix, plot)| (plot_path(stem, &suffix), plot)).collect();
-    let write = |(path, plot): &(PathBuf, Plot)| crate::outfile::write_atomic("--out", path, plot.to_svg());
-    let (mine, theirs): (Vec<_>, Vec<_>) = figures.iter().enumerate().partition(|(i, _)| *i < 2);
-    std::thread::scope(|scope| {
-        let other = scope.spawn(|| theirs.iter().try_for_each(|(_, f)| write(f)));
-        mine.iter().try_for_each(|(_, f)| write(f))?;
-        other.join().unwrap_or_else(|_| Err(anyhow::anyhow!("writing a figure panicked")))
-    })?;
+    for (path, plot) in &figures {
+        crate::outfile::write_atomic("--out", path, plot.to_svg())?;
+    }
     Ok(figures.into_iter().map(|(path, _)| path).collect())
 }
 
