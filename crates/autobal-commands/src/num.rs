@@ -121,7 +121,9 @@ impl Csv {
     fn verbatim(v: f64, s: &str) -> bool {
         let a = v.abs();
         if (1.0..1e15).contains(&a) {
-            v.fract() != 0.0
+            // `v.fract() != 0.0` without the C library's `trunc` call: below 1e15 (< 2^63) the
+            // integer conversion truncates exactly
+            (a as i64) as f64 != a
         } else if (0.01..1.0).contains(&a) {
             true
         } else if (0.001..0.01).contains(&a) {
@@ -250,7 +252,7 @@ impl Csv {
         let mut z = zmij::Buffer::new();
         let s = z.format_finite(v);
         if Self::verbatim(v, s) {
-            buf[..s.len()].copy_from_slice(s.as_bytes());
+            copy_short(buf, s.as_bytes());
             return Some(s.len());
         }
         // 1e-5 ≤ |v| < 1e-3, zmij's `0.000F` or `0.0000F`: the exponent form is shorter
@@ -279,22 +281,54 @@ impl Csv {
     /// what the CSV writers use, row after row into one reused buffer.
     pub fn push_to(&self, out: &mut Vec<u8>) {
         let mut buf = [0u8; 40];
-        match self.encode(&mut buf) {
-            Some(n) => out.extend_from_slice(&buf[..n]),
-            None => {
-                let v = self.0;
-                out.extend_from_slice(if v.is_nan() {
-                    b"NaN"
-                } else if v == f64::INFINITY {
-                    b"inf"
-                } else if v == f64::NEG_INFINITY {
-                    b"-inf"
-                } else if v.is_sign_negative() {
-                    b"-0"
-                } else {
-                    b"0"
-                })
-            }
+        let n = self.write_into(&mut buf);
+        out.extend_from_slice(&buf[..n]);
+    }
+
+    /// The text (the same as `Display`'s) written at the start of `buf`: its length (at most
+    /// 24 bytes). A CSV writer hands it a window of its own buffer, so the text is written once,
+    /// in place.
+    pub fn write_into(&self, buf: &mut [u8; 40]) -> usize {
+        if let Some(n) = self.encode(buf) {
+            return n;
+        }
+        let v = self.0;
+        let t: &[u8] = if v.is_nan() {
+            b"NaN"
+        } else if v == f64::INFINITY {
+            b"inf"
+        } else if v == f64::NEG_INFINITY {
+            b"-inf"
+        } else if v.is_sign_negative() {
+            b"-0"
+        } else {
+            b"0"
+        };
+        buf[..t.len()].copy_from_slice(t);
+        t.len()
+    }
+}
+
+/// `dst[..src.len()] = src` for `src` of at most 32 bytes as two overlapping fixed-size moves
+/// (a copy of a run-time length is a call of the C library's `memcpy`, as long as the digits'
+/// own formatting for a short text).
+#[inline]
+fn copy_short(dst: &mut [u8; 40], src: &[u8]) {
+    let n = src.len();
+    if n > 32 {
+        dst[..n].copy_from_slice(src);
+    } else if n >= 16 {
+        dst[..16].copy_from_slice(&src[..16]);
+        dst[n - 16..][..16].copy_from_slice(&src[n - 16..][..16]);
+    } else if n >= 8 {
+        dst[..8].copy_from_slice(&src[..8]);
+        dst[n - 8..][..8].copy_from_slice(&src[n - 8..][..8]);
+    } else if n >= 4 {
+        dst[..4].copy_from_slice(&src[..4]);
+        dst[n - 4..][..4].copy_from_slice(&src[n - 4..][..4]);
+    } else {
+        for (d, s) in dst.iter_mut().zip(src) {
+            *d = *s;
         }
     }
 }

@@ -331,6 +331,12 @@ impl Plot {
     /// heatmap's raster are in it, and the heatmap's placement is returned instead: its rectangle
     /// `[x, y, w, h]` and the clip rectangle (the plot area) in the document's units.
     fn svg(&self, embed: bool) -> (String, Option<HeatPlacement>) {
+        self.svg_with(embed, true)
+    }
+
+    /// [`Plot::svg`], its dense curves thinned by [`chord_thin`] where `thin` (the tests draw
+    /// them whole to compare).
+    fn svg_with(&self, embed: bool, thin: bool) -> (String, Option<HeatPlacement>) {
         let mut placement = None;
         let ((x0, x1), (y0, y1)) = self.ranges();
         // left margin: room for named row ticks
@@ -510,7 +516,13 @@ impl Plot {
                     }
                 } else if seg.len() >= 2 {
                     s.push_str(r#"<polyline points=""#);
-                    let kept = pixel_columns(seg);
+                    let mut kept = pixel_columns(seg);
+                    // (decided on the column points: the same for a line built from its columns,
+                    // `line_columns`)
+                    let dense = kept.len() > THIN_ABOVE;
+                    if thin && dense {
+                        kept = chord_thin(&kept, THIN_PX);
+                    }
                     *clip |= !drawn_inside(&kept, se.width.unwrap_or(2.0) / 2.0, area);
                     let mut text: Vec<u8> = Vec::with_capacity(16 * kept.len());
                     for (k, &(x, y)) in kept.iter().enumerate() {
@@ -523,7 +535,11 @@ impl Plot {
                     }
                     // digits, '.', '-', ',' and ' ': ASCII
                     s.push_str(std::str::from_utf8(&text).unwrap_or(""));
-                    let _ = writeln!(s, r#"" stroke="{}" stroke-width="{}"{dash}/>"#, se.color, se.width.unwrap_or(2.0));
+                    // a dense curve's joins round: its column points turn sharply within a
+                    // pixel, where a miter join would draw a spike of up to 4 px (SVG's miter
+                    // limit) that the data do not have, and which thinning would move
+                    let join = if dense { r#" stroke-linejoin="round""# } else { "" };
+                    let _ = writeln!(s, r#"" stroke="{}" stroke-width="{}"{join}{dash}/>"#, se.color, se.width.unwrap_or(2.0));
                 } else if let Some(&(x, y)) = seg.first() {
                     *clip |= !disk_inside((x, y), 2.0, area);
                     s.push_str(r#"<circle cx=""#);
@@ -928,6 +944,142 @@ fn pixel_columns(pts: &[(f64, f64)]) -> Vec<(f64, f64)> {
     keep.into_iter().map(|k| pts[k]).collect()
 }
 
+/// An unbroken piece of a curve of more points than this in its pixel columns
+/// ([`pixel_columns`]) is drawn thinned by [`chord_thin`]: about 4 px apart or closer over the
+/// 540 px plot, its vertices are not visible as such (a sweep's curve of a few dozen runs
+/// keeps a vertex per run).
+const THIN_ABOVE: usize = 128;
+
+/// How far (px) a dropped vertex may lie from the line drawn instead ([`chord_thin`]): a
+/// twentieth of a pixel, far under the 2 px stroke's antialiased edge (at a quarter of a pixel
+/// a smooth curve's chords show as facets at twice the scale).
+const THIN_PX: f64 = 0.05;
+
+/// A polyline in pixel coordinates with the vertices dropped that lie within `tol` px of the
+/// chord drawn instead, in one pass (the sleeve of Zhao and Saalfeld): from each kept vertex
+/// `a`, every later vertex `p` at distance `d > tol` allows the chord's direction only within
+/// `asin(tol / d)` of its own, and the chord extends to the next vertex while that vertex's
+/// direction lies in all those cones (the wedge, narrowed vertex by vertex) and it is at least
+/// as far from `a` as every vertex before it; otherwise the last vertex that fitted is kept and
+/// becomes the anchor. Every dropped vertex then lies within `tol` of the chord's line and
+/// projects inside the chord (its angle to the chord is under 90° and its distance at most the
+/// end's), so within `tol` of the segment: the path between two kept vertices stays within
+/// `tol` of their chord and the chord within `tol` of the path (distance to a segment is
+/// convex, and the path's projection runs over the whole chord), so the drawing moves by at
+/// most `tol`. After [`pixel_columns`], this drops the smooth stretches of a dense curve (most
+/// of a run's speed, its stationary curves) and keeps its oscillations.
+fn chord_thin(pts: &[(f64, f64)], tol: f64) -> Vec<(f64, f64)> {
+    if pts.len() <= 2 {
+        return pts.to_vec();
+    }
+    let cross = |u: (f64, f64), v: (f64, f64)| u.0 * v.1 - u.1 * v.0;
+    let mut out = Vec::with_capacity(pts.len());
+    out.push(pts[0]);
+    let mut a = 0;
+    // the wedge of allowed chord directions, from `lo` counter-clockwise to `hi` (unbounded
+    // while `open`), and the farthest distance from the anchor so far
+    let (mut lo, mut hi, mut open, mut far) = ((0.0, 0.0), (0.0, 0.0), true, 0.0f64);
+    let mut k = 1;
+    while k < pts.len() {
+        let v = (pts[k].0 - pts[a].0, pts[k].1 - pts[a].1);
+        // (a square root, not `hypot`'s libm call: pixel coordinates cannot overflow)
+        let d = (v.0 * v.0 + v.1 * v.1).sqrt();
+        if !(d >= far && (open || (cross(lo, v) >= 0.0 && cross(v, hi) >= 0.0))) {
+            // the chord ends at the last vertex that fitted (k - 1 > a: the anchor's next
+            // vertex always fits), which anchors the next one
+            out.push(pts[k - 1]);
+            (a, open, far) = (k - 1, true, 0.0);
+            continue;
+        }
+        if d > tol {
+            // narrow the wedge to this vertex's cone (its direction is inside the wedge, so the
+            // cone overlaps it and each pair compared is less than 180° apart)
+            let (sn, u) = (tol / d, (v.0 / d, v.1 / d));
+            let cs = (1.0 - sn * sn).sqrt();
+            let (l, h) = ((u.0 * cs + u.1 * sn, u.1 * cs - u.0 * sn), (u.0 * cs - u.1 * sn, u.1 * cs + u.0 * sn));
+            if open {
+                (lo, hi, open) = (l, h, false);
+            } else {
+                if cross(lo, l) > 0.0 {
+                    lo = l;
+                }
+                if cross(h, hi) > 0.0 {
+                    hi = h;
+                }
+            }
+        }
+        far = far.max(d);
+        k += 1;
+    }
+    out.push(pts[pts.len() - 1]);
+    out
+}
+
+/// The points of a line that its own figure draws (the pixel columns `Plot::svg` reduces each
+/// unbroken piece to, for the points' own x-range): for building a dense series from many
+/// samples (a run's 4 801) without holding every one. When the figure's x-range is the
+/// points' the drawing is the same (a test compares the SVG bytes); otherwise the columns are
+/// off by less than one, which moves no drawn point by more than a pixel's column. Per run of
+/// points in one column: the first, the first largest and first smallest `y` and the last, in
+/// their order; a non-finite point is kept as the break it is. Two passes over `points` (the
+/// range, then the columns).
+pub fn line_columns<I: Iterator<Item = (f64, f64)> + Clone>(points: I) -> Vec<(f64, f64)> {
+    let (mut x0, mut x1) = (f64::INFINITY, f64::NEG_INFINITY);
+    for (x, y) in points.clone() {
+        if x.is_finite() && y.is_finite() {
+            x0 = x0.min(x);
+            x1 = x1.max(x);
+        }
+    }
+    if !(x1 - x0 >= 1e-12) {
+        return points.collect();
+    }
+    // `Plot::svg`'s column of x (its `sx`, clamped, floored) with the left margin of a figure
+    // without named row ticks
+    let col = |x: f64| floor_i64((ML + (x - x0) / (x1 - x0) * PW).clamp(-1e4, 1e4));
+    let mut out: Vec<(f64, f64)> = Vec::with_capacity(4 * PW as usize + 64);
+    // the current run: its column, and (position, point) of its first, largest, smallest, last
+    type Run = (i64, [(usize, (f64, f64)); 4]);
+    let flush = |run: &mut Option<Run>, out: &mut Vec<(f64, f64)>| {
+        if let Some((_, mut four)) = run.take() {
+            four.sort_by_key(|e| e.0);
+            let mut last = usize::MAX;
+            for (k, p) in four {
+                if k != last {
+                    out.push(p);
+                    last = k;
+                }
+            }
+        }
+    };
+    let mut run: Option<Run> = None;
+    for (k, p) in points.enumerate() {
+        if !(p.0.is_finite() && p.1.is_finite()) {
+            flush(&mut run, &mut out);
+            out.push(p);
+            continue;
+        }
+        let c = col(p.0);
+        match &mut run {
+            Some((rc, four)) if *rc == c => {
+                if p.1 > four[1].1 .1 {
+                    four[1] = (k, p);
+                }
+                if p.1 < four[2].1 .1 {
+                    four[2] = (k, p);
+                }
+                four[3] = (k, p);
+            }
+            _ => {
+                flush(&mut run, &mut out);
+                run = Some((c, [(k, p); 4]));
+            }
+        }
+    }
+    flush(&mut run, &mut out);
+    out
+}
+
 /// Split `s` into lines of at most about `max` characters at spaces.
 fn wrap(s: &str, max: usize) -> Vec<String> {
     let mut lines = vec![];
@@ -1093,6 +1245,7 @@ fn rgba_to_rgb_in_place(d: &mut [u8]) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::f64::consts::SQRT_2;
 
     #[test]
     fn base64_matches_rfc_4648_vectors() {
@@ -1185,6 +1338,164 @@ mod tests {
         // a curve going back and forth keeps its turning points
         let zig = [(10.2, 1.0), (10.8, 5.0), (10.1, 2.0), (12.5, 0.0), (10.3, 9.0)];
         assert_eq!(pixel_columns(&zig), zig.to_vec());
+    }
+
+    /// A figure of lines built from `line_columns` is the figure of the whole lines, byte for
+    /// byte, where the figure's x-range is theirs: a 4 801-point peak with noise (ties in y
+    /// included), a zigzag, a curve going back in x, and one broken by NaN.
+    #[test]
+    fn a_line_built_from_its_columns_draws_the_same_figure() {
+        let n = 4801;
+        let t = |k: usize| 300.0 * k as f64 / (n - 1) as f64;
+        let lines: Vec<Vec<(f64, f64)>> = vec![
+            (0..n).map(|k| (t(k), 2.0 / (1.0 + ((t(k) - 120.0) / 6.0).powi(2)) + 0.05 * ((k * 7919 % 13) as f64 / 13.0).round())).collect(),
+            (0..n).map(|k| (t(k), if k % 2 == 0 { 1.0 } else { -1.0 } * (t(k) / 50.0).sin())).collect(),
+            (0..n).map(|k| (t(k) + 20.0 * (t(k) / 9.0).sin(), (t(k) / 30.0).cos())).collect(),
+            (0..n).map(|k| (t(k), if k % 700 == 350 { f64::NAN } else { (t(k) * 3.0) % 180.0 - 90.0 })).collect(),
+        ];
+        for (i, line) in lines.iter().enumerate() {
+            let whole = Plot { title: format!("line {i}"), series: vec![Series::new("a", line.clone(), "#000")], ..Default::default() };
+            let thin = Plot { series: vec![Series::new("a", line_columns(line.iter().copied()), "#000")], ..whole.clone() };
+            assert!(thin.series[0].points.len() * 2 < line.len(), "line {i}: {} points kept", thin.series[0].points.len());
+            assert_eq!(thin.ranges(), whole.ranges(), "line {i}");
+            assert!(thin.to_svg() == whole.to_svg(), "line {i}: the figures differ");
+        }
+    }
+
+    /// Every vertex `chord_thin` drops lies within the tolerance of the chord (the segment)
+    /// between the kept vertices around it, the kept ones are a subsequence with both ends, and
+    /// a straight run keeps only its ends: random walks (smooth, jagged, turning back), at
+    /// tolerances 0.01-1 px, checked against the distance to the segment computed apart.
+    #[test]
+    fn chord_thinning_keeps_every_vertex_within_the_tolerance_of_its_chord() {
+        let seg_dist = |a: (f64, f64), b: (f64, f64), p: (f64, f64)| {
+            let (dx, dy, px, py) = (b.0 - a.0, b.1 - a.1, p.0 - a.0, p.1 - a.1);
+            let len2 = dx * dx + dy * dy;
+            let u = if len2 > 0.0 { ((px * dx + py * dy) / len2).clamp(0.0, 1.0) } else { 0.0 };
+            (px - u * dx).hypot(py - u * dy)
+        };
+        let mut x = 0x2545_F491_4F6C_DD1Du64;
+        let mut rnd = move || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        let mut dropped = 0;
+        for case in 0..300 {
+            let tol = [0.01, 0.05, 0.25, 1.0][case % 4];
+            let (mut p, mut dir) = ((100.0, 100.0), 0.0f64);
+            let pts: Vec<(f64, f64)> = (0..400)
+                .map(|_| {
+                    dir += [0.05, 0.5, 3.0][case % 3] * rnd();
+                    let step = 0.05 + 2.0 * (rnd() + 0.5);
+                    p = (p.0 + step * dir.cos(), p.1 + step * dir.sin());
+                    p
+                })
+                .collect();
+            let kept = chord_thin(&pts, tol);
+            assert_eq!((kept.first(), kept.last()), (pts.first(), pts.last()));
+            // indices of the kept vertices in `pts`, in order
+            let mut at = vec![];
+            let mut j = 0;
+            for q in &kept {
+                while pts[j] != *q {
+                    j += 1;
+                }
+                at.push(j);
+                j += 1;
+            }
+            for w in at.windows(2) {
+                for k in w[0] + 1..w[1] {
+                    let e = seg_dist(pts[w[0]], pts[w[1]], pts[k]);
+                    assert!(e <= tol * (1.0 + 1e-9), "case {case}: vertex {k} is {e} px from its chord (tolerance {tol})");
+                    dropped += 1;
+                }
+            }
+        }
+        assert!(dropped > 10_000, "{dropped} vertices dropped in all");
+        let line: Vec<(f64, f64)> = (0..50).map(|k| (k as f64, 0.5 * k as f64)).collect();
+        assert_eq!(chord_thin(&line, 0.05), vec![line[0], line[49]]);
+    }
+
+    /// Dense curves drawn thinned ([`chord_thin`] after [`pixel_columns`]) against the same
+    /// curves drawn with every column point, both rasterised by resvg (at 1 and 2 device pixels
+    /// a px): a passage-like figure of 4 801 samples a curve (a resonance peak, a beating
+    /// oscillation a few samples a period, a noisy band like the ball angles', a straight run-up,
+    /// a curve broken by NaN). The drawn path moves by at most `THIN_PX` (round joins: the
+    /// stroke is the path widened by a disk, so its outline moves by as much), so the reference
+    /// for the change is the whole drawing moved by `THIN_PX`: thinning must change no more
+    /// pixels, by no more on average, than that move (it moves only some of the outline), and
+    /// its worst pixel at most 1.5 times the move's (tiny-skia's anti-aliasing counts coverage
+    /// in sub-scanlines, so a sub-pixel move can flip a pixel by a quarter, 64 levels, wherever
+    /// the outline is tessellated differently, as at a dropped vertex's round join). Absolutely:
+    /// the changed pixels lie next to the curves' ink, are under 1 % of the figure, and change
+    /// it by under a tenth of a level on average (with a tolerance of 1 px the mean is 1.07
+    /// levels). The thinned text is less than half as long.
+    #[test]
+    fn thinned_curves_draw_the_same_figure() {
+        let n = 4801;
+        let t = |k: usize| 300.0 * k as f64 / (n - 1) as f64;
+        let curve = |f: &dyn Fn(usize) -> f64| (0..n).map(|k| (t(k), f(k))).collect::<Vec<_>>();
+        let mut x = 0x9E37_79B9_7F4A_7C15u64;
+        let mut noise = move || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        let band: Vec<f64> = (0..n).map(|_| noise()).collect();
+        let plots = [
+            Plot {
+                title: "peak and beat".into(),
+                series: vec![
+                    Series::new("peak", curve(&|k| 2.0 / (1.0 + ((t(k) - 120.0) / 6.0).powi(2))), "#0072B2"),
+                    Series::new("beat", curve(&|k| 1.0 + 0.4 * (t(k) * 2.3).sin() * (t(k) / 40.0).cos()), "#D55E00"),
+                    Series::new("run-up", curve(&|k| 0.01 * t(k)), "#009E73").dashed(),
+                ],
+                ..Default::default()
+            },
+            Plot {
+                title: "band and breaks".into(),
+                series: vec![
+                    Series::new("band", curve(&|k| 90.0 * (t(k) / 70.0).sin() + 25.0 * band[k] * (-(t(k) - 150.0).powi(2) / 900.0).exp()), "#CC79A7"),
+                    Series::new("broken", curve(&|k| if k % 1000 == 999 { f64::NAN } else { (3.0 * t(k)) % 180.0 - 90.0 }), "#E69F00"),
+                ],
+                ..Default::default()
+            },
+        ];
+        for p in &plots {
+            // the reference's own change: every curve moved by THIN_PX (diagonally), the axes kept
+            let ((x0, x1), (y0, y1)) = p.ranges();
+            let (dx, dy) = (THIN_PX / SQRT_2 * (x1 - x0) / PW, THIN_PX / SQRT_2 * (y1 - y0) / PH);
+            let fixed = Plot { x_range: Some((x0, x1)), y_range: Some((y0, y1)), ..p.clone() };
+            let mut moved = fixed.clone();
+            for se in &mut moved.series {
+                se.points.iter_mut().for_each(|q| *q = (q.0 + dx, q.1 + dy));
+            }
+            let (thin, full, moved) = (fixed.svg_with(true, true).0, fixed.svg_with(true, false).0, moved.svg_with(true, false).0);
+            assert!(thin.len() * 2 < full.len(), "{}: {} bytes thinned, {} whole", p.title, thin.len(), full.len());
+            for scale in [1.0, 2.0] {
+                let (w, h, want) = decode_rgb(&svg_to_png(&full, scale).unwrap());
+                let ink = |i: usize, j: usize| want[3 * (j * w + i)..][..3].iter().any(|&v| v < 250);
+                // (worst channel change, pixels changed, mean change a channel) against `want`
+                let change = |svg: &str| {
+                    let (_, _, got) = decode_rgb(&svg_to_png(svg, scale).unwrap());
+                    let d: Vec<u8> = got.iter().zip(&want).map(|(u, v)| u.abs_diff(*v)).collect();
+                    for (k, _) in d.chunks(3).enumerate().filter(|(_, c)| c.iter().any(|&v| v > 0)) {
+                        // no mark of its own: ink of the reference within a pixel
+                        let (i, j) = (k % w, k / w);
+                        let near = (j.saturating_sub(1)..(j + 2).min(h)).any(|jj| (i.saturating_sub(1)..(i + 2).min(w)).any(|ii| ink(ii, jj)));
+                        assert!(near, "{} x{scale}: pixel ({i}, {j}) changed away from the curves", p.title);
+                    }
+                    let changed = d.chunks(3).filter(|c| c.iter().any(|&v| v > 0)).count();
+                    (d.iter().copied().max().unwrap(), changed, d.iter().map(|&v| f64::from(v)).sum::<f64>() / d.len() as f64)
+                };
+                let (t, m) = (change(&thin), change(&moved));
+                assert!(t.0 <= m.0 + m.0 / 2 && t.1 <= m.1 && t.2 <= m.2, "{} x{scale}: thinning changed {t:?}, moving by THIN_PX {m:?}", p.title);
+                assert!(t.1 * 100 < w * h && t.2 < 0.1, "{} x{scale}: thinning changed {t:?} of {} pixels", p.title, w * h);
+            }
+        }
     }
 
     #[test]

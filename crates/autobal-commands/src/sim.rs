@@ -16,9 +16,11 @@ use std::path::{Path, PathBuf};
 /// largest amplitude (so peaks survive decimation), in their order; a bucket of one or two
 /// samples keeps them all. The bucket's extremes are tracked as the samples come (the first
 /// smallest and the last largest, as `Iterator::min_by`/`max_by` pick them), copied into two
-/// reused samples, and `kept` is sized from the expected count once: no allocation per sample
-/// beyond the kept ones' own ball angles, no growth of `kept` while the run goes (a run of up to
-/// `target` samples keeps every one of them).
+/// reused samples. The kept samples are stored flat, one row of floats each (`t, ω, θ, X, Y,
+/// amplitude, ψ_1 … ψ_n`, [`Envelope::rows`]), in one buffer sized from the expected count once:
+/// no allocation per sample (a `Sample` with its own heap `Vec` of ball angles each took 120
+/// bytes and a `malloc` a sample for a passage's two balls, 64 bytes flat), no growth while the
+/// run goes (a run of up to `target` samples keeps every one of them).
 pub struct Envelope {
     bucket: usize,
     /// Samples of the current bucket so far.
@@ -26,8 +28,22 @@ pub struct Envelope {
     /// The current bucket's first smallest and last largest sample, with their positions in it.
     lo: (usize, Sample),
     hi: (usize, Sample),
-    pub kept: Vec<Sample>,
+    /// Samples to reserve room for at the first one (when its width is known).
+    reserve: usize,
+    /// Floats a kept sample: `ROW_PSI` + its ball count (0 before the first sample).
+    width: usize,
+    /// The kept samples' rows, one after the other.
+    data: Vec<f64>,
 }
+
+/// A kept sample's row ([`Envelope::rows`]): time (s).
+pub const ROW_T: usize = 0;
+/// … speed `ω` (rad/s).
+pub const ROW_OMEGA: usize = 1;
+/// … whirl radius of C (m).
+pub const ROW_AMPLITUDE: usize = 5;
+/// … the first ball angle (rad); the others follow.
+pub const ROW_PSI: usize = 6;
 
 /// `dst` becomes a copy of `src`, reusing `dst`'s ball angles' allocation (every field named:
 /// a field added to `Sample` fails to compile here rather than be left out).
@@ -46,12 +62,25 @@ impl Envelope {
         // a bucket; at most the target's worth reserved ahead (a run longer than expected grows)
         let reserve = if bucket == 1 { expected + 2 } else { 2 * expected.div_ceil(bucket) + 2 };
         let blank = || (0, Sample { t: 0.0, omega: 0.0, theta: 0.0, x: 0.0, y: 0.0, amplitude: 0.0, psi: vec![] });
-        Envelope { bucket, count: 0, lo: blank(), hi: blank(), kept: Vec::with_capacity(reserve.min(2 * target.max(1) + 2)) }
+        Envelope { bucket, count: 0, lo: blank(), hi: blank(), reserve: reserve.min(2 * target.max(1) + 2), width: 0, data: vec![] }
+    }
+
+    /// Keep `s`: its row appended to `data` (`width` set, and room for `reserve` rows made, at
+    /// the first).
+    fn keep(data: &mut Vec<f64>, width: &mut usize, reserve: usize, s: &Sample) {
+        if *width == 0 {
+            *width = ROW_PSI + s.psi.len();
+            data.reserve_exact(reserve * *width);
+        }
+        debug_assert_eq!(*width, ROW_PSI + s.psi.len(), "one ball count a run");
+        let Sample { t, omega, theta, x, y, amplitude, psi } = s;
+        data.extend_from_slice(&[*t, *omega, *theta, *x, *y, *amplitude]);
+        data.extend_from_slice(psi);
     }
 
     pub fn push(&mut self, s: &Sample) {
         if self.bucket == 1 {
-            self.kept.push(s.clone());
+            Self::keep(&mut self.data, &mut self.width, self.reserve, s);
             return;
         }
         let k = self.count;
@@ -75,11 +104,33 @@ impl Envelope {
             return;
         }
         let (a, b) = if self.lo.0 <= self.hi.0 { (&self.lo, &self.hi) } else { (&self.hi, &self.lo) };
-        self.kept.push(a.1.clone());
+        Self::keep(&mut self.data, &mut self.width, self.reserve, &a.1);
         if b.0 != a.0 {
-            self.kept.push(b.1.clone());
+            Self::keep(&mut self.data, &mut self.width, self.reserve, &b.1);
         }
         self.count = 0;
+    }
+
+    /// The kept samples' rows in their order: `t, ω, θ, X, Y, amplitude, ψ_1 … ψ_n` (the
+    /// `ROW_*` indices).
+    pub fn rows(&self) -> std::slice::ChunksExact<'_, f64> {
+        self.data.chunks_exact(self.width.max(1))
+    }
+
+    /// How many samples are kept.
+    pub fn len(&self) -> usize {
+        self.data.len() / self.width.max(1)
+    }
+
+    /// Whether no sample is kept.
+    pub fn is_empty(&self) -> bool {
+        self.data.is_empty()
+    }
+
+    /// The kept samples as `Sample`s (each with its own ball angles' `Vec`: for the report's
+    /// figures, not the run's hot path).
+    pub fn kept(&self) -> Vec<Sample> {
+        self.rows().map(|r| Sample { t: r[0], omega: r[1], theta: r[2], x: r[3], y: r[4], amplitude: r[5], psi: r[ROW_PSI..].to_vec() }).collect()
     }
 }
 
@@ -93,49 +144,83 @@ pub fn sample_columns(n: usize) -> Vec<String> {
 /// Rows handed to the writer thread at a time (each `5 + n` floats).
 const BATCH_ROWS: usize = 256;
 
-/// Where a run's rows go, one row (the values of the run's columns) at a time: CSV lines (one
-/// reused buffer, the floats as their shortest round-trip text, [`crate::num::Csv`]), Parquet
-/// rows, and columns kept in memory (Python's arrays), each where given. The CSV is flushed
-/// every 1000 rows and by [`RowSink::finish`].
+/// CSV text handed to the writer at a time (bytes, whole rows): the staged file's buffer is as
+/// large, so each chunk goes to the file without a second copy ([`std::io::BufWriter`] passes a
+/// write of its capacity or more straight through).
+pub const CSV_CHUNK: usize = 1 << 16;
+
+/// Room for one CSV value and its separator in the text buffer ([`crate::num::Csv::write_into`]'s
+/// window of 40 bytes, of which at most 24 are written).
+const VALUE_ROOM: usize = 41;
+
+/// Where a run's rows go, one row (the values of the run's columns) at a time: CSV lines (the
+/// floats as their shortest round-trip text, [`crate::num::Csv`], written in place into one
+/// reused buffer and handed to the writer in chunks of [`CSV_CHUNK`] bytes, so the file grows as
+/// the run goes), Parquet rows, and columns kept in memory (Python's arrays), each where given.
+/// [`RowSink::finish`] writes the last chunk and flushes.
 pub struct RowSink<'a, W: Write + ?Sized> {
     csv: Option<&'a mut W>,
     parquet: Option<&'a mut crate::parquet::Table>,
     columns: Option<&'a mut Vec<Vec<f64>>>,
-    line: Vec<u8>,
-    count: u64,
+    /// The CSV text not yet written: `text[..used]` (whole lines); the rest is room for a row.
+    text: Vec<u8>,
+    used: usize,
 }
 
 impl<'a, W: Write + ?Sized> RowSink<'a, W> {
     /// A sink into any of a CSV writer, a Parquet table and columns (one `Vec` per column,
     /// sized by the caller).
     pub fn new(csv: Option<&'a mut W>, parquet: Option<&'a mut crate::parquet::Table>, columns: Option<&'a mut Vec<Vec<f64>>>) -> Self {
-        RowSink { csv, parquet, columns, line: vec![], count: 0 }
+        RowSink { csv, parquet, columns, text: vec![], used: 0 }
+    }
+
+    /// Room for `bytes` more after the text in use (the buffer grows to a chunk plus that).
+    fn room(&mut self, bytes: usize) {
+        if self.used + bytes > self.text.len() {
+            self.text.resize(CSV_CHUNK.max(self.used) + bytes, 0);
+        }
+    }
+
+    /// Hand the text in use to the writer once it fills a chunk.
+    fn spill(&mut self, at_least: usize) -> std::io::Result<()> {
+        if let Some(csv) = self.csv.as_deref_mut() {
+            if self.used >= at_least && self.used > 0 {
+                csv.write_all(&self.text[..self.used])?;
+                self.used = 0;
+            }
+        }
+        Ok(())
     }
 
     /// The CSV's header line (the column names joined by commas).
     pub fn header(&mut self, names: &[String]) -> Result<()> {
-        if let Some(csv) = self.csv.as_deref_mut() {
-            writeln!(csv, "{}", names.join(","))?;
+        if self.csv.is_some() {
+            let line = names.join(",");
+            self.room(line.len() + 1);
+            self.text[self.used..self.used + line.len()].copy_from_slice(line.as_bytes());
+            self.text[self.used + line.len()] = b'\n';
+            self.used += line.len() + 1;
+            self.spill(CSV_CHUNK)?;
         }
         Ok(())
     }
 
     /// One row.
     pub fn push(&mut self, row: &[f64]) -> Result<()> {
-        if let Some(csv) = self.csv.as_deref_mut() {
-            self.line.clear();
+        if self.csv.is_some() {
+            self.room(row.len() * VALUE_ROOM + 1);
+            let mut k = self.used;
             for (i, v) in row.iter().enumerate() {
                 if i > 0 {
-                    self.line.push(b',');
+                    self.text[k] = b',';
+                    k += 1;
                 }
-                crate::num::Csv(*v).push_to(&mut self.line);
+                let window: &mut [u8; 40] = (&mut self.text[k..k + 40]).try_into().expect("room for a value");
+                k += crate::num::Csv(*v).write_into(window);
             }
-            self.line.push(b'\n');
-            csv.write_all(&self.line)?;
-            self.count += 1;
-            if self.count.is_multiple_of(1000) {
-                csv.flush()?;
-            }
+            self.text[k] = b'\n';
+            self.used = k + 1;
+            self.spill(CSV_CHUNK)?;
         }
         if let Some(t) = self.parquet.as_deref_mut() {
             t.push(row)?;
@@ -148,8 +233,9 @@ impl<'a, W: Write + ?Sized> RowSink<'a, W> {
         Ok(())
     }
 
-    /// Flush the CSV.
+    /// Write the CSV's last chunk and flush it.
     pub fn finish(&mut self) -> Result<()> {
+        self.spill(0)?;
         if let Some(csv) = self.csv.as_deref_mut() {
             csv.flush()?;
         }
@@ -302,9 +388,7 @@ pub fn wrapped_degrees(points: impl Iterator<Item = (f64, f64)>) -> Vec<(f64, f6
     // room for the points and a few breaks: one allocation for most runs
     let mut out: Vec<(f64, f64)> = Vec::with_capacity(points.size_hint().0 + 16);
     for (t, a) in points {
-        let v = a.to_degrees() + 180.0;
-        // `rem_euclid` is `v` itself on [0, 360) (fmod's exact result there), without its call
-        let d = if (0.0..360.0).contains(&v) { v } else { v.rem_euclid(360.0) } - 180.0;
+        let d = wrap_360(a.to_degrees() + 180.0) - 180.0;
         if let Some(&(_, prev)) = out.last() {
             if prev.is_finite() && (d - prev).abs() > 180.0 {
                 out.push((t, f64::NAN));
@@ -315,19 +399,73 @@ pub fn wrapped_degrees(points: impl Iterator<Item = (f64, f64)>) -> Vec<(f64, f6
     out
 }
 
+/// `v.rem_euclid(360.0)`, bit for bit, without the `fmod` call where `|v| < 2^52` (the ball
+/// angles of a run that slips round the race are mostly outside one turn). On [0, 360) it is
+/// `v`; on (−360, 0) fmod returns `v` and `rem_euclid` adds 360: the same addition. Otherwise
+/// `v − 360 q` with `q = ⌊v / 360⌋` is exact: `v` and `360 q` (an integer below 2^53) are
+/// multiples of `ulp(v)` (at most 1 below 2^52) and the difference, below 720 in magnitude
+/// (`q` may be one off where `v / 360` rounds onto an integer), is representable; one exact
+/// correction by ±360 brings it into [0, 360). That is fmod's exact remainder, plus 360 where it
+/// is negative, and `rem_euclid`'s rounded sum of the two is exact as well (a multiple of
+/// `ulp(v)` below 360). The one difference, `-0` for `rem_euclid` where `v` is a negative
+/// multiple of 360 and `+0` here, is gone after the caller's `- 180`.
+fn wrap_360(v: f64) -> f64 {
+    if (0.0..360.0).contains(&v) {
+        v
+    } else if v > -360.0 && v < 0.0 {
+        v + 360.0
+    } else if v.abs() < 4_503_599_627_370_496.0 {
+        let q = v / 360.0;
+        let q = {
+            let i = q as i64;
+            if (i as f64) > q {
+                i - 1
+            } else {
+                i
+            }
+        };
+        let r = v - 360.0 * q as f64;
+        if r < 0.0 {
+            r + 360.0
+        } else if r >= 360.0 {
+            r - 360.0
+        } else {
+            r
+        }
+    } else {
+        v.rem_euclid(360.0)
+    }
+}
+
 /// Most ball-angle curves drawn in one figure.
 pub const PSI_CURVES: usize = 24;
 
 /// The four figures of 004's kind: amplitude vs ω with stationary curves, amplitude vs t,
 /// ball angles vs t, ω vs t.
 pub fn plots(cfg: &PlanarConfig, env: &Envelope, title: &str) -> Vec<(String, Plot)> {
-    let k = &env.kept;
+    plots_with(cfg, env, title, false)
+}
+
+/// [`plots`], the run's curves built from what their SVG draws ([`crate::plot::line_columns`],
+/// the same SVG) where `columns`: `simulate`'s figure files; the report and Python's figures
+/// keep every sample (Plotly's zoom and hover show them).
+fn plots_with(cfg: &PlanarConfig, env: &Envelope, title: &str, columns: bool) -> Vec<(String, Plot)> {
+    fn line<I: Iterator<Item = (f64, f64)> + Clone>(points: I, columns: bool) -> Vec<(f64, f64)> {
+        if columns {
+            crate::plot::line_columns(points)
+        } else {
+            points.collect()
+        }
+    }
+    let k = || env.rows();
+    let (t, om, amp) = (|r: &[f64]| r[ROW_T], |r: &[f64]| r[ROW_OMEGA], |r: &[f64]| r[ROW_AMPLITUDE]);
+    let t_last = env.rows().last().map_or(1.0, t);
     let p = &cfg.rotor;
     let mm = 1e3;
-    let (wlo, whi) = k.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), s| (a.min(s.omega), b.max(s.omega)));
+    let (wlo, whi) = k().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), r| (a.min(om(r)), b.max(om(r))));
     let (wlo, whi) = if whi > wlo { (wlo.max(0.0), whi) } else { (0.0, 2.0 * p.natural_frequency()) };
     let ws: Vec<f64> = (0..=600).map(|i| wlo + (whi - wlo) * i as f64 / 600.0).collect();
-    let mut s1 = vec![Series::new("transient", k.iter().map(|s| (s.omega, mm * s.amplitude)).collect(), PALETTE[0])];
+    let mut s1 = vec![Series::new("transient", line(k().map(|r| (om(r), mm * amp(r))), columns), PALETTE[0])];
     s1.push(Series::new("stationary (balls held)", ws.iter().map(|&w| (w, mm * locked_amplitude(p, w, &cfg.settings.psi0))).collect(), PALETTE[6]).dashed());
     if p.n >= 2 {
         s1.push(
@@ -351,7 +489,7 @@ pub fn plots(cfg: &PlanarConfig, env: &Envelope, title: &str) -> Vec<(String, Pl
             s1.push(Series::new(label, pts, col).dashed());
         }
     }
-    let peak = k.iter().map(|s| s.amplitude).fold(0.0, f64::max) * mm;
+    let peak = k().map(amp).fold(0.0, f64::max) * mm;
     let mut out = vec![(
         "amplitude_omega".to_string(),
         Plot {
@@ -370,8 +508,8 @@ pub fn plots(cfg: &PlanarConfig, env: &Envelope, title: &str) -> Vec<(String, Pl
             x_label: "t (s)".into(),
             y_label: "radius of C (mm)".into(),
             series: vec![
-                Series::new("radius of C", k.iter().map(|s| (s.t, mm * s.amplitude)).collect(), PALETTE[0]),
-                Series::new("s2", vec![(0.0, mm * p.s2), (k.last().map_or(1.0, |s| s.t), mm * p.s2)], PALETTE[7]).dashed(),
+                Series::new("radius of C", line(k().map(|r| (t(r), mm * amp(r))), columns), PALETTE[0]),
+                Series::new("s2", vec![(0.0, mm * p.s2), (t_last, mm * p.s2)], PALETTE[7]).dashed(),
             ],
             ..Default::default()
         },
@@ -379,8 +517,22 @@ pub fn plots(cfg: &PlanarConfig, env: &Envelope, title: &str) -> Vec<(String, Pl
     // at most PSI_CURVES balls drawn (a figure of 1e5 curves is tens of MB and unreadable);
     // the CSV has every ball
     let drawn = p.n.min(PSI_CURVES);
-    let psi: Vec<Series> =
-        (0..drawn).map(|j| Series::new(format!("ψ{}", j + 1), wrapped_degrees(k.iter().map(|s| (s.t, s.psi[j]))), PALETTE[(j + 1) % 7])).collect();
+    let psi: Vec<Series> = (0..drawn)
+        .map(|j| {
+            Series::new(
+                format!("ψ{}", j + 1),
+                {
+                    let w = wrapped_degrees(k().map(|r| (t(r), r[ROW_PSI + j])));
+                    if columns {
+                        crate::plot::line_columns(w.iter().copied())
+                    } else {
+                        w
+                    }
+                },
+                PALETTE[(j + 1) % 7],
+            )
+        })
+        .collect();
     let psi_title = if drawn < p.n { format!("{title}: ball angles (balls 1-{drawn} of {})", p.n) } else { format!("{title}: ball angles") };
     out.push(("psi_t".into(), Plot { title: psi_title, x_label: "t (s)".into(), y_label: "ψ (degrees from CG)".into(), series: psi, ..Default::default() }));
     out.push((
@@ -390,8 +542,8 @@ pub fn plots(cfg: &PlanarConfig, env: &Envelope, title: &str) -> Vec<(String, Pl
             x_label: "t (s)".into(),
             y_label: "ω (rad/s)".into(),
             series: vec![
-                Series::new("ω", k.iter().map(|s| (s.t, s.omega)).collect(), PALETTE[0]),
-                Series::new("sqrt(k/m0)", vec![(0.0, p.natural_frequency()), (k.last().map_or(1.0, |s| s.t), p.natural_frequency())], PALETTE[7]).dashed(),
+                Series::new("ω", line(k().map(|r| (t(r), om(r))), columns), PALETTE[0]),
+                Series::new("sqrt(k/m0)", vec![(0.0, p.natural_frequency()), (t_last, p.natural_frequency())], PALETTE[7]).dashed(),
             ],
             ..Default::default()
         },
@@ -415,18 +567,14 @@ pub fn plot_paths(stem: &Path) -> Vec<PathBuf> {
     PLOTS.iter().map(|s| plot_path(stem, s)).collect()
 }
 
-/// Write the four figures ([`plots`]), the last two on a second thread (each SVG is
-/// independent; the two with the most points, amplitude against ω and the ball angles, go to
-/// different threads).
+/// Write the four figures ([`plots`], each curve built from its pixel columns,
+/// [`crate::plot::line_columns`]), one after the other: drawn from a few hundred points a
+/// curve they cost less than a thread's start, stack and malloc arena.
 pub fn write_plots(cfg: &PlanarConfig, env: &Envelope, stem: &Path, title: &str) -> Result<Vec<PathBuf>> {
-    let figures: Vec<(PathBuf, Plot)> = plots(cfg, env, title).into_iter().map(|(suffix, plot)| (plot_path(stem, &suffix), plot)).collect();
-    let write = |(path, plot): &(PathBuf, Plot)| crate::outfile::write_atomic("--out", path, plot.to_svg());
-    let (mine, theirs): (Vec<_>, Vec<_>) = figures.iter().enumerate().partition(|(i, _)| *i < 2);
-    std::thread::scope(|scope| {
-        let other = scope.spawn(|| theirs.iter().try_for_each(|(_, f)| write(f)));
-        mine.iter().try_for_each(|(_, f)| write(f))?;
-        other.join().unwrap_or_else(|_| Err(anyhow::anyhow!("writing a figure panicked")))
-    })?;
+    let figures: Vec<(PathBuf, Plot)> = plots_with(cfg, env, title, true).into_iter().map(|(suffix, plot)| (plot_path(stem, &suffix), plot)).collect();
+    for (path, plot) in &figures {
+        crate::outfile::write_atomic("--out", path, plot.to_svg())?;
+    }
     Ok(figures.into_iter().map(|(path, _)| path).collect())
 }
 
@@ -483,11 +631,76 @@ mod tests {
             samples.iter().for_each(|s| env.push(s));
             env.flush();
             let want = reference(&samples, expected, target);
-            assert_eq!(env.kept.len(), want.len(), "case {case}: expected {expected}, target {target}, {count} samples");
-            for (k, (a, b)) in env.kept.iter().zip(&want).enumerate() {
+            let kept = env.kept();
+            assert_eq!(kept.len(), want.len(), "case {case}: expected {expected}, target {target}, {count} samples");
+            assert_eq!(env.len(), want.len());
+            for (k, (a, b)) in kept.iter().zip(&want).enumerate() {
                 // compared as bits: NaN amplitudes are kept too
-                assert!(a.t == b.t && a.amplitude.to_bits() == b.amplitude.to_bits() && a.psi == b.psi && a.omega == b.omega, "case {case}, kept {k}");
+                assert!(
+                    a.t == b.t
+                        && a.amplitude.to_bits() == b.amplitude.to_bits()
+                        && a.psi == b.psi
+                        && a.omega == b.omega
+                        && [a.theta, a.x, a.y].map(f64::to_bits) == [b.theta, b.x, b.y].map(f64::to_bits),
+                    "case {case}, kept {k}"
+                );
             }
+        }
+    }
+
+    /// The CSV text of a sink is the rows' values as `Csv`'s `Display` text, comma-joined, a line
+    /// each, after the header, whatever the row width (0 to 40 values: rows of up to 1 600
+    /// bytes) and wherever the chunks end; every chunk but the last reaches the writer whole, at
+    /// least `CSV_CHUNK` bytes (the staged file's buffer passes it through without a copy).
+    #[test]
+    fn a_sinks_csv_is_every_row_as_text_in_whole_chunks() {
+        struct Chunks(Vec<Vec<u8>>, bool);
+        impl Write for Chunks {
+            fn write(&mut self, b: &[u8]) -> std::io::Result<usize> {
+                self.0.push(b.to_vec());
+                Ok(b.len())
+            }
+            fn flush(&mut self) -> std::io::Result<()> {
+                self.1 = true;
+                Ok(())
+            }
+        }
+        let mut x = 0x2545_F491_4F6C_DD1Du64;
+        for width in [0usize, 1, 7, 40] {
+            let mut out = Chunks(vec![], false);
+            let mut want = String::new();
+            {
+                let mut sink = RowSink::new(Some(&mut out), None, None);
+                let names: Vec<String> = (0..width).map(|j| format!("c{j}")).collect();
+                sink.header(&names).unwrap();
+                want.push_str(&names.join(","));
+                want.push('\n');
+                for _ in 0..3000 {
+                    let row: Vec<f64> = (0..width)
+                        .map(|_| {
+                            x ^= x << 13;
+                            x ^= x >> 7;
+                            x ^= x << 17;
+                            match x % 17 {
+                                0 => 0.0,
+                                1 => f64::NAN,
+                                2 => -f64::INFINITY,
+                                3 => (x >> 20) as f64,
+                                _ => f64::from_bits(x >> 2) * if x & 2 == 0 { 1.0 } else { -1.0 },
+                            }
+                        })
+                        .collect();
+                    sink.push(&row).unwrap();
+                    want.push_str(&row.iter().map(|v| crate::num::Csv(*v).to_string()).collect::<Vec<_>>().join(","));
+                    want.push('\n');
+                }
+                sink.finish().unwrap();
+            }
+            assert!(out.1, "finish flushes");
+            let n = out.0.len();
+            assert!(out.0[..n - 1].iter().all(|c| c.len() >= CSV_CHUNK), "width {width}: a chunk short of CSV_CHUNK before the last");
+            assert!(out.0.iter().all(|c| c.ends_with(b"\n")), "width {width}: whole lines a chunk");
+            assert_eq!(String::from_utf8(out.0.concat()).unwrap(), want, "width {width}");
         }
     }
 
@@ -495,8 +708,28 @@ mod tests {
     /// and a ball that slips round the race has its line broken where it wraps.
     #[test]
     fn wrapped_degrees_match_rem_euclid_and_break_at_the_wrap() {
-        for k in -4000..4000 {
-            let a = k as f64 * 0.0123;
+        let mut x = 0x9E37_79B9_7F4A_7C15u64;
+        let mut angles: Vec<f64> = (-4000..4000).map(|k| k as f64 * 0.0123).collect();
+        // far-slipping balls (up to 1e12 rad), the multiples of a turn and their neighbours,
+        // the ends of the exact range
+        for _ in 0..200_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let u = (x >> 11) as f64 / (1u64 << 53) as f64;
+            angles.push((u - 0.5) * 10f64.powf(-2.0 + 14.0 * ((x & 0xff) as f64 / 255.0)));
+        }
+        for k in -3000..3000 {
+            let v = k as f64 * 360.0 - 180.0;
+            for w in [v, v.next_up(), v.next_down()] {
+                angles.push((w - 180.0).to_radians());
+                assert_eq!((wrap_360(w) - 180.0).to_bits(), (w.rem_euclid(360.0) - 180.0).to_bits(), "{w}");
+            }
+        }
+        for w in [4.5e15, -4.5e15, 4_503_599_627_370_495.0, -4_503_599_627_370_495.0, 1e300, -1e300, f64::INFINITY, f64::NAN, -0.0, 0.0, -360.0, 360.0] {
+            assert_eq!((wrap_360(w) - 180.0).to_bits(), (w.rem_euclid(360.0) - 180.0).to_bits(), "{w}");
+        }
+        for a in angles {
             let got = wrapped_degrees([(0.0, a)].into_iter())[0].1;
             let want = (a.to_degrees() + 180.0).rem_euclid(360.0) - 180.0;
             assert_eq!(got.to_bits(), want.to_bits(), "{a}");

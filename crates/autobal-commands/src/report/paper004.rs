@@ -130,7 +130,7 @@ pub fn curves(runs: &[Run], done: &[std::sync::Arc<Done>], tags: &[&str], x: fn(
         .filter(|(r, _)| tags.contains(&r.tag.as_str()))
         .enumerate()
         .map(|(i, (r, d))| {
-            let s = Series::new(r.label.clone(), d.env.kept.iter().map(|s| (x(s), y(s))).collect(), crate::figures::curve_color(i));
+            let s = Series::new(r.label.clone(), d.env.kept().iter().map(|s| (x(s), y(s))).collect(), crate::figures::curve_color(i));
             if r.label.contains("reverse") {
                 s.dashed()
             } else {
@@ -331,7 +331,7 @@ pub fn ball_angles(runs: &[Run], done: &[std::sync::Arc<Done>], tags: &[&str]) -
             (0..d.cfg.rotor.n).map(move |j| {
                 let s = Series::new(
                     format!("{}: ψ{}", r.label, j + 1),
-                    crate::sim::wrapped_degrees(d.env.kept.iter().map(|s| (s.t, s.psi[j]))),
+                    crate::sim::wrapped_degrees(d.env.kept().iter().map(|s| (s.t, s.psi[j]))),
                     crate::figures::curve_color(k),
                 );
                 if j > 0 {
@@ -406,8 +406,8 @@ fn trends(s: &mut Section, runs: &[Run], done: &[std::sync::Arc<Done>], quick: b
     let settle = |label: &str, band: f64| -> Option<f64> {
         let d = find("5", label)?;
         let wn = d.cfg.rotor.natural_frequency();
-        let t_res = d.env.kept.iter().find(|x| x.omega >= wn)?.t;
-        let pts: Vec<(f64, f64)> = d.env.kept.iter().map(|x| (x.t, x.amplitude)).collect();
+        let t_res = d.env.kept().iter().find(|x| x.omega >= wn)?.t;
+        let pts: Vec<(f64, f64)> = d.env.kept().iter().map(|x| (x.t, x.amplitude)).collect();
         settling_time(&pts, d.cfg.rotor.s2, band, t_res).map(|t| t - t_res)
     };
     let st = |label: &str, band: f64| settle(label, band).map_or("not settled".into(), |t| format!("{} s", fmt(t, 3)));

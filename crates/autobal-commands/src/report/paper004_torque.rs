@@ -139,7 +139,7 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
         .filter(|(r, _)| r.tag == "7" || r.tag == "8")
         .enumerate()
         .map(|(i, (r, d))| {
-            Series::new(r.label.clone(), d.env.kept.iter().map(|x| (x.t, d.cfg.drive.torque(x.t, x.omega))).collect(), crate::figures::curve_color(i))
+            Series::new(r.label.clone(), d.env.kept().iter().map(|x| (x.t, d.cfg.drive.torque(x.t, x.omega))).collect(), crate::figures::curve_color(i))
         })
         .collect();
     s.figure(
