@@ -685,7 +685,8 @@ fn run_map(args: &map::Args, config: Option<&std::path::Path>, out: &std::path::
 fn keep_freed_memory() {
     #[cfg(all(target_os = "linux", target_env = "gnu"))]
     // SAFETY: `mallopt` sets two of glibc's tuning parameters (32 MiB is its largest mmap
-    // threshold); it is called before the map's work, from the only thread that allocates now.
+    // threshold), with no pointer arguments; glibc takes its arena lock in `mallopt`, so other
+    // threads (the Ctrl-C watcher) may run meanwhile. Called before the map's work.
     unsafe {
         libc::mallopt(libc::M_MMAP_THRESHOLD, 32 << 20);
         libc::mallopt(libc::M_TRIM_THRESHOLD, 256 << 20);

@@ -243,7 +243,7 @@ impl<'a, W: Write + ?Sized> RowSink<'a, W> {
     }
 }
 
-/// Run one simulation, writing every sample to `csv` (flushed as it goes) and to `parquet` if
+/// Run one simulation, writing every sample to `csv` (in whole chunks of [`CSV_CHUNK`] bytes, the last by the sink's `finish`) and to `parquet` if
 /// given, and keeping an envelope for the plots ([`run_rows`] into a [`RowSink`]; `progress`:
 /// a bar on standard error when it is a terminal). Returns the summary, the envelope and the
 /// wall time.

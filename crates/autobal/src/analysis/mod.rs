@@ -55,8 +55,7 @@
 //!   [`ScanOptions::prefer_guess`]; a periodic orbit's shooting starting from the previous
 //!   orbit's monodromy matrix), its stability at each, and the ends of the stable ranges
 //!   located to `1e-9` relative in `Ω` (Brent's method on the abscissa, safeguarded by
-//!   bisection, the end its interpolated zero once that lies within the tolerance of the best
-//!   trial; a periodic orbit's trial speeds shot from the state interpolated between the
+//!   bisection; a periodic orbit's trial speeds shot from the state interpolated between the
 //!   two nearest solutions, with the nearest one's monodromy matrix).
 //!
 //! # Tolerances, and why

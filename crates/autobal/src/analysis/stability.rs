@@ -298,10 +298,8 @@ fn predict(p: &Trial, q: &Trial, omega: f64) -> Option<(Vec<f64>, Vec<f64>)> {
 /// the tolerance: Brent, *Algorithms for Minimization without Derivatives*, 1973, ch. 4,
 /// `zeroin`); by bisection on the side where `α` is missing at an end, has one sign at both
 /// (an end whose verdict is neutral) or a trial finds no state. Each trial starts from its two
-/// nearest solutions ([`predict`]) and the nearest one's monodromy matrix. Returns the end
-/// (`None` if stopped) and why it stopped: where an interpolation step puts `α`'s zero within
-/// the tolerance of the best estimate, that zero (zeroin's last trial, one tolerance past it to
-/// see `α` change sign, would only confirm it), else the middle of the last bracket.
+/// nearest solutions ([`predict`]) and the nearest one's monodromy matrix. Returns the middle
+/// of the last bracket (`None` if stopped) and why it stopped.
 fn locate_end<E>(a: &ScanPoint, b: &ScanPoint, rtol: f64, control: &Control, evaluate: E) -> (Option<f64>, Option<crate::control::StopReason>)
 where
     E: Fn(f64, Option<&StationaryState>, Option<(&[f64], &[f64])>) -> std::result::Result<(StationaryState, Stability), String>,
@@ -347,8 +345,6 @@ where
             if xm.abs() <= tol1 {
                 return (Some(0.5 * (pb.omega + pc.omega)), None);
             }
-            // whether `d` is an interpolation step (else a bisection)
-            let mut interpolated = false;
             if e.abs() >= tol1 && fa.abs() > fb.abs() {
                 let s = fb / fa;
                 let (mut p, mut q);
@@ -370,7 +366,6 @@ where
                 if 2.0 * p < (3.0 * xm * q - (tol1 * q).abs()).min((e * q).abs()) {
                     e = d;
                     d = p / q;
-                    interpolated = true;
                 } else {
                     d = xm;
                     e = d;
@@ -378,12 +373,6 @@ where
             } else {
                 d = xm;
                 e = d;
-            }
-            if interpolated && d.abs() <= tol1 {
-                // the interpolation puts α's zero within the tolerance of `b`, inside the
-                // bracket: that is the end (zeroin's last step, one tolerance past it to see
-                // α change sign, would only confirm it, at the cost of a whole trial)
-                return (Some(pb.omega + d), None);
             }
             let omega = pb.omega + if d.abs() > tol1 { d } else { tol1.copysign(xm) };
             if let Some(why) = control.should_stop() {
