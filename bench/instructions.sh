@@ -4,7 +4,8 @@
 # the whole process against the library's share of the same work:
 #   simulate  the library example examples/passage (the same passage, samples in memory)
 #   map       inside the command's own profile: Line::new + Line::cells + LinePlane::new (the map's library work)
-#   campbell  inside the command's own profile: campbell_stream less the command's callback
+#   campbell  inside the command's own profile: campbell_stream less the command's callback,
+#             plus the fixed axes' crossings (fixed_axes)
 #   sweep     inside the command's own profile: planar::simulate_summary
 #   spatial   `simulate` of bench/peers_spatial.py's 1000-revolution run-up (examples/spatial.toml):
 #             inside the command's own profile, spatial::dynamics::simulate_with less the
@@ -52,7 +53,9 @@ row "map --threads 1, 400 x 400 margin (CSV + SVG + PNG)" "$c" "$l"
 fi
 if want campbell; then
 c=$(count campbell "$EXE" campbell --points 200 --omega-max 5 --format json)
-l=$(( $(incl "$W/campbell.cg" 'campbell_stream \[') - $(incl "$W/campbell.cg" 'run_campbell::\{\{closure\}\} \[') ))
+# the library: the tracked modes (campbell_stream, less the command's callback, which keeps and
+# checks each speed's modes) and the fixed axes' crossings (spatial::campbell::fixed_axes)
+l=$(( $(incl "$W/campbell.cg" 'campbell_stream \[') + $(incl "$W/campbell.cg" 'spatial::campbell::fixed_axes \[') - $(incl "$W/campbell.cg" 'campbell_run::\{\{closure\}\} \[') ))
 row "campbell --points 200 --format json" "$c" "$l"
 fi
 if want sweep; then
