@@ -560,7 +560,7 @@ fn decimate(a: &Axis) -> (usize, Axis) {
 /// The closed route's CSV rows, formatted into buffers kept for the whole map (no fresh
 /// megabytes per batch, no copy of a row's cells where the library's slice serves). On one
 /// thread each row is formatted as it comes, from the library's slice, into one text that is
-/// written once it holds [`CSV_CHUNK`] bytes (the staged file's buffer size: a write that large
+/// written once it holds [`crate::sim::CSV_CHUNK`] bytes (the staged file's buffer size: a write that large
 /// goes to the file without a copy into that buffer). On more threads the rows are formatted in
 /// parallel in batches of about 64 k cells (the pool is idle between the library's blocks),
 /// the batch's cells and its rows' texts reused from batch to batch. The bytes are the same
@@ -599,10 +599,6 @@ impl Piece {
         Some(Piece { bytes, len: text.len() })
     }
 
-    fn text(&self) -> &[u8] {
-        &self.bytes[..self.len]
-    }
-
     /// Append the text to `t`: all [`Piece::N`] bytes, then `t` cut back by the padding.
     #[inline]
     fn push(&self, t: &mut Vec<u8>) {
@@ -610,9 +606,6 @@ impl Piece {
         t.truncate(t.len() - (Piece::N - self.len));
     }
 }
-
-/// Bytes a single-thread text collects before it is written.
-const CSV_CHUNK: usize = 1 << 16;
 
 impl<'a> CsvRows<'a> {
     fn new(x: &Axis, y: &'a Axis, verdict_only: bool, threads: usize) -> Self {
@@ -626,7 +619,7 @@ impl<'a> CsvRows<'a> {
                 Piece::new(&t).expect("a double's shortest text is at most 24 bytes")
             })
             .collect();
-        let batch = if threads > 1 { CSV_CHUNK / nx.max(1) + 1 } else { 1 };
+        let batch = if threads > 1 { crate::sim::CSV_CHUNK / nx.max(1) + 1 } else { 1 };
         CsvRows { xs, y: &y.values, nx, verdict_only, batch, rows: vec![], cells: vec![], texts: vec![vec![]] }
     }
 
@@ -640,35 +633,23 @@ impl<'a> CsvRows<'a> {
         let all = [flags(false, false), flags(false, true), flags(true, false), flags(true, true)];
         let idx = |c: &Cell| 2 * c.stable as usize + c.necessary as usize;
         t.reserve(cells.len() * (xs.iter().map(|p| p.len).max().unwrap_or(0) + yv.len() + 32));
+        // `y`'s shortest text is at most 24 bytes: `,y,` (26) and `,y,,s,n` (31) fit a piece
+        const FITS: &str = "a double's shortest text is at most 24 bytes";
         if verdict_only {
             // `--quantity verdict` computes no margin: an empty field, never `NaN`
-            let ends = all.map(|f| Piece::new(&[&b","[..], &yv, b",", &f].concat()));
-            if let Some(ends) = ends.into_iter().collect::<Option<Vec<Piece>>>() {
-                for (x, c) in xs.iter().zip(cells) {
-                    x.push(t);
-                    ends[idx(c)].push(t);
-                }
-                return;
+            let ends = all.map(|f| Piece::new(&[&b","[..], &yv, b",", &f].concat()).expect(FITS));
+            for (x, c) in xs.iter().zip(cells) {
+                x.push(t);
+                ends[idx(c)].push(t);
             }
-        } else if let Some(mid) = Piece::new(&[&b","[..], &yv, b","].concat()) {
+        } else {
+            let mid = Piece::new(&[&b","[..], &yv, b","].concat()).expect(FITS);
             for (x, c) in xs.iter().zip(cells) {
                 x.push(t);
                 mid.push(t);
                 crate::num::Csv(c.margin).push_to(t);
                 t.extend_from_slice(&all[idx(c)]);
             }
-            return;
-        }
-        // a `y` text too long for a piece (never for a double's shortest form, at most 24 bytes)
-        for (x, c) in xs.iter().zip(cells) {
-            t.extend_from_slice(x.text());
-            t.push(b',');
-            t.extend_from_slice(&yv);
-            t.push(b',');
-            if !verdict_only {
-                crate::num::Csv(c.margin).push_to(t);
-            }
-            t.extend_from_slice(&all[idx(c)]);
         }
     }
 
@@ -678,7 +659,7 @@ impl<'a> CsvRows<'a> {
         if self.batch == 1 {
             let t = &mut self.texts[0];
             Self::format(&self.xs, self.y[j], self.verdict_only, cells, t);
-            if t.len() >= CSV_CHUNK || last {
+            if t.len() >= crate::sim::CSV_CHUNK || last {
                 w.write_all(t)?;
                 t.clear();
             }
