@@ -255,8 +255,12 @@ impl Rotor {
         }
     }
 
-    /// What the stationary state `x` of `field` is ([`StateKind`]); the linear rotor's:
-    /// [`crate::linear_rotor::partial::state_kind`] (every race centre on the axis: balanced).
+    /// What the stationary state `x` of `field` is ([`StateKind`]). Planar: E on the axis,
+    /// balanced or semi-balanced; else partially balanced with the balls bunched, not balanced
+    /// without. Spatial: static and couple residual below `1e-6` of the unbalances' scale,
+    /// balanced; else partially balanced where a plane's balls are bunched, not balanced where
+    /// none is. Linear: [`crate::linear_rotor::partial::state_kind`] (every race centre on the
+    /// axis: balanced).
     pub fn state_kind(field: &Field, x: &[f64]) -> StateKind {
         match field {
             Field::Linear(f) => crate::linear_rotor::partial::state_kind(f, x),
@@ -271,8 +275,10 @@ impl Rotor {
                     } else {
                         StateKind::SemiBalanced
                     }
-                } else {
+                } else if bunched(&ball_angles(field, x)) {
                     StateKind::PartiallyBalanced
+                } else {
+                    StateKind::NotBalanced
                 }
             }
             Field::Spatial(s) => {
@@ -301,8 +307,19 @@ impl Rotor {
                 let zl = if zl > 0.0 { zl } else { 1.0 };
                 if rs[0].hypot(rs[1]) <= 1e-6 * scale && rc[0].hypot(rc[1]) <= 1e-6 * scale * zl {
                     StateKind::Balanced
-                } else {
+                } else if psi.is_empty()
+                    || r.planes
+                        .iter()
+                        .filter(|p| p.n > 0)
+                        .scan(0, |j, p| {
+                            *j += p.n;
+                            Some(bunched(&psi[*j - p.n..*j]))
+                        })
+                        .any(|b| b)
+                {
                     StateKind::PartiallyBalanced
+                } else {
+                    StateKind::NotBalanced
                 }
             }
         }
@@ -374,15 +391,24 @@ pub enum StateKind {
     /// The balls cannot cancel the unbalance (capacity short, or below the speed where the
     /// semi-balanced state exists): a residual unbalance, the balls bunched.
     PartiallyBalanced,
+    /// An equilibrium in which the balls do not balance although no plane's balls are bunched:
+    /// the race whirls and each ball sits on the line of the whirl, on either side of it (two
+    /// balls opposite each other: their resultant is zero). A ball is at rest on a whirling race
+    /// only there (its tangential force `m_b Ω² |d| sin(ψ − arg d)` vanishes), so such states
+    /// exist at every speed beside the balanced one; Newton can reach one from a poor start, and
+    /// it is named, never called balanced ([`state_kind`](Rotor::state_kind)).
+    NotBalanced,
 }
 
 impl StateKind {
-    /// `"balanced"`, `"semi-balanced"`, `"partially balanced"`.
+    /// `"balanced"`, `"semi-balanced"`, `"partially balanced"`, `"not balanced (balls on the
+    /// line of the whirl)"`.
     pub fn name(self) -> &'static str {
         match self {
             StateKind::Balanced => "balanced",
             StateKind::SemiBalanced => "semi-balanced",
             StateKind::PartiallyBalanced => "partially balanced",
+            StateKind::NotBalanced => "not balanced (balls on the line of the whirl)",
         }
     }
 }
@@ -822,6 +848,16 @@ pub(crate) fn ball_angles(f: &Field, x: &[f64]) -> Vec<f64> {
     x[ball_coordinates(f)].to_vec()
 }
 
+/// Whether the balls at `psi` (rad, one plane) are bunched: every angle within `1e-6` rad of the
+/// first, modulo `2π` (a plane at its capacity limit, [`StateKind::PartiallyBalanced`]); true
+/// for one ball or none.
+pub(crate) fn bunched(psi: &[f64]) -> bool {
+    psi.iter().all(|a| {
+        let w = (a - psi[0]).rem_euclid(std::f64::consts::TAU);
+        w.min(std::f64::consts::TAU - w) <= 1e-6
+    })
+}
+
 /// Whirl radius at the first balancer plane in turning axes: `|u|` of the planar rotor's C, the
 /// spatial shaft's displacement at the first ball plane (or the first unbalance's plane), the
 /// linear rotor's race centre of its first balancer plane
@@ -887,6 +923,68 @@ mod tests {
             assert!(amplitude(&fl, &sl.x) <= 1e-12 * p.s1, "Ω {w}: {}", amplitude(&fl, &sl.x));
             assert_eq!(Rotor::state_kind(&fl, &sl.x), StateKind::Balanced);
         }
+    }
+
+    /// The other equilibrium of two balls on a whirling race: one ball on each side of the line
+    /// of the whirl (planar `aligned_whirls_of` with `q = n_far − n_near = 0`: the balls'
+    /// resultant is zero, so C whirls at the rotor's own unbalance response
+    /// `u = m1 s1 Ω² / (k − M Ω² + i c Ω)`, `M = m1 + m2 + 2 m3`, a closed form independent of
+    /// the field). Newton from it stays there on both the planar field and the linear rotor's
+    /// field (so it is an equilibrium of both), and neither may call it balanced nor partially
+    /// balanced (main at b7bef73 said "partially balanced" for the planar field, "balanced" for
+    /// the linear one). Tolerances: Newton to ~1e-12 relative, so 1e-9 of the whirl radius.
+    #[test]
+    fn an_equilibrium_with_the_balls_opposite_is_not_balanced() {
+        use num_complex::Complex64 as C;
+        let (planar, linear) = jeffcott(2);
+        let Rotor::Planar(p) = &planar else { unreachable!() };
+        for w in [150.0, 400.0] {
+            let d = C::new(p.k - p.total_mass() * w * w, p.c * w);
+            let u = C::new(p.m1 * p.s1 * w * w, 0.0) / d;
+            let phi = u.arg();
+            let mut x = vec![0.0; 8];
+            (x[0], x[1], x[2], x[3]) = (u.re, u.im, phi, phi + std::f64::consts::PI);
+            for rotor in [&planar, &linear] {
+                let f = rotor.field(w).unwrap();
+                assert_eq!(f.dim(), 8, "{}", rotor.model_name());
+                let s = stationary(&f, &x, &NewtonOptions::default()).unwrap();
+                let a = amplitude(&f, &s.x);
+                assert!((a - u.norm()).abs() <= 1e-9 * u.norm(), "{} Ω {w}: whirl {a} vs closed form {}", rotor.model_name(), u.norm());
+                let psi = ball_angles(&f, &s.x);
+                let gap = (psi[1] - psi[0]).rem_euclid(std::f64::consts::TAU);
+                assert!((gap - std::f64::consts::PI).abs() <= 1e-9, "{} Ω {w}: ψ {psi:?}", rotor.model_name());
+                assert_eq!(Rotor::state_kind(&f, &s.x), StateKind::NotBalanced, "{} Ω {w}", rotor.model_name());
+            }
+            // the balanced state at the same speed is still called balanced
+            for rotor in [&planar, &linear] {
+                let (f, s) = crate::rotor_campbell::stationary_at(rotor, w).unwrap();
+                assert_eq!(Rotor::state_kind(&f, &s.x), StateKind::Balanced, "{} Ω {w}", rotor.model_name());
+            }
+        }
+    }
+
+    /// The spatial classifier on examples/spatial_two_plane.toml without gravity and with equal
+    /// supports (an equilibrium): its balanced state is balanced; the same state with each
+    /// plane's two balls put opposite each other (their resultant zero, so the residual is the
+    /// whole unbalance) is not balanced; with one plane's balls bunched, partially balanced.
+    /// The classifier reads only the balls' angles and the unbalance, so these states need not
+    /// be equilibria for it (the planar and linear cases above are).
+    #[test]
+    fn the_spatial_classifier_tells_opposite_balls_from_bunched_ones() {
+        let mut root = crate::config::parse(include_str!("../../../examples/spatial_two_plane.toml"), "two-plane").unwrap();
+        crate::config::set(&mut root, "spatial.gravity", crate::config::parse_value("[0.0, 0.0, 0.0]")).unwrap();
+        crate::config::set_number(&mut root, "supports.stiffness_left_y", 2.0e6).unwrap();
+        crate::config::set_number(&mut root, "supports.stiffness_right_y", 3.0e6).unwrap();
+        let rotor = Rotor::Spatial(crate::config::spatial_simulation(&root).unwrap().rotor);
+        let (f, s) = crate::rotor_campbell::stationary_at(&rotor, 1000.0).unwrap();
+        assert_eq!(Rotor::state_kind(&f, &s.x), StateKind::Balanced);
+        let balls = ball_coordinates(&f);
+        assert_eq!(balls.len(), 4, "two planes of two balls");
+        let mut x = s.x.clone();
+        x[balls.clone()].copy_from_slice(&[0.3, 0.3 + std::f64::consts::PI, 1.1, 1.1 - std::f64::consts::PI]);
+        assert_eq!(Rotor::state_kind(&f, &x), StateKind::NotBalanced);
+        x[balls.start + 1] = 0.3 + std::f64::consts::TAU;
+        assert_eq!(Rotor::state_kind(&f, &x), StateKind::PartiallyBalanced);
     }
 
     #[test]

@@ -20,7 +20,8 @@
 //! # What a state is
 //! Partially balanced where a plane's balls are bunched (one angle) with its race centre off
 //! the axis, `|d_k| > 1e-6 ℓ` ([`state_kind`]; `ℓ = (Σ|m e| + Σ n m_b R)/m_t` an eccentricity
-//! scale, `m_t = u_xᵀ M u_x`), else balanced. Its residual static unbalance is `s0 + Σ_j m_b R e^{iψ_j}`
+//! scale, `m_t = u_xᵀ M u_x`); not balanced where the balls lie on the line of such a whirl on
+//! both sides of it; else balanced. Its residual static unbalance is `s0 + Σ_j m_b R e^{iψ_j}`
 //! ([`residual_static`]); the rotor's nodes carry no axial positions, so no couple is formed.
 
 use super::runup::plane_positions;
@@ -92,28 +93,41 @@ pub fn plane_whirl(rotor: &LinearRotor, x: &[f64]) -> Vec<f64> {
 }
 
 /// Partially balanced where a plane is at its capacity limit, its balls bunched (all at one
-/// angle to `1e-6` rad) with its race centre off the axis (more than `1e-6 ℓ`); else balanced
-/// (module docs). A balanced state's race centres are on the axis only to first order where the
-/// nodes tilt (the tilted ring pushes the balls at second order), so the balls' spread, not the
-/// displacement alone, tells the states apart.
+/// angle to `1e-6` rad) with its race centre off the axis (more than `1e-6 ℓ`); not balanced
+/// where a plane's race centre is off the axis with every ball on the line of its whirl
+/// (`ψ ≡ arg d` mod `π` to `1e-6` rad, on both sides: the balls at rest on a whirling race,
+/// [`StateKind::NotBalanced`]); else balanced (module docs). A balanced state's race centres are
+/// on the axis only to first order where the nodes tilt (the tilted ring pushes the balls at
+/// second order), so the balls' placement, not the displacement alone, tells the states apart.
 pub fn state_kind(field: &LinearRotorField, x: &[f64]) -> StateKind {
     let r = field.rotor();
     let tol = 1e-6 * length_scale(r);
     let n = r.dofs();
     let whirl = plane_whirl(r, x);
-    let mut j = n;
-    for (b, d) in r.balancers.iter().zip(whirl) {
+    let centres = plane_positions(r, x);
+    let (mut j, mut on_line) = (n, false);
+    for ((b, d), c) in r.balancers.iter().zip(whirl).zip(centres) {
         let psi = &x[j..j + b.balls];
         j += b.balls;
-        let bunched = psi.iter().all(|a| {
-            let w = (a - psi[0]).rem_euclid(std::f64::consts::TAU);
-            w.min(std::f64::consts::TAU - w) <= 1e-6
-        });
-        if b.balls > 0 && bunched && d > tol {
+        if b.balls == 0 || d <= tol {
+            continue;
+        }
+        if crate::rotor_stability::bunched(psi) {
             return StateKind::PartiallyBalanced;
         }
+        // every ball on the line of the whirl (`ψ ≡ arg d` mod π, to 1e-6 rad): at rest on the
+        // whirling race only there, the balls not balancing ([`StateKind::NotBalanced`])
+        let along = c.1.atan2(c.0);
+        on_line |= psi.iter().all(|a| {
+            let w = (a - along).rem_euclid(std::f64::consts::PI);
+            w.min(std::f64::consts::PI - w) <= 1e-6
+        });
     }
-    StateKind::Balanced
+    if on_line {
+        StateKind::NotBalanced
+    } else {
+        StateKind::Balanced
+    }
 }
 
 /// The structure's stationary displacement `p` (turning axes) with every ball at `psi` (rad,
