@@ -229,18 +229,65 @@ impl PyLinearRotor {
     }
 
     /// Add a balancer plane at `node`: race `radius` (m), `balls`, `ball_mass` (kg), `drag`
-    /// per ball (N·m·s), axial `offset` (m). Checked at once as the CLI checks a config's
-    /// `[[linear_rotor.balancer]]` (the node exists, radius and ball mass positive, drag not
-    /// negative, at least one ball): refused with `InvalidParameter` naming
-    /// `linear_rotor.balancer[i].FIELD`, the rotor left as it was.
-    #[pyo3(signature = (node, radius, balls, ball_mass, drag=0.0, offset=0.0))]
+    /// per ball (N·m·s), axial `offset` (m); real balls by the config's keys of
+    /// `[[linear_rotor.balancer]]` (`autobal::balls::BallPhysics`): `contact` (the balls touch:
+    /// Hertz contact of spheres of `ball_diameter` m, default steel of `ball_mass`, with
+    /// `restitution` and `contact_stiffness`), `rolling_resistance` (dimensionless, with its
+    /// `slip_rate` 1/s); absent: the papers' point masses. Checked at once as the CLI checks a
+    /// config's `[[linear_rotor.balancer]]` (the node exists, radius and ball mass positive, drag
+    /// not negative, at least one ball, the balls fit their race): refused with
+    /// `InvalidParameter` naming `linear_rotor.balancer[i].FIELD`, the rotor left as it was.
+    /// Run-ups take real balls; the stationary analyses refuse them (`NoLinearisation`).
+    #[pyo3(signature = (node, radius, balls, ball_mass, drag=0.0, offset=0.0, *, contact=false, ball_diameter=None, restitution=None, contact_stiffness=None, rolling_resistance=None, slip_rate=None))]
     #[allow(clippy::too_many_arguments)]
-    fn add_balancer(&mut self, py: Python<'_>, node: i64, radius: f64, balls: i64, ball_mass: f64, drag: f64, offset: f64) -> PyResult<()> {
+    fn add_balancer(
+        &mut self,
+        py: Python<'_>,
+        node: i64,
+        radius: f64,
+        balls: i64,
+        ball_mass: f64,
+        drag: f64,
+        offset: f64,
+        contact: bool,
+        ball_diameter: Option<f64>,
+        restitution: Option<f64>,
+        contact_stiffness: Option<f64>,
+        rolling_resistance: Option<f64>,
+        slip_rate: Option<f64>,
+    ) -> PyResult<()> {
         let i = self.rotor.balancers.len();
         let node = count(py, format!("linear_rotor.balancer[{i}].node"), node)?;
         let balls = count(py, format!("linear_rotor.balancer[{i}].balls"), balls)?;
         let mut r = self.rotor.clone();
         r.balancers.push(BalancerPlane { node, radius, balls, ball_mass, drag, offset });
+        let d = autobal::balls::BallPhysics::default();
+        let physics = autobal::balls::BallPhysics {
+            diameter: ball_diameter,
+            contact,
+            restitution: restitution.unwrap_or(d.restitution),
+            contact_stiffness,
+            rolling_resistance: rolling_resistance.unwrap_or(d.rolling_resistance),
+            slip_rate: slip_rate.unwrap_or(d.slip_rate),
+        };
+        // the contact law acts only through contact, the slip rate only with rolling resistance:
+        // given without them they would be silently ignored, so they are refused
+        let f = |k: &str| format!("linear_rotor.balancer[{i}].{k}");
+        for (k, given) in
+            [("ball_diameter", ball_diameter.is_some()), ("restitution", restitution.is_some()), ("contact_stiffness", contact_stiffness.is_some())]
+        {
+            if given && !contact {
+                return Err(err(py, autobal::Error::invalid(f(k), "has no effect without contact=True")));
+            }
+        }
+        if slip_rate.is_some() && physics.rolling_resistance == 0.0 {
+            return Err(err(py, autobal::Error::invalid(f("slip_rate"), "has no effect without a rolling_resistance")));
+        }
+        if physics.is_active() {
+            // planes before this one without real balls: point masses (the default physics)
+            r.ball_physics.resize(i, d);
+            r.ball_physics.push(physics);
+        }
         validated(py, &r)?;
         self.rotor = r;
         Ok(())

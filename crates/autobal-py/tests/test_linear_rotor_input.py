@@ -112,7 +112,7 @@ def test_from_ross_refuses_a_bad_entry_when_built(balancer, unbalance, expected)
         (
             dict(GOOD_BALANCER, ball_mas=0.05),
             GOOD_UNBALANCE,
-            r"^linear_rotor\.balancer\[0\]\.ball_mas: unknown key \(known keys: node, radius, balls, ball_mass, drag, offset\)$",
+            r"^linear_rotor\.balancer\[0\]\.ball_mas: unknown key \(known keys: node, radius, balls, ball_mass, drag, offset, contact, ball_diameter, restitution, contact_stiffness, rolling_resistance, slip_rate\)$",
         ),
         (
             GOOD_BALANCER,
@@ -229,12 +229,28 @@ def test_export_writes_a_config_the_cli_reads_with_finite_numbers(tmp_path: Path
             "[[linear_rotor.balancer]]\nnode = 1\nradius = 0.08\nballs = 2\n",
             lambda lr: autobal.from_ross(FakeRoss(), balancers=[dict(node=1, radius=0.08, balls=2)]),
         ),
+        # real balls (the config's keys of [[linear_rotor.balancer]])
+        (
+            "[[linear_rotor.balancer]]\nnode = 1\nradius = 0.08\nballs = 2\nball_mass = 0.05\ncontact = true\nrestitution = 2\n",
+            lambda lr: lr.add_balancer(1, 0.08, 2, 0.05, contact=True, restitution=2.0),
+        ),
+        (
+            "[[linear_rotor.balancer]]\nnode = 1\nradius = 0.08\nballs = 2\nball_mass = 0.05\ncontact = true\nball_diameter = 0.2\n",
+            lambda lr: lr.add_balancer(1, 0.08, 2, 0.05, contact=True, ball_diameter=0.2),
+        ),
+        (
+            "[[linear_rotor.balancer]]\nnode = 1\nradius = 0.08\nballs = 2\nball_mass = 0.05\nrolling_resistance = 5\n",
+            lambda lr: autobal.from_ross(FakeRoss(), balancers=[dict(node=1, radius=0.08, balls=2, ball_mass=0.05, rolling_resistance=5)]),
+        ),
+        (
+            "[[linear_rotor.balancer]]\nnode = 1\nradius = 0.08\nballs = 2\nball_mass = 0.05\ncontact = \"yes\"\n",
+            lambda lr: autobal.from_ross(FakeRoss(), balancers=[dict(node=1, radius=0.08, balls=2, ball_mass=0.05, contact="yes")]),
+        ),
     ],
 )
 def test_python_error_reads_as_the_clis(tmp_path: Path, table, python):
     """The same bad entry in a config the CLI reads and in Python: the same field and reason
-    (the CLI's known keys of a balancer also list the real balls' keys, which a LinearRotor
-    built in Python does not take: compared up to the key list)."""
+    (compared up to the list of known keys, which the CLI and Python order differently)."""
     text, files = rotor().export("r")
     (tmp_path / "r.toml").write_text(text + "\n" + table)
     for name, body in files:
@@ -278,3 +294,32 @@ def test_from_ross_on_a_ross_rotor_refuses_the_reviewers_cases():
     text, _ = lr.export("r")
     if tomllib is not None:
         assert tomllib.loads(text)["linear_rotor"]["unbalance"][0]["me"] == 1e-4
+
+
+def test_real_balls_from_python_are_the_configs(tmp_path: Path):
+    """Real balls given to ``add_balancer`` / ``from_ross`` are the config's: ``export`` writes
+    them as ``[[linear_rotor.balancer]]`` keys, and the CLI reading that config refuses the
+    stationary analysis as it refuses a config written by hand (a friction dead zone or resting
+    contact has no linearisation); the Python rotor's own stability refuses it the same way. A
+    contact-law key without ``contact=True`` would be ignored, so it is refused by name."""
+    lr = autobal.from_ross(
+        FakeRoss(), balancers=[dict(GOOD_BALANCER, contact=True, ball_diameter=0.02, rolling_resistance=2e-3)], unbalance=[GOOD_UNBALANCE]
+    )
+    text, files = lr.export("r")
+    if tomllib is not None:
+        b = tomllib.loads(text)["linear_rotor"]["balancer"][0]
+        assert (b["contact"], b["ball_diameter"], b["rolling_resistance"], b["restitution"]) == (True, 0.02, 2e-3, 0.5)
+    else:
+        assert "contact = true" in text and "ball_diameter = 0.02" in text
+    cfg = tmp_path / "r.toml"
+    cfg.write_text(text)
+    for name, body in files:
+        (cfg.parent / name).write_text(body)
+    out = subprocess.run([binary(), "stability", "--config", str(cfg), "--omega-max", "300rad/s", "--samples", "10"], capture_output=True, text=True)
+    assert out.returncode != 0 and "linearisation" in out.stderr, out.stderr
+    with pytest.raises(Exception, match="linearisation"):
+        lr.stability(300.0, samples=10)
+    with pytest.raises(autobal.InvalidParameter, match=r"^linear_rotor\.balancer\[1\]\.ball_diameter: has no effect without contact=True$"):
+        lr.add_balancer(0, 0.08, 2, 0.05, ball_diameter=0.02)
+    with pytest.raises(autobal.InvalidParameter, match=r"^linear_rotor\.balancer\[1\]\.slip_rate: has no effect without a rolling_resistance$"):
+        lr.add_balancer(0, 0.08, 2, 0.05, slip_rate=1e-3)

@@ -133,7 +133,22 @@ class LinearRotor:
     @spin_chart.setter
     def spin_chart(self, v: npt.NDArray[np.float64]) -> None: ...
     def add_unbalance(self, node: int, me: float, phase: float = 0.0, offset: float = 0.0) -> None: ...
-    def add_balancer(self, node: int, radius: float, balls: int, ball_mass: float, drag: float = 0.0, offset: float = 0.0) -> None: ...
+    def add_balancer(
+        self,
+        node: int,
+        radius: float,
+        balls: int,
+        ball_mass: float,
+        drag: float = 0.0,
+        offset: float = 0.0,
+        *,
+        contact: bool = False,
+        ball_diameter: Optional[float] = None,
+        restitution: Optional[float] = None,
+        contact_stiffness: Optional[float] = None,
+        rolling_resistance: Optional[float] = None,
+        slip_rate: Optional[float] = None,
+    ) -> None: ...
     # link: the node at the other side (ROSS's n_link), blocks [[B, -B], [-B, B]]; None: ground
     def add_speed_bearing(self, node: int, speeds: Sequence[float], k: npt.NDArray[np.float64], c: npt.NDArray[np.float64], link: Optional[int] = None) -> None: ...
     def natural_frequencies(self, with_balls: bool = False) -> List[float]: ...

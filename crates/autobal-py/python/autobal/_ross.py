@@ -94,7 +94,9 @@ def from_ross(
     ``n_link`` bearings, in ROSS's order and node numbers).
 
     ``balancers``: dicts with ``node``, ``radius`` (m), ``balls``, ``ball_mass`` (kg), and
-    optionally ``drag`` (N m s per ball) and ``offset`` (m). ``unbalance``: dicts with ``node``,
+    optionally ``drag`` (N m s per ball) and ``offset`` (m), and real balls by the config's keys
+    (``contact``, ``ball_diameter``, ``restitution``, ``contact_stiffness``,
+    ``rolling_resistance``, ``slip_rate``: ``LinearRotor.add_balancer``). ``unbalance``: dicts with ``node``,
     ``me`` (kg m; or ``magnitude`` as ROSS calls it), optionally ``phase`` (rad) and ``offset``.
     ``speeds``: where the bearings' speed dependence is sampled (rad/s); default the union of
     the bearings' ``frequency`` tables. ``polar_inertia``: the rotor's polar moment (kg m²)
@@ -201,6 +203,7 @@ def from_ross(
             _number(field, b, "ball_mass"),
             _number(field, b, "drag", 0.0),
             _number(field, b, "offset", 0.0),
+            **_ball_physics(field, b),
         )
     for i, u in enumerate(_entries("unbalance", "unbalance", unbalance)):
         field = f"linear_rotor.unbalance[{i}]"
@@ -221,7 +224,25 @@ def _invalid(field: str, reason: str) -> InvalidParameter:
 
 # the keys of from_ross's dicts: the config's [[linear_rotor.balancer]] and
 # [[linear_rotor.unbalance]] keys that a LinearRotor holds (ROSS's "magnitude" for me)
-_BALANCER_KEYS = ("node", "radius", "balls", "ball_mass", "drag", "offset")
+_BALL_PHYSICS_KEYS = ("ball_diameter", "restitution", "contact_stiffness", "rolling_resistance", "slip_rate")
+_BALANCER_KEYS = ("node", "radius", "balls", "ball_mass", "drag", "offset", "contact") + _BALL_PHYSICS_KEYS
+
+
+def _ball_physics(field: str, entry: Mapping[str, Any]) -> dict:
+    """The real-ball keys of a balancer dict (``contact``, ``ball_diameter``, ...) as
+    ``LinearRotor.add_balancer``'s keywords: those given, checked as the config reader checks
+    their type (``contact`` true or false, the others numbers); their ranges are the library's
+    check."""
+    out: dict = {}
+    if "contact" in entry:
+        c = entry["contact"]
+        if not isinstance(c, (bool, np.bool_)):
+            raise _invalid(f"{field}.contact", "expected true or false")
+        out["contact"] = bool(c)
+    for k in _BALL_PHYSICS_KEYS:
+        if k in entry:
+            out[k] = _number(field, entry, k)
+    return out
 _UNBALANCE_KEYS = ("node", "me", "magnitude", "phase", "offset")
 
 
