@@ -58,13 +58,23 @@ pub fn from_table(root: &Table, dir: &Path) -> Result<LinearRotorConfig> {
 /// number of one entry of its arrays of tables, `linear_rotor.balancer[j].KEY`,
 /// `linear_rotor.unbalance[j].KEY`, and the paths that act on every entry,
 /// `linear_rotor.drag`, `.ball_mass`, `.me`, `.unbalance_scale`, …) as the map sets it
-/// ([`autobal::linear_rotor::spec::set_path`]).
+/// ([`autobal::linear_rotor::spec::set_path`]); a plane's real-ball switch
+/// `linear_rotor.balancer[j].contact=true|false` ([`autobal::linear_rotor::spec::set_contact`]).
 pub fn apply_set(root: &mut Table, assignment: &str) -> Result<()> {
     let (key, value) = assignment.split_once('=').ok_or_else(|| anyhow!("--set {assignment}: expected key=value, e.g. --set linear_rotor.omega_max=1500"))?;
     let (t, k) = key.trim().split_once('.').ok_or_else(|| anyhow!("--set {key}: expected a dotted key table.field, e.g. --set drive.t_end=2"))?;
     if t == "linear_rotor" && (k.contains('[') || autobal::linear_rotor::spec::PATHS.iter().any(|(p, _)| p.strip_prefix("linear_rotor.") == Some(k))) {
         // a parameter path: one entry of an array of tables (linear_rotor.balancer[j].KEY), or a
-        // path on every entry (linear_rotor.drag: each [[linear_rotor.balancer]]'s drag)
+        // path on every entry (linear_rotor.drag: each [[linear_rotor.balancer]]'s drag); the
+        // one boolean, a plane's `contact`, apart
+        if k.starts_with("balancer[") && k.ends_with("].contact") {
+            let on = match value.trim() {
+                "true" => true,
+                "false" => false,
+                v => bail!("--set {}: expected true or false, got `{v}`", key.trim()),
+            };
+            return Ok(autobal::linear_rotor::spec::set_contact(root, key.trim(), on)?);
+        }
         let v: f64 = value.trim().parse().map_err(|_| anyhow!("--set {key}: `{}` is not a number", value.trim()))?;
         return Ok(autobal::linear_rotor::spec::set_path(root, key.trim(), v)?);
     }
@@ -1016,6 +1026,24 @@ mod tests {
     fn example() -> (Table, PathBuf) {
         let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/linear_rotor_shaft.toml");
         (read_set(Some(&path), &[]).unwrap().0, path)
+    }
+
+    /// `--set linear_rotor.balancer[j].contact=true` turns real balls on as the key in the
+    /// config does (the config then reads with contact on that plane), `false` off; anything
+    /// else, or an index past the planes, is refused naming the key.
+    #[test]
+    fn set_takes_a_planes_contact_as_true_or_false() {
+        let (mut root, path) = example();
+        apply_set(&mut root, "linear_rotor.balancer[0].contact=true").unwrap();
+        let cfg = from_table(&root, path.parent().unwrap()).unwrap();
+        assert!(cfg.rotor.ball_physics[0].contact);
+        apply_set(&mut root, "linear_rotor.balancer[0].contact = false").unwrap();
+        let cfg = from_table(&root, path.parent().unwrap()).unwrap();
+        assert!(cfg.rotor.ball_physics.iter().all(|p| !p.contact));
+        let e = apply_set(&mut root, "linear_rotor.balancer[0].contact=1").unwrap_err().to_string();
+        assert_eq!(e, "--set linear_rotor.balancer[0].contact: expected true or false, got `1`");
+        let e = apply_set(&mut root, "linear_rotor.balancer[3].contact=true").unwrap_err().to_string();
+        assert!(e.starts_with("linear_rotor.balancer[3].contact: the config has 1 [[linear_rotor.balancer]]"), "{e}");
     }
 
     /// With three balls the balanced states form a one-parameter family, which `stability`

@@ -269,6 +269,23 @@ pub fn set_path(root: &mut Table, path: &str, value: f64) -> Result<()> {
 /// Set `field` of one entry `item` (`balancer[j]`, `unbalance[j]`, `j` from 0) of
 /// `[linear_rotor]`; `None` where `item` is not of that form (the caller then lists the known
 /// paths).
+/// Set the one boolean of a `[[linear_rotor.balancer]]`, `linear_rotor.balancer[j].contact`
+/// (the balls touch: [`crate::balls::BallPhysics::contact`]), which [`set_path`] cannot take
+/// (its values are numbers). Errors name `path`: another path, an index past the entries.
+pub fn set_contact(root: &mut Table, path: &str, value: bool) -> Result<()> {
+    let bad = |why: String| Error::invalid(path, why);
+    let j = path
+        .strip_prefix("linear_rotor.balancer[")
+        .and_then(|s| s.strip_suffix("].contact"))
+        .ok_or_else(|| bad("only linear_rotor.balancer[j].contact takes true or false".into()))?;
+    let j: usize = j.trim().parse().map_err(|_| bad(format!("the index in [{j}] must be a whole number from 0 (the first [[linear_rotor.balancer]])")))?;
+    let lr = root.get_mut("linear_rotor").and_then(Value::as_table_mut).ok_or_else(|| bad("the config has no [linear_rotor] table".into()))?;
+    let entries = each(lr, "balancer", path)?;
+    let n = entries.len();
+    let entry = entries.get_mut(j).ok_or_else(|| bad(format!("the config has {n} [[linear_rotor.balancer]] (j from 0 to {})", n - 1)))?;
+    insert(entry, "contact", Value::Boolean(value), path)
+}
+
 fn set_entry(lr: &mut Table, path: &str, item: &str, field: &str, value: f64) -> Option<Result<()>> {
     let (kind, j) = item.strip_suffix(']').and_then(|s| s.split_once('['))?;
     let keys = match kind {
