@@ -189,6 +189,7 @@ pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64) -> String {
             speed_text(g, b.omega)
         ));
     }
+    s.push_str(&not_balanced_text(r, |w| speed_text(g, w)));
     let missing = r.points.iter().filter(|p| p.verdict.is_none()).count();
     let solved = r.points.len() - missing;
     if r.stable_ranges.is_empty() && solved == 0 {
@@ -209,7 +210,7 @@ pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64) -> String {
                 k.dedup();
                 k
             };
-            let label = if kinds.contains(&"partially balanced") {
+            let label = if kinds.iter().any(|k| *k != "balanced" && *k != "semi-balanced") {
                 format!("{}, stable", kinds.join(" then "))
             } else if r.family.is_some() {
                 "stable (the one member per speed reached from the closed form)".to_string()
@@ -279,4 +280,46 @@ pub fn default_omega_max(g: &GeneralRotor, root: &Table) -> Result<f64> {
             cfg.analysis.speed_axis_max(2.0 * autobal::reports::default_omega_max(&cfg.model)) * g.omega0
         }
     })
+}
+
+/// The line of `stability`'s table where the state analysed is not balanced
+/// ([`autobal::rotor_stability::StateKind::NotBalanced`]: the balls at rest on the line of a
+/// whirl, not balancing), with its speeds; empty where there is none.
+pub(crate) fn not_balanced_text(r: &autobal::rotor_stability::RotorStability, speed: impl Fn(f64) -> String) -> String {
+    let nb: Vec<_> = r.points.iter().filter(|p| p.state == Some(autobal::rotor_stability::StateKind::NotBalanced)).collect();
+    let (Some(a), Some(b)) = (nb.first(), nb.last()) else { return String::new() };
+    format!(
+        "not balanced (the balls at rest on the line of the whirl, not cancelling the unbalance) at {} of {} speeds, {} to {}: the verdicts there are that state's, not the balanced state's\n",
+        nb.len(),
+        r.points.len(),
+        speed(a.omega),
+        speed(b.omega)
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use autobal::planar::PlanarRotor;
+    use autobal::rotor_stability::StateKind;
+
+    /// A stable range over states that are not balanced never reads plain "stable": the label
+    /// names the states, and a line names the speeds (paper 004's Jeffcott rotor, race centred,
+    /// whose balanced state is stable above its critical speed; the points of the stable range
+    /// relabelled as the opposite-ball state, since a scan reaches that state only from a poor
+    /// start). Failed on b7bef73, whose label tested for "partially balanced" alone.
+    #[test]
+    fn a_stable_range_of_not_balanced_states_says_so() {
+        let g = GeneralRotor { rotor: Rotor::Planar(PlanarRotor { n: 2, s2: 0.0, ..PlanarRotor::paper() }), si: true, omega0: 1.0 };
+        let mut r = analyse(&g, 600.0, 30, &Control::default()).unwrap();
+        let st = r.stable_ranges.first().cloned().expect("a stable range above the critical speed");
+        assert!(table(&g, &r, 600.0).contains("\nstable: "), "{}", table(&g, &r, 600.0));
+        for p in r.points.iter_mut().filter(|p| p.omega >= st.from && p.omega <= st.to) {
+            p.state = Some(StateKind::NotBalanced);
+        }
+        let t = table(&g, &r, 600.0);
+        assert!(!t.contains("\nstable: "), "{t}");
+        assert!(t.contains("\nnot balanced (balls on the line of the whirl), stable: "), "{t}");
+        assert!(t.contains("\nnot balanced (the balls at rest on the line of the whirl"), "{t}");
+    }
 }

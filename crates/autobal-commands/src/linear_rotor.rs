@@ -261,6 +261,7 @@ pub fn stability_table(cfg: &LinearRotorConfig, r: &RotorStability, red: &Option
     s.push_str(&format!("natural frequencies at rest, balls as rings: {}\n", wn.iter().map(|w| speed_text(*w)).collect::<Vec<_>>().join(", ")));
     s.push_str(&reduction_text(red));
     s.push_str(&partial_text(cfg, r));
+    s.push_str(&crate::general::not_balanced_text(r, speed_text));
     if r.stable_ranges.is_empty() {
         s.push_str(&format!("stable: nowhere in (0, {}]\n", speed_text(omega_max)));
     }
@@ -269,7 +270,7 @@ pub fn stability_table(cfg: &LinearRotorConfig, r: &RotorStability, red: &Option
         // the states the range covers: "partially balanced, stable" never reads "stable"
         let mut kinds: Vec<&str> = r.points.iter().filter(|p| p.omega >= st.from && p.omega <= st.to).filter_map(|p| p.state.map(|k| k.name())).collect();
         kinds.dedup();
-        let label = if kinds.contains(&"partially balanced") { format!("{}, stable", kinds.join(" then ")) } else { "stable".to_string() };
+        let label = if kinds.iter().any(|k| *k != "balanced") { format!("{}, stable", kinds.join(" then ")) } else { "stable".to_string() };
         s.push_str(&format!("{label}: {} to {to}\n", speed_text(st.from)));
     }
     if let Some(f) = &r.family {

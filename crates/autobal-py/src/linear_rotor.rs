@@ -271,7 +271,8 @@ impl PyLinearRotor {
             slip_rate: slip_rate.unwrap_or(d.slip_rate),
         };
         // the contact law acts only through contact, the slip rate only with rolling resistance:
-        // given without them they would be silently ignored, so they are refused
+        // given without them they would have no effect, so they are refused (as the config
+        // reader refuses them)
         let f = |k: &str| format!("linear_rotor.balancer[{i}].{k}");
         for (k, given) in
             [("ball_diameter", ball_diameter.is_some()), ("restitution", restitution.is_some()), ("contact_stiffness", contact_stiffness.is_some())]

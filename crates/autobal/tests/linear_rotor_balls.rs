@@ -151,4 +151,20 @@ fn config_reads_real_ball_keys() {
     let bad: toml::Table = text.replace("contact = true", "contact = 1").parse().unwrap();
     let e = linear_rotor(&bad, &mut load).unwrap_err().to_string();
     assert!(e.starts_with("linear_rotor.balancer[0].contact"), "{e}");
+    // a key of no effect is refused, not ignored: the contact law without contact, the slip
+    // rate without rolling resistance
+    let bad: toml::Table = text.replace("contact = true", "contact = false").parse().unwrap();
+    let e = linear_rotor(&bad, &mut load).unwrap_err().to_string();
+    assert_eq!(e, "linear_rotor.balancer[0].ball_diameter: has no effect without contact = true");
+    let bad: toml::Table = text.replace("rolling_resistance = 1e-3", "slip_rate = 1e-3").parse().unwrap();
+    let e = linear_rotor(&bad, &mut load).unwrap_err().to_string();
+    assert_eq!(e, "linear_rotor.balancer[0].slip_rate: has no effect without a rolling_resistance");
+    // rolling resistance alone (no contact) round-trips through export: only the keys that act
+    let rolling = text.replace("contact = true\nrestitution = 0.7\n", "").replace("ball_diameter = 0.012\n", "");
+    let cfg = linear_rotor(&rolling.parse().unwrap(), &mut load).unwrap();
+    assert_eq!(cfg.rotor.ball_physics, vec![BallPhysics::builder().rolling_resistance(1e-3).build().unwrap()]);
+    let (t, fs) = export(&cfg.rotor, "x");
+    assert!(!t.contains("restitution") && t.contains("slip_rate"), "{t}");
+    let back = linear_rotor(&t.parse().unwrap(), &mut |p| fs.iter().find(|f| f.0 == p).map(|f| f.1.clone()).ok_or("missing".into())).unwrap();
+    assert_eq!(back.rotor, cfg.rotor);
 }

@@ -599,14 +599,26 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
             Some(Value::Boolean(c)) => *c,
             Some(_) => return Err(Error::invalid(b.field("contact"), "expected true or false")),
         };
-        rotor.ball_physics.push(crate::balls::BallPhysics {
+        let physics = crate::balls::BallPhysics {
             diameter: b.f64("ball_diameter")?,
             contact,
             restitution: b.f64("restitution")?.unwrap_or(d.restitution),
             contact_stiffness: b.f64("contact_stiffness")?,
             rolling_resistance: b.f64("rolling_resistance")?.unwrap_or(d.rolling_resistance),
             slip_rate: b.f64("slip_rate")?.unwrap_or(d.slip_rate),
-        });
+        };
+        // the contact law acts only through contact, the slip rate only with rolling resistance
+        // (crate::balls): given without them they would have no effect, so they are refused
+        // (this reader has no warnings to give; Python's add_balancer refuses them too)
+        for k in ["ball_diameter", "restitution", "contact_stiffness"] {
+            if !contact && b.t.contains_key(k) {
+                return Err(Error::invalid(b.field(k), "has no effect without contact = true"));
+            }
+        }
+        if physics.rolling_resistance == 0.0 && b.t.contains_key("slip_rate") {
+            return Err(Error::invalid(b.field("slip_rate"), "has no effect without a rolling_resistance"));
+        }
+        rotor.ball_physics.push(physics);
     }
     if rotor.ball_physics.iter().all(|p| !p.is_active()) {
         rotor.ball_physics.clear();
@@ -948,15 +960,19 @@ pub fn export(rotor: &LinearRotor, stem: &str) -> (String, Vec<(String, String)>
             b.node, b.radius, b.balls, b.ball_mass, b.drag, b.offset
         ));
         if let Some(p) = rotor.ball_physics.get(i).filter(|p| p.is_active()) {
-            t.push_str(&format!(
-                "contact = {}\nrestitution = {:?}\nrolling_resistance = {:?}\nslip_rate = {:?}\n",
-                p.contact, p.restitution, p.rolling_resistance, p.slip_rate
-            ));
-            if let Some(d) = p.diameter {
-                t.push_str(&format!("ball_diameter = {d:?}\n"));
+            // only the keys that act (the reader refuses the others)
+            t.push_str(&format!("contact = {}\n", p.contact));
+            if p.contact {
+                t.push_str(&format!("restitution = {:?}\n", p.restitution));
+                if let Some(d) = p.diameter {
+                    t.push_str(&format!("ball_diameter = {d:?}\n"));
+                }
+                if let Some(k) = p.contact_stiffness {
+                    t.push_str(&format!("contact_stiffness = {k:?}\n"));
+                }
             }
-            if let Some(k) = p.contact_stiffness {
-                t.push_str(&format!("contact_stiffness = {k:?}\n"));
+            if p.rolling_resistance != 0.0 {
+                t.push_str(&format!("rolling_resistance = {:?}\nslip_rate = {:?}\n", p.rolling_resistance, p.slip_rate));
             }
         }
     }

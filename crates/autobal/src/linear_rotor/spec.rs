@@ -266,9 +266,6 @@ pub fn set_path(root: &mut Table, path: &str, value: f64) -> Result<()> {
     }
 }
 
-/// Set `field` of one entry `item` (`balancer[j]`, `unbalance[j]`, `j` from 0) of
-/// `[linear_rotor]`; `None` where `item` is not of that form (the caller then lists the known
-/// paths).
 /// Set the one boolean of a `[[linear_rotor.balancer]]`, `linear_rotor.balancer[j].contact`
 /// (the balls touch: [`crate::balls::BallPhysics::contact`]), which [`set_path`] cannot take
 /// (its values are numbers). Errors name `path`: another path, an index past the entries.
@@ -286,6 +283,9 @@ pub fn set_contact(root: &mut Table, path: &str, value: bool) -> Result<()> {
     insert(entry, "contact", Value::Boolean(value), path)
 }
 
+/// Set `field` of one entry `item` (`balancer[j]`, `unbalance[j]`, `j` from 0) of
+/// `[linear_rotor]`; `None` where `item` is not of that form (the caller then lists the known
+/// paths).
 fn set_entry(lr: &mut Table, path: &str, item: &str, field: &str, value: f64) -> Option<Result<()>> {
     let (kind, j) = item.strip_suffix(']').and_then(|s| s.split_once('['))?;
     let keys = match kind {
