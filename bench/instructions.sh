@@ -9,8 +9,8 @@
 #             modes, fixed_axes; one run), whole process against whole process
 #   sweep     inside the command's own profile: planar::simulate_summary
 #   spatial   `simulate` of bench/peers_spatial.py's 1000-revolution run-up (examples/spatial.toml):
-#             inside the command's own profile, spatial::dynamics::simulate_with less the
-#             command's sample callback
+#             inside the command's own profile, spatial::dynamics::simulate::simulate_sampled
+#             less the command's sample callback (the CSV rows, written on the run's thread)
 #
 #   bench/instructions.sh [AUTOBAL_BINARY]      (default target/release/autobal)
 #   ONLY="simulate spatial" bench/instructions.sh   (rows: simulate map campbell sweep spatial)
@@ -32,8 +32,12 @@ count() { # name, command...: the instruction count of the whole process; profil
   (cd "$W" && valgrind --tool=callgrind --callgrind-out-file="$W/$name.cg" "$@" >/dev/null 2>"$W/$name.err") || true
   grep -o 'refs: *[0-9,]*' "$W/$name.err" | tr -dc '0-9'
 }
-incl() { # profile, function name pattern: its inclusive count (sum over matching lines)
-  callgrind_annotate --inclusive=yes "$1" 2>/dev/null | grep -E "$2" | awk '{gsub(",","",$1); s+=$1} END {print s+0}'
+incl() { # profile, function name pattern: its inclusive count (sum over matching lines); a
+  # pattern that matches nothing (a function renamed) stops the script with its name, not silently
+  local n
+  n=$(callgrind_annotate --inclusive=yes "$1" 2>/dev/null | { grep -E "$2" || true; } | awk '{gsub(",","",$1); s+=$1} END {print s+0}')
+  if [ "$n" = 0 ]; then echo "instructions.sh: no function matches '$2' in $1 (renamed?)" >&2; exit 1; fi
+  echo "$n"
 }
 want() { [ -z "${ONLY:-}" ] || [[ " $ONLY " == *" $1 "* ]]; }
 row() { printf '| %s | %s | %s | %.2f |\n' "$1" "$2" "$3" "$(echo "$2 / $3" | bc -l)"; }
@@ -70,6 +74,6 @@ fi
 if want spatial; then
 c=$(count spatial "$EXE" simulate --config "$ROOT/examples/spatial.toml" --set 'drive.kind="acceleration"' --set drive.omega0=0 \
   --set drive.b=0.0012732395447351628 --set drive.t_end=3141.592653589793 --out "$W/spatial.csv")
-l=$(( $(incl "$W/spatial.cg" 'spatial::dynamics::simulate::simulate_with') - $(incl "$W/spatial.cg" 'spatial_sim::run.*::\{\{closure\}\} \[') ))
+l=$(( $(incl "$W/spatial.cg" 'spatial::dynamics::simulate::simulate_sampled \[') - $(incl "$W/spatial.cg" 'simulate::Plan::run::\{\{closure\}\} \[') ))
 row "simulate, spatial 1000-revolution run-up (CSV + SVG)" "$c" "$l"
 fi
