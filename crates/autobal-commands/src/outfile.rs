@@ -3,7 +3,8 @@
 //! 1. **Resolve and check before any work** ([`Outputs`]): `--out DIR/` or an existing folder
 //!    becomes the command's default name inside it (`DIR/simulation.csv`, never the hidden,
 //!    nameless `DIR/.csv`); a missing parent folder is created; the folder must be writable
-//!    (probed by creating and removing a file in it); an existing path must be a regular file
+//!    (probed by creating and removing a file in it, or by creating the staged file of the
+//!    first output, [`Outputs::check_and_stage_first`]); an existing path must be a regular file
 //!    (never a folder, a device such as `/dev/null`, a FIFO); and no output may be the same file
 //!    as an input (the config, a shard being merged: compared by file identity, device and
 //!    inode, so links and `./` spellings are caught). A bad `--out` fails at once, not after
