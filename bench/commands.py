@@ -7,7 +7,10 @@ the library call), in paired, interleaved runs (command, library, command, libra
   map       `autobal map --threads 1 --quantity margin` 400 x 400 (CSV + SVG + PNG)
             vs examples/bench_map.rs's margin map (BENCH_THREADS=1)
   campbell  `autobal campbell --points 200 --omega-max 5 --format json`
-            vs examples/bench_campbell.rs (balls free, 200 speeds)
+            vs examples/bench_campbell.rs's `command` mode: the command's library calls (the
+            default config, the tracked modes over the same 200 speeds, balls free, each
+            speed's modes checked and kept, the fixed axes' curves and crossings with 1 x Omega),
+            one run a process; the crossings are checked equal to the command's JSON first
   sweep     `autobal sweep --threads 1` 20 x 20 short passages (CSV) vs the sum of the runs'
             own in-process times (the CSV's wall_s column)
 
@@ -58,11 +61,22 @@ def cases(d):
                  "--out", os.path.join(d, "map")],
                 lambda: (lambda j: (j[0]["margin_s"], j[1]))(lib_json([os.path.join(EX, "bench_map"), "400", "400", os.path.join(d, "m.bin"), "maps"], env1))),
         "campbell": ([EXE, "campbell", "--points", "200", "--omega-max", "5", "--format", "json"],
-                     lambda: (lambda j: (j[0]["free"]["median_s"], j[1]))(lib_json([os.path.join(EX, "bench_campbell"), "200", "5"]))),
+                     lambda: (lambda j: (j[0]["command"]["median_s"], j[1]))(lib_json([os.path.join(EX, "bench_campbell"), "200", "1", "command"]))),
         "sweep": ([EXE, "sweep", "--threads", "1", "--x", "planar.c_psi=0.05:0.2:20", "--y", "drive.b=100:200:20", "--set", "drive.t_end=0.5",
                    "--set", "drive.omega0=250", "--set", "integration.dt=0.5", "--out", sweep_out],
                   lambda: (sweep_lib(), None)),
     }
+
+
+def same_work(cmd, d):
+    """Check that examples/bench_campbell's `command` mode computes the command's diagram: the
+    same crossings with 1 x Omega, to the bit (both print the shortest round-trip decimal)."""
+    r = subprocess.run(cmd, cwd=d, check=True, capture_output=True, text=True)
+    got = [c["omega"] for c in json.loads(r.stdout)["critical_speeds"]]
+    lib, _ = lib_json([os.path.join(EX, "bench_campbell"), "200", "1", "command"])
+    want = lib["command"]["critical_omega"]
+    if got != want:
+        sys.exit(f"campbell: the example's crossings {want} are not the command's {got}: not the same work")
 
 
 def main():
@@ -78,6 +92,8 @@ def main():
             if a.only and name not in a.only.split(","):
                 continue
             measure.run_cmd(cmd, cwd=d)  # warm-up (page cache, fonts)
+            if name == "campbell":
+                same_work(cmd, d)
             rows = []
             for i in range(a.runs):
                 if name == "sweep":  # the library time is read from the command's own output
@@ -101,10 +117,10 @@ def main():
                 # in-process times are all there is (one thread: their wall is their CPU when
                 # nothing preempts them)
                 # only where the example does the same work as the command: bench_map also maps
-                # the verdict and traces the boundary, bench_campbell repeats free and locked
+                # the verdict and traces the boundary
                 "ratio_command_cpu_to_library": ms([r["command_cpu_s"] / (r["library_process_cpu_s"] or r["library_s"]) for r in rows])
-                if name in ("simulate", "sweep") else {"median": None, "min": None, "max": None,
-                                                       "note": "the example does more work: see bench/instructions.sh"},
+                if name in ("simulate", "sweep", "campbell") else {"median": None, "min": None, "max": None,
+                                                                   "note": "the example does more work: see bench/instructions.sh"},
                 "ratio_command_wall_to_library": ms([r["command_wall_s"] / r["library_s"] for r in rows]),
             }
             r = report[name]

@@ -4,18 +4,20 @@
 # the whole process against the library's share of the same work:
 #   simulate  the library example examples/passage (the same passage, samples in memory)
 #   map       inside the command's own profile: Line::new + Line::cells + LinePlane::new (the map's library work)
-#   campbell  inside the command's own profile: campbell_stream less the command's callback,
-#             plus the fixed axes' crossings (fixed_axes)
+#   campbell  the library example examples/bench_campbell in its `command` mode (the command's
+#             library calls: config, campbell_stream over the same speeds keeping every speed's
+#             modes, fixed_axes; one run), whole process against whole process
 #   sweep     inside the command's own profile: planar::simulate_summary
 #   spatial   `simulate` of bench/peers_spatial.py's 1000-revolution run-up (examples/spatial.toml):
-#             inside the command's own profile, spatial::dynamics::simulate_with less the
-#             command's sample callback
+#             inside the command's own profile, spatial::dynamics::simulate::simulate_sampled
+#             less the command's sample callback (the CSV rows, written on the run's thread)
 #
 #   bench/instructions.sh [AUTOBAL_BINARY]      (default target/release/autobal)
 #   ONLY="simulate spatial" bench/instructions.sh   (rows: simulate map campbell sweep spatial)
 #   KEEP=DIR bench/instructions.sh                   (keep the callgrind profiles in DIR)
 #
-# Needs valgrind and the release example (cargo build --release -p autobal --example passage).
+# Needs valgrind and the release examples (cargo build --release -p autobal --example passage
+# --example bench_campbell).
 # Prints a markdown table. Instruction counts miss system calls and cache misses: they are the
 # floor of a process's cost, not its time (docs/notes/benchmarks.md).
 set -euo pipefail
@@ -30,8 +32,12 @@ count() { # name, command...: the instruction count of the whole process; profil
   (cd "$W" && valgrind --tool=callgrind --callgrind-out-file="$W/$name.cg" "$@" >/dev/null 2>"$W/$name.err") || true
   grep -o 'refs: *[0-9,]*' "$W/$name.err" | tr -dc '0-9'
 }
-incl() { # profile, function name pattern: its inclusive count (sum over matching lines)
-  callgrind_annotate --inclusive=yes "$1" 2>/dev/null | grep -E "$2" | awk '{gsub(",","",$1); s+=$1} END {print s+0}'
+incl() { # profile, function name pattern: its inclusive count (sum over matching lines); a
+  # pattern that matches nothing (a function renamed) stops the script with its name, not silently
+  local n
+  n=$(callgrind_annotate --inclusive=yes "$1" 2>/dev/null | { grep -E "$2" || true; } | awk '{gsub(",","",$1); s+=$1} END {print s+0}')
+  if [ "$n" = 0 ]; then echo "instructions.sh: no function matches '$2' in $1 (renamed?)" >&2; exit 1; fi
+  echo "$n"
 }
 want() { [ -z "${ONLY:-}" ] || [[ " $ONLY " == *" $1 "* ]]; }
 row() { printf '| %s | %s | %s | %.2f |\n' "$1" "$2" "$3" "$(echo "$2 / $3" | bc -l)"; }
@@ -53,10 +59,11 @@ row "map --threads 1, 400 x 400 margin (CSV + SVG + PNG)" "$c" "$l"
 fi
 if want campbell; then
 c=$(count campbell "$EXE" campbell --points 200 --omega-max 5 --format json)
-# the library: the tracked modes (campbell_stream, less the command's callback, which keeps and
-# checks each speed's modes) and the fixed axes' crossings (spatial::campbell::fixed_axes)
-l=$(( $(incl "$W/campbell.cg" 'campbell_stream \[') + $(incl "$W/campbell.cg" 'spatial::campbell::fixed_axes \[') - $(incl "$W/campbell.cg" 'campbell_run::\{\{closure\}\} \[') ))
-row "campbell --points 200 --format json" "$c" "$l"
+# the library: the same calls in the example's process (its in-process share, the tracked modes
+# and the fixed axes less the command's callback, was what this row counted before: it left out
+# the example's own start and config, and counted the callback's kept modes as overhead)
+l=$(count bench_campbell "$EX/bench_campbell" 200 1 command)
+row "campbell --points 200 --omega-max 5 --format json (JSON on stdout)" "$c" "$l"
 fi
 if want sweep; then
 c=$(count sweep "$EXE" sweep --threads 1 --x planar.c_psi=0.05:0.2:20 --y drive.b=100:200:20 --set drive.t_end=0.5 \
@@ -67,6 +74,6 @@ fi
 if want spatial; then
 c=$(count spatial "$EXE" simulate --config "$ROOT/examples/spatial.toml" --set 'drive.kind="acceleration"' --set drive.omega0=0 \
   --set drive.b=0.0012732395447351628 --set drive.t_end=3141.592653589793 --out "$W/spatial.csv")
-l=$(( $(incl "$W/spatial.cg" 'spatial::dynamics::simulate::simulate_with') - $(incl "$W/spatial.cg" 'spatial_sim::run.*::\{\{closure\}\} \[') ))
+l=$(( $(incl "$W/spatial.cg" 'spatial::dynamics::simulate::simulate_sampled \[') - $(incl "$W/spatial.cg" 'simulate::Plan::run::\{\{closure\}\} \[') ))
 row "simulate, spatial 1000-revolution run-up (CSV + SVG)" "$c" "$l"
 fi

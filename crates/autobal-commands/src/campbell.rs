@@ -193,6 +193,131 @@ impl command::Output for Output {
     }
 }
 
+/// `serde_json::to_writer(out, r)` of one mode (its exact bytes: compact, fields in the
+/// struct's order, the SI ones left out when `None`, a non-finite number `null`), written
+/// without serde's per-field calls and key escaping: the keys are constant text, the numbers
+/// zmij's shortest round-trip digits as `serde_json` writes them. The closed-form route writes
+/// one a mode a speed (2 400 for 200 speeds): serde's path was an eighth of the command's
+/// instructions. A test compares the bytes with `serde_json`'s.
+pub fn write_mode_json(out: &mut impl std::io::Write, r: &autobal::reports::ModeReport) -> std::io::Result<()> {
+    let mut j = Json(Vec::with_capacity(640));
+    j.num(b"{\"decay_rate\":", r.decay_rate);
+    j.opt(b",\"decay_rate_per_s\":", r.decay_rate_per_s);
+    j.num(b",\"fixed_frequency\":", r.fixed_frequency);
+    j.opt(b",\"fixed_frequency_hz\":", r.fixed_frequency_hz);
+    j.opt(b",\"fixed_frequency_rad_s\":", r.fixed_frequency_rad_s);
+    j.opt(b",\"fixed_frequency_rpm\":", r.fixed_frequency_rpm);
+    j.num(b",\"forward_share\":", r.forward_share);
+    j.put(b",\"group\":");
+    j.put(match r.group {
+        autobal::spatial::stability::Group::Translation => b"\"translation\"",
+        autobal::spatial::stability::Group::Tilt => b"\"tilt\"",
+        autobal::spatial::stability::Group::Balls => b"\"balls\"",
+    });
+    j.num(b",\"im\":", r.im);
+    j.opt(b",\"im_hz\":", r.im_hz);
+    j.opt(b",\"im_rad_s\":", r.im_rad_s);
+    j.nullable(b",\"log_decrement\":", r.log_decrement);
+    j.num(b",\"re\":", r.re);
+    j.opt(b",\"re_per_s\":", r.re_per_s);
+    j.whirl(b",\"whirl\":", r.whirl);
+    j.put(b"}");
+    out.write_all(&j.0)
+}
+
+/// `serde_json::to_writer(out, modes)` of the fixed-axes curves (the same bytes; as
+/// [`write_mode_json`], one point a curve a speed).
+pub fn write_fixed_modes_json(out: &mut impl std::io::Write, modes: &[autobal::reports::FixedModeReport]) -> std::io::Result<()> {
+    let mut j = Json(Vec::with_capacity(1 << 16));
+    j.put(b"[");
+    for (i, m) in modes.iter().enumerate() {
+        j.put(if i == 0 { b"{\"line\":" } else { b",{\"line\":" });
+        j.int(m.line as u64);
+        j.put(b",\"mode\":");
+        j.int(m.mode as u64);
+        j.put(b",\"points\":[");
+        for (k, p) in m.points.iter().enumerate() {
+            j.num(if k == 0 { b"{\"fixed_frequency\":" } else { b",{\"fixed_frequency\":" }, p.fixed_frequency);
+            j.opt(b",\"fixed_frequency_hz\":", p.fixed_frequency_hz);
+            j.num(b",\"frequency\":", p.frequency);
+            j.opt(b",\"frequency_hz\":", p.frequency_hz);
+            j.nullable(b",\"log_decrement\":", p.log_decrement);
+            j.num(b",\"nu\":", p.nu);
+            j.num(b",\"omega\":", p.omega);
+            j.opt(b",\"omega_rpm\":", p.omega_rpm);
+            j.num(b",\"re\":", p.re);
+            j.opt(b",\"re_per_s\":", p.re_per_s);
+            j.num(b",\"share\":", p.share);
+            j.whirl(b",\"whirl\":", p.whirl);
+            j.put(b"}");
+            if j.0.len() > 1 << 15 {
+                out.write_all(&j.0)?;
+                j.0.clear();
+            }
+        }
+        j.put(b"]}");
+    }
+    j.put(b"]");
+    out.write_all(&j.0)
+}
+
+/// JSON text as `serde_json` writes it, for [`write_mode_json`] and [`write_fixed_modes_json`].
+struct Json(Vec<u8>);
+
+impl Json {
+    fn put(&mut self, b: &[u8]) {
+        self.0.extend_from_slice(b);
+    }
+    /// `key` (with its separator and colon) and a number (`null` when not finite).
+    fn num(&mut self, key: &[u8], v: f64) {
+        self.put(key);
+        if v.is_finite() {
+            self.put(zmij::Buffer::new().format_finite(v).as_bytes());
+        } else {
+            self.put(b"null");
+        }
+    }
+    /// A field left out when `None` (`skip_serializing_if = "Option::is_none"`).
+    fn opt(&mut self, key: &[u8], v: Option<f64>) {
+        if let Some(v) = v {
+            self.num(key, v);
+        }
+    }
+    /// A field written `null` when `None`.
+    fn nullable(&mut self, key: &[u8], v: Option<f64>) {
+        match v {
+            Some(v) => self.num(key, v),
+            None => {
+                self.put(key);
+                self.put(b"null");
+            }
+        }
+    }
+    fn int(&mut self, v: u64) {
+        let mut b = [0u8; 20];
+        let mut k = b.len();
+        let mut v = v;
+        loop {
+            k -= 1;
+            b[k] = b'0' + (v % 10) as u8;
+            v /= 10;
+            if v == 0 {
+                break;
+            }
+        }
+        self.put(&b[k..]);
+    }
+    fn whirl(&mut self, key: &[u8], w: autobal::spatial::stability::Whirl) {
+        use autobal::spatial::stability::Whirl;
+        self.put(key);
+        self.put(match w {
+            Whirl::Forward => b"\"forward\"",
+            Whirl::Backward => b"\"backward\"",
+            Whirl::None => b"\"none\"",
+        });
+    }
+}
+
 /// The figures `--svg PREFIX` writes for `view`: `(path, figure id)` ([`linear::campbell_svg_paths`]).
 pub fn svg_files(prefix: &std::path::Path, view: CampbellView) -> Vec<(std::path::PathBuf, &'static str)> {
     let ids: &[&'static str] = match view {
@@ -278,6 +403,98 @@ mod tests {
         assert!(!out.table().unwrap().is_empty());
         let locked = Args { config, balls: Balls::Locked, points: Some(4), ..Default::default() }.run(&Control::none()).err().expect("refused");
         assert!(format!("{locked:#}").starts_with("--balls locked"), "{locked:#}");
+    }
+
+    /// [`write_mode_json`] writes `serde_json`'s bytes: 20 000 random modes (numbers of random
+    /// bits: NaN, infinities, subnormals, negative zero, integers; every group and whirl; the
+    /// SI fields and the log decrement present or not), and the default diagram's modes.
+    #[test]
+    fn the_mode_json_is_serde_json_s() {
+        use autobal::reports::{FixedModeReport, FixedPointReport, ModeReport};
+        use autobal::spatial::stability::{Group, Whirl};
+        let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        let mut num = |k: u64| match k % 8 {
+            0 => f64::from_bits(next()),
+            1 => [f64::NAN, f64::INFINITY, f64::NEG_INFINITY, -0.0, 0.0, 5e-324, 1e300, 3.0][(next() % 8) as usize],
+            2 => (next() % 2001) as f64 - 1000.0,
+            _ => (f64::from_bits(next() >> 12 | 0x3ff0_0000_0000_0000) - 1.5) * 10f64.powi((next() % 40) as i32 - 20),
+        };
+        let check = |r: &ModeReport| {
+            let mut got = vec![];
+            write_mode_json(&mut got, r).unwrap();
+            assert_eq!(String::from_utf8(got).unwrap(), serde_json::to_string(r).unwrap());
+        };
+        for i in 0..20_000u64 {
+            let v: Vec<f64> = (0..14).map(|j| num(i + j)).collect();
+            let si = |x: f64| (i % 3 != 0).then_some(x);
+            let r = ModeReport {
+                decay_rate: v[0],
+                decay_rate_per_s: si(v[1]),
+                fixed_frequency: v[2],
+                fixed_frequency_hz: si(v[3]),
+                fixed_frequency_rad_s: si(v[4]),
+                fixed_frequency_rpm: si(v[5]),
+                forward_share: v[6],
+                group: [Group::Translation, Group::Tilt, Group::Balls][(i % 3) as usize],
+                im: v[7],
+                im_hz: si(v[8]),
+                im_rad_s: si(v[9]),
+                log_decrement: (i % 5 != 0).then_some(v[10]),
+                re: v[11],
+                re_per_s: si(v[12]),
+                whirl: [Whirl::Forward, Whirl::Backward, Whirl::None][(i / 3 % 3) as usize],
+            };
+            check(&r);
+        }
+        // the fixed-axes curves: random points (as above), line and mode numbers up to 2^64 - 1
+        let mut fixed = vec![];
+        for i in 0..200u64 {
+            let points = (0..i % 7)
+                .map(|k| {
+                    let v: Vec<f64> = (0..12).map(|j| num(i + k + j)).collect();
+                    let si = |x: f64| ((i + k) % 3 != 0).then_some(x);
+                    FixedPointReport {
+                        fixed_frequency: v[0],
+                        fixed_frequency_hz: si(v[1]),
+                        frequency: v[2],
+                        frequency_hz: si(v[3]),
+                        log_decrement: ((i + k) % 5 != 0).then_some(v[4]),
+                        nu: v[5],
+                        omega: v[6],
+                        omega_rpm: si(v[7]),
+                        re: v[8],
+                        re_per_s: si(v[9]),
+                        share: v[10],
+                        whirl: [Whirl::Forward, Whirl::Backward, Whirl::None][((i + k) % 3) as usize],
+                    }
+                })
+                .collect();
+            let big = [0, 9, 10, 12_345, u64::MAX][(i % 5) as usize];
+            fixed.push(FixedModeReport { line: (big ^ (i % 2)) as usize, mode: i as usize, points });
+        }
+        for k in [0, 1, 5, fixed.len()] {
+            let mut got = vec![];
+            write_fixed_modes_json(&mut got, &fixed[..k]).unwrap();
+            assert_eq!(String::from_utf8(got).unwrap(), serde_json::to_string(&fixed[..k]).unwrap());
+        }
+        // and the default diagram's, dimensionless and in SI
+        for text in [crate::config::DEFAULT_CONFIG, include_str!("../../../examples/dimensional.toml")] {
+            let cfg = crate::config::build(&crate::config::parse_text(text, "d").unwrap(), "d").unwrap();
+            let c = autobal::spatial::stability::campbell(&cfg.model, &crate::linear::campbell_grid(3.0, 20), Balls::Free).unwrap();
+            for m in c.lines.iter().flat_map(|l| &l.modes) {
+                check(&autobal::reports::mode_report(&cfg.model, m));
+            }
+            let f = crate::linear::fixed_json(&cfg, &fixed_axes(&cfg.model, &c, Balls::Free, &[1]).unwrap());
+            let mut got = vec![];
+            write_fixed_modes_json(&mut got, &f.fixed_axes_modes).unwrap();
+            assert_eq!(String::from_utf8(got).unwrap(), serde_json::to_string(&f.fixed_axes_modes).unwrap());
+        }
     }
 
     /// `--points` is checked with the route's own range.

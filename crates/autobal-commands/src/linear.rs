@@ -336,11 +336,13 @@ pub fn campbell_of(cfg: &Config, w: f64, points: usize, balls: Balls) -> Result<
 /// Largest number of speeds kept for the figures of `autobal campbell`.
 pub const PLOT_SPEEDS: usize = 2000;
 
-/// `autobal campbell` on the 12-state model, streamed: with `json`, JSON lines go to one
-/// temporary file per tracked line as the speeds are computed (joined by
-/// [`CampbellRun::write_json`]); the table keeps its five speeds and the figures a decimated
-/// copy (at most [`PLOT_SPEEDS`] speeds). Memory does not grow with `points`. Ctrl-C (or a
-/// budget) on `control` ends it at the last speed computed, which is kept.
+/// `autobal campbell` on the 12-state model, streamed: the table keeps its five speeds and
+/// the figures a decimated copy (at most [`PLOT_SPEEDS`] speeds). With `json` and more speeds
+/// than the figures keep, JSON lines go to one temporary file per tracked line as the speeds
+/// are computed (joined by [`CampbellRun::write_json`]); up to [`PLOT_SPEEDS`] speeds the
+/// figures' copy holds every speed and the JSON is written from it (no temporary files: the
+/// same bytes). Memory does not grow with `points`. Ctrl-C (or a budget) on `control` ends it
+/// at the last speed computed, which is kept.
 pub fn campbell_run(
     cfg: &Config,
     w: f64,
@@ -350,6 +352,22 @@ pub fn campbell_run(
     harmonics: &[u32],
     control: &autobal::control::Control,
 ) -> Result<CampbellRun> {
+    campbell_run_with(cfg, w, points, balls, json, harmonics, control, PLOT_SPEEDS)
+}
+
+/// [`campbell_run`], the JSON streamed to temporary files from `spill_above` speeds on (a test
+/// sets it low to compare both ways).
+#[allow(clippy::too_many_arguments)]
+fn campbell_run_with(
+    cfg: &Config,
+    w: f64,
+    points: usize,
+    balls: Balls,
+    json: bool,
+    harmonics: &[u32],
+    control: &autobal::control::Control,
+    spill_above: usize,
+) -> Result<CampbellRun> {
     use anyhow::Context;
     use std::io::Write as _;
     let n = points.max(3);
@@ -358,7 +376,9 @@ pub fn campbell_run(
     let table_at = [0, n / 4, n / 2, 3 * n / 4, n - 1];
     let mut plot = Campbell { omega: vec![], lines: vec![] };
     let mut table = Campbell { omega: vec![], lines: vec![] };
-    let dir = json.then(|| {
+    // every speed is in the figures' copy (stride 1): the JSON is written from it at the end
+    let from_plot = json && stride == 1 && n <= spill_above;
+    let dir = (json && !from_plot).then(|| {
         std::env::temp_dir().join(format!(
             "autobal-campbell-{}-{}",
             std::process::id(),
@@ -380,6 +400,7 @@ pub fn campbell_run(
         table: Campbell { omega: vec![], lines: vec![] },
         fixed: None,
         dir,
+        from_plot,
         lines: 0,
     };
     let mut files: Vec<std::io::BufWriter<std::fs::File>> = vec![];
@@ -418,7 +439,7 @@ pub fn campbell_run(
                 let sep: &[u8] = if k == 0 { b"" } else { b",\n" };
                 let mut write = || -> Result<()> {
                     f.write_all(sep)?;
-                    serde_json::to_writer(&mut *f, &autobal::reports::mode_report(&cfg.model, m))?;
+                    crate::campbell::write_mode_json(&mut *f, &autobal::reports::mode_report(&cfg.model, m))?;
                     Ok(())
                 };
                 if let Err(e) = write() {
@@ -442,7 +463,7 @@ pub fn campbell_run(
     // an interrupted run keeps what it computed: the speeds done, the figures and the table up
     // to the last of them
     let stats = result?;
-    run.lines = files.len();
+    run.lines = if from_plot { plot.lines.len() } else { files.len() };
     for f in files {
         f.into_inner().map_err(|e| e.into_error())?;
     }
@@ -471,6 +492,8 @@ pub struct CampbellRun {
     table: Campbell,
     fixed: Option<FixedCampbell>,
     dir: Option<std::path::PathBuf>,
+    /// The JSON's lines are written from `plot` (which holds every speed computed).
+    from_plot: bool,
     lines: usize,
 }
 
@@ -495,7 +518,9 @@ impl CampbellRun {
     /// from the temporary files: `omega` (and in SI), `lines`, the fixed-axes keys, `complete`.
     pub fn write_json(&self, out: &mut dyn std::io::Write) -> Result<()> {
         use std::io::Write as _;
-        let dir = self.dir.as_ref().ok_or_else(|| anyhow::anyhow!("campbell: run without its JSON (json = false)"))?;
+        if self.dir.is_none() && !self.from_plot {
+            anyhow::bail!("campbell: run without its JSON (json = false)");
+        }
         let mut out = std::io::BufWriter::new(out);
         let done = self.done;
         write!(out, "{{\n\"omega\": [")?;
@@ -516,8 +541,19 @@ impl CampbellRun {
         write!(out, ",\n\"lines\": [\n")?;
         for i in 0..self.lines {
             writeln!(out, "{}{{\"modes\": [", if i == 0 { "" } else { ",\n" })?;
-            let mut r = std::fs::File::open(dir.join(format!("{i}.json")))?;
-            std::io::copy(&mut r, &mut out)?;
+            match &self.dir {
+                Some(dir) => {
+                    let mut r = std::fs::File::open(dir.join(format!("{i}.json")))?;
+                    std::io::copy(&mut r, &mut out)?;
+                }
+                // as the streamed files hold them: one mode a speed, ",\n" between
+                None => {
+                    for (k, m) in self.plot.lines[i].modes.iter().enumerate() {
+                        out.write_all(if k == 0 { b"" } else { b",\n" })?;
+                        crate::campbell::write_mode_json(&mut out, &autobal::reports::mode_report(&self.cfg.model, m))?;
+                    }
+                }
+            }
             write!(out, "\n]}}")?;
         }
         write!(out, "\n]")?;
@@ -526,7 +562,7 @@ impl CampbellRun {
         write!(out, ",\n\"critical_speeds\": ")?;
         serde_json::to_writer(&mut out, &f.critical_speeds)?;
         write!(out, ",\n\"fixed_axes_modes\": ")?;
-        serde_json::to_writer(&mut out, &f.fixed_axes_modes)?;
+        crate::campbell::write_fixed_modes_json(&mut out, &f.fixed_axes_modes)?;
         write!(out, ",\n\"harmonics\": ")?;
         serde_json::to_writer(&mut out, &f.harmonics)?;
         writeln!(out, ",\n\"complete\": {}\n}}", self.complete)?;
@@ -570,5 +606,38 @@ impl CampbellRun {
     /// Balls free or locked.
     pub fn balls(&self) -> Balls {
         self.balls
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The JSON written from the figures' copy of the speeds (up to [`PLOT_SPEEDS`] speeds, no
+    /// temporary files) is byte for byte the JSON streamed through the temporary files, for a
+    /// complete run and for one stopped at its first speed; a run without JSON has none.
+    #[test]
+    fn the_json_from_the_kept_speeds_equals_the_streamed_json() {
+        let cfg = crate::config::build(&crate::config::parse_text(crate::config::DEFAULT_CONFIG, "d").unwrap(), "d").unwrap();
+        let stopped = autobal::control::Control::new();
+        stopped.cancel();
+        for (control, points) in [(autobal::control::Control::none(), 40), (stopped, 30)] {
+            let json = |spill_above: usize| {
+                let run = campbell_run_with(&cfg, 3.0, points, Balls::Free, true, &[1, 2], &control, spill_above).unwrap();
+                assert_eq!(run.dir.is_some(), spill_above < points, "temporary files only when spilled");
+                let mut text = vec![];
+                run.write_json(&mut text).unwrap();
+                String::from_utf8(text).unwrap()
+            };
+            let (kept, streamed) = (json(PLOT_SPEEDS), json(0));
+            assert_eq!(kept, streamed);
+            let v: serde_json::Value = serde_json::from_str(&kept).unwrap();
+            let done = v["omega"].as_array().unwrap().len();
+            assert_eq!(done, if points == 40 { 40 } else { 1 });
+            assert_eq!(v["lines"].as_array().unwrap().len(), 12);
+            assert!(v["lines"].as_array().unwrap().iter().all(|l| l["modes"].as_array().unwrap().len() == done));
+        }
+        let none = campbell_run(&cfg, 3.0, 40, Balls::Free, false, &[1], &autobal::control::Control::none()).unwrap();
+        assert!(none.write_json(&mut vec![]).is_err());
     }
 }

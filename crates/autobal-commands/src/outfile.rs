@@ -3,7 +3,8 @@
 //! 1. **Resolve and check before any work** ([`Outputs`]): `--out DIR/` or an existing folder
 //!    becomes the command's default name inside it (`DIR/simulation.csv`, never the hidden,
 //!    nameless `DIR/.csv`); a missing parent folder is created; the folder must be writable
-//!    (probed by creating and removing a file in it); an existing path must be a regular file
+//!    (probed by creating and removing a file in it, or by creating the staged file of the
+//!    first output, [`Outputs::check_and_stage_first`]); an existing path must be a regular file
 //!    (never a folder, a device such as `/dev/null`, a FIFO); and no output may be the same file
 //!    as an input (the config, a shard being merged: compared by file identity, device and
 //!    inode, so links and `./` spellings are caught). A bad `--out` fails at once, not after
@@ -59,22 +60,57 @@ fn parent(path: &Path) -> PathBuf {
 /// Whether `a` and `b` are the same file: same device and inode when both exist (links,
 /// `./x`, `../d/x` all compare equal), else the same canonical folder and name.
 pub fn same_file(a: &Path, b: &Path) -> bool {
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::MetadataExt;
-        if let (Ok(ma), Ok(mb)) = (std::fs::metadata(a), std::fs::metadata(b)) {
-            return ma.dev() == mb.dev() && ma.ino() == mb.ino();
-        }
+    Ident::of(a, std::fs::metadata(a).ok().as_ref()).same(&Ident::of(b, std::fs::metadata(b).ok().as_ref()))
+}
+
+/// What [`same_file`] compares of one path, each part looked up once: its device and inode
+/// (where it exists), and, only when asked, its canonical folder and name. `Outputs::check`
+/// compares every output with every input and every other output: with the parts kept, that
+/// is one `stat` a path (and one canonicalisation of a missing one) instead of two a pair.
+struct Ident<'a> {
+    path: &'a Path,
+    node: Option<(u64, u64)>,
+    canon: std::cell::OnceCell<Option<PathBuf>>,
+}
+
+impl<'a> Ident<'a> {
+    /// `path`, with its metadata when it exists.
+    fn of(path: &'a Path, meta: Option<&std::fs::Metadata>) -> Self {
+        #[cfg(unix)]
+        let node = {
+            use std::os::unix::fs::MetadataExt;
+            meta.map(|m| (m.dev(), m.ino()))
+        };
+        #[cfg(not(unix))]
+        let node = {
+            let _ = meta;
+            None
+        };
+        Ident { path, node, canon: std::cell::OnceCell::new() }
     }
-    let canon = |p: &Path| -> Option<PathBuf> {
-        if let Ok(c) = p.canonicalize() {
-            return Some(c);
+
+    /// The canonical path, or the canonical folder and the name of a missing file.
+    fn canon(&self) -> Option<&PathBuf> {
+        self.canon
+            .get_or_init(|| {
+                let p = self.path;
+                if let Ok(c) = p.canonicalize() {
+                    return Some(c);
+                }
+                Some(parent(p).canonicalize().ok()?.join(p.file_name()?))
+            })
+            .as_ref()
+    }
+
+    /// [`same_file`] of the two paths.
+    fn same(&self, other: &Ident) -> bool {
+        if let (Some(a), Some(b)) = (self.node, other.node) {
+            return a == b;
         }
-        Some(parent(p).canonicalize().ok()?.join(p.file_name()?))
-    };
-    match (canon(a), canon(b)) {
-        (Some(x), Some(y)) => x == y,
-        _ => false,
+        match (self.canon(), other.canon()) {
+            (Some(x), Some(y)) => x == y,
+            _ => false,
+        }
     }
 }
 
@@ -117,41 +153,65 @@ impl Outputs {
     /// not a folder nor anything but a regular file, and it is not one of the inputs. The first
     /// failure is one line naming the option.
     pub fn check(&self) -> Result<()> {
+        self.check_with(None).map(|_| ())
+    }
+
+    /// [`Outputs::check`], and the first output's file created, staged ([`Staged::create`]):
+    /// for a command that writes it as it runs, its folder's probe is that file itself (one file
+    /// created instead of a probe created and removed, then the file; the same error when the
+    /// folder is not writable). Dropped uncommitted, it is removed as any staged file.
+    pub fn check_and_stage_first(&self) -> Result<Staged> {
+        self.check_with(self.outputs.first().map(|(o, p)| (o.as_str(), p.as_path())))?.ok_or_else(|| anyhow!("no output to stage"))
+    }
+
+    fn check_with(&self, first: Option<(&str, &Path)>) -> Result<Option<Staged>> {
+        let mut staged = None;
         let mut probed: Vec<PathBuf> = vec![];
+        let inputs: Vec<Ident> = self.inputs.iter().map(|(_, ip)| Ident::of(ip, std::fs::metadata(ip).ok().as_ref())).collect();
+        let mut outputs: Vec<Ident> = Vec::with_capacity(self.outputs.len());
         for (opt, p) in &self.outputs {
             if p.file_name().is_none() {
                 bail!("{opt}: {} names no file", p.display());
             }
-            match std::fs::metadata(p) {
-                Ok(m) if m.is_dir() => bail!("{opt}: {} is a folder, not a file", p.display()),
-                Ok(m) if !m.is_file() => bail!("{opt}: {} exists and is not a regular file (a device or pipe); give a file name", p.display()),
+            let meta = std::fs::metadata(p).ok();
+            match &meta {
+                Some(m) if m.is_dir() => bail!("{opt}: {} is a folder, not a file", p.display()),
+                Some(m) if !m.is_file() => bail!("{opt}: {} exists and is not a regular file (a device or pipe); give a file name", p.display()),
                 _ => {}
             }
-            for (iopt, ip) in &self.inputs {
-                if same_file(p, ip) {
+            let id = Ident::of(p, meta.as_ref());
+            for ((iopt, ip), iid) in self.inputs.iter().zip(&inputs) {
+                if id.same(iid) {
                     bail!("{opt}: {} is the input {iopt} {}; refusing to overwrite an input, give another name", p.display(), ip.display());
                 }
             }
-            for (oopt, op) in self.outputs.iter().take_while(|(_, q)| !std::ptr::eq(q, p)) {
-                if same_file(p, op) {
+            for ((oopt, _), oid) in self.outputs.iter().zip(&outputs) {
+                if id.same(oid) {
                     bail!("{opt}: {} is also the output of {oopt}", p.display());
                 }
             }
+            outputs.push(id);
             let dir = parent(p);
             if probed.contains(&dir) {
                 continue;
             }
-            if !dir.exists() {
-                std::fs::create_dir_all(&dir).map_err(|e| anyhow!("{opt}: cannot create the folder {}: {e}", dir.display()))?;
-            } else if !dir.is_dir() {
-                bail!("{opt}: {} is not a folder", dir.display());
+            match std::fs::metadata(&dir) {
+                Ok(m) if m.is_dir() => {}
+                Ok(_) => bail!("{opt}: {} is not a folder", dir.display()),
+                Err(_) => std::fs::create_dir_all(&dir).map_err(|e| anyhow!("{opt}: cannot create the folder {}: {e}", dir.display()))?,
             }
-            let probe = temp_for(&dir.join(".autobal-probe"));
-            File::options().write(true).create_new(true).open(&probe).map_err(|e| anyhow!("{opt}: cannot write in the folder {}: {e}", dir.display()))?;
-            let _ = std::fs::remove_file(&probe);
+            let cannot = |e: std::io::Error| anyhow!("{opt}: cannot write in the folder {}: {e}", dir.display());
+            match first {
+                Some((fopt, fp)) if staged.is_none() && parent(fp) == dir => staged = Some(Staged::open(fopt, fp).map_err(cannot)?),
+                _ => {
+                    let probe = temp_for(&dir.join(".autobal-probe"));
+                    File::options().write(true).create_new(true).open(&probe).map_err(cannot)?;
+                    let _ = std::fs::remove_file(&probe);
+                }
+            }
             probed.push(dir);
         }
-        Ok(())
+        Ok(staged)
     }
 }
 
@@ -167,8 +227,12 @@ pub struct Staged {
 impl Staged {
     /// Create the temporary file for `path` (the option names it in errors).
     pub fn create(option: &str, path: &Path) -> Result<Self> {
+        Self::open(option, path).with_context(|| format!("{option}: cannot create {}", temp_for(path).display()))
+    }
+
+    fn open(option: &str, path: &Path) -> std::io::Result<Self> {
         let tmp = temp_for(path);
-        let f = File::options().write(true).create(true).truncate(true).open(&tmp).with_context(|| format!("{option}: cannot create {}", tmp.display()))?;
+        let f = File::options().write(true).create(true).truncate(true).open(&tmp)?;
         Ok(Staged { option: option.to_string(), path: path.to_path_buf(), tmp, file: Some(BufWriter::with_capacity(1 << 16, f)) })
     }
 
@@ -301,6 +365,67 @@ mod tests {
         assert_eq!(resolve(Path::new("runs/"), "simulation.csv"), PathBuf::from("runs/simulation.csv"));
         assert_eq!(resolve(&d, "s.csv"), d.join("s.csv"));
         assert_eq!(resolve(Path::new("x"), "s.csv"), PathBuf::from("x"));
+        std::fs::remove_dir_all(&d).unwrap();
+    }
+
+    /// `check_and_stage_first` checks as `check` does and leaves exactly the first output's
+    /// staged file in its folder (no probe file): committed it becomes the output, dropped it
+    /// goes; a later output that fails the check leaves nothing behind.
+    #[test]
+    fn the_first_output_staged_is_its_folder_s_probe() {
+        let d = scratch("first");
+        let (a, b) = (d.join("sub/a.csv"), d.join("sub/a.svg"));
+        let mut s = Outputs::new().output("--out", &a).output("--out", &b).check_and_stage_first().unwrap();
+        let names = |dir: &Path| {
+            let mut n: Vec<String> = std::fs::read_dir(dir).unwrap().map(|e| e.unwrap().file_name().into_string().unwrap()).collect();
+            n.sort();
+            n
+        };
+        assert_eq!(names(&d.join("sub")), [format!("a.csv.{}.part", std::process::id())]);
+        writeln!(s, "x").unwrap();
+        assert_eq!(s.commit().unwrap(), a);
+        assert_eq!(names(&d.join("sub")), ["a.csv"]);
+        drop(Outputs::new().output("--out", &b).check_and_stage_first().unwrap());
+        assert_eq!(names(&d.join("sub")), ["a.csv"]);
+        let e = Outputs::new().output("--out", &b).output("--svg", &d.join("sub/./a.svg")).check_and_stage_first().err().expect("twice").to_string();
+        assert!(e.ends_with("is also the output of --out"), "{e}");
+        assert_eq!(names(&d.join("sub")), ["a.csv"]);
+        std::fs::remove_dir_all(&d).unwrap();
+    }
+
+    /// One file named twice among the outputs is refused whether it exists yet or not (by
+    /// device and inode, or by canonical folder and name), through a `./` spelling, a `..`
+    /// spelling and a hard link; distinct files, existing or not, pass; `same_file` says the
+    /// same pair by pair.
+    #[test]
+    fn an_output_named_twice_is_refused_existing_or_not() {
+        let d = scratch("twice");
+        std::fs::create_dir_all(d.join("sub")).unwrap();
+        let (a, b) = (d.join("a.csv"), d.join("b.csv"));
+        let dot = d.join(".").join("a.csv");
+        let up = d.join("sub").join("..").join("a.csv");
+        for exists in [false, true] {
+            if exists {
+                std::fs::write(&a, "x").unwrap();
+                std::fs::write(&b, "y").unwrap();
+            }
+            for other in [&dot, &up] {
+                let e = Outputs::new().output("--out", &a).output("--svg", &b).output("--png", other).check().unwrap_err().to_string();
+                assert!(e.starts_with("--png: ") && e.ends_with("is also the output of --out"), "{e}");
+                assert!(same_file(&a, other) && !same_file(&b, other));
+            }
+            Outputs::new().output("--out", &a).output("--svg", &b).check().unwrap();
+            assert!(!same_file(&a, &b));
+        }
+        #[cfg(unix)]
+        {
+            let link = d.join("link.csv");
+            std::fs::hard_link(&a, &link).unwrap();
+            let e = Outputs::new().output("--out", &a).output("--svg", &link).check().unwrap_err().to_string();
+            assert!(e.ends_with("is also the output of --out"), "{e}");
+        }
+        // an existing file and a missing one are not the same
+        assert!(!same_file(&a, &d.join("c.csv")));
         std::fs::remove_dir_all(&d).unwrap();
     }
 }

@@ -174,10 +174,12 @@ impl<'a, W: Write + ?Sized> RowSink<'a, W> {
         RowSink { csv, parquet, columns, text: vec![], used: 0 }
     }
 
-    /// Room for `bytes` more after the text in use (the buffer grows to a chunk plus that).
+    /// Room for `bytes` more after the text in use (the buffer grows to a chunk plus that, and
+    /// at least 4 KiB more: the header's first call leaves room for the rows of up to 99
+    /// columns, so the buffer is not reallocated, and copied, as the first chunk fills).
     fn room(&mut self, bytes: usize) {
         if self.used + bytes > self.text.len() {
-            self.text.resize(CSV_CHUNK.max(self.used) + bytes, 0);
+            self.text.resize(CSV_CHUNK.max(self.used) + bytes.max(4096), 0);
         }
     }
 
@@ -385,8 +387,10 @@ pub fn summary_table(cfg: &PlanarConfig, s: &Summary, wall: f64) -> String {
 /// Ball angles in degrees wrapped to (−180°, 180°], the line broken where it wraps (a ball
 /// slipping round the race would otherwise run off to thousands of degrees).
 pub fn wrapped_degrees(points: impl Iterator<Item = (f64, f64)>) -> Vec<(f64, f64)> {
-    // room for the points and a few breaks: one allocation for most runs
-    let mut out: Vec<(f64, f64)> = Vec::with_capacity(points.size_hint().0 + 16);
+    // room for every point and a break before each (a ball slipping round the race breaks its
+    // line hundreds of times): one allocation, never grown and copied; the pages of the room
+    // not used are never touched
+    let mut out: Vec<(f64, f64)> = Vec::with_capacity(2 * points.size_hint().0 + 16);
     for (t, a) in points {
         let d = wrap_360(a.to_degrees() + 180.0) - 180.0;
         if let Some(&(_, prev)) = out.last() {

@@ -76,6 +76,8 @@ struct Paths {
     csv: PathBuf,
     stem: PathBuf,
     parquet: Option<PathBuf>,
+    /// The CSV's staged file, created by the check (its folder's probe), taken by the run.
+    staged: Option<outfile::Staged>,
 }
 
 /// A run ready to start: the config read and converted, `--dt` applied, every output checked.
@@ -170,8 +172,9 @@ impl Args {
                 for p in sim::plot_paths(&stem) {
                     o.output("--out", &p);
                 }
-                o.check()?;
-                Some(Paths { csv, stem, parquet })
+                // the CSV's staged file, created now, is its folder's probe
+                let staged = o.check_and_stage_first()?;
+                Some(Paths { csv, stem, parquet, staged: Some(staged) })
             }
         };
         Ok(Plan { model, paths, check_tolerance: self.check_tolerance, columns: self.columns, notes })
@@ -197,9 +200,15 @@ impl Plan {
     /// Run: the samples into the files and columns as they come, then the figures; the run again
     /// at tighter tolerances where asked (and the first ended). A run stopped early (Ctrl-C, a
     /// budget) keeps its complete rows and says so in [`command::Output::stopped`].
-    pub fn run(self, control: &Control) -> Result<Output> {
+    pub fn run(mut self, control: &Control) -> Result<Output> {
         let names = self.column_names();
-        let mut staged = self.paths.as_ref().map(|p| outfile::Staged::create("--out", &p.csv)).transpose()?;
+        let mut staged = match self.paths.as_mut() {
+            Some(p) => Some(match p.staged.take() {
+                Some(s) => s,
+                None => outfile::Staged::create("--out", &p.csv)?,
+            }),
+            None => None,
+        };
         let mut table = match self.paths.as_ref().and_then(|p| p.parquet.as_ref()) {
             Some(p) => Some(crate::parquet::Table::create(p, &names, false)?),
             None => None,
