@@ -60,7 +60,7 @@ pub fn read(path: Option<&std::path::Path>) -> Result<(Table, String)> {
 pub const MAX_CONFIG_BYTES: u64 = 1 << 20;
 
 /// Read at most [`MAX_CONFIG_BYTES`] of a config file as UTF-8.
-fn read_limited(p: &std::path::Path) -> Result<String> {
+pub(crate) fn read_limited(p: &std::path::Path) -> Result<String> {
     use std::io::Read;
     let name = format!("--config {}", p.display());
     let file = std::fs::File::open(p).map_err(|e| anyhow!("{name}: cannot read: {e}"))?;

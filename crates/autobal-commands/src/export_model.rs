@@ -48,23 +48,25 @@ impl command::Command for Args {
         if self.stem.is_empty() || self.stem.contains(['/', '\\']) {
             bail!("--stem {:?}: a file name stem without a folder (the folder is --out)", self.stem);
         }
-        let rotor = match &self.config {
+        let (rotor, root) = match &self.config {
             ConfigSource::File { path: None, sets } => {
                 if let Some(s) = sets.first() {
                     bail!("--set {s}: needs --config (without one, export-model writes paper 004's rotor as it is)");
                 }
-                linear_rotor::preset()?
+                (linear_rotor::preset()?, None)
             }
             ConfigSource::File { path: Some(p), sets } => {
                 let (root, source) = linear_rotor::read_set(Some(p), sets)?;
-                rotor_of(&root, self.config.dir(), &source)?
+                (rotor_of(&root, self.config.dir(), &source)?, Some(root))
             }
             ConfigSource::Tables { .. } => {
                 let (root, source) = self.config.read()?;
-                rotor_of(&root, self.config.dir(), &source)?
+                (rotor_of(&root, self.config.dir(), &source)?, Some(root))
             }
         };
-        Ok(Output { written: linear_rotor::export_model(&rotor, &self.out, &self.stem)? })
+        // the config and the files it names are inputs: never overwritten by the export
+        let inputs = (self.config.path(), root.as_ref().map(|r| (r, self.config.dir())));
+        Ok(Output { written: linear_rotor::export_model(&rotor, inputs, &self.out, &self.stem)? })
     }
 }
 

@@ -341,7 +341,7 @@ mod tests {
     fn linear_rotor_stability_figure_is_the_clis() {
         let d = std::env::temp_dir().join(format!("autobal-figures-linear-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&d);
-        crate::linear_rotor::export_model(&crate::linear_rotor::preset().unwrap(), &d, "rotor").unwrap();
+        crate::linear_rotor::export_model(&crate::linear_rotor::preset().unwrap(), (None, None), &d, "rotor").unwrap();
         let file = d.join("rotor.toml");
         let (root, _) = crate::linear_rotor::read_set(Some(&file), &[]).unwrap();
         let o = Options { samples: Some(40), ..Default::default() };

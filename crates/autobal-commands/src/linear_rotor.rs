@@ -999,10 +999,16 @@ pub fn preset() -> Result<LinearRotor> {
 }
 
 /// `export-model`: write `STEM.toml` and `STEM_{M,C,G,K}.mtx` into `dir`; returns the paths.
-pub fn export_model(rotor: &LinearRotor, dir: &Path, stem: &str) -> Result<Vec<PathBuf>> {
+/// `inputs`: the config it was read from (`None`: the preset) and that config's tables with the
+/// folder its files are read from; none of them (the config, its matrix files) is overwritten.
+pub fn export_model(rotor: &LinearRotor, inputs: (Option<&Path>, Option<(&Table, &Path)>), dir: &Path, stem: &str) -> Result<Vec<PathBuf>> {
     std::fs::create_dir_all(dir).map_err(|e| anyhow!("--out {}: cannot create the folder: {e}", dir.display()))?;
     let (text, files) = export(rotor, stem);
     let mut o = outfile::Outputs::new();
+    o.inputs(inputs.0);
+    if let Some((root, from)) = inputs.1 {
+        o.config_files(root, from);
+    }
     let toml_path = dir.join(format!("{stem}.toml"));
     o.output("--out", &toml_path);
     for (name, _) in &files {
@@ -1027,6 +1033,45 @@ mod tests {
     fn example() -> (Table, PathBuf) {
         let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/linear_rotor_shaft.toml");
         (read_set(Some(&path), &[]).unwrap().0, path)
+    }
+
+    /// A linear rotor config's matrix files are inputs: `simulate --out` and `export-model` whose
+    /// outputs would replace one (a matrix named `r.csv`, `simulate --out DIR/r`; an export of the
+    /// config into its own folder under a stem its files use) are refused naming the key, and
+    /// the files are left byte for byte (on b7bef73 both overwrote them).
+    #[test]
+    fn outputs_never_replace_the_matrix_files_a_config_names() {
+        use crate::command::{Command, ConfigSource};
+        use autobal::control::Control;
+        let d = std::env::temp_dir().join(format!("autobal-lr-inputs-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&d);
+        export_model(&preset().unwrap(), (None, None), &d, "rotor").unwrap();
+        std::fs::rename(d.join("rotor_M.mtx"), d.join("r.csv")).unwrap();
+        let text = std::fs::read_to_string(d.join("rotor.toml")).unwrap().replace("rotor_M.mtx", "r.csv");
+        std::fs::write(d.join("rotor.toml"), &text).unwrap();
+        let m = std::fs::read(d.join("r.csv")).unwrap();
+        let cfg = d.join("rotor.toml");
+        let sim = crate::simulate::Args {
+            config: ConfigSource::file(Some(&cfg), &[]),
+            dt: None,
+            check_tolerance: false,
+            files: Some(crate::simulate::Files { out: d.join("r"), parquet: false }),
+            columns: false,
+        };
+        let e = sim.run(&Control::none()).err().expect("refused").to_string();
+        assert!(e.contains("is the input --config's linear_rotor.m"), "{e}");
+        // export-model: the file's own names, and a name only --set gives
+        let ex = |sets: &[String], stem: &str| {
+            crate::export_model::Args { config: ConfigSource::file(Some(&cfg), sets), out: d.clone(), stem: stem.into() }.run(&Control::none())
+        };
+        std::fs::copy(d.join("rotor_C.mtx"), d.join("other_C.mtx")).unwrap();
+        let e = ex(&[], "rotor").err().expect("refused").to_string();
+        assert!(e.contains("is the input --config"), "{e}");
+        let e = ex(&["linear_rotor.c=\"other_C.mtx\"".to_string()], "other").err().expect("refused").to_string();
+        assert!(e.contains("is the input --config's linear_rotor.c"), "{e}");
+        assert_eq!(std::fs::read(d.join("r.csv")).unwrap(), m);
+        assert_eq!(std::fs::read_to_string(&cfg).unwrap(), text);
+        let _ = std::fs::remove_dir_all(&d);
     }
 
     /// `--set linear_rotor.balancer[j].contact=true` turns real balls on as the key in the

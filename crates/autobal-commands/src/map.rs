@@ -1368,7 +1368,7 @@ mod tests {
         let _ = std::fs::remove_dir_all(&d);
         let preset = crate::linear_rotor::preset().unwrap();
         let drag = preset.balancers[0].drag;
-        crate::linear_rotor::export_model(&preset, &d, "rotor").unwrap();
+        crate::linear_rotor::export_model(&preset, (None, None), &d, "rotor").unwrap();
         let file = d.join("rotor.toml");
         let (root, _) = crate::linear_rotor::read_set(Some(&file), &[]).unwrap();
         let map = |config: ConfigSource| {

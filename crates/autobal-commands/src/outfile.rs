@@ -135,10 +135,27 @@ impl Outputs {
         self
     }
 
-    /// The `--config` file, when one is given (the embedded default is no file).
+    /// The `--config` file, when one is given (the embedded default is no file), and the files
+    /// a linear rotor config names (its matrices: [`autobal::linear_rotor::config::file_names`],
+    /// relative to the config's folder), so that no output overwrites them. A config that cannot
+    /// be read or parsed here adds only itself (the command reports that error where it reads
+    /// the config).
     pub fn inputs(&mut self, config: Option<&Path>) -> &mut Self {
         if let Some(c) = config {
             self.input("--config", c);
+            if let Some(root) = crate::config::read_limited(c).ok().and_then(|t| t.parse::<toml::Table>().ok()) {
+                self.config_files(&root, c.parent().unwrap_or(Path::new("")));
+            }
+        }
+        self
+    }
+
+    /// The files the config `root` names, read relative to `dir` (a linear rotor's matrices:
+    /// [`autobal::linear_rotor::config::file_names`]), as inputs: for a config whose `--set`
+    /// or tables name other files than the file on disk.
+    pub fn config_files(&mut self, root: &toml::Table, dir: &Path) -> &mut Self {
+        for (key, name) in autobal::linear_rotor::config::file_names(root) {
+            self.input(&format!("--config's {key}"), &dir.join(name));
         }
         self
     }

@@ -165,7 +165,8 @@ impl Args {
                 let (csv, stem) = f.csv_and_stem();
                 let parquet = f.parquet.then(|| term::with_suffix(&stem, "parquet"));
                 let mut o = outfile::Outputs::new();
-                o.inputs(self.config.path()).output("--out", &csv);
+                // the config and the files it names (as overridden: a linear rotor's matrices)
+                o.inputs(self.config.path()).config_files(&root, self.config.dir()).output("--out", &csv);
                 if let Some(p) = &parquet {
                     o.output("--parquet", p);
                 }

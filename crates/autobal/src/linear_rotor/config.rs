@@ -130,6 +130,19 @@ pub struct LinearRotorConfig {
     pub integration: Integration,
 }
 
+/// The keys of `[linear_rotor]` whose values name files the reader loads (matrices, the `.npz`
+/// archive, the rotor-fixed mass).
+pub const FILE_KEYS: &[&str] = &["matrices", "m", "c", "g", "k", "kst", "spin_chart", "rotor_fixed_mass"];
+
+/// The files a linear rotor config names (`linear_rotor.KEY = "name"` for the keys of
+/// [`FILE_KEYS`]), as `(linear_rotor.KEY, name)`, relative to the config's folder as the
+/// reader loads them; empty for a config without `[linear_rotor]`. A command registers them as
+/// inputs that no output may overwrite.
+pub fn file_names(root: &Table) -> Vec<(String, String)> {
+    let Some(lr) = root.get("linear_rotor").and_then(Value::as_table) else { return vec![] };
+    FILE_KEYS.iter().filter_map(|k| lr.get(*k).and_then(Value::as_str).map(|v| (format!("linear_rotor.{k}"), v.to_string()))).collect()
+}
+
 /// Whether a config describes a linear rotor (has `[linear_rotor]`).
 pub fn is_linear_rotor(root: &Table) -> bool {
     root.contains_key("linear_rotor")
