@@ -36,6 +36,11 @@ mod interrupt {
             let f = flag.clone();
             let _ = ctrlc::set_handler(move || {
                 if !POLLED.load(Ordering::Relaxed) || f.swap(true, Ordering::Relaxed) {
+                    // at once: no destructor runs, so the files being written are removed here
+                    // (the outputs already committed stay)
+                    if autobal_commands::outfile::remove_unfinished() > 0 {
+                        eprintln!("interrupted: stopped at once; the unfinished output files were removed");
+                    }
                     std::process::exit(130);
                 }
             });

@@ -232,6 +232,43 @@ impl Outputs {
     }
 }
 
+/// The temporary files being written now (every [`Staged`] and [`TempName`] not yet committed
+/// or dropped), for [`remove_unfinished`].
+static UNFINISHED: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
+
+fn unfinished(add: Option<&Path>, remove: Option<&Path>) {
+    let mut u = UNFINISHED.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some(p) = remove {
+        if let Some(i) = u.iter().rposition(|q| q == p) {
+            u.swap_remove(i);
+        }
+    }
+    if let Some(p) = add {
+        u.push(p.to_path_buf());
+    }
+}
+
+/// Remove every temporary file still being written (a process ending at once, as on a second
+/// Ctrl-C, runs no destructor: the CLI's handler calls this before it exits, so that no
+/// `NAME.PID.part` is left beside the outputs). Returns how many were removed.
+pub fn remove_unfinished() -> usize {
+    remove_unfinished_under(Path::new(""))
+}
+
+/// [`remove_unfinished`] for the temporary files under `dir` only (`""`: all).
+fn remove_unfinished_under(dir: &Path) -> usize {
+    let mut u = UNFINISHED.lock().unwrap_or_else(|e| e.into_inner());
+    let mut n = 0;
+    u.retain(|p| {
+        if !p.starts_with(dir) {
+            return true;
+        }
+        n += usize::from(std::fs::remove_file(p).is_ok());
+        false
+    });
+    n
+}
+
 /// A file being written under a temporary name (`temp_for`); [`Staged::commit`] renames it
 /// into place, dropping it uncommitted removes it.
 pub struct Staged {
@@ -250,6 +287,7 @@ impl Staged {
     fn open(option: &str, path: &Path) -> std::io::Result<Self> {
         let tmp = temp_for(path);
         let f = File::options().write(true).create(true).truncate(true).open(&tmp)?;
+        unfinished(Some(&tmp), None);
         Ok(Staged { option: option.to_string(), path: path.to_path_buf(), tmp, file: Some(BufWriter::with_capacity(1 << 16, f)) })
     }
 
@@ -264,7 +302,9 @@ impl Staged {
         let w = self.file.take().ok_or_else(|| anyhow!("{}: already committed", self.path.display()))?;
         let f = w.into_inner().map_err(|e| anyhow!("{}: cannot write {}: {}", self.option, self.path.display(), e.error()))?;
         drop(f);
-        std::fs::rename(&self.tmp, &self.path).with_context(|| format!("{}: cannot rename {} to {}", self.option, self.tmp.display(), self.path.display()))?;
+        let renamed = std::fs::rename(&self.tmp, &self.path);
+        unfinished(None, Some(&self.tmp));
+        renamed.with_context(|| format!("{}: cannot rename {} to {}", self.option, self.tmp.display(), self.path.display()))?;
         Ok(self.path.clone())
     }
 }
@@ -285,6 +325,7 @@ impl Drop for Staged {
     fn drop(&mut self) {
         if self.file.take().is_some() {
             let _ = std::fs::remove_file(&self.tmp);
+            unfinished(None, Some(&self.tmp));
         }
     }
 }
@@ -312,6 +353,7 @@ impl TempName {
     pub fn create(option: &str, path: &Path) -> Result<(Self, File)> {
         let tmp = temp_for(path);
         let f = File::create(&tmp).with_context(|| format!("{option}: cannot create {}", tmp.display()))?;
+        unfinished(Some(&tmp), None);
         Ok((TempName { option: option.to_string(), path: path.to_path_buf(), tmp, done: false }, f))
     }
 
@@ -319,6 +361,7 @@ impl TempName {
     pub fn rename(mut self) -> Result<PathBuf> {
         std::fs::rename(&self.tmp, &self.path).with_context(|| format!("{}: cannot rename {} to {}", self.option, self.tmp.display(), self.path.display()))?;
         self.done = true;
+        unfinished(None, Some(&self.tmp));
         Ok(self.path.clone())
     }
 }
@@ -327,6 +370,7 @@ impl Drop for TempName {
     fn drop(&mut self) {
         if !self.done {
             let _ = std::fs::remove_file(&self.tmp);
+            unfinished(None, Some(&self.tmp));
         }
     }
 }
@@ -340,6 +384,26 @@ mod tests {
         let _ = std::fs::remove_dir_all(&d);
         std::fs::create_dir_all(&d).unwrap();
         d
+    }
+
+    #[test]
+    fn remove_unfinished_removes_what_is_being_written_and_nothing_else() {
+        // what a second Ctrl-C's handler does before the process exits: the staged files still
+        // open are removed, the committed and the dropped ones are not its business
+        let d = scratch("unfinished");
+        let (a, b, c) = (d.join("a.csv"), d.join("b.csv"), d.join("c.parquet"));
+        let done = Staged::create("--out", &a).unwrap();
+        done.commit().unwrap();
+        let open = Staged::create("--out", &b).unwrap();
+        let (name, _file) = TempName::create("--parquet", &c).unwrap();
+        let (tb, tc) = (open.temp_path().to_path_buf(), temp_for(&c));
+        assert!(tb.exists() && tc.exists());
+        // only this test's folder: the other tests of this process write files at the same time
+        assert_eq!(remove_unfinished_under(&d), 2);
+        assert!(!tb.exists() && !tc.exists() && a.exists());
+        std::mem::forget(open);
+        std::mem::forget(name);
+        let _ = std::fs::remove_dir_all(&d);
     }
 
     #[test]
