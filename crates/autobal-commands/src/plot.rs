@@ -381,23 +381,24 @@ impl Plot {
 
     /// Render to an SVG document.
     pub fn to_svg(&self) -> String {
-        self.svg(true).0
+        self.svg_with(true, true, None).0
     }
 
-    /// The SVG document; without `embed` (the PNG's route) neither the white background nor the
-    /// heatmap's raster are in it, and the heatmap's placement is returned instead: its rectangle
-    /// `[x, y, w, h]` and the clip rectangle (the plot area) in the document's units.
-    fn svg(&self, embed: bool) -> (String, Option<HeatPlacement>) {
-        self.svg_with(embed, true, !embed)
+    /// The SVG document of the PNG at `scale`: neither the white background nor the heatmap's
+    /// raster are in it, and the heatmap's placement is returned instead: its rectangle
+    /// `[x, y, w, h]` and the clip rectangle (the plot area) in the document's units, with
+    /// what else the PNG paints itself ([`Plot::svg_with`]).
+    fn svg_png(&self, scale: f32) -> (String, Option<HeatPlacement>) {
+        self.svg_with(false, true, Some(scale))
     }
 
-    /// [`Plot::svg`], its dense curves thinned by [`chord_thin`] where `thin` (the tests draw
-    /// them whole to compare). With `lean` (the PNG's route, with a heatmap left out) the
-    /// colour bar's raster and the last curves that are axis-aligned polylines (a map's
-    /// cell-edge boundaries) are left out too and returned in the placement, for the PNG to
-    /// paint itself ([`paint_bar`], [`paint_lines`]); without it (the tests' reference) they
-    /// are in the document as before.
-    fn svg_with(&self, embed: bool, thin: bool, lean: bool) -> (String, Option<HeatPlacement>) {
+    /// The SVG document, its dense curves thinned by [`chord_thin`] where `thin` (the tests
+    /// draw them whole to compare); without `embed`, see [`Plot::svg_png`]. With `lean` (the
+    /// PNG's scale, with a heatmap left out) the colour bar's raster and the axis-aligned strokes
+    /// the PNG paints as tiny-skia would ([`paint_bar`], [`paint_lines`]: wider than a pixel
+    /// at that scale, where tiny-skia draws no hairline) are left out too and returned in the
+    /// placement; without it (the tests' reference) they are in the document as before.
+    fn svg_with(&self, embed: bool, thin: bool, lean: Option<f32>) -> (String, Option<HeatPlacement>) {
         let mut placement: Option<HeatPlacement> = None;
         let ((x0, x1), (y0, y1)) = self.ranges();
         // left margin: room for named row ticks
@@ -440,14 +441,31 @@ impl Plot {
             let half = |v: &[f64]| if v.len() > 1 { (v[1] - v[0]).abs() / 2.0 } else { 0.5 };
             let (ha, hb) = (h.x[0] - half(&h.x), h.x[h.x.len() - 1] + half(&h.x));
             let (va, vb) = (h.y[0] - half(&h.y), h.y[h.y.len() - 1] + half(&h.y));
-            placement = Some(HeatPlacement {
-                rect: [sx(ha), sy(vb), sx(hb) - sx(ha), sy(va) - sy(vb)],
-                clip: [ml, mt, PW, PH],
-                bar: None,
-                lines: vec![],
-                clip_lines: false,
-            });
+            placement = Some(HeatPlacement { rect: [sx(ha), sy(vb), sx(hb) - sx(ha), sy(va) - sy(vb)], clip: [ml, mt, PW, PH], bar: None, lines: vec![] });
         }
+        // with a heatmap left out, the PNG also paints the figure's axis-aligned strokes itself
+        // (ticks, frames, a map's boundaries, legend lines), in the document's order, after its
+        // render ([`paint_lines`]); they are written here only where it does not
+        let lean = lean.filter(|_| placement.is_some());
+        let direct = lean.is_some();
+        // a stroke the PNG paints: wider than a pixel (tiny-skia draws a hairline otherwise)
+        let thick = |width: f64| lean.is_some_and(|k| width * f64::from(k) > 1.0);
+        let mut lines: Vec<StraightLine> = vec![];
+        let gray = [0x33, 0x33, 0x33];
+        // the last series that are all axis-aligned polylines of a known colour are painted by
+        // the PNG itself (after the render: nothing drawn later reaches into the plot area), in
+        // their order; any other curve after them would have been drawn over them, so only a
+        // run of them at the end; the ticks and the plot area's frame, drawn before them and
+        // under them, only when all are
+        let direct_from = match direct {
+            // (a millionth of a pixel: the points as written, to two decimals, share it exactly)
+            true => {
+                let tol = (1e-6 * (x1 - x0) / PW, 1e-6 * (y1 - y0) / PH);
+                self.series.len() - self.series.iter().rev().take_while(|se| thick(se.width.unwrap_or(2.0)) && se.straight_polyline(tol)).count()
+            }
+            false => self.series.len(),
+        };
+        let frames = direct_from == 0 && thick(1.0);
         if let Some(png) = self.heatmap.as_ref().filter(|_| embed).and_then(Self::heat_png) {
             let h = self.heatmap.as_ref().expect("heatmap present");
             // the raster's cells centred on the grid values
@@ -498,6 +516,13 @@ impl Plot {
         // grid and ticks
         let grid = if self.heatmap.is_some() { "none" } else { "#e3e3e3" };
         for t in ticks(x0, x1, 7) {
+            if frames {
+                // (a heatmap's grid lines are `stroke="none"`: nothing drawn)
+                let x = two_decimals(sx(t));
+                lines.push(StraightLine::new(vec![(x, mt + PH), (x, mt + PH + 5.0)], 1.0, gray));
+                let _ = writeln!(s, r#"<text x="{:.2}" y="{}" text-anchor="middle">{}</text>"#, sx(t), mt + PH + 19.0, fmt_tick(t));
+                continue;
+            }
             let _ = writeln!(
                 s,
                 r##"<line x1="{0:.2}" y1="{1}" x2="{0:.2}" y2="{2}" stroke="{grid}"/><line x1="{0:.2}" y1="{2}" x2="{0:.2}" y2="{3}" stroke="#333"/><text x="{0:.2}" y="{4}" text-anchor="middle">{5}</text>"##,
@@ -514,6 +539,12 @@ impl Plot {
             None => ticks(y0, y1, 6).into_iter().map(|t| (t, fmt_tick(t))).collect(),
         };
         for (t, label) in yt {
+            if frames {
+                let y = two_decimals(sy(t));
+                lines.push(StraightLine::new(vec![(ml - 5.0, y), (ml, y)], 1.0, gray));
+                let _ = writeln!(s, r#"<text x="{}" y="{:.2}" text-anchor="end">{}</text>"#, ml - 8.0, sy(t) + 4.5, esc(&label));
+                continue;
+            }
             let _ = writeln!(
                 s,
                 r##"<line x1="{1}" y1="{0:.2}" x2="{2}" y2="{0:.2}" stroke="{grid}"/><line x1="{3}" y1="{0:.2}" x2="{1}" y2="{0:.2}" stroke="#333"/><text x="{4}" y="{5:.2}" text-anchor="end">{6}</text>"##,
@@ -542,7 +573,11 @@ impl Plot {
         if y0 < 0.0 && y1 > 0.0 && self.heatmap.is_none() {
             let _ = writeln!(s, r##"<line x1="{ml}" y1="{0:.2}" x2="{1}" y2="{0:.2}" stroke="#666"/>"##, sy(0.0), ml + PW);
         }
-        let _ = writeln!(s, r##"<rect x="{ml}" y="{mt}" width="{PW}" height="{PH}" fill="none" stroke="#333"/>"##);
+        if frames {
+            lines.push(StraightLine::frame([ml, mt, PW, PH], gray));
+        } else {
+            let _ = writeln!(s, r##"<rect x="{ml}" y="{mt}" width="{PW}" height="{PH}" fill="none" stroke="#333"/>"##);
+        }
         let _ = writeln!(s, r#"<text x="{}" y="{}" text-anchor="middle">{}</text>"#, ml + PW / 2.0, mt + PH + 42.0, esc(&self.x_label));
         let _ = writeln!(s, r#"<text x="18" y="{0}" text-anchor="middle" transform="rotate(-90 18 {0})">{1}</text>"#, mt + PH / 2.0, esc(&self.y_label));
         // the curves and vertical markers, written apart first: their group is clipped to the
@@ -566,19 +601,7 @@ impl Plot {
                 esc(label)
             );
         }
-        // the last series that are all axis-aligned polylines of a known colour are painted by
-        // the PNG itself (after the render: nothing drawn later reaches into the plot area), in
-        // their order; any other curve after them would have been drawn over them, so only a
-        // run of them at the end
-        let direct_from = match (lean, placement.is_some()) {
-            // (a millionth of a pixel: the points as written, to two decimals, share it exactly)
-            (true, true) => {
-                let tol = (1e-6 * (x1 - x0) / PW, 1e-6 * (y1 - y0) / PH);
-                self.series.len() - self.series.iter().rev().take_while(|se| se.straight_polyline(tol)).count()
-            }
-            _ => self.series.len(),
-        };
-        let mut lines: Vec<StraightLine> = vec![];
+        let curves_from = lines.len();
         for (n, se) in self.series.iter().enumerate() {
             let direct = n >= direct_from;
             let dash = if se.dashed { r#" stroke-dasharray="7 4""# } else { "" };
@@ -610,7 +633,7 @@ impl Plot {
                     if direct {
                         let pts = written();
                         if let (true, Some(color)) = (axis_aligned(&pts), hex_color(&se.color)) {
-                            lines.push(StraightLine { pts, half: se.width.unwrap_or(2.0) / 2.0, color, dashed: se.dashed });
+                            lines.push(StraightLine { pts, half: se.width.unwrap_or(2.0) / 2.0, color, dashed: se.dashed, clipped: false });
                             seg.clear();
                             return;
                         }
@@ -654,9 +677,8 @@ impl Plot {
             }
             flush(&mut seg, &mut s, &mut clip);
         }
-        if let Some(at) = placement.as_mut() {
-            at.lines = lines;
-            at.clip_lines = clip;
+        for l in &mut lines[curves_from..] {
+            l.clipped = clip;
         }
         // `s` holds the curves, `doc` the document before them
         let curves = std::mem::replace(&mut s, doc);
@@ -669,7 +691,7 @@ impl Plot {
             let (bx, bw) = (lx + 4.0, 16.0);
             let n = 64;
             // the PNG paints the bar's colours itself, one per pixel row ([`paint_bar`])
-            let painted = lean && placement.as_mut().map(|at| at.bar = Some(([bx, mt, bw, PH], hm.scale))).is_some();
+            let painted = direct && placement.as_mut().map(|at| at.bar = Some(([bx, mt, bw, PH], hm.scale))).is_some();
             let colours = || {
                 let mut px = Vec::with_capacity(n * 3);
                 for k in (0..n).rev() {
@@ -677,7 +699,9 @@ impl Plot {
                 }
                 px
             };
-            if painted {
+            if painted && thick(1.0) {
+                lines.push(StraightLine::frame([bx, mt, bw, PH], gray));
+            } else if painted {
                 let _ = writeln!(s, r##"<rect x="{bx}" y="{mt}" width="{bw}" height="{PH}" fill="none" stroke="#333"/>"##);
             } else if let Ok(png) = png_bytes(1, n, &colours()) {
                 let _ = writeln!(
@@ -688,6 +712,12 @@ impl Plot {
             }
             for (t, label) in colorbar_ticks(hm.scale) {
                 let y = mt + (1.0 - (t + 1.0) / 2.0) * PH;
+                if thick(1.0) {
+                    let yw = two_decimals(y);
+                    lines.push(StraightLine::new(vec![(bx + bw, yw), (bx + bw + 4.0, yw)], 1.0, gray));
+                    let _ = writeln!(s, r#"<text x="{}" y="{:.2}" font-size="12">{}</text>"#, bx + bw + 6.0, y + 4.0, esc(&label));
+                    continue;
+                }
                 let _ = writeln!(
                     s,
                     r##"<line x1="{}" y1="{y:.2}" x2="{}" y2="{y:.2}" stroke="#333"/><text x="{}" y="{:.2}" font-size="12">{}</text>"##,
@@ -714,6 +744,8 @@ impl Plot {
                 let _ = writeln!(s, r#"<rect x="{lx}" y="{}" width="30" height="12" fill="{color}" fill-opacity="0.3"/>"#, ly - 6.0);
             } else if markers {
                 let _ = writeln!(s, r#"<circle cx="{}" cy="{ly}" r="3.5" fill="{color}"/>"#, lx + 15.0);
+            } else if let (true, Some(c)) = (thick(2.5), hex_color(&color)) {
+                lines.push(StraightLine { pts: vec![(lx, ly), (lx + 30.0, ly)], half: 1.25, color: c, dashed, clipped: false });
             } else {
                 let dash = if dashed { r#" stroke-dasharray="7 4""# } else { "" };
                 let _ = writeln!(s, r#"<line x1="{lx}" y1="{ly}" x2="{}" y2="{ly}" stroke="{color}" stroke-width="2.5"{dash}/>"#, lx + 30.0);
@@ -722,6 +754,9 @@ impl Plot {
             ly += 24.0;
         }
         s.push_str("</svg>\n");
+        if let Some(at) = placement.as_mut() {
+            at.lines = lines;
+        }
         (s, placement)
     }
 
@@ -731,7 +766,7 @@ impl Plot {
     /// `image-rendering="optimizeSpeed"` raster gives) on white, and the rest of the figure is
     /// rasterised over them, instead of the SVG's embedded PNG being decoded and resampled.
     pub fn to_png(&self, scale: f32) -> anyhow::Result<Vec<u8>> {
-        let (Some(h), (svg, Some(at))) = (&self.heatmap, self.svg(false)) else { return svg_to_png(&self.to_svg(), scale) };
+        let (Some(h), (svg, Some(at))) = (&self.heatmap, self.svg_png(scale)) else { return svg_to_png(&self.to_svg(), scale) };
         let (nx, ny) = (h.x.len(), h.y.len());
         if nx == 0 || ny == 0 || h.z.len() != ny || h.z.iter().any(|r| r.len() != nx) {
             // a heatmap the SVG leaves out (ragged rows) is left out here too
@@ -1220,23 +1255,42 @@ struct HeatPlacement {
     clip: [f64; 4],
     bar: Option<([f64; 4], ColorScale)>,
     lines: Vec<StraightLine>,
-    clip_lines: bool,
 }
 
 /// An axis-aligned polyline of the document left for the PNG to paint ([`paint_lines`]): its
 /// points in the document's units as written (two decimals), the stroke's half-width, its
-/// colour, and whether it is dashed (SVG's `7 4`).
+/// colour, whether it is dashed (SVG's `7 4`) and clipped to the plot area.
 struct StraightLine {
     pts: Vec<(f64, f64)>,
     half: f64,
     color: [u8; 3],
     dashed: bool,
+    clipped: bool,
+}
+
+impl StraightLine {
+    /// A solid line of width `2 half`, not clipped.
+    fn new(pts: Vec<(f64, f64)>, width: f64, color: [u8; 3]) -> Self {
+        StraightLine { pts, half: width / 2.0, color, dashed: false, clipped: false }
+    }
+
+    /// The 1-unit stroke of the rectangle `[x, y, w, h]` (SVG's `<rect>`, closed: its first
+    /// side drawn twice so that every corner is a join).
+    fn frame([x, y, w, h]: [f64; 4], color: [u8; 3]) -> Self {
+        StraightLine::new(vec![(x, y), (x + w, y), (x + w, y + h), (x, y + h), (x, y), (x + w, y)], 1.0, color)
+    }
+}
+
+/// `v` as the document writes it with `{:.2}`.
+fn two_decimals(v: f64) -> f64 {
+    format!("{v:.2}").parse().unwrap_or(v)
 }
 
 /// Paint the colour bar into `pix` (document units times `scale`): each pixel whose centre lies
 /// in the bar's rectangle takes the colour map's colour at its centre's height (−1 at the
 /// bottom, 1 at the top), what the document's 64-row raster samples; resvg would resample that
 /// raster bicubically over the bar's 510 × 24 pixels (a map's figure at 1.5), 7 M instructions.
+#[inline(never)]
 fn paint_bar(pix: &mut resvg::tiny_skia::Pixmap, bar: [f64; 4], cs: ColorScale, scale: f32) {
     let s = f64::from(scale);
     let [bx, by, bw, bh] = bar;
@@ -1320,24 +1374,23 @@ fn dashes(pts: &[(f32, f32)]) -> Vec<Vec<(f32, f32)>> {
 /// its dashes) is one coverage, as tiny-skia's supersampled scan of one path: four sub-rows a
 /// pixel, the rectangles' edges at quarter pixels (rounded), each sub-row's intervals merged,
 /// a quarter pixel's coverage 16 of 255 (a full pixel 64, 63 on the last sub-row), then the
-/// colour blended over by that coverage (`(d (255 − a) + c a + 255) >> 8`). Clipped to
-/// `clip` (`[x, y, w, h]`) where given.
-fn paint_lines(pix: &mut resvg::tiny_skia::Pixmap, lines: &[StraightLine], clip: Option<[f64; 4]>, scale: f32) {
+/// colour blended over by that coverage (`(d (255 − a) + c a + 255) >> 8`). The lines marked
+/// `clipped` are clipped to `clip` (`[x, y, w, h]`).
+#[inline(never)]
+fn paint_lines(pix: &mut resvg::tiny_skia::Pixmap, lines: &[StraightLine], clip: [f64; 4], scale: f32) {
     let (w, h) = (pix.width() as i64, pix.height() as i64);
     // an edge at `v` (document units, f32) in quarter pixels, as tiny-skia places it: the
     // point scaled in f32, truncated to 1/256 of a pixel, rounded to a quarter
     let q = |v: f32| ((((v * scale) * 256.0) as i32 + 32) >> 6) as i64;
-    // the area painted, in quarter pixels: the pixmap, within the clip
-    let (mut x0, mut x1, mut y0, mut y1) = (0, 4 * w, 0, 4 * h);
-    if let Some([cx, cy, cw, ch]) = clip {
-        (x0, x1, y0, y1) = (x0.max(q(cx as f32)), x1.min(q((cx + cw) as f32)), y0.max(q(cy as f32)), y1.min(q((cy + ch) as f32)));
-    }
-    if x1 <= x0 || y1 <= y0 {
-        return;
-    }
+    // the area painted, in quarter pixels: the pixmap, and the clip for a clipped line
+    let all = (0, 4 * w, 0, 4 * h);
+    let [cx, cy, cw, ch] = clip;
+    let within = (q(cx as f32).max(0), q((cx + cw) as f32).min(4 * w), q(cy as f32).max(0), q((cy + ch) as f32).min(4 * h));
     // the stroker leaves out a segment shorter than this (document units) with butt caps
     let teeny = 1.0 / 4096.0 / scale;
-    let px = pix.pixels_mut();
+    // the pixmap's bytes: opaque (its figure is), premultiplied RGBA, so the colour is its RGB
+    let px = pix.data_mut();
+    let mut touched: Vec<(usize, usize)> = vec![];
     // per polyline: its rectangles [x0, x1) x [y0, y1) in quarter pixels, then (sub-row, x0, x1)
     let mut rects: Vec<[i64; 4]> = vec![];
     let mut spans: Vec<(i64, i64, i64)> = vec![];
@@ -1345,6 +1398,7 @@ fn paint_lines(pix: &mut resvg::tiny_skia::Pixmap, lines: &[StraightLine], clip:
     let mut acc: Vec<u16> = vec![0; w as usize];
     for line in lines {
         rects.clear();
+        let (x0, x1, y0, y1) = if line.clipped { within } else { all };
         let pts: Vec<(f32, f32)> = line.pts.iter().map(|&(x, y)| (x as f32, y as f32)).collect();
         let half = line.half as f32;
         let pieces = if line.dashed { dashes(&pts) } else { vec![pts] };
@@ -1421,7 +1475,7 @@ fn paint_lines(pix: &mut resvg::tiny_skia::Pixmap, lines: &[StraightLine], clip:
         while k < spans.len() {
             // one pixel row: its four sub-rows' merged intervals accumulated into `acc`
             let row = spans[k].0 >> 2;
-            let (mut lo, mut hi) = (usize::MAX, 0);
+            touched.clear();
             while k < spans.len() && spans[k].0 >> 2 == row {
                 let y = spans[k].0;
                 let full = 64 - (((y & 3) + 1) >> 2) as u16;
@@ -1455,8 +1509,7 @@ fn paint_lines(pix: &mut resvg::tiny_skia::Pixmap, lines: &[StraightLine], clip:
                             add(&mut acc, x + n, (fe * 16) as u16);
                         }
                     }
-                    lo = lo.min((a >> 2) as usize);
-                    hi = hi.max(((b + 3) >> 2) as usize);
+                    touched.push(((a >> 2) as usize, ((b + 3) >> 2) as usize));
                     if k < spans.len() && spans[k].0 == y {
                         (a, b) = (spans[k].1, spans[k].2);
                         k += 1;
@@ -1465,14 +1518,20 @@ fn paint_lines(pix: &mut resvg::tiny_skia::Pixmap, lines: &[StraightLine], clip:
                     }
                 }
             }
-            let out = &mut px[(row * w) as usize + lo..(row * w) as usize + hi];
-            for (o, c) in out.iter_mut().zip(&mut acc[lo..hi]) {
-                let a = u32::from(std::mem::take(c));
-                if a == 0 {
-                    continue;
+            // the pixels covered, each blended once (its coverage then cleared)
+            let base = (row * w) as usize;
+            for &(lo, hi) in &touched {
+                let out = &mut px[4 * (base + lo)..4 * (base + hi)];
+                for (o, c) in out.chunks_exact_mut(4).zip(&mut acc[lo..hi]) {
+                    match u32::from(std::mem::take(c)) {
+                        0 => {}
+                        255 => o[..3].copy_from_slice(&line.color),
+                        a => {
+                            let blend = |d: u8, c: u32| ((u32::from(d) * (255 - a) + c * a + 255) >> 8) as u8;
+                            (o[0], o[1], o[2]) = (blend(o[0], c0), blend(o[1], c1), blend(o[2], c2));
+                        }
+                    }
                 }
-                let blend = |d: u8, c: u32| ((u32::from(d) * (255 - a) + c * a + 255) >> 8) as u8;
-                *o = resvg::tiny_skia::PremultipliedColorU8::from_rgba(blend(o.red(), c0), blend(o.green(), c1), blend(o.blue(), c2), 255).expect("opaque");
             }
         }
     }
@@ -1481,6 +1540,7 @@ fn paint_lines(pix: &mut resvg::tiny_skia::Pixmap, lines: &[StraightLine], clip:
 /// Paint the heatmap's cells into `pix` (document units times `scale`): each pixel whose centre
 /// lies in the raster's rectangle and the clip takes the colour of the cell under its centre
 /// (row 0 of the raster at the top is the last `y`). One colour per cell, computed once.
+#[inline(never)]
 fn paint_heatmap(pix: &mut resvg::tiny_skia::Pixmap, h: &Heatmap, at: &HeatPlacement, scale: f32) {
     let (nx, ny) = (h.x.len(), h.y.len());
     let s = f64::from(scale);
@@ -1531,7 +1591,7 @@ fn paint_under(pix: &mut resvg::tiny_skia::Pixmap, h: &Heatmap, at: &HeatPlaceme
 
 /// What the PNG paints after the document's render: the axis-aligned curves left out of it.
 fn paint_over(pix: &mut resvg::tiny_skia::Pixmap, at: &HeatPlacement, scale: f32) {
-    paint_lines(pix, &at.lines, at.clip_lines.then_some(at.clip), scale);
+    paint_lines(pix, &at.lines, at.clip, scale);
 }
 
 /// Rasterise an SVG document to PNG bytes at `scale`.
@@ -1592,6 +1652,7 @@ fn rasterise(
 
 /// Whether every pixel of RGBA bytes is opaque: the AND of all alphas is 255 only if each is
 /// (the AND taken over 8-byte words, two pixels each, then their alpha bytes checked).
+#[inline(never)]
 fn opaque(rgba: &[u8]) -> bool {
     let words = rgba.chunks_exact(8);
     let tail = words.remainder().chunks_exact(4).fold(255u8, |a, p| a & p[3]);
@@ -1854,7 +1915,7 @@ mod tests {
             for se in &mut moved.series {
                 se.points.iter_mut().for_each(|q| *q = (q.0 + dx, q.1 + dy));
             }
-            let (thin, full, moved) = (fixed.svg_with(true, true, false).0, fixed.svg_with(true, false, false).0, moved.svg_with(true, false, false).0);
+            let (thin, full, moved) = (fixed.svg_with(true, true, None).0, fixed.svg_with(true, false, None).0, moved.svg_with(true, false, None).0);
             assert!(thin.len() * 2 < full.len(), "{}: {} bytes thinned, {} whole", p.title, thin.len(), full.len());
             for scale in [1.0, 2.0] {
                 let (w, h, want) = decode_rgb(&svg_to_png(&full, scale).unwrap());
@@ -1968,7 +2029,7 @@ mod tests {
             };
             // the colour bar, painted by row (`a_maps_bar_and_boundaries_painted_directly_are_resvgs_raster`
             // compares it), is left out here: [x, y, w, h]
-            let bar = p.svg(false).1.and_then(|at| at.bar).expect("a colour bar").0;
+            let bar = p.svg_png(1.5).1.and_then(|at| at.bar).expect("a colour bar").0;
             for k in [1.0, 1.5] {
                 let (w, h, fast) = decode_rgb(&p.to_png(k).unwrap());
                 let (w2, h2, want) = decode_rgb(&svg_to_png(&p.to_svg(), k).unwrap());
@@ -2060,11 +2121,18 @@ mod tests {
                 y_range: Some((0.05 - 4.45 / 798.0, 4.5 + 4.45 / 798.0)),
                 ..Default::default()
             };
-            let (lean, at) = p.svg(false);
+            // at 1.5 every stroke is wider than a pixel; at 1 the 1-unit ticks and frames are
+            // tiny-skia's hairlines, left in the document
+            let (lean1, at1) = p.svg_png(1.0);
+            assert!(lean1.contains("stroke=\"#333\"") && !lean1.contains("<polyline"), "{lean1}");
+            assert!(at1.is_some_and(|a| a.lines.iter().all(|l| l.color != [0x33; 3])));
+            let (lean, at) = p.svg_png(1.5);
             let at = at.expect("a heatmap left out");
             assert!(!lean.contains("<polyline") && !lean.contains("<image") && at.bar.is_some(), "{lean}");
-            assert_eq!(at.lines.len(), 5, "the three solid pieces and the two dashed ones");
-            let (full, at_full) = p.svg_with(false, true, false);
+            assert!(!lean.contains("<line") && !lean.contains("stroke=\"#333\""), "ticks and frames are painted: {lean}");
+            let curves = at.lines.iter().filter(|l| l.color != [0x33; 3]).count();
+            assert_eq!(curves, 7, "the three solid pieces, the two dashed ones, the two legend lines");
+            let (full, at_full) = p.svg_with(false, true, None);
             assert!(
                 full.contains("<polyline") && full.contains("<image") && !full.contains("linejoin") && at_full.as_ref().is_some_and(|a| a.lines.is_empty())
             );
@@ -2276,7 +2344,7 @@ mod tests {
                 ..Default::default()
             };
             for k in [1.0, 1.5] {
-                let (svg, at) = p.svg(false);
+                let (svg, at) = p.svg_png(k);
                 let at = at.expect("a heatmap left out of the SVG");
                 let want = png_by_copies(&svg, k, true, |pix| paint_under(pix, p.heatmap.as_ref().unwrap(), &at, k), |pix| paint_over(pix, &at, k));
                 let got = p.to_png(k).unwrap();
