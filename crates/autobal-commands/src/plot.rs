@@ -1563,17 +1563,28 @@ fn paint_heatmap(pix: &mut resvg::tiny_skia::Pixmap, h: &Heatmap, at: &HeatPlace
     // (the pixel rows go down the figure, the cell rows up: each row once, consecutively)
     let mut line = vec![resvg::tiny_skia::PremultipliedColorU8::TRANSPARENT; nx];
     let mut line_of = usize::MAX;
-    let mut colour = ColourCache::new(h.scale);
+    // the last value's colour (a verdict map's cells take two values)
+    let mut last: Option<(u64, resvg::tiny_skia::PremultipliedColorU8)> = None;
     let px = pix.pixels_mut();
     for p in rows {
         let j = ny - 1 - cell_of(p, ry, rh, ny);
-        if j != line_of {
-            for (c, &v) in line.iter_mut().zip(&h.z[j]) {
-                let [r, g, b] = colour.of(v);
-                *c = resvg::tiny_skia::PremultipliedColorU8::from_rgba(r, g, b, 255).expect("opaque");
-            }
-            line_of = j;
+        if j == line_of {
+            // the same row of cells as the pixel row above: its pixels copied
+            px.copy_within((p - 1) * w + cols.start..(p - 1) * w + cols.end, p * w + cols.start);
+            continue;
         }
+        for (c, &v) in line.iter_mut().zip(&h.z[j]) {
+            *c = match last {
+                Some((bits, c)) if bits == v.to_bits() => c,
+                _ => {
+                    let [r, g, b] = heat_color(v, h.scale);
+                    let c = resvg::tiny_skia::PremultipliedColorU8::from_rgba(r, g, b, 255).expect("opaque");
+                    last = Some((v.to_bits(), c));
+                    c
+                }
+            };
+        }
+        line_of = j;
         let out = &mut px[p * w + cols.start..p * w + cols.end];
         for (o, &i) in out.iter_mut().zip(&col_cell) {
             *o = line[i];
