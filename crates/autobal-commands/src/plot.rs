@@ -204,9 +204,9 @@ pub fn heat_color(v: f64, scale: ColorScale) -> [u8; 3] {
     }
 }
 
-/// [`heat_color`] with the last value's colour kept: a verdict map's cells take two values
-/// (its SVG's and PNG's 160 000 cells for 400 x 400), a margin map's neighbours rarely repeat
-/// (one comparison lost a cell).
+/// [`heat_color`] with the last value's colour kept on the verdict's scale, whose cells take
+/// two values (its SVG's 160 000 cells for 400 x 400); a margin map's neighbours rarely
+/// repeat, so its colours are computed each.
 struct ColourCache {
     scale: ColorScale,
     last: Option<(u64, [u8; 3])>,
@@ -219,6 +219,9 @@ impl ColourCache {
 
     #[inline]
     fn of(&mut self, v: f64) -> [u8; 3] {
+        if matches!(self.scale, ColorScale::Diverging { .. }) {
+            return heat_color(v, self.scale);
+        }
         match self.last {
             Some((bits, c)) if bits == v.to_bits() => c,
             _ => {
@@ -1563,7 +1566,9 @@ fn paint_heatmap(pix: &mut resvg::tiny_skia::Pixmap, h: &Heatmap, at: &HeatPlace
     // (the pixel rows go down the figure, the cell rows up: each row once, consecutively)
     let mut line = vec![resvg::tiny_skia::PremultipliedColorU8::TRANSPARENT; nx];
     let mut line_of = usize::MAX;
-    // the last value's colour (a verdict map's cells take two values)
+    // the last value's colour (a verdict map's cells take two values; a margin map's rarely
+    // repeat)
+    let verdict = matches!(h.scale, ColorScale::Verdict);
     let mut last: Option<(u64, resvg::tiny_skia::PremultipliedColorU8)> = None;
     let px = pix.pixels_mut();
     for p in rows {
@@ -1575,7 +1580,7 @@ fn paint_heatmap(pix: &mut resvg::tiny_skia::Pixmap, h: &Heatmap, at: &HeatPlace
         }
         for (c, &v) in line.iter_mut().zip(&h.z[j]) {
             *c = match last {
-                Some((bits, c)) if bits == v.to_bits() => c,
+                Some((bits, c)) if verdict && bits == v.to_bits() => c,
                 _ => {
                     let [r, g, b] = heat_color(v, h.scale);
                     let c = resvg::tiny_skia::PremultipliedColorU8::from_rgba(r, g, b, 255).expect("opaque");
