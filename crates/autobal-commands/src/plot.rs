@@ -459,7 +459,7 @@ impl Plot {
         // the PNG itself (after the render: nothing drawn later reaches into the plot area), in
         // their order; any other curve after them would have been drawn over them, so only a
         // run of them at the end; the ticks and the plot area's frame, drawn before them and
-        // under them, only when all are
+        // under them, only when all are and nothing else is drawn over the frame
         let direct_from = match direct {
             // (a millionth of a pixel: the points as written, to two decimals, share it exactly)
             true => {
@@ -468,7 +468,8 @@ impl Plot {
             }
             false => self.series.len(),
         };
-        let frames = direct_from == 0 && thick(1.0);
+        // (nothing else drawn over the frame: no vertical markers, no top axis's ticks)
+        let frames = direct_from == 0 && thick(1.0) && self.vlines.is_empty() && self.x2.is_none();
         if let Some(png) = self.heatmap.as_ref().filter(|_| embed).and_then(Self::heat_png) {
             let h = self.heatmap.as_ref().expect("heatmap present");
             // the raster's cells centred on the grid values
