@@ -235,8 +235,7 @@ impl Plan {
                 if traced.as_ref().is_some_and(|(b, _)| !b.complete) {
                     // nothing of the map is computed after an interrupted trace
                     let (dx, dy) = (decimate(&a.x).1, decimate(&a.y).1);
-                    let n = dy.values.len();
-                    let figure = MapResult { x: dx, y: dy, rows: vec![None; n], quantity: a.quantity };
+                    let figure = FigureCells::new(dx, dy, a.quantity);
                     RouteOutput::Closed { figure, cells: None, rows_done: 0, continued: 0, direct: 0, traced }
                 } else {
                     let (figure, run, cells) = compute(cfg, &a.x, &a.y, *omega, a.balls, a.quantity, rows, control)?;
@@ -271,8 +270,8 @@ pub struct Output {
 pub enum RouteOutput {
     /// Paper 000's 12-state model.
     Closed {
-        /// The figure's decimated copy.
-        figure: MapResult,
+        /// The figure's decimated copy, compact.
+        figure: FigureCells,
         /// Every row ([`Rows::Keep`]): `cells[j][i]` at `(x_i, y_j)`.
         cells: Option<Vec<Vec<Cell>>>,
         /// Rows computed.
@@ -333,6 +332,7 @@ impl Output {
     pub fn release_figure_cells(&mut self) {
         if let RouteOutput::Closed { figure, .. } = &mut self.route {
             figure.rows = vec![];
+            figure.rows.shrink_to_fit();
         }
     }
 
@@ -495,7 +495,7 @@ impl command::Output for Output {
         }
         let p = match &self.route {
             RouteOutput::Closed { figure, traced, .. } => {
-                let mut p = plot(figure, &format!("Stability map, balls {}", if self.balls == Balls::Free { "free" } else { "locked" }));
+                let mut p = plot_cells(figure, &format!("Stability map, balls {}", if self.balls == Balls::Free { "free" } else { "locked" }));
                 if let Some((b, _)) = traced {
                     p.series.extend(boundary_series(b));
                 }
@@ -534,6 +534,56 @@ pub struct MapResult {
     /// `rows[j][i]` at `(x_i, y_j)`; `None` for rows not computed (interrupted).
     pub rows: Vec<Option<Vec<Cell>>>,
     pub quantity: Quantity,
+}
+
+/// The copy of a closed-route map's cells its figure is drawn from (decimated as
+/// [`MapResult`]), compact: each cell's two flags in one byte ([`FigureCells::STABLE`],
+/// [`FigureCells::NECESSARY`]) and, for a margin map, its margin: 1 or 9 bytes a cell instead
+/// of a [`Cell`]'s 16 (a 400 x 400 verdict map's copy is 160 kB instead of 2.6 MB, which the
+/// command touched while the map ran).
+pub struct FigureCells {
+    pub x: Axis,
+    pub y: Axis,
+    pub quantity: Quantity,
+    /// Per row (`None`: not computed): the flags and, for a margin map, the margins.
+    rows: Vec<Option<(Vec<u8>, Vec<f64>)>>,
+}
+
+impl FigureCells {
+    /// Bit of a stable cell.
+    pub const STABLE: u8 = 1;
+    /// Bit of a cell inside 003's necessary ranges.
+    pub const NECESSARY: u8 = 2;
+
+    /// No row computed yet.
+    pub fn new(x: Axis, y: Axis, quantity: Quantity) -> Self {
+        let n = y.values.len();
+        FigureCells { x, y, quantity, rows: vec![None; n] }
+    }
+
+    /// Row `j`: every `k`-th of `cells`, at most `n` (a verdict map keeps no margin).
+    fn set_row(&mut self, j: usize, cells: &[Cell], k: usize, n: usize) {
+        let flag = |c: &Cell| (c.stable as u8 * Self::STABLE) | (c.necessary as u8 * Self::NECESSARY);
+        let (flags, margins): (Vec<u8>, Vec<f64>) = match (k, self.quantity) {
+            // undecimated: plain passes over the slice
+            (1, Quantity::Verdict) => (cells[..n.min(cells.len())].iter().map(flag).collect(), vec![]),
+            (1, Quantity::Margin) => (cells[..n.min(cells.len())].iter().map(flag).collect(), cells[..n.min(cells.len())].iter().map(|c| c.margin).collect()),
+            (_, Quantity::Verdict) => (cells.iter().step_by(k).take(n).map(flag).collect(), vec![]),
+            (_, Quantity::Margin) => (cells.iter().step_by(k).take(n).map(flag).collect(), cells.iter().step_by(k).take(n).map(|c| c.margin).collect()),
+        };
+        self.rows[j] = Some((flags, margins));
+    }
+
+    /// The copy of a whole [`MapResult`].
+    pub fn from_map(r: &MapResult) -> Self {
+        let mut f = FigureCells::new(r.x.clone(), r.y.clone(), r.quantity);
+        for (j, row) in r.rows.iter().enumerate() {
+            if let Some(cells) = row {
+                f.set_row(j, cells, 1, cells.len());
+            }
+        }
+        f
+    }
 }
 
 /// How far a map got.
@@ -716,12 +766,13 @@ pub fn compute(
     quantity: Quantity,
     rows: Rows<'_>,
     control: &Control,
-) -> Result<(MapResult, MapRun, Option<Vec<Vec<Cell>>>)> {
+) -> Result<(FigureCells, MapRun, Option<Vec<Vec<Cell>>>)> {
     let settings = autobal::spatial::map::MapSettings { balls, quantity, omega };
     let (kx, dx) = decimate(x);
     let (ky, dy) = decimate(y);
     let ny = y.values.len();
-    let mut kept: Vec<Option<Vec<Cell>>> = vec![None; dy.values.len()];
+    let nd = dx.values.len();
+    let mut kept = FigureCells::new(dx, dy, quantity);
     let keep_all = matches!(rows, Rows::Keep);
     let mut all: Vec<Vec<Cell>> = vec![];
     let mut csv = match rows {
@@ -734,13 +785,8 @@ pub fn compute(
     let mut out = csv.as_ref().map(|_| CsvRows::new(x, y, quantity == Quantity::Verdict, rayon::current_num_threads()));
     let mut io_error: Option<std::io::Error> = None;
     let outcome = autobal::spatial::map::stability_map_units(&cfg.spec, x, y, &settings, control, &mut |j, cells| {
-        if j % ky == 0 && j / ky < kept.len() {
-            // undecimated: one copy of the row, not a strided gather
-            let row = match kx {
-                1 => cells[..dx.values.len().min(cells.len())].to_vec(),
-                _ => cells.iter().step_by(kx).take(dx.values.len()).copied().collect(),
-            };
-            kept[j / ky] = Some(row);
+        if j % ky == 0 && j / ky < kept.rows.len() {
+            kept.set_row(j / ky, cells, kx, nd);
         }
         if keep_all {
             all.push(cells.to_vec());
@@ -763,7 +809,7 @@ pub fn compute(
         o.finish(w)?;
     }
     let run = MapRun { rows_done: outcome.rows, continued: outcome.continued, direct: outcome.direct };
-    Ok((MapResult { x: dx, y: dy, rows: kept, quantity }, run, keep_all.then_some(all)))
+    Ok((kept, run, keep_all.then_some(all)))
 }
 
 /// The general route ([`autobal::rotor_map::general_map_traced`]) over the plan's axes: any
@@ -871,11 +917,13 @@ fn general_plot(
     traced: Option<&[BoundaryPoint]>,
 ) -> crate::plot::Plot {
     let periodic = outcome.periodic > 0;
-    let rows: Vec<Option<Vec<Cell>>> = frows
-        .iter()
-        .map(|r| r.as_ref().map(|r| r.iter().map(|c| Cell { margin: c.margin, stable: c.verdict == Some(Verdict::Stable), necessary: false }).collect()))
-        .collect();
-    let r = MapResult { x: fx.clone(), y: fy.clone(), rows, quantity };
+    let mut r = FigureCells::new(fx.clone(), fy.clone(), quantity);
+    for (j, row) in frows.iter().enumerate() {
+        if let Some(row) = row {
+            let cells: Vec<Cell> = row.iter().map(|c| Cell { margin: c.margin, stable: c.verdict == Some(Verdict::Stable), necessary: false }).collect();
+            r.set_row(j, &cells, 1, cells.len());
+        }
+    }
     let state = match if periodic { Kind::PeriodicOrbit } else { Kind::Equilibrium } {
         Kind::Equilibrium => "equilibrium (eigenvalues)",
         Kind::PeriodicOrbit => "periodic orbit (Floquet multipliers)",
@@ -888,7 +936,7 @@ fn general_plot(
         "spatial"
     };
     let title = format!("Stability map of the {model} rotor's stationary state (general route: {state})");
-    let mut p = plot(&r, &title);
+    let mut p = plot_cells(&r, &title);
     // no 003 necessary ranges off the 12-state model
     p.series.retain(|s| s.label != "003 necessary boundary");
     if planar {
@@ -1100,20 +1148,21 @@ fn straight(a: (f64, f64), b: (f64, f64), c: (f64, f64)) -> bool {
     (a.0 == b.0 && b.0 == c.0 && (b.1 - a.1) * (c.1 - b.1) > 0.0) || (a.1 == b.1 && b.1 == c.1 && (b.0 - a.0) * (c.0 - b.0) > 0.0)
 }
 
-/// Cell-edge segments between cells whose `flag` differs (the grid evenly spaced).
-fn boundary(r: &MapResult, flag: impl Fn(&Cell) -> bool) -> Vec<(f64, f64)> {
+/// Cell-edge segments between cells whose `flag` (a [`FigureCells`] bit) differs (the grid
+/// evenly spaced).
+fn boundary(r: &FigureCells, flag: u8) -> Vec<(f64, f64)> {
     chain(&boundary_segments(r, flag))
 }
 
 /// The cell-edge segments of [`boundary`], row by row, each cell's right edge before its upper
 /// one.
-fn boundary_segments(r: &MapResult, flag: impl Fn(&Cell) -> bool) -> Vec<Segment> {
+fn boundary_segments(r: &FigureCells, flag: u8) -> Vec<Segment> {
     let (xs, ys) = (&r.x.values, &r.y.values);
     let (nx, ny) = (xs.len(), ys.len());
     let dx = (r.x.hi() - r.x.lo()) / (nx - 1) as f64;
     let dy = (r.y.hi() - r.y.lo()) / (ny - 1) as f64;
     // each row's flags once (a cell is compared with its right and upper neighbours)
-    let flags: Vec<Option<Vec<bool>>> = r.rows.iter().map(|row| row.as_ref().map(|cells| cells.iter().map(&flag).collect())).collect();
+    let flags: Vec<Option<Vec<bool>>> = r.rows.iter().map(|row| row.as_ref().map(|(f, _)| f.iter().map(|&b| b & flag != 0).collect())).collect();
     let mut segs = vec![];
     // cells in blocks of 16: a block whose flags equal their right and upper neighbours' (two
     // slice comparisons) has no segment and is skipped; the segments keep their order
@@ -1149,33 +1198,27 @@ fn boundary_segments(r: &MapResult, flag: impl Fn(&Cell) -> bool) -> Vec<Segment
 /// The map as a figure: heatmap (margin with a diverging colour bar, or the verdict), the exact
 /// boundary (solid black) and 003's necessary boundary (dashed), physics axis titles.
 pub fn plot(r: &MapResult, title: &str) -> Plot {
-    // the largest finite margin on each side, one pass (NaN, a verdict map's, on neither)
+    plot_cells(&FigureCells::from_map(r), title)
+}
+
+/// [`plot`] from the compact copy of the cells.
+pub fn plot_cells(r: &FigureCells, title: &str) -> Plot {
+    // the largest finite margin on each side, one pass (a verdict map keeps none)
     let (mut neg, mut pos) = (1e-12f64, 1e-12f64);
-    for c in r.rows.iter().flatten().flatten().filter(|c| c.margin.is_finite()) {
-        if c.margin < 0.0 {
-            neg = neg.max(-c.margin);
+    for &m in r.rows.iter().flatten().flat_map(|(_, m)| m).filter(|m| m.is_finite()) {
+        if m < 0.0 {
+            neg = neg.max(-m);
         } else {
-            pos = pos.max(c.margin);
+            pos = pos.max(m);
         }
     }
     let z: Vec<Vec<f64>> = r
         .rows
         .iter()
-        .map(|row| match row {
-            Some(cells) => cells
-                .iter()
-                .map(|c| match r.quantity {
-                    Quantity::Margin => c.margin,
-                    Quantity::Verdict => {
-                        if c.stable {
-                            -1.0
-                        } else {
-                            1.0
-                        }
-                    }
-                })
-                .collect(),
-            None => vec![f64::NAN; r.x.values.len()],
+        .map(|row| match (row, r.quantity) {
+            (Some((_, margins)), Quantity::Margin) => margins.clone(),
+            (Some((flags, _)), Quantity::Verdict) => flags.iter().map(|&f| if f & FigureCells::STABLE != 0 { -1.0 } else { 1.0 }).collect(),
+            (None, _) => vec![f64::NAN; r.x.values.len()],
         })
         .collect();
     let (scale, label) = match r.quantity {
@@ -1189,8 +1232,8 @@ pub fn plot(r: &MapResult, title: &str) -> Plot {
         x_label: axis_label(&r.x.path),
         y_label: axis_label(&r.y.path),
         series: vec![
-            Series::new("exact stability boundary", boundary(r, |c| c.stable), "#000000"),
-            Series::new("003 necessary boundary", boundary(r, |c| c.necessary), "#CC79A7").dashed(),
+            Series::new("exact stability boundary", boundary(r, FigureCells::STABLE), "#000000"),
+            Series::new("003 necessary boundary", boundary(r, FigureCells::NECESSARY), "#CC79A7").dashed(),
         ],
         x_range: Some((r.x.lo() - dx / 2.0, r.x.hi() + dx / 2.0)),
         y_range: Some((r.y.lo() - dy / 2.0, r.y.hi() + dy / 2.0)),
@@ -1498,8 +1541,9 @@ mod tests {
                     })
                     .collect();
                 let r = MapResult { x: Axis::linspace("x", -1.0, 2.0, nx), y: Axis::linspace("y", 0.5, 3.0, ny), rows, quantity: Quantity::Verdict };
+                let compact = FigureCells::from_map(&r);
                 let (dx, dy) = (3.0 / (nx - 1) as f64, 2.5 / (ny - 1) as f64);
-                for flag in [(|c: &Cell| c.stable) as fn(&Cell) -> bool, |c: &Cell| c.necessary] {
+                for (bit, flag) in [(FigureCells::STABLE, (|c: &Cell| c.stable) as fn(&Cell) -> bool), (FigureCells::NECESSARY, |c: &Cell| c.necessary)] {
                     let mut want = vec![];
                     for j in 0..ny {
                         let Some(row) = &r.rows[j] else { continue };
@@ -1517,7 +1561,7 @@ mod tests {
                             }
                         }
                     }
-                    let got = boundary_segments(&r, flag);
+                    let got = boundary_segments(&compact, bit);
                     assert!(
                         got.len() == want.len() && got.iter().zip(&want).all(|(a, b)| a == b),
                         "{nx} x {ny}: {} segments against {}",
@@ -1561,7 +1605,7 @@ mod tests {
                 })
                 .collect();
             let r = MapResult { x: Axis::linspace("x", -2.0, 2.0, nx), y: Axis::linspace("y", 0.05, 4.5, ny), rows, quantity: Quantity::Verdict };
-            let segs = boundary_segments(&r, |c| c.stable);
+            let segs = boundary_segments(&FigureCells::from_map(&r), FigureCells::STABLE);
             let line = chain(&segs);
             let pieces: Vec<((f64, f64), (f64, f64))> = line.windows(2).filter(|w| !w[0].0.is_nan() && !w[1].0.is_nan()).map(|w| (w[0], w[1])).collect();
             let len = |(a, b): ((f64, f64), (f64, f64))| ((b.0 - a.0).powi(2) + (b.1 - a.1).powi(2)).sqrt();
