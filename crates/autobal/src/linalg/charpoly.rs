@@ -560,7 +560,8 @@ fn taylor_shift_fixed<const M: usize>(c: &[f64; M], s: f64) -> [f64; M] {
 /// first column: a root on the imaginary axis, or a pair symmetric about it).
 pub fn routh_right_half_plane(c: &[f64]) -> Option<usize> {
     let n = c.len() - 1;
-    if c[0].is_nan() || c[0] <= 0.0 || c.iter().any(|x| !x.is_finite()) {
+    // every coefficient finite, without a branch per coefficient (`|x| < ∞` is false for NaN)
+    if !(c[0] > 0.0) || !c.iter().fold(true, |ok, x| ok & (x.abs() < f64::INFINITY)) {
         return None;
     }
     match <&[f64; 13]>::try_from(c) {
