@@ -4,7 +4,8 @@
 //!
 //! Timed, each from the model parameters to the map (model set-up included):
 //! - `margin`: the library's map ([`autobal::spatial::map::stability_map`]): continuation of the
-//!   rightmost root of the characteristic polynomial in Ω, certified, QR where it cannot be;
+//!   rightmost root of the characteristic polynomial in Ω, certified; where it cannot be, all
+//!   roots continued from the last spectrum (Aberth), certified; QR where neither is;
 //! - `verdict`: the library's map, Routh–Hurwitz on the polynomial coefficients, changes of
 //!   verdict confirmed directly;
 //! - `boundary`: the stability boundary of the same plane traced as curves

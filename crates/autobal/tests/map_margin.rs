@@ -139,3 +139,65 @@ fn maps_of_many_lines_share_one_plane_polynomial_and_keep_every_cell() {
     assert!(stable > 100, "{stable}");
     eprintln!("worst difference to QR {worst:e}");
 }
+
+#[test]
+fn the_margins_three_routes_each_give_the_qr_abscissa() {
+    // The tracker of the margin map along lines of random rotors (balls free and locked, 600
+    // speeds in [0.05, 6]): at every speed its abscissa against the QR eigenvalues of the state
+    // matrix there. Route 1 (the rightmost root by Newton, a Routh count) and route 2 (all
+    // roots continued from the last spectrum by Aberth's iteration, disjoint inclusion disks)
+    // are certified to ACCEPT (1 + |λ|) + GAP = 1e-10 (1 + |λ|) + 1e-12 of the polynomial's
+    // abscissa; the QR abscissa is within ~1e-13 of the exact one for these separated
+    // rightmost roots, so 1e-10 (1 + max |λ|) + 1e-12 bounds the difference (a wrong root, an
+    // overtake missed, errs by O(0.01-1)). The verdicts (`counts_as_stable`) agree wherever
+    // the abscissa is not within 1e-9 of 0. Route 2 must answer some speeds (overtakes occur
+    // on these lines), and the counts of the routes are reported.
+    use autobal::linalg::charpoly::{AbscissaTracker, SpeedPolynomial};
+    use autobal::linalg::eigen::eigenvalues;
+    use autobal::spatial::linear_model::Pencil;
+    use autobal::spatial::stability::counts_as_stable;
+    let mut rng = Rng(202_611_291);
+    let (mut routes, mut worst) = ([0usize; 3], 0.0f64);
+    for _ in 0..8 {
+        let c_sigma = rng.range(0.2, 1.6);
+        let d = DimensionlessInput {
+            c_sigma,
+            rho_s: rng.range(0.2, 0.8),
+            l_left: rng.range(-0.3, 1.4),
+            z_a: rng.range(-2.0, 2.0),
+            anisotropy: AnisotropyInput::Direct(rng.range(0.0, 0.2).min(0.5 * c_sigma)),
+            h_x: rng.range(0.0, 0.2),
+            h_s: rng.range(0.01, 0.5),
+            method: AnisotropyMethod::Exact,
+            direct_balls: Some((rng.range(0.005, 0.1), rng.range(0.0, 1.0))),
+        };
+        let model = SpatialModel::from_dimensionless(&d).unwrap();
+        for balls in [Balls::Free, Balls::Locked] {
+            let ss = StateSpace::new(&model, balls).unwrap();
+            let sp = SpeedPolynomial::new(&Pencil::terms(&model, balls).unwrap()).unwrap();
+            let n = ss.states;
+            let mut t = AbscissaTracker::new();
+            for j in 0..600 {
+                let w = 0.05 + (6.0 - 0.05) * j as f64 / 599.0;
+                let c = sp.at(w);
+                let a = t.abscissa(w, &c[..=n], || eigenvalues(&ss.at(w), n)).unwrap();
+                let ev = eigenvalues(&ss.at(w), n).unwrap();
+                let qr = ev.iter().map(|z| z.re).fold(f64::NEG_INFINITY, f64::max);
+                let size = ev.iter().map(|z| z.norm()).fold(0.0, f64::max);
+                let err = (a - qr).abs();
+                worst = worst.max(err / (1e-10 * (1.0 + size) + 1e-12));
+                assert!(err <= 1e-10 * (1.0 + size) + 1e-12, "Ω = {w}, {balls:?}: tracker {a} vs QR {qr}");
+                if qr.abs() > 1e-9 {
+                    assert_eq!(counts_as_stable(a, balls), counts_as_stable(qr, balls), "Ω = {w}, {balls:?}");
+                }
+            }
+            routes[0] += t.continued;
+            routes[1] += t.all_roots;
+            routes[2] += t.fallbacks;
+        }
+    }
+    assert_eq!(routes.iter().sum::<usize>(), 8 * 2 * 600);
+    assert!(routes[1] > 0, "overtakes occur on these lines and route 2 answers some: {routes:?}");
+    assert!(routes[2] >= 16, "each line starts with the full solver: {routes:?}");
+    eprintln!("rightmost root {}, all roots {}, QR {} (first speeds: 16); worst error / bound {worst:e}", routes[0], routes[1], routes[2]);
+}

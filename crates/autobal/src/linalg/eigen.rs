@@ -475,29 +475,40 @@ pub fn routh_hurwitz_stable(c: &[f64]) -> bool {
 }
 
 /// [`routh_hurwitz_stable`]'s array for 12 states (coefficients checked positive and finite):
-/// the two rows in fixed arrays of 8, each new row written over the older one, so that the loops
-/// have fixed bounds (the same operations on the same values).
+/// the two rows in fixed arrays of 8, each new row written over the older one, each step
+/// computing the entries its row holds (one fewer than the row two above it; a fixed number
+/// per step, so that the loops have fixed bounds) and zeroing the one after, which the full
+/// row would have computed as `0 − t0·0/b0 = 0`: the same operations on the same values.
 fn routh_hurwitz_12(c: &[f64; 13]) -> bool {
-    let mut e = [c[0], c[2], c[4], c[6], c[8], c[10], c[12], 0.0];
-    let mut o = [c[1], c[3], c[5], c[7], c[9], c[11], 0.0, 0.0];
-    // `t[j] = t[j+1] − t[0] b[j+1] / b[0]` over the older row `t`; false when `b[0] ≤ 0`
-    let step = |t: &mut [f64; 8], b: &[f64; 8]| -> bool {
+    /// `t[j] = t[j+1] − t[0] b[j+1] / b[0]` for the `L` entries of the new row over the older
+    /// row `t`; false when `b[0] ≤ 0`.
+    #[inline(always)]
+    fn step<const L: usize>(t: &mut [f64; 8], b: &[f64; 8]) -> bool {
         if b[0] <= 0.0 {
             return false;
         }
         let t0 = t[0];
-        for j in 0..7 {
+        for j in 0..L {
             t[j] = t[j + 1] - t0 * b[j + 1] / b[0];
         }
+        t[L] = 0.0;
         true
-    };
-    // rows 2 … 12 (11 steps, as `for _ in 1..n`), the newest row last in `e`
-    for _ in 0..5 {
-        if !step(&mut e, &o) || !step(&mut o, &e) {
-            return false;
-        }
     }
-    step(&mut e, &o) && e[0] > 0.0
+    let mut e = [c[0], c[2], c[4], c[6], c[8], c[10], c[12], 0.0];
+    let mut o = [c[1], c[3], c[5], c[7], c[9], c[11], 0.0, 0.0];
+    // rows 2 … 12 (11 steps), the newest row last in `e`
+    step::<6>(&mut e, &o)
+        && step::<5>(&mut o, &e)
+        && step::<5>(&mut e, &o)
+        && step::<4>(&mut o, &e)
+        && step::<4>(&mut e, &o)
+        && step::<3>(&mut o, &e)
+        && step::<3>(&mut e, &o)
+        && step::<2>(&mut o, &e)
+        && step::<2>(&mut e, &o)
+        && step::<1>(&mut o, &e)
+        && step::<1>(&mut e, &o)
+        && e[0] > 0.0
 }
 
 /// Gaussian elimination with partial pivoting of a complex matrix, applied alike to `x`:

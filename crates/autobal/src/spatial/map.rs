@@ -7,8 +7,9 @@
 //! (one model, all speeds) with the exact characteristic polynomial in `Ω`
 //! ([`crate::linalg::charpoly`]):
 //! - the **margin** by continuation of the rightmost eigenvalue with a Routh certificate at
-//!   every speed, falling back to the QR eigenvalues where another eigenvalue overtakes
-//!   ([`AbscissaTracker`]);
+//!   every speed; where another eigenvalue overtakes, by continuation of all eigenvalues from
+//!   the last speed that had them (certified by disjoint inclusion disks), and by the QR
+//!   eigenvalues where that cannot certify or no spectrum is known yet ([`AbscissaTracker`]);
 //! - the **verdict** by the Routh–Hurwitz test on the coefficients at each speed; every change
 //!   of verdict along a line, and the ends of each block of speeds, are confirmed by the direct
 //!   test on the state matrix (Hessenberg characteristic polynomial), and cells found wrong are
