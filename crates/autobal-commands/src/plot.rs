@@ -67,7 +67,8 @@ impl Series {
 /// `#rgb` or `#rrggbb` as bytes.
 fn hex_color(c: &str) -> Option<[u8; 3]> {
     let h = c.strip_prefix('#')?;
-    let v = u32::from_str_radix(h, 16).ok().filter(|_| h.is_ascii())?;
+    // hex digits only (`from_str_radix` would take a leading `+`, which SVG renderers refuse)
+    let v = u32::from_str_radix(h, 16).ok().filter(|_| h.bytes().all(|b| b.is_ascii_hexdigit()))?;
     match h.len() {
         6 => Some([(v >> 16) as u8, (v >> 8) as u8, v as u8]),
         3 => Some([(v >> 8 & 15) as u8 * 17, (v >> 4 & 15) as u8 * 17, (v & 15) as u8 * 17]),
@@ -2057,13 +2058,15 @@ mod tests {
                     let (u, v) = ((i as f64 + 0.5) / kf, (j as f64 + 0.5) / kf);
                     u > bar[0] && u < bar[0] + bar[2] && v > bar[1] && v < bar[1] + bar[3]
                 };
-                let mut same = 0;
+                // the bar's pixels are compared by the other test: out of the count here, so
+                // that they do not pad the share of identical pixels
+                let (mut same, mut total) = (0, 0);
                 for j in 0..h {
                     for i in 0..w {
                         if on_bar(i, j) {
-                            same += 1;
                             continue;
                         }
+                        total += 1;
                         let f = px(&fast, i, j);
                         if f == px(&want, i, j) {
                             same += 1;
@@ -2073,7 +2076,7 @@ mod tests {
                         assert!(near, "scale {k}: pixel ({i}, {j}) {f:?} is not the reference's there or next to it ({:?})", px(&want, i, j));
                     }
                 }
-                assert!(same as f64 >= 0.99 * (w * h) as f64, "scale {k}: {same} of {} pixels identical", w * h);
+                assert!(same as f64 >= 0.99 * total as f64, "scale {k}: {same} of {total} pixels off the bar identical");
             }
         }
     }
@@ -2182,7 +2185,9 @@ mod tests {
                     }
                 }
                 eprintln!("{scale:?} scale {k}: off the bar {differ} pixels differ, at most {worst}; on the bar at most {bar_worst}, away from the verdict's edge {bar_far}");
-                assert!(worst <= 64 && differ <= w * hh / 10_000, "{scale:?} scale {k}: {differ} pixels differ, at most by {worst}");
+                // a quarter-pixel edge (64 levels) on at most 16 pixels: 4 measured at 1.5, 0 at 1;
+                // a short stroke shifted by a quarter pixel would exceed it
+                assert!(worst <= 64 && differ <= 16, "{scale:?} scale {k}: {differ} pixels differ, at most by {worst}");
                 assert!(bar_far <= 3, "{scale:?} scale {k}: the bar differs by {bar_far}");
             }
         }
