@@ -1005,10 +1005,7 @@ pub fn export_model(rotor: &LinearRotor, inputs: (Option<&Path>, Option<(&Table,
     std::fs::create_dir_all(dir).map_err(|e| anyhow!("--out {}: cannot create the folder: {e}", dir.display()))?;
     let (text, files) = export(rotor, stem);
     let mut o = outfile::Outputs::new();
-    o.inputs(inputs.0);
-    if let Some((root, from)) = inputs.1 {
-        o.config_files(root, from);
-    }
+    o.config_inputs(inputs.0, inputs.1);
     let toml_path = dir.join(format!("{stem}.toml"));
     o.output("--out", &toml_path);
     for (name, _) in &files {

@@ -137,25 +137,34 @@ impl Outputs {
 
     /// The `--config` file, when one is given (the embedded default is no file), and the files
     /// a linear rotor config names (its matrices: [`autobal::linear_rotor::config::file_names`],
-    /// relative to the config's folder), so that no output overwrites them. A config that cannot
-    /// be read or parsed here adds only itself (the command reports that error where it reads
-    /// the config).
+    /// relative to the config's folder), so that no output overwrites them: for a caller
+    /// without the config's tables, which are read here again ([`Outputs::config_inputs`]).
     pub fn inputs(&mut self, config: Option<&Path>) -> &mut Self {
-        if let Some(c) = config {
-            self.input("--config", c);
-            if let Some(root) = crate::config::read_limited(c).ok().and_then(|t| t.parse::<toml::Table>().ok()) {
-                self.config_files(&root, c.parent().unwrap_or(Path::new("")));
-            }
-        }
-        self
+        self.config_inputs(config, None)
     }
 
-    /// The files the config `root` names, read relative to `dir` (a linear rotor's matrices:
-    /// [`autobal::linear_rotor::config::file_names`]), as inputs: for a config whose `--set`
-    /// or tables name other files than the file on disk.
-    pub fn config_files(&mut self, root: &toml::Table, dir: &Path) -> &mut Self {
-        for (key, name) in autobal::linear_rotor::config::file_names(root) {
-            self.input(&format!("--config's {key}"), &dir.join(name));
+    /// [`Outputs::inputs`] with the tables the command read (after `--set`, or Python's tables)
+    /// and the folder their files are read from, where it has them: the files they name are
+    /// the inputs (not those of the file on disk), and the file is not read again. Without
+    /// them, a config file that cannot be read or parsed here adds only itself (the command
+    /// reports that error where it reads the config).
+    pub fn config_inputs(&mut self, config: Option<&Path>, tables: Option<(&toml::Table, &Path)>) -> &mut Self {
+        if let Some(c) = config {
+            self.input("--config", c);
+        }
+        let read;
+        let tables = match (tables, config) {
+            (Some(t), _) => Some(t),
+            (None, Some(c)) => {
+                read = crate::config::read_limited(c).ok().and_then(|t| t.parse::<toml::Table>().ok());
+                read.as_ref().map(|r| (r, c.parent().unwrap_or(Path::new(""))))
+            }
+            (None, None) => None,
+        };
+        if let Some((root, dir)) = tables {
+            for (key, name) in autobal::linear_rotor::config::file_names(root) {
+                self.input(&format!("--config's {key}"), &dir.join(name));
+            }
         }
         self
     }
@@ -236,15 +245,14 @@ impl Outputs {
 /// or dropped), for [`remove_unfinished`].
 static UNFINISHED: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
 
-fn unfinished(add: Option<&Path>, remove: Option<&Path>) {
+fn track_unfinished(p: &Path) {
+    UNFINISHED.lock().unwrap_or_else(|e| e.into_inner()).push(p.to_path_buf());
+}
+
+fn untrack_unfinished(p: &Path) {
     let mut u = UNFINISHED.lock().unwrap_or_else(|e| e.into_inner());
-    if let Some(p) = remove {
-        if let Some(i) = u.iter().rposition(|q| q == p) {
-            u.swap_remove(i);
-        }
-    }
-    if let Some(p) = add {
-        u.push(p.to_path_buf());
+    if let Some(i) = u.iter().rposition(|q| q == p) {
+        u.swap_remove(i);
     }
 }
 
@@ -287,7 +295,7 @@ impl Staged {
     fn open(option: &str, path: &Path) -> std::io::Result<Self> {
         let tmp = temp_for(path);
         let f = File::options().write(true).create(true).truncate(true).open(&tmp)?;
-        unfinished(Some(&tmp), None);
+        track_unfinished(&tmp);
         Ok(Staged { option: option.to_string(), path: path.to_path_buf(), tmp, file: Some(BufWriter::with_capacity(1 << 16, f)) })
     }
 
@@ -303,7 +311,7 @@ impl Staged {
         let f = w.into_inner().map_err(|e| anyhow!("{}: cannot write {}: {}", self.option, self.path.display(), e.error()))?;
         drop(f);
         let renamed = std::fs::rename(&self.tmp, &self.path);
-        unfinished(None, Some(&self.tmp));
+        untrack_unfinished(&self.tmp);
         renamed.with_context(|| format!("{}: cannot rename {} to {}", self.option, self.tmp.display(), self.path.display()))?;
         Ok(self.path.clone())
     }
@@ -325,7 +333,7 @@ impl Drop for Staged {
     fn drop(&mut self) {
         if self.file.take().is_some() {
             let _ = std::fs::remove_file(&self.tmp);
-            unfinished(None, Some(&self.tmp));
+            untrack_unfinished(&self.tmp);
         }
     }
 }
@@ -353,7 +361,7 @@ impl TempName {
     pub fn create(option: &str, path: &Path) -> Result<(Self, File)> {
         let tmp = temp_for(path);
         let f = File::create(&tmp).with_context(|| format!("{option}: cannot create {}", tmp.display()))?;
-        unfinished(Some(&tmp), None);
+        track_unfinished(&tmp);
         Ok((TempName { option: option.to_string(), path: path.to_path_buf(), tmp, done: false }, f))
     }
 
@@ -361,7 +369,7 @@ impl TempName {
     pub fn rename(mut self) -> Result<PathBuf> {
         std::fs::rename(&self.tmp, &self.path).with_context(|| format!("{}: cannot rename {} to {}", self.option, self.tmp.display(), self.path.display()))?;
         self.done = true;
-        unfinished(None, Some(&self.tmp));
+        untrack_unfinished(&self.tmp);
         Ok(self.path.clone())
     }
 }
@@ -370,7 +378,7 @@ impl Drop for TempName {
     fn drop(&mut self) {
         if !self.done {
             let _ = std::fs::remove_file(&self.tmp);
-            unfinished(None, Some(&self.tmp));
+            untrack_unfinished(&self.tmp);
         }
     }
 }
