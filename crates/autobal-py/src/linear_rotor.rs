@@ -273,16 +273,19 @@ impl PyLinearRotor {
         // the contact law acts only through contact, the slip rate only with rolling resistance:
         // given without them they would have no effect, so they are refused (as the config
         // reader refuses them)
-        let f = |k: &str| format!("linear_rotor.balancer[{i}].{k}");
-        for (k, given) in
-            [("ball_diameter", ball_diameter.is_some()), ("restitution", restitution.is_some()), ("contact_stiffness", contact_stiffness.is_some())]
-        {
-            if given && !contact {
-                return Err(err(py, autobal::Error::invalid(f(k), "has no effect without contact=True")));
-            }
-        }
-        if slip_rate.is_some() && physics.rolling_resistance == 0.0 {
-            return Err(err(py, autobal::Error::invalid(f("slip_rate"), "has no effect without a rolling_resistance")));
+        let given = |k: &str| match k {
+            "ball_diameter" => ball_diameter.is_some(),
+            "restitution" => restitution.is_some(),
+            "contact_stiffness" => contact_stiffness.is_some(),
+            "slip_rate" => slip_rate.is_some(),
+            _ => false,
+        };
+        if let Some((k, why)) = autobal::balls::moot_key(&physics, given) {
+            let lacks = match why {
+                autobal::balls::Moot::Contact => "contact=True",
+                autobal::balls::Moot::Rolling => "a rolling_resistance",
+            };
+            return Err(err(py, autobal::Error::invalid(format!("linear_rotor.balancer[{i}].{k}"), format!("has no effect without {lacks}"))));
         }
         if physics.is_active() {
             // planes before this one without real balls: point masses (the default physics)

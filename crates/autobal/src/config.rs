@@ -414,7 +414,7 @@ pub fn ball_physics_of(sec: &Section) -> Result<crate::balls::BallPhysics> {
     };
     // the size and the contact law act only through contact, the slip rate only with rolling
     // resistance (crate::balls)
-    sec.used_only_if(b.contact, &["ball_diameter", "restitution", "contact_stiffness"], &format!("with {} = false", sec.field("contact")));
+    sec.used_only_if(b.contact, &crate::balls::CONTACT_KEYS, &format!("with {} = false", sec.field("contact")));
     sec.used_only_if(b.rolling_resistance != 0.0, &["slip_rate"], &format!("with {} = 0", sec.field("rolling_resistance")));
     Ok(b)
 }

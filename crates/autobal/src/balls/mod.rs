@@ -168,6 +168,32 @@ impl BallPhysicsBuilder {
     }
 }
 
+/// The keys of a ball set that act only through contact (the contact law).
+pub const CONTACT_KEYS: [&str; 3] = ["ball_diameter", "restitution", "contact_stiffness"];
+
+/// Why a key of a ball set given with these balls has no effect, if one does: the first of
+/// [`CONTACT_KEYS`] given without contact (`Moot::Contact`), else `slip_rate` given without a
+/// rolling resistance (`Moot::Rolling`); `given` says which keys were given. One rule for every
+/// front end: the planar and spatial configs warn ([`crate::config::ball_physics_of`]), the
+/// linear rotor's config and Python's `add_balancer` refuse.
+pub fn moot_key(b: &BallPhysics, given: impl Fn(&str) -> bool) -> Option<(&'static str, Moot)> {
+    if !b.contact {
+        if let Some(k) = CONTACT_KEYS.into_iter().find(|k| given(k)) {
+            return Some((k, Moot::Contact));
+        }
+    }
+    (b.rolling_resistance == 0.0 && given("slip_rate")).then_some(("slip_rate", Moot::Rolling))
+}
+
+/// What a moot key of [`moot_key`] lacks.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Moot {
+    /// A contact-law key without contact.
+    Contact,
+    /// `slip_rate` without a rolling resistance.
+    Rolling,
+}
+
 impl BallPhysics {
     /// A builder starting from [`BallPhysics::default`].
     pub fn builder() -> BallPhysicsBuilder {

@@ -623,13 +623,12 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
         // the contact law acts only through contact, the slip rate only with rolling resistance
         // (crate::balls): given without them they would have no effect, so they are refused
         // (this reader has no warnings to give; Python's add_balancer refuses them too)
-        for k in ["ball_diameter", "restitution", "contact_stiffness"] {
-            if !contact && b.t.contains_key(k) {
-                return Err(Error::invalid(b.field(k), "has no effect without contact = true"));
-            }
-        }
-        if physics.rolling_resistance == 0.0 && b.t.contains_key("slip_rate") {
-            return Err(Error::invalid(b.field("slip_rate"), "has no effect without a rolling_resistance"));
+        if let Some((k, why)) = crate::balls::moot_key(&physics, |k| b.t.contains_key(k)) {
+            let lacks = match why {
+                crate::balls::Moot::Contact => "contact = true",
+                crate::balls::Moot::Rolling => "a rolling_resistance",
+            };
+            return Err(Error::invalid(b.field(k), format!("has no effect without {lacks}")));
         }
         rotor.ball_physics.push(physics);
     }
