@@ -70,7 +70,8 @@ pub fn same_file(a: &Path, b: &Path) -> bool {
 struct Ident<'a> {
     path: &'a Path,
     node: Option<(u64, u64)>,
-    canon: std::cell::OnceCell<Option<PathBuf>>,
+    /// Kept once found: a lookup that failed (a folder not created yet) is tried again.
+    canon: std::cell::OnceCell<PathBuf>,
 }
 
 impl<'a> Ident<'a> {
@@ -91,15 +92,15 @@ impl<'a> Ident<'a> {
 
     /// The canonical path, or the canonical folder and the name of a missing file.
     fn canon(&self) -> Option<&PathBuf> {
-        self.canon
-            .get_or_init(|| {
-                let p = self.path;
-                if let Ok(c) = p.canonicalize() {
-                    return Some(c);
-                }
-                Some(parent(p).canonicalize().ok()?.join(p.file_name()?))
-            })
-            .as_ref()
+        if let Some(c) = self.canon.get() {
+            return Some(c);
+        }
+        let p = self.path;
+        let c = match p.canonicalize() {
+            Ok(c) => c,
+            Err(_) => parent(p).canonicalize().ok()?.join(p.file_name()?),
+        };
+        Some(self.canon.get_or_init(|| c))
     }
 
     /// [`same_file`] of the two paths.
@@ -224,9 +225,20 @@ impl Outputs {
             match std::fs::metadata(&dir) {
                 Ok(m) if m.is_dir() => {}
                 Ok(_) => bail!("{opt}: {} is not a folder", dir.display()),
+                // `q/..` with `q` missing: creating `q` only to step out of it again would leave
+                // a folder nobody asked for
+                Err(_) if dir.components().any(|c| c == std::path::Component::ParentDir) => {
+                    bail!("{opt}: the folder {} does not exist and goes through `..`; give an existing folder", dir.display())
+                }
                 Err(_) => std::fs::create_dir_all(&dir).map_err(|e| anyhow!("{opt}: cannot create the folder {}: {e}", dir.display()))?,
             }
-            let cannot = |e: std::io::Error| anyhow!("{opt}: cannot write in the folder {}: {e}", dir.display());
+            let cannot = |e: std::io::Error| {
+                if e.kind() == std::io::ErrorKind::InvalidFilename {
+                    anyhow!("{opt}: the file name {:?} is too long for the folder {} ({e})", p.file_name().unwrap_or_default(), dir.display())
+                } else {
+                    anyhow!("{opt}: cannot write in the folder {}: {e}", dir.display())
+                }
+            };
             match first {
                 Some((fopt, fp)) if staged.is_none() && parent(fp) == dir => staged = Some(Staged::open(fopt, fp).map_err(cannot)?),
                 _ => {
@@ -429,6 +441,29 @@ mod tests {
         s.commit().unwrap();
         assert_eq!(std::fs::read_to_string(&p).unwrap(), "x,y\n");
         assert_eq!(std::fs::read_dir(&d).unwrap().count(), 1);
+        std::fs::remove_dir_all(&d).unwrap();
+    }
+
+    #[test]
+    fn a_missing_folder_and_back_a_too_long_name_and_two_outputs_in_a_new_folder() {
+        let d = scratch("edges");
+        // `q/..` with `q` missing: refused, and `q` not created
+        let e = Outputs::new().output("--out", &resolve(&d.join("q/.."), "s.csv")).check().unwrap_err().to_string();
+        assert!(e.starts_with("--out: ") && e.contains("`..`"), "{e}");
+        assert!(!d.join("q").exists(), "a folder was created for `q/..`");
+        // a name longer than the file system allows names the name, not the folder
+        let long = d.join("n".repeat(300));
+        let e = Outputs::new().output("--out", &long).check_and_stage_first().err().expect("too long").to_string();
+        assert!(e.starts_with("--out: ") && e.contains("too long") && !e.contains("cannot write in the folder"), "{e}");
+        // the same file twice in a folder that does not exist yet: the first output's folder
+        // lookup failed before the folder was created, and is tried again for the second
+        // (compared with an existing input first, while the folder is still missing)
+        let cfg = d.join("c.toml");
+        std::fs::write(&cfg, "x").unwrap();
+        let mut o = Outputs::new();
+        o.input("--config", &cfg).output("--out", &d.join("new/a.csv")).output("--svg", &d.join("new/./a.csv"));
+        let e = o.check().unwrap_err().to_string();
+        assert!(e.contains("also the output of --out"), "{e}");
         std::fs::remove_dir_all(&d).unwrap();
     }
 
