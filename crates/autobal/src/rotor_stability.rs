@@ -258,7 +258,8 @@ impl Rotor {
     /// What the stationary state `x` of `field` is ([`StateKind`]). Planar: E on the axis,
     /// balanced or semi-balanced; else partially balanced with the balls bunched, not balanced
     /// without. Spatial: static and couple residual below `1e-6` of the unbalances' scale,
-    /// balanced; else partially balanced (never [`StateKind::NotBalanced`]: see the code).
+    /// balanced; else partially balanced where a plane's balls are bunched, not balanced where
+    /// none is (e.g. the balls opposite each other in every plane).
     /// Linear: [`crate::linear_rotor::partial::state_kind`] (every race centre on the axis:
     /// balanced).
     pub fn state_kind(field: &Field, x: &[f64]) -> StateKind {

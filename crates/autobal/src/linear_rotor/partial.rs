@@ -92,13 +92,26 @@ pub fn plane_whirl(rotor: &LinearRotor, x: &[f64]) -> Vec<f64> {
     plane_positions(rotor, x).iter().map(|(a, b)| a.hypot(*b)).collect()
 }
 
+/// The cap on a ball's angle off the line of the whirl in [`state_kind`] (rad).
+const ON_LINE_MAX: f64 = 1e-2;
+
 /// Partially balanced where a plane is at its capacity limit, its balls bunched (all at one
 /// angle to `1e-6` rad) with its race centre off the axis (more than `1e-6 ℓ`); not balanced
 /// where a plane's race centre is off the axis with every ball on the line of its whirl
-/// (`ψ ≡ arg d` mod `π` to `1e-6` rad, on both sides: the balls at rest on a whirling race,
+/// (`ψ ≡ arg d` mod `π`, on both sides: the balls at rest on a whirling race,
 /// [`StateKind::NotBalanced`]); else balanced (module docs). A balanced state's race centres are
 /// on the axis only to first order where the nodes tilt (the tilted ring pushes the balls at
 /// second order), so the balls' placement, not the displacement alone, tells the states apart.
+///
+/// "On the line" allows what the tilt moves a ball off it: on a race whirling at `d` the whirl
+/// pushes a ball along the race with `m_b R Ω² |d| sin δ` (`δ` its angle off the line), the
+/// tilted ring (tilt `θ`, absolute tilt rate `~Ω θ` in a steady whirl) with at most
+/// `~1.5 m_b R² Ω² θ²` (the terms `m_b R² σ (ω·e)` and `½ m_b R² (ω̇ × τ)` of the ball's
+/// equation), so a ball at rest there has `δ ≤ 2 R θ² / |d|` (plus `1e-6` rad of round-off),
+/// capped at `1e-2` rad, where a balanced state's balls (at angles set by the unbalance, not
+/// by the whirl's line) would need a coincidence to pass. (A flexible overhung rotor at
+/// 1.03 of its first critical speed, whirling 16 mm with the balls opposite: `δ = 1.4e-6` rad,
+/// called balanced before 2026-11-29.)
 pub fn state_kind(field: &LinearRotorField, x: &[f64]) -> StateKind {
     let r = field.rotor();
     let tol = 1e-6 * length_scale(r);
@@ -115,12 +128,15 @@ pub fn state_kind(field: &LinearRotorField, x: &[f64]) -> StateKind {
         if crate::rotor_stability::bunched(psi) {
             return StateKind::PartiallyBalanced;
         }
-        // every ball on the line of the whirl (`ψ ≡ arg d` mod π, to 1e-6 rad): at rest on the
-        // whirling race only there, the balls not balancing ([`StateKind::NotBalanced`])
+        // every ball on the line of the whirl (`ψ ≡ arg d` mod π): at rest on the whirling race
+        // only there, the balls not balancing ([`StateKind::NotBalanced`]); off the line by at
+        // most the tilted ring's push over the whirl's (function docs), to 1e-6 rad
         let along = c.1.atan2(c.0);
+        let tilt2 = r.dof(b.node, Direction::Alpha).zip(r.dof(b.node, Direction::Beta)).map_or(0.0, |(ia, ib)| x[ia] * x[ia] + x[ib] * x[ib]);
+        let off_line = (1e-6 + 2.0 * b.radius * tilt2 / d).min(ON_LINE_MAX);
         on_line |= psi.iter().all(|a| {
             let w = (a - along).rem_euclid(std::f64::consts::PI);
-            w.min(std::f64::consts::PI - w) <= 1e-6
+            w.min(std::f64::consts::PI - w) <= off_line
         });
     }
     if on_line {
@@ -360,5 +376,50 @@ mod tests {
         assert!((x.hypot(y) - s.whirl[0]).abs() <= 1e-8 * s.whirl[0], "radius {} vs {}", x.hypot(y), s.whirl[0]);
         assert!(wrap(y.atan2(x) - w * e.t - d[1].atan2(d[0])) <= 1e-8, "phase");
         eprintln!("t_end {t_end}: ψ {:?} vs {:?}, radius {} vs {}", e.psi, s.psi, x.hypot(y), s.whirl[0]);
+    }
+
+    /// Two balls opposite each other at an overhung disk of a flexible shaft (gyroscopic,
+    /// the race 0.2 m off the node), just above the first critical speed: an equilibrium (Newton
+    /// from the balls at 0 and π) with the race whirling ~16 mm, its balls off the line of the
+    /// whirl by more than 1e-6 rad (the tilted ring's push: the old rule called it balanced),
+    /// and within the bound `2 R θ²/|d|` (capped at 1e-2 rad) of [`state_kind`]'s docs. It is not balanced; the
+    /// balanced state at the same speed (whirl ~1e-10 m, balls ~0.9 rad off that line) still is.
+    #[test]
+    fn opposite_balls_on_a_tilting_race_are_not_balanced() {
+        use crate::analysis::{stationary, NewtonOptions, VectorField};
+        use crate::linear_rotor::shaft::{Bearing, Disk, ShaftBuilder};
+        use crate::linear_rotor::Unbalance;
+        use crate::rotor_stability::{Field, Rotor};
+        let mut sb = ShaftBuilder::uniform(4, 0.8, 0.04, 2.1e11, 7810.0);
+        sb.disks.push(Disk { node: 4, mass: 8.0, id: 0.05, ip: 0.09 });
+        sb.bearings.push(Bearing { node: 0, k: 2e7, c: 500.0 });
+        sb.bearings.push(Bearing { node: 2, k: 2e7, c: 500.0 });
+        (sb.rotary_inertia, sb.gyroscopic) = (true, true);
+        let mut r = sb.build().unwrap();
+        r.unbalances.push(Unbalance { node: 4, me: 2e-3, phase: 0.0, offset: 0.0 });
+        r.balancers.push(BalancerPlane { node: 4, radius: 0.1, balls: 2, ball_mass: 0.01, drag: 1e-4, offset: 0.2 });
+        let rotor = Rotor::Linear(r.clone());
+        let w = 1.03 * rotor.natural_frequency();
+        let f = rotor.field(w).unwrap();
+        let Field::Linear(lf) = &f else { unreachable!() };
+        let m = f.dim() / 2;
+        let mut x = vec![0.0; f.dim()];
+        x[m - 1] = std::f64::consts::PI;
+        let s = stationary(&f, &x, &NewtonOptions::default()).unwrap();
+        let d = plane_whirl(&r, &s.x)[0];
+        let (ia, ib) = (r.dof(4, Direction::Alpha).unwrap(), r.dof(4, Direction::Beta).unwrap());
+        let bound = 2.0 * 0.1 * (s.x[ia].powi(2) + s.x[ib].powi(2)) / d;
+        let c = plane_positions(&r, &s.x)[0];
+        let off = |a: f64| {
+            let v = (a - c.1.atan2(c.0)).rem_euclid(std::f64::consts::PI);
+            v.min(std::f64::consts::PI - v)
+        };
+        let dev = off(s.x[m - 2]).max(off(s.x[m - 1]));
+        assert!(d > 1e-2 && dev > 1e-6 && dev <= bound.min(ON_LINE_MAX), "whirl {d}, off the line {dev}, bound {bound}");
+        assert_eq!(state_kind(lf, &s.x), StateKind::NotBalanced, "whirl {d}, off the line {dev}");
+        let (fb, sbal) = crate::rotor_campbell::stationary_at(&rotor, w).unwrap();
+        let Field::Linear(lfb) = &fb else { unreachable!() };
+        assert!(plane_whirl(&r, &sbal.x)[0] < 1e-8 * d, "{:?}", plane_whirl(&r, &sbal.x));
+        assert_eq!(state_kind(lfb, &sbal.x), StateKind::Balanced);
     }
 }
