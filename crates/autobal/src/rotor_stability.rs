@@ -258,8 +258,9 @@ impl Rotor {
     /// What the stationary state `x` of `field` is ([`StateKind`]). Planar: E on the axis,
     /// balanced or semi-balanced; else partially balanced with the balls bunched, not balanced
     /// without. Spatial: static and couple residual below `1e-6` of the unbalances' scale,
-    /// balanced; else partially balanced where a plane's balls are bunched, not balanced where
-    /// none is (e.g. the balls opposite each other in every plane).
+    /// balanced; else not balanced where a plane's race whirls with its balls spread along the
+    /// line of that whirl (as on a linear rotor), partially balanced otherwise (balls bunched, or
+    /// spread against a residual they cannot cancel: one plane against a couple unbalance).
     /// Linear: [`crate::linear_rotor::partial::state_kind`] (every race centre on the axis:
     /// balanced).
     pub fn state_kind(field: &Field, x: &[f64]) -> StateKind {
@@ -307,20 +308,35 @@ impl Rotor {
                 }
                 let zl = if zl > 0.0 { zl } else { 1.0 };
                 if rs[0].hypot(rs[1]) <= 1e-6 * scale && rc[0].hypot(rc[1]) <= 1e-6 * scale * zl {
-                    StateKind::Balanced
-                } else if psi.is_empty()
-                    || r.planes
-                        .iter()
-                        .filter(|p| p.n > 0)
-                        .scan(0, |j, p| {
-                            *j += p.n;
-                            Some(bunched(&psi[*j - p.n..*j]))
-                        })
-                        .any(|b| b)
-                {
-                    StateKind::PartiallyBalanced
-                } else {
+                    return StateKind::Balanced;
+                }
+                // not balanced where a plane's race whirls (more than 1e-6 of the length scale
+                // `scale / m`) with its balls spread along the line of that whirl, as on the
+                // linear rotor ([`crate::linear_rotor::partial::state_kind`], whose docs give
+                // the tilt's allowance); else partially balanced (bunched balls, or balls spread
+                // against a residual they cannot cancel, e.g. one plane against a couple)
+                let y = s.full_state(0.0, x);
+                let drive = crate::drive::Drive::Speed { omega0: s.omega() };
+                let eq = crate::spatial::dynamics::Equations::new(r, &drive);
+                let tol = 1e-6 * scale / r.total_mass();
+                let tilt2 = y[2] * y[2] + y[3] * y[3];
+                let mut j = 0;
+                let mut on_line = false;
+                for p in r.planes.iter().filter(|p| p.n > 0) {
+                    let ps = &psi[j..j + p.n];
+                    j += p.n;
+                    let d = eq.displacement_at(&y, p.z);
+                    let dn = d[0].hypot(d[1]);
+                    if dn <= tol || bunched(ps) {
+                        continue;
+                    }
+                    let allowed = (1e-6 + 2.0 * p.race_radius * tilt2 / dn).min(crate::linear_rotor::partial::ON_LINE_MAX);
+                    on_line |= ps.iter().all(|a| off_line(*a, d[1].atan2(d[0])) <= allowed);
+                }
+                if on_line {
                     StateKind::NotBalanced
+                } else {
+                    StateKind::PartiallyBalanced
                 }
             }
         }
@@ -398,9 +414,9 @@ pub enum StateKind {
     /// only there (its tangential force `m_b Ω² |d| sin(ψ − arg d)` vanishes), so such states
     /// exist at every speed beside the balanced one; Newton can reach one from a poor start, and
     /// it is named, never called balanced ([`state_kind`](Rotor::state_kind)). Recognised on the
-    /// planar rotor and on linear rotors whose balls lie on the line to `1e-6` rad (a tilting
-    /// node's ring moves them off it: such a state is then not recognised); the spatial rotor's
-    /// classifier calls every unbalanced state partially balanced.
+    /// planar rotor, and on linear and spatial rotors where a plane's race whirls with its balls
+    /// on the line of the whirl to `1e-6` rad plus what a tilting ring's push moves them off it
+    /// ([`crate::linear_rotor::partial::state_kind`]).
     NotBalanced,
 }
 
@@ -852,6 +868,13 @@ pub(crate) fn ball_angles(f: &Field, x: &[f64]) -> Vec<f64> {
     x[ball_coordinates(f)].to_vec()
 }
 
+/// The angle (rad, in `[0, π/2]`) between a ball at `psi` and the line through the axis at
+/// angle `along`, either side of it.
+pub(crate) fn off_line(psi: f64, along: f64) -> f64 {
+    let w = (psi - along).rem_euclid(std::f64::consts::PI);
+    w.min(std::f64::consts::PI - w)
+}
+
 /// Whether the balls at `psi` (rad, one plane) are bunched: every angle within `1e-6` rad of the
 /// first, modulo `2π` (a plane at its capacity limit, [`StateKind::PartiallyBalanced`]); true
 /// for one ball or none.
@@ -963,6 +986,55 @@ mod tests {
             for rotor in [&planar, &linear] {
                 let (f, s) = crate::rotor_campbell::stationary_at(rotor, w).unwrap();
                 assert_eq!(Rotor::state_kind(&f, &s.x), StateKind::Balanced, "{} Ω {w}", rotor.model_name());
+            }
+        }
+    }
+
+    /// The spatial classifier on equilibria (Newton's fixed points, residual ~1e-12):
+    /// examples/spatial_two_plane.toml without gravity, supports equal by direction. Its
+    /// balanced state is balanced; Newton from each plane's two balls opposite each other (the
+    /// structure at rest) reaches a state whose races whirl with the balls on the line of the
+    /// whirl, both sides: not balanced (their resultant ~0: the rotor's own unbalance response).
+    /// A rotor with one plane at its centre of mass against a pure couple unbalance cannot be
+    /// balanced: its stationary states are partially balanced, never "not balanced" (the plane
+    /// at rest while the rotor rocks about it: main at 85e6257 called it not balanced).
+    #[test]
+    fn the_spatial_classifier_on_equilibria_opposite_bunched_and_couple() {
+        use crate::spatial::dynamics::{BallPlane, PointMass, RigidRotor, Support};
+        let mut root = crate::config::parse(include_str!("../../../examples/spatial_two_plane.toml"), "two-plane").unwrap();
+        crate::config::set(&mut root, "spatial.gravity", crate::config::parse_value("[0.0, 0.0, 0.0]")).unwrap();
+        crate::config::set_number(&mut root, "supports.stiffness_left_y", 2.0e6).unwrap();
+        crate::config::set_number(&mut root, "supports.stiffness_right_y", 3.0e6).unwrap();
+        let rotor = Rotor::Spatial(crate::config::spatial_simulation(&root).unwrap().rotor);
+        let (f, s) = crate::rotor_campbell::stationary_at(&rotor, 1000.0).unwrap();
+        assert_eq!(Rotor::state_kind(&f, &s.x), StateKind::Balanced);
+        let balls = ball_coordinates(&f);
+        assert_eq!(balls.len(), 4, "two planes of two balls");
+        let mut x = vec![0.0; f.dim()];
+        x[balls.clone()].copy_from_slice(&[0.3, 0.3 + std::f64::consts::PI, 1.1, 1.1 + std::f64::consts::PI]);
+        let o = stationary(&f, &x, &NewtonOptions::default()).unwrap();
+        let psi = ball_angles(&f, &o.x);
+        // opposite to within the tilted ring's push (2-3e-4 rad here: the old 1e-6 rad rule
+        // does not recognise this state)
+        for pair in psi.chunks(2) {
+            let gap = (pair[1] - pair[0]).rem_euclid(std::f64::consts::TAU);
+            assert!((gap - std::f64::consts::PI).abs() <= 1e-2, "ψ {psi:?}");
+        }
+        assert!(amplitude(&f, &o.x) > 1e3 * amplitude(&f, &s.x), "{} vs {}", amplitude(&f, &o.x), amplitude(&f, &s.x));
+        assert_eq!(Rotor::state_kind(&f, &o.x), StateKind::NotBalanced, "ψ {psi:?}");
+        // one plane at the centre of mass against a pure couple
+        let couple = SpatialRotor::new(
+            RigidRotor::aligned(10.0, 0.5, 0.2, 0.0),
+            vec![Support::isotropic(-0.3, 1e5, 20.0), Support::isotropic(0.3, 1e5, 20.0)],
+            vec![PointMass { mass: 0.01, radius: 0.1, angle: 0.0, z: 0.2 }, PointMass { mass: 0.01, radius: 0.1, angle: std::f64::consts::PI, z: -0.2 }],
+            vec![BallPlane::point_masses(0.0, 2, 0.02, 0.1, 0.01)],
+        );
+        let rotor = Rotor::Spatial(couple);
+        for w in [50.0, 300.0] {
+            let states = crate::rotor_partial::partially_balanced(&rotor, w).unwrap();
+            assert!(!states.is_empty());
+            for st in &states {
+                assert_eq!(st.kind, StateKind::PartiallyBalanced, "Ω {w}: {:?}", st.psi);
             }
         }
     }

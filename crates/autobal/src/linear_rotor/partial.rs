@@ -93,7 +93,7 @@ pub fn plane_whirl(rotor: &LinearRotor, x: &[f64]) -> Vec<f64> {
 }
 
 /// The cap on a ball's angle off the line of the whirl in [`state_kind`] (rad).
-const ON_LINE_MAX: f64 = 1e-2;
+pub(crate) const ON_LINE_MAX: f64 = 1e-2;
 
 /// Partially balanced where a plane is at its capacity limit, its balls bunched (all at one
 /// angle to `1e-6` rad) with its race centre off the axis (more than `1e-6 ℓ`); not balanced
@@ -133,11 +133,8 @@ pub fn state_kind(field: &LinearRotorField, x: &[f64]) -> StateKind {
         // most the tilted ring's push over the whirl's (function docs), to 1e-6 rad
         let along = c.1.atan2(c.0);
         let tilt2 = r.dof(b.node, Direction::Alpha).zip(r.dof(b.node, Direction::Beta)).map_or(0.0, |(ia, ib)| x[ia] * x[ia] + x[ib] * x[ib]);
-        let off_line = (1e-6 + 2.0 * b.radius * tilt2 / d).min(ON_LINE_MAX);
-        on_line |= psi.iter().all(|a| {
-            let w = (a - along).rem_euclid(std::f64::consts::PI);
-            w.min(std::f64::consts::PI - w) <= off_line
-        });
+        let allowed = (1e-6 + 2.0 * b.radius * tilt2 / d).min(ON_LINE_MAX);
+        on_line |= psi.iter().all(|a| crate::rotor_stability::off_line(*a, along) <= allowed);
     }
     if on_line {
         StateKind::NotBalanced
