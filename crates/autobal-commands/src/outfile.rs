@@ -57,6 +57,20 @@ fn parent(path: &Path) -> PathBuf {
     }
 }
 
+/// Whether `dir` names a folder that does not exist and then `..` (`q/..` with `q` missing):
+/// creating it only to step out of it again would leave a folder nobody asked for. A leading
+/// `..` (`../runs`) steps out of the working folder, which exists.
+fn steps_out_of_missing(dir: &Path) -> bool {
+    let mut prefix = PathBuf::new();
+    for c in dir.components() {
+        if c == std::path::Component::ParentDir && !prefix.as_os_str().is_empty() && !prefix.is_dir() {
+            return true;
+        }
+        prefix.push(c);
+    }
+    false
+}
+
 /// Whether `a` and `b` are the same file: same device and inode when both exist (links,
 /// `./x`, `../d/x` all compare equal), else the same canonical folder and name.
 pub fn same_file(a: &Path, b: &Path) -> bool {
@@ -227,8 +241,8 @@ impl Outputs {
                 Ok(_) => bail!("{opt}: {} is not a folder", dir.display()),
                 // `q/..` with `q` missing: creating `q` only to step out of it again would leave
                 // a folder nobody asked for
-                Err(_) if dir.components().any(|c| c == std::path::Component::ParentDir) => {
-                    bail!("{opt}: the folder {} does not exist and goes through `..`; give an existing folder", dir.display())
+                Err(_) if steps_out_of_missing(&dir) => {
+                    bail!("{opt}: the folder {} steps out of a folder that does not exist (`..`); give the folder itself", dir.display())
                 }
                 Err(_) => std::fs::create_dir_all(&dir).map_err(|e| anyhow!("{opt}: cannot create the folder {}: {e}", dir.display()))?,
             }
@@ -451,6 +465,12 @@ mod tests {
         let e = Outputs::new().output("--out", &resolve(&d.join("q/.."), "s.csv")).check().unwrap_err().to_string();
         assert!(e.starts_with("--out: ") && e.contains("`..`"), "{e}");
         assert!(!d.join("q").exists(), "a folder was created for `q/..`");
+        // a missing folder reached through an existing one's `..` is created as before
+        let sub = d.join("e");
+        std::fs::create_dir(&sub).unwrap();
+        Outputs::new().output("--out", &sub.join("../made/x.csv")).check().unwrap();
+        assert!(d.join("made").is_dir());
+        assert!(steps_out_of_missing(&d.join("q/r/../x")) && !steps_out_of_missing(Path::new("../x/y")));
         // a name longer than the file system allows names the name, not the folder
         let long = d.join("n".repeat(300));
         let e = Outputs::new().output("--out", &long).check_and_stage_first().err().expect("too long").to_string();
