@@ -258,9 +258,7 @@ impl Rotor {
     /// What the stationary state `x` of `field` is ([`StateKind`]). Planar: E on the axis,
     /// balanced or semi-balanced; else partially balanced with the balls bunched, not balanced
     /// without. Spatial: static and couple residual below `1e-6` of the unbalances' scale,
-    /// balanced; else not balanced where a plane's race whirls with its balls spread along the
-    /// line of that whirl (as on a linear rotor), partially balanced otherwise (balls bunched, or
-    /// spread against a residual they cannot cancel: one plane against a couple unbalance).
+    /// balanced; else partially balanced (never [`StateKind::NotBalanced`]: see the code).
     /// Linear: [`crate::linear_rotor::partial::state_kind`] (every race centre on the axis:
     /// balanced).
     pub fn state_kind(field: &Field, x: &[f64]) -> StateKind {
@@ -307,34 +305,13 @@ impl Rotor {
                     }
                 }
                 let zl = if zl > 0.0 { zl } else { 1.0 };
+                // else partially balanced, never "not balanced": the balls' placement does not
+                // tell an opposite-ball state from a partially balanced one here (a plane at rest
+                // with its balls spread against a couple, or balls that a tilt moves off the
+                // line of a whirl), and the linear rotor's test (the race's whirl against its
+                // whirl without the balls' resultant) is not written for this model
                 if rs[0].hypot(rs[1]) <= 1e-6 * scale && rc[0].hypot(rc[1]) <= 1e-6 * scale * zl {
-                    return StateKind::Balanced;
-                }
-                // not balanced where a plane's race whirls (more than 1e-6 of the length scale
-                // `scale / m`) with its balls spread along the line of that whirl, as on the
-                // linear rotor ([`crate::linear_rotor::partial::state_kind`], whose docs give
-                // the tilt's allowance); else partially balanced (bunched balls, or balls spread
-                // against a residual they cannot cancel, e.g. one plane against a couple)
-                let y = s.full_state(0.0, x);
-                let drive = crate::drive::Drive::Speed { omega0: s.omega() };
-                let eq = crate::spatial::dynamics::Equations::new(r, &drive);
-                let tol = 1e-6 * scale / r.total_mass();
-                let tilt2 = y[2] * y[2] + y[3] * y[3];
-                let mut j = 0;
-                let mut on_line = false;
-                for p in r.planes.iter().filter(|p| p.n > 0) {
-                    let ps = &psi[j..j + p.n];
-                    j += p.n;
-                    let d = eq.displacement_at(&y, p.z);
-                    let dn = d[0].hypot(d[1]);
-                    if dn <= tol || bunched(ps) {
-                        continue;
-                    }
-                    let allowed = (1e-6 + 2.0 * p.race_radius * tilt2 / dn).min(crate::linear_rotor::partial::ON_LINE_MAX);
-                    on_line |= ps.iter().all(|a| off_line(*a, d[1].atan2(d[0])) <= allowed);
-                }
-                if on_line {
-                    StateKind::NotBalanced
+                    StateKind::Balanced
                 } else {
                     StateKind::PartiallyBalanced
                 }
@@ -413,10 +390,13 @@ pub enum StateKind {
     /// balls opposite each other: their resultant is zero). A ball is at rest on a whirling race
     /// only there (its tangential force `m_b Ω² |d| sin(ψ − arg d)` vanishes), so such states
     /// exist at every speed beside the balanced one; Newton can reach one from a poor start, and
-    /// it is named, never called balanced ([`state_kind`](Rotor::state_kind)). Recognised on the
-    /// planar rotor, and on linear and spatial rotors where a plane's race whirls with its balls
-    /// on the line of the whirl to `1e-6` rad plus what a tilting ring's push moves them off it
-    /// ([`crate::linear_rotor::partial::state_kind`]).
+    /// it is named, never called balanced ([`state_kind`](Rotor::state_kind)). Recognised at
+    /// equilibria of the planar rotor (E off the axis, the balls not bunched) and of linear
+    /// rotors (a race whirling at more than a tenth of its whirl without the balls' resultant:
+    /// [`crate::linear_rotor::partial::state_kind`]); the spatial rotor's classifier calls every
+    /// unbalanced state partially balanced, and on periodic orbits (gravity, supports that differ
+    /// by direction) the balls swing, so such a state reads partially balanced (spatial) or by
+    /// the linear rule at the orbit's start.
     NotBalanced,
 }
 
@@ -993,13 +973,14 @@ mod tests {
     /// The spatial classifier on equilibria (Newton's fixed points, residual ~1e-12):
     /// examples/spatial_two_plane.toml without gravity, supports equal by direction. Its
     /// balanced state is balanced; Newton from each plane's two balls opposite each other (the
-    /// structure at rest) reaches a state whose races whirl with the balls on the line of the
-    /// whirl, both sides: not balanced (their resultant ~0: the rotor's own unbalance response).
-    /// A rotor with one plane at its centre of mass against a pure couple unbalance cannot be
-    /// balanced: its stationary states are partially balanced, never "not balanced" (the plane
-    /// at rest while the rotor rocks about it: main at 85e6257 called it not balanced).
+    /// structure at rest) reaches a state whose races whirl with the balls near the line of the
+    /// whirl, both sides (their resultant ~0: the rotor's own unbalance response): never
+    /// balanced (partially balanced: the spatial classifier does not name it). A rotor with one
+    /// plane at its centre of mass against a pure couple unbalance cannot be balanced: its
+    /// stationary states are partially balanced (the plane at rest while the rotor rocks about
+    /// it: main at 85e6257 called them not balanced, the docs said partially balanced).
     #[test]
-    fn the_spatial_classifier_on_equilibria_opposite_bunched_and_couple() {
+    fn the_spatial_classifier_on_equilibria_opposite_and_couple() {
         use crate::spatial::dynamics::{BallPlane, PointMass, RigidRotor, Support};
         let mut root = crate::config::parse(include_str!("../../../examples/spatial_two_plane.toml"), "two-plane").unwrap();
         crate::config::set(&mut root, "spatial.gravity", crate::config::parse_value("[0.0, 0.0, 0.0]")).unwrap();
@@ -1014,14 +995,13 @@ mod tests {
         x[balls.clone()].copy_from_slice(&[0.3, 0.3 + std::f64::consts::PI, 1.1, 1.1 + std::f64::consts::PI]);
         let o = stationary(&f, &x, &NewtonOptions::default()).unwrap();
         let psi = ball_angles(&f, &o.x);
-        // opposite to within the tilted ring's push (2-3e-4 rad here: the old 1e-6 rad rule
-        // does not recognise this state)
+        // opposite to within the tilted ring's push (2-3e-4 rad here)
         for pair in psi.chunks(2) {
             let gap = (pair[1] - pair[0]).rem_euclid(std::f64::consts::TAU);
             assert!((gap - std::f64::consts::PI).abs() <= 1e-2, "ψ {psi:?}");
         }
         assert!(amplitude(&f, &o.x) > 1e3 * amplitude(&f, &s.x), "{} vs {}", amplitude(&f, &o.x), amplitude(&f, &s.x));
-        assert_eq!(Rotor::state_kind(&f, &o.x), StateKind::NotBalanced, "ψ {psi:?}");
+        assert_eq!(Rotor::state_kind(&f, &o.x), StateKind::PartiallyBalanced, "ψ {psi:?}");
         // one plane at the centre of mass against a pure couple
         let couple = SpatialRotor::new(
             RigidRotor::aligned(10.0, 0.5, 0.2, 0.0),

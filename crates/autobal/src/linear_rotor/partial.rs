@@ -92,34 +92,39 @@ pub fn plane_whirl(rotor: &LinearRotor, x: &[f64]) -> Vec<f64> {
     plane_positions(rotor, x).iter().map(|(a, b)| a.hypot(*b)).collect()
 }
 
-/// The cap on a ball's angle off the line of the whirl in [`state_kind`] (rad).
-pub(crate) const ON_LINE_MAX: f64 = 1e-2;
+/// A plane whose race whirls at more than this fraction of its whirl with the balls' resultant
+/// removed is not balanced ([`state_kind`]).
+const NOT_REDUCED: f64 = 0.1;
 
 /// Partially balanced where a plane is at its capacity limit, its balls bunched (all at one
 /// angle to `1e-6` rad) with its race centre off the axis (more than `1e-6 ℓ`); not balanced
-/// where a plane's race centre is off the axis with every ball on the line of its whirl
-/// (`ψ ≡ arg d` mod `π`, on both sides: the balls at rest on a whirling race,
-/// [`StateKind::NotBalanced`]); else balanced (module docs). A balanced state's race centres are
-/// on the axis only to first order where the nodes tilt (the tilted ring pushes the balls at
-/// second order), so the balls' placement, not the displacement alone, tells the states apart.
+/// where a plane's race centre is off the axis by more than a tenth of its whirl with every
+/// plane's balls spread evenly (their resultant zero, [`structure_at`]): the balls do not
+/// cancel the unbalance there ([`StateKind::NotBalanced`]: e.g. two balls opposite each other,
+/// at rest on the line of a whirling race, where the race whirls as without them); else
+/// balanced (module docs).
 ///
-/// "On the line" allows what the tilt moves a ball off it: on a race whirling at `d` the whirl
-/// pushes a ball along the race with `m_b R Ω² |d| sin δ` (`δ` its angle off the line), the
-/// tilted ring (tilt `θ`, absolute tilt rate `~Ω θ` in a steady whirl) with at most
-/// `~1.5 m_b R² Ω² θ²` (the terms `m_b R² σ (ω·e)` and `½ m_b R² (ω̇ × τ)` of the ball's
-/// equation), so a ball at rest there has `δ ≤ 2 R θ² / |d|` (plus `1e-6` rad of round-off),
-/// capped at `1e-2` rad, where a balanced state's balls (at angles set by the unbalance, not
-/// by the whirl's line) would need a coincidence to pass. (A flexible overhung rotor at
-/// 1.03 of its first critical speed, whirling 16 mm with the balls opposite: `δ = 1.4e-6` rad,
-/// called balanced before 2026-11-29.)
+/// A balanced state's race centres are on the axis only to first order where the nodes tilt
+/// (the tilted ring pushes the balls at second order), so neither the displacement alone nor
+/// the balls' placement tells the states apart: the balls of a balanced state that needs a
+/// small correction are nearly opposite, and lie near the line of its (second-order) whirl,
+/// while the tilt moves an opposite-ball state's balls off the line of its whirl (1.4e-6 rad at
+/// an overhung disk of a flexible shaft whirling 16 mm: called balanced by a 1e-6 rad rule
+/// before 2026-11-29; a 1e-2 rad allowance called balanced states with nearly opposite balls
+/// 1.6e-3 rad off that line "not balanced"). Measured on that rotor: balanced states whose race
+/// whirls above `1e-6 ℓ` at 1.2e-3 of its whirl without the balls' resultant, the
+/// opposite-ball state at 1 (to 1e-3). The rule holds at equilibria; on a periodic orbit
+/// (gravity, supports that differ by direction) it reads the orbit's start. Where the whirl
+/// without the resultant cannot be solved for (the structure's stationary equations
+/// singular), the balls must lie on the line of the whirl to `1e-6` rad.
 pub fn state_kind(field: &LinearRotorField, x: &[f64]) -> StateKind {
     let r = field.rotor();
     let tol = 1e-6 * length_scale(r);
     let n = r.dofs();
     let whirl = plane_whirl(r, x);
-    let centres = plane_positions(r, x);
-    let (mut j, mut on_line) = (n, false);
-    for ((b, d), c) in r.balancers.iter().zip(whirl).zip(centres) {
+    let mut j = n;
+    let mut whirling = vec![];
+    for (k, (b, &d)) in r.balancers.iter().zip(&whirl).enumerate() {
         let psi = &x[j..j + b.balls];
         j += b.balls;
         if b.balls == 0 || d <= tol {
@@ -128,29 +133,54 @@ pub fn state_kind(field: &LinearRotorField, x: &[f64]) -> StateKind {
         if crate::rotor_stability::bunched(psi) {
             return StateKind::PartiallyBalanced;
         }
-        // every ball on the line of the whirl (`ψ ≡ arg d` mod π): at rest on the whirling race
-        // only there, the balls not balancing ([`StateKind::NotBalanced`]); off the line by at
-        // most the tilted ring's push over the whirl's (function docs), to 1e-6 rad
-        let along = c.1.atan2(c.0);
-        let tilt2 = r.dof(b.node, Direction::Alpha).zip(r.dof(b.node, Direction::Beta)).map_or(0.0, |(ia, ib)| x[ia] * x[ia] + x[ib] * x[ib]);
-        let allowed = (1e-6 + 2.0 * b.radius * tilt2 / d).min(ON_LINE_MAX);
-        on_line |= psi.iter().all(|a| crate::rotor_stability::off_line(*a, along) <= allowed);
+        whirling.push(k);
     }
-    if on_line {
+    if whirling.is_empty() {
+        return StateKind::Balanced;
+    }
+    let not_balanced = match spread_whirl(field) {
+        Some(free) => whirling.iter().any(|&k| whirl[k] > NOT_REDUCED * free[k]),
+        None => {
+            let centres = plane_positions(r, x);
+            let mut j = n;
+            r.balancers.iter().enumerate().any(|(k, b)| {
+                let psi = &x[j..j + b.balls];
+                j += b.balls;
+                let along = centres[k].1.atan2(centres[k].0);
+                whirling.contains(&k) && psi.iter().all(|a| crate::rotor_stability::off_line(*a, along) <= 1e-6)
+            })
+        }
+    };
+    if not_balanced {
         StateKind::NotBalanced
     } else {
         StateKind::Balanced
     }
 }
 
+/// Each balancer plane's race whirl `|d_k|` (m) with every plane's balls spread evenly
+/// (`ψ_j = 2πj/n`: their resultant zero), the structure at its stationary displacement under
+/// them ([`structure_with`]). `None` where that is singular.
+fn spread_whirl(field: &LinearRotorField) -> Option<Vec<f64>> {
+    let r = field.rotor();
+    let angles: Vec<f64> = r.balancers.iter().flat_map(|b| (0..b.balls).map(move |i| std::f64::consts::TAU * i as f64 / b.balls as f64)).collect();
+    let p = structure_with(field, &angles)?;
+    Some(plane_whirl(r, &p))
+}
+
 /// The structure's stationary displacement `p` (turning axes) with every ball at `psi` (rad,
 /// relative to the rotor), the velocities zero: `p = S⁻¹ b` from the affine residual (module
 /// docs). `None` where `S` is singular.
 fn structure_at(field: &LinearRotorField, psi: f64) -> Option<Vec<f64>> {
+    structure_with(field, &vec![psi; field.rotor().total_balls()])
+}
+
+/// [`structure_at`] with ball `j` (all planes in order) at `angles[j]`.
+fn structure_with(field: &LinearRotorField, angles: &[f64]) -> Option<Vec<f64>> {
     let r = field.rotor();
     let (n, nb, nc) = (r.dofs(), r.total_balls(), field.coords());
     let mut x = vec![0.0; 2 * nc];
-    x[n..n + nb].iter_mut().for_each(|v| *v = psi);
+    x[n..n + nb].copy_from_slice(angles);
     let acc = vec![0.0; nc];
     let b: Vec<f64> = field.residuals(0.0, &x, &acc)[..n].to_vec();
     // S e_j = r(0) − r(e_j): a unit displacement of one DOF (the residual is affine in p)
@@ -375,27 +405,35 @@ mod tests {
         eprintln!("t_end {t_end}: ψ {:?} vs {:?}, radius {} vs {}", e.psi, s.psi, x.hypot(y), s.whirl[0]);
     }
 
-    /// Two balls opposite each other at an overhung disk of a flexible shaft (gyroscopic,
-    /// the race 0.2 m off the node), just above the first critical speed: an equilibrium (Newton
-    /// from the balls at 0 and π) with the race whirling ~16 mm, its balls off the line of the
-    /// whirl by more than 1e-6 rad (the tilted ring's push: the old rule called it balanced),
-    /// and within the bound `2 R θ²/|d|` (capped at 1e-2 rad) of [`state_kind`]'s docs. It is not balanced; the
-    /// balanced state at the same speed (whirl ~1e-10 m, balls ~0.9 rad off that line) still is.
-    #[test]
-    fn opposite_balls_on_a_tilting_race_are_not_balanced() {
-        use crate::analysis::{stationary, NewtonOptions, VectorField};
+    /// The overhung disk of a flexible shaft (gyroscopic) with a two-ball balancer off the node.
+    fn overhung(me: f64, unbalance_offset: f64, ball_mass: f64, race_offset: f64) -> (LinearRotor, crate::rotor_stability::Rotor) {
         use crate::linear_rotor::shaft::{Bearing, Disk, ShaftBuilder};
         use crate::linear_rotor::Unbalance;
-        use crate::rotor_stability::{Field, Rotor};
         let mut sb = ShaftBuilder::uniform(4, 0.8, 0.04, 2.1e11, 7810.0);
         sb.disks.push(Disk { node: 4, mass: 8.0, id: 0.05, ip: 0.09 });
         sb.bearings.push(Bearing { node: 0, k: 2e7, c: 500.0 });
         sb.bearings.push(Bearing { node: 2, k: 2e7, c: 500.0 });
         (sb.rotary_inertia, sb.gyroscopic) = (true, true);
         let mut r = sb.build().unwrap();
-        r.unbalances.push(Unbalance { node: 4, me: 2e-3, phase: 0.0, offset: 0.0 });
-        r.balancers.push(BalancerPlane { node: 4, radius: 0.1, balls: 2, ball_mass: 0.01, drag: 1e-4, offset: 0.2 });
-        let rotor = Rotor::Linear(r.clone());
+        r.unbalances.push(Unbalance { node: 4, me, phase: 0.0, offset: unbalance_offset });
+        r.balancers.push(BalancerPlane { node: 4, radius: 0.1, balls: 2, ball_mass, drag: 1e-4, offset: race_offset });
+        (r.clone(), crate::rotor_stability::Rotor::Linear(r))
+    }
+
+    /// Two balls opposite each other at an overhung disk of a flexible shaft (race 0.2 m off the
+    /// node), just above the first critical speed: an equilibrium (Newton from the balls at 0
+    /// and π) with the race whirling ~16 mm, its balls off the line of the whirl by more than
+    /// 1e-6 rad (the tilted ring's push: the old rule called it balanced). The race whirls as
+    /// without the balls' resultant (ratio 1 to 1e-3: the balls' resultant is ~0): not balanced.
+    /// The balanced state at the same speed (whirl ~1e-10 m) still is; so are balanced states
+    /// whose balls are nearly opposite and near the line of their second-order whirl (the race
+    /// 0.5 m off the node, the unbalance 0.3 m the other side, at 0.5 ω_n: a reviewer's case
+    /// that a 1e-2 rad allowance on the line called not balanced).
+    #[test]
+    fn opposite_balls_on_a_tilting_race_are_not_balanced() {
+        use crate::analysis::{stationary, NewtonOptions, VectorField};
+        use crate::rotor_stability::Field;
+        let (r, rotor) = overhung(2e-3, 0.0, 0.01, 0.2);
         let w = 1.03 * rotor.natural_frequency();
         let f = rotor.field(w).unwrap();
         let Field::Linear(lf) = &f else { unreachable!() };
@@ -404,19 +442,27 @@ mod tests {
         x[m - 1] = std::f64::consts::PI;
         let s = stationary(&f, &x, &NewtonOptions::default()).unwrap();
         let d = plane_whirl(&r, &s.x)[0];
-        let (ia, ib) = (r.dof(4, Direction::Alpha).unwrap(), r.dof(4, Direction::Beta).unwrap());
-        let bound = 2.0 * 0.1 * (s.x[ia].powi(2) + s.x[ib].powi(2)) / d;
+        let free = spread_whirl(lf).unwrap()[0];
         let c = plane_positions(&r, &s.x)[0];
-        let off = |a: f64| {
-            let v = (a - c.1.atan2(c.0)).rem_euclid(std::f64::consts::PI);
-            v.min(std::f64::consts::PI - v)
-        };
-        let dev = off(s.x[m - 2]).max(off(s.x[m - 1]));
-        assert!(d > 1e-2 && dev > 1e-6 && dev <= bound.min(ON_LINE_MAX), "whirl {d}, off the line {dev}, bound {bound}");
+        let dev = s.x[m - 2..m].iter().map(|a| crate::rotor_stability::off_line(*a, c.1.atan2(c.0))).fold(0.0, f64::max);
+        assert!(d > 1e-2 && dev > 1e-6 && (d / free - 1.0).abs() <= 1e-3, "whirl {d}, without the resultant {free}, off the line {dev}");
         assert_eq!(state_kind(lf, &s.x), StateKind::NotBalanced, "whirl {d}, off the line {dev}");
         let (fb, sbal) = crate::rotor_campbell::stationary_at(&rotor, w).unwrap();
         let Field::Linear(lfb) = &fb else { unreachable!() };
         assert!(plane_whirl(&r, &sbal.x)[0] < 1e-8 * d, "{:?}", plane_whirl(&r, &sbal.x));
         assert_eq!(state_kind(lfb, &sbal.x), StateKind::Balanced);
+        for me in [2e-3, 5e-4] {
+            let (r, rotor) = overhung(me, -0.3, 0.0105, 0.5);
+            let w = 0.5 * rotor.natural_frequency();
+            let (fb, sb) = crate::rotor_campbell::stationary_at(&rotor, w).unwrap();
+            let Field::Linear(lfb) = &fb else { unreachable!() };
+            let (d, tol) = (plane_whirl(&r, &sb.x)[0], 1e-6 * length_scale(&r));
+            let free = spread_whirl(lfb).unwrap()[0];
+            let c = plane_positions(&r, &sb.x)[0];
+            let dev = sb.x[r.dofs()..r.dofs() + 2].iter().map(|a| crate::rotor_stability::off_line(*a, c.1.atan2(c.0))).fold(0.0, f64::max);
+            eprintln!("me {me}: whirl {d} (tol {tol}), without the resultant {free}, off the line {dev}");
+            assert!(d > tol && dev < 1e-2, "me {me}: not the reviewer's case: whirl {d}, tol {tol}, off the line {dev}");
+            assert_eq!(state_kind(lfb, &sb.x), StateKind::Balanced, "me {me}");
+        }
     }
 }
