@@ -49,6 +49,11 @@ fn temp_for(path: &Path) -> PathBuf {
     path.with_file_name(name)
 }
 
+/// The longest file name (bytes) the usual file systems take (Linux's `NAME_MAX`: ext4, XFS,
+/// Btrfs, tmpfs; APFS and NTFS count 255 characters). A smaller limit is still caught where the
+/// file is created.
+const NAME_MAX: usize = 255;
+
 /// The folder a file goes into (`.` for a bare name).
 fn parent(path: &Path) -> PathBuf {
     match path.parent() {
@@ -214,6 +219,17 @@ impl Outputs {
             if p.file_name().is_none() {
                 bail!("{opt}: {} names no file", p.display());
             }
+            // every output's own temporary name, not only the first in its folder (the probe's
+            // is short): a plot's longer name must fail before the work, not after it
+            let temp = temp_for(p);
+            let long = temp.file_name().map_or(0, |n| n.len());
+            if long > NAME_MAX {
+                bail!(
+                    "{opt}: the file name {:?} is too long: {long} bytes with the temporary suffix {:?} (file names may have {NAME_MAX})",
+                    p.file_name().unwrap_or_default(),
+                    format!(".{}.part", std::process::id())
+                );
+            }
             let meta = std::fs::metadata(p).ok();
             match &meta {
                 Some(m) if m.is_dir() => bail!("{opt}: {} is a folder, not a file", p.display()),
@@ -248,7 +264,12 @@ impl Outputs {
             }
             let cannot = |e: std::io::Error| {
                 if e.kind() == std::io::ErrorKind::InvalidFilename {
-                    anyhow!("{opt}: the file name {:?} is too long for the folder {} ({e})", p.file_name().unwrap_or_default(), dir.display())
+                    let what = if cfg!(unix) { "too long" } else { "too long or not allowed" };
+                    anyhow!(
+                        "{opt}: the file name {:?} (with the temporary suffix) is {what} for the folder {} ({e})",
+                        p.file_name().unwrap_or_default(),
+                        dir.display()
+                    )
                 } else {
                     anyhow!("{opt}: cannot write in the folder {}: {e}", dir.display())
                 }
@@ -475,6 +496,13 @@ mod tests {
         let long = d.join("n".repeat(300));
         let e = Outputs::new().output("--out", &long).check_and_stage_first().err().expect("too long").to_string();
         assert!(e.starts_with("--out: ") && e.contains("too long") && !e.contains("cannot write in the folder"), "{e}");
+        // a second output in the same folder whose name is too long only with its suffix: caught
+        // before any work (its folder was probed with a short name)
+        let e = Outputs::new().output("--out", &d.join("a.csv")).output("--svg", &d.join("s".repeat(250))).check().unwrap_err().to_string();
+        assert!(e.starts_with("--svg: ") && e.contains("too long") && e.contains(".part"), "{e}");
+        let left: Vec<_> =
+            std::fs::read_dir(&d).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).filter(|n| n != "e" && n != "made").collect();
+        assert!(left.is_empty(), "a check left {left:?}");
         // the same file twice in a folder that does not exist yet: the first output's folder
         // lookup failed before the folder was created, and is tried again for the second
         // (compared with an existing input first, while the folder is still missing)
