@@ -558,18 +558,11 @@ impl<'a> Plane<'a> {
         if self.plane.is_some() {
             // the plane's polynomial: a_0 (fold), E(w) and O(w) by Horner (Hopf)
             let (a, n) = self.poly(z[0], z[1])?;
-            return Ok(match kind {
-                CurveKind::Fold => [a[0], 0.0],
-                CurveKind::Hopf => {
-                    let r = eo(&a, n, z[2]);
-                    [r[0], r[1]]
-                }
-            });
+            return Ok(residual_of_poly(kind, &a, n, z[2]));
         }
         if kind == CurveKind::Hopf && z[2].abs() <= W_EXPANDED {
             let (a, n) = self.poly(z[0], z[1])?;
-            let r = eo(&a, n, z[2]);
-            return Ok([r[0], r[1]]);
+            return Ok(residual_of_poly(kind, &a, n, z[2]));
         }
         let p = self.pencil(z[0], z[1])?;
         self.residual_of(&p, kind, z[2])
@@ -620,23 +613,36 @@ impl<'a> Plane<'a> {
         })
     }
 
-    /// Whether the point is on the stability boundary (all other roots left of −δ).
-    fn on_boundary(&self, kind: CurveKind, z: &[f64]) -> Result<bool> {
+    /// Whether the point is on the stability boundary (all other roots left of −δ,
+    /// [`boundary_flag`] on the polynomial at the point).
+    fn on_boundary(&self, kind: CurveKind, z: &[f64; 3]) -> Result<bool> {
         if kind == CurveKind::Hopf && z[2] <= 0.0 {
             return Ok(false);
         }
         let (a, n) = self.poly(z[0], z[1])?;
-        Ok(critical_count(&a, n) == Some(if kind == CurveKind::Hopf { 2 } else { 1 }))
+        Ok(boundary_flag(kind, z, &a, n))
     }
 }
 
-/// Routh count of the roots right of −δ: the pair (or zero) on the axis and any unstable root.
-fn critical_count(a: &[f64; D], n: usize) -> Option<usize> {
+/// Whether a point of a curve is on the stability boundary, from the polynomial `a` there (or
+/// within 1e-8 of it): the critical pair `λ² + w` (Hopf, `w > 0`) or root `λ` (fold) divided
+/// out, Routh's count of the quotient's roots right of −δ is 0 (every other eigenvalue has
+/// `Re λ < −δ`). At the point itself the same as Routh's count of `p` being 2 (or 1); at an
+/// iterate ≤ 1e-8 away the pair is off the axis by ~1e-8, which the quotient does not see.
+fn boundary_flag(kind: CurveKind, z: &[f64; 3], a: &[f64; D], n: usize) -> bool {
+    if kind == CurveKind::Hopf && z[2] <= 0.0 {
+        return false;
+    }
     let mut c = [0.0; D];
     for k in 0..=n {
         c[k] = a[n - k];
     }
-    routh_count_right_of(&c[..=n], -1e-7)
+    let m = if kind == CurveKind::Hopf { n - 2 } else { n - 1 };
+    let mut q = [0.0; D];
+    for k in 0..=m {
+        q[k] = c[k] - if kind == CurveKind::Hopf && k >= 2 { z[2] * q[k - 2] } else { 0.0 };
+    }
+    routh_count_right_of(&q[..=m], -1e-7) == Some(0)
 }
 
 /// `E(w)`, `O(w)` of the module docs and their derivatives in `w`.
@@ -662,6 +668,55 @@ fn dims(kind: CurveKind) -> (usize, usize) {
     }
 }
 
+/// The residual ([`Plane::residual`]) and its Jacobian ([`jacobian`]) at `z`. With the plane's
+/// polynomial both come from one evaluation with derivatives ([`PlanePolynomial::at`], whose
+/// coefficients are the same numbers as [`PlanePolynomial::value`]'s), kept as the plane's last
+/// polynomial, so that a later [`Plane::poly`] at the same point costs nothing.
+fn residual_jacobian(pl: &Plane, kind: CurveKind, z: &[f64; 3]) -> Result<([f64; 2], [[f64; 3]; 2])> {
+    if let Some(r) = pl.plane_at(z[0], z[1]) {
+        let (a, d) = r?;
+        let n = pl.plane.as_ref().map_or(0, |p| p.states);
+        pl.last.set(Some((z[0], z[1], a, n)));
+        return Ok((residual_of_poly(kind, &a, n, z[2]), jacobian_of_poly(kind, &a, &d, n, z[2])));
+    }
+    let f = pl.residual(kind, z)?;
+    Ok((f, jacobian(pl, kind, z, &f)?))
+}
+
+/// The residual of a condition from the coefficients `a` (`a_0` for a fold; `E(w)`, `O(w)` for Hopf).
+fn residual_of_poly(kind: CurveKind, a: &[f64; D], n: usize, w: f64) -> [f64; 2] {
+    match kind {
+        CurveKind::Fold => [a[0], 0.0],
+        CurveKind::Hopf => {
+            let r = eo(a, n, w);
+            [r[0], r[1]]
+        }
+    }
+}
+
+/// The exact Jacobian of [`residual_of_poly`] from the coefficients `a` and their derivatives
+/// `d` along `u` and `v` (the residuals are linear in the coefficients; in `w` by Horner).
+fn jacobian_of_poly(kind: CurveKind, a: &[f64; D], d: &[[f64; D]; 2], n: usize, w: f64) -> [[f64; 3]; 2] {
+    let mut j = [[0.0; 3]; 2];
+    match kind {
+        CurveKind::Fold => {
+            j[0][0] = d[0][0];
+            j[0][1] = d[1][0];
+        }
+        CurveKind::Hopf => {
+            for c in 0..2 {
+                let r = eo(&d[c], n, w);
+                j[0][c] = r[0];
+                j[1][c] = r[1];
+            }
+            let r = eo(a, n, w);
+            j[0][2] = r[2];
+            j[1][2] = r[3];
+        }
+    }
+    j
+}
+
 /// Jacobian of the residual by forward differences (the corrector's accuracy does not depend
 /// on it, only its speed): a step along the speed or `w` derives no model ([`Plane::terms`]);
 /// in `w` exact where the residual is the expanded polynomial's.
@@ -672,23 +727,7 @@ fn jacobian(pl: &Plane, kind: CurveKind, z: &[f64; 3], f0: &[f64; 2]) -> Result<
         // exact: the residuals are linear in the coefficients, whose derivatives are exact
         let (a, d) = r?;
         let n = pl.plane.as_ref().map_or(0, |p| p.states);
-        match kind {
-            CurveKind::Fold => {
-                j[0][0] = d[0][0];
-                j[0][1] = d[1][0];
-            }
-            CurveKind::Hopf => {
-                for c in 0..2 {
-                    let r = eo(&d[c], n, z[2]);
-                    j[0][c] = r[0];
-                    j[1][c] = r[1];
-                }
-                let r = eo(&a, n, z[2]);
-                j[0][2] = r[2];
-                j[1][2] = r[3];
-            }
-        }
-        return Ok(j);
+        return Ok(jacobian_of_poly(kind, &a, &d, n, z[2]));
     }
     let exact_w = kind == CurveKind::Hopf && z[2].abs() <= W_EXPANDED;
     if exact_w {
@@ -829,11 +868,14 @@ fn newton(pl: &Plane, kind: CurveKind, z0: [f64; 3], t: &[f64; 3], j0: Option<&[
     let mut z = z0;
     let mut j = j0.map(|j| (*j, [f64::INFINITY; 3]));
     let mut last = f64::INFINITY;
-    for _ in 0..16 {
-        let f = pl.residual(kind, &z)?;
-        let (jz, at) = match j {
-            Some(j) => j,
-            None => (jacobian(pl, kind, &z, &f)?, z),
+    for iteration in 0..16 {
+        // a fresh Jacobian: with the residual, from one evaluation of the plane's polynomial
+        let (f, jz, at, fresh) = match j {
+            Some((jz, at)) => (pl.residual(kind, &z)?, jz, at, false),
+            None => {
+                let (f, jz) = residual_jacobian(pl, kind, &z)?;
+                (f, jz, z, true)
+            }
         };
         let mut a = [[0.0; 3]; 3];
         let mut b = [0.0; 3];
@@ -852,16 +894,37 @@ fn newton(pl: &Plane, kind: CurveKind, z0: [f64; 3], t: &[f64; 3], j0: Option<&[
         if !z.iter().all(|x| x.is_finite()) || step > 0.5 {
             return Ok(None);
         }
-        if step < 1e-10 {
+        // the error left after this step: Newton's (a Jacobian at this iterate) converges
+        // quadratically, e' ≈ K s² with K ≈ s/s_prev² (an over-estimate when the previous step
+        // was a chord step, which contracts less than Newton's); the chord method linearly,
+        // e' ≈ s θ/(1 − θ) with θ = s/s_prev
+        let left = if !last.is_finite() {
+            f64::INFINITY
+        } else if fresh {
+            step * (step / last).powi(2)
+        } else if step < last {
+            step * step / (last - step)
+        } else {
+            f64::INFINITY
+        };
+        if step < 1e-10 || (step <= 1e-6 && left <= 1e-12) {
             // the tangent at the point: from a Jacobian computed there (or within 1e-6)
             if (0..nz).any(|c| (z[c] - at[c]).abs() > 1e-6) {
-                let f = pl.residual(kind, &z)?;
-                return Ok(Some((z, jacobian(pl, kind, &z, &f)?)));
+                return Ok(Some((z, residual_jacobian(pl, kind, &z)?.1)));
             }
             return Ok(Some((z, jz)));
         }
         // a fresh Jacobian at the next iterate unless the steps are small and contracting
-        j = (step < 1e-5 && step < 0.25 * last).then_some((jz, at));
+        if iteration >= 3 && step > 0.25 * last {
+            // Newton's method from a good start has converged by now (quadratically); steps that
+            // still do not shrink fourfold wander, or creep towards a singular point of the
+            // curve: a shorter step along the curve is cheaper than more iterations
+            return Ok(None);
+        }
+        // a fresh Jacobian at the next iterate unless the steps are small and contracting and
+        // the Jacobian's point is within 1e-6 (the point's tangent needs one that near anyway)
+        let near = (0..nz).all(|c| (z[c] - at[c]).abs() <= 1e-6);
+        j = (step < 1e-5 && step < 0.25 * last && near).then_some((jz, at));
         last = step;
     }
     Ok(None)
@@ -1161,10 +1224,9 @@ fn trace_curve(
     codim2: &mut Vec<Codim2Point>,
     queue: &mut Vec<(CurveKind, [f64; 3])>,
 ) -> Result<Option<BoundaryCurve>> {
-    let f = pl.residual(kind, &z0)?;
-    let j = jacobian(pl, kind, &z0, &f)?;
+    let (_, j) = residual_jacobian(pl, kind, &z0)?;
     let t0 = tangent(kind, &j, None);
-    let mut halves: Vec<(Vec<[f64; 3]>, bool)> = vec![];
+    let mut halves: Vec<(Vec<Traced>, bool)> = vec![];
     for sign in [1.0, -1.0] {
         let t = t0.map(|x| sign * x);
         let (pts, closed) = march(pl, kind, z0, t, max_step)?;
@@ -1175,21 +1237,26 @@ fn trace_curve(
         }
     }
     let closed = halves[0].1;
-    let mut pts: Vec<[f64; 3]> = vec![];
+    let mut traced: Vec<Traced> = vec![];
     if halves.len() == 2 {
-        pts.extend(halves[1].0.iter().rev());
-        pts.extend(&halves[0].0[1..]);
+        traced.extend(halves[1].0.iter().rev());
+        traced.extend(&halves[0].0[1..]);
     } else {
-        pts = halves.remove(0).0;
+        traced = halves.remove(0).0;
     }
-    if pts.len() < 2 {
+    if traced.len() < 2 {
         return Ok(None);
     }
-    // stability-boundary flags, and codimension-two points where they change
-    let mut flags = Vec::with_capacity(pts.len());
-    for z in &pts {
-        flags.push(pl.on_boundary(kind, z)?);
+    // stability-boundary flags (from the polynomial the corrector evaluated last, within 1e-8
+    // of the point, where there is one), and codimension-two points where they change
+    let mut flags = Vec::with_capacity(traced.len());
+    for (z, near) in &traced {
+        flags.push(match near {
+            Some((a, n)) => boundary_flag(kind, z, a, *n),
+            None => pl.on_boundary(kind, z)?,
+        });
     }
+    let pts: Vec<[f64; 3]> = traced.iter().map(|p| p.0).collect();
     for k in 0..pts.len() - 1 {
         let (a, b) = (pts[k], pts[k + 1]);
         if kind == CurveKind::Hopf && (a[2] > 0.0) != (b[2] > 0.0) {
@@ -1308,14 +1375,23 @@ fn locate_crossing(pl: &Plane, kind: CurveKind, a: [f64; 3], b: [f64; 3]) -> Res
     Ok(Some(best))
 }
 
+/// A traced point and the polynomial that the corrector evaluated last, when that was within
+/// 1e-8 of the point (its stability flag, [`boundary_flag`], then costs no evaluation).
+type Traced = ([f64; 3], Option<([f64; D], usize)>);
+
+/// The polynomial the plane evaluated last, if it was at most 1e-8 from `z` (scaled).
+fn near_poly(pl: &Plane, z: &[f64; 3]) -> Option<([f64; D], usize)> {
+    let (u, v, a, n) = pl.last.get()?;
+    ((u - z[0]).abs() <= 1e-8 && (v - z[1]).abs() <= 1e-8).then_some((a, n))
+}
+
 /// March from `z0` along `t`: predictor–corrector with step control, until the curve leaves the
 /// unit square (the last point clipped to its edge), closes on itself, or 4000 points.
-fn march(pl: &Plane, kind: CurveKind, z0: [f64; 3], t0: [f64; 3], max_step: f64) -> Result<(Vec<[f64; 3]>, bool)> {
-    let mut pts = vec![z0];
+fn march(pl: &Plane, kind: CurveKind, z0: [f64; 3], t0: [f64; 3], max_step: f64) -> Result<(Vec<Traced>, bool)> {
+    let mut pts: Vec<Traced> = vec![(z0, None)];
     let mut z = z0;
     let mut t = t0;
-    let f0 = pl.residual(kind, &z0)?;
-    let mut jz = jacobian(pl, kind, &z0, &f0)?;
+    let mut jz = residual_jacobian(pl, kind, &z0)?.1;
     let mut h = 0.25 * max_step;
     let mut travelled = 0.0;
     while pts.len() < 4000 {
@@ -1360,14 +1436,14 @@ fn march(pl: &Plane, kind: CurveKind, z0: [f64; 3], t0: [f64; 3], max_step: f64)
                         correct(pl, kind, zc, &normal, Some(&jz)).or_else(|e| if matches!(e, Error::InvalidParameter { .. }) { Ok(None) } else { Err(e) })?;
                     if let Some((ze, _)) = edge {
                         if (-1e-9..=1.0 + 1e-9).contains(&ze[0]) && (-1e-9..=1.0 + 1e-9).contains(&ze[1]) {
-                            pts.push(ze);
+                            pts.push((ze, near_poly(pl, &ze)));
                         }
                     }
                     return Ok((pts, false));
                 }
                 travelled += dist;
                 let back = ((zn[0] - z0[0]).powi(2) + (zn[1] - z0[1]).powi(2) + (zn[2] - z0[2]).powi(2)).sqrt();
-                pts.push(zn);
+                pts.push((zn, near_poly(pl, &zn)));
                 // closed: the chord z → zn passes through the start (within the sagitta of a
                 // step, ≤ h·turn/8 ≤ 1e-3; near the start alone is not enough, the curve may
                 // still have a tip to go round)
@@ -1378,7 +1454,7 @@ fn march(pl: &Plane, kind: CurveKind, z0: [f64; 3], t0: [f64; 3], max_step: f64)
                     (0..3).map(|c| (z[c] + s * d[c] - z0[c]).powi(2)).sum::<f64>().sqrt() < 2e-3
                 };
                 if travelled > 4.0 * h && back < 1.5 * h && through_start {
-                    pts.push(z0);
+                    pts.push((z0, None));
                     return Ok((pts, true));
                 }
                 z = zn;
