@@ -29,20 +29,26 @@
 //! other (checked against the derived model: `z̄_A`, the damping coefficients, ...), the whole
 //! plane's characteristic polynomial is expanded once
 //! ([`crate::linalg::charpoly::PlanePolynomial`]): every point's coefficients, residual, exact
-//! Jacobian and stability flag then cost a few hundred multiply-adds, and no model is derived.
+//! Jacobian and stability flag then cost a few hundred multiply-adds, and no model is derived;
+//! the residual and the Jacobian at an iterate come from one evaluation, and a point's
+//! stability flag from the corrector's last.
 //! Otherwise the corrector's residuals are determinants of the pencil at `λ = iω` (or `±√(−w)`,
 //! or 0) by elimination, a fraction of an expansion's cost; the model is held as a pencil in
 //! the speed, so a step along the speed derives no model; the Jacobian (forward differences) is
 //! refreshed while the steps are large and then kept (the chord method). The expansion is
 //! needed once per traced point (Routh's count: is it on the stability boundary?) and for the
 //! bisections across the speed. Every point of a curve satisfies its condition to the
-//! corrector's tolerance (a last step below 1e-10 in the plane scaled to the unit square, after
-//! which the error is ~1e-15): it is located far inside the 1e-8 required.
+//! corrector's tolerance (the error left after the last step, estimated from the steps'
+//! quadratic convergence, below 1e-12 of the plane scaled to the unit square, or a last step
+//! below 1e-10): it is located far inside the 1e-8 required. The chord error of the polyline
+//! is bounded through the product of a step and its turn (`h·turn ≤ 0.15·max_step`, sagitta
+//! `≈ h·turn/8`), so a short step may turn further (up to 0.6 rad): a tight tip of a curve is
+//! passed in few points.
 
 use crate::builder::builder;
 use crate::control::{Control, StopReason};
 use crate::error::{Error, Result};
-use crate::linalg::charpoly::{det_dual, pencil_polynomial, routh_count_right_of, PencilTerms, PlanePolynomial, SpeedPolynomial};
+use crate::linalg::charpoly::{aberth_roots, det_dual, pencil_polynomial, routh_count_right_of, PencilTerms, PlanePolynomial, SpeedPolynomial};
 use crate::linalg::dense::Lu;
 use crate::linalg::eigen::eigenvalues;
 pub use crate::paths::Axis;
@@ -849,11 +855,14 @@ fn solve3(mut a: [[f64; 3]; 3], mut b: [f64; 3], n: usize) -> Option<[f64; 3]> {
 /// Newton's method on the condition plus the hyperplane `t · (z − z0) = 0` (pseudo-arclength
 /// corrector; with `t` a coordinate vector it holds that coordinate fixed). The Jacobian is
 /// `j0` (the previous point's, when given) for the first iteration, then refreshed at every
-/// iterate while the steps are above 1e-5 or stop contracting, and kept once they are small
-/// (the chord method: its contraction is then ~1e-5 times the curvature). Stops once a step is
-/// below 1e-10 in the plane scaled to the unit square (the next would be below ~1e-15).
-/// Returns the point and the Jacobian there (computed at the point, or at an iterate within
-/// 1e-6 of it: the tangent is the curve's).
+/// iterate while the steps are above 1e-5, stop contracting, or were taken more than 1e-6 from
+/// the Jacobian's point, and kept once they are small (the chord method: its contraction is
+/// then ~1e-5 times the curvature). Stops once the error left after a step, estimated from the
+/// convergence (Newton's `K s²` with `K ≈ s/s_prev²`; the chord method's `s θ/(1 − θ)`,
+/// `θ = s/s_prev`), is below 1e-12 with the step below 1e-6, or once a step is below 1e-10, in
+/// the plane scaled to the unit square; gives up (`None`: the caller shortens its step) after
+/// three steps without a step shrinking fourfold. Returns the point and the Jacobian there
+/// (computed at the point, or at an iterate within 1e-6 of it: the tangent is the curve's).
 fn correct(pl: &Plane, kind: CurveKind, z0: [f64; 3], t: &[f64; 3], j0: Option<&[[f64; 3]; 2]>) -> Result<Option<([f64; 3], [[f64; 3]; 2])>> {
     // the derivatives of the model stored by this correction's first Jacobian serve it alone
     pl.dterms.replace([None, None]);
@@ -1247,6 +1256,8 @@ fn trace_curve(
     if traced.len() < 2 {
         return Ok(None);
     }
+    // the spectrum at the last end of a chord searched for a crossing (the next chord's start)
+    let mut spectra: Option<([f64; 3], Vec<Complex64>)> = None;
     // stability-boundary flags (from the polynomial the corrector evaluated last, within 1e-8
     // of the point, where there is one), and codimension-two points where they change
     let mut flags = Vec::with_capacity(traced.len());
@@ -1266,8 +1277,14 @@ fn trace_curve(
             codim2.push(Codim2Point { kind: Codim2Kind::BogdanovTakens, x: Plane::value(pl.x, p[0]), y: Plane::value(pl.y, p[1]) });
             continue;
         }
-        if flags[k] != flags[k + 1] && (kind == CurveKind::Fold || (a[2] > 0.0 && b[2] > 0.0)) {
-            if let Some((p, other)) = locate_crossing(pl, kind, a, b)? {
+        // (a chord from a codimension-two point already found, such as the start of the other
+        // curve through it, changes its flag at that point: nothing to locate)
+        let known = |z: &[f64; 3]| {
+            let sc = |v: f64, a: &Axis| (v - a.lo()) / (a.hi() - a.lo());
+            codim2.iter().any(|c| (sc(c.x, pl.x) - z[0]).abs() <= 1e-9 && (sc(c.y, pl.y) - z[1]).abs() <= 1e-9)
+        };
+        if flags[k] != flags[k + 1] && (kind == CurveKind::Fold || (a[2] > 0.0 && b[2] > 0.0)) && !known(&a) && !known(&b) {
+            if let Some((p, other)) = locate_crossing(pl, kind, a, b, &mut spectra)? {
                 let k2 = if other.im.abs() < 1e-6 || kind == CurveKind::Fold && other.im.abs() > 1e-6 { Codim2Kind::FoldHopf } else { Codim2Kind::DoubleHopf };
                 codim2.push(Codim2Point { kind: k2, x: Plane::value(pl.x, p[0]), y: Plane::value(pl.y, p[1]) });
                 // the other curve through the point
@@ -1291,15 +1308,40 @@ fn trace_curve(
 
 /// Where along the chord `a → b` (corrected onto the curve) another eigenvalue crosses the
 /// axis: regula falsi (Illinois) on its real part. Returns the point and that eigenvalue.
-fn locate_crossing(pl: &Plane, kind: CurveKind, a: [f64; 3], b: [f64; 3]) -> Result<Option<([f64; 3], Complex64)>> {
+/// `last` holds the spectrum at the end of the chord searched before (continued from, when it
+/// is near `a`), and receives the spectrum at `b`.
+fn locate_crossing(
+    pl: &Plane,
+    kind: CurveKind,
+    a: [f64; 3],
+    b: [f64; 3],
+    last: &mut Option<([f64; 3], Vec<Complex64>)>,
+) -> Result<Option<([f64; 3], Complex64)>> {
     let d: [f64; 3] = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
     let nrm = d.iter().map(|x| x * x).sum::<f64>().sqrt();
     let t = d.map(|x| x / nrm);
+    // the spectrum at a point: continued from `from` (a spectrum nearby) by the Aberth–Ehrlich
+    // iteration on the point's polynomial where it certifies every root (disjoint inclusion
+    // disks), else the eigenvalues of the state matrix (QR)
+    let spectrum = |z: &[f64; 3], from: Option<&[Complex64]>| -> Result<Vec<Complex64>> {
+        if let Some(st) = from {
+            let (a, n) = pl.poly(z[0], z[1])?;
+            if st.len() == n {
+                let mut c = [0.0; D];
+                for k in 0..=n {
+                    c[k] = a[n - k];
+                }
+                let mut out = vec![Complex64::default(); n];
+                if aberth_roots(&c[..=n], st, &mut out, 1e-10).is_some() {
+                    return Ok(out);
+                }
+            }
+        }
+        pl.eigen(z[0], z[1])
+    };
     // the eigenvalue nearest the axis other than the critical ones
-    let other = |z: &[f64; 3]| -> Result<Complex64> {
-        let ev = pl.eigen(z[0], z[1])?;
+    let other = |z: &[f64; 3], mut cand: Vec<Complex64>| -> Complex64 {
         let wc = if kind == CurveKind::Hopf { z[2].max(0.0).sqrt() } else { 0.0 };
-        let mut cand: Vec<Complex64> = ev;
         // drop the critical pair (or zero)
         for target in [Complex64::new(0.0, wc), Complex64::new(0.0, -wc)] {
             if let Some(i) = (0..cand.len()).min_by(|&i, &j| (cand[i] - target).norm().total_cmp(&(cand[j] - target).norm())) {
@@ -1309,7 +1351,7 @@ fn locate_crossing(pl: &Plane, kind: CurveKind, a: [f64; 3], b: [f64; 3]) -> Res
                 break;
             }
         }
-        Ok(cand.into_iter().max_by(|x, y| x.re.total_cmp(&y.re)).unwrap_or_default())
+        cand.into_iter().max_by(|x, y| x.re.total_cmp(&y.re)).unwrap_or_default()
     };
     // the same from the polynomial: the critical pair (or zero) divided out, the rightmost root
     // of the quotient by Newton's method from `guess`, certified by Routh's count right of it
@@ -1337,21 +1379,30 @@ fn locate_crossing(pl: &Plane, kind: CurveKind, a: [f64; 3], b: [f64; 3]) -> Res
         Ok(correct(pl, kind, z0, &t, None)?.map(|r| r.0))
     };
     let (mut s0, mut s1) = (0.0, 1.0);
-    let (oa, ob) = (other(&a)?, other(&b)?);
+    // the spectrum by QR at one end (or continued from the last chord's end, within 0.1), and
+    // continued to the other
+    let from = last.take().filter(|(z, _)| (0..3).all(|c| (z[c] - a[c]).abs() <= 0.1));
+    let ea = spectrum(&a, from.as_ref().map(|f| &f.1[..]))?;
+    let eb = spectrum(&b, Some(&ea))?;
+    *last = Some((b, eb.clone()));
+    let (oa, ob) = (other(&a, ea.clone()), other(&b, eb.clone()));
     let (mut g0, mut g1) = (oa.re, ob.re);
     if g0.signum() == g1.signum() {
         return Ok(None);
     }
+    // Newton's start on the quotient: the crossing eigenvalue where it is right of the axis
+    // (on the other side the rightmost may be another), then the last one found
+    let mut guess = if oa.re > ob.re { oa } else { ob };
     let mut best = (a, Complex64::default());
     let mut side = 0;
     for _ in 0..40 {
         let s = (s0 * g1 - s1 * g0) / (g1 - g0);
         let Some(z) = point(s)? else { return Ok(None) };
-        let guess = oa + (ob - oa) * s;
         let o = match other_poly(&z, guess)? {
             Some(o) => o,
-            None => other(&z)?,
+            None => other(&z, spectrum(&z, Some(if s < 0.5 { &ea } else { &eb }))?),
         };
+        guess = o;
         best = (z, o);
         if o.re.abs() < 1e-10 || (s1 - s0) < 1e-10 {
             break;
@@ -1394,8 +1445,11 @@ fn march(pl: &Plane, kind: CurveKind, z0: [f64; 3], t0: [f64; 3], max_step: f64)
     let mut jz = residual_jacobian(pl, kind, &z0)?.1;
     let mut h = 0.25 * max_step;
     let mut travelled = 0.0;
+    // the curve's bend, dt/ds from the last two tangents: the predictor follows the osculating
+    // parabola `z + h t + h²/2 dt/ds` (its error O(h³) instead of the tangent's O(h²·curvature))
+    let mut bend = [0.0; 3];
     while pts.len() < 4000 {
-        let pred = [z[0] + h * t[0], z[1] + h * t[1], z[2] + h * t[2]];
+        let pred: [f64; 3] = std::array::from_fn(|c| z[c] + h * t[c] + 0.5 * h * h * bend[c]);
         // a step the model refuses (beyond an end of the plane where the parameter has no
         // meaning, e.g. a negative drag): the curve leaves the plane there
         let step = match correct(pl, kind, pred, &t, Some(&jz)) {
@@ -1407,7 +1461,11 @@ fn march(pl: &Plane, kind: CurveKind, z0: [f64; 3], t0: [f64; 3], max_step: f64)
                 let tn = tangent(kind, &j, Some(&t));
                 let turn = (t.iter().zip(&tn).map(|(a, b)| a * b).sum::<f64>()).clamp(-1.0, 1.0).acos();
                 let dist = ((zn[0] - z[0]).powi(2) + (zn[1] - z[1]).powi(2) + (zn[2] - z[2]).powi(2)).sqrt();
-                if (turn > 0.15 || dist > 2.0 * h) && h > 1e-7 {
+                // the chord error (sagitta ≈ h·turn/8) is bounded through h·turn ≤ 0.15·max_step,
+                // as with the largest step: a shorter step may turn further (a tight tip is
+                // passed in fewer steps), up to 0.6 rad
+                let most = (0.15 * max_step / h).clamp(0.15, 0.6);
+                if (turn > most || dist > 2.0 * h) && h > 1e-7 {
                     h *= 0.5;
                     continue;
                 }
@@ -1457,10 +1515,13 @@ fn march(pl: &Plane, kind: CurveKind, z0: [f64; 3], t0: [f64; 3], max_step: f64)
                     pts.push((z0, None));
                     return Ok((pts, true));
                 }
+                if dist > 0.0 {
+                    bend = std::array::from_fn(|c| (tn[c] - t[c]) / dist);
+                }
                 z = zn;
                 t = tn;
                 jz = j;
-                if turn < 0.05 {
+                if turn < most / 3.0 {
                     h = (h * 1.5).min(max_step);
                 }
             }
