@@ -860,8 +860,8 @@ fn solve3(mut a: [[f64; 3]; 3], mut b: [f64; 3], n: usize) -> Option<[f64; 3]> {
 /// then ~1e-5 times the curvature). Stops once the error left after a step, estimated from the
 /// convergence (Newton's `K s²` with `K ≈ s/s_prev²`; the chord method's `s θ/(1 − θ)`,
 /// `θ = s/s_prev`), is below 1e-12 with the step below 1e-6, or once a step is below 1e-10, in
-/// the plane scaled to the unit square; gives up (`None`: the caller shortens its step) after
-/// three steps without a step shrinking fourfold. Returns the point and the Jacobian there
+/// the plane scaled to the unit square; gives up (`None`: the caller shortens its step) when
+/// a step from the fourth on is more than a quarter of the one before. Returns the point and the Jacobian there
 /// (computed at the point, or at an iterate within 1e-6 of it: the tangent is the curve's).
 fn correct(pl: &Plane, kind: CurveKind, z0: [f64; 3], t: &[f64; 3], j0: Option<&[[f64; 3]; 2]>) -> Result<Option<([f64; 3], [[f64; 3]; 2])>> {
     // the derivatives of the model stored by this correction's first Jacobian serve it alone
@@ -1705,7 +1705,7 @@ mod tests {
         // the state matrix): wherever two neighbouring cells of a 120 × 120 verdict map differ,
         // the stability boundary crosses the segment between their centres, so a traced
         // stability-boundary segment must pass within half that segment (0.5/119 of the plane)
-        // plus the polyline's chord error (2e-3: steps ≤ 0.05 turning ≤ 0.15 rad) of its
+        // plus the polyline's chord error (2e-3: steps h ≤ 0.05 with h·turn ≤ 0.05 · 0.15 rad) of its
         // middle. A piece of boundary the seeds missed is a run of such cells far from every
         // traced curve. Planes: the benchmark's and the docs' (`map --x dimensionless.z_a=-2:2
         // --y omega=0.05:4.5 --boundary` on the default rotor).
