@@ -242,33 +242,50 @@ impl PlanePolynomial {
             return None;
         }
         let n = terms[0].n;
+        const S: usize = D * D * U3;
         let idx = |a: usize, b: usize, c: usize| (a * D + b) * U3 + c;
-        let mut empty = [0.0f64; D * D * U3];
-        empty[0] = 1.0;
-        let mut minors = vec![empty];
-        laplace(n, &mut minors, [0.0; D * D * U3], |acc, minor, r, j, sign| {
-            // a minor of r rows: degree ≤ 2r in (λ, Ω) together, ≤ r·dp in u
-            for (l, t) in terms.iter().enumerate() {
-                for (ea, eb, v) in
-                    [(2, 0, t.m[r][j]), (1, 0, t.g[0][r][j]), (1, 1, t.g[1][r][j]), (0, 0, t.k[0][r][j]), (0, 1, t.k[1][r][j]), (0, 2, t.k[2][r][j])]
-                {
-                    if v == 0.0 {
-                        continue;
-                    }
-                    let f = sign * v;
-                    let lu = r * dp + 1;
-                    for a in 0..=2 * r {
-                        for b in 0..=2 * r - a {
-                            let (src, dst) = (idx(a, b, 0), idx(a + ea, b + eb, l));
-                            for c in 0..lu {
-                                acc[dst + c] += f * minor[src + c];
+        // Laplace along rows memoised over column subsets (as `laplace`), every subset's minor
+        // in one zeroed allocation (no zeroed minor copied in per subset: most of a small
+        // minor's slots are never written)
+        let subsets = 1usize << n;
+        let mut minors = vec![0.0f64; subsets * S];
+        minors[0] = 1.0;
+        for mask in 1..subsets {
+            let r = mask.count_ones() as usize - 1;
+            let (done, cur) = minors.split_at_mut(mask * S);
+            let acc = &mut cur[..S];
+            let mut pos = 0;
+            for j in 0..n {
+                if mask & (1 << j) == 0 {
+                    continue;
+                }
+                let sign = if (r + pos).is_multiple_of(2) { 1.0 } else { -1.0 };
+                pos += 1;
+                let sub = mask & !(1 << j);
+                let minor = &done[sub * S..(sub + 1) * S];
+                // a minor of r rows: degree ≤ 2r in (λ, Ω) together, ≤ r·dp in u
+                for (l, t) in terms.iter().enumerate() {
+                    for (ea, eb, v) in
+                        [(2, 0, t.m[r][j]), (1, 0, t.g[0][r][j]), (1, 1, t.g[1][r][j]), (0, 0, t.k[0][r][j]), (0, 1, t.k[1][r][j]), (0, 2, t.k[2][r][j])]
+                    {
+                        if v == 0.0 {
+                            continue;
+                        }
+                        let f = sign * v;
+                        let lu = r * dp + 1;
+                        for a in 0..=2 * r {
+                            for b in 0..=2 * r - a {
+                                let (src, dst) = (idx(a, b, 0), idx(a + ea, b + eb, l));
+                                for (d, x) in acc[dst..dst + lu].iter_mut().zip(&minor[src..src + lu]) {
+                                    *d += f * x;
+                                }
                             }
                         }
                     }
                 }
             }
-        });
-        let det = minors.pop()?;
+        }
+        let det = &minors[(subsets - 1) * S..];
         let nn = 2 * n;
         // the degree in u: the highest power with a coefficient not exactly 0 (entries that do
         // not depend on u have exactly zero higher terms, and zero entries are skipped)
@@ -285,22 +302,33 @@ impl PlanePolynomial {
         Some(PlanePolynomial { states: nn, du, pairs, b })
     }
 
-    /// `g_kj(u) = Σ_l b_kjl u^l` for every pair (Horner over whole blocks), and with
-    /// `derivative` also `dg_kj/du`.
-    fn in_u(&self, u: f64, derivative: bool) -> ([f64; PAIRS], [f64; PAIRS]) {
+    /// `g_kj(u) = Σ_l b_kjl u^l` for every pair into `g[..pairs]` (Horner over whole blocks,
+    /// started from the highest block), and with `gu` also `dg_kj/du` into it.
+    fn in_u(&self, u: f64, g: &mut [f64; PAIRS], gu: Option<&mut [f64; PAIRS]>) {
         let p = self.pairs;
-        let (mut g, mut gu) = ([0.0; PAIRS], [0.0; PAIRS]);
-        for block in self.b.chunks_exact(p).rev() {
-            if derivative {
-                for (d, x) in gu[..p].iter_mut().zip(&g[..p]) {
-                    *d = *d * u + x;
+        let mut blocks = self.b.chunks_exact(p).rev();
+        let Some(top) = blocks.next() else { return };
+        let g = &mut g[..p];
+        g.copy_from_slice(top);
+        match gu {
+            Some(gu) => {
+                let gu = &mut gu[..p];
+                gu.fill(0.0);
+                for block in blocks {
+                    for ((d, x), c) in gu.iter_mut().zip(g.iter_mut()).zip(block) {
+                        *d = *d * u + *x;
+                        *x = *x * u + c;
+                    }
                 }
             }
-            for (x, c) in g[..p].iter_mut().zip(block) {
-                *x = *x * u + c;
+            None => {
+                for block in blocks {
+                    for (x, c) in g.iter_mut().zip(block) {
+                        *x = *x * u + c;
+                    }
+                }
             }
         }
-        (g, gu)
     }
 
     /// Ascending coefficients `a_0..a_N` (`a_N = 1`) of `det P(λ, Ω, u)/det M(u)` (Horner in
@@ -308,7 +336,8 @@ impl PlanePolynomial {
     /// where `M(u)` is singular.
     pub fn value(&self, omega: f64, u: f64) -> Option<[f64; D]> {
         let nn = self.states;
-        let (g, _) = self.in_u(u, false);
+        let mut g = [0.0; PAIRS];
+        self.in_u(u, &mut g, None);
         let mut a = [0.0; D];
         let mut off = 0;
         for k in 0..=nn {
@@ -330,7 +359,8 @@ impl PlanePolynomial {
     /// Horner in `u`: no expansion). `None` where `M(u)` is singular.
     pub fn speed_polynomial(&self, u: f64) -> Option<SpeedPolynomial> {
         let nn = self.states;
-        let (g, _) = self.in_u(u, false);
+        let mut g = [0.0; PAIRS];
+        self.in_u(u, &mut g, None);
         let mut det = [[0.0; D]; D];
         let mut off = 0;
         for k in 0..=nn {
@@ -347,7 +377,8 @@ impl PlanePolynomial {
     #[allow(clippy::type_complexity)]
     pub fn at(&self, omega: f64, u: f64) -> Option<([f64; D], [f64; D], [f64; D])> {
         let nn = self.states;
-        let (g, gu) = self.in_u(u, true);
+        let (mut g, mut gu) = ([0.0; PAIRS], [0.0; PAIRS]);
+        self.in_u(u, &mut g, Some(&mut gu));
         let (mut a, mut da_w, mut da_u) = ([0.0; D], [0.0; D], [0.0; D]);
         let mut off = 0;
         for k in 0..=nn {

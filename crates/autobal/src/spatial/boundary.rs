@@ -29,20 +29,26 @@
 //! other (checked against the derived model: `z̄_A`, the damping coefficients, ...), the whole
 //! plane's characteristic polynomial is expanded once
 //! ([`crate::linalg::charpoly::PlanePolynomial`]): every point's coefficients, residual, exact
-//! Jacobian and stability flag then cost a few hundred multiply-adds, and no model is derived.
+//! Jacobian and stability flag then cost a few hundred multiply-adds, and no model is derived;
+//! the residual and the Jacobian at an iterate come from one evaluation, and a point's
+//! stability flag from the corrector's last.
 //! Otherwise the corrector's residuals are determinants of the pencil at `λ = iω` (or `±√(−w)`,
 //! or 0) by elimination, a fraction of an expansion's cost; the model is held as a pencil in
 //! the speed, so a step along the speed derives no model; the Jacobian (forward differences) is
 //! refreshed while the steps are large and then kept (the chord method). The expansion is
 //! needed once per traced point (Routh's count: is it on the stability boundary?) and for the
 //! bisections across the speed. Every point of a curve satisfies its condition to the
-//! corrector's tolerance (a last step below 1e-10 in the plane scaled to the unit square, after
-//! which the error is ~1e-15): it is located far inside the 1e-8 required.
+//! corrector's tolerance (the error left after the last step, estimated from the steps'
+//! quadratic convergence, below 1e-12 of the plane scaled to the unit square, or a last step
+//! below 1e-10): it is located far inside the 1e-8 required. The chord error of the polyline
+//! is bounded through the product of a step and its turn (`h·turn ≤ 0.15·max_step`, sagitta
+//! `≈ h·turn/8`), so a short step may turn further (up to 0.6 rad): a tight tip of a curve is
+//! passed in few points.
 
 use crate::builder::builder;
 use crate::control::{Control, StopReason};
 use crate::error::{Error, Result};
-use crate::linalg::charpoly::{det_dual, pencil_polynomial, routh_count_right_of, PencilTerms, PlanePolynomial, SpeedPolynomial};
+use crate::linalg::charpoly::{aberth_roots, det_dual, pencil_polynomial, routh_count_right_of, PencilTerms, PlanePolynomial, SpeedPolynomial};
 use crate::linalg::dense::Lu;
 use crate::linalg::eigen::eigenvalues;
 pub use crate::paths::Axis;
@@ -558,18 +564,11 @@ impl<'a> Plane<'a> {
         if self.plane.is_some() {
             // the plane's polynomial: a_0 (fold), E(w) and O(w) by Horner (Hopf)
             let (a, n) = self.poly(z[0], z[1])?;
-            return Ok(match kind {
-                CurveKind::Fold => [a[0], 0.0],
-                CurveKind::Hopf => {
-                    let r = eo(&a, n, z[2]);
-                    [r[0], r[1]]
-                }
-            });
+            return Ok(residual_of_poly(kind, &a, n, z[2]));
         }
         if kind == CurveKind::Hopf && z[2].abs() <= W_EXPANDED {
             let (a, n) = self.poly(z[0], z[1])?;
-            let r = eo(&a, n, z[2]);
-            return Ok([r[0], r[1]]);
+            return Ok(residual_of_poly(kind, &a, n, z[2]));
         }
         let p = self.pencil(z[0], z[1])?;
         self.residual_of(&p, kind, z[2])
@@ -620,23 +619,36 @@ impl<'a> Plane<'a> {
         })
     }
 
-    /// Whether the point is on the stability boundary (all other roots left of −δ).
-    fn on_boundary(&self, kind: CurveKind, z: &[f64]) -> Result<bool> {
+    /// Whether the point is on the stability boundary (all other roots left of −δ,
+    /// [`boundary_flag`] on the polynomial at the point).
+    fn on_boundary(&self, kind: CurveKind, z: &[f64; 3]) -> Result<bool> {
         if kind == CurveKind::Hopf && z[2] <= 0.0 {
             return Ok(false);
         }
         let (a, n) = self.poly(z[0], z[1])?;
-        Ok(critical_count(&a, n) == Some(if kind == CurveKind::Hopf { 2 } else { 1 }))
+        Ok(boundary_flag(kind, z, &a, n))
     }
 }
 
-/// Routh count of the roots right of −δ: the pair (or zero) on the axis and any unstable root.
-fn critical_count(a: &[f64; D], n: usize) -> Option<usize> {
+/// Whether a point of a curve is on the stability boundary, from the polynomial `a` there (or
+/// within 1e-8 of it): the critical pair `λ² + w` (Hopf, `w > 0`) or root `λ` (fold) divided
+/// out, Routh's count of the quotient's roots right of −δ is 0 (every other eigenvalue has
+/// `Re λ < −δ`). At the point itself the same as Routh's count of `p` being 2 (or 1); at an
+/// iterate ≤ 1e-8 away the pair is off the axis by ~1e-8, which the quotient does not see.
+fn boundary_flag(kind: CurveKind, z: &[f64; 3], a: &[f64; D], n: usize) -> bool {
+    if kind == CurveKind::Hopf && z[2] <= 0.0 {
+        return false;
+    }
     let mut c = [0.0; D];
     for k in 0..=n {
         c[k] = a[n - k];
     }
-    routh_count_right_of(&c[..=n], -1e-7)
+    let m = if kind == CurveKind::Hopf { n - 2 } else { n - 1 };
+    let mut q = [0.0; D];
+    for k in 0..=m {
+        q[k] = c[k] - if kind == CurveKind::Hopf && k >= 2 { z[2] * q[k - 2] } else { 0.0 };
+    }
+    routh_count_right_of(&q[..=m], -1e-7) == Some(0)
 }
 
 /// `E(w)`, `O(w)` of the module docs and their derivatives in `w`.
@@ -662,6 +674,55 @@ fn dims(kind: CurveKind) -> (usize, usize) {
     }
 }
 
+/// The residual ([`Plane::residual`]) and its Jacobian ([`jacobian`]) at `z`. With the plane's
+/// polynomial both come from one evaluation with derivatives ([`PlanePolynomial::at`], whose
+/// coefficients are the same numbers as [`PlanePolynomial::value`]'s), kept as the plane's last
+/// polynomial, so that a later [`Plane::poly`] at the same point costs nothing.
+fn residual_jacobian(pl: &Plane, kind: CurveKind, z: &[f64; 3]) -> Result<([f64; 2], [[f64; 3]; 2])> {
+    if let Some(r) = pl.plane_at(z[0], z[1]) {
+        let (a, d) = r?;
+        let n = pl.plane.as_ref().map_or(0, |p| p.states);
+        pl.last.set(Some((z[0], z[1], a, n)));
+        return Ok((residual_of_poly(kind, &a, n, z[2]), jacobian_of_poly(kind, &a, &d, n, z[2])));
+    }
+    let f = pl.residual(kind, z)?;
+    Ok((f, jacobian(pl, kind, z, &f)?))
+}
+
+/// The residual of a condition from the coefficients `a` (`a_0` for a fold; `E(w)`, `O(w)` for Hopf).
+fn residual_of_poly(kind: CurveKind, a: &[f64; D], n: usize, w: f64) -> [f64; 2] {
+    match kind {
+        CurveKind::Fold => [a[0], 0.0],
+        CurveKind::Hopf => {
+            let r = eo(a, n, w);
+            [r[0], r[1]]
+        }
+    }
+}
+
+/// The exact Jacobian of [`residual_of_poly`] from the coefficients `a` and their derivatives
+/// `d` along `u` and `v` (the residuals are linear in the coefficients; in `w` by Horner).
+fn jacobian_of_poly(kind: CurveKind, a: &[f64; D], d: &[[f64; D]; 2], n: usize, w: f64) -> [[f64; 3]; 2] {
+    let mut j = [[0.0; 3]; 2];
+    match kind {
+        CurveKind::Fold => {
+            j[0][0] = d[0][0];
+            j[0][1] = d[1][0];
+        }
+        CurveKind::Hopf => {
+            for c in 0..2 {
+                let r = eo(&d[c], n, w);
+                j[0][c] = r[0];
+                j[1][c] = r[1];
+            }
+            let r = eo(a, n, w);
+            j[0][2] = r[2];
+            j[1][2] = r[3];
+        }
+    }
+    j
+}
+
 /// Jacobian of the residual by forward differences (the corrector's accuracy does not depend
 /// on it, only its speed): a step along the speed or `w` derives no model ([`Plane::terms`]);
 /// in `w` exact where the residual is the expanded polynomial's.
@@ -672,23 +733,7 @@ fn jacobian(pl: &Plane, kind: CurveKind, z: &[f64; 3], f0: &[f64; 2]) -> Result<
         // exact: the residuals are linear in the coefficients, whose derivatives are exact
         let (a, d) = r?;
         let n = pl.plane.as_ref().map_or(0, |p| p.states);
-        match kind {
-            CurveKind::Fold => {
-                j[0][0] = d[0][0];
-                j[0][1] = d[1][0];
-            }
-            CurveKind::Hopf => {
-                for c in 0..2 {
-                    let r = eo(&d[c], n, z[2]);
-                    j[0][c] = r[0];
-                    j[1][c] = r[1];
-                }
-                let r = eo(&a, n, z[2]);
-                j[0][2] = r[2];
-                j[1][2] = r[3];
-            }
-        }
-        return Ok(j);
+        return Ok(jacobian_of_poly(kind, &a, &d, n, z[2]));
     }
     let exact_w = kind == CurveKind::Hopf && z[2].abs() <= W_EXPANDED;
     if exact_w {
@@ -810,11 +855,14 @@ fn solve3(mut a: [[f64; 3]; 3], mut b: [f64; 3], n: usize) -> Option<[f64; 3]> {
 /// Newton's method on the condition plus the hyperplane `t · (z − z0) = 0` (pseudo-arclength
 /// corrector; with `t` a coordinate vector it holds that coordinate fixed). The Jacobian is
 /// `j0` (the previous point's, when given) for the first iteration, then refreshed at every
-/// iterate while the steps are above 1e-5 or stop contracting, and kept once they are small
-/// (the chord method: its contraction is then ~1e-5 times the curvature). Stops once a step is
-/// below 1e-10 in the plane scaled to the unit square (the next would be below ~1e-15).
-/// Returns the point and the Jacobian there (computed at the point, or at an iterate within
-/// 1e-6 of it: the tangent is the curve's).
+/// iterate while the steps are above 1e-5, stop contracting, or were taken more than 1e-6 from
+/// the Jacobian's point, and kept once they are small (the chord method: its contraction is
+/// then ~1e-5 times the curvature). Stops once the error left after a step, estimated from the
+/// convergence (Newton's `K s²` with `K ≈ s/s_prev²`; the chord method's `s θ/(1 − θ)`,
+/// `θ = s/s_prev`), is below 1e-12 with the step below 1e-6, or once a step is below 1e-10, in
+/// the plane scaled to the unit square; gives up (`None`: the caller shortens its step) when
+/// a step from the fourth on is more than a quarter of the one before. Returns the point and the Jacobian there
+/// (computed at the point, or at an iterate within 1e-6 of it: the tangent is the curve's).
 fn correct(pl: &Plane, kind: CurveKind, z0: [f64; 3], t: &[f64; 3], j0: Option<&[[f64; 3]; 2]>) -> Result<Option<([f64; 3], [[f64; 3]; 2])>> {
     // the derivatives of the model stored by this correction's first Jacobian serve it alone
     pl.dterms.replace([None, None]);
@@ -829,11 +877,14 @@ fn newton(pl: &Plane, kind: CurveKind, z0: [f64; 3], t: &[f64; 3], j0: Option<&[
     let mut z = z0;
     let mut j = j0.map(|j| (*j, [f64::INFINITY; 3]));
     let mut last = f64::INFINITY;
-    for _ in 0..16 {
-        let f = pl.residual(kind, &z)?;
-        let (jz, at) = match j {
-            Some(j) => j,
-            None => (jacobian(pl, kind, &z, &f)?, z),
+    for iteration in 0..16 {
+        // a fresh Jacobian: with the residual, from one evaluation of the plane's polynomial
+        let (f, jz, at, fresh) = match j {
+            Some((jz, at)) => (pl.residual(kind, &z)?, jz, at, false),
+            None => {
+                let (f, jz) = residual_jacobian(pl, kind, &z)?;
+                (f, jz, z, true)
+            }
         };
         let mut a = [[0.0; 3]; 3];
         let mut b = [0.0; 3];
@@ -852,16 +903,37 @@ fn newton(pl: &Plane, kind: CurveKind, z0: [f64; 3], t: &[f64; 3], j0: Option<&[
         if !z.iter().all(|x| x.is_finite()) || step > 0.5 {
             return Ok(None);
         }
-        if step < 1e-10 {
+        // the error left after this step: Newton's (a Jacobian at this iterate) converges
+        // quadratically, e' ≈ K s² with K ≈ s/s_prev² (an over-estimate when the previous step
+        // was a chord step, which contracts less than Newton's); the chord method linearly,
+        // e' ≈ s θ/(1 − θ) with θ = s/s_prev
+        let left = if !last.is_finite() {
+            f64::INFINITY
+        } else if fresh {
+            step * (step / last).powi(2)
+        } else if step < last {
+            step * step / (last - step)
+        } else {
+            f64::INFINITY
+        };
+        if step < 1e-10 || (step <= 1e-6 && left <= 1e-12) {
             // the tangent at the point: from a Jacobian computed there (or within 1e-6)
             if (0..nz).any(|c| (z[c] - at[c]).abs() > 1e-6) {
-                let f = pl.residual(kind, &z)?;
-                return Ok(Some((z, jacobian(pl, kind, &z, &f)?)));
+                return Ok(Some((z, residual_jacobian(pl, kind, &z)?.1)));
             }
             return Ok(Some((z, jz)));
         }
         // a fresh Jacobian at the next iterate unless the steps are small and contracting
-        j = (step < 1e-5 && step < 0.25 * last).then_some((jz, at));
+        if iteration >= 3 && step > 0.25 * last {
+            // Newton's method from a good start has converged by now (quadratically); steps that
+            // still do not shrink fourfold wander, or creep towards a singular point of the
+            // curve: a shorter step along the curve is cheaper than more iterations
+            return Ok(None);
+        }
+        // a fresh Jacobian at the next iterate unless the steps are small and contracting and
+        // the Jacobian's point is within 1e-6 (the point's tangent needs one that near anyway)
+        let near = (0..nz).all(|c| (z[c] - at[c]).abs() <= 1e-6);
+        j = (step < 1e-5 && step < 0.25 * last && near).then_some((jz, at));
         last = step;
     }
     Ok(None)
@@ -1161,10 +1233,9 @@ fn trace_curve(
     codim2: &mut Vec<Codim2Point>,
     queue: &mut Vec<(CurveKind, [f64; 3])>,
 ) -> Result<Option<BoundaryCurve>> {
-    let f = pl.residual(kind, &z0)?;
-    let j = jacobian(pl, kind, &z0, &f)?;
+    let (_, j) = residual_jacobian(pl, kind, &z0)?;
     let t0 = tangent(kind, &j, None);
-    let mut halves: Vec<(Vec<[f64; 3]>, bool)> = vec![];
+    let mut halves: Vec<(Vec<Traced>, bool)> = vec![];
     for sign in [1.0, -1.0] {
         let t = t0.map(|x| sign * x);
         let (pts, closed) = march(pl, kind, z0, t, max_step)?;
@@ -1175,21 +1246,28 @@ fn trace_curve(
         }
     }
     let closed = halves[0].1;
-    let mut pts: Vec<[f64; 3]> = vec![];
+    let mut traced: Vec<Traced> = vec![];
     if halves.len() == 2 {
-        pts.extend(halves[1].0.iter().rev());
-        pts.extend(&halves[0].0[1..]);
+        traced.extend(halves[1].0.iter().rev());
+        traced.extend(&halves[0].0[1..]);
     } else {
-        pts = halves.remove(0).0;
+        traced = halves.remove(0).0;
     }
-    if pts.len() < 2 {
+    if traced.len() < 2 {
         return Ok(None);
     }
-    // stability-boundary flags, and codimension-two points where they change
-    let mut flags = Vec::with_capacity(pts.len());
-    for z in &pts {
-        flags.push(pl.on_boundary(kind, z)?);
+    // the spectrum at the last end of a chord searched for a crossing (the next chord's start)
+    let mut spectra: Option<([f64; 3], Vec<Complex64>)> = None;
+    // stability-boundary flags (from the polynomial the corrector evaluated last, within 1e-8
+    // of the point, where there is one), and codimension-two points where they change
+    let mut flags = Vec::with_capacity(traced.len());
+    for (z, near) in &traced {
+        flags.push(match near {
+            Some((a, n)) => boundary_flag(kind, z, a, *n),
+            None => pl.on_boundary(kind, z)?,
+        });
     }
+    let pts: Vec<[f64; 3]> = traced.iter().map(|p| p.0).collect();
     for k in 0..pts.len() - 1 {
         let (a, b) = (pts[k], pts[k + 1]);
         if kind == CurveKind::Hopf && (a[2] > 0.0) != (b[2] > 0.0) {
@@ -1199,8 +1277,14 @@ fn trace_curve(
             codim2.push(Codim2Point { kind: Codim2Kind::BogdanovTakens, x: Plane::value(pl.x, p[0]), y: Plane::value(pl.y, p[1]) });
             continue;
         }
-        if flags[k] != flags[k + 1] && (kind == CurveKind::Fold || (a[2] > 0.0 && b[2] > 0.0)) {
-            if let Some((p, other)) = locate_crossing(pl, kind, a, b)? {
+        // (a chord from a codimension-two point already found, such as the start of the other
+        // curve through it, changes its flag at that point: nothing to locate)
+        let known = |z: &[f64; 3]| {
+            let sc = |v: f64, a: &Axis| (v - a.lo()) / (a.hi() - a.lo());
+            codim2.iter().any(|c| (sc(c.x, pl.x) - z[0]).abs() <= 1e-9 && (sc(c.y, pl.y) - z[1]).abs() <= 1e-9)
+        };
+        if flags[k] != flags[k + 1] && (kind == CurveKind::Fold || (a[2] > 0.0 && b[2] > 0.0)) && !known(&a) && !known(&b) {
+            if let Some((p, other)) = locate_crossing(pl, kind, a, b, &mut spectra)? {
                 let k2 = if other.im.abs() < 1e-6 || kind == CurveKind::Fold && other.im.abs() > 1e-6 { Codim2Kind::FoldHopf } else { Codim2Kind::DoubleHopf };
                 codim2.push(Codim2Point { kind: k2, x: Plane::value(pl.x, p[0]), y: Plane::value(pl.y, p[1]) });
                 // the other curve through the point
@@ -1224,15 +1308,40 @@ fn trace_curve(
 
 /// Where along the chord `a → b` (corrected onto the curve) another eigenvalue crosses the
 /// axis: regula falsi (Illinois) on its real part. Returns the point and that eigenvalue.
-fn locate_crossing(pl: &Plane, kind: CurveKind, a: [f64; 3], b: [f64; 3]) -> Result<Option<([f64; 3], Complex64)>> {
+/// `last` holds the spectrum at the end of the chord searched before (continued from, when it
+/// is near `a`), and receives the spectrum at `b`.
+fn locate_crossing(
+    pl: &Plane,
+    kind: CurveKind,
+    a: [f64; 3],
+    b: [f64; 3],
+    last: &mut Option<([f64; 3], Vec<Complex64>)>,
+) -> Result<Option<([f64; 3], Complex64)>> {
     let d: [f64; 3] = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
     let nrm = d.iter().map(|x| x * x).sum::<f64>().sqrt();
     let t = d.map(|x| x / nrm);
+    // the spectrum at a point: continued from `from` (a spectrum nearby) by the Aberth–Ehrlich
+    // iteration on the point's polynomial where it certifies every root (disjoint inclusion
+    // disks), else the eigenvalues of the state matrix (QR)
+    let spectrum = |z: &[f64; 3], from: Option<&[Complex64]>| -> Result<Vec<Complex64>> {
+        if let Some(st) = from {
+            let (a, n) = pl.poly(z[0], z[1])?;
+            if st.len() == n {
+                let mut c = [0.0; D];
+                for k in 0..=n {
+                    c[k] = a[n - k];
+                }
+                let mut out = vec![Complex64::default(); n];
+                if aberth_roots(&c[..=n], st, &mut out, 1e-10).is_some() {
+                    return Ok(out);
+                }
+            }
+        }
+        pl.eigen(z[0], z[1])
+    };
     // the eigenvalue nearest the axis other than the critical ones
-    let other = |z: &[f64; 3]| -> Result<Complex64> {
-        let ev = pl.eigen(z[0], z[1])?;
+    let other = |z: &[f64; 3], mut cand: Vec<Complex64>| -> Complex64 {
         let wc = if kind == CurveKind::Hopf { z[2].max(0.0).sqrt() } else { 0.0 };
-        let mut cand: Vec<Complex64> = ev;
         // drop the critical pair (or zero)
         for target in [Complex64::new(0.0, wc), Complex64::new(0.0, -wc)] {
             if let Some(i) = (0..cand.len()).min_by(|&i, &j| (cand[i] - target).norm().total_cmp(&(cand[j] - target).norm())) {
@@ -1242,7 +1351,7 @@ fn locate_crossing(pl: &Plane, kind: CurveKind, a: [f64; 3], b: [f64; 3]) -> Res
                 break;
             }
         }
-        Ok(cand.into_iter().max_by(|x, y| x.re.total_cmp(&y.re)).unwrap_or_default())
+        cand.into_iter().max_by(|x, y| x.re.total_cmp(&y.re)).unwrap_or_default()
     };
     // the same from the polynomial: the critical pair (or zero) divided out, the rightmost root
     // of the quotient by Newton's method from `guess`, certified by Routh's count right of it
@@ -1270,21 +1379,30 @@ fn locate_crossing(pl: &Plane, kind: CurveKind, a: [f64; 3], b: [f64; 3]) -> Res
         Ok(correct(pl, kind, z0, &t, None)?.map(|r| r.0))
     };
     let (mut s0, mut s1) = (0.0, 1.0);
-    let (oa, ob) = (other(&a)?, other(&b)?);
+    // the spectrum by QR at one end (or continued from the last chord's end, within 0.1), and
+    // continued to the other
+    let from = last.take().filter(|(z, _)| (0..3).all(|c| (z[c] - a[c]).abs() <= 0.1));
+    let ea = spectrum(&a, from.as_ref().map(|f| &f.1[..]))?;
+    let eb = spectrum(&b, Some(&ea))?;
+    *last = Some((b, eb.clone()));
+    let (oa, ob) = (other(&a, ea.clone()), other(&b, eb.clone()));
     let (mut g0, mut g1) = (oa.re, ob.re);
     if g0.signum() == g1.signum() {
         return Ok(None);
     }
+    // Newton's start on the quotient: the crossing eigenvalue where it is right of the axis
+    // (on the other side the rightmost may be another), then the last one found
+    let mut guess = if oa.re > ob.re { oa } else { ob };
     let mut best = (a, Complex64::default());
     let mut side = 0;
     for _ in 0..40 {
         let s = (s0 * g1 - s1 * g0) / (g1 - g0);
         let Some(z) = point(s)? else { return Ok(None) };
-        let guess = oa + (ob - oa) * s;
         let o = match other_poly(&z, guess)? {
             Some(o) => o,
-            None => other(&z)?,
+            None => other(&z, spectrum(&z, Some(if s < 0.5 { &ea } else { &eb }))?),
         };
+        guess = o;
         best = (z, o);
         if o.re.abs() < 1e-10 || (s1 - s0) < 1e-10 {
             break;
@@ -1308,18 +1426,30 @@ fn locate_crossing(pl: &Plane, kind: CurveKind, a: [f64; 3], b: [f64; 3]) -> Res
     Ok(Some(best))
 }
 
+/// A traced point and the polynomial that the corrector evaluated last, when that was within
+/// 1e-8 of the point (its stability flag, [`boundary_flag`], then costs no evaluation).
+type Traced = ([f64; 3], Option<([f64; D], usize)>);
+
+/// The polynomial the plane evaluated last, if it was at most 1e-8 from `z` (scaled).
+fn near_poly(pl: &Plane, z: &[f64; 3]) -> Option<([f64; D], usize)> {
+    let (u, v, a, n) = pl.last.get()?;
+    ((u - z[0]).abs() <= 1e-8 && (v - z[1]).abs() <= 1e-8).then_some((a, n))
+}
+
 /// March from `z0` along `t`: predictor–corrector with step control, until the curve leaves the
 /// unit square (the last point clipped to its edge), closes on itself, or 4000 points.
-fn march(pl: &Plane, kind: CurveKind, z0: [f64; 3], t0: [f64; 3], max_step: f64) -> Result<(Vec<[f64; 3]>, bool)> {
-    let mut pts = vec![z0];
+fn march(pl: &Plane, kind: CurveKind, z0: [f64; 3], t0: [f64; 3], max_step: f64) -> Result<(Vec<Traced>, bool)> {
+    let mut pts: Vec<Traced> = vec![(z0, None)];
     let mut z = z0;
     let mut t = t0;
-    let f0 = pl.residual(kind, &z0)?;
-    let mut jz = jacobian(pl, kind, &z0, &f0)?;
+    let mut jz = residual_jacobian(pl, kind, &z0)?.1;
     let mut h = 0.25 * max_step;
     let mut travelled = 0.0;
+    // the curve's bend, dt/ds from the last two tangents: the predictor follows the osculating
+    // parabola `z + h t + h²/2 dt/ds` (its error O(h³) instead of the tangent's O(h²·curvature))
+    let mut bend = [0.0; 3];
     while pts.len() < 4000 {
-        let pred = [z[0] + h * t[0], z[1] + h * t[1], z[2] + h * t[2]];
+        let pred: [f64; 3] = std::array::from_fn(|c| z[c] + h * t[c] + 0.5 * h * h * bend[c]);
         // a step the model refuses (beyond an end of the plane where the parameter has no
         // meaning, e.g. a negative drag): the curve leaves the plane there
         let step = match correct(pl, kind, pred, &t, Some(&jz)) {
@@ -1331,7 +1461,11 @@ fn march(pl: &Plane, kind: CurveKind, z0: [f64; 3], t0: [f64; 3], max_step: f64)
                 let tn = tangent(kind, &j, Some(&t));
                 let turn = (t.iter().zip(&tn).map(|(a, b)| a * b).sum::<f64>()).clamp(-1.0, 1.0).acos();
                 let dist = ((zn[0] - z[0]).powi(2) + (zn[1] - z[1]).powi(2) + (zn[2] - z[2]).powi(2)).sqrt();
-                if (turn > 0.15 || dist > 2.0 * h) && h > 1e-7 {
+                // the chord error (sagitta ≈ h·turn/8) is bounded through h·turn ≤ 0.15·max_step,
+                // as with the largest step: a shorter step may turn further (a tight tip is
+                // passed in fewer steps), up to 0.6 rad
+                let most = (0.15 * max_step / h).clamp(0.15, 0.6);
+                if (turn > most || dist > 2.0 * h) && h > 1e-7 {
                     h *= 0.5;
                     continue;
                 }
@@ -1360,14 +1494,14 @@ fn march(pl: &Plane, kind: CurveKind, z0: [f64; 3], t0: [f64; 3], max_step: f64)
                         correct(pl, kind, zc, &normal, Some(&jz)).or_else(|e| if matches!(e, Error::InvalidParameter { .. }) { Ok(None) } else { Err(e) })?;
                     if let Some((ze, _)) = edge {
                         if (-1e-9..=1.0 + 1e-9).contains(&ze[0]) && (-1e-9..=1.0 + 1e-9).contains(&ze[1]) {
-                            pts.push(ze);
+                            pts.push((ze, near_poly(pl, &ze)));
                         }
                     }
                     return Ok((pts, false));
                 }
                 travelled += dist;
                 let back = ((zn[0] - z0[0]).powi(2) + (zn[1] - z0[1]).powi(2) + (zn[2] - z0[2]).powi(2)).sqrt();
-                pts.push(zn);
+                pts.push((zn, near_poly(pl, &zn)));
                 // closed: the chord z → zn passes through the start (within the sagitta of a
                 // step, ≤ h·turn/8 ≤ 1e-3; near the start alone is not enough, the curve may
                 // still have a tip to go round)
@@ -1378,13 +1512,16 @@ fn march(pl: &Plane, kind: CurveKind, z0: [f64; 3], t0: [f64; 3], max_step: f64)
                     (0..3).map(|c| (z[c] + s * d[c] - z0[c]).powi(2)).sum::<f64>().sqrt() < 2e-3
                 };
                 if travelled > 4.0 * h && back < 1.5 * h && through_start {
-                    pts.push(z0);
+                    pts.push((z0, None));
                     return Ok((pts, true));
+                }
+                if dist > 0.0 {
+                    bend = std::array::from_fn(|c| (tn[c] - t[c]) / dist);
                 }
                 z = zn;
                 t = tn;
                 jz = j;
-                if turn < 0.05 {
+                if turn < most / 3.0 {
                     h = (h * 1.5).min(max_step);
                 }
             }
@@ -1568,7 +1705,7 @@ mod tests {
         // the state matrix): wherever two neighbouring cells of a 120 × 120 verdict map differ,
         // the stability boundary crosses the segment between their centres, so a traced
         // stability-boundary segment must pass within half that segment (0.5/119 of the plane)
-        // plus the polyline's chord error (2e-3: steps ≤ 0.05 turning ≤ 0.15 rad) of its
+        // plus the polyline's chord error (2e-3: steps h ≤ 0.05 with h·turn ≤ 0.05 · 0.15 rad) of its
         // middle. A piece of boundary the seeds missed is a run of such cells far from every
         // traced curve. Planes: the benchmark's and the docs' (`map --x dimensionless.z_a=-2:2
         // --y omega=0.05:4.5 --boundary` on the default rotor).
