@@ -131,6 +131,7 @@ fn random_anisotropic_rotors_critical_speeds_do_not_depend_on_the_grid() {
         }
         total += reference.len();
     }
+    eprintln!("{total} crossings on 3 rotors, the same on every grid");
     assert!(total >= 6, "only {total} crossings compared");
 }
 

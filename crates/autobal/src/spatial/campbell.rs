@@ -349,6 +349,44 @@ fn bisect(mut lo: f64, mut hi: f64, mut pred: impl FnMut(f64) -> Result<bool>) -
     Ok(0.5 * (lo + hi))
 }
 
+/// The root of `g` in `[a, b]` (`g(a) = ga`, `g(b) = gb` of opposite signs) by the Illinois
+/// method (regula falsi halving the value of an end kept twice; superlinear on a smooth
+/// `g`), its bracket shrunk to [`BISECT_TOL`] or a step below it; a step that would leave the
+/// bracket, or 100 of them, fall back to bisection.
+fn illinois(mut a: f64, mut b: f64, mut ga: f64, mut gb: f64, mut g: impl FnMut(f64) -> Result<f64>) -> Result<f64> {
+    let tol = BISECT_TOL * a.abs().max(b.abs()).max(1.0);
+    let mut side = 0i8;
+    let mut prev = f64::NAN;
+    for _ in 0..100 {
+        if (b - a).abs() <= tol {
+            break;
+        }
+        let mut x = b - gb * (b - a) / (gb - ga);
+        if !(x > a.min(b) && x < a.max(b)) {
+            x = 0.5 * (a + b);
+        }
+        let gx = g(x)?;
+        if gx == 0.0 || (x - prev).abs() <= 0.5 * tol {
+            return Ok(x);
+        }
+        prev = x;
+        if (gx > 0.0) == (gb > 0.0) {
+            (b, gb) = (x, gx);
+            if side == 1 {
+                ga *= 0.5;
+            }
+            side = 1;
+        } else {
+            (a, ga) = (x, gx);
+            if side == -1 {
+                gb *= 0.5;
+            }
+            side = -1;
+        }
+    }
+    Ok(0.5 * (a + b))
+}
+
 /// A crossing found on one line, before the lines' duplicates are merged.
 struct Found {
     cs: CriticalSpeed,
@@ -513,7 +551,8 @@ fn component_crossings(pair: &Pair, h: u32, out: &mut Vec<Found>) -> Result<()> 
             if above(pair.nu_grid(k), om[k]) == above(pair.nu_grid(k + 1), om[k + 1]) || pair.mirrored_on(k..=k + 1) {
                 continue;
             }
-            let w = bisect(om[k], om[k + 1], |w| Ok(above(pair.nu(k, k + 1, w)?, w)))?;
+            let g = |w: f64| -> Result<f64> { Ok(pair.nu(k, k + 1, w)? - c * w) };
+            let w = illinois(om[k], om[k + 1], pair.nu_grid(k) - c * om[k], pair.nu_grid(k + 1) - c * om[k + 1], g)?;
             let up = pair.share_up(k, k + 1, w)?;
             let share = if forward { up } else { 1.0 - up };
             if share < SHARE_TOL {
