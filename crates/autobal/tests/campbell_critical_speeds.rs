@@ -44,6 +44,7 @@ fn spectrum(m: &SpatialModel, w: f64, balls: Balls) -> Vec<num_complex::Complex6
 /// real eigenvalues (`|Im λ| ≤ 1e-10`, the band of the search) differs 1e-8 relative either
 /// side (a collision leaves the axis like `sqrt(Ω − Ω*)`, ≫ 1e-10 at 1e-8, a passage linearly:
 /// the search merges its band, ~1e-10/slope, into one speed, so the check steps past it).
+/// Away from the axis the component's share is recomputed from nalgebra's SVD null vector.
 fn check(m: &SpatialModel, k: &CriticalSpeed, balls: Balls, what: &str) {
     let w = k.omega;
     let h = k.harmonic as f64;
@@ -61,8 +62,31 @@ fn check(m: &SpatialModel, k: &CriticalSpeed, balls: Balls, what: &str) {
     } else {
         // Ω + ν̂ = hΩ (forward) or Ω − ν̂ = −hΩ (backward)
         let c = if k.whirl == Whirl::Forward { h - 1.0 } else { h + 1.0 };
-        let best = ev.iter().map(|z| (z.im.abs() - c * w).abs()).fold(f64::INFINITY, f64::min);
+        let lam =
+            ev.iter().map(|z| num_complex::Complex64::new(z.re, z.im.abs())).min_by(|a, b| (a.im - c * w).abs().total_cmp(&(b.im - c * w).abs())).unwrap();
+        let best = (lam.im - c * w).abs();
         assert!(best <= tol, "{what}: no component at {h}Ω at Ω = {w}: off by {best:e}");
+        // the share, from nalgebra's SVD null vector of A − λI (y = (q, q'), q in (ξ, η) pairs):
+        // Σ|q_ξ + i q_η|² over the total, the Ω + ν̂ component's; a simple eigenvalue's vector
+        // is accurate to ~1e-12 here, 1e-7 leaves room for a close neighbour
+        let p = Pencil::new(m, w, balls).unwrap();
+        let (a, ns) = (p.state_matrix(), p.states());
+        let mat = nalgebra::DMatrix::from_fn(ns, ns, |i, j| {
+            nalgebra::Complex::new(a[i][j], 0.0) - if i == j { nalgebra::Complex::new(lam.re, lam.im) } else { nalgebra::Complex::new(0.0, 0.0) }
+        });
+        let svd = mat.svd(false, true);
+        let vt = svd.v_t.unwrap();
+        let (imin, _) = svd.singular_values.iter().enumerate().min_by(|a, b| a.1.total_cmp(b.1)).unwrap();
+        let x: Vec<nalgebra::Complex<f64>> = (0..ns / 2).map(|i| vt[(imin, i)].conj()).collect();
+        let i1 = nalgebra::Complex::new(0.0, 1.0);
+        let (mut fw, mut bw) = (0.0, 0.0);
+        for g in 0..ns / 4 {
+            fw += (x[2 * g] + i1 * x[2 * g + 1]).norm_sqr();
+            bw += (x[2 * g] - i1 * x[2 * g + 1]).norm_sqr();
+        }
+        let up = fw / (fw + bw);
+        let want = if k.whirl == Whirl::Forward { up } else { 1.0 - up };
+        assert!((k.share - want).abs() <= 1e-7, "{what}: share {} vs nalgebra's {want} at Ω = {w}", k.share);
         assert!(k.share > 1e-9 && k.share <= 1.0, "{what}: share {}", k.share);
     }
 }
