@@ -113,7 +113,7 @@ pub struct CriticalSpeed {
     pub harmonic: u32,
     /// Index of the curve in [`FixedCampbell::curves`] (the mode number − 1).
     pub curve: usize,
-    /// Whirl direction of the curve there.
+    /// Whirl direction of the crossing component (forward at `hΩ`, backward at `−hΩ`).
     pub whirl: Whirl,
     /// Natural frequency there, `hΩ`.
     pub frequency: f64,
