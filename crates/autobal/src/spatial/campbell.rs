@@ -402,7 +402,7 @@ struct Found {
 /// runs on the real axis on the grid, and those inside a window of the grid where `ν̂` has a
 /// local minimum low enough to reach zero (module docs). An entry and an exit closer than the
 /// on-axis band of a linear crossing are one crossing (the pair passes through the axis).
-fn axis_crossings(pair: &Pair, out: &mut Vec<Found>) -> Result<()> {
+fn axis_crossings(pair: &Pair, memo: &mut Vec<((usize, bool, usize), f64)>, out: &mut Vec<Found>) -> Result<()> {
     let om = &pair.c.omega;
     let n = om.len();
     let real = |k: usize| pair.nu_grid(k) <= REAL_TOL;
@@ -420,8 +420,20 @@ fn axis_crossings(pair: &Pair, out: &mut Vec<Found>) -> Result<()> {
         }
         let j = k;
         k += 1;
-        let entry = if i > 0 { Some(bisect(om[i - 1], om[i], |w| Ok(on_axis(pair.nu(i - 1, i, w)?, w)))?) } else { None };
-        let exit = if j + 1 < n { Some(bisect(om[j], om[j + 1], |w| Ok(on_axis(pair.nu(j, j + 1, w)?, w)))?) } else { None };
+        // where a conjugate pair reaches the axis in a grid step (or leaves it), both its lines
+        // are real on the other side and bisect the same eigenvalues: once, keyed by the step,
+        // the direction and the pair's first line at its complex end
+        let mut end = |k: usize, off: usize| -> Result<f64> {
+            let key = (k, off == k, pair.mirrored(off).unwrap_or(pair.line));
+            if let Some(&(_, w)) = memo.iter().find(|(q, _)| *q == key) {
+                return Ok(w);
+            }
+            let w = bisect(om[k], om[k + 1], |w| Ok(on_axis(pair.nu(k, k + 1, w)?, w)))?;
+            memo.push((key, w));
+            Ok(w)
+        };
+        let entry = if i > 0 { Some(end(i - 1, i - 1)?) } else { None };
+        let exit = if j + 1 < n { Some(end(j, j + 1)?) } else { None };
         runs.push((entry, exit, i == 0 || j + 1 == n));
     }
     // stretches between grid points: a local minimum of ν̂ on the grid that may reach zero. Near
@@ -573,11 +585,12 @@ fn critical_speeds(model: &SpatialModel, c: &Campbell, balls: Balls, harmonics: 
     if n < 2 {
         return Ok(vec![]);
     }
+    let mut memo = vec![];
     for line in 0..c.lines.len() {
         let pair = Pair { model, c, balls, line };
         for &h in harmonics {
             if h == 1 {
-                axis_crossings(&pair, &mut found)?;
+                axis_crossings(&pair, &mut memo, &mut found)?;
             }
             component_crossings(&pair, h, &mut found)?;
         }
