@@ -37,7 +37,8 @@ pub struct Args {
     /// The number of speeds; `None`: [`DEFAULT_POINTS`] (60 where the general route shoots
     /// periodic orbits).
     pub points: Option<usize>,
-    /// Excitation harmonics `h` whose lines `h×Ω` are crossed for the critical speeds.
+    /// Excitation harmonics `h` whose lines `h×Ω` are crossed for the critical speeds (where a
+    /// mode's circular component whirls at `h×Ω`: [`autobal::spatial::campbell`]).
     pub harmonics: Vec<u32>,
     /// The figure view.
     pub view: CampbellView,

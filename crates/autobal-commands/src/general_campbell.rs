@@ -206,7 +206,8 @@ pub fn campbell_json(g: &GeneralRotor, gc: &GeneralCampbell, omega_max: f64) -> 
                 .critical_speeds
                 .iter()
                 .map(|k| {
-                    let mut e = json!({ "omega": k.omega, "mode": k.curve + 1, "whirl": k.whirl, "harmonic": k.harmonic, "frequency": k.frequency });
+                    let mut e =
+                        json!({ "omega": k.omega, "mode": k.curve + 1, "whirl": k.whirl, "share": k.share, "harmonic": k.harmonic, "frequency": k.frequency });
                     if let (true, Some(o)) = (g.si, e.as_object_mut()) {
                         o.insert("omega_rad_s".into(), json!(k.omega));
                         o.insert("omega_rpm".into(), json!(rpm(k.omega)));
@@ -330,7 +331,7 @@ fn crossings_table(g: &GeneralRotor, gc: &GeneralCampbell) -> String {
         let hz = if g.si { format!(" ({} Hz)", fmt_num(round(k.frequency / (2.0 * std::f64::consts::PI)))) } else { String::new() };
         let _ = writeln!(
             s,
-            "  {:>2}. {}  mode {}, {}, {}×, frequency {}{hz}",
+            "  {:>2}. {}  mode {}, {}, {}×, frequency {}{hz}, {}",
             j + 1,
             speed_text(g, k.omega),
             k.curve + 1,
@@ -340,6 +341,7 @@ fn crossings_table(g: &GeneralRotor, gc: &GeneralCampbell) -> String {
             },
             k.harmonic,
             fmt_num(round(k.frequency)),
+            crate::linear::component_text(k.share),
         );
     }
     s

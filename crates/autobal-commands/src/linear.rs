@@ -279,6 +279,16 @@ fn whirl_name(w: Whirl) -> &'static str {
     }
 }
 
+/// A crossing's component in words: `whole motion` on the real axis (share 1: both components
+/// at `Ω`), else the major (share ≥ ½) or minor component with its share.
+pub fn component_text(share: f64) -> String {
+    if share >= 1.0 {
+        "whole motion".into()
+    } else {
+        format!("{} component (share {})", if share >= 0.5 { "major" } else { "minor" }, crate::num::fmt(share, 3))
+    }
+}
+
 /// The fixed-axes view as text: the critical speeds (crossings with `h×Ω`) and, at the table's
 /// speeds, each mode's natural frequency, whirl and log decrement (`δ = −2π σ/|f|` per
 /// fixed-axes cycle).
@@ -294,14 +304,15 @@ pub fn fixed_table(cfg: &Config, f: &FixedCampbell, at: &[f64]) -> String {
     for (j, k) in f.critical_speeds.iter().enumerate() {
         let _ = writeln!(
             s,
-            "  {:>2}. {}  mode {}, {}, {}×, frequency {}{}",
+            "  {:>2}. {}  mode {}, {}, {}×, frequency {}{}, {}",
             j + 1,
             speed_text(cfg, k.omega),
             k.curve + 1,
             whirl_name(k.whirl),
             k.harmonic,
             crate::num::fmt(k.frequency, 6),
-            hz(k.frequency)
+            hz(k.frequency),
+            component_text(k.share)
         );
     }
     let _ = writeln!(s, "\nmodes in fixed axes (one continuous curve per mode; log dec per fixed-axes cycle):");

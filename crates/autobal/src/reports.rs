@@ -1030,7 +1030,10 @@ pub struct CrossingReport {
     /// `60 Ω ω0/2π` (rpm).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub omega_rpm: Option<f64>,
-    /// Whirl direction of the curve there.
+    /// Share of the crossing circular component in the mode's amplitude squared (`> ½` the
+    /// major component, `< ½` the minor one; `1` on the real axis, `ν = 0`).
+    pub share: f64,
+    /// Whirl direction of the crossing component.
     pub whirl: crate::spatial::stability::Whirl,
 }
 
@@ -1038,7 +1041,7 @@ pub struct CrossingReport {
 /// `fixed_axes_modes` (per mode: its number, tracked line and per speed `omega`, `frequency`,
 /// `fixed_frequency`, `whirl`, `log_decrement`, ...; for a dimensional config `frequency_hz`,
 /// `fixed_frequency_hz`, `re_per_s`, `omega_rpm`) and `critical_speeds` (speed, mode number,
-/// whirl, harmonic; in rpm and Hz for a dimensional config).
+/// whirl and share of the crossing component, harmonic; in rpm and Hz for a dimensional config).
 pub fn campbell_fixed(model: &SpatialModel, f: &crate::spatial::campbell::FixedCampbell) -> FixedReport {
     let w0 = model.scale.map(|sc| sc.omega0);
     let tau = 2.0 * std::f64::consts::PI;
@@ -1068,6 +1071,7 @@ pub fn campbell_fixed(model: &SpatialModel, f: &crate::spatial::campbell::FixedC
                 omega: k.omega,
                 omega_rad_s: w0.map(|w0| k.omega * w0),
                 omega_rpm: w0.map(|w0| k.omega * w0 * 60.0 / tau),
+                share: k.share,
                 whirl: k.whirl,
             })
             .collect(),

@@ -1101,7 +1101,7 @@ impl Crossing<'_> {
     /// of the stationary state at `w` nearest the line's interpolated one, its component with
     /// the share nearest the interpolated share of the followed component (the nearer frequency
     /// where the two shares are within 0.1 of ½).
-    fn frequency_at(&self, k: usize, w: f64) -> Result<f64> {
+    fn frequency_at(&self, k: usize, w: f64) -> Result<(f64, f64)> {
         let (p0, p1) = (&self.cv.points[k], &self.cv.points[k + 1]);
         let t = if p1.omega != p0.omega { (w - p0.omega) / (p1.omega - p0.omega) } else { 0.0 };
         let line = &self.c.lines[self.cv.line];
@@ -1122,7 +1122,7 @@ impl Crossing<'_> {
         } else {
             usize::from((cand[0].0 - f_guess).abs() > (cand[1].0 - f_guess).abs())
         };
-        Ok(cand[pick].0)
+        Ok(cand[pick])
     }
 
     /// Bisection between points `k` and `k + 1` for the end of side `keep` (from the left), or
@@ -1134,7 +1134,7 @@ impl Crossing<'_> {
             if mid <= lo || mid >= hi {
                 break;
             }
-            let s = self.side(self.frequency_at(k, mid)?, mid);
+            let s = self.side(self.frequency_at(k, mid)?.0, mid);
             if (s == keep) == from_left {
                 lo = mid;
             } else {
@@ -1153,7 +1153,7 @@ impl Crossing<'_> {
         let h = self.h as f64;
         let g = |k: usize| pts[k].frequency - h * pts[k].omega;
         let sides: Vec<i8> = pts.iter().map(|p| self.side(p.fixed_frequency, p.omega)).collect();
-        let mut ends: Vec<(f64, FixedWhirl, f64)> = vec![];
+        let mut ends: Vec<(f64, FixedWhirl, f64, usize)> = vec![];
         for k in 0..pts.len().saturating_sub(1) {
             // a gap in the curve (speeds without a state) is not bracketed
             if self.idx[k + 1] != self.idx[k] + 1 {
@@ -1168,21 +1168,23 @@ impl Crossing<'_> {
             let first_run = sides[..=k].iter().all(|&s| s == 0);
             let last_run = sides[k + 1..].iter().all(|&s| s == 0);
             if a != 0 && !last_run {
-                ends.push((self.bisect(k, a, true)?, pts[k].whirl, band));
+                ends.push((self.bisect(k, a, true)?, pts[k].whirl, band, k));
             }
             if b != 0 && !first_run {
-                ends.push((self.bisect(k, b, false)?, pts[k + 1].whirl, band));
+                ends.push((self.bisect(k, b, false)?, pts[k + 1].whirl, band, k));
             }
         }
         let mut i = 0;
         while i < ends.len() {
-            let (t1, whirl, band) = ends[i];
+            let (t1, whirl, band, k) = ends[i];
             let (t, step) = if i + 1 < ends.len() && ends[i + 1].0 - t1 <= 2.0 * band.max(ends[i + 1].2) + MERGE_TOL * t1.abs().max(1.0) {
                 (0.5 * (t1 + ends[i + 1].0), 2)
             } else {
                 (t1, 1)
             };
-            out.push(CriticalSpeed { omega: t, harmonic: self.h, curve: ci, whirl, frequency: h * t });
+            // a forward crossing of 1× is ν = 0, where both components coincide at Ω
+            let share = if self.h == 1 && whirl == FixedWhirl::Forward { 1.0 } else { self.frequency_at(k, t)?.1 };
+            out.push(CriticalSpeed { omega: t, harmonic: self.h, curve: ci, whirl, frequency: h * t, share });
             i += step;
         }
         Ok(())

@@ -9,19 +9,42 @@
 //! the dominance switches (an elliptic mode whose minor component grows past the major one) the
 //! dominant frequency jumps by `2|ν|`, so the curve keeps the component that continues its
 //! previous values: it leaves the dominant component only where the other one lies closer to
-//! the curve's linear extrapolation by more than two speed steps. The frequency is signed: `f > 0` forward whirl, `f < 0`
-//! backward; the curve is drawn at `|f|`.
+//! the curve's linear extrapolation by more than two speed steps (a rule of the drawing, which
+//! depends on the grid; the critical speeds below do not use it). The frequency is signed:
+//! `f > 0` forward whirl, `f < 0` backward; the curve is drawn at `|f|`.
 //!
 //! The logarithmic decrement per fixed-axes cycle is `δ = −2π σ/|f|` (the fixed-axes eigenvalue
 //! of the component is `σ + i f`, ROSS's convention); `δ > 0` decays. (The rotating-axes
 //! [`Mode::log_decrement`](crate::spatial::stability::Mode::log_decrement) divides by `|ν|` instead.)
 //!
-//! A curve meets the line `h Ω` where `g(Ω) = |f(Ω)| − hΩ` vanishes. With `h = 1` and forward
-//! whirl, `g = ±ν`: the rotating-axes eigenvalue is real, and with the balls locked and no
-//! damping it is `λ = 0`, i.e. `det K(Ω) = 0`: 000 eq (15)-(16)'s critical speeds. Crossings
-//! are bracketed on the grid and located by bisection on the model's eigenvalues; where a curve
-//! runs along the line over an interval (a divergence range between split critical speeds,
-//! where the rotating-axes pair is real) both ends are reported.
+//! **Critical speeds** are a property of the model, not of the grid or of the curve drawn. A
+//! conjugate pair `λ, λ̄` (`ν̂ = |ν|`) whirls in fixed axes as two circular components, at
+//! `Ω + ν̂` (forward, share `s`) and `Ω − ν̂` (share `1 − s`; backward where `ν̂ > Ω`), and the
+//! pair's `ν̂` and shares do not depend on which of `λ, λ̄` a line tracked. A critical speed is a
+//! speed where a component's frequency equals `hΩ`:
+//! * `ν̂ = 0` (`h = 1`): the pair on the real axis of the rotating frame, its two components
+//!   one forward whirl at `Ω` (reported with share 1). With the balls locked and no damping
+//!   that is `λ = 0`, `det K(Ω) = 0`: 000 eq (15)-(16)'s critical speeds. Where the pair stays
+//!   on the axis over an interval (a divergence range between split critical speeds) both
+//!   ends are reported; where it passes through it (a circular mode) one speed. The ends are
+//!   found on each line's runs on the axis on the grid and, between grid points, by a
+//!   golden-section search for a zero of `ν̂` around each local minimum of `ν̂` on the grid
+//!   that could reach zero within a step; each is bisected on the model's eigenvalues and
+//!   kept only where the number of real eigenvalues of the state matrix changes there. The
+//!   end of a run on the axis that starts at the first speed (a real mode whirling with the
+//!   rotor from rest), or the start of one that lasts to the last speed, is not a crossing.
+//! * `ν̂ = (h − 1)Ω`, `h ≥ 2`: the forward component at `hΩ`; `ν̂ = (h + 1)Ω`: the other
+//!   component backward at `−hΩ`. Bracketed by the sign of `ν̂ − (h ∓ 1)Ω` on the grid and
+//!   bisected on the model's eigenvalues (the pair's eigenvalue at a trial speed: the one
+//!   nearest, up to conjugation, the line's interpolated one), each reported with the
+//!   component's share there (`> ½` the major component, `< ½` the minor one; a component of
+//!   share below 1e-9, e.g. an isotropic rotor's, is no motion and has none).
+//!
+//! The jump of a drawn curve where it changes component is never a crossing. A crossing is
+//! missed only where two of them (of one pair and harmonic) fall within one grid step without
+//! a local minimum of `ν̂` between them, e.g. a curve grazing an excitation line. The mode
+//! number of a crossing is that of the curve of its pair at the nearest grid point (where
+//! pairs exchange partners on the real axis it follows the tracking).
 
 use crate::error::{Error, Result};
 use crate::linalg::eigen::eigenvalues;
@@ -40,8 +63,15 @@ const REAL_TOL: f64 = 1e-9;
 const ON_LINE_TOL: f64 = 1e-10;
 /// Bisection stops at this width (relative to `max(1, Ω)`).
 const BISECT_TOL: f64 = 1e-13;
-/// Entry and exit of an excitation line closer than this (relative) are one crossing.
+/// Entry and exit of the real axis closer than this (relative) are one crossing.
 const MERGE_TOL: f64 = 1e-9;
+/// Crossings of one kind found on several lines closer than this (relative) are one: the two
+/// lines of a conjugate pair find it with the same eigenvalues, two real lines meeting on the
+/// axis to the bisection's tolerance.
+const DEDUP_TOL: f64 = 1e-9;
+/// A circular component with a smaller share of the amplitude squared is no motion: an
+/// isotropic rotor's modes are circular (share exactly 0 or 1, computed to round-off, ~1e-16).
+const SHARE_TOL: f64 = 1e-9;
 
 /// One speed of a fixed-axes curve.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -83,14 +113,19 @@ pub struct CriticalSpeed {
     pub harmonic: u32,
     /// Index of the curve in [`FixedCampbell::curves`] (the mode number − 1).
     pub curve: usize,
-    /// Whirl direction of the curve there.
+    /// Whirl direction of the crossing component (forward at `hΩ`, backward at `−hΩ`).
     pub whirl: Whirl,
     /// Natural frequency there, `hΩ`.
     pub frequency: f64,
+    /// Share of the crossing circular component in the eigenvector's amplitude squared
+    /// (`> ½`: the major component, `< ½`: the minor one); `1` where the pair is on the real
+    /// axis of the rotating frame (`ν = 0`: its two components coincide at `Ω`).
+    pub share: f64,
 }
 
-/// A Campbell diagram in fixed axes: curves sorted by their frequency at the first speed
-/// (mode 1 the lowest), and the critical speeds sorted by speed.
+/// A Campbell diagram in fixed axes: curves sorted by their rotating-axes frequency `|ν|` at the
+/// first speed (mode 1 the lowest; the fixed-axes frequency there to within that speed), and
+/// the critical speeds sorted by speed.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct FixedCampbell {
     /// The speeds.
@@ -201,72 +236,111 @@ pub fn fixed_axes(model: &SpatialModel, c: &Campbell, balls: Balls, harmonics: &
         }
         curves.push(FixedCurve { line: li, points: pts });
     }
-    curves.sort_by(|a, b| a.points[0].frequency.total_cmp(&b.points[0].frequency).then(a.line.cmp(&b.line)));
-    let mut crit = vec![];
-    for &h in harmonics {
-        for (ci, cv) in curves.iter().enumerate() {
-            crossings(model, c, balls, cv, ci, h, &mut crit)?;
-        }
-    }
-    crit.sort_by(|a: &CriticalSpeed, b| a.omega.total_cmp(&b.omega));
+    // by |ν| at the first speed: the fixed-axes frequency there to within that speed, and
+    // unlike it the same whichever component a curve starts on (a forward and a backward
+    // curve that meet at Ω = 0 keep their order on every grid)
+    curves.sort_by(|a, b| {
+        let (p, q) = (&a.points[0], &b.points[0]);
+        p.nu.abs().total_cmp(&q.nu.abs()).then(p.frequency.total_cmp(&q.frequency)).then(a.line.cmp(&b.line))
+    });
+    let crit = critical_speeds(model, c, balls, harmonics, &curves)?;
     Ok(FixedCampbell { omega: c.omega.clone(), curves, critical_speeds: crit, harmonics: harmonics.to_vec() })
 }
 
-/// Sign of `g = |f| − hΩ` with the on-line band (module docs): −1, 0 or 1.
-fn side(f: f64, omega: f64, h: u32) -> i8 {
-    let target = h as f64 * omega;
-    let g = f.abs() - target;
-    if g.abs() <= ON_LINE_TOL * target.max(1.0) {
-        0
-    } else if g > 0.0 {
-        1
-    } else {
-        -1
+/// The eigenvalues of the pair a tracked line belongs to, at trial speeds between grid points:
+/// the eigenvalue of the state matrix nearest (up to conjugation) to the line's eigenvalue
+/// interpolated along the grid, taken with `Im λ ≥ 0`. `ν̂ = |Im λ|` and the share of the
+/// `Ω + ν̂` component are the same for the line and its conjugate, so nothing below depends on
+/// which line of a pair the tracker followed.
+struct Pair<'a> {
+    model: &'a SpatialModel,
+    c: &'a Campbell,
+    balls: Balls,
+    line: usize,
+}
+
+impl Pair<'_> {
+    /// `(Re λ, |Im λ|)` of the line at grid point `k`.
+    fn grid(&self, k: usize) -> Complex64 {
+        let m = &self.c.lines[self.line].modes[k];
+        Complex64::new(m.re, m.im.abs())
+    }
+
+    /// The line of smaller index, if any, that carries the conjugate of this line's complex
+    /// eigenvalue at grid point `k` (the searches of the two are the same: they run once).
+    fn mirrored(&self, k: usize) -> Option<usize> {
+        let m = &self.c.lines[self.line].modes[k];
+        if m.im == 0.0 {
+            return None;
+        }
+        self.c.lines[..self.line].iter().position(|l| l.modes[k].re == m.re && l.modes[k].im == -m.im)
+    }
+
+    /// Whether one line of smaller index mirrors this one at every grid point of `ks`.
+    fn mirrored_on(&self, ks: std::ops::RangeInclusive<usize>) -> bool {
+        let mut partner = None;
+        for k in ks {
+            match (self.mirrored(k), partner) {
+                (None, _) => return false,
+                (Some(j), None) => partner = Some(j),
+                (Some(j), Some(p)) if j != p => return false,
+                _ => {}
+            }
+        }
+        partner.is_some()
+    }
+
+    /// `ν̂ = |Im λ|` of the line at grid point `k`.
+    fn nu_grid(&self, k: usize) -> f64 {
+        self.c.lines[self.line].modes[k].im.abs()
+    }
+
+    /// The pair's eigenvalue (`Im ≥ 0`) at `w`, between grid points `k0 ≤ k1` (the guess is
+    /// interpolated on the grid segment holding `w`), with the pencil it came from.
+    fn at(&self, k0: usize, k1: usize, w: f64) -> Result<(Pencil, Complex64)> {
+        let om = &self.c.omega;
+        let mut k = k0;
+        while k + 1 < k1 && w > om[k + 1] {
+            k += 1;
+        }
+        let (w0, w1) = (om[k], om[(k + 1).min(k1)]);
+        let t = if w1 != w0 { ((w - w0) / (w1 - w0)).clamp(0.0, 1.0) } else { 0.0 };
+        let guess = self.grid(k) * (1.0 - t) + self.grid((k + 1).min(k1)) * t;
+        let p = Pencil::new(self.model, w, self.balls)?;
+        let ev = eigenvalues(&p.state_matrix(), p.states()).map_err(|_| no_conv(w))?;
+        let up = |z: &Complex64| Complex64::new(z.re, z.im.abs());
+        let l = ev.iter().map(up).min_by(|a, b| (a - guess).norm().total_cmp(&(b - guess).norm())).ok_or_else(|| no_conv(w))?;
+        Ok((p, l))
+    }
+
+    /// `ν̂(w)`.
+    fn nu(&self, k0: usize, k1: usize, w: f64) -> Result<f64> {
+        Ok(self.at(k0, k1, w)?.1.im)
+    }
+
+    /// The share of the `Ω + ν̂` component at `w` (that of `Ω − ν̂` is one minus it).
+    fn share_up(&self, k0: usize, k1: usize, w: f64) -> Result<f64> {
+        let (p, l) = self.at(k0, k1, w)?;
+        let x = pencil_null_vector(&p, l);
+        Ok(classify_vector(&p, w, l, &x).forward_share)
     }
 }
 
-/// The curve's signed frequency at a speed `w` between grid points `k` and `k + 1`: the
-/// eigenvalue nearest the line's interpolated one, its component with the share nearest the
-/// interpolated share of the followed component (the nearer frequency where the two shares
-/// are within 0.1 of ½).
-fn frequency_at(model: &SpatialModel, c: &Campbell, balls: Balls, cv: &FixedCurve, k: usize, w: f64) -> Result<f64> {
-    let (w0, w1) = (c.omega[k], c.omega[k + 1]);
-    let t = if w1 != w0 { (w - w0) / (w1 - w0) } else { 0.0 };
-    let line = &c.lines[cv.line];
-    let guess = lam(&line.modes[k]) * (1.0 - t) + lam(&line.modes[k + 1]) * t;
-    let f_guess = cv.points[k].fixed_frequency * (1.0 - t) + cv.points[k + 1].fixed_frequency * t;
-    let p = Pencil::new(model, w, balls)?;
-    let ev = eigenvalues(&p.state_matrix(), p.states()).map_err(|_| no_conv(w))?;
-    let l = ev.iter().copied().min_by(|a, b| (a - guess).norm().total_cmp(&(b - guess).norm())).ok_or_else(|| no_conv(w))?;
-    let x = pencil_null_vector(&p, l);
-    let m = classify_vector(&p, w, l, &x);
-    // the component with the followed one's share (at a crossing of 1x the two frequencies
-    // differ by less than the interpolation error, their shares not), else the nearer frequency
-    let share_guess = cv.points[k].share * (1.0 - t) + cv.points[k + 1].share * t;
-    let cand = [(w + m.im, m.forward_share), (w - m.im, 1.0 - m.forward_share)];
-    let pick = if (2.0 * m.forward_share - 1.0).abs() > 0.2 {
-        if (cand[0].1 - share_guess).abs() <= (cand[1].1 - share_guess).abs() {
-            0
-        } else {
-            1
-        }
-    } else if (cand[0].0 - f_guess).abs() <= (cand[1].0 - f_guess).abs() {
-        0
-    } else {
-        1
-    };
-    Ok(cand[pick].0)
+/// Whether `ν̂` counts as zero at `w` (the pair on the real axis: both components at `Ω`).
+fn on_axis(nu: f64, w: f64) -> bool {
+    nu <= ON_LINE_TOL * w.abs().max(1.0)
 }
 
-/// Bisection between `lo` (side `s_lo`) and `hi` (another side) for the end of side `s_lo`;
-/// `from_left = false` runs it mirrored (the end of `hi`'s side seen from the right).
-#[allow(clippy::too_many_arguments)]
-fn bisect(model: &SpatialModel, c: &Campbell, balls: Balls, cv: &FixedCurve, k: usize, h: u32, keep: i8, from_left: bool) -> Result<f64> {
-    let (mut lo, mut hi) = (c.omega[k], c.omega[k + 1]);
-    while hi - lo > BISECT_TOL * hi.max(1.0) {
+/// Bisection on `[lo, hi]` for the change of `pred`, `pred(lo) != pred(hi)` assumed: the speed
+/// where it changes, to [`BISECT_TOL`].
+fn bisect(mut lo: f64, mut hi: f64, mut pred: impl FnMut(f64) -> Result<bool>) -> Result<f64> {
+    let at_lo = pred(lo)?;
+    while hi - lo > BISECT_TOL * hi.abs().max(1.0) {
         let mid = 0.5 * (lo + hi);
-        let s = side(frequency_at(model, c, balls, cv, k, mid)?, mid, h);
-        if (s == keep) == from_left {
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        if pred(mid)? == at_lo {
             lo = mid;
         } else {
             hi = mid;
@@ -275,48 +349,289 @@ fn bisect(model: &SpatialModel, c: &Campbell, balls: Balls, cv: &FixedCurve, k: 
     Ok(0.5 * (lo + hi))
 }
 
-/// The crossings of curve `cv` (index `ci`) with `h Ω`, appended to `out`. Each interval of
-/// the grid where the side of `g` changes gives the end of the old side and the start of the
-/// new one; two ends closer than the on-line band of a linear crossing (`2 tol/|g'|`, `g'` the
-/// grid slope) are one crossing at their midpoint, farther ones (a curve running along the
-/// line, e.g. between split critical speeds) are both reported.
-#[allow(clippy::too_many_arguments)]
-fn crossings(model: &SpatialModel, c: &Campbell, balls: Balls, cv: &FixedCurve, ci: usize, h: u32, out: &mut Vec<CriticalSpeed>) -> Result<()> {
-    let pts = &cv.points;
-    let g = |k: usize| pts[k].frequency - h as f64 * pts[k].omega;
-    // (speed, whirl, half-width of the on-line band of a linear crossing there)
-    let mut ends: Vec<(f64, Whirl, f64)> = vec![];
-    for k in 0..pts.len().saturating_sub(1) {
-        let (a, b) = (side(pts[k].fixed_frequency, pts[k].omega, h), side(pts[k + 1].fixed_frequency, pts[k + 1].omega, h));
-        if a == b {
-            continue;
+/// The root of `g` in `[a, b]` (`g(a) = ga`, `g(b) = gb` of opposite signs) by the Illinois
+/// method (regula falsi halving the value of an end kept twice; superlinear on a smooth
+/// `g`), its bracket shrunk to [`BISECT_TOL`] or a step below it; a step that would leave the
+/// bracket, or 100 of them, fall back to bisection.
+fn illinois(mut a: f64, mut b: f64, mut ga: f64, mut gb: f64, mut g: impl FnMut(f64) -> Result<f64>) -> Result<f64> {
+    let tol = BISECT_TOL * a.abs().max(b.abs()).max(1.0);
+    let mut side = 0i8;
+    let mut prev = f64::NAN;
+    for _ in 0..100 {
+        if (b - a).abs() <= tol {
+            break;
         }
-        let slope = ((g(k + 1) - g(k)) / (pts[k + 1].omega - pts[k].omega)).abs().max(1e-3);
-        let band = ON_LINE_TOL * (h as f64 * pts[k + 1].omega).max(1.0) / slope;
-        // a curve on the line from the first speed (a real mode whirling with the rotor) has no
-        // crossing where it leaves it, nor one on the line up to the last speed where it joins it
-        let first_run = pts[..=k].iter().all(|p| side(p.fixed_frequency, p.omega, h) == 0);
-        let last_run = pts[k + 1..].iter().all(|p| side(p.fixed_frequency, p.omega, h) == 0);
-        if a != 0 && !last_run {
-            ends.push((bisect(model, c, balls, cv, k, h, a, true)?, pts[k].whirl, band));
+        let mut x = b - gb * (b - a) / (gb - ga);
+        if !(x > a.min(b) && x < a.max(b)) {
+            x = 0.5 * (a + b);
         }
-        if b != 0 && !first_run {
-            ends.push((bisect(model, c, balls, cv, k, h, b, false)?, pts[k + 1].whirl, band));
+        let gx = g(x)?;
+        if gx == 0.0 || (x - prev).abs() <= 0.5 * tol {
+            return Ok(x);
+        }
+        prev = x;
+        if (gx > 0.0) == (gb > 0.0) {
+            (b, gb) = (x, gx);
+            if side == 1 {
+                ga *= 0.5;
+            }
+            side = 1;
+        } else {
+            (a, ga) = (x, gx);
+            if side == -1 {
+                gb *= 0.5;
+            }
+            side = -1;
         }
     }
-    let mut i = 0;
-    while i < ends.len() {
-        let (t1, whirl, band) = ends[i];
-        if i + 1 < ends.len() && ends[i + 1].0 - t1 <= 2.0 * band.max(ends[i + 1].2) + MERGE_TOL * t1.max(1.0) {
-            let t = 0.5 * (t1 + ends[i + 1].0);
-            out.push(CriticalSpeed { omega: t, harmonic: h, curve: ci, whirl, frequency: h as f64 * t });
-            i += 2;
-        } else {
-            out.push(CriticalSpeed { omega: t1, harmonic: h, curve: ci, whirl, frequency: h as f64 * t1 });
-            i += 1;
+    Ok(0.5 * (a + b))
+}
+
+/// A crossing found on one line, before the lines' duplicates are merged.
+struct Found {
+    cs: CriticalSpeed,
+    /// The tracked line it was found on.
+    line: usize,
+    /// The end of a run on the real axis that reaches the first speed (or one that reaches the
+    /// last speed): not a crossing unless another line crosses there too.
+    quiet: bool,
+}
+
+/// The speeds where the pair of `line` reaches or leaves the real axis (`ν̂ = 0`: both fixed-axes
+/// components at `Ω`, a forward crossing of `1×` with the whole motion): the ends of the line's
+/// runs on the real axis on the grid, and those inside a window of the grid where `ν̂` has a
+/// local minimum low enough to reach zero (module docs). An entry and an exit closer than the
+/// on-axis band of a linear crossing are one crossing (the pair passes through the axis).
+fn axis_crossings(pair: &Pair, memo: &mut Vec<((usize, bool, usize), f64)>, out: &mut Vec<Found>) -> Result<()> {
+    let om = &pair.c.omega;
+    let n = om.len();
+    let real = |k: usize| pair.nu_grid(k) <= REAL_TOL;
+    // (entry, exit, quiet) of each stretch on the axis, either end None where it is off the grid
+    let mut runs: Vec<(Option<f64>, Option<f64>, bool)> = vec![];
+    let mut k = 0;
+    while k < n {
+        if !real(k) {
+            k += 1;
+            continue;
+        }
+        let i = k;
+        while k + 1 < n && real(k + 1) {
+            k += 1;
+        }
+        let j = k;
+        k += 1;
+        // where a conjugate pair reaches the axis in a grid step (or leaves it), both its lines
+        // are real on the other side and bisect the same eigenvalues: once, keyed by the step,
+        // the direction and the pair's first line at its complex end
+        let mut end = |k: usize, off: usize| -> Result<f64> {
+            let key = (k, off == k, pair.mirrored(off).unwrap_or(pair.line));
+            if let Some(&(_, w)) = memo.iter().find(|(q, _)| *q == key) {
+                return Ok(w);
+            }
+            let w = bisect(om[k], om[k + 1], |w| Ok(on_axis(pair.nu(k, k + 1, w)?, w)))?;
+            memo.push((key, w));
+            Ok(w)
+        };
+        let entry = if i > 0 { Some(end(i - 1, i - 1)?) } else { None };
+        let exit = if j + 1 < n { Some(end(j, j + 1)?) } else { None };
+        runs.push((entry, exit, i == 0 || j + 1 == n));
+    }
+    // stretches between grid points: a local minimum of ν̂ on the grid that may reach zero. Near
+    // the axis ν̂ grows like |Ω − Ω*| (a pair passing through it) or sqrt(Ω − Ω*) (a collision),
+    // so a zero within a step of the minimum leaves ν̂ there below 2.5 times its rise to a
+    // neighbour; 10 times is searched.
+    for m in 0..n {
+        let lo = m.saturating_sub(1);
+        let hi = (m + 1).min(n - 1);
+        if hi == lo || (lo..=hi).any(real) || pair.mirrored_on(lo..=hi) {
+            continue;
+        }
+        let v = pair.nu_grid(m);
+        let (a, b) = (pair.nu_grid(lo), pair.nu_grid(hi));
+        if v > a || v > b || (lo < m && v == a && m > 1) || v > 10.0 * (a - v).max(b - v) {
+            continue;
+        }
+        let (w_min, nu_min) = golden_min(om[lo], om[hi], a, b, |w| pair.nu(lo, hi, w))?;
+        if !on_axis(nu_min, w_min) {
+            continue;
+        }
+        let entry = bisect(om[lo], w_min, |w| Ok(on_axis(pair.nu(lo, hi, w)?, w)))?;
+        let exit = bisect(w_min, om[hi], |w| Ok(!on_axis(pair.nu(lo, hi, w)?, w)))?;
+        runs.push((Some(entry), Some(exit), false));
+    }
+    // each end is checked on the spectrum itself: the number of eigenvalues on the real axis
+    // changes there (a wrong match between the line and the eigenvalues near a cluster of real
+    // ones would report a speed where nothing reaches the axis)
+    let (model, balls) = (pair.model, pair.balls);
+    let changes = |lo: f64, hi: f64| -> Result<bool> { Ok(real_count(model, balls, lo)? != real_count(model, balls, hi)?) };
+    let cs = |w: f64| CriticalSpeed { omega: w, harmonic: 1, curve: 0, whirl: Whirl::Forward, frequency: w, share: 1.0 };
+    for (entry, exit, quiet) in runs {
+        let del = |w: f64| 1e-8 * w.abs().max(1.0);
+        match (entry, exit) {
+            (Some(a), Some(b)) => {
+                // the on-axis band of a linear passage, its slope measured just outside it
+                let d = 1e-7 * a.abs().max(1.0);
+                let merged = b - a <= 1e-6 * a.abs().max(1.0) && {
+                    let slope = (pair.nu(0, n - 1, a - d)? / d).min(pair.nu(0, n - 1, b + d)? / d).max(1e-3);
+                    let band = ON_LINE_TOL * b.abs().max(1.0) / slope;
+                    b - a <= 2.0 * band + MERGE_TOL * a.abs().max(1.0)
+                };
+                if merged {
+                    let w = 0.5 * (a + b);
+                    let e = (b - a) + del(w);
+                    if changes(w - e, w)? || changes(w, w + e)? {
+                        out.push(Found { cs: cs(w), line: pair.line, quiet });
+                    }
+                } else {
+                    let e = del(a).min(0.25 * (b - a));
+                    if changes(a - e, a + e)? {
+                        out.push(Found { cs: cs(a), line: pair.line, quiet });
+                    }
+                    if changes(b - e, b + e)? {
+                        out.push(Found { cs: cs(b), line: pair.line, quiet });
+                    }
+                }
+            }
+            (Some(a), None) | (None, Some(a)) => {
+                if changes(a - del(a), a + del(a))? {
+                    out.push(Found { cs: cs(a), line: pair.line, quiet });
+                }
+            }
+            (None, None) => {}
         }
     }
     Ok(())
+}
+
+/// The number of eigenvalues of the state matrix at `w` on the real axis (`|Im λ|` within the
+/// on-axis band).
+fn real_count(model: &SpatialModel, balls: Balls, w: f64) -> Result<usize> {
+    let p = Pencil::new(model, w, balls)?;
+    let ev = eigenvalues(&p.state_matrix(), p.states()).map_err(|_| no_conv(w))?;
+    Ok(ev.iter().filter(|z| on_axis(z.im.abs(), w)).count())
+}
+
+/// Golden-section search for the minimum of `ν̂ = f ≥ 0` on `[a, b]` (`fa`, `fb` its values
+/// there), to [`BISECT_TOL`]: the speed and the value there. It stops early where no zero is
+/// left to find: a zero in the bracket puts the lower inner value below 1.6 times its rise to
+/// the farther end (a linear or square-root rise; the inner points lie at 0.382 and 0.618 of
+/// the bracket), so above 10 times it the minimum is a near miss.
+fn golden_min(mut a: f64, mut b: f64, mut fa: f64, mut fb: f64, mut f: impl FnMut(f64) -> Result<f64>) -> Result<(f64, f64)> {
+    let r = 0.5 * (5f64.sqrt() - 1.0);
+    let (mut x1, mut x2) = (b - r * (b - a), a + r * (b - a));
+    let (mut f1, mut f2) = (f(x1)?, f(x2)?);
+    let mut best = if f1 <= f2 { (x1, f1) } else { (x2, f2) };
+    while b - a > BISECT_TOL * b.abs().max(1.0) && best.1 > 0.0 {
+        let v = f1.min(f2);
+        if v > 10.0 * (fa - v).max(fb - v) {
+            break;
+        }
+        if f1 <= f2 {
+            (b, fb) = (x2, f2);
+            (x2, f2) = (x1, f1);
+            x1 = b - r * (b - a);
+            f1 = f(x1)?;
+            if f1 < best.1 {
+                best = (x1, f1);
+            }
+        } else {
+            (a, fa) = (x1, f1);
+            (x1, f1) = (x2, f2);
+            x2 = a + r * (b - a);
+            f2 = f(x2)?;
+            if f2 < best.1 {
+                best = (x2, f2);
+            }
+        }
+    }
+    Ok(best)
+}
+
+/// The crossings of a component with `h Ω` away from the real axis: the `Ω + ν̂` component
+/// (forward) where `ν̂ = (h − 1)Ω`, `h ≥ 2`, the `Ω − ν̂` one (backward, `f = −hΩ`) where
+/// `ν̂ = (h + 1)Ω`; bracketed by the sign of `ν̂ − cΩ` on the grid, bisected on the model's
+/// eigenvalues, and reported with the component's share there unless it is below
+/// [`SHARE_TOL`] (no such motion: an isotropic rotor's circular modes).
+fn component_crossings(pair: &Pair, h: u32, out: &mut Vec<Found>) -> Result<()> {
+    let om = &pair.c.omega;
+    let n = om.len();
+    let targets: &[(f64, bool)] = if h >= 2 { &[(-1.0, true), (1.0, false)] } else { &[(1.0, false)] };
+    for &(dc, forward) in targets {
+        let c = h as f64 + dc;
+        let above = |nu: f64, w: f64| nu > c * w;
+        for k in 0..n.saturating_sub(1) {
+            if above(pair.nu_grid(k), om[k]) == above(pair.nu_grid(k + 1), om[k + 1]) || pair.mirrored_on(k..=k + 1) {
+                continue;
+            }
+            let g = |w: f64| -> Result<f64> { Ok(pair.nu(k, k + 1, w)? - c * w) };
+            let w = illinois(om[k], om[k + 1], pair.nu_grid(k) - c * om[k], pair.nu_grid(k + 1) - c * om[k + 1], g)?;
+            let up = pair.share_up(k, k + 1, w)?;
+            let share = if forward { up } else { 1.0 - up };
+            if share < SHARE_TOL {
+                continue;
+            }
+            let whirl = if forward { Whirl::Forward } else { Whirl::Backward };
+            out.push(Found { cs: CriticalSpeed { omega: w, harmonic: h, curve: 0, whirl, frequency: h as f64 * w, share }, line: pair.line, quiet: false });
+        }
+    }
+    Ok(())
+}
+
+/// Every crossing of every line with the excitation lines `h Ω` (module docs), each once, with
+/// the curve (mode) it belongs to: the kept line of its conjugate pair at the nearest speed.
+fn critical_speeds(model: &SpatialModel, c: &Campbell, balls: Balls, harmonics: &[u32], curves: &[FixedCurve]) -> Result<Vec<CriticalSpeed>> {
+    let n = c.omega.len();
+    let mut found = vec![];
+    if n < 2 {
+        return Ok(vec![]);
+    }
+    let mut memo = vec![];
+    for line in 0..c.lines.len() {
+        let pair = Pair { model, c, balls, line };
+        for &h in harmonics {
+            if h == 1 {
+                axis_crossings(&pair, &mut memo, &mut found)?;
+            }
+            component_crossings(&pair, h, &mut found)?;
+        }
+    }
+    // the curve of each: the line's own, else that of the line it is conjugate to (or equal
+    // to, on the axis) at the grid point nearest the crossing, else the curve nearest in λ
+    let curve_of = |f: &Found| -> usize {
+        let k = c.omega.partition_point(|&w| w < f.cs.omega).min(n - 1);
+        let k = if k > 0 && (f.cs.omega - c.omega[k - 1]).abs() < (c.omega[k] - f.cs.omega).abs() { k - 1 } else { k };
+        if let Some(i) = curves.iter().position(|cv| cv.line == f.line) {
+            return i;
+        }
+        let z = |l: usize| Complex64::new(c.lines[l].modes[k].re, c.lines[l].modes[k].im.abs());
+        (0..curves.len()).min_by(|&a, &b| (z(curves[a].line) - z(f.line)).norm().total_cmp(&(z(curves[b].line) - z(f.line)).norm())).unwrap_or(0)
+    };
+    for f in &mut found {
+        f.cs.curve = curve_of(f);
+    }
+    found.sort_by(|a, b| a.cs.harmonic.cmp(&b.cs.harmonic).then((a.cs.whirl as u8).cmp(&(b.cs.whirl as u8))).then(a.cs.omega.total_cmp(&b.cs.omega)));
+    // the lines of a pair (and the two real lines meeting on the axis) find the same crossing:
+    // one crossing per group closer than the merge tolerance; a group of quiet ends is none
+    let mut out: Vec<CriticalSpeed> = vec![];
+    let mut i = 0;
+    while i < found.len() {
+        let mut j = i + 1;
+        let same = |a: &Found, b: &Found| {
+            a.cs.harmonic == b.cs.harmonic && a.cs.whirl == b.cs.whirl && (b.cs.omega - a.cs.omega).abs() <= DEDUP_TOL * a.cs.omega.abs().max(1.0)
+        };
+        while j < found.len() && same(&found[j - 1], &found[j]) {
+            j += 1;
+        }
+        if found[i..j].iter().any(|f| !f.quiet) {
+            // the one found on a kept line, else the first
+            let g = &found[i..j];
+            let pick = g.iter().find(|f| curves.iter().any(|cv| cv.line == f.line)).unwrap_or(&g[0]);
+            out.push(pick.cs);
+        }
+        i = j;
+    }
+    out.sort_by(|a, b| a.omega.total_cmp(&b.omega).then(a.harmonic.cmp(&b.harmonic)).then(a.curve.cmp(&b.curve)));
+    Ok(out)
 }
 
 /// Which tracked lines to keep so that each complex-conjugate pair is drawn once: the lines are

@@ -1,0 +1,186 @@
+//! The critical speeds of the fixed-axes Campbell diagram ([`autobal::spatial::campbell`]) are a
+//! property of the model: the same on every speed grid, each one a crossing of a circular
+//! component of the state matrix's spectrum with `hΩ` checked on its own, and an isotropic
+//! rotor's (circular modes) without minor components.
+
+use autobal::config;
+use autobal::spatial::campbell::{fixed_axes, CriticalSpeed};
+use autobal::spatial::linear_model::{Balls, Pencil};
+use autobal::spatial::params::SpatialModel;
+use autobal::spatial::stability::{campbell, Whirl};
+
+mod common;
+use common::{direct_model as model, Rng};
+
+/// The model of examples/dimensional.toml (an anisotropic rotor: two balls at their balanced
+/// positions, supports that differ left and right).
+fn dimensional() -> SpatialModel {
+    let mut root = config::parse(include_str!("../../../examples/dimensional.toml"), "test").unwrap();
+    for t in ["drive", "initial"] {
+        root.remove(t);
+    }
+    config::spatial_simulation(&root).unwrap().config.model
+}
+
+/// `n` speeds `w (k + ½)/n` (the grid of `autobal campbell --points n`).
+fn grid(w: f64, n: usize) -> Vec<f64> {
+    (0..n).map(|k| w * (k as f64 + 0.5) / n as f64).collect()
+}
+
+fn crossings(m: &SpatialModel, omegas: &[f64], balls: Balls, h: &[u32]) -> Vec<CriticalSpeed> {
+    let c = campbell(m, omegas, balls).unwrap();
+    fixed_axes(m, &c, balls, h).unwrap().critical_speeds
+}
+
+/// The eigenvalues of the state matrix at `w`.
+fn spectrum(m: &SpatialModel, w: f64, balls: Balls) -> Vec<num_complex::Complex64> {
+    let p = Pencil::new(m, w, balls).unwrap();
+    autobal::linalg::eigen::eigenvalues(&p.state_matrix(), p.states()).unwrap()
+}
+
+/// Independent check of one crossing on the spectrum at its speed. Bisection stops at 1e-13
+/// relative and `|d(ν̂ − cΩ)/dΩ|` is below ~50 for these rotors away from the real axis, so a
+/// component meets `hΩ` to 1e-9 relative; on the real axis (`h = 1`, share 1) the number of
+/// real eigenvalues (`|Im λ| ≤ 1e-10`, the band of the search) differs 1e-8 relative either
+/// side (a collision leaves the axis like `sqrt(Ω − Ω*)`, ≫ 1e-10 at 1e-8, a passage linearly:
+/// the search merges its band, ~1e-10/slope, into one speed, so the check steps past it).
+/// Away from the axis the component's share is recomputed from nalgebra's SVD null vector.
+fn check(m: &SpatialModel, k: &CriticalSpeed, balls: Balls, what: &str) {
+    let w = k.omega;
+    let h = k.harmonic as f64;
+    let tol = 1e-9 * (h * w).max(1.0);
+    assert!((k.frequency - h * w).abs() <= 1e-15 * (h * w).max(1.0), "{what}: {k:?}");
+    let ev = spectrum(m, w, balls);
+    if k.harmonic == 1 && k.whirl == Whirl::Forward {
+        assert_eq!(k.share, 1.0, "{what}: a forward 1× crossing is ν = 0, the whole motion: {k:?}");
+        let real = |x: f64| spectrum(m, x, balls).iter().filter(|z| z.im.abs() <= 1e-10 * x.max(1.0)).count();
+        let d = 1e-8 * w.max(1.0);
+        let (a, b) = (real(w - d), real(w + d));
+        let c = real(w);
+        assert!(a != b || c != a, "{what}: no pair reaches the real axis at Ω = {w}: {a} {c} {b} real eigenvalues");
+        assert!(ev.iter().any(|z| z.im.abs() <= 1e-6), "{what}: no real eigenvalue at Ω = {w}");
+    } else {
+        // Ω + ν̂ = hΩ (forward) or Ω − ν̂ = −hΩ (backward)
+        let c = if k.whirl == Whirl::Forward { h - 1.0 } else { h + 1.0 };
+        let lam =
+            ev.iter().map(|z| num_complex::Complex64::new(z.re, z.im.abs())).min_by(|a, b| (a.im - c * w).abs().total_cmp(&(b.im - c * w).abs())).unwrap();
+        let best = (lam.im - c * w).abs();
+        assert!(best <= tol, "{what}: no component at {h}Ω at Ω = {w}: off by {best:e}");
+        // the share, from nalgebra's SVD null vector of A − λI (y = (q, q'), q in (ξ, η) pairs):
+        // Σ|q_ξ + i q_η|² over the total, the Ω + ν̂ component's; a simple eigenvalue's vector
+        // is accurate to ~1e-12 here, 1e-7 leaves room for a close neighbour
+        let p = Pencil::new(m, w, balls).unwrap();
+        let (a, ns) = (p.state_matrix(), p.states());
+        let mat = nalgebra::DMatrix::from_fn(ns, ns, |i, j| {
+            nalgebra::Complex::new(a[i][j], 0.0) - if i == j { nalgebra::Complex::new(lam.re, lam.im) } else { nalgebra::Complex::new(0.0, 0.0) }
+        });
+        let svd = mat.svd(false, true);
+        let vt = svd.v_t.unwrap();
+        let (imin, _) = svd.singular_values.iter().enumerate().min_by(|a, b| a.1.total_cmp(b.1)).unwrap();
+        let x: Vec<nalgebra::Complex<f64>> = (0..ns / 2).map(|i| vt[(imin, i)].conj()).collect();
+        let i1 = nalgebra::Complex::new(0.0, 1.0);
+        let (mut fw, mut bw) = (0.0, 0.0);
+        for g in 0..ns / 4 {
+            fw += (x[2 * g] + i1 * x[2 * g + 1]).norm_sqr();
+            bw += (x[2 * g] - i1 * x[2 * g + 1]).norm_sqr();
+        }
+        let up = fw / (fw + bw);
+        let want = if k.whirl == Whirl::Forward { up } else { 1.0 - up };
+        assert!((k.share - want).abs() <= 1e-7, "{what}: share {} vs nalgebra's {want} at Ω = {w}", k.share);
+        assert!(k.share > 1e-9 && k.share <= 1.0, "{what}: share {}", k.share);
+    }
+}
+
+/// Two lists of crossings equal: count, harmonic, whirl, speed to 1e-8 relative (bisection to
+/// 1e-13 on the same eigenvalues; the bracketing grid points differ), share to 1e-6 (the
+/// eigenvector at speeds 1e-13 apart).
+fn same(a: &[CriticalSpeed], b: &[CriticalSpeed], what: &str) {
+    let list = |v: &[CriticalSpeed]| {
+        v.iter().map(|k| format!("{:.10}{}{}", k.omega, if k.whirl == Whirl::Forward { "f" } else { "b" }, k.harmonic)).collect::<Vec<_>>()
+    };
+    assert_eq!(a.len(), b.len(), "{what}: {:?} vs {:?}", list(a), list(b));
+    for (x, y) in a.iter().zip(b) {
+        assert!((x.omega - y.omega).abs() <= 1e-8 * y.omega.max(1.0), "{what}: {x:?} vs {y:?}");
+        assert_eq!((x.harmonic, x.whirl), (y.harmonic, y.whirl), "{what}: {x:?} vs {y:?}");
+        assert!((x.share - y.share).abs() <= 1e-6, "{what}: {x:?} vs {y:?}");
+    }
+}
+
+#[test]
+fn the_dimensional_examples_critical_speeds_do_not_depend_on_the_grid() {
+    // `autobal campbell examples/dimensional.toml` gave 12, 14 or 13 critical speeds by grid:
+    // the followed component switched at a share near ½ on some grids (a jump of 2|ν| across
+    // the 1× line read as crossings), and a divergence range 4e-5 wide at Ω ≈ 1.1292 fell
+    // between grid points on others. Grids of 500 to 4000 speeds, harmonics 1 and 2.
+    let m = dimensional();
+    let w = 2.2;
+    let reference = crossings(&m, &grid(w, 1000), Balls::Free, &[1, 2]);
+    for k in &reference {
+        check(&m, k, Balls::Free, "dimensional.toml");
+    }
+    // the tiny divergence range: both ends
+    let tiny: Vec<f64> = reference.iter().filter(|k| k.harmonic == 1 && (k.omega - 1.12926).abs() < 1e-4).map(|k| k.omega).collect();
+    assert_eq!(tiny.len(), 2, "{tiny:?}");
+    for n in [500, 1001, 2000, 2001, 4000] {
+        same(&crossings(&m, &grid(w, n), Balls::Free, &[1, 2]), &reference, &format!("{n} speeds"));
+    }
+    eprintln!("{} critical speeds on every grid", reference.len());
+}
+
+#[test]
+fn random_anisotropic_rotors_critical_speeds_do_not_depend_on_the_grid() {
+    // damped rotors with free balls and an anisotropic inertia (ΔĀ ≠ 0), on grids of 300, 301,
+    // 757 and 1500 speeds; each crossing checked on the spectrum
+    let mut rng = Rng(2026);
+    let mut total = 0;
+    for case in 0..3 {
+        let c_sigma = rng.range(0.4, 1.4);
+        let m = model(
+            c_sigma,
+            rng.range(0.2, 0.8),
+            rng.range(0.2, 1.2),
+            rng.range(-0.8, 0.8),
+            rng.range(0.03, 0.2).min(0.5 * c_sigma),
+            rng.range(0.01, 0.1),
+            rng.range(0.01, 0.3),
+            Some((rng.range(0.01, 0.1), rng.range(0.0, 1.0))),
+        );
+        let w = 3.0;
+        let reference = crossings(&m, &grid(w, 1500), Balls::Free, &[1, 2]);
+        for k in &reference {
+            check(&m, k, Balls::Free, &format!("case {case}"));
+        }
+        for n in [300, 301, 757] {
+            same(&crossings(&m, &grid(w, n), Balls::Free, &[1, 2]), &reference, &format!("case {case}, {n} speeds"));
+        }
+        total += reference.len();
+    }
+    eprintln!("{total} crossings on 3 rotors, the same on every grid");
+    assert!(total >= 6, "only {total} crossings compared");
+}
+
+#[test]
+fn an_isotropic_rotor_has_no_minor_components() {
+    // ΔĀ = 0, balls locked: every mode is circular (shares 0 and 1 to round-off), so no
+    // crossing of a minor component; the undamped rotor's translation modes whirl at ±1, each
+    // crossing 1× at Ω = 1 (forward: ν passes through 0, one speed; backward: ν̂ = 2Ω), the
+    // damped one's crossings are where each circular mode's frequency meets hΩ. Every
+    // crossing is checked on the spectrum.
+    for (hx, hs) in [(0.0, 0.0), (0.05, 0.1)] {
+        let m = model(0.6, 0.4, 0.5, 0.0, 0.0, hx, hs, None);
+        for n in [600, 601] {
+            let ks = crossings(&m, &grid(3.0, n), Balls::Locked, &[1, 2]);
+            assert!(!ks.is_empty());
+            for k in &ks {
+                assert!(k.share >= 1.0 - 1e-9, "damping {hx}: a minor component crosses: {k:?}");
+                check(&m, k, Balls::Locked, &format!("isotropic, damping {hx}"));
+            }
+            if hx == 0.0 {
+                for w in [Whirl::Forward, Whirl::Backward] {
+                    let at1: Vec<_> = ks.iter().filter(|k| k.harmonic == 1 && k.whirl == w && (k.omega - 1.0).abs() < 1e-9).collect();
+                    assert_eq!(at1.len(), 1, "{w:?}: {ks:?}");
+                }
+            }
+        }
+    }
+}
