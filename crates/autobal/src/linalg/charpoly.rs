@@ -857,6 +857,21 @@ impl AbscissaTracker {
         Self::default()
     }
 
+    /// Start from the whole spectrum `roots` of a nearby polynomial at `omega` (e.g. a
+    /// neighbouring line's at the same speed), forgetting the history: the next speed is
+    /// answered by route 2 from it where that certifies (the certificate does not depend on the
+    /// starts), by the full solver otherwise.
+    pub fn seed(&mut self, omega: f64, roots: &[Complex64]) {
+        self.len = 0;
+        if roots.len() <= MAX_N {
+            self.roots[..roots.len()].copy_from_slice(roots);
+            self.nroots = roots.len();
+            self.roots_at = omega;
+        } else {
+            self.nroots = 0;
+        }
+    }
+
     /// Forget the history (the next speed uses the full solver).
     pub fn reset(&mut self) {
         self.len = 0;
