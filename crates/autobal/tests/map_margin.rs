@@ -201,3 +201,63 @@ fn the_margins_three_routes_each_give_the_qr_abscissa() {
     assert!(routes[2] >= 16, "each line starts with the full solver: {routes:?}");
     eprintln!("rightmost root {}, all roots {}, QR {} (first speeds: 16); worst error / bound {worst:e}", routes[0], routes[1], routes[2]);
 }
+
+#[test]
+fn a_margin_maps_lines_start_from_one_spectrum_per_group_and_keep_every_cell() {
+    // From 16 lines on, each group of 16 lines starts from the QR spectrum of its first line at
+    // the first speed, continued to the other lines by route 2 (certified, or QR where not):
+    // fewer direct solves than lines, and every cell against the QR abscissa of its own state
+    // matrix within the certificate 1e-10 (1 + |λ|) + 1e-12 (|λ| ≤ 1 + Ω² for these models,
+    // as in the plane test above). The rows and the transposed map (speed on x) hold the same
+    // margins bit for bit: the seeds depend only on each group's first line and the first speed.
+    use autobal::linalg::eigen::spectral_abscissa;
+    let d = DimensionlessInput {
+        c_sigma: 0.75,
+        rho_s: 0.4,
+        l_left: 0.8,
+        z_a: 0.0,
+        anisotropy: AnisotropyInput::Direct(0.1),
+        h_x: 0.05,
+        h_s: 0.1,
+        method: AnisotropyMethod::Exact,
+        direct_balls: Some((0.05, 0.5)),
+    };
+    let spec = SpatialSpec { input: SpatialInput::Dimensionless(d), delta_a_override: None };
+    let x = Axis::linspace("dimensionless.z_a", -2.0, 2.0, 40);
+    let y = Axis::linspace("omega", 0.05, 4.5, 120);
+    let s = MapSettings { balls: Balls::Free, quantity: Quantity::Margin, omega: None };
+    let mut rows = vec![];
+    let out = stability_map(&spec, &x, &y, &s, &Control::none(), &mut |_, r| {
+        rows.push(r.to_vec());
+        true
+    })
+    .unwrap();
+    // each line alone (one line: no seed) starts with the QR: the seeded map saves most of the
+    // 40 starts (3 groups: 3 QR seeds, 37 starts by route 2 where it certifies)
+    let mut alone = 0;
+    for &z in &x.values {
+        let one = Axis { path: x.path.clone(), values: vec![z] };
+        alone += stability_map(&spec, &one, &y, &s, &Control::none(), &mut |_, _| true).unwrap().direct;
+    }
+    assert!(out.direct + 20 <= alone, "the lines' starts are continued from the groups' seeds: {} vs {alone} alone", out.direct);
+    for (i, &z) in x.values.iter().enumerate() {
+        let mut di = d;
+        di.z_a = z;
+        let ss = StateSpace::new(&SpatialModel::from_dimensionless(&di).unwrap(), Balls::Free).unwrap();
+        for (j, &w) in y.values.iter().enumerate() {
+            let want = spectral_abscissa(&ss.at(w), ss.states).unwrap();
+            assert!((rows[j][i].margin - want).abs() <= 1e-10 * (1.0 + w * w) + 1e-12, "z_a = {z}, Ω = {w}: {} vs QR {want}", rows[j][i].margin);
+        }
+    }
+    let mut t = vec![];
+    stability_map(&spec, &y, &x, &s, &Control::none(), &mut |_, r| {
+        t.push(r.to_vec());
+        true
+    })
+    .unwrap();
+    for j in 0..y.values.len() {
+        for i in 0..x.values.len() {
+            assert_eq!(rows[j][i].margin.to_bits(), t[i][j].margin.to_bits());
+        }
+    }
+}

@@ -10,6 +10,8 @@
 //!   every speed; where another eigenvalue overtakes, by continuation of all eigenvalues from
 //!   the last speed that had them (certified by disjoint inclusion disks), and by the QR
 //!   eigenvalues where that cannot certify or no spectrum is known yet ([`AbscissaTracker`]);
+//!   with 16 lines or more, each group of 16 starts from the QR spectrum of its first line at
+//!   the first speed (the same seeds whichever axis is the speed);
 //! - the **verdict** by the Routh–Hurwitz test on the coefficients at each speed; every change
 //!   of verdict along a line, and the ends of each block of speeds, are confirmed by the direct
 //!   test on the state matrix (Hessenberg characteristic polynomial), and cells found wrong are
@@ -284,6 +286,18 @@ impl Line {
     }
 }
 
+/// Lines per group whose margins start from one spectrum: the first line's QR eigenvalues at
+/// the first speed, continued to every line of the group by route 2 of [`AbscissaTracker`]
+/// (the QR only where that does not certify). Used from [`PLANE_LINES`] lines on; the seed of a
+/// group depends only on its first line and the first speed, so the rows and the transposed
+/// map compute the same seeds and the same cells.
+const SEED_GROUP: usize = 16;
+
+/// The QR spectrum of the model of `spec` at speed `w` (the seed of a group of lines).
+fn seed_spectrum(ss: &StateSpace, w: f64) -> Option<Vec<num_complex::Complex64>> {
+    eigenvalues(&ss.at(w), ss.states).ok()
+}
+
 /// Fewest lines for which [`LinePlane`] is fitted: below, its ten sample models and the
 /// plane's expansion (~7 line expansions) cost more than expanding every line.
 const PLANE_LINES: usize = 16;
@@ -471,6 +485,16 @@ fn map_speed_rows<F: ModelFamily>(spec: &F, x: &Axis, y: &Axis, s: &MapSettings,
     let nx = x.values.len();
     let block = (BLOCK_CELLS / nx).max(1);
     let mut out = MapOutcome { complete: true, ..Default::default() };
+    if s.quantity == Quantity::Margin && nx >= PLANE_LINES {
+        let w = y.values[0].max(OMEGA_FLOOR);
+        let seeds: Vec<Option<Vec<_>>> = (0..nx.div_ceil(SEED_GROUP)).into_par_iter().map(|g| seed_spectrum(&lines[g * SEED_GROUP].ss, w)).collect();
+        out.direct += seeds.len();
+        for (i, l) in lines.iter_mut().enumerate() {
+            if let Some(r) = &seeds[i / SEED_GROUP] {
+                l.tracker.seed(w, r);
+            }
+        }
+    }
     let mut j0 = 0;
     while j0 < y.values.len() {
         let j1 = (j0 + block).min(y.values.len());
@@ -511,12 +535,29 @@ fn map_speed_columns<F: ModelFamily>(spec: &F, x: &Axis, y: &Axis, s: &MapSettin
     let plane = LinePlane::new(spec, y, s.balls);
     let mut out = MapOutcome { complete: true, ..Default::default() };
     let mut j0 = 0;
+    let seeded = s.quantity == Quantity::Margin && y.values.len() >= PLANE_LINES;
+    let w = x.values[0].max(OMEGA_FLOOR);
     while j0 < y.values.len() {
         let j1 = (j0 + block).min(y.values.len());
-        let rows: Vec<(Vec<Cell>, usize, usize)> = y.values[j0..j1]
-            .par_iter()
-            .map(|&v| {
+        // the seeds of the groups this block's lines are in (as `map_speed_rows` computes them)
+        let g0 = j0 / SEED_GROUP;
+        let seeds: Vec<Option<Vec<_>>> = if seeded {
+            (g0..(j1 - 1) / SEED_GROUP + 1)
+                .into_par_iter()
+                .map(|g| Ok(seed_spectrum(&StateSpace::new(&spec.with(&y.path, y.values[g * SEED_GROUP])?.model()?, s.balls)?, w)))
+                .collect::<Result<_>>()?
+        } else {
+            vec![]
+        };
+        out.direct += seeds.len();
+        let rows: Vec<(Vec<Cell>, usize, usize)> = (j0..j1)
+            .into_par_iter()
+            .map(|j| {
+                let v = y.values[j];
                 let mut l = Line::new(&spec.with(&y.path, v)?, s.balls, plane.as_ref().map(|p| (p, v)))?;
+                if let Some(Some(r)) = seeds.get(j / SEED_GROUP - g0) {
+                    l.tracker.seed(w, r);
+                }
                 let mut cells = Vec::with_capacity(x.values.len());
                 l.cells(&x.values, s.quantity, s.balls, &mut cells)?;
                 Ok((cells, l.continued, l.direct))
