@@ -747,7 +747,8 @@ fn traced_boundary_is_located_to_1e_8_and_agrees_with_a_fine_grid() {
     // pair ±i√w, or a zero eigenvalue, within 1e-8 of the QR eigenvalues there), and on 23 fine
     // lines across each plane every end of an exact stable range (QR margins on 1500 speeds,
     // bisection to 1e-11) lies on a traced stability boundary, within the chord error of the
-    // drawn polyline (steps ≤ 0.05 of the plane turning ≤ 0.15 rad: sagitta < 2e-3).
+    // drawn polyline (steps h ≤ 0.05 of the plane with h·turn ≤ 0.05 · 0.15 rad, chords ≤ 2h:
+    // sagitta ≤ h·turn/4 < 2e-3).
     let base = boundary_base();
     let mut rng = Rng(37);
     let cases = [
