@@ -91,7 +91,7 @@ pub use stability::{
     mode, speed_scan, speed_scan_with, stability, Eigenvalue, Kind, ScanOptions, ScanPoint, SpeedScan, Stability, StableRange, Verdict, FLOQUET_TOLERANCE,
     NEUTRAL_TOLERANCE,
 };
-pub use stationary::{stationary, stationary_near, NewtonOptions, StationaryState, VariationalSystem};
+pub use stationary::{orbit_samples, stationary, stationary_near, NewtonOptions, StationaryState, VariationalSystem};
 
 use crate::linalg::eigen_dyn;
 

@@ -376,6 +376,15 @@ fn orbit<F: VectorField + ?Sized>(f: &F, x0: &[f64], period: f64, s: &[f64], rto
     Ok(Orbit { end: y, samples })
 }
 
+/// The periodic orbit through `x0` (period `period`) at [`MAX_NODES`] = 64 equispaced times
+/// `t_j = j T / 64` over one period, row-major (`j = 0` is `x0`): DOP853 at `1e-2 · rtol` with
+/// the field's scales, sampled by its dense output (the samples [`stationary`]'s Floquet
+/// route uses). For averages over a revolution: the trapezoidal rule on these samples is
+/// exact for the orbit's harmonics below the 64th (spectral accuracy for an analytic orbit).
+pub fn orbit_samples<F: VectorField + ?Sized>(f: &F, x0: &[f64], period: f64, rtol: f64) -> Result<Vec<f64>> {
+    Ok(orbit(f, x0, period, &f.scales(), rtol)?.samples)
+}
+
 /// The trigonometric interpolant of a periodic matrix function `J(t)` (period `T`) from its
 /// values at `N` equispaced times `t_j = j T / N` (`N` even):
 /// `J̃(t) = A_0 + Σ_{k=1}^{N/2} (A_k cos kθ + B_k sin kθ)`, `θ = 2π t / T`, with
