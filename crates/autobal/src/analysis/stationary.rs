@@ -376,7 +376,7 @@ fn orbit<F: VectorField + ?Sized>(f: &F, x0: &[f64], period: f64, s: &[f64], rto
     Ok(Orbit { end: y, samples })
 }
 
-/// The periodic orbit through `x0` (period `period`) at [`MAX_NODES`] = 64 equispaced times
+/// The periodic orbit through `x0` (period `period`) at 64 equispaced times
 /// `t_j = j T / 64` over one period, row-major (`j = 0` is `x0`): DOP853 at `1e-2 · rtol` with
 /// the field's scales, sampled by its dense output (the samples [`stationary`]'s Floquet
 /// route uses). For averages over a revolution: the trapezoidal rule on these samples is
