@@ -122,6 +122,8 @@ pub fn state_kind(field: &LinearRotorField, x: &[f64]) -> StateKind {
     let tol = 1e-6 * length_scale(r);
     let n = r.dofs();
     let whirl = plane_whirl(r, x);
+    let centres = plane_positions(r, x);
+    // (plane, its balls on the line of its whirl to 1e-6 rad) of every whirling plane
     let mut j = n;
     let mut whirling = vec![];
     for (k, (b, &d)) in r.balancers.iter().zip(&whirl).enumerate() {
@@ -133,23 +135,15 @@ pub fn state_kind(field: &LinearRotorField, x: &[f64]) -> StateKind {
         if crate::rotor_stability::bunched(psi) {
             return StateKind::PartiallyBalanced;
         }
-        whirling.push(k);
+        let along = centres[k].1.atan2(centres[k].0);
+        whirling.push((k, psi.iter().all(|a| crate::rotor_stability::off_line(*a, along) <= 1e-6)));
     }
     if whirling.is_empty() {
         return StateKind::Balanced;
     }
     let not_balanced = match spread_whirl(field) {
-        Some(free) => whirling.iter().any(|&k| whirl[k] > NOT_REDUCED * free[k]),
-        None => {
-            let centres = plane_positions(r, x);
-            let mut j = n;
-            r.balancers.iter().enumerate().any(|(k, b)| {
-                let psi = &x[j..j + b.balls];
-                j += b.balls;
-                let along = centres[k].1.atan2(centres[k].0);
-                whirling.contains(&k) && psi.iter().all(|a| crate::rotor_stability::off_line(*a, along) <= 1e-6)
-            })
-        }
+        Some(free) => whirling.iter().any(|&(k, _)| whirl[k] > NOT_REDUCED * free[k]),
+        None => whirling.iter().any(|&(_, on_line)| on_line),
     };
     if not_balanced {
         StateKind::NotBalanced

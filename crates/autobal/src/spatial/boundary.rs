@@ -1706,14 +1706,9 @@ mod tests {
         }
     }
 
-    /// A Bogdanov–Takens point has a double zero eigenvalue: at each one traced on the bench
-    /// plane (z̄_A × Ω, free balls) the two smallest eigenvalues of the state matrix (QR, an
-    /// independent route) are below 1e-5 (a residual ~1e-12 in the polynomial's low
-    /// coefficients moves a double root by ~1e-6: measured 1.3e-6; the chord's interpolation
-    /// alone left 6.9e-3 and 3.2e-2, a review found).
-    #[test]
-    fn bogdanov_takens_points_have_a_double_zero_eigenvalue() {
-        let bench = DimensionlessInput {
+    /// The rotor of the benchmark's plane (`examples/bench_boundary.rs`, `bench/boundary.py`).
+    fn bench_plane_rotor() -> DimensionlessInput {
+        DimensionlessInput {
             c_sigma: 0.75,
             rho_s: 0.4,
             l_left: 0.8,
@@ -1723,7 +1718,17 @@ mod tests {
             method: crate::spatial::inertia::AnisotropyMethod::Exact,
             direct_balls: Some((0.05, 0.5)),
             ..DimensionlessInput::default()
-        };
+        }
+    }
+
+    /// A Bogdanov–Takens point has a double zero eigenvalue: at each one traced on the bench
+    /// plane (z̄_A × Ω, free balls) the two smallest eigenvalues of the state matrix (QR, an
+    /// independent route) are below 1e-5 (a residual ~1e-12 in the polynomial's low
+    /// coefficients moves a double root by ~1e-6: measured 1.3e-6; the chord's interpolation
+    /// alone left 6.9e-3 and 3.2e-2, a review found).
+    #[test]
+    fn bogdanov_takens_points_have_a_double_zero_eigenvalue() {
+        let bench = bench_plane_rotor();
         let spec = SpatialSpec { input: SpatialInput::Dimensionless(bench), delta_a_override: None };
         let x = Axis::range("dimensionless.z_a", -2.0, 2.0);
         let y = Axis::range(OMEGA, 0.05, 4.5);
@@ -1752,17 +1757,7 @@ mod tests {
         // traced curve. Planes: the benchmark's and the docs' (`map --x dimensionless.z_a=-2:2
         // --y omega=0.05:4.5 --boundary` on the default rotor).
         use crate::spatial::map::{stability_map, MapSettings, Quantity};
-        let bench = DimensionlessInput {
-            c_sigma: 0.75,
-            rho_s: 0.4,
-            l_left: 0.8,
-            anisotropy: crate::spatial::params::AnisotropyInput::Direct(0.1),
-            h_x: 0.05,
-            h_s: 0.1,
-            method: crate::spatial::inertia::AnisotropyMethod::Exact,
-            direct_balls: Some((0.05, 0.5)),
-            ..DimensionlessInput::default()
-        };
+        let bench = bench_plane_rotor();
         for d in [bench, DimensionlessInput::default()] {
             let spec = SpatialSpec { input: SpatialInput::Dimensionless(d), delta_a_override: None };
             let n = 120;
