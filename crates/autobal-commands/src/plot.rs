@@ -234,8 +234,9 @@ impl ColourCache {
     }
 }
 
-/// A heatmap's cell colours ([`heat_color`]), `z[j][i]` at `j * nx + i`; `None` for an empty
-/// or ragged grid (which the SVG leaves out). What the SVG's raster and the PNG's painted cells
+/// A heatmap's cell colours ([`heat_color`]) in the raster's order, its top row the last `y`:
+/// `z[j][i]` at `(ny - 1 - j) * nx + i`; `None` for an empty or ragged grid (which the SVG
+/// leaves out). What the SVG's raster and the PNG's painted cells
 /// are both made of when a figure is written both ways ([`Plot::to_svg_and_png`]).
 fn heat_colours(h: &Heatmap) -> Option<Vec<[u8; 3]>> {
     let (nx, ny) = (h.x.len(), h.y.len());
@@ -243,7 +244,12 @@ fn heat_colours(h: &Heatmap) -> Option<Vec<[u8; 3]>> {
         return None;
     }
     let mut colour = ColourCache::new(h.scale);
-    Some(h.z.iter().flat_map(|r| r.iter()).map(|&v| colour.of(v)).collect())
+    // sized once (a `flat_map`'s collect cannot know its length: it grew and copied)
+    let mut out = Vec::with_capacity(nx * ny);
+    for r in h.z.iter().rev() {
+        out.extend(r.iter().map(|&v| colour.of(v)));
+    }
+    Some(out)
 }
 
 /// Position on the diverging colour scale, −1 (most negative) … 1: signed square root of the
@@ -395,11 +401,8 @@ impl Plot {
         if nx == 0 || ny == 0 || colours.len() != nx * ny {
             return None;
         }
-        let mut px = Vec::with_capacity(nx * ny * 3);
-        for row in colours.chunks_exact(nx).rev() {
-            px.extend_from_slice(row.as_flattened());
-        }
-        png_bytes(nx, ny, &px).ok()
+        // the colours are in the raster's order: no copy
+        png_bytes(nx, ny, colours.as_flattened()).ok()
     }
 
     /// Render to an SVG document.
@@ -1621,7 +1624,9 @@ fn paint_heatmap(pix: &mut resvg::tiny_skia::Pixmap, h: &Heatmap, at: &HeatPlace
             continue;
         }
         if let Some(cs) = colours.filter(|cs| cs.len() == nx * ny) {
-            for (c, &[r, g, b]) in line.iter_mut().zip(&cs[j * nx..(j + 1) * nx]) {
+            // the raster's order: `z[j]` is row `ny - 1 - j`
+            let row = ny - 1 - j;
+            for (c, &[r, g, b]) in line.iter_mut().zip(&cs[row * nx..(row + 1) * nx]) {
                 *c = resvg::tiny_skia::PremultipliedColorU8::from_rgba(r, g, b, 255).expect("opaque");
             }
         } else {
