@@ -144,7 +144,7 @@ pub fn sample_columns(n: usize) -> Vec<String> {
 /// Floats handed to the writer thread at a time (whole rows of `5 + n` floats; 64 KiB: 1 170
 /// rows of a two-ball passage). Each batch wakes the writer (a futex wake, two context switches
 /// on a loaded machine): batches of 256 rows made 19 hand-overs of paper 004's 4 801 samples
-/// and ~80 context switches a run; this size makes 5. The batches' buffers go back to the run's
+/// and 45-70 context switches a run (`perf stat`, load ~5); this size makes 5, and 13-36. The batches' buffers go back to the run's
 /// thread to be filled again (no allocation, and no fresh pages, per batch).
 const BATCH_FLOATS: usize = 1 << 13;
 
@@ -283,9 +283,10 @@ pub fn run_to_csv(
 ///
 /// `rows` runs on a second thread while the integration goes on (the samples travel in batches
 /// of `BATCH_FLOATS` (8 192) floats, their buffers sent back to be reused): formatting and
-/// writing the CSV costs the run's thread nothing but the copy of the floats. When the run stops (Ctrl-C, a budget) every row sampled so far is
-/// still handed over before this returns; an error of `rows` stops the run (the next batch
-/// finds the writer gone) and is returned as `--out: cannot write: ...`.
+/// writing the CSV costs the run's thread nothing but the copy of the floats. When the run
+/// stops (Ctrl-C, a budget) every row sampled so far is still handed over before this returns;
+/// an error of `rows` stops the run (the next batch finds the writer gone) and is returned as
+/// `--out: cannot write: ...`.
 pub fn run_rows(cfg: &PlanarConfig, rows: &mut (dyn FnMut(&[f64]) -> Result<()> + Send), control: &Control) -> Result<(Summary, Envelope, f64)> {
     let width = 5 + cfg.rotor.n;
     let expected = (cfg.settings.t_end / cfg.settings.dt) as usize + 1;
