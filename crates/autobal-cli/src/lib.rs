@@ -667,8 +667,9 @@ fn run_map(args: &map::Args, config: Option<&std::path::Path>, out: &std::path::
         let figures = out.figures()?;
         out.release_figure_cells();
         for f in figures {
-            let svg = f.plot.to_svg();
-            outfile::write_atomic("--out", &term::with_suffix(&stem, "png"), f.plot.to_png(1.5)?)?;
+            // the heatmap's cell colours computed once for both files
+            let (svg, png) = f.plot.to_svg_and_png(1.5);
+            outfile::write_atomic("--out", &term::with_suffix(&stem, "png"), png?)?;
             outfile::write_atomic("--out", &term::with_suffix(&stem, "svg"), svg)?;
         }
     } else {

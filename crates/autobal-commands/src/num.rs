@@ -129,8 +129,13 @@ impl Csv {
         } else if (0.001..0.01).contains(&a) {
             s.len() - usize::from(v < 0.0) > 5
         } else if a < 1e-5 {
-            // zmij's `D.DDDe-X` is Rust's `{:e}`, and positional (at least n + 7) is longer
-            s.as_bytes().contains(&b'e')
+            // zmij's `D.DDDe-X` is Rust's `{:e}`, and positional (at least n + 7) is longer.
+            // zmij writes positionally only decimal exponents -5 to 15 (its `FIXED_DEC_EXP`),
+            // and the shortest digits `d` of `a < 1e-5` have an exponent of -6 or less: were
+            // `d ≥ 1e-5`, rounding (monotone) would give `a = round(d) ≥ round(1e-5)`, the `f64`
+            // `1e-5` that `a` is below. So the text has its `e` (no scan for it; the test
+            // `csv_numbers_are_the_shorter_exact_form` checks the powers of ten and their neighbours)
+            true
         } else {
             false
         }

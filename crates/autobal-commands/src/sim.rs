@@ -141,8 +141,17 @@ pub fn sample_columns(n: usize) -> Vec<String> {
     c
 }
 
-/// Rows handed to the writer thread at a time (each `5 + n` floats).
-const BATCH_ROWS: usize = 256;
+/// Floats handed to the writer thread at a time (whole rows of `5 + n` floats; 64 KiB: 1 170
+/// rows of a two-ball passage). Each batch wakes the writer (a futex wake, two context switches
+/// on a loaded machine): batches of 256 rows made 19 hand-overs of paper 004's 4 801 samples
+/// and 45-70 context switches a run (`perf stat`, load ~5); this size makes 5, and 13-36. The batches' buffers go back to the run's
+/// thread to be filled again (no allocation, and no fresh pages, per batch).
+const BATCH_FLOATS: usize = 1 << 13;
+
+/// The rows of a batch for rows of `width` floats ([`BATCH_FLOATS`], at least one row).
+fn batch_rows(width: usize) -> usize {
+    (BATCH_FLOATS / width.max(1)).max(1)
+}
 
 /// CSV text handed to the writer at a time (bytes, whole rows): the staged file's buffer is as
 /// large, so each chunk goes to the file without a second copy ([`std::io::BufWriter`] passes a
@@ -273,33 +282,41 @@ pub fn run_to_csv(
 /// the envelope and the wall time. Progress (per mille of `t_end`) goes to `control`'s observer.
 ///
 /// `rows` runs on a second thread while the integration goes on (the samples travel in batches
-/// of `BATCH_ROWS` (256)): formatting and writing the CSV costs the run's thread nothing but
-/// the copy of the floats. When the run stops (Ctrl-C, a budget) every row sampled so far is
-/// still handed over before this returns; an error of `rows` stops the run (the next batch
-/// finds the writer gone) and is returned as `--out: cannot write: ...`.
+/// of `BATCH_FLOATS` (8 192) floats, their buffers sent back to be reused): formatting and
+/// writing the CSV costs the run's thread nothing but the copy of the floats. When the run
+/// stops (Ctrl-C, a budget) every row sampled so far is still handed over before this returns;
+/// an error of `rows` stops the run (the next batch finds the writer gone) and is returned as
+/// `--out: cannot write: ...`.
 pub fn run_rows(cfg: &PlanarConfig, rows: &mut (dyn FnMut(&[f64]) -> Result<()> + Send), control: &Control) -> Result<(Summary, Envelope, f64)> {
     let width = 5 + cfg.rotor.n;
     let expected = (cfg.settings.t_end / cfg.settings.dt) as usize + 1;
     let mut env = Envelope::new(expected, 6000);
     let mut count = 0u64;
     let (tx, rx) = std::sync::mpsc::sync_channel::<Vec<f64>>(16);
+    // the emptied batches, back to the run's thread (a send that finds the channel full or the
+    // run's end drops the buffer)
+    let (back_tx, back_rx) = std::sync::mpsc::sync_channel::<Vec<f64>>(4);
+    let cap = batch_rows(width) * width;
     let (summary, wall, written) = std::thread::scope(|scope| {
         let writer = scope.spawn(move || -> Result<()> {
-            for batch in rx {
+            for mut batch in rx {
                 for row in batch.chunks_exact(width) {
                     rows(row)?;
                 }
+                batch.clear();
+                let _ = back_tx.try_send(batch);
             }
             Ok(())
         });
-        let mut batch: Vec<f64> = Vec::with_capacity(BATCH_ROWS * width);
+        let mut batch: Vec<f64> = Vec::with_capacity(cap);
         let mut writer_gone = false;
         let t0 = std::time::Instant::now();
         let summary = simulate_with(&cfg.rotor, &cfg.drive, &cfg.settings, control, |s| {
             batch.extend_from_slice(&[s.t, s.omega, s.x, s.y, s.amplitude]);
             batch.extend_from_slice(&s.psi);
-            if batch.len() >= BATCH_ROWS * width {
-                let full = std::mem::replace(&mut batch, Vec::with_capacity(BATCH_ROWS * width));
+            if batch.len() >= cap {
+                let next = back_rx.try_recv().unwrap_or_else(|_| Vec::with_capacity(cap));
+                let full = std::mem::replace(&mut batch, next);
                 if tx.send(full).is_err() {
                     // the writer stopped on an error: it is reported below
                     writer_gone = true;
@@ -387,10 +404,19 @@ pub fn summary_table(cfg: &PlanarConfig, s: &Summary, wall: f64) -> String {
 /// Ball angles in degrees wrapped to (−180°, 180°], the line broken where it wraps (a ball
 /// slipping round the race would otherwise run off to thousands of degrees).
 pub fn wrapped_degrees(points: impl Iterator<Item = (f64, f64)>) -> Vec<(f64, f64)> {
+    let mut out = vec![];
+    wrapped_degrees_into(&mut out, points);
+    out
+}
+
+/// [`wrapped_degrees`] into `out` (cleared first): one buffer for every ball of a figure, so
+/// the second ball's points reuse the pages the first one touched.
+fn wrapped_degrees_into(out: &mut Vec<(f64, f64)>, points: impl Iterator<Item = (f64, f64)>) {
     // room for every point and a break before each (a ball slipping round the race breaks its
     // line hundreds of times): one allocation, never grown and copied; the pages of the room
     // not used are never touched
-    let mut out: Vec<(f64, f64)> = Vec::with_capacity(2 * points.size_hint().0 + 16);
+    out.clear();
+    out.reserve(2 * points.size_hint().0 + 16);
     for (t, a) in points {
         let d = wrap_360(a.to_degrees() + 180.0) - 180.0;
         if let Some(&(_, prev)) = out.last() {
@@ -400,7 +426,6 @@ pub fn wrapped_degrees(points: impl Iterator<Item = (f64, f64)>) -> Vec<(f64, f6
         }
         out.push((t, d));
     }
-    out
 }
 
 /// `v.rem_euclid(360.0)`, bit for bit, without the `fmod` call where `|v| < 2^52` (the ball
@@ -521,16 +546,19 @@ fn plots_with(cfg: &PlanarConfig, env: &Envelope, title: &str, columns: bool) ->
     // at most PSI_CURVES balls drawn (a figure of 1e5 curves is tens of MB and unreadable);
     // the CSV has every ball
     let drawn = p.n.min(PSI_CURVES);
+    // the wrapped angles of one ball at a time, in one buffer (its columns are what is kept)
+    let mut wrapped: Vec<(f64, f64)> = vec![];
     let psi: Vec<Series> = (0..drawn)
         .map(|j| {
             Series::new(
                 format!("ψ{}", j + 1),
                 {
-                    let w = wrapped_degrees(k().map(|r| (t(r), r[ROW_PSI + j])));
+                    let angles = k().map(|r| (t(r), r[ROW_PSI + j]));
                     if columns {
-                        crate::plot::line_columns(w.iter().copied())
+                        wrapped_degrees_into(&mut wrapped, angles);
+                        crate::plot::line_columns(wrapped.iter().copied())
                     } else {
-                        w
+                        wrapped_degrees(angles)
                     }
                 },
                 PALETTE[(j + 1) % 7],
@@ -650,6 +678,40 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// `run_rows` hands over every sample's row once, in order, bit for bit the library's
+    /// samples, over several batches (the default passage's 4 801 rows are 5 batches, the
+    /// buffers sent back and refilled): a buffer refilled without being emptied, a row lost at
+    /// a batch's end or the last partial batch not sent would change the rows.
+    #[test]
+    fn run_rows_hands_over_every_sample_once_in_order() {
+        let cfg = crate::config::load_planar(None, &[]).unwrap();
+        let width = 5 + cfg.rotor.n;
+        let mut got: Vec<Vec<f64>> = vec![];
+        let (_, env, _) = run_rows(
+            &cfg,
+            &mut |r| {
+                got.push(r.to_vec());
+                Ok(())
+            },
+            &Control::new(),
+        )
+        .unwrap();
+        let mut want: Vec<Vec<f64>> = vec![];
+        simulate_with(&cfg.rotor, &cfg.drive, &cfg.settings, &Control::new(), |s| {
+            let mut r = vec![s.t, s.omega, s.x, s.y, s.amplitude];
+            r.extend_from_slice(&s.psi);
+            want.push(r);
+            true
+        })
+        .unwrap();
+        assert!(want.len() > 3 * batch_rows(width) + 1, "{} rows: not several batches", want.len());
+        assert_eq!(got.len(), want.len());
+        for (k, (a, b)) in got.iter().zip(&want).enumerate() {
+            assert!(a.iter().map(|v| v.to_bits()).eq(b.iter().map(|v| v.to_bits())), "row {k}");
+        }
+        assert_eq!(env.len(), want.len(), "a run shorter than the envelope's target keeps every sample");
     }
 
     /// The CSV text of a sink is the rows' values as `Csv`'s `Display` text, comma-joined, a line
