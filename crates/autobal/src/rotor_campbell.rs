@@ -41,8 +41,9 @@
 //! [`campbell_locked`] is the diagram of the rotor with its balls locked where the closed form
 //! puts them ([`locked_rotor`], damping kept: paper 000's 8-state model on a one-plane config);
 //! [`fixed_view`] turns a diagram into one continuous curve per mode in fixed axes with its log
-//! decrement, and the speeds where a curve crosses an excitation line `h Ω`, bisected on the
-//! stationary state's spectrum (with the balls locked and no damping, the crossings of `1×` are
+//! decrement, and the critical speeds where a circular component meets an excitation line
+//! `h Ω`, found by the 12-state route's search on the stationary state's spectrum (not on the
+//! drawn curves; with the balls locked and no damping, the crossings of `1×` are
 //! the critical speeds of eq (16) on a one-plane rotor). Each mode also carries its dominant
 //! coordinate group ([`CampbellPoint::group`]). For a periodic orbit the crossings are not
 //! defined (a Floquet exponent's `Im ρ` is defined modulo `Ω`, so a crossing of `h×` is one of
@@ -966,9 +967,11 @@ const REAL_TOL: f64 = 1e-9;
 /// that are conjugate somewhere; structural zeros and speeds without a state left out), the
 /// followed component `f = Ω ± ν` the dominant one unless the other continues the curve better
 /// by more than two speed steps, `δ = −2π σ/|f|` per fixed-axes cycle, and the crossings with
-/// the excitation lines `h Ω` for each `h` of `harmonics`, located by bisection on the
-/// stationary state's spectrum recomputed at each trial speed (to `1e-13` relative; the ends of
-/// a run along the line, as between split critical speeds, both reported).
+/// the excitation lines `h Ω` for each `h` of `harmonics` by the 12-state route's rule and
+/// search ([`crate::spatial::campbell`]: a circular component's frequency meets `hΩ`, `ν̂ = 0`
+/// for the forward `1×`, bisected to `1e-13` relative on the stationary state's spectrum
+/// recomputed at each trial speed, the ends on the real axis on the count of real
+/// eigenvalues; the drawn curves are not used).
 ///
 /// **Periodic orbits**: the Floquet exponents' imaginary parts are defined modulo `Ω`, so
 /// `|f| = hΩ` for one harmonic is `|f| = h'Ω` on another branch: crossings are not defined, and

@@ -27,12 +27,12 @@
 //!   that is `λ = 0`, `det K(Ω) = 0`: 000 eq (15)-(16)'s critical speeds. Where the pair stays
 //!   on the axis over an interval (a divergence range between split critical speeds) both
 //!   ends are reported; where it passes through it (a circular mode) one speed. The ends are
-//!   found on each line's runs on the axis on the grid and, between grid points, by a
-//!   golden-section search for a zero of `ν̂` around each local minimum of `ν̂` on the grid
-//!   that could reach zero within a step; each is bisected on the model's eigenvalues and
-//!   kept only where the number of real eigenvalues of the state matrix changes there. The
-//!   end of a run on the axis that starts at the first speed (a real mode whirling with the
-//!   rotor from rest), or the start of one that lasts to the last speed, is not a crossing.
+//!   bisected on the number of real eigenvalues itself, which changes exactly there, in every
+//!   bracket where the grid suggests a change (a step where the count or a line's realness
+//!   changes, a local minimum of a complex line's `ν̂`, a local minimum of `(λ_i − λ_j)²` of two
+//!   real lines neighbouring on the axis: `axis_crossings`). The end of a run
+//!   on the axis that starts at the first speed (a real mode whirling with the rotor from
+//!   rest), or the start of one that lasts to the last speed, is not a crossing.
 //! * `ν̂ = (h − 1)Ω`, `h ≥ 2`: the forward component at `hΩ`; `ν̂ = (h + 1)Ω`: the other
 //!   component backward at `−hΩ`. Bracketed by the sign of `ν̂ − (h ∓ 1)Ω` on the grid and
 //!   bisected on the model's eigenvalues (the pair's eigenvalue at a trial speed: the one
@@ -42,9 +42,14 @@
 //!
 //! The jump of a drawn curve where it changes component is never a crossing. A crossing is
 //! missed only where two of them (of one pair and harmonic) fall within one grid step without
-//! a local minimum of `ν̂` between them, e.g. a curve grazing an excitation line. The mode
-//! number of a crossing is that of the curve of its pair at the nearest grid point (where
-//! pairs exchange partners on the real axis it follows the tracking).
+//! a local minimum of `ν̂` (or of `(λ_i − λ_j)²` on the axis) between them, e.g. a curve
+//! grazing an excitation line. The mode number of a crossing is that of the curve of its pair
+//! at the nearest grid point (where pairs exchange partners on the real axis it follows the
+//! tracking).
+//!
+//! The search knows no model: `crossings` asks a `Spectrum` for the eigenvalues at a speed and
+//! the shares of a mode; the 12-state route gives its pencil's, the general route
+//! ([`crate::rotor_campbell::fixed_view`]) the stationary state's.
 
 use crate::error::{Error, Result};
 use crate::linalg::eigen::eigenvalues;
