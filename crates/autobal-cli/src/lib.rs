@@ -188,8 +188,7 @@ enum Command {
         #[arg(long, value_enum, default_value = "fixed")]
         view: linear::CampbellView,
         /// Excitation harmonics h whose lines h×Ω are drawn; a critical speed is where a mode's
-        /// circular whirl component (major or minor: its share is given; planar and linear
-        /// rotors: where a drawn curve meets one) meets one, e.g. 1,2
+        /// circular whirl component (major or minor: its share is given) meets one, e.g. 1,2
         #[arg(long, value_delimiter = ',', default_value = "1")]
         harmonics: Vec<u32>,
         /// `auto`: paper 000's 12-state model where it represents the config, else the general

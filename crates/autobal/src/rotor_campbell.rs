@@ -41,8 +41,9 @@
 //! [`campbell_locked`] is the diagram of the rotor with its balls locked where the closed form
 //! puts them ([`locked_rotor`], damping kept: paper 000's 8-state model on a one-plane config);
 //! [`fixed_view`] turns a diagram into one continuous curve per mode in fixed axes with its log
-//! decrement, and the speeds where a curve crosses an excitation line `h Ω`, bisected on the
-//! stationary state's spectrum (with the balls locked and no damping, the crossings of `1×` are
+//! decrement, and the critical speeds where a circular component meets an excitation line
+//! `h Ω`, found by the 12-state route's search on the stationary state's spectrum (not on the
+//! drawn curves; with the balls locked and no damping, the crossings of `1×` are
 //! the critical speeds of eq (16) on a one-plane rotor). Each mode also carries its dominant
 //! coordinate group ([`CampbellPoint::group`]). For a periodic orbit the crossings are not
 //! defined (a Floquet exponent's `Im ρ` is defined modulo `Ω`, so a crossing of `h×` is one of
@@ -79,7 +80,7 @@ use crate::control::{Control, Outcome};
 use crate::error::{Error, Result};
 use crate::linalg::eigen_dyn::eigenvalues;
 use crate::rotor_stability::{Field, Rotor};
-use crate::spatial::campbell::{CriticalSpeed, FixedCampbell, FixedCurve, FixedPoint};
+use crate::spatial::campbell::{FixedCampbell, FixedCurve, FixedPoint};
 use crate::spatial::dynamics::PointMass;
 pub use crate::spatial::linear_model::Balls;
 pub use crate::spatial::stability::Group;
@@ -868,10 +869,22 @@ fn state_and_spectrum(
     omega: f64,
     near: Option<&StationaryState>,
 ) -> std::result::Result<(StationaryState, Vec<CampbellPoint>), String> {
-    let reason = |e: Error| match e {
+    let (of, f, s) = state_of(rotor, balls, omega, near)?;
+    let p = spectrum_at(&of, &f, omega, &s).map_err(reason)?;
+    Ok((s, p))
+}
+
+/// The one-line reason of an error, for [`RotorCampbell::failures`].
+fn reason(e: Error) -> String {
+    match e {
         Error::InvalidParameter { reason, .. } => reason,
         e => e.to_string(),
-    };
+    }
+}
+
+/// The rotor the diagram is of at `omega` ([`state_and_spectrum`]), its field and stationary
+/// state.
+fn state_of(rotor: &Rotor, balls: Balls, omega: f64, near: Option<&StationaryState>) -> std::result::Result<(Rotor, Field, StationaryState), String> {
     let of = match balls {
         Balls::Free => rotor.clone(),
         Balls::Locked => locked_rotor(rotor, omega, false).map_err(reason)?,
@@ -896,8 +909,7 @@ fn state_and_spectrum(
         }
     }
     let s = result?;
-    let p = spectrum_at(&of, &f, omega, &s).map_err(reason)?;
-    Ok((s, p))
+    Ok((of, f, s))
 }
 
 /// The Campbell diagram of `rotor` with its balls **locked** (`--balls locked`): at each speed
@@ -947,14 +959,6 @@ pub fn campbell_locked(rotor: &Rotor, speeds: &[f64]) -> Result<RotorCampbell> {
 
 /// `|Im λ|` at most this times `max(1, |λ|)` counts as a real eigenvalue (QR round-off).
 const REAL_TOL: f64 = 1e-9;
-/// `|g| = ||f| − hΩ|` at most this times `max(1, hΩ)` counts as on the excitation line (as
-/// [`crate::spatial::campbell`]: a linear crossing is then located to ~1e-10 relative by the
-/// band's midpoint; at a split critical speed, `g ~ sqrt(Ω − Ω_K)`, to the square of that).
-const ON_LINE_TOL: f64 = 1e-10;
-/// Bisection stops at this width relative to `max(1, Ω)`.
-const BISECT_TOL: f64 = 1e-13;
-/// Entry and exit of an excitation line closer than this (relative) are one crossing.
-const MERGE_TOL: f64 = 1e-9;
 
 /// The fixed-axes view of a general-route Campbell diagram `c` of `rotor` (computed with
 /// `balls`), as [`crate::spatial::campbell::fixed_axes`] gives it for paper 000's 12-state
@@ -963,9 +967,11 @@ const MERGE_TOL: f64 = 1e-9;
 /// that are conjugate somewhere; structural zeros and speeds without a state left out), the
 /// followed component `f = Ω ± ν` the dominant one unless the other continues the curve better
 /// by more than two speed steps, `δ = −2π σ/|f|` per fixed-axes cycle, and the crossings with
-/// the excitation lines `h Ω` for each `h` of `harmonics`, located by bisection on the
-/// stationary state's spectrum recomputed at each trial speed (to `1e-13` relative; the ends of
-/// a run along the line, as between split critical speeds, both reported).
+/// the excitation lines `h Ω` for each `h` of `harmonics` by the 12-state route's rule and
+/// search ([`crate::spatial::campbell`]: a circular component's frequency meets `hΩ`, `ν̂ = 0`
+/// for the forward `1×`, bisected to `1e-13` relative on the stationary state's spectrum
+/// recomputed at each trial speed, the ends on the real axis on the count of real
+/// eigenvalues; the drawn curves are not used).
 ///
 /// **Periodic orbits**: the Floquet exponents' imaginary parts are defined modulo `Ω`, so
 /// `|f| = hΩ` for one harmonic is `|f| = h'Ω` on another branch: crossings are not defined, and
@@ -1059,134 +1065,73 @@ pub fn fixed_view(rotor: &Rotor, balls: Balls, c: &RotorCampbell, harmonics: &[u
         }
     }
     curves.sort_by(|a, b| a.0.points[0].frequency.total_cmp(&b.0.points[0].frequency).then(a.0.line.cmp(&b.0.line)));
-    let mut crit = vec![];
-    if c.kind == Kind::Equilibrium {
-        for &h in harmonics {
-            for (ci, (cv, idx)) in curves.iter().enumerate() {
-                let ctx = Crossing { rotor, balls, c, cv, idx, h };
-                ctx.crossings(ci, &mut crit)?;
-            }
-        }
-    }
-    crit.sort_by(|a: &CriticalSpeed, b| a.omega.total_cmp(&b.omega));
-    Ok(FixedCampbell { omega: c.omega.clone(), curves: curves.into_iter().map(|c| c.0).collect(), critical_speeds: crit, harmonics: harmonics.to_vec() })
+    let curves: Vec<FixedCurve> = curves.into_iter().map(|c| c.0).collect();
+    let crit = if c.kind == Kind::Equilibrium {
+        let lines = crate::spatial::campbell::Lines {
+            omega: &c.omega,
+            z: (0..nl).map(|i| (0..n).map(|k| at(i, k).map(|p| z(&p))).collect()).collect(),
+            known: c.failures.iter().map(|f| f.is_none()).collect(),
+        };
+        let spec = StateSpectrum { rotor, balls, last: std::cell::RefCell::new(None) };
+        crate::spatial::campbell::crossings(&lines, &spec, harmonics, &curves)?
+    } else {
+        vec![]
+    };
+    Ok(FixedCampbell { omega: c.omega.clone(), curves, critical_speeds: crit, harmonics: harmonics.to_vec() })
 }
 
-/// One curve's crossings with `h Ω` ([`fixed_view`]).
-struct Crossing<'a> {
+/// The spectrum of the stationary state at a trial speed, for the search for critical speeds
+/// shared with the 12-state route ([`crate::spatial::campbell`]): the state found from the
+/// closed form at that speed ([`state_and_spectrum`]), its eigenvalues without the structural
+/// zeros; the last speed's kept (the share at a crossing asks for the speed just located).
+struct StateSpectrum<'a> {
     rotor: &'a Rotor,
     balls: Balls,
-    c: &'a RotorCampbell,
-    cv: &'a FixedCurve,
-    /// The speed index in `c` of each point of the curve.
-    idx: &'a [usize],
-    h: u32,
+    last: std::cell::RefCell<Option<(f64, Vec<CampbellPoint>)>>,
 }
 
-impl Crossing<'_> {
-    /// Sign of `g = |f| − hΩ` with the on-line band: −1, 0 or 1.
-    fn side(&self, f: f64, omega: f64) -> i8 {
-        let target = self.h as f64 * omega;
-        let g = f.abs() - target;
-        if g.abs() <= ON_LINE_TOL * target.max(1.0) {
-            0
-        } else if g > 0.0 {
-            1
-        } else {
-            -1
+impl StateSpectrum<'_> {
+    fn points(&self, w: f64) -> Result<Vec<CampbellPoint>> {
+        if let Some((x, p)) = self.last.borrow().as_ref() {
+            if *x == w {
+                return Ok(p.clone());
+            }
         }
-    }
-
-    /// The curve's signed frequency at `w` between its points `k` and `k + 1`: the eigenvalue
-    /// of the stationary state at `w` nearest the line's interpolated one, its component with
-    /// the share nearest the interpolated share of the followed component (the nearer frequency
-    /// where the two shares are within 0.1 of ½).
-    fn frequency_at(&self, k: usize, w: f64) -> Result<(f64, f64)> {
-        let (p0, p1) = (&self.cv.points[k], &self.cv.points[k + 1]);
-        let t = if p1.omega != p0.omega { (w - p0.omega) / (p1.omega - p0.omega) } else { 0.0 };
-        let line = &self.c.lines[self.cv.line];
-        let lam = |i: usize| line.points[self.idx[i]].map_or(Complex64::new(0.0, 0.0), |p| Complex64::new(p.re, p.im));
-        let guess = lam(k) * (1.0 - t) + lam(k + 1) * t;
-        let f_guess = p0.fixed_frequency * (1.0 - t) + p1.fixed_frequency * t;
         let (_, pts) = state_and_spectrum(self.rotor, self.balls, w, None)
             .map_err(|e| Error::invalid("campbell", format!("no stationary state at {w} to locate a critical speed: {e}")))?;
-        let m = pts
+        let pts: Vec<CampbellPoint> = pts.into_iter().filter(|p| !p.structural).collect();
+        *self.last.borrow_mut() = Some((w, pts.clone()));
+        Ok(pts)
+    }
+}
+
+impl crate::spatial::campbell::Spectrum for StateSpectrum<'_> {
+    fn eigenvalues(&self, w: f64) -> Result<Vec<Complex64>> {
+        if let Some((x, p)) = self.last.borrow().as_ref() {
+            if *x == w {
+                return Ok(p.iter().map(|p| Complex64::new(p.re, p.im)).collect());
+            }
+        }
+        // the eigenvalues alone (no eigenvectors): the searches ask for many speeds
+        let no_state = |e: String| Error::invalid("campbell", format!("no stationary state at {w} to locate a critical speed: {e}"));
+        let (_, f, s) = state_of(self.rotor, self.balls, w, None).map_err(no_state)?;
+        let st = stability(&f, &s).map_err(|e| no_state(e.to_string()))?;
+        Ok(st.spectrum.iter().map(|e| e.complex()).collect())
+    }
+
+    fn shares(&self, w: f64, lam: Complex64) -> Result<(f64, f64)> {
+        let pts = self.points(w)?;
+        let up = |p: &CampbellPoint| Complex64::new(p.re, p.im.abs());
+        let p = pts
             .iter()
-            .filter(|p| !p.structural)
-            .min_by(|a, b| (Complex64::new(a.re, a.im) - guess).norm().total_cmp(&(Complex64::new(b.re, b.im) - guess).norm()))
+            .min_by(|a, b| (up(a) - lam).norm().total_cmp(&(up(b) - lam).norm()))
             .ok_or_else(|| Error::invalid("campbell", format!("no eigenvalue at {w}")))?;
-        let share_guess = p0.share * (1.0 - t) + p1.share * t;
-        let cand = [(w + m.im, m.forward_share), (w - m.im, 1.0 - m.forward_share)];
-        let pick = if (2.0 * m.forward_share - 1.0).abs() > 0.2 {
-            usize::from((cand[0].1 - share_guess).abs() > (cand[1].1 - share_guess).abs())
-        } else {
-            usize::from((cand[0].0 - f_guess).abs() > (cand[1].0 - f_guess).abs())
-        };
-        Ok(cand[pick])
-    }
-
-    /// Bisection between points `k` and `k + 1` for the end of side `keep` (from the left), or
-    /// mirrored (`from_left = false`) for the start of the right-hand point's side.
-    fn bisect(&self, k: usize, keep: i8, from_left: bool) -> Result<f64> {
-        let (mut lo, mut hi) = (self.cv.points[k].omega, self.cv.points[k + 1].omega);
-        while hi - lo > BISECT_TOL * hi.abs().max(1.0) {
-            let mid = 0.5 * (lo + hi);
-            if mid <= lo || mid >= hi {
-                break;
-            }
-            let s = self.side(self.frequency_at(k, mid)?.0, mid);
-            if (s == keep) == from_left {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
+        // a mode of the balls alone moves no rotor coordinate: no whirl component at all
+        if p.whirl == Whirl::None && p.fixed_frequency != 0.0 {
+            return Ok((0.0, 0.0));
         }
-        Ok(0.5 * (lo + hi))
-    }
-
-    /// The crossings of the curve (number `ci`) with `h Ω`, appended to `out` (as
-    /// [`crate::spatial::campbell`]): each step of the curve where the side of `g` changes
-    /// gives the end of the old side and the start of the new one; two ends closer than the
-    /// on-line band of a linear crossing are one crossing at their midpoint.
-    fn crossings(&self, ci: usize, out: &mut Vec<CriticalSpeed>) -> Result<()> {
-        let pts = &self.cv.points;
-        let h = self.h as f64;
-        let g = |k: usize| pts[k].frequency - h * pts[k].omega;
-        let sides: Vec<i8> = pts.iter().map(|p| self.side(p.fixed_frequency, p.omega)).collect();
-        let mut ends: Vec<(f64, FixedWhirl, f64, usize)> = vec![];
-        for k in 0..pts.len().saturating_sub(1) {
-            // a gap in the curve (speeds without a state) is not bracketed
-            if self.idx[k + 1] != self.idx[k] + 1 {
-                continue;
-            }
-            let (a, b) = (sides[k], sides[k + 1]);
-            if a == b {
-                continue;
-            }
-            let slope = ((g(k + 1) - g(k)) / (pts[k + 1].omega - pts[k].omega)).abs().max(1e-3);
-            let band = ON_LINE_TOL * (h * pts[k + 1].omega).max(1.0) / slope;
-            let first_run = sides[..=k].iter().all(|&s| s == 0);
-            let last_run = sides[k + 1..].iter().all(|&s| s == 0);
-            if a != 0 && !last_run {
-                ends.push((self.bisect(k, a, true)?, pts[k].whirl, band, k));
-            }
-            if b != 0 && !first_run {
-                ends.push((self.bisect(k, b, false)?, pts[k + 1].whirl, band, k));
-            }
-        }
-        let mut i = 0;
-        while i < ends.len() {
-            let (t1, whirl, band, k) = ends[i];
-            let (t, step) = if i + 1 < ends.len() && ends[i + 1].0 - t1 <= 2.0 * band.max(ends[i + 1].2) + MERGE_TOL * t1.abs().max(1.0) {
-                (0.5 * (t1 + ends[i + 1].0), 2)
-            } else {
-                (t1, 1)
-            };
-            // a forward crossing of 1× is ν = 0, where both components coincide at Ω
-            let share = if self.h == 1 && whirl == FixedWhirl::Forward { 1.0 } else { self.frequency_at(k, t)?.1 };
-            out.push(CriticalSpeed { omega: t, harmonic: self.h, curve: ci, whirl, frequency: h * t, share });
-            i += step;
-        }
-        Ok(())
+        // the conjugate's forward component is the pair's Ω − ν̂ one
+        let s = p.forward_share;
+        Ok(if p.im >= 0.0 { (s, 1.0 - s) } else { (1.0 - s, s) })
     }
 }

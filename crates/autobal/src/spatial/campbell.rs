@@ -27,12 +27,12 @@
 //!   that is `λ = 0`, `det K(Ω) = 0`: 000 eq (15)-(16)'s critical speeds. Where the pair stays
 //!   on the axis over an interval (a divergence range between split critical speeds) both
 //!   ends are reported; where it passes through it (a circular mode) one speed. The ends are
-//!   found on each line's runs on the axis on the grid and, between grid points, by a
-//!   golden-section search for a zero of `ν̂` around each local minimum of `ν̂` on the grid
-//!   that could reach zero within a step; each is bisected on the model's eigenvalues and
-//!   kept only where the number of real eigenvalues of the state matrix changes there. The
-//!   end of a run on the axis that starts at the first speed (a real mode whirling with the
-//!   rotor from rest), or the start of one that lasts to the last speed, is not a crossing.
+//!   bisected on the number of real eigenvalues itself, which changes exactly there, in every
+//!   bracket where the grid suggests a change (a step where the count or a line's realness
+//!   changes, a local minimum of a complex line's `ν̂`, a local minimum of `(λ_i − λ_j)²` of two
+//!   real lines neighbouring on the axis: `axis_crossings`). The end of a run
+//!   on the axis that starts at the first speed (a real mode whirling with the rotor from
+//!   rest), or the start of one that lasts to the last speed, is not a crossing.
 //! * `ν̂ = (h − 1)Ω`, `h ≥ 2`: the forward component at `hΩ`; `ν̂ = (h + 1)Ω`: the other
 //!   component backward at `−hΩ`. Bracketed by the sign of `ν̂ − (h ∓ 1)Ω` on the grid and
 //!   bisected on the model's eigenvalues (the pair's eigenvalue at a trial speed: the one
@@ -42,9 +42,14 @@
 //!
 //! The jump of a drawn curve where it changes component is never a crossing. A crossing is
 //! missed only where two of them (of one pair and harmonic) fall within one grid step without
-//! a local minimum of `ν̂` between them, e.g. a curve grazing an excitation line. The mode
-//! number of a crossing is that of the curve of its pair at the nearest grid point (where
-//! pairs exchange partners on the real axis it follows the tracking).
+//! a local minimum of `ν̂` (or of `(λ_i − λ_j)²` on the axis) between them, e.g. a curve
+//! grazing an excitation line. The mode number of a crossing is that of the curve of its pair
+//! at the nearest grid point (where pairs exchange partners on the real axis it follows the
+//! tracking).
+//!
+//! The search knows no model: `crossings` asks a `Spectrum` for the eigenvalues at a speed and
+//! the shares of a mode; the 12-state route gives its pencil's, the general route
+//! ([`crate::rotor_campbell::fixed_view`]) the stationary state's.
 
 use crate::error::{Error, Result};
 use crate::linalg::eigen::eigenvalues;
@@ -63,8 +68,10 @@ const REAL_TOL: f64 = 1e-9;
 const ON_LINE_TOL: f64 = 1e-10;
 /// Bisection stops at this width (relative to `max(1, Ω)`).
 const BISECT_TOL: f64 = 1e-13;
-/// Entry and exit of the real axis closer than this (relative) are one crossing.
-const MERGE_TOL: f64 = 1e-9;
+/// Ends on the real axis closer than this (relative) are one crossing: a pair passing through
+/// the axis counts as real over a band `2 ON_LINE_TOL Ω / |dν̂/dΩ|` wide, below 2e-7 relative
+/// for a slope above 1e-3 (a divergence range narrower than that is reported as one speed).
+pub(crate) const PASSAGE_TOL: f64 = 2e-7;
 /// Crossings of one kind found on several lines closer than this (relative) are one: the two
 /// lines of a conjugate pair find it with the same eigenvalues, two real lines meeting on the
 /// axis to the bisection's tolerance.
@@ -243,37 +250,98 @@ pub fn fixed_axes(model: &SpatialModel, c: &Campbell, balls: Balls, harmonics: &
         let (p, q) = (&a.points[0], &b.points[0]);
         p.nu.abs().total_cmp(&q.nu.abs()).then(p.frequency.total_cmp(&q.frequency)).then(a.line.cmp(&b.line))
     });
-    let crit = critical_speeds(model, c, balls, harmonics, &curves)?;
+    let lines = Lines { omega: &c.omega, z: c.lines.iter().map(|l| l.modes.iter().map(|m| Some(lam(m))).collect()).collect(), known: vec![true; n] };
+    let crit = crossings(&lines, &PencilSpectrum { model, balls }, harmonics, &curves)?;
     Ok(FixedCampbell { omega: c.omega.clone(), curves, critical_speeds: crit, harmonics: harmonics.to_vec() })
 }
 
+/// What the search for critical speeds asks of a model: its spectrum at a speed. The 12-state
+/// route gives the state matrix of its pencil ([`PencilSpectrum`]); the general route the
+/// linearisation of the stationary state ([`crate::rotor_campbell::fixed_view`]). The search
+/// itself ([`crossings`]) knows no model.
+pub(crate) trait Spectrum {
+    /// The eigenvalues at speed `w`, both of each conjugate pair (structural zeros left out).
+    fn eigenvalues(&self, w: f64) -> Result<Vec<Complex64>>;
+    /// The shares of the rotor's motion (amplitude squared) in the `Ω + Im λ` and `Ω − Im λ`
+    /// circular components of the mode of eigenvalue `lam` at `w`: summing to 1, or both 0
+    /// where the rotor does not move.
+    fn shares(&self, w: f64, lam: Complex64) -> Result<(f64, f64)>;
+}
+
+/// The 12-state (or 8-state locked) model's spectrum: the pencil's state matrix.
+struct PencilSpectrum<'a> {
+    model: &'a SpatialModel,
+    balls: Balls,
+}
+
+impl Spectrum for PencilSpectrum<'_> {
+    fn eigenvalues(&self, w: f64) -> Result<Vec<Complex64>> {
+        let p = Pencil::new(self.model, w, self.balls)?;
+        eigenvalues(&p.state_matrix(), p.states()).map_err(|_| no_conv(w))
+    }
+
+    fn shares(&self, w: f64, lam: Complex64) -> Result<(f64, f64)> {
+        let p = Pencil::new(self.model, w, self.balls)?;
+        let x = pencil_null_vector(&p, lam);
+        let s = classify_vector(&p, w, lam, &x).forward_share;
+        Ok((s, 1.0 - s))
+    }
+}
+
+/// A diagram's tracked lines as the search reads them: per line, per speed, its eigenvalue
+/// (`None` where it has none: a structural zero, a speed without a state), and per speed
+/// whether the spectrum there is known (every eigenvalue of the speed is on some line).
+pub(crate) struct Lines<'a> {
+    /// The speeds.
+    pub omega: &'a [f64],
+    /// `z[line][k]`.
+    pub z: Vec<Vec<Option<Complex64>>>,
+    /// Whether speed `k` has a spectrum.
+    pub known: Vec<bool>,
+}
+
+impl Lines<'_> {
+    /// The number of eigenvalues on the real axis at grid point `k` (`None` where unknown).
+    fn count(&self, k: usize) -> Option<usize> {
+        self.known[k].then(|| self.z.iter().filter_map(|l| l[k]).filter(|z| on_axis(z.im.abs(), self.omega[k])).count())
+    }
+}
+
+/// The number of eigenvalues on the real axis at `w` (`|Im λ|` within the on-axis band).
+fn count_at<S: Spectrum>(spec: &S, w: f64) -> Result<usize> {
+    Ok(spec.eigenvalues(w)?.iter().filter(|z| on_axis(z.im.abs(), w)).count())
+}
+
 /// The eigenvalues of the pair a tracked line belongs to, at trial speeds between grid points:
-/// the eigenvalue of the state matrix nearest (up to conjugation) to the line's eigenvalue
+/// the eigenvalue of the spectrum nearest (up to conjugation) to the line's eigenvalue
 /// interpolated along the grid, taken with `Im λ ≥ 0`. `ν̂ = |Im λ|` and the share of the
 /// `Ω + ν̂` component are the same for the line and its conjugate, so nothing below depends on
 /// which line of a pair the tracker followed.
-struct Pair<'a> {
-    model: &'a SpatialModel,
-    c: &'a Campbell,
-    balls: Balls,
+struct Pair<'a, S: Spectrum> {
+    l: &'a Lines<'a>,
+    spec: &'a S,
     line: usize,
 }
 
-impl Pair<'_> {
+impl<S: Spectrum> Pair<'_, S> {
     /// `(Re λ, |Im λ|)` of the line at grid point `k`.
-    fn grid(&self, k: usize) -> Complex64 {
-        let m = &self.c.lines[self.line].modes[k];
-        Complex64::new(m.re, m.im.abs())
+    fn grid(&self, k: usize) -> Option<Complex64> {
+        self.l.z[self.line][k].map(|z| Complex64::new(z.re, z.im.abs()))
+    }
+
+    /// Whether the line has a value at every grid point of `ks`.
+    fn has(&self, ks: std::ops::RangeInclusive<usize>) -> bool {
+        ks.into_iter().all(|k| self.l.z[self.line][k].is_some())
     }
 
     /// The line of smaller index, if any, that carries the conjugate of this line's complex
     /// eigenvalue at grid point `k` (the searches of the two are the same: they run once).
     fn mirrored(&self, k: usize) -> Option<usize> {
-        let m = &self.c.lines[self.line].modes[k];
+        let m = self.l.z[self.line][k]?;
         if m.im == 0.0 {
             return None;
         }
-        self.c.lines[..self.line].iter().position(|l| l.modes[k].re == m.re && l.modes[k].im == -m.im)
+        self.l.z[..self.line].iter().position(|l| l[k].is_some_and(|z| z.re == m.re && z.im == -m.im))
     }
 
     /// Whether one line of smaller index mirrors this one at every grid point of `ks`.
@@ -290,39 +358,41 @@ impl Pair<'_> {
         partner.is_some()
     }
 
-    /// `ν̂ = |Im λ|` of the line at grid point `k`.
+    /// `ν̂ = |Im λ|` of the line at grid point `k` (the line has a value there).
     fn nu_grid(&self, k: usize) -> f64 {
-        self.c.lines[self.line].modes[k].im.abs()
+        self.grid(k).map_or(f64::INFINITY, |z| z.im)
     }
 
-    /// The pair's eigenvalue (`Im ≥ 0`) at `w`, between grid points `k0 ≤ k1` (the guess is
-    /// interpolated on the grid segment holding `w`), with the pencil it came from.
-    fn at(&self, k0: usize, k1: usize, w: f64) -> Result<(Pencil, Complex64)> {
-        let om = &self.c.omega;
+    /// The line's eigenvalue interpolated at `w` between grid points `k0 ≤ k1` (on the grid
+    /// segment holding `w`).
+    fn guess(&self, k0: usize, k1: usize, w: f64, z: impl Fn(usize) -> Complex64) -> Complex64 {
+        let om = self.l.omega;
         let mut k = k0;
         while k + 1 < k1 && w > om[k + 1] {
             k += 1;
         }
         let (w0, w1) = (om[k], om[(k + 1).min(k1)]);
         let t = if w1 != w0 { ((w - w0) / (w1 - w0)).clamp(0.0, 1.0) } else { 0.0 };
-        let guess = self.grid(k) * (1.0 - t) + self.grid((k + 1).min(k1)) * t;
-        let p = Pencil::new(self.model, w, self.balls)?;
-        let ev = eigenvalues(&p.state_matrix(), p.states()).map_err(|_| no_conv(w))?;
+        z(k) * (1.0 - t) + z((k + 1).min(k1)) * t
+    }
+
+    /// The pair's eigenvalue (`Im ≥ 0`) at `w`, between grid points `k0 ≤ k1`.
+    fn at(&self, k0: usize, k1: usize, w: f64) -> Result<Complex64> {
+        let guess = self.guess(k0, k1, w, |k| self.grid(k).unwrap_or_default());
+        let ev = self.spec.eigenvalues(w)?;
         let up = |z: &Complex64| Complex64::new(z.re, z.im.abs());
-        let l = ev.iter().map(up).min_by(|a, b| (a - guess).norm().total_cmp(&(b - guess).norm())).ok_or_else(|| no_conv(w))?;
-        Ok((p, l))
+        ev.iter().map(up).min_by(|a, b| (a - guess).norm().total_cmp(&(b - guess).norm())).ok_or_else(|| no_conv(w))
     }
 
     /// `ν̂(w)`.
     fn nu(&self, k0: usize, k1: usize, w: f64) -> Result<f64> {
-        Ok(self.at(k0, k1, w)?.1.im)
+        Ok(self.at(k0, k1, w)?.im)
     }
 
-    /// The share of the `Ω + ν̂` component at `w` (that of `Ω − ν̂` is one minus it).
-    fn share_up(&self, k0: usize, k1: usize, w: f64) -> Result<f64> {
-        let (p, l) = self.at(k0, k1, w)?;
-        let x = pencil_null_vector(&p, l);
-        Ok(classify_vector(&p, w, l, &x).forward_share)
+    /// The shares of the `Ω + ν̂` and `Ω − ν̂` components at `w`.
+    fn shares(&self, k0: usize, k1: usize, w: f64) -> Result<(f64, f64)> {
+        let l = self.at(k0, k1, w)?;
+        self.spec.shares(w, l)
     }
 }
 
@@ -347,6 +417,39 @@ fn bisect(mut lo: f64, mut hi: f64, mut pred: impl FnMut(f64) -> Result<bool>) -
         }
     }
     Ok(0.5 * (lo + hi))
+}
+
+/// Every speed in `[lo, hi]` where the number of real eigenvalues changes, found by bisection
+/// on the count itself (`c_lo`, `c_hi` the counts at the ends): the first change from `lo`,
+/// then the next from there, until the count is `c_hi`. A change and its return inside one
+/// bracket (equal counts at its ends) are not seen here: the hints of [`axis_crossings`] find
+/// them.
+fn count_changes<S: Spectrum>(spec: &S, mut lo: f64, hi: f64, mut c_lo: usize, c_hi: usize, out: &mut Vec<f64>) -> Result<()> {
+    // each change moves the count by at least one: no more changes than eigenvalues
+    for _ in 0..64 {
+        if c_lo == c_hi {
+            break;
+        }
+        let (mut a, mut b, mut cb) = (lo, hi, c_hi);
+        while b - a > BISECT_TOL * b.abs().max(1.0) {
+            let mid = 0.5 * (a + b);
+            if mid <= a || mid >= b {
+                break;
+            }
+            let c = count_at(spec, mid)?;
+            if c == c_lo {
+                a = mid;
+            } else {
+                (b, cb) = (mid, c);
+            }
+        }
+        out.push(0.5 * (a + b));
+        if b >= hi {
+            break;
+        }
+        (lo, c_lo) = (b, cb);
+    }
+    Ok(())
 }
 
 /// The root of `g` in `[a, b]` (`g(a) = ga`, `g(b) = gb` of opposite signs) by the Illinois
@@ -397,131 +500,184 @@ struct Found {
     quiet: bool,
 }
 
-/// The speeds where the pair of `line` reaches or leaves the real axis (`ν̂ = 0`: both fixed-axes
-/// components at `Ω`, a forward crossing of `1×` with the whole motion): the ends of the line's
-/// runs on the real axis on the grid, and those inside a window of the grid where `ν̂` has a
-/// local minimum low enough to reach zero (module docs). An entry and an exit closer than the
-/// on-axis band of a linear crossing are one crossing (the pair passes through the axis).
-fn axis_crossings(pair: &Pair, memo: &mut Vec<((usize, bool, usize), f64)>, out: &mut Vec<Found>) -> Result<()> {
-    let om = &pair.c.omega;
+/// The speeds where a pair reaches or leaves the real axis (`ν̂ = 0`: both fixed-axes
+/// components at `Ω`, a forward crossing of `1×` with the whole motion). Every such speed is
+/// one where the number of real eigenvalues changes (or, for a pair passing through the axis,
+/// a band of width ~1e-10/slope where it is larger), so each is located by bisection on that
+/// count, in every bracket where something suggests a change:
+/// * a grid step where the count changes (every change inside it is found, one after another);
+/// * a grid step where a line changes between real and complex (its own bisection, kept where
+///   the count changes there: two events of one step that leave the count unchanged);
+/// * a local minimum on the grid of a complex line's `ν̂` low enough to reach zero within a
+///   step (golden-section search; the count at its minimum differs from the ends');
+/// * a local minimum on the grid of `D = (λ_i − λ_j)²` of two neighbouring real lines, low
+///   enough to reach zero within a step: `D` is smooth through a collision (the square of
+///   the gap on the axis, `−4ν̂²` off it), so a stretch off the axis between two grid points
+///   on it is a dip of `D` below zero.
+///
+/// Ends closer than [`PASSAGE_TOL`] are one crossing, a pair passing through the axis. The end
+/// of a run on the axis from the first speed (or the start of one to the last speed) is quiet.
+fn axis_crossings<S: Spectrum>(l: &Lines, spec: &S, out: &mut Vec<Found>) -> Result<()> {
+    let om = l.omega;
     let n = om.len();
-    let real = |k: usize| pair.nu_grid(k) <= REAL_TOL;
-    // (entry, exit, quiet) of each stretch on the axis, either end None where it is off the grid
-    let mut runs: Vec<(Option<f64>, Option<f64>, bool)> = vec![];
-    let mut k = 0;
-    while k < n {
-        if !real(k) {
-            k += 1;
-            continue;
+    let nl = l.z.len();
+    let counts: Vec<Option<usize>> = (0..n).map(|k| l.count(k)).collect();
+    let real = |i: usize, k: usize| l.z[i][k].is_some_and(|z| on_axis(z.im.abs(), om[k]));
+    let complex = |i: usize, k: usize| l.z[i][k].is_some_and(|z| !on_axis(z.im.abs(), om[k]));
+    // a line's run on the axis through k reaches the first (last) grid point
+    let from_start = |i: usize, k: usize| (0..=k).all(|q| real(i, q));
+    let to_end = |i: usize, k: usize| (k..n).all(|q| real(i, q));
+    // (speed, line, quiet)
+    let mut ev: Vec<(f64, usize, bool)> = vec![];
+    let mut speeds = vec![];
+    for k in 0..n.saturating_sub(1) {
+        let (Some(ca), Some(cb)) = (counts[k], counts[k + 1]) else { continue };
+        // the lines that change between real and complex in this step, and whether all of
+        // them are quiet ends
+        let movers: Vec<usize> = (0..nl).filter(|&i| (real(i, k) && complex(i, k + 1)) || (complex(i, k) && real(i, k + 1))).collect();
+        let quiet = !movers.is_empty() && movers.iter().all(|&i| if real(i, k) { from_start(i, k) } else { to_end(i, k + 1) });
+        let line = movers.first().copied().unwrap_or_else(|| {
+            (0..nl).min_by(|&a, &b| l.z[a][k].map_or(f64::INFINITY, |z| z.im.abs()).total_cmp(&l.z[b][k].map_or(f64::INFINITY, |z| z.im.abs()))).unwrap_or(0)
+        });
+        if ca != cb {
+            speeds.clear();
+            count_changes(spec, om[k], om[k + 1], ca, cb, &mut speeds)?;
+            ev.extend(speeds.iter().map(|&w| (w, line, quiet)));
         }
-        let i = k;
-        while k + 1 < n && real(k + 1) {
-            k += 1;
-        }
-        let j = k;
-        k += 1;
-        // where a conjugate pair reaches the axis in a grid step (or leaves it), both its lines
-        // are real on the other side and bisect the same eigenvalues: once, keyed by the step,
-        // the direction and the pair's first line at its complex end
-        let mut end = |k: usize, off: usize| -> Result<f64> {
-            let key = (k, off == k, pair.mirrored(off).unwrap_or(pair.line));
-            if let Some(&(_, w)) = memo.iter().find(|(q, _)| *q == key) {
-                return Ok(w);
+        for &i in &movers {
+            let pair = Pair { l, spec, line: i };
+            if pair.mirrored(if real(i, k) { k + 1 } else { k }).is_some() {
+                continue;
             }
             let w = bisect(om[k], om[k + 1], |w| Ok(on_axis(pair.nu(k, k + 1, w)?, w)))?;
-            memo.push((key, w));
-            Ok(w)
-        };
-        let entry = if i > 0 { Some(end(i - 1, i - 1)?) } else { None };
-        let exit = if j + 1 < n { Some(end(j, j + 1)?) } else { None };
-        runs.push((entry, exit, i == 0 || j + 1 == n));
+            let e = 1e-8 * w.abs().max(1.0);
+            let (a, b) = ((w - e).max(om[k]), (w + e).min(om[k + 1]));
+            let (c1, c2) = (count_at(spec, a)?, count_at(spec, b)?);
+            if c1 != c2 {
+                speeds.clear();
+                count_changes(spec, a, b, c1, c2, &mut speeds)?;
+                let q = if real(i, k) { from_start(i, k) } else { to_end(i, k + 1) };
+                ev.extend(speeds.iter().map(|&w| (w, i, q)));
+            }
+        }
     }
-    // stretches between grid points: a local minimum of ν̂ on the grid that may reach zero. Near
-    // the axis ν̂ grows like |Ω − Ω*| (a pair passing through it) or sqrt(Ω − Ω*) (a collision),
-    // so a zero within a step of the minimum leaves ν̂ there below 2.5 times its rise to a
-    // neighbour; 10 times is searched.
-    for m in 0..n {
-        let lo = m.saturating_sub(1);
-        let hi = (m + 1).min(n - 1);
-        if hi == lo || (lo..=hi).any(real) || pair.mirrored_on(lo..=hi) {
-            continue;
+    // a window [lo, hi] around a local minimum at `w_min` that reaches the axis: the changes of
+    // the count on either side of it
+    let mut inside = |lo: usize, hi: usize, w_min: f64, line: usize, ev: &mut Vec<(f64, usize, bool)>| -> Result<()> {
+        let c = count_at(spec, w_min)?;
+        for (a, b) in [(om[lo], w_min), (w_min, om[hi])] {
+            let (ca, cb) = if a == w_min { (c, count_at(spec, b)?) } else { (count_at(spec, a)?, c) };
+            speeds.clear();
+            count_changes(spec, a, b, ca, cb, &mut speeds)?;
+            ev.extend(speeds.iter().map(|&w| (w, line, false)));
         }
-        let v = pair.nu_grid(m);
-        let (a, b) = (pair.nu_grid(lo), pair.nu_grid(hi));
-        if v > a || v > b || (lo < m && v == a && m > 1) || v > 10.0 * (a - v).max(b - v) {
-            continue;
+        Ok(())
+    };
+    // stretches on the axis between grid points: a local minimum of ν̂ on the grid that may
+    // reach zero. Near the axis ν̂ grows like |Ω − Ω*| (a pair passing through it) or
+    // sqrt(Ω − Ω*) (a collision), so a zero within a step of the minimum leaves ν̂ there below
+    // 2.5 times its rise to a neighbour; 10 times is searched.
+    for i in 0..nl {
+        let pair = Pair { l, spec, line: i };
+        for m in 0..n {
+            let lo = m.saturating_sub(1);
+            let hi = (m + 1).min(n - 1);
+            if hi == lo || !pair.has(lo..=hi) || (lo..=hi).any(|k| real(i, k)) || pair.mirrored_on(lo..=hi) {
+                continue;
+            }
+            let v = pair.nu_grid(m);
+            let (a, b) = (pair.nu_grid(lo), pair.nu_grid(hi));
+            if v > a || v > b || (lo < m && v == a && m > 1) || v > 10.0 * (a - v).max(b - v) {
+                continue;
+            }
+            // ν̂ of the pair off the axis; zero where the count of real eigenvalues exceeds the
+            // window's (the nearest eigenvalue to the guess can be another, real one there)
+            let Some(base) = counts[lo] else { continue };
+            let f = |w: f64| -> Result<f64> {
+                let ev = spec.eigenvalues(w)?;
+                if ev.iter().filter(|z| on_axis(z.im.abs(), w)).count() > base {
+                    return Ok(0.0);
+                }
+                let g = pair.guess(lo, hi, w, |k| pair.grid(k).unwrap_or_default());
+                let up = |z: &Complex64| Complex64::new(z.re, z.im.abs());
+                Ok(ev.iter().map(up).filter(|z| !on_axis(z.im, w)).min_by(|a, b| (a - g).norm().total_cmp(&(b - g).norm())).map_or(0.0, |z| z.im))
+            };
+            let (w_min, nu_min) = golden_min(om[lo], om[hi], a, b, 0.0, f)?;
+            if nu_min <= 0.0 {
+                inside(lo, hi, w_min, i, &mut ev)?;
+            }
         }
-        let (w_min, nu_min) = golden_min(om[lo], om[hi], a, b, |w| pair.nu(lo, hi, w))?;
-        if !on_axis(nu_min, w_min) {
-            continue;
-        }
-        let entry = bisect(om[lo], w_min, |w| Ok(on_axis(pair.nu(lo, hi, w)?, w)))?;
-        let exit = bisect(w_min, om[hi], |w| Ok(!on_axis(pair.nu(lo, hi, w)?, w)))?;
-        runs.push((Some(entry), Some(exit), false));
     }
-    // each end is checked on the spectrum itself: the number of eigenvalues on the real axis
-    // changes there (a wrong match between the line and the eigenvalues near a cluster of real
-    // ones would report a speed where nothing reaches the axis)
-    let (model, balls) = (pair.model, pair.balls);
-    let changes = |lo: f64, hi: f64| -> Result<bool> { Ok(real_count(model, balls, lo)? != real_count(model, balls, hi)?) };
-    let cs = |w: f64| CriticalSpeed { omega: w, harmonic: 1, curve: 0, whirl: Whirl::Forward, frequency: w, share: 1.0 };
-    for (entry, exit, quiet) in runs {
-        let del = |w: f64| 1e-8 * w.abs().max(1.0);
-        match (entry, exit) {
-            (Some(a), Some(b)) => {
-                // the on-axis band of a linear passage, its slope measured just outside it
-                let d = 1e-7 * a.abs().max(1.0);
-                let merged = b - a <= 1e-6 * a.abs().max(1.0) && {
-                    let slope = (pair.nu(0, n - 1, a - d)? / d).min(pair.nu(0, n - 1, b + d)? / d).max(1e-3);
-                    let band = ON_LINE_TOL * b.abs().max(1.0) / slope;
-                    b - a <= 2.0 * band + MERGE_TOL * a.abs().max(1.0)
+    // stretches off the axis between grid points on it: a local minimum of D = (λ_i − λ_j)² of
+    // two real lines neighbouring on the axis at the three grid points, searched as ν̂ above
+    // (D is smooth and crosses zero linearly at a collision). At a trial speed λ_i, λ_j are
+    // the eigenvalue nearest the line i's interpolated one and the one nearest line j's of
+    // the others: a conjugate pair (D = −4ν̂²) inside the stretch, two real ones outside.
+    for m in 1..n.saturating_sub(1) {
+        let (lo, hi) = (m - 1, m + 1);
+        let mut on: Vec<usize> = (0..nl).filter(|&i| (lo..=hi).all(|k| real(i, k))).collect();
+        on.sort_by(|&a, &b| l.z[a][m].map_or(0.0, |z| z.re).total_cmp(&l.z[b][m].map_or(0.0, |z| z.re)));
+        for w2 in on.windows(2) {
+            let (i, j) = (w2[0], w2[1]);
+            let d = |k: usize| l.z[i][k].zip(l.z[j][k]).map_or(f64::INFINITY, |(a, b)| (a.re - b.re).powi(2));
+            let (v, a, b) = (d(m), d(lo), d(hi));
+            if v > a || v > b || (v == a && m > 1) || v > 10.0 * (a - v).max(b - v) {
+                continue;
+            }
+            let Some(base) = counts[m] else { continue };
+            let (pi, pj) = (Pair { l, spec, line: i }, Pair { l, spec, line: j });
+            let dd = |w: f64| -> Result<f64> {
+                let gi = pi.guess(lo, hi, w, |k| l.z[i][k].unwrap_or_default());
+                let gj = pj.guess(lo, hi, w, |k| l.z[j][k].unwrap_or_default());
+                let ev = spec.eigenvalues(w)?;
+                if ev.iter().filter(|z| on_axis(z.im.abs(), w)).count() < base {
+                    return Ok(-1.0);
+                }
+                let near = |g: Complex64, skip: Option<usize>| {
+                    (0..ev.len()).filter(|&q| Some(q) != skip).min_by(|&a, &b| (ev[a] - g).norm().total_cmp(&(ev[b] - g).norm()))
                 };
-                if merged {
-                    let w = 0.5 * (a + b);
-                    let e = (b - a) + del(w);
-                    if changes(w - e, w)? || changes(w, w + e)? {
-                        out.push(Found { cs: cs(w), line: pair.line, quiet });
-                    }
-                } else {
-                    let e = del(a).min(0.25 * (b - a));
-                    if changes(a - e, a + e)? {
-                        out.push(Found { cs: cs(a), line: pair.line, quiet });
-                    }
-                    if changes(b - e, b + e)? {
-                        out.push(Found { cs: cs(b), line: pair.line, quiet });
-                    }
-                }
+                let qi = near(gi, None).ok_or_else(|| no_conv(w))?;
+                let qj = near(gj, Some(qi)).ok_or_else(|| no_conv(w))?;
+                Ok(((ev[qi] - ev[qj]) * (ev[qi] - ev[qj])).re)
+            };
+            // off the axis where the count of real eigenvalues drops below the window's (D < 0)
+            let (w_min, d_min) = golden_min(om[lo], om[hi], a, b, 0.0, dd)?;
+            if d_min < 0.0 {
+                inside(lo, hi, w_min, i, &mut ev)?;
             }
-            (Some(a), None) | (None, Some(a)) => {
-                if changes(a - del(a), a + del(a))? {
-                    out.push(Found { cs: cs(a), line: pair.line, quiet });
-                }
-            }
-            (None, None) => {}
         }
+    }
+    // one crossing per group of ends closer than the passage band (duplicates of one end found
+    // from several brackets, or the entry and exit of a pair passing through the axis): the
+    // middle of the group; quiet where every end of it is
+    ev.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let cs = |w: f64| CriticalSpeed { omega: w, harmonic: 1, curve: 0, whirl: Whirl::Forward, frequency: w, share: 1.0 };
+    let mut i = 0;
+    while i < ev.len() {
+        let mut j = i + 1;
+        while j < ev.len() && ev[j].0 - ev[j - 1].0 <= PASSAGE_TOL * ev[j - 1].0.abs().max(1.0) {
+            j += 1;
+        }
+        let g = &ev[i..j];
+        let w = 0.5 * (g[0].0 + g[j - i - 1].0);
+        let pick = g.iter().find(|e| !e.2).unwrap_or(&g[0]);
+        out.push(Found { cs: cs(w), line: pick.1, quiet: g.iter().all(|e| e.2) });
+        i = j;
     }
     Ok(())
 }
 
-/// The number of eigenvalues of the state matrix at `w` on the real axis (`|Im λ|` within the
-/// on-axis band).
-fn real_count(model: &SpatialModel, balls: Balls, w: f64) -> Result<usize> {
-    let p = Pencil::new(model, w, balls)?;
-    let ev = eigenvalues(&p.state_matrix(), p.states()).map_err(|_| no_conv(w))?;
-    Ok(ev.iter().filter(|z| on_axis(z.im.abs(), w)).count())
-}
-
-/// Golden-section search for the minimum of `ν̂ = f ≥ 0` on `[a, b]` (`fa`, `fb` its values
-/// there), to [`BISECT_TOL`]: the speed and the value there. It stops early where no zero is
-/// left to find: a zero in the bracket puts the lower inner value below 1.6 times its rise to
-/// the farther end (a linear or square-root rise; the inner points lie at 0.382 and 0.618 of
-/// the bracket), so above 10 times it the minimum is a near miss.
-fn golden_min(mut a: f64, mut b: f64, mut fa: f64, mut fb: f64, mut f: impl FnMut(f64) -> Result<f64>) -> Result<(f64, f64)> {
+/// Golden-section search for the minimum of `f` on `[a, b]` (`fa`, `fb` its values there), to
+/// [`BISECT_TOL`] or until a value below `stop` is found: the speed and the value there. It
+/// also stops where no zero is left to find: a zero in the bracket puts the lower inner value
+/// below 1.6 times its rise to the farther end (a linear or square-root rise; the inner points
+/// lie at 0.382 and 0.618 of the bracket), so above 10 times it the minimum is a near miss.
+fn golden_min(mut a: f64, mut b: f64, mut fa: f64, mut fb: f64, stop: f64, mut f: impl FnMut(f64) -> Result<f64>) -> Result<(f64, f64)> {
     let r = 0.5 * (5f64.sqrt() - 1.0);
     let (mut x1, mut x2) = (b - r * (b - a), a + r * (b - a));
     let (mut f1, mut f2) = (f(x1)?, f(x2)?);
     let mut best = if f1 <= f2 { (x1, f1) } else { (x2, f2) };
-    while b - a > BISECT_TOL * b.abs().max(1.0) && best.1 > 0.0 {
+    while b - a > BISECT_TOL * b.abs().max(1.0) && best.1 > stop {
         let v = f1.min(f2);
         if v > 10.0 * (fa - v).max(fb - v) {
             break;
@@ -551,22 +707,23 @@ fn golden_min(mut a: f64, mut b: f64, mut fa: f64, mut fb: f64, mut f: impl FnMu
 /// (forward) where `ν̂ = (h − 1)Ω`, `h ≥ 2`, the `Ω − ν̂` one (backward, `f = −hΩ`) where
 /// `ν̂ = (h + 1)Ω`; bracketed by the sign of `ν̂ − cΩ` on the grid, bisected on the model's
 /// eigenvalues, and reported with the component's share there unless it is below
-/// [`SHARE_TOL`] (no such motion: an isotropic rotor's circular modes).
-fn component_crossings(pair: &Pair, h: u32, out: &mut Vec<Found>) -> Result<()> {
-    let om = &pair.c.omega;
+/// [`SHARE_TOL`] (no such motion: an isotropic rotor's circular modes, a mode of the balls
+/// alone).
+fn component_crossings<S: Spectrum>(pair: &Pair<S>, h: u32, out: &mut Vec<Found>) -> Result<()> {
+    let om = pair.l.omega;
     let n = om.len();
     let targets: &[(f64, bool)] = if h >= 2 { &[(-1.0, true), (1.0, false)] } else { &[(1.0, false)] };
     for &(dc, forward) in targets {
         let c = h as f64 + dc;
         let above = |nu: f64, w: f64| nu > c * w;
         for k in 0..n.saturating_sub(1) {
-            if above(pair.nu_grid(k), om[k]) == above(pair.nu_grid(k + 1), om[k + 1]) || pair.mirrored_on(k..=k + 1) {
+            if !pair.has(k..=k + 1) || above(pair.nu_grid(k), om[k]) == above(pair.nu_grid(k + 1), om[k + 1]) || pair.mirrored_on(k..=k + 1) {
                 continue;
             }
             let g = |w: f64| -> Result<f64> { Ok(pair.nu(k, k + 1, w)? - c * w) };
             let w = illinois(om[k], om[k + 1], pair.nu_grid(k) - c * om[k], pair.nu_grid(k + 1) - c * om[k + 1], g)?;
-            let up = pair.share_up(k, k + 1, w)?;
-            let share = if forward { up } else { 1.0 - up };
+            let (up, down) = pair.shares(k, k + 1, w)?;
+            let share = if forward { up } else { down };
             if share < SHARE_TOL {
                 continue;
             }
@@ -577,41 +734,46 @@ fn component_crossings(pair: &Pair, h: u32, out: &mut Vec<Found>) -> Result<()> 
     Ok(())
 }
 
-/// Every crossing of every line with the excitation lines `h Ω` (module docs), each once, with
-/// the curve (mode) it belongs to: the kept line of its conjugate pair at the nearest speed.
-fn critical_speeds(model: &SpatialModel, c: &Campbell, balls: Balls, harmonics: &[u32], curves: &[FixedCurve]) -> Result<Vec<CriticalSpeed>> {
-    let n = c.omega.len();
+/// Every crossing of the model's spectrum with the excitation lines `h Ω` (module docs), found
+/// from the tracked `lines` and located on `spec`, each once, with the curve (mode) it belongs
+/// to: the kept line of its conjugate pair at the nearest speed (`curves`, the kept lines). The
+/// model-agnostic search of both routes.
+pub(crate) fn crossings<S: Spectrum>(l: &Lines, spec: &S, harmonics: &[u32], curves: &[FixedCurve]) -> Result<Vec<CriticalSpeed>> {
+    let n = l.omega.len();
     let mut found = vec![];
     if n < 2 {
         return Ok(vec![]);
     }
-    let mut memo = vec![];
-    for line in 0..c.lines.len() {
-        let pair = Pair { model, c, balls, line };
+    if harmonics.contains(&1) {
+        axis_crossings(l, spec, &mut found)?;
+    }
+    for line in 0..l.z.len() {
+        let pair = Pair { l, spec, line };
         for &h in harmonics {
-            if h == 1 {
-                axis_crossings(&pair, &mut memo, &mut found)?;
-            }
             component_crossings(&pair, h, &mut found)?;
         }
     }
     // the curve of each: the line's own, else that of the line it is conjugate to (or equal
     // to, on the axis) at the grid point nearest the crossing, else the curve nearest in λ
     let curve_of = |f: &Found| -> usize {
-        let k = c.omega.partition_point(|&w| w < f.cs.omega).min(n - 1);
-        let k = if k > 0 && (f.cs.omega - c.omega[k - 1]).abs() < (c.omega[k] - f.cs.omega).abs() { k - 1 } else { k };
+        let k = l.omega.partition_point(|&w| w < f.cs.omega).min(n - 1);
+        let k = if k > 0 && (f.cs.omega - l.omega[k - 1]).abs() < (l.omega[k] - f.cs.omega).abs() { k - 1 } else { k };
         if let Some(i) = curves.iter().position(|cv| cv.line == f.line) {
             return i;
         }
-        let z = |l: usize| Complex64::new(c.lines[l].modes[k].re, c.lines[l].modes[k].im.abs());
-        (0..curves.len()).min_by(|&a, &b| (z(curves[a].line) - z(f.line)).norm().total_cmp(&(z(curves[b].line) - z(f.line)).norm())).unwrap_or(0)
+        let z = |q: usize| l.z[q][k].map(|z| Complex64::new(z.re, z.im.abs()));
+        let dist = |c: usize| match (z(curves[c].line), z(f.line)) {
+            (Some(a), Some(b)) => (a - b).norm(),
+            _ => f64::INFINITY,
+        };
+        (0..curves.len()).min_by(|&a, &b| dist(a).total_cmp(&dist(b))).unwrap_or(0)
     };
     for f in &mut found {
         f.cs.curve = curve_of(f);
     }
     found.sort_by(|a, b| a.cs.harmonic.cmp(&b.cs.harmonic).then((a.cs.whirl as u8).cmp(&(b.cs.whirl as u8))).then(a.cs.omega.total_cmp(&b.cs.omega)));
-    // the lines of a pair (and the two real lines meeting on the axis) find the same crossing:
-    // one crossing per group closer than the merge tolerance; a group of quiet ends is none
+    // the lines of a pair find the same crossing: one crossing per group closer than the
+    // merge tolerance; a group of quiet ends is none
     let mut out: Vec<CriticalSpeed> = vec![];
     let mut i = 0;
     while i < found.len() {
@@ -625,7 +787,7 @@ fn critical_speeds(model: &SpatialModel, c: &Campbell, balls: Balls, harmonics: 
         if found[i..j].iter().any(|f| !f.quiet) {
             // the one found on a kept line, else the first
             let g = &found[i..j];
-            let pick = g.iter().find(|f| curves.iter().any(|cv| cv.line == f.line)).unwrap_or(&g[0]);
+            let pick = g.iter().find(|f| !f.quiet && curves.iter().any(|cv| cv.line == f.line)).or_else(|| g.iter().find(|f| !f.quiet)).unwrap_or(&g[0]);
             out.push(pick.cs);
         }
         i = j;
