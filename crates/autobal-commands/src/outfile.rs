@@ -355,7 +355,18 @@ impl Staged {
     /// Flush and rename onto the final name; returns it.
     pub fn commit(mut self) -> Result<PathBuf> {
         let w = self.file.take().ok_or_else(|| anyhow!("{}: already committed", self.path.display()))?;
-        let f = w.into_inner().map_err(|e| anyhow!("{}: cannot write {}: {}", self.option, self.path.display(), e.error()))?;
+        // a failed last flush (disk full) leaves no temporary file behind: the handle is taken
+        // out of `self` already, so `Drop` would not remove it
+        let f = match w.into_inner() {
+            Ok(f) => f,
+            Err(e) => {
+                let err = anyhow!("{}: cannot write {}: {}", self.option, self.path.display(), e.error());
+                drop(e);
+                let _ = std::fs::remove_file(&self.tmp);
+                untrack_unfinished(&self.tmp);
+                return Err(err);
+            }
+        };
         drop(f);
         let renamed = std::fs::rename(&self.tmp, &self.path);
         untrack_unfinished(&self.tmp);
