@@ -270,8 +270,16 @@ impl Rotor {
     /// a couple about it). Linear: [`crate::linear_rotor::partial::state_kind`] (the race
     /// centres' mean whirl against their whirl without the balls' resultant).
     pub fn state_kind(field: &Field, x: &[f64]) -> StateKind {
-        match field {
-            Field::Linear(f) => crate::linear_rotor::partial::state_kind(f, x),
+        Rotor::classify(field, x).0
+    }
+
+    /// [`Rotor::state_kind`] and [`Rotor::residual`] together, from one integration of the
+    /// orbit (each alone integrates it once).
+    pub fn classify(field: &Field, x: &[f64]) -> (StateKind, f64) {
+        let rows = orbit_rows(field, x);
+        let r = Rotor::residual_in(field, x, &rows);
+        let kind = match field {
+            Field::Linear(f) => crate::linear_rotor::partial::state_kind_in(f, x, &rows),
             Field::Planar(f) => {
                 let p = f.rotor();
                 // E on the axis (to 1e-6 of its whirl without the balls' resultant):
@@ -279,7 +287,6 @@ impl Rotor {
                 // (its once-per-revolution whirl in fixed axes: the orbit's start alone reads
                 // the swing as a whirl); the balls bunched: partially balanced; else (semi-)
                 // balanced to the residual while it is at most a tenth, not balanced above
-                let r = Rotor::residual(field, x);
                 let balanced = if p.s2 == 0.0 { StateKind::Balanced } else { StateKind::SemiBalanced };
                 if r <= BALANCED_EXACTLY {
                     balanced
@@ -293,22 +300,21 @@ impl Rotor {
             }
             Field::Spatial(s) => {
                 // the residual static and couple unbalance (each ball's e^{iψ} its mean over the
-                // revolution on a periodic orbit: balanced means cancelling it on average)
-                let r = Rotor::residual(field, x);
-                if r <= BALANCED_EXACTLY {
-                    return StateKind::Balanced;
-                }
-                // a plane at its capacity limit: its balls bunched (they stay bunched along an
+                // revolution on a periodic orbit: balanced means cancelling it on average); a
+                // plane at its capacity limit: its balls bunched (they stay bunched along an
                 // orbit: equal balls from equal starts follow equal paths)
                 let psi = ball_angles(field, x);
                 let mut j = 0;
+                let mut any_bunched = false;
                 for p in s.rotor().planes.iter().filter(|p| p.n > 0) {
-                    if p.n >= 2 && bunched(&psi[j..j + p.n]) {
-                        return StateKind::PartiallyBalanced;
-                    }
+                    any_bunched |= p.n >= 2 && bunched(&psi[j..j + p.n]);
                     j += p.n;
                 }
-                if r <= NOT_REDUCED {
+                if r <= BALANCED_EXACTLY {
+                    StateKind::Balanced
+                } else if any_bunched {
+                    StateKind::PartiallyBalanced
+                } else if r <= NOT_REDUCED {
                     StateKind::Balanced
                 } else if spatial_can_balance(s) {
                     StateKind::NotBalanced
@@ -316,7 +322,8 @@ impl Rotor {
                     StateKind::PartiallyBalanced
                 }
             }
-        }
+        };
+        (kind, r)
     }
 
     /// The residual unbalance that the balls of the stationary state `x` leave, as a fraction
@@ -339,18 +346,24 @@ impl Rotor {
     /// and the mean of `e^{iψ}` differs from `e^{i⟨ψ⟩}` at second order (`−⟨δψ²⟩/2`): the balls
     /// settle where the rotor's mean whirl (its once-per-revolution whirl about the sag) holds
     /// them against that, so a balanced orbit keeps a residual of second order in the swing,
-    /// ∝ g² under gravity (examples/spatial_two_plane.toml: ~1e-4 at 130 rad/s, below 1e-6
-    /// above ~600 rad/s). [`StateKind::Balanced`] carries it (`SpeedPoint::residual`).
+    /// ∝ g² under gravity (examples/spatial_two_plane.toml: 3.0e-3 at 262 rad/s, 1.1e-4 at 437,
+    /// below 1e-6 above ~700 rad/s). [`StateKind::Balanced`] carries it (`SpeedPoint::residual`).
     pub fn residual(field: &Field, x: &[f64]) -> f64 {
+        Rotor::residual_in(field, x, &orbit_rows(field, x))
+    }
+
+    /// [`Rotor::residual`] with the means over `rows` ([`orbit_rows`]).
+    fn residual_in(field: &Field, x: &[f64], rows: &[f64]) -> f64 {
+        let orbit_mean = |_: &Field, _: &[f64], f: &dyn Fn(&[f64]) -> Vec<f64>| mean_of(rows, x.len(), f);
         match field {
             Field::Spatial(s) => {
-                let units = orbit_mean(field, x, |row| row[ball_coordinates(field)].iter().flat_map(|a| [a.cos(), a.sin()]).collect());
+                let units = orbit_mean(field, x, &|row| row[ball_coordinates(field)].iter().flat_map(|a| [a.cos(), a.sin()]).collect());
                 let units: Vec<[f64; 2]> = units.chunks(2).map(|u| [u[0], u[1]]).collect();
                 spatial_residual(s.rotor(), &units)
             }
             Field::Linear(l) => {
                 let r = l.rotor();
-                let units = orbit_mean(field, x, |row| row[ball_coordinates(field)].iter().flat_map(|a| [a.cos(), a.sin()]).collect());
+                let units = orbit_mean(field, x, &|row| row[ball_coordinates(field)].iter().flat_map(|a| [a.cos(), a.sin()]).collect());
                 let s0 = crate::linear_rotor::partial::static_unbalance(r);
                 let mut s = s0;
                 let mut j = 0;
@@ -369,7 +382,7 @@ impl Rotor {
             Field::Planar(f) => {
                 use num_complex::Complex64 as C;
                 let p = f.rotor();
-                let e = orbit_mean(field, x, |row| vec![row[0], row[1]]);
+                let e = orbit_mean(field, x, &|row| vec![row[0], row[1]]);
                 let race = C::from_polar(p.s2, p.gamma);
                 let off = (C::new(e[0], e[1]) + race).norm();
                 // E without the balls' resultant: C at `Ω² u0 / D`, `u0 = m1 s1 + (m2 + Σ m_j)
@@ -620,7 +633,10 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
             family_dimension = family_dimension.max(fam);
             let field = p.state.as_ref().and_then(|_| rotor.field(p.omega).ok());
             let (amplitude, state, residual, psi) = match (&field, &p.state) {
-                (Some(f), Some(s)) => (Some(amplitude(f, &s.x)), Some(Rotor::state_kind(f, &s.x)), Some(Rotor::residual(f, &s.x)), ball_angles(f, &s.x)),
+                (Some(f), Some(s)) => {
+                    let (kind, residual) = Rotor::classify(f, &s.x);
+                    (Some(amplitude(f, &s.x)), Some(kind), Some(residual), ball_angles(f, &s.x))
+                }
                 _ => (None, None, None, vec![]),
             };
             if member_psi.is_empty() {
@@ -946,19 +962,25 @@ const BALANCED_EXACTLY: f64 = 1e-6;
 /// balanced orbit's swing leaves its second order (<= 1e-4 on examples/spatial_two_plane.toml).
 const NOT_REDUCED: f64 = crate::linear_rotor::partial::NOT_REDUCED;
 
-/// The mean of `f(row)` over the periodic orbit through `x` (its 64 samples: the trapezoidal
-/// rule, exact for the orbit's harmonics below the 64th,
-/// [`crate::analysis::orbit_samples`]); `f(x)` at an equilibrium, or where the orbit cannot be
-/// integrated again.
-pub(crate) fn orbit_mean<F: VectorField + ?Sized>(field: &F, x: &[f64], f: impl Fn(&[f64]) -> Vec<f64>) -> Vec<f64> {
-    let at_start = f(x);
-    let Some(period) = field.period() else { return at_start };
-    let Ok(samples) = crate::analysis::orbit_samples(field, x, period, 1e-10) else { return at_start };
-    let n = x.len();
-    let m = (samples.len() / n) as f64;
-    let mut mean = vec![0.0; at_start.len()];
-    for row in samples.chunks(n) {
-        for (a, v) in mean.iter_mut().zip(f(row)) {
+/// The states over which a state's means are taken ([`Rotor::residual`], the linear rotor's
+/// race centres), row-major (the trapezoidal rule over them is exact for the orbit's harmonics
+/// below the 64th): the periodic orbit's 64 samples
+/// ([`crate::analysis::orbit_samples`] at rtol 1e-10, the shooting's), or `x` alone at an
+/// equilibrium or where the orbit cannot be integrated again.
+pub(crate) fn orbit_rows<F: VectorField + ?Sized>(field: &F, x: &[f64]) -> Vec<f64> {
+    field.period().and_then(|period| crate::analysis::orbit_samples(field, x, period, 1e-10).ok()).unwrap_or_else(|| x.to_vec())
+}
+
+/// The mean of `f(row)` over the rows of length `n` of `rows`.
+pub(crate) fn mean_of(rows: &[f64], n: usize, f: impl Fn(&[f64]) -> Vec<f64>) -> Vec<f64> {
+    let m = (rows.len() / n) as f64;
+    let mut mean: Vec<f64> = vec![];
+    for row in rows.chunks(n) {
+        let v = f(row);
+        if mean.is_empty() {
+            mean = vec![0.0; v.len()];
+        }
+        for (a, v) in mean.iter_mut().zip(v) {
             *a += v / m;
         }
     }

@@ -125,13 +125,18 @@ pub(crate) const NOT_REDUCED: f64 = 0.1;
 /// without the resultant cannot be solved for (the structure's stationary equations
 /// singular), the balls must lie on the line of the whirl to `1e-6` rad.
 pub fn state_kind(field: &LinearRotorField, x: &[f64]) -> StateKind {
+    state_kind_in(field, x, &crate::rotor_stability::orbit_rows(field, x))
+}
+
+/// [`state_kind`] with the means over `rows` (the orbit's samples, or `x` alone).
+pub(crate) fn state_kind_in(field: &LinearRotorField, x: &[f64], rows: &[f64]) -> StateKind {
     let r = field.rotor();
     let tol = 1e-6 * length_scale(r);
     let n = r.dofs();
     // each race centre's position in turning axes, on a periodic orbit its mean over the
     // revolution: the once-per-revolution whirl in fixed axes (the sag under gravity and the
     // swing average out; the orbit's start alone reads the sag as a whirl)
-    let centres: Vec<(f64, f64)> = crate::rotor_stability::orbit_mean(field, x, |row| plane_positions(r, row).iter().flat_map(|c| [c.0, c.1]).collect())
+    let centres: Vec<(f64, f64)> = crate::rotor_stability::mean_of(rows, x.len(), |row| plane_positions(r, row).iter().flat_map(|c| [c.0, c.1]).collect())
         .chunks(2)
         .map(|c| (c[0], c[1]))
         .collect();
