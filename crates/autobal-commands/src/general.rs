@@ -182,13 +182,15 @@ pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64) -> String {
         r.points.iter().filter(|p| p.state == Some(autobal::rotor_stability::StateKind::PartiallyBalanced)).collect();
     if let (Some(a), Some(b)) = (partial.first(), partial.last()) {
         s.push_str(&format!(
-            "partially balanced (the balls cannot cancel the unbalance: bunched, a residual unbalance) at {} of {} speeds, {} to {}: the verdicts there are the partially balanced state's\n",
+            "partially balanced (the balls' capacity falls short: a plane's balls bunched at its limit, or a couple no plane can cancel; a residual of {} of the unbalance) at {} of {} speeds, {} to {}: the verdicts there are the partially balanced state's\n",
+            residual_range(&partial),
             partial.len(),
             r.points.len(),
             speed_text(g, a.omega),
             speed_text(g, b.omega)
         ));
     }
+    s.push_str(&residual_text(r, |w| speed_text(g, w)));
     s.push_str(&not_balanced_text(r, |w| speed_text(g, w)));
     let missing = r.points.iter().filter(|p| p.verdict.is_none()).count();
     let solved = r.points.len() - missing;
@@ -282,14 +284,56 @@ pub fn default_omega_max(g: &GeneralRotor, root: &Table) -> Result<f64> {
     })
 }
 
+/// The range `a to b` (or `a`) of the points' residuals (fraction of the unbalance,
+/// [`autobal::rotor_stability::SpeedPoint::residual`]), to 3 significant digits.
+fn residual_range(points: &[&autobal::rotor_stability::SpeedPoint]) -> String {
+    let (lo, hi) = points.iter().filter_map(|p| p.residual).fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(v), h.max(v)));
+    if !(lo <= hi) {
+        return "unknown size".into();
+    }
+    let f = |v: f64| fmt_num(crate::num::round_sig(v, 3).unwrap_or(v));
+    if f(lo) == f(hi) {
+        f(lo)
+    } else {
+        format!("{} to {}", f(lo), f(hi))
+    }
+}
+
+/// The line of `stability`'s table where balanced states carry a residual above the exact
+/// tolerance (1e-6 of the unbalance): on a periodic orbit the balls swing once a revolution and
+/// cancel the unbalance on average but for the swing's second order
+/// ([`autobal::rotor_stability::Rotor::residual`]); empty where every balanced state is
+/// balanced to within 1e-6.
+pub(crate) fn residual_text(r: &autobal::rotor_stability::RotorStability, speed: impl Fn(f64) -> String) -> String {
+    let with: Vec<_> =
+        r.points.iter().filter(|p| p.state == Some(autobal::rotor_stability::StateKind::Balanced) && p.residual.is_some_and(|v| v > 1e-6)).collect();
+    let (Some(a), Some(b)) = (with.first(), with.last()) else { return String::new() };
+    let why = if r.kind == Kind::PeriodicOrbit {
+        "the balls swing once a revolution and cancel the unbalance on average but for the swing's second order; the rotor whirls once a revolution about its sag as that residual makes it"
+    } else {
+        "the balls do not cancel the unbalance exactly"
+    };
+    format!(
+        "balanced to a residual of {} of the unbalance (above 1e-6) at {} of {} speeds, {} to {} ({why})\n",
+        residual_range(&with),
+        with.len(),
+        r.points.len(),
+        speed(a.omega),
+        speed(b.omega)
+    )
+}
+
 /// The line of `stability`'s table where the state analysed is not balanced
-/// ([`autobal::rotor_stability::StateKind::NotBalanced`]: the balls at rest on the line of a
-/// whirl, not balancing), with its speeds; empty where there is none.
+/// ([`autobal::rotor_stability::StateKind::NotBalanced`]: the balls, not bunched, leave more
+/// than a tenth of an unbalance their capacity could cancel; at an equilibrium they rest on the
+/// line of a whirl), with its speeds and residuals; empty where there is none.
 pub(crate) fn not_balanced_text(r: &autobal::rotor_stability::RotorStability, speed: impl Fn(f64) -> String) -> String {
     let nb: Vec<_> = r.points.iter().filter(|p| p.state == Some(autobal::rotor_stability::StateKind::NotBalanced)).collect();
     let (Some(a), Some(b)) = (nb.first(), nb.last()) else { return String::new() };
     format!(
-        "not balanced (the balls at rest on the line of the whirl, not cancelling the unbalance) at {} of {} speeds, {} to {}: the verdicts there are that state's, not the balanced state's\n",
+        "not balanced (the balls, not bunched, leave a residual of {} of an unbalance their capacity could cancel{}) at {} of {} speeds, {} to {}: the verdicts there are that state's, not the balanced state's\n",
+        residual_range(&nb),
+        if r.kind == Kind::PeriodicOrbit { "" } else { ": at rest on the line of the whirl" },
         nb.len(),
         r.points.len(),
         speed(a.omega),
@@ -319,7 +363,7 @@ mod tests {
         }
         let t = table(&g, &r, 600.0);
         assert!(!t.contains("\nstable: "), "{t}");
-        assert!(t.contains("\nnot balanced (balls on the line of the whirl), stable: "), "{t}");
-        assert!(t.contains("\nnot balanced (the balls at rest on the line of the whirl"), "{t}");
+        assert!(t.contains("\nnot balanced, stable: "), "{t}");
+        assert!(t.contains("\nnot balanced (the balls, not bunched, leave a residual of "), "{t}");
     }
 }

@@ -261,6 +261,7 @@ pub fn stability_table(cfg: &LinearRotorConfig, r: &RotorStability, red: &Option
     s.push_str(&format!("natural frequencies at rest, balls as rings: {}\n", wn.iter().map(|w| speed_text(*w)).collect::<Vec<_>>().join(", ")));
     s.push_str(&reduction_text(red));
     s.push_str(&partial_text(cfg, r));
+    s.push_str(&crate::general::residual_text(r, speed_text));
     s.push_str(&crate::general::not_balanced_text(r, speed_text));
     if r.stable_ranges.is_empty() {
         s.push_str(&format!("stable: nowhere in (0, {}]\n", speed_text(omega_max)));

@@ -131,7 +131,7 @@ def test_general_route_results_tabulate():
     r = autobal.analyse("stability", config=two, omega_max=1.5, samples=10)
     assert r.result["route"] == "general"
     df = r.to_pandas()
-    assert list(df.columns) == ["omega", "max_real_part", "verdict", "state"] and len(df) == 10
+    assert list(df.columns) == ["omega", "max_real_part", "verdict", "state", "residual"] and len(df) == 10
     # the table and the ranges are the same result: every speed the table calls stable lies in
     # a stable range, and every speed in the table has its margin or says why not
     stable = df[df.verdict == "stable"]

@@ -255,88 +255,144 @@ impl Rotor {
         }
     }
 
-    /// What the stationary state `x` of `field` is ([`StateKind`]). Planar: E on the axis,
-    /// balanced or semi-balanced; else partially balanced with the balls bunched, not balanced
-    /// without. Spatial: static and couple residual below `1e-6` of the unbalances' scale,
-    /// balanced; else partially balanced (never [`StateKind::NotBalanced`]: see the code). On a
-    /// periodic orbit (gravity, supports that differ by direction) the residual is the mean over
-    /// the revolution (each ball's `e^{iψ}` averaged over the orbit's 64 samples,
-    /// [`crate::analysis::orbit_samples`]): the balls swing, and balanced means they cancel the
-    /// unbalance on average (the swing leaves a mean residual of second order in it: on
-    /// examples/spatial_two_plane.toml below 1e-6 from ~600 rad/s, ~1e-4 at 200 rad/s).
-    /// Linear: [`crate::linear_rotor::partial::state_kind`] (every race centre on the axis:
-    /// balanced).
+    /// What the stationary state `x` of `field` is ([`StateKind`]), from its residual
+    /// ([`Rotor::residual`]: on a periodic orbit the mean over the revolution, the orbit's 64
+    /// samples of [`crate::analysis::orbit_samples`], never its start alone, where the sag and
+    /// the swing read as a whirl). Planar: E on the axis (residual at most `1e-6`), balanced
+    /// or semi-balanced; else partially balanced with the balls bunched, not balanced without.
+    /// Spatial: residual at most `1e-6`, balanced; else partially balanced where a plane's
+    /// balls are bunched (at its capacity limit); else balanced (to the residual, which it
+    /// carries) while the residual is at most a tenth of the unbalance (a balanced orbit's
+    /// swing leaves its second order: on examples/spatial_two_plane.toml 1e-6..1e-3 below ~600
+    /// rad/s); above that not balanced where the balls' capacity could cancel the unbalance
+    /// (the closed-form placement leaves at most a tenth of it: two balls opposite each other
+    /// in each plane leave all of it), partially balanced where it could not (one plane against
+    /// a couple about it). Linear: [`crate::linear_rotor::partial::state_kind`] (the race
+    /// centres' mean whirl against their whirl without the balls' resultant).
     pub fn state_kind(field: &Field, x: &[f64]) -> StateKind {
-        match field {
-            Field::Linear(f) => crate::linear_rotor::partial::state_kind(f, x),
+        Rotor::classify(field, x).0
+    }
+
+    /// [`Rotor::state_kind`] and [`Rotor::residual`] together, from one integration of the
+    /// orbit (each alone integrates it once).
+    pub fn classify(field: &Field, x: &[f64]) -> (StateKind, f64) {
+        let rows = orbit_rows(field, x);
+        let r = Rotor::residual_in(field, x, &rows);
+        let kind = match field {
+            Field::Linear(f) => crate::linear_rotor::partial::state_kind_in(f, x, &rows),
             Field::Planar(f) => {
                 let p = f.rotor();
-                let off = (x[0] + p.s2 * p.gamma.cos()).hypot(x[1] + p.s2 * p.gamma.sin());
-                // E on the axis (to 1e-6 of the unbalances' length scale): (semi-)balanced
-                let l = p.s1 + p.s2 + p.n as f64 * p.m3 * p.r / p.total_mass();
-                if off <= 1e-6 * l.max(f64::MIN_POSITIVE) {
-                    if p.s2 == 0.0 {
-                        StateKind::Balanced
-                    } else {
-                        StateKind::SemiBalanced
-                    }
+                // E on the axis (to 1e-6 of its whirl without the balls' resultant):
+                // (semi-)balanced; on a periodic orbit E's mean position over the revolution
+                // (its once-per-revolution whirl in fixed axes: the orbit's start alone reads
+                // the swing as a whirl); the balls bunched: partially balanced; else (semi-)
+                // balanced to the residual while it is at most a tenth, not balanced above
+                let balanced = if p.s2 == 0.0 { StateKind::Balanced } else { StateKind::SemiBalanced };
+                if r <= BALANCED_EXACTLY {
+                    balanced
                 } else if bunched(&ball_angles(field, x)) {
                     StateKind::PartiallyBalanced
+                } else if r <= NOT_REDUCED {
+                    balanced
                 } else {
                     StateKind::NotBalanced
                 }
             }
             Field::Spatial(s) => {
-                // the residual static and couple unbalance of the unbalance masses and the balls
-                // (planes in order), against the unbalances' scale
-                let r = s.rotor();
-                let (st, cp) = (r.static_unbalance(), r.couple_unbalance());
-                let zr = r.z_reference();
-                // each ball's `(cos ψ, sin ψ)`, on a periodic orbit (gravity, supports that
-                // differ by direction: the balls swing once a revolution) its mean over the
-                // revolution: balanced means the balls cancel the unbalance on average
+                // the residual static and couple unbalance (each ball's e^{iψ} its mean over the
+                // revolution on a periodic orbit: balanced means cancelling it on average); a
+                // plane at its capacity limit: its balls bunched (they stay bunched along an
+                // orbit: equal balls from equal starts follow equal paths)
                 let psi = ball_angles(field, x);
-                let mut unit: Vec<[f64; 2]> = psi.iter().map(|a| [a.cos(), a.sin()]).collect();
-                if let Some(period) = field.period() {
-                    if let Ok(samples) = crate::analysis::orbit_samples(field, x, period, 1e-10) {
-                        let (n, b) = (x.len(), ball_coordinates(field));
-                        let m = samples.len() / n;
-                        unit.iter_mut().for_each(|u| *u = [0.0, 0.0]);
-                        for row in samples.chunks(n) {
-                            for (u, a) in unit.iter_mut().zip(&row[b.clone()]) {
-                                u[0] += a.cos() / m as f64;
-                                u[1] += a.sin() / m as f64;
-                            }
-                        }
-                    }
-                }
-                let (mut rs, mut rc, mut scale, mut zl) = (st, cp, st[0].hypot(st[1]), 0.0f64);
                 let mut j = 0;
-                for p in r.planes.iter().filter(|p| p.n > 0) {
-                    let mr = p.ball_mass * p.race_radius;
-                    let z = p.z - zr;
-                    zl = zl.max(z.abs());
-                    for _ in 0..p.n {
-                        let [cs, sn] = unit[j];
-                        rs[0] += mr * cs;
-                        rs[1] += mr * sn;
-                        rc[0] += z * mr * cs;
-                        rc[1] += z * mr * sn;
-                        scale += mr;
-                        j += 1;
-                    }
+                let mut any_bunched = false;
+                for p in s.rotor().planes.iter().filter(|p| p.n > 0) {
+                    any_bunched |= p.n >= 2 && bunched(&psi[j..j + p.n]);
+                    j += p.n;
                 }
-                let zl = if zl > 0.0 { zl } else { 1.0 };
-                // else partially balanced, never "not balanced": the balls' placement does not
-                // tell an opposite-ball state from a partially balanced one here (a plane at rest
-                // with its balls spread against a couple, or balls that a tilt moves off the
-                // line of a whirl), and the linear rotor's test (the race's whirl against its
-                // whirl without the balls' resultant) is not written for this model
-                if rs[0].hypot(rs[1]) <= 1e-6 * scale && rc[0].hypot(rc[1]) <= 1e-6 * scale * zl {
+                if r <= BALANCED_EXACTLY {
                     StateKind::Balanced
+                } else if any_bunched {
+                    StateKind::PartiallyBalanced
+                } else if r <= NOT_REDUCED {
+                    StateKind::Balanced
+                } else if spatial_can_balance(s) {
+                    StateKind::NotBalanced
                 } else {
                     StateKind::PartiallyBalanced
                 }
+            }
+        };
+        (kind, r)
+    }
+
+    /// The residual unbalance that the balls of the stationary state `x` leave, as a fraction
+    /// of the rotor's unbalance (the balls' positions on a periodic orbit averaged over the
+    /// revolution, as [`Rotor::state_kind`] reads them). Spatial: `max(|s|, |c|/ℓ) / max(|s0|,
+    /// |c0|/ℓ)`, `s`, `c` the residual static and couple unbalance of the unbalance masses and
+    /// the balls (each ball's `e^{iψ}` its mean over the orbit), `s0`, `c0` those of the
+    /// unbalance masses alone, `ℓ` the largest distance of a ball plane or unbalance mass
+    /// from the reference plane (the balls' capacity `Σ m_b R` in place of the unbalance where
+    /// there is none). Linear: the static residual `|s0 + Σ m_b R ⟨e^{iψ}⟩| / |s0|`
+    /// ([`crate::linear_rotor::partial::residual_static`]). Planar: the race centre E's
+    /// (mean) distance from the axis over its distance without the balls' resultant,
+    /// `|Ω² u0 / D + s2 e^{iγ}|`, `u0 = m1 s1 + (m2 + Σ m_j) s2 e^{iγ}`, `D = k̄ − M Ω² + i c̄ Ω`
+    /// (the semi-balanced state's E is on the axis; for a centred race, at an equilibrium,
+    /// exactly the residual unbalance `|m1 s1 + Σ m_j r e^{iψ_j}| / (m1 s1)`). On an orbit that cannot be integrated again, the
+    /// orbit's start.
+    ///
+    /// At an equilibrium a balanced state's residual is Newton's (~1e-12). On a periodic orbit
+    /// (gravity, supports that differ by direction) the balls swing once a revolution by `δψ`
+    /// and the mean of `e^{iψ}` differs from `e^{i⟨ψ⟩}` at second order (`−⟨δψ²⟩/2`): the balls
+    /// settle where the rotor's mean whirl (its once-per-revolution whirl about the sag) holds
+    /// them against that, so a balanced orbit keeps a residual of second order in the swing,
+    /// ∝ g² under gravity (examples/spatial_two_plane.toml: 3.0e-3 at 262 rad/s, 1.1e-4 at 437,
+    /// below 1e-6 above ~700 rad/s). [`StateKind::Balanced`] carries it (`SpeedPoint::residual`).
+    pub fn residual(field: &Field, x: &[f64]) -> f64 {
+        Rotor::residual_in(field, x, &orbit_rows(field, x))
+    }
+
+    /// [`Rotor::residual`] with the means over `rows` ([`orbit_rows`]).
+    fn residual_in(field: &Field, x: &[f64], rows: &[f64]) -> f64 {
+        let orbit_mean = |_: &Field, _: &[f64], f: &dyn Fn(&[f64]) -> Vec<f64>| mean_of(rows, x.len(), f);
+        match field {
+            Field::Spatial(s) => {
+                let units = orbit_mean(field, x, &|row| row[ball_coordinates(field)].iter().flat_map(|a| [a.cos(), a.sin()]).collect());
+                let units: Vec<[f64; 2]> = units.chunks(2).map(|u| [u[0], u[1]]).collect();
+                spatial_residual(s.rotor(), &units)
+            }
+            Field::Linear(l) => {
+                let r = l.rotor();
+                let units = orbit_mean(field, x, &|row| row[ball_coordinates(field)].iter().flat_map(|a| [a.cos(), a.sin()]).collect());
+                let s0 = crate::linear_rotor::partial::static_unbalance(r);
+                let mut s = s0;
+                let mut j = 0;
+                let mut cap = 0.0;
+                for b in &r.balancers {
+                    for _ in 0..b.balls {
+                        s[0] += b.ball_mass * b.radius * units[2 * j];
+                        s[1] += b.ball_mass * b.radius * units[2 * j + 1];
+                        cap += b.ball_mass * b.radius;
+                        j += 1;
+                    }
+                }
+                let u = s0[0].hypot(s0[1]);
+                s[0].hypot(s[1]) / if u > 0.0 { u } else { cap.max(f64::MIN_POSITIVE) }
+            }
+            Field::Planar(f) => {
+                use num_complex::Complex64 as C;
+                let p = f.rotor();
+                let e = orbit_mean(field, x, &|row| vec![row[0], row[1]]);
+                let race = C::from_polar(p.s2, p.gamma);
+                let off = (C::new(e[0], e[1]) + race).norm();
+                // E without the balls' resultant: C at `Ω² u0 / D`, `u0 = m1 s1 + (m2 + Σ m_j)
+                // s2 e^{iγ}`, `D = k̄ − M Ω² + i c̄ Ω` (the supports' means)
+                let w = f.omega();
+                let (k, c) = p.mean_supports();
+                let u0 = C::new(p.m1 * p.s1, 0.0) + race * (p.total_mass() - p.m1);
+                let free = (u0 * (w * w) / C::new(k - p.total_mass() * w * w, c * w) + race).norm();
+                let scale = if free.is_finite() && free > 1e-12 * planar_scale(p) { free } else { planar_scale(p) };
+                off / scale
             }
         }
     }
@@ -383,6 +439,12 @@ pub struct SpeedPoint {
     /// What the state analysed here is: balanced, semi-balanced, or partially balanced (the
     /// balls' capacity short: balls bunched, a residual unbalance); `None` without a state.
     pub state: Option<StateKind>,
+    /// The residual unbalance the balls leave in that state, as a fraction of the rotor's
+    /// unbalance ([`Rotor::residual`]: on a periodic orbit the balls' positions averaged over
+    /// the revolution; planar: the race centre's distance from the axis over the eccentricity
+    /// scale); `None` without a state. A balanced state carries the residual it is balanced
+    /// to: ~1e-10 at an equilibrium, on an orbit the second-order residual of the balls' swing.
+    pub residual: Option<f64>,
     /// The balls' angles of the state analysed here (rad, all planes in order): with a family
     /// (`family_dimension > 0`), the member that `verdict` and `abscissa` refer to.
     pub member_psi: Vec<f64>,
@@ -400,37 +462,43 @@ pub struct SpeedPoint {
 #[serde(rename_all = "snake_case")]
 pub enum StateKind {
     /// The balls cancel the unbalance: the rotor turns about its axis (planar: the race
-    /// centred, `s2 = 0`; spatial: static and couple residual below `1e-6` of the unbalances).
+    /// centred, `s2 = 0`; spatial and linear: the residual [`Rotor::residual`] at most `1e-6`
+    /// of the unbalance, or at most a tenth of it with no plane's balls bunched: on a periodic
+    /// orbit the balls swing and cancel the unbalance on average but for the swing's second
+    /// order, ∝ g² under gravity, and the rotor whirls once a revolution about its sag as that
+    /// residual makes it; [`SpeedPoint::residual`] carries it).
     Balanced,
     /// Paper 004's eccentric race: the race centre E on the axis, the disk whirling at `s2`.
     SemiBalanced,
     /// The balls cannot cancel the unbalance (capacity short, or below the speed where the
-    /// semi-balanced state exists): a residual unbalance, the balls bunched.
+    /// semi-balanced state exists): a residual unbalance, a plane's balls bunched at its limit
+    /// (spatial: or one plane against a couple about it, which no placement cancels).
     PartiallyBalanced,
-    /// An equilibrium in which the balls do not balance although no plane's balls are bunched:
-    /// the race whirls and each ball sits on the line of the whirl, on either side of it (two
-    /// balls opposite each other: their resultant is zero). A ball is at rest on a whirling race
-    /// only there (its tangential force `m_b Ω² |d| sin(ψ − arg d)` vanishes), so such states
-    /// exist at every speed beside the balanced one; Newton can reach one from a poor start, and
-    /// it is named, never called balanced ([`state_kind`](Rotor::state_kind)). Recognised at
-    /// equilibria of the planar rotor (E off the axis, the balls not bunched) and of linear
-    /// rotors (a race whirling at more than a tenth of its whirl without the balls' resultant:
-    /// [`crate::linear_rotor::partial::state_kind`]); the spatial rotor's classifier calls every
-    /// unbalanced state partially balanced, and on periodic orbits (gravity, supports that differ
-    /// by direction) the balls swing, so such a state reads partially balanced (spatial) or by
-    /// the linear rule at the orbit's start.
+    /// A state in which the balls do not balance although no plane's balls are bunched and
+    /// their capacity could: at an equilibrium the race whirls and each ball sits on the line
+    /// of the whirl, on either side of it (two balls opposite each other: their resultant is
+    /// zero). A ball is at rest on a whirling race only there (its tangential force
+    /// `m_b Ω² |d| sin(ψ − arg d)` vanishes), so such states exist at every speed beside the
+    /// balanced one; Newton can reach one from a poor start, and it is named, never called
+    /// balanced ([`state_kind`](Rotor::state_kind)). On a periodic orbit (gravity, supports
+    /// that differ by direction) the same states swing, and at low speed under gravity the
+    /// balanced orbit's own swing can leave more than a tenth of the unbalance (the spatial
+    /// two-plane example at 131 rad/s: 0.30): not balanced either. Recognised by the planar
+    /// rotor's E off the axis with the balls not bunched, the linear rotor's race whirling (mean
+    /// over an orbit) at more than a tenth of its whirl without the balls' resultant
+    /// ([`crate::linear_rotor::partial::state_kind`]), the spatial rotor's residual above a
+    /// tenth of the unbalance.
     NotBalanced,
 }
 
 impl StateKind {
-    /// `"balanced"`, `"semi-balanced"`, `"partially balanced"`, `"not balanced (balls on the
-    /// line of the whirl)"`.
+    /// `"balanced"`, `"semi-balanced"`, `"partially balanced"`, `"not balanced"`.
     pub fn name(self) -> &'static str {
         match self {
             StateKind::Balanced => "balanced",
             StateKind::SemiBalanced => "semi-balanced",
             StateKind::PartiallyBalanced => "partially balanced",
-            StateKind::NotBalanced => "not balanced (balls on the line of the whirl)",
+            StateKind::NotBalanced => "not balanced",
         }
     }
 }
@@ -564,9 +632,12 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
             let fam = p.state.as_ref().map_or(0, |s| s.family_dimension);
             family_dimension = family_dimension.max(fam);
             let field = p.state.as_ref().and_then(|_| rotor.field(p.omega).ok());
-            let (amplitude, state, psi) = match (&field, &p.state) {
-                (Some(f), Some(s)) => (Some(amplitude(f, &s.x)), Some(Rotor::state_kind(f, &s.x)), ball_angles(f, &s.x)),
-                _ => (None, None, vec![]),
+            let (amplitude, state, residual, psi) = match (&field, &p.state) {
+                (Some(f), Some(s)) => {
+                    let (kind, residual) = Rotor::classify(f, &s.x);
+                    (Some(amplitude(f, &s.x)), Some(kind), Some(residual), ball_angles(f, &s.x))
+                }
+                _ => (None, None, None, vec![]),
             };
             if member_psi.is_empty() {
                 member_psi = psi.clone();
@@ -580,6 +651,7 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
                 amplitude,
                 failure: p.failure.as_ref().map(|f| explain_failure(rotor, f)),
                 state,
+                residual,
                 member_psi: psi,
                 family: None,
                 family_verdict: None,
@@ -877,6 +949,87 @@ pub(crate) fn off_line(psi: f64, along: f64) -> f64 {
     w.min(std::f64::consts::PI - w)
 }
 
+/// The residual (fraction of the unbalance: [`Rotor::residual`]) at or below which a state is
+/// balanced whatever its balls' placement: Newton's and the shooting's residuals (1e-12,
+/// 1e-10) leave ~1e-10 of the unbalance, the old classifier's tolerance was this.
+const BALANCED_EXACTLY: f64 = 1e-6;
+
+/// A state whose balls are not bunched is balanced (to the residual it carries) while the
+/// residual is at most this fraction of the unbalance, and not balanced above it where the
+/// balls' capacity could cancel it: the linear rotor's rule on the whirl
+/// ([`crate::linear_rotor::partial::state_kind`]), the whirl of a rigid rotor being linear in
+/// its residual unbalance. Two balls opposite each other leave the whole unbalance (1); a
+/// balanced orbit's swing leaves its second order (<= 1e-4 on examples/spatial_two_plane.toml).
+const NOT_REDUCED: f64 = crate::linear_rotor::partial::NOT_REDUCED;
+
+/// The states over which a state's means are taken ([`Rotor::residual`], the linear rotor's
+/// race centres), row-major (the trapezoidal rule over them is exact for the orbit's harmonics
+/// below the 64th): the periodic orbit's 64 samples
+/// ([`crate::analysis::orbit_samples`] at rtol 1e-10, the shooting's), or `x` alone at an
+/// equilibrium or where the orbit cannot be integrated again.
+pub(crate) fn orbit_rows<F: VectorField + ?Sized>(field: &F, x: &[f64]) -> Vec<f64> {
+    field.period().and_then(|period| crate::analysis::orbit_samples(field, x, period, 1e-10).ok()).unwrap_or_else(|| x.to_vec())
+}
+
+/// The mean of `f(row)` over the rows of length `n` of `rows`.
+pub(crate) fn mean_of(rows: &[f64], n: usize, f: impl Fn(&[f64]) -> Vec<f64>) -> Vec<f64> {
+    let m = (rows.len() / n) as f64;
+    let mut mean: Vec<f64> = vec![];
+    for row in rows.chunks(n) {
+        let v = f(row);
+        if mean.is_empty() {
+            mean = vec![0.0; v.len()];
+        }
+        for (a, v) in mean.iter_mut().zip(v) {
+            *a += v / m;
+        }
+    }
+    mean
+}
+
+/// [`Rotor::residual`] of the spatial rotor with ball `j`'s `e^{iψ_j}` at `units[j]`.
+fn spatial_residual(r: &SpatialRotor, units: &[[f64; 2]]) -> f64 {
+    let (s0, c0) = (r.static_unbalance(), r.couple_unbalance());
+    let zr = r.z_reference();
+    let zl = r.planes.iter().filter(|p| p.n > 0).map(|p| (p.z - zr).abs()).chain(r.unbalances.iter().map(|u| (u.z - zr).abs())).fold(0.0, f64::max);
+    let zl = if zl > 0.0 { zl } else { 1.0 };
+    let (mut rs, mut rc, mut cap) = (s0, c0, 0.0);
+    let mut j = 0;
+    for p in r.planes.iter().filter(|p| p.n > 0) {
+        let mr = p.ball_mass * p.race_radius;
+        let z = p.z - zr;
+        for _ in 0..p.n {
+            let [cs, sn] = units[j];
+            rs[0] += mr * cs;
+            rs[1] += mr * sn;
+            rc[0] += z * mr * cs;
+            rc[1] += z * mr * sn;
+            cap += mr;
+            j += 1;
+        }
+    }
+    let u = s0[0].hypot(s0[1]).max(c0[0].hypot(c0[1]) / zl);
+    let u = if u > 0.0 { u } else { cap.max(f64::MIN_POSITIVE) };
+    rs[0].hypot(rs[1]).max(rc[0].hypot(rc[1]) / zl) / u
+}
+
+/// Whether the spatial rotor's balls can cancel its unbalance: the closed-form placement
+/// ([`SpatialField::balanced_guess`]: each plane's balls on the arc of its share) exists and
+/// leaves at most [`NOT_REDUCED`] of it (one plane cancels the static unbalance only: a couple
+/// about it stays).
+fn spatial_can_balance(s: &SpatialField) -> bool {
+    let Some(g) = s.balanced_guess() else { return false };
+    let m = s.coords();
+    let nb = s.rotor().balls();
+    let units: Vec<[f64; 2]> = g[m - nb..m].iter().map(|a| [a.cos(), a.sin()]).collect();
+    spatial_residual(s.rotor(), &units) <= NOT_REDUCED
+}
+
+/// The planar rotor's eccentricity scale `s1 + s2 + n m3 r / M` (m).
+fn planar_scale(p: &PlanarRotor) -> f64 {
+    (p.s1 + p.s2 + p.n as f64 * p.m3 * p.r / p.total_mass()).max(f64::MIN_POSITIVE)
+}
+
 /// Whether the balls at `psi` (rad, one plane) are bunched: every angle within `1e-6` rad of the
 /// first, modulo `2π` (a plane at its capacity limit, [`StateKind::PartiallyBalanced`]); true
 /// for one ball or none.
@@ -996,11 +1149,12 @@ mod tests {
     /// examples/spatial_two_plane.toml without gravity, supports equal by direction. Its
     /// balanced state is balanced; Newton from each plane's two balls opposite each other (the
     /// structure at rest) reaches a state whose races whirl with the balls near the line of the
-    /// whirl, both sides (their resultant ~0: the rotor's own unbalance response): never
-    /// balanced (partially balanced: the spatial classifier does not name it). A rotor with one
+    /// whirl, both sides (their resultant ~0: the rotor's own unbalance response): not
+    /// balanced (its residual is the whole unbalance, no plane bunched). A rotor with one
     /// plane at its centre of mass against a pure couple unbalance cannot be balanced: its
     /// stationary states are partially balanced (the plane at rest while the rotor rocks about
-    /// it: main at 85e6257 called them not balanced, the docs said partially balanced).
+    /// it, its balls opposite: main at 85e6257 called them not balanced, the docs said
+    /// partially balanced; no placement of one plane's balls cancels a couple about it).
     #[test]
     fn the_spatial_classifier_on_equilibria_opposite_and_couple() {
         use crate::spatial::dynamics::{BallPlane, PointMass, RigidRotor, Support};
@@ -1023,7 +1177,13 @@ mod tests {
             assert!((gap - std::f64::consts::PI).abs() <= 1e-2, "ψ {psi:?}");
         }
         assert!(amplitude(&f, &o.x) > 1e3 * amplitude(&f, &s.x), "{} vs {}", amplitude(&f, &o.x), amplitude(&f, &s.x));
-        assert_eq!(Rotor::state_kind(&f, &o.x), StateKind::PartiallyBalanced, "ψ {psi:?}");
+        // each plane's two balls nearly opposite: their resultant ~0 (to the 1e-2 rad above:
+        // 1e-2 of a ball's m R), so the residual is the unbalance itself (1 to 1e-2); not
+        // bunched, and the capacity could cancel it: not balanced (main before 2026-11-29 said
+        // partially balanced: "the balls cannot cancel the unbalance", false)
+        let res = Rotor::residual(&f, &o.x);
+        assert!((res - 1.0).abs() <= 2e-2, "residual {res}");
+        assert_eq!(Rotor::state_kind(&f, &o.x), StateKind::NotBalanced, "ψ {psi:?}");
         // one plane at the centre of mass against a pure couple
         let couple = SpatialRotor::new(
             RigidRotor::aligned(10.0, 0.5, 0.2, 0.0),

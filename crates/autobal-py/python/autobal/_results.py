@@ -152,7 +152,8 @@ class Result:
           ``instability_ranges`` (003's, where defined) or ``exact_stable_ranges``, ``from``,
           ``to``); ``stability``: the largest real part of the eigenvalues (on the general
           route, of the Floquet exponents of a periodic orbit) per speed (``omega``,
-          ``max_real_part``; the general route adds ``verdict`` and ``state``);
+          ``max_real_part``; the general route adds ``verdict``, ``state`` and ``residual``, the residual unbalance the
+          balls leave as a fraction of the unbalance);
         - ``campbell``: one row per speed and tracked line (``omega``, ``line`` and the mode's
           fields; on the general route, the speeds where the line has a point); ``map``: one
           row per cell, as the CLI's CSV;
@@ -184,8 +185,11 @@ class Result:
         if c == "stability":
             if general:
                 return pd.DataFrame(
-                    [{"omega": p["omega"], "max_real_part": p.get("abscissa"), "verdict": p.get("verdict"), "state": p.get("state")} for p in r["points"]],
-                    columns=["omega", "max_real_part", "verdict", "state"],
+                    [
+                        {"omega": p["omega"], "max_real_part": p.get("abscissa"), "verdict": p.get("verdict"), "state": p.get("state"), "residual": p.get("residual")}
+                        for p in r["points"]
+                    ],
+                    columns=["omega", "max_real_part", "verdict", "state", "residual"],
                 )
             return pd.DataFrame(r["max_real_part"], columns=["omega", "max_real_part"])
         if c == "campbell":

@@ -26,6 +26,7 @@
 
 use super::runup::plane_positions;
 use super::{Direction, LinearRotor, LinearRotorField};
+use crate::analysis::VectorField;
 use crate::ode::lu::Lu;
 use crate::rotor_stability::StateKind;
 
@@ -93,8 +94,9 @@ pub fn plane_whirl(rotor: &LinearRotor, x: &[f64]) -> Vec<f64> {
 }
 
 /// A plane whose race whirls at more than this fraction of its whirl with the balls' resultant
-/// removed is not balanced ([`state_kind`]).
-const NOT_REDUCED: f64 = 0.1;
+/// removed is not balanced ([`state_kind`]; the spatial classifier's bound on the residual
+/// unbalance too, [`crate::rotor_stability::Rotor::residual`]).
+pub(crate) const NOT_REDUCED: f64 = 0.1;
 
 /// Partially balanced where a plane is at its capacity limit, its balls bunched (all at one
 /// angle to `1e-6` rad) with its race centre off the axis (more than `1e-6 ℓ`); not balanced
@@ -113,16 +115,32 @@ const NOT_REDUCED: f64 = 0.1;
 /// before 2026-11-29; a 1e-2 rad allowance called balanced states with nearly opposite balls
 /// 1.6e-3 rad off that line "not balanced"). Measured on that rotor: balanced states whose race
 /// whirls above `1e-6 ℓ` at 1.2e-3 of its whirl without the balls' resultant, the
-/// opposite-ball state at 1 (to 1e-3). The rule holds at equilibria; on a periodic orbit
-/// (gravity, supports that differ by direction) it reads the orbit's start. Where the whirl
+/// opposite-ball state at 1 (to 1e-3). On a periodic orbit (gravity, supports that differ
+/// by direction) the race centres' positions are their means over the revolution (the
+/// once-per-revolution whirl in fixed axes, from the orbit's 64
+/// samples), and the whirl without the resultant the structure's mean displacement under the
+/// time-averaged residual: the orbit's start alone read the sag under gravity as a whirl as
+/// large as the bare rotor's and called the balanced orbit not balanced (main before
+/// 2026-11-29; `tests/state_kind_orbits.rs`). Where the whirl
 /// without the resultant cannot be solved for (the structure's stationary equations
 /// singular), the balls must lie on the line of the whirl to `1e-6` rad.
 pub fn state_kind(field: &LinearRotorField, x: &[f64]) -> StateKind {
+    state_kind_in(field, x, &crate::rotor_stability::orbit_rows(field, x))
+}
+
+/// [`state_kind`] with the means over `rows` (the orbit's samples, or `x` alone).
+pub(crate) fn state_kind_in(field: &LinearRotorField, x: &[f64], rows: &[f64]) -> StateKind {
     let r = field.rotor();
     let tol = 1e-6 * length_scale(r);
     let n = r.dofs();
-    let whirl = plane_whirl(r, x);
-    let centres = plane_positions(r, x);
+    // each race centre's position in turning axes, on a periodic orbit its mean over the
+    // revolution: the once-per-revolution whirl in fixed axes (the sag under gravity and the
+    // swing average out; the orbit's start alone reads the sag as a whirl)
+    let centres: Vec<(f64, f64)> = crate::rotor_stability::mean_of(rows, x.len(), |row| plane_positions(r, row).iter().flat_map(|c| [c.0, c.1]).collect())
+        .chunks(2)
+        .map(|c| (c[0], c[1]))
+        .collect();
+    let whirl: Vec<f64> = centres.iter().map(|c| c.0.hypot(c.1)).collect();
     // (plane, its balls on the line of its whirl to 1e-6 rad) of every whirling plane
     let mut j = n;
     let mut whirling = vec![];
@@ -158,8 +176,45 @@ pub fn state_kind(field: &LinearRotorField, x: &[f64]) -> StateKind {
 fn spread_whirl(field: &LinearRotorField) -> Option<Vec<f64>> {
     let r = field.rotor();
     let angles: Vec<f64> = r.balancers.iter().flat_map(|b| (0..b.balls).map(move |i| std::f64::consts::TAU * i as f64 / b.balls as f64)).collect();
-    let p = structure_with(field, &angles)?;
+    let p = match field.period() {
+        None => structure_with(field, &angles)?,
+        // on a periodic orbit the structure's mean displacement over the revolution: the
+        // residual `b(t) − S(t) p` averaged over 16 equispaced times (exact for gravity's once-
+        // and the supports' twice-per-revolution terms), then `p̄ = S̄⁻¹ b̄` (the mean whirl
+        // exactly where `S` does not vary, supports equal by direction; to first order in
+        // their difference otherwise, ample against NOT_REDUCED's factor 10)
+        Some(period) => structure_mean(field, &angles, period)?,
+    };
     Some(plane_whirl(r, &p))
+}
+
+/// [`structure_with`] with the residual averaged over `period` (16 equispaced times).
+fn structure_mean(field: &LinearRotorField, angles: &[f64], period: f64) -> Option<Vec<f64>> {
+    let r = field.rotor();
+    let (n, nb, nc) = (r.dofs(), r.total_balls(), field.coords());
+    let mut x = vec![0.0; 2 * nc];
+    x[n..n + nb].copy_from_slice(angles);
+    let acc = vec![0.0; nc];
+    let times = 16;
+    let (mut b, mut s) = (vec![0.0; n], vec![0.0; n * n]);
+    for k in 0..times {
+        let t = period * k as f64 / times as f64;
+        let bk: Vec<f64> = field.residuals(t, &x, &acc)[..n].to_vec();
+        for (a, v) in b.iter_mut().zip(&bk) {
+            *a += v / times as f64;
+        }
+        for j in 0..n {
+            x[j] = 1.0;
+            let rj = field.residuals(t, &x, &acc);
+            x[j] = 0.0;
+            for i in 0..n {
+                s[i * n + j] += (bk[i] - rj[i]) / times as f64;
+            }
+        }
+    }
+    let lu = Lu::factored(s, n)?;
+    lu.solve(&mut b);
+    b.iter().all(|v| v.is_finite()).then_some(b)
 }
 
 /// The structure's stationary displacement `p` (turning axes) with every ball at `psi` (rad,
