@@ -36,7 +36,8 @@
 //!   lasts to the last speed, is not a crossing: each change of the count is attributed to
 //!   the lines changing realness in its step nearest, in `Re λ`, to where on the axis the
 //!   eigenvalues change, and is left out only where those lines' runs are such ends (another
-//!   end in the same step does not decide it).
+//!   end in the same step does not decide it, nor a window around a local minimum that finds
+//!   the same change).
 //! * `ν̂ = (h − 1)Ω`, `h ≥ 2`: the forward component at `hΩ`; `ν̂ = (h + 1)Ω`: the other
 //!   component backward at `−hΩ`. Bracketed by the sign of `ν̂ − (h ∓ 1)Ω` on the grid and
 //!   bisected on the model's eigenvalues (the pair's eigenvalue at a trial speed: the one
@@ -561,7 +562,8 @@ fn axis_crossings<S: Spectrum>(l: &Lines, spec: &S, out: &mut Vec<Found>) -> Res
     let from_start = |i: usize, k: usize| (0..=k).all(|q| real(i, q));
     let to_end = |i: usize, k: usize| (k..n).all(|q| real(i, q));
     // (speed, line, quiet)
-    let mut ev: Vec<(f64, usize, bool)> = vec![];
+    // (speed, line, quiet, judged: attributed to the lines changing realness in its step)
+    let mut ev: Vec<(f64, usize, bool, bool)> = vec![];
     let mut speeds = vec![];
     for k in 0..n.saturating_sub(1) {
         let (Some(ca), Some(cb)) = (counts[k], counts[k + 1]) else { continue };
@@ -608,19 +610,19 @@ fn axis_crossings<S: Spectrum>(l: &Lines, spec: &S, out: &mut Vec<Found>) -> Res
                 }
                 _ => (movers.first().copied().unwrap_or_else(fallback), false),
             };
-            ev.push((w, line, quiet));
+            ev.push((w, line, quiet, true));
         }
     }
     // a window [lo, hi] around a local minimum at `w_min` that reaches the axis: the changes of
     // the count on either side of it, quiet on the side of a run that reaches the first
     // (`q_lo`) or last (`q_hi`) speed
-    let mut inside = |lo: usize, hi: usize, w_min: f64, line: usize, (q_lo, q_hi): (bool, bool), ev: &mut Vec<(f64, usize, bool)>| -> Result<()> {
+    let mut inside = |lo: usize, hi: usize, w_min: f64, line: usize, (q_lo, q_hi): (bool, bool), ev: &mut Vec<(f64, usize, bool, bool)>| -> Result<()> {
         let c = count_at(spec, w_min)?;
         for (a, b, q) in [(om[lo], w_min, q_lo), (w_min, om[hi], q_hi)] {
             let (ca, cb) = if a == w_min { (c, count_at(spec, b)?) } else { (count_at(spec, a)?, c) };
             speeds.clear();
             count_changes(spec, a, b, ca, cb, &mut speeds)?;
-            ev.extend(speeds.iter().map(|&(x, y)| (0.5 * (x + y), line, q)));
+            ev.extend(speeds.iter().map(|&(x, y)| (0.5 * (x + y), line, q, false)));
         }
         Ok(())
     };
@@ -714,8 +716,12 @@ fn axis_crossings<S: Spectrum>(l: &Lines, spec: &S, out: &mut Vec<Found>) -> Res
         }
         let g = &ev[i..j];
         let w = 0.5 * (g[0].0 + g[j - i - 1].0);
-        let pick = g.iter().find(|e| !e.2).unwrap_or(&g[0]);
-        out.push(Found { cs: cs(w), line: pick.1, quiet: g.iter().all(|e| e.2) });
+        // a change judged in its step is judged so: a window's search finds every change in
+        // it, also one of other lines that its step judged
+        let judged: Vec<_> = g.iter().filter(|e| e.3).collect();
+        let quiet = if judged.is_empty() { g.iter().all(|e| e.2) } else { judged.iter().all(|e| e.2) };
+        let pick = if judged.is_empty() { g.iter().find(|e| !e.2) } else { judged.iter().copied().find(|e| !e.2) }.unwrap_or(&g[0]);
+        out.push(Found { cs: cs(w), line: pick.1, quiet });
         i = j;
     }
     Ok(())
