@@ -266,3 +266,64 @@ fn the_general_routes_critical_speeds_do_not_depend_on_the_grid() {
         eprintln!("{name}: {} critical speeds on every grid", reference.len());
     }
 }
+
+/// The model of an example of the closed-form route, as [`dimensional`] reads it.
+fn example(toml: &str) -> SpatialModel {
+    let mut root = config::parse(toml, "test").unwrap();
+    for t in ["drive", "initial"] {
+        root.remove(t);
+    }
+    config::spatial_simulation(&root).unwrap().config.model
+}
+
+#[test]
+fn an_end_of_a_run_from_the_first_speed_is_no_crossing_on_any_grid() {
+    // washing_machine.toml: two near-zero real eigenvalues, real from the first speed, meet at
+    // Ω = 0.630864 and leave the axis (the end of a run from the first speed: no crossing);
+    // another pair leaves it 0.0107 earlier, at 0.620133 (a crossing). Before, one quiet flag
+    // per grid step ("all movers quiet") was given to every change of the count in it, so on
+    // grids where both share a step (60, 100, 240 = the report's, 300 speeds) the quiet end was
+    // reported too. The speeds: those of `autobal campbell --config
+    // examples/washing_machine.toml` (0.050388668616103 is its first speed at 60 points).
+    let m = example(include_str!("../../../examples/washing_machine.toml"));
+    let w = 0.050388668616103 * 120.0;
+    let reference = crossings(&m, &grid(w, 1000), Balls::Free, &[1]);
+    let near = |v: &[CriticalSpeed], at: f64| v.iter().filter(|k| k.harmonic == 1 && k.whirl == Whirl::Forward && (k.omega - at).abs() < 1e-5).count();
+    assert_eq!(near(&reference, 0.620133), 1, "{reference:?}");
+    assert_eq!(near(&reference, 0.630864), 0, "{reference:?}");
+    for n in [60, 100, 240, 300] {
+        identical(&crossings(&m, &grid(w, n), Balls::Free, &[1]), &reference, &format!("{n} speeds"));
+    }
+    // dimensional.toml on 60 speeds: a quiet end at 0.954097 shared a step with a crossing
+    let d = dimensional();
+    let got = crossings(&d, &grid(2.2, 60), Balls::Free, &[1]);
+    assert!(got.iter().all(|k| (k.omega - 0.954097).abs() > 1e-5), "{got:?}");
+}
+
+#[test]
+fn two_pairs_changing_realness_in_one_step_are_both_searched() {
+    // linear_rotor_windows.toml (4 mode pairs, as the command runs it), harmonic 1: in the
+    // step [534, 538] of 500 speeds a pair lands on the real axis (535.529) and another leaves
+    // it (534.593, a forward 1× crossing), so the count of real eigenvalues is the same at both
+    // ends; the tracker swapped labels there and the leaving line was skipped because its
+    // conjugate (not itself changing realness on the grid) had a smaller index. Also missed on
+    // 100 and 240 speeds; found on 1000 and 8000. Also, a landing on the axis that its step
+    // judged the start of a run to the last speed (176.797) was reported on 60-240 speeds when
+    // a window around a local minimum of another line's ν̂ found it too. 240 and 500 speeds
+    // now give the 6 forward 1× crossings of 1000; 100 still misses 180.541 and 389.652.
+    use autobal::rotor_stability::Rotor;
+    let root = config::parse(include_str!("../../../examples/linear_rotor_windows.toml"), "test").unwrap();
+    let cfg = autobal::linear_rotor::config::linear_rotor(&root, &mut |_| Err("no files".into())).unwrap();
+    let rotor = Rotor::Linear(autobal::linear_rotor::reduce::reduce(&cfg.rotor, cfg.modes.unwrap(), &[]).unwrap().rotor);
+    let reference = general(&rotor, 2000.0, 1000, &[1]);
+    let forward = reference.iter().filter(|k| k.whirl == Whirl::Forward).count();
+    assert_eq!(forward, 6, "{reference:?}");
+    for n in [100, 240, 500] {
+        let got = general(&rotor, 2000.0, n, &[1]);
+        let found = got.iter().filter(|k| k.whirl == Whirl::Forward && (k.omega - 534.592578).abs() < 1e-4).count();
+        assert_eq!(found, 1, "{n} speeds: {got:?}");
+        if n >= 240 {
+            identical(&got, &reference, &format!("{n} speeds"));
+        }
+    }
+}

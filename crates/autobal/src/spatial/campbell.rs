@@ -30,9 +30,14 @@
 //!   bisected on the number of real eigenvalues itself, which changes exactly there, in every
 //!   bracket where the grid suggests a change (a step where the count or a line's realness
 //!   changes, a local minimum of a complex line's `ν̂`, a local minimum of `(λ_i − λ_j)²` of two
-//!   real lines neighbouring on the axis: `axis_crossings`). The end of a run
-//!   on the axis that starts at the first speed (a real mode whirling with the rotor from
-//!   rest), or the start of one that lasts to the last speed, is not a crossing.
+//!   real lines neighbouring on the axis: `axis_crossings`); in a step every line that changes
+//!   realness is searched on its own as well. The end of a run on the axis that starts at the
+//!   first speed (a real mode whirling with the rotor from rest), or the start of one that
+//!   lasts to the last speed, is not a crossing: each change of the count is attributed to
+//!   the lines changing realness in its step nearest, in `Re λ`, to where on the axis the
+//!   eigenvalues change, and is left out only where those lines' runs are such ends (another
+//!   end in the same step does not decide it, nor a window around a local minimum that finds
+//!   the same change).
 //! * `ν̂ = (h − 1)Ω`, `h ≥ 2`: the forward component at `hΩ`; `ν̂ = (h + 1)Ω`: the other
 //!   component backward at `−hΩ`. Bracketed by the sign of `ν̂ − (h ∓ 1)Ω` on the grid and
 //!   bisected on the model's eigenvalues (the pair's eigenvalue at a trial speed: the one
@@ -40,10 +45,16 @@
 //!   component's share there (`> ½` the major component, `< ½` the minor one; a component of
 //!   share below 1e-9, e.g. an isotropic rotor's, is no motion and has none).
 //!
-//! The jump of a drawn curve where it changes component is never a crossing. A crossing is
-//! missed only where two of them (of one pair and harmonic) fall within one grid step without
-//! a local minimum of `ν̂` (or of `(λ_i − λ_j)²` on the axis) between them, e.g. a curve
-//! grazing an excitation line. The mode number of a crossing is that of the curve of its pair
+//! The jump of a drawn curve where it changes component is never a crossing. A crossing of a
+//! component with `hΩ` off the axis is missed where two of them (of one pair and harmonic) fall
+//! within one grid step without a local minimum of `ν̂` between them, e.g. a curve grazing an
+//! excitation line. On the axis a change is missed where a line reaches and leaves it within
+//! one step without a local minimum of `ν̂` (or of `(λ_i − λ_j)²`) on the grid, or where a
+//! change that leaves the count of its step unchanged is followed by no line's own bisection
+//! (the nearest eigenvalue to the line's interpolated value is another one: on coarse grids
+//! where several pairs meet the axis within a step, e.g. examples/linear_rotor_windows.toml
+//! on 60 speeds); and an end is misjudged quiet or not where the lines' interpolated `Re λ`
+//! puts another line nearest. The mode number of a crossing is that of the curve of its pair
 //! at the nearest grid point (where pairs exchange partners on the real axis it follows the
 //! tracking).
 //!
@@ -420,11 +431,12 @@ fn bisect(mut lo: f64, mut hi: f64, mut pred: impl FnMut(f64) -> Result<bool>) -
 }
 
 /// Every speed in `[lo, hi]` where the number of real eigenvalues changes, found by bisection
-/// on the count itself (`c_lo`, `c_hi` the counts at the ends): the first change from `lo`,
+/// on the count itself (`c_lo`, `c_hi` the counts at the ends), as its final bracket `(a, b)`
+/// (the count differs at its ends; the speed is its middle): the first change from `lo`,
 /// then the next from there, until the count is `c_hi`. A change and its return inside one
 /// bracket (equal counts at its ends) are not seen here: the hints of [`axis_crossings`] find
 /// them.
-fn count_changes<S: Spectrum>(spec: &S, mut lo: f64, hi: f64, mut c_lo: usize, c_hi: usize, out: &mut Vec<f64>) -> Result<()> {
+fn count_changes<S: Spectrum>(spec: &S, mut lo: f64, hi: f64, mut c_lo: usize, c_hi: usize, out: &mut Vec<(f64, f64)>) -> Result<()> {
     // each change moves the count by at least one: no more changes than eigenvalues
     for _ in 0..64 {
         if c_lo == c_hi {
@@ -443,13 +455,35 @@ fn count_changes<S: Spectrum>(spec: &S, mut lo: f64, hi: f64, mut c_lo: usize, c
                 (b, cb) = (mid, c);
             }
         }
-        out.push(0.5 * (a + b));
+        out.push((a, b));
         if b >= hi {
             break;
         }
         (lo, c_lo) = (b, cb);
     }
     Ok(())
+}
+
+/// Where on the real axis the number of real eigenvalues changes across the bracket `(a, b)`
+/// of [`count_changes`]: the mean real part of the eigenvalues real on the side with more of
+/// them whose nearest eigenvalue on the other side is complex (the pair that reaches or leaves
+/// the axis there; the other real eigenvalues move by the bracket's width, ~1e-13, the changing
+/// ones by its square root, or linearly through the on-axis band). `None` where none is found.
+fn changed_at<S: Spectrum>(spec: &S, a: f64, b: f64) -> Result<Option<f64>> {
+    let (ea, eb) = (spec.eigenvalues(a)?, spec.eigenvalues(b)?);
+    let real = |z: &Complex64, w: f64| on_axis(z.im.abs(), w);
+    let (na, nb) = (ea.iter().filter(|z| real(z, a)).count(), eb.iter().filter(|z| real(z, b)).count());
+    let ((more, wm), (other, wo)) = if na >= nb { ((&ea, a), (&eb, b)) } else { ((&eb, b), (&ea, a)) };
+    let mut sum = 0.0;
+    let mut n = 0usize;
+    for z in more.iter().filter(|z| real(z, wm)) {
+        let near = other.iter().min_by(|p, q| (*p - z).norm().total_cmp(&(*q - z).norm()));
+        if near.is_some_and(|y| !real(y, wo)) {
+            sum += z.re;
+            n += 1;
+        }
+    }
+    Ok((n > 0).then(|| sum / n as f64))
 }
 
 /// The root of `g` in `[a, b]` (`g(a) = ga`, `g(b) = gb` of opposite signs) by the Illinois
@@ -528,25 +562,28 @@ fn axis_crossings<S: Spectrum>(l: &Lines, spec: &S, out: &mut Vec<Found>) -> Res
     let from_start = |i: usize, k: usize| (0..=k).all(|q| real(i, q));
     let to_end = |i: usize, k: usize| (k..n).all(|q| real(i, q));
     // (speed, line, quiet)
-    let mut ev: Vec<(f64, usize, bool)> = vec![];
+    // (speed, line, quiet, judged: attributed to the lines changing realness in its step)
+    let mut ev: Vec<(f64, usize, bool, bool)> = vec![];
     let mut speeds = vec![];
     for k in 0..n.saturating_sub(1) {
         let (Some(ca), Some(cb)) = (counts[k], counts[k + 1]) else { continue };
-        // the lines that change between real and complex in this step, and whether all of
-        // them are quiet ends
+        // the lines that change between real and complex in this step; a mover is a quiet end
+        // where its run on the axis reaches the first (last) grid point
         let movers: Vec<usize> = (0..nl).filter(|&i| (real(i, k) && complex(i, k + 1)) || (complex(i, k) && real(i, k + 1))).collect();
-        let quiet = !movers.is_empty() && movers.iter().all(|&i| if real(i, k) { from_start(i, k) } else { to_end(i, k + 1) });
-        let line = movers.first().copied().unwrap_or_else(|| {
+        let quiet_of = |i: usize| if real(i, k) { from_start(i, k) } else { to_end(i, k + 1) };
+        let fallback = || {
             (0..nl).min_by(|&a, &b| l.z[a][k].map_or(f64::INFINITY, |z| z.im.abs()).total_cmp(&l.z[b][k].map_or(f64::INFINITY, |z| z.im.abs()))).unwrap_or(0)
-        });
+        };
+        speeds.clear();
         if ca != cb {
-            speeds.clear();
             count_changes(spec, om[k], om[k + 1], ca, cb, &mut speeds)?;
-            ev.extend(speeds.iter().map(|&w| (w, line, quiet)));
         }
+        // every mover's own change (two events of the step can leave the count unchanged, and
+        // the tracker can swap labels there), each kept where the count changes; a mover is
+        // skipped only where a mover of smaller index carries its conjugate (the same pair)
         for &i in &movers {
             let pair = Pair { l, spec, line: i };
-            if pair.mirrored(if real(i, k) { k + 1 } else { k }).is_some() {
+            if pair.mirrored(if real(i, k) { k + 1 } else { k }).is_some_and(|j| movers.contains(&j)) {
                 continue;
             }
             let w = bisect(om[k], om[k + 1], |w| Ok(on_axis(pair.nu(k, k + 1, w)?, w)))?;
@@ -554,22 +591,38 @@ fn axis_crossings<S: Spectrum>(l: &Lines, spec: &S, out: &mut Vec<Found>) -> Res
             let (a, b) = ((w - e).max(om[k]), (w + e).min(om[k + 1]));
             let (c1, c2) = (count_at(spec, a)?, count_at(spec, b)?);
             if c1 != c2 {
-                speeds.clear();
                 count_changes(spec, a, b, c1, c2, &mut speeds)?;
-                let q = if real(i, k) { from_start(i, k) } else { to_end(i, k + 1) };
-                ev.extend(speeds.iter().map(|&w| (w, i, q)));
             }
+        }
+        // each change belongs to the mover(s) nearest, in Re λ interpolated at its speed, to
+        // where on the axis the eigenvalues change (both lines of a pair, or of a collision,
+        // lie there), and is quiet where they all are: another end of the same step does not
+        // make it one, nor it another
+        for &(a, b) in &speeds {
+            let w = 0.5 * (a + b);
+            let re = |i: usize| Pair { l, spec, line: i }.guess(k, k + 1, w, |q| l.z[i][q].unwrap_or_default()).re;
+            let (line, quiet) = match changed_at(spec, a, b)? {
+                Some(x) if !movers.is_empty() => {
+                    let d = |i: usize| (re(i) - x).abs();
+                    let d0 = movers.iter().map(|&i| d(i)).fold(f64::INFINITY, f64::min);
+                    let near: Vec<usize> = movers.iter().copied().filter(|&i| d(i) <= d0 + 1e-9 * (1.0 + x.abs())).collect();
+                    (near[0], near.iter().all(|&i| quiet_of(i)))
+                }
+                _ => (movers.first().copied().unwrap_or_else(fallback), false),
+            };
+            ev.push((w, line, quiet, true));
         }
     }
     // a window [lo, hi] around a local minimum at `w_min` that reaches the axis: the changes of
-    // the count on either side of it
-    let mut inside = |lo: usize, hi: usize, w_min: f64, line: usize, ev: &mut Vec<(f64, usize, bool)>| -> Result<()> {
+    // the count on either side of it, quiet on the side of a run that reaches the first
+    // (`q_lo`) or last (`q_hi`) speed
+    let mut inside = |lo: usize, hi: usize, w_min: f64, line: usize, (q_lo, q_hi): (bool, bool), ev: &mut Vec<(f64, usize, bool, bool)>| -> Result<()> {
         let c = count_at(spec, w_min)?;
-        for (a, b) in [(om[lo], w_min), (w_min, om[hi])] {
+        for (a, b, q) in [(om[lo], w_min, q_lo), (w_min, om[hi], q_hi)] {
             let (ca, cb) = if a == w_min { (c, count_at(spec, b)?) } else { (count_at(spec, a)?, c) };
             speeds.clear();
             count_changes(spec, a, b, ca, cb, &mut speeds)?;
-            ev.extend(speeds.iter().map(|&w| (w, line, false)));
+            ev.extend(speeds.iter().map(|&(x, y)| (0.5 * (x + y), line, q, false)));
         }
         Ok(())
     };
@@ -604,7 +657,8 @@ fn axis_crossings<S: Spectrum>(l: &Lines, spec: &S, out: &mut Vec<Found>) -> Res
             };
             let (w_min, nu_min) = golden_min(om[lo], om[hi], a, b, 0.0, f)?;
             if nu_min <= 0.0 {
-                inside(lo, hi, w_min, i, &mut ev)?;
+                // a complex line at both ends: its stretch on the axis reaches neither
+                inside(lo, hi, w_min, i, (false, false), &mut ev)?;
             }
         }
     }
@@ -643,7 +697,9 @@ fn axis_crossings<S: Spectrum>(l: &Lines, spec: &S, out: &mut Vec<Found>) -> Res
             // off the axis where the count of real eigenvalues drops below the window's (D < 0)
             let (w_min, d_min) = golden_min(om[lo], om[hi], a, b, 0.0, dd)?;
             if d_min < 0.0 {
-                inside(lo, hi, w_min, i, &mut ev)?;
+                // the two leave a run on the axis and return to one
+                let q = (from_start(i, lo) && from_start(j, lo), to_end(i, hi) && to_end(j, hi));
+                inside(lo, hi, w_min, i, q, &mut ev)?;
             }
         }
     }
@@ -660,8 +716,12 @@ fn axis_crossings<S: Spectrum>(l: &Lines, spec: &S, out: &mut Vec<Found>) -> Res
         }
         let g = &ev[i..j];
         let w = 0.5 * (g[0].0 + g[j - i - 1].0);
-        let pick = g.iter().find(|e| !e.2).unwrap_or(&g[0]);
-        out.push(Found { cs: cs(w), line: pick.1, quiet: g.iter().all(|e| e.2) });
+        // a change judged in its step is judged so: a window's search finds every change in
+        // it, also one of other lines that its step judged
+        let judged: Vec<_> = g.iter().filter(|e| e.3).collect();
+        let quiet = if judged.is_empty() { g.iter().all(|e| e.2) } else { judged.iter().all(|e| e.2) };
+        let pick = if judged.is_empty() { g.iter().find(|e| !e.2) } else { judged.iter().copied().find(|e| !e.2) }.unwrap_or(&g[0]);
+        out.push(Found { cs: cs(w), line: pick.1, quiet });
         i = j;
     }
     Ok(())
