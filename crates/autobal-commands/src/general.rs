@@ -182,7 +182,7 @@ pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64) -> String {
         r.points.iter().filter(|p| p.state == Some(autobal::rotor_stability::StateKind::PartiallyBalanced)).collect();
     if let (Some(a), Some(b)) = (partial.first(), partial.last()) {
         s.push_str(&format!(
-            "partially balanced (the balls' capacity falls short: a plane's balls bunched at its limit, or a couple no plane can cancel; a residual of {} of the unbalance) at {} of {} speeds, {} to {}: the verdicts there are the partially balanced state's\n",
+            "partially balanced (no balanced state exists: the balls' capacity falls short, a couple no plane can cancel, or, planar, below the speed where the semi-balanced state exists; a residual of {}: spatial and linear a fraction of the unbalance, planar the race centre's distance from the axis over its distance without the balls' resultant) at {} of {} speeds, {} to {}: the verdicts there are the partially balanced state's\n",
             residual_range(&partial),
             partial.len(),
             r.points.len(),
@@ -286,7 +286,7 @@ pub fn default_omega_max(g: &GeneralRotor, root: &Table) -> Result<f64> {
 
 /// The range `a to b` (or `a`) of the points' residuals (fraction of the unbalance,
 /// [`autobal::rotor_stability::SpeedPoint::residual`]), to 3 significant digits.
-fn residual_range(points: &[&autobal::rotor_stability::SpeedPoint]) -> String {
+pub(crate) fn residual_range(points: &[&autobal::rotor_stability::SpeedPoint]) -> String {
     let (lo, hi) = points.iter().filter_map(|p| p.residual).fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(v), h.max(v)));
     if !(lo <= hi) {
         return "unknown size".into();
@@ -314,7 +314,7 @@ pub(crate) fn residual_text(r: &autobal::rotor_stability::RotorStability, speed:
         "the balls do not cancel the unbalance exactly"
     };
     format!(
-        "balanced to a residual of {} of the unbalance (above 1e-6) at {} of {} speeds, {} to {} ({why})\n",
+        "balanced to a residual of {} of the unbalance (above the exact tolerance 1e-6; on a periodic orbit up to 0.1 is balanced, at an equilibrium only 1e-6) at {} of {} speeds, {} to {} ({why})\n",
         residual_range(&with),
         with.len(),
         r.points.len(),

@@ -261,7 +261,7 @@ pub fn stability_table(cfg: &LinearRotorConfig, r: &RotorStability, red: &Option
     s.push_str(&format!("natural frequencies at rest, balls as rings: {}\n", wn.iter().map(|w| speed_text(*w)).collect::<Vec<_>>().join(", ")));
     s.push_str(&reduction_text(red));
     s.push_str(&partial_text(cfg, r));
-    s.push_str(&crate::general::residual_text(r, speed_text));
+    s.push_str(&linear_residual_text(r));
     s.push_str(&crate::general::not_balanced_text(r, speed_text));
     if r.stable_ranges.is_empty() {
         s.push_str(&format!("stable: nowhere in (0, {}]\n", speed_text(omega_max)));
@@ -303,6 +303,26 @@ pub fn stability_table(cfg: &LinearRotorConfig, r: &RotorStability, red: &Option
         ));
     }
     Ok(s)
+}
+
+/// The line of `stability`'s table where the linear rotor's balanced states (its race-whirl
+/// rule, [`autobal::linear_rotor::partial::state_kind`]: no race centre whirling at more than a
+/// tenth of its whirl without the balls' resultant) leave a residual static unbalance above
+/// 1e-6 of the unbalance: the balls centre their races, which on a flexible shaft with the
+/// unbalance at other nodes (or on an orbit, the balls swinging) does not cancel the static
+/// unbalance; the line says so rather than "balanced to" it. Empty where there is none.
+fn linear_residual_text(r: &autobal::rotor_stability::RotorStability) -> String {
+    let with: Vec<_> =
+        r.points.iter().filter(|p| p.state == Some(autobal::rotor_stability::StateKind::Balanced) && p.residual.is_some_and(|v| v > 1e-6)).collect();
+    let (Some(a), Some(b)) = (with.first(), with.last()) else { return String::new() };
+    format!(
+        "balanced by the race-whirl rule (no race centre whirls at more than a tenth of its whirl without the balls' resultant), not by the residual: a residual static unbalance of {} of the unbalance (above the tolerance 1e-6) at {} of {} speeds, {} to {} (the balls centre their races; with the unbalance at other nodes, or swinging on an orbit, that does not cancel the static unbalance)\n",
+        crate::general::residual_range(&with),
+        with.len(),
+        r.points.len(),
+        speed_text(a.omega),
+        speed_text(b.omega)
+    )
 }
 
 /// The line of `stability`'s table where the balls cannot balance: no balanced state where the

@@ -260,14 +260,14 @@ impl Rotor {
     /// samples of [`crate::analysis::orbit_samples`], never its start alone, where the sag and
     /// the swing read as a whirl). Planar: E on the axis (residual at most `1e-6`), balanced
     /// or semi-balanced; else partially balanced with the balls bunched, not balanced without.
-    /// Spatial: residual at most `1e-6`, balanced; else partially balanced where a plane's
-    /// balls are bunched (at its capacity limit); else balanced (to the residual, which it
-    /// carries) while the residual is at most a tenth of the unbalance (a balanced orbit's
-    /// swing leaves its second order: on examples/spatial_two_plane.toml 1e-6..1e-3 below ~600
-    /// rad/s); above that not balanced where the balls' capacity could cancel the unbalance
-    /// (the closed-form placement leaves at most a tenth of it: two balls opposite each other
-    /// in each plane leave all of it), partially balanced where it could not (one plane against
-    /// a couple about it). Linear: [`crate::linear_rotor::partial::state_kind`] (the race
+    /// Spatial: residual at most `1e-6`, balanced; else partially balanced where no balanced
+    /// state exists (decided in closed form, whatever the balls' bunching: the capacity short
+    /// for the static unbalance, or one ball plane against a nonzero couple about it,
+    /// `spatial_can_balance`); else, on a periodic orbit, balanced (to the residual, which it
+    /// carries) while the residual is at most a tenth of the unbalance (the swing's second
+    /// order: on examples/spatial_two_plane.toml 1e-6..1e-3 below ~600 rad/s); else not
+    /// balanced (at an equilibrium a balanced state's residual is Newton's: any residual above
+    /// `1e-6` there is not balanced). Linear: [`crate::linear_rotor::partial::state_kind`] (the race
     /// centres' mean whirl against their whirl without the balls' resultant).
     pub fn state_kind(field: &Field, x: &[f64]) -> StateKind {
         Rotor::classify(field, x).0
@@ -300,26 +300,23 @@ impl Rotor {
             }
             Field::Spatial(s) => {
                 // the residual static and couple unbalance (each ball's e^{iψ} its mean over the
-                // revolution on a periodic orbit: balanced means cancelling it on average); a
-                // plane at its capacity limit: its balls bunched (they stay bunched along an
-                // orbit: equal balls from equal starts follow equal paths)
-                let psi = ball_angles(field, x);
-                let mut j = 0;
-                let mut any_bunched = false;
-                for p in s.rotor().planes.iter().filter(|p| p.n > 0) {
-                    any_bunched |= p.n >= 2 && bunched(&psi[j..j + p.n]);
-                    j += p.n;
-                }
+                // revolution on a periodic orbit: balanced means cancelling it on average).
+                // Whether the balls can cancel the unbalance at all is decided in closed form
+                // (capacity, one plane against a couple about it), whatever their bunching;
+                // where they can, a residual above 1e-6 is balanced only on a periodic orbit
+                // (the swing's second order, at most NOT_REDUCED; an equilibrium has no swing).
+                // The swing's own estimate Σ m_b R (1 − |⟨e^{iψ}⟩|) / u does not bound it: the
+                // residual is 60 to 740 times it on the gravity cases of
+                // tests/state_kind_orbits.rs (independent of g: both second order), while the
+                // opposite-ball orbit's (~1) is ~1e3 times its own, so no factor separates them
                 if r <= BALANCED_EXACTLY {
                     StateKind::Balanced
-                } else if any_bunched {
+                } else if !spatial_can_balance(s) {
                     StateKind::PartiallyBalanced
-                } else if r <= NOT_REDUCED {
+                } else if field.period().is_some() && r <= NOT_REDUCED {
                     StateKind::Balanced
-                } else if spatial_can_balance(s) {
-                    StateKind::NotBalanced
                 } else {
-                    StateKind::PartiallyBalanced
+                    StateKind::NotBalanced
                 }
             }
         };
@@ -376,8 +373,7 @@ impl Rotor {
                         j += 1;
                     }
                 }
-                let u = s0[0].hypot(s0[1]);
-                s[0].hypot(s[1]) / if u > 0.0 { u } else { cap.max(f64::MIN_POSITIVE) }
+                s[0].hypot(s[1]) / unbalance_scale(s0[0].hypot(s0[1]), cap)
             }
             Field::Planar(f) => {
                 use num_complex::Complex64 as C;
@@ -442,7 +438,9 @@ pub struct SpeedPoint {
     /// The residual unbalance the balls leave in that state, as a fraction of the rotor's
     /// unbalance ([`Rotor::residual`]: on a periodic orbit the balls' positions averaged over
     /// the revolution; planar: the race centre's distance from the axis over the eccentricity
-    /// scale); `None` without a state. A balanced state carries the residual it is balanced
+    /// scale; the unbalance as the scale but at least `1e-6` of the balls' capacity `Σ m_b R`,
+    /// so an unbalance that cancels reads its balls' resultant over that); `None` without a
+    /// state. A balanced state carries the residual it is balanced
     /// to: ~1e-10 at an equilibrium, on an orbit the second-order residual of the balls' swing.
     pub residual: Option<f64>,
     /// The balls' angles of the state analysed here (rad, all planes in order): with a family
@@ -461,12 +459,14 @@ pub struct SpeedPoint {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum StateKind {
-    /// The balls cancel the unbalance: the rotor turns about its axis (planar: the race
-    /// centred, `s2 = 0`; spatial and linear: the residual [`Rotor::residual`] at most `1e-6`
-    /// of the unbalance, or at most a tenth of it with no plane's balls bunched: on a periodic
-    /// orbit the balls swing and cancel the unbalance on average but for the swing's second
-    /// order, ∝ g² under gravity, and the rotor whirls once a revolution about its sag as that
-    /// residual makes it; [`SpeedPoint::residual`] carries it).
+    /// The balls cancel the unbalance: the rotor turns about its axis. Spatial: the residual
+    /// [`Rotor::residual`] at most `1e-6` of the unbalance, or, on a periodic orbit only and
+    /// where a balanced state exists, at most a tenth of it (the balls swing and cancel the
+    /// unbalance on average but for the swing's second order, ∝ g² under gravity;
+    /// [`SpeedPoint::residual`] carries it). Planar: the race centred, `s2 = 0`, E on the axis.
+    /// Linear: the race-whirl rule of [`crate::linear_rotor::partial::state_kind`] (no plane's
+    /// race whirls at more than a tenth of its whirl without the balls' resultant); its residual
+    /// is the static one only (the linear rotor's nodes carry no axial positions).
     Balanced,
     /// Paper 004's eccentric race: the race centre E on the axis, the disk whirling at `s2`.
     SemiBalanced,
@@ -487,7 +487,7 @@ pub enum StateKind {
     /// rotor's E off the axis with the balls not bunched, the linear rotor's race whirling (mean
     /// over an orbit) at more than a tenth of its whirl without the balls' resultant
     /// ([`crate::linear_rotor::partial::state_kind`]), the spatial rotor's residual above a
-    /// tenth of the unbalance.
+    /// tenth of the unbalance (at an equilibrium above `1e-6`) where a balanced state exists.
     NotBalanced,
 }
 
@@ -1008,21 +1008,28 @@ fn spatial_residual(r: &SpatialRotor, units: &[[f64; 2]]) -> f64 {
             j += 1;
         }
     }
-    let u = s0[0].hypot(s0[1]).max(c0[0].hypot(c0[1]) / zl);
-    let u = if u > 0.0 { u } else { cap.max(f64::MIN_POSITIVE) };
-    rs[0].hypot(rs[1]).max(rc[0].hypot(rc[1]) / zl) / u
+    rs[0].hypot(rs[1]).max(rc[0].hypot(rc[1]) / zl) / unbalance_scale(s0[0].hypot(s0[1]).max(c0[0].hypot(c0[1]) / zl), cap)
 }
 
-/// Whether the spatial rotor's balls can cancel its unbalance: the closed-form placement
-/// ([`SpatialField::balanced_guess`]: each plane's balls on the arc of its share) exists and
-/// leaves at most [`NOT_REDUCED`] of it (one plane cancels the static unbalance only: a couple
-/// about it stays).
+/// The denominator of a residual: the unbalance `u` (kg m), but at least `1e-6` of the balls'
+/// capacity `cap = Σ m_b R` (an unbalance that cancels, or none, leaves rounding noise that
+/// must not become the scale: Newton leaves the balls' resultant to ~1e-14 of `cap`, measured
+/// on a linear shaft with a pure couple at 1001 rad/s, which a `1e-9 cap` floor read as 1e-5,
+/// "balanced above 1e-6"; an unbalance below 1e-6 of the capacity is none to speak of).
+fn unbalance_scale(u: f64, cap: f64) -> f64 {
+    u.max(1e-6 * cap).max(f64::MIN_POSITIVE)
+}
+
+/// Whether the spatial rotor's balls can cancel its unbalance (a balanced state exists): the
+/// closed-form placement ([`SpatialField::balanced_guess`]: each plane's balls on the arc of
+/// its share) exists (the capacity suffices) and leaves at most [`BALANCED_EXACTLY`] of it (one
+/// plane cancels the static unbalance only: a nonzero couple about it stays).
 fn spatial_can_balance(s: &SpatialField) -> bool {
     let Some(g) = s.balanced_guess() else { return false };
     let m = s.coords();
     let nb = s.rotor().balls();
     let units: Vec<[f64; 2]> = g[m - nb..m].iter().map(|a| [a.cos(), a.sin()]).collect();
-    spatial_residual(s.rotor(), &units) <= NOT_REDUCED
+    spatial_residual(s.rotor(), &units) <= BALANCED_EXACTLY
 }
 
 /// The planar rotor's eccentricity scale `s1 + s2 + n m3 r / M` (m).
