@@ -259,7 +259,8 @@ impl Rotor {
     /// ([`Rotor::residual`]: on a periodic orbit the mean over the revolution, the orbit's 64
     /// samples of [`crate::analysis::orbit_samples`], never its start alone, where the sag and
     /// the swing read as a whirl). Planar: E on the axis (residual at most `1e-6`), balanced
-    /// or semi-balanced; else partially balanced with the balls bunched, not balanced without.
+    /// or semi-balanced; else partially balanced with the balls bunched; else, on a periodic
+    /// orbit only, (semi-)balanced to the residual while it is at most a tenth; not balanced.
     /// Spatial: residual at most `1e-6`, balanced; else partially balanced where no balanced
     /// state exists (decided in closed form, whatever the balls' bunching: the capacity short
     /// for the static unbalance, or one ball plane against a nonzero couple about it,
@@ -285,14 +286,15 @@ impl Rotor {
                 // E on the axis (to 1e-6 of its whirl without the balls' resultant):
                 // (semi-)balanced; on a periodic orbit E's mean position over the revolution
                 // (its once-per-revolution whirl in fixed axes: the orbit's start alone reads
-                // the swing as a whirl); the balls bunched: partially balanced; else (semi-)
-                // balanced to the residual while it is at most a tenth, not balanced above
+                // the swing as a whirl); the balls bunched: partially balanced; else, on a
+                // periodic orbit only (an equilibrium has no swing to leave a residual),
+                // (semi-)balanced to the residual while it is at most a tenth; not balanced
                 let balanced = if p.s2 == 0.0 { StateKind::Balanced } else { StateKind::SemiBalanced };
                 if r <= BALANCED_EXACTLY {
                     balanced
                 } else if bunched(&ball_angles(field, x)) {
                     StateKind::PartiallyBalanced
-                } else if r <= NOT_REDUCED {
+                } else if field.period().is_some() && r <= NOT_REDUCED {
                     balanced
                 } else {
                     StateKind::NotBalanced
