@@ -324,14 +324,15 @@ pub(crate) fn residual_text(r: &autobal::rotor_stability::RotorStability, speed:
 }
 
 /// The line of `stability`'s table where the state analysed is not balanced
-/// ([`autobal::rotor_stability::StateKind::NotBalanced`]: the balls, not bunched, leave more
-/// than a tenth of an unbalance their capacity could cancel; at an equilibrium they rest on the
-/// line of a whirl), with its speeds and residuals; empty where there is none.
+/// ([`autobal::rotor_stability::StateKind::NotBalanced`]: a balanced state exists, but the balls
+/// of this one leave more than the tolerance of the unbalance (at an equilibrium 1e-6, there
+/// they rest on the line of a whirl; on a periodic orbit 0.1)), with its speeds and residuals;
+/// empty where there is none.
 pub(crate) fn not_balanced_text(r: &autobal::rotor_stability::RotorStability, speed: impl Fn(f64) -> String) -> String {
     let nb: Vec<_> = r.points.iter().filter(|p| p.state == Some(autobal::rotor_stability::StateKind::NotBalanced)).collect();
     let (Some(a), Some(b)) = (nb.first(), nb.last()) else { return String::new() };
     format!(
-        "not balanced (the balls, not bunched, leave a residual of {} of an unbalance their capacity could cancel{}) at {} of {} speeds, {} to {}: the verdicts there are that state's, not the balanced state's\n",
+        "not balanced (the balls leave a residual of {} of an unbalance their capacity could cancel{}) at {} of {} speeds, {} to {}: the verdicts there are that state's, not the balanced state's\n",
         residual_range(&nb),
         if r.kind == Kind::PeriodicOrbit { "" } else { ": at rest on the line of the whirl" },
         nb.len(),
@@ -364,6 +365,6 @@ mod tests {
         let t = table(&g, &r, 600.0);
         assert!(!t.contains("\nstable: "), "{t}");
         assert!(t.contains("\nnot balanced, stable: "), "{t}");
-        assert!(t.contains("\nnot balanced (the balls, not bunched, leave a residual of "), "{t}");
+        assert!(t.contains("\nnot balanced (the balls leave a residual of "), "{t}");
     }
 }
