@@ -14,22 +14,7 @@ use autobal::spatial::dynamics::{BallPlane, PointMass, RigidRotor, SpatialField,
 use std::f64::consts::PI;
 
 mod common;
-use common::{all_eigenvalues, match_distance, per_revolution};
-
-/// The spatial rotor with its tilt locked on one support: mass `M_r` plus an unbalance mass
-/// `m_u` at radius `ρ`, supports `k_x, k_y`, damping `c`, two balls `m_b` on a race of radius
-/// `R` with drag `h_A` (force `h_A R ψ̇`), gravity `(g_x, g_y)` across the axis.
-fn spatial(k: [f64; 2], g: [f64; 2]) -> SpatialRotor {
-    SpatialRotor {
-        rotor: RigidRotor { mass: 10.0, equatorial_moment: 0.5, polar_moment: 0.2, z: 0.0, axis_tilt: 0.0, axis_tilt_angle: 0.0 },
-        supports: vec![Support { z: 0.0, stiffness: k, damping: [40.0, 40.0] }],
-        unbalances: vec![PointMass { mass: 0.01, radius: 0.1, angle: 0.3, z: 0.0 }],
-        planes: vec![BallPlane { z: 0.0, n: 2, ball_mass: 0.02, race_radius: 0.1, drag: 0.5, physics: Default::default() }],
-        gravity: [g[0], g[1], 0.0],
-        spin_drag: 0.0,
-        lock_tilt: true,
-    }
-}
+use common::{all_eigenvalues, locked_tilt_jeffcott, match_distance, per_revolution};
 
 /// The same rotor as a linear rotor (one node, `x, y`): `M = (M_r + m_u) I` (the unbalance mass
 /// moves with the node), `K = diag(k_x, k_y)`, `C = c I`, the unbalance `m·e = m_u ρ` at its
@@ -82,14 +67,14 @@ fn gravity_orbit_and_multipliers_equal_the_spatial_models() {
     for (k, g, w) in
         [([1e5, 1e5], [0.0, -9.81], 150.0), ([1e5, 1e5], [3.0, -9.0], 80.0), ([1e5, 1.3e5], [0.0, -9.81], 180.0), ([1e5, 1.3e5], [-2.0, -9.81], 70.0)]
     {
-        let sp = spatial(k, g);
+        let sp = locked_tilt_jeffcott(k, g);
         let lin = linear(&sp);
         let fs = SpatialField::new(&sp, w).unwrap();
         let fl = LinearRotorField::new(&lin, w, Frame::Rotating).unwrap();
         assert_eq!(fl.period(), Some(2.0 * PI / w));
         assert_eq!(fs.period(), fl.period());
         // without gravity first: equilibria (isotropic) or orbits of π/Ω, one model
-        let (sp0, lin0) = (spatial(k, [0.0, 0.0]), linear(&spatial(k, [0.0, 0.0])));
+        let (sp0, lin0) = (locked_tilt_jeffcott(k, [0.0, 0.0]), linear(&locked_tilt_jeffcott(k, [0.0, 0.0])));
         let fs0 = SpatialField::new(&sp0, w).unwrap();
         let fl0 = LinearRotorField::new(&lin0, w, Frame::Rotating).unwrap();
         let (_, ss0) = analyse(&fs0, &fs0.balanced_guess().unwrap());
@@ -146,7 +131,7 @@ fn time_run_at_a_stable_speed_stays_on_the_orbit() {
             self.0.rhs(t, y, dy)
         }
     }
-    let lin = linear(&spatial([1e5, 1.3e5], [1.0, -9.81]));
+    let lin = linear(&locked_tilt_jeffcott([1e5, 1.3e5], [1.0, -9.81]));
     let w = 180.0;
     let rot = LinearRotorField::new(&lin, w, Frame::Rotating).unwrap();
     let fix = LinearRotorField::new(&lin, w, Frame::Fixed).unwrap();
@@ -184,7 +169,7 @@ fn time_run_at_a_stable_speed_stays_on_the_orbit() {
 /// abscissa's slope in `Ω`).
 #[test]
 fn stability_over_speed_with_gravity_is_the_spatial_models() {
-    let sp = spatial([1e5, 1e5], [0.0, -9.81]);
+    let sp = locked_tilt_jeffcott([1e5, 1e5], [0.0, -9.81]);
     let lin = linear(&sp);
     let speeds: Vec<f64> = (0..8).map(|i| 75.0 + 20.0 * i as f64).collect();
     let l = autobal::linear_rotor::stability::stability_over_speed(&lin, &speeds).unwrap();
@@ -313,7 +298,7 @@ fn tilting_preset_under_gravity_against_the_spatial_model() {
 #[test]
 fn tilt_locked_preset_is_the_hand_written_rotor() {
     for (k, g) in [([1e5, 1e5], [0.0, -9.81]), ([1e5, 1.3e5], [-2.0, -9.81])] {
-        let s = spatial(k, g);
+        let s = locked_tilt_jeffcott(k, g);
         let p = LinearRotor::from_spatial(&s).unwrap();
         let mut h = linear(&s);
         h.polar_inertia = s.rotor.polar_moment + s.unbalances[0].mass * s.unbalances[0].radius.powi(2);

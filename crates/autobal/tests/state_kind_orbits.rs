@@ -7,8 +7,10 @@ use autobal::analysis::{stability, stationary, NewtonOptions, VectorField, Verdi
 use autobal::linear_rotor::{BalancerPlane, Frame, Layout, LinearRotor, LinearRotorField, Unbalance};
 use autobal::ode::{Control, Method, Options, Solver, System};
 use autobal::rotor_stability::{Rotor, StateKind};
-use autobal::spatial::dynamics::{BallPlane, PointMass, RigidRotor, SpatialRotor, Support};
 use std::f64::consts::{PI, TAU};
+
+mod common;
+use common::locked_tilt_jeffcott;
 
 /// A Jeffcott rotor as a linear rotor (one node, `x, y`): mass 10.01 kg, supports `k`, damping
 /// 40 kg/s, the unbalance `m e = 1e-3` kg·m at 0.3 rad, two balls of 0.02 kg on a race of 0.1 m
@@ -78,20 +80,6 @@ fn fixed_axes_run(fix: &LinearRotorField, w: f64, y0: &[f64], settle: usize, sam
     (units, whirl)
 }
 
-/// The spatial rotor of [`jeffcott`] with its tilt locked (tests/linear_rotor_gravity.rs: the
-/// same physics written independently, a rigid body with point masses in turning axes).
-fn spatial(k: [f64; 2], g: [f64; 2]) -> SpatialRotor {
-    SpatialRotor {
-        rotor: RigidRotor { mass: 10.0, equatorial_moment: 0.5, polar_moment: 0.2, z: 0.0, axis_tilt: 0.0, axis_tilt_angle: 0.0 },
-        supports: vec![Support { z: 0.0, stiffness: k, damping: [40.0, 40.0] }],
-        unbalances: vec![PointMass { mass: 0.01, radius: 0.1, angle: 0.3, z: 0.0 }],
-        planes: vec![BallPlane { z: 0.0, n: 2, ball_mass: 0.02, race_radius: 0.1, drag: 0.5, physics: Default::default() }],
-        gravity: [g[0], g[1], 0.0],
-        spin_drag: 0.0,
-        lock_tilt: true,
-    }
-}
-
 /// The residual unbalance `|s0 + Σ m_b R ⟨e^{iψ}⟩| / |s0|` of [`jeffcott`]'s balls at the mean
 /// `units`.
 fn residual_of(units: &[[f64; 2]]) -> [f64; 2] {
@@ -140,7 +128,7 @@ fn a_balanced_orbit_under_gravity_carries_the_residual_a_fixed_axes_run_finds() 
         let r = Rotor::residual(&f, &s.x);
         assert!(r > 1e-4, "a residual well above the exact tolerance: {r:e}");
         // the spatial model's
-        let sp = Rotor::Spatial(spatial([1e5, 1.3e5], g));
+        let sp = Rotor::Spatial(locked_tilt_jeffcott([1e5, 1.3e5], g));
         let fs = sp.field(w).unwrap();
         let ss = stationary(&fs, &Rotor::guess(&fs).unwrap(), &NewtonOptions::default()).unwrap();
         assert_eq!(Rotor::state_kind(&fs, &ss.x), StateKind::Balanced, "g {g:?}");

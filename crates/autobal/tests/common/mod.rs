@@ -294,3 +294,20 @@ pub fn full_variational_flow<F: autobal::analysis::VectorField>(f: &F, x0: &[f64
     assert!(solver.integrate(0.0, &mut y, t, |_| Control::Continue).status.is_completed());
     y
 }
+
+/// The spatial rotor with its tilt locked on one support (a Jeffcott rotor in turning axes):
+/// mass `M_r` = 10 kg plus an unbalance mass 0.01 kg at radius 0.1 m, supports `k_x, k_y`,
+/// damping 40 N s/m, two balls of 0.02 kg on a race of radius 0.1 m with drag `h_A` = 0.5
+/// (force `h_A R ψ̇`), gravity `(g_x, g_y)` across the axis (tests/linear_rotor_gravity.rs,
+/// tests/state_kind_orbits.rs).
+pub fn locked_tilt_jeffcott(k: [f64; 2], g: [f64; 2]) -> SpatialRotor {
+    SpatialRotor {
+        rotor: RigidRotor { mass: 10.0, equatorial_moment: 0.5, polar_moment: 0.2, z: 0.0, axis_tilt: 0.0, axis_tilt_angle: 0.0 },
+        supports: vec![Support { z: 0.0, stiffness: k, damping: [40.0, 40.0] }],
+        unbalances: vec![PointMass { mass: 0.01, radius: 0.1, angle: 0.3, z: 0.0 }],
+        planes: vec![BallPlane { z: 0.0, n: 2, ball_mass: 0.02, race_radius: 0.1, drag: 0.5, physics: Default::default() }],
+        gravity: [g[0], g[1], 0.0],
+        spin_drag: 0.0,
+        lock_tilt: true,
+    }
+}
