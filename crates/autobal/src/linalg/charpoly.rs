@@ -686,6 +686,54 @@ fn routh_rows_n(c: &[f64], n: usize) -> Option<usize> {
     Some(changes)
 }
 
+/// Whether no root of `Σ_k c_k λ^{12−k}` (degree 12, `c_0 = 1`) has `Re λ ≥ s` or lies where
+/// Routh's array is singular: exactly `routh_count_right_of(c, s) == Some(0)`, by the same
+/// operations on the same values (the Taylor shift, then the Routh rows of
+/// [`routh_rows_12`]), with the count replaced by what a zero count means. The count is `Some(0)`
+/// iff the shifted coefficients are finite with `c_0 > 0`, every first-column entry is non-zero
+/// with no change of sign from `c_0 > 0` (all `> 0`: a NaN counts as a change there), and every
+/// quotient `q` is finite; here each of these is a flag and-ed in (no branch per row, no count).
+#[inline(always)]
+fn routh_none_right_of_12(c: &[f64; 13], s: f64) -> bool {
+    #[inline(always)]
+    fn step<const L: usize>(t: &mut [f64; 8], b: &[f64; 8], ok: &mut bool) {
+        let lead = b[0];
+        let q = t[0] / lead;
+        *ok &= (lead > 0.0) & (q.abs() < f64::INFINITY);
+        for j in 0..L {
+            t[j] = t[j + 1] - q * b[j + 1];
+        }
+        t[L] = 0.0;
+    }
+    let c = taylor_shift_fixed(c, s);
+    let mut ok = (c[0] > 0.0) & c.iter().fold(true, |ok, x| ok & (x.abs() < f64::INFINITY));
+    let mut e = [c[0], c[2], c[4], c[6], c[8], c[10], c[12], 0.0];
+    let mut o = [c[1], c[3], c[5], c[7], c[9], c[11], 0.0, 0.0];
+    step::<6>(&mut e, &o, &mut ok);
+    step::<5>(&mut o, &e, &mut ok);
+    step::<5>(&mut e, &o, &mut ok);
+    step::<4>(&mut o, &e, &mut ok);
+    step::<4>(&mut e, &o, &mut ok);
+    step::<3>(&mut o, &e, &mut ok);
+    step::<3>(&mut e, &o, &mut ok);
+    step::<2>(&mut o, &e, &mut ok);
+    step::<2>(&mut e, &o, &mut ok);
+    step::<1>(&mut o, &e, &mut ok);
+    step::<1>(&mut e, &o, &mut ok);
+    step::<0>(&mut o, &e, &mut ok);
+    ok
+}
+
+/// `routh_count_right_of(c, s) == Some(0)`: no root with `Re λ > s` and Routh's array regular;
+/// for degree 12 by the Routh rows of 12 written over in turn (the same arithmetic, flags instead of a count).
+#[inline]
+pub fn routh_none_right_of(c: &[f64], s: f64) -> bool {
+    match <&[f64; 13]>::try_from(c) {
+        Ok(c) => routh_none_right_of_12(c, s),
+        Err(_) => routh_count_right_of(c, s) == Some(0),
+    }
+}
+
 /// Number of roots with `Re λ > s` (Routh's theorem on the shifted polynomial); `None` in the
 /// singular case.
 pub fn routh_count_right_of(c: &[f64], s: f64) -> Option<usize> {
@@ -710,7 +758,7 @@ pub fn modulus(z: Complex64) -> f64 {
 }
 
 /// `p(z)` and `p'(z)` for `p(λ) = Σ_k c_k λ^{N−k}` (complex Horner).
-#[inline]
+#[inline(always)]
 pub fn eval_with_derivative(c: &[f64], z: Complex64) -> (Complex64, Complex64) {
     let mut p = Complex64::new(c[0], 0.0);
     let mut dp = Complex64::new(0.0, 0.0);
@@ -748,6 +796,7 @@ pub fn polish_root(c: &[f64], mut z: Complex64, iterations: usize, tol: f64) -> 
 /// the rounding. Without `e_p` two starts that converged to one root could carry disjoint disks
 /// of radius ~1e-20 about points 5e-19 apart, and be taken for two roots. `None` when `p'` is not
 /// known to be non-zero.
+#[inline(always)]
 fn inclusion_radius(c: &[f64], z: Complex64, p: Complex64, dp: Complex64) -> Option<f64> {
     let n = c.len() - 1;
     let a = modulus(z);
@@ -785,6 +834,39 @@ fn converge(c: &[f64], mut z: Complex64, accept: f64) -> Option<(Complex64, f64)
     None
 }
 
+/// The Newton step `p(z)/p'(z)` of a real polynomial `p(λ) = Σ_k c_k λ^{N−k}` (`N ≥ 4`) in real
+/// arithmetic: `p` divided by the real quadratic `(λ − z)(λ − z̄) = λ² − tλ + s` (`t = 2 Re z`,
+/// `s = |z|²`; Bairstow's recurrence `b_k = c_k + t b_{k−1} − s b_{k−2}`) leaves the remainder
+/// `b_{N−1}(λ − t) + b_N`, so `p(z) = b_N − x b_{N−1} + i y b_{N−1}` (`z = x + iy`); the quotient
+/// `Q` divided again (`d_k`) gives `Q(z)`, and `p'(z) = Q(z)(2z − t) + b_{N−1} = 2iy Q(z) + b_{N−1}`.
+/// Four real multiply-adds a coefficient against eight for complex Horner with its derivative.
+/// Its rounding is not bounded here: it only moves a start (the certificate is evaluated by
+/// [`eval_with_derivative`]). `None` for `N < 4`, or where the step is not finite.
+#[inline(always)]
+fn real_newton_step(c: &[f64], z: Complex64) -> Option<Complex64> {
+    let n = c.len() - 1;
+    if n < 4 {
+        return None;
+    }
+    let (x, y) = (z.re, z.im);
+    let (t, s) = (2.0 * x, x * x + y * y);
+    let (mut b2, mut b1) = (c[0], c[1] + t * c[0]);
+    let (mut d2, mut d1) = (b2, b1 + t * b2);
+    for k in 2..n - 1 {
+        let b = c[k] + t * b1 - s * b2;
+        let d = b + t * d1 - s * d2;
+        (b2, b1, d2, d1) = (b1, b, d1, d);
+    }
+    // b1 = b_{N−2}, b2 = b_{N−3}; d1 = d_{N−2}, d2 = d_{N−3}
+    let bn1 = c[n - 1] + t * b1 - s * b2;
+    let bn = c[n] + t * bn1 - s * b1;
+    let p = Complex64::new(bn - x * bn1, y * bn1);
+    let q = Complex64::new(d1 - x * d2, y * d2);
+    let dp = Complex64::new(bn1 - 2.0 * y * q.im, 2.0 * y * q.re);
+    let step = p / dp;
+    step.is_finite().then_some(step)
+}
+
 /// Newton on the polynomial from `z` until the step certifies the root to `accept` (relative
 /// to `1 + |z|`): at a point `z` with step `σ = p(z)/p'(z)`, the disk of radius
 /// `r = N (|p| + e_p) / (|p'| − e_p')` ([`inclusion_radius`]) about `z` holds a root, so the
@@ -793,9 +875,22 @@ fn converge(c: &[f64], mut z: Complex64, accept: f64) -> Option<(Complex64, f64)
 /// that small (`r ≥ N |σ|`). From a start a continuation predicts (`|z₀ − root| ≲ 1e-6`) this
 /// is two evaluations where iterating to round-off ([`converge`]) takes three or four; the point
 /// returned is Newton's next iterate, within `K σ²` of the root, the radius the certified bound.
+/// The first step, which certifies nothing from such a start, is the cheaper real one
+/// ([`real_newton_step`]); every point certified is evaluated by complex Horner with its
+/// rounding bounded.
+#[inline(always)]
 fn converge_to(c: &[f64], mut z: Complex64, accept: f64) -> Option<(Complex64, f64)> {
     let n = (c.len() - 1) as f64;
     let mut last = f64::INFINITY;
+    // the first step from the prediction (~1e-7 off) certifies nothing in practice: taken from
+    // the cheaper real evaluation where that is finite and the step not already certifying
+    if let Some(step) = real_newton_step(c, z) {
+        let s = modulus(step);
+        if n * s > accept * (1.0 + modulus(z)) {
+            z -= step;
+            last = s;
+        }
+    }
     for it in 0..16 {
         let (p, dp) = eval_with_derivative(c, z);
         if dp == Complex64::new(0.0, 0.0) || !p.is_finite() || !dp.is_finite() {
@@ -827,8 +922,8 @@ fn converge_to(c: &[f64], mut z: Complex64, accept: f64) -> Option<(Complex64, f
 ///
 /// At each speed, three routes in turn, the first that certifies its answer wins:
 /// 1. **the rightmost root**: Newton's method on the characteristic polynomial from the
-///    rightmost root of the previous speeds (extrapolated by the parabola through the last
-///    three), then Routh's count of the roots right of `Re z + δ` must be zero (`δ` = the Newton
+///    rightmost root of the previous speeds (extrapolated by the cubic through the last four
+///    on equal steps, by the parabola through the last three otherwise), then Routh's count of the roots right of `Re z + δ` must be zero (`δ` = the Newton
 ///    inclusion radius plus [`AbscissaTracker::GAP`]): the abscissa is within `δ ≤ ACCEPT (1 +
 ///    |λ|) + GAP` of the true one. Where the root was real and that fails, Newton again from
 ///    the pair of the quadratic Taylor model about the prediction (two real roots that met and
@@ -849,7 +944,7 @@ fn converge_to(c: &[f64], mut z: Complex64, accept: f64) -> Option<(Complex64, f
 /// 1 or 2 answered, and exact to the full solver's accuracy otherwise.
 #[derive(Debug, Clone, Default)]
 pub struct AbscissaTracker {
-    hist: [(f64, Complex64); 3],
+    hist: [(f64, Complex64); 4],
     len: usize,
     /// The whole spectrum at the last speed that had one (route 2 or 3); `nroots` of them (0:
     /// none yet).
@@ -957,18 +1052,27 @@ impl AbscissaTracker {
         best.re
     }
 
-    /// The rightmost root at `omega` extrapolated from the history: the parabola through the
-    /// last three speeds (Lagrange; error O(h³)), the line through two, or the last root.
+    /// The rightmost root at `omega` extrapolated from the history: on equal steps (a grid's
+    /// speeds: the last four and `omega` equally spaced to 1e-9 of a step) the cubic through the
+    /// last four speeds, `4 z₃ − 6 z₂ + 4 z₁ − z₀` (error O(h⁴)); otherwise the parabola through
+    /// the last three (Lagrange; error O(h³)), the line through two, or the last root.
     fn predict(&self, omega: f64) -> Option<Complex64> {
         let (w1, z1) = *self.hist[..self.len].last()?;
         Some(match self.len {
-            3 => {
-                let [(a, za), (b, zb), (c, zc)] = self.hist;
-                let la = (omega - b) * (omega - c) / ((a - b) * (a - c));
-                let lb = (omega - a) * (omega - c) / ((b - a) * (b - c));
-                let lc = (omega - a) * (omega - b) / ((c - a) * (c - b));
-                za * la + zb * lb + zc * lc
+            4 => {
+                let [(a, za), (b, zb), (c, zc), (d, zd)] = self.hist;
+                let h = omega - d;
+                let tol = 1e-9 * h.abs();
+                if ((d - c) - h).abs() <= tol && ((c - b) - h).abs() <= tol && ((b - a) - h).abs() <= tol {
+                    // Newton's backward differences: z₃ + ∇z₃ + ∇²z₃ + ∇³z₃
+                    let (d1, d2, d3) = (zd - zc, zc - zb, zb - za);
+                    let (e1, e2) = (d1 - d2, d2 - d3);
+                    zd + d1 + e1 + (e1 - e2)
+                } else {
+                    lagrange3([(b, zb), (c, zc), (d, zd)], omega)
+                }
             }
+            3 => lagrange3([self.hist[0], self.hist[1], self.hist[2]], omega),
             2 => {
                 let (w0, z0) = self.hist[0];
                 z1 + (z1 - z0) * ((omega - w1) / (w1 - w0))
@@ -982,9 +1086,9 @@ impl AbscissaTracker {
             self.hist[self.len - 1] = (omega, z);
             return;
         }
-        if self.len == 3 {
-            self.hist = [self.hist[1], self.hist[2], self.hist[2]];
-            self.len = 2;
+        if self.len == 4 {
+            self.hist = [self.hist[1], self.hist[2], self.hist[3], self.hist[3]];
+            self.len = 3;
         }
         self.hist[self.len] = (omega, z);
         self.len += 1;
@@ -1018,10 +1122,23 @@ impl AbscissaTracker {
     /// the abscissa lies in `[Re z − r, Re z + r + GAP]`.
     #[inline(always)]
     fn certify(c: &[f64], z0: Complex64) -> Option<Complex64> {
-        let (z, r) = converge_to(c, z0, Self::ACCEPT)?;
+        let (z, r) = match <&[f64; 13]>::try_from(c) {
+            // the 12 states of the balls-free model: the loops' bounds known (unrolled)
+            Ok(c) => converge_to(c.as_slice(), z0, Self::ACCEPT)?,
+            Err(_) => converge_to(c, z0, Self::ACCEPT)?,
+        };
         let z = Complex64::new(z.re, z.im.abs());
-        (routh_count_right_of(c, z.re + r + Self::GAP)? == 0).then_some(z)
+        routh_none_right_of(c, z.re + r + Self::GAP).then_some(z)
     }
+}
+
+/// The parabola through three points `(ω, z)` at `omega` (Lagrange; error O(h³)).
+fn lagrange3(p: [(f64, Complex64); 3], omega: f64) -> Complex64 {
+    let [(a, za), (b, zb), (c, zc)] = p;
+    let la = (omega - b) * (omega - c) / ((a - b) * (a - c));
+    let lb = (omega - a) * (omega - c) / ((b - a) * (b - c));
+    let lc = (omega - a) * (omega - b) / ((c - a) * (c - b));
+    za * la + zb * lb + zc * lc
 }
 
 /// A start for the pair that two real roots of `p` near `x` have become: the upper root of
@@ -1303,6 +1420,97 @@ mod tests {
             c = next;
         }
         c.iter().map(|z| z.re).collect()
+    }
+
+    /// The real evaluation's Newton step against complex Horner's (an independent evaluation
+    /// of the same `p/p'`) at points near and far from the axis, near a root and away: equal to
+    /// rounding (1e-12 relative: both are backward stable for these well-separated O(1) roots,
+    /// the step's conditioning at most ~1e3 here). Wrong indices in either recurrence (e.g. `Q`
+    /// evaluated one coefficient short) move the step by O(1).
+    #[test]
+    fn real_newton_step_is_complex_horners_step() {
+        let roots = [
+            Complex64::new(-0.3, 1.2),
+            Complex64::new(-0.3, -1.2),
+            Complex64::new(0.05, 0.4),
+            Complex64::new(0.05, -0.4),
+            Complex64::new(-1.0, 0.0),
+            Complex64::new(-2.5, 0.0),
+            Complex64::new(-0.7, 2.1),
+            Complex64::new(-0.7, -2.1),
+            Complex64::new(0.2, 0.0),
+            Complex64::new(-0.01, 0.3),
+            Complex64::new(-0.01, -0.3),
+            Complex64::new(-4.0, 0.0),
+        ];
+        for deg in [4usize, 5, 9, 12] {
+            let c = poly_of_roots(&roots[..deg]);
+            for z in [Complex64::new(0.06, 0.41), Complex64::new(-0.29, 1.19), Complex64::new(0.7, 0.9), Complex64::new(-1.01, 1e-7), Complex64::new(3.0, -2.0)]
+            {
+                let (p, dp) = eval_with_derivative(&c, z);
+                let want = p / dp;
+                let got = real_newton_step(&c, z).expect("finite");
+                assert!(modulus(got - want) <= 1e-12 * modulus(want).max(1e-3), "deg {deg} z {z}: {got} vs {want}");
+            }
+        }
+        assert!(real_newton_step(&[1.0, 2.0, 3.0, 4.0], Complex64::new(0.1, 0.2)).is_none());
+    }
+
+    /// The Routh zero test of the tracker ([`routh_none_right_of`], degree 12: flags instead of
+    /// a count) is exactly `routh_count_right_of(c, s) == Some(0)`, at shifts around every root
+    /// (counts 0 to 12 each side), and on the singular and non-finite cases (a root on the
+    /// shifted axis, a zero or NaN or infinite coefficient, `c_0 ≤ 0`). A test that dropped a
+    /// row's sign or a quotient's finiteness would differ from the count in one of these.
+    #[test]
+    fn routh_zero_test_is_the_count_being_zero() {
+        let roots = [
+            Complex64::new(-0.3, 1.2),
+            Complex64::new(-0.3, -1.2),
+            Complex64::new(0.05, 0.4),
+            Complex64::new(0.05, -0.4),
+            Complex64::new(-1.0, 0.0),
+            Complex64::new(-2.5, 0.0),
+            Complex64::new(-0.7, 2.1),
+            Complex64::new(-0.7, -2.1),
+            Complex64::new(0.2, 0.0),
+            Complex64::new(-0.01, 0.3),
+            Complex64::new(-0.01, -0.3),
+            Complex64::new(0.0, 0.0),
+        ];
+        let c = poly_of_roots(&roots);
+        let mut shifts: Vec<f64> = roots.iter().flat_map(|r| [r.re - 1e-3, r.re, r.re + 1e-13, r.re + 1e-3]).collect();
+        shifts.extend([-10.0, -3.0, 0.0, 0.3, 5.0, 1e300, f64::NAN]);
+        let (mut zero, mut other) = (0, 0);
+        for &s in &shifts {
+            let want = routh_count_right_of(&c, s) == Some(0);
+            assert_eq!(routh_none_right_of(&c, s), want, "shift {s}");
+            if want {
+                zero += 1;
+            } else {
+                other += 1;
+            }
+        }
+        assert!(zero >= 3 && other >= 40, "{zero} {other}");
+        // a polynomial with every root left of the shift and another with one right of it
+        let stable = poly_of_roots(&roots[4..8].iter().chain(&roots[..2]).chain(&roots[9..11]).chain(&roots[4..8]).copied().collect::<Vec<_>>());
+        assert!(routh_none_right_of(&stable, 0.0) && !routh_none_right_of(&stable, -0.02));
+        // singular or not finite: zeros, NaN, infinities in each position, a negative lead, a
+        // subnormal (its quotient overflows: the count is `None`, e.g. `c_12` of the stable
+        // polynomial at the shift 0, the Routh array's last entry)
+        for p in [&c, &stable] {
+            for k in 0..13 {
+                for v in [0.0, -0.0, f64::NAN, f64::INFINITY, f64::NEG_INFINITY, -1.0, 1e-300, 1e-310, 1e300] {
+                    let mut d = p.clone();
+                    d[k] = v;
+                    for s in [0.0, 0.25, 0.3, 5.0] {
+                        assert_eq!(routh_none_right_of(&d, s), routh_count_right_of(&d, s) == Some(0), "c[{k}] = {v}, shift {s}");
+                    }
+                }
+            }
+        }
+        let mut d = stable.clone();
+        d[12] = 1e-310;
+        assert_eq!(routh_count_right_of(&d, 0.0), None);
     }
 
     #[test]
