@@ -834,6 +834,9 @@ fn converge(c: &[f64], mut z: Complex64, accept: f64) -> Option<(Complex64, f64)
     None
 }
 
+/// Most real Newton steps ([`real_newton_step`]) before [`converge_to`]'s certified ones.
+const REAL_STEPS: usize = 4;
+
 /// The Newton step `p(z)/p'(z)` of a real polynomial `p(λ) = Σ_k c_k λ^{N−k}` (`N ≥ 4`) in real
 /// arithmetic: `p` divided by the real quadratic `(λ − z)(λ − z̄) = λ² − tλ + s` (`t = 2 Re z`,
 /// `s = |z|²`; Bairstow's recurrence `b_k = c_k + t b_{k−1} − s b_{k−2}`) leaves the remainder
@@ -882,13 +885,20 @@ fn real_newton_step(c: &[f64], z: Complex64) -> Option<Complex64> {
 fn converge_to(c: &[f64], mut z: Complex64, accept: f64) -> Option<(Complex64, f64)> {
     let n = (c.len() - 1) as f64;
     let mut last = f64::INFINITY;
-    // the first step from the prediction (~1e-7 off) certifies nothing in practice: taken from
-    // the cheaper real evaluation where that is finite and the step not already certifying
-    if let Some(step) = real_newton_step(c, z) {
+    // the first steps from the prediction certify nothing in practice: taken by the cheaper
+    // real evaluation while they are finite, not certifying, contracting, and large (a step
+    // above 1e-6 (1 + |z|) leaves an error ~K·1e-12 that the next step may not certify)
+    for _ in 0..REAL_STEPS {
+        let Some(step) = real_newton_step(c, z) else { break };
         let s = modulus(step);
-        if n * s > accept * (1.0 + modulus(z)) {
-            z -= step;
-            last = s;
+        let scale = 1.0 + modulus(z);
+        if n * s <= accept * scale || s > 0.5 * last {
+            break;
+        }
+        z -= step;
+        last = s;
+        if s <= 1e-6 * scale {
+            break;
         }
     }
     for it in 0..16 {
