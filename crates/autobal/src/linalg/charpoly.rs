@@ -1523,6 +1523,37 @@ mod tests {
         assert_eq!(routh_count_right_of(&d, 0.0), None);
     }
 
+    /// The predictor against closed forms: on equal steps it reproduces a cubic path exactly
+    /// (to rounding: 1e-12 of values O(10)), on unequal steps it is the parabola through the
+    /// last three points (exact on a quadratic path, not on the cubic). A wrong difference
+    /// weight (e.g. `∇³` dropped, or `4, −6, 3, −1`) misses the cubic by O(h³) ≥ 1e-3 here.
+    #[test]
+    fn tracker_predicts_cubic_paths_on_equal_steps_and_parabolas_otherwise() {
+        let cubic = |w: f64| Complex64::new(0.3 - 1.5 * w + 2.0 * w * w - 0.7 * w * w * w, 0.8 + w * w * w);
+        let quad = |w: f64| Complex64::new(0.1 + 0.5 * w - 0.9 * w * w, 1.0 - 0.3 * w * w);
+        let mut t = AbscissaTracker::new();
+        for w in [0.5, 0.6, 0.7, 0.8] {
+            t.push(w, cubic(w));
+        }
+        let p = t.predict(0.9).expect("history");
+        assert!(modulus(p - cubic(0.9)) <= 1e-12, "{p} vs {}", cubic(0.9));
+        // five points: the oldest is dropped, still equal steps
+        t.push(0.9, cubic(0.9));
+        assert!(modulus(t.predict(1.0).expect("history") - cubic(1.0)) <= 1e-12);
+        // unequal steps: the parabola through the last three
+        let mut t = AbscissaTracker::new();
+        for w in [0.5, 0.6, 0.75, 0.8] {
+            t.push(w, quad(w));
+        }
+        let p = t.predict(0.95).expect("history");
+        assert!(modulus(p - quad(0.95)) <= 1e-12, "{p} vs {}", quad(0.95));
+        let mut t = AbscissaTracker::new();
+        for w in [0.5, 0.6, 0.75, 0.8] {
+            t.push(w, cubic(w));
+        }
+        assert!(modulus(t.predict(0.95).expect("history") - cubic(0.95)) > 1e-4);
+    }
+
     #[test]
     fn tracker_follows_two_real_roots_through_their_merger_into_a_pair() {
         // p(λ; Ω) = (λ² − 2aλ + a² + b(Ω)) (λ + 1)(λ + 2)(λ² + λ/2 + 4), b = (Ω − 1/2)/100: the
