@@ -686,8 +686,8 @@ fn routh_rows_n(c: &[f64], n: usize) -> Option<usize> {
     Some(changes)
 }
 
-/// Whether no root of `Σ_k c_k λ^{12−k}` (degree 12, `c_0 = 1`) has `Re λ ≥ s` or lies where
-/// Routh's array is singular: exactly `routh_count_right_of(c, s) == Some(0)`, by the same
+/// Whether no root of `Σ_k c_k λ^{12−k}` (degree 12) has `Re λ > s` and Routh's array of the
+/// shifted polynomial is regular: exactly `routh_count_right_of(c, s) == Some(0)`, by the same
 /// operations on the same values (the Taylor shift, then the Routh rows of
 /// [`routh_rows_12`]), with the count replaced by what a zero count means. The count is `Some(0)`
 /// iff the shifted coefficients are finite with `c_0 > 0`, every first-column entry is non-zero
@@ -725,7 +725,8 @@ fn routh_none_right_of_12(c: &[f64; 13], s: f64) -> bool {
 }
 
 /// `routh_count_right_of(c, s) == Some(0)`: no root with `Re λ > s` and Routh's array regular;
-/// for degree 12 by the Routh rows of 12 written over in turn (the same arithmetic, flags instead of a count).
+/// for degree 12 by the Routh rows of 12 written over in turn (the same arithmetic, flags
+/// instead of a count).
 #[inline]
 pub fn routh_none_right_of(c: &[f64], s: f64) -> bool {
     match <&[f64; 13]>::try_from(c) {
@@ -933,9 +934,10 @@ fn converge_to(c: &[f64], mut z: Complex64, accept: f64) -> Option<(Complex64, f
 /// At each speed, three routes in turn, the first that certifies its answer wins:
 /// 1. **the rightmost root**: Newton's method on the characteristic polynomial from the
 ///    rightmost root of the previous speeds (extrapolated by the cubic through the last four
-///    on equal steps, by the parabola through the last three otherwise), then Routh's count of the roots right of `Re z + δ` must be zero (`δ` = the Newton
-///    inclusion radius plus [`AbscissaTracker::GAP`]): the abscissa is within `δ ≤ ACCEPT (1 +
-///    |λ|) + GAP` of the true one. Where the root was real and that fails, Newton again from
+///    on equal steps, by the parabola through the last three otherwise), then Routh's count of
+///    the roots right of `Re z + δ` must be zero (`δ` = the Newton inclusion radius plus
+///    [`AbscissaTracker::GAP`]): the abscissa is within `δ ≤ ACCEPT (1 + |λ|) + GAP` of the
+///    true one. Where the root was real and that fails, Newton again from
 ///    the pair of the quadratic Taylor model about the prediction (two real roots that met and
 ///    became a pair since the last speed), with the same certificate;
 /// 2. **all roots** (where Newton fails or the count is not zero: another eigenvalue has
