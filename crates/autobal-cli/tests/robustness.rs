@@ -333,6 +333,126 @@ fn regression_basins_found_its_out_unusable_after_the_grid() {
     rejects(&["report", "--quick", "--out", "/dev/null/rep"], "--out");
 }
 
+/// Every file under `d`, relative, sorted (folders end with `/`).
+fn tree(d: &std::path::Path) -> Vec<String> {
+    fn walk(base: &std::path::Path, d: &std::path::Path, out: &mut Vec<String>) {
+        for e in std::fs::read_dir(d).unwrap() {
+            let p = e.unwrap().path();
+            let rel = p.strip_prefix(base).unwrap().to_string_lossy().into_owned();
+            if p.is_dir() {
+                out.push(format!("{rel}/"));
+                walk(base, &p, out);
+            } else {
+                out.push(rel);
+            }
+        }
+    }
+    let mut v = vec![];
+    walk(d, d, &mut v);
+    v.sort();
+    v
+}
+
+#[test]
+fn regression_out_dev_full_was_a_stem_and_wrote_into_dev() {
+    // `--out /dev/full` was taken as a stem: `/dev/full.csv` and the figures were written into
+    // /dev (as root). An output named after a device, FIFO or socket, or put into /dev, /proc,
+    // /sys, is refused before the run, with nothing written.
+    let map = ["map", "--x", "dimensionless.z_a=-2:2:3", "--y", "omega=0.1:2:3", "--out"];
+    let sim = ["simulate", "--set", "drive.t_end=1", "--out"];
+    let mut sweep = SMALL_SWEEP.to_vec();
+    sweep.push("--out");
+    let stem = format!("/dev/autobal-test-{}", std::process::id());
+    for out in ["/dev/full", "/dev/null", stem.as_str()] {
+        if out != stem && !std::path::Path::new(out).exists() {
+            continue;
+        }
+        for cmd in [&map[..], &sim[..], &sweep[..]] {
+            let line = rejects(&[cmd, &[out]].concat(), "--out");
+            assert!(line.contains("device") || line.contains("system folder /dev"), "{line}");
+        }
+        rejects(&["campbell", "--svg", out], "--svg");
+        rejects(&["stability", "--svg", out], "--svg");
+        rejects(&["basins", "--config", &examples("spatial.toml"), "--n", "2", "--out", out], "--out");
+        rejects(&["report", "--quick", "--out", out], "--out");
+        rejects(&["export-model", "--out", out], "--out");
+        let left: Vec<_> = std::fs::read_dir("/dev")
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .filter(|n| n.starts_with(std::path::Path::new(out).file_name().unwrap().to_str().unwrap()) && n.contains(['.', '_']))
+            .collect();
+        assert!(left.is_empty(), "written into /dev: {left:?}");
+    }
+    for out in ["/proc/autobal-x", "/sys/autobal/x"] {
+        let line = rejects(&[&sim[..], &[out]].concat(), "--out");
+        assert!(line.contains("system folder"), "{line}");
+    }
+    #[cfg(unix)]
+    {
+        // a FIFO as the stem: its outputs would go beside it
+        let d = scratch("fifo");
+        let fifo = d.join("pipe");
+        if Command::new("mkfifo").arg(&fifo).status().is_ok_and(|s| s.success()) {
+            for cmd in [&map[..], &sim[..]] {
+                let line = rejects(&[cmd, &[s(&fifo).as_str()]].concat(), "--out");
+                assert!(line.contains("FIFO"), "{line}");
+            }
+            assert_eq!(tree(&d), ["pipe"]);
+        }
+        std::fs::remove_dir_all(&d).ok();
+    }
+}
+
+#[test]
+fn regression_a_failed_run_left_the_empty_output_folder_it_made() {
+    // the output check created a missing `--out` folder before the config was read: a run that
+    // then failed left an empty folder. Now a check writes nothing; the folder is made when the
+    // first output is written. Each bad `--out` spelling also leaves the inputs as they were.
+    let d = scratch("nothing");
+    let cfg = d.join("bad.toml");
+    std::fs::write(&cfg, "[planar]\nm3 = -1\n").unwrap();
+    let c = s(&cfg);
+    let out = |n: &str| s(&d.join(n).join("deeper/x"));
+    let runs: Vec<(Vec<String>, &str)> = vec![
+        (vec!["simulate".into(), "--config".into(), c.clone(), "--out".into(), out("a")], "planar.m3"),
+        (vec!["sweep".into(), "--config".into(), c.clone(), "--x".into(), "drive.b=2:3:2".into(), "--out".into(), out("b")], "planar.m3"),
+        (vec!["basins".into(), "--config".into(), c.clone(), "--n".into(), "2".into(), "--out".into(), out("c")], "planar.m3"),
+        (vec!["stability".into(), "--config".into(), c.clone(), "--svg".into(), out("d")], "planar.m3"),
+        (vec!["campbell".into(), "--config".into(), c.clone(), "--svg".into(), out("e")], "planar.m3"),
+        (vec!["report".into(), "--config".into(), c.clone(), "--out".into(), out("f")], "planar.m3"),
+        (
+            vec![
+                "map".into(),
+                "--config".into(),
+                c.clone(),
+                "--x".into(),
+                "planar.k=1:2:2".into(),
+                "--y".into(),
+                "omega=1:2:2".into(),
+                "--out".into(),
+                out("g"),
+            ],
+            "--x",
+        ),
+    ];
+    for (a, field) in &runs {
+        rejects(&args(a), field);
+    }
+    // an input as the output, a folder, a path under a file: refused, inputs untouched
+    let before = std::fs::read(&cfg).unwrap();
+    rejects(&["stability", "--config", &c, "--svg", &c], "--svg");
+    rejects(&["basins", "--config", &c, "--out", &c], "--out");
+    rejects(&["stability", "--svg", &format!("{c}/x.svg")], "--svg");
+    rejects(&["basins", "--out", &format!("{c}/x.csv")], "--out");
+    assert_eq!(std::fs::read(&cfg).unwrap(), before);
+    assert_eq!(tree(&d), ["bad.toml"], "a failed run left files or folders");
+    // a run that succeeds makes its folders
+    let (code, _, err) = run_for(Duration::from_secs(60), &["stability", "--svg", &out("ok")]);
+    assert_eq!(code, 0, "{err}");
+    assert!(d.join("ok/deeper/x").is_file());
+    std::fs::remove_dir_all(&d).ok();
+}
+
 /// Two shards of [`SMALL_SWEEP`] in `d`: `a1.csv`, `a2.csv` (with their JSON).
 fn two_shards(d: &std::path::Path) -> (String, String) {
     let mut names = vec![];

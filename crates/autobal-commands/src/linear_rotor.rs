@@ -1023,7 +1023,7 @@ pub fn preset() -> Result<LinearRotor> {
 /// `inputs`: the config it was read from (`None`: the preset) and that config's tables with the
 /// folder its files are read from; none of them (the config, its matrix files) is overwritten.
 pub fn export_model(rotor: &LinearRotor, inputs: (Option<&Path>, Option<(&Table, &Path)>), dir: &Path, stem: &str) -> Result<Vec<PathBuf>> {
-    std::fs::create_dir_all(dir).map_err(|e| anyhow!("--out {}: cannot create the folder: {e}", dir.display()))?;
+    // the folder is made by the first file written, after the check (which refuses `/dev/x`)
     let (text, files) = export(rotor, stem);
     let mut o = outfile::Outputs::new();
     o.config_inputs(inputs.0, inputs.1);
