@@ -579,6 +579,82 @@ fn interrupt_after(d: &std::path::Path, after: Duration, args: &[&str]) -> (i32,
     (out.status.code().unwrap_or(-1), String::from_utf8_lossy(&out.stderr).into_owned())
 }
 
+#[test]
+fn regression_an_empty_config_said_simulate_needs_a_planar_table() {
+    // every command reads a config that is neither spatial nor linear as a planar one; an
+    // empty file made `stability`, `critical`, ... say "`simulate` needs a [planar] table"
+    let d = scratch("empty-config");
+    let e = d.join("empty.toml");
+    std::fs::write(&e, "").unwrap();
+    for cmd in ["stability", "critical", "campbell", "ranges", "simulate"] {
+        let line = rejects(&[cmd, "--config", &s(&e)], "planar");
+        assert!(line.contains("no rotor") && line.contains("[linear_rotor]") && !line.contains("`simulate`"), "{line}");
+    }
+    std::fs::remove_dir_all(&d).ok();
+}
+
+#[test]
+fn regression_a_set_key_given_twice_let_the_last_win_silently() {
+    // `--set rotor.mass=2 --set rotor.mass=3` ran with 3, the first ignored without a word
+    let dim = examples("dimensional.toml");
+    let shaft = examples("linear_rotor_shaft.toml");
+    let cases: [&[&str]; 5] = [
+        &["critical", "--config", &dim, "--set", "rotor.mass=2", "--set", " rotor.mass = 3"],
+        &["simulate", "--set", "planar.k=1", "--set", "planar.k=2"],
+        &["stability", "--config", &shaft, "--set", "linear_rotor.drag=1", "--set", "linear_rotor.drag=2"],
+        &["sweep", "--x", "drive.b=1", "--set", "drive.t_end=1", "--set", "drive.t_end=1"],
+        &["basins", "--n", "2", "--set", "drive.t_end=1", "--set", "drive.t_end=2"],
+    ];
+    for a in cases {
+        let key = a[a.len() - 1].split('=').next().unwrap().trim();
+        let line = rejects(a, &format!("--set {key}"));
+        assert!(line.contains("given twice"), "{line}");
+    }
+}
+
+#[test]
+fn regression_linear_rotor_omega_max_1e308_named_speeds_twice() {
+    let shaft = examples("linear_rotor_shaft.toml");
+    let line = rejects(&["stability", "--config", &shaft, "--set", "linear_rotor.omega_max=1e308"], "linear_rotor.omega_max");
+    assert!(line.contains("(0, 1e6] rad/s"), "{line}");
+    // the bound itself is taken
+    let (code, _, err) = run_for(Duration::from_secs(120), &["stability", "--config", &shaft, "--set", "linear_rotor.omega_max=1e6", "--samples", "10"]);
+    assert_eq!(code, 0, "{err}");
+}
+
+#[test]
+fn regression_an_empty_bearing_speed_table_was_blamed_on_kxx() {
+    // `speeds = []` was reported as "kxx: has 2 entries, one per speed: 0"
+    let d = scratch("empty-speeds");
+    let text = std::fs::read_to_string(examples("linear_rotor_shaft.toml")).unwrap();
+    assert!(text.contains("speeds = [0.0, 1000.0]"));
+    let cfg = d.join("c.toml");
+    std::fs::write(&cfg, text.replace("speeds = [0.0, 1000.0]", "speeds = []")).unwrap();
+    let line = rejects(&["stability", "--config", &s(&cfg)], "linear_rotor.bearings[1].speeds");
+    assert!(line.contains("is empty"), "{line}");
+    std::fs::remove_dir_all(&d).ok();
+}
+
+#[cfg(unix)]
+#[test]
+fn regression_ctrl_c_ended_stability_without_a_word() {
+    // `stability` does not poll the control: Ctrl-C ends it at once (exit 130), which it did
+    // silently. Now one line says it stopped and kept nothing, and no file is written.
+    let d = scratch("ctrlc-quiet");
+    for cfg in ["default.toml", "planar.toml"] {
+        let cfg = examples(cfg);
+        let (code, err) = interrupt_after(&d, Duration::from_millis(1500), &["stability", "--config", &cfg, "--samples", "1000000", "--svg", "s.svg"]);
+        if code == 0 {
+            continue; // finished within the wait (a fast machine): nothing to check
+        }
+        assert_eq!(code, 130, "{err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+        assert!(err.starts_with("interrupted: stopped at once (this command keeps no partial result"), "{err}");
+        assert_eq!(tree(&d), Vec::<String>::new());
+    }
+    std::fs::remove_dir_all(&d).ok();
+}
+
 #[cfg(unix)]
 #[test]
 fn regression_ctrl_c_left_truncated_or_footerless_files() {

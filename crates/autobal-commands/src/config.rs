@@ -95,8 +95,25 @@ pub fn parse_text(text: &str, source: &str) -> Result<Table> {
     Ok(autobal::config::parse(text, source)?)
 }
 
+/// Refuse a `--set` key given twice (`--set rotor.mass=2 --set rotor.mass=3`): the later one
+/// would silently win over the earlier. Keys compare as written, spaces around them trimmed.
+pub fn check_repeated_sets(sets: &[String]) -> Result<()> {
+    let mut seen: Vec<&str> = Vec::with_capacity(sets.len());
+    for s in sets {
+        let Some((key, _)) = s.split_once('=') else { continue };
+        let key = key.trim();
+        if seen.contains(&key) {
+            // (the values are not echoed: a fuzzed one may be 80 digits or control characters)
+            bail!("--set {key}: given twice (the later would silently replace the earlier); give it once");
+        }
+        seen.push(key);
+    }
+    Ok(())
+}
+
 /// Read the config text (or the embedded default) and apply the overrides.
 pub fn read_set(path: Option<&std::path::Path>, sets: &[String]) -> Result<(Table, String)> {
+    check_repeated_sets(sets)?;
     let (mut root, source) = read(path)?;
     for s in sets {
         apply_set(&mut root, s)?;
@@ -383,6 +400,7 @@ pub fn load_planar(path: Option<&std::path::Path>, sets: &[String]) -> Result<Pl
 
 /// Read a planar config (embedded default: examples/planar.toml) and apply the overrides.
 pub fn read_planar_set(path: Option<&std::path::Path>, sets: &[String]) -> Result<(Table, String)> {
+    check_repeated_sets(sets)?;
     let (mut root, source) = read_with_default(path, DEFAULT_PLANAR, "embedded default (examples/planar.toml)")?;
     for s in sets {
         apply_set(&mut root, s)?;

@@ -90,6 +90,7 @@ pub fn apply_set(root: &mut Table, assignment: &str) -> Result<()> {
 /// Read the config at `path` (or the embedded default) and apply `--set`: a linear rotor
 /// config's own way ([`apply_set`]), any other config's through [`config::apply_set`].
 pub fn read_set(path: Option<&Path>, sets: &[String]) -> Result<(Table, String)> {
+    config::check_repeated_sets(sets)?;
     let (mut root, source) = config::read(path)?;
     let linear = is_linear(&root);
     for s in sets {

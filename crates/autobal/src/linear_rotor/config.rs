@@ -554,6 +554,10 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
             }
             Some(speeds) => {
                 let len = speeds.len();
+                // (an empty table was reported against kxx: "has 2 entries, one per speed: 0")
+                if len == 0 {
+                    return Err(Error::invalid(br.field("speeds"), "is empty: give the speeds (rad/s) of the table, at least one"));
+                }
                 let col = |k: &str, fallback: Option<&str>| -> Result<Vec<f64>> {
                     let v = match br.array(k)? {
                         Some(v) => v,
@@ -659,6 +663,14 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
     let omega_max = top.f64("omega_max")?;
     if let Some(w) = omega_max {
         crate::error::positive("linear_rotor.omega_max", w)?;
+        // the speed axis is sampled up to it: 1e308 overflowed to an infinite speed, reported
+        // as "speeds: speeds: inf is not a finite speed" (limits.rs's SPEED bound)
+        if w > 1e6 {
+            return Err(Error::invalid(
+                "linear_rotor.omega_max",
+                format!("must lie in (0, 1e6] rad/s, got {} (±1e6 rad/s, ~1e7 rpm, beyond every machine)", crate::error::fmt_num(w)),
+            ));
+        }
     }
     // 0: the full model (so that `--set linear_rotor.modes=0` undoes a config's reduction)
     let modes = top.usize("modes")?.filter(|m| *m > 0);
