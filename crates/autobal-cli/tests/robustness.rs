@@ -623,6 +623,40 @@ fn regression_linear_rotor_omega_max_1e308_named_speeds_twice() {
 }
 
 #[test]
+fn regression_shaft_builder_extremes_named_internal_matrices_or_passed() {
+    // the shaft builder's inputs had no upper bounds: `length = 1e300` failed as
+    // `linear_rotor.m[0,3]: ... inf`, `diameter = 0` was blamed on inner_diameter, `e = 1e300`
+    // as an eigenvalue solver that did not converge (no field), a disk of 1e300 kg was taken
+    let d = scratch("shaft-extremes");
+    let text = std::fs::read_to_string(examples("linear_rotor_shaft.toml")).unwrap();
+    let cases = [
+        ("length = 0.1", "length = 1e300", "linear_rotor.elements[0].length", "[1e-6, 10000] m"),
+        ("length = 0.1", "length = 1e-300", "linear_rotor.elements[0].length", "[1e-6, 10000] m"),
+        ("diameter = 0.025", "diameter = 0", "linear_rotor.elements[0].diameter", "[1e-6, 1000] m"),
+        ("diameter = 0.025", "diameter = 1e200", "linear_rotor.elements[0].diameter", "[1e-6, 1000] m"),
+        ("e = 2.1e11", "e = 1e300", "linear_rotor.elements[0].e", "(0, 1e13] Pa"),
+        ("rho = 7850.0", "rho = 1e300", "linear_rotor.elements[0].rho", "(0, 100000] kg/m³"),
+        ("mass = 4.0", "mass = 1e300", "linear_rotor.disks[0].mass", "[0, 1e9] kg"),
+        ("id = 0.01", "id = 1e300", "linear_rotor.disks[0].id", "[0, 1e12] kg·m²"),
+        ("ip = 0.02", "ip = 1e300", "linear_rotor.disks[0].ip", "[0, 1e12] kg·m²"),
+    ];
+    let cfg = d.join("c.toml");
+    for (from, to, field, range) in cases {
+        assert!(text.contains(from), "{from}");
+        std::fs::write(&cfg, text.replacen(from, to, 1)).unwrap();
+        let line = rejects(&["stability", "--config", &s(&cfg), "--samples", "10"], field);
+        assert!(line.contains(range), "{line}");
+    }
+    // the bounds themselves are taken (each alone on the example)
+    for (from, to) in [("length = 0.1", "length = 1e-6"), ("diameter = 0.025", "diameter = 1e3"), ("e = 2.1e11", "e = 1e13"), ("mass = 4.0", "mass = 1e9")] {
+        std::fs::write(&cfg, text.replacen(from, to, 1)).unwrap();
+        let (code, _, err) = run_for(Duration::from_secs(120), &["stability", "--config", &s(&cfg), "--samples", "10"]);
+        assert_eq!(code, 0, "{to}: {err}");
+    }
+    std::fs::remove_dir_all(&d).ok();
+}
+
+#[test]
 fn regression_an_empty_bearing_speed_table_was_blamed_on_kxx() {
     // `speeds = []` was reported as "kxx: has 2 entries, one per speed: 0"
     let d = scratch("empty-speeds");

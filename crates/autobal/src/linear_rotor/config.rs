@@ -143,6 +143,27 @@ pub fn file_names(root: &Table) -> Vec<(String, String)> {
     FILE_KEYS.iter().filter_map(|k| lr.get(*k).and_then(Value::as_str).map(|v| (format!("linear_rotor.{k}"), v.to_string()))).collect()
 }
 
+/// `value` within `[lo, hi]` (`(lo, hi]` where `lo.1` says open) in `unit`, else an error
+/// naming `field` with the range and why (`must lie in (0, 1e13] Pa, got 1e300 (...)`); a
+/// value below zero where zero is allowed or open says `must be positive`/`must not be
+/// negative` as the other checks do.
+fn within(field: &str, value: f64, lo: (f64, bool), hi: f64, unit: &str, why: &str) -> Result<f64> {
+    crate::error::finite(field, value)?;
+    if lo.0 == 0.0 {
+        if lo.1 {
+            crate::error::positive(field, value)?;
+        } else {
+            crate::error::non_negative(field, value)?;
+        }
+    }
+    let below = if lo.1 { value <= lo.0 } else { value < lo.0 };
+    if below || value > hi {
+        let (open, fmt) = (if lo.1 { "(" } else { "[" }, crate::error::fmt_num);
+        return Err(Error::invalid(field, format!("must lie in {open}{}, {}] {unit}, got {} ({why})", fmt(lo.0), fmt(hi), fmt(value))));
+    }
+    Ok(value)
+}
+
 /// Whether a config describes a linear rotor (has `[linear_rotor]`).
 pub fn is_linear_rotor(root: &Table) -> bool {
     root.contains_key("linear_rotor")
@@ -448,6 +469,12 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
         for el in &elements {
             let length = el.req("length")?;
             let (e, rho) = (el.req("e")?, el.req("rho")?);
+            // generous physical bounds, so that the element matrices (∝ E I / L³, ρ A L³) stay
+            // finite and the eigenvalue solver meets no overflow: `length = 1e300` was reported
+            // as `linear_rotor.m[0,3]: ... inf`, `e = 1e300` as a solver that did not converge
+            within(&el.field("length"), length, (1e-6, false), 1e4, "m", "a micrometre to 10 km")?;
+            within(&el.field("e"), e, (0.0, true), 1e13, "Pa", "stiffer than diamond (1.2e12 Pa) tenfold")?;
+            within(&el.field("rho"), rho, (0.0, true), 1e5, "kg/m³", "denser than osmium (2.3e4 kg/m³) fourfold")?;
             let count = el.usize("count")?.unwrap_or(1);
             if count == 0 || count > 10_000 {
                 return Err(Error::invalid(el.field("count"), "must be from 1 to 10000"));
@@ -466,6 +493,8 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
             }
             let element = match (el.f64("diameter")?, el.f64("area")?, el.f64("inertia")?) {
                 (Some(d), None, None) => {
+                    // (`diameter = 0` was reported against inner_diameter)
+                    within(&el.field("diameter"), d, (1e-6, false), 1e3, "m", "a micrometre to a kilometre")?;
                     let di = el.f64("inner_diameter")?.unwrap_or(0.0);
                     if !(di >= 0.0 && di < d) {
                         return Err(Error::invalid(el.field("inner_diameter"), "must lie in [0, diameter)"));
@@ -476,6 +505,8 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
                     Element { area, inertia: o.inertia - i.inertia, shear, ..o }
                 }
                 (None, Some(area), Some(inertia)) => {
+                    within(&el.field("area"), area, (0.0, true), 1e6, "m²", "the section of a kilometre-wide shaft")?;
+                    within(&el.field("inertia"), inertia, (0.0, true), 1e12, "m⁴", "the section of a kilometre-wide shaft")?;
                     let shear = match (g_s, kappa) {
                         (Some(g), Some(k)) => Some(k * g * area),
                         (Some(_), None) => {
@@ -492,7 +523,12 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
             }
         }
         for d in &disks {
-            b.disks.push(Disk { node: d.req_usize("node")?, mass: d.req("mass")?, id: d.f64("id")?.unwrap_or(0.0), ip: d.f64("ip")?.unwrap_or(0.0) });
+            let disk = Disk { node: d.req_usize("node")?, mass: d.req("mass")?, id: d.f64("id")?.unwrap_or(0.0), ip: d.f64("ip")?.unwrap_or(0.0) };
+            // (1e300 was taken, and gave natural frequencies of 1e-148 rad/s)
+            within(&d.field("mass"), disk.mass, (0.0, false), 1e9, "kg", "no machine rotor exceeds 1e9 kg")?;
+            within(&d.field("id"), disk.id, (0.0, false), 1e12, "kg·m²", "1e9 kg at 30 m")?;
+            within(&d.field("ip"), disk.ip, (0.0, false), 1e12, "kg·m²", "1e9 kg at 30 m")?;
+            b.disks.push(disk);
         }
         let mut r = b.build().map_err(|e| rename(e, "shaft.", "linear_rotor."))?;
         if let Some(ip) = top.f64("polar_inertia")? {
