@@ -639,6 +639,14 @@ fn regression_shaft_builder_extremes_named_internal_matrices_or_passed() {
         ("mass = 4.0", "mass = 1e300", "linear_rotor.disks[0].mass", "[0, 1e9] kg"),
         ("id = 0.01", "id = 1e300", "linear_rotor.disks[0].id", "[0, 1e12] kg·m²"),
         ("ip = 0.02", "ip = 1e300", "linear_rotor.disks[0].ip", "[0, 1e12] kg·m²"),
+        // bearings (`k = 1e300` ended in an eigenvalue solver that did not converge), the
+        // balancer and the unbalance (1e300 was taken) get the spatial rotor's bounds
+        ("k = 2e6", "k = 1e300", "linear_rotor.bearings[0].k", "[0, 1e13] N/m"),
+        ("c = 300.0", "c = 1e300", "linear_rotor.bearings[0].c", "[0, 1e12] N·s/m"),
+        ("kxx = [2e6, 3e6]", "kxx = [2e6, -1e300]", "linear_rotor.bearings[1].kxx[1]", "[-1e13, 1e13] N/m"),
+        ("radius = 0.06", "radius = 1e300", "linear_rotor.balancer[0].radius", "(0, 1000] m"),
+        ("ball_mass = 0.02", "ball_mass = 1e300", "linear_rotor.balancer[0].ball_mass", "(0, 1e9] kg"),
+        ("me = 2e-4", "me = 1e300", "linear_rotor.unbalance[0].me", "[0, 1e12] kg·m"),
     ];
     let cfg = d.join("c.toml");
     for (from, to, field, range) in cases {
@@ -648,7 +656,13 @@ fn regression_shaft_builder_extremes_named_internal_matrices_or_passed() {
         assert!(line.contains(range), "{line}");
     }
     // the bounds themselves are taken (each alone on the example)
-    for (from, to) in [("length = 0.1", "length = 1e-6"), ("diameter = 0.025", "diameter = 1e3"), ("e = 2.1e11", "e = 1e13"), ("mass = 4.0", "mass = 1e9")] {
+    for (from, to) in [
+        ("length = 0.1", "length = 1e-6"),
+        ("diameter = 0.025", "diameter = 1e3"),
+        ("e = 2.1e11", "e = 1e13"),
+        ("mass = 4.0", "mass = 1e9"),
+        ("k = 2e6", "k = 1e13"),
+    ] {
         std::fs::write(&cfg, text.replacen(from, to, 1)).unwrap();
         let (code, _, err) = run_for(Duration::from_secs(120), &["stability", "--config", &s(&cfg), "--samples", "10"]);
         assert_eq!(code, 0, "{to}: {err}");

@@ -147,6 +147,9 @@ pub fn file_names(root: &Table) -> Vec<(String, String)> {
 /// naming `field` with the range and why (`must lie in (0, 1e13] Pa, got 1e300 (...)`); a
 /// value below zero where zero is allowed or open says `must be positive`/`must not be
 /// negative` as the other checks do.
+/// Why a bearing's stiffness is bounded (limits.rs's support stiffness).
+const STIFF: &str = "the stiffest bearings are ~1e10 N/m (as the spatial rotor's supports)";
+
 fn within(field: &str, value: f64, lo: (f64, bool), hi: f64, unit: &str, why: &str) -> Result<f64> {
     crate::error::finite(field, value)?;
     if lo.0 == 0.0 {
@@ -580,8 +583,10 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
                     }
                 }
                 let (k, c) = (br.req("k")?, br.f64("c")?.unwrap_or(0.0));
-                crate::error::non_negative(&br.field("k"), k)?;
-                crate::error::non_negative(&br.field("c"), c)?;
+                // limits.rs's bounds of the spatial rotor's supports (`k = 1e300` ended in an
+                // eigenvalue solver that did not converge, naming no field)
+                within(&br.field("k"), k, (0.0, false), 1e13, "N/m", STIFF)?;
+                within(&br.field("c"), c, (0.0, false), 1e12, "N·s/m", "as supports.damping_left")?;
                 let Bearing { node, k, c } = Bearing { node, k, c };
                 let (mut kk, mut cc) = (std::mem::take(&mut rotor.k), std::mem::take(&mut rotor.c));
                 rotor.add_bearing_block(node, link, &[k, 0.0, 0.0, k], &mut kk);
@@ -604,6 +609,17 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
                     };
                     if v.len() != len {
                         return Err(Error::invalid(br.field(k), format!("has {} entries, one per speed: {len}", v.len())));
+                    }
+                    // cross-coupled terms may be negative: the magnitude is bounded
+                    let (hi, unit, why) = if k.starts_with('k') { (1e13, "N/m", STIFF) } else { (1e12, "N·s/m", "as supports.damping_left") };
+                    for (j, x) in v.iter().enumerate() {
+                        if x.abs() > hi {
+                            let f = crate::error::fmt_num;
+                            return Err(Error::invalid(
+                                format!("{}[{j}]", br.field(k)),
+                                format!("must lie in [-{}, {}] {unit}, got {} ({why})", f(hi), f(hi), f(*x)),
+                            ));
+                        }
                     }
                     Ok(v)
                 };
@@ -629,6 +645,9 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
         }
     }
     for u in items(lr, "unbalance")? {
+        if let Some(me) = u.f64("me")? {
+            within(&u.field("me"), me.abs(), (0.0, false), 1e12, "kg·m (in magnitude)", "1e9 kg at 1e3 m")?;
+        }
         rotor.unbalances.push(Unbalance {
             node: u.req_usize("node")?,
             me: u.req("me")?,
@@ -637,6 +656,13 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
         });
     }
     for b in items(lr, "balancer")? {
+        // (1e300 was taken: no stationary state at any speed, said as a failure of the solver)
+        if let Some(r) = b.f64("radius")? {
+            within(&b.field("radius"), r, (0.0, true), 1e3, "m", "as balancer.race_radius")?;
+        }
+        if let Some(m) = b.f64("ball_mass")? {
+            within(&b.field("ball_mass"), m, (0.0, true), 1e9, "kg", "as balancer.ball_mass")?;
+        }
         rotor.balancers.push(BalancerPlane {
             node: b.req_usize("node")?,
             radius: b.req("radius")?,
