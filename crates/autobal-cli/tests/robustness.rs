@@ -670,6 +670,26 @@ fn regression_shaft_builder_extremes_named_internal_matrices_or_passed() {
     std::fs::remove_dir_all(&d).ok();
 }
 
+#[cfg(target_os = "linux")]
+#[test]
+fn regression_a_fifo_nobody_writes_as_config_or_matrix_hung() {
+    // the blocking open of a named pipe waits for a writer: `--config fifo` and a matrix file
+    // that is a FIFO hung for ever. Opened non-blocking, with no writer they read as empty at
+    // once (one line naming the field); `run_for`'s limit fails a hang
+    let d = scratch("fifo-input");
+    let fifo = d.join("pipe");
+    if !Command::new("mkfifo").arg(&fifo).status().is_ok_and(|s| s.success()) {
+        return;
+    }
+    rejects(&["critical", "--config", &s(&fifo)], "planar");
+    rejects(&["simulate", "--config", &s(&fifo)], "planar");
+    let cfg = d.join("c.toml");
+    std::fs::write(&cfg, "[linear_rotor]\nm = \"pipe\"\nk = \"pipe\"\n").unwrap();
+    let line = rejects(&["stability", "--config", &s(&cfg)], "linear_rotor.m");
+    assert!(line.contains("empty file"), "{line}");
+    std::fs::remove_dir_all(&d).ok();
+}
+
 #[test]
 fn regression_an_empty_bearing_speed_table_was_blamed_on_kxx() {
     // `speeds = []` was reported as "kxx: has 2 entries, one per speed: 0"

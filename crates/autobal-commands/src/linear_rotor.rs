@@ -36,11 +36,10 @@ pub fn is_linear(root: &Table) -> bool {
 /// The bytes of a matrix file named in the config (Matrix Market text, `.npy` or `.npz`: the
 /// library parses them), relative to the config's folder, at most [`MAX_MATRIX_BYTES`].
 fn read_matrix(dir: &Path, name: &str) -> std::result::Result<Vec<u8>, String> {
-    use std::io::Read;
     let p = dir.join(name);
-    let f = std::fs::File::open(&p).map_err(|e| format!("cannot read {}: {e}", p.display()))?;
-    let mut bytes = vec![];
-    f.take(MAX_MATRIX_BYTES + 1).read_to_end(&mut bytes).map_err(|e| format!("cannot read {}: {e}", p.display()))?;
+    // (a FIFO nobody writes hung the blocking open: config::open_input)
+    let f = config::open_input(&p).map_err(|e| format!("cannot read {}: {e}", p.display()))?;
+    let bytes = config::read_input(f, MAX_MATRIX_BYTES).map_err(|e| format!("cannot read {}: {e}", p.display()))?;
     if bytes.len() as u64 > MAX_MATRIX_BYTES {
         return Err(format!("larger than {} bytes", MAX_MATRIX_BYTES));
     }
