@@ -35,12 +35,18 @@ mod interrupt {
             let flag = Arc::new(AtomicBool::new(false));
             let f = flag.clone();
             let _ = ctrlc::set_handler(move || {
-                if !POLLED.load(Ordering::Relaxed) || f.swap(true, Ordering::Relaxed) {
+                let polled = POLLED.load(Ordering::Relaxed);
+                if !polled || f.swap(true, Ordering::Relaxed) {
                     // at once: no destructor runs, so the files being written are removed here
-                    // (the outputs already committed stay)
-                    if autobal_commands::outfile::remove_unfinished() > 0 {
-                        eprintln!("interrupted: stopped at once; the unfinished output files were removed");
-                    }
+                    // (the outputs already committed stay); always one line saying so (a
+                    // command that does not poll, such as `stability`, ended silently)
+                    let removed = autobal_commands::outfile::remove_unfinished() > 0;
+                    let what = match (polled, removed) {
+                        (_, true) => "; the unfinished output files were removed",
+                        (false, false) => " (this command keeps no partial result: its outputs are written when it completes)",
+                        (true, false) => "",
+                    };
+                    eprintln!("interrupted: stopped at once{what}");
                     std::process::exit(130);
                 }
             });

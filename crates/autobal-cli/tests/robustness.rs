@@ -333,6 +333,126 @@ fn regression_basins_found_its_out_unusable_after_the_grid() {
     rejects(&["report", "--quick", "--out", "/dev/null/rep"], "--out");
 }
 
+/// Every file under `d`, relative, sorted (folders end with `/`).
+fn tree(d: &std::path::Path) -> Vec<String> {
+    fn walk(base: &std::path::Path, d: &std::path::Path, out: &mut Vec<String>) {
+        for e in std::fs::read_dir(d).unwrap() {
+            let p = e.unwrap().path();
+            let rel = p.strip_prefix(base).unwrap().to_string_lossy().into_owned();
+            if p.is_dir() {
+                out.push(format!("{rel}/"));
+                walk(base, &p, out);
+            } else {
+                out.push(rel);
+            }
+        }
+    }
+    let mut v = vec![];
+    walk(d, d, &mut v);
+    v.sort();
+    v
+}
+
+#[test]
+fn regression_out_dev_full_was_a_stem_and_wrote_into_dev() {
+    // `--out /dev/full` was taken as a stem: `/dev/full.csv` and the figures were written into
+    // /dev (as root). An output named after a device, FIFO or socket, or put into /dev, /proc,
+    // /sys, is refused before the run, with nothing written.
+    let map = ["map", "--x", "dimensionless.z_a=-2:2:3", "--y", "omega=0.1:2:3", "--out"];
+    let sim = ["simulate", "--set", "drive.t_end=1", "--out"];
+    let mut sweep = SMALL_SWEEP.to_vec();
+    sweep.push("--out");
+    let stem = format!("/dev/autobal-test-{}", std::process::id());
+    for out in ["/dev/full", "/dev/null", stem.as_str()] {
+        if out != stem && !std::path::Path::new(out).exists() {
+            continue;
+        }
+        for cmd in [&map[..], &sim[..], &sweep[..]] {
+            let line = rejects(&[cmd, &[out]].concat(), "--out");
+            assert!(line.contains("device") || line.contains("system folder /dev"), "{line}");
+        }
+        rejects(&["campbell", "--svg", out], "--svg");
+        rejects(&["stability", "--svg", out], "--svg");
+        rejects(&["basins", "--config", &examples("spatial.toml"), "--n", "2", "--out", out], "--out");
+        rejects(&["report", "--quick", "--out", out], "--out");
+        rejects(&["export-model", "--out", out], "--out");
+        let left: Vec<_> = std::fs::read_dir("/dev")
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .filter(|n| n.starts_with(std::path::Path::new(out).file_name().unwrap().to_str().unwrap()) && n.contains(['.', '_']))
+            .collect();
+        assert!(left.is_empty(), "written into /dev: {left:?}");
+    }
+    for out in ["/proc/autobal-x", "/sys/autobal/x"] {
+        let line = rejects(&[&sim[..], &[out]].concat(), "--out");
+        assert!(line.contains("system folder"), "{line}");
+    }
+    #[cfg(unix)]
+    {
+        // a FIFO as the stem: its outputs would go beside it
+        let d = scratch("fifo");
+        let fifo = d.join("pipe");
+        if Command::new("mkfifo").arg(&fifo).status().is_ok_and(|s| s.success()) {
+            for cmd in [&map[..], &sim[..]] {
+                let line = rejects(&[cmd, &[s(&fifo).as_str()]].concat(), "--out");
+                assert!(line.contains("FIFO"), "{line}");
+            }
+            assert_eq!(tree(&d), ["pipe"]);
+        }
+        std::fs::remove_dir_all(&d).ok();
+    }
+}
+
+#[test]
+fn regression_a_failed_run_left_the_empty_output_folder_it_made() {
+    // the output check created a missing `--out` folder before the config was read: a run that
+    // then failed left an empty folder. Now a check writes nothing; the folder is made when the
+    // first output is written. Each bad `--out` spelling also leaves the inputs as they were.
+    let d = scratch("nothing");
+    let cfg = d.join("bad.toml");
+    std::fs::write(&cfg, "[planar]\nm3 = -1\n").unwrap();
+    let c = s(&cfg);
+    let out = |n: &str| s(&d.join(n).join("deeper/x"));
+    let runs: Vec<(Vec<String>, &str)> = vec![
+        (vec!["simulate".into(), "--config".into(), c.clone(), "--out".into(), out("a")], "planar.m3"),
+        (vec!["sweep".into(), "--config".into(), c.clone(), "--x".into(), "drive.b=2:3:2".into(), "--out".into(), out("b")], "planar.m3"),
+        (vec!["basins".into(), "--config".into(), c.clone(), "--n".into(), "2".into(), "--out".into(), out("c")], "planar.m3"),
+        (vec!["stability".into(), "--config".into(), c.clone(), "--svg".into(), out("d")], "planar.m3"),
+        (vec!["campbell".into(), "--config".into(), c.clone(), "--svg".into(), out("e")], "planar.m3"),
+        (vec!["report".into(), "--config".into(), c.clone(), "--out".into(), out("f")], "planar.m3"),
+        (
+            vec![
+                "map".into(),
+                "--config".into(),
+                c.clone(),
+                "--x".into(),
+                "planar.k=1:2:2".into(),
+                "--y".into(),
+                "omega=1:2:2".into(),
+                "--out".into(),
+                out("g"),
+            ],
+            "--x",
+        ),
+    ];
+    for (a, field) in &runs {
+        rejects(&args(a), field);
+    }
+    // an input as the output, a folder, a path under a file: refused, inputs untouched
+    let before = std::fs::read(&cfg).unwrap();
+    rejects(&["stability", "--config", &c, "--svg", &c], "--svg");
+    rejects(&["basins", "--config", &c, "--out", &c], "--out");
+    rejects(&["stability", "--svg", &format!("{c}/x.svg")], "--svg");
+    rejects(&["basins", "--out", &format!("{c}/x.csv")], "--out");
+    assert_eq!(std::fs::read(&cfg).unwrap(), before);
+    assert_eq!(tree(&d), ["bad.toml"], "a failed run left files or folders");
+    // a run that succeeds makes its folders
+    let (code, _, err) = run_for(Duration::from_secs(60), &["stability", "--svg", &out("ok")]);
+    assert_eq!(code, 0, "{err}");
+    assert!(d.join("ok/deeper/x").is_file());
+    std::fs::remove_dir_all(&d).ok();
+}
+
 /// Two shards of [`SMALL_SWEEP`] in `d`: `a1.csv`, `a2.csv` (with their JSON).
 fn two_shards(d: &std::path::Path) -> (String, String) {
     let mut names = vec![];
@@ -457,6 +577,150 @@ fn interrupt_after(d: &std::path::Path, after: Duration, args: &[&str]) -> (i32,
     let out = child.wait_with_output().unwrap();
     assert!(t0.elapsed() < Duration::from_secs(60), "autobal {} ignored Ctrl-C", args.join(" "));
     (out.status.code().unwrap_or(-1), String::from_utf8_lossy(&out.stderr).into_owned())
+}
+
+#[test]
+fn regression_an_empty_config_said_simulate_needs_a_planar_table() {
+    // every command reads a config that is neither spatial nor linear as a planar one; an
+    // empty file made `stability`, `critical`, ... say "`simulate` needs a [planar] table"
+    let d = scratch("empty-config");
+    let e = d.join("empty.toml");
+    std::fs::write(&e, "").unwrap();
+    for cmd in ["stability", "critical", "campbell", "ranges", "simulate"] {
+        let line = rejects(&[cmd, "--config", &s(&e)], "planar");
+        assert!(line.contains("no rotor") && line.contains("[linear_rotor]") && !line.contains("`simulate`"), "{line}");
+    }
+    std::fs::remove_dir_all(&d).ok();
+}
+
+#[test]
+fn regression_a_set_key_given_twice_let_the_last_win_silently() {
+    // `--set rotor.mass=2 --set rotor.mass=3` ran with 3, the first ignored without a word
+    let dim = examples("dimensional.toml");
+    let shaft = examples("linear_rotor_shaft.toml");
+    let cases: [&[&str]; 5] = [
+        &["critical", "--config", &dim, "--set", "rotor.mass=2", "--set", " rotor.mass = 3"],
+        &["simulate", "--set", "planar.k=1", "--set", "planar.k=2"],
+        &["stability", "--config", &shaft, "--set", "linear_rotor.drag=1", "--set", "linear_rotor.drag=2"],
+        &["sweep", "--x", "drive.b=1", "--set", "drive.t_end=1", "--set", "drive.t_end=1"],
+        &["basins", "--n", "2", "--set", "drive.t_end=1", "--set", "drive.t_end=2"],
+    ];
+    for a in cases {
+        let key = a[a.len() - 1].split('=').next().unwrap().trim();
+        let line = rejects(a, &format!("--set {key}"));
+        assert!(line.contains("given twice"), "{line}");
+    }
+}
+
+#[test]
+fn regression_linear_rotor_omega_max_1e308_named_speeds_twice() {
+    let shaft = examples("linear_rotor_shaft.toml");
+    let line = rejects(&["stability", "--config", &shaft, "--set", "linear_rotor.omega_max=1e308"], "linear_rotor.omega_max");
+    assert!(line.contains("(0, 1e6] rad/s"), "{line}");
+    // the bound itself is taken
+    let (code, _, err) = run_for(Duration::from_secs(120), &["stability", "--config", &shaft, "--set", "linear_rotor.omega_max=1e6", "--samples", "10"]);
+    assert_eq!(code, 0, "{err}");
+}
+
+#[test]
+fn regression_shaft_builder_extremes_named_internal_matrices_or_passed() {
+    // the shaft builder's inputs had no upper bounds: `length = 1e300` failed as
+    // `linear_rotor.m[0,3]: ... inf`, `diameter = 0` was blamed on inner_diameter, `e = 1e300`
+    // as an eigenvalue solver that did not converge (no field), a disk of 1e300 kg was taken
+    let d = scratch("shaft-extremes");
+    let text = std::fs::read_to_string(examples("linear_rotor_shaft.toml")).unwrap();
+    let cases = [
+        ("length = 0.1", "length = 1e300", "linear_rotor.elements[0].length", "[1e-6, 10000] m"),
+        ("length = 0.1", "length = 1e-300", "linear_rotor.elements[0].length", "[1e-6, 10000] m"),
+        ("diameter = 0.025", "diameter = 0", "linear_rotor.elements[0].diameter", "[1e-6, 1000] m"),
+        ("diameter = 0.025", "diameter = 1e200", "linear_rotor.elements[0].diameter", "[1e-6, 1000] m"),
+        ("e = 2.1e11", "e = 1e300", "linear_rotor.elements[0].e", "(0, 1e13] Pa"),
+        ("rho = 7850.0", "rho = 1e300", "linear_rotor.elements[0].rho", "(0, 100000] kg/m³"),
+        ("mass = 4.0", "mass = 1e300", "linear_rotor.disks[0].mass", "[0, 1e9] kg"),
+        ("id = 0.01", "id = 1e300", "linear_rotor.disks[0].id", "[0, 1e12] kg·m²"),
+        ("ip = 0.02", "ip = 1e300", "linear_rotor.disks[0].ip", "[0, 1e12] kg·m²"),
+        // bearings (`k = 1e300` ended in an eigenvalue solver that did not converge), the
+        // balancer and the unbalance (1e300 was taken) get the spatial rotor's bounds
+        ("k = 2e6", "k = 1e300", "linear_rotor.bearings[0].k", "[0, 1e13] N/m"),
+        ("c = 300.0", "c = 1e300", "linear_rotor.bearings[0].c", "[0, 1e12] N·s/m"),
+        ("kxx = [2e6, 3e6]", "kxx = [2e6, -1e300]", "linear_rotor.bearings[1].kxx[1]", "[-1e13, 1e13] N/m"),
+        ("radius = 0.06", "radius = 1e300", "linear_rotor.balancer[0].radius", "(0, 1000] m"),
+        ("ball_mass = 0.02", "ball_mass = 1e300", "linear_rotor.balancer[0].ball_mass", "(0, 1e9] kg"),
+        ("me = 2e-4", "me = 1e300", "linear_rotor.unbalance[0].me", "[0, 1e12] kg·m"),
+    ];
+    let cfg = d.join("c.toml");
+    for (from, to, field, range) in cases {
+        assert!(text.contains(from), "{from}");
+        std::fs::write(&cfg, text.replacen(from, to, 1)).unwrap();
+        let line = rejects(&["stability", "--config", &s(&cfg), "--samples", "10"], field);
+        assert!(line.contains(range), "{line}");
+    }
+    // the bounds themselves are taken (each alone on the example)
+    for (from, to) in [
+        ("length = 0.1", "length = 1e-6"),
+        ("diameter = 0.025", "diameter = 1e3"),
+        ("e = 2.1e11", "e = 1e13"),
+        ("mass = 4.0", "mass = 1e9"),
+        ("k = 2e6", "k = 1e13"),
+    ] {
+        std::fs::write(&cfg, text.replacen(from, to, 1)).unwrap();
+        let (code, _, err) = run_for(Duration::from_secs(120), &["stability", "--config", &s(&cfg), "--samples", "10"]);
+        assert_eq!(code, 0, "{to}: {err}");
+    }
+    std::fs::remove_dir_all(&d).ok();
+}
+
+#[cfg(target_os = "linux")]
+#[test]
+fn regression_a_fifo_nobody_writes_as_config_or_matrix_hung() {
+    // the blocking open of a named pipe waits for a writer: `--config fifo` and a matrix file
+    // that is a FIFO hung for ever. Opened non-blocking, with no writer they read as empty at
+    // once (one line naming the field); `run_for`'s limit fails a hang
+    let d = scratch("fifo-input");
+    let fifo = d.join("pipe");
+    if !Command::new("mkfifo").arg(&fifo).status().is_ok_and(|s| s.success()) {
+        return;
+    }
+    rejects(&["critical", "--config", &s(&fifo)], "planar");
+    rejects(&["simulate", "--config", &s(&fifo)], "planar");
+    let cfg = d.join("c.toml");
+    std::fs::write(&cfg, "[linear_rotor]\nm = \"pipe\"\nk = \"pipe\"\n").unwrap();
+    let line = rejects(&["stability", "--config", &s(&cfg)], "linear_rotor.m");
+    assert!(line.contains("empty file"), "{line}");
+    std::fs::remove_dir_all(&d).ok();
+}
+
+#[test]
+fn regression_an_empty_bearing_speed_table_was_blamed_on_kxx() {
+    // `speeds = []` was reported as "kxx: has 2 entries, one per speed: 0"
+    let d = scratch("empty-speeds");
+    let text = std::fs::read_to_string(examples("linear_rotor_shaft.toml")).unwrap();
+    assert!(text.contains("speeds = [0.0, 1000.0]"));
+    let cfg = d.join("c.toml");
+    std::fs::write(&cfg, text.replace("speeds = [0.0, 1000.0]", "speeds = []")).unwrap();
+    let line = rejects(&["stability", "--config", &s(&cfg)], "linear_rotor.bearings[1].speeds");
+    assert!(line.contains("is empty"), "{line}");
+    std::fs::remove_dir_all(&d).ok();
+}
+
+#[cfg(unix)]
+#[test]
+fn regression_ctrl_c_ended_stability_without_a_word() {
+    // `stability` does not poll the control: Ctrl-C ends it at once (exit 130), which it did
+    // silently. Now one line says it stopped and kept nothing, and no file is written.
+    let d = scratch("ctrlc-quiet");
+    for cfg in ["default.toml", "planar.toml"] {
+        let cfg = examples(cfg);
+        let (code, err) = interrupt_after(&d, Duration::from_millis(1500), &["stability", "--config", &cfg, "--samples", "1000000", "--svg", "s.svg"]);
+        if code == 0 {
+            continue; // finished within the wait (a fast machine): nothing to check
+        }
+        assert_eq!(code, 130, "{err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+        assert!(err.starts_with("interrupted: stopped at once (this command keeps no partial result"), "{err}");
+        assert_eq!(tree(&d), Vec::<String>::new());
+    }
+    std::fs::remove_dir_all(&d).ok();
 }
 
 #[cfg(unix)]

@@ -59,16 +59,48 @@ pub fn read(path: Option<&std::path::Path>) -> Result<(Table, String)> {
 /// time a wrong path (`/dev/zero`, a log file) can cost.
 pub const MAX_CONFIG_BYTES: u64 = 1 << 20;
 
+/// Open an input file without waiting on a named pipe that nobody writes: a FIFO is opened
+/// non-blocking on Linux (a blocking open waits for a writer, forever: `--config fifo` hung),
+/// so that without a writer it reads as empty at once; with one (`--config /dev/stdin` fed by
+/// a pipe, `<(...)`), [`read_input`] reads it to the end.
+pub fn open_input(p: &std::path::Path) -> std::io::Result<std::fs::File> {
+    #[cfg(target_os = "linux")]
+    {
+        use std::os::unix::fs::{FileTypeExt, OpenOptionsExt};
+        if std::fs::metadata(p).is_ok_and(|m| m.file_type().is_fifo()) {
+            // O_NONBLOCK on Linux (every architecture Rust supports there but alpha/sparc/mips,
+            // which are not targets of this project)
+            return std::fs::File::options().read(true).custom_flags(0o4000).open(p);
+        }
+    }
+    std::fs::File::open(p)
+}
+
+/// Read at most `limit + 1` bytes of a file from [`open_input`] (a non-blocking FIFO's "no data
+/// yet" waited out in 5 ms steps while a writer holds it open).
+pub fn read_input(file: std::fs::File, limit: u64) -> std::io::Result<Vec<u8>> {
+    use std::io::Read;
+    let mut bytes = Vec::new();
+    let mut r = file.take(limit + 1);
+    loop {
+        match r.read_to_end(&mut bytes) {
+            Ok(_) => return Ok(bytes),
+            Err(e) if e.kind() == std::io::ErrorKind::WouldBlock || e.kind() == std::io::ErrorKind::Interrupted => {
+                std::thread::sleep(std::time::Duration::from_millis(5))
+            }
+            Err(e) => return Err(e),
+        }
+    }
+}
+
 /// Read at most [`MAX_CONFIG_BYTES`] of a config file as UTF-8.
 pub(crate) fn read_limited(p: &std::path::Path) -> Result<String> {
-    use std::io::Read;
     let name = format!("--config {}", p.display());
-    let file = std::fs::File::open(p).map_err(|e| anyhow!("{name}: cannot read: {e}"))?;
+    let file = open_input(p).map_err(|e| anyhow!("{name}: cannot read: {e}"))?;
     if file.metadata().map(|m| m.is_dir()).unwrap_or(false) {
         bail!("{name}: is a directory, not a config file");
     }
-    let mut bytes = Vec::new();
-    file.take(MAX_CONFIG_BYTES + 1).read_to_end(&mut bytes).map_err(|e| anyhow!("{name}: cannot read: {e}"))?;
+    let bytes = read_input(file, MAX_CONFIG_BYTES).map_err(|e| anyhow!("{name}: cannot read: {e}"))?;
     if bytes.len() as u64 > MAX_CONFIG_BYTES {
         return Err(autobal::Error::TooLarge {
             what: name,
@@ -95,8 +127,25 @@ pub fn parse_text(text: &str, source: &str) -> Result<Table> {
     Ok(autobal::config::parse(text, source)?)
 }
 
+/// Refuse a `--set` key given twice (`--set rotor.mass=2 --set rotor.mass=3`): the later one
+/// would silently win over the earlier. Keys compare as written, spaces around them trimmed.
+pub fn check_repeated_sets(sets: &[String]) -> Result<()> {
+    let mut seen: Vec<&str> = Vec::with_capacity(sets.len());
+    for s in sets {
+        let Some((key, _)) = s.split_once('=') else { continue };
+        let key = key.trim();
+        if seen.contains(&key) {
+            // (the values are not echoed: a fuzzed one may be 80 digits or control characters)
+            bail!("--set {key}: given twice (the later would silently replace the earlier); give it once");
+        }
+        seen.push(key);
+    }
+    Ok(())
+}
+
 /// Read the config text (or the embedded default) and apply the overrides.
 pub fn read_set(path: Option<&std::path::Path>, sets: &[String]) -> Result<(Table, String)> {
+    check_repeated_sets(sets)?;
     let (mut root, source) = read(path)?;
     for s in sets {
         apply_set(&mut root, s)?;
@@ -383,6 +432,7 @@ pub fn load_planar(path: Option<&std::path::Path>, sets: &[String]) -> Result<Pl
 
 /// Read a planar config (embedded default: examples/planar.toml) and apply the overrides.
 pub fn read_planar_set(path: Option<&std::path::Path>, sets: &[String]) -> Result<(Table, String)> {
+    check_repeated_sets(sets)?;
     let (mut root, source) = read_with_default(path, DEFAULT_PLANAR, "embedded default (examples/planar.toml)")?;
     for s in sets {
         apply_set(&mut root, s)?;

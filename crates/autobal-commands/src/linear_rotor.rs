@@ -36,11 +36,10 @@ pub fn is_linear(root: &Table) -> bool {
 /// The bytes of a matrix file named in the config (Matrix Market text, `.npy` or `.npz`: the
 /// library parses them), relative to the config's folder, at most [`MAX_MATRIX_BYTES`].
 fn read_matrix(dir: &Path, name: &str) -> std::result::Result<Vec<u8>, String> {
-    use std::io::Read;
     let p = dir.join(name);
-    let f = std::fs::File::open(&p).map_err(|e| format!("cannot read {}: {e}", p.display()))?;
-    let mut bytes = vec![];
-    f.take(MAX_MATRIX_BYTES + 1).read_to_end(&mut bytes).map_err(|e| format!("cannot read {}: {e}", p.display()))?;
+    // (a FIFO nobody writes hung the blocking open: config::open_input)
+    let f = config::open_input(&p).map_err(|e| format!("cannot read {}: {e}", p.display()))?;
+    let bytes = config::read_input(f, MAX_MATRIX_BYTES).map_err(|e| format!("cannot read {}: {e}", p.display()))?;
     if bytes.len() as u64 > MAX_MATRIX_BYTES {
         return Err(format!("larger than {} bytes", MAX_MATRIX_BYTES));
     }
@@ -90,6 +89,7 @@ pub fn apply_set(root: &mut Table, assignment: &str) -> Result<()> {
 /// Read the config at `path` (or the embedded default) and apply `--set`: a linear rotor
 /// config's own way ([`apply_set`]), any other config's through [`config::apply_set`].
 pub fn read_set(path: Option<&Path>, sets: &[String]) -> Result<(Table, String)> {
+    config::check_repeated_sets(sets)?;
     let (mut root, source) = config::read(path)?;
     let linear = is_linear(&root);
     for s in sets {
@@ -1023,7 +1023,7 @@ pub fn preset() -> Result<LinearRotor> {
 /// `inputs`: the config it was read from (`None`: the preset) and that config's tables with the
 /// folder its files are read from; none of them (the config, its matrix files) is overwritten.
 pub fn export_model(rotor: &LinearRotor, inputs: (Option<&Path>, Option<(&Table, &Path)>), dir: &Path, stem: &str) -> Result<Vec<PathBuf>> {
-    std::fs::create_dir_all(dir).map_err(|e| anyhow!("--out {}: cannot create the folder: {e}", dir.display()))?;
+    // the folder is made by the first file written, after the check (which refuses `/dev/x`)
     let (text, files) = export(rotor, stem);
     let mut o = outfile::Outputs::new();
     o.config_inputs(inputs.0, inputs.1);

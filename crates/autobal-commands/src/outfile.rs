@@ -2,11 +2,15 @@
 //!
 //! 1. **Resolve and check before any work** ([`Outputs`]): `--out DIR/` or an existing folder
 //!    becomes the command's default name inside it (`DIR/simulation.csv`, never the hidden,
-//!    nameless `DIR/.csv`); a missing parent folder is created; the folder must be writable
-//!    (probed by creating and removing a file in it, or by creating the staged file of the
-//!    first output, [`Outputs::check_and_stage_first`]); an existing path must be a regular file
-//!    (never a folder, a device such as `/dev/null`, a FIFO); and no output may be the same file
-//!    as an input (the config, a shard being merged: compared by file identity, device and
+//!    nameless `DIR/.csv`); the folder must be writable (probed by creating and removing a file
+//!    in it, a missing folder created for the probe and removed with it, or by creating the
+//!    staged file of the first output, [`Outputs::check_and_stage_first`]: a check writes
+//!    nothing, and a missing folder is made when its first file is written, removed again if
+//!    that file is dropped unfinished); an existing path must be a regular file (never a folder,
+//!    a device such as `/dev/null`, a FIFO); no output may be named after a device, FIFO or
+//!    socket (`--out /dev/full` as a stem would write `/dev/full.csv` beside it) nor go into
+//!    the kernel's folders `/dev`, `/proc`, `/sys` (`/dev/shm` excepted); and no output may be
+//!    the same file as an input (the config, a shard being merged: compared by file identity, device and
 //!    inode, so links and `./` spellings are caught). A bad `--out` fails at once, not after
 //!    the grid was computed.
 //! 2. **Write to a temporary name, rename on success** ([`Staged`], [`write_atomic`]): the bytes
@@ -76,6 +80,107 @@ fn steps_out_of_missing(dir: &Path) -> bool {
     false
 }
 
+/// The canonical form of a path that does not exist (yet): its nearest existing folder
+/// canonicalised, then the rest of its parts (`.` dropped, `..` stepping back), so that two
+/// spellings of one file in folders not created yet compare equal.
+fn canon_missing(p: &Path) -> Option<PathBuf> {
+    let mut rest = vec![];
+    let mut base = p;
+    let root = loop {
+        let probe = if base.as_os_str().is_empty() { Path::new(".") } else { base };
+        if let Ok(c) = probe.canonicalize() {
+            break c;
+        }
+        rest.push(base.components().next_back()?);
+        base = base.parent()?;
+    };
+    let mut out = root;
+    for c in rest.into_iter().rev() {
+        match c {
+            std::path::Component::CurDir => {}
+            std::path::Component::ParentDir => {
+                out.pop();
+            }
+            c => out.push(c),
+        }
+    }
+    Some(out)
+}
+
+/// Create `dir` and the folders above it that are missing; returns those created, deepest
+/// first (for [`remove_folders`]). On an error, none is left.
+fn make_folders(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
+    let mut missing = vec![];
+    let mut d = dir;
+    while !d.as_os_str().is_empty() && std::fs::symlink_metadata(d).is_err() {
+        missing.push(d.to_path_buf());
+        match d.parent() {
+            Some(p) => d = p,
+            None => break,
+        }
+    }
+    if missing.is_empty() {
+        return Ok(missing);
+    }
+    if let Err(e) = std::fs::create_dir_all(dir) {
+        remove_folders(&missing);
+        return Err(e);
+    }
+    Ok(missing)
+}
+
+/// Remove the folders [`make_folders`] created (those still empty), deepest first.
+fn remove_folders(made: &[PathBuf]) {
+    for d in made {
+        let _ = std::fs::remove_dir(d);
+    }
+}
+
+/// What an existing path is when it is neither a regular file nor a folder: `a device`, `a
+/// FIFO`, `a socket` (`None` for a file or a folder).
+fn special_kind(m: &std::fs::Metadata) -> Option<&'static str> {
+    if m.is_file() || m.is_dir() {
+        return None;
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        let t = m.file_type();
+        if t.is_fifo() {
+            return Some("a FIFO (named pipe)");
+        }
+        if t.is_socket() {
+            return Some("a socket");
+        }
+    }
+    Some("a device")
+}
+
+/// The kernel's folders where no output belongs (`/dev`, `/proc`, `/sys`: devices and kernel
+/// state; as root a file can be created in `/dev`, where it would sit among the devices and
+/// vanish at the next boot). `/dev/shm`, the shared-memory file system meant for files, is
+/// allowed. Returns the system folder `dir` is in (looked up through its nearest existing
+/// folder, canonicalised, so `/tmp/../dev` and links into `/dev` are caught).
+fn system_folder(dir: &Path) -> Option<&'static str> {
+    if !cfg!(unix) {
+        return None;
+    }
+    let mut d = dir;
+    let canon = loop {
+        if let Ok(c) = d.canonicalize() {
+            break c;
+        }
+        d = match d.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p,
+            _ => return None,
+        };
+    };
+    if canon.starts_with("/dev/shm") {
+        return None;
+    }
+    ["/dev", "/proc", "/sys"].into_iter().find(|s| canon.starts_with(s))
+}
+
 /// Whether `a` and `b` are the same file: same device and inode when both exist (links,
 /// `./x`, `../d/x` all compare equal), else the same canonical folder and name.
 pub fn same_file(a: &Path, b: &Path) -> bool {
@@ -117,7 +222,7 @@ impl<'a> Ident<'a> {
         let p = self.path;
         let c = match p.canonicalize() {
             Ok(c) => c,
-            Err(_) => parent(p).canonicalize().ok()?.join(p.file_name()?),
+            Err(_) => canon_missing(p)?,
         };
         Some(self.canon.get_or_init(|| c))
     }
@@ -230,10 +335,23 @@ impl Outputs {
                     format!(".{}.part", std::process::id())
                 );
             }
+            // `--out /dev/full` taken as a stem would write `/dev/full.csv` beside the device:
+            // an output named after an existing device, FIFO or socket is refused
+            if let Some(stem) = p.file_stem().map(|s| p.with_file_name(s)).filter(|s| s != p) {
+                if let Some(kind) = std::fs::metadata(&stem).ok().and_then(|m| special_kind(&m)) {
+                    bail!(
+                        "{opt}: {} is {kind}, not a file or folder name (outputs would go beside it, as {}); give a file name or a folder",
+                        stem.display(),
+                        p.display()
+                    );
+                }
+            }
             let meta = std::fs::metadata(p).ok();
+            if let Some(kind) = meta.as_ref().and_then(special_kind) {
+                bail!("{opt}: {} is {kind}, not a regular file: the output is renamed onto its name, which would replace it; give a file name", p.display());
+            }
             match &meta {
                 Some(m) if m.is_dir() => bail!("{opt}: {} is a folder, not a file", p.display()),
-                Some(m) if !m.is_file() => bail!("{opt}: {} exists and is not a regular file (a device or pipe); give a file name", p.display()),
                 _ => {}
             }
             let id = Ident::of(p, meta.as_ref());
@@ -252,16 +370,25 @@ impl Outputs {
             if probed.contains(&dir) {
                 continue;
             }
-            match std::fs::metadata(&dir) {
-                Ok(m) if m.is_dir() => {}
+            let system = |sys: &str| {
+                anyhow!("{opt}: {} is in the system folder {sys} (devices, kernel state), not a place for outputs; give another folder", p.display())
+            };
+            let missing = match std::fs::metadata(&dir) {
+                Ok(m) if m.is_dir() => {
+                    if let Some(sys) = system_folder(&dir) {
+                        return Err(system(sys));
+                    }
+                    false
+                }
                 Ok(_) => bail!("{opt}: {} is not a folder", dir.display()),
+                Err(_) if system_folder(&dir).is_some() => return Err(system(system_folder(&dir).unwrap_or_default())),
                 // `q/..` with `q` missing: creating `q` only to step out of it again would leave
                 // a folder nobody asked for
                 Err(_) if steps_out_of_missing(&dir) => {
                     bail!("{opt}: the folder {} steps out of a folder that does not exist (`..`); give the folder itself", dir.display())
                 }
-                Err(_) => std::fs::create_dir_all(&dir).map_err(|e| anyhow!("{opt}: cannot create the folder {}: {e}", dir.display()))?,
-            }
+                Err(_) => true,
+            };
             let cannot = |e: std::io::Error| {
                 if e.kind() == std::io::ErrorKind::InvalidFilename {
                     let what = if cfg!(unix) { "too long" } else { "too long or not allowed" };
@@ -277,9 +404,16 @@ impl Outputs {
             match first {
                 Some((fopt, fp)) if staged.is_none() && parent(fp) == dir => staged = Some(Staged::open(fopt, fp).map_err(cannot)?),
                 _ => {
+                    // a missing folder is created for the probe and removed with it: a check
+                    // writes nothing (a run that fails after it leaves no empty folder); the
+                    // folder is made again when the output is written
+                    let made =
+                        if missing { make_folders(&dir).map_err(|e| anyhow!("{opt}: cannot create the folder {}: {e}", dir.display()))? } else { vec![] };
                     let probe = temp_for(&dir.join(".autobal-probe"));
-                    File::options().write(true).create_new(true).open(&probe).map_err(cannot)?;
+                    let opened = File::options().write(true).create_new(true).open(&probe);
                     let _ = std::fs::remove_file(&probe);
+                    remove_folders(&made);
+                    opened.map_err(cannot)?;
                 }
             }
             probed.push(dir);
@@ -330,6 +464,8 @@ pub struct Staged {
     option: String,
     path: PathBuf,
     tmp: PathBuf,
+    /// The folders created for it, removed (when empty) if it is dropped uncommitted.
+    made: Vec<PathBuf>,
     file: Option<BufWriter<File>>,
 }
 
@@ -341,9 +477,16 @@ impl Staged {
 
     fn open(option: &str, path: &Path) -> std::io::Result<Self> {
         let tmp = temp_for(path);
-        let f = File::options().write(true).create(true).truncate(true).open(&tmp)?;
+        let made = make_folders(&parent(path))?;
+        let f = match File::options().write(true).create(true).truncate(true).open(&tmp) {
+            Ok(f) => f,
+            Err(e) => {
+                remove_folders(&made);
+                return Err(e);
+            }
+        };
         track_unfinished(&tmp);
-        Ok(Staged { option: option.to_string(), path: path.to_path_buf(), tmp, file: Some(BufWriter::with_capacity(1 << 16, f)) })
+        Ok(Staged { option: option.to_string(), path: path.to_path_buf(), tmp, made, file: Some(BufWriter::with_capacity(1 << 16, f)) })
     }
 
     /// The temporary name the bytes go to until the commit.
@@ -364,12 +507,17 @@ impl Staged {
                 drop(e);
                 let _ = std::fs::remove_file(&self.tmp);
                 untrack_unfinished(&self.tmp);
+                remove_folders(&self.made);
                 return Err(err);
             }
         };
         drop(f);
         let renamed = std::fs::rename(&self.tmp, &self.path);
         untrack_unfinished(&self.tmp);
+        if renamed.is_err() {
+            let _ = std::fs::remove_file(&self.tmp);
+            remove_folders(&self.made);
+        }
         renamed.with_context(|| format!("{}: cannot rename {} to {}", self.option, self.tmp.display(), self.path.display()))?;
         Ok(self.path.clone())
     }
@@ -392,6 +540,7 @@ impl Drop for Staged {
         if self.file.take().is_some() {
             let _ = std::fs::remove_file(&self.tmp);
             untrack_unfinished(&self.tmp);
+            remove_folders(&self.made);
         }
     }
 }
@@ -418,6 +567,7 @@ impl TempName {
     /// Create the temporary file for `path`; returns it and its open handle.
     pub fn create(option: &str, path: &Path) -> Result<(Self, File)> {
         let tmp = temp_for(path);
+        let _ = make_folders(&parent(path));
         let f = File::create(&tmp).with_context(|| format!("{option}: cannot create {}", tmp.display()))?;
         track_unfinished(&tmp);
         Ok((TempName { option: option.to_string(), path: path.to_path_buf(), tmp, done: false }, f))
@@ -501,7 +651,14 @@ mod tests {
         let sub = d.join("e");
         std::fs::create_dir(&sub).unwrap();
         Outputs::new().output("--out", &sub.join("../made/x.csv")).check().unwrap();
+        assert!(!d.join("made").exists(), "a check made a folder");
+        let s = Outputs::new().output("--out", &sub.join("../made/x.csv")).check_and_stage_first().unwrap();
         assert!(d.join("made").is_dir());
+        drop(s);
+        assert!(!d.join("made").exists(), "a staged file dropped uncommitted left its folder");
+        let mut s = Staged::create("--out", &d.join("made/x.csv")).unwrap();
+        writeln!(s, "x").unwrap();
+        s.commit().unwrap();
         assert!(steps_out_of_missing(&d.join("q/r/../x")) && !steps_out_of_missing(Path::new("../x/y")));
         // a name longer than the file system allows names the name, not the folder
         let long = d.join("n".repeat(300));
@@ -540,11 +697,23 @@ mod tests {
         #[cfg(unix)]
         {
             let e = Outputs::new().output("--out", Path::new("/dev/null")).check().unwrap_err().to_string();
-            assert!(e.contains("not a regular file"), "{e}");
+            assert!(e.contains("is a device, not a regular file"), "{e}");
+            // named after a device: `--out /dev/full` as a stem
+            let e = Outputs::new().output("--out", Path::new("/dev/null.csv")).check().unwrap_err().to_string();
+            assert!(e.starts_with("--out: /dev/null is a device, not a file or folder name"), "{e}");
+            // into /dev, /proc, /sys (also through `..`), but /dev/shm is a file system for files
+            for p in ["/dev/autobal-x.csv", "/tmp/../dev/a/b.csv", "/proc/x.csv", "/sys/q/x.csv"] {
+                let e = Outputs::new().output("--out", Path::new(p)).check().unwrap_err().to_string();
+                assert!(e.contains("is in the system folder /"), "{p}: {e}");
+                assert!(!Path::new(p).exists());
+            }
+            assert_eq!(system_folder(Path::new("/dev/shm/a")), None);
+            assert_eq!(system_folder(Path::new("/tmp")), None);
+            assert_eq!(system_folder(Path::new("/device")), None);
         }
-        // a missing parent is created, a fresh name accepted
-        Outputs::new().input("--config", &cfg).output("--out", &d.join("sub/x.csv")).check().unwrap();
-        assert!(d.join("sub").is_dir());
+        // a missing parent is accepted (and made when the file is written, not by the check)
+        Outputs::new().input("--config", &cfg).output("--out", &d.join("sub/deeper/x.csv")).check().unwrap();
+        assert!(!d.join("sub").exists());
         assert_eq!(resolve(Path::new("runs/"), "simulation.csv"), PathBuf::from("runs/simulation.csv"));
         assert_eq!(resolve(&d, "s.csv"), d.join("s.csv"));
         assert_eq!(resolve(Path::new("x"), "s.csv"), PathBuf::from("x"));

@@ -107,6 +107,34 @@ pub struct Heatmap {
     pub label: String,
 }
 
+impl Heatmap {
+    /// Whether the figure draws it: a grid of at least one point each way, every value finite,
+    /// and `z` of `y.len()` rows of `x.len()` values. Anything else (an empty axis, a ragged
+    /// or missing row, a NaN grid value) is left out of the SVG, the PNG and the axis ranges,
+    /// and the rest of the figure drawn: never a panic.
+    pub fn drawable(&self) -> bool {
+        let (nx, ny) = (self.x.len(), self.y.len());
+        nx > 0
+            && ny > 0
+            && self.z.len() == ny
+            && self.z.iter().all(|r| r.len() == nx)
+            && self.x.iter().chain(&self.y).all(|v| v.is_finite())
+            && self.cells_span().is_some()
+    }
+
+    /// The raster's extent `((x_lo, x_hi), (y_lo, y_hi))`: cells centred on the grid values, a
+    /// half step beyond the first and last (half a unit for one value); `None` where it is not
+    /// finite and of positive width.
+    fn cells_span(&self) -> Option<((f64, f64), (f64, f64))> {
+        let half = |v: &[f64]| if v.len() > 1 { (v[1] - v[0]).abs() / 2.0 } else { 0.5 };
+        let span = |v: &[f64]| {
+            let (a, b) = (v.first()? - half(v), v.last()? + half(v));
+            (a.is_finite() && b.is_finite() && b > a).then_some((a, b))
+        };
+        Some((span(&self.x)?, span(&self.y)?))
+    }
+}
+
 /// A second horizontal axis along the top: the bottom axis times `factor` (e.g. rpm over rad/s).
 #[derive(Debug, Clone)]
 pub struct SecondAxis {
@@ -152,7 +180,11 @@ pub fn ticks(lo: f64, hi: f64, target: usize) -> Vec<f64> {
     if !matches!(hi.partial_cmp(&lo), Some(std::cmp::Ordering::Greater)) {
         return vec![lo];
     }
-    let raw = (hi - lo) / target as f64;
+    let raw = (hi - lo) / target.max(1) as f64;
+    // a span past the largest float (±1e308) or below the smallest step: one tick
+    if !raw.is_finite() || raw <= 0.0 {
+        return vec![lo];
+    }
     let mag = 10f64.powf(raw.log10().floor());
     let step = [1.0, 2.0, 2.5, 5.0, 10.0].iter().map(|m| m * mag).find(|s| *s >= raw).unwrap_or(10.0 * mag);
     let start = (lo / step).ceil() as i64;
@@ -240,7 +272,7 @@ impl ColourCache {
 /// are both made of when a figure is written both ways ([`Plot::to_svg_and_png`]).
 fn heat_colours(h: &Heatmap) -> Option<Vec<[u8; 3]>> {
     let (nx, ny) = (h.x.len(), h.y.len());
-    if nx == 0 || ny == 0 || h.z.len() != ny || h.z.iter().any(|r| r.len() != nx) {
+    if !h.drawable() {
         return None;
     }
     let mut colour = ColourCache::new(h.scale);
@@ -357,21 +389,17 @@ impl Plot {
             y0 = y0.min(y);
             y1 = y1.max(y);
         }
-        if let Some(h) = &self.heatmap {
-            let half = |v: &[f64]| if v.len() > 1 { (v[1] - v[0]).abs() / 2.0 } else { 0.5 };
-            if let (Some(a), Some(b)) = (h.x.first(), h.x.last()) {
-                x0 = x0.min(a - half(&h.x));
-                x1 = x1.max(b + half(&h.x));
-            }
-            if let (Some(a), Some(b)) = (h.y.first(), h.y.last()) {
-                y0 = y0.min(a - half(&h.y));
-                y1 = y1.max(b + half(&h.y));
-            }
+        if let Some(((ha, hb), (va, vb))) = self.heatmap.as_ref().filter(|h| h.drawable()).and_then(Heatmap::cells_span) {
+            x0 = x0.min(ha);
+            x1 = x1.max(hb);
+            y0 = y0.min(va);
+            y1 = y1.max(vb);
         }
-        if !x0.is_finite() {
+        // no finite data, or a span past the largest float (points at ±1e308)
+        if !(x1 - x0).is_finite() {
             (x0, x1) = (0.0, 1.0);
         }
-        if !y0.is_finite() {
+        if !(y1 - y0).is_finite() {
             (y0, y1) = (0.0, 1.0);
         }
         if x1 - x0 < 1e-12 {
@@ -383,7 +411,9 @@ impl Plot {
             y1 += 0.5;
         }
         let head = if self.heatmap.is_some() { 0.0 } else { 0.05 * (y1 - y0) };
-        (self.x_range.unwrap_or((x0, x1)), self.y_range.unwrap_or((y0, y1 + head)))
+        // a configured range is taken where it is finite and increasing (else the data's)
+        let given = |r: Option<(f64, f64)>| r.filter(|&(a, b)| a.is_finite() && b.is_finite() && (b - a).is_finite() && b > a);
+        (given(self.x_range).unwrap_or((x0, x1)), given(self.y_range).unwrap_or((y0, y1 + head)))
     }
 
     /// The raster of the SVG's heatmap (its top row the last `y`), from the cells' colours
@@ -478,10 +508,7 @@ impl Plot {
                 esc(line)
             );
         }
-        if let (false, Some(h)) = (embed, self.heatmap.as_ref()) {
-            let half = |v: &[f64]| if v.len() > 1 { (v[1] - v[0]).abs() / 2.0 } else { 0.5 };
-            let (ha, hb) = (h.x[0] - half(&h.x), h.x[h.x.len() - 1] + half(&h.x));
-            let (va, vb) = (h.y[0] - half(&h.y), h.y[h.y.len() - 1] + half(&h.y));
+        if let (false, Some(((ha, hb), (va, vb)))) = (embed, self.heatmap.as_ref().filter(|h| h.drawable()).and_then(Heatmap::cells_span)) {
             placement = Some(HeatPlacement { rect: [sx(ha), sy(vb), sx(hb) - sx(ha), sy(va) - sy(vb)], clip: [ml, mt, PW, PH], bar: None, lines: vec![] });
         }
         // with a heatmap left out, the PNG also paints the figure's axis-aligned strokes itself
@@ -508,12 +535,10 @@ impl Plot {
         };
         // (nothing else drawn over the frame: no vertical markers, no top axis's ticks)
         let frames = direct_from == 0 && thick(1.0) && self.vlines.is_empty() && self.x2.is_none();
-        if let Some(png) = self.heatmap.as_ref().filter(|_| embed).and_then(|h| Self::heat_png(h, colours)) {
-            let h = self.heatmap.as_ref().expect("heatmap present");
-            // the raster's cells centred on the grid values
-            let half = |v: &[f64]| if v.len() > 1 { (v[1] - v[0]).abs() / 2.0 } else { 0.5 };
-            let (ha, hb) = (h.x[0] - half(&h.x), h.x[h.x.len() - 1] + half(&h.x));
-            let (va, vb) = (h.y[0] - half(&h.y), h.y[h.y.len() - 1] + half(&h.y));
+        // the raster's cells centred on the grid values (`heat_png` is `None` unless the heatmap
+        // is drawable)
+        let embedded = self.heatmap.as_ref().filter(|_| embed).and_then(|h| Some((Self::heat_png(h, colours)?, h.cells_span()?)));
+        if let Some((png, ((ha, hb), (va, vb)))) = embedded {
             // clipped to the plot area only where it reaches outside it (a map's raster fills
             // it exactly, and a clip costs the PNG rasteriser a mask over the whole figure)
             let inside = sx(ha) >= ml - 0.01 && sx(hb) <= ml + PW + 0.01 && sy(vb) >= mt - 0.01 && sy(va) <= mt + PH + 0.01;
@@ -815,8 +840,7 @@ impl Plot {
     /// given.
     fn png_with(&self, scale: f32, colours: Option<&[[u8; 3]]>) -> anyhow::Result<Vec<u8>> {
         let (Some(h), (svg, Some(at))) = (&self.heatmap, self.svg_png(scale)) else { return svg_to_png(&self.to_svg(), scale) };
-        let (nx, ny) = (h.x.len(), h.y.len());
-        if nx == 0 || ny == 0 || h.z.len() != ny || h.z.iter().any(|r| r.len() != nx) {
+        if !h.drawable() {
             // a heatmap the SVG leaves out (ragged rows) is left out here too
             return svg_to_png(&self.to_svg(), scale);
         }
@@ -2500,5 +2524,83 @@ mod tests {
         resvg::render(&tree, resvg::tiny_skia::Transform::identity(), &mut pix.as_mut());
         let want: Vec<u8> = pix.pixels().iter().flat_map(|p| [p.red(), p.green(), p.blue()]).collect();
         assert!(buf[..info.buffer_size()] == want[..], "decoded pixels differ");
+    }
+
+    /// Degenerate data never panics: every kind of figure (curves, markers, shades, vertical
+    /// lines, a heatmap of each scale, named ticks, a second axis) with empty, NaN-only,
+    /// infinite, one-point and equal-valued data, and heatmaps with an empty x or y grid, rows
+    /// missing or ragged, is written as SVG, PNG, both at once and Plotly JSON; each PNG
+    /// decodes and the SVG is one document. (An empty heatmap grid panicked in `to_png`: the
+    /// raster's placement divided by zero cells and indexed `n - 1`.)
+    #[test]
+    fn degenerate_data_of_every_kind_gives_a_figure_not_a_panic() {
+        let nan = f64::NAN;
+        let inf = f64::INFINITY;
+        let datas: Vec<Vec<(f64, f64)>> = vec![
+            vec![],
+            vec![(nan, nan)],
+            vec![(nan, 1.0), (2.0, nan)],
+            vec![(1.0, 2.0)],
+            vec![(1.0, 2.0), (1.0, 2.0)],
+            vec![(inf, 1.0), (-inf, -inf)],
+            vec![(0.0, 1e308), (1e-308, -1e308)],
+        ];
+        let grids: Vec<Vec<f64>> = vec![vec![], vec![1.0], vec![1.0, 1.0], vec![nan, nan], vec![0.0, 1.0, 2.0], vec![inf, 0.0]];
+        let mut plots = vec![];
+        for d in &datas {
+            for (markers, dashed) in [(false, false), (true, false), (false, true)] {
+                let mut s = Series::new("c", d.clone(), "#0072B2");
+                s.markers = markers;
+                s.dashed = dashed;
+                let x = d.first().map_or(0.0, |p| p.0);
+                plots.push(Plot {
+                    series: vec![s],
+                    shades: vec![Shade { x: (x, x), y: (None, d.first().map(|p| p.1)), color: "#ccc".into() }],
+                    vlines: vec![(x, "v".into())],
+                    x2: Some(SecondAxis { factor: 30.0 / std::f64::consts::PI, label: "rpm".into() }),
+                    ..Default::default()
+                });
+            }
+            plots.push(Plot { series: vec![Series::new("c", d.clone(), "#000")], y_ticks: Some(vec![]), ..Default::default() });
+            plots.push(Plot { series: vec![Series::new("c", d.clone(), "#000")], y_ticks: Some(vec![(nan, "a".into())]), ..Default::default() });
+            plots.push(Plot { series: vec![Series::new("c", d.clone(), "#000")], x_range: Some((1.0, 1.0)), y_range: Some((nan, inf)), ..Default::default() });
+        }
+        for x in &grids {
+            for y in &grids {
+                for zs in [
+                    vec![vec![0.5; x.len()]; y.len()],
+                    vec![vec![nan; x.len()]; y.len()],
+                    vec![],
+                    vec![vec![1.0; x.len() + 1]; y.len()],
+                    vec![vec![inf; x.len()]; y.len()],
+                ] {
+                    for scale in [ColorScale::Verdict, ColorScale::Diverging { neg: 0.0, pos: 0.0 }, ColorScale::Diverging { neg: nan, pos: inf }] {
+                        let boundary = Series::new("b", x.iter().zip(y).map(|(&a, &b)| (a, b)).collect(), "#000");
+                        plots.push(Plot {
+                            series: vec![boundary],
+                            heatmap: Some(Heatmap { x: x.clone(), y: y.clone(), z: zs.clone(), scale, label: "m".into() }),
+                            ..Default::default()
+                        });
+                    }
+                }
+            }
+        }
+        for p in &plots {
+            let svg = p.to_svg();
+            assert!(svg.starts_with("<svg") || svg.starts_with("<?xml"), "{}", &svg[..svg.len().min(80)]);
+            let png = p.to_png(1.0).expect("a PNG");
+            assert!(png.starts_with(b"\x89PNG"));
+            let (svg2, png2) = p.to_svg_and_png(1.0);
+            assert_eq!(svg2, svg);
+            assert_eq!(png2.expect("a PNG"), png);
+            let _ = p.to_plotly();
+            let _ = p.point_count();
+        }
+        // ticks of a span past the largest float, of no target count, of NaN: finite or one
+        for (lo, hi, n) in [(-1e308, 1e308, 7), (0.0, 1.0, 0), (nan, 1.0, 7), (0.0, inf, 7), (5e-324, 1e-323, 7)] {
+            let t = ticks(lo, hi, n);
+            assert!(!t.is_empty() && t.len() <= 12, "{lo} {hi} {n}: {t:?}");
+            assert!(t.iter().all(|v| v.is_finite()) || lo.is_nan(), "{lo} {hi} {n}: {t:?}");
+        }
     }
 }

@@ -95,6 +95,7 @@ impl Args {
     fn read(&self) -> Result<(Table, String)> {
         match &self.config {
             ConfigSource::File { path, sets } => {
+                config::check_repeated_sets(sets)?;
                 let (mut root, source) = config::read_with_default(path.as_deref(), config::DEFAULT_PLANAR, DEFAULT_NAME)?;
                 let linear = linear_rotor::is_linear(&root);
                 for s in sets {

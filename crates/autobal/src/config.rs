@@ -541,7 +541,13 @@ fn dimensionless(root: &Table, method: AnisotropyMethod) -> Result<SpatialSpec> 
 pub fn planar(root: &Table) -> Result<PlanarProblem> {
     check_schema(root)?;
     if !root.contains_key("planar") {
-        return Err(Error::invalid("planar", "missing: `simulate` needs a [planar] table (see examples/planar.toml)"));
+        // every command reads a config that is neither spatial nor linear as a planar one: the
+        // message names what a config may hold, not one command (an empty file reached here
+        // from `stability` and said "`simulate` needs")
+        return Err(Error::invalid(
+            "planar",
+            "missing: the config has no rotor: give [planar] (paper 004, examples/planar.toml), [rotor] or [dimensionless] (papers 000/003, examples/default.toml) or [linear_rotor] (examples/linear_rotor_shaft.toml)",
+        ));
     }
     let (p, d, ig) = (Section::of(root, "planar"), Section::of(root, "drive"), Section::of(root, "integration"));
     let (k, k_y) = planar_direction_pair(&p, "k", None)?;

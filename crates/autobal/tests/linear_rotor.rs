@@ -7,11 +7,14 @@
 use autobal::analysis::{speed_scan, stability, stationary, Kind, NewtonOptions, ScanOptions, Stability, VectorField, Verdict};
 use autobal::linear_rotor::shaft::{Bearing, Disk, ShaftBuilder};
 use autobal::linear_rotor::{BalancerPlane, Direction, Frame, Layout, LinearRotor, LinearRotorField, TimeSystem, Unbalance};
-use autobal::ode::{Control, Method, Options, Solver, System};
+use autobal::ode::{Control, Method, Options, Solver};
 use autobal::planar::field::PlanarField;
 use autobal::planar::PlanarRotor;
 use num_complex::Complex64;
 use std::f64::consts::PI;
+
+mod common;
+use common::Sys;
 
 /// A small deterministic generator (xorshift64*), uniform in `[a, b)`.
 struct Rng(u64);
@@ -261,15 +264,6 @@ fn rotating_frame_matrices_as_stated() {
 /// tolerance: the two frames are one model. Four balls in two planes, anisotropic bearings.
 #[test]
 fn fixed_and_rotating_frames_agree_in_time() {
-    struct Sys<'a>(&'a LinearRotorField);
-    impl System for Sys<'_> {
-        fn dim(&self) -> usize {
-            self.0.dim()
-        }
-        fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
-            self.0.rhs(t, y, dy)
-        }
-    }
     let mut r = LinearRotor::zeros(2, Layout::Translation);
     let n = r.dofs();
     for (i, (m, k)) in [(1.0, 4e4), (1.2, 5e4), (0.8, 3e4), (1.1, 6e4)].iter().enumerate() {
@@ -665,15 +659,6 @@ fn evenly_spread_balls_act_as_a_ring() {
 /// revolutions keeps `h` to about `1e-10` of its terms; the bound is `1e-8`.
 #[test]
 fn jacobi_integral_is_conserved_in_turning_axes() {
-    struct Sys<'a>(&'a LinearRotorField);
-    impl System for Sys<'_> {
-        fn dim(&self) -> usize {
-            self.0.dim()
-        }
-        fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
-            self.0.rhs(t, y, dy)
-        }
-    }
     let mut b = ShaftBuilder::uniform(3, 0.6, 0.03, 2.1e11, 7800.0);
     b.rotary_inertia = true;
     b.gyroscopic = true;

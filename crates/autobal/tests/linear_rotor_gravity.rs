@@ -8,13 +8,13 @@
 
 use autobal::analysis::{stability, stationary, Kind, NewtonOptions, Stability, VectorField, Verdict};
 use autobal::linear_rotor::{BalancerPlane, Frame, Layout, LinearRotor, LinearRotorField, Unbalance};
-use autobal::ode::{Control, Method, Options, Solver, System};
+use autobal::ode::{Control, Method, Options, Solver};
 use autobal::rotor_stability::Rotor;
 use autobal::spatial::dynamics::{BallPlane, PointMass, RigidRotor, SpatialField, SpatialRotor, Support};
 use std::f64::consts::PI;
 
 mod common;
-use common::{all_eigenvalues, locked_tilt_jeffcott, match_distance, per_revolution};
+use common::{all_eigenvalues, locked_tilt_jeffcott, match_distance, per_revolution, Sys};
 
 /// The same rotor as a linear rotor (one node, `x, y`): `M = (M_r + m_u) I` (the unbalance mass
 /// moves with the node), `K = diag(k_x, k_y)`, `C = c I`, the unbalance `m·e = m_u ρ` at its
@@ -122,15 +122,6 @@ fn gravity_orbit_and_multipliers_equal_the_spatial_models() {
 /// 40 revolutions it was still 1.1 times the start's, a transient of the non-normal modes).
 #[test]
 fn time_run_at_a_stable_speed_stays_on_the_orbit() {
-    struct Sys<'a>(&'a LinearRotorField);
-    impl System for Sys<'_> {
-        fn dim(&self) -> usize {
-            self.0.dim()
-        }
-        fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
-            self.0.rhs(t, y, dy)
-        }
-    }
     let lin = linear(&locked_tilt_jeffcott([1e5, 1.3e5], [1.0, -9.81]));
     let w = 180.0;
     let rot = LinearRotorField::new(&lin, w, Frame::Rotating).unwrap();

@@ -16,7 +16,7 @@ use autobal::spatial::stability::eigenvalues_at;
 use num_complex::Complex64;
 
 mod common;
-use common::Rng;
+use common::{Rng, Sys};
 
 /// A random one-plane, two-ball dimensionless rotor (as tests/rotor_stability.rs).
 fn random_model(rng: &mut Rng) -> (SpatialModel, SpatialRotor) {
@@ -257,15 +257,6 @@ fn a_time_simulation_whirls_at_the_fixed_axes_frequency_and_decays_at_sigma() {
     let x0 = stationary(&field, &field.semi_balanced_guess().unwrap(), &Default::default()).unwrap().x;
     let mut jac = vec![0.0; n * n];
     field.jacobian(0.0, &x0, &mut jac);
-    struct Sys<'a>(&'a PlanarField);
-    impl autobal::ode::System for Sys<'_> {
-        fn dim(&self) -> usize {
-            self.0.dim()
-        }
-        fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
-            self.0.rhs(t, y, dy)
-        }
-    }
     for whirl in [Whirl::Forward, Whirl::Backward] {
         let pt = c
             .lines

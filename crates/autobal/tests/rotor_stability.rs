@@ -15,7 +15,7 @@ use autobal::spatial::params::SpatialModel;
 use autobal::spatial::stability::stability_ranges;
 
 mod common;
-use common::Rng;
+use common::{Rng, Sys};
 
 /// A random one-plane, two-ball dimensionless rotor (isotropic supports, no gravity), retried
 /// until the rotor exists and its balancer can balance (capacity 1.05-3).
@@ -159,15 +159,6 @@ fn under_gravity_the_stationary_motion_is_a_periodic_orbit_whose_verdict_a_simul
     let period = field.period().unwrap();
     // integrate the reduced field with the crate's DOP853 (tight tolerance)
     let flow = |x: &[f64], t0: f64, t1: f64| -> Vec<f64> {
-        struct Sys<'a>(&'a SpatialField);
-        impl autobal::ode::System for Sys<'_> {
-            fn dim(&self) -> usize {
-                self.0.dim()
-            }
-            fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
-                self.0.rhs(t, y, dy)
-            }
-        }
         let sys = Sys(&field);
         let opts = autobal::ode::Options::new(1e-11, 1e-14).method(autobal::ode::Method::Dop853);
         let mut s = autobal::ode::Solver::new(&sys, opts).unwrap();

@@ -5,12 +5,12 @@
 
 use autobal::analysis::{stability, stationary, NewtonOptions, VectorField, Verdict};
 use autobal::linear_rotor::{BalancerPlane, Frame, Layout, LinearRotor, LinearRotorField, Unbalance};
-use autobal::ode::{Control, Method, Options, Solver, System};
+use autobal::ode::{Control, Method, Options, Solver};
 use autobal::rotor_stability::{Rotor, StateKind};
 use std::f64::consts::{PI, TAU};
 
 mod common;
-use common::locked_tilt_jeffcott;
+use common::{locked_tilt_jeffcott, Sys};
 
 /// A Jeffcott rotor as a linear rotor (one node, `x, y`): mass 10.01 kg, supports `k`, damping
 /// 40 kg/s, the unbalance `m e = 1e-3` kg·m at 0.3 rad, two balls of 0.02 kg on a race of 0.1 m
@@ -25,16 +25,6 @@ fn jeffcott(k: [f64; 2], g: [f64; 2]) -> LinearRotor {
     r.balancers.push(BalancerPlane { node: 0, radius: 0.1, balls: 2, ball_mass: 0.02, drag: 0.5 * 0.01, offset: 0.0 });
     r.set_gravity(g);
     r
-}
-
-struct Sys<'a>(&'a LinearRotorField);
-impl System for Sys<'_> {
-    fn dim(&self) -> usize {
-        self.0.dim()
-    }
-    fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
-        self.0.rhs(t, y, dy)
-    }
 }
 
 /// From the fixed-axes state `y0` at `t = 0`, `settle` revolutions then one sampled at `samples`

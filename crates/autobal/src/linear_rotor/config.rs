@@ -143,6 +143,30 @@ pub fn file_names(root: &Table) -> Vec<(String, String)> {
     FILE_KEYS.iter().filter_map(|k| lr.get(*k).and_then(Value::as_str).map(|v| (format!("linear_rotor.{k}"), v.to_string()))).collect()
 }
 
+/// `value` within `[lo, hi]` (`(lo, hi]` where `lo.1` says open) in `unit`, else an error
+/// naming `field` with the range and why (`must lie in (0, 1e13] Pa, got 1e300 (...)`); a
+/// value below zero where zero is allowed or open says `must be positive`/`must not be
+/// negative` as the other checks do.
+/// Why a bearing's stiffness is bounded (limits.rs's support stiffness).
+const STIFF: &str = "the stiffest bearings are ~1e10 N/m (as the spatial rotor's supports)";
+
+fn within(field: &str, value: f64, lo: (f64, bool), hi: f64, unit: &str, why: &str) -> Result<f64> {
+    crate::error::finite(field, value)?;
+    if lo.0 == 0.0 {
+        if lo.1 {
+            crate::error::positive(field, value)?;
+        } else {
+            crate::error::non_negative(field, value)?;
+        }
+    }
+    let below = if lo.1 { value <= lo.0 } else { value < lo.0 };
+    if below || value > hi {
+        let (open, fmt) = (if lo.1 { "(" } else { "[" }, crate::error::fmt_num);
+        return Err(Error::invalid(field, format!("must lie in {open}{}, {}] {unit}, got {} ({why})", fmt(lo.0), fmt(hi), fmt(value))));
+    }
+    Ok(value)
+}
+
 /// Whether a config describes a linear rotor (has `[linear_rotor]`).
 pub fn is_linear_rotor(root: &Table) -> bool {
     root.contains_key("linear_rotor")
@@ -448,6 +472,12 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
         for el in &elements {
             let length = el.req("length")?;
             let (e, rho) = (el.req("e")?, el.req("rho")?);
+            // generous physical bounds, so that the element matrices (∝ E I / L³, ρ A L³) stay
+            // finite and the eigenvalue solver meets no overflow: `length = 1e300` was reported
+            // as `linear_rotor.m[0,3]: ... inf`, `e = 1e300` as a solver that did not converge
+            within(&el.field("length"), length, (1e-6, false), 1e4, "m", "a micrometre to 10 km")?;
+            within(&el.field("e"), e, (0.0, true), 1e13, "Pa", "stiffer than diamond (1.2e12 Pa) tenfold")?;
+            within(&el.field("rho"), rho, (0.0, true), 1e5, "kg/m³", "denser than osmium (2.3e4 kg/m³) fourfold")?;
             let count = el.usize("count")?.unwrap_or(1);
             if count == 0 || count > 10_000 {
                 return Err(Error::invalid(el.field("count"), "must be from 1 to 10000"));
@@ -466,6 +496,8 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
             }
             let element = match (el.f64("diameter")?, el.f64("area")?, el.f64("inertia")?) {
                 (Some(d), None, None) => {
+                    // (`diameter = 0` was reported against inner_diameter)
+                    within(&el.field("diameter"), d, (1e-6, false), 1e3, "m", "a micrometre to a kilometre")?;
                     let di = el.f64("inner_diameter")?.unwrap_or(0.0);
                     if !(di >= 0.0 && di < d) {
                         return Err(Error::invalid(el.field("inner_diameter"), "must lie in [0, diameter)"));
@@ -476,6 +508,8 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
                     Element { area, inertia: o.inertia - i.inertia, shear, ..o }
                 }
                 (None, Some(area), Some(inertia)) => {
+                    within(&el.field("area"), area, (0.0, true), 1e6, "m²", "the section of a kilometre-wide shaft")?;
+                    within(&el.field("inertia"), inertia, (0.0, true), 1e12, "m⁴", "the section of a kilometre-wide shaft")?;
                     let shear = match (g_s, kappa) {
                         (Some(g), Some(k)) => Some(k * g * area),
                         (Some(_), None) => {
@@ -492,7 +526,12 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
             }
         }
         for d in &disks {
-            b.disks.push(Disk { node: d.req_usize("node")?, mass: d.req("mass")?, id: d.f64("id")?.unwrap_or(0.0), ip: d.f64("ip")?.unwrap_or(0.0) });
+            let disk = Disk { node: d.req_usize("node")?, mass: d.req("mass")?, id: d.f64("id")?.unwrap_or(0.0), ip: d.f64("ip")?.unwrap_or(0.0) };
+            // (1e300 was taken, and gave natural frequencies of 1e-148 rad/s)
+            within(&d.field("mass"), disk.mass, (0.0, false), 1e9, "kg", "no machine rotor exceeds 1e9 kg")?;
+            within(&d.field("id"), disk.id, (0.0, false), 1e12, "kg·m²", "1e9 kg at 30 m")?;
+            within(&d.field("ip"), disk.ip, (0.0, false), 1e12, "kg·m²", "1e9 kg at 30 m")?;
+            b.disks.push(disk);
         }
         let mut r = b.build().map_err(|e| rename(e, "shaft.", "linear_rotor."))?;
         if let Some(ip) = top.f64("polar_inertia")? {
@@ -544,8 +583,10 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
                     }
                 }
                 let (k, c) = (br.req("k")?, br.f64("c")?.unwrap_or(0.0));
-                crate::error::non_negative(&br.field("k"), k)?;
-                crate::error::non_negative(&br.field("c"), c)?;
+                // limits.rs's bounds of the spatial rotor's supports (`k = 1e300` ended in an
+                // eigenvalue solver that did not converge, naming no field)
+                within(&br.field("k"), k, (0.0, false), 1e13, "N/m", STIFF)?;
+                within(&br.field("c"), c, (0.0, false), 1e12, "N·s/m", "as supports.damping_left")?;
                 let Bearing { node, k, c } = Bearing { node, k, c };
                 let (mut kk, mut cc) = (std::mem::take(&mut rotor.k), std::mem::take(&mut rotor.c));
                 rotor.add_bearing_block(node, link, &[k, 0.0, 0.0, k], &mut kk);
@@ -554,6 +595,10 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
             }
             Some(speeds) => {
                 let len = speeds.len();
+                // (an empty table was reported against kxx: "has 2 entries, one per speed: 0")
+                if len == 0 {
+                    return Err(Error::invalid(br.field("speeds"), "is empty: give the speeds (rad/s) of the table, at least one"));
+                }
                 let col = |k: &str, fallback: Option<&str>| -> Result<Vec<f64>> {
                     let v = match br.array(k)? {
                         Some(v) => v,
@@ -564,6 +609,17 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
                     };
                     if v.len() != len {
                         return Err(Error::invalid(br.field(k), format!("has {} entries, one per speed: {len}", v.len())));
+                    }
+                    // cross-coupled terms may be negative: the magnitude is bounded
+                    let (hi, unit, why) = if k.starts_with('k') { (1e13, "N/m", STIFF) } else { (1e12, "N·s/m", "as supports.damping_left") };
+                    for (j, x) in v.iter().enumerate() {
+                        if x.abs() > hi {
+                            let f = crate::error::fmt_num;
+                            return Err(Error::invalid(
+                                format!("{}[{j}]", br.field(k)),
+                                format!("must lie in [-{}, {}] {unit}, got {} ({why})", f(hi), f(hi), f(*x)),
+                            ));
+                        }
                     }
                     Ok(v)
                 };
@@ -589,6 +645,9 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
         }
     }
     for u in items(lr, "unbalance")? {
+        if let Some(me) = u.f64("me")? {
+            within(&u.field("me"), me.abs(), (0.0, false), 1e12, "kg·m (in magnitude)", "1e9 kg at 1e3 m")?;
+        }
         rotor.unbalances.push(Unbalance {
             node: u.req_usize("node")?,
             me: u.req("me")?,
@@ -597,6 +656,13 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
         });
     }
     for b in items(lr, "balancer")? {
+        // (1e300 was taken: no stationary state at any speed, said as a failure of the solver)
+        if let Some(r) = b.f64("radius")? {
+            within(&b.field("radius"), r, (0.0, true), 1e3, "m", "as balancer.race_radius")?;
+        }
+        if let Some(m) = b.f64("ball_mass")? {
+            within(&b.field("ball_mass"), m, (0.0, true), 1e9, "kg", "as balancer.ball_mass")?;
+        }
         rotor.balancers.push(BalancerPlane {
             node: b.req_usize("node")?,
             radius: b.req("radius")?,
@@ -659,6 +725,14 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
     let omega_max = top.f64("omega_max")?;
     if let Some(w) = omega_max {
         crate::error::positive("linear_rotor.omega_max", w)?;
+        // the speed axis is sampled up to it: 1e308 overflowed to an infinite speed, reported
+        // as "speeds: speeds: inf is not a finite speed" (limits.rs's SPEED bound)
+        if w > 1e6 {
+            return Err(Error::invalid(
+                "linear_rotor.omega_max",
+                format!("must lie in (0, 1e6] rad/s, got {} (±1e6 rad/s, ~1e7 rpm, beyond every machine)", crate::error::fmt_num(w)),
+            ));
+        }
     }
     // 0: the full model (so that `--set linear_rotor.modes=0` undoes a config's reduction)
     let modes = top.usize("modes")?.filter(|m| *m > 0);

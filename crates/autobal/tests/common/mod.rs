@@ -311,3 +311,17 @@ pub fn locked_tilt_jeffcott(k: [f64; 2], g: [f64; 2]) -> SpatialRotor {
         lock_tilt: true,
     }
 }
+
+/// A vector field ([`autobal::analysis::VectorField`]: a planar, spatial or linear rotor's
+/// field) as an [`autobal::ode::System`], to integrate it in time with the crate's integrators:
+/// its `dim` and `rhs`, the Jacobian the integrator's default.
+pub struct Sys<'a, F: ?Sized>(pub &'a F);
+
+impl<F: autobal::analysis::VectorField + ?Sized> autobal::ode::System for Sys<'_, F> {
+    fn dim(&self) -> usize {
+        autobal::analysis::VectorField::dim(self.0)
+    }
+    fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
+        autobal::analysis::VectorField::rhs(self.0, t, y, dy)
+    }
+}
