@@ -85,7 +85,7 @@ impl command::Command for Args {
     fn run(&self, control: &Control) -> Result<Output> {
         let (root, source) = self.config.read_any()?;
         if crate::linear_rotor::is_linear(&root) {
-            return self.linear_rotor(&root);
+            return self.linear_rotor(&root, control);
         }
         if self.route.is_general(&root) {
             if self.balls == Balls::Locked {
@@ -119,14 +119,22 @@ impl command::Command for Args {
 
 impl Args {
     /// `stability` on a linear rotor config ([`crate::linear_rotor`]).
-    fn linear_rotor(&self, root: &toml::Table) -> Result<Output> {
+    fn linear_rotor(&self, root: &toml::Table, control: &Control) -> Result<Output> {
         if self.balls == Balls::Locked {
             bail!("--balls locked: a linear rotor is analysed with its balls free");
         }
         let cfg = crate::linear_rotor::from_table(root, self.config.dir())?;
         let samples = check_count("--samples", self.samples.unwrap_or(if cfg.rotor.is_isotropic() { 200 } else { 50 }), SAMPLES)?;
         let omega_max = crate::linear_rotor::omega_max(self.omega_max.as_deref(), &cfg)?;
-        let (r, red) = crate::linear_rotor::stability(&cfg, omega_max, samples)?;
+        // under the control, as the general route ([`general::analyse`]): a stopped scan
+        // prints nothing
+        let speeds = autobal::rotor_stability::speed_grid(omega_max, samples)?;
+        let (rotor, red) = crate::linear_rotor::model(&cfg)?;
+        let out = autobal::rotor_stability::stability_over_speed_with(&autobal::rotor_stability::Rotor::Linear(rotor), &speeds, control)?;
+        if let Some(why) = out.stopped {
+            bail!("{why}: the stability scan stopped after {} of {} speeds; nothing is printed", out.value.points.len(), speeds.len());
+        }
+        let r = out.value;
         Ok(Output::LinearRotor { cfg: Box::new(cfg), r: Box::new(r), red: Box::new(red), omega_max })
     }
 }

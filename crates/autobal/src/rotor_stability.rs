@@ -407,6 +407,17 @@ impl Rotor {
         }
     }
 
+    /// The lowest speed at which the periodic-orbit analysis runs: the natural frequency
+    /// ([`Rotor::natural_frequency`]) over [`PERIODS_PER_REVOLUTION`]. The shooting integrates
+    /// a revolution (`2π/Ω`, or half of it) with the variational equations at steps set by the
+    /// rotor's own vibration, so its cost grows as `1/Ω` (examples/spatial_two_plane.toml, a
+    /// debug build: 0.3 s per speed at Ω = ω_n/250, 7 s at ω_n/5000; at 1e-9 rad/s hours).
+    /// `None` for an equilibrium (no integration) or without a natural frequency.
+    pub fn slowest_periodic_speed(&self) -> Option<f64> {
+        let wn = self.natural_frequency();
+        (self.is_periodic() && wn.is_finite() && wn > 0.0).then(|| wn / PERIODS_PER_REVOLUTION)
+    }
+
     /// Whether the stationary motion is a periodic orbit of the revolution (supports that differ
     /// by direction, gravity across the spin axis) rather than an equilibrium in turning axes.
     pub fn is_periodic(&self) -> bool {
@@ -605,6 +616,20 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
     // the model's own validation first, so its message names the field
     let first = rotor.field(speeds[0])?;
     let kind = if first.period().is_some() { Kind::PeriodicOrbit } else { Kind::Equilibrium };
+    // a periodic orbit is shot over a whole revolution: below the floor its integration spans
+    // more than PERIODS_PER_REVOLUTION natural periods (a scan to 1e-9 rad/s integrated for
+    // hours); a top speed below it is refused, grid speeds below it fail by name
+    let floor = if kind == Kind::PeriodicOrbit { rotor.slowest_periodic_speed() } else { None };
+    if let Some(floor) = floor {
+        let top = speeds.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        if top < floor {
+            return Err(Error::invalid("omega_max", below_floor(top, floor)));
+        }
+    }
+    let field_at = |w: f64| match floor {
+        Some(floor) if w.abs() < floor => Err(Error::invalid("omega", below_floor(w, floor))),
+        _ => rotor.field(w),
+    };
     // Newton starts from the closed form at every speed (it names the branch: the balanced
     // state, or for a periodic orbit its autonomous neighbour, from which the shooting lands on
     // the orbit of the balanced branch; continuation from the previous orbit switched to orbits
@@ -621,7 +646,7 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
     // each plane's balls placed on its share, a short plane's bunched (Rotor::placed_guess),
     // else every plane's balls bunched (Rotor::bunched_guess)
     let guess = |f: &Field, _| Rotor::guess(f).or_else(|| Rotor::placed_guess(f)).or_else(|| Rotor::bunched_guess(f));
-    let Outcome { value: scan, mut stopped } = speed_scan_with(|w| rotor.field(w), guess, speeds, &opts, control).map_err(|e| match e {
+    let Outcome { value: scan, mut stopped } = speed_scan_with(field_at, guess, speeds, &opts, control).map_err(|e| match e {
         crate::analysis::AnalysisError::Model(e) => e,
         e => Error::invalid("speeds", e.to_string()),
     })?;
@@ -951,6 +976,25 @@ pub(crate) fn off_line(psi: f64, along: f64) -> f64 {
     w.min(std::f64::consts::PI - w)
 }
 
+/// The most natural periods (`2π/ω_n`) that one revolution of a periodic orbit may span
+/// ([`Rotor::slowest_periodic_speed`]): the default speed axes start at 1/50 of the top speed,
+/// 1/40 of ω_n or more on the examples, well above it; below it a scan point costs seconds
+/// (debug build: ~0.5 s at this ratio on examples/spatial_two_plane.toml, where Newton finds no
+/// orbit anyway: under gravity `Ω² R < g` there, the balls cannot be held against it).
+pub const PERIODS_PER_REVOLUTION: f64 = 100.0;
+
+/// The message of a speed below [`Rotor::slowest_periodic_speed`].
+fn below_floor(w: f64, floor: f64) -> String {
+    use crate::error::fmt_num;
+    format!(
+        "{} is below {}, the slowest speed the periodic-orbit analysis resolves: the natural frequency over {} (a revolution longer than {} natural periods is not integrated)",
+        fmt_num(w),
+        fmt_num(floor),
+        fmt_num(PERIODS_PER_REVOLUTION),
+        fmt_num(PERIODS_PER_REVOLUTION)
+    )
+}
+
 /// The residual (fraction of the unbalance: [`Rotor::residual`]) at or below which a state is
 /// balanced whatever its balls' placement: Newton's and the shooting's residuals (1e-12,
 /// 1e-10) leave ~1e-10 of the unbalance, the old classifier's tolerance was this.
@@ -1233,6 +1277,37 @@ mod tests {
             scale += p.ball_mass * p.race_radius;
         }
         assert!(rs[0].hypot(rs[1]) > 1e-6 * scale, "the start's static residual {} of {scale}", rs[0].hypot(rs[1]));
+    }
+
+    /// A periodic orbit's scan at a speed far below the rotor's natural frequency: a
+    /// revolution spans ω_n/Ω natural periods to integrate (at 1e-9 rad/s main at 21dbfc9 ran
+    /// for hours). A top speed below ω_n/100 is refused, naming `omega_max`, in one line; grid
+    /// speeds below it fail by name, at no cost, and the speeds above are analysed.
+    #[test]
+    fn a_periodic_scan_below_its_slowest_speed_is_refused_by_name() {
+        let root = crate::config::parse(include_str!("../../../examples/spatial_two_plane.toml"), "two-plane").unwrap();
+        let rotor = Rotor::Spatial(crate::config::spatial_simulation(&root).unwrap().rotor);
+        let floor = rotor.slowest_periodic_speed().expect("a periodic orbit");
+        // ω_n = sqrt(Σk/M) of the 20 kg rotor on 2e6 + 3e6 N/m: ~499 rad/s, so ~5 rad/s
+        assert!((floor - rotor.natural_frequency() / 100.0).abs() <= 1e-12 * floor && (4.0..6.0).contains(&floor), "{floor}");
+        for top in [1e-9, 0.5 * floor] {
+            let e = stability_over_speed(&rotor, &[0.5 * top, top]).unwrap_err();
+            assert_eq!(e.field(), Some("omega_max"), "{e}");
+            assert!(!e.to_string().contains('\n') && e.to_string().contains("periodic-orbit analysis"), "{e}");
+        }
+        // an equilibrium has no floor
+        let mut flat = root.clone();
+        crate::config::set(&mut flat, "spatial.gravity", crate::config::parse_value("[0.0, 0.0, 0.0]")).unwrap();
+        crate::config::set_number(&mut flat, "supports.stiffness_left_y", 2.0e6).unwrap();
+        crate::config::set_number(&mut flat, "supports.stiffness_right_y", 3.0e6).unwrap();
+        let flat = Rotor::Spatial(crate::config::spatial_simulation(&flat).unwrap().rotor);
+        assert_eq!(flat.slowest_periodic_speed(), None);
+        // a grid across it: the points below fail by name, the one above is analysed
+        let r = stability_over_speed(&rotor, &[1e-9, 0.5 * floor, 1.2 * floor]).unwrap();
+        for p in &r.points[..2] {
+            assert!(p.verdict.is_none() && p.failure.as_deref().is_some_and(|f| f.contains("periodic-orbit analysis")), "{p:?}");
+        }
+        assert!(r.points[2].failure.as_deref().is_none_or(|f| !f.contains("periodic-orbit analysis")), "{:?}", r.points[2]);
     }
 
     #[test]
