@@ -151,12 +151,7 @@ pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64) -> String {
     s.push_str("Exact linear stability over speed (general route)\n");
     s.push_str(&format!("analysed: {}\n", what_is_analysed(g, r)));
     if r.family_dimension > 0 {
-        s.push_str(&format!(
-            "the balanced states form a family of dimension {} (the balls' positions are not unique); its {} zero eigenvalue(s) are structural and left out of the verdict, which is that of the member with ball angles {} rad\n",
-            r.family_dimension,
-            r.family_dimension,
-            r.member_psi.iter().map(|p| fmt_num(round(p.rem_euclid(std::f64::consts::TAU)))).collect::<Vec<_>>().join(", ")
-        ));
+        s.push_str(&family_line(r, |w| speed_text(g, w)));
     }
     if let Some(f) = &r.family {
         let list = |v: &[autobal::analysis::StableRange]| {
@@ -231,6 +226,24 @@ pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64) -> String {
         s.push_str(&format!("no stationary state found at {missing} of {} speeds (first: {first})\n", r.points.len()));
     }
     s
+}
+
+/// The table's line on the family of balanced states (`r.family_dimension > 0`): which member
+/// the verdicts are of, named at the first speed whose state has the family (a
+/// (semi-)balanced point: a partially balanced point has none), or that no speed has one.
+pub(crate) fn family_line(r: &RotorStability, speed: impl Fn(f64) -> String) -> String {
+    let head = format!(
+        "the balanced states form a family of dimension {} (the balls' positions are not unique); its {} zero eigenvalue(s) are structural and left out of the verdict",
+        r.family_dimension, r.family_dimension
+    );
+    match r.points.iter().find(|p| p.family_dimension > 0) {
+        Some(p) => format!(
+            "{head}, which at each speed is that of the member reached from the closed form (at {}, the first speed with the family: ball angles {} rad)\n",
+            speed(p.omega),
+            p.member_psi.iter().map(|a| fmt_num(round(a.rem_euclid(std::f64::consts::TAU)))).collect::<Vec<_>>().join(", ")
+        ),
+        None => format!("{head}; no speed of the axis has a balanced state, so no member to name\n"),
+    }
 }
 
 /// The margin over speed as a plot: the spectral abscissa (or largest Floquet exponent) of the
@@ -347,6 +360,31 @@ mod tests {
     use super::*;
     use autobal::planar::PlanarRotor;
     use autobal::rotor_stability::StateKind;
+
+    /// The family line names a balanced point's member: paper 004's rotor (eccentric race) with
+    /// three balls, partially balanced (balls bunched) below ~134 rad/s, a one-parameter
+    /// family of semi-balanced states above. The member named is that of the first point with
+    /// the family, its balls not bunched (they spread on an arc to cancel the unbalance: at
+    /// least 1e-3 rad apart), its state semi-balanced. Main at 21dbfc9 named the first speed's
+    /// member, three balls at one angle (6.28318 ×3 on examples/planar.toml with n = 3).
+    #[test]
+    fn the_family_line_names_a_balanced_points_member() {
+        let g = GeneralRotor { rotor: Rotor::Planar(PlanarRotor { n: 3, ..PlanarRotor::paper() }), si: true, omega0: 1.0 };
+        let r = analyse(&g, 600.0, 30, &Control::default()).unwrap();
+        assert_eq!(r.family_dimension, 1);
+        assert_eq!(r.points[0].state, Some(StateKind::PartiallyBalanced), "{:?}", r.points[0]);
+        let p = r.points.iter().find(|p| p.family_dimension > 0).unwrap();
+        assert_eq!(p.state, Some(StateKind::SemiBalanced));
+        assert_eq!(r.member_psi, p.member_psi);
+        let psi = &r.member_psi;
+        let gap = |a: f64, b: f64| (a - b).rem_euclid(std::f64::consts::TAU).min((b - a).rem_euclid(std::f64::consts::TAU));
+        assert!(gap(psi[0], psi[1]) > 1e-3 && gap(psi[1], psi[2]) > 1e-3, "{psi:?}");
+        let t = table(&g, &r, 600.0);
+        let line = t.lines().find(|l| l.starts_with("the balanced states form a family")).unwrap();
+        assert!(line.contains(&format!("at {}", speed_text(&g, p.omega))), "{line}");
+        let named = psi.iter().map(|a| fmt_num(round(a.rem_euclid(std::f64::consts::TAU)))).collect::<Vec<_>>().join(", ");
+        assert!(line.contains(&named), "{line}");
+    }
 
     /// A stable range over states that are not balanced never reads plain "stable": the label
     /// names the states, and a line names the speeds (paper 004's Jeffcott rotor, race centred,

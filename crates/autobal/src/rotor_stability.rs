@@ -588,9 +588,12 @@ pub struct RotorStability {
     /// plane at balance): that many eigenvalues 0 (multipliers 1) are structural at each point
     /// and left out of the verdict.
     pub family_dimension: usize,
-    /// The balls' angles of the member analysed at the first speed where a state was found
-    /// (rad, all planes in order): the member that `stable_ranges` follows from there
-    /// (each point's own member in [`SpeedPoint::member_psi`]).
+    /// The balls' angles of the member analysed at the first speed with a family of
+    /// (semi-)balanced states (`SpeedPoint::family_dimension > 0`; without one anywhere, at the
+    /// first speed where a state was found) (rad, all planes in order): the member that
+    /// `stable_ranges` follows from there (each point's own member in
+    /// [`SpeedPoint::member_psi`]). Never a partially balanced point's bunched balls where a
+    /// family exists elsewhere (main at 21dbfc9 named the first speed's, bunched, member).
     pub member_psi: Vec<f64>,
     /// With a family (`family_dimension > 0`): its stability over all the members sampled,
     /// the speed ranges where all and where some members are stable.
@@ -666,7 +669,7 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
                 }
                 _ => (None, None, None, vec![]),
             };
-            if member_psi.is_empty() {
+            if member_psi.is_empty() && fam > 0 {
                 member_psi = psi.clone();
             }
             SpeedPoint {
@@ -685,6 +688,9 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
             }
         })
         .collect();
+    if member_psi.is_empty() {
+        member_psi = points.iter().find(|p| p.state.is_some()).map_or(vec![], |p| p.member_psi.clone());
+    }
     let family = if family_dimension > 0 {
         let states: Vec<Option<&StationaryState>> = scan.points.iter().map(|p| p.state.as_ref()).collect();
         let (fam, why) = family_over_speed(rotor, &mut points, &states, family_dimension, &opts.newton, control);
