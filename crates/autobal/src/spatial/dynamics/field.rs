@@ -190,6 +190,40 @@ impl SpatialField {
         x
     }
 
+    /// `Σ (n_g − 1)` over the groups of balls at one axial position (a plane, or two planes
+    /// at one `ζ`) whose balls are **bunched**: all within [`RANK_TOL`] rad of one angle (the
+    /// rank's own tolerance: their columns of `∂(s, c/L)/∂ψ` then count as one). A balanced
+    /// group that is bunched is at its **exactly full capacity** (`|share| = Σ m_j R_j`):
+    /// `|Σ m_j R_j e^{iψ_j}| = Σ m_j R_j` holds only with every ball at one angle, so the
+    /// balanced state is isolated there (dimension 0) although the rank of the Jacobian falls
+    /// to 1, leaving `n_g − 1` zeros that are no family (two balls spread by `±δ` lose
+    /// `m R δ²` of their resultant: second order, a genuine zero of the linearisation).
+    /// How close to full counts as full: the closed form ([`arc_angles`]) bunches the balls
+    /// where the capacity is within `1e-12` (relative) of the share, and just above, at
+    /// relative excess `ε`, spreads two balls by `2√(2ε)` (3e-8 rad at `ε = 1e-16`), above
+    /// this tolerance: full capacity is exact to round-off, and just above it the state is
+    /// isolated for two balls, a family of `n − 2` for more.
+    fn bunched_surplus(&self, psi: &[f64]) -> usize {
+        let balls = &self.model.balls;
+        let mut seen = vec![false; balls.len()];
+        let mut surplus = 0;
+        for i in 0..balls.len() {
+            if seen[i] {
+                continue;
+            }
+            let group: Vec<usize> = (i..balls.len()).filter(|&j| balls[j].zeta == balls[i].zeta).collect();
+            group.iter().for_each(|&j| seen[j] = true);
+            let bunched = group.iter().all(|&j| {
+                let w = (psi[j] - psi[i]).rem_euclid(std::f64::consts::TAU);
+                w.min(std::f64::consts::TAU - w) <= RANK_TOL
+            });
+            if bunched {
+                surplus += group.len() - 1;
+            }
+        }
+        surplus
+    }
+
     /// The rank of `∂(s, c/L)/∂ψ` at the ball angles `psi` (all planes): the 4×N matrix of
     /// columns `m_j R_j (−sin ψ_j, cos ψ_j, −ζ_j sin ψ_j/L, ζ_j cos ψ_j/L)` (`s`, `c` the residual
     /// static and couple unbalance, `L` the largest `|ζ_j|` so that the rows are commensurate),
@@ -389,7 +423,7 @@ impl VectorField for SpatialField {
         if st[0].hypot(st[1]) > BALANCE_TOL * scale || cp[0].hypot(cp[1]) > BALANCE_TOL * scale * zl {
             return 0;
         }
-        nb - self.unbalance_rank(&x[nr..m])
+        (nb - self.unbalance_rank(&x[nr..m])).saturating_sub(self.bunched_surplus(&x[nr..m]))
     }
 
     fn component_name(&self, i: usize) -> String {
