@@ -199,8 +199,8 @@ pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64) -> String {
         ));
     } else {
         for st in &r.stable_ranges {
-            let to = if st.to_is_boundary { speed_text(g, st.to) } else { format!("{} (end of the axis)", speed_text(g, st.to)) };
-            let from = if st.from_is_boundary { speed_text(g, st.from) } else { format!("{} (start of the axis)", speed_text(g, st.from)) };
+            let from = range_end(r, st.from, st.from_is_boundary, false, |w| speed_text(g, w));
+            let to = range_end(r, st.to, st.to_is_boundary, true, |w| speed_text(g, w));
             // the states the range covers: "partially balanced, stable" never reads "stable"
             let kinds: Vec<&str> = {
                 let mut k: Vec<&str> = r.points.iter().filter(|p| p.omega >= st.from && p.omega <= st.to).filter_map(|p| p.state.map(|k| k.name())).collect();
@@ -243,6 +243,24 @@ pub(crate) fn family_line(r: &RotorStability, speed: impl Fn(f64) -> String) -> 
             p.member_psi.iter().map(|a| fmt_num(round(a.rem_euclid(std::f64::consts::TAU)))).collect::<Vec<_>>().join(", ")
         ),
         None => format!("{head}; no speed of the axis has a balanced state, so no member to name\n"),
+    }
+}
+
+/// A stable range's end in words: a located boundary as its speed; else a grid speed, the
+/// axis' start or end, or one next to a speed where no stationary state was found (the range
+/// stops at its last analysed speed: nothing is known beyond it).
+pub(crate) fn range_end(r: &RotorStability, w: f64, located: bool, upper: bool, speed: impl Fn(f64) -> String) -> String {
+    if located {
+        return speed(w);
+    }
+    let i = r.points.iter().position(|p| p.omega == w);
+    let next = i.and_then(|i| if upper { r.points.get(i + 1) } else { i.checked_sub(1).map(|j| &r.points[j]) });
+    match next {
+        None => format!("{} ({} of the axis)", speed(w), if upper { "end" } else { "start" }),
+        Some(p) if p.verdict.is_none() => {
+            format!("{} (a grid speed: no stationary state found at {} {} it)", speed(w), speed(p.omega), if upper { "above" } else { "below" })
+        }
+        Some(_) => format!("{} (a grid speed: the end was not located)", speed(w)),
     }
 }
 
@@ -384,6 +402,28 @@ mod tests {
         assert!(line.contains(&format!("at {}", speed_text(&g, p.omega))), "{line}");
         let named = psi.iter().map(|a| fmt_num(round(a.rem_euclid(std::f64::consts::TAU)))).collect::<Vec<_>>().join(", ");
         assert!(line.contains(&named), "{line}");
+    }
+
+    /// A range end next to a speed where no state was found says so, and is not "the start
+    /// of the axis" (main at 21dbfc9 said so of every end that was not located): paper 004's
+    /// Jeffcott rotor, its scan with the point before the stable range's first marked failed.
+    #[test]
+    fn a_range_end_next_to_a_failed_speed_says_so() {
+        let g = GeneralRotor { rotor: Rotor::Planar(PlanarRotor { n: 2, s2: 0.0, ..PlanarRotor::paper() }), si: true, omega0: 1.0 };
+        let mut r = analyse(&g, 600.0, 30, &Control::default()).unwrap();
+        let st = r.stable_ranges[0];
+        let i = r.points.iter().position(|p| p.omega > st.from).unwrap();
+        assert!(i > 1);
+        r.points[i - 1].verdict = None;
+        r.stable_ranges[0] = autobal::analysis::StableRange { from: r.points[i].omega, from_is_boundary: false, ..st };
+        let t = table(&g, &r, 600.0);
+        let want = format!(
+            "stable: {} (a grid speed: no stationary state found at {} below it)",
+            speed_text(&g, r.points[i].omega),
+            speed_text(&g, r.points[i - 1].omega)
+        );
+        assert!(t.contains(&want), "{t}");
+        assert!(!t.contains("(start of the axis)"), "{t}");
     }
 
     /// A stable range over states that are not balanced never reads plain "stable": the label

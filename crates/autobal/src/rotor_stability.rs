@@ -798,7 +798,8 @@ fn family_over_speed(
         let mut boundary = vec![None; points.len()];
         for i in 0..points.len().saturating_sub(1) {
             let (a, b) = (&points[i], &points[i + 1]);
-            if good(a) == good(b) {
+            // a range end between two analysed speeds only (as the scan's own ranges)
+            if good(a) == good(b) || a.verdict.is_none() || b.verdict.is_none() {
                 continue;
             }
             if stopped.is_some() {
