@@ -134,6 +134,7 @@ pub fn json(g: &GeneralRotor, r: &RotorStability, omega_max: f64) -> Value {
         "speed_unit": unit(g),
         "omega_max": omega_max,
         "stable_ranges": ranges,
+        "has_unbalance": r.has_unbalance,
         "family_dimension": r.family_dimension,
         "member_psi": r.member_psi,
         "family": r.family,
@@ -150,6 +151,9 @@ pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64) -> String {
     let mut s = String::new();
     s.push_str("Exact linear stability over speed (general route)\n");
     s.push_str(&format!("analysed: {}\n", what_is_analysed(g, r)));
+    if !r.has_unbalance {
+        s.push_str(NO_UNBALANCE_LINE);
+    }
     if r.family_dimension > 0 {
         s.push_str(&family_line(r, |w| speed_text(g, w)));
     }
@@ -226,6 +230,18 @@ pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64) -> String {
         s.push_str(&format!("no stationary state found at {missing} of {} speeds (first: {first})\n", r.points.len()));
     }
     s
+}
+
+/// The table's line for a rotor without unbalance ([`RotorStability::has_unbalance`]).
+pub(crate) const NO_UNBALANCE_LINE: &str = "no unbalance to cancel (below 1e-6 of the balls' capacity Σ m R): the balanced state is the one where the balls' resultant vanishes; residuals are that resultant over the capacity\n";
+
+/// What residuals are fractions of: the unbalance, or without one the balls' capacity.
+fn of_what(r: &RotorStability) -> &'static str {
+    if r.has_unbalance {
+        "the unbalance"
+    } else {
+        "the balls' capacity (no unbalance)"
+    }
 }
 
 /// The table's line on the family of balanced states (`r.family_dimension > 0`): which member
@@ -345,8 +361,9 @@ pub(crate) fn residual_text(r: &autobal::rotor_stability::RotorStability, speed:
         "the balls do not cancel the unbalance exactly"
     };
     format!(
-        "balanced to a residual of {} of the unbalance (above the exact tolerance 1e-6; on a periodic orbit up to 0.1 is balanced, at an equilibrium only 1e-6) at {} of {} speeds, {} to {} ({why})\n",
+        "balanced to a residual of {} of {} (above the exact tolerance 1e-6; on a periodic orbit up to 0.1 is balanced, at an equilibrium only 1e-6) at {} of {} speeds, {} to {} ({why})\n",
         residual_range(&with),
+        of_what(r),
         with.len(),
         r.points.len(),
         speed(a.omega),
@@ -363,8 +380,9 @@ pub(crate) fn not_balanced_text(r: &autobal::rotor_stability::RotorStability, sp
     let nb: Vec<_> = r.points.iter().filter(|p| p.state == Some(autobal::rotor_stability::StateKind::NotBalanced)).collect();
     let (Some(a), Some(b)) = (nb.first(), nb.last()) else { return String::new() };
     format!(
-        "not balanced (the balls leave a residual of {} of an unbalance their capacity could cancel{}) at {} of {} speeds, {} to {}: the verdicts there are that state's, not the balanced state's\n",
+        "not balanced (the balls leave a residual of {}{}{}) at {} of {} speeds, {} to {}: the verdicts there are that state's, not the balanced state's\n",
         residual_range(&nb),
+        if r.has_unbalance { " of an unbalance their capacity could cancel" } else { " of their capacity, with no unbalance to cancel" },
         if r.kind == Kind::PeriodicOrbit { "" } else { ": at rest on the line of the whirl" },
         nb.len(),
         r.points.len(),

@@ -418,6 +418,31 @@ impl Rotor {
         (self.is_periodic() && wn.is_finite() && wn > 0.0).then(|| wn / PERIODS_PER_REVOLUTION)
     }
 
+    /// Whether the rotor has an unbalance for the balls to cancel: its static (spatial: or
+    /// couple, over the largest axial distance, as [`Rotor::residual`]) unbalance above
+    /// [`NO_UNBALANCE`] of the balls' capacity `Σ m_b R`. Without one the residuals
+    /// ([`SpeedPoint::residual`]) are the balls' own resultant over their capacity, and the
+    /// balanced state is the one where it vanishes. Planar: `m1 s1` and the race's
+    /// eccentricity `s2` both zero.
+    pub fn has_unbalance(&self) -> bool {
+        match self {
+            Rotor::Planar(p) => p.m1 * p.s1 != 0.0 || p.s2 != 0.0,
+            Rotor::Spatial(r) => {
+                let (s0, c0) = (r.static_unbalance(), r.couple_unbalance());
+                let zr = r.z_reference();
+                let zl = r.planes.iter().filter(|p| p.n > 0).map(|p| (p.z - zr).abs()).chain(r.unbalances.iter().map(|u| (u.z - zr).abs())).fold(0.0, f64::max);
+                let zl = if zl > 0.0 { zl } else { 1.0 };
+                let cap: f64 = r.planes.iter().map(|p| p.n as f64 * p.ball_mass * p.race_radius).sum();
+                s0[0].hypot(s0[1]).max(c0[0].hypot(c0[1]) / zl) > NO_UNBALANCE * cap
+            }
+            Rotor::Linear(r) => {
+                let s0 = crate::linear_rotor::partial::static_unbalance(r);
+                let cap: f64 = r.balancers.iter().map(|b| b.balls as f64 * b.ball_mass * b.radius).sum();
+                s0[0].hypot(s0[1]) > NO_UNBALANCE * cap
+            }
+        }
+    }
+
     /// Whether the stationary motion is a periodic orbit of the revolution (supports that differ
     /// by direction, gravity across the spin axis) rather than an equilibrium in turning axes.
     pub fn is_periodic(&self) -> bool {
@@ -451,8 +476,9 @@ pub struct SpeedPoint {
     /// The residual unbalance the balls leave in that state, as a fraction of the rotor's
     /// unbalance ([`Rotor::residual`]: on a periodic orbit the balls' positions averaged over
     /// the revolution; planar: the race centre's distance from the axis over the eccentricity
-    /// scale; the unbalance as the scale but at least `1e-6` of the balls' capacity `Σ m_b R`,
-    /// so an unbalance that cancels reads its balls' resultant over that); `None` without a
+    /// scale; the unbalance as the scale, or the balls' capacity `Σ m_b R` where the unbalance
+    /// is below `1e-6` of it ([`Rotor::has_unbalance`]): then the balls' resultant over their
+    /// capacity); `None` without a
     /// state. A balanced state carries the residual it is balanced
     /// to: ~1e-10 at an equilibrium, on an orbit the second-order residual of the balls' swing.
     pub residual: Option<f64>,
@@ -598,6 +624,9 @@ pub struct RotorStability {
     /// With a family (`family_dimension > 0`): its stability over all the members sampled,
     /// the speed ranges where all and where some members are stable.
     pub family: Option<FamilyStability>,
+    /// Whether the rotor has an unbalance for the balls to cancel ([`Rotor::has_unbalance`]);
+    /// without one the residuals are the balls' resultant over their capacity `Σ m_b R`.
+    pub has_unbalance: bool,
 }
 
 /// The stationary state of `rotor` and its stability at each of `speeds` (ascending), with the
@@ -699,7 +728,16 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
     } else {
         None
     };
-    let value = RotorStability { model: rotor.model_name(), kind, stable_ranges: scan.stable_ranges, points, family_dimension, member_psi, family };
+    let value = RotorStability {
+        model: rotor.model_name(),
+        kind,
+        stable_ranges: scan.stable_ranges,
+        points,
+        family_dimension,
+        member_psi,
+        family,
+        has_unbalance: rotor.has_unbalance(),
+    };
     Ok(Outcome { value, stopped })
 }
 
@@ -1064,14 +1102,26 @@ fn spatial_residual(r: &SpatialRotor, units: &[[f64; 2]]) -> f64 {
     rs[0].hypot(rs[1]).max(rc[0].hypot(rc[1]) / zl) / unbalance_scale(s0[0].hypot(s0[1]).max(c0[0].hypot(c0[1]) / zl), cap)
 }
 
-/// The denominator of a residual: the unbalance `u` (kg m), but at least `1e-6` of the balls'
-/// capacity `cap = Σ m_b R` (an unbalance that cancels, or none, leaves rounding noise that
-/// must not become the scale: Newton leaves the balls' resultant to ~1e-14 of `cap`, measured
-/// on a linear shaft with a pure couple at 1001 rad/s, which a `1e-9 cap` floor read as 1e-5,
-/// "balanced above 1e-6"; an unbalance below 1e-6 of the capacity is none to speak of).
+/// The denominator of a residual: the unbalance `u` (kg m); where there is none to speak of
+/// (`u ≤ 1e-6 cap`, [`NO_UNBALANCE`]), the balls' capacity `cap = Σ m_b R` itself, so that
+/// the residual is the balls' own resultant over what they could produce. (Main at 21dbfc9
+/// divided by `1e-6 cap` there: the balls' swing on an orbit under gravity, ~4e-7 of their
+/// capacity on examples/spatial_two_plane.toml without unbalance at 350-440 rad/s, read as
+/// 0.44 "of the unbalance", "not balanced", on a rotor with nothing to balance. Newton leaves
+/// the resultant to ~1e-14 of `cap`, measured on a linear shaft with a pure couple at 1001
+/// rad/s.) The scale steps at `u = 1e-6 cap` from `cap` to `1e-6 cap`: below it a residual
+/// of the balls is measured against their capacity, above against the unbalance.
 fn unbalance_scale(u: f64, cap: f64) -> f64 {
-    u.max(1e-6 * cap).max(f64::MIN_POSITIVE)
+    if u <= NO_UNBALANCE * cap {
+        cap.max(f64::MIN_POSITIVE)
+    } else {
+        u
+    }
 }
+
+/// An unbalance (kg m) at or below this fraction of the balls' capacity `Σ m_b R` is none to
+/// speak of ([`Rotor::has_unbalance`]; the residuals' scale, [`Rotor::residual`]).
+pub const NO_UNBALANCE: f64 = 1e-6;
 
 /// Whether the spatial rotor's balls can cancel its unbalance (a balanced state exists): the
 /// closed-form placement ([`SpatialField::balanced_guess`]: each plane's balls on the arc of
