@@ -101,7 +101,7 @@ impl command::Command for Args {
                 Some(t) => crate::general_campbell::omega_max(&root, &g, Some(t))?,
                 None => general::default_omega_max(&g, &root)?,
             };
-            let r = general::analyse(&g, omega_max, samples, control)?;
+            let r = general::analyse(&g, omega_max, samples, control).map_err(|e| self.name_omega_max(e))?;
             return Ok(Output::General { g: Box::new(g), r: Box::new(r), omega_max });
         }
         let cfg = config::build(&root, &source)?;
@@ -118,6 +118,19 @@ impl command::Command for Args {
 }
 
 impl Args {
+    /// The library's `omega_max` error (a top speed below what the periodic-orbit analysis
+    /// resolves, [`autobal::rotor_stability::Rotor::slowest_periodic_speed`]) named as the user
+    /// gave the speed: `--omega-max`, else the config's `analysis.omega_max`.
+    fn name_omega_max(&self, e: anyhow::Error) -> anyhow::Error {
+        match e.downcast_ref::<autobal::Error>() {
+            Some(autobal::Error::InvalidParameter { field, reason }) if field == "omega_max" => {
+                let flag = if self.omega_max.is_some() { "--omega-max" } else { "analysis.omega_max" };
+                autobal::Error::invalid(flag, reason.clone()).into()
+            }
+            _ => e,
+        }
+    }
+
     /// `stability` on a linear rotor config ([`crate::linear_rotor`]).
     fn linear_rotor(&self, root: &toml::Table, control: &Control) -> Result<Output> {
         if self.balls == Balls::Locked {
@@ -130,7 +143,8 @@ impl Args {
         // prints nothing
         let speeds = autobal::rotor_stability::speed_grid(omega_max, samples)?;
         let (rotor, red) = crate::linear_rotor::model(&cfg)?;
-        let out = autobal::rotor_stability::stability_over_speed_with(&autobal::rotor_stability::Rotor::Linear(rotor), &speeds, control)?;
+        let out = autobal::rotor_stability::stability_over_speed_with(&autobal::rotor_stability::Rotor::Linear(rotor), &speeds, control)
+            .map_err(|e| self.name_omega_max(e.into()))?;
         if let Some(why) = out.stopped {
             bail!("{why}: the stability scan stopped after {} of {} speeds; nothing is printed", out.value.points.len(), speeds.len());
         }
@@ -191,6 +205,20 @@ mod tests {
                 assert_eq!(e, format!("--samples: must lie between 10 and 1000000, got {bad}"));
             }
         }
+    }
+
+    /// A periodic orbit's top speed below ω_n/100 (the spatial two-plane example, gravity) is
+    /// refused in one line naming where the speed came from: `--omega-max`, or the config's
+    /// `analysis.omega_max`. Main at 21dbfc9 integrated revolutions of ~6e9 s for hours.
+    #[test]
+    fn a_speed_below_the_periodic_floor_is_refused_by_name() {
+        let two = include_str!("../../../examples/spatial_two_plane.toml");
+        let args = Args { config: tables(two, &[]), omega_max: Some("1e-9 rad/s".into()), ..Default::default() };
+        let e = format!("{:#}", args.run(&Control::none()).err().expect("refused"));
+        assert!(e.starts_with("--omega-max: 1e-9 is below ") && !e.contains('\n'), "{e}");
+        let args = Args { config: tables(two, &["analysis.omega_max=\"0.001 rad/s\""]), ..Default::default() };
+        let e = format!("{:#}", args.run(&Control::none()).err().expect("refused"));
+        assert!(e.starts_with("analysis.omega_max: 0.001 is below "), "{e}");
     }
 
     /// The same config read from a file (the CLI) or handed over as tables (Python) gives the
