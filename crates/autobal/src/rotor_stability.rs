@@ -473,6 +473,11 @@ pub struct SpeedPoint {
     /// What the state analysed here is: balanced, semi-balanced, or partially balanced (the
     /// balls' capacity short: balls bunched, a residual unbalance); `None` without a state.
     pub state: Option<StateKind>,
+    /// What `state` is decided on ([`StateBasis`]): the residual (spatial, planar), or the
+    /// race centres' whirl (linear: a `balanced` state may then carry a static `residual` of
+    /// 0.03-0.5, an unbalance away from the balancer planes that they do not see); `None`
+    /// without a state.
+    pub state_basis: Option<StateBasis>,
     /// The residual unbalance the balls leave in that state, as a fraction of the rotor's
     /// unbalance ([`Rotor::residual`]: on a periodic orbit the balls' positions averaged over
     /// the revolution; planar: the race centre's distance from the axis over the eccentricity
@@ -492,6 +497,20 @@ pub struct SpeedPoint {
     pub family: Option<FamilyPoint>,
     /// With a family: which of its members are stable (all, some, none): `family`'s verdict.
     pub family_verdict: Option<FamilyVerdict>,
+}
+
+/// What [`SpeedPoint::state`] is decided on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum StateBasis {
+    /// The residual unbalance [`SpeedPoint::residual`] (spatial: with the closed-form test of
+    /// whether a balanced state exists; planar: the race centre's offset, with the balls'
+    /// bunching): [`Rotor::state_kind`].
+    Residual,
+    /// The race centres' whirl against their whirl without the balls' resultant (the linear
+    /// rotor, [`crate::linear_rotor::partial::state_kind`]); its `residual` is the static one
+    /// only, which an unbalance away from the balancer planes leaves whatever the balls do.
+    RaceWhirl,
 }
 
 /// What a stationary state is.
@@ -710,6 +729,7 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
                 amplitude,
                 failure: p.failure.as_ref().map(|f| explain_failure(rotor, f)),
                 state,
+                state_basis: state.map(|_| if matches!(rotor, Rotor::Linear(_)) { StateBasis::RaceWhirl } else { StateBasis::Residual }),
                 residual,
                 member_psi: psi,
                 family: None,
@@ -1365,6 +1385,26 @@ mod tests {
             assert!(p.verdict.is_none() && p.failure.as_deref().is_some_and(|f| f.contains("periodic-orbit analysis")), "{p:?}");
         }
         assert!(r.points[2].failure.as_deref().is_none_or(|f| !f.contains("periodic-orbit analysis")), "{:?}", r.points[2]);
+    }
+
+    /// Each point says what its class is decided on: the same Jeffcott rotor as the planar
+    /// model (the residual: E's offset) and as the linear rotor (the race whirl, whose
+    /// `residual` is the static one only), in the JSON's `points[].state_basis`; none where no
+    /// state was found.
+    #[test]
+    fn each_point_says_what_its_class_is_decided_on() {
+        let (planar, linear) = jeffcott(2);
+        let speeds = [150.0, 400.0];
+        for (rotor, basis) in [(&planar, StateBasis::Residual), (&linear, StateBasis::RaceWhirl)] {
+            let r = stability_over_speed(rotor, &speeds).unwrap();
+            for p in &r.points {
+                assert!(p.state.is_some(), "{p:?}");
+                assert_eq!(p.state_basis, Some(basis), "{} Ω {}", rotor.model_name(), p.omega);
+            }
+            let v = serde_json::to_value(&r.points[0]).unwrap();
+            let want = if basis == StateBasis::Residual { "residual" } else { "race_whirl" };
+            assert_eq!(v["state_basis"], want);
+        }
     }
 
     #[test]
