@@ -410,8 +410,9 @@ impl Rotor {
     /// The lowest speed at which the periodic-orbit analysis runs: the natural frequency
     /// ([`Rotor::natural_frequency`]) over [`PERIODS_PER_REVOLUTION`]. The shooting integrates
     /// a revolution (`2π/Ω`, or half of it) with the variational equations at steps set by the
-    /// rotor's own vibration, so its cost grows as `1/Ω` (examples/spatial_two_plane.toml, a
-    /// debug build: 0.3 s per speed at Ω = ω_n/250, 7 s at ω_n/5000; at 1e-9 rad/s hours).
+    /// rotor's own vibration, so its cost grows as `ω_n/Ω` (the integration spans that many
+    /// natural periods: ~5e11 at 1e-9 rad/s on examples/spatial_two_plane.toml, which ran for
+    /// more than 120 s without an answer).
     /// `None` for an equilibrium (no integration) or without a natural frequency.
     pub fn slowest_periodic_speed(&self) -> Option<f64> {
         let wn = self.natural_frequency();
@@ -1042,10 +1043,11 @@ pub(crate) fn off_line(psi: f64, along: f64) -> f64 {
 }
 
 /// The most natural periods (`2π/ω_n`) that one revolution of a periodic orbit may span
-/// ([`Rotor::slowest_periodic_speed`]): the default speed axes start at 1/50 of the top speed,
-/// 1/40 of ω_n or more on the examples, well above it; below it a scan point costs seconds
-/// (debug build: ~0.5 s at this ratio on examples/spatial_two_plane.toml, where Newton finds no
-/// orbit anyway: under gravity `Ω² R < g` there, the balls cannot be held against it).
+/// ([`Rotor::slowest_periodic_speed`]): a shooting at the limit integrates ~10 times the
+/// revolutions of one at the lowest speed of a default axis (1/50 of its top: ω_n/11 on
+/// examples/spatial_two_plane.toml), each Newton iteration 100 natural periods. On that
+/// example Newton finds no orbit down there anyway: under gravity `Ω² R < g` below ~9 rad/s,
+/// the balls cannot be held against it.
 pub const PERIODS_PER_REVOLUTION: f64 = 100.0;
 
 /// The message of a speed below [`Rotor::slowest_periodic_speed`].
