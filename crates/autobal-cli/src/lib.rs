@@ -398,6 +398,7 @@ impl Command {
         matches!(
             self,
             Command::Campbell { .. }
+                | Command::Stability { .. }
                 | Command::Map { .. }
                 | Command::Simulate { .. }
                 | Command::Sweep(_)

@@ -134,6 +134,7 @@ pub fn json(g: &GeneralRotor, r: &RotorStability, omega_max: f64) -> Value {
         "speed_unit": unit(g),
         "omega_max": omega_max,
         "stable_ranges": ranges,
+        "has_unbalance": r.has_unbalance,
         "family_dimension": r.family_dimension,
         "member_psi": r.member_psi,
         "family": r.family,
@@ -150,13 +151,11 @@ pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64) -> String {
     let mut s = String::new();
     s.push_str("Exact linear stability over speed (general route)\n");
     s.push_str(&format!("analysed: {}\n", what_is_analysed(g, r)));
+    if !r.has_unbalance {
+        s.push_str(NO_UNBALANCE_LINE);
+    }
     if r.family_dimension > 0 {
-        s.push_str(&format!(
-            "the balanced states form a family of dimension {} (the balls' positions are not unique); its {} zero eigenvalue(s) are structural and left out of the verdict, which is that of the member with ball angles {} rad\n",
-            r.family_dimension,
-            r.family_dimension,
-            r.member_psi.iter().map(|p| fmt_num(round(p.rem_euclid(std::f64::consts::TAU)))).collect::<Vec<_>>().join(", ")
-        ));
+        s.push_str(&family_line(r, |w| speed_text(g, w)));
     }
     if let Some(f) = &r.family {
         let list = |v: &[autobal::analysis::StableRange]| {
@@ -204,8 +203,8 @@ pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64) -> String {
         ));
     } else {
         for st in &r.stable_ranges {
-            let to = if st.to_is_boundary { speed_text(g, st.to) } else { format!("{} (end of the axis)", speed_text(g, st.to)) };
-            let from = if st.from_is_boundary { speed_text(g, st.from) } else { format!("{} (start of the axis)", speed_text(g, st.from)) };
+            let from = range_end(r, st.from, st.from_is_boundary, false, |w| speed_text(g, w));
+            let to = range_end(r, st.to, st.to_is_boundary, true, |w| speed_text(g, w));
             // the states the range covers: "partially balanced, stable" never reads "stable"
             let kinds: Vec<&str> = {
                 let mut k: Vec<&str> = r.points.iter().filter(|p| p.omega >= st.from && p.omega <= st.to).filter_map(|p| p.state.map(|k| k.name())).collect();
@@ -231,6 +230,54 @@ pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64) -> String {
         s.push_str(&format!("no stationary state found at {missing} of {} speeds (first: {first})\n", r.points.len()));
     }
     s
+}
+
+/// The table's line for a rotor without unbalance ([`RotorStability::has_unbalance`]).
+pub(crate) const NO_UNBALANCE_LINE: &str = "no unbalance to cancel (below 1e-6 of the balls' capacity Σ m R): the balanced state is the one where the balls' resultant vanishes; residuals are that resultant over the capacity\n";
+
+/// What residuals are fractions of: the unbalance, or without one the balls' capacity.
+fn of_what(r: &RotorStability) -> &'static str {
+    if r.has_unbalance {
+        "the unbalance"
+    } else {
+        "the balls' capacity (no unbalance)"
+    }
+}
+
+/// The table's line on the family of balanced states (`r.family_dimension > 0`): which member
+/// the verdicts are of, named at the first speed whose state has the family (a
+/// (semi-)balanced point: a partially balanced point has none), or that no speed has one.
+pub(crate) fn family_line(r: &RotorStability, speed: impl Fn(f64) -> String) -> String {
+    let head = format!(
+        "the balanced states form a family of dimension {} (the balls' positions are not unique); its {} zero eigenvalue(s) are structural and left out of the verdict",
+        r.family_dimension, r.family_dimension
+    );
+    match r.points.iter().find(|p| p.family_dimension > 0) {
+        Some(p) => format!(
+            "{head}, which at each speed is that of the member reached from the closed form (at {}, the first speed with the family: ball angles {} rad)\n",
+            speed(p.omega),
+            p.member_psi.iter().map(|a| fmt_num(round(a.rem_euclid(std::f64::consts::TAU)))).collect::<Vec<_>>().join(", ")
+        ),
+        None => format!("{head}; no speed of the axis has a balanced state, so no member to name\n"),
+    }
+}
+
+/// A stable range's end in words: a located boundary as its speed; else a grid speed, the
+/// axis' start or end, or one next to a speed where no stationary state was found (the range
+/// stops at its last analysed speed: nothing is known beyond it).
+pub(crate) fn range_end(r: &RotorStability, w: f64, located: bool, upper: bool, speed: impl Fn(f64) -> String) -> String {
+    if located {
+        return speed(w);
+    }
+    let i = r.points.iter().position(|p| p.omega == w);
+    let next = i.and_then(|i| if upper { r.points.get(i + 1) } else { i.checked_sub(1).map(|j| &r.points[j]) });
+    match next {
+        None => format!("{} ({} of the axis)", speed(w), if upper { "end" } else { "start" }),
+        Some(p) if p.verdict.is_none() => {
+            format!("{} (a grid speed: no stationary state found at {} {} it)", speed(w), speed(p.omega), if upper { "above" } else { "below" })
+        }
+        Some(_) => format!("{} (a grid speed: the end was not located)", speed(w)),
+    }
 }
 
 /// The margin over speed as a plot: the spectral abscissa (or largest Floquet exponent) of the
@@ -314,8 +361,9 @@ pub(crate) fn residual_text(r: &autobal::rotor_stability::RotorStability, speed:
         "the balls do not cancel the unbalance exactly"
     };
     format!(
-        "balanced to a residual of {} of the unbalance (above the exact tolerance 1e-6; on a periodic orbit up to 0.1 is balanced, at an equilibrium only 1e-6) at {} of {} speeds, {} to {} ({why})\n",
+        "balanced to a residual of {} of {} (above the exact tolerance 1e-6; on a periodic orbit up to 0.1 is balanced, at an equilibrium only 1e-6) at {} of {} speeds, {} to {} ({why})\n",
         residual_range(&with),
+        of_what(r),
         with.len(),
         r.points.len(),
         speed(a.omega),
@@ -332,8 +380,9 @@ pub(crate) fn not_balanced_text(r: &autobal::rotor_stability::RotorStability, sp
     let nb: Vec<_> = r.points.iter().filter(|p| p.state == Some(autobal::rotor_stability::StateKind::NotBalanced)).collect();
     let (Some(a), Some(b)) = (nb.first(), nb.last()) else { return String::new() };
     format!(
-        "not balanced (the balls leave a residual of {} of an unbalance their capacity could cancel{}) at {} of {} speeds, {} to {}: the verdicts there are that state's, not the balanced state's\n",
+        "not balanced (the balls leave a residual of {}{}{}) at {} of {} speeds, {} to {}: the verdicts there are that state's, not the balanced state's\n",
         residual_range(&nb),
+        if r.has_unbalance { " of an unbalance their capacity could cancel" } else { " of their capacity, with no unbalance to cancel" },
         if r.kind == Kind::PeriodicOrbit { "" } else { ": at rest on the line of the whirl" },
         nb.len(),
         r.points.len(),
@@ -347,6 +396,53 @@ mod tests {
     use super::*;
     use autobal::planar::PlanarRotor;
     use autobal::rotor_stability::StateKind;
+
+    /// The family line names a balanced point's member: paper 004's rotor (eccentric race) with
+    /// three balls, partially balanced (balls bunched) below ~134 rad/s, a one-parameter
+    /// family of semi-balanced states above. The member named is that of the first point with
+    /// the family, its balls not bunched (they spread on an arc to cancel the unbalance: at
+    /// least 1e-3 rad apart), its state semi-balanced. Main at 21dbfc9 named the first speed's
+    /// member, three balls at one angle (6.28318 ×3 on examples/planar.toml with n = 3).
+    #[test]
+    fn the_family_line_names_a_balanced_points_member() {
+        let g = GeneralRotor { rotor: Rotor::Planar(PlanarRotor { n: 3, ..PlanarRotor::paper() }), si: true, omega0: 1.0 };
+        let r = analyse(&g, 600.0, 30, &Control::default()).unwrap();
+        assert_eq!(r.family_dimension, 1);
+        assert_eq!(r.points[0].state, Some(StateKind::PartiallyBalanced), "{:?}", r.points[0]);
+        let p = r.points.iter().find(|p| p.family_dimension > 0).unwrap();
+        assert_eq!(p.state, Some(StateKind::SemiBalanced));
+        assert_eq!(r.member_psi, p.member_psi);
+        let psi = &r.member_psi;
+        let gap = |a: f64, b: f64| (a - b).rem_euclid(std::f64::consts::TAU).min((b - a).rem_euclid(std::f64::consts::TAU));
+        assert!(gap(psi[0], psi[1]) > 1e-3 && gap(psi[1], psi[2]) > 1e-3, "{psi:?}");
+        let t = table(&g, &r, 600.0);
+        let line = t.lines().find(|l| l.starts_with("the balanced states form a family")).unwrap();
+        assert!(line.contains(&format!("at {}", speed_text(&g, p.omega))), "{line}");
+        let named = psi.iter().map(|a| fmt_num(round(a.rem_euclid(std::f64::consts::TAU)))).collect::<Vec<_>>().join(", ");
+        assert!(line.contains(&named), "{line}");
+    }
+
+    /// A range end next to a speed where no state was found says so, and is not "the start
+    /// of the axis" (main at 21dbfc9 said so of every end that was not located): paper 004's
+    /// Jeffcott rotor, its scan with the point before the stable range's first marked failed.
+    #[test]
+    fn a_range_end_next_to_a_failed_speed_says_so() {
+        let g = GeneralRotor { rotor: Rotor::Planar(PlanarRotor { n: 2, s2: 0.0, ..PlanarRotor::paper() }), si: true, omega0: 1.0 };
+        let mut r = analyse(&g, 600.0, 30, &Control::default()).unwrap();
+        let st = r.stable_ranges[0];
+        let i = r.points.iter().position(|p| p.omega > st.from).unwrap();
+        assert!(i > 1);
+        r.points[i - 1].verdict = None;
+        r.stable_ranges[0] = autobal::analysis::StableRange { from: r.points[i].omega, from_is_boundary: false, ..st };
+        let t = table(&g, &r, 600.0);
+        let want = format!(
+            "stable: {} (a grid speed: no stationary state found at {} below it)",
+            speed_text(&g, r.points[i].omega),
+            speed_text(&g, r.points[i - 1].omega)
+        );
+        assert!(t.contains(&want), "{t}");
+        assert!(!t.contains("(start of the axis)"), "{t}");
+    }
 
     /// A stable range over states that are not balanced never reads plain "stable": the label
     /// names the states, and a line names the speeds (paper 004's Jeffcott rotor, race centred,

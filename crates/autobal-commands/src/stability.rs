@@ -85,7 +85,7 @@ impl command::Command for Args {
     fn run(&self, control: &Control) -> Result<Output> {
         let (root, source) = self.config.read_any()?;
         if crate::linear_rotor::is_linear(&root) {
-            return self.linear_rotor(&root);
+            return self.linear_rotor(&root, control);
         }
         if self.route.is_general(&root) {
             if self.balls == Balls::Locked {
@@ -101,7 +101,7 @@ impl command::Command for Args {
                 Some(t) => crate::general_campbell::omega_max(&root, &g, Some(t))?,
                 None => general::default_omega_max(&g, &root)?,
             };
-            let r = general::analyse(&g, omega_max, samples, control)?;
+            let r = general::analyse(&g, omega_max, samples, control).map_err(|e| self.name_omega_max(e))?;
             return Ok(Output::General { g: Box::new(g), r: Box::new(r), omega_max });
         }
         let cfg = config::build(&root, &source)?;
@@ -118,15 +118,37 @@ impl command::Command for Args {
 }
 
 impl Args {
+    /// The library's `omega_max` error (a top speed below what the periodic-orbit analysis
+    /// resolves, [`autobal::rotor_stability::Rotor::slowest_periodic_speed`]) named as the user
+    /// gave the speed: `--omega-max`, else the config's `analysis.omega_max`.
+    fn name_omega_max(&self, e: anyhow::Error) -> anyhow::Error {
+        match e.downcast_ref::<autobal::Error>() {
+            Some(autobal::Error::InvalidParameter { field, reason }) if field == "omega_max" => {
+                let flag = if self.omega_max.is_some() { "--omega-max" } else { "analysis.omega_max" };
+                autobal::Error::invalid(flag, reason.clone()).into()
+            }
+            _ => e,
+        }
+    }
+
     /// `stability` on a linear rotor config ([`crate::linear_rotor`]).
-    fn linear_rotor(&self, root: &toml::Table) -> Result<Output> {
+    fn linear_rotor(&self, root: &toml::Table, control: &Control) -> Result<Output> {
         if self.balls == Balls::Locked {
             bail!("--balls locked: a linear rotor is analysed with its balls free");
         }
         let cfg = crate::linear_rotor::from_table(root, self.config.dir())?;
         let samples = check_count("--samples", self.samples.unwrap_or(if cfg.rotor.is_isotropic() { 200 } else { 50 }), SAMPLES)?;
         let omega_max = crate::linear_rotor::omega_max(self.omega_max.as_deref(), &cfg)?;
-        let (r, red) = crate::linear_rotor::stability(&cfg, omega_max, samples)?;
+        // under the control, as the general route ([`general::analyse`]): a stopped scan
+        // prints nothing
+        let speeds = autobal::rotor_stability::speed_grid(omega_max, samples)?;
+        let (rotor, red) = crate::linear_rotor::model(&cfg)?;
+        let out = autobal::rotor_stability::stability_over_speed_with(&autobal::rotor_stability::Rotor::Linear(rotor), &speeds, control)
+            .map_err(|e| self.name_omega_max(e.into()))?;
+        if let Some(why) = out.stopped {
+            bail!("{why}: the stability scan stopped after {} of {} speeds; nothing is printed", out.value.points.len(), speeds.len());
+        }
+        let r = out.value;
         Ok(Output::LinearRotor { cfg: Box::new(cfg), r: Box::new(r), red: Box::new(red), omega_max })
     }
 }
@@ -183,6 +205,20 @@ mod tests {
                 assert_eq!(e, format!("--samples: must lie between 10 and 1000000, got {bad}"));
             }
         }
+    }
+
+    /// A periodic orbit's top speed below ω_n/100 (the spatial two-plane example, gravity) is
+    /// refused in one line naming where the speed came from: `--omega-max`, or the config's
+    /// `analysis.omega_max`. Main at 21dbfc9 integrated revolutions of ~6e9 s for hours.
+    #[test]
+    fn a_speed_below_the_periodic_floor_is_refused_by_name() {
+        let two = include_str!("../../../examples/spatial_two_plane.toml");
+        let args = Args { config: tables(two, &[]), omega_max: Some("1e-9 rad/s".into()), ..Default::default() };
+        let e = format!("{:#}", args.run(&Control::none()).err().expect("refused"));
+        assert!(e.starts_with("--omega-max: 1e-9 is below ") && !e.contains('\n'), "{e}");
+        let args = Args { config: tables(two, &["analysis.omega_max=\"0.001 rad/s\""]), ..Default::default() };
+        let e = format!("{:#}", args.run(&Control::none()).err().expect("refused"));
+        assert!(e.starts_with("analysis.omega_max: 0.001 is below "), "{e}");
     }
 
     /// The same config read from a file (the CLI) or handed over as tables (Python) gives the

@@ -407,6 +407,43 @@ impl Rotor {
         }
     }
 
+    /// The lowest speed at which the periodic-orbit analysis runs: the natural frequency
+    /// ([`Rotor::natural_frequency`]) over [`PERIODS_PER_REVOLUTION`]. The shooting integrates
+    /// a revolution (`2π/Ω`, or half of it) with the variational equations at steps set by the
+    /// rotor's own vibration, so its cost grows as `ω_n/Ω` (the integration spans that many
+    /// natural periods: ~5e11 at 1e-9 rad/s on examples/spatial_two_plane.toml, which ran for
+    /// more than 120 s without an answer).
+    /// `None` for an equilibrium (no integration) or without a natural frequency.
+    pub fn slowest_periodic_speed(&self) -> Option<f64> {
+        let wn = self.natural_frequency();
+        (self.is_periodic() && wn.is_finite() && wn > 0.0).then(|| wn / PERIODS_PER_REVOLUTION)
+    }
+
+    /// Whether the rotor has an unbalance for the balls to cancel: its static (spatial: or
+    /// couple, over the largest axial distance, as [`Rotor::residual`]) unbalance above
+    /// [`NO_UNBALANCE`] of the balls' capacity `Σ m_b R`. Without one the residuals
+    /// ([`SpeedPoint::residual`]) are the balls' own resultant over their capacity, and the
+    /// balanced state is the one where it vanishes. Planar: `m1 s1` and the race's
+    /// eccentricity `s2` both zero.
+    pub fn has_unbalance(&self) -> bool {
+        match self {
+            Rotor::Planar(p) => p.m1 * p.s1 != 0.0 || p.s2 != 0.0,
+            Rotor::Spatial(r) => {
+                let (s0, c0) = (r.static_unbalance(), r.couple_unbalance());
+                let zr = r.z_reference();
+                let zl = r.planes.iter().filter(|p| p.n > 0).map(|p| (p.z - zr).abs()).chain(r.unbalances.iter().map(|u| (u.z - zr).abs())).fold(0.0, f64::max);
+                let zl = if zl > 0.0 { zl } else { 1.0 };
+                let cap: f64 = r.planes.iter().map(|p| p.n as f64 * p.ball_mass * p.race_radius).sum();
+                s0[0].hypot(s0[1]).max(c0[0].hypot(c0[1]) / zl) > NO_UNBALANCE * cap
+            }
+            Rotor::Linear(r) => {
+                let s0 = crate::linear_rotor::partial::static_unbalance(r);
+                let cap: f64 = r.balancers.iter().map(|b| b.balls as f64 * b.ball_mass * b.radius).sum();
+                s0[0].hypot(s0[1]) > NO_UNBALANCE * cap
+            }
+        }
+    }
+
     /// Whether the stationary motion is a periodic orbit of the revolution (supports that differ
     /// by direction, gravity across the spin axis) rather than an equilibrium in turning axes.
     pub fn is_periodic(&self) -> bool {
@@ -437,11 +474,17 @@ pub struct SpeedPoint {
     /// What the state analysed here is: balanced, semi-balanced, or partially balanced (the
     /// balls' capacity short: balls bunched, a residual unbalance); `None` without a state.
     pub state: Option<StateKind>,
+    /// What `state` is decided on ([`StateBasis`]): the residual (spatial, planar), or the
+    /// race centres' whirl (linear: a `balanced` state may then carry a static `residual` of
+    /// 0.03-0.5, an unbalance away from the balancer planes that they do not see); `None`
+    /// without a state.
+    pub state_basis: Option<StateBasis>,
     /// The residual unbalance the balls leave in that state, as a fraction of the rotor's
     /// unbalance ([`Rotor::residual`]: on a periodic orbit the balls' positions averaged over
     /// the revolution; planar: the race centre's distance from the axis over the eccentricity
-    /// scale; the unbalance as the scale but at least `1e-6` of the balls' capacity `Σ m_b R`,
-    /// so an unbalance that cancels reads its balls' resultant over that); `None` without a
+    /// scale; the unbalance as the scale, or the balls' capacity `Σ m_b R` where the unbalance
+    /// is below `1e-6` of it ([`Rotor::has_unbalance`]): then the balls' resultant over their
+    /// capacity); `None` without a
     /// state. A balanced state carries the residual it is balanced
     /// to: ~1e-10 at an equilibrium, on an orbit the second-order residual of the balls' swing.
     pub residual: Option<f64>,
@@ -455,6 +498,20 @@ pub struct SpeedPoint {
     pub family: Option<FamilyPoint>,
     /// With a family: which of its members are stable (all, some, none): `family`'s verdict.
     pub family_verdict: Option<FamilyVerdict>,
+}
+
+/// What [`SpeedPoint::state`] is decided on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum StateBasis {
+    /// The residual unbalance [`SpeedPoint::residual`] (spatial: with the closed-form test of
+    /// whether a balanced state exists; planar: the race centre's offset, with the balls'
+    /// bunching): [`Rotor::state_kind`].
+    Residual,
+    /// The race centres' whirl against their whirl without the balls' resultant (the linear
+    /// rotor, [`crate::linear_rotor::partial::state_kind`]); its `residual` is the static one
+    /// only, which an unbalance away from the balancer planes leaves whatever the balls do.
+    RaceWhirl,
 }
 
 /// What a stationary state is.
@@ -577,13 +634,19 @@ pub struct RotorStability {
     /// plane at balance): that many eigenvalues 0 (multipliers 1) are structural at each point
     /// and left out of the verdict.
     pub family_dimension: usize,
-    /// The balls' angles of the member analysed at the first speed where a state was found
-    /// (rad, all planes in order): the member that `stable_ranges` follows from there
-    /// (each point's own member in [`SpeedPoint::member_psi`]).
+    /// The balls' angles of the member analysed at the first speed with a family of
+    /// (semi-)balanced states (`SpeedPoint::family_dimension > 0`; without one anywhere, at the
+    /// first speed where a state was found) (rad, all planes in order): the member that
+    /// `stable_ranges` follows from there (each point's own member in
+    /// [`SpeedPoint::member_psi`]). Never a partially balanced point's bunched balls where a
+    /// family exists elsewhere (main at 21dbfc9 named the first speed's, bunched, member).
     pub member_psi: Vec<f64>,
     /// With a family (`family_dimension > 0`): its stability over all the members sampled,
     /// the speed ranges where all and where some members are stable.
     pub family: Option<FamilyStability>,
+    /// Whether the rotor has an unbalance for the balls to cancel ([`Rotor::has_unbalance`]);
+    /// without one the residuals are the balls' resultant over their capacity `Σ m_b R`.
+    pub has_unbalance: bool,
 }
 
 /// The stationary state of `rotor` and its stability at each of `speeds` (ascending), with the
@@ -605,6 +668,20 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
     // the model's own validation first, so its message names the field
     let first = rotor.field(speeds[0])?;
     let kind = if first.period().is_some() { Kind::PeriodicOrbit } else { Kind::Equilibrium };
+    // a periodic orbit is shot over a whole revolution: below the floor its integration spans
+    // more than PERIODS_PER_REVOLUTION natural periods (a scan to 1e-9 rad/s integrated for
+    // hours); a top speed below it is refused, grid speeds below it fail by name
+    let floor = if kind == Kind::PeriodicOrbit { rotor.slowest_periodic_speed() } else { None };
+    if let Some(floor) = floor {
+        let top = speeds.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        if top < floor {
+            return Err(Error::invalid("omega_max", below_floor(top, floor)));
+        }
+    }
+    let field_at = |w: f64| match floor {
+        Some(floor) if w.abs() < floor => Err(Error::invalid("omega", below_floor(w, floor))),
+        _ => rotor.field(w),
+    };
     // Newton starts from the closed form at every speed (it names the branch: the balanced
     // state, or for a periodic orbit its autonomous neighbour, from which the shooting lands on
     // the orbit of the balanced branch; continuation from the previous orbit switched to orbits
@@ -621,7 +698,7 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
     // each plane's balls placed on its share, a short plane's bunched (Rotor::placed_guess),
     // else every plane's balls bunched (Rotor::bunched_guess)
     let guess = |f: &Field, _| Rotor::guess(f).or_else(|| Rotor::placed_guess(f)).or_else(|| Rotor::bunched_guess(f));
-    let Outcome { value: scan, mut stopped } = speed_scan_with(|w| rotor.field(w), guess, speeds, &opts, control).map_err(|e| match e {
+    let Outcome { value: scan, mut stopped } = speed_scan_with(field_at, guess, speeds, &opts, control).map_err(|e| match e {
         crate::analysis::AnalysisError::Model(e) => e,
         e => Error::invalid("speeds", e.to_string()),
     })?;
@@ -641,7 +718,7 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
                 }
                 _ => (None, None, None, vec![]),
             };
-            if member_psi.is_empty() {
+            if member_psi.is_empty() && fam > 0 {
                 member_psi = psi.clone();
             }
             SpeedPoint {
@@ -653,6 +730,7 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
                 amplitude,
                 failure: p.failure.as_ref().map(|f| explain_failure(rotor, f)),
                 state,
+                state_basis: state.map(|_| if matches!(rotor, Rotor::Linear(_)) { StateBasis::RaceWhirl } else { StateBasis::Residual }),
                 residual,
                 member_psi: psi,
                 family: None,
@@ -660,6 +738,9 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
             }
         })
         .collect();
+    if member_psi.is_empty() {
+        member_psi = points.iter().find(|p| p.state.is_some()).map_or(vec![], |p| p.member_psi.clone());
+    }
     let family = if family_dimension > 0 {
         let states: Vec<Option<&StationaryState>> = scan.points.iter().map(|p| p.state.as_ref()).collect();
         let (fam, why) = family_over_speed(rotor, &mut points, &states, family_dimension, &opts.newton, control);
@@ -668,7 +749,16 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
     } else {
         None
     };
-    let value = RotorStability { model: rotor.model_name(), kind, stable_ranges: scan.stable_ranges, points, family_dimension, member_psi, family };
+    let value = RotorStability {
+        model: rotor.model_name(),
+        kind,
+        stable_ranges: scan.stable_ranges,
+        points,
+        family_dimension,
+        member_psi,
+        family,
+        has_unbalance: rotor.has_unbalance(),
+    };
     Ok(Outcome { value, stopped })
 }
 
@@ -767,7 +857,8 @@ fn family_over_speed(
         let mut boundary = vec![None; points.len()];
         for i in 0..points.len().saturating_sub(1) {
             let (a, b) = (&points[i], &points[i + 1]);
-            if good(a) == good(b) {
+            // a range end between two analysed speeds only (as the scan's own ranges)
+            if good(a) == good(b) || a.verdict.is_none() || b.verdict.is_none() {
                 continue;
             }
             if stopped.is_some() {
@@ -951,6 +1042,26 @@ pub(crate) fn off_line(psi: f64, along: f64) -> f64 {
     w.min(std::f64::consts::PI - w)
 }
 
+/// The most natural periods (`2π/ω_n`) that one revolution of a periodic orbit may span
+/// ([`Rotor::slowest_periodic_speed`]): a shooting at the limit integrates ~10 times the
+/// revolutions of one at the lowest speed of a default axis (1/50 of its top: ω_n/11 on
+/// examples/spatial_two_plane.toml), each Newton iteration 100 natural periods. On that
+/// example Newton finds no orbit down there anyway: under gravity `Ω² R < g` below ~9 rad/s,
+/// the balls cannot be held against it.
+pub const PERIODS_PER_REVOLUTION: f64 = 100.0;
+
+/// The message of a speed below [`Rotor::slowest_periodic_speed`].
+fn below_floor(w: f64, floor: f64) -> String {
+    use crate::error::fmt_num;
+    format!(
+        "{} is below {}, the slowest speed the periodic-orbit analysis resolves: the natural frequency over {} (a revolution longer than {} natural periods is not integrated)",
+        fmt_num(w),
+        fmt_num(floor),
+        fmt_num(PERIODS_PER_REVOLUTION),
+        fmt_num(PERIODS_PER_REVOLUTION)
+    )
+}
+
 /// The residual (fraction of the unbalance: [`Rotor::residual`]) at or below which a state is
 /// balanced whatever its balls' placement: Newton's and the shooting's residuals (1e-12,
 /// 1e-10) leave ~1e-10 of the unbalance, the old classifier's tolerance was this.
@@ -1013,14 +1124,26 @@ fn spatial_residual(r: &SpatialRotor, units: &[[f64; 2]]) -> f64 {
     rs[0].hypot(rs[1]).max(rc[0].hypot(rc[1]) / zl) / unbalance_scale(s0[0].hypot(s0[1]).max(c0[0].hypot(c0[1]) / zl), cap)
 }
 
-/// The denominator of a residual: the unbalance `u` (kg m), but at least `1e-6` of the balls'
-/// capacity `cap = Σ m_b R` (an unbalance that cancels, or none, leaves rounding noise that
-/// must not become the scale: Newton leaves the balls' resultant to ~1e-14 of `cap`, measured
-/// on a linear shaft with a pure couple at 1001 rad/s, which a `1e-9 cap` floor read as 1e-5,
-/// "balanced above 1e-6"; an unbalance below 1e-6 of the capacity is none to speak of).
+/// The denominator of a residual: the unbalance `u` (kg m); where there is none to speak of
+/// (`u ≤ 1e-6 cap`, [`NO_UNBALANCE`]), the balls' capacity `cap = Σ m_b R` itself, so that
+/// the residual is the balls' own resultant over what they could produce. (Main at 21dbfc9
+/// divided by `1e-6 cap` there: the balls' swing on an orbit under gravity, ~4e-7 of their
+/// capacity on examples/spatial_two_plane.toml without unbalance at 350-440 rad/s, read as
+/// 0.44 "of the unbalance", "not balanced", on a rotor with nothing to balance. Newton leaves
+/// the resultant to ~1e-14 of `cap`, measured on a linear shaft with a pure couple at 1001
+/// rad/s.) The scale steps at `u = 1e-6 cap` from `cap` to `1e-6 cap`: below it a residual
+/// of the balls is measured against their capacity, above against the unbalance.
 fn unbalance_scale(u: f64, cap: f64) -> f64 {
-    u.max(1e-6 * cap).max(f64::MIN_POSITIVE)
+    if u <= NO_UNBALANCE * cap {
+        cap.max(f64::MIN_POSITIVE)
+    } else {
+        u
+    }
 }
+
+/// An unbalance (kg m) at or below this fraction of the balls' capacity `Σ m_b R` is none to
+/// speak of ([`Rotor::has_unbalance`]; the residuals' scale, [`Rotor::residual`]).
+pub const NO_UNBALANCE: f64 = 1e-6;
 
 /// Whether the spatial rotor's balls can cancel its unbalance (a balanced state exists): the
 /// closed-form placement ([`SpatialField::balanced_guess`]: each plane's balls on the arc of
@@ -1233,6 +1356,57 @@ mod tests {
             scale += p.ball_mass * p.race_radius;
         }
         assert!(rs[0].hypot(rs[1]) > 1e-6 * scale, "the start's static residual {} of {scale}", rs[0].hypot(rs[1]));
+    }
+
+    /// A periodic orbit's scan at a speed far below the rotor's natural frequency: a
+    /// revolution spans ω_n/Ω natural periods to integrate (at 1e-9 rad/s main at 21dbfc9 ran
+    /// for hours). A top speed below ω_n/100 is refused, naming `omega_max`, in one line; grid
+    /// speeds below it fail by name, at no cost, and the speeds above are analysed.
+    #[test]
+    fn a_periodic_scan_below_its_slowest_speed_is_refused_by_name() {
+        let root = crate::config::parse(include_str!("../../../examples/spatial_two_plane.toml"), "two-plane").unwrap();
+        let rotor = Rotor::Spatial(crate::config::spatial_simulation(&root).unwrap().rotor);
+        let floor = rotor.slowest_periodic_speed().expect("a periodic orbit");
+        // ω_n = sqrt(Σk/M) of the 20 kg rotor on 2e6 + 3e6 N/m: ~499 rad/s, so ~5 rad/s
+        assert!((floor - rotor.natural_frequency() / 100.0).abs() <= 1e-12 * floor && (4.0..6.0).contains(&floor), "{floor}");
+        for top in [1e-9, 0.5 * floor] {
+            let e = stability_over_speed(&rotor, &[0.5 * top, top]).unwrap_err();
+            assert_eq!(e.field(), Some("omega_max"), "{e}");
+            assert!(!e.to_string().contains('\n') && e.to_string().contains("periodic-orbit analysis"), "{e}");
+        }
+        // an equilibrium has no floor
+        let mut flat = root.clone();
+        crate::config::set(&mut flat, "spatial.gravity", crate::config::parse_value("[0.0, 0.0, 0.0]")).unwrap();
+        crate::config::set_number(&mut flat, "supports.stiffness_left_y", 2.0e6).unwrap();
+        crate::config::set_number(&mut flat, "supports.stiffness_right_y", 3.0e6).unwrap();
+        let flat = Rotor::Spatial(crate::config::spatial_simulation(&flat).unwrap().rotor);
+        assert_eq!(flat.slowest_periodic_speed(), None);
+        // a grid across it: the points below fail by name, the one above is analysed
+        let r = stability_over_speed(&rotor, &[1e-9, 0.5 * floor, 1.2 * floor]).unwrap();
+        for p in &r.points[..2] {
+            assert!(p.verdict.is_none() && p.failure.as_deref().is_some_and(|f| f.contains("periodic-orbit analysis")), "{p:?}");
+        }
+        assert!(r.points[2].failure.as_deref().is_none_or(|f| !f.contains("periodic-orbit analysis")), "{:?}", r.points[2]);
+    }
+
+    /// Each point says what its class is decided on: the same Jeffcott rotor as the planar
+    /// model (the residual: E's offset) and as the linear rotor (the race whirl, whose
+    /// `residual` is the static one only), in the JSON's `points[].state_basis`; none where no
+    /// state was found.
+    #[test]
+    fn each_point_says_what_its_class_is_decided_on() {
+        let (planar, linear) = jeffcott(2);
+        let speeds = [150.0, 400.0];
+        for (rotor, basis) in [(&planar, StateBasis::Residual), (&linear, StateBasis::RaceWhirl)] {
+            let r = stability_over_speed(rotor, &speeds).unwrap();
+            for p in &r.points {
+                assert!(p.state.is_some(), "{p:?}");
+                assert_eq!(p.state_basis, Some(basis), "{} Ω {}", rotor.model_name(), p.omega);
+            }
+            let v = serde_json::to_value(&r.points[0]).unwrap();
+            let want = if basis == StateBasis::Residual { "residual" } else { "race_whirl" };
+            assert_eq!(v["state_basis"], want);
+        }
     }
 
     #[test]

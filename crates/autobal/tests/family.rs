@@ -355,3 +355,52 @@ fn a_family_walked_to_a_relabelling_covers_the_whole_family_by_relabelling() {
         );
     }
 }
+
+/// A rigid rotor on two supports at ±0.3 m with `n` balls of `m R = mr` in the plane of its
+/// centre of mass and a static unbalance `u` (kg m) there: `n mr = u` is exactly full capacity.
+fn one_plane(n: usize, mr: f64, u: f64) -> autobal::spatial::dynamics::SpatialRotor {
+    use autobal::spatial::dynamics::{BallPlane, PointMass, RigidRotor, SpatialRotor, Support};
+    let support = |z: f64| Support { z, stiffness: [1e5, 1e5], damping: [40.0, 40.0] };
+    SpatialRotor {
+        rotor: RigidRotor { mass: 10.0, equatorial_moment: 0.5, polar_moment: 0.2, z: 0.0, axis_tilt: 0.0, axis_tilt_angle: 0.0 },
+        supports: vec![support(-0.3), support(0.3)],
+        unbalances: vec![PointMass { mass: u / 0.125, radius: 0.125, angle: 0.7, z: 0.0 }],
+        planes: vec![BallPlane { z: 0.0, n, ball_mass: mr / 0.125, race_radius: 0.125, drag: 0.05, physics: Default::default() }],
+        gravity: [0.0; 3],
+        spin_drag: 0.0,
+        lock_tilt: false,
+    }
+}
+
+/// At exactly full capacity (`n m R = |u|`, here in binary-exact numbers: 2 × 0.03125 kg ×
+/// 0.125 m = 0.0625 kg × 0.125 m) the balanced state is unique: `|Σ m R e^{iψ_j}| = n m R` holds
+/// only with every ball at one angle (the triangle inequality's equality case), so there is no
+/// family, dimension 0, although the Jacobian of the balancing condition has rank 1 there (the
+/// balls spreading by ±δ lose `m R δ²` of their resultant: second order). Main at 21dbfc9
+/// counted `n − rank = 1` for two balls ("family of dimension 1") and 2 for three. Above full
+/// capacity the closed form's count holds: two balls isolated (0), three a one-parameter
+/// family (`n − 2 = 1`). Same on the planar rotor (three balls at full capacity: 0).
+#[test]
+fn at_exactly_full_capacity_the_balanced_state_is_isolated() {
+    let mr = 0.03125 * 0.125;
+    for (n, u, dimension) in [(2, 2.0 * mr, 0), (3, 3.0 * mr, 0), (2, 1.5 * mr, 0), (3, 1.5 * mr, 1)] {
+        let f = autobal::spatial::dynamics::field::SpatialField::new(&one_plane(n, mr, u), 300.0).unwrap();
+        let s = stationary(&f, &f.balanced_guess().unwrap(), &NewtonOptions::default()).unwrap();
+        let m = f.coords();
+        let psi = &s.x[m - n..m];
+        // the state is balanced: the balls' resultant cancels u (to Newton's 1e-12)
+        let (c, sn) = psi.iter().fold((0.0, 0.0), |(c, sn), a| (c + mr * a.cos(), sn + mr * a.sin()));
+        assert!((c + u * 0.7f64.cos()).hypot(sn + u * 0.7f64.sin()) <= 1e-12 * u, "n {n}, u {u}: ψ {psi:?}");
+        let full = u == n as f64 * mr;
+        if full {
+            assert!(psi.iter().all(|a| (a - psi[0]).abs() <= 1e-9), "bunched at full capacity: {psi:?}");
+        }
+        assert_eq!(s.family_dimension, dimension, "n {n}, u/(n m R) {}: ψ {psi:?}", u / (n as f64 * mr));
+    }
+    // the planar rotor: three balls of m3 r = 0.25 × 0.125 m against m1 s1 = 0.75 × 0.125
+    let p = PlanarRotor { n: 3, s2: 0.0, m3: 0.25, r: 0.125, m1: 0.75, s1: 0.125, ..PlanarRotor::paper() };
+    let f = PlanarField::new(&p, 400.0).unwrap();
+    let s = stationary(&f, &f.semi_balanced_guess().unwrap(), &NewtonOptions::default()).unwrap();
+    assert!(s.x[2..5].iter().all(|a| (a - s.x[2]).abs() <= 1e-9), "{:?}", &s.x[2..5]);
+    assert_eq!(s.family_dimension, 0, "{:?}", &s.x[2..5]);
+}

@@ -5,7 +5,7 @@
 //! stability through the general route (issue 18, 6(c)).
 
 use autobal::analysis::Verdict;
-use autobal::rotor_stability::{stability_over_speed, Rotor};
+use autobal::rotor_stability::{stability_over_speed, Rotor, StateKind};
 use autobal::spatial::dynamics::field::SpatialField;
 use autobal::spatial::dynamics::{BallPlane, PointMass, RigidRotor, SpatialRotor, Support};
 
@@ -66,4 +66,50 @@ fn near_the_threshold_the_balanced_state_is_unstable_below_the_conical_critical_
     // (measured: from 272 rad/s for 1.05 m_c, 314 for 3 m_c, 435 for 10 m_c, up to 1000 rad/s)
     let above = stability_over_speed(&Rotor::Spatial(rotor(1.05 * M_C)), &[2.0 * conical, 3.0 * conical]).unwrap();
     assert!(above.points.iter().all(|p| p.verdict == Some(Verdict::Stable)), "{:?}", above.points);
+}
+
+/// `rotor(m)` with both ball planes at `z = 0.15` and the unbalance split into two masses at
+/// `z_u` (angles 0 and 2.5 rad), to compare with one plane of four balls there.
+fn coincident(z_u: f64, planes: usize) -> SpatialRotor {
+    let mut r = rotor(3.0 * M_C);
+    let p = r.planes[0];
+    r.planes = if planes == 2 { vec![BallPlane { z: 0.15, ..p }, BallPlane { z: 0.15, ..p }] } else { vec![BallPlane { z: 0.15, n: 4, ..p }] };
+    r.unbalances = vec![PointMass { mass: 0.01, radius: 0.1, angle: 0.0, z: z_u }, PointMass { mass: 0.01, radius: 0.1, angle: 2.5, z: z_u }];
+    r
+}
+
+/// Two ball planes at one axial position `ζ` are one plane of all their balls (the equations
+/// do not tell the balls' planes apart: each ball is a point on a race at `ζ`). A balanced
+/// state then exists iff the balls' resultant `B` can be `−s0` (`|s0| ≤ Σ m R`, here
+/// 0.000631 kg m against 0.0045) and the couple `ζ B = −ζ s0` is the unbalance's `c0`, i.e. the
+/// unbalance has no couple about the plane: `Σ m_u r_u (z_u − ζ) e^{iα_u} = 0`, true with the
+/// unbalance masses in the ball plane, false with them at `z = −0.15` (couple about the plane
+/// 0.3 × 0.000631 kg m²). Checked against the one-plane rotor of four balls at `ζ`, whose
+/// closed form and classification are another code path: same states (ball angles to 1e-9 rad,
+/// Newton to ~1e-12), same verdicts and abscissas (to 1e-9 relative: the same matrices to
+/// round-off), same family dimension `4 − 2`. Main at 21dbfc9 had no closed form for
+/// coincident planes and said "partially balanced" (no balanced state) at every speed.
+#[test]
+fn two_planes_at_one_axial_position_balance_as_one_plane() {
+    let speeds = [200.0, 320.0, 500.0];
+    let two = stability_over_speed(&Rotor::Spatial(coincident(0.15, 2)), &speeds).unwrap();
+    let one = stability_over_speed(&Rotor::Spatial(coincident(0.15, 1)), &speeds).unwrap();
+    assert_eq!((two.family_dimension, one.family_dimension), (2, 2));
+    for (a, b) in two.points.iter().zip(&one.points) {
+        assert_eq!(a.state, Some(StateKind::Balanced), "Ω {}: {:?}", a.omega, a.failure);
+        assert_eq!(b.state, Some(StateKind::Balanced), "Ω {}: {:?}", b.omega, b.failure);
+        assert!(a.residual.unwrap() <= 1e-9, "Ω {}: {:?}", a.omega, a.residual);
+        assert_eq!(a.verdict, b.verdict, "Ω {}", a.omega);
+        let (x, y) = (a.abscissa.unwrap(), b.abscissa.unwrap());
+        assert!((x - y).abs() <= 1e-9 * x.abs().max(y.abs()).max(1.0), "Ω {}: {x} vs {y}", a.omega);
+        for (p, q) in a.member_psi.iter().zip(&b.member_psi) {
+            assert!((p - q).abs() <= 1e-9, "Ω {}: {:?} vs {:?}", a.omega, a.member_psi, b.member_psi);
+        }
+    }
+    // the unbalance out of the plane: a couple about it that no ball there cancels
+    let off = stability_over_speed(&Rotor::Spatial(coincident(-0.15, 2)), &speeds).unwrap();
+    for p in off.points.iter().filter(|p| p.state.is_some()) {
+        assert_eq!(p.state, Some(StateKind::PartiallyBalanced), "Ω {}", p.omega);
+    }
+    assert!(off.points.iter().any(|p| p.state.is_some()), "{:?}", off.points);
 }

@@ -223,3 +223,48 @@ fn a_balanced_planar_run_at_constant_speed_is_settled_and_does_not_warn() {
     assert!(!s.settled, "{s:?}");
     assert!(s.warnings.iter().any(|w| w.contains("before the motion settled")), "{:?}", s.warnings);
 }
+
+/// A rotor with no unbalance (examples/spatial_two_plane.toml with both unbalance masses 0,
+/// gravity on): nothing for the balls to cancel, so the balanced state is the one where their
+/// resultant vanishes, and the residual is that resultant over their capacity `Σ m R` (the only
+/// scale left). Checked against the orbit's 64 samples directly: each ball's mean `e^{iψ}`,
+/// the static resultant `Σ m R ⟨e^{iψ}⟩` and the couple `Σ (z − z_ref) m R ⟨e^{iψ}⟩` over the
+/// largest ball-plane distance, over `Σ m R` (to 1e-6 relative: the same sums in another
+/// order, at a residual of ~3e-7). At 393.6 rad/s (a grid speed of the example's axis) the
+/// balls' swing leaves 3e-7 of their capacity: balanced. Main at 21dbfc9 divided by 1e-6 of the
+/// capacity and said 0.32 "of an unbalance their capacity could cancel": not balanced.
+#[test]
+fn without_unbalance_the_residual_is_the_balls_resultant_over_their_capacity() {
+    use autobal::rotor_stability::{Rotor, StateKind};
+    let mut root = autobal::config::parse(include_str!("../../../examples/spatial_two_plane.toml"), "two-plane").unwrap();
+    assert!(Rotor::Spatial(autobal::config::spatial_simulation(&root).unwrap().rotor).has_unbalance());
+    autobal::config::set_number(&mut root, "unbalance.mass", 0.0).unwrap();
+    autobal::config::set_number(&mut root, "couple.mass", 0.0).unwrap();
+    let r = autobal::config::spatial_simulation(&root).unwrap().rotor;
+    let rotor = Rotor::Spatial(r.clone());
+    assert!(!rotor.has_unbalance());
+    let (f, s) = autobal::rotor_campbell::stationary_at(&rotor, 393.6).unwrap();
+    let period = autobal::analysis::VectorField::period(&f).expect("an orbit under gravity");
+    let (kind, residual) = Rotor::classify(&f, &s.x);
+    // independently: the means over the orbit's samples
+    let n = s.x.len();
+    let rows = autobal::analysis::orbit_samples(&f, &s.x, period, 1e-10).unwrap();
+    let m = n / 2;
+    let balls: Vec<_> = r.planes.iter().filter(|p| p.n > 0).flat_map(|p| std::iter::repeat_n(p, p.n)).collect();
+    let nb = balls.len();
+    let zr = r.z_reference();
+    let zl = r.planes.iter().filter(|p| p.n > 0).map(|p| (p.z - zr).abs()).fold(0.0, f64::max);
+    let (mut st, mut cp, mut cap) = ([0.0; 2], [0.0; 2], 0.0);
+    for (j, p) in balls.iter().enumerate() {
+        let k = rows.len() / n;
+        let (c, sn) = (0..k).map(|i| rows[i * n + m - nb + j]).fold((0.0, 0.0), |(c, sn), a| (c + a.cos() / k as f64, sn + a.sin() / k as f64));
+        let mr = p.ball_mass * p.race_radius;
+        st = [st[0] + mr * c, st[1] + mr * sn];
+        cp = [cp[0] + (p.z - zr) * mr * c, cp[1] + (p.z - zr) * mr * sn];
+        cap += mr;
+    }
+    let want = st[0].hypot(st[1]).max(cp[0].hypot(cp[1]) / zl) / cap;
+    assert!((residual - want).abs() <= 1e-6 * want, "residual {residual} against {want}");
+    assert!(residual < 1e-6, "{residual}");
+    assert_eq!(kind, StateKind::Balanced);
+}

@@ -220,9 +220,11 @@ pub struct StableRange {
     pub from: f64,
     /// Upper end.
     pub to: f64,
-    /// Whether `from` is a located boundary (else the grid's first speed).
+    /// Whether `from` is a located boundary (else a grid speed: the grid's first, or one next
+    /// to a speed where no stationary state was found, or where a stop cut the location short).
     pub from_is_boundary: bool,
-    /// Whether `to` is a located boundary (else the grid's last speed).
+    /// Whether `to` is a located boundary (else a grid speed: the grid's last, or one next to a
+    /// speed where no stationary state was found, or where a stop cut the location short).
     pub to_is_boundary: bool,
 }
 
@@ -510,11 +512,14 @@ where
         }
         control.report(points.len() as u64, speeds.len() as u64);
     }
-    // boundaries between neighbours whose verdicts differ
+    // boundaries between neighbours whose verdicts differ, both analysed: next to a speed
+    // where no state was found (Newton failed there) the range ends at its last analysed grid
+    // speed, not located (`*_is_boundary` false): a located end between a failed and a stable
+    // point would claim stability up to a speed about which nothing is known
     let mut boundary = vec![None; points.len()];
     for i in 0..points.len().saturating_sub(1) {
         let (a, b) = (&points[i], &points[i + 1]);
-        if a.is_stable() == b.is_stable() || stopped.is_some() {
+        if a.is_stable() == b.is_stable() || a.stability.is_none() || b.stability.is_none() || stopped.is_some() {
             continue;
         }
         let (end, why) = locate_end(a, b, opts.boundary_rtol, control, evaluate);
@@ -541,4 +546,53 @@ where
         i = j + 1;
     }
     Ok(Outcome { value: SpeedScan { points, stable_ranges }, stopped })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `x' = (p − 3) x`, `y' = −y`: the equilibrium 0 has `λ = p − 3` and `−1`, stable below
+    /// `p = 3`.
+    struct Crossing(f64);
+
+    impl VectorField for Crossing {
+        fn dim(&self) -> usize {
+            2
+        }
+        fn rhs(&self, _t: f64, x: &[f64], dx: &mut [f64]) {
+            dx[0] = (self.0 - 3.0) * x[0];
+            dx[1] = -x[1];
+        }
+        fn jacobian(&self, _t: f64, _x: &[f64], j: &mut [f64]) {
+            j.copy_from_slice(&[self.0 - 3.0, 0.0, 0.0, -1.0]);
+        }
+        fn period(&self) -> Option<f64> {
+            None
+        }
+    }
+
+    /// A stable range ends between two analysed speeds only: with the state not found at the grid
+    /// speed 2 (the model fails there, not at the speeds around it), the ranges are [1, 1] and
+    /// [2.5, 3], the end 3 located (λ = p − 3 vanishes there, to 1e-9 relative), the ends next to
+    /// the failed speed grid speeds, not located. Main at 21dbfc9 located ends between the failed
+    /// speed and its stable neighbours (trial speeds there succeed): [1, ~2] and [~2, 3], a
+    /// stable range starting and ending where nothing was analysed.
+    #[test]
+    fn a_failed_speed_breaks_a_stable_range() {
+        let grid = [1.0, 2.0, 2.5, 3.5];
+        let scan = speed_scan(
+            |p| if p == 2.0 { Err(crate::Error::invalid("p", "no state here")) } else { Ok(Crossing(p)) },
+            |_, _| Some(vec![1e-3, 1e-3]),
+            &grid,
+            &ScanOptions::default(),
+        )
+        .unwrap();
+        assert!(scan.points[1].stability.is_none() && !scan.points[1].is_stable());
+        let r = &scan.stable_ranges;
+        assert_eq!(r.len(), 2, "{r:?}");
+        assert_eq!((r[0].from, r[0].to, r[0].from_is_boundary, r[0].to_is_boundary), (1.0, 1.0, false, false), "{r:?}");
+        assert_eq!((r[1].from, r[1].from_is_boundary, r[1].to_is_boundary), (2.5, false, true), "{r:?}");
+        assert!((r[1].to - 3.0).abs() <= 1e-9 * 3.0, "{r:?}");
+    }
 }

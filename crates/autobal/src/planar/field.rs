@@ -331,7 +331,15 @@ impl VectorField for PlanarField {
         }
         // E on the axis: u + s2 e^{iγ} = 0 (to 1e-6 of the whirl's length scale)
         let off = (x[0] + p.s2 * p.gamma.cos()).hypot(x[1] + p.s2 * p.gamma.sin());
-        if off <= 1e-6 * self.length() {
+        // balls bunched (within 1e-9 rad of one angle): the capacity exactly full, the state
+        // isolated (|Σ e^{iψ_j}| = n only with every ball at one angle): no family, whatever
+        // the rank (SpatialField::bunched_surplus)
+        let psi = &x[2..2 + p.n];
+        let bunched = psi.iter().all(|a| {
+            let w = (a - psi[0]).rem_euclid(std::f64::consts::TAU);
+            w.min(std::f64::consts::TAU - w) <= 1e-9
+        });
+        if off <= 1e-6 * self.length() && !bunched {
             p.n - 2
         } else {
             0

@@ -134,8 +134,16 @@ impl SpatialField {
     /// balls form the arc of [`arc_angles`]. With one plane and a couple unbalance (or a tilted
     /// principal axis) the guess cancels only the static part and is not itself stationary.
     ///
+    /// Two planes at the same axial position `ζ` act as one: their balls together must cancel
+    /// `s0` (`B = −s0`, `B = Σ m_j R_j e^{iψ_j}` over both), and then their couple about the
+    /// reference is `ζ B = −ζ s0`, which cancels `c0` only where `c0 = ζ s0` (no couple about
+    /// that plane); the guess places them as one plane of `n_1 + n_2` balls on the arc of `−s0`
+    /// (equal balls: [`arc_angles`] of all, the first `n_1` to the first plane; else each plane
+    /// its share of `−s0` in proportion to its capacity, which needs two balls or more in each),
+    /// and leaves any couple about the plane uncancelled, as one plane does.
+    ///
     /// `None` when a plane's capacity `n m R` is below its share, with no balls or more than
-    /// two planes of balls, or two planes at the same axial position.
+    /// two planes of balls.
     pub fn balanced_guess(&self) -> Option<Vec<f64>> {
         let planes: Vec<_> = self.rotor.planes.iter().filter(|p| p.n > 0).collect();
         let s0 = self.rotor.static_unbalance();
@@ -145,7 +153,19 @@ impl SpatialField {
                 let zr = self.rotor.z_reference();
                 let (z1, z2) = (planes[0].z - zr, planes[1].z - zr);
                 if z1 == z2 {
-                    return None;
+                    let (a, b) = (planes[0], planes[1]);
+                    let (ma, mb) = (a.ball_mass * a.race_radius, b.ball_mass * b.race_radius);
+                    let t = [-s0[0], -s0[1]];
+                    let psi = if ma == mb {
+                        arc_angles(a.n + b.n, ma, t)?
+                    } else {
+                        let (ca, cb) = (a.n as f64 * ma, b.n as f64 * mb);
+                        let share = |c: f64| [t[0] * c / (ca + cb), t[1] * c / (ca + cb)];
+                        let mut psi = arc_angles(a.n, ma, share(ca))?;
+                        psi.extend(arc_angles(b.n, mb, share(cb))?);
+                        psi
+                    };
+                    return Some(self.with_ball_angles(&psi));
                 }
                 let c0 = self.rotor.couple_unbalance();
                 let b1 = [(z2 * s0[0] - c0[0]) / (z1 - z2), (z2 * s0[1] - c0[1]) / (z1 - z2)];
@@ -157,12 +177,51 @@ impl SpatialField {
         for (p, t) in planes.iter().zip(targets) {
             psi.extend(arc_angles(p.n, p.ball_mass * p.race_radius, t)?);
         }
+        Some(self.with_ball_angles(&psi))
+    }
+
+    /// The reduced state with the rotor at rest on the axis and the balls at `psi`.
+    fn with_ball_angles(&self, psi: &[f64]) -> Vec<f64> {
         // planes without balls contribute none; the balls keep the planes' order
         let m = self.coords.len();
         let first = m - psi.len();
         let mut x = vec![0.0; 2 * m];
-        x[first..m].copy_from_slice(&psi);
-        Some(x)
+        x[first..m].copy_from_slice(psi);
+        x
+    }
+
+    /// `Σ (n_g − 1)` over the groups of balls at one axial position (a plane, or two planes
+    /// at one `ζ`) whose balls are **bunched**: all within [`RANK_TOL`] rad of one angle (the
+    /// rank's own tolerance: their columns of `∂(s, c/L)/∂ψ` then count as one). A balanced
+    /// group that is bunched is at its **exactly full capacity** (`|share| = Σ m_j R_j`):
+    /// `|Σ m_j R_j e^{iψ_j}| = Σ m_j R_j` holds only with every ball at one angle, so the
+    /// balanced state is isolated there (dimension 0) although the rank of the Jacobian falls
+    /// to 1, leaving `n_g − 1` zeros that are no family (two balls spread by `±δ` lose
+    /// `m R δ²` of their resultant: second order, a genuine zero of the linearisation).
+    /// How close to full counts as full: the closed form ([`arc_angles`]) bunches the balls
+    /// where the capacity is within `1e-12` (relative) of the share, and just above, at
+    /// relative excess `ε`, spreads two balls by `2√(2ε)` (3e-8 rad at `ε = 1e-16`), above
+    /// this tolerance: full capacity is exact to round-off, and just above it the state is
+    /// isolated for two balls, a family of `n − 2` for more.
+    fn bunched_surplus(&self, psi: &[f64]) -> usize {
+        let balls = &self.model.balls;
+        let mut seen = vec![false; balls.len()];
+        let mut surplus = 0;
+        for i in 0..balls.len() {
+            if seen[i] {
+                continue;
+            }
+            let group: Vec<usize> = (i..balls.len()).filter(|&j| balls[j].zeta == balls[i].zeta).collect();
+            group.iter().for_each(|&j| seen[j] = true);
+            let bunched = group.iter().all(|&j| {
+                let w = (psi[j] - psi[i]).rem_euclid(std::f64::consts::TAU);
+                w.min(std::f64::consts::TAU - w) <= RANK_TOL
+            });
+            if bunched {
+                surplus += group.len() - 1;
+            }
+        }
+        surplus
     }
 
     /// The rank of `∂(s, c/L)/∂ψ` at the ball angles `psi` (all planes): the 4×N matrix of
@@ -364,7 +423,7 @@ impl VectorField for SpatialField {
         if st[0].hypot(st[1]) > BALANCE_TOL * scale || cp[0].hypot(cp[1]) > BALANCE_TOL * scale * zl {
             return 0;
         }
-        nb - self.unbalance_rank(&x[nr..m])
+        (nb - self.unbalance_rank(&x[nr..m])).saturating_sub(self.bunched_surplus(&x[nr..m]))
     }
 
     fn component_name(&self, i: usize) -> String {
