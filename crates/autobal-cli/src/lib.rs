@@ -393,12 +393,12 @@ struct MergeFlags {
 
 impl Command {
     /// Whether the command's long work asks the [`Control`] (so Ctrl-C stops it keeping what
-    /// it computed); the others end at once on Ctrl-C.
+    /// it computed); the others end at once on Ctrl-C. `stability` is not among them: its
+    /// closed-form route does not ask, and it writes nothing before it completes.
     fn polls_the_control(&self) -> bool {
         matches!(
             self,
             Command::Campbell { .. }
-                | Command::Stability { .. }
                 | Command::Map { .. }
                 | Command::Simulate { .. }
                 | Command::Sweep(_)
