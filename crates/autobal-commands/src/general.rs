@@ -194,7 +194,12 @@ pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64) -> String {
     let missing = r.points.iter().filter(|p| p.verdict.is_none()).count();
     let solved = r.points.len() - missing;
     if r.stable_ranges.is_empty() && solved == 0 {
-        s.push_str(&format!("no verdict: no stationary state was found at any of the {} speeds in (0, {}]\n", r.points.len(), speed_text(g, omega_max)));
+        let analysed = r.points.iter().filter(|p| p.analysed).count();
+        s.push_str(&format!(
+            "no verdict: no stationary state was found at any of the {analysed} speeds analysed of {} in (0, {}]\n",
+            r.points.len(),
+            speed_text(g, omega_max)
+        ));
     } else if r.stable_ranges.is_empty() {
         s.push_str(&format!(
             "stable: nowhere among the {solved} of {} speeds in (0, {}] where a stationary state was found\n",
@@ -225,9 +230,23 @@ pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64) -> String {
     if neutral > 0 {
         s.push_str(&format!("neutral (linearisation cannot decide) at {neutral} of {} speeds\n", r.points.len()));
     }
-    if missing > 0 {
-        let first = r.points.iter().find(|p| p.verdict.is_none()).and_then(|p| p.failure.clone()).unwrap_or_default();
-        s.push_str(&format!("no stationary state found at {missing} of {} speeds (first: {first})\n", r.points.len()));
+    s.push_str(&missing_lines(r, |w| speed_text(g, w)));
+    s
+}
+
+/// The table's lines on the speeds without a verdict: those below the periodic-orbit floor as
+/// not analysed ([`autobal::rotor_stability::SpeedPoint::analysed`]), apart from those where
+/// no stationary state was found; each with the reason at its first speed, named as the
+/// first's (the others' may differ: the JSON's `points[].failure` has each).
+pub(crate) fn missing_lines(r: &RotorStability, speed: impl Fn(f64) -> String) -> String {
+    let mut s = String::new();
+    let n = r.points.len();
+    for (analysed, what) in [(false, "not analysed (below the periodic-orbit floor)"), (true, "no stationary state found")] {
+        let missing: Vec<_> = r.points.iter().filter(|p| p.verdict.is_none() && p.analysed == analysed).collect();
+        if let Some(p) = missing.first() {
+            let why = p.failure.clone().unwrap_or_default();
+            s.push_str(&format!("{what} at {} of {n} speeds (the first, at {}: {why})\n", missing.len(), speed(p.omega)));
+        }
     }
     s
 }
@@ -274,7 +293,8 @@ pub(crate) fn range_end(r: &RotorStability, w: f64, located: bool, upper: bool, 
     match next {
         None => format!("{} ({} of the axis)", speed(w), if upper { "end" } else { "start" }),
         Some(p) if p.verdict.is_none() => {
-            format!("{} (a grid speed: no stationary state found at {} {} it)", speed(w), speed(p.omega), if upper { "above" } else { "below" })
+            let what = if p.analysed { "no stationary state found" } else { "not analysed (below the periodic-orbit floor)" };
+            format!("{} (a grid speed: {what} at {} {} it)", speed(w), speed(p.omega), if upper { "above" } else { "below" })
         }
         Some(_) => format!("{} (a grid speed: the end was not located)", speed(w)),
     }
@@ -442,6 +462,38 @@ mod tests {
         );
         assert!(t.contains(&want), "{t}");
         assert!(!t.contains("(start of the axis)"), "{t}");
+    }
+
+    /// Speeds below the periodic-orbit floor read "not analysed", never "no stationary state
+    /// found", in the summary and at a range end next to them; a grid mixing both says each
+    /// with its own first reason (main at 41cc036 called all of them "no stationary state
+    /// found" with the first one's reason). The paper's Jeffcott rotor, two points marked.
+    #[test]
+    fn speeds_below_the_floor_read_not_analysed() {
+        let g = GeneralRotor { rotor: Rotor::Planar(PlanarRotor { n: 2, s2: 0.0, ..PlanarRotor::paper() }), si: true, omega0: 1.0 };
+        let mut r = analyse(&g, 600.0, 30, &Control::default()).unwrap();
+        let st = r.stable_ranges[0];
+        let i = r.points.iter().position(|p| p.omega > st.from).unwrap();
+        assert!(i > 1);
+        for (j, analysed, why) in [(i - 1, false, "omega: below the floor"), (0, true, "no periodic orbit found")] {
+            r.points[j].verdict = None;
+            r.points[j].analysed = analysed;
+            r.points[j].failure = Some(why.into());
+        }
+        r.stable_ranges[0] = autobal::analysis::StableRange { from: r.points[i].omega, from_is_boundary: false, ..st };
+        let t = table(&g, &r, 600.0);
+        let end = format!(
+            "stable: {} (a grid speed: not analysed (below the periodic-orbit floor) at {} below it)",
+            speed_text(&g, r.points[i].omega),
+            speed_text(&g, r.points[i - 1].omega)
+        );
+        assert!(t.contains(&end), "{t}");
+        let below = format!(
+            "not analysed (below the periodic-orbit floor) at 1 of 30 speeds (the first, at {}: omega: below the floor)",
+            speed_text(&g, r.points[i - 1].omega)
+        );
+        let none = format!("no stationary state found at 1 of 30 speeds (the first, at {}: no periodic orbit found)", speed_text(&g, r.points[0].omega));
+        assert!(t.contains(&below) && t.contains(&none), "{t}");
     }
 
     /// A stable range over states that are not balanced never reads plain "stable": the label

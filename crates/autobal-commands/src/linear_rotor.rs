@@ -267,12 +267,14 @@ pub fn stability_table(cfg: &LinearRotorConfig, r: &RotorStability, red: &Option
         s.push_str(&format!("stable: nowhere in (0, {}]\n", speed_text(omega_max)));
     }
     for st in &r.stable_ranges {
-        let to = if st.to_is_boundary { speed_text(st.to) } else { format!("{} (end of the axis)", speed_text(st.to)) };
+        // an end not located: the axis' start or end, or next to a speed without a verdict
+        let from = crate::general::range_end(r, st.from, st.from_is_boundary, false, speed_text);
+        let to = crate::general::range_end(r, st.to, st.to_is_boundary, true, speed_text);
         // the states the range covers: "partially balanced, stable" never reads "stable"
         let mut kinds: Vec<&str> = r.points.iter().filter(|p| p.omega >= st.from && p.omega <= st.to).filter_map(|p| p.state.map(|k| k.name())).collect();
         kinds.dedup();
         let label = if kinds.iter().any(|k| *k != "balanced") { format!("{}, stable", kinds.join(" then ")) } else { "stable".to_string() };
-        s.push_str(&format!("{label}: {} to {to}\n", speed_text(st.from)));
+        s.push_str(&format!("{label}: {from} to {to}\n"));
     }
     if let Some(f) = &r.family {
         let list = |v: &[autobal::analysis::StableRange]| {
@@ -293,15 +295,7 @@ pub fn stability_table(cfg: &LinearRotorConfig, r: &RotorStability, red: &Option
     if neutral > 0 {
         s.push_str(&format!("neutral (linearisation cannot decide) at {neutral} of {} speeds\n", r.points.len()));
     }
-    let missing: Vec<_> = r.points.iter().filter(|p| p.verdict.is_none()).collect();
-    if let Some(p) = missing.first() {
-        s.push_str(&format!(
-            "no stationary state found at {} of {} speeds (first: {})\n",
-            missing.len(),
-            r.points.len(),
-            p.failure.clone().unwrap_or_default()
-        ));
-    }
+    s.push_str(&crate::general::missing_lines(r, speed_text));
     Ok(s)
 }
 

@@ -101,7 +101,7 @@ impl command::Command for Args {
                 Some(t) => crate::general_campbell::omega_max(&root, &g, Some(t))?,
                 None => general::default_omega_max(&g, &root)?,
             };
-            let r = general::analyse(&g, omega_max, samples, control).map_err(|e| self.name_omega_max(e))?;
+            let r = general::analyse(&g, omega_max, samples, control).map_err(|e| self.name_omega_max(e, "analysis.omega_max"))?;
             return Ok(Output::General { g: Box::new(g), r: Box::new(r), omega_max });
         }
         let cfg = config::build(&root, &source)?;
@@ -119,12 +119,13 @@ impl command::Command for Args {
 
 impl Args {
     /// The library's `omega_max` error (a top speed below what the periodic-orbit analysis
-    /// resolves, [`autobal::rotor_stability::Rotor::slowest_periodic_speed`]) named as the user
-    /// gave the speed: `--omega-max`, else the config's `analysis.omega_max`.
-    fn name_omega_max(&self, e: anyhow::Error) -> anyhow::Error {
+    /// resolves, [`autobal::rotor_stability::Rotor::periodic_floor`]) named as the user
+    /// gave the speed: `--omega-max`, else the config's key `key` (`analysis.omega_max`,
+    /// `linear_rotor.omega_max`).
+    fn name_omega_max(&self, e: anyhow::Error, key: &str) -> anyhow::Error {
         match e.downcast_ref::<autobal::Error>() {
             Some(autobal::Error::InvalidParameter { field, reason }) if field == "omega_max" => {
-                let flag = if self.omega_max.is_some() { "--omega-max" } else { "analysis.omega_max" };
+                let flag = if self.omega_max.is_some() { "--omega-max" } else { key };
                 autobal::Error::invalid(flag, reason.clone()).into()
             }
             _ => e,
@@ -144,7 +145,7 @@ impl Args {
         let speeds = autobal::rotor_stability::speed_grid(omega_max, samples)?;
         let (rotor, red) = crate::linear_rotor::model(&cfg)?;
         let out = autobal::rotor_stability::stability_over_speed_with(&autobal::rotor_stability::Rotor::Linear(rotor), &speeds, control)
-            .map_err(|e| self.name_omega_max(e.into()))?;
+            .map_err(|e| self.name_omega_max(e.into(), "linear_rotor.omega_max"))?;
         if let Some(why) = out.stopped {
             bail!("{why}: the stability scan stopped after {} of {} speeds; nothing is printed", out.value.points.len(), speeds.len());
         }
@@ -219,6 +220,24 @@ mod tests {
         let args = Args { config: tables(two, &["analysis.omega_max=\"0.001 rad/s\""]), ..Default::default() };
         let e = format!("{:#}", args.run(&Control::none()).err().expect("refused"));
         assert!(e.starts_with("analysis.omega_max: 0.001 is below "), "{e}");
+    }
+
+    /// A linear rotor under gravity whose bearings change with speed (the shaft example, one
+    /// bearing tabulated): without its bearings folded in (`at_speed`) the shaft sat on one
+    /// pin, its lowest frequency 0, no floor, and a scan to 1 rad/s ran for more than 100 s.
+    /// Refused at once, naming the key the user set (`linear_rotor.omega_max`, not
+    /// `analysis.omega_max`) or the flag.
+    #[test]
+    fn a_linear_rotor_with_speed_bearings_has_a_floor_named_by_its_key() {
+        let shaft = include_str!("../../../examples/linear_rotor_shaft.toml");
+        let grav = shaft.replacen("[linear_rotor]\n", "[linear_rotor]\ngravity = [0.0, -9.81]\nomega_max = 2.0\n", 1);
+        assert_ne!(grav, shaft);
+        let args = Args { config: tables(&grav, &[]), omega_max: Some("1 rad/s".into()), ..Default::default() };
+        let e = format!("{:#}", args.run(&Control::none()).err().expect("refused"));
+        assert!(e.starts_with("--omega-max: 1 is below ") && !e.contains('\n'), "{e}");
+        let args = Args { config: tables(&grav, &[]), ..Default::default() };
+        let e = format!("{:#}", args.run(&Control::none()).err().expect("refused"));
+        assert!(e.starts_with("linear_rotor.omega_max: 2 is below "), "{e}");
     }
 
     /// The same config read from a file (the CLI) or handed over as tables (Python) gives the

@@ -407,15 +407,57 @@ impl Rotor {
         }
     }
 
-    /// The lowest speed at which the periodic-orbit analysis runs: the natural frequency
-    /// ([`Rotor::natural_frequency`]) over [`PERIODS_PER_REVOLUTION`]. The shooting integrates
-    /// a revolution (`2π/Ω`, or half of it) with the variational equations at steps set by the
-    /// rotor's own vibration, so its cost grows as `ω_n/Ω` (the integration spans that many
-    /// natural periods: ~5e11 at 1e-9 rad/s on examples/spatial_two_plane.toml, which ran for
-    /// more than 120 s without an answer).
-    /// `None` for an equilibrium (no integration) or without a natural frequency.
-    pub fn slowest_periodic_speed(&self) -> Option<f64> {
-        let wn = self.natural_frequency();
+    /// The fastest undamped natural frequency of the rotor at speed `omega` without its
+    /// rotation (gyroscopic terms left out), its balls as rings: what sets the step of the
+    /// shooting's integration (DOP853's stability and accuracy both follow the fastest
+    /// vibration). Planar: `sqrt(max(k_x, k_y)/m0)`; spatial: the larger root of the
+    /// translation-tilt pair `M q̈ + K q = 0` in each direction about the centre of mass at
+    /// balance (translation alone with the tilt locked); linear: the highest of
+    /// [`LinearRotor::natural_frequencies`] with the bearings at `omega`
+    /// ([`LinearRotor::at_speed`]). NaN where there is none (`M` not positive definite).
+    pub fn fastest_natural_frequency(&self, omega: f64) -> f64 {
+        match self {
+            Rotor::Planar(p) => {
+                let (wx, wy) = p.natural_frequencies_xy();
+                wx.max(wy)
+            }
+            Rotor::Spatial(s) => {
+                let m = s.total_mass();
+                let zr = s.z_reference();
+                let d2 = |z: f64| (z - zr) * (z - zr);
+                let tilt = s.rotor.equatorial_moment
+                    + s.rotor.mass * d2(s.rotor.z)
+                    + s.unbalances.iter().map(|u| u.mass * d2(u.z)).sum::<f64>()
+                    + s.planes.iter().map(|p| p.n as f64 * p.ball_mass * (d2(p.z) + 0.5 * p.race_radius * p.race_radius)).sum::<f64>();
+                (0..2)
+                    .map(|i| {
+                        let (k, kd, kdd) = s.supports.iter().fold((0.0, 0.0, 0.0), |(a, b, c), sp| {
+                            let d = sp.z - zr;
+                            (a + sp.stiffness[i], b + sp.stiffness[i] * d, c + sp.stiffness[i] * d * d)
+                        });
+                        if s.lock_tilt || !(tilt > 0.0) {
+                            return (k / m).sqrt();
+                        }
+                        // eigenvalues of M⁻¹K, M = diag(m, tilt), K = [[k, kd], [kd, kdd]]
+                        let (tr, det) = (k / m + kdd / tilt, (k * kdd - kd * kd) / (m * tilt));
+                        (0.5 * (tr + (tr * tr - 4.0 * det).max(0.0).sqrt())).sqrt()
+                    })
+                    .fold(f64::NAN, f64::max)
+            }
+            Rotor::Linear(r) => r.at_speed(omega).natural_frequencies(&[], true).ok().and_then(|w| w.last().copied()).unwrap_or(f64::NAN),
+        }
+    }
+
+    /// The lowest speed near `omega` at which the periodic-orbit analysis runs: the fastest
+    /// natural frequency at `omega` ([`Rotor::fastest_natural_frequency`]) over
+    /// [`PERIODS_PER_REVOLUTION`], i.e. a revolution spans at most that many of the fastest
+    /// natural periods. The shooting integrates a revolution (`2π/Ω`, or half of it) with the
+    /// variational equations at steps set by the fastest vibration, so its cost grows as
+    /// `ω_fast/Ω` (~5e11 periods at 1e-9 rad/s on examples/spatial_two_plane.toml, which ran
+    /// for more than 120 s without an answer). `None` for an equilibrium (no integration), or
+    /// for a rotor with no stiffness at all (no vibration: the steps follow the revolution).
+    pub fn periodic_floor(&self, omega: f64) -> Option<f64> {
+        let wn = self.fastest_natural_frequency(omega);
         (self.is_periodic() && wn.is_finite() && wn > 0.0).then(|| wn / PERIODS_PER_REVOLUTION)
     }
 
@@ -471,6 +513,10 @@ pub struct SpeedPoint {
     pub amplitude: Option<f64>,
     /// Why there is no state or verdict (a one-line message).
     pub failure: Option<String>,
+    /// Whether the speed was analysed: `false` below the periodic-orbit analysis' floor
+    /// ([`Rotor::periodic_floor`]), where `failure` says so and no state was sought (not "no
+    /// stationary state found").
+    pub analysed: bool,
     /// What the state analysed here is: balanced, semi-balanced, or partially balanced (the
     /// balls' capacity short: balls bunched, a residual unbalance); `None` without a state.
     pub state: Option<StateKind>,
@@ -671,15 +717,14 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
     // a periodic orbit is shot over a whole revolution: below the floor its integration spans
     // more than PERIODS_PER_REVOLUTION natural periods (a scan to 1e-9 rad/s integrated for
     // hours); a top speed below it is refused, grid speeds below it fail by name
-    let floor = if kind == Kind::PeriodicOrbit { rotor.slowest_periodic_speed() } else { None };
-    if let Some(floor) = floor {
-        let top = speeds.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        if top < floor {
-            return Err(Error::invalid("omega_max", below_floor(top, floor)));
-        }
+    // (with the bearings at each speed: a linear rotor's speed-dependent bearings)
+    let floor = |w: f64| if kind == Kind::PeriodicOrbit { rotor.periodic_floor(w) } else { None };
+    let top = speeds.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    if let Some(f) = floor(top).filter(|f| top < *f) {
+        return Err(Error::invalid("omega_max", below_floor(top, f)));
     }
-    let field_at = |w: f64| match floor {
-        Some(floor) if w.abs() < floor => Err(Error::invalid("omega", below_floor(w, floor))),
+    let field_at = |w: f64| match floor(w) {
+        Some(f) if w.abs() < f => Err(Error::invalid("omega", below_floor(w, f))),
         _ => rotor.field(w),
     };
     // Newton starts from the closed form at every speed (it names the branch: the balanced
@@ -729,6 +774,7 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
                 family_dimension: fam,
                 amplitude,
                 failure: p.failure.as_ref().map(|f| explain_failure(rotor, f)),
+                analysed: floor(p.omega).is_none_or(|f| p.omega.abs() >= f),
                 state,
                 state_basis: state.map(|_| if matches!(rotor, Rotor::Linear(_)) { StateBasis::RaceWhirl } else { StateBasis::Residual }),
                 residual,
@@ -1042,19 +1088,18 @@ pub(crate) fn off_line(psi: f64, along: f64) -> f64 {
     w.min(std::f64::consts::PI - w)
 }
 
-/// The most natural periods (`2π/ω_n`) that one revolution of a periodic orbit may span
-/// ([`Rotor::slowest_periodic_speed`]): a shooting at the limit integrates ~10 times the
-/// revolutions of one at the lowest speed of a default axis (1/50 of its top: ω_n/11 on
-/// examples/spatial_two_plane.toml), each Newton iteration 100 natural periods. On that
-/// example Newton finds no orbit down there anyway: under gravity `Ω² R < g` below ~9 rad/s,
-/// the balls cannot be held against it.
-pub const PERIODS_PER_REVOLUTION: f64 = 100.0;
+/// The most periods of the fastest natural vibration (`2π/ω_fast`) that one revolution of a
+/// periodic orbit may span ([`Rotor::periodic_floor`]). Measured (docs/notes/stability.md): a
+/// speed just above the floor costs ~1 s a speed, one below more, growing as `1/Ω`; at 100
+/// the floor refused speeds with an answer costing seconds (stiff supports under gravity:
+/// 70.5 rad/s, though the balls hold from ~9 rad/s).
+pub const PERIODS_PER_REVOLUTION: f64 = 1000.0;
 
-/// The message of a speed below [`Rotor::slowest_periodic_speed`].
+/// The message of a speed below [`Rotor::periodic_floor`].
 fn below_floor(w: f64, floor: f64) -> String {
     use crate::error::fmt_num;
     format!(
-        "{} is below {}, the slowest speed the periodic-orbit analysis resolves: the natural frequency over {} (a revolution longer than {} natural periods is not integrated)",
+        "{} is below {}, the slowest speed the periodic-orbit analysis resolves: the fastest natural frequency over {} (a revolution longer than {} of its periods is not integrated)",
         fmt_num(w),
         fmt_num(floor),
         fmt_num(PERIODS_PER_REVOLUTION),
@@ -1358,17 +1403,40 @@ mod tests {
         assert!(rs[0].hypot(rs[1]) > 1e-6 * scale, "the start's static residual {} of {scale}", rs[0].hypot(rs[1]));
     }
 
-    /// A periodic orbit's scan at a speed far below the rotor's natural frequency: a
-    /// revolution spans ω_n/Ω natural periods to integrate (at 1e-9 rad/s main at 21dbfc9 ran
-    /// for hours). A top speed below ω_n/100 is refused, naming `omega_max`, in one line; grid
-    /// speeds below it fail by name, at no cost, and the speeds above are analysed.
+    /// A periodic orbit's scan at a speed far below the rotor's natural frequencies: a
+    /// revolution spans ω_fast/Ω of the fastest natural periods to integrate (at 1e-9 rad/s
+    /// main at 21dbfc9 ran for hours). A top speed below ω_fast/1000 is refused, naming
+    /// `omega_max`, in one line; grid speeds below it fail by name, at no cost, and the speeds
+    /// above are analysed.
     #[test]
     fn a_periodic_scan_below_its_slowest_speed_is_refused_by_name() {
         let root = crate::config::parse(include_str!("../../../examples/spatial_two_plane.toml"), "two-plane").unwrap();
         let rotor = Rotor::Spatial(crate::config::spatial_simulation(&root).unwrap().rotor);
-        let floor = rotor.slowest_periodic_speed().expect("a periodic orbit");
-        // ω_n = sqrt(Σk/M) of the 20 kg rotor on 2e6 + 3e6 N/m: ~499 rad/s, so ~5 rad/s
-        assert!((floor - rotor.natural_frequency() / 100.0).abs() <= 1e-12 * floor && (4.0..6.0).contains(&floor), "{floor}");
+        let floor = rotor.periodic_floor(0.0).expect("a periodic orbit");
+        // the fastest frequency is a root of det(K − ω² M) for the translation-tilt pair in
+        // one direction (x: 2e6 + 3e6 N/m; y: the config's own), about the centre of mass
+        let wf = rotor.fastest_natural_frequency(0.0);
+        let Rotor::Spatial(s) = &rotor else { unreachable!() };
+        let zr = s.z_reference();
+        let d2 = |z: f64| (z - zr) * (z - zr);
+        let tilt = s.rotor.equatorial_moment
+            + s.rotor.mass * d2(s.rotor.z)
+            + s.unbalances.iter().map(|u| u.mass * d2(u.z)).sum::<f64>()
+            + s.planes.iter().map(|p| p.n as f64 * p.ball_mass * (d2(p.z) + 0.5 * p.race_radius * p.race_radius)).sum::<f64>();
+        let det = |i: usize| {
+            let l = wf * wf;
+            let (mut a, mut b, mut c) = (-l * s.total_mass(), 0.0, -l * tilt);
+            for sp in &s.supports {
+                a += sp.stiffness[i];
+                b += sp.stiffness[i] * (sp.z - zr);
+                c += sp.stiffness[i] * d2(sp.z);
+            }
+            // relative to the product of the diagonal's scales (cancellation ~1e-12)
+            (a * c - b * b) / (l * l * s.total_mass() * tilt)
+        };
+        assert!(det(0).abs().min(det(1).abs()) < 1e-9, "{} {}", det(0), det(1));
+        // ω_fast at least the translational ω_n (Rayleigh: the larger root bounds every quotient)
+        assert!(wf >= rotor.natural_frequency() && (floor - wf / 1000.0).abs() <= 1e-12 * floor, "{floor} {wf}");
         for top in [1e-9, 0.5 * floor] {
             let e = stability_over_speed(&rotor, &[0.5 * top, top]).unwrap_err();
             assert_eq!(e.field(), Some("omega_max"), "{e}");
@@ -1380,12 +1448,13 @@ mod tests {
         crate::config::set_number(&mut flat, "supports.stiffness_left_y", 2.0e6).unwrap();
         crate::config::set_number(&mut flat, "supports.stiffness_right_y", 3.0e6).unwrap();
         let flat = Rotor::Spatial(crate::config::spatial_simulation(&flat).unwrap().rotor);
-        assert_eq!(flat.slowest_periodic_speed(), None);
+        assert_eq!(flat.periodic_floor(0.0), None);
         // a grid across it: the points below fail by name, the one above is analysed
         let r = stability_over_speed(&rotor, &[1e-9, 0.5 * floor, 1.2 * floor]).unwrap();
         for p in &r.points[..2] {
-            assert!(p.verdict.is_none() && p.failure.as_deref().is_some_and(|f| f.contains("periodic-orbit analysis")), "{p:?}");
+            assert!(p.verdict.is_none() && !p.analysed && p.failure.as_deref().is_some_and(|f| f.contains("periodic-orbit analysis")), "{p:?}");
         }
+        assert!(r.points[2].analysed, "{:?}", r.points[2]);
         assert!(r.points[2].failure.as_deref().is_none_or(|f| !f.contains("periodic-orbit analysis")), "{:?}", r.points[2]);
     }
 
