@@ -135,6 +135,7 @@ pub fn json(g: &GeneralRotor, r: &RotorStability, omega_max: f64) -> Value {
         "omega_max": omega_max,
         "stable_ranges": ranges,
         "has_unbalance": r.has_unbalance,
+        "residual_scale": r.residual_scale,
         "family_dimension": r.family_dimension,
         "member_psi": r.member_psi,
         "family": r.family,
@@ -254,15 +255,6 @@ pub(crate) fn missing_lines(r: &RotorStability, speed: impl Fn(f64) -> String) -
 /// The table's line for a rotor without unbalance ([`RotorStability::has_unbalance`]).
 pub(crate) const NO_UNBALANCE_LINE: &str = "no unbalance to cancel (below 1e-6 of the balls' capacity Σ m R): the balanced state is the one where the balls' resultant vanishes; residuals are that resultant over the capacity\n";
 
-/// What residuals are fractions of: the unbalance, or without one the balls' capacity.
-fn of_what(r: &RotorStability) -> &'static str {
-    if r.has_unbalance {
-        "the unbalance"
-    } else {
-        "the balls' capacity (no unbalance)"
-    }
-}
-
 /// The table's line on the family of balanced states (`r.family_dimension > 0`): which member
 /// the verdicts are of, named at the first speed whose state has the family (a
 /// (semi-)balanced point: a partially balanced point has none), or that no speed has one.
@@ -381,9 +373,9 @@ pub(crate) fn residual_text(r: &autobal::rotor_stability::RotorStability, speed:
         "the balls do not cancel the unbalance exactly"
     };
     format!(
-        "balanced to a residual of {} of {} (above the exact tolerance 1e-6; on a periodic orbit up to 0.1 is balanced, at an equilibrium only 1e-6) at {} of {} speeds, {} to {} ({why})\n",
+        "balanced to a residual of {} {} (above the exact tolerance 1e-6; on a periodic orbit up to 0.1 is balanced, at an equilibrium only 1e-6) at {} of {} speeds, {} to {} ({why})\n",
         residual_range(&with),
-        of_what(r),
+        r.residual_scale.words(),
         with.len(),
         r.points.len(),
         speed(a.omega),
@@ -402,7 +394,13 @@ pub(crate) fn not_balanced_text(r: &autobal::rotor_stability::RotorStability, sp
     format!(
         "not balanced (the balls leave a residual of {}{}{}) at {} of {} speeds, {} to {}: the verdicts there are that state's, not the balanced state's\n",
         residual_range(&nb),
-        if r.has_unbalance { " of an unbalance their capacity could cancel" } else { " of their capacity, with no unbalance to cancel" },
+        match r.residual_scale {
+            autobal::rotor_stability::ResidualScale::Capacity if r.has_unbalance => " of their capacity (the unbalance a couple they cannot measure)",
+            autobal::rotor_stability::ResidualScale::Capacity => " of their capacity, with no unbalance to cancel",
+            autobal::rotor_stability::ResidualScale::Unbalance => " of an unbalance their capacity could cancel",
+            autobal::rotor_stability::ResidualScale::StaticUnbalance => " of the static unbalance",
+            autobal::rotor_stability::ResidualScale::RaceOffset => " of the race centre's offset without the balls",
+        },
         if r.kind == Kind::PeriodicOrbit { "" } else { ": at rest on the line of the whirl" },
         nb.len(),
         r.points.len(),

@@ -236,6 +236,8 @@ pub fn stability_json(cfg: &LinearRotorConfig, r: &RotorStability, red: &Option<
         "family_dimension": r.family_dimension,
         "member_psi": r.member_psi,
         "family": r.family,
+        "has_unbalance": r.has_unbalance,
+        "residual_scale": r.residual_scale,
         "points": r.points,
     }))
 }
@@ -310,8 +312,9 @@ fn linear_residual_text(r: &autobal::rotor_stability::RotorStability) -> String 
         r.points.iter().filter(|p| p.state == Some(autobal::rotor_stability::StateKind::Balanced) && p.residual.is_some_and(|v| v > 1e-6)).collect();
     let (Some(a), Some(b)) = (with.first(), with.last()) else { return String::new() };
     format!(
-        "balanced by the race-whirl rule (no race centre whirls at more than a tenth of its whirl without the balls' resultant), not by the residual: a residual static unbalance of {} of the unbalance (above the tolerance 1e-6) at {} of {} speeds, {} to {} (the balls centre their races; with the unbalance at other nodes, or swinging on an orbit, that does not cancel the static unbalance)\n",
+        "balanced by the race-whirl rule (no race centre whirls at more than a tenth of its whirl without the balls' resultant), not by the residual: a residual static unbalance of {} {} (above the tolerance 1e-6) at {} of {} speeds, {} to {} (the balls centre their races; with the unbalance at other nodes, or swinging on an orbit, that does not cancel the static unbalance)\n",
         crate::general::residual_range(&with),
+        r.residual_scale.words(),
         with.len(),
         r.points.len(),
         speed_text(a.omega),

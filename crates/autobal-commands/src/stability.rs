@@ -240,6 +240,25 @@ mod tests {
         assert!(e.starts_with("linear_rotor.omega_max: 2 is below "), "{e}");
     }
 
+    /// A linear rotor with a couple unbalance only (the shaft example, a second unbalance at
+    /// node 1 opposite the disk's): it has an unbalance (main at 41cc036 said "no unbalance to
+    /// cancel", testing the static part only, and its JSON had no `has_unbalance`), and its
+    /// residuals, the static resultant, are over the balls' capacity (`residual_scale`).
+    #[test]
+    fn a_couple_only_linear_rotor_has_an_unbalance() {
+        let shaft = include_str!("../../../examples/linear_rotor_shaft.toml");
+        let couple = format!("{shaft}\n[[linear_rotor.unbalance]]\nnode = 1\nme = 2e-4\nphase = 3.141592653589793\n");
+        let out = Args { config: tables(&couple, &[]), samples: Some(10), ..Default::default() }.run(&Control::none()).unwrap();
+        let j = out.json().unwrap();
+        assert_eq!(j["has_unbalance"], serde_json::json!(true), "{}", j["has_unbalance"]);
+        assert_eq!(j["residual_scale"], serde_json::json!("capacity"));
+        let t = out.table().unwrap();
+        assert!(!t.contains("no unbalance to cancel") && !t.contains("of the unbalance"), "{t}");
+        // the example itself: a static unbalance, residuals over it
+        let j = Args { config: tables(shaft, &[]), samples: Some(10), ..Default::default() }.run(&Control::none()).unwrap().json().unwrap();
+        assert_eq!((j["has_unbalance"].clone(), j["residual_scale"].clone()), (serde_json::json!(true), serde_json::json!("static_unbalance")));
+    }
+
     /// The same config read from a file (the CLI) or handed over as tables (Python) gives the
     /// same JSON: one read, one `run`.
     #[test]

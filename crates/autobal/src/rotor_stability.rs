@@ -461,15 +461,19 @@ impl Rotor {
         (self.is_periodic() && wn.is_finite() && wn > 0.0).then(|| wn / PERIODS_PER_REVOLUTION)
     }
 
-    /// Whether the rotor has an unbalance for the balls to cancel: its static (spatial: or
-    /// couple, over the largest axial distance, as [`Rotor::residual`]) unbalance above
-    /// [`NO_UNBALANCE`] of the balls' capacity `Σ m_b R`. Without one the residuals
-    /// ([`SpeedPoint::residual`]) are the balls' own resultant over their capacity, and the
-    /// balanced state is the one where it vanishes. Planar: `m1 s1` and the race's
-    /// eccentricity `s2` both zero.
+    /// Whether the rotor has an unbalance for the balls to cancel, static or couple, above
+    /// [`NO_UNBALANCE`] of the balls' capacity `Σ m_b R`: spatial the static `|s0|` or the
+    /// couple over the largest axial distance (as [`Rotor::residual`]); linear (no axial
+    /// positions) `|s0|` or any node's own resultant (unbalances at one node and offset that
+    /// cancel are none; opposite ones at two nodes are a couple); planar the unbalance
+    /// `|m1 s1 + (m0 − m1) s2 e^{iγ}|` that whirls E. What the residuals are fractions of is
+    /// [`Rotor::residual_scale`].
     pub fn has_unbalance(&self) -> bool {
         match self {
-            Rotor::Planar(p) => p.m1 * p.s1 != 0.0 || p.s2 != 0.0,
+            Rotor::Planar(p) => {
+                let u0 = num_complex::Complex64::new(p.m1 * p.s1, 0.0) + num_complex::Complex64::from_polar(p.s2, p.gamma) * (p.total_mass() - p.m1);
+                u0.norm() > NO_UNBALANCE * p.balls_mass() * p.r
+            }
             Rotor::Spatial(r) => {
                 let (s0, c0) = (r.static_unbalance(), r.couple_unbalance());
                 let zr = r.z_reference();
@@ -481,7 +485,31 @@ impl Rotor {
             Rotor::Linear(r) => {
                 let s0 = crate::linear_rotor::partial::static_unbalance(r);
                 let cap: f64 = r.balancers.iter().map(|b| b.balls as f64 * b.ball_mass * b.radius).sum();
-                s0[0].hypot(s0[1]) > NO_UNBALANCE * cap
+                let mut worst = s0[0].hypot(s0[1]);
+                for u in &r.unbalances {
+                    let here = r.unbalances.iter().filter(|v| v.node == u.node && v.offset == u.offset);
+                    let s = here.fold([0.0, 0.0], |s, v| [s[0] + v.me * v.phase.cos(), s[1] + v.me * v.phase.sin()]);
+                    worst = worst.max(s[0].hypot(s[1]));
+                }
+                worst > NO_UNBALANCE * cap
+            }
+        }
+    }
+
+    /// What the residuals ([`SpeedPoint::residual`], [`Rotor::residual`]) are fractions of.
+    pub fn residual_scale(&self) -> ResidualScale {
+        let cap = |s0: [f64; 2], cap: f64| s0[0].hypot(s0[1]) <= NO_UNBALANCE * cap;
+        match self {
+            Rotor::Planar(_) => ResidualScale::RaceOffset,
+            Rotor::Spatial(_) if !self.has_unbalance() => ResidualScale::Capacity,
+            Rotor::Spatial(_) => ResidualScale::Unbalance,
+            Rotor::Linear(r) => {
+                let c: f64 = r.balancers.iter().map(|b| b.balls as f64 * b.ball_mass * b.radius).sum();
+                if cap(crate::linear_rotor::partial::static_unbalance(r), c) {
+                    ResidualScale::Capacity
+                } else {
+                    ResidualScale::StaticUnbalance
+                }
             }
         }
     }
@@ -558,6 +586,35 @@ pub enum StateBasis {
     /// rotor, [`crate::linear_rotor::partial::state_kind`]); its `residual` is the static one
     /// only, which an unbalance away from the balancer planes leaves whatever the balls do.
     RaceWhirl,
+}
+
+/// What the residuals ([`SpeedPoint::residual`]) are fractions of ([`Rotor::residual_scale`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ResidualScale {
+    /// The residual static and couple unbalance over the rotor's (spatial).
+    Unbalance,
+    /// The residual static unbalance over the rotor's static one (linear).
+    StaticUnbalance,
+    /// The balls' resultant (static only on a linear rotor) over their capacity `Σ m_b R`:
+    /// the unbalance it measures is below [`NO_UNBALANCE`] of the capacity (none, or on a
+    /// linear rotor a couple only).
+    Capacity,
+    /// The race centre's distance from the axis over its distance without the balls'
+    /// resultant, or over a length scale where that is below 1e-12 of it (planar).
+    RaceOffset,
+}
+
+impl ResidualScale {
+    /// The words for "a residual of 0.1 {words}".
+    pub fn words(self) -> &'static str {
+        match self {
+            ResidualScale::Unbalance => "of the unbalance",
+            ResidualScale::StaticUnbalance => "of the static unbalance",
+            ResidualScale::Capacity => "of the balls' capacity (no unbalance they measure)",
+            ResidualScale::RaceOffset => "of the race centre's offset without the balls",
+        }
+    }
 }
 
 /// What a stationary state is.
@@ -693,6 +750,8 @@ pub struct RotorStability {
     /// Whether the rotor has an unbalance for the balls to cancel ([`Rotor::has_unbalance`]);
     /// without one the residuals are the balls' resultant over their capacity `Σ m_b R`.
     pub has_unbalance: bool,
+    /// What the residuals are fractions of ([`Rotor::residual_scale`]).
+    pub residual_scale: ResidualScale,
 }
 
 /// The stationary state of `rotor` and its stability at each of `speeds` (ascending), with the
@@ -804,6 +863,7 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
         member_psi,
         family,
         has_unbalance: rotor.has_unbalance(),
+        residual_scale: rotor.residual_scale(),
     };
     Ok(Outcome { value, stopped })
 }
@@ -1456,6 +1516,18 @@ mod tests {
         }
         assert!(r.points[2].analysed, "{:?}", r.points[2]);
         assert!(r.points[2].failure.as_deref().is_none_or(|f| !f.contains("periodic-orbit analysis")), "{:?}", r.points[2]);
+    }
+
+    /// A planar rotor's unbalance is "none" below 1e-6 of the balls' capacity, as the other
+    /// models' (main at 41cc036: an exact-zero test, s1 = 1e-12 m counted), and its residuals
+    /// are the race centre's offset (`RaceOffset`), never "over the capacity".
+    #[test]
+    fn a_planar_unbalance_below_a_millionth_of_capacity_is_none() {
+        let tiny = Rotor::Planar(PlanarRotor { s1: 1e-12, s2: 0.0, ..PlanarRotor::paper() });
+        assert!(!tiny.has_unbalance());
+        let real = Rotor::Planar(PlanarRotor { s2: 0.0, ..PlanarRotor::paper() });
+        assert!(real.has_unbalance());
+        assert_eq!(tiny.residual_scale(), ResidualScale::RaceOffset);
     }
 
     /// Each point says what its class is decided on: the same Jeffcott rotor as the planar
