@@ -1530,6 +1530,47 @@ mod tests {
         assert_eq!(tiny.residual_scale(), ResidualScale::RaceOffset);
     }
 
+    /// Two coincident planes with unequal balls, one plane a single ball (the two-plane example
+    /// without gravity, isotropic, both planes and the couple at z = 0.45, plane 2 one ball of
+    /// 0.03 kg): capacity 0.0084 against |s0| 0.00063, a balanced state exists (the lone
+    /// ball's `m R` along `−s0`, plane 1 the rest). The split in proportion to capacity, which
+    /// a lone ball cannot meet, found no state at 140 of 200 speeds and "partially balanced"
+    /// (residual 12) at 60 (main at 41cc036). The residual (static and couple from the balls'
+    /// own angles) is the independent check; 1e-6 is the exact tolerance.
+    #[test]
+    fn coincident_planes_with_a_single_ball_balance() {
+        let mut root = crate::config::parse(include_str!("../../../examples/spatial_two_plane.toml"), "two-plane").unwrap();
+        crate::config::set(&mut root, "spatial.gravity", crate::config::parse_value("[0.0, 0.0, 0.0]")).unwrap();
+        for (k, v) in [
+            ("supports.stiffness_left_y", 2.0e6),
+            ("supports.stiffness_right_y", 3.0e6),
+            ("balancer2.z", 0.45),
+            ("couple.z", 0.45),
+            ("balancer2.ball_mass", 0.03),
+            ("balancer2.balls", 1.0),
+        ] {
+            crate::config::set_number(&mut root, k, v).unwrap();
+        }
+        let rotor = Rotor::Spatial(crate::config::spatial_simulation(&root).unwrap().rotor);
+        let r = stability_over_speed(&rotor, &[200.0, 600.0, 1500.0]).unwrap();
+        for p in &r.points {
+            assert!(p.state == Some(StateKind::Balanced) && p.residual.is_some_and(|v| v <= 1e-6), "{p:?}");
+        }
+        // the split itself: B_a + B_b = t, the lone ball's |B| = m R; two lone balls a triangle
+        let t = [3e-4, -5e-4];
+        for (na, nb) in [(2, 1), (1, 3), (1, 1)] {
+            let (ma, mb) = (4e-4, 5e-4);
+            let (a, b) = crate::spatial::dynamics::field::coincident_split(na, ma, nb, mb, t).expect("a split");
+            assert!((a[0] + b[0] - t[0]).abs() + (a[1] + b[1] - t[1]).abs() <= 1e-15, "{a:?} {b:?}");
+            for (n, m, v) in [(na, ma, a), (nb, mb, b)] {
+                let r = v[0].hypot(v[1]);
+                assert!(if n == 1 { (r - m).abs() <= 1e-15 } else { r <= n as f64 * m }, "{n} {m} {r}");
+            }
+        }
+        // two lone balls too small for the target: none
+        assert!(crate::spatial::dynamics::field::coincident_split(1, 1e-4, 1, 1e-4, t).is_none());
+    }
+
     /// Each point says what its class is decided on: the same Jeffcott rotor as the planar
     /// model (the residual: E's offset) and as the linear rotor (the race whirl, whose
     /// `residual` is the static one only), in the JSON's `points[].state_basis`; none where no

@@ -139,7 +139,8 @@ impl SpatialField {
     /// reference is `ζ B = −ζ s0`, which cancels `c0` only where `c0 = ζ s0` (no couple about
     /// that plane); the guess places them as one plane of `n_1 + n_2` balls on the arc of `−s0`
     /// (equal balls: [`arc_angles`] of all, the first `n_1` to the first plane; else each plane
-    /// its share of `−s0` in proportion to its capacity, which needs two balls or more in each),
+    /// its share of `−s0` in proportion to its capacity where each has two balls or more; a plane
+    /// with one ball, whose resultant is `m R` exactly, by [`coincident_split`]),
     /// and leaves any couple about the plane uncancelled, as one plane does.
     ///
     /// `None` when a plane's capacity `n m R` is below its share, with no balls or more than
@@ -158,6 +159,11 @@ impl SpatialField {
                     let t = [-s0[0], -s0[1]];
                     let psi = if ma == mb {
                         arc_angles(a.n + b.n, ma, t)?
+                    } else if a.n == 1 || b.n == 1 {
+                        let (ta, tb) = coincident_split(a.n, ma, b.n, mb, t)?;
+                        let mut psi = arc_angles(a.n, ma, ta)?;
+                        psi.extend(arc_angles(b.n, mb, tb)?);
+                        psi
                     } else {
                         let (ca, cb) = (a.n as f64 * ma, b.n as f64 * mb);
                         let share = |c: f64| [t[0] * c / (ca + cb), t[1] * c / (ca + cb)];
@@ -278,6 +284,46 @@ impl SpatialField {
                 }
             }
         }
+    }
+}
+
+/// Two coincident planes' resultants `(B_a, B_b)` with `B_a + B_b = t`, where one plane (or
+/// both) has a single ball of `m R` = `ma` or `mb`, its resultant of that magnitude exactly; a
+/// plane of `n ≥ 2` balls reaches any magnitude in `[0, n m R]`. One single ball: it points
+/// along `t` (or against it where `|t| < m R`), the other plane takes the rest, `|B| = ||t| − m
+/// R|`, collinear (a member of the family the other plane's freedom leaves). Two single balls:
+/// the triangle of sides `|t|, m_a R_a, m_b R_b`. `None` where no such pair exists (the
+/// other plane's capacity short of `||t| − m R|`, or the triangle impossible).
+pub fn coincident_split(na: usize, ma: f64, nb: usize, mb: f64, t: [f64; 2]) -> Option<([f64; 2], [f64; 2])> {
+    let d = t[0].hypot(t[1]);
+    let unit = if d > 0.0 { [t[0] / d, t[1] / d] } else { [1.0, 0.0] };
+    let tol = 1e-12 * (d + ma + mb);
+    match (na, nb) {
+        (1, 1) => {
+            if d < (ma - mb).abs() - tol || d > ma + mb + tol {
+                return None;
+            }
+            // B_a at angle α from t: cos α = (d² + ma² − mb²)/(2 d ma)
+            let cos = if d > 0.0 { ((d * d + ma * ma - mb * mb) / (2.0 * d * ma)).clamp(-1.0, 1.0) } else { 1.0 };
+            let sin = (1.0 - cos * cos).sqrt();
+            let ba = [ma * (unit[0] * cos - unit[1] * sin), ma * (unit[0] * sin + unit[1] * cos)];
+            let bb = [t[0] - ba[0], t[1] - ba[1]];
+            // B_b's magnitude is mb to rounding: set it exactly (arc_angles of one ball wants it)
+            let nbb = bb[0].hypot(bb[1]);
+            let bb = if nbb > 0.0 { [bb[0] * mb / nbb, bb[1] * mb / nbb] } else { [-ba[0] * mb / ma, -ba[1] * mb / ma] };
+            Some((ba, bb))
+        }
+        (1, n) | (n, 1) if n != 1 => {
+            let single_a = na == 1;
+            let (m1, cap) = if single_a { (ma, nb as f64 * mb) } else { (mb, na as f64 * ma) };
+            let single = [unit[0] * m1, unit[1] * m1];
+            let rest = [t[0] - single[0], t[1] - single[1]];
+            if rest[0].hypot(rest[1]) > cap * (1.0 + 1e-12) {
+                return None;
+            }
+            Some(if single_a { (single, rest) } else { (rest, single) })
+        }
+        _ => None,
     }
 }
 
