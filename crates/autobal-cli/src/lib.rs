@@ -17,6 +17,7 @@ use std::path::PathBuf;
 /// front end runs under.
 mod interrupt {
     use autobal::control::Control;
+    use std::io::Write;
     use std::sync::atomic::{AtomicBool, Ordering};
     use std::sync::{Arc, OnceLock};
 
@@ -46,7 +47,10 @@ mod interrupt {
                         (false, false) => " (this command keeps no partial result: its outputs are written when it completes)",
                         (true, false) => "",
                     };
-                    eprintln!("interrupted: stopped at once{what}");
+                    // never `eprintln!`: it panics when standard error is a closed pipe, and a
+                    // panic here would end this (the handler's) thread before the exit below,
+                    // leaving the process running and deaf to any further Ctrl-C
+                    let _ = writeln!(std::io::stderr(), "interrupted: stopped at once{what}");
                     std::process::exit(130);
                 }
             });

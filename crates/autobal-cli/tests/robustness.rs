@@ -725,6 +725,48 @@ fn regression_ctrl_c_ended_stability_without_a_word() {
 
 #[cfg(unix)]
 #[test]
+fn regression_ctrl_c_with_stderr_closed_killed_the_handler_not_the_process() {
+    // the Ctrl-C handler wrote its line with `eprintln!`, which panics when standard error is a
+    // closed pipe: the handler's thread died before its `exit(130)` and the process ran on,
+    // ignoring every further Ctrl-C. Now the line's write error is ignored and it exits.
+    let d = scratch("ctrlc-closed-stderr");
+    let cfg = examples("default.toml");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_autobal"))
+        .args(["stability", "--config", &cfg, "--samples", "1000000"])
+        .current_dir(&d)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stderr.take());
+    std::thread::sleep(Duration::from_millis(500));
+    if child.try_wait().unwrap().is_some() {
+        // finished before the Ctrl-C (a machine far faster than seconds for a million samples)
+        std::fs::remove_dir_all(&d).ok();
+        return;
+    }
+    let _ = Command::new("kill").args(["-INT", &child.id().to_string()]).status();
+    let t0 = Instant::now();
+    let status = loop {
+        if let Some(s) = child.try_wait().unwrap() {
+            break s;
+        }
+        // the handler exits at once; 20 s is far beyond a loaded machine's scheduling delay
+        if t0.elapsed() > Duration::from_secs(20) {
+            let _ = child.kill();
+            let _ = child.wait();
+            panic!("still running 20 s after Ctrl-C with standard error closed");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    };
+    // running when the Ctrl-C came (checked just before it: the run takes seconds, the check
+    // and the signal milliseconds), so it must end by the handler's exit, not by finishing
+    assert_eq!(status.code(), Some(130), "{status:?}");
+    std::fs::remove_dir_all(&d).ok();
+}
+
+#[cfg(unix)]
+#[test]
 fn regression_ctrl_c_left_truncated_or_footerless_files() {
     let d = scratch("ctrlc");
     // long runs, each stopped after a while: exit 2 saying so, or done (exit 0); either way
