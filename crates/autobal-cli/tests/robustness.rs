@@ -398,6 +398,12 @@ fn regression_out_dev_full_was_a_stem_and_wrote_into_dev() {
                 assert!(line.contains("FIFO"), "{line}");
             }
             assert_eq!(tree(&d), ["pipe"]);
+            // a single file named with its extension is that file, whatever sits at its stem
+            // (was refused: "pipe is a FIFO ... outputs would go beside it")
+            let svg = d.join("pipe.svg");
+            let (code, _, err) = run_for(Duration::from_secs(120), &["stability", "--svg", &s(&svg)]);
+            assert_eq!(code, 0, "{err}");
+            assert_eq!(tree(&d), ["pipe", "pipe.svg"]);
         }
         std::fs::remove_dir_all(&d).ok();
     }
