@@ -387,6 +387,14 @@ fn regression_out_dev_full_was_a_stem_and_wrote_into_dev() {
         let line = rejects(&[&sim[..], &[out]].concat(), "--out");
         assert!(line.contains("system folder"), "{line}");
     }
+    // a relative folder not made yet, run from /proc: looked up from the current folder (was
+    // "cannot create the folder zz"; as root in /dev it would have made /dev/zz)
+    if std::path::Path::new("/proc").is_dir() {
+        let out = Command::new(env!("CARGO_BIN_EXE_autobal")).args([&sim[..], &["zz/m"]].concat()).current_dir("/proc").output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{err}");
+        assert!(err.starts_with("error: --out: zz/m.csv is in the system folder /proc"), "{err}");
+    }
     #[cfg(unix)]
     {
         // a FIFO as the stem: its outputs would go beside it

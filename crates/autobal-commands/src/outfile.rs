@@ -160,12 +160,20 @@ fn special_kind(m: &std::fs::Metadata) -> Option<&'static str> {
 /// state; as root a file can be created in `/dev`, where it would sit among the devices and
 /// vanish at the next boot). `/dev/shm`, the shared-memory file system meant for files, is
 /// allowed. Returns the system folder `dir` is in (looked up through its nearest existing
-/// folder, canonicalised, so `/tmp/../dev` and links into `/dev` are caught).
+/// folder, canonicalised, so `/tmp/../dev` and links into `/dev` are caught; a relative `dir`
+/// is looked up from the current folder, so `zz/m` run in `/dev` is caught though `zz` is
+/// missing).
 fn system_folder(dir: &Path) -> Option<&'static str> {
     if !cfg!(unix) {
         return None;
     }
-    let mut d = dir;
+    let abs;
+    let mut d = if dir.is_relative() {
+        abs = std::env::current_dir().ok()?.join(dir);
+        abs.as_path()
+    } else {
+        dir
+    };
     let canon = loop {
         if let Ok(c) = d.canonicalize() {
             break c;
