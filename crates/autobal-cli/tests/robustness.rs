@@ -689,14 +689,33 @@ fn regression_shaft_builder_extremes_named_internal_matrices_or_passed() {
 fn regression_a_fifo_nobody_writes_as_config_or_matrix_hung() {
     // the blocking open of a named pipe waits for a writer: `--config fifo` and a matrix file
     // that is a FIFO hung for ever. Opened non-blocking, with no writer they read as empty at
-    // once (one line naming the field); `run_for`'s limit fails a hang
+    // once (one line naming the field; a config pipe with no writer is named as such, was
+    // reported as a config without a rotor); `run_for`'s limit fails a hang
     let d = scratch("fifo-input");
     let fifo = d.join("pipe");
     if !Command::new("mkfifo").arg(&fifo).status().is_ok_and(|s| s.success()) {
         return;
     }
-    rejects(&["critical", "--config", &s(&fifo)], "planar");
-    rejects(&["simulate", "--config", &s(&fifo)], "planar");
+    for cmd in ["critical", "simulate", "stability"] {
+        let line = rejects(&[cmd, "--config", &s(&fifo)], &format!("--config {}", s(&fifo)));
+        assert!(line.ends_with("is a named pipe with no writer (nothing to read); start the program that writes it first, or give a file"), "{line}");
+    }
+    // a pipe with its writer's data is read (`--config /dev/stdin`): written and closed
+    // before the binary opens it, the data stays in the pipe (the child's stdin holds it open)
+    let mut child = Command::new(env!("CARGO_BIN_EXE_autobal"))
+        .args(["critical", "--config", "/dev/stdin"])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    {
+        use std::io::Write;
+        let mut stdin = child.stdin.take().unwrap();
+        stdin.write_all(std::fs::read_to_string(examples("default.toml")).unwrap().as_bytes()).unwrap();
+    }
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
     let cfg = d.join("c.toml");
     std::fs::write(&cfg, "[linear_rotor]\nm = \"pipe\"\nk = \"pipe\"\n").unwrap();
     let line = rejects(&["stability", "--config", &s(&cfg)], "linear_rotor.m");
