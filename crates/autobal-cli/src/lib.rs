@@ -17,6 +17,7 @@ use std::path::PathBuf;
 /// front end runs under.
 mod interrupt {
     use autobal::control::Control;
+    use std::io::Write;
     use std::sync::atomic::{AtomicBool, Ordering};
     use std::sync::{Arc, OnceLock};
 
@@ -46,7 +47,10 @@ mod interrupt {
                         (false, false) => " (this command keeps no partial result: its outputs are written when it completes)",
                         (true, false) => "",
                     };
-                    eprintln!("interrupted: stopped at once{what}");
+                    // never `eprintln!`: it panics when standard error is a closed pipe, and a
+                    // panic here would end this (the handler's) thread before the exit below,
+                    // leaving the process running and deaf to any further Ctrl-C
+                    let _ = writeln!(std::io::stderr(), "interrupted: stopped at once{what}");
                     std::process::exit(130);
                 }
             });
@@ -568,11 +572,12 @@ fn run_sweep(a: SweepFlags, control: &Control) -> Result<()> {
     };
     let plan = if a.no_plots { args.prepare()?.without_figures() } else { args.prepare()? };
     set_threads(a.threads)?;
-    let stem = term::out_stem(&outfile::resolve(&a.out, "sweep"), &["csv", "json", "parquet"]);
+    let given = outfile::resolve(&a.out, "sweep");
+    let stem = term::out_stem(&given, &["csv", "json", "parquet"]);
     let (csv_path, json_path, pq_path) = (term::with_suffix(&stem, "csv"), term::with_suffix(&stem, "json"), term::with_suffix(&stem, "parquet"));
     let svg = if a.no_plots { vec![] } else { sweep::figure_paths(&stem) };
     let mut o = outfile::Outputs::new();
-    o.inputs(a.config.as_deref()).output("--out", &csv_path).output("--out", &json_path);
+    o.inputs(a.config.as_deref()).stem("--out", &given, &stem).output("--out", &csv_path).output("--out", &json_path);
     if a.parquet {
         o.output("--parquet", &pq_path);
     }
@@ -647,9 +652,10 @@ fn run_map(args: &map::Args, config: Option<&std::path::Path>, out: &std::path::
         rayon::ThreadPoolBuilder::new().num_threads(1).use_current_thread().build_global().ok();
     }
     set_threads(threads)?;
-    let stem = term::out_stem(&outfile::resolve(out, "stability-map"), &["csv", "svg", "png"]);
+    let given = outfile::resolve(out, "stability-map");
+    let stem = term::out_stem(&given, &["csv", "svg", "png"]);
     let mut o = outfile::Outputs::new();
-    o.inputs(config);
+    o.inputs(config).stem("--out", &given, &stem);
     for p in outfile::stem_files(&stem, &["csv", "svg", "png"]) {
         o.output("--out", &p);
     }

@@ -387,6 +387,14 @@ fn regression_out_dev_full_was_a_stem_and_wrote_into_dev() {
         let line = rejects(&[&sim[..], &[out]].concat(), "--out");
         assert!(line.contains("system folder"), "{line}");
     }
+    // a relative folder not made yet, run from /proc: looked up from the current folder (was
+    // "cannot create the folder zz"; as root in /dev it would have made /dev/zz)
+    if std::path::Path::new("/proc").is_dir() {
+        let out = Command::new(env!("CARGO_BIN_EXE_autobal")).args([&sim[..], &["zz/m"]].concat()).current_dir("/proc").output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{err}");
+        assert!(err.starts_with("error: --out: zz/m.csv is in the system folder /proc"), "{err}");
+    }
     #[cfg(unix)]
     {
         // a FIFO as the stem: its outputs would go beside it
@@ -398,6 +406,12 @@ fn regression_out_dev_full_was_a_stem_and_wrote_into_dev() {
                 assert!(line.contains("FIFO"), "{line}");
             }
             assert_eq!(tree(&d), ["pipe"]);
+            // a single file named with its extension is that file, whatever sits at its stem
+            // (was refused: "pipe is a FIFO ... outputs would go beside it")
+            let svg = d.join("pipe.svg");
+            let (code, _, err) = run_for(Duration::from_secs(120), &["stability", "--svg", &s(&svg)]);
+            assert_eq!(code, 0, "{err}");
+            assert_eq!(tree(&d), ["pipe", "pipe.svg"]);
         }
         std::fs::remove_dir_all(&d).ok();
     }
@@ -675,14 +689,33 @@ fn regression_shaft_builder_extremes_named_internal_matrices_or_passed() {
 fn regression_a_fifo_nobody_writes_as_config_or_matrix_hung() {
     // the blocking open of a named pipe waits for a writer: `--config fifo` and a matrix file
     // that is a FIFO hung for ever. Opened non-blocking, with no writer they read as empty at
-    // once (one line naming the field); `run_for`'s limit fails a hang
+    // once (one line naming the field; a config pipe with no writer is named as such, was
+    // reported as a config without a rotor); `run_for`'s limit fails a hang
     let d = scratch("fifo-input");
     let fifo = d.join("pipe");
     if !Command::new("mkfifo").arg(&fifo).status().is_ok_and(|s| s.success()) {
         return;
     }
-    rejects(&["critical", "--config", &s(&fifo)], "planar");
-    rejects(&["simulate", "--config", &s(&fifo)], "planar");
+    for cmd in ["critical", "simulate", "stability"] {
+        let line = rejects(&[cmd, "--config", &s(&fifo)], &format!("--config {}", s(&fifo)));
+        assert!(line.ends_with("is a named pipe with no writer (nothing to read); start the program that writes it first, or give a file"), "{line}");
+    }
+    // a pipe with its writer's data is read (`--config /dev/stdin`): written and closed
+    // before the binary opens it, the data stays in the pipe (the child's stdin holds it open)
+    let mut child = Command::new(env!("CARGO_BIN_EXE_autobal"))
+        .args(["critical", "--config", "/dev/stdin"])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    {
+        use std::io::Write;
+        let mut stdin = child.stdin.take().unwrap();
+        stdin.write_all(std::fs::read_to_string(examples("default.toml")).unwrap().as_bytes()).unwrap();
+    }
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
     let cfg = d.join("c.toml");
     std::fs::write(&cfg, "[linear_rotor]\nm = \"pipe\"\nk = \"pipe\"\n").unwrap();
     let line = rejects(&["stability", "--config", &s(&cfg)], "linear_rotor.m");
@@ -720,6 +753,48 @@ fn regression_ctrl_c_ended_stability_without_a_word() {
         assert!(err.starts_with("interrupted: stopped at once (this command keeps no partial result"), "{err}");
         assert_eq!(tree(&d), Vec::<String>::new());
     }
+    std::fs::remove_dir_all(&d).ok();
+}
+
+#[cfg(unix)]
+#[test]
+fn regression_ctrl_c_with_stderr_closed_killed_the_handler_not_the_process() {
+    // the Ctrl-C handler wrote its line with `eprintln!`, which panics when standard error is a
+    // closed pipe: the handler's thread died before its `exit(130)` and the process ran on,
+    // ignoring every further Ctrl-C. Now the line's write error is ignored and it exits.
+    let d = scratch("ctrlc-closed-stderr");
+    let cfg = examples("default.toml");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_autobal"))
+        .args(["stability", "--config", &cfg, "--samples", "1000000"])
+        .current_dir(&d)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stderr.take());
+    std::thread::sleep(Duration::from_millis(500));
+    if child.try_wait().unwrap().is_some() {
+        // finished before the Ctrl-C (a machine far faster than seconds for a million samples)
+        std::fs::remove_dir_all(&d).ok();
+        return;
+    }
+    let _ = Command::new("kill").args(["-INT", &child.id().to_string()]).status();
+    let t0 = Instant::now();
+    let status = loop {
+        if let Some(s) = child.try_wait().unwrap() {
+            break s;
+        }
+        // the handler exits at once; 20 s is far beyond a loaded machine's scheduling delay
+        if t0.elapsed() > Duration::from_secs(20) {
+            let _ = child.kill();
+            let _ = child.wait();
+            panic!("still running 20 s after Ctrl-C with standard error closed");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    };
+    // running when the Ctrl-C came (checked just before it: the run takes seconds, the check
+    // and the signal milliseconds), so it must end by the handler's exit, not by finishing
+    assert_eq!(status.code(), Some(130), "{status:?}");
     std::fs::remove_dir_all(&d).ok();
 }
 

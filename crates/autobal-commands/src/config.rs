@@ -100,7 +100,19 @@ pub(crate) fn read_limited(p: &std::path::Path) -> Result<String> {
     if file.metadata().map(|m| m.is_dir()).unwrap_or(false) {
         bail!("{name}: is a directory, not a config file");
     }
+    #[cfg(unix)]
+    let fifo = {
+        use std::os::unix::fs::FileTypeExt;
+        file.metadata().is_ok_and(|m| m.file_type().is_fifo())
+    };
+    #[cfg(not(unix))]
+    let fifo = false;
     let bytes = read_input(file, MAX_CONFIG_BYTES).map_err(|e| anyhow!("{name}: cannot read: {e}"))?;
+    if fifo && bytes.is_empty() {
+        // opened without waiting (`open_input`): no writer reads as empty, which would be
+        // reported as a config without a rotor; the pipe is named instead
+        bail!("{name}: is a named pipe with no writer (nothing to read); start the program that writes it first, or give a file");
+    }
     if bytes.len() as u64 > MAX_CONFIG_BYTES {
         return Err(autobal::Error::TooLarge {
             what: name,

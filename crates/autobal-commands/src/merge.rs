@@ -232,13 +232,14 @@ impl command::Command for Args {
             return Err(autobal::Error::invalid("--out", "required: the merged sweep's stem").into());
         }
         // the outputs, checked against each other and the shards before anything is read
-        let out = crate::term::out_stem(&crate::outfile::resolve(&a.out, "sweep"), &["csv", "json", "parquet"]);
+        let given = crate::outfile::resolve(&a.out, "sweep");
+        let out = crate::term::out_stem(&given, &["csv", "json", "parquet"]);
         let (cp, jp, pp) = (crate::term::with_suffix(&out, "csv"), crate::term::with_suffix(&out, "json"), crate::term::with_suffix(&out, "parquet"));
         let mut outputs = crate::outfile::Outputs::new();
         for s in &a.shards {
             outputs.input("shard", s).input("shard JSON", &json_of(s));
         }
-        outputs.output("--out", &cp).output("--out", &jp);
+        outputs.stem("--out", &given, &out).output("--out", &cp).output("--out", &jp);
         let svg = crate::sweep::figure_paths(&out);
         for (p, _) in &svg {
             outputs.output("--out", p);

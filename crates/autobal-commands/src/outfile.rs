@@ -160,12 +160,20 @@ fn special_kind(m: &std::fs::Metadata) -> Option<&'static str> {
 /// state; as root a file can be created in `/dev`, where it would sit among the devices and
 /// vanish at the next boot). `/dev/shm`, the shared-memory file system meant for files, is
 /// allowed. Returns the system folder `dir` is in (looked up through its nearest existing
-/// folder, canonicalised, so `/tmp/../dev` and links into `/dev` are caught).
+/// folder, canonicalised, so `/tmp/../dev` and links into `/dev` are caught; a relative `dir`
+/// is looked up from the current folder, so `zz/m` run in `/dev` is caught though `zz` is
+/// missing).
 fn system_folder(dir: &Path) -> Option<&'static str> {
     if !cfg!(unix) {
         return None;
     }
-    let mut d = dir;
+    let abs;
+    let mut d = if dir.is_relative() {
+        abs = std::env::current_dir().ok()?.join(dir);
+        abs.as_path()
+    } else {
+        dir
+    };
     let canon = loop {
         if let Ok(c) = d.canonicalize() {
             break c;
@@ -246,6 +254,8 @@ pub struct Outputs {
     inputs: Vec<(String, PathBuf)>,
     /// `(option, path)` of every file the run will write.
     outputs: Vec<(String, PathBuf)>,
+    /// `(option, stem)` of each `--out` the run adds extensions to ([`Outputs::stem`]).
+    stems: Vec<(String, PathBuf)>,
 }
 
 impl Outputs {
@@ -300,6 +310,19 @@ impl Outputs {
         self
     }
 
+    /// The user's `--out` (`given`, as [`resolve`]d) and the stem the command writes its files
+    /// beside (`STEM.csv`, `STEM.json`, ...): when the command adds the extensions to the name
+    /// as given (`stem == given`), the name must not be an existing device, FIFO or socket
+    /// (`--out /dev/full` or `--out pipe` would write `/dev/full.csv`, `pipe.csv` beside it,
+    /// not into it). A name given with its extension (`--out pipe.csv`, `--svg ff.svg`) is the
+    /// file itself, whatever sits at its stem.
+    pub fn stem(&mut self, option: &str, given: &Path, stem: &Path) -> &mut Self {
+        if given == stem {
+            self.stems.push((option.to_string(), stem.to_path_buf()));
+        }
+        self
+    }
+
     /// Check every output: its folder exists (created if missing) and is writable, the path is
     /// not a folder nor anything but a regular file, and it is not one of the inputs. The first
     /// failure is one line naming the option.
@@ -320,6 +343,15 @@ impl Outputs {
         let mut probed: Vec<PathBuf> = vec![];
         let inputs: Vec<Ident> = self.inputs.iter().map(|(_, ip)| Ident::of(ip, std::fs::metadata(ip).ok().as_ref())).collect();
         let mut outputs: Vec<Ident> = Vec::with_capacity(self.outputs.len());
+        for (opt, stem) in &self.stems {
+            if let Some(kind) = std::fs::metadata(stem).ok().and_then(|m| special_kind(&m)) {
+                bail!(
+                    "{opt}: {} is {kind}, not a file or folder name (outputs would go beside it, as {}); give a file name or a folder",
+                    stem.display(),
+                    crate::term::with_suffix(stem, "csv").display()
+                );
+            }
+        }
         for (opt, p) in &self.outputs {
             if p.file_name().is_none() {
                 bail!("{opt}: {} names no file", p.display());
@@ -334,17 +366,6 @@ impl Outputs {
                     p.file_name().unwrap_or_default(),
                     format!(".{}.part", std::process::id())
                 );
-            }
-            // `--out /dev/full` taken as a stem would write `/dev/full.csv` beside the device:
-            // an output named after an existing device, FIFO or socket is refused
-            if let Some(stem) = p.file_stem().map(|s| p.with_file_name(s)).filter(|s| s != p) {
-                if let Some(kind) = std::fs::metadata(&stem).ok().and_then(|m| special_kind(&m)) {
-                    bail!(
-                        "{opt}: {} is {kind}, not a file or folder name (outputs would go beside it, as {}); give a file name or a folder",
-                        stem.display(),
-                        p.display()
-                    );
-                }
             }
             let meta = std::fs::metadata(p).ok();
             if let Some(kind) = meta.as_ref().and_then(special_kind) {
@@ -699,7 +720,8 @@ mod tests {
             let e = Outputs::new().output("--out", Path::new("/dev/null")).check().unwrap_err().to_string();
             assert!(e.contains("is a device, not a regular file"), "{e}");
             // named after a device: `--out /dev/full` as a stem
-            let e = Outputs::new().output("--out", Path::new("/dev/null.csv")).check().unwrap_err().to_string();
+            let null = Path::new("/dev/null");
+            let e = Outputs::new().stem("--out", null, null).output("--out", Path::new("/dev/null.csv")).check().unwrap_err().to_string();
             assert!(e.starts_with("--out: /dev/null is a device, not a file or folder name"), "{e}");
             // into /dev, /proc, /sys (also through `..`), but /dev/shm is a file system for files
             for p in ["/dev/autobal-x.csv", "/tmp/../dev/a/b.csv", "/proc/x.csv", "/sys/q/x.csv"] {
@@ -717,6 +739,25 @@ mod tests {
         assert_eq!(resolve(Path::new("runs/"), "simulation.csv"), PathBuf::from("runs/simulation.csv"));
         assert_eq!(resolve(&d, "s.csv"), d.join("s.csv"));
         assert_eq!(resolve(Path::new("x"), "s.csv"), PathBuf::from("x"));
+        std::fs::remove_dir_all(&d).unwrap();
+    }
+
+    /// A FIFO is refused as a stem the command adds extensions to (`--out pipe` would write
+    /// `pipe.csv` beside it), but not when the user named the file with its extension
+    /// (`--svg pipe.svg`, `--out pipe.csv`): that file is the output, the FIFO is not used.
+    #[cfg(unix)]
+    #[test]
+    fn a_fifo_is_refused_as_a_stem_only_when_extensions_are_added_to_it() {
+        let d = scratch("fifo-stem");
+        let fifo = d.join("pipe");
+        if !std::process::Command::new("mkfifo").arg(&fifo).status().is_ok_and(|s| s.success()) {
+            return;
+        }
+        let (csv, svg) = (d.join("pipe.csv"), d.join("pipe.svg"));
+        Outputs::new().output("--svg", &svg).check().unwrap();
+        Outputs::new().stem("--out", &csv, &fifo).output("--out", &csv).output("--out", &svg).check().unwrap();
+        let e = Outputs::new().stem("--out", &fifo, &fifo).output("--out", &csv).check().unwrap_err().to_string();
+        assert!(e.starts_with(&format!("--out: {} is a FIFO (named pipe), not a file or folder name", fifo.display())), "{e}");
         std::fs::remove_dir_all(&d).unwrap();
     }
 

@@ -108,10 +108,13 @@ pub struct Heatmap {
 }
 
 impl Heatmap {
-    /// Whether the figure draws it: a grid of at least one point each way, every value finite,
-    /// and `z` of `y.len()` rows of `x.len()` values. Anything else (an empty axis, a ragged
-    /// or missing row, a NaN grid value) is left out of the SVG, the PNG and the axis ranges,
-    /// and the rest of the figure drawn: never a panic.
+    /// Whether the figure draws it: a grid of at least one point each way, its `x` and `y`
+    /// finite, each rising from its first value to its last (the raster's cells run left to right
+    /// and bottom to top; every command's grid ascends, a `--x`/`--y` range with `HI ≤ LO` is
+    /// refused), and `z` of `y.len()` rows of `x.len()` values. A non-finite `z` value is a
+    /// cell not computed, drawn grey. Anything else (an empty or descending axis, a non-finite
+    /// axis value, a ragged or missing row) is left out of the SVG, the PNG and the axis
+    /// ranges, and the rest of the figure drawn: never a panic.
     pub fn drawable(&self) -> bool {
         let (nx, ny) = (self.x.len(), self.y.len());
         nx > 0
@@ -2524,6 +2527,28 @@ mod tests {
         resvg::render(&tree, resvg::tiny_skia::Transform::identity(), &mut pix.as_mut());
         let want: Vec<u8> = pix.pixels().iter().flat_map(|p| [p.red(), p.green(), p.blue()]).collect();
         assert!(buf[..info.buffer_size()] == want[..], "decoded pixels differ");
+    }
+
+    /// What `Heatmap::drawable` checks, as its doc says: the axes (finite, rising), not the
+    /// values (a non-finite `z` is a grey cell, drawn); a descending axis is left out of the
+    /// figure, which is still drawn.
+    #[test]
+    fn a_heatmap_is_drawn_with_nan_cells_and_left_out_with_a_descending_axis() {
+        let hm = |x: Vec<f64>, y: Vec<f64>, z: f64| Heatmap { z: vec![vec![z; x.len()]; y.len()], x, y, scale: ColorScale::Verdict, label: "m".into() };
+        // the raster is one `<image>` (the colour bar, drawn either way, another)
+        let images = |h: Heatmap| Plot { heatmap: Some(h), ..Default::default() }.to_svg().matches("<image").count();
+        let up = vec![0.0, 1.0, 2.0];
+        for z in [0.5, f64::NAN, f64::INFINITY] {
+            let h = hm(up.clone(), up.clone(), z);
+            assert!(h.drawable(), "z = {z}");
+            assert_eq!(images(h), 2, "z = {z}");
+        }
+        let down = vec![2.0, 1.0, 0.0];
+        for h in [hm(down.clone(), up.clone(), 0.5), hm(up.clone(), down.clone(), 0.5), hm(vec![0.0, f64::NAN], up.clone(), 0.5)] {
+            assert!(!h.drawable());
+            assert!(Plot { heatmap: Some(h.clone()), ..Default::default() }.to_png(1.0).is_ok());
+            assert_eq!(images(h), 1);
+        }
     }
 
     /// Degenerate data never panics: every kind of figure (curves, markers, shades, vertical

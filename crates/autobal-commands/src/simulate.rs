@@ -167,7 +167,9 @@ impl Args {
                 let parquet = f.parquet.then(|| term::with_suffix(&stem, "parquet"));
                 let mut o = outfile::Outputs::new();
                 // the config and the files it names (as overridden: a linear rotor's matrices)
-                o.config_inputs(self.config.path(), Some((&root, self.config.dir()))).output("--out", &csv);
+                o.config_inputs(self.config.path(), Some((&root, self.config.dir())))
+                    .stem("--out", &outfile::resolve(&f.out, "simulation.csv"), &stem)
+                    .output("--out", &csv);
                 if let Some(p) = &parquet {
                     o.output("--parquet", p);
                 }
