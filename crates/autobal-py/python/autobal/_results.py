@@ -153,8 +153,9 @@ class Result:
           ``to``); ``stability``: the largest real part of the eigenvalues (on the general
           route, of the Floquet exponents of a periodic orbit) per speed (``omega``,
           ``max_real_part``; the general route adds ``verdict``, ``state`` and ``residual``, the residual unbalance the
-          balls leave as a fraction of the unbalance, at least 1e-6 of the balls' capacity as its
-          scale; ``state`` is ``balanced`` for a residual at most 1e-6, or on a periodic orbit at
+          balls leave as a fraction of what the JSON's ``residual_scale`` names (the unbalance, a
+          linear rotor's static one; the balls' capacity where the unbalance is below 1e-6 of
+          it; a planar rotor's race-centre offset without the balls); ``state`` is ``balanced`` for a residual at most 1e-6, or on a periodic orbit at
           most 0.1 where a balanced state exists, ``partially_balanced`` where none exists);
         - ``campbell``: one row per speed and tracked line (``omega``, ``line`` and the mode's
           fields; on the general route, the speeds where the line has a point); ``map``: one
