@@ -1434,6 +1434,22 @@ mod tests {
         c.iter().map(|z| z.re).collect()
     }
 
+    /// Well-separated O(1) roots, real and in conjugate pairs, on both sides of the imaginary
+    /// axis: the tests of the tracker's real Newton step and Routh zero test add a twelfth.
+    const ELEVEN_ROOTS: [Complex64; 11] = [
+        Complex64::new(-0.3, 1.2),
+        Complex64::new(-0.3, -1.2),
+        Complex64::new(0.05, 0.4),
+        Complex64::new(0.05, -0.4),
+        Complex64::new(-1.0, 0.0),
+        Complex64::new(-2.5, 0.0),
+        Complex64::new(-0.7, 2.1),
+        Complex64::new(-0.7, -2.1),
+        Complex64::new(0.2, 0.0),
+        Complex64::new(-0.01, 0.3),
+        Complex64::new(-0.01, -0.3),
+    ];
+
     /// The real evaluation's Newton step against complex Horner's (an independent evaluation
     /// of the same `p/p'`) at points near and far from the axis, near a root and away: equal to
     /// rounding (1e-12 relative: both are backward stable for these well-separated O(1) roots,
@@ -1441,20 +1457,7 @@ mod tests {
     /// evaluated one coefficient short) move the step by O(1).
     #[test]
     fn real_newton_step_is_complex_horners_step() {
-        let roots = [
-            Complex64::new(-0.3, 1.2),
-            Complex64::new(-0.3, -1.2),
-            Complex64::new(0.05, 0.4),
-            Complex64::new(0.05, -0.4),
-            Complex64::new(-1.0, 0.0),
-            Complex64::new(-2.5, 0.0),
-            Complex64::new(-0.7, 2.1),
-            Complex64::new(-0.7, -2.1),
-            Complex64::new(0.2, 0.0),
-            Complex64::new(-0.01, 0.3),
-            Complex64::new(-0.01, -0.3),
-            Complex64::new(-4.0, 0.0),
-        ];
+        let roots: Vec<Complex64> = ELEVEN_ROOTS.iter().copied().chain([Complex64::new(-4.0, 0.0)]).collect();
         for deg in [4usize, 5, 9, 12] {
             let c = poly_of_roots(&roots[..deg]);
             for z in [Complex64::new(0.06, 0.41), Complex64::new(-0.29, 1.19), Complex64::new(0.7, 0.9), Complex64::new(-1.01, 1e-7), Complex64::new(3.0, -2.0)]
@@ -1475,20 +1478,7 @@ mod tests {
     /// row's sign or a quotient's finiteness would differ from the count in one of these.
     #[test]
     fn routh_zero_test_is_the_count_being_zero() {
-        let roots = [
-            Complex64::new(-0.3, 1.2),
-            Complex64::new(-0.3, -1.2),
-            Complex64::new(0.05, 0.4),
-            Complex64::new(0.05, -0.4),
-            Complex64::new(-1.0, 0.0),
-            Complex64::new(-2.5, 0.0),
-            Complex64::new(-0.7, 2.1),
-            Complex64::new(-0.7, -2.1),
-            Complex64::new(0.2, 0.0),
-            Complex64::new(-0.01, 0.3),
-            Complex64::new(-0.01, -0.3),
-            Complex64::new(0.0, 0.0),
-        ];
+        let roots: Vec<Complex64> = ELEVEN_ROOTS.iter().copied().chain([Complex64::new(0.0, 0.0)]).collect();
         let c = poly_of_roots(&roots);
         let mut shifts: Vec<f64> = roots.iter().flat_map(|r| [r.re - 1e-3, r.re, r.re + 1e-13, r.re + 1e-3]).collect();
         shifts.extend([-10.0, -3.0, 0.0, 0.3, 5.0, 1e300, f64::NAN]);
