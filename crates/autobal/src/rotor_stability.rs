@@ -1479,6 +1479,8 @@ mod tests {
         let Rotor::Spatial(s) = &rotor else { unreachable!() };
         let zr = s.z_reference();
         let d2 = |z: f64| (z - zr) * (z - zr);
+        // the tilt inertia written out here, not taken from the code under test, so that a wrong
+        // term there changes `wf` but not this determinant
         let tilt = s.rotor.equatorial_moment
             + s.rotor.mass * d2(s.rotor.z)
             + s.unbalances.iter().map(|u| u.mass * d2(u.z)).sum::<f64>()
