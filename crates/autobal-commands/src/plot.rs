@@ -318,7 +318,9 @@ fn colorbar_ticks(scale: ColorScale) -> Vec<(f64, String)> {
 }
 
 fn png_bytes(w: usize, h: usize, rgb: &[u8]) -> Result<Vec<u8>, png::EncodingError> {
-    let mut out = vec![];
+    // sized as `rasterise` sizes its PNG (an eighth of the pixels' bytes): one allocation, no
+    // copies as the file grows
+    let mut out = Vec::with_capacity(rgb.len() / 8 + 4096);
     {
         let mut enc = png::Encoder::new(&mut out, w as u32, h as u32);
         enc.set_color(png::ColorType::Rgb);
@@ -329,22 +331,26 @@ fn png_bytes(w: usize, h: usize, rgb: &[u8]) -> Result<Vec<u8>, png::EncodingErr
     Ok(out)
 }
 
-/// Standard base64 (RFC 4648, with padding), for embedding rasters in the SVG.
+/// Standard base64 (RFC 4648, with padding), for embedding rasters in the SVG. Each whole
+/// group of three bytes is four characters written at once into a byte buffer (one capacity
+/// check a group, not one a character: a map's SVG embeds ~170 kB of PNG); the last, partial
+/// group is padded with `=`.
 pub fn base64(data: &[u8]) -> String {
     const T: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut s = String::with_capacity(data.len().div_ceil(3) * 4);
-    for ch in data.chunks(3) {
-        let b = [ch[0], *ch.get(1).unwrap_or(&0), *ch.get(2).unwrap_or(&0)];
-        let v = (b[0] as u32) << 16 | (b[1] as u32) << 8 | b[2] as u32;
-        for k in 0..4 {
-            if k <= ch.len() {
-                s.push(T[(v >> (18 - 6 * k) & 63) as usize] as char);
-            } else {
-                s.push('=');
-            }
-        }
+    let mut s: Vec<u8> = Vec::with_capacity(data.len().div_ceil(3) * 4);
+    let groups = data.chunks_exact(3);
+    let rest = groups.remainder();
+    for g in groups {
+        let v = u32::from(g[0]) << 16 | u32::from(g[1]) << 8 | u32::from(g[2]);
+        s.extend_from_slice(&[T[(v >> 18) as usize], T[(v >> 12 & 63) as usize], T[(v >> 6 & 63) as usize], T[(v & 63) as usize]]);
     }
-    s
+    if !rest.is_empty() {
+        let v = u32::from(rest[0]) << 16 | u32::from(*rest.get(1).unwrap_or(&0)) << 8;
+        let third = if rest.len() == 2 { T[(v >> 6 & 63) as usize] } else { b'=' };
+        s.extend_from_slice(&[T[(v >> 18) as usize], T[(v >> 12 & 63) as usize], third, b'=']);
+    }
+    // every byte is from `T` or `=`: ASCII
+    String::from_utf8(s).unwrap_or_default()
 }
 
 /// Rows of staggered labels: a label moves down a row while it would overlap the previous
@@ -1790,6 +1796,13 @@ mod tests {
         for (i, o) in [("", ""), ("f", "Zg=="), ("fo", "Zm8="), ("foo", "Zm9v"), ("foob", "Zm9vYg=="), ("fooba", "Zm9vYmE="), ("foobar", "Zm9vYmFy")] {
             assert_eq!(base64(i.as_bytes()), o);
         }
+        // many whole groups and every byte value, against Python's `base64.b64encode(bytes(range(256)) * 2)`
+        // (its first and last 40 characters) and the length 4 * ceil(512 / 3)
+        let all: Vec<u8> = (0..512).map(|k| (k % 256) as u8).collect();
+        let e = base64(&all);
+        assert_eq!(e.len(), 684);
+        assert_eq!(&e[..40], "AAECAwQFBgcICQoLDA0ODxAREhMUFRYXGBkaGxwd");
+        assert_eq!(&e[e.len() - 40..], "4+Tl5ufo6err7O3u7/Dx8vP09fb3+Pn6+/z9/v8=");
     }
 
     #[test]
