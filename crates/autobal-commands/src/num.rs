@@ -264,20 +264,23 @@ impl Csv {
         // (`n + 3 + [n > 1]` against `n + 5` or more) and is a byte move
         let (neg, m) = (v < 0.0, s.as_bytes());
         let m = &m[usize::from(neg)..];
-        let zeros = m.iter().skip(2).take_while(|&&c| c == b'0').count();
-        if m.starts_with(b"0.") && (3..=7).contains(&zeros) && m.len() > 2 + zeros {
+        if m.len() > 5 && m.starts_with(b"0.000") {
+            // three zeros after the point, or four (`|v| ≥ 1e-5`: never five), then the digits
+            let zeros = 3 + usize::from(m[5] == b'0');
             let d = &m[2 + zeros..];
-            let mut k = usize::from(neg);
-            buf[0] = b'-';
-            buf[k] = d[0];
-            k += 1;
-            if d.len() > 1 {
-                buf[k] = b'.';
-                buf[k + 1..k + d.len()].copy_from_slice(&d[1..]);
-                k += d.len();
+            if !d.is_empty() && d[0] != b'0' {
+                let mut k = usize::from(neg);
+                buf[0] = b'-';
+                buf[k] = d[0];
+                k += 1;
+                if d.len() > 1 {
+                    buf[k] = b'.';
+                    copy_short_at(buf, k + 1, &d[1..]);
+                    k += d.len();
+                }
+                buf[k..k + 3].copy_from_slice(&[b'e', b'-', b'1' + zeros as u8]);
+                return Some(k + 3);
             }
-            buf[k..k + 3].copy_from_slice(&[b'e', b'-', b'1' + zeros as u8]);
-            return Some(k + 3);
         }
         self.layout(buf)
     }
@@ -287,7 +290,11 @@ impl Csv {
     pub fn push_to(&self, out: &mut Vec<u8>) {
         let mut buf = [0u8; 40];
         let n = self.write_into(&mut buf);
-        out.extend_from_slice(&buf[..n]);
+        // the text is at most 24 bytes: 32 appended as a fixed-size move and cut back (a
+        // run-time length is a call of the C library's `memcpy`)
+        let at = out.len();
+        out.extend_from_slice(&buf[..32]);
+        out.truncate(at + n.min(32));
     }
 
     /// The text (the same as `Display`'s) written at the start of `buf`: its length (at most
@@ -333,6 +340,27 @@ fn copy_short(dst: &mut [u8; 40], src: &[u8]) {
         dst[n - 4..][..4].copy_from_slice(&src[n - 4..][..4]);
     } else {
         for (d, s) in dst.iter_mut().zip(src) {
+            *d = *s;
+        }
+    }
+}
+
+/// `dst[at..at + src.len()] = src` for `src` of at most 17 bytes (the significant digits
+/// after the first) as two overlapping fixed-size moves: [`copy_short`] at an offset.
+#[inline]
+fn copy_short_at(dst: &mut [u8; 40], at: usize, src: &[u8]) {
+    let n = src.len();
+    let d = &mut dst[at..];
+    if n > 16 || d.len() < 16 {
+        d[..n].copy_from_slice(src);
+    } else if n >= 8 {
+        d[..8].copy_from_slice(&src[..8]);
+        d[n - 8..][..8].copy_from_slice(&src[n - 8..][..8]);
+    } else if n >= 4 {
+        d[..4].copy_from_slice(&src[..4]);
+        d[n - 4..][..4].copy_from_slice(&src[n - 4..][..4]);
+    } else {
+        for (d, s) in d.iter_mut().zip(src) {
             *d = *s;
         }
     }
