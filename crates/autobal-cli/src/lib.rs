@@ -92,7 +92,7 @@ struct LinearArgs {
     /// dimensional config, or a bare number, the dimensionless Ω; default: [analysis] omega_max,
     /// else automatic (1.3 × the highest critical speed, and 1.25 × the top of
     /// [analysis] operating_speed)
-    #[arg(long, allow_negative_numbers = true, value_name = "SPEED")]
+    #[arg(long, allow_hyphen_values = true, value_name = "SPEED")]
     omega_max: Option<String>,
     /// Balls free (12 states) or locked at balance (8 states, the bare anisotropic rotor)
     #[arg(long, value_enum, default_value = "free")]
@@ -143,7 +143,7 @@ enum Command {
         #[arg(long, value_enum, default_value = "auto")]
         route: Route,
         /// Upper end of the general route's speed axis (a speed with its unit, or a bare Ω)
-        #[arg(long, allow_negative_numbers = true, value_name = "SPEED")]
+        #[arg(long, allow_hyphen_values = true, value_name = "SPEED")]
         omega_max: Option<String>,
     },
     /// Exact stable speed ranges, and 003's necessary ranges (eqs (1)-(3)) where they are defined
@@ -220,7 +220,7 @@ enum Command {
         #[arg(long, value_name = "KEY=LO:HI:N")]
         y: String,
         /// The speed when neither axis is a speed: 1400rpm, "147 rad/s", 23Hz, or a bare number Ω
-        #[arg(long, allow_negative_numbers = true, value_name = "SPEED")]
+        #[arg(long, allow_hyphen_values = true, value_name = "SPEED")]
         omega: Option<String>,
         /// Balls free (12 states) or locked (8 states)
         #[arg(long, value_enum, default_value = "free")]
@@ -511,19 +511,30 @@ fn run(cli: Cli, control: &Control) -> Result<()> {
 /// Print a command's output on stdout in `format` (the JSON streamed where the output streams
 /// it); an output cut short (Ctrl-C) is then an error saying what was kept.
 fn show(out: &impl Output, format: Format) -> Result<()> {
-    match format {
-        Format::Json => {
+    let printed = match format {
+        Format::Json => (|| {
             use std::io::Write;
             let stdout = std::io::stdout();
             let mut lock = stdout.lock();
             out.write_json(&mut lock)?;
             lock.flush()?;
-        }
-        Format::Table => term::print(&out.table()?)?,
-    }
-    match out.stopped() {
-        Some(why) => Err(anyhow::anyhow!(why)),
-        None => Ok(()),
+            Ok(())
+        })(),
+        Format::Table => out.table().and_then(|t| term::print(&t)),
+    };
+    stopped_after(printed, out.stopped())
+}
+
+/// What a command that printed its output (`printed`) ends with: a run cut short (`stopped`,
+/// Ctrl-C) is an error saying what was kept even when standard output was closed (`autobal
+/// sweep … | head -c0`: the broken pipe ended it quietly with status 0, the partial result
+/// passed on as complete); otherwise the printing's own outcome (a broken pipe: `main` ends
+/// quietly).
+fn stopped_after(printed: Result<()>, stopped: Option<String>) -> Result<()> {
+    match (printed, stopped) {
+        (Err(e), _) if !term::is_broken_pipe(&e) => Err(e),
+        (_, Some(why)) => Err(anyhow::anyhow!(why)),
+        (printed, None) => printed,
     }
 }
 
@@ -622,12 +633,15 @@ fn run_sweep(a: SweepFlags, control: &Control) -> Result<()> {
     json.commit()?;
     drop(spill);
     if let Format::Json = a.format {
-        use std::io::Write;
-        let stdout = std::io::stdout();
-        let mut lock = stdout.lock();
-        std::io::copy(&mut std::fs::File::open(&json_path)?, &mut lock)?;
-        lock.flush()?;
-        return out.stopped().map_or(Ok(()), |why| Err(anyhow::anyhow!(why)));
+        let printed = (|| {
+            use std::io::Write;
+            let stdout = std::io::stdout();
+            let mut lock = stdout.lock();
+            std::io::copy(&mut std::fs::File::open(&json_path)?, &mut lock)?;
+            lock.flush()?;
+            Ok(())
+        })();
+        return stopped_after(printed, out.stopped());
     }
     show(&out, a.format)
 }
@@ -663,9 +677,14 @@ fn run_map(args: &map::Args, config: Option<&std::path::Path>, out: &std::path::
         o.output("--out", &map::boundary_path(&stem));
     }
     o.check()?;
-    let mut w = outfile::Staged::create("--out", &term::with_suffix(&stem, "csv"))?;
+    let csv = term::with_suffix(&stem, "csv");
+    let mut w = outfile::Staged::create("--out", &csv)?;
     let (shown, bar) = term::progress_bar(control);
-    let result = plan.run(&shown, map::Rows::Csv(&mut w));
+    // a write of the rows that failed (a full disk) said only "No space left on device"
+    let result = plan.run(&shown, map::Rows::Csv(&mut w)).map_err(|e| match e.downcast::<std::io::Error>() {
+        Ok(io) => anyhow::anyhow!("--out: cannot write {}: {io}", csv.display()),
+        Err(e) => e,
+    });
     if let Some(b) = bar {
         b.finish_and_clear();
     }

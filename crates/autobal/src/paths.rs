@@ -160,6 +160,8 @@ impl Axis {
     /// assert_eq!(Axis::parse("drive.b=0.5:2.5:3").unwrap().values, vec![0.5, 1.5, 2.5]);
     /// assert_eq!(Axis::parse("planar.m3=0.01,0.03").unwrap().values, vec![0.01, 0.03]);
     /// assert!(Axis::parse("drive.b=2:1:3").unwrap_err().to_string().contains("HI must exceed LO"));
+    /// // a repeated value would run the same point twice
+    /// assert!(Axis::parse("drive.b=1,2,1").unwrap_err().to_string().contains("the value 1 is given more than once"));
     /// ```
     pub fn parse(spec: &str) -> Result<Self> {
         let bad = |why: String| Error::invalid(spec, why);
@@ -186,15 +188,34 @@ impl Axis {
                 if !(hi > lo) {
                     return Err(bad("HI must exceed LO".into()));
                 }
-                Ok(Axis::linspace(path, lo, hi, n))
+                let ax = Axis::linspace(path, lo, hi, n);
+                // (1:1.000000000001:1000 rounded its inner values to 12 digits onto each other)
+                if let Some(v) = repeated(&ax.values) {
+                    return Err(bad(format!(
+                        "{n} points from LO to HI repeat the value {} (values are rounded to 12 significant digits): give fewer points or a wider range",
+                        fmt_num(v)
+                    )));
+                }
+                Ok(ax)
             }
             1 => {
                 let values = range.split(',').map(|s| num(s, "value")).collect::<Result<Vec<_>>>()?;
+                // (drive.b=1,1,1 ran one point three times)
+                if let Some(v) = repeated(&values) {
+                    return Err(bad(format!("the value {} is given more than once: each value is one point of the grid", fmt_num(v))));
+                }
                 Ok(Axis::new(path, values))
             }
             _ => Err(bad("expected PATH=LO:HI:N".into())),
         }
     }
+}
+
+/// A value that occurs more than once in `values` (`0` and `-0` are one value), if any.
+fn repeated(values: &[f64]) -> Option<f64> {
+    let mut v = values.to_vec();
+    v.sort_by(f64::total_cmp);
+    v.windows(2).find(|w| w[0] == w[1]).map(|w| w[0])
 }
 
 /// `v` rounded to 12 significant digits (0 stays 0).
@@ -237,6 +258,21 @@ pub fn indexed(path: &str) -> Option<(&str, std::result::Result<usize, String>)>
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A list with a value twice, or a range whose rounded values collide, is refused naming the
+    /// value; distinct values (in any order, `0` and a tiny one) are kept as given.
+    #[test]
+    fn repeated_values_are_refused() {
+        let e = Axis::parse("drive.b=1,1,1").unwrap_err().to_string();
+        assert_eq!(e, "drive.b=1,1,1: the value 1 is given more than once: each value is one point of the grid");
+        assert!(Axis::parse("drive.b=0,-0").unwrap_err().to_string().contains("the value 0 is given more than once"));
+        let e = Axis::parse("drive.b=1:1.000000000001:1000").unwrap_err().to_string();
+        assert!(e.contains("1000 points from LO to HI repeat the value"), "{e}");
+        assert_eq!(Axis::parse("drive.b=3,1,2,1e-300,0").unwrap().values, vec![3.0, 1.0, 2.0, 1e-300, 0.0]);
+        assert_eq!(Axis::parse("drive.b=1:1.0000000001:3").unwrap().values, vec![1.0, 1.00000000005, 1.0000000001]);
+        // (the middle of 1 and 1.00000000001 rounds onto one of them)
+        assert!(Axis::parse("drive.b=1:1.00000000001:3").unwrap_err().to_string().contains("repeat the value"));
+    }
 
     #[test]
     fn indices_are_one_based_and_checked() {

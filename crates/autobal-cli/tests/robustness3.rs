@@ -1,0 +1,339 @@
+//! Hostile input, round 3: one regression test per defect, named after it, end to end with a
+//! wall-clock limit on every run (a hang fails the test instead of hanging the suite).
+
+use std::io::Read;
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+fn examples(name: &str) -> String {
+    format!("{}/../../examples/{name}", env!("CARGO_MANIFEST_DIR"))
+}
+
+fn scratch(name: &str) -> std::path::PathBuf {
+    let d = std::env::temp_dir().join(format!("autobal-r3-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// Wait for `child` at most `limit` (killed and failing the test past it).
+fn wait_for(mut child: std::process::Child, limit: Duration, what: &str) -> std::process::ExitStatus {
+    let t0 = Instant::now();
+    loop {
+        if let Some(s) = child.try_wait().unwrap() {
+            return s;
+        }
+        if t0.elapsed() > limit {
+            let _ = child.kill();
+            let _ = child.wait();
+            panic!("autobal {what} ran longer than {limit:?}");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+}
+
+/// Run the binary in `dir` with `args` for at most `limit`: `(exit code, stdout, stderr)`.
+fn run_in(dir: &std::path::Path, limit: Duration, args: &[&str]) -> (i32, String, String) {
+    let mut child =
+        Command::new(env!("CARGO_BIN_EXE_autobal")).args(args).current_dir(dir).stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().expect("binary runs");
+    let (mut out, mut err) = (child.stdout.take().unwrap(), child.stderr.take().unwrap());
+    let o = std::thread::spawn(move || {
+        let mut s = String::new();
+        let _ = out.read_to_string(&mut s);
+        s
+    });
+    let e = std::thread::spawn(move || {
+        let mut s = String::new();
+        let _ = err.read_to_string(&mut s);
+        s
+    });
+    let status = wait_for(child, limit, &args.join(" "));
+    (status.code().unwrap_or(-1), o.join().unwrap(), e.join().unwrap())
+}
+
+/// The command fails with status 2 and one line on stderr, `error: ` then `field`; the line.
+#[track_caller]
+fn rejects_in(dir: &std::path::Path, args: &[&str], field: &str) -> String {
+    let (code, out, err) = run_in(dir, Duration::from_secs(60), args);
+    assert_eq!(code, 2, "autobal {}: exit {code}, stdout {out}, stderr {err}", args.join(" "));
+    let line = err.trim_end();
+    assert_eq!(line.lines().count(), 1, "one line: {line}");
+    assert!(line.starts_with(&format!("error: {field}")), "names {field}: {line}");
+    line.to_string()
+}
+
+/// `examples/linear_rotor_shaft.toml` with a short run-up (0.05 s), in `dir`.
+fn short_shaft(dir: &std::path::Path) -> String {
+    let text = std::fs::read_to_string(examples("linear_rotor_shaft.toml")).unwrap();
+    assert_eq!(text.matches("t_end = 6.0").count(), 1);
+    let p = dir.join("shaft.toml");
+    std::fs::write(&p, text.replace("t_end = 6.0", "t_end = 0.05")).unwrap();
+    p.to_str().unwrap().to_string()
+}
+
+#[test]
+fn regression_shaft_builder_keys_were_unknown_parameter_paths() {
+    // `--set linear_rotor.elements[0].length=0.3` said "unknown parameter path": the shaft
+    // builder's arrays of tables (elements, disks, bearings) could be neither set nor swept
+    let d = scratch("shaft-keys");
+    let shaft = short_shaft(&d);
+    let text = std::fs::read_to_string(&shaft).unwrap();
+    // a second route: the config edited by hand
+    assert_eq!(text.matches("length = 0.1").count(), 1);
+    let edited = d.join("edited.toml");
+    std::fs::write(&edited, text.replace("length = 0.1", "length = 0.12").replace("mass = 4.0", "mass = 5.0")).unwrap();
+    let st = |cfg: &str, set: &[&str]| {
+        let mut a = vec!["stability", "--config", cfg, "--samples", "12", "--omega-max", "2500 rad/s", "--format", "json"];
+        a.extend_from_slice(set);
+        let (code, out, err) = run_in(&d, Duration::from_secs(120), &a);
+        assert_eq!(code, 0, "{a:?}: {err}");
+        serde_json::from_str::<serde_json::Value>(&out).unwrap()["points"].clone()
+    };
+    let by_set = st(&shaft, &["--set", "linear_rotor.elements[0].length=0.12", "--set", "linear_rotor.disks[0].mass=5"]);
+    assert_eq!(by_set, st(edited.to_str().unwrap(), &[]));
+    assert_ne!(by_set, st(&shaft, &[]), "a longer shaft and a heavier disk change the margins");
+    // out of range, a wrong field: refused naming the key and the valid range or keys
+    let line = rejects_in(&d, &["stability", "--config", &shaft, "--set", "linear_rotor.elements[1].length=0.3"], "linear_rotor.elements[1].length");
+    assert!(line.ends_with("the config has 1 [[linear_rotor.elements]] (j from 0 to 0)"), "{line}");
+    let line = rejects_in(&d, &["stability", "--config", &shaft, "--set", "linear_rotor.disks[0].radius=0.3"], "linear_rotor.disks[0].radius");
+    assert!(line.contains("unknown key of [[linear_rotor.disks]] (known: node, mass, id, ip)"), "{line}");
+    let line = rejects_in(&d, &["stability", "--config", &shaft, "--set", "linear_rotor.bearings[1].kxx[2]=1e6"], "linear_rotor.bearings[1].kxx[2]");
+    assert!(line.contains("has 2 entries (i from 0 to 1)"), "{line}");
+    // a sweep's axis: each row is the run of `simulate` on the config with that value
+    let (code, _, err) =
+        run_in(&d, Duration::from_secs(120), &["sweep", "--config", &shaft, "--x", "linear_rotor.elements[0].length=0.1,0.12", "--out", "sw", "--no-plots"]);
+    assert_eq!(code, 0, "{err}");
+    let csv = std::fs::read_to_string(d.join("sw.csv")).unwrap();
+    let rows: Vec<Vec<&str>> = csv.lines().map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows[0][1], "linear_rotor.elements[0].length");
+    assert_eq!((rows.len(), rows[1][1], rows[2][1]), (3, "0.1", "0.12"));
+    let peak = rows[0].iter().position(|c| *c == "peak_amplitude").unwrap();
+    assert_ne!(rows[1][peak], rows[2][peak], "the length changes the run");
+    let (code, _, err) =
+        run_in(&d, Duration::from_secs(120), &["simulate", "--config", edited.to_str().unwrap(), "--set", "linear_rotor.disks[0].mass=4", "--out", "one"]);
+    assert_eq!(code, 0, "{err}");
+    let one = std::fs::read_to_string(d.join("one.csv")).unwrap();
+    let (code, _, err) =
+        run_in(&d, Duration::from_secs(120), &["simulate", "--config", &shaft, "--set", "linear_rotor.elements[0].length=0.12", "--out", "two"]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(one, std::fs::read_to_string(d.join("two.csv")).unwrap(), "the edited config with its disk set back is the length alone");
+    std::fs::remove_dir_all(&d).ok();
+}
+
+#[test]
+fn regression_shard_count_past_the_points_and_repeated_values_were_taken() {
+    // `--shard 1/1000000000000` on a one-point grid ran, and so did `--x drive.b=1,1,1` (one
+    // point three times); both refused now, naming the numbers, before anything is written
+    let d = scratch("shards");
+    let line = rejects_in(&d, &["sweep", "--x", "drive.b=1", "--set", "drive.t_end=1", "--shard", "1/1000000000000", "--out", "s"], "--shard 1/1000000000000");
+    assert!(line.contains("1000000000000 shards of a grid of 1 point: give N ≤ 1"), "{line}");
+    let line = rejects_in(&d, &["sweep", "--x", "drive.b=1,2", "--set", "drive.t_end=1", "--shard", "3/3", "--out", "s"], "--shard 3/3");
+    assert!(line.contains("3 shards of a grid of 2 points"), "{line}");
+    let line = rejects_in(&d, &["sweep", "--x", "drive.b=1,1,1", "--set", "drive.t_end=1", "--out", "s"], "--x drive.b=1,1,1");
+    assert!(line.contains("the value 1 is given more than once"), "{line}");
+    let line = rejects_in(&d, &["sweep", "--x", "drive.b=1,2", "--y", "planar.c_psi=0.1,0.2,0.1", "--set", "drive.t_end=1", "--out", "s"], "--y");
+    assert!(line.contains("the value 0.1 is given more than once"), "{line}");
+    assert_eq!(std::fs::read_dir(&d).unwrap().count(), 0, "nothing written");
+    // as many shards as points: each runs one, and they merge
+    for k in ["1/2", "2/2"] {
+        let (code, _, err) = run_in(
+            &d,
+            Duration::from_secs(60),
+            &["sweep", "--x", "drive.b=1,2", "--set", "drive.t_end=1", "--shard", k, "--out", &format!("p{}", &k[..1]), "--no-plots"],
+        );
+        assert_eq!(code, 0, "{err}");
+    }
+    let (code, _, err) = run_in(&d, Duration::from_secs(60), &["merge", "p1.csv", "p2.csv", "--out", "m"]);
+    assert_eq!(code, 0, "{err}");
+    std::fs::remove_dir_all(&d).ok();
+}
+
+#[cfg(unix)]
+#[test]
+fn regression_a_matrix_file_that_is_a_fifo_read_as_an_empty_file() {
+    // the config's path said "is a named pipe with no writer"; a matrix file that was such a
+    // pipe read as an empty file ("empty file: expected the header %%MatrixMarket ..."). One
+    // reader for both now.
+    let d = scratch("fifo-matrix");
+    let st = Command::new("mkfifo").arg(d.join("K.mtx")).status().unwrap();
+    assert!(st.success());
+    let m = "%%MatrixMarket matrix coordinate real general\n4 4 4\n1 1 1.0\n2 2 1.0\n3 3 1.0\n4 4 1.0\n";
+    std::fs::write(d.join("M.mtx"), m).unwrap();
+    std::fs::write(d.join("rotor.toml"), "[linear_rotor]\nm = \"M.mtx\"\nk = \"K.mtx\"\n").unwrap();
+    let line = rejects_in(&d, &["stability", "--config", "rotor.toml"], "linear_rotor.k");
+    assert!(line.ends_with("K.mtx: is a named pipe with no writer (nothing to read); start the program that writes it first, or give a file"), "{line}");
+    // and a folder where the file goes is named as such
+    std::fs::remove_file(d.join("K.mtx")).unwrap();
+    std::fs::create_dir(d.join("K.mtx")).unwrap();
+    let line = rejects_in(&d, &["stability", "--config", "rotor.toml"], "linear_rotor.k");
+    assert!(line.ends_with("K.mtx: is a directory, not a matrix file"), "{line}");
+    std::fs::remove_dir_all(&d).ok();
+}
+
+/// Every command (quick runs) with its standard output, its standard error or both closed by the
+/// reader before it writes (`autobal … | head -c0`, `2>&-` on a pipe): no panic (status 101), no
+/// hang, the status of the run with both open (a broken pipe ends quietly: the reader has gone,
+/// as with SIGPIPE's early exit, but with the run's own status), and the files written as with
+/// both open.
+#[test]
+fn closed_stdout_or_stderr_never_panics_nor_changes_the_status() {
+    let d = scratch("closed-pipes");
+    let shaft = short_shaft(&d);
+    let spatial = examples("spatial.toml");
+    let cases: Vec<Vec<&str>> = vec![
+        vec!["inertia"],
+        vec!["critical", "--format", "json"],
+        vec!["ranges"],
+        vec!["stability", "--samples", "50"],
+        vec!["campbell", "--format", "json"],
+        vec!["map", "--x", "omega=0.5:2:6", "--y", "dimensionless.z_a=0:1:3", "--out", "m"],
+        vec!["simulate", "--set", "drive.t_end=2", "--out", "sim"],
+        vec!["sweep", "--x", "drive.b=1,2", "--set", "drive.t_end=2", "--out", "sw", "--format", "json"],
+        vec!["sweep", "--config", &shaft, "--x", "linear_rotor.disks[0].mass=3,4", "--out", "lsw", "--no-plots"],
+        vec!["export-model", "--out", "em/"],
+        vec!["basins", "--config", &spatial, "--n", "2", "--set", "drive.t_end=0.2", "--out", "b"],
+        vec!["stability", "--config", &shaft, "--samples", "10", "--omega-max", "1000 rad/s"],
+        vec!["critical", "--set", "nope.x=1"],
+        vec!["sweep", "--x", "drive.b=1,1"],
+        vec!["--help"],
+        vec!["--version"],
+        vec!["nocommand"],
+    ];
+    for a in &cases {
+        let what = a.join(" ");
+        let run = |close_out: bool, close_err: bool| {
+            let mut child = Command::new(env!("CARGO_BIN_EXE_autobal")).args(a).current_dir(&d).stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().unwrap();
+            let (out, err) = (child.stdout.take().unwrap(), child.stderr.take().unwrap());
+            let keep_out = (!close_out).then(|| {
+                std::thread::spawn(move || {
+                    let mut s = String::new();
+                    let mut out = out;
+                    let _ = out.read_to_string(&mut s);
+                    s
+                })
+            });
+            let keep_err = (!close_err).then(|| {
+                std::thread::spawn(move || {
+                    let mut s = String::new();
+                    let mut err = err;
+                    let _ = err.read_to_string(&mut s);
+                    s
+                })
+            });
+            let status = wait_for(child, Duration::from_secs(120), &what);
+            let err = keep_err.map(|t| t.join().unwrap()).unwrap_or_default();
+            let _ = keep_out.map(|t| t.join().unwrap());
+            (status.code(), err)
+        };
+        let (open, _) = run(false, false);
+        for (close_out, close_err) in [(true, false), (false, true), (true, true)] {
+            let (code, err) = run(close_out, close_err);
+            assert!(!err.contains("panicked"), "autobal {what}: {err}");
+            assert_eq!(code, open, "autobal {what} with stdout closed {close_out}, stderr closed {close_err}: {err}");
+        }
+    }
+    for f in ["m.csv", "sim.csv", "sw.csv", "sw.json", "lsw.csv", "em/rotor.toml", "b"] {
+        assert!(d.join(f).is_file(), "{f}");
+    }
+    std::fs::remove_dir_all(&d).ok();
+}
+
+#[cfg(unix)]
+#[test]
+fn regression_ctrl_c_with_stdout_closed_ended_a_sweep_with_status_0() {
+    // a sweep stopped by Ctrl-C says what it kept and exits 2; with standard output closed the
+    // broken pipe of its table ended it quietly with status 0 instead, the partial sweep
+    // passed on as complete
+    let d = scratch("ctrlc-stdout-closed");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_autobal"))
+        .args(["sweep", "--x", "drive.b=0.5:12.5:400", "--set", "drive.t_end=3000", "--threads", "1", "--out", "cc", "--no-plots"])
+        .current_dir(&d)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let mut err = child.stderr.take().unwrap();
+    let reader = std::thread::spawn(move || {
+        let mut s = String::new();
+        let _ = err.read_to_string(&mut s);
+        s
+    });
+    // a second is far from the 400 runs of 3000 s (each tens of milliseconds at least)
+    std::thread::sleep(Duration::from_millis(1500));
+    if child.try_wait().unwrap().is_some() {
+        std::fs::remove_dir_all(&d).ok();
+        return; // finished before the Ctrl-C: nothing to check
+    }
+    let _ = Command::new("kill").args(["-INT", &child.id().to_string()]).status();
+    let status = wait_for(child, Duration::from_secs(60), "sweep");
+    let err = reader.join().unwrap();
+    assert_eq!(status.code(), Some(2), "{err}");
+    let last = err.trim_end().lines().last().unwrap_or("");
+    assert!(last.starts_with("error: interrupted: ") && last.ends_with("runs complete, kept in cc.csv"), "{err}");
+    assert!(d.join("cc.csv").is_file());
+    std::fs::remove_dir_all(&d).ok();
+}
+
+/// A tmpfs of `kib` KiB at a fresh folder (root only); `None` where it cannot be mounted.
+#[cfg(target_os = "linux")]
+fn tiny_disk(name: &str, kib: u32) -> Option<std::path::PathBuf> {
+    let d = scratch(name);
+    let ok =
+        Command::new("mount").args(["-t", "tmpfs", "-o", &format!("size={kib}k"), "tmpfs"]).arg(&d).stderr(Stdio::null()).status().is_ok_and(|s| s.success());
+    if ok {
+        Some(d)
+    } else {
+        eprintln!("skipped: cannot mount a tmpfs (not root?)");
+        None
+    }
+}
+
+#[cfg(target_os = "linux")]
+fn unmount(d: &std::path::Path) {
+    let _ = Command::new("umount").arg(d).status();
+    std::fs::remove_dir_all(d).ok();
+}
+
+#[cfg(target_os = "linux")]
+#[test]
+fn regression_a_full_disk_left_a_partial_model_and_an_unnamed_error() {
+    // on an 8 KiB disk `export-model` wrote two of its matrices and stopped, leaving a model
+    // folder without its config; `map` said only "No space left on device (os error 28)",
+    // naming neither the flag nor the file
+    let Some(d) = tiny_disk("full-disk", 8) else { return };
+    let shaft = examples("linear_rotor_shaft.toml");
+    let line = rejects_in(&d, &["export-model", "--config", &shaft, "--out", "em/"], "--out: cannot write em/");
+    assert!(line.contains("No space left on device"), "{line}");
+    assert!(
+        !d.join("em").exists(),
+        "nothing of the model is left: {:?}",
+        std::fs::read_dir(d.join("em")).map(|r| r.map(|e| e.unwrap().file_name()).collect::<Vec<_>>())
+    );
+    let line = rejects_in(&d, &["map", "--x", "omega=0.5:2:60", "--y", "dimensionless.z_a=0:1:40", "--out", "m"], "--out: cannot write m.csv: ");
+    assert!(line.contains("No space left on device"), "{line}");
+    assert_eq!(std::fs::read_dir(&d).unwrap().count(), 0, "no file left on the full disk");
+    unmount(&d);
+}
+
+#[test]
+fn regression_a_negative_speed_with_its_unit_was_a_usage_error() {
+    // `--omega-max "-5 rpm"` was taken by the argument parser for a flag `-5` ("unexpected
+    // argument '-5' found", three lines naming no field); every speed flag reads it and says
+    // what is wrong with the value, as for "--omega-max=-5 rpm"
+    let d = scratch("negative-speed");
+    let dim = examples("dimensional.toml");
+    for a in [&["stability"][..], &["critical", "--route", "general"], &["campbell"]] {
+        let mut a = a.to_vec();
+        a.extend(["--config", &dim, "--omega-max", "-5 rpm"]);
+        let line = rejects_in(&d, &a, "--omega-max");
+        assert!(line.contains("-5 rpm"), "{line}");
+    }
+    let line = rejects_in(
+        &d,
+        &["map", "--config", &dim, "--x", "dimensionless.z_a=0:1:3", "--y", "dimensionless.m=0.01:0.02:3", "--omega", "-1400 rpm", "--out", "m"],
+        "--omega",
+    );
+    assert!(line.contains("-1400 rpm"), "{line}");
+    std::fs::remove_dir_all(&d).ok();
+}
