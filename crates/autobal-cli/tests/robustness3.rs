@@ -337,3 +337,23 @@ fn regression_a_negative_speed_with_its_unit_was_a_usage_error() {
     assert!(line.contains("-1400 rpm"), "{line}");
     std::fs::remove_dir_all(&d).ok();
 }
+
+#[test]
+fn regression_a_linear_rotor_drive_of_1e300_ran_and_basins_called_it_unbalanced() {
+    // `[drive]` and `[integration]` of a linear rotor config were not held to the ranges of the
+    // papers' configs: `drive.omega0 = 1e300` at constant speed ended at t = 0 with "the state
+    // became non-finite" (no key named), and `basins` reported the four failed runs as
+    // "0 of 4 runs balanced", status 0
+    let d = scratch("linear-drive-range");
+    let shaft = short_shaft(&d);
+    for cmd in [&["simulate", "--out", "s"][..], &["basins", "--n", "2", "--out", "b"], &["sweep", "--x", "drive.t_end=0.01,0.02", "--out", "w"]] {
+        let mut a = cmd.to_vec();
+        a.extend(["--config", &shaft, "--set", "drive.kind=\"speed\"", "--set", "drive.omega0=1e300"]);
+        let line = rejects_in(&d, &a, "drive.omega0");
+        assert!(line.contains("must lie in [-1e6, 1e6] rad/s, got 1e300"), "{line}");
+    }
+    let line = rejects_in(&d, &["simulate", "--config", &shaft, "--set", "integration.rtol=1e300", "--out", "s"], "integration.rtol");
+    assert!(line.contains("got 1e300"), "the number as typed, not 300 digits: {line}");
+    assert_eq!(std::fs::read_dir(&d).unwrap().count(), 1, "nothing written beside the config");
+    std::fs::remove_dir_all(&d).ok();
+}

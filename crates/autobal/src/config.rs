@@ -172,7 +172,7 @@ pub fn check_schema(root: &Table) -> Result<()> {
 
 /// Numbers (and the numbers in arrays, one level of nesting for `drive.schedule`) against their
 /// limits; counts are checked where they are read, as whole numbers.
-fn check_range(field: &str, v: &Value) -> Result<()> {
+pub(crate) fn check_range(field: &str, v: &Value) -> Result<()> {
     let is_count = COUNTS.contains(&field);
     match v {
         Value::Float(_) | Value::Integer(_) if !is_count => {

@@ -736,6 +736,17 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
     }
     // 0: the full model (so that `--set linear_rotor.modes=0` undoes a config's reduction)
     let modes = top.usize("modes")?.filter(|m| *m > 0);
+    // the numbers of [drive] and [integration] in the ranges of the papers' configs
+    // (`limits.rs`): `drive.omega0 = 1e300` at a constant speed ran, and ended at t = 0 with
+    // "the state became non-finite", naming no key (a basins grid of such runs said "0 of 4
+    // balanced", status 0)
+    for name in ["drive", "integration"] {
+        if let Some(t) = root.get(name).and_then(Value::as_table) {
+            for (k, v) in t {
+                crate::config::check_range(&format!("{name}.{k}"), v)?;
+            }
+        }
+    }
     let d = Section::of(root, "drive");
     let drive = if d.table.is_some() { Some(drive(&d)?) } else { None };
     let t_end = drive.as_ref().map_or(10.0, |d| d.1);
