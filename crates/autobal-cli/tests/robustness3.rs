@@ -357,3 +357,21 @@ fn regression_a_linear_rotor_drive_of_1e300_ran_and_basins_called_it_unbalanced(
     assert_eq!(std::fs::read_dir(&d).unwrap().count(), 1, "nothing written beside the config");
     std::fs::remove_dir_all(&d).ok();
 }
+
+#[test]
+fn regression_one_entry_had_several_paths_and_the_last_set_won() {
+    // `--set 'linear_rotor.balancer[00].drag=0.1' --set 'linear_rotor.balancer[0].drag=0.2'`
+    // ran with 0.2 without a word (a key given twice is refused, but these were two spellings
+    // of one key); an index is now spelled one way, digits without sign, space or leading zero
+    let d = scratch("index-spelling");
+    let shaft = short_shaft(&d);
+    for j in ["00", "+0", " 0"] {
+        let key = format!("linear_rotor.balancer[{j}].drag");
+        let line = rejects_in(&d, &["stability", "--config", &shaft, "--set", &format!("{key}=0.1"), "--set", "linear_rotor.balancer[0].drag=0.2"], &key);
+        assert!(line.contains(&format!("the index in [{j}] must be a whole number from 0")), "{line}");
+    }
+    let line =
+        rejects_in(&d, &["sweep", "--config", &shaft, "--x", "linear_rotor.elements[01].length=0.1,0.2", "--out", "w"], "linear_rotor.elements[01].length");
+    assert!(line.contains("the index in [01] must be a whole number from 0"), "{line}");
+    std::fs::remove_dir_all(&d).ok();
+}

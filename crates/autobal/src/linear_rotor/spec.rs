@@ -297,7 +297,7 @@ pub fn set_contact(root: &mut Table, path: &str, value: bool) -> Result<()> {
         .strip_prefix("linear_rotor.balancer[")
         .and_then(|s| s.strip_suffix("].contact"))
         .ok_or_else(|| bad("only linear_rotor.balancer[j].contact takes true or false".into()))?;
-    let j: usize = j.trim().parse().map_err(|_| bad(format!("the index in [{j}] must be a whole number from 0 (the first [[linear_rotor.balancer]])")))?;
+    let j = index(j).ok_or_else(|| bad(format!("the index in [{j}] must be a whole number from 0 (the first [[linear_rotor.balancer]])")))?;
     let lr = root.get_mut("linear_rotor").and_then(Value::as_table_mut).ok_or_else(|| bad("the config has no [linear_rotor] table".into()))?;
     let entries = each(lr, "balancer", path)?;
     let n = entries.len();
@@ -328,7 +328,7 @@ fn set_entry_of(lr: &mut Table, path: &str, kind: &str, keys: &[&str], j: &str, 
     if at.is_some() && !(kind == "bearings" && BEARING_TABLE_KEYS.contains(&name)) || at.is_none() && !keys.contains(&field) {
         return Err(known());
     }
-    let j: usize = j.trim().parse().map_err(|_| bad(format!("the index in [{j}] must be a whole number from 0 (the first [[linear_rotor.{kind}]])")))?;
+    let j = index(j).ok_or_else(|| bad(format!("the index in [{j}] must be a whole number from 0 (the first [[linear_rotor.{kind}]])")))?;
     let entries = each(lr, kind, path)?;
     let n = entries.len();
     let entry = entries.get_mut(j).ok_or_else(|| bad(format!("the config has {n} [[linear_rotor.{kind}]] (j from 0 to {})", n - 1)))?;
@@ -339,7 +339,7 @@ fn set_entry_of(lr: &mut Table, path: &str, kind: &str, keys: &[&str], j: &str, 
         _ => Value::Float(value),
     };
     let Some(i) = at else { return insert(entry, field, v, path) };
-    let i: usize = i.trim().parse().map_err(|_| bad(format!("the index in [{i}] must be a whole number from 0 (the first speed of the table)")))?;
+    let i = index(i).ok_or_else(|| bad(format!("the index in [{i}] must be a whole number from 0 (the first speed of the table)")))?;
     let t = entry.as_table_mut().ok_or_else(|| bad("an entry of the array is not a table".into()))?;
     match t.get_mut(name) {
         Some(Value::Array(a)) => {
@@ -355,6 +355,14 @@ fn set_entry_of(lr: &mut Table, path: &str, kind: &str, keys: &[&str], j: &str, 
         }
         _ => Err(bad(format!("linear_rotor.{kind}[{j}] has no table {name} over speed (a constant bearing's numbers are k and c)"))),
     }
+}
+
+/// An index as a path spells it: decimal digits, no sign, space or leading zero, so that one
+/// entry has one path (`balancer[00]` and `balancer[ 0]` beside `balancer[0]` were two `--set`
+/// keys for one number, the last winning without a word).
+fn index(s: &str) -> Option<usize> {
+    let canonical = !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit()) && (s == "0" || !s.starts_with('0'));
+    canonical.then(|| s.parse().ok()).flatten()
 }
 
 /// The tables of `[[linear_rotor.KIND]]`; none is an error naming `path`.
@@ -460,6 +468,12 @@ mod tests {
             .starts_with("linear_rotor.balancer[0].mass: unknown key of [[linear_rotor.balancer]] (known: node, radius"));
         assert!(err("linear_rotor.balancer[x].drag", 0.1).starts_with("linear_rotor.balancer[x].drag: the index in [x] must be a whole number from 0"));
         assert!(err("linear_rotor.balancer[-1].drag", 0.1).contains("must be a whole number from 0"));
+        // one spelling per entry: no sign, space or leading zero
+        for j in ["00", "+0", " 0", "0 ", "01", ""] {
+            let p = format!("linear_rotor.balancer[{j}].drag");
+            assert!(err(&p, 0.1).starts_with(&format!("{p}: the index in [{j}] must be a whole number from 0")), "{}", err(&p, 0.1));
+        }
+        assert!(s.config_at(&[("linear_rotor.balancer[1].drag", 0.1)]).is_ok());
         assert!(err("linear_rotor.shafts[0].mass", 0.1).starts_with("linear_rotor.shafts[0].mass: unknown parameter path"));
         assert_eq!(err("linear_rotor.disks[0].mass", 0.1), "linear_rotor.disks[0].mass: the config has no [[linear_rotor.disks]] to set");
         assert!(err("linear_rotor.balancer[0].balls", 2.5).starts_with("linear_rotor.balancer[0].balls: must be a whole number"));
