@@ -375,3 +375,17 @@ fn regression_one_entry_had_several_paths_and_the_last_set_won() {
     assert!(line.contains("the index in [01] must be a whole number from 0"), "{line}");
     std::fs::remove_dir_all(&d).ok();
 }
+
+#[test]
+fn regression_a_drive_made_by_set_asked_for_b_without_saying_why() {
+    // the embedded default config has no [drive] and runs a default run-up; `--set
+    // drive.t_end=0.1` makes a [drive] table that replaces it, and the error said only
+    // "drive.b: required for kind = "acceleration"", a key the user never gave
+    let d = scratch("drive-by-set");
+    let spatial = examples("default.toml");
+    for cmd in ["basins", "simulate"] {
+        let line = rejects_in(&d, &[cmd, "--config", &spatial, "--set", "drive.t_end=0.1", "--out", "x"], "drive.b");
+        assert!(line.contains("a [drive] table, even one made by --set, replaces the default run-up"), "{line}");
+    }
+    std::fs::remove_dir_all(&d).ok();
+}
