@@ -389,3 +389,21 @@ fn regression_a_drive_made_by_set_asked_for_b_without_saying_why() {
     }
     std::fs::remove_dir_all(&d).ok();
 }
+
+#[test]
+fn regression_export_model_wrote_a_config_that_did_not_parse() {
+    // `--stem 'a"b'` wrote `m = "a"b_M.mtx"` (the name unquoted into TOML): the exported
+    // config could not be read back; a stem with a line break wrote files named across lines
+    let d = scratch("export-stem");
+    for stem in ["a\"b", "it's ä"] {
+        let (code, _, err) = run_in(&d, Duration::from_secs(60), &["export-model", "--out", "o/", "--stem", stem]);
+        assert_eq!(code, 0, "{stem}: {err}");
+        let cfg = format!("o/{stem}.toml");
+        let (code, _, err) = run_in(&d, Duration::from_secs(60), &["stability", "--config", &cfg, "--samples", "10", "--omega-max", "100 rad/s"]);
+        assert_eq!(code, 0, "{stem}: the export reads back: {err}");
+    }
+    let line = rejects_in(&d, &["export-model", "--out", "p/", "--stem", "x\ny"], "--stem");
+    assert!(line.contains("control character"), "{line}");
+    assert!(!d.join("p").exists());
+    std::fs::remove_dir_all(&d).ok();
+}

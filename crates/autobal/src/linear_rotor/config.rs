@@ -1006,12 +1006,13 @@ pub fn export(rotor: &LinearRotor, stem: &str) -> (String, Vec<(String, String)>
             continue;
         }
         let name = if key == "spin_chart" { format!("{stem}_chart.mtx") } else { format!("{stem}_{}.mtx", key.to_uppercase()) };
-        t.push_str(&format!("{key} = \"{name}\"\n"));
+        // quoted as TOML quotes it (a stem with `"` or `\\` wrote a config that did not parse)
+        t.push_str(&format!("{key} = {}\n", Value::String(name.clone())));
         files.push((name, write_matrix_market(a, n, &format!("{what}, {n} DOFs"))));
     }
     if !rotor.rotor_fixed_mass.is_empty() {
         let name = format!("{stem}_M_rot.mtx");
-        t.push_str(&format!("rotor_fixed_mass = \"{name}\"\n"));
+        t.push_str(&format!("rotor_fixed_mass = {}\n", Value::String(name.clone())));
         files.push((
             name,
             write_matrix_market(&rotor.rotor_fixed_mass, n, &format!("inertia fixed to the rotor M_rot (kg, kg m², in axes turning with it), {n} DOFs")),
