@@ -407,3 +407,41 @@ fn regression_export_model_wrote_a_config_that_did_not_parse() {
     assert!(!d.join("p").exists());
     std::fs::remove_dir_all(&d).ok();
 }
+
+#[cfg(unix)]
+#[test]
+fn regression_sigterm_left_the_streamed_csv_under_its_temporary_name() {
+    // a batch system's time limit (SIGTERM) or a closed terminal (SIGHUP) killed a sweep at
+    // once, leaving `STEM.csv.PID.part` and no JSON; both are handled as Ctrl-C now: the runs
+    // finished are kept in STEM.csv, and the run says so and exits 2
+    for sig in ["-TERM", "-HUP"] {
+        let d = scratch(&format!("sig{sig}"));
+        let mut child = Command::new(env!("CARGO_BIN_EXE_autobal"))
+            .args(["sweep", "--x", "drive.b=0.5:12.5:400", "--set", "drive.t_end=3000", "--threads", "1", "--out", "cc", "--no-plots"])
+            .current_dir(&d)
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        let mut err = child.stderr.take().unwrap();
+        let reader = std::thread::spawn(move || {
+            let mut s = String::new();
+            let _ = err.read_to_string(&mut s);
+            s
+        });
+        std::thread::sleep(Duration::from_millis(1500));
+        if child.try_wait().unwrap().is_some() {
+            std::fs::remove_dir_all(&d).ok();
+            continue; // finished before the signal: nothing to check
+        }
+        let _ = Command::new("kill").args([sig, &child.id().to_string()]).status();
+        let status = wait_for(child, Duration::from_secs(60), "sweep");
+        let err = reader.join().unwrap();
+        assert_eq!(status.code(), Some(2), "{sig}: {err}");
+        assert!(err.trim_end().lines().last().is_some_and(|l| l.starts_with("error: interrupted: ") && l.ends_with("kept in cc.csv")), "{sig}: {err}");
+        let mut names: Vec<String> = std::fs::read_dir(&d).unwrap().map(|e| e.unwrap().file_name().into_string().unwrap()).collect();
+        names.sort();
+        assert_eq!(names, ["cc.csv", "cc.json"], "{sig}: no temporary file left");
+        std::fs::remove_dir_all(&d).ok();
+    }
+}
