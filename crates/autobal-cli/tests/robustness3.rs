@@ -445,3 +445,32 @@ fn regression_sigterm_left_the_streamed_csv_under_its_temporary_name() {
         std::fs::remove_dir_all(&d).ok();
     }
 }
+
+#[test]
+fn regression_shaft_entry_values_were_blamed_on_other_keys() {
+    // found by setting each shaft-builder path to hostile values: a bearing table's speeds out
+    // of order were reported against `bearings[0]` for the config's `bearings[1]` (the rotor's
+    // validation counted the bearings with tables); `balancer[0].offset = 1e200` as
+    // "linear_rotor.m: is not positive definite"; `unbalance[0].offset = 1e300` ran to a step
+    // size of 0 at t = 0 and `phase = 1e300` ran, neither naming the key
+    let d = scratch("entry-values");
+    let shaft = short_shaft(&d);
+    let cases = [
+        ("linear_rotor.bearings[1].speeds[1]=0", "linear_rotor.bearings[1].speeds[1]", "must increase strictly: 0 after 0"),
+        ("linear_rotor.balancer[0].offset=1e200", "linear_rotor.balancer[0].offset", "got 1e200"),
+        ("linear_rotor.unbalance[0].offset=-1e300", "linear_rotor.unbalance[0].offset", "got 1e300"),
+        ("linear_rotor.unbalance[0].phase=1e300", "linear_rotor.unbalance[0].phase", "got 1e300"),
+    ];
+    for (set, field, why) in cases {
+        for cmd in [&["stability", "--samples", "10", "--omega-max", "1000 rad/s"][..], &["simulate", "--out", "s"]] {
+            let mut a = cmd.to_vec();
+            a.extend(["--config", &shaft, "--set", set]);
+            let line = rejects_in(&d, &a, field);
+            assert!(line.contains(why), "{line}");
+        }
+    }
+    // in range they run (a metre's offset, a phase of a few turns)
+    let (code, _, err) = run_in(&d, Duration::from_secs(60), &["simulate", "--config", &shaft, "--set", "linear_rotor.unbalance[0].phase=20", "--out", "s"]);
+    assert_eq!(code, 0, "{err}");
+    std::fs::remove_dir_all(&d).ok();
+}

@@ -59,6 +59,9 @@ use crate::drive::Drive;
 use crate::error::{Error, Result};
 use toml::{Table, Value};
 
+/// Why an axial offset from a node is bounded by a kilometre.
+const OFFSET: &str = "an axial offset from the node; no rotor is a kilometre long";
+
 /// The keys of `[linear_rotor]` and of its arrays of tables.
 const KEYS: &[(&str, &[&str])] = &[
     (
@@ -599,6 +602,15 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
                 if len == 0 {
                     return Err(Error::invalid(br.field("speeds"), "is empty: give the speeds (rad/s) of the table, at least one"));
                 }
+                // (checked by the rotor's validation too, which named the i-th bearing with a
+                // table, `bearings[0]` for the config's `bearings[1]`)
+                if let Some(j) = (1..len).find(|&j| !(speeds[j] > speeds[j - 1])) {
+                    let f = crate::error::fmt_num;
+                    return Err(Error::invalid(
+                        format!("{}[{j}]", br.field("speeds")),
+                        format!("must increase strictly: {} after {}", f(speeds[j]), f(speeds[j - 1])),
+                    ));
+                }
                 let col = |k: &str, fallback: Option<&str>| -> Result<Vec<f64>> {
                     let v = match br.array(k)? {
                         Some(v) => v,
@@ -648,6 +660,14 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
         if let Some(me) = u.f64("me")? {
             within(&u.field("me"), me.abs(), (0.0, false), 1e12, "kg·m (in magnitude)", "1e9 kg at 1e3 m")?;
         }
+        // (`offset = 1e300` ran to a step size of 0 at t = 0, `phase = 1e300` to an angle
+        // without a digit left, neither naming the key)
+        if let Some(o) = u.f64("offset")? {
+            within(&u.field("offset"), o.abs(), (0.0, false), 1e3, "m (in magnitude)", OFFSET)?;
+        }
+        if let Some(p) = u.f64("phase")? {
+            within(&u.field("phase"), p.abs(), (0.0, false), 1e3, "rad (in magnitude)", "as drive.psi0")?;
+        }
         rotor.unbalances.push(Unbalance {
             node: u.req_usize("node")?,
             me: u.req("me")?,
@@ -662,6 +682,10 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
         }
         if let Some(m) = b.f64("ball_mass")? {
             within(&b.field("ball_mass"), m, (0.0, true), 1e9, "kg", "as balancer.ball_mass")?;
+        }
+        // (`offset = 1e200` was reported as `linear_rotor.m: is not positive definite`)
+        if let Some(o) = b.f64("offset")? {
+            within(&b.field("offset"), o.abs(), (0.0, false), 1e3, "m (in magnitude)", OFFSET)?;
         }
         rotor.balancers.push(BalancerPlane {
             node: b.req_usize("node")?,
