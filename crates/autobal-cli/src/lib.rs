@@ -35,6 +35,12 @@ mod interrupt {
         let flag = FLAG.get_or_init(|| {
             let flag = Arc::new(AtomicBool::new(false));
             let f = flag.clone();
+            // SIGHUP or SIGTERM ignored when the process started (`nohup autobal sweep …`
+            // ignores SIGHUP) stays ignored: ctrlc's `termination` feature installs the handler
+            // for SIGINT, SIGTERM and SIGHUP alike, and `nohup` then no longer protected a run
+            // from `kill -HUP` or a closed terminal. SIGINT is handled whatever its disposition
+            // (as before the feature).
+            let ignored = ignored_at_start();
             let _ = ctrlc::set_handler(move || {
                 let polled = POLLED.load(Ordering::Relaxed);
                 if !polled || f.swap(true, Ordering::Relaxed) {
@@ -54,12 +60,53 @@ mod interrupt {
                     std::process::exit(130);
                 }
             });
+            ignore_again(&ignored);
             flag
         });
         flag.store(false, Ordering::Relaxed);
         POLLED.store(polled, Ordering::Relaxed);
         Control::with_flag(flag.clone())
     }
+
+    /// The signals the `termination` handler takes over (beyond SIGINT) that this process
+    /// started with ignored.
+    #[cfg(unix)]
+    fn ignored_at_start() -> Vec<libc::c_int> {
+        [libc::SIGHUP, libc::SIGTERM]
+            .into_iter()
+            .filter(|&sig| {
+                // SAFETY: `sigaction` with a null new action only reads the current one into
+                // `old`, a zeroed plain C struct it fills
+                unsafe {
+                    let mut old: libc::sigaction = std::mem::zeroed();
+                    libc::sigaction(sig, std::ptr::null(), &mut old) == 0 && old.sa_sigaction == libc::SIG_IGN
+                }
+            })
+            .collect()
+    }
+
+    #[cfg(not(unix))]
+    fn ignored_at_start() -> Vec<i32> {
+        Vec::new()
+    }
+
+    /// `signals` set back to ignored after the handler was installed.
+    #[cfg(unix)]
+    fn ignore_again(signals: &[libc::c_int]) {
+        for &sig in signals {
+            // SAFETY: `sigaction` installs SIG_IGN (no handler function) for a valid signal
+            // number, with an empty mask
+            unsafe {
+                let mut act: libc::sigaction = std::mem::zeroed();
+                act.sa_sigaction = libc::SIG_IGN;
+                libc::sigemptyset(&mut act.sa_mask);
+                libc::sigaction(sig, &act, std::ptr::null_mut());
+            }
+        }
+    }
+
+    #[cfg(not(unix))]
+    fn ignore_again(_: &[i32]) {}
 }
 
 #[derive(Parser)]

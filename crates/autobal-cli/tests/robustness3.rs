@@ -71,6 +71,56 @@ fn short_shaft(dir: &std::path::Path) -> String {
     p.to_str().unwrap().to_string()
 }
 
+/// `autobal sweep` of `points` runs of drive.b (3000 s each, one thread, `--out cc` in `dir`),
+/// behind `nohup` when `nohup` is set; stdout as given, stderr read on a thread. Returns once
+/// the sweep has started writing (its `cc.csv.PID.part` exists), panicking if it ended first.
+#[cfg(unix)]
+fn long_sweep(dir: &std::path::Path, points: usize, nohup: bool, stdout: Stdio) -> (std::process::Child, std::thread::JoinHandle<String>) {
+    let bin = env!("CARGO_BIN_EXE_autobal");
+    let mut cmd = if nohup {
+        let mut c = Command::new("nohup");
+        c.arg(bin);
+        c
+    } else {
+        Command::new(bin)
+    };
+    let x = format!("drive.b=0.5:12.5:{points}");
+    let mut child = cmd
+        .args(["sweep", "--x", &x, "--set", "drive.t_end=3000", "--threads", "1", "--out", "cc", "--no-plots"])
+        .current_dir(dir)
+        .stdin(Stdio::null())
+        .stdout(stdout)
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut err = child.stderr.take().unwrap();
+    let reader = std::thread::spawn(move || {
+        let mut s = String::new();
+        let _ = err.read_to_string(&mut s);
+        s
+    });
+    let t0 = Instant::now();
+    loop {
+        if let Some(s) = child.try_wait().unwrap() {
+            panic!("the sweep ended ({s}) before it started writing: {}", reader.join().unwrap());
+        }
+        let started = std::fs::read_dir(dir).unwrap().any(|e| e.unwrap().file_name().to_string_lossy().ends_with(".part"));
+        if started {
+            return (child, reader);
+        }
+        assert!(t0.elapsed() < Duration::from_secs(60), "the sweep wrote nothing in 60 s");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+}
+
+/// Send `sig` (`-INT`, `-TERM`, `-HUP`) to `child`, which must still be running.
+#[cfg(unix)]
+fn signal(child: &mut std::process::Child, sig: &str) {
+    assert!(child.try_wait().unwrap().is_none(), "the sweep is still running when {sig} is sent");
+    let ok = Command::new("kill").args([sig, &child.id().to_string()]).status().unwrap();
+    assert!(ok.success());
+}
+
 #[test]
 fn regression_shaft_builder_keys_were_unknown_parameter_paths() {
     // `--set linear_rotor.elements[0].length=0.3` said "unknown parameter path": the shaft
@@ -245,32 +295,15 @@ fn regression_ctrl_c_with_stdout_closed_ended_a_sweep_with_status_0() {
     // broken pipe of its table ended it quietly with status 0 instead, the partial sweep
     // passed on as complete
     let d = scratch("ctrlc-stdout-closed");
-    let mut child = Command::new(env!("CARGO_BIN_EXE_autobal"))
-        .args(["sweep", "--x", "drive.b=0.5:12.5:400", "--set", "drive.t_end=3000", "--threads", "1", "--out", "cc", "--no-plots"])
-        .current_dir(&d)
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
+    // 4000 runs of 3000 s (tens of milliseconds each at least): the Ctrl-C lands mid-sweep
+    let (mut child, reader) = long_sweep(&d, 4000, false, Stdio::piped());
     drop(child.stdout.take());
-    let mut err = child.stderr.take().unwrap();
-    let reader = std::thread::spawn(move || {
-        let mut s = String::new();
-        let _ = err.read_to_string(&mut s);
-        s
-    });
-    // a second is far from the 400 runs of 3000 s (each tens of milliseconds at least)
-    std::thread::sleep(Duration::from_millis(1500));
-    if child.try_wait().unwrap().is_some() {
-        std::fs::remove_dir_all(&d).ok();
-        return; // finished before the Ctrl-C: nothing to check
-    }
-    let _ = Command::new("kill").args(["-INT", &child.id().to_string()]).status();
+    signal(&mut child, "-INT");
     let status = wait_for(child, Duration::from_secs(60), "sweep");
     let err = reader.join().unwrap();
     assert_eq!(status.code(), Some(2), "{err}");
     let last = err.trim_end().lines().last().unwrap_or("");
-    assert!(last.starts_with("error: interrupted: ") && last.ends_with("runs complete, kept in cc.csv"), "{err}");
+    assert!(last.starts_with("error: interrupted: ") && last.ends_with("of 4000 runs complete, kept in cc.csv"), "{err}");
     assert!(d.join("cc.csv").is_file());
     std::fs::remove_dir_all(&d).ok();
 }
@@ -284,7 +317,8 @@ fn tiny_disk(name: &str, kib: u32) -> Option<std::path::PathBuf> {
     if ok {
         Some(d)
     } else {
-        eprintln!("skipped: cannot mount a tmpfs (not root?)");
+        eprintln!("skipped: {name}: cannot mount a tmpfs at {} (needs root and `mount`)", d.display());
+        std::fs::remove_dir_all(&d).ok();
         None
     }
 }
@@ -416,29 +450,15 @@ fn regression_sigterm_left_the_streamed_csv_under_its_temporary_name() {
     // finished are kept in STEM.csv, and the run says so and exits 2
     for sig in ["-TERM", "-HUP"] {
         let d = scratch(&format!("sig{sig}"));
-        let mut child = Command::new(env!("CARGO_BIN_EXE_autobal"))
-            .args(["sweep", "--x", "drive.b=0.5:12.5:400", "--set", "drive.t_end=3000", "--threads", "1", "--out", "cc", "--no-plots"])
-            .current_dir(&d)
-            .stdout(Stdio::null())
-            .stderr(Stdio::piped())
-            .spawn()
-            .unwrap();
-        let mut err = child.stderr.take().unwrap();
-        let reader = std::thread::spawn(move || {
-            let mut s = String::new();
-            let _ = err.read_to_string(&mut s);
-            s
-        });
-        std::thread::sleep(Duration::from_millis(1500));
-        if child.try_wait().unwrap().is_some() {
-            std::fs::remove_dir_all(&d).ok();
-            continue; // finished before the signal: nothing to check
-        }
-        let _ = Command::new("kill").args([sig, &child.id().to_string()]).status();
+        let (mut child, reader) = long_sweep(&d, 4000, false, Stdio::null());
+        signal(&mut child, sig);
         let status = wait_for(child, Duration::from_secs(60), "sweep");
         let err = reader.join().unwrap();
         assert_eq!(status.code(), Some(2), "{sig}: {err}");
-        assert!(err.trim_end().lines().last().is_some_and(|l| l.starts_with("error: interrupted: ") && l.ends_with("kept in cc.csv")), "{sig}: {err}");
+        assert!(
+            err.trim_end().lines().last().is_some_and(|l| l.starts_with("error: interrupted: ") && l.ends_with("of 4000 runs complete, kept in cc.csv")),
+            "{sig}: {err}"
+        );
         let mut names: Vec<String> = std::fs::read_dir(&d).unwrap().map(|e| e.unwrap().file_name().into_string().unwrap()).collect();
         names.sort();
         assert_eq!(names, ["cc.csv", "cc.json"], "{sig}: no temporary file left");
@@ -472,5 +492,33 @@ fn regression_shaft_entry_values_were_blamed_on_other_keys() {
     // in range they run (a metre's offset, a phase of a few turns)
     let (code, _, err) = run_in(&d, Duration::from_secs(60), &["simulate", "--config", &shaft, "--set", "linear_rotor.unbalance[0].phase=20", "--out", "s"]);
     assert_eq!(code, 0, "{err}");
+    std::fs::remove_dir_all(&d).ok();
+}
+
+#[cfg(unix)]
+#[test]
+fn regression_nohup_no_longer_kept_a_sweep_from_sighup() {
+    // ctrlc's `termination` feature installed its handler for SIGHUP over the SIG_IGN that
+    // `nohup` set: `nohup autobal sweep …` stopped on `kill -HUP` ("interrupted: 0 of 3 runs",
+    // exit 2). A SIGHUP ignored at start stays ignored: the sweep runs on to the end
+    let d = scratch("nohup");
+    // 30 runs (a few seconds in all): the SIGHUP is sent while it runs, and it completes
+    let (mut child, reader) = long_sweep(&d, 30, true, Stdio::null());
+    signal(&mut child, "-HUP");
+    let status = wait_for(child, Duration::from_secs(300), "nohup sweep");
+    let err = reader.join().unwrap();
+    assert_eq!(status.code(), Some(0), "{err}");
+    assert!(!err.contains("interrupted"), "{err}");
+    let csv = std::fs::read_to_string(d.join("cc.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 31, "a header and the 30 runs");
+    // SIGTERM (not ignored) still stops it, as Ctrl-C does
+    std::fs::remove_dir_all(&d).ok();
+    let d = scratch("nohup-term");
+    let (mut child, reader) = long_sweep(&d, 4000, true, Stdio::null());
+    signal(&mut child, "-TERM");
+    let status = wait_for(child, Duration::from_secs(60), "nohup sweep");
+    let err = reader.join().unwrap();
+    assert_eq!(status.code(), Some(2), "{err}");
+    assert!(err.trim_end().ends_with("of 4000 runs complete, kept in cc.csv"), "{err}");
     std::fs::remove_dir_all(&d).ok();
 }
