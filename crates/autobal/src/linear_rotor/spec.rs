@@ -135,11 +135,16 @@ impl LinearRotorSpec {
         &self.files
     }
 
-    /// The config with every `(path, value)` set, in order, read again; errors name the path
-    /// (and the value where the config refuses it).
+    /// The config with every `(path, value)` set, read again; errors name the path (and the
+    /// value where the config refuses it). The values are set in [`precedence`] order, whatever
+    /// the order of `set`: the values for every entry, then one entry's, then the factors, so
+    /// that a point of a map or a sweep is the same whichever axis is `x`.
     pub fn config_at(&self, set: &[(&str, f64)]) -> Result<LinearRotorConfig> {
         let mut root = self.root.clone();
-        for (p, v) in set {
+        let mut ordered: Vec<&(&str, f64)> = set.iter().collect();
+        // stable: paths of one rank keep their order (they touch different numbers)
+        ordered.sort_by_key(|(p, _)| precedence(p));
+        for (p, v) in ordered {
             set_path(&mut root, p, *v)?;
         }
         linear_rotor_bytes(&root, &mut |p| self.files.get(p).cloned().ok_or_else(|| format!("{p}: not among the files read with the config"))).map_err(|e| {
@@ -288,6 +293,22 @@ pub fn set_path(root: &mut Table, path: &str, value: f64) -> Result<()> {
     }
 }
 
+/// The rank of `path` in the order [`LinearRotorSpec::config_at`] sets several paths, so that
+/// two paths touching one number give the same point in either order (a map at
+/// `bearings[0].k = 1e6`, `support_stiffness_scale = 3` gave −0.0365 one way round and +3.648
+/// the other): 0, a value for every entry of a kind (`linear_rotor.ball_mass`, `.radius`,
+/// `.drag`, `.balls`, `.me`); 1, the rest (one entry's value, `balancer[j].drag`,
+/// `bearings[j].k`, `unbalance[j].me`, a table's entry, `[drive]`, …), which thus overrides the
+/// value for every entry; 2, the factors (`unbalance_scale`, `support_stiffness_scale`,
+/// `support_damping_scale`), which thus scale the values set at the point.
+pub fn precedence(path: &str) -> u8 {
+    match path.strip_prefix("linear_rotor.") {
+        Some("ball_mass" | "radius" | "drag" | "balls" | "me") => 0,
+        Some("unbalance_scale" | "support_stiffness_scale" | "support_damping_scale") => 2,
+        _ => 1,
+    }
+}
+
 /// Set the one boolean of a `[[linear_rotor.balancer]]`, `linear_rotor.balancer[j].contact`
 /// (the balls touch: [`crate::balls::BallPhysics::contact`]), which [`set_path`] cannot take
 /// (its values are numbers). Errors name `path`: another path, an index past the entries.
@@ -422,6 +443,41 @@ mod tests {
                     [[linear_rotor.balancer]]\nnode = 2\nradius = 0.05\nballs = 2\nball_mass = 0.01\n\
                     [[linear_rotor.balancer]]\nnode = 4\nradius = 0.04\nballs = 3\nball_mass = 0.02\ndrag = 0.1\n";
         LinearRotorSpec::new(toml::from_str(text).unwrap(), &mut |_| Err("no files".into())).unwrap()
+    }
+
+    /// Two paths touching one number give one point in either order (a map's `x` and `y`
+    /// swapped): the factors scale the values set at the point, one entry's value overrides the
+    /// value for every entry. Checked against the config written out by hand (a second route):
+    /// k = 3e6 for `bearings[0].k = 1e6` scaled by 3, the other bearing 3e6 too.
+    #[test]
+    fn paths_on_one_number_give_one_point_in_either_order() {
+        let s = two_planes();
+        let pairs: [[(&str, f64); 2]; 4] = [
+            [("linear_rotor.support_stiffness_scale", 3.0), ("linear_rotor.bearings[0].k", 1e6)],
+            [("linear_rotor.support_damping_scale", 2.0), ("linear_rotor.bearings[1].c", 10.0)],
+            [("linear_rotor.drag", 0.1), ("linear_rotor.balancer[0].drag", 0.3)],
+            [("linear_rotor.unbalance_scale", 2.0), ("linear_rotor.unbalance[1].me", 5e-4)],
+        ];
+        let by_hand: [&[(&str, f64)]; 4] = [
+            &[("linear_rotor.bearings[0].k", 3e6), ("linear_rotor.bearings[1].k", 3e6)],
+            &[("linear_rotor.bearings[1].c", 20.0)],
+            &[("linear_rotor.balancer[0].drag", 0.3), ("linear_rotor.balancer[1].drag", 0.1)],
+            &[("linear_rotor.unbalance[0].me", 2e-4), ("linear_rotor.unbalance[1].me", 1e-3)],
+        ];
+        for ([a, b], hand) in pairs.iter().zip(by_hand) {
+            let ab = s.config_at(&[*a, *b]).unwrap();
+            assert_eq!(ab, s.config_at(&[*b, *a]).unwrap(), "{} and {}", a.0, b.0);
+            assert_eq!(ab, s.config_at(hand).unwrap(), "{} and {}", a.0, b.0);
+        }
+        // `linear_rotor.me` (the only unbalance's) yields to unbalance[0].me either way
+        let text = "[linear_rotor]\n[[linear_rotor.elements]]\nlength = 0.1\ndiameter = 0.02\ne = 2.1e11\nrho = 7850.0\ncount = 4\n\
+                    [[linear_rotor.bearings]]\nnode = 0\nk = 1e6\n[[linear_rotor.bearings]]\nnode = 4\nk = 1e6\n\
+                    [[linear_rotor.unbalance]]\nnode = 2\nme = 1e-4\n\
+                    [[linear_rotor.balancer]]\nnode = 2\nradius = 0.05\nballs = 2\nball_mass = 0.01\n";
+        let one = LinearRotorSpec::new(toml::from_str(text).unwrap(), &mut |_| Err("no files".into())).unwrap();
+        let (a, b) = (("linear_rotor.me", 1e-3), ("linear_rotor.unbalance[0].me", 3e-4));
+        assert_eq!(one.config_at(&[a, b]).unwrap(), one.config_at(&[b, a]).unwrap());
+        assert_eq!(one.config_at(&[a, b]).unwrap().rotor.unbalances[0].me, 3e-4);
     }
 
     /// A path of one plane sets that plane and no other; the same value in every plane, set
