@@ -139,7 +139,7 @@ struct LinearArgs {
     /// dimensional config, or a bare number, the dimensionless Ω; default: [analysis] omega_max,
     /// else automatic (1.3 × the highest critical speed, and 1.25 × the top of
     /// [analysis] operating_speed)
-    #[arg(long, allow_hyphen_values = true, value_name = "SPEED")]
+    #[arg(long, value_name = "SPEED")]
     omega_max: Option<String>,
     /// Balls free (12 states) or locked at balance (8 states, the bare anisotropic rotor)
     #[arg(long, value_enum, default_value = "free")]
@@ -190,7 +190,7 @@ enum Command {
         #[arg(long, value_enum, default_value = "auto")]
         route: Route,
         /// Upper end of the general route's speed axis (a speed with its unit, or a bare Ω)
-        #[arg(long, allow_hyphen_values = true, value_name = "SPEED")]
+        #[arg(long, value_name = "SPEED")]
         omega_max: Option<String>,
     },
     /// Exact stable speed ranges, and 003's necessary ranges (eqs (1)-(3)) where they are defined
@@ -267,7 +267,7 @@ enum Command {
         #[arg(long, value_name = "KEY=LO:HI:N")]
         y: String,
         /// The speed when neither axis is a speed: 1400rpm, "147 rad/s", 23Hz, or a bare number Ω
-        #[arg(long, allow_hyphen_values = true, value_name = "SPEED")]
+        #[arg(long, value_name = "SPEED")]
         omega: Option<String>,
         /// Balls free (12 states) or locked (8 states)
         #[arg(long, value_enum, default_value = "free")]
@@ -832,6 +832,44 @@ where
     main_with_args(args)
 }
 
+/// The speed flags whose value may be negative (refused as a speed, with its reason).
+const SPEED_FLAGS: &[&str] = &["--omega-max", "--omega"];
+
+/// `args` with a speed flag followed by a negative speed (`--omega-max "-5 rpm"`, `--omega
+/// -.5`: `-` then a digit or `.`) joined into one `--omega-max=-5 rpm`, so that clap takes it
+/// as the value; any other word after the flag is left to clap (`--omega-max --samples 10`:
+/// "a value is required", where accepting every hyphen value took `--samples` as the speed and
+/// then refused `10` as an unexpected argument).
+fn negative_speeds_joined<I, T>(args: I) -> Vec<std::ffi::OsString>
+where
+    I: IntoIterator<Item = T>,
+    T: Into<std::ffi::OsString> + Clone,
+{
+    let mut out: Vec<std::ffi::OsString> = Vec::new();
+    let mut it = args.into_iter().map(Into::into).peekable();
+    while let Some(a) = it.next() {
+        if a == "--" {
+            out.push(a);
+            out.extend(it);
+            break;
+        }
+        let negative = |v: &std::ffi::OsString| {
+            let b = v.as_encoded_bytes();
+            b.len() >= 2 && b[0] == b'-' && (b[1].is_ascii_digit() || b[1] == b'.')
+        };
+        match (a.to_str(), it.peek()) {
+            (Some(flag), Some(v)) if SPEED_FLAGS.contains(&flag) && negative(v) => {
+                let mut joined = a.clone();
+                joined.push("=");
+                joined.push(it.next().unwrap());
+                out.push(joined);
+            }
+            _ => out.push(a),
+        }
+    }
+    out
+}
+
 /// Runs the `autobal` command line on `args` (the program name first, as `std::env::args_os`
 /// gives it) and returns the process's exit code: 0 on success, 2 on an error (its one-line
 /// message already on stderr), clap's own codes for `--help`, `--version` and usage errors.
@@ -841,7 +879,7 @@ where
     I: IntoIterator<Item = T>,
     T: Into<std::ffi::OsString> + Clone,
 {
-    let cli = match Cli::try_parse_from(args) {
+    let cli = match Cli::try_parse_from(negative_speeds_joined(args)) {
         Ok(cli) => cli,
         Err(e) => {
             let _ = e.print();

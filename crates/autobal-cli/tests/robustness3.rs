@@ -369,6 +369,17 @@ fn regression_a_negative_speed_with_its_unit_was_a_usage_error() {
         "--omega",
     );
     assert!(line.contains("-1400 rpm"), "{line}");
+    // `-.5` too (a hyphen then a dot)
+    let line = rejects_in(&d, &["stability", "--config", &dim, "--omega-max", "-.5"], "--omega-max");
+    assert!(line.contains("-.5"), "{line}");
+    // a flag after a speed flag is not its value: clap says the value is missing (accepting
+    // every hyphen value took the flag as the speed: `stability --omega-max --samples 10`
+    // refused `10` as an unexpected argument)
+    for (cmd, flag) in [("stability", "--omega-max"), ("campbell", "--omega-max"), ("map", "--omega")] {
+        let (code, _, err) = run_in(&d, Duration::from_secs(60), &[cmd, flag, "--config", &dim]);
+        assert_eq!(code, 2, "{err}");
+        assert!(err.contains(&format!("a value is required for '{flag} <SPEED>'")), "{cmd}: {err}");
+    }
     std::fs::remove_dir_all(&d).ok();
 }
 
@@ -478,7 +489,7 @@ fn regression_shaft_entry_values_were_blamed_on_other_keys() {
     let cases = [
         ("linear_rotor.bearings[1].speeds[1]=0", "linear_rotor.bearings[1].speeds[1]", "must increase strictly: 0 after 0"),
         ("linear_rotor.balancer[0].offset=1e200", "linear_rotor.balancer[0].offset", "got 1e200"),
-        ("linear_rotor.unbalance[0].offset=-1e300", "linear_rotor.unbalance[0].offset", "got 1e300"),
+        ("linear_rotor.unbalance[0].offset=-1e300", "linear_rotor.unbalance[0].offset", "got -1e300"),
         ("linear_rotor.unbalance[0].phase=1e300", "linear_rotor.unbalance[0].phase", "got 1e300"),
     ];
     for (set, field, why) in cases {
@@ -550,5 +561,21 @@ fn regression_a_map_point_depended_on_which_axis_was_x() {
     }
     assert_eq!(rows[0].len(), 4);
     assert_eq!(rows[0], rows[1], "the same grid point, the same number, bit for bit");
+    std::fs::remove_dir_all(&d).ok();
+}
+
+#[test]
+fn regression_two_spellings_of_one_ball_index_let_an_axis_be_ignored() {
+    // `drive.psi0[01]` was trimmed and parsed as `drive.psi0[1]`: two axes on one number, the
+    // x axis silently ignored; now the grid refuses them naming both, and the spelling alone
+    // is refused as the linear rotor's `balancer[00]` is
+    let d = scratch("psi0-spelling");
+    // (the grid compares the paths' canonical forms too: sweep::tests)
+    let line =
+        rejects_in(&d, &["sweep", "--x", "drive.psi0[01]=1,2", "--y", "drive.psi0[1]=0,1", "--set", "drive.t_end=0.1", "--out", "s"], "--x drive.psi0[01]");
+    assert!(line.contains("the index in [01] must be a whole number from 1"), "{line}");
+    assert!(!d.join("s.csv").exists());
+    let line = rejects_in(&d, &["sweep", "--x", "drive.psi0[ 1]=1,2", "--set", "drive.t_end=0.1", "--out", "s"], "--x drive.psi0[ 1]");
+    assert!(line.contains("without sign, space or leading zero"), "{line}");
     std::fs::remove_dir_all(&d).ok();
 }

@@ -362,6 +362,7 @@ fn set_entry_of(lr: &mut Table, path: &str, kind: &str, keys: &[&str], j: &str, 
     let Some(i) = at else { return insert(entry, field, v, path) };
     let i = index(i).ok_or_else(|| bad(format!("the index in [{i}] must be a whole number from 0 (the first speed of the table)")))?;
     let t = entry.as_table_mut().ok_or_else(|| bad("an entry of the array is not a table".into()))?;
+    let tabulated = t.contains_key("speeds");
     match t.get_mut(name) {
         Some(Value::Array(a)) => {
             let len = a.len();
@@ -374,16 +375,25 @@ fn set_entry_of(lr: &mut Table, path: &str, kind: &str, keys: &[&str], j: &str, 
             *x = v;
             Ok(())
         }
+        // a tabulated bearing without this table (kxy, kyx, cxy, cyx default to zeros, kyy and
+        // cyy to kxx and cxx): its entries are set in the config, not made by a path
+        _ if tabulated => Err(bad(format!(
+            "linear_rotor.{kind}[{j}] has no table {name} (without one it is {}): add `{name} = [...]`, one value per speed, to the bearing in the config to set its entries",
+            match name {
+                "kyy" => "kxx's table",
+                "cyy" => "cxx's table",
+                _ => "zero at every speed",
+            }
+        ))),
         _ => Err(bad(format!("linear_rotor.{kind}[{j}] has no table {name} over speed (a constant bearing's numbers are k and c)"))),
     }
 }
 
-/// An index as a path spells it: decimal digits, no sign, space or leading zero, so that one
-/// entry has one path (`balancer[00]` and `balancer[ 0]` beside `balancer[0]` were two `--set`
-/// keys for one number, the last winning without a word).
+/// An index as a path spells it ([`crate::paths::index_digits`]: decimal digits, no sign,
+/// space or leading zero), so that one entry has one path (`balancer[00]` and `balancer[ 0]`
+/// beside `balancer[0]` were two `--set` keys for one number, the last winning without a word).
 fn index(s: &str) -> Option<usize> {
-    let canonical = !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit()) && (s == "0" || !s.starts_with('0'));
-    canonical.then(|| s.parse().ok()).flatten()
+    crate::paths::index_digits(s)
 }
 
 /// The tables of `[[linear_rotor.KIND]]`; none is an error naming `path`.
@@ -593,6 +603,63 @@ mod tests {
         assert!(err("linear_rotor.disks[0].node", 9.0).starts_with("linear_rotor.disks[0].node"), "{}", err("linear_rotor.disks[0].node", 9.0));
         // k on a bearing tabulated over speed is refused, not ignored
         assert!(err("linear_rotor.bearings[1].k", 1e6).starts_with("linear_rotor.bearings[1].k"), "{}", err("linear_rotor.bearings[1].k", 1e6));
+        // a table the tabulated bearing lacks: say to add it (it said "a constant bearing's
+        // numbers are k and c", of a bearing that is not constant)
+        assert_eq!(
+            err("linear_rotor.bearings[1].kxy[0]", 1e5),
+            "linear_rotor.bearings[1].kxy[0]: linear_rotor.bearings[1] has no table kxy (without one it is zero at every speed): add `kxy = [...]`, one value per speed, to the bearing in the config to set its entries"
+        );
+        assert!(err("linear_rotor.bearings[1].cyy[1]", 1.0).contains("(without one it is cxx's table)"));
+        // the tables' bounds name the entry: direct damping as a constant `c` (not negative),
+        // cross-coupled damping and stiffness by magnitude (negative allowed), speeds finite and
+        // within the config's speed range; the value as given
+        let edit = |from: &str, to: &str| {
+            assert_eq!(text.matches(from).count(), 1, "{from}");
+            LinearRotorSpec::new(toml::from_str(&text.replace(from, to)).unwrap(), &mut |_| Err("no files".into())).map(|_| ()).map_err(|e| e.to_string())
+        };
+        assert_eq!(edit("cxx = [300.0, 300.0]", "cxx = [300.0, -1e3]").unwrap_err(), "linear_rotor.bearings[1].cxx[1]: must not be negative, got -1000");
+        assert!(edit("cxx = [300.0, 300.0]", "cxx = [300.0, 300.0]\ncyy = [-1.0, 300.0]")
+            .unwrap_err()
+            .starts_with("linear_rotor.bearings[1].cyy[0]: must not be negative"));
+        assert_eq!(edit("cxx = [300.0, 300.0]", "cxx = [300.0, 300.0]\ncxy = [-50.0, 50.0]\ncyx = [50.0, -50.0]"), Ok(()));
+        assert_eq!(edit("kxx = [2e6, 3e6]", "kxx = [2e6, 3e6]\nkxy = [-1e6, 1e6]"), Ok(()));
+        assert_eq!(
+            edit("cxx = [300.0, 300.0]", "cxx = [300.0, 300.0]\ncxy = [0.0, -2e12]").unwrap_err(),
+            "linear_rotor.bearings[1].cxy[1]: must lie in [-1e12, 1e12] N·s/m, got -2e12 (as supports.damping_left)"
+        );
+        assert_eq!(
+            edit("speeds = [0.0, 1000.0]", "speeds = [0.0, 1e300]").unwrap_err(),
+            "linear_rotor.bearings[1].speeds[1]: must lie in [-1e6, 1e6] rad/s, got 1e300 (±1e6 rad/s (~1e7 rpm), beyond every machine)"
+        );
+        assert!(edit("speeds = [0.0, 1000.0]", "speeds = [0.0, inf]").unwrap_err().starts_with("linear_rotor.bearings[1].speeds[1]: "));
+        assert!(edit("speeds = [0.0, 1000.0]", "speeds = [nan, 1000.0]").unwrap_err().starts_with("linear_rotor.bearings[1].speeds[0]: "));
+        assert_eq!(edit("speeds = [0.0, 1000.0]", "speeds = [-1e6, 1e6]"), Ok(()));
+    }
+
+    /// The offsets, `me` and `phase` are bounded in magnitude and the error prints the value as
+    /// given (-2e3 was reported as "got 2000"); the phase's reason speaks of the phase.
+    #[test]
+    fn magnitudes_are_reported_as_given() {
+        let s = two_planes();
+        let err = |p: &str, v: f64| s.config_at(&[(p, v)]).unwrap_err().to_string();
+        assert_eq!(
+            err("linear_rotor.balancer[0].offset", -2e3),
+            "linear_rotor.balancer[0].offset: must lie in [-1000, 1000] m, got -2000 (an axial offset from the node; no rotor is a kilometre long)"
+        );
+        assert!(err("linear_rotor.unbalance[1].offset", -2e3).ends_with("got -2000 (an axial offset from the node; no rotor is a kilometre long)"));
+        assert!(err("linear_rotor.unbalance[0].me", -2e12).contains("got -2e12"));
+        let e = err("linear_rotor.unbalance[0].phase", -1e300);
+        assert!(e.contains("got -1e300 (an angle: 1e3 rad is ~160 turns") && !e.contains("psi0"), "{e}");
+        assert!(s.config_at(&[("linear_rotor.unbalance[0].phase", -1e3), ("linear_rotor.balancer[1].offset", -1e3)]).is_ok());
+        // too many elements name the count that passes the limit (at the limit, 497 elements:
+        // 4 × 498 DOFs and 5 balls within 2000, is taken)
+        assert_eq!(
+            err("linear_rotor.elements[0].count", 10000.0),
+            "linear_rotor.elements[0].count: 10000 elements bring the shaft to 10000 elements, 40004 DOFs (4 per node), past the limit of 2000 (dense matrices): at most 499 elements in all, fewer with balancer balls"
+        );
+        let at_limit = s.config_at(&[("linear_rotor.elements[0].count", 497.0)]);
+        assert!(at_limit.is_ok(), "{at_limit:?}");
+        assert!(err("linear_rotor.elements[0].count", 500.0).contains("2004 DOFs"));
     }
 
     /// The path reaches the physics: a 4 kg disk at the middle of a pinned shaft of nearly
