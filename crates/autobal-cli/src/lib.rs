@@ -35,6 +35,12 @@ mod interrupt {
         let flag = FLAG.get_or_init(|| {
             let flag = Arc::new(AtomicBool::new(false));
             let f = flag.clone();
+            // SIGHUP or SIGTERM ignored when the process started (`nohup autobal sweep …`
+            // ignores SIGHUP) stays ignored: ctrlc's `termination` feature installs the handler
+            // for SIGINT, SIGTERM and SIGHUP alike, and `nohup` then no longer protected a run
+            // from `kill -HUP` or a closed terminal. SIGINT is handled whatever its disposition
+            // (as before the feature).
+            let ignored = ignored_at_start();
             let _ = ctrlc::set_handler(move || {
                 let polled = POLLED.load(Ordering::Relaxed);
                 if !polled || f.swap(true, Ordering::Relaxed) {
@@ -54,12 +60,53 @@ mod interrupt {
                     std::process::exit(130);
                 }
             });
+            ignore_again(&ignored);
             flag
         });
         flag.store(false, Ordering::Relaxed);
         POLLED.store(polled, Ordering::Relaxed);
         Control::with_flag(flag.clone())
     }
+
+    /// The signals the `termination` handler takes over (beyond SIGINT) that this process
+    /// started with ignored.
+    #[cfg(unix)]
+    fn ignored_at_start() -> Vec<libc::c_int> {
+        [libc::SIGHUP, libc::SIGTERM]
+            .into_iter()
+            .filter(|&sig| {
+                // SAFETY: `sigaction` with a null new action only reads the current one into
+                // `old`, a zeroed plain C struct it fills
+                unsafe {
+                    let mut old: libc::sigaction = std::mem::zeroed();
+                    libc::sigaction(sig, std::ptr::null(), &mut old) == 0 && old.sa_sigaction == libc::SIG_IGN
+                }
+            })
+            .collect()
+    }
+
+    #[cfg(not(unix))]
+    fn ignored_at_start() -> Vec<i32> {
+        Vec::new()
+    }
+
+    /// `signals` set back to ignored after the handler was installed.
+    #[cfg(unix)]
+    fn ignore_again(signals: &[libc::c_int]) {
+        for &sig in signals {
+            // SAFETY: `sigaction` installs SIG_IGN (no handler function) for a valid signal
+            // number, with an empty mask
+            unsafe {
+                let mut act: libc::sigaction = std::mem::zeroed();
+                act.sa_sigaction = libc::SIG_IGN;
+                libc::sigemptyset(&mut act.sa_mask);
+                libc::sigaction(sig, &act, std::ptr::null_mut());
+            }
+        }
+    }
+
+    #[cfg(not(unix))]
+    fn ignore_again(_: &[i32]) {}
 }
 
 #[derive(Parser)]
@@ -92,7 +139,7 @@ struct LinearArgs {
     /// dimensional config, or a bare number, the dimensionless Ω; default: [analysis] omega_max,
     /// else automatic (1.3 × the highest critical speed, and 1.25 × the top of
     /// [analysis] operating_speed)
-    #[arg(long, allow_negative_numbers = true, value_name = "SPEED")]
+    #[arg(long, value_name = "SPEED")]
     omega_max: Option<String>,
     /// Balls free (12 states) or locked at balance (8 states, the bare anisotropic rotor)
     #[arg(long, value_enum, default_value = "free")]
@@ -143,7 +190,7 @@ enum Command {
         #[arg(long, value_enum, default_value = "auto")]
         route: Route,
         /// Upper end of the general route's speed axis (a speed with its unit, or a bare Ω)
-        #[arg(long, allow_negative_numbers = true, value_name = "SPEED")]
+        #[arg(long, value_name = "SPEED")]
         omega_max: Option<String>,
     },
     /// Exact stable speed ranges, and 003's necessary ranges (eqs (1)-(3)) where they are defined
@@ -220,7 +267,7 @@ enum Command {
         #[arg(long, value_name = "KEY=LO:HI:N")]
         y: String,
         /// The speed when neither axis is a speed: 1400rpm, "147 rad/s", 23Hz, or a bare number Ω
-        #[arg(long, allow_negative_numbers = true, value_name = "SPEED")]
+        #[arg(long, value_name = "SPEED")]
         omega: Option<String>,
         /// Balls free (12 states) or locked (8 states)
         #[arg(long, value_enum, default_value = "free")]
@@ -511,19 +558,30 @@ fn run(cli: Cli, control: &Control) -> Result<()> {
 /// Print a command's output on stdout in `format` (the JSON streamed where the output streams
 /// it); an output cut short (Ctrl-C) is then an error saying what was kept.
 fn show(out: &impl Output, format: Format) -> Result<()> {
-    match format {
-        Format::Json => {
+    let printed = match format {
+        Format::Json => (|| {
             use std::io::Write;
             let stdout = std::io::stdout();
             let mut lock = stdout.lock();
             out.write_json(&mut lock)?;
             lock.flush()?;
-        }
-        Format::Table => term::print(&out.table()?)?,
-    }
-    match out.stopped() {
-        Some(why) => Err(anyhow::anyhow!(why)),
-        None => Ok(()),
+            Ok(())
+        })(),
+        Format::Table => out.table().and_then(|t| term::print(&t)),
+    };
+    stopped_after(printed, out.stopped())
+}
+
+/// What a command that printed its output (`printed`) ends with: a run cut short (`stopped`,
+/// Ctrl-C) is an error saying what was kept even when standard output was closed (`autobal
+/// sweep … | head -c0`: the broken pipe ended it quietly with status 0, the partial result
+/// passed on as complete); otherwise the printing's own outcome (a broken pipe: `main` ends
+/// quietly).
+fn stopped_after(printed: Result<()>, stopped: Option<String>) -> Result<()> {
+    match (printed, stopped) {
+        (Err(e), _) if !term::is_broken_pipe(&e) => Err(e),
+        (_, Some(why)) => Err(anyhow::anyhow!(why)),
+        (printed, None) => printed,
     }
 }
 
@@ -622,12 +680,15 @@ fn run_sweep(a: SweepFlags, control: &Control) -> Result<()> {
     json.commit()?;
     drop(spill);
     if let Format::Json = a.format {
-        use std::io::Write;
-        let stdout = std::io::stdout();
-        let mut lock = stdout.lock();
-        std::io::copy(&mut std::fs::File::open(&json_path)?, &mut lock)?;
-        lock.flush()?;
-        return out.stopped().map_or(Ok(()), |why| Err(anyhow::anyhow!(why)));
+        let printed = (|| {
+            use std::io::Write;
+            let stdout = std::io::stdout();
+            let mut lock = stdout.lock();
+            std::io::copy(&mut std::fs::File::open(&json_path)?, &mut lock)?;
+            lock.flush()?;
+            Ok(())
+        })();
+        return stopped_after(printed, out.stopped());
     }
     show(&out, a.format)
 }
@@ -663,9 +724,14 @@ fn run_map(args: &map::Args, config: Option<&std::path::Path>, out: &std::path::
         o.output("--out", &map::boundary_path(&stem));
     }
     o.check()?;
-    let mut w = outfile::Staged::create("--out", &term::with_suffix(&stem, "csv"))?;
+    let csv = term::with_suffix(&stem, "csv");
+    let mut w = outfile::Staged::create("--out", &csv)?;
     let (shown, bar) = term::progress_bar(control);
-    let result = plan.run(&shown, map::Rows::Csv(&mut w));
+    // a write of the rows that failed (a full disk) said only "No space left on device"
+    let result = plan.run(&shown, map::Rows::Csv(&mut w)).map_err(|e| match e.downcast::<std::io::Error>() {
+        Ok(io) => anyhow::anyhow!("--out: cannot write {}: {io}", csv.display()),
+        Err(e) => e,
+    });
     if let Some(b) = bar {
         b.finish_and_clear();
     }
@@ -766,6 +832,44 @@ where
     main_with_args(args)
 }
 
+/// The speed flags whose value may be negative (refused as a speed, with its reason).
+const SPEED_FLAGS: &[&str] = &["--omega-max", "--omega"];
+
+/// `args` with a speed flag followed by a negative speed (`--omega-max "-5 rpm"`, `--omega
+/// -.5`: `-` then a digit or `.`) joined into one `--omega-max=-5 rpm`, so that clap takes it
+/// as the value; any other word after the flag is left to clap (`--omega-max --samples 10`:
+/// "a value is required", where accepting every hyphen value took `--samples` as the speed and
+/// then refused `10` as an unexpected argument).
+fn negative_speeds_joined<I, T>(args: I) -> Vec<std::ffi::OsString>
+where
+    I: IntoIterator<Item = T>,
+    T: Into<std::ffi::OsString> + Clone,
+{
+    let mut out: Vec<std::ffi::OsString> = Vec::new();
+    let mut it = args.into_iter().map(Into::into).peekable();
+    while let Some(a) = it.next() {
+        if a == "--" {
+            out.push(a);
+            out.extend(it);
+            break;
+        }
+        let negative = |v: &std::ffi::OsString| {
+            let b = v.as_encoded_bytes();
+            b.len() >= 2 && b[0] == b'-' && (b[1].is_ascii_digit() || b[1] == b'.')
+        };
+        match (a.to_str(), it.peek()) {
+            (Some(flag), Some(v)) if SPEED_FLAGS.contains(&flag) && negative(v) => {
+                let mut joined = a.clone();
+                joined.push("=");
+                joined.push(it.next().unwrap());
+                out.push(joined);
+            }
+            _ => out.push(a),
+        }
+    }
+    out
+}
+
 /// Runs the `autobal` command line on `args` (the program name first, as `std::env::args_os`
 /// gives it) and returns the process's exit code: 0 on success, 2 on an error (its one-line
 /// message already on stderr), clap's own codes for `--help`, `--version` and usage errors.
@@ -775,7 +879,7 @@ where
     I: IntoIterator<Item = T>,
     T: Into<std::ffi::OsString> + Clone,
 {
-    let cli = match Cli::try_parse_from(args) {
+    let cli = match Cli::try_parse_from(negative_speeds_joined(args)) {
         Ok(cli) => cli,
         Err(e) => {
             let _ = e.print();

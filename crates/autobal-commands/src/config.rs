@@ -93,26 +93,38 @@ pub fn read_input(file: std::fs::File, limit: u64) -> std::io::Result<Vec<u8>> {
     }
 }
 
-/// Read at most [`MAX_CONFIG_BYTES`] of a config file as UTF-8.
-pub(crate) fn read_limited(p: &std::path::Path) -> Result<String> {
-    let name = format!("--config {}", p.display());
-    let file = open_input(p).map_err(|e| anyhow!("{name}: cannot read: {e}"))?;
-    if file.metadata().map(|m| m.is_dir()).unwrap_or(false) {
-        bail!("{name}: is a directory, not a config file");
+/// Why [`read_input_file`] read nothing.
+pub const NO_WRITER: &str = "is a named pipe with no writer (nothing to read); start the program that writes it first, or give a file";
+
+/// The bytes of an input file (a config, a matrix file), at most `limit + 1` of them
+/// ([`open_input`], [`read_input`]); `what` names it in "is a directory, not {what}". The error
+/// is the reason alone (the caller puts the file's name in front): `cannot read: …`, a folder,
+/// or a named pipe with no writer ([`NO_WRITER`]: opened without waiting, no writer reads as an
+/// empty file, which the caller would report as a file without content).
+pub fn read_input_file(p: &std::path::Path, limit: u64, what: &str) -> std::result::Result<Vec<u8>, String> {
+    let file = open_input(p).map_err(|e| format!("cannot read: {e}"))?;
+    let meta = file.metadata().ok();
+    if meta.as_ref().is_some_and(|m| m.is_dir()) {
+        return Err(format!("is a directory, not {what}"));
     }
     #[cfg(unix)]
     let fifo = {
         use std::os::unix::fs::FileTypeExt;
-        file.metadata().is_ok_and(|m| m.file_type().is_fifo())
+        meta.is_some_and(|m| m.file_type().is_fifo())
     };
     #[cfg(not(unix))]
     let fifo = false;
-    let bytes = read_input(file, MAX_CONFIG_BYTES).map_err(|e| anyhow!("{name}: cannot read: {e}"))?;
+    let bytes = read_input(file, limit).map_err(|e| format!("cannot read: {e}"))?;
     if fifo && bytes.is_empty() {
-        // opened without waiting (`open_input`): no writer reads as empty, which would be
-        // reported as a config without a rotor; the pipe is named instead
-        bail!("{name}: is a named pipe with no writer (nothing to read); start the program that writes it first, or give a file");
+        return Err(NO_WRITER.into());
     }
+    Ok(bytes)
+}
+
+/// Read at most [`MAX_CONFIG_BYTES`] of a config file as UTF-8.
+pub(crate) fn read_limited(p: &std::path::Path) -> Result<String> {
+    let name = format!("--config {}", p.display());
+    let bytes = read_input_file(p, MAX_CONFIG_BYTES, "a config file").map_err(|e| anyhow!("{name}: {e}"))?;
     if bytes.len() as u64 > MAX_CONFIG_BYTES {
         return Err(autobal::Error::TooLarge {
             what: name,

@@ -48,6 +48,10 @@ impl command::Command for Args {
         if self.stem.is_empty() || self.stem.contains(['/', '\\']) {
             bail!("--stem {:?}: a file name stem without a folder (the folder is --out)", self.stem);
         }
+        // (a newline in the stem wrote files whose names break every listing and message)
+        if self.stem.chars().any(char::is_control) {
+            bail!("--stem {:?}: has a control character (a line break, a tab, …): give a file name stem of printable characters", self.stem);
+        }
         let (rotor, root) = match &self.config {
             ConfigSource::File { path: None, sets } => {
                 if let Some(s) = sets.first() {

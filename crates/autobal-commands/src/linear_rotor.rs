@@ -37,9 +37,9 @@ pub fn is_linear(root: &Table) -> bool {
 /// library parses them), relative to the config's folder, at most [`MAX_MATRIX_BYTES`].
 fn read_matrix(dir: &Path, name: &str) -> std::result::Result<Vec<u8>, String> {
     let p = dir.join(name);
-    // (a FIFO nobody writes hung the blocking open: config::open_input)
-    let f = config::open_input(&p).map_err(|e| format!("cannot read {}: {e}", p.display()))?;
-    let bytes = config::read_input(f, MAX_MATRIX_BYTES).map_err(|e| format!("cannot read {}: {e}", p.display()))?;
+    // (a FIFO nobody writes hung the blocking open, then read as "empty file": one reader with
+    // the config's, config::read_input_file)
+    let bytes = config::read_input_file(&p, MAX_MATRIX_BYTES, "a matrix file").map_err(|e| format!("{}: {e}", p.display()))?;
     if bytes.len() as u64 > MAX_MATRIX_BYTES {
         return Err(format!("larger than {} bytes", MAX_MATRIX_BYTES));
     }
@@ -55,7 +55,8 @@ pub fn from_table(root: &Table, dir: &Path) -> Result<LinearRotorConfig> {
 /// the papers' configs): `linear_rotor.KEY`, `drive.KEY`, `integration.KEY`; a map's or a
 /// sweep's parameter path under `linear_rotor` ([`autobal::linear_rotor::spec::PATHS`]: the
 /// number of one entry of its arrays of tables, `linear_rotor.balancer[j].KEY`,
-/// `linear_rotor.unbalance[j].KEY`, and the paths that act on every entry,
+/// `linear_rotor.unbalance[j].KEY`, the shaft builder's `linear_rotor.elements[j].KEY`,
+/// `linear_rotor.disks[j].KEY`, `linear_rotor.bearings[j].KEY` (`.kxx[i]`), and the paths that act on every entry,
 /// `linear_rotor.drag`, `.ball_mass`, `.me`, `.unbalance_scale`, …) as the map sets it
 /// ([`autobal::linear_rotor::spec::set_path`]); a plane's real-ball switch
 /// `linear_rotor.balancer[j].contact=true|false` ([`autobal::linear_rotor::spec::set_contact`]).
@@ -78,7 +79,7 @@ pub fn apply_set(root: &mut Table, assignment: &str) -> Result<()> {
         return Ok(autobal::linear_rotor::spec::set_path(root, key.trim(), v)?);
     }
     if !["linear_rotor", "drive", "integration"].contains(&t) || k.is_empty() || k.contains('.') {
-        bail!("--set {key}: a linear rotor config sets linear_rotor.KEY, drive.KEY, integration.KEY, a parameter path of its maps (linear_rotor.drag, .ball_mass, .radius, .balls, .me, …: every entry), or one entry's number as linear_rotor.balancer[j].KEY, linear_rotor.unbalance[j].KEY (j from 0)");
+        bail!("--set {key}: a linear rotor config sets linear_rotor.KEY, drive.KEY, integration.KEY, a parameter path of its maps (linear_rotor.drag, .ball_mass, .radius, .balls, .me, …: every entry), or one entry's number as linear_rotor.balancer[j].KEY, linear_rotor.unbalance[j].KEY, linear_rotor.elements[j].KEY, linear_rotor.disks[j].KEY, linear_rotor.bearings[j].KEY (j from 0)");
     }
     let table = root.entry(t.to_string()).or_insert_with(|| toml::Value::Table(Table::new()));
     let table = table.as_table_mut().ok_or_else(|| anyhow!("--set {key}: `{t}` is not a table"))?;
@@ -1030,15 +1031,11 @@ pub fn export_model(rotor: &LinearRotor, inputs: (Option<&Path>, Option<(&Table,
         o.output("--out", &dir.join(name));
     }
     o.check()?;
-    let mut written = vec![];
-    for (name, body) in files {
-        let p = dir.join(name);
-        outfile::write_atomic("--out", &p, body)?;
-        written.push(p);
-    }
-    outfile::write_atomic("--out", &toml_path, text)?;
-    written.insert(0, toml_path);
-    Ok(written)
+    // the config and its matrices whole, or none of them (a full disk left some matrices
+    // without their config)
+    let mut all = vec![(toml_path, text.into_bytes())];
+    all.extend(files.into_iter().map(|(name, body)| (dir.join(name), body.into_bytes())));
+    outfile::write_all_or_none("--out", &all)
 }
 
 #[cfg(test)]

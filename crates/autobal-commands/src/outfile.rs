@@ -566,6 +566,30 @@ impl Drop for Staged {
     }
 }
 
+/// Write every `(path, bytes)` whole, or none of them: each is written and flushed under its
+/// temporary name first, and only when all are written are they renamed into place; on an
+/// error the temporary files and the folders made for them are removed. (A full disk at the
+/// third file of `export-model` left the first two: a model folder without its config.)
+pub fn write_all_or_none(option: &str, files: &[(PathBuf, Vec<u8>)]) -> Result<Vec<PathBuf>> {
+    let mut staged: Vec<Staged> = Vec::with_capacity(files.len());
+    let result = (|| -> Result<()> {
+        for (p, bytes) in files {
+            let mut s = Staged::create(option, p)?;
+            s.write_all(bytes).and_then(|_| s.flush()).with_context(|| format!("{option}: cannot write {}", p.display()))?;
+            staged.push(s);
+        }
+        Ok(())
+    })();
+    if let Err(e) = result {
+        // the last made first: a folder the first file made is empty when its turn comes
+        while let Some(s) = staged.pop() {
+            drop(s);
+        }
+        return Err(e);
+    }
+    staged.into_iter().map(Staged::commit).collect()
+}
+
 /// Write `bytes` to `path` through a temporary file and a rename: the file appears whole or
 /// not at all.
 pub fn write_atomic(option: &str, path: &Path, bytes: impl AsRef<[u8]>) -> Result<()> {
@@ -621,6 +645,29 @@ mod tests {
         let _ = std::fs::remove_dir_all(&d);
         std::fs::create_dir_all(&d).unwrap();
         d
+    }
+
+    /// A set of files written whole or not at all: the third cannot be created (its folder is
+    /// a file), so neither of the first two appears, nor their temporary files, nor the folder
+    /// made for them; with all three writable all three appear, byte for byte.
+    #[test]
+    fn all_or_none_leaves_nothing_when_one_fails() {
+        let d = scratch("all-or-none");
+        std::fs::write(d.join("blocker"), "a file where a folder is needed").unwrap();
+        let out = d.join("model");
+        let files =
+            |third: PathBuf| vec![(out.join("m.toml"), b"[linear_rotor]\n".to_vec()), (out.join("m_M.mtx"), vec![b'x'; 100_000]), (third, b"k".to_vec())];
+        let e = write_all_or_none("--out", &files(d.join("blocker").join("m_K.mtx"))).unwrap_err().to_string();
+        assert!(e.starts_with("--out: cannot create"), "{e}");
+        assert!(!out.exists(), "the folder made for the set is removed: {:?}", std::fs::read_dir(&out).map(|r| r.count()));
+        let ok = files(out.join("m_K.mtx"));
+        let written = write_all_or_none("--out", &ok).unwrap();
+        assert_eq!(written, ok.iter().map(|f| f.0.clone()).collect::<Vec<_>>());
+        for (p, bytes) in &ok {
+            assert_eq!(&std::fs::read(p).unwrap(), bytes);
+        }
+        assert_eq!(std::fs::read_dir(&out).unwrap().count(), 3, "no temporary file left");
+        std::fs::remove_dir_all(&d).ok();
     }
 
     #[test]

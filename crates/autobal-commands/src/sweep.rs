@@ -334,6 +334,14 @@ impl Args {
     fn plan(&self, base: Base, root: toml::Table, axes: Vec<(&'static str, &Axis)>, problem: Value, units: (&'static str, f64)) -> Result<Plan> {
         let grid = Grid::new(axes.into_iter().map(|(_, a)| a.clone()).collect())?;
         let range = match self.shard {
+            // (--shard 1/1000000000000 on a one-point grid was taken: shards past the points run
+            // nothing, and `merge` needs every one of the N outputs)
+            Some((k, n)) if n > grid.len() => bail!(
+                "--shard {k}/{n}: {n} shards of a grid of {} point{}: give N ≤ {} (every shard runs a point at least)",
+                grid.len(),
+                if grid.len() == 1 { "" } else { "s" },
+                grid.len()
+            ),
             Some((k, n)) if k >= 1 && k <= n => shard(grid.len(), k - 1, n)?,
             Some((k, n)) => bail!("--shard {k}/{n}: expected K/N with 1 ≤ K ≤ N, e.g. --shard 3/8"),
             None => 0..grid.len(),
@@ -660,6 +668,20 @@ mod tests {
         for bad in ["0/4", "5/4", "x/4", "1", "1/0", "-1/3"] {
             assert!(parse_shard(bad).unwrap_err().to_string().starts_with("--shard"), "{bad}");
         }
+    }
+
+    /// More shards than points is refused naming both (each of N shards runs a point at
+    /// least, so that `merge` needs no output of a shard that ran nothing); N equal to the
+    /// points is taken, one point each.
+    #[test]
+    fn shards_past_the_points_are_refused() {
+        let args = |x: &str, shard| Args { config: short(), x: parse_axis("--x", x).unwrap(), shard: Some(shard), ..Default::default() };
+        let e = args("drive.b=100", (1, 1_000_000_000_000)).prepare().err().unwrap().to_string();
+        assert_eq!(e, "--shard 1/1000000000000: 1000000000000 shards of a grid of 1 point: give N ≤ 1 (every shard runs a point at least)");
+        let e = args("drive.b=80,120", (3, 3)).prepare().err().unwrap().to_string();
+        assert!(e.starts_with("--shard 3/3: 3 shards of a grid of 2 points: give N ≤ 2"), "{e}");
+        let p = args("drive.b=80,120", (2, 2)).prepare().unwrap();
+        assert_eq!(p.range, 1..2);
     }
 
     fn short() -> ConfigSource {

@@ -285,6 +285,17 @@ def test_spatial_sweep_equals_the_cli_and_single_runs(tmp_path):
     assert e.value.field == "balancer.ball_mass" and "at the point balancer.ball_mass = -0.02" in str(e.value)
 
 
+def test_a_repeated_axis_value_is_refused_as_the_cli_refuses_it():
+    # the dict form reached the grid without the text form's check: one point ran three times
+    with pytest.raises(autobal.InvalidParameter) as e:
+        autobal.sweep(short(), {"drive.b": [1.0, 1.0, 1.0]})
+    assert e.value.field == "drive.b"
+    assert "the value 1 is given more than once" in str(e.value)
+    with pytest.raises(autobal.InvalidParameter) as e:
+        autobal.sweep(short(), {"drive.b": [80.0], "planar.c_psi": [0.1, 0.2, 0.1]})
+    assert e.value.field == "planar.c_psi"
+
+
 def test_sweep_streams_and_resumes(tmp_path):
     pd = need("pandas")
     p = short()

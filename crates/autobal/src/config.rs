@@ -172,7 +172,7 @@ pub fn check_schema(root: &Table) -> Result<()> {
 
 /// Numbers (and the numbers in arrays, one level of nesting for `drive.schedule`) against their
 /// limits; counts are checked where they are read, as whole numbers.
-fn check_range(field: &str, v: &Value) -> Result<()> {
+pub(crate) fn check_range(field: &str, v: &Value) -> Result<()> {
     let is_count = COUNTS.contains(&field);
     match v {
         Value::Float(_) | Value::Integer(_) if !is_count => {
@@ -662,8 +662,13 @@ fn planar_per_ball(p: &Section, common: &str, key: &str) -> Result<Option<Vec<f6
 pub fn drive(d: &Section) -> Result<(Drive, f64)> {
     let omega0 = d.f64("omega0")?.unwrap_or(0.0);
     let t_off = d.f64("t_off")?;
-    let kind = d.string("kind")?.unwrap_or("acceleration");
-    let need = |key: &str| d.f64(key)?.ok_or_else(|| Error::invalid(d.field(key), format!("required for kind = \"{kind}\"")));
+    let given_kind = d.string("kind")?;
+    let kind = given_kind.unwrap_or("acceleration");
+    // (`basins --set drive.t_end=1` on a config without [drive] said only "drive.b: required
+    // for kind = "acceleration"": the table the --set made replaces the default run-up)
+    let why =
+        if given_kind.is_none() { " (the default kind; a [drive] table, even one made by --set, replaces the default run-up: give its keys)" } else { "" };
+    let need = |key: &str| d.f64(key)?.ok_or_else(|| Error::invalid(d.field(key), format!("required for kind = \"{kind}\"{why}")));
     let schedule = || -> Result<Vec<(f64, f64)>> {
         match d.get("schedule") {
             Some(Value::Array(rows)) => rows

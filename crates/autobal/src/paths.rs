@@ -160,6 +160,8 @@ impl Axis {
     /// assert_eq!(Axis::parse("drive.b=0.5:2.5:3").unwrap().values, vec![0.5, 1.5, 2.5]);
     /// assert_eq!(Axis::parse("planar.m3=0.01,0.03").unwrap().values, vec![0.01, 0.03]);
     /// assert!(Axis::parse("drive.b=2:1:3").unwrap_err().to_string().contains("HI must exceed LO"));
+    /// // a repeated value would run the same point twice
+    /// assert!(Axis::parse("drive.b=1,2,1").unwrap_err().to_string().contains("the value 1 is given more than once"));
     /// ```
     pub fn parse(spec: &str) -> Result<Self> {
         let bad = |why: String| Error::invalid(spec, why);
@@ -186,15 +188,34 @@ impl Axis {
                 if !(hi > lo) {
                     return Err(bad("HI must exceed LO".into()));
                 }
-                Ok(Axis::linspace(path, lo, hi, n))
+                let ax = Axis::linspace(path, lo, hi, n);
+                // (1:1.000000000001:1000 rounded its inner values to 12 digits onto each other)
+                if let Some(v) = repeated(&ax.values) {
+                    return Err(bad(format!(
+                        "{n} points from LO to HI repeat the value {} (values are rounded to 12 significant digits): give fewer points or a wider range",
+                        fmt_num(v)
+                    )));
+                }
+                Ok(ax)
             }
             1 => {
                 let values = range.split(',').map(|s| num(s, "value")).collect::<Result<Vec<_>>>()?;
+                // (drive.b=1,1,1 ran one point three times)
+                if let Some(v) = repeated(&values) {
+                    return Err(bad(format!("the value {} is given more than once: each value is one point of the grid", fmt_num(v))));
+                }
                 Ok(Axis::new(path, values))
             }
             _ => Err(bad("expected PATH=LO:HI:N".into())),
         }
     }
+}
+
+/// A value that occurs more than once in `values` (`0` and `-0` are one value), if any.
+pub(crate) fn repeated(values: &[f64]) -> Option<f64> {
+    let mut v = values.to_vec();
+    v.sort_by(f64::total_cmp);
+    v.windows(2).find(|w| w[0] == w[1]).map(|w| w[0])
 }
 
 /// `v` rounded to 12 significant digits (0 stays 0).
@@ -221,22 +242,89 @@ pub fn whole(v: f64, max: u64) -> std::result::Result<u64, String> {
 }
 
 /// `name[j]` with a 1-based index `j` (`drive.psi0[2]`: the second ball's initial angle):
-/// the name and the 0-based index, or `None` when `path` has no index.
+/// the name and the 0-based index, or `None` when `path` has no index. The index is spelled as
+/// [`index_digits`] reads it (`drive.psi0[01]` and `drive.psi0[ 1]` were taken as
+/// `drive.psi0[1]`, so that two axes could set one number, one of them silently lost).
 pub fn indexed(path: &str) -> Option<(&str, std::result::Result<usize, String>)> {
     let (name, rest) = path.split_once('[')?;
     let j = rest.strip_suffix(']')?;
     Some((
         name,
-        match j.trim().parse::<usize>() {
-            Ok(j) if j >= 1 => Ok(j - 1),
-            _ => Err(format!("the index in [{j}] must be a whole number from 1 (the first ball)")),
+        match index_digits(j) {
+            Some(j) if j >= 1 => Ok(j - 1),
+            _ => Err(format!("the index in [{j}] must be a whole number from 1 (the first ball), in digits without sign, space or leading zero")),
         },
     ))
+}
+
+/// An index as every parameter path spells it (`drive.psi0[2]`, `linear_rotor.balancer[0]`):
+/// decimal digits, no sign, space or leading zero, so that one number has one path.
+pub fn index_digits(s: &str) -> Option<usize> {
+    let canonical = !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit()) && (s == "0" || !s.starts_with('0'));
+    canonical.then(|| s.parse().ok()).flatten()
+}
+
+/// `path` with every bracketed index that is a whole number written as [`index_digits`]
+/// spells it (`drive.psi0[01]` -> `drive.psi0[1]`, `a[ 2 ].b` -> `a[2].b`), the rest as it is:
+/// the form in which two paths naming one number compare equal.
+pub fn canonical(path: &str) -> String {
+    let mut out = String::with_capacity(path.len());
+    let mut rest = path;
+    while let Some(open) = rest.find('[') {
+        out.push_str(&rest[..=open]);
+        rest = &rest[open + 1..];
+        let Some(close) = rest.find(']') else { break };
+        let inner = rest[..close].trim();
+        let digits = inner.strip_prefix('+').unwrap_or(inner);
+        match digits.parse::<u128>() {
+            Ok(j) if !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit()) => out.push_str(&j.to_string()),
+            _ => out.push_str(&rest[..close]),
+        }
+        rest = &rest[close..];
+    }
+    out.push_str(rest);
+    out
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A list with a value twice, or a range whose rounded values collide, is refused naming the
+    /// value; distinct values (in any order, `0` and a tiny one) are kept as given.
+    #[test]
+    fn repeated_values_are_refused() {
+        let e = Axis::parse("drive.b=1,1,1").unwrap_err().to_string();
+        assert_eq!(e, "drive.b=1,1,1: the value 1 is given more than once: each value is one point of the grid");
+        assert!(Axis::parse("drive.b=0,-0").unwrap_err().to_string().contains("the value 0 is given more than once"));
+        let e = Axis::parse("drive.b=1:1.000000000001:1000").unwrap_err().to_string();
+        assert!(e.contains("1000 points from LO to HI repeat the value"), "{e}");
+        assert_eq!(Axis::parse("drive.b=3,1,2,1e-300,0").unwrap().values, vec![3.0, 1.0, 2.0, 1e-300, 0.0]);
+        assert_eq!(Axis::parse("drive.b=1:1.0000000001:3").unwrap().values, vec![1.0, 1.00000000005, 1.0000000001]);
+        // (the middle of 1 and 1.00000000001 rounds onto one of them)
+        assert!(Axis::parse("drive.b=1:1.00000000001:3").unwrap_err().to_string().contains("repeat the value"));
+    }
+
+    /// One number, one path: an index with a leading zero, a sign or a space is refused (it was
+    /// trimmed and parsed, so `drive.psi0[01]` set `drive.psi0[1]`), and such spellings have
+    /// the canonical form of the index they spell.
+    #[test]
+    fn index_spelled_one_way() {
+        for j in ["01", " 1", "1 ", "+1", "", "1.0", "-1"] {
+            let p = format!("drive.psi0[{j}]");
+            let e = indexed(&p).unwrap().1.unwrap_err();
+            assert!(e.contains("without sign, space or leading zero"), "{p}: {e}");
+        }
+        assert_eq!(indexed("drive.psi0[10]"), Some(("drive.psi0", Ok(9))));
+        assert_eq!(index_digits("0"), Some(0));
+        assert_eq!(index_digits("00"), None);
+        assert_eq!(canonical("drive.psi0[01]"), "drive.psi0[1]");
+        assert_eq!(canonical("drive.psi0[ +1 ]"), "drive.psi0[1]");
+        assert_eq!(canonical("linear_rotor.bearings[00].kxx[003]"), "linear_rotor.bearings[0].kxx[3]");
+        assert_eq!(canonical("a[x].b[-1]"), "a[x].b[-1]");
+        assert_eq!(canonical("drive.b"), "drive.b");
+        assert_eq!(canonical("a[1"), "a[1");
+    }
 
     #[test]
     fn indices_are_one_based_and_checked() {

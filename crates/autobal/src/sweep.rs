@@ -84,8 +84,19 @@ impl Grid {
             if let Some(v) = a.values.iter().find(|v| !v.is_finite()) {
                 return Err(Error::invalid(a.path.clone(), format!("axis values must be finite, got {}", fmt_num(*v))));
             }
-            if axes[..i].iter().any(|b| b.path == a.path) {
-                return Err(Error::invalid(a.path.clone(), "the same path on two axes (one would silently win)"));
+            // here, where every route passes (the text `--x` and Python's dict of lists alike:
+            // `{"drive.b": [1, 1, 1]}` ran one point three times)
+            if let Some(v) = crate::paths::repeated(&a.values) {
+                return Err(Error::invalid(a.path.clone(), format!("the value {} is given more than once: each value is one point of the grid", fmt_num(v))));
+            }
+            // compared as `paths::canonical` spells them: `drive.psi0[01]` and `drive.psi0[1]`
+            // are one number (the one axis was silently ignored)
+            if let Some(b) = axes[..i].iter().find(|b| crate::paths::canonical(&b.path) == crate::paths::canonical(&a.path)) {
+                return Err(if b.path == a.path {
+                    Error::invalid(a.path.clone(), "the same path on two axes (one would silently win)")
+                } else {
+                    Error::invalid(a.path.clone(), format!("the same number as the axis {} (one would silently win)", b.path))
+                });
             }
             len = len.checked_mul(a.values.len()).filter(|l| *l <= MAX_POINTS).ok_or_else(|| Error::TooLarge {
                 what: "grid".into(),
@@ -735,8 +746,31 @@ mod tests {
         assert_eq!(g.points(0..6), vec![1.0, 10.0, 2.0, 10.0, 1.0, 20.0, 2.0, 20.0, 1.0, 30.0, 2.0, 30.0]);
         assert!(Grid::new(vec![Axis::new("a", vec![1.0]), Axis::new("a", vec![2.0])]).is_err());
         assert!(Grid::new(vec![Axis::new("a", vec![f64::NAN])]).is_err());
-        assert!(Grid::new(vec![Axis::new("a", vec![0.0; 100_000]), Axis::new("b", vec![0.0; 100_000])]).is_err());
+        let many = || (0..100_000).map(f64::from).collect::<Vec<_>>();
+        assert!(matches!(Grid::new(vec![Axis::new("a", many()), Axis::new("b", many())]), Err(Error::TooLarge { .. })));
         assert_eq!(Axis::linspace("c", 0.01, 0.4, 4).values, vec![0.01, 0.14, 0.27, 0.4]);
+    }
+
+    /// Two spellings of one index are one number: refused naming both axes (`drive.psi0[01]`
+    /// was set as `drive.psi0[1]`, the other axis's value silently lost).
+    #[test]
+    fn one_number_on_two_axes_is_refused_however_spelled() {
+        let e = Grid::new(vec![Axis::new("drive.psi0[01]", vec![1.0, 2.0]), Axis::new("drive.psi0[1]", vec![0.0, 1.0])]).unwrap_err().to_string();
+        assert_eq!(e, "drive.psi0[1]: the same number as the axis drive.psi0[01] (one would silently win)");
+        let e = Grid::new(vec![Axis::new("drive.b", vec![1.0]), Axis::new("drive.b", vec![2.0])]).unwrap_err().to_string();
+        assert_eq!(e, "drive.b: the same path on two axes (one would silently win)");
+        assert!(Grid::new(vec![Axis::new("drive.psi0[1]", vec![1.0]), Axis::new("drive.psi0[10]", vec![2.0])]).is_ok());
+    }
+
+    /// A repeated value is refused by the grid itself, whatever made the axis (`Axis::new` from
+    /// Python's dict of lists, not only `Axis::parse`'s text); distinct values are kept.
+    #[test]
+    fn repeated_axis_values_are_refused_on_every_route() {
+        let e = Grid::new(vec![Axis::new("drive.b", vec![1.0, 1.0, 1.0])]).unwrap_err().to_string();
+        assert_eq!(e, "drive.b: the value 1 is given more than once: each value is one point of the grid");
+        let e = Grid::new(vec![Axis::new("drive.b", vec![2.0]), Axis::new("planar.c_psi", vec![0.1, 0.2, -0.0, 0.0])]).unwrap_err().to_string();
+        assert!(e.starts_with("planar.c_psi: the value 0 is given more than once"), "{e}");
+        assert_eq!(Grid::new(vec![Axis::new("drive.b", vec![3.0, 1.0, 2.0])]).unwrap().len(), 3);
     }
 
     fn short() -> PlanarProblem {

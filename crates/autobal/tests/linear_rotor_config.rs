@@ -206,7 +206,9 @@ fn speed_dependent_bearing_interpolates() {
     let e = load(&parse(&text.replace("cyy = [100.0, 200.0, 500.0]", "cyy = [100.0, 200.0]")), &HashMap::new()).unwrap_err().to_string();
     assert!(e.starts_with("linear_rotor.bearings[1].cyy: has 2 entries, one per speed: 3"), "{e}");
     let e = load(&parse(&text.replace("speeds = [100.0, 300.0, 700.0]", "speeds = [100.0, 300.0, 200.0]")), &HashMap::new()).unwrap_err().to_string();
-    assert!(e.starts_with("linear_rotor.bearings[0].speeds: must increase strictly"), "{e}");
+    // the config's index of the bearing (the second), and the entry (named `bearings[0]`, the
+    // first bearing with a table, before round 3)
+    assert!(e.starts_with("linear_rotor.bearings[1].speeds[2]: must increase strictly: 200 after 300"), "{e}");
 }
 
 /// `∫ Ω dt` of the prescribed drives against the trapezoid sums and closed forms.

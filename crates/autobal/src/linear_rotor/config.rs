@@ -59,6 +59,9 @@ use crate::drive::Drive;
 use crate::error::{Error, Result};
 use toml::{Table, Value};
 
+/// Why an axial offset from a node is bounded by a kilometre.
+const OFFSET: &str = "an axial offset from the node; no rotor is a kilometre long";
+
 /// The keys of `[linear_rotor]` and of its arrays of tables.
 const KEYS: &[(&str, &[&str])] = &[
     (
@@ -149,6 +152,17 @@ pub fn file_names(root: &Table) -> Vec<(String, String)> {
 /// negative` as the other checks do.
 /// Why a bearing's stiffness is bounded (limits.rs's support stiffness).
 const STIFF: &str = "the stiffest bearings are ~1e10 N/m (as the spatial rotor's supports)";
+
+/// `value` finite and at most `hi` in magnitude; the error prints the value as given (an
+/// offset of -2e3 was reported as "got 2000").
+fn within_magnitude(field: &str, value: f64, hi: f64, unit: &str, why: &str) -> Result<f64> {
+    crate::error::finite(field, value)?;
+    if value.abs() > hi {
+        let f = crate::error::fmt_num;
+        return Err(Error::invalid(field, format!("must lie in [-{}, {}] {unit}, got {} ({why})", f(hi), f(hi), f(value))));
+    }
+    Ok(value)
+}
 
 fn within(field: &str, value: f64, lo: (f64, bool), hi: f64, unit: &str, why: &str) -> Result<f64> {
     crate::error::finite(field, value)?;
@@ -524,6 +538,21 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
             for _ in 0..count {
                 b.elements.push(element);
             }
+            // 4 DOFs per node, one node more than elements: name the entry whose count passes
+            // the limit (`elements[0].count = 10000` said "linear_rotor DOFs: 40004 exceeds
+            // the limit", naming no key)
+            let dofs = 4 * (b.elements.len() + 1);
+            if dofs > super::MAX_DOFS {
+                return Err(Error::invalid(
+                    el.field("count"),
+                    format!(
+                        "{count} elements bring the shaft to {} elements, {dofs} DOFs (4 per node), past the limit of {} (dense matrices): at most {} elements in all, fewer with balancer balls",
+                        b.elements.len(),
+                        super::MAX_DOFS,
+                        super::MAX_DOFS / 4 - 1
+                    ),
+                ));
+            }
         }
         for d in &disks {
             let disk = Disk { node: d.req_usize("node")?, mass: d.req("mass")?, id: d.f64("id")?.unwrap_or(0.0), ip: d.f64("ip")?.unwrap_or(0.0) };
@@ -599,6 +628,20 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
                 if len == 0 {
                     return Err(Error::invalid(br.field("speeds"), "is empty: give the speeds (rad/s) of the table, at least one"));
                 }
+                // a speed of the config's speed range (as drive.omega0: `speeds = [0, 1e300]`
+                // was taken; `inf` was named against the i-th bearing with a table)
+                for (j, w) in speeds.iter().enumerate() {
+                    within_magnitude(&format!("{}[{j}]", br.field("speeds")), *w, 1e6, "rad/s", "±1e6 rad/s (~1e7 rpm), beyond every machine")?;
+                }
+                // (checked by the rotor's validation too, which named the i-th bearing with a
+                // table, `bearings[0]` for the config's `bearings[1]`)
+                if let Some(j) = (1..len).find(|&j| !(speeds[j] > speeds[j - 1])) {
+                    let f = crate::error::fmt_num;
+                    return Err(Error::invalid(
+                        format!("{}[{j}]", br.field("speeds")),
+                        format!("must increase strictly: {} after {}", f(speeds[j]), f(speeds[j - 1])),
+                    ));
+                }
                 let col = |k: &str, fallback: Option<&str>| -> Result<Vec<f64>> {
                     let v = match br.array(k)? {
                         Some(v) => v,
@@ -610,15 +653,19 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
                     if v.len() != len {
                         return Err(Error::invalid(br.field(k), format!("has {} entries, one per speed: {len}", v.len())));
                     }
-                    // cross-coupled terms may be negative: the magnitude is bounded
+                    // cross-coupled terms (kxy, kyx, cxy, cyx) may be negative, and so may a
+                    // fluid film's direct stiffness: their magnitude is bounded. The direct
+                    // damping cxx, cyy may not, as a constant bearing's `c` may not: a motion
+                    // along x alone takes the power cxx ẋ² from the damper, negative for cxx < 0
+                    // (a bearing that feeds the whirl; `cxx = -1e3` ran). (cyy's fallback is cxx.)
                     let (hi, unit, why) = if k.starts_with('k') { (1e13, "N/m", STIFF) } else { (1e12, "N·s/m", "as supports.damping_left") };
+                    let direct_damping = k == "cxx" || k == "cyy";
                     for (j, x) in v.iter().enumerate() {
-                        if x.abs() > hi {
-                            let f = crate::error::fmt_num;
-                            return Err(Error::invalid(
-                                format!("{}[{j}]", br.field(k)),
-                                format!("must lie in [-{}, {}] {unit}, got {} ({why})", f(hi), f(hi), f(*x)),
-                            ));
+                        let field = format!("{}[{j}]", br.field(k));
+                        if direct_damping {
+                            within(&field, *x, (0.0, false), hi, unit, why)?;
+                        } else {
+                            within_magnitude(&field, *x, hi, unit, why)?;
                         }
                     }
                     Ok(v)
@@ -646,7 +693,15 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
     }
     for u in items(lr, "unbalance")? {
         if let Some(me) = u.f64("me")? {
-            within(&u.field("me"), me.abs(), (0.0, false), 1e12, "kg·m (in magnitude)", "1e9 kg at 1e3 m")?;
+            within_magnitude(&u.field("me"), me, 1e12, "kg·m", "1e9 kg at 1e3 m")?;
+        }
+        // (`offset = 1e300` ran to a step size of 0 at t = 0, `phase = 1e300` to an angle
+        // without a digit left, neither naming the key)
+        if let Some(o) = u.f64("offset")? {
+            within_magnitude(&u.field("offset"), o, 1e3, "m", OFFSET)?;
+        }
+        if let Some(p) = u.f64("phase")? {
+            within_magnitude(&u.field("phase"), p, 1e3, "rad", "an angle: 1e3 rad is ~160 turns, and every phase equals one within a turn")?;
         }
         rotor.unbalances.push(Unbalance {
             node: u.req_usize("node")?,
@@ -662,6 +717,10 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
         }
         if let Some(m) = b.f64("ball_mass")? {
             within(&b.field("ball_mass"), m, (0.0, true), 1e9, "kg", "as balancer.ball_mass")?;
+        }
+        // (`offset = 1e200` was reported as `linear_rotor.m: is not positive definite`)
+        if let Some(o) = b.f64("offset")? {
+            within_magnitude(&b.field("offset"), o, 1e3, "m", OFFSET)?;
         }
         rotor.balancers.push(BalancerPlane {
             node: b.req_usize("node")?,
@@ -736,6 +795,17 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
     }
     // 0: the full model (so that `--set linear_rotor.modes=0` undoes a config's reduction)
     let modes = top.usize("modes")?.filter(|m| *m > 0);
+    // the numbers of [drive] and [integration] in the ranges of the papers' configs
+    // (`limits.rs`): `drive.omega0 = 1e300` at a constant speed ran, and ended at t = 0 with
+    // "the state became non-finite", naming no key (a basins grid of such runs said "0 of 4
+    // balanced", status 0)
+    for name in ["drive", "integration"] {
+        if let Some(t) = root.get(name).and_then(Value::as_table) {
+            for (k, v) in t {
+                crate::config::check_range(&format!("{name}.{k}"), v)?;
+            }
+        }
+    }
     let d = Section::of(root, "drive");
     let drive = if d.table.is_some() { Some(drive(&d)?) } else { None };
     let t_end = drive.as_ref().map_or(10.0, |d| d.1);
@@ -995,12 +1065,13 @@ pub fn export(rotor: &LinearRotor, stem: &str) -> (String, Vec<(String, String)>
             continue;
         }
         let name = if key == "spin_chart" { format!("{stem}_chart.mtx") } else { format!("{stem}_{}.mtx", key.to_uppercase()) };
-        t.push_str(&format!("{key} = \"{name}\"\n"));
+        // quoted as TOML quotes it (a stem with `"` or `\\` wrote a config that did not parse)
+        t.push_str(&format!("{key} = {}\n", Value::String(name.clone())));
         files.push((name, write_matrix_market(a, n, &format!("{what}, {n} DOFs"))));
     }
     if !rotor.rotor_fixed_mass.is_empty() {
         let name = format!("{stem}_M_rot.mtx");
-        t.push_str(&format!("rotor_fixed_mass = \"{name}\"\n"));
+        t.push_str(&format!("rotor_fixed_mass = {}\n", Value::String(name.clone())));
         files.push((
             name,
             write_matrix_market(&rotor.rotor_fixed_mass, n, &format!("inertia fixed to the rotor M_rot (kg, kg m², in axes turning with it), {n} DOFs")),
