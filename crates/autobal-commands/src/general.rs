@@ -409,6 +409,20 @@ pub(crate) fn not_balanced_text(r: &autobal::rotor_stability::RotorStability, sp
     )
 }
 
+/// The library's `omega_max` error (a top speed below what the periodic-orbit analysis
+/// resolves, [`autobal::rotor_stability::Rotor::periodic_floor`]) named as the user gave the
+/// speed: `--omega-max` where `flag_set`, else the config's key `key` (`analysis.omega_max`,
+/// `linear_rotor.omega_max`); `stability` and `campbell` alike.
+pub fn name_omega_max(e: anyhow::Error, flag_set: bool, key: &str) -> anyhow::Error {
+    match e.downcast_ref::<autobal::Error>() {
+        Some(autobal::Error::InvalidParameter { field, reason }) if field == "omega_max" => {
+            let flag = if flag_set { "--omega-max" } else { key };
+            autobal::Error::invalid(flag, reason.clone()).into()
+        }
+        _ => e,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

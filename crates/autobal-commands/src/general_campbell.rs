@@ -238,6 +238,7 @@ fn lines_json(g: &GeneralRotor, c: &RotorCampbell, omega_max: f64) -> Value {
         "omega": c.omega,
         "lines": c.lines,
         "failures": c.failures,
+        "analysed": c.analysed,
         "fixed_axes": "fixed_frequency f = Ω ± ν of the dominant circular component of the rotor's motion (> 0 forward whirl); log_decrement per fixed-axes cycle −2πσ/|f|",
     });
     if c.kind == Kind::PeriodicOrbit {
@@ -302,10 +303,22 @@ pub fn campbell_table(g: &GeneralRotor, gc: &GeneralCampbell) -> String {
             );
         }
     }
-    let missing = c.failures.iter().filter(|f| f.is_some()).count();
-    if missing > 0 {
-        let first = c.failures.iter().flatten().next().cloned().unwrap_or_default();
-        let _ = writeln!(s, "\nno stationary state at {missing} of {n} speeds (first: {first})");
+    // speeds below the periodic-orbit floor are not analysed (no state sought), apart from
+    // those analysed without a stationary state found
+    let below: Vec<usize> = (0..c.failures.len()).filter(|&k| c.failures[k].is_some() && !c.analysed.get(k).copied().unwrap_or(true)).collect();
+    if let (Some(&k), Some(&last)) = (below.first(), below.last()) {
+        let _ = writeln!(
+            s,
+            "\nnot analysed (below the periodic-orbit floor) at {} of {n} speeds ({} to {}: a revolution longer than {} periods of the fastest natural vibration is not shot)",
+            below.len(),
+            speed_text(g, c.omega[k]),
+            speed_text(g, c.omega[last]),
+            autobal::rotor_stability::PERIODS_PER_REVOLUTION
+        );
+    }
+    let missing: Vec<&String> = c.failures.iter().zip(&c.analysed).filter(|(_, a)| **a).filter_map(|(f, _)| f.as_ref()).collect();
+    if let Some(first) = missing.first() {
+        let _ = writeln!(s, "\nno stationary state at {} of {n} speeds (first: {first})", missing.len());
     }
     s.push_str(&crossings_table(g, gc));
     s

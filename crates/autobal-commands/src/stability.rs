@@ -123,13 +123,7 @@ impl Args {
     /// gave the speed: `--omega-max`, else the config's key `key` (`analysis.omega_max`,
     /// `linear_rotor.omega_max`).
     fn name_omega_max(&self, e: anyhow::Error, key: &str) -> anyhow::Error {
-        match e.downcast_ref::<autobal::Error>() {
-            Some(autobal::Error::InvalidParameter { field, reason }) if field == "omega_max" => {
-                let flag = if self.omega_max.is_some() { "--omega-max" } else { key };
-                autobal::Error::invalid(flag, reason.clone()).into()
-            }
-            _ => e,
-        }
+        general::name_omega_max(e, self.omega_max.is_some(), key)
     }
 
     /// `stability` on a linear rotor config ([`crate::linear_rotor`]).

@@ -461,6 +461,13 @@ impl Rotor {
         (self.is_periodic() && wn.is_finite() && wn > 0.0).then(|| wn / PERIODS_PER_REVOLUTION)
     }
 
+    /// The floor ([`Rotor::periodic_floor`]) where `omega` lies below it (`|omega| <` floor):
+    /// a speed the periodic-orbit analysis does not analyse. The one rule that `stability`,
+    /// `map` ([`crate::rotor_map`]) and `campbell` ([`crate::rotor_campbell`]) apply.
+    pub fn below_periodic_floor(&self, omega: f64) -> Option<f64> {
+        self.periodic_floor(omega).filter(|f| omega.abs() < *f)
+    }
+
     /// Whether the rotor has an unbalance for the balls to cancel, static or couple, above
     /// [`NO_UNBALANCE`] of the balls' capacity `Σ m_b R`: spatial the static `|s0|` or the
     /// couple over the largest axial distance (as [`Rotor::residual`]); linear (no axial
@@ -777,14 +784,14 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
     // more than PERIODS_PER_REVOLUTION natural periods (a scan to 1e-9 rad/s integrated for
     // hours); a top speed below it is refused, grid speeds below it fail by name
     // (with the bearings at each speed: a linear rotor's speed-dependent bearings)
-    let floor = |w: f64| if kind == Kind::PeriodicOrbit { rotor.periodic_floor(w) } else { None };
+    let floor = |w: f64| if kind == Kind::PeriodicOrbit { rotor.below_periodic_floor(w) } else { None };
     let top = speeds.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-    if let Some(f) = floor(top).filter(|f| top < *f) {
+    if let Some(f) = floor(top) {
         return Err(Error::invalid("omega_max", below_floor(top, f)));
     }
     let field_at = |w: f64| match floor(w) {
-        Some(f) if w.abs() < f => Err(Error::invalid("omega", below_floor(w, f))),
-        _ => rotor.field(w),
+        Some(f) => Err(Error::invalid("omega", below_floor(w, f))),
+        None => rotor.field(w),
     };
     // Newton starts from the closed form at every speed (it names the branch: the balanced
     // state, or for a periodic orbit its autonomous neighbour, from which the shooting lands on
@@ -833,7 +840,7 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
                 family_dimension: fam,
                 amplitude,
                 failure: p.failure.as_ref().map(|f| explain_failure(rotor, f)),
-                analysed: floor(p.omega).is_none_or(|f| p.omega.abs() >= f),
+                analysed: floor(p.omega).is_none(),
                 state,
                 state_basis: state.map(|_| if matches!(rotor, Rotor::Linear(_)) { StateBasis::RaceWhirl } else { StateBasis::Residual }),
                 residual,
@@ -1156,7 +1163,7 @@ pub(crate) fn off_line(psi: f64, along: f64) -> f64 {
 pub const PERIODS_PER_REVOLUTION: f64 = 1000.0;
 
 /// The message of a speed below [`Rotor::periodic_floor`].
-fn below_floor(w: f64, floor: f64) -> String {
+pub(crate) fn below_floor(w: f64, floor: f64) -> String {
     use crate::error::fmt_num;
     format!(
         "{} is below {}, the slowest speed the periodic-orbit analysis resolves: the fastest natural frequency over {} (a revolution longer than {} of its periods is not integrated)",

@@ -1,0 +1,95 @@
+//! The periodic-orbit floor (`Rotor::periodic_floor`, the speed scan's one rule) in maps and
+//! Campbell diagrams (issue 18, round 3 session 13): a periodic orbit's speed below the fastest
+//! natural frequency over 1000 is not analysed (said so, counted), and a request whose every
+//! speed is below it is refused naming the key that set the speed. On main at e3f0650 both
+//! shot a revolution at every such speed: a map down to 1e-6 rad/s ran for more than 60 s.
+
+use autobal::control::Control;
+use autobal::rotor_campbell::{campbell_over_speed, NOT_ANALYSED};
+use autobal::rotor_map::{general_map_traced, GeneralCell, GeneralMapOutcome};
+use autobal::rotor_stability::Rotor;
+use autobal::spatial::map::Axis;
+use autobal::units::{Speed, SpeedUnit};
+
+/// examples/spatial_two_plane.toml: gravity across the axis, supports stiffer along y, so its
+/// stationary state is a periodic orbit of the revolution.
+fn two_plane() -> toml::Table {
+    autobal::config::parse(include_str!("../../../examples/spatial_two_plane.toml"), "two-plane").unwrap()
+}
+
+fn rotor() -> Rotor {
+    Rotor::Spatial(autobal::config::spatial_simulation(&two_plane()).unwrap().rotor)
+}
+
+fn map(x: &Axis, y: &Axis, speed: Option<Speed>) -> autobal::Result<(Vec<GeneralCell>, GeneralMapOutcome)> {
+    let mut cells = vec![];
+    let out = general_map_traced(&two_plane(), x, y, speed, true, &Control::none(), &mut |_, r, _| {
+        cells.extend_from_slice(r);
+        true
+    })?;
+    Ok((cells, out))
+}
+
+/// The floor of the example is its fastest natural frequency over 1000: 0.81 rad/s (the
+/// spatial rotor's stiffer translation-tilt pair; `Rotor::fastest_natural_frequency`, checked
+/// against its closed form in rotor_stability's unit tests). 0.5 rad/s lies below it (a
+/// revolution spans ~1600 of the fastest periods), 450 and 500 rad/s far above.
+#[test]
+fn a_maps_cells_below_the_floor_are_not_analysed_and_the_rest_unchanged() {
+    let r = rotor();
+    let floor = r.periodic_floor(0.5).expect("a periodic orbit");
+    assert!(0.5 < floor && floor < 450.0, "{floor}");
+    let y = Axis { path: "balancer.drag".into(), values: vec![0.5] };
+    let (cells, out) = map(&Axis { path: "speed".into(), values: vec![0.5, 450.0, 500.0] }, &y, None).unwrap();
+    // below the floor: no state sought, said so, counted apart from "no state found"
+    assert!(!cells[0].analysed && cells[0].verdict.is_none() && cells[0].margin.is_nan(), "{:?}", cells[0]);
+    assert_eq!((out.not_analysed, out.none), (1, 0), "{out:?}");
+    // above it: the very cells of a map without the slow speed (the slow cell hands on no
+    // state, so the row's continuation is the same), bit for bit
+    let (above, _) = map(&Axis { path: "speed".into(), values: vec![450.0, 500.0] }, &y, None).unwrap();
+    assert!(cells[1..].iter().all(|c| c.analysed && c.verdict.is_some()), "{cells:?}");
+    assert_eq!(format!("{:?}", &cells[1..]), format!("{above:?}"));
+}
+
+/// Every speed below the floor: refused at once, naming the key that set the speed (the speed
+/// axis' path, or `omega` for a map at one speed), in its unit.
+#[test]
+fn a_map_with_every_speed_below_the_floor_is_refused_naming_the_speed() {
+    let y = Axis { path: "balancer.drag".into(), values: vec![0.4, 0.5] };
+    let e = map(&Axis { path: "speed".into(), values: vec![1e-6, 1e-5] }, &y, None).unwrap_err();
+    assert_eq!(e.field(), Some("speed"), "{e}");
+    let msg = e.to_string();
+    assert!(msg.starts_with("speed: 1e-5 is below 0.8") && !msg.contains('\n'), "{msg}");
+    // on the vertical axis, in rpm: the floor in rpm (0.81 rad/s = 7.7 rpm)
+    let e = map(&y, &Axis { path: "speed_rpm".into(), values: vec![1e-4, 1.0] }, None).unwrap_err();
+    assert!(e.to_string().starts_with("speed_rpm: 1 is below 7.7"), "{e}");
+    // at one speed, over two parameters
+    let x = Axis { path: "balancer2.drag".into(), values: vec![0.4, 0.5] };
+    let e = map(&x, &y, Some(Speed { value: 1e-3, unit: SpeedUnit::RadPerS })).unwrap_err();
+    assert_eq!(e.field(), Some("omega"), "{e}");
+}
+
+/// The Campbell diagram applies the same rule: a speed below the floor has no point, its
+/// failure says "not analysed", `analysed` is false; the speeds above have the spectrum of a
+/// diagram without it (the same eigenvalues: the slow speed hands on no state). Every speed
+/// below: refused naming `omega_max`.
+#[test]
+fn a_campbell_diagrams_speeds_below_the_floor_are_not_analysed() {
+    let r = rotor();
+    let c = campbell_over_speed(&r, &[0.5, 450.0, 500.0]).unwrap();
+    assert_eq!(c.analysed, vec![false, true, true]);
+    assert!(c.failures[0].as_deref().is_some_and(|f| f.starts_with(NOT_ANALYSED)), "{:?}", c.failures[0]);
+    assert!(c.failures[1..].iter().all(|f| f.is_none()), "{:?}", c.failures);
+    let above = campbell_over_speed(&r, &[450.0, 500.0]).unwrap();
+    let at = |c: &autobal::rotor_campbell::RotorCampbell, k: usize| {
+        let mut v: Vec<String> = c.lines.iter().filter_map(|l| l.points[k].as_ref()).map(|p| format!("{p:?}")).collect();
+        v.sort();
+        v
+    };
+    assert!(c.lines.iter().all(|l| l.points[0].is_none()));
+    assert!(!at(&above, 0).is_empty());
+    assert_eq!((at(&c, 1), at(&c, 2)), (at(&above, 0), at(&above, 1)));
+    let e = campbell_over_speed(&r, &[1e-6, 2e-6]).unwrap_err();
+    assert_eq!(e.field(), Some("omega_max"), "{e}");
+    assert!(e.to_string().starts_with("omega_max: 2e-6 is below 0.8"), "{e}");
+}
