@@ -839,7 +839,7 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
                 threshold: p.stability.as_ref().map(|s| s.threshold),
                 family_dimension: fam,
                 amplitude,
-                failure: p.failure.as_ref().map(|f| explain_failure(rotor, f)),
+                failure: p.failure.as_ref().map(|f| explain_failure(rotor, p.omega, f)),
                 analysed: floor(p.omega).is_none(),
                 state,
                 state_basis: state.map(|_| if matches!(rotor, Rotor::Linear(_)) { StateBasis::RaceWhirl } else { StateBasis::Residual }),
@@ -1077,7 +1077,12 @@ fn locate(
 
 /// A scan's failure in the user's terms: where the closed form gives no state, say which state
 /// does not exist and why.
-fn explain_failure(rotor: &Rotor, failure: &str) -> String {
+fn explain_failure(rotor: &Rotor, omega: f64, failure: &str) -> String {
+    if let (Rotor::Spatial(s), true) = (rotor, failure.starts_with("no periodic orbit found")) {
+        if let Some(why) = gravity_slip(s, omega) {
+            return format!("{failure}; {why}");
+        }
+    }
     if !failure.starts_with("no starting point") {
         return failure.to_string();
     }
@@ -1089,6 +1094,49 @@ fn explain_failure(rotor: &Rotor, failure: &str) -> String {
             crate::linear_rotor::partial::why_not_balanced(r)
         ),
     }
+}
+
+/// Why a spatial rotor under gravity has no periodic orbit at `omega` (rad/s), where the
+/// evidence is clear: gravity across the axis drags each ball, swinging once a revolution
+/// (amplitude `g/(R Ω sqrt(Ω² + β²))`, `β = h_A/m`), behind the rotor with a mean torque
+/// `m g² β / (2 Ω (Ω² + β²))` (second-order average of the swing against the gravity torque
+/// `m g R cos φ`), while the most the rotor's whirl can hold a ball with is of order
+/// `m² R² Ω⁴ / |k − M Ω²|` (the ball's own unbalance's response, `k` the supports' softer
+/// direction's total). Said only where the drag exceeds that hold 10 times (the hold is an
+/// order of magnitude); then the balls slip behind the rotor at `g² / (2 Ω R² (Ω² + β²))`
+/// rad/s and no orbit exists: a run at 30 rad/s on the two-plane example with supports of
+/// 5e8/6e8 N/m drifts at 0.0733 rad/s, the closed form 0.0730 (docs/notes/stability.md,
+/// session 13).
+fn gravity_slip(s: &crate::spatial::dynamics::rotor::SpatialRotor, omega: f64) -> Option<String> {
+    use crate::error::fmt_num;
+    let g2 = s.gravity[0] * s.gravity[0] + s.gravity[1] * s.gravity[1];
+    let w = omega.abs();
+    if !(g2 > 0.0 && w > 0.0) {
+        return None;
+    }
+    let m_total = s.total_mass();
+    let k = (0..2).map(|i| s.supports.iter().map(|sp| sp.stiffness[i]).sum::<f64>()).fold(f64::INFINITY, f64::min);
+    let detuned = (k - m_total * w * w).abs();
+    s.planes
+        .iter()
+        .filter(|p| p.n > 0 && p.ball_mass > 0.0 && p.race_radius > 0.0)
+        .map(|p| {
+            let (m, r, beta) = (p.ball_mass, p.race_radius, p.drag / p.ball_mass);
+            let drag = m * g2 * beta / (2.0 * w * (w * w + beta * beta));
+            let hold = m * m * r * r * w.powi(4) / detuned;
+            let slip = g2 / (2.0 * w * r * r * (w * w + beta * beta));
+            (drag, hold, slip)
+        })
+        .filter(|(drag, hold, _)| *drag > 10.0 * hold)
+        .max_by(|a, b| (a.0 / a.1).total_cmp(&(b.0 / b.1)))
+        .map(|(drag, hold, slip)| {
+            format!(
+                "no periodic orbit exists here: gravity drags each ball behind the rotor (a mean torque m g² β/(2Ω(Ω² + β²)) = {} N m) more than the rotor's whirl can hold it (~m² R² Ω⁴/|k − M Ω²| = {} N m), so the balls slip behind it at ~{} rad per revolution",
+                fmt_num(drag),
+                fmt_num(hold),
+                fmt_num(slip * 2.0 * std::f64::consts::PI / w)
+            )
+        })
 }
 
 /// The cyclic relabellings of a plane of exactly three equal balls, as permutations of the

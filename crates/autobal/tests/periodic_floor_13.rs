@@ -93,3 +93,28 @@ fn a_campbell_diagrams_speeds_below_the_floor_are_not_analysed() {
     assert_eq!(e.field(), Some("omega_max"), "{e}");
     assert!(e.to_string().starts_with("omega_max: 2e-6 is below 0.8"), "{e}");
 }
+
+/// Stiff supports under gravity (the two-plane example with 5e8/6e8 N/m in both directions):
+/// no periodic orbit at 12-60 rad/s, and the verdict says why. A time run at a constant 30
+/// rad/s (docs/notes/stability.md, round 3 session 13) shows the balls slipping behind the
+/// rotor at 0.0733 rad/s, the closed form of the gravity drag g²/(2ΩR²(Ω² + β²)) 0.0730 rad/s
+/// (0.0153 rad per revolution, the run 0.01535): no once-per-revolution orbit exists. The printed slip is that
+/// closed form to its 6 printed digits; the example's own supports at 450 rad/s hold the
+/// balls (an orbit is found, no such words).
+#[test]
+fn stiff_supports_under_gravity_say_the_balls_slip() {
+    let mut root = two_plane();
+    for (k, v) in [("supports.stiffness_left", 5e8), ("supports.stiffness_right", 6e8), ("supports.stiffness_left_y", 5e8), ("supports.stiffness_right_y", 6e8)]
+    {
+        autobal::config::set_number(&mut root, k, v).unwrap();
+    }
+    let stiff = Rotor::Spatial(autobal::config::spatial_simulation(&root).unwrap().rotor);
+    let r = autobal::rotor_stability::stability_over_speed(&stiff, &[30.0]).unwrap();
+    let f = r.points[0].failure.clone().unwrap_or_default();
+    assert!(f.starts_with("no periodic orbit found") && f.contains("the balls slip behind it at ~0.01529"), "{f}");
+    let (g, rr, beta, w) = (9.81f64, 0.12f64, 0.5 / 0.02, 30.0f64);
+    let slip = g * g / (2.0 * w * rr * rr * (w * w + beta * beta)) * 2.0 * std::f64::consts::PI / w;
+    assert!((slip - 0.0152972).abs() < 1e-7, "{slip}");
+    let ok = autobal::rotor_stability::stability_over_speed(&rotor(), &[450.0]).unwrap();
+    assert!(ok.points[0].verdict.is_some() && ok.points[0].failure.is_none(), "{:?}", ok.points[0]);
+}
