@@ -56,12 +56,7 @@
 //! on 60 speeds); and an end is misjudged quiet or not where the lines' interpolated `Re λ`
 //! puts another line nearest. The mode number of a crossing is that of the curve of its pair
 //! at the nearest grid point (where pairs exchange partners on the real axis it follows the
-//! tracking). These misses are a coarse grid's: a diagram on fewer than [`CROSSING_GRID`]
-//! (240) speeds has its crossings searched on that many speeds over its range, and their mode
-//! numbers taken from that grid's curves (ordered as the drawn ones, by `|ν|` at the shared
-//! first speed), so 40 speeds find what 400 find (`tests/campbell_grid_13.rs`). The general
-//! route ([`crate::rotor_campbell::fixed_view`]) still searches on its own grid: a speed there
-//! costs a stationary state.
+//! tracking).
 //!
 //! The search knows no model: `crossings` asks a `Spectrum` for the eigenvalues at a speed and
 //! the shares of a mode; the 12-state route gives its pencil's, the general route
@@ -71,7 +66,7 @@ use crate::error::{Error, Result};
 use crate::linalg::eigen::eigenvalues;
 use crate::spatial::linear_model::{Balls, Pencil};
 use crate::spatial::params::SpatialModel;
-use crate::spatial::stability::{campbell, classify_vector, no_conv, pencil_null_vector, Campbell, Whirl};
+use crate::spatial::stability::{classify_vector, no_conv, pencil_null_vector, Campbell, Whirl};
 use num_complex::Complex64;
 use serde::Serialize;
 
@@ -187,70 +182,13 @@ pub fn fixed_axes(model: &SpatialModel, c: &Campbell, balls: Balls, harmonics: &
     if c.lines.iter().any(|l| l.modes.len() != n) {
         return Err(Error::invalid("campbell", "every line needs one mode per speed"));
     }
-    let curves = fixed_curves(c);
-    let spec = PencilSpectrum { model, balls };
-    let crit = match crossing_grid(&c.omega) {
-        None => crossings(&lines_of(c), &spec, harmonics, &curves)?,
-        // a coarse grid: the crossings searched on CROSSING_GRID speeds over its range, their
-        // mode numbers those of that grid's curves (ordered as the drawn ones, by |ν| at the
-        // shared first speed; by the nearest eigenvalue where the curves differ in number)
-        Some(fine) => {
-            let cf = campbell(model, &fine, balls)?;
-            let fc = fixed_curves(&cf);
-            let mut crit = crossings(&lines_of(&cf), &spec, harmonics, &fc)?;
-            if fc.len() != curves.len() {
-                for k in &mut crit {
-                    k.curve = nearest_curve(&curves, &c.omega, &fc[k.curve], &fine, k.omega);
-                }
-            }
-            crit
-        }
-    };
-    Ok(FixedCampbell { omega: c.omega.clone(), curves, critical_speeds: crit, harmonics: harmonics.to_vec() })
-}
-
-/// The fewest speeds the critical speeds are searched on ([`fixed_axes`]): a diagram drawn on
-/// fewer has them searched on this many, evenly spaced over its range, so that a coarse grid
-/// finds what a fine one finds, with the same mode numbers. 240: examples/dimensional.toml's
-/// 22 crossings (`--harmonics 1,2`) and their modes are the same on every grid of 240 speeds or
-/// more that was tried (docs/notes/stability.md); at 40-200 speeds some were missed (a
-/// divergence range 4e-5 wide, a stretch off the axis 3.5e-3 wide) and three 1× crossings had
-/// another mode number.
-pub const CROSSING_GRID: usize = 240;
-
-/// The grid the critical speeds of a diagram on `omega` are searched on where it is coarser
-/// than [`CROSSING_GRID`]: that many speeds evenly over `[omega[0], omega[n−1]]` (both ends
-/// kept exactly); `None` where `omega` itself is fine enough (or has fewer than two speeds).
-fn crossing_grid(omega: &[f64]) -> Option<Vec<f64>> {
-    let n = omega.len();
-    if !(2..CROSSING_GRID).contains(&n) {
-        return None;
+    // the crossing search bisects between neighbouring speeds: they must increase
+    if let Some(k) = (1..n).find(|&k| !(c.omega[k] > c.omega[k - 1])) {
+        return Err(Error::invalid(
+            "omega",
+            format!("the speeds must increase: {} follows {}", crate::error::fmt_num(c.omega[k]), crate::error::fmt_num(c.omega[k - 1])),
+        ));
     }
-    let (a, b) = (omega[0], omega[n - 1]);
-    let m = CROSSING_GRID - 1;
-    Some((0..=m).map(|k| if k == m { b } else { a + (b - a) * k as f64 / m as f64 }).collect())
-}
-
-/// The tracked lines of `c` as the crossing search takes them.
-fn lines_of(c: &Campbell) -> Lines<'_> {
-    let n = c.omega.len();
-    Lines { omega: &c.omega, z: c.lines.iter().map(|l| l.modes.iter().map(|m| Some(lam(m))).collect()).collect(), known: vec![true; n] }
-}
-
-/// The curve of `curves` (on `omega`) nearest, at the speed of `omega` nearest `w`, to the
-/// curve `of` (on `grid`) at the speed of `grid` nearest `w`: by the eigenvalue `σ + i|ν|`.
-fn nearest_curve(curves: &[FixedCurve], omega: &[f64], of: &FixedCurve, grid: &[f64], w: f64) -> usize {
-    let near = |g: &[f64]| (0..g.len()).min_by(|&a, &b| (g[a] - w).abs().total_cmp(&(g[b] - w).abs())).unwrap_or(0);
-    let (k, kf) = (near(omega), near(grid));
-    let z = |p: &FixedPoint| Complex64::new(p.re, p.nu.abs());
-    let target = z(&of.points[kf]);
-    (0..curves.len()).min_by(|&a, &b| (z(&curves[a].points[k]) - target).norm().total_cmp(&(z(&curves[b].points[k]) - target).norm())).unwrap_or(0)
-}
-
-/// The fixed-axes curves of `c` (one per conjugate pair, [`fixed_axes`]), ordered by `|ν|` at
-/// the first speed.
-fn fixed_curves(c: &Campbell) -> Vec<FixedCurve> {
-    let n = c.omega.len();
     // Conjugate lines describe the same real motion. Tracked pairs can change partners where
     // eigenvalues collide on the real axis (a damped rotor's pair turns into two real ones and
     // back, possibly pairing with another line), so the kept lines are a 2-colouring of the
@@ -330,7 +268,9 @@ fn fixed_curves(c: &Campbell) -> Vec<FixedCurve> {
         let (p, q) = (&a.points[0], &b.points[0]);
         p.nu.abs().total_cmp(&q.nu.abs()).then(p.frequency.total_cmp(&q.frequency)).then(a.line.cmp(&b.line))
     });
-    curves
+    let lines = Lines { omega: &c.omega, z: c.lines.iter().map(|l| l.modes.iter().map(|m| Some(lam(m))).collect()).collect(), known: vec![true; n] };
+    let crit = crossings(&lines, &PencilSpectrum { model, balls }, harmonics, &curves)?;
+    Ok(FixedCampbell { omega: c.omega.clone(), curves, critical_speeds: crit, harmonics: harmonics.to_vec() })
 }
 
 /// What the search for critical speeds asks of a model: its spectrum at a speed. The 12-state
