@@ -462,7 +462,7 @@ impl Plane<'_> {
                 let (a, b) = (side(&out[i]), side(&out[i + 1]));
                 if a != b && a != 3 && b != 3 {
                     let end = |k: usize| (self.x.values[k], out[k].verdict, states[k].clone(), out[k]);
-                    points.push(self.bisect(j, end(i), end(i + 1))?);
+                    points.extend(self.bisect(j, end(i), end(i + 1))?);
                 }
             }
         }
@@ -470,8 +470,11 @@ impl Plane<'_> {
     }
 
     /// The point between `lo` and `hi` (x, verdict, state) on row `j` where the verdict changes,
-    /// by bisection to [`BOUNDARY_RTOL`] relative in `x`.
-    fn bisect(&self, j: usize, lo: Side, hi: Side) -> Result<BoundaryPoint> {
+    /// by bisection to [`BOUNDARY_RTOL`] relative in `x`; `None` where a midpoint is not analysed
+    /// (below the periodic-orbit floor, side 3): the interval then holds cells on no side, and
+    /// taking such a midpoint for the far side would walk towards it and report a boundary
+    /// that is only the floor's edge.
+    fn bisect(&self, j: usize, lo: Side, hi: Side) -> Result<Option<BoundaryPoint>> {
         let yv = self.y.values[j];
         let (from, to) = (lo.1, hi.1);
         let side_lo = side(&lo.3);
@@ -484,6 +487,9 @@ impl Plane<'_> {
             }
             let (c, w) = self.cell(None, j, mid, yv)?;
             let (cell, x) = solve(&c, w, xa.as_ref().or(xb.as_ref()), true, false);
+            if side(&cell) == 3 {
+                return Ok(None);
+            }
             if side(&cell) == side_lo {
                 a = mid;
                 xa = x.or(xa);
@@ -492,7 +498,7 @@ impl Plane<'_> {
                 xb = x.or(xb);
             }
         }
-        Ok(BoundaryPoint { x: 0.5 * (a + b), y: yv, from, to })
+        Ok(Some(BoundaryPoint { x: 0.5 * (a + b), y: yv, from, to }))
     }
 }
 
@@ -799,5 +805,23 @@ mod tests {
         // on_row stopping after the first row: the rows so far, stopped by the observer
         let out = general_map(&root, &x, &y, None, &Control::none(), &mut |_, _| false).unwrap();
         assert_eq!((out.rows, out.stopped), (1, Some(StopReason::Observer)));
+    }
+
+    /// A boundary's bisection between two analysed cells on different sides whose midpoint is
+    /// below the periodic-orbit floor (0.81 rad/s on examples/spatial_two_plane.toml: 0.5 is
+    /// below it) reports no point: taking the not-analysed midpoint for the far side walked
+    /// down to rest and reported a boundary at 0 rad/s (checked with the stop taken out). The ends are made up (the bisection
+    /// reads only their sides and states), as a row from rest to just above the floor has them.
+    #[test]
+    fn a_bisection_reports_no_point_past_a_midpoint_below_the_floor() {
+        let root = config::parse(include_str!("../../../examples/spatial_two_plane.toml"), "two-plane").unwrap();
+        let (x, y) = (Axis { path: "speed".into(), values: vec![0.0, 1.0] }, Axis { path: "balancer.drag".into(), values: vec![0.5] });
+        let plane = Plane { src: Source::Config(&root), x: &x, y: &y, speed: None, line: None };
+        let (c, w) = plane.cell(None, 0, 0.5, 0.5).unwrap();
+        assert!(c.rotor.below_periodic_floor(w).is_some() && c.rotor.field(w).unwrap().period().is_some());
+        let stable = GeneralCell { margin: -1.0, verdict: Some(Verdict::Stable), ..GeneralCell::NONE };
+        let unstable = GeneralCell { margin: 1.0, verdict: Some(Verdict::Unstable), ..GeneralCell::NONE };
+        let p = plane.bisect(0, (0.0, stable.verdict, None, stable), (1.0, unstable.verdict, None, unstable)).unwrap();
+        assert!(p.is_none(), "{p:?}");
     }
 }
