@@ -527,16 +527,24 @@ mod tests {
         };
         let args = Args { config: src(&[]), omega_max: Some("1e-4 rad/s".into()), points: Some(5), ..Default::default() };
         let e = format!("{:#}", args.run(&Control::none()).err().expect("refused"));
-        assert!(e.starts_with("--omega-max: 9e-5 is below 0.8") && !e.contains('\n'), "{e}");
+        assert!(
+            e.starts_with("--omega-max: 9e-5 rad/s (") && e.contains("the grid's top speed, is below 0.809787 rad/s (7.73289 rpm),") && !e.contains('\n'),
+            "{e}"
+        );
         let args = Args { config: src(&["analysis.omega_max=\"0.001 rad/s\""]), points: Some(5), ..Default::default() };
         let e = format!("{:#}", args.run(&Control::none()).err().expect("refused"));
-        assert!(e.starts_with("analysis.omega_max: 0.0009 is below 0.8"), "{e}");
+        assert!(e.starts_with("analysis.omega_max: 0.0009 rad/s ("), "{e}");
         // 10 speeds to 10 rad/s (cell middles 0.5, 1.5, …): the first is below the floor
         let args = Args { config: src(&[]), omega_max: Some("10 rad/s".into()), points: Some(10), ..Default::default() };
         let out = args.run(&Control::none()).unwrap();
         let v = out.json().unwrap();
         assert_eq!((&v["analysed"][0], &v["analysed"][1]), (&serde_json::json!(false), &serde_json::json!(true)), "{}", v["analysed"]);
         let t = out.table().unwrap();
-        assert!(t.contains("not analysed (below the periodic-orbit floor) at 1 of 10 speeds"), "{t}");
+        // one speed below: named once (not "X to X"); its block says only "not analysed"
+        assert!(t.contains("not analysed (below the periodic-orbit floor) at 1 of 10 speeds (0.5 rad/s (4.77465 rpm): a revolution"), "{t}");
+        assert!(
+            t.contains("speed 0.5 rad/s (4.77465 rpm)\n  not analysed (below the periodic-orbit floor)\n") && !t.contains("no stationary state: not analysed"),
+            "{t}"
+        );
     }
 }

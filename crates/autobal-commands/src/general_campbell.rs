@@ -111,13 +111,13 @@ pub fn campbell_with(g: &GeneralRotor, omega_max: f64, points: usize, balls: Bal
     let c = match balls {
         // the scan asks the control once per speed; a stopped scan prints nothing
         Balls::Free => {
-            let out = autobal::rotor_campbell::campbell_over_speed_with(&g.rotor, &sp, control)?;
+            let out = autobal::rotor_campbell::campbell_over_speed_with(&g.rotor, &sp, control).map_err(|e| crate::general::floor_in_units(g, e, &sp))?;
             if let Some(why) = out.stopped {
                 anyhow::bail!("{why}: the Campbell scan stopped after {} of {} speeds; nothing is printed", out.value.omega.len(), sp.len());
             }
             out.value
         }
-        Balls::Locked => campbell_locked(&g.rotor, &sp)?,
+        Balls::Locked => campbell_locked(&g.rotor, &sp).map_err(|e| crate::general::floor_in_units(g, e, &sp))?,
     };
     autobal::limits::check_finite("campbell", &c)?;
     let (fixed, mut why) = match fixed_view(&g.rotor, balls, &c, harmonics) {
@@ -282,7 +282,12 @@ pub fn campbell_table(g: &GeneralRotor, gc: &GeneralCampbell) -> String {
     for k in at {
         let _ = writeln!(s, "\nspeed {}", speed_text(g, c.omega[k]));
         if let Some(f) = &c.failures[k] {
-            let _ = writeln!(s, "  no stationary state: {f}");
+            // below the periodic-orbit floor no state was sought: say only that
+            if !c.analysed.get(k).copied().unwrap_or(true) {
+                let _ = writeln!(s, "  {}", autobal::rotor_campbell::NOT_ANALYSED);
+            } else {
+                let _ = writeln!(s, "  no stationary state: {f}");
+            }
             continue;
         }
         let hz = if g.si { format!(" {:>11}", "fixed Hz") } else { String::new() };
@@ -307,12 +312,11 @@ pub fn campbell_table(g: &GeneralRotor, gc: &GeneralCampbell) -> String {
     // those analysed without a stationary state found
     let below: Vec<usize> = (0..c.failures.len()).filter(|&k| c.failures[k].is_some() && !c.analysed.get(k).copied().unwrap_or(true)).collect();
     if let (Some(&k), Some(&last)) = (below.first(), below.last()) {
+        let at = if k == last { speed_text(g, c.omega[k]) } else { format!("{} to {}", speed_text(g, c.omega[k]), speed_text(g, c.omega[last])) };
         let _ = writeln!(
             s,
-            "\nnot analysed (below the periodic-orbit floor) at {} of {n} speeds ({} to {}: a revolution longer than {} periods of the fastest natural vibration is not shot)",
+            "\nnot analysed (below the periodic-orbit floor) at {} of {n} speeds ({at}: a revolution longer than {} periods of the fastest natural vibration is not shot)",
             below.len(),
-            speed_text(g, c.omega[k]),
-            speed_text(g, c.omega[last]),
             autobal::rotor_stability::PERIODS_PER_REVOLUTION
         );
     }

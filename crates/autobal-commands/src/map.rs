@@ -915,7 +915,11 @@ fn general(
     let outcome = outcome.map_err(|e| match e.field() {
         Some(f) if f == x.path => anyhow!("--x: {e}"),
         Some(f) if f == y.path => anyhow!("--y: {e}"),
-        Some("omega") => anyhow!("--omega: {e}"),
+        // the flag names the key once
+        Some("omega") => match &e {
+            autobal::Error::InvalidParameter { reason, .. } => anyhow!("--omega: {reason}"),
+            _ => anyhow!("--omega: {e}"),
+        },
         _ => anyhow!("{e}"),
     })?;
     Ok(RouteOutput::General { fx: dx, fy: dy, frows: kept, cells: keep_all.then_some(all), outcome, planar, linear, traced: a.boundary.then_some(traced) })
@@ -1683,7 +1687,17 @@ mod tests {
             ..Default::default()
         };
         let e = format!("{:#}", args.run(&Control::none()).err().expect("refused"));
-        assert!(e.starts_with("--x: speed: 1e-5 is below 0.8") && !e.contains('\n'), "{e}");
+        assert!(e.starts_with("--x: speed: 1e-5 rad/s is below 0.809787 rad/s,") && !e.contains('\n'), "{e}");
+        // at one speed in rpm: the key named once, both numbers in rpm
+        let args = Args {
+            config: tables(two),
+            x: parse_axis("--x", "balancer2.drag=0.4:0.5:2").unwrap(),
+            y: parse_axis("--y", "balancer.drag=0.4:0.5:2").unwrap(),
+            omega: Some("5rpm".into()),
+            ..Default::default()
+        };
+        let e = format!("{:#}", args.run(&Control::none()).err().expect("refused"));
+        assert!(e.starts_with("--omega: 5 rpm is below 7.73289 rpm,") && !e.contains('\n'), "{e}");
         let args = Args {
             config: tables(two),
             x: parse_axis("--x", "speed=0.5:450.5:2").unwrap(),

@@ -427,7 +427,11 @@ impl Plane<'_> {
                 }
             }
         }
-        Ok(closest.map(|(v, f, _)| Error::invalid(key, format!("{} (every cell of the map: nothing to analyse)", crate::rotor_stability::below_floor(v, f)))))
+        // both numbers in the key's unit, written
+        let text = |v: f64| if unit == SpeedUnit::Omega { format!("Ω = {}", fmt_num(v)) } else { format!("{} {}", fmt_num(v), unit.symbol()) };
+        Ok(closest.map(|(v, f, _)| {
+            Error::invalid(key, format!("{} (every cell of the map: nothing to analyse)", crate::rotor_stability::below_floor_words(&text(v), &text(f))))
+        }))
     }
 
     /// Row `j`: every `x` at `y_j`, continued along the row (then, for a cell left without a

@@ -1210,13 +1210,18 @@ pub(crate) fn off_line(psi: f64, along: f64) -> f64 {
 /// 70.5 rad/s, though the balls hold from ~9 rad/s).
 pub const PERIODS_PER_REVOLUTION: f64 = 1000.0;
 
-/// The message of a speed below [`Rotor::periodic_floor`].
+/// The message of a speed below [`Rotor::periodic_floor`] (both in the rotor's speed unit).
 pub(crate) fn below_floor(w: f64, floor: f64) -> String {
     use crate::error::fmt_num;
+    below_floor_words(&fmt_num(w), &fmt_num(floor))
+}
+
+/// The message of a speed below [`Rotor::periodic_floor`], the speed and the floor as written
+/// (with their unit, where the caller knows it): "`w` is below `floor`, the slowest speed …".
+pub fn below_floor_words(w: &str, floor: &str) -> String {
+    use crate::error::fmt_num;
     format!(
-        "{} is below {}, the slowest speed the periodic-orbit analysis resolves: the fastest natural frequency over {} (a revolution longer than {} of its periods is not integrated)",
-        fmt_num(w),
-        fmt_num(floor),
+        "{w} is below {floor}, the slowest speed the periodic-orbit analysis resolves: the fastest natural frequency over {} (a revolution longer than {} of its periods is not integrated)",
         fmt_num(PERIODS_PER_REVOLUTION),
         fmt_num(PERIODS_PER_REVOLUTION)
     )

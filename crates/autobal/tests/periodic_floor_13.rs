@@ -52,21 +52,22 @@ fn a_maps_cells_below_the_floor_are_not_analysed_and_the_rest_unchanged() {
 }
 
 /// Every speed below the floor: refused at once, naming the key that set the speed (the speed
-/// axis' path, or `omega` for a map at one speed), in its unit.
+/// axis' path, or `omega` for a map at one speed), both numbers in its unit, written.
 #[test]
 fn a_map_with_every_speed_below_the_floor_is_refused_naming_the_speed() {
     let y = Axis { path: "balancer.drag".into(), values: vec![0.4, 0.5] };
     let e = map(&Axis { path: "speed".into(), values: vec![1e-6, 1e-5] }, &y, None).unwrap_err();
     assert_eq!(e.field(), Some("speed"), "{e}");
     let msg = e.to_string();
-    assert!(msg.starts_with("speed: 1e-5 is below 0.8") && !msg.contains('\n'), "{msg}");
+    assert!(msg.starts_with("speed: 1e-5 rad/s is below 0.809787 rad/s,") && !msg.contains('\n'), "{msg}");
     // on the vertical axis, in rpm: the floor in rpm (0.81 rad/s = 7.7 rpm)
     let e = map(&y, &Axis { path: "speed_rpm".into(), values: vec![1e-4, 1.0] }, None).unwrap_err();
-    assert!(e.to_string().starts_with("speed_rpm: 1 is below 7.7"), "{e}");
+    assert!(e.to_string().starts_with("speed_rpm: 1 rpm is below 7.73289 rpm,"), "{e}");
     // at one speed, over two parameters
     let x = Axis { path: "balancer2.drag".into(), values: vec![0.4, 0.5] };
     let e = map(&x, &y, Some(Speed { value: 1e-3, unit: SpeedUnit::RadPerS })).unwrap_err();
     assert_eq!(e.field(), Some("omega"), "{e}");
+    assert!(e.to_string().starts_with("omega: 0.001 rad/s is below 0.809787 rad/s,"), "{e}");
 }
 
 /// The Campbell diagram applies the same rule: a speed below the floor has no point, its
