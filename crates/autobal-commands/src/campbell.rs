@@ -103,7 +103,8 @@ impl command::Command for Args {
                 .into());
             }
             let w = general_campbell::omega_max(&root, &g, self.omega_max.as_deref())?;
-            let c = general_campbell::campbell_with(&g, w, points, self.balls, &harmonics, control)?;
+            let c = general_campbell::campbell_with(&g, w, points, self.balls, &harmonics, control)
+                .map_err(|e| crate::general::name_omega_max(e, self.omega_max.is_some(), "analysis.omega_max"))?;
             return Ok(Output::General { g: Box::new(g), c: Box::new(c), omega_max: w, view: self.view });
         }
         let cfg = config::build(&root, &source)?;
@@ -139,7 +140,8 @@ impl Args {
             .into());
         }
         let w = crate::linear_rotor::omega_max(self.omega_max.as_deref(), &cfg)?;
-        let c = general_campbell::campbell_with(&g, w, points, Balls::Free, harmonics, control)?;
+        let c = general_campbell::campbell_with(&g, w, points, Balls::Free, harmonics, control)
+            .map_err(|e| crate::general::name_omega_max(e, self.omega_max.is_some(), "linear_rotor.omega_max"))?;
         Ok(Output::General { g: Box::new(g), c: Box::new(c), omega_max: w, view: self.view })
     }
 }
@@ -506,5 +508,43 @@ mod tests {
         let planar = crate::config::parse_text(include_str!("../../../examples/planar.toml"), "p").unwrap();
         let general = Args { config: ConfigSource::tables(planar, "p"), points: Some(100_001), ..Default::default() };
         assert_eq!(e(general), "--points: must lie between 3 and 100000 on the general route, got 100001");
+    }
+
+    /// A periodic orbit's diagram whose every speed is below the periodic-orbit floor (the
+    /// two-plane example: 0.81 rad/s) is refused in one line naming where its top speed came
+    /// from (`--omega-max`, or the config's `analysis.omega_max`), as `stability` refuses it; a
+    /// diagram reaching above it reads "not analysed" at the slow speeds (table and JSON).
+    /// Main at e3f0650 shot a revolution at every speed (more than 60 s).
+    #[test]
+    fn speeds_below_the_periodic_floor_are_refused_or_not_analysed() {
+        let two = include_str!("../../../examples/spatial_two_plane.toml");
+        let src = |set: &[&str]| {
+            let mut t = crate::config::parse_text(two, "test").unwrap();
+            for s in set {
+                crate::config::apply_set(&mut t, s).unwrap();
+            }
+            ConfigSource::tables(t, "test")
+        };
+        let args = Args { config: src(&[]), omega_max: Some("1e-4 rad/s".into()), points: Some(5), ..Default::default() };
+        let e = format!("{:#}", args.run(&Control::none()).err().expect("refused"));
+        assert!(
+            e.starts_with("--omega-max: 9e-5 rad/s (") && e.contains("the grid's top speed, is below 0.809787 rad/s (7.73289 rpm),") && !e.contains('\n'),
+            "{e}"
+        );
+        let args = Args { config: src(&["analysis.omega_max=\"0.001 rad/s\""]), points: Some(5), ..Default::default() };
+        let e = format!("{:#}", args.run(&Control::none()).err().expect("refused"));
+        assert!(e.starts_with("analysis.omega_max: 0.0009 rad/s ("), "{e}");
+        // 10 speeds to 10 rad/s (cell middles 0.5, 1.5, …): the first is below the floor
+        let args = Args { config: src(&[]), omega_max: Some("10 rad/s".into()), points: Some(10), ..Default::default() };
+        let out = args.run(&Control::none()).unwrap();
+        let v = out.json().unwrap();
+        assert_eq!((&v["analysed"][0], &v["analysed"][1]), (&serde_json::json!(false), &serde_json::json!(true)), "{}", v["analysed"]);
+        let t = out.table().unwrap();
+        // one speed below: named once (not "X to X"); its block says only "not analysed"
+        assert!(t.contains("not analysed (below the periodic-orbit floor) at 1 of 10 speeds (0.5 rad/s (4.77465 rpm): a revolution"), "{t}");
+        assert!(
+            t.contains("speed 0.5 rad/s (4.77465 rpm)\n  not analysed (below the periodic-orbit floor)\n") && !t.contains("no stationary state: not analysed"),
+            "{t}"
+        );
     }
 }

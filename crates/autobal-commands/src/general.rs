@@ -52,7 +52,7 @@ fn rpm(w: f64) -> f64 {
     w * 30.0 / std::f64::consts::PI
 }
 
-fn speed_text(g: &GeneralRotor, w: f64) -> String {
+pub(crate) fn speed_text(g: &GeneralRotor, w: f64) -> String {
     if g.si {
         format!("{} rad/s ({} rpm)", fmt_num(round(w)), fmt_num(round(rpm(w))))
     } else {
@@ -75,7 +75,7 @@ pub fn analyse(g: &GeneralRotor, omega_max: f64, samples: usize, control: &Contr
     let speeds = speed_grid(omega_max, samples)?;
     // the scan asks the control once per speed; a stopped scan prints nothing (its ranges
     // would end where it stopped, not where the stability does)
-    let out = autobal::rotor_stability::stability_over_speed_with(&g.rotor, &speeds, control)?;
+    let out = autobal::rotor_stability::stability_over_speed_with(&g.rotor, &speeds, control).map_err(|e| floor_in_units(g, e, &speeds))?;
     if let Some(why) = out.stopped {
         anyhow::bail!("{why}: the stability scan stopped after {} of {} speeds; nothing is printed", out.value.points.len(), speeds.len());
     }
@@ -407,6 +407,34 @@ pub(crate) fn not_balanced_text(r: &autobal::rotor_stability::RotorStability, sp
         speed(a.omega),
         speed(b.omega)
     )
+}
+
+/// The library's `omega_max` refusal of a grid below the periodic-orbit floor, its numbers
+/// written with their unit (`speed_text`: rad/s and rpm, or `Ω`): the grid's top speed
+/// (where the floor is taken) and the floor there; other errors as they are.
+pub fn floor_in_units(g: &GeneralRotor, e: autobal::Error, speeds: &[f64]) -> anyhow::Error {
+    let top = speeds.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    match (&e, g.rotor.below_periodic_floor(top)) {
+        (autobal::Error::InvalidParameter { field, .. }, Some(f)) if field == "omega_max" => {
+            let words = autobal::rotor_stability::below_floor_words(&format!("{}, the grid's top speed,", speed_text(g, top)), &speed_text(g, f));
+            autobal::Error::invalid("omega_max", words).into()
+        }
+        _ => e.into(),
+    }
+}
+
+/// The library's `omega_max` error (a top speed below what the periodic-orbit analysis
+/// resolves, [`autobal::rotor_stability::Rotor::periodic_floor`]) named as the user gave the
+/// speed: `--omega-max` where `flag_set`, else the config's key `key` (`analysis.omega_max`,
+/// `linear_rotor.omega_max`); `stability` and `campbell` alike.
+pub fn name_omega_max(e: anyhow::Error, flag_set: bool, key: &str) -> anyhow::Error {
+    match e.downcast_ref::<autobal::Error>() {
+        Some(autobal::Error::InvalidParameter { field, reason }) if field == "omega_max" => {
+            let flag = if flag_set { "--omega-max" } else { key };
+            autobal::Error::invalid(flag, reason.clone()).into()
+        }
+        _ => e,
+    }
 }
 
 #[cfg(test)]

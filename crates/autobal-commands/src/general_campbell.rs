@@ -111,13 +111,13 @@ pub fn campbell_with(g: &GeneralRotor, omega_max: f64, points: usize, balls: Bal
     let c = match balls {
         // the scan asks the control once per speed; a stopped scan prints nothing
         Balls::Free => {
-            let out = autobal::rotor_campbell::campbell_over_speed_with(&g.rotor, &sp, control)?;
+            let out = autobal::rotor_campbell::campbell_over_speed_with(&g.rotor, &sp, control).map_err(|e| crate::general::floor_in_units(g, e, &sp))?;
             if let Some(why) = out.stopped {
                 anyhow::bail!("{why}: the Campbell scan stopped after {} of {} speeds; nothing is printed", out.value.omega.len(), sp.len());
             }
             out.value
         }
-        Balls::Locked => campbell_locked(&g.rotor, &sp)?,
+        Balls::Locked => campbell_locked(&g.rotor, &sp).map_err(|e| crate::general::floor_in_units(g, e, &sp))?,
     };
     autobal::limits::check_finite("campbell", &c)?;
     let (fixed, mut why) = match fixed_view(&g.rotor, balls, &c, harmonics) {
@@ -238,6 +238,7 @@ fn lines_json(g: &GeneralRotor, c: &RotorCampbell, omega_max: f64) -> Value {
         "omega": c.omega,
         "lines": c.lines,
         "failures": c.failures,
+        "analysed": c.analysed,
         "fixed_axes": "fixed_frequency f = Ω ± ν of the dominant circular component of the rotor's motion (> 0 forward whirl); log_decrement per fixed-axes cycle −2πσ/|f|",
     });
     if c.kind == Kind::PeriodicOrbit {
@@ -281,7 +282,12 @@ pub fn campbell_table(g: &GeneralRotor, gc: &GeneralCampbell) -> String {
     for k in at {
         let _ = writeln!(s, "\nspeed {}", speed_text(g, c.omega[k]));
         if let Some(f) = &c.failures[k] {
-            let _ = writeln!(s, "  no stationary state: {f}");
+            // below the periodic-orbit floor no state was sought: say only that
+            if !c.analysed.get(k).copied().unwrap_or(true) {
+                let _ = writeln!(s, "  {}", autobal::rotor_campbell::NOT_ANALYSED);
+            } else {
+                let _ = writeln!(s, "  no stationary state: {f}");
+            }
             continue;
         }
         let hz = if g.si { format!(" {:>11}", "fixed Hz") } else { String::new() };
@@ -302,10 +308,21 @@ pub fn campbell_table(g: &GeneralRotor, gc: &GeneralCampbell) -> String {
             );
         }
     }
-    let missing = c.failures.iter().filter(|f| f.is_some()).count();
-    if missing > 0 {
-        let first = c.failures.iter().flatten().next().cloned().unwrap_or_default();
-        let _ = writeln!(s, "\nno stationary state at {missing} of {n} speeds (first: {first})");
+    // speeds below the periodic-orbit floor are not analysed (no state sought), apart from
+    // those analysed without a stationary state found
+    let below: Vec<usize> = (0..c.failures.len()).filter(|&k| c.failures[k].is_some() && !c.analysed.get(k).copied().unwrap_or(true)).collect();
+    if let (Some(&k), Some(&last)) = (below.first(), below.last()) {
+        let at = if k == last { speed_text(g, c.omega[k]) } else { format!("{} to {}", speed_text(g, c.omega[k]), speed_text(g, c.omega[last])) };
+        let _ = writeln!(
+            s,
+            "\nnot analysed (below the periodic-orbit floor) at {} of {n} speeds ({at}: a revolution longer than {} periods of the fastest natural vibration is not shot)",
+            below.len(),
+            autobal::rotor_stability::PERIODS_PER_REVOLUTION
+        );
+    }
+    let missing: Vec<&String> = c.failures.iter().zip(&c.analysed).filter(|(_, a)| **a).filter_map(|(f, _)| f.as_ref()).collect();
+    if let Some(first) = missing.first() {
+        let _ = writeln!(s, "\nno stationary state at {} of {n} speeds (first: {first})", missing.len());
     }
     s.push_str(&crossings_table(g, gc));
     s

@@ -307,6 +307,10 @@ pub fn boundary_path(stem: &Path) -> PathBuf {
     PathBuf::from(format!("{}_boundary.csv", stem.display()))
 }
 
+/// The general route's CSV verdict of a cell below the periodic-orbit floor
+/// ([`autobal::rotor_stability::Rotor::periodic_floor`]): not analysed, no state sought.
+pub const NOT_ANALYSED: &str = "not_analysed";
+
 fn verdict_name(v: Option<Verdict>) -> &'static str {
     match v {
         None => "",
@@ -411,6 +415,17 @@ impl Output {
     }
 }
 
+/// The table's words on the cells below the periodic-orbit floor (none: nothing).
+fn not_analysed_words(n: usize) -> String {
+    if n == 0 {
+        return String::new();
+    }
+    format!(
+        ", {n} not analysed (below the periodic-orbit floor: a revolution longer than {} periods of the fastest natural vibration)",
+        autobal::rotor_stability::PERIODS_PER_REVOLUTION
+    )
+}
+
 /// An axis as the JSON gives it: its path, ends and number of values.
 fn axis_json(a: &Axis) -> Value {
     json!({"path": a.path, "lo": a.lo(), "hi": a.hi(), "n": a.values.len()})
@@ -446,6 +461,7 @@ impl command::Output for Output {
                 v["closed_form"] = json!(outcome.closed_form);
                 v["continued"] = json!(outcome.continued);
                 v["without_stationary_state"] = json!(outcome.none);
+                v["not_analysed"] = json!(outcome.not_analysed);
                 v["families"] = json!(outcome.families);
                 if let Some(t) = traced {
                     v["boundary"] = json!({"bisected_points": t.len()});
@@ -474,12 +490,13 @@ impl command::Output for Output {
                 self.wrote()
             ),
             RouteOutput::General { outcome, linear, .. } => format!(
-                "general route: {done} rows × {n} points in {:.2} s ({per_point:.2} µs per point; {} from the closed form, {} continued from a neighbour, {} without a stationary state{}); stationary state: {}{}\n",
+                "general route: {done} rows × {n} points in {:.2} s ({per_point:.2} µs per point; {} from the closed form, {} continued from a neighbour, {} without a stationary state{}{}); stationary state: {}{}\n",
                 self.secs,
                 outcome.closed_form,
                 outcome.continued,
                 outcome.none,
                 crate::linear_rotor::map_none_reason(*linear, outcome.none),
+                not_analysed_words(outcome.not_analysed),
                 Output::state(outcome),
                 self.wrote()
             ),
@@ -858,7 +875,9 @@ fn general(
             let mut t = String::with_capacity(cells.len() * 48);
             for (xs, c) in xs.iter().zip(cells) {
                 // no stationary state: empty fields, never `NaN`
+                // below the periodic-orbit floor: `not_analysed` (no state was sought)
                 let (margin, verdict, fam) = match c.verdict {
+                    None if !c.analysed => (String::new(), NOT_ANALYSED, String::new()),
                     None => (String::new(), "", String::new()),
                     Some(v) => (
                         if verdict_only { String::new() } else { crate::num::Csv(c.margin).to_string() },
@@ -896,7 +915,11 @@ fn general(
     let outcome = outcome.map_err(|e| match e.field() {
         Some(f) if f == x.path => anyhow!("--x: {e}"),
         Some(f) if f == y.path => anyhow!("--y: {e}"),
-        Some("omega") => anyhow!("--omega: {e}"),
+        // the flag names the key once
+        Some("omega") => match &e {
+            autobal::Error::InvalidParameter { reason, .. } => anyhow!("--omega: {reason}"),
+            _ => anyhow!("--omega: {e}"),
+        },
         _ => anyhow!("{e}"),
     })?;
     Ok(RouteOutput::General { fx: dx, fy: dy, frows: kept, cells: keep_all.then_some(all), outcome, planar, linear, traced: a.boundary.then_some(traced) })
@@ -962,6 +985,16 @@ fn general_plot(
             let what = if periodic { "largest Floquet exponent" } else { "max Re λ" };
             h.label = format!("{what} ({}; < 0 stable)", if planar { "1/s" } else { "per unit τ" });
         }
+    }
+    // cells below the periodic-orbit floor: blank too, marked as not analysed (grey)
+    let below: Vec<(f64, f64)> = frows
+        .iter()
+        .enumerate()
+        .filter_map(|(j, r)| r.as_ref().map(|r| (j, r)))
+        .flat_map(|(j, r)| r.iter().enumerate().filter(|(_, c)| !c.analysed).map(move |(i, _)| (fx.values[i], fy.values[j])))
+        .collect();
+    if !below.is_empty() {
+        p.series.push(Series::new("not analysed (below the periodic-orbit floor)", below, "#999999").markers());
     }
     if let Some(t) = traced {
         if !t.is_empty() {
@@ -1638,5 +1671,49 @@ mod tests {
     fn config_keys_read_as_physics() {
         assert_eq!(axis_label("dimensionless.z_a"), "z̄_A (balancer plane from C / ρ_s)");
         assert_eq!(axis_label("planar.k"), "planar.k");
+    }
+
+    /// A periodic configuration's map (the two-plane example: gravity, supports stiffer in y)
+    /// with a speed below the periodic-orbit floor (0.81 rad/s): the CSV's verdict there is
+    /// `not_analysed`, the JSON and the table count it; every speed below is refused in one
+    /// line naming the axis. Main at e3f0650 shot each such cell (more than 60 s at 1e-6 rad/s).
+    #[test]
+    fn a_maps_speeds_below_the_periodic_floor_are_not_analysed_or_refused() {
+        let two = include_str!("../../../examples/spatial_two_plane.toml");
+        let args = Args {
+            config: tables(two),
+            x: parse_axis("--x", "speed=1e-6:1e-5:3").unwrap(),
+            y: parse_axis("--y", "balancer.drag=0.4:0.5:2").unwrap(),
+            ..Default::default()
+        };
+        let e = format!("{:#}", args.run(&Control::none()).err().expect("refused"));
+        assert!(e.starts_with("--x: speed: 1e-5 rad/s is below 0.809787 rad/s,") && !e.contains('\n'), "{e}");
+        // at one speed in rpm: the key named once, both numbers in rpm
+        let args = Args {
+            config: tables(two),
+            x: parse_axis("--x", "balancer2.drag=0.4:0.5:2").unwrap(),
+            y: parse_axis("--y", "balancer.drag=0.4:0.5:2").unwrap(),
+            omega: Some("5rpm".into()),
+            ..Default::default()
+        };
+        let e = format!("{:#}", args.run(&Control::none()).err().expect("refused"));
+        assert!(e.starts_with("--omega: 5 rpm is below 7.73289 rpm,") && !e.contains('\n'), "{e}");
+        let args = Args {
+            config: tables(two),
+            x: parse_axis("--x", "speed=0.5:450.5:2").unwrap(),
+            y: parse_axis("--y", "balancer.drag=0.4:0.5:2").unwrap(),
+            ..Default::default()
+        };
+        let mut csv = vec![];
+        let out = args.prepare().unwrap().run(&Control::none(), Rows::Csv(&mut csv)).unwrap();
+        let text = String::from_utf8(csv).unwrap();
+        let lines: Vec<&str> = text.lines().collect();
+        for (row, y) in [(1, "0.4"), (3, "0.5")] {
+            assert_eq!(lines[row], format!("0.5,{y},,not_analysed,,"), "{text}");
+            assert!(lines[row + 1].starts_with(&format!("450.5,{y},")) && !lines[row + 1].contains("not_analysed"), "{text}");
+        }
+        assert_eq!(out.json().unwrap()["not_analysed"], 2);
+        let t = out.table().unwrap();
+        assert!(t.contains(", 2 not analysed (below the periodic-orbit floor"), "{t}");
     }
 }

@@ -123,13 +123,7 @@ impl Args {
     /// gave the speed: `--omega-max`, else the config's key `key` (`analysis.omega_max`,
     /// `linear_rotor.omega_max`).
     fn name_omega_max(&self, e: anyhow::Error, key: &str) -> anyhow::Error {
-        match e.downcast_ref::<autobal::Error>() {
-            Some(autobal::Error::InvalidParameter { field, reason }) if field == "omega_max" => {
-                let flag = if self.omega_max.is_some() { "--omega-max" } else { key };
-                autobal::Error::invalid(flag, reason.clone()).into()
-            }
-            _ => e,
-        }
+        general::name_omega_max(e, self.omega_max.is_some(), key)
     }
 
     /// `stability` on a linear rotor config ([`crate::linear_rotor`]).
@@ -216,10 +210,14 @@ mod tests {
         let two = include_str!("../../../examples/spatial_two_plane.toml");
         let args = Args { config: tables(two, &[]), omega_max: Some("1e-9 rad/s".into()), ..Default::default() };
         let e = format!("{:#}", args.run(&Control::none()).err().expect("refused"));
-        assert!(e.starts_with("--omega-max: 1e-9 is below ") && !e.contains('\n'), "{e}");
+        // both numbers with their unit, the key named once
+        assert!(
+            e.starts_with("--omega-max: 1e-9 rad/s (") && e.contains("the grid's top speed, is below 0.809787 rad/s (7.73289 rpm),") && !e.contains('\n'),
+            "{e}"
+        );
         let args = Args { config: tables(two, &["analysis.omega_max=\"0.001 rad/s\""]), ..Default::default() };
         let e = format!("{:#}", args.run(&Control::none()).err().expect("refused"));
-        assert!(e.starts_with("analysis.omega_max: 0.001 is below "), "{e}");
+        assert!(e.starts_with("analysis.omega_max: 0.001 rad/s ("), "{e}");
     }
 
     /// A linear rotor under gravity whose bearings change with speed (the shaft example, one

@@ -642,7 +642,9 @@ fn map_dict<'py>(py: Python<'py>, args: autobal_commands::map::Args, threads: Op
                 Some(Verdict::Unstable) => "unstable",
                 Some(Verdict::Neutral) => "neutral",
             };
-            let rows: Vec<Vec<&str>> = cells.iter().map(|r| r.iter().map(|c| name(c.verdict)).collect()).collect();
+            // below the periodic-orbit floor: "not_analysed", as the CLI's CSV
+            let rows: Vec<Vec<&str>> =
+                cells.iter().map(|r| r.iter().map(|c| if c.analysed { name(c.verdict) } else { autobal_commands::map::NOT_ANALYSED }).collect()).collect();
             d.set_item("verdict", rows)?;
             d.set_item("family_dimension", PyArray1::from_vec(py, flat().map(|c| c.family_dimension as u64).collect()).reshape([ny, nx])?)?;
             d.set_item("route", "general")?;

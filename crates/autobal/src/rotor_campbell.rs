@@ -151,6 +151,11 @@ pub struct RotorCampbell {
     pub lines: Vec<CampbellLine>,
     /// Why a speed has no state, per speed (`None` where it has one).
     pub failures: Vec<Option<String>>,
+    /// Whether each speed was analysed: `false` for a periodic orbit's speed below the
+    /// periodic-orbit floor ([`Rotor::periodic_floor`], the rule of
+    /// [`crate::rotor_stability`]), where no state was sought and `failures` says so (not "no
+    /// stationary state found").
+    pub analysed: Vec<bool>,
 }
 
 /// The eigenvalues (or Floquet exponents) of the stationary state at one speed, with their
@@ -381,16 +386,26 @@ pub fn campbell_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Control
     }
     let first = rotor.field(speeds[0])?;
     let kind = if first.period().is_some() { Kind::PeriodicOrbit } else { Kind::Equilibrium };
+    let floor = below_floor_of(rotor, kind, speeds)?;
     let opts = newton_options(kind == Kind::PeriodicOrbit);
     let mut previous: Option<StationaryState> = None;
     let mut per_speed: Vec<Option<Vec<CampbellPoint>>> = Vec::with_capacity(speeds.len());
     let mut failures = Vec::with_capacity(speeds.len());
+    let mut analysed = Vec::with_capacity(speeds.len());
     let mut stopped = None;
     for &w in speeds {
         if let Some(why) = control.should_stop() {
             stopped = Some(why);
             break;
         }
+        if let Some(why) = floor(w) {
+            per_speed.push(None);
+            failures.push(Some(why));
+            analysed.push(false);
+            control.report(per_speed.len() as u64, speeds.len() as u64);
+            continue;
+        }
+        analysed.push(true);
         let f = rotor.field(w)?;
         let guess = Rotor::guess(&f);
         let near = previous.as_ref().map(|p| p.x.clone());
@@ -423,9 +438,27 @@ pub fn campbell_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Control
         control.report(per_speed.len() as u64, speeds.len() as u64);
     }
     let done = per_speed.len();
-    let value = RotorCampbell { model: rotor.model_name(), kind, omega: speeds[..done].to_vec(), lines: track(&per_speed), failures };
+    let value = RotorCampbell { model: rotor.model_name(), kind, omega: speeds[..done].to_vec(), lines: track(&per_speed), failures, analysed };
     Ok(Outcome { value, stopped })
 }
+
+/// What a Campbell scan over `speeds` of a stationary state of `kind` does at each speed below
+/// the periodic-orbit floor ([`Rotor::below_periodic_floor`], the speed scan's rule): the
+/// closure gives the failure's words there (`None`: the speed is analysed). Every speed below
+/// it is refused, naming `omega_max` (the top speed), as [`crate::rotor_stability`] refuses it.
+fn below_floor_of<'a>(rotor: &'a Rotor, kind: Kind, speeds: &[f64]) -> Result<impl Fn(f64) -> Option<String> + 'a> {
+    let periodic = kind == Kind::PeriodicOrbit;
+    let top = speeds.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    if let Some(f) = periodic.then(|| rotor.below_periodic_floor(top)).flatten() {
+        return Err(Error::invalid("omega_max", crate::rotor_stability::below_floor(top, f)));
+    }
+    Ok(move |w: f64| {
+        periodic.then(|| rotor.below_periodic_floor(w)).flatten().map(|f| format!("{NOT_ANALYSED}: {}", crate::rotor_stability::below_floor(w, f)))
+    })
+}
+
+/// The words of a speed below the periodic-orbit floor in [`RotorCampbell::failures`].
+pub const NOT_ANALYSED: &str = "not analysed (below the periodic-orbit floor)";
 
 /// Continuous lines through each speed's values: each line's next value predicted by linear
 /// extrapolation of its last two, pairs matched nearest first.
@@ -937,10 +970,19 @@ pub fn campbell_locked(rotor: &Rotor, speeds: &[f64]) -> Result<RotorCampbell> {
         Err(_) => rotor.field(speeds[0])?.period(),
     }
     .map_or(Kind::Equilibrium, |_| Kind::PeriodicOrbit);
+    let floor = below_floor_of(rotor, kind, speeds)?;
     let mut previous: Option<StationaryState> = None;
     let mut per_speed = Vec::with_capacity(speeds.len());
     let mut failures = Vec::with_capacity(speeds.len());
+    let mut analysed = Vec::with_capacity(speeds.len());
     for &w in speeds {
+        let not = floor(w);
+        analysed.push(not.is_none());
+        if let Some(why) = not {
+            per_speed.push(None);
+            failures.push(Some(why));
+            continue;
+        }
         match state_and_spectrum(rotor, Balls::Locked, w, previous.as_ref()) {
             Ok((s, p)) => {
                 previous = Some(s);
@@ -954,7 +996,7 @@ pub fn campbell_locked(rotor: &Rotor, speeds: &[f64]) -> Result<RotorCampbell> {
             }
         }
     }
-    Ok(RotorCampbell { model: rotor.model_name(), kind, omega: speeds.to_vec(), lines: track(&per_speed), failures })
+    Ok(RotorCampbell { model: rotor.model_name(), kind, omega: speeds.to_vec(), lines: track(&per_speed), failures, analysed })
 }
 
 /// `|Im λ|` at most this times `max(1, |λ|)` counts as a real eigenvalue (QR round-off).

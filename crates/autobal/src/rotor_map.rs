@@ -109,6 +109,11 @@ pub struct GeneralCell {
     pub family_min_margin: f64,
     /// Whether the state was reached from the neighbouring cell rather than the closed form.
     pub continued: bool,
+    /// Whether the cell was analysed: `false` where its stationary state is a periodic orbit
+    /// and its speed is below the periodic-orbit analysis' floor ([`Rotor::periodic_floor`], the
+    /// rule of [`crate::rotor_stability`]): no state was sought there (not "no stationary state
+    /// found"; `verdict` `None`, `margin` NaN).
+    pub analysed: bool,
 }
 
 impl GeneralCell {
@@ -121,7 +126,10 @@ impl GeneralCell {
         family_max_margin: f64::NAN,
         family_min_margin: f64::NAN,
         continued: false,
+        analysed: true,
     };
+    /// A cell below the periodic-orbit floor ([`GeneralCell::analysed`]).
+    const NOT_ANALYSED: GeneralCell = GeneralCell { analysed: false, ..GeneralCell::NONE };
 }
 
 /// Step in scaled arclength of a map cell's one-parameter family (0.3; a periodic orbit's
@@ -173,8 +181,12 @@ pub struct GeneralMapOutcome {
     pub closed_form: usize,
     /// Cells whose state was continued from the neighbour.
     pub continued: usize,
-    /// Cells without a stationary state.
+    /// Cells analysed without a stationary state found (not those below the periodic-orbit
+    /// floor: [`GeneralMapOutcome::not_analysed`]).
     pub none: usize,
+    /// Cells not analysed: a periodic orbit's speed below the periodic-orbit floor
+    /// ([`GeneralCell::analysed`]).
+    pub not_analysed: usize,
     /// Cells whose stationary state is a periodic orbit.
     pub periodic: usize,
     /// Cells whose state belongs to a family whose members were followed
@@ -248,6 +260,11 @@ fn model_speed(c: &CellRotor, s: Speed, field: &str) -> Result<f64> {
 fn solve(c: &CellRotor, w: f64, previous: Option<&StationaryState>, closed_form: bool, families: bool) -> (GeneralCell, Option<StationaryState>) {
     let Ok(field) = c.rotor.field(w) else { return (GeneralCell::NONE, None) };
     let periodic = field.period().is_some();
+    // the periodic-orbit floor (the speed scan's one rule): a revolution spanning more than
+    // PERIODS_PER_REVOLUTION of the fastest natural periods is not shot
+    if periodic && c.rotor.below_periodic_floor(w).is_some() {
+        return (GeneralCell::NOT_ANALYSED, None);
+    }
     let guess = if closed_form { Rotor::guess(&field) } else { None };
     let previous = previous.filter(|p| p.x.len() == field.dim());
     let hint = previous.and_then(|p| p.monodromy.as_deref());
@@ -286,10 +303,12 @@ fn solve(c: &CellRotor, w: f64, previous: Option<&StationaryState>, closed_form:
 type Side = (f64, Option<Verdict>, Option<StationaryState>, GeneralCell);
 
 /// Which side of the stability boundary a cell lies on: 0 without a stationary state, 1 where
-/// the margin is negative, 2 where it is not. The boundary is where the margin crosses 0 (as
+/// the margin is negative, 2 where it is not, 3 not analysed (below the periodic-orbit floor:
+/// no boundary is traced next to it). The boundary is where the margin crosses 0 (as
 /// [`crate::analysis::speed_scan`] bisects it), not the edge of the neutral band around it.
 fn side(c: &GeneralCell) -> u8 {
     match c.verdict {
+        None if !c.analysed => 3,
         None => 0,
         Some(_) if c.margin < 0.0 => 1,
         Some(_) => 2,
@@ -368,6 +387,53 @@ impl Plane<'_> {
         })
     }
 
+    /// The refusal of a map none of whose cells is analysed: every cell's stationary state a
+    /// periodic orbit whose speed is below the periodic-orbit floor ([`Rotor::periodic_floor`],
+    /// the speed scan's rule), named by the key that set the speed (the speed axis' path, or
+    /// `omega` for a fixed speed) in its unit; `None` as soon as one cell is analysed. The
+    /// speed axis is walked from its top, so a map with its top speed above the floor costs one
+    /// rotor per line; only a refused map builds every cell's.
+    fn all_below_floor(&self) -> Result<Option<Error>> {
+        let (sx, sy) = (speed_unit(self.x), speed_unit(self.y));
+        let (key, unit) = match (sx, sy, self.speed) {
+            (Some(u), _, _) => (self.x.path.as_str(), u),
+            (None, Some(u), _) => (self.y.path.as_str(), u),
+            (None, None, Some(s)) => ("omega", s.unit),
+            (None, None, None) => return Ok(None),
+        };
+        let descending = |a: &Axis, speed: bool| {
+            let mut k: Vec<usize> = (0..a.values.len()).collect();
+            if speed {
+                k.sort_by(|&i, &j| a.values[j].total_cmp(&a.values[i]));
+            }
+            k
+        };
+        let (xs, ys) = (descending(self.x, sx.is_some()), descending(self.y, sy.is_some()));
+        // the cell closest to its floor: (speed, floor) in the key's unit, and their ratio
+        let mut closest: Option<(f64, f64, f64)> = None;
+        for &j in &ys {
+            for &i in &xs {
+                let (xv, yv) = (self.x.values[i], self.y.values[j]);
+                let (c, w) = self.cell(Some(i), j, xv, yv)?;
+                // as `solve`: a cell whose state is no periodic orbit (an equilibrium at rest,
+                // `w = 0`), or without a field there, is analysed
+                let periodic = c.rotor.field(w).is_ok_and(|f| f.period().is_some());
+                let Some(f) = c.rotor.below_periodic_floor(w).filter(|_| periodic) else { return Ok(None) };
+                // model speed units per unit of the key (Ω0 of an SI spatial rotor's `omega`, …)
+                let per = model_speed(&c, Speed { value: 1.0, unit }, key)?;
+                let (v, fv) = (w / per, f / per);
+                if closest.is_none_or(|(_, _, r)| w / f > r) {
+                    closest = Some((v, fv, w / f));
+                }
+            }
+        }
+        // both numbers in the key's unit, written
+        let text = |v: f64| if unit == SpeedUnit::Omega { format!("Ω = {}", fmt_num(v)) } else { format!("{} {}", fmt_num(v), unit.symbol()) };
+        Ok(closest.map(|(v, f, _)| {
+            Error::invalid(key, format!("{} (every cell of the map: nothing to analyse)", crate::rotor_stability::below_floor_words(&text(v), &text(f))))
+        }))
+    }
+
     /// Row `j`: every `x` at `y_j`, continued along the row (then, for a cell left without a
     /// state, once more from its right-hand neighbour's state: a row that finds its first
     /// state only at larger `x` continues it back); with `trace`, the points where the verdict
@@ -385,7 +451,7 @@ impl Plane<'_> {
             out.push(cell);
         }
         for i in (0..out.len().saturating_sub(1)).rev() {
-            if out[i].verdict.is_none() && states[i + 1].is_some() {
+            if out[i].verdict.is_none() && out[i].analysed && states[i + 1].is_some() {
                 let (c, w) = self.cell(Some(i), j, self.x.values[i], yv)?;
                 let (cell, x) = solve(&c, w, states[i + 1].as_ref(), false, true);
                 if cell.verdict.is_some() {
@@ -397,9 +463,10 @@ impl Plane<'_> {
         let mut points = vec![];
         if trace {
             for i in 0..out.len().saturating_sub(1) {
-                if side(&out[i]) != side(&out[i + 1]) {
+                let (a, b) = (side(&out[i]), side(&out[i + 1]));
+                if a != b && a != 3 && b != 3 {
                     let end = |k: usize| (self.x.values[k], out[k].verdict, states[k].clone(), out[k]);
-                    points.push(self.bisect(j, end(i), end(i + 1))?);
+                    points.extend(self.bisect(j, end(i), end(i + 1))?);
                 }
             }
         }
@@ -407,8 +474,11 @@ impl Plane<'_> {
     }
 
     /// The point between `lo` and `hi` (x, verdict, state) on row `j` where the verdict changes,
-    /// by bisection to [`BOUNDARY_RTOL`] relative in `x`.
-    fn bisect(&self, j: usize, lo: Side, hi: Side) -> Result<BoundaryPoint> {
+    /// by bisection to [`BOUNDARY_RTOL`] relative in `x`; `None` where a midpoint is not analysed
+    /// (below the periodic-orbit floor, side 3): the interval then holds cells on no side, and
+    /// taking such a midpoint for the far side would walk towards it and report a boundary
+    /// that is only the floor's edge.
+    fn bisect(&self, j: usize, lo: Side, hi: Side) -> Result<Option<BoundaryPoint>> {
         let yv = self.y.values[j];
         let (from, to) = (lo.1, hi.1);
         let side_lo = side(&lo.3);
@@ -421,6 +491,9 @@ impl Plane<'_> {
             }
             let (c, w) = self.cell(None, j, mid, yv)?;
             let (cell, x) = solve(&c, w, xa.as_ref().or(xb.as_ref()), true, false);
+            if side(&cell) == 3 {
+                return Ok(None);
+            }
             if side(&cell) == side_lo {
                 a = mid;
                 xa = x.or(xa);
@@ -429,7 +502,7 @@ impl Plane<'_> {
                 xb = x.or(xb);
             }
         }
-        Ok(BoundaryPoint { x: 0.5 * (a + b), y: yv, from, to })
+        Ok(Some(BoundaryPoint { x: 0.5 * (a + b), y: yv, from, to }))
     }
 }
 
@@ -564,6 +637,10 @@ fn map_on(
     let (c, w) = plane.cell(Some(0), 0, x.values[0], y.values[0])?;
     c.rotor.field(w.max(f64::MIN_POSITIVE))?;
     drop(c);
+    // a map whose every cell is below the periodic-orbit floor is refused, naming the speed
+    if let Some(e) = plane.all_below_floor()? {
+        return Err(e);
+    }
     let mut out = GeneralMapOutcome { complete: true, ..Default::default() };
     let block = (4 * rayon::current_num_threads()).max(1);
     let mut j0 = 0;
@@ -579,6 +656,7 @@ fn map_on(
             };
             for c in &row {
                 match c.verdict {
+                    None if !c.analysed => out.not_analysed += 1,
                     None => out.none += 1,
                     Some(_) if c.continued => out.continued += 1,
                     Some(_) => out.closed_form += 1,
@@ -731,5 +809,23 @@ mod tests {
         // on_row stopping after the first row: the rows so far, stopped by the observer
         let out = general_map(&root, &x, &y, None, &Control::none(), &mut |_, _| false).unwrap();
         assert_eq!((out.rows, out.stopped), (1, Some(StopReason::Observer)));
+    }
+
+    /// A boundary's bisection between two analysed cells on different sides whose midpoint is
+    /// below the periodic-orbit floor (0.81 rad/s on examples/spatial_two_plane.toml: 0.5 is
+    /// below it) reports no point: taking the not-analysed midpoint for the far side walked
+    /// down to rest and reported a boundary at 0 rad/s (checked with the stop taken out). The ends are made up (the bisection
+    /// reads only their sides and states), as a row from rest to just above the floor has them.
+    #[test]
+    fn a_bisection_reports_no_point_past_a_midpoint_below_the_floor() {
+        let root = config::parse(include_str!("../../../examples/spatial_two_plane.toml"), "two-plane").unwrap();
+        let (x, y) = (Axis { path: "speed".into(), values: vec![0.0, 1.0] }, Axis { path: "balancer.drag".into(), values: vec![0.5] });
+        let plane = Plane { src: Source::Config(&root), x: &x, y: &y, speed: None, line: None };
+        let (c, w) = plane.cell(None, 0, 0.5, 0.5).unwrap();
+        assert!(c.rotor.below_periodic_floor(w).is_some() && c.rotor.field(w).unwrap().period().is_some());
+        let stable = GeneralCell { margin: -1.0, verdict: Some(Verdict::Stable), ..GeneralCell::NONE };
+        let unstable = GeneralCell { margin: 1.0, verdict: Some(Verdict::Unstable), ..GeneralCell::NONE };
+        let p = plane.bisect(0, (0.0, stable.verdict, None, stable), (1.0, unstable.verdict, None, unstable)).unwrap();
+        assert!(p.is_none(), "{p:?}");
     }
 }

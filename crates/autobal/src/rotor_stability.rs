@@ -461,6 +461,13 @@ impl Rotor {
         (self.is_periodic() && wn.is_finite() && wn > 0.0).then(|| wn / PERIODS_PER_REVOLUTION)
     }
 
+    /// The floor ([`Rotor::periodic_floor`]) where `omega` lies below it (`|omega| <` floor):
+    /// a speed the periodic-orbit analysis does not analyse. The one rule that `stability`,
+    /// `map` ([`crate::rotor_map`]) and `campbell` ([`crate::rotor_campbell`]) apply.
+    pub fn below_periodic_floor(&self, omega: f64) -> Option<f64> {
+        self.periodic_floor(omega).filter(|f| omega.abs() < *f)
+    }
+
     /// Whether the rotor has an unbalance for the balls to cancel, static or couple, above
     /// [`NO_UNBALANCE`] of the balls' capacity `Σ m_b R`: spatial the static `|s0|` or the
     /// couple over the largest axial distance (as [`Rotor::residual`]); linear (no axial
@@ -777,14 +784,14 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
     // more than PERIODS_PER_REVOLUTION natural periods (a scan to 1e-9 rad/s integrated for
     // hours); a top speed below it is refused, grid speeds below it fail by name
     // (with the bearings at each speed: a linear rotor's speed-dependent bearings)
-    let floor = |w: f64| if kind == Kind::PeriodicOrbit { rotor.periodic_floor(w) } else { None };
+    let floor = |w: f64| if kind == Kind::PeriodicOrbit { rotor.below_periodic_floor(w) } else { None };
     let top = speeds.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-    if let Some(f) = floor(top).filter(|f| top < *f) {
+    if let Some(f) = floor(top) {
         return Err(Error::invalid("omega_max", below_floor(top, f)));
     }
     let field_at = |w: f64| match floor(w) {
-        Some(f) if w.abs() < f => Err(Error::invalid("omega", below_floor(w, f))),
-        _ => rotor.field(w),
+        Some(f) => Err(Error::invalid("omega", below_floor(w, f))),
+        None => rotor.field(w),
     };
     // Newton starts from the closed form at every speed (it names the branch: the balanced
     // state, or for a periodic orbit its autonomous neighbour, from which the shooting lands on
@@ -832,8 +839,8 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
                 threshold: p.stability.as_ref().map(|s| s.threshold),
                 family_dimension: fam,
                 amplitude,
-                failure: p.failure.as_ref().map(|f| explain_failure(rotor, f)),
-                analysed: floor(p.omega).is_none_or(|f| p.omega.abs() >= f),
+                failure: p.failure.as_ref().map(|f| explain_failure(rotor, p.omega, f)),
+                analysed: floor(p.omega).is_none(),
                 state,
                 state_basis: state.map(|_| if matches!(rotor, Rotor::Linear(_)) { StateBasis::RaceWhirl } else { StateBasis::Residual }),
                 residual,
@@ -1070,7 +1077,12 @@ fn locate(
 
 /// A scan's failure in the user's terms: where the closed form gives no state, say which state
 /// does not exist and why.
-fn explain_failure(rotor: &Rotor, failure: &str) -> String {
+fn explain_failure(rotor: &Rotor, omega: f64, failure: &str) -> String {
+    if let (Rotor::Spatial(s), true) = (rotor, failure.starts_with("no periodic orbit found")) {
+        if let Some(why) = gravity_slip(s, omega) {
+            return format!("{failure}; {why}");
+        }
+    }
     if !failure.starts_with("no starting point") {
         return failure.to_string();
     }
@@ -1082,6 +1094,49 @@ fn explain_failure(rotor: &Rotor, failure: &str) -> String {
             crate::linear_rotor::partial::why_not_balanced(r)
         ),
     }
+}
+
+/// Why a spatial rotor under gravity has no periodic orbit at `omega` (rad/s), where the
+/// evidence is clear: gravity across the axis drags each ball, swinging once a revolution
+/// (amplitude `g/(R Ω sqrt(Ω² + β²))`, `β = h_A/m`), behind the rotor with a mean torque
+/// `m g² β / (2 Ω (Ω² + β²))` (second-order average of the swing against the gravity torque
+/// `m g R cos φ`), while the most the rotor's whirl can hold a ball with is of order
+/// `m² R² Ω⁴ / |k − M Ω²|` (the ball's own unbalance's response, `k` the supports' softer
+/// direction's total). Said only where the drag exceeds that hold 10 times (the hold is an
+/// order of magnitude); then the balls slip behind the rotor at `g² / (2 Ω R² (Ω² + β²))`
+/// rad/s and no orbit exists: a run at 30 rad/s on the two-plane example with supports of
+/// 5e8/6e8 N/m drifts at 0.0733 rad/s, the closed form 0.0730 (docs/notes/stability.md,
+/// session 13).
+fn gravity_slip(s: &crate::spatial::dynamics::rotor::SpatialRotor, omega: f64) -> Option<String> {
+    use crate::error::fmt_num;
+    let g2 = s.gravity[0] * s.gravity[0] + s.gravity[1] * s.gravity[1];
+    let w = omega.abs();
+    if !(g2 > 0.0 && w > 0.0) {
+        return None;
+    }
+    let m_total = s.total_mass();
+    let k = (0..2).map(|i| s.supports.iter().map(|sp| sp.stiffness[i]).sum::<f64>()).fold(f64::INFINITY, f64::min);
+    let detuned = (k - m_total * w * w).abs();
+    s.planes
+        .iter()
+        .filter(|p| p.n > 0 && p.ball_mass > 0.0 && p.race_radius > 0.0)
+        .map(|p| {
+            let (m, r, beta) = (p.ball_mass, p.race_radius, p.drag / p.ball_mass);
+            let drag = m * g2 * beta / (2.0 * w * (w * w + beta * beta));
+            let hold = m * m * r * r * w.powi(4) / detuned;
+            let slip = g2 / (2.0 * w * r * r * (w * w + beta * beta));
+            (drag, hold, slip)
+        })
+        .filter(|(drag, hold, _)| *drag > 10.0 * hold)
+        .max_by(|a, b| (a.0 / a.1).total_cmp(&(b.0 / b.1)))
+        .map(|(drag, hold, slip)| {
+            format!(
+                "no periodic orbit exists here: gravity drags each ball behind the rotor (a mean torque m g² β/(2Ω(Ω² + β²)) = {} N m) more than the rotor's whirl can hold it (~m² R² Ω⁴/|k − M Ω²| = {} N m), so the balls slip behind it at ~{} rad per revolution",
+                fmt_num(drag),
+                fmt_num(hold),
+                fmt_num(slip * 2.0 * std::f64::consts::PI / w)
+            )
+        })
 }
 
 /// The cyclic relabellings of a plane of exactly three equal balls, as permutations of the
@@ -1155,13 +1210,18 @@ pub(crate) fn off_line(psi: f64, along: f64) -> f64 {
 /// 70.5 rad/s, though the balls hold from ~9 rad/s).
 pub const PERIODS_PER_REVOLUTION: f64 = 1000.0;
 
-/// The message of a speed below [`Rotor::periodic_floor`].
-fn below_floor(w: f64, floor: f64) -> String {
+/// The message of a speed below [`Rotor::periodic_floor`] (both in the rotor's speed unit).
+pub(crate) fn below_floor(w: f64, floor: f64) -> String {
+    use crate::error::fmt_num;
+    below_floor_words(&fmt_num(w), &fmt_num(floor))
+}
+
+/// The message of a speed below [`Rotor::periodic_floor`], the speed and the floor as written
+/// (with their unit, where the caller knows it): "`w` is below `floor`, the slowest speed …".
+pub fn below_floor_words(w: &str, floor: &str) -> String {
     use crate::error::fmt_num;
     format!(
-        "{} is below {}, the slowest speed the periodic-orbit analysis resolves: the fastest natural frequency over {} (a revolution longer than {} of its periods is not integrated)",
-        fmt_num(w),
-        fmt_num(floor),
+        "{w} is below {floor}, the slowest speed the periodic-orbit analysis resolves: the fastest natural frequency over {} (a revolution longer than {} of its periods is not integrated)",
         fmt_num(PERIODS_PER_REVOLUTION),
         fmt_num(PERIODS_PER_REVOLUTION)
     )

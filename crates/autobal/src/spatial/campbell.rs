@@ -182,6 +182,13 @@ pub fn fixed_axes(model: &SpatialModel, c: &Campbell, balls: Balls, harmonics: &
     if c.lines.iter().any(|l| l.modes.len() != n) {
         return Err(Error::invalid("campbell", "every line needs one mode per speed"));
     }
+    // the crossing search bisects between neighbouring speeds: they must increase
+    if let Some(k) = (1..n).find(|&k| !(c.omega[k] > c.omega[k - 1])) {
+        return Err(Error::invalid(
+            "omega",
+            format!("the speeds must increase: {} follows {}", crate::error::fmt_num(c.omega[k]), crate::error::fmt_num(c.omega[k - 1])),
+        ));
+    }
     // Conjugate lines describe the same real motion. Tracked pairs can change partners where
     // eigenvalues collide on the real axis (a damped rotor's pair turns into two real ones and
     // back, possibly pairing with another line), so the kept lines are a 2-colouring of the

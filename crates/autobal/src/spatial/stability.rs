@@ -509,7 +509,8 @@ fn tracking_assignment(dist: &[[f64; MAX_STATES]; MAX_STATES], cost: &dyn Fn(usi
 
 /// Campbell diagram over the speeds `omegas` (ascending), streamed: at each speed `on_speed(k, modes)`
 /// receives the modes in line order (line `i` is the same tracked eigenvalue at every speed);
-/// it returns `false` to stop. Memory does not grow with the number of speeds.
+/// it returns `false` to stop. Memory does not grow with the number of speeds. A speed that
+/// does not increase on the one before is an error (`omega`), after the speeds before it.
 ///
 /// The spectrum at each speed comes from the exact characteristic polynomial in `Ω`
 /// ([`SpeedPolynomial`]): Newton's method from the previous speeds' eigenvalues, certified by
@@ -555,6 +556,14 @@ pub fn campbell_stream(
     let mut modes = Vec::with_capacity(n);
     let mut prev_w = [0.0f64; 2];
     for (step, w) in omegas.into_iter().enumerate() {
+        // the tracking extrapolates over the speed step: a speed that does not increase (a
+        // repeated one made the step 0/0 and the root continuation never settled) is refused
+        if step > 0 && !(w > prev_w[1]) {
+            return Err(Error::invalid(
+                "omega",
+                format!("the speeds must increase: {} follows {}", crate::error::fmt_num(w), crate::error::fmt_num(prev_w[1])),
+            ));
+        }
         let p = Pencil::new(model, w, balls)?;
         let mut ev = [zero; MAX_STATES];
         // each line's eigenvalue extrapolated linearly from the last two speeds
