@@ -628,8 +628,11 @@ impl Column {
     /// The cell at `j`: the one [`Column::set`] was given, bit for bit (a verdict's margin is
     /// the NaN that [`Line::cells`] stores).
     fn cell(&self, j: usize) -> Cell {
-        let f = self.flags[j];
-        Cell { margin: self.margin.get(j).copied().unwrap_or(f64::NAN), stable: f & Self::STABLE != 0, necessary: f & Self::NECESSARY != 0 }
+        Self::unpack(self.flags[j], self.margin.get(j).copied().unwrap_or(f64::NAN))
+    }
+
+    fn unpack(f: u8, margin: f64) -> Cell {
+        Cell { margin, stable: f & Self::STABLE != 0, necessary: f & Self::NECESSARY != 0 }
     }
 }
 
@@ -642,45 +645,59 @@ fn first_error<T>(v: &mut Vec<Result<T>>) -> Result<()> {
     }
 }
 
-/// `x` is the speed: one line per row.
+/// `x` is the speed: one line per row, handed over as computed (no [`Column`]: packing the
+/// cells and unpacking them would cost more instructions than the pages it saves). A block's
+/// row buffers are allocated once and reused; where lines fail, the error is the
+/// lowest-numbered line's.
 fn map_speed_columns<F: ModelFamily>(spec: &F, x: &Axis, y: &Axis, s: &MapSettings, on_row: &mut dyn FnMut(usize, &[Cell]) -> bool) -> Result<MapOutcome> {
-    let block = (BLOCK_CELLS / x.values.len()).max(2 * rayon::current_num_threads());
+    let nx = x.values.len();
+    let ny = y.values.len();
+    let block = (BLOCK_CELLS / nx).max(2 * rayon::current_num_threads());
     let plane = LinePlane::new(spec, y, s.balls);
     let mut out = MapOutcome { complete: true, ..Default::default() };
-    let mut j0 = 0;
-    let seeded = s.quantity == Quantity::Margin && y.values.len() >= PLANE_LINES;
+    let seeded = s.quantity == Quantity::Margin && ny >= PLANE_LINES;
     let w = x.values[0].max(OMEGA_FLOOR);
-    while j0 < y.values.len() {
-        let j1 = (j0 + block).min(y.values.len());
-        // the seeds of the groups this block's lines are in (as `map_speed_rows` computes them)
+    let mut rows: Vec<Vec<Cell>> = (0..block.min(ny)).map(|_| Vec::with_capacity(nx)).collect();
+    let mut counts: Vec<Result<(usize, usize)>> = Vec::with_capacity(block.min(ny));
+    let mut j0 = 0;
+    while j0 < ny {
+        let j1 = (j0 + block).min(ny);
+        // the seeds of the groups this block's lines are in (as `map_speed_rows` computes them;
+        // a model that fails gives no seed, its line reports the error)
         let g0 = j0 / SEED_GROUP;
         let seeds: Vec<Option<Vec<_>>> = if seeded {
             (g0..(j1 - 1) / SEED_GROUP + 1)
                 .into_par_iter()
-                .map(|g| Ok(seed_spectrum(&StateSpace::new(&spec.with(&y.path, y.values[g * SEED_GROUP])?.model()?, s.balls)?, w)))
-                .collect::<Result<_>>()?
+                .map(|g| {
+                    let first = || StateSpace::new(&spec.with(&y.path, y.values[g * SEED_GROUP])?.model()?, s.balls);
+                    first().ok().and_then(|ss| seed_spectrum(&ss, w))
+                })
+                .collect()
         } else {
             vec![]
         };
         out.direct += seeds.len();
-        let rows: Vec<(Vec<Cell>, usize, usize)> = (j0..j1)
-            .into_par_iter()
-            .map(|j| {
+        rows[..j1 - j0]
+            .par_iter_mut()
+            .enumerate()
+            .map(|(jj, r)| {
+                let j = j0 + jj;
                 let v = y.values[j];
                 let mut l = Line::new(&spec.with(&y.path, v)?, s.balls, plane.as_ref().map(|p| (p, v)))?;
-                if let Some(Some(r)) = seeds.get(j / SEED_GROUP - g0) {
-                    l.tracker.seed(w, r);
+                if let Some(Some(sp)) = seeds.get(j / SEED_GROUP - g0) {
+                    l.tracker.seed(w, sp);
                 }
-                let mut cells = Vec::with_capacity(x.values.len());
-                l.cells(&x.values, s.quantity, s.balls, &mut cells)?;
-                Ok((cells, l.continued, l.direct))
+                r.clear();
+                l.cells(&x.values, s.quantity, s.balls, r)?;
+                Ok((l.continued, l.direct))
             })
-            .collect::<Result<_>>()?;
-        for (jj, (cells, c, d)) in rows.iter().enumerate() {
+            .collect_into_vec(&mut counts);
+        first_error(&mut counts)?;
+        for (jj, (c, d)) in counts.iter().flatten().enumerate() {
             out.rows += 1;
             out.continued += c;
             out.direct += d;
-            if !on_row(j0 + jj, cells) {
+            if !on_row(j0 + jj, &rows[jj]) {
                 out.complete = false;
                 return Ok(out);
             }
@@ -690,7 +707,9 @@ fn map_speed_columns<F: ModelFamily>(spec: &F, x: &Axis, y: &Axis, s: &MapSettin
     Ok(out)
 }
 
-/// Neither axis is the speed: every point its own model at speed `w`.
+/// Neither axis is the speed: every point its own model at speed `w`. A block's row buffers
+/// are allocated once and reused; where points fail, the error is the one of the
+/// lowest-numbered row's first failing point.
 fn map_fixed_speed<F: ModelFamily>(
     spec: &F,
     x: &Axis,
@@ -700,36 +719,41 @@ fn map_fixed_speed<F: ModelFamily>(
     on_row: &mut dyn FnMut(usize, &[Cell]) -> bool,
 ) -> Result<MapOutcome> {
     let w = w.max(OMEGA_FLOOR);
-    let block = (BLOCK_CELLS / x.values.len()).max(2 * rayon::current_num_threads());
+    let nx = x.values.len();
+    let ny = y.values.len();
+    let block = (BLOCK_CELLS / nx).max(2 * rayon::current_num_threads());
+    let mut rows: Vec<Vec<Cell>> = (0..block.min(ny)).map(|_| Vec::with_capacity(nx)).collect();
+    let mut done: Vec<Result<()>> = Vec::with_capacity(block.min(ny));
     let mut out = MapOutcome { complete: true, ..Default::default() };
     let mut j0 = 0;
-    while j0 < y.values.len() {
-        let j1 = (j0 + block).min(y.values.len());
-        let rows: Vec<Vec<Cell>> = y.values[j0..j1]
-            .par_iter()
-            .map(|&yv| {
+    while j0 < ny {
+        let j1 = (j0 + block).min(ny);
+        rows[..j1 - j0]
+            .par_iter_mut()
+            .zip(&y.values[j0..j1])
+            .map(|(cells, &yv)| {
                 let sy = spec.with(&y.path, yv)?;
-                x.values
-                    .iter()
-                    .map(|&xv| {
-                        let m = sy.with(&x.path, xv)?.model()?;
-                        let ss = StateSpace::new(&m, s.balls)?;
-                        let necessary = autobalancing_ranges(&m).ranges.iter().any(|r| r.contains(w));
-                        Ok(match s.quantity {
-                            Quantity::Margin => {
-                                let a = spectral_abscissa(&ss.at(w), ss.states).map_err(|_| no_conv(w))?;
-                                Cell { margin: a, stable: counts_as_stable(a, s.balls), necessary }
-                            }
-                            Quantity::Verdict => Cell { margin: f64::NAN, stable: strictly_stable_at(&ss, w), necessary },
-                        })
-                    })
-                    .collect::<Result<Vec<Cell>>>()
+                cells.clear();
+                for &xv in &x.values {
+                    let m = sy.with(&x.path, xv)?.model()?;
+                    let ss = StateSpace::new(&m, s.balls)?;
+                    let necessary = autobalancing_ranges(&m).ranges.iter().any(|r| r.contains(w));
+                    cells.push(match s.quantity {
+                        Quantity::Margin => {
+                            let a = spectral_abscissa(&ss.at(w), ss.states).map_err(|_| no_conv(w))?;
+                            Cell { margin: a, stable: counts_as_stable(a, s.balls), necessary }
+                        }
+                        Quantity::Verdict => Cell { margin: f64::NAN, stable: strictly_stable_at(&ss, w), necessary },
+                    });
+                }
+                Ok(())
             })
-            .collect::<Result<_>>()?;
-        for (jj, cells) in rows.iter().enumerate() {
+            .collect_into_vec(&mut done);
+        first_error(&mut done)?;
+        for jj in 0..j1 - j0 {
             out.rows += 1;
-            out.direct += cells.len();
-            if !on_row(j0 + jj, cells) {
+            out.direct += nx;
+            if !on_row(j0 + jj, &rows[jj]) {
                 out.complete = false;
                 return Ok(out);
             }
@@ -973,7 +997,8 @@ mod tests {
     #[test]
     fn a_map_reports_the_error_of_its_lowest_failing_line() {
         // lines 12..20 refuse their model (z_a > 0.3): the error is line 12's, whichever
-        // thread reached a failing line first, with the lines built in their jobs or kept
+        // thread reached a failing line first, with the lines built in their jobs or kept, and
+        // on the other two paths of a map
         let spec = Refusing { spec: SpatialSpec { input: SpatialInput::Dimensionless(DimensionlessInput::default()), delta_a_override: None }, bad: 0.3 };
         let x = Axis::linspace("dimensionless.z_a", -2.0, 2.0, 21);
         let y = Axis::linspace(OMEGA, 0.05, 4.5, 9);
@@ -987,6 +1012,17 @@ mod tests {
                         let e = pool.install(|| map_speed_rows_in(&spec, &x, &y, &s, block_cells, &mut |_, _| panic!("no row of a failed block"))).unwrap_err();
                         assert!(e.to_string().ends_with(&want), "{e}, want {want}");
                     }
+                }
+                // the lines as rows (speed on x), and every point its own model (the failing
+                // axis on y, a fixed speed): the lowest failing row's error
+                for _ in 0..5 {
+                    let e = pool.install(|| stability_map(&spec, &y, &x, &s, &Control::none(), &mut |_, _| panic!("no row of a failed block"))).unwrap_err();
+                    assert!(e.to_string().ends_with(&want), "{e}, want {want}");
+                    let h = Axis::linspace("dimensionless.h_x", 0.02, 0.1, 3);
+                    let fixed = MapSettings { omega: Some(1.2), ..s };
+                    let e =
+                        pool.install(|| stability_map(&spec, &h, &x, &fixed, &Control::none(), &mut |_, _| panic!("no row of a failed block"))).unwrap_err();
+                    assert!(e.to_string().ends_with(&want), "{e}, want {want}");
                 }
             }
         }
