@@ -63,20 +63,35 @@ def is_loaded(load1: float) -> bool:
 
 def children_cpu() -> float:
     """User + system seconds of all finished, waited-for child processes so far."""
+    u, s = children_cpu_split()
+    return u + s
+
+
+def children_cpu_split() -> tuple[float, float]:
+    """User and system seconds, apart, of all finished, waited-for child processes so far (the
+    system part is the kernel's: page faults, writes)."""
     r = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return r.ru_utime + r.ru_stime
+    return r.ru_utime, r.ru_stime
+
+
+# (user, system) CPU seconds of the last `run_cmd`'s command, for scripts that report them apart
+last_split: tuple[float, float] = (0.0, 0.0)
 
 
 def run_cmd(cmd, **kw) -> tuple[float, float]:
     """Run `cmd` to completion (output discarded unless `kw` says otherwise): its wall time and
-    its CPU time (user + system, all its threads and children), in seconds."""
+    its CPU time (user + system, all its threads and children), in seconds; the two apart in
+    `last_split`."""
     kw.setdefault("stdout", subprocess.DEVNULL)
     kw.setdefault("stderr", subprocess.DEVNULL)
-    c0 = children_cpu()
+    global last_split
+    u0, s0 = children_cpu_split()
     t0 = time.perf_counter()
     subprocess.run(cmd, check=True, **kw)
     wall = time.perf_counter() - t0
-    return wall, children_cpu() - c0
+    u1, s1 = children_cpu_split()
+    last_split = (u1 - u0, s1 - s0)
+    return wall, last_split[0] + last_split[1]
 
 
 def cpu_of(fn):

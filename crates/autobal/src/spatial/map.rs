@@ -478,39 +478,113 @@ pub(crate) fn ask_control<'a>(
 }
 
 /// `y` is the speed: one line per `x`, rows are speeds.
+///
+/// Memory: each line's block of cells is kept compactly in its own [`Column`], allocated once
+/// and reused by every block. When the speeds fit in one block (`nx·ny ≤` [`BLOCK_CELLS`], e.g.
+/// 400 × 400), each line is built, seeded and run inside its job and dropped there: the
+/// lines (~8 kB each) are never stored side by side. Otherwise they are built once into a vector
+/// sized for the axis (rayon's indexed `collect_into_vec`, in place) and kept across blocks.
+/// Where lines fail, the error is the one of the lowest-numbered line, whatever the threads.
 fn map_speed_rows<F: ModelFamily>(spec: &F, x: &Axis, y: &Axis, s: &MapSettings, on_row: &mut dyn FnMut(usize, &[Cell]) -> bool) -> Result<MapOutcome> {
+    map_speed_rows_in(spec, x, y, s, BLOCK_CELLS, on_row)
+}
+
+/// [`map_speed_rows`] with blocks of `block_cells` cells (the tests take both paths).
+fn map_speed_rows_in<F: ModelFamily>(
+    spec: &F,
+    x: &Axis,
+    y: &Axis,
+    s: &MapSettings,
+    block_cells: usize,
+    on_row: &mut dyn FnMut(usize, &[Cell]) -> bool,
+) -> Result<MapOutcome> {
     let plane = LinePlane::new(spec, x, s.balls);
-    let mut lines: Vec<Line> =
-        x.values.par_iter().map(|&v| Line::new(&spec.with(&x.path, v)?, s.balls, plane.as_ref().map(|p| (p, v)))).collect::<Result<_>>()?;
     let nx = x.values.len();
-    let block = (BLOCK_CELLS / nx).max(1);
+    let ny = y.values.len();
+    let block = (block_cells / nx).max(1);
     let mut out = MapOutcome { complete: true, ..Default::default() };
-    if s.quantity == Quantity::Margin && nx >= PLANE_LINES {
-        let w = y.values[0].max(OMEGA_FLOOR);
-        let seeds: Vec<Option<Vec<_>>> = (0..nx.div_ceil(SEED_GROUP)).into_par_iter().map(|g| seed_spectrum(&lines[g * SEED_GROUP].ss, w)).collect();
-        out.direct += seeds.len();
-        for (i, l) in lines.iter_mut().enumerate() {
-            if let Some(r) = &seeds[i / SEED_GROUP] {
-                l.tracker.seed(w, r);
-            }
+    let line = |i: usize| -> Result<Line> {
+        let v = x.values[i];
+        Line::new(&spec.with(&x.path, v)?, s.balls, plane.as_ref().map(|p| (p, v)))
+    };
+    // lines kept across blocks: only when there is more than one block
+    let mut kept: Vec<Result<Line>> = Vec::new();
+    if ny > block {
+        (0..nx).into_par_iter().map(line).collect_into_vec(&mut kept);
+        first_error(&mut kept)?;
+    }
+    // the seed of each group of lines: the QR spectrum of its first line's model at the first
+    // speed (a model that fails gives no seed; its line reports the error)
+    let w = y.values[0].max(OMEGA_FLOOR);
+    let seeds: Vec<Option<Vec<_>>> = if s.quantity == Quantity::Margin && nx >= PLANE_LINES {
+        (0..nx.div_ceil(SEED_GROUP))
+            .into_par_iter()
+            .map(|g| match kept.get(g * SEED_GROUP) {
+                Some(Ok(l)) => seed_spectrum(&l.ss, w),
+                _ => {
+                    let first = || StateSpace::new(&spec.with(&x.path, x.values[g * SEED_GROUP])?.model()?, s.balls);
+                    first().ok().and_then(|ss| seed_spectrum(&ss, w))
+                }
+            })
+            .collect()
+    } else {
+        vec![]
+    };
+    out.direct += seeds.len();
+    let seed = |i: usize, l: &mut Line| {
+        if let Some(Some(r)) = seeds.get(i / SEED_GROUP) {
+            l.tracker.seed(w, r);
+        }
+    };
+    for (i, l) in kept.iter_mut().enumerate() {
+        if let Ok(l) = l {
+            seed(i, l);
         }
     }
+    let margin = s.quantity == Quantity::Margin;
+    let k = block.min(ny);
+    let mut cols: Vec<Column> = (0..nx).map(|_| Column { margin: Vec::with_capacity(if margin { k } else { 0 }), flags: Vec::with_capacity(k) }).collect();
+    // each line's (continued, direct) counts when built in its job; an error otherwise
+    let mut counts: Vec<Result<(usize, usize)>> = Vec::with_capacity(nx);
+    let mut row = Vec::with_capacity(nx);
     let mut j0 = 0;
-    while j0 < y.values.len() {
-        let j1 = (j0 + block).min(y.values.len());
+    while j0 < ny {
+        let j1 = (j0 + block).min(ny);
         let speeds = &y.values[j0..j1];
-        let cols: Vec<Vec<Cell>> = lines
-            .par_iter_mut()
-            .map(|l| {
-                let mut v = Vec::with_capacity(speeds.len());
-                l.cells(speeds, s.quantity, s.balls, &mut v)?;
-                Ok(v)
-            })
-            .collect::<Result<_>>()?;
-        let mut row = Vec::with_capacity(nx);
+        let scratch = || Vec::with_capacity(speeds.len());
+        if kept.is_empty() {
+            cols.par_iter_mut()
+                .enumerate()
+                .map_init(scratch, |cells, (i, col)| {
+                    let mut l = line(i)?;
+                    seed(i, &mut l);
+                    cells.clear();
+                    l.cells(speeds, s.quantity, s.balls, cells)?;
+                    col.set(cells, margin);
+                    Ok((l.continued, l.direct))
+                })
+                .collect_into_vec(&mut counts);
+        } else {
+            cols.par_iter_mut()
+                .zip(kept.par_iter_mut())
+                .map_init(scratch, |cells, (col, l)| {
+                    cells.clear();
+                    if let Ok(l) = l {
+                        l.cells(speeds, s.quantity, s.balls, cells)?;
+                    }
+                    col.set(cells, margin);
+                    Ok((0, 0))
+                })
+                .collect_into_vec(&mut counts);
+        }
+        first_error(&mut counts)?;
+        for (c, d) in counts.iter().flatten() {
+            out.continued += c;
+            out.direct += d;
+        }
         for jj in 0..speeds.len() {
             row.clear();
-            row.extend(cols.iter().map(|c| c[jj]));
+            row.extend(cols.iter().map(|c| c.cell(jj)));
             out.rows += 1;
             if !on_row(j0 + jj, &row) {
                 out.complete = false;
@@ -522,52 +596,108 @@ fn map_speed_rows<F: ModelFamily>(spec: &F, x: &Axis, y: &Axis, s: &MapSettings,
         }
         j0 = j1;
     }
-    for l in &lines {
+    for l in kept.iter().flatten() {
         out.continued += l.continued;
         out.direct += l.direct;
     }
     Ok(out)
 }
 
-/// `x` is the speed: one line per row.
+/// One line's cells of a block, as [`map_speed_rows`] keeps them until the block's rows are
+/// handed over: the margins (only for [`Quantity::Margin`]; the verdict's are NaN) and the two
+/// flags in a byte, 9 or 1 bytes a cell instead of a [`Cell`]'s 16 (fewer pages touched).
+struct Column {
+    margin: Vec<f64>,
+    flags: Vec<u8>,
+}
+
+impl Column {
+    const STABLE: u8 = 1;
+    const NECESSARY: u8 = 2;
+
+    /// Keep `cells` (their margins when `margin`).
+    fn set(&mut self, cells: &[Cell], margin: bool) {
+        self.flags.clear();
+        self.flags.extend(cells.iter().map(|c| (c.stable as u8 * Self::STABLE) | (c.necessary as u8 * Self::NECESSARY)));
+        self.margin.clear();
+        if margin {
+            self.margin.extend(cells.iter().map(|c| c.margin));
+        }
+    }
+
+    /// The cell at `j`: the one [`Column::set`] was given, bit for bit (a verdict's margin is
+    /// the NaN that [`Line::cells`] stores).
+    fn cell(&self, j: usize) -> Cell {
+        Self::unpack(self.flags[j], self.margin.get(j).copied().unwrap_or(f64::NAN))
+    }
+
+    fn unpack(f: u8, margin: f64) -> Cell {
+        Cell { margin, stable: f & Self::STABLE != 0, necessary: f & Self::NECESSARY != 0 }
+    }
+}
+
+/// The error of the lowest-numbered item of `v` that failed, if any (taken out of `v`, whose
+/// order is then not kept).
+fn first_error<T>(v: &mut Vec<Result<T>>) -> Result<()> {
+    match v.iter().position(|r| r.is_err()).and_then(|i| v.swap_remove(i).err()) {
+        Some(e) => Err(e),
+        None => Ok(()),
+    }
+}
+
+/// `x` is the speed: one line per row, handed over as computed (no [`Column`]: packing the
+/// cells and unpacking them would cost more instructions than the pages it saves). A block's
+/// row buffers are allocated once and reused; where lines fail, the error is the
+/// lowest-numbered line's.
 fn map_speed_columns<F: ModelFamily>(spec: &F, x: &Axis, y: &Axis, s: &MapSettings, on_row: &mut dyn FnMut(usize, &[Cell]) -> bool) -> Result<MapOutcome> {
-    let block = (BLOCK_CELLS / x.values.len()).max(2 * rayon::current_num_threads());
+    let nx = x.values.len();
+    let ny = y.values.len();
+    let block = (BLOCK_CELLS / nx).max(2 * rayon::current_num_threads());
     let plane = LinePlane::new(spec, y, s.balls);
     let mut out = MapOutcome { complete: true, ..Default::default() };
-    let mut j0 = 0;
-    let seeded = s.quantity == Quantity::Margin && y.values.len() >= PLANE_LINES;
+    let seeded = s.quantity == Quantity::Margin && ny >= PLANE_LINES;
     let w = x.values[0].max(OMEGA_FLOOR);
-    while j0 < y.values.len() {
-        let j1 = (j0 + block).min(y.values.len());
-        // the seeds of the groups this block's lines are in (as `map_speed_rows` computes them)
+    let mut rows: Vec<Vec<Cell>> = (0..block.min(ny)).map(|_| Vec::with_capacity(nx)).collect();
+    let mut counts: Vec<Result<(usize, usize)>> = Vec::with_capacity(block.min(ny));
+    let mut j0 = 0;
+    while j0 < ny {
+        let j1 = (j0 + block).min(ny);
+        // the seeds of the groups this block's lines are in (as `map_speed_rows` computes them;
+        // a model that fails gives no seed, its line reports the error)
         let g0 = j0 / SEED_GROUP;
         let seeds: Vec<Option<Vec<_>>> = if seeded {
             (g0..(j1 - 1) / SEED_GROUP + 1)
                 .into_par_iter()
-                .map(|g| Ok(seed_spectrum(&StateSpace::new(&spec.with(&y.path, y.values[g * SEED_GROUP])?.model()?, s.balls)?, w)))
-                .collect::<Result<_>>()?
+                .map(|g| {
+                    let first = || StateSpace::new(&spec.with(&y.path, y.values[g * SEED_GROUP])?.model()?, s.balls);
+                    first().ok().and_then(|ss| seed_spectrum(&ss, w))
+                })
+                .collect()
         } else {
             vec![]
         };
         out.direct += seeds.len();
-        let rows: Vec<(Vec<Cell>, usize, usize)> = (j0..j1)
-            .into_par_iter()
-            .map(|j| {
+        rows[..j1 - j0]
+            .par_iter_mut()
+            .enumerate()
+            .map(|(jj, r)| {
+                let j = j0 + jj;
                 let v = y.values[j];
                 let mut l = Line::new(&spec.with(&y.path, v)?, s.balls, plane.as_ref().map(|p| (p, v)))?;
-                if let Some(Some(r)) = seeds.get(j / SEED_GROUP - g0) {
-                    l.tracker.seed(w, r);
+                if let Some(Some(sp)) = seeds.get(j / SEED_GROUP - g0) {
+                    l.tracker.seed(w, sp);
                 }
-                let mut cells = Vec::with_capacity(x.values.len());
-                l.cells(&x.values, s.quantity, s.balls, &mut cells)?;
-                Ok((cells, l.continued, l.direct))
+                r.clear();
+                l.cells(&x.values, s.quantity, s.balls, r)?;
+                Ok((l.continued, l.direct))
             })
-            .collect::<Result<_>>()?;
-        for (jj, (cells, c, d)) in rows.iter().enumerate() {
+            .collect_into_vec(&mut counts);
+        first_error(&mut counts)?;
+        for (jj, (c, d)) in counts.iter().flatten().enumerate() {
             out.rows += 1;
             out.continued += c;
             out.direct += d;
-            if !on_row(j0 + jj, cells) {
+            if !on_row(j0 + jj, &rows[jj]) {
                 out.complete = false;
                 return Ok(out);
             }
@@ -577,7 +707,9 @@ fn map_speed_columns<F: ModelFamily>(spec: &F, x: &Axis, y: &Axis, s: &MapSettin
     Ok(out)
 }
 
-/// Neither axis is the speed: every point its own model at speed `w`.
+/// Neither axis is the speed: every point its own model at speed `w`. A block's row buffers
+/// are allocated once and reused; where points fail, the error is the one of the
+/// lowest-numbered row's first failing point.
 fn map_fixed_speed<F: ModelFamily>(
     spec: &F,
     x: &Axis,
@@ -587,36 +719,41 @@ fn map_fixed_speed<F: ModelFamily>(
     on_row: &mut dyn FnMut(usize, &[Cell]) -> bool,
 ) -> Result<MapOutcome> {
     let w = w.max(OMEGA_FLOOR);
-    let block = (BLOCK_CELLS / x.values.len()).max(2 * rayon::current_num_threads());
+    let nx = x.values.len();
+    let ny = y.values.len();
+    let block = (BLOCK_CELLS / nx).max(2 * rayon::current_num_threads());
+    let mut rows: Vec<Vec<Cell>> = (0..block.min(ny)).map(|_| Vec::with_capacity(nx)).collect();
+    let mut done: Vec<Result<()>> = Vec::with_capacity(block.min(ny));
     let mut out = MapOutcome { complete: true, ..Default::default() };
     let mut j0 = 0;
-    while j0 < y.values.len() {
-        let j1 = (j0 + block).min(y.values.len());
-        let rows: Vec<Vec<Cell>> = y.values[j0..j1]
-            .par_iter()
-            .map(|&yv| {
+    while j0 < ny {
+        let j1 = (j0 + block).min(ny);
+        rows[..j1 - j0]
+            .par_iter_mut()
+            .zip(&y.values[j0..j1])
+            .map(|(cells, &yv)| {
                 let sy = spec.with(&y.path, yv)?;
-                x.values
-                    .iter()
-                    .map(|&xv| {
-                        let m = sy.with(&x.path, xv)?.model()?;
-                        let ss = StateSpace::new(&m, s.balls)?;
-                        let necessary = autobalancing_ranges(&m).ranges.iter().any(|r| r.contains(w));
-                        Ok(match s.quantity {
-                            Quantity::Margin => {
-                                let a = spectral_abscissa(&ss.at(w), ss.states).map_err(|_| no_conv(w))?;
-                                Cell { margin: a, stable: counts_as_stable(a, s.balls), necessary }
-                            }
-                            Quantity::Verdict => Cell { margin: f64::NAN, stable: strictly_stable_at(&ss, w), necessary },
-                        })
-                    })
-                    .collect::<Result<Vec<Cell>>>()
+                cells.clear();
+                for &xv in &x.values {
+                    let m = sy.with(&x.path, xv)?.model()?;
+                    let ss = StateSpace::new(&m, s.balls)?;
+                    let necessary = autobalancing_ranges(&m).ranges.iter().any(|r| r.contains(w));
+                    cells.push(match s.quantity {
+                        Quantity::Margin => {
+                            let a = spectral_abscissa(&ss.at(w), ss.states).map_err(|_| no_conv(w))?;
+                            Cell { margin: a, stable: counts_as_stable(a, s.balls), necessary }
+                        }
+                        Quantity::Verdict => Cell { margin: f64::NAN, stable: strictly_stable_at(&ss, w), necessary },
+                    });
+                }
+                Ok(())
             })
-            .collect::<Result<_>>()?;
-        for (jj, cells) in rows.iter().enumerate() {
+            .collect_into_vec(&mut done);
+        first_error(&mut done)?;
+        for jj in 0..j1 - j0 {
             out.rows += 1;
-            out.direct += cells.len();
-            if !on_row(j0 + jj, cells) {
+            out.direct += nx;
+            if !on_row(j0 + jj, &rows[jj]) {
                 out.complete = false;
                 return Ok(out);
             }
@@ -787,6 +924,108 @@ mod tests {
         // ≤ 2 (ρ̄s): no plane
         assert!(LinePlane::new(&spec, &Axis::linspace("dimensionless.z_a", -2.0, 2.0, PLANE_LINES - 1), Balls::Free).is_none());
         assert!(LinePlane::new(&spec, &Axis::linspace("dimensionless.rho_s", 0.2, 0.8, 20), Balls::Free).is_none());
+    }
+
+    /// The dimensionless family, refusing the `z_a` values above `bad` (the error names the
+    /// value), as a front end's family might refuse some of its values.
+    #[derive(Clone)]
+    struct Refusing {
+        spec: SpatialSpec,
+        bad: f64,
+    }
+
+    impl ModelFamily for Refusing {
+        fn with(&self, path: &str, value: f64) -> Result<Self> {
+            if path == "dimensionless.z_a" && value > self.bad {
+                return Err(Error::invalid(path, format!("refused {value}")));
+            }
+            Ok(Refusing { spec: self.spec.with(path, value)?, bad: self.bad })
+        }
+        fn model(&self) -> Result<SpatialModel> {
+            self.spec.model()
+        }
+    }
+
+    #[test]
+    fn lines_kept_across_blocks_give_the_cells_of_lines_built_in_their_jobs() {
+        // One block (each line built, seeded and dropped in its job) and blocks of 5 and 7
+        // speeds (the lines built once and kept): the margin is continued line by line through
+        // the same speeds from the same seeds whatever the blocks, so the cells are equal bit for
+        // bit (compared as bits: NaN-free here, and equality must be exact, not to a tolerance),
+        // and so are the counts of the routes. 20 lines: the plane and the seeds of groups of
+        // 16 lines (a partial group) are used.
+        let spec = SpatialSpec { input: SpatialInput::Dimensionless(DimensionlessInput::default()), delta_a_override: None };
+        let x = Axis::linspace("dimensionless.z_a", -2.0, 2.0, 20);
+        let y = Axis::linspace(OMEGA, 0.05, 4.5, 23);
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(3).build().unwrap();
+        for q in [Quantity::Margin, Quantity::Verdict] {
+            let s = MapSettings { quantity: q, ..MapSettings::default() };
+            let run = |block_cells: usize| {
+                let mut cells = vec![];
+                let mut rows = vec![];
+                let o = pool
+                    .install(|| {
+                        map_speed_rows_in(&spec, &x, &y, &s, block_cells, &mut |j, r| {
+                            rows.push(j);
+                            cells.extend(r.iter().map(|c| (c.margin.to_bits(), c.stable, c.necessary)));
+                            true
+                        })
+                    })
+                    .unwrap();
+                (cells, rows, o)
+            };
+            let (one, rows, o1) = run(BLOCK_CELLS);
+            assert_eq!(rows, (0..23).collect::<Vec<_>>());
+            assert_eq!(one.len(), 20 * 23);
+            assert!(one.iter().any(|c| c.1) && one.iter().any(|c| !c.1), "both verdicts occur");
+            for block_cells in [5 * 20, 7 * 20] {
+                let (kept, rows, o) = run(block_cells);
+                assert_eq!(rows, (0..23).collect::<Vec<_>>());
+                if q == Quantity::Margin {
+                    assert_eq!(kept, one, "blocks of {}", block_cells / 20);
+                    assert_eq!((o.continued, o.direct, o.rows), (o1.continued, o1.direct, o1.rows));
+                } else {
+                    // the verdict confirms the ends of each block directly as well: more direct
+                    // tests, and the same verdicts (none of the polynomial's is wrong here)
+                    assert_eq!(kept, one, "blocks of {}", block_cells / 20);
+                    assert!(o.direct > o1.direct && o.continued == o1.continued);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_map_reports_the_error_of_its_lowest_failing_line() {
+        // lines 12..20 refuse their model (z_a > 0.3): the error is line 12's, whichever
+        // thread reached a failing line first, with the lines built in their jobs or kept, and
+        // on the other two paths of a map
+        let spec = Refusing { spec: SpatialSpec { input: SpatialInput::Dimensionless(DimensionlessInput::default()), delta_a_override: None }, bad: 0.3 };
+        let x = Axis::linspace("dimensionless.z_a", -2.0, 2.0, 21);
+        let y = Axis::linspace(OMEGA, 0.05, 4.5, 9);
+        let want = format!("refused {}", x.values[12]);
+        for threads in [1, 4] {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            for q in [Quantity::Margin, Quantity::Verdict] {
+                let s = MapSettings { quantity: q, ..MapSettings::default() };
+                for block_cells in [BLOCK_CELLS, 2 * 21] {
+                    for _ in 0..5 {
+                        let e = pool.install(|| map_speed_rows_in(&spec, &x, &y, &s, block_cells, &mut |_, _| panic!("no row of a failed block"))).unwrap_err();
+                        assert!(e.to_string().ends_with(&want), "{e}, want {want}");
+                    }
+                }
+                // the lines as rows (speed on x), and every point its own model (the failing
+                // axis on y, a fixed speed): the lowest failing row's error
+                for _ in 0..5 {
+                    let e = pool.install(|| stability_map(&spec, &y, &x, &s, &Control::none(), &mut |_, _| panic!("no row of a failed block"))).unwrap_err();
+                    assert!(e.to_string().ends_with(&want), "{e}, want {want}");
+                    let h = Axis::linspace("dimensionless.h_x", 0.02, 0.1, 3);
+                    let fixed = MapSettings { omega: Some(1.2), ..s };
+                    let e =
+                        pool.install(|| stability_map(&spec, &h, &x, &fixed, &Control::none(), &mut |_, _| panic!("no row of a failed block"))).unwrap_err();
+                    assert!(e.to_string().ends_with(&want), "{e}, want {want}");
+                }
+            }
+        }
     }
 
     #[test]
