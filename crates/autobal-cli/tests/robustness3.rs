@@ -84,6 +84,21 @@ fn long_sweep(dir: &std::path::Path, points: usize, nohup: bool, stdout: Stdio) 
     } else {
         Command::new(bin)
     };
+    // the signals' dispositions as a terminal gives them, whatever this test inherited: a suite
+    // run under `nohup` (SIGHUP ignored) passes the ignore on through exec, and the sweep then
+    // rightly keeps running on HUP (CI ran the 4000 points past the 60 s limit)
+    #[cfg(unix)]
+    {
+        use std::os::unix::process::CommandExt;
+        // SAFETY: `signal` is async-signal-safe, the only call made between fork and exec
+        unsafe {
+            cmd.pre_exec(|| {
+                libc::signal(libc::SIGHUP, libc::SIG_DFL);
+                libc::signal(libc::SIGTERM, libc::SIG_DFL);
+                Ok(())
+            });
+        }
+    }
     let x = format!("drive.b=0.5:12.5:{points}");
     let mut child = cmd
         .args(["sweep", "--x", &x, "--set", "drive.t_end=3000", "--threads", "1", "--out", "cc", "--no-plots"])
