@@ -189,6 +189,21 @@ fn system_folder(dir: &Path) -> Option<&'static str> {
     ["/dev", "/proc", "/sys"].into_iter().find(|s| canon.starts_with(s))
 }
 
+/// The first name with a control character among those a run would create for `p`: its file
+/// name, and the folders on its way that do not exist yet (made with the first file); an existing
+/// folder is the user's.
+fn control_name(p: &Path) -> Option<&std::ffi::OsStr> {
+    let bad = |n: &std::ffi::OsStr| n.to_string_lossy().chars().any(char::is_control);
+    let mut q = p;
+    loop {
+        match q.file_name() {
+            Some(n) if bad(n) => return Some(n),
+            _ => {}
+        }
+        q = q.parent().filter(|d| !d.as_os_str().is_empty() && std::fs::symlink_metadata(d).is_err())?;
+    }
+}
+
 /// Whether `a` and `b` are the same file: same device and inode when both exist (links,
 /// `./x`, `../d/x` all compare equal), else the same canonical folder and name.
 pub fn same_file(a: &Path, b: &Path) -> bool {
@@ -355,6 +370,12 @@ impl Outputs {
         for (opt, p) in &self.outputs {
             if p.file_name().is_none() {
                 bail!("{opt}: {} names no file", p.display());
+            }
+            // `--out $'a\nb'` wrote `a<line break>b.csv` and its figures: names a shell lists
+            // across lines and a batch script cannot quote back (export-model's `--stem` refuses
+            // them the same way)
+            if let Some(n) = control_name(p) {
+                bail!("{opt}: the name {n:?} has a control character (a line break, a tab, ...): give a name of printable characters");
             }
             // every output's own temporary name, not only the first in its folder (the probe's
             // is short): a plot's longer name must fail before the work, not after it
@@ -650,6 +671,22 @@ mod tests {
     /// A set of files written whole or not at all: the third cannot be created (its folder is
     /// a file), so neither of the first two appears, nor their temporary files, nor the folder
     /// made for them; with all three writable all three appear, byte for byte.
+    #[test]
+    fn an_output_name_with_a_control_character_is_refused_before_anything_is_written() {
+        let d = scratch("control");
+        for name in ["a\nb.csv", "tab\there.csv", "bell\u{7}.json"] {
+            let e = Outputs::new().output("--out", &d.join(name)).check().unwrap_err().to_string();
+            assert!(e.starts_with("--out: the name") && e.contains("control character"), "{e}");
+        }
+        // a folder the run would make (the report's `--out`), not one that exists
+        let e = Outputs::new().output("--out", &d.join("new\nfolder").join("index.html")).check().unwrap_err().to_string();
+        assert!(e.contains("\"new\\nfolder\"") && e.contains("control character"), "{e}");
+        assert_eq!(std::fs::read_dir(&d).unwrap().count(), 0, "nothing written");
+        // printable names, unicode included, still pass
+        Outputs::new().output("--out", &d.join("räder ø.csv")).check().unwrap();
+        std::fs::remove_dir_all(&d).ok();
+    }
+
     #[test]
     fn all_or_none_leaves_nothing_when_one_fails() {
         let d = scratch("all-or-none");
