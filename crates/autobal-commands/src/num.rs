@@ -326,33 +326,21 @@ impl Csv {
 /// own formatting for a short text).
 #[inline]
 fn copy_short(dst: &mut [u8; 40], src: &[u8]) {
-    let n = src.len();
-    if n > 32 {
-        dst[..n].copy_from_slice(src);
-    } else if n >= 16 {
-        dst[..16].copy_from_slice(&src[..16]);
-        dst[n - 16..][..16].copy_from_slice(&src[n - 16..][..16]);
-    } else if n >= 8 {
-        dst[..8].copy_from_slice(&src[..8]);
-        dst[n - 8..][..8].copy_from_slice(&src[n - 8..][..8]);
-    } else if n >= 4 {
-        dst[..4].copy_from_slice(&src[..4]);
-        dst[n - 4..][..4].copy_from_slice(&src[n - 4..][..4]);
-    } else {
-        for (d, s) in dst.iter_mut().zip(src) {
-            *d = *s;
-        }
-    }
+    copy_short_at(dst, 0, src);
 }
 
-/// `dst[at..at + src.len()] = src` for `src` of at most 17 bytes (the significant digits
-/// after the first) as two overlapping fixed-size moves: [`copy_short`] at an offset.
+/// `dst[at..at + src.len()] = src` as two overlapping fixed-size moves of 16, 8 or 4 bytes
+/// (a run-time length only above 32 bytes): [`copy_short`] at an offset, for the significant
+/// digits after the first.
 #[inline]
 fn copy_short_at(dst: &mut [u8; 40], at: usize, src: &[u8]) {
     let n = src.len();
     let d = &mut dst[at..];
-    if n > 16 || d.len() < 16 {
+    if n > 32 {
         d[..n].copy_from_slice(src);
+    } else if n >= 16 {
+        d[..16].copy_from_slice(&src[..16]);
+        d[n - 16..][..16].copy_from_slice(&src[n - 16..][..16]);
     } else if n >= 8 {
         d[..8].copy_from_slice(&src[..8]);
         d[n - 8..][..8].copy_from_slice(&src[n - 8..][..8]);
