@@ -298,6 +298,13 @@ fn seed_spectrum(ss: &StateSpace, w: f64) -> Option<Vec<num_complex::Complex64>>
     eigenvalues(&ss.at(w), ss.states).ok()
 }
 
+/// [`seed_spectrum`] of the model of `spec` with `path` at `v` (a group's first line, built
+/// for its seed alone): `None` when that model fails (its line reports the error).
+fn seed_of(spec: &impl ModelFamily, path: &str, v: f64, balls: Balls, w: f64) -> Option<Vec<num_complex::Complex64>> {
+    let ss = (|| StateSpace::new(&spec.with(path, v)?.model()?, balls))().ok()?;
+    seed_spectrum(&ss, w)
+}
+
 /// Fewest lines for which [`LinePlane`] is fitted: below, its ten sample models and the
 /// plane's expansion (~7 line expansions) cost more than expanding every line.
 const PLANE_LINES: usize = 16;
@@ -521,10 +528,7 @@ fn map_speed_rows_in<F: ModelFamily>(
             .into_par_iter()
             .map(|g| match kept.get(g * SEED_GROUP) {
                 Some(Ok(l)) => seed_spectrum(&l.ss, w),
-                _ => {
-                    let first = || StateSpace::new(&spec.with(&x.path, x.values[g * SEED_GROUP])?.model()?, s.balls);
-                    first().ok().and_then(|ss| seed_spectrum(&ss, w))
-                }
+                _ => seed_of(spec, &x.path, x.values[g * SEED_GROUP], s.balls, w),
             })
             .collect()
     } else {
@@ -666,13 +670,7 @@ fn map_speed_columns<F: ModelFamily>(spec: &F, x: &Axis, y: &Axis, s: &MapSettin
         // a model that fails gives no seed, its line reports the error)
         let g0 = j0 / SEED_GROUP;
         let seeds: Vec<Option<Vec<_>>> = if seeded {
-            (g0..(j1 - 1) / SEED_GROUP + 1)
-                .into_par_iter()
-                .map(|g| {
-                    let first = || StateSpace::new(&spec.with(&y.path, y.values[g * SEED_GROUP])?.model()?, s.balls);
-                    first().ok().and_then(|ss| seed_spectrum(&ss, w))
-                })
-                .collect()
+            (g0..(j1 - 1) / SEED_GROUP + 1).into_par_iter().map(|g| seed_of(spec, &y.path, y.values[g * SEED_GROUP], s.balls, w)).collect()
         } else {
             vec![]
         };
