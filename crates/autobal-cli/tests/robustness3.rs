@@ -594,3 +594,40 @@ fn regression_two_spellings_of_one_ball_index_let_an_axis_be_ignored() {
     assert!(line.contains("without sign, space or leading zero"), "{line}");
     std::fs::remove_dir_all(&d).ok();
 }
+
+#[test]
+fn regression_set_took_no_element_of_an_array() {
+    // `--set drive.psi0[1]=0.3` was "unknown key" on every config although sweeps and maps take
+    // that path; it now sets the element of an array the config gives, and a whole array after
+    // its element (which would silently undo it) is refused
+    let d = scratch("set-element");
+    let planar = examples("planar.toml");
+    let run = |extra: &[&str], stem: &str| {
+        let mut args = vec!["simulate", "--config", &planar, "--set", "drive.t_end=0.5", "--out", stem];
+        args.extend_from_slice(extra);
+        let (code, out, err) = run_in(&d, Duration::from_secs(60), &args);
+        assert_eq!(code, 0, "{args:?}: {out} {err}");
+        std::fs::read(d.join(format!("{stem}.csv"))).unwrap()
+    };
+    let by_element = run(&["--set", "drive.psi0=[0.1, 0.2]", "--set", "drive.psi0[1]=0.3"], "a");
+    let whole = run(&["--set", "drive.psi0=[0.3, 0.2]"], "b");
+    let unset = run(&["--set", "drive.psi0=[0.1, 0.2]"], "c");
+    assert_eq!(by_element, whole, "the element set is the whole array with that element");
+    assert_ne!(by_element, unset, "the element was set");
+    let line =
+        rejects_in(&d, &["simulate", "--config", &planar, "--set", "drive.psi0[1]=0.3", "--set", "drive.psi0=[0.1, 0.2]", "--out", "x"], "--set drive.psi0");
+    assert!(line.contains("give the whole array first"), "{line}");
+    let line = rejects_in(&d, &["simulate", "--config", &planar, "--set", "drive.psi0[1]=0.3", "--out", "x"], "drive.psi0[1]");
+    assert!(line.contains("not an array in the config"), "{line}");
+    let line =
+        rejects_in(&d, &["simulate", "--config", &planar, "--set", "drive.psi0=[0.1, 0.2]", "--set", "drive.psi0[3]=0.3", "--out", "x"], "drive.psi0[3]");
+    assert!(line.contains("has 2 elements"), "{line}");
+    let line = rejects_in(&d, &["stability", "--config", &examples("spatial.toml"), "--set", "drive.psi0[2]=nan"], "drive.psi0[2]");
+    assert!(line.contains("NaN"), "{line}");
+    let line = rejects_in(&d, &["stability", "--set", "drive.psi0[1]=1", "--set", "drive.psi0[1]=2"], "--set drive.psi0[1]");
+    assert!(line.contains("given twice"), "{line}");
+    let line = rejects_in(&d, &["stability", "--set", "drive.psi0=[1, 2]", "--set", "drive.psi0[01]=2"], "--set drive.psi0[01]");
+    assert!(line.contains("without sign, space or leading zero"), "{line}");
+    assert!(!d.join("x.csv").exists());
+    std::fs::remove_dir_all(&d).ok();
+}

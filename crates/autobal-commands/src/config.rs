@@ -42,6 +42,12 @@ pub fn apply_set(root: &mut Table, assignment: &str) -> Result<()> {
     if key.is_empty() {
         bail!("--set {assignment}: no key before `=`; expected key=value, e.g. --set dimensionless.l_left=1.2");
     }
+    // one element of an array key: `--set drive.psi0[2]=0.3` (1-based, as the sweep's paths)
+    if let Some((name, j)) = autobal::paths::indexed(key) {
+        let j = j.map_err(|reason| anyhow!("--set {key}: {reason}"))?;
+        let v: f64 = value.trim().parse().map_err(|_| anyhow!("--set {key}: `{}` is not a number", value.trim()))?;
+        return Ok(autobal::config::set_element(root, key, name.trim(), j, v)?);
+    }
     // `--set dimensionless={c_sigma=1}`: a whole table is not set at once; the option is named
     let parts: Vec<&str> = key.split('.').collect();
     if parts.len() != 2 || parts.iter().any(|p| p.trim().is_empty()) {
@@ -152,17 +158,25 @@ pub fn parse_text(text: &str, source: &str) -> Result<Table> {
 }
 
 /// Refuse a `--set` key given twice (`--set rotor.mass=2 --set rotor.mass=3`): the later one
-/// would silently win over the earlier. Keys compare as written, spaces around them trimmed.
+/// would silently win over the earlier. Keys compare trimmed (an index spelled otherwise than
+/// [`autobal::paths::index_digits`] reads it, `drive.psi0[01]`, is refused where it is
+/// applied); a whole array given after one of its elements (`--set drive.psi0[1]=0.2 --set
+/// drive.psi0=[…]`) is refused too.
 pub fn check_repeated_sets(sets: &[String]) -> Result<()> {
-    let mut seen: Vec<&str> = Vec::with_capacity(sets.len());
+    let mut seen: Vec<String> = Vec::with_capacity(sets.len());
     for s in sets {
         let Some((key, _)) = s.split_once('=') else { continue };
         let key = key.trim();
-        if seen.contains(&key) {
+        // (another spelling of an index, `drive.psi0[01]`, is refused where it is applied)
+        if seen.iter().any(|k| k == key) {
             // (the values are not echoed: a fuzzed one may be 80 digits or control characters)
             bail!("--set {key}: given twice (the later would silently replace the earlier); give it once");
         }
-        seen.push(key);
+        // a whole array after one of its elements would silently undo the element
+        if let Some(element) = seen.iter().find(|k| autobal::paths::indexed(k).is_some_and(|(name, _)| name.trim() == key)) {
+            bail!("--set {key}: given after --set {element} (the whole array would silently replace that element); give the whole array first");
+        }
+        seen.push(key.to_string());
     }
     Ok(())
 }

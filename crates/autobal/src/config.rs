@@ -139,6 +139,33 @@ pub fn set(root: &mut Table, key: &str, value: Value) -> Result<()> {
     Ok(())
 }
 
+/// Set element `j` (0-based) of the array `table.key` to `value`: `path` is the indexed form
+/// as given (`drive.psi0[2]`: 1-based, [`crate::paths::indexed`]) and names the errors. The key
+/// must be one of [`SCHEMA`] and an array in `root` already (a default that the config leaves
+/// out, such as balls spread evenly, has no element to set: the message asks for the whole
+/// array first).
+///
+/// ```
+/// use autobal::config;
+/// let mut root = config::parse("[drive]\npsi0 = [1.0, 2.0]\n", "c.toml").unwrap();
+/// config::set_element(&mut root, "drive.psi0[2]", "drive.psi0", 1, 0.5).unwrap();
+/// assert_eq!(root["drive"]["psi0"].as_array().unwrap()[1].as_float(), Some(0.5));
+/// let e = config::set_element(&mut root, "drive.psi0[3]", "drive.psi0", 2, 0.5).unwrap_err();
+/// assert!(e.to_string().contains("has 2 elements"), "{e}");
+/// ```
+pub fn set_element(root: &mut Table, path: &str, key: &str, j: usize, value: f64) -> Result<()> {
+    let (t, k) = split_key(key)?;
+    crate::limits::check_as(path, key, value)?;
+    let old = root.get(t).and_then(|v| v.get(k)).cloned();
+    let Some(Value::Array(mut a)) = old else {
+        return Err(Error::invalid(path, format!("`{key}` is not an array in the config (give it in full first, e.g. {key} = [...])")));
+    };
+    let n = a.len();
+    let slot = a.get_mut(j).ok_or_else(|| Error::invalid(path, format!("element {} of {n}: `{key}` has {n} elements", j + 1)))?;
+    *slot = Value::Float(value);
+    set(root, key, Value::Array(a))
+}
+
 /// Set a numeric `table.key`, keeping a whole-number key whole (the ball count).
 pub fn set_number(root: &mut Table, key: &str, value: f64) -> Result<()> {
     let (t, k) = split_key(key)?;

@@ -422,17 +422,7 @@ impl SpatialSweep {
         let Some(j) = index else {
             return crate::config::set_number(root, key, value);
         };
-        // check the key against the config's schema by setting it, then put the array back
-        let (t, k) = key.split_once('.').unwrap_or((key, ""));
-        let old = root.get(t).and_then(|v| v.get(k)).cloned();
-        let Some(toml::Value::Array(mut a)) = old else {
-            crate::config::set_number(&mut Table::new(), key, value)?;
-            return Err(Error::invalid(path, format!("`{key}` is not an array in the config (give it in full with --set first)")));
-        };
-        let n = a.len();
-        let slot = a.get_mut(j).ok_or_else(|| Error::invalid(path, format!("element {} of {n}: `{key}` has {n} elements", j + 1)))?;
-        *slot = toml::Value::Float(value);
-        crate::config::set(root, key, toml::Value::Array(a))
+        crate::config::set_element(root, path, key, j, value)
     }
 }
 
