@@ -65,10 +65,10 @@ const fn lim(field: &'static str, lo: f64, lo_open: bool, hi: f64, hi_open: bool
     Limit { field, lo, lo_open, hi, hi_open, unit, why }
 }
 
-const MASS: &str = "no machine rotor exceeds 1e9 kg; keeps m·l² and k/m inside double precision";
+pub(crate) const MASS: &str = "no machine rotor exceeds 1e9 kg; keeps m·l² and k/m inside double precision";
 const MOMENT: &str = "1e9 kg at 30 m; the ratio to mass and span is checked through ρ̄s";
 const LENGTH: &str = "±10 km; ratios are checked through l̄_L, z̄_A, ρ̄s";
-const RADIUS: &str = "a race or unbalance radius of at most 1 km";
+pub(crate) const RADIUS: &str = "a race or unbalance radius of at most 1 km";
 const STIFF: &str = "the stiffest bearings are ~1e10 N/m; ω0 and its ratios stay finite";
 const DAMP: &str = "the dimensionless damping it implies is checked as well";
 const ANGLE: &str = "an angle: beyond ±1000 rad sin and cos lose digits; give it modulo 2π";

@@ -152,6 +152,8 @@ pub fn file_names(root: &Table) -> Vec<(String, String)> {
 /// negative` as the other checks do.
 /// Why a bearing's stiffness is bounded (limits.rs's support stiffness).
 const STIFF: &str = "the stiffest bearings are ~1e10 N/m (as the spatial rotor's supports)";
+/// Why a bearing's damping is bounded.
+const DAMP: &str = "1e12 N·s/m is the critical damping 2mω of a 1e9 kg rotor at 500 rad/s, beyond every bearing";
 
 /// `value` finite and at most `hi` in magnitude; the error prints the value as given (an
 /// offset of -2e3 was reported as "got 2000").
@@ -615,7 +617,7 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
                 // limits.rs's bounds of the spatial rotor's supports (`k = 1e300` ended in an
                 // eigenvalue solver that did not converge, naming no field)
                 within(&br.field("k"), k, (0.0, false), 1e13, "N/m", STIFF)?;
-                within(&br.field("c"), c, (0.0, false), 1e12, "N·s/m", "as supports.damping_left")?;
+                within(&br.field("c"), c, (0.0, false), 1e12, "N·s/m", DAMP)?;
                 let Bearing { node, k, c } = Bearing { node, k, c };
                 let (mut kk, mut cc) = (std::mem::take(&mut rotor.k), std::mem::take(&mut rotor.c));
                 rotor.add_bearing_block(node, link, &[k, 0.0, 0.0, k], &mut kk);
@@ -658,7 +660,7 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
                     // damping cxx, cyy may not, as a constant bearing's `c` may not: a motion
                     // along x alone takes the power cxx ẋ² from the damper, negative for cxx < 0
                     // (a bearing that feeds the whirl; `cxx = -1e3` ran). (cyy's fallback is cxx.)
-                    let (hi, unit, why) = if k.starts_with('k') { (1e13, "N/m", STIFF) } else { (1e12, "N·s/m", "as supports.damping_left") };
+                    let (hi, unit, why) = if k.starts_with('k') { (1e13, "N/m", STIFF) } else { (1e12, "N·s/m", DAMP) };
                     let direct_damping = k == "cxx" || k == "cyy";
                     for (j, x) in v.iter().enumerate() {
                         let field = format!("{}[{j}]", br.field(k));
@@ -713,10 +715,10 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
     for b in items(lr, "balancer")? {
         // (1e300 was taken: no stationary state at any speed, said as a failure of the solver)
         if let Some(r) = b.f64("radius")? {
-            within(&b.field("radius"), r, (0.0, true), 1e3, "m", "as balancer.race_radius")?;
+            within(&b.field("radius"), r, (0.0, true), 1e3, "m", crate::limits::RADIUS)?;
         }
         if let Some(m) = b.f64("ball_mass")? {
-            within(&b.field("ball_mass"), m, (0.0, true), 1e9, "kg", "as balancer.ball_mass")?;
+            within(&b.field("ball_mass"), m, (0.0, true), 1e9, "kg", crate::limits::MASS)?;
         }
         // (`offset = 1e200` was reported as `linear_rotor.m: is not positive definite`)
         if let Some(o) = b.f64("offset")? {

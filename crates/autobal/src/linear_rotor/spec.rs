@@ -625,7 +625,7 @@ mod tests {
         assert_eq!(edit("kxx = [2e6, 3e6]", "kxx = [2e6, 3e6]\nkxy = [-1e6, 1e6]"), Ok(()));
         assert_eq!(
             edit("cxx = [300.0, 300.0]", "cxx = [300.0, 300.0]\ncxy = [0.0, -2e12]").unwrap_err(),
-            "linear_rotor.bearings[1].cxy[1]: must lie in [-1e12, 1e12] N·s/m, got -2e12 (as supports.damping_left)"
+            "linear_rotor.bearings[1].cxy[1]: must lie in [-1e12, 1e12] N·s/m, got -2e12 (1e12 N·s/m is the critical damping 2mω of a 1e9 kg rotor at 500 rad/s, beyond every bearing)"
         );
         assert_eq!(
             edit("speeds = [0.0, 1000.0]", "speeds = [0.0, 1e300]").unwrap_err(),
