@@ -631,3 +631,23 @@ fn regression_set_took_no_element_of_an_array() {
     assert!(!d.join("x.csv").exists());
     std::fs::remove_dir_all(&d).ok();
 }
+
+#[test]
+fn regression_a_linear_rotor_below_the_periodic_floor_was_refused_without_units() {
+    // `stability` on a linear rotor with bearings stiffer along y (a periodic orbit) and
+    // `--omega-max "1 rpm"` said "0.10472 is below 41.2111": numbers without their unit, where
+    // `campbell` and the spatial route say rad/s and rpm
+    let d = scratch("linear-floor-units");
+    let text = std::fs::read_to_string(examples("linear_rotor_shaft.toml")).unwrap();
+    assert_eq!(text.matches("kyy = [2e6, 3e6]").count(), 1);
+    std::fs::write(d.join("aniso.toml"), text.replace("kyy = [2e6, 3e6]", "kyy = [2.5e6, 3.5e6]")).unwrap();
+    for (args, field) in [
+        (vec!["stability", "--config", "aniso.toml", "--omega-max", "1 rpm"], "--omega-max"),
+        (vec!["stability", "--config", "aniso.toml", "--set", "linear_rotor.omega_max=0.01"], "linear_rotor.omega_max"),
+    ] {
+        let line = rejects_in(&d, &args, field);
+        assert!(line.contains(" rad/s (") && line.contains(" rpm), the grid's top speed, is below "), "{line}");
+        assert!(line.contains("the slowest speed the periodic-orbit analysis resolves"), "{line}");
+    }
+    std::fs::remove_dir_all(&d).ok();
+}
