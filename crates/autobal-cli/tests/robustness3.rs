@@ -651,3 +651,38 @@ fn regression_a_linear_rotor_below_the_periodic_floor_was_refused_without_units(
     }
     std::fs::remove_dir_all(&d).ok();
 }
+
+#[cfg(target_os = "linux")]
+#[test]
+fn regression_a_report_on_a_full_disk_left_half_a_folder() {
+    // `report` wrote its figures one by one: a full disk left a folder of some figures and no
+    // page, and a rerun into a previous report's folder left the old page beside some new
+    // figures; now every file is written all or none (the page last)
+    let Some(d) = tiny_disk("full-disk-report", 2048) else { return };
+    let planar = examples("planar.toml");
+    // (the report's progress lines come first: the error is the last line)
+    let fails = |d: &std::path::Path, args: &[&str]| {
+        let (code, out, err) = run_in(d, Duration::from_secs(120), args);
+        assert_eq!(code, 2, "{out} {err}");
+        let line = err.trim_end().lines().last().unwrap_or_default().to_string();
+        assert!(line.starts_with("error: --out: cannot write r/") && line.contains("No space left on device"), "{err}");
+    };
+    fails(&d, &["report", "--quick", "--config", &planar, "--out", "r"]);
+    assert!(!d.join("r").exists(), "the folder the run made is gone");
+    unmount(&d);
+    // a previous report: room for it once, not twice
+    let Some(d) = tiny_disk("full-disk-report2", 6144) else { return };
+    let (code, out, err) = run_in(&d, Duration::from_secs(120), &["report", "--quick", "--config", &planar, "--out", "r"]);
+    assert_eq!(code, 0, "{out} {err}");
+    let files = |d: &std::path::Path| {
+        let mut v: Vec<(std::ffi::OsString, Vec<u8>)> =
+            std::fs::read_dir(d).unwrap().map(|e| e.unwrap()).map(|e| (e.file_name(), std::fs::read(e.path()).unwrap())).collect();
+        v.sort();
+        v
+    };
+    let before = files(&d.join("r"));
+    assert!(before.iter().any(|(n, _)| n == "index.html") && before.len() > 10, "{} files", before.len());
+    fails(&d, &["report", "--quick", "--config", &planar, "--set", "drive.t_end=200", "--out", "r"]);
+    assert!(files(&d.join("r")) == before, "the previous report is left as it was, byte for byte");
+    unmount(&d);
+}

@@ -281,7 +281,21 @@ fn context(cs: &ConfigSource, quick: bool, kind: Kind, control: &autobal::contro
 /// Build every section and write the folder (also when interrupted: the page says which
 /// sections were cut short, and the output why).
 pub fn write(ctx: &Ctx, dir: &Path) -> Result<Output> {
+    let existed = dir.is_dir();
     std::fs::create_dir_all(dir).with_context(|| format!("--out {}: cannot create the folder", dir.display()))?;
+    let written = write_in(ctx, dir);
+    if written.is_err() && !existed {
+        // (only when empty: the folder this run made, nothing of the user's)
+        let _ = std::fs::remove_dir(dir);
+    }
+    written
+}
+
+/// [`write`] into the folder `dir`, which exists: every file is built in memory and written
+/// all or none ([`crate::outfile::write_all_or_none`], `index.html` last), so that a full disk
+/// or a failed figure leaves a previous report in `dir` as it was, not its page beside some of
+/// the new figures.
+fn write_in(ctx: &Ctx, dir: &Path) -> Result<Output> {
     let t0 = Instant::now();
     let done = AtomicUsize::new(0);
     let list = match ctx.kind {
@@ -320,25 +334,26 @@ pub fn write(ctx: &Ctx, dir: &Path) -> Result<Output> {
     }
     // figure files, in parallel (rasterising is the slow part)
     let figs: Vec<&Figure> = sections.iter().flat_map(|s| s.figures()).collect();
-    figs.par_iter()
-        .map(|f| -> Result<()> {
+    let mut files: Vec<(PathBuf, Vec<u8>)> = figs
+        .par_iter()
+        .map(|f| -> Result<[(PathBuf, Vec<u8>); 2]> {
             let svg = f.plot.to_svg();
-            let p = dir.join(format!("{}.svg", f.id));
-            crate::outfile::write_atomic("--out", &p, &svg)?;
-            let p = dir.join(format!("{}.png", f.id));
-            crate::outfile::write_atomic("--out", &p, crate::plot::svg_to_png(&svg, 1.5)?)?;
-            Ok(())
+            let png = crate::plot::svg_to_png(&svg, 1.5)?;
+            Ok([(dir.join(format!("{}.svg", f.id)), svg.into_bytes()), (dir.join(format!("{}.png", f.id)), png)])
         })
-        .collect::<Result<()>>()?;
+        .collect::<Result<Vec<_>>>()?
+        .into_iter()
+        .flatten()
+        .collect();
     for (name, text) in [("plotly-cartesian.min.js", PLOTLY_JS), ("plotly-LICENSE.txt", PLOTLY_LICENSE), ("report.js", REPORT_JS)] {
-        let p = dir.join(name);
-        crate::outfile::write_atomic("--out", &p, text)?;
+        files.push((dir.join(name), text.as_bytes().to_vec()));
     }
     let incomplete: Vec<&str> = sections.iter().filter(|s| !s.complete).map(|s| s.title.as_str()).collect();
     let interrupted = ctx.control.should_stop().is_some() || !incomplete.is_empty();
     let page = page(ctx, &sections, interrupted, &incomplete, t0.elapsed().as_secs_f64());
     let index = dir.join("index.html");
-    crate::outfile::write_atomic("--out", &index, page)?;
+    files.push((index.clone(), page.into_bytes()));
+    crate::outfile::write_all_or_none("--out", &files)?;
     crate::term::note(&format!(
         "report: {} sections, {} figures in {:.1} s (computing {:.1} s, figures {:.1} s)",
         sections.len(),
