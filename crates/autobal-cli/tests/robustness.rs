@@ -2,45 +2,17 @@
 //! against (issue 12). Every run has a wall-clock limit: a hang fails the test instead of
 //! hanging the suite. The ranges are stated in `autobal::limits` and docs/reference/robustness.md.
 
-use std::io::Read;
+mod common;
+use common::{examples, run_in};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-/// Run the binary with `args` for at most `limit`; `(exit code, stdout, stderr)`. A run past the
-/// limit is killed and fails the test.
+/// Run the binary with `args` for at most `limit` in this test binary's scratch folder;
+/// `(exit code, stdout, stderr)`. A run past the limit is killed and fails the test.
 fn run_for(limit: Duration, args: &[&str]) -> (i32, String, String) {
     let dir = std::env::temp_dir().join(format!("autobal-robustness-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let mut child =
-        Command::new(env!("CARGO_BIN_EXE_autobal")).args(args).current_dir(&dir).stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().expect("binary runs");
-    let (mut out, mut err) = (child.stdout.take().unwrap(), child.stderr.take().unwrap());
-    let reader = std::thread::spawn(move || {
-        let mut s = String::new();
-        let _ = out.read_to_string(&mut s);
-        s
-    });
-    let err_reader = std::thread::spawn(move || {
-        let mut s = String::new();
-        let _ = err.read_to_string(&mut s);
-        s
-    });
-    let t0 = Instant::now();
-    let status = loop {
-        if let Some(s) = child.try_wait().unwrap() {
-            break s;
-        }
-        if t0.elapsed() > limit {
-            let _ = child.kill();
-            let _ = child.wait();
-            panic!("autobal {} ran longer than {:?}", args.join(" "), limit);
-        }
-        std::thread::sleep(Duration::from_millis(20));
-    };
-    (status.code().unwrap_or(-1), reader.join().unwrap(), err_reader.join().unwrap())
-}
-
-fn examples(name: &str) -> String {
-    format!("{}/../../examples/{name}", env!("CARGO_MANIFEST_DIR"))
+    run_in(&dir, limit, args)
 }
 
 /// The command must fail with exit code 2 and one line `error: FIELD: …` naming `field`.

@@ -1,54 +1,14 @@
 //! Hostile input, round 3: one regression test per defect, named after it, end to end with a
 //! wall-clock limit on every run (a hang fails the test instead of hanging the suite).
 
+mod common;
+use common::{examples, run_in, wait_for};
 use std::io::Read;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-fn examples(name: &str) -> String {
-    format!("{}/../../examples/{name}", env!("CARGO_MANIFEST_DIR"))
-}
-
 fn scratch(name: &str) -> std::path::PathBuf {
-    let d = std::env::temp_dir().join(format!("autobal-r3-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-/// Wait for `child` at most `limit` (killed and failing the test past it).
-fn wait_for(mut child: std::process::Child, limit: Duration, what: &str) -> std::process::ExitStatus {
-    let t0 = Instant::now();
-    loop {
-        if let Some(s) = child.try_wait().unwrap() {
-            return s;
-        }
-        if t0.elapsed() > limit {
-            let _ = child.kill();
-            let _ = child.wait();
-            panic!("autobal {what} ran longer than {limit:?}");
-        }
-        std::thread::sleep(Duration::from_millis(20));
-    }
-}
-
-/// Run the binary in `dir` with `args` for at most `limit`: `(exit code, stdout, stderr)`.
-fn run_in(dir: &std::path::Path, limit: Duration, args: &[&str]) -> (i32, String, String) {
-    let mut child =
-        Command::new(env!("CARGO_BIN_EXE_autobal")).args(args).current_dir(dir).stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().expect("binary runs");
-    let (mut out, mut err) = (child.stdout.take().unwrap(), child.stderr.take().unwrap());
-    let o = std::thread::spawn(move || {
-        let mut s = String::new();
-        let _ = out.read_to_string(&mut s);
-        s
-    });
-    let e = std::thread::spawn(move || {
-        let mut s = String::new();
-        let _ = err.read_to_string(&mut s);
-        s
-    });
-    let status = wait_for(child, limit, &args.join(" "));
-    (status.code().unwrap_or(-1), o.join().unwrap(), e.join().unwrap())
+    common::scratch_in("r3", name)
 }
 
 /// The command fails with status 2 and one line on stderr, `error: ` then `field`; the line.
