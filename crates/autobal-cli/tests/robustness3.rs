@@ -646,3 +646,16 @@ fn regression_a_report_on_a_full_disk_left_half_a_folder() {
     assert!(files(&d.join("r")) == before, "the previous report is left as it was, byte for byte");
     unmount(&d);
 }
+
+#[test]
+fn regression_a_top_speed_below_one_rpm_was_printed_as_0_rpm() {
+    // `stability --omega-max "1e-3 rpm"` on a dimensional config printed "(up to 0 rpm, 0.0 rad/s)"
+    let d = scratch("tiny-omega-max");
+    let (code, out, err) = run_in(&d, Duration::from_secs(60), &["stability", "--config", &examples("dimensional.toml"), "--omega-max", "1e-3 rpm"]);
+    assert_eq!(code, 0, "{out} {err}");
+    assert!(out.contains("(up to 0.001 rpm, 1.0472e-4 rad/s)"), "{out}");
+    let (code, out, err) = run_in(&d, Duration::from_secs(60), &["stability", "--config", &examples("dimensional.toml")]);
+    assert_eq!(code, 0, "{out} {err}");
+    assert!(out.contains("(up to 10434 rpm, 1092.7 rad/s)"), "{out}");
+    std::fs::remove_dir_all(&d).ok();
+}

@@ -103,11 +103,15 @@ pub fn stability_table(cfg: &Config, c: &Comparison, balls: Balls) -> String {
         if balls == Balls::Free { "free" } else { "locked" },
         if balls == Balls::Free { 12 } else { 8 },
         crate::num::fmt(c.omega_max, 7),
-        cfg.model.scale.map_or(String::new(), |sc| format!(
-            " (up to {:.0} rpm, {:.1} rad/s)",
-            c.omega_max * sc.omega0 * 30.0 / std::f64::consts::PI,
-            c.omega_max * sc.omega0
-        ))
+        cfg.model.scale.map_or(String::new(), |sc| {
+            let (rpm, rad_s) = (c.omega_max * sc.omega0 * 30.0 / std::f64::consts::PI, c.omega_max * sc.omega0);
+            // (below 1 rpm in significant digits: `--omega-max "1e-3 rpm"` read "up to 0 rpm")
+            if rpm >= 1.0 {
+                format!(" (up to {rpm:.0} rpm, {rad_s:.1} rad/s)")
+            } else {
+                format!(" (up to {} rpm, {} rad/s)", crate::num::fmt(rpm, 6), crate::num::fmt(rad_s, 6))
+            }
+        })
     );
     // computed over (0, Ω_max] only: a range reaching Ω_max ends there as far as is known
     let w = Some(c.omega_max);
