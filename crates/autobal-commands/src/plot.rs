@@ -1735,21 +1735,35 @@ fn rasterise(
     let (w, h) = (pix.width(), pix.height());
     // opaque: premultiplied is straight; the RGB bytes are packed into the pixmap's own front
     // (no 2.9 MB copy for a map's figure)
-    let data = pix.data_mut();
-    let n = rgba_to_rgb_in_place(data);
-    let rgb = &data[..n];
-    // a map's PNG is 4-11 % of its RGB bytes (118-315 kB of 2.9 MB): an eighth is one
-    // allocation for most figures, no copies as the file grows
-    let mut out = Vec::with_capacity(n / 8 + 4096);
-    {
-        let mut enc = png::Encoder::new(&mut out, w, h);
-        enc.set_color(png::ColorType::Rgb);
-        enc.set_depth(png::BitDepth::Eight);
-        enc.set_compression(png::Compression::Fast);
-        let mut wr = enc.write_header().map_err(|e| anyhow::anyhow!("PNG encoding: {e}"))?;
-        wr.write_image_data(rgb).map_err(|e| anyhow::anyhow!("PNG encoding: {e}"))?;
+    let mut data = pix.take();
+    let n = rgba_to_rgb_in_place(&mut data);
+    // the PNG is written into the quarter the RGB bytes freed (pages the pixmap touched; a
+    // map's PNG is 4-11 % of its RGB bytes, 118-315 kB of 2.9 MB), then moved to the front and
+    // the pixmap's buffer returned as the file: no fresh pages for it. A PNG that does not fit
+    // (an image deflate hardly shrinks) is encoded again into a buffer of its own.
+    let (rgb, tail) = data.split_at_mut(n);
+    let room = tail.len();
+    let mut free: &mut [u8] = tail;
+    if encode_rgb(&mut free, w, h, rgb).is_ok() {
+        let written = room - free.len();
+        data.copy_within(n..n + written, 0);
+        data.truncate(written);
+        return Ok(data);
     }
+    let mut out = Vec::with_capacity(n / 8 + 4096);
+    encode_rgb(&mut out, w, h, &data[..n]).map_err(|e| anyhow::anyhow!("PNG encoding: {e}"))?;
     Ok(out)
+}
+
+/// RGB bytes (`w` x `h`) as a PNG written to `out`: the png crate's fast deflate, filter Sub.
+fn encode_rgb(out: &mut impl std::io::Write, w: u32, h: u32, rgb: &[u8]) -> Result<(), png::EncodingError> {
+    let mut enc = png::Encoder::new(out, w, h);
+    enc.set_color(png::ColorType::Rgb);
+    enc.set_depth(png::BitDepth::Eight);
+    enc.set_compression(png::Compression::Fast);
+    let mut wr = enc.write_header()?;
+    wr.write_image_data(rgb)?;
+    wr.finish()
 }
 
 /// Whether every pixel of RGBA bytes is opaque: the AND of all alphas is 255 only if each is
@@ -2112,6 +2126,40 @@ mod tests {
         assert_eq!(info.color_type, png::ColorType::Rgb);
         buf.truncate(info.buffer_size());
         (info.width as usize, info.height as usize, buf)
+    }
+
+    #[test]
+    fn an_opaque_png_written_into_its_pixmap_or_apart_decodes_to_its_pixels() {
+        // The PNG of an opaque raster is written into the quarter of the pixmap its RGB bytes
+        // freed, or, when it does not fit there (noise, which deflate cannot shrink to a
+        // quarter), into a buffer of its own: either way the file decodes (the png crate's
+        // decoder, an independent reader) to exactly the pixels painted, byte for byte.
+        let svg = r#"<svg xmlns="http://www.w3.org/2000/svg" width="97" height="61"></svg>"#;
+        let mut state = 0x2545_F491_4F6C_DD1Du64;
+        let mut noise = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state as u8
+        };
+        let painted: Vec<u8> = (0..97 * 61 * 3).map(|_| noise()).collect();
+        for (pixels, fits) in [(vec![255u8; 97 * 61 * 3], true), (painted, false)] {
+            let png = rasterise(
+                svg,
+                1.0,
+                true,
+                |pix| {
+                    for (p, c) in pix.pixels_mut().iter_mut().zip(pixels.chunks_exact(3)) {
+                        *p = resvg::tiny_skia::PremultipliedColorU8::from_rgba(c[0], c[1], c[2], 255).expect("opaque");
+                    }
+                },
+                |_| {},
+            )
+            .unwrap();
+            // (which way it went: the file against a quarter of the RGBA bytes)
+            assert_eq!(png.len() <= 97 * 61, fits, "{} bytes", png.len());
+            assert_eq!(decode_rgb(&png), (97, 61, pixels));
+        }
     }
 
     #[test]
