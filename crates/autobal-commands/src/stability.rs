@@ -234,10 +234,13 @@ mod tests {
         assert_ne!(grav, shaft);
         let args = Args { config: tables(&grav, &[]), omega_max: Some("1 rad/s".into()), ..Default::default() };
         let e = format!("{:#}", args.run(&Control::none()).err().expect("refused"));
-        assert!(e.starts_with("--omega-max: 1 is below ") && !e.contains('\n'), "{e}");
+        assert!(
+            e.starts_with("--omega-max: 1 rad/s (9.5493 rpm), the grid's top speed, is below ") && e.contains(" rpm), the slowest") && !e.contains('\n'),
+            "{e}"
+        );
         let args = Args { config: tables(&grav, &[]), ..Default::default() };
         let e = format!("{:#}", args.run(&Control::none()).err().expect("refused"));
-        assert!(e.starts_with("linear_rotor.omega_max: 2 is below "), "{e}");
+        assert!(e.starts_with("linear_rotor.omega_max: 2 rad/s (19.0986 rpm), the grid's top speed, is below "), "{e}");
     }
 
     /// A linear rotor with a couple unbalance only (the shaft example, a second unbalance at
