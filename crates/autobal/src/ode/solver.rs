@@ -17,7 +17,12 @@ const NONSTIFF_RESET: u32 = 6;
 const TEST_EVERY: u64 = 5;
 /// Longest interval between two checks for unresolved modes, in implicit steps: the interval
 /// doubles from [`TEST_EVERY`] up to this after each check that finds every mode [`FAR`] from
-/// capping the step, and is back to [`TEST_EVERY`] after any other.
+/// capping the step and none approaching (the least decay margin of the modes that could cap
+/// a step, extrapolated linearly from the last check over the doubled interval, stays beyond
+/// `DECAYED + NEAR`; the first check of a phase has nothing to extrapolate from and does not
+/// back off), or the cap binding and steady ([`DRIFT`]), and is back to [`TEST_EVERY`] after
+/// any other. The test for a switch back to DOP853 backs off the same way while DOP853 would
+/// need steps [`FAR`] times shorter than the implicit one.
 const TEST_EVERY_FAR: u64 = 20;
 /// A check finds the modes far from capping the step when the longest implicit step allowed
 /// ([`super::Options::h_max_implicit`]; never where it is infinite) is at most `1/FAR` of the
@@ -28,6 +33,17 @@ const TEST_EVERY_FAR: u64 = 20;
 const FAR: f64 = 4.0;
 /// See [`FAR`]: `e^{−0.5}` of decay over `h_ref` (a mode at `Re(h_ref λ) = −3.5` is near).
 const NEAR: f64 = 0.5;
+/// Where the cap binds and is steady (one mode sets it under both criteria of [`FAR`], and
+/// so no other mode is near: every counted mode is slower than the capping one, every mode
+/// that could become counted must first weaken its decay by `e^NEAR` or double its frequency),
+/// the interval between checks may double from [`TEST_EVERY`] up to [`TEST_EVERY_FAR`] while
+/// the cap's relative drift over the interval, extrapolated from the last two checks, is at
+/// most this. The cap held until the next check is then the new one shrunk by that
+/// extrapolated drift (`cap · e^{−d m}`, `d` the drift per implicit step, `m` the interval):
+/// no longer than the cap the mode is expected to set at the end of the interval, where a
+/// check every [`TEST_EVERY`] steps holds the unshrunk cap for 5 steps. A 5 % shorter cap
+/// costs at most 5 % more steps while it binds.
+const DRIFT: f64 = 0.05;
 /// Power iterations per spectral-radius estimate.
 const POWER_ITERATIONS: usize = 10;
 /// Largest Krylov dimension of the check for unresolved modes (the Ritz values are the
@@ -91,8 +107,21 @@ pub struct Solver<'s, S: System> {
     /// The longest such interval ([`TEST_EVERY_FAR`]; [`TEST_EVERY`] in tests: the schedule
     /// without the back-off).
     far_interval: u64,
+    /// The longest interval where the cap binds and is steady ([`DRIFT`]; [`TEST_EVERY_FAR`],
+    /// [`TEST_EVERY`] in tests: the schedule without that back-off).
+    bound_interval: u64,
     /// Checks for unresolved modes so far.
     cap_checks: u64,
+    /// The implicit step (of the phase) at which the next test for a switch back to DOP853
+    /// runs, and the interval to it ([`FAR`]: it doubles, up to [`TEST_EVERY_FAR`], while
+    /// DOP853 would need steps `FAR` times shorter than the implicit one).
+    next_stiff_test: (u64, u64),
+    /// The cap found by the last check (unshrunk; `∞`: none, or no check yet in this phase)
+    /// and the implicit step of the phase it ran at ([`DRIFT`]).
+    last_cap: (f64, u64),
+    /// The least decay margin of the last check ([`Solver::unresolved_mode_cap`]) and the
+    /// implicit step it ran at (`∞`: no check yet in this phase).
+    last_margin: (f64, u64),
     total: Stats,
     started: Option<std::time::Instant>,
 }
@@ -195,7 +224,11 @@ impl<'s, S: System> Solver<'s, S> {
             next_cap_test: TEST_EVERY,
             cap_interval: TEST_EVERY,
             far_interval: TEST_EVERY_FAR,
+            bound_interval: TEST_EVERY_FAR,
             cap_checks: 0,
+            last_cap: (f64::INFINITY, 0),
+            last_margin: (f64::INFINITY, 0),
+            next_stiff_test: (TEST_EVERY, TEST_EVERY),
             total: Stats::default(),
             started: None,
         })
@@ -246,6 +279,9 @@ impl<'s, S: System> Solver<'s, S> {
         self.next_cap_test = TEST_EVERY;
         self.cap_interval = TEST_EVERY;
         self.mode_cap = f64::INFINITY;
+        self.last_cap = (f64::INFINITY, 0);
+        self.last_margin = (f64::INFINITY, 0);
+        self.next_stiff_test = (TEST_EVERY, TEST_EVERY);
         self.h_free = 0.0;
         self.mode = if self.opts.method == Method::Rodas { Mode::Implicit } else { Mode::Explicit };
     }
@@ -544,16 +580,38 @@ impl<'s, S: System> Solver<'s, S> {
                 if self.phase_steps >= self.next_cap_test {
                     let hm = h_max(self.mode, &self.opts);
                     let h_ref = if hm.is_finite() { hm } else { h.max(self.h_free).max(self.h_implicit_max) };
-                    let (cap, loose) = self.unresolved_mode_cap(h_old, h_ref);
+                    let (cap, loose, margin) = self.unresolved_mode_cap(h_old, h_ref);
                     self.cap_checks += 1;
                     if cap.is_finite() && self.mode_cap.is_infinite() {
                         self.h_free = h_ref;
                     } else if cap.is_infinite() {
                         self.h_free = 0.0;
                     }
-                    self.mode_cap = cap;
-                    let far = hm.is_finite() && loose >= FAR * hm;
-                    self.cap_interval = if far { (2 * self.cap_interval).min(self.far_interval) } else { TEST_EVERY };
+                    // far, and not getting near fast: the decay margin of the modes that could
+                    // cap a step, extrapolated from the last check over the doubled interval,
+                    // stays beyond DECAYED + NEAR (a mode whose damping falls steadily is
+                    // caught before it counts, not up to TEST_EVERY_FAR steps after)
+                    let (last_margin, margin_at) = self.last_margin;
+                    let fall = ((last_margin - margin) / (self.phase_steps - margin_at).max(1) as f64).max(0.0);
+                    let far_doubled = (2 * self.cap_interval).min(self.far_interval);
+                    let far = hm.is_finite() && loose >= FAR * hm && !(margin - fall * far_doubled as f64 <= DECAYED + NEAR);
+                    self.last_margin = (margin, self.phase_steps);
+                    // binding and steady: one mode sets both caps (`loose ≤ cap/2` always, as
+                    // that mode is among those of the generous criteria), the last check found
+                    // a cap too, and the drift since it extrapolates to at most DRIFT
+                    let (last, at) = self.last_cap;
+                    let drift = (cap / last).ln().abs() / (self.phase_steps - at).max(1) as f64;
+                    let doubled = 2 * self.cap_interval;
+                    let steady = cap < hm && last.is_finite() && loose >= 0.5 * cap && drift * doubled.min(self.bound_interval) as f64 <= DRIFT;
+                    self.cap_interval = if far {
+                        doubled.min(self.far_interval)
+                    } else if steady {
+                        doubled.min(self.bound_interval)
+                    } else {
+                        TEST_EVERY
+                    };
+                    self.mode_cap = if steady && !far && self.cap_interval > TEST_EVERY { cap * (-drift * self.cap_interval as f64).exp() } else { cap };
+                    self.last_cap = (cap, self.phase_steps);
                     self.next_cap_test = self.phase_steps + self.cap_interval;
                 }
             }
@@ -573,6 +631,9 @@ impl<'s, S: System> Solver<'s, S> {
                                 self.next_cap_test = TEST_EVERY;
                                 self.cap_interval = TEST_EVERY;
                                 self.mode_cap = f64::INFINITY;
+                                self.last_cap = (f64::INFINITY, 0);
+                                self.last_margin = (f64::INFINITY, 0);
+                                self.next_stiff_test = (TEST_EVERY, TEST_EVERY);
                                 self.h_free = 0.0;
                                 stats.switches += 1;
                             }
@@ -584,12 +645,20 @@ impl<'s, S: System> Solver<'s, S> {
                         }
                     }
                     Mode::Implicit => {
-                        if self.phase_steps.is_multiple_of(TEST_EVERY) {
+                        if self.phase_steps >= self.next_stiff_test.0 {
                             let rho = self.spectral_radius(t, &mut stats);
+                            // the switch saves work, it does not decide accuracy (RODAS's steps
+                            // are error-controlled and capped for unresolved modes like any
+                            // other): where DOP853 would need FAR times shorter steps, test less
+                            // often, as the check for unresolved modes does where it is far
+                            let hr = h.min(self.mode_cap) * rho;
+                            let interval =
+                                if hr > FAR * 0.9 * dop853::STABILITY_RADIUS { (2 * self.next_stiff_test.1).min(self.far_interval) } else { TEST_EVERY };
+                            self.next_stiff_test = (self.phase_steps + interval, interval);
                             // back to DOP853 when it could take the implicit step stably (the
                             // step as capped for unresolved modes: where that cap is as short
                             // as DOP853's stable step, RODAS has nothing left to gain)
-                            if h.min(self.mode_cap) * rho <= 0.9 * dop853::STABILITY_RADIUS {
+                            if hr <= 0.9 * dop853::STABILITY_RADIUS {
                                 self.mode = Mode::Explicit;
                                 stats.switches += 1;
                                 // a short implicit phase was not worth it: ask for more evidence
@@ -619,11 +688,13 @@ impl<'s, S: System> Solver<'s, S> {
     /// factorisation (`α = 1/(γ h)`, `h` the step just taken): it finds the eigenvalues nearest
     /// `α`, i.e. the slow ones, first; with at most [`KRYLOV`] states the Krylov space is the
     /// whole space and the eigenvalues are exact. In the weighted variables `y_i/(atol_i +
-    /// rtol |y_i|)`. Returns the cap and the same under the more generous criteria of
-    /// [`FAR`] (at most the cap).
-    fn unresolved_mode_cap(&mut self, h: f64, h_ref: f64) -> (f64, f64) {
+    /// rtol |y_i|)`. Returns the cap, the same under the more generous criteria of
+    /// [`FAR`] (at most the cap), and the least decay `−Re(h_ref λ)` of the modes that
+    /// oscillate by those criteria (or grow) and are fast enough to cap a step of `FAR h_ref`
+    /// (`∞`: none).
+    fn unresolved_mode_cap(&mut self, h: f64, h_ref: f64) -> (f64, f64, f64) {
         let n = self.n;
-        let Some(jac) = self.jac.as_mut() else { return (f64::INFINITY, f64::INFINITY) };
+        let Some(jac) = self.jac.as_mut() else { return (f64::INFINITY, f64::INFINITY, f64::INFINITY) };
         let m = n.min(KRYLOV);
         if self.krylov.len() < (KRYLOV + 1) * n {
             self.krylov = vec![0.0; (KRYLOV + 1) * n];
@@ -674,10 +745,10 @@ impl<'s, S: System> Solver<'s, S> {
             let (_, next) = v.split_at_mut((k + 1) * n);
             next[..n].iter_mut().zip(w.iter()).for_each(|(a, x)| *a = x / r);
         }
-        let Ok(mu) = crate::linalg::eigen::hessenberg_eigenvalues(&hess, size) else { return (self.mode_cap, 0.0) };
+        let Ok(mu) = crate::linalg::eigen::hessenberg_eigenvalues(&hess, size) else { return (self.mode_cap, 0.0, 0.0) };
         let alpha = 1.0 / (rosenbrock::GAMMA * h);
         let kappa = RESOLVED_AT_1E8 * (rtol / 1e-8).powf(1.0 / 6.0);
-        let (mut cap, mut loose) = (f64::INFINITY, f64::INFINITY);
+        let (mut cap, mut loose, mut margin) = (f64::INFINITY, f64::INFINITY, f64::INFINITY);
         for mu in mu {
             if !(mu.norm() > 0.0) {
                 continue; // an eigenvalue at infinity
@@ -694,8 +765,13 @@ impl<'s, S: System> Solver<'s, S> {
             if lambda.re * h_ref > -(DECAYED + NEAR) && (lambda.im.abs() * h_ref > 0.5 * kappa || lambda.re > 0.0) {
                 loose = loose.min(0.5 * kappa / lambda.norm());
             }
+            // the decay over h_ref of a mode fast enough to cap a step FAR times h_ref, were
+            // it not decayed (the modes slower than that never matter to the back-off)
+            if (lambda.im.abs() * h_ref > 0.5 * kappa || lambda.re > 0.0) && 0.5 * kappa / lambda.norm() < FAR * h_ref {
+                margin = margin.min(-lambda.re * h_ref);
+            }
         }
-        (cap, loose)
+        (cap, loose, margin)
     }
 
     /// Spectral radius of `J` at `(t, self.y)` by power iteration on difference products
@@ -816,6 +892,9 @@ mod tests {
             opts.h_max_implicit = 1.0;
             let mut s = Solver::new(&Ramp, opts).unwrap();
             s.far_interval = far_interval;
+            // the back-off where the cap binds (from t = 29.8 s here) changes the steps by
+            // rounding (another cap held); it has its own test (`…_where_the_cap_binds_…`)
+            s.bound_interval = super::TEST_EVERY;
             let mut y = [1.0, 0.0, 0.0];
             let out = s.integrate(0.0, &mut y, 55.0, |_| Control::Continue);
             assert!(out.status.is_completed(), "{out:?}");
@@ -824,11 +903,82 @@ mod tests {
         let (y_far, stats_far, checks_far) = run(super::TEST_EVERY_FAR);
         let (y_5, stats_5, checks_5) = run(super::TEST_EVERY);
         assert!(stats_5.implicit_steps > 1000, "{stats_5:?}");
-        assert_eq!((y_far, stats_far), (y_5, stats_5));
+        // the same steps and end state; fewer right-hand sides (the test for a switch back to
+        // DOP853 backs off too, where DOP853 would need steps FAR times shorter)
+        let same = |s: crate::ode::Stats| (s.steps, s.implicit_steps, s.rejected, s.jacobians, s.factorizations, s.switches);
+        assert_eq!((y_far, same(stats_far)), (y_5, same(stats_5)));
+        assert!(stats_far.rhs_evaluations < stats_5.rhs_evaluations, "{stats_far:?} {stats_5:?}");
         assert!(checks_far < checks_5, "{checks_far} checks with the back-off, {checks_5} without");
         // the oscillation grew (about 28 e-folds from t = 40 s): the checks decide this run
         let amp = |y: [u64; 3]| (f64::from_bits(y[1]) - 6.5 / 169.0).hypot(f64::from_bits(y[2]) / 13.0);
         assert!(amp(y_5) > 1e-2, "{}", amp(y_5));
+    }
+
+    /// A stiff decaying component beside an oscillator at rest whose frequency rises linearly,
+    /// `x'' + 2σ(t) x' + ω(t)² x = 0`, `ω = 13 + 0.13 t` rad/s, `σ = max(10 − 0.5 t, 0.05)`
+    /// 1/s: strongly damped at first, then nearly undamped, so from `σ < 3` (t > 14 s) its
+    /// mode caps RODAS's steps (`κ/ω` < 1 s = `h_max_implicit`; at rest it sets no error, so
+    /// nothing else limits them) and the cap shrinks as `ω` rises. The mode's eigenvalues are
+    /// `−σ ± i √(ω² − σ²)`, `|λ| = ω` in closed form.
+    struct Chirp;
+    impl System for Chirp {
+        fn dim(&self) -> usize {
+            3
+        }
+        fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
+            let (sigma, omega) = ((10.0 - 0.5 * t).max(0.05), 13.0 + 0.13 * t);
+            dy[0] = -1e4 * y[0];
+            dy[1] = y[2];
+            dy[2] = -omega * omega * y[1] - 2.0 * sigma * y[2];
+        }
+    }
+
+    /// The checks' back-offs must not let implicit steps outrun the mode. Where no mode is
+    /// near, the back-off ([`super::FAR`]) must still catch the mode within `TEST_EVERY` steps
+    /// of the time it starts to count (its damping falls steadily: the decay margin is
+    /// extrapolated). Where the cap binds ([`super::DRIFT`]), measured against the closed-form
+    /// `|λ(t)| = ω(t)` at the end of every implicit step from t = 21 s (σ = 0.05), `h ω / κ`
+    /// (`κ` = 1 at rtol 1e-8)
+    /// is never larger with the back-off than with a check every `TEST_EVERY` steps, with
+    /// fewer checks. Holding the cap found at a check for the longer interval without
+    /// shrinking it by the drift fails this (the rising frequency makes a held cap too long
+    /// by the drift over the whole interval, ~1.5 % at 20 steps against ~0.4 % at 5).
+    #[test]
+    fn checking_less_often_where_the_cap_binds_keeps_steps_within_it() {
+        let run = |bound_interval: u64| {
+            let mut opts = Options::new(1e-8, 1e-10);
+            opts.h_max_implicit = 1.0;
+            let mut s = Solver::new(&Chirp, opts).unwrap();
+            s.bound_interval = bound_interval;
+            let mut y = [1.0, 0.0, 0.0];
+            let (mut worst, mut steps, mut caught) = (0.0f64, 0, f64::INFINITY);
+            let out = s.integrate(0.0, &mut y, 60.0, |st| {
+                let h_omega = (st.t_new - st.t_old) * (13.0 + 0.13 * st.t_new);
+                if st.method == crate::ode::Method::Rodas && st.t_old >= 15.0 && h_omega <= 1.05 {
+                    caught = caught.min(st.t_old);
+                }
+                if st.method == crate::ode::Method::Rodas && st.t_old >= 21.0 {
+                    worst = worst.max(h_omega);
+                    steps += 1;
+                }
+                Control::Continue
+            });
+            assert!(out.status.is_completed(), "{out:?}");
+            (worst, steps, s.cap_checks, caught)
+        };
+        let (worst_far, steps_far, checks_far, caught_far) = run(super::TEST_EVERY_FAR);
+        let (worst_5, steps_5, checks_5, caught_5) = run(super::TEST_EVERY);
+        // the mode counts from t = 15 s (σ < 3): caught (a step within 5 % of κ/ω: a held cap
+        // is stale by the drift of up to 20 steps) within TEST_EVERY steps of 1 s (the
+        // schedule's own latency), in both runs; the back-off where no mode is near, were it
+        // not to extrapolate the falling decay margin, would find it only at t = 29.96 s
+        assert!(caught_far <= 15.0 + super::TEST_EVERY as f64 && caught_5 <= 15.0 + super::TEST_EVERY as f64, "{caught_far} {caught_5}");
+        // the cap binds (steps at it, not below it by the error control) and is tested often
+        assert!(worst_5 > 0.99 && steps_5 > 300, "{worst_5} {steps_5}");
+        assert!(worst_far <= worst_5, "h ω/κ at most {worst_far} with the back-off, {worst_5} without");
+        // the back-off happened: at most half the checks, for at most 5 % more steps (DRIFT)
+        assert!(2 * checks_far <= checks_5, "{checks_far} checks with the back-off, {checks_5} without");
+        assert!(steps_far as f64 <= 1.05 * steps_5 as f64, "{steps_far} steps with the back-off, {steps_5} without");
     }
 
     /// The two plain loops `orthogonalize` replaces (modified Gram–Schmidt, twice, then the
