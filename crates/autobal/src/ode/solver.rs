@@ -38,7 +38,11 @@ const NEAR: f64 = 0.5;
 /// that could become counted must first weaken its decay by `e^NEAR` or double its frequency),
 /// the interval between checks may double from [`TEST_EVERY`] up to [`TEST_EVERY_FAR`] while
 /// the cap's relative drift over the interval, extrapolated from the last two checks, is at
-/// most this. The cap held until the next check is then the new one shrunk by that
+/// most this, and the least decay margin of the modes other than the capping one that could
+/// cap a step of `FAR h_ref`, extrapolated likewise, stays beyond `DECAYED + NEAR` (as for
+/// [`FAR`]: a second mode that starts to count is then caught as a check every [`TEST_EVERY`]
+/// steps would; one that appears abruptly, a frequency or damping that jumps, is seen at the
+/// next check only, up to [`TEST_EVERY_FAR`] steps later, by this back-off as by [`FAR`]'s). The cap held until the next check is then the new one shrunk by that
 /// extrapolated drift (`cap · e^{−d m}`, `d` the drift per implicit step, `m` the interval):
 /// no longer than the cap the mode is expected to set at the end of the interval, where a
 /// check every [`TEST_EVERY`] steps holds the unshrunk cap for 5 steps. A 5 % shorter cap
