@@ -17,7 +17,12 @@ const NONSTIFF_RESET: u32 = 6;
 const TEST_EVERY: u64 = 5;
 /// Longest interval between two checks for unresolved modes, in implicit steps: the interval
 /// doubles from [`TEST_EVERY`] up to this after each check that finds every mode [`FAR`] from
-/// capping the step, and is back to [`TEST_EVERY`] after any other.
+/// capping the step and none approaching (the least decay margin of the modes that could cap
+/// a step, extrapolated linearly from the last check over the doubled interval, stays beyond
+/// `DECAYED + NEAR`; the first check of a phase has nothing to extrapolate from and does not
+/// back off), or the cap binding and steady ([`DRIFT`]), and is back to [`TEST_EVERY`] after
+/// any other. The test for a switch back to DOP853 backs off the same way while DOP853 would
+/// need steps [`FAR`] times shorter than the implicit one.
 const TEST_EVERY_FAR: u64 = 20;
 /// A check finds the modes far from capping the step when the longest implicit step allowed
 /// ([`super::Options::h_max_implicit`]; never where it is infinite) is at most `1/FAR` of the
@@ -28,6 +33,21 @@ const TEST_EVERY_FAR: u64 = 20;
 const FAR: f64 = 4.0;
 /// See [`FAR`]: `e^{−0.5}` of decay over `h_ref` (a mode at `Re(h_ref λ) = −3.5` is near).
 const NEAR: f64 = 0.5;
+/// Where the cap binds and is steady (one mode sets it under both criteria of [`FAR`], and
+/// so no other mode is near: every counted mode is slower than the capping one, every mode
+/// that could become counted must first weaken its decay by `e^NEAR` or double its frequency),
+/// the interval between checks may double from [`TEST_EVERY`] up to [`TEST_EVERY_FAR`] while
+/// the cap's relative drift over the interval, extrapolated from the last two checks, is at
+/// most this, and the least decay margin of the modes other than the capping one that could
+/// cap a step of `FAR h_ref`, extrapolated likewise, stays beyond `DECAYED + NEAR` (as for
+/// [`FAR`]: a second mode that starts to count is then caught as a check every [`TEST_EVERY`]
+/// steps would; one that appears abruptly, a frequency or damping that jumps, is seen at the
+/// next check only, up to [`TEST_EVERY_FAR`] steps later, by this back-off as by [`FAR`]'s). The cap held until the next check is then the new one shrunk by that
+/// extrapolated drift (`cap · e^{−d m}`, `d` the drift per implicit step, `m` the interval):
+/// no longer than the cap the mode is expected to set at the end of the interval, where a
+/// check every [`TEST_EVERY`] steps holds the unshrunk cap for 5 steps. A 5 % shorter cap
+/// costs at most 5 % more steps while it binds.
+const DRIFT: f64 = 0.05;
 /// Power iterations per spectral-radius estimate.
 const POWER_ITERATIONS: usize = 10;
 /// Largest Krylov dimension of the check for unresolved modes (the Ritz values are the
@@ -91,8 +111,22 @@ pub struct Solver<'s, S: System> {
     /// The longest such interval ([`TEST_EVERY_FAR`]; [`TEST_EVERY`] in tests: the schedule
     /// without the back-off).
     far_interval: u64,
+    /// The longest interval where the cap binds and is steady ([`DRIFT`]; [`TEST_EVERY_FAR`],
+    /// [`TEST_EVERY`] in tests: the schedule without that back-off).
+    bound_interval: u64,
     /// Checks for unresolved modes so far.
     cap_checks: u64,
+    /// The implicit step (of the phase) at which the next test for a switch back to DOP853
+    /// runs, and the interval to it ([`FAR`]: it doubles, up to [`TEST_EVERY_FAR`], while
+    /// DOP853 would need steps `FAR` times shorter than the implicit one).
+    next_stiff_test: (u64, u64),
+    /// The cap found by the last check (unshrunk; `∞`: none, or no check yet in this phase)
+    /// and the implicit step of the phase it ran at ([`DRIFT`]).
+    last_cap: (f64, u64),
+    /// The least decay margins of the last check ([`Solver::unresolved_mode_cap`]: of all the
+    /// modes, and of those other than the capping one), and the implicit step it ran at (`∞`:
+    /// no check yet in this phase).
+    last_margin: (f64, f64, u64),
     total: Stats,
     started: Option<std::time::Instant>,
 }
@@ -195,7 +229,11 @@ impl<'s, S: System> Solver<'s, S> {
             next_cap_test: TEST_EVERY,
             cap_interval: TEST_EVERY,
             far_interval: TEST_EVERY_FAR,
+            bound_interval: TEST_EVERY_FAR,
             cap_checks: 0,
+            last_cap: (f64::INFINITY, 0),
+            last_margin: (f64::INFINITY, f64::INFINITY, 0),
+            next_stiff_test: (TEST_EVERY, TEST_EVERY),
             total: Stats::default(),
             started: None,
         })
@@ -246,6 +284,9 @@ impl<'s, S: System> Solver<'s, S> {
         self.next_cap_test = TEST_EVERY;
         self.cap_interval = TEST_EVERY;
         self.mode_cap = f64::INFINITY;
+        self.last_cap = (f64::INFINITY, 0);
+        self.last_margin = (f64::INFINITY, f64::INFINITY, 0);
+        self.next_stiff_test = (TEST_EVERY, TEST_EVERY);
         self.h_free = 0.0;
         self.mode = if self.opts.method == Method::Rodas { Mode::Implicit } else { Mode::Explicit };
     }
@@ -544,16 +585,47 @@ impl<'s, S: System> Solver<'s, S> {
                 if self.phase_steps >= self.next_cap_test {
                     let hm = h_max(self.mode, &self.opts);
                     let h_ref = if hm.is_finite() { hm } else { h.max(self.h_free).max(self.h_implicit_max) };
-                    let (cap, loose) = self.unresolved_mode_cap(h_old, h_ref);
+                    let (cap, loose, margin, other) = self.unresolved_mode_cap(h_old, h_ref);
                     self.cap_checks += 1;
                     if cap.is_finite() && self.mode_cap.is_infinite() {
                         self.h_free = h_ref;
                     } else if cap.is_infinite() {
                         self.h_free = 0.0;
                     }
-                    self.mode_cap = cap;
-                    let far = hm.is_finite() && loose >= FAR * hm;
-                    self.cap_interval = if far { (2 * self.cap_interval).min(self.far_interval) } else { TEST_EVERY };
+                    // far, and not getting near fast: the decay margin of the modes that could
+                    // cap a step, extrapolated from the last check over the doubled interval,
+                    // stays beyond DECAYED + NEAR (a mode whose damping falls steadily is
+                    // caught before it counts, not up to TEST_EVERY_FAR steps after)
+                    let (last_margin, last_other, margin_at) = self.last_margin;
+                    let since = (self.phase_steps - margin_at).max(1) as f64;
+                    let fall = ((last_margin - margin) / since).max(0.0);
+                    let far_doubled = (2 * self.cap_interval).min(self.far_interval);
+                    let far = hm.is_finite() && loose >= FAR * hm && !(margin - fall * far_doubled as f64 <= DECAYED + NEAR);
+                    // the same margin for the modes other than the capping one: where the cap
+                    // binds, the back-off needs them far and not approaching too (a second
+                    // mode that starts to count would otherwise go unseen for the whole
+                    // interval); a mode that appears abruptly (a frequency or damping that
+                    // jumps) is seen by no extrapolation, only at the next check, as here
+                    let fall_other = ((last_other - other) / since).max(0.0);
+                    let bound_doubled = (2 * self.cap_interval).min(self.bound_interval);
+                    let others_far = !(other - fall_other * bound_doubled as f64 <= DECAYED + NEAR);
+                    self.last_margin = (margin, other, self.phase_steps);
+                    // binding and steady: one mode sets both caps (`loose ≤ cap/2` always, as
+                    // that mode is among those of the generous criteria), the last check found
+                    // a cap too, and the drift since it extrapolates to at most DRIFT
+                    let (last, at) = self.last_cap;
+                    let drift = (cap / last).ln().abs() / (self.phase_steps - at).max(1) as f64;
+                    let doubled = 2 * self.cap_interval;
+                    let steady = cap < hm && last.is_finite() && loose >= 0.5 * cap && others_far && drift * doubled.min(self.bound_interval) as f64 <= DRIFT;
+                    self.cap_interval = if far {
+                        doubled.min(self.far_interval)
+                    } else if steady {
+                        doubled.min(self.bound_interval)
+                    } else {
+                        TEST_EVERY
+                    };
+                    self.mode_cap = if steady && !far && self.cap_interval > TEST_EVERY { cap * (-drift * self.cap_interval as f64).exp() } else { cap };
+                    self.last_cap = (cap, self.phase_steps);
                     self.next_cap_test = self.phase_steps + self.cap_interval;
                 }
             }
@@ -573,6 +645,9 @@ impl<'s, S: System> Solver<'s, S> {
                                 self.next_cap_test = TEST_EVERY;
                                 self.cap_interval = TEST_EVERY;
                                 self.mode_cap = f64::INFINITY;
+                                self.last_cap = (f64::INFINITY, 0);
+                                self.last_margin = (f64::INFINITY, f64::INFINITY, 0);
+                                self.next_stiff_test = (TEST_EVERY, TEST_EVERY);
                                 self.h_free = 0.0;
                                 stats.switches += 1;
                             }
@@ -584,12 +659,20 @@ impl<'s, S: System> Solver<'s, S> {
                         }
                     }
                     Mode::Implicit => {
-                        if self.phase_steps.is_multiple_of(TEST_EVERY) {
+                        if self.phase_steps >= self.next_stiff_test.0 {
                             let rho = self.spectral_radius(t, &mut stats);
+                            // the switch saves work, it does not decide accuracy (RODAS's steps
+                            // are error-controlled and capped for unresolved modes like any
+                            // other): where DOP853 would need FAR times shorter steps, test less
+                            // often, as the check for unresolved modes does where it is far
+                            let hr = h.min(self.mode_cap) * rho;
+                            let interval =
+                                if hr > FAR * 0.9 * dop853::STABILITY_RADIUS { (2 * self.next_stiff_test.1).min(self.far_interval) } else { TEST_EVERY };
+                            self.next_stiff_test = (self.phase_steps + interval, interval);
                             // back to DOP853 when it could take the implicit step stably (the
                             // step as capped for unresolved modes: where that cap is as short
                             // as DOP853's stable step, RODAS has nothing left to gain)
-                            if h.min(self.mode_cap) * rho <= 0.9 * dop853::STABILITY_RADIUS {
+                            if hr <= 0.9 * dop853::STABILITY_RADIUS {
                                 self.mode = Mode::Explicit;
                                 stats.switches += 1;
                                 // a short implicit phase was not worth it: ask for more evidence
@@ -619,11 +702,14 @@ impl<'s, S: System> Solver<'s, S> {
     /// factorisation (`α = 1/(γ h)`, `h` the step just taken): it finds the eigenvalues nearest
     /// `α`, i.e. the slow ones, first; with at most [`KRYLOV`] states the Krylov space is the
     /// whole space and the eigenvalues are exact. In the weighted variables `y_i/(atol_i +
-    /// rtol |y_i|)`. Returns the cap and the same under the more generous criteria of
-    /// [`FAR`] (at most the cap).
-    fn unresolved_mode_cap(&mut self, h: f64, h_ref: f64) -> (f64, f64) {
+    /// rtol |y_i|)`. Returns the cap, the same under the more generous criteria of
+    /// [`FAR`] (at most the cap), and the least decay `−Re(h_ref λ)` of the modes that
+    /// oscillate by those criteria (or grow) and are fast enough to cap a step of `FAR h_ref`
+    /// (`∞`: none), and the same without the mode that sets the cap (both eigenvalues of its
+    /// pair: those within `1e-9` relative of it in real part and `|Im|`).
+    fn unresolved_mode_cap(&mut self, h: f64, h_ref: f64) -> (f64, f64, f64, f64) {
         let n = self.n;
-        let Some(jac) = self.jac.as_mut() else { return (f64::INFINITY, f64::INFINITY) };
+        let Some(jac) = self.jac.as_mut() else { return (f64::INFINITY, f64::INFINITY, f64::INFINITY, f64::INFINITY) };
         let m = n.min(KRYLOV);
         if self.krylov.len() < (KRYLOV + 1) * n {
             self.krylov = vec![0.0; (KRYLOV + 1) * n];
@@ -674,11 +760,12 @@ impl<'s, S: System> Solver<'s, S> {
             let (_, next) = v.split_at_mut((k + 1) * n);
             next[..n].iter_mut().zip(w.iter()).for_each(|(a, x)| *a = x / r);
         }
-        let Ok(mu) = crate::linalg::eigen::hessenberg_eigenvalues(&hess, size) else { return (self.mode_cap, 0.0) };
+        let Ok(mu) = crate::linalg::eigen::hessenberg_eigenvalues(&hess, size) else { return (self.mode_cap, 0.0, 0.0, 0.0) };
         let alpha = 1.0 / (rosenbrock::GAMMA * h);
         let kappa = RESOLVED_AT_1E8 * (rtol / 1e-8).powf(1.0 / 6.0);
-        let (mut cap, mut loose) = (f64::INFINITY, f64::INFINITY);
-        for mu in mu {
+        let (mut cap, mut loose, mut margin) = (f64::INFINITY, f64::INFINITY, f64::INFINITY);
+        let mut capping = num_complex::Complex64::new(f64::NAN, f64::NAN);
+        for &mu in &mu {
             if !(mu.norm() > 0.0) {
                 continue; // an eigenvalue at infinity
             }
@@ -688,14 +775,34 @@ impl<'s, S: System> Solver<'s, S> {
             }
             // a real decaying mode is only damped faster (0 < R(z) < 1): harmless
             let oscillates = lambda.im.abs() * h_ref > kappa;
-            if lambda.re * h_ref > -DECAYED && (oscillates || lambda.re > 0.0) {
-                cap = cap.min(kappa / lambda.norm());
+            if lambda.re * h_ref > -DECAYED && (oscillates || lambda.re > 0.0) && kappa / lambda.norm() < cap {
+                cap = kappa / lambda.norm();
+                capping = lambda;
             }
             if lambda.re * h_ref > -(DECAYED + NEAR) && (lambda.im.abs() * h_ref > 0.5 * kappa || lambda.re > 0.0) {
                 loose = loose.min(0.5 * kappa / lambda.norm());
             }
+            // the decay over h_ref of a mode fast enough to cap a step FAR times h_ref, were
+            // it not decayed (the modes slower than that never matter to the back-off)
+            if (lambda.im.abs() * h_ref > 0.5 * kappa || lambda.re > 0.0) && 0.5 * kappa / lambda.norm() < FAR * h_ref {
+                margin = margin.min(-lambda.re * h_ref);
+            }
         }
-        (cap, loose)
+        // the margin of the other modes (a second pass: which mode caps is known only now)
+        let mut other = f64::INFINITY;
+        for &mu in &mu {
+            let lambda = alpha - mu.inv();
+            let same = (lambda.re - capping.re).abs() <= 1e-9 * capping.norm() && (lambda.im.abs() - capping.im.abs()).abs() <= 1e-9 * capping.norm();
+            if mu.norm() > 0.0
+                && lambda.norm() > 0.0
+                && !same
+                && (lambda.im.abs() * h_ref > 0.5 * kappa || lambda.re > 0.0)
+                && 0.5 * kappa / lambda.norm() < FAR * h_ref
+            {
+                other = other.min(-lambda.re * h_ref);
+            }
+        }
+        (cap, loose, margin, other)
     }
 
     /// Spectral radius of `J` at `(t, self.y)` by power iteration on difference products
@@ -816,6 +923,9 @@ mod tests {
             opts.h_max_implicit = 1.0;
             let mut s = Solver::new(&Ramp, opts).unwrap();
             s.far_interval = far_interval;
+            // the back-off where the cap binds (from t = 29.8 s here) changes the steps by
+            // rounding (another cap held); it has its own test (`…_where_the_cap_binds_…`)
+            s.bound_interval = super::TEST_EVERY;
             let mut y = [1.0, 0.0, 0.0];
             let out = s.integrate(0.0, &mut y, 55.0, |_| Control::Continue);
             assert!(out.status.is_completed(), "{out:?}");
@@ -824,11 +934,165 @@ mod tests {
         let (y_far, stats_far, checks_far) = run(super::TEST_EVERY_FAR);
         let (y_5, stats_5, checks_5) = run(super::TEST_EVERY);
         assert!(stats_5.implicit_steps > 1000, "{stats_5:?}");
-        assert_eq!((y_far, stats_far), (y_5, stats_5));
+        // the same steps and end state; fewer right-hand sides (the test for a switch back to
+        // DOP853 backs off too, where DOP853 would need steps FAR times shorter)
+        let same = |s: crate::ode::Stats| (s.steps, s.implicit_steps, s.rejected, s.jacobians, s.factorizations, s.switches);
+        assert_eq!((y_far, same(stats_far)), (y_5, same(stats_5)));
+        assert!(stats_far.rhs_evaluations < stats_5.rhs_evaluations, "{stats_far:?} {stats_5:?}");
         assert!(checks_far < checks_5, "{checks_far} checks with the back-off, {checks_5} without");
         // the oscillation grew (about 28 e-folds from t = 40 s): the checks decide this run
         let amp = |y: [u64; 3]| (f64::from_bits(y[1]) - 6.5 / 169.0).hypot(f64::from_bits(y[2]) / 13.0);
         assert!(amp(y_5) > 1e-2, "{}", amp(y_5));
+        // the default schedule (both back-offs) on the same ramp: the mode must still grow
+        // (4.97e-2 against 7.66e-2 with a check every TEST_EVERY steps where the cap binds).
+        // What grows is the local error (the exact free oscillation is damped by ~e^-200 by
+        // t = 40 s; `amp` is 2.5e-5 at rtol 1e-12, the forced response's offset from 6.5/169),
+        // seeded at the tolerances' level, so only its order says whether the checks held
+        // the steps to the mode: without them it ends ~1 450 times smaller
+        let mut opts = Options::new(1e-8, 1e-10);
+        opts.h_max_implicit = 1.0;
+        let mut s = Solver::new(&Ramp, opts).unwrap();
+        let mut y = [1.0, 0.0, 0.0];
+        let out = s.integrate(0.0, &mut y, 55.0, |_| Control::Continue);
+        assert!(out.status.is_completed(), "{out:?}");
+        assert!(amp(y.map(f64::to_bits)) > 1e-2, "{}", amp(y.map(f64::to_bits)));
+    }
+
+    /// A stiff decaying component beside an oscillator at rest whose frequency rises linearly,
+    /// `x'' + 2σ(t) x' + ω(t)² x = 0`, `ω = 13 + 0.13 t` rad/s, `σ = max(10 − 0.5 t, 0.05)`
+    /// 1/s: strongly damped at first, then nearly undamped, so from `σ < 3` (t > 14 s) its
+    /// mode caps RODAS's steps (`κ/ω` < 1 s = `h_max_implicit`; at rest it sets no error, so
+    /// nothing else limits them) and the cap shrinks as `ω` rises. The mode's eigenvalues are
+    /// `−σ ± i √(ω² − σ²)`, `|λ| = ω` in closed form.
+    struct Chirp;
+    impl System for Chirp {
+        fn dim(&self) -> usize {
+            3
+        }
+        fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
+            let (sigma, omega) = ((10.0 - 0.5 * t).max(0.05), 13.0 + 0.13 * t);
+            dy[0] = -1e4 * y[0];
+            dy[1] = y[2];
+            dy[2] = -omega * omega * y[1] - 2.0 * sigma * y[2];
+        }
+    }
+
+    /// The checks' back-offs must not let implicit steps outrun the mode. Where no mode is
+    /// near, the back-off ([`super::FAR`]) must still catch the mode within `TEST_EVERY` steps
+    /// of the time it starts to count (its damping falls steadily: the decay margin is
+    /// extrapolated). Where the cap binds ([`super::DRIFT`]), measured against the closed-form
+    /// `|λ(t)| = ω(t)` at the end of every implicit step from t = 21 s (σ = 0.05), `h ω / κ`
+    /// (`κ` = 1 at rtol 1e-8)
+    /// is never larger with the back-off than with a check every `TEST_EVERY` steps, with
+    /// fewer checks. Holding the cap found at a check for the longer interval without
+    /// shrinking it by the drift fails this (the rising frequency makes a held cap too long
+    /// by the drift over the whole interval, ~1.5 % at 20 steps against ~0.4 % at 5).
+    #[test]
+    fn checking_less_often_where_the_cap_binds_keeps_steps_within_it() {
+        let run = |bound_interval: u64| {
+            let mut opts = Options::new(1e-8, 1e-10);
+            opts.h_max_implicit = 1.0;
+            let mut s = Solver::new(&Chirp, opts).unwrap();
+            s.bound_interval = bound_interval;
+            let mut y = [1.0, 0.0, 0.0];
+            let (mut worst, mut steps, mut caught) = (0.0f64, 0, f64::INFINITY);
+            let out = s.integrate(0.0, &mut y, 60.0, |st| {
+                let h_omega = (st.t_new - st.t_old) * (13.0 + 0.13 * st.t_new);
+                if st.method == crate::ode::Method::Rodas && st.t_old >= 15.0 && h_omega <= 1.05 {
+                    caught = caught.min(st.t_old);
+                }
+                if st.method == crate::ode::Method::Rodas && st.t_old >= 21.0 {
+                    worst = worst.max(h_omega);
+                    steps += 1;
+                }
+                Control::Continue
+            });
+            assert!(out.status.is_completed(), "{out:?}");
+            (worst, steps, s.cap_checks, caught)
+        };
+        let (worst_far, steps_far, checks_far, caught_far) = run(super::TEST_EVERY_FAR);
+        let (worst_5, steps_5, checks_5, caught_5) = run(super::TEST_EVERY);
+        // the mode counts from t = 15 s (σ < 3): caught (a step within 5 % of κ/ω: a held cap
+        // is stale by the drift of up to 20 steps) within TEST_EVERY steps of 1 s (the
+        // schedule's own latency), in both runs; the back-off where no mode is near, were it
+        // not to extrapolate the falling decay margin, would find it only at t = 29.96 s
+        // TEST_EVERY implicit steps of at most h_max_implicit = 1 s each span at most this (s)
+        let latency = super::TEST_EVERY as f64 * 1.0;
+        assert!(caught_far <= 15.0 + latency && caught_5 <= 15.0 + latency, "{caught_far} {caught_5}");
+        // the cap binds (steps at it, not below it by the error control) and is tested often
+        assert!(worst_5 > 0.99 && steps_5 > 300, "{worst_5} {steps_5}");
+        assert!(worst_far <= worst_5, "h ω/κ at most {worst_far} with the back-off, {worst_5} without");
+        // the back-off happened: at most half the checks, for at most 5 % more steps (DRIFT)
+        assert!(2 * checks_far <= checks_5, "{checks_far} checks with the back-off, {checks_5} without");
+        assert!(steps_far as f64 <= 1.05 * steps_5 as f64, "{steps_far} steps with the back-off, {steps_5} without");
+    }
+
+    /// A stiff decaying component, mode 1 undamped at 13 rad/s (at rest: its cap `κ/13` binds
+    /// and is steady, so the checks back off where only that mode counts), and mode 2: `kind`
+    /// 0: undamped at 5 rad/s (resolved, slower than mode 1) until `t0`, then at `w` with
+    /// damping −0.2 (it grows: a mode appearing abruptly); `kind` 1: at `w` throughout, its
+    /// damping `σ` = 5 until `t0`, then falling at `rate` 1/s to −0.2 (a decay weakening).
+    struct Two {
+        w: f64,
+        kind: u8,
+        rate: f64,
+        t0: f64,
+    }
+    impl Two {
+        fn sigma_omega(&self, t: f64) -> (f64, f64) {
+            match self.kind {
+                0 if t < self.t0 => (0.0, 5.0),
+                0 => (-0.2, self.w),
+                _ => ((5.0 - self.rate * (t - self.t0).max(0.0)).max(-0.2), self.w),
+            }
+        }
+    }
+    impl System for Two {
+        fn dim(&self) -> usize {
+            5
+        }
+        fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
+            let (sigma, omega) = self.sigma_omega(t);
+            dy[0] = -1e4 * y[0];
+            dy[1] = y[2];
+            dy[2] = -169.0 * y[1];
+            dy[3] = y[4];
+            dy[4] = -omega * omega * y[3] - 2.0 * sigma * y[4];
+        }
+    }
+
+    /// The back-off where the cap binds must watch the modes other than the capping one: a
+    /// second, faster mode that starts to count (`Two`) must be resolved (`h w ≤ 1.05 κ`, κ = 1
+    /// at rtol 1e-8; 5 % for the cap's drift allowance) on no fewer implicit steps, from the
+    /// time it counts, than with a check every `TEST_EVERY` steps there. Pass 14's back-off
+    /// looked only at the capping mode's drift and failed this (w = 300, t0 = 30.39–30.91: 13–20
+    /// steps at `h w` up to 23 against at most 5; the weakening decay: 16 against 1).
+    #[test]
+    fn checking_less_often_where_the_cap_binds_sees_other_modes() {
+        let run = |sys: &Two, bound_interval: u64| {
+            let mut opts = Options::new(1e-8, 1e-10);
+            opts.h_max_implicit = 1.0;
+            let mut s = Solver::new(sys, opts).unwrap();
+            s.bound_interval = bound_interval;
+            // it counts (within the cap's criteria) from t0 (kind 0), or from σ < 3 (kind 1)
+            let t_count = if sys.kind == 0 { sys.t0 } else { sys.t0 + 2.0 / sys.rate };
+            let mut y = [1.0, 0.0, 0.0, if sys.kind == 0 { 1e-13 } else { 1.0 }, 0.0];
+            let mut over = 0;
+            let out = s.integrate(0.0, &mut y, 45.0, |st| {
+                if st.method == crate::ode::Method::Rodas && st.t_old >= t_count && (st.t_new - st.t_old) * sys.w > 1.05 {
+                    over += 1;
+                }
+                Control::Continue
+            });
+            assert!(out.status.is_completed(), "{out:?}");
+            over
+        };
+        let mut cases: Vec<Two> = [30.39, 30.52, 30.65, 30.78, 30.91].iter().map(|&t0| Two { w: 300.0, kind: 0, rate: 0.0, t0 }).collect();
+        cases.push(Two { w: 100.0, kind: 1, rate: 2.0, t0: 30.3 });
+        for sys in &cases {
+            let (over_far, over_5) = (run(sys, super::TEST_EVERY_FAR), run(sys, super::TEST_EVERY));
+            assert!(over_far <= over_5, "t0 {} kind {}: {over_far} steps past the mode with the back-off, {over_5} without", sys.t0, sys.kind);
+        }
     }
 
     /// The two plain loops `orthogonalize` replaces (modified Gram–Schmidt, twice, then the

@@ -193,6 +193,7 @@ impl<'a> Equations<'a> {
 
     /// `(θ̇, θ̈)` used by the dynamics at `(t, y)`: the schedule's under a prescribed speed
     /// (`θ̈` then known), else the state's `θ̇` and `None`.
+    #[inline(always)]
     fn speed(&self, t: f64, y: &[f64]) -> (f64, Option<f64>) {
         if self.prescribed {
             let (w, a) = self.drive.kinematics(t);

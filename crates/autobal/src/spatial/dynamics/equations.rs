@@ -744,6 +744,7 @@ impl<'a> Equations<'a> {
     }
 
     /// The drive at `(t, y)` as the equations use it; `slope`: also `∂M/∂φ̇` (Jacobians).
+    #[inline(always)]
     fn spin(&self, t: f64, y: &[f64], slope: bool) -> Spin {
         if self.drive.prescribed() {
             let (rate, acc) = self.drive.kinematics(t);
