@@ -1315,3 +1315,68 @@ pub(crate) fn keep_one_of_each_pair(nl: usize, conjugate: impl Fn(usize, usize) 
     }
     (component, dropped)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// One conjugate pair `λ = −0.1 ± i ν(Ω)` with `ν = Ω + (Ω − w0)² − d²` and circular
+    /// forward motion: its `Ω + ν̂` component meets `2Ω` where `ν̂ = Ω`, exactly at
+    /// `w0 ± d` (closed form).
+    struct Dip {
+        w0: f64,
+        d: f64,
+    }
+
+    impl Spectrum for Dip {
+        fn eigenvalues(&self, w: f64) -> Result<Vec<Complex64>> {
+            let nu = w + (w - self.w0).powi(2) - self.d * self.d;
+            Ok(vec![Complex64::new(-0.1, nu), Complex64::new(-0.1, -nu)])
+        }
+        fn shares(&self, _: f64, _: Complex64) -> Result<(f64, f64)> {
+            Ok((1.0, 0.0))
+        }
+    }
+
+    fn found(spec: &Dip, omega: &[f64]) -> Vec<f64> {
+        let z = (0..2).map(|i| omega.iter().map(|&w| Some(spec.eigenvalues(w).unwrap()[i])).collect()).collect();
+        let l = Lines { omega, z, known: vec![true; omega.len()] };
+        let curves = vec![FixedCurve { line: 0, points: vec![] }];
+        crossings(&l, spec, &[2], &curves).unwrap().iter().map(|k| k.omega).collect()
+    }
+
+    #[test]
+    fn a_pair_of_crossings_inside_one_grid_step_is_found_down_to_the_tolerance() {
+        // 11 speeds 0.1 apart; the pair sits mid-step (w0 = 1.05), its two crossings 2d apart:
+        // from 2e-3 down to 4e-6 relative (a few times REFINE_TOL). At the grid points g is
+        // (Ω − w0)² − d² ≥ 0.0025 − d², the same sign at both ends of the step, so the
+        // search on the drawn grid alone found neither (checked: with `crossings` searching
+        // the drawn lines, no refinement, this test fails at d = 1e-3). The crossings are bisected to 1e-13 on the spectrum:
+        // 1e-9 leaves room for the error of |g'| = 2d at a root (g noise 1e-16 / 2e-6).
+        let omega: Vec<f64> = (0..11).map(|k| 0.5 + 0.1 * k as f64).collect();
+        for d in [1e-3, 1e-4, 1e-5, 2e-6] {
+            let spec = Dip { w0: 1.05, d };
+            let got = found(&spec, &omega);
+            assert_eq!(got.len(), 2, "d = {d}: {got:?}");
+            assert!((got[0] - (1.05 - d)).abs() < 1e-9 && (got[1] - (1.05 + d)).abs() < 1e-9, "d = {d}: {got:?}");
+        }
+        // no pair (d² < 0: a near miss, g ≥ 1e-8 > 0): nothing, and the refinement stops
+        let near = |w: f64| -> Result<Vec<Complex64>> {
+            Ok(vec![Complex64::new(-0.1, w + (w - 1.05f64).powi(2) + 1e-8), Complex64::new(-0.1, -(w + (w - 1.05f64).powi(2) + 1e-8))])
+        };
+        struct Miss<F: Fn(f64) -> Result<Vec<Complex64>>>(F);
+        impl<F: Fn(f64) -> Result<Vec<Complex64>>> Spectrum for Miss<F> {
+            fn eigenvalues(&self, w: f64) -> Result<Vec<Complex64>> {
+                (self.0)(w)
+            }
+            fn shares(&self, _: f64, _: Complex64) -> Result<(f64, f64)> {
+                Ok((1.0, 0.0))
+            }
+        }
+        let miss = Miss(near);
+        let z = (0..2).map(|i| omega.iter().map(|&w| Some(miss.eigenvalues(w).unwrap()[i])).collect()).collect();
+        let l = Lines { omega: &omega, z, known: vec![true; omega.len()] };
+        let curves = vec![FixedCurve { line: 0, points: vec![] }];
+        assert!(crossings(&l, &miss, &[2], &curves).unwrap().is_empty());
+    }
+}
