@@ -990,7 +990,8 @@ const REFINE_SLOPES: f64 = 2.0;
 ///    the search bisects it.
 ///
 /// A grid point without a spectrum, or a line without a value at it, ends the refinement there
-/// (those steps are kept as drawn).
+/// (those steps are kept as drawn), and so does a trial speed where the spectrum fails (the
+/// general route's stationary state not found): the refinement never fails the search.
 #[allow(clippy::type_complexity)]
 fn refine<S: Spectrum>(l: &Lines, spec: &S, harmonics: &[u32]) -> Result<(Vec<f64>, Vec<Vec<Option<Complex64>>>, Vec<bool>)> {
     let n = l.omega.len();
@@ -1041,7 +1042,14 @@ fn refine<S: Spectrum>(l: &Lines, spec: &S, harmonics: &[u32]) -> Result<(Vec<f6
                 continue;
             }
             let mid = 0.5 * (wc + wt);
-            let em = spec.eigenvalues(mid)?;
+            let Ok(em) = spec.eigenvalues(mid) else {
+                // no spectrum there (the general route: no stationary state found): the step
+                // is kept as drawn, as a spectrum of another size
+                let v = at(k + 1);
+                pts.push((l.omega[k + 1], perm.iter().map(|&j| v[j]).collect(), true));
+                stack.clear();
+                break;
+            };
             if clear {
                 // the step's check: through its midpoint, the same assignment, clear both ways
                 let pm = extrapolate(zp.as_ref().map(|(w, z)| (*w, z.as_slice())), (wc, &zc), mid);
@@ -1098,7 +1106,11 @@ fn refine<S: Spectrum>(l: &Lines, spec: &S, harmonics: &[u32]) -> Result<(Vec<f6
             continue;
         }
         let mid = 0.5 * (wa + wb);
-        let ev = spec.eigenvalues(mid)?;
+        let Ok(ev) = spec.eigenvalues(mid) else {
+            // no spectrum there: the step is left as it is
+            i += 1;
+            continue;
+        };
         let pred: Vec<Complex64> = pts[i].1.iter().zip(&pts[i + 1].1).map(|(a, b)| 0.5 * (a.unwrap_or_default() + b.unwrap_or_default())).collect();
         match assign(&pred, &ev) {
             Some((vals, clear)) => {
