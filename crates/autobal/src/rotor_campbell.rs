@@ -1025,6 +1025,12 @@ const REAL_TOL: f64 = 1e-9;
 /// `critical_speeds` is empty (the commands say so); the curves are drawn on the branch of
 /// [`FLOQUET_BRANCH`].
 pub fn fixed_view(rotor: &Rotor, balls: Balls, c: &RotorCampbell, harmonics: &[u32]) -> Result<FixedCampbell> {
+    fixed_view_with(rotor, balls, c, harmonics, &crate::control::Control::none())
+}
+
+/// [`fixed_view`] under `control`: the search for the critical speeds asks it before each
+/// stationary state's spectrum and stops with its error (`Error::Interrupted` for Ctrl-C).
+pub fn fixed_view_with(rotor: &Rotor, balls: Balls, c: &RotorCampbell, harmonics: &[u32], control: &crate::control::Control) -> Result<FixedCampbell> {
     if let Some(h) = harmonics.iter().find(|&&h| h == 0) {
         return Err(Error::invalid("harmonics", format!("must be positive integers, got {h}")));
     }
@@ -1129,7 +1135,7 @@ pub fn fixed_view(rotor: &Rotor, balls: Balls, c: &RotorCampbell, harmonics: &[u
             known: c.failures.iter().map(|f| f.is_none()).collect(),
         };
         let spec = StateSpectrum { rotor, balls, last: std::cell::RefCell::new(None) };
-        crate::spatial::campbell::crossings(&lines, &spec, harmonics, &curves)?
+        crate::spatial::campbell::crossings(&lines, &spec, harmonics, &curves, control)?
     } else {
         vec![]
     };

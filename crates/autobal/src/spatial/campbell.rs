@@ -92,6 +92,7 @@
 //! the shares of a mode; the 12-state route gives its pencil's, the general route
 //! ([`crate::rotor_campbell::fixed_view`]) the stationary state's.
 
+use crate::control::Control;
 use crate::error::{Error, Result};
 use crate::linalg::eigen::eigenvalues;
 use crate::spatial::linear_model::{Balls, Pencil};
@@ -205,6 +206,12 @@ fn conj_at(c: &Campbell, i: usize, j: usize, k: usize) -> bool {
 /// conjugacy component that are left out there, so that the sign of the log decrement is the
 /// stability of all of them.
 pub fn fixed_axes(model: &SpatialModel, c: &Campbell, balls: Balls, harmonics: &[u32]) -> Result<FixedCampbell> {
+    fixed_axes_with(model, c, balls, harmonics, &Control::none())
+}
+
+/// [`fixed_axes`] under `control`: the search for the critical speeds asks it before each
+/// spectrum and stops with its error ([`Error::Interrupted`] for Ctrl-C) when it says so.
+pub fn fixed_axes_with(model: &SpatialModel, c: &Campbell, balls: Balls, harmonics: &[u32], control: &Control) -> Result<FixedCampbell> {
     if let Some(h) = harmonics.iter().find(|&&h| h == 0) {
         return Err(Error::invalid("harmonics", format!("must be positive integers, got {h}")));
     }
@@ -302,7 +309,7 @@ pub fn fixed_axes(model: &SpatialModel, c: &Campbell, balls: Balls, harmonics: &
     let mut slots: Vec<Option<FixedCurve>> = curves.into_iter().map(Some).collect();
     let curves: Vec<FixedCurve> = order.iter().filter_map(|&i| slots[i].take()).collect();
     let lines = Lines { omega: &c.omega, z: c.lines.iter().map(|l| l.modes.iter().map(|m| Some(lam(m))).collect()).collect(), known: vec![true; n] };
-    let crit = crossings(&lines, &PencilSpectrum { model, balls }, harmonics, &curves)?;
+    let crit = crossings(&lines, &PencilSpectrum { model, balls }, harmonics, &curves, control)?;
     Ok(FixedCampbell { omega: c.omega.clone(), curves, critical_speeds: crit, harmonics: harmonics.to_vec() })
 }
 
@@ -858,13 +865,46 @@ fn component_crossings<S: Spectrum>(pair: &Pair<S>, h: u32, out: &mut Vec<Found>
 /// from the tracked `lines` and located on `spec`, each once, with the curve (mode) it belongs
 /// to: the kept line of its conjugate pair at the nearest speed (`curves`, the kept lines). The
 /// model-agnostic search of both routes.
-pub(crate) fn crossings<S: Spectrum>(l: &Lines, spec: &S, harmonics: &[u32], curves: &[FixedCurve]) -> Result<Vec<CriticalSpeed>> {
-    if l.omega.len() < 2 {
+pub(crate) fn crossings<S: Spectrum>(l: &Lines, spec: &S, harmonics: &[u32], curves: &[FixedCurve], control: &Control) -> Result<Vec<CriticalSpeed>> {
+    if l.omega.len() < 2 || harmonics.is_empty() {
         return Ok(vec![]);
     }
-    let (omega, z, known) = refine(l, spec, harmonics)?;
+    // every question to the model asks the control first (Ctrl-C, a budget): a stopped search
+    // answers the stop, as the scan does
+    let spec = Polled { spec, control };
+    let stop = || control.should_stop().map(|why| why.into_error(f64::NAN));
+    let (omega, z, known) = refine(l, &spec, harmonics)?;
+    if let Some(e) = stop() {
+        return Err(e);
+    }
     let refined = Lines { omega: &omega, z, known };
-    search(&refined, spec, harmonics, curves)
+    let found = search(&refined, &spec, harmonics, curves);
+    match stop() {
+        Some(e) => Err(e),
+        None => found,
+    }
+}
+
+/// A spectrum that asks `control` before each question and answers a stop as its error (the
+/// refinement keeps a step as drawn where a speed has no spectrum, so it runs out at once).
+struct Polled<'a, S: Spectrum> {
+    spec: &'a S,
+    control: &'a Control,
+}
+
+impl<S: Spectrum> Spectrum for Polled<'_, S> {
+    fn eigenvalues(&self, w: f64) -> Result<Vec<Complex64>> {
+        match self.control.should_stop() {
+            Some(why) => Err(why.into_error(f64::NAN)),
+            None => self.spec.eigenvalues(w),
+        }
+    }
+    fn shares(&self, w: f64, lam: Complex64) -> Result<(f64, f64)> {
+        match self.control.should_stop() {
+            Some(why) => Err(why.into_error(f64::NAN)),
+            None => self.spec.shares(w, lam),
+        }
+    }
 }
 
 /// The search of [`crossings`] on (refined) lines.
@@ -1168,12 +1208,19 @@ fn near_zero(pts: &[(f64, Vec<Option<Complex64>>, bool)], i: usize, targets: &[f
         }
         ga.abs().min(gb.abs()) <= REFINE_SLOPES * h * slope
     };
+    // a neutral line (|λ| at the rounding noise of the spectrum, 1e-7 of its largest |λ|: a
+    // double zero eigenvalue splits by ~sqrt(ε) of it) lies on 1× for good and has no crossing
+    // to find, but its noise flips its realness and its gaps at random: not refined on
+    // (before, balls without drag: every step halved to the tolerance, 20-30x the cost)
+    let noise = |k: usize| 1e-7 * pts[k].1.iter().flatten().map(|v| v.norm()).fold(1.0, f64::max);
+    let (na, nb) = (noise(i), noise(i + 1));
+    let neutral = |j: usize| z(i, j).is_some_and(|v| v.norm() <= na) || z(i + 1, j).is_some_and(|v| v.norm() <= nb);
     // a line changing between real and complex: its end on the axis located to the tolerance
     // (the crossing's mode is read next to it)
-    if (0..nl).any(|j| z(i, j).is_some() && z(i + 1, j).is_some() && real(i, j) != real(i + 1, j)) {
+    if (0..nl).any(|j| !neutral(j) && z(i, j).is_some() && z(i + 1, j).is_some() && real(i, j) != real(i + 1, j)) {
         return true;
     }
-    for j in 0..nl {
+    for j in (0..nl).filter(|&j| !neutral(j)) {
         let complex_both = !real(i, j) && !real(i + 1, j) && z(i, j).is_some() && z(i + 1, j).is_some();
         if complex_both {
             for &c in targets {
@@ -1186,7 +1233,7 @@ fn near_zero(pts: &[(f64, Vec<Option<Complex64>>, bool)], i: usize, targets: &[f
             // the nearest other real line at the left end: their gap on the axis
             let re = |k: usize, q: usize| z(k, q).map_or(f64::INFINITY, |v| v.re);
             let Some(q) = (0..nl)
-                .filter(|&q| q != j && real(i, q) && real(i + 1, q))
+                .filter(|&q| q != j && !neutral(q) && real(i, q) && real(i + 1, q))
                 .min_by(|&a, &b| (re(i, a) - re(i, j)).abs().total_cmp(&(re(i, b) - re(i, j)).abs()))
             else {
                 continue;
@@ -1355,7 +1402,7 @@ mod tests {
         let z = (0..2).map(|i| omega.iter().map(|&w| Some(spec.eigenvalues(w).unwrap()[i])).collect()).collect();
         let l = Lines { omega, z, known: vec![true; omega.len()] };
         let curves = vec![FixedCurve { line: 0, points: vec![] }];
-        crossings(&l, spec, &[2], &curves).unwrap().iter().map(|k| k.omega).collect()
+        crossings(&l, spec, &[2], &curves, &Control::none()).unwrap().iter().map(|k| k.omega).collect()
     }
 
     #[test]
@@ -1391,6 +1438,20 @@ mod tests {
         let z = (0..2).map(|i| omega.iter().map(|&w| Some(miss.eigenvalues(w).unwrap()[i])).collect()).collect();
         let l = Lines { omega: &omega, z, known: vec![true; omega.len()] };
         let curves = vec![FixedCurve { line: 0, points: vec![] }];
-        assert!(crossings(&l, &miss, &[2], &curves).unwrap().is_empty());
+        assert!(crossings(&l, &miss, &[2], &curves, &Control::none()).unwrap().is_empty());
+    }
+
+    #[test]
+    fn a_cancelled_control_stops_the_search_with_its_error() {
+        // Ctrl-C during the search (review B3): the search answers the stop, not a table
+        let omega: Vec<f64> = (0..11).map(|k| 0.5 + 0.1 * k as f64).collect();
+        let spec = Dip { w0: 1.03, d: 1e-3 };
+        let z = (0..2).map(|i| omega.iter().map(|&w| Some(spec.eigenvalues(w).unwrap()[i])).collect()).collect();
+        let l = Lines { omega: &omega, z, known: vec![true; omega.len()] };
+        let curves = vec![FixedCurve { line: 0, points: vec![] }];
+        let control = Control::new();
+        control.cancel();
+        let e = crossings(&l, &spec, &[2], &curves, &control).unwrap_err();
+        assert!(matches!(e, Error::Interrupted { .. }), "{e}");
     }
 }
