@@ -61,7 +61,7 @@ fn the_dimensional_examples_crossings_and_modes_do_not_depend_on_the_grid() {
     // run (40 speeds to 2.5 start at 0.03125); so the grids are compared from 0.1 on.
     let from = 0.1;
     // the set the docs list (docs/notes/stability.md): 20 crossings above 0.1, with the
-    // divergence range 1.129242-1.129284 and the stretch off the axis 1.148153-1.151660
+    // overdamped stretch (real negative eigenvalues) 1.129242-1.129284 and the stretch off the axis 1.148153-1.151660
     let above: Vec<Key> = reference.iter().copied().filter(|k| k.0 >= from).collect();
     assert_eq!(above.len(), 20, "{}", show(&above));
     for at in [1.129242, 1.129284, 1.148153, 1.151660] {

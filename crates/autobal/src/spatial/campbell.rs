@@ -86,7 +86,10 @@
 //! that changes realness there, else the complex line nearest the axis), followed on the
 //! refined tracking back to the first speed: its curve, or the kept line nearest it there up
 //! to conjugation. Where pairs exchange partners on the real axis that is the collision
-//! convention above, the same on every grid.
+//! convention above, the same on every grid. The curves themselves (the lines kept once per
+//! conjugate pair) can still number differently where grids pair the lines into a different
+//! number of curves (e.g. examples/linear_rotor_windows.toml, 240 against 333 speeds: 15
+//! against 14 curves, every mode number one apart; docs/notes/stability.md lists the cases).
 //!
 //! The search knows no model: `crossings` asks a `Spectrum` for the eigenvalues at a speed and
 //! the shares of a mode; the 12-state route gives its pencil's, the general route
