@@ -10,7 +10,9 @@ use anyhow::Result;
 use autobal::analysis::Kind;
 use autobal::control::Control;
 use autobal::error::fmt_num;
-use autobal::rotor_campbell::{campbell_locked, fixed_view, locked_critical_speeds, Balls, LockedCriticalSpeeds, RotorCampbell, Whirl, FLOQUET_BRANCH};
+use autobal::rotor_campbell::{
+    campbell_locked, fixed_view, fixed_view_with, locked_critical_speeds, Balls, LockedCriticalSpeeds, RotorCampbell, Whirl, FLOQUET_BRANCH,
+};
 use autobal::rotor_stability::{speed_grid, stability_over_speed, Rotor, RotorStability};
 use autobal::spatial::campbell::FixedCampbell;
 use serde_json::{json, Value};
@@ -120,8 +122,13 @@ pub fn campbell_with(g: &GeneralRotor, omega_max: f64, points: usize, balls: Bal
         Balls::Locked => campbell_locked(&g.rotor, &sp).map_err(|e| crate::general::floor_in_units(g, e, &sp))?,
     };
     autobal::limits::check_finite("campbell", &c)?;
-    let (fixed, mut why) = match fixed_view(&g.rotor, balls, &c, harmonics) {
+    let (fixed, mut why) = match fixed_view_with(&g.rotor, balls, &c, harmonics, control) {
         Ok(f) => (Some(f), None),
+        // Ctrl-C (or the budget) during the search for the critical speeds: stopped as the
+        // scan is (exit 2)
+        Err(_) if control.should_stop().is_some() => {
+            anyhow::bail!("interrupted: the search for critical speeds stopped after all {} speeds; nothing is printed", sp.len())
+        }
         // a crossing's stationary state not found: the curves without the crossings, and why
         Err(e) => match fixed_view(&g.rotor, balls, &c, &[]) {
             Ok(mut f) => {

@@ -2,7 +2,7 @@
 
 use crate::config::Config;
 use anyhow::Result;
-use autobal::spatial::campbell::{fixed_axes, FixedCampbell};
+use autobal::spatial::campbell::{fixed_axes, fixed_axes_with, FixedCampbell};
 use autobal::spatial::comparison::fmt_ranges_in;
 use autobal::spatial::linear_model::Balls;
 use autobal::spatial::stability::{campbell, campbell_stream, Campbell, Whirl};
@@ -301,8 +301,13 @@ pub fn fixed_table(cfg: &Config, f: &FixedCampbell, at: &[f64]) -> String {
     let w0 = cfg.model.scale.map(|sc| sc.omega0);
     let hz = |x: f64| w0.map_or(String::new(), |w0| format!(" ({} Hz)", crate::num::fmt(x * w0 / (2.0 * std::f64::consts::PI), 5)));
     let hs: Vec<String> = f.harmonics.iter().map(|h| format!("{h}×")).collect();
-    let _ = writeln!(s, "\ncritical speeds (a mode's natural frequency in fixed axes crosses {}):", hs.join(", "));
-    if f.critical_speeds.is_empty() {
+    if f.harmonics.is_empty() {
+        // Ctrl-C during the search (campbell_run)
+        let _ = writeln!(s, "\ncritical speeds: not given (the search was interrupted)");
+    } else {
+        let _ = writeln!(s, "\ncritical speeds (a mode's natural frequency in fixed axes crosses {}):", hs.join(", "));
+    }
+    if f.critical_speeds.is_empty() && !f.harmonics.is_empty() {
         let _ = writeln!(s, "  none up to {}", speed_text(cfg, f.omega.last().copied().unwrap_or(0.0)));
     }
     for (j, k) in f.critical_speeds.iter().enumerate() {
@@ -417,6 +422,7 @@ fn campbell_run_with(
         dir,
         from_plot,
         lines: 0,
+        search_stopped: false,
     };
     let mut files: Vec<std::io::BufWriter<std::fs::File>> = vec![];
     let mut io_err: Option<anyhow::Error> = None;
@@ -483,10 +489,20 @@ fn campbell_run_with(
         f.into_inner().map_err(|e| e.into_error())?;
     }
     // the fixed-axes curves and the critical speeds, on the figures' speeds
-    let fixed = fixed_axes(&cfg.model, &plot, balls, harmonics)?;
+    // Ctrl-C (or the budget) during the search: the curves kept without the critical speeds,
+    // and the run marked stopped (exit 2, as a stop during the scan)
+    let fixed = match fixed_axes_with(&cfg.model, &plot, balls, harmonics, control) {
+        Ok(f) => f,
+        Err(_) if control.should_stop().is_some() => {
+            run.search_stopped = true;
+            // no harmonics: the table says the search was stopped
+            fixed_axes(&cfg.model, &plot, balls, &[])?
+        }
+        Err(e) => return Err(e.into()),
+    };
     autobal::limits::check_finite("campbell.critical_speeds", &fixed.critical_speeds)?;
     run.done = stats.speeds;
-    run.complete = stats.complete;
+    run.complete = stats.complete && !run.search_stopped;
     run.plot = plot;
     run.table = table;
     run.fixed = Some(fixed);
@@ -510,6 +526,8 @@ pub struct CampbellRun {
     /// The JSON's lines are written from `plot` (which holds every speed computed).
     from_plot: bool,
     lines: usize,
+    /// Stopped during the search for the critical speeds (none given).
+    search_stopped: bool,
 }
 
 impl Drop for CampbellRun {
@@ -609,6 +627,12 @@ impl CampbellRun {
     /// Why the run is incomplete, or `None`.
     pub fn stopped(&self) -> Option<String> {
         (!self.complete).then(|| {
+            if self.search_stopped && self.done == self.n {
+                return format!(
+                    "interrupted: all {} speeds computed, the search for critical speeds stopped (none given); what was computed is written",
+                    self.n
+                );
+            }
             format!(
                 "interrupted: {} of {} speeds computed (up to Ω = {}); what was computed is written",
                 self.done,

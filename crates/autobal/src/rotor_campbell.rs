@@ -43,7 +43,8 @@
 //! [`fixed_view`] turns a diagram into one continuous curve per mode in fixed axes with its log
 //! decrement, and the critical speeds where a circular component meets an excitation line
 //! `h Ω`, found by the 12-state route's search on the stationary state's spectrum (not on the
-//! drawn curves; with the balls locked and no damping, the crossings of `1×` are
+//! drawn curves nor on the drawn grid: it refines between the drawn speeds, to 1e-6 relative,
+//! where a crossing may hide; with the balls locked and no damping, the crossings of `1×` are
 //! the critical speeds of eq (16) on a one-plane rotor). Each mode also carries its dominant
 //! coordinate group ([`CampbellPoint::group`]). For a periodic orbit the crossings are not
 //! defined (a Floquet exponent's `Im ρ` is defined modulo `Ω`, so a crossing of `h×` is one of
@@ -1013,13 +1014,23 @@ const REAL_TOL: f64 = 1e-9;
 /// search ([`crate::spatial::campbell`]: a circular component's frequency meets `hΩ`, `ν̂ = 0`
 /// for the forward `1×`, bisected to `1e-13` relative on the stationary state's spectrum
 /// recomputed at each trial speed, the ends on the real axis on the count of real
-/// eigenvalues; the drawn curves are not used).
+/// eigenvalues; the drawn curves are not used, and the search refines the drawn grid on that
+/// spectrum, so its crossings and mode numbers do not depend on the grid down to 1e-6
+/// relative). The curves are numbered by their undamped natural frequency at their first
+/// point (`|λ|`, `sqrt(|λ₁ λ₂|)` for a pair split on the real axis), which does not tie where
+/// modes lie on the axis (the fixed-axes frequency, `Ω` for all of them there, did).
 ///
 /// **Periodic orbits**: the Floquet exponents' imaginary parts are defined modulo `Ω`, so
 /// `|f| = hΩ` for one harmonic is `|f| = h'Ω` on another branch: crossings are not defined, and
 /// `critical_speeds` is empty (the commands say so); the curves are drawn on the branch of
 /// [`FLOQUET_BRANCH`].
 pub fn fixed_view(rotor: &Rotor, balls: Balls, c: &RotorCampbell, harmonics: &[u32]) -> Result<FixedCampbell> {
+    fixed_view_with(rotor, balls, c, harmonics, &crate::control::Control::none())
+}
+
+/// [`fixed_view`] under `control`: the search for the critical speeds asks it before each
+/// stationary state's spectrum and stops with its error (`Error::Interrupted` for Ctrl-C).
+pub fn fixed_view_with(rotor: &Rotor, balls: Balls, c: &RotorCampbell, harmonics: &[u32], control: &crate::control::Control) -> Result<FixedCampbell> {
     if let Some(h) = harmonics.iter().find(|&&h| h == 0) {
         return Err(Error::invalid("harmonics", format!("must be positive integers, got {h}")));
     }
@@ -1106,7 +1117,16 @@ pub fn fixed_view(rotor: &Rotor, balls: Balls, c: &RotorCampbell, harmonics: &[u
             curves.push((FixedCurve { line: li, points: pts }, idx));
         }
     }
-    curves.sort_by(|a, b| a.0.points[0].frequency.total_cmp(&b.0.points[0].frequency).then(a.0.line.cmp(&b.0.line)));
+    // by the undamped natural frequency at the first point (ties broken by |ν|, Re λ, line):
+    // the fixed-axes frequency ties at Ω for every mode on the real axis
+    let key = |cv: &(FixedCurve, Vec<usize>)| {
+        let zk = |i: usize, k: usize| at(i, k).map(|p| z(&p));
+        crate::spatial::campbell::natural_key(zk, nl, cv.0.line, cv.1[0], &component, &dropped)
+    };
+    curves.sort_by(|a, b| {
+        let (p, q) = (&a.0.points[0], &b.0.points[0]);
+        key(a).total_cmp(&key(b)).then(p.nu.abs().total_cmp(&q.nu.abs())).then(p.re.total_cmp(&q.re)).then(a.0.line.cmp(&b.0.line))
+    });
     let curves: Vec<FixedCurve> = curves.into_iter().map(|c| c.0).collect();
     let crit = if c.kind == Kind::Equilibrium {
         let lines = crate::spatial::campbell::Lines {
@@ -1115,7 +1135,7 @@ pub fn fixed_view(rotor: &Rotor, balls: Balls, c: &RotorCampbell, harmonics: &[u
             known: c.failures.iter().map(|f| f.is_none()).collect(),
         };
         let spec = StateSpectrum { rotor, balls, last: std::cell::RefCell::new(None) };
-        crate::spatial::campbell::crossings(&lines, &spec, harmonics, &curves)?
+        crate::spatial::campbell::crossings(&lines, &spec, harmonics, &curves, control)?
     } else {
         vec![]
     };

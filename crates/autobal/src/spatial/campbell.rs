@@ -35,9 +35,11 @@
 //!   first speed (a real mode whirling with the rotor from rest), or the start of one that
 //!   lasts to the last speed, is not a crossing: each change of the count is attributed to
 //!   the lines changing realness in its step nearest, in `Re λ`, to where on the axis the
-//!   eigenvalues change, and is left out only where those lines' runs are such ends (another
-//!   end in the same step does not decide it, nor a window around a local minimum that finds
-//!   the same change).
+//!   eigenvalues change, and is left out only where all of those lines' runs are such ends
+//!   (a pair landing where only one of its two real eigenvalues stays on the axis to the last
+//!   speed is a crossing: which of two real lines meeting later continues is the collision
+//!   convention, not the physics; another end in the same step does not decide it, nor a
+//!   window around a local minimum that finds the same change).
 //! * `ν̂ = (h − 1)Ω`, `h ≥ 2`: the forward component at `hΩ`; `ν̂ = (h + 1)Ω`: the other
 //!   component backward at `−hΩ`. Bracketed by the sign of `ν̂ − (h ∓ 1)Ω` on the grid and
 //!   bisected on the model's eigenvalues (the pair's eigenvalue at a trial speed: the one
@@ -45,23 +47,55 @@
 //!   component's share there (`> ½` the major component, `< ½` the minor one; a component of
 //!   share below 1e-9, e.g. an isotropic rotor's, is no motion and has none).
 //!
-//! The jump of a drawn curve where it changes component is never a crossing. A crossing of a
-//! component with `hΩ` off the axis is missed where two of them (of one pair and harmonic) fall
-//! within one grid step without a local minimum of `ν̂` between them, e.g. a curve grazing an
-//! excitation line. On the axis a change is missed where a line reaches and leaves it within
-//! one step without a local minimum of `ν̂` (or of `(λ_i − λ_j)²`) on the grid, or where a
-//! change that leaves the count of its step unchanged is followed by no line's own bisection
-//! (the nearest eigenvalue to the line's interpolated value is another one: on coarse grids
-//! where several pairs meet the axis within a step, e.g. examples/linear_rotor_windows.toml
-//! on 60 speeds); and an end is misjudged quiet or not where the lines' interpolated `Re λ`
-//! puts another line nearest. The mode number of a crossing is that of the curve of its pair
-//! at the nearest grid point (where pairs exchange partners on the real axis it follows the
-//! tracking).
+//! The jump of a drawn curve where it changes component is never a crossing.
+//!
+//! **Independent of the drawn grid** (session 14). The search does not run on the drawn
+//! speeds but on a grid refined on the model's spectrum (`refine`):
+//! * the lines are tracked again between neighbouring drawn speeds: each step is checked
+//!   through its midpoint (the same assignment of eigenvalues to lines, nearest linear
+//!   extrapolation first, directly and in two halves, each clear by a factor 3) and halved
+//!   where it is not, down to the spacing tolerance `REFINE_TOL` = 1e-6 relative to
+//!   `max(1, Ω)`. A step that short still unclear straddles a collision of eigenvalues (a
+//!   pair reaching the real axis, two real ones meeting): the continuation there is the same
+//!   convention on every grid, the lines keep the order of their values (by `Re λ`, then
+//!   `Im λ`);
+//! * a step is halved, down to the same tolerance, wherever some line's `g` keeps its sign at
+//!   both ends but comes within twice the step times `g`'s slope (across the step or its
+//!   neighbours) of zero, so that a pair of zeros narrower than a step shows as sign changes:
+//!   `g = ν̂ − cΩ` of a complex line for each target `c` (`h − 1`, `h + 1`, and `0` for the
+//!   axis when `h = 1`), and the gap of two real lines neighbouring on the axis; and wherever
+//!   a line changes between real and complex (its end on the axis to the tolerance).
+//!
+//! **Tolerance.** A pair of crossings of one line with one excitation line (or a stretch on
+//! or off the real axis) at least 1e-6 relative wide is found on every grid wherever `g`
+//! behaves at the drawn step's scale like a parabola or a square root near it (its ends' values
+//! below twice the step times the slope: a square-root dip midway reaches 1, a parabola's ends
+//! 1/4); a narrower one, or a `g` that dips without warning in its values and slopes at the
+//! grid's scale, can still be missed. Measured: examples/dimensional.toml (`--harmonics 1,2`)
+//! gives the same 20 crossings above Ω = 0.1, with the same mode numbers, on 40 to 1000 speeds
+//! and with tops 1.3, 2.5, 3.7, 5 (tests/campbell_grid_14.rs; 40 speeds found 17 before);
+//! the ends of runs on the axis that reach the first or last speed are left out by design,
+//! so a grid's range still decides those.
+//!
+//! **Mode numbers.** The curves are numbered by their undamped natural frequency at the first
+//! speed, `sqrt(|λ λ'|)` with `λ'` the conjugate (`|λ|`) or, for a real line, the nearest real
+//! line of its conjugacy component (the pair it split into: continuous where a pair reaches
+//! the axis), then `|ν|`, `Re λ`, the line: it does not tie where modes lie on the real axis
+//! (`|ν|` did, broken by line index). The mode of a crossing is the curve of the line carrying
+//! its pair with `Im λ > 0` next to it (for an end on the axis, on the complex side: the line
+//! that changes realness there, else the complex line nearest the axis), followed on the
+//! refined tracking back to the first speed: its curve, or the kept line nearest it there up
+//! to conjugation. Where pairs exchange partners on the real axis that is the collision
+//! convention above, the same on every grid. The curves themselves (the lines kept once per
+//! conjugate pair) can still number differently where grids pair the lines into a different
+//! number of curves (e.g. examples/linear_rotor_windows.toml, 240 against 333 speeds: 15
+//! against 14 curves, every mode number one apart; docs/notes/stability.md lists the cases).
 //!
 //! The search knows no model: `crossings` asks a `Spectrum` for the eigenvalues at a speed and
 //! the shares of a mode; the 12-state route gives its pencil's, the general route
 //! ([`crate::rotor_campbell::fixed_view`]) the stationary state's.
 
+use crate::control::Control;
 use crate::error::{Error, Result};
 use crate::linalg::eigen::eigenvalues;
 use crate::spatial::linear_model::{Balls, Pencil};
@@ -141,9 +175,9 @@ pub struct CriticalSpeed {
     pub share: f64,
 }
 
-/// A Campbell diagram in fixed axes: curves sorted by their rotating-axes frequency `|ν|` at the
-/// first speed (mode 1 the lowest; the fixed-axes frequency there to within that speed), and
-/// the critical speeds sorted by speed.
+/// A Campbell diagram in fixed axes: curves sorted by their undamped natural frequency at the
+/// first speed (mode 1 the lowest; `|λ|`, or `sqrt(|λ₁ λ₂|)` for a pair split on the real axis:
+/// module docs), and the critical speeds sorted by speed.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct FixedCampbell {
     /// The speeds.
@@ -175,6 +209,12 @@ fn conj_at(c: &Campbell, i: usize, j: usize, k: usize) -> bool {
 /// conjugacy component that are left out there, so that the sign of the log decrement is the
 /// stability of all of them.
 pub fn fixed_axes(model: &SpatialModel, c: &Campbell, balls: Balls, harmonics: &[u32]) -> Result<FixedCampbell> {
+    fixed_axes_with(model, c, balls, harmonics, &Control::none())
+}
+
+/// [`fixed_axes`] under `control`: the search for the critical speeds asks it before each
+/// spectrum and stops with its error ([`Error::Interrupted`] for Ctrl-C) when it says so.
+pub fn fixed_axes_with(model: &SpatialModel, c: &Campbell, balls: Balls, harmonics: &[u32], control: &Control) -> Result<FixedCampbell> {
     if let Some(h) = harmonics.iter().find(|&&h| h == 0) {
         return Err(Error::invalid("harmonics", format!("must be positive integers, got {h}")));
     }
@@ -261,16 +301,39 @@ pub fn fixed_axes(model: &SpatialModel, c: &Campbell, balls: Balls, harmonics: &
         }
         curves.push(FixedCurve { line: li, points: pts });
     }
-    // by |ν| at the first speed: the fixed-axes frequency there to within that speed, and
-    // unlike it the same whichever component a curve starts on (a forward and a backward
-    // curve that meet at Ω = 0 keep their order on every grid)
-    curves.sort_by(|a, b| {
-        let (p, q) = (&a.points[0], &b.points[0]);
-        p.nu.abs().total_cmp(&q.nu.abs()).then(p.frequency.total_cmp(&q.frequency)).then(a.line.cmp(&b.line))
+    // by the undamped natural frequency at the first speed (then |ν|, Re λ, the line): the
+    // same whichever component a curve starts on, and no tie where modes lie on the real axis
+    let key: Vec<f64> = curves.iter().map(|cv| natural_key(|i, k| Some(lam(&c.lines[i].modes[k])), nl, cv.line, 0, &component, &dropped)).collect();
+    let mut order: Vec<usize> = (0..curves.len()).collect();
+    order.sort_by(|&a, &b| {
+        let (p, q) = (&curves[a].points[0], &curves[b].points[0]);
+        key[a].total_cmp(&key[b]).then(p.nu.abs().total_cmp(&q.nu.abs())).then(p.re.total_cmp(&q.re)).then(curves[a].line.cmp(&curves[b].line))
     });
+    let mut slots: Vec<Option<FixedCurve>> = curves.into_iter().map(Some).collect();
+    let curves: Vec<FixedCurve> = order.iter().filter_map(|&i| slots[i].take()).collect();
     let lines = Lines { omega: &c.omega, z: c.lines.iter().map(|l| l.modes.iter().map(|m| Some(lam(m))).collect()).collect(), known: vec![true; n] };
-    let crit = crossings(&lines, &PencilSpectrum { model, balls }, harmonics, &curves)?;
+    let crit = crossings(&lines, &PencilSpectrum { model, balls }, harmonics, &curves, control)?;
     Ok(FixedCampbell { omega: c.omega.clone(), curves, critical_speeds: crit, harmonics: harmonics.to_vec() })
+}
+
+/// The ordering key of the curve of kept line `li` ([`fixed_axes`], and
+/// [`crate::rotor_campbell::fixed_view`]) at speed index `k` (its first point): its undamped
+/// natural frequency there, `sqrt(|λ λ'|)` with `λ'` its partner: the conjugate for a complex
+/// line (`|λ|`), for a real line the nearest real line of its conjugacy component left out
+/// (the pair it split into on the axis: the product of the two real roots is the pair's
+/// `|λ|²`, so the key is continuous where a pair reaches the axis), else `|λ|`. Unlike `|ν|`
+/// (0 for every real line) it does not tie where modes lie on the real axis.
+pub(crate) fn natural_key(z: impl Fn(usize, usize) -> Option<Complex64>, nl: usize, li: usize, k: usize, component: &[usize], dropped: &[bool]) -> f64 {
+    let Some(v) = z(li, k) else { return f64::INFINITY };
+    if v.im.abs() > REAL_TOL {
+        return v.norm();
+    }
+    let partner = (0..nl)
+        .filter(|&j| j != li && dropped[j] && component[j] == component[li])
+        .filter_map(|j| z(j, k))
+        .filter(|p| p.im.abs() <= REAL_TOL)
+        .min_by(|a, b| (a.re - v.re).abs().total_cmp(&(b.re - v.re).abs()));
+    partner.map_or(v.norm(), |p| (v.norm() * p.norm()).sqrt())
 }
 
 /// What the search for critical speeds asks of a model: its spectrum at a speed. The 12-state
@@ -805,7 +868,50 @@ fn component_crossings<S: Spectrum>(pair: &Pair<S>, h: u32, out: &mut Vec<Found>
 /// from the tracked `lines` and located on `spec`, each once, with the curve (mode) it belongs
 /// to: the kept line of its conjugate pair at the nearest speed (`curves`, the kept lines). The
 /// model-agnostic search of both routes.
-pub(crate) fn crossings<S: Spectrum>(l: &Lines, spec: &S, harmonics: &[u32], curves: &[FixedCurve]) -> Result<Vec<CriticalSpeed>> {
+pub(crate) fn crossings<S: Spectrum>(l: &Lines, spec: &S, harmonics: &[u32], curves: &[FixedCurve], control: &Control) -> Result<Vec<CriticalSpeed>> {
+    if l.omega.len() < 2 || harmonics.is_empty() {
+        return Ok(vec![]);
+    }
+    // every question to the model asks the control first (Ctrl-C, a budget): a stopped search
+    // answers the stop, as the scan does
+    let spec = Polled { spec, control };
+    let stop = || control.should_stop().map(|why| why.into_error(f64::NAN));
+    let (omega, z, known) = refine(l, &spec, harmonics)?;
+    if let Some(e) = stop() {
+        return Err(e);
+    }
+    let refined = Lines { omega: &omega, z, known };
+    let found = search(&refined, &spec, harmonics, curves);
+    match stop() {
+        Some(e) => Err(e),
+        None => found,
+    }
+}
+
+/// A spectrum that asks `control` before each question and answers a stop as its error (the
+/// refinement keeps a step as drawn where a speed has no spectrum, so it runs out at once).
+struct Polled<'a, S: Spectrum> {
+    spec: &'a S,
+    control: &'a Control,
+}
+
+impl<S: Spectrum> Spectrum for Polled<'_, S> {
+    fn eigenvalues(&self, w: f64) -> Result<Vec<Complex64>> {
+        match self.control.should_stop() {
+            Some(why) => Err(why.into_error(f64::NAN)),
+            None => self.spec.eigenvalues(w),
+        }
+    }
+    fn shares(&self, w: f64, lam: Complex64) -> Result<(f64, f64)> {
+        match self.control.should_stop() {
+            Some(why) => Err(why.into_error(f64::NAN)),
+            None => self.spec.shares(w, lam),
+        }
+    }
+}
+
+/// The search of [`crossings`] on (refined) lines.
+fn search<S: Spectrum>(l: &Lines, spec: &S, harmonics: &[u32], curves: &[FixedCurve]) -> Result<Vec<CriticalSpeed>> {
     let n = l.omega.len();
     let mut found = vec![];
     if n < 2 {
@@ -822,14 +928,51 @@ pub(crate) fn crossings<S: Spectrum>(l: &Lines, spec: &S, harmonics: &[u32], cur
     }
     // the curve of each: the line's own, else that of the line it is conjugate to (or equal
     // to, on the axis) at the grid point nearest the crossing, else the curve nearest in λ
+    // the curve of each: the line carrying the crossing's pair with Im λ > 0 next to it (for
+    // an end on the axis, on the step's complex side: the line that changes realness there,
+    // else the complex line nearest the axis), followed on the (refined) tracking back to the
+    // first speed, and there the kept line it is, or the kept line nearest it up to
+    // conjugation (its partner)
+    let nl = l.z.len();
     let curve_of = |f: &Found| -> usize {
-        let k = l.omega.partition_point(|&w| w < f.cs.omega).min(n - 1);
-        let k = if k > 0 && (f.cs.omega - l.omega[k - 1]).abs() < (l.omega[k] - f.cs.omega).abs() { k - 1 } else { k };
-        if let Some(i) = curves.iter().position(|cv| cv.line == f.line) {
+        let w = f.cs.omega;
+        let k1 = l.omega.partition_point(|&x| x <= w).clamp(1, n - 1);
+        let k0 = k1 - 1;
+        let up = |q: usize, k: usize| l.z[q][k].filter(|z| z.im > 0.0 && !on_axis(z.im, l.omega[k]));
+        let axis = f.cs.harmonic == 1 && f.cs.whirl == Whirl::Forward;
+        let line = if axis {
+            let mut best: Option<((u8, f64, usize), usize)> = None;
+            for q in 0..nl {
+                for (side, (k, other)) in [(k0, k1), (k1, k0)].into_iter().enumerate() {
+                    let Some(z) = up(q, k) else { continue };
+                    let mover = l.z[q][other].is_some_and(|v| on_axis(v.im.abs(), l.omega[other]));
+                    let key = (u8::from(!mover), z.im, side);
+                    if best.is_none_or(|(b, _)| key.0.cmp(&b.0).then(key.1.total_cmp(&b.1)).then(key.2.cmp(&b.2)).is_lt()) {
+                        best = Some((key, q));
+                    }
+                }
+            }
+            best.map_or(f.line, |(_, q)| q)
+        } else {
+            let k = if (w - l.omega[k0]).abs() <= (l.omega[k1] - w).abs() { k0 } else { k1 };
+            match l.z[f.line][k] {
+                Some(v) => {
+                    let t = Complex64::new(v.re, v.im.abs());
+                    (0..nl)
+                        .filter(|&q| l.z[q][k].is_some())
+                        .min_by(|&a, &b| (l.z[a][k].unwrap_or_default() - t).norm().total_cmp(&(l.z[b][k].unwrap_or_default() - t).norm()))
+                        .unwrap_or(f.line)
+                }
+                None => f.line,
+            }
+        };
+        if let Some(i) = curves.iter().position(|cv| cv.line == line) {
             return i;
         }
+        // the line's first speed with a value (a general-route diagram can start without one)
+        let k = (0..n).find(|&k| l.z[line][k].is_some()).unwrap_or(0);
         let z = |q: usize| l.z[q][k].map(|z| Complex64::new(z.re, z.im.abs()));
-        let dist = |c: usize| match (z(curves[c].line), z(f.line)) {
+        let dist = |c: usize| match (z(curves[c].line), z(line)) {
             (Some(a), Some(b)) => (a - b).norm(),
             _ => f64::INFINITY,
         };
@@ -861,6 +1004,331 @@ pub(crate) fn crossings<S: Spectrum>(l: &Lines, spec: &S, harmonics: &[u32], cur
     }
     out.sort_by(|a, b| a.omega.total_cmp(&b.omega).then(a.harmonic.cmp(&b.harmonic)).then(a.curve.cmp(&b.curve)));
     Ok(out)
+}
+
+/// The narrowest step (relative to `max(1, Ω)`) that [`refine`] subdivides: a pair of
+/// crossings (or a stretch on or off the real axis) at least this wide is resolved by the
+/// refined grid wherever the refinement's test ([`near_zero`]) sees it coming.
+pub(crate) const REFINE_TOL: f64 = 1e-6;
+/// [`near_zero`]: a step is subdivided where `g` at either end is within this many times the
+/// step times `g`'s slope (`g ~ a d²` near a double root puts the ends at 1/4 of it, a
+/// square-root dip `g ~ sqrt d` midway at 1; 2 leaves a margin for the slopes' estimate).
+const REFINE_SLOPES: f64 = 2.0;
+
+/// The lines of `l` on a grid refined where the crossing search needs it, tracked again on it,
+/// so that the search ([`search`]) does not depend on the drawn grid:
+/// 1. **tracking**: each step between neighbouring grid speeds whose spectra are complete is
+///    walked from its left end, each eigenvalue of the next speed given to the line whose
+///    linear extrapolation it is nearest (nearest pair first); where an assignment is not
+///    clear by a factor 3 (the eigenvalue is less than 3 times nearer its line's prediction
+///    than another's, two distinct eigenvalues) the step is halved on the model's spectrum,
+///    down to [`REFINE_TOL`]. The lines keep their identity at the first speed; a grid
+///    tracker's swap between two speeds (a coarse grid near a collision) is undone.
+/// 2. **near zeros**: a step is halved (the new speed assigned by the nearest linear
+///    interpolation of its ends) wherever, for some line, a function `g` whose zeros are
+///    crossings has the same sign at both ends and comes within [`REFINE_SLOPES`] times the
+///    step times its slope ([`near_zero`]), down to [`REFINE_TOL`]: `g = ν̂ − cΩ` of a complex
+///    line for each excitation target `c` (`h − 1`, `h + 1`, and `0` for the real axis with
+///    `h = 1`), and the gap `|λ_i − λ_j|` of two real lines neighbouring on the axis (they
+///    collide where a stretch off the axis starts). A step where `g` changes sign is left:
+///    the search bisects it.
+///
+/// A grid point without a spectrum, or a line without a value at it, ends the refinement there
+/// (those steps are kept as drawn), and so does a trial speed where the spectrum fails (the
+/// general route's stationary state not found): the refinement never fails the search.
+#[allow(clippy::type_complexity)]
+fn refine<S: Spectrum>(l: &Lines, spec: &S, harmonics: &[u32]) -> Result<(Vec<f64>, Vec<Vec<Option<Complex64>>>, Vec<bool>)> {
+    let n = l.omega.len();
+    let nl = l.z.len();
+    let full = |k: usize| l.known[k] && l.z.iter().all(|z| z[k].is_some());
+    let at = |k: usize| -> Vec<Option<Complex64>> { l.z.iter().map(|z| z[k]).collect() };
+    // the refined points: (speed, values per line, known)
+    let mut pts: Vec<(f64, Vec<Option<Complex64>>, bool)> = vec![(l.omega[0], at(0), l.known[0])];
+    // perm[i]: the drawn line whose values the refined line i carries at the last point
+    let mut perm: Vec<usize> = (0..nl).collect();
+    for k in 0..n - 1 {
+        if !(full(k) && full(k + 1)) {
+            let v = at(k + 1);
+            pts.push((l.omega[k + 1], perm.iter().map(|&j| v[j]).collect(), l.known[k + 1]));
+            continue;
+        }
+        // targets still to reach: the grid point, then the midpoints put in front of it
+        let end: Vec<Complex64> = (0..nl).filter_map(|j| l.z[j][k + 1]).collect();
+        // (speed, spectrum, checked): a grid step is checked once by its midpoint
+        let mut stack: Vec<(f64, Vec<Complex64>, bool)> = vec![(l.omega[k + 1], end, false)];
+        while let Some((wt, ev, checked)) = stack.pop() {
+            let m = pts.len();
+            let (wc, zc) = (pts[m - 1].0, pts[m - 1].1.clone());
+            let zc: Vec<Complex64> = zc.into_iter().map(|z| z.unwrap_or_default()).collect();
+            let zp = pts
+                .get(m.wrapping_sub(2))
+                .filter(|p| m >= 2 && p.0 < wc && p.1.iter().all(|z| z.is_some()))
+                .map(|p| (p.0, p.1.iter().map(|z| z.unwrap_or_default()).collect::<Vec<_>>()));
+            let pred = extrapolate(zp.as_ref().map(|(w, z)| (*w, z.as_slice())), (wc, &zc), wt);
+            let Some((vals, clear)) = assign(&pred, &ev) else {
+                // a spectrum of another size: keep the drawn values
+                let v = at(k + 1);
+                pts.push((l.omega[k + 1], perm.iter().map(|&j| v[j]).collect(), true));
+                stack.clear();
+                break;
+            };
+            let floor = wt - wc <= REFINE_TOL * wt.abs().max(1.0);
+            if clear && (checked || floor) {
+                pts.push((wt, vals.into_iter().map(Some).collect(), true));
+                continue;
+            }
+            if floor {
+                // a step this short still unclear straddles a collision (or a crossing) of
+                // eigenvalues: there the continuation is a convention, made the same on every
+                // grid by keeping the order of the lines involved
+                let vals = in_order(&zc, &pred, vals);
+                pts.push((wt, vals.into_iter().map(Some).collect(), true));
+                continue;
+            }
+            let mid = 0.5 * (wc + wt);
+            let Ok(em) = spec.eigenvalues(mid) else {
+                // no spectrum there (the general route: no stationary state found): the step
+                // is kept as drawn, as a spectrum of another size
+                let v = at(k + 1);
+                pts.push((l.omega[k + 1], perm.iter().map(|&j| v[j]).collect(), true));
+                stack.clear();
+                break;
+            };
+            if clear {
+                // the step's check: through its midpoint, the same assignment, clear both ways
+                let pm = extrapolate(zp.as_ref().map(|(w, z)| (*w, z.as_slice())), (wc, &zc), mid);
+                if let Some((vm, true)) = assign(&pm, &em) {
+                    let pb = extrapolate(Some((wc, &zc)), (mid, &vm), wt);
+                    if let Some((vb, true)) = assign(&pb, &ev) {
+                        if vb == vals {
+                            pts.push((mid, vm.into_iter().map(Some).collect(), true));
+                            pts.push((wt, vals.into_iter().map(Some).collect(), true));
+                            continue;
+                        }
+                    }
+                }
+            }
+            stack.push((wt, ev, checked));
+            stack.push((mid, em, checked));
+        }
+        // which drawn line each refined line carries at k + 1 (the same values)
+        let last = &pts[pts.len() - 1].1;
+        let mut used = vec![false; nl];
+        for (i, z) in last.iter().enumerate() {
+            if let Some(z) = z {
+                if let Some(j) = (0..nl).find(|&j| !used[j] && l.z[j][k + 1] == Some(*z)) {
+                    used[j] = true;
+                    perm[i] = j;
+                }
+            }
+        }
+    }
+    // 2. near zeros
+    let targets: Vec<f64> = {
+        let mut t: Vec<f64> = vec![];
+        for &h in harmonics {
+            t.push(h as f64 + 1.0);
+            if h >= 2 {
+                t.push(h as f64 - 1.0);
+            }
+            if h == 1 {
+                t.push(0.0);
+            }
+        }
+        t.sort_by(f64::total_cmp);
+        t.dedup();
+        t
+    };
+    let mut i = 0;
+    let mut guard = 0usize;
+    while i + 1 < pts.len() && guard < 1_000_000 {
+        guard += 1;
+        let (wa, wb) = (pts[i].0, pts[i + 1].0);
+        let complete = |p: &(f64, Vec<Option<Complex64>>, bool)| p.2 && p.1.iter().all(|z| z.is_some());
+        if wb - wa <= 2.0 * REFINE_TOL * wb.abs().max(1.0) || !complete(&pts[i]) || !complete(&pts[i + 1]) || !near_zero(&pts, i, &targets) {
+            i += 1;
+            continue;
+        }
+        let mid = 0.5 * (wa + wb);
+        let Ok(ev) = spec.eigenvalues(mid) else {
+            // no spectrum there: the step is left as it is
+            i += 1;
+            continue;
+        };
+        let pred: Vec<Complex64> = pts[i].1.iter().zip(&pts[i + 1].1).map(|(a, b)| 0.5 * (a.unwrap_or_default() + b.unwrap_or_default())).collect();
+        match assign(&pred, &ev) {
+            Some((vals, clear)) => {
+                let prev: Vec<Complex64> = pts[i].1.iter().map(|z| z.unwrap_or_default()).collect();
+                let vals = if clear { vals } else { in_order(&prev, &pred, vals) };
+                pts.insert(i + 1, (mid, vals.into_iter().map(Some).collect(), true))
+            }
+            None => i += 1,
+        }
+    }
+    let omega = pts.iter().map(|p| p.0).collect();
+    let z = (0..nl).map(|j| pts.iter().map(|p| p.1[j]).collect()).collect();
+    let known = pts.iter().map(|p| p.2).collect();
+    Ok((omega, z, known))
+}
+
+/// The values `cur` at `wc` extrapolated linearly to `w` from `prev` (a speed below `wc` and
+/// its values), or held where there is none.
+fn extrapolate(prev: Option<(f64, &[Complex64])>, (wc, cur): (f64, &[Complex64]), w: f64) -> Vec<Complex64> {
+    match prev {
+        Some((wp, zp)) if wc > wp => {
+            let t = (w - wc) / (wc - wp);
+            cur.iter().zip(zp).map(|(c, p)| c + (c - p) * t).collect()
+        }
+        _ => cur.to_vec(),
+    }
+}
+
+/// Whether the step `i → i + 1` of the refined points may hide a pair of zeros of some line's
+/// `g` ([`refine`], step 2): `g` has the same sign at both ends and one end within
+/// [`REFINE_SLOPES`] times the step times the largest of `g`'s slope across the step and its
+/// slopes across the neighbouring steps.
+fn near_zero(pts: &[(f64, Vec<Option<Complex64>>, bool)], i: usize, targets: &[f64]) -> bool {
+    let nl = pts[i].1.len();
+    let w = |k: usize| pts[k].0;
+    let z = |k: usize, j: usize| pts.get(k).and_then(|p| p.1[j]);
+    let real = |k: usize, j: usize| z(k, j).is_some_and(|v| on_axis(v.im.abs(), w(k)));
+    let test = |g: &dyn Fn(usize) -> Option<f64>| -> bool {
+        let (Some(ga), Some(gb)) = (g(i), g(i + 1)) else { return false };
+        if ga * gb <= 0.0 {
+            return false;
+        }
+        let h = w(i + 1) - w(i);
+        let mut slope = ((gb - ga) / h).abs();
+        if i > 0 {
+            if let Some(gp) = g(i - 1) {
+                slope = slope.max(((ga - gp) / (w(i) - w(i - 1))).abs());
+            }
+        }
+        if i + 2 < pts.len() {
+            if let Some(gn) = g(i + 2) {
+                slope = slope.max(((gn - gb) / (w(i + 2) - w(i + 1))).abs());
+            }
+        }
+        ga.abs().min(gb.abs()) <= REFINE_SLOPES * h * slope
+    };
+    // a neutral line (|λ| at the rounding noise of the spectrum, 1e-7 of its largest |λ|: a
+    // double zero eigenvalue splits by ~sqrt(ε) of it) lies on 1× for good and has no crossing
+    // to find, but its noise flips its realness and its gaps at random: not refined on
+    // (before, balls without drag: every step halved to the tolerance, 20-30x the cost)
+    let noise = |k: usize| 1e-7 * pts[k].1.iter().flatten().map(|v| v.norm()).fold(1.0, f64::max);
+    let (na, nb) = (noise(i), noise(i + 1));
+    let neutral = |j: usize| z(i, j).is_some_and(|v| v.norm() <= na) || z(i + 1, j).is_some_and(|v| v.norm() <= nb);
+    // a line changing between real and complex: its end on the axis located to the tolerance
+    // (the crossing's mode is read next to it)
+    if (0..nl).any(|j| !neutral(j) && z(i, j).is_some() && z(i + 1, j).is_some() && real(i, j) != real(i + 1, j)) {
+        return true;
+    }
+    for j in (0..nl).filter(|&j| !neutral(j)) {
+        let complex_both = !real(i, j) && !real(i + 1, j) && z(i, j).is_some() && z(i + 1, j).is_some();
+        if complex_both {
+            for &c in targets {
+                let g = |k: usize| z(k, j).filter(|_| !real(k, j)).map(|v| v.im.abs() - c * w(k));
+                if test(&g) {
+                    return true;
+                }
+            }
+        } else if real(i, j) && real(i + 1, j) && targets.contains(&0.0) {
+            // the nearest other real line at the left end: their gap on the axis
+            let re = |k: usize, q: usize| z(k, q).map_or(f64::INFINITY, |v| v.re);
+            let Some(q) = (0..nl)
+                .filter(|&q| q != j && !neutral(q) && real(i, q) && real(i + 1, q))
+                .min_by(|&a, &b| (re(i, a) - re(i, j)).abs().total_cmp(&(re(i, b) - re(i, j)).abs()))
+            else {
+                continue;
+            };
+            let g = |k: usize| (real(k, j) && real(k, q)).then(|| (re(k, j) - re(k, q)).abs());
+            // a gap of exactly zero (a double real eigenvalue) stays one: no crossing
+            if g(i).is_some_and(|v| v > 0.0) && test(&g) {
+                return true;
+            }
+        }
+    }
+    false
+}
+
+/// The assignment `vals` (of [`assign`]) with the lines whose assignments are not clear (the
+/// groups of lines linked where an eigenvalue is less than 3 times nearer its own prediction
+/// than another line's, `pred`) given their eigenvalues in the order of their previous values
+/// `prev`: both sorted by `(Re, Im)`, the `k`-th line the `k`-th eigenvalue. Two real
+/// eigenvalues meeting on the axis: the smaller one's line continues on `Im λ < 0`; a pair
+/// landing on the axis: its `Im λ < 0` line the smaller real one (the convention of a
+/// collision, where no line continues another).
+fn in_order(prev: &[Complex64], pred: &[Complex64], mut vals: Vec<Complex64>) -> Vec<Complex64> {
+    let n = vals.len();
+    let scale = vals.iter().map(|z| z.norm()).fold(1.0, f64::max);
+    let linked = |i: usize, j: usize| {
+        let d = (vals[i] - pred[i]).norm();
+        (vals[j] - vals[i]).norm() > 1e-9 * scale && (vals[i] - pred[j]).norm() < 3.0 * d
+    };
+    let mut group: Vec<usize> = (0..n).collect();
+    let find = |g: &mut Vec<usize>, mut i: usize| {
+        while g[i] != i {
+            i = g[i];
+        }
+        i
+    };
+    for i in 0..n {
+        for j in 0..n {
+            if i != j && linked(i, j) {
+                let (a, b) = (find(&mut group, i), find(&mut group, j));
+                group[a.max(b)] = a.min(b);
+            }
+        }
+    }
+    let key = |a: &Complex64, b: &Complex64| a.re.total_cmp(&b.re).then(a.im.total_cmp(&b.im));
+    for root in 0..n {
+        let mut members: Vec<usize> = (0..n).filter(|&i| find(&mut group, i) == root).collect();
+        if members.len() < 2 {
+            continue;
+        }
+        let mut got: Vec<Complex64> = members.iter().map(|&i| vals[i]).collect();
+        got.sort_by(key);
+        members.sort_by(|&a, &b| key(&prev[a], &prev[b]));
+        for (&i, z) in members.iter().zip(got) {
+            vals[i] = z;
+        }
+    }
+    vals
+}
+
+/// Each of the eigenvalues `ev` given to one of the predictions `pred`, nearest pair first:
+/// the values per prediction and whether every assignment is clear (each eigenvalue at least
+/// 3 times nearer its own prediction than any other's, among distinct eigenvalues); `None`
+/// where the counts differ.
+fn assign(pred: &[Complex64], ev: &[Complex64]) -> Option<(Vec<Complex64>, bool)> {
+    let n = pred.len();
+    if ev.len() != n {
+        return None;
+    }
+    let mut pairs: Vec<(f64, usize, usize)> = Vec::with_capacity(n * n);
+    for (i, p) in pred.iter().enumerate() {
+        for (j, e) in ev.iter().enumerate() {
+            pairs.push(((p - e).norm_sqr(), i, j));
+        }
+    }
+    pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut out: Vec<Option<Complex64>> = vec![None; n];
+    let mut taken = vec![false; n];
+    for (_, i, j) in pairs {
+        if out[i].is_none() && !taken[j] {
+            out[i] = Some(ev[j]);
+            taken[j] = true;
+        }
+    }
+    let out: Vec<Complex64> = out.into_iter().map(|z| z.unwrap_or_default()).collect();
+    // squared distances (no square roots: this runs on every refined speed)
+    let scale = ev.iter().map(|z| z.norm_sqr()).fold(1.0, f64::max);
+    let same = 1e-18 * scale;
+    let clear = (0..n).all(|i| {
+        let d = 9.0 * (out[i] - pred[i]).norm_sqr();
+        (0..n).all(|j| j == i || (out[i] - pred[j]).norm_sqr() >= d || (out[j] - out[i]).norm_sqr() <= same)
+    });
+    Some((out, clear))
 }
 
 /// Which tracked lines to keep so that each complex-conjugate pair is drawn once: the lines are
@@ -909,4 +1377,84 @@ pub(crate) fn keep_one_of_each_pair(nl: usize, conjugate: impl Fn(usize, usize) 
         }
     }
     (component, dropped)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// One conjugate pair `λ = −0.1 ± i ν(Ω)` with `ν = Ω + (Ω − w0)² − d²` and circular
+    /// forward motion: its `Ω + ν̂` component meets `2Ω` where `ν̂ = Ω`, exactly at
+    /// `w0 ± d` (closed form).
+    struct Dip {
+        w0: f64,
+        d: f64,
+    }
+
+    impl Spectrum for Dip {
+        fn eigenvalues(&self, w: f64) -> Result<Vec<Complex64>> {
+            let nu = w + (w - self.w0).powi(2) - self.d * self.d;
+            Ok(vec![Complex64::new(-0.1, nu), Complex64::new(-0.1, -nu)])
+        }
+        fn shares(&self, _: f64, _: Complex64) -> Result<(f64, f64)> {
+            Ok((1.0, 0.0))
+        }
+    }
+
+    fn found(spec: &Dip, omega: &[f64]) -> Vec<f64> {
+        let z = (0..2).map(|i| omega.iter().map(|&w| Some(spec.eigenvalues(w).unwrap()[i])).collect()).collect();
+        let l = Lines { omega, z, known: vec![true; omega.len()] };
+        let curves = vec![FixedCurve { line: 0, points: vec![] }];
+        crossings(&l, spec, &[2], &curves, &Control::none()).unwrap().iter().map(|k| k.omega).collect()
+    }
+
+    #[test]
+    fn a_pair_of_crossings_inside_one_grid_step_is_found_down_to_the_tolerance() {
+        // 11 speeds 0.1 apart; the pair sits off the midpoint of its step (w0 = 1.03; the
+        // tracking check samples the midpoint 1.05, so only the near-zero halving finds it), its two crossings 2d apart:
+        // from 2e-3 down to 4e-6 relative (a few times REFINE_TOL). At the grid points g is
+        // (Ω − w0)² − d² ≥ 0.0025 − d², the same sign at both ends of the step, so the
+        // search on the drawn grid alone found neither (checked: with `crossings` searching
+        // the drawn lines, no refinement, this test fails at d = 1e-3). The crossings are bisected to 1e-13 on the spectrum:
+        // 1e-9 leaves room for the error of |g'| = 2d at a root (g noise 1e-16 / 2e-6).
+        let omega: Vec<f64> = (0..11).map(|k| 0.5 + 0.1 * k as f64).collect();
+        for d in [1e-3, 1e-4, 1e-5, 2e-6] {
+            let spec = Dip { w0: 1.03, d };
+            let got = found(&spec, &omega);
+            assert_eq!(got.len(), 2, "d = {d}: {got:?}");
+            assert!((got[0] - (1.03 - d)).abs() < 1e-9 && (got[1] - (1.03 + d)).abs() < 1e-9, "d = {d}: {got:?}");
+        }
+        // no pair (d² < 0: a near miss, g ≥ 1e-8 > 0): nothing, and the refinement stops
+        let near = |w: f64| -> Result<Vec<Complex64>> {
+            Ok(vec![Complex64::new(-0.1, w + (w - 1.05f64).powi(2) + 1e-8), Complex64::new(-0.1, -(w + (w - 1.05f64).powi(2) + 1e-8))])
+        };
+        struct Miss<F: Fn(f64) -> Result<Vec<Complex64>>>(F);
+        impl<F: Fn(f64) -> Result<Vec<Complex64>>> Spectrum for Miss<F> {
+            fn eigenvalues(&self, w: f64) -> Result<Vec<Complex64>> {
+                (self.0)(w)
+            }
+            fn shares(&self, _: f64, _: Complex64) -> Result<(f64, f64)> {
+                Ok((1.0, 0.0))
+            }
+        }
+        let miss = Miss(near);
+        let z = (0..2).map(|i| omega.iter().map(|&w| Some(miss.eigenvalues(w).unwrap()[i])).collect()).collect();
+        let l = Lines { omega: &omega, z, known: vec![true; omega.len()] };
+        let curves = vec![FixedCurve { line: 0, points: vec![] }];
+        assert!(crossings(&l, &miss, &[2], &curves, &Control::none()).unwrap().is_empty());
+    }
+
+    #[test]
+    fn a_cancelled_control_stops_the_search_with_its_error() {
+        // Ctrl-C during the search (review B3): the search answers the stop, not a table
+        let omega: Vec<f64> = (0..11).map(|k| 0.5 + 0.1 * k as f64).collect();
+        let spec = Dip { w0: 1.03, d: 1e-3 };
+        let z = (0..2).map(|i| omega.iter().map(|&w| Some(spec.eigenvalues(w).unwrap()[i])).collect()).collect();
+        let l = Lines { omega: &omega, z, known: vec![true; omega.len()] };
+        let curves = vec![FixedCurve { line: 0, points: vec![] }];
+        let control = Control::new();
+        control.cancel();
+        let e = crossings(&l, &spec, &[2], &curves, &control).unwrap_err();
+        assert!(matches!(e, Error::Interrupted { .. }), "{e}");
+    }
 }
