@@ -12,20 +12,7 @@ use autobal::spatial::stability::{campbell, Whirl};
 mod common;
 use common::{direct_model as model, Rng};
 
-/// The model of examples/dimensional.toml (an anisotropic rotor: two balls at their balanced
-/// positions, supports that differ left and right).
-fn dimensional() -> SpatialModel {
-    let mut root = config::parse(include_str!("../../../examples/dimensional.toml"), "test").unwrap();
-    for t in ["drive", "initial"] {
-        root.remove(t);
-    }
-    config::spatial_simulation(&root).unwrap().config.model
-}
-
-/// `n` speeds `w (k + ½)/n` (the grid of `autobal campbell --points n`).
-fn grid(w: f64, n: usize) -> Vec<f64> {
-    (0..n).map(|k| w * (k as f64 + 0.5) / n as f64).collect()
-}
+use common::{campbell_grid as grid, dimensional_model as dimensional};
 
 fn crossings(m: &SpatialModel, omegas: &[f64], balls: Balls, h: &[u32]) -> Vec<CriticalSpeed> {
     let c = campbell(m, omegas, balls).unwrap();

@@ -8,21 +8,10 @@
 use autobal::config;
 use autobal::spatial::campbell::{fixed_axes, CriticalSpeed};
 use autobal::spatial::linear_model::Balls;
-use autobal::spatial::params::SpatialModel;
 use autobal::spatial::stability::{campbell, Whirl};
 
-fn dimensional() -> SpatialModel {
-    let mut root = config::parse(include_str!("../../../examples/dimensional.toml"), "test").unwrap();
-    for t in ["drive", "initial"] {
-        root.remove(t);
-    }
-    config::spatial_simulation(&root).unwrap().config.model
-}
-
-/// `n` speeds `w (k + ½)/n`: the grid of `autobal campbell --omega-max w --points n`.
-fn grid(w: f64, n: usize) -> Vec<f64> {
-    (0..n).map(|k| w * (k as f64 + 0.5) / n as f64).collect()
-}
+mod common;
+use common::{campbell_grid as grid, dimensional_model as dimensional};
 
 /// A crossing as compared: speed, kind (forward/backward), harmonic, mode number.
 type Key = (f64, char, u32, usize);

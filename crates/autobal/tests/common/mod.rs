@@ -325,3 +325,18 @@ impl<F: autobal::analysis::VectorField + ?Sized> autobal::ode::System for Sys<'_
         autobal::analysis::VectorField::rhs(self.0, t, y, dy)
     }
 }
+
+/// The model of examples/dimensional.toml (an anisotropic rotor: two balls at their balanced
+/// positions, supports that differ left and right), without its run's tables.
+pub fn dimensional_model() -> autobal::spatial::params::SpatialModel {
+    let mut root = autobal::config::parse(include_str!("../../../../examples/dimensional.toml"), "test").unwrap();
+    for t in ["drive", "initial"] {
+        root.remove(t);
+    }
+    autobal::config::spatial_simulation(&root).unwrap().config.model
+}
+
+/// `n` speeds `w (k + ½)/n`: the grid of `autobal campbell --omega-max w --points n`.
+pub fn campbell_grid(w: f64, n: usize) -> Vec<f64> {
+    (0..n).map(|k| w * (k as f64 + 0.5) / n as f64).collect()
+}
