@@ -167,7 +167,12 @@ enum QuantityArg {
     Verdict,
 }
 
+/// Each subcommand's arguments are built only when it is the one run (`defer`): clap built all
+/// fourteen subcommands' argument lists for any command line (`augment_subcommands`, ~15 page
+/// faults a run; docs/notes/benchmarks.md, "Round 3, session 15"); `--help` and errors build
+/// what they show.
 #[derive(Subcommand)]
+#[command(defer = true)]
 enum Command {
     /// Mass properties of the whole rotor with its balls at balance; 000's composite inertia (eqs (4), (5), (17)) where it applies
     Inertia {
