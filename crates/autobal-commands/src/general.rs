@@ -229,7 +229,7 @@ pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64) -> String {
     }
     let neutral = r.points.iter().filter(|p| p.verdict == Some(Verdict::Neutral)).count();
     if neutral > 0 {
-        s.push_str(&format!("neutral (linearisation cannot decide) at {neutral} of {} speeds\n", r.points.len()));
+        s.push_str(&format!("neutral (the growth rate within the neutral tolerance of zero: undecided at that tolerance, not a verdict) at {neutral} of {} speeds\n", r.points.len()));
     }
     s.push_str(&missing_lines(r, |w| speed_text(g, w)));
     s
