@@ -229,7 +229,10 @@ pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64) -> String {
     }
     let neutral = r.points.iter().filter(|p| p.verdict == Some(Verdict::Neutral)).count();
     if neutral > 0 {
-        s.push_str(&format!("neutral (the growth rate within the neutral tolerance of zero: undecided at that tolerance, not a verdict) at {neutral} of {} speeds\n", r.points.len()));
+        s.push_str(&format!(
+            "neutral (the growth rate within the neutral tolerance of zero: undecided at that tolerance, not a verdict) at {neutral} of {} speeds\n",
+            r.points.len()
+        ));
     }
     s.push_str(&missing_lines(r, |w| speed_text(g, w)));
     s
@@ -373,7 +376,7 @@ pub(crate) fn residual_text(r: &autobal::rotor_stability::RotorStability, speed:
         "the balls do not cancel the unbalance exactly"
     };
     format!(
-        "balanced to a residual of {} {} (above the exact tolerance 1e-6; on a periodic orbit up to 0.1 is balanced, at an equilibrium only 1e-6) at {} of {} speeds, {} to {} ({why})\n",
+        "balanced to a residual of {} {} (above the exact tolerance 1e-6; on a periodic orbit up to 0.05 is balanced, as in `simulate`, at an equilibrium only 1e-6) at {} of {} speeds, {} to {} ({why})\n",
         residual_range(&with),
         r.residual_scale.words(),
         with.len(),
