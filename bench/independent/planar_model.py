@@ -192,7 +192,8 @@ class Planar:
 
     def equilibrium(self, w, psi0=None, z0=None):
         N = self.n + 2
-        zg, pg = self.balanced_guess(w)
+        guess = self.balanced_guess(w)
+        zg, pg = guess if guess is not None else (0j, None)
         if psi0 is None:
             psi0 = pg
         if z0 is None:
