@@ -161,6 +161,11 @@ pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64, op: Option<&O
     if r.family_dimension > 0 {
         s.push_str(&family_line(r, |w| speed_text(g, w)));
     }
+    if let Rotor::Spatial(sr) = &g.rotor {
+        if (sr.gravity[0] != 0.0 || sr.gravity[1] != 0.0) && sr.planes.iter().any(|p| p.n >= 3) && r.points.iter().any(|p| p.verdict.is_some()) {
+            s.push_str("gravity breaks the family of balanced states of 3 or more balls in a plane: the orbits have each such plane's balls in two groups (the member's angles in the JSON's member_psi); at each speed the orbit of least growth rate among those found from every split and its mirror is the one analysed (docs/notes/stability.md)\n");
+        }
+    }
     if let Some(f) = &r.family {
         let list = |v: &[autobal::analysis::StableRange]| {
             if v.is_empty() {
@@ -369,8 +374,8 @@ pub fn operating(g: &GeneralRotor, root: &Table, r: &RotorStability, control: &C
     let omega = [lo * g.omega0, hi * g.omega0];
     let speeds: Vec<f64> = if omega[0] == omega[1] { vec![omega[0]] } else { (0..9).map(|i| omega[0] + (omega[1] - omega[0]) * i as f64 / 8.0).collect() };
     let scan = autobal::rotor_stability::stability_over_speed_with(&g.rotor, &speeds, control)?;
-    if scan.stopped.is_some() {
-        return Ok(None);
+    if let Some(why) = scan.stopped {
+        anyhow::bail!("{why}: the verdict at the operating speed stopped after {} of {} speeds; nothing is printed", scan.value.points.len(), speeds.len());
     }
     let scan = scan.value;
     let range = r.stable_ranges.iter().find(|st| st.from <= omega[0] && omega[1] <= st.to).cloned();
@@ -378,7 +383,8 @@ pub fn operating(g: &GeneralRotor, root: &Table, r: &RotorStability, control: &C
 }
 
 /// [`Operating`] as JSON: `omega` (`[lo, hi]`, the rotor's units), `stable` (every speed
-/// solved there stable), `max_growth_rate` (the largest `abscissa` there; `null` where no
+/// solved there stable), `verdict` (`stable`, `unstable` where one speed is, else `neutral`;
+/// `null` where a speed has no state), `max_growth_rate` (the largest `abscissa` there; `null` where no
 /// state was found), `stable_range` (`{from, to}` of the scan, or `null`), `points` (as the
 /// scan's).
 pub fn operating_json(op: &Operating) -> Value {
@@ -386,6 +392,15 @@ pub fn operating_json(op: &Operating) -> Value {
     json!({
         "omega": op.omega,
         "stable": solved && op.points.iter().all(|p| p.verdict == Some(Verdict::Stable)),
+        "verdict": if !solved {
+            Value::Null
+        } else if op.points.iter().all(|p| p.verdict == Some(Verdict::Stable)) {
+            json!("stable")
+        } else if op.points.iter().any(|p| p.verdict == Some(Verdict::Unstable)) {
+            json!("unstable")
+        } else {
+            json!("neutral")
+        },
         "max_growth_rate": if solved { json!(op.points.iter().filter_map(|p| p.abscissa).fold(f64::NEG_INFINITY, f64::max)) } else { Value::Null },
         "stable_range": op.range.as_ref().map_or(Value::Null, |st| json!({"from": st.from, "to": st.to})),
         "points": op.points,
@@ -409,12 +424,21 @@ pub fn operating_line(g: &GeneralRotor, r: &RotorStability, op: &Operating) -> S
     let member = if op.points.iter().any(|p| p.family_dimension > 0) { ", the member reached from the closed form" } else { "" };
     let rate = format!("largest growth rate {}{per}", fmt_num(worst));
     if op.points.iter().all(|p| p.verdict == Some(Verdict::Stable)) {
-        let range = op.range.as_ref().map_or(String::new(), |st| {
-            let from = range_end(r, st.from, st.from_is_boundary, false, |w| speed_text(g, w));
-            let to = range_end(r, st.to, st.to_is_boundary, true, |w| speed_text(g, w));
-            format!(" in the stable range {from} to {to}")
-        });
+        let range = op.range.as_ref().map_or_else(
+            // stable at the speed itself, but no grid speed of the scan round it was: the grid
+            // is too coarse for the window the operating speed sits in
+            || " (the scan's grid found no stable range round it: a narrower window than its spacing; more --samples resolve it)".to_string(),
+            |st| {
+                let from = range_end(r, st.from, st.from_is_boundary, false, |w| speed_text(g, w));
+                let to = range_end(r, st.to, st.to_is_boundary, true, |w| speed_text(g, w));
+                format!(" in the stable range {from} to {to}")
+            },
+        );
         format!("operating speed {at}: the {state} state is STABLE (exact, {how}{member}){range}; {rate}\n")
+    } else if op.points.iter().all(|p| p.verdict != Some(Verdict::Unstable)) {
+        // stable or neutral everywhere, neutral somewhere: the growth rate within the neutral
+        // tolerance of zero (a tolerance-dependent outcome, not a verdict)
+        format!("operating speed {at}: the {state} state is NEUTRAL (its growth rate within the neutral tolerance of zero: undecided at that tolerance, not a verdict; {how}{member}); {rate}\n")
     } else {
         // the scan's stable range nearest to the operating speed, as the closed-form route says
         let dist = |st: &&autobal::analysis::StableRange| if st.to < op.omega[0] { op.omega[0] - st.to } else { (st.from - op.omega[1]).max(0.0) };

@@ -244,6 +244,25 @@ mod tests {
         );
         assert!(first.contains("; nearest stable range "), "{first}");
         assert_eq!(out.json().unwrap()["operating"]["stable"], false);
+        assert_eq!(out.json().unwrap()["operating"]["verdict"], "unstable");
+        // a neutral speed is said to be undecided, never NOT STABLE (the review's 3 + 3 ball
+        // two-plane rotor at 1300 rad/s read "NOT STABLE" with a growth rate of -2.1e-7 1/s);
+        // the verdict turned neutral by hand on the washer's
+        let Output::General { g, r, op: Some(op), .. } =
+            Args { config: tables(washer, &["spatial.gravity=[0.0, -9.81, 0.0]"]), samples: Some(10), ..Default::default() }.run(&Control::none()).unwrap()
+        else {
+            panic!("the washer's general route")
+        };
+        let mut neutral = (*op).clone();
+        neutral.points[0].verdict = Some(autobal::analysis::Verdict::Neutral);
+        let line = general::operating_line(&g, &r, &neutral);
+        assert!(line.contains("the balanced state is NEUTRAL (its growth rate within the neutral tolerance of zero"), "{line}");
+        assert_eq!(general::operating_json(&neutral)["verdict"], "neutral");
+        // stable at the speed, but no range of the scan holds it: said, not left blank
+        let mut alone = (*op).clone();
+        alone.range = None;
+        let line = general::operating_line(&g, &r, &alone);
+        assert!(line.contains("STABLE (exact, Floquet multipliers) (the scan's grid found no stable range round it"), "{line}");
     }
 
     /// A periodic orbit's top speed below ω_n/100 (the spatial two-plane example, gravity) is

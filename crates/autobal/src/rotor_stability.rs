@@ -848,6 +848,11 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
     // two groups (Rotor::gravity_orbit_start: the family's arc member is no orbit there)
     let newton = opts.newton.clone();
     let guess = |f: &Field, _| {
+        // no balanced orbit where no two groups give a plane's share: no start (the arc member
+        // would creep, and shooting can take its slow creep for an orbit)
+        if matches!(f, Field::Spatial(s) if s.gravity_circulation().is_some()) {
+            return None;
+        }
         Rotor::gravity_orbit_start(f, &newton).or_else(|| Rotor::guess(f)).or_else(|| Rotor::placed_guess(f)).or_else(|| Rotor::bunched_guess(f))
     };
     let Outcome { value: scan, mut stopped } = speed_scan_with(field_at, guess, speeds, &opts, control).map_err(|e| match e {
@@ -1119,6 +1124,11 @@ fn locate(
 /// A scan's failure in the user's terms: where the closed form gives no state, say which state
 /// does not exist and why.
 fn explain_failure(rotor: &Rotor, omega: f64, failure: &str) -> String {
+    if let Ok(Field::Spatial(f)) = rotor.field(omega) {
+        if let Some(why) = f.gravity_circulation() {
+            return why;
+        }
+    }
     if let (Rotor::Spatial(s), true) = (rotor, failure.starts_with("no periodic orbit found")) {
         if let Some(why) = gravity_slip(s, omega) {
             return format!("{failure}; {why}");

@@ -239,14 +239,17 @@ impl SpatialField {
                     continue;
                 }
                 let off = ((a * a + need * need - b * b) / (2.0 * a * need)).clamp(-1.0, 1.0).acos();
-                for side in [1.0, -1.0] {
+                // an even split's mirror is the same placement with the groups swapped
+                let sides: &[f64] = if 2 * big == p.n { &[1.0] } else { &[1.0, -1.0] };
+                for &side in sides {
                     let alpha = dir + side * off;
                     let beta = (t[1] - a * alpha.sin()).atan2(t[0] - a * alpha.cos());
                     mine_options.push((0..p.n).map(|j| if j < big { alpha } else { beta }).collect());
                 }
             }
             if mine_options.is_empty() {
-                mine_options.push(mine.to_vec());
+                // no two groups give the share (`gravity_circulation`): no balanced orbit
+                return vec![];
             }
             options.push(mine_options);
         }
@@ -256,6 +259,41 @@ impl SpatialField {
             out = out.iter().flat_map(|head| o.iter().map(move |tail| [head.as_slice(), tail.as_slice()].concat())).collect();
         }
         out.into_iter().map(|angles| self.with_ball_angles(&angles)).collect()
+    }
+
+    /// Why no balanced periodic orbit exists under gravity across the axis, where a plane has
+    /// an odd number `n ≥ 3` of balls and its share `t` of the unbalance is below `m R`: the
+    /// orbits have the plane's balls in two groups ([`SpatialField::split_guesses`]), whose
+    /// resultant `|p − q| m R ≤ |t| ≤ n m R` cannot be that small with `p + q` odd. The balls
+    /// then creep along the placements that balance (a time simulation of the washing-machine
+    /// example with 0.05 kg of unbalance at 400 rpm: the angles keep turning over 3000 s).
+    /// `None` otherwise.
+    pub fn gravity_circulation(&self) -> Option<String> {
+        let across = self.rotor.gravity[0] != 0.0 || self.rotor.gravity[1] != 0.0;
+        if !across || self.rotor.planes.iter().all(|p| p.n < 3) {
+            return None;
+        }
+        let arc = self.balanced_guess()?;
+        let m = self.coords.len();
+        let planes: Vec<_> = self.rotor.planes.iter().filter(|p| p.n > 0).collect();
+        let nb: usize = planes.iter().map(|p| p.n).sum();
+        let mut first = m - nb;
+        for p in planes {
+            let mine = &arc[first..first + p.n];
+            first += p.n;
+            let mr = p.ball_mass * p.race_radius;
+            let t = mine.iter().fold([0.0, 0.0], |s, a| [s[0] + mr * a.cos(), s[1] + mr * a.sin()]);
+            let need = t[0].hypot(t[1]);
+            if p.n >= 3 && p.n % 2 == 1 && need < mr * (1.0 - 1e-12) {
+                return Some(format!(
+                    "no balanced periodic orbit: under gravity across the axis a plane's {} balls settle only in two groups, and no two groups give its share of the unbalance ({} kg m, below one ball's m R = {} kg m): the balls creep along the placements that balance, never stationary",
+                    p.n,
+                    crate::error::fmt_num(need),
+                    crate::error::fmt_num(mr)
+                ));
+            }
+        }
+        None
     }
 
     /// The reduced state with the rotor at rest on the axis and the balls at `psi`.
