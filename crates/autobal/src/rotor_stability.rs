@@ -147,6 +147,42 @@ impl Rotor {
         }
     }
 
+    /// The start of a spatial rotor's balanced periodic orbit **under gravity across the axis
+    /// with `n ≥ 3` balls in a plane**, where the family of balanced states breaks into
+    /// isolated orbits with each such plane's balls in two bunched groups
+    /// ([`SpatialField::split_guesses`], why there): the orbit is found from every placement
+    /// of the groups and the one of least growth rate (its largest Floquet exponent's real part)
+    /// is returned: the orbit a run settles on where one of them is stable. `None` where the
+    /// rotor is not of that kind or no placement reaches an orbit (then [`Rotor::guess`]).
+    ///
+    /// ```
+    /// use autobal::rotor_stability::Rotor;
+    /// use autobal::analysis::NewtonOptions;
+    /// let mut root = autobal::config::parse(include_str!("../../../examples/washing_machine.toml"), "washer").unwrap();
+    /// autobal::config::set(&mut root, "spatial.gravity", autobal::config::parse_value("[0.0, -9.81, 0.0]")).unwrap();
+    /// let rotor = Rotor::Spatial(autobal::config::spatial_simulation(&root).unwrap().rotor);
+    /// let field = rotor.field(146.61).unwrap(); // 1400 rpm
+    /// let x = Rotor::gravity_orbit_start(&field, &NewtonOptions::default()).unwrap();
+    /// let n = x.len() / 2;
+    /// // two of the three balls together, the third apart
+    /// let psi = &x[n - 3..n];
+    /// let mut gaps: Vec<f64> = [(0, 1), (0, 2), (1, 2)].iter().map(|&(i, j)| (psi[i] - psi[j]).abs()).collect();
+    /// gaps.sort_by(f64::total_cmp);
+    /// assert!(gaps[0] < 1e-6 && gaps[1] > 0.5, "{psi:?}");
+    /// ```
+    pub fn gravity_orbit_start(field: &Field, newton: &NewtonOptions) -> Option<Vec<f64>> {
+        let Field::Spatial(f) = field else { return None };
+        let mut best: Option<(f64, Vec<f64>)> = None;
+        for g in f.split_guesses() {
+            let Ok(state) = stationary(f, &g, newton) else { continue };
+            let Ok(st) = crate::analysis::stability(f, &state) else { continue };
+            if best.as_ref().is_none_or(|(a, _)| st.abscissa < *a) {
+                best = Some((st.abscissa, state.x));
+            }
+        }
+        best.map(|(_, x)| x)
+    }
+
     /// The first guess where [`Rotor::guess`] has none, for a spatial rotor with two ball
     /// planes: each plane's balls placed on its share of the unbalance
     /// ([`crate::spatial::dynamics::SpatialRotor::balanced_ball_angles`]: a plane short of its
@@ -822,7 +858,17 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
     // where the closed form has no (semi-)balanced state, the partially balanced state: from
     // each plane's balls placed on its share, a short plane's bunched (Rotor::placed_guess),
     // else every plane's balls bunched (Rotor::bunched_guess)
-    let guess = |f: &Field, _| Rotor::guess(f).or_else(|| Rotor::placed_guess(f)).or_else(|| Rotor::bunched_guess(f));
+    // under gravity across the axis with n >= 3 balls in a plane, the orbit with the balls in
+    // two groups (Rotor::gravity_orbit_start: the family's arc member is no orbit there)
+    let newton = opts.newton.clone();
+    let guess = |f: &Field, _| {
+        // no balanced orbit where no two groups give a plane's share: no start (the arc member
+        // would creep, and shooting can take its slow creep for an orbit)
+        if matches!(f, Field::Spatial(s) if s.gravity_circulation().is_some()) {
+            return None;
+        }
+        Rotor::gravity_orbit_start(f, &newton).or_else(|| Rotor::guess(f)).or_else(|| Rotor::placed_guess(f)).or_else(|| Rotor::bunched_guess(f))
+    };
     let Outcome { value: scan, mut stopped } = speed_scan_with(field_at, guess, speeds, &opts, control).map_err(|e| match e {
         crate::analysis::AnalysisError::Model(e) => e,
         e => Error::invalid("speeds", e.to_string()),
@@ -1092,6 +1138,11 @@ fn locate(
 /// A scan's failure in the user's terms: where the closed form gives no state, say which state
 /// does not exist and why.
 fn explain_failure(rotor: &Rotor, omega: f64, failure: &str) -> String {
+    if let Ok(Field::Spatial(f)) = rotor.field(omega) {
+        if let Some(why) = f.gravity_circulation() {
+            return why;
+        }
+    }
     if let (Rotor::Spatial(s), true) = (rotor, failure.starts_with("no periodic orbit found")) {
         if let Some(why) = gravity_slip(s, omega) {
             return format!("{failure}; {why}");
