@@ -408,13 +408,16 @@ pub fn campbell_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Control
         }
         analysed.push(true);
         let f = rotor.field(w)?;
-        let guess = Rotor::guess(&f);
-        let near = previous.as_ref().map(|p| p.x.clone());
+        // under gravity with n >= 3 balls in a plane: the orbit with the balls in two groups
+        // (the family's arc member is no orbit; Rotor::gravity_orbit_start), or none at all
+        let circulation = if let Field::Spatial(sf) = &f { sf.gravity_circulation() } else { None };
+        let guess = if circulation.is_some() { None } else { Rotor::gravity_orbit_start(&f, &opts).or_else(|| Rotor::guess(&f)) };
+        let near = if circulation.is_some() { None } else { previous.as_ref().map(|p| p.x.clone()) };
         let hint = previous.as_ref().and_then(|p| p.monodromy.clone());
-        let mut result = Err(match no_balance(rotor) {
+        let mut result = Err(circulation.unwrap_or_else(|| match no_balance(rotor) {
             Error::InvalidParameter { reason, .. } => reason,
             e => e.to_string(),
-        });
+        }));
         for start in [guess, near].into_iter().flatten() {
             match stationary_near(&f, &start, hint.as_deref(), &opts) {
                 Ok(s) => {
@@ -925,8 +928,15 @@ fn state_of(rotor: &Rotor, balls: Balls, omega: f64, near: Option<&StationarySta
     };
     let f = of.field(omega).map_err(reason)?;
     let opts = newton_options(f.period().is_some());
+    // under gravity with n >= 3 balls in a plane the orbit has the balls in two groups (the
+    // family's arc member is no orbit: Rotor::gravity_orbit_start), or there is none
+    if let (Balls::Free, Field::Spatial(sf)) = (balls, &f) {
+        if let Some(why) = sf.gravity_circulation() {
+            return Err(why);
+        }
+    }
     let guess = match balls {
-        Balls::Free => Rotor::guess(&f),
+        Balls::Free => Rotor::gravity_orbit_start(&f, &opts).or_else(|| Rotor::guess(&f)),
         // the locked rotor has no balls left: its balanced state is the centred rotor (or, with
         // gravity, its sag), reached by Newton from rest
         Balls::Locked => Rotor::guess(&f).or_else(|| Some(vec![0.0; f.dim()])),

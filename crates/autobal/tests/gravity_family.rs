@@ -127,3 +127,18 @@ fn an_odd_plane_with_a_share_below_one_ball_has_no_balanced_orbit() {
     assert_eq!(f4.split_guesses().len(), 3);
     assert!(f4.gravity_circulation().is_none());
 }
+
+#[test]
+fn campbell_finds_the_two_group_orbit_too() {
+    // the Campbell diagram's general route solves the same stationary state per speed: under
+    // gravity it starts from the two groups as `stability` does (main at 07fe55e found no
+    // orbit at 31 of 60 speeds from 7 to 171 rad/s on this washer, 1400 rpm among them)
+    use autobal::rotor_campbell::campbell_over_speed;
+    let rotor = Rotor::Spatial(washer("").rotor);
+    let c = campbell_over_speed(&rotor, &[60.0, 100.0, SPIN, 200.0]).unwrap();
+    assert!(c.failures.iter().all(|f| f.is_none()), "{:?}", c.failures);
+    // and where no two groups can balance, it says why rather than shooting the arc member
+    let small = Rotor::Spatial(washer_with("unbalance.mass", "0.05").rotor);
+    let c = campbell_over_speed(&small, &[400.0 * PI / 30.0]).unwrap();
+    assert!(c.failures[0].as_deref().is_some_and(|f| f.starts_with("no balanced periodic orbit")), "{:?}", c.failures);
+}
