@@ -293,12 +293,12 @@ pub fn campbell_fixed_plot_in(axes: &FixedAxes, f: &FixedCampbell) -> Plot {
     let mut series = vec![];
     let w_max = f.omega.last().copied().unwrap_or(1.0);
     let f_max = f.curves.iter().flat_map(|c| c.points.iter().map(|p| p.frequency)).fold(0.0, f64::max);
-    for (i, cv) in f.curves.iter().enumerate() {
-        let group = format!("mode {}", i + 1);
+    for cv in &f.curves {
+        let group = format!("mode {}", cv.mode);
         let p0 = &cv.points[0];
         let fwd = cv.points.iter().filter(|p| p.whirl == Whirl::Forward).count();
         let whirl = if 2 * fwd >= cv.points.len() { "forward" } else { "backward" };
-        let name = format!("mode {}: {whirl}, {} at {}", i + 1, axes.freq(p0.frequency), axes.speed(p0.omega));
+        let name = format!("mode {}: {whirl}, {} at {}", cv.mode, axes.freq(p0.frequency), axes.speed(p0.omega));
         // runs of one whirl direction and one colour; each run starts at the previous run's
         // last point so that the curve has no gaps
         let key = |p: &FixedPoint| (p.whirl, log_dec_color(p.log_decrement));
@@ -332,7 +332,7 @@ pub fn campbell_fixed_plot_in(axes: &FixedAxes, f: &FixedCampbell) -> Plot {
         let minor = cs.share < 0.5;
         let label = if j < LISTED {
             let comp = if minor { format!(", minor component, share {}", crate::num::fmt(cs.share, 2)) } else { String::new() };
-            format!("critical {}: {} (mode {}, {whirl}, {}×{comp})", j + 1, axes.speed(cs.omega), cs.curve + 1, cs.harmonic)
+            format!("critical {}: {} (mode {}, {whirl}, {}×{comp})", j + 1, axes.speed(cs.omega), cs.mode, cs.harmonic)
         } else if j == LISTED {
             format!("further critical speeds ({})", f.critical_speeds.len() - LISTED)
         } else {

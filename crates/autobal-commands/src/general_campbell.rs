@@ -184,8 +184,7 @@ pub fn campbell_json(g: &GeneralRotor, gc: &GeneralCampbell, omega_max: f64) -> 
             let modes: Vec<Value> = f
                 .curves
                 .iter()
-                .enumerate()
-                .map(|(i, cv)| {
+                .map(|cv| {
                     let pts: Vec<Value> = cv
                         .points
                         .iter()
@@ -200,7 +199,7 @@ pub fn campbell_json(g: &GeneralRotor, gc: &GeneralCampbell, omega_max: f64) -> 
                             e
                         })
                         .collect();
-                    json!({ "mode": i + 1, "line": cv.line, "points": pts })
+                    json!({ "mode": cv.mode, "line": cv.line, "points": pts })
                 })
                 .collect();
             v["fixed_axes_modes"] = json!(modes);
@@ -214,7 +213,7 @@ pub fn campbell_json(g: &GeneralRotor, gc: &GeneralCampbell, omega_max: f64) -> 
                 .iter()
                 .map(|k| {
                     let mut e =
-                        json!({ "omega": k.omega, "mode": k.curve + 1, "whirl": k.whirl, "share": k.share, "harmonic": k.harmonic, "frequency": k.frequency });
+                        json!({ "omega": k.omega, "mode": k.mode, "whirl": k.whirl, "share": k.share, "harmonic": k.harmonic, "frequency": k.frequency });
                     if let (true, Some(o)) = (g.si, e.as_object_mut()) {
                         o.insert("omega_rad_s".into(), json!(k.omega));
                         o.insert("omega_rpm".into(), json!(rpm(k.omega)));
@@ -358,7 +357,7 @@ fn crossings_table(g: &GeneralRotor, gc: &GeneralCampbell) -> String {
             "  {:>2}. {}  mode {}, {}, {}×, frequency {}{hz}, {}",
             j + 1,
             speed_text(g, k.omega),
-            k.curve + 1,
+            k.mode,
             match k.whirl {
                 autobal::spatial::stability::Whirl::Backward => "backward",
                 _ => "forward",
