@@ -167,7 +167,12 @@ enum QuantityArg {
     Verdict,
 }
 
+/// Each subcommand's arguments are built only when it is the one run (`defer`): clap built all
+/// fourteen subcommands' argument lists for any command line (`augment_subcommands`, ~15 page
+/// faults a run; docs/notes/benchmarks.md, "Round 3, session 15"); `--help` and errors build
+/// what they show.
 #[derive(Subcommand)]
+#[command(defer = true)]
 enum Command {
     /// Mass properties of the whole rotor with its balls at balance; 000's composite inertia (eqs (4), (5), (17)) where it applies
     Inertia {
@@ -766,7 +771,8 @@ fn run_map(args: &map::Args, config: Option<&std::path::Path>, out: &std::path::
 /// the figure's 3.8 MB pixmap and the PNG's buffers, which then reuse pages already touched
 /// instead of faulting in new ones: -25 % page faults for a 400 x 400 verdict map, the same
 /// instructions (docs/notes/benchmarks.md). Only in the binary's own process (a host's
-/// allocator is its own business) and only for `map` (`simulate` measured no gain).
+/// allocator is its own business) and only for `map` (`simulate` sets the trim threshold alone,
+/// [`keep_heap_top`]).
 fn keep_freed_memory() {
     #[cfg(all(target_os = "linux", target_env = "gnu"))]
     // SAFETY: `mallopt` sets two of glibc's tuning parameters (32 MiB is its largest mmap
@@ -778,10 +784,28 @@ fn keep_freed_memory() {
     }
 }
 
+/// glibc's allocator told not to give the heap's free top back to the system (only that: the
+/// mmap threshold stays glibc's own). `simulate` frees its config, its plan and the run's
+/// batches before it draws the figures; with the default 128 kB trim threshold glibc returned
+/// that top to the system and the figures' buffers faulted fresh pages in again: 392 -> 345
+/// page faults for paper 004's passage, the same instructions (docs/notes/benchmarks.md, "Round
+/// 3, session 15"). Only in the binary's own process, as [`keep_freed_memory`].
+fn keep_heap_top() {
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    // SAFETY: `mallopt` sets one of glibc's tuning parameters, with no pointer arguments;
+    // glibc takes its arena lock in `mallopt`. Called before the run's work.
+    unsafe {
+        libc::mallopt(libc::M_TRIM_THRESHOLD, 256 << 20);
+    }
+}
+
 /// `simulate`: the run planned (the config read, every option and output checked), its notes,
 /// the run under a progress bar, the result, the files written; a run stopped early (Ctrl-C)
 /// keeps its rows and is then an error naming the CSV.
 fn run_simulate(args: &simulate::Args, format: Format, control: &Control) -> Result<()> {
+    if OWN_PROCESS.load(std::sync::atomic::Ordering::Relaxed) {
+        keep_heap_top();
+    }
     let plan = args.plan()?;
     for n in plan.notes() {
         term::note(n);

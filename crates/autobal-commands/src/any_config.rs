@@ -88,6 +88,7 @@ fn ranges_general(root: &Table, source: &str, control: &Control) -> Result<(Valu
     let g = general::rotor_of(root)?;
     let omega_max = general::default_omega_max(&g, root)?;
     let r = general::analyse(&g, omega_max, general::default_samples(&g), control)?;
+    let op = general::operating(&g, root, &r, control)?;
     let why = not_defined(root);
     let model = if autobal::config::is_spatial(root) {
         autobal::reports::to_json(&autobal::reports::model_report(&autobal::config::spatial(root)?, source))
@@ -101,11 +102,12 @@ fn ranges_general(root: &Table, source: &str, control: &Control) -> Result<(Valu
         "autobalancing_ranges_are": Value::Null,
         "necessary_not_defined": format!("paper 003's necessary ranges are not defined for this config: {why}"),
         "exact": general::json(&g, &r, omega_max),
+        "operating": op.as_ref().map_or(Value::Null, general::operating_json),
     });
     let mut s = String::new();
     let _ = writeln!(s, "config: {source}");
     let _ = writeln!(s, "autobalancing ranges (necessary condition, paper 003): not defined for this config: {why}");
     let _ = writeln!(s, "exact stable speed ranges, as `autobal stability`:");
-    s.push_str(&general::table(&g, &r, omega_max));
+    s.push_str(&general::table(&g, &r, omega_max, op.as_ref()));
     Ok((v, s))
 }

@@ -148,8 +148,11 @@ pub fn json(g: &GeneralRotor, r: &RotorStability, omega_max: f64) -> Value {
 }
 
 /// The table of the general route.
-pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64) -> String {
+pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64, op: Option<&Operating>) -> String {
     let mut s = String::new();
+    if let Some(op) = op {
+        s.push_str(&operating_line(g, r, op));
+    }
     s.push_str("Exact linear stability over speed (general route)\n");
     s.push_str(&format!("analysed: {}\n", what_is_analysed(g, r)));
     if !r.has_unbalance {
@@ -157,6 +160,11 @@ pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64) -> String {
     }
     if r.family_dimension > 0 {
         s.push_str(&family_line(r, |w| speed_text(g, w)));
+    }
+    if let Rotor::Spatial(sr) = &g.rotor {
+        if (sr.gravity[0] != 0.0 || sr.gravity[1] != 0.0) && sr.planes.iter().any(|p| p.n >= 3) && r.points.iter().any(|p| p.verdict.is_some()) {
+            s.push_str("gravity breaks the family of balanced states of 3 or more balls in a plane: the orbits have each such plane's balls in two groups (the member's angles in the JSON's member_psi); at each speed the orbit of least growth rate among those found from every split and its mirror is the one analysed (docs/notes/stability.md)\n");
+        }
     }
     if let Some(f) = &r.family {
         let list = |v: &[autobal::analysis::StableRange]| {
@@ -229,7 +237,10 @@ pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64) -> String {
     }
     let neutral = r.points.iter().filter(|p| p.verdict == Some(Verdict::Neutral)).count();
     if neutral > 0 {
-        s.push_str(&format!("neutral (linearisation cannot decide) at {neutral} of {} speeds\n", r.points.len()));
+        s.push_str(&format!(
+            "neutral (the growth rate within the neutral tolerance of zero: undecided at that tolerance, not a verdict) at {neutral} of {} speeds\n",
+            r.points.len()
+        ));
     }
     s.push_str(&missing_lines(r, |w| speed_text(g, w)));
     s
@@ -343,6 +354,109 @@ pub fn default_omega_max(g: &GeneralRotor, root: &Table) -> Result<f64> {
     })
 }
 
+/// The general route's verdict at the config's operating speed (`analysis.operating_speed`,
+/// spatial configs): the stationary state solved at the speed itself (at 9 speeds across an
+/// operating range) as the scan solves each grid speed, and the scan's stable range that
+/// holds it.
+#[derive(Debug, Clone)]
+pub struct Operating {
+    /// The operating speed `[lo, hi]` in the rotor's units (rad/s, or Ω).
+    pub omega: [f64; 2],
+    /// The speeds solved there (one, or 9 across a range).
+    pub points: Vec<autobal::rotor_stability::SpeedPoint>,
+    /// The scan's stable range that holds the whole operating speed, if one does.
+    pub range: Option<autobal::analysis::StableRange>,
+}
+
+/// [`Operating`] for a config with `analysis.operating_speed`, else `None`.
+pub fn operating(g: &GeneralRotor, root: &Table, r: &RotorStability, control: &Control) -> Result<Option<Operating>> {
+    if !autobal::config::is_spatial(root) {
+        return Ok(None);
+    }
+    let Some([lo, hi]) = autobal::config::spatial(root)?.analysis.operating_speed else { return Ok(None) };
+    let omega = [lo * g.omega0, hi * g.omega0];
+    let speeds: Vec<f64> = if omega[0] == omega[1] { vec![omega[0]] } else { (0..9).map(|i| omega[0] + (omega[1] - omega[0]) * i as f64 / 8.0).collect() };
+    let scan = autobal::rotor_stability::stability_over_speed_with(&g.rotor, &speeds, control)?;
+    if let Some(why) = scan.stopped {
+        anyhow::bail!("{why}: the verdict at the operating speed stopped after {} of {} speeds; nothing is printed", scan.value.points.len(), speeds.len());
+    }
+    let scan = scan.value;
+    let range = r.stable_ranges.iter().find(|st| st.from <= omega[0] && omega[1] <= st.to).cloned();
+    Ok(Some(Operating { omega, points: scan.points, range }))
+}
+
+/// [`Operating`] as JSON: `omega` (`[lo, hi]`, the rotor's units), `stable` (every speed
+/// solved there stable), `verdict` (`stable`, `unstable` where one speed is, else `neutral`;
+/// `null` where a speed has no state), `max_growth_rate` (the largest `abscissa` there; `null` where no
+/// state was found), `stable_range` (`{from, to}` of the scan, or `null`), `points` (as the
+/// scan's).
+pub fn operating_json(op: &Operating) -> Value {
+    let solved = op.points.iter().all(|p| p.verdict.is_some());
+    json!({
+        "omega": op.omega,
+        "stable": solved && op.points.iter().all(|p| p.verdict == Some(Verdict::Stable)),
+        "verdict": if !solved {
+            Value::Null
+        } else if op.points.iter().all(|p| p.verdict == Some(Verdict::Stable)) {
+            json!("stable")
+        } else if op.points.iter().any(|p| p.verdict == Some(Verdict::Unstable)) {
+            json!("unstable")
+        } else {
+            json!("neutral")
+        },
+        "max_growth_rate": if solved { json!(op.points.iter().filter_map(|p| p.abscissa).fold(f64::NEG_INFINITY, f64::max)) } else { Value::Null },
+        "stable_range": op.range.as_ref().map_or(Value::Null, |st| json!({"from": st.from, "to": st.to})),
+        "points": op.points,
+    })
+}
+
+/// The first line of the general route's table at the operating speed: STABLE only where
+/// every speed solved there is stable (exact: the eigenvalues or Floquet multipliers of the
+/// state found), with the scan's stable range that holds it.
+pub fn operating_line(g: &GeneralRotor, r: &RotorStability, op: &Operating) -> String {
+    let at = if op.omega[0] == op.omega[1] { speed_text(g, op.omega[0]) } else { format!("{} to {}", speed_text(g, op.omega[0]), speed_text(g, op.omega[1])) };
+    if let Some(p) = op.points.iter().find(|p| p.verdict.is_none()) {
+        return format!("operating speed {at}: no verdict: {}\n", p.failure.as_deref().unwrap_or("no stationary state found"));
+    }
+    let worst = op.points.iter().filter_map(|p| p.abscissa).fold(f64::NEG_INFINITY, f64::max);
+    let per = if g.si { " 1/s" } else { " (per unit τ)" };
+    let how = if op.points.iter().any(|p| p.verdict.is_some()) && g.rotor.is_periodic() { "Floquet multipliers" } else { "eigenvalues" };
+    let mut kinds: Vec<&str> = op.points.iter().filter_map(|p| p.state.map(|k| k.name())).collect();
+    kinds.dedup();
+    let state = if kinds.is_empty() { "stationary".to_string() } else { kinds.join(" then ") };
+    let member = if op.points.iter().any(|p| p.family_dimension > 0) { ", the member reached from the closed form" } else { "" };
+    let rate = format!("largest growth rate {}{per}", fmt_num(worst));
+    if op.points.iter().all(|p| p.verdict == Some(Verdict::Stable)) {
+        let range = op.range.as_ref().map_or_else(
+            // stable at the speed itself, but no grid speed of the scan round it was: the grid
+            // is too coarse for the window the operating speed sits in
+            || " (the scan's grid found no stable range round it: a narrower window than its spacing; more --samples resolve it)".to_string(),
+            |st| {
+                let from = range_end(r, st.from, st.from_is_boundary, false, |w| speed_text(g, w));
+                let to = range_end(r, st.to, st.to_is_boundary, true, |w| speed_text(g, w));
+                format!(" in the stable range {from} to {to}")
+            },
+        );
+        format!("operating speed {at}: the {state} state is STABLE (exact, {how}{member}){range}; {rate}\n")
+    } else if op.points.iter().all(|p| p.verdict != Some(Verdict::Unstable)) {
+        // stable or neutral everywhere, neutral somewhere: the growth rate within the neutral
+        // tolerance of zero (a tolerance-dependent outcome, not a verdict)
+        format!("operating speed {at}: the {state} state is NEUTRAL (its growth rate within the neutral tolerance of zero: undecided at that tolerance, not a verdict; {how}{member}); {rate}\n")
+    } else {
+        // the scan's stable range nearest to the operating speed, as the closed-form route says
+        let dist = |st: &&autobal::analysis::StableRange| if st.to < op.omega[0] { op.omega[0] - st.to } else { (st.from - op.omega[1]).max(0.0) };
+        let near = r.stable_ranges.iter().min_by(|a, b| dist(a).total_cmp(&dist(b))).map_or_else(
+            || "no stable range on the axis".to_string(),
+            |st| {
+                let from = range_end(r, st.from, st.from_is_boundary, false, |w| speed_text(g, w));
+                let to = range_end(r, st.to, st.to_is_boundary, true, |w| speed_text(g, w));
+                format!("nearest stable range {from} to {to}")
+            },
+        );
+        format!("operating speed {at}: the {state} state is NOT STABLE (exact, {how}{member}); {rate}; {near}\n")
+    }
+}
+
 /// The range `a to b` (or `a`) of the points' residuals (fraction of the unbalance,
 /// [`autobal::rotor_stability::SpeedPoint::residual`]), to 3 significant digits.
 pub(crate) fn residual_range(points: &[&autobal::rotor_stability::SpeedPoint]) -> String {
@@ -373,7 +487,7 @@ pub(crate) fn residual_text(r: &autobal::rotor_stability::RotorStability, speed:
         "the balls do not cancel the unbalance exactly"
     };
     format!(
-        "balanced to a residual of {} {} (above the exact tolerance 1e-6; on a periodic orbit up to 0.1 is balanced, at an equilibrium only 1e-6) at {} of {} speeds, {} to {} ({why})\n",
+        "balanced to a residual of {} {} (above the exact tolerance 1e-6; on a periodic orbit up to 0.05 is balanced, as in `simulate`, at an equilibrium only 1e-6) at {} of {} speeds, {} to {} ({why})\n",
         residual_range(&with),
         r.residual_scale.words(),
         with.len(),
@@ -461,7 +575,7 @@ mod tests {
         let psi = &r.member_psi;
         let gap = |a: f64, b: f64| (a - b).rem_euclid(std::f64::consts::TAU).min((b - a).rem_euclid(std::f64::consts::TAU));
         assert!(gap(psi[0], psi[1]) > 1e-3 && gap(psi[1], psi[2]) > 1e-3, "{psi:?}");
-        let t = table(&g, &r, 600.0);
+        let t = table(&g, &r, 600.0, None);
         let line = t.lines().find(|l| l.starts_with("the balanced states form a family")).unwrap();
         assert!(line.contains(&format!("at {}", speed_text(&g, p.omega))), "{line}");
         let named = psi.iter().map(|a| fmt_num(round(a.rem_euclid(std::f64::consts::TAU)))).collect::<Vec<_>>().join(", ");
@@ -480,7 +594,7 @@ mod tests {
         assert!(i > 1);
         r.points[i - 1].verdict = None;
         r.stable_ranges[0] = autobal::analysis::StableRange { from: r.points[i].omega, from_is_boundary: false, ..st };
-        let t = table(&g, &r, 600.0);
+        let t = table(&g, &r, 600.0, None);
         let want = format!(
             "stable: {} (a grid speed: no stationary state found at {} below it)",
             speed_text(&g, r.points[i].omega),
@@ -507,7 +621,7 @@ mod tests {
             r.points[j].failure = Some(why.into());
         }
         r.stable_ranges[0] = autobal::analysis::StableRange { from: r.points[i].omega, from_is_boundary: false, ..st };
-        let t = table(&g, &r, 600.0);
+        let t = table(&g, &r, 600.0, None);
         let end = format!(
             "stable: {} (a grid speed: not analysed (below the periodic-orbit floor) at {} below it)",
             speed_text(&g, r.points[i].omega),
@@ -532,11 +646,11 @@ mod tests {
         let g = GeneralRotor { rotor: Rotor::Planar(PlanarRotor { n: 2, s2: 0.0, ..PlanarRotor::paper() }), si: true, omega0: 1.0 };
         let mut r = analyse(&g, 600.0, 30, &Control::default()).unwrap();
         let st = r.stable_ranges.first().cloned().expect("a stable range above the critical speed");
-        assert!(table(&g, &r, 600.0).contains("\nstable: "), "{}", table(&g, &r, 600.0));
+        assert!(table(&g, &r, 600.0, None).contains("\nstable: "), "{}", table(&g, &r, 600.0, None));
         for p in r.points.iter_mut().filter(|p| p.omega >= st.from && p.omega <= st.to) {
             p.state = Some(StateKind::NotBalanced);
         }
-        let t = table(&g, &r, 600.0);
+        let t = table(&g, &r, 600.0, None);
         assert!(!t.contains("\nstable: "), "{t}");
         assert!(t.contains("\nnot balanced, stable: "), "{t}");
         assert!(t.contains("\nnot balanced (the balls leave a residual of "), "{t}");

@@ -296,7 +296,10 @@ pub fn stability_table(cfg: &LinearRotorConfig, r: &RotorStability, red: &Option
     }
     let neutral = r.points.iter().filter(|p| p.verdict == Some(Verdict::Neutral)).count();
     if neutral > 0 {
-        s.push_str(&format!("neutral (linearisation cannot decide) at {neutral} of {} speeds\n", r.points.len()));
+        s.push_str(&format!(
+            "neutral (the growth rate within the neutral tolerance of zero: undecided at that tolerance, not a verdict) at {neutral} of {} speeds\n",
+            r.points.len()
+        ));
     }
     s.push_str(&crate::general::missing_lines(r, speed_text));
     Ok(s)

@@ -21,6 +21,11 @@ use std::path::{Path, PathBuf};
 /// no allocation per sample (a `Sample` with its own heap `Vec` of ball angles each took 120
 /// bytes and a `malloc` a sample for a passage's two balls, 64 bytes flat), no growth while the
 /// run goes (a run of up to `target` samples keeps every one of them).
+///
+/// [`Envelope::for_figures`] keeps only what the figures draw (`t, ω, amplitude, ψ_1 … ψ_n`,
+/// [`Envelope::rows`] with [`Envelope::amplitude_at`] and [`Envelope::psi_at`]): `simulate`'s
+/// rows, whose every column is in the CSV; 5 floats a two-ball sample instead of 8, and as many
+/// fewer pages first touched (~30 of the passage's page faults).
 pub struct Envelope {
     bucket: usize,
     /// Samples of the current bucket so far.
@@ -30,8 +35,11 @@ pub struct Envelope {
     hi: (usize, Sample),
     /// Samples to reserve room for at the first one (when its width is known).
     reserve: usize,
-    /// Floats a kept sample: `ROW_PSI` + its ball count (0 before the first sample).
+    /// Floats a kept sample: `ROW_PSI` (or `FIG_PSI`) + its ball count (0 before the first
+    /// sample).
     width: usize,
+    /// Whether the rows are whole samples (`ROW_*`) or what the figures draw (`FIG_*`).
+    full: bool,
     /// The kept samples' rows, one after the other.
     data: Vec<f64>,
 }
@@ -44,6 +52,11 @@ pub const ROW_OMEGA: usize = 1;
 pub const ROW_AMPLITUDE: usize = 5;
 /// … the first ball angle (rad); the others follow.
 pub const ROW_PSI: usize = 6;
+/// A figures' row ([`Envelope::for_figures`]): time, speed as in a whole row, then the whirl
+/// radius of C (m) …
+const FIG_AMPLITUDE: usize = 2;
+/// … and the ball angles (rad).
+const FIG_PSI: usize = 3;
 
 /// `dst` becomes a copy of `src`, reusing `dst`'s ball angles' allocation (every field named:
 /// a field added to `Sample` fails to compile here rather than be left out).
@@ -62,25 +75,54 @@ impl Envelope {
         // a bucket; at most the target's worth reserved ahead (a run longer than expected grows)
         let reserve = if bucket == 1 { expected + 2 } else { 2 * expected.div_ceil(bucket) + 2 };
         let blank = || (0, Sample { t: 0.0, omega: 0.0, theta: 0.0, x: 0.0, y: 0.0, amplitude: 0.0, psi: vec![] });
-        Envelope { bucket, count: 0, lo: blank(), hi: blank(), reserve: reserve.min(2 * target.max(1) + 2), width: 0, data: vec![] }
+        Envelope { bucket, count: 0, lo: blank(), hi: blank(), reserve: reserve.min(2 * target.max(1) + 2), width: 0, full: true, data: vec![] }
+    }
+
+    /// [`Envelope::new`] keeping, of each kept sample, only what the figures draw: `t, ω,
+    /// amplitude, ψ_1 … ψ_n` ([`Envelope::kept`] is not for it: θ, X and Y are not kept).
+    pub fn for_figures(expected: usize, target: usize) -> Self {
+        Envelope { full: false, ..Self::new(expected, target) }
+    }
+
+    /// Where a kept row has the whirl radius of C ([`ROW_AMPLITUDE`] for whole samples).
+    pub fn amplitude_at(&self) -> usize {
+        if self.full {
+            ROW_AMPLITUDE
+        } else {
+            FIG_AMPLITUDE
+        }
+    }
+
+    /// Where a kept row has its first ball angle ([`ROW_PSI`] for whole samples).
+    pub fn psi_at(&self) -> usize {
+        if self.full {
+            ROW_PSI
+        } else {
+            FIG_PSI
+        }
     }
 
     /// Keep `s`: its row appended to `data` (`width` set, and room for `reserve` rows made, at
     /// the first).
-    fn keep(data: &mut Vec<f64>, width: &mut usize, reserve: usize, s: &Sample) {
+    fn keep(data: &mut Vec<f64>, width: &mut usize, reserve: usize, full: bool, s: &Sample) {
+        let head = if full { ROW_PSI } else { FIG_PSI };
         if *width == 0 {
-            *width = ROW_PSI + s.psi.len();
+            *width = head + s.psi.len();
             data.reserve_exact(reserve * *width);
         }
-        debug_assert_eq!(*width, ROW_PSI + s.psi.len(), "one ball count a run");
+        debug_assert_eq!(*width, head + s.psi.len(), "one ball count a run");
         let Sample { t, omega, theta, x, y, amplitude, psi } = s;
-        data.extend_from_slice(&[*t, *omega, *theta, *x, *y, *amplitude]);
+        if full {
+            data.extend_from_slice(&[*t, *omega, *theta, *x, *y, *amplitude]);
+        } else {
+            data.extend_from_slice(&[*t, *omega, *amplitude]);
+        }
         data.extend_from_slice(psi);
     }
 
     pub fn push(&mut self, s: &Sample) {
         if self.bucket == 1 {
-            Self::keep(&mut self.data, &mut self.width, self.reserve, s);
+            Self::keep(&mut self.data, &mut self.width, self.reserve, self.full, s);
             return;
         }
         let k = self.count;
@@ -104,15 +146,16 @@ impl Envelope {
             return;
         }
         let (a, b) = if self.lo.0 <= self.hi.0 { (&self.lo, &self.hi) } else { (&self.hi, &self.lo) };
-        Self::keep(&mut self.data, &mut self.width, self.reserve, &a.1);
+        Self::keep(&mut self.data, &mut self.width, self.reserve, self.full, &a.1);
         if b.0 != a.0 {
-            Self::keep(&mut self.data, &mut self.width, self.reserve, &b.1);
+            Self::keep(&mut self.data, &mut self.width, self.reserve, self.full, &b.1);
         }
         self.count = 0;
     }
 
     /// The kept samples' rows in their order: `t, ω, θ, X, Y, amplitude, ψ_1 … ψ_n` (the
-    /// `ROW_*` indices).
+    /// `ROW_*` indices), or `t, ω, amplitude, ψ_1 … ψ_n` for [`Envelope::for_figures`]
+    /// ([`Envelope::amplitude_at`], [`Envelope::psi_at`]).
     pub fn rows(&self) -> std::slice::ChunksExact<'_, f64> {
         self.data.chunks_exact(self.width.max(1))
     }
@@ -128,8 +171,10 @@ impl Envelope {
     }
 
     /// The kept samples as `Sample`s (each with its own ball angles' `Vec`: for the report's
-    /// figures, not the run's hot path).
+    /// figures, not the run's hot path). Only of an envelope of whole samples
+    /// ([`Envelope::new`]).
     pub fn kept(&self) -> Vec<Sample> {
+        debug_assert!(self.full, "an envelope for figures keeps no θ, X, Y");
         self.rows().map(|r| Sample { t: r[0], omega: r[1], theta: r[2], x: r[3], y: r[4], amplitude: r[5], psi: r[ROW_PSI..].to_vec() }).collect()
     }
 }
@@ -290,7 +335,7 @@ pub fn run_to_csv(
 pub fn run_rows(cfg: &PlanarConfig, rows: &mut (dyn FnMut(&[f64]) -> Result<()> + Send), control: &Control) -> Result<(Summary, Envelope, f64)> {
     let width = 5 + cfg.rotor.n;
     let expected = (cfg.settings.t_end / cfg.settings.dt) as usize + 1;
-    let mut env = Envelope::new(expected, 6000);
+    let mut env = Envelope::for_figures(expected, 6000);
     let mut count = 0u64;
     let (tx, rx) = std::sync::mpsc::sync_channel::<Vec<f64>>(16);
     // the emptied batches, back to the run's thread (a send that finds the channel full or the
@@ -487,7 +532,8 @@ fn plots_with(cfg: &PlanarConfig, env: &Envelope, title: &str, columns: bool) ->
         }
     }
     let k = || env.rows();
-    let (t, om, amp) = (|r: &[f64]| r[ROW_T], |r: &[f64]| r[ROW_OMEGA], |r: &[f64]| r[ROW_AMPLITUDE]);
+    let (ia, ip) = (env.amplitude_at(), env.psi_at());
+    let (t, om, amp) = (|r: &[f64]| r[ROW_T], |r: &[f64]| r[ROW_OMEGA], move |r: &[f64]| r[ia]);
     let t_last = env.rows().last().map_or(1.0, t);
     let p = &cfg.rotor;
     let mm = 1e3;
@@ -553,7 +599,7 @@ fn plots_with(cfg: &PlanarConfig, env: &Envelope, title: &str, columns: bool) ->
             Series::new(
                 format!("ψ{}", j + 1),
                 {
-                    let angles = k().map(|r| (t(r), r[ROW_PSI + j]));
+                    let angles = k().map(|r| (t(r), r[ip + j]));
                     if columns {
                         wrapped_degrees_into(&mut wrapped, angles);
                         crate::plot::line_columns(wrapped.iter().copied())
@@ -662,6 +708,17 @@ mod tests {
             let mut env = Envelope::new(expected, target);
             samples.iter().for_each(|s| env.push(s));
             env.flush();
+            // the figures' envelope keeps the same samples, their t, ω, amplitude and ψ bit for bit
+            let mut fig = Envelope::for_figures(expected, target);
+            samples.iter().for_each(|s| fig.push(s));
+            fig.flush();
+            assert_eq!(fig.len(), env.len(), "case {case}");
+            for (k, (f, w)) in fig.rows().zip(env.rows()).enumerate() {
+                let whole: Vec<u64> = [w[ROW_T], w[ROW_OMEGA], w[ROW_AMPLITUDE]].iter().chain(&w[ROW_PSI..]).map(|v| v.to_bits()).collect();
+                let narrow: Vec<u64> = [f[ROW_T], f[ROW_OMEGA], f[fig.amplitude_at()]].iter().chain(&f[fig.psi_at()..]).map(|v| v.to_bits()).collect();
+                assert_eq!(narrow, whole, "case {case}, kept {k}");
+                assert_eq!(f.len(), w.len() - 3, "case {case}: θ, X, Y not kept");
+            }
             let want = reference(&samples, expected, target);
             let kept = env.kept();
             assert_eq!(kept.len(), want.len(), "case {case}: expected {expected}, target {target}, {count} samples");
@@ -712,6 +769,36 @@ mod tests {
             assert!(a.iter().map(|v| v.to_bits()).eq(b.iter().map(|v| v.to_bits())), "row {k}");
         }
         assert_eq!(env.len(), want.len(), "a run shorter than the envelope's target keeps every sample");
+    }
+
+    /// The four figures of a passage are the same SVG text from the figures' envelope (what
+    /// `run_rows` keeps) as from an envelope of whole samples, both as `simulate` draws them
+    /// (from pixel columns) and as the report and Python do (every sample): the figures read the
+    /// amplitude and the ball angles where each envelope keeps them. The passage is cut to 60 s
+    /// (1 201 samples: the balls slip and wrap, the whirl grows) to keep the test short.
+    #[test]
+    fn the_figures_envelope_draws_what_the_whole_one_draws() {
+        let cfg = crate::config::load_planar(None, &["drive.t_end=60".to_string()]).unwrap();
+        let expected = (cfg.settings.t_end / cfg.settings.dt) as usize + 1;
+        let (mut whole, mut fig) = (Envelope::new(expected, 6000), Envelope::for_figures(expected, 6000));
+        simulate_with(&cfg.rotor, &cfg.drive, &cfg.settings, &Control::new(), |s| {
+            whole.push(s);
+            fig.push(s);
+            true
+        })
+        .unwrap();
+        whole.flush();
+        fig.flush();
+        assert!(fig.len() > 1000, "{} samples", fig.len());
+        for columns in [true, false] {
+            let a = plots_with(&cfg, &whole, "Passage", columns);
+            let b = plots_with(&cfg, &fig, "Passage", columns);
+            assert_eq!(a.len(), 4);
+            for ((na, pa), (nb, pb)) in a.iter().zip(&b) {
+                assert_eq!(na, nb);
+                assert!(pa.to_svg() == pb.to_svg(), "{na} (columns: {columns})");
+            }
+        }
     }
 
     /// The CSV text of a sink is the rows' values as `Csv`'s `Display` text, comma-joined, a line

@@ -265,7 +265,6 @@ fn solve(c: &CellRotor, w: f64, previous: Option<&StationaryState>, closed_form:
     if periodic && c.rotor.below_periodic_floor(w).is_some() {
         return (GeneralCell::NOT_ANALYSED, None);
     }
-    let guess = if closed_form { Rotor::guess(&field) } else { None };
     let previous = previous.filter(|p| p.x.len() == field.dim());
     let hint = previous.and_then(|p| p.monodromy.as_deref());
     let mut opts = NewtonOptions::default();
@@ -275,9 +274,19 @@ fn solve(c: &CellRotor, w: f64, previous: Option<&StationaryState>, closed_form:
         opts.max_iterations = 20;
         opts.rtol = 1e-10;
     }
+    // the closed form, or under gravity with n >= 3 balls in a plane the orbit with the balls
+    // in two groups (Rotor::gravity_orbit_start, as the speed scan): built only when tried
+    let closed = || if closed_form { Rotor::gravity_orbit_start(&field, &opts).or_else(|| Rotor::guess(&field)) } else { None };
     let near = previous.map(|p| p.x.as_slice());
-    let starts = if periodic { [(near, true), (guess.as_deref(), false)] } else { [(guess.as_deref(), false), (near, true)] };
-    for (start, continued) in starts {
+    let order = if periodic { [true, false] } else { [false, true] };
+    for continued in order {
+        let owned;
+        let start = if continued {
+            near
+        } else {
+            owned = closed();
+            owned.as_deref()
+        };
         let Some(start) = start else { continue };
         let Ok(state) = stationary_near(&field, start, hint, &opts) else { continue };
         let Ok(st) = stability(&field, &state) else { continue };

@@ -147,6 +147,42 @@ impl Rotor {
         }
     }
 
+    /// The start of a spatial rotor's balanced periodic orbit **under gravity across the axis
+    /// with `n ≥ 3` balls in a plane**, where the family of balanced states breaks into
+    /// isolated orbits with each such plane's balls in two bunched groups
+    /// ([`SpatialField::split_guesses`], why there): the orbit is found from every placement
+    /// of the groups and the one of least growth rate (its largest Floquet exponent's real part)
+    /// is returned: the orbit a run settles on where one of them is stable. `None` where the
+    /// rotor is not of that kind or no placement reaches an orbit (then [`Rotor::guess`]).
+    ///
+    /// ```
+    /// use autobal::rotor_stability::Rotor;
+    /// use autobal::analysis::NewtonOptions;
+    /// let mut root = autobal::config::parse(include_str!("../../../examples/washing_machine.toml"), "washer").unwrap();
+    /// autobal::config::set(&mut root, "spatial.gravity", autobal::config::parse_value("[0.0, -9.81, 0.0]")).unwrap();
+    /// let rotor = Rotor::Spatial(autobal::config::spatial_simulation(&root).unwrap().rotor);
+    /// let field = rotor.field(146.61).unwrap(); // 1400 rpm
+    /// let x = Rotor::gravity_orbit_start(&field, &NewtonOptions::default()).unwrap();
+    /// let n = x.len() / 2;
+    /// // two of the three balls together, the third apart
+    /// let psi = &x[n - 3..n];
+    /// let mut gaps: Vec<f64> = [(0, 1), (0, 2), (1, 2)].iter().map(|&(i, j)| (psi[i] - psi[j]).abs()).collect();
+    /// gaps.sort_by(f64::total_cmp);
+    /// assert!(gaps[0] < 1e-6 && gaps[1] > 0.5, "{psi:?}");
+    /// ```
+    pub fn gravity_orbit_start(field: &Field, newton: &NewtonOptions) -> Option<Vec<f64>> {
+        let Field::Spatial(f) = field else { return None };
+        let mut best: Option<(f64, Vec<f64>)> = None;
+        for g in f.split_guesses() {
+            let Ok(state) = stationary(f, &g, newton) else { continue };
+            let Ok(st) = crate::analysis::stability(f, &state) else { continue };
+            if best.as_ref().is_none_or(|(a, _)| st.abscissa < *a) {
+                best = Some((st.abscissa, state.x));
+            }
+        }
+        best.map(|(_, x)| x)
+    }
+
     /// The first guess where [`Rotor::guess`] has none, for a spatial rotor with two ball
     /// planes: each plane's balls placed on its share of the unbalance
     /// ([`crate::spatial::dynamics::SpatialRotor::balanced_ball_angles`]: a plane short of its
@@ -259,13 +295,16 @@ impl Rotor {
     /// ([`Rotor::residual`]: on a periodic orbit the mean over the revolution, the orbit's 64
     /// samples of [`crate::analysis::orbit_samples`], never its start alone, where the sag and
     /// the swing read as a whirl). Planar: E on the axis (residual at most `1e-6`), balanced
-    /// or semi-balanced; else partially balanced with the balls bunched; else, on a periodic
-    /// orbit only, (semi-)balanced to the residual while it is at most a tenth; not balanced.
+    /// or semi-balanced; else partially balanced with the balls bunched (with the race centred,
+    /// only with the residual unbalance below 1: bunched on the unbalance's side, above 1, the
+    /// balls add to it: not balanced); else, on a periodic
+    /// orbit only, (semi-)balanced to the residual while it is at most 5 % (the simulation's
+    /// threshold, `BALANCE_TOLERANCE`); not balanced.
     /// Spatial: residual at most `1e-6`, balanced; else partially balanced where no balanced
     /// state exists (decided in closed form, whatever the balls' bunching: the capacity short
     /// for the static unbalance, or one ball plane against a nonzero couple about it,
     /// `spatial_can_balance`); else, on a periodic orbit, balanced (to the residual, which it
-    /// carries) while the residual is at most a tenth of the unbalance (the swing's second
+    /// carries) while the residual is at most 5 % of the unbalance (the swing's second
     /// order: on examples/spatial_two_plane.toml 1e-6..1e-3 below ~600 rad/s); else not
     /// balanced (at an equilibrium a balanced state's residual is Newton's: any residual above
     /// `1e-6` there is not balanced). Linear: [`crate::linear_rotor::partial::state_kind`] (the race
@@ -288,13 +327,20 @@ impl Rotor {
                 // (its once-per-revolution whirl in fixed axes: the orbit's start alone reads
                 // the swing as a whirl); the balls bunched: partially balanced; else, on a
                 // periodic orbit only (an equilibrium has no swing to leave a residual),
-                // (semi-)balanced to the residual while it is at most a tenth; not balanced
+                // (semi-)balanced to the residual while it is at most 5 %; not balanced
                 let balanced = if p.s2 == 0.0 { StateKind::Balanced } else { StateKind::SemiBalanced };
                 if r <= BALANCED_EXACTLY {
                     balanced
-                } else if bunched(&ball_angles(field, x)) {
+                } else if bunched(&ball_angles(field, x)) && (p.s2 != 0.0 || r < 1.0) {
+                    // partially: the balls reduce the unbalance; with the race centred the
+                    // residual is the residual unbalance itself, and bunched on the unbalance's
+                    // side (below the critical speed, residual > 1) they add to it: not
+                    // balanced. (An eccentric race's residual is E's offset against E's offset
+                    // without the balls' resultant, not an unbalance: paper 004's bunched state
+                    // below its semi-balanced speed reads 1.91 at 200 rad/s; kept partially
+                    // balanced, the state paper 004's balls settle in there.)
                     StateKind::PartiallyBalanced
-                } else if field.period().is_some() && r <= NOT_REDUCED {
+                } else if field.period().is_some() && r <= BALANCE_TOLERANCE {
                     balanced
                 } else {
                     StateKind::NotBalanced
@@ -306,7 +352,7 @@ impl Rotor {
                 // Whether the balls can cancel the unbalance at all is decided in closed form
                 // (capacity, one plane against a couple about it), whatever their bunching;
                 // where they can, a residual above 1e-6 is balanced only on a periodic orbit
-                // (the swing's second order, at most NOT_REDUCED; an equilibrium has no swing).
+                // (the swing's second order, at most BALANCE_TOLERANCE; an equilibrium has no swing).
                 // The swing's own estimate Σ m_b R (1 − |⟨e^{iψ}⟩|) / u does not bound it: the
                 // residual is 60 to 740 times it on the gravity cases of
                 // tests/state_kind_orbits.rs (independent of g: both second order), while the
@@ -315,7 +361,7 @@ impl Rotor {
                     StateKind::Balanced
                 } else if !spatial_can_balance(s) {
                     StateKind::PartiallyBalanced
-                } else if field.period().is_some() && r <= NOT_REDUCED {
+                } else if field.period().is_some() && r <= BALANCE_TOLERANCE {
                     StateKind::Balanced
                 } else {
                     StateKind::NotBalanced
@@ -630,7 +676,7 @@ impl ResidualScale {
 pub enum StateKind {
     /// The balls cancel the unbalance: the rotor turns about its axis. Spatial: the residual
     /// [`Rotor::residual`] at most `1e-6` of the unbalance, or, on a periodic orbit only and
-    /// where a balanced state exists, at most a tenth of it (the balls swing and cancel the
+    /// where a balanced state exists, at most 5 % of it (the balls swing and cancel the
     /// unbalance on average but for the swing's second order, ∝ g² under gravity;
     /// [`SpeedPoint::residual`] carries it). Planar: the race centred, `s2 = 0`, E on the axis.
     /// Linear: the race-whirl rule of [`crate::linear_rotor::partial::state_kind`] (no plane's
@@ -641,7 +687,11 @@ pub enum StateKind {
     SemiBalanced,
     /// The balls cannot cancel the unbalance (capacity short, or below the speed where the
     /// semi-balanced state exists): a residual unbalance, a plane's balls bunched at its limit
-    /// (spatial: or one plane against a couple about it, which no placement cancels).
+    /// (spatial: or one plane against a couple about it, which no placement cancels), the
+    /// residual unbalance below 1 where the residual is the unbalance itself (the planar rotor
+    /// with its race centred: a state with the balls on the unbalance's side, residual above 1,
+    /// is [`StateKind::NotBalanced`]; the spatial residual, static and couple over the larger,
+    /// exceeds 1 with a couple about a plane that no ball there cancels, so it keeps the rule).
     PartiallyBalanced,
     /// A state in which the balls do not balance although no plane's balls are bunched and
     /// their capacity could: at an equilibrium the race whirls and each ball sits on the line
@@ -651,12 +701,12 @@ pub enum StateKind {
     /// balanced one; Newton can reach one from a poor start, and it is named, never called
     /// balanced ([`state_kind`](Rotor::state_kind)). On a periodic orbit (gravity, supports
     /// that differ by direction) the same states swing, and at low speed under gravity the
-    /// balanced orbit's own swing can leave more than a tenth of the unbalance (the spatial
+    /// balanced orbit's own swing can leave more than 5 % of the unbalance (the spatial
     /// two-plane example at 131 rad/s: 0.30): not balanced either. Recognised by the planar
     /// rotor's E off the axis with the balls not bunched, the linear rotor's race whirling (mean
     /// over an orbit) at more than a tenth of its whirl without the balls' resultant
-    /// ([`crate::linear_rotor::partial::state_kind`]), the spatial rotor's residual above a
-    /// tenth of the unbalance (at an equilibrium above `1e-6`) where a balanced state exists.
+    /// ([`crate::linear_rotor::partial::state_kind`]), the spatial rotor's residual above 5 %
+    /// of the unbalance (at an equilibrium above `1e-6`) where a balanced state exists.
     NotBalanced,
 }
 
@@ -808,7 +858,17 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
     // where the closed form has no (semi-)balanced state, the partially balanced state: from
     // each plane's balls placed on its share, a short plane's bunched (Rotor::placed_guess),
     // else every plane's balls bunched (Rotor::bunched_guess)
-    let guess = |f: &Field, _| Rotor::guess(f).or_else(|| Rotor::placed_guess(f)).or_else(|| Rotor::bunched_guess(f));
+    // under gravity across the axis with n >= 3 balls in a plane, the orbit with the balls in
+    // two groups (Rotor::gravity_orbit_start: the family's arc member is no orbit there)
+    let newton = opts.newton.clone();
+    let guess = |f: &Field, _| {
+        // no balanced orbit where no two groups give a plane's share: no start (the arc member
+        // would creep, and shooting can take its slow creep for an orbit)
+        if matches!(f, Field::Spatial(s) if s.gravity_circulation().is_some()) {
+            return None;
+        }
+        Rotor::gravity_orbit_start(f, &newton).or_else(|| Rotor::guess(f)).or_else(|| Rotor::placed_guess(f)).or_else(|| Rotor::bunched_guess(f))
+    };
     let Outcome { value: scan, mut stopped } = speed_scan_with(field_at, guess, speeds, &opts, control).map_err(|e| match e {
         crate::analysis::AnalysisError::Model(e) => e,
         e => Error::invalid("speeds", e.to_string()),
@@ -1078,6 +1138,11 @@ fn locate(
 /// A scan's failure in the user's terms: where the closed form gives no state, say which state
 /// does not exist and why.
 fn explain_failure(rotor: &Rotor, omega: f64, failure: &str) -> String {
+    if let Ok(Field::Spatial(f)) = rotor.field(omega) {
+        if let Some(why) = f.gravity_circulation() {
+            return why;
+        }
+    }
     if let (Rotor::Spatial(s), true) = (rotor, failure.starts_with("no periodic orbit found")) {
         if let Some(why) = gravity_slip(s, omega) {
             return format!("{failure}; {why}");
@@ -1232,13 +1297,16 @@ pub fn below_floor_words(w: &str, floor: &str) -> String {
 /// 1e-10) leave ~1e-10 of the unbalance, the old classifier's tolerance was this.
 const BALANCED_EXACTLY: f64 = 1e-6;
 
-/// A state whose balls are not bunched is balanced (to the residual it carries) while the
-/// residual is at most this fraction of the unbalance, and not balanced above it where the
-/// balls' capacity could cancel it: the linear rotor's rule on the whirl
-/// ([`crate::linear_rotor::partial::state_kind`]), the whirl of a rigid rotor being linear in
-/// its residual unbalance. Two balls opposite each other leave the whole unbalance (1); a
-/// balanced orbit's swing leaves its second order (<= 1e-4 on examples/spatial_two_plane.toml).
-const NOT_REDUCED: f64 = crate::linear_rotor::partial::NOT_REDUCED;
+/// A state on a periodic orbit whose balls are not bunched is balanced (to the residual it
+/// carries) while the residual is at most this fraction of the unbalance, and not balanced
+/// above it where the balls' capacity could cancel it: the simulation's own threshold
+/// ([`crate::spatial::dynamics::simulate::BALANCE_TOLERANCE`], 5 %), so that `stability` and
+/// `simulate` call one state by one word (session 15: the analysis allowed a tenth, the run 5 %;
+/// an orbit with a residual of 0.09 read "balanced" in one and not in the other). Two balls
+/// opposite each other leave the whole unbalance (1); a balanced orbit's swing leaves its second
+/// order (<= 1e-4 on examples/spatial_two_plane.toml, <= 0.022 on the washing-machine example
+/// under gravity down to 276 rpm).
+const BALANCE_TOLERANCE: f64 = crate::spatial::dynamics::simulate::BALANCE_TOLERANCE;
 
 /// The states over which a state's means are taken ([`Rotor::residual`], the linear rotor's
 /// race centres), row-major (the trapezoidal rule over them is exact for the orbit's harmonics

@@ -122,7 +122,7 @@ fn general_route(ctx: &Ctx) -> Result<Option<Section>> {
             format!("The config has what paper 000's 12-state model does not represent ({}), so its rotor is analysed as given.", super::esc(&what.join(", ")))
         }
     ));
-    s.html(format!("<pre>{}</pre>\n", super::esc(&crate::general::table(&g, &r, omega_max))));
+    s.html(format!("<pre>{}</pre>\n", super::esc(&crate::general::table(&g, &r, omega_max, None))));
     let speed = |w: f64| if g.si { format!("{} rpm", crate::num::grouped(w * crate::num::RPM_PER_RAD_S, 0)) } else { format!("Ω = {}", fmt(w, 4)) };
     match op {
         Some([lo, hi]) => {

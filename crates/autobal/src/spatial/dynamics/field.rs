@@ -186,6 +186,116 @@ impl SpatialField {
         Some(self.with_ball_angles(&psi))
     }
 
+    /// Starts for the balanced **periodic orbit under gravity across the axis** when a plane
+    /// carries `n ≥ 3` balls: each such plane's balls in **two bunched groups** of `p` and
+    /// `n − p` balls (`n/2 ≤ p ≤ n − 1`) at angles `α`, `β` with
+    /// `p m R e^{iα} + (n − p) m R e^{iβ} = t` (the plane's share `t` of the unbalance to cancel,
+    /// [`SpatialField::balanced_guess`]'s), both mirror placements (`α` on either side of `t`);
+    /// the other planes on their arcs. Empty without gravity across the axis or without such a
+    /// plane.
+    ///
+    /// Why: without gravity the balanced states of `n ≥ 3` balls form a family; gravity across
+    /// the axis drags every ball behind the rotor with one mean torque `m g² β/(2Ω(Ω² + β²))`
+    /// (`β = h_A/m`, independent of where the ball sits, [`crate::rotor_stability`]'s
+    /// `gravity_slip`), and the only mean torque that depends on a ball's angle is the whirl's,
+    /// `∝ m R Ω² |r| sin(ψ_j − θ)` (`r e^{iθ}` the race centre's mean offset in turning axes).
+    /// Every ball's torque balances only where all `sin(ψ_j − θ)` are equal: the balls sit at
+    /// two angles `θ + a` and `θ + π − a`. So the family breaks into isolated orbits with the
+    /// balls in two groups, and the arc member of [`SpatialField::balanced_guess`] is no
+    /// orbit (its balls creep along the former family: shooting from it stagnates with a
+    /// Floquet multiplier within 1e-6..1e-2 of 1). On examples/washing_machine.toml with
+    /// gravity along −y at 1400 rpm a time simulation ends with two balls together at
+    /// 3.6116 rad and the third at 2.0013 rad: the stable one of the two orbits found from
+    /// here (`tests/gravity_family.rs`).
+    pub fn split_guesses(&self) -> Vec<Vec<f64>> {
+        let across = self.rotor.gravity[0] != 0.0 || self.rotor.gravity[1] != 0.0;
+        let planes: Vec<_> = self.rotor.planes.iter().filter(|p| p.n > 0).collect();
+        if !across || planes.iter().all(|p| p.n < 3) {
+            return vec![];
+        }
+        let Some(arc) = self.balanced_guess() else { return vec![] };
+        let m = self.coords.len();
+        let nb: usize = planes.iter().map(|p| p.n).sum();
+        let psi = &arc[m - nb..m];
+        // each plane's options: its arc, or its groups (both mirror placements of each split)
+        let mut options: Vec<Vec<Vec<f64>>> = vec![];
+        let mut first = 0;
+        for p in &planes {
+            let mine = &psi[first..first + p.n];
+            first += p.n;
+            if p.n < 3 {
+                options.push(vec![mine.to_vec()]);
+                continue;
+            }
+            let mr = p.ball_mass * p.race_radius;
+            // the plane's share: the resultant of its arc
+            let t = mine.iter().fold([0.0, 0.0], |s, a| [s[0] + mr * a.cos(), s[1] + mr * a.sin()]);
+            let need = t[0].hypot(t[1]);
+            let dir = t[1].atan2(t[0]);
+            let mut mine_options = vec![];
+            for big in p.n.div_ceil(2)..p.n {
+                let (a, b) = (big as f64 * mr, (p.n - big) as f64 * mr);
+                if need < (a - b).abs() || need > a + b || need == 0.0 {
+                    continue;
+                }
+                let off = ((a * a + need * need - b * b) / (2.0 * a * need)).clamp(-1.0, 1.0).acos();
+                // an even split's mirror is the same placement with the groups swapped
+                let sides: &[f64] = if 2 * big == p.n { &[1.0] } else { &[1.0, -1.0] };
+                for &side in sides {
+                    let alpha = dir + side * off;
+                    let beta = (t[1] - a * alpha.sin()).atan2(t[0] - a * alpha.cos());
+                    mine_options.push((0..p.n).map(|j| if j < big { alpha } else { beta }).collect());
+                }
+            }
+            if mine_options.is_empty() {
+                // no two groups give the share (`gravity_circulation`): no balanced orbit
+                return vec![];
+            }
+            options.push(mine_options);
+        }
+        // every combination over the planes (at most 2 planes: a handful)
+        let mut out: Vec<Vec<f64>> = vec![vec![]];
+        for o in &options {
+            out = out.iter().flat_map(|head| o.iter().map(move |tail| [head.as_slice(), tail.as_slice()].concat())).collect();
+        }
+        out.into_iter().map(|angles| self.with_ball_angles(&angles)).collect()
+    }
+
+    /// Why no balanced periodic orbit exists under gravity across the axis, where a plane has
+    /// an odd number `n ≥ 3` of balls and its share `t` of the unbalance is below `m R`: the
+    /// orbits have the plane's balls in two groups ([`SpatialField::split_guesses`]), whose
+    /// resultant `|p − q| m R ≤ |t| ≤ n m R` cannot be that small with `p + q` odd. The balls
+    /// then creep along the placements that balance (a time simulation of the washing-machine
+    /// example with 0.05 kg of unbalance at 400 rpm: the angles keep turning over 3000 s).
+    /// `None` otherwise.
+    pub fn gravity_circulation(&self) -> Option<String> {
+        let across = self.rotor.gravity[0] != 0.0 || self.rotor.gravity[1] != 0.0;
+        if !across || self.rotor.planes.iter().all(|p| p.n < 3) {
+            return None;
+        }
+        let arc = self.balanced_guess()?;
+        let m = self.coords.len();
+        let planes: Vec<_> = self.rotor.planes.iter().filter(|p| p.n > 0).collect();
+        let nb: usize = planes.iter().map(|p| p.n).sum();
+        let mut first = m - nb;
+        for p in planes {
+            let mine = &arc[first..first + p.n];
+            first += p.n;
+            let mr = p.ball_mass * p.race_radius;
+            let t = mine.iter().fold([0.0, 0.0], |s, a| [s[0] + mr * a.cos(), s[1] + mr * a.sin()]);
+            let need = t[0].hypot(t[1]);
+            if p.n >= 3 && p.n % 2 == 1 && need < mr * (1.0 - 1e-12) {
+                return Some(format!(
+                    "no balanced periodic orbit: under gravity across the axis a plane's {} balls settle only in two groups, and no two groups give its share of the unbalance ({} kg m, below one ball's m R = {} kg m): the balls creep along the placements that balance, never stationary",
+                    p.n,
+                    crate::error::fmt_num(need),
+                    crate::error::fmt_num(mr)
+                ));
+            }
+        }
+        None
+    }
+
     /// The reduced state with the rotor at rest on the axis and the balls at `psi`.
     fn with_ball_angles(&self, psi: &[f64]) -> Vec<f64> {
         // planes without balls contribute none; the balls keep the planes' order
