@@ -117,3 +117,52 @@ fn without_drag_the_mode_numbers_do_not_depend_on_the_number_of_speeds() {
     }
     assert!(counts.iter().any(|&c| c != counts[0]), "curves per grid {counts:?}");
 }
+
+/// Each crossing of `got` is one of `reference` (a finer grid finds more): the same speed to
+/// 1e-6 relative (as [`same`]), kind, harmonic and mode number.
+fn contained(got: &[Key], reference: &[Key], what: &str) {
+    for x in got {
+        let hit = reference.iter().any(|y| (x.0 - y.0).abs() <= 1e-6 * y.0.max(1.0) && (x.1, x.2, x.3) == (y.1, y.2, y.3));
+        assert!(hit, "{what}: {} not among\n {}", show(&[*x]), show(reference));
+    }
+}
+
+// The reference speed is fixed, not the grid's first speed (review of session 15): ranked at
+// the first speed instead (`mode_numbers` without `track_to`), a coarse grid, whose first
+// speed is far above 0.001, numbers the modes otherwise. Checked: with that mutant these two
+// tests fail (washing_machine.toml, 3 speeds: modes [6, 1, 1, 3, 3] against [6, 1, 1, 2, 2];
+// linear_rotor_windows.toml, 5 speeds: 4 and 1 where 1000 speeds give 5 and 2).
+
+#[test]
+fn a_coarse_grid_of_the_washing_machine_numbers_its_modes_as_a_fine_one() {
+    // `autobal campbell -c examples/washing_machine.toml --points 3|1000 --harmonics 1,2`
+    let mut root = autobal::config::parse(include_str!("../../../examples/washing_machine.toml"), "test").unwrap();
+    for t in ["drive", "initial"] {
+        root.remove(t);
+    }
+    let cfg = autobal::config::spatial_simulation(&root).unwrap().config;
+    let top = cfg.analysis.speed_axis_max(autobal::reports::default_omega_max(&cfg.model));
+    let run = |n: usize| {
+        let c = campbell(&cfg.model, &autobal::reports::campbell_speeds(top, n), Balls::Free).unwrap();
+        keys(&fixed_axes(&cfg.model, &c, Balls::Free, &[1, 2]).unwrap().critical_speeds)
+    };
+    let (coarse, reference) = (run(3), run(1000));
+    assert_eq!(coarse.len(), 5, "{}", show(&coarse));
+    contained(&coarse, &reference, "3 speeds");
+}
+
+#[test]
+fn a_coarse_grid_of_the_linear_rotor_windows_numbers_its_modes_as_a_fine_one() {
+    // `autobal campbell -c examples/linear_rotor_windows.toml --points 5|1000`
+    use autobal::rotor_stability::Rotor;
+    let root = autobal::config::parse(include_str!("../../../examples/linear_rotor_windows.toml"), "test").unwrap();
+    let cfg = autobal::linear_rotor::config::linear_rotor(&root, &mut |_| Err("no files".into())).unwrap();
+    let rotor = Rotor::Linear(autobal::linear_rotor::reduce::reduce(&cfg.rotor, cfg.modes.unwrap(), &[]).unwrap().rotor);
+    let run = |n: usize| {
+        let c = autobal::rotor_campbell::campbell_over_speed(&rotor, &grid(2000.0, n)).unwrap();
+        keys(&autobal::rotor_campbell::fixed_view(&rotor, Balls::Free, &c, &[1]).unwrap().critical_speeds)
+    };
+    let (coarse, reference) = (run(5), run(1000));
+    assert_eq!(coarse.len(), 10, "{}", show(&coarse));
+    contained(&coarse, &reference, "5 speeds");
+}
