@@ -166,3 +166,21 @@ fn a_coarse_grid_of_the_linear_rotor_windows_numbers_its_modes_as_a_fine_one() {
     assert_eq!(coarse.len(), 10, "{}", show(&coarse));
     contained(&coarse, &reference, "5 speeds");
 }
+
+#[test]
+fn a_mode_number_can_have_no_curve_while_a_crossing_names_it() {
+    // The documented limit (docs/reference/commands.md, `FixedCurve::mode`): a curve is
+    // numbered by its line at the first speed, a crossing by the line carrying it there, and
+    // where pairs exchanged partners on the real axis the two differ. examples/dimensional.toml
+    // `--points 10 --omega-max 5 --harmonics 1,2`: curves 2, 2, 3, 4, 5, 6, crossings of mode
+    // 1. Should the curves come to be numbered otherwise, this fails and the docs change.
+    let m = dimensional_model();
+    let c = campbell(&m, &grid(5.0, 10), Balls::Free).unwrap();
+    let f = fixed_axes(&m, &c, Balls::Free, &[1, 2]).unwrap();
+    let curves: Vec<usize> = f.curves.iter().map(|c| c.mode).collect();
+    assert_eq!(curves, [2, 2, 3, 4, 5, 6]);
+    let ones = f.critical_speeds.iter().filter(|k| k.mode == 1).count();
+    assert!(ones > 0, "{}", show(&keys(&f.critical_speeds)));
+    // every crossing still points at a drawn curve
+    assert!(f.critical_speeds.iter().all(|k| k.curve < f.curves.len()));
+}

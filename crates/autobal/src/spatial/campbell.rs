@@ -163,8 +163,12 @@ pub struct FixedPoint {
 pub struct FixedCurve {
     /// The tracked line of the [`Campbell`] it comes from.
     pub line: usize,
-    /// Its mode number (module docs; two curves can share one where the grid's tracking
-    /// leaves two overdamped halves of one mode unpaired).
+    /// Its mode number (module docs): that of its line at the first speed. Two curves can
+    /// share one where the grid's tracking leaves two overdamped halves of one mode unpaired,
+    /// and a number can have no curve while a critical speed names it, where pairs exchanged
+    /// partners on the real axis (the crossing is numbered by the line that carries it there:
+    /// examples/dimensional.toml, 10 speeds to 5, harmonics 1 and 2: curves 2, 2, 3, 4, 5, 6
+    /// and crossings of mode 1).
     pub mode: usize,
     /// One point per speed of the diagram.
     pub points: Vec<FixedPoint>,
