@@ -96,6 +96,10 @@ pub struct GeneralCampbell {
     pub crossings_not_given: Option<String>,
 }
 
+/// What the mode numbers are where they were ranked at the first speed (no spectrum at the
+/// reference speed: a periodic orbit's Floquet exponents).
+pub const MODES_AT_FIRST_SPEED: &str = "ranked at the first speed of the grid, not at the reference speed 0.001 ω_n (no spectrum found there: a periodic orbit's Floquet exponents, or no stationary state): they can change with --points and --omega-max";
+
 /// Why a periodic orbit's diagram has no crossing speeds.
 pub const FLOQUET_CROSSINGS: &str = "not defined for Floquet exponents: their imaginary parts are defined modulo Ω, so a curve's crossing of h×Ω is a crossing of every other harmonic on another branch; `autobal critical` gives the locked rotor's critical speeds where they are defined";
 
@@ -203,6 +207,9 @@ pub fn campbell_json(g: &GeneralRotor, gc: &GeneralCampbell, omega_max: f64) -> 
                 })
                 .collect();
             v["fixed_axes_modes"] = json!(modes);
+            if f.modes_at_first_speed {
+                v["mode_numbers"] = json!(MODES_AT_FIRST_SPEED);
+            }
         }
         None => v["fixed_axes_modes"] = Value::Null,
     }
@@ -278,6 +285,9 @@ pub fn campbell_table(g: &GeneralRotor, gc: &GeneralCampbell) -> String {
     let _ = writeln!(s, "values: {}", what(c));
     if c.kind == Kind::PeriodicOrbit {
         let _ = writeln!(s, "branch: {FLOQUET_BRANCH}");
+    }
+    if gc.fixed.as_ref().is_some_and(|f| f.modes_at_first_speed) {
+        let _ = writeln!(s, "mode numbers: {MODES_AT_FIRST_SPEED}");
     }
     let rate = if g.si { "1/s" } else { "ω0" };
     let _ =
@@ -386,7 +396,13 @@ fn fixed_axes_of(g: &GeneralRotor) -> crate::figures::FixedAxes {
 /// crossings marked (none for Floquet exponents, the title says so).
 pub fn campbell_plot(g: &GeneralRotor, gc: &GeneralCampbell, omega_max: f64) -> Plot {
     let axes = fixed_axes_of(g);
-    let empty = FixedCampbell { omega: gc.diagram.omega.clone(), curves: vec![], critical_speeds: vec![], harmonics: gc.harmonics.clone() };
+    let empty = FixedCampbell {
+        omega: gc.diagram.omega.clone(),
+        curves: vec![],
+        critical_speeds: vec![],
+        harmonics: gc.harmonics.clone(),
+        modes_at_first_speed: false,
+    };
     let mut p = crate::figures::campbell_fixed_plot_in(&axes, gc.fixed.as_ref().unwrap_or(&empty));
     p.x_range = Some((0.0, axes.kx * omega_max));
     p.title = format!(

@@ -1129,7 +1129,7 @@ pub fn fixed_view_with(rotor: &Rotor, balls: Balls, c: &RotorCampbell, harmonics
     // 0.001 ω_n on the stationary state's spectrum; a periodic orbit's Floquet exponents, at
     // the first speed
     let w_ref = crate::spatial::campbell::MODE_REFERENCE * rotor.natural_frequency();
-    let modes = match c.kind {
+    let (modes, modes_at_first_speed) = match c.kind {
         Kind::Equilibrium => crate::spatial::campbell::mode_numbers(&lines, Some(&spec), w_ref, control)?,
         Kind::PeriodicOrbit => crate::spatial::campbell::mode_numbers::<StateSpectrum>(&lines, None, w_ref, control)?,
     };
@@ -1139,7 +1139,7 @@ pub fn fixed_view_with(rotor: &Rotor, balls: Balls, c: &RotorCampbell, harmonics
     let key: Vec<f64> = curves.iter().map(|cv| crate::spatial::campbell::natural_key(zk, nl, cv.0.line, cv.1[0], &component, &dropped)).collect();
     let curves: Vec<FixedCurve> = crate::spatial::campbell::number_curves(curves.into_iter().map(|c| c.0).collect(), &modes, &key);
     let crit = if c.kind == Kind::Equilibrium { crate::spatial::campbell::crossings(&lines, &spec, harmonics, &curves, &modes, control)? } else { vec![] };
-    Ok(FixedCampbell { omega: c.omega.clone(), curves, critical_speeds: crit, harmonics: harmonics.to_vec() })
+    Ok(FixedCampbell { omega: c.omega.clone(), curves, critical_speeds: crit, harmonics: harmonics.to_vec(), modes_at_first_speed })
 }
 
 /// The spectrum of the stationary state at a trial speed, for the search for critical speeds

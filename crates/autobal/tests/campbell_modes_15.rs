@@ -184,3 +184,24 @@ fn a_mode_number_can_have_no_curve_while_a_crossing_names_it() {
     // every crossing still points at a drawn curve
     assert!(f.critical_speeds.iter().all(|k| k.curve < f.curves.len()));
 }
+
+#[test]
+fn a_periodic_orbits_modes_say_they_are_ranked_at_the_first_speed() {
+    // examples/spatial_two_plane.toml (gravity, supports stiffer in y: a periodic orbit, no
+    // spectrum at the reference speed) falls back to the first speed's rank, and says so
+    // (review of session 15: at 20 speeds its curves were 1, 2, 3, 3, 5, 6, 6, 7, 8); the
+    // linear rotor (an equilibrium) is ranked at the reference. Checked: with the flag left
+    // `false` (or `true`) this fails.
+    use autobal::rotor_stability::Rotor;
+    let root = autobal::config::parse(include_str!("../../../examples/spatial_two_plane.toml"), "two-plane").unwrap();
+    let rotor = Rotor::Spatial(autobal::config::spatial_simulation(&root).unwrap().rotor);
+    let c = autobal::rotor_campbell::campbell_over_speed(&rotor, &grid(2185.36, 5)).unwrap();
+    let f = autobal::rotor_campbell::fixed_view(&rotor, Balls::Free, &c, &[1]).unwrap();
+    assert!(!f.curves.is_empty());
+    assert!(f.modes_at_first_speed);
+    let root = autobal::config::parse(include_str!("../../../examples/linear_rotor_windows.toml"), "test").unwrap();
+    let cfg = autobal::linear_rotor::config::linear_rotor(&root, &mut |_| Err("no files".into())).unwrap();
+    let rotor = Rotor::Linear(autobal::linear_rotor::reduce::reduce(&cfg.rotor, cfg.modes.unwrap(), &[]).unwrap().rotor);
+    let c = autobal::rotor_campbell::campbell_over_speed(&rotor, &grid(2000.0, 5)).unwrap();
+    assert!(!autobal::rotor_campbell::fixed_view(&rotor, Balls::Free, &c, &[1]).unwrap().modes_at_first_speed);
+}

@@ -208,6 +208,10 @@ pub struct FixedCampbell {
     pub critical_speeds: Vec<CriticalSpeed>,
     /// The harmonics `h` searched.
     pub harmonics: Vec<u32>,
+    /// Whether the mode numbers were ranked at the grid's first speed instead of the reference
+    /// speed (module docs): no spectrum there (the general route's periodic orbits: Floquet
+    /// exponents, no stationary state at `0.001 ω_n`), so the numbers can change with the grid.
+    pub modes_at_first_speed: bool,
 }
 
 fn lam(m: &crate::spatial::stability::Mode) -> Complex64 {
@@ -325,11 +329,11 @@ pub fn fixed_axes_with(model: &SpatialModel, c: &Campbell, balls: Balls, harmoni
     let spec = PencilSpectrum { model, balls };
     // the mode numbers, at the reference speed (module docs); the curves in their order (then
     // by the undamped natural frequency at the first speed, |ν|, Re λ, the line)
-    let modes = mode_numbers(&lines, Some(&spec), MODE_REFERENCE, control)?;
+    let (modes, modes_at_first_speed) = mode_numbers(&lines, Some(&spec), MODE_REFERENCE, control)?;
     let key: Vec<f64> = curves.iter().map(|cv| natural_key(|i, k| Some(lam(&c.lines[i].modes[k])), nl, cv.line, 0, &component, &dropped)).collect();
     let curves = number_curves(curves, &modes, &key);
     let crit = crossings(&lines, &spec, harmonics, &curves, &modes, control)?;
-    Ok(FixedCampbell { omega: c.omega.clone(), curves, critical_speeds: crit, harmonics: harmonics.to_vec() })
+    Ok(FixedCampbell { omega: c.omega.clone(), curves, critical_speeds: crit, harmonics: harmonics.to_vec(), modes_at_first_speed })
 }
 
 /// The ordering key of the curve of kept line `li` ([`fixed_axes`], and
@@ -418,12 +422,13 @@ pub(crate) fn rank_modes(ev: &[Complex64]) -> Vec<usize> {
 /// a conjugate pair, and two real lines that are the halves of one overdamped mode there, get
 /// one number, whatever the grid's tracking paired into curves. Without `spec`, or where
 /// the spectrum at `w_ref` is not found (the general route: no stationary state there) or has
-/// another size, the rank at the first speed itself.
-pub(crate) fn mode_numbers<S: Spectrum>(l: &Lines, spec: Option<&S>, w_ref: f64, control: &Control) -> Result<Vec<Option<usize>>> {
+/// another size, the rank at the first speed itself; the flag says so (`true`: ranked at the
+/// first speed).
+pub(crate) fn mode_numbers<S: Spectrum>(l: &Lines, spec: Option<&S>, w_ref: f64, control: &Control) -> Result<(Vec<Option<usize>>, bool)> {
     let nl = l.z.len();
     let mut out = vec![None; nl];
     let Some(k0) = (0..l.omega.len()).find(|&k| l.known[k] && l.z.iter().any(|z| z[k].is_some())) else {
-        return Ok(out);
+        return Ok((out, false));
     };
     let idx: Vec<usize> = (0..nl).filter(|&i| l.z[i][k0].is_some()).collect();
     let v0: Vec<Complex64> = idx.iter().map(|&i| l.z[i][k0].unwrap_or_default()).collect();
@@ -436,7 +441,7 @@ pub(crate) fn mode_numbers<S: Spectrum>(l: &Lines, spec: Option<&S>, w_ref: f64,
     for (&i, r) in idx.iter().zip(ranks) {
         out[i] = Some(r);
     }
-    Ok(out)
+    Ok((out, at_ref.is_none()))
 }
 
 /// The eigenvalues `v0` of speed `w0` followed on `spec` to `w` (the one each continues there,
