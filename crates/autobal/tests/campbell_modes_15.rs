@@ -205,3 +205,41 @@ fn a_periodic_orbits_modes_say_they_are_ranked_at_the_first_speed() {
     let c = autobal::rotor_campbell::campbell_over_speed(&rotor, &grid(2000.0, 5)).unwrap();
     assert!(!autobal::rotor_campbell::fixed_view(&rotor, Balls::Free, &c, &[1]).unwrap().modes_at_first_speed);
 }
+
+#[test]
+fn the_dimensional_examples_lowest_rotor_mode_is_3_with_balls_free_and_1_locked() {
+    // docs/reference/commands.md: on examples/dimensional.toml mode 1 is the balls' neutral
+    // pair, mode 2 their drag roots, and the lowest rotor mode is mode 3 (1 with the balls
+    // locked), on both routes. A curve's group is that of its line at the first speed.
+    use autobal::rotor_campbell::Group as RGroup;
+    use autobal::rotor_stability::Rotor;
+    use autobal::spatial::stability::Group;
+    let m = dimensional_model();
+    let lowest = |balls: Balls| {
+        let c = campbell(&m, &grid(5.0, 40), balls).unwrap();
+        let f = fixed_axes(&m, &c, balls, &[1]).unwrap();
+        f.curves.iter().filter(|cv| c.lines[cv.line].modes[0].group != Group::Balls).map(|cv| cv.mode).min()
+    };
+    assert_eq!(lowest(Balls::Free), Some(3), "closed-form route, balls free");
+    assert_eq!(lowest(Balls::Locked), Some(1), "closed-form route, balls locked");
+    let mut root = autobal::config::parse(include_str!("../../../examples/dimensional.toml"), "test").unwrap();
+    for t in ["drive", "initial"] {
+        root.remove(t);
+    }
+    let sim = autobal::config::spatial_simulation(&root).unwrap();
+    let w0 = sim.config.model.scale.map_or(1.0, |s| s.omega0);
+    let rotor = Rotor::Spatial(sim.rotor);
+    let om = grid(5.0 * w0, 40);
+    let general = |balls: Balls| {
+        let c = match balls {
+            Balls::Free => autobal::rotor_campbell::campbell_over_speed(&rotor, &om),
+            Balls::Locked => autobal::rotor_campbell::campbell_locked(&rotor, &om),
+        }
+        .unwrap();
+        let f = autobal::rotor_campbell::fixed_view(&rotor, balls, &c, &[1]).unwrap();
+        let group = |li: usize| c.lines[li].points.iter().flatten().next().map(|p| p.group);
+        f.curves.iter().filter(|cv| group(cv.line).is_some_and(|g| g != RGroup::Balls)).map(|cv| cv.mode).min()
+    };
+    assert_eq!(general(Balls::Free), Some(3), "general route, balls free");
+    assert_eq!(general(Balls::Locked), Some(1), "general route, balls locked");
+}
