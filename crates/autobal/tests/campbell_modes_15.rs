@@ -2,7 +2,7 @@
 //! pair the tracked lines into a different number of curves (issue 18 item 3, session 15).
 //! A mode's number is the rank of its undamped natural frequency at the fixed reference speed
 //! `0.001` (`0.001 ω_n` on the general route), each conjugate pair and each two real
-//! eigenvalues (the overdamped halves of one mode) counted once (`spatial::campbell`,
+//! eigenvalues in the order of `|λ|` (a convention) counted once (`spatial::campbell`,
 //! `mode_numbers`); before, it was the curve's index, and a grid that split one mode into two
 //! curves shifted every number above it. The three cases measured in session 14's review,
 //! compared as (speed to 1e-6 relative, kind, harmonic, mode number):

@@ -79,11 +79,13 @@
 //!
 //! **Mode numbers** (session 15). *A mode's number is the rank of its undamped natural
 //! frequency at the reference speed `Ω_ref` = 0.001 (`0.001 ω_n` on the general route), mode 1
-//! the lowest, counting each conjugate pair once and the real eigenvalues there two by two in
-//! the order of `|λ|` (the two overdamped halves of one mode); a critical speed carries the
+//! the lowest, counting each conjugate pair once and, by convention, the real eigenvalues there
+//! two by two in the order of `|λ|`; a critical speed carries the
 //! number of the mode it lies on, followed from the crossing to `Ω_ref` on the model's
 //! spectrum.* The undamped natural frequency is `|λ|` for a pair, `sqrt(|λ₁ λ₂|)` for two real
-//! eigenvalues (their product is the `|λ|²` of the pair they split from). `Ω_ref` is fixed,
+//! eigenvalues (their product is the `|λ|²` of the pair they split from where they are the two
+//! halves of one overdamped mode; the pairing by `|λ|` is a convention that need not find
+//! those halves: roots {0.17, 5.83} and {1, 1.2} of two modes pair as (0.17, 1), (1.2, 5.83)). `Ω_ref` is fixed,
 //! not the first speed of the grid (which moves with `--points` and `--omega-max`), and near
 //! rest, above `Ω = 0` where forward and backward whirl coincide (`mode_numbers`). The mode
 //! of a crossing is read on the line carrying its pair with `Im λ > 0` next to it (for an end
@@ -365,8 +367,9 @@ pub(crate) const MODE_REFERENCE: f64 = 1e-3;
 
 /// The mode number of each eigenvalue of one spectrum `ev`: the modes in the order of their
 /// undamped natural frequency, mode 1 the lowest; a conjugate pair is one mode (`|λ|`), and
-/// the real eigenvalues, sorted by `|λ|`, are taken two by two as the two overdamped halves of
-/// one mode (`sqrt(|λ₁ λ₂|)`; the last alone where their number is odd). Ties by the smallest
+/// the real eigenvalues, sorted by `|λ|`, are taken two by two, by convention, as one mode
+/// (`sqrt(|λ₁ λ₂|)`; the last alone where their number is odd): not always the two halves of
+/// one overdamped mode (roots {0.17, 5.83} and {1, 1.2} pair as (0.17, 1), (1.2, 5.83)). Ties by the smallest
 /// `Re λ`, then the order of `ev`.
 pub(crate) fn rank_modes(ev: &[Complex64]) -> Vec<usize> {
     let n = ev.len();
@@ -419,7 +422,7 @@ pub(crate) fn rank_modes(ev: &[Complex64]) -> Vec<usize> {
 /// reference speed `w_ref`, tracked from the first speed of `l` to `w_ref` on `spec` as the
 /// crossing search tracks between grid speeds ([`refine`]: checked through midpoints, halved
 /// down to [`REFINE_TOL`], the collision convention where eigenvalues meet). The two lines of
-/// a conjugate pair, and two real lines that are the halves of one overdamped mode there, get
+/// a conjugate pair, and two real lines paired there by [`rank_modes`]'s convention, get
 /// one number, whatever the grid's tracking paired into curves. Without `spec`, or where
 /// the spectrum at `w_ref` is not found (the general route: no stationary state there) or has
 /// another size, the rank at the first speed itself; the flag says so (`true`: ranked at the
