@@ -402,6 +402,7 @@ pub fn campbell_plot(g: &GeneralRotor, gc: &GeneralCampbell, omega_max: f64) -> 
         critical_speeds: vec![],
         harmonics: gc.harmonics.clone(),
         modes_at_first_speed: false,
+        line_modes: vec![],
     };
     let mut p = crate::figures::campbell_fixed_plot_in(&axes, gc.fixed.as_ref().unwrap_or(&empty));
     p.x_range = Some((0.0, axes.kx * omega_max));
@@ -427,8 +428,9 @@ pub fn components_plots(g: &GeneralRotor, gc: &GeneralCampbell) -> (Plot, Plot) 
     let c = &gc.diagram;
     let mut rot = vec![];
     let mut fixed = vec![];
+    let line_modes = gc.fixed.as_ref().map_or(&[][..], |f| &f.line_modes[..]);
     let mut shown = 0;
-    for l in c.lines.iter().filter(|l| kept(l)) {
+    for (i, l) in c.lines.iter().enumerate().filter(|(_, l)| kept(l)) {
         let upper: Vec<_> = l.points.iter().flatten().filter(|p| p.im >= 0.0 && !p.structural).collect();
         if upper.is_empty() {
             continue;
@@ -457,7 +459,7 @@ pub fn components_plots(g: &GeneralRotor, gc: &GeneralCampbell) -> (Plot, Plot) 
         };
         shown += 1;
         let col = crate::figures::curve_color(shown - 1);
-        let name = format!("mode {shown}: {}, {whirl}, from {}", crate::figures::group_name(gr), crate::num::fmt(from, 3));
+        let name = format!("{}: {}, {whirl}, from {}", crate::figures::line_name(line_modes, i), crate::figures::group_name(gr), crate::num::fmt(from, 3));
         rot.push(Series::new(name.clone(), pts_r, col));
         let mut labelled = false;
         for sign in [1.0, -1.0] {
@@ -465,7 +467,7 @@ pub fn components_plots(g: &GeneralRotor, gc: &GeneralCampbell) -> (Plot, Plot) 
             if start(&pts).is_some() {
                 let label = if labelled { String::new() } else { name.clone() };
                 labelled = true;
-                let se = Series::new(label, pts, col).group(format!("mode {shown}"));
+                let se = Series::new(label, pts, col).group(format!("line {}", i + 1));
                 fixed.push(if sign < 0.0 { se.dashed() } else { se });
             }
         }

@@ -616,7 +616,7 @@ impl CampbellRun {
     /// `campbell_fixed` and `campbell_rotating` (`--view components`).
     pub fn figures(&self) -> Vec<crate::command::Figure> {
         use crate::command::Figure;
-        let (rot, fx) = crate::figures::campbell_plots(&self.cfg.model, &self.plot);
+        let (rot, fx) = crate::figures::campbell_plots(&self.cfg.model, &self.plot, &self.fixed().line_modes);
         vec![
             Figure::new("campbell_modes", crate::figures::campbell_fixed_plot(&self.cfg.model, self.fixed())),
             Figure::new("campbell_fixed", fx),

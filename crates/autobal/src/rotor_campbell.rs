@@ -1139,7 +1139,7 @@ pub fn fixed_view_with(rotor: &Rotor, balls: Balls, c: &RotorCampbell, harmonics
     let key: Vec<f64> = curves.iter().map(|cv| crate::spatial::campbell::natural_key(zk, nl, cv.0.line, cv.1[0], &component, &dropped)).collect();
     let curves: Vec<FixedCurve> = crate::spatial::campbell::number_curves(curves.into_iter().map(|c| c.0).collect(), &modes, &key);
     let crit = if c.kind == Kind::Equilibrium { crate::spatial::campbell::crossings(&lines, &spec, harmonics, &curves, &modes, control)? } else { vec![] };
-    Ok(FixedCampbell { omega: c.omega.clone(), curves, critical_speeds: crit, harmonics: harmonics.to_vec(), modes_at_first_speed })
+    Ok(FixedCampbell { omega: c.omega.clone(), curves, critical_speeds: crit, harmonics: harmonics.to_vec(), modes_at_first_speed, line_modes: modes })
 }
 
 /// The spectrum of the stationary state at a trial speed, for the search for critical speeds

@@ -214,6 +214,10 @@ pub struct FixedCampbell {
     /// speed (module docs): no spectrum there (the general route's periodic orbits: Floquet
     /// exponents, no stationary state at `0.001 ω_n`), so the numbers can change with the grid.
     pub modes_at_first_speed: bool,
+    /// The mode number of each tracked line of the diagram it was drawn from (`None`: no
+    /// value at its first speed), by which the components view labels the lines.
+    #[serde(skip)]
+    pub line_modes: Vec<Option<usize>>,
 }
 
 fn lam(m: &crate::spatial::stability::Mode) -> Complex64 {
@@ -335,7 +339,7 @@ pub fn fixed_axes_with(model: &SpatialModel, c: &Campbell, balls: Balls, harmoni
     let key: Vec<f64> = curves.iter().map(|cv| natural_key(|i, k| Some(lam(&c.lines[i].modes[k])), nl, cv.line, 0, &component, &dropped)).collect();
     let curves = number_curves(curves, &modes, &key);
     let crit = crossings(&lines, &spec, harmonics, &curves, &modes, control)?;
-    Ok(FixedCampbell { omega: c.omega.clone(), curves, critical_speeds: crit, harmonics: harmonics.to_vec(), modes_at_first_speed })
+    Ok(FixedCampbell { omega: c.omega.clone(), curves, critical_speeds: crit, harmonics: harmonics.to_vec(), modes_at_first_speed, line_modes: modes })
 }
 
 /// The ordering key of the curve of kept line `li` ([`fixed_axes`], and
