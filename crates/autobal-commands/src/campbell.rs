@@ -408,6 +408,31 @@ mod tests {
         assert!(format!("{locked:#}").starts_with("--balls locked"), "{locked:#}");
     }
 
+    /// A stop (Ctrl-C, a cancelled control) during the general route's search for critical
+    /// speeds, after the scan has computed every speed, ends the command with one line that
+    /// says so, as a stop during the 12-state route's search does (exit 2 from the CLI): here
+    /// the control is cancelled when the scan reports its last speed, so that only the
+    /// search (the mode numbers' tracking to the reference speed first) sees the stop.
+    #[test]
+    fn a_stop_during_the_general_routes_search_says_so() {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/linear_rotor_windows.toml");
+        let flag = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
+        let f = flag.clone();
+        let control = Control::with_flag(flag).with_progress(move |p| {
+            if p.done == p.total {
+                f.store(true, std::sync::atomic::Ordering::Relaxed);
+            }
+        });
+        let args = Args { config: ConfigSource::file(Some(&path), &[]), points: Some(20), ..Default::default() };
+        let e = args.run(&control).err().expect("stopped");
+        let msg = format!("{e:#}");
+        assert!(msg.starts_with("interrupted: the search for critical speeds stopped after all 20 speeds"), "{msg}");
+        assert!(!msg.contains('\n'), "one line: {msg}");
+        // the same run not stopped: critical speeds
+        let out = Args { config: ConfigSource::file(Some(&path), &[]), points: Some(20), ..Default::default() }.run(&Control::none()).unwrap();
+        assert!(out.json().unwrap()["critical_speeds"].as_array().is_some_and(|a| !a.is_empty()));
+    }
+
     /// [`write_mode_json`] writes `serde_json`'s bytes: 20 000 random modes (numbers of random
     /// bits: NaN, infinities, subnormals, negative zero, integers; every group and whirl; the
     /// SI fields and the log decrement present or not), and the default diagram's modes.

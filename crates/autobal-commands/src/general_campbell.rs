@@ -96,6 +96,10 @@ pub struct GeneralCampbell {
     pub crossings_not_given: Option<String>,
 }
 
+/// What the mode numbers are where they were ranked at the first speed (no spectrum at the
+/// reference speed: a periodic orbit's Floquet exponents).
+pub const MODES_AT_FIRST_SPEED: &str = "ranked at the first speed of the grid, not at the reference speed 0.001 ω_n (no spectrum found there: a periodic orbit's Floquet exponents, or no stationary state): they can change with --points and --omega-max";
+
 /// Why a periodic orbit's diagram has no crossing speeds.
 pub const FLOQUET_CROSSINGS: &str = "not defined for Floquet exponents: their imaginary parts are defined modulo Ω, so a curve's crossing of h×Ω is a crossing of every other harmonic on another branch; `autobal critical` gives the locked rotor's critical speeds where they are defined";
 
@@ -184,8 +188,7 @@ pub fn campbell_json(g: &GeneralRotor, gc: &GeneralCampbell, omega_max: f64) -> 
             let modes: Vec<Value> = f
                 .curves
                 .iter()
-                .enumerate()
-                .map(|(i, cv)| {
+                .map(|cv| {
                     let pts: Vec<Value> = cv
                         .points
                         .iter()
@@ -200,10 +203,13 @@ pub fn campbell_json(g: &GeneralRotor, gc: &GeneralCampbell, omega_max: f64) -> 
                             e
                         })
                         .collect();
-                    json!({ "mode": i + 1, "line": cv.line, "points": pts })
+                    json!({ "mode": cv.mode, "line": cv.line, "points": pts })
                 })
                 .collect();
             v["fixed_axes_modes"] = json!(modes);
+            if f.modes_at_first_speed {
+                v["mode_numbers"] = json!(MODES_AT_FIRST_SPEED);
+            }
         }
         None => v["fixed_axes_modes"] = Value::Null,
     }
@@ -214,7 +220,7 @@ pub fn campbell_json(g: &GeneralRotor, gc: &GeneralCampbell, omega_max: f64) -> 
                 .iter()
                 .map(|k| {
                     let mut e =
-                        json!({ "omega": k.omega, "mode": k.curve + 1, "whirl": k.whirl, "share": k.share, "harmonic": k.harmonic, "frequency": k.frequency });
+                        json!({ "omega": k.omega, "mode": k.mode, "whirl": k.whirl, "share": k.share, "harmonic": k.harmonic, "frequency": k.frequency });
                     if let (true, Some(o)) = (g.si, e.as_object_mut()) {
                         o.insert("omega_rad_s".into(), json!(k.omega));
                         o.insert("omega_rpm".into(), json!(rpm(k.omega)));
@@ -279,6 +285,9 @@ pub fn campbell_table(g: &GeneralRotor, gc: &GeneralCampbell) -> String {
     let _ = writeln!(s, "values: {}", what(c));
     if c.kind == Kind::PeriodicOrbit {
         let _ = writeln!(s, "branch: {FLOQUET_BRANCH}");
+    }
+    if gc.fixed.as_ref().is_some_and(|f| f.modes_at_first_speed) {
+        let _ = writeln!(s, "mode numbers: {MODES_AT_FIRST_SPEED}");
     }
     let rate = if g.si { "1/s" } else { "ω0" };
     let _ =
@@ -358,7 +367,7 @@ fn crossings_table(g: &GeneralRotor, gc: &GeneralCampbell) -> String {
             "  {:>2}. {}  mode {}, {}, {}×, frequency {}{hz}, {}",
             j + 1,
             speed_text(g, k.omega),
-            k.curve + 1,
+            k.mode,
             match k.whirl {
                 autobal::spatial::stability::Whirl::Backward => "backward",
                 _ => "forward",
@@ -387,7 +396,14 @@ fn fixed_axes_of(g: &GeneralRotor) -> crate::figures::FixedAxes {
 /// crossings marked (none for Floquet exponents, the title says so).
 pub fn campbell_plot(g: &GeneralRotor, gc: &GeneralCampbell, omega_max: f64) -> Plot {
     let axes = fixed_axes_of(g);
-    let empty = FixedCampbell { omega: gc.diagram.omega.clone(), curves: vec![], critical_speeds: vec![], harmonics: gc.harmonics.clone() };
+    let empty = FixedCampbell {
+        omega: gc.diagram.omega.clone(),
+        curves: vec![],
+        critical_speeds: vec![],
+        harmonics: gc.harmonics.clone(),
+        modes_at_first_speed: false,
+        line_modes: vec![],
+    };
     let mut p = crate::figures::campbell_fixed_plot_in(&axes, gc.fixed.as_ref().unwrap_or(&empty));
     p.x_range = Some((0.0, axes.kx * omega_max));
     p.title = format!(
@@ -412,8 +428,9 @@ pub fn components_plots(g: &GeneralRotor, gc: &GeneralCampbell) -> (Plot, Plot) 
     let c = &gc.diagram;
     let mut rot = vec![];
     let mut fixed = vec![];
+    let line_modes = gc.fixed.as_ref().map_or(&[][..], |f| &f.line_modes[..]);
     let mut shown = 0;
-    for l in c.lines.iter().filter(|l| kept(l)) {
+    for (i, l) in c.lines.iter().enumerate().filter(|(_, l)| kept(l)) {
         let upper: Vec<_> = l.points.iter().flatten().filter(|p| p.im >= 0.0 && !p.structural).collect();
         if upper.is_empty() {
             continue;
@@ -442,7 +459,7 @@ pub fn components_plots(g: &GeneralRotor, gc: &GeneralCampbell) -> (Plot, Plot) 
         };
         shown += 1;
         let col = crate::figures::curve_color(shown - 1);
-        let name = format!("mode {shown}: {}, {whirl}, from {}", crate::figures::group_name(gr), crate::num::fmt(from, 3));
+        let name = format!("{}: {}, {whirl}, from {}", crate::figures::line_name(line_modes, i), crate::figures::group_name(gr), crate::num::fmt(from, 3));
         rot.push(Series::new(name.clone(), pts_r, col));
         let mut labelled = false;
         for sign in [1.0, -1.0] {
@@ -450,7 +467,7 @@ pub fn components_plots(g: &GeneralRotor, gc: &GeneralCampbell) -> (Plot, Plot) 
             if start(&pts).is_some() {
                 let label = if labelled { String::new() } else { name.clone() };
                 labelled = true;
-                let se = Series::new(label, pts, col).group(format!("mode {shown}"));
+                let se = Series::new(label, pts, col).group(format!("line {}", i + 1));
                 fixed.push(if sign < 0.0 { se.dashed() } else { se });
             }
         }

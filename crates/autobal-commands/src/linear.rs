@@ -316,7 +316,7 @@ pub fn fixed_table(cfg: &Config, f: &FixedCampbell, at: &[f64]) -> String {
             "  {:>2}. {}  mode {}, {}, {}×, frequency {}{}, {}",
             j + 1,
             speed_text(cfg, k.omega),
-            k.curve + 1,
+            k.mode,
             whirl_name(k.whirl),
             k.harmonic,
             crate::num::fmt(k.frequency, 6),
@@ -328,12 +328,12 @@ pub fn fixed_table(cfg: &Config, f: &FixedCampbell, at: &[f64]) -> String {
     for &w in at {
         let Some(k) = f.omega.iter().position(|&x| x == w) else { continue };
         let _ = writeln!(s, "speed {}", speed_text(cfg, w));
-        for (i, cv) in f.curves.iter().enumerate() {
+        for cv in &f.curves {
             let p = &cv.points[k];
             let _ = writeln!(
                 s,
                 "  mode {:>2}: frequency {:>10}{}  {:<8}  log dec {}",
-                i + 1,
+                cv.mode,
                 crate::num::fmt(p.frequency, 6),
                 hz(p.frequency),
                 whirl_name(p.whirl),
@@ -616,7 +616,7 @@ impl CampbellRun {
     /// `campbell_fixed` and `campbell_rotating` (`--view components`).
     pub fn figures(&self) -> Vec<crate::command::Figure> {
         use crate::command::Figure;
-        let (rot, fx) = crate::figures::campbell_plots(&self.cfg.model, &self.plot);
+        let (rot, fx) = crate::figures::campbell_plots(&self.cfg.model, &self.plot, &self.fixed().line_modes);
         vec![
             Figure::new("campbell_modes", crate::figures::campbell_fixed_plot(&self.cfg.model, self.fixed())),
             Figure::new("campbell_fixed", fx),

@@ -1067,7 +1067,7 @@ pub fn campbell_fixed(model: &SpatialModel, f: &crate::spatial::campbell::FixedC
                 frequency: k.frequency,
                 frequency_hz: w0.map(|w0| k.frequency * w0 / tau),
                 harmonic: k.harmonic,
-                mode: k.curve + 1,
+                mode: k.mode,
                 omega: k.omega,
                 omega_rad_s: w0.map(|w0| k.omega * w0),
                 omega_rpm: w0.map(|w0| k.omega * w0 * 60.0 / tau),
@@ -1075,12 +1075,7 @@ pub fn campbell_fixed(model: &SpatialModel, f: &crate::spatial::campbell::FixedC
                 whirl: k.whirl,
             })
             .collect(),
-        fixed_axes_modes: f
-            .curves
-            .iter()
-            .enumerate()
-            .map(|(i, cv)| FixedModeReport { line: cv.line, mode: i + 1, points: cv.points.iter().map(point).collect() })
-            .collect(),
+        fixed_axes_modes: f.curves.iter().map(|cv| FixedModeReport { line: cv.line, mode: cv.mode, points: cv.points.iter().map(point).collect() }).collect(),
         harmonics: f.harmonics.clone(),
     }
 }

@@ -1026,9 +1026,11 @@ const REAL_TOL: f64 = 1e-9;
 /// recomputed at each trial speed, the ends on the real axis on the count of real
 /// eigenvalues; the drawn curves are not used, and the search refines the drawn grid on that
 /// spectrum, so its crossings and mode numbers do not depend on the grid down to 1e-6
-/// relative). The curves are numbered by their undamped natural frequency at their first
-/// point (`|λ|`, `sqrt(|λ₁ λ₂|)` for a pair split on the real axis), which does not tie where
-/// modes lie on the axis (the fixed-axes frequency, `Ω` for all of them there, did).
+/// relative). Modes are numbered by the 12-state route's rule
+/// ([`crate::spatial::campbell`], mode numbers): the rank of the undamped natural frequency at
+/// `0.001 ω_n` ([`Rotor::natural_frequency`]) on the stationary state's spectrum, a conjugate
+/// pair or two real eigenvalues counted once; a periodic orbit's at the first speed (where
+/// its spectrum is known). The curves are in the order of their numbers.
 ///
 /// **Periodic orbits**: the Floquet exponents' imaginary parts are defined modulo `Ω`, so
 /// `|f| = hΩ` for one harmonic is `|f| = h'Ω` on another branch: crossings are not defined, and
@@ -1124,32 +1126,30 @@ pub fn fixed_view_with(rotor: &Rotor, balls: Balls, c: &RotorCampbell, harmonics
             idx.push(k);
         }
         if !pts.is_empty() {
-            curves.push((FixedCurve { line: li, points: pts }, idx));
+            curves.push((FixedCurve { line: li, mode: 0, points: pts }, idx));
         }
     }
-    // by the undamped natural frequency at the first point (ties broken by |ν|, Re λ, line):
-    // the fixed-axes frequency ties at Ω for every mode on the real axis
-    let key = |cv: &(FixedCurve, Vec<usize>)| {
-        let zk = |i: usize, k: usize| at(i, k).map(|p| z(&p));
-        crate::spatial::campbell::natural_key(zk, nl, cv.0.line, cv.1[0], &component, &dropped)
+    let lines = crate::spatial::campbell::Lines {
+        omega: &c.omega,
+        z: (0..nl).map(|i| (0..n).map(|k| at(i, k).map(|p| z(&p))).collect()).collect(),
+        known: c.failures.iter().map(|f| f.is_none()).collect(),
     };
-    curves.sort_by(|a, b| {
-        let (p, q) = (&a.0.points[0], &b.0.points[0]);
-        key(a).total_cmp(&key(b)).then(p.nu.abs().total_cmp(&q.nu.abs())).then(p.re.total_cmp(&q.re)).then(a.0.line.cmp(&b.0.line))
-    });
-    let curves: Vec<FixedCurve> = curves.into_iter().map(|c| c.0).collect();
-    let crit = if c.kind == Kind::Equilibrium {
-        let lines = crate::spatial::campbell::Lines {
-            omega: &c.omega,
-            z: (0..nl).map(|i| (0..n).map(|k| at(i, k).map(|p| z(&p))).collect()).collect(),
-            known: c.failures.iter().map(|f| f.is_none()).collect(),
-        };
-        let spec = StateSpectrum { rotor, balls, last: std::cell::RefCell::new(None) };
-        crate::spatial::campbell::crossings(&lines, &spec, harmonics, &curves, control)?
-    } else {
-        vec![]
+    let spec = StateSpectrum { rotor, balls, last: std::cell::RefCell::new(None) };
+    // the mode numbers of the 12-state route's rule (spatial::campbell::mode_numbers): at
+    // 0.001 ω_n on the stationary state's spectrum; a periodic orbit's Floquet exponents, at
+    // the first speed
+    let w_ref = crate::spatial::campbell::MODE_REFERENCE * rotor.natural_frequency();
+    let (modes, modes_at_first_speed) = match c.kind {
+        Kind::Equilibrium => crate::spatial::campbell::mode_numbers(&lines, Some(&spec), w_ref, control)?,
+        Kind::PeriodicOrbit => crate::spatial::campbell::mode_numbers::<StateSpectrum>(&lines, None, w_ref, control)?,
     };
-    Ok(FixedCampbell { omega: c.omega.clone(), curves, critical_speeds: crit, harmonics: harmonics.to_vec() })
+    // in the order of their numbers, then of the undamped natural frequency at the first point
+    // (ties broken by |ν|, Re λ, line)
+    let zk = |i: usize, k: usize| at(i, k).map(|p| z(&p));
+    let key: Vec<f64> = curves.iter().map(|cv| crate::spatial::campbell::natural_key(zk, nl, cv.0.line, cv.1[0], &component, &dropped)).collect();
+    let curves: Vec<FixedCurve> = crate::spatial::campbell::number_curves(curves.into_iter().map(|c| c.0).collect(), &modes, &key);
+    let crit = if c.kind == Kind::Equilibrium { crate::spatial::campbell::crossings(&lines, &spec, harmonics, &curves, &modes, control)? } else { vec![] };
+    Ok(FixedCampbell { omega: c.omega.clone(), curves, critical_speeds: crit, harmonics: harmonics.to_vec(), modes_at_first_speed, line_modes: modes })
 }
 
 /// The spectrum of the stationary state at a trial speed, for the search for critical speeds

@@ -17,7 +17,7 @@ use common::{campbell_grid as grid, dimensional_model as dimensional};
 type Key = (f64, char, u32, usize);
 
 fn keys(ks: &[CriticalSpeed]) -> Vec<Key> {
-    ks.iter().map(|k| (k.omega, if k.whirl == Whirl::Forward { 'f' } else { 'b' }, k.harmonic, k.curve + 1)).collect()
+    ks.iter().map(|k| (k.omega, if k.whirl == Whirl::Forward { 'f' } else { 'b' }, k.harmonic, k.mode)).collect()
 }
 
 fn show(v: &[Key]) -> String {
@@ -129,11 +129,10 @@ fn the_linear_rotor_windows_landings_on_the_axis_do_not_depend_on_the_grid() {
     }
     for n in [40, 97, 240, 333] {
         let got = run(n);
-        // speeds, kinds and harmonics (mode numbers: the count of curves can differ on this
-        // rotor between grids, docs/notes/stability.md)
-        let strip = |v: &[Key]| -> Vec<(f64, char, u32)> { v.iter().map(|k| (k.0, k.1, k.2)).collect() };
-        let (a, b) = (strip(&got), strip(&reference));
-        let ok = a.len() == b.len() && a.iter().zip(&b).all(|(x, y)| (x.0 - y.0).abs() <= 1e-6 * y.0 && (x.1, x.2) == (y.1, y.2));
+        // speeds, kinds, harmonics and mode numbers (the count of curves differs on this
+        // rotor between grids, 15 on 240 speeds, 14 on 333: the mode numbers do not follow
+        // it since session 15, tests/campbell_modes_15.rs)
+        let ok = got.len() == reference.len() && got.iter().zip(&reference).all(|(x, y)| (x.0 - y.0).abs() <= 1e-6 * y.0 && (x.1, x.2, x.3) == (y.1, y.2, y.3));
         assert!(ok, "{n} speeds:\n got {}\n ref {}", show(&got), show(&reference));
     }
 }

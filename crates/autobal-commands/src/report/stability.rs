@@ -84,8 +84,9 @@ pub fn build_user(ctx: &Ctx) -> Result<Option<Section>> {
     );
     s.h3("campbell", "Campbell diagrams");
     let c = linear::campbell_of(cfg, w, 240, balls)?;
-    let (mut rot, mut fixed) = campbell_plots(m, &c);
-    let mut modes = crate::figures::campbell_fixed_plot(m, &autobal::spatial::campbell::fixed_axes(m, &c, balls, &[1])?);
+    let fx = autobal::spatial::campbell::fixed_axes(m, &c, balls, &[1])?;
+    let (mut rot, mut fixed) = campbell_plots(m, &c, &fx.line_modes);
+    let mut modes = crate::figures::campbell_fixed_plot(m, &fx);
     for p in [&mut rot, &mut fixed, &mut modes] {
         p.vlines.extend(super::rotor::operating_vlines(cfg.analysis.operating_speed, u.factor));
     }
@@ -247,8 +248,9 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
     ));
     s.h3("campbell", "Campbell diagrams");
     let c = linear::campbell_of(cfg, w, 240, balls)?;
-    let (rot, fixed) = campbell_plots(m, &c);
-    let modes = crate::figures::campbell_fixed_plot(m, &autobal::spatial::campbell::fixed_axes(m, &c, balls, &[1])?);
+    let fx = autobal::spatial::campbell::fixed_axes(m, &c, balls, &[1])?;
+    let (rot, fixed) = campbell_plots(m, &c, &fx.line_modes);
+    let modes = crate::figures::campbell_fixed_plot(m, &fx);
     s.figure("campbell_modes", modes, "Campbell diagram as engineers read it: one curve per mode of natural frequency in fixed axes (forward whirl solid, backward dashed), coloured by log decrement, the 1x line and the critical speeds (its crossings) marked.");
     s.figure("campbell_fixed", fixed, CAMPBELL_FIXED_CAPTION);
     s.figure("campbell_rotating", rot, "Campbell diagram in rotating axes: Im λ of each tracked eigenvalue (the frequency seen from the rotor).");
