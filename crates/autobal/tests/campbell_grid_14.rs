@@ -6,33 +6,12 @@
 //! harmonics 1 and 2) and on the general route (examples/planar.toml).
 
 use autobal::config;
-use autobal::spatial::campbell::{fixed_axes, CriticalSpeed};
+use autobal::spatial::campbell::fixed_axes;
 use autobal::spatial::linear_model::Balls;
-use autobal::spatial::stability::{campbell, Whirl};
+use autobal::spatial::stability::campbell;
 
 mod common;
-use common::{campbell_grid as grid, dimensional_model as dimensional};
-
-/// A crossing as compared: speed, kind (forward/backward), harmonic, mode number.
-type Key = (f64, char, u32, usize);
-
-fn keys(ks: &[CriticalSpeed]) -> Vec<Key> {
-    ks.iter().map(|k| (k.omega, if k.whirl == Whirl::Forward { 'f' } else { 'b' }, k.harmonic, k.mode)).collect()
-}
-
-fn show(v: &[Key]) -> String {
-    v.iter().map(|k| format!("{:.6}{}{}m{}", k.0, k.1, k.2, k.3)).collect::<Vec<_>>().join(" ")
-}
-
-/// The crossings of `got` and `reference` in `[lo, hi]` the same: speeds to 1e-6 relative (both
-/// are bisected to 1e-13 on the same spectrum; 1e-6 is the task's resolution, far above that
-/// and far below the 4e-5 of the narrowest pair), the same kind, harmonic and mode number.
-fn same(got: &[Key], reference: &[Key], lo: f64, hi: f64, what: &str) {
-    let within = |v: &[Key]| -> Vec<Key> { v.iter().copied().filter(|k| k.0 >= lo && k.0 <= hi).collect() };
-    let (a, b) = (within(got), within(reference));
-    let ok = a.len() == b.len() && a.iter().zip(&b).all(|(x, y)| (x.0 - y.0).abs() <= 1e-6 * y.0.max(1.0) && (x.1, x.2, x.3) == (y.1, y.2, y.3));
-    assert!(ok, "{what} over [{lo}, {hi}]:\n got {}\n ref {}", show(&a), show(&b));
-}
+use common::{campbell_grid as grid, dimensional_model as dimensional, keys, same, show, Key};
 
 #[test]
 fn the_dimensional_examples_crossings_and_modes_do_not_depend_on_the_grid() {

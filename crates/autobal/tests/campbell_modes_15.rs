@@ -12,33 +12,12 @@
 //!   never paired into one curve): 7 curves against 6 for tops 1.3, 3.7, 5;
 //! * the same without unbalance and ball drag: 6 curves on 40 speeds, 7 on 300 and 1000.
 
-use autobal::spatial::campbell::{fixed_axes, CriticalSpeed};
+use autobal::spatial::campbell::fixed_axes;
 use autobal::spatial::linear_model::Balls;
-use autobal::spatial::stability::{campbell, Whirl};
+use autobal::spatial::stability::campbell;
 
 mod common;
-use common::{campbell_grid as grid, dimensional_model};
-
-/// A crossing as compared: speed, kind (forward/backward), harmonic, mode number.
-type Key = (f64, char, u32, usize);
-
-fn keys(ks: &[CriticalSpeed]) -> Vec<Key> {
-    ks.iter().map(|k| (k.omega, if k.whirl == Whirl::Forward { 'f' } else { 'b' }, k.harmonic, k.mode)).collect()
-}
-
-fn show(v: &[Key]) -> String {
-    v.iter().map(|k| format!("{:.6}{}{}m{}", k.0, k.1, k.2, k.3)).collect::<Vec<_>>().join(" ")
-}
-
-/// The crossings of `got` and `reference` in `[lo, hi]` the same: speeds to 1e-6 relative (both
-/// bisected to 1e-13 on the same spectrum; 1e-6 is the refinement's resolution, far above that
-/// and below the 4e-5 of the narrowest pair), the same kind, harmonic and mode number.
-fn same(got: &[Key], reference: &[Key], lo: f64, hi: f64, what: &str) {
-    let within = |v: &[Key]| -> Vec<Key> { v.iter().copied().filter(|k| k.0 >= lo && k.0 <= hi).collect() };
-    let (a, b) = (within(got), within(reference));
-    let ok = a.len() == b.len() && a.iter().zip(&b).all(|(x, y)| (x.0 - y.0).abs() <= 1e-6 * y.0.max(1.0) && (x.1, x.2, x.3) == (y.1, y.2, y.3));
-    assert!(ok, "{what} over [{lo}, {hi}]:\n got {}\n ref {}", show(&a), show(&b));
-}
+use common::{campbell_grid as grid, dimensional_model, keys, same, show, Key};
 
 #[test]
 fn the_linear_rotor_windows_mode_numbers_do_not_depend_on_the_grid() {

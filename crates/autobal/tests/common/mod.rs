@@ -340,3 +340,26 @@ pub fn dimensional_model() -> autobal::spatial::params::SpatialModel {
 pub fn campbell_grid(w: f64, n: usize) -> Vec<f64> {
     (0..n).map(|k| w * (k as f64 + 0.5) / n as f64).collect()
 }
+
+// The Campbell crossing comparisons of campbell_grid_14.rs and campbell_modes_15.rs.
+
+/// A crossing as compared: speed, kind (forward/backward), harmonic, mode number.
+pub type Key = (f64, char, u32, usize);
+
+pub fn keys(ks: &[autobal::spatial::campbell::CriticalSpeed]) -> Vec<Key> {
+    ks.iter().map(|k| (k.omega, if k.whirl == autobal::spatial::stability::Whirl::Forward { 'f' } else { 'b' }, k.harmonic, k.mode)).collect()
+}
+
+pub fn show(v: &[Key]) -> String {
+    v.iter().map(|k| format!("{:.6}{}{}m{}", k.0, k.1, k.2, k.3)).collect::<Vec<_>>().join(" ")
+}
+
+/// The crossings of `got` and `reference` in `[lo, hi]` the same: speeds to 1e-6 relative (both
+/// are bisected to 1e-13 on the same spectrum; 1e-6 is the refinement's resolution, far above
+/// that and far below the 4e-5 of the narrowest pair), the same kind, harmonic and mode number.
+pub fn same(got: &[Key], reference: &[Key], lo: f64, hi: f64, what: &str) {
+    let within = |v: &[Key]| -> Vec<Key> { v.iter().copied().filter(|k| k.0 >= lo && k.0 <= hi).collect() };
+    let (a, b) = (within(got), within(reference));
+    let ok = a.len() == b.len() && a.iter().zip(&b).all(|(x, y)| (x.0 - y.0).abs() <= 1e-6 * y.0.max(1.0) && (x.1, x.2, x.3) == (y.1, y.2, y.3));
+    assert!(ok, "{what} over [{lo}, {hi}]:\n got {}\n ref {}", show(&a), show(&b));
+}
