@@ -142,3 +142,27 @@ fn campbell_finds_the_two_group_orbit_too() {
     let c = campbell_over_speed(&small, &[400.0 * PI / 30.0]).unwrap();
     assert!(c.failures[0].as_deref().is_some_and(|f| f.starts_with("no balanced periodic orbit")), "{:?}", c.failures);
 }
+
+#[test]
+fn the_map_has_the_two_group_orbit_above_one_balls_share_and_none_below() {
+    // the washer under gravity at 1400 rpm over the unbalance mass: one ball's m R = 0.03 kg m
+    // is the share of 0.136 kg at 0.22 m. Below it no two groups balance: no balanced state
+    // (without the guard the map continued an orbit that does not balance from its neighbour
+    // and gave its verdict, unstable, as the cell's); above it the cells are the stable
+    // two-group orbits (main at 07fe55e: no state at any cell of this row)
+    use autobal::paths::Axis;
+    use autobal::rotor_map::general_map;
+    let mut root = autobal::config::parse(WASHER, "washer").unwrap();
+    autobal::config::set(&mut root, "spatial.gravity", autobal::config::parse_value("[0.0, -9.81, 0.0]")).unwrap();
+    let x = Axis { path: "unbalance.mass".into(), values: vec![0.1, 0.13, 0.2, 0.3] };
+    let y = Axis { path: "speed_rpm".into(), values: vec![1400.0] };
+    let mut cells = vec![];
+    general_map(&root, &x, &y, None, &autobal::control::Control::none(), &mut |_, r| {
+        cells.extend_from_slice(r);
+        true
+    })
+    .unwrap();
+    let verdicts: Vec<_> = cells.iter().map(|c| c.verdict).collect();
+    assert_eq!(verdicts[..2], [None, None], "{cells:?}");
+    assert!(verdicts[2..].iter().all(|v| *v == Some(autobal::analysis::Verdict::Stable)), "{cells:?}");
+}

@@ -264,10 +264,11 @@ impl SpatialField {
     /// Why no balanced periodic orbit exists under gravity across the axis, where a plane has
     /// an odd number `n ≥ 3` of balls and its share `t` of the unbalance is below `m R`: the
     /// orbits have the plane's balls in two groups ([`SpatialField::split_guesses`]), whose
-    /// resultant `|p − q| m R ≤ |t| ≤ n m R` cannot be that small with `p + q` odd. The balls
-    /// then creep along the placements that balance (a time simulation of the washing-machine
-    /// example with 0.05 kg of unbalance at 400 rpm: the angles keep turning over 3000 s).
-    /// `None` otherwise.
+    /// resultant `|p − q| m R ≤ |t| ≤ n m R` cannot be that small with `p + q` odd. Orbits
+    /// that do not balance remain (two groups whose resultant misses the share; continued from
+    /// a balanced neighbour on the washer under gravity at 1400 rpm, 0.10-0.13 kg: unstable), and
+    /// a run's balls creep along the placements that balance (the washing-machine example with
+    /// 0.05 kg of unbalance at 400 rpm: the angles keep turning over 3000 s). `None` otherwise.
     pub fn gravity_circulation(&self) -> Option<String> {
         let across = self.rotor.gravity[0] != 0.0 || self.rotor.gravity[1] != 0.0;
         if !across || self.rotor.planes.iter().all(|p| p.n < 3) {
@@ -286,7 +287,7 @@ impl SpatialField {
             let need = t[0].hypot(t[1]);
             if p.n >= 3 && p.n % 2 == 1 && need < mr * (1.0 - 1e-12) {
                 return Some(format!(
-                    "no balanced periodic orbit: under gravity across the axis a plane's {} balls settle only in two groups, and no two groups give its share of the unbalance ({} kg m, below one ball's m R = {} kg m): the balls creep along the placements that balance, never stationary",
+                    "no balanced periodic orbit: under gravity across the axis a plane's {} balls settle only in two groups, and no two groups give its share of the unbalance ({} kg m, below one ball's m R = {} kg m): no balanced orbit exists (a run's balls creep along the placements that balance)",
                     p.n,
                     crate::error::fmt_num(need),
                     crate::error::fmt_num(mr)
