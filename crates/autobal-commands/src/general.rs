@@ -102,7 +102,7 @@ fn what_is_analysed(g: &GeneralRotor, r: &RotorStability) -> String {
             "a periodic orbit of half a revolution (supports that differ by direction: the whirl is elliptic; shooting with the variational equations; Floquet multipliers)"
         }
         // without gravity across the axis the spatial equations repeat after half a revolution
-        (Kind::PeriodicOrbit, Rotor::Spatial(s)) if s.gravity[0] == 0.0 && s.gravity[1] == 0.0 => {
+        (Kind::PeriodicOrbit, Rotor::Spatial(s)) if !s.gravity_across() => {
             "a periodic orbit of half a revolution (supports that differ by direction turn against the rotor: the whirl is elliptic; shooting with the variational equations; Floquet multipliers over T = π/Ω)"
         }
         (Kind::PeriodicOrbit, _) => {
@@ -162,7 +162,7 @@ pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64, op: Option<&O
         s.push_str(&family_line(r, |w| speed_text(g, w)));
     }
     if let Rotor::Spatial(sr) = &g.rotor {
-        if (sr.gravity[0] != 0.0 || sr.gravity[1] != 0.0) && sr.planes.iter().any(|p| p.n >= 3) && r.points.iter().any(|p| p.verdict.is_some()) {
+        if sr.gravity_across() && sr.planes.iter().any(|p| p.n >= 3) && r.points.iter().any(|p| p.verdict.is_some()) {
             s.push_str("gravity breaks the family of balanced states of 3 or more balls in a plane: the orbits have each such plane's balls in two groups (the member's angles in the JSON's member_psi); at each speed the orbit of least growth rate among those found from every split and its mirror is the one analysed (docs/notes/stability.md)\n");
         }
     }
@@ -368,6 +368,28 @@ pub struct Operating {
     pub range: Option<autobal::analysis::StableRange>,
 }
 
+impl Operating {
+    /// The verdict over the speeds solved there: stable where every one is, unstable where one
+    /// is, else neutral (stable or neutral everywhere, neutral somewhere); `None` where a speed
+    /// has no state.
+    pub fn verdict(&self) -> Option<Verdict> {
+        let v: Option<Vec<Verdict>> = self.points.iter().map(|p| p.verdict).collect();
+        let v = v?;
+        Some(if v.iter().all(|x| *x == Verdict::Stable) {
+            Verdict::Stable
+        } else if v.contains(&Verdict::Unstable) {
+            Verdict::Unstable
+        } else {
+            Verdict::Neutral
+        })
+    }
+
+    /// The largest growth rate (`abscissa`) over the speeds solved there.
+    fn max_growth_rate(&self) -> f64 {
+        self.points.iter().filter_map(|p| p.abscissa).fold(f64::NEG_INFINITY, f64::max)
+    }
+}
+
 /// [`Operating`] for a config with `analysis.operating_speed`, else `None`.
 pub fn operating(g: &GeneralRotor, root: &Table, r: &RotorStability, control: &Control) -> Result<Option<Operating>> {
     if !autobal::config::is_spatial(root) {
@@ -391,20 +413,17 @@ pub fn operating(g: &GeneralRotor, root: &Table, r: &RotorStability, control: &C
 /// state was found), `stable_range` (`{from, to}` of the scan, or `null`), `points` (as the
 /// scan's).
 pub fn operating_json(op: &Operating) -> Value {
-    let solved = op.points.iter().all(|p| p.verdict.is_some());
+    let verdict = op.verdict();
     json!({
         "omega": op.omega,
-        "stable": solved && op.points.iter().all(|p| p.verdict == Some(Verdict::Stable)),
-        "verdict": if !solved {
-            Value::Null
-        } else if op.points.iter().all(|p| p.verdict == Some(Verdict::Stable)) {
-            json!("stable")
-        } else if op.points.iter().any(|p| p.verdict == Some(Verdict::Unstable)) {
-            json!("unstable")
-        } else {
-            json!("neutral")
+        "stable": verdict == Some(Verdict::Stable),
+        "verdict": match verdict {
+            None => Value::Null,
+            Some(Verdict::Stable) => json!("stable"),
+            Some(Verdict::Unstable) => json!("unstable"),
+            Some(Verdict::Neutral) => json!("neutral"),
         },
-        "max_growth_rate": if solved { json!(op.points.iter().filter_map(|p| p.abscissa).fold(f64::NEG_INFINITY, f64::max)) } else { Value::Null },
+        "max_growth_rate": if verdict.is_some() { json!(op.max_growth_rate()) } else { Value::Null },
         "stable_range": op.range.as_ref().map_or(Value::Null, |st| json!({"from": st.from, "to": st.to})),
         "points": op.points,
     })
@@ -415,45 +434,43 @@ pub fn operating_json(op: &Operating) -> Value {
 /// state found), with the scan's stable range that holds it.
 pub fn operating_line(g: &GeneralRotor, r: &RotorStability, op: &Operating) -> String {
     let at = if op.omega[0] == op.omega[1] { speed_text(g, op.omega[0]) } else { format!("{} to {}", speed_text(g, op.omega[0]), speed_text(g, op.omega[1])) };
-    if let Some(p) = op.points.iter().find(|p| p.verdict.is_none()) {
-        return format!("operating speed {at}: no verdict: {}\n", p.failure.as_deref().unwrap_or("no stationary state found"));
-    }
-    let worst = op.points.iter().filter_map(|p| p.abscissa).fold(f64::NEG_INFINITY, f64::max);
+    let Some(verdict) = op.verdict() else {
+        let failure = op.points.iter().find_map(|p| p.verdict.is_none().then_some(p.failure.as_deref())).flatten();
+        return format!("operating speed {at}: no verdict: {}\n", failure.unwrap_or("no stationary state found"));
+    };
     let per = if g.si { " 1/s" } else { " (per unit τ)" };
-    let how = if op.points.iter().any(|p| p.verdict.is_some()) && g.rotor.is_periodic() { "Floquet multipliers" } else { "eigenvalues" };
+    let how = if g.rotor.is_periodic() { "Floquet multipliers" } else { "eigenvalues" };
     let mut kinds: Vec<&str> = op.points.iter().filter_map(|p| p.state.map(|k| k.name())).collect();
     kinds.dedup();
     let state = if kinds.is_empty() { "stationary".to_string() } else { kinds.join(" then ") };
     let member = if op.points.iter().any(|p| p.family_dimension > 0) { ", the member reached from the closed form" } else { "" };
-    let rate = format!("largest growth rate {}{per}", fmt_num(worst));
-    if op.points.iter().all(|p| p.verdict == Some(Verdict::Stable)) {
-        let range = op.range.as_ref().map_or_else(
-            // stable at the speed itself, but no grid speed of the scan round it was: the grid
-            // is too coarse for the window the operating speed sits in
-            || " (the scan's grid found no stable range round it: a narrower window than its spacing; more --samples resolve it)".to_string(),
-            |st| {
-                let from = range_end(r, st.from, st.from_is_boundary, false, |w| speed_text(g, w));
-                let to = range_end(r, st.to, st.to_is_boundary, true, |w| speed_text(g, w));
-                format!(" in the stable range {from} to {to}")
-            },
-        );
-        format!("operating speed {at}: the {state} state is STABLE (exact, {how}{member}){range}; {rate}\n")
-    } else if op.points.iter().all(|p| p.verdict != Some(Verdict::Unstable)) {
+    let rate = format!("largest growth rate {}{per}", fmt_num(op.max_growth_rate()));
+    let range = |st: &autobal::analysis::StableRange| {
+        let from = range_end(r, st.from, st.from_is_boundary, false, |w| speed_text(g, w));
+        let to = range_end(r, st.to, st.to_is_boundary, true, |w| speed_text(g, w));
+        format!("{from} to {to}")
+    };
+    match verdict {
+        Verdict::Stable => {
+            let range = op.range.as_ref().map_or_else(
+                // stable at the speed itself, but no grid speed of the scan round it was: the
+                // grid is too coarse for the window the operating speed sits in
+                || " (the scan's grid found no stable range round it: a narrower window than its spacing; more --samples resolve it)".to_string(),
+                |st| format!(" in the stable range {}", range(st)),
+            );
+            format!("operating speed {at}: the {state} state is STABLE (exact, {how}{member}){range}; {rate}\n")
+        }
         // stable or neutral everywhere, neutral somewhere: the growth rate within the neutral
         // tolerance of zero (a tolerance-dependent outcome, not a verdict)
-        format!("operating speed {at}: the {state} state is NEUTRAL (its growth rate within the neutral tolerance of zero: undecided at that tolerance, not a verdict; {how}{member}); {rate}\n")
-    } else {
-        // the scan's stable range nearest to the operating speed, as the closed-form route says
-        let dist = |st: &&autobal::analysis::StableRange| if st.to < op.omega[0] { op.omega[0] - st.to } else { (st.from - op.omega[1]).max(0.0) };
-        let near = r.stable_ranges.iter().min_by(|a, b| dist(a).total_cmp(&dist(b))).map_or_else(
-            || "no stable range on the axis".to_string(),
-            |st| {
-                let from = range_end(r, st.from, st.from_is_boundary, false, |w| speed_text(g, w));
-                let to = range_end(r, st.to, st.to_is_boundary, true, |w| speed_text(g, w));
-                format!("nearest stable range {from} to {to}")
-            },
-        );
-        format!("operating speed {at}: the {state} state is NOT STABLE (exact, {how}{member}); {rate}; {near}\n")
+        Verdict::Neutral => format!(
+            "operating speed {at}: the {state} state is NEUTRAL (its growth rate within the neutral tolerance of zero: undecided at that tolerance, not a verdict; {how}{member}); {rate}\n"
+        ),
+        Verdict::Unstable => {
+            // the scan's stable range nearest to the operating speed, as the closed-form route says
+            let dist = |st: &&autobal::analysis::StableRange| if st.to < op.omega[0] { op.omega[0] - st.to } else { (st.from - op.omega[1]).max(0.0) };
+            let near = r.stable_ranges.iter().min_by(|a, b| dist(a).total_cmp(&dist(b))).map_or_else(|| "no stable range on the axis".to_string(), |st| format!("nearest stable range {}", range(st)));
+            format!("operating speed {at}: the {state} state is NOT STABLE (exact, {how}{member}); {rate}; {near}\n")
+        }
     }
 }
 

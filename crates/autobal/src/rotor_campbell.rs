@@ -410,14 +410,20 @@ pub fn campbell_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Control
         let f = rotor.field(w)?;
         // under gravity with n >= 3 balls in a plane: the orbit with the balls in two groups
         // (the family's arc member is no orbit; Rotor::gravity_orbit_start), or none at all
-        let circulation = if let Field::Spatial(sf) = &f { sf.gravity_circulation() } else { None };
-        let guess = if circulation.is_some() { None } else { Rotor::gravity_orbit_start(&f, &opts).or_else(|| Rotor::guess(&f)) };
-        let near = if circulation.is_some() { None } else { previous.as_ref().map(|p| p.x.clone()) };
+        if let Some(why) = f.gravity_circulation() {
+            previous = None;
+            per_speed.push(None);
+            failures.push(Some(why));
+            control.report(per_speed.len() as u64, speeds.len() as u64);
+            continue;
+        }
+        let guess = Rotor::gravity_orbit_start(&f, &opts).or_else(|| Rotor::guess(&f));
+        let near = previous.as_ref().map(|p| p.x.clone());
         let hint = previous.as_ref().and_then(|p| p.monodromy.clone());
-        let mut result = Err(circulation.unwrap_or_else(|| match no_balance(rotor) {
+        let mut result = Err(match no_balance(rotor) {
             Error::InvalidParameter { reason, .. } => reason,
             e => e.to_string(),
-        }));
+        });
         for start in [guess, near].into_iter().flatten() {
             match stationary_near(&f, &start, hint.as_deref(), &opts) {
                 Ok(s) => {
@@ -930,10 +936,8 @@ fn state_of(rotor: &Rotor, balls: Balls, omega: f64, near: Option<&StationarySta
     let opts = newton_options(f.period().is_some());
     // under gravity with n >= 3 balls in a plane the orbit has the balls in two groups (the
     // family's arc member is no orbit: Rotor::gravity_orbit_start), or there is none
-    if let (Balls::Free, Field::Spatial(sf)) = (balls, &f) {
-        if let Some(why) = sf.gravity_circulation() {
-            return Err(why);
-        }
+    if let (Balls::Free, Some(why)) = (balls, f.gravity_circulation()) {
+        return Err(why);
     }
     let guess = match balls {
         Balls::Free => Rotor::gravity_orbit_start(&f, &opts).or_else(|| Rotor::guess(&f)),

@@ -266,9 +266,8 @@ fn solve(c: &CellRotor, w: f64, previous: Option<&StationaryState>, closed_form:
         return (GeneralCell::NOT_ANALYSED, None);
     }
     // no balanced orbit where no two groups of a plane's balls give its share under gravity
-    // (SpatialField::gravity_circulation): no start, as the speed scan (the arc member creeps,
-    // and shooting can take its slow creep for an orbit)
-    if matches!(&field, crate::rotor_stability::Field::Spatial(sf) if sf.gravity_circulation().is_some()) {
+    // (Field::gravity_circulation): no start, as the speed scan
+    if field.gravity_circulation().is_some() {
         return (GeneralCell::NONE, None);
     }
     let previous = previous.filter(|p| p.x.len() == field.dim());

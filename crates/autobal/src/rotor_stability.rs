@@ -89,6 +89,20 @@ macro_rules! delegate {
     };
 }
 
+impl Field {
+    /// Why no balanced periodic orbit exists at this field's speed: a spatial rotor under
+    /// gravity across the axis whose plane of an odd number of balls has a share below one
+    /// ball's `m R` ([`SpatialField::gravity_circulation`]); `None` otherwise. The analyses
+    /// take no start there (the family's arc member would creep, and shooting can take its
+    /// slow creep for an orbit) and give this as the reason.
+    pub fn gravity_circulation(&self) -> Option<String> {
+        match self {
+            Field::Spatial(f) => f.gravity_circulation(),
+            _ => None,
+        }
+    }
+}
+
 impl VectorField for Field {
     fn dim(&self) -> usize {
         delegate!(self, f => f.dim())
@@ -862,9 +876,8 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
     // two groups (Rotor::gravity_orbit_start: the family's arc member is no orbit there)
     let newton = opts.newton.clone();
     let guess = |f: &Field, _| {
-        // no balanced orbit where no two groups give a plane's share: no start (the arc member
-        // would creep, and shooting can take its slow creep for an orbit)
-        if matches!(f, Field::Spatial(s) if s.gravity_circulation().is_some()) {
+        // no balanced orbit where no two groups give a plane's share: no start
+        if f.gravity_circulation().is_some() {
             return None;
         }
         Rotor::gravity_orbit_start(f, &newton).or_else(|| Rotor::guess(f)).or_else(|| Rotor::placed_guess(f)).or_else(|| Rotor::bunched_guess(f))
@@ -1138,10 +1151,8 @@ fn locate(
 /// A scan's failure in the user's terms: where the closed form gives no state, say which state
 /// does not exist and why.
 fn explain_failure(rotor: &Rotor, omega: f64, failure: &str) -> String {
-    if let Ok(Field::Spatial(f)) = rotor.field(omega) {
-        if let Some(why) = f.gravity_circulation() {
-            return why;
-        }
+    if let Some(why) = rotor.field(omega).ok().and_then(|f| f.gravity_circulation()) {
+        return why;
     }
     if let (Rotor::Spatial(s), true) = (rotor, failure.starts_with("no periodic orbit found")) {
         if let Some(why) = gravity_slip(s, omega) {

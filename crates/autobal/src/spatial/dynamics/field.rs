@@ -208,43 +208,29 @@ impl SpatialField {
     /// 3.6116 rad and the third at 2.0013 rad: the stable one of the two orbits found from
     /// here (`tests/gravity_family.rs`).
     pub fn split_guesses(&self) -> Vec<Vec<f64>> {
-        let across = self.rotor.gravity[0] != 0.0 || self.rotor.gravity[1] != 0.0;
-        let planes: Vec<_> = self.rotor.planes.iter().filter(|p| p.n > 0).collect();
-        if !across || planes.iter().all(|p| p.n < 3) {
-            return vec![];
-        }
-        let Some(arc) = self.balanced_guess() else { return vec![] };
-        let m = self.coords.len();
-        let nb: usize = planes.iter().map(|p| p.n).sum();
-        let psi = &arc[m - nb..m];
+        let Some(shares) = self.gravity_shares() else { return vec![] };
         // each plane's options: its arc, or its groups (both mirror placements of each split)
         let mut options: Vec<Vec<Vec<f64>>> = vec![];
-        let mut first = 0;
-        for p in &planes {
-            let mine = &psi[first..first + p.n];
-            first += p.n;
-            if p.n < 3 {
-                options.push(vec![mine.to_vec()]);
+        for PlaneShare { n, mr, t, arc } in shares {
+            if n < 3 {
+                options.push(vec![arc]);
                 continue;
             }
-            let mr = p.ball_mass * p.race_radius;
-            // the plane's share: the resultant of its arc
-            let t = mine.iter().fold([0.0, 0.0], |s, a| [s[0] + mr * a.cos(), s[1] + mr * a.sin()]);
             let need = t[0].hypot(t[1]);
             let dir = t[1].atan2(t[0]);
             let mut mine_options = vec![];
-            for big in p.n.div_ceil(2)..p.n {
-                let (a, b) = (big as f64 * mr, (p.n - big) as f64 * mr);
+            for big in n.div_ceil(2)..n {
+                let (a, b) = (big as f64 * mr, (n - big) as f64 * mr);
                 if need < (a - b).abs() || need > a + b || need == 0.0 {
                     continue;
                 }
                 let off = ((a * a + need * need - b * b) / (2.0 * a * need)).clamp(-1.0, 1.0).acos();
                 // an even split's mirror is the same placement with the groups swapped
-                let sides: &[f64] = if 2 * big == p.n { &[1.0] } else { &[1.0, -1.0] };
+                let sides: &[f64] = if 2 * big == n { &[1.0] } else { &[1.0, -1.0] };
                 for &side in sides {
                     let alpha = dir + side * off;
                     let beta = (t[1] - a * alpha.sin()).atan2(t[0] - a * alpha.cos());
-                    mine_options.push((0..p.n).map(|j| if j < big { alpha } else { beta }).collect());
+                    mine_options.push((0..n).map(|j| if j < big { alpha } else { beta }).collect());
                 }
             }
             if mine_options.is_empty() {
@@ -270,31 +256,43 @@ impl SpatialField {
     /// a run's balls creep along the placements that balance (the washing-machine example with
     /// 0.05 kg of unbalance at 400 rpm: the angles keep turning over 3000 s). `None` otherwise.
     pub fn gravity_circulation(&self) -> Option<String> {
-        let across = self.rotor.gravity[0] != 0.0 || self.rotor.gravity[1] != 0.0;
-        if !across || self.rotor.planes.iter().all(|p| p.n < 3) {
+        self.gravity_shares()?.into_iter().find_map(|PlaneShare { n, mr, t, .. }| {
+            let need = t[0].hypot(t[1]);
+            (n >= 3 && n % 2 == 1 && need < mr * (1.0 - 1e-12)).then(|| {
+                format!(
+                    "no balanced periodic orbit: under gravity across the axis a plane's {n} balls settle only in two groups, and no two groups give its share of the unbalance ({} kg m, below one ball's m R = {} kg m): no balanced orbit exists (a run's balls creep along the placements that balance)",
+                    crate::error::fmt_num(need),
+                    crate::error::fmt_num(mr)
+                )
+            })
+        })
+    }
+
+    /// Each ball plane's share of the unbalance (the resultant `t` of its balls on the arc of
+    /// [`SpatialField::balanced_guess`]), its ball count `n`, one ball's `m R` and those arc
+    /// angles, in the state's order: for [`SpatialField::split_guesses`] and
+    /// [`SpatialField::gravity_circulation`]. `None` without gravity across the axis, without a
+    /// plane of 3 or more balls, or without a balanced placement.
+    fn gravity_shares(&self) -> Option<Vec<PlaneShare>> {
+        if !self.rotor.gravity_across() || self.rotor.planes.iter().all(|p| p.n < 3) {
             return None;
         }
         let arc = self.balanced_guess()?;
         let m = self.coords.len();
         let planes: Vec<_> = self.rotor.planes.iter().filter(|p| p.n > 0).collect();
-        let nb: usize = planes.iter().map(|p| p.n).sum();
-        let mut first = m - nb;
-        for p in planes {
-            let mine = &arc[first..first + p.n];
-            first += p.n;
-            let mr = p.ball_mass * p.race_radius;
-            let t = mine.iter().fold([0.0, 0.0], |s, a| [s[0] + mr * a.cos(), s[1] + mr * a.sin()]);
-            let need = t[0].hypot(t[1]);
-            if p.n >= 3 && p.n % 2 == 1 && need < mr * (1.0 - 1e-12) {
-                return Some(format!(
-                    "no balanced periodic orbit: under gravity across the axis a plane's {} balls settle only in two groups, and no two groups give its share of the unbalance ({} kg m, below one ball's m R = {} kg m): no balanced orbit exists (a run's balls creep along the placements that balance)",
-                    p.n,
-                    crate::error::fmt_num(need),
-                    crate::error::fmt_num(mr)
-                ));
-            }
-        }
-        None
+        let mut first = m - planes.iter().map(|p| p.n).sum::<usize>();
+        Some(
+            planes
+                .into_iter()
+                .map(|p| {
+                    let arc = arc[first..first + p.n].to_vec();
+                    first += p.n;
+                    let mr = p.ball_mass * p.race_radius;
+                    let t = arc.iter().fold([0.0, 0.0], |s, a| [s[0] + mr * a.cos(), s[1] + mr * a.sin()]);
+                    PlaneShare { n: p.n, mr, t, arc }
+                })
+                .collect(),
+        )
     }
 
     /// The reduced state with the rotor at rest on the axis and the balls at `psi`.
@@ -438,6 +436,18 @@ pub fn coincident_split(na: usize, ma: f64, nb: usize, mb: f64, t: [f64; 2]) -> 
     }
 }
 
+/// One ball plane's share of the unbalance ([`SpatialField::gravity_shares`]).
+struct PlaneShare {
+    /// Balls in the plane.
+    n: usize,
+    /// One ball's first moment `m R` (kg m).
+    mr: f64,
+    /// The share `Σ m R e^{iψ}` of the arc (kg m).
+    t: [f64; 2],
+    /// The arc's ball angles (rad).
+    arc: Vec<f64>,
+}
+
 /// Ball angles (from the body x axis) of `n` equal balls of first moment `mr = m R` each whose
 /// sum `Σ m R (cos ψ_j, sin ψ_j)` is `target`: an arc of equally spaced balls centred on the
 /// target's direction `β`, `ψ_j = β + a (j − (n − 1)/2)`, its spacing `a ∈ [0, 2π/n]` solving
@@ -528,7 +538,7 @@ impl VectorField for SpatialField {
     /// else `None` (also at `Ω = 0`, where nothing turns).
     fn period(&self) -> Option<f64> {
         let anisotropic = self.rotor.supports.iter().any(|s| s.stiffness[0] != s.stiffness[1] || s.damping[0] != s.damping[1]);
-        let across = self.rotor.gravity[0] != 0.0 || self.rotor.gravity[1] != 0.0;
+        let across = self.rotor.gravity_across();
         if self.omega == 0.0 {
             return None;
         }

@@ -147,6 +147,12 @@ impl SpatialRotor {
         first / self.total_mass()
     }
 
+    /// Whether gravity has a component across the spin axis (fixed x or y): it then turns
+    /// against the rotor once a revolution, and the stationary motion is a periodic orbit.
+    pub fn gravity_across(&self) -> bool {
+        self.gravity[0] != 0.0 || self.gravity[1] != 0.0
+    }
+
     /// Number of balls in all planes.
     pub fn balls(&self) -> usize {
         self.planes.iter().map(|p| p.n).sum()
