@@ -190,12 +190,11 @@ pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64, op: Option<&O
         r.points.iter().filter(|p| p.state == Some(autobal::rotor_stability::StateKind::PartiallyBalanced)).collect();
     if let (Some(a), Some(b)) = (partial.first(), partial.last()) {
         s.push_str(&format!(
-            "partially balanced (no balanced state exists: the balls' capacity falls short, a couple no plane can cancel, or, planar, below the speed where the semi-balanced state exists; a residual of {}: spatial and linear a fraction of the unbalance, planar the race centre's distance from the axis over its distance without the balls' resultant) at {} of {} speeds, {} to {}: the verdicts there are the partially balanced state's\n",
+            "partially balanced (no balanced state exists: the balls' capacity falls short, a couple no plane can cancel, or, planar, below the speed where the semi-balanced state exists; a residual of {}: spatial and linear a fraction of the unbalance, planar the race centre's distance from the axis over its distance without the balls' resultant) at {} of {} speeds, {}: the verdicts there are the partially balanced state's\n",
             residual_range(&partial),
             partial.len(),
             r.points.len(),
-            speed_text(g, a.omega),
-            speed_text(g, b.omega)
+            speed_span(|w| speed_text(g, w), a.omega, b.omega)
         ));
     }
     s.push_str(&residual_text(r, |w| speed_text(g, w)));
@@ -444,7 +443,7 @@ pub fn operating_line(g: &GeneralRotor, r: &RotorStability, op: &Operating) -> S
     kinds.dedup();
     let state = if kinds.is_empty() { "stationary".to_string() } else { kinds.join(" then ") };
     let member = if op.points.iter().any(|p| p.family_dimension > 0) { ", the member reached from the closed form" } else { "" };
-    let rate = format!("largest growth rate {}{per}", fmt_num(op.max_growth_rate()));
+    let rate = format!("largest growth rate {}{per}{}", fmt_num(op.max_growth_rate()), e_folding(op.max_growth_rate(), g.si));
     let range = |st: &autobal::analysis::StableRange| {
         let from = range_end(r, st.from, st.from_is_boundary, false, |w| speed_text(g, w));
         let to = range_end(r, st.to, st.to_is_boundary, true, |w| speed_text(g, w));
@@ -471,6 +470,44 @@ pub fn operating_line(g: &GeneralRotor, r: &RotorStability, op: &Operating) -> S
             let near = r.stable_ranges.iter().min_by(|a, b| dist(a).total_cmp(&dist(b))).map_or_else(|| "no stable range on the axis".to_string(), |st| format!("nearest stable range {}", range(st)));
             format!("operating speed {at}: the {state} state is NOT STABLE (exact, {how}{member}); {rate}; {near}\n")
         }
+    }
+}
+
+/// The time a growth rate `σ` takes to change a disturbance by the factor e, `1/|σ|`, as
+/// " (a disturbance decays by e in 1.89 h at the slowest)" or " (grows by e in 0.023 s)": the
+/// margin of a verdict read as a time (a stable periodic orbit's slowest exponent under gravity
+/// is ~1e-4 1/s, hours). In seconds, minutes, hours or days where `si`, else in units of
+/// `τ = ω0 t`; empty for a rate that is zero or not finite.
+pub(crate) fn e_folding(rate: f64, si: bool) -> String {
+    if !rate.is_finite() || rate == 0.0 {
+        return String::new();
+    }
+    let t = 1.0 / rate.abs();
+    let sig = |v: f64| fmt_num(crate::num::round_sig(v, 3).unwrap_or(v));
+    let time = if !si {
+        format!("{} units of τ", sig(t))
+    } else if t < 120.0 {
+        format!("{} s", sig(t))
+    } else if t < 5400.0 {
+        format!("{} min", sig(t / 60.0))
+    } else if t < 172_800.0 {
+        format!("{} h", sig(t / 3600.0))
+    } else {
+        format!("{} days", sig(t / 86_400.0))
+    };
+    if rate < 0.0 {
+        format!(" (a disturbance decays by the factor e in {time} at the slowest)")
+    } else {
+        format!(" (a disturbance grows by the factor e in {time})")
+    }
+}
+
+/// `a to b`, or `a` where both ends are one speed.
+fn speed_span(speed: impl Fn(f64) -> String, a: f64, b: f64) -> String {
+    if a == b {
+        speed(a)
+    } else {
+        format!("{} to {}", speed(a), speed(b))
     }
 }
 
@@ -504,26 +541,25 @@ pub(crate) fn residual_text(r: &autobal::rotor_stability::RotorStability, speed:
         "the balls do not cancel the unbalance exactly"
     };
     format!(
-        "balanced to a residual of {} {} (above the exact tolerance 1e-6; on a periodic orbit up to 0.05 is balanced, as in `simulate`, at an equilibrium only 1e-6) at {} of {} speeds, {} to {} ({why})\n",
+        "balanced to a residual of {} {} (above the exact tolerance 1e-6; on a periodic orbit up to 0.05 is balanced, as in `simulate`, at an equilibrium only 1e-6) at {} of {} speeds, {} ({why})\n",
         residual_range(&with),
         r.residual_scale.words(),
         with.len(),
         r.points.len(),
-        speed(a.omega),
-        speed(b.omega)
+        speed_span(&speed, a.omega, b.omega)
     )
 }
 
 /// The line of `stability`'s table where the state analysed is not balanced
 /// ([`autobal::rotor_stability::StateKind::NotBalanced`]: a balanced state exists, but the balls
 /// of this one leave more than the tolerance of the unbalance (at an equilibrium 1e-6, there
-/// they rest on the line of a whirl; on a periodic orbit 0.1)), with its speeds and residuals;
+/// they rest on the line of a whirl; on a periodic orbit 0.05, `simulate`'s)), with its speeds and residuals;
 /// empty where there is none.
 pub(crate) fn not_balanced_text(r: &autobal::rotor_stability::RotorStability, speed: impl Fn(f64) -> String) -> String {
     let nb: Vec<_> = r.points.iter().filter(|p| p.state == Some(autobal::rotor_stability::StateKind::NotBalanced)).collect();
     let (Some(a), Some(b)) = (nb.first(), nb.last()) else { return String::new() };
     format!(
-        "not balanced (the balls leave a residual of {}{}{}) at {} of {} speeds, {} to {}: the verdicts there are that state's, not the balanced state's\n",
+        "not balanced (the balls leave a residual of {}{}{}) at {} of {} speeds, {}: the verdicts there are that state's, not the balanced state's\n",
         residual_range(&nb),
         match r.residual_scale {
             autobal::rotor_stability::ResidualScale::Capacity if r.has_unbalance => " of their capacity (the unbalance a couple they cannot measure)",
@@ -535,8 +571,7 @@ pub(crate) fn not_balanced_text(r: &autobal::rotor_stability::RotorStability, sp
         if r.kind == Kind::PeriodicOrbit { "" } else { ": at rest on the line of the whirl" },
         nb.len(),
         r.points.len(),
-        speed(a.omega),
-        speed(b.omega)
+        speed_span(&speed, a.omega, b.omega)
     )
 }
 
@@ -573,6 +608,22 @@ mod tests {
     use super::*;
     use autobal::planar::PlanarRotor;
     use autobal::rotor_stability::StateKind;
+
+    /// The e-folding time is `1/|σ|` in the unit that keeps it readable: the washer's slowest
+    /// exponent under gravity, -1.4659e-4 1/s, is 6822 s = 1.89 h; each unit's boundary; the
+    /// sign chooses decay or growth; no time for a zero or non-finite rate.
+    #[test]
+    fn e_folding_reads_the_rate_as_a_time() {
+        assert_eq!(e_folding(-1.4659e-4, true), " (a disturbance decays by the factor e in 1.89 h at the slowest)");
+        assert_eq!(e_folding(43.59, true), " (a disturbance grows by the factor e in 0.0229 s)");
+        assert_eq!(e_folding(-1.0 / 600.0, true), " (a disturbance decays by the factor e in 10 min at the slowest)");
+        assert_eq!(e_folding(-1.0 / (3.0 * 86_400.0), true), " (a disturbance decays by the factor e in 3 days at the slowest)");
+        assert_eq!(e_folding(-0.5, false), " (a disturbance decays by the factor e in 2 units of τ at the slowest)");
+        assert_eq!(e_folding(0.0, true), "");
+        assert_eq!(e_folding(f64::NAN, true), "");
+        assert_eq!(speed_span(|w| format!("{w}"), 2.0, 2.0), "2");
+        assert_eq!(speed_span(|w| format!("{w}"), 1.0, 2.0), "1 to 2");
+    }
 
     /// The family line names a balanced point's member: paper 004's rotor (eccentric race) with
     /// three balls, partially balanced (balls bunched) below ~134 rad/s, a one-parameter
