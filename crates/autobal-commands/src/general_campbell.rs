@@ -604,6 +604,20 @@ pub fn critical_json(g: &GeneralRotor, c: &GeneralCritical) -> Value {
     v
 }
 
+/// What the balls' locked placement is: with gravity across the axis the balanced family of
+/// 3 or more balls breaks into orbits with two groups of balls (`stability`'s `member_psi`), so
+/// the closed-form placement the speeds are located at is not where the balls settle (gravity
+/// itself does not enter the locked rotor's stiffness; the placement moves the speeds only
+/// through the balls' point masses).
+fn locked_placement_note(g: &GeneralRotor) -> &'static str {
+    match &g.rotor {
+        Rotor::Spatial(s) if s.gravity_across() && s.planes.iter().any(|p| p.n >= 3) => {
+            "the closed-form placement without gravity; under gravity the balls settle in two groups per plane, at angles that move with the speed (`stability`'s member_psi): the speeds above are the named placement's"
+        }
+        _ => "with 3 or more balls in a plane the balanced states form a family: these speeds are the named member's",
+    }
+}
+
 /// The table of the general `critical`.
 pub fn critical_table(g: &GeneralRotor, c: &GeneralCritical) -> String {
     let mut s = String::new();
@@ -634,11 +648,7 @@ pub fn critical_table(g: &GeneralRotor, c: &GeneralCritical) -> String {
     if let Ok(l) = &c.locked {
         if !l.ball_angles.is_empty() {
             let deg: Vec<String> = l.ball_angles.iter().map(|p| format!("{:.2}°", p.to_degrees().rem_euclid(360.0))).collect();
-            let _ = writeln!(
-                s,
-                "  balls locked at {} (with 3 or more balls in a plane the balanced states form a family: these speeds are the named member's)",
-                deg.join(", ")
-            );
+            let _ = writeln!(s, "  balls locked at {} ({})", deg.join(", "), locked_placement_note(g));
         }
         if l.unlocked > 0 {
             let _ = writeln!(s, "  ({} of {} speeds have no balanced state to lock the balls in and were not searched)", l.unlocked, l.samples);
@@ -682,4 +692,28 @@ pub fn critical_table(g: &GeneralRotor, c: &GeneralCritical) -> String {
         }
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `critical`'s locked placement note: the washer (three balls in a plane) names the family's
+    /// member without gravity, and says under gravity that the balls settle elsewhere, in two
+    /// groups (main at bb89c7b called the placement the family's member under gravity too,
+    /// where no family exists).
+    #[test]
+    fn the_locked_placement_note_follows_gravity() {
+        let text = include_str!("../../../examples/washing_machine.toml");
+        let plain = crate::general::rotor_of(&crate::config::parse_text(text, "w").unwrap()).unwrap();
+        assert!(locked_placement_note(&plain).contains("form a family"));
+        let heavy = format!("{text}\n[spatial]\ngravity = [0.0, -9.81, 0.0]\n");
+        let heavy = crate::general::rotor_of(&crate::config::parse_text(&heavy, "w").unwrap()).unwrap();
+        let note = locked_placement_note(&heavy);
+        assert!(note.contains("two groups") && !note.contains("form a family"), "{note}");
+        // gravity along the axis (a vertical machine) keeps the family
+        let vertical = format!("{text}\n[spatial]\ngravity = [0.0, 0.0, -9.81]\n");
+        let vertical = crate::general::rotor_of(&crate::config::parse_text(&vertical, "w").unwrap()).unwrap();
+        assert!(locked_placement_note(&vertical).contains("form a family"));
+    }
 }
