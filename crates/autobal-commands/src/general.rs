@@ -163,7 +163,7 @@ pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64, op: Option<&O
     }
     if let Rotor::Spatial(sr) = &g.rotor {
         if sr.gravity_across() && sr.planes.iter().any(|p| p.n >= 3) && r.points.iter().any(|p| p.verdict.is_some()) {
-            s.push_str("gravity breaks the family of balanced states of 3 or more balls in a plane: the orbits have each such plane's balls in two groups (the member's angles in the JSON's member_psi); at each speed the orbit of least growth rate among those found from every split and its mirror is the one analysed (docs/notes/stability.md)\n");
+            s.push_str("gravity breaks the family of balanced states of 3 or more balls in a plane: the orbits have each such plane's balls in two groups (the member's angles in the JSON's member_psi); at each speed the orbit of least growth rate among those found from every split and its mirror is the one analysed, the others are in the JSON's points[].other_orbits (docs/notes/stability.md)\n");
         }
     }
     if let Some(f) = &r.family {
@@ -432,6 +432,48 @@ pub fn operating_json(op: &Operating) -> Value {
 /// every speed solved there is stable (exact: the eigenvalues or Floquet multipliers of the
 /// state found), with the scan's stable range that holds it.
 pub fn operating_line(g: &GeneralRotor, r: &RotorStability, op: &Operating) -> String {
+    let line = operating_verdict_line(g, r, op);
+    format!("{line}{}", other_orbits_line(g, op))
+}
+
+/// The other periodic orbits found at the operating speed (under gravity across the axis with
+/// 3 or more balls in a plane, [`autobal::rotor_stability::SpeedPoint::other_orbits`]), as one
+/// line: each orbit's ball angles and verdict at a single operating speed, or over an operating
+/// range how many of its speeds have one and whether any is stable; empty where none was found.
+fn other_orbits_line(g: &GeneralRotor, op: &Operating) -> String {
+    let with: Vec<&autobal::rotor_stability::SpeedPoint> = op.points.iter().filter(|p| !p.other_orbits.is_empty()).collect();
+    let Some(first) = with.first() else { return String::new() };
+    let per = if g.si { " 1/s" } else { "" };
+    let word = |v: Verdict| match v {
+        Verdict::Stable => "stable",
+        Verdict::Unstable => "unstable",
+        Verdict::Neutral => "neutral",
+    };
+    let stable_too = "; a run may settle on a stable one of these instead (its start decides)";
+    if op.omega[0] == op.omega[1] {
+        let list: Vec<String> = first
+            .other_orbits
+            .iter()
+            .map(|o| {
+                let psi: Vec<String> = o.member_psi.iter().map(|a| fmt_num(round(a.rem_euclid(std::f64::consts::TAU)))).collect();
+                format!("balls at {} rad ({}, growth rate {}{per})", psi.join(", "), word(o.verdict), fmt_num(o.abscissa))
+            })
+            .collect();
+        let any_stable = first.other_orbits.iter().any(|o| o.verdict == Verdict::Stable);
+        format!("  other periodic orbits at this speed (beside the one analysed): {}{}\n", list.join("; "), if any_stable { stable_too } else { "" })
+    } else {
+        let stable = with.iter().filter(|p| p.other_orbits.iter().any(|o| o.verdict == Verdict::Stable)).count();
+        format!(
+            "  other orbits found at {} of the {} speeds solved there (JSON operating.points[].other_orbits), a stable one at {stable}{}\n",
+            with.len(),
+            op.points.len(),
+            if stable > 0 { stable_too } else { "" }
+        )
+    }
+}
+
+/// [`operating_line`]'s verdict.
+fn operating_verdict_line(g: &GeneralRotor, r: &RotorStability, op: &Operating) -> String {
     let at = if op.omega[0] == op.omega[1] { speed_text(g, op.omega[0]) } else { format!("{} to {}", speed_text(g, op.omega[0]), speed_text(g, op.omega[1])) };
     let Some(verdict) = op.verdict() else {
         let failure = op.points.iter().find_map(|p| p.verdict.is_none().then_some(p.failure.as_deref())).flatten();

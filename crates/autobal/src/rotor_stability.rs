@@ -185,16 +185,27 @@ impl Rotor {
     /// assert!(gaps[0] < 1e-6 && gaps[1] > 0.5, "{psi:?}");
     /// ```
     pub fn gravity_orbit_start(field: &Field, newton: &NewtonOptions) -> Option<Vec<f64>> {
-        let Field::Spatial(f) = field else { return None };
-        let mut best: Option<(f64, Vec<f64>)> = None;
+        Self::gravity_orbits(field, newton).into_iter().next().map(|(x, _)| x)
+    }
+
+    /// Every distinct periodic orbit that [`Rotor::gravity_orbit_start`] finds from the groups'
+    /// placements, each as its state and [`OtherOrbit`] (ball angles at phase 0, largest
+    /// Floquet exponent, verdict), the least growth rate first. Two placements that reach one
+    /// orbit (the same ball angles to 1e-6 rad, a plane's balls in any order: they are alike)
+    /// count once. Empty where the rotor is not of that kind or no placement reaches an orbit.
+    pub fn gravity_orbits(field: &Field, newton: &NewtonOptions) -> Vec<(Vec<f64>, OtherOrbit)> {
+        let Field::Spatial(f) = field else { return vec![] };
+        let mut found: Vec<(Vec<f64>, OtherOrbit)> = vec![];
         for g in f.split_guesses() {
             let Ok(state) = stationary(f, &g, newton) else { continue };
             let Ok(st) = crate::analysis::stability(f, &state) else { continue };
-            if best.as_ref().is_none_or(|(a, _)| st.abscissa < *a) {
-                best = Some((st.abscissa, state.x));
+            let member_psi = ball_angles(field, &state.x);
+            if !found.iter().any(|(_, o)| same_placement(f.rotor(), &o.member_psi, &member_psi)) {
+                found.push((state.x, OtherOrbit { member_psi, abscissa: st.abscissa, verdict: st.verdict }));
             }
         }
-        best.map(|(_, x)| x)
+        found.sort_by(|a, b| a.1.abscissa.total_cmp(&b.1.abscissa));
+        found
     }
 
     /// The first guess where [`Rotor::guess`] has none, for a spatial rotor with two ball
@@ -639,6 +650,54 @@ pub struct SpeedPoint {
     pub family: Option<FamilyPoint>,
     /// With a family: which of its members are stable (all, some, none): `family`'s verdict.
     pub family_verdict: Option<FamilyVerdict>,
+    /// Under gravity across the axis with `n ≥ 3` balls in a plane: the other periodic orbits
+    /// found at this speed from the groups' placements ([`OtherOrbit`]), the least growth rate
+    /// first; empty elsewhere.
+    pub other_orbits: Vec<OtherOrbit>,
+}
+
+/// A periodic orbit found at a speed beside the one analysed there
+/// ([`SpeedPoint::other_orbits`]): under gravity across the axis with `n ≥ 3` balls in a plane
+/// each placement of the balls in two groups is shot ([`Rotor::gravity_orbits`]) and the
+/// orbit of least growth rate analysed; these are the others (e.g. the washer at 1400 rpm: the
+/// mirror of the stable orbit, unstable at +3.49e-4 1/s). Where one of them is stable too, a
+/// run may settle on either.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct OtherOrbit {
+    /// The balls' angles at phase 0 (rad, all planes in order), as [`SpeedPoint::member_psi`].
+    pub member_psi: Vec<f64>,
+    /// Its largest Floquet exponent's real part (1/s, or per unit τ).
+    pub abscissa: f64,
+    /// Its verdict.
+    pub verdict: Verdict,
+}
+
+/// Whether two placements of a spatial rotor's balls (all planes in order) are one: each
+/// plane's angles matched one to one within `1e-6` rad round the circle (the balls of a plane
+/// are alike, so a placement and its relabelling are the same orbit).
+fn same_placement(rotor: &SpatialRotor, a: &[f64], b: &[f64]) -> bool {
+    if a.len() != b.len() {
+        return false;
+    }
+    let mut start = 0;
+    rotor.planes.iter().all(|plane| {
+        let range = start..(start + plane.n).min(a.len());
+        start = range.end;
+        // each ball of `a` matched to an unused one of `b` within 1e-6 rad round the circle
+        // (not sorted lists: 1e-9 and 2π − 1e-9 are one angle)
+        let near = |x: f64, y: f64| {
+            let d = (x - y).rem_euclid(std::f64::consts::TAU);
+            d.min(std::f64::consts::TAU - d) <= 1e-6
+        };
+        let mut used = vec![false; range.len()];
+        a[range.clone()].iter().all(|&x| match b[range.clone()].iter().enumerate().position(|(j, &y)| !used[j] && near(x, y)) {
+            Some(j) => {
+                used[j] = true;
+                true
+            }
+            None => false,
+        })
+    })
 }
 
 /// What [`SpeedPoint::state`] is decided on.
@@ -875,17 +934,26 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
     // under gravity across the axis with n >= 3 balls in a plane, the orbit with the balls in
     // two groups (Rotor::gravity_orbit_start: the family's arc member is no orbit there)
     let newton = opts.newton.clone();
-    let guess = |f: &Field, _| {
+    // the orbits found from the groups' placements at each speed, kept for `other_orbits`
+    let orbits_at: std::sync::Mutex<Vec<(f64, Vec<OtherOrbit>)>> = Default::default();
+    let guess = |f: &Field, omega: f64| {
         // no balanced orbit where no two groups give a plane's share: no start
         if f.gravity_circulation().is_some() {
             return None;
         }
-        Rotor::gravity_orbit_start(f, &newton).or_else(|| Rotor::guess(f)).or_else(|| Rotor::placed_guess(f)).or_else(|| Rotor::bunched_guess(f))
+        let orbits = Rotor::gravity_orbits(f, &newton);
+        let start = orbits.first().map(|(x, _)| x.clone());
+        // every orbit found: the one the scan settles on is told apart by its placement below
+        if let Ok(mut kept) = orbits_at.lock() {
+            kept.push((omega, orbits.into_iter().map(|(_, o)| o).collect()));
+        }
+        start.or_else(|| Rotor::guess(f)).or_else(|| Rotor::placed_guess(f)).or_else(|| Rotor::bunched_guess(f))
     };
     let Outcome { value: scan, mut stopped } = speed_scan_with(field_at, guess, speeds, &opts, control).map_err(|e| match e {
         crate::analysis::AnalysisError::Model(e) => e,
         e => Error::invalid("speeds", e.to_string()),
     })?;
+    let orbits_at = orbits_at.into_inner().unwrap_or_default();
     let mut member_psi = vec![];
     let mut family_dimension = 0;
     let mut points: Vec<SpeedPoint> = scan
@@ -917,6 +985,11 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
                 state,
                 state_basis: state.map(|_| if matches!(rotor, Rotor::Linear(_)) { StateBasis::RaceWhirl } else { StateBasis::Residual }),
                 residual,
+                // the placements' other orbits at this grid speed, less the one analysed
+                other_orbits: match (rotor, orbits_at.iter().find(|(w, _)| *w == p.omega)) {
+                    (Rotor::Spatial(r), Some((_, found))) => found.iter().filter(|o| !same_placement(r, &o.member_psi, &psi)).cloned().collect(),
+                    _ => vec![],
+                },
                 member_psi: psi,
                 family: None,
                 family_verdict: None,
@@ -1531,6 +1604,26 @@ mod tests {
     /// stationary states are partially balanced (the plane at rest while the rotor rocks about
     /// it, its balls opposite: main at 85e6257 called them not balanced, the docs said
     /// partially balanced; no placement of one plane's balls cancels a couple about it).
+    /// One placement of the balls is one orbit whatever the balls' labels within a plane and
+    /// whole turns; planes are told apart (examples/spatial_two_plane.toml: two balls a plane).
+    #[test]
+    fn same_placement_is_per_plane_up_to_labels_and_turns() {
+        let root = crate::config::parse(include_str!("../../../examples/spatial_two_plane.toml"), "two-plane").unwrap();
+        let r = crate::config::spatial_simulation(&root).unwrap().rotor;
+        assert_eq!(r.planes.iter().map(|p| p.n).collect::<Vec<_>>(), [2, 2]);
+        let tau = std::f64::consts::TAU;
+        let a = [0.1, 2.0, 3.0, -1.0];
+        assert!(same_placement(&r, &a, &[2.0, 0.1 + tau, -1.0 + 1e-7, 3.0 - tau]));
+        // the first plane's ball swapped with the second plane's: another placement
+        assert!(!same_placement(&r, &a, &[3.0, 2.0, 0.1, -1.0]));
+        assert!(!same_placement(&r, &a, &[0.1, 2.0, 3.0, -1.0 + 1e-5]));
+        assert!(!same_placement(&r, &a, &a[..3]));
+        // across the cut at 0 = 2π
+        assert!(same_placement(&r, &[1e-9, 3.0, 1.0, 2.0], &[tau - 1e-9, 3.0, 2.0, 1.0]));
+        // two balls together against two apart: not one placement though each ball has a match
+        assert!(!same_placement(&r, &[1.0, 1.0, 0.0, 0.0], &[1.0, 2.0, 0.0, 0.0]));
+    }
+
     #[test]
     fn the_spatial_classifier_on_equilibria_opposite_and_couple() {
         use crate::spatial::dynamics::{BallPlane, PointMass, RigidRotor, Support};

@@ -166,3 +166,48 @@ fn the_map_has_the_two_group_orbit_above_one_balls_share_and_none_below() {
     assert_eq!(verdicts[..2], [None, None], "{cells:?}");
     assert!(verdicts[2..].iter().all(|v| *v == Some(autobal::analysis::Verdict::Stable)), "{cells:?}");
 }
+
+#[test]
+fn the_scan_lists_the_mirror_as_the_other_orbit() {
+    // `SpeedPoint::other_orbits` at 1400 rpm: exactly the orbit shot from the other placement
+    // of the groups (by `stationary` from `split_guesses` directly), unstable, with its angles
+    // and growth rate; the orbit analysed is not listed again. Main at bb89c7b found it and
+    // dropped it.
+    use autobal::analysis::{stability, stationary, NewtonOptions, Verdict};
+    let rotor = Rotor::Spatial(washer("").rotor);
+    let r = stability_over_speed(&rotor, &[SPIN]).unwrap();
+    let p = &r.points[0];
+    assert_eq!(p.other_orbits.len(), 1, "{:?}", p.other_orbits);
+    let other = &p.other_orbits[0];
+    assert_eq!(other.verdict, Verdict::Unstable);
+    let field = rotor.field(SPIN).unwrap();
+    let autobal::rotor_stability::Field::Spatial(f) = &field else { panic!() };
+    let newton = NewtonOptions::default();
+    let shot: Vec<_> = f
+        .split_guesses()
+        .iter()
+        .map(|g| {
+            let s = stationary(f, g, &newton).unwrap();
+            let st = stability(f, &s).unwrap();
+            // the balls' angles are the last coordinates (the state: coordinates, then rates)
+            let n = s.x.len() / 2;
+            (s.x[n - 3..n].to_vec(), st)
+        })
+        .collect();
+    let (psi, st) = shot.iter().find(|(_, st)| st.verdict == Verdict::Unstable).unwrap();
+    // the scan shoots at rtol 1e-10, this at the default: the same orbit to the shooting's
+    // tolerance (1e-10 scaled; 1e-7 rad allows the scale)
+    for (a, b) in psi.iter().zip(&other.member_psi) {
+        assert!(wrap(a - b).abs() < 1e-7, "{psi:?} vs {:?}", other.member_psi);
+    }
+    // growth rates within the Floquet tolerance (1e-8 on a multiplier, 1e-8 / T on an
+    // exponent, T = 2π/Ω: 2.3e-7 1/s); they differ by ~4e-10 1/s between the two rtols
+    let tol = autobal::analysis::FLOQUET_TOLERANCE * SPIN / (2.0 * PI);
+    assert!((st.abscissa - other.abscissa).abs() <= tol, "{} vs {}", st.abscissa, other.abscissa);
+    for (a, b) in p.member_psi.iter().zip(&other.member_psi) {
+        assert!(wrap(a - b).abs() > 0.1 || a == b, "the analysed orbit listed as another");
+    }
+    // no other orbit without gravity's placements (two balls: no split)
+    let two = Rotor::Spatial(washer_with("balancer.balls", "2").rotor);
+    assert!(stability_over_speed(&two, &[SPIN]).unwrap().points[0].other_orbits.is_empty());
+}
