@@ -1531,7 +1531,13 @@ fn in_order(prev: &[Complex64], pred: &[Complex64], mut vals: Vec<Complex64>) ->
 /// Each of the eigenvalues `ev` given to one of the predictions `pred`, nearest pair first:
 /// the values per prediction and whether every assignment is clear (each eigenvalue at least
 /// 3 times nearer its own prediction than any other's, among distinct eigenvalues); `None`
-/// where the counts differ.
+/// where the counts differ. Greedy, not the optimal assignment of
+/// `spatial::stability::assignment` (Hungarian, O(n³)): where every assignment is clear the
+/// nearest-pair-first matching is the optimal one (each eigenvalue's own prediction is its
+/// nearest, and an exchange `i ↔ j` would cost at least 9 times the pairs it replaces), and
+/// where it is not clear the callers refine the step, or at the refinement's floor keep the
+/// lines' order by a stated convention (`in_order`), rather than trust any matching: the
+/// cheaper rule decides nothing the optimal one would decide differently.
 fn assign(pred: &[Complex64], ev: &[Complex64]) -> Option<(Vec<Complex64>, bool)> {
     let n = pred.len();
     if ev.len() != n {
