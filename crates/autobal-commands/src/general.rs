@@ -109,7 +109,15 @@ fn what_is_analysed(g: &GeneralRotor, r: &RotorStability) -> String {
             "a periodic orbit of one revolution (supports that differ by direction or gravity turn against the rotor: the rotor sags and the balls swing; shooting with the variational equations; Floquet multipliers)"
         }
     };
-    format!("{model}, found as {how}")
+    // where no speed has the state named (capacity short, a couple no plane cancels), say
+    // what is analysed instead: the state words per speed follow in the table
+    let none_balanced = r.points.iter().any(|p| p.state.is_some())
+        && r.points
+            .iter()
+            .filter_map(|p| p.state)
+            .all(|k| !matches!(k, autobal::rotor_stability::StateKind::Balanced | autobal::rotor_stability::StateKind::SemiBalanced));
+    let instead = if none_balanced { " (at no speed here does that state exist: the states found instead are named below)" } else { "" };
+    format!("{model}{instead}, found as {how}")
 }
 
 /// The JSON of the general route.
@@ -118,7 +126,7 @@ pub fn json(g: &GeneralRotor, r: &RotorStability, omega_max: f64) -> Value {
         .stable_ranges
         .iter()
         .map(|s| {
-            let mut v = json!({ "from": s.from, "to": s.to, "from_is_boundary": s.from_is_boundary, "to_is_boundary": s.to_is_boundary });
+            let mut v = json!({ "from": s.from, "to": s.to, "from_is_boundary": s.from_is_boundary, "to_is_boundary": s.to_is_boundary, "from_is_switch": s.from_is_switch, "to_is_switch": s.to_is_switch });
             if g.si {
                 v["from_rpm"] = json!(rpm(s.from));
                 v["to_rpm"] = json!(rpm(s.to));
@@ -216,11 +224,17 @@ pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64, op: Option<&O
         ));
     } else {
         for st in &r.stable_ranges {
-            let from = range_end(r, st.from, st.from_is_boundary, false, |w| speed_text(g, w));
-            let to = range_end(r, st.to, st.to_is_boundary, true, |w| speed_text(g, w));
+            let from = end_text(r, st, false, |w| speed_text(g, w));
+            let to = end_text(r, st, true, |w| speed_text(g, w));
             // the states the range covers: "partially balanced, stable" never reads "stable"
             let kinds: Vec<&str> = {
-                let mut k: Vec<&str> = r.points.iter().filter(|p| p.omega >= st.from && p.omega <= st.to).filter_map(|p| p.state.map(|k| k.name())).collect();
+                // (the range's own points: not a switch end's grid speed, whose state is another)
+                let mut k: Vec<&str> = r
+                    .points
+                    .iter()
+                    .filter(|p| p.omega >= st.from && p.omega <= st.to && p.abscissa.is_some_and(|a| a < 0.0))
+                    .filter_map(|p| p.state.map(|k| k.name()))
+                    .collect();
                 k.dedup();
                 k
             };
@@ -281,6 +295,23 @@ pub(crate) fn family_line(r: &RotorStability, speed: impl Fn(f64) -> String) -> 
         ),
         None => format!("{head}; no speed of the axis has a balanced state, so no member to name\n"),
     }
+}
+
+/// A stable range's end in words ([`range_end`]), or, where the scan's state switches there
+/// to another stationary state with the other verdict
+/// ([`autobal::analysis::StableRange::from_is_switch`]), that it is such a switch and no
+/// change of stability.
+pub(crate) fn end_text(r: &RotorStability, st: &autobal::analysis::StableRange, upper: bool, speed: impl Fn(f64) -> String) -> String {
+    let (w, located, switch) = if upper { (st.to, st.to_is_boundary, st.to_is_switch) } else { (st.from, st.from_is_boundary, st.from_is_switch) };
+    if switch {
+        return format!(
+            "{} (a switch of state, not a change of stability: {} it the scan's start reaches another stationary state, with the other verdict; the state of this range may exist and stay stable {} it)",
+            speed(w),
+            if upper { "above" } else { "below" },
+            if upper { "above" } else { "below" }
+        );
+    }
+    range_end(r, w, located, upper, speed)
 }
 
 /// A stable range's end in words: a located boundary as its speed; else a grid speed, the
@@ -487,8 +518,8 @@ fn operating_verdict_line(g: &GeneralRotor, r: &RotorStability, op: &Operating) 
     let member = if op.points.iter().any(|p| p.family_dimension > 0) { ", the member reached from the closed form" } else { "" };
     let rate = format!("largest growth rate {}{per}{}", fmt_num(op.max_growth_rate()), e_folding(op.max_growth_rate(), g.si));
     let range = |st: &autobal::analysis::StableRange| {
-        let from = range_end(r, st.from, st.from_is_boundary, false, |w| speed_text(g, w));
-        let to = range_end(r, st.to, st.to_is_boundary, true, |w| speed_text(g, w));
+        let from = end_text(r, st, false, |w| speed_text(g, w));
+        let to = end_text(r, st, true, |w| speed_text(g, w));
         format!("{from} to {to}")
     };
     match verdict {
@@ -606,7 +637,7 @@ pub(crate) fn not_balanced_text(r: &autobal::rotor_stability::RotorStability, sp
         match r.residual_scale {
             autobal::rotor_stability::ResidualScale::Capacity if r.has_unbalance => " of their capacity (the unbalance a couple they cannot measure)",
             autobal::rotor_stability::ResidualScale::Capacity => " of their capacity, with no unbalance to cancel",
-            autobal::rotor_stability::ResidualScale::Unbalance => " of an unbalance their capacity could cancel",
+            autobal::rotor_stability::ResidualScale::Unbalance => " of the unbalance",
             autobal::rotor_stability::ResidualScale::StaticUnbalance => " of the static unbalance",
             autobal::rotor_stability::ResidualScale::RaceOffset => " of the race centre's offset without the balls",
         },
@@ -678,7 +709,14 @@ mod tests {
         let g = GeneralRotor { rotor: Rotor::Planar(PlanarRotor { n: 3, ..PlanarRotor::paper() }), si: true, omega0: 1.0 };
         let r = analyse(&g, 600.0, 30, &Control::default()).unwrap();
         assert_eq!(r.family_dimension, 1);
-        assert_eq!(r.points[0].state, Some(StateKind::PartiallyBalanced), "{:?}", r.points[0]);
+        // the balls bunched below the semi-balanced state's speed: partially balanced until
+        // session 16, now not balanced where they leave E farther out than no balls (1.04 at
+        // 20 rad/s); either way no family
+        assert!(
+            matches!(r.points[0].state, Some(StateKind::NotBalanced | StateKind::PartiallyBalanced)) && r.points[0].family_dimension == 0,
+            "{:?}",
+            r.points[0]
+        );
         let p = r.points.iter().find(|p| p.family_dimension > 0).unwrap();
         assert_eq!(p.state, Some(StateKind::SemiBalanced));
         assert_eq!(r.member_psi, p.member_psi);

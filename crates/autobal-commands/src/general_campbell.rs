@@ -581,7 +581,7 @@ pub fn critical_json(g: &GeneralRotor, c: &GeneralCritical) -> Value {
     match &c.stability {
         Ok(st) => {
             v["exact_stable_ranges"] = json!(st.stable_ranges.iter().map(|s| {
-                json!({ "from": s.from, "to": s.to, "from_is_boundary": s.from_is_boundary, "to_is_boundary": s.to_is_boundary, "from_si": to_si(s.from), "to_si": to_si(s.to) })
+                json!({ "from": s.from, "to": s.to, "from_is_boundary": s.from_is_boundary, "to_is_boundary": s.to_is_boundary, "from_is_switch": s.from_is_switch, "to_is_switch": s.to_is_switch, "from_si": to_si(s.from), "to_si": to_si(s.to) })
             }).collect::<Vec<_>>());
             v["stationary_state"] = json!(st.kind);
             v["family_dimension"] = json!(st.family_dimension);
@@ -675,8 +675,9 @@ pub fn critical_table(g: &GeneralRotor, c: &GeneralCritical) -> String {
         let _ = writeln!(s, "  stable: nowhere in (0, {}]", speed_text(g, c.omega_max));
     }
     for r in &st.stable_ranges {
-        let end = |w: f64, b: bool, edge: &str| if b { speed_text(g, w) } else { format!("{} ({edge} of the axis)", speed_text(g, w)) };
-        let _ = writeln!(s, "  stable: {} to {}", end(r.from, r.from_is_boundary, "start"), end(r.to, r.to_is_boundary, "end"));
+        // as `stability` words them: a grid speed next to one without a state is not the axis' end
+        let end = |upper: bool| crate::general::end_text(st, r, upper, |w| speed_text(g, w));
+        let _ = writeln!(s, "  stable: {} to {}", end(false), end(true));
     }
     match &c.necessary {
         Some(r) => {

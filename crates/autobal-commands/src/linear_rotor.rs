@@ -220,7 +220,7 @@ pub fn stability_json(cfg: &LinearRotorConfig, r: &RotorStability, red: &Option<
     let ranges: Vec<Value> = r
         .stable_ranges
         .iter()
-        .map(|s| json!({ "from": s.from, "to": s.to, "from_rpm": rpm(s.from), "to_rpm": rpm(s.to), "from_is_boundary": s.from_is_boundary, "to_is_boundary": s.to_is_boundary }))
+        .map(|s| json!({ "from": s.from, "to": s.to, "from_rpm": rpm(s.from), "to_rpm": rpm(s.to), "from_is_boundary": s.from_is_boundary, "to_is_boundary": s.to_is_boundary, "from_is_switch": s.from_is_switch, "to_is_switch": s.to_is_switch }))
         .collect();
     Ok(json!({
         "route": "general",
@@ -271,10 +271,16 @@ pub fn stability_table(cfg: &LinearRotorConfig, r: &RotorStability, red: &Option
     }
     for st in &r.stable_ranges {
         // an end not located: the axis' start or end, or next to a speed without a verdict
-        let from = crate::general::range_end(r, st.from, st.from_is_boundary, false, speed_text);
-        let to = crate::general::range_end(r, st.to, st.to_is_boundary, true, speed_text);
+        let from = crate::general::end_text(r, st, false, speed_text);
+        let to = crate::general::end_text(r, st, true, speed_text);
         // the states the range covers: "partially balanced, stable" never reads "stable"
-        let mut kinds: Vec<&str> = r.points.iter().filter(|p| p.omega >= st.from && p.omega <= st.to).filter_map(|p| p.state.map(|k| k.name())).collect();
+        // (the range's own points: not a switch end's grid speed, whose state is another)
+        let mut kinds: Vec<&str> = r
+            .points
+            .iter()
+            .filter(|p| p.omega >= st.from && p.omega <= st.to && p.abscissa.is_some_and(|a| a < 0.0))
+            .filter_map(|p| p.state.map(|k| k.name()))
+            .collect();
         kinds.dedup();
         let label = if kinds.iter().any(|k| *k != "balanced") { format!("{}, stable", kinds.join(" then ")) } else { "stable".to_string() };
         s.push_str(&format!("{label}: {from} to {to}\n"));

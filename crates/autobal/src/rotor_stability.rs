@@ -356,14 +356,15 @@ impl Rotor {
                 let balanced = if p.s2 == 0.0 { StateKind::Balanced } else { StateKind::SemiBalanced };
                 if r <= BALANCED_EXACTLY {
                     balanced
-                } else if bunched(&ball_angles(field, x)) && (p.s2 != 0.0 || r < 1.0) {
+                } else if bunched(&ball_angles(field, x)) && r < 1.0 {
                     // partially: the balls reduce the unbalance; with the race centred the
                     // residual is the residual unbalance itself, and bunched on the unbalance's
                     // side (below the critical speed, residual > 1) they add to it: not
-                    // balanced. (An eccentric race's residual is E's offset against E's offset
-                    // without the balls' resultant, not an unbalance: paper 004's bunched state
-                    // below its semi-balanced speed reads 1.91 at 200 rad/s; kept partially
-                    // balanced, the state paper 004's balls settle in there.)
+                    // balanced. An eccentric race's residual is E's offset against E's offset
+                    // without the balls' resultant: above 1 the balls put E farther from the
+                    // axis than no balls would, so not balanced either (paper 004's bunched
+                    // state below its semi-balanced speed, 1.91 at 200 rad/s, read partially
+                    // balanced until session 16; a review of the planar run's words)
                     StateKind::PartiallyBalanced
                 } else if field.period().is_some() && r <= BALANCE_TOLERANCE {
                     balanced
@@ -384,7 +385,10 @@ impl Rotor {
                 // opposite-ball orbit's (~1) is ~1e3 times its own, so no factor separates them
                 if r <= BALANCED_EXACTLY {
                     StateKind::Balanced
-                } else if !spatial_can_balance(s) {
+                } else if !spatial_can_balance(s) && r < 1.0 {
+                    // no balanced state: partially balanced where the balls reduce the unbalance;
+                    // a residual of 1 or more (the balls on the heavy side: Rodrigues et al.'s
+                    // two-plane rotor at 0.97 m_c below 315 rad/s, 1.97) is not balanced
                     StateKind::PartiallyBalanced
                 } else if field.period().is_some() && r <= BALANCE_TOLERANCE {
                     StateKind::Balanced
@@ -1143,7 +1147,7 @@ fn family_over_speed(
             }
             let end = boundary[j].map(|w| (w, true)).unwrap_or((points[j].omega, false));
             let (from, to, fb, tb) = if start.0 <= end.0 { (start.0, end.0, start.1, end.1) } else { (end.0, start.0, end.1, start.1) };
-            out.push(StableRange { from, to, from_is_boundary: fb, to_is_boundary: tb });
+            out.push(StableRange { from, to, from_is_boundary: fb, to_is_boundary: tb, from_is_switch: false, to_is_switch: false });
             i = j + 1;
         }
     }

@@ -226,6 +226,14 @@ pub struct StableRange {
     /// Whether `to` is a located boundary (else a grid speed: the grid's last, or one next to a
     /// speed where no stationary state was found, or where a stop cut the location short).
     pub to_is_boundary: bool,
+    /// Whether `from` is where the state analysed **switches** to another stationary state
+    /// (with the other verdict), not where one state changes stability: the location's last
+    /// bracket holds two states far apart ([`switches`]), e.g. two partially balanced states
+    /// that coexist, the scan's start landing on one below the speed and on the other above.
+    /// `from_is_boundary` is then false.
+    pub from_is_switch: bool,
+    /// Whether `to` is such a switch (`to_is_boundary` then false).
+    pub to_is_switch: bool,
 }
 
 /// The result of a [`speed_scan`].
@@ -302,7 +310,7 @@ fn predict(p: &Trial, q: &Trial, omega: f64) -> Option<(Vec<f64>, Vec<f64>)> {
 /// (an end whose verdict is neutral) or a trial finds no state. Each trial starts from its two
 /// nearest solutions ([`predict`]) and the nearest one's monodromy matrix. Returns the middle
 /// of the last bracket (`None` if stopped) and why it stopped.
-fn locate_end<E>(a: &ScanPoint, b: &ScanPoint, rtol: f64, control: &Control, evaluate: E) -> (Option<f64>, Option<crate::control::StopReason>)
+fn locate_end<E>(a: &ScanPoint, b: &ScanPoint, rtol: f64, control: &Control, evaluate: E) -> (Option<f64>, Option<crate::control::StopReason>, bool)
 where
     E: Fn(f64, Option<&StationaryState>, Option<(&[f64], &[f64])>) -> std::result::Result<(StationaryState, Stability), String>,
 {
@@ -342,10 +350,10 @@ where
             let tol1 = tolerance(pb.omega, pc.omega);
             let xm = 0.5 * (pc.omega - pb.omega);
             if fb == 0.0 {
-                return (Some(pb.omega), None); // α vanishes here: the end itself
+                return (Some(pb.omega), None, false); // α vanishes here: the end itself
             }
             if xm.abs() <= tol1 {
-                return (Some(0.5 * (pb.omega + pc.omega)), None);
+                return (Some(0.5 * (pb.omega + pc.omega)), None, switches(&pb, &pc, a, b));
             }
             if e.abs() >= tol1 && fa.abs() > fb.abs() {
                 let s = fb / fa;
@@ -378,14 +386,14 @@ where
             }
             let omega = pb.omega + if d.abs() > tol1 { d } else { tol1.copysign(xm) };
             if let Some(why) = control.should_stop() {
-                return (None, Some(why));
+                return (None, Some(why), false);
             }
             let t = trial(omega, &[&pb, &pc, &pa]);
             pa = pb.clone();
             if t.alpha.is_none() {
                 // no α here: bisection on the verdict from the bracket [b, c]
                 let (lo, hi) = if t.stable() == pb.stable() { (t, pc) } else { (t, pb) };
-                return bisect(lo, hi, rtol, control, &trial);
+                return bisect(lo, hi, rtol, control, &trial, (a, b));
             }
             pb = t;
             if (pb.alpha.unwrap_or(0.0) > 0.0) == (pc.alpha.unwrap_or(0.0) > 0.0) {
@@ -395,7 +403,29 @@ where
             }
         }
     }
-    bisect(ta, tb, rtol, control, &trial)
+    bisect(ta, tb, rtol, control, &trial, (a, b))
+}
+
+/// Whether the last bracket `[p, q]` of a range end's location holds two different stationary
+/// states rather than one state on both sides of a change of stability: their states differ
+/// (max norm) by more than `10³` times what the grid step's change `|x_a − x_b|` would give
+/// over the bracket's width `|ω_p − ω_q|`, plus `1e-8 (1 + max|x|)` (the states' own
+/// accuracy: the shooting's tolerance is 1e-10 scaled). One state along a branch changes by
+/// `|dx/dω| |ω_p − ω_q|`, ~`|x_a − x_b|` times the bracket over the grid step (10³ allows a
+/// branch 10³ times steeper there than on average over the step); a switch keeps a jump of
+/// the grid step's size (the balls elsewhere by ~1 rad) however narrow the bracket.
+fn switches(p: &Trial, q: &Trial, a: &ScanPoint, b: &ScanPoint) -> bool {
+    let (Some(xp), Some(xq), Some(xa), Some(xb)) = (p.state.as_ref(), q.state.as_ref(), a.state.as_ref(), b.state.as_ref()) else { return false };
+    if xp.x.len() != xq.x.len() || xa.x.len() != xb.x.len() || xp.x.len() != xa.x.len() {
+        return false;
+    }
+    let diff = |u: &[f64], v: &[f64]| u.iter().zip(v).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
+    let size = xp.x.iter().chain(&xq.x).map(|v| v.abs()).fold(0.0, f64::max);
+    let (width, step) = ((p.omega - q.omega).abs(), (a.omega - b.omega).abs());
+    if step == 0.0 {
+        return false;
+    }
+    diff(&xp.x, &xq.x) > 1e3 * (width / step) * diff(&xa.x, &xb.x) + 1e-8 * (1.0 + size)
 }
 
 /// Bisection of the bracket `[p, q]` (sides differ) on the verdict, to `rtol · Ω`.
@@ -405,15 +435,16 @@ fn bisect(
     rtol: f64,
     control: &Control,
     trial: &dyn Fn(f64, &[&Trial]) -> Trial,
-) -> (Option<f64>, Option<crate::control::StopReason>) {
+    grid: (&ScanPoint, &ScanPoint),
+) -> (Option<f64>, Option<crate::control::StopReason>, bool) {
     loop {
         let width = (q.omega - p.omega).abs();
         let mid = 0.5 * (p.omega + q.omega);
         if width <= rtol * p.omega.abs().max(q.omega.abs()) || mid == p.omega || mid == q.omega {
-            return (Some(mid), None);
+            return (Some(mid), None, switches(&p, &q, grid.0, grid.1));
         }
         if let Some(why) = control.should_stop() {
-            return (None, Some(why));
+            return (None, Some(why), false);
         }
         let t = trial(mid, &[&p, &q]);
         if t.stable() == p.stable() {
@@ -522,10 +553,53 @@ where
         if a.is_stable() == b.is_stable() || a.stability.is_none() || b.stability.is_none() || stopped.is_some() {
             continue;
         }
-        let (end, why) = locate_end(a, b, opts.boundary_rtol, control, evaluate);
+        let (mut end, mut why, mut switch) = locate_end(a, b, opts.boundary_rtol, control, evaluate);
+        if switch && why.is_none() {
+            // the last bracket holds two states (the grid speeds' starts, or the trials', reach
+            // different ones): locate again following only the stable side's state, each trial
+            // by Newton from its nearest solution on that side, so the end found is where that
+            // state changes stability, or where it is lost (a switch still). E.g. the washer with
+            // gravity: the scan reached the mirror orbit below ~31.5 rad/s and the two-group
+            // orbit above, and the first location ended 0.25 % off that orbit's own boundary.
+            let (kept, other) = if a.is_stable() { (a, b) } else { (b, a) };
+            let follow =
+                |omega: f64, previous: Option<&StationaryState>, _: Option<(&[f64], &[f64])>| -> std::result::Result<(StationaryState, Stability), String> {
+                    let previous = previous.ok_or_else(|| "no state to follow".to_string())?;
+                    let f = field_at(omega).map_err(|e| e.to_string())?;
+                    let state = stationary_near(&f, &previous.x, previous.monodromy.as_deref(), &opts.newton).map_err(|e| e.to_string())?;
+                    stability(&f, &state).map(|st| (state, st)).map_err(|e| e.to_string())
+                };
+            // the other grid speed's point by the same continuation in 16 steps (a branch can
+            // turn fast: the two-plane rotor's partially balanced state below 322 rad/s moves
+            // its balls 0.6 rad over one grid step, and one Newton jump lands on the other
+            // state), none where it is lost
+            let steps = 16;
+            let mut walked: std::result::Result<(StationaryState, Stability), String> = Err("no state to follow".into());
+            let mut at = kept.state.clone();
+            for k in 1..=steps {
+                let omega = kept.omega + (other.omega - kept.omega) * k as f64 / steps as f64;
+                walked = follow(omega, at.as_ref(), None);
+                match &walked {
+                    Ok((state, _)) => at = Some(state.clone()),
+                    Err(_) => break,
+                }
+            }
+            let followed = match walked {
+                Ok((state, st)) => ScanPoint { omega: other.omega, state: Some(state), stability: Some(st), failure: None },
+                Err(e) => ScanPoint { omega: other.omega, state: None, stability: None, failure: Some(e) },
+            };
+            if followed.is_stable() != kept.is_stable() {
+                let (p, q) = if a.is_stable() { (kept, &followed) } else { (&followed, kept) };
+                (end, why, switch) = locate_end(p, q, opts.boundary_rtol, control, follow);
+            } else {
+                // the followed state is stable at the other grid speed too: the range's state
+                // goes on, and the verdict there is another state's: the switch is the grid speed
+                end = Some(other.omega);
+            }
+        }
         match why {
             Some(why) => stopped = Some(why),
-            None => boundary[i] = end,
+            None => boundary[i] = end.map(|w| (w, switch)),
         }
     }
     let mut stable_ranges = vec![];
@@ -535,14 +609,15 @@ where
             i += 1;
             continue;
         }
-        let start = if i > 0 { boundary[i - 1].map(|w| (w, true)) } else { None }.unwrap_or((points[i].omega, false));
+        // (speed, located as a boundary, a switch of state)
+        let start = if i > 0 { boundary[i - 1].map(|(w, sw)| (w, !sw, sw)) } else { None }.unwrap_or((points[i].omega, false, false));
         let mut j = i;
         while j + 1 < points.len() && points[j + 1].is_stable() {
             j += 1;
         }
-        let end = boundary[j].map(|w| (w, true)).unwrap_or((points[j].omega, false));
-        let (from, to, fb, tb) = if start.0 <= end.0 { (start.0, end.0, start.1, end.1) } else { (end.0, start.0, end.1, start.1) };
-        stable_ranges.push(StableRange { from, to, from_is_boundary: fb, to_is_boundary: tb });
+        let end = boundary[j].map(|(w, sw)| (w, !sw, sw)).unwrap_or((points[j].omega, false, false));
+        let (lo, hi) = if start.0 <= end.0 { (start, end) } else { (end, start) };
+        stable_ranges.push(StableRange { from: lo.0, to: hi.0, from_is_boundary: lo.1, to_is_boundary: hi.1, from_is_switch: lo.2, to_is_switch: hi.2 });
         i = j + 1;
     }
     Ok(Outcome { value: SpeedScan { points, stable_ranges }, stopped })
