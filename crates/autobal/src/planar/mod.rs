@@ -440,8 +440,33 @@ pub struct Summary {
     /// Speed at the end (rad/s).
     pub final_omega: f64,
     /// Whether the end state is the balanced/semi-balanced whirl: radius of C within 5 % of
-    /// `s2` (or below 5 % of `s1` when `s2 = 0`) and the motion settled (see `settled`).
+    /// `s2` (or below 5 % of `s1` when `s2 = 0`) and the balls at rest relative to the rotor
+    /// (their rates within the limit of `settled`); never where the balls' capacity falls short
+    /// ([`Summary::outcome`] partially balanced: a residual of a few per cent can leave C
+    /// within that 5 %).
     pub balanced: bool,
+    /// The residual the balls leave, averaged over the run's last revolution (of the rotor
+    /// angle `θ`; the end state where the run turned less): the race centre E's mean distance
+    /// from the axis, `|⟨u⟩ + s2 e^{iγ}|` (`u` the shaft point C in rotor axes), over its
+    /// distance without the balls' resultant at the final speed
+    /// ([`stationary::race_offset_scale`]), as `stability`'s planar residual. For a centred race
+    /// (`s2 = 0`) at a steady whirl this is the residual unbalance `|m1 s1 + Σ m_j r e^{iψ_j}|
+    /// / (m1 s1)`, a fraction of the unbalance as the spatial run's; 0 in the semi-balanced
+    /// state (E on the axis, C whirling at `s2`).
+    pub residual_unbalance: f64,
+    /// What the run ended in, decided by the spatial run's rule
+    /// ([`crate::spatial::dynamics::RunOutcome`]): not settled (see `settled`, or the run stopped
+    /// early); where no balanced or semi-balanced state exists at the final speed (the balls'
+    /// capacity short of [`stationary::semi_balanced_demand`], or fewer than two balls)
+    /// partially balanced when the balls ended together (their mean resultant at least 99 % of
+    /// [`stationary::ball_capacity`]) with `residual_unbalance` within
+    /// [`PARTIAL_TOLERANCE`](crate::spatial::dynamics::simulate::PARTIAL_TOLERANCE) of the
+    /// bunched whirl's closed form ([`stationary::bunched_residual`]; `1 − n m3 r / (m1 s1)`
+    /// for a centred race), else not balanced; else balanced (with an eccentric race: the
+    /// semi-balanced state, E on the axis) with `residual_unbalance` at most
+    /// [`BALANCE_TOLERANCE`](crate::spatial::dynamics::simulate::BALANCE_TOLERANCE), else not
+    /// balanced. Without balls not balanced.
+    pub outcome: crate::spatial::dynamics::RunOutcome,
     /// Whether the motion had settled at the end: the whirl radius and the balls' angles change
     /// no faster (relative rate, 1/s) than `3 |ω̇/ω| + 1e-4 sqrt(k/m0)`, i.e. quasi-statically;
     /// the radius's rate relative to the radius, or to the balance tolerance of `balanced` where
@@ -631,7 +656,9 @@ fn simulate_sampled(
         nc,
         balls: eq.balls.as_ref().map(|f| (f, EventCounter::default())),
         sample: Sample { t: 0.0, omega: 0.0, theta: 0.0, x: 0.0, y: 0.0, amplitude: 0.0, psi: Vec::with_capacity(rotor.n) },
+        window: Window::default(),
     };
+    hooks.window.push(rotor, 0.0, &y);
     let out = run(&mut solver, &mut y, &timeline, &mut hooks);
     let peak = hooks.peak;
     let speed_range = hooks.speed;
@@ -653,8 +680,34 @@ fn simulate_sampled(
     let radius_rate = if final_amp > 0.0 { (y[0] * y[nc] + y[1] * y[nc + 1]).abs() / (final_amp * r_ref) } else { 0.0 };
     let rates_small = (0..rotor.n).all(|j| y[nc + 3 + j].abs() <= rate_limit);
     let settled = rates_small && radius_rate <= rate_limit;
-    let balanced = rotor.n > 0 && (final_amp - target).abs() <= tolerance && rates_small;
     let completed = out.status.is_completed();
+    // the residual and the balls' resultant averaged over the last revolution (the end state
+    // where the run turned less), decided by the spatial run's rule
+    let [ex, ey, bx, by] = hooks.window.mean().unwrap_or_else(|| {
+        let b = Window::resultant(rotor, &y);
+        [y[0], y[1], b[0], b[1]]
+    });
+    let race = (rotor.s2 * rotor.gamma.cos(), rotor.s2 * rotor.gamma.sin());
+    let residual_unbalance = (ex + race.0).hypot(ey + race.1) / stationary::race_offset_scale(rotor, final_omega);
+    let capacity = stationary::ball_capacity(rotor);
+    let short = !stationary::semi_balanced_exists(rotor, final_omega);
+    let outcome = crate::spatial::dynamics::simulate::run_outcome(&crate::spatial::dynamics::simulate::Ending {
+        balls: rotor.n > 0,
+        settled: settled && completed,
+        short: short.then(|| {
+            // the bunched whirl `stability` follows there (none in closed form: no residual to
+            // compare, never partially balanced); with the race centred its residual is the
+            // unbalance itself, and the balls count as partially balancing only where they
+            // reduce it (above the critical speed; below it they join it, `≈ 1 + α`), as
+            // `stability`'s state words (`crate::rotor_stability::Rotor::state_kind`)
+            let least = stationary::bunched_residual(rotor, final_omega).unwrap_or(f64::INFINITY);
+            let together = bx.hypot(by) >= crate::spatial::dynamics::simulate::TOGETHER * capacity;
+            (least, together && (rotor.s2 != 0.0 || least < 1.0))
+        }),
+        residual: residual_unbalance,
+        residual_couple: None,
+    });
+    let balanced = rotor.n > 0 && (final_amp - target).abs() <= tolerance && rates_small && outcome != crate::spatial::dynamics::RunOutcome::PartiallyBalanced;
     let stopped = match &out.status {
         Status::Completed => None,
         Status::Stopped(StopReason::Observer) => Some(format!("interrupted at t = {:.6} s", out.t)),
@@ -668,6 +721,8 @@ fn simulate_sampled(
         final_amplitude: final_amp,
         final_omega,
         balanced,
+        residual_unbalance,
+        outcome,
         settled,
         steps: out.stats.steps,
         implicit_steps: out.stats.implicit_steps,
@@ -746,6 +801,75 @@ struct PlanarHooks<'a, F: FnMut(&Sample) -> bool> {
     balls: Option<(&'a BallForces, EventCounter)>,
     /// The sample handed to the sink, refilled at each sample time.
     sample: Sample,
+    /// The last revolution's step ends, for the summary's averages.
+    window: Window,
+}
+
+/// Step-end records over the run's last revolution (by the rotor angle `θ`) and the one record
+/// before it, for the summary's averages: each is `t, θ`, the shaft point C in rotor axes `u`
+/// (2) and the balls' resultant `Σ m_j r e^{iψ_j}` (2), all in rotor axes, where a steady whirl is
+/// constant. Older records are dropped as the run goes (at most [`WINDOW_RECORDS`] kept).
+#[derive(Default)]
+struct Window {
+    data: std::collections::VecDeque<[f64; 6]>,
+}
+
+/// Step-end records [`Window`] keeps at most (a run that hardly turns would otherwise keep them
+/// all): the average then covers the last this many steps, less than a revolution.
+const WINDOW_RECORDS: usize = 100_000;
+
+impl Window {
+    /// The balls' resultant `Σ m_j r e^{iψ_j}` in rotor axes at the state `y`.
+    fn resultant(rotor: &PlanarRotor, y: &[f64]) -> [f64; 2] {
+        let mut b = [0.0; 2];
+        for j in 0..rotor.n {
+            let (s, c) = y[3 + j].sin_cos();
+            let m = rotor.ball_mass(j) * rotor.r;
+            b[0] += m * c;
+            b[1] += m * s;
+        }
+        b
+    }
+
+    fn push(&mut self, rotor: &PlanarRotor, t: f64, y: &[f64]) {
+        let b = Window::resultant(rotor, y);
+        self.data.push_back([t, y[2], y[0], y[1], b[0], b[1]]);
+        let theta = y[2];
+        while self.data.len() > 2 && ((theta - self.data[1][1]).abs() >= std::f64::consts::TAU || self.data.len() > WINDOW_RECORDS) {
+            self.data.pop_front();
+        }
+    }
+
+    /// The means over the last revolution of `u` and the balls' resultant, the values linear
+    /// in time between step ends (the trapezoidal rule, exact for a steady whirl, constant in
+    /// rotor axes), the revolution's start interpolated inside its step; `None` when the
+    /// record covers less than a revolution.
+    fn mean(&self) -> Option<[f64; 4]> {
+        let n = self.data.len();
+        let last = *self.data.back()?;
+        let first = self.data[0];
+        if n < 2 || (last[1] - first[1]).abs() < std::f64::consts::TAU * (1.0 - 1e-12) {
+            return None;
+        }
+        let before = |r: &[f64; 6]| (last[1] - r[1]).abs();
+        let (mut dur, mut sums) = (0.0, [0.0; 4]);
+        for i in 0..n - 1 {
+            let (a, b) = (self.data[i], self.data[i + 1]);
+            let (a0, a1) = (before(&a), before(&b));
+            if a0 <= a1 || a1 >= std::f64::consts::TAU {
+                continue;
+            }
+            // the part of the step within the revolution: from s0 of the way on
+            let s0 = if a0 > std::f64::consts::TAU { (a0 - std::f64::consts::TAU) / (a0 - a1) } else { 0.0 };
+            let at = |k: usize| a[k] + s0 * (b[k] - a[k]);
+            let h = b[0] - at(0);
+            dur += h;
+            for (k, sum) in sums.iter_mut().enumerate() {
+                *sum += 0.5 * h * (at(k + 2) + b[k + 2]);
+            }
+        }
+        (dur > 0.0).then(|| sums.map(|v| v / dur))
+    }
 }
 
 impl<F: FnMut(&Sample) -> bool> Hooks for PlanarHooks<'_, F> {
@@ -762,6 +886,7 @@ impl<F: FnMut(&Sample) -> bool> Hooks for PlanarHooks<'_, F> {
         if let Some((f, counter)) = &mut self.balls {
             counter.observe(f, &y[3..self.nc], &y[self.nc + 3..2 * self.nc]);
         }
+        self.window.push(self.rotor, t, y);
     }
 
     fn event(&mut self, _index: usize, t: f64, y: &[f64]) {
