@@ -63,7 +63,9 @@ fn enough_ball_mass_reads_balanced() {
 fn balls_bunched_on_the_unbalances_side_read_not_balanced() {
     let p = centred(0.01);
     let alpha: f64 = 2.0 * 0.01 * 0.06 / (1.0 * 0.003);
-    // below the critical speed the balls join the unbalance: 1 + α = 1.4 of it
+    // below the critical speed the balls join the unbalance: 1 + α = 1.4 of it (lagging it by
+    // the whirl's phase, tan δ = 2ζr/(1 − r²) = 0.093 at r = 1/2, which lowers |1 + α e^{iδ}|
+    // by ≈ α δ²/(2(1 + α)) = 0.0012: 0.01 holds that)
     let omega = 0.5 * p.natural_frequency();
     let s = run(&p, omega, 30.0);
     eprintln!("{s:?}");
