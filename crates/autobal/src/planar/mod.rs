@@ -656,9 +656,9 @@ fn simulate_sampled(
         nc,
         balls: eq.balls.as_ref().map(|f| (f, EventCounter::default())),
         sample: Sample { t: 0.0, omega: 0.0, theta: 0.0, x: 0.0, y: 0.0, amplitude: 0.0, psi: Vec::with_capacity(rotor.n) },
-        window: Window::default(),
+        window: Window::new(rotor.n),
     };
-    hooks.window.push(rotor, 0.0, &y);
+    hooks.window.push(0.0, &y);
     let out = run(&mut solver, &mut y, &timeline, &mut hooks);
     let peak = hooks.peak;
     let speed_range = hooks.speed;
@@ -683,8 +683,8 @@ fn simulate_sampled(
     let completed = out.status.is_completed();
     // the residual and the balls' resultant averaged over the last revolution (the end state
     // where the run turned less), decided by the spatial run's rule
-    let [ex, ey, bx, by] = hooks.window.mean().unwrap_or_else(|| {
-        let b = Window::resultant(rotor, &y);
+    let [ex, ey, bx, by] = hooks.window.mean(rotor).unwrap_or_else(|| {
+        let b = Window::resultant(rotor, y[3..nc].iter().copied());
         [y[0], y[1], b[0], b[1]]
     });
     let race = (rotor.s2 * rotor.gamma.cos(), rotor.s2 * rotor.gamma.sin());
@@ -807,11 +807,12 @@ struct PlanarHooks<'a, F: FnMut(&Sample) -> bool> {
 
 /// Step-end records over the run's last revolution (by the rotor angle `θ`) and the one record
 /// before it, for the summary's averages: each is `t, θ`, the shaft point C in rotor axes `u`
-/// (2) and the balls' resultant `Σ m_j r e^{iψ_j}` (2), all in rotor axes, where a steady whirl is
-/// constant. Older records are dropped as the run goes (at most [`WINDOW_RECORDS`] kept).
-#[derive(Default)]
+/// (2) and the ball angles `ψ_j` (`n`), all in rotor axes, where a steady whirl is constant.
+/// Older records are dropped as the run goes (at most [`WINDOW_RECORDS`] kept); the balls'
+/// resultant is formed only for the records averaged, at the end.
 struct Window {
-    data: std::collections::VecDeque<[f64; 6]>,
+    stride: usize,
+    data: std::collections::VecDeque<f64>,
 }
 
 /// Step-end records [`Window`] keeps at most (a run that hardly turns would otherwise keep them
@@ -819,11 +820,23 @@ struct Window {
 const WINDOW_RECORDS: usize = 100_000;
 
 impl Window {
-    /// The balls' resultant `Σ m_j r e^{iψ_j}` in rotor axes at the state `y`.
-    fn resultant(rotor: &PlanarRotor, y: &[f64]) -> [f64; 2] {
+    fn new(balls: usize) -> Self {
+        Window { stride: 4 + balls, data: Default::default() }
+    }
+
+    fn len(&self) -> usize {
+        self.data.len() / self.stride
+    }
+
+    fn get(&self, i: usize, k: usize) -> f64 {
+        self.data[i * self.stride + k]
+    }
+
+    /// The balls' resultant `Σ m_j r e^{iψ_j}` in rotor axes for the angles `psi`.
+    fn resultant(rotor: &PlanarRotor, psi: impl Iterator<Item = f64>) -> [f64; 2] {
         let mut b = [0.0; 2];
-        for j in 0..rotor.n {
-            let (s, c) = y[3 + j].sin_cos();
+        for (j, a) in psi.enumerate() {
+            let (s, c) = a.sin_cos();
             let m = rotor.ball_mass(j) * rotor.r;
             b[0] += m * c;
             b[1] += m * s;
@@ -831,42 +844,46 @@ impl Window {
         b
     }
 
-    fn push(&mut self, rotor: &PlanarRotor, t: f64, y: &[f64]) {
-        let b = Window::resultant(rotor, y);
-        self.data.push_back([t, y[2], y[0], y[1], b[0], b[1]]);
+    fn push(&mut self, t: f64, y: &[f64]) {
         let theta = y[2];
-        while self.data.len() > 2 && ((theta - self.data[1][1]).abs() >= std::f64::consts::TAU || self.data.len() > WINDOW_RECORDS) {
-            self.data.pop_front();
+        self.data.extend([t, theta, y[0], y[1]]);
+        self.data.extend(&y[3..self.stride - 1]);
+        while self.len() > 2 && ((theta - self.get(1, 1)).abs() >= std::f64::consts::TAU || self.len() > WINDOW_RECORDS) {
+            self.data.drain(..self.stride);
         }
     }
 
     /// The means over the last revolution of `u` and the balls' resultant, the values linear
     /// in time between step ends (the trapezoidal rule, exact for a steady whirl, constant in
-    /// rotor axes), the revolution's start interpolated inside its step; `None` when the
-    /// record covers less than a revolution.
-    fn mean(&self) -> Option<[f64; 4]> {
-        let n = self.data.len();
-        let last = *self.data.back()?;
-        let first = self.data[0];
-        if n < 2 || (last[1] - first[1]).abs() < std::f64::consts::TAU * (1.0 - 1e-12) {
+    /// rotor axes; the resultant of each record's angles), the revolution's start
+    /// interpolated inside its step; `None` when the record covers less than a revolution.
+    fn mean(&self, rotor: &PlanarRotor) -> Option<[f64; 4]> {
+        let n = self.len();
+        if n < 2 || (self.get(n - 1, 1) - self.get(0, 1)).abs() < std::f64::consts::TAU * (1.0 - 1e-12) {
             return None;
         }
-        let before = |r: &[f64; 6]| (last[1] - r[1]).abs();
+        let last = self.get(n - 1, 1);
+        let row = |i: usize| {
+            let b = Window::resultant(rotor, (4..self.stride).map(|k| self.get(i, k)));
+            [self.get(i, 0), self.get(i, 1), self.get(i, 2), self.get(i, 3), b[0], b[1]]
+        };
+        let before = |r: &[f64; 6]| (last - r[1]).abs();
         let (mut dur, mut sums) = (0.0, [0.0; 4]);
-        for i in 0..n - 1 {
-            let (a, b) = (self.data[i], self.data[i + 1]);
+        let mut b = row(n - 1);
+        for i in (0..n - 1).rev() {
+            let a = row(i);
             let (a0, a1) = (before(&a), before(&b));
-            if a0 <= a1 || a1 >= std::f64::consts::TAU {
-                continue;
+            if a0 > a1 && a1 < std::f64::consts::TAU {
+                // the part of the step within the revolution: from s0 of the way on
+                let s0 = if a0 > std::f64::consts::TAU { (a0 - std::f64::consts::TAU) / (a0 - a1) } else { 0.0 };
+                let at = |k: usize| a[k] + s0 * (b[k] - a[k]);
+                let h = b[0] - at(0);
+                dur += h;
+                for (k, sum) in sums.iter_mut().enumerate() {
+                    *sum += 0.5 * h * (at(k + 2) + b[k + 2]);
+                }
             }
-            // the part of the step within the revolution: from s0 of the way on
-            let s0 = if a0 > std::f64::consts::TAU { (a0 - std::f64::consts::TAU) / (a0 - a1) } else { 0.0 };
-            let at = |k: usize| a[k] + s0 * (b[k] - a[k]);
-            let h = b[0] - at(0);
-            dur += h;
-            for (k, sum) in sums.iter_mut().enumerate() {
-                *sum += 0.5 * h * (at(k + 2) + b[k + 2]);
-            }
+            b = a;
         }
         (dur > 0.0).then(|| sums.map(|v| v / dur))
     }
@@ -886,7 +903,7 @@ impl<F: FnMut(&Sample) -> bool> Hooks for PlanarHooks<'_, F> {
         if let Some((f, counter)) = &mut self.balls {
             counter.observe(f, &y[3..self.nc], &y[self.nc + 3..2 * self.nc]);
         }
-        self.window.push(self.rotor, t, y);
+        self.window.push(t, y);
     }
 
     fn event(&mut self, _index: usize, t: f64, y: &[f64]) {
