@@ -450,6 +450,10 @@ pub fn outcome_words(p: &autobal::planar::PlanarRotor, s: &Summary) -> String {
     let what = match s.outcome {
         RunOutcome::Balanced if p.s2 > 0.0 => "semi-balanced (the race centre on the axis, C whirling at s2)",
         RunOutcome::Balanced => "balanced",
+        // with enough ball mass for high speeds (α∞ > 1) the capacity is not what falls short
+        RunOutcome::PartiallyBalanced if capacity_ratio(p) > 1.0 => {
+            "partially balanced: no semi-balanced state at this speed, the balls rest together against the unbalance"
+        }
         RunOutcome::PartiallyBalanced => "partially balanced: the balls' capacity falls short, they rest together against the unbalance",
         RunOutcome::NotBalanced => "not balanced",
         RunOutcome::NotSettled => return "not settled".to_string(),

@@ -441,9 +441,8 @@ pub struct Summary {
     pub final_omega: f64,
     /// Whether the end state is the balanced/semi-balanced whirl: radius of C within 5 % of
     /// `s2` (or below 5 % of `s1` when `s2 = 0`) and the balls at rest relative to the rotor
-    /// (their rates within the limit of `settled`); never where the balls' capacity falls short
-    /// ([`Summary::outcome`] partially balanced: a residual of a few per cent can leave C
-    /// within that 5 %).
+    /// (their rates within the limit of `settled`), and [`Summary::outcome`] balanced (a
+    /// partially or not balanced run can leave C within that 5 %).
     pub balanced: bool,
     /// The residual the balls leave, averaged over the run's last revolution (of the rotor
     /// angle `θ`; the end state where the run turned less): the race centre E's mean distance
@@ -462,10 +461,12 @@ pub struct Summary {
     /// [`stationary::ball_capacity`]) with `residual_unbalance` within
     /// [`PARTIAL_TOLERANCE`](crate::spatial::dynamics::simulate::PARTIAL_TOLERANCE) of the
     /// bunched whirl's closed form ([`stationary::bunched_residual`]; `1 − n m3 r / (m1 s1)`
-    /// for a centred race), else not balanced; else balanced (with an eccentric race: the
-    /// semi-balanced state, E on the axis) with `residual_unbalance` at most
+    /// for a centred race) and both below 1 (a residual of 1 or more: the race centre no
+    /// nearer the axis than without the balls), else not balanced; else balanced (with an
+    /// eccentric race: the semi-balanced state, E on the axis) with `residual_unbalance` at most
     /// [`BALANCE_TOLERANCE`](crate::spatial::dynamics::simulate::BALANCE_TOLERANCE), else not
-    /// balanced. Without balls not balanced.
+    /// balanced. Without balls, or at rest (final speed below [`REST_FRACTION`] of
+    /// `sqrt(k/m0)`), not balanced.
     pub outcome: crate::spatial::dynamics::RunOutcome,
     /// Whether the motion had settled at the end: the whirl radius and the balls' angles change
     /// no faster (relative rate, 1/s) than `3 |ω̇/ω| + 1e-4 sqrt(k/m0)`, i.e. quasi-statically;
@@ -691,23 +692,29 @@ fn simulate_sampled(
     let residual_unbalance = (ex + race.0).hypot(ey + race.1) / stationary::race_offset_scale(rotor, final_omega);
     let capacity = stationary::ball_capacity(rotor);
     let short = !stationary::semi_balanced_exists(rotor, final_omega);
+    // at (or near) rest nothing turns the balls against the unbalance: no balanced or partially
+    // balanced state to read (the semi-balanced demand and the residual's scale degenerate)
+    let at_rest = !(final_omega.abs() >= REST_FRACTION * rotor.natural_frequency());
     let outcome = crate::spatial::dynamics::simulate::run_outcome(&crate::spatial::dynamics::simulate::Ending {
-        balls: rotor.n > 0,
+        balls: rotor.n > 0 && !at_rest,
         settled: settled && completed,
         short: short.then(|| {
             // the bunched whirl `stability` follows there (none in closed form: no residual to
-            // compare, never partially balanced); with the race centred its residual is the
-            // unbalance itself, and the balls count as partially balancing only where they
-            // reduce it (above the critical speed; below it they join it, `≈ 1 + α`), as
-            // `stability`'s state words (`crate::rotor_stability::Rotor::state_kind`)
+            // compare, never partially balanced). The balls count as partially balancing only
+            // where they bring the race centre nearer the axis than no balls would (residual
+            // below 1), for either race, as `stability`'s state words
+            // (`crate::rotor_stability::Rotor::state_kind`): with the race centred, below the
+            // critical speed they join the unbalance (`≈ 1 + α`); with an eccentric one stuck
+            // below resonance they can leave E further out than without them
             let least = stationary::bunched_residual(rotor, final_omega).unwrap_or(f64::INFINITY);
             let together = bx.hypot(by) >= crate::spatial::dynamics::simulate::TOGETHER * capacity;
-            (least, together && (rotor.s2 != 0.0 || least < 1.0))
+            (least, together && least < 1.0 && residual_unbalance < 1.0)
         }),
         residual: residual_unbalance,
         residual_couple: None,
     });
-    let balanced = rotor.n > 0 && (final_amp - target).abs() <= tolerance && rates_small && outcome != crate::spatial::dynamics::RunOutcome::PartiallyBalanced;
+    // the radius test as well: C at s2 (or near the axis) where the outcome says balanced
+    let balanced = outcome == crate::spatial::dynamics::RunOutcome::Balanced && (final_amp - target).abs() <= tolerance && rates_small;
     let stopped = match &out.status {
         Status::Completed => None,
         Status::Stopped(StopReason::Observer) => Some(format!("interrupted at t = {:.6} s", out.t)),
@@ -814,6 +821,11 @@ struct Window {
     stride: usize,
     data: std::collections::VecDeque<f64>,
 }
+
+/// The fraction of `sqrt(k/m0)` below which a run's final speed counts as rest: its outcome is
+/// then not balanced (nothing turns the balls against the unbalance; the semi-balanced demand
+/// grows as `k s2 / ω²` and has no limit at rest).
+pub const REST_FRACTION: f64 = 1e-3;
 
 /// Step-end records [`Window`] keeps at most (a run that hardly turns would otherwise keep them
 /// all): the average then covers the last this many steps, less than a revolution.

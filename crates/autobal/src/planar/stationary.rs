@@ -57,7 +57,21 @@ pub fn receptance(p: &PlanarRotor, w: f64) -> C {
 pub fn semi_balanced_demand(p: &PlanarRotor, w: f64) -> f64 {
     let e = C::from_polar(p.s2, p.gamma);
     let (k, c) = p.mean_supports();
-    (-e * C::new(k / (w * w), c / w) + (e - C::new(p.s1, 0.0)) * p.m1).norm()
+    // the supports' term `e (k/ω² + i c/ω)`: none with the race centred (at rest too, where
+    // `0 · (k/0)` would be NaN); unbounded at rest with an eccentric race
+    let supports = if p.s2 == 0.0 {
+        C::new(0.0, 0.0)
+    } else if w == 0.0 {
+        return f64::INFINITY;
+    } else {
+        e * C::new(k / (w * w), c / w)
+    };
+    let d = (-supports + (e - C::new(p.s1, 0.0)) * p.m1).norm();
+    if d.is_nan() {
+        f64::INFINITY
+    } else {
+        d
+    }
 }
 
 /// The largest unbalance the balls can supply (kg·m): `n m3 r` for point masses, and for balls
