@@ -190,3 +190,15 @@ fn at_rest_reads_not_balanced() {
         assert!(!s.balanced && s.residual_unbalance.is_finite());
     }
 }
+
+#[test]
+fn a_periodic_orbit_settles() {
+    // supports stiffer along y by 20 %: the balanced whirl is a periodic orbit in rotor axes
+    // (C's radius and the balls swing twice a revolution), stable at 600 rad/s; the balls'
+    // means over a revolution stop drifting, their instantaneous rates never vanish
+    let p = PlanarRotor { k_y: Some(1.2 * PlanarRotor::paper().k), ..PlanarRotor::paper() };
+    let s = run(&p, 600.0, 30.0);
+    eprintln!("{s:?}");
+    assert!(s.settled, "{s:?}");
+    assert_eq!(s.outcome, RunOutcome::Balanced, "{s:?}");
+}
