@@ -415,13 +415,7 @@ pub fn summary_table(cfg: &PlanarConfig, s: &Summary, wall: f64) -> String {
         if capacity_ratio(&cfg.rotor) > 1.0 { "the balls can balance at high speed" } else { "too little ball mass to balance" }
     );
     let _ = writeln!(o, "peak whirl radius of C: {:.4} mm at ω = {:.2} rad/s (t = {:.3} s)", 1e3 * s.peak_amplitude, s.omega_at_peak, s.t_at_peak);
-    let _ = writeln!(
-        o,
-        "final: radius {:.4} mm at ω = {:.2} rad/s; {}",
-        1e3 * s.final_amplitude,
-        s.final_omega,
-        if s.balanced { "semi-balanced (radius = s2)" } else { "not balanced" }
-    );
+    let _ = writeln!(o, "final: radius {:.4} mm at ω = {:.2} rad/s; {}", 1e3 * s.final_amplitude, s.final_omega, outcome_words(&cfg.rotor, s));
     let _ = writeln!(
         o,
         "integration ({}): {} steps ({} implicit, {} {}, {} rejected), {} right-hand sides, {:.3} s",
@@ -444,6 +438,40 @@ pub fn summary_table(cfg: &PlanarConfig, s: &Summary, wall: f64) -> String {
         let _ = writeln!(o, "warning: {w}");
     }
     o
+}
+
+/// The run's outcome in words with its residual (mean over the last revolution): the spatial
+/// run's words (`balanced`, `partially balanced`, `not balanced`, `not settled`), `balanced`
+/// with an eccentric race said as `stability` says it, semi-balanced; the residual a fraction
+/// of the unbalance for a centred race, of the race centre's offset without the balls for an
+/// eccentric one ([`autobal::planar::Summary::residual_unbalance`]).
+pub fn outcome_words(p: &autobal::planar::PlanarRotor, s: &Summary) -> String {
+    use autobal::spatial::dynamics::RunOutcome;
+    let what = match s.outcome {
+        RunOutcome::Balanced if p.s2 > 0.0 => "semi-balanced (the race centre on the axis, C whirling at s2)",
+        RunOutcome::Balanced => "balanced",
+        // with enough ball mass for high speeds (α∞ > 1) the capacity is not what falls short
+        RunOutcome::PartiallyBalanced if capacity_ratio(p) > 1.0 => {
+            "partially balanced: no semi-balanced state at this speed, the balls rest together against the unbalance"
+        }
+        RunOutcome::PartiallyBalanced => "partially balanced: the balls' capacity falls short, they rest together against the unbalance",
+        RunOutcome::NotBalanced => "not balanced",
+        RunOutcome::NotSettled => return "not settled".to_string(),
+    };
+    let of = if p.s2 > 0.0 { "of the race centre's offset without the balls" } else { "of the unbalance" };
+    format!("{what}; residual unbalance {:.3e} {of} (mean over the last revolution)", s.residual_unbalance)
+}
+
+/// The run's outcome in a few words for a table cell ([`outcome_words`]): `semi-balanced`
+/// (an eccentric race's balanced state), `balanced`, `partially balanced (residual R)`, `not
+/// balanced`, `not settled`.
+pub fn outcome_short(p: &autobal::planar::PlanarRotor, s: &Summary) -> String {
+    use autobal::spatial::dynamics::RunOutcome;
+    match s.outcome {
+        RunOutcome::Balanced if p.s2 > 0.0 => "semi-balanced".into(),
+        RunOutcome::PartiallyBalanced => format!("partially balanced (residual {:.3})", s.residual_unbalance),
+        o => o.name().into(),
+    }
 }
 
 /// Ball angles in degrees wrapped to (−180°, 180°], the line broken where it wraps (a ball

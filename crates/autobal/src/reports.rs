@@ -1084,12 +1084,15 @@ pub fn campbell_fixed(model: &SpatialModel, f: &crate::spatial::campbell::FixedC
 pub fn simulation(p: &PlanarProblem, s: &Summary, wall_time_s: f64) -> Value {
     json!({
         "model": "planar",
+        "outcome": s.outcome,
+        "balanced": s.balanced,
+        "residual_unbalance": s.residual_unbalance,
+        "balance_tolerance": crate::spatial::dynamics::simulate::BALANCE_TOLERANCE,
         "peak_amplitude": s.peak_amplitude,
         "omega_at_peak": s.omega_at_peak,
         "t_at_peak": s.t_at_peak,
         "final_amplitude": s.final_amplitude,
         "final_omega": s.final_omega,
-        "balanced": s.balanced,
         "settled": s.settled,
         "steps": s.steps,
         "implicit_steps": s.implicit_steps,

@@ -46,9 +46,9 @@ const RTOL_FLOOR: f64 = 1e-14;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum EndState {
-    /// Balanced (or paper 004's semi-balanced whirl with an eccentric race): `balanced`.
+    /// Balanced (or paper 004's semi-balanced whirl with an eccentric race): `outcome` balanced.
     Balanced,
-    /// The balls' capacity falls short and they rest at its limit (spatial rotor).
+    /// The balls' capacity falls short and they rest at its limit (either rotor).
     PartiallyBalanced,
     /// Settled, but neither of the above.
     NotBalanced,
@@ -72,33 +72,34 @@ pub trait Classified {
 }
 
 impl Classified for crate::planar::Summary {
-    /// Paper 004's rotor: `balanced` (which requires `settled`), else `settled` or not.
+    /// Paper 004's rotor: its [`crate::spatial::dynamics::RunOutcome`] (the spatial run's rule),
+    /// as the spatial rotor's.
     fn end_state(&self) -> EndState {
         if self.stopped.is_some() {
-            EndState::Stopped
-        } else if self.balanced {
-            EndState::Balanced
-        } else if self.settled {
-            EndState::NotBalanced
-        } else {
-            EndState::NotSettled
+            return EndState::Stopped;
         }
+        outcome_state(self.outcome)
+    }
+}
+
+/// The class of a run's [`crate::spatial::dynamics::RunOutcome`].
+fn outcome_state(o: crate::spatial::dynamics::RunOutcome) -> EndState {
+    use crate::spatial::dynamics::RunOutcome;
+    match o {
+        RunOutcome::Balanced => EndState::Balanced,
+        RunOutcome::PartiallyBalanced => EndState::PartiallyBalanced,
+        RunOutcome::NotBalanced => EndState::NotBalanced,
+        RunOutcome::NotSettled => EndState::NotSettled,
     }
 }
 
 impl Classified for crate::spatial::dynamics::Summary {
     /// The spatial rotor's [`crate::spatial::dynamics::RunOutcome`].
     fn end_state(&self) -> EndState {
-        use crate::spatial::dynamics::RunOutcome;
         if self.stopped.is_some() {
             return EndState::Stopped;
         }
-        match self.outcome {
-            RunOutcome::Balanced => EndState::Balanced,
-            RunOutcome::PartiallyBalanced => EndState::PartiallyBalanced,
-            RunOutcome::NotBalanced => EndState::NotBalanced,
-            RunOutcome::NotSettled => EndState::NotSettled,
-        }
+        outcome_state(self.outcome)
     }
 }
 

@@ -92,7 +92,7 @@ pub fn runs_table(runs: &[Run], done: &[std::sync::Arc<Done>]) -> (Vec<&'static 
         "ω at peak (rad/s)",
         "final radius (mm)",
         "final ω (rad/s)",
-        "semi-balanced",
+        "outcome",
         "steps",
         "wall (s)",
     ];
@@ -112,7 +112,7 @@ pub fn runs_table(runs: &[Run], done: &[std::sync::Arc<Done>]) -> (Vec<&'static 
                     fmt(s.omega_at_peak, 4),
                     fmt(1e3 * s.final_amplitude, 3),
                     fmt(s.final_omega, 4),
-                    if s.balanced { "yes".into() } else { "no".into() },
+                    crate::sim::outcome_short(&d.cfg.rotor, s),
                 ]);
             }
             row.push(s.steps.to_string());

@@ -440,12 +440,42 @@ pub struct Summary {
     /// Speed at the end (rad/s).
     pub final_omega: f64,
     /// Whether the end state is the balanced/semi-balanced whirl: radius of C within 5 % of
-    /// `s2` (or below 5 % of `s1` when `s2 = 0`) and the motion settled (see `settled`).
+    /// `s2` (or below 5 % of `s1` when `s2 = 0`) and the balls at rest relative to the rotor
+    /// (their rates within the limit of `settled`), and [`Summary::outcome`] balanced (a
+    /// partially or not balanced run can leave C within that 5 %).
     pub balanced: bool,
+    /// The residual the balls leave, averaged over the run's last revolution (of the rotor
+    /// angle `θ`; the end state where the run turned less): the race centre E's mean distance
+    /// from the axis, `|⟨u⟩ + s2 e^{iγ}|` (`u` the shaft point C in rotor axes), over its
+    /// distance without the balls' resultant at the final speed
+    /// ([`stationary::race_offset_scale`]), as `stability`'s planar residual. For a centred race
+    /// (`s2 = 0`) at a steady whirl this is the residual unbalance `|m1 s1 + Σ m_j r e^{iψ_j}|
+    /// / (m1 s1)`, a fraction of the unbalance as the spatial run's; 0 in the semi-balanced
+    /// state (E on the axis, C whirling at `s2`).
+    pub residual_unbalance: f64,
+    /// What the run ended in, decided by the spatial run's rule
+    /// ([`crate::spatial::dynamics::RunOutcome`]): not settled (see `settled`, or the run stopped
+    /// early); where no balanced or semi-balanced state exists at the final speed (the balls'
+    /// capacity short of [`stationary::semi_balanced_demand`], or fewer than two balls)
+    /// partially balanced when the balls ended together (their mean resultant at least 99 % of
+    /// [`stationary::ball_capacity`]) with `residual_unbalance` within
+    /// [`PARTIAL_TOLERANCE`](crate::spatial::dynamics::simulate::PARTIAL_TOLERANCE) of the
+    /// bunched whirl's closed form ([`stationary::bunched_residual`]; `1 − n m3 r / (m1 s1)`
+    /// for a centred race) and both below 1 (a residual of 1 or more: the race centre no
+    /// nearer the axis than without the balls), else not balanced; else balanced (with an
+    /// eccentric race: the semi-balanced state, E on the axis) with `residual_unbalance` at most
+    /// [`BALANCE_TOLERANCE`](crate::spatial::dynamics::simulate::BALANCE_TOLERANCE), else not
+    /// balanced. Without balls, or at rest (final speed below [`REST_FRACTION`] of
+    /// `sqrt(k/m0)`), not balanced.
+    pub outcome: crate::spatial::dynamics::RunOutcome,
     /// Whether the motion had settled at the end: the whirl radius and the balls' angles change
-    /// no faster (relative rate, 1/s) than `3 |ω̇/ω| + 1e-4 sqrt(k/m0)`, i.e. quasi-statically;
-    /// the radius's rate relative to the radius, or to the balance tolerance of `balanced` where
-    /// the radius is smaller (a balanced whirl near 0).
+    /// no faster (relative rate, 1/s) than the limit `3 |ω̇/ω| + 1e-4 sqrt(k/m0)`, i.e.
+    /// quasi-statically. Where the run turned at least two revolutions this is asked of the
+    /// means over a revolution, as the spatial run does: the balls' mean angles over the last
+    /// revolution differ from those over the one before by at most the limit times the period
+    /// `2π/|ω|`, and C's mean position in rotor axes by at most that times the radius (or the
+    /// balance tolerance of `balanced` where the radius is smaller), so that a periodic orbit
+    /// (supports that differ by direction) settles; in a shorter run of the rates at the end.
     pub settled: bool,
     /// Integrator steps (accepted).
     pub steps: u64,
@@ -631,7 +661,9 @@ fn simulate_sampled(
         nc,
         balls: eq.balls.as_ref().map(|f| (f, EventCounter::default())),
         sample: Sample { t: 0.0, omega: 0.0, theta: 0.0, x: 0.0, y: 0.0, amplitude: 0.0, psi: Vec::with_capacity(rotor.n) },
+        window: Window::new(rotor.n),
     };
+    hooks.window.push(0.0, &y);
     let out = run(&mut solver, &mut y, &timeline, &mut hooks);
     let peak = hooks.peak;
     let speed_range = hooks.speed;
@@ -652,9 +684,58 @@ fn simulate_sampled(
     let r_ref = final_amp.max(tolerance);
     let radius_rate = if final_amp > 0.0 { (y[0] * y[nc] + y[1] * y[nc + 1]).abs() / (final_amp * r_ref) } else { 0.0 };
     let rates_small = (0..rotor.n).all(|j| y[nc + 3 + j].abs() <= rate_limit);
-    let settled = rates_small && radius_rate <= rate_limit;
-    let balanced = rotor.n > 0 && (final_amp - target).abs() <= tolerance && rates_small;
     let completed = out.status.is_completed();
+    // the residual and the balls' resultant averaged over the last revolution (the end state
+    // where the run turned less), decided by the spatial run's rule
+    let (last, previous) = (hooks.window.mean(rotor, 0), hooks.window.mean(rotor, 1));
+    let settled = match (&last, &previous) {
+        // the spatial run's rule with this run's rate limit: the balls' mean angles (and C's
+        // mean position in rotor axes, relative to `r_ref`) drift from one revolution to the
+        // next by at most the limit times the revolution's period; a periodic orbit's
+        // instantaneous rates never vanish. (The spatial `drift_tolerance`, `1e-3 max(ω, ω_n)`
+        // as a rate, is six times looser here and calls a run-up ending just past resonance,
+        // the balls still slipping, settled.)
+        (Some(a), Some(b)) => {
+            let drift = rate_limit * std::f64::consts::TAU / final_omega.abs();
+            let balls = (4..a.len()).all(|k| (a[k] - b[k]).abs() <= drift);
+            balls && (a[0] - b[0]).hypot(a[1] - b[1]) <= drift * r_ref
+        }
+        _ => rates_small && radius_rate <= rate_limit,
+    };
+    let [ex, ey, bx, by] = match last {
+        Some(m) => [m[0], m[1], m[2], m[3]],
+        None => {
+            let b = Window::resultant(rotor, y[3..nc].iter().copied());
+            [y[0], y[1], b[0], b[1]]
+        }
+    };
+    let race = (rotor.s2 * rotor.gamma.cos(), rotor.s2 * rotor.gamma.sin());
+    let residual_unbalance = (ex + race.0).hypot(ey + race.1) / stationary::race_offset_scale(rotor, final_omega);
+    let capacity = stationary::ball_capacity(rotor);
+    let short = !stationary::semi_balanced_exists(rotor, final_omega);
+    // at (or near) rest nothing turns the balls against the unbalance: no balanced or partially
+    // balanced state to read (the semi-balanced demand and the residual's scale degenerate)
+    let at_rest = !(final_omega.abs() >= REST_FRACTION * rotor.natural_frequency());
+    let outcome = crate::spatial::dynamics::simulate::run_outcome(&crate::spatial::dynamics::simulate::Ending {
+        balls: rotor.n > 0 && !at_rest,
+        settled: settled && completed,
+        short: short.then(|| {
+            // the bunched whirl `stability` follows there (none in closed form: no residual to
+            // compare, never partially balanced). The balls count as partially balancing only
+            // where they bring the race centre nearer the axis than no balls would (residual
+            // below 1), for either race, as `stability`'s state words
+            // (`crate::rotor_stability::Rotor::state_kind`): with the race centred, below the
+            // critical speed they join the unbalance (`≈ 1 + α`); with an eccentric one stuck
+            // below resonance they can leave E further out than without them
+            let least = stationary::bunched_residual(rotor, final_omega).unwrap_or(f64::INFINITY);
+            let together = bx.hypot(by) >= crate::spatial::dynamics::simulate::TOGETHER * capacity;
+            (least, together && least < 1.0 && residual_unbalance < 1.0)
+        }),
+        residual: residual_unbalance,
+        residual_couple: None,
+    });
+    // the radius test as well: C at s2 (or near the axis) where the outcome says balanced
+    let balanced = outcome == crate::spatial::dynamics::RunOutcome::Balanced && (final_amp - target).abs() <= tolerance;
     let stopped = match &out.status {
         Status::Completed => None,
         Status::Stopped(StopReason::Observer) => Some(format!("interrupted at t = {:.6} s", out.t)),
@@ -668,6 +749,8 @@ fn simulate_sampled(
         final_amplitude: final_amp,
         final_omega,
         balanced,
+        residual_unbalance,
+        outcome,
         settled,
         steps: out.stats.steps,
         implicit_steps: out.stats.implicit_steps,
@@ -746,6 +829,103 @@ struct PlanarHooks<'a, F: FnMut(&Sample) -> bool> {
     balls: Option<(&'a BallForces, EventCounter)>,
     /// The sample handed to the sink, refilled at each sample time.
     sample: Sample,
+    /// The last revolution's step ends, for the summary's averages.
+    window: Window,
+}
+
+/// Step-end records over the run's last two revolutions (by the rotor angle `θ`) and the one
+/// record before them, for the summary's averages and its drift from one revolution to the next: each is `t, θ`, the shaft point C in rotor axes `u`
+/// (2) and the ball angles `ψ_j` (`n`), all in rotor axes, where a steady whirl is constant.
+/// Older records are dropped as the run goes (at most [`WINDOW_RECORDS`] kept); the balls'
+/// resultant is formed only for the records averaged, at the end.
+struct Window {
+    stride: usize,
+    data: std::collections::VecDeque<f64>,
+}
+
+/// The fraction of `sqrt(k/m0)` below which a run's final speed counts as rest: its outcome is
+/// then not balanced (nothing turns the balls against the unbalance; the semi-balanced demand
+/// grows as `k s2 / ω²` and has no limit at rest).
+pub const REST_FRACTION: f64 = 1e-3;
+
+/// Step-end records [`Window`] keeps at most (a run that hardly turns would otherwise keep them
+/// all): the average then covers the last this many steps, less than a revolution.
+const WINDOW_RECORDS: usize = 100_000;
+
+impl Window {
+    fn new(balls: usize) -> Self {
+        Window { stride: 4 + balls, data: Default::default() }
+    }
+
+    fn len(&self) -> usize {
+        self.data.len() / self.stride
+    }
+
+    fn get(&self, i: usize, k: usize) -> f64 {
+        self.data[i * self.stride + k]
+    }
+
+    /// The balls' resultant `Σ m_j r e^{iψ_j}` in rotor axes for the angles `psi`.
+    fn resultant(rotor: &PlanarRotor, psi: impl Iterator<Item = f64>) -> [f64; 2] {
+        let mut b = [0.0; 2];
+        for (j, a) in psi.enumerate() {
+            let (s, c) = a.sin_cos();
+            let m = rotor.ball_mass(j) * rotor.r;
+            b[0] += m * c;
+            b[1] += m * s;
+        }
+        b
+    }
+
+    fn push(&mut self, t: f64, y: &[f64]) {
+        let theta = y[2];
+        self.data.extend([t, theta, y[0], y[1]]);
+        self.data.extend(&y[3..self.stride - 1]);
+        while self.len() > 2 && ((theta - self.get(1, 1)).abs() >= 2.0 * std::f64::consts::TAU || self.len() > WINDOW_RECORDS) {
+            self.data.drain(..self.stride);
+        }
+    }
+
+    /// The means over revolution `back` counted from the end (0 the last, 1 the one before) of
+    /// `u` (2), the balls' resultant (2) and the ball angles `ψ_j` (`n`), the values linear in
+    /// time between step ends (the trapezoidal rule, exact for a steady whirl, constant in
+    /// rotor axes; the resultant of each record's angles), the revolution's ends interpolated
+    /// inside their steps; `None` when the record covers less than that revolution.
+    fn mean(&self, rotor: &PlanarRotor, back: usize) -> Option<Vec<f64>> {
+        let n = self.len();
+        let tau = std::f64::consts::TAU;
+        let (lo, hi) = (tau * back as f64, tau * (back + 1) as f64);
+        if n < 2 || (self.get(n - 1, 1) - self.get(0, 1)).abs() < hi * (1.0 - 1e-12) {
+            return None;
+        }
+        let last = self.get(n - 1, 1);
+        let row = |i: usize| {
+            let b = Window::resultant(rotor, (4..self.stride).map(|k| self.get(i, k)));
+            let mut r = vec![self.get(i, 0), self.get(i, 1), self.get(i, 2), self.get(i, 3), b[0], b[1]];
+            r.extend((4..self.stride).map(|k| self.get(i, k)));
+            r
+        };
+        let before = |r: &[f64]| (last - r[1]).abs();
+        let (mut dur, mut sums) = (0.0, vec![0.0; self.stride]);
+        let mut b = row(n - 1);
+        for i in (0..n - 1).rev() {
+            let a = row(i);
+            let (a0, a1) = (before(&a), before(&b));
+            if a0 > a1 && a1 < hi && a0 > lo {
+                // the part of the step within the revolution: from s0 to s1 of the way on
+                let s0 = (a0 - a0.min(hi)) / (a0 - a1);
+                let s1 = (a0 - a1.max(lo)) / (a0 - a1);
+                let at = |k: usize, s: f64| a[k] + s * (b[k] - a[k]);
+                let h = at(0, s1) - at(0, s0);
+                dur += h;
+                for (k, sum) in sums.iter_mut().enumerate() {
+                    *sum += 0.5 * h * (at(k + 2, s0) + at(k + 2, s1));
+                }
+            }
+            b = a;
+        }
+        (dur > 0.0).then(|| sums.into_iter().map(|v| v / dur).collect())
+    }
 }
 
 impl<F: FnMut(&Sample) -> bool> Hooks for PlanarHooks<'_, F> {
@@ -762,6 +942,7 @@ impl<F: FnMut(&Sample) -> bool> Hooks for PlanarHooks<'_, F> {
         if let Some((f, counter)) = &mut self.balls {
             counter.observe(f, &y[3..self.nc], &y[self.nc + 3..2 * self.nc]);
         }
+        self.window.push(t, y);
     }
 
     fn event(&mut self, _index: usize, t: f64, y: &[f64]) {

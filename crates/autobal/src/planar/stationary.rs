@@ -57,7 +57,21 @@ pub fn receptance(p: &PlanarRotor, w: f64) -> C {
 pub fn semi_balanced_demand(p: &PlanarRotor, w: f64) -> f64 {
     let e = C::from_polar(p.s2, p.gamma);
     let (k, c) = p.mean_supports();
-    (-e * C::new(k / (w * w), c / w) + (e - C::new(p.s1, 0.0)) * p.m1).norm()
+    // the supports' term `e (k/ω² + i c/ω)`: none with the race centred (at rest too, where
+    // `0 · (k/0)` would be NaN); unbounded at rest with an eccentric race
+    let supports = if p.s2 == 0.0 {
+        C::new(0.0, 0.0)
+    } else if w == 0.0 {
+        return f64::INFINITY;
+    } else {
+        e * C::new(k / (w * w), c / w)
+    };
+    let d = (-supports + (e - C::new(p.s1, 0.0)) * p.m1).norm();
+    if d.is_nan() {
+        f64::INFINITY
+    } else {
+        d
+    }
 }
 
 /// The largest unbalance the balls can supply (kg·m): `n m3 r` for point masses, and for balls
@@ -130,4 +144,58 @@ pub fn aligned_whirls_of(p: &PlanarRotor, w: f64, q: i32, out: &mut Vec<Aligned>
             }
         }
     }
+}
+
+/// The race centre E's distance from the axis in the steady whirl at speed `w` without the
+/// balls' resultant (their mass carried, their resultant zero): `|ω² u0 / D + s2 e^{iγ}|`,
+/// `u0 = m1 s1 + (m2 + Σ m_j) s2 e^{iγ}`, `D = k̄ − m0 ω² + i c̄ ω` (the supports' means); where
+/// that is not finite or below `1e-12` of the length scale `s1 + s2 + Σ m_j r / m0`, that scale.
+/// What a planar residual is a fraction of: a run's [`crate::planar::Summary::residual_unbalance`],
+/// as `stability`'s (`crate::rotor_stability::Rotor::residual`). For a centred race (`s2 = 0`)
+/// at a steady whirl the ratio `|E| / race_offset_scale` is the residual unbalance
+/// `|m1 s1 + Σ m_j r e^{iψ_j}| / (m1 s1)` itself (`E = C = H(ω) U`).
+pub fn race_offset_scale(p: &PlanarRotor, w: f64) -> f64 {
+    let race = C::from_polar(p.s2, p.gamma);
+    let u0 = C::new(p.m1 * p.s1, 0.0) + race * (p.total_mass() - p.m1);
+    let free = (u0 * (w * w) / d_of(p, w) + race).norm();
+    let scale = (p.s1 + p.s2 + p.balls_mass() * p.r / p.total_mass()).max(f64::MIN_POSITIVE);
+    if free.is_finite() && free > 1e-12 * scale {
+        free
+    } else {
+        scale
+    }
+}
+
+/// The residual of the bunched steady whirl at speed `w`, as a fraction of
+/// [`race_offset_scale`]: every ball at one angle on the far side of the line through the axis
+/// and the race centre E, their resultant the capacity `B` ([`ball_capacity`]): the aligned
+/// whirl of [`aligned_whirls_of`] with `q = n`, `e^{iφ}(ρ D − B ω²) = ω² U0 + s2 e^{iγ} D`, of its
+/// (at most two) roots the one of least whirl radius of C, the state `stability` follows where
+/// no balanced or semi-balanced state exists (`crate::rotor_stability::Rotor::bunched_guess`).
+/// Its residual is `ρ = |E|` over the scale. For a centred race above the critical speed the
+/// balls lie against the unbalance, `≈ 1 − B / (m1 s1)` (exactly without damping; with damping
+/// they lag that line by the whirl's phase and it is a little larger); below it they join the
+/// unbalance, `≈ 1 + B / (m1 s1)`. `None` without balls or where no such whirl exists.
+pub fn bunched_residual(p: &PlanarRotor, w: f64) -> Option<f64> {
+    if p.n == 0 {
+        return None;
+    }
+    let e = C::from_polar(p.s2, p.gamma);
+    let d = d_of(p, w);
+    let u0 = C::new(p.m1 * p.s1, 0.0) + e * (p.m2 + p.balls_mass());
+    let rhs = u0 * (w * w) + e * d;
+    let qq = ball_capacity(p) * w * w;
+    let (a, b, c) = (d.norm_sqr(), -2.0 * qq * d.re, qq * qq - rhs.norm_sqr());
+    let disc = b * b - 4.0 * a * c;
+    if !(disc >= 0.0 && a > 0.0) {
+        return None;
+    }
+    let rho = [-1.0, 1.0]
+        .iter()
+        .map(|s| (-b + s * disc.sqrt()) / (2.0 * a))
+        .filter(|rho| *rho >= 0.0)
+        .map(|rho| (rho, (C::from_polar(rho, rhs.arg() - (d * rho - qq).arg()) - e).norm()))
+        .min_by(|x, y| x.1.total_cmp(&y.1))?
+        .0;
+    Some(rho / race_offset_scale(p, w))
 }

@@ -189,7 +189,7 @@ pub const PARTIAL_TOLERANCE: f64 = 0.02;
 
 /// The fraction of a plane's capacity its balls' resultant reaches at least when they are
 /// "together" (see [`PARTIAL_TOLERANCE`]).
-const TOGETHER: f64 = 0.99;
+pub(crate) const TOGETHER: f64 = 0.99;
 
 /// Revolutions the summary averages over at the end of a run (the last one for the averages, the
 /// one before it for the balls' drift).
@@ -229,6 +229,61 @@ pub enum RunOutcome {
     /// [`drift_tolerance`] (a transient, or balls circulating round the race), or the run turned
     /// less than two revolutions, or it stopped early.
     NotSettled,
+}
+
+/// What a run's summary decides its [`RunOutcome`] on: the one rule of the spatial and the
+/// planar runs ([`run_outcome`]).
+pub(crate) struct Ending {
+    /// Whether the rotor has balls.
+    pub balls: bool,
+    /// Whether the motion had settled (spatial: the balls' mean angles drift by at most
+    /// [`drift_tolerance`] per revolution; planar: `crate::planar::Summary::settled`) and the
+    /// run completed.
+    pub settled: bool,
+    /// Where no balanced state exists (the capacity short): the closed-form residual of the
+    /// balls together against the unbalance, and whether they ended together (their resultant
+    /// at least 99 % of the capacity).
+    pub short: Option<(f64, bool)>,
+    /// The residual unbalance, a fraction of the unbalance, averaged over the last revolution.
+    pub residual: f64,
+    /// The residual couple, a fraction of the unbalance's couple, if it has one.
+    pub residual_couple: Option<f64>,
+}
+
+/// The outcome of a run from its [`Ending`]: without balls not balanced; not settled while
+/// the balls move; where no balanced state exists partially balanced when the balls ended
+/// together with the residual within [`PARTIAL_TOLERANCE`] of the closed form, else not
+/// balanced; else balanced with the residual (and the couple's) at most [`BALANCE_TOLERANCE`],
+/// else not balanced.
+pub(crate) fn run_outcome(e: &Ending) -> RunOutcome {
+    if !e.balls {
+        RunOutcome::NotBalanced
+    } else if !e.settled {
+        RunOutcome::NotSettled
+    } else if let Some((least, together)) = e.short {
+        if together && (e.residual - least).abs() <= PARTIAL_TOLERANCE {
+            RunOutcome::PartiallyBalanced
+        } else {
+            RunOutcome::NotBalanced
+        }
+    } else if e.residual <= BALANCE_TOLERANCE && !matches!(e.residual_couple, Some(c) if c > BALANCE_TOLERANCE) {
+        RunOutcome::Balanced
+    } else {
+        RunOutcome::NotBalanced
+    }
+}
+
+impl RunOutcome {
+    /// `"balanced"`, `"partially balanced"`, `"not balanced"`, `"not settled"`: the words of
+    /// `stability`'s states (`crate::rotor_stability::StateKind::name`) for the same state.
+    pub fn name(self) -> &'static str {
+        match self {
+            RunOutcome::Balanced => "balanced",
+            RunOutcome::PartiallyBalanced => "partially balanced",
+            RunOutcome::NotBalanced => "not balanced",
+            RunOutcome::NotSettled => "not settled",
+        }
+    }
 }
 
 /// The state vector of an initial condition (turning-frame coordinates at `t = 0`).
@@ -658,14 +713,10 @@ fn summarise(eq: &Equations, t: f64, y: &[f64], peak: (f64, f64, f64), stats: St
         (0..nb).map(|j| (sums[REC_PSI - REC_RES + j] / d - mean_psi[j]).abs()).fold(0.0, f64::max)
     });
     let settled = out.status.is_completed() && matches!(ball_drift, Some(d) if d <= drift_tolerance(omega, r.natural_frequency()));
-    let outcome = if nb == 0 {
-        RunOutcome::NotBalanced
-    } else if !settled {
-        RunOutcome::NotSettled
-    } else if capacity < s0n {
-        // no balanced state: the least residual is the balls together against the unbalance
+    // no balanced state: the least residual is the balls together against the unbalance
+    let together = || {
         let mut first = 0;
-        let together = r.planes.iter().all(|p| {
+        r.planes.iter().all(|p| {
             let (mut a, mut b) = (0.0, 0.0);
             for psi in &mean_psi[first..first + p.n] {
                 a += psi.cos();
@@ -673,17 +724,15 @@ fn summarise(eq: &Equations, t: f64, y: &[f64], peak: (f64, f64, f64), stats: St
             }
             first += p.n;
             a.hypot(b) >= TOGETHER * p.n as f64
-        });
-        if together && (residual_unbalance - (1.0 - capacity / s0n)).abs() <= PARTIAL_TOLERANCE {
-            RunOutcome::PartiallyBalanced
-        } else {
-            RunOutcome::NotBalanced
-        }
-    } else if residual_unbalance <= BALANCE_TOLERANCE && !matches!(residual_couple, Some(c) if c > BALANCE_TOLERANCE) {
-        RunOutcome::Balanced
-    } else {
-        RunOutcome::NotBalanced
+        })
     };
+    let outcome = run_outcome(&Ending {
+        balls: nb > 0,
+        settled,
+        short: (capacity < s0n).then(|| (1.0 - capacity / s0n, together())),
+        residual: residual_unbalance,
+        residual_couple,
+    });
     Summary {
         peak_amplitude: peak.0,
         omega_at_peak: peak.1,
