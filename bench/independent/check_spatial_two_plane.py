@@ -9,8 +9,14 @@ unbalance at the middle of two planes symmetric about it (here: the unbalance ha
 and the `[couple]` mass, same angle, half in plane B), |U_p| = m_u e / 2, so the threshold is
 m_c = m_u e / (4 R): Rodrigues et al. 2008 eq (21), m_c = eps/4 in their units (ball mass over
 rotor mass, eccentricity over race radius). Checked:
-  * existence: at 0.97 m_c autobal must report no balanced state (no `balanced` point, no stable
-    range), at 1.03 m_c a balanced state with my ball angles (1e-9 rad);
+  * existence: at 0.97 and 0.999998 m_c autobal must report no balanced state (no `balanced`
+    point), at 1.000002, 1.03 and 1.5 m_c a balanced state with my ball angles (1e-9 rad);
+  * below m_c the partially balanced state (each plane's balls together, Newton from there):
+    exponents, residual and amplitude against autobal's points; near the translational critical
+    speed several such states coexist, so the comparison is made on autobal's own (Newton from
+    its `member_psi`), and at each stable-range end my continuation says whether it is a
+    stability change or a fold (the state followed ceases to exist);
+  * `critical` (balls locked, undamped) against my stiffness determinant (6 printed digits);
   * max Re lambda at autobal's speeds vs `abscissa` (1e-9 of max|lambda|, as in the one-plane
     check) and the stable-range ends (1e-8 relative, my bisection to 1e-11 on autobal's samples
     and my own 300 speeds);
@@ -98,7 +104,7 @@ def trace(S, w0, x0, w1, step):
     jumped."""
     x, w, last = x0, w0, None
     while (w1 - w) * np.sign(w1 - w0) > -1e-12:
-        xn, r = S.equilibrium(w, x[S.nq0:S.nq0 + S.nb])
+        xn, r = S.equilibrium(w, q0=x)  # warm start: the whole previous state
         if r > 1e-9 or sm.ang_diff(xn[S.nq0:S.nq0 + S.nb], x[S.nq0:S.nq0 + S.nb]) > 0.05:
             return last, True
         x = xn
@@ -109,34 +115,45 @@ def trace(S, w0, x0, w1, step):
 
 def fold_check(S, d):
     """At each stable-range end that autobal marks as a boundary: is it a stability change of
-    one state (the exponent crosses 0 along a continued branch) or the end of a branch (a
-    fold: the state autobal followed ceases to exist and Newton lands on another)?"""
+    one state (its exponent crosses 0 along a continued branch), the end of a branch (a fold),
+    or a switch between two coexisting states that each keep their stability across it? Both
+    autobal's states next to the end (outside and inside the range, Newton from its member_psi)
+    are continued across it by 3 rad/s (steps 0.01 rad/s, warm-started Newton). Returns False
+    where an end marked as a boundary is not a stability change of either."""
+    good = True
     pts = [p for p in d["points"] if p["analysed"] and p.get("member_psi") is not None]
     for rg in d["stable_ranges"]:
         for key, side in (("from", -1), ("to", 1)):
             if not rg.get(f"{key}_is_boundary"):
                 continue
             wend = rg[key]
-            # the autobal point just outside the range (unstable side) and just inside
             out = max((p for p in pts if p["omega"] < wend), key=lambda p: p["omega"]) if side < 0 \
                 else min((p for p in pts if p["omega"] > wend), key=lambda p: p["omega"])
-            x0, _ = S.equilibrium(out["omega"], np.asarray(out["member_psi"]))
-            last, jumped = trace(S, out["omega"], x0, wend - side * 0.5, 0.01)
-            inside = min((p for p in pts if rg["from"] < p["omega"] < rg["to"]),
-                         key=lambda p: abs(p["omega"] - wend))
-            xi, _ = S.equilibrium(inside["omega"], np.asarray(inside["member_psi"]))
-            lin, jin = trace(S, inside["omega"], xi, wend + side * 3.0, 0.01)
-            if jumped:
-                print(f"  range end {key} {wend:.8g} rad/s: FOLD, not a stability change: the "
-                      f"state autobal follows from {out['omega']:.6g} (exponent "
-                      f"{out['abscissa']:.4g}) ends at {last[0]:.4f} rad/s with exponent "
-                      f"{last[1]:.4g} > 0; the stable state autobal reports inside continues past "
-                      f"the end to {lin[0]:.4f} rad/s with exponent {lin[1]:.4g}"
-                      f"{' (then it ends too)' if jin else ''}. autobal marks from_is_boundary "
-                      f"= true: *** DISAGREE (a fold is reported as a stability boundary)")
-            else:
-                print(f"  range end {key} {wend:.8g}: a stability change along one branch "
-                      f"(exponent {last[1]:.3g} at {last[0]:.6g})")
+            ins = min((p for p in pts if rg["from"] < p["omega"] < rg["to"]),
+                      key=lambda p: abs(p["omega"] - wend))
+            res = []
+            for p, target in ((out, wend - side * 3.0), (ins, wend + side * 3.0)):
+                x0, _ = S.equilibrium(p["omega"], np.asarray(p["member_psi"]))
+                last, jumped = trace(S, p["omega"], x0, target, 0.01)
+                res.append((p, last, jumped))
+            (po, lo, jo), (pi, li, ji) = res
+            flips = [not j and np.sign(l[1]) != np.sign(p["abscissa"]) for p, l, j in res]
+            if any(flips):
+                print(f"  range end {key} {wend:.8g}: a stability change along a continued state "
+                      f"(exponent {lo[1]:.3g} at {lo[0]:.6g} from autobal's state at "
+                      f"{po['omega']:.6g}) OK")
+                continue
+            good = False
+            what = []
+            for nm, (p, l, j) in (("outside", res[0]), ("inside", res[1])):
+                what.append(f"autobal's {nm} state ({p['omega']:.6g} rad/s, exponent "
+                            f"{p['abscissa']:.4g}) " + (f"ends at {l[0]:.4f} (fold)" if j else
+                                                        f"continues to {l[0]:.4f} with exponent "
+                                                        f"{l[1]:.4g}"))
+            print(f"  range end {key} {wend:.8g} rad/s: NOT a stability change: " + "; ".join(what)
+                  + ": the end is where autobal's Newton switches between coexisting states, yet "
+                  f"{key}_is_boundary = true *** DISAGREE")
+    return good
 
 
 def main():
@@ -178,7 +195,7 @@ def main():
             print("   stderr:", err.strip().replace("\n", " | ")[:400])
 
     # the existence threshold m_c = eps / 4 and the state born unstable below the conical speed
-    for frac in (0.97, 1.03, 1.5):
+    for frac in (0.97, 0.999998, 1.000002, 1.03, 1.5):
         rotor, sup, pts, planes = rodrigues(frac)
         S = sm.Spatial(rotor, sup, pts, planes)
         psi = S.balanced_angles()
@@ -197,7 +214,7 @@ def main():
             o, info = sm.compare_stability(f"rodrigues m = {frac} m_c, partially balanced", S, d,
                                            grid=np.linspace(5.0, 1500.0, 300), psi0=g)
             ok &= good and o
-            fold_check(S, d)
+            ok &= fold_check(S, d)
             x, _ = S.equilibrium(1000.0, g)
             u, mz = S.residual_unbalance(x[S.nq0:S.nq0 + S.nb])
             stat0 = sum(p["m"] * p["rho"] for p in S.points)
@@ -211,6 +228,18 @@ def main():
                   f"{pt.get('amplitude')!r}, state {pt.get('state')}, verdict {pt.get('verdict')}")
             continue
         cc = conical_critical(S, psi)
+        # autobal `critical` (text) against mine: the tilt pair (sign changes of my det) and the
+        # translation's double root sqrt(sum k / M_s) (a double root: no sign change)
+        import re
+        txt, _, _ = common.run(["critical", "--config", path])
+        ab_cc = [float(v) for v in re.findall(r"^\s+\d+\.\s+([0-9.]+) rad/s", txt, re.M)]
+        mine_cc = sorted(cc + [np.sqrt((sup[0]["kx"] + sup[1]["kx"]) / S.mass)])
+        dcc = (max(abs(a - b) / b for a, b in zip(ab_cc, mine_cc))
+               if len(ab_cc) == len(mine_cc) else np.inf)
+        print(f"  `critical`: autobal {ab_cc} rad/s, mine {[f'{c:.6f}' for c in mine_cc]}: worst "
+              f"rel diff {dcc:.1e} (printed to 6 digits: tolerance 5e-6)"
+              f"{' OK' if dcc < 5e-6 else ' *** DISAGREE'}")
+        ok &= dcc < 5e-6
         o, info = sm.compare_stability(f"rodrigues m = {frac} m_c", S, d,
                                        grid=np.linspace(5.0, 1500.0, 300))
         ok &= o
@@ -224,7 +253,7 @@ def main():
         print(f"  critical speeds (balls locked, undamped; mine): {[f'{c:.6g}' for c in cc]} "
               f"rad/s; unstable at every speed below the conical one: mine {allun_mine}, "
               f"autobal {allun_ab} ({len(below)} points); autobal states {states}")
-        if frac < 1.1 and allun_mine != allun_ab:
+        if allun_mine != allun_ab:
             ok = False
             print("  *** DISAGREE on 'born unstable below the conical critical speed'")
     print("ALL AGREE" if ok else "SOME DISAGREE")

@@ -272,12 +272,19 @@ class Spatial:
         x[self.nq0:self.nq0 + self.nb] = psi
         return x
 
-    def equilibrium(self, w, psi0=None):
-        """Newton (fsolve) on the equations with q' = q'' = 0 from the closed form."""
+    def equilibrium(self, w, psi0=None, q0=None):
+        """Newton (fsolve) on the equations with q' = q'' = 0 from the closed form (or from the
+        ball angles psi0, or from the whole position q0)."""
         N = self.N
-        if psi0 is None:
-            psi0 = self.balanced_angles()
-        x0 = self.state(psi0)[:N]
+        if q0 is not None:
+            x0 = np.array(q0[:N], float)
+            # MINPACK's finite-difference step is relative: an entry of 1e-18 gets a useless
+            # step, so clear entries that are zero to rounding
+            x0[np.abs(x0) < 1e-12] = 0.0
+        else:
+            if psi0 is None:
+                psi0 = self.balanced_angles()
+            x0 = self.state(psi0)[:N]
 
         def res(y):
             return self.rhs(0.0, np.concatenate([y, np.zeros(N)]), w)[N:]
