@@ -62,6 +62,14 @@ CASES = {
               unb=[dict(node=2, me=2e-4, phase=0.7, z=-0.01)]),
     "C": dict(planes=[dict(node=1, R=0.05, m=[0.012, 0.012], d=[0.01, 0.01], z=0.0)],
               unb=[dict(node=1, me=1e-4, phase=-1.0, z=0.0)]),
+    # (c) two balancer planes, each with the unbalance at its node (phases apart): the balanced
+    # state has the shaft at rest; and a variant with the race planes offset
+    "D": dict(planes=[dict(node=1, R=0.06, m=[0.02, 0.02], d=[0.1, 0.1], z=0.0),
+                      dict(node=2, R=0.05, m=[0.015, 0.015], d=[0.05, 0.05], z=0.0)],
+              unb=[dict(node=1, me=2e-4, phase=0.0, z=0.0), dict(node=2, me=1e-4, phase=2.0, z=0.0)]),
+    "E": dict(planes=[dict(node=1, R=0.06, m=[0.02, 0.02], d=[0.1, 0.1], z=0.01),
+                      dict(node=2, R=0.05, m=[0.015, 0.015], d=[0.05, 0.05], z=-0.015)],
+              unb=[dict(node=1, me=2e-4, phase=0.0, z=0.0), dict(node=2, me=1e-4, phase=2.0, z=0.0)]),
 }
 
 
@@ -89,6 +97,13 @@ def check_case(name, spec, omega_max=2500.0):
     states = {}
     for pt in d["points"]:
         w = pt["omega"]
+        if s_prev is None:
+            # homotopy in the offsets from the exactly balanced start with offsets 0
+            for lam in np.linspace(0.0, 1.0, 11):
+                pl = [dict(p_, z=lam * p_.get("z", 0.0)) for p_ in spec["planes"]]
+                un = [dict(u, z=lam * u.get("z", 0.0)) for u in spec["unb"]]
+                mh = lm.LinearModel(M, C, K, G, lm.nodes_from_layout(4), pl, un)
+                s_prev = mh.equilibrium(w, s_prev)
         s = mod.equilibrium(w, s_prev)
         F = np.abs(mod.rot_rhs(0.0, s, w)).max()
         ev = mod.eig(w, s)

@@ -216,15 +216,29 @@ class LinearModel:
         psi = np.zeros(self.nb)
         U = sum(u["me"] * np.exp(1j * u.get("phase", 0.0)) for u in self.unb)
         k = 0
-        for pl in self.planes:
+        own = [sum(u["me"] * np.exp(1j * u.get("phase", 0.0)) for u in self.unb
+                   if u["node"] == pl["node"]) for pl in self.planes]
+        for pl, o in zip(self.planes, own):
             cap = sum(pl["m"]) * pl["R"]
-            share = -U / len(self.planes)
+            # one plane: the whole static unbalance; several: the unbalance at its own node
+            share = -U if len(self.planes) == 1 else (-o if o != 0 else -U / len(self.planes))
             c = np.clip(abs(share) / cap, 0, 1)
             a = np.arccos(c)
             ang = np.angle(share)
             psi[k], psi[k + 1] = ang + a, ang - a
             k += len(pl["m"])
         return np.concatenate([np.zeros(self.N), psi, np.zeros(self.N + self.nb)])
+
+    def isotropised(self):
+        """The model with every matrix averaged over the turn, (A + J^T A J)/2."""
+        av = lambda A: 0.5 * (A + self.J.T @ A @ self.J)
+        return LinearModel(av(self.M), av(self.C), av(self.K), av(self.G), self.nodes,
+                           self.planes, self.unb, None)
+
+    def orbit_start(self, w, s0=None):
+        """Start for shooting: the isotropised model's equilibrium (exact where the balanced
+        state leaves the anisotropic parts at rest)."""
+        return self.isotropised().equilibrium(w, s0)
 
     def equilibrium(self, w, s0=None, tol=1e-13, maxit=50):
         """Newton on (p, psi) with p' = psi' = 0 (autonomous case)."""
@@ -260,14 +274,16 @@ class LinearModel:
     def periodic_orbit(self, w, x0, T=None, tol=1e-11, maxit=15):
         T = self.period(w) if T is None else T
         x = np.array(x0, float)
-        for _ in range(maxit):
+        for it in range(maxit):
             xT, Phi = self.monodromy(w, x, T)
             r = xT - x
             dx = np.linalg.solve(Phi - np.eye(self.n), -r)
             x += dx
             if np.max(np.abs(dx)) < tol * (1 + np.max(np.abs(x))):
                 break
-        xT, Phi = self.monodromy(w, x, T)
+        if np.max(np.abs(dx)) > 1e-8 * (1 + np.max(np.abs(x))):
+            xT, Phi = self.monodromy(w, x, T)  # else Phi at x - dx: differs by O(dx)
+        self.last_shoot = (it + 1, float(np.max(np.abs(dx))))
         mu = np.linalg.eigvals(Phi)
         return x, mu, np.log(np.abs(mu)) / T
 
