@@ -69,14 +69,30 @@ def check(case, omega_max=1500.0, n_pts=10):
     for k in idx:
         pt = pts[k]
         w = pt["omega"]
-        x = lm.LinearModel(M, C, K, G, nodes, planes, unb).equilibrium(w)
-        for lam in (0.25, 0.5, 0.75, 1.0):
-            mod = lm.LinearModel(M, C, K, G, nodes, planes, unb, (lam * GRAV[0], lam * GRAV[1]))
-            x, mu, ex = mod.periodic_orbit(w, x)
+        m0 = lm.LinearModel(M, C, K, G, nodes, planes, unb)
+        starts = [None]
+        if pt.get("state") == "partially_balanced":
+            # autobal's partially balanced state: balls bunched; try bunched starts all round
+            # and keep the orbit with autobal's residual (the same state), if any
+            starts = []
+            for a in np.linspace(0, 2 * np.pi, 12, endpoint=False):
+                s0 = m0.balanced_guess(w)
+                s0[m0.N:m0.N + m0.nb] = a
+                starts.append(s0)
+        cands = []
+        for s0 in starts:
+            x = m0.equilibrium(w, s0)
+            for lam in (0.25, 0.5, 0.75, 1.0):
+                mod = lm.LinearModel(M, C, K, G, nodes, planes, unb, (lam * GRAV[0], lam * GRAV[1]))
+                x, mu, ex = mod.periodic_orbit(w, x)
+            res_abs, res = mean_residual(mod, x, w, mod.period(w))
+            cands.append((abs(res - pt.get("residual", np.nan)), ex, res_abs, res, x))
+            if cands[-1][0] < 1e-6:
+                break
+        _, ex, res_abs, res, x = min(cands, key=lambda c: c[0])
         e = ex.max()
         err = abs(e - pt["abscissa"]) / max(1.0, abs(e))
         worst = max(worst, err)
-        res_abs, res = mean_residual(mod, x, w, mod.period(w))
         print(f"   w={w:.6g}: exponent {e:.10g} autobal {pt['abscissa']:.10g} {pt['verdict']}"
               f" {pt.get('state')}; residual ours |mean| {res:.6g} mean|.| {res_abs:.6g} autobal {pt.get('residual'):.6g}",
               flush=True)
