@@ -43,7 +43,7 @@ H_CS = 1e-30  # complex step
 
 
 @functools.lru_cache(maxsize=None)
-def ball_equations():
+def ball_equations(grav2=True):
     """Euler-Lagrange terms of one ball on a node with (x, y, a, b) and the ball angle th.
 
     Returns lambdified A(q, th; m, R, z) (5x5, coefficient of (x'', y'', a'', b'', th'')) and
@@ -60,7 +60,10 @@ def ball_equations():
     v = r.diff(t)
     T = sp.expand(m * (v.T * v)[0] / 2)
     V = sp.expand(-m * (gx * r[0] + gy * r[1]))
-    L = sp.series(T - V, eps, 0, 3).removeO().subs(eps, 1)
+    # grav2: the weight's potential to second order in the tilt as the kinetic energy; without
+    # it, to first order (the weight on the race centre and its torque on the ball)
+    Vs = sp.series(V, eps, 0, 3 if grav2 else 2).removeO()
+    L = (sp.series(T, eps, 0, 3).removeO() - Vs).subs(eps, 1)
     L = sp.expand(L)
     # symbols for the derivatives
     q = sp.symbols("x y a b th")
@@ -106,7 +109,8 @@ class LinearModel:
     node, R, m (list per ball), d (list of drags per ball), z (offset). unbalances: list of dicts
     node, me, phase, z. gravity: (g_x, g_y) or None."""
 
-    def __init__(self, M, C, K, G, nodes, planes, unbalances, gravity=None):
+    def __init__(self, M, C, K, G, nodes, planes, unbalances, gravity=None, grav2=True):
+        self.grav2 = grav2
         self.M, self.C, self.K, self.G = (np.asarray(A, float) for A in (M, C, K, G))
         self.N = self.M.shape[0]
         self.nodes = nodes
@@ -150,7 +154,7 @@ class LinearModel:
     # ---- fixed axes ----
     def fixed_acc(self, t, q, qd, psi, psid, w):
         """Accelerations (q'', psi''): q etc. of shape (N, B) / (nb, B), possibly complex."""
-        fA, fr, *_ = ball_equations()
+        fA, fr, *_ = ball_equations(self.grav2)
         B = q.shape[1]
         N, nb = self.N, self.nb
         dt = np.result_type(q, qd, psi, psid)
@@ -233,7 +237,7 @@ class LinearModel:
         """The model with every matrix averaged over the turn, (A + J^T A J)/2."""
         av = lambda A: 0.5 * (A + self.J.T @ A @ self.J)
         return LinearModel(av(self.M), av(self.C), av(self.K), av(self.G), self.nodes,
-                           self.planes, self.unb, None)
+                           self.planes, self.unb, None, self.grav2)
 
     def orbit_start(self, w, s0=None):
         """Start for shooting: the isotropised model's equilibrium (exact where the balanced
