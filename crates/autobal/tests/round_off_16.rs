@@ -54,6 +54,36 @@ fn the_washers_arc_member_under_gravity_is_a_creep_and_now_an_error() {
     assert!(Rotor::gravity_orbit_start(&field, &opts).is_some());
 }
 
+const TWO_PLANE: &str = include_str!("../../../examples/spatial_two_plane.toml");
+
+/// examples/spatial_two_plane.toml without unbalance (`unbalance.mass = 0`, `couple.mass = 0`).
+fn two_plane_balanced() -> Rotor {
+    let mut root = autobal::config::parse(TWO_PLANE, "two_plane").unwrap();
+    autobal::config::set(&mut root, "unbalance.mass", autobal::config::parse_value("0.0")).unwrap();
+    autobal::config::set(&mut root, "couple.mass", autobal::config::parse_value("0.0")).unwrap();
+    Rotor::Spatial(autobal::config::spatial_simulation(&root).unwrap().rotor)
+}
+
+/// The two-plane rotor without unbalance at 1049.6 rad/s (a speed of `stability`'s scan),
+/// with the scan's options: the shooting stalls at a residual inside (tol, 1e3 tol] that a
+/// tighter flow does not lower (within 1 % at rtol 1e-12; a true orbit's residual at
+/// round-off falls with the integration's error), a creep. Its drift is below a tenth of the
+/// rtol flow's error at the stall, so a slack tied to that error (session 16's first rule)
+/// accepted it as an "unstable" orbit; the slack tied to the Newton step refuses it.
+#[test]
+fn the_two_plane_rotor_without_unbalance_creeps_at_1050_rad_s_and_is_refused() {
+    let rotor = two_plane_balanced();
+    let field = rotor.field(1049.5794620832173).unwrap();
+    let guess = Rotor::guess(&field).unwrap();
+    let opts = NewtonOptions { max_iterations: 20, rtol: 1e-10, ..NewtonOptions::default() };
+    let (res, tol, detail) = no_convergence(stationary(&field, &guess, &opts));
+    assert!(res > tol && res <= 1e3 * tol, "{res:e} {tol:e}");
+    assert!(detail.starts_with("no step along the Newton direction reduces the residual, which is no round-off"), "{detail}");
+    let tight = NewtonOptions { rtol: 1e-12, ..opts.clone() };
+    let (res_tight, _, _) = no_convergence(stationary(&field, &guess, &tight));
+    assert!((res_tight - res).abs() <= 1e-2 * res, "{res:e} at rtol 1e-10, {res_tight:e} at 1e-12");
+}
+
 /// `x'' + c x' + k x = a cos ωt`: its periodic orbit in closed form, `x = Re(X e^{iωt})`,
 /// `X = a / (k − ω² + i c ω)`.
 struct Forced;

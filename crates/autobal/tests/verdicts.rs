@@ -250,9 +250,10 @@ fn without_unbalance_the_residual_is_the_balls_resultant_over_their_capacity() {
     let guess = Rotor::guess(&f).unwrap();
     let opts = autobal::analysis::NewtonOptions { periodic_tolerance: 1e-7, max_iterations: 20, rtol: 1e-10, ..Default::default() };
     let s = autobal::analysis::stationary(&f, &guess, &opts).unwrap();
-    let period = autobal::analysis::VectorField::period(&f).expect("an orbit under gravity");
+    let period = autobal::analysis::VectorField::period(&f)
+        .expect("the spatial rotor's field is periodic under gravity (the state is a creep's stall, sampled over one period)");
     let (kind, residual) = Rotor::classify(&f, &s.x);
-    // independently: the means over the orbit's samples
+    // independently: the means over one period's samples from that state
     let n = s.x.len();
     let rows = autobal::analysis::orbit_samples(&f, &s.x, period, 1e-10).unwrap();
     let m = n / 2;

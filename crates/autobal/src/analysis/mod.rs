@@ -69,9 +69,10 @@
 //!   tolerances (scaled; with no root near, past a turning point, the residual lies along a
 //!   direction the Jacobian barely moves and the step is long), a periodic orbit's where the
 //!   exact Newton step with the flow at 100× tighter `rtol` reaches a residual (at that `rtol`)
-//!   of at most a tenth of the larger of the residual and the `rtol` flow's own error there
-//!   (its difference from the tighter flow's), or the tolerance: the integration's error falls
-//!   with `rtol`, a slow drift with no orbit near does not. An equilibrium
+//!   of at most the largest of a tenth of the residual, a thousandth of the step, and the
+//!   tolerance: near an orbit the step is the offset to it and lands within the tighter
+//!   flow's error, a small fraction of the step (measured ≤ 7e-5 of it), while a slow drift
+//!   with no orbit near stays wherever the step goes (≥ 0.04 of it measured). An equilibrium
 //!   then gets one more full Newton step, kept only if it cuts the residual tenfold: with
 //!   quadratic convergence that takes it to round-off, while a step from a residual already at
 //!   round-off is refused (near a real eigenvalue crossing zero it would be round-off divided
