@@ -228,7 +228,7 @@ pub struct StableRange {
     pub to_is_boundary: bool,
     /// Whether `from` is where the state analysed **switches** to another stationary state
     /// (with the other verdict), not where one state changes stability: the location's last
-    /// bracket holds two states far apart ([`switches`]), e.g. two partially balanced states
+    /// bracket holds two states far apart (`analysis::stability::switches`), e.g. two partially balanced states
     /// that coexist, the scan's start landing on one below the speed and on the other above.
     /// `from_is_boundary` is then false.
     pub from_is_switch: bool,
