@@ -124,6 +124,15 @@ fn errors_name_key_file_and_line() {
     files.remove("K.mtx");
     let e = load(&root, &files).unwrap_err().to_string();
     assert!(e.starts_with("linear_rotor.k: K.mtx: no such file"), "{e}");
+    // the shaft builder's switches with matrix files: refused by name, not ignored (main at
+    // bb89c7b took `gyroscopic = false` beside a G file and left G acting)
+    files.insert("K.mtx".to_string(), "%%MatrixMarket matrix coordinate real general\n2 2 2\n1 1 1.0\n2 2 1.0\n".to_string());
+    assert!(load(&root, &files).is_ok());
+    for key in ["gyroscopic", "rotary_inertia"] {
+        let with = parse(&format!("[linear_rotor]\nlayout = \"x,y\"\nm = \"M.mtx\"\nk = \"K.mtx\"\n{key} = false\n"));
+        let e = load(&with, &files).unwrap_err().to_string();
+        assert!(e.starts_with(&format!("linear_rotor.{key}: is a shaft builder option")), "{e}");
+    }
     let cases = [
         (shaft_config().replace("length = 0.1\n", ""), "linear_rotor.elements[0].length: missing"),
         (shaft_config().replace("mass = 4.0", "mas = 4.0"), "linear_rotor.disks[0].mas: unknown key"),

@@ -446,6 +446,18 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
                 LinearRotor::zeros(n / layout.per_node(), layout)
             }
         };
+        // the shaft builder's switches mean nothing for matrices given as files (their G is
+        // the gyroscopic matrix, their M holds whatever inertia they hold): refused by name,
+        // not silently ignored (an independent check found `gyroscopic = false` with a G file
+        // leaving G acting)
+        for key in ["rotary_inertia", "gyroscopic"] {
+            if lr.contains_key(key) {
+                return Err(Error::invalid(
+                    format!("linear_rotor.{key}"),
+                    "is a shaft builder option (its elements' matrices); with matrix files the inertia is M's and the gyroscopic matrix the g file (leave g out for none)",
+                ));
+            }
+        }
         r.m = m;
         r.polar_inertia = top.f64("polar_inertia")?.unwrap_or(0.0);
         for (k, required) in [("k", true), ("c", false), ("g", false), ("kst", false), ("spin_chart", false)] {
