@@ -126,7 +126,7 @@ pub fn json(g: &GeneralRotor, r: &RotorStability, omega_max: f64) -> Value {
         .stable_ranges
         .iter()
         .map(|s| {
-            let mut v = json!({ "from": s.from, "to": s.to, "from_is_boundary": s.from_is_boundary, "to_is_boundary": s.to_is_boundary, "from_is_switch": s.from_is_switch, "to_is_switch": s.to_is_switch });
+            let mut v = stable_range_json(s);
             if g.si {
                 v["from_rpm"] = json!(rpm(s.from));
                 v["to_rpm"] = json!(rpm(s.to));
@@ -227,17 +227,7 @@ pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64, op: Option<&O
             let from = end_text(r, st, false, |w| speed_text(g, w));
             let to = end_text(r, st, true, |w| speed_text(g, w));
             // the states the range covers: "partially balanced, stable" never reads "stable"
-            let kinds: Vec<&str> = {
-                // (the range's own points: not a switch end's grid speed, whose state is another)
-                let mut k: Vec<&str> = r
-                    .points
-                    .iter()
-                    .filter(|p| p.omega >= st.from && p.omega <= st.to && p.abscissa.is_some_and(|a| a < 0.0))
-                    .filter_map(|p| p.state.map(|k| k.name()))
-                    .collect();
-                k.dedup();
-                k
-            };
+            let kinds = range_states(r, st);
             let label = if kinds.iter().any(|k| *k != "balanced" && *k != "semi-balanced") {
                 format!("{}, stable", kinds.join(" then "))
             } else if r.family.is_some() {
@@ -295,6 +285,25 @@ pub(crate) fn family_line(r: &RotorStability, speed: impl Fn(f64) -> String) -> 
         ),
         None => format!("{head}; no speed of the axis has a balanced state, so no member to name\n"),
     }
+}
+
+/// The names of the states a stable range covers, in order, each once in a row: its own
+/// points (stable: not a switch end's grid speed, whose state is another).
+pub(crate) fn range_states(r: &RotorStability, st: &autobal::analysis::StableRange) -> Vec<&'static str> {
+    let mut k: Vec<&str> = r
+        .points
+        .iter()
+        .filter(|p| p.omega >= st.from && p.omega <= st.to && p.abscissa.is_some_and(|a| a < 0.0))
+        .filter_map(|p| p.state.map(|k| k.name()))
+        .collect();
+    k.dedup();
+    k
+}
+
+/// A stable range as JSON: its ends, whether each is a located boundary or a switch of state;
+/// each command adds its units (`from_rpm`, `from_si`, ...).
+pub(crate) fn stable_range_json(s: &autobal::analysis::StableRange) -> Value {
+    json!({ "from": s.from, "to": s.to, "from_is_boundary": s.from_is_boundary, "to_is_boundary": s.to_is_boundary, "from_is_switch": s.from_is_switch, "to_is_switch": s.to_is_switch })
 }
 
 /// A stable range's end in words ([`range_end`]), or, where the scan's state switches there
@@ -447,12 +456,7 @@ pub fn operating_json(op: &Operating) -> Value {
     json!({
         "omega": op.omega,
         "stable": verdict == Some(Verdict::Stable),
-        "verdict": match verdict {
-            None => Value::Null,
-            Some(Verdict::Stable) => json!("stable"),
-            Some(Verdict::Unstable) => json!("unstable"),
-            Some(Verdict::Neutral) => json!("neutral"),
-        },
+        "verdict": verdict.map(Verdict::name),
         "max_growth_rate": if verdict.is_some() { json!(op.max_growth_rate()) } else { Value::Null },
         "stable_range": op.range.as_ref().map_or(Value::Null, |st| json!({"from": st.from, "to": st.to})),
         "points": op.points,
@@ -475,11 +479,6 @@ fn other_orbits_line(g: &GeneralRotor, op: &Operating) -> String {
     let with: Vec<&autobal::rotor_stability::SpeedPoint> = op.points.iter().filter(|p| !p.other_orbits.is_empty()).collect();
     let Some(first) = with.first() else { return String::new() };
     let per = if g.si { " 1/s" } else { "" };
-    let word = |v: Verdict| match v {
-        Verdict::Stable => "stable",
-        Verdict::Unstable => "unstable",
-        Verdict::Neutral => "neutral",
-    };
     let stable_too = "; a run may settle on a stable one of these instead (its start decides)";
     if op.omega[0] == op.omega[1] {
         let list: Vec<String> = first
@@ -487,7 +486,7 @@ fn other_orbits_line(g: &GeneralRotor, op: &Operating) -> String {
             .iter()
             .map(|o| {
                 let psi: Vec<String> = o.member_psi.iter().map(|a| fmt_num(round(a.rem_euclid(std::f64::consts::TAU)))).collect();
-                format!("balls at {} rad ({}, growth rate {}{per})", psi.join(", "), word(o.verdict), fmt_num(o.abscissa))
+                format!("balls at {} rad ({}, growth rate {}{per})", psi.join(", "), o.verdict.name(), fmt_num(o.abscissa))
             })
             .collect();
         let any_stable = first.other_orbits.iter().any(|o| o.verdict == Verdict::Stable);

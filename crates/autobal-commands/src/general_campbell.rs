@@ -580,9 +580,16 @@ pub fn critical_json(g: &GeneralRotor, c: &GeneralCritical) -> Value {
     });
     match &c.stability {
         Ok(st) => {
-            v["exact_stable_ranges"] = json!(st.stable_ranges.iter().map(|s| {
-                json!({ "from": s.from, "to": s.to, "from_is_boundary": s.from_is_boundary, "to_is_boundary": s.to_is_boundary, "from_is_switch": s.from_is_switch, "to_is_switch": s.to_is_switch, "from_si": to_si(s.from), "to_si": to_si(s.to) })
-            }).collect::<Vec<_>>());
+            v["exact_stable_ranges"] = json!(st
+                .stable_ranges
+                .iter()
+                .map(|s| {
+                    let mut r = crate::general::stable_range_json(s);
+                    r["from_si"] = to_si(s.from);
+                    r["to_si"] = to_si(s.to);
+                    r
+                })
+                .collect::<Vec<_>>());
             v["stationary_state"] = json!(st.kind);
             v["family_dimension"] = json!(st.family_dimension);
             v["member_psi"] = json!(st.member_psi);

@@ -220,7 +220,12 @@ pub fn stability_json(cfg: &LinearRotorConfig, r: &RotorStability, red: &Option<
     let ranges: Vec<Value> = r
         .stable_ranges
         .iter()
-        .map(|s| json!({ "from": s.from, "to": s.to, "from_rpm": rpm(s.from), "to_rpm": rpm(s.to), "from_is_boundary": s.from_is_boundary, "to_is_boundary": s.to_is_boundary, "from_is_switch": s.from_is_switch, "to_is_switch": s.to_is_switch }))
+        .map(|s| {
+            let mut v = crate::general::stable_range_json(s);
+            v["from_rpm"] = json!(rpm(s.from));
+            v["to_rpm"] = json!(rpm(s.to));
+            v
+        })
         .collect();
     Ok(json!({
         "route": "general",
@@ -274,14 +279,7 @@ pub fn stability_table(cfg: &LinearRotorConfig, r: &RotorStability, red: &Option
         let from = crate::general::end_text(r, st, false, speed_text);
         let to = crate::general::end_text(r, st, true, speed_text);
         // the states the range covers: "partially balanced, stable" never reads "stable"
-        // (the range's own points: not a switch end's grid speed, whose state is another)
-        let mut kinds: Vec<&str> = r
-            .points
-            .iter()
-            .filter(|p| p.omega >= st.from && p.omega <= st.to && p.abscissa.is_some_and(|a| a < 0.0))
-            .filter_map(|p| p.state.map(|k| k.name()))
-            .collect();
-        kinds.dedup();
+        let kinds = crate::general::range_states(r, st);
         let label = if kinds.iter().any(|k| *k != "balanced") { format!("{}, stable", kinds.join(" then ")) } else { "stable".to_string() };
         s.push_str(&format!("{label}: {from} to {to}\n"));
     }

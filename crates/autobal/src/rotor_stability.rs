@@ -461,14 +461,8 @@ impl Rotor {
                 let e = orbit_mean(field, x, &|row| vec![row[0], row[1]]);
                 let race = C::from_polar(p.s2, p.gamma);
                 let off = (C::new(e[0], e[1]) + race).norm();
-                // E without the balls' resultant: C at `Ω² u0 / D`, `u0 = m1 s1 + (m2 + Σ m_j)
-                // s2 e^{iγ}`, `D = k̄ − M Ω² + i c̄ Ω` (the supports' means)
-                let w = f.omega();
-                let (k, c) = p.mean_supports();
-                let u0 = C::new(p.m1 * p.s1, 0.0) + race * (p.total_mass() - p.m1);
-                let free = (u0 * (w * w) / C::new(k - p.total_mass() * w * w, c * w) + race).norm();
-                let scale = if free.is_finite() && free > 1e-12 * planar_scale(p) { free } else { planar_scale(p) };
-                off / scale
+                // over E without the balls' resultant (the run's scale too)
+                off / crate::planar::stationary::race_offset_scale(p, f.omega())
             }
         }
     }
@@ -1479,11 +1473,6 @@ fn spatial_can_balance(s: &SpatialField) -> bool {
     let nb = s.rotor().balls();
     let units: Vec<[f64; 2]> = g[m - nb..m].iter().map(|a| [a.cos(), a.sin()]).collect();
     spatial_residual(s.rotor(), &units) <= BALANCED_EXACTLY
-}
-
-/// The planar rotor's eccentricity scale `s1 + s2 + n m3 r / M` (m).
-fn planar_scale(p: &PlanarRotor) -> f64 {
-    (p.s1 + p.s2 + p.n as f64 * p.m3 * p.r / p.total_mass()).max(f64::MIN_POSITIVE)
 }
 
 /// Whether the balls at `psi` (rad, one plane) are bunched: every angle within `1e-6` rad of the

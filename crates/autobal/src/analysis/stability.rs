@@ -61,6 +61,17 @@ pub enum Verdict {
     Neutral,
 }
 
+impl Verdict {
+    /// `"stable"`, `"unstable"`, `"neutral"`: the word a table prints, as the JSON writes it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Verdict::Stable => "stable",
+            Verdict::Unstable => "unstable",
+            Verdict::Neutral => "neutral",
+        }
+    }
+}
+
 /// The stability of one stationary state ([`stability()`]).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Stability {
