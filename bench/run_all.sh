@@ -82,6 +82,9 @@ for path in sorted(glob.glob(os.path.join(d, "*.json"))):
             if "error" in v:
                 lines.append(f"| {k} | failed: {v['error']} | | | | | | |")
                 continue
+            if v.get("failed_at_every_rung"):
+                lines.append(f"| {k} | failed at every rung of the ladder | | | | | | |")
+                continue
             e = next((x.get("error_before_peak") for x in v["ladder"] if x["rtol"] == v["rtol"]), None)
             note = "" if v["reached_target"] else " (target not reached)"
             lines.append(f"| {k} | {v['rtol']:g}{note} | {f(e)} | {ms(v['wall_s'])} | {ms(v['cpu_s'])} | {f(v.get('compile_s'))} | {f(v.get('cpu_vs_command'))} | {f(v.get('cpu_vs_library_process'))} |")

@@ -601,8 +601,9 @@ pub(crate) fn residual_range(points: &[&autobal::rotor_stability::SpeedPoint]) -
 /// The line of `stability`'s table where balanced states carry a residual above the exact
 /// tolerance (1e-6 of the unbalance): on a periodic orbit the balls swing once a revolution and
 /// cancel the unbalance on average but for the swing's second order
-/// ([`autobal::rotor_stability::Rotor::residual`]); empty where every balanced state is
-/// balanced to within 1e-6.
+/// ([`autobal::rotor_stability::Rotor::residual`]), and how many more are balanced to within
+/// 1e-6 (the table's lines count every speed); empty where every balanced state is balanced to
+/// within 1e-6.
 pub(crate) fn residual_text(r: &autobal::rotor_stability::RotorStability, speed: impl Fn(f64) -> String) -> String {
     let with: Vec<_> =
         r.points.iter().filter(|p| p.state == Some(autobal::rotor_stability::StateKind::Balanced) && p.residual.is_some_and(|v| v > 1e-6)).collect();
@@ -612,8 +613,11 @@ pub(crate) fn residual_text(r: &autobal::rotor_stability::RotorStability, speed:
     } else {
         "the balls do not cancel the unbalance exactly"
     };
+    // the other balanced speeds, so that the lines' counts add up to the speeds analysed
+    let exact = r.points.iter().filter(|p| p.state == Some(autobal::rotor_stability::StateKind::Balanced) && !p.residual.is_some_and(|v| v > 1e-6)).count();
+    let rest = if exact > 0 { format!("; balanced to within 1e-6 at {exact} more") } else { String::new() };
     format!(
-        "balanced to a residual of {} {} (above the exact tolerance 1e-6; on a periodic orbit up to 0.05 is balanced, as in `simulate`, at an equilibrium only 1e-6) at {} of {} speeds, {} ({why})\n",
+        "balanced to a residual of {} {} (above the exact tolerance 1e-6; on a periodic orbit up to 0.05 is balanced, as in `simulate`, at an equilibrium only 1e-6) at {} of {} speeds, {} ({why}){rest}\n",
         residual_range(&with),
         r.residual_scale.words(),
         with.len(),
@@ -781,6 +785,31 @@ mod tests {
         );
         let none = format!("no stationary state found at 1 of 30 speeds (the first, at {}: no periodic orbit found)", speed_text(&g, r.points[0].omega));
         assert!(t.contains(&below) && t.contains(&none), "{t}");
+    }
+
+    /// The residual line counts the balanced speeds above 1e-6 and says how many more are
+    /// balanced to within it, so that the table's lines add up to the speeds analysed (the
+    /// washer under gravity: 39 speeds above 1e-6, 7 within it, and the line said only "39 of
+    /// 50", leaving 7 speeds unaccounted for, until session 17). Paper 004's Jeffcott rotor
+    /// (an equilibrium: every balanced residual Newton's ~1e-12), three of its balanced points
+    /// given residuals above 1e-6.
+    #[test]
+    fn the_residual_line_counts_the_exactly_balanced_speeds_too() {
+        let g = GeneralRotor { rotor: Rotor::Planar(PlanarRotor { n: 2, s2: 0.0, ..PlanarRotor::paper() }), si: true, omega0: 1.0 };
+        let mut r = analyse(&g, 600.0, 30, &Control::default()).unwrap();
+        let balanced: Vec<usize> = (0..r.points.len()).filter(|&i| r.points[i].state == Some(StateKind::Balanced)).collect();
+        assert!(balanced.len() > 3, "{:?}", r.points);
+        assert!(residual_text(&r, |w| speed_text(&g, w)).is_empty());
+        for &i in &balanced[..3] {
+            r.points[i].residual = Some(1e-3);
+        }
+        let line = residual_text(&r, |w| speed_text(&g, w));
+        assert!(line.contains("at 3 of 30 speeds"), "{line}");
+        assert!(line.trim_end().ends_with(&format!("; balanced to within 1e-6 at {} more", balanced.len() - 3)), "{line}");
+        for &i in &balanced {
+            r.points[i].residual = Some(1e-3);
+        }
+        assert!(!residual_text(&r, |w| speed_text(&g, w)).contains("more"));
     }
 
     /// A stable range over states that are not balanced never reads plain "stable": the label
