@@ -524,9 +524,18 @@ fn operating_verdict_line(g: &GeneralRotor, r: &RotorStability, op: &Operating) 
     match verdict {
         Verdict::Stable => {
             let range = op.range.as_ref().map_or_else(
-                // stable at the speed itself, but no grid speed of the scan round it was: the
-                // grid is too coarse for the window the operating speed sits in
-                || " (the scan's grid found no stable range round it: a narrower window than its spacing; more --samples resolve it)".to_string(),
+                || match (r.points.first(), r.points.last()) {
+                    // the operating speed off the scan's axis (an --omega-max below it): no
+                    // grid speed there, so no range of the scan can hold it
+                    (Some(a), Some(b)) if op.omega[0] > b.omega || op.omega[1] < a.omega => format!(
+                        " (outside the scan's speed axis, {} to {}: no stable range of the scan can hold it; an axis that reaches it, e.g. a larger --omega-max, gives its range)",
+                        speed_text(g, a.omega),
+                        speed_text(g, b.omega)
+                    ),
+                    // stable at the speed itself, but no grid speed of the scan round it was:
+                    // the grid is too coarse for the window the operating speed sits in
+                    _ => " (the scan's grid found no stable range round it: a narrower window than its spacing; more --samples resolve it)".to_string(),
+                },
                 |st| format!(" in the stable range {}", range(st)),
             );
             format!("operating speed {at}: the {state} state is STABLE (exact, {how}{member}){range}; {rate}\n")
@@ -810,6 +819,25 @@ mod tests {
             r.points[i].residual = Some(1e-3);
         }
         assert!(!residual_text(&r, |w| speed_text(&g, w)).contains("more"));
+    }
+
+    /// An operating speed above the scan's axis (an `--omega-max` below it) is stable at the
+    /// speed itself but no range of the scan holds it: the line says it is off the axis, not
+    /// that the grid is too coarse (main at 51426c6 said "a narrower window than its spacing;
+    /// more --samples resolve it", which no number of samples does). Paper 004's Jeffcott
+    /// rotor, stable at 500 rad/s, scanned to 200 rad/s.
+    #[test]
+    fn an_operating_speed_off_the_axis_says_so() {
+        let g = GeneralRotor { rotor: Rotor::Planar(PlanarRotor { n: 2, s2: 0.0, ..PlanarRotor::paper() }), si: true, omega0: 1.0 };
+        let r = analyse(&g, 200.0, 10, &Control::default()).unwrap();
+        let at = autobal::rotor_stability::stability_over_speed_with(&g.rotor, &[500.0], &Control::default()).unwrap().value;
+        // as `operating` builds it: no range of the scan holds 500 rad/s
+        let range = r.stable_ranges.iter().find(|st| st.from <= 500.0 && 500.0 <= st.to).cloned();
+        assert!(range.is_none(), "{:?}", r.stable_ranges);
+        let op = Operating { omega: [500.0, 500.0], points: at.points, range };
+        assert_eq!(op.verdict(), Some(Verdict::Stable));
+        let line = operating_verdict_line(&g, &r, &op);
+        assert!(line.contains("outside the scan's speed axis") && !line.contains("more --samples"), "{line}");
     }
 
     /// A stable range over states that are not balanced never reads plain "stable": the label
