@@ -339,3 +339,26 @@ fn the_boundary_over_rpm_is_drawn_in_rpm() {
     let speeds: Vec<f64> = b.lines().skip(1).filter(|l| !l.starts_with('-')).map(|l| l.split(',').nth(3).unwrap().parse().unwrap()).collect();
     assert!(!speeds.is_empty() && speeds.iter().any(|&n| n > 250.0), "{b}");
 }
+
+/// The general route and the map's `omega` axis note a bare speed on a dimensional config as
+/// the 12-state route's `--omega-max` does (session 17: `stability --route general
+/// --omega-max 1500` and `map --x omega=100:160:6` on the washer ran silently at Ω = 1500 and
+/// 100-160, i.e. ~45 000 and ~3 000-4 800 rad/s, where the user wrote rad/s).
+#[test]
+fn bare_speeds_on_the_general_route_and_map_axes_are_noted() {
+    let cfg = washer();
+    let w0 = omega0();
+    let (code, _, err) = autobal(&["stability", "--config", &cfg, "--route", "general", "--samples", "10", "--omega-max", "5.2"]);
+    assert_eq!(code, 0, "{err}");
+    let want = format!("note: --omega-max 5.2 is the dimensionless Ω = 5.2, i.e. {} rad/s", autobal::error::fmt_num(5.2 * w0));
+    assert!(err.contains(&want), "{err}\nwant {want}");
+    let (code, _, err) = autobal(&["stability", "--config", &cfg, "--route", "general", "--samples", "10", "--omega-max", "157 rad/s"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(!err.contains("note:"), "{err}");
+    for (axis, noted) in [("omega=1:2:3", true), ("speed=30:60:3", false)] {
+        let out = tmp(&format!("bare_{noted}"));
+        let (code, _, err) = autobal(&["map", "--config", &cfg, "--x", axis, "--y", "balancer.ball_mass=0.1:0.12:2", "--out", out.to_str().unwrap()]);
+        assert_eq!(code, 0, "{err}");
+        assert_eq!(err.contains("note: --x omega is the dimensionless Ω = ω/ω0 on this dimensional config"), noted, "{axis}: {err}");
+    }
+}

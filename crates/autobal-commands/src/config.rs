@@ -278,7 +278,7 @@ pub fn simulation_model(root: &Table) -> Model {
 /// bare number is the dimensionless `Ω = ω/ω0` ([`autobal::units`]), which a user writing SI may
 /// not mean.
 pub fn bare_speed_notes(root: &Table) -> Vec<String> {
-    let dimensional = ["rotor", "supports", "unbalance", "balancer"].iter().any(|t| root.contains_key(*t));
+    let dimensional = is_dimensional(root);
     let an = root.get("analysis").and_then(toml::Value::as_table);
     let mut out = vec![];
     for key in ["omega_max", "operating_speed"] {
@@ -289,6 +289,12 @@ pub fn bare_speed_notes(root: &Table) -> Vec<String> {
         }
     }
     out
+}
+
+/// Whether a spatial config is dimensional (SI: the `[rotor]`, `[supports]`, `[unbalance]`,
+/// `[balancer]` tables), where a bare speed is the dimensionless `Ω = ω/ω0`, not rad/s.
+pub fn is_dimensional(root: &Table) -> bool {
+    ["rotor", "supports", "unbalance", "balancer"].iter().any(|t| root.contains_key(*t))
 }
 
 /// Validate a config table and build the model.

@@ -59,7 +59,16 @@ pub fn omega_max(root: &Table, g: &GeneralRotor, arg: Option<&str>) -> Result<f6
             let w = match s.unit.rad_s() {
                 Some(k) if g.si => s.value * k,
                 Some(_) => s.to_omega("--omega-max", None)?,
-                None => s.value * g.omega0,
+                None => {
+                    if g.si && matches!(g.rotor, Rotor::Spatial(_)) {
+                        // as the 12-state route notes it (crate::linear::speed_arg)
+                        crate::term::note(&format!(
+                            "note: --omega-max {t} is the dimensionless Ω = {t}, i.e. {} rad/s; give a unit (rpm, rad/s or Hz) for SI",
+                            fmt_num(s.value * g.omega0)
+                        ));
+                    }
+                    s.value * g.omega0
+                }
             };
             autobal::limits::check_as("--omega-max", "analysis.omega_max", w / g.omega0)?;
             w

@@ -151,6 +151,17 @@ impl Args {
         // a linear rotor config ([linear_rotor]) takes its own --set and the general route
         let (root, source) = self.config.read_any()?;
         let linear = crate::linear_rotor::is_linear(&root);
+        // `omega` of a dimensional spatial config is Ω = ω/ω0, not rad/s (a user writing SI
+        // may not mean it; 100 there is ~3000 rad/s on examples/washing_machine.toml)
+        if !linear && autobal::config::is_spatial(&root) && config::is_dimensional(&root) {
+            for (flag, a) in [("--x", &self.x), ("--y", &self.y)] {
+                if a.path == "omega" {
+                    crate::term::note(&format!(
+                        "note: {flag} omega is the dimensionless Ω = ω/ω0 on this dimensional config; for SI map over speed=LO:HI:N (rad/s), speed_rpm or speed_hz"
+                    ));
+                }
+            }
+        }
         if linear || self.route.is_general(&root) {
             if self.balls == Balls::Locked {
                 bail!("--balls locked: the general route maps the balls free (use the 12-state route of a one-plane config for the locked rotor)");
