@@ -44,7 +44,7 @@ fn one_plane_general_map_equals_the_12_state_map_cell_by_cell() {
     let (ha, ra) = csv(&a);
     let (hg, rg) = csv(&g);
     assert_eq!(ha, "omega,balancer.ball_mass,max_real_part,stable,necessary");
-    assert_eq!(hg, "omega,balancer.ball_mass,max_real_part,verdict,family_dimension,family");
+    assert_eq!(hg, "omega,balancer.ball_mass,max_real_part,verdict,family_dimension,family,state");
     assert_eq!(ra.len(), 90);
     assert_eq!(ra.len(), rg.len());
     // the same Ω per cell (each route converts with the ω0 of the rotor at that ball mass)
@@ -96,7 +96,7 @@ fn planar_jeffcott_map_is_unstable_below_the_critical_speed_in_every_row() {
     // sqrt(k/M) from examples/planar.toml's numbers: k = 104509.44 N/m, M = m1 + m2 + n m3
     let wn = (104509.44f64 / (1.0 + 0.2 + 2.0 * 0.03)).sqrt();
     let (header, rows) = csv(&stem);
-    assert_eq!(header, "omega,planar.c_psi,max_real_part,verdict,family_dimension,family");
+    assert_eq!(header, "omega,planar.c_psi,max_real_part,verdict,family_dimension,family,state");
     assert_eq!(rows.len(), 45 * 8);
     for row in rows.chunks(45) {
         for c in row {
@@ -202,7 +202,7 @@ fn a_three_ball_map_says_which_members_of_the_family_are_stable() {
     assert!(out.contains("general route"), "{out}");
     assert!(err.contains("family") && err.contains("one member"), "{err}");
     let (header, rows) = csv(&stem);
-    assert_eq!(header, "omega,planar.c,max_real_part,verdict,family_dimension,family");
+    assert_eq!(header, "omega,planar.c,max_real_part,verdict,family_dimension,family,state");
     let at = |w: &str| rows.iter().find(|r| r[0] == w && r[1] == "50").unwrap_or_else(|| panic!("{rows:?}"));
     assert_eq!(at("290")[5], "none_stable", "{rows:?}");
     assert_eq!(at("305")[5], "some_stable", "{rows:?}");

@@ -17,6 +17,7 @@ use anyhow::{anyhow, bail, Result};
 use autobal::control::Control;
 use autobal::paths::Axis;
 use autobal::rotor_map::{BoundaryPoint, FamilyVerdict, GeneralCell, GeneralMapOutcome, Kind, Verdict};
+use autobal::rotor_stability::StateKind;
 use autobal::spatial::boundary::{Boundary, Codim2Kind, CurveKind, TraceSettings};
 use autobal::spatial::linear_model::Balls;
 pub use autobal::spatial::map::{Cell, Quantity};
@@ -426,6 +427,23 @@ impl Output {
     }
 }
 
+/// The table's words on the cells whose state is not the (semi-)balanced one (none: nothing):
+/// their verdicts are those states' (a "stable" not-balanced cell is the balls held on the
+/// unbalance's side, not a balancer that works), as `stability`'s table says of its speeds.
+fn state_words(o: &GeneralMapOutcome) -> String {
+    let mut parts = vec![];
+    if o.partially_balanced > 0 {
+        parts.push(format!("{} partially balanced (no balanced state exists there)", o.partially_balanced));
+    }
+    if o.not_balanced > 0 {
+        parts.push(format!("{} not balanced", o.not_balanced));
+    }
+    if parts.is_empty() {
+        return String::new();
+    }
+    format!("; cells whose state is {}: the verdicts there are those states', not a balanced state's (the CSV's state column)", parts.join(", "))
+}
+
 /// The table's words on the cells below the periodic-orbit floor (none: nothing).
 fn not_analysed_words(n: usize) -> String {
     if n == 0 {
@@ -474,6 +492,8 @@ impl command::Output for Output {
                 v["without_stationary_state"] = json!(outcome.none);
                 v["not_analysed"] = json!(outcome.not_analysed);
                 v["families"] = json!(outcome.families);
+                v["partially_balanced"] = json!(outcome.partially_balanced);
+                v["not_balanced"] = json!(outcome.not_balanced);
                 if let Some(t) = traced {
                     v["boundary"] = json!({"bisected_points": t.len()});
                 }
@@ -501,7 +521,7 @@ impl command::Output for Output {
                 self.wrote()
             ),
             RouteOutput::General { outcome, linear, .. } => format!(
-                "general route: {done} rows × {n} points in {:.2} s ({per_point:.2} µs per point; {} from the closed form, {} continued from a neighbour, {} without a stationary state{}{}); stationary state: {}{}\n",
+                "general route: {done} rows × {n} points in {:.2} s ({per_point:.2} µs per point; {} from the closed form, {} continued from a neighbour, {} without a stationary state{}{}); stationary state: {}{}{}\n",
                 self.secs,
                 outcome.closed_form,
                 outcome.continued,
@@ -509,6 +529,7 @@ impl command::Output for Output {
                 crate::linear_rotor::map_none_reason(*linear, outcome.none),
                 not_analysed_words(outcome.not_analysed),
                 Output::state(outcome),
+                state_words(outcome),
                 self.wrote()
             ),
         })
@@ -842,7 +863,7 @@ pub fn compute(
 
 /// The general route ([`autobal::rotor_map::general_map_traced`]) over the plan's axes: any
 /// planar or spatial config; CSV columns: the two axes, `max_real_part`, `verdict`,
-/// `family_dimension`, `family` (empty fields where no stationary state was found).
+/// `family_dimension`, `family`, `state` (empty fields where no stationary state was found).
 #[allow(clippy::too_many_arguments)]
 fn general(
     root: &toml::Table,
@@ -863,7 +884,7 @@ fn general(
         _ => None,
     };
     if let Some(w) = csv.as_mut() {
-        writeln!(w, "{},{},max_real_part,verdict,family_dimension,family", x.path, y.path)?;
+        writeln!(w, "{},{},max_real_part,verdict,family_dimension,family,state", x.path, y.path)?;
     }
     let mut traced: Vec<BoundaryPoint> = vec![];
     let (kx, dx) = decimate(x);
@@ -903,7 +924,15 @@ fn general(
                     Some(FamilyVerdict::SomeStable) => "some_stable",
                     Some(FamilyVerdict::NoneStable) => "none_stable",
                 };
-                let _ = writeln!(t, "{xs},{yv},{margin},{verdict},{fam},{family}");
+                // what the state is, in the speed scan's words (`stability`'s points[].state)
+                let state = match c.state {
+                    None => "",
+                    Some(StateKind::Balanced) => "balanced",
+                    Some(StateKind::SemiBalanced) => "semi_balanced",
+                    Some(StateKind::PartiallyBalanced) => "partially_balanced",
+                    Some(StateKind::NotBalanced) => "not_balanced",
+                };
+                let _ = writeln!(t, "{xs},{yv},{margin},{verdict},{fam},{family},{state}");
             }
             if let Err(e) = w.write_all(t.as_bytes()).and_then(|_| w.flush()) {
                 io_error = Some(e);
@@ -1433,7 +1462,7 @@ mod tests {
         };
         let mut csv = vec![];
         let out = args.prepare().unwrap().run(&Control::none(), Rows::Csv(&mut csv)).unwrap();
-        assert!(String::from_utf8(csv).unwrap().starts_with("omega,planar.c_psi,max_real_part,verdict,family_dimension,family\n"));
+        assert!(String::from_utf8(csv).unwrap().starts_with("omega,planar.c_psi,max_real_part,verdict,family_dimension,family,state\n"));
         let p = &out.figures().unwrap()[0].plot;
         assert!(p.title.contains("general route"), "{}", p.title);
         assert_eq!(p.x_label, "speed ω (rad/s)");

@@ -607,7 +607,8 @@ fn in_pool<R: Send>(threads: Option<usize>, work: impl FnOnce() -> anyhow::Resul
 /// largest Floquet exponent on the general route; NaN with `quantity="verdict"` or where no
 /// stationary state was found), `stable`; on the closed-form route `necessary` (inside 003's
 /// necessary ranges), on the general route `verdict` (`"stable"`, `"unstable"`, `"neutral"`,
-/// `""`: no stationary state) and `family_dimension`.
+/// `""`: no stationary state), `family_dimension` and `state` (`"balanced"`, `"semi_balanced"`,
+/// `"partially_balanced"`, `"not_balanced"`, `""` without a state).
 fn map_dict<'py>(py: Python<'py>, args: autobal_commands::map::Args, threads: Option<usize>) -> PyResult<Bound<'py, PyDict>> {
     use autobal_commands::command::{Command, Output};
     use autobal_commands::map::RouteOutput;
@@ -647,6 +648,9 @@ fn map_dict<'py>(py: Python<'py>, args: autobal_commands::map::Args, threads: Op
                 cells.iter().map(|r| r.iter().map(|c| if c.analysed { name(c.verdict) } else { autobal_commands::map::NOT_ANALYSED }).collect()).collect();
             d.set_item("verdict", rows)?;
             d.set_item("family_dimension", PyArray1::from_vec(py, flat().map(|c| c.family_dimension as u64).collect()).reshape([ny, nx])?)?;
+            // what the state is, the CLI CSV's `state` (`""` without one)
+            let state = |k: Option<autobal::rotor_stability::StateKind>| k.map_or(String::new(), |k| k.name().replace([' ', '-'], "_"));
+            d.set_item("state", cells.iter().map(|r| r.iter().map(|c| state(c.state)).collect::<Vec<_>>()).collect::<Vec<_>>())?;
             d.set_item("route", "general")?;
         }
         _ => return Err(PyRuntimeError::new_err("autobal: the map kept no cells")),

@@ -680,12 +680,13 @@ pub fn linear_rotor_run(
                 o.done()?;
                 let (xa, ya) = (autobal::paths::Axis::parse(&x)?, autobal::paths::Axis::parse(&y)?);
                 let root = config.root.clone();
-                let (mut margin, mut verdict, mut family, mut points) = (vec![], vec![], vec![], vec![]);
+                let (mut margin, mut verdict, mut family, mut state, mut points) = (vec![], vec![], vec![], vec![], vec![]);
                 within(&mut || {
                     let out = cmd::map_traced(&root, &config.dir, &xa, &ya, speed, boundary, control, &mut |_, cells, pts| {
                         margin.push(cells.iter().map(|c| c.margin).collect::<Vec<_>>());
                         verdict.push(cells.iter().map(|c| c.verdict).collect::<Vec<_>>());
                         family.push(cells.iter().map(|c| c.family_dimension).collect::<Vec<_>>());
+                        state.push(cells.iter().map(|c| c.state).collect::<Vec<_>>());
                         points.extend_from_slice(pts);
                         true
                     })?;
@@ -697,7 +698,7 @@ pub fn linear_rotor_run(
                         "model": "linear",
                         "x_path": &xa.path, "y_path": &ya.path, "x": &xa.values, "y": &ya.values,
                         "margin": margin.iter().map(|r| r.iter().map(|m| m.is_finite().then_some(*m)).collect::<Vec<_>>()).collect::<Vec<_>>(),
-                        "verdict": &verdict, "family_dimension": &family, "boundary": &points,
+                        "verdict": &verdict, "family_dimension": &family, "state": &state, "boundary": &points,
                     }))
                 })
             }

@@ -69,7 +69,7 @@ def test_map_plot_table_and_rich_display():
     np.testing.assert_allclose(z[finite], np.sign(m) * np.sqrt(np.abs(m) / scale), rtol=0, atol=1e-4)
     df = r.to_pandas()
     assert isinstance(df, pd.DataFrame) and len(df) == 8
-    assert list(df.columns) == ["speed", "linear_rotor.drag", "margin", "verdict", "family_dimension"]
+    assert list(df.columns) == ["speed", "linear_rotor.drag", "margin", "verdict", "family_dimension", "state"]
     assert df["verdict"].iloc[0] == "unstable"  # below the first critical speed
     # the CLI's CSV, row for row
     out = Path(os.environ.get("TMPDIR", "/tmp")) / f"autobal-linmap-{os.getpid()}"

@@ -72,7 +72,7 @@ use crate::config;
 use crate::control::{Control, StopReason};
 use crate::error::{fmt_num, Error, Result};
 use crate::linear_rotor::spec::LinearRotorSpec;
-use crate::rotor_stability::{Field, Rotor};
+use crate::rotor_stability::{Field, Rotor, StateKind};
 use crate::spatial::map::Axis;
 use crate::units::{speed_path_unit, Speed, SpeedUnit};
 use rayon::prelude::*;
@@ -107,6 +107,10 @@ pub struct GeneralCell {
     /// With a family: the smallest margin over its members (the most stable member: some are
     /// stable when it is negative beyond the neutral band); NaN otherwise.
     pub family_min_margin: f64,
+    /// What the state is ([`Rotor::classify`], the speed scan's words: balanced,
+    /// semi-balanced, partially balanced, not balanced); `None` without a state (and on a
+    /// boundary's bisection points, which follow the margin only).
+    pub state: Option<StateKind>,
     /// Whether the state was reached from the neighbouring cell rather than the closed form.
     pub continued: bool,
     /// Whether the cell was analysed: `false` where its stationary state is a periodic orbit
@@ -125,6 +129,7 @@ impl GeneralCell {
         family: None,
         family_max_margin: f64::NAN,
         family_min_margin: f64::NAN,
+        state: None,
         continued: false,
         analysed: true,
     };
@@ -192,6 +197,13 @@ pub struct GeneralMapOutcome {
     /// Cells whose state belongs to a family whose members were followed
     /// ([`GeneralCell::family`] set).
     pub families: usize,
+    /// Cells whose state is partially balanced ([`GeneralCell::state`]: no balanced state
+    /// exists there; the verdict is that state's).
+    pub partially_balanced: usize,
+    /// Cells whose state is not balanced ([`GeneralCell::state`]: e.g. the balls bunched on
+    /// the unbalance's side below the critical speed; the verdict is that state's, not the
+    /// balanced state's).
+    pub not_balanced: usize,
 }
 
 /// The rotor of one cell and the speed unit of its `omega`.
@@ -281,7 +293,7 @@ fn solve(c: &CellRotor, w: f64, previous: Option<&StationaryState>, closed_form:
     }
     // the closed form, or under gravity with n >= 3 balls in a plane the orbit with the balls
     // in two groups (Rotor::gravity_orbit_start, as the speed scan): built only when tried
-    let closed = || if closed_form { Rotor::gravity_orbit_start(&field, &opts).or_else(|| Rotor::guess(&field)) } else { None };
+    let closed = || if closed_form { Rotor::first_start(&field, Rotor::gravity_orbit_start(&field, &opts)) } else { None };
     let near = previous.map(|p| p.x.as_slice());
     let order = if periodic { [true, false] } else { [false, true] };
     for continued in order {
@@ -301,6 +313,9 @@ fn solve(c: &CellRotor, w: f64, previous: Option<&StationaryState>, closed_form:
             kind: Some(st.kind),
             family_dimension: state.family_dimension,
             continued,
+            // what the state is, as the speed scan names it (a row's cell; a bisection follows
+            // the margin only)
+            state: if families { Some(Rotor::classify(&field, &state.x).0) } else { None },
             ..GeneralCell::NONE
         };
         if families && state.family_dimension > 0 {
@@ -478,7 +493,11 @@ impl Plane<'_> {
         if trace {
             for i in 0..out.len().saturating_sub(1) {
                 let (a, b) = (side(&out[i]), side(&out[i + 1]));
-                if a != b && a != 3 && b != 3 {
+                // two states of different kinds side by side (e.g. the balls bunched on the
+                // unbalance's side next to the semi-balanced state): a switch of state, not a
+                // change of one state's stability, so no boundary is bisected there
+                let switch = out[i].state.is_some() && out[i + 1].state.is_some() && out[i].state != out[i + 1].state;
+                if a != b && a != 3 && b != 3 && !switch {
                     let end = |k: usize| (self.x.values[k], out[k].verdict, states[k].clone(), out[k]);
                     points.extend(self.bisect(j, end(i), end(i + 1))?);
                 }
@@ -681,6 +700,11 @@ fn map_on(
                 if c.family.is_some() {
                     out.families += 1;
                 }
+                match c.state {
+                    Some(StateKind::PartiallyBalanced) => out.partially_balanced += 1,
+                    Some(StateKind::NotBalanced) => out.not_balanced += 1,
+                    _ => {}
+                }
             }
             out.rows += 1;
             let go_on = on_row(j0 + jj, &row, &points);
@@ -750,10 +774,24 @@ mod tests {
         let y = Axis { path: "planar.m3".into(), values: vec![0.02, 0.03, 0.04] };
         let wn = config::planar(&root).unwrap().rotor.natural_frequency();
         // m3 = 0.02 kg: the balls cannot cancel the unbalance (n m3 r = 0.0024 < m1 s1 = 0.003
-        // kg m), so there is no balanced state: no verdict and a NaN margin; with heavier
-        // balls, below the critical speed every cell is unstable
+        // kg m), so there is no balanced state: the cells hold the balls bunched, below the
+        // critical speed on the unbalance's side (not balanced: residual 1.79), as the speed
+        // scan's point at that speed (the second route: same start, same Newton, so the same
+        // margin to round-off); until session 17 the map tried only the closed form of the
+        // balanced state and left these cells without a state; with heavier balls, below the
+        // critical speed every cell is unstable
         let slow = collect(&root, &x, &y, Some(Speed::omega(0.5 * wn))).unwrap();
-        assert!(slow[0].iter().all(|c| c.verdict.is_none() && c.margin.is_nan()), "{slow:?}");
+        for (cell, &c) in slow[0].iter().zip(&x.values) {
+            let mut r = root.clone();
+            config::set_number(&mut r, "planar.c_psi", c).unwrap();
+            config::set_number(&mut r, "planar.m3", 0.02).unwrap();
+            let rotor = Rotor::Planar(config::planar(&r).unwrap().rotor);
+            let p = &crate::rotor_stability::stability_over_speed(&rotor, &[0.5 * wn]).unwrap().points[0];
+            assert!(cell.state.is_some() && cell.state == p.state, "{cell:?} {p:?}");
+            assert_eq!(cell.verdict, p.verdict);
+            let a = p.abscissa.unwrap();
+            assert!((cell.margin - a).abs() <= 1e-9 * a.abs().max(1.0), "{} vs {a}", cell.margin);
+        }
         assert!(slow[1..].iter().flatten().all(|c| c.verdict == Some(Verdict::Unstable)), "{slow:?}");
         let e = collect(&root, &x, &y, None).unwrap_err().to_string();
         assert!(e.starts_with("omega"), "{e}");

@@ -208,6 +208,19 @@ impl Rotor {
         found
     }
 
+    /// The start of Newton's method at a speed without a neighbour's state, the one order of
+    /// the speed scan ([`stability_over_speed`]) and the map ([`crate::rotor_map`]): `orbit`
+    /// (under gravity across the axis with `n ≥ 3` balls in a plane, the orbit of least growth
+    /// rate among the groups' placements, [`Rotor::gravity_orbits`]), else the closed form of
+    /// the (semi-)balanced state ([`Rotor::guess`]), else each plane's balls on its share
+    /// ([`Rotor::placed_guess`]), else every plane's balls bunched ([`Rotor::bunched_guess`]:
+    /// the partially balanced state where the balls' capacity falls short). (The map tried
+    /// only the first two until session 17, and found no state where the scan found the
+    /// partially balanced one.)
+    pub fn first_start(field: &Field, orbit: Option<Vec<f64>>) -> Option<Vec<f64>> {
+        orbit.or_else(|| Rotor::guess(field)).or_else(|| Rotor::placed_guess(field)).or_else(|| Rotor::bunched_guess(field))
+    }
+
     /// The first guess where [`Rotor::guess`] has none, for a spatial rotor with two ball
     /// planes: each plane's balls placed on its share of the unbalance
     /// ([`crate::spatial::dynamics::SpatialRotor::balanced_ball_angles`]: a plane short of its
@@ -948,7 +961,7 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
         if let Ok(mut kept) = orbits_at.lock() {
             kept.push((omega, orbits.into_iter().map(|(_, o)| o).collect()));
         }
-        start.or_else(|| Rotor::guess(f)).or_else(|| Rotor::placed_guess(f)).or_else(|| Rotor::bunched_guess(f))
+        Rotor::first_start(f, start)
     };
     let Outcome { value: scan, mut stopped } = speed_scan_with(field_at, guess, speeds, &opts, control).map_err(|e| match e {
         crate::analysis::AnalysisError::Model(e) => e,

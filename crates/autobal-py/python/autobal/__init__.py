@@ -428,8 +428,8 @@ def run(command: str, config: ConfigLike = None, set: Optional[Mapping[str, Any]
     - ``map`` (``x``, ``y``, ``omega``, ``balls``, ``quantity``, ``route``, ``threads``) on any
       config (a planar one takes the general route, as on the CLI): the CLI writes CSV and
       figures; this returns the cells of its CSV as arrays ``len(y) × len(x)``: ``x``, ``y``,
-      ``margin``, ``stable`` and ``necessary`` (closed form) or ``verdict`` and
-      ``family_dimension`` (general route, with ``route: "general"``);
+      ``margin``, ``stable`` and ``necessary`` (closed form) or ``verdict``,
+      ``family_dimension`` and ``state`` (general route, with ``route: "general"``);
     - ``merge`` (``shards``, ``out``, ``parquet``; no config): writes the merged sweep as
       :func:`merge` does and returns its JSON (the ``STEM.json`` written, the unsharded sweep's);
     - ``export-model`` (``out``, ``stem``): writes the files as :func:`export_model` does and
@@ -503,8 +503,9 @@ def run(command: str, config: ConfigLike = None, set: Optional[Mapping[str, Any]
         # general route, as on the CLI), the command's own defaults and checks (map::Args)
         text, table, source = _read(config, _autobal.DEFAULT_SPATIAL, SpatialModel._DEFAULT_NAME)
         out = _autobal.map_cells(text, table, source, list((set or {}).items()), (xp, xv), (yp, yv), **kw)
-        if "verdict" in out:
-            out["verdict"] = np.array(out["verdict"], dtype=object)
+        for k in ("verdict", "state"):
+            if k in out:
+                out[k] = np.array(out[k], dtype=object)
         out["x_path"], out["y_path"] = xp, yp
         return out
     if command == "report":

@@ -66,7 +66,7 @@ class LinearConfigResult(Result):
     plane's peak and final whirl radius against the first axis, one curve per value of the
     others); ``basins``: ``basins`` (each run's end over the first two balls' initial angles,
     as the report draws the spatial rotor's basins). Tables (``.to_pandas()``): ``map``: one
-    row per cell as the CLI's CSV columns (``margin``, ``verdict``, ``family_dimension``);
+    row per cell as the CLI's CSV columns (``margin``, ``verdict``, ``family_dimension``, ``state``);
     ``sweep``: one row per run; ``basins``: the CLI's CSV; ``stability``: the margin per speed.
     """
 
@@ -110,6 +110,7 @@ class LinearConfigResult(Result):
                     "margin": r["margin"].ravel(),
                     "verdict": np.asarray(r["verdict"], dtype=object).ravel(),
                     "family_dimension": np.asarray(r["family_dimension"], dtype=object).ravel(),
+                    "state": np.asarray(r["state"], dtype=object).ravel(),
                 }
             )
         if c == "basins":

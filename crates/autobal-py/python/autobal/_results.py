@@ -213,7 +213,7 @@ class Result:
                 cols.update(stable=r["stable"].ravel(), necessary=r["necessary"].ravel())
             else:
                 # the general route's CSV columns
-                cols.update(verdict=r["verdict"].ravel(), family_dimension=r["family_dimension"].ravel())
+                cols.update(verdict=r["verdict"].ravel(), family_dimension=r["family_dimension"].ravel(), state=r["state"].ravel())
             return pd.DataFrame(cols)
         if c == "simulate" and self.arrays is not None:
             data = {k: v for k, v in self.arrays.items() if k != "psi"}
