@@ -444,9 +444,21 @@ pub fn summary_table(cfg: &PlanarConfig, s: &Summary, wall: f64) -> String {
 /// run's words (`balanced`, `partially balanced`, `not balanced`, `not settled`), `balanced`
 /// with an eccentric race said as `stability` says it, semi-balanced; the residual a fraction
 /// of the unbalance for a centred race, of the race centre's offset without the balls for an
-/// eccentric one ([`autobal::planar::Summary::residual_unbalance`]).
+/// eccentric one ([`autobal::planar::Summary::residual_unbalance`]). A run that ends at rest
+/// ([`autobal::planar::at_rest`]) has nothing to balance: not balanced, with the race centre's
+/// distance from the axis instead of a residual "of the unbalance".
 pub fn outcome_words(p: &autobal::planar::PlanarRotor, s: &Summary) -> String {
     use autobal::spatial::dynamics::RunOutcome;
+    if autobal::planar::at_rest(p, s.final_omega) {
+        // the residual's scale at rest is a length (s2, or s1 + s2 + n m3 r / m0 for a centred
+        // race): its product with the residual is E's distance from the axis
+        let e = s.residual_unbalance * autobal::planar::stationary::race_offset_scale(p, s.final_omega);
+        return format!(
+            "not balanced: at rest (|ω| below {} sqrt(k/m0)) nothing turns the balls against the unbalance; the race centre {:.4} mm from the axis",
+            autobal::planar::REST_FRACTION,
+            1e3 * e
+        );
+    }
     let what = match s.outcome {
         RunOutcome::Balanced if p.s2 > 0.0 => "semi-balanced (the race centre on the axis, C whirling at s2)",
         RunOutcome::Balanced => "balanced",

@@ -184,10 +184,16 @@ pub fn summary_table(sim: &SpatialSim, s: &Summary, wall: f64) -> String {
     use autobal::spatial::dynamics::RunOutcome;
     let _ = writeln!(
         o,
-        "final: radius {:.6} {lu} at {}; static sag {:.6} {lu} (last revolution: radius = RMS whirl about the mean position, sag = its distance from the axis); residual unbalance {:.3e} of the unbalance{} (mean over the last revolution); {}",
+        "final: radius {:.6} {lu} at {}{}; residual unbalance {:.3e} of the unbalance{} (mean over the last revolution); {}",
         ls * s.final_amplitude,
         speed(s.final_omega),
-        ls * s.static_sag,
+        // the sag only where the summary has one (gravity across the axis, or settled): else
+        // the mean position is a transient's and the radius is still about it
+        match s.static_sag {
+            Some(sag) =>
+                format!("; static sag {:.6} {lu} (last revolution: radius = RMS whirl about the mean position, sag = its distance from the axis)", ls * sag),
+            None => String::new(),
+        },
         s.residual_unbalance,
         s.residual_couple.map_or(String::new(), |c| format!(", couple {c:.3e}")),
         match s.outcome {

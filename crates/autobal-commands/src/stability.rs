@@ -156,7 +156,13 @@ impl Args {
 impl command::Output for Output {
     fn json(&self) -> Result<Value> {
         match self {
-            Output::Closed { cfg, c, balls } => Ok(linear::stability_json(cfg, c, *balls)),
+            Output::Closed { cfg, c, balls } => {
+                let mut v = linear::stability_json(cfg, c, *balls);
+                // the unit of the ranges' speeds, as on the general route: this route's are in
+                // Ω (units of ω0) for an SI config too (their rpm in the `_rpm` keys)
+                v["speed_unit"] = "Ω".into();
+                Ok(v)
+            }
             Output::General { g, r, omega_max, op } => {
                 let mut v = general::json(g, r, *omega_max);
                 v["operating"] = op.as_deref().map_or(Value::Null, general::operating_json);

@@ -108,10 +108,30 @@ pub(crate) trait Row: SweepSummary {
 
 impl Row for autobal::planar::Summary {
     fn header(lu: &str) -> String {
-        format!("{:>12} {:>12} {:>12} {:>9} {:>10}\n", format!("peak ({lu})"), "ω at peak", format!("final ({lu})"), "balanced", "steps")
+        format!(
+            "{:>12} {:>12} {:>12} {:>9} {:>12} {:>19} {:>10}\n",
+            format!("peak ({lu})"),
+            "ω at peak",
+            format!("final ({lu})"),
+            "balanced",
+            "residual",
+            "outcome",
+            "steps"
+        )
     }
     fn cells(&self, ls: f64) -> String {
-        format!("{:>12.4} {:>12.2} {:>12.4} {:>9} {:>10}", ls * self.peak_amplitude, self.omega_at_peak, ls * self.final_amplitude, self.balanced, self.steps)
+        // the outcome as the CSV's `outcome` and `simulate`'s JSON name it
+        let outcome = serde_json::to_value(self.outcome).ok().and_then(|v| v.as_str().map(String::from)).unwrap_or_default();
+        format!(
+            "{:>12.4} {:>12.2} {:>12.4} {:>9} {:>12.3e} {:>19} {:>10}",
+            ls * self.peak_amplitude,
+            self.omega_at_peak,
+            ls * self.final_amplitude,
+            self.balanced,
+            self.residual_unbalance,
+            outcome,
+            self.steps
+        )
     }
     fn warnings(&self) -> Vec<String> {
         self.stopped.iter().chain(&self.warnings).cloned().collect()

@@ -158,7 +158,11 @@ pub fn shard(total: usize, k: usize, n: usize) -> Result<Range<usize>> {
 /// Columns of a run's summary as numbers ([`summary_values`]), in this order. `balanced` and
 /// `completed` are 0 or 1; `completed` is 0 for a run that stopped on its own before `t_end`
 /// (its reason is in the summary's `stopped`); `contacts` and `stick_slip_transitions` count
-/// real balls' events ([`crate::balls`]; 0 for point masses).
+/// real balls' events ([`crate::balls`]; 0 for point masses); `outcome` is
+/// [`Summary::outcome`] as a number ([`outcome_code`]: 0 not settled, 1 not balanced,
+/// 2 partially balanced, 3 balanced, with an eccentric race the semi-balanced state) and
+/// `residual_unbalance` [`Summary::residual_unbalance`], the words and number `simulate`
+/// reports.
 pub const SUMMARY_COLUMNS: &[&str] = &[
     "peak_amplitude",
     "omega_at_peak",
@@ -173,11 +177,13 @@ pub const SUMMARY_COLUMNS: &[&str] = &[
     "rhs_evaluations",
     "contacts",
     "stick_slip_transitions",
+    "outcome",
+    "residual_unbalance",
 ];
 
 /// The summary's numbers in the order of [`SUMMARY_COLUMNS`] (counts are exact in `f64` up
 /// to 2⁵³).
-pub fn summary_values(s: &Summary) -> [f64; 13] {
+pub fn summary_values(s: &Summary) -> [f64; 15] {
     [
         s.peak_amplitude,
         s.omega_at_peak,
@@ -192,17 +198,18 @@ pub fn summary_values(s: &Summary) -> [f64; 13] {
         s.rhs_evaluations as f64,
         s.contacts as f64,
         s.stick_slip_transitions as f64,
+        outcome_code(s.outcome),
+        s.residual_unbalance,
     ]
 }
 
 /// Columns of a spatial run's summary ([`spatial_summary_values`]), in this order: those of
 /// [`SUMMARY_COLUMNS`], meaning the same for the spatial rotor ([`crate::spatial::dynamics::Summary`]:
-/// amplitudes are the whirl radius at the first balancer plane, `balanced` its verdict), then
-///
-/// - `outcome`: [`RunOutcome`] as a number ([`outcome_code`]): 0 not settled, 1 not balanced,
-///   2 partially balanced, 3 balanced;
-/// - `residual_unbalance`, `residual_couple` (relative to the unbalance's own; the couple is
-///   NaN when the unbalance has none), `static_sag` (distance of the mean position from the axis).
+/// amplitudes are the whirl radius at the first balancer plane, `balanced` and `outcome` its
+/// verdict, `residual_unbalance` the static residual relative to the unbalance's own), then
+/// `residual_couple` (relative to the unbalance's own couple; NaN when the unbalance has none)
+/// and `static_sag` (distance of the mean position from the axis; NaN where the summary has
+/// none: [`crate::spatial::dynamics::Summary::static_sag`]).
 pub const SPATIAL_SUMMARY_COLUMNS: &[&str] = &[
     "peak_amplitude",
     "omega_at_peak",
@@ -235,7 +242,8 @@ pub fn outcome_code(o: RunOutcome) -> f64 {
 }
 
 /// A spatial run's summary in the order of [`SPATIAL_SUMMARY_COLUMNS`] (counts exact in `f64`
-/// up to 2⁵³; `residual_couple` NaN when the unbalance has no couple).
+/// up to 2⁵³; `residual_couple` NaN when the unbalance has no couple, `static_sag` NaN where
+/// the run measured no sag).
 pub fn spatial_summary_values(s: &crate::spatial::dynamics::Summary) -> [f64; 17] {
     [
         s.peak_amplitude,
@@ -254,7 +262,7 @@ pub fn spatial_summary_values(s: &crate::spatial::dynamics::Summary) -> [f64; 17
         outcome_code(s.outcome),
         s.residual_unbalance,
         s.residual_couple.unwrap_or(f64::NAN),
-        s.static_sag,
+        s.static_sag.unwrap_or(f64::NAN),
     ]
 }
 

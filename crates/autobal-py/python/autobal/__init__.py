@@ -44,11 +44,11 @@ from ._autobal import LinearRotor
 from ._linear_rotor import LinearConfigResult, LinearSimulation
 
 __version__: str = _autobal.__version__
-#: Columns of a planar run's summary in :func:`simulate_batch` and :func:`sweep`, in order.
+#: Columns of a planar run's summary in :func:`simulate_batch` and :func:`sweep`, in order
+#: (``outcome``: 0 not settled, 1 not balanced, 2 partially balanced, 3 balanced).
 SUMMARY_COLUMNS: List[str] = list(_autobal.SUMMARY_COLUMNS)
 #: Columns of a spatial run's summary (:class:`SpatialModel`): ``SUMMARY_COLUMNS``, then
-#: ``outcome`` (0 not settled, 1 not balanced, 2 partially balanced, 3 balanced),
-#: ``residual_unbalance``, ``residual_couple`` (NaN without a couple), ``static_sag``.
+#: ``residual_couple`` (NaN without a couple), ``static_sag`` (NaN where the run has no sag).
 SPATIAL_SUMMARY_COLUMNS: List[str] = list(_autobal.SPATIAL_SUMMARY_COLUMNS)
 
 __all__ = [

@@ -105,10 +105,11 @@ def _kind(problem: Any) -> str:
 
 
 def columns(problem: Problem) -> List[str]:
-    """The summary columns of ``problem``'s runs: ``SUMMARY_COLUMNS`` (planar) or
-    ``SPATIAL_SUMMARY_COLUMNS`` (spatial: the planar ones, then ``outcome`` (0 not settled,
-    1 not balanced, 2 partially balanced, 3 balanced), ``residual_unbalance``,
-    ``residual_couple`` (NaN without a couple unbalance), ``static_sag``) or
+    """The summary columns of ``problem``'s runs: ``SUMMARY_COLUMNS`` (planar, ending in
+    ``outcome`` (0 not settled, 1 not balanced, 2 partially balanced, 3 balanced) and
+    ``residual_unbalance``) or ``SPATIAL_SUMMARY_COLUMNS`` (spatial: the planar ones, then
+    ``residual_couple`` (NaN without a couple unbalance), ``static_sag`` (NaN where the run
+    has no sag)) or
     ``LINEAR_SUMMARY_COLUMNS`` (a linear rotor: the first balancer plane's ``peak_amplitude``
     with ``omega_at_peak``, ``t_at_peak``, ``peak_any_node`` with ``omega_at_peak_any_node``,
     ``final_amplitude`` (m), ``completed``, ``t_reached``, ``steps``: the CLI's sweep

@@ -451,7 +451,9 @@ pub struct Summary {
     /// ([`stationary::race_offset_scale`]), as `stability`'s planar residual. For a centred race
     /// (`s2 = 0`) at a steady whirl this is the residual unbalance `|m1 s1 + Σ m_j r e^{iψ_j}|
     /// / (m1 s1)`, a fraction of the unbalance as the spatial run's; 0 in the semi-balanced
-    /// state (E on the axis, C whirling at `s2`).
+    /// state (E on the axis, C whirling at `s2`). At rest ([`at_rest`]) no balancing measure:
+    /// E's distance over its distance without the balls (`s2`), or over a length scale for a
+    /// centred race (`s1 + s2 + n m3 r / m0`, [`stationary::race_offset_scale`]).
     pub residual_unbalance: f64,
     /// What the run ended in, decided by the spatial run's rule
     /// ([`crate::spatial::dynamics::RunOutcome`]): not settled (see `settled`, or the run stopped
@@ -715,7 +717,7 @@ fn simulate_sampled(
     let short = !stationary::semi_balanced_exists(rotor, final_omega);
     // at (or near) rest nothing turns the balls against the unbalance: no balanced or partially
     // balanced state to read (the semi-balanced demand and the residual's scale degenerate)
-    let at_rest = !(final_omega.abs() >= REST_FRACTION * rotor.natural_frequency());
+    let at_rest = at_rest(rotor, final_omega);
     let outcome = crate::spatial::dynamics::simulate::run_outcome(&crate::spatial::dynamics::simulate::Ending {
         balls: rotor.n > 0 && !at_rest,
         settled: settled && completed,
@@ -847,6 +849,14 @@ struct Window {
 /// then not balanced (nothing turns the balls against the unbalance; the semi-balanced demand
 /// grows as `k s2 / ω²` and has no limit at rest).
 pub const REST_FRACTION: f64 = 1e-3;
+
+/// Whether the speed `omega` counts as rest for `rotor`: `|ω|` below [`REST_FRACTION`] of
+/// `sqrt(k/m0)` (or not a number). A run that ends there is not balanced and its
+/// [`Summary::residual_unbalance`] is no balancing measure (nothing turns the balls against the
+/// unbalance): the race centre's distance from the axis over a length scale.
+pub fn at_rest(rotor: &PlanarRotor, omega: f64) -> bool {
+    !(omega.abs() >= REST_FRACTION * rotor.natural_frequency())
+}
 
 /// Step-end records [`Window`] keeps at most (a run that hardly turns would otherwise keep them
 /// all): the average then covers the last this many steps, less than a revolution.

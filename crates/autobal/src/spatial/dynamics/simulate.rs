@@ -118,8 +118,13 @@ pub struct Summary {
     /// in fixed axes over the last revolution (m, or `ρ_s`): the stationary motion without the
     /// whirl, e.g. the sag under gravity across the axis (`≈ M g / Σ k`).
     pub mean_displacement: [f64; 2],
-    /// `|r̄|`, the static sag at the (first) balancer plane (see [`Summary::mean_displacement`]).
-    pub static_sag: f64,
+    /// `|r̄|`, the static sag at the (first) balancer plane (see [`Summary::mean_displacement`]),
+    /// where it is one: the run turned at least a revolution (a mean was taken) and either
+    /// gravity acts across the spin axis ([`SpatialRotor::gravity_across`]: the sag it
+    /// causes, `≈ M g / Σ k`) or the balls settled (the stationary motion's mean position).
+    /// `None` otherwise: without gravity a run that did not settle has no sag, and the last
+    /// revolution's mean displacement is the transient's.
+    pub static_sag: Option<f64>,
     /// Spin rate at the end.
     pub final_omega: f64,
     /// Static unbalance of unbalance masses and balls, rotor frame, averaged over the last
@@ -739,7 +744,8 @@ fn summarise(eq: &Equations, t: f64, y: &[f64], peak: (f64, f64, f64), stats: St
         t_at_peak: peak.2,
         final_amplitude: whirl,
         mean_displacement: mean_r,
-        static_sag: mean_r[0].hypot(mean_r[1]),
+        // a sag where it is one: gravity across the axis, or the stationary motion's mean
+        static_sag: (whole && (r.gravity_across() || settled)).then(|| mean_r[0].hypot(mean_r[1])),
         final_omega: omega,
         residual_unbalance,
         residual_couple,
