@@ -355,13 +355,13 @@ pub fn partial_text(cfg: &LinearRotorConfig, r: &RotorStability) -> String {
         format!("the plane at node {} has {} ball(s), balancing needs 2", b.node, b.balls)
     } else if rotor.balancers.len() == 1 && in_plane {
         format!(
-            "the balls' capacity n m R = {} kg m < the static unbalance {} kg m in their plane",
+            "the balls' capacity n m R = {} kg m < the static unbalance {} kg m",
             fmt_num(crate::num::round_sig(cap, 6).unwrap_or(cap)),
             fmt_num(crate::num::round_sig(s0[0].hypot(s0[1]), 6).unwrap_or(0.0))
         )
     } else if rotor.balancers.len() == 1 {
         format!(
-            "the balls' capacity n m R = {} kg m short of the force at their plane from the unbalance away from it (the static unbalance {} kg m is not what the plane must cancel)",
+            "the balls' capacity n m R = {} kg m short of the force their plane must cancel, the unbalance lying away from it; the static unbalance {} kg m is not what the plane balances",
             fmt_num(crate::num::round_sig(cap, 6).unwrap_or(cap)),
             fmt_num(crate::num::round_sig(s0[0].hypot(s0[1]), 6).unwrap_or(0.0))
         )
