@@ -216,7 +216,9 @@ enum Command {
         #[command(flatten)]
         lin: LinearArgs,
         /// Grid points along Ω before the range ends are refined by bisection (default 2000 on
-        /// the closed-form route, 200 on the general route, 50 where it shoots periodic orbits)
+        /// the closed-form route, 200 on the general route, 50 where it shoots periodic orbits;
+        /// a linear rotor: 200 where its M, C, G, K are the same in every direction, under
+        /// gravity too, else 50)
         #[arg(long)]
         samples: Option<usize>,
         /// Also write the margin plot as SVG to this file

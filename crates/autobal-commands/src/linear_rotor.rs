@@ -347,11 +347,22 @@ pub fn partial_text(cfg: &LinearRotorConfig, r: &RotorStability) -> String {
         v[0].hypot(v[1])
     };
     let (lo, hi) = partial.iter().map(|p| res(p)).fold((f64::INFINITY, 0.0f64), |(l, h), v| (l.min(v), h.max(v)));
-    let why = if rotor.balancers.len() == 1 {
+    // what is compared: with every unbalance in the one plane its capacity against the static
+    // unbalance; with an unbalance away from the plane the force the plane must cancel (the
+    // static unbalance is not what its balls balance)
+    let in_plane = matches!(rotor.balancers.as_slice(), [b] if rotor.unbalances.iter().all(|u| u.node == b.node && u.offset == b.offset));
+    let why = if let [b] = rotor.balancers.as_slice().iter().filter(|b| b.balls < 2).collect::<Vec<_>>().as_slice() {
+        format!("the plane at node {} has {} ball(s), balancing needs 2", b.node, b.balls)
+    } else if rotor.balancers.len() == 1 && in_plane {
         format!(
-            "the balls' capacity n m R = {} kg m {} the static unbalance {} kg m",
+            "the balls' capacity n m R = {} kg m < the static unbalance {} kg m",
             fmt_num(crate::num::round_sig(cap, 6).unwrap_or(cap)),
-            if cap < s0[0].hypot(s0[1]) { "<" } else { "against" },
+            fmt_num(crate::num::round_sig(s0[0].hypot(s0[1]), 6).unwrap_or(0.0))
+        )
+    } else if rotor.balancers.len() == 1 {
+        format!(
+            "the balls' capacity n m R = {} kg m short of the force their plane must cancel, the unbalance lying away from it; the static unbalance {} kg m is not what the plane balances",
+            fmt_num(crate::num::round_sig(cap, 6).unwrap_or(cap)),
             fmt_num(crate::num::round_sig(s0[0].hypot(s0[1]), 6).unwrap_or(0.0))
         )
     } else {
@@ -830,6 +841,15 @@ pub fn simulate_json(cfg: &LinearRotorConfig, s: &RunSummary, red: &Option<Reduc
         "peak_radius": s.peak.value, "peak_t": s.peak.t, "peak_omega": s.peak.with,
         "peak_radius_any_node": s.peak_any_node.value, "peak_any_node_t": s.peak_any_node.t, "peak_any_node_omega": s.peak_any_node.with,
         "final_radius": s.final_radius,
+        "final_omega": s.final_omega,
+        "outcome": s.outcome,
+        "balanced": s.balanced,
+        "residual_unbalance": s.residual_unbalance,
+        "balance_tolerance": autobal::spatial::dynamics::simulate::BALANCE_TOLERANCE,
+        "state_basis": if s.race_whirl.is_some() { "race_whirl" } else { "residual" },
+        "race_whirl": s.race_whirl,
+        "ball_drift": s.ball_drift,
+        "settled": s.settled,
         "steps": s.steps,
         "wall_s": wall,
     })
@@ -854,8 +874,42 @@ pub fn simulate_table(s: &RunSummary, red: &Option<Reduction>, wall: f64) -> Str
         fmt_num(crate::num::round_sig(s.peak_any_node.value, 6).unwrap_or(0.0)),
         speed_text(s.peak_any_node.with)
     ));
+    t.push_str(&outcome_line(s));
     if let Some(st) = &s.stopped {
         t.push_str(&format!("stopped early: {st}\n"));
+    }
+    t
+}
+
+/// The table's line with the run's word ([`RunSummary::outcome`], the spatial run's words),
+/// what it is decided on, and a warning where the balls have not settled.
+fn outcome_line(s: &RunSummary) -> String {
+    use autobal::spatial::dynamics::RunOutcome;
+    let word = match s.outcome {
+        RunOutcome::Balanced => "balanced",
+        RunOutcome::PartiallyBalanced => {
+            "partially balanced: no balanced state at the final speed (the balls' capacity short of the force their plane must cancel), they rest together against the unbalance"
+        }
+        RunOutcome::NotBalanced => "not balanced",
+        RunOutcome::NotSettled => "not settled",
+    };
+    let basis = match s.race_whirl {
+        Some(w) => format!(
+            "; race whirl {w:.3e} of the race's whirl with the balls spread evenly (what the word is decided on, as stability's race_whirl; balanced up to {})",
+            autobal::spatial::dynamics::simulate::BALANCE_TOLERANCE
+        ),
+        None => String::new(),
+    };
+    let mut t = format!(
+        "final: {}; residual static unbalance {:.3e} of the unbalance (mean over the last revolution){basis}: {word}\n",
+        speed_text(s.final_omega),
+        s.residual_unbalance
+    );
+    if s.outcome == RunOutcome::NotSettled && s.stopped.is_none() {
+        t.push_str(&format!(
+            "warning: not settled: the speed still changes over the last two revolutions, or the balls' mean angles still drift from one revolution to the next{}: a transient (raise drive.t_end), a run-up, or balls circulating round the race; the residual is no stationary state's\n",
+            s.ball_drift.map_or(", or it turned less than two revolutions".to_string(), |d| format!(" (by {d:.2e} rad)"))
+        ));
     }
     t
 }
@@ -1142,7 +1196,21 @@ mod tests {
 
     fn summary(peak: f64, last: f64) -> RunSummary {
         let p = autobal::simulation::Peak { value: peak, t: 1.0, with: 100.0 };
-        RunSummary { t: 1.0, stopped: None, peak: p, peak_any_node: p, final_radius: last, steps: 10 }
+        RunSummary {
+            t: 1.0,
+            stopped: None,
+            peak: p,
+            peak_any_node: p,
+            final_radius: last,
+            final_omega: 1.0,
+            residual_unbalance: 1.0,
+            race_whirl: None,
+            ball_drift: None,
+            settled: false,
+            outcome: autobal::spatial::dynamics::RunOutcome::NotSettled,
+            balanced: false,
+            steps: 10,
+        }
     }
 
     /// The sweep's figures: a curve per value of the second axis, its points the runs at that

@@ -173,7 +173,7 @@ pub(crate) fn state_kind_in(field: &LinearRotorField, x: &[f64], rows: &[f64]) -
 /// Each balancer plane's race whirl `|d_k|` (m) with every plane's balls spread evenly
 /// (`ψ_j = 2πj/n`: their resultant zero), the structure at its stationary displacement under
 /// them ([`structure_with`]). `None` where that is singular.
-fn spread_whirl(field: &LinearRotorField) -> Option<Vec<f64>> {
+pub(crate) fn spread_whirl(field: &LinearRotorField) -> Option<Vec<f64>> {
     let r = field.rotor();
     let angles: Vec<f64> = r.balancers.iter().flat_map(|b| (0..b.balls).map(move |i| std::f64::consts::TAU * i as f64 / b.balls as f64)).collect();
     let p = match field.period() {

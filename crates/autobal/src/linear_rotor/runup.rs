@@ -485,6 +485,57 @@ pub struct RunSummary {
     pub peak_any_node: Peak<f64>,
     /// The first plane's whirl radius at the end (m).
     pub final_radius: f64,
+    /// Speed at the end (rad/s).
+    pub final_omega: f64,
+    /// The residual static unbalance the balls leave, averaged over the run's last revolution
+    /// (the end state where it turned less), as `stability` measures it on the linear route
+    /// ([`crate::rotor_stability::Rotor::residual`]): `|s0 + Σ_j m_b R ⟨e^{iψ_j}⟩| / |s0|`,
+    /// `s0 = Σ m e e^{i phase}` ([`super::partial::residual_static`]), over the balls' capacity
+    /// `Σ n m_b R` where `|s0|` is at most [`crate::rotor_stability::NO_UNBALANCE`] of it. On a
+    /// flexible shaft with the unbalance away from the balancer plane(s) the balls centre
+    /// their races rather than cancel `s0`, so a balanced run can carry a residual well above
+    /// [`crate::spatial::dynamics::simulate::BALANCE_TOLERANCE`]: the word is decided on the
+    /// race whirl there ([`RunSummary::race_whirl`]).
+    pub residual_unbalance: f64,
+    /// What [`RunSummary::outcome`] is decided on where a balanced state exists at the final
+    /// speed, as `stability`'s `state_basis` `race_whirl`
+    /// ([`super::partial::state_kind`]): the largest over the balancer planes of the race
+    /// centre's mean position in axes turning with the rotor over the last revolution (the end
+    /// state's where the run turned less), `|⟨d_k⟩|`, over the plane's whirl with the balls
+    /// spread evenly (their resultant zero) at the final speed; a plane whose mean whirl is at
+    /// most `1e-6 ℓ` ([`super::partial::length_scale`]) counts 0, as there. `None` without
+    /// balls, where no balanced state exists (the word is then decided on
+    /// [`RunSummary::residual_unbalance`]), or where the whirl without the resultant cannot be
+    /// solved for (the structure's stationary equations singular: not balanced).
+    pub race_whirl: Option<f64>,
+    /// The largest change of a ball's mean angle (its average over a revolution, relative to
+    /// the rotor) between the last two revolutions (rad); `None` without balls or where the run
+    /// turned less than two revolutions.
+    pub ball_drift: Option<f64>,
+    /// Whether the run ended settled: it completed, at a constant speed (the mean speed over
+    /// the last revolution equal to that over the one before to `1e-6` of it: a run still
+    /// speeding up is not settled), and the balls' mean angles drift between the last two
+    /// revolutions by at most [`crate::spatial::dynamics::simulate::drift_tolerance`] (with
+    /// the rotor's lowest natural frequency, balls as rings).
+    pub settled: bool,
+    /// What the run ended in, decided by the spatial run's rule
+    /// ([`crate::spatial::dynamics::RunOutcome`], the one rule of every route): not settled
+    /// (see [`RunSummary::settled`]); where no balanced state exists at the final speed
+    /// ([`super::LinearRotorField::balanced_guess`] has none, as for `stability`: the balls'
+    /// capacity short of the force the plane must cancel) partially balanced when every
+    /// plane's balls ended together (their mean resultant at least 99 % of the plane's `n`)
+    /// with [`RunSummary::residual_unbalance`] within
+    /// [`PARTIAL_TOLERANCE`](crate::spatial::dynamics::simulate::PARTIAL_TOLERANCE) of the
+    /// least residual (closed form `1 − n m_b R / |s0|` where one plane holds every unbalance;
+    /// else the static residual of `stability`'s partially balanced state there,
+    /// [`crate::rotor_partial::partially_balanced`]), else not balanced; else balanced with
+    /// [`RunSummary::race_whirl`] (not the static residual: `stability`'s `state_basis`) at most
+    /// [`BALANCE_TOLERANCE`](crate::spatial::dynamics::simulate::BALANCE_TOLERANCE), else not
+    /// balanced (e.g. the balls on the heavy side below the first critical speed, the race
+    /// whirling more than without them). Without balls not balanced.
+    pub outcome: crate::spatial::dynamics::RunOutcome,
+    /// `outcome == RunOutcome::Balanced`.
+    pub balanced: bool,
     /// Accepted steps.
     pub steps: u64,
 }
@@ -506,6 +557,87 @@ pub fn plane_positions(rotor: &LinearRotor, y: &[f64]) -> Vec<(f64, f64)> {
         .collect()
 }
 
+/// Step-end records kept at most (a run that hardly turns would otherwise keep them all).
+const MAX_RECORDS: usize = 100_000;
+
+/// The revolutions [`Window`] keeps: the last one for the means, the one before for the drift.
+const WINDOW_REVOLUTIONS: f64 = 2.0;
+
+/// The step ends of a run's last [`WINDOW_REVOLUTIONS`] revolutions, for the summary's means
+/// over a revolution: per record the rotor's angle `φ`, the speed, each ball's `cos ψ`,
+/// `sin ψ` and `ψ` (unwrapped), each plane's race centre in axes turning with the rotor.
+struct Window {
+    stride: usize,
+    data: std::collections::VecDeque<f64>,
+}
+
+impl Window {
+    fn new(rotor: &LinearRotor) -> Self {
+        Window { stride: 2 + 3 * rotor.total_balls() + 2 * rotor.balancers.len(), data: Default::default() }
+    }
+
+    fn len(&self) -> usize {
+        self.data.len() / self.stride
+    }
+
+    fn get(&self, i: usize, k: usize) -> f64 {
+        self.data[i * self.stride + k]
+    }
+
+    /// Record the state `y` with the rotor at angle `phi` and speed `w`.
+    fn push(&mut self, rotor: &LinearRotor, phi: f64, w: f64, y: &[f64]) {
+        let n = rotor.dofs();
+        let psi = &y[n..n + rotor.total_balls()];
+        self.data.push_back(phi);
+        self.data.push_back(w);
+        self.data.extend(psi.iter().map(|a| a.cos()));
+        self.data.extend(psi.iter().map(|a| a.sin()));
+        self.data.extend(psi.iter().copied());
+        let (s, c) = phi.sin_cos();
+        for (x, yy) in plane_positions(rotor, y) {
+            self.data.push_back(c * x + s * yy);
+            self.data.push_back(-s * x + c * yy);
+        }
+        // drop what lies more than WINDOW_REVOLUTIONS back (the second record still that far)
+        let keep = WINDOW_REVOLUTIONS * std::f64::consts::TAU;
+        while self.len() > 2 && ((phi - self.get(1, 0)).abs() >= keep || self.len() > MAX_RECORDS) {
+            self.data.drain(..self.stride);
+        }
+    }
+
+    /// The means of every column over the rotor's angle from `a` to `b` revolutions (in rad)
+    /// back from the last record, by the trapezoid rule in `φ` over the step ends (linear
+    /// interpolation at the ends of the interval; exact for a state constant in turning
+    /// axes, second order in the step otherwise); `None` where the window does not reach `b`.
+    fn mean(&self, a: f64, b: f64) -> Option<Vec<f64>> {
+        let m = self.len();
+        if m < 2 {
+            return None;
+        }
+        let last = self.get(m - 1, 0);
+        let back = |i: usize| (last - self.get(i, 0)).abs();
+        if back(0) < b {
+            return None;
+        }
+        let mut sums = vec![0.0; self.stride];
+        for i in 0..m - 1 {
+            let (s0, s1) = (back(i), back(i + 1));
+            let (lo, hi) = (s1.max(a), s0.min(b));
+            if !(hi > lo) || !(s0 > s1) {
+                continue;
+            }
+            let at = |k: usize, s: f64| {
+                let (v0, v1) = (self.get(i, k), self.get(i + 1, k));
+                v1 + (v0 - v1) * (s - s1) / (s0 - s1)
+            };
+            for (k, sum) in sums.iter_mut().enumerate() {
+                *sum += 0.5 * (hi - lo) * (at(k, lo) + at(k, hi));
+            }
+        }
+        Some(sums.into_iter().map(|v| v / (b - a)).collect())
+    }
+}
+
 struct RunHooks<'a, F: FnMut(&RunSample) -> bool> {
     rotor: &'a LinearRotor,
     nodes: usize,
@@ -515,9 +647,27 @@ struct RunHooks<'a, F: FnMut(&RunSample) -> bool> {
     peak: Peak<f64>,
     peak_any: Peak<f64>,
     last_radius: f64,
+    window: Window,
+}
+
+impl<F: FnMut(&RunSample) -> bool> RunHooks<'_, F> {
+    /// The rotor's angle and speed in the state `y` at `t`.
+    fn spin_of(&self, t: f64, y: &[f64]) -> (f64, f64) {
+        if self.spin {
+            let nc = self.rotor.dofs() + self.rotor.total_balls();
+            (y[nc], y[y.len() - 1])
+        } else {
+            (drive_angle(self.drive, t), self.drive.kinematics(t).0)
+        }
+    }
 }
 
 impl<F: FnMut(&RunSample) -> bool> Hooks for RunHooks<'_, F> {
+    fn step(&mut self, t: f64, y: &[f64]) {
+        let (phi, w) = self.spin_of(t, y);
+        self.window.push(self.rotor, phi, w, y);
+    }
+
     fn sample(&mut self, t: f64, y: &[f64]) -> Control {
         let r = self.rotor;
         let n = r.dofs();
@@ -644,11 +794,214 @@ pub fn simulate_from(
         peak: Peak::new(0.0),
         peak_any: Peak::new(0.0),
         last_radius: 0.0,
+        window: Window::new(rotor),
     };
+    let (phi0, w0) = hooks.spin_of(0.0, &y);
+    hooks.window.push(rotor, phi0, w0, &y);
     let out = run(&mut solver, &mut y, &timeline, &mut hooks);
     let stopped = match &out.status {
         Status::Completed | Status::Event(_) => None,
         _ => Some(out.to_string()),
     };
-    Ok(RunSummary { t: out.t, stopped, peak: hooks.peak, peak_any_node: hooks.peak_any, final_radius: hooks.last_radius, steps: out.stats.steps })
+    let (phi_end, final_omega) = hooks.spin_of(out.t, &y);
+    let end = ending(rotor, &hooks.window, &y, phi_end, final_omega, stopped.is_none());
+    Ok(RunSummary {
+        t: out.t,
+        stopped,
+        peak: hooks.peak,
+        peak_any_node: hooks.peak_any,
+        final_radius: hooks.last_radius,
+        final_omega,
+        residual_unbalance: end.residual_unbalance,
+        race_whirl: end.race_whirl,
+        ball_drift: end.ball_drift,
+        settled: end.settled,
+        outcome: end.outcome,
+        balanced: end.outcome == crate::spatial::dynamics::RunOutcome::Balanced,
+        steps: out.stats.steps,
+    })
+}
+
+/// What [`ending`] gives the summary.
+struct End {
+    residual_unbalance: f64,
+    race_whirl: Option<f64>,
+    ball_drift: Option<f64>,
+    settled: bool,
+    outcome: crate::spatial::dynamics::RunOutcome,
+}
+
+/// The verdict of a run ([`RunSummary::outcome`] and the fields it is decided on) from the
+/// step ends of its last revolutions `window`, the end state `y` with the rotor at angle `phi`
+/// and speed `omega`, and whether it `completed`: the spatial run's rule
+/// ([`crate::spatial::dynamics::simulate::run_outcome`]) on the linear route's measures.
+fn ending(rotor: &LinearRotor, window: &Window, y: &[f64], phi: f64, omega: f64, completed: bool) -> End {
+    use crate::spatial::dynamics::simulate::{drift_tolerance, run_outcome, Ending, TOGETHER};
+    let tau = std::f64::consts::TAU;
+    let (n, nb, np) = (rotor.dofs(), rotor.total_balls(), rotor.balancers.len());
+    let (last, previous) = (window.mean(0.0, tau), window.mean(tau, 2.0 * tau));
+    // columns of a record: φ, ω, cos ψ, sin ψ, ψ, the race centres in turning axes
+    let (cos0, sin0, psi0, d0) = (2, 2 + nb, 2 + 2 * nb, 2 + 3 * nb);
+    // ⟨e^{iψ_j}⟩ and ⟨d_k⟩ over the last revolution, or the end state's
+    let (units, centres): (Vec<[f64; 2]>, Vec<[f64; 2]>) = match &last {
+        Some(m) => ((0..nb).map(|j| [m[cos0 + j], m[sin0 + j]]).collect(), (0..np).map(|k| [m[d0 + 2 * k], m[d0 + 2 * k + 1]]).collect()),
+        None => {
+            let (s, c) = phi.sin_cos();
+            (
+                y[n..n + nb].iter().map(|a| [a.cos(), a.sin()]).collect(),
+                plane_positions(rotor, y).into_iter().map(|(x, yy)| [c * x + s * yy, -s * x + c * yy]).collect(),
+            )
+        }
+    };
+    // the static residual as stability's linear route measures it (Rotor::residual)
+    let s0 = super::partial::static_unbalance(rotor);
+    let s0n = s0[0].hypot(s0[1]);
+    let mut s = s0;
+    let mut cap = 0.0;
+    let mut together = true;
+    let mut j = 0;
+    for b in &rotor.balancers {
+        let mut sum = [0.0, 0.0];
+        for u in &units[j..j + b.balls] {
+            s[0] += b.ball_mass * b.radius * u[0];
+            s[1] += b.ball_mass * b.radius * u[1];
+            sum[0] += u[0];
+            sum[1] += u[1];
+        }
+        together &= sum[0].hypot(sum[1]) >= TOGETHER * b.balls as f64;
+        cap += b.balls as f64 * b.ball_mass * b.radius;
+        j += b.balls;
+    }
+    let scale = if s0n <= crate::rotor_stability::NO_UNBALANCE * cap { cap.max(f64::MIN_POSITIVE) } else { s0n };
+    let residual_unbalance = s[0].hypot(s[1]) / scale;
+    // settled: a constant speed over the last two revolutions and the balls' mean angles
+    // drifting by at most the shared tolerance
+    let ball_drift = match (&last, &previous) {
+        (Some(a), Some(b)) if nb > 0 => Some((0..nb).map(|j| (a[psi0 + j] - b[psi0 + j]).abs()).fold(0.0, f64::max)),
+        _ => None,
+    };
+    let constant = match (&last, &previous) {
+        (Some(a), Some(b)) => a[1] != 0.0 && (a[1] - b[1]).abs() <= 1e-6 * a[1].abs(),
+        _ => false,
+    };
+    let wn = rotor.natural_frequencies(&[], true).ok().and_then(|w| w.first().copied()).unwrap_or(f64::NAN);
+    let settled = completed && constant && ball_drift.is_some_and(|d| d <= drift_tolerance(omega, wn));
+    // whether a balanced state exists at the final speed: stability's test
+    let field = LinearRotorField::with_real_balls(rotor, omega, Frame::Rotating).ok();
+    let short = nb > 0 && omega != 0.0 && field.as_ref().is_some_and(|f| f.balanced_guess().is_none());
+    let race_whirl = if nb == 0 || short {
+        None
+    } else {
+        field.as_ref().and_then(|f| {
+            let free = super::partial::spread_whirl(f)?;
+            let tol = 1e-6 * super::partial::length_scale(rotor);
+            Some(
+                rotor
+                    .balancers
+                    .iter()
+                    .zip(centres.iter().zip(&free))
+                    .filter(|(b, _)| b.balls > 0)
+                    .map(|(_, (d, f))| {
+                        let w = d[0].hypot(d[1]);
+                        if w <= tol {
+                            0.0
+                        } else {
+                            w / f
+                        }
+                    })
+                    .fold(0.0, f64::max),
+            )
+        })
+    };
+    let least = || {
+        // one plane holding every unbalance: the balls bunched against it leave 1 − cap/|s0|
+        let one_plane = matches!(rotor.balancers.as_slice(), [b] if rotor.unbalances.iter().all(|u| u.node == b.node && u.offset == b.offset));
+        if one_plane && cap < s0n {
+            1.0 - cap / s0n
+        } else {
+            crate::rotor_partial::partially_balanced(&crate::rotor_stability::Rotor::Linear(rotor.clone()), omega)
+                .ok()
+                .and_then(|v| v.into_iter().find(|p| p.kind == crate::rotor_stability::StateKind::PartiallyBalanced))
+                .map_or(f64::INFINITY, |p| p.residual_static_fraction)
+        }
+    };
+    let outcome = run_outcome(&Ending {
+        balls: nb > 0,
+        settled,
+        // (the least residual only where it decides: a run not settled is that whatever it is)
+        short: short.then(|| (if settled { least() } else { f64::INFINITY }, together)),
+        residual: if short { residual_unbalance } else { race_whirl.unwrap_or(f64::INFINITY) },
+        residual_couple: None,
+    });
+    End { residual_unbalance, race_whirl, ball_drift, settled, outcome }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rotor_stability::{Rotor, StateKind};
+    use crate::spatial::dynamics::RunOutcome;
+
+    /// An overhung disk on a flexible shaft, its two balls at the disk, the unbalance 0.3 m
+    /// away from the balancer plane (the shaft of `partial.rs`'s tests).
+    fn overhung() -> LinearRotor {
+        use crate::linear_rotor::shaft::{Bearing, Disk, ShaftBuilder};
+        use crate::linear_rotor::{BalancerPlane, Unbalance};
+        let mut sb = ShaftBuilder::uniform(4, 0.8, 0.04, 2.1e11, 7810.0);
+        sb.disks.push(Disk { node: 4, mass: 8.0, id: 0.05, ip: 0.09 });
+        sb.bearings.push(Bearing { node: 0, k: 2e7, c: 500.0 });
+        sb.bearings.push(Bearing { node: 2, k: 2e7, c: 500.0 });
+        (sb.rotary_inertia, sb.gyroscopic) = (true, true);
+        let mut r = sb.build().unwrap();
+        r.unbalances.push(Unbalance { node: 4, me: 2e-3, phase: 0.0, offset: -0.3 });
+        r.balancers.push(BalancerPlane { node: 4, radius: 0.1, balls: 2, ball_mass: 0.02, drag: 0.05, offset: 0.0 });
+        r
+    }
+
+    /// Where `stability` decides on the race whirl, so does the run: the end of a run on the
+    /// balanced state of a rotor whose unbalance lies away from the balancer plane (stable at
+    /// 660 rad/s, 2.8 ω_n; the balls centre their race, which leaves a static residual of
+    /// 0.73) reads balanced, `stability`'s word, with that residual reported. The state is
+    /// approached at the rate 0.068/s (370 s to e^{-25}, too long for a test), so the window is
+    /// the stationary state itself turned through three revolutions in fixed axes (24 records
+    /// a revolution: exact means of a state constant in turning axes). On the static residual
+    /// (the spatial and planar basis) the word would be not balanced.
+    #[test]
+    fn the_run_decides_on_the_race_whirl_where_stability_does() {
+        let r = overhung();
+        let w = 660.0;
+        let st = crate::linear_rotor::stability::stability_over_speed(&r, &[w]).unwrap();
+        let p = &st.points[0];
+        assert_eq!(p.state, Some(StateKind::Balanced));
+        let (_, s) = crate::rotor_campbell::stationary_at(&Rotor::Linear(r.clone()), w).unwrap();
+        let n = r.dofs();
+        let nb = r.total_balls();
+        let mut window = Window::new(&r);
+        let mut y = vec![0.0; 2 * (n + nb)];
+        let mut phi = 0.0;
+        for k in 0..=72 {
+            phi = k as f64 * std::f64::consts::TAU / 24.0;
+            let (sn, cs) = phi.sin_cos();
+            for m in 0..n / 2 {
+                let (a, b) = (s.x[2 * m], s.x[2 * m + 1]);
+                y[2 * m] = cs * a - sn * b;
+                y[2 * m + 1] = sn * a + cs * b;
+            }
+            y[n..n + nb].copy_from_slice(&s.x[n..n + nb]);
+            window.push(&r, phi, w, &y);
+        }
+        let e = ending(&r, &window, &y, phi, w, true);
+        assert!(e.settled);
+        assert_eq!(e.outcome, RunOutcome::Balanced, "race whirl {:?}, residual {}", e.race_whirl, e.residual_unbalance);
+        assert_eq!(e.outcome.name(), StateKind::Balanced.name());
+        // the static residual as stability's (same balls' angles: to round-off)
+        assert!((e.residual_unbalance - p.residual.unwrap()).abs() < 1e-9 && e.residual_unbalance > 0.5, "{} vs {:?}", e.residual_unbalance, p.residual);
+        // the race whirl from the state in turning axes directly (its own second-order whirl
+        // of the tilting ring, 3e-4 of the whirl without the resultant): the window's means of
+        // the turned records give it to round-off (1e-9 relative: 73 records summed)
+        let (f, _) = crate::rotor_campbell::stationary_at(&Rotor::Linear(r.clone()), w).unwrap();
+        let crate::rotor_stability::Field::Linear(lf) = &f else { unreachable!() };
+        let direct = super::super::partial::plane_whirl(&r, &s.x)[0] / super::super::partial::spread_whirl(lf).unwrap()[0];
+        assert!((e.race_whirl.unwrap() - direct).abs() <= 1e-9 * direct, "{:?} vs {direct}", e.race_whirl);
+    }
 }
