@@ -178,7 +178,9 @@ fn within(field: &str, value: f64, lo: (f64, bool), hi: f64, unit: &str, why: &s
     let below = if lo.1 { value <= lo.0 } else { value < lo.0 };
     if below || value > hi {
         let (open, fmt) = (if lo.1 { "(" } else { "[" }, crate::error::fmt_num);
-        return Err(Error::invalid(field, format!("must lie in {open}{}, {}] {unit}, got {} ({why})", fmt(lo.0), fmt(hi), fmt(value))));
+        // (a dimensionless key's range read "(0, 10] , got")
+        let unit = if unit.is_empty() { String::new() } else { format!(" {unit}") };
+        return Err(Error::invalid(field, format!("must lie in {open}{}, {}]{unit}, got {} ({why})", fmt(lo.0), fmt(hi), fmt(value))));
     }
     Ok(value)
 }
@@ -271,7 +273,10 @@ pub fn linear_rotor(root: &Table, load: &mut dyn FnMut(&str) -> std::result::Res
 fn npz_arrays(path: &str, bytes: &[u8]) -> Result<Vec<(String, NpyArray)>> {
     let field = "linear_rotor.matrices";
     let members = parse_npz(bytes).map_err(|e| Error::invalid(field, format!("{path}: {e}")))?;
-    let mut out = vec![];
+    let mut out: Vec<(String, NpyArray)> = vec![];
+    // the member each key came from: a second member for one key (`K` beside `k`, or two
+    // members `K.npy`) is refused; the first was read and the other silently ignored
+    let mut from: Vec<(&str, String)> = vec![];
     for (name, data) in members {
         let key = match name.as_str() {
             "M" | "m" => "m",
@@ -284,10 +289,36 @@ fn npz_arrays(path: &str, bytes: &[u8]) -> Result<Vec<(String, NpyArray)>> {
             "dofs" | "DOFS" => "dofs",
             o => return Err(Error::invalid(field, format!("{path}: array \"{o}\" is not read (M, C, G, K, M_rot, Kst, spin_chart, dofs)"))),
         };
+        if let Some((_, first)) = from.iter().find(|(k, _)| *k == key) {
+            return Err(Error::invalid(field, format!("{path}: members \"{first}\" and \"{name}\" both give the array {key}: give it once")));
+        }
+        from.push((key, name.clone()));
         let a = parse_npy(&data).map_err(|e| Error::invalid(field, format!("{path}: {name}: {e}")))?;
         out.push((key.to_string(), a));
     }
     Ok(out)
+}
+
+/// Largest magnitude of a matrix file's entry: far beyond any rotor's (a stiffness term
+/// `12 E I / L³` of the builder's extreme element is ~1e44), far enough below overflow that
+/// the analyses' products stay finite (`M` times 1e300 was reported as "the eigenvalue iteration
+/// did not converge at Ω = 0", naming no key).
+const MAX_ENTRY: f64 = 1e100;
+
+/// Every entry of the `n × n` matrix `a` of the file `what` at most [`MAX_ENTRY`] in magnitude.
+fn bounded_entries(field: &str, what: &str, n: usize, a: &[f64]) -> Result<()> {
+    if let Some(i) = a.iter().position(|v| v.abs() > MAX_ENTRY) {
+        return Err(Error::invalid(
+            field,
+            format!(
+                "{what}: entry [{}, {}] is {}, beyond ±1e100 (no rotor's matrix comes near; overflow follows in the analyses)",
+                i / n,
+                i % n,
+                crate::error::fmt_num(a[i])
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// A square real matrix from a parsed NumPy array: `(n, row-major entries)`.
@@ -300,6 +331,7 @@ fn npy_matrix(a: NpyArray, field: &str, what: &str) -> Result<(usize, Vec<f64>)>
             if let Some(i) = data.iter().position(|v| !v.is_finite()) {
                 return Err(Error::invalid(field, format!("{what}: entry [{}, {}] is {}, not finite", i / shape[1], i % shape[1], data[i])));
             }
+            bounded_entries(field, what, shape[0], &data)?;
             Ok((shape[0], data))
         }
         NpyArray::Real { shape, .. } => Err(Error::invalid(field, format!("{what}: has {} dimensions, a matrix has 2", shape.len()))),
@@ -323,6 +355,7 @@ fn matrix_file(field: &str, path: &str, load: &mut dyn FnMut(&str) -> std::resul
     if rows != cols {
         return Err(Error::invalid(field, format!("{path}: is {rows} × {cols}, must be square")));
     }
+    bounded_entries(field, path, rows, &a)?;
     Ok((rows, a))
 }
 
@@ -431,6 +464,16 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
             matrix_file(&format!("linear_rotor.{k}"), path, load).map(Some)
         };
         let (n, m) = read("m", true)?.expect("required");
+        // a positive diagonal this small is no mass or inertia in any units (the builder's
+        // extreme element has ~1e-25): `M` times 1e-300 was reported as "the eigenvalue
+        // iteration did not converge at Ω = 0", naming no key
+        if let Some(i) = (0..n).find(|&i| m[i * n + i] > 0.0 && m[i * n + i] < 1.0 / MAX_ENTRY) {
+            let field = if archive.is_some() { "linear_rotor.matrices" } else { "linear_rotor.m" };
+            return Err(Error::invalid(
+                field,
+                format!("M[{i}, {i}] = {}: a mass or inertia below 1e-100 (the frequencies √(k/m) overflow)", crate::error::fmt_num(m[i * n + i])),
+            ));
+        }
         let mut r = match &node_layouts {
             Some(l) => {
                 let r = LinearRotor::with_layouts(l);
@@ -513,11 +556,12 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
             // Timoshenko with the shear modulus g_s (κ: Cowper's for a circular section)
             let g_s = el.f64("g_s")?;
             if let Some(g) = g_s {
-                crate::error::positive(&el.field("g_s"), g)?;
+                // as e (`g_s = 1e300` was reported against `elements[0].shear`, no key)
+                within(&el.field("g_s"), g, (0.0, true), 1e13, "Pa", "stiffer than diamond (1.2e12 Pa) tenfold")?;
             }
             let kappa = el.f64("kappa")?;
             if let Some(k) = kappa {
-                crate::error::positive(&el.field("kappa"), k)?;
+                within(&el.field("kappa"), k, (0.0, true), 10.0, "", "a shear coefficient: Cowper's for real sections lie between 0.5 and 1")?;
                 if g_s.is_none() {
                     return Err(Error::invalid(el.field("kappa"), "is the shear coefficient of a Timoshenko element: give the shear modulus g_s too"));
                 }
@@ -536,6 +580,13 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
                     Element { area, inertia: o.inertia - i.inertia, shear, ..o }
                 }
                 (None, Some(area), Some(inertia)) => {
+                    // (it was silently ignored: the section is area and inertia as given)
+                    if el.t.contains_key("inner_diameter") {
+                        return Err(Error::invalid(
+                            el.field("inner_diameter"),
+                            "goes with diameter; with area and inertia the section is theirs (give the hollow section's area and inertia)",
+                        ));
+                    }
                     within(&el.field("area"), area, (0.0, true), 1e6, "m²", "the section of a kilometre-wide shaft")?;
                     within(&el.field("inertia"), inertia, (0.0, true), 1e12, "m⁴", "the section of a kilometre-wide shaft")?;
                     let shear = match (g_s, kappa) {
@@ -549,6 +600,25 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
                 }
                 _ => return Err(Error::invalid(el.field("diameter"), "give either diameter (and optionally inner_diameter) or both area and inertia")),
             };
+            // the shear stiffness κ G A and the shear parameter Φ = 12 E I / (κ G A L²) that the
+            // element's matrices hold (Φ²): finite and positive, or the key that made them not
+            // (`g_s = 1e-300` was reported as `elements[0].shear: NaN`, `kappa = 1e-300` as
+            // `linear_rotor.m[0,0]: NaN`)
+            if let Some(sh) = element.shear {
+                let phi = element.shear_parameter();
+                if !(sh.is_finite() && sh > 0.0 && phi.is_finite() && phi <= 1e100) {
+                    let f = crate::error::fmt_num;
+                    let key = if kappa.is_some() { "kappa" } else { "g_s" };
+                    return Err(Error::invalid(
+                        el.field(key),
+                        format!(
+                            "gives the shear stiffness κ G A = {} N and the shear parameter Φ = 12 E I/(κ G A L²) = {}: not a Timoshenko element (κ G A must be positive and Φ at most 1e100; g_s is the shear modulus, ~E/2.6 for steel)",
+                            f(sh),
+                            f(phi)
+                        ),
+                    ));
+                }
+            }
             for _ in 0..count {
                 b.elements.push(element);
             }
@@ -736,6 +806,21 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
         if let Some(o) = b.f64("offset")? {
             within_magnitude(&b.field("offset"), o, 1e3, "m", OFFSET)?;
         }
+        // the ranges of the planar rotor's keys of the same meaning (`drag = 1e300` ran to
+        // "neutral at every speed"; `rolling_resistance = -1` was taken as none, and
+        // `contact_stiffness = 1e300` ran, both without a word)
+        for (k, limit) in [
+            ("drag", "planar.c_psi"),
+            ("ball_diameter", "planar.ball_diameter"),
+            ("restitution", "planar.restitution"),
+            ("contact_stiffness", "planar.contact_stiffness"),
+            ("rolling_resistance", "planar.rolling_resistance"),
+            ("slip_rate", "planar.slip_rate"),
+        ] {
+            if let Some(v) = b.f64(k)? {
+                crate::limits::check_as(&b.field(k), limit, v)?;
+            }
+        }
         rotor.balancers.push(BalancerPlane {
             node: b.req_usize("node")?,
             radius: b.req("radius")?,
@@ -775,9 +860,23 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
         rotor.ball_physics.clear();
     }
     rotor.spin_damping = top.f64("spin_damping")?.unwrap_or(0.0);
+    // bounded as the rigid rotor's polar moment and a damper (`spin_damping = 1e300` ended a
+    // torque-driven run at t = 0 with "the step size fell to 0", naming no key; `polar_inertia
+    // = 1e300` was taken)
+    within("linear_rotor.spin_damping", rotor.spin_damping, (0.0, false), 1e12, "N·m·s", "as planar.c_psi")?;
+    if let Some(ip) = top.f64("polar_inertia")? {
+        within("linear_rotor.polar_inertia", ip, (0.0, false), 1e12, "kg·m²", "1e9 kg at 30 m, as rotor.polar_moment")?;
+    }
     match top.array("gravity")? {
         None => {}
-        Some(g) if g.len() == 2 => rotor.set_gravity([g[0], g[1]]),
+        Some(g) if g.len() == 2 => {
+            // spatial.gravity's range (`gravity = [0, -1e300]` ran, and stability said "stable:
+            // nowhere" after every speed's integration became non-finite)
+            for (i, v) in g.iter().enumerate() {
+                within_magnitude(&format!("linear_rotor.gravity[{i}]"), *v, 1e6, "m/s²", "a million g")?;
+            }
+            rotor.set_gravity([g[0], g[1]])
+        }
         Some(g) => {
             return Err(Error::invalid("linear_rotor.gravity", format!("expected [g_x, g_y] (m/s², across the axis in fixed axes), got {} numbers", g.len())))
         }
@@ -787,6 +886,11 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
         let Some(g) = rotor.gravity.as_mut() else { return Err(Error::invalid("linear_rotor.gravity_load", "needs gravity = [g_x, g_y]")) };
         if load.len() != g.load.len() {
             return Err(Error::invalid("linear_rotor.gravity_load", format!("has {} entries, one per DOF: {}", load.len(), g.load.len())));
+        }
+        // named as the config spells it (a NaN was reported against `gravity.load[0]`); the
+        // weight of 1e9 kg under a million g at most
+        for (i, v) in load.iter().enumerate() {
+            within_magnitude(&format!("linear_rotor.gravity_load[{i}]"), *v, 1e15, "N", "the weight of 1e9 kg under a million g")?;
         }
         g.load = load;
     }
@@ -809,6 +913,11 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
     }
     // 0: the full model (so that `--set linear_rotor.modes=0` undoes a config's reduction)
     let modes = top.usize("modes")?.filter(|m| *m > 0);
+    // as the sweep path `linear_rotor.modes` (`modes = 99999999999` was taken; more pairs
+    // than the interior has keep them all, and the run says how many)
+    if let Some(m) = modes.filter(|m| *m > super::MAX_DOFS) {
+        return Err(Error::invalid("linear_rotor.modes", format!("must be a whole number between 0 and {}, got {m}", super::MAX_DOFS)));
+    }
     // the numbers of [drive] and [integration] in the ranges of the papers' configs
     // (`limits.rs`): `drive.omega0 = 1e300` at a constant speed ran, and ended at t = 0 with
     // "the state became non-finite", naming no key (a basins grid of such runs said "0 of 4
@@ -967,26 +1076,27 @@ pub fn parse_matrix_market(text: &str) -> std::result::Result<(usize, usize, Vec
         .split_whitespace()
         .map(|s| s.parse::<usize>().map_err(|_| format!("line {}: size: \"{s}\" is not a whole number", ln + 1)))
         .collect::<std::result::Result<_, _>>()?;
-    let (rows, cols, count) = match (coordinate, sz.as_slice()) {
+    let (rows, cols, nnz) = match (coordinate, sz.as_slice()) {
         (true, [r, c, nnz]) => (*r, *c, *nnz),
-        // the array format of a symmetric (skew-symmetric) matrix holds its lower triangle
-        // (without the diagonal), column by column, as SciPy's `mmwrite` writes a dense one
-        (false, [r, c]) => (
-            *r,
-            *c,
-            if sym == 0 {
-                r * c
-            } else if sym > 0 {
-                r * (r + 1) / 2
-            } else {
-                r * r.saturating_sub(1) / 2
-            },
-        ),
+        (false, [r, c]) => (*r, *c, 0),
         _ => return Err(format!("line {}: expected the size line \"{}\"", ln + 1, if coordinate { "rows cols entries" } else { "rows cols" })),
     };
+    // the size is checked before the array format's count is formed from it (`10000000000
+    // 10000000000` overflowed r · c, a panic in a debug build)
     if rows == 0 || cols == 0 || rows > super::MAX_DOFS || cols > super::MAX_DOFS {
         return Err(format!("line {}: size {rows} × {cols} outside 1..{}", ln + 1, super::MAX_DOFS));
     }
+    // the array format of a symmetric (skew-symmetric) matrix holds its lower triangle
+    // (without the diagonal), column by column, as SciPy's `mmwrite` writes a dense one
+    let count = if coordinate {
+        nnz
+    } else if sym == 0 {
+        rows * cols
+    } else if sym > 0 {
+        rows * (rows + 1) / 2
+    } else {
+        rows * (rows - 1) / 2
+    };
     if sym != 0 && rows != cols {
         return Err(format!("line {}: a {} matrix must be square, got {rows} × {cols}", ln + 1, h[4]));
     }

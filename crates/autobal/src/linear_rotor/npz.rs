@@ -88,8 +88,10 @@ pub fn parse_npy(bytes: &[u8]) -> Result<NpyArray, String> {
         if shape.len() != 1 {
             return Err(format!("a string array must be 1-D, has shape {shape_text}"));
         }
-        let need = count.checked_mul(4 * k).ok_or("string array too large")?;
-        if data.len() < need {
+        let need = count.checked_mul(k).and_then(|c| c.checked_mul(4)).ok_or("string array too large")?;
+        // more bytes than announced is refused as well: a header that understates the shape
+        // would otherwise read a part of the array as the whole
+        if data.len() != need {
             return Err(format!("{} bytes of data, the header announces {need}", data.len()));
         }
         let strings = (0..count)
@@ -116,7 +118,9 @@ pub fn parse_npy(bytes: &[u8]) -> Result<NpyArray, String> {
         "f4" | "i4" => 4,
         _ => return Err(format!("dtype '{descr}' is not read (f8, f4, i8, i4, U)")),
     };
-    if data.len() < count * size {
+    // (a longer file was read up to the announced size and the rest ignored: a `(27, 27)`
+    // header over a 28 × 28 array gave a matrix of the array's first 729 entries)
+    if data.len() != count * size {
         return Err(format!("{} bytes of data, the header announces {}", data.len(), count * size));
     }
     let value = |i: usize| -> f64 {
@@ -193,22 +197,28 @@ pub fn parse_npz(bytes: &[u8]) -> Result<Vec<(String, Vec<u8>)>, String> {
         .rev()
         .find(|&i| bytes[i..i + 4] == [0x50, 0x4b, 0x05, 0x06])
         .ok_or("not a NumPy .npz archive (no ZIP end of central directory)")?;
+    // every offset read from the archive lies inside it, so that the offsets added to it below
+    // cannot overflow (a ZIP64 record pointing at 2⁶⁴ − 1 panicked in a debug build)
+    let inside = |o: u64, what: &str| -> Result<usize, String> {
+        usize::try_from(o).ok().filter(|o| *o <= bytes.len()).ok_or_else(|| format!("the .npz archive's {what} lies past its end (damaged archive)"))
+    };
     let mut entries = u16_at(bytes, eocd + 10)? as u64;
     let mut cd = u32_at(bytes, eocd + 16)? as u64;
     if (entries == 0xFFFF || cd == 0xFFFF_FFFF) && eocd >= 20 && u32_at(bytes, eocd - 20)? == 0x0706_4b50 {
         // ZIP64 end of central directory locator, then the record
-        let rec = u64_at(bytes, eocd - 12)? as usize;
+        let rec = inside(u64_at(bytes, eocd - 12)?, "ZIP64 record")?;
         if u32_at(bytes, rec)? != 0x0606_4b50 {
             return Err("the .npz archive's ZIP64 record is damaged".into());
         }
         entries = u64_at(bytes, rec + 32)?;
         cd = u64_at(bytes, rec + 48)?;
     }
+    let cd = inside(cd, "central directory")?;
     if entries > 1000 {
         return Err(format!("the .npz archive has {entries} members (at most 1000 read)"));
     }
     let mut out = vec![];
-    let mut p = cd as usize;
+    let mut p = cd;
     for _ in 0..entries {
         if u32_at(bytes, p)? != 0x0201_4b50 {
             return Err("the .npz archive's central directory is damaged".into());
@@ -238,7 +248,7 @@ pub fn parse_npz(bytes: &[u8]) -> Result<Vec<(String, Vec<u8>)>, String> {
             x += 4 + len;
         }
         p = xend + clen;
-        let l = local as usize;
+        let l = inside(local, &format!("member {name}'s local header"))?;
         if u32_at(bytes, l)? != 0x0403_4b50 {
             return Err(format!("{name}: the member's local header is damaged"));
         }
