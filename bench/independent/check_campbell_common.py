@@ -81,7 +81,7 @@ def match(theirs, mine, period=None):
 
 
 def compare_lines(d, specs, *, tol=1e-9, tol_near=1e-7, period_of=None, check_shares=True,
-                  check_groups=None, label="", logdec="fixed"):
+                  check_groups=None, label="", logdec="fixed", tol_share=1e-6):
     """d: campbell JSON; specs: {speed index: Spec}. Compares every line point with the
     spectrum: value, fixed_frequency, forward_share, whirl, log_decrement. Returns
     (problems, summary)."""
@@ -119,7 +119,9 @@ def compare_lines(d, specs, *, tol=1e-9, tol_near=1e-7, period_of=None, check_sh
             n_share += 1
             ds = abs(p["forward_share"] - s)
             worst_share = max(worst_share, ds)
-            if ds > 1e-6:
+            if tol_share is None:
+                s = p["forward_share"]  # shares not defined by the docs: autobal's own, for f
+            elif ds > tol_share:
                 bad.append(f"{label} w={w:.8g} line {li} ({p['re']:.6g}, {p['im']:.6g}): "
                            f"forward_share {p['forward_share']:.9f}, mine {s:.9f}")
             if abs(s - 0.5) > 1e-6:
@@ -161,7 +163,7 @@ def group_by_energy(en, margin=10.0):
     return None
 
 
-def compare_modes(d, specs, label=""):
+def compare_modes(d, specs, label="", tol_share=1e-6):
     """fixed_axes_modes: per point the followed component's signed frequency f in
     {Omega + nu, Omega - nu} of its line's value, `share` of that component, log_decrement =
     -2 pi re/|f|, whirl = sign f; at each speed every complex pair of mine carried by exactly
@@ -202,7 +204,7 @@ def compare_modes(d, specs, label=""):
                 if sp.gap[k] > 1e-4 * sp.scale and sp.rotor[k] > 1e-12 and abs(lp["im"]) > 1e-9 * sp.scale:
                     s_f = sp.share[k]
                     s = s_f if abs(f - (w + lp["im"])) < abs(f - (w - lp["im"])) else 1 - s_f
-                    if abs(p["share"] - s) > 1e-6:
+                    if tol_share is not None and abs(p["share"] - s) > tol_share:
                         bad.append(f"{label} w={w:.6g} mode {m['mode']}: share {p['share']:.9f}, "
                                    f"mine {s:.9f}")
     for j, sp in specs.items():
@@ -270,33 +272,56 @@ def critical_events(spec_fn, w0, w1, n=2000, tol=1e-12):
             cur = np.array(nxt)
         return True
 
+    def follow_fine(wa, wb, vals, steps=4000):
+        cur = np.array(vals)
+        for w in np.linspace(wa, wb, steps)[1:]:
+            lam = np.asarray(spec_fn(w))
+            r = isreal(lam)
+            nxt = []
+            for v in cur:
+                m = int(np.argmin(np.abs(lam - v)))
+                if not r[m]:
+                    return False
+                nxt.append(lam[m])
+            cur = np.array(nxt)
+        return True
+
     ev = []
     for kind in range(2):
         for i in range(n - 1):
-            if cs[i][kind] != cs[i + 1][kind]:
-                a, b, ca = ws[i], ws[i + 1], cs[i][kind]
+            if cs[i][kind] == cs[i + 1][kind]:
+                continue
+            lo, c_lo, cb = ws[i], cs[i][kind], cs[i + 1][kind]
+            while c_lo != cb:  # several changes in one step: one after another
+                a, b = lo, ws[i + 1]
                 while b - a > tol * b:
                     m = 0.5 * (a + b)
-                    if counts(m)[kind] == ca:
+                    if counts(m)[kind] == c_lo:
                         a = m
                     else:
                         b = m
+                c_new = counts(b)[kind]
                 exempt = False
                 if kind == 0:
-                    up = cs[i + 1][0] > cs[i][0]
-                    j = i + 1 if up else i  # the grid side where the pair is real
-                    lam = lams[j]
+                    # the pair that meets: the two real eigenvalues nearest each other just on
+                    # the real side of the event, followed (nearest value, 4000 steps) to the
+                    # grid's end on that side
+                    up = c_new > c_lo
+                    we = b if up else a
+                    lam = np.asarray(spec_fn(we))
                     re = np.sort(lam[isreal(lam)].real)
                     if len(re) >= 2:
-                        # the pair that meets: the two real values nearest each other
                         g = np.argmin(np.diff(re))
-                        exempt = follow(j, re[g:g + 2] + 0j, 1 if up else -1)
+                        exempt = follow_fine(we, w1 if up else w0, re[g:g + 2] + 0j)
                 ev.append((0.5 * (a + b), "real-axis" if kind == 0 else "backward 2 Omega",
-                           cs[i][kind], cs[i + 1][kind], exempt))
+                           c_lo, c_new, exempt))
+                lo, c_lo = b, c_new
     return sorted(ev)
 
 
-def compare_criticals(d, mine, tol=1e-8, label="", notes=None):
+def compare_criticals(d, mine, tol=1e-8, label="", notes=None, spec_fn=None):
+    """spec_fn (optional): my eigenvalues at a speed, to test an event of autobal's that my grid
+    missed: the count of real eigenvalues (or of |Im| > 2 Omega) changes across it."""
     notes = [] if notes is None else notes
     th = [(c["omega"], c["mode"], c["whirl"], c["harmonic"], c.get("share")) for c in
           d.get("critical_speeds", []) if c["harmonic"] == 1]
@@ -319,6 +344,19 @@ def compare_criticals(d, mine, tol=1e-8, label="", notes=None):
             want = "forward" if kind == "real-axis" else "backward"
             if th[k][2] != want:
                 bad.append(f"{label} critical {th[k][0]:.10g}: whirl {th[k][2]}, expected {want}")
+    for i, t in enumerate(th):
+        if i not in used and spec_fn is not None:
+            def cnt(w):
+                lam = np.asarray(spec_fn(w))
+                sc = np.max(np.abs(lam))
+                return (int(np.sum(np.abs(lam.imag) <= 1e-13 * sc)),
+                        int(np.sum(np.abs(lam.imag) > 2 * w)))
+            lo, hi = cnt(t[0] * (1 - 1e-8)), cnt(t[0] * (1 + 1e-8))
+            if lo != hi:
+                notes.append(f"{label} autobal critical {t[0]:.10g} (mode {t[1]}, {t[2]}) missed by "
+                             f"my grid, confirmed by my spectrum (counts {lo} -> {hi} across "
+                             f"+-1e-8)")
+                used.add(i)
     for i, t in enumerate(th):
         if i not in used:
             bad.append(f"{label} autobal critical {t[0]:.10g} (mode {t[1]}, {t[2]}) has no event of "
@@ -358,6 +396,8 @@ def track_check(d, vec_fn, label="", mac_margin=0.2):
             b = int(np.argmin(np.abs(lam1 - (p1["re"] + 1j * p1["im"]))))
             row = MAC[a].copy()
             best = int(np.argmax(row))
+            if (abs(p0["im"]) == 0.0) != (abs(p1["im"]) == 0.0):
+                continue  # the line meets or leaves the real axis: a branch point, no swap
             n += 1
             if best != b:
                 # a swap matters where the two candidates are comparably near the line's last

@@ -97,10 +97,13 @@ def equilibrium_case(name, S, path, extra=(), shares=True, tilt_share=True, fine
         x, _ = S.equilibrium(w, q0=xs[j])
         return x
 
-    mine = cc.critical_events(lambda w: np.linalg.eigvals(S.jac(0.0, near_x(w), w)),
-                              d["omega"][js[0]], d["omega"][js[-1]], n=1200)
+    def spec_fn(w):
+        return np.linalg.eigvals(S.jac(0.0, near_x(w), w))
+
+    mine = cc.critical_events(spec_fn, d["omega"][js[0]], d["omega"][js[-1]], n=1200)
     notes = []
-    bad3, worst_c, nth = cc.compare_criticals(d, mine, label=name, notes=notes)
+    bad3, worst_c, nth = cc.compare_criticals(d, mine, label=name, notes=notes,
+                                               spec_fn=spec_fn)
     allbad = bad + bad2 + bad3
     print(f"{name}: {len(specs)} speeds {d['omega'][js[0]]:.6g}-{d['omega'][js[-1]]:.6g}, "
           f"{s['points']} line points: eigenvalues worst {s['worst']:.1e} of max|lambda| "
