@@ -17,7 +17,7 @@ Checked (check_campbell_common.py for the tolerances):
     pair, "delta > 0 on every curve iff stable";
   * the 1x critical speeds against my own events (real-axis count, |Im| = 2 Omega), bisected;
   * tracking: each line's step follows the eigenvector of largest overlap (MAC), on a fine grid.
-Run: .venv/bin/python bench/independent/check_campbell_planar.py [P J A selftest]   (~1 min)
+Run: .venv/bin/python bench/independent/check_campbell_planar.py [P J A H selftest]   (~1 min)
 """
 
 from __future__ import annotations
@@ -248,6 +248,74 @@ def case_A(points=40):
     return not bad and lim_ok and not bad2, d
 
 
+def case_H():
+    """--harmonics 1,2 on examples/planar.toml and the Jeffcott limit: the 2x critical speeds.
+    A pair nu = |Im lambda| has a forward component at Omega + nu (share s of the Im > 0
+    eigenvector) and a backward one at Omega - nu; the forward one meets 2 Omega at nu = Omega,
+    the backward one -2 Omega at nu = 3 Omega. Ours: changes of the count of |Im| > Omega and
+    |Im| > 3 Omega, bisected, with the component's share at the event (listed by autobal where
+    at least 1e-9, its docs)."""
+    ok = True
+    for name, s2, path in (("H planar.toml", BASE["s2"], os.path.join(common.ROOT, "examples",
+                                                                        "planar.toml")),
+                           ("H Jeffcott", 0.0, common.planar_toml(
+                               "jeffcott_h", m1=1.0, m2=0.2, s1=0.003, s2=0.0, gamma=0.0, r=0.06,
+                               k=K, c=C, m3=0.03, c_psi=0.1))):
+        P = model(s2)
+        d, _ = common.run_json(["campbell", "--config", path, "--harmonics", "1,2"])
+        th = [c for c in d["critical_speeds"] if c["harmonic"] == 2]
+        specs, xs = equilibrium_specs(P, d)
+        js = sorted(specs)
+
+        def eig_at(w):
+            j = min(js, key=lambda i: abs(d["omega"][i] - w))
+            x, _ = P.equilibrium(w, psi0=xs[j][2:4], z0=xs[j][0] + 1j * xs[j][1])
+            return np.linalg.eig(P.jac(0.0, x, w))
+
+        mine = []
+        ws = np.linspace(d["omega"][js[0]], d["omega"][js[-1]], 1500)
+        for mult, comp in ((1.0, "forward"), (3.0, "backward")):
+            cnt = lambda w: int(np.sum(np.abs(eig_at(w)[0].imag) > mult * w))
+            cs = [cnt(w) for w in ws]
+            for i in range(len(ws) - 1):
+                if cs[i] != cs[i + 1]:
+                    a, b = ws[i], ws[i + 1]
+                    while b - a > 1e-13 * b:
+                        m = 0.5 * (a + b)
+                        if cnt(m) == cs[i]:
+                            a = m
+                        else:
+                            b = m
+                    we = 0.5 * (a + b)
+                    lam, V = eig_at(we)
+                    k = int(np.argmin(np.abs(np.abs(lam.imag) - mult * we) + 1e9 * (lam.imag < 0)))
+                    fw, bw = cc.circ_weights(V[:, k] / np.linalg.norm(V[:, k]), PAIRS)
+                    sh = fw / (fw + bw) if comp == "forward" else bw / (fw + bw)
+                    mine.append((we, comp, sh))
+        bad = []
+        used = set()
+        for we, comp, sh in mine:
+            k = min(range(len(th)), key=lambda i: abs(th[i]["omega"] - we), default=None)
+            hit = k is not None and abs(th[k]["omega"] - we) < 1e-8 * we
+            if hit:
+                used.add(k)
+                if th[k]["whirl"] != comp or abs(th[k]["share"] - sh) > 1e-6:
+                    bad.append(f"{name} 2x at {we:.10g}: autobal {th[k]['whirl']} share "
+                               f"{th[k]['share']:.3g}, mine {comp} share {sh:.3g}")
+            elif sh >= 1e-9:
+                bad.append(f"{name} my 2x event at {we:.10g} ({comp}, share {sh:.3g}) not listed")
+        for i, c in enumerate(th):
+            if i not in used:
+                bad.append(f"{name} autobal 2x critical {c['omega']:.10g} ({c['whirl']}) not mine")
+        print(f"{name} --harmonics 1,2: 2x critical speeds autobal {len(th)}, mine "
+              f"{[('%.9g' % m[0], m[1], '%.2g' % m[2]) for m in mine]} "
+              + ("OK" if not bad else "*** DISAGREE"))
+        for b in bad:
+            print("   ", b)
+        ok &= not bad
+    return ok, None
+
+
 def selftest():
     """The comparisons can fail: examples/planar.toml's JSON altered four ways, each must be
     caught (a value moved by 1e-7 max|lambda|; a whirl word flipped; two lines swapped from mid
@@ -289,10 +357,10 @@ def selftest():
 
 
 if __name__ == "__main__":
-    which = sys.argv[1:] or ["P", "J", "A"]
+    which = sys.argv[1:] or ["P", "J", "A", "H", "selftest"]
     ok = True
     for c in which:
-        good, _ = {"P": case_P, "J": case_J, "A": case_A, "selftest": selftest}[c]()
+        good, _ = {"P": case_P, "J": case_J, "A": case_A, "H": case_H, "selftest": selftest}[c]()
         ok &= good
     print("ALL AGREE" if ok else "DISAGREEMENTS")
     sys.exit(0 if ok else 1)
