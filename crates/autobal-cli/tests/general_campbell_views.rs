@@ -107,7 +107,7 @@ fn components_view_and_harmonics_on_the_general_route() {
     let v = json(&["campbell", "--points", "4", "--omega-max", "1.5", "--format", "json", "--config", &two, "--svg", prefix.to_str().unwrap()]);
     assert_eq!(v["stationary_state"], "periodic_orbit");
     assert!(v["critical_speeds"].is_null());
-    assert!(v["critical_speeds_not_given"].as_str().unwrap().contains("modulo Ω"), "{v}");
+    assert!(v["critical_speeds_not_given"].as_str().unwrap().contains("modulo 2π/T"), "{v}");
     assert!(std::fs::read_to_string(dir.join("c.svg")).unwrap().contains("<svg"));
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -101,7 +101,7 @@ pub struct GeneralCampbell {
     /// says why), `None` where it could not be formed.
     pub fixed: Option<FixedCampbell>,
     /// Why the crossings (critical speeds) are not given, where they are not: Floquet
-    /// exponents (defined modulo Ω), or a crossing whose stationary state was not found.
+    /// exponents (defined modulo 2π/T: Ω, or 2Ω where T = π/Ω), or a crossing whose stationary state was not found.
     pub crossings_not_given: Option<String>,
 }
 
@@ -110,7 +110,7 @@ pub struct GeneralCampbell {
 pub const MODES_AT_FIRST_SPEED: &str = "ranked at the first speed of the grid, not at the reference speed 0.001 ω_n (no spectrum found there: a periodic orbit's Floquet exponents, or no stationary state): they can change with --points and --omega-max";
 
 /// Why a periodic orbit's diagram has no crossing speeds.
-pub const FLOQUET_CROSSINGS: &str = "not defined for Floquet exponents: their imaginary parts are defined modulo Ω, so a curve's crossing of h×Ω is a crossing of every other harmonic on another branch; `autobal critical` gives the locked rotor's critical speeds where they are defined";
+pub const FLOQUET_CROSSINGS: &str = "not defined for Floquet exponents: their imaginary parts are defined modulo 2π/T (Ω under gravity, 2Ω where only the supports differ by direction), so a curve's crossing of h×Ω is a crossing of other harmonics on other branches; `autobal critical` gives the locked rotor's critical speeds where they are defined";
 
 /// The Campbell diagram of the general route with the balls free and the `1×` crossings (what
 /// `autobal campbell` and Python's `campbell` give by default), its numbers checked finite.
@@ -418,7 +418,7 @@ pub fn campbell_plot(g: &GeneralRotor, gc: &GeneralCampbell, omega_max: f64) -> 
     p.title = format!(
         "Campbell diagram in fixed axes (general route, {}{}): forward solid, backward dashed, coloured by log decrement",
         match gc.diagram.kind {
-            Kind::PeriodicOrbit => "Floquet exponents on their branch, no crossings: defined modulo Ω",
+            Kind::PeriodicOrbit => "Floquet exponents on their branch, no crossings: defined modulo 2π/T",
             Kind::Equilibrium => "eigenvalues",
         },
         if gc.balls == Balls::Locked { ", balls locked" } else { "" }
@@ -489,7 +489,7 @@ pub fn components_plots(g: &GeneralRotor, gc: &GeneralCampbell) -> (Plot, Plot) 
     };
     let (x_label, unit) = if g.si { ("ω (rad/s)", " (rad/s)") } else { ("Ω = ω/ω0", " / ω0") };
     let x2 = g.si.then(|| crate::plot::SecondAxis { factor: crate::num::RPM_PER_RAD_S, label: "n (rpm)".into() });
-    let floquet = if c.kind == Kind::PeriodicOrbit { " (Floquet exponents: Im ρ on its branch, defined modulo Ω)" } else { "" };
+    let floquet = if c.kind == Kind::PeriodicOrbit { " (Floquet exponents: Im ρ on its branch, defined modulo 2π/T)" } else { "" };
     (
         Plot {
             title: format!("Campbell diagram, rotating axes (general route){floquet}"),

@@ -90,7 +90,7 @@ use num_complex::Complex64;
 use serde::Serialize;
 
 /// The branch rule of the Floquet exponents' imaginary parts, as every output states it.
-pub const FLOQUET_BRANCH: &str = "Floquet exponents ρ = ln μ / T are defined modulo iΩ: the branch shown is the one whose Im ρ is nearest Im of the Rayleigh quotient vᴴJ(0)v/vᴴv of the Floquet mode's start vector v (exact continuation of the equilibrium eigenvalues as the anisotropy or gravity vanishes; a convention for strongly periodic modes)";
+pub const FLOQUET_BRANCH: &str = "Floquet exponents ρ = ln μ / T are defined modulo i2π/T (iΩ where the period is a revolution, under gravity; 2iΩ where only the supports differ by direction, T = π/Ω): the branch shown is the one whose Im ρ is nearest Im of the Rayleigh quotient vᴴJ(0)v/vᴴv of the Floquet mode's start vector v (exact continuation of the equilibrium eigenvalues as the anisotropy or gravity vanishes; a convention for strongly periodic modes)";
 
 /// Whirl direction in fixed axes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -417,13 +417,12 @@ pub fn campbell_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Control
             control.report(per_speed.len() as u64, speeds.len() as u64);
             continue;
         }
-        let guess = Rotor::gravity_orbit_start(&f, &opts).or_else(|| Rotor::guess(&f));
+        // the speed scan's starts (Rotor::first_start: with the capacity short, the partially
+        // balanced state; until session 17 only the first two, and no state there)
+        let guess = Rotor::first_start(&f, Rotor::gravity_orbit_start(&f, &opts));
         let near = previous.as_ref().map(|p| p.x.clone());
         let hint = previous.as_ref().and_then(|p| p.monodromy.clone());
-        let mut result = Err(match no_balance(rotor) {
-            Error::InvalidParameter { reason, .. } => reason,
-            e => e.to_string(),
-        });
+        let mut result = Err(NO_START.to_string());
         for start in [guess, near].into_iter().flatten() {
             match stationary_near(&f, &start, hint.as_deref(), &opts) {
                 Ok(s) => {
@@ -592,6 +591,9 @@ fn point_mass_balls(rotor: &Rotor) -> Rotor {
         }
     }
 }
+
+/// Why a speed has no state where no start for Newton exists (balls free).
+const NO_START: &str = "no stationary state: no start for Newton's method (no closed form, placement or bunching of the balls applies)";
 
 fn no_balance(rotor: &Rotor) -> Error {
     Error::invalid(
@@ -940,13 +942,16 @@ fn state_of(rotor: &Rotor, balls: Balls, omega: f64, near: Option<&StationarySta
         return Err(why);
     }
     let guess = match balls {
-        Balls::Free => Rotor::gravity_orbit_start(&f, &opts).or_else(|| Rotor::guess(&f)),
+        Balls::Free => Rotor::first_start(&f, Rotor::gravity_orbit_start(&f, &opts)),
         // the locked rotor has no balls left: its balanced state is the centred rotor (or, with
         // gravity, its sag), reached by Newton from rest
         Balls::Locked => Rotor::guess(&f).or_else(|| Some(vec![0.0; f.dim()])),
     };
     let hint = near.and_then(|p| p.monodromy.clone());
-    let mut result = Err(reason(no_balance(rotor)));
+    let mut result = Err(match balls {
+        Balls::Free => NO_START.to_string(),
+        Balls::Locked => reason(no_balance(rotor)),
+    });
     for start in [guess, near.map(|p| p.x.clone())].into_iter().flatten() {
         match stationary_near(&f, &start, hint.as_deref(), &opts) {
             Ok(s) => {

@@ -111,3 +111,24 @@ fn a_switch_of_state_between_cells_is_not_a_traced_boundary() {
     assert_eq!(points.len(), 1, "{points:?}");
     assert!(points[0].x > 300.0 && points[0].x < 325.0, "{points:?}");
 }
+
+/// `campbell` (balls free) starts as the scan does too: on Rodrigues et al.'s rotor at 0.97
+/// m_c every speed has the partially balanced state's spectrum (main: "no balanced state to
+/// lock the balls in" at every speed, with the balls free), and its largest real part is the
+/// scan's abscissa (the same state, to 1e-9 of the spectrum's size).
+#[test]
+fn campbell_finds_the_partially_balanced_state_the_scan_finds() {
+    let root = autobal::config::parse(RODRIGUES_097, "rodrigues").unwrap();
+    let rotor = Rotor::Spatial(autobal::config::spatial_simulation(&root).unwrap().rotor);
+    let speeds = [400.0, 900.0, 1400.0];
+    let c = autobal::rotor_campbell::campbell_over_speed(&rotor, &speeds).unwrap();
+    assert!(c.failures.iter().all(Option::is_none), "{:?}", c.failures);
+    let scan = stability_over_speed(&rotor, &speeds).unwrap();
+    for (k, p) in scan.points.iter().enumerate() {
+        let re: Vec<f64> = c.lines.iter().filter_map(|l| l.points.get(k).and_then(|q| q.as_ref()).map(|q| q.re)).collect();
+        let size = re.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let a = p.abscissa.unwrap();
+        // the scan's abscissa leaves out the structural zeros; the Campbell lines keep them
+        assert!(re.iter().any(|v| (v - a).abs() <= 1e-9 * size.max(1.0)), "{a} not among {re:?}");
+    }
+}
