@@ -89,8 +89,9 @@ fn stability_finds_the_partially_balanced_state_and_a_run_ends_on_it() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
-/// `campbell` and `map` follow the balanced state: where there is none they say why in one line
-/// with the numbers (campbell) or the rule (map), and name `stability` for the partial state.
+/// `campbell` follows the balanced state: where there is none it says why in one line with the
+/// numbers and names `stability` for the partial state; `map` finds the partially balanced
+/// state there, as `stability` does, and counts its cells.
 #[test]
 fn campbell_and_map_say_why_there_is_no_balanced_state() {
     let cfg = shaft();
@@ -111,6 +112,8 @@ fn campbell_and_map_say_why_there_is_no_balanced_state() {
     m.extend(SHORT);
     let (code, line, err) = autobal(&m);
     assert_eq!(code, 0, "{err}");
-    assert!(line.contains("4 without a stationary state: no balanced state where the balls' capacity n m_b R falls short of the unbalance"), "{line}");
+    // the map starts each cell as stability's scan does (session 17; before, it followed the
+    // balanced state only and said the cells had none): the partially balanced state, counted
+    assert!(line.contains("0 without a stationary state") && line.contains("cells whose state is 4 partially balanced"), "{line}");
     std::fs::remove_dir_all(&dir).ok();
 }

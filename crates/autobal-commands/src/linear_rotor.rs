@@ -379,17 +379,6 @@ pub fn partial_text(cfg: &LinearRotorConfig, r: &RotorStability) -> String {
     )
 }
 
-/// Why a linear rotor's map has cells without a stationary state, for its summary line (empty
-/// for other rotors or where every cell has one): the map follows the balanced state, which
-/// does not exist where the balls' capacity falls short.
-pub fn map_none_reason(linear: bool, none: usize) -> &'static str {
-    if linear && none > 0 {
-        ": no balanced state where the balls' capacity n m_b R falls short of the unbalance (the map follows the balanced state; autobal stability analyses the partially balanced one)"
-    } else {
-        ""
-    }
-}
-
 /// The config's parameter paths with its matrix files read once, relative to `dir`
 /// ([`autobal::linear_rotor::spec`]): the base of `map` and `sweep`.
 pub fn spec(root: &Table, dir: &Path) -> autobal::Result<LinearRotorSpec> {

@@ -520,13 +520,12 @@ impl command::Output for Output {
                 self.secs,
                 self.wrote()
             ),
-            RouteOutput::General { outcome, linear, .. } => format!(
-                "general route: {done} rows × {n} points in {:.2} s ({per_point:.2} µs per point; {} from the closed form, {} continued from a neighbour, {} without a stationary state{}{}); stationary state: {}{}{}\n",
+            RouteOutput::General { outcome, .. } => format!(
+                "general route: {done} rows × {n} points in {:.2} s ({per_point:.2} µs per point; {} from the closed form, {} continued from a neighbour, {} without a stationary state{}); stationary state: {}{}{}\n",
                 self.secs,
                 outcome.closed_form,
                 outcome.continued,
                 outcome.none,
-                crate::linear_rotor::map_none_reason(*linear, outcome.none),
                 not_analysed_words(outcome.not_analysed),
                 Output::state(outcome),
                 state_words(outcome),
@@ -1749,7 +1748,7 @@ mod tests {
         let text = String::from_utf8(csv).unwrap();
         let lines: Vec<&str> = text.lines().collect();
         for (row, y) in [(1, "0.4"), (3, "0.5")] {
-            assert_eq!(lines[row], format!("0.5,{y},,not_analysed,,"), "{text}");
+            assert_eq!(lines[row], format!("0.5,{y},,not_analysed,,,"), "{text}");
             assert!(lines[row + 1].starts_with(&format!("450.5,{y},")) && !lines[row + 1].contains("not_analysed"), "{text}");
         }
         assert_eq!(out.json().unwrap()["not_analysed"], 2);

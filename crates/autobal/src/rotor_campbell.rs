@@ -417,12 +417,17 @@ pub fn campbell_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Control
             control.report(per_speed.len() as u64, speeds.len() as u64);
             continue;
         }
-        // the speed scan's starts (Rotor::first_start: with the capacity short, the partially
-        // balanced state; until session 17 only the first two, and no state there)
-        let guess = Rotor::first_start(&f, Rotor::gravity_orbit_start(&f, &opts));
+        // the balanced state only (not the scan's partially balanced or bunched starts,
+        // Rotor::first_start: the diagram follows one state over speed, and a switch to the
+        // balls bunched below paper 004's semi-balanced speed adds crossings that depend on the
+        // grid; tried and reverted in session 17)
+        let guess = Rotor::gravity_orbit_start(&f, &opts).or_else(|| Rotor::guess(&f));
         let near = previous.as_ref().map(|p| p.x.clone());
         let hint = previous.as_ref().and_then(|p| p.monodromy.clone());
-        let mut result = Err(NO_START.to_string());
+        let mut result = Err(match no_balance(rotor) {
+            Error::InvalidParameter { reason, .. } => reason,
+            e => e.to_string(),
+        });
         for start in [guess, near].into_iter().flatten() {
             match stationary_near(&f, &start, hint.as_deref(), &opts) {
                 Ok(s) => {
@@ -591,9 +596,6 @@ fn point_mass_balls(rotor: &Rotor) -> Rotor {
         }
     }
 }
-
-/// Why a speed has no state where no start for Newton exists (balls free).
-const NO_START: &str = "no stationary state: no start for Newton's method (no closed form, placement or bunching of the balls applies)";
 
 fn no_balance(rotor: &Rotor) -> Error {
     Error::invalid(
@@ -942,16 +944,13 @@ fn state_of(rotor: &Rotor, balls: Balls, omega: f64, near: Option<&StationarySta
         return Err(why);
     }
     let guess = match balls {
-        Balls::Free => Rotor::first_start(&f, Rotor::gravity_orbit_start(&f, &opts)),
+        Balls::Free => Rotor::gravity_orbit_start(&f, &opts).or_else(|| Rotor::guess(&f)),
         // the locked rotor has no balls left: its balanced state is the centred rotor (or, with
         // gravity, its sag), reached by Newton from rest
         Balls::Locked => Rotor::guess(&f).or_else(|| Some(vec![0.0; f.dim()])),
     };
     let hint = near.and_then(|p| p.monodromy.clone());
-    let mut result = Err(match balls {
-        Balls::Free => NO_START.to_string(),
-        Balls::Locked => reason(no_balance(rotor)),
-    });
+    let mut result = Err(reason(no_balance(rotor)));
     for start in [guess, near.map(|p| p.x.clone())].into_iter().flatten() {
         match stationary_near(&f, &start, hint.as_deref(), &opts) {
             Ok(s) => {

@@ -4,7 +4,7 @@
 //! capacity short of the unbalance) every cell read "no stationary state" while `stability`
 //! on the same config found the partially balanced state and its verdict at every speed.
 //! Rodrigues et al.'s two-plane rotor with balls of 0.97 of the existence threshold (the config
-//! of tests/state_switch_16.rs, from the independent check bench/independent/
+//! of tests/state_switch_16.rs, in tests/common, from the independent check bench/independent/
 //! check_spatial_two_plane.py): the map's row over speed against the scan's points, state,
 //! verdict and margin (the map's margin per unit τ, the scan's in 1/s: their ratio the same
 //! at every cell, to 1e-9).
@@ -14,41 +14,8 @@ use autobal::rotor_map::{general_map, GeneralCell};
 use autobal::rotor_stability::{stability_over_speed, Rotor, StateKind};
 use autobal::spatial::map::Axis;
 
-const RODRIGUES_097: &str = r#"
-[rotor]
-mass = 10.0
-equatorial_moment = 0.16
-polar_moment = 0.08
-z = 0.2
-[supports]
-z_left = 0.0
-z_right = 0.4
-stiffness_left = 500000.0
-stiffness_right = 500000.0
-damping_left = 100.0
-damping_right = 100.0
-[unbalance]
-mass = 0.01
-radius = 0.1
-angle = 0.0
-[couple]
-mass = 0.01
-radius = 0.1
-angle = 0.0
-z = 0.08
-[balancer]
-z = 0.32
-balls = 2
-ball_mass = 0.0060625
-race_radius = 0.08
-drag = 0.3
-[balancer2]
-z = 0.08
-balls = 2
-ball_mass = 0.0060625
-race_radius = 0.08
-drag = 0.3
-"#;
+mod common;
+use common::RODRIGUES_097;
 
 #[test]
 fn the_map_finds_the_partially_balanced_state_the_scan_finds() {
@@ -110,25 +77,4 @@ fn a_switch_of_state_between_cells_is_not_a_traced_boundary() {
     assert_eq!((at(225.0).state, at(225.0).verdict.map(|v| v.name())), (Some(StateKind::SemiBalanced), Some("unstable")));
     assert_eq!(points.len(), 1, "{points:?}");
     assert!(points[0].x > 300.0 && points[0].x < 325.0, "{points:?}");
-}
-
-/// `campbell` (balls free) starts as the scan does too: on Rodrigues et al.'s rotor at 0.97
-/// m_c every speed has the partially balanced state's spectrum (main: "no balanced state to
-/// lock the balls in" at every speed, with the balls free), and its largest real part is the
-/// scan's abscissa (the same state, to 1e-9 of the spectrum's size).
-#[test]
-fn campbell_finds_the_partially_balanced_state_the_scan_finds() {
-    let root = autobal::config::parse(RODRIGUES_097, "rodrigues").unwrap();
-    let rotor = Rotor::Spatial(autobal::config::spatial_simulation(&root).unwrap().rotor);
-    let speeds = [400.0, 900.0, 1400.0];
-    let c = autobal::rotor_campbell::campbell_over_speed(&rotor, &speeds).unwrap();
-    assert!(c.failures.iter().all(Option::is_none), "{:?}", c.failures);
-    let scan = stability_over_speed(&rotor, &speeds).unwrap();
-    for (k, p) in scan.points.iter().enumerate() {
-        let re: Vec<f64> = c.lines.iter().filter_map(|l| l.points.get(k).and_then(|q| q.as_ref()).map(|q| q.re)).collect();
-        let size = re.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-        let a = p.abscissa.unwrap();
-        // the scan's abscissa leaves out the structural zeros; the Campbell lines keep them
-        assert!(re.iter().any(|v| (v - a).abs() <= 1e-9 * size.max(1.0)), "{a} not among {re:?}");
-    }
 }

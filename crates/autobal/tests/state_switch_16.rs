@@ -11,43 +11,8 @@
 use autobal::analysis::{stability, stationary, NewtonOptions, Verdict};
 use autobal::rotor_stability::{speed_grid, stability_over_speed, Rotor};
 
-/// The check's config: a symmetric rotor, the static unbalance split between the two ball
-/// planes, a couple, two balls of 0.97 m_c per plane (m_c = m_u e / (4 R) = 6.25 g).
-const RODRIGUES_097: &str = r#"
-[rotor]
-mass = 10.0
-equatorial_moment = 0.16
-polar_moment = 0.08
-z = 0.2
-[supports]
-z_left = 0.0
-z_right = 0.4
-stiffness_left = 500000.0
-stiffness_right = 500000.0
-damping_left = 100.0
-damping_right = 100.0
-[unbalance]
-mass = 0.01
-radius = 0.1
-angle = 0.0
-[couple]
-mass = 0.01
-radius = 0.1
-angle = 0.0
-z = 0.08
-[balancer]
-z = 0.32
-balls = 2
-ball_mass = 0.0060625
-race_radius = 0.08
-drag = 0.3
-[balancer2]
-z = 0.08
-balls = 2
-ball_mass = 0.0060625
-race_radius = 0.08
-drag = 0.3
-"#;
+mod common;
+use common::RODRIGUES_097;
 
 #[test]
 fn a_switch_between_two_partially_balanced_states_is_not_a_boundary() {

@@ -363,3 +363,42 @@ pub fn same(got: &[Key], reference: &[Key], lo: f64, hi: f64, what: &str) {
     let ok = a.len() == b.len() && a.iter().zip(&b).all(|(x, y)| (x.0 - y.0).abs() <= 1e-6 * y.0.max(1.0) && (x.1, x.2, x.3) == (y.1, y.2, y.3));
     assert!(ok, "{what} over [{lo}, {hi}]:\n got {}\n ref {}", show(&a), show(&b));
 }
+
+/// Rodrigues et al.'s two-plane rotor of the independent check
+/// (bench/independent/check_spatial_two_plane.py): a symmetric rotor, the static unbalance split between the two ball
+/// planes, a couple, two balls of 0.97 m_c per plane (m_c = m_u e / (4 R) = 6.25 g).
+pub const RODRIGUES_097: &str = r#"
+[rotor]
+mass = 10.0
+equatorial_moment = 0.16
+polar_moment = 0.08
+z = 0.2
+[supports]
+z_left = 0.0
+z_right = 0.4
+stiffness_left = 500000.0
+stiffness_right = 500000.0
+damping_left = 100.0
+damping_right = 100.0
+[unbalance]
+mass = 0.01
+radius = 0.1
+angle = 0.0
+[couple]
+mass = 0.01
+radius = 0.1
+angle = 0.0
+z = 0.08
+[balancer]
+z = 0.32
+balls = 2
+ball_mass = 0.0060625
+race_radius = 0.08
+drag = 0.3
+[balancer2]
+z = 0.08
+balls = 2
+ball_mass = 0.0060625
+race_radius = 0.08
+drag = 0.3
+"#;
