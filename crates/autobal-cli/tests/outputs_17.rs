@@ -191,3 +191,19 @@ fn the_closed_form_stability_says_its_speed_unit() {
     assert_eq!(plain["speed_unit"], "Ω", "a dimensionless config's unit");
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// The sweep's table and warnings print an axis value to 6 significant digits: `1e-300`, not
+/// Rust's `{v}` of it, 300 digits wide (found by session 17's hostile-input hunt; main at
+/// 51426c6 printed `0.000…0001` in every row and warning).
+#[test]
+fn a_sweeps_tiny_axis_value_prints_short() {
+    let dir = scratch_in("outputs17", "tiny_axis");
+    let args =
+        ["sweep", "--x", "planar.c_psi=1e-300:2e-300:2", "--y", "drive.b=100:200:2", "--set", "drive.t_end=0.05", "--set", "drive.omega0=250", "--out", "t"];
+    let (code, out, err) = run_in(&dir, LIMIT, &args);
+    assert_eq!(code, 0, "{err}");
+    let text = format!("{out}{err}");
+    assert!(text.contains("1e-300") && text.contains("2e-300"), "{text}");
+    assert!(!text.contains("0.000000000000000000000"), "{text}");
+    std::fs::remove_dir_all(&dir).ok();
+}

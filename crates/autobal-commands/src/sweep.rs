@@ -465,7 +465,8 @@ impl Plan {
                 let ws = s.warnings();
                 if done < TABLE_ROWS as u64 {
                     for v in values.iter().take(2) {
-                        table.push_str(&format!("{v:>14} "));
+                        // 6 significant digits (Rust's `{v}` of 1e-300 is 300 digits wide)
+                        table.push_str(&format!("{:>14} ", autobal::error::fmt_num(*v)));
                     }
                     table.push_str(&format!("{}{}\n", s.cells(ls), ws.first().map_or(String::new(), |w| format!("  ({w})"))));
                 } else {
@@ -475,7 +476,10 @@ impl Plan {
                     warned += 1;
                     if warned <= PRINTED_WARNINGS {
                         for w in &ws {
-                            warnings.push(format!("warning: point {i} ({}): {w}", values.iter().map(|v| v.to_string()).collect::<Vec<_>>().join(", ")));
+                            warnings.push(format!(
+                                "warning: point {i} ({}): {w}",
+                                values.iter().map(|v| autobal::error::fmt_num(*v)).collect::<Vec<_>>().join(", ")
+                            ));
                         }
                     }
                 }
