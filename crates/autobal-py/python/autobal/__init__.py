@@ -503,9 +503,9 @@ def run(command: str, config: ConfigLike = None, set: Optional[Mapping[str, Any]
         # general route, as on the CLI), the command's own defaults and checks (map::Args)
         text, table, source = _read(config, _autobal.DEFAULT_SPATIAL, SpatialModel._DEFAULT_NAME)
         out = _autobal.map_cells(text, table, source, list((set or {}).items()), (xp, xv), (yp, yv), **kw)
-        for k in ("verdict", "state"):
-            if k in out:
-                out[k] = np.array(out[k], dtype=object)
+        for name in ("verdict", "state"):
+            if name in out:
+                out[name] = np.array(out[name], dtype=object)
         out["x_path"], out["y_path"] = xp, yp
         return out
     if command == "report":

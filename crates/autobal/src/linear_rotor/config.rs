@@ -818,6 +818,11 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
             ("slip_rate", "planar.slip_rate"),
         ] {
             if let Some(v) = b.f64(k)? {
+                // above 1 the balls' own check words it, as Python's `from_ross` reads it
+                // (`BallPhysics::validate`: "… is not a rolling resistance (at most 1 …)")
+                if k == "rolling_resistance" && v > 1.0 {
+                    continue;
+                }
                 crate::limits::check_as(&b.field(k), limit, v)?;
             }
         }
