@@ -291,8 +291,9 @@ fn solve(c: &CellRotor, w: f64, previous: Option<&StationaryState>, closed_form:
         opts.max_iterations = 20;
         opts.rtol = 1e-10;
     }
-    // the closed form, or under gravity with n >= 3 balls in a plane the orbit with the balls
-    // in two groups (Rotor::gravity_orbit_start, as the speed scan): built only when tried
+    // the speed scan's start (Rotor::first_start: under gravity with n >= 3 balls in a plane
+    // the orbit with the balls in two groups, the closed form, each plane's share, the balls
+    // bunched): built only when tried
     let closed = || if closed_form { Rotor::first_start(&field, Rotor::gravity_orbit_start(&field, &opts)) } else { None };
     let near = previous.map(|p| p.x.as_slice());
     let order = if periodic { [true, false] } else { [false, true] };
