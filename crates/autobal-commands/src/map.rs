@@ -924,13 +924,7 @@ fn general(
                     Some(FamilyVerdict::NoneStable) => "none_stable",
                 };
                 // what the state is, in the speed scan's words (`stability`'s points[].state)
-                let state = match c.state {
-                    None => "",
-                    Some(StateKind::Balanced) => "balanced",
-                    Some(StateKind::SemiBalanced) => "semi_balanced",
-                    Some(StateKind::PartiallyBalanced) => "partially_balanced",
-                    Some(StateKind::NotBalanced) => "not_balanced",
-                };
+                let state = c.state.map_or("", StateKind::key);
                 let _ = writeln!(t, "{xs},{yv},{margin},{verdict},{fam},{family},{state}");
             }
             if let Err(e) = w.write_all(t.as_bytes()).and_then(|_| w.flush()) {

@@ -649,8 +649,7 @@ fn map_dict<'py>(py: Python<'py>, args: autobal_commands::map::Args, threads: Op
             d.set_item("verdict", rows)?;
             d.set_item("family_dimension", PyArray1::from_vec(py, flat().map(|c| c.family_dimension as u64).collect()).reshape([ny, nx])?)?;
             // what the state is, the CLI CSV's `state` (`""` without one)
-            let state = |k: Option<autobal::rotor_stability::StateKind>| k.map_or(String::new(), |k| k.name().replace([' ', '-'], "_"));
-            d.set_item("state", cells.iter().map(|r| r.iter().map(|c| state(c.state)).collect::<Vec<_>>()).collect::<Vec<_>>())?;
+            d.set_item("state", cells.iter().map(|r| r.iter().map(|c| c.state.map_or("", |k| k.key())).collect::<Vec<_>>()).collect::<Vec<_>>())?;
             d.set_item("route", "general")?;
         }
         _ => return Err(PyRuntimeError::new_err("autobal: the map kept no cells")),

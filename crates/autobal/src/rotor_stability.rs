@@ -798,6 +798,17 @@ pub enum StateKind {
 }
 
 impl StateKind {
+    /// `"balanced"`, `"semi_balanced"`, `"partially_balanced"`, `"not_balanced"`: the JSON's
+    /// words (its serde names), for the CSV columns and Python's arrays that name a state.
+    pub fn key(self) -> &'static str {
+        match self {
+            StateKind::Balanced => "balanced",
+            StateKind::SemiBalanced => "semi_balanced",
+            StateKind::PartiallyBalanced => "partially_balanced",
+            StateKind::NotBalanced => "not_balanced",
+        }
+    }
+
     /// `"balanced"`, `"semi-balanced"`, `"partially balanced"`, `"not balanced"`.
     pub fn name(self) -> &'static str {
         match self {
@@ -1531,6 +1542,15 @@ pub fn speed_grid(omega_max: f64, samples: usize) -> Result<Vec<f64>> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `StateKind::key` is the JSON's word for each state (its serde name), which the map's CSV
+    /// and Python's arrays print beside `stability`'s JSON.
+    #[test]
+    fn state_keys_are_the_json_names() {
+        for k in [StateKind::Balanced, StateKind::SemiBalanced, StateKind::PartiallyBalanced, StateKind::NotBalanced] {
+            assert_eq!(serde_json::to_value(k).unwrap(), serde_json::json!(k.key()));
+        }
+    }
 
     /// Paper 004's rotor with its race centred and `n` balls, as the planar model and as the
     /// linear rotor-bearing model ([`LinearRotor::from_planar`]: the same Jeffcott rotor with
