@@ -916,6 +916,19 @@ pub fn stability_over_speed(rotor: &Rotor, speeds: &[f64]) -> Result<RotorStabil
     stability_over_speed_with(rotor, speeds, &Control::none()).map(|o| o.value)
 }
 
+/// The growth rate (1/s) of the (semi-)balanced state of `rotor` at `omega` where it is an
+/// isolated state (no family) and unstable by its exact linear stability
+/// ([`stability_over_speed`]); `None` where it is stable or neutral, belongs to a family, is not
+/// the state found, or has no linearisation (real balls). The runs' creep check: a run at a
+/// constant speed that ends balanced next to such a state is creeping away from it, not settled
+/// (`crate::planar::simulate`'s summary).
+pub fn unstable_isolated_state(rotor: &Rotor, omega: f64) -> Option<f64> {
+    let r = stability_over_speed(rotor, &[omega]).ok()?;
+    let p = r.points.first()?;
+    let balanced = matches!(p.state, Some(StateKind::Balanced | StateKind::SemiBalanced));
+    (balanced && p.family_dimension == 0 && p.verdict == Some(crate::analysis::Verdict::Unstable)).then_some(p.abscissa?)
+}
+
 /// [`stability_over_speed`] under `control`, asked once per speed (each grid speed, each trial
 /// speed of a range end's location, each speed's family); the progress observer is told the
 /// grid speeds done. Stopped, the outcome holds the speeds done until then: their points, the

@@ -744,7 +744,7 @@ fn simulate_sampled(
     // linear stability at the final speed decides (an isolated state only: with n >= 3 balls
     // the run may rest on a stable member of a family whose closed-form member is unstable)
     let creep = (outcome == crate::spatial::dynamics::RunOutcome::Balanced && w_dot == 0.0 && drive.prescribed())
-        .then(|| unstable_balanced_state(rotor, final_omega))
+        .then(|| crate::rotor_stability::unstable_isolated_state(&crate::rotor_stability::Rotor::Planar(rotor.clone()), final_omega))
         .flatten();
     let (outcome, settled) = if creep.is_some() { (crate::spatial::dynamics::RunOutcome::NotSettled, false) } else { (outcome, settled) };
     // the radius test as well: C at s2 (or near the axis) where the outcome says balanced
@@ -783,18 +783,6 @@ fn simulate_sampled(
         stopped,
         warnings,
     })
-}
-
-/// The growth rate (1/s) of the (semi-)balanced state at `omega` where it is an isolated state
-/// (no family) and unstable by its exact linear stability
-/// ([`crate::rotor_stability::stability_over_speed`]); `None` where it is stable or neutral,
-/// belongs to a family, is not the state found, or has no linearisation (real balls).
-fn unstable_balanced_state(rotor: &PlanarRotor, omega: f64) -> Option<f64> {
-    use crate::rotor_stability::{stability_over_speed, Rotor, StateKind};
-    let r = stability_over_speed(&Rotor::Planar(rotor.clone()), &[omega]).ok()?;
-    let p = r.points.first()?;
-    let balanced = matches!(p.state, Some(StateKind::Balanced | StateKind::SemiBalanced));
-    (balanced && p.family_dimension == 0 && p.verdict == Some(crate::analysis::Verdict::Unstable)).then_some(p.abscissa?)
 }
 
 /// Where a completed run did not do what its drive evidently asked: a run-up (or run-down)
