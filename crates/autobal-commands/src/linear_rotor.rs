@@ -310,8 +310,8 @@ pub fn stability_table(cfg: &LinearRotorConfig, r: &RotorStability, red: &Option
 }
 
 /// The line of `stability`'s table where the linear rotor's balanced states (its race-whirl
-/// rule, [`autobal::linear_rotor::partial::state_kind`]: no race centre whirling at more than a
-/// tenth of its whirl without the balls' resultant) leave a residual static unbalance above
+/// rule, [`autobal::linear_rotor::partial::state_kind`]: no race centre whirling at more than
+/// 0.05 of its whirl without the balls' resultant, `simulate`'s tolerance) leave a residual static unbalance above
 /// 1e-6 of the unbalance: the balls centre their races, which on a flexible shaft with the
 /// unbalance at other nodes (or on an orbit, the balls swinging) does not cancel the static
 /// unbalance; the line says so rather than "balanced to" it. Empty where there is none.
@@ -320,7 +320,7 @@ fn linear_residual_text(r: &autobal::rotor_stability::RotorStability) -> String 
         r.points.iter().filter(|p| p.state == Some(autobal::rotor_stability::StateKind::Balanced) && p.residual.is_some_and(|v| v > 1e-6)).collect();
     let (Some(a), Some(b)) = (with.first(), with.last()) else { return String::new() };
     format!(
-        "balanced by the race-whirl rule (no race centre whirls at more than a tenth of its whirl without the balls' resultant), not by the residual: a residual static unbalance of {} {} (above the tolerance 1e-6) at {} of {} speeds, {} to {} (the balls centre their races; with the unbalance at other nodes, or swinging on an orbit, that does not cancel the static unbalance)\n",
+        "balanced by the race-whirl rule (no race centre whirls at more than 0.05 of its whirl without the balls' resultant, simulate's tolerance), not by the residual: a residual static unbalance of {} {} (above the tolerance 1e-6) at {} of {} speeds, {} to {} (the balls centre their races; with the unbalance at other nodes, or swinging on an orbit, that does not cancel the static unbalance)\n",
         crate::general::residual_range(&with),
         r.residual_scale.words(),
         with.len(),
@@ -462,8 +462,9 @@ pub fn basins_csv(ends: &[Option<autobal::linear_rotor::basins::BasinEnd>]) -> S
 }
 
 /// The JSON of a linear rotor's basins: the spatial rotor's keys (`runs`, `completed`,
-/// `balanced`, `fraction_balanced`, `wall_time_s`) with `model: "linear"` and the verdict's
-/// threshold.
+/// `balanced`, `fraction_balanced`, `wall_time_s`) with `model: "linear"` and the rule in force
+/// (`balanced_rule`, `balance_tolerance`): a start counts balanced where `simulate` from it
+/// says balanced ([`autobal::linear_rotor::basins`]).
 pub fn basins_json(ends: &[Option<autobal::linear_rotor::basins::BasinEnd>], wall: f64) -> Value {
     let done = ends.iter().flatten().count();
     let balanced = ends.iter().flatten().filter(|s| s.balanced).count();
@@ -473,7 +474,8 @@ pub fn basins_json(ends: &[Option<autobal::linear_rotor::basins::BasinEnd>], wal
         "completed": done,
         "balanced": balanced,
         "fraction_balanced": balanced as f64 / done.max(1) as f64,
-        "balanced_fraction_of_eccentricity": autobal::linear_rotor::basins::BALANCED_FRACTION,
+        "balanced_rule": "the run's outcome, as simulate's: settled, and no race centre whirling at more than balance_tolerance of its whirl with the balls spread evenly (stability's race_whirl basis)",
+        "balance_tolerance": autobal::spatial::dynamics::simulate::BALANCE_TOLERANCE,
         "wall_time_s": wall,
     })
 }
@@ -839,6 +841,8 @@ pub fn simulate_json(cfg: &LinearRotorConfig, s: &RunSummary, red: &Option<Reduc
         "race_whirl": s.race_whirl,
         "ball_drift": s.ball_drift,
         "settled": s.settled,
+        "creep_rate": s.creep_rate,
+        "warnings": s.warnings,
         "steps": s.steps,
         "wall_s": wall,
     })
@@ -894,11 +898,15 @@ fn outcome_line(s: &RunSummary) -> String {
         speed_text(s.final_omega),
         s.residual_unbalance
     );
-    if s.outcome == RunOutcome::NotSettled && s.stopped.is_none() {
+    // (a creep has its own line among the warnings: its balls' drift passed the test)
+    if s.outcome == RunOutcome::NotSettled && s.stopped.is_none() && s.creep_rate.is_none() {
         t.push_str(&format!(
             "warning: not settled: the speed still changes over the last two revolutions, or the balls' mean angles still drift from one revolution to the next{}: a transient (raise drive.t_end), a run-up, or balls circulating round the race; the residual is no stationary state's\n",
             s.ball_drift.map_or(", or it turned less than two revolutions".to_string(), |d| format!(" (by {d:.2e} rad)"))
         ));
+    }
+    for w in &s.warnings {
+        t.push_str(&format!("warning: {w}\n"));
     }
     t
 }
@@ -1199,6 +1207,8 @@ mod tests {
             outcome: autobal::spatial::dynamics::RunOutcome::NotSettled,
             balanced: false,
             steps: 10,
+            creep_rate: None,
+            warnings: vec![],
         }
     }
 

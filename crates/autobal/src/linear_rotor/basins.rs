@@ -5,11 +5,16 @@
 //!
 //! Each end ([`BasinEnd`]) has the balls' final angles relative to the rotor, the first balancer
 //! plane's final whirl radius, the static residual unbalance of the rotor with its balls
-//! ([`residual_unbalance`]), and the verdict `balanced`: the plane's radius within
-//! [`BALANCED_FRACTION`] of the eccentricity scale `e = Σ|m e| / m_t` (`m_t = r_xᵀ M r_x` the
-//! structure's translational mass, `r_x` the rigid translation along `x`: the whirl of a rigid
-//! rotor far above its critical speeds), with the balls at rest relative to the rotor (their
-//! rate over the last output interval below `1e-3 Ω`).
+//! ([`residual_unbalance`]), and the verdict `balanced`: the run's own outcome
+//! ([`RunSummary::outcome`] balanced: settled, and no plane's race whirling at more than
+//! [`BALANCE_TOLERANCE`](crate::spatial::dynamics::simulate::BALANCE_TOLERANCE) of its whirl
+//! with the balls spread evenly, `simulate`'s and `stability`'s rule on the linear route). One
+//! rule: a start is balanced in the basins where `simulate` from it says balanced (before
+//! 2026-11-30 the basins had their own, the plane's final radius within 5 % of the eccentricity
+//! scale `Σ|m e| / m_t` with the balls at rest over the last output interval, which called
+//! balanced ends the run called not settled, and the balanced ends of a rotor with its
+//! unbalance away from the balancer plane, whose race whirl is not the eccentricity's, not
+//! balanced).
 //!
 //! ```
 //! use autobal::control::Control;
@@ -35,10 +40,6 @@ use rayon::prelude::*;
 use serde::Serialize;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-/// Fraction of the eccentricity scale within which the first plane's final whirl counts as
-/// balanced (0.05, as the planar model's 5 % of its eccentricity).
-pub const BALANCED_FRACTION: f64 = 0.05;
-
 /// Where one run ended.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct BasinEnd {
@@ -52,7 +53,7 @@ pub struct BasinEnd {
     pub final_amplitude: f64,
     /// [`residual_unbalance`] at the end.
     pub residual_unbalance: f64,
-    /// The verdict (module docs).
+    /// The verdict: the run's outcome is balanced (module docs).
     pub balanced: bool,
 }
 
@@ -109,7 +110,9 @@ pub fn residual_unbalance(rotor: &LinearRotor, psi: &[f64]) -> f64 {
     }
 }
 
-/// The eccentricity scale `Σ|m e| / m_t` of the verdict (module docs).
+/// The eccentricity scale `Σ|m e| / m_t` (`m_t = r_xᵀ M r_x` the structure's translational
+/// mass, `r_x` the rigid translation along `x`): the whirl of a rigid rotor far above its
+/// critical speeds.
 pub fn eccentricity_scale(rotor: &LinearRotor) -> f64 {
     let n = rotor.dofs();
     let xs: Vec<usize> = (0..rotor.nodes).filter_map(|k| rotor.dof(k, Direction::X)).collect();
@@ -125,7 +128,6 @@ pub fn basins(run: &LinearRun, starts: &[Vec<f64>], control: &Control) -> Result
     if let Some(p) = starts.iter().find(|p| p.len() != balls || p.iter().any(|v| !v.is_finite())) {
         return Err(Error::invalid("psi0", format!("a start has {} angles (finite, one per ball: {balls})", p.len())));
     }
-    let scale = eccentricity_scale(&run.rotor);
     let done = AtomicUsize::new(0);
     let total = starts.len() as u64;
     let ends: Vec<Option<BasinEnd>> = starts
@@ -134,25 +136,21 @@ pub fn basins(run: &LinearRun, starts: &[Vec<f64>], control: &Control) -> Result
             if control.should_stop().is_some() {
                 return Ok(None);
             }
-            let (mut last, mut before): (Option<(f64, f64, Vec<f64>)>, Option<(f64, Vec<f64>)>) = (None, None);
+            let mut last: Option<Vec<f64>> = None;
             let mut radius = f64::NAN;
             let summary = simulate_from(&run.rotor, &run.drive, &run.settings, Some(psi0.as_slice()), control, |s| {
-                if let Some((t, _, p)) = last.take() {
-                    before = Some((t, p));
-                }
                 radius = s.planes.first().map_or(f64::NAN, |c| c.0.hypot(c.1));
-                last = Some((s.t, s.omega, s.psi.clone()));
+                last = Some(s.psi.clone());
                 true
             })?;
             control.report(done.fetch_add(1, Ordering::Relaxed) as u64 + 1, total);
             if control.should_stop().is_some() && summary.stopped.is_some() {
                 return Ok(None);
             }
-            let Some((t, w, psi)) = last else { return Ok(None) };
-            // the balls' rate relative to the rotor over the last output interval
-            let resting = before.is_some_and(|(tb, pb)| psi.iter().zip(&pb).all(|(a, b)| (a - b).abs() <= 1e-3 * w.abs() * (t - tb)));
+            let Some(psi) = last else { return Ok(None) };
             let residual = residual_unbalance(&run.rotor, &psi);
-            let balanced = summary.stopped.is_none() && resting && radius <= BALANCED_FRACTION * scale;
+            // the run's own word (one rule with `simulate`)
+            let balanced = summary.stopped.is_none() && summary.balanced;
             let wrapped = psi.iter().map(|a| a.rem_euclid(std::f64::consts::TAU)).collect();
             Ok(Some(BasinEnd { summary, psi0: psi0.clone(), psi: wrapped, final_amplitude: radius, residual_unbalance: residual, balanced }))
         })

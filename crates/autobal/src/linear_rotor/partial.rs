@@ -94,13 +94,18 @@ pub fn plane_whirl(rotor: &LinearRotor, x: &[f64]) -> Vec<f64> {
 }
 
 /// A plane whose race whirls at more than this fraction of its whirl with the balls' resultant
-/// removed is not balanced ([`state_kind`]; the spatial classifier's bound on the residual
-/// unbalance too, [`crate::rotor_stability::Rotor::residual`]).
-pub(crate) const NOT_REDUCED: f64 = 0.1;
+/// removed is not balanced ([`state_kind`]): the run's own tolerance on the same basis
+/// ([`crate::spatial::dynamics::simulate::BALANCE_TOLERANCE`], 0.05, what
+/// [`super::runup::RunSummary::race_whirl`] is held to), so that `stability` and `simulate`
+/// call one state by one word (0.1 before 2026-11-30: a state whose race whirled between 0.05
+/// and 0.1 of its free whirl read balanced in `stability`, not balanced in the run). Either bound
+/// separates the states met: balanced states measure below ~1.2e-3, the balls opposite on the
+/// line of the whirl 1 (to 1e-3).
+pub(crate) const NOT_REDUCED: f64 = crate::spatial::dynamics::simulate::BALANCE_TOLERANCE;
 
 /// Partially balanced where a plane is at its capacity limit, its balls bunched (all at one
 /// angle to `1e-6` rad) with its race centre off the axis (more than `1e-6 ℓ`); not balanced
-/// where a plane's race centre is off the axis by more than a tenth of its whirl with every
+/// where a plane's race centre is off the axis by more than [`NOT_REDUCED`] (0.05) of its whirl with every
 /// plane's balls spread evenly (their resultant zero: one linear solve of the structure): the balls do not
 /// cancel the unbalance there ([`StateKind::NotBalanced`]: e.g. two balls opposite each other,
 /// at rest on the line of a whirling race, where the race whirls as without them); else
@@ -182,7 +187,7 @@ pub(crate) fn spread_whirl(field: &LinearRotorField) -> Option<Vec<f64>> {
         // residual `b(t) − S(t) p` averaged over 16 equispaced times (exact for gravity's once-
         // and the supports' twice-per-revolution terms), then `p̄ = S̄⁻¹ b̄` (the mean whirl
         // exactly where `S` does not vary, supports equal by direction; to first order in
-        // their difference otherwise, ample against NOT_REDUCED's factor 10)
+        // their difference otherwise, ample against NOT_REDUCED's factor 20)
         Some(period) => structure_mean(field, &angles, period)?,
     };
     Some(plane_whirl(r, &p))
@@ -313,6 +318,25 @@ pub fn bunched_guess(field: &LinearRotorField) -> Option<Vec<f64>> {
     x[..n].copy_from_slice(&p);
     x[n..n + nb].iter_mut().for_each(|v| *v = psi);
     Some(x)
+}
+
+/// The test rotor of this module's and [`super::runup`]'s tests: an overhung disk (8 kg) at
+/// node 4 of a uniform flexible shaft (4 elements, 0.8 m, 40 mm, steel), bearings at nodes 0
+/// and 2, gyroscopic, an unbalance `me` at the disk `unbalance_offset` off its node, a two-ball
+/// balancer there (R 0.1 m, each ball `ball_mass`, drag `drag`) `race_offset` off the node.
+#[cfg(test)]
+pub(crate) fn overhung_rotor(me: f64, unbalance_offset: f64, ball_mass: f64, race_offset: f64, drag: f64) -> LinearRotor {
+    use crate::linear_rotor::shaft::{Bearing, Disk, ShaftBuilder};
+    use crate::linear_rotor::{BalancerPlane, Unbalance};
+    let mut sb = ShaftBuilder::uniform(4, 0.8, 0.04, 2.1e11, 7810.0);
+    sb.disks.push(Disk { node: 4, mass: 8.0, id: 0.05, ip: 0.09 });
+    sb.bearings.push(Bearing { node: 0, k: 2e7, c: 500.0 });
+    sb.bearings.push(Bearing { node: 2, k: 2e7, c: 500.0 });
+    (sb.rotary_inertia, sb.gyroscopic) = (true, true);
+    let mut r = sb.build().unwrap();
+    r.unbalances.push(Unbalance { node: 4, me, phase: 0.0, offset: unbalance_offset });
+    r.balancers.push(BalancerPlane { node: 4, radius: 0.1, balls: 2, ball_mass, drag, offset: race_offset });
+    r
 }
 
 #[cfg(test)]
@@ -454,18 +478,9 @@ mod tests {
         eprintln!("t_end {t_end}: ψ {:?} vs {:?}, radius {} vs {}", e.psi, s.psi, x.hypot(y), s.whirl[0]);
     }
 
-    /// The overhung disk of a flexible shaft (gyroscopic) with a two-ball balancer off the node.
+    /// [`super::overhung_rotor`] with the balls' drag `1e-4`, and its [`crate::rotor_stability::Rotor`].
     fn overhung(me: f64, unbalance_offset: f64, ball_mass: f64, race_offset: f64) -> (LinearRotor, crate::rotor_stability::Rotor) {
-        use crate::linear_rotor::shaft::{Bearing, Disk, ShaftBuilder};
-        use crate::linear_rotor::Unbalance;
-        let mut sb = ShaftBuilder::uniform(4, 0.8, 0.04, 2.1e11, 7810.0);
-        sb.disks.push(Disk { node: 4, mass: 8.0, id: 0.05, ip: 0.09 });
-        sb.bearings.push(Bearing { node: 0, k: 2e7, c: 500.0 });
-        sb.bearings.push(Bearing { node: 2, k: 2e7, c: 500.0 });
-        (sb.rotary_inertia, sb.gyroscopic) = (true, true);
-        let mut r = sb.build().unwrap();
-        r.unbalances.push(Unbalance { node: 4, me, phase: 0.0, offset: unbalance_offset });
-        r.balancers.push(BalancerPlane { node: 4, radius: 0.1, balls: 2, ball_mass, drag: 1e-4, offset: race_offset });
+        let r = super::overhung_rotor(me, unbalance_offset, ball_mass, race_offset, 1e-4);
         (r.clone(), crate::rotor_stability::Rotor::Linear(r))
     }
 
