@@ -137,3 +137,21 @@ fn a_creep_away_from_opposite_balls_is_not_settled_and_says_it_depends_on_the_st
     assert!((rate / lin.abscissa - 1.0).abs() < 1e-9 && (rate - 0.0558).abs() < 1e-3, "{rate} vs {}", lin.abscissa);
     assert!(s.warnings.iter().any(|m| m.contains("not balanced") && m.contains("depends on their start")), "{:?}", s.warnings);
 }
+
+/// A torque drive with a polar moment below the balls' own `Σ n m_b R²` is refused naming
+/// `linear_rotor.polar_inertia`, with the reason (1e-9 kg m² ran for minutes, stiff beyond use:
+/// the spin against the balls' drag relaxes at drag / I_p); the balls' moment itself is taken.
+/// Checked to fail: without the check `RunUpSystem::new` accepts 1e-9.
+#[test]
+fn a_torque_drive_lighter_than_its_balls_is_refused() {
+    let (p, mut r) = jeffcott();
+    let balls = p.n as f64 * p.m3 * p.r * p.r;
+    let drive = Drive::Torque { omega0: 100.0, torque: 0.5, t_off: None };
+    r.polar_inertia = 1e-9;
+    let e = autobal::linear_rotor::runup::RunUpSystem::new(&r, &drive).err().expect("refused").to_string();
+    assert!(e.starts_with("linear_rotor.polar_inertia:") && e.contains("below the balls' own moment"), "{e}");
+    // a prescribed speed needs no polar moment
+    assert!(autobal::linear_rotor::runup::RunUpSystem::new(&r, &Drive::Speed { omega0: 100.0 }).is_ok());
+    r.polar_inertia = balls;
+    assert!(autobal::linear_rotor::runup::RunUpSystem::new(&r, &drive).is_ok());
+}

@@ -3,28 +3,37 @@
 
 use autobal::control::Control;
 use autobal::drive::Drive;
-use autobal::linear_rotor::basins::{angle_grid, basins, residual_unbalance, BALANCED_FRACTION};
+use autobal::linear_rotor::basins::{angle_grid, basins, residual_unbalance};
 use autobal::linear_rotor::runup::RunSettings;
 use autobal::linear_rotor::spec::LinearRun;
 use autobal::linear_rotor::LinearRotor;
 use autobal::ode::Method;
 use autobal::planar::{PlanarRotor, Settings};
+use autobal::spatial::dynamics::simulate::BALANCE_TOLERANCE;
+use autobal::spatial::dynamics::RunOutcome;
 
 /// Each end of the preset's 3 × 3 grid at constant speed above the critical one equals the
 /// planar model's run from the same start: the balls' final angles to 1e-7 rad and the whirl
 /// radius to 1e-7 of the unbalanced eccentricity (both integrate at rtol 1e-10; run-ups agree
 /// to 1e-8 of the peak, tests/linear_rotor_config.rs; 3 s at constant speed lets the angles'
-/// error grow at most tenfold while the motion settles). Balanced ends have a small static
-/// residual: with the node whirling at `r ≤ 0.05 me/M`, the force balance far above the critical
-/// speed leaves `|me + Σ m_b R e^{iψ}| ≈ M r`, so the residual is at most ~0.05 (0.1 allows the
-/// damping's and the stiffness's share `(c/Ω + k/Ω²) r`).
+/// error grow at most tenfold while the motion settles). One rule for "balanced": each end is
+/// balanced exactly where its own run's outcome is (`simulate`'s word), and that word agrees
+/// with the native planar run's (the same rule on the planar model's own measures, a second
+/// route). A balanced end's race whirls at most 0.05 (`BALANCE_TOLERANCE`) of its whirl with
+/// the balls spread, `|me Ω² / (k − m_t Ω² + i c Ω)|` (`m_t = m1 + m2 + n m3`, the balls riding
+/// with the node) in closed form, so its radius is at most 0.05 of that (plus 1e-7 s1 for the
+/// integration). Balanced ends have a small static residual: with the node whirling at `r`, the
+/// force balance far above the critical speed leaves `|me + Σ m_b R e^{iψ}| ≈ m_t r`, so the
+/// residual is at most ~0.05 · 1.19 (the free whirl over `me/m_t` at 2.5 ω_n) plus the
+/// damping's and the stiffness's share `(c/Ω + k/Ω²) r`: 0.1 allows them.
 #[test]
 fn the_presets_basins_end_where_the_planar_runs_end() {
     let p = PlanarRotor { s2: 0.0, ..PlanarRotor::paper() };
     let rotor = LinearRotor::from_planar(&p).unwrap();
     let wn = p.natural_frequency();
     let (t_end, dt) = (3.0, 0.01);
-    let drive = Drive::Speed { omega0: 2.5 * wn };
+    let drive_speed = 2.5 * wn;
+    let drive = Drive::Speed { omega0: drive_speed };
     let settings = RunSettings { t_end, dt, rtol: 1e-10, atol: 1e-12, method: Method::Auto, max_steps: 10_000_000, max_wall_s: None, physical_nodes: None };
     let run = LinearRun { rotor: rotor.clone(), drive: drive.clone(), settings, default_drive: false };
     let starts = angle_grid(&rotor, 3, "n").unwrap();
@@ -40,7 +49,7 @@ fn the_presets_basins_end_where_the_planar_runs_end() {
         s.atol = 1e-12;
         s.psi0 = start.clone();
         let mut last = None;
-        autobal::planar::simulate(&p, &drive, &s, |x| {
+        let planar = autobal::planar::simulate(&p, &drive, &s, |x| {
             last = Some((x.x.hypot(x.y), x.psi.clone()));
             true
         })
@@ -54,9 +63,16 @@ fn the_presets_basins_end_where_the_planar_runs_end() {
         assert!((end.final_amplitude - r).abs() < 1e-7 * p.s1, "start {start:?}: r {} vs {r}", end.final_amplitude);
         // from the wrapped angles: the same to round-off (the residual is relative to m e)
         assert!((end.residual_unbalance - residual_unbalance(&rotor, &end.psi)).abs() < 1e-12);
+        // one rule: the run's own word, and the planar run's
+        assert_eq!(end.balanced, end.summary.outcome == RunOutcome::Balanced, "start {start:?}: {end:?}");
+        assert_eq!(end.balanced, planar.outcome == RunOutcome::Balanced, "start {start:?}: {end:?} vs planar {:?}", planar.outcome);
         if end.balanced {
             balanced += 1;
-            assert!(end.final_amplitude <= BALANCED_FRACTION * p.m1 * p.s1 / (p.m1 + p.m2));
+            let w = drive_speed;
+            let mt = p.m1 + p.m2 + p.n as f64 * p.m3;
+            let free = p.m1 * p.s1 * w * w / (p.k - mt * w * w).hypot(p.c * w);
+            assert!(end.summary.race_whirl.unwrap() <= BALANCE_TOLERANCE, "start {start:?}: {end:?}");
+            assert!(end.final_amplitude <= BALANCE_TOLERANCE * free + 1e-7 * p.s1, "start {start:?}: r {} vs free whirl {free}", end.final_amplitude);
             assert!(end.residual_unbalance < 0.1, "start {start:?}: {end:?}");
         }
     }

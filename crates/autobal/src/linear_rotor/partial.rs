@@ -105,7 +105,8 @@ pub(crate) const NOT_REDUCED: f64 = crate::spatial::dynamics::simulate::BALANCE_
 
 /// Partially balanced where a plane is at its capacity limit, its balls bunched (all at one
 /// angle to `1e-6` rad) with its race centre off the axis (more than `1e-6 ℓ`); not balanced
-/// where a plane's race centre is off the axis by more than [`NOT_REDUCED`] (0.05) of its whirl with every
+/// where a plane's race centre is off the axis by more than 0.05 of its whirl (`simulate`'s
+/// [`BALANCE_TOLERANCE`](crate::spatial::dynamics::simulate::BALANCE_TOLERANCE)) with every
 /// plane's balls spread evenly (their resultant zero: one linear solve of the structure): the balls do not
 /// cancel the unbalance there ([`StateKind::NotBalanced`]: e.g. two balls opposite each other,
 /// at rest on the line of a whirling race, where the race whirls as without them); else

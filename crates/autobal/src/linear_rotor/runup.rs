@@ -98,6 +98,20 @@ impl<'a> RunUpSystem<'a> {
                 "a torque drive (\"torque\", \"motor\", a torque \"schedule\") needs the rotor's polar moment of inertia about its axis (kg m², > 0): M, C, G, K do not hold it",
             ));
         }
+        // a spin lighter than the balls it carries: no rotor (its race and disk alone exceed
+        // them), and a run stiff beyond use, the spin relative to the balls relaxing at their
+        // drag over I_p (1e-9 kg m² on examples/linear_rotor_shaft.toml: 1e-6 s simulated in
+        // 30 s, the speed at -1.8e10 rad/s)
+        let balls: f64 = rotor.balancers.iter().map(|b| b.balls as f64 * b.ball_mass * b.radius * b.radius).sum();
+        if spin && rotor.polar_inertia < balls {
+            return Err(Error::invalid(
+                "linear_rotor.polar_inertia",
+                format!(
+                    "{} kg m² is below the balls' own moment about the axis, Σ n m_b R² = {balls:.6e} kg m²: under a torque drive the rotor would turn with less inertia than the balls riding on its race (a real rotor's race and disk alone exceed them), and the run is stiff beyond use (the spin against the balls' drag relaxes at drag / I_p); give the rotor's polar moment (disks, shaft, race)",
+                    rotor.polar_inertia
+                ),
+            ));
+        }
         Ok(RunUpSystem { field: LinearRotorField::with_real_balls(rotor, drive.omega0(), Frame::Fixed)?, rotor, drive, spin })
     }
 
