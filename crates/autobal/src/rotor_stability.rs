@@ -921,12 +921,24 @@ pub fn stability_over_speed(rotor: &Rotor, speeds: &[f64]) -> Result<RotorStabil
 /// ([`stability_over_speed`]); `None` where it is stable or neutral, belongs to a family, is not
 /// the state found, or has no linearisation (real balls). The runs' creep check: a run at a
 /// constant speed that ends balanced next to such a state is creeping away from it, not settled
-/// (`crate::planar::simulate`'s summary).
+/// (`crate::planar::simulate`'s and `crate::spatial::dynamics::simulate`'s summaries, with
+/// `creep_warning`'s words).
 pub fn unstable_isolated_state(rotor: &Rotor, omega: f64) -> Option<f64> {
     let r = stability_over_speed(rotor, &[omega]).ok()?;
     let p = r.points.first()?;
     let balanced = matches!(p.state, Some(StateKind::Balanced | StateKind::SemiBalanced));
     (balanced && p.family_dimension == 0 && p.verdict == Some(crate::analysis::Verdict::Unstable)).then_some(p.abscissa?)
+}
+
+/// The runs' warning for the creep check ([`unstable_isolated_state`]): the final speed `omega`
+/// and the growth rate `rate` (> 0) of the unstable state the run ends next to, in the model's
+/// units (rad/s and 1/s; a dimensionless spatial model's `Ω` and `1/τ`, which the run does not
+/// know, so the words name no unit). One wording for every route (planar, spatial, linear).
+pub(crate) fn creep_warning(omega: f64, rate: f64) -> String {
+    format!(
+        "the balls end near the balanced state, which is unstable at ω = {omega:.2} (exact linear stability: growth rate {rate:.4e}, a deviation grows by e in {:.4e}; rad/s, 1/s and s, or a dimensionless model's Ω and τ): they creep away from it, so the end is not settled although the residual is small; a longer run leaves it",
+        1.0 / rate
+    )
 }
 
 /// [`stability_over_speed`] under `control`, asked once per speed (each grid speed, each trial
