@@ -1176,26 +1176,14 @@ fn family_over_speed(
             let near = states[i].or(states[i + 1]).map(|s| s.x.clone());
             let g = |w: f64| extremes_at(w, near.as_deref()).map(|e| if which == 0 { e.0 } else { e.1 });
             match locate(a.omega, b.omega, value(a), value(b), good(a), g, control) {
-                Ok(w) => boundary[i] = Some(w),
+                // a family's range ends are where its extreme abscissa crosses 0, never a
+                // switch of state
+                Ok(w) => boundary[i] = Some((w, false)),
                 Err(why) => stopped = Some(why),
             }
         }
-        let mut i = 0;
-        while i < points.len() {
-            if !good(&points[i]) {
-                i += 1;
-                continue;
-            }
-            let start = if i > 0 { boundary[i - 1].map(|w| (w, true)) } else { None }.unwrap_or((points[i].omega, false));
-            let mut j = i;
-            while j + 1 < points.len() && good(&points[j + 1]) {
-                j += 1;
-            }
-            let end = boundary[j].map(|w| (w, true)).unwrap_or((points[j].omega, false));
-            let (from, to, fb, tb) = if start.0 <= end.0 { (start.0, end.0, start.1, end.1) } else { (end.0, start.0, end.1, start.1) };
-            out.push(StableRange { from, to, from_is_boundary: fb, to_is_boundary: tb, from_is_switch: false, to_is_switch: false });
-            i = j + 1;
-        }
+        // the scan's own rule (one function: session 18 found the two copies the same)
+        *out = crate::analysis::assemble_ranges(|i| points[i].omega, |i| good(&points[i]), &boundary);
     }
     let [all, some] = ranges;
     let parameterisation = if dimension == 1 {
