@@ -345,7 +345,7 @@ pub struct Output {
 }
 
 impl Output {
-    /// What the front end says after the result: the files written, the planar run's warnings.
+    /// What the front end says after the result: the files written, the planar and spatial runs' warnings.
     pub fn notes(&self) -> Vec<String> {
         let mut n = vec![];
         if let Some(w) = &self.written {
@@ -359,8 +359,10 @@ impl Output {
                 w.plots.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")
             ));
         }
-        if let Run::Planar { summary, .. } = &self.run {
-            n.extend(summary.warnings.iter().map(|w| format!("warning: {w}")));
+        match &self.run {
+            Run::Planar { summary, .. } => n.extend(summary.warnings.iter().map(|w| format!("warning: {w}"))),
+            Run::Spatial { summary, .. } => n.extend(summary.warnings.iter().map(|w| format!("warning: {w}"))),
+            Run::Linear { .. } => {}
         }
         n
     }

@@ -203,7 +203,9 @@ pub fn summary_table(sim: &SpatialSim, s: &Summary, wall: f64) -> String {
             RunOutcome::NotSettled => "not settled",
         }
     );
-    if s.outcome == RunOutcome::NotSettled && s.stopped.is_none() {
+    // (not where the creep check said why: the balls creep away from an unstable balanced
+    // state, which a longer run leaves, and their drift passed the test)
+    if s.outcome == RunOutcome::NotSettled && s.stopped.is_none() && s.warnings.is_empty() {
         let _ = writeln!(
             o,
             "warning: the balls have not settled: their mean angles still drift from one revolution to the next{}: a transient (raise drive.t_end) or balls circulating round the race; the residual and radius are no stationary state's",

@@ -177,7 +177,7 @@ impl Row for autobal::spatial::dynamics::Summary {
         )
     }
     fn warnings(&self) -> Vec<String> {
-        self.stopped.iter().cloned().collect()
+        self.stopped.iter().chain(&self.warnings).cloned().collect()
     }
     fn peak_final(&self) -> [f64; 2] {
         let v = autobal::sweep::spatial_summary_values(self);

@@ -1149,6 +1149,7 @@ pub fn spatial_simulation(sim: &crate::config::SpatialSimulation, s: &crate::spa
         "wall_time_s": wall_time_s,
         "t_end": s.t_end,
         "stopped": s.stopped,
+        "warnings": s.warnings,
         "natural_frequency": sim.rotor.natural_frequency(),
         "rotor": sim.rotor,
         "drive": sim.drive,

@@ -767,7 +767,7 @@ pub enum StateKind {
     /// unbalance on average but for the swing's second order, ∝ g² under gravity;
     /// [`SpeedPoint::residual`] carries it). Planar: the race centred, `s2 = 0`, E on the axis.
     /// Linear: the race-whirl rule of [`crate::linear_rotor::partial::state_kind`] (no plane's
-    /// race whirls at more than a tenth of its whirl without the balls' resultant); its residual
+    /// race whirls at more than 0.05 (`BALANCE_TOLERANCE`) of its whirl without the balls' resultant); its residual
     /// is the static one only (the linear rotor's nodes carry no axial positions).
     Balanced,
     /// Paper 004's eccentric race: the race centre E on the axis, the disk whirling at `s2`.
@@ -791,7 +791,7 @@ pub enum StateKind {
     /// balanced orbit's own swing can leave more than 5 % of the unbalance (the spatial
     /// two-plane example at 131 rad/s: 0.30): not balanced either. Recognised by the planar
     /// rotor's E off the axis with the balls not bunched, the linear rotor's race whirling (mean
-    /// over an orbit) at more than a tenth of its whirl without the balls' resultant
+    /// over an orbit) at more than 0.05 (`BALANCE_TOLERANCE`) of its whirl without the balls' resultant
     /// ([`crate::linear_rotor::partial::state_kind`]), the spatial rotor's residual above 5 %
     /// of the unbalance (at an equilibrium above `1e-6`) where a balanced state exists.
     NotBalanced,
@@ -921,12 +921,31 @@ pub fn stability_over_speed(rotor: &Rotor, speeds: &[f64]) -> Result<RotorStabil
 /// ([`stability_over_speed`]); `None` where it is stable or neutral, belongs to a family, is not
 /// the state found, or has no linearisation (real balls). The runs' creep check: a run at a
 /// constant speed that ends balanced next to such a state is creeping away from it, not settled
-/// (`crate::planar::simulate`'s summary).
+/// (`crate::planar::simulate`'s and `crate::spatial::dynamics::simulate`'s summaries, with
+/// `creep_warning`'s words).
 pub fn unstable_isolated_state(rotor: &Rotor, omega: f64) -> Option<f64> {
     let r = stability_over_speed(rotor, &[omega]).ok()?;
     let p = r.points.first()?;
     let balanced = matches!(p.state, Some(StateKind::Balanced | StateKind::SemiBalanced));
     (balanced && p.family_dimension == 0 && p.verdict == Some(crate::analysis::Verdict::Unstable)).then_some(p.abscissa?)
+}
+
+/// The runs' warning for the creep check ([`unstable_isolated_state`]): the final speed `omega`
+/// and the growth rate `rate` (> 0) of the unstable state the run ends next to, in the model's
+/// units: rad/s and 1/s where `si` (the planar and linear rotors), else named as either (the
+/// spatial run does not know whether its model is the papers' dimensionless one, `Ω` and
+/// `1/τ`). One wording for every route (planar, spatial, linear).
+pub(crate) fn creep_warning(omega: f64, rate: f64, si: bool) -> String {
+    let units = if si { ("rad/s", " 1/s", " s", "") } else { ("", "", "", "; rad/s, 1/s and s, or a dimensionless model's Ω and τ") };
+    format!(
+        "the balls end near the balanced state, which is unstable at ω = {omega:.2}{sep}{} (exact linear stability: growth rate {rate:.4e}{}, a deviation grows by e in {:.4e}{}{}): they creep away from it, so the end is not settled although the residual is small; a longer run leaves it",
+        units.0,
+        units.1,
+        1.0 / rate,
+        units.2,
+        units.3,
+        sep = if si { " " } else { "" },
+    )
 }
 
 /// [`stability_over_speed`] under `control`, asked once per speed (each grid speed, each trial
@@ -1164,26 +1183,14 @@ fn family_over_speed(
             let near = states[i].or(states[i + 1]).map(|s| s.x.clone());
             let g = |w: f64| extremes_at(w, near.as_deref()).map(|e| if which == 0 { e.0 } else { e.1 });
             match locate(a.omega, b.omega, value(a), value(b), good(a), g, control) {
-                Ok(w) => boundary[i] = Some(w),
+                // a family's range ends are where its extreme abscissa crosses 0, never a
+                // switch of state
+                Ok(w) => boundary[i] = Some((w, false)),
                 Err(why) => stopped = Some(why),
             }
         }
-        let mut i = 0;
-        while i < points.len() {
-            if !good(&points[i]) {
-                i += 1;
-                continue;
-            }
-            let start = if i > 0 { boundary[i - 1].map(|w| (w, true)) } else { None }.unwrap_or((points[i].omega, false));
-            let mut j = i;
-            while j + 1 < points.len() && good(&points[j + 1]) {
-                j += 1;
-            }
-            let end = boundary[j].map(|w| (w, true)).unwrap_or((points[j].omega, false));
-            let (from, to, fb, tb) = if start.0 <= end.0 { (start.0, end.0, start.1, end.1) } else { (end.0, start.0, end.1, start.1) };
-            out.push(StableRange { from, to, from_is_boundary: fb, to_is_boundary: tb, from_is_switch: false, to_is_switch: false });
-            i = j + 1;
-        }
+        // the scan's own rule (one function: session 18 found the two copies the same)
+        *out = crate::analysis::assemble_ranges(|i| points[i].omega, |i| good(&points[i]), &boundary);
     }
     let [all, some] = ranges;
     let parameterisation = if dimension == 1 {

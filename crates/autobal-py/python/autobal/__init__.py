@@ -274,7 +274,9 @@ class SpatialModel(_Config):
         overrides the output interval. Columns ``t, omega, x, y, tilt_x, tilt_y``,
         ``amplitude_left``, ``amplitude_right`` (supports), ``amplitude_plane1`` … (balancer
         planes), ``psi`` (samples × balls); the summary as ``autobal simulate --format json``
-        prints it. A run that stops before its end raises :class:`SimulationError`.
+        prints it (``summary["mean_displacement"]`` and ``summary["static_sag"]`` are ``None``
+        when the run turned less than a revolution: there is no revolution to average over). A
+        run that stops before its end raises :class:`SimulationError`.
 
         >>> s = SpatialModel(drive={"kind": "speed", "omega0": 1.6, "t_end": 200}).simulate(dt=1.0)
         >>> s.summary["model"], s["psi"].shape, s.summary["units"]

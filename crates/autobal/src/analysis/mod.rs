@@ -95,6 +95,7 @@ mod stability;
 mod stationary;
 
 pub use family::{family, Family, FamilyMember, FamilyOptions, FamilyVerdict, ParameterRange, Sampling};
+pub(crate) use stability::assemble_ranges;
 pub use stability::{
     mode, speed_scan, speed_scan_with, stability, Eigenvalue, Kind, ScanOptions, ScanPoint, SpeedScan, Stability, StableRange, Verdict, FLOQUET_TOLERANCE,
     NEUTRAL_TOLERANCE,

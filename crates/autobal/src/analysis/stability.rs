@@ -613,25 +613,37 @@ where
             None => boundary[i] = end.map(|w| (w, switch)),
         }
     }
-    let mut stable_ranges = vec![];
+    let stable_ranges = assemble_ranges(|i| points[i].omega, |i| points[i].is_stable(), &boundary);
+    Ok(Outcome { value: SpeedScan { points, stable_ranges }, stopped })
+}
+
+/// The ranges over a grid of `boundary.len()` speeds (`omega(i)`, ascending) where `good(i)`
+/// holds: each run of good points from its first to its last, each end at the located end
+/// `boundary[i]` between points `i` and `i + 1` where there is one (`(speed, switch)`: a
+/// switch of state, `*_is_switch`, else a boundary, `*_is_boundary`), else at the grid speed
+/// (neither). One rule for [`speed_scan_with`]'s ranges and a family's
+/// (`rotor_stability`'s all and some members stable, whose ends are never switches).
+pub(crate) fn assemble_ranges(omega: impl Fn(usize) -> f64, good: impl Fn(usize) -> bool, boundary: &[Option<(f64, bool)>]) -> Vec<StableRange> {
+    let n = boundary.len();
+    let mut ranges = vec![];
     let mut i = 0;
-    while i < points.len() {
-        if !points[i].is_stable() {
+    while i < n {
+        if !good(i) {
             i += 1;
             continue;
         }
         // (speed, located as a boundary, a switch of state)
-        let start = if i > 0 { boundary[i - 1].map(|(w, sw)| (w, !sw, sw)) } else { None }.unwrap_or((points[i].omega, false, false));
+        let start = if i > 0 { boundary[i - 1].map(|(w, sw)| (w, !sw, sw)) } else { None }.unwrap_or((omega(i), false, false));
         let mut j = i;
-        while j + 1 < points.len() && points[j + 1].is_stable() {
+        while j + 1 < n && good(j + 1) {
             j += 1;
         }
-        let end = boundary[j].map(|(w, sw)| (w, !sw, sw)).unwrap_or((points[j].omega, false, false));
+        let end = boundary[j].map(|(w, sw)| (w, !sw, sw)).unwrap_or((omega(j), false, false));
         let (lo, hi) = if start.0 <= end.0 { (start, end) } else { (end, start) };
-        stable_ranges.push(StableRange { from: lo.0, to: hi.0, from_is_boundary: lo.1, to_is_boundary: hi.1, from_is_switch: lo.2, to_is_switch: hi.2 });
+        ranges.push(StableRange { from: lo.0, to: hi.0, from_is_boundary: lo.1, to_is_boundary: hi.1, from_is_switch: lo.2, to_is_switch: hi.2 });
         i = j + 1;
     }
-    Ok(Outcome { value: SpeedScan { points, stable_ranges }, stopped })
+    ranges
 }
 
 #[cfg(test)]

@@ -839,11 +839,7 @@ pub fn simulate_from(
     if let Some(rate) = creep_rate {
         end.outcome = crate::spatial::dynamics::RunOutcome::NotSettled;
         end.settled = false;
-        // TODO(lead): spat18's shared creep warning
-        warnings.push(format!(
-            "the balls end near the balanced state, which is unstable at {final_omega:.2} rad/s (exact linear stability: growth rate {rate:.4e} 1/s, a deviation grows by e in {:.4e} s): they creep away from it, so the end is not settled although the residual is small; a longer run leaves it",
-            1.0 / rate
-        ));
+        warnings.push(crate::rotor_stability::creep_warning(final_omega, rate, true));
     }
     // the same for an end that is not balanced: two balls spread evenly (opposite each other)
     // start next to the state with the balls opposite on the line of the whirl, which is

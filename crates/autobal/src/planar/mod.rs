@@ -756,10 +756,7 @@ fn simulate_sampled(
     };
     let mut warnings = if completed { passage_warnings(rotor, drive, settings, speed_range, final_omega, settled) } else { vec![] };
     if let Some(rate) = creep {
-        warnings.push(format!(
-            "the balls end near the balanced state, which is unstable at {final_omega:.2} rad/s (exact linear stability: growth rate {rate:.4e} 1/s, a deviation grows by e in {:.4e} s): they creep away from it, so the end is not settled although the residual is small; a longer run leaves it",
-            1.0 / rate
-        ));
+        warnings.push(crate::rotor_stability::creep_warning(final_omega, rate, true));
     }
     Ok(Summary {
         peak_amplitude: peak.value,

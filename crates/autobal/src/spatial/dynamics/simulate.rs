@@ -116,8 +116,10 @@ pub struct Summary {
     pub final_amplitude: f64,
     /// Mean lateral displacement `r̄ = (1/T) ∫ r dt` of the shaft at the (first) balancer plane
     /// in fixed axes over the last revolution (m, or `ρ_s`): the stationary motion without the
-    /// whirl, e.g. the sag under gravity across the axis (`≈ M g / Σ k`).
-    pub mean_displacement: [f64; 2],
+    /// whirl, e.g. the sag under gravity across the axis (`≈ M g / Σ k`). `None` when the run
+    /// turned less than a revolution: there is no revolution to average over (main at da1a84c
+    /// said `[0, 0]`).
+    pub mean_displacement: Option<[f64; 2]>,
     /// `|r̄|`, the static sag at the (first) balancer plane (see [`Summary::mean_displacement`]),
     /// where it is one: the run turned at least a revolution (a mean was taken) and either
     /// gravity acts across the spin axis ([`SpatialRotor::gravity_across`]: the sag it
@@ -168,6 +170,11 @@ pub struct Summary {
     pub status: Status,
     /// Why the run stopped before `t_end`, if it did.
     pub stopped: Option<String>,
+    /// What the verdict alone does not say: a balanced end at a constant prescribed speed next
+    /// to a balanced state that the exact linear stability finds unstable there
+    /// ([`crate::rotor_stability::unstable_isolated_state`]: the outcome is then
+    /// [`RunOutcome::NotSettled`], the balls creeping away from it).
+    pub warnings: Vec<String>,
 }
 
 impl Summary {
@@ -703,11 +710,11 @@ fn summarise(eq: &Equations, t: f64, y: &[f64], peak: (f64, f64, f64), stats: St
     let whole = window.covers(1.0);
     let (st, cp, mean_psi, mean_r, whirl) = if whole {
         let (_, means, mean_r, rms) = window.mean();
-        ([means[0], means[1]], [means[2], means[3]], means[REC_PSI - REC_RES..].to_vec(), mean_r, rms)
+        ([means[0], means[1]], [means[2], means[3]], means[REC_PSI - REC_RES..].to_vec(), Some(mean_r), rms)
     } else {
         let (st, cp) = eq.residual_unbalance(y);
         let d = eq.displacement_at(y, amplitude_z(eq));
-        (st, cp, y[ROTOR_COORDS..ROTOR_COORDS + nb].to_vec(), [0.0; 2], d[0].hypot(d[1]))
+        (st, cp, y[ROTOR_COORDS..ROTOR_COORDS + nb].to_vec(), None, d[0].hypot(d[1]))
     };
     let residual_unbalance = st[0].hypot(st[1]) / if s0n > 0.0 { s0n } else { capacity.max(f64::MIN_POSITIVE) };
     let residual_couple = has_couple.then(|| cp[0].hypot(cp[1]) / c0n);
@@ -738,6 +745,16 @@ fn summarise(eq: &Equations, t: f64, y: &[f64], peak: (f64, f64, f64), stats: St
         residual: residual_unbalance,
         residual_couple,
     });
+    // the creep check (as `crate::planar::simulate`'s): a balanced end at a constant prescribed
+    // speed next to a balanced state that is unstable there is a slow creep away from it, which
+    // the drift test's floor can pass (tests/spatial_creep_18.rs); the exact linear stability at
+    // the final speed decides, for an isolated state only (with n >= 3 balls in a plane the run
+    // may rest on a stable member of a family whose closed-form member is unstable)
+    let creep = (outcome == RunOutcome::Balanced && eq.drive.prescribed() && eq.drive.kinematics(t).1 == 0.0)
+        .then(|| crate::rotor_stability::unstable_isolated_state(&crate::rotor_stability::Rotor::Spatial(r.clone()), omega))
+        .flatten();
+    let (outcome, settled) = if creep.is_some() { (RunOutcome::NotSettled, false) } else { (outcome, settled) };
+    let warnings = creep.map(|rate| crate::rotor_stability::creep_warning(omega, rate, false)).into_iter().collect();
     Summary {
         peak_amplitude: peak.0,
         omega_at_peak: peak.1,
@@ -745,7 +762,7 @@ fn summarise(eq: &Equations, t: f64, y: &[f64], peak: (f64, f64, f64), stats: St
         final_amplitude: whirl,
         mean_displacement: mean_r,
         // a sag where it is one: gravity across the axis, or the stationary motion's mean
-        static_sag: (whole && (r.gravity_across() || settled)).then(|| mean_r[0].hypot(mean_r[1])),
+        static_sag: mean_r.filter(|_| r.gravity_across() || settled).map(|m| m[0].hypot(m[1])),
         final_omega: omega,
         residual_unbalance,
         residual_couple,
@@ -764,6 +781,7 @@ fn summarise(eq: &Equations, t: f64, y: &[f64], peak: (f64, f64, f64), stats: St
             _ => Some(out.to_string()),
         },
         status: out.status.clone(),
+        warnings,
     }
 }
 
