@@ -754,7 +754,8 @@ fn simulate_sampled(
         Status::Stopped(StopReason::Observer) => Some(format!("interrupted at t = {:.6} s", out.t)),
         _ => Some(format!("{out}").replace(&format!("t = {:.6}", out.t), &format!("t = {:.6} s", out.t))),
     };
-    let mut warnings = if completed { passage_warnings(rotor, drive, settings, speed_range, final_omega, settled) } else { vec![] };
+    let mut warnings = if completed { passage_warnings(rotor, drive, settings, speed_range, final_omega, settled || creep.is_some()) } else { vec![] };
+    // (a creep's own warning says why the end is not settled: not also "raise drive.t_end")
     if let Some(rate) = creep {
         warnings.push(crate::rotor_stability::creep_warning(final_omega, rate, true));
     }
