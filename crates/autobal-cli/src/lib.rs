@@ -819,8 +819,9 @@ fn run_simulate(args: &simulate::Args, format: Format, control: &Control) -> Res
     }
     let out = out?;
     let shown = show(&out, format);
-    for n in out.notes() {
-        term::note(&n);
+    // the table prints the run's warnings itself: on stderr only beside JSON
+    for n in out.notes().iter().filter(|n| format != Format::Table || !n.starts_with("warning: ")) {
+        term::note(n);
     }
     shown
 }

@@ -345,7 +345,8 @@ pub struct Output {
 }
 
 impl Output {
-    /// What the front end says after the result: the files written, the planar and spatial runs' warnings.
+    /// What the front end says after the result: the files written, the run's warnings (which
+    /// the table also prints: a front end showing the table leaves them out).
     pub fn notes(&self) -> Vec<String> {
         let mut n = vec![];
         if let Some(w) = &self.written {
@@ -362,7 +363,7 @@ impl Output {
         match &self.run {
             Run::Planar { summary, .. } => n.extend(summary.warnings.iter().map(|w| format!("warning: {w}"))),
             Run::Spatial { summary, .. } => n.extend(summary.warnings.iter().map(|w| format!("warning: {w}"))),
-            Run::Linear { .. } => {}
+            Run::Linear { run, .. } => n.extend(run.summary.warnings.iter().map(|w| format!("warning: {w}"))),
         }
         n
     }

@@ -212,6 +212,9 @@ pub fn summary_table(sim: &SpatialSim, s: &Summary, wall: f64) -> String {
             s.ball_drift.map_or(", or it turned less than two revolutions".to_string(), |d| format!(" by {d:.2e} rad"))
         );
     }
+    for w in &s.warnings {
+        let _ = writeln!(o, "warning: {w}");
+    }
     let _ = writeln!(o, "integration: {} steps ({} rejected), {} right-hand sides, {:.3} s", s.steps, s.rejected_steps, s.rhs_evaluations, wall);
     if sim.rotor.planes.iter().any(|p| p.physics.is_active()) {
         let _ = writeln!(o, "real balls: {} contacts, {} stick-slip transitions", s.contacts, s.stick_slip_transitions);

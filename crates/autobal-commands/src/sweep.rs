@@ -152,7 +152,7 @@ impl Row for autobal::linear_rotor::runup::RunSummary {
         format!("{:>12.4} {:>12.2} {:>15.4} {:>12.4} {:>10}", ls * v[0], v[1], ls * v[3], ls * v[5], self.steps)
     }
     fn warnings(&self) -> Vec<String> {
-        self.stopped.iter().cloned().collect()
+        self.stopped.iter().chain(&self.warnings).cloned().collect()
     }
     fn peak_final(&self) -> [f64; 2] {
         let v = autobal::sweep::linear_summary_values(self);

@@ -107,7 +107,7 @@ impl<'a> RunUpSystem<'a> {
             return Err(Error::invalid(
                 "linear_rotor.polar_inertia",
                 format!(
-                    "{} kg m² is below the balls' own moment about the axis, Σ n m_b R² = {balls:.6e} kg m²: under a torque drive the rotor would turn with less inertia than the balls riding on its race (a real rotor's race and disk alone exceed them), and the run is stiff beyond use (the spin against the balls' drag relaxes at drag / I_p); give the rotor's polar moment (disks, shaft, race)",
+                    "{:e} kg m² is below the balls' own moment about the axis, Σ n m_b R² = {balls:.6e} kg m²: under a torque drive the rotor would turn with less inertia than the balls riding on its race (a real rotor's race and disk alone exceed them), and the run is stiff beyond use (the spin against the balls' drag relaxes at drag / I_p); give the rotor's polar moment (disks, shaft, race)",
                     rotor.polar_inertia
                 ),
             ));
@@ -833,7 +833,9 @@ pub fn simulate_from(
     // growing at the exact rate). The exact linear stability at the final speed decides (an
     // isolated state only: with n >= 3 balls the run may rest on a stable member of a family)
     let mut warnings = vec![];
-    let mut creep_rate = (end.outcome == crate::spatial::dynamics::RunOutcome::Balanced && drive.prescribed())
+    // (the three routes' one gate: a prescribed drive whose speed is constant at the end)
+    let constant = drive.prescribed() && drive.kinematics(out.t).1 == 0.0;
+    let mut creep_rate = (end.outcome == crate::spatial::dynamics::RunOutcome::Balanced && constant)
         .then(|| crate::rotor_stability::unstable_isolated_state(&crate::rotor_stability::Rotor::Linear(rotor.clone()), final_omega))
         .flatten();
     if let Some(rate) = creep_rate {
@@ -849,27 +851,34 @@ pub fn simulate_from(
     // Newton from the end state finds the state the balls sit next to, its exact linear
     // stability decides; where they go from there depends on the start, and the warning says so
     let settled_elsewhere = matches!(end.outcome, crate::spatial::dynamics::RunOutcome::NotBalanced | crate::spatial::dynamics::RunOutcome::PartiallyBalanced);
-    if creep_rate.is_none() && settled_elsewhere && end.settled && drive.prescribed() {
-        if let Some((kind, rate)) = unstable_end_state(rotor, &y, phi_end, final_omega) {
-            end.outcome = crate::spatial::dynamics::RunOutcome::NotSettled;
-            end.settled = false;
-            let balanced = match super::stability::stability_over_speed(rotor, &[final_omega]).ok().and_then(|r| r.points.first().map(|p| (p.state, p.verdict)))
-            {
-                Some((Some(crate::rotor_stability::StateKind::Balanced), Some(crate::analysis::Verdict::Stable))) => {
-                    "; the balanced state is stable at this speed (`stability`), which a longer run from here reaches".to_string()
-                }
-                Some((Some(k), Some(v))) => format!("; `stability`'s state at this speed is {} and {}", k.name(), v.name()),
-                _ => String::new(),
-            };
-            warnings.push(format!(
-                "the balls end near a stationary state that is {} and unstable at {final_omega:.2} rad/s (exact linear stability: growth rate {rate:.4e} 1/s, a deviation grows by e in {:.4e} s): they creep away from it, so the end is not settled; which state they reach depends on their start (two balls spread evenly start next to this state){balanced}; raise drive.t_end or start elsewhere (drive.psi0)",
-                match kind {
-                    crate::rotor_stability::StateKind::NotBalanced => "not balanced (the balls on the line of the race's whirl, their resultant not cancelling the unbalance)",
-                    k => k.name(),
-                },
-                1.0 / rate
-            ));
-            creep_rate = Some(rate);
+    if creep_rate.is_none() && settled_elsewhere && end.settled && constant {
+        match end_state(rotor, &y, phi_end, final_omega) {
+            Some(EndState::Unstable(kind, rate)) => {
+                end.outcome = crate::spatial::dynamics::RunOutcome::NotSettled;
+                end.settled = false;
+                let state =
+                    match super::stability::stability_over_speed(rotor, &[final_omega]).ok().and_then(|r| r.points.first().map(|p| (p.state, p.verdict))) {
+                        Some((Some(k), Some(v))) => format!("; `stability`'s state at this speed is {} and {}", k.name(), v.name()),
+                        _ => String::new(),
+                    };
+                warnings.push(format!(
+                    "the run ends near a stationary state that is {} and unstable at {final_omega:.2} rad/s (exact linear stability: growth rate {rate:.4e} 1/s, a deviation grows by e in {:.4e} s): the motion moves away from it, so the end is not settled{state}; where it goes depends on the start: raise drive.t_end or start elsewhere (drive.psi0)",
+                    match kind {
+                        crate::rotor_stability::StateKind::NotBalanced => "not balanced (the balls' resultant not cancelling the unbalance)",
+                        k => k.name(),
+                    },
+                    1.0 / rate
+                ));
+                creep_rate = Some(rate);
+            }
+            Some(EndState::Elsewhere) => {
+                end.outcome = crate::spatial::dynamics::RunOutcome::NotSettled;
+                end.settled = false;
+                warnings.push(format!(
+                    "the balls are at no stationary state at {final_omega:.2} rad/s: Newton's method from the end lands more than {NEAR_STATE} rad from their angles, so they still move, though more slowly than the settling test sees; the end is not settled: raise drive.t_end"
+                ));
+            }
+            None => {}
         }
     }
     Ok(RunSummary {
@@ -892,19 +901,27 @@ pub fn simulate_from(
 }
 
 /// Balls within this angle (rad) of a stationary state count as next to it for the creep check
-/// ([`unstable_end_state`]): Newton from an end on a stable state lands on it to round-off,
+/// ([`end_state`]): Newton from an end on a stable state lands on it to round-off,
 /// and a run at a drift below the settling test's rate (`1e-3 Ω` per revolution) that is
 /// more than 0.1 rad away from an unstable state is no slow creep away from it.
 const NEAR_STATE: f64 = 0.1;
 
-/// The state a run at the constant speed `omega` ending in `y` (fixed axes, the rotor at angle
-/// `phi`) sits next to, where it is an isolated equilibrium that is unstable by its exact linear
-/// stability: its word ([`super::partial::state_kind`]) and growth rate (1/s). Newton's method
-/// from the end state in turning axes (velocities zero); `None` where it fails, lands more than
-/// [`NEAR_STATE`] from the balls' angles, on a family, on a stable or neutral state, where the
-/// stationary motion is a periodic orbit (gravity, supports that differ by direction: no
-/// Newton from one instant) or the balls are real (no linearisation).
-fn unstable_end_state(rotor: &LinearRotor, y: &[f64], phi: f64, omega: f64) -> Option<(crate::rotor_stability::StateKind, f64)> {
+/// Where Newton's method from a run's end lands ([`end_state`]).
+enum EndState {
+    /// Within [`NEAR_STATE`] of the balls' angles, on an isolated equilibrium that is unstable
+    /// by its exact linear stability: its word and growth rate (1/s).
+    Unstable(crate::rotor_stability::StateKind, f64),
+    /// More than [`NEAR_STATE`] from the balls' angles: the end is at no stationary state (a
+    /// run that settled on one starts Newton within round-off of it).
+    Elsewhere,
+}
+
+/// The stationary state a run at the constant speed `omega` ending in `y` (fixed axes, the
+/// rotor at angle `phi`) sits next to, by Newton's method from the end state in turning axes
+/// (velocities zero): [`EndState`]; `None` where Newton fails, lands on a family, on a stable
+/// or neutral state, where the stationary motion is a periodic orbit (gravity, supports that
+/// differ by direction: no Newton from one instant) or the balls are real (no linearisation).
+fn end_state(rotor: &LinearRotor, y: &[f64], phi: f64, omega: f64) -> Option<EndState> {
     use crate::analysis::{stationary, NewtonOptions, VectorField};
     let (n, nb) = (rotor.dofs(), rotor.total_balls());
     if nb == 0 || n % 2 != 0 || !rotor.ball_physics.is_empty() || y.len() < n + nb {
@@ -929,11 +946,15 @@ fn unstable_end_state(rotor: &LinearRotor, y: &[f64], phi: f64, omega: f64) -> O
         let d = (a - b).rem_euclid(tau);
         d.min(tau - d) <= NEAR_STATE
     });
-    if !near || st.family_dimension > 0 {
+    if !near {
+        return Some(EndState::Elsewhere);
+    }
+    if st.family_dimension > 0 {
         return None;
     }
     let lin = crate::analysis::stability(&field, &st).ok()?;
-    (lin.verdict == crate::analysis::Verdict::Unstable && lin.abscissa > 0.0).then(|| (super::partial::state_kind(&field, &st.x), lin.abscissa))
+    (lin.verdict == crate::analysis::Verdict::Unstable && lin.abscissa > 0.0)
+        .then(|| EndState::Unstable(super::partial::state_kind(&field, &st.x), lin.abscissa))
 }
 
 /// What [`ending`] gives the summary.
