@@ -29,15 +29,18 @@ fn floquet_exponents_below_round_off_are_bounds_that_hold() {
     //   the mode decays at least that fast, −Re λ ≥ decay_at_least for every leftover λ;
     // - every λ with |e^{λT}| > 10 δ is a number: a determined point within 1e-6 max(|λ|, Ω)
     //   (the multipliers are good to ~1e-9, the anisotropy moves λ by ~1e-9 of it);
-    // - the measured error of the computed multipliers against e^{λT}, over δ, is below 1
-    //   (the factor 100 in δ is then a margin of the measured error, printed).
+    // - at 1e-9 the measured error of the computed multipliers against e^{λT}, over δ, is
+    //   below 1 (the factor 100 in δ is then a margin of the measured error, printed: 0.09).
     // On main (no bound) the low-speed exponents are printed as ln|μ̂|/T, numbers of round-off.
+    // Also 1e-7 at 36.08 rad/s, session 17's case (printed −428.8 where λ = −955.8), where
+    // the anisotropy moves λ by ~1e-7 of it: 1e-5 there.
     let iso = Rotor::Planar(jeffcott(0.0));
-    let near = Rotor::Planar(jeffcott(1e-9));
     let wn = jeffcott(0.0).natural_frequency();
     let mut bounds = 0;
     let mut worst_ratio = 0.0f64;
-    for omega in [0.05 * wn, 0.1 * wn, 0.2 * wn, 0.5 * wn, 1.5 * wn] {
+    let cases = [(1e-9, 0.05 * wn, 1e-6), (1e-9, 0.1 * wn, 1e-6), (1e-9, 0.2 * wn, 1e-6), (1e-9, 0.5 * wn, 1e-6), (1e-9, 1.5 * wn, 1e-6), (1e-7, 36.08, 1e-5)];
+    for (aniso, omega, tol) in cases {
+        let near = Rotor::Planar(jeffcott(aniso));
         let t = std::f64::consts::PI / omega;
         let exact = campbell_over_speed(&iso, &[omega]).unwrap();
         let lam: Vec<Complex64> = exact.lines.iter().filter_map(|l| l.points[0]).map(|p| Complex64::new(p.re, p.im)).collect();
@@ -55,8 +58,11 @@ fn floquet_exponents_below_round_off_are_bounds_that_hold() {
             let r = Complex64::new(p.re, p.im);
             let (i, d) = left.iter().enumerate().map(|(i, l)| (i, (l - r).norm())).fold((0, f64::INFINITY), |a, b| if b.1 < a.1 { b } else { a });
             let scale = r.norm().max(omega);
-            assert!(d < 1e-6 * scale || mu(left[i]).norm() < 10.0 * delta, "Ω = {omega}: ρ = {r} is {d} from the exact λ {lam:?}");
-            worst_ratio = worst_ratio.max((mu(r) - mu(left[i])).norm() / delta);
+            assert!(d < tol * scale || mu(left[i]).norm() < 10.0 * delta, "Ω = {omega}: ρ = {r} is {d} from the exact λ {lam:?}");
+            // (at 1e-7 the anisotropy itself moves the multipliers near 1 by ~3e-6 ≫ δ)
+            if aniso < 1e-8 {
+                worst_ratio = worst_ratio.max((mu(r) - mu(left[i])).norm() / delta);
+            }
             left.remove(i);
         }
         // the rest are bounds, and hold for every λ left
