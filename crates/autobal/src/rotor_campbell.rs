@@ -321,7 +321,9 @@ fn spectrum_and_modes_at(rotor: &Rotor, field: &Field, omega: f64, state: &Stati
             group,
             decay_at_least,
         });
-        modes.push(v.iter().zip(&scales).map(|(z, s)| z / s).collect());
+        // the coordinates' half (the state is [q, q̇]), as the 12-state route's MAC of the
+        // pencil's q
+        modes.push(v.iter().zip(&scales).take(n / 2).map(|(z, s)| z / s).collect());
     }
     Ok((out, modes))
 }
@@ -584,15 +586,19 @@ pub fn track(per_speed: &[Option<Vec<CampbellPoint>>]) -> Vec<CampbellLine> {
 
 /// The tracking of [`track`], one speed at a time, with the modes' eigenvectors where they are
 /// given. By value alone the balls' slow real eigenvalues swapped lines at the lowest speeds of
-/// the general route (session 17's check; examples/planar.toml with its race centred, 300
-/// speeds: the two are `a Ω⁴` and `2.27 a Ω⁴`, accurate, but a step multiplies them by up to
-/// 81 while they are 1e-9 apart, so the linear prediction's error exceeds their gap and the
-/// nearest value is the other line's). With eigenvectors the cost of continuing a line with
-/// a value is `|λ_pred − λ| / h + 4 (1 − MAC)`, the 12-state route's
-/// ([`crate::spatial::campbell`]): `h` the speed step from the line's last point, `MAC =
-/// |v_lastᴴ v|² / (|v_last|² |v|²)` of the scaled eigenvectors (`S⁻¹ v`,
-/// [`VectorField::scales`]); where two values are both near the prediction the eigenvector
-/// decides.
+/// the general route (session 17's check; the Jeffcott rotor of paper 004, 300 speeds: the two
+/// are `a Ω⁴` and `2.27 a Ω⁴`, accurate, but a step multiplies them by up to 81 while they are
+/// 1e-9 apart, so the linear prediction's error exceeds their gap and the nearest value is the
+/// other line's). With eigenvectors, the **slow block** (lines whose last value, and values,
+/// of modulus at most [`SLOW`] of the speed's largest) is matched first, by the optimal
+/// assignment (Hungarian method) of the cost `|λ_pred − λ| / u + 4 (1 − MAC)`: `u` the line's
+/// own prediction uncertainty (the second difference of its last three values, else the
+/// first, else its value, plus 1e-12 of the largest `|λ|`), `MAC = |aᴴb|² / (|a|² |b|²)` of
+/// the scaled coordinates' part of the eigenvectors (`S⁻¹ v`, [`VectorField::scales`]), as
+/// the 12-state route's term ([`crate::spatial::campbell`]). The other lines continue by value,
+/// nearest pairs first, as before (MAC and the optimal assignment over every line moved the
+/// kept line at real-axis collisions away from the 12-state route's:
+/// tests/rotor_campbell_views.rs).
 #[derive(Debug, Default)]
 pub struct Tracker {
     /// The lines so far.
@@ -640,23 +646,63 @@ impl Tracker {
                 0.0
             }
         };
+        // a line's prediction error, estimated from its last points: the second difference
+        // (the linear extrapolation's error one step ago), else the first, else the value
+        // itself, above a floor of round-off
+        let floor = 1e-12 * vals.iter().map(|p| z(p).norm()).fold(0.0, f64::max) + f64::MIN_POSITIVE;
+        let uncertainty = |l: &CampbellLine| -> f64 {
+            let tail: Vec<Complex64> = l.points.iter().rev().take(3).map_while(|p| p.as_ref().map(z)).collect();
+            floor
+                + match tail.as_slice() {
+                    [a, b, c] => (a - b * 2.0 + c).norm(),
+                    [a, b] => (a - b).norm(),
+                    [a] => a.norm(),
+                    _ => 0.0,
+                }
+        };
+        let top = floor / 1e-12;
+        let slow_value = |p: &CampbellPoint| z(p).norm() <= SLOW * top;
+        let slow_line = |l: &CampbellLine| l.points.last().copied().flatten().is_some_and(|p| slow_value(&p));
+        let mut assigned: Vec<Option<usize>> = vec![None; n];
+        let mut line_used = vec![false; n];
+        let mut val_used = vec![false; vals.len()];
+        // the slow block first: its lines continued optimally at the cost of their prediction
+        // error relative to their own uncertainty, and their eigenvectors' MAC
+        let slow_lines: Vec<usize> = (0..n).filter(|&li| slow_line(&self.lines[li])).collect();
+        let slow_vals: Vec<usize> = (0..vals.len()).filter(|&vi| slow_value(&vals[vi])).collect();
+        if let (Some(m), true) = (vecs.as_ref(), !slow_lines.is_empty() && slow_lines.len() == slow_vals.len()) {
+            let ns = slow_lines.len();
+            let mut cost = Vec::with_capacity(ns * ns);
+            for &li in &slow_lines {
+                let l = &self.lines[li];
+                let (p, u) = (predict(l), uncertainty(l));
+                for &vi in &slow_vals {
+                    let d = p.map_or(f64::INFINITY, |p| (p - z(&vals[vi])).norm());
+                    let shape = match (&self.last[li], m.get(vi)) {
+                        (Some(a), Some(b)) => 4.0 * (1.0 - mac(a, b)),
+                        _ => 0.0,
+                    };
+                    cost.push(d / u + shape);
+                }
+            }
+            if cost.iter().all(|c| c.is_finite()) {
+                for (a, b) in assignment(&cost, ns).into_iter().enumerate() {
+                    let (li, vi) = (slow_lines[a], slow_vals[b]);
+                    assigned[li] = Some(vi);
+                    line_used[li] = true;
+                    val_used[vi] = true;
+                }
+            }
+        }
+        // the rest by value, nearest pairs first
         let mut cand: Vec<(f64, usize, usize)> = vec![];
-        for (li, l) in self.lines.iter().enumerate() {
+        for (li, l) in self.lines.iter().enumerate().filter(|(li, _)| !line_used[*li]) {
             let p = predict(l);
-            let h = l.points.iter().rev().flatten().next().zip(w2).map(|(q, w)| (w - q.omega).abs());
-            for (vi, v) in vals.iter().enumerate() {
-                let d = p.map_or(f64::INFINITY, |p| (p - z(v)).norm());
-                let cost = match (&self.last[li], vecs.as_ref().and_then(|m| m.get(vi)), h) {
-                    (Some(a), Some(b), Some(h)) if h > 0.0 && d.is_finite() => d / h + 4.0 * (1.0 - mac(a, b)),
-                    _ => d,
-                };
-                cand.push((cost, li, vi));
+            for (vi, v) in vals.iter().enumerate().filter(|(vi, _)| !val_used[*vi]) {
+                cand.push((p.map_or(f64::INFINITY, |p| (p - z(v)).norm()), li, vi));
             }
         }
         cand.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)).then(a.2.cmp(&b.2)));
-        let mut line_used = vec![false; n];
-        let mut val_used = vec![false; vals.len()];
-        let mut assigned: Vec<Option<usize>> = vec![None; n];
         for (_, li, vi) in cand {
             if !line_used[li] && !val_used[vi] {
                 line_used[li] = true;
@@ -671,6 +717,73 @@ impl Tracker {
             }
         }
     }
+}
+
+/// The slow block of [`Tracker`]: values of modulus at most this fraction of the speed's
+/// largest `|λ|` (the balls' slow modes at low speed, `∝ Ω⁴` on the Jeffcott rotor).
+pub const SLOW: f64 = 1e-3;
+
+/// Optimal assignment of the `n×n` cost matrix `cost` (row-major, finite): `row → column`
+/// minimising the summed cost (Hungarian method with potentials, O(n³); as
+/// `spatial::stability`'s, for any `n`).
+fn assignment(cost: &[f64], n: usize) -> Vec<usize> {
+    let inf = f64::INFINITY;
+    let mut u = vec![0.0; n + 1];
+    let mut v = vec![0.0; n + 1];
+    let mut p = vec![0usize; n + 1]; // p[j]: row matched to column j (1-based, 0 = none)
+    let mut way = vec![0usize; n + 1];
+    for i in 1..=n {
+        p[0] = i;
+        let mut j0 = 0;
+        let mut minv = vec![inf; n + 1];
+        let mut used = vec![false; n + 1];
+        loop {
+            used[j0] = true;
+            let i0 = p[j0];
+            let mut delta = inf;
+            let mut j1 = 0;
+            for j in 1..=n {
+                if !used[j] {
+                    let cur = cost[(i0 - 1) * n + j - 1] - u[i0] - v[j];
+                    if cur < minv[j] {
+                        minv[j] = cur;
+                        way[j] = j0;
+                    }
+                    if minv[j] < delta {
+                        delta = minv[j];
+                        j1 = j;
+                    }
+                }
+            }
+            for j in 0..=n {
+                if used[j] {
+                    u[p[j]] += delta;
+                    v[j] -= delta;
+                } else {
+                    minv[j] -= delta;
+                }
+            }
+            j0 = j1;
+            if p[j0] == 0 {
+                break;
+            }
+        }
+        loop {
+            let j1 = way[j0];
+            p[j0] = p[j1];
+            j0 = j1;
+            if j0 == 0 {
+                break;
+            }
+        }
+    }
+    let mut out = vec![0usize; n];
+    for j in 1..=n {
+        if p[j] > 0 {
+            out[p[j] - 1] = j - 1;
+        }
+    }
+    out
 }
 
 /// The rotor with its balls locked where the closed form at speed `omega` puts them (each ball a
