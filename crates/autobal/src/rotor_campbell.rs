@@ -245,8 +245,8 @@ pub fn spectrum_at(rotor: &Rotor, field: &Field, omega: f64, state: &StationaryS
     spectrum_and_modes_at(rotor, field, omega, state).map(|(p, _)| p)
 }
 
-/// [`spectrum_at`] with each value's eigenvector in scaled coordinates (`S⁻¹ v`), for the
-/// tracking ([`Tracker`]).
+/// [`spectrum_at`] with the scaled coordinates' part (`S⁻¹ v`) of each value's eigenvector,
+/// for the tracking ([`Tracker`]).
 fn spectrum_and_modes_at(rotor: &Rotor, field: &Field, omega: f64, state: &StationaryState) -> Result<(Vec<CampbellPoint>, Vec<Vec<Complex64>>)> {
     let st = stability(field, state).map_err(|e| Error::invalid("campbell", e.to_string()))?;
     let n = field.dim();
@@ -670,24 +670,26 @@ impl Tracker {
         // error relative to their own uncertainty, and their eigenvectors' MAC
         let slow_lines: Vec<usize> = (0..n).filter(|&li| slow_line(&self.lines[li])).collect();
         let slow_vals: Vec<usize> = (0..vals.len()).filter(|&vi| slow_value(&vals[vi])).collect();
-        if let (Some(m), true) = (vecs.as_ref(), !slow_lines.is_empty() && slow_lines.len() == slow_vals.len()) {
-            let ns = slow_lines.len();
-            let mut cost = Vec::with_capacity(ns * ns);
-            for &li in &slow_lines {
+        if let (Some(m), false) = (vecs.as_ref(), slow_lines.is_empty() || slow_vals.is_empty()) {
+            // square: dummy rows or columns of cost 0 take what is left over (a line whose
+            // value left the block, a value that entered it), for the value order below
+            let ns = slow_lines.len().max(slow_vals.len());
+            let mut cost = vec![0.0; ns * ns];
+            for (a, &li) in slow_lines.iter().enumerate() {
                 let l = &self.lines[li];
                 let (p, u) = (predict(l), uncertainty(l));
-                for &vi in &slow_vals {
+                for (b, &vi) in slow_vals.iter().enumerate() {
                     let d = p.map_or(f64::INFINITY, |p| (p - z(&vals[vi])).norm());
                     let shape = match (&self.last[li], m.get(vi)) {
-                        (Some(a), Some(b)) => 4.0 * (1.0 - mac(a, b)),
+                        (Some(x), Some(y)) => 4.0 * (1.0 - mac(x, y)),
                         _ => 0.0,
                     };
-                    cost.push(d / u + shape);
+                    cost[a * ns + b] = d / u + shape;
                 }
             }
             if cost.iter().all(|c| c.is_finite()) {
                 for (a, b) in assignment(&cost, ns).into_iter().enumerate() {
-                    let (li, vi) = (slow_lines[a], slow_vals[b]);
+                    let (Some(&li), Some(&vi)) = (slow_lines.get(a), slow_vals.get(b)) else { continue };
                     assigned[li] = Some(vi);
                     line_used[li] = true;
                     val_used[vi] = true;
