@@ -13,7 +13,7 @@ use autobal::error::fmt_num;
 use autobal::rotor_campbell::{
     campbell_locked, fixed_view, fixed_view_with, locked_critical_speeds, Balls, LockedCriticalSpeeds, RotorCampbell, Whirl, FLOQUET_BRANCH,
 };
-use autobal::rotor_stability::{speed_grid, stability_over_speed, Rotor, RotorStability};
+use autobal::rotor_stability::{speed_grid, stability_over_speed, Rotor, RotorStability, StateKind};
 use autobal::spatial::campbell::FixedCampbell;
 use serde_json::{json, Value};
 use std::fmt::Write as _;
@@ -61,11 +61,8 @@ pub fn omega_max(root: &Table, g: &GeneralRotor, arg: Option<&str>) -> Result<f6
                 Some(_) => s.to_omega("--omega-max", None)?,
                 None => {
                     if g.si && matches!(g.rotor, Rotor::Spatial(_)) {
-                        // as the 12-state route notes it (crate::linear::speed_arg)
-                        crate::term::note(&format!(
-                            "note: --omega-max {t} is the dimensionless Ω = {t}, i.e. {} rad/s; give a unit (rpm, rad/s or Hz) for SI",
-                            fmt_num(s.value * g.omega0)
-                        ));
+                        // the 12-state route's note (crate::linear::speed_arg), this route's speed
+                        crate::linear::bare_speed_note("--omega-max", t, &format!("{} rad/s", fmt_num(s.value * g.omega0)));
                     }
                     s.value * g.omega0
                 }
@@ -162,12 +159,24 @@ pub fn campbell_with(g: &GeneralRotor, omega_max: f64, points: usize, balls: Bal
 
 fn what(c: &RotorCampbell) -> &'static str {
     match c.kind {
-        Kind::Equilibrium => "eigenvalues λ = σ + iν of the exact (AD) Jacobian at the balanced state, an equilibrium in axes turning with the rotor",
+        Kind::Equilibrium => "eigenvalues λ = σ + iν of the exact (AD) Jacobian at the stationary state, an equilibrium in axes turning with the rotor",
         Kind::PeriodicOrbit => {
             "Floquet exponents ρ = σ + iν of the stationary periodic orbit (supports that differ by direction or gravity: the rotor sags and the balls swing once per revolution), from the monodromy matrix"
         }
     }
 }
+
+/// What the state followed is, where the balls' capacity falls short (some speed's state is
+/// partially balanced): `None` where every state found is (semi-)balanced.
+pub const PARTIAL_STATE: &str = "the balls' capacity falls short of the unbalance, so no balanced state exists: the values are those of the state the balls rest in, bunched at their capacity limit with a residual unbalance (partially balanced; not balanced where the residual is 1 or more, below the critical speed), the state `autobal stability` analyses; `state` says which at each speed";
+
+/// [`PARTIAL_STATE`] where some speed's state is partially balanced.
+fn partial_state(c: &RotorCampbell) -> Option<&'static str> {
+    c.states.iter().flatten().any(|s| *s == StateKind::PartiallyBalanced).then_some(PARTIAL_STATE)
+}
+
+/// What a Floquet exponent given as a bound is ([`autobal::rotor_campbell::CampbellPoint::decay_at_least`]).
+pub const UNDETERMINED: &str = "a Floquet multiplier below the monodromy's round-off (|μ| < δ = 100 · 1e-10 · ‖S⁻¹ΦS‖∞) gives no exponent, only a bound: re and log_decrement are null and decay_at_least says the mode decays at least that fast, σ ≤ ln(|μ| + δ)/T (its im, the phase of round-off, is not determined either)";
 
 /// Whether a line is the kept one of a conjugate pair (most of its points with `Im ≥ 0`) and a
 /// mode (not structural).
@@ -203,10 +212,13 @@ pub fn campbell_json(g: &GeneralRotor, gc: &GeneralCampbell, omega_max: f64) -> 
                         .iter()
                         .map(|p| {
                             let mut e = json!(p);
+                            // a bound only: no growth rate
+                            let re = p.decay_at_least.is_none().then_some(p.re);
+                            e["re"] = json!(re);
                             if let (true, Some(o)) = (g.si, e.as_object_mut()) {
                                 o.insert("frequency_hz".into(), json!(p.frequency / tau));
                                 o.insert("fixed_frequency_hz".into(), json!(p.fixed_frequency / tau));
-                                o.insert("re_per_s".into(), json!(p.re));
+                                o.insert("re_per_s".into(), json!(re));
                                 o.insert("omega_rpm".into(), json!(rpm(p.omega)));
                             }
                             e
@@ -266,6 +278,13 @@ fn lines_json(g: &GeneralRotor, c: &RotorCampbell, omega_max: f64) -> Value {
     if c.kind == Kind::PeriodicOrbit {
         v["branch"] = json!(FLOQUET_BRANCH);
     }
+    if c.lines.iter().flat_map(|l| l.points.iter().flatten()).any(|p| p.decay_at_least.is_some()) {
+        v["undetermined"] = json!(UNDETERMINED);
+    }
+    v["state"] = json!(c.states.iter().map(|s| s.map(|s| s.key())).collect::<Vec<_>>());
+    if let Some(p) = partial_state(c) {
+        v["state_followed"] = json!(p);
+    }
     if g.si {
         v["omega_rpm"] = json!(c.omega.iter().map(|&w| rpm(w)).collect::<Vec<_>>());
     }
@@ -292,8 +311,14 @@ pub fn campbell_table(g: &GeneralRotor, gc: &GeneralCampbell) -> String {
         if gc.balls == Balls::Locked { "locked at the closed-form balanced position, damping kept" } else { "free" }
     );
     let _ = writeln!(s, "values: {}", what(c));
+    if let Some(p) = partial_state(c) {
+        let _ = writeln!(s, "state: {p}");
+    }
     if c.kind == Kind::PeriodicOrbit {
         let _ = writeln!(s, "branch: {FLOQUET_BRANCH}");
+    }
+    if c.lines.iter().flat_map(|l| l.points.iter().flatten()).any(|p| p.decay_at_least.is_some()) {
+        let _ = writeln!(s, "σ < −r: {UNDETERMINED}");
     }
     if gc.fixed.as_ref().is_some_and(|f| f.modes_at_first_speed) {
         let _ = writeln!(s, "mode numbers: {MODES_AT_FIRST_SPEED}");
@@ -325,8 +350,11 @@ pub fn campbell_table(g: &GeneralRotor, gc: &GeneralCampbell) -> String {
                 s,
                 "  {:>12} {:>12} {:>10} {:>12}{hz}  {:<12} {:<9}",
                 fmt_num(round(p.im)),
-                fmt_num(round(p.re)),
-                p.log_decrement.map_or("—".into(), |d| format!("{d:.4}")),
+                match p.decay_at_least {
+                    Some(r) => format!("< −{}", fmt_num(round(r))),
+                    None => fmt_num(round(p.re)),
+                },
+                p.log_decrement.filter(|_| p.decay_at_least.is_none()).map_or("—".into(), |d| format!("{d:.4}")),
                 fmt_num(round(p.fixed_frequency)),
                 crate::figures::group_name(p.group),
                 whirl_name(p.whirl)
@@ -667,7 +695,7 @@ pub fn critical_table(g: &GeneralRotor, c: &GeneralCritical) -> String {
             let _ = writeln!(s, "  balls locked at {} ({})", deg.join(", "), locked_placement_note(g));
         }
         if l.unlocked > 0 {
-            let _ = writeln!(s, "  ({} of {} speeds have no balanced state to lock the balls in and were not searched)", l.unlocked, l.samples);
+            let _ = writeln!(s, "  ({})", autobal::rotor_campbell::unlocked_words(l.unlocked, l.samples));
         }
     }
     let st = match &c.stability {

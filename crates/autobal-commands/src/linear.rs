@@ -149,9 +149,17 @@ pub fn speed_arg(cfg: &Config, flag: &str, text: &str) -> Result<f64> {
     let s = autobal::units::parse_speed(flag, text)?;
     let w = s.to_omega(flag, cfg.model.scale.map(|sc| sc.omega0))?;
     if !s.is_si() && cfg.dimensional && w.is_finite() {
-        crate::term::note(&format!("note: {flag} {text} is the dimensionless Ω = {text}, i.e. {}; give a unit (rpm, rad/s or Hz) for SI", speed_text(cfg, w)));
+        bare_speed_note(flag, text, &speed_text(cfg, w));
     }
     Ok(w)
+}
+
+/// The note on a bare number given for a speed on an SI config (`--omega-max 2`): it is the
+/// dimensionless `Ω`, `converted` the caller's own conversion of it (this route's
+/// [`speed_text`]; the general route's rad/s, `crate::general_campbell::omega_max`). The one
+/// home of the wording, for both routes.
+pub fn bare_speed_note(flag: &str, text: &str, converted: &str) {
+    crate::term::note(&format!("note: {flag} {text} is the dimensionless Ω = {text}, i.e. {converted}; give a unit (rpm, rad/s or Hz) for SI"));
 }
 
 /// A map's fixed speed given in SI (`--omega 1400rpm`) is one `Ω` only if neither axis changes

@@ -80,7 +80,7 @@ use crate::analysis::{mode, stability, stationary, stationary_near, Kind, Newton
 use crate::control::{Control, Outcome};
 use crate::error::{Error, Result};
 use crate::linalg::eigen_dyn::eigenvalues;
-use crate::rotor_stability::{Field, Rotor};
+use crate::rotor_stability::{Field, Rotor, StateKind};
 use crate::spatial::campbell::{FixedCampbell, FixedCurve, FixedPoint};
 use crate::spatial::dynamics::PointMass;
 pub use crate::spatial::linear_model::Balls;
@@ -106,6 +106,7 @@ pub enum Whirl {
 
 /// One eigenvalue (or Floquet exponent) at one speed.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(into = "PointJson")]
 pub struct CampbellPoint {
     /// Speed `Ω` (rad/s, or the papers' unit).
     pub omega: f64,
@@ -116,8 +117,15 @@ pub struct CampbellPoint {
     /// Signed natural frequency in fixed axes `f = Ω ± ν` of the dominant circular component
     /// (rad/s; `> 0` forward).
     pub fixed_frequency: f64,
-    /// Share of the forward component `|x_ξ + i x_η|²` in the rotor's amplitude squared (½
-    /// where the rotor does not move).
+    /// Share of the forward component in the rotor's motion, from the mode's eigenvector `x`:
+    /// `Σ_p w_p² |x_a + i s_p x_b|² / Σ_p w_p² (|x_a + i s_p x_b|² + |x_a − i s_p x_b|²)` over
+    /// the rotor's circular coordinate pairs `p = (a, b, s_p, w_p)` (`whirl_pairs`): the
+    /// planar rotor's `ξ + iη` (`w = 1`); the spatial rotor's `ξ + iη` and its tilt `θ − iδ`
+    /// at the radius of gyration `w = sqrt(I_eq/M)`; the linear rotor's every node's `x + iy`
+    /// and `α + iβ` with `w_p² = M̄_p / M_s` (the pair's mean diagonal mass or inertia over
+    /// the structure's translating mass plus the balls', `linear_whirl_pairs`), each term a
+    /// kinetic energy per unit of `M_s`. The balls' angles do not enter; ½ where the rotor
+    /// does not move (its amplitude below 1e-9 of the mode's largest scaled entry).
     pub forward_share: f64,
     /// Whirl direction in fixed axes.
     pub whirl: Whirl,
@@ -125,11 +133,77 @@ pub struct CampbellPoint {
     pub log_decrement: Option<f64>,
     /// A structural eigenvalue (the family of balanced states: 0, multiplier 1), not a mode.
     pub structural: bool,
+    /// Where the Floquet multiplier `μ` is below what the monodromy's round-off resolves
+    /// (`|μ| < δ`, [`undetermined_multiplier_bound`]): the exponent `ln|μ|/T` is not
+    /// determined, only bounded, `σ ≤ ln(|μ| + δ)/T`, and this is that bound as a decay rate
+    /// `−ln(|μ| + δ)/T > 0` (1/s): the mode decays at least this fast. `re` and `log_decrement`
+    /// are then printed as null (JSON) or `< −rate` (table), and `im` (the phase of a
+    /// multiplier at round-off) is not determined either. `None` for a determined exponent and
+    /// for every eigenvalue of an equilibrium.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub decay_at_least: Option<f64>,
     /// The coordinates that carry most of the mode's kinetic energy per unit of `M_s`: the
     /// translation `|x_ξ|² + |x_η|²`, the tilt `ρ² (|x_δ|² + |x_θ|²)` (`ρ` the rotor's radius
     /// of gyration) or the balls `Σ_j (m_j/M_s) R_j² |x_ψj|²` (as the 12-state route's
     /// [`Group`], which weighs the balls' unbalance `s` alike).
     pub group: Group,
+}
+
+/// A [`CampbellPoint`] as the JSON gives it: `re` and `log_decrement` null where only a bound
+/// is known ([`CampbellPoint::decay_at_least`]).
+#[derive(Serialize)]
+struct PointJson {
+    omega: f64,
+    re: Option<f64>,
+    im: f64,
+    fixed_frequency: f64,
+    forward_share: f64,
+    whirl: Whirl,
+    log_decrement: Option<f64>,
+    structural: bool,
+    group: Group,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    decay_at_least: Option<f64>,
+}
+
+impl From<CampbellPoint> for PointJson {
+    fn from(p: CampbellPoint) -> Self {
+        let known = p.decay_at_least.is_none();
+        PointJson {
+            omega: p.omega,
+            re: known.then_some(p.re),
+            im: p.im,
+            fixed_frequency: p.fixed_frequency,
+            forward_share: p.forward_share,
+            whirl: p.whirl,
+            log_decrement: p.log_decrement.filter(|_| known),
+            structural: p.structural,
+            group: p.group,
+            decay_at_least: p.decay_at_least,
+        }
+    }
+}
+
+/// The relative accuracy of the monodromy matrices of the general route's Floquet analyses:
+/// the shooting's `rtol` of the Campbell scans, at which the orbit's monodromy matrix is
+/// integrated (DOP853, its Jacobian interpolated to the same `rtol`: [`crate::analysis`]).
+pub const MONODROMY_RTOL: f64 = 1e-10;
+
+/// The multiplier size below which a Floquet multiplier is round-off of the monodromy matrix
+/// `Φ`, not a number: `δ = 100 · rtol · ‖S⁻¹ Φ S‖∞` (`S` the field's
+/// [`scales`](crate::analysis::VectorField::scales), in which the integration's tolerances are
+/// set; `rtol` = [`MONODROMY_RTOL`]). Why: the variational equations are integrated at `rtol`
+/// per step (atol `rtol · S`) with a Jacobian interpolated to `rtol ‖S⁻¹JS‖∞`, so the scaled
+/// monodromy carries an absolute error `‖δΦ‖ ≈ c · rtol · ‖S⁻¹ΦS‖`, and a multiplier `μ`
+/// computed from it an error `≤ κ ‖δΦ‖` (`κ` its condition number). A computed `|μ| < δ` is
+/// then indistinguishable from 0; the true `|μ| ≤ |μ̂| + δ`. The factor 100 holds `c κ`:
+/// measured (tests/rotor_campbell_18.rs) the computed multipliers of a nearly isotropic
+/// Jeffcott rotor differ from their exact `e^{λT}` by at most 0.09 δ (9e-12 of `‖S⁻¹ΦS‖∞` at
+/// `rtol = 1e-10`).
+pub fn undetermined_multiplier_bound(monodromy: &[f64], scales: &[f64]) -> f64 {
+    let n = scales.len();
+    let norm = (0..n).map(|i| (0..n).map(|j| (monodromy[i * n + j] * scales[j] / scales[i]).abs()).sum::<f64>()).fold(0.0, f64::max);
+    100.0 * MONODROMY_RTOL * norm
 }
 
 /// One tracked line.
@@ -157,11 +231,23 @@ pub struct RotorCampbell {
     /// [`crate::rotor_stability`]), where no state was sought and `failures` says so (not "no
     /// stationary state found").
     pub analysed: Vec<bool>,
+    /// What the stationary state followed is at each speed ([`Rotor::state_kind`], the words
+    /// of `stability`'s `state`; `None` without a state): balanced (semi-balanced), or
+    /// partially balanced where the balls' capacity falls short of the unbalance and no
+    /// balanced state exists (the starts of `stability`'s scan). The locked diagram's are `None` (its state is
+    /// the locked rotor's).
+    pub states: Vec<Option<StateKind>>,
 }
 
 /// The eigenvalues (or Floquet exponents) of the stationary state at one speed, with their
 /// fixed-axes data, unsorted: `field` at its speed `omega`, `state` its stationary state.
 pub fn spectrum_at(rotor: &Rotor, field: &Field, omega: f64, state: &StationaryState) -> Result<Vec<CampbellPoint>> {
+    spectrum_and_modes_at(rotor, field, omega, state).map(|(p, _)| p)
+}
+
+/// [`spectrum_at`] with the scaled coordinates' part (`S⁻¹ v`) of each value's eigenvector,
+/// for the tracking ([`Tracker`]).
+fn spectrum_and_modes_at(rotor: &Rotor, field: &Field, omega: f64, state: &StationaryState) -> Result<(Vec<CampbellPoint>, Vec<Vec<Complex64>>)> {
     let st = stability(field, state).map_err(|e| Error::invalid("campbell", e.to_string()))?;
     let n = field.dim();
     let scales = field.scales();
@@ -171,7 +257,10 @@ pub fn spectrum_at(rotor: &Rotor, field: &Field, omega: f64, state: &StationaryS
         j
     };
     let pairs = whirl_pairs(rotor, field);
+    // a periodic orbit's multipliers below the monodromy's round-off: only a bound
+    let roundoff = state.period.map(|_| undetermined_multiplier_bound(&st.matrix, &scales));
     let mut out = Vec::with_capacity(n);
+    let mut modes = Vec::with_capacity(n);
     let all = st.spectrum.iter().map(|e| (e.complex(), false)).chain(st.structural.iter().map(|e| (e.complex(), true)));
     for (value, structural) in all {
         let v = mode(&st.matrix, n, value);
@@ -216,6 +305,10 @@ pub fn spectrum_at(rotor: &Rotor, field: &Field, omega: f64, state: &StationaryS
         } else {
             Whirl::Backward
         };
+        let decay_at_least = match (state.period, roundoff) {
+            (Some(t), Some(d)) if value.norm() < d => Some(-(value.norm() + d).ln() / t),
+            _ => None,
+        };
         out.push(CampbellPoint {
             omega,
             re: lam.re,
@@ -226,9 +319,13 @@ pub fn spectrum_at(rotor: &Rotor, field: &Field, omega: f64, state: &StationaryS
             log_decrement: (f.abs() > 0.0).then(|| -2.0 * std::f64::consts::PI * lam.re / f.abs()),
             structural,
             group,
+            decay_at_least,
         });
+        // the coordinates' half (the state is [q, q̇]), as the 12-state route's MAC of the
+        // pencil's q
+        modes.push(v.iter().zip(&scales).take(n / 2).map(|(z, s)| z / s).collect());
     }
-    Ok(out)
+    Ok((out, modes))
 }
 
 /// [`Error::InvalidParameter`] naming `linear_rotor` for [`Rotor::Linear`]: the analyses with
@@ -362,7 +459,7 @@ fn newton_options(periodic: bool) -> NewtonOptions {
     let mut o = NewtonOptions::default();
     if periodic {
         o.max_iterations = 20;
-        o.rtol = 1e-10;
+        o.rtol = MONODROMY_RTOL;
     }
     o
 }
@@ -390,9 +487,12 @@ pub fn campbell_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Control
     let floor = below_floor_of(rotor, kind, speeds)?;
     let opts = newton_options(kind == Kind::PeriodicOrbit);
     let mut previous: Option<StationaryState> = None;
-    let mut per_speed: Vec<Option<Vec<CampbellPoint>>> = Vec::with_capacity(speeds.len());
+    // one entry per speed done; the lines are the tracker's (with the eigenvectors)
+    let mut per_speed: Vec<Option<()>> = Vec::with_capacity(speeds.len());
+    let mut tracker = Tracker::default();
     let mut failures = Vec::with_capacity(speeds.len());
     let mut analysed = Vec::with_capacity(speeds.len());
+    let mut states: Vec<Option<StateKind>> = vec![None; speeds.len()];
     let mut stopped = None;
     for &w in speeds {
         if let Some(why) = control.should_stop() {
@@ -400,6 +500,7 @@ pub fn campbell_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Control
             break;
         }
         if let Some(why) = floor(w) {
+            tracker.push(None, None);
             per_speed.push(None);
             failures.push(Some(why));
             analysed.push(false);
@@ -412,22 +513,16 @@ pub fn campbell_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Control
         // (the family's arc member is no orbit; Rotor::gravity_orbit_start), or none at all
         if let Some(why) = f.gravity_circulation() {
             previous = None;
+            tracker.push(None, None);
             per_speed.push(None);
             failures.push(Some(why));
             control.report(per_speed.len() as u64, speeds.len() as u64);
             continue;
         }
-        // the balanced state only (not the scan's partially balanced or bunched starts,
-        // Rotor::first_start: the diagram follows one state over speed, and a switch to the
-        // balls bunched below paper 004's semi-balanced speed adds crossings that depend on the
-        // grid; tried and reverted in session 17)
-        let guess = Rotor::gravity_orbit_start(&f, &opts).or_else(|| Rotor::guess(&f));
+        let guess = free_start(rotor, &f, &opts);
         let near = previous.as_ref().map(|p| p.x.clone());
         let hint = previous.as_ref().and_then(|p| p.monodromy.clone());
-        let mut result = Err(match no_balance(rotor) {
-            Error::InvalidParameter { reason, .. } => reason,
-            e => e.to_string(),
-        });
+        let mut result = Err(reason(no_state_free(rotor)));
         for start in [guess, near].into_iter().flatten() {
             match stationary_near(&f, &start, hint.as_deref(), &opts) {
                 Ok(s) => {
@@ -437,14 +532,17 @@ pub fn campbell_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Control
                 Err(e) => result = Err(e.to_string()),
             }
         }
-        match result.and_then(|s| spectrum_at(rotor, &f, w, &s).map(|p| (s, p)).map_err(|e| e.to_string())) {
-            Ok((s, p)) => {
+        match result.and_then(|s| spectrum_and_modes_at(rotor, &f, w, &s).map(|p| (s, p)).map_err(|e| e.to_string())) {
+            Ok((s, (p, modes))) => {
+                states[per_speed.len()] = Some(Rotor::state_kind(&f, &s.x));
                 previous = Some(s);
-                per_speed.push(Some(p));
+                tracker.push(Some(&p), Some(modes));
+                per_speed.push(Some(()));
                 failures.push(None);
             }
             Err(e) => {
                 previous = None;
+                tracker.push(None, None);
                 per_speed.push(None);
                 failures.push(Some(e));
             }
@@ -452,7 +550,8 @@ pub fn campbell_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Control
         control.report(per_speed.len() as u64, speeds.len() as u64);
     }
     let done = per_speed.len();
-    let value = RotorCampbell { model: rotor.model_name(), kind, omega: speeds[..done].to_vec(), lines: track(&per_speed), failures, analysed };
+    states.truncate(done);
+    let value = RotorCampbell { model: rotor.model_name(), kind, omega: speeds[..done].to_vec(), lines: tracker.lines, failures, analysed, states };
     Ok(Outcome { value, stopped })
 }
 
@@ -475,51 +574,218 @@ fn below_floor_of<'a>(rotor: &'a Rotor, kind: Kind, speeds: &[f64]) -> Result<im
 pub const NOT_ANALYSED: &str = "not analysed (below the periodic-orbit floor)";
 
 /// Continuous lines through each speed's values: each line's next value predicted by linear
-/// extrapolation of its last two, pairs matched nearest first.
+/// extrapolation of its last two, pairs matched nearest first (by value alone: [`Tracker`]
+/// adds the eigenvectors where they are known).
 pub fn track(per_speed: &[Option<Vec<CampbellPoint>>]) -> Vec<CampbellLine> {
-    let n = per_speed.iter().flatten().map(|v| v.len()).max().unwrap_or(0);
-    let mut lines: Vec<CampbellLine> = (0..n).map(|_| CampbellLine { points: Vec::with_capacity(per_speed.len()) }).collect();
-    let z = |p: &CampbellPoint| Complex64::new(p.re, p.im);
-    for (k, vals) in per_speed.iter().enumerate() {
+    let mut t = Tracker::default();
+    for vals in per_speed {
+        t.push(vals.as_deref(), None);
+    }
+    t.lines
+}
+
+/// The tracking of [`track`], one speed at a time, with the modes' eigenvectors where they are
+/// given. By value alone the balls' slow real eigenvalues swapped lines at the lowest speeds of
+/// the general route (session 17's check; the Jeffcott rotor of paper 004, 300 speeds: the two
+/// are `a Ω⁴` and `2.27 a Ω⁴`, accurate, but a step multiplies them by up to 81 while they are
+/// 1e-9 apart, so the linear prediction's error exceeds their gap and the nearest value is the
+/// other line's). With eigenvectors, the **slow block** (lines whose last value, and values,
+/// of modulus at most [`SLOW`] of the speed's largest) is matched first, by the optimal
+/// assignment (Hungarian method) of the cost `|λ_pred − λ| / u + 4 (1 − MAC)`: `u` the line's
+/// own prediction uncertainty (the second difference of its last three values, else the
+/// first, else its value, plus 1e-12 of the largest `|λ|`), `MAC = |aᴴb|² / (|a|² |b|²)` of
+/// the scaled coordinates' part of the eigenvectors (`S⁻¹ v`, [`VectorField::scales`]), as
+/// the 12-state route's term ([`crate::spatial::campbell`]). The other lines continue by value,
+/// nearest pairs first, as before (MAC and the optimal assignment over every line moved the
+/// kept line at real-axis collisions away from the 12-state route's:
+/// tests/rotor_campbell_views.rs).
+#[derive(Debug, Default)]
+pub struct Tracker {
+    /// The lines so far.
+    pub lines: Vec<CampbellLine>,
+    /// Each line's last eigenvector (scaled), where known.
+    last: Vec<Option<Vec<Complex64>>>,
+    /// The speeds pushed so far (a line begun late has `None` at the earlier ones).
+    speeds: usize,
+}
+
+impl Tracker {
+    /// Add one speed: its values (`None`: no state there) and, optionally, each value's
+    /// eigenvector (scaled, in the values' order).
+    pub fn push(&mut self, vals: Option<&[CampbellPoint]>, vecs: Option<Vec<Vec<Complex64>>>) {
+        let k = self.speeds;
+        self.speeds += 1;
         let Some(vals) = vals else {
-            lines.iter_mut().for_each(|l| l.points.push(None));
-            continue;
+            self.lines.iter_mut().for_each(|l| l.points.push(None));
+            return;
         };
+        while self.lines.len() < vals.len() {
+            self.lines.push(CampbellLine { points: vec![None; k] });
+            self.last.push(None);
+        }
+        let n = self.lines.len();
+        let z = |p: &CampbellPoint| Complex64::new(p.re, p.im);
+        let w2 = vals.first().map(|p| p.omega);
         let predict = |l: &CampbellLine| -> Option<Complex64> {
             let last = l.points.last().copied().flatten()?;
             match l.points.len().checked_sub(2).and_then(|i| l.points[i]) {
                 Some(p2) if k >= 2 => {
-                    let (w0, w1, w2) = (p2.omega, last.omega, vals.first().map_or(last.omega, |p| p.omega));
+                    let (w0, w1, w2) = (p2.omega, last.omega, w2.unwrap_or(last.omega));
                     let t = if w1 != w0 { (w2 - w1) / (w1 - w0) } else { 0.0 };
                     Some(z(&last) + (z(&last) - z(&p2)) * t)
                 }
                 _ => Some(z(&last)),
             }
         };
-        let preds: Vec<Option<Complex64>> = lines.iter().map(predict).collect();
+        let mac = |a: &[Complex64], b: &[Complex64]| {
+            let dot: Complex64 = a.iter().zip(b).map(|(x, y)| x.conj() * y).sum();
+            let (na, nb) = (a.iter().map(|x| x.norm_sqr()).sum::<f64>(), b.iter().map(|x| x.norm_sqr()).sum::<f64>());
+            if na > 0.0 && nb > 0.0 {
+                dot.norm_sqr() / (na * nb)
+            } else {
+                0.0
+            }
+        };
+        // a line's prediction error, estimated from its last points: the second difference
+        // (the linear extrapolation's error one step ago), else the first, else the value
+        // itself, above a floor of round-off
+        let floor = 1e-12 * vals.iter().map(|p| z(p).norm()).fold(0.0, f64::max) + f64::MIN_POSITIVE;
+        let uncertainty = |l: &CampbellLine| -> f64 {
+            let tail: Vec<Complex64> = l.points.iter().rev().take(3).map_while(|p| p.as_ref().map(z)).collect();
+            floor
+                + match tail.as_slice() {
+                    [a, b, c] => (a - b * 2.0 + c).norm(),
+                    [a, b] => (a - b).norm(),
+                    [a] => a.norm(),
+                    _ => 0.0,
+                }
+        };
+        let top = floor / 1e-12;
+        let slow_value = |p: &CampbellPoint| z(p).norm() <= SLOW * top;
+        let slow_line = |l: &CampbellLine| l.points.last().copied().flatten().is_some_and(|p| slow_value(&p));
+        let mut assigned: Vec<Option<usize>> = vec![None; n];
+        let mut line_used = vec![false; n];
+        let mut val_used = vec![false; vals.len()];
+        // the slow block first: its lines continued optimally at the cost of their prediction
+        // error relative to their own uncertainty, and their eigenvectors' MAC
+        let slow_lines: Vec<usize> = (0..n).filter(|&li| slow_line(&self.lines[li])).collect();
+        let slow_vals: Vec<usize> = (0..vals.len()).filter(|&vi| slow_value(&vals[vi])).collect();
+        if let (Some(m), false) = (vecs.as_ref(), slow_lines.is_empty() || slow_vals.is_empty()) {
+            // square: dummy rows or columns of cost 0 take what is left over (a line whose
+            // value left the block, a value that entered it), for the value order below
+            let ns = slow_lines.len().max(slow_vals.len());
+            let mut cost = vec![0.0; ns * ns];
+            for (a, &li) in slow_lines.iter().enumerate() {
+                let l = &self.lines[li];
+                let (p, u) = (predict(l), uncertainty(l));
+                for (b, &vi) in slow_vals.iter().enumerate() {
+                    let d = p.map_or(f64::INFINITY, |p| (p - z(&vals[vi])).norm());
+                    let shape = match (&self.last[li], m.get(vi)) {
+                        (Some(x), Some(y)) => 4.0 * (1.0 - mac(x, y)),
+                        _ => 0.0,
+                    };
+                    cost[a * ns + b] = d / u + shape;
+                }
+            }
+            if cost.iter().all(|c| c.is_finite()) {
+                for (a, b) in assignment(&cost, ns).into_iter().enumerate() {
+                    let (Some(&li), Some(&vi)) = (slow_lines.get(a), slow_vals.get(b)) else { continue };
+                    assigned[li] = Some(vi);
+                    line_used[li] = true;
+                    val_used[vi] = true;
+                }
+            }
+        }
+        // the rest by value, nearest pairs first
         let mut cand: Vec<(f64, usize, usize)> = vec![];
-        for (li, p) in preds.iter().enumerate() {
-            for (vi, v) in vals.iter().enumerate() {
-                let d = p.map_or(f64::INFINITY, |p| (p - z(v)).norm());
-                cand.push((d, li, vi));
+        for (li, l) in self.lines.iter().enumerate().filter(|(li, _)| !line_used[*li]) {
+            let p = predict(l);
+            for (vi, v) in vals.iter().enumerate().filter(|(vi, _)| !val_used[*vi]) {
+                cand.push((p.map_or(f64::INFINITY, |p| (p - z(v)).norm()), li, vi));
             }
         }
         cand.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)).then(a.2.cmp(&b.2)));
-        let mut line_used = vec![false; n];
-        let mut val_used = vec![false; vals.len()];
-        let mut assigned: Vec<Option<CampbellPoint>> = vec![None; n];
         for (_, li, vi) in cand {
             if !line_used[li] && !val_used[vi] {
                 line_used[li] = true;
                 val_used[vi] = true;
-                assigned[li] = Some(vals[vi]);
+                assigned[li] = Some(vi);
             }
         }
-        for (l, a) in lines.iter_mut().zip(assigned) {
-            l.points.push(a);
+        for (li, a) in assigned.into_iter().enumerate() {
+            self.lines[li].points.push(a.map(|vi| vals[vi]));
+            if let Some(vi) = a {
+                self.last[li] = vecs.as_ref().and_then(|m| m.get(vi).cloned());
+            }
         }
     }
-    lines
+}
+
+/// The slow block of [`Tracker`]: values of modulus at most this fraction of the speed's
+/// largest `|λ|` (the balls' slow modes at low speed, `∝ Ω⁴` on the Jeffcott rotor).
+pub const SLOW: f64 = 1e-3;
+
+/// Optimal assignment of the `n×n` cost matrix `cost` (row-major, finite): `row → column`
+/// minimising the summed cost (Hungarian method with potentials, O(n³); as
+/// `spatial::stability`'s, for any `n`).
+fn assignment(cost: &[f64], n: usize) -> Vec<usize> {
+    let inf = f64::INFINITY;
+    let mut u = vec![0.0; n + 1];
+    let mut v = vec![0.0; n + 1];
+    let mut p = vec![0usize; n + 1]; // p[j]: row matched to column j (1-based, 0 = none)
+    let mut way = vec![0usize; n + 1];
+    for i in 1..=n {
+        p[0] = i;
+        let mut j0 = 0;
+        let mut minv = vec![inf; n + 1];
+        let mut used = vec![false; n + 1];
+        loop {
+            used[j0] = true;
+            let i0 = p[j0];
+            let mut delta = inf;
+            let mut j1 = 0;
+            for j in 1..=n {
+                if !used[j] {
+                    let cur = cost[(i0 - 1) * n + j - 1] - u[i0] - v[j];
+                    if cur < minv[j] {
+                        minv[j] = cur;
+                        way[j] = j0;
+                    }
+                    if minv[j] < delta {
+                        delta = minv[j];
+                        j1 = j;
+                    }
+                }
+            }
+            for j in 0..=n {
+                if used[j] {
+                    u[p[j]] += delta;
+                    v[j] -= delta;
+                } else {
+                    minv[j] -= delta;
+                }
+            }
+            j0 = j1;
+            if p[j0] == 0 {
+                break;
+            }
+        }
+        loop {
+            let j1 = way[j0];
+            p[j0] = p[j1];
+            j0 = j1;
+            if j0 == 0 {
+                break;
+            }
+        }
+    }
+    let mut out = vec![0usize; n];
+    for j in 1..=n {
+        if p[j] > 0 {
+            out[p[j] - 1] = j - 1;
+        }
+    }
+    out
 }
 
 /// The rotor with its balls locked where the closed form at speed `omega` puts them (each ball a
@@ -597,6 +863,36 @@ fn point_mass_balls(rotor: &Rotor) -> Rotor {
     }
 }
 
+/// Where Newton starts at a speed for the diagram with the balls free (and the search for its
+/// crossings): under gravity across the axis with `n ≥ 3` balls in a plane the orbit with the
+/// balls in two groups ([`Rotor::gravity_orbit_start`]), else the closed-form balanced
+/// (semi-balanced) state ([`Rotor::guess`]); where none exists because the balls' capacity
+/// falls short of the unbalance at every speed (the spatial and the linear rotor; the planar
+/// rotor with its race centred), the partially balanced state, from the starts of
+/// `stability`'s scan ([`Rotor::first_start`]: each plane's balls on its share, else bunched).
+/// Not for paper 004's eccentric race below its semi-balanced speed: there the diagram follows
+/// the semi-balanced state only (a switch to the balls bunched there added crossings that
+/// depend on the grid; tried and reverted in session 17), and a speed without it has no point.
+fn free_start(rotor: &Rotor, f: &Field, opts: &NewtonOptions) -> Option<Vec<f64>> {
+    let start = Rotor::gravity_orbit_start(f, opts).or_else(|| Rotor::guess(f));
+    match rotor {
+        Rotor::Planar(p) if p.s2 != 0.0 => start,
+        _ if start.is_some() => start,
+        _ => Rotor::first_start(f, None),
+    }
+}
+
+/// Why a speed of the diagram with the balls free has no state where no start was found.
+fn no_state_free(rotor: &Rotor) -> Error {
+    Error::invalid(
+        "balancer",
+        match rotor {
+            Rotor::Planar(p) if p.s2 != 0.0 => "no semi-balanced state at this speed: the balls cannot supply the unbalance (|B| > n m3 r)",
+            _ => "no balanced state (the balls' capacity falls short of the unbalance) and no start for the partially balanced one",
+        },
+    )
+}
+
 fn no_balance(rotor: &Rotor) -> Error {
     Error::invalid(
         "balancer",
@@ -605,6 +901,16 @@ fn no_balance(rotor: &Rotor) -> Error {
             Rotor::Spatial(_) => "no balanced state to lock the balls in: the balls' capacity Σ m R of a plane is below the unbalance it must cancel",
             Rotor::Linear(r) => return crate::linear_rotor::partial::no_balanced_state(r, "no balanced state to lock the balls in"),
         },
+    )
+}
+
+/// The words of [`LockedCriticalSpeeds::unlocked`] (`critical`'s table and the report): the
+/// critical speeds lock the balls at the (semi-)balanced state, which does not exist where the
+/// balls cannot supply the unbalance; with the balls free they rest elsewhere (partially
+/// balanced where their capacity falls short), the state `stability` analyses.
+pub fn unlocked_words(unlocked: usize, samples: usize) -> String {
+    format!(
+        "{unlocked} of {samples} speeds of the grid have no (semi-)balanced state to lock the balls at (the balls cannot supply the unbalance there) and were not searched; with the balls free, `autobal stability` analyses the state they rest in there (partially balanced where their capacity falls short)"
     )
 }
 
@@ -944,13 +1250,16 @@ fn state_of(rotor: &Rotor, balls: Balls, omega: f64, near: Option<&StationarySta
         return Err(why);
     }
     let guess = match balls {
-        Balls::Free => Rotor::gravity_orbit_start(&f, &opts).or_else(|| Rotor::guess(&f)),
+        Balls::Free => free_start(rotor, &f, &opts),
         // the locked rotor has no balls left: its balanced state is the centred rotor (or, with
         // gravity, its sag), reached by Newton from rest
         Balls::Locked => Rotor::guess(&f).or_else(|| Some(vec![0.0; f.dim()])),
     };
     let hint = near.and_then(|p| p.monodromy.clone());
-    let mut result = Err(reason(no_balance(rotor)));
+    let mut result = Err(reason(match balls {
+        Balls::Free => no_state_free(rotor),
+        Balls::Locked => no_balance(rotor),
+    }));
     for start in [guess, near.map(|p| p.x.clone())].into_iter().flatten() {
         match stationary_near(&f, &start, hint.as_deref(), &opts) {
             Ok(s) => {
@@ -1015,7 +1324,8 @@ pub fn campbell_locked(rotor: &Rotor, speeds: &[f64]) -> Result<RotorCampbell> {
             }
         }
     }
-    Ok(RotorCampbell { model: rotor.model_name(), kind, omega: speeds.to_vec(), lines: track(&per_speed), failures, analysed })
+    let states = vec![None; speeds.len()];
+    Ok(RotorCampbell { model: rotor.model_name(), kind, omega: speeds.to_vec(), lines: track(&per_speed), failures, analysed, states })
 }
 
 /// `|Im λ|` at most this times `max(1, |λ|)` counts as a real eigenvalue (QR round-off).
@@ -1128,8 +1438,11 @@ pub fn fixed_view_with(rotor: &Rotor, balls: Balls, c: &RotorCampbell, harmonics
                 whirl,
                 re: sigma,
                 nu: m.im,
-                log_decrement: (f.abs() >= 1e-12 * w.abs().max(1.0)).then(|| -2.0 * std::f64::consts::PI * sigma / f.abs()),
+                log_decrement: (f.abs() >= 1e-12 * w.abs().max(1.0))
+                    .then(|| -2.0 * std::f64::consts::PI * sigma / f.abs())
+                    .filter(|_| m.decay_at_least.is_none()),
                 share,
+                decay_at_least: m.decay_at_least,
             });
             idx.push(k);
         }

@@ -118,7 +118,7 @@ fn general_critical(ctx: &Ctx, s: &mut Section, summary: bool) -> Result<()> {
                 s.table(&["", "Ω (–)", "whirl", "motion", "multiplicity (–)"], &rows);
             }
             if l.unlocked > 0 {
-                s.p(format!("{} of {} speeds of the grid have no balanced state to lock the balls in and were not searched.", l.unlocked, l.samples));
+                s.p(format!("{}.", autobal::rotor_campbell::unlocked_words(l.unlocked, l.samples)));
             }
             let list: Vec<String> = l.speeds.iter().map(|k| speed(k.omega).split(" (").next().unwrap_or_default().to_string()).collect();
             format!(

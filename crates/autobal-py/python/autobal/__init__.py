@@ -238,7 +238,11 @@ class SpatialModel(_Config):
         ``im_hz``, ``im_rad_s``, ``re_per_s`` (Ω-units times ω0). ``omega_max`` as for
         :meth:`stability`. ``points``: default 300. On a config the 12-state model does not
         represent, the general route's JSON as the CLI prints it (``"route": "general"``, 60
-        points by default for a periodic orbit), returned as it is."""
+        points by default for a periodic orbit), returned as it is: ``state`` per speed (the
+        state followed, ``stability``'s words; ``state_followed`` where the balls' capacity
+        falls short and it is the partially balanced one), and a Floquet exponent whose
+        multiplier is below the monodromy's round-off has ``re`` and ``log_decrement`` None and
+        ``decay_at_least`` (the mode decays at least that fast; ``undetermined`` says why)."""
         raw = self._report("campbell", omega_max=omega_max, points=points, balls=balls)
         if raw.get("route") == "general":
             return raw

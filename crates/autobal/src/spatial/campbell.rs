@@ -158,6 +158,12 @@ pub struct FixedPoint {
     /// Share of the followed component in the eigenvector's amplitude squared (`≥ ½` where the
     /// curve follows the dominant one).
     pub share: f64,
+    /// The general route's bound on a Floquet exponent whose multiplier is below the
+    /// monodromy's round-off ([`crate::rotor_campbell::CampbellPoint::decay_at_least`]): the
+    /// mode decays at least this fast (1/s); `re` is then null in the JSON and `log_decrement`
+    /// `None`. Always `None` on the 12-state route (eigenvalues).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub decay_at_least: Option<f64>,
 }
 
 /// One mode's curve in fixed axes.
@@ -327,6 +333,7 @@ pub fn fixed_axes_with(model: &SpatialModel, c: &Campbell, balls: Balls, harmoni
                 nu: m.im,
                 log_decrement: (f.abs() >= 1e-12).then(|| -2.0 * std::f64::consts::PI * sigma / f.abs()),
                 share,
+                decay_at_least: None,
             });
         }
         curves.push(FixedCurve { line: li, mode: 0, points: pts });
