@@ -149,6 +149,7 @@ def case_A(points=40):
     nchk = 0
     specs = {}
     undetermined = []
+    nbound = [0]
     for j, w in enumerate(d["omega"]):
         if not d["analysed"][j] or d["failures"][j] is not None:
             continue
@@ -158,7 +159,19 @@ def case_A(points=40):
         assert np.max(np.abs(xT - x)) < 1e-9 * max(1, np.max(np.abs(x))), "not a periodic orbit"
         mu, V = np.linalg.eig(Phi)
         rho = np.log(mu.astype(complex)) / T
-        pts = [(li, l["points"][j]) for li, l in enumerate(d["lines"]) if l["points"][j]]
+        allpts = [(li, l["points"][j]) for li, l in enumerate(d["lines"]) if l["points"][j]]
+        # autobal's bounds (|mu| below its round-off bound: `re` null, `decay_at_least`): each
+        # must hold for one of my exponents of multipliers that small, checked apart
+        bounds = [p for _, p in allpts if p["re"] is None]
+        pts = [(li, p) for li, p in allpts if p["re"] is not None]
+        mine_small = sorted(rho[np.abs(mu) < 1e-6 * np.linalg.norm(Phi, 2)].real)
+        for bp in bounds:
+            nbound[0] += 1
+            # one of my exponents of small multipliers must decay at least that fast (1e-7/T: the
+            # exponents' tolerance above; which one is the round-off's guess, so only one)
+            if not mine_small or mine_small[0] > -bp["decay_at_least"] + 1e-7 / T:
+                bad.append(f"A w={w:.6g}: autobal bounds an exponent by sigma <= {-bp['decay_at_least']:.6g}, "
+                           f"my smallest multipliers' exponents {mine_small}")
         th = np.array([p["re"] + 1j * p["im"] for _, p in pts])
         r, c, dist = cc.match(th, rho, 2 * np.pi / T)
         J0 = P.jac(0.0, x, w)
@@ -198,6 +211,7 @@ def case_A(points=40):
           + ("OK" if not bad else "*** DISAGREE"))
     for b in bad[:15]:
         print("   ", b)
+    print(f"A: {nbound[0]} exponents given as bounds (decay_at_least), each checked against my smallest multipliers")
     if undetermined:
         print(f"A: {len(undetermined)} exponents have |mu| < 1e-10 ||Phi|| (round-off: not "
               f"determined by a monodromy), at {sorted(set(round(u[0], 4) for u in undetermined))} "
@@ -212,14 +226,21 @@ def case_A(points=40):
     P0 = model(0.0, kx=1.05e5, ky=1.05e5, cx=50.0, cy=50.0)
     worst_lim = 0.0
     lim_und = []
+    lim_bad = []
     for j, w in enumerate(di["omega"]):
         if not di["analysed"][j] or di["failures"][j] is not None:
             continue
         lam = P0.eig(w)
-        pts = [l["points"][j] for l in di["lines"] if l["points"][j]]
+        T = np.pi / w
+        allpts = [l["points"][j] for l in di["lines"] if l["points"][j]]
+        # a bound (`re` null) must hold for an eigenvalue whose multiplier is that small
+        for bp in (p for p in allpts if p["re"] is None):
+            small_re = lam.real[np.exp(lam.real * T) < 1e-6]
+            if not len(small_re) or small_re.min() > -bp["decay_at_least"] * (1 - 1e-6):
+                lim_bad.append((w, bp["decay_at_least"], sorted(small_re)))
+        pts = [p for p in allpts if p["re"] is not None]
         th = np.array([p["re"] + 1j * p["im"] for p in pts])
         r, c, dist = cc.match(th, lam)  # no modulo: the branch must be the eigenvalue itself
-        T = np.pi / w
         small = np.exp(lam.real * T) < 1e-10  # multipliers at round-off: not determined
         for a, b, dd in zip(r, c, dist):
             if small[b]:
@@ -231,7 +252,10 @@ def case_A(points=40):
     # isotropic eigenvalue); autobal's values are reported as a disagreement where they miss it
     # by more than the same 1e-5 of max|lambda|
     wrong = [u for u in lim_und if abs(u[1] - u[2]) > 1e-5 * 1e3]
-    lim_ok &= not wrong
+    lim_ok &= not wrong and not lim_bad
+    for b in lim_bad:
+        print(f"A limit: at {b[0]:.6g} rad/s autobal bounds an exponent by sigma <= {-b[1]:.6g}, "
+              f"the isotropic eigenvalues with multipliers below 1e-6 have Re {b[2]} *** DISAGREE")
     if lim_und:
         e = max(lim_und, key=lambda u: abs(u[1] - u[2]))
         print(f"A limit: {len(lim_und)} exponents with exp(Re lambda T) < 1e-10 left out (speeds "
