@@ -973,6 +973,93 @@ pub(crate) fn creep_warning(omega: f64, rate: f64, si: bool) -> String {
     )
 }
 
+/// Balls within this angle (rad) of a stationary state count as next to it for the end-state
+/// check ([`settled_end_check`]): Newton from an end on a stable state lands on it to
+/// round-off, and a run at a drift below the settling test's rate (`1e-3 Ω` per revolution)
+/// that is more than 0.1 rad away from an unstable state is no slow creep away from it.
+pub(crate) const NEAR_STATE: f64 = 0.1;
+
+/// Where Newton's method from a run's end lands ([`settled_end_check`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum EndState {
+    /// Within [`NEAR_STATE`] of the balls' angles, on an isolated equilibrium that is unstable
+    /// by its exact linear stability: its word and growth rate (1/s, or `1/τ`).
+    Unstable(StateKind, f64),
+    /// More than [`NEAR_STATE`] from the balls' angles: the end is at no stationary state (a
+    /// run that settled on one starts Newton within round-off of it).
+    Elsewhere,
+}
+
+/// The stationary state that a run at a constant speed, ending in `x` (the field's reduced
+/// state in its turning axes: each route turns its own end state into it), sits next to, by
+/// Newton's method from `x` ([`crate::analysis::stationary`], default options): [`EndState`];
+/// `None` where Newton fails, lands on a family (`n >= 3` balls in a plane), on a stable or
+/// neutral state, or where the stationary motion is a periodic orbit (gravity across the
+/// axis, supports that differ by direction: no Newton from one instant). The three runs'
+/// check of an end that reads not balanced or partially balanced and settled.
+pub(crate) fn end_state(field: &Field, x: &[f64]) -> Option<EndState> {
+    if field.period().is_some() || x.len() != field.dim() {
+        return None;
+    }
+    let balls = ball_coordinates(field);
+    if balls.is_empty() {
+        return None;
+    }
+    let st = stationary(field, x, &NewtonOptions::default()).ok()?;
+    let tau = std::f64::consts::TAU;
+    let near = st.x[balls.clone()].iter().zip(&x[balls]).all(|(a, b)| {
+        let d = (a - b).rem_euclid(tau);
+        d.min(tau - d) <= NEAR_STATE
+    });
+    if !near {
+        return Some(EndState::Elsewhere);
+    }
+    if st.family_dimension > 0 {
+        return None;
+    }
+    let lin = crate::analysis::stability(field, &st).ok()?;
+    (lin.verdict == Verdict::Unstable && lin.abscissa > 0.0).then(|| EndState::Unstable(Rotor::state_kind(field, &st.x), lin.abscissa))
+}
+
+/// The end-state check of a run of `rotor` that ends at the constant speed `omega`, reading
+/// not balanced or partially balanced and settled, in the state `x` (the reduced state of
+/// `rotor.field(omega)` in turning axes): where Newton from it lands ([`end_state`]) and the
+/// run's warning, or `None` (the word stands). The growth rate is `Some` for
+/// [`EndState::Unstable`]. Units as [`creep_warning`]'s (`si`: rad/s and 1/s). One check and
+/// one wording for the planar, spatial and linear runs.
+pub(crate) fn settled_end_check(rotor: &Rotor, x: &[f64], omega: f64, si: bool) -> Option<(Option<f64>, String)> {
+    let field = rotor.field(omega).ok()?;
+    let w = format!("{omega:.6}");
+    let w = if w.contains('.') { w.trim_end_matches('0').trim_end_matches('.') } else { &w };
+    let (speed, rate_unit, time_unit, note) =
+        if si { (format!("{w} rad/s"), " 1/s", " s", "") } else { (w.to_string(), "", "", "; rad/s, 1/s and s, or a dimensionless model's Ω and τ") };
+    match end_state(&field, x)? {
+        EndState::Unstable(kind, rate) => {
+            let state = match stability_over_speed(rotor, &[omega]).ok().and_then(|r| r.points.first().map(|p| (p.state, p.verdict))) {
+                Some((Some(k), Some(v))) => format!("; `stability`'s state at this speed is {} and {}", k.name(), v.name()),
+                _ => String::new(),
+            };
+            let kind = match kind {
+                StateKind::NotBalanced => "not balanced (the balls' resultant not cancelling the unbalance)",
+                k => k.name(),
+            };
+            Some((
+                Some(rate),
+                format!(
+                    "the run ends near a stationary state that is {kind} and unstable at ω = {speed} (exact linear stability: growth rate {rate:.4e}{rate_unit}, a deviation grows by e in {:.4e}{time_unit}{note}): the motion moves away from it, so the end is not settled{state}; where it goes depends on the start: raise drive.t_end or start elsewhere (drive.psi0)",
+                    1.0 / rate
+                ),
+            ))
+        }
+        EndState::Elsewhere => Some((
+            None,
+            format!(
+                "the balls are at no stationary state at ω = {speed}: Newton's method from the end lands more than {NEAR_STATE} rad from their angles, so they still move, though more slowly than the settling test sees; the end is not settled: raise drive.t_end"
+            ),
+        )),
+    }
+}
+
 /// [`stability_over_speed`] under `control`, asked once per speed (each grid speed, each trial
 /// speed of a range end's location, each speed's family); the progress observer is told the
 /// grid speeds done. Stopped, the outcome holds the speeds done until then: their points, the

@@ -852,33 +852,12 @@ pub fn simulate_from(
     // stability decides; where they go from there depends on the start, and the warning says so
     let settled_elsewhere = matches!(end.outcome, crate::spatial::dynamics::RunOutcome::NotBalanced | crate::spatial::dynamics::RunOutcome::PartiallyBalanced);
     if creep_rate.is_none() && settled_elsewhere && end.settled && constant {
-        match end_state(rotor, &y, phi_end, final_omega) {
-            Some(EndState::Unstable(kind, rate)) => {
-                end.outcome = crate::spatial::dynamics::RunOutcome::NotSettled;
-                end.settled = false;
-                let state =
-                    match super::stability::stability_over_speed(rotor, &[final_omega]).ok().and_then(|r| r.points.first().map(|p| (p.state, p.verdict))) {
-                        Some((Some(k), Some(v))) => format!("; `stability`'s state at this speed is {} and {}", k.name(), v.name()),
-                        _ => String::new(),
-                    };
-                warnings.push(format!(
-                    "the run ends near a stationary state that is {} and unstable at {final_omega:.2} rad/s (exact linear stability: growth rate {rate:.4e} 1/s, a deviation grows by e in {:.4e} s): the motion moves away from it, so the end is not settled{state}; where it goes depends on the start: raise drive.t_end or start elsewhere (drive.psi0)",
-                    match kind {
-                        crate::rotor_stability::StateKind::NotBalanced => "not balanced (the balls' resultant not cancelling the unbalance)",
-                        k => k.name(),
-                    },
-                    1.0 / rate
-                ));
-                creep_rate = Some(rate);
-            }
-            Some(EndState::Elsewhere) => {
-                end.outcome = crate::spatial::dynamics::RunOutcome::NotSettled;
-                end.settled = false;
-                warnings.push(format!(
-                    "the balls are at no stationary state at {final_omega:.2} rad/s: Newton's method from the end lands more than {NEAR_STATE} rad from their angles, so they still move, though more slowly than the settling test sees; the end is not settled: raise drive.t_end"
-                ));
-            }
-            None => {}
+        let r = crate::rotor_stability::Rotor::Linear(rotor.clone());
+        if let Some((rate, words)) = turned_end(rotor, &y, phi_end).and_then(|x| crate::rotor_stability::settled_end_check(&r, &x, final_omega, true)) {
+            end.outcome = crate::spatial::dynamics::RunOutcome::NotSettled;
+            end.settled = false;
+            warnings.push(words);
+            creep_rate = rate;
         }
     }
     Ok(RunSummary {
@@ -900,61 +879,25 @@ pub fn simulate_from(
     })
 }
 
-/// Balls within this angle (rad) of a stationary state count as next to it for the creep check
-/// ([`end_state`]): Newton from an end on a stable state lands on it to round-off,
-/// and a run at a drift below the settling test's rate (`1e-3 Ω` per revolution) that is
-/// more than 0.1 rad away from an unstable state is no slow creep away from it.
-const NEAR_STATE: f64 = 0.1;
-
-/// Where Newton's method from a run's end lands ([`end_state`]).
-enum EndState {
-    /// Within [`NEAR_STATE`] of the balls' angles, on an isolated equilibrium that is unstable
-    /// by its exact linear stability: its word and growth rate (1/s).
-    Unstable(crate::rotor_stability::StateKind, f64),
-    /// More than [`NEAR_STATE`] from the balls' angles: the end is at no stationary state (a
-    /// run that settled on one starts Newton within round-off of it).
-    Elsewhere,
-}
-
-/// The stationary state a run at the constant speed `omega` ending in `y` (fixed axes, the
-/// rotor at angle `phi`) sits next to, by Newton's method from the end state in turning axes
-/// (velocities zero): [`EndState`]; `None` where Newton fails, lands on a family, on a stable
-/// or neutral state, where the stationary motion is a periodic orbit (gravity, supports that
-/// differ by direction: no Newton from one instant) or the balls are real (no linearisation).
-fn end_state(rotor: &LinearRotor, y: &[f64], phi: f64, omega: f64) -> Option<EndState> {
-    use crate::analysis::{stationary, NewtonOptions, VectorField};
+/// The end-state check's start ([`crate::rotor_stability::settled_end_check`]): a run's end
+/// `y` (fixed axes, the rotor at angle `phi`) as the state of [`LinearRotorField`] in turning
+/// axes, each (x, y) pair (and tilt pair) turned back through `φ`, the balls' angles as they
+/// are, velocities zero (Newton's start only); `None` without balls or for an odd number of
+/// rotor coordinates.
+fn turned_end(rotor: &LinearRotor, y: &[f64], phi: f64) -> Option<Vec<f64>> {
     let (n, nb) = (rotor.dofs(), rotor.total_balls());
-    if nb == 0 || n % 2 != 0 || !rotor.ball_physics.is_empty() || y.len() < n + nb {
+    if nb == 0 || n % 2 != 0 || y.len() < n + nb {
         return None;
     }
-    let field = LinearRotorField::new(rotor, omega, Frame::Rotating).ok()?;
-    if field.period().is_some() || field.dim() < 2 * (n + nb) {
-        return None;
-    }
-    // fixed axes to turning ones: each (x, y) pair (and tilt pair) turned back through φ
     let (s, c) = phi.sin_cos();
-    let mut x = vec![0.0; field.dim()];
+    let mut x = vec![0.0; 2 * (n + nb)];
     for m in 0..n / 2 {
         let (a, b) = (y[2 * m], y[2 * m + 1]);
         x[2 * m] = c * a + s * b;
         x[2 * m + 1] = -s * a + c * b;
     }
     x[n..n + nb].copy_from_slice(&y[n..n + nb]);
-    let st = stationary(&field, &x, &NewtonOptions::default()).ok()?;
-    let tau = std::f64::consts::TAU;
-    let near = st.x[n..n + nb].iter().zip(&y[n..n + nb]).all(|(a, b)| {
-        let d = (a - b).rem_euclid(tau);
-        d.min(tau - d) <= NEAR_STATE
-    });
-    if !near {
-        return Some(EndState::Elsewhere);
-    }
-    if st.family_dimension > 0 {
-        return None;
-    }
-    let lin = crate::analysis::stability(&field, &st).ok()?;
-    (lin.verdict == crate::analysis::Verdict::Unstable && lin.abscissa > 0.0)
-        .then(|| EndState::Unstable(super::partial::state_kind(&field, &st.x), lin.abscissa))
+    Some(x)
 }
 
 /// What [`ending`] gives the summary.

@@ -753,8 +753,22 @@ fn summarise(eq: &Equations, t: f64, y: &[f64], peak: (f64, f64, f64), stats: St
     let creep = (outcome == RunOutcome::Balanced && eq.drive.prescribed() && eq.drive.kinematics(t).1 == 0.0)
         .then(|| crate::rotor_stability::unstable_isolated_state(&crate::rotor_stability::Rotor::Spatial(r.clone()), omega))
         .flatten();
-    let (outcome, settled) = if creep.is_some() { (RunOutcome::NotSettled, false) } else { (outcome, settled) };
-    let warnings = creep.map(|rate| crate::rotor_stability::creep_warning(omega, rate, false)).into_iter().collect();
+    // the same for an end that reads not balanced or partially balanced and settled: Newton from
+    // the end state (turning axes already: the field's reduced state) finds the state the balls
+    // sit next to, whose exact linear stability decides (tests/end_state_18.rs); the linear
+    // run's check, equilibria only (no Newton from one instant of a periodic orbit)
+    let elsewhere = (creep.is_none()
+        && matches!(outcome, RunOutcome::NotBalanced | RunOutcome::PartiallyBalanced)
+        && settled
+        && eq.drive.prescribed()
+        && eq.drive.kinematics(t).1 == 0.0)
+        .then(|| {
+            let x = super::field::SpatialField::new(r, omega).ok()?.reduced_state(y);
+            crate::rotor_stability::settled_end_check(&crate::rotor_stability::Rotor::Spatial(r.clone()), &x, omega, false)
+        })
+        .flatten();
+    let (outcome, settled) = if creep.is_some() || elsewhere.is_some() { (RunOutcome::NotSettled, false) } else { (outcome, settled) };
+    let warnings = creep.map(|rate| crate::rotor_stability::creep_warning(omega, rate, false)).into_iter().chain(elsewhere.map(|e| e.1)).collect();
     Summary {
         peak_amplitude: peak.0,
         omega_at_peak: peak.1,
