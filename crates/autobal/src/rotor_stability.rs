@@ -979,6 +979,18 @@ pub(crate) fn creep_warning(omega: f64, rate: f64, si: bool) -> String {
 /// that is more than 0.1 rad away from an unstable state is no slow creep away from it.
 pub(crate) const NEAR_STATE: f64 = 0.1;
 
+/// Newton's iteration limit in the end-state check (`end_state`; the analyses' default is
+/// 50). From a run's end Newton can have a long, curved valley to follow: the balls turning
+/// together is a nearly free direction (the scaled Jacobian's smallest singular value 7.5e-11
+/// of its largest on a review's run-up of examples/linear_rotor_shaft.toml to 600 rad/s, the
+/// balls turning together at 0.012 rad/s at 20 s), the Newton step along it is long (2 rad)
+/// and the line search takes 1e-4..1e-1 of it, so that run's Newton reached the scaled residual
+/// 6.5e-18 at iteration 807 (the state with the balls opposite on the whirl's line, 0.7 rad
+/// from theirs) and stopped at 3e-9 after 50. Each iteration is one Jacobian and one LU of the
+/// field's size and a few right-hand sides, once per run; 2000 leaves that run 2.5x room. A
+/// stall past it leaves the run's word standing.
+pub const END_STATE_ITERATIONS: usize = 2000;
+
 /// Where Newton's method from a run's end lands ([`settled_end_check`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) enum EndState {
@@ -1005,7 +1017,7 @@ pub(crate) fn end_state(field: &Field, x: &[f64]) -> Option<EndState> {
     if balls.is_empty() {
         return None;
     }
-    let st = stationary(field, x, &NewtonOptions::default()).ok()?;
+    let st = stationary(field, x, &NewtonOptions { max_iterations: END_STATE_ITERATIONS, ..NewtonOptions::default() }).ok()?;
     let tau = std::f64::consts::TAU;
     let near = st.x[balls.clone()].iter().zip(&x[balls]).all(|(a, b)| {
         let d = (a - b).rem_euclid(tau);

@@ -175,3 +175,78 @@ fn a_spatial_run_settled_on_a_stable_bunched_state_keeps_its_word() {
     assert_eq!(s.outcome, RunOutcome::NotBalanced, "{s:?}");
     assert!(s.warnings.is_empty(), "{s:?}");
 }
+
+/// Issue 18 item 4, a review's case: `simulate --config examples/linear_rotor_shaft.toml` run up
+/// to 600 rad/s by a speed schedule (0 to 600 rad/s over 3 s, held) to 20 s ends with the balls
+/// turning together at ~0.012 rad/s, "not balanced, settled"; Newton's method from its end
+/// state (below, turned into the rotating field's axes by the run's check, velocities zero:
+/// printed by the run) stopped at the analyses' 50 iterations with the
+/// scaled residual 3e-9, so the check said nothing. Why: the balls' common rotation is nearly
+/// free there (the scaled Jacobian's smallest singular value 7.5e-11 of its largest, its
+/// singular vector (0.745, 0.653) on the two balls), the Newton step along it is 2 rad long and
+/// curved off by the stiff rotor coordinates, so the line search takes 1e-4..1e-1 of it per
+/// iteration: Newton converges (residual 6.5e-18) after 807 iterations, on the state with the
+/// balls opposite on the whirl's line, unstable at 0.0222/s (the constant-speed case's state,
+/// tests/linear_creep_18.rs's note), 0.7 rad from the balls: the end is at no stationary state,
+/// not settled. The check's limit ([`END_STATE_ITERATIONS`]) covers it; the run itself (6 s
+/// in a release build) is not repeated here. Checked to fail: with the limit at 50 the second
+/// Newton fails as the first does.
+#[test]
+fn newton_from_a_slow_common_rotation_reaches_its_state_within_the_checks_limit() {
+    use autobal::rotor_stability::END_STATE_ITERATIONS;
+    let root = autobal::config::parse(include_str!("../../../examples/linear_rotor_shaft.toml"), "test").unwrap();
+    let cfg = autobal::linear_rotor::config::linear_rotor(&root, &mut |_| Err("no files".into())).unwrap();
+    let linear = autobal::linear_rotor::reduce::reduce(&cfg.rotor, cfg.modes.unwrap(), &[]).unwrap().rotor;
+    let rotor = Rotor::Linear(linear);
+    let f = rotor.field(600.0).unwrap();
+    let x: Vec<f64> = vec![
+        -3.945492471019126e-5,
+        2.970394812830583e-5,
+        3.160545935905513e-6,
+        3.0814367737054837e-6,
+        -6.304916522368866e-6,
+        5.337074465742543e-6,
+        0.00012386697843332612,
+        0.00016894763892559873,
+        -6.243077076698109e-7,
+        1.0146909294864585e-6,
+        -1.4044048273806688e-7,
+        1.0652887064568255e-7,
+        -1.258722759351448e-7,
+        2.4187269906645333e-8,
+        -2.6516483302117734e-9,
+        1.1262607803707133e-8,
+        -0.6995913880356246,
+        2.543860788015066,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+    ];
+    assert_eq!(x.len(), f.dim());
+    // the analyses' default stalls on the valley
+    assert!(stationary(&f, &x, &NewtonOptions::default()).is_err());
+    let st = stationary(&f, &x, &NewtonOptions { max_iterations: END_STATE_ITERATIONS, ..NewtonOptions::default() }).unwrap();
+    assert!(st.residual < 1e-12 && st.family_dimension == 0, "{st:?}");
+    // the balls opposite (to 0.012 rad) and 0.6-0.7 rad from the end's: more than the check's 0.1
+    let psi = &st.x[16..18];
+    let tau = std::f64::consts::TAU;
+    assert!(((psi[1] - psi[0]).rem_euclid(tau) - PI).abs() < 0.02, "{psi:?}");
+    assert!(psi.iter().zip(&x[16..18]).all(|(a, b)| ((a - b).rem_euclid(tau)).min(tau - (a - b).rem_euclid(tau)) > 0.5), "{psi:?}");
+    let lin = stability(&f, &st).unwrap();
+    assert!(lin.verdict == Verdict::Unstable && (lin.abscissa - 0.0222).abs() < 1e-3, "{lin:?}");
+}
