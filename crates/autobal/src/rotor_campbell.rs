@@ -743,7 +743,7 @@ impl Tracker {
                 }
             }
             if cost.iter().all(|c| c.is_finite()) {
-                for (a, b) in assignment(&cost, ns).into_iter().enumerate() {
+                for (a, b) in crate::linalg::assignment::assignment(|r, c| cost[r * ns + c], ns).into_iter().enumerate() {
                     let (Some(&li), Some(&vi)) = (slow_lines.get(a), slow_vals.get(b)) else { continue };
                     assigned[li] = Some(vi);
                     line_used[li] = true;
@@ -779,69 +779,6 @@ impl Tracker {
 /// The slow block of [`Tracker`]: values of modulus at most this fraction of the speed's
 /// largest `|λ|` (the balls' slow modes at low speed, `∝ Ω⁴` on the Jeffcott rotor).
 pub const SLOW: f64 = 1e-3;
-
-/// Optimal assignment of the `n×n` cost matrix `cost` (row-major, finite): `row → column`
-/// minimising the summed cost (Hungarian method with potentials, O(n³); as
-/// `spatial::stability`'s, for any `n`).
-fn assignment(cost: &[f64], n: usize) -> Vec<usize> {
-    let inf = f64::INFINITY;
-    let mut u = vec![0.0; n + 1];
-    let mut v = vec![0.0; n + 1];
-    let mut p = vec![0usize; n + 1]; // p[j]: row matched to column j (1-based, 0 = none)
-    let mut way = vec![0usize; n + 1];
-    for i in 1..=n {
-        p[0] = i;
-        let mut j0 = 0;
-        let mut minv = vec![inf; n + 1];
-        let mut used = vec![false; n + 1];
-        loop {
-            used[j0] = true;
-            let i0 = p[j0];
-            let mut delta = inf;
-            let mut j1 = 0;
-            for j in 1..=n {
-                if !used[j] {
-                    let cur = cost[(i0 - 1) * n + j - 1] - u[i0] - v[j];
-                    if cur < minv[j] {
-                        minv[j] = cur;
-                        way[j] = j0;
-                    }
-                    if minv[j] < delta {
-                        delta = minv[j];
-                        j1 = j;
-                    }
-                }
-            }
-            for j in 0..=n {
-                if used[j] {
-                    u[p[j]] += delta;
-                    v[j] -= delta;
-                } else {
-                    minv[j] -= delta;
-                }
-            }
-            j0 = j1;
-            if p[j0] == 0 {
-                break;
-            }
-        }
-        loop {
-            let j1 = way[j0];
-            p[j0] = p[j1];
-            j0 = j1;
-            if j0 == 0 {
-                break;
-            }
-        }
-    }
-    let mut out = vec![0usize; n];
-    for j in 1..=n {
-        if p[j] > 0 {
-            out[p[j] - 1] = j - 1;
-        }
-    }
-    out
-}
 
 /// The rotor with its balls locked where the closed form at speed `omega` puts them (each ball a
 /// point mass of the rotor) and, with `undamped`, no support damping: the rotor of the

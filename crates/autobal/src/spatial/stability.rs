@@ -394,65 +394,10 @@ pub struct CampbellStats {
     pub direct: usize,
 }
 
-/// Optimal assignment (Hungarian method with potentials, O(n³)): `row → column` minimising the
-/// summed cost of an `n×n` matrix.
+/// Optimal assignment of the first `n×n` of `cost` ([`crate::linalg::assignment::assignment`]).
 fn assignment(cost: &[[f64; MAX_STATES]; MAX_STATES], n: usize) -> [usize; MAX_STATES] {
-    let inf = f64::INFINITY;
-    let mut u = [0.0; MAX_STATES + 1];
-    let mut v = [0.0; MAX_STATES + 1];
-    let mut p = [0usize; MAX_STATES + 1]; // p[j]: row matched to column j (1-based, 0 = none)
-    let mut way = [0usize; MAX_STATES + 1];
-    for i in 1..=n {
-        p[0] = i;
-        let mut j0 = 0;
-        let mut minv = [inf; MAX_STATES + 1];
-        let mut used = [false; MAX_STATES + 1];
-        loop {
-            used[j0] = true;
-            let i0 = p[j0];
-            let mut delta = inf;
-            let mut j1 = 0;
-            for j in 1..=n {
-                if !used[j] {
-                    let cur = cost[i0 - 1][j - 1] - u[i0] - v[j];
-                    if cur < minv[j] {
-                        minv[j] = cur;
-                        way[j] = j0;
-                    }
-                    if minv[j] < delta {
-                        delta = minv[j];
-                        j1 = j;
-                    }
-                }
-            }
-            for j in 0..=n {
-                if used[j] {
-                    u[p[j]] += delta;
-                    v[j] -= delta;
-                } else {
-                    minv[j] -= delta;
-                }
-            }
-            j0 = j1;
-            if p[j0] == 0 {
-                break;
-            }
-        }
-        loop {
-            let j1 = way[j0];
-            p[j0] = p[j1];
-            j0 = j1;
-            if j0 == 0 {
-                break;
-            }
-        }
-    }
     let mut out = [0usize; MAX_STATES];
-    for j in 1..=n {
-        if p[j] > 0 {
-            out[p[j] - 1] = j - 1;
-        }
-    }
+    out[..n].copy_from_slice(&crate::linalg::assignment::assignment(|r, c| cost[r][c], n));
     out
 }
 
