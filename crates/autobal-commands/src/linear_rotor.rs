@@ -898,8 +898,9 @@ fn outcome_line(s: &RunSummary) -> String {
         speed_text(s.final_omega),
         s.residual_unbalance
     );
-    // (a creep has its own line among the warnings: its balls' drift passed the test)
-    if s.outcome == RunOutcome::NotSettled && s.stopped.is_none() && s.creep_rate.is_none() {
+    // (a creep, or an end at no stationary state, has its own line among the warnings: its
+    // balls' drift passed the test)
+    if s.outcome == RunOutcome::NotSettled && s.stopped.is_none() && s.warnings.is_empty() {
         t.push_str(&format!(
             "warning: not settled: the speed still changes over the last two revolutions, or the balls' mean angles still drift from one revolution to the next{}: a transient (raise drive.t_end), a run-up, or balls circulating round the race; the residual is no stationary state's\n",
             s.ball_drift.map_or(", or it turned less than two revolutions".to_string(), |d| format!(" (by {d:.2e} rad)"))
