@@ -117,8 +117,8 @@ pub struct Summary {
     /// Mean lateral displacement `r̄ = (1/T) ∫ r dt` of the shaft at the (first) balancer plane
     /// in fixed axes over the last revolution (m, or `ρ_s`): the stationary motion without the
     /// whirl, e.g. the sag under gravity across the axis (`≈ M g / Σ k`). `None` when the run
-    /// turned less than a revolution: there is no revolution to average over (main at da1a84c
-    /// said `[0, 0]`).
+    /// turned less than a revolution: there is no revolution to average over (it read `[0, 0]`
+    /// before round 3, session 18).
     pub mean_displacement: Option<[f64; 2]>,
     /// `|r̄|`, the static sag at the (first) balancer plane (see [`Summary::mean_displacement`]),
     /// where it is one: the run turned at least a revolution (a mean was taken) and either
