@@ -958,19 +958,24 @@ pub fn unstable_isolated_state(rotor: &Rotor, omega: f64) -> Option<f64> {
 /// spatial run does not know whether its model is the papers' dimensionless one, `Ω` and
 /// `1/τ`). One wording for every route (planar, spatial, linear).
 pub(crate) fn creep_warning(omega: f64, rate: f64, si: bool) -> String {
-    let units = if si { ("rad/s", " 1/s", " s", "") } else { ("", "", "", "; rad/s, 1/s and s, or a dimensionless model's Ω and τ") };
-    // the speed to six decimals, trailing zeros dropped (1.395, not 1.40; 600, not 600.00)
+    let (speed, rate_unit, time_unit, note) = run_units(omega, si);
+    format!(
+        "the balls end near the balanced state, which is unstable at ω = {speed} (exact linear stability: growth rate {rate:.4e}{rate_unit}, a deviation grows by e in {:.4e}{time_unit}{note}): they creep away from it, so the end is not settled although the residual is small; a longer run leaves it",
+        1.0 / rate,
+    )
+}
+
+/// The runs' warnings' units ([`creep_warning`], [`settled_end_check`]): the speed to six
+/// decimals with trailing zeros dropped (1.395, not 1.40; 600, not 600.00) and `rad/s` where
+/// `si`, the rate's and the time's units, and where not `si` a note naming both unit systems.
+fn run_units(omega: f64, si: bool) -> (String, &'static str, &'static str, &'static str) {
     let w = format!("{omega:.6}");
     let w = if w.contains('.') { w.trim_end_matches('0').trim_end_matches('.') } else { &w };
-    format!(
-        "the balls end near the balanced state, which is unstable at ω = {w}{sep}{} (exact linear stability: growth rate {rate:.4e}{}, a deviation grows by e in {:.4e}{}{}): they creep away from it, so the end is not settled although the residual is small; a longer run leaves it",
-        units.0,
-        units.1,
-        1.0 / rate,
-        units.2,
-        units.3,
-        sep = if si { " " } else { "" },
-    )
+    if si {
+        (format!("{w} rad/s"), " 1/s", " s", "")
+    } else {
+        (w.to_string(), "", "", "; rad/s, 1/s and s, or a dimensionless model's Ω and τ")
+    }
 }
 
 /// Balls within this angle (rad) of a stationary state count as next to it for the end-state
@@ -1041,10 +1046,7 @@ pub(crate) fn end_state(field: &Field, x: &[f64]) -> Option<EndState> {
 /// one wording for the planar, spatial and linear runs.
 pub(crate) fn settled_end_check(rotor: &Rotor, x: &[f64], omega: f64, si: bool) -> Option<(Option<f64>, String)> {
     let field = rotor.field(omega).ok()?;
-    let w = format!("{omega:.6}");
-    let w = if w.contains('.') { w.trim_end_matches('0').trim_end_matches('.') } else { &w };
-    let (speed, rate_unit, time_unit, note) =
-        if si { (format!("{w} rad/s"), " 1/s", " s", "") } else { (w.to_string(), "", "", "; rad/s, 1/s and s, or a dimensionless model's Ω and τ") };
+    let (speed, rate_unit, time_unit, note) = run_units(omega, si);
     match end_state(&field, x)? {
         EndState::Unstable(kind, rate) => {
             let state = match stability_over_speed(rotor, &[omega]).ok().and_then(|r| r.points.first().map(|p| (p.state, p.verdict))) {
