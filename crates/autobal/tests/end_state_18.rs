@@ -83,11 +83,7 @@ fn a_planar_run_next_to_opposite_balls_is_not_settled() {
     assert_eq!(s.outcome, RunOutcome::NotSettled, "{s:?}");
     assert!(!s.settled && !s.balanced);
     let words = format!("growth rate {rate:.4e} 1/s");
-    assert!(
-        s.warnings.len() == 1 && s.warnings[0].contains("not balanced") && s.warnings[0].contains(&words) && s.warnings[0].contains("depends on the start"),
-        "{:?}",
-        s.warnings
-    );
+    one_unstable_state_warning(&s.warnings, &words);
 }
 
 /// Below the critical speed (0.5 ω_n = 144 rad/s) the balls started 0.2 rad either side of
@@ -105,6 +101,15 @@ fn a_planar_run_settled_on_a_stable_bunched_state_keeps_its_word() {
     assert!(s.residual_unbalance > 2.0, "{s:?}");
     assert_eq!(s.outcome, RunOutcome::NotBalanced, "{s:?}");
     assert!(s.settled && s.warnings.is_empty(), "{s:?}");
+}
+
+/// The run's one warning: the end next to a not-balanced state, `words` (its growth rate),
+/// and that where the motion goes depends on the start.
+fn one_unstable_state_warning(warnings: &[String], words: &str) {
+    assert!(
+        warnings.len() == 1 && warnings[0].contains("not balanced") && warnings[0].contains(words) && warnings[0].contains("depends on the start"),
+        "{warnings:?}"
+    );
 }
 
 fn spatial_example() -> autobal::config::SpatialSimulation {
@@ -152,11 +157,7 @@ fn a_spatial_run_next_to_opposite_balls_is_not_settled() {
     assert_eq!(s.outcome, RunOutcome::NotSettled, "{s:?}");
     assert!(!s.balanced);
     let words = format!("growth rate {rate:.4e},");
-    assert!(
-        s.warnings.len() == 1 && s.warnings[0].contains("not balanced") && s.warnings[0].contains(&words) && s.warnings[0].contains("depends on the start"),
-        "{:?}",
-        s.warnings
-    );
+    one_unstable_state_warning(&s.warnings, &words);
 }
 
 /// The same rotor below its critical speed, Ω = 0.5 (the balanced state unstable there): the
