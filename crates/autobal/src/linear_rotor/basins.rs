@@ -33,7 +33,7 @@
 
 use super::runup::{simulate_from, RunSummary};
 use super::spec::LinearRun;
-use super::{Direction, LinearRotor};
+use super::LinearRotor;
 use crate::control::{Control, Outcome};
 use crate::error::{Error, Result};
 use rayon::prelude::*;
@@ -108,16 +108,6 @@ pub fn residual_unbalance(rotor: &LinearRotor, psi: &[f64]) -> f64 {
     } else {
         f64::NAN
     }
-}
-
-/// The eccentricity scale `Σ|m e| / m_t` (`m_t = r_xᵀ M r_x` the structure's translational
-/// mass, `r_x` the rigid translation along `x`): the whirl of a rigid rotor far above its
-/// critical speeds.
-pub fn eccentricity_scale(rotor: &LinearRotor) -> f64 {
-    let n = rotor.dofs();
-    let xs: Vec<usize> = (0..rotor.nodes).filter_map(|k| rotor.dof(k, Direction::X)).collect();
-    let mt: f64 = xs.iter().flat_map(|&i| xs.iter().map(move |&j| (i, j))).map(|(i, j)| rotor.m[i * n + j]).sum();
-    rotor.unbalances.iter().map(|u| u.me.abs()).sum::<f64>() / mt
 }
 
 /// Run `run` from each of `starts` (initial ball angles, e.g. [`angle_grid`]) in parallel under

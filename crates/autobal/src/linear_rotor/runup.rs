@@ -825,41 +825,18 @@ pub fn simulate_from(
         _ => Some(out.to_string()),
     };
     let (phi_end, final_omega) = hooks.spin_of(out.t, &y);
-    let mut end = ending(rotor, &hooks.window, &y, phi_end, final_omega, stopped.is_none());
-    // a balanced end at a constant speed next to a balanced state that is unstable there is a
-    // slow creep away from it, not a settled end (the planar run's creep check,
-    // `crate::planar::simulate`): the drift test's floor passes a creep whose growth rate times
-    // its distance is below it (tests/linear_creep_18.rs: "balanced" at 10 s, the residual
-    // growing at the exact rate). The exact linear stability at the final speed decides (an
-    // isolated state only: with n >= 3 balls the run may rest on a stable member of a family)
-    let mut warnings = vec![];
-    // (the three routes' one gate: a prescribed drive whose speed is constant at the end)
-    let constant = drive.prescribed() && drive.kinematics(out.t).1 == 0.0;
-    let mut creep_rate = (end.outcome == crate::spatial::dynamics::RunOutcome::Balanced && constant)
-        .then(|| crate::rotor_stability::unstable_isolated_state(&crate::rotor_stability::Rotor::Linear(rotor.clone()), final_omega))
-        .flatten();
-    if let Some(rate) = creep_rate {
-        end.outcome = crate::spatial::dynamics::RunOutcome::NotSettled;
-        end.settled = false;
-        warnings.push(crate::rotor_stability::creep_warning(final_omega, rate, true));
-    }
-    // the same for an end that is not balanced: two balls spread evenly (opposite each other)
-    // start next to the state with the balls opposite on the line of the whirl, which is
-    // unstable where the balanced state is stable (examples/linear_rotor_shaft.toml at
-    // 600 rad/s: growth rate 0.022/s, e in 45 s, the balanced state approached at 0.022/s; a
-    // 20 s run read "not balanced", settled, where `stability` says balanced and stable).
-    // Newton from the end state finds the state the balls sit next to, its exact linear
-    // stability decides; where they go from there depends on the start, and the warning says so
-    let settled_elsewhere = matches!(end.outcome, crate::spatial::dynamics::RunOutcome::NotBalanced | crate::spatial::dynamics::RunOutcome::PartiallyBalanced);
-    if creep_rate.is_none() && settled_elsewhere && end.settled && constant {
-        let r = crate::rotor_stability::Rotor::Linear(rotor.clone());
-        if let Some((rate, words)) = turned_end(rotor, &y, phi_end).and_then(|x| crate::rotor_stability::settled_end_check(&r, &x, final_omega, true)) {
-            end.outcome = crate::spatial::dynamics::RunOutcome::NotSettled;
-            end.settled = false;
-            warnings.push(words);
-            creep_rate = rate;
-        }
-    }
+    let end = ending(rotor, &hooks.window, &y, phi_end, final_omega, stopped.is_none());
+    // the end checks (`crate::rotor_stability::end_checks`); the end state turned into the
+    // rotor's turning axes
+    let checks = crate::rotor_stability::end_checks(
+        &crate::rotor_stability::Rotor::Linear(rotor.clone()),
+        final_omega,
+        true,
+        drive.prescribed() && drive.kinematics(out.t).1 == 0.0,
+        end.outcome,
+        end.settled,
+        || turned_end(rotor, &y, phi_end),
+    );
     Ok(RunSummary {
         t: out.t,
         stopped,
@@ -870,12 +847,12 @@ pub fn simulate_from(
         residual_unbalance: end.residual_unbalance,
         race_whirl: end.race_whirl,
         ball_drift: end.ball_drift,
-        settled: end.settled,
-        outcome: end.outcome,
-        balanced: end.outcome == crate::spatial::dynamics::RunOutcome::Balanced,
+        settled: checks.settled,
+        outcome: checks.outcome,
+        balanced: checks.outcome == crate::spatial::dynamics::RunOutcome::Balanced,
         steps: out.stats.steps,
-        creep_rate,
-        warnings,
+        creep_rate: checks.creep_rate,
+        warnings: checks.warning.into_iter().collect(),
     })
 }
 

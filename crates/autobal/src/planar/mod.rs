@@ -736,33 +736,19 @@ fn simulate_sampled(
         residual: residual_unbalance,
         residual_couple: None,
     });
-    // a balanced end at a constant speed next to a (semi-)balanced state that is unstable there
-    // is a slow creep away from it, not a settled end: the drift test's floor (1e-4 ω_n) passes
-    // a creep whose growth rate times its distance is below it (examples/planar.toml centred,
-    // 100 rad/s, the balls 0.01 rad off the unstable balanced state: "balanced" at 30 s with a
-    // residual of 0.022, not balanced at 300 s, residual 2.2; found in session 17). The exact
-    // linear stability at the final speed decides (an isolated state only: with n >= 3 balls
-    // the run may rest on a stable member of a family whose closed-form member is unstable)
-    let creep = (outcome == crate::spatial::dynamics::RunOutcome::Balanced && w_dot == 0.0 && drive.prescribed())
-        .then(|| crate::rotor_stability::unstable_isolated_state(&crate::rotor_stability::Rotor::Planar(rotor.clone()), final_omega))
-        .flatten();
-    // the same for an end that reads not balanced or partially balanced and settled: Newton from
-    // the end state (rotor axes already) finds the state the balls sit next to, whose exact
-    // linear stability decides (two balls started opposite on the whirl's line sit next to the
-    // unstable state with the balls opposite; tests/end_state_18.rs); the linear run's check
-    let elsewhere = (creep.is_none()
-        && matches!(outcome, crate::spatial::dynamics::RunOutcome::NotBalanced | crate::spatial::dynamics::RunOutcome::PartiallyBalanced)
-        && settled
-        && completed
-        && w_dot == 0.0
-        && drive.prescribed())
-    .then(|| {
-        let x = field::PlanarField::new(rotor, final_omega).ok()?.reduced_state(&y);
-        crate::rotor_stability::settled_end_check(&crate::rotor_stability::Rotor::Planar(rotor.clone()), &x, final_omega, true)
-    })
-    .flatten();
-    let (outcome, settled) =
-        if creep.is_some() || elsewhere.is_some() { (crate::spatial::dynamics::RunOutcome::NotSettled, false) } else { (outcome, settled) };
+    // the end checks (`crate::rotor_stability::end_checks`); this run's gate requires the run
+    // completed as well (the outcome balanced or partially balanced implies it, not balanced
+    // does not: no balls, or at rest); the end state in rotor axes already
+    let checks = crate::rotor_stability::end_checks(
+        &crate::rotor_stability::Rotor::Planar(rotor.clone()),
+        final_omega,
+        true,
+        completed && w_dot == 0.0 && drive.prescribed(),
+        outcome,
+        settled,
+        || Some(field::PlanarField::new(rotor, final_omega).ok()?.reduced_state(&y)),
+    );
+    let (outcome, settled) = (checks.outcome, checks.settled);
     // the radius test as well: C at s2 (or near the axis) where the outcome says balanced
     let balanced = outcome == crate::spatial::dynamics::RunOutcome::Balanced && (final_amp - target).abs() <= tolerance;
     let stopped = match &out.status {
@@ -770,13 +756,10 @@ fn simulate_sampled(
         Status::Stopped(StopReason::Observer) => Some(format!("interrupted at t = {:.6} s", out.t)),
         _ => Some(format!("{out}").replace(&format!("t = {:.6}", out.t), &format!("t = {:.6} s", out.t))),
     };
-    let mut warnings =
-        if completed { passage_warnings(rotor, drive, settings, speed_range, final_omega, settled || creep.is_some() || elsewhere.is_some()) } else { vec![] };
-    // (a creep's own warning says why the end is not settled: not also "raise drive.t_end")
-    if let Some(rate) = creep {
-        warnings.push(crate::rotor_stability::creep_warning(final_omega, rate, true));
-    }
-    warnings.extend(elsewhere.map(|e| e.1));
+    // (an overriding check's own warning says why the end is not settled: not also "raise
+    // drive.t_end")
+    let mut warnings = if completed { passage_warnings(rotor, drive, settings, speed_range, final_omega, settled || checks.warning.is_some()) } else { vec![] };
+    warnings.extend(checks.warning);
     Ok(Summary {
         peak_amplitude: peak.value,
         omega_at_peak: peak.with,

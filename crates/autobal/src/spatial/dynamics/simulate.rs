@@ -745,30 +745,19 @@ fn summarise(eq: &Equations, t: f64, y: &[f64], peak: (f64, f64, f64), stats: St
         residual: residual_unbalance,
         residual_couple,
     });
-    // the creep check (as `crate::planar::simulate`'s): a balanced end at a constant prescribed
-    // speed next to a balanced state that is unstable there is a slow creep away from it, which
-    // the drift test's floor can pass (tests/spatial_creep_18.rs); the exact linear stability at
-    // the final speed decides, for an isolated state only (with n >= 3 balls in a plane the run
-    // may rest on a stable member of a family whose closed-form member is unstable)
-    let creep = (outcome == RunOutcome::Balanced && eq.drive.prescribed() && eq.drive.kinematics(t).1 == 0.0)
-        .then(|| crate::rotor_stability::unstable_isolated_state(&crate::rotor_stability::Rotor::Spatial(r.clone()), omega))
-        .flatten();
-    // the same for an end that reads not balanced or partially balanced and settled: Newton from
-    // the end state (turning axes already: the field's reduced state) finds the state the balls
-    // sit next to, whose exact linear stability decides (tests/end_state_18.rs); the linear
-    // run's check, equilibria only (no Newton from one instant of a periodic orbit)
-    let elsewhere = (creep.is_none()
-        && matches!(outcome, RunOutcome::NotBalanced | RunOutcome::PartiallyBalanced)
-        && settled
-        && eq.drive.prescribed()
-        && eq.drive.kinematics(t).1 == 0.0)
-        .then(|| {
-            let x = super::field::SpatialField::new(r, omega).ok()?.reduced_state(y);
-            crate::rotor_stability::settled_end_check(&crate::rotor_stability::Rotor::Spatial(r.clone()), &x, omega, false)
-        })
-        .flatten();
-    let (outcome, settled) = if creep.is_some() || elsewhere.is_some() { (RunOutcome::NotSettled, false) } else { (outcome, settled) };
-    let warnings = creep.map(|rate| crate::rotor_stability::creep_warning(omega, rate, false)).into_iter().chain(elsewhere.map(|e| e.1)).collect();
+    // the end checks (`crate::rotor_stability::end_checks`), in the model's own units (`si`
+    // false); the end state in turning axes already: the field's reduced state
+    let checks = crate::rotor_stability::end_checks(
+        &crate::rotor_stability::Rotor::Spatial(r.clone()),
+        omega,
+        false,
+        eq.drive.prescribed() && eq.drive.kinematics(t).1 == 0.0,
+        outcome,
+        settled,
+        || Some(super::field::SpatialField::new(r, omega).ok()?.reduced_state(y)),
+    );
+    let (outcome, settled) = (checks.outcome, checks.settled);
+    let warnings = checks.warning.into_iter().collect();
     Summary {
         peak_amplitude: peak.0,
         omega_at_peak: peak.1,
