@@ -211,3 +211,46 @@ fn the_scan_lists_the_mirror_as_the_other_orbit() {
     let two = Rotor::Spatial(washer_with("balancer.balls", "2").rotor);
     assert!(stability_over_speed(&two, &[SPIN]).unwrap().points[0].other_orbits.is_empty());
 }
+
+#[test]
+fn a_map_row_takes_the_scans_orbit_at_every_speed() {
+    // Where orbits of several placements coexist, a map's cell is the orbit of least growth
+    // rate, as `stability_over_speed`'s point at that speed: the same verdict and growth rate.
+    // Session 19's audit: a 25 x 10 map of the washer under gravity (speed_rpm 200-1750,
+    // balancer.z 0.1-0.45) continued each row's orbit from cell to cell onto the mirror
+    // placement's, unstable (+3.74e-4 1/s at 1362.5 rpm, z = 0.2556), where `stability` and a
+    // smaller map said stable (-1.64e-4 1/s). The row of that z over the audit's 25 speeds.
+    use autobal::paths::Axis;
+    use autobal::rotor_map::general_map;
+    let mut root = autobal::config::parse(WASHER, "washer").unwrap();
+    autobal::config::set(&mut root, "spatial.gravity", autobal::config::parse_value("[0.0, -9.81, 0.0]")).unwrap();
+    autobal::config::set(&mut root, "balancer.z", autobal::config::parse_value("0.255555555556")).unwrap();
+    let rpm: Vec<f64> = (0..25).map(|i| 200.0 + 1550.0 * i as f64 / 24.0).collect();
+    let x = Axis { path: "speed_rpm".into(), values: rpm.clone() };
+    let y = Axis { path: "balancer.z".into(), values: vec![0.255555555556] };
+    let mut cells = vec![];
+    general_map(&root, &x, &y, None, &autobal::control::Control::none(), &mut |_, r| {
+        cells.extend_from_slice(r);
+        true
+    })
+    .unwrap();
+    let sim = autobal::config::spatial_simulation(&root).unwrap();
+    // the map's spatial margins are per τ = 1/ω0, the scan's in 1/s
+    let omega0 = sim.config.model.scale.map_or(1.0, |s| s.omega0);
+    let rotor = Rotor::Spatial(sim.rotor);
+    let speeds: Vec<f64> = rpm.iter().map(|r| r * PI / 30.0).collect();
+    let scan = stability_over_speed(&rotor, &speeds).unwrap();
+    let mut compared = 0;
+    for (c, p) in cells.iter().zip(&scan.points) {
+        assert_eq!(c.verdict, p.verdict, "{} rpm: map {c:?}, scan {p:?}", p.omega * 30.0 / PI);
+        if let (Some(a), Some(_)) = (p.abscissa, c.verdict) {
+            // the same orbit shot with the same options from the same start: the growth rate
+            // to the shooting's tolerance (multipliers good to ~1e-9: 1e-6 1/s at these speeds,
+            // far below the two placements' difference of ~5e-4 1/s)
+            let m = c.margin * omega0;
+            assert!((m - a).abs() <= 1e-6, "{} rpm: map margin {m}, scan {a}", p.omega * 30.0 / PI);
+            compared += 1;
+        }
+    }
+    assert!(compared >= 10, "{compared} cells with a state");
+}
