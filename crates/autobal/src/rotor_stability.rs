@@ -920,17 +920,46 @@ pub fn stability_over_speed(rotor: &Rotor, speeds: &[f64]) -> Result<RotorStabil
 /// The growth rate (1/s) of the (semi-)balanced state of `rotor` at `omega` where it is an
 /// isolated state (no family) and unstable by its exact linear stability
 /// ([`stability_over_speed`]); `None` where it is stable or neutral, belongs to a family, is not
-/// the state found, or has no linearisation (real balls). The runs' creep check: a run at a
-/// constant speed that ends balanced next to such a state is creeping away from it, not settled
-/// (`crate::planar::simulate`'s and `crate::spatial::dynamics::simulate`'s summaries, with
-/// `creep_warning`'s words).
+/// the state found, or has no linearisation (real balls). [`unstable_balanced_state`]'s
+/// isolated case.
+pub fn unstable_isolated_state(rotor: &Rotor, omega: f64) -> Option<f64> {
+    match unstable_balanced_state(rotor, omega)? {
+        UnstableBalance::Isolated(rate) => Some(rate),
+        UnstableBalance::Family(_) => None,
+    }
+}
+
+/// The (semi-)balanced state a balanced end sits next to, where it moves away
+/// ([`unstable_balanced_state`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum UnstableBalance {
+    /// An isolated state, unstable by its exact linear stability: its growth rate (1/s, or
+    /// per unit `τ`).
+    Isolated(f64),
+    /// A family of balanced states (`n >= 3` balls in a plane) of which every member sampled
+    /// ([`FamilyPoint`], verdict [`FamilyVerdict::NoneStable`]) is unstable: the least growth
+    /// rate among them (the most stable member's abscissa, > 0).
+    Family(f64),
+}
+
+/// Whether the (semi-)balanced state of `rotor` at `omega` is one a run moves away from
+/// ([`stability_over_speed`] at that one speed): an isolated state that is unstable
+/// ([`UnstableBalance::Isolated`]), or a family whose every sampled member is unstable
+/// ([`UnstableBalance::Family`]); `None` where it is stable or neutral, a family with a stable
+/// (or neutral) member sampled, not the state found, or without linearisation (real balls).
+/// The runs' creep check ([`end_checks`]): a run at a constant speed that ends balanced next
+/// to such a state is creeping away from it, not settled. With a family the run rests on some
+/// member, not necessarily the one Newton reached; only where none of them is stable is a
+/// creep certain (a sampled verdict: the family is followed at steps of
+/// [`crate::analysis::FamilyOptions`]' default, and a stable arc between two samples would
+/// be missed; the warning says "every member sampled").
 ///
 /// The last few answers are kept (rotor and speed compared exactly): `basins` and repeated
 /// runs end at one speed of one rotor, where each run asked the whole analysis again (a
 /// periodic orbit's Floquet analysis under gravity, +63 % on the washer's basins, counted by a
 /// review in session 18).
-pub fn unstable_isolated_state(rotor: &Rotor, omega: f64) -> Option<f64> {
-    type Answers = Vec<(Rotor, u64, Option<f64>)>;
+pub fn unstable_balanced_state(rotor: &Rotor, omega: f64) -> Option<UnstableBalance> {
+    type Answers = Vec<(Rotor, u64, Option<UnstableBalance>)>;
     static ANSWERS: std::sync::Mutex<Answers> = std::sync::Mutex::new(Vec::new());
     let known = |a: &Answers| a.iter().find(|(r, w, _)| *w == omega.to_bits() && r == rotor).map(|k| k.2);
     if let Some(k) = ANSWERS.lock().ok().and_then(|a| known(&a)) {
@@ -939,8 +968,19 @@ pub fn unstable_isolated_state(rotor: &Rotor, omega: f64) -> Option<f64> {
     let answer = (|| {
         let r = stability_over_speed(rotor, &[omega]).ok()?;
         let p = r.points.first()?;
-        let balanced = matches!(p.state, Some(StateKind::Balanced | StateKind::SemiBalanced));
-        (balanced && p.family_dimension == 0 && p.verdict == Some(crate::analysis::Verdict::Unstable)).then_some(p.abscissa?)
+        if !matches!(p.state, Some(StateKind::Balanced | StateKind::SemiBalanced)) {
+            return None;
+        }
+        if p.family_dimension == 0 {
+            return (p.verdict == Some(crate::analysis::Verdict::Unstable)).then_some(UnstableBalance::Isolated(p.abscissa?));
+        }
+        // a family: a creep only where no member sampled is stable (session 19's audit: paper
+        // 004's rotor with four balls at 115.8 rad/s, below its critical speed, every member
+        // unstable at +0.055 1/s or more, read "balanced" at 40 s, residual 0.027, and not
+        // balanced, residual 3.0, at 121 s: tests/family_creep_19.rs)
+        let f = p.family.as_ref()?;
+        let rate = f.most_stable.abscissa;
+        (f.verdict == FamilyVerdict::NoneStable && f.members > 0 && rate > 0.0).then_some(UnstableBalance::Family(rate))
     })();
     if let Ok(mut a) = ANSWERS.lock() {
         if known(&a).is_none() {
@@ -953,17 +993,24 @@ pub fn unstable_isolated_state(rotor: &Rotor, omega: f64) -> Option<f64> {
     answer
 }
 
-/// The runs' warning for the creep check ([`unstable_isolated_state`]): the final speed `omega`
-/// and the growth rate `rate` (> 0) of the unstable state the run ends next to, in the model's
-/// units: rad/s and 1/s where `si` (the planar and linear rotors), else named as either (the
-/// spatial run does not know whether its model is the papers' dimensionless one, `Ω` and
-/// `1/τ`). One wording for every route (planar, spatial, linear).
-pub(crate) fn creep_warning(omega: f64, rate: f64, si: bool) -> String {
+/// The runs' warning for the creep check ([`unstable_balanced_state`]): the final speed `omega`
+/// and the growth rate (> 0) of the unstable state the run ends next to (of a family, its
+/// most stable member sampled), in the model's units: rad/s and 1/s where `si` (the planar and
+/// linear rotors), else named as either (the spatial run does not know whether its model is
+/// the papers' dimensionless one, `Ω` and `1/τ`). One wording for every route (planar,
+/// spatial, linear).
+pub(crate) fn creep_warning(omega: f64, state: UnstableBalance, si: bool) -> String {
     let (speed, rate_unit, time_unit, note) = run_units(omega, si);
-    format!(
-        "the balls end near the balanced state, which is unstable at ω = {speed} (exact linear stability: growth rate {rate:.4e}{rate_unit}, a deviation grows by e in {:.4e}{time_unit}{note}): they creep away from it, so the end is not settled although the residual is small; a longer run leaves it",
-        1.0 / rate,
-    )
+    match state {
+        UnstableBalance::Isolated(rate) => format!(
+            "the balls end near the balanced state, which is unstable at ω = {speed} (exact linear stability: growth rate {rate:.4e}{rate_unit}, a deviation grows by e in {:.4e}{time_unit}{note}): they creep away from it, so the end is not settled although the residual is small; a longer run leaves it",
+            1.0 / rate,
+        ),
+        UnstableBalance::Family(rate) => format!(
+            "the balls end near the family of balanced states, every member of which that `stability` samples is unstable at ω = {speed} (exact linear stability: the most stable grows at {rate:.4e}{rate_unit}, a deviation by e in {:.4e}{time_unit}{note}): they creep away from it, so the end is not settled although the residual is small; a longer run leaves it",
+            1.0 / rate,
+        ),
+    }
 }
 
 /// The runs' warnings' units ([`creep_warning`], [`settled_end_check`]): the speed to six
@@ -1106,9 +1153,10 @@ pub(crate) struct EndChecks {
 ///   balls 0.01 rad off the unstable balanced state read "balanced" at 30 s with a residual of
 ///   0.022, not balanced at 300 s with a residual of 2.2 (tests/planar_creep_17.rs; the spatial
 ///   run tests/spatial_creep_18.rs; the linear run tests/linear_creep_18.rs, "balanced" at
-///   10 s, the residual growing at the exact rate). An isolated state only: with `n >= 3`
-///   balls in a plane the run may rest on a stable member of a family whose closed-form member
-///   is unstable. Warning: [`creep_warning`].
+///   10 s, the residual growing at the exact rate). With `n >= 3` balls in a plane the run may
+///   rest on a stable member of a family whose closed-form member is unstable: a family
+///   counts only where every member sampled is unstable ([`unstable_balanced_state`];
+///   tests/family_creep_19.rs). Warning: [`creep_warning`].
 /// - **The end-state check**, where the creep check found nothing: an end that reads
 ///   [`RunOutcome::NotBalanced`] or [`RunOutcome::PartiallyBalanced`] and `settled` is
 ///   checked by Newton's method from its state ([`settled_end_check`], [`end_state`]), the
@@ -1134,9 +1182,12 @@ pub(crate) fn end_checks(
     settled: bool,
     reduced: impl FnOnce() -> Option<Vec<f64>>,
 ) -> EndChecks {
-    let creep = (outcome == RunOutcome::Balanced && constant).then(|| unstable_isolated_state(rotor, omega)).flatten();
+    let creep = (outcome == RunOutcome::Balanced && constant).then(|| unstable_balanced_state(rotor, omega)).flatten();
     let found = match creep {
-        Some(rate) => Some((Some(rate), creep_warning(omega, rate, si))),
+        Some(state) => {
+            let (UnstableBalance::Isolated(rate) | UnstableBalance::Family(rate)) = state;
+            Some((Some(rate), creep_warning(omega, state, si)))
+        }
         None => (matches!(outcome, RunOutcome::NotBalanced | RunOutcome::PartiallyBalanced) && settled && constant)
             .then(|| settled_end_check(rotor, &reduced()?, omega, si))
             .flatten(),
