@@ -947,7 +947,7 @@ pub enum UnstableBalance {
 /// ([`UnstableBalance::Isolated`]), or a family whose every sampled member is unstable
 /// ([`UnstableBalance::Family`]); `None` where it is stable or neutral, a family with a stable
 /// (or neutral) member sampled, not the state found, or without linearisation (real balls).
-/// The runs' creep check ([`end_checks`]): a run at a constant speed that ends balanced next
+/// The runs' creep check (`end_checks`): a run at a constant speed that ends balanced next
 /// to such a state is creeping away from it, not settled. With a family the run rests on some
 /// member, not necessarily the one Newton reached; only where none of them is stable is a
 /// creep certain (a sampled verdict: the family is followed at steps of
