@@ -659,3 +659,32 @@ fn regression_a_top_speed_below_one_rpm_was_printed_as_0_rpm() {
     assert!(out.contains("(up to 10434 rpm, 1092.7 rad/s)"), "{out}");
     std::fs::remove_dir_all(&d).ok();
 }
+
+#[test]
+fn regression_a_planar_config_without_drive_is_analysed() {
+    // session 19's audit: `stability`, `critical`, `campbell` and `map` refused a planar
+    // config with no [drive] table ("drive.b: required for kind = "acceleration" ... a [drive]
+    // table ... replaces the default run-up": there is neither a table nor a default run-up);
+    // an analysis at a constant speed needs no run. `simulate` still needs one, and says so.
+    let d = scratch("planar-no-drive");
+    let text = std::fs::read_to_string(examples("planar.toml")).unwrap();
+    let rotor_only = &text[..text.find("[drive]").expect("examples/planar.toml has [drive]")];
+    std::fs::write(d.join("p.toml"), rotor_only).unwrap();
+    for args in [
+        &["stability", "--config", "p.toml", "--samples", "20"][..],
+        &["critical", "--config", "p.toml"],
+        &["campbell", "--config", "p.toml", "--points", "20"],
+        &["map", "--config", "p.toml", "--x", "planar.m3=0.02:0.04:3", "--y", "omega=100:600:3", "--out", "m"],
+    ] {
+        let (code, _, err) = run_in(&d, Duration::from_secs(120), args);
+        assert_eq!(code, 0, "autobal {}: {err}", args.join(" "));
+    }
+    // the same analysis as with the example's drive (which it does not use)
+    let (_, with, _) = run_in(&d, Duration::from_secs(120), &["stability", "--config", &examples("planar.toml"), "--samples", "20", "--format", "json"]);
+    let (_, without, _) = run_in(&d, Duration::from_secs(120), &["stability", "--config", "p.toml", "--samples", "20", "--format", "json"]);
+    let ranges = |s: &str| serde_json::from_str::<serde_json::Value>(s).unwrap()["stable_ranges"].clone();
+    assert_eq!(ranges(&with), ranges(&without));
+    let line = rejects_in(&d, &["simulate", "--config", "p.toml", "--out", "s"], "drive");
+    assert!(line.contains("a planar run needs a [drive] table") && !line.contains("replaces the default run-up"), "{line}");
+    std::fs::remove_dir_all(&d).ok();
+}

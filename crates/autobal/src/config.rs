@@ -566,6 +566,24 @@ fn dimensionless(root: &Table, method: AnisotropyMethod) -> Result<SpatialSpec> 
 /// Defaults: no housing or balls unless given, `drive.kind = "acceleration"` from rest,
 /// `t_end = 10 s`, `dt = t_end/2000`, `rtol = 1e-8`, `atol = 1e-9 m`, balls spread evenly at rest.
 pub fn planar(root: &Table) -> Result<PlanarProblem> {
+    let rotor = planar_rotor(root)?;
+    if !root.contains_key("drive") {
+        // (the shared drive reader's words speak of a default run-up, which only the spatial
+        // rotor has)
+        return Err(Error::invalid(
+            "drive",
+            "missing: a planar run needs a [drive] table (the planar rotor has no default run-up): give drive.kind and its keys (examples/planar.toml); the analyses at a constant speed (stability, critical, campbell, map) need none",
+        ));
+    }
+    let (d, ig) = (Section::of(root, "drive"), Section::of(root, "integration"));
+    planar_run(rotor, &d, &ig)
+}
+
+/// The rotor of a planar config (`[planar]`), validated, without its run (`[drive]`,
+/// `[integration]`): what the analyses at a constant speed need (`stability`, `critical`,
+/// `campbell`, `map`), which read a config without `[drive]` (they refused one: "drive.b:
+/// required for kind = "acceleration"", session 19's audit). [`planar`] is this and the run.
+pub fn planar_rotor(root: &Table) -> Result<PlanarRotor> {
     check_schema(root)?;
     if !root.contains_key("planar") {
         // every command reads a config that is neither spatial nor linear as a planar one: the
@@ -576,7 +594,7 @@ pub fn planar(root: &Table) -> Result<PlanarProblem> {
             "missing: the config has no rotor: give [planar] (paper 004, examples/planar.toml), [rotor] or [dimensionless] (papers 000/003, examples/default.toml) or [linear_rotor] (examples/linear_rotor_shaft.toml)",
         ));
     }
-    let (p, d, ig) = (Section::of(root, "planar"), Section::of(root, "drive"), Section::of(root, "integration"));
+    let p = Section::of(root, "planar");
     let (k, k_y) = planar_direction_pair(&p, "k", None)?;
     let (c, c_y) = planar_direction_pair(&p, "c", Some(0.0))?;
     let ball_masses = planar_per_ball(&p, "m3", "ball_masses")?;
@@ -614,8 +632,13 @@ pub fn planar(root: &Table) -> Result<PlanarProblem> {
         "with planar.n = 0",
     );
     crate::planar::problem::check_natural_frequency(&rotor)?;
-    let (drive, t_end) = drive(&d)?;
-    let ig = integration(&ig, t_end)?;
+    Ok(rotor)
+}
+
+/// [`planar`]'s run of `rotor`: the drive and the integration settings.
+fn planar_run(rotor: PlanarRotor, d: &Section, ig: &Section) -> Result<PlanarProblem> {
+    let (drive, t_end) = drive(d)?;
+    let ig = integration(ig, t_end)?;
     let pair = |key: &str| -> Result<[f64; 2]> {
         match d.array_f64(key)? {
             None => Ok([0.0; 2]),
