@@ -425,7 +425,26 @@ struct TrigInterpolant {
     /// For `k = 1 ..= K` (`K` the highest harmonic kept), the terms kept: `(slot in varying,
     /// A_k, B_k)`.
     harmonics: Vec<Vec<(usize, f64, f64)>>,
+    /// `harmonics` as [`TrigInterpolant::eval`] reads them ([`Packed`]), one per harmonic.
+    packed: Vec<Packed>,
 }
+
+/// One harmonic's terms laid out for [`TrigInterpolant::eval`]: `Dense` where at least
+/// [`DENSE_SHARE`] of the varying entries have a term (`A_k`, `B_k` over every slot, zero
+/// where the term was dropped: a loop the compiler vectorises, two slots a pass, ~4
+/// instructions a slot in the release build), else `Sparse` (the terms alone, one scattered
+/// update each, ~12 instructions). The dense zeros add `c · 0 + s · 0 = ±0` to a sum, which
+/// leaves it unchanged (bar the sign of a zero sum): the same `J̃` bit for bit.
+enum Packed {
+    Dense { a: Vec<f64>, b: Vec<f64> },
+    Sparse(Vec<(usize, f64, f64)>),
+}
+
+/// The share of the varying entries with a term from which a harmonic is evaluated dense
+/// ([`Packed`]). On the two-plane scan (`bench_floquet two-plane`, release build) 1/2 took the
+/// fewest instructions; 1/4 0.4 M more, 1/3 0.9 M, all dense 14.8 M, all sparse 16.1 M, of
+/// ~314 M (docs/notes/benchmarks.md, round 3, session 19).
+const DENSE_SHARE: f64 = 0.5;
 
 impl TrigInterpolant {
     /// From `values[j] = J(j T / N)`, `N = values.len()` even.
@@ -462,7 +481,30 @@ impl TrigInterpolant {
         let mean = std::mem::take(&mut coefficients[0].0);
         let harmonics =
             coefficients[1..].iter().map(|(a, b)| (0..varying.len()).filter(|&v| a[v] != 0.0 || b[v] != 0.0).map(|v| (v, a[v], b[v])).collect()).collect();
-        TrigInterpolant { n, frequency: std::f64::consts::TAU / period, constant: first.to_vec(), varying, mean, harmonics }
+        let mut interp = TrigInterpolant { n, frequency: std::f64::consts::TAU / period, constant: first.to_vec(), varying, mean, harmonics, packed: vec![] };
+        interp.pack();
+        interp
+    }
+
+    /// Lay `harmonics` out for [`TrigInterpolant::eval`] ([`Packed`]).
+    fn pack(&mut self) {
+        let nv = self.varying.len();
+        self.packed = self
+            .harmonics
+            .iter()
+            .map(|h| {
+                if h.len() as f64 >= DENSE_SHARE * nv as f64 {
+                    let (mut a, mut b) = (vec![0.0; nv], vec![0.0; nv]);
+                    for &(v, av, bv) in h {
+                        a[v] = av;
+                        b[v] = bv;
+                    }
+                    Packed::Dense { a, b }
+                } else {
+                    Packed::Sparse(h.clone())
+                }
+            })
+            .collect();
     }
 
     /// The highest harmonic kept, `K`.
@@ -545,10 +587,12 @@ impl TrigInterpolant {
         }
         self.varying = varying;
         self.mean = mean;
+        self.pack();
     }
 
     /// `J̃(t)` into `out` (`cos kθ`, `sin kθ` by the three-term recurrence from `k = 1`; the
-    /// varying entries summed in `acc`, contiguous, then scattered).
+    /// varying entries summed in `acc`, contiguous, harmonic by harmonic in increasing `k`
+    /// ([`Packed`]), then scattered).
     fn eval(&self, t: f64, out: &mut [f64], acc: &mut Vec<f64>) {
         out.copy_from_slice(&self.constant);
         if self.varying.is_empty() {
@@ -558,9 +602,18 @@ impl TrigInterpolant {
         acc.clear();
         acc.extend_from_slice(&self.mean);
         let (mut c_prev, mut s_prev, mut c, mut s) = (1.0, 0.0, c1, s1);
-        for h in &self.harmonics {
-            for &(v, a, b) in h {
-                acc[v] += c * a + s * b;
+        for h in &self.packed {
+            match h {
+                Packed::Dense { a, b } => {
+                    for ((o, a), b) in acc.iter_mut().zip(a).zip(b) {
+                        *o += c * a + s * b;
+                    }
+                }
+                Packed::Sparse(terms) => {
+                    for &(v, a, b) in terms {
+                        acc[v] += c * a + s * b;
+                    }
+                }
             }
             let (cn, sn) = (2.0 * c1 * c - c_prev, 2.0 * c1 * s - s_prev);
             (c_prev, s_prev, c, s) = (c, s, cn, sn);
@@ -1062,7 +1115,7 @@ fn periodic<F: VectorField + ?Sized>(
 
 #[cfg(test)]
 mod tests {
-    use super::{pair_rows, TrigInterpolant};
+    use super::{pair_rows, Packed, TrigInterpolant};
     use std::f64::consts::TAU;
 
     #[test]
@@ -1118,6 +1171,48 @@ mod tests {
             let want = g(TAU * t / period);
             for e in 0..4 {
                 assert!((out[e] - want[e]).abs() < 1e-13, "t = {t}, entry {e}: {} against {}", out[e], want[e]);
+            }
+        }
+    }
+
+    #[test]
+    fn the_packed_evaluation_gives_the_term_by_term_sums_bit_for_bit() {
+        // a 4 × 4 J(θ): entry 0 constant, entry e ≥ 1 with harmonics 1 ..= 1 + e % 6, so after
+        // a truncation at round-off harmonic 1 has a term in all 15 varying entries (dense),
+        // harmonic 6 in 2 (sparse): J̃(t) must be, bit for bit, the sum of the terms in
+        // increasing k per entry (the layout before session 19), bar the sign of a zero
+        let g = |th: f64| -> Vec<f64> {
+            (0..16)
+                .map(|e| {
+                    let top = if e == 0 { 0 } else { 1 + e % 6 };
+                    e as f64 + (1..=top).map(|k| ((k as f64 * th).cos() - 0.5 * (k as f64 * th).sin()) / (k * k) as f64).sum::<f64>()
+                })
+                .collect()
+        };
+        let (period, m) = (0.3, 16);
+        let v: Vec<Vec<f64>> = (0..m).map(|j| g(TAU * j as f64 / m as f64)).collect();
+        let refs: Vec<&[f64]> = v.iter().map(|x| x.as_slice()).collect();
+        let mut p = TrigInterpolant::new(4, period, &refs);
+        p.truncate(&[1.0; 4], 1e-12);
+        assert_eq!((p.varying.len(), p.degree()), (15, 6));
+        assert!(p.packed.iter().any(|h| matches!(h, Packed::Dense { .. })) && p.packed.iter().any(|h| matches!(h, Packed::Sparse(_))));
+        let mut out = [0.0; 16];
+        for k in 0..40 {
+            let t = period * (k as f64 * 0.377).fract();
+            p.eval(t, &mut out, &mut vec![]);
+            let mut want = p.constant.clone();
+            let (s1, c1) = (p.frequency * t).sin_cos();
+            let mut acc = p.mean.clone();
+            let (mut c_prev, mut s_prev, mut c, mut s) = (1.0, 0.0, c1, s1);
+            for h in &p.harmonics {
+                for &(v, a, b) in h {
+                    acc[v] += c * a + s * b;
+                }
+                (c_prev, s_prev, c, s) = (c, s, 2.0 * c1 * c - c_prev, 2.0 * c1 * s - s_prev);
+            }
+            p.varying.iter().zip(&acc).for_each(|(&e, v)| want[e] = *v);
+            for e in 0..16 {
+                assert!(out[e].to_bits() == want[e].to_bits() || out[e] == 0.0 && want[e] == 0.0, "t = {t}, entry {e}: {} against {}", out[e], want[e]);
             }
         }
     }
