@@ -128,6 +128,15 @@ impl Drive {
         matches!(self, Drive::Speed { .. } | Drive::Acceleration { .. } | Drive::SpeedSchedule { .. })
     }
 
+    /// Whether the speed is prescribed and constant at time `t`: a kinematic drive
+    /// ([`Drive::prescribed`]) whose `θ̈` ([`Drive::kinematics`]) is exactly 0 there (a
+    /// [`Drive::Speed`], a schedule's hold or its end, a run-down stopped at rest). The runs'
+    /// end checks ask it at the end time: only then is the end a rotor turned at the constant
+    /// speed whose stationary states `stability` analyses.
+    pub fn constant_speed_at(&self, t: f64) -> bool {
+        self.prescribed() && self.kinematics(t).1 == 0.0
+    }
+
     /// Initial speed.
     pub fn omega0(&self) -> f64 {
         match self {
