@@ -128,6 +128,15 @@ impl Drive {
         matches!(self, Drive::Speed { .. } | Drive::Acceleration { .. } | Drive::SpeedSchedule { .. })
     }
 
+    /// Whether the speed is prescribed and constant at time `t`: a kinematic drive
+    /// ([`Drive::prescribed`]) whose `θ̈` ([`Drive::kinematics`]) is exactly 0 there (a
+    /// [`Drive::Speed`], a schedule's hold or its end, a run-down stopped at rest). The runs'
+    /// end checks ask it at the end time: only then is the end a rotor turned at the constant
+    /// speed whose stationary states `stability` analyses.
+    pub fn constant_speed_at(&self, t: f64) -> bool {
+        self.prescribed() && self.kinematics(t).1 == 0.0
+    }
+
     /// Initial speed.
     pub fn omega0(&self) -> f64 {
         match self {
@@ -198,5 +207,26 @@ impl Drive {
             Drive::TorqueSchedule { points, .. } => interp(points, t).0,
             _ => 0.0,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Drive;
+
+    /// The end checks' gate: constant exactly where the prescribed speed's slope is zero
+    /// (read off each drive's definition), never for a torque drive, whose speed is the
+    /// motion's own.
+    #[test]
+    fn constant_speed_at_is_a_prescribed_speed_of_zero_slope() {
+        assert!(Drive::Speed { omega0: 100.0 }.constant_speed_at(5.0));
+        assert!(!Drive::Acceleration { omega0: 0.0, b: 2.5 }.constant_speed_at(5.0));
+        // a run-down from 10 rad/s at −2 rad/s² stops at t = 5 s and is held at rest
+        let down = Drive::Acceleration { omega0: 10.0, b: -2.0 };
+        assert!(!down.constant_speed_at(4.0) && down.constant_speed_at(6.0));
+        // a ramp to 1400 rad/s by 6 s, then a hold to 12 s (examples/spatial_two_plane.toml)
+        let schedule = Drive::SpeedSchedule { points: vec![(0.0, 100.0), (6.0, 1400.0), (12.0, 1400.0)] };
+        assert!(!schedule.constant_speed_at(3.0) && schedule.constant_speed_at(9.0) && schedule.constant_speed_at(12.0));
+        assert!(!Drive::Torque { omega0: 0.0, torque: 0.0, t_off: None }.constant_speed_at(1.0));
     }
 }

@@ -1744,8 +1744,10 @@ fn spatial_residual(r: &SpatialRotor, units: &[[f64; 2]]) -> f64 {
 /// 0.44 "of the unbalance", "not balanced", on a rotor with nothing to balance. Newton leaves
 /// the resultant to ~1e-14 of `cap`, measured on a linear shaft with a pure couple at 1001
 /// rad/s.) The scale steps at `u = 1e-6 cap` from `cap` to `1e-6 cap`: below it a residual
-/// of the balls is measured against their capacity, above against the unbalance.
-fn unbalance_scale(u: f64, cap: f64) -> f64 {
+/// of the balls is measured against their capacity, above against the unbalance. The one rule
+/// for the time-domain runs' residuals as well (spatial `summarise`, linear `ending`), so that
+/// a run and `stability` agree on what "no unbalance" means.
+pub(crate) fn unbalance_scale(u: f64, cap: f64) -> f64 {
     if u <= NO_UNBALANCE * cap {
         cap.max(f64::MIN_POSITIVE)
     } else {

@@ -832,7 +832,7 @@ pub fn simulate_from(
         &crate::rotor_stability::Rotor::Linear(rotor.clone()),
         final_omega,
         true,
-        drive.prescribed() && drive.kinematics(out.t).1 == 0.0,
+        drive.constant_speed_at(out.t),
         end.outcome,
         end.settled,
         || turned_end(rotor, &y, phi_end),
@@ -891,7 +891,7 @@ struct End {
 /// and speed `omega`, and whether it `completed`: the spatial run's rule
 /// ([`crate::spatial::dynamics::simulate::run_outcome`]) on the linear route's measures.
 fn ending(rotor: &LinearRotor, window: &Window, y: &[f64], phi: f64, omega: f64, completed: bool) -> End {
-    use crate::spatial::dynamics::simulate::{drift_tolerance, run_outcome, Ending, TOGETHER};
+    use crate::spatial::dynamics::simulate::{drift_tolerance, plane_together, run_outcome, Ending};
     let tau = std::f64::consts::TAU;
     let (n, nb, np) = (rotor.dofs(), rotor.total_balls(), rotor.balancers.len());
     let (last, previous) = (window.mean(0.0, tau), window.mean(tau, 2.0 * tau));
@@ -916,19 +916,16 @@ fn ending(rotor: &LinearRotor, window: &Window, y: &[f64], phi: f64, omega: f64,
     let mut together = true;
     let mut j = 0;
     for b in &rotor.balancers {
-        let mut sum = [0.0, 0.0];
         for u in &units[j..j + b.balls] {
             s[0] += b.ball_mass * b.radius * u[0];
             s[1] += b.ball_mass * b.radius * u[1];
-            sum[0] += u[0];
-            sum[1] += u[1];
         }
-        together &= sum[0].hypot(sum[1]) >= TOGETHER * b.balls as f64;
+        together &= plane_together(units[j..j + b.balls].iter().copied());
         cap += b.balls as f64 * b.ball_mass * b.radius;
         j += b.balls;
     }
-    let scale = if s0n <= crate::rotor_stability::NO_UNBALANCE * cap { cap.max(f64::MIN_POSITIVE) } else { s0n };
-    let residual_unbalance = s[0].hypot(s[1]) / scale;
+    // over the unbalance, or the capacity where there is none to speak of: stability's rule
+    let residual_unbalance = s[0].hypot(s[1]) / crate::rotor_stability::unbalance_scale(s0n, cap);
     // settled: a constant speed over the last two revolutions and the balls' mean angles
     // drifting by at most the shared tolerance
     let ball_drift = match (&last, &previous) {

@@ -730,7 +730,7 @@ fn simulate_sampled(
             // critical speed they join the unbalance (`≈ 1 + α`); with an eccentric one stuck
             // below resonance they can leave E further out than without them
             let least = stationary::bunched_residual(rotor, final_omega).unwrap_or(f64::INFINITY);
-            let together = bx.hypot(by) >= crate::spatial::dynamics::simulate::TOGETHER * capacity;
+            let together = crate::spatial::dynamics::simulate::together(bx.hypot(by), capacity);
             (least, together && least < 1.0 && residual_unbalance < 1.0)
         }),
         residual: residual_unbalance,
@@ -738,12 +738,13 @@ fn simulate_sampled(
     });
     // the end checks (`crate::rotor_stability::end_checks`); this run's gate requires the run
     // completed as well (the outcome balanced or partially balanced implies it, not balanced
-    // does not: no balls, or at rest); the end state in rotor axes already
+    // does not: no balls, or at rest); the end state in rotor axes already. (`w_dot` above is
+    // the drive's `θ̈` itself where the speed is prescribed: the same gate as the other runs'.)
     let checks = crate::rotor_stability::end_checks(
         &crate::rotor_stability::Rotor::Planar(rotor.clone()),
         final_omega,
         true,
-        completed && w_dot == 0.0 && drive.prescribed(),
+        completed && drive.constant_speed_at(out.t),
         outcome,
         settled,
         || Some(field::PlanarField::new(rotor, final_omega).ok()?.reduced_state(&y)),

@@ -130,13 +130,17 @@ pub struct Summary {
     /// Spin rate at the end.
     pub final_omega: f64,
     /// Static unbalance of unbalance masses and balls, rotor frame, averaged over the last
-    /// revolution (`|(1/T) ∫ Σ m ρ_⊥ dt|`), relative to the unbalance masses' own (relative to
-    /// the balls' capacity `Σ m R` when there is none). At the end when the run turned less
-    /// than a revolution.
+    /// revolution (`|(1/T) ∫ Σ m ρ_⊥ dt|`), relative to the unbalance masses' own; relative to
+    /// the balls' capacity `Σ m R` where that is at most
+    /// [`crate::rotor_stability::NO_UNBALANCE`] of the capacity (none to speak of, as
+    /// `stability` measures its residuals). At the end when the run turned less than a
+    /// revolution.
     pub residual_unbalance: f64,
     /// Couple unbalance about C relative to the unbalance's own couple (tilted axis included),
     /// averaged over the last revolution as `residual_unbalance`; `None` when the unbalance has
-    /// no couple.
+    /// no couple: none beside its static unbalance (at most `1e-12` of it times the length
+    /// scale), or the rotor has no unbalance at all
+    /// ([`crate::rotor_stability::Rotor::has_unbalance`]: static and couple at round-off).
     pub residual_couple: Option<f64>,
     /// The largest change of a ball's mean angle (its average over a revolution, relative to
     /// the rotor) between the last two revolutions (rad); `None` without balls or when the run
@@ -202,6 +206,31 @@ pub const PARTIAL_TOLERANCE: f64 = 0.02;
 /// The fraction of a plane's capacity its balls' resultant reaches at least when they are
 /// "together" (see [`PARTIAL_TOLERANCE`]).
 pub(crate) const TOGETHER: f64 = 0.99;
+
+/// Whether balls whose resultant has the magnitude `resultant` are "together": at least
+/// [`TOGETHER`] of `capacity`, the most they can produce (the same units). The one rule of the
+/// three runs' capacity-short test ([`Ending::short`]); each passes its own capacity: the
+/// spatial and linear runs a plane's ball count against the sum of the balls' unit vectors
+/// ([`plane_together`]), the planar run `|Σ m_j r e^{iψ_j}|` against
+/// `crate::planar::stationary::ball_capacity`, which for balls of finite size
+/// (`planar.contact`) is that of the touching balls packed in one arc, below `n m3 r`: they
+/// cannot coincide, so "together" is measured against the packing they can reach.
+pub(crate) fn together(resultant: f64, capacity: f64) -> bool {
+    resultant >= TOGETHER * capacity
+}
+
+/// [`together`] for one plane's balls given by their unit vectors `e^{iψ_j}` (or their means
+/// over a revolution): `|Σ_j u_j| ≥ TOGETHER · n`, `n` the number of vectors (equal balls of one
+/// plane: the resultant over `m R`).
+pub(crate) fn plane_together(units: impl IntoIterator<Item = [f64; 2]>) -> bool {
+    let (mut sum, mut n) = ([0.0, 0.0], 0usize);
+    for u in units {
+        sum[0] += u[0];
+        sum[1] += u[1];
+        n += 1;
+    }
+    together(sum[0].hypot(sum[1]), n as f64)
+}
 
 /// Revolutions the summary averages over at the end of a run (the last one for the averages, the
 /// one before it for the balls' drift).
@@ -704,7 +733,11 @@ fn summarise(eq: &Equations, t: f64, y: &[f64], peak: (f64, f64, f64), stats: St
     let capacity: f64 = r.planes.iter().map(|p| p.n as f64 * p.ball_mass * p.race_radius).sum();
     let s0n = s0[0].hypot(s0[1]);
     let c0n = c0[0].hypot(c0[1]);
-    let has_couple = c0n > 1e-12 * (s0n * r.length_scale()).max(f64::MIN_POSITIVE);
+    // (`stability`'s rotor, for its rule on what "no unbalance" is and the end checks)
+    let rotor = crate::rotor_stability::Rotor::Spatial(r.clone());
+    // a couple to judge: one beside the static unbalance, on a rotor with an unbalance at all
+    // (a round-off couple beside a round-off static unbalance is none, as in `stability`)
+    let has_couple = c0n > 1e-12 * (s0n * r.length_scale()).max(f64::MIN_POSITIVE) && rotor.has_unbalance();
     let nb = r.balls();
     // averages over the last revolution, or the end state when the run turned less
     let whole = window.covers(1.0);
@@ -716,7 +749,8 @@ fn summarise(eq: &Equations, t: f64, y: &[f64], peak: (f64, f64, f64), stats: St
         let d = eq.displacement_at(y, amplitude_z(eq));
         (st, cp, y[ROTOR_COORDS..ROTOR_COORDS + nb].to_vec(), None, d[0].hypot(d[1]))
     };
-    let residual_unbalance = st[0].hypot(st[1]) / if s0n > 0.0 { s0n } else { capacity.max(f64::MIN_POSITIVE) };
+    // over the unbalance, or the capacity where there is none to speak of: stability's rule
+    let residual_unbalance = st[0].hypot(st[1]) / crate::rotor_stability::unbalance_scale(s0n, capacity);
     let residual_couple = has_couple.then(|| cp[0].hypot(cp[1]) / c0n);
     // the balls' drift: mean angles over the last revolution against the one before
     let two_pi = 2.0 * std::f64::consts::PI;
@@ -729,13 +763,9 @@ fn summarise(eq: &Equations, t: f64, y: &[f64], peak: (f64, f64, f64), stats: St
     let together = || {
         let mut first = 0;
         r.planes.iter().all(|p| {
-            let (mut a, mut b) = (0.0, 0.0);
-            for psi in &mean_psi[first..first + p.n] {
-                a += psi.cos();
-                b += psi.sin();
-            }
+            let units = mean_psi[first..first + p.n].iter().map(|psi| [psi.cos(), psi.sin()]);
             first += p.n;
-            a.hypot(b) >= TOGETHER * p.n as f64
+            plane_together(units)
         })
     };
     let outcome = run_outcome(&Ending {
@@ -747,15 +777,9 @@ fn summarise(eq: &Equations, t: f64, y: &[f64], peak: (f64, f64, f64), stats: St
     });
     // the end checks (`crate::rotor_stability::end_checks`), in the model's own units (`si`
     // false); the end state in turning axes already: the field's reduced state
-    let checks = crate::rotor_stability::end_checks(
-        &crate::rotor_stability::Rotor::Spatial(r.clone()),
-        omega,
-        false,
-        eq.drive.prescribed() && eq.drive.kinematics(t).1 == 0.0,
-        outcome,
-        settled,
-        || Some(super::field::SpatialField::new(r, omega).ok()?.reduced_state(y)),
-    );
+    let checks = crate::rotor_stability::end_checks(&rotor, omega, false, eq.drive.constant_speed_at(t), outcome, settled, || {
+        Some(super::field::SpatialField::new(r, omega).ok()?.reduced_state(y))
+    });
     let (outcome, settled) = (checks.outcome, checks.settled);
     let warnings = checks.warning.into_iter().collect();
     Summary {
