@@ -553,8 +553,9 @@ pub struct RunSummary {
     /// Accepted steps.
     pub steps: u64,
     /// The creep check: where a run at a prescribed, constant final speed would read balanced
-    /// next to an isolated balanced state that is unstable there by its exact linear stability
-    /// ([`crate::rotor_stability::unstable_isolated_state`]), that state's growth rate (1/s); the
+    /// next to a balanced state that is unstable there by its exact linear stability (or a
+    /// family of them with no stable member sampled:
+    /// [`crate::rotor_stability::unstable_balanced_state`]), that state's growth rate (1/s); the
     /// outcome is then not settled (the balls creep away from it). `None` otherwise.
     pub creep_rate: Option<f64>,
     /// What the words above do not say, one line each (the creep check's, with its growth rate).

@@ -175,8 +175,9 @@ pub struct Summary {
     /// Why the run stopped before `t_end`, if it did.
     pub stopped: Option<String>,
     /// What the verdict alone does not say: a balanced end at a constant prescribed speed next
-    /// to a balanced state that the exact linear stability finds unstable there
-    /// ([`crate::rotor_stability::unstable_isolated_state`]: the outcome is then
+    /// to a balanced state (or a family of them with no stable member sampled) that the exact
+    /// linear stability finds unstable there
+    /// ([`crate::rotor_stability::unstable_balanced_state`]: the outcome is then
     /// [`RunOutcome::NotSettled`], the balls creeping away from it).
     pub warnings: Vec<String>,
 }
