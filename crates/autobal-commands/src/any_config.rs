@@ -57,7 +57,7 @@ whole rotor as the simulation builds it: not available ({})",
 /// `autobal ranges` of `root`: the JSON and the table.
 /// The general route's scan runs under `control`.
 pub fn ranges(root: &Table, source: &str, control: &Control) -> Result<(Value, String)> {
-    if general::needs_general_route(root) {
+    if general::needs_general_verdict(root) {
         return ranges_general(root, source, control);
     }
     let cfg = crate::config::build(root, source)?;

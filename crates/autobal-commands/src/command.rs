@@ -175,6 +175,12 @@ impl Route {
     pub fn is_general(self, root: &Table) -> bool {
         self == Route::General || crate::general::needs_general_route(root)
     }
+
+    /// Whether `root`'s stability verdict is taken on the general route
+    /// ([`crate::general::needs_general_verdict`]).
+    pub fn is_general_verdict(self, root: &Table) -> bool {
+        self == Route::General || crate::general::needs_general_verdict(root)
+    }
 }
 
 /// An option's value that must lie in `range` (`flag`: the CLI's name, e.g. `--samples`).

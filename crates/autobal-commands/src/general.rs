@@ -22,17 +22,26 @@ pub struct GeneralRotor {
     pub omega0: f64,
 }
 
-/// Whether `stability` must take the general route for this config: a planar config, a
-/// spatial one with entries paper 000's 12-state model does not represent, or one whose
-/// balanced state the closed form does not give as an isolated state: no unbalance
+/// Whether an analysis must take the general route for this config: a planar config, or a
+/// spatial one with entries paper 000's 12-state model does not represent.
+pub fn needs_general_route(root: &Table) -> bool {
+    !autobal::config::is_spatial(root) || !autobal::config::ignored_by_linear_model(root).is_empty()
+}
+
+/// Whether a stability verdict (`stability`, `ranges`, `map`, the report's stability and
+/// design sections) must take the general route: [`needs_general_route`], or a spatial config
+/// whose balanced state the closed form does not give as an isolated state: no unbalance
 /// ([`Rotor::has_unbalance`]: the balls' balanced states form a family, whose neutral
 /// direction the closed-form route counted as "not stable", so that it read "stable: none"
 /// at every speed where the general route finds the family's stable members and a time
 /// simulation balances), or a single ball (balanced only at one unbalance: elsewhere the
 /// general route's partially balanced state; the closed form said "stable: none" without
-/// saying why). Both found by session 19's audit on examples/dimensional.toml.
-pub fn needs_general_route(root: &Table) -> bool {
-    if !autobal::config::is_spatial(root) || !autobal::config::ignored_by_linear_model(root).is_empty() {
+/// saying why). Both found by session 19's audit on examples/dimensional.toml. The critical
+/// speeds and Campbell diagrams keep the closed form there (paper 000's report, well defined
+/// without unbalance). Decided once from the config as given (a map's axis through zero
+/// unbalance keeps the base config's route).
+pub fn needs_general_verdict(root: &Table) -> bool {
+    if needs_general_route(root) {
         return true;
     }
     autobal::config::spatial_simulation(root).is_ok_and(|sim| {

@@ -163,7 +163,7 @@ impl Args {
                 }
             }
         }
-        if linear || self.route.is_general(&root) {
+        if linear || self.route.is_general_verdict(&root) {
             if self.balls == Balls::Locked {
                 bail!("--balls locked: the general route maps the balls free (use the 12-state route of a one-plane config for the locked rotor)");
             }

@@ -89,7 +89,7 @@ impl command::Command for Args {
         if crate::linear_rotor::is_linear(&root) {
             return self.linear_rotor(&root, control);
         }
-        if self.route.is_general(&root) {
+        if self.route.is_general_verdict(&root) {
             if self.balls == Balls::Locked {
                 bail!("--balls locked: the general route analyses the balls free (use the closed-form route of a one-plane config for the locked rotor)");
             }

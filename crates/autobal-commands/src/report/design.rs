@@ -92,7 +92,7 @@ fn designs(spec: &SpatialSpec, si: bool) -> (Vec<Design>, Vec<String>) {
 }
 
 pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
-    if crate::general::needs_general_route(&ctx.root) {
+    if crate::general::needs_general_verdict(&ctx.root) {
         return general(ctx);
     }
     let Some(cfg) = &ctx.spatial else {

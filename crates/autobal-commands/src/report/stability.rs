@@ -37,7 +37,7 @@ fn verdict_html(stable: bool, text: &str) -> String {
 
 /// The section of the user's report ([`Kind::User`](super::Kind::User)).
 pub fn build_user(ctx: &Ctx) -> Result<Option<Section>> {
-    if crate::general::needs_general_route(&ctx.root) {
+    if crate::general::needs_general_verdict(&ctx.root) {
         return general_route(ctx);
     }
     let Some(cfg) = &ctx.spatial else { return general_route(ctx) };
