@@ -439,8 +439,10 @@ pub struct Summary {
     pub final_amplitude: f64,
     /// Speed at the end (rad/s).
     pub final_omega: f64,
-    /// Whether the end state is the balanced/semi-balanced whirl: radius of C within 5 % of
-    /// `s2` (or below 5 % of `s1` when `s2 = 0`) and the balls at rest relative to the rotor
+    /// Whether the end state is the balanced/semi-balanced whirl: C's mean position in rotor
+    /// axes over the last revolution (the end state where the run turned less; the whirl's
+    /// radius for a steady whirl, about which the radius of an elliptic one swings) within 5 %
+    /// of `s2` from the axis (or below 5 % of `s1` when `s2 = 0`) and the balls at rest relative to the rotor
     /// (their rates within the limit of `settled`), and [`Summary::outcome`] balanced (a
     /// partially or not balanced run can leave C within that 5 %).
     pub balanced: bool,
@@ -472,8 +474,9 @@ pub struct Summary {
     pub outcome: crate::spatial::dynamics::RunOutcome,
     /// Whether the motion had settled at the end: the whirl radius and the balls' angles change
     /// no faster (relative rate, 1/s) than the limit `3 |ω̇/ω| + 1e-4 sqrt(k/m0)`, i.e.
-    /// quasi-statically. Where the run turned at least two revolutions this is asked of the
-    /// means over a revolution, as the spatial run does: the balls' mean angles over the last
+    /// quasi-statically. Where the run turned at least two revolutions near its end (its last
+    /// eight at the speed of the moment) this is asked of the means over a revolution (from the
+    /// dense output at 32 angles a revolution), as the spatial run does: the balls' mean angles over the last
     /// revolution differ from those over the one before by at most the limit times the period
     /// `2π/|ω|`, and C's mean position in rotor axes by at most that times the radius (or the
     /// balance tolerance of `balanced` where the radius is smaller), so that a periodic orbit
@@ -663,9 +666,8 @@ fn simulate_sampled(
         nc,
         balls: eq.balls.as_ref().map(|f| (f, EventCounter::default())),
         sample: Sample { t: 0.0, omega: 0.0, theta: 0.0, x: 0.0, y: 0.0, amplitude: 0.0, psi: Vec::with_capacity(rotor.n) },
-        window: Window::new(rotor.n),
+        window: Window::new(rotor, settings.t_end),
     };
-    hooks.window.push(0.0, &y);
     let out = run(&mut solver, &mut y, &timeline, &mut hooks);
     let peak = hooks.peak;
     let speed_range = hooks.speed;
@@ -750,8 +752,11 @@ fn simulate_sampled(
         || Some(field::PlanarField::new(rotor, final_omega).ok()?.reduced_state(&y)),
     );
     let (outcome, settled) = (checks.outcome, checks.settled);
-    // the radius test as well: C at s2 (or near the axis) where the outcome says balanced
-    let balanced = outcome == crate::spatial::dynamics::RunOutcome::Balanced && (final_amp - target).abs() <= tolerance;
+    // the radius test as well: C at s2 (or near the axis) where the outcome says balanced, by
+    // C's mean position in rotor axes over the last revolution (the end state's where the run
+    // turned less): the whirl's radius for a steady whirl; on supports that differ by
+    // direction C's path is an ellipse whose radius swings about it twice a revolution
+    let balanced = outcome == crate::spatial::dynamics::RunOutcome::Balanced && (ex.hypot(ey) - target).abs() <= tolerance;
     let stopped = match &out.status {
         Status::Completed => None,
         Status::Stopped(StopReason::Observer) => Some(format!("interrupted at t = {:.6} s", out.t)),
@@ -848,19 +853,46 @@ struct PlanarHooks<'a, F: FnMut(&Sample) -> bool> {
     balls: Option<(&'a BallForces, EventCounter)>,
     /// The sample handed to the sink, refilled at each sample time.
     sample: Sample,
-    /// The last revolution's step ends, for the summary's averages.
+    /// The last two revolutions from the dense output, for the summary's averages.
     window: Window,
 }
 
-/// Step-end records over the run's last two revolutions (by the rotor angle `θ`) and the one
-/// record before them, for the summary's averages and its drift from one revolution to the next: each is `t, θ`, the shaft point C in rotor axes `u`
-/// (2) and the ball angles `ψ_j` (`n`), all in rotor axes, where a steady whirl is constant.
-/// Older records are dropped as the run goes (at most [`WINDOW_RECORDS`] kept); the balls'
-/// resultant is formed only for the records averaged, at the end.
+/// The run's last two revolutions sampled from the integrator's dense output at a fixed grid of
+/// the rotor angle, `θ = 2π k / WINDOW_POINTS` (`k` whole), for the summary's averages and
+/// their drift from one revolution to the next: each record is the weight `1/|θ̇|` (the time
+/// per unit of angle there), the shaft point C in rotor axes `u` (2) and the ball angles `ψ_j`
+/// (`n`). The mean over a revolution by time is then the weighted mean of its
+/// [`WINDOW_POINTS`] records, the trapezoidal rule of a periodic integrand over its period:
+/// exact, to the integration's accuracy, for a stationary motion periodic in `θ` with no
+/// harmonic of order [`WINDOW_POINTS`] or above (a steady whirl, constant in rotor axes; the
+/// swing at `2θ` of supports that differ by direction), wherever in the revolution the run
+/// ends. Sampling starts [`WINDOW_LEAD`] revolutions (at the speed of the moment) before the
+/// run's end, so that the dense output (3 more right-hand sides a step for DOP853) is paid for
+/// only there; older records are dropped.
 struct Window {
     stride: usize,
     data: std::collections::VecDeque<f64>,
+    /// The run's end (sampling starts [`WINDOW_LEAD`] revolutions before it).
+    t_end: f64,
+    /// Whether the last step was within [`WINDOW_LEAD`] revolutions of the end.
+    on: bool,
+    /// Coordinates (the index of `θ̇` is `nc + 2`).
+    nc: usize,
+    /// The dense output's state at a grid point.
+    buf: Vec<f64>,
 }
+
+/// Records per revolution of [`Window`]. The stationary motion's harmonics fall off as powers
+/// of the supports' anisotropy (`(k_y − k_x)/(k_x + k_y)`, 0.14 for `k_x = 9e4`, `k_y =
+/// 1.2e5`, per order `2θ`): the 32nd, the first the grid aliases onto the mean, is below
+/// 1e-13 of the motion there; a steady whirl has none.
+const WINDOW_POINTS: usize = 32;
+
+/// Revolutions before the run's end, at the speed at a step's end, from which on [`Window`]
+/// samples: two for the averages and six to spare for a speed that falls (a run that covers
+/// fewer than two revolutions in the time eight would take at its speed of the moment is no
+/// stationary motion; its summary then takes the end state's rates, see [`simulate`]).
+const WINDOW_LEAD: f64 = 8.0;
 
 /// The fraction of `sqrt(k/m0)` below which a run's final speed counts as rest: its outcome is
 /// then not balanced (nothing turns the balls against the unbalance; the semi-balanced demand
@@ -875,13 +907,10 @@ pub fn at_rest(rotor: &PlanarRotor, omega: f64) -> bool {
     !(omega.abs() >= REST_FRACTION * rotor.natural_frequency())
 }
 
-/// Step-end records [`Window`] keeps at most (a run that hardly turns would otherwise keep them
-/// all): the average then covers the last this many steps, less than a revolution.
-const WINDOW_RECORDS: usize = 100_000;
-
 impl Window {
-    fn new(balls: usize) -> Self {
-        Window { stride: 4 + balls, data: Default::default() }
+    fn new(rotor: &PlanarRotor, t_end: f64) -> Self {
+        let nc = 3 + rotor.n;
+        Window { stride: 3 + rotor.n, data: Default::default(), t_end, on: false, nc, buf: vec![0.0; 2 * nc] }
     }
 
     fn len(&self) -> usize {
@@ -904,52 +933,78 @@ impl Window {
         b
     }
 
-    fn push(&mut self, t: f64, y: &[f64]) {
-        let theta = y[2];
-        self.data.extend([t, theta, y[0], y[1]]);
-        self.data.extend(&y[3..self.stride - 1]);
-        while self.len() > 2 && ((theta - self.get(1, 1)).abs() >= 2.0 * std::f64::consts::TAU || self.len() > WINDOW_RECORDS) {
+    /// The step from `(t0, y0)` to `(t1, y1)`: where it ends within [`WINDOW_LEAD`]
+    /// revolutions of the run's end at its speed there, a record at each grid angle the step passes, located on the
+    /// dense output by Newton's method on `θ(t) − θ_k` (`θ̇` the state's; exact at once at a
+    /// constant speed, where `θ` is linear in `t`).
+    fn dense_step(&mut self, t0: f64, t1: f64, y0: &[f64], y1: &[f64], interpolate: &mut dyn FnMut(f64, &mut [f64])) {
+        let nc = self.nc;
+        let tau = std::f64::consts::TAU;
+        // asked at every step: a run that speeds up leaves the lead again, its records then
+        // too old to be the last revolutions (at rest, none)
+        let near = self.t_end - t1 <= WINDOW_LEAD * tau / y1[nc + 2].abs();
+        if !near {
+            if self.on {
+                self.data.clear();
+                self.on = false;
+            }
+            return;
+        }
+        self.on = true;
+        let d = tau / WINDOW_POINTS as f64;
+        let (th0, th1) = (y0[2], y1[2]);
+        let (k0, k1) = ((th0 / d).floor(), (th1 / d).floor());
+        if !(k0.is_finite() && k1.is_finite()) || k0 == k1 {
+            return;
+        }
+        // the grid angles in (θ0, θ1] (or [θ1, θ0) turning backwards), in the order passed
+        let (first, count, sense) = if k1 > k0 { (k0 + 1.0, k1 - k0, 1.0) } else { (k0, k0 - k1, -1.0) };
+        let mut buf = std::mem::take(&mut self.buf);
+        for i in 0..count as u64 {
+            let target = (first + sense * i as f64) * d;
+            let mut t = t0 + (target - th0) / (th1 - th0) * (t1 - t0);
+            for _ in 0..12 {
+                interpolate(t, &mut buf);
+                let e = buf[2] - target;
+                if e.abs() <= 1e-13 * target.abs().max(tau) || buf[nc + 2] == 0.0 {
+                    break;
+                }
+                t = (t - e / buf[nc + 2]).clamp(t0, t1);
+            }
+            let w = 1.0 / buf[nc + 2].abs();
+            if !w.is_finite() {
+                continue;
+            }
+            self.data.extend([w, buf[0], buf[1]]);
+            self.data.extend(&buf[3..nc]);
+        }
+        self.buf = buf;
+        while self.len() > 2 * WINDOW_POINTS {
             self.data.drain(..self.stride);
         }
     }
 
-    /// The means over revolution `back` counted from the end (0 the last, 1 the one before) of
-    /// `u` (2), the balls' resultant (2) and the ball angles `ψ_j` (`n`), the values linear in
-    /// time between step ends (the trapezoidal rule, exact for a steady whirl, constant in
-    /// rotor axes; the resultant of each record's angles), the revolution's ends interpolated
-    /// inside their steps; `None` when the record covers less than that revolution.
+    /// The means by time over revolution `back` counted from the end (0 the last, 1 the one
+    /// before: its [`WINDOW_POINTS`] records) of `u` (2), the balls' resultant (2, that of
+    /// each record's angles) and the ball angles `ψ_j` (`n`); `None` when the records do not
+    /// reach back that far.
     fn mean(&self, rotor: &PlanarRotor, back: usize) -> Option<Vec<f64>> {
         let n = self.len();
-        let tau = std::f64::consts::TAU;
-        let (lo, hi) = (tau * back as f64, tau * (back + 1) as f64);
-        if n < 2 || (self.get(n - 1, 1) - self.get(0, 1)).abs() < hi * (1.0 - 1e-12) {
+        if n < (back + 1) * WINDOW_POINTS {
             return None;
         }
-        let last = self.get(n - 1, 1);
-        let row = |i: usize| {
-            let b = Window::resultant(rotor, (4..self.stride).map(|k| self.get(i, k)));
-            let mut r = vec![self.get(i, 0), self.get(i, 1), self.get(i, 2), self.get(i, 3), b[0], b[1]];
-            r.extend((4..self.stride).map(|k| self.get(i, k)));
-            r
-        };
-        let before = |r: &[f64]| (last - r[1]).abs();
-        let (mut dur, mut sums) = (0.0, vec![0.0; self.stride]);
-        let mut b = row(n - 1);
-        for i in (0..n - 1).rev() {
-            let a = row(i);
-            let (a0, a1) = (before(&a), before(&b));
-            if a0 > a1 && a1 < hi && a0 > lo {
-                // the part of the step within the revolution: from s0 to s1 of the way on
-                let s0 = (a0 - a0.min(hi)) / (a0 - a1);
-                let s1 = (a0 - a1.max(lo)) / (a0 - a1);
-                let at = |k: usize, s: f64| a[k] + s * (b[k] - a[k]);
-                let h = at(0, s1) - at(0, s0);
-                dur += h;
-                for (k, sum) in sums.iter_mut().enumerate() {
-                    *sum += 0.5 * h * (at(k + 2, s0) + at(k + 2, s1));
-                }
+        let (mut dur, mut sums) = (0.0, vec![0.0; self.stride + 1]);
+        for i in n - (back + 1) * WINDOW_POINTS..n - back * WINDOW_POINTS {
+            let w = self.get(i, 0);
+            let b = Window::resultant(rotor, (3..self.stride).map(|k| self.get(i, k)));
+            dur += w;
+            sums[0] += w * self.get(i, 1);
+            sums[1] += w * self.get(i, 2);
+            sums[2] += w * b[0];
+            sums[3] += w * b[1];
+            for k in 3..self.stride {
+                sums[k + 1] += w * self.get(i, k);
             }
-            b = a;
         }
         (dur > 0.0).then(|| sums.into_iter().map(|v| v / dur).collect())
     }
@@ -962,6 +1017,10 @@ impl<F: FnMut(&Sample) -> bool> Hooks for PlanarHooks<'_, F> {
         }
     }
 
+    fn dense_step(&mut self, t_old: f64, t_new: f64, y_old: &[f64], y_new: &[f64], interpolate: &mut dyn FnMut(f64, &mut [f64])) {
+        self.window.dense_step(t_old, t_new, y_old, y_new, interpolate);
+    }
+
     fn step(&mut self, t: f64, y: &[f64]) {
         let w = if self.drive.prescribed() { self.drive.kinematics(t).0 } else { y[self.nc + 2] };
         self.peak.observe(y[0].hypot(y[1]), t, w);
@@ -969,7 +1028,6 @@ impl<F: FnMut(&Sample) -> bool> Hooks for PlanarHooks<'_, F> {
         if let Some((f, counter)) = &mut self.balls {
             counter.observe(f, &y[3..self.nc], &y[self.nc + 3..2 * self.nc]);
         }
-        self.window.push(t, y);
     }
 
     fn event(&mut self, _index: usize, t: f64, y: &[f64]) {
