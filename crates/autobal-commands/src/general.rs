@@ -57,10 +57,7 @@ pub fn rotor_of(root: &Table) -> Result<GeneralRotor> {
         let omega0 = sim.config.model.scale.map_or(1.0, |s| s.omega0);
         Ok(GeneralRotor { rotor: Rotor::Spatial(sim.rotor), si: sim.config.dimensional, omega0 })
     } else {
-        // the analyses need no run: a config without [drive] is analysed (its rotor alone);
-        // one with it is read whole, so a bad drive is still named
-        let rotor = if root.contains_key("drive") { autobal::config::planar(root)?.rotor } else { autobal::config::planar_rotor(root)? };
-        Ok(GeneralRotor { rotor: Rotor::Planar(rotor), si: true, omega0: 1.0 })
+        Ok(GeneralRotor { rotor: Rotor::Planar(autobal::config::planar_rotor_for_analysis(root)?), si: true, omega0: 1.0 })
     }
 }
 

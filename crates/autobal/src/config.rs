@@ -572,7 +572,7 @@ pub fn planar(root: &Table) -> Result<PlanarProblem> {
         // rotor has)
         return Err(Error::invalid(
             "drive",
-            "missing: a planar run needs a [drive] table (the planar rotor has no default run-up): give drive.kind and its keys (examples/planar.toml); the analyses at a constant speed (stability, critical, campbell, map) need none",
+            "missing: a planar run needs a [drive] table (the planar rotor has no default run-up): give drive.kind and its keys (examples/planar.toml); the analyses at a constant speed (stability, ranges, critical, campbell, map) need none",
         ));
     }
     let (d, ig) = (Section::of(root, "drive"), Section::of(root, "integration"));
@@ -633,6 +633,17 @@ pub fn planar_rotor(root: &Table) -> Result<PlanarRotor> {
     );
     crate::planar::problem::check_natural_frequency(&rotor)?;
     Ok(rotor)
+}
+
+/// The planar rotor an analysis at a constant speed reads (`stability`, `critical`,
+/// `campbell`, `map`, `ranges`): the whole config where it has `[drive]` (so a bad drive is
+/// still named), else [`planar_rotor`] alone.
+pub fn planar_rotor_for_analysis(root: &Table) -> Result<PlanarRotor> {
+    if root.contains_key("drive") {
+        Ok(planar(root)?.rotor)
+    } else {
+        planar_rotor(root)
+    }
 }
 
 /// [`planar`]'s run of `rotor`: the drive and the integration settings.

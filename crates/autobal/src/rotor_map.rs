@@ -223,9 +223,7 @@ fn build(root: &Table) -> Result<CellRotor> {
         let scale = sim.config.model.scale.map_or(1.0, |s| s.omega0);
         Ok(CellRotor { rotor: Rotor::Spatial(sim.rotor), scale, si: sim.config.dimensional })
     } else {
-        // as the other analyses (`autobal-commands`' `general::rotor_of`): no run needed
-        let rotor = if root.contains_key("drive") { config::planar(root)?.rotor } else { config::planar_rotor(root)? };
-        Ok(CellRotor { rotor: Rotor::Planar(rotor), scale: 1.0, si: true })
+        Ok(CellRotor { rotor: Rotor::Planar(config::planar_rotor_for_analysis(root)?), scale: 1.0, si: true })
     }
 }
 
