@@ -38,8 +38,8 @@
 //! ```
 
 use crate::analysis::{
-    family, speed_scan_with, stationary, Family, FamilyOptions, FamilyVerdict, Kind, NewtonOptions, ParameterRange, ScanOptions, StableRange, StationaryState,
-    VectorField, Verdict,
+    family, speed_scan_with_last, stationary, Family, FamilyOptions, FamilyVerdict, Kind, NewtonOptions, ParameterRange, ScanOptions, StableRange,
+    StationaryState, VectorField, Verdict,
 };
 use crate::control::{Control, Outcome, StopReason};
 use crate::error::{Error, Result};
@@ -202,6 +202,30 @@ impl Rotor {
             let Ok(st) = crate::analysis::stability(f, &state) else { continue };
             let member_psi = ball_angles(field, &state.x);
             if !found.iter().any(|(_, o)| same_placement(f.rotor(), &o.member_psi, &member_psi)) {
+                found.push((state.x, OtherOrbit { member_psi, abscissa: st.abscissa, verdict: st.verdict }));
+            }
+        }
+        found.sort_by(|a, b| a.1.abscissa.total_cmp(&b.1.abscissa));
+        found
+    }
+
+    /// The planar rotor's periodic orbits with `n ≥ 3` equal balls in **two groups**, on
+    /// supports that differ by direction (a periodic stationary motion): shot from each
+    /// placement of [`PlanarField::split_guesses`], each as its state and [`OtherOrbit`], the
+    /// least growth rate first; two placements reaching one orbit (the ball angles matched to
+    /// 1e-6 rad in any order: the balls are alike) count once. The speed scan's last resort
+    /// ([`stability_over_speed`]: only where Newton from [`Rotor::first_start`] and the
+    /// neighbour's state finds no state), as [`Rotor::gravity_orbits`] is the spatial rotor's
+    /// first start under gravity. Empty for any other rotor, or where no placement reaches an
+    /// orbit.
+    pub fn planar_split_orbits(field: &Field, newton: &NewtonOptions) -> Vec<(Vec<f64>, OtherOrbit)> {
+        let Field::Planar(f) = field else { return vec![] };
+        let mut found: Vec<(Vec<f64>, OtherOrbit)> = vec![];
+        for g in f.split_guesses() {
+            let Ok(state) = stationary(f, &g, newton) else { continue };
+            let Ok(st) = crate::analysis::stability(f, &state) else { continue };
+            let member_psi = ball_angles(field, &state.x);
+            if !found.iter().any(|(_, o)| same_angles(&o.member_psi, &member_psi)) {
                 found.push((state.x, OtherOrbit { member_psi, abscissa: st.abscissa, verdict: st.verdict }));
             }
         }
@@ -685,6 +709,24 @@ pub struct OtherOrbit {
     pub abscissa: f64,
     /// Its verdict.
     pub verdict: Verdict,
+}
+
+/// Whether two placements of alike balls are one: the angles matched one to one within
+/// `1e-6` rad round the circle.
+fn same_angles(a: &[f64], b: &[f64]) -> bool {
+    let near = |x: f64, y: f64| {
+        let d = (x - y).rem_euclid(std::f64::consts::TAU);
+        d.min(std::f64::consts::TAU - d) <= 1e-6
+    };
+    let mut used = vec![false; b.len()];
+    a.len() == b.len()
+        && a.iter().all(|&x| match b.iter().enumerate().position(|(j, &y)| !used[j] && near(x, y)) {
+            Some(j) => {
+                used[j] = true;
+                true
+            }
+            None => false,
+        })
 }
 
 /// Whether two placements of a spatial rotor's balls (all planes in order) are one: each
@@ -1256,7 +1298,12 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
         }
         Rotor::first_start(f, start)
     };
-    let Outcome { value: scan, mut stopped } = speed_scan_with(field_at, guess, speeds, &opts, control).map_err(|e| match e {
+    // the last resort, only where no state is found from those starts and the neighbour's:
+    // the planar rotor's orbit with n >= 3 balls in two groups on supports that differ by
+    // direction (Rotor::planar_split_orbits: with an eccentric race the family breaks into
+    // such orbits, and the closed form's member is none), the least growth rate first
+    let last = |f: &Field, _: f64| Rotor::planar_split_orbits(f, &newton).into_iter().next().map(|(x, _)| x);
+    let Outcome { value: scan, mut stopped } = speed_scan_with_last(field_at, guess, last, speeds, &opts, control).map_err(|e| match e {
         crate::analysis::AnalysisError::Model(e) => e,
         e => Error::invalid("speeds", e.to_string()),
     })?;

@@ -496,6 +496,26 @@ where
     M: Fn(f64) -> crate::Result<F>,
     G: Fn(&F, f64) -> Option<Vec<f64>>,
 {
+    speed_scan_with_last(field_at, guess_at, |_: &F, _| None, speeds, opts, control)
+}
+
+/// [`speed_scan_with`] with a **last resort**: where Newton reaches no state from the guess
+/// and the neighbour's state, from `last_at`'s start (asked only then, so every speed where
+/// those find a state keeps its answer and its cost).
+pub(crate) fn speed_scan_with_last<F, M, G, L>(
+    field_at: M,
+    guess_at: G,
+    last_at: L,
+    speeds: &[f64],
+    opts: &ScanOptions,
+    control: &Control,
+) -> Result<Outcome<SpeedScan>>
+where
+    F: VectorField,
+    M: Fn(f64) -> crate::Result<F>,
+    G: Fn(&F, f64) -> Option<Vec<f64>>,
+    L: Fn(&F, f64) -> Option<Vec<f64>>,
+{
     if speeds.is_empty() {
         return Err(AnalysisError::InvalidInput { field: "speeds".into(), reason: "no speed to scan".into() });
     }
@@ -532,7 +552,10 @@ where
             let starts = if opts.prefer_guess { [guess.as_deref(), near] } else { [near, guess.as_deref()] };
             // a periodic orbit's shooting starts from the neighbour's monodromy matrix (no
             // variational integration until the orbit is found)
-            solve_at(&f, &starts, hint, &opts.newton)
+            solve_at(&f, &starts, hint, &opts.newton).or_else(|e| match last_at(&f, omega) {
+                Some(last) => solve_at(&f, &[Some(last.as_slice())], hint, &opts.newton).map_err(|_| e),
+                None => Err(e),
+            })
         };
     let mut points: Vec<ScanPoint> = Vec::with_capacity(speeds.len());
     let mut previous: Option<StationaryState> = None;

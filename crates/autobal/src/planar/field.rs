@@ -217,6 +217,49 @@ impl PlanarField {
         }
         Some(state(&psi))
     }
+
+    /// Starts for the isolated periodic orbits of `n ≥ 3` equal balls on supports that differ
+    /// by direction: the balls in **two groups**, `p` balls at `α` and `n − p` at `β`
+    /// (`⌈n/2⌉ ≤ p < n`, both mirror placements of an uneven split), with
+    /// `m3 r (p e^{iα} + (n − p) e^{iβ}) = B` ([`PlanarField::semi_balanced_guess`]'s `B` and
+    /// `u`). An eccentric race on such supports breaks the family of balanced states into
+    /// isolated orbits with the balls in two groups, much as gravity does for the spatial rotor
+    /// ([`crate::spatial::dynamics::field::SpatialField::split_guesses`]); the family's member
+    /// of the closed form is then no orbit. Empty where the field is autonomous, for `n < 3`,
+    /// unequal balls, or where no two groups give `B`.
+    pub fn split_guesses(&self) -> Vec<Vec<f64>> {
+        let p = &self.rotor;
+        let n = p.n;
+        let w = self.omega;
+        if n < 3 || w == 0.0 || !p.equal_balls() || self.period().is_none() {
+            return vec![];
+        }
+        let e = C::from_polar(p.s2, p.gamma);
+        let (k, c) = p.mean_supports();
+        let b = -e * C::new(k / (w * w), c / w) + (e - C::new(p.s1, 0.0)) * p.m1;
+        let (need, dir, mr) = (b.norm(), b.arg(), p.m3 * p.r);
+        let nr = self.nr();
+        let mut out = vec![];
+        for big in n.div_ceil(2)..n {
+            let (a, bb) = (big as f64 * mr, (n - big) as f64 * mr);
+            if need < (a - bb).abs() || need > a + bb || need == 0.0 {
+                continue;
+            }
+            let off = ((a * a + need * need - bb * bb) / (2.0 * a * need)).clamp(-1.0, 1.0).acos();
+            // an even split's mirror is the same placement with the groups swapped
+            let sides: &[f64] = if 2 * big == n { &[1.0] } else { &[1.0, -1.0] };
+            for &side in sides {
+                let alpha = dir + side * off;
+                let beta = (b.im - a * alpha.sin()).atan2(b.re - a * alpha.cos());
+                let mut x = vec![0.0; 2 * nr];
+                x[0] = -e.re;
+                x[1] = -e.im;
+                x[2..nr].iter_mut().enumerate().for_each(|(j, v)| *v = if j < big { alpha } else { beta });
+                out.push(x);
+            }
+        }
+        out
+    }
 }
 
 /// The two angles `(φ_a, φ_b)` at which two balls of unbalances `a = m_a r`, `b = m_b r`
