@@ -304,14 +304,24 @@ fn solve(c: &CellRotor, w: f64, previous: Option<&StationaryState>, closed_form:
     // "unstable" (+3.74e-4 1/s, the other orbit) on a 25 x 10 map and "stable" (-1.64e-4 1/s)
     // in `stability` and on a 3 x 2 map (session 19's audit; tests/gravity_family.rs)
     let placements = matches!(&field, Field::Spatial(f) if f.split_guesses().len() > 1);
-    let order = if periodic && !placements { [true, false] } else { [false, true] };
-    for continued in order {
+    // the last resort, as the speed scan's, where neither start reaches a state: the planar
+    // rotor's orbit with n >= 3 balls in two groups on supports that differ by direction
+    // (Rotor::planar_split_orbits, the least growth rate first)
+    let last = || if closed_form { Rotor::planar_split_orbits(&field, &opts).into_iter().next().map(|(x, _)| x) } else { None };
+    let order = if periodic && !placements { [Start::Continued, Start::Closed, Start::Last] } else { [Start::Closed, Start::Continued, Start::Last] };
+    for how in order {
+        let continued = how == Start::Continued;
         let owned;
-        let start = if continued {
-            near
-        } else {
-            owned = closed();
-            owned.as_deref()
+        let start = match how {
+            Start::Continued => near,
+            Start::Closed => {
+                owned = closed();
+                owned.as_deref()
+            }
+            Start::Last => {
+                owned = last();
+                owned.as_deref()
+            }
         };
         let Some(start) = start else { continue };
         let Ok(state) = stationary_near(&field, start, hint, &opts) else { continue };
@@ -335,6 +345,15 @@ fn solve(c: &CellRotor, w: f64, previous: Option<&StationaryState>, closed_form:
         return (cell, Some(state));
     }
     (GeneralCell::NONE, None)
+}
+
+/// Where a cell's Newton starts ([`solve`]): the neighbour's state, the speed scan's first
+/// start ([`Rotor::first_start`]), or its last resort ([`Rotor::planar_split_orbits`]).
+#[derive(Clone, Copy, PartialEq)]
+enum Start {
+    Continued,
+    Closed,
+    Last,
 }
 
 /// One end of a bisection: `x`, the verdict, the state, the cell.

@@ -95,3 +95,32 @@ fn a_constant_speed_run_started_there_ends_balanced() {
     let end = last.unwrap();
     assert!(same_up_to_order(&end, &psi, 5e-3), "{end:?} vs {psi:?}");
 }
+
+#[test]
+fn a_map_row_finds_the_scans_two_group_orbits() {
+    // the map's cells take the scan's last resort too: a row over the speed on that rotor has a
+    // state in every cell (main at 3c9afab: none in any), the verdict and growth rate of the
+    // scan's point at the same speed
+    use autobal::paths::Axis;
+    use autobal::rotor_map::general_map;
+    let text = include_str!("../../../examples/planar.toml").replace("k = 104509.44", "k_x = 9.0e4\nk_y = 1.2e5");
+    let mut root = autobal::config::parse(&text, "pk").unwrap();
+    autobal::config::set_number(&mut root, "planar.n", 3.0).unwrap();
+    let speeds = vec![350.0, 400.0, 500.0, 600.0];
+    let x = Axis { path: "omega".into(), values: speeds.clone() };
+    let y = Axis { path: "planar.c".into(), values: vec![50.0] };
+    let mut cells = vec![];
+    general_map(&root, &x, &y, None, &autobal::control::Control::none(), &mut |_, r| {
+        cells.extend_from_slice(r);
+        true
+    })
+    .unwrap();
+    let scan = stability_over_speed(&Rotor::Planar(rotor()), &speeds).unwrap();
+    for (c, p) in cells.iter().zip(&scan.points) {
+        assert_eq!(c.verdict, p.verdict, "{} rad/s: map {c:?}, scan {p:?}", p.omega);
+        // the same orbit shot with the same options (the planar map's margins are in 1/s):
+        // equal to the shooting's accuracy, ~1e-7 1/s on these rates of ~1e-5
+        let a = p.abscissa.unwrap();
+        assert!((c.margin - a).abs() <= 1e-7, "{} rad/s: map {}, scan {a}", p.omega, c.margin);
+    }
+}
