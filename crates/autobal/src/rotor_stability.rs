@@ -196,17 +196,7 @@ impl Rotor {
     /// count once. Empty where the rotor is not of that kind or no placement reaches an orbit.
     pub fn gravity_orbits(field: &Field, newton: &NewtonOptions) -> Vec<(Vec<f64>, OtherOrbit)> {
         let Field::Spatial(f) = field else { return vec![] };
-        let mut found: Vec<(Vec<f64>, OtherOrbit)> = vec![];
-        for g in f.split_guesses() {
-            let Ok(state) = stationary(f, &g, newton) else { continue };
-            let Ok(st) = crate::analysis::stability(f, &state) else { continue };
-            let member_psi = ball_angles(field, &state.x);
-            if !found.iter().any(|(_, o)| same_placement(f.rotor(), &o.member_psi, &member_psi)) {
-                found.push((state.x, OtherOrbit { member_psi, abscissa: st.abscissa, verdict: st.verdict }));
-            }
-        }
-        found.sort_by(|a, b| a.1.abscissa.total_cmp(&b.1.abscissa));
-        found
+        shoot_placements(field, f, f.split_guesses(), |a, b| same_placement(f.rotor(), a, b), newton)
     }
 
     /// The planar rotor's periodic orbits with `n ≥ 3` equal balls in **two groups**, on
@@ -220,17 +210,7 @@ impl Rotor {
     /// orbit.
     pub fn planar_split_orbits(field: &Field, newton: &NewtonOptions) -> Vec<(Vec<f64>, OtherOrbit)> {
         let Field::Planar(f) = field else { return vec![] };
-        let mut found: Vec<(Vec<f64>, OtherOrbit)> = vec![];
-        for g in f.split_guesses() {
-            let Ok(state) = stationary(f, &g, newton) else { continue };
-            let Ok(st) = crate::analysis::stability(f, &state) else { continue };
-            let member_psi = ball_angles(field, &state.x);
-            if !found.iter().any(|(_, o)| same_angles(&o.member_psi, &member_psi)) {
-                found.push((state.x, OtherOrbit { member_psi, abscissa: st.abscissa, verdict: st.verdict }));
-            }
-        }
-        found.sort_by(|a, b| a.1.abscissa.total_cmp(&b.1.abscissa));
-        found
+        shoot_placements(field, f, f.split_guesses(), same_angles, newton)
     }
 
     /// The start of Newton's method at a speed without a neighbour's state, the one order of
@@ -709,6 +689,30 @@ pub struct OtherOrbit {
     pub abscissa: f64,
     /// Its verdict.
     pub verdict: Verdict,
+}
+
+/// The distinct periodic orbits shot by Newton from `guesses` on `f` (the model of `field`),
+/// each as its state and [`OtherOrbit`]; two placements reaching one orbit (`same` on their
+/// ball angles) count once; the least growth rate first. [`Rotor::gravity_orbits`] and
+/// [`Rotor::planar_split_orbits`].
+fn shoot_placements<F: VectorField>(
+    field: &Field,
+    f: &F,
+    guesses: Vec<Vec<f64>>,
+    same: impl Fn(&[f64], &[f64]) -> bool,
+    newton: &NewtonOptions,
+) -> Vec<(Vec<f64>, OtherOrbit)> {
+    let mut found: Vec<(Vec<f64>, OtherOrbit)> = vec![];
+    for g in guesses {
+        let Ok(state) = stationary(f, &g, newton) else { continue };
+        let Ok(st) = crate::analysis::stability(f, &state) else { continue };
+        let member_psi = ball_angles(field, &state.x);
+        if !found.iter().any(|(_, o)| same(&o.member_psi, &member_psi)) {
+            found.push((state.x, OtherOrbit { member_psi, abscissa: st.abscissa, verdict: st.verdict }));
+        }
+    }
+    found.sort_by(|a, b| a.1.abscissa.total_cmp(&b.1.abscissa));
+    found
 }
 
 /// Whether two placements of alike balls are one: the angles matched one to one within

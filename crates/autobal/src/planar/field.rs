@@ -237,28 +237,17 @@ impl PlanarField {
         let e = C::from_polar(p.s2, p.gamma);
         let (k, c) = p.mean_supports();
         let b = -e * C::new(k / (w * w), c / w) + (e - C::new(p.s1, 0.0)) * p.m1;
-        let (need, dir, mr) = (b.norm(), b.arg(), p.m3 * p.r);
         let nr = self.nr();
-        let mut out = vec![];
-        for big in n.div_ceil(2)..n {
-            let (a, bb) = (big as f64 * mr, (n - big) as f64 * mr);
-            if need < (a - bb).abs() || need > a + bb || need == 0.0 {
-                continue;
-            }
-            let off = ((a * a + need * need - bb * bb) / (2.0 * a * need)).clamp(-1.0, 1.0).acos();
-            // an even split's mirror is the same placement with the groups swapped
-            let sides: &[f64] = if 2 * big == n { &[1.0] } else { &[1.0, -1.0] };
-            for &side in sides {
-                let alpha = dir + side * off;
-                let beta = (b.im - a * alpha.sin()).atan2(b.re - a * alpha.cos());
+        crate::spatial::dynamics::field::two_groups(n, p.m3 * p.r, [b.re, b.im])
+            .into_iter()
+            .map(|angles| {
                 let mut x = vec![0.0; 2 * nr];
                 x[0] = -e.re;
                 x[1] = -e.im;
-                x[2..nr].iter_mut().enumerate().for_each(|(j, v)| *v = if j < big { alpha } else { beta });
-                out.push(x);
-            }
-        }
-        out
+                x[2..nr].copy_from_slice(&angles);
+                x
+            })
+            .collect()
     }
 }
 

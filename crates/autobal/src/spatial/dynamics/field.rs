@@ -216,23 +216,7 @@ impl SpatialField {
                 options.push(vec![arc]);
                 continue;
             }
-            let need = t[0].hypot(t[1]);
-            let dir = t[1].atan2(t[0]);
-            let mut mine_options = vec![];
-            for big in n.div_ceil(2)..n {
-                let (a, b) = (big as f64 * mr, (n - big) as f64 * mr);
-                if need < (a - b).abs() || need > a + b || need == 0.0 {
-                    continue;
-                }
-                let off = ((a * a + need * need - b * b) / (2.0 * a * need)).clamp(-1.0, 1.0).acos();
-                // an even split's mirror is the same placement with the groups swapped
-                let sides: &[f64] = if 2 * big == n { &[1.0] } else { &[1.0, -1.0] };
-                for &side in sides {
-                    let alpha = dir + side * off;
-                    let beta = (t[1] - a * alpha.sin()).atan2(t[0] - a * alpha.cos());
-                    mine_options.push((0..n).map(|j| if j < big { alpha } else { beta }).collect());
-                }
-            }
+            let mine_options = two_groups(n, mr, t);
             if mine_options.is_empty() {
                 // no two groups give the share (`gravity_circulation`): no balanced orbit
                 return vec![];
@@ -610,4 +594,32 @@ impl VectorField for SpatialField {
             base
         }
     }
+}
+
+/// The placements of `n` alike balls (each `m R = mr`) in **two groups**, `p` balls at `α` and
+/// `n − p` at `β` (`⌈n/2⌉ ≤ p < n`), whose resultant `mr (p e^{iα} + (n − p) e^{iβ})` is `t`
+/// (the triangle of sides `p mr`, `(n − p) mr`, `|t|`): both mirror placements of an uneven
+/// split, one of an even split (its mirror swaps the groups); each placement as its `n` ball
+/// angles. Empty where no split can give `t` (or `t = 0`). The starts of
+/// [`SpatialField::split_guesses`] (gravity) and [`crate::planar::field::PlanarField::split_guesses`]
+/// (supports that differ by direction).
+pub(crate) fn two_groups(n: usize, mr: f64, t: [f64; 2]) -> Vec<Vec<f64>> {
+    let need = t[0].hypot(t[1]);
+    let dir = t[1].atan2(t[0]);
+    let mut out = vec![];
+    for big in n.div_ceil(2)..n {
+        let (a, b) = (big as f64 * mr, (n - big) as f64 * mr);
+        if need < (a - b).abs() || need > a + b || need == 0.0 {
+            continue;
+        }
+        let off = ((a * a + need * need - b * b) / (2.0 * a * need)).clamp(-1.0, 1.0).acos();
+        // an even split's mirror is the same placement with the groups swapped
+        let sides: &[f64] = if 2 * big == n { &[1.0] } else { &[1.0, -1.0] };
+        for &side in sides {
+            let alpha = dir + side * off;
+            let beta = (t[1] - a * alpha.sin()).atan2(t[0] - a * alpha.cos());
+            out.push((0..n).map(|j| if j < big { alpha } else { beta }).collect());
+        }
+    }
+    out
 }
