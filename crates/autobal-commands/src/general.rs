@@ -38,8 +38,8 @@ pub fn needs_general_route(root: &Table) -> bool {
 /// general route's partially balanced state; the closed form said "stable: none" without
 /// saying why). Both found by session 19's audit on examples/dimensional.toml. The critical
 /// speeds and Campbell diagrams keep the closed form there (paper 000's report, well defined
-/// without unbalance). Decided once from the config as given (a map's axis through zero
-/// unbalance keeps the base config's route).
+/// without unbalance). A map decides for all its cells at once: an axis through zero unbalance
+/// or one ball takes the whole map onto the general route (`map`'s `axis_value_needs_general`).
 pub fn needs_general_verdict(root: &Table) -> bool {
     if needs_general_route(root) {
         return true;

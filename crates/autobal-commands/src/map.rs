@@ -164,19 +164,14 @@ impl Args {
             }
         }
         if linear || self.route.is_general_verdict(&root) {
-            if self.balls == Balls::Locked {
-                bail!("--balls locked: the general route maps the balls free (use the 12-state route of a one-plane config for the locked rotor)");
-            }
-            if !linear {
-                config::check_entries(&root, "map", &[config::simulation_model(&root)])?;
-            }
-            let speed = self.omega.as_deref().map(|t| autobal::units::parse_speed("--omega", t)).transpose()?;
-            // the linear rotor's speed is ω in rad/s, as the planar rotor's
-            let planar = linear || !autobal::config::is_spatial(&root);
-            return Ok(Plan { args: self.clone(), route: PlanRoute::General { root: Box::new(root), speed, planar, linear } });
+            return self.general_plan(root, linear);
         }
         // the speeds need the config's ω0: it is read (and checked) first
         let cfg = config::build(&root, &source)?;
+        // an axis through zero unbalance or one ball: the whole map on the general route
+        if [&self.x, &self.y].iter().any(|a| !is_speed(a) && a.values.iter().any(|&v| axis_value_needs_general(&cfg.spec, &a.path, v))) {
+            return self.general_plan(root, linear);
+        }
         config::check_entries(&root, "map", &[config::Model::Linear])?;
         let omega = self.omega.as_deref().map(|t| crate::linear::speed_arg(&cfg, "--omega", t)).transpose()?;
         if let Some(w) = omega {
@@ -214,6 +209,55 @@ impl Args {
         }
         Ok(Plan { args: self.clone(), route: PlanRoute::Closed { cfg: Box::new(cfg), omega } })
     }
+}
+
+impl Args {
+    /// The plan of a map on the general route (`linear`: a `[linear_rotor]` config).
+    fn general_plan(&self, root: toml::Table, linear: bool) -> Result<Plan> {
+        if self.balls == Balls::Locked {
+            bail!("--balls locked: the general route maps the balls free (use the 12-state route of a one-plane config for the locked rotor)");
+        }
+        if !linear {
+            config::check_entries(&root, "map", &[config::simulation_model(&root)])?;
+        }
+        let speed = self.omega.as_deref().map(|t| autobal::units::parse_speed("--omega", t)).transpose()?;
+        // the linear rotor's speed is ω in rad/s, as the planar rotor's
+        let planar = linear || !autobal::config::is_spatial(&root);
+        Ok(Plan { args: self.clone(), route: PlanRoute::General { root: Box::new(root), speed, planar, linear } })
+    }
+}
+
+/// Whether the map's cell with `path = value` on the closed form's config `spec` needs the
+/// general verdict ([`crate::general::needs_general_verdict`]: no unbalance, or one ball): a
+/// map is drawn on one route, so an axis through zero unbalance (`unbalance.mass = 0:…`) or one
+/// ball takes the whole map onto the general route. Before (session 20's fix), the route was
+/// decided from the config as given, and such a map drew its zero row by paper 000's closed
+/// form, which counts the balancing family's neutral direction as "not stable": the row read
+/// unstable (margin ~1e-27) where `stability` on that cell's config finds the family's stable
+/// members (`tests/map_route_20.rs`). The same rule as [`Rotor::has_unbalance`] for the closed
+/// form's rotor (one plane, the unbalance in it): `|m0 R0| ≤ NO_UNBALANCE · n m R`, read from
+/// the spec's fields (parsing each cell's config for the full rule cost 390 k instructions a
+/// value, +68 % on a 400-value axis); a unit test holds it to the full rule. A value the spec
+/// refuses is left to the map's own checks.
+///
+/// [`Rotor::has_unbalance`]: autobal::rotor_stability::Rotor::has_unbalance
+fn axis_value_needs_general(spec: &autobal::spatial::paths::SpatialSpec, path: &str, value: f64) -> bool {
+    let mut s = spec.clone();
+    if s.set(path, value).is_err() {
+        return false;
+    }
+    let g = |p: &str| s.get(p).unwrap_or(f64::NAN);
+    // (unbalance, capacity Σ m R, balls)
+    let (u, cap, n) = match &s.input {
+        autobal::spatial::paths::SpatialInput::Dimensionless(_) => {
+            (g("dimensionless.m0") * g("dimensionless.r0"), g("dimensionless.m") * g("dimensionless.r"), g("dimensionless.n"))
+        }
+        autobal::spatial::paths::SpatialInput::Si { .. } => {
+            let n = g("balancer.balls");
+            (g("unbalance.mass") * g("unbalance.radius"), n * g("balancer.ball_mass") * g("balancer.race_radius"), n)
+        }
+    };
+    n == 1.0 || !(u.abs() > autobal::rotor_stability::NO_UNBALANCE * cap)
 }
 
 impl Plan {
@@ -1315,6 +1359,50 @@ mod tests {
 
     fn tables(text: &str) -> ConfigSource {
         ConfigSource::tables(crate::config::parse_text(text, "test").unwrap(), "test")
+    }
+
+    /// [`axis_value_needs_general`] against the full rule it stands for
+    /// ([`crate::general::needs_general_verdict`] on the config with the value set), on the
+    /// dimensionless and the SI example, at values through and near its thresholds.
+    #[test]
+    fn the_axis_route_rule_is_the_full_verdict_rule() {
+        for (file, cases) in [
+            (
+                include_str!("../../../examples/default.toml"),
+                vec![
+                    ("dimensionless.m0", vec![0.0, 1e-12, 1e-8, 1e-7, 1e-3, 0.025]),
+                    ("dimensionless.r0", vec![0.0, 1e-9, 2.0]),
+                    ("dimensionless.n", vec![1.0, 2.0, 3.0]),
+                    ("dimensionless.m", vec![1e-3, 0.05, 0.5]),
+                    ("dimensionless.z_a", vec![-1.0, 0.0, 0.8]),
+                ],
+            ),
+            (
+                include_str!("../../../examples/dimensional.toml"),
+                vec![
+                    ("unbalance.mass", vec![0.0, 1e-12, 4.7e-8, 4.9e-8, 0.01]),
+                    ("unbalance.radius", vec![0.0, 0.1]),
+                    ("balancer.balls", vec![1.0, 2.0, 4.0]),
+                    ("balancer.ball_mass", vec![1e-3, 0.02, 1e4]),
+                    ("balancer.z", vec![0.3, 0.45]),
+                ],
+            ),
+        ] {
+            let root = crate::config::parse_text(file, "test").unwrap();
+            let cfg = config::build(&root, "test").unwrap();
+            let mut flips = 0;
+            for (path, values) in cases {
+                for v in values {
+                    let mut r = root.clone();
+                    autobal::config::set_number(&mut r, path, v).unwrap();
+                    let full = crate::general::needs_general_verdict(&r);
+                    assert_eq!(axis_value_needs_general(&cfg.spec, path, v), full, "{path} = {v}");
+                    flips += full as usize;
+                }
+            }
+            // the cases reach both sides of the rule
+            assert!(flips >= 4, "{flips}");
+        }
     }
 
     #[test]
