@@ -81,7 +81,6 @@ impl RevolutionWindow {
     /// that ends further back clears the window (a run that speeds up leaves the lead again,
     /// its records then too old to be the last revolutions).
     pub fn dense_step<R: Recorder + ?Sized>(&mut self, rec: &R, t0: f64, t1: f64, y0: &[f64], y1: &[f64], interpolate: &mut dyn FnMut(f64, &mut [f64])) {
-        let (th0, _) = rec.spin(t0, y0);
         let (th1, w1) = rec.spin(t1, y1);
         let near = self.t_end - t1 <= LEAD * TAU / w1.abs();
         if !near {
@@ -92,6 +91,7 @@ impl RevolutionWindow {
             return;
         }
         self.on = true;
+        let (th0, _) = rec.spin(t0, y0);
         let d = TAU / POINTS as f64;
         let (k0, k1) = ((th0 / d).floor(), (th1 / d).floor());
         if !(k0.is_finite() && k1.is_finite()) || k0 == k1 {
