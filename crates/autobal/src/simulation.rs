@@ -33,6 +33,10 @@
 //! assert!((rec.samples[3].1 - (-1.5f64).exp()).abs() < 1e-9);
 //! ```
 
+pub mod window;
+
+pub use window::{Recorder, RevolutionWindow};
+
 use crate::error::{Error, Result};
 use crate::ode::{Control, Outcome, Solver, Stats, Status, StopReason, System};
 

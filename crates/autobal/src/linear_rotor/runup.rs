@@ -35,7 +35,7 @@ use crate::error::{Error, Result};
 use crate::ode::dual::{Dual, Real};
 use crate::ode::lu::Lu;
 use crate::ode::{Control, Method, Options, Solver, Status, System};
-use crate::simulation::{run, Hooks, Peak, Timeline};
+use crate::simulation::{run, Hooks, Peak, Recorder, RevolutionWindow, Timeline};
 use serde::Serialize;
 use std::borrow::Cow;
 
@@ -579,84 +579,56 @@ pub fn plane_positions(rotor: &LinearRotor, y: &[f64]) -> Vec<(f64, f64)> {
         .collect()
 }
 
-/// Step-end records kept at most (a run that hardly turns would otherwise keep them all).
-const MAX_RECORDS: usize = 100_000;
-
-/// The revolutions [`Window`] keeps: the last one for the means, the one before for the drift.
-const WINDOW_REVOLUTIONS: f64 = 2.0;
-
-/// The step ends of a run's last [`WINDOW_REVOLUTIONS`] revolutions, for the summary's means
-/// over a revolution: per record the rotor's angle `φ`, the speed, each ball's `cos ψ`,
-/// `sin ψ` and `ψ` (unwrapped), each plane's race centre in axes turning with the rotor.
-struct Window {
-    stride: usize,
-    data: std::collections::VecDeque<f64>,
+/// What the linear rotor's run summary averages over its last revolutions
+/// ([`crate::simulation::RevolutionWindow`], on the grid of the rotor's angle `φ`: the spin
+/// state's under a torque, the drive's (`drive_angle`) where the speed is prescribed): per
+/// record the speed, each ball's `cos ψ`, `sin ψ` and `ψ` (as integrated: not reduced to one
+/// turn), each plane's race centre in axes turning with the rotor.
+struct LinearRecorder<'a> {
+    rotor: &'a LinearRotor,
+    drive: &'a Drive,
+    /// Whether the spin is a state (a torque drive).
+    spin: bool,
 }
 
-impl Window {
-    fn new(rotor: &LinearRotor) -> Self {
-        Window { stride: 2 + 3 * rotor.total_balls() + 2 * rotor.balancers.len(), data: Default::default() }
+/// Where a [`LinearRecorder`]'s record holds the speed, `cos ψ`, `sin ψ`, `ψ` and the race
+/// centres, for `nb` balls.
+fn columns(nb: usize) -> (usize, usize, usize, usize, usize) {
+    (0, 1, 1 + nb, 1 + 2 * nb, 1 + 3 * nb)
+}
+
+impl LinearRecorder<'_> {
+    fn width(&self) -> usize {
+        1 + 3 * self.rotor.total_balls() + 2 * self.rotor.balancers.len()
+    }
+}
+
+impl crate::simulation::Recorder for LinearRecorder<'_> {
+    fn spin(&self, t: f64, y: &[f64]) -> (f64, f64) {
+        if self.spin {
+            let nc = self.rotor.dofs() + self.rotor.total_balls();
+            (y[nc], y[y.len() - 1])
+        } else {
+            (drive_angle(self.drive, t), self.drive.kinematics(t).0)
+        }
     }
 
-    fn len(&self) -> usize {
-        self.data.len() / self.stride
-    }
-
-    fn get(&self, i: usize, k: usize) -> f64 {
-        self.data[i * self.stride + k]
-    }
-
-    /// Record the state `y` with the rotor at angle `phi` and speed `w`.
-    fn push(&mut self, rotor: &LinearRotor, phi: f64, w: f64, y: &[f64]) {
-        let n = rotor.dofs();
-        let psi = &y[n..n + rotor.total_balls()];
-        self.data.push_back(phi);
-        self.data.push_back(w);
-        self.data.extend(psi.iter().map(|a| a.cos()));
-        self.data.extend(psi.iter().map(|a| a.sin()));
-        self.data.extend(psi.iter().copied());
+    fn record(&self, t: f64, y: &[f64], out: &mut [f64]) {
+        let (phi, w) = self.spin(t, y);
+        let (n, nb) = (self.rotor.dofs(), self.rotor.total_balls());
+        let (speed, cos0, sin0, psi0, d0) = columns(nb);
+        out[speed] = w;
+        for (j, a) in y[n..n + nb].iter().enumerate() {
+            let (s, c) = a.sin_cos();
+            out[cos0 + j] = c;
+            out[sin0 + j] = s;
+            out[psi0 + j] = *a;
+        }
         let (s, c) = phi.sin_cos();
-        for (x, yy) in plane_positions(rotor, y) {
-            self.data.push_back(c * x + s * yy);
-            self.data.push_back(-s * x + c * yy);
+        for (k, (x, yy)) in plane_positions(self.rotor, y).into_iter().enumerate() {
+            out[d0 + 2 * k] = c * x + s * yy;
+            out[d0 + 2 * k + 1] = -s * x + c * yy;
         }
-        // drop what lies more than WINDOW_REVOLUTIONS back (the second record still that far)
-        let keep = WINDOW_REVOLUTIONS * std::f64::consts::TAU;
-        while self.len() > 2 && ((phi - self.get(1, 0)).abs() >= keep || self.len() > MAX_RECORDS) {
-            self.data.drain(..self.stride);
-        }
-    }
-
-    /// The means of every column over the rotor's angle from `a` to `b` revolutions (in rad)
-    /// back from the last record, by the trapezoid rule in `φ` over the step ends (linear
-    /// interpolation at the ends of the interval; exact for a state constant in turning
-    /// axes, second order in the step otherwise); `None` where the window does not reach `b`.
-    fn mean(&self, a: f64, b: f64) -> Option<Vec<f64>> {
-        let m = self.len();
-        if m < 2 {
-            return None;
-        }
-        let last = self.get(m - 1, 0);
-        let back = |i: usize| (last - self.get(i, 0)).abs();
-        if back(0) < b {
-            return None;
-        }
-        let mut sums = vec![0.0; self.stride];
-        for i in 0..m - 1 {
-            let (s0, s1) = (back(i), back(i + 1));
-            let (lo, hi) = (s1.max(a), s0.min(b));
-            if !(hi > lo) || !(s0 > s1) {
-                continue;
-            }
-            let at = |k: usize, s: f64| {
-                let (v0, v1) = (self.get(i, k), self.get(i + 1, k));
-                v1 + (v0 - v1) * (s - s1) / (s0 - s1)
-            };
-            for (k, sum) in sums.iter_mut().enumerate() {
-                *sum += 0.5 * (hi - lo) * (at(k, lo) + at(k, hi));
-            }
-        }
-        Some(sums.into_iter().map(|v| v / (b - a)).collect())
     }
 }
 
@@ -669,25 +641,13 @@ struct RunHooks<'a, F: FnMut(&RunSample) -> bool> {
     peak: Peak<f64>,
     peak_any: Peak<f64>,
     last_radius: f64,
-    window: Window,
-}
-
-impl<F: FnMut(&RunSample) -> bool> RunHooks<'_, F> {
-    /// The rotor's angle and speed in the state `y` at `t`.
-    fn spin_of(&self, t: f64, y: &[f64]) -> (f64, f64) {
-        if self.spin {
-            let nc = self.rotor.dofs() + self.rotor.total_balls();
-            (y[nc], y[y.len() - 1])
-        } else {
-            (drive_angle(self.drive, t), self.drive.kinematics(t).0)
-        }
-    }
+    window: RevolutionWindow,
+    recorder: LinearRecorder<'a>,
 }
 
 impl<F: FnMut(&RunSample) -> bool> Hooks for RunHooks<'_, F> {
-    fn step(&mut self, t: f64, y: &[f64]) {
-        let (phi, w) = self.spin_of(t, y);
-        self.window.push(self.rotor, phi, w, y);
+    fn dense_step(&mut self, t_old: f64, t_new: f64, y_old: &[f64], y_new: &[f64], interpolate: &mut dyn FnMut(f64, &mut [f64])) {
+        self.window.dense_step(&self.recorder, t_old, t_new, y_old, y_new, interpolate);
     }
 
     fn sample(&mut self, t: f64, y: &[f64]) -> Control {
@@ -807,6 +767,7 @@ pub fn simulate_from(
     }
     let breakpoints = drive.breakpoints();
     let timeline = Timeline { t_end: settings.t_end, dt: settings.dt, breakpoints: &breakpoints };
+    let recorder = LinearRecorder { rotor, drive, spin };
     let mut hooks = RunHooks {
         rotor,
         nodes: settings.physical_nodes.unwrap_or(rotor.nodes).min(rotor.nodes),
@@ -816,16 +777,15 @@ pub fn simulate_from(
         peak: Peak::new(0.0),
         peak_any: Peak::new(0.0),
         last_radius: 0.0,
-        window: Window::new(rotor),
+        window: RevolutionWindow::new(recorder.width(), settings.t_end),
+        recorder,
     };
-    let (phi0, w0) = hooks.spin_of(0.0, &y);
-    hooks.window.push(rotor, phi0, w0, &y);
     let out = run(&mut solver, &mut y, &timeline, &mut hooks);
     let stopped = match &out.status {
         Status::Completed | Status::Event(_) => None,
         _ => Some(out.to_string()),
     };
-    let (phi_end, final_omega) = hooks.spin_of(out.t, &y);
+    let (phi_end, final_omega) = hooks.recorder.spin(out.t, &y);
     let end = ending(rotor, &hooks.window, &y, phi_end, final_omega, stopped.is_none());
     // the end checks (`crate::rotor_stability::end_checks`); the end state turned into the
     // rotor's turning axes
@@ -888,16 +848,15 @@ struct End {
 }
 
 /// The verdict of a run ([`RunSummary::outcome`] and the fields it is decided on) from the
-/// step ends of its last revolutions `window`, the end state `y` with the rotor at angle `phi`
+/// records of its last revolutions `window` ([`LinearRecorder`]), the end state `y` with the rotor at angle `phi`
 /// and speed `omega`, and whether it `completed`: the spatial run's rule
 /// ([`crate::spatial::dynamics::simulate::run_outcome`]) on the linear route's measures.
-fn ending(rotor: &LinearRotor, window: &Window, y: &[f64], phi: f64, omega: f64, completed: bool) -> End {
+fn ending(rotor: &LinearRotor, window: &RevolutionWindow, y: &[f64], phi: f64, omega: f64, completed: bool) -> End {
     use crate::spatial::dynamics::simulate::{drift_tolerance, plane_together, run_outcome, Ending};
-    let tau = std::f64::consts::TAU;
     let (n, nb, np) = (rotor.dofs(), rotor.total_balls(), rotor.balancers.len());
-    let (last, previous) = (window.mean(0.0, tau), window.mean(tau, 2.0 * tau));
-    // columns of a record: φ, ω, cos ψ, sin ψ, ψ, the race centres in turning axes
-    let (cos0, sin0, psi0, d0) = (2, 2 + nb, 2 + 2 * nb, 2 + 3 * nb);
+    let (last, previous) = (window.mean(0), window.mean(1));
+    // columns of a record: ω, cos ψ, sin ψ, ψ, the race centres in turning axes
+    let (speed, cos0, sin0, psi0, d0) = columns(nb);
     // ⟨e^{iψ_j}⟩ and ⟨d_k⟩ over the last revolution, or the end state's
     let (units, centres): (Vec<[f64; 2]>, Vec<[f64; 2]>) = match &last {
         Some(m) => ((0..nb).map(|j| [m[cos0 + j], m[sin0 + j]]).collect(), (0..np).map(|k| [m[d0 + 2 * k], m[d0 + 2 * k + 1]]).collect()),
@@ -929,12 +888,9 @@ fn ending(rotor: &LinearRotor, window: &Window, y: &[f64], phi: f64, omega: f64,
     let residual_unbalance = s[0].hypot(s[1]) / crate::rotor_stability::unbalance_scale(s0n, cap);
     // settled: a constant speed over the last two revolutions and the balls' mean angles
     // drifting by at most the shared tolerance
-    let ball_drift = match (&last, &previous) {
-        (Some(a), Some(b)) if nb > 0 => Some((0..nb).map(|j| (a[psi0 + j] - b[psi0 + j]).abs()).fold(0.0, f64::max)),
-        _ => None,
-    };
+    let ball_drift = if nb > 0 { window.drift(psi0..psi0 + nb) } else { None };
     let constant = match (&last, &previous) {
-        (Some(a), Some(b)) => a[1] != 0.0 && (a[1] - b[1]).abs() <= 1e-6 * a[1].abs(),
+        (Some(a), Some(b)) => a[speed] != 0.0 && (a[speed] - b[speed]).abs() <= 1e-6 * a[speed].abs(),
         _ => false,
     };
     let wn = rotor.natural_frequencies(&[], true).ok().and_then(|w| w.first().copied()).unwrap_or(f64::NAN);
@@ -1006,8 +962,8 @@ mod tests {
     /// 660 rad/s, 2.8 ω_n; the balls centre their race, which leaves a static residual of
     /// 0.73) reads balanced, `stability`'s word, with that residual reported. The state is
     /// approached at the rate 0.068/s (370 s to e^{-25}, too long for a test), so the window is
-    /// the stationary state itself turned through three revolutions in fixed axes (24 records
-    /// a revolution: exact means of a state constant in turning axes). On the static residual
+    /// fed the stationary state itself turned through three revolutions in fixed axes as the
+    /// dense output (exact means of a state constant in turning axes). On the static residual
     /// (the spatial and planar basis) the word would be not balanced.
     #[test]
     fn the_run_decides_on_the_race_whirl_where_stability_does() {
@@ -1019,20 +975,30 @@ mod tests {
         let (_, s) = crate::rotor_campbell::stationary_at(&Rotor::Linear(r.clone()), w).unwrap();
         let n = r.dofs();
         let nb = r.total_balls();
-        let mut window = Window::new(&r);
-        let mut y = vec![0.0; 2 * (n + nb)];
-        let mut phi = 0.0;
-        for k in 0..=72 {
-            phi = k as f64 * std::f64::consts::TAU / 24.0;
-            let (sn, cs) = phi.sin_cos();
+        // the state at t: the stationary state turned through φ = ω t into fixed axes
+        let turned = |t: f64| {
+            let (sn, cs) = (w * t).sin_cos();
+            let mut y = vec![0.0; 2 * (n + nb)];
             for m in 0..n / 2 {
                 let (a, b) = (s.x[2 * m], s.x[2 * m + 1]);
                 y[2 * m] = cs * a - sn * b;
                 y[2 * m + 1] = sn * a + cs * b;
             }
             y[n..n + nb].copy_from_slice(&s.x[n..n + nb]);
-            window.push(&r, phi, w, &y);
+            y
+        };
+        let drive = Drive::Speed { omega0: w };
+        let recorder = LinearRecorder { rotor: &r, drive: &drive, spin: false };
+        // three revolutions in steps of a quarter revolution, the turned state itself as the
+        // dense output
+        let h = std::f64::consts::TAU / w / 4.0;
+        let t_end = 12.0 * h;
+        let mut window = RevolutionWindow::new(recorder.width(), t_end);
+        for k in 0..12 {
+            let (t0, t1) = (k as f64 * h, (k + 1) as f64 * h);
+            window.dense_step(&recorder, t0, t1, &turned(t0), &turned(t1), &mut |t, out| out.copy_from_slice(&turned(t)));
         }
+        let (y, phi) = (turned(t_end), w * t_end);
         let e = ending(&r, &window, &y, phi, w, true);
         assert!(e.settled);
         assert_eq!(e.outcome, RunOutcome::Balanced, "race whirl {:?}, residual {}", e.race_whirl, e.residual_unbalance);
@@ -1041,7 +1007,7 @@ mod tests {
         assert!((e.residual_unbalance - p.residual.unwrap()).abs() < 1e-9 && e.residual_unbalance > 0.5, "{} vs {:?}", e.residual_unbalance, p.residual);
         // the race whirl from the state in turning axes directly (its own second-order whirl
         // of the tilting ring, 3e-4 of the whirl without the resultant): the window's means of
-        // the turned records give it to round-off (1e-9 relative: 73 records summed)
+        // the turned records give it to round-off (1e-9 relative: 32 records summed)
         let (f, _) = crate::rotor_campbell::stationary_at(&Rotor::Linear(r.clone()), w).unwrap();
         let crate::rotor_stability::Field::Linear(lf) = &f else { unreachable!() };
         let direct = super::super::partial::plane_whirl(&r, &s.x)[0] / super::super::partial::spread_whirl(lf).unwrap()[0];

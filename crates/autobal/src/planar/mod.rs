@@ -50,7 +50,7 @@ pub use crate::drive::Drive;
 use crate::error::{finite, non_negative, positive, Error, Result};
 pub use crate::ode::Method;
 use crate::ode::{Control, Direction, Event, Options, Solver, Status, StopReason, System};
-use crate::simulation::{run, Hooks, Peak, Timeline};
+use crate::simulation::{run, Hooks, Peak, RevolutionWindow, Timeline};
 pub use equations::{energy, Equations};
 use serde::Serialize;
 
@@ -657,6 +657,7 @@ fn simulate_sampled(
     solver.add_event(RadiusMaximum { nc });
     let breakpoints = drive.breakpoints();
     let timeline = Timeline { t_end: settings.t_end, dt: sample_dt, breakpoints: &breakpoints };
+    let recorder = PlanarRecorder { rotor, nc };
     let mut hooks = PlanarHooks {
         rotor,
         drive,
@@ -666,7 +667,8 @@ fn simulate_sampled(
         nc,
         balls: eq.balls.as_ref().map(|f| (f, EventCounter::default())),
         sample: Sample { t: 0.0, omega: 0.0, theta: 0.0, x: 0.0, y: 0.0, amplitude: 0.0, psi: Vec::with_capacity(rotor.n) },
-        window: Window::new(rotor, settings.t_end),
+        window: RevolutionWindow::new(recorder.width(), settings.t_end),
+        recorder,
     };
     let out = run(&mut solver, &mut y, &timeline, &mut hooks);
     let peak = hooks.peak;
@@ -691,7 +693,7 @@ fn simulate_sampled(
     let completed = out.status.is_completed();
     // the residual and the balls' resultant averaged over the last revolution (the end state
     // where the run turned less), decided by the spatial run's rule
-    let (last, previous) = (hooks.window.mean(rotor, 0), hooks.window.mean(rotor, 1));
+    let (last, previous) = (hooks.window.mean(0), hooks.window.mean(1));
     let settled = match (&last, &previous) {
         // the spatial run's rule with this run's rate limit: the balls' mean angles (and C's
         // mean position in rotor axes, relative to `r_ref`) drift from one revolution to the
@@ -709,7 +711,7 @@ fn simulate_sampled(
     let [ex, ey, bx, by] = match last {
         Some(m) => [m[0], m[1], m[2], m[3]],
         None => {
-            let b = Window::resultant(rotor, y[3..nc].iter().copied());
+            let b = PlanarRecorder::resultant(rotor, y[3..nc].iter().copied());
             [y[0], y[1], b[0], b[1]]
         }
     };
@@ -854,45 +856,52 @@ struct PlanarHooks<'a, F: FnMut(&Sample) -> bool> {
     /// The sample handed to the sink, refilled at each sample time.
     sample: Sample,
     /// The last two revolutions from the dense output, for the summary's averages.
-    window: Window,
+    window: RevolutionWindow,
+    /// What the window records.
+    recorder: PlanarRecorder<'a>,
 }
 
-/// The run's last two revolutions sampled from the integrator's dense output at a fixed grid of
-/// the rotor angle, `θ = 2π k / WINDOW_POINTS` (`k` whole), for the summary's averages and
-/// their drift from one revolution to the next: each record is the weight `1/|θ̇|` (the time
-/// per unit of angle there), the shaft point C in rotor axes `u` (2) and the ball angles `ψ_j`
-/// (`n`). The mean over a revolution by time is then the weighted mean of its
-/// [`WINDOW_POINTS`] records, the trapezoidal rule of a periodic integrand over its period:
-/// exact, to the integration's accuracy, for a stationary motion periodic in `θ` with no
-/// harmonic of order [`WINDOW_POINTS`] or above (a steady whirl, constant in rotor axes; the
-/// swing at `2θ` of supports that differ by direction), wherever in the revolution the run
-/// ends. Sampling starts [`WINDOW_LEAD`] revolutions (at the speed of the moment) before the
-/// run's end, so that the dense output (3 more right-hand sides a step for DOP853) is paid for
-/// only there; older records are dropped.
-struct Window {
-    stride: usize,
-    data: std::collections::VecDeque<f64>,
-    /// The run's end (sampling starts [`WINDOW_LEAD`] revolutions before it).
-    t_end: f64,
-    /// Whether the last step was within [`WINDOW_LEAD`] revolutions of the end.
-    on: bool,
+/// What the planar run's summary averages over its last revolutions
+/// ([`crate::simulation::RevolutionWindow`], on the grid of the rotor angle `θ`, weights
+/// `1/|θ̇|`): per record the shaft point C in rotor axes `u` (2), the balls' resultant
+/// `Σ m_j r e^{iψ_j}` in rotor axes (2, that of the record's angles) and the ball angles
+/// `ψ_j` (`n`).
+struct PlanarRecorder<'a> {
+    rotor: &'a PlanarRotor,
     /// Coordinates (the index of `θ̇` is `nc + 2`).
     nc: usize,
-    /// The dense output's state at a grid point.
-    buf: Vec<f64>,
 }
 
-/// Records per revolution of [`Window`]. The stationary motion's harmonics fall off as powers
-/// of the supports' anisotropy (`(k_y − k_x)/(k_x + k_y)`, 0.14 for `k_x = 9e4`, `k_y =
-/// 1.2e5`, per order `2θ`): the 32nd, the first the grid aliases onto the mean, is below
-/// 1e-13 of the motion there; a steady whirl has none.
-const WINDOW_POINTS: usize = 32;
+impl PlanarRecorder<'_> {
+    /// Values per record.
+    fn width(&self) -> usize {
+        4 + self.rotor.n
+    }
 
-/// Revolutions before the run's end, at the speed at a step's end, from which on [`Window`]
-/// samples: two for the averages and six to spare for a speed that falls (a run that covers
-/// fewer than two revolutions in the time eight would take at its speed of the moment is no
-/// stationary motion; its summary then takes the end state's rates, see [`simulate`]).
-const WINDOW_LEAD: f64 = 8.0;
+    /// The balls' resultant `Σ m_j r e^{iψ_j}` in rotor axes for the angles `psi`.
+    fn resultant(rotor: &PlanarRotor, psi: impl Iterator<Item = f64>) -> [f64; 2] {
+        let mut b = [0.0; 2];
+        for (j, a) in psi.enumerate() {
+            let (s, c) = a.sin_cos();
+            let m = rotor.ball_mass(j) * rotor.r;
+            b[0] += m * c;
+            b[1] += m * s;
+        }
+        b
+    }
+}
+
+impl crate::simulation::Recorder for PlanarRecorder<'_> {
+    fn spin(&self, _t: f64, y: &[f64]) -> (f64, f64) {
+        (y[2], y[self.nc + 2])
+    }
+
+    fn record(&self, _t: f64, y: &[f64], out: &mut [f64]) {
+        let b = PlanarRecorder::resultant(self.rotor, y[3..self.nc].iter().copied());
+        out[..4].copy_from_slice(&[y[0], y[1], b[0], b[1]]);
+        out[4..].copy_from_slice(&y[3..self.nc]);
+    }
+}
 
 /// The fraction of `sqrt(k/m0)` below which a run's final speed counts as rest: its outcome is
 /// then not balanced (nothing turns the balls against the unbalance; the semi-balanced demand
@@ -907,109 +916,6 @@ pub fn at_rest(rotor: &PlanarRotor, omega: f64) -> bool {
     !(omega.abs() >= REST_FRACTION * rotor.natural_frequency())
 }
 
-impl Window {
-    fn new(rotor: &PlanarRotor, t_end: f64) -> Self {
-        let nc = 3 + rotor.n;
-        Window { stride: 3 + rotor.n, data: Default::default(), t_end, on: false, nc, buf: vec![0.0; 2 * nc] }
-    }
-
-    fn len(&self) -> usize {
-        self.data.len() / self.stride
-    }
-
-    fn get(&self, i: usize, k: usize) -> f64 {
-        self.data[i * self.stride + k]
-    }
-
-    /// The balls' resultant `Σ m_j r e^{iψ_j}` in rotor axes for the angles `psi`.
-    fn resultant(rotor: &PlanarRotor, psi: impl Iterator<Item = f64>) -> [f64; 2] {
-        let mut b = [0.0; 2];
-        for (j, a) in psi.enumerate() {
-            let (s, c) = a.sin_cos();
-            let m = rotor.ball_mass(j) * rotor.r;
-            b[0] += m * c;
-            b[1] += m * s;
-        }
-        b
-    }
-
-    /// The step from `(t0, y0)` to `(t1, y1)`: where it ends within [`WINDOW_LEAD`]
-    /// revolutions of the run's end at its speed there, a record at each grid angle the step passes, located on the
-    /// dense output by Newton's method on `θ(t) − θ_k` (`θ̇` the state's; exact at once at a
-    /// constant speed, where `θ` is linear in `t`).
-    fn dense_step(&mut self, t0: f64, t1: f64, y0: &[f64], y1: &[f64], interpolate: &mut dyn FnMut(f64, &mut [f64])) {
-        let nc = self.nc;
-        let tau = std::f64::consts::TAU;
-        // asked at every step: a run that speeds up leaves the lead again, its records then
-        // too old to be the last revolutions (at rest, none)
-        let near = self.t_end - t1 <= WINDOW_LEAD * tau / y1[nc + 2].abs();
-        if !near {
-            if self.on {
-                self.data.clear();
-                self.on = false;
-            }
-            return;
-        }
-        self.on = true;
-        let d = tau / WINDOW_POINTS as f64;
-        let (th0, th1) = (y0[2], y1[2]);
-        let (k0, k1) = ((th0 / d).floor(), (th1 / d).floor());
-        if !(k0.is_finite() && k1.is_finite()) || k0 == k1 {
-            return;
-        }
-        // the grid angles in (θ0, θ1] (or [θ1, θ0) turning backwards), in the order passed
-        let (first, count, sense) = if k1 > k0 { (k0 + 1.0, k1 - k0, 1.0) } else { (k0, k0 - k1, -1.0) };
-        let mut buf = std::mem::take(&mut self.buf);
-        for i in 0..count as u64 {
-            let target = (first + sense * i as f64) * d;
-            let mut t = t0 + (target - th0) / (th1 - th0) * (t1 - t0);
-            for _ in 0..12 {
-                interpolate(t, &mut buf);
-                let e = buf[2] - target;
-                if e.abs() <= 1e-13 * target.abs().max(tau) || buf[nc + 2] == 0.0 {
-                    break;
-                }
-                t = (t - e / buf[nc + 2]).clamp(t0, t1);
-            }
-            let w = 1.0 / buf[nc + 2].abs();
-            if !w.is_finite() {
-                continue;
-            }
-            self.data.extend([w, buf[0], buf[1]]);
-            self.data.extend(&buf[3..nc]);
-        }
-        self.buf = buf;
-        while self.len() > 2 * WINDOW_POINTS {
-            self.data.drain(..self.stride);
-        }
-    }
-
-    /// The means by time over revolution `back` counted from the end (0 the last, 1 the one
-    /// before: its [`WINDOW_POINTS`] records) of `u` (2), the balls' resultant (2, that of
-    /// each record's angles) and the ball angles `ψ_j` (`n`); `None` when the records do not
-    /// reach back that far.
-    fn mean(&self, rotor: &PlanarRotor, back: usize) -> Option<Vec<f64>> {
-        let n = self.len();
-        if n < (back + 1) * WINDOW_POINTS {
-            return None;
-        }
-        let (mut dur, mut sums) = (0.0, vec![0.0; self.stride + 1]);
-        for i in n - (back + 1) * WINDOW_POINTS..n - back * WINDOW_POINTS {
-            let w = self.get(i, 0);
-            let b = Window::resultant(rotor, (3..self.stride).map(|k| self.get(i, k)));
-            dur += w;
-            sums[0] += w * self.get(i, 1);
-            sums[1] += w * self.get(i, 2);
-            sums[2] += w * b[0];
-            sums[3] += w * b[1];
-            for k in 3..self.stride {
-                sums[k + 1] += w * self.get(i, k);
-            }
-        }
-        (dur > 0.0).then(|| sums.into_iter().map(|v| v / dur).collect())
-    }
-}
-
 impl<F: FnMut(&Sample) -> bool> Hooks for PlanarHooks<'_, F> {
     fn start_piece(&mut self, t: f64, y: &mut [f64]) {
         if self.drive.prescribed() {
@@ -1018,7 +924,7 @@ impl<F: FnMut(&Sample) -> bool> Hooks for PlanarHooks<'_, F> {
     }
 
     fn dense_step(&mut self, t_old: f64, t_new: f64, y_old: &[f64], y_new: &[f64], interpolate: &mut dyn FnMut(f64, &mut [f64])) {
-        self.window.dense_step(t_old, t_new, y_old, y_new, interpolate);
+        self.window.dense_step(&self.recorder, t_old, t_new, y_old, y_new, interpolate);
     }
 
     fn step(&mut self, t: f64, y: &[f64]) {

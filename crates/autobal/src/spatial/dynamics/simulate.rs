@@ -7,7 +7,7 @@ use crate::balls::EventCounter;
 use crate::drive::Drive;
 use crate::error::{finite, positive, Error, Result};
 use crate::ode::{Control, Method, Options, Outcome, Solver, Stats, Status, StopReason};
-use crate::simulation::{run, Hooks, Timeline};
+use crate::simulation::{run, Hooks, RevolutionWindow, Timeline};
 use serde::Serialize;
 
 /// Initial conditions (velocities in fixed axes; at `t = 0` the turning frame coincides with
@@ -111,13 +111,16 @@ pub struct Summary {
     /// Whirl radius at the (first) balancer plane about its stationary position: the RMS over
     /// the run's last revolution of `|r(t) − r̄|`, `r` the shaft's displacement there in fixed
     /// axes and `r̄` its mean over that revolution ([`Summary::mean_displacement`]); a circular
-    /// whirl of radius `a` about `r̄` gives `a`. The distance from the axis at the end when the
-    /// run turned less than a revolution.
+    /// whirl of radius `a` about `r̄` gives `a`. The distance from the axis at the end where no
+    /// revolution was recorded (the run turned less than one, or stopped before its last
+    /// revolutions). The means over a revolution come from the dense output at 32 spin angles
+    /// (`crate::simulation::RevolutionWindow`): those of the periodic stationary motion
+    /// wherever in the revolution the run ends.
     pub final_amplitude: f64,
     /// Mean lateral displacement `r̄ = (1/T) ∫ r dt` of the shaft at the (first) balancer plane
     /// in fixed axes over the last revolution (m, or `ρ_s`): the stationary motion without the
     /// whirl, e.g. the sag under gravity across the axis (`≈ M g / Σ k`). `None` when the run
-    /// turned less than a revolution: there is no revolution to average over (it read `[0, 0]`
+    /// recorded no revolution: there is none to average over (it read `[0, 0]`
     /// before round 3, session 18).
     pub mean_displacement: Option<[f64; 2]>,
     /// `|r̄|`, the static sag at the (first) balancer plane (see [`Summary::mean_displacement`]),
@@ -133,8 +136,7 @@ pub struct Summary {
     /// revolution (`|(1/T) ∫ Σ m ρ_⊥ dt|`), relative to the unbalance masses' own; relative to
     /// the balls' capacity `Σ m R` where that is at most
     /// [`crate::rotor_stability::NO_UNBALANCE`] of the capacity (none to speak of, as
-    /// `stability` measures its residuals). At the end when the run turned less than a
-    /// revolution.
+    /// `stability` measures its residuals). At the end where no revolution was recorded.
     pub residual_unbalance: f64,
     /// Couple unbalance about C relative to the unbalance's own couple (tilted axis included),
     /// averaged over the last revolution as `residual_unbalance`; `None` when the unbalance has
@@ -144,7 +146,7 @@ pub struct Summary {
     pub residual_couple: Option<f64>,
     /// The largest change of a ball's mean angle (its average over a revolution, relative to
     /// the rotor) between the last two revolutions (rad); `None` without balls or when the run
-    /// turned less than two revolutions.
+    /// recorded less than two revolutions.
     pub ball_drift: Option<f64>,
     /// What the run ended in ([`RunOutcome`]): balanced, partially balanced, not balanced, not
     /// settled.
@@ -232,18 +234,6 @@ pub(crate) fn plane_together(units: impl IntoIterator<Item = [f64; 2]>) -> bool 
     }
     together(sum[0].hypot(sum[1]), n as f64)
 }
-
-/// Revolutions the summary averages over at the end of a run (the last one for the averages, the
-/// one before it for the balls' drift).
-const WINDOW_REVOLUTIONS: f64 = 2.0;
-
-/// Passes of the defect correction of the mean ([`Window::mean`]) at most: at 4 steps per
-/// revolution (`Δφ = π/2`) each pass shrinks the error by `Δφ²/12 ≈ 0.2`, 40 passes to 1e-28;
-/// usually it stops after a few, on a change below 1e-14 of the mean.
-const MEAN_PASSES: usize = 40;
-
-/// Step-end records kept at most (a run that hardly turns would otherwise keep them all).
-const MAX_RECORDS: usize = 100_000;
 
 /// The largest change of a ball's mean angle from one revolution to the next that still counts
 /// as periodic motion: `2π · 10⁻³ · max(1, ω_n/|ω|)` rad, i.e. a mean relative rate below
@@ -441,164 +431,34 @@ fn plane_amplitude(eq: &Equations, y: &[f64]) -> f64 {
     d[0].hypot(d[1])
 }
 
-/// Step-end records over the run's last [`WINDOW_REVOLUTIONS`] revolutions (by the spin angle
-/// `φ`), for the averages of the summary: each is `t, φ`, the residual static and couple
-/// unbalance in the rotor frame (4), the shaft's displacement at the balancer plane in the
-/// rotor frame `w = R(−φ) r` (2), the ball angles. Records older than the window (but the one
-/// just before it) are dropped as the run goes, so the memory is that of the steps of two
-/// revolutions.
-struct Window {
-    stride: usize,
-    data: std::collections::VecDeque<f64>,
+/// What the spatial run's summary averages over its last revolutions
+/// ([`crate::simulation::RevolutionWindow`], on the grid of the spin angle `φ`): per record the
+/// residual static and couple unbalance in the rotor frame (4), the shaft's displacement `r` at
+/// the (first) balancer plane in fixed axes (2), the ball angles.
+struct SpatialRecorder<'a> {
+    eq: &'a Equations<'a>,
 }
 
-const REC_RES: usize = 2;
-const REC_W: usize = 6;
-const REC_PSI: usize = 8;
+/// Where a [`SpatialRecorder`]'s record holds the displacement `r` and the ball angles.
+const REC_R: usize = 4;
+const REC_PSI: usize = 6;
 
-impl Window {
-    fn new(balls: usize) -> Self {
-        Window { stride: REC_PSI + balls, data: Default::default() }
-    }
-
-    fn len(&self) -> usize {
-        self.data.len() / self.stride
-    }
-
-    fn get(&self, i: usize, k: usize) -> f64 {
-        self.data[i * self.stride + k]
-    }
-
-    /// Record the step end `(t, y)`; `r`: the displacement at the balancer plane in fixed axes
-    /// (`eq.displacement_at(y, amplitude_z(eq))`, which the caller has at hand).
-    fn push(&mut self, eq: &Equations, t: f64, y: &[f64], r: [f64; 2]) {
-        let phi = y[PHI];
-        let (st, cp) = eq.residual_unbalance(y);
-        let (sp, c) = crate::ode::dual::sin_cos(phi);
-        let w = [c * r[0] + sp * r[1], -sp * r[0] + c * r[1]];
-        self.data.extend([t, phi, st[0], st[1], cp[0], cp[1], w[0], w[1]]);
-        self.data.extend(&y[ROTOR_COORDS..eq.coords()]);
-        // drop the front while the record after it is still a whole window before this one
-        let span = 2.0 * std::f64::consts::PI * WINDOW_REVOLUTIONS;
-        while self.len() > 2 && ((phi - self.get(1, 1)).abs() >= span || self.len() > MAX_RECORDS) {
-            self.data.drain(..self.stride);
-        }
-    }
-
-    /// Integrals over the part of the record between `lo` and `hi` radians of spin before the
-    /// last record, the values linear in time between records in the rotor frame and `φ`
-    /// linear (exact for a constant speed): duration, `∫` of the record's values from
-    /// [`REC_RES`] on, `∫ e^{iφ} (w − e^{−iφ} r0) dt` and `∫ |w − e^{−iφ} r0|² dt` (`r0` a
-    /// guess of the mean in fixed axes subtracted before interpolating, so that a displacement
-    /// constant in fixed axes is integrated exactly as well; see [`Window::mean`]).
-    fn integrals(&self, lo: f64, hi: f64, r0: [f64; 2]) -> (f64, Vec<f64>, [f64; 2], f64) {
-        let n = self.len();
-        let mut sums = vec![0.0; self.stride - REC_RES];
-        let (mut dur, mut fixed, mut sq) = (0.0, [0.0; 2], 0.0);
-        if n < 2 {
-            return (dur, sums, fixed, sq);
-        }
-        let phi_end = self.get(n - 1, 1);
-        let sense = if phi_end >= self.get(0, 1) { 1.0 } else { -1.0 };
-        let before = |i: usize| sense * (phi_end - self.get(i, 1));
-        let shifted = |i: usize| {
-            let (sp, c) = self.get(i, 1).sin_cos();
-            [self.get(i, REC_W) - (c * r0[0] + sp * r0[1]), self.get(i, REC_W + 1) - (-sp * r0[0] + c * r0[1])]
-        };
-        for i in 0..n - 1 {
-            let (a0, a1) = (before(i), before(i + 1));
-            let (top, bottom) = (a0.min(hi), a1.max(lo));
-            if a0 <= a1 || top <= bottom {
-                continue;
-            }
-            // fractions of the step where the window's part begins and ends
-            let (s0, s1) = ((a0 - top) / (a0 - a1), (a0 - bottom) / (a0 - a1));
-            let lerp = |k: usize, s: f64| self.get(i, k) + s * (self.get(i + 1, k) - self.get(i, k));
-            let h = lerp(0, s1) - lerp(0, s0);
-            let (p0, p1) = (lerp(1, s0), lerp(1, s1));
-            dur += h;
-            for (k, sum) in sums.iter_mut().enumerate() {
-                *sum += 0.5 * h * (lerp(k + REC_RES, s0) + lerp(k + REC_RES, s1));
-            }
-            let (wa, wb) = (shifted(i), shifted(i + 1));
-            let w0 = [wa[0] + s0 * (wb[0] - wa[0]), wa[1] + s0 * (wb[1] - wa[1])];
-            let w1 = [wa[0] + s1 * (wb[0] - wa[0]), wa[1] + s1 * (wb[1] - wa[1])];
-            let d = [w1[0] - w0[0], w1[1] - w0[1]];
-            // ∫ e^{iφ} w = h e^{iφ0} (w0 I0 + d I1), I_k = ∫_0^1 s^k e^{iΔs} ds
-            let (i0, i1) = phase_moments(p1 - p0);
-            let v = cadd(cmul(w0, i0), cmul(d, i1));
-            let e = cmul([p0.cos(), p0.sin()], v);
-            fixed[0] += h * e[0];
-            fixed[1] += h * e[1];
-            // ∫ |w0 + d s|² ds = |w0|² + w0·d + |d|²/3
-            sq += h * (w0[0] * w0[0] + w0[1] * w0[1] + w0[0] * d[0] + w0[1] * d[1] + (d[0] * d[0] + d[1] * d[1]) / 3.0);
-        }
-        (dur, sums, fixed, sq)
-    }
-
-    /// The averages over the last revolution: duration `T`, the means of the residual
-    /// unbalance (4), the displacement in the rotor frame (2) and ball angles, the mean
-    /// displacement `r̄` in fixed axes, and the RMS of `|r − r̄|`. The mean is found by defect
-    /// correction: each pass integrates `r − r0` with `r0` the previous pass's mean, so the
-    /// interpolation error (the chords in the rotor frame of a vector fixed in fixed axes,
-    /// `~ Δφ²/12` of it for steps of `Δφ`) shrinks by that factor per pass, down to the part of
-    /// the motion that is fixed in neither frame.
-    fn mean(&self) -> (f64, Vec<f64>, [f64; 2], f64) {
-        let two_pi = 2.0 * std::f64::consts::PI;
-        let mut r0 = [0.0; 2];
-        let (mut dur, mut sums, mut var) = (0.0, vec![], 0.0);
-        for _ in 0..MEAN_PASSES {
-            let (d, s, f, q) = self.integrals(0.0, two_pi, r0);
-            if d <= 0.0 {
-                return (0.0, s, r0, 0.0);
-            }
-            let m = [f[0] / d, f[1] / d];
-            // ∫|r − r0|² = ∫|r − r̄|² + T |r̄ − r0|²
-            (dur, sums, var) = (d, s, q / d - (m[0] * m[0] + m[1] * m[1]));
-            r0 = [r0[0] + m[0], r0[1] + m[1]];
-            if m[0].hypot(m[1]) <= 1e-14 * r0[0].hypot(r0[1]) {
-                break;
-            }
-        }
-        (dur, sums.iter().map(|v| v / dur).collect(), r0, var.max(0.0).sqrt())
-    }
-
-    /// Whether the record covers `revolutions` whole revolutions before its end.
-    fn covers(&self, revolutions: f64) -> bool {
-        let n = self.len();
-        n >= 2 && (self.get(n - 1, 1) - self.get(0, 1)).abs() >= 2.0 * std::f64::consts::PI * revolutions * (1.0 - 1e-12)
+impl SpatialRecorder<'_> {
+    fn width(&self) -> usize {
+        REC_PSI + self.eq.rotor.balls()
     }
 }
 
-fn cmul(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
-    [a[0] * b[0] - a[1] * b[1], a[0] * b[1] + a[1] * b[0]]
-}
+impl crate::simulation::Recorder for SpatialRecorder<'_> {
+    fn spin(&self, t: f64, y: &[f64]) -> (f64, f64) {
+        (y[PHI], self.eq.spin_rate(t, y))
+    }
 
-fn cadd(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
-    [a[0] + b[0], a[1] + b[1]]
-}
-
-/// `I_0 = ∫_0^1 e^{iΔs} ds` and `I_1 = ∫_0^1 s e^{iΔs} ds` as complex `[re, im]`: by the series
-/// `I_k = Σ_m (iΔ)^m / (m! (k + m + 1))` for `|Δ| ≤ 1` (no cancellation), else in closed form
-/// `I_0 = (e^{iΔ} − 1)/(iΔ)`, `I_1 = (e^{iΔ} − I_0)/(iΔ)` (integration by parts).
-fn phase_moments(delta: f64) -> ([f64; 2], [f64; 2]) {
-    if delta.abs() <= 1.0 {
-        let (mut i0, mut i1) = ([0.0; 2], [0.0; 2]);
-        let mut term = [1.0, 0.0]; // (iΔ)^m / m!
-        for m in 0..24 {
-            let mf = m as f64;
-            i0 = cadd(i0, [term[0] / (mf + 1.0), term[1] / (mf + 1.0)]);
-            i1 = cadd(i1, [term[0] / (mf + 2.0), term[1] / (mf + 2.0)]);
-            term = cmul(term, [0.0, delta / (mf + 1.0)]);
-        }
-        (i0, i1)
-    } else {
-        let e = [delta.cos(), delta.sin()];
-        // 1/(iΔ) = −i/Δ
-        let inv = [0.0, -1.0 / delta];
-        let i0 = cmul([e[0] - 1.0, e[1]], inv);
-        let i1 = cmul([e[0] - i0[0], e[1] - i0[1]], inv);
-        (i0, i1)
+    fn record(&self, _t: f64, y: &[f64], out: &mut [f64]) {
+        let (st, cp) = self.eq.residual_unbalance(y);
+        let r = self.eq.displacement_at(y, amplitude_z(self.eq));
+        out[..REC_PSI].copy_from_slice(&[st[0], st[1], cp[0], cp[1], r[0], r[1]]);
+        out[REC_PSI..].copy_from_slice(&y[ROTOR_COORDS..self.eq.coords()]);
     }
 }
 
@@ -668,9 +528,9 @@ fn simulate_sampled(
     let breakpoints = drive.breakpoints();
     let timeline = Timeline { t_end: settings.t_end, dt: sample_dt, breakpoints: &breakpoints };
     let counters = vec![EventCounter::default(); eq.ball_forces().len()];
-    let mut window = Window::new(rotor.balls());
-    window.push(&eq, 0.0, &y, eq.displacement_at(&y, amplitude_z(&eq)));
-    let mut hooks = SpatialHooks { eq: &eq, sink: &mut sink, peak: (plane_amplitude(&eq, &y), drive.omega0(), 0.0), counters, window };
+    let recorder = SpatialRecorder { eq: &eq };
+    let window = RevolutionWindow::new(recorder.width(), settings.t_end);
+    let mut hooks = SpatialHooks { eq: &eq, sink: &mut sink, peak: (plane_amplitude(&eq, &y), drive.omega0(), 0.0), counters, window, recorder };
     let out = run(&mut solver, &mut y, &timeline, &mut hooks);
     let peak = hooks.peak;
     let mut s = summarise(&eq, out.t, &y, peak, out.stats, &out, &hooks.window);
@@ -681,13 +541,14 @@ fn simulate_sampled(
 
 /// Peak tracking at step ends and samples, the prescribed spin put back on its schedule at
 /// each piece, samples to the sink, real balls' contacts and stick-slip counted per plane, the
-/// last revolutions' step ends kept for the summary's averages ([`Window`]).
+/// last revolutions recorded for the summary's averages ([`SpatialRecorder`]).
 struct SpatialHooks<'a, F: FnMut(&Sample) -> bool> {
     eq: &'a Equations<'a>,
     sink: &'a mut F,
     peak: (f64, f64, f64),
     counters: Vec<EventCounter>,
-    window: Window,
+    window: RevolutionWindow,
+    recorder: SpatialRecorder<'a>,
 }
 
 impl<F: FnMut(&Sample) -> bool> Hooks for SpatialHooks<'_, F> {
@@ -708,7 +569,10 @@ impl<F: FnMut(&Sample) -> bool> Hooks for SpatialHooks<'_, F> {
             let a = ROTOR_COORDS + first;
             c.observe(f, &y[a..a + f.n], &y[nc + a..nc + a + f.n]);
         }
-        self.window.push(self.eq, t, y, d);
+    }
+
+    fn dense_step(&mut self, t_old: f64, t_new: f64, y_old: &[f64], y_new: &[f64], interpolate: &mut dyn FnMut(f64, &mut [f64])) {
+        self.window.dense_step(&self.recorder, t_old, t_new, y_old, y_new, interpolate);
     }
 
     fn sample(&mut self, t: f64, y: &[f64]) -> Control {
@@ -727,7 +591,7 @@ impl<F: FnMut(&Sample) -> bool> Hooks for SpatialHooks<'_, F> {
 
 /// The summary at the end of a run: averages over the last revolution from `window`, the
 /// verdict ([`RunOutcome`]).
-fn summarise(eq: &Equations, t: f64, y: &[f64], peak: (f64, f64, f64), stats: Stats, out: &Outcome, window: &Window) -> Summary {
+fn summarise(eq: &Equations, t: f64, y: &[f64], peak: (f64, f64, f64), stats: Stats, out: &Outcome, window: &RevolutionWindow) -> Summary {
     let r = eq.rotor;
     let omega = eq.spin_rate(t, y);
     let (s0, c0) = (r.static_unbalance(), r.couple_unbalance());
@@ -740,25 +604,27 @@ fn summarise(eq: &Equations, t: f64, y: &[f64], peak: (f64, f64, f64), stats: St
     // (a round-off couple beside a round-off static unbalance is none, as in `stability`)
     let has_couple = c0n > 1e-12 * (s0n * r.length_scale()).max(f64::MIN_POSITIVE) && rotor.has_unbalance();
     let nb = r.balls();
-    // averages over the last revolution, or the end state when the run turned less
-    let whole = window.covers(1.0);
-    let (st, cp, mean_psi, mean_r, whirl) = if whole {
-        let (_, means, mean_r, rms) = window.mean();
-        ([means[0], means[1]], [means[2], means[3]], means[REC_PSI - REC_RES..].to_vec(), Some(mean_r), rms)
-    } else {
-        let (st, cp) = eq.residual_unbalance(y);
-        let d = eq.displacement_at(y, amplitude_z(eq));
-        (st, cp, y[ROTOR_COORDS..ROTOR_COORDS + nb].to_vec(), None, d[0].hypot(d[1]))
+    // averages over the last revolution, or the end state where it was not recorded (the run
+    // turned less, or stopped before the window began)
+    let (st, cp, mean_psi, mean_r, whirl) = match window.mean(0) {
+        Some(m) => {
+            let mean_r = [m[REC_R], m[REC_R + 1]];
+            // the RMS of |r − r̄|, from the records' distances to the mean (no cancellation of
+            // a mean square less a squared mean under a sag much larger than the whirl)
+            let var = window.mean_of(0, |v| (v[REC_R] - mean_r[0]).powi(2) + (v[REC_R + 1] - mean_r[1]).powi(2)).unwrap_or(0.0);
+            ([m[0], m[1]], [m[2], m[3]], m[REC_PSI..].to_vec(), Some(mean_r), var.max(0.0).sqrt())
+        }
+        None => {
+            let (st, cp) = eq.residual_unbalance(y);
+            let d = eq.displacement_at(y, amplitude_z(eq));
+            (st, cp, y[ROTOR_COORDS..ROTOR_COORDS + nb].to_vec(), None, d[0].hypot(d[1]))
+        }
     };
     // over the unbalance, or the capacity where there is none to speak of: stability's rule
     let residual_unbalance = st[0].hypot(st[1]) / crate::rotor_stability::unbalance_scale(s0n, capacity);
     let residual_couple = has_couple.then(|| cp[0].hypot(cp[1]) / c0n);
     // the balls' drift: mean angles over the last revolution against the one before
-    let two_pi = 2.0 * std::f64::consts::PI;
-    let ball_drift = (nb > 0 && window.covers(WINDOW_REVOLUTIONS)).then(|| {
-        let (d, sums, _, _) = window.integrals(two_pi, 2.0 * two_pi, [0.0; 2]);
-        (0..nb).map(|j| (sums[REC_PSI - REC_RES + j] / d - mean_psi[j]).abs()).fold(0.0, f64::max)
-    });
+    let ball_drift = if nb > 0 { window.drift(REC_PSI..REC_PSI + nb) } else { None };
     let settled = out.status.is_completed() && matches!(ball_drift, Some(d) if d <= drift_tolerance(omega, r.natural_frequency()));
     // no balanced state: the least residual is the balls together against the unbalance
     let together = || {
@@ -810,43 +676,5 @@ fn summarise(eq: &Equations, t: f64, y: &[f64], peak: (f64, f64, f64), stats: St
         },
         status: out.status.clone(),
         warnings,
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::phase_moments;
-
-    #[test]
-    fn phase_moments_equal_quadrature_on_both_sides_of_the_switch() {
-        // I_k = ∫_0^1 s^k e^{iΔs} ds against composite Simpson on 2000 panels (error ~1e-14
-        // for |Δ| ≤ 10), series and closed form alike, also just either side of |Δ| = 1
-        for delta in [0.0, 1e-9, -0.3, 0.999_999, 1.000_001, -2.5, 7.0] {
-            let f = |s: f64, k: i32| {
-                let (sn, c) = (delta * s).sin_cos();
-                [s.powi(k) * c, s.powi(k) * sn]
-            };
-            let n = 2000;
-            let simpson = |k: i32| {
-                let mut acc = [0.0; 2];
-                for j in 0..=n {
-                    let w = if j == 0 || j == n {
-                        1.0
-                    } else if j % 2 == 1 {
-                        4.0
-                    } else {
-                        2.0
-                    };
-                    let v = f(j as f64 / n as f64, k);
-                    acc[0] += w * v[0];
-                    acc[1] += w * v[1];
-                }
-                [acc[0] / (3.0 * n as f64), acc[1] / (3.0 * n as f64)]
-            };
-            let (i0, i1) = phase_moments(delta);
-            for (got, want) in [(i0, simpson(0)), (i1, simpson(1))] {
-                assert!((got[0] - want[0]).abs() < 1e-12 && (got[1] - want[1]).abs() < 1e-12, "Δ = {delta}: {got:?} vs {want:?}");
-            }
-        }
     }
 }
