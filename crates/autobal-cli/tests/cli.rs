@@ -279,6 +279,8 @@ fn dimensional_report_is_in_si_and_renders() {
     let summary = &index[index.find("id=\"summary\"").unwrap()..index.find("<nav id=\"toc\"").unwrap()];
     assert!(summary.contains(&line.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")), "{line} in {summary}");
     assert!(summary.contains("The run-up (from rest to 1\u{202F}400 rpm) peaks at"), "{summary}");
+    // the rotor the closed form represents: 003's ranges with what they are (audit 20, F4)
+    assert!(index.contains("</b> by 003's necessary condition (necessary, not sufficient"), "003's caveat");
     // the basins at 1400 rpm: the count of balanced runs is `autobal basins`' with the same
     // drive (200 revolutions at the operating speed, the quick report's 6 × 6 grid)
     let w = 1400.0 * std::f64::consts::PI / 30.0;
@@ -380,6 +382,29 @@ fn report_takes_the_general_route_as_stability_does() {
     // the critical speeds, Campbell diagrams and design maps are the rotor's as given
     assert!(index.contains("which leaves out spatial.spin_drag"));
     assert!(index.contains("Critical speeds of the rotor as given (general route)") && index.contains("by the general map on the rotor as given"));
+    // the first section names what the one-plane model leaves out (as the warning above does)
+    let first = &index[index.find("<section id=\"rotor\">").unwrap()..];
+    let first = &first[..first.find("</section>").unwrap()];
+    assert!(first.contains("The config has what that one-plane model leaves out: spatial.spin_drag"), "{first}");
+    // 003's condition is not applied where `critical` says it does not apply (audit 20, F4)
+    let (_, crit, _) = autobal(&["critical", "--config", &cfg, "--set", "spatial.spin_drag=0.01"]);
+    assert!(crit.contains("003's necessary condition does not apply"), "{crit}");
+    assert!(!index.contains("Autobalancing possible on") && first.contains("003's necessary condition does not apply to this configuration"), "{first}");
+    // the run-up quotes the critical speeds of the rotor as given, `critical`'s, in rpm as the
+    // report prints them (grouped by a narrow no-break space), not the one-plane model's alone
+    // (audit 20, F5)
+    let run = &index[index.find("<section id=\"spatial-run\">").unwrap()..];
+    let run = &run[..run.find("</section>").unwrap()];
+    assert!(run.contains("The critical speeds of the rotor as given, its balls held at balance (general route"), "{run}");
+    let c = json(&["critical", "--config", &cfg, "--set", "spatial.spin_drag=0.01", "--format", "json"]);
+    let speeds = c["locked_critical_speeds"]["speeds"].as_array().unwrap();
+    assert!(!speeds.is_empty());
+    for k in speeds {
+        let digits = format!("{:.0}", k["rpm"].as_f64().unwrap());
+        let grouped: String =
+            digits.chars().enumerate().flat_map(|(i, ch)| ((i > 0 && (digits.len() - i) % 3 == 0).then_some('\u{202F}')).into_iter().chain([ch])).collect();
+        assert!(run.contains(&format!("({grouped} rpm)")), "{grouped} rpm in {run}");
+    }
 }
 
 #[test]

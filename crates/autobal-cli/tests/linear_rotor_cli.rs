@@ -153,9 +153,90 @@ fn the_report_has_a_section_for_the_linear_rotor() {
         assert!(page.contains(&format!("id=\"{id}\"")), "{id}");
     }
     assert!(page.contains("Linear rotor: the balanced state is stable"), "the summary");
+    // the example is stable to the end of the axis (`autobal stability`: "412.692 rad/s to
+    // 2543 rad/s (end of the axis)"): the summary and the section say so, as `stability` does,
+    // rather than presenting the axis' end as where the stable range ends
+    let summary = page.split("Linear rotor: the balanced state is stable").nth(1).unwrap_or("");
+    let summary = &summary[..summary.find('.').map_or(summary.len(), |i| summary[i + 1..].find('.').map_or(summary.len(), |j| i + 1 + j))];
+    assert!(summary.contains("(end of the axis)"), "the summary: {summary}");
+    assert!(page.matches("(end of the axis)").count() >= 2, "the summary and the stability section");
     for fig in ["linear_rotor_modes_0", "linear_rotor_stability_margin", "linear_rotor_campbell_diagram", "linear_rotor_runup_amplitude_omega"] {
         for ext in ["svg", "png"] {
             assert!(dir.join("r").join(format!("{fig}.{ext}")).exists(), "{fig}.{ext}");
         }
+    }
+}
+
+/// Two exact descriptions of one rigid rotor (paper 000's dimensional preset) give the same
+/// natural frequencies at rest: `export-model`'s (node at the composite centre, the unbalance
+/// mass's tilt inertia split ±m0R0²/2 between `M` and `M_rot`) and an independent one (audit
+/// 20: node at the rotor's own centre of mass, `M_rot = m0R0²` on β alone, written below).
+/// Both are the rotor at rest in its angle 0 with the balls as rings; the x/β and y/α blocks of
+/// the second decouple, so each pair of frequencies is the closed-form root of the 2×2
+/// `det(K − ω² (M + M_rot + rings)) = 0`. Without `M_rot` the two differ by 4e-5 (audit: 732.214
+/// against 732.185 rad/s). Tolerance 1e-9 relative: the 4×4 eigenvalues by Cholesky and QR
+/// on matrices of condition ~1e2, and the exported preset's digits (printed to 17).
+#[test]
+fn natural_frequencies_do_not_depend_on_how_the_inertia_is_split() {
+    let dir = tmp("split");
+    let mtx = |name: &str, entries: &[(usize, usize, f64)]| {
+        let mut s = format!("%%MatrixMarket matrix coordinate real general\n4 4 {}\n", entries.len());
+        for (i, j, v) in entries {
+            s.push_str(&format!("{i} {j} {v:e}\n"));
+        }
+        std::fs::write(dir.join(name), s).unwrap();
+    };
+    // M_r = 20 kg, A_r = 0.6 kg m², the unbalance m0 = 0.01 kg at R0 = 0.1 m, s = 0.2 m from G;
+    // supports k = 2.5e6 N/m at z_G ± 0.25 m (sum 5e6, moment k s² 3.125e5), c 300 N s/m each
+    let (m0, s0, r0) = (0.01, 0.2, 0.1);
+    mtx(
+        "M.mtx",
+        &[
+            (1, 1, 20.0 + m0),
+            (1, 4, m0 * s0),
+            (2, 2, 20.0 + m0),
+            (2, 3, -m0 * s0),
+            (3, 2, -m0 * s0),
+            (3, 3, 0.6 + m0 * s0 * s0),
+            (4, 1, m0 * s0),
+            (4, 4, 0.6 + m0 * s0 * s0),
+        ],
+    );
+    mtx("K.mtx", &[(1, 1, 5e6), (1, 4, 2.5e5), (2, 2, 5e6), (2, 3, -2.5e5), (3, 2, -2.5e5), (3, 3, 3.125e5), (4, 1, 2.5e5), (4, 4, 3.125e5)]);
+    mtx("C.mtx", &[(1, 1, 600.0), (2, 2, 600.0), (3, 3, 37.5), (4, 4, 37.5)]);
+    mtx("G.mtx", &[(3, 4, 0.15 + m0 * r0 * r0), (4, 3, -(0.15 + m0 * r0 * r0))]);
+    mtx("Mrot.mtx", &[(4, 4, m0 * r0 * r0)]);
+    std::fs::write(
+        dir.join("g.toml"),
+        "[linear_rotor]\nlayout = \"x,y,alpha,beta\"\nm = \"M.mtx\"\nk = \"K.mtx\"\nc = \"C.mtx\"\ng = \"G.mtx\"\nrotor_fixed_mass = \"Mrot.mtx\"\n\
+         [[linear_rotor.unbalance]]\nnode = 0\nme = 0.001\noffset = 0.2\n\
+         [[linear_rotor.balancer]]\nnode = 0\nradius = 0.12\nballs = 2\nball_mass = 0.02\ndrag = 0.0072\noffset = 0.2\n",
+    )
+    .unwrap();
+    let (code, _, err) = autobal(&["export-model", "--config", &example("dimensional.toml"), "--out", dir.join("c").to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    let freqs = |cfg: &std::path::Path| -> Vec<f64> {
+        let v = json(&["critical", "--config", cfg.to_str().unwrap(), "--format", "json"]);
+        v["natural_frequencies"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect()
+    };
+    let (g, c) = (freqs(&dir.join("g.toml")), freqs(&dir.join("c").join("rotor.toml")));
+    // the closed form of the 2×2 blocks: x/β (sign +1, M_rot on β) and y/α (sign −1)
+    let (mb, rb, eb) = (0.04, 0.12, 0.2);
+    let mut want = vec![];
+    for (sign, mrot) in [(1.0, m0 * r0 * r0), (-1.0, 0.0)] {
+        let m = [20.0 + m0 + mb, sign * (m0 * s0 + mb * eb), 0.6 + m0 * s0 * s0 + mrot + mb * eb * eb + 0.5 * mb * rb * rb];
+        let k = [5e6, sign * 2.5e5, 3.125e5];
+        // det(K − λM) = a λ² + b λ + c
+        let a = m[0] * m[2] - m[1] * m[1];
+        let b = -(k[0] * m[2] + k[2] * m[0] - 2.0 * k[1] * m[1]);
+        let cc = k[0] * k[2] - k[1] * k[1];
+        let d = (b * b - 4.0 * a * cc).sqrt();
+        want.extend([((-b - d) / (2.0 * a)).sqrt(), ((-b + d) / (2.0 * a)).sqrt()]);
+    }
+    want.sort_by(f64::total_cmp);
+    assert_eq!((g.len(), c.len()), (4, 4), "{g:?} {c:?}");
+    for i in 0..4 {
+        assert!((g[i] / want[i] - 1.0).abs() < 1e-9, "the rotor as given: {g:?} against the closed form {want:?}");
+        assert!((c[i] / want[i] - 1.0).abs() < 1e-9, "export-model's: {c:?} against the closed form {want:?}");
     }
 }

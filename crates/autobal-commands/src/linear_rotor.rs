@@ -940,12 +940,14 @@ pub fn write_svg(r: &RotorStability, omega_max: f64, path: &Path) -> Result<()> 
     outfile::write_atomic("--svg", path, margin_plot(r, omega_max).to_svg())
 }
 
-/// The undamped modes of the rotor at rest (the balls as rings, the symmetric part of `K` at
-/// `Ω = 0`) at one balancer plane: for the lowest `count` modes `K φ = ω² (M + M_balls) φ`,
-/// the mode's translation radius at the plane's node, `|(φ_x, φ_y)|`, and its tilt
-/// `|(φ_α, φ_β)|`, both divided by the largest translation radius of any node of the mode
-/// (so the translation is 1 where the plane sits at the mode's antinode, 0 at a node of the
-/// mode; the tilt is in rad per metre of that largest translation). These ratios do not
+/// The undamped modes of the rotor at rest (the balls as rings, the rotor-fixed inertia at the
+/// rotor's angle 0, the symmetric part of `K` at `Ω = 0`) at one balancer plane: for the lowest
+/// `count` modes `K φ = ω² (M + M_rot + M_balls) φ`, the translation radius of the plane's race
+/// centre, `|(φ_x + e φ_β, φ_y − e φ_α)|` (`e` the plane's offset from its node, the model's
+/// convention of [`LinearRotor::ball_mass_matrix`]), and the tilt at its node
+/// `|(φ_α, φ_β)|`, both divided by the largest translation radius of any node or balancer
+/// plane of the mode (so the translation is 1 where the plane sits at the mode's antinode, 0
+/// at a node of the mode; the tilt is in rad per metre of that largest translation). These ratios do not
 /// depend on which vector of a pair of equal frequencies is taken when the rotor is
 /// isotropic (a pair is `(φ, J φ)`, `J` the quarter turn). The vectors come from inverse
 /// iteration with the shift `ω_k²` on `K − σ M` (three steps, `M`-orthogonal to the modes
@@ -955,9 +957,11 @@ pub fn modes_at_plane(rotor: &LinearRotor, plane: usize, count: usize) -> Result
     let b = rotor.balancers.get(plane).ok_or_else(|| anyhow!("balancer plane {plane}: the rotor has {} planes", rotor.balancers.len()))?;
     let r0 = rotor.at_speed(0.0);
     let n = r0.dofs();
+    // M + M_rot (at rest, the rotor's angle 0) + the balls as rings: the mass matrix of
+    // LinearRotor::natural_frequencies
     let mut m = r0.m.clone();
-    for (i, v) in r0.ball_mass_matrix().iter().enumerate() {
-        m[i] += v;
+    for (i, (v, f)) in r0.ball_mass_matrix().iter().zip(r0.rotor_fixed_in(0.0)).enumerate() {
+        m[i] += v + f;
     }
     let k: Vec<f64> = (0..n * n).map(|ij| 0.5 * (r0.k[ij] + r0.k[(ij % n) * n + ij / n])).collect();
     let mut sym = r0.clone();
@@ -994,15 +998,28 @@ pub fn modes_at_plane(rotor: &LinearRotor, plane: usize, count: usize) -> Result
             v.iter_mut().for_each(|x| *x /= norm);
         }
         let radius = |node: usize| v[starts[node]].hypot(v[starts[node] + 1]);
+        // a plane's race centre moves by (x + e β, y − e α), e its offset from its node
+        // (the model's convention: LinearRotor::ball_mass_matrix)
+        let at_plane = |p: &autobal::linear_rotor::BalancerPlane| {
+            let s = starts[p.node];
+            let (a, be) = rotor.node_dofs(p.node).2.map_or((0.0, 0.0), |(ia, ib)| (v[ia], v[ib]));
+            (v[s] + p.offset * be).hypot(v[s + 1] - p.offset * a)
+        };
         let top = (0..rotor.nodes).max_by(|a, b| radius(*a).total_cmp(&radius(*b))).unwrap_or(0);
         let largest = radius(top);
-        if largest.is_nan() || largest <= 0.0 {
+        // the scale of the ratios: the largest translation of any node or balancer plane
+        let scale = rotor.balancers.iter().map(at_plane).fold(largest, f64::max);
+        if largest.is_nan() || scale.is_nan() || scale <= 0.0 {
             bail!("linear_rotor: mode {idx} at rest ({} rad/s) moves no node's translation", fmt_num(wk));
         }
-        let tilt = rotor.node_dofs(b.node).2.map_or(0.0, |(ia, ib)| v[ia].hypot(v[ib]) / largest);
-        let (ux, uy) = (v[starts[top]] / largest, v[starts[top] + 1] / largest);
-        let shape = starts.iter().map(|&s| (v[s] * ux + v[s + 1] * uy) / largest).collect();
-        out.push(ModeAtPlane { omega: wk, translation: radius(b.node) / largest, tilt, node: b.node, shape });
+        let tilt = rotor.node_dofs(b.node).2.map_or(0.0, |(ia, ib)| v[ia].hypot(v[ib]) / scale);
+        let shape = if largest > 0.0 {
+            let (ux, uy) = (v[starts[top]] / largest, v[starts[top] + 1] / largest);
+            starts.iter().map(|&s| (v[s] * ux + v[s + 1] * uy) / largest).collect()
+        } else {
+            vec![0.0; starts.len()]
+        };
+        out.push(ModeAtPlane { omega: wk, translation: at_plane(b) / scale, tilt, node: b.node, shape });
         found.push(v);
     }
     Ok(out)
@@ -1013,9 +1030,11 @@ pub fn modes_at_plane(rotor: &LinearRotor, plane: usize, count: usize) -> Result
 pub struct ModeAtPlane {
     /// Natural frequency at rest (rad/s).
     pub omega: f64,
-    /// The translation radius at the plane's node over the mode's largest (0 to 1).
+    /// The translation radius of the plane's race centre (its node's translation plus its
+    /// offset times the tilt) over the mode's largest of any node or plane (0 to 1).
     pub translation: f64,
-    /// The tilt at the plane's node over the mode's largest translation (rad/m).
+    /// The tilt at the plane's node over the mode's largest translation of any node or plane
+    /// (rad/m).
     pub tilt: f64,
     /// The plane's node.
     pub node: usize,
@@ -1330,5 +1349,28 @@ mod tests {
         // the balancer at mid-span (node 6): the even modes have a node there
         let mid = modes_at_plane(&pinned_shaft(6), 0, 4).unwrap();
         assert!(mid[0].translation > 0.999 && mid[2].translation < 2e-3, "{mid:?}");
+    }
+
+    /// A plane 0.05 m beyond its node (node 3 at x = L/4 of the pinned shaft) moves with its
+    /// node's translation plus the offset times the slope, `sin(kπ/4) + e (kπ/L) cos(kπ/4)`
+    /// (the race centre `x + e β`, `β = dx/dz`): mode 4, which has a node at node 3, moves the
+    /// plane by 0.52 of its largest (node 0.5236), and modes 1 and 3 differ by the sign of the
+    /// slope (0.800 and 0.429; the other sign would give 0.614 and 0.985). The largest of the
+    /// nodes and the plane is the scale (1 for these modes, the plane moving less). Tolerance
+    /// as in the test above (the 12 elements' nodal values and slopes, 2e-3).
+    #[test]
+    fn a_plane_off_its_node_moves_with_the_tilt() {
+        let mut rotor = pinned_shaft(3);
+        rotor.balancers[0].offset = 0.05;
+        let m = modes_at_plane(&rotor, 0, 8).unwrap();
+        let (l, e, pi) = (1.2, 0.05, std::f64::consts::PI);
+        for k in 1..=4usize {
+            let kf = k as f64;
+            let largest = (0..=12).map(|j| (kf * pi * j as f64 / 12.0).sin().abs()).fold(0.0, f64::max);
+            let want = ((kf * pi / 4.0).sin() + e * kf * pi / l * (kf * pi / 4.0).cos()).abs() / largest;
+            for got in &m[2 * (k - 1)..2 * k] {
+                assert!((got.translation - want).abs() < 2e-3, "mode {k}: translation at the plane {} against {want}", got.translation);
+            }
+        }
     }
 }

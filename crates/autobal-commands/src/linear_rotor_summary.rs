@@ -133,7 +133,7 @@ pub fn inertia(cfg: &LinearRotorConfig) -> (Value, String) {
 pub fn critical(cfg: &LinearRotorConfig) -> Result<(Value, String)> {
     let (rotor, red) = model(cfg)?;
     let w = natural_frequencies(&rotor, 8)?;
-    let what = "undamped natural frequencies at rest (Omega = 0: no gyroscopic terms, speed-dependent bearings at 0) with the balls as rings (LinearRotor::natural_frequencies)";
+    let what = "undamped natural frequencies at rest (Omega = 0: no gyroscopic terms, speed-dependent bearings at 0) with the balls as rings and the rotor-fixed inertia at the rotor's angle 0 (LinearRotor::natural_frequencies)";
     let v = json!({
         "model": "linear",
         "source": cfg.source,

@@ -57,7 +57,7 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
 
     // the modes at the balancer planes, on the full model (the nodes are physical)
     s.h3("linear_rotor_modes", "Mode shapes at the balancer plane");
-    s.p("The undamped modes of the rotor at rest with the balls as rings (symmetric part of <code>K</code> at Ω = 0): how far each balancer plane moves in each mode, as a fraction of the mode's largest translation of any node (1: the plane sits at the mode's antinode; 0: at a node of the mode, where the balls can neither feel nor counter that mode's whirl), and the plane's tilt in that mode (rad per metre of that largest translation). Above a critical speed whose mode barely moves the plane, the balls cannot balance that mode's response.");
+    s.p("The undamped modes of the rotor at rest with the balls as rings and the inertia fixed to the rotor at its angle 0 (symmetric part of <code>K</code> at Ω = 0): how far each balancer plane moves in each mode (its race centre: its node's translation plus its <code>offset</code> times the tilt, <code>x + e β</code>, <code>y − e α</code>), as a fraction of the mode's largest translation of any node or plane (1: the plane sits at the mode's antinode; 0: at a node of the mode, where the balls can neither feel nor counter that mode's whirl), and the tilt at the plane's node in that mode (rad per metre of that largest translation). Above a critical speed whose mode barely moves the plane, the balls cannot balance that mode's response.");
     for (i, b) in rotor.balancers.iter().enumerate() {
         let modes = lr::modes_at_plane(rotor, i, MODES)?;
         let rows: Vec<Vec<String>> = modes
@@ -75,7 +75,8 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
                 ]
             })
             .collect();
-        s.p(format!("Balancer plane {i} at node {} (race radius {} m, {} balls):", b.node, fmt(b.radius, 4), b.balls));
+        let offset = if b.offset == 0.0 { String::new() } else { format!(", {} m from it along the axis", fmt(b.offset, 4)) };
+        s.p(format!("Balancer plane {i} at node {}{offset} (race radius {} m, {} balls):", b.node, fmt(b.radius, 4), b.balls));
         s.table(&["mode", "ω (rad/s)", "ω (rpm)", "translation at the plane (of the largest)", "tilt at the plane (rad/m)", ""], &rows);
         // one curve per distinct frequency (a pair of equal ones has one shape)
         let mut series = vec![];
@@ -111,7 +112,13 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
         (true, false) => 20,
     };
     let (st, _) = lr::stability(cfg, omega_max, samples)?;
-    let ranges: Vec<String> = st.stable_ranges.iter().map(|r| format!("{} to {}", speed(r.from), speed(r.to))).collect();
+    // each end as `stability` words it: a located boundary, else the axis' end, a switch of
+    // state or a grid speed next to one without a state ([`crate::general::end_text`])
+    let ranges: Vec<String> = st
+        .stable_ranges
+        .iter()
+        .map(|r| format!("{} to {}", crate::general::end_text(&st, r, false, speed), crate::general::end_text(&st, r, true, speed)))
+        .collect();
     let verdict = if ranges.is_empty() { format!("nowhere in (0, {}]", speed(omega_max)) } else { ranges.join("; ") };
     s.p(format!(
         "The balanced state (the balls where they cancel the unbalance) by its exact linearisation at {samples} speeds up to {} ({}), as <code>autobal stability</code> computes it: stable {verdict}.",

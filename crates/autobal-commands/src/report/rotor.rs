@@ -169,6 +169,15 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
             " The config is dimensionless: speeds are Ω = ω/ω0.".to_string()
         }
     ));
+    // what that model leaves out (the stderr warning's list): its numbers below are of the
+    // simplified rotor; the rotor as given is analysed by the general route
+    let left_out = autobal::config::ignored_by_linear_model(&ctx.root);
+    if general {
+        s.html(format!(
+            "<div class=\"warn\">The config has what that one-plane model leaves out: {}. Its parameters, critical speeds (000), sensitivity criterion and 003's ranges below are those of the simplified rotor without them; the rotor as given is analysed by the general route (its critical speeds below, its stability and run-up in their sections).</div>\n",
+            super::esc(&left_out.join(", "))
+        ));
+    }
     for w in &m.anisotropy.warnings {
         s.html(format!("<div class=\"warn\">{}</div>\n", super::esc(w)));
     }
@@ -234,7 +243,7 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
         if general {
             format!(
                 " <b>Of the one-plane rotor of papers 000/003, which leaves out {}</b>: the critical speeds of the rotor as given are above.",
-                super::esc(&autobal::config::ignored_by_linear_model(&ctx.root).join(", "))
+                super::esc(&left_out.join(", "))
             )
         } else {
             String::new()
@@ -302,12 +311,28 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
             opt(se.m0_limit),
         ]],
     );
-    s.p(format!("<b>Verdict:</b> {}", super::esc(&se.reason)));
-
-    let ar = autobalancing_ranges(m);
-    s.h3("rotor-ranges", "Autobalancing ranges (003)");
     s.p(format!(
-        "Antiresonance Ω_a = {}. Phase condition (1) holds on {}; split-pair instability on {}. <b>Autobalancing possible on {}</b>. Class: {}.",
+        "<b>Verdict{}:</b> {}",
+        if general {
+            " (003's criterion on the one-plane rotor: whether its inertia anisotropy may be neglected, not whether that rotor stands for the config's)"
+        } else {
+            ""
+        },
+        super::esc(&se.reason)
+    ));
+
+    s.h3("rotor-ranges", "Autobalancing ranges (003)");
+    if general {
+        // as `critical` says: 003's condition is of the one-plane rotor it assumes
+        s.p(format!(
+            "003's necessary condition does not apply to this configuration (it assumes one balancer plane, supports equal in x and y, no gravity; the config has {}), as <code>autobal critical</code> says: where the rotor as given is stable is the exact analysis of the stability section.",
+            super::esc(&left_out.join(", "))
+        ));
+        return Ok(Some(s));
+    }
+    let ar = autobalancing_ranges(m);
+    s.p(format!(
+        "Antiresonance Ω_a = {}. Phase condition (1) holds on {}; split-pair instability on {}. <b>Autobalancing possible on {}</b> by 003's necessary condition (necessary, not sufficient: where the balanced state is stable is the exact analysis of the stability section). Class: {}.",
         ar.antiresonance_speed.map_or("—".into(), |w| speed(w, w0)),
         ranges_text(&ar.phase_condition, None),
         ranges_text(&ar.instability, None),

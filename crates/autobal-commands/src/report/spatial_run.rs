@@ -65,10 +65,36 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
             revolutions
         )
     };
+    let one_plane = crit.speeds.iter().map(|c| format!("{} {speed_unit}{}", fmt(c.omega * w0, 4), rpm(c.omega * w0))).collect::<Vec<_>>().join(", ");
+    // the critical speeds of the rotor simulated: paper 000's closed form where it is that
+    // rotor, else the rotor as given by the general route (`autobal critical`'s locked speeds)
+    let left_out = autobal::config::ignored_by_linear_model(&ctx.root);
+    let critical = if left_out.is_empty() {
+        format!("The critical speeds of the balanced rotor (linear analysis) are {one_plane}.")
+    } else {
+        let g = crate::general::rotor_of(&ctx.root)?;
+        let omega_max = crate::general::default_omega_max(&g, &ctx.root)?;
+        let model = format!("the one-plane isotropic model of papers 000/003, which leaves out {}, has {one_plane}", left_out.join(", "));
+        match autobal::rotor_campbell::locked_critical_speeds(&g.rotor, omega_max, 2000) {
+            Ok(l) => format!(
+                "The critical speeds of the rotor as given, its balls held at balance (general route, as <code>autobal critical</code> and the first section), are {} ({}).",
+                if l.speeds.is_empty() {
+                    format!("none up to {} {speed_unit}{}", fmt(omega_max, 4), rpm(omega_max))
+                } else {
+                    l.speeds.iter().map(|k| format!("{} {speed_unit}{}", fmt(k.omega, 4), rpm(k.omega))).collect::<Vec<_>>().join(", ")
+                },
+                super::esc(&model)
+            ),
+            Err(autobal::Error::NoLinearisation { .. }) => format!(
+                "The rotor as given has no critical speeds defined by one frequency (its linearisation turns in fixed and in rotating axes: the Floquet Campbell diagram of the stability section); {}.",
+                super::esc(&model)
+            ),
+            Err(e) => return Err(e.into()),
+        }
+    };
     s.p(format!(
-        "The rotor of the config simulated in time with its {} balls free on their race (full nonlinear equations: translation, tilt, spin and balls; docs/notes/spatial.md), {drive_text}. The balls start spread evenly across the unbalance unless <code>drive.psi0</code> says otherwise. The critical speeds of the balanced rotor (linear analysis) are {}.",
+        "The rotor of the config simulated in time with its {} balls free on their race (full nonlinear equations: translation, tilt, spin and balls; docs/notes/spatial.md), {drive_text}. The balls start spread evenly across the unbalance unless <code>drive.psi0</code> says otherwise. {critical}",
         sim.rotor.balls(),
-        crit.speeds.iter().map(|c| format!("{} {speed_unit}{}", fmt(c.omega * w0, 4), rpm(c.omega * w0))).collect::<Vec<_>>().join(", ")
     ));
     let t_unit = if cfg.dimensional { "s" } else { "τ" };
     let rows = vec![

@@ -139,11 +139,12 @@ fn general_route(ctx: &Ctx) -> Result<Option<Section>> {
                         (None, Some(a)) => format!("margin {} to its upper end", speed(a)),
                         (None, None) => "stable over the whole axis".into(),
                     };
+                    // the ends as `stability` words them: the axis' end, a switch of state or
+                    // a grid speed next to one without a state are not located boundaries
                     format!(
-                        "operating speed {at}: the balanced state is STABLE (exact, general route) in the stable range {} – {}{}, {margin}",
-                        speed(x.from),
-                        speed(x.to),
-                        if x.to_is_boundary { "" } else { " (end of the axis)" }
+                        "operating speed {at}: the balanced state is STABLE (exact, general route) in the stable range {} – {}, {margin}",
+                        crate::general::end_text(&r, x, false, speed),
+                        crate::general::end_text(&r, x, true, speed)
                     )
                 }
                 None => format!("operating speed {at}: the balanced state is NOT STABLE (exact, general route)"),

@@ -355,8 +355,8 @@ pub struct LinearRotor {
     /// torque `½ v_rᵀ (J M_rot − M_rot J) v_r` to the spin's equation (`−∂T/∂φ`). `M` is the
     /// part fixed in space: `M + T(φ) M_rot T(φ)ᵀ` must be positive definite at every `φ`.
     /// Used by the time and stationary analyses of [`LinearRotorField`] and [`runup`];
-    /// [`LinearRotor::natural_frequencies`] and [`LinearRotor::ball_mass_matrix`] leave it out
-    /// (their models are fixed in space); model reduction projects it ([`reduce`]); configs read
+    /// [`LinearRotor::natural_frequencies`] takes it at rest in the rotor's angle 0 (`M + M_rot`),
+    /// [`LinearRotor::ball_mass_matrix`] leaves it out; model reduction projects it ([`reduce`]); configs read
     /// it as `linear_rotor.rotor_fixed_mass` ([`config`]).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub rotor_fixed_mass: Vec<f64>,
@@ -1069,15 +1069,22 @@ impl LinearRotor {
         })
     }
 
-    /// The undamped natural frequencies `ω_i` (rad/s, ascending) of `M q̈ + K q = 0` with the DOFs
-    /// in `constrained` held at zero and `extra_mass` added to `M` (e.g. the balls'
-    /// [`LinearRotor::ball_mass_matrix`]): `K` must be symmetric; the generalised problem
-    /// `K v = ω² M v` is reduced to the standard one `L⁻¹ K L⁻ᵀ w = ω² w` by the Cholesky factor
+    /// The undamped natural frequencies `ω_i` (rad/s, ascending) of the rotor at rest,
+    /// `(M + M_rot) q̈ + K q = 0`, with the DOFs in `constrained` held at zero and, where
+    /// `with_balls`, the balls as rings ([`LinearRotor::ball_mass_matrix`]) added to the mass.
+    /// The rotor-fixed inertia [`LinearRotor::rotor_fixed_mass`] is taken at the rotor's angle
+    /// 0 (`T(0) M_rot T(0)ᵀ = M_rot`): the rotor at rest in its reference position, with
+    /// everything that turns with it as part of its body, so that two descriptions of one rotor
+    /// that split its inertia differently between `M` and `M_rot` give the same frequencies.
+    /// `K` must be symmetric; the generalised problem `K v = ω² M v` is reduced to the standard one `L⁻¹ K L⁻ᵀ w = ω² w` by the Cholesky factor
     /// `M = L Lᵀ` and solved by [`eigen_dyn`]; `ω = sqrt(max(λ, 0))` (rigid-body modes give 0).
     pub fn natural_frequencies(&self, constrained: &[usize], with_balls: bool) -> Result<Vec<f64>> {
         self.validate()?;
         let n = self.dofs();
         let mut m = self.m.clone();
+        if !self.rotor_fixed_mass.is_empty() {
+            m.iter_mut().zip(&self.rotor_fixed_mass).for_each(|(a, b)| *a += b);
+        }
         if with_balls {
             for (i, v) in self.ball_mass_matrix().iter().enumerate() {
                 m[i] += v;
