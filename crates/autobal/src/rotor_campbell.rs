@@ -15,16 +15,27 @@
 //! - **an equilibrium**: the eigenvalues `λ = σ + iν` of the exact (AD) Jacobian;
 //! - **a periodic orbit** (supports that differ by direction, gravity across the axis): the
 //!   Floquet exponents `ρ = ln μ / T` of the monodromy matrix's multipliers `μ`. Their
-//!   imaginary parts are defined only modulo `Ω = 2π/T`. **Branch**: with `v` the multiplier's
-//!   eigenvector (the Floquet mode's state at `t = 0`, scaled by the field's
-//!   [`scales`](crate::analysis::VectorField::scales)), the branch `ρ = ρ₀ + i k Ω` (`ρ₀` the
-//!   principal logarithm) is the one whose `Im ρ` is nearest `Im` of the Rayleigh quotient
-//!   `vᴴ J(0) v / vᴴ v` of the Jacobian at the orbit's start. A Floquet mode is
-//!   `p(t) e^{ρt}` with `p` periodic, and `ρ v + ṗ(0) = J(0) v`: when the field is autonomous
-//!   (`ṗ = 0`) the quotient is the eigenvalue itself, so the branch continues the equilibrium
-//!   case exactly as the anisotropy or gravity vanishes and is `λ` to the Floquet accuracy on a
-//!   nearly isotropic rotor (tests/rotor_campbell.rs); for a strongly periodic mode (`p` with
-//!   several harmonics) it is a convention, said in every output.
+//!   imaginary parts are defined only modulo `ω_T = 2π/T` (`Ω` under gravity, `2Ω` where only
+//!   the supports differ by direction). **Branch**: the one a fixed observer sees. A Floquet
+//!   mode is `x(t) = Φ(t) v = e^{ρ₀ t} p(t)` (`v` the multiplier's eigenvector, `ρ₀` the
+//!   principal logarithm over `T`, `p` periodic): in fixed axes each circular coordinate of
+//!   the rotor (below) moves as a sum of components at the frequencies `Ω ± (Im ρ₀ + k ω_T)`,
+//!   one per harmonic `k` of `p` and sign. The fundamental matrix `Φ(t)` is integrated over one
+//!   period (64 samples, DOP853 at 1e-6, once per speed), and the branch `ρ = ρ₀ + i k ω_T` is
+//!   that of the **largest component of the rotor's displacement in fixed axes** (what a
+//!   displacement probe, or the FFT of a run's `x + iy`, shows largest; ties to the forward
+//!   one: `dominant_harmonic`). Its `fixed_frequency` is that component's `Ω ± Im ρ`, its
+//!   `forward_share` the `Ω + Im ρ` component's share of the two on this branch. Where the
+//!   field is autonomous `p` is constant and this is the eigenvalue's own rule; on a rigid rotor
+//!   on supports that differ by direction (constant in fixed axes) it gives the fixed-axes
+//!   frequencies exactly, whatever the speed, and a negligible gravity (which doubles the
+//!   period) changes nothing (tests/rotor_campbell_branch_20.rs). Modes that do not move the
+//!   rotor (the balls alone) and multipliers below 1e-3 of the monodromy's norm (decaying
+//!   1000-fold in a period, where the sampled `Φ` no longer resolves them) keep the branch
+//!   whose `Im ρ` is nearest `Im` of the Rayleigh quotient `vᴴ J(0) v / vᴴ v` (scaled): a
+//!   fixed observer sees nothing of them. (Until session 20 every mode took that quotient's
+//!   branch, exact only as the field becomes autonomous: on the two-plane example it put
+//!   translation modes `Ω` or `2Ω` off, and flipped with a gravity of 0.001 m/s².)
 //!
 //! Eigenvalues are tracked into continuous lines by matching each speed's values to the
 //! previous lines' linear extrapolations, nearest pair first. The fixed-axes view is that of
@@ -90,7 +101,7 @@ use num_complex::Complex64;
 use serde::Serialize;
 
 /// The branch rule of the Floquet exponents' imaginary parts, as every output states it.
-pub const FLOQUET_BRANCH: &str = "Floquet exponents ρ = ln μ / T are defined modulo i2π/T (iΩ where the period is a revolution, under gravity; 2iΩ where only the supports differ by direction, T = π/Ω): the branch shown is the one whose Im ρ is nearest Im of the Rayleigh quotient vᴴJ(0)v/vᴴv of the Floquet mode's start vector v (exact continuation of the equilibrium eigenvalues as the anisotropy or gravity vanishes; a convention for strongly periodic modes)";
+pub const FLOQUET_BRANCH: &str = "Floquet exponents ρ = ln μ / T are defined modulo i2π/T (iΩ where the period is a revolution, under gravity; 2iΩ where only the supports differ by direction, T = π/Ω): the branch shown is that of the largest component of the rotor's displacement in fixed axes over one period (the mode x(t) = e^{ρt} p(t), p periodic, has components at Ω ± Im ρ for each harmonic of p: what a displacement probe or a run's FFT shows largest; ties to the forward one), and fixed_frequency is that component's; modes that do not move the rotor, or decay 1000-fold in a period, take the branch nearest Im of the Rayleigh quotient vᴴJ(0)v/vᴴv of their start vector v";
 
 /// Whirl direction in fixed axes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -125,7 +136,9 @@ pub struct CampbellPoint {
     /// and `α + iβ` with `w_p² = M̄_p / M_s` (the pair's mean diagonal mass or inertia over
     /// the structure's translating mass plus the balls', `linear_whirl_pairs`), each term a
     /// kinetic energy per unit of `M_s`. The balls' angles do not enter; ½ where the rotor
-    /// does not move (its amplitude below 1e-9 of the mode's largest scaled entry).
+    /// does not move (its amplitude below 1e-9 of the mode's largest scaled entry). For a
+    /// Floquet exponent the two components of its branch over one period ([`FLOQUET_BRANCH`]):
+    /// the `Ω + ν` harmonic's share of the `Ω ± ν` ones, `x` the mode's motion `Φ(t) v`.
     pub forward_share: f64,
     /// Whirl direction in fixed axes.
     pub whirl: Whirl,
@@ -262,29 +275,11 @@ fn spectrum_and_modes_at(rotor: &Rotor, field: &Field, omega: f64, state: &Stati
     let mut out = Vec::with_capacity(n);
     let mut modes = Vec::with_capacity(n);
     let all = st.spectrum.iter().map(|e| (e.complex(), false)).chain(st.structural.iter().map(|e| (e.complex(), true)));
+    // a periodic orbit's fundamental matrix Φ(t_j) over one period, for the modes' harmonics
+    // in fixed axes (integrated once, on the first mode that moves the rotor)
+    let mut fundamental: Option<Vec<f64>> = None;
     for (value, structural) in all {
         let v = balanced_mode(&st.matrix, n, value);
-        let lam = match state.period {
-            None => value,
-            Some(t) => {
-                let rho0 = Complex64::new(value.norm().max(f64::MIN_POSITIVE).ln(), value.arg()) / t;
-                // the Rayleigh quotient of J(0) in scaled coordinates
-                let w: Vec<Complex64> = v.iter().zip(&scales).map(|(z, s)| z / s).collect();
-                let (mut num, mut den) = (Complex64::new(0.0, 0.0), 0.0);
-                for i in 0..n {
-                    let mut jw = Complex64::new(0.0, 0.0);
-                    for j in 0..n {
-                        jw += jac0[i * n + j] * scales[j] / scales[i] * w[j];
-                    }
-                    num += w[i].conj() * jw;
-                    den += w[i].norm_sqr();
-                }
-                let q = if den > 0.0 { num / den } else { rho0 };
-                let big = 2.0 * std::f64::consts::PI / t;
-                let k = ((q.im - rho0.im) / big).round();
-                Complex64::new(rho0.re, rho0.im + k * big)
-            }
-        };
         let (fwd, bwd) = pairs.iter().fold((0.0, 0.0), |(f, b), &(a, bi, sign, w)| {
             let (xa, xb) = (v[a] * w, v[bi] * (sign * w));
             let i = Complex64::new(0.0, 1.0);
@@ -295,9 +290,55 @@ fn spectrum_and_modes_at(rotor: &Rotor, field: &Field, omega: f64, state: &Stati
         // the rotor's share of the mode, in scaled units: below 1e-9 it is a ball mode
         let rotor_amp = pairs.iter().map(|&(a, b, _, _)| (v[a].norm() / scales[a]).max(v[b].norm() / scales[b])).fold(0.0, f64::max);
         let moves = total > 0.0 && rotor_amp > 1e-9 * vmax;
+        // a multiplier the sampled Φ(t) resolves to 1e-3 (its error HARMONIC_RTOL ‖S⁻¹ΦS‖∞;
+        // the round-off bound is 100 MONODROMY_RTOL of that norm)
+        let undetermined = matches!(roundoff, Some(d) if value.norm() < d * 1e3 * HARMONIC_RTOL / (100.0 * MONODROMY_RTOL));
+        let (lam, share, f) = match state.period {
+            None => {
+                let share = if moves { fwd / total } else { 0.5 };
+                (value, share, if share >= 0.5 { omega + value.im } else { omega - value.im })
+            }
+            Some(t) => {
+                let rho0 = Complex64::new(value.norm().max(f64::MIN_POSITIVE).ln(), value.arg()) / t;
+                let big = 2.0 * std::f64::consts::PI / t;
+                let harmonic = if moves && !undetermined {
+                    if fundamental.is_none() {
+                        fundamental = Some(fundamental_samples(field, &state.x, t)?);
+                    }
+                    fundamental.as_deref().and_then(|phi| dominant_harmonic(phi, n, &v, rho0, omega, t, &pairs))
+                } else {
+                    None
+                };
+                match harmonic {
+                    // the branch of the largest circular component of the rotor's motion in
+                    // fixed axes (FLOQUET_BRANCH)
+                    Some(Harmonic { k, plus, share }) => {
+                        let lam = Complex64::new(rho0.re, rho0.im + k as f64 * big);
+                        (lam, share, if plus { omega + lam.im } else { omega - lam.im })
+                    }
+                    // a ball mode, or a multiplier below the monodromy's round-off: the branch
+                    // nearest the Rayleigh quotient of J(0) in scaled coordinates
+                    None => {
+                        let w: Vec<Complex64> = v.iter().zip(&scales).map(|(z, s)| z / s).collect();
+                        let (mut num, mut den) = (Complex64::new(0.0, 0.0), 0.0);
+                        for i in 0..n {
+                            let mut jw = Complex64::new(0.0, 0.0);
+                            for j in 0..n {
+                                jw += jac0[i * n + j] * scales[j] / scales[i] * w[j];
+                            }
+                            num += w[i].conj() * jw;
+                            den += w[i].norm_sqr();
+                        }
+                        let q = if den > 0.0 { num / den } else { rho0 };
+                        let k = ((q.im - rho0.im) / big).round();
+                        let lam = Complex64::new(rho0.re, rho0.im + k * big);
+                        let share = if moves { fwd / total } else { 0.5 };
+                        (lam, share, if share >= 0.5 { omega + lam.im } else { omega - lam.im })
+                    }
+                }
+            }
+        };
         let group = group_of(rotor, field, &pairs, &v);
-        let share = if moves { fwd / total } else { 0.5 };
-        let f = if share >= 0.5 { omega + lam.im } else { omega - lam.im };
         let whirl = if !moves || f == 0.0 {
             Whirl::None
         } else if f > 0.0 {
@@ -326,6 +367,152 @@ fn spectrum_and_modes_at(rotor: &Rotor, field: &Field, omega: f64, state: &Stati
         modes.push(v.iter().zip(&scales).take(n / 2).map(|(z, s)| z / s).collect());
     }
     Ok((out, modes))
+}
+
+/// Samples per period of a Floquet mode's motion for its harmonics ([`dominant_harmonic`]):
+/// the discrete Fourier transform of `N` samples gives the harmonics `|k| < N/2` of the
+/// mode's periodic part exactly where the higher ones vanish (a smooth `p(t)`: its
+/// coefficients fall geometrically, as the Jacobian's of the orbit do, which the monodromy's
+/// interpolant resolves with at most 64 samples: module docs of [`crate::analysis`]).
+const HARMONIC_NODES: usize = 64;
+
+/// Relative tolerance of the fundamental matrix `Φ(t)` sampled for the harmonics
+/// ([`fundamental_samples`]; absolute `rtol · s_a / s_b` on `Φ_ab`, as the monodromy's). The
+/// harmonics only rank the components: an error of `1e-6` of `‖Φ‖` moves them by far less
+/// than any gap that decides a branch (the pick breaks ties within [`HARMONIC_TIE`]).
+const HARMONIC_RTOL: f64 = 1e-6;
+
+/// Relative difference of two components' sizes below which they count as equal and the pick
+/// goes to the one of positive fixed-axes frequency (forward whirl). A mode of a rotor that is
+/// the same in every direction on supports that are not (no gyroscopic coupling, no balls)
+/// whirls on a line: its forward and backward components at `±f` are equal, and only the sign
+/// of `f` is at stake; well above [`HARMONIC_RTOL`].
+const HARMONIC_TIE: f64 = 1e-4;
+
+/// The fundamental matrix `Φ(t_j)` (`Φ' = J(t, x(t)) Φ`, `Φ(0) = I`) of the periodic orbit
+/// through `x0` at the [`HARMONIC_NODES`] times `t_j = j T / N`, `j = 0 .. N − 1`, row-major
+/// `n × n` each: the variational equations with the orbit, DOP853 at [`HARMONIC_RTOL`]
+/// (absolute tolerances by the field's scales), sampled by its dense output.
+fn fundamental_samples(field: &Field, x0: &[f64], period: f64) -> Result<Vec<f64>> {
+    use crate::ode::{Control as Step, Method, Options, Solver};
+    let n = field.dim();
+    let s = field.scales();
+    let sys = crate::analysis::VariationalSystem::new(field);
+    let mut atol: Vec<f64> = s.iter().map(|v| HARMONIC_RTOL * v).collect();
+    for a in 0..n {
+        for b in 0..n {
+            atol.push(HARMONIC_RTOL * s[a] / s[b]);
+        }
+    }
+    let opts = Options::new(HARMONIC_RTOL, HARMONIC_RTOL).method(Method::Dop853).atol_per_component(atol);
+    let mut solver = Solver::new(&sys, opts)?;
+    let mut y = vec![0.0; n + n * n];
+    y[..n].copy_from_slice(x0);
+    for a in 0..n {
+        y[n + a * n + a] = 1.0;
+    }
+    let mut samples = vec![0.0; HARMONIC_NODES * n * n];
+    samples[..n * n].copy_from_slice(&y[n..]);
+    let node = |j: usize| period * j as f64 / HARMONIC_NODES as f64;
+    let mut next = 1;
+    let mut buf = vec![0.0; n + n * n];
+    let out = solver.integrate(0.0, &mut y, period, |step| {
+        while next < HARMONIC_NODES && node(next) <= step.t_new {
+            step.interpolate(node(next), &mut buf);
+            samples[next * n * n..(next + 1) * n * n].copy_from_slice(&buf[n..]);
+            next += 1;
+        }
+        Step::Continue
+    });
+    if !out.status.is_completed() || next < HARMONIC_NODES {
+        return Err(Error::invalid("campbell", format!("the Floquet modes' integration over one period did not complete: {out}")));
+    }
+    Ok(samples)
+}
+
+/// The branch of a Floquet mode from its motion in fixed axes ([`dominant_harmonic`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Harmonic {
+    /// The branch `ρ = ρ₀ + i k 2π/T`.
+    k: i64,
+    /// Whether the largest component is the `Ω + Im ρ` one (else `Ω − Im ρ`).
+    plus: bool,
+    /// The `Ω + Im ρ` component's share of the two on this branch (as an eigenvalue's
+    /// [`CampbellPoint::forward_share`]).
+    share: f64,
+}
+
+/// The harmonic of a Floquet mode that a fixed observer sees largest ([`FLOQUET_BRANCH`]).
+/// The mode is `x(t) = Φ(t) v = e^{ρ₀ t} p(t)` (`v` the multiplier's eigenvector, `ρ₀` the
+/// principal exponent, `p` periodic with `T`); each circular pair's coordinate in turning axes
+/// `z_± = w (x_a ± i s x_b)` ([`whirl_pairs`]) has the harmonics `Z_±,k` of
+/// `z_±(t) e^{−ρ₀ t}` (discrete Fourier transform of the `phi` samples,
+/// [`fundamental_samples`]), and the real motion `Re x` moves the pair's point in fixed axes
+/// (`e^{iΩt}` times the turning coordinate) as `½ Σ_k Z_+,k e^{i(Ω + ν₀ + k ω_T)t} +
+/// conj(Z_−,k) e^{i(Ω − ν₀ − k ω_T)t}` times `e^{σt}` (`ν₀ = Im ρ₀`, `ω_T = 2π/T`): components
+/// at the fixed-axes frequencies `Ω ± (ν₀ + k ω_T)` of sizes `F_k = Σ_p |Z_+,k|²`,
+/// `B_k = Σ_p |Z_−,k|²` over the pairs. The largest, ties ([`HARMONIC_TIE`]) to the positive
+/// frequency, gives the branch. `None` where the rotor does not move or a sample is not finite.
+fn dominant_harmonic(phi: &[f64], n: usize, v: &[Complex64], rho0: Complex64, omega: f64, period: f64, pairs: &[(usize, usize, f64, f64)]) -> Option<Harmonic> {
+    let nodes = HARMONIC_NODES;
+    let i = Complex64::new(0.0, 1.0);
+    // z_± of every pair at every node, without the exponential e^{ρ₀ t}
+    let mut plus = vec![Complex64::new(0.0, 0.0); nodes * pairs.len()];
+    let mut minus = plus.clone();
+    let mut x = vec![Complex64::new(0.0, 0.0); n];
+    for j in 0..nodes {
+        let t = period * j as f64 / nodes as f64;
+        let phase = (-rho0 * t).exp();
+        let m = &phi[j * n * n..(j + 1) * n * n];
+        for (a, xa) in x.iter_mut().enumerate() {
+            *xa = m[a * n..(a + 1) * n].iter().zip(v).map(|(p, z)| *p * z).sum::<Complex64>() * phase;
+        }
+        for (q, &(a, b, sign, w)) in pairs.iter().enumerate() {
+            plus[j * pairs.len() + q] = w * (x[a] + i * sign * x[b]);
+            minus[j * pairs.len() + q] = w * (x[a] - i * sign * x[b]);
+        }
+    }
+    if plus.iter().chain(&minus).any(|z| !z.is_finite()) {
+        return None;
+    }
+    let half = (nodes / 2) as i64;
+    let twiddle: Vec<Complex64> = (0..nodes).map(|j| Complex64::from_polar(1.0, -2.0 * std::f64::consts::PI * j as f64 / nodes as f64)).collect();
+    let power = |z: &[Complex64], k: i64| -> f64 {
+        (0..pairs.len())
+            .map(|q| {
+                let c: Complex64 = (0..nodes).map(|j| z[j * pairs.len() + q] * twiddle[((k.rem_euclid(nodes as i64) as usize) * j) % nodes]).sum();
+                c.norm_sqr()
+            })
+            .sum()
+    };
+    let big = 2.0 * std::f64::consts::PI / period;
+    let nu0 = rho0.im;
+    // (size, fixed-axes frequency sign > 0, k, plus, F_k, B_k)
+    let mut best: Option<(f64, bool, i64, bool, f64, f64)> = None;
+    for k in -half..half {
+        let (fk, bk) = (power(&plus, k), power(&minus, k));
+        let shift = nu0 + k as f64 * big;
+        for (size, pl) in [(fk, true), (bk, false)] {
+            // the sign of the component's frequency in fixed axes
+            let forward = if pl { omega + shift > 0.0 } else { omega - shift > 0.0 };
+            let better = match best {
+                None => true,
+                Some((s0, fw0, ..)) => {
+                    let tie = (size - s0).abs() <= HARMONIC_TIE * size.max(s0);
+                    if tie {
+                        !fw0 && forward
+                    } else {
+                        size > s0
+                    }
+                }
+            };
+            if better {
+                best = Some((size, forward, k, pl, fk, bk));
+            }
+        }
+    }
+    let (size, _, k, pl, fk, bk) = best?;
+    (size > 0.0).then(|| Harmonic { k, plus: pl, share: fk / (fk + bk) })
 }
 
 /// [`Error::InvalidParameter`] naming `linear_rotor` for [`Rotor::Linear`]: the analyses with
@@ -1345,7 +1532,9 @@ const REAL_TOL: f64 = 1e-9;
 /// **Periodic orbits**: the Floquet exponents' imaginary parts are defined modulo `Ω`, so
 /// `|f| = hΩ` for one harmonic is `|f| = h'Ω` on another branch: crossings are not defined, and
 /// `critical_speeds` is empty (the commands say so); the curves are drawn on the branch of
-/// [`FLOQUET_BRANCH`].
+/// [`FLOQUET_BRANCH`], each point at its dominant component (the point's `fixed_frequency`):
+/// the other component of a branch is an alias of ~0 share, which the continuity rule above
+/// would otherwise follow up a line of slope ~2 (to 4800 rad/s on the two-plane example).
 pub fn fixed_view(rotor: &Rotor, balls: Balls, c: &RotorCampbell, harmonics: &[u32]) -> Result<FixedCampbell> {
     fixed_view_with(rotor, balls, c, harmonics, &crate::control::Control::none())
 }
@@ -1387,7 +1576,10 @@ pub fn fixed_view_with(rotor: &Rotor, balls: Balls, c: &RotorCampbell, harmonics
             let w = c.omega[k];
             let cand = [(w + m.im, m.forward_share), (w - m.im, 1.0 - m.forward_share)];
             let dominant = if m.forward_share >= 0.5 { 0 } else { 1 };
+            // a Floquet point's other component on its branch is an alias the motion hardly has
+            // (its share ~0: FLOQUET_BRANCH): the curve follows the dominant one
             let pick = match pts.len() {
+                _ if c.kind == Kind::PeriodicOrbit => dominant,
                 0 => dominant,
                 len => {
                     let prev = pts[len - 1].fixed_frequency;
