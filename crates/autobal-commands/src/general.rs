@@ -493,7 +493,9 @@ pub fn operating_line(g: &GeneralRotor, r: &RotorStability, op: &Operating) -> S
 }
 
 /// The other periodic orbits found at the operating speed (under gravity across the axis with
-/// 3 or more balls in a plane, [`autobal::rotor_stability::SpeedPoint::other_orbits`]), as one
+/// 3 or more balls in a plane), or the other partially balanced equilibria
+/// ([`autobal::rotor_stability::Rotor::partial_states`]),
+/// [`autobal::rotor_stability::SpeedPoint::other_orbits`], as one
 /// line: each orbit's ball angles and verdict at a single operating speed, or over an operating
 /// range how many of its speeds have one and whether any is stable; empty where none was found.
 fn other_orbits_line(g: &GeneralRotor, op: &Operating) -> String {
@@ -501,6 +503,9 @@ fn other_orbits_line(g: &GeneralRotor, op: &Operating) -> String {
     let Some(first) = with.first() else { return String::new() };
     let per = if g.si { " 1/s" } else { "" };
     let stable_too = "; a run may settle on a stable one of these instead (its start decides)";
+    // under gravity the periodic orbits of the groups' placements; without a periodic motion
+    // the partially balanced equilibria of each start (Rotor::partial_states)
+    let what = if g.rotor.is_periodic() { "periodic orbits" } else { "partially balanced states" };
     if op.omega[0] == op.omega[1] {
         let list: Vec<String> = first
             .other_orbits
@@ -511,11 +516,11 @@ fn other_orbits_line(g: &GeneralRotor, op: &Operating) -> String {
             })
             .collect();
         let any_stable = first.other_orbits.iter().any(|o| o.verdict == Verdict::Stable);
-        format!("  other periodic orbits at this speed (beside the one analysed): {}{}\n", list.join("; "), if any_stable { stable_too } else { "" })
+        format!("  other {what} at this speed (beside the one analysed): {}{}\n", list.join("; "), if any_stable { stable_too } else { "" })
     } else {
         let stable = with.iter().filter(|p| p.other_orbits.iter().any(|o| o.verdict == Verdict::Stable)).count();
         format!(
-            "  other orbits found at {} of the {} speeds solved there (JSON operating.points[].other_orbits), a stable one at {stable}{}\n",
+            "  other {what} found at {} of the {} speeds solved there (JSON operating.points[].other_orbits), a stable one at {stable}{}\n",
             with.len(),
             op.points.len(),
             if stable > 0 { stable_too } else { "" }

@@ -213,6 +213,47 @@ impl Rotor {
         shoot_placements(field, f, f.split_guesses(), same_angles, newton)
     }
 
+    /// The candidate **partially balanced equilibria** of a spatial rotor whose balls cannot
+    /// cancel its unbalance (no balanced state: a plane's capacity short, or one plane against
+    /// a couple; an equilibrium, not a periodic orbit): Newton from each of [`Rotor::guess`]
+    /// (where it has a placement), [`Rotor::placed_guess`] (a short plane bunched towards its share, the other on its arc),
+    /// [`Rotor::bunched_guess`] (each plane's balls bunched against its own share) and every
+    /// ball bunched against the static unbalance (as the linear rotor's start,
+    /// [`crate::linear_rotor::partial::bunched_guess`]), each distinct state found (ball angles
+    /// matched per plane to 1e-6 rad) with its stability, the least growth rate first. Which
+    /// start Newton took decided the state analysed until session 20 (audit 20's F11: on
+    /// rnd/r19_00_sp.toml at 435.1 rad/s each plane's share, opposite each other, gives a state
+    /// unstable at +7.88 1/s, every ball against the static unbalance a stable one at −0.75
+    /// 1/s that a run settles on). Empty for any other rotor or state.
+    pub fn partial_states(field: &Field, newton: &NewtonOptions) -> Vec<(Vec<f64>, OtherOrbit)> {
+        Rotor::partial_states_from(field, newton, &[])
+    }
+
+    /// [`Rotor::partial_states`] with `carried` starts besides the candidates: the speed scan's
+    /// states of the previous speed, so that a state the candidates reach at one speed is
+    /// followed to the next where they miss it (rnd/r19_00_sp.toml: the stable state at
+    /// 440.9-568.5 rad/s is reached from the candidates at 32 of 38 grid speeds).
+    pub(crate) fn partial_states_from(field: &Field, newton: &NewtonOptions, carried: &[Vec<f64>]) -> Vec<(Vec<f64>, OtherOrbit)> {
+        let Field::Spatial(f) = field else { return vec![] };
+        if f.period().is_some() || spatial_can_balance(f) {
+            return vec![];
+        }
+        // the closed form's placement too where it has one (one plane against a couple it
+        // cannot cancel: the static balance, the scan's start until session 20)
+        let mut starts: Vec<Vec<f64>> = [Rotor::guess(field), Rotor::placed_guess(field), Rotor::bunched_guess(field)].into_iter().flatten().collect();
+        let r = f.rotor();
+        let s0 = r.static_unbalance();
+        if s0[0] != 0.0 || s0[1] != 0.0 {
+            let m = f.coords();
+            let nb = r.balls();
+            let mut x = vec![0.0; 2 * m];
+            x[m - nb..m].iter_mut().for_each(|v| *v = (-s0[1]).atan2(-s0[0]));
+            starts.push(x);
+        }
+        starts.extend(carried.iter().filter(|x| x.len() == 2 * f.coords()).cloned());
+        shoot_placements(field, f, starts, |a, b| same_placement(r, a, b), newton)
+    }
+
     /// The start of Newton's method at a speed without a neighbour's state, the one order of
     /// the speed scan ([`stability_over_speed`]) and the map ([`crate::rotor_map`]): `orbit`
     /// (under gravity across the axis with `n ≥ 3` balls in a plane, the orbit of least growth
@@ -670,8 +711,10 @@ pub struct SpeedPoint {
     /// With a family: which of its members are stable (all, some, none): `family`'s verdict.
     pub family_verdict: Option<FamilyVerdict>,
     /// Under gravity across the axis with `n ≥ 3` balls in a plane: the other periodic orbits
-    /// found at this speed from the groups' placements ([`OtherOrbit`]), the least growth rate
-    /// first; empty elsewhere.
+    /// found at this speed from the groups' placements ([`OtherOrbit`]); on a spatial rotor
+    /// whose balls cannot cancel its unbalance, the other partially balanced equilibria found
+    /// from the candidate starts ([`Rotor::partial_states`]: the one of least growth rate is
+    /// the one analysed here); the least growth rate first; empty elsewhere.
     pub other_orbits: Vec<OtherOrbit>,
 }
 
@@ -1289,12 +1332,24 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
     let newton = opts.newton.clone();
     // the orbits found from the groups' placements at each speed, kept for `other_orbits`
     let orbits_at: std::sync::Mutex<Vec<(f64, Vec<OtherOrbit>)>> = Default::default();
+    // the partially balanced states of the last speed solved, carried as starts to the next
+    let carried: std::sync::Mutex<Vec<Vec<f64>>> = Default::default();
     let guess = |f: &Field, omega: f64| {
         // no balanced orbit where no two groups give a plane's share: no start
         if f.gravity_circulation().is_some() {
             return None;
         }
-        let orbits = Rotor::gravity_orbits(f, &newton);
+        let mut orbits = Rotor::gravity_orbits(f, &newton);
+        if orbits.is_empty() {
+            // a spatial rotor's partially balanced equilibria from each candidate start, the
+            // least growth rate analysed, the others listed (Rotor::partial_states)
+            let mut kept = carried.lock().map(|c| c.clone()).unwrap_or_default();
+            orbits = Rotor::partial_states_from(f, &newton, &kept);
+            kept = orbits.iter().map(|(x, _)| x.clone()).collect();
+            if let Ok(mut c) = carried.lock() {
+                *c = kept;
+            }
+        }
         let start = orbits.first().map(|(x, _)| x.clone());
         // every orbit found: the one the scan settles on is told apart by its placement below
         if let Ok(mut kept) = orbits_at.lock() {

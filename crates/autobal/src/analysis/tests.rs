@@ -278,3 +278,40 @@ fn a_periodic_range_end_is_located_to_1e_9_in_few_trials() {
     assert!((ends[0] - root).abs() <= 1e-9 * root, "end {} against {root}", ends[0]);
     assert!(trials <= 10, "{trials} trial speeds");
 }
+
+/// `f₁ = x₁ + x₂²/2`, `f₂ = ε (x₂ − 1)`: the root `(−1/2, 1)` in closed form, one state held by
+/// an equation `ε = 1e-8` as strong as the other (a balancer's balls at low speed against its
+/// structure: the scaled rows measured ~1e-8 apart on audit 20's rnd/r19_00_sp.toml at 11.6
+/// rad/s).
+struct WeakRow;
+
+impl VectorField for WeakRow {
+    fn dim(&self) -> usize {
+        2
+    }
+    fn rhs(&self, _t: f64, x: &[f64], dx: &mut [f64]) {
+        dx[0] = x[0] + 0.5 * x[1] * x[1];
+        dx[1] = 1e-8 * (x[1] - 1.0);
+    }
+    fn jacobian(&self, _t: f64, x: &[f64], j: &mut [f64]) {
+        j.copy_from_slice(&[1.0, x[1], 0.0, 1e-8]);
+    }
+    fn period(&self) -> Option<f64> {
+        None
+    }
+}
+
+/// Newton from `(0, 0)` on [`WeakRow`]: the first step `d = (0, 1)` lands exactly on `x₂ = 1`,
+/// leaving `f₁ = 1/2` (its second-order term), which is 5e7 times the start's residual `ε`:
+/// backtracking on the residual alone accepts only `λ ≈ √(2ε) ≈ 1.4e-4` and crawls (main at
+/// e506c10: "iteration limit" at 50 iterations, residual ~1e-8), while the simplified Newton
+/// correction there is `(−1/2, 0)`, shorter than `3/4 |d|`: the natural monotonicity test takes
+/// the full step, and the next (exact, `f` being linear in `x₁`) ends on the root. The root to
+/// 1e-15 (the residual's tolerance 1e-12 over the weak row's 1e-8 gives `x₂` to 1e-4 at worst;
+/// the two exact steps land on it to rounding).
+#[test]
+fn newton_takes_the_full_step_where_a_weak_row_makes_the_residual_grow() {
+    let s = stationary(&WeakRow, &[0.0, 0.0], &NewtonOptions::default()).unwrap();
+    assert!(s.iterations <= 3, "{s:?}");
+    assert!((s.x[0] + 0.5).abs() <= 1e-15 && (s.x[1] - 1.0).abs() <= 1e-15, "{s:?}");
+}
