@@ -907,3 +907,32 @@ fn check_tolerance_reports_both_end_states() {
     assert!(err.contains("--check-tolerance:"), "{err}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn a_run_stopped_before_its_last_revolution_says_its_residual_is_the_end_state_s() {
+    // a step budget of 300 stops the linear example at t = 0.05 s (its run-up lasts seconds),
+    // long before the window records: the summary says its residual is no mean over a
+    // revolution (`averaged` false), and the table's line says so rather than "mean over the
+    // last revolution"; the planar run's JSON the same
+    let dir = std::env::temp_dir().join(format!("autobal-averaged-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let cfg = examples("linear_rotor_shaft.toml");
+    let out = dir.join("l");
+    let budget = ["--set", "integration.max_steps=300"];
+    let (code, text, err) = autobal(&[&["simulate", "--config", &cfg, "--out", out.to_str().unwrap()][..], &budget].concat());
+    assert_eq!(code, 2, "{err}");
+    assert!(text.contains("(at the end: no revolution recorded)") && !text.contains("mean over the last revolution"), "{text}");
+    let (code, text, err) = autobal(&[&["simulate", "--config", &cfg, "--format", "json", "--out", out.to_str().unwrap()][..], &budget].concat());
+    assert_eq!(code, 2, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(v["averaged"], false, "{v}");
+    let out = dir.join("p");
+    let (code, text, err) = autobal(&[&["simulate", "--format", "json", "--out", out.to_str().unwrap()][..], &budget].concat());
+    assert_eq!(code, 2, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(v["averaged"], false, "{v}");
+    // a completed run's residuals are means
+    let v = json(&["simulate", "--format", "json", "--out", out.to_str().unwrap(), "--set", "drive.omega0=200", "--set", "drive.t_end=10", "--dt", "0.01"]);
+    assert_eq!(v["averaged"], true, "{v}");
+    std::fs::remove_dir_all(&dir).ok();
+}

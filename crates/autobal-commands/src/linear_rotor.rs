@@ -840,6 +840,7 @@ pub fn simulate_json(cfg: &LinearRotorConfig, s: &RunSummary, red: &Option<Reduc
         "state_basis": if s.race_whirl.is_some() { "race_whirl" } else { "residual" },
         "race_whirl": s.race_whirl,
         "ball_drift": s.ball_drift,
+        "averaged": s.averaged,
         "settled": s.settled,
         "creep_rate": s.creep_rate,
         "warnings": s.warnings,
@@ -894,9 +895,10 @@ fn outcome_line(s: &RunSummary) -> String {
         None => String::new(),
     };
     let mut t = format!(
-        "final: {}; residual static unbalance {:.3e} of the unbalance (mean over the last revolution){basis}: {word}\n",
+        "final: {}; residual static unbalance {:.3e} of the unbalance ({}){basis}: {word}\n",
         speed_text(s.final_omega),
-        s.residual_unbalance
+        s.residual_unbalance,
+        autobal::simulation::window::basis_words(s.averaged)
     );
     // (a creep, or an end at no stationary state, has its own line among the warnings: its
     // balls' drift passed the test)
@@ -1223,6 +1225,7 @@ mod tests {
             residual_unbalance: 1.0,
             race_whirl: None,
             ball_drift: None,
+            averaged: false,
             settled: false,
             outcome: autobal::spatial::dynamics::RunOutcome::NotSettled,
             balanced: false,

@@ -440,7 +440,8 @@ pub fn summary_table(cfg: &PlanarConfig, s: &Summary, wall: f64) -> String {
     o
 }
 
-/// The run's outcome in words with its residual (mean over the last revolution): the spatial
+/// The run's outcome in words with its residual (mean over the last revolution, or the end
+/// state's where none was recorded, [`autobal::simulation::window::basis_words`]): the spatial
 /// run's words (`balanced`, `partially balanced`, `not balanced`, `not settled`), `balanced`
 /// with an eccentric race said as `stability` says it, semi-balanced; the residual a fraction
 /// of the unbalance for a centred race, of the race centre's offset without the balls for an
@@ -471,7 +472,7 @@ pub fn outcome_words(p: &autobal::planar::PlanarRotor, s: &Summary) -> String {
         RunOutcome::NotSettled => return "not settled".to_string(),
     };
     let of = if p.s2 > 0.0 { "of the race centre's offset without the balls" } else { "of the unbalance" };
-    format!("{what}; residual unbalance {:.3e} {of} (mean over the last revolution)", s.residual_unbalance)
+    format!("{what}; residual unbalance {:.3e} {of} ({})", s.residual_unbalance, autobal::simulation::window::basis_words(s.averaged))
 }
 
 /// The run's outcome in a few words for a table cell ([`outcome_words`]): `semi-balanced`

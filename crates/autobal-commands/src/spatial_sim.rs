@@ -184,7 +184,10 @@ pub fn summary_table(sim: &SpatialSim, s: &Summary, wall: f64) -> String {
     use autobal::spatial::dynamics::RunOutcome;
     let _ = writeln!(
         o,
-        "final: radius {:.6} {lu} at {}{}; residual unbalance {:.3e} of the unbalance{} (mean over the last revolution); {}",
+        "final: {} {:.6} {lu} at {}{}; residual unbalance {:.3e} of the unbalance{} ({}); {}",
+        // the RMS whirl about the mean position, or (no revolution recorded) the distance
+        // from the axis at the end, a sag included
+        if s.averaged { "radius" } else { "distance from the axis" },
         ls * s.final_amplitude,
         speed(s.final_omega),
         // the sag only where the summary has one (gravity across the axis, or settled): else
@@ -196,6 +199,7 @@ pub fn summary_table(sim: &SpatialSim, s: &Summary, wall: f64) -> String {
         },
         s.residual_unbalance,
         s.residual_couple.map_or(String::new(), |c| format!(", couple {c:.3e}")),
+        autobal::simulation::window::basis_words(s.averaged),
         match s.outcome {
             RunOutcome::Balanced => "balanced",
             RunOutcome::PartiallyBalanced => "partially balanced: the balls' capacity falls short, they rest together against the unbalance",

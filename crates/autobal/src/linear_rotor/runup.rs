@@ -501,8 +501,11 @@ pub struct RunSummary {
     pub final_radius: f64,
     /// Speed at the end (rad/s).
     pub final_omega: f64,
-    /// The residual static unbalance the balls leave, averaged over the run's last revolution
-    /// (the end state where it turned less), as `stability` measures it on the linear route
+    /// The residual static unbalance the balls leave, averaged by time over the run's last
+    /// revolution (from the dense output at 32 rotor angles a revolution,
+    /// [`crate::simulation::RevolutionWindow`]; the end state's where no revolution was
+    /// recorded: the run turned less than one, or stopped early, [`RunSummary::averaged`]), as
+    /// `stability` measures it on the linear route
     /// ([`crate::rotor_stability::Rotor::residual`]): `|s0 + Σ_j m_b R ⟨e^{iψ_j}⟩| / |s0|`,
     /// `s0 = Σ m e e^{i phase}` ([`super::partial::residual_static`]), over the balls' capacity
     /// `Σ n m_b R` where `|s0|` is at most [`crate::rotor_stability::NO_UNBALANCE`] of it. On a
@@ -515,7 +518,7 @@ pub struct RunSummary {
     /// speed, as `stability`'s `state_basis` `race_whirl`
     /// ([`super::partial::state_kind`]): the largest over the balancer planes of the race
     /// centre's mean position in axes turning with the rotor over the last revolution (the end
-    /// state's where the run turned less), `|⟨d_k⟩|`, over the plane's whirl with the balls
+    /// state's where no revolution was recorded, as for the residual), `|⟨d_k⟩|`, over the plane's whirl with the balls
     /// spread evenly (their resultant zero) at the final speed; a plane whose mean whirl is at
     /// most `1e-6 ℓ` ([`super::partial::length_scale`]) counts 0, as there. `None` without
     /// balls, where no balanced state exists (the word is then decided on
@@ -524,8 +527,13 @@ pub struct RunSummary {
     pub race_whirl: Option<f64>,
     /// The largest change of a ball's mean angle (its average over a revolution, relative to
     /// the rotor) between the last two revolutions (rad); `None` without balls or where the run
-    /// turned less than two revolutions.
+    /// recorded less than two revolutions (it turned less, or stopped early).
     pub ball_drift: Option<f64>,
+    /// Whether [`RunSummary::residual_unbalance`] and [`RunSummary::race_whirl`] are means
+    /// over the run's last revolution; `false` where no revolution was recorded (the run
+    /// turned less than one, or stopped early: Ctrl-C, a step or wall budget, before its last
+    /// revolutions) and they are the end state's.
+    pub averaged: bool,
     /// Whether the run ended settled: it completed, at a constant speed (the mean speed over
     /// the last revolution equal to that over the one before to `1e-6` of it: a run still
     /// speeding up is not settled), and the balls' mean angles drift between the last two
@@ -808,6 +816,7 @@ pub fn simulate_from(
         residual_unbalance: end.residual_unbalance,
         race_whirl: end.race_whirl,
         ball_drift: end.ball_drift,
+        averaged: end.averaged,
         settled: checks.settled,
         outcome: checks.outcome,
         balanced: checks.outcome == crate::spatial::dynamics::RunOutcome::Balanced,
@@ -843,6 +852,7 @@ struct End {
     residual_unbalance: f64,
     race_whirl: Option<f64>,
     ball_drift: Option<f64>,
+    averaged: bool,
     settled: bool,
     outcome: crate::spatial::dynamics::RunOutcome,
 }
@@ -942,7 +952,7 @@ fn ending(rotor: &LinearRotor, window: &RevolutionWindow, y: &[f64], phi: f64, o
         residual: if short { residual_unbalance } else { race_whirl.unwrap_or(f64::INFINITY) },
         residual_couple: None,
     });
-    End { residual_unbalance, race_whirl, ball_drift, settled, outcome }
+    End { residual_unbalance, race_whirl, ball_drift, averaged: last.is_some(), settled, outcome }
 }
 
 #[cfg(test)]

@@ -482,6 +482,10 @@ pub struct Summary {
     /// balance tolerance of `balanced` where the radius is smaller), so that a periodic orbit
     /// (supports that differ by direction) settles; in a shorter run of the rates at the end.
     pub settled: bool,
+    /// Whether `residual_unbalance` is a mean over the run's last revolution; `false` where no
+    /// revolution was recorded (the run turned less than one, or stopped early: Ctrl-C, a step
+    /// or wall budget, before its last revolutions) and it is the end state's.
+    pub averaged: bool,
     /// Integrator steps (accepted).
     pub steps: u64,
     /// Of which by the implicit method.
@@ -708,6 +712,7 @@ fn simulate_sampled(
         }
         _ => rates_small && radius_rate <= rate_limit,
     };
+    let averaged = last.is_some();
     let [ex, ey, bx, by] = match last {
         Some(m) => [m[0], m[1], m[2], m[3]],
         None => {
@@ -778,6 +783,7 @@ fn simulate_sampled(
         residual_unbalance,
         outcome,
         settled,
+        averaged,
         steps: out.stats.steps,
         implicit_steps: out.stats.implicit_steps,
         switches: out.stats.switches,

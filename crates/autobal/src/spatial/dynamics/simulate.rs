@@ -148,6 +148,11 @@ pub struct Summary {
     /// the rotor) between the last two revolutions (rad); `None` without balls or when the run
     /// recorded less than two revolutions.
     pub ball_drift: Option<f64>,
+    /// Whether `final_amplitude`, `residual_unbalance` and `residual_couple` are means over the
+    /// run's last revolution; `false` where no revolution was recorded (the run turned less
+    /// than one, or stopped early: Ctrl-C, a step or wall budget, before its last revolutions)
+    /// and they are the end state's.
+    pub averaged: bool,
     /// What the run ended in ([`RunOutcome`]): balanced, partially balanced, not balanced, not
     /// settled.
     pub outcome: RunOutcome,
@@ -661,6 +666,7 @@ fn summarise(eq: &Equations, t: f64, y: &[f64], peak: (f64, f64, f64), stats: St
         residual_unbalance,
         residual_couple,
         ball_drift,
+        averaged: mean_r.is_some(),
         outcome,
         balanced: outcome == RunOutcome::Balanced,
         steps: stats.steps,
