@@ -238,13 +238,17 @@ fn newton_from_a_slow_common_rotation_reaches_its_state_within_the_checks_limit(
         0.0,
     ];
     assert_eq!(x.len(), f.dim());
-    // the analyses' default stalls on the valley
-    assert!(stationary(&f, &x, &NewtonOptions::default()).is_err());
     let st = stationary(&f, &x, &NewtonOptions { max_iterations: END_STATE_ITERATIONS, ..NewtonOptions::default() }).unwrap();
     assert!(st.residual < 1e-12 && st.family_dimension == 0, "{st:?}");
+    // the analyses' default stalled on the valley (50 iterations, residual 3e-9) until session
+    // 20: Newton now also takes a step that passes Deuflhard's natural monotonicity test, which
+    // the curved slow valley does not defeat, and reaches the same state within its limit
+    let quick = stationary(&f, &x, &NewtonOptions::default()).unwrap();
+    let tau = std::f64::consts::TAU;
+    let gap = |a: f64, b: f64| ((a - b).rem_euclid(tau)).min(tau - (a - b).rem_euclid(tau));
+    assert!(quick.residual < 1e-12 && quick.x[16..18].iter().zip(&st.x[16..18]).all(|(a, b)| gap(*a, *b) < 1e-6), "{quick:?}");
     // the balls opposite (to 0.012 rad) and 0.6-0.7 rad from the end's: more than the check's 0.1
     let psi = &st.x[16..18];
-    let tau = std::f64::consts::TAU;
     assert!(((psi[1] - psi[0]).rem_euclid(tau) - PI).abs() < 0.02, "{psi:?}");
     assert!(psi.iter().zip(&x[16..18]).all(|(a, b)| ((a - b).rem_euclid(tau)).min(tau - (a - b).rem_euclid(tau)) > 0.5), "{psi:?}");
     let lin = stability(&f, &st).unwrap();
