@@ -734,10 +734,11 @@ pub struct OtherOrbit {
     pub verdict: Verdict,
 }
 
-/// The distinct periodic orbits shot by Newton from `guesses` on `f` (the model of `field`),
-/// each as its state and [`OtherOrbit`]; two placements reaching one orbit (`same` on their
-/// ball angles) count once; the least growth rate first. [`Rotor::gravity_orbits`] and
-/// [`Rotor::planar_split_orbits`].
+/// The distinct stationary states (periodic orbits or equilibria) Newton reaches from
+/// `guesses` on `f` (the model of `field`), each as its state and [`OtherOrbit`]; two starts
+/// reaching one state (`same` on their ball angles) count once; the least growth rate first.
+/// [`Rotor::gravity_orbits`], [`Rotor::planar_split_orbits`] and
+/// [`Rotor::partial_states_from`].
 fn shoot_placements<F: VectorField>(
     field: &Field,
     f: &F,
