@@ -141,6 +141,14 @@ fn what_is_analysed(g: &GeneralRotor, r: &RotorStability) -> String {
     format!("{model}{instead}, found as {how}")
 }
 
+/// The neutral band of the verdict, as the JSON's `neutral_tolerance` states it.
+pub fn neutral_tolerance(kind: Kind) -> String {
+    match kind {
+        Kind::Equilibrium => format!("|max Re λ| ≤ {} · max|λ| is neutral", fmt_num(autobal::analysis::NEUTRAL_TOLERANCE)),
+        Kind::PeriodicOrbit => format!("|max|μ| − 1| ≤ {} is neutral", fmt_num(autobal::analysis::FLOQUET_TOLERANCE)),
+    }
+}
+
 /// The JSON of the general route.
 pub fn json(g: &GeneralRotor, r: &RotorStability, omega_max: f64) -> Value {
     let ranges: Vec<Value> = r
@@ -168,10 +176,7 @@ pub fn json(g: &GeneralRotor, r: &RotorStability, omega_max: f64) -> Value {
         "family_dimension": r.family_dimension,
         "member_psi": r.member_psi,
         "family": r.family,
-        "neutral_tolerance": match r.kind {
-            Kind::Equilibrium => format!("|max Re λ| ≤ {} · max|λ| is neutral", fmt_num(autobal::analysis::NEUTRAL_TOLERANCE)),
-            Kind::PeriodicOrbit => format!("|max|μ| − 1| ≤ {} is neutral", fmt_num(autobal::analysis::FLOQUET_TOLERANCE)),
-        },
+        "neutral_tolerance": neutral_tolerance(r.kind),
         "points": r.points,
     })
 }
@@ -200,7 +205,12 @@ pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64, op: Option<&O
             if v.is_empty() {
                 "nowhere on the axis".to_string()
             } else {
-                v.iter().map(|st| format!("{} to {}", speed_text(g, st.from), speed_text(g, st.to))).collect::<Vec<_>>().join(", ")
+                // each end in the words of the one member's ranges ("(end of the axis)", a grid
+                // speed; audit 21's F8: the family's lines dropped them)
+                v.iter()
+                    .map(|st| format!("{} to {}", end_text(r, st, false, |w| speed_text(g, w)), end_text(r, st, true, |w| speed_text(g, w))))
+                    .collect::<Vec<_>>()
+                    .join(", ")
             }
         };
         s.push_str(&format!(
@@ -456,7 +466,13 @@ pub fn operating(g: &GeneralRotor, root: &Table, r: &RotorStability, control: &C
         return Ok(None);
     }
     let Some([lo, hi]) = autobal::config::spatial(root)?.analysis.operating_speed else { return Ok(None) };
-    let omega = [lo * g.omega0, hi * g.omega0];
+    operating_at(g, [lo * g.omega0, hi * g.omega0], r, control).map(Some)
+}
+
+/// The verdict at the operating speed `omega` (`[lo, hi]`, the rotor's units; a linear rotor's
+/// `linear_rotor.operating_speed` in rad/s): the stationary state solved at the speed itself, or
+/// at 9 speeds across a range, with the stable range of the scan `r` that holds it.
+pub fn operating_at(g: &GeneralRotor, omega: [f64; 2], r: &RotorStability, control: &Control) -> Result<Operating> {
     let speeds: Vec<f64> = if omega[0] == omega[1] { vec![omega[0]] } else { (0..9).map(|i| omega[0] + (omega[1] - omega[0]) * i as f64 / 8.0).collect() };
     let scan = autobal::rotor_stability::stability_over_speed_with(&g.rotor, &speeds, control)?;
     if let Some(why) = scan.stopped {
@@ -464,7 +480,7 @@ pub fn operating(g: &GeneralRotor, root: &Table, r: &RotorStability, control: &C
     }
     let scan = scan.value;
     let range = r.stable_ranges.iter().find(|st| st.from <= omega[0] && omega[1] <= st.to).cloned();
-    Ok(Some(Operating { omega, points: scan.points, range }))
+    Ok(Operating { omega, points: scan.points, range })
 }
 
 /// [`Operating`] as JSON: `omega` (`[lo, hi]`, the rotor's units), `stable` (every speed

@@ -111,7 +111,8 @@ pub fn load(path: &Path, sets: &[String]) -> Result<LinearRotorConfig> {
 
 /// The default top of the speed axis: `linear_rotor.omega_max`, else 1.5 × the highest
 /// undamped natural frequency (with the balls as rings) among the lowest four, at least 3 × the
-/// first.
+/// first, and at least [`autobal::config::OPERATING_SPEED_MARGIN`] × the top of
+/// `linear_rotor.operating_speed`.
 pub fn default_omega_max(cfg: &LinearRotorConfig) -> Result<f64> {
     if let Some(w) = cfg.omega_max {
         return Ok(w);
@@ -120,7 +121,9 @@ pub fn default_omega_max(cfg: &LinearRotorConfig) -> Result<f64> {
     let w = r.natural_frequencies(&[], true)?;
     let pos: Vec<f64> = w.into_iter().filter(|v| *v > 0.0).collect();
     let first = *pos.first().ok_or_else(|| anyhow!("linear_rotor: the rotor has no positive natural frequency; give linear_rotor.omega_max"))?;
-    Ok((1.5 * pos[pos.len().min(4) - 1]).max(3.0 * first))
+    let automatic = (1.5 * pos[pos.len().min(4) - 1]).max(3.0 * first);
+    // past the operating speed with margin, as a spatial config's automatic axes
+    Ok(cfg.operating_speed.map_or(automatic, |[_, hi]| automatic.max(autobal::config::OPERATING_SPEED_MARGIN * hi)))
 }
 
 /// The top of the speed axis of `stability` and `campbell` on a linear rotor: `--omega-max`
@@ -244,6 +247,7 @@ pub fn stability_json(cfg: &LinearRotorConfig, r: &RotorStability, red: &Option<
         "family": r.family,
         "has_unbalance": r.has_unbalance,
         "residual_scale": r.residual_scale,
+        "neutral_tolerance": crate::general::neutral_tolerance(r.kind),
         "points": r.points,
     }))
 }
@@ -306,6 +310,13 @@ pub fn stability_table(cfg: &LinearRotorConfig, r: &RotorStability, red: &Option
         ));
     }
     s.push_str(&crate::general::missing_lines(r, speed_text));
+    // the floor is the fastest natural frequency over 1000: a full finite-element model's
+    // fastest mode (~1e5 rad/s on a Timoshenko shaft) puts it above the critical speeds (audit
+    // 21's F1: a ROSS rotor's onset at 58 rad/s under a floor of 115.7), and the reduction
+    // removes those modes (the same rotor with `modes = 4`: the whole axis, 5 s)
+    if cfg.modes.is_none() && r.points.iter().any(|p| !p.analysed) {
+        s.push_str("the floor is set by the full model's fastest mode: a modal reduction (linear_rotor.modes = 4, --set linear_rotor.modes=4) keeps the slow modes and lowers it\n");
+    }
     Ok(s)
 }
 

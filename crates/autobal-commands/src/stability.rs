@@ -77,6 +77,9 @@ pub enum Output {
         red: Box<Option<Reduction>>,
         /// The top of the axis (rad/s).
         omega_max: f64,
+        /// The rotor analysed (the reduced one where the config reduces), as the general
+        /// route's, and the verdict at `linear_rotor.operating_speed`, if the config gives one.
+        op: Option<Box<(GeneralRotor, general::Operating)>>,
     },
 }
 
@@ -149,7 +152,15 @@ impl Args {
             bail!("{why}: the stability scan stopped after {} of {} speeds; nothing is printed", out.value.points.len(), speeds.len());
         }
         let r = out.value;
-        Ok(Output::LinearRotor { cfg: Box::new(cfg), r: Box::new(r), red: Box::new(red), omega_max })
+        // the verdict at the operating speed, as the general route's (first line, JSON `operating`)
+        let op = match cfg.operating_speed {
+            Some(w) => {
+                let o = general::operating_at(&g, w, &r, control)?;
+                Some(Box::new((g, o)))
+            }
+            None => None,
+        };
+        Ok(Output::LinearRotor { cfg: Box::new(cfg), r: Box::new(r), red: Box::new(red), omega_max, op })
     }
 }
 
@@ -168,14 +179,21 @@ impl command::Output for Output {
                 v["operating"] = op.as_deref().map_or(Value::Null, general::operating_json);
                 Ok(v)
             }
-            Output::LinearRotor { cfg, r, red, omega_max } => crate::linear_rotor::stability_json(cfg, r, red, *omega_max),
+            Output::LinearRotor { cfg, r, red, omega_max, op } => {
+                let mut v = crate::linear_rotor::stability_json(cfg, r, red, *omega_max)?;
+                v["operating"] = op.as_deref().map_or(Value::Null, |(_, o)| general::operating_json(o));
+                Ok(v)
+            }
         }
     }
     fn table(&self) -> Result<String> {
         match self {
             Output::Closed { cfg, c, balls } => Ok(linear::stability_table(cfg, c, *balls)),
             Output::General { g, r, omega_max, op } => Ok(general::table(g, r, *omega_max, op.as_deref())),
-            Output::LinearRotor { cfg, r, red, omega_max } => crate::linear_rotor::stability_table(cfg, r, red, *omega_max),
+            Output::LinearRotor { cfg, r, red, omega_max, op } => {
+                let first = op.as_deref().map_or(String::new(), |(g, o)| general::operating_line(g, r, o));
+                Ok(first + &crate::linear_rotor::stability_table(cfg, r, red, *omega_max)?)
+            }
         }
     }
     /// `stability_margin`: the margin over speed with the stable ranges shaded (a linear rotor
@@ -214,6 +232,55 @@ mod tests {
                 let e = format!("{:#}", args.run(&Control::none()).err().expect("out of range"));
                 assert_eq!(e, format!("--samples: must lie between 10 and 1000000, got {bad}"));
             }
+        }
+    }
+
+    /// A linear rotor's operating speed (`linear_rotor.operating_speed`, audit 20's N3: a
+    /// linear rotor had none): the verdict there first, as the general route's, in the unit
+    /// given (rpm read as `π/30` rad/s), agreeing with the scan's verdicts at the grid speeds
+    /// round it; NOT STABLE where the scan is unstable; the default axis reaching 1.25 times
+    /// its top; the JSON's `neutral_tolerance` as the general route's; a bad value named.
+    #[test]
+    fn a_linear_rotor_gives_the_verdict_at_its_operating_speed() {
+        use crate::command::Output as _;
+        use autobal::analysis::Verdict;
+        let shaft = include_str!("../../../examples/linear_rotor_shaft.toml");
+        // a linear rotor config reads its `--set`s its own way: the key written into the text
+        let run = |sets: &[&str]| {
+            let text = sets
+                .iter()
+                .fold(shaft.to_string(), |t, s| t.replacen("[linear_rotor]\n", &format!("[linear_rotor]\n{}\n", s.trim_start_matches("linear_rotor.")), 1));
+            Args { config: tables(&text, &[]), samples: Some(30), ..Default::default() }.run(&Control::none())
+        };
+        let Output::LinearRotor { r, op: None, .. } = run(&[]).unwrap() else { panic!("the linear route without an operating speed") };
+        // a grid speed inside a stable range with stable neighbours, and an unstable one
+        let pts = &r.points;
+        let k = (1..pts.len() - 1).find(|&k| (k - 1..=k + 1).all(|j| pts[j].verdict == Some(Verdict::Stable))).expect("a stable stretch");
+        let unstable = pts.iter().find(|p| p.verdict == Some(Verdict::Unstable)).expect("an unstable speed").omega;
+        // halfway between two stable grid speeds, given in rpm
+        let w = 0.5 * (pts[k].omega + pts[k + 1].omega);
+        let rpm = w * 30.0 / std::f64::consts::PI;
+        let out = run(&[&format!("linear_rotor.operating_speed=\"{rpm} rpm\"")]).unwrap();
+        let v = out.json().unwrap();
+        let got = v["operating"]["omega"][0].as_f64().unwrap();
+        assert!((got - w).abs() <= 1e-12 * w, "{got} vs {w}");
+        assert_eq!(v["operating"]["verdict"], "stable", "{}", v["operating"]);
+        assert_eq!(v["neutral_tolerance"], general::neutral_tolerance(autobal::analysis::Kind::Equilibrium));
+        let range = &v["operating"]["stable_range"];
+        assert!(range["from"].as_f64().unwrap() <= w && w <= range["to"].as_f64().unwrap(), "{range}");
+        let first = out.table().unwrap().lines().next().unwrap().to_string();
+        assert!(first.starts_with("operating speed ") && first.contains("STABLE (exact, eigenvalues) in the stable range "), "{first}");
+        // an unstable grid speed, as a number (rad/s)
+        let out = run(&[&format!("linear_rotor.operating_speed={unstable}")]).unwrap();
+        assert_eq!(out.json().unwrap()["operating"]["verdict"], "unstable");
+        assert!(out.table().unwrap().lines().next().unwrap().contains("NOT STABLE"), "{}", out.table().unwrap());
+        // far above the default axis: the axis reaches 1.25 times it
+        let top = 3.0 * pts.last().unwrap().omega;
+        let Output::LinearRotor { omega_max, .. } = run(&[&format!("linear_rotor.operating_speed={top}")]).unwrap() else { panic!() };
+        assert!((omega_max - 1.25 * top).abs() <= 1e-12 * top, "{omega_max} vs {top}");
+        for (bad, why) in [("\"-100 rpm\"", "linear_rotor.operating_speed"), ("\"fast\"", "linear_rotor.operating_speed")] {
+            let e = format!("{:#}", run(&[&format!("linear_rotor.operating_speed={bad}")]).err().expect("refused"));
+            assert!(e.starts_with(why) && !e.contains('\n'), "{e}");
         }
     }
 

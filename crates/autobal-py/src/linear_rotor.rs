@@ -31,7 +31,15 @@ impl PyLinearRotor {
             None => {
                 let empty = autobal::config::Table::new();
                 let integration = autobal::config::integration(&autobal::config::Section::of(&empty, "integration"), 10.0)?;
-                Ok(LinearRotorConfig { rotor: self.rotor.clone(), source: "matrices", omega_max: None, modes: None, drive: None, integration })
+                Ok(LinearRotorConfig {
+                    rotor: self.rotor.clone(),
+                    source: "matrices",
+                    omega_max: None,
+                    operating_speed: None,
+                    modes: None,
+                    drive: None,
+                    integration,
+                })
             }
         }
     }

@@ -131,6 +131,14 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
         s.p(super::html::esc(partial.trim_end()));
     }
     let what = if partial.is_empty() { "the balanced state" } else { "the stationary state (balanced, else partially balanced)" };
+    // the verdict at `linear_rotor.operating_speed` first, as `autobal stability` prints it
+    if let Some(w) = cfg.operating_speed {
+        let g = crate::general::GeneralRotor { rotor: autobal::rotor_stability::Rotor::Linear(model.clone()), si: true, omega0: 1.0 };
+        let op = crate::general::operating_at(&g, w, &st, &ctx.control)?;
+        let line = crate::general::operating_line(&g, &st, &op);
+        s.p(format!("<b>{}</b>", super::html::esc(line.trim_end())));
+        s.summary.push(line.trim_end().to_string());
+    }
     s.summary.push(format!("Linear rotor: {what} is stable {verdict}."));
     s.figure("linear_rotor_stability_margin", lr::margin_plot(&st, omega_max), "The balanced state's stability margin over speed (largest Re λ, or the largest Floquet exponent of a periodic orbit), the exactly stable ranges shaded: <code>autobal stability --svg</code>'s figure.");
 

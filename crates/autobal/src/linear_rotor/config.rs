@@ -78,6 +78,7 @@ const KEYS: &[(&str, &[&str])] = &[
             "rotary_inertia",
             "gyroscopic",
             "omega_max",
+            "operating_speed",
             "modes",
             "matrices",
             "polar_inertia",
@@ -124,6 +125,11 @@ pub struct LinearRotorConfig {
     pub source: &'static str,
     /// `linear_rotor.omega_max` (rad/s): the top of speed axes, if given.
     pub omega_max: Option<f64>,
+    /// `linear_rotor.operating_speed` (rad/s, `[lo, hi]`, equal for one speed): the speed or
+    /// range the machine runs at (`"1400 rpm"`, `"1200-1400 rpm"`, `"150 Hz"`, or a number in
+    /// rad/s), as `analysis.operating_speed` of a spatial config: `stability` and the report
+    /// give the verdict there first, and the default speed axis reaches past it.
+    pub operating_speed: Option<[f64; 2]>,
     /// `linear_rotor.modes`: reduce to this many interior mode pairs ([`super::reduce`]);
     /// `None` (absent or 0): the full model.
     pub modes: Option<usize>,
@@ -679,13 +685,16 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
     for (i, br) in items(lr, "bearings")?.iter().enumerate() {
         let node = br.req_usize("node")?;
         if node >= rotor.nodes {
-            return Err(Error::invalid(br.field("node"), format!("{node} is not a node (0..{})", rotor.nodes)));
+            return Err(Error::invalid(br.field("node"), format!("{node} is not a node (the nodes are 0 to {})", rotor.nodes.saturating_sub(1))));
         }
         // the node at the bearing's other side (a support mass), else ground
         let link = br.usize("link")?;
         if let Some(l) = link {
             if l >= rotor.nodes || l == node {
-                return Err(Error::invalid(br.field("link"), format!("{l} is not a node other than the bearing's {node} (0..{})", rotor.nodes)));
+                return Err(Error::invalid(
+                    br.field("link"),
+                    format!("{l} is not a node other than the bearing's {node} (the nodes are 0 to {})", rotor.nodes.saturating_sub(1)),
+                ));
             }
         }
         match br.array("speeds")? {
@@ -916,6 +925,8 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
             ));
         }
     }
+    // a number is rad/s (as omega_max), a string a speed with its unit; the bounds of omega_max
+    let operating_speed = top.t.get("operating_speed").map(|v| crate::config::analysis_speed("linear_rotor.operating_speed", v, Some(1.0))).transpose()?;
     // 0: the full model (so that `--set linear_rotor.modes=0` undoes a config's reduction)
     let modes = top.usize("modes")?.filter(|m| *m > 0);
     // as the sweep path `linear_rotor.modes` (`modes = 99999999999` was taken; more pairs
@@ -938,7 +949,7 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
     let drive = if d.table.is_some() { Some(drive(&d)?) } else { None };
     let t_end = drive.as_ref().map_or(10.0, |d| d.1);
     let integration = integration(&Section::of(root, "integration"), t_end)?;
-    Ok(LinearRotorConfig { rotor, source, omega_max, modes, drive, integration })
+    Ok(LinearRotorConfig { rotor, source, omega_max, operating_speed, modes, drive, integration })
 }
 
 /// The keys a linear rotor config's `[drive]` and `[integration]` take ([`crate::config::drive`],

@@ -977,7 +977,7 @@ impl LinearRotor {
         for (i, u) in self.unbalances.iter().enumerate() {
             let f = |s: &str| format!("linear_rotor.unbalances[{i}].{s}");
             if u.node >= self.nodes {
-                return Err(Error::invalid(f("node"), format!("{} is not a node (0..{})", u.node, self.nodes)));
+                return Err(Error::invalid(f("node"), format!("{} is not a node (the nodes are 0 to {})", u.node, self.nodes.saturating_sub(1))));
             }
             finite(&f("me"), u.me)?;
             finite(&f("phase"), u.phase)?;
@@ -989,11 +989,14 @@ impl LinearRotor {
         for (i, b) in self.speed_bearings.iter().enumerate() {
             let f = |s: &str| format!("linear_rotor.bearings[{i}].{s}");
             if b.node >= self.nodes {
-                return Err(Error::invalid(f("node"), format!("{} is not a node (0..{})", b.node, self.nodes)));
+                return Err(Error::invalid(f("node"), format!("{} is not a node (the nodes are 0 to {})", b.node, self.nodes.saturating_sub(1))));
             }
             if let Some(l) = b.link {
                 if l >= self.nodes || l == b.node {
-                    return Err(Error::invalid(f("link"), format!("{l} is not a node other than the bearing's {} (0..{})", b.node, self.nodes)));
+                    return Err(Error::invalid(
+                        f("link"),
+                        format!("{l} is not a node other than the bearing's {} (the nodes are 0 to {})", b.node, self.nodes.saturating_sub(1)),
+                    ));
                 }
             }
             if b.speeds.is_empty() {
@@ -1022,7 +1025,7 @@ impl LinearRotor {
         for (i, b) in self.balancers.iter().enumerate() {
             let f = |s: &str| format!("linear_rotor.balancers[{i}].{s}");
             if b.node >= self.nodes {
-                return Err(Error::invalid(f("node"), format!("{} is not a node (0..{})", b.node, self.nodes)));
+                return Err(Error::invalid(f("node"), format!("{} is not a node (the nodes are 0 to {})", b.node, self.nodes.saturating_sub(1))));
             }
             positive(&f("radius"), b.radius)?;
             positive(&f("ball_mass"), b.ball_mass)?;

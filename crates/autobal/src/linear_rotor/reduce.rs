@@ -240,7 +240,7 @@ pub fn reduce(rotor: &LinearRotor, mode_pairs: usize, extra_boundary: &[usize]) 
     boundary.sort_unstable();
     boundary.dedup();
     if let Some(&k) = boundary.iter().find(|k| **k >= rotor.nodes) {
-        return Err(Error::invalid("linear_rotor.reduce.boundary", format!("{k} is not a node (0..{})", rotor.nodes)));
+        return Err(Error::invalid("linear_rotor.reduce.boundary", format!("{k} is not a node (the nodes are 0 to {})", rotor.nodes.saturating_sub(1))));
     }
     let bd: Vec<usize> = boundary
         .iter()

@@ -227,7 +227,7 @@ impl ShaftBuilder {
         for (i, d) in self.disks.iter().enumerate() {
             let f = |s: &str| format!("shaft.disks[{i}].{s}");
             if d.node >= nodes {
-                return Err(Error::invalid(f("node"), format!("{} is not a node (0..{nodes})", d.node)));
+                return Err(Error::invalid(f("node"), format!("{} is not a node (the nodes are 0 to {})", d.node, nodes.saturating_sub(1))));
             }
             non_negative(&f("mass"), d.mass)?;
             non_negative(&f("id"), d.id)?;
@@ -243,7 +243,7 @@ impl ShaftBuilder {
         for (i, br) in self.bearings.iter().enumerate() {
             let f = |s: &str| format!("shaft.bearings[{i}].{s}");
             if br.node >= nodes {
-                return Err(Error::invalid(f("node"), format!("{} is not a node (0..{nodes})", br.node)));
+                return Err(Error::invalid(f("node"), format!("{} is not a node (the nodes are 0 to {})", br.node, nodes.saturating_sub(1))));
             }
             non_negative(&f("k"), br.k)?;
             non_negative(&f("c"), br.c)?;
