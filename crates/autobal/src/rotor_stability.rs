@@ -234,6 +234,21 @@ impl Rotor {
     /// followed to the next where they miss it (rnd/r19_00_sp.toml: the stable state at
     /// 440.9-568.5 rad/s is reached from the candidates at 32 of 38 grid speeds).
     pub(crate) fn partial_states_from(field: &Field, newton: &NewtonOptions, carried: &[Vec<f64>]) -> Vec<(Vec<f64>, OtherOrbit)> {
+        if let Field::Linear(f) = field {
+            // no balanced state (a plane's capacity short of its share): the same starts from
+            // the model's shares (linear_rotor::partial::share_guesses: each plane on its
+            // share as far as it reaches, each bunched at it, every ball against the static
+            // unbalance), the linear route's own start (the balls bunched where the race
+            // pulls them) and the carried states
+            if f.period().is_some() || f.balanced_guess().is_some() {
+                return vec![];
+            }
+            let mut starts = crate::linear_rotor::partial::share_guesses(f);
+            starts.extend(crate::linear_rotor::partial::bunched_guesses(f));
+            starts.extend(carried.iter().filter(|x| x.len() == 2 * f.coords()).cloned());
+            let sizes: Vec<usize> = f.rotor().balancers.iter().map(|b| b.balls).collect();
+            return shoot_placements(field, f, starts, |a, b| same_in_planes(&sizes, a, b), newton);
+        }
         let Field::Spatial(f) = field else { return vec![] };
         if f.period().is_some() || spatial_can_balance(f) {
             return vec![];
@@ -249,6 +264,18 @@ impl Rotor {
             let mut x = vec![0.0; 2 * m];
             x[m - nb..m].iter_mut().for_each(|v| *v = (-s0[1]).atan2(-s0[0]));
             starts.push(x);
+        }
+        // every ball bunched where the race pulls them, each root of d(ψ) × e^{iψ} = 0 on the
+        // rotor's linearisation (LinearRotor::from_spatial: the linear route's starts,
+        // linear_rotor::partial::bunched_guesses), the rotor on the axis at rest
+        if let Some(lf) = LinearRotor::from_spatial(r).ok().and_then(|l| LinearRotorField::new(&l, f.omega(), Frame::Rotating).ok()) {
+            let n = lf.rotor().dofs();
+            for g in crate::linear_rotor::partial::bunched_guesses(&lf) {
+                let m = f.coords();
+                let mut x = vec![0.0; 2 * m];
+                x[m - r.balls()..m].iter_mut().for_each(|v| *v = g[n]);
+                starts.push(x);
+            }
         }
         starts.extend(carried.iter().filter(|x| x.len() == 2 * f.coords()).cloned());
         shoot_placements(field, f, starts, |a, b| same_placement(r, a, b), newton)
@@ -781,12 +808,18 @@ fn same_angles(a: &[f64], b: &[f64]) -> bool {
 /// plane's angles matched one to one within `1e-6` rad round the circle (the balls of a plane
 /// are alike, so a placement and its relabelling are the same orbit).
 fn same_placement(rotor: &SpatialRotor, a: &[f64], b: &[f64]) -> bool {
+    let sizes: Vec<usize> = rotor.planes.iter().map(|p| p.n).collect();
+    same_in_planes(&sizes, a, b)
+}
+
+/// [`same_placement`] with the planes' ball counts `sizes` (all planes in order).
+fn same_in_planes(sizes: &[usize], a: &[f64], b: &[f64]) -> bool {
     if a.len() != b.len() {
         return false;
     }
     let mut start = 0;
-    rotor.planes.iter().all(|plane| {
-        let range = start..(start + plane.n).min(a.len());
+    sizes.iter().all(|&n| {
+        let range = start..(start + n).min(a.len());
         start = range.end;
         // each ball of `a` matched to an unused one of `b` within 1e-6 rad round the circle
         // (not sorted lists: 1e-9 and 2π − 1e-9 are one angle)
@@ -1402,6 +1435,10 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
                 // the placements' other orbits at this grid speed, less the one analysed
                 other_orbits: match (rotor, orbits_at.iter().find(|(w, _)| *w == p.omega)) {
                     (Rotor::Spatial(r), Some((_, found))) => found.iter().filter(|o| !same_placement(r, &o.member_psi, &psi)).cloned().collect(),
+                    (Rotor::Linear(r), Some((_, found))) => {
+                        let sizes: Vec<usize> = r.balancers.iter().map(|b| b.balls).collect();
+                        found.iter().filter(|o| !same_in_planes(&sizes, &o.member_psi, &psi)).cloned().collect()
+                    }
                     _ => vec![],
                 },
                 member_psi: psi,
