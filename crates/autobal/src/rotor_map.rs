@@ -19,8 +19,10 @@
 //! At each cell the stationary state is found as in [`crate::rotor_stability`]: Newton's method
 //! on the equations in turning axes ([`crate::analysis::stationary`]: an equilibrium, or the
 //! periodic orbit of the revolution by shooting). An equilibrium starts from the closed-form
-//! balanced state ([`Rotor::guess`]; it names the branch), and where that fails from the state
-//! of the cell before it in the row (continuation). A periodic orbit starts from the neighbouring
+//! balanced state ([`Rotor::guess`]; it names the branch), where no balanced state exists from
+//! the partially balanced state of least growth rate over the speed scan's candidate starts and
+//! the cell before it ([`Rotor::partial_states`], as `stability`), and where that fails from the
+//! state of the cell before it in the row (continuation). A periodic orbit starts from the neighbouring
 //! cell's converged orbit, with that orbit's monodromy matrix as the shooting's starting matrix
 //! (one integration of the variational equations per cell instead of two), then from the closed
 //! form. A cell left without a state is tried once more from its right-hand neighbour's state, so

@@ -213,18 +213,27 @@ impl Rotor {
         shoot_placements(field, f, f.split_guesses(), same_angles, newton)
     }
 
-    /// The candidate **partially balanced equilibria** of a spatial rotor whose balls cannot
-    /// cancel its unbalance (no balanced state: a plane's capacity short, or one plane against
-    /// a couple; an equilibrium, not a periodic orbit): Newton from each of [`Rotor::guess`]
-    /// (where it has a placement), [`Rotor::placed_guess`] (a short plane bunched towards its share, the other on its arc),
-    /// [`Rotor::bunched_guess`] (each plane's balls bunched against its own share) and every
-    /// ball bunched against the static unbalance (as the linear rotor's start,
-    /// [`crate::linear_rotor::partial::bunched_guess`]), each distinct state found (ball angles
-    /// matched per plane to 1e-6 rad) with its stability, the least growth rate first. Which
+    /// The candidate **partially balanced equilibria** of a spatial or linear rotor whose balls
+    /// cannot cancel its unbalance (no balanced state: a plane's capacity short, or one plane
+    /// against a couple; an equilibrium, not a periodic orbit): Newton from each of
+    /// [`Rotor::guess`] (where it has a placement), [`Rotor::placed_guess`] (a short plane
+    /// bunched towards its share, the other on its arc), [`Rotor::bunched_guess`] (each plane's
+    /// balls bunched against its own share), every ball bunched against the static unbalance,
+    /// and every ball bunched where the race pulls them (each root of `d(ψ) × e^{iψ} = 0` on the
+    /// rotor's linearisation [`LinearRotor::from_spatial`],
+    /// [`crate::linear_rotor::partial::bunched_guesses`]), the rotor on the axis at rest; a
+    /// linear rotor from the same placements by its own model
+    /// ([`crate::linear_rotor::partial::share_guesses`], the shares from its balancing system,
+    /// and [`crate::linear_rotor::partial::bunched_guesses`]), so the two routes shoot from the
+    /// same placements (session 21: the linear route took one start and analysed another state
+    /// than the spatial scan on rnd/r19_00_sp.toml, unstable at 81-249 rad/s where the spatial
+    /// one is stable). Each distinct state found (ball angles matched per plane to 1e-6 rad)
+    /// with its stability, the least growth rate first. Which
     /// start Newton took decided the state analysed until session 20 (audit 20's F11: on
     /// rnd/r19_00_sp.toml at 435.1 rad/s each plane's share, opposite each other, gives a state
     /// unstable at +7.88 1/s, every ball against the static unbalance a stable one at −0.75
-    /// 1/s that a run settles on). Empty for any other rotor or state.
+    /// 1/s that a run settles on). Empty for the planar rotor, a periodic orbit, or where a
+    /// balanced state exists.
     pub fn partial_states(field: &Field, newton: &NewtonOptions) -> Vec<(Vec<f64>, OtherOrbit)> {
         Rotor::partial_states_from(field, newton, &[])
     }
@@ -738,8 +747,8 @@ pub struct SpeedPoint {
     /// With a family: which of its members are stable (all, some, none): `family`'s verdict.
     pub family_verdict: Option<FamilyVerdict>,
     /// Under gravity across the axis with `n ≥ 3` balls in a plane: the other periodic orbits
-    /// found at this speed from the groups' placements ([`OtherOrbit`]); on a spatial rotor
-    /// whose balls cannot cancel its unbalance, the other partially balanced equilibria found
+    /// found at this speed from the groups' placements ([`OtherOrbit`]); on a spatial or linear
+    /// rotor whose balls cannot cancel its unbalance, the other partially balanced equilibria found
     /// from the candidate starts ([`Rotor::partial_states`]: the one of least growth rate is
     /// the one analysed here); the least growth rate first; empty elsewhere.
     pub other_orbits: Vec<OtherOrbit>,
