@@ -19,8 +19,10 @@
 //! At each cell the stationary state is found as in [`crate::rotor_stability`]: Newton's method
 //! on the equations in turning axes ([`crate::analysis::stationary`]: an equilibrium, or the
 //! periodic orbit of the revolution by shooting). An equilibrium starts from the closed-form
-//! balanced state ([`Rotor::guess`]; it names the branch), and where that fails from the state
-//! of the cell before it in the row (continuation). A periodic orbit starts from the neighbouring
+//! balanced state ([`Rotor::guess`]; it names the branch), where no balanced state exists from
+//! the partially balanced state of least growth rate over the speed scan's candidate starts and
+//! the cell before it ([`Rotor::partial_states`], as `stability`), and where that fails from the
+//! state of the cell before it in the row (continuation). A periodic orbit starts from the neighbouring
 //! cell's converged orbit, with that orbit's monodromy matrix as the shooting's starting matrix
 //! (one integration of the variational equations per cell instead of two), then from the closed
 //! form. A cell left without a state is tried once more from its right-hand neighbour's state, so
@@ -290,11 +292,23 @@ fn solve(c: &CellRotor, w: f64, previous: Option<&StationaryState>, closed_form:
         opts.max_iterations = 20;
         opts.rtol = 1e-10;
     }
+    let near = previous.map(|p| p.x.as_slice());
     // the speed scan's start (Rotor::first_start: under gravity with n >= 3 balls in a plane
     // the orbit with the balls in two groups, the closed form, each plane's share, the balls
-    // bunched): built only when tried
-    let closed = || if closed_form { Rotor::first_start(&field, Rotor::gravity_orbit_start(&field, &opts)) } else { None };
-    let near = previous.map(|p| p.x.as_slice());
+    // bunched): built only when tried. Where the balls cannot cancel the unbalance, the
+    // partially balanced state of least growth rate among the candidate starts and the
+    // neighbour's state, as the speed scan analyses (Rotor::partial_states; from one start
+    // until session 21 the cell could analyse another state than `stability`)
+    let closed = || {
+        if !closed_form {
+            return None;
+        }
+        let orbit = Rotor::gravity_orbit_start(&field, &opts).or_else(|| {
+            let carried: Vec<Vec<f64>> = near.map(|x| vec![x.to_vec()]).unwrap_or_default();
+            Rotor::partial_states_from(&field, &opts, &carried).into_iter().next().map(|(x, _)| x)
+        });
+        Rotor::first_start(&field, orbit)
+    };
     // Under gravity across the axis with n >= 3 balls in a plane, orbits with the balls in
     // two groups coexist (one per placement, SpatialField::split_guesses): the speed scan takes
     // the one of least growth rate at every speed (Rotor::gravity_orbit_start first, its

@@ -213,18 +213,27 @@ impl Rotor {
         shoot_placements(field, f, f.split_guesses(), same_angles, newton)
     }
 
-    /// The candidate **partially balanced equilibria** of a spatial rotor whose balls cannot
-    /// cancel its unbalance (no balanced state: a plane's capacity short, or one plane against
-    /// a couple; an equilibrium, not a periodic orbit): Newton from each of [`Rotor::guess`]
-    /// (where it has a placement), [`Rotor::placed_guess`] (a short plane bunched towards its share, the other on its arc),
-    /// [`Rotor::bunched_guess`] (each plane's balls bunched against its own share) and every
-    /// ball bunched against the static unbalance (as the linear rotor's start,
-    /// [`crate::linear_rotor::partial::bunched_guess`]), each distinct state found (ball angles
-    /// matched per plane to 1e-6 rad) with its stability, the least growth rate first. Which
+    /// The candidate **partially balanced equilibria** of a spatial or linear rotor whose balls
+    /// cannot cancel its unbalance (no balanced state: a plane's capacity short, or one plane
+    /// against a couple; an equilibrium, not a periodic orbit): Newton from each of
+    /// [`Rotor::guess`] (where it has a placement), [`Rotor::placed_guess`] (a short plane
+    /// bunched towards its share, the other on its arc), [`Rotor::bunched_guess`] (each plane's
+    /// balls bunched against its own share), every ball bunched against the static unbalance,
+    /// and every ball bunched where the race pulls them (each root of `d(ψ) × e^{iψ} = 0` on the
+    /// rotor's linearisation [`LinearRotor::from_spatial`],
+    /// [`crate::linear_rotor::partial::bunched_guesses`]), the rotor on the axis at rest; a
+    /// linear rotor from the same placements by its own model
+    /// ([`crate::linear_rotor::partial::share_guesses`], the shares from its balancing system,
+    /// and [`crate::linear_rotor::partial::bunched_guesses`]), so the two routes shoot from the
+    /// same placements (session 21: the linear route took one start and analysed another state
+    /// than the spatial scan on rnd/r19_00_sp.toml, unstable at 81-249 rad/s where the spatial
+    /// one is stable). Each distinct state found (ball angles matched per plane to 1e-6 rad)
+    /// with its stability, the least growth rate first. Which
     /// start Newton took decided the state analysed until session 20 (audit 20's F11: on
     /// rnd/r19_00_sp.toml at 435.1 rad/s each plane's share, opposite each other, gives a state
     /// unstable at +7.88 1/s, every ball against the static unbalance a stable one at −0.75
-    /// 1/s that a run settles on). Empty for any other rotor or state.
+    /// 1/s that a run settles on). Empty for the planar rotor, a periodic orbit, or where a
+    /// balanced state exists.
     pub fn partial_states(field: &Field, newton: &NewtonOptions) -> Vec<(Vec<f64>, OtherOrbit)> {
         Rotor::partial_states_from(field, newton, &[])
     }
@@ -234,6 +243,21 @@ impl Rotor {
     /// followed to the next where they miss it (rnd/r19_00_sp.toml: the stable state at
     /// 440.9-568.5 rad/s is reached from the candidates at 32 of 38 grid speeds).
     pub(crate) fn partial_states_from(field: &Field, newton: &NewtonOptions, carried: &[Vec<f64>]) -> Vec<(Vec<f64>, OtherOrbit)> {
+        if let Field::Linear(f) = field {
+            // no balanced state (a plane's capacity short of its share): the same starts from
+            // the model's shares (linear_rotor::partial::share_guesses: each plane on its
+            // share as far as it reaches, each bunched at it, every ball against the static
+            // unbalance), the linear route's own start (the balls bunched where the race
+            // pulls them) and the carried states
+            if f.period().is_some() || f.balanced_guess().is_some() {
+                return vec![];
+            }
+            let mut starts = crate::linear_rotor::partial::share_guesses(f);
+            starts.extend(crate::linear_rotor::partial::bunched_guesses(f));
+            starts.extend(carried.iter().filter(|x| x.len() == 2 * f.coords()).cloned());
+            let sizes: Vec<usize> = f.rotor().balancers.iter().map(|b| b.balls).collect();
+            return shoot_placements(field, f, starts, |a, b| same_in_planes(&sizes, a, b), newton);
+        }
         let Field::Spatial(f) = field else { return vec![] };
         if f.period().is_some() || spatial_can_balance(f) {
             return vec![];
@@ -249,6 +273,18 @@ impl Rotor {
             let mut x = vec![0.0; 2 * m];
             x[m - nb..m].iter_mut().for_each(|v| *v = (-s0[1]).atan2(-s0[0]));
             starts.push(x);
+        }
+        // every ball bunched where the race pulls them, each root of d(ψ) × e^{iψ} = 0 on the
+        // rotor's linearisation (LinearRotor::from_spatial: the linear route's starts,
+        // linear_rotor::partial::bunched_guesses), the rotor on the axis at rest
+        if let Some(lf) = LinearRotor::from_spatial(r).ok().and_then(|l| LinearRotorField::new(&l, f.omega(), Frame::Rotating).ok()) {
+            let n = lf.rotor().dofs();
+            for g in crate::linear_rotor::partial::bunched_guesses(&lf) {
+                let m = f.coords();
+                let mut x = vec![0.0; 2 * m];
+                x[m - r.balls()..m].iter_mut().for_each(|v| *v = g[n]);
+                starts.push(x);
+            }
         }
         starts.extend(carried.iter().filter(|x| x.len() == 2 * f.coords()).cloned());
         shoot_placements(field, f, starts, |a, b| same_placement(r, a, b), newton)
@@ -711,8 +747,8 @@ pub struct SpeedPoint {
     /// With a family: which of its members are stable (all, some, none): `family`'s verdict.
     pub family_verdict: Option<FamilyVerdict>,
     /// Under gravity across the axis with `n ≥ 3` balls in a plane: the other periodic orbits
-    /// found at this speed from the groups' placements ([`OtherOrbit`]); on a spatial rotor
-    /// whose balls cannot cancel its unbalance, the other partially balanced equilibria found
+    /// found at this speed from the groups' placements ([`OtherOrbit`]); on a spatial or linear
+    /// rotor whose balls cannot cancel its unbalance, the other partially balanced equilibria found
     /// from the candidate starts ([`Rotor::partial_states`]: the one of least growth rate is
     /// the one analysed here); the least growth rate first; empty elsewhere.
     pub other_orbits: Vec<OtherOrbit>,
@@ -781,12 +817,18 @@ fn same_angles(a: &[f64], b: &[f64]) -> bool {
 /// plane's angles matched one to one within `1e-6` rad round the circle (the balls of a plane
 /// are alike, so a placement and its relabelling are the same orbit).
 fn same_placement(rotor: &SpatialRotor, a: &[f64], b: &[f64]) -> bool {
+    let sizes: Vec<usize> = rotor.planes.iter().map(|p| p.n).collect();
+    same_in_planes(&sizes, a, b)
+}
+
+/// [`same_placement`] with the planes' ball counts `sizes` (all planes in order).
+fn same_in_planes(sizes: &[usize], a: &[f64], b: &[f64]) -> bool {
     if a.len() != b.len() {
         return false;
     }
     let mut start = 0;
-    rotor.planes.iter().all(|plane| {
-        let range = start..(start + plane.n).min(a.len());
+    sizes.iter().all(|&n| {
+        let range = start..(start + n).min(a.len());
         start = range.end;
         // each ball of `a` matched to an unused one of `b` within 1e-6 rad round the circle
         // (not sorted lists: 1e-9 and 2π − 1e-9 are one angle)
@@ -1402,6 +1444,10 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
                 // the placements' other orbits at this grid speed, less the one analysed
                 other_orbits: match (rotor, orbits_at.iter().find(|(w, _)| *w == p.omega)) {
                     (Rotor::Spatial(r), Some((_, found))) => found.iter().filter(|o| !same_placement(r, &o.member_psi, &psi)).cloned().collect(),
+                    (Rotor::Linear(r), Some((_, found))) => {
+                        let sizes: Vec<usize> = r.balancers.iter().map(|b| b.balls).collect();
+                        found.iter().filter(|o| !same_in_planes(&sizes, &o.member_psi, &psi)).cloned().collect()
+                    }
                     _ => vec![],
                 },
                 member_psi: psi,

@@ -720,6 +720,49 @@ impl LinearRotorField {
     /// [`LinearRotorField::balanced_guess`]: the race centres on the axis, `P ≥ 1` planes.
     fn balanced_guess_planes(&self) -> Option<Vec<f64>> {
         let r = &self.rotor;
+        let (lu, f, shares) = self.shares_planes()?;
+        let mut psi = vec![];
+        for (b, &need) in r.balancers.iter().zip(&shares) {
+            psi.extend(ball_angles(b.balls, b.ball_mass, b.radius, need)?);
+        }
+        self.state_with_balls(f, &psi, Some(&lu))
+    }
+
+    /// Each balancer plane's **share**: the resultant `m_b R Σ e^{iψ_j}` (kg·m, complex,
+    /// turning axes) its balls must supply for every race centre to rest on the axis, from the
+    /// `2P × 2P` system of [`LinearRotorField::balanced_guess`] (one plane with every unbalance
+    /// in it: `−Σ m e e^{i phase}` exactly, as there), whether or not the plane's capacity
+    /// `n m_b R` reaches it. `None` at `Ω = 0`, without a balancer, or where the system is
+    /// singular. The partially balanced state's starts
+    /// ([`crate::linear_rotor::partial::share_guesses`]).
+    pub fn plane_shares(&self) -> Option<Vec<C>> {
+        let r = &self.rotor;
+        if r.balancers.is_empty() || self.omega == 0.0 {
+            return None;
+        }
+        let b = r.balancers[0];
+        if r.balancers.len() > 1 || r.unbalances.iter().any(|u| u.node != b.node || u.offset != b.offset) {
+            return self.shares_planes().map(|(_, _, s)| s);
+        }
+        let res: C = r.unbalances.iter().map(|u| C::from_polar(u.me, u.phase)).sum();
+        Some(vec![-res + C::new(0.0, 0.0)])
+    }
+
+    /// The structure's stationary state (turning axes, the balls at rest at `psi`, all planes
+    /// in order) from `A p = f_r + Σ_q G_q m_b R Ω² Σ_j e^{iψ_j}`: the linear stationary
+    /// equations at fixed balls ([`LinearRotorField::balanced_guess`]'s), a start for Newton's
+    /// method where the balls are not balanced. `None` where `A` is singular.
+    pub fn state_at_balls(&self, psi: &[f64]) -> Option<Vec<f64>> {
+        if psi.len() != self.rotor.total_balls() {
+            return None;
+        }
+        self.state_with_balls(self.unbalance_forces(), psi, None)
+    }
+
+    /// The factored `A`, the unbalances' forces and each plane's share (the resultant
+    /// `m_b R Σ e^{iψ}`, kg·m) of the `2P × 2P` system ([`LinearRotorField::balanced_guess`]).
+    fn shares_planes(&self) -> Option<(Lu, Vec<f64>, Vec<C>)> {
+        let r = &self.rotor;
         let n = r.dofs();
         let w = self.omega;
         let np = r.balancers.len();
@@ -765,13 +808,9 @@ impl LinearRotorField {
         if rhs.iter().any(|v| !v.is_finite()) {
             return None;
         }
-        let mut psi = vec![];
-        for (q, b) in r.balancers.iter().enumerate() {
-            // the plane's resultant m_b R Σ e^{iψ} = b_q / Ω²
-            let need = C::new(rhs[2 * q], rhs[2 * q + 1]) / (w * w);
-            psi.extend(ball_angles(b.balls, b.ball_mass, b.radius, need)?);
-        }
-        self.state_with_balls(f, &psi, Some(&lu))
+        // each plane's resultant m_b R Σ e^{iψ} = b_q / Ω²
+        let shares = (0..np).map(|q| C::new(rhs[2 * q], rhs[2 * q + 1]) / (w * w)).collect();
+        Some((lu, f, shares))
     }
 
     /// The unbalances' forces `Ω² m e e^{i phase}` in turning axes at `t = 0` with the moments

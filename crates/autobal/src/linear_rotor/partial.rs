@@ -265,6 +265,42 @@ fn structure_with(field: &LinearRotorField, angles: &[f64]) -> Option<Vec<f64>> 
 /// root, `ψ = arg(−s0)`. `None` without balls, at rest (`Ω = 0`), without an unbalance, or where
 /// the stationary equations at fixed balls are singular.
 pub fn bunched_guess(field: &LinearRotorField) -> Option<Vec<f64>> {
+    use std::f64::consts::{PI, TAU};
+    let r = field.rotor();
+    let s0 = static_unbalance(r);
+    let roots = bunched_roots(field)?;
+    let opposite = s0[1].atan2(s0[0]) + PI;
+    let off = |x: f64| {
+        let w = (x - opposite).rem_euclid(TAU);
+        w.min(TAU - w)
+    };
+    let mut best: Option<f64> = None;
+    for &(a, along) in &roots {
+        if along > 0.0 && best.is_none_or(|b| off(a) < off(b)) {
+            best = Some(a);
+        }
+    }
+    bunched_at(field, best.unwrap_or(opposite))
+}
+
+/// The state with every ball at `psi`, at rest, the structure at its stationary displacement
+/// under them.
+fn bunched_at(field: &LinearRotorField, psi: f64) -> Option<Vec<f64>> {
+    let r = field.rotor();
+    let (n, nb) = (r.dofs(), r.total_balls());
+    let p = structure_at(field, psi)?;
+    let mut x = vec![0.0; 2 * field.coords()];
+    x[..n].copy_from_slice(&p);
+    x[n..n + nb].iter_mut().for_each(|v| *v = psi);
+    Some(x)
+}
+
+/// Every angle `ψ` at which all the balls bunched together are at rest on the first plane's
+/// race ([`bunched_guess`]'s roots of `d(ψ) × e^{iψ} = 0`, each bisected to round-off), with
+/// `d(ψ) · e^{iψ}` (positive: the race centre displaced towards the balls, negative: away from
+/// them). `None` without balls, at rest, without an unbalance, or where the stationary
+/// equations at fixed balls are singular.
+fn bunched_roots(field: &LinearRotorField) -> Option<Vec<(f64, f64)>> {
     use std::f64::consts::{FRAC_PI_2, PI, TAU};
     let r = field.rotor();
     let nb = r.total_balls();
@@ -272,7 +308,6 @@ pub fn bunched_guess(field: &LinearRotorField) -> Option<Vec<f64>> {
     if nb == 0 || field.omega() == 0.0 || s0 == [0.0, 0.0] {
         return None;
     }
-    let opposite = s0[1].atan2(s0[0]) + PI;
     let plane = |p: &[f64]| plane_positions(r, p)[0];
     let (d0, d1, d2) = (plane(&structure_at(field, 0.0)?), plane(&structure_at(field, FRAC_PI_2)?), plane(&structure_at(field, PI)?));
     let mean = [(d0.0 + d2.0) / 2.0, (d0.1 + d2.1) / 2.0];
@@ -288,7 +323,7 @@ pub fn bunched_guess(field: &LinearRotorField) -> Option<Vec<f64>> {
     };
     // the sign changes of d × e on 360 steps, each bisected to round-off
     let steps = 360;
-    let mut best: Option<f64> = None;
+    let mut roots = vec![];
     for k in 0..steps {
         let (mut lo, mut hi) = (TAU * k as f64 / steps as f64, TAU * (k + 1) as f64 / steps as f64);
         let (flo, fhi) = (cross(lo), cross(hi));
@@ -304,21 +339,93 @@ pub fn bunched_guess(field: &LinearRotorField) -> Option<Vec<f64>> {
             }
         }
         let a = 0.5 * (lo + hi);
-        let off = |x: f64| {
-            let w = (x - opposite).rem_euclid(TAU);
-            w.min(TAU - w)
-        };
-        if along(a) > 0.0 && best.is_none_or(|b| off(a) < off(b)) {
-            best = Some(a);
-        }
+        roots.push((a, along(a)));
     }
-    let psi = best.unwrap_or(opposite);
-    let p = structure_at(field, psi)?;
+    Some(roots)
+}
+
+/// Every ball bunched at each root of [`bunched_guess`]'s equation `d(ψ) × e^{iψ} = 0`, the
+/// race centre displaced towards the balls or away from them (both: where the balls' share
+/// points across the couple, the state a run settles on need not be the one nearest
+/// `arg(−s0)`), the structure at its stationary displacement under them: where all the balls
+/// bunched together are at rest on the first plane's race. Empty where [`bunched_guess`] has
+/// no root.
+pub fn bunched_guesses(field: &LinearRotorField) -> Vec<Vec<f64>> {
+    bunched_roots(field).unwrap_or_default().iter().filter_map(|&(a, _)| bunched_at(field, a)).collect()
+}
+
+/// The partially balanced state's other starts besides [`bunched_guess`], each the balls at
+/// rest and the structure at its stationary displacement under them
+/// ([`LinearRotorField::state_at_balls`]), chosen from what moves the balls: each plane's
+/// balls are pulled towards the resultant that would hold its race centre on the axis, its
+/// **share** of the unbalance ([`LinearRotorField::plane_shares`], from the model's own
+/// stationary equations: the rotor's nodes carry no axial positions to divide it by), and a
+/// plane short of its share can only go as far as bunching towards it. So:
+///
+/// 1. each plane on its share as far as its capacity reaches: a short plane bunched at the
+///    share's angle, a plane that can supply it on the arc that does (pairs at `arg ± φ`);
+/// 2. each plane's balls bunched at its share's angle (on a rigid rotor with two planes whose
+///    shares point apart: each plane against its own part of the couple);
+/// 3. every ball of every plane opposite the static unbalance `s0`, `ψ = arg(−s0)` (each plane
+///    against its part of the static unbalance alone: the couple left).
+///
+/// These are the spatial rotor's starts ([`crate::rotor_stability::Rotor::placed_guess`],
+/// [`crate::rotor_stability::Rotor::bunched_guess`] and every ball against the static
+/// unbalance, [`crate::rotor_stability::Rotor::partial_states`]), the shares of a rigid rotor
+/// written as a linear one ([`LinearRotor::from_spatial`]) being the spatial rotor's, so the two
+/// routes shoot Newton from the same placements. Starts that coincide are given once; empty
+/// without balls, at rest, or where the stationary equations at fixed balls are singular.
+pub fn share_guesses(field: &LinearRotorField) -> Vec<Vec<f64>> {
+    use num_complex::Complex64 as C;
+    let r = field.rotor();
+    if r.total_balls() == 0 || field.omega() == 0.0 {
+        return vec![];
+    }
+    let mut placements: Vec<Vec<f64>> = vec![];
+    if let Some(shares) = field.plane_shares() {
+        let mut placed = vec![];
+        let mut bunched = vec![];
+        for (b, need) in r.balancers.iter().zip(&shares) {
+            let at = need.arg();
+            bunched.extend(std::iter::repeat_n(at, b.balls));
+            let cap = b.balls as f64 * b.ball_mass * b.radius;
+            if b.balls >= 2 && need.norm() < cap {
+                // pairs at arg ± φ, an odd ball on the share: m_b R Σ e^{iψ} = need
+                let odd = b.balls % 2;
+                let ratio = (need.norm() / (b.ball_mass * b.radius) - odd as f64) / (b.balls - odd) as f64;
+                let phi = ratio.clamp(-1.0, 1.0).acos();
+                if odd == 1 {
+                    placed.push(at);
+                }
+                for _ in 0..b.balls / 2 {
+                    placed.extend([at + phi, at - phi]);
+                }
+            } else {
+                placed.extend(std::iter::repeat_n(at, b.balls));
+            }
+        }
+        placements.push(placed);
+        placements.push(bunched);
+    }
+    let s0 = static_unbalance(r);
+    if s0 != [0.0, 0.0] {
+        let opposite = C::new(-s0[0], -s0[1]).arg();
+        placements.push(vec![opposite; r.total_balls()]);
+    }
     let n = r.dofs();
-    let mut x = vec![0.0; 2 * field.coords()];
-    x[..n].copy_from_slice(&p);
-    x[n..n + nb].iter_mut().for_each(|v| *v = psi);
-    Some(x)
+    let mut out: Vec<Vec<f64>> = vec![];
+    for psi in placements {
+        if out.iter().any(|x| x[n..n + psi.len()] == psi[..]) {
+            continue;
+        }
+        // the rotor on the axis at rest (the spatial rotor's starts), then at its stationary
+        // displacement under the balls
+        let mut x = vec![0.0; 2 * field.coords()];
+        x[n..n + psi.len()].copy_from_slice(&psi);
+        out.push(x);
+        out.extend(field.state_at_balls(&psi));
+    }
+    out
 }
 
 /// The test rotor of this module's and [`super::runup`]'s tests: an overhung disk (8 kg) at
