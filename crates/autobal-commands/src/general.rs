@@ -466,15 +466,23 @@ pub fn operating(g: &GeneralRotor, root: &Table, r: &RotorStability, control: &C
         return Ok(None);
     }
     let Some([lo, hi]) = autobal::config::spatial(root)?.analysis.operating_speed else { return Ok(None) };
-    operating_at(g, [lo * g.omega0, hi * g.omega0], r, control).map(Some)
+    operating_at(g, [lo * g.omega0, hi * g.omega0], "analysis.operating_speed", r, control).map(Some)
 }
 
 /// The verdict at the operating speed `omega` (`[lo, hi]`, the rotor's units; a linear rotor's
 /// `linear_rotor.operating_speed` in rad/s): the stationary state solved at the speed itself, or
-/// at 9 speeds across a range, with the stable range of the scan `r` that holds it.
-pub fn operating_at(g: &GeneralRotor, omega: [f64; 2], r: &RotorStability, control: &Control) -> Result<Operating> {
+/// at 9 speeds across a range, with the stable range of the scan `r` that holds it. A speed
+/// below the periodic-orbit floor is an error naming `key` (the config's key), with the units.
+pub fn operating_at(g: &GeneralRotor, omega: [f64; 2], key: &str, r: &RotorStability, control: &Control) -> Result<Operating> {
     let speeds: Vec<f64> = if omega[0] == omega[1] { vec![omega[0]] } else { (0..9).map(|i| omega[0] + (omega[1] - omega[0]) * i as f64 / 8.0).collect() };
-    let scan = autobal::rotor_stability::stability_over_speed_with(&g.rotor, &speeds, control)?;
+    let scan =
+        autobal::rotor_stability::stability_over_speed_with(&g.rotor, &speeds, control).map_err(|e| match (&e, g.rotor.below_periodic_floor(omega[1])) {
+            // the library names its grid's `omega_max`; here the grid is the operating speed
+            (autobal::Error::InvalidParameter { field, .. }, Some(f)) if field == "omega_max" => {
+                autobal::Error::invalid(key, autobal::rotor_stability::below_floor_words(&speed_text(g, omega[1]), &speed_text(g, f))).into()
+            }
+            _ => anyhow::Error::from(e),
+        })?;
     if let Some(why) = scan.stopped {
         anyhow::bail!("{why}: the verdict at the operating speed stopped after {} of {} speeds; nothing is printed", scan.value.points.len(), speeds.len());
     }
@@ -536,10 +544,11 @@ fn other_orbits_line(g: &GeneralRotor, op: &Operating) -> String {
     } else {
         let stable = with.iter().filter(|p| p.other_orbits.iter().any(|o| o.verdict == Verdict::Stable)).count();
         format!(
-            "  other {what} found at {} of the {} speeds solved there (JSON operating.points[].other_orbits), a stable one at {stable}{}\n",
+            "  other {what} found at {} of the {} speeds solved there (JSON operating.points[].other_orbits), {}\n",
             with.len(),
             op.points.len(),
-            if stable > 0 { stable_too } else { "" }
+            // (it read "a stable one at 0" where none is)
+            if stable > 0 { format!("a stable one at {stable} of them{stable_too}") } else { "none of them stable".to_string() }
         )
     }
 }

@@ -155,7 +155,7 @@ impl Args {
         // the verdict at the operating speed, as the general route's (first line, JSON `operating`)
         let op = match cfg.operating_speed {
             Some(w) => {
-                let o = general::operating_at(&g, w, &r, control)?;
+                let o = general::operating_at(&g, w, "linear_rotor.operating_speed", &r, control)?;
                 Some(Box::new((g, o)))
             }
             None => None,

@@ -400,7 +400,7 @@ impl Analysis {
 /// `Ω`, a string is a speed with a unit ([`crate::units`]) converted with `ω0` (a dimensionless
 /// config, `omega0 = None`, refuses units). Checked against the range of `analysis.omega_max`
 /// (`(0, 1e6]` in `Ω`).
-pub(crate) fn analysis_speed(field: &str, v: &Value, omega0: Option<f64>) -> Result<[f64; 2]> {
+fn analysis_speed(field: &str, v: &Value, omega0: Option<f64>) -> Result<[f64; 2]> {
     let (lo, hi) = if field.ends_with("operating_speed") {
         crate::units::speed_range_of_value(field, v)?
     } else {

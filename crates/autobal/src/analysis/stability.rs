@@ -417,11 +417,20 @@ where
     bisect(ta, tb, rtol, control, &trial, (a, b))
 }
 
+/// Two states at (nearly) one speed that differ by at most `SAME_STATE (1 + max|x|)` (max norm)
+/// are one state found twice ([`switches`]): Newton meets its scaled residual with weakly held
+/// balls (a partially balanced state) up to ~1e-3 rad from the state, so one state reached
+/// from two starts on the two sides of a bracket read as "a switch of state" at a plain change
+/// of stability (review 21: a linear Rodrigues rotor at 495.145 and 704.791 rad/s, the spatial
+/// one at 495.145); it was `1e-8`, the shooting's accuracy alone. Distinct states measured
+/// differ by ≥ 0.25 rad in a ball's angle.
+const SAME_STATE: f64 = 1e-2;
+
 /// Whether the last bracket `[p, q]` of a range end's location holds two different stationary
 /// states rather than one state on both sides of a change of stability: their states differ
 /// (max norm) by more than `10³` times what the grid step's change `|x_a − x_b|` would give
-/// over the bracket's width `|ω_p − ω_q|`, plus `1e-8 (1 + max|x|)` (the states' own
-/// accuracy: the shooting's tolerance is 1e-10 scaled). One state along a branch changes by
+/// over the bracket's width `|ω_p − ω_q|`, plus `SAME_STATE (1 + max|x|)` (one state found
+/// twice, [`SAME_STATE`]). One state along a branch changes by
 /// `|dx/dω| |ω_p − ω_q|`, ~`|x_a − x_b|` times the bracket over the grid step (10³ allows a
 /// branch 10³ times steeper there than on average over the step); a switch keeps a jump of
 /// the grid step's size (the balls elsewhere by ~1 rad) however narrow the bracket.
@@ -436,7 +445,7 @@ fn switches(p: &Trial, q: &Trial, a: &ScanPoint, b: &ScanPoint) -> bool {
     if step == 0.0 {
         return false;
     }
-    diff(&xp.x, &xq.x) > 1e3 * (width / step) * diff(&xa.x, &xb.x) + 1e-8 * (1.0 + size)
+    diff(&xp.x, &xq.x) > 1e3 * (width / step) * diff(&xa.x, &xb.x) + SAME_STATE * (1.0 + size)
 }
 
 /// Bisection of the bracket `[p, q]` (sides differ) on the verdict, to `rtol · Ω`.

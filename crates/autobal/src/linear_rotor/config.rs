@@ -926,7 +926,7 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
         }
     }
     // a number is rad/s (as omega_max), a string a speed with its unit; the bounds of omega_max
-    let operating_speed = top.t.get("operating_speed").map(|v| crate::config::analysis_speed("linear_rotor.operating_speed", v, Some(1.0))).transpose()?;
+    let operating_speed = top.t.get("operating_speed").map(operating_speed).transpose()?;
     // 0: the full model (so that `--set linear_rotor.modes=0` undoes a config's reduction)
     let modes = top.usize("modes")?.filter(|m| *m > 0);
     // as the sweep path `linear_rotor.modes` (`modes = 99999999999` was taken; more pairs
@@ -950,6 +950,31 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
     let t_end = drive.as_ref().map_or(10.0, |d| d.1);
     let integration = integration(&Section::of(root, "integration"), t_end)?;
     Ok(LinearRotorConfig { rotor, source, omega_max, operating_speed, modes, drive, integration })
+}
+
+/// `linear_rotor.operating_speed` in rad/s, `[lo, hi]`: a speed or range with its unit
+/// ([`crate::units::speed_range_of_value`]), a bare number in rad/s, each in `(0, 1e6]` rad/s
+/// (`linear_rotor.omega_max`'s range); the messages in rad/s (the spatial config's reader,
+/// [`crate::config::analysis_speed`], speaks of the dimensionless Ω).
+fn operating_speed(v: &Value) -> Result<[f64; 2]> {
+    const FIELD: &str = "linear_rotor.operating_speed";
+    let reword = |e: Error| match e {
+        Error::InvalidParameter { field, reason } => {
+            Error::InvalidParameter { field, reason: reason.replace("a bare number for the dimensionless Ω", "a bare number in rad/s") }
+        }
+        e => e,
+    };
+    let (lo, hi) = crate::units::speed_range_of_value(FIELD, v).map_err(reword)?;
+    let (lo, hi) = (lo.to_omega(FIELD, Some(1.0)).map_err(reword)?, hi.to_omega(FIELD, Some(1.0)).map_err(reword)?);
+    for w in [lo, hi] {
+        if !(w > 0.0 && w <= 1e6) {
+            return Err(Error::invalid(
+                FIELD,
+                format!("must lie in (0, 1e6] rad/s, got {} rad/s (as linear_rotor.omega_max: ~1e7 rpm, beyond every machine)", crate::error::fmt_num(w)),
+            ));
+        }
+    }
+    Ok([lo, hi])
 }
 
 /// The keys a linear rotor config's `[drive]` and `[integration]` take ([`crate::config::drive`],
