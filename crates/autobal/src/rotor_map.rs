@@ -339,6 +339,17 @@ fn solve(c: &CellRotor, w: f64, previous: Option<&StationaryState>, closed_form:
         };
         let Some(start) = start else { continue };
         let Ok(state) = stationary_near(&field, start, hint, &opts) else { continue };
+        // a row's cell analyses the state `stability` analyses at its speed: the balanced
+        // (semi-balanced) one wherever Newton reaches it (Rotor::settle_balanced, the commands'
+        // one rule; a cell continued from a not-balanced neighbour kept that orbit until
+        // session 21, audit 21's F4), classified once; a bisection follows its ends' state
+        let (state, class) = if families && closed_form {
+            let (state, class) = Rotor::settle_balanced(&field, state, hint, &opts);
+            (state, Some(class.0))
+        } else {
+            let class = if families { Some(Rotor::classify(&field, &state.x).0) } else { None };
+            (state, class)
+        };
         let Ok(st) = stability(&field, &state) else { continue };
         let mut cell = GeneralCell {
             margin: st.abscissa / c.scale,
@@ -348,7 +359,7 @@ fn solve(c: &CellRotor, w: f64, previous: Option<&StationaryState>, closed_form:
             continued,
             // what the state is, as the speed scan names it (a row's cell; a bisection follows
             // the margin only)
-            state: if families { Some(Rotor::classify(&field, &state.x).0) } else { None },
+            state: class,
             ..GeneralCell::NONE
         };
         if families && state.family_dimension > 0 {
