@@ -448,7 +448,17 @@ impl Rotor {
     /// `stability`'s shooting from the closed form with the neighbour's monodromy reached a
     /// not-balanced orbit where `map` and `campbell` analysed the balanced one (audit 21's F4,
     /// F5; tests/balanced_first.rs).
-    pub fn settle_balanced(field: &Field, found: StationaryState, hint: Option<&[f64]>, opts: &NewtonOptions) -> (StationaryState, (StateKind, f64)) {
+    ///
+    /// `tried`: a start the command has already shot from with `hint` (its state is `found`, or
+    /// it failed); where it is the closed form that attempt is not repeated (the same Newton,
+    /// the same answer).
+    pub fn settle_balanced(
+        field: &Field,
+        found: StationaryState,
+        hint: Option<&[f64]>,
+        tried: Option<&[f64]>,
+        opts: &NewtonOptions,
+    ) -> (StationaryState, (StateKind, f64)) {
         let class = Rotor::classify(field, &found.x);
         let wanted = |k: StateKind| matches!(k, StateKind::Balanced | StateKind::SemiBalanced);
         if wanted(class.0) {
@@ -456,7 +466,8 @@ impl Rotor {
         }
         let Some(g) = Rotor::guess(field) else { return (found, class) };
         let hints: &[Option<&[f64]>] = if hint.is_some() && field.period().is_some() { &[hint, None] } else { &[hint] };
-        for &h in hints {
+        let again = tried == Some(g.as_slice());
+        for &h in hints.iter().filter(|&&h| !(again && h == hint)) {
             let Ok(s) = crate::analysis::stationary_near(field, &g, h, opts) else { continue };
             let c = Rotor::classify(field, &s.x);
             if wanted(c.0) {
@@ -1441,8 +1452,8 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
     // the balanced state wherever Newton reaches one (Rotor::settle_balanced, the commands' one
     // rule), each state's classification kept for its point (one orbit integration, not two)
     let classes: std::sync::Mutex<Vec<(Vec<f64>, (StateKind, f64))>> = Default::default();
-    let settle = |f: &Field, found: StationaryState, hint: Option<&[f64]>| {
-        let (state, class) = Rotor::settle_balanced(f, found, hint, &newton);
+    let settle = |f: &Field, found: StationaryState, hint: Option<&[f64]>, tried: Option<&[f64]>| {
+        let (state, class) = Rotor::settle_balanced(f, found, hint, tried, &newton);
         if let Ok(mut c) = classes.lock() {
             c.push((state.x.clone(), class));
         }

@@ -491,14 +491,15 @@ where
     M: Fn(f64) -> crate::Result<F>,
     G: Fn(&F, f64) -> Option<Vec<f64>>,
 {
-    speed_scan_with_last(field_at, guess_at, |_: &F, _| None, |_: &F, state, _| state, speeds, opts, control)
+    speed_scan_with_last(field_at, guess_at, |_: &F, _| None, |_: &F, state, _, _| state, speeds, opts, control)
 }
 
 /// [`speed_scan_with`] with a **last resort**: where Newton reaches no state from the guess
 /// and the neighbour's state, from `last_at`'s start (asked only then, so every speed where
-/// those find a state keeps its answer and its cost); and `settle(field, state, hint)`, the
-/// state analysed at a speed given the state Newton reached there from those starts (`hint`
-/// the neighbour's monodromy the shooting started from): the rotor's rule that the verdict is
+/// those find a state keeps its answer and its cost); and `settle(field, state, hint, tried)`,
+/// the state analysed at a speed given the state Newton reached there from those starts (`hint`
+/// the neighbour's monodromy the shooting started from, `tried` the guess where it was shot
+/// from first): the rotor's rule that the verdict is
 /// the balanced state's wherever Newton reaches one ([`crate::rotor_stability::Rotor::settle_balanced`]). Not
 /// asked at a range end's trial speed predicted from its neighbours on one branch.
 pub(crate) fn speed_scan_with_last<F, M, G, L, S>(
@@ -515,7 +516,7 @@ where
     M: Fn(f64) -> crate::Result<F>,
     G: Fn(&F, f64) -> Option<Vec<f64>>,
     L: Fn(&F, f64) -> Option<Vec<f64>>,
-    S: Fn(&F, StationaryState, Option<&[f64]>) -> StationaryState,
+    S: Fn(&F, StationaryState, Option<&[f64]>, Option<&[f64]>) -> StationaryState,
 {
     if speeds.is_empty() {
         return Err(AnalysisError::InvalidInput { field: "speeds".into(), reason: "no speed to scan".into() });
@@ -557,7 +558,9 @@ where
                 Some(last) => solve_at(&f, &[Some(last.as_slice())], hint, &opts.newton).map_err(|_| e),
                 None => Err(e),
             })?;
-            let state = settle(&f, state, hint);
+            // the guess, first, was shot from with `hint` whatever came of it
+            let tried = if opts.prefer_guess { guess.as_deref() } else { None };
+            let state = settle(&f, state, hint, tried);
             stability(&f, &state).map(|st| (state, st)).map_err(|e| e.to_string())
         };
     let mut points: Vec<ScanPoint> = Vec::with_capacity(speeds.len());
