@@ -765,6 +765,8 @@ pub fn campbell_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Control
         let near = previous.as_ref().map(|p| p.x.clone());
         let hint = previous.as_ref().and_then(|p| p.monodromy.clone());
         let mut result = Err(reason(no_state_free(rotor)));
+        // the closed form, shot from first with `hint` (Rotor::settle_balanced does not repeat it)
+        let guess_tried = guess.clone();
         for start in [guess, near].into_iter().flatten() {
             match stationary_near(&f, &start, hint.as_deref(), &opts) {
                 Ok(s) => {
@@ -774,9 +776,12 @@ pub fn campbell_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Control
                 Err(e) => result = Err(e.to_string()),
             }
         }
-        match result.and_then(|s| spectrum_and_modes_at(rotor, &f, w, &s).map(|p| (s, p)).map_err(|e| e.to_string())) {
-            Ok((s, (p, modes))) => {
-                states[per_speed.len()] = Some(Rotor::state_kind(&f, &s.x));
+        // the balanced (semi-balanced) state wherever Newton reaches one, as `stability` and
+        // `map` analyse (Rotor::settle_balanced, the commands' one rule), classified once
+        let result = result.map(|s| Rotor::settle_balanced(&f, s, hint.as_deref(), guess_tried.as_deref(), &opts));
+        match result.and_then(|(s, class)| spectrum_and_modes_at(rotor, &f, w, &s).map(|p| (s, class, p)).map_err(|e| e.to_string())) {
+            Ok((s, class, (p, modes))) => {
+                states[per_speed.len()] = Some(class.0);
                 previous = Some(s);
                 tracker.push(Some(&p), Some(modes));
                 per_speed.push(Some(()));

@@ -323,14 +323,16 @@ fn solve(c: &CellRotor, w: f64, previous: Option<&StationaryState>, closed_form:
     // (Rotor::planar_split_orbits, the least growth rate first)
     let last = || if closed_form { Rotor::planar_split_orbits(&field, &opts).into_iter().next().map(|(x, _)| x) } else { None };
     let order = if periodic && !placements { [Start::Continued, Start::Closed, Start::Last] } else { [Start::Closed, Start::Continued, Start::Last] };
+    // the closed form's start once built (the scan's first start, shot from with `hint`)
+    let mut closed_start: Option<Vec<f64>> = None;
     for how in order {
         let continued = how == Start::Continued;
         let owned;
         let start = match how {
             Start::Continued => near,
             Start::Closed => {
-                owned = closed();
-                owned.as_deref()
+                closed_start = closed();
+                closed_start.as_deref()
             }
             Start::Last => {
                 owned = last();
@@ -339,6 +341,19 @@ fn solve(c: &CellRotor, w: f64, previous: Option<&StationaryState>, closed_form:
         };
         let Some(start) = start else { continue };
         let Ok(state) = stationary_near(&field, start, hint, &opts) else { continue };
+        // a row's cell analyses the state `stability` analyses at its speed: the balanced
+        // (semi-balanced) one wherever Newton reaches it (Rotor::settle_balanced, the commands'
+        // one rule; a cell continued from a not-balanced neighbour kept that orbit until
+        // session 21, audit 21's F4), classified once; a bisection follows its ends' state
+        let (state, class) = if families && closed_form {
+            // the closed form was shot from with `hint` where this start is it or came after it
+            let tried = if continued { None } else { closed_start.as_deref() };
+            let (state, class) = Rotor::settle_balanced(&field, state, hint, tried, &opts);
+            (state, Some(class.0))
+        } else {
+            let class = if families { Some(Rotor::classify(&field, &state.x).0) } else { None };
+            (state, class)
+        };
         let Ok(st) = stability(&field, &state) else { continue };
         let mut cell = GeneralCell {
             margin: st.abscissa / c.scale,
@@ -348,7 +363,7 @@ fn solve(c: &CellRotor, w: f64, previous: Option<&StationaryState>, closed_form:
             continued,
             // what the state is, as the speed scan names it (a row's cell; a bisection follows
             // the margin only)
-            state: if families { Some(Rotor::classify(&field, &state.x).0) } else { None },
+            state: class,
             ..GeneralCell::NONE
         };
         if families && state.family_dimension > 0 {

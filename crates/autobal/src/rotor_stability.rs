@@ -433,6 +433,50 @@ impl Rotor {
         Rotor::classify(field, x).0
     }
 
+    /// The state a verdict command analyses at a speed, given `found` (the state Newton reached
+    /// there from the command's starts: the closed form, the neighbour's state; `hint` the
+    /// neighbour's monodromy the shooting started from), with its [`Rotor::classify`]. **The one
+    /// rule of `stability`, `map` and `campbell`**: where `found` is not balanced or
+    /// semi-balanced but the closed form has such a state ([`Rotor::guess`]), Newton from the
+    /// closed form (with `hint`, then, on a periodic orbit, without it: a fresh shooting) and
+    /// the first balanced or semi-balanced state it reaches is analysed; else `found`. A
+    /// balanced state found pays nothing more than its classification (which the commands
+    /// report anyway), so only speeds whose state is of another kind try again. Until session
+    /// 21 each command kept the state its first start reached, and which that was depended on
+    /// where the continuation came from: a map cell continued the not-balanced orbit of its
+    /// neighbour (stable) where `stability` analysed the semi-balanced one (unstable), and
+    /// `stability`'s shooting from the closed form with the neighbour's monodromy reached a
+    /// not-balanced orbit where `map` and `campbell` analysed the balanced one (audit 21's F4,
+    /// F5; tests/balanced_first.rs).
+    ///
+    /// `tried`: a start the command has already shot from with `hint` (its state is `found`, or
+    /// it failed); where it is the closed form that attempt is not repeated (the same Newton,
+    /// the same answer).
+    pub fn settle_balanced(
+        field: &Field,
+        found: StationaryState,
+        hint: Option<&[f64]>,
+        tried: Option<&[f64]>,
+        opts: &NewtonOptions,
+    ) -> (StationaryState, (StateKind, f64)) {
+        let class = Rotor::classify(field, &found.x);
+        let wanted = |k: StateKind| matches!(k, StateKind::Balanced | StateKind::SemiBalanced);
+        if wanted(class.0) {
+            return (found, class);
+        }
+        let Some(g) = Rotor::guess(field) else { return (found, class) };
+        let hints: &[Option<&[f64]>] = if hint.is_some() && field.period().is_some() { &[hint, None] } else { &[hint] };
+        let again = tried == Some(g.as_slice());
+        for &h in hints.iter().filter(|&&h| !(again && h == hint)) {
+            let Ok(s) = crate::analysis::stationary_near(field, &g, h, opts) else { continue };
+            let c = Rotor::classify(field, &s.x);
+            if wanted(c.0) {
+                return (s, c);
+            }
+        }
+        (found, class)
+    }
+
     /// [`Rotor::state_kind`] and [`Rotor::residual`] together, from one integration of the
     /// orbit (each alone integrates it once).
     pub fn classify(field: &Field, x: &[f64]) -> (StateKind, f64) {
@@ -1415,11 +1459,22 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
     // direction (Rotor::planar_split_orbits: with an eccentric race the family breaks into
     // such orbits, and the closed form's member is none), the least growth rate first
     let last = |f: &Field, _: f64| Rotor::planar_split_orbits(f, &newton).into_iter().next().map(|(x, _)| x);
-    let Outcome { value: scan, mut stopped } = speed_scan_with_last(field_at, guess, last, speeds, &opts, control).map_err(|e| match e {
+    // the balanced state wherever Newton reaches one (Rotor::settle_balanced, the commands' one
+    // rule), each state's classification kept for its point (one orbit integration, not two)
+    let classes: std::sync::Mutex<Vec<(Vec<f64>, (StateKind, f64))>> = Default::default();
+    let settle = |f: &Field, found: StationaryState, hint: Option<&[f64]>, tried: Option<&[f64]>| {
+        let (state, class) = Rotor::settle_balanced(f, found, hint, tried, &newton);
+        if let Ok(mut c) = classes.lock() {
+            c.push((state.x.clone(), class));
+        }
+        state
+    };
+    let Outcome { value: scan, mut stopped } = speed_scan_with_last(field_at, guess, last, settle, speeds, &opts, control).map_err(|e| match e {
         crate::analysis::AnalysisError::Model(e) => e,
         e => Error::invalid("speeds", e.to_string()),
     })?;
     let orbits_at = orbits_at.into_inner().unwrap_or_default();
+    let classes = classes.into_inner().unwrap_or_default();
     let mut member_psi = vec![];
     let mut family_dimension = 0;
     let mut points: Vec<SpeedPoint> = scan
@@ -1431,7 +1486,7 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
             let field = p.state.as_ref().and_then(|_| rotor.field(p.omega).ok());
             let (amplitude, state, residual, psi) = match (&field, &p.state) {
                 (Some(f), Some(s)) => {
-                    let (kind, residual) = Rotor::classify(f, &s.x);
+                    let (kind, residual) = classes.iter().rev().find(|(x, _)| *x == s.x).map_or_else(|| Rotor::classify(f, &s.x), |(_, c)| *c);
                     (Some(amplitude(f, &s.x)), Some(kind), Some(residual), ball_angles(f, &s.x))
                 }
                 _ => (None, None, None, vec![]),

@@ -259,16 +259,11 @@ pub struct SpeedScan {
 /// The stationary state at one speed: Newton from each of `starts` in turn (the first that
 /// converges), then its stability; `hint`: a neighbouring orbit's monodromy matrix
 /// ([`stationary_near`]).
-fn solve_at<F: VectorField>(
-    f: &F,
-    starts: &[Option<&[f64]>],
-    hint: Option<&[f64]>,
-    opts: &NewtonOptions,
-) -> std::result::Result<(StationaryState, Stability), String> {
+fn solve_at<F: VectorField>(f: &F, starts: &[Option<&[f64]>], hint: Option<&[f64]>, opts: &NewtonOptions) -> std::result::Result<StationaryState, String> {
     let mut last = String::from("no starting point (no previous solution and no closed-form guess)");
     for start in starts.iter().flatten() {
         match stationary_near(f, start, hint, opts) {
-            Ok(state) => return stability(f, &state).map(|st| (state, st)).map_err(|e| e.to_string()),
+            Ok(state) => return Ok(state),
             Err(e) => last = e.to_string(),
         }
     }
@@ -505,16 +500,22 @@ where
     M: Fn(f64) -> crate::Result<F>,
     G: Fn(&F, f64) -> Option<Vec<f64>>,
 {
-    speed_scan_with_last(field_at, guess_at, |_: &F, _| None, speeds, opts, control)
+    speed_scan_with_last(field_at, guess_at, |_: &F, _| None, |_: &F, state, _, _| state, speeds, opts, control)
 }
 
 /// [`speed_scan_with`] with a **last resort**: where Newton reaches no state from the guess
 /// and the neighbour's state, from `last_at`'s start (asked only then, so every speed where
-/// those find a state keeps its answer and its cost).
-pub(crate) fn speed_scan_with_last<F, M, G, L>(
+/// those find a state keeps its answer and its cost); and `settle(field, state, hint, tried)`,
+/// the state analysed at a speed given the state Newton reached there from those starts (`hint`
+/// the neighbour's monodromy the shooting started from, `tried` the guess where it was shot
+/// from first): the rotor's rule that the verdict is
+/// the balanced state's wherever Newton reaches one ([`crate::rotor_stability::Rotor::settle_balanced`]). Not
+/// asked at a range end's trial speed predicted from its neighbours on one branch.
+pub(crate) fn speed_scan_with_last<F, M, G, L, S>(
     field_at: M,
     guess_at: G,
     last_at: L,
+    settle: S,
     speeds: &[f64],
     opts: &ScanOptions,
     control: &Control,
@@ -524,6 +525,7 @@ where
     M: Fn(f64) -> crate::Result<F>,
     G: Fn(&F, f64) -> Option<Vec<f64>>,
     L: Fn(&F, f64) -> Option<Vec<f64>>,
+    S: Fn(&F, StationaryState, Option<&[f64]>, Option<&[f64]>) -> StationaryState,
 {
     if speeds.is_empty() {
         return Err(AnalysisError::InvalidInput { field: "speeds".into(), reason: "no speed to scan".into() });
@@ -561,10 +563,14 @@ where
             let starts = if opts.prefer_guess { [guess.as_deref(), near] } else { [near, guess.as_deref()] };
             // a periodic orbit's shooting starts from the neighbour's monodromy matrix (no
             // variational integration until the orbit is found)
-            solve_at(&f, &starts, hint, &opts.newton).or_else(|e| match last_at(&f, omega) {
+            let state = solve_at(&f, &starts, hint, &opts.newton).or_else(|e| match last_at(&f, omega) {
                 Some(last) => solve_at(&f, &[Some(last.as_slice())], hint, &opts.newton).map_err(|_| e),
                 None => Err(e),
-            })
+            })?;
+            // the guess, first, was shot from with `hint` whatever came of it
+            let tried = if opts.prefer_guess { guess.as_deref() } else { None };
+            let state = settle(&f, state, hint, tried);
+            stability(&f, &state).map(|st| (state, st)).map_err(|e| e.to_string())
         };
     let mut points: Vec<ScanPoint> = Vec::with_capacity(speeds.len());
     let mut previous: Option<StationaryState> = None;
