@@ -130,7 +130,7 @@ impl Args {
         }
         let cfg = crate::linear_rotor::from_table(root, self.config.dir())?;
         let (rotor, _) = crate::linear_rotor::model(&cfg)?;
-        let g = GeneralRotor { rotor: autobal::rotor_stability::Rotor::Linear(rotor), si: true, omega0: 1.0 };
+        let g = GeneralRotor::linear(rotor);
         let points = self.points.unwrap_or(if g.rotor.is_periodic() { 60 } else { DEFAULT_POINTS });
         if !GENERAL_POINTS.contains(&points) {
             return Err(autobal::Error::invalid(

@@ -22,6 +22,14 @@ pub struct GeneralRotor {
     pub omega0: f64,
 }
 
+impl GeneralRotor {
+    /// A linear rotor (`[linear_rotor]`, SI: speeds in rad/s with rpm), as `stability`,
+    /// `campbell` and the report analyse it.
+    pub fn linear(rotor: autobal::linear_rotor::LinearRotor) -> Self {
+        GeneralRotor { rotor: Rotor::Linear(rotor), si: true, omega0: 1.0 }
+    }
+}
+
 /// Whether an analysis must take the general route for this config: a planar config, or a
 /// spatial one with entries paper 000's 12-state model does not represent.
 pub fn needs_general_route(root: &Table) -> bool {

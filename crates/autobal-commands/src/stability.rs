@@ -145,7 +145,7 @@ impl Args {
         let speeds = autobal::rotor_stability::speed_grid(omega_max, samples)?;
         let (rotor, red) = crate::linear_rotor::model(&cfg)?;
         // (as the general route: a speed below the periodic floor is said in rad/s and rpm)
-        let g = GeneralRotor { rotor: autobal::rotor_stability::Rotor::Linear(rotor), si: true, omega0: 1.0 };
+        let g = GeneralRotor::linear(rotor);
         let out = autobal::rotor_stability::stability_over_speed_with(&g.rotor, &speeds, control)
             .map_err(|e| self.name_omega_max(general::floor_in_units(&g, e, &speeds), "linear_rotor.omega_max"))?;
         if let Some(why) = out.stopped {

@@ -192,7 +192,7 @@ impl Rotor {
     /// Every distinct periodic orbit that [`Rotor::gravity_orbit_start`] finds from the groups'
     /// placements, each as its state and [`OtherOrbit`] (ball angles at phase 0, largest
     /// Floquet exponent, verdict), the least growth rate first. Two placements that reach one
-    /// orbit (the same ball angles to 1e-6 rad, a plane's balls in any order: they are alike)
+    /// orbit (the same ball angles to 1e-2 rad, `SAME_ANGLE`, a plane's balls in any order: they are alike)
     /// count once. Empty where the rotor is not of that kind or no placement reaches an orbit.
     pub fn gravity_orbits(field: &Field, newton: &NewtonOptions) -> Vec<(Vec<f64>, OtherOrbit)> {
         let Field::Spatial(f) = field else { return vec![] };
@@ -227,7 +227,7 @@ impl Rotor {
     /// and [`crate::linear_rotor::partial::bunched_guesses`]), so the two routes shoot from the
     /// same placements (session 21: the linear route took one start and analysed another state
     /// than the spatial scan on rnd/r19_00_sp.toml, unstable at 81-249 rad/s where the spatial
-    /// one is stable). Each distinct state found (ball angles matched per plane to 1e-6 rad)
+    /// one is stable). Each distinct state found (ball angles matched per plane to 1e-2 rad, `SAME_ANGLE`)
     /// with its stability, the least growth rate first. Which
     /// start Newton took decided the state analysed until session 20 (audit 20's F11: on
     /// rnd/r19_00_sp.toml at 435.1 rad/s each plane's share, opposite each other, gives a state
@@ -842,9 +842,15 @@ fn shoot_placements<F: VectorField>(
 /// Whether two placements of alike balls are one: the angles matched one to one within
 /// `1e-6` rad round the circle.
 fn same_angles(a: &[f64], b: &[f64]) -> bool {
+    matched_within(a, b, 1e-6)
+}
+
+/// Whether each angle of `a` matches an unused one of `b` within `tol` rad round the circle
+/// (not sorted lists: 1e-9 and 2π − 1e-9 are one angle), the two of one length.
+fn matched_within(a: &[f64], b: &[f64], tol: f64) -> bool {
     let near = |x: f64, y: f64| {
         let d = (x - y).rem_euclid(std::f64::consts::TAU);
-        d.min(std::f64::consts::TAU - d) <= 1e-6
+        d.min(std::f64::consts::TAU - d) <= tol
     };
     let mut used = vec![false; b.len()];
     a.len() == b.len()
@@ -884,20 +890,7 @@ fn same_in_planes(sizes: &[usize], a: &[f64], b: &[f64]) -> bool {
     sizes.iter().all(|&n| {
         let range = start..(start + n).min(a.len());
         start = range.end;
-        // each ball of `a` matched to an unused one of `b` within SAME_ANGLE round the circle
-        // (not sorted lists: 1e-9 and 2π − 1e-9 are one angle)
-        let near = |x: f64, y: f64| {
-            let d = (x - y).rem_euclid(std::f64::consts::TAU);
-            d.min(std::f64::consts::TAU - d) <= SAME_ANGLE
-        };
-        let mut used = vec![false; range.len()];
-        a[range.clone()].iter().all(|&x| match b[range.clone()].iter().enumerate().position(|(j, &y)| !used[j] && near(x, y)) {
-            Some(j) => {
-                used[j] = true;
-                true
-            }
-            None => false,
-        })
+        matched_within(&a[range.clone()], &b[range], SAME_ANGLE)
     })
 }
 

@@ -133,7 +133,7 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
     let what = if partial.is_empty() { "the balanced state" } else { "the stationary state (balanced, else partially balanced)" };
     // the verdict at `linear_rotor.operating_speed` first, as `autobal stability` prints it
     if let Some(w) = cfg.operating_speed {
-        let g = crate::general::GeneralRotor { rotor: autobal::rotor_stability::Rotor::Linear(model.clone()), si: true, omega0: 1.0 };
+        let g = crate::general::GeneralRotor::linear(model.clone());
         let op = crate::general::operating_at(&g, w, "linear_rotor.operating_speed", &st, &ctx.control)?;
         let line = crate::general::operating_line(&g, &st, &op);
         s.p(format!("<b>{}</b>", super::html::esc(line.trim_end())));

@@ -918,12 +918,7 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
         crate::error::positive("linear_rotor.omega_max", w)?;
         // the speed axis is sampled up to it: 1e308 overflowed to an infinite speed, reported
         // as "speeds: speeds: inf is not a finite speed" (limits.rs's SPEED bound)
-        if w > 1e6 {
-            return Err(Error::invalid(
-                "linear_rotor.omega_max",
-                format!("must lie in (0, 1e6] rad/s, got {} (±1e6 rad/s, ~1e7 rpm, beyond every machine)", crate::error::fmt_num(w)),
-            ));
-        }
+        axis_speed("linear_rotor.omega_max", w)?;
     }
     // a number is rad/s (as omega_max), a string a speed with its unit; the bounds of omega_max
     let operating_speed = top.t.get("operating_speed").map(operating_speed).transpose()?;
@@ -966,15 +961,18 @@ fn operating_speed(v: &Value) -> Result<[f64; 2]> {
     };
     let (lo, hi) = crate::units::speed_range_of_value(FIELD, v).map_err(reword)?;
     let (lo, hi) = (lo.to_omega(FIELD, Some(1.0)).map_err(reword)?, hi.to_omega(FIELD, Some(1.0)).map_err(reword)?);
-    for w in [lo, hi] {
-        if !(w > 0.0 && w <= 1e6) {
-            return Err(Error::invalid(
-                FIELD,
-                format!("must lie in (0, 1e6] rad/s, got {} rad/s (as linear_rotor.omega_max: ~1e7 rpm, beyond every machine)", crate::error::fmt_num(w)),
-            ));
-        }
-    }
+    axis_speed(FIELD, lo)?;
+    axis_speed(FIELD, hi)?;
     Ok([lo, hi])
+}
+
+/// A speed on the linear rotor's speed axis (`linear_rotor.omega_max`, `operating_speed`) in
+/// `(0, 1e6]` rad/s (limits.rs's SPEED bound).
+fn axis_speed(field: &str, w: f64) -> Result<()> {
+    if w > 0.0 && w <= 1e6 {
+        return Ok(());
+    }
+    Err(Error::invalid(field, format!("must lie in (0, 1e6] rad/s, got {} (±1e6 rad/s, ~1e7 rpm, beyond every machine)", crate::error::fmt_num(w))))
 }
 
 /// The keys a linear rotor config's `[drive]` and `[integration]` take ([`crate::config::drive`],
