@@ -115,6 +115,9 @@ pub fn stability_table(cfg: &Config, c: &Comparison, balls: Balls) -> String {
     );
     // computed over (0, Ω_max] only: a range reaching Ω_max ends there as far as is known
     let w = Some(c.omega_max);
+    if let Some(m) = autobal::reports::family_member(&cfg.model, balls) {
+        let _ = writeln!(s, "  member: {m}");
+    }
     let rule = if balls == Balls::Free { "all Re λ < −1e-11" } else { "all Re λ ≤ 1e-11" };
     let _ = writeln!(s, "  stable ({rule}): {}", fmt_ranges_in(&c.exact.stable_ranges, 6, w));
     let _ = writeln!(s, "  necessary (003, eqs (1)-(3)):   {}", fmt_ranges_in(&c.necessary, 6, w));

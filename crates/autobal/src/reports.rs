@@ -692,6 +692,10 @@ pub struct StabilityReport {
     pub anisotropy_used: f64,
     /// The balls' coupling in the linear model.
     pub ball_coupling: Option<crate::spatial::params::BallCoupling>,
+    /// With `n ≥ 3` free balls, which member of their family of balanced states the ranges are
+    /// of ([`family_member`]); absent otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub family_member: Option<String>,
     /// Whether a balanced state exists (capacity `E ≥ 1`; [`stability_of`]).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub balanced_state_exists: Option<bool>,
@@ -775,6 +779,36 @@ pub fn stability_of(cfg: &SpatialConfig, c: &Comparison, balls: Balls) -> Stabil
     }
 }
 
+/// Which member of the family of balanced states paper 000's linear model analyses, in words,
+/// where it has one to choose: `n ≥ 3` free balls that can cancel the unbalance (their
+/// balancing positions are not unique). With the exact anisotropy (the default) it is the
+/// member of **largest** inertia anisotropy ([`crate::spatial::inertia::Anisotropy::ball_angles`],
+/// the coupling `d_A` of its angles, 000 eq (6)); with 000's eq (17) the coupling
+/// `diag(1 − D_A, 1 + D_A)` of the `D_A` in force. `None` for `n ≤ 2`, locked balls or no balls.
+/// `--route general` samples the whole family.
+pub fn family_member(model: &SpatialModel, balls: Balls) -> Option<String> {
+    use crate::spatial::inertia::AnisotropyMethod;
+    let ms = model.masses.as_ref()?;
+    if ms.n < 3 || balls != Balls::Free || model.balls.is_none() || !model.anisotropy.can_balance {
+        return None;
+    }
+    let general = "`--route general` gives the ranges where every member and where some member is stable";
+    let n = ms.n;
+    Some(match (model.anisotropy.method, &model.anisotropy.ball_angles) {
+        (AnisotropyMethod::Paper, _) | (_, None) => format!(
+            "the {n} balls' balanced positions are not unique (a family of dimension {}); this route analyses the coupling of 000's eq (17) with D_A = {} for all of them; {general}",
+            n - 2,
+            crate::error::fmt_num(model.anisotropy.d_a.unwrap_or(1.0))
+        ),
+        (_, Some(angles)) => format!(
+            "the {n} balls' balanced positions are not unique (a family of dimension {}); this route analyses one member, that of largest inertia anisotropy (ΔĀ = {}, balls at {} rad from the unbalance); {general}",
+            n - 2,
+            crate::error::fmt_num(model.anisotropy.used),
+            angles.iter().map(|a| format!("{:.4}", a.rem_euclid(std::f64::consts::TAU))).collect::<Vec<_>>().join(", ")
+        ),
+    })
+}
+
 /// `autobal stability` of a model ([`StabilityReport`], without the config's operating speed:
 /// [`stability_of`]).
 pub fn stability(model: &SpatialModel, c: &Comparison, balls: Balls) -> StabilityReport {
@@ -782,6 +816,7 @@ pub fn stability(model: &SpatialModel, c: &Comparison, balls: Balls) -> Stabilit
     StabilityReport {
         anisotropy_used: model.anisotropy.used,
         ball_coupling: model.balls,
+        family_member: family_member(model, balls),
         balanced_state_exists: None,
         balancer_capacity: None,
         balls: balls_name(balls),

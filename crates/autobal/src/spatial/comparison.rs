@@ -17,7 +17,7 @@ use crate::error::Result;
 use crate::spatial::linear_model::Balls;
 use crate::spatial::params::SpatialModel;
 use crate::spatial::ranges::{autobalancing_ranges, SpeedRange};
-use crate::spatial::stability::{stability_ranges, StabilityRanges};
+use crate::spatial::stability::{stability_ranges, StabilityRanges, STABILITY_TOLERANCE};
 use serde::Serialize;
 
 /// Bisection tolerance on the ends of the exact ranges (dimensionless speed).
@@ -124,13 +124,52 @@ pub fn fmt_ranges_in(r: &[SpeedRange], prec: usize, span_end: Option<f64>) -> St
 }
 
 impl Comparison {
-    /// The difference in one sentence.
+    /// The grid speeds outside the stable ranges where the state is **neutral**, not unstable:
+    /// `|max Re λ| ≤` [`STABILITY_TOLERANCE`] (an eigenvalue zero to round-off that the
+    /// linearisation leaves undecided: e.g. the member of a family of `n ≥ 4` balls with the
+    /// largest inertia anisotropy, balls in opposite pairs, whose ball coupling
+    /// `d_A = diag(0, 2)` (000, eq (6)) leaves one ball coordinate without restoring force), as
+    /// runs of consecutive grid points `[first, last]` (grid resolution, not located).
+    pub fn neutral_grid_runs(&self) -> Vec<(f64, f64)> {
+        self.neutral_runs_where(|w| !self.exact.stable_ranges.iter().any(|r| r.contains(w)))
+    }
+
+    /// [`Comparison::neutral_grid_runs`] among the grid speeds `keep` accepts.
+    fn neutral_runs_where(&self, keep: impl Fn(f64) -> bool) -> Vec<(f64, f64)> {
+        let mut runs: Vec<(f64, f64)> = vec![];
+        let mut open = false;
+        for &(w, a) in &self.exact.max_real_part {
+            let neutral = a.abs() <= STABILITY_TOLERANCE && keep(w);
+            match (neutral, open, runs.last_mut()) {
+                (true, true, Some(last)) => last.1 = w,
+                (true, _, _) => runs.push((w, w)),
+                _ => {}
+            }
+            open = neutral;
+        }
+        runs
+    }
+
+    /// The difference in one sentence. Where the state is neutral at some grid speeds outside
+    /// the stable ranges ([`Comparison::neutral_grid_runs`]) the sentence says "not stable"
+    /// and names them, not "unstable".
     pub fn difference(&self) -> String {
         let w = self.omega_max;
+        // only those on the ranges the sentence names (003's condition holds, not stable)
+        let named = |x: f64| self.necessary_not_stable.iter().any(|r| x >= r.lo && r.hi.is_none_or(|h| x <= h));
+        let neutral = self.neutral_runs_where(|x| named(x) && !self.exact.stable_ranges.iter().any(|r| r.contains(x)));
+        let not_stable = if neutral.is_empty() {
+            "unstable".to_string()
+        } else {
+            let runs = neutral.iter().map(|&(a, b)| if a == b { format!("{a:.4}") } else { format!("{a:.4} – {b:.4}") }).collect::<Vec<_>>().join(", ");
+            format!(
+                "not stable (neutral, not unstable, at the grid speeds {runs}: max Re λ within {STABILITY_TOLERANCE:e} of 0, an eigenvalue the linearisation leaves undecided)"
+            )
+        };
         match (self.necessary_not_stable.is_empty(), self.stable_not_necessary.is_empty()) {
             (true, true) => "the exact stability ranges coincide with 003's necessary ranges".into(),
             _ => format!(
-                "003's condition holds but the balanced state is unstable on {} (total {:.4}); the balanced state is stable where 003's condition fails on {} (total {:.4})",
+                "003's condition holds but the balanced state is {not_stable} on {} (total {:.4}); the balanced state is stable where 003's condition fails on {} (total {:.4})",
                 fmt_ranges_in(&self.necessary_not_stable, 4, Some(w)),
                 total(&self.necessary_not_stable, w),
                 fmt_ranges_in(&self.stable_not_necessary, 4, Some(w)),
@@ -154,5 +193,49 @@ mod tests {
         let cut = [SpeedRange { lo: 1.5, hi: None }];
         assert_eq!(fmt_ranges(&cut, 2), "1.50 – ∞");
         assert_eq!(fmt_ranges_in(&cut, 2, Some(2.0)), "1.50 – 2 (end of the span)");
+    }
+
+    /// Paper 000's base case with its balls split into `n` (the same total mass and radius).
+    fn base_with(n: u32) -> SpatialModel {
+        use crate::spatial::params::{AnisotropyInput, DimensionlessInput, MassSet};
+        let masses = MassSet { n, ..crate::spatial::presets::PAPER_000_MASSES };
+        SpatialModel::from_dimensionless(&DimensionlessInput {
+            anisotropy: AnisotropyInput::Masses { masses, d_a: None },
+            ..DimensionlessInput::paper_000(0.8)
+        })
+        .unwrap()
+    }
+
+    /// Audit 21's F3 on the closed-form route: with `n = 4` balls the member analysed (largest
+    /// anisotropy: two opposite pairs, `d_A = diag(0, 2)`) has an eigenvalue 0 that is not the
+    /// family's, so its abscissa is 0 to round-off where the rest is damped: "not stable" there
+    /// is neutral, not "unstable". Independent of the abscissa: the member's coupling has the
+    /// zero entry, and the eigenvalue at Ω = 5 is 0 in modulus (a real zero, not an undamped
+    /// pair).
+    #[test]
+    fn neutral_member_is_not_called_unstable() {
+        let m = base_with(4);
+        let d = m.balls.unwrap().d_a;
+        assert!(d[0][0].abs() < 1e-12 && (d[1][1] - 2.0).abs() < 1e-12, "{d:?}");
+        let (_, ev) = crate::spatial::stability::eigenvalues_at(&m, 5.0, Balls::Free).unwrap();
+        let smallest = ev.iter().map(|l| l.norm()).fold(f64::INFINITY, f64::min);
+        // the other eigenvalues are O(0.01-1); 1e-9 leaves room for the QR's round-off
+        assert!(smallest < 1e-9, "{ev:?}");
+        let c = compare(&m, 6.0, 200, Balls::Free).unwrap();
+        assert!(c.exact.stable_ranges.is_empty());
+        let runs = c.neutral_grid_runs();
+        // the grid is neutral from just above Ω_K4's range on to the span's end
+        assert!(runs.iter().any(|&(a, b)| a < 5.0 && b > 5.9), "{runs:?}");
+        let text = c.difference();
+        assert!(text.contains("is not stable (neutral, not unstable, at the grid speeds"), "{text}");
+        // the member is named, and n ≤ 2 has none to name
+        let named = crate::reports::family_member(&m, Balls::Free).unwrap();
+        assert!(named.contains("largest inertia anisotropy") && named.contains("4 balls"), "{named}");
+        assert!(crate::reports::family_member(&base_with(2), Balls::Free).is_none());
+        assert!(crate::reports::family_member(&m, Balls::Locked).is_none());
+        // paper 000's own case (n = 2) has no neutral grid speed: its sentence is unchanged
+        let c2 = compare(&base_with(2), 5.0, 200, Balls::Free).unwrap();
+        assert!(c2.neutral_grid_runs().is_empty());
+        assert!(c2.difference().contains("the balanced state is unstable on"), "{}", c2.difference());
     }
 }
