@@ -999,6 +999,13 @@ impl Plot {
         }
         let mut seen_groups = std::collections::HashSet::new();
         for (k, se) in self.series.iter().enumerate() {
+            // a curve whose points are all gaps draws nothing: no trace (its legend entry would
+            // name a curve that is not there; a simulate figure's "semi-balanced (= s2)" where
+            // that state exists nowhere on the run's speeds, audit 21). A series without points
+            // is a legend entry by design (the Campbell diagram's log-decrement classes): kept.
+            if !se.points.is_empty() && !se.points.iter().any(|p| p.0.is_finite() && p.1.is_finite()) {
+                continue;
+            }
             let group = se.group.clone().unwrap_or_else(|| format!("s{k}"));
             let first = seen_groups.insert(group.clone());
             let show = !se.label.is_empty() && first;
@@ -1077,8 +1084,11 @@ impl Plot {
             layout["title"]["y"] = json!(0.985);
             layout["title"]["yanchor"] = json!("top");
             layout["meta"] = json!({"x2factor": a.factor});
-            // an axis shows only with a trace on it: an invisible one
-            data.push(json!({"type": "scatter", "x": [r(x0 * a.factor), r(x1 * a.factor)], "y": [null, null], "xaxis": "x2", "showlegend": false, "hoverinfo": "skip", "mode": "lines"}));
+            // an axis shows only with a trace on it: an invisible one, named after the axis,
+            // along the bottom of the plot from one end of the axis to the other (finite: a
+            // trace of nulls read as an empty, unnamed curve, audit 21)
+            data.push(json!({"type": "scatter", "name": pesc(&a.label), "x": [r(x0 * a.factor), r(x1 * a.factor)], "y": [r(y0), r(y0)], "xaxis": "x2",
+                "showlegend": false, "hoverinfo": "skip", "mode": "lines", "opacity": 0}));
         }
         json!({"data": data, "layout": layout})
     }
@@ -2152,6 +2162,39 @@ mod tests {
         assert_eq!(p.point_count(), 4);
     }
 
+    /// Every Plotly trace has a name and a finite point (audit 21: a simulate figure carried
+    /// a curve of 601 nulls, and every figure with a second speed axis an unnamed trace of
+    /// two): a curve of gaps only is left out; the second axis's trace, there only to show
+    /// the axis, is named after it and runs along the plot's bottom; a series without points
+    /// (a legend key, as the Campbell diagram's log-decrement classes) is kept.
+    #[test]
+    fn every_plotly_trace_is_named_and_has_a_finite_point() {
+        let nan = f64::NAN;
+        let p = Plot {
+            series: vec![
+                Series::new("drawn", vec![(0.0, 1.0), (1.0, 2.0)], "#000"),
+                Series::new("gaps only", vec![(0.0, nan), (1.0, nan), (nan, 3.0)], "#111"),
+                Series::new("key", vec![], "#222"),
+            ],
+            x2: Some(SecondAxis { factor: 30.0 / std::f64::consts::PI, label: "ω (rpm)".into() }),
+            ..Default::default()
+        };
+        let js = p.to_plotly();
+        let data = js["data"].as_array().unwrap();
+        let names: Vec<&str> = data.iter().map(|t| t["name"].as_str().unwrap_or("")).collect();
+        assert_eq!(names, ["drawn", "key", "ω (rpm)"], "{js}");
+        let finite = |t: &Value| {
+            let (x, y) = (t["x"].as_array().unwrap(), t["y"].as_array().unwrap());
+            x.iter().zip(y).filter(|(a, b)| a.as_f64().is_some_and(f64::is_finite) && b.as_f64().is_some_and(f64::is_finite)).count()
+        };
+        let axis = &data[2];
+        assert_eq!((axis["xaxis"].as_str(), finite(axis), axis["opacity"].as_f64()), (Some("x2"), 2, Some(0.0)), "{axis}");
+        // along the bottom of the y range: no change of the drawn area
+        assert_eq!(axis["y"][0], js["layout"]["yaxis"]["range"][0], "{js}");
+        // the legend holds the drawn curve and the key, not the curve of gaps
+        assert!(!js.to_string().contains("gaps only"), "{js}");
+    }
+
     #[test]
     fn legend_is_wide_enough_for_its_longest_label() {
         let long = "a label much longer than the old fixed legend column could hold";
@@ -2790,8 +2833,24 @@ mod tests {
             let (svg2, png2) = p.to_svg_and_png(1.0);
             assert_eq!(svg2, svg);
             assert_eq!(png2.expect("a PNG"), png);
-            let _ = p.to_plotly();
-            let _ = p.point_count();
+            // every trace named, and one with points has a finite one (as the browser test
+            // counts them, the second axis's trace aside: what `point_count` says the page holds)
+            let js = p.to_plotly();
+            let mut drawn = 0;
+            for t in js["data"].as_array().unwrap() {
+                assert!(t["name"].as_str().is_some_and(|n| !n.is_empty()), "{t}");
+                if t["type"] == "heatmap" {
+                    drawn += t["z"].as_array().unwrap().iter().flat_map(|r| r.as_array().unwrap()).filter(|v| v.is_f64()).count();
+                    continue;
+                }
+                let (x, y) = (t["x"].as_array().unwrap(), t["y"].as_array().unwrap());
+                let n = x.iter().zip(y).filter(|(a, b)| a.is_f64() && b.is_f64()).count();
+                assert!(x.is_empty() || n > 0, "{t}");
+                if t["xaxis"] != "x2" {
+                    drawn += n;
+                }
+            }
+            assert_eq!(drawn, p.point_count(), "{js}");
         }
         // ticks of a span past the largest float, of no target count, of NaN: finite or one
         for (lo, hi, n) in [(-1e308, 1e308, 7), (0.0, 1.0, 0), (nan, 1.0, 7), (0.0, inf, 7), (5e-324, 1e-323, 7)] {

@@ -583,7 +583,9 @@ fn plots_with(cfg: &PlanarConfig, env: &Envelope, title: &str, columns: bool) ->
     let ws: Vec<f64> = (0..=600).map(|i| wlo + (whi - wlo) * i as f64 / 600.0).collect();
     let mut s1 = vec![Series::new("transient", line(k().map(|r| (om(r), mm * amp(r))), columns), PALETTE[0])];
     s1.push(Series::new("stationary (balls held)", ws.iter().map(|&w| (w, mm * locked_amplitude(p, w, &cfg.settings.psi0))).collect(), PALETTE[6]).dashed());
-    if p.n >= 2 {
+    // the semi-balanced amplitude where that state exists on the run's speeds (nowhere: no
+    // curve, and no legend entry naming one)
+    if p.n >= 2 && ws.iter().any(|&w| semi_balanced_exists(p, w)) {
         s1.push(
             Series::new("semi-balanced (= s2)", ws.iter().map(|&w| (w, if semi_balanced_exists(p, w) { mm * p.s2 } else { f64::NAN })).collect(), PALETTE[2])
                 .dashed(),

@@ -462,11 +462,20 @@ impl PyLinearRotor {
 
     /// The balanced state's stability over `(0, omega_max]` at `samples` speeds, on the model
     /// reduced to `modes` mode pairs (`None`: the full model): the JSON of `autobal stability`'s
-    /// general route (`model`, `stationary_state`, `stable_ranges`, `points`, …) plus `reduction`.
-    #[pyo3(signature = (omega_max, samples=200, modes=None))]
-    fn stability(&self, py: Python<'_>, omega_max: f64, samples: usize, modes: Option<usize>) -> PyResult<String> {
+    /// general route (`model`, `stationary_state`, `stable_ranges`, `points`, …) plus `reduction`
+    /// and `operating`: the verdict at `operating_speed` (a speed or range with its unit, or a
+    /// number in rad/s, read as a config's `linear_rotor.operating_speed`), computed by the
+    /// CLI's code (`autobal_commands::general::operating_at`, `operating_json`); `null` without
+    /// one, as the CLI's.
+    #[pyo3(signature = (omega_max, samples=200, modes=None, operating_speed=None))]
+    fn stability(&self, py: Python<'_>, omega_max: f64, samples: usize, modes: Option<usize>, operating_speed: Option<Bound<'_, PyAny>>) -> PyResult<String> {
+        // read as the config reader reads the key: the same forms, the same refusals
+        let operating = match &operating_speed {
+            Some(v) if !v.is_none() => Some(autobal::linear_rotor::config::operating_speed(&crate::to_toml(v, "operating_speed")?).map_err(|e| err(py, e))?),
+            _ => None,
+        };
         let r = self.rotor.clone();
-        let res = crate::interruptible(py, move |_| -> autobal::Result<serde_json::Value> {
+        let res = crate::interruptible(py, move |control| -> anyhow::Result<serde_json::Value> {
             let speeds = autobal::rotor_stability::speed_grid(omega_max, samples)?;
             let (rotor, red) = match modes.filter(|m| *m > 0) {
                 Some(p) => {
@@ -475,13 +484,25 @@ impl PyLinearRotor {
                 }
                 None => (r, None),
             };
-            let st = autobal::linear_rotor::stability::stability_over_speed(&rotor, &speeds)?;
+            // as `autobal stability` on a linear rotor config (`stability::Args::linear_rotor`):
+            // the scan under the control, then the verdict at the operating speed
+            let g = autobal_commands::general::GeneralRotor::linear(rotor);
+            let out = autobal::rotor_stability::stability_over_speed_with(&g.rotor, &speeds, control)?;
+            if let Some(why) = out.stopped {
+                anyhow::bail!("{why}: the stability scan stopped after {} of {} speeds", out.value.points.len(), speeds.len());
+            }
+            let st = out.value;
+            let op = operating.map(|w| autobal_commands::general::operating_at(&g, w, "linear_rotor.operating_speed", &st, control)).transpose()?;
             let mut v = serde_json::to_value(&st).map_err(|e| autobal::Error::invalid("stability", e.to_string()))?;
             v["omega_max"] = serde_json::json!(omega_max);
             v["reduction"] = serde_json::to_value(&red).map_err(|e| autobal::Error::invalid("reduction", e.to_string()))?;
+            v["operating"] = op.as_ref().map_or(serde_json::Value::Null, autobal_commands::general::operating_json);
             Ok(v)
         })?
-        .map_err(|e| err(py, e))?;
+        .map_err(|e| match e.downcast::<autobal::Error>() {
+            Ok(e) => err(py, e),
+            Err(e) => crate::any_err(py, e),
+        })?;
         Ok(res.to_string())
     }
 

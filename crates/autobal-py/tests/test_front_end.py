@@ -534,3 +534,34 @@ def test_the_package_passes_mypy(tmp_path):
     cmd = [sys.executable, "-m", "mypy", "--config-file", str(pkg / "pyproject.toml"), "--cache-dir", str(tmp_path / "mypy-cache"), str(pkg / "python" / "autobal")]
     out = subprocess.run(cmd, capture_output=True, text=True, cwd=pkg, timeout=300)
     assert out.returncode == 0, out.stdout + out.stderr
+
+
+def test_plot_figures_have_no_empty_or_unnamed_trace():
+    """Every trace of a ``.plot()`` figure has a name and a finite point (audit 21): the planar
+    run-up's amplitude figure carried "semi-balanced (= s2)" with 601 y values all NaN (that
+    state exists nowhere on the run's speeds), and every figure with an rpm axis (the washer's
+    stability margin) a trace with no name and y = [NaN, NaN], there only to show the axis. A
+    trace without points (the Campbell diagram's log-decrement key) has none to be finite. The
+    rpm axis is still drawn (its trace is kept, finite and invisible)."""
+    need("plotly")
+    cases = [
+        autobal.analyse("stability", config=str(EX / "washing_machine.toml")),
+        autobal.analyse("simulate", config=str(EX / "planar.toml"), set={"drive.t_end": 5.0}),
+    ]
+    for r in cases:
+        for name in r.figures():
+            fig = r.plot(name).to_dict()
+            for t in fig["data"]:
+                if t.get("type") == "heatmap":
+                    continue
+                assert isinstance(t.get("name"), str) and t["name"], (r.command, name, t)
+                y = np.asarray(t.get("y", ()), dtype=float)
+                assert y.size == 0 or np.isfinite(y).any(), (r.command, name, t["name"])
+    fig = cases[0].plot().to_dict()
+    axis = [t for t in fig["data"] if t.get("xaxis") == "x2"]
+    assert len(axis) == 1 and "xaxis2" in fig["layout"] and axis[0]["opacity"] == 0
+    # the whole run-up (to 240 s) reaches the speeds where the semi-balanced state exists: its
+    # curve is drawn there (only a curve of gaps is left out)
+    full = autobal.analyse("simulate", config=str(EX / "planar.toml")).plot().to_dict()
+    s2 = [t for t in full["data"] if t["name"] == "semi-balanced (= s2)"]
+    assert len(s2) == 1 and np.isfinite(np.asarray(s2[0]["y"], dtype=float)).sum() > 100

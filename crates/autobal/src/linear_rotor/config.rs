@@ -950,8 +950,9 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
 /// `linear_rotor.operating_speed` in rad/s, `[lo, hi]`: a speed or range with its unit
 /// ([`crate::units::speed_range_of_value`]), a bare number in rad/s, each in `(0, 1e6]` rad/s
 /// (`linear_rotor.omega_max`'s range); the messages in rad/s (the spatial config's reader,
-/// [`crate::config::analysis_speed`], speaks of the dimensionless Ω).
-fn operating_speed(v: &Value) -> Result<[f64; 2]> {
+/// `crate::config::analysis_speed`, speaks of the dimensionless Ω). Python's
+/// `LinearRotor.stability(operating_speed=...)` reads its argument here too.
+pub fn operating_speed(v: &Value) -> Result<[f64; 2]> {
     const FIELD: &str = "linear_rotor.operating_speed";
     let reword = |e: Error| match e {
         Error::InvalidParameter { field, reason } => {
