@@ -731,6 +731,23 @@ fn regression_ctrl_c_ended_stability_without_a_word() {
 
 #[cfg(unix)]
 #[test]
+fn regression_ctrl_c_on_a_linear_rotor_s_stability_kept_nothing() {
+    // audit 21's F2: on a linear rotor config `stability` can run for minutes (three balls on
+    // a 28-DOF rotor), and Ctrl-C ended it at once with nothing. Now its scan stops, prints the
+    // speeds analysed and ends with one line saying how many (exit 2, not 130).
+    let d = scratch("ctrlc-linear");
+    let cfg = examples("linear_rotor_shaft.toml");
+    let (code, err) = interrupt_after(&d, Duration::from_millis(1500), &["stability", "--config", &cfg, "--samples", "1000000"]);
+    if code != 0 {
+        assert_eq!(code, 2, "{err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+        assert!(err.starts_with("error: interrupted: ") && err.contains(" of 1000000 speeds analysed; what was analysed is printed"), "{err}");
+    }
+    std::fs::remove_dir_all(&d).ok();
+}
+
+#[cfg(unix)]
+#[test]
 fn regression_ctrl_c_with_stderr_closed_killed_the_handler_not_the_process() {
     // the Ctrl-C handler wrote its line with `eprintln!`, which panics when standard error is a
     // closed pipe: the handler's thread died before its `exit(130)` and the process ran on,

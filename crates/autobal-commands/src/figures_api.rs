@@ -111,7 +111,11 @@ pub fn figures(command: &str, root: &Table, source: &str, o: &Options, control: 
                 route: route(o)?,
             };
             // every route draws its `stability_margin`, a linear rotor config's included
-            args.run(control)?.figures()
+            let out = args.run(control)?;
+            if let Some(why) = out.stopped() {
+                bail!("{why}");
+            }
+            out.figures()
         }
         "campbell" => {
             let args = crate::campbell::Args {

@@ -80,6 +80,10 @@ pub enum Output {
         /// The rotor analysed (the reduced one where the config reduces), as the general
         /// route's, and the verdict at `linear_rotor.operating_speed`, if the config gives one.
         op: Option<Box<(GeneralRotor, general::Operating)>>,
+        /// Why the scan stopped before its end (Ctrl-C, a budget) and what it kept: the speeds
+        /// analysed until then are in `r` (their ranges end at the last of them, not where the
+        /// stability does), no operating-speed verdict; `None` when complete.
+        stopped: Option<String>,
     },
 }
 
@@ -140,28 +144,37 @@ impl Args {
         let cfg = crate::linear_rotor::from_table(root, self.config.dir())?;
         let samples = check_count("--samples", self.samples.unwrap_or(if cfg.rotor.is_isotropic() { 200 } else { 50 }), SAMPLES)?;
         let omega_max = crate::linear_rotor::omega_max(self.omega_max.as_deref(), &cfg)?;
-        // under the control, as the general route ([`general::analyse`]): a stopped scan
-        // prints nothing
+        // under the control: a stopped scan keeps the speeds it analysed and says so
+        // ([`Output::LinearRotor`]'s `stopped`: printed, then an error), as `map` and
+        // `campbell` do (audit 21's F2: three balls on a 28-DOF rotor ran for minutes, and
+        // Ctrl-C then lost everything)
         let speeds = autobal::rotor_stability::speed_grid(omega_max, samples)?;
         let (rotor, red) = crate::linear_rotor::model(&cfg)?;
         // (as the general route: a speed below the periodic floor is said in rad/s and rpm)
         let g = GeneralRotor::linear(rotor);
         let out = autobal::rotor_stability::stability_over_speed_with(&g.rotor, &speeds, control)
             .map_err(|e| self.name_omega_max(general::floor_in_units(&g, e, &speeds), "linear_rotor.omega_max"))?;
-        if let Some(why) = out.stopped {
-            bail!("{why}: the stability scan stopped after {} of {} speeds; nothing is printed", out.value.points.len(), speeds.len());
-        }
+        let stopped = out.stopped.map(|why| stopped_message(why, &out.value, speeds.len()));
         let r = out.value;
         // the verdict at the operating speed, as the general route's (first line, JSON `operating`)
         let op = match cfg.operating_speed {
-            Some(w) => {
+            Some(w) if stopped.is_none() => {
                 let o = general::operating_at(&g, w, "linear_rotor.operating_speed", &r, control)?;
                 Some(Box::new((g, o)))
             }
-            None => None,
+            _ => None,
         };
-        Ok(Output::LinearRotor { cfg: Box::new(cfg), r: Box::new(r), red: Box::new(red), omega_max, op })
+        Ok(Output::LinearRotor { cfg: Box::new(cfg), r: Box::new(r), red: Box::new(red), omega_max, op, stopped })
     }
+}
+
+/// What a stopped linear-rotor scan kept: `"interrupted: 37 of 200 speeds analysed, …"`.
+fn stopped_message(why: autobal::control::StopReason, r: &RotorStability, speeds: usize) -> String {
+    let done = r.points.len();
+    let families = r.points.iter().filter(|p| p.family_dimension > 0).count();
+    let followed = r.points.iter().filter(|p| p.family.is_some()).count();
+    let family = if families > 0 { format!(", the family of balanced states followed at {followed} of the {families} with one") } else { String::new() };
+    format!("{why}: {done} of {speeds} speeds analysed{family}; what was analysed is printed (its stable ranges end where the scan stopped, not where the stability does)")
 }
 
 impl command::Output for Output {
@@ -179,9 +192,14 @@ impl command::Output for Output {
                 v["operating"] = op.as_deref().map_or(Value::Null, general::operating_json);
                 Ok(v)
             }
-            Output::LinearRotor { cfg, r, red, omega_max, op } => {
+            Output::LinearRotor { cfg, r, red, omega_max, op, stopped } => {
                 let mut v = crate::linear_rotor::stability_json(cfg, r, red, *omega_max)?;
                 v["operating"] = op.as_deref().map_or(Value::Null, |(_, o)| general::operating_json(o));
+                // only where stopped: a complete run's JSON is as before
+                if let Some(why) = stopped {
+                    v["complete"] = false.into();
+                    v["stopped"] = why.as_str().into();
+                }
                 Ok(v)
             }
         }
@@ -190,8 +208,9 @@ impl command::Output for Output {
         match self {
             Output::Closed { cfg, c, balls } => Ok(linear::stability_table(cfg, c, *balls)),
             Output::General { g, r, omega_max, op } => Ok(general::table(g, r, *omega_max, op.as_deref())),
-            Output::LinearRotor { cfg, r, red, omega_max, op } => {
-                let first = op.as_deref().map_or(String::new(), |(g, o)| general::operating_line(g, r, o));
+            Output::LinearRotor { cfg, r, red, omega_max, op, stopped } => {
+                let mut first = stopped.as_ref().map_or(String::new(), |why| format!("INCOMPLETE ({why})\n"));
+                first += &op.as_deref().map_or(String::new(), |(g, o)| general::operating_line(g, r, o));
                 Ok(first + &crate::linear_rotor::stability_table(cfg, r, red, *omega_max)?)
             }
         }
@@ -204,6 +223,13 @@ impl command::Output for Output {
             Output::General { g, r, omega_max, .. } => vec![Figure::new("stability_margin", general::margin_plot(g, r, *omega_max))],
             Output::LinearRotor { r, omega_max, .. } => vec![Figure::new("stability_margin", crate::linear_rotor::margin_plot(r, *omega_max))],
         })
+    }
+    fn stopped(&self) -> Option<String> {
+        match self {
+            Output::LinearRotor { stopped, .. } => stopped.clone(),
+            // the other routes print nothing when stopped (an error from `run`)
+            Output::Closed { .. } | Output::General { .. } => None,
+        }
     }
 }
 
@@ -426,5 +452,39 @@ mod tests {
         assert!(grid.len() >= 50, "{}", grid.len());
         let drawn = &figs[0].plot.series.iter().find(|s| s.points.len() == grid.len()).expect("the margin series").points;
         assert_eq!(drawn, &grid);
+    }
+
+    /// A linear rotor's scan stopped (Ctrl-C) keeps the speeds it analysed and says so (audit
+    /// 21's F2: it printed nothing, after minutes of a 3-ball family): the output's `stopped`
+    /// names the count, the JSON has `complete: false` and the points analysed (the first three
+    /// of the grid here, the observer cancelling at the third), the table's first line says
+    /// INCOMPLETE, no operating-speed verdict is given; the same run not stopped has neither key.
+    #[test]
+    fn a_stopped_linear_rotor_scan_keeps_what_it_analysed() {
+        use crate::command::Output as _;
+        let shaft = include_str!("../../../examples/linear_rotor_shaft.toml").replacen("[linear_rotor]\n", "[linear_rotor]\noperating_speed = 300.0\n", 1);
+        let args = Args { config: tables(&shaft, &[]), samples: Some(30), ..Default::default() };
+        let control = Control::new();
+        let c = control.clone();
+        let control = control.with_progress(move |p| {
+            if p.done >= 3 {
+                c.cancel();
+            }
+        });
+        let out = args.run(&control).unwrap();
+        let why = out.stopped().expect("stopped");
+        assert!(why.starts_with("interrupted: 3 of 30 speeds analysed; what was analysed is printed"), "{why}");
+        let v = out.json().unwrap();
+        assert_eq!(v["complete"], false);
+        assert_eq!(v["stopped"], why.as_str());
+        assert_eq!(v["points"].as_array().unwrap().len(), 3);
+        assert!(v["operating"].is_null());
+        assert!(out.table().unwrap().starts_with(&format!("INCOMPLETE ({why})\n")));
+        // complete: no such keys, and the operating speed's verdict
+        let out = args.run(&Control::none()).unwrap();
+        assert!(out.stopped().is_none());
+        let v = out.json().unwrap();
+        assert!(v.get("complete").is_none() && v.get("stopped").is_none() && !v["operating"].is_null());
+        assert_eq!(v["points"].as_array().unwrap().len(), 30);
     }
 }

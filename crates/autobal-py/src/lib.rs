@@ -306,7 +306,13 @@ fn analytic_json(py: Python<'_>, command: &str, config: autobal_commands::comman
         "inertia" => commands_call(py, move |c| inertia::Args { config }.run(c)?.json())?,
         "ranges" => commands_call(py, move |c| ranges::Args { config }.run(c)?.json())?,
         "critical" => commands_call(py, move |c| critical::Args { config, route, omega_max }.run(c)?.json())?,
-        "stability" => commands_call(py, move |c| stability::Args { config, omega_max, balls: b, samples, route }.run(c)?.json())?,
+        "stability" => commands_call(py, move |c| {
+            let out = stability::Args { config, omega_max, balls: b, samples, route }.run(c)?;
+            if let Some(why) = out.stopped() {
+                anyhow::bail!("{why}");
+            }
+            out.json()
+        })?,
         "campbell" => commands_call(py, move |c| {
             let out = campbell::Args { config, omega_max, balls: b, points, route, ..Default::default() }.run(c)?;
             if let Some(why) = out.stopped() {

@@ -616,6 +616,9 @@ pub fn linear_rotor_run(
                 };
                 o.done()?;
                 let out = args.run(control)?;
+                if let Some(why) = out.stopped() {
+                    anyhow::bail!("{why}");
+                }
                 let figures: Vec<serde_json::Value> = out.figures()?.iter().map(|f| f.to_json()).collect();
                 *extra_out = serde_json::json!({ "figures": figures });
                 out.json()
