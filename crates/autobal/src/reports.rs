@@ -796,7 +796,7 @@ pub fn family_member(model: &SpatialModel, balls: Balls) -> Option<String> {
     let n = ms.n;
     Some(match (model.anisotropy.method, &model.anisotropy.ball_angles) {
         (AnisotropyMethod::Paper, _) | (_, None) => format!(
-            "the {n} balls' balanced positions are not unique (a family of dimension {}); this route analyses the coupling of 000's eq (17) with D_A = {} for all of them; {general}",
+            "the {n} balls' balanced positions are not unique (a family of dimension {}); this route analyses the coupling of 000's eq (17) with D_A = {} (the papers' bound, not necessarily a member of the family); {general}",
             n - 2,
             crate::error::fmt_num(model.anisotropy.d_a.unwrap_or(1.0))
         ),
@@ -804,7 +804,15 @@ pub fn family_member(model: &SpatialModel, balls: Balls) -> Option<String> {
             "the {n} balls' balanced positions are not unique (a family of dimension {}); this route analyses one member, that of largest inertia anisotropy (ΔĀ = {}, balls at {} rad from the unbalance); {general}",
             n - 2,
             crate::error::fmt_num(model.anisotropy.used),
-            angles.iter().map(|a| format!("{:.4}", a.rem_euclid(std::f64::consts::TAU))).collect::<Vec<_>>().join(", ")
+            angles
+                .iter()
+                .map(|a| {
+                    // an angle just below 2π prints as 0, not 6.2832
+                    let r = a.rem_euclid(std::f64::consts::TAU);
+                    format!("{:.4}", if std::f64::consts::TAU - r < 5e-5 { 0.0 } else { r })
+                })
+                .collect::<Vec<_>>()
+                .join(", ")
         ),
     })
 }
