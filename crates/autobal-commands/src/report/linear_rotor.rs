@@ -60,7 +60,8 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
     if !diverging.is_empty() {
         let line = lr::divergence_text(&diverging);
         s.p(format!("<b>{}</b>", super::html::esc(line.trim_end())));
-        s.summary.push(format!("Linear rotor: {}", line.trim_end()));
+        // the summary is HTML (its terminal copy strips tags: an unescaped "ω² < 0" cut the line)
+        s.summary.push(format!("Linear rotor: {}", super::html::esc(line.trim_end())));
     }
 
     // the modes at the balancer planes, on the full model (the nodes are physical)
