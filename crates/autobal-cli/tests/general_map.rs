@@ -43,8 +43,8 @@ fn one_plane_general_map_equals_the_12_state_map_cell_by_cell() {
     assert!(!err.contains("ignore"), "{err}");
     let (ha, ra) = csv(&a);
     let (hg, rg) = csv(&g);
-    assert_eq!(ha, "omega,balancer.ball_mass,max_real_part,stable,necessary");
-    assert_eq!(hg, "omega,balancer.ball_mass,max_real_part,verdict,family_dimension,family,state");
+    assert_eq!(ha, "omega,balancer.ball_mass,max_real_part_per_tau,stable,necessary");
+    assert_eq!(hg, "omega,balancer.ball_mass,max_real_part_per_tau,verdict,family_dimension,family,state");
     assert_eq!(ra.len(), 90);
     assert_eq!(ra.len(), rg.len());
     // the same Ω per cell (each route converts with the ω0 of the rotor at that ball mass)

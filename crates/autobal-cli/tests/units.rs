@@ -250,7 +250,7 @@ fn a_map_over_rpm_is_the_map_over_the_same_omegas() {
     let (code, _, err) = autobal(&["map", "--config", &cfg, "--x", "balancer.z=0.1:0.4:7", "--y", &omega, "--threads", "2", "--out", b.to_str().unwrap()]);
     assert_eq!(code, 0, "{err}");
     let (ra, rb) = (read_csv(&a.with_extension("csv")), read_csv(&b.with_extension("csv")));
-    assert_eq!(ra[0], ["balancer.z", "speed_rpm", "max_real_part", "stable", "necessary"]);
+    assert_eq!(ra[0], ["balancer.z", "speed_rpm", "max_real_part_per_tau", "stable", "necessary"]);
     assert_eq!(ra.len(), rb.len());
     for (x, y) in ra.iter().zip(&rb).skip(1) {
         // the axis printed in rpm is the Ω axis times 30 ω0/π

@@ -210,11 +210,39 @@ pub fn stability(cfg: &LinearRotorConfig, omega_max: f64, samples: usize) -> Res
 }
 
 /// The undamped natural frequencies (rad/s) of the rotor at rest with its balls as rings, the
-/// lowest `count`.
+/// lowest `count` of the modes that do not diverge at rest ([`divergence`] names those: a
+/// negative `ω²` has no frequency and never reads 0 rad/s here; a rigid-body mode's does).
 pub fn natural_frequencies(rotor: &LinearRotor, count: usize) -> Result<Vec<f64>> {
-    let mut w = rotor.at_speed(0.0).natural_frequencies(&[], true)?;
-    w.truncate(count);
-    Ok(w)
+    let w2 = rotor.at_speed(0.0).natural_frequencies_squared(&[], true)?;
+    let skip = autobal::linear_rotor::static_divergence(&w2).len();
+    Ok(w2[skip..].iter().take(count).map(|l| l.max(0.0).sqrt()).collect())
+}
+
+/// The rotor's divergent modes at rest with its balls as rings: their `ω² < 0` ((rad/s)², the
+/// most negative first; [`autobal::linear_rotor::static_divergence`]), empty where `K` is
+/// positive semi-definite.
+pub fn divergence(rotor: &LinearRotor) -> Result<Vec<f64>> {
+    Ok(autobal::linear_rotor::static_divergence(&rotor.at_speed(0.0).natural_frequencies_squared(&[], true)?))
+}
+
+/// The JSON of [`divergence`]: one `{omega_squared, growth_rate}` per divergent mode (`ω²` in
+/// (rad/s)², the rate `sqrt(−ω²)` in 1/s at which it grows at rest), `[]` for none.
+pub fn divergence_json(d: &[f64]) -> Value {
+    Value::Array(d.iter().map(|l| json!({"omega_squared": l, "growth_rate": (-l).sqrt()})).collect())
+}
+
+/// The line that says the structure is statically unstable ([`divergence`]), empty where it is not.
+pub fn divergence_text(d: &[f64]) -> String {
+    if d.is_empty() {
+        return String::new();
+    }
+    let six = |v: f64| fmt_num(crate::num::round_sig(v, 6).unwrap_or(v));
+    format!(
+        "statically unstable at rest: {} mode(s) with ω² < 0, ω² = {} (rad/s)², growing as exp(sqrt(-ω²) t) at {} 1/s: the stiffness K is not positive semi-definite (these modes have no natural frequency)\n",
+        d.len(),
+        d.iter().map(|l| six(*l)).collect::<Vec<_>>().join(", "),
+        d.iter().map(|l| six((-l).sqrt())).collect::<Vec<_>>().join(", ")
+    )
 }
 
 /// The JSON of `stability`; the natural frequencies (with the balls as rings) are those of the
@@ -237,6 +265,7 @@ pub fn stability_json(cfg: &LinearRotorConfig, r: &RotorStability, red: &Option<
         "dofs": cfg.rotor.dofs(),
         "balls": cfg.rotor.total_balls(),
         "natural_frequencies": natural_frequencies(red.as_ref().map_or(&cfg.rotor, |r| &r.rotor), 6)?,
+        "static_divergence": divergence_json(&divergence(red.as_ref().map_or(&cfg.rotor, |r| &r.rotor))?),
         "reduction": reduction_json(red),
         "stationary_state": r.kind,
         "speed_unit": "rad/s",
@@ -269,8 +298,12 @@ pub fn stability_table(cfg: &LinearRotorConfig, r: &RotorStability, red: &Option
             Kind::PeriodicOrbit => "anisotropic: a periodic orbit of half a revolution (Floquet multipliers)",
         }
     ));
-    let wn = natural_frequencies(red.as_ref().map_or(&cfg.rotor, |r| &r.rotor), 4)?;
-    s.push_str(&format!("natural frequencies at rest, balls as rings: {}\n", wn.iter().map(|w| speed_text(*w)).collect::<Vec<_>>().join(", ")));
+    let analysed = red.as_ref().map_or(&cfg.rotor, |r| &r.rotor);
+    let wn = natural_frequencies(analysed, 4)?;
+    let diverging = divergence(analysed)?;
+    s.push_str(&divergence_text(&diverging));
+    let others = if diverging.is_empty() { "" } else { " (of the other modes)" };
+    s.push_str(&format!("natural frequencies at rest, balls as rings{others}: {}\n", wn.iter().map(|w| speed_text(*w)).collect::<Vec<_>>().join(", ")));
     s.push_str(&reduction_text(red));
     s.push_str(&partial_text(cfg, r));
     s.push_str(&linear_residual_text(r));
@@ -979,16 +1012,21 @@ pub fn modes_at_plane(rotor: &LinearRotor, plane: usize, count: usize) -> Result
     let k: Vec<f64> = (0..n * n).map(|ij| 0.5 * (r0.k[ij] + r0.k[(ij % n) * n + ij / n])).collect();
     let mut sym = r0.clone();
     sym.k = k.clone();
-    let w = sym.natural_frequencies(&[], true)?;
-    let scale = w.iter().fold(0.0, |a: f64, b| a.max(b * b)).max(f64::MIN_POSITIVE);
+    // ω² with its sign: a divergent mode (K not positive semi-definite) has its own shift
+    let w2 = sym.natural_frequencies_squared(&[], true)?;
+    let scale = w2.iter().fold(0.0, |a: f64, b| a.max(b.abs())).max(f64::MIN_POSITIVE);
     let starts = rotor.node_starts();
     let mut found: Vec<Vec<f64>> = vec![];
     let mut out = vec![];
     let mdot = |a: &[f64], b: &[f64]| -> f64 { (0..n).map(|i| a[i] * (0..n).map(|j| m[i * n + j] * b[j]).sum::<f64>()).sum() };
-    for (idx, &wk) in w.iter().take(count.min(n)).enumerate() {
+    for (idx, &lk) in w2.iter().take(count.min(n)).enumerate() {
+        let wk = lk.max(0.0).sqrt();
         // a shift just below ω²: K − σM stays regular, the mode dominates by (ω² − σ)⁻¹
-        // (rigid-body modes, ω = 0, get a shift 1e-15 of the highest ω² below them)
-        let sigma = wk * wk - 1e-9 * (wk * wk).max(1e-6 * scale);
+        // (rigid-body modes, ω = 0, get a shift 1e-15 of the highest |ω²| below them)
+        // (ω² of a mode that does not diverge as before: wk², a rigid-body mode's rounding 0)
+        let diverges = lk < -autobal::linear_rotor::DIVERGENCE_TOL * scale;
+        let lk = if diverges { lk } else { wk * wk };
+        let sigma = lk - 1e-9 * lk.abs().max(1e-6 * scale);
         let a: Vec<f64> = (0..n * n).map(|ij| k[ij] - sigma * m[ij]).collect();
         let singular = || anyhow!("linear_rotor: the mode shapes at rest: K − ω²M is singular at mode {idx}");
         let factors = lu(&a, n).ok_or_else(singular)?;
@@ -1032,7 +1070,7 @@ pub fn modes_at_plane(rotor: &LinearRotor, plane: usize, count: usize) -> Result
         } else {
             vec![0.0; starts.len()]
         };
-        out.push(ModeAtPlane { omega: wk, translation: at_plane(b) / scale, tilt, node: b.node, shape });
+        out.push(ModeAtPlane { omega: wk, omega_squared: lk, translation: at_plane(b) / scale, tilt, node: b.node, shape });
         found.push(v);
     }
     Ok(out)
@@ -1041,8 +1079,11 @@ pub fn modes_at_plane(rotor: &LinearRotor, plane: usize, count: usize) -> Result
 /// One undamped mode at a balancer plane ([`modes_at_plane`]).
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct ModeAtPlane {
-    /// Natural frequency at rest (rad/s).
+    /// Natural frequency at rest (rad/s), 0 for a divergent mode (`omega_squared < 0`).
     pub omega: f64,
+    /// `ω²` at rest ((rad/s)²) with its sign: negative for a mode that diverges at rest
+    /// ([`autobal::linear_rotor::static_divergence`]).
+    pub omega_squared: f64,
     /// The translation radius of the plane's race centre (its node's translation plus its
     /// offset times the tilt) over the mode's largest of any node or plane (0 to 1).
     pub translation: f64,

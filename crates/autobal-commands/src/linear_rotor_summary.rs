@@ -17,7 +17,7 @@
 //! - `ranges`: paper 003's necessary ranges are those of the rigid rotor of papers 000/003, not
 //!   defined here; the exact stable ranges over `stability`'s default axis and grid instead.
 
-use crate::linear_rotor::{model, natural_frequencies, reduction_json, reduction_text};
+use crate::linear_rotor::{divergence, divergence_json, divergence_text, model, natural_frequencies, reduction_json, reduction_text};
 use anyhow::Result;
 use autobal::error::fmt_num;
 use autobal::linear_rotor::config::LinearRotorConfig;
@@ -133,19 +133,22 @@ pub fn inertia(cfg: &LinearRotorConfig) -> (Value, String) {
 pub fn critical(cfg: &LinearRotorConfig) -> Result<(Value, String)> {
     let (rotor, red) = model(cfg)?;
     let w = natural_frequencies(&rotor, 8)?;
+    let diverging = divergence(&rotor)?;
     let what = "undamped natural frequencies at rest (Omega = 0: no gyroscopic terms, speed-dependent bearings at 0) with the balls as rings and the rotor-fixed inertia at the rotor's angle 0 (LinearRotor::natural_frequencies)";
     let v = json!({
         "model": "linear",
         "source": cfg.source,
         "route": "linear",
         "natural_frequencies": w,
+        "static_divergence": divergence_json(&diverging),
         "natural_frequencies_are": what,
         "reduction": reduction_json(&red),
         "critical_speeds": Value::Null,
         "critical_speeds_are": "not computed here: the critical speeds at speed (gyroscopic terms, bearings over speed, balls free) are autobal campbell's",
     });
-    let mut s = String::new();
-    let _ = writeln!(s, "Linear rotor: {what}:");
+    let mut s = divergence_text(&diverging);
+    let others = if diverging.is_empty() { "" } else { " (of the modes that do not diverge)" };
+    let _ = writeln!(s, "Linear rotor: {what}{others}:");
     for (i, x) in w.iter().enumerate() {
         let _ = writeln!(
             s,

@@ -846,6 +846,19 @@ impl<'a> CsvRows<'a> {
     }
 }
 
+/// The CSV's name of the margin column: `max_real_part`, or `max_real_part_per_tau` on a
+/// dimensional (SI) spatial config, whose margin is per unit of the dimensionless time
+/// `τ = ω0 t` as on every spatial config (the figure's "per unit τ") while `stability` on the
+/// same config prints 1/s: multiply by ω0 (rad/s) for 1/s. A dimensionless config's only time
+/// is τ, the planar rotor's and a linear rotor's margin is in 1/s: both keep `max_real_part`.
+pub fn margin_column(dimensional: bool) -> &'static str {
+    if dimensional {
+        "max_real_part_per_tau"
+    } else {
+        "max_real_part"
+    }
+}
+
 /// Compute the map with the library ([`autobal::spatial::map::stability_map_units`]), handing
 /// the rows to `rows` in grid order and keeping a decimated copy for the figures.
 #[allow(clippy::too_many_arguments)]
@@ -872,7 +885,7 @@ pub fn compute(
         _ => None,
     };
     if let Some(w) = csv.as_mut() {
-        writeln!(w, "{},{},max_real_part,stable,necessary", x.path, y.path)?;
+        writeln!(w, "{},{},{},stable,necessary", x.path, y.path, margin_column(cfg.dimensional))?;
     }
     let mut out = csv.as_ref().map(|_| CsvRows::new(x, y, quantity == Quantity::Verdict, rayon::current_num_threads()));
     let mut io_error: Option<std::io::Error> = None;
@@ -927,7 +940,9 @@ fn general(
         _ => None,
     };
     if let Some(w) = csv.as_mut() {
-        writeln!(w, "{},{},max_real_part,verdict,family_dimension,family,state", x.path, y.path)?;
+        // a spatial config in SI: its margin is per τ all the same (the header says so)
+        let dimensional = !planar && !linear && config::is_dimensional(root);
+        writeln!(w, "{},{},{},verdict,family_dimension,family,state", x.path, y.path, margin_column(dimensional))?;
     }
     let mut traced: Vec<BoundaryPoint> = vec![];
     let (kx, dx) = decimate(x);

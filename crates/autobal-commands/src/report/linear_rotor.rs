@@ -55,6 +55,15 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
         }
     ));
 
+    // a stiffness that is not positive semi-definite: said first, never a "0 rad/s" mode
+    let diverging = lr::divergence(&model)?;
+    if !diverging.is_empty() {
+        let line = lr::divergence_text(&diverging);
+        s.p(format!("<b>{}</b>", super::html::esc(line.trim_end())));
+        // the summary is HTML (its terminal copy strips tags: an unescaped "ω² < 0" cut the line)
+        s.summary.push(format!("Linear rotor: {}", super::html::esc(line.trim_end())));
+    }
+
     // the modes at the balancer planes, on the full model (the nodes are physical)
     s.h3("linear_rotor_modes", "Mode shapes at the balancer plane");
     s.p("The undamped modes of the rotor at rest with the balls as rings and the inertia fixed to the rotor at its angle 0 (symmetric part of <code>K</code> at Ω = 0): how far each balancer plane moves in each mode (its race centre: its node's translation plus its <code>offset</code> times the tilt, <code>x + e β</code>, <code>y − e α</code>), as a fraction of the mode's largest translation of any node or plane (1: the plane sits at the mode's antinode; 0: at a node of the mode, where the balls can neither feel nor counter that mode's whirl), and the tilt at the plane's node in that mode (rad per metre of that largest translation). Above a critical speed whose mode barely moves the plane, the balls cannot balance that mode's response.");
@@ -65,14 +74,13 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
             .enumerate()
             .map(|(k, m)| {
                 let at_node = m.translation < NODE_OF_MODE && 0.1 * m.tilt < NODE_OF_MODE;
-                vec![
-                    format!("{}", k + 1),
-                    fmt(m.omega, 5),
-                    fmt(rpm(m.omega), 5),
-                    fmt(m.translation, 3),
-                    fmt(m.tilt, 3),
-                    if at_node { "near a node of the mode".into() } else { String::new() },
-                ]
+                // a divergent mode has no frequency: its ω² < 0 instead
+                let (w, n) = if m.omega_squared < 0.0 && m.omega == 0.0 {
+                    (format!("none: ω² = {} (rad/s)², statically unstable", fmt(m.omega_squared, 5)), "-".to_string())
+                } else {
+                    (fmt(m.omega, 5), fmt(rpm(m.omega), 5))
+                };
+                vec![format!("{}", k + 1), w, n, fmt(m.translation, 3), fmt(m.tilt, 3), if at_node { "near a node of the mode".into() } else { String::new() }]
             })
             .collect();
         let offset = if b.offset == 0.0 { String::new() } else { format!(", {} m from it along the axis", fmt(b.offset, 4)) };
@@ -105,9 +113,9 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
 
     // stability over speed: `autobal stability`'s computation and figure
     s.h3("linear_rotor_stability", "Where the balanced state is stable");
+    let full = if rotor.is_isotropic() { 200 } else { 50 };
     let samples = match (ctx.quick, rotor.is_isotropic()) {
-        (false, true) => 200,
-        (false, false) => 50,
+        (false, _) => full,
         (true, true) => 60,
         (true, false) => 20,
     };
@@ -120,11 +128,31 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
         .map(|r| format!("{} to {}", crate::general::end_text(&st, r, false, speed), crate::general::end_text(&st, r, true, speed)))
         .collect();
     let verdict = if ranges.is_empty() { format!("nowhere in (0, {}]", speed(omega_max)) } else { ranges.join("; ") };
+    // the verdicts are the grid's: a range's located ends are exact, but an unstable gap
+    // between two stable grid speeds narrower than the step is not seen (the quick grid's
+    // 60 speeds stepped over 386-411 rad/s on the shaft example with me = 5e-3: review 21)
+    let step = omega_max / samples as f64;
+    let grid = format!(
+        "on a grid of {samples} speeds {} apart: an unstable gap narrower than that between two stable grid speeds can go unseen{}",
+        speed(step),
+        if ctx.quick {
+            format!(" (the quick report's coarse grid; the full report takes {full}, `autobal stability --samples N` any number)")
+        } else {
+            String::new()
+        }
+    );
     s.p(format!(
-        "The balanced state (the balls where they cancel the unbalance) by its exact linearisation at {samples} speeds up to {} ({}), as <code>autobal stability</code> computes it: stable {verdict}.",
+        "The balanced state (the balls where they cancel the unbalance) by its exact linearisation at {samples} speeds up to {} ({}), as <code>autobal stability</code> computes it: stable {verdict}. The ranges are {}.",
         speed(omega_max),
-        if rotor.is_isotropic() { "an equilibrium in axes turning with the rotor: eigenvalues" } else { "anisotropic: a periodic orbit, Floquet multipliers" }
+        if rotor.is_isotropic() { "an equilibrium in axes turning with the rotor: eigenvalues" } else { "anisotropic: a periodic orbit, Floquet multipliers" },
+        super::html::esc(&grid)
     ));
+    // the summary states the ranges alone: the quick one says they are a coarse grid's
+    let caveat = if ctx.quick {
+        format!(" (quick report: a grid of {samples} speeds {} apart, a narrower unstable gap can go unseen)", speed(step))
+    } else {
+        String::new()
+    };
     // balls too light: the partially balanced state, said so (lr::partial_text)
     let partial = lr::partial_text(cfg, &st);
     if !partial.is_empty() {
@@ -137,9 +165,12 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
         let op = crate::general::operating_at(&g, w, "linear_rotor.operating_speed", &st, &ctx.control)?;
         let line = crate::general::operating_line(&g, &st, &op);
         s.p(format!("<b>{}</b>", super::html::esc(line.trim_end())));
-        s.summary.push(line.trim_end().to_string());
+        // the caveat on the verdict's line, before any lines of other states
+        let line = line.trim_end();
+        let (first, rest) = line.split_once('\n').map_or((line, String::new()), |(a, b)| (a, format!("\n{b}")));
+        s.summary.push(format!("{first}{caveat}{rest}"));
     }
-    s.summary.push(format!("Linear rotor: {what} is stable {verdict}."));
+    s.summary.push(format!("Linear rotor: {what} is stable {verdict}{caveat}."));
     s.figure("linear_rotor_stability_margin", lr::margin_plot(&st, omega_max), "The balanced state's stability margin over speed (largest Re λ, or the largest Floquet exponent of a periodic orbit), the exactly stable ranges shaded: <code>autobal stability --svg</code>'s figure.");
 
     // the structure's Campbell diagram without the balls

@@ -412,6 +412,24 @@ pub struct Gravity {
 /// Largest number of DOFs accepted (dense matrices of `N²` entries).
 pub const MAX_DOFS: usize = 2000;
 
+/// Relative size below which a negative `ω²` of [`LinearRotor::natural_frequencies_squared`]
+/// is a rigid-body mode's rounding rather than a divergent mode: `λ < −DIVERGENCE_TOL ·
+/// max|λ|`. The eigenvalues of the (rounding-)symmetric `L⁻¹ K L⁻ᵀ` are backward stable, off by
+/// about `N ε ‖S‖ ≤ 2000 · 2.2e-16 ≈ 4e-13` of the largest; 1e-9 leaves three orders for the
+/// triangular solves' growth with the conditioning of `M`. A true `ω²` closer to 0 than that
+/// cannot be told from 0 in double precision.
+pub const DIVERGENCE_TOL: f64 = 1e-9;
+
+/// The divergent modes at rest among `omega_squared` ([`LinearRotor::natural_frequencies_squared`]):
+/// the `ω² < −`[`DIVERGENCE_TOL`]` · max|ω²|`, ascending (the most negative first). Each is a
+/// static instability: `q̈ = −ω² q` grows as `exp(sqrt(−ω²) t)`, the stiffness matrix `K` not
+/// positive semi-definite. Empty for a positive semi-definite `K` (a rigid-body mode's `ω² ≈ 0`
+/// of either sign is not one).
+pub fn static_divergence(omega_squared: &[f64]) -> Vec<f64> {
+    let scale = omega_squared.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    omega_squared.iter().copied().filter(|v| *v < -DIVERGENCE_TOL * scale).collect()
+}
+
 impl LinearRotor {
     /// A structure of `nodes` nodes with zero matrices, no unbalance and no balancer.
     pub fn zeros(nodes: usize, layout: Layout) -> Self {
@@ -1081,7 +1099,20 @@ impl LinearRotor {
     /// that split its inertia differently between `M` and `M_rot` give the same frequencies.
     /// `K` must be symmetric; the generalised problem `K v = ω² M v` is reduced to the standard one `L⁻¹ K L⁻ᵀ w = ω² w` by the Cholesky factor
     /// `M = L Lᵀ` and solved by [`eigen_dyn`]; `ω = sqrt(max(λ, 0))` (rigid-body modes give 0).
+    /// A `K` that is not positive semi-definite has modes with `λ = ω² < 0` (the structure
+    /// diverges at rest at the rate `sqrt(−λ)`), which read 0 here: ask
+    /// [`LinearRotor::natural_frequencies_squared`] and [`static_divergence`] to tell them
+    /// from a rigid-body mode.
     pub fn natural_frequencies(&self, constrained: &[usize], with_balls: bool) -> Result<Vec<f64>> {
+        Ok(self.natural_frequencies_squared(constrained, with_balls)?.into_iter().map(|l| l.max(0.0).sqrt()).collect())
+    }
+
+    /// The eigenvalues `λ_i = ω_i²` ((rad/s)², ascending, with their signs) of the undamped
+    /// problem at rest `K v = λ (M + M_rot) v` of [`LinearRotor::natural_frequencies`] (the
+    /// same constraints, balls and rotor-fixed inertia): negative where `K` is not positive
+    /// semi-definite on the free DOFs (by Sylvester's law of inertia the Cholesky congruence
+    /// `L⁻¹ K L⁻ᵀ` keeps the number of negative eigenvalues of `K`).
+    pub fn natural_frequencies_squared(&self, constrained: &[usize], with_balls: bool) -> Result<Vec<f64>> {
         self.validate()?;
         let n = self.dofs();
         let mut m = self.m.clone();
@@ -1103,7 +1134,7 @@ impl LinearRotor {
         let xt: Vec<f64> = (0..r * r).map(|ij| x[(ij % r) * r + ij / r]).collect();
         let s = lower_solve_columns(&l, &xt, r);
         let ev = eigen_dyn::eigenvalues(&s, r).map_err(|_| Error::NoConvergence { omega: 0.0 })?;
-        let mut w: Vec<f64> = ev.iter().map(|z| z.re.max(0.0).sqrt()).collect();
+        let mut w: Vec<f64> = ev.iter().map(|z| z.re).collect();
         w.sort_by(f64::total_cmp);
         Ok(w)
     }
