@@ -168,6 +168,16 @@ def case_map(tmp_path):
     rows = [line.split(",") for line in (tmp_path / "m.csv").read_text().splitlines()]
     assert rows[0] == list(df.columns)
     assert [[float(v) for v in r] for r in rows[1:]] == df.astype(float).values.tolist()
+    # a dimensional config's margin is per τ: the CSV names it so (session 22), and so does the
+    # table Python gives (it read max_real_part)
+    dim = str(EX / "dimensional.toml")
+    x, y = "omega=0.2:3:5", "balancer.ball_mass=0.01:0.05:3"
+    out = run(binary(), "map", "--config", dim, "--x", x, "--y", y, "--out", str(tmp_path / "d"))
+    assert out.returncode == 0, out.stderr
+    df = autobal.analyse("map", config=dim, x=x, y=y).to_pandas()
+    rows = [line.split(",") for line in (tmp_path / "d.csv").read_text().splitlines()]
+    assert rows[0] == list(df.columns) and "max_real_part_per_tau" in rows[0]
+    assert [[float(v) for v in r] for r in rows[1:]] == df.astype(float).values.tolist()
 
 
 def case_simulate(tmp_path):
