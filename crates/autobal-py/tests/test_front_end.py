@@ -311,6 +311,15 @@ def case_export_model(tmp_path):
     f = np.sort(autobal.LinearRotor(m, c, g, k, per_node=2).natural_frequencies())
     want = np.sort(np.sqrt(np.linalg.eigvals(np.linalg.solve(m, k)).real))
     assert np.allclose(f, want, rtol=1e-12, atol=0), (f, want)
+    # the stiffness turned indefinite: ω² = −k/m exactly, refused by natural_frequencies (it
+    # read 0 rad/s), given with its sign by natural_frequencies_squared, in the CLI's words
+    neg = autobal.LinearRotor(m, c, g, -k, per_node=2)
+    sq = np.sort(neg.natural_frequencies_squared())
+    want_sq = np.sort(-np.linalg.eigvals(np.linalg.solve(m, k)).real)
+    assert np.allclose(sq, want_sq, rtol=1e-12, atol=0) and (sq < 0).all(), (sq, want_sq)
+    with pytest.raises(ValueError, match="statically unstable at rest: 2 mode") as e:
+        neg.natural_frequencies()
+    assert e.value.field == "k"
 
 
 def case_ranges(tmp_path):
