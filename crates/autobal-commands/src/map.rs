@@ -300,7 +300,20 @@ impl Plan {
             }
             PlanRoute::General { root, speed, planar, linear } => general(root, a, *speed, *planar, *linear, rows, control)?,
         };
-        Ok(Output { x: a.x.clone(), y: a.y.clone(), balls: a.balls, quantity: a.quantity, secs: t0.elapsed().as_secs_f64(), route, written: None })
+        let dimensional = match &self.route {
+            PlanRoute::Closed { cfg, .. } => cfg.dimensional,
+            PlanRoute::General { root, planar, linear, .. } => !planar && !linear && config::is_dimensional(root),
+        };
+        Ok(Output {
+            x: a.x.clone(),
+            y: a.y.clone(),
+            balls: a.balls,
+            quantity: a.quantity,
+            secs: t0.elapsed().as_secs_f64(),
+            route,
+            written: None,
+            margin_column: margin_column(dimensional),
+        })
     }
 }
 
@@ -320,6 +333,9 @@ pub struct Output {
     /// The stem the front end wrote the files to (`STEM.csv`, `.svg`, `.png`,
     /// `STEM_boundary.csv`), named in the table and the messages.
     pub written: Option<PathBuf>,
+    /// The margin's column name in the CSV and Python's table ([`margin_column`]): per τ on a
+    /// dimensional spatial config.
+    pub margin_column: &'static str,
 }
 
 /// The cells and counts of each route.
@@ -517,6 +533,7 @@ impl command::Output for Output {
             "rows": self.y.values.len(),
             "wall_s": self.secs,
             "stopped": command::Output::stopped(self),
+            "margin_column": self.margin_column,
         });
         match &self.route {
             RouteOutput::Closed { continued, direct, traced, .. } => {

@@ -630,6 +630,8 @@ fn map_dict<'py>(py: Python<'py>, args: autobal_commands::map::Args, threads: Op
     let d = PyDict::new(py);
     d.set_item("x", PyArray1::from_vec(py, xs))?;
     d.set_item("y", PyArray1::from_vec(py, ys))?;
+    // the margin's name in the CLI's CSV (per τ on a dimensional spatial config)
+    d.set_item("margin_column", out.margin_column)?;
     match out.route {
         RouteOutput::Closed { cells: Some(cells), .. } => {
             let flat = || cells.iter().flatten();

@@ -446,9 +446,29 @@ impl PyLinearRotor {
     }
 
     /// Undamped natural frequencies at rest (rad/s), optionally with the balls as rings.
+    /// Refused where the stiffness is not positive semi-definite: a mode with `ω² < 0`
+    /// ([`autobal::linear_rotor::static_divergence`]) diverges at rest and has no natural
+    /// frequency (it read 0 rad/s, as a rigid-body mode; the CLI says so in the same words);
+    /// [`natural_frequencies_squared`](Self::natural_frequencies_squared) gives `ω²` with its sign.
     #[pyo3(signature = (with_balls=false))]
     fn natural_frequencies(&self, py: Python<'_>, with_balls: bool) -> PyResult<Vec<f64>> {
-        self.rotor.at_speed(0.0).natural_frequencies(&[], with_balls).map_err(|e| err(py, e))
+        let at_rest = self.rotor.at_speed(0.0);
+        let squared = at_rest.natural_frequencies_squared(&[], with_balls).map_err(|e| err(py, e))?;
+        let divergent = autobal::linear_rotor::static_divergence(&squared);
+        if !divergent.is_empty() {
+            let why = autobal_commands::linear_rotor::divergence_text(&divergent);
+            return Err(err(py, autobal::Error::invalid("k", format!("{}; natural_frequencies_squared() gives every ω² with its sign", why.trim_end()))));
+        }
+        at_rest.natural_frequencies(&[], with_balls).map_err(|e| err(py, e))
+    }
+
+    /// The squares `ω²` of the undamped natural frequencies at rest ((rad/s)², ascending),
+    /// with their sign: negative for a mode that diverges at rest (a stiffness that is not
+    /// positive semi-definite), 0 to round-off for a rigid-body mode
+    /// ([`autobal::linear_rotor::LinearRotor::natural_frequencies_squared`]).
+    #[pyo3(signature = (with_balls=false))]
+    fn natural_frequencies_squared(&self, py: Python<'_>, with_balls: bool) -> PyResult<Vec<f64>> {
+        self.rotor.at_speed(0.0).natural_frequencies_squared(&[], with_balls).map_err(|e| err(py, e))
     }
 
     /// The structure's eigenvalues (no balls) at each speed (rad/s): `(real, imag)` lists,

@@ -168,6 +168,16 @@ def case_map(tmp_path):
     rows = [line.split(",") for line in (tmp_path / "m.csv").read_text().splitlines()]
     assert rows[0] == list(df.columns)
     assert [[float(v) for v in r] for r in rows[1:]] == df.astype(float).values.tolist()
+    # a dimensional config's margin is per τ: the CSV names it so (session 22), and so does the
+    # table Python gives (it read max_real_part)
+    dim = str(EX / "dimensional.toml")
+    x, y = "omega=0.2:3:5", "balancer.ball_mass=0.01:0.05:3"
+    out = run(binary(), "map", "--config", dim, "--x", x, "--y", y, "--out", str(tmp_path / "d"))
+    assert out.returncode == 0, out.stderr
+    df = autobal.analyse("map", config=dim, x=x, y=y).to_pandas()
+    rows = [line.split(",") for line in (tmp_path / "d.csv").read_text().splitlines()]
+    assert rows[0] == list(df.columns) and "max_real_part_per_tau" in rows[0]
+    assert [[float(v) for v in r] for r in rows[1:]] == df.astype(float).values.tolist()
 
 
 def case_simulate(tmp_path):
@@ -301,6 +311,15 @@ def case_export_model(tmp_path):
     f = np.sort(autobal.LinearRotor(m, c, g, k, per_node=2).natural_frequencies())
     want = np.sort(np.sqrt(np.linalg.eigvals(np.linalg.solve(m, k)).real))
     assert np.allclose(f, want, rtol=1e-12, atol=0), (f, want)
+    # the stiffness turned indefinite: ω² = −k/m exactly, refused by natural_frequencies (it
+    # read 0 rad/s), given with its sign by natural_frequencies_squared, in the CLI's words
+    neg = autobal.LinearRotor(m, c, g, -k, per_node=2)
+    sq = np.sort(neg.natural_frequencies_squared())
+    want_sq = np.sort(-np.linalg.eigvals(np.linalg.solve(m, k)).real)
+    assert np.allclose(sq, want_sq, rtol=1e-12, atol=0) and (sq < 0).all(), (sq, want_sq)
+    with pytest.raises(ValueError, match="statically unstable at rest: 2 mode") as e:
+        neg.natural_frequencies()
+    assert e.value.field == "k"
 
 
 def case_ranges(tmp_path):

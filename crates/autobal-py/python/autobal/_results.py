@@ -208,7 +208,8 @@ class Result:
             import numpy as np
 
             xs, ys = np.meshgrid(r["x"], r["y"])
-            cols = {r["x_path"]: xs.ravel(), r["y_path"]: ys.ravel(), "max_real_part": r["margin"].ravel()}
+            # the CLI CSV's name: ``max_real_part_per_tau`` on a dimensional spatial config
+            cols = {r["x_path"]: xs.ravel(), r["y_path"]: ys.ravel(), r.get("margin_column", "max_real_part"): r["margin"].ravel()}
             if "necessary" in r:
                 cols.update(stable=r["stable"].ravel(), necessary=r["necessary"].ravel())
             else:
