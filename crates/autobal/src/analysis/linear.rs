@@ -1,6 +1,6 @@
 //! Dense linear solves for Newton's method on a state of any size: LU with partial pivoting,
 //! and the minimum-norm solution of a system whose matrix has a known null space (a family of
-//! stationary states) by the singular value decomposition (one-sided Jacobi).
+//! stationary states) by the singular value decomposition (nalgebra's Golub–Kahan SVD).
 
 // Index loops follow the algorithms' formulas.
 #![allow(clippy::needless_range_loop)]
@@ -42,13 +42,11 @@ pub(crate) fn lu_solve(a: &mut [f64], n: usize, b: &mut [f64]) -> bool {
 
 /// The minimum-norm least-squares solution of `A x = b` with the `drop` smallest singular
 /// values of `A` (row-major `n × n`), and any below `1e-12 σ_max`, treated as zero:
-/// `x = V Σ⁺ Uᵀ b`. The SVD by one-sided
-/// Jacobi rotations on the columns of `A V` (Hestenes), to relative orthogonality `n ε` (a
-/// tighter test is not met in floating point and only spends sweeps).
+/// `x = V Σ⁺ Uᵀ b`, by nalgebra's SVD (`svd`).
 /// Where `A` is the Jacobian at a family of equilibria (rank `n − drop`), this Newton step
 /// moves to the member of the family nearest the current point.
 pub(crate) fn min_norm_solve(a: &[f64], n: usize, b: &[f64], drop: usize) -> Vec<f64> {
-    let (w, v, sigma) = svd(a, n);
+    let (u, v, sigma) = svd(a, n);
     let mut order: Vec<usize> = (0..n).collect();
     order.sort_by(|&i, &j| sigma[i].total_cmp(&sigma[j]));
     let cut = 1e-12 * sigma.iter().fold(0.0f64, |m, v| m.max(*v));
@@ -57,8 +55,8 @@ pub(crate) fn min_norm_solve(a: &[f64], n: usize, b: &[f64], drop: usize) -> Vec
         if sigma[j] <= cut {
             continue;
         }
-        // u_j = w_j / σ_j; coefficient (u_j · b)/σ_j
-        let coef = w[j * n..(j + 1) * n].iter().zip(b).map(|(u, bb)| u * bb).sum::<f64>() / (sigma[j] * sigma[j]);
+        // coefficient (u_j · b)/σ_j
+        let coef = u[j * n..(j + 1) * n].iter().zip(b).map(|(uu, bb)| uu * bb).sum::<f64>() / sigma[j];
         for i in 0..n {
             x[i] += coef * v[j * n + i];
         }
@@ -77,54 +75,35 @@ pub(crate) fn null_space(a: &[f64], n: usize, k: usize) -> Vec<Vec<f64>> {
     order.iter().take(k.min(n)).map(|&j| v[j * n..(j + 1) * n].to_vec()).collect()
 }
 
-/// The singular value decomposition of `A` (row-major `n × n`) by one-sided Jacobi rotations
-/// on the columns of `A V` (Hestenes), to relative orthogonality `n ε` (a tighter test is not
-/// met in floating point and only spends sweeps): `(W, V, σ)`, `W = A V` and `V` column-major
-/// (column `j` at `[j n .. (j + 1) n]`), `σ_j = |w_j|`, unordered.
+/// The singular value decomposition `A = U Σ Vᵀ` of `A` (row-major `n × n`) by nalgebra's
+/// Golub–Kahan bidiagonalisation and implicit-shift QR (`SVD::try_new_unordered`, its default
+/// tolerance `5 ε`): `(U, V, σ)`, `U` and `V` column-major (column `j` at `[j n .. (j + 1) n]`),
+/// `σ_j ≥ 0`, unordered. It replaced a one-sided Jacobi SVD that took ~17 sweeps on the
+/// 62 × 62 Jacobians of a three-ball family (docs/notes/dependencies.md). Where `A` is not
+/// finite, or the iteration does not converge within `6 n²` QR steps (LAPACK `dbdsqr`'s
+/// bound), every entry is NaN, as the Jacobi rotations gave for a non-finite `A`, and the
+/// callers refuse the step.
 fn svd(a: &[f64], n: usize) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
-    // columns of W = A V, stored column-major for the rotations
-    let mut w: Vec<f64> = (0..n * n).map(|k| a[(k % n) * n + k / n]).collect();
-    let mut v = vec![0.0; n * n];
-    for i in 0..n {
-        v[i * n + i] = 1.0;
+    let nan = || vec![f64::NAN; n * n];
+    if n == 0 {
+        return (vec![], vec![], vec![]);
     }
-    let orthogonal = n.max(1) as f64 * f64::EPSILON;
-    for _sweep in 0..60 {
-        let mut rotated = false;
-        for p in 0..n {
-            for q in p + 1..n {
-                let (mut alpha, mut beta, mut gamma) = (0.0, 0.0, 0.0);
-                for i in 0..n {
-                    let (x, y) = (w[p * n + i], w[q * n + i]);
-                    alpha += x * x;
-                    beta += y * y;
-                    gamma += x * y;
-                }
-                if gamma == 0.0 || gamma.abs() <= orthogonal * (alpha * beta).sqrt() {
-                    continue;
-                }
-                rotated = true;
-                let zeta = (beta - alpha) / (2.0 * gamma);
-                let t = zeta.signum() / (zeta.abs() + (1.0 + zeta * zeta).sqrt());
-                let t = if zeta == 0.0 { 1.0 } else { t };
-                let c = 1.0 / (1.0 + t * t).sqrt();
-                let s = c * t;
-                for i in 0..n {
-                    let (x, y) = (w[p * n + i], w[q * n + i]);
-                    w[p * n + i] = c * x - s * y;
-                    w[q * n + i] = s * x + c * y;
-                    let (x, y) = (v[p * n + i], v[q * n + i]);
-                    v[p * n + i] = c * x - s * y;
-                    v[q * n + i] = s * x + c * y;
-                }
-            }
-        }
-        if !rotated {
-            break;
-        }
+    if !a.iter().all(|x| x.is_finite()) {
+        return (nan(), nan(), vec![f64::NAN; n]);
     }
-    let sigma: Vec<f64> = (0..n).map(|j| w[j * n..(j + 1) * n].iter().map(|x| x * x).sum::<f64>().sqrt()).collect();
-    (w, v, sigma)
+    let m = nalgebra::DMatrix::from_row_slice(n, n, a);
+    let eps = 5.0 * f64::EPSILON;
+    let Some(svd) = nalgebra::SVD::try_new_unordered(m, true, true, eps, 6 * n * n) else {
+        return (nan(), nan(), vec![f64::NAN; n]);
+    };
+    let (Some(u), Some(v_t)) = (svd.u, svd.v_t) else {
+        return (nan(), nan(), vec![f64::NAN; n]);
+    };
+    // nalgebra's storage is column-major: U's column j is already contiguous; Vᵀ's row j is V's
+    // column j
+    let u = u.as_slice().to_vec();
+    let v = v_t.transpose().as_slice().to_vec();
+    (u, v, svd.singular_values.as_slice().to_vec())
 }
 
 #[cfg(test)]
@@ -170,5 +149,55 @@ mod tests {
         for i in 0..3 {
             assert!((x[i] - b2[i]).abs() < 1e-14, "{x:?} {b2:?}");
         }
+    }
+
+    #[test]
+    fn svd_reconstructs_and_null_space_spans_the_kernel() {
+        // A = U Σ Vᵀ with U, V orthonormal, against the matrix itself (an invariant, not a second
+        // SVD); 1e-13 is ~100 ε times the largest entry, ample for backward-stable QR at n = 7
+        let n = 7;
+        let mut seed = 12345u64;
+        let mut rnd = || {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            ((seed >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
+        };
+        // rank n − 2: the last two columns are combinations of the first two, so the kernel
+        // is spanned by (c, d, 0, …, −1, 0) and (e, f, 0, …, 0, −1)
+        let mut a: Vec<f64> = (0..n * n).map(|_| rnd()).collect();
+        let (c, d, e, f) = (0.5, -1.5, 2.0, 0.25);
+        for i in 0..n {
+            a[i * n + n - 2] = c * a[i * n] + d * a[i * n + 1];
+            a[i * n + n - 1] = e * a[i * n] + f * a[i * n + 1];
+        }
+        let (u, v, sigma) = svd(&a, n);
+        for i in 0..n {
+            for j in 0..n {
+                let r: f64 = (0..n).map(|k| u[k * n + i] * sigma[k] * v[k * n + j]).sum();
+                assert!((r - a[i * n + j]).abs() < 1e-13, "A[{i}][{j}] = {} vs {r}", a[i * n + j]);
+                let uu: f64 = (0..n).map(|k| u[i * n + k] * u[j * n + k]).sum();
+                let vv: f64 = (0..n).map(|k| v[i * n + k] * v[j * n + k]).sum();
+                let delta = if i == j { 1.0 } else { 0.0 };
+                assert!((uu - delta).abs() < 1e-13 && (vv - delta).abs() < 1e-13, "{uu} {vv}");
+            }
+        }
+        // the two smallest right singular vectors: unit length, A t = 0 to round-off, and in the
+        // span of the kernel vectors above (no component along the first two unit vectors'
+        // complement other than the kernel's own)
+        let basis = null_space(&a, n, 2);
+        assert_eq!(basis.len(), 2);
+        for t in &basis {
+            let norm: f64 = t.iter().map(|x| x * x).sum::<f64>().sqrt();
+            assert!((norm - 1.0).abs() < 1e-14, "{norm}");
+            let at: f64 = (0..n).map(|i| (0..n).map(|j| a[i * n + j] * t[j]).sum::<f64>().abs()).fold(0.0, f64::max);
+            assert!(at < 1e-13, "{at}");
+            // t = α (c, d, 0…, −1, 0) + β (e, f, 0…, 0, −1): α = −t[n−2], β = −t[n−1]
+            let (al, be) = (-t[n - 2], -t[n - 1]);
+            assert!((t[0] - (al * c + be * e)).abs() < 1e-13 && (t[1] - (al * d + be * f)).abs() < 1e-13, "{t:?}");
+            assert!(t[2..n - 2].iter().all(|x| x.abs() < 1e-13), "{t:?}");
+        }
+        // a non-finite matrix: NaN throughout (the Newton step refuses it), no panic
+        let mut bad = a.clone();
+        bad[3] = f64::NAN;
+        assert!(min_norm_solve(&bad, n, &[1.0; 7], 0).iter().all(|x| x.is_nan()));
     }
 }
