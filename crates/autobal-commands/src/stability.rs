@@ -154,14 +154,27 @@ impl Args {
         let g = GeneralRotor::linear(rotor);
         let out = autobal::rotor_stability::stability_over_speed_with(&g.rotor, &speeds, control)
             .map_err(|e| self.name_omega_max(general::floor_in_units(&g, e, &speeds), "linear_rotor.omega_max"))?;
-        let stopped = out.stopped.map(|why| stopped_message(why, &out.value, speeds.len()));
-        let r = out.value;
-        // the verdict at the operating speed, as the general route's (first line, JSON `operating`)
+        let mut stopped = out.stopped.map(|why| stopped_message(why, &out.value, speeds.len()));
+        let mut r = out.value;
+        if stopped.is_some() {
+            // the family's ranges over the speeds whose family was followed would count the
+            // others (scattered: the families run in parallel) as not stable (review 22: "all
+            // members sampled stable: 80-160, 480-560" where the whole run gives 80-800)
+            r.family = None;
+        }
+        // the verdict at the operating speed, as the general route's (first line, JSON
+        // `operating`); a stop there keeps the scan done (review 22: it was lost)
         let op = match cfg.operating_speed {
-            Some(w) if stopped.is_none() => {
-                let o = general::operating_at(&g, w, "linear_rotor.operating_speed", &r, control)?;
-                Some(Box::new((g, o)))
-            }
+            Some(w) if stopped.is_none() => match general::operating_at(&g, w, "linear_rotor.operating_speed", &r, control) {
+                Ok(o) => Some(Box::new((g, o))),
+                Err(e) => match control.should_stop() {
+                    Some(why) => {
+                        stopped = Some(format!("{why}: the scan is complete, the verdict at the operating speed was stopped and is not given"));
+                        None
+                    }
+                    None => return Err(e),
+                },
+            },
             _ => None,
         };
         Ok(Output::LinearRotor { cfg: Box::new(cfg), r: Box::new(r), red: Box::new(red), omega_max, op, stopped })
@@ -174,7 +187,9 @@ fn stopped_message(why: autobal::control::StopReason, r: &RotorStability, speeds
     let families = r.points.iter().filter(|p| p.family_dimension > 0).count();
     let followed = r.points.iter().filter(|p| p.family.is_some()).count();
     let family = if families > 0 { format!(", the family of balanced states followed at {followed} of the {families} with one") } else { String::new() };
-    format!("{why}: {done} of {speeds} speeds analysed{family}; what was analysed is printed (its stable ranges end where the scan stopped, not where the stability does)")
+    format!(
+        "{why}: {done} of {speeds} speeds analysed{family}; what was analysed is printed (its stable ranges end where the scan stopped, not where the stability does; the family's ranges over its members are left out)"
+    )
 }
 
 impl command::Output for Output {
@@ -452,6 +467,37 @@ mod tests {
         assert!(grid.len() >= 50, "{}", grid.len());
         let drawn = &figs[0].plot.series.iter().find(|s| s.points.len() == grid.len()).expect("the margin series").points;
         assert_eq!(drawn, &grid);
+    }
+
+    /// Review 22: a scan stopped while the families of balanced states are followed (three
+    /// balls: they run after the grid speeds, in parallel) gives no family ranges: counted over
+    /// the speeds whose family was followed they read the others as not stable. A two-element
+    /// shaft on stiff bearings with three balls at mid-span; the observer cancels at the family
+    /// phase's first report (`done` past the grid).
+    #[test]
+    fn a_scan_stopped_among_the_families_gives_no_family_ranges() {
+        use crate::command::Output as _;
+        let text = "[linear_rotor]\nrotary_inertia = false\ngyroscopic = false\n[[linear_rotor.elements]]\nlength = 0.25\ndiameter = 0.04\ne = 2.1e11\nrho = 7850.0\ncount = 2\n\
+                    [[linear_rotor.bearings]]\nnode = 0\nk = 1e7\nc = 200.0\n[[linear_rotor.bearings]]\nnode = 2\nk = 1e7\nc = 200.0\n\
+                    [[linear_rotor.unbalance]]\nnode = 1\nme = 1e-4\n\
+                    [[linear_rotor.balancer]]\nnode = 1\nradius = 0.05\nballs = 3\nball_mass = 0.01\ndrag = 0.05\n";
+        let args = Args { config: tables(text, &[]), samples: Some(12), ..Default::default() };
+        let control = Control::new();
+        let c = control.clone();
+        let control = control.with_progress(move |p| {
+            if p.done > 12 {
+                c.cancel();
+            }
+        });
+        let out = args.run(&control).unwrap();
+        let why = out.stopped().expect("stopped among the families");
+        assert!(why.contains("the family's ranges over its members are left out"), "{why}");
+        let v = out.json().unwrap();
+        // a family at the speeds (its dimension), but no ranges over its members
+        assert_eq!(v["family_dimension"], 1);
+        assert!(v["family"].is_null() && v["complete"] == false, "{}", v["family"]);
+        assert_eq!(v["points"].as_array().unwrap().len(), 12);
+        assert!(!out.table().unwrap().contains("all members sampled stable"));
     }
 
     /// A linear rotor's scan stopped (Ctrl-C) keeps the speeds it analysed and says so (audit

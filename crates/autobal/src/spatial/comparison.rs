@@ -162,9 +162,7 @@ impl Comparison {
             String::new()
         } else {
             let runs = neutral.iter().map(|&(a, b)| if a == b { format!("{a:.4}") } else { format!("{a:.4} – {b:.4}") }).collect::<Vec<_>>().join(", ");
-            format!(
-                ", except at the grid speeds {runs}, where it is neutral (max Re λ within {STABILITY_TOLERANCE:e} of 0: an eigenvalue 0 of the state analysed, which the linearisation leaves undecided)"
-            )
+            format!(", except at the grid speeds {runs}, where it is neutral (max Re λ within {STABILITY_TOLERANCE:e} of 0: undecided by the linearisation)")
         };
         match (self.necessary_not_stable.is_empty(), self.stable_not_necessary.is_empty()) {
             (true, true) => "the exact stability ranges coincide with 003's necessary ranges".into(),
