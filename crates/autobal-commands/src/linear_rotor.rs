@@ -209,29 +209,25 @@ pub fn stability(cfg: &LinearRotorConfig, omega_max: f64, samples: usize) -> Res
     Ok((autobal::linear_rotor::stability::stability_over_speed(&rotor, &speeds)?, red))
 }
 
-/// The undamped natural frequencies (rad/s) of the rotor at rest with its balls as rings, the
-/// lowest `count` of the modes that do not diverge at rest ([`divergence`] names those: a
-/// negative `ω²` has no frequency and never reads 0 rad/s here; a rigid-body mode's does).
-pub fn natural_frequencies(rotor: &LinearRotor, count: usize) -> Result<Vec<f64>> {
+/// The rotor at rest with its balls as rings, from one eigenproblem: the undamped natural
+/// frequencies (rad/s), the lowest `count` of the modes that do not diverge at rest, and the
+/// divergent modes' `ω² < 0` ((rad/s)², the most negative first;
+/// [`autobal::linear_rotor::static_divergence`]), empty where `K` is positive semi-definite: a
+/// negative `ω²` has no frequency and never reads 0 rad/s here; a rigid-body mode's does.
+pub fn modes_at_rest(rotor: &LinearRotor, count: usize) -> Result<(Vec<f64>, Vec<f64>)> {
     let w2 = rotor.at_speed(0.0).natural_frequencies_squared(&[], true)?;
-    let skip = autobal::linear_rotor::static_divergence(&w2).len();
-    Ok(w2[skip..].iter().take(count).map(|l| l.max(0.0).sqrt()).collect())
+    let diverging = autobal::linear_rotor::static_divergence(&w2);
+    let w = w2[diverging.len()..].iter().take(count).map(|l| l.max(0.0).sqrt()).collect();
+    Ok((w, diverging))
 }
 
-/// The rotor's divergent modes at rest with its balls as rings: their `ω² < 0` ((rad/s)², the
-/// most negative first; [`autobal::linear_rotor::static_divergence`]), empty where `K` is
-/// positive semi-definite.
-pub fn divergence(rotor: &LinearRotor) -> Result<Vec<f64>> {
-    Ok(autobal::linear_rotor::static_divergence(&rotor.at_speed(0.0).natural_frequencies_squared(&[], true)?))
-}
-
-/// The JSON of [`divergence`]: one `{omega_squared, growth_rate}` per divergent mode (`ω²` in
+/// The JSON of the divergent modes of [`modes_at_rest`]: one `{omega_squared, growth_rate}` per divergent mode (`ω²` in
 /// (rad/s)², the rate `sqrt(−ω²)` in 1/s at which it grows at rest), `[]` for none.
 pub fn divergence_json(d: &[f64]) -> Value {
     Value::Array(d.iter().map(|l| json!({"omega_squared": l, "growth_rate": (-l).sqrt()})).collect())
 }
 
-/// The line that says the structure is statically unstable ([`divergence`]), empty where it is not.
+/// The line that says the structure is statically unstable ([`modes_at_rest`]'s divergent modes), empty where it is not.
 pub fn divergence_text(d: &[f64]) -> String {
     if d.is_empty() {
         return String::new();
@@ -248,6 +244,7 @@ pub fn divergence_text(d: &[f64]) -> String {
 /// The JSON of `stability`; the natural frequencies (with the balls as rings) are those of the
 /// model analysed (the reduced one where the config reduces).
 pub fn stability_json(cfg: &LinearRotorConfig, r: &RotorStability, red: &Option<Reduction>, omega_max: f64) -> Result<Value> {
+    let (wn, diverging) = modes_at_rest(red.as_ref().map_or(&cfg.rotor, |r| &r.rotor), 6)?;
     let ranges: Vec<Value> = r
         .stable_ranges
         .iter()
@@ -264,8 +261,8 @@ pub fn stability_json(cfg: &LinearRotorConfig, r: &RotorStability, red: &Option<
         "source": cfg.source,
         "dofs": cfg.rotor.dofs(),
         "balls": cfg.rotor.total_balls(),
-        "natural_frequencies": natural_frequencies(red.as_ref().map_or(&cfg.rotor, |r| &r.rotor), 6)?,
-        "static_divergence": divergence_json(&divergence(red.as_ref().map_or(&cfg.rotor, |r| &r.rotor))?),
+        "natural_frequencies": wn,
+        "static_divergence": divergence_json(&diverging),
         "reduction": reduction_json(red),
         "stationary_state": r.kind,
         "speed_unit": "rad/s",
@@ -298,9 +295,7 @@ pub fn stability_table(cfg: &LinearRotorConfig, r: &RotorStability, red: &Option
             Kind::PeriodicOrbit => "anisotropic: a periodic orbit of half a revolution (Floquet multipliers)",
         }
     ));
-    let analysed = red.as_ref().map_or(&cfg.rotor, |r| &r.rotor);
-    let wn = natural_frequencies(analysed, 4)?;
-    let diverging = divergence(analysed)?;
+    let (wn, diverging) = modes_at_rest(red.as_ref().map_or(&cfg.rotor, |r| &r.rotor), 4)?;
     s.push_str(&divergence_text(&diverging));
     let others = if diverging.is_empty() { "" } else { " (of the other modes)" };
     s.push_str(&format!("natural frequencies at rest, balls as rings{others}: {}\n", wn.iter().map(|w| speed_text(*w)).collect::<Vec<_>>().join(", ")));
@@ -1024,8 +1019,7 @@ pub fn modes_at_plane(rotor: &LinearRotor, plane: usize, count: usize) -> Result
         // a shift just below ω²: K − σM stays regular, the mode dominates by (ω² − σ)⁻¹
         // (rigid-body modes, ω = 0, get a shift 1e-15 of the highest |ω²| below them)
         // (ω² of a mode that does not diverge as before: wk², a rigid-body mode's rounding 0)
-        let diverges = lk < -autobal::linear_rotor::DIVERGENCE_TOL * scale;
-        let lk = if diverges { lk } else { wk * wk };
+        let lk = if autobal::linear_rotor::diverges(lk, scale) { lk } else { wk * wk };
         let sigma = lk - 1e-9 * lk.abs().max(1e-6 * scale);
         let a: Vec<f64> = (0..n * n).map(|ij| k[ij] - sigma * m[ij]).collect();
         let singular = || anyhow!("linear_rotor: the mode shapes at rest: K − ω²M is singular at mode {idx}");

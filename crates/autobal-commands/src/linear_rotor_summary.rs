@@ -17,7 +17,7 @@
 //! - `ranges`: paper 003's necessary ranges are those of the rigid rotor of papers 000/003, not
 //!   defined here; the exact stable ranges over `stability`'s default axis and grid instead.
 
-use crate::linear_rotor::{divergence, divergence_json, divergence_text, model, natural_frequencies, reduction_json, reduction_text};
+use crate::linear_rotor::{divergence_json, divergence_text, model, modes_at_rest, reduction_json, reduction_text};
 use anyhow::Result;
 use autobal::error::fmt_num;
 use autobal::linear_rotor::config::LinearRotorConfig;
@@ -132,8 +132,7 @@ pub fn inertia(cfg: &LinearRotorConfig) -> (Value, String) {
 /// `autobal critical` on a linear rotor config (module docs): the JSON and the table.
 pub fn critical(cfg: &LinearRotorConfig) -> Result<(Value, String)> {
     let (rotor, red) = model(cfg)?;
-    let w = natural_frequencies(&rotor, 8)?;
-    let diverging = divergence(&rotor)?;
+    let (w, diverging) = modes_at_rest(&rotor, 8)?;
     let what = "undamped natural frequencies at rest (Omega = 0: no gyroscopic terms, speed-dependent bearings at 0) with the balls as rings and the rotor-fixed inertia at the rotor's angle 0 (LinearRotor::natural_frequencies)";
     let v = json!({
         "model": "linear",

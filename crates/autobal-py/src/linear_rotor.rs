@@ -452,14 +452,14 @@ impl PyLinearRotor {
     /// [`natural_frequencies_squared`](Self::natural_frequencies_squared) gives `ω²` with its sign.
     #[pyo3(signature = (with_balls=false))]
     fn natural_frequencies(&self, py: Python<'_>, with_balls: bool) -> PyResult<Vec<f64>> {
-        let at_rest = self.rotor.at_speed(0.0);
-        let squared = at_rest.natural_frequencies_squared(&[], with_balls).map_err(|e| err(py, e))?;
+        let squared = self.rotor.at_speed(0.0).natural_frequencies_squared(&[], with_balls).map_err(|e| err(py, e))?;
         let divergent = autobal::linear_rotor::static_divergence(&squared);
         if !divergent.is_empty() {
             let why = autobal_commands::linear_rotor::divergence_text(&divergent);
             return Err(err(py, autobal::Error::invalid("k", format!("{}; natural_frequencies_squared() gives every ω² with its sign", why.trim_end()))));
         }
-        at_rest.natural_frequencies(&[], with_balls).map_err(|e| err(py, e))
+        // LinearRotor::natural_frequencies's map of the same eigenvalues (one eigenproblem)
+        Ok(squared.into_iter().map(|l| l.max(0.0).sqrt()).collect())
     }
 
     /// The squares `ω²` of the undamped natural frequencies at rest ((rad/s)², ascending),

@@ -56,7 +56,7 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
     ));
 
     // a stiffness that is not positive semi-definite: said first, never a "0 rad/s" mode
-    let diverging = lr::divergence(&model)?;
+    let (_, diverging) = lr::modes_at_rest(&model, 0)?;
     if !diverging.is_empty() {
         let line = lr::divergence_text(&diverging);
         s.p(format!("<b>{}</b>", super::html::esc(line.trim_end())));

@@ -427,7 +427,13 @@ pub const DIVERGENCE_TOL: f64 = 1e-9;
 /// of either sign is not one).
 pub fn static_divergence(omega_squared: &[f64]) -> Vec<f64> {
     let scale = omega_squared.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-    omega_squared.iter().copied().filter(|v| *v < -DIVERGENCE_TOL * scale).collect()
+    omega_squared.iter().copied().filter(|v| diverges(*v, scale)).collect()
+}
+
+/// Whether `omega_squared` is a divergent mode's among `ω²` whose largest `|ω²|` is `scale`
+/// ([`static_divergence`]'s rule, for a caller that goes mode by mode).
+pub fn diverges(omega_squared: f64, scale: f64) -> bool {
+    omega_squared < -DIVERGENCE_TOL * scale
 }
 
 impl LinearRotor {

@@ -125,13 +125,14 @@ pub fn fmt_ranges_in(r: &[SpeedRange], prec: usize, span_end: Option<f64>) -> St
 
 impl Comparison {
     /// The grid speeds outside the stable ranges where the state is **neutral**, not unstable:
-    /// `|max Re λ| ≤` [`STABILITY_TOLERANCE`] (an eigenvalue zero to round-off that the
-    /// linearisation leaves undecided: e.g. the member of a family of `n ≥ 4` balls with the
-    /// largest inertia anisotropy, balls in opposite pairs, whose ball coupling
-    /// `d_A = diag(0, 2)` (000, eq (6)) leaves one ball coordinate without restoring force), as
-    /// runs of consecutive grid points `[first, last]` (grid resolution, not located).
+    /// `|max Re λ| ≤` [`STABILITY_TOLERANCE`], which the linearisation leaves undecided (e.g.
+    /// an eigenvalue 0 to round-off: the member of a family of `n ≥ 4` balls with the largest
+    /// inertia anisotropy, every ball on the unbalance's line, whose ball coupling
+    /// `d_A = diag(0, 2)` (000, eq (6)) leaves one ball coordinate without restoring force; or
+    /// undamped pairs), as runs of consecutive grid points `[first, last]` (grid resolution,
+    /// not located).
     pub fn neutral_grid_runs(&self) -> Vec<(f64, f64)> {
-        self.neutral_runs_where(|w| !self.exact.stable_ranges.iter().any(|r| r.contains(w)))
+        self.neutral_runs_where(|_| true)
     }
 
     /// [`Comparison::neutral_grid_runs`] among the grid speeds `keep` accepts.
@@ -139,7 +140,7 @@ impl Comparison {
         let mut runs: Vec<(f64, f64)> = vec![];
         let mut open = false;
         for &(w, a) in &self.exact.max_real_part {
-            let neutral = a.abs() <= STABILITY_TOLERANCE && keep(w);
+            let neutral = a.abs() <= STABILITY_TOLERANCE && !self.exact.stable_ranges.iter().any(|r| r.contains(w)) && keep(w);
             match (neutral, open, runs.last_mut()) {
                 (true, true, Some(last)) => last.1 = w,
                 (true, _, _) => runs.push((w, w)),
@@ -157,7 +158,7 @@ impl Comparison {
         let w = self.omega_max;
         // only those on the ranges the sentence names (003's condition holds, not stable)
         let named = |x: f64| self.necessary_not_stable.iter().any(|r| x >= r.lo && r.hi.is_none_or(|h| x <= h));
-        let neutral = self.neutral_runs_where(|x| named(x) && !self.exact.stable_ranges.iter().any(|r| r.contains(x)));
+        let neutral = self.neutral_runs_where(named);
         let except = if neutral.is_empty() {
             String::new()
         } else {
