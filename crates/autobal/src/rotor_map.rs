@@ -147,7 +147,9 @@ impl GeneralCell {
 pub const MAP_FAMILY_STEP: f64 = 0.3;
 
 /// Members drawn on a map cell's family of dimension `k ≥ 2` (40; a periodic orbit's 12): a
-/// sample, as the speed scan's 200, so "all stable" there means all members drawn.
+/// sample, as the speed scan's 200, so "all stable" there means all members drawn and those
+/// the search for the extremes reached ([`FamilyOptions::refine_extremes`]: at most
+/// `max(samples / 2, 4k)` more per extreme).
 pub const MAP_FAMILY_SAMPLES: usize = 40;
 
 /// The family through `state` (of dimension `k ≥ 1`) at one cell, sampled as

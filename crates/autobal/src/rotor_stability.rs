@@ -1553,6 +1553,9 @@ fn family_options(field: &Field, newton: &NewtonOptions) -> FamilyOptions {
         max_members: if periodic { 400 } else { 2000 },
         angles,
         newton: newton.clone(),
+        // the least and most stable member searched for beyond the sample (review 22: a member
+        // of three bunched balls, unstable where all 200 drawn were stable)
+        refine_extremes: true,
         ..FamilyOptions::default()
     }
 }
@@ -1668,11 +1671,11 @@ fn family_over_speed(
     let parameterisation = if dimension == 1 {
         "one-parameter family (n − 2 = 1 free parameter): the balls' angles move together keeping Σ m r e^{iψ} (the balancing condition) fixed; \
          parameter s = arclength along the family in the balls' angles (rad, the other states scaled by the model's scales), s = 0 at the member Newton reaches from the closed form (member_psi); \
-         swept by continuation at steps of 0.1 until it closes (all round) or ends, at every grid speed"
+         swept by continuation at steps of 0.1 until it closes (all round) or ends, the least and the most stable member then refined by one parabolic step each, at every grid speed"
             .to_string()
     } else {
         format!(
-            "{dimension}-parameter family (n − 2 = {dimension} free parameters): sampled at 200 members, each the member given displaced along the family's tangent space by π times coefficients uniform in [−1, 1]^{dimension} (fixed seed) and corrected onto the family by minimum-norm Newton, at every grid speed; not a sweep: a stable or unstable island smaller than the sampling can be missed"
+            "{dimension}-parameter family (n − 2 = {dimension} free parameters): sampled at 200 members, each the member given displaced along the family's tangent space by π times coefficients uniform in [−1, 1]^{dimension} (fixed seed) and corrected onto the family by minimum-norm Newton, then the least and the most stable member searched for beyond the sample (a compass search over those coefficients from the extreme members drawn), at every grid speed; not a sweep: a stable or unstable island smaller than the sampling can be missed"
         )
     };
     (FamilyStability { dimension, parameterisation, all_members_stable: all, some_members_stable: some }, stopped)
