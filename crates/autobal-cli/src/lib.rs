@@ -68,13 +68,6 @@ mod interrupt {
         Control::with_flag(flag.clone())
     }
 
-    /// From now on Ctrl-C sets the flag (the running command asks the control and keeps what
-    /// it computed) rather than ending the process: for a command that polls on some routes
-    /// only (`stability` on a linear rotor config). A Ctrl-C before this call still ended it.
-    pub fn polled_from_now() {
-        POLLED.store(true, Ordering::Relaxed);
-    }
-
     /// The signals the `termination` handler takes over (beyond SIGINT) that this process
     /// started with ignored.
     #[cfg(unix)]
@@ -458,14 +451,14 @@ struct MergeFlags {
 
 impl Command {
     /// Whether the command's long work asks the [`Control`] (so Ctrl-C stops it keeping what
-    /// it computed); the others end at once on Ctrl-C. `stability` is not among them: its
-    /// closed-form and general routes print nothing before they complete; on a linear rotor
-    /// config, whose scan keeps what it analysed, it polls from when it has read the config
-    /// ([`interrupt::polled_from_now`]).
+    /// it computed); the others end at once on Ctrl-C. `stability` is among them on every
+    /// route (session 23: the closed-form and general routes printed nothing when stopped, and
+    /// ended at once).
     fn polls_the_control(&self) -> bool {
         matches!(
             self,
-            Command::Campbell { .. }
+            Command::Stability { .. }
+                | Command::Campbell { .. }
                 | Command::Map { .. }
                 | Command::Simulate { .. }
                 | Command::Sweep(_)
@@ -486,13 +479,10 @@ fn run(cli: Cli, control: &Control) -> Result<()> {
             let svg: Vec<(PathBuf, &str)> = svg.map(|p| (outfile::resolve(&p, "stability.svg"), "stability_margin")).into_iter().collect();
             check_outputs(common.config.as_deref(), "--svg", &svg)?;
             let args = stability::Args { config: common.source(), omega_max: lin.omega_max, balls: lin.balls.into(), samples, route };
-            // a linear rotor's scan asks the control and keeps what it analysed (audit 21's F2:
+            // every route's scan asks the control and keeps what it analysed (audit 21's F2:
             // three balls on a 28-DOF rotor took minutes with no sign of life): Ctrl-C stops it
             // there, and the speeds (then the family's speeds) done are shown on standard error
             // when it is a terminal
-            if args.config.read_any().is_ok_and(|(root, _)| autobal_commands::linear_rotor::is_linear(&root)) {
-                interrupt::polled_from_now();
-            }
             let (shown, bar) = term::progress_bar(control);
             let result = args.run(&shown);
             if let Some(b) = bar {

@@ -99,16 +99,23 @@ fn round(x: f64) -> f64 {
 }
 
 /// Run the general route over `(0, omega_max]` (model units) with `samples` speeds, under
-/// `control`.
+/// `control`; a stopped scan is an error (the report's use: `stability` keeps what a stopped
+/// scan analysed, [`scan`]).
 pub fn analyse(g: &GeneralRotor, omega_max: f64, samples: usize, control: &Control) -> Result<RotorStability> {
-    let speeds = speed_grid(omega_max, samples)?;
-    // the scan asks the control once per speed; a stopped scan prints nothing (its ranges
-    // would end where it stopped, not where the stability does)
-    let out = autobal::rotor_stability::stability_over_speed_with(&g.rotor, &speeds, control).map_err(|e| floor_in_units(g, e, &speeds))?;
+    let (out, speeds) = scan(g, omega_max, samples, control)?;
     if let Some(why) = out.stopped {
-        anyhow::bail!("{why}: the stability scan stopped after {} of {} speeds; nothing is printed", out.value.points.len(), speeds.len());
+        anyhow::bail!("{why}: the stability scan stopped after {} of {speeds} speeds; nothing is printed", out.value.points.len());
     }
     Ok(out.value)
+}
+
+/// The general route's scan over `(0, omega_max]` with `samples` speeds under `control` (asked
+/// once per speed), as it ended: stopped, the speeds analysed until then; and the grid's
+/// length.
+pub fn scan(g: &GeneralRotor, omega_max: f64, samples: usize, control: &Control) -> Result<(autobal::control::Outcome<RotorStability>, usize)> {
+    let speeds = speed_grid(omega_max, samples)?;
+    let out = autobal::rotor_stability::stability_over_speed_with(&g.rotor, &speeds, control).map_err(|e| floor_in_units(g, e, &speeds))?;
+    Ok((out, speeds.len()))
 }
 
 fn what_is_analysed(g: &GeneralRotor, r: &RotorStability) -> String {

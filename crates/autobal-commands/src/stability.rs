@@ -7,6 +7,7 @@ use crate::command::{self, check_count, check_speed, ConfigSource, Figure, Route
 use crate::config::{self, Config};
 use crate::general::{self, GeneralRotor};
 use crate::linear::{self, Comparison};
+use crate::plot::Plot;
 use anyhow::{bail, Result};
 use autobal::control::Control;
 use autobal::linear_rotor::config::LinearRotorConfig;
@@ -55,6 +56,10 @@ pub enum Output {
         c: Box<Comparison>,
         /// Free or locked.
         balls: Balls,
+        /// Why the scan stopped before its end, and what it kept (`interrupted: K of N speeds analysed; …`): the
+        /// speeds analysed until then are in `c` (its ranges, 003's too, end at the last of
+        /// them), no operating-speed verdict; `None` when complete.
+        stopped: Option<String>,
     },
     /// The general route over `(0, omega_max]`.
     General {
@@ -66,6 +71,8 @@ pub enum Output {
         omega_max: f64,
         /// The verdict at the config's operating speed, if it has one.
         op: Option<Box<general::Operating>>,
+        /// Why the scan stopped before its end, as [`Output::LinearRotor`]'s.
+        stopped: Option<String>,
     },
     /// A linear rotor config.
     LinearRotor {
@@ -110,20 +117,27 @@ impl command::Command for Args {
                 Some(t) => crate::general_campbell::omega_max(&root, &g, Some(t))?,
                 None => general::default_omega_max(&g, &root)?,
             };
-            let r = general::analyse(&g, omega_max, samples, control).map_err(|e| self.name_omega_max(e, "analysis.omega_max"))?;
-            let op = general::operating(&g, &root, &r, control)?.map(Box::new);
-            return Ok(Output::General { g: Box::new(g), r: Box::new(r), omega_max, op });
+            // under the control, as a linear rotor's: a stopped scan keeps the speeds it analysed
+            let (out, speeds) = general::scan(&g, omega_max, samples, control).map_err(|e| self.name_omega_max(e, "analysis.omega_max"))?;
+            let (r, op, stopped) = kept_scan(out, speeds, control, |r, control| general::operating(&g, &root, r, control))?;
+            return Ok(Output::General { g: Box::new(g), r: Box::new(r), omega_max, op: op.map(Box::new), stopped });
         }
-        let cfg = config::build(&root, &source)?;
+        let mut cfg = config::build(&root, &source)?;
         config::check_entries(&root, "stability", &[config::Model::Linear])?;
         let w = linear::omega_max(&cfg, self.omega_max.as_deref())?;
         if self.omega_max.is_some() {
             check_speed("--omega-max", w)?;
         }
         let samples = check_count("--samples", self.samples.unwrap_or(DEFAULT_SAMPLES), SAMPLES)?;
-        let c = linear::compare(&cfg.model, w, samples, self.balls)?;
-        autobal::limits::check_finite("stability", &c.exact)?;
-        Ok(Output::Closed { cfg: Box::new(cfg), c: Box::new(c), balls: self.balls })
+        let out = autobal::spatial::comparison::compare_with(&cfg.model, w, samples, self.balls, control)?;
+        autobal::limits::check_finite("stability", &out.value.exact)?;
+        let stopped = out.stopped.map(|why| {
+            // no operating-speed verdict from a scan that did not reach its end
+            cfg.config.analysis.operating_speed = None;
+            let grid = autobal::spatial::stability::stability_grid(&cfg.model, w, samples).len();
+            stopped_message(why, out.value.exact.max_real_part.len(), grid, None)
+        });
+        Ok(Output::Closed { cfg: Box::new(cfg), c: Box::new(out.value), balls: self.balls, stopped })
     }
 }
 
@@ -154,96 +168,153 @@ impl Args {
         let g = GeneralRotor::linear(rotor);
         let out = autobal::rotor_stability::stability_over_speed_with(&g.rotor, &speeds, control)
             .map_err(|e| self.name_omega_max(general::floor_in_units(&g, e, &speeds), "linear_rotor.omega_max"))?;
-        let mut stopped = out.stopped.map(|why| stopped_message(why, &out.value, speeds.len()));
-        let mut r = out.value;
-        if stopped.is_some() {
-            // the family's ranges over the speeds whose family was followed would count the
-            // others (scattered: the families run in parallel) as not stable (review 22: "all
-            // members sampled stable: 80-160, 480-560" where the whole run gives 80-800)
-            r.family = None;
-        }
         // the verdict at the operating speed, as the general route's (first line, JSON
-        // `operating`); a stop there keeps the scan done (review 22: it was lost)
-        let op = match cfg.operating_speed {
-            Some(w) if stopped.is_none() => match general::operating_at(&g, w, "linear_rotor.operating_speed", &r, control) {
-                Ok(o) => Some(Box::new((g, o))),
-                Err(e) => match control.should_stop() {
-                    Some(why) => {
-                        stopped = Some(format!("{why}: the scan is complete, the verdict at the operating speed was stopped and is not given"));
-                        None
-                    }
-                    None => return Err(e),
-                },
-            },
-            _ => None,
-        };
+        // `operating`)
+        let (r, op, stopped) = kept_scan(out, speeds.len(), control, |r, control| {
+            cfg.operating_speed.map(|w| general::operating_at(&g, w, "linear_rotor.operating_speed", r, control).map(|o| Box::new((g, o)))).transpose()
+        })?;
         Ok(Output::LinearRotor { cfg: Box::new(cfg), r: Box::new(r), red: Box::new(red), omega_max, op, stopped })
     }
 }
 
-/// What a stopped linear-rotor scan kept: `"interrupted: 37 of 200 speeds analysed, …"`.
-fn stopped_message(why: autobal::control::StopReason, r: &RotorStability, speeds: usize) -> String {
-    let done = r.points.len();
+/// A general or linear-rotor scan (`out`, over a grid of `speeds`) as `stability` gives it,
+/// with the verdict at the operating speed (`op`, asked only of a complete scan) and why it
+/// stopped ([`stopped_message`]). Stopped during the scan (Ctrl-C, a budget): the speeds
+/// analysed until then, their ranges ending at the last of them, no family ranges (counted over
+/// the speeds whose family was followed, scattered since the families run in parallel, they
+/// read the others as not stable: review 22's "all members sampled stable: 80-160, 480-560"
+/// where the whole run gives 80-800), no operating-speed verdict. Stopped during the verdict:
+/// the complete scan, no verdict (review 22: it was lost). Audit 21's F2: three balls on a
+/// 28-DOF rotor ran for minutes, and Ctrl-C then lost everything.
+fn kept_scan<T>(
+    out: autobal::control::Outcome<RotorStability>,
+    speeds: usize,
+    control: &Control,
+    op: impl FnOnce(&RotorStability, &Control) -> Result<Option<T>>,
+) -> Result<(RotorStability, Option<T>, Option<String>)> {
+    let mut r = out.value;
+    if let Some(why) = out.stopped {
+        let families = r.points.iter().filter(|p| p.family_dimension > 0).count();
+        let followed = r.points.iter().filter(|p| p.family.is_some()).count();
+        let family = (r.family_dimension > 0).then_some((followed, families));
+        r.family = None;
+        let why = stopped_message(why, r.points.len(), speeds, family);
+        return Ok((r, None, Some(why)));
+    }
+    // the verdict's speeds (and their families) counted on after the scan's reports, the grid
+    // speeds then the families followed (`stability_over_speed_with`): one count over the run
     let families = r.points.iter().filter(|p| p.family_dimension > 0).count();
-    let followed = r.points.iter().filter(|p| p.family.is_some()).count();
-    let family = if families > 0 { format!(", the family of balanced states followed at {followed} of the {families} with one") } else { String::new() };
+    match op(&r, &control.counted_after((speeds + families) as u64)) {
+        Ok(o) => Ok((r, o, None)),
+        Err(e) => match control.should_stop() {
+            Some(why) => Ok((r, None, Some(format!("{why}: the scan is complete, the verdict at the operating speed was stopped and is not given")))),
+            None => Err(e),
+        },
+    }
+}
+
+/// What a stopped scan kept, on every route: `"interrupted: 37 of 200 speeds analysed; what was
+/// analysed is printed (its stable ranges end where the scan stopped, not where the stability
+/// does)"`; with a family of balanced states (`family`: the speeds whose family was followed,
+/// of those with one) the count of families followed, and that the family's ranges are left
+/// out.
+fn stopped_message(why: autobal::control::StopReason, done: usize, speeds: usize, family: Option<(usize, usize)>) -> String {
+    let (followed, left_out) = match family {
+        Some((followed, families)) if families > 0 => (
+            format!(", the family of balanced states followed at {followed} of the {families} with one"),
+            "; the family's ranges over its members are left out",
+        ),
+        Some(_) => (String::new(), "; the family's ranges over its members are left out"),
+        None => (String::new(), ""),
+    };
     format!(
-        "{why}: {done} of {speeds} speeds analysed{family}; what was analysed is printed (its stable ranges end where the scan stopped, not where the stability does; the family's ranges over its members are left out)"
+        "{why}: {done} of {speeds} speeds analysed{followed}; what was analysed is printed (its stable ranges end where the scan stopped, not where the stability does{left_out})"
     )
+}
+
+/// A stopped scan's JSON: `complete: false` and `stopped` (why, what was kept); a complete
+/// run's JSON is as before, without either key.
+fn mark_json(mut v: Value, stopped: &Option<String>) -> Value {
+    if let Some(why) = stopped {
+        v["complete"] = false.into();
+        v["stopped"] = why.as_str().into();
+    }
+    v
+}
+
+/// The first line of a stopped scan's table: `INCOMPLETE (why)`; empty when complete.
+fn incomplete_line(stopped: &Option<String>) -> String {
+    stopped.as_ref().map_or(String::new(), |why| format!("INCOMPLETE ({why})\n"))
+}
+
+/// A stopped scan's figure said to be incomplete: its title begins `INCOMPLETE:`, and a
+/// vertical line at `at` (the last speed analysed, in the figure's unit) says the scan stopped
+/// there (the rest of the axis is empty because nothing was analysed, not because nothing is
+/// there).
+fn mark_stopped(mut p: Plot, stopped: &Option<String>, at: Option<f64>) -> Plot {
+    if stopped.is_some() {
+        p.title = format!("INCOMPLETE: {}", p.title);
+        if let Some(w) = at {
+            p.vlines.push((w, "scan stopped".into()));
+        }
+    }
+    p
 }
 
 impl command::Output for Output {
     fn json(&self) -> Result<Value> {
         match self {
-            Output::Closed { cfg, c, balls } => {
+            Output::Closed { cfg, c, balls, stopped } => {
                 let mut v = linear::stability_json(cfg, c, *balls);
                 // the unit of the ranges' speeds, as on the general route: this route's are in
                 // Ω (units of ω0) for an SI config too (their rpm in the `_rpm` keys)
                 v["speed_unit"] = "Ω".into();
-                Ok(v)
+                Ok(mark_json(v, stopped))
             }
-            Output::General { g, r, omega_max, op } => {
+            Output::General { g, r, omega_max, op, stopped } => {
                 let mut v = general::json(g, r, *omega_max);
                 v["operating"] = op.as_deref().map_or(Value::Null, general::operating_json);
-                Ok(v)
+                Ok(mark_json(v, stopped))
             }
             Output::LinearRotor { cfg, r, red, omega_max, op, stopped } => {
                 let mut v = crate::linear_rotor::stability_json(cfg, r, red, *omega_max)?;
                 v["operating"] = op.as_deref().map_or(Value::Null, |(_, o)| general::operating_json(o));
-                // only where stopped: a complete run's JSON is as before
-                if let Some(why) = stopped {
-                    v["complete"] = false.into();
-                    v["stopped"] = why.as_str().into();
-                }
-                Ok(v)
+                Ok(mark_json(v, stopped))
             }
         }
     }
     fn table(&self) -> Result<String> {
         match self {
-            Output::Closed { cfg, c, balls } => Ok(linear::stability_table(cfg, c, *balls)),
-            Output::General { g, r, omega_max, op } => Ok(general::table(g, r, *omega_max, op.as_deref())),
+            Output::Closed { cfg, c, balls, stopped } => Ok(incomplete_line(stopped) + &linear::stability_table(cfg, c, *balls)),
+            Output::General { g, r, omega_max, op, stopped } => Ok(incomplete_line(stopped) + &general::table(g, r, *omega_max, op.as_deref())),
             Output::LinearRotor { cfg, r, red, omega_max, op, stopped } => {
-                let mut first = stopped.as_ref().map_or(String::new(), |why| format!("INCOMPLETE ({why})\n"));
+                let mut first = incomplete_line(stopped);
                 first += &op.as_deref().map_or(String::new(), |(g, o)| general::operating_line(g, r, o));
                 Ok(first + &crate::linear_rotor::stability_table(cfg, r, red, *omega_max)?)
             }
         }
     }
     /// `stability_margin`: the margin over speed with the stable ranges shaded (a linear rotor
-    /// config's: [`crate::linear_rotor::margin_plot`]).
+    /// config's: [`crate::linear_rotor::margin_plot`]); a stopped scan's marked incomplete
+    /// (its title begins `INCOMPLETE:`, a line marks where the scan stopped).
     fn figures(&self) -> Result<Vec<Figure>> {
-        Ok(match self {
-            Output::Closed { cfg, c, .. } => vec![Figure::new("stability_margin", crate::figures::margin_plot(&cfg.model, c))],
-            Output::General { g, r, omega_max, .. } => vec![Figure::new("stability_margin", general::margin_plot(g, r, *omega_max))],
-            Output::LinearRotor { r, omega_max, .. } => vec![Figure::new("stability_margin", crate::linear_rotor::margin_plot(r, *omega_max))],
-        })
+        let p = match self {
+            Output::Closed { cfg, c, stopped, .. } => {
+                let p = crate::figures::margin_plot(&cfg.model, c);
+                // the series is every grid speed analysed, in the figure's unit
+                let at = p.series.first().and_then(|s| s.points.last()).map(|q| q.0);
+                mark_stopped(p, stopped, at)
+            }
+            Output::General { g, r, omega_max, stopped, .. } => mark_stopped(general::margin_plot(g, r, *omega_max), stopped, r.points.last().map(|q| q.omega)),
+            Output::LinearRotor { r, omega_max, stopped, .. } => {
+                mark_stopped(crate::linear_rotor::margin_plot(r, *omega_max), stopped, r.points.last().map(|q| q.omega))
+            }
+        };
+        Ok(vec![Figure::new("stability_margin", p)])
     }
     fn stopped(&self) -> Option<String> {
         match self {
-            Output::LinearRotor { stopped, .. } => stopped.clone(),
-            // the other routes print nothing when stopped (an error from `run`)
-            Output::Closed { .. } | Output::General { .. } => None,
+            Output::Closed { stopped, .. } | Output::General { stopped, .. } | Output::LinearRotor { stopped, .. } => stopped.clone(),
         }
     }
 }
@@ -532,5 +603,145 @@ mod tests {
         let v = out.json().unwrap();
         assert!(v.get("complete").is_none() && v.get("stopped").is_none() && !v["operating"].is_null());
         assert_eq!(v["points"].as_array().unwrap().len(), 30);
+    }
+
+    /// A control that cancels itself at the `k`-th progress report (a Ctrl-C after `k` speeds).
+    fn stop_after(k: u64) -> Control {
+        let control = Control::new();
+        let c = control.clone();
+        control.with_progress(move |p| {
+            if p.done >= k {
+                c.cancel();
+            }
+        })
+    }
+
+    /// Session 23: the general route stopped (Ctrl-C) keeps the speeds it analysed, as the
+    /// linear route does (it printed nothing: "the stability scan stopped after 3 of 30 speeds;
+    /// nothing is printed"): `stopped` names the count, the JSON has `complete: false` and the
+    /// three points, which are the complete run's first three bit for bit (the same scan, cut);
+    /// the table's first line says INCOMPLETE, the figure's title too, with a line at the last
+    /// speed analysed; the same run not stopped has neither key. Paper 004's planar example.
+    #[test]
+    fn a_stopped_general_scan_keeps_what_it_analysed() {
+        use crate::command::Output as _;
+        let planar = include_str!("../../../examples/planar.toml");
+        let args = Args { config: tables(planar, &[]), samples: Some(30), ..Default::default() };
+        let out = args.run(&stop_after(3)).unwrap();
+        let why = out.stopped().expect("stopped");
+        assert!(why.starts_with("interrupted: 3 of 30 speeds analysed; what was analysed is printed (its stable ranges end where the scan stopped"), "{why}");
+        let v = out.json().unwrap();
+        assert_eq!((v["complete"].clone(), v["stopped"].clone()), (serde_json::json!(false), serde_json::json!(why)));
+        let kept = v["points"].as_array().unwrap().clone();
+        assert_eq!(kept.len(), 3);
+        assert!(out.table().unwrap().starts_with(&format!("INCOMPLETE ({why})\nExact linear stability over speed (general route)\n")));
+        let fig = &out.figures().unwrap()[0].plot;
+        assert!(fig.title.starts_with("INCOMPLETE: "), "{}", fig.title);
+        let Output::General { r, .. } = &out else { panic!("the general route") };
+        assert_eq!(fig.vlines, vec![(r.points[2].omega, "scan stopped".to_string())]);
+        let whole = args.run(&Control::none()).unwrap();
+        assert!(whole.stopped().is_none() && whole.figures().unwrap()[0].plot.vlines.is_empty());
+        let v = whole.json().unwrap();
+        assert!(v.get("complete").is_none() && v.get("stopped").is_none());
+        assert_eq!(v["points"].as_array().unwrap()[..3], kept[..]);
+    }
+
+    /// Session 23: the closed-form route stopped keeps the grid speeds it analysed (it printed
+    /// nothing and ended at once): `stopped` names the count of the grid's speeds (the split
+    /// pairs seeded in included, `stability_grid`), the JSON has `complete: false`, the
+    /// margins analysed (the complete run's first 40), no verdict at the operating speed, and
+    /// no range, exact or 003's, reaching past the last speed analysed (`hi` a number there, not
+    /// `null`: open to the span's end); the figure is marked. The dimensional example with an
+    /// operating speed, whose complete run gives its verdict.
+    #[test]
+    fn a_stopped_closed_form_scan_keeps_what_it_analysed() {
+        use crate::command::Output as _;
+        let dim = include_str!("../../../examples/dimensional.toml");
+        let args = Args { config: tables(dim, &["analysis.operating_speed=\"1400 rpm\""]), samples: Some(400), ..Default::default() };
+        let out = args.run(&stop_after(40)).unwrap();
+        let Output::Closed { cfg, c, .. } = &out else { panic!("the closed-form route") };
+        let grid = autobal::spatial::stability::stability_grid(&cfg.model, c.omega_max, 400).len();
+        assert!(grid >= 400);
+        let why = out.stopped().expect("stopped");
+        assert_eq!(
+            why,
+            format!("interrupted: 40 of {grid} speeds analysed; what was analysed is printed (its stable ranges end where the scan stopped, not where the stability does)")
+        );
+        let v = out.json().unwrap();
+        assert_eq!((v["complete"].clone(), v["stopped"].clone()), (serde_json::json!(false), serde_json::json!(why)));
+        assert!(v["operating_speed"].is_null(), "{}", v["operating_speed"]);
+        let margins = v["max_real_part"].as_array().unwrap().clone();
+        assert_eq!(margins.len(), 40);
+        let last = margins[39][0].as_f64().unwrap();
+        for key in ["stable_ranges", "necessary_ranges", "necessary_not_stable", "stable_not_necessary"] {
+            for r in v[key].as_array().unwrap() {
+                assert!(r[1].as_f64().is_some_and(|hi| hi <= last), "{key}: {r} past {last}");
+            }
+        }
+        assert!(out.table().unwrap().starts_with(&format!("INCOMPLETE ({why})\nconfig: ")));
+        let fig = &out.figures().unwrap()[0].plot;
+        assert!(fig.title.starts_with("INCOMPLETE: ") && fig.vlines.len() == 1, "{}", fig.title);
+        let whole = args.run(&Control::none()).unwrap();
+        assert!(whole.stopped().is_none());
+        let v = whole.json().unwrap();
+        assert!(v.get("complete").is_none() && !v["operating_speed"].is_null());
+        assert_eq!(v["max_real_part"].as_array().unwrap()[..40], margins[..]);
+    }
+
+    /// The one rule of the general and linear routes ([`kept_scan`]): a stop during the verdict
+    /// at the operating speed keeps the complete scan and says the verdict is not given; an
+    /// error there that is no stop is the error; a scan stopped gives no verdict (not asked)
+    /// and no family ranges. Paper 004's Jeffcott rotor, 10 speeds.
+    #[test]
+    fn the_operating_speed_s_stop_keeps_the_scan() {
+        use autobal::planar::PlanarRotor;
+        use autobal::rotor_stability::Rotor;
+        let g = GeneralRotor { rotor: Rotor::Planar(PlanarRotor { n: 2, s2: 0.0, ..PlanarRotor::paper() }), si: true, omega0: 1.0 };
+        let (out, speeds) = general::scan(&g, 600.0, 10, &Control::none()).unwrap();
+        let control = Control::new();
+        let (r, op, why) = kept_scan(out.clone(), speeds, &control, |_, _| -> Result<Option<()>> {
+            control.cancel();
+            anyhow::bail!("interrupted")
+        })
+        .unwrap();
+        assert_eq!(
+            (r.points.len(), op, why.as_deref()),
+            (10, None, Some("interrupted: the scan is complete, the verdict at the operating speed was stopped and is not given"))
+        );
+        let e =
+            kept_scan(out.clone(), speeds, &Control::none(), |_, _| -> Result<Option<()>> { anyhow::bail!("analysis.operating_speed: bad") }).err().unwrap();
+        assert_eq!(e.to_string(), "analysis.operating_speed: bad");
+        let mut cut = out;
+        cut.stopped = Some(autobal::control::StopReason::Interrupted);
+        let (_, op, why) = kept_scan(cut, speeds, &Control::none(), |_, _| -> Result<Option<()>> { panic!("no verdict asked of a stopped scan") }).unwrap();
+        assert!(op.is_none() && why.unwrap().starts_with("interrupted: 10 of 10 speeds analysed"));
+    }
+
+    /// One count over the whole run (review 22: "the progress bar restarts its count"): the
+    /// grid speeds, then the families followed, then the operating speed's verdict each report
+    /// one more item done of a total that never shrinks, the last report all done. Main at
+    /// 32c0d61 counted 1..24 of 24 over the scan and its families on this three-ball shaft (12
+    /// speeds), then restarted at 1 of 1 and 2 of 2 for the verdict at the operating speed (its
+    /// state, then its family: seconds each on a real FE model), so the bar fell back to empty.
+    #[test]
+    fn one_progress_count_over_the_whole_run() {
+        let text = "[linear_rotor]\nrotary_inertia = false\ngyroscopic = false\noperating_speed = 300.0\n[[linear_rotor.elements]]\nlength = 0.25\ndiameter = 0.04\ne = 2.1e11\nrho = 7850.0\ncount = 2\n\
+                    [[linear_rotor.bearings]]\nnode = 0\nk = 1e7\nc = 200.0\n[[linear_rotor.bearings]]\nnode = 2\nk = 1e7\nc = 200.0\n\
+                    [[linear_rotor.unbalance]]\nnode = 1\nme = 1e-4\n\
+                    [[linear_rotor.balancer]]\nnode = 1\nradius = 0.05\nballs = 3\nball_mass = 0.01\ndrag = 0.05\n";
+        let args = Args { config: tables(text, &[]), samples: Some(12), ..Default::default() };
+        let seen = std::sync::Arc::new(std::sync::Mutex::new(vec![]));
+        let s = seen.clone();
+        let control = Control::new().with_progress(move |p| s.lock().unwrap().push((p.done, p.total)));
+        let out = args.run(&control).unwrap();
+        assert!(out.json().unwrap()["operating"]["verdict"].is_string());
+        let seen = seen.lock().unwrap().clone();
+        // 12 speeds, 12 families, the operating speed and its family (the families run in
+        // parallel: their reports may arrive out of order, each `done` once)
+        let mut done: Vec<u64> = seen.iter().map(|p| p.0).collect();
+        done.sort_unstable();
+        assert_eq!(done, (1..=26).collect::<Vec<u64>>(), "{seen:?}");
+        assert!(seen.windows(2).all(|w| w[1].1 >= w[0].1), "a total shrank: {seen:?}");
+        assert_eq!(seen.last(), Some(&(26, 26)), "{seen:?}");
     }
 }

@@ -210,6 +210,29 @@ impl Control {
         self.budget_spent()
     }
 
+    /// The same control (its flag, budget and observer) for a later phase of one run, whose
+    /// reports are counted on after the `before` items of the phases before it: `done` of
+    /// `total` reaches the observer as `before + done` of `before + total`, so that one progress
+    /// bar counts the whole run (`stability`'s verdict at the operating speed after its scan
+    /// restarted the count at 1 of 1).
+    ///
+    /// ```
+    /// use autobal::control::Control;
+    /// use std::sync::{Arc, Mutex};
+    /// let seen = Arc::new(Mutex::new(vec![]));
+    /// let s = seen.clone();
+    /// let control = Control::new().with_progress(move |p| s.lock().unwrap().push((p.done, p.total)));
+    /// control.counted_after(24).report(1, 2);
+    /// assert_eq!(*seen.lock().unwrap(), [(25, 26)]);
+    /// ```
+    pub fn counted_after(&self, before: u64) -> Control {
+        let mut c = self.clone();
+        if let Some(o) = self.observer.clone() {
+            c.observer = Some(Arc::new(move |p: Progress| o(Progress { done: before + p.done, total: before + p.total })));
+        }
+        c
+    }
+
     /// Tell the progress observer (if any) that `done` of `total` items are finished.
     pub fn report(&self, done: u64, total: u64) {
         if let Some(o) = &self.observer {

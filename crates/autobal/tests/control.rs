@@ -8,6 +8,9 @@ use autobal::control::{Control, StopReason};
 use autobal::drive::Drive;
 use autobal::error::Error;
 use autobal::ode::Status;
+use autobal::spatial::linear_model::Balls;
+use autobal::spatial::ranges::SpeedRange;
+use autobal::spatial::stability::{stability_grid, stability_ranges, stability_ranges_with, StabilityRanges};
 use std::time::Duration;
 
 fn zero_budget() -> Control {
@@ -226,4 +229,95 @@ fn a_family_scan_stops_with_the_families_followed() {
     let out = stability_over_speed_with(&rotor, &speeds, &cancelled_after(3)).unwrap();
     assert_eq!((out.value.points.len(), out.stopped), (3, Some(StopReason::Interrupted)));
     assert!(out.value.points.iter().all(|p| p.family.is_none()));
+}
+
+// Session 23: the closed-form stability scan (`stability_ranges_with`) stopped keeps the grid
+// speeds it analysed and the ranges among them, checked against the same scan run to its end
+// (the margins are the same computation, so bit for bit; the located ends the same bisections).
+
+fn base_000() -> autobal::spatial::params::SpatialModel {
+    use autobal::spatial::params::{DimensionlessInput, SpatialModel};
+    SpatialModel::from_dimensionless(&DimensionlessInput::paper_000(0.8)).unwrap()
+}
+
+// paper 000's base case over (0, 5], 400 speeds, ends to 1e-9
+const W: f64 = 5.0;
+const SAMPLES: usize = 400;
+const TOL: f64 = 1e-9;
+
+/// Each range of `kept` (a scan stopped before its bisections: every end not located) against
+/// the complete run's `whole` over the same speeds: the start of the axis and an end open to
+/// `Ω_max` as there; every other end a grid speed where the state is stable (`margin` < 0) and
+/// within one grid step of the located end.
+fn ends_at_stable_grid_speeds(kept: &[SpeedRange], whole: &[SpeedRange], grid: &[f64], margin: impl Fn(f64) -> Option<f64>) {
+    assert_eq!(kept.len(), whole.len(), "{kept:?} vs {whole:?}");
+    let step = grid.windows(2).map(|w| w[1] - w[0]).fold(0.0, f64::max);
+    for (a, b) in kept.iter().zip(whole) {
+        for (cut, located) in [(Some(a.lo), Some(b.lo)), (a.hi, b.hi)] {
+            match (cut, located) {
+                (Some(c), Some(l)) if l > 0.0 => {
+                    assert!(margin(c).is_some_and(|x| x < 0.0), "{c} is no stable grid speed");
+                    assert!((c - l).abs() <= step, "{c} vs {l}");
+                }
+                (c, l) => assert_eq!(c, l),
+            }
+        }
+    }
+}
+
+/// Stopped inside a stable range (Ctrl-C after `k` grid speeds): the margins are the complete
+/// run's first `k`; no bisection runs after the stop, so the ranges over `(0, Ω_k]` are the
+/// complete run's with each end at its stable grid speed, and the range holding `Ω_k` ends
+/// there (`hi = Some(Ω_k)`, never open to `Ω_max`); the progress counts the grid's speeds,
+/// seeded split pairs included.
+#[test]
+fn a_stopped_scan_keeps_the_ranges_over_the_speeds_it_analysed() {
+    let m = base_000();
+    let whole = stability_ranges(&m, W, SAMPLES, Balls::Free, TOL).unwrap();
+    let grid = stability_grid(&m, W, SAMPLES);
+    assert_eq!(whole.max_real_part.iter().map(|p| p.0).collect::<Vec<_>>(), grid);
+    // a grid speed in the middle of a stable range, past the first range
+    let inside = |w: f64| whole.stable_ranges.iter().any(|r| r.lo < w && r.hi.is_none_or(|h| w < h));
+    let k = (3..grid.len() - 1)
+        .find(|&i| inside(grid[i - 1]) && inside(grid[i - 2]) && inside(grid[i]) && grid[i] > whole.stable_ranges[0].hi.unwrap_or(W))
+        .expect("a second stable range");
+    let out = stability_ranges_with(&m, W, SAMPLES, Balls::Free, TOL, &cancelled_after(k as u64)).unwrap();
+    assert_eq!(out.stopped, Some(StopReason::Interrupted));
+    let kept = &out.value;
+    assert_eq!(kept.max_real_part, whole.max_real_part[..k]);
+    let last = grid[k - 1];
+    assert_eq!(kept.stable_ranges.last().unwrap().hi, Some(last));
+    // the complete run's ranges over (0, Ω_k], the last end (Ω_k, compared above) left open in both
+    let mut want: Vec<SpeedRange> = whole.stable_ranges.iter().filter(|r| r.lo < last).cloned().collect();
+    want.last_mut().unwrap().hi = None;
+    let mut got = kept.stable_ranges.clone();
+    got.last_mut().unwrap().hi = None;
+    let margin = |w: f64| whole.max_real_part.iter().find(|p| p.0 == w).map(|p| p.1);
+    ends_at_stable_grid_speeds(&got, &want, &grid, margin);
+}
+
+/// Stopped after every grid speed, during the bisections of the ranges' ends: each end not
+/// located is the grid speed on its stable side; a range reaching `Ω_max` stays open, the grid
+/// having reached it.
+#[test]
+fn a_scan_stopped_in_its_bisections_ends_its_ranges_at_stable_grid_speeds() {
+    let m = base_000();
+    let whole = stability_ranges(&m, W, SAMPLES, Balls::Free, TOL).unwrap();
+    let grid = stability_grid(&m, W, SAMPLES);
+    let out = stability_ranges_with(&m, W, SAMPLES, Balls::Free, TOL, &cancelled_after(grid.len() as u64)).unwrap();
+    assert_eq!(out.stopped, Some(StopReason::Interrupted));
+    let kept: &StabilityRanges = &out.value;
+    assert_eq!(kept.max_real_part, whole.max_real_part);
+    let margin = |w: f64| whole.max_real_part.iter().find(|p| p.0 == w).map(|p| p.1);
+    ends_at_stable_grid_speeds(&kept.stable_ranges, &whole.stable_ranges, &grid, margin);
+    assert!(kept.stable_ranges.iter().zip(&whole.stable_ranges).any(|(a, b)| a.lo != b.lo), "no end was cut");
+}
+
+/// A budget spent before the first speed: nothing analysed, no range, the budget named (the
+/// scan indexed its first margin and panicked on an empty grid before the stop was possible).
+#[test]
+fn a_scan_stopped_before_its_first_speed_keeps_nothing() {
+    let out = stability_ranges_with(&base_000(), W, SAMPLES, Balls::Free, TOL, &Control::new().with_budget(Duration::ZERO)).unwrap();
+    assert!(matches!(out.stopped, Some(StopReason::Budget { .. })));
+    assert!(out.value.max_real_part.is_empty() && out.value.stable_ranges.is_empty());
 }

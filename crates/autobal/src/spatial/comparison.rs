@@ -13,11 +13,12 @@
 //! assert!(!c.necessary_not_stable.is_empty());
 //! ```
 
+use crate::control::{Control, Outcome};
 use crate::error::Result;
 use crate::spatial::linear_model::Balls;
 use crate::spatial::params::SpatialModel;
 use crate::spatial::ranges::{autobalancing_ranges, SpeedRange};
-use crate::spatial::stability::{stability_ranges, StabilityRanges, STABILITY_TOLERANCE};
+use crate::spatial::stability::{stability_ranges_with, StabilityRanges, STABILITY_TOLERANCE};
 use serde::Serialize;
 
 /// Bisection tolerance on the ends of the exact ranges (dimensionless speed).
@@ -26,7 +27,7 @@ pub const RANGE_TOLERANCE: f64 = 1e-9;
 /// Exact stability against 003's necessary conditions over `(0, Ω_max]`.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Comparison {
-    /// The exact ranges ([`stability_ranges`]).
+    /// The exact ranges ([`stability_ranges`](crate::spatial::stability::stability_ranges)).
     pub exact: StabilityRanges,
     /// 003's necessary ranges, clipped to `(0, Ω_max]` (`hi = None`: reaches `Ω_max`).
     pub necessary: Vec<SpeedRange>,
@@ -71,16 +72,26 @@ fn to_ranges(v: &[(f64, f64)], w: f64) -> Vec<SpeedRange> {
 /// Exact stability ranges (`samples` grid speeds, ends to [`RANGE_TOLERANCE`]) against 003's
 /// necessary ranges over `(0, omega_max]`.
 pub fn compare(model: &SpatialModel, omega_max: f64, samples: usize, balls: Balls) -> Result<Comparison> {
-    let exact = stability_ranges(model, omega_max, samples, balls, RANGE_TOLERANCE)?;
+    Ok(compare_with(model, omega_max, samples, balls, &Control::none())?.value)
+}
+
+/// [`compare`] under `control` ([`stability_ranges_with`]). Stopped, the comparison covers the
+/// speeds analysed only, `(0, Ω_last]` (the last grid speed analysed; nothing where none was):
+/// 003's ranges are clipped there too, so that no speed beyond it is called stable or unstable;
+/// `omega_max` stays the span asked for.
+pub fn compare_with(model: &SpatialModel, omega_max: f64, samples: usize, balls: Balls, control: &Control) -> Result<Outcome<Comparison>> {
+    let Outcome { value: exact, stopped } = stability_ranges_with(model, omega_max, samples, balls, RANGE_TOLERANCE, control)?;
     let nec = autobalancing_ranges(model).ranges;
-    let (e, n) = (clip(&exact.stable_ranges, omega_max), clip(&nec, omega_max));
-    Ok(Comparison {
+    let span = if stopped.is_some() { exact.max_real_part.last().map_or(0.0, |p| p.0) } else { omega_max };
+    let (e, n) = (clip(&exact.stable_ranges, span), clip(&nec, span));
+    let value = Comparison {
         necessary: to_ranges(&n, omega_max),
         necessary_not_stable: to_ranges(&minus(&n, &e), omega_max),
         stable_not_necessary: to_ranges(&minus(&e, &n), omega_max),
         exact,
         omega_max,
-    })
+    };
+    Ok(Outcome { value, stopped })
 }
 
 /// Total length of ranges, `hi = None` counted to `w`.

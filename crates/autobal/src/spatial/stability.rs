@@ -13,6 +13,7 @@
 // Index loops follow the algorithms' formulas (rows, columns, coefficients).
 #![allow(clippy::needless_range_loop)]
 
+use crate::control::{Control, Outcome};
 use crate::error::{Error, Result};
 use crate::linalg::charpoly::{continue_roots, modulus, SpeedPolynomial};
 use crate::linalg::eigen::{characteristic_polynomial, eigenvalues, routh_hurwitz_stable, spectral_abscissa};
@@ -305,14 +306,97 @@ pub struct StabilityRanges {
 /// assert!(!s.stable_ranges.iter().any(|r| r.contains(1.72)));
 /// ```
 pub fn stability_ranges(model: &SpatialModel, omega_max: f64, samples: usize, balls: Balls, tol: f64) -> Result<StabilityRanges> {
+    Ok(stability_ranges_with(model, omega_max, samples, balls, tol, &Control::none())?.value)
+}
+
+/// [`stability_ranges`] under `control`, asked before each grid speed and each trial speed of
+/// a range end's bisection; the progress observer is told the grid speeds done (of the grid's
+/// length, the seeded speeds included). Stopped, the outcome holds the grid speeds done until
+/// then (`max_real_part`) and the stable ranges among them: an end whose bisection the stop
+/// cut short is the stable side's grid speed (stable there, not located), and a range that
+/// reaches the last speed analysed ends there (`hi = Some`: nothing is known beyond it), never
+/// open to `omega_max`.
+pub fn stability_ranges_with(
+    model: &SpatialModel,
+    omega_max: f64,
+    samples: usize,
+    balls: Balls,
+    tol: f64,
+    control: &Control,
+) -> Result<Outcome<StabilityRanges>> {
     if !(omega_max > 0.0 && omega_max.is_finite()) {
         return Err(Error::invalid("omega_max", format!("must be a positive number, got {}", crate::error::fmt_num(omega_max))));
     }
+    let grid = stability_grid(model, omega_max, samples);
+    let ss = StateSpace::new(model, balls)?;
+    let mut alpha = Vec::with_capacity(grid.len());
+    let mut stopped = None;
+    for &w in &grid {
+        if let Some(why) = control.should_stop() {
+            stopped = Some(why);
+            break;
+        }
+        alpha.push((w, margin_at(&ss, w)?));
+        control.report(alpha.len() as u64, grid.len() as u64);
+    }
+    let stable = |a: f64| counts_as_stable(a, balls);
+    let mut ranges: Vec<SpeedRange> = vec![];
+    let Some(&(_, a_first)) = alpha.first() else {
+        return Ok(Outcome { value: StabilityRanges { stable_ranges: ranges, max_real_part: alpha, tolerance: tol }, stopped });
+    };
+    let mut start: Option<f64> = if stable(a_first) { Some(0.0) } else { None };
+    for k in 1..alpha.len() {
+        let (w0, a0) = alpha[k - 1];
+        let (w1, a1) = alpha[k];
+        if stable(a0) != stable(a1) {
+            let (mut lo, mut hi) = (w0, w1);
+            let mut cut = false;
+            while hi - lo > tol {
+                if let Some(why) = control.should_stop() {
+                    stopped = Some(why);
+                    cut = true;
+                    break;
+                }
+                let mid = 0.5 * (lo + hi);
+                if stable(margin_at(&ss, mid)?) == stable(a0) {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            // not located (stopped): the stable side's grid speed, where it is known stable
+            let edge = if cut {
+                if stable(a1) {
+                    w1
+                } else {
+                    w0
+                }
+            } else {
+                0.5 * (lo + hi)
+            };
+            if stable(a1) {
+                start = Some(edge);
+            } else if let Some(s) = start.take() {
+                ranges.push(SpeedRange { lo: s, hi: Some(edge) });
+            }
+        }
+    }
+    if let Some(s) = start {
+        // open to omega_max only where the whole grid was analysed
+        let hi = (alpha.len() < grid.len()).then(|| alpha[alpha.len() - 1].0);
+        ranges.push(SpeedRange { lo: s, hi });
+    }
+    Ok(Outcome { value: StabilityRanges { stable_ranges: ranges, max_real_part: alpha, tolerance: tol }, stopped })
+}
+
+/// The speeds [`stability_ranges`] analyses over `(0, omega_max]`: `samples` (at least 2)
+/// evenly spaced from `omega_max / 1000`, with the analytic split pairs (locked rotor, ΔĀ and
+/// ΔĀ0) and their middles added: their instability ranges can be far narrower than the grid
+/// spacing (near-symmetric layouts); ascending, each once.
+pub fn stability_grid(model: &SpatialModel, omega_max: f64, samples: usize) -> Vec<f64> {
     let samples = samples.max(2);
     let lo0 = omega_max * 1e-3;
     let mut grid: Vec<f64> = (0..samples).map(|i| lo0 + (omega_max - lo0) * i as f64 / (samples - 1) as f64).collect();
-    // Seed the grid with the analytic split pairs (locked rotor, ΔĀ and ΔĀ0): their instability
-    // ranges can be far narrower than the grid spacing (near-symmetric layouts).
     for d in [model.anisotropy.used, model.delta_a0] {
         let roots = critical_speeds_at(model, d);
         for kind in [ModeKind::Transverse, ModeKind::Angular] {
@@ -328,40 +412,7 @@ pub fn stability_ranges(model: &SpatialModel, omega_max: f64, samples: usize, ba
     grid.retain(|w| *w >= lo0 && *w <= omega_max);
     grid.sort_by(f64::total_cmp);
     grid.dedup();
-    let samples = grid.len();
-    let ss = StateSpace::new(model, balls)?;
-    let mut alpha = Vec::with_capacity(samples);
-    for &w in &grid {
-        alpha.push((w, margin_at(&ss, w)?));
-    }
-    let stable = |a: f64| counts_as_stable(a, balls);
-    let mut ranges: Vec<SpeedRange> = vec![];
-    let mut start: Option<f64> = if stable(alpha[0].1) { Some(0.0) } else { None };
-    for k in 1..samples {
-        let (w0, a0) = alpha[k - 1];
-        let (w1, a1) = alpha[k];
-        if stable(a0) != stable(a1) {
-            let (mut lo, mut hi) = (w0, w1);
-            while hi - lo > tol {
-                let mid = 0.5 * (lo + hi);
-                if stable(margin_at(&ss, mid)?) == stable(a0) {
-                    lo = mid;
-                } else {
-                    hi = mid;
-                }
-            }
-            let edge = 0.5 * (lo + hi);
-            if stable(a1) {
-                start = Some(edge);
-            } else if let Some(s) = start.take() {
-                ranges.push(SpeedRange { lo: s, hi: Some(edge) });
-            }
-        }
-    }
-    if let Some(s) = start {
-        ranges.push(SpeedRange { lo: s, hi: None });
-    }
-    Ok(StabilityRanges { stable_ranges: ranges, max_real_part: alpha, tolerance: tol })
+    grid
 }
 
 /// One tracked eigenvalue line of a Campbell diagram.
