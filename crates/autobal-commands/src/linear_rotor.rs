@@ -185,9 +185,15 @@ pub fn reduction_text(r: &Option<Reduction>) -> String {
         r.cutoff.map_or("-".into(), speed_text),
         r.first_neglected.map_or("none".into(), speed_text)
     );
+    // a divergent mode has no frequency: named in the heading's words, never "0 ± 0"
+    let diverging: Vec<f64> = r.frequencies.iter().filter(|f| f.divergent).map(|f| f.omega_squared).collect();
+    if !diverging.is_empty() {
+        s.push_str(&format!("reduced model (without the balls): {}", divergence_words(&diverging)));
+    }
     let est: Vec<String> = r
         .frequencies
         .iter()
+        .filter(|f| !f.divergent)
         .take(4)
         .map(|f| {
             format!(
@@ -197,7 +203,11 @@ pub fn reduction_text(r: &Option<Reduction>) -> String {
             )
         })
         .collect();
-    s.push_str(&format!("reduced natural frequencies at rest without the balls (rad/s, ± the estimated error): {}\n", est.join(", ")));
+    let others = if diverging.is_empty() { "" } else { " of the other modes" };
+    s.push_str(&format!(
+        "reduced natural frequencies at rest without the balls{others} (rad/s, ± the estimated error): {}\n",
+        if est.is_empty() { EVERY_MODE_DIVERGES.to_string() } else { est.join(", ") }
+    ));
     s
 }
 
@@ -227,11 +237,32 @@ pub fn divergence_json(d: &[f64]) -> Value {
     Value::Array(d.iter().map(|l| json!({"omega_squared": l, "growth_rate": (-l).sqrt()})).collect())
 }
 
+/// What the natural-frequency lines say where every mode diverges at rest (no mode has a
+/// frequency); the JSON's `every_mode_diverges` is then `true`.
+pub const EVERY_MODE_DIVERGES: &str = "none (every mode diverges at rest)";
+
+/// The natural frequencies `w` (rad/s) as a line's list: each in rad/s with its rpm, or
+/// [`EVERY_MODE_DIVERGES`] where there are none because every mode diverges (`diverging`
+/// non-empty), or "none" where there are none at all.
+pub fn frequencies_text(w: &[f64], diverging: &[f64]) -> String {
+    match (w.is_empty(), diverging.is_empty()) {
+        (false, _) => w.iter().map(|w| speed_text(*w)).collect::<Vec<_>>().join(", "),
+        (true, false) => EVERY_MODE_DIVERGES.to_string(),
+        (true, true) => "none".to_string(),
+    }
+}
+
 /// The line that says the structure is statically unstable ([`modes_at_rest`]'s divergent modes), empty where it is not.
 pub fn divergence_text(d: &[f64]) -> String {
     if d.is_empty() {
         return String::new();
     }
+    divergence_words(d)
+}
+
+/// "statically unstable at rest: N mode(s) with ω² < 0, ω² = …" for the divergent `ω²` `d`
+/// (non-empty), one line.
+fn divergence_words(d: &[f64]) -> String {
     let six = |v: f64| fmt_num(crate::num::round_sig(v, 6).unwrap_or(v));
     format!(
         "statically unstable at rest: {} mode(s) with ω² < 0, ω² = {} (rad/s)², growing as exp(sqrt(-ω²) t) at {} 1/s: the stiffness K is not positive semi-definite (these modes have no natural frequency)\n",
@@ -263,6 +294,7 @@ pub fn stability_json(cfg: &LinearRotorConfig, r: &RotorStability, red: &Option<
         "balls": cfg.rotor.total_balls(),
         "natural_frequencies": wn,
         "static_divergence": divergence_json(&diverging),
+        "every_mode_diverges": wn.is_empty() && !diverging.is_empty(),
         "reduction": reduction_json(red),
         "stationary_state": r.kind,
         "speed_unit": "rad/s",
@@ -298,7 +330,7 @@ pub fn stability_table(cfg: &LinearRotorConfig, r: &RotorStability, red: &Option
     let (wn, diverging) = modes_at_rest(red.as_ref().map_or(&cfg.rotor, |r| &r.rotor), 4)?;
     s.push_str(&divergence_text(&diverging));
     let others = if diverging.is_empty() { "" } else { " (of the other modes)" };
-    s.push_str(&format!("natural frequencies at rest, balls as rings{others}: {}\n", wn.iter().map(|w| speed_text(*w)).collect::<Vec<_>>().join(", ")));
+    s.push_str(&format!("natural frequencies at rest, balls as rings{others}: {}\n", frequencies_text(&wn, &diverging)));
     s.push_str(&reduction_text(red));
     s.push_str(&partial_text(cfg, r));
     s.push_str(&linear_residual_text(r));
@@ -1010,6 +1042,7 @@ pub fn modes_at_plane(rotor: &LinearRotor, plane: usize, count: usize) -> Result
     // ω² with its sign: a divergent mode (K not positive semi-definite) has its own shift
     let w2 = sym.natural_frequencies_squared(&[], true)?;
     let scale = w2.iter().fold(0.0, |a: f64, b| a.max(b.abs())).max(f64::MIN_POSITIVE);
+    let threshold = autobal::linear_rotor::divergence_threshold(&w2);
     let starts = rotor.node_starts();
     let mut found: Vec<Vec<f64>> = vec![];
     let mut out = vec![];
@@ -1019,7 +1052,7 @@ pub fn modes_at_plane(rotor: &LinearRotor, plane: usize, count: usize) -> Result
         // a shift just below ω²: K − σM stays regular, the mode dominates by (ω² − σ)⁻¹
         // (rigid-body modes, ω = 0, get a shift 1e-15 of the highest |ω²| below them)
         // (ω² of a mode that does not diverge as before: wk², a rigid-body mode's rounding 0)
-        let lk = if autobal::linear_rotor::diverges(lk, scale) { lk } else { wk * wk };
+        let lk = if lk < -threshold { lk } else { wk * wk };
         let sigma = lk - 1e-9 * lk.abs().max(1e-6 * scale);
         let a: Vec<f64> = (0..n * n).map(|ij| k[ij] - sigma * m[ij]).collect();
         let singular = || anyhow!("linear_rotor: the mode shapes at rest: K − ω²M is singular at mode {idx}");

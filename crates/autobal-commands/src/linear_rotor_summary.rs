@@ -140,6 +140,7 @@ pub fn critical(cfg: &LinearRotorConfig) -> Result<(Value, String)> {
         "route": "linear",
         "natural_frequencies": w,
         "static_divergence": divergence_json(&diverging),
+        "every_mode_diverges": w.is_empty() && !diverging.is_empty(),
         "natural_frequencies_are": what,
         "reduction": reduction_json(&red),
         "critical_speeds": Value::Null,
@@ -148,6 +149,9 @@ pub fn critical(cfg: &LinearRotorConfig) -> Result<(Value, String)> {
     let mut s = divergence_text(&diverging);
     let others = if diverging.is_empty() { "" } else { " (of the modes that do not diverge)" };
     let _ = writeln!(s, "Linear rotor: {what}{others}:");
+    if w.is_empty() {
+        let _ = writeln!(s, "  {}", crate::linear_rotor::frequencies_text(&w, &diverging));
+    }
     for (i, x) in w.iter().enumerate() {
         let _ = writeln!(
             s,

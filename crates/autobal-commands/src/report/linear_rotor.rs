@@ -218,8 +218,31 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
     let setup = lr::setup(cfg, omega_max, dt)?;
     let run = lr::run(&setup, &ctx.control, |_| Ok(()))?;
     let sum = &run.summary;
-    if sum.stopped.is_some() {
+    // a run that ended early: interrupted where Ctrl-C or the wall-time budget stopped it
+    // (the section is incomplete), else failed (the integrator's own reason: a step too small,
+    // a non-finite state, its step budget spent), which on a K that is not positive
+    // semi-definite is what its divergence does to any run
+    let interrupted = sum.stopped.is_some() && ctx.control.should_stop().is_some();
+    let failed = if interrupted { None } else { sum.stopped.as_deref() };
+    if interrupted {
         s.complete = false;
+    }
+    let why = failed.map(|st| {
+        let cause = if diverging.is_empty() {
+            String::new()
+        } else {
+            format!(
+                " The stiffness K is not positive semi-definite ({} mode(s) diverge at rest, the fastest as exp({} t) with t in s): the motion grows without bound, and no run of this rotor can reach its end.",
+                diverging.len(),
+                fmt((-diverging[0]).sqrt(), 4)
+            )
+        };
+        format!("The run-up failed at t = {} s: the integrator stopped ({st}).{cause}", fmt(sum.t, 4))
+    });
+    if let Some(w) = &why {
+        s.failed = Some(format!("the run-up failed at t = {} s", fmt(sum.t, 4)));
+        s.p(format!("<b>{}</b>", super::html::esc(w)));
+        s.summary.push(format!("Linear rotor run-up: {}", super::html::esc(&w.replacen("The run-up failed", "failed", 1))));
     }
     s.p(format!(
         "{}: the peak whirl radius of the first balancer plane's race centre is {} mm at {} (t = {} s), {} mm at the end; the largest radius of any node {} mm at {}.{}",
@@ -234,7 +257,11 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
         fmt(1e3 * sum.final_radius, 4),
         fmt(1e3 * sum.peak_any_node.value, 4),
         speed(sum.peak_any_node.with),
-        sum.stopped.as_ref().map_or(String::new(), |st| format!(" Stopped early: {st}."))
+        match (interrupted, &sum.stopped) {
+            (true, Some(st)) => format!(" Interrupted: {st}."),
+            (false, Some(_)) => " (Up to the failure.)".to_string(),
+            _ => String::new(),
+        }
     ));
     if sum.stopped.is_none() {
         s.summary.push(format!(

@@ -103,6 +103,9 @@ pub struct Section {
     pub blocks: Vec<Block>,
     /// False when an interruption cut the section short.
     pub complete: bool,
+    /// What failed in a complete section (one line: a run whose integrator could not reach its
+    /// end), said in the progress line instead of "done"; the section says why.
+    pub failed: Option<String>,
     /// Why the section does not apply to this config (one line), if it does not.
     pub not_applicable: Option<String>,
     /// Lines (HTML) for the summary at the top of the page, in section order.
@@ -111,7 +114,7 @@ pub struct Section {
 
 impl Section {
     pub fn new(id: &'static str, title: impl Into<String>) -> Self {
-        Section { id, title: title.into(), blocks: vec![], complete: true, not_applicable: None, summary: vec![] }
+        Section { id, title: title.into(), blocks: vec![], complete: true, failed: None, not_applicable: None, summary: vec![] }
     }
     /// A section that does not apply, with the reason in one line (plain text).
     pub fn not_applicable(id: &'static str, title: impl Into<String>, why: impl Into<String>) -> Self {
@@ -319,6 +322,7 @@ fn write_in(ctx: &Ctx, dir: &Path) -> Result<Output> {
             let what = match &r {
                 Ok(Some(s)) if !s.complete => "interrupted".to_string(),
                 Ok(Some(Section { not_applicable: Some(why), .. })) => format!("not applicable ({why})"),
+                Ok(Some(Section { failed: Some(what), .. })) => format!("done, but {what}"),
                 Ok(Some(_)) => "done".to_string(),
                 Ok(None) => "not applicable".to_string(),
                 Err(_) => "failed".to_string(),

@@ -71,14 +71,22 @@ pub struct Reduction {
 /// A reduced natural frequency with the interval that holds a full-model frequency.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct BoundedFrequency {
-    /// The reduced model's frequency (rad/s).
+    /// The reduced model's frequency (rad/s); 0 for a mode that diverges at rest
+    /// (`divergent`: its `omega_squared < 0` has no frequency).
     pub omega: f64,
+    /// The reduced model's `ω²` ((rad/s)²) with its sign: negative where `K` is not positive
+    /// semi-definite.
+    pub omega_squared: f64,
+    /// Whether the mode diverges at rest: `ω²` below −[`super::divergence_threshold`] of the
+    /// reduced model's `ω²` (the rule of [`super::static_divergence`]).
+    pub divergent: bool,
     /// Lower end of the guaranteed interval (rad/s).
     pub low: f64,
     /// Upper end (rad/s).
     pub high: f64,
     /// The estimated error (rad/s): the difference to the same frequency with twice the mode
-    /// pairs (`None` where the interior has no more modes).
+    /// pairs (`None` where the interior has no more modes, and for a divergent mode, which has
+    /// no frequency).
     pub estimate: Option<f64>,
 }
 
@@ -381,7 +389,7 @@ pub fn reduce(rotor: &LinearRotor, mode_pairs: usize, extra_boundary: &[usize]) 
         let wr = reference.at_speed(0.0).natural_frequencies(&[], false)?;
         let wk = red.at_speed(0.0).natural_frequencies(&[], false)?;
         for (f, (a, b)) in frequencies.iter_mut().zip(wk.iter().zip(&wr)) {
-            f.estimate = Some((a - b).abs());
+            f.estimate = (!f.divergent).then(|| (a - b).abs());
         }
     }
     let pairs = kept;
@@ -500,6 +508,7 @@ fn bounds(full: &LinearRotor, red: &LinearRotor, b: &[f64], r: usize) -> Result<
     }
     let s = sym(&s, r);
     let (theta, y) = sym_eigen(&s, r);
+    let threshold = super::divergence_threshold(&theta);
     let mut out = vec![];
     for k in 0..r {
         let mut z: Vec<f64> = (0..r).map(|i| y[i * r + k]).collect();
@@ -509,7 +518,14 @@ fn bounds(full: &LinearRotor, red: &LinearRotor, b: &[f64], r: usize) -> Result<
         lower_solve(&lf, &mut res, n);
         let bound = res.iter().map(|v| v * v).sum::<f64>().sqrt();
         let th = theta[k].max(0.0);
-        out.push(BoundedFrequency { omega: th.sqrt(), low: (th - bound).max(0.0).sqrt(), high: (th + bound).sqrt(), estimate: None });
+        out.push(BoundedFrequency {
+            omega: th.sqrt(),
+            omega_squared: theta[k],
+            divergent: theta[k] < -threshold,
+            low: (th - bound).max(0.0).sqrt(),
+            high: (th + bound).sqrt(),
+            estimate: None,
+        });
     }
     Ok(out)
 }
