@@ -255,18 +255,20 @@ pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64, op: Option<&O
     s.push_str(&not_balanced_text(r, |w| speed_text(g, w)));
     let missing = r.points.iter().filter(|p| p.verdict.is_none()).count();
     let solved = r.points.len() - missing;
-    if r.stable_ranges.is_empty() && solved == 0 {
+    if r.points.is_empty() && r.cut_short() {
+        s.push_str("no verdict: the scan stopped before its first speed\n");
+    } else if r.stable_ranges.is_empty() && solved == 0 {
         let analysed = r.points.iter().filter(|p| p.analysed).count();
         s.push_str(&format!(
             "no verdict: no stationary state was found at any of the {analysed} speeds analysed of {} in (0, {}]\n",
             r.points.len(),
-            speed_text(g, omega_max)
+            speed_text(g, analysed_span(r, omega_max))
         ));
     } else if r.stable_ranges.is_empty() {
         s.push_str(&format!(
             "stable: nowhere among the {solved} of {} speeds in (0, {}] where a stationary state was found\n",
             r.points.len(),
-            speed_text(g, omega_max)
+            speed_text(g, analysed_span(r, omega_max))
         ));
     } else {
         for st in &r.stable_ranges {
@@ -352,6 +354,15 @@ pub(crate) fn stable_range_json(s: &autobal::analysis::StableRange) -> Value {
     json!({ "from": s.from, "to": s.to, "from_is_boundary": s.from_is_boundary, "to_is_boundary": s.to_is_boundary, "from_is_switch": s.from_is_switch, "to_is_switch": s.to_is_switch })
 }
 
+/// The end of the span a scan covered: `omega_max`, or where a stopped scan's last point is
+/// (review 23: "nowhere in (0, 864 rad/s]" after 179 speeds that reached 0.155 rad/s).
+pub(crate) fn analysed_span(r: &RotorStability, omega_max: f64) -> f64 {
+    match r.points.last() {
+        Some(p) if r.cut_short() => p.omega,
+        _ => omega_max,
+    }
+}
+
 /// A stable range's end in words ([`range_end`]), or, where the scan's state switches there
 /// to another stationary state with the other verdict
 /// ([`autobal::analysis::StableRange::from_is_switch`]), that it is such a switch and no
@@ -379,6 +390,8 @@ pub(crate) fn range_end(r: &RotorStability, w: f64, located: bool, upper: bool, 
     let i = r.points.iter().position(|p| p.omega == w);
     let next = i.and_then(|i| if upper { r.points.get(i + 1) } else { i.checked_sub(1).map(|j| &r.points[j]) });
     match next {
+        // a stopped scan's last point is where it stopped (review 23: "(end of the axis)")
+        None if upper && r.cut_short() => format!("{} (the last speed analysed: the scan stopped there)", speed(w)),
         None => format!("{} ({} of the axis)", speed(w), if upper { "end" } else { "start" }),
         Some(p) if p.verdict.is_none() => {
             let what = if p.analysed { "no stationary state found" } else { "not analysed (below the periodic-orbit floor)" };

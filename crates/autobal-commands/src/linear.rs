@@ -130,6 +130,10 @@ pub fn stability_table(cfg: &Config, c: &Comparison, balls: Balls) -> String {
     let worst = c.exact.max_real_part.iter().map(|x| x.1).fold(f64::NEG_INFINITY, f64::max);
     let best = c.exact.max_real_part.iter().map(|x| x.1).fold(f64::INFINITY, f64::min);
     match cfg.model.scale {
+        // stopped before the first speed (review 23: "from inf to -inf")
+        _ if c.exact.max_real_part.is_empty() => {
+            let _ = writeln!(s, "  max Re λ over the grid: none (no speed analysed)");
+        }
         Some(sc) => {
             let _ = writeln!(
                 s,

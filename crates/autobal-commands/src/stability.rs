@@ -688,6 +688,57 @@ mod tests {
         assert_eq!(v["max_real_part"].as_array().unwrap()[..40], margins[..]);
     }
 
+    /// Review 23: a stopped scan's words cover the speeds analysed only. The general route's
+    /// range that reaches the stop ends "where the scan stopped", not "(end of the axis)", and
+    /// "nowhere" spans (0, the last speed analysed]; stopped before its first speed it says
+    /// so (it read "no stationary state was found at any of the 0 speeds"); the closed form's
+    /// 003 sentence says it covers the speeds analysed ("coincide" after none), and its margin
+    /// line has no "inf"; the linear rotor's "nowhere" spans what was analysed.
+    #[test]
+    fn a_stopped_scan_s_words_cover_only_the_speeds_analysed() {
+        use crate::command::Output as _;
+        let none = || Control::new().with_budget(std::time::Duration::ZERO);
+        let planar = include_str!("../../../examples/planar.toml");
+        let args = Args { config: tables(planar, &[]), samples: Some(30), ..Default::default() };
+        // paper 004's rotor is stable from ~301 rad/s: 15 of 30 speeds on (0, 864] reach 432
+        let out = args.run(&stop_after(15)).unwrap();
+        let t = out.table().unwrap();
+        let Output::General { r, .. } = &out else { panic!("the general route") };
+        let last = r.points.last().unwrap().omega;
+        assert!(r.stable_ranges.last().is_some_and(|s| s.to == last), "{t}");
+        assert!(!t.contains("end of the axis") && t.contains("(the last speed analysed: the scan stopped there)"), "{t}");
+        let t = args.run(&none()).unwrap().table().unwrap();
+        assert!(t.contains("no verdict: the scan stopped before its first speed\n") && !t.contains("no stationary state was found"), "{t}");
+        // paper 000's rotor by the general route: unstable below Ω ≈ 1.3
+        let default = include_str!("../../../examples/default.toml");
+        let general = Args { config: tables(default, &[]), samples: Some(30), route: crate::command::Route::General, ..Default::default() };
+        let out = general.run(&stop_after(3)).unwrap();
+        let Output::General { g, r, .. } = &out else { panic!("the general route") };
+        let t = out.table().unwrap();
+        let want = format!("stable: nowhere among the 3 of 3 speeds in (0, {}]", crate::general::speed_text(g, r.points[2].omega));
+        assert!(t.contains(&want), "{t}");
+        // the closed form
+        let dim = include_str!("../../../examples/dimensional.toml");
+        let args = Args { config: tables(dim, &[]), samples: Some(400), ..Default::default() };
+        let t = args.run(&stop_after(40)).unwrap().table().unwrap();
+        assert!(t.contains("difference: over the speeds analysed only, 0 < Ω ≤ "), "{t}");
+        let whole = args.run(&Control::none()).unwrap().table().unwrap();
+        assert!(!whole.contains("over the speeds analysed only"));
+        let t = args.run(&none()).unwrap().table().unwrap();
+        assert!(t.contains("difference: not compared: the scan stopped before its first speed") && !t.contains("inf"), "{t}");
+        assert!(t.contains("max Re λ over the grid: none (no speed analysed)"), "{t}");
+        // the linear rotor, stopped below its first stable speed
+        let shaft = include_str!("../../../examples/linear_rotor_shaft.toml");
+        let args = Args { config: tables(shaft, &[]), samples: Some(30), ..Default::default() };
+        let out = args.run(&stop_after(1)).unwrap();
+        let Output::LinearRotor { r, .. } = &out else { panic!("the linear route") };
+        let t = out.table().unwrap();
+        if r.stable_ranges.is_empty() {
+            let w = r.points[0].omega;
+            assert!(t.contains("stable: nowhere in (0, ") && !t.contains("2543"), "{w}: {t}");
+        }
+    }
+
     /// The one rule of the general and linear routes ([`kept_scan`]): a stop during the verdict
     /// at the operating speed keeps the complete scan and says the verdict is not given; an
     /// error there that is no stop is the error; a scan stopped gives no verdict (not asked)

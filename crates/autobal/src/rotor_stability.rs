@@ -1087,6 +1087,18 @@ pub struct RotorStability {
     pub has_unbalance: bool,
     /// What the residuals are fractions of ([`Rotor::residual_scale`]).
     pub residual_scale: ResidualScale,
+    /// How many speeds the scan was asked for: more than [`RotorStability::points`] where it
+    /// was stopped (Ctrl-C, a budget), so that its last point is where it stopped, not the end
+    /// of the axis (not in the JSON, which says `complete: false` itself).
+    #[serde(skip)]
+    pub speeds_asked: usize,
+}
+
+impl RotorStability {
+    /// Whether the scan stopped before the last speed it was asked for.
+    pub fn cut_short(&self) -> bool {
+        self.points.len() < self.speeds_asked
+    }
 }
 
 /// The stationary state of `rotor` and its stability at each of `speeds` (ascending), with the
@@ -1536,6 +1548,7 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
         family,
         has_unbalance: rotor.has_unbalance(),
         residual_scale: rotor.residual_scale(),
+        speeds_asked: speeds.len(),
     };
     Ok(Outcome { value, stopped })
 }

@@ -37,6 +37,10 @@ pub struct Comparison {
     pub stable_not_necessary: Vec<SpeedRange>,
     /// The end of the span.
     pub omega_max: f64,
+    /// Where a stopped scan's comparison ends (its last speed analysed, 0 where none was):
+    /// `None` for a complete one (not in the JSON, which says `complete: false` itself).
+    #[serde(skip)]
+    pub stopped_at: Option<f64>,
 }
 
 /// Clip ranges to `[0, w]` as closed pairs.
@@ -90,6 +94,7 @@ pub fn compare_with(model: &SpatialModel, omega_max: f64, samples: usize, balls:
         stable_not_necessary: to_ranges(&minus(&e, &n), omega_max),
         exact,
         omega_max,
+        stopped_at: stopped.is_some().then_some(span),
     };
     Ok(Outcome { value, stopped })
 }
@@ -176,7 +181,14 @@ impl Comparison {
             let runs = neutral.iter().map(|&(a, b)| if a == b { format!("{a:.4}") } else { format!("{a:.4} – {b:.4}") }).collect::<Vec<_>>().join(", ");
             format!(", except at the grid speeds {runs}, where it is neutral (max Re λ within {STABILITY_TOLERANCE:e} of 0: undecided by the linearisation)")
         };
-        match (self.necessary_not_stable.is_empty(), self.stable_not_necessary.is_empty()) {
+        // a stopped scan's sentence covers the speeds analysed only (review 23: "coincide" after
+        // none, over a grid whose complete run differs)
+        let over = match self.stopped_at {
+            None => String::new(),
+            Some(w) if w > 0.0 => format!("over the speeds analysed only, 0 < Ω ≤ {w:.4} (the scan stopped there): "),
+            Some(_) => return "not compared: the scan stopped before its first speed".into(),
+        };
+        over + &match (self.necessary_not_stable.is_empty(), self.stable_not_necessary.is_empty()) {
             (true, true) => "the exact stability ranges coincide with 003's necessary ranges".into(),
             _ => format!(
                 "003's condition holds but the balanced state is unstable on {} (total {:.4}){except}; the balanced state is stable where 003's condition fails on {} (total {:.4})",
