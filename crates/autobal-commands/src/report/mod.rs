@@ -212,6 +212,10 @@ pub struct Output {
     pub figures: usize,
     /// Why the page is incomplete (Ctrl-C), or `None`.
     pub incomplete: Option<String>,
+    /// What failed in a section that is otherwise complete (a run-up whose integrator could not
+    /// reach its end), or `None`: the page is written and says why, and the command exits 2
+    /// so that a script sees it (review 23: exit 0 hid it; `simulate` exits 2 on the same run).
+    pub failed: Option<String>,
 }
 
 impl command::Command for Args {
@@ -231,14 +235,14 @@ impl command::Command for Args {
 impl command::Output for Output {
     fn json(&self) -> Result<serde_json::Value> {
         Ok(
-            serde_json::json!({"index": self.index.display().to_string(), "sections": self.sections, "figures": self.figures, "complete": self.incomplete.is_none()}),
+            serde_json::json!({"index": self.index.display().to_string(), "sections": self.sections, "figures": self.figures, "complete": self.incomplete.is_none(), "failed": self.failed}),
         )
     }
     fn table(&self) -> Result<String> {
         Ok(format!("report written to {}\n", self.index.display()))
     }
     fn stopped(&self) -> Option<String> {
-        self.incomplete.clone()
+        self.incomplete.clone().or_else(|| self.failed.clone())
     }
 }
 
@@ -373,7 +377,9 @@ fn write_in(ctx: &Ctx, dir: &Path) -> Result<Output> {
             if incomplete.is_empty() { "stopped while writing".to_string() } else { incomplete.join(", ") }
         )
     });
-    Ok(Output { index, sections: sections.len(), figures: figs.len(), incomplete })
+    let failed: Vec<String> = sections.iter().filter_map(|s| s.failed.as_ref().map(|w| format!("{}: {w}", s.title))).collect();
+    let failed = (!failed.is_empty()).then(|| format!("the report in {} is written, but {} (its section says why)", index.display(), failed.join("; ")));
+    Ok(Output { index, sections: sections.len(), figures: figs.len(), incomplete, failed })
 }
 
 /// A section whose analysis needs the linearisation of a stationary state the config's rotor

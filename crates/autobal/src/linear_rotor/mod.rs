@@ -415,26 +415,34 @@ pub const MAX_DOFS: usize = 2000;
 /// The constant `c` of the divergence threshold `c · N · ε · max|ω²|` ([`divergence_threshold`]).
 pub const DIVERGENCE_ROUNDING: f64 = 100.0;
 
-/// The largest `|ω²|` that rounding can give a mode whose true `ω²` is 0 (a rigid-body
-/// mode) in [`LinearRotor::natural_frequencies_squared`]'s eigenvalues `omega_squared` (all
-/// of them, `N` = their number, the order of the problem solved):
-/// `DIVERGENCE_ROUNDING · N · ε · max|ω²|` ([`DIVERGENCE_ROUNDING`] = 100, `ε` = 2.2e-16).
-/// The eigen-solver is backward stable: the computed eigenvalues are exact for
-/// `S + E` with `‖E‖₂ ≲ c₀ N ε ‖S‖₂` (the Hessenberg QR's backward error, `c₀` a small
-/// constant: Golub & Van Loan, *Matrix Computations*), and `S = L⁻¹ K L⁻ᵀ` is symmetric up to
-/// that rounding, so by Bauer–Fike each eigenvalue moves by at most `‖E‖₂`, with
-/// `‖S‖₂ = max|ω²|`. The factor 100 covers `c₀` and the congruence's own rounding. Measured
-/// (the shaft builder's free shafts of 1 to 200 elements, 8 to 804 DOFs, with and without a
-/// disk and rotary inertia; ROSS's `rotor_example` without its bearings, 28 DOFs; a 2-DOF
-/// semi-definite `K`): the rigid-body modes come out within 2.4e-16 of `max|ω²|`, at least
-/// 1900 times below the threshold. The rule before (session 22) was a fixed `1e-9 · max|ω²|`,
-/// 13 (rad/s)² on a rotor whose stiffest mode is 1.3e10 (rad/s)², so a mode at `ω² = −1.34`
-/// (growing at 1.16 1/s) read "0 rad/s" (review 22); the solver there resolves `ω²` to ~8e-3 (rad/s)²
-/// (`100 · 28 · ε · 1.3e10`). A true `ω²` closer to 0 than the threshold cannot be told from 0
-/// in double precision.
+/// Below this fraction of `max|ω²|` a negative `ω²` is not told from 0 ([`divergence_threshold`]):
+/// the rounding of the matrices' data, not the solver's.
+pub const DATA_ROUNDING: f64 = 1e-9;
+
+/// The largest `|ω²|` that rounding can give a mode whose true `ω²` is 0 (a rigid-body mode)
+/// in [`LinearRotor::natural_frequencies_squared`]'s eigenvalues `omega_squared` (all of them,
+/// `N` = their number): `max(DATA_ROUNDING, DIVERGENCE_ROUNDING · N · ε) · max|ω²|`.
+///
+/// Two roundings. The solver's: it is backward stable, the computed eigenvalues exact for
+/// `S + E` with `‖E‖₂ ≲ c₀ N ε ‖S‖₂` (the Hessenberg QR's backward error: Golub & Van Loan,
+/// *Matrix Computations*), `S = L⁻¹ K L⁻ᵀ` symmetric up to that rounding, so by Bauer–Fike each
+/// eigenvalue moves by at most `‖E‖₂`, `‖S‖₂ = max|ω²|`; the factor
+/// [`DIVERGENCE_ROUNDING`] = 100 covers `c₀` and the congruence's rounding. Measured on matrices
+/// built in memory (free shafts of 8 to 804 DOFs, ROSS's `rotor_example` without bearings, a
+/// 2-DOF semi-definite `K`): rigid-body modes within 2.4e-16 of `max|ω²|`. The data's: matrix
+/// files written to 8-10 significant digits (fixed-width FE exports) are not exactly
+/// semi-definite, and a free rotor's rigid-body modes then come out genuinely negative
+/// (review 23: a free stepped shaft, 400 kg disk, `max|ω²|` 3.07e9, its exported M and K
+/// rounded to 10, 9, 8 digits: `ω² = −0.005`, `−0.047`, `−0.78`, up to 2.5e-10 of `max|ω²|`;
+/// the solver's bound alone, 8e-3 there, called that rotor statically unstable). The data's
+/// precision is not known, so [`DATA_ROUNDING`] = 1e-9 (data to 8 digits, with a margin of 4)
+/// is the floor, the rule of session 22: on a rotor whose stiffest mode is 1.3e10 (rad/s)² a
+/// mode at `ω² = −1.34` (growing at 1.16 1/s, review 22) reads "0 rad/s" still, and on a
+/// 804-DOF fine mesh whose `max|ω²|` is 1.5e13 so does one at −85 (review 23): a true `ω²`
+/// closer to 0 than the threshold is not told from 0 (docs/reference/your-own-rotor.md).
 pub fn divergence_threshold(omega_squared: &[f64]) -> f64 {
     let scale = omega_squared.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-    DIVERGENCE_ROUNDING * omega_squared.len() as f64 * f64::EPSILON * scale
+    DATA_ROUNDING.max(DIVERGENCE_ROUNDING * omega_squared.len() as f64 * f64::EPSILON) * scale
 }
 
 /// The divergent modes at rest among `omega_squared` ([`LinearRotor::natural_frequencies_squared`]):
