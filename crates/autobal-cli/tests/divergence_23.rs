@@ -1,6 +1,6 @@
 //! The linear rotor's static divergence at every scale and in every line that lists modes
-//! (review 22's *Left*): a slow divergence on a stiff rotor is named (the threshold is the
-//! eigen-solver's `100 N ε max|ω²|`, no longer `1e-9 max|ω²|`); the modal reduction's line
+//! (review 22's *Left*): a divergence above the threshold `1e-9 max|ω²|` (the matrices' data
+//! rounding, review 23) on a stiff rotor is named with its `ω²`; the modal reduction's line
 //! names divergent modes instead of "0 ± 0"; with every mode divergent the frequency lines say
 //! so instead of ending empty; the quick report's run-up of a divergent rotor says it failed and
 //! why instead of "interrupted".

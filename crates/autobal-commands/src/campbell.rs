@@ -154,7 +154,15 @@ impl command::Output for Output {
                 run.write_json(&mut text)?;
                 Ok(serde_json::from_slice(&text)?)
             }
-            Output::General { g, c, omega_max, .. } => Ok(general_campbell::campbell_json(g, c, *omega_max)),
+            Output::General { g, c, omega_max, .. } => {
+                let mut v = general_campbell::campbell_json(g, c, *omega_max);
+                // only where stopped: a complete run's JSON is as before
+                if let Some(why) = &c.stopped {
+                    v["complete"] = false.into();
+                    v["stopped"] = why.as_str().into();
+                }
+                Ok(v)
+            }
         }
     }
     fn write_json(&self, out: &mut dyn std::io::Write) -> Result<()> {
@@ -171,7 +179,9 @@ impl command::Output for Output {
     fn table(&self) -> Result<String> {
         Ok(match self {
             Output::Closed(run) => run.table(),
-            Output::General { g, c, .. } => general_campbell::campbell_table(g, c),
+            Output::General { g, c, .. } => {
+                c.stopped.as_ref().map_or(String::new(), |why| format!("INCOMPLETE ({why})\n")) + &general_campbell::campbell_table(g, c)
+            }
         })
     }
     /// `campbell_modes` (fixed axes, one curve per mode), and on the closed-form route
@@ -179,19 +189,24 @@ impl command::Output for Output {
     fn figures(&self) -> Result<Vec<Figure>> {
         Ok(match self {
             Output::Closed(run) => run.figures(),
-            Output::General { g, c, omega_max, view } => match view {
-                CampbellView::Fixed => vec![Figure::new("campbell_modes", general_campbell::campbell_plot(g, c, *omega_max))],
-                CampbellView::Components => {
-                    let (rotating, fixed) = general_campbell::components_plots(g, c);
-                    vec![Figure::new("campbell_rotating", rotating), Figure::new("campbell_fixed", fixed)]
+            // a stopped diagram's figures say so in their titles (its curves end at the last
+            // speed analysed)
+            Output::General { g, c, omega_max, view } => {
+                let mark = |p| crate::stability::mark_stopped(p, &c.stopped, None);
+                match view {
+                    CampbellView::Fixed => vec![Figure::new("campbell_modes", mark(general_campbell::campbell_plot(g, c, *omega_max)))],
+                    CampbellView::Components => {
+                        let (rotating, fixed) = general_campbell::components_plots(g, c);
+                        vec![Figure::new("campbell_rotating", mark(rotating)), Figure::new("campbell_fixed", mark(fixed))]
+                    }
                 }
-            },
+            }
         })
     }
     fn stopped(&self) -> Option<String> {
         match self {
             Output::Closed(run) => run.stopped(),
-            Output::General { .. } => None,
+            Output::General { c, .. } => c.stopped.clone(),
         }
     }
 }
@@ -409,12 +424,14 @@ mod tests {
     }
 
     /// A stop (Ctrl-C, a cancelled control) during the general route's search for critical
-    /// speeds, after the scan has computed every speed, ends the command with one line that
-    /// says so, as a stop during the 12-state route's search does (exit 2 from the CLI): here
-    /// the control is cancelled when the scan reports its last speed, so that only the
-    /// search (the mode numbers' tracking to the reference speed first) sees the stop.
+    /// speeds, after the scan has computed every speed, keeps every speed's curves without
+    /// crossings and says so (`stopped`, exit 2 from the CLI), as the 12-state route keeps what
+    /// it computed (it ended with one line and printed nothing until session 23): here the
+    /// control is cancelled when the scan reports its last speed, so that only the search sees
+    /// the stop.
     #[test]
-    fn a_stop_during_the_general_routes_search_says_so() {
+    fn a_stop_during_the_general_routes_search_keeps_the_curves() {
+        use crate::command::Output as _;
         let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/linear_rotor_windows.toml");
         let flag = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
         let f = flag.clone();
@@ -424,13 +441,47 @@ mod tests {
             }
         });
         let args = Args { config: ConfigSource::file(Some(&path), &[]), points: Some(20), ..Default::default() };
-        let e = args.run(&control).err().expect("stopped");
-        let msg = format!("{e:#}");
-        assert!(msg.starts_with("interrupted: the search for critical speeds stopped after all 20 speeds"), "{msg}");
-        assert!(!msg.contains('\n'), "one line: {msg}");
-        // the same run not stopped: critical speeds
-        let out = Args { config: ConfigSource::file(Some(&path), &[]), points: Some(20), ..Default::default() }.run(&Control::none()).unwrap();
-        assert!(out.json().unwrap()["critical_speeds"].as_array().is_some_and(|a| !a.is_empty()));
+        let out = args.run(&control).unwrap();
+        let why = out.stopped().expect("stopped");
+        assert!(why.starts_with("interrupted: all 20 speeds analysed, the search for critical speeds stopped (none given)"), "{why}");
+        assert!(!why.contains('\n'), "one line: {why}");
+        let v = out.json().unwrap();
+        assert_eq!((v["complete"].clone(), v["stopped"].clone()), (serde_json::json!(false), serde_json::json!(why)));
+        assert!(v["critical_speeds"].is_null() || v["critical_speeds"].as_array().is_some_and(|a| a.is_empty()), "{}", v["critical_speeds"]);
+        assert!(out.table().unwrap().starts_with(&format!("INCOMPLETE ({why})\n")));
+        // the same run not stopped: critical speeds, the same curves
+        let whole = Args { config: ConfigSource::file(Some(&path), &[]), points: Some(20), ..Default::default() }.run(&Control::none()).unwrap();
+        assert!(whole.stopped().is_none());
+        let w = whole.json().unwrap();
+        assert!(w.get("complete").is_none() && w["critical_speeds"].as_array().is_some_and(|a| !a.is_empty()));
+        assert_eq!(v["lines"], w["lines"]);
+    }
+
+    /// A stop during the general route's scan keeps the speeds analysed (session 23: it printed
+    /// nothing): their curves equal the complete run's at those speeds, `complete: false`, no
+    /// crossings. Paper 004's planar rotor, stopped after 5 of 30 speeds.
+    #[test]
+    fn a_stop_during_the_general_routes_scan_keeps_the_speeds_analysed() {
+        use crate::command::Output as _;
+        let control = Control::new();
+        let c = control.clone();
+        let control = control.with_progress(move |p| {
+            if p.done >= 5 {
+                c.cancel();
+            }
+        });
+        let planar = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/planar.toml");
+        let args = Args { config: ConfigSource::file(Some(&planar), &[]), points: Some(30), ..Default::default() };
+        let out = args.run(&control).unwrap();
+        let why = out.stopped().expect("stopped");
+        assert!(why.starts_with("interrupted: 5 of 30 speeds analysed; what was analysed is printed"), "{why}");
+        let Output::General { c, .. } = &out else { panic!("the general route") };
+        assert_eq!(c.diagram.omega.len(), 5);
+        let whole = args.run(&Control::none()).unwrap();
+        let Output::General { c: w, .. } = &whole else { panic!("the general route") };
+        assert_eq!(c.diagram.omega[..], w.diagram.omega[..5]);
+        assert!(out.json().unwrap()["complete"] == false && whole.json().unwrap().get("complete").is_none());
+        assert!(out.figures().unwrap()[0].plot.title.starts_with("INCOMPLETE: ") && !whole.figures().unwrap()[0].plot.title.starts_with("INCOMPLETE"));
     }
 
     /// [`write_mode_json`] writes `serde_json`'s bytes: 20 000 random modes (numbers of random

@@ -100,6 +100,10 @@ pub struct GeneralCampbell {
     /// Why the crossings (critical speeds) are not given, where they are not: Floquet
     /// exponents (defined modulo 2π/T: Ω, or 2Ω where T = π/Ω), or a crossing whose stationary state was not found.
     pub crossings_not_given: Option<String>,
+    /// Why the diagram is incomplete (Ctrl-C, a budget) and what it kept, `None` when complete:
+    /// the speeds analysed before the stop (no crossings), or every speed with the search for
+    /// the crossings stopped (the command prints it and exits 2, as the closed-form route).
+    pub stopped: Option<String>,
 }
 
 /// What the mode numbers are where they were ranked at the first speed (no spectrum at the
@@ -111,8 +115,13 @@ pub const FLOQUET_CROSSINGS: &str = "not defined for Floquet exponents: their im
 
 /// The Campbell diagram of the general route with the balls free and the `1×` crossings (what
 /// `autobal campbell` and Python's `campbell` give by default), its numbers checked finite.
+/// A stopped diagram is an error here (the report's use: it prints no part of it).
 pub fn campbell(g: &GeneralRotor, omega_max: f64, points: usize, control: &Control) -> Result<GeneralCampbell> {
-    campbell_with(g, omega_max, points, Balls::Free, &[1], control)
+    let c = campbell_with(g, omega_max, points, Balls::Free, &[1], control)?;
+    if let Some(why) = c.stopped {
+        anyhow::bail!("{why}");
+    }
+    Ok(c)
 }
 
 /// The Campbell diagram of the general route with the balls `balls` (`--balls`), its fixed-axes
@@ -120,33 +129,49 @@ pub fn campbell(g: &GeneralRotor, omega_max: f64, points: usize, control: &Contr
 /// [`crate::linear::check_harmonics`]), its numbers checked finite once.
 pub fn campbell_with(g: &GeneralRotor, omega_max: f64, points: usize, balls: Balls, harmonics: &[u32], control: &Control) -> Result<GeneralCampbell> {
     let sp = speeds(omega_max, points);
+    // the scan asks the control once per speed; stopped, the speeds analysed are kept and said
+    // (session 23; the closed-form route's rule: no crossings over a partial grid)
+    let mut stopped = None;
     let c = match balls {
-        // the scan asks the control once per speed; a stopped scan prints nothing
         Balls::Free => {
             let out = autobal::rotor_campbell::campbell_over_speed_with(&g.rotor, &sp, control).map_err(|e| crate::general::floor_in_units(g, e, &sp))?;
             if let Some(why) = out.stopped {
-                anyhow::bail!("{why}: the Campbell scan stopped after {} of {} speeds; nothing is printed", out.value.omega.len(), sp.len());
+                stopped = Some(format!(
+                    "{why}: {} of {} speeds analysed; what was analysed is printed (its curves end where the scan stopped; no critical speeds)",
+                    out.value.omega.len(),
+                    sp.len()
+                ));
             }
             out.value
         }
         Balls::Locked => campbell_locked(&g.rotor, &sp).map_err(|e| crate::general::floor_in_units(g, e, &sp))?,
     };
     autobal::limits::check_finite("campbell", &c)?;
-    let (fixed, mut why) = match fixed_view_with(&g.rotor, balls, &c, harmonics, control) {
-        Ok(f) => (Some(f), None),
-        // Ctrl-C (or the budget) during the search for the critical speeds: stopped as the
-        // scan is (exit 2)
-        Err(_) if control.should_stop().is_some() => {
-            anyhow::bail!("interrupted: the search for critical speeds stopped after all {} speeds; nothing is printed", sp.len())
+    // the curves without the crossings, and why
+    let without_crossings = |why: String| match fixed_view(&g.rotor, balls, &c, &[]) {
+        Ok(mut f) => {
+            f.harmonics = harmonics.to_vec();
+            (Some(f), Some(why))
         }
-        // a crossing's stationary state not found: the curves without the crossings, and why
-        Err(e) => match fixed_view(&g.rotor, balls, &c, &[]) {
-            Ok(mut f) => {
-                f.harmonics = harmonics.to_vec();
-                (Some(f), Some(format!("not located: {e}")))
+        Err(e) => (None, Some(format!("no fixed-axes view: {e}"))),
+    };
+    let (fixed, mut why) = if stopped.is_some() {
+        without_crossings("not located: the scan stopped before its last speed".into())
+    } else {
+        match fixed_view_with(&g.rotor, balls, &c, harmonics, control) {
+            Ok(f) => (Some(f), None),
+            // Ctrl-C (or the budget) during the search for the critical speeds: every speed's
+            // curves kept, no crossing (exit 2, as a stop during the scan)
+            Err(_) if control.should_stop().is_some() => {
+                stopped = Some(format!(
+                    "interrupted: all {} speeds analysed, the search for critical speeds stopped (none given); what was analysed is printed",
+                    sp.len()
+                ));
+                without_crossings("not located: the search was stopped".into())
             }
-            Err(e) => (None, Some(format!("no fixed-axes view: {e}"))),
-        },
+            // a crossing's stationary state not found
+            Err(e) => without_crossings(format!("not located: {e}")),
+        }
     };
     if c.kind == Kind::PeriodicOrbit {
         why = Some(FLOQUET_CROSSINGS.into());
@@ -154,7 +179,7 @@ pub fn campbell_with(g: &GeneralRotor, omega_max: f64, points: usize, balls: Bal
     if let Some(f) = &fixed {
         autobal::limits::check_finite("campbell.critical_speeds", &f.critical_speeds)?;
     }
-    Ok(GeneralCampbell { diagram: c, balls, harmonics: harmonics.to_vec(), fixed, crossings_not_given: why })
+    Ok(GeneralCampbell { diagram: c, balls, harmonics: harmonics.to_vec(), fixed, crossings_not_given: why, stopped })
 }
 
 fn what(c: &RotorCampbell) -> &'static str {

@@ -113,6 +113,17 @@ pub fn stability_table(cfg: &Config, c: &Comparison, balls: Balls) -> String {
             }
         })
     );
+    // stopped: every range below, 003's too, covers the speeds analysed only (review 23)
+    match c.stopped_at {
+        Some(at) if at > 0.0 => {
+            let _ =
+                writeln!(s, "  the scan stopped at Ω = {}: the ranges below, 003's too, cover 0 < Ω ≤ {} only", crate::num::fmt(at, 7), crate::num::fmt(at, 7));
+        }
+        Some(_) => {
+            let _ = writeln!(s, "  the scan stopped before its first speed: no range below is known, 003's neither");
+        }
+        None => {}
+    }
     // computed over (0, Ω_max] only: a range reaching Ω_max ends there as far as is known
     let w = Some(c.omega_max);
     if let Some(m) = autobal::reports::family_member(&cfg.model, balls) {

@@ -251,7 +251,7 @@ fn incomplete_line(stopped: &Option<String>) -> String {
 /// vertical line at `at` (the last speed analysed, in the figure's unit) says the scan stopped
 /// there (the rest of the axis is empty because nothing was analysed, not because nothing is
 /// there).
-fn mark_stopped(mut p: Plot, stopped: &Option<String>, at: Option<f64>) -> Plot {
+pub(crate) fn mark_stopped(mut p: Plot, stopped: &Option<String>, at: Option<f64>) -> Plot {
     if stopped.is_some() {
         p.title = format!("INCOMPLETE: {}", p.title);
         if let Some(w) = at {
@@ -722,6 +722,7 @@ mod tests {
         let args = Args { config: tables(dim, &[]), samples: Some(400), ..Default::default() };
         let t = args.run(&stop_after(40)).unwrap().table().unwrap();
         assert!(t.contains("difference: over the speeds analysed only, 0 < Ω ≤ "), "{t}");
+        assert!(t.contains("the scan stopped at Ω = ") && t.contains(", 003's too, cover 0 < Ω ≤ "), "{t}");
         let whole = args.run(&Control::none()).unwrap().table().unwrap();
         assert!(!whole.contains("over the speeds analysed only"));
         let t = args.run(&none()).unwrap().table().unwrap();

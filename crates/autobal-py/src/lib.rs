@@ -812,16 +812,22 @@ fn figures(
 #[pyfunction]
 #[pyo3(signature = (config, sets, out, quick=false, papers=false))]
 fn report(py: Python<'_>, config: Option<std::path::PathBuf>, sets: Vec<String>, out: std::path::PathBuf, quick: bool, papers: bool) -> PyResult<String> {
-    use autobal_commands::command::{Command, ConfigSource, Output};
+    use autobal_commands::command::{Command, ConfigSource};
     // the same `report::Args` and `run` as the CLI (the folder checked before any section runs)
     let args = autobal_commands::report::Args { config: ConfigSource::file(config.as_deref(), &sets), out, quick, papers };
-    let index = commands_call(py, move |control| {
+    let (index, failed) = commands_call(py, move |control| {
         let out = args.run(control)?;
-        if let Some(why) = out.stopped() {
+        // interrupted (Ctrl-C): an error; written with a run that failed (the CLI's exit 2):
+        // the path, and a `UserWarning` with the CLI's line (review 23)
+        if let Some(why) = &out.incomplete {
             anyhow::bail!("{why}");
         }
-        Ok(out.index)
+        Ok((out.index, out.failed))
     })?;
+    if let Some(why) = failed {
+        let msg = std::ffi::CString::new(why.replace('\0', " ")).unwrap_or_default();
+        PyErr::warn(py, &py.get_type::<pyo3::exceptions::PyUserWarning>(), &msg, 1)?;
+    }
     Ok(index.display().to_string())
 }
 

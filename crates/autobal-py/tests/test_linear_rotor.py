@@ -128,6 +128,20 @@ def test_the_report_from_python_equals_the_clis(tmp_path):
     assert "linear_rotor_campbell_diagram" in rep.figures()
 
 
+def test_a_report_whose_run_up_failed_is_returned_with_a_warning(tmp_path):
+    # review 23: the CLI writes the report and exits 2 with "the report in ... is written, but
+    # ... the run-up failed at t = ..."; Python returns the Report and warns with that line (it
+    # raised, losing the Report object); a step budget of 100 steps fails the shaft's run-up
+    import warnings
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        rep = autobal.report(SHAFT, out=tmp_path / "py", set={"integration.max_steps": 100}, quick=True)
+    lines = [str(w.message) for w in caught if issubclass(w.category, UserWarning)]
+    assert any("is written, but" in m and "the run-up failed at t = " in m for m in lines), lines
+    assert (tmp_path / "py" / "index.html").exists() and "linear_rotor_campbell_diagram" in rep.figures()
+    assert "The run-up failed at t = " in (tmp_path / "py" / "index.html").read_text()
+
+
 def test_run_and_analyse_on_a_linear_rotor_config(tmp_path):
     """``autobal.run`` on a ``[linear_rotor]`` file (issue 19 item 4): ``map``, ``sweep`` and
     ``basins`` as the CLI computes them (the map's cells equal the CLI's CSV, a sweep's JSON

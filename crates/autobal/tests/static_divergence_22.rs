@@ -57,8 +57,8 @@ fn a_rigid_body_mode_is_not_divergent() {
     assert!((got[1] - top).abs() <= 1e-12 * top, "{got:?}");
     assert!(static_divergence(&got).is_empty(), "{got:?}");
     // made slightly indefinite beyond rounding (d lowered by 1e-6 relative: λ0 ≈ −1e-6 ·
-    // (a d)/(a m2 + d m1), 1e-7 of the largest, far above the threshold 100 N ε = 4.4e-14 of
-    // the largest): divergent
+    // (a d)/(a m2 + d m1), 1e-7 of the largest, far above the threshold 1e-9 of the largest):
+    // divergent
     let r = rotor(m1, m2, a, b, d * (1.0 - 1e-6));
     let got = r.natural_frequencies_squared(&[], false).unwrap();
     assert_eq!(static_divergence(&got).len(), 1, "{got:?}");

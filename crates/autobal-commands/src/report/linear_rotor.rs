@@ -222,7 +222,9 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
     // (the section is incomplete), else failed (the integrator's own reason: a step too small,
     // a non-finite state, its step budget spent), which on a K that is not positive
     // semi-definite is what its divergence does to any run
-    let interrupted = sum.stopped.is_some() && ctx.control.should_stop().is_some();
+    // (the config's wall-time budget, `integration.max_wall_s`, is the integrator's: its
+    // reason says so, review 23)
+    let interrupted = sum.stopped.as_deref().is_some_and(|st| ctx.control.should_stop().is_some() || st.starts_with("time budget"));
     let failed = if interrupted { None } else { sum.stopped.as_deref() };
     if interrupted {
         s.complete = false;

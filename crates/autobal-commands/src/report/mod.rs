@@ -377,7 +377,7 @@ fn write_in(ctx: &Ctx, dir: &Path) -> Result<Output> {
             if incomplete.is_empty() { "stopped while writing".to_string() } else { incomplete.join(", ") }
         )
     });
-    let failed: Vec<String> = sections.iter().filter_map(|s| s.failed.as_ref().map(|w| format!("{}: {w}", s.title))).collect();
+    let failed: Vec<String> = sections.iter().filter_map(|s| s.failed.as_ref().map(|w| format!("in its section \"{}\" {w}", s.title))).collect();
     let failed = (!failed.is_empty()).then(|| format!("the report in {} is written, but {} (its section says why)", index.display(), failed.join("; ")));
     Ok(Output { index, sections: sections.len(), figures: figs.len(), incomplete, failed })
 }

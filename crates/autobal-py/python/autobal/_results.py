@@ -300,7 +300,9 @@ def report(
     OUT`` does (the same code: the same files): about the config's rotor, or the papers'
     reproductions with ``papers=True`` or without a config. ``set``: ``{"table.key": value}``,
     the CLI's ``--set``; ``quick``: shorter runs in time. Ctrl-C stops it (the page is still
-    written, marked incomplete, and :class:`KeyboardInterrupt` is raised)."""
+    written, marked incomplete, and :class:`KeyboardInterrupt` is raised). A report written
+    with a run that failed (a run-up whose integrator stopped on its own: the CLI's exit 2) is
+    returned with a :class:`UserWarning` carrying the CLI's line."""
     sets = [f"{k}={_toml_value(v)}" for k, v in (set or {}).items()]
     return Report(_autobal.report(_report_path(config), sets, os.fspath(out), quick, papers))
 
