@@ -155,8 +155,10 @@ pub fn campbell_with(g: &GeneralRotor, omega_max: f64, points: usize, balls: Bal
         }
         Err(e) => (None, Some(format!("no fixed-axes view: {e}"))),
     };
+    // stopped: no fixed-axes view either (its mode numbers are tracked to a reference speed
+    // without the control: a Ctrl-C would wait for it)
     let (fixed, mut why) = if stopped.is_some() {
-        without_crossings("not located: the scan stopped before its last speed".into())
+        (None, Some("not located: the scan stopped before its last speed (no fixed-axes view)".to_string()))
     } else {
         match fixed_view_with(&g.rotor, balls, &c, harmonics, control) {
             Ok(f) => (Some(f), None),
@@ -167,7 +169,7 @@ pub fn campbell_with(g: &GeneralRotor, omega_max: f64, points: usize, balls: Bal
                     "interrupted: all {} speeds analysed, the search for critical speeds stopped (none given); what was analysed is printed",
                     sp.len()
                 ));
-                without_crossings("not located: the search was stopped".into())
+                (None, Some("not located: the search was stopped (no fixed-axes view)".to_string()))
             }
             // a crossing's stationary state not found
             Err(e) => without_crossings(format!("not located: {e}")),
