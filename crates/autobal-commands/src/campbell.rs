@@ -154,15 +154,8 @@ impl command::Output for Output {
                 run.write_json(&mut text)?;
                 Ok(serde_json::from_slice(&text)?)
             }
-            Output::General { g, c, omega_max, .. } => {
-                let mut v = general_campbell::campbell_json(g, c, *omega_max);
-                // only where stopped: a complete run's JSON is as before
-                if let Some(why) = &c.stopped {
-                    v["complete"] = false.into();
-                    v["stopped"] = why.as_str().into();
-                }
-                Ok(v)
-            }
+            // only where stopped: `complete: false`, `stopped` (a complete run's JSON is as before)
+            Output::General { g, c, omega_max, .. } => Ok(crate::stability::mark_json(general_campbell::campbell_json(g, c, *omega_max), &c.stopped)),
         }
     }
     fn write_json(&self, out: &mut dyn std::io::Write) -> Result<()> {
@@ -179,9 +172,7 @@ impl command::Output for Output {
     fn table(&self) -> Result<String> {
         Ok(match self {
             Output::Closed(run) => run.table(),
-            Output::General { g, c, .. } => {
-                c.stopped.as_ref().map_or(String::new(), |why| format!("INCOMPLETE ({why})\n")) + &general_campbell::campbell_table(g, c)
-            }
+            Output::General { g, c, .. } => crate::stability::incomplete_line(&c.stopped) + &general_campbell::campbell_table(g, c),
         })
     }
     /// `campbell_modes` (fixed axes, one curve per mode), and on the closed-form route

@@ -147,14 +147,6 @@ pub fn campbell_with(g: &GeneralRotor, omega_max: f64, points: usize, balls: Bal
         Balls::Locked => campbell_locked(&g.rotor, &sp).map_err(|e| crate::general::floor_in_units(g, e, &sp))?,
     };
     autobal::limits::check_finite("campbell", &c)?;
-    // the curves without the crossings, and why
-    let without_crossings = |why: String| match fixed_view(&g.rotor, balls, &c, &[]) {
-        Ok(mut f) => {
-            f.harmonics = harmonics.to_vec();
-            (Some(f), Some(why))
-        }
-        Err(e) => (None, Some(format!("no fixed-axes view: {e}"))),
-    };
     // stopped: no fixed-axes view either (its mode numbers are tracked to a reference speed
     // without the control: a Ctrl-C would wait for it)
     let (fixed, mut why) = if stopped.is_some() {
@@ -171,8 +163,14 @@ pub fn campbell_with(g: &GeneralRotor, omega_max: f64, points: usize, balls: Bal
                 ));
                 (None, Some("not located: the search was stopped (no fixed-axes view)".to_string()))
             }
-            // a crossing's stationary state not found
-            Err(e) => without_crossings(format!("not located: {e}")),
+            // a crossing's stationary state not found: the curves without the crossings, and why
+            Err(e) => match fixed_view(&g.rotor, balls, &c, &[]) {
+                Ok(mut f) => {
+                    f.harmonics = harmonics.to_vec();
+                    (Some(f), Some(format!("not located: {e}")))
+                }
+                Err(e) => (None, Some(format!("no fixed-axes view: {e}"))),
+            },
         }
     };
     if c.kind == Kind::PeriodicOrbit {

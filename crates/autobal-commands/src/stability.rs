@@ -234,7 +234,7 @@ fn stopped_message(why: autobal::control::StopReason, done: usize, speeds: usize
 
 /// A stopped scan's JSON: `complete: false` and `stopped` (why, what was kept); a complete
 /// run's JSON is as before, without either key.
-fn mark_json(mut v: Value, stopped: &Option<String>) -> Value {
+pub(crate) fn mark_json(mut v: Value, stopped: &Option<String>) -> Value {
     if let Some(why) = stopped {
         v["complete"] = false.into();
         v["stopped"] = why.as_str().into();
@@ -243,7 +243,7 @@ fn mark_json(mut v: Value, stopped: &Option<String>) -> Value {
 }
 
 /// The first line of a stopped scan's table: `INCOMPLETE (why)`; empty when complete.
-fn incomplete_line(stopped: &Option<String>) -> String {
+pub(crate) fn incomplete_line(stopped: &Option<String>) -> String {
     stopped.as_ref().map_or(String::new(), |why| format!("INCOMPLETE ({why})\n"))
 }
 
