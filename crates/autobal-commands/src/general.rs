@@ -243,8 +243,14 @@ pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64, op: Option<&O
     let partial: Vec<&autobal::rotor_stability::SpeedPoint> =
         r.points.iter().filter(|p| p.state == Some(autobal::rotor_stability::StateKind::PartiallyBalanced)).collect();
     if let (Some(a), Some(b)) = (partial.first(), partial.last()) {
+        // on supports that differ by direction no closed form says where the planar rotor's
+        // semi-balanced orbit exists: the balls were found at their capacity limit, no more
+        let why = match &g.rotor {
+            Rotor::Planar(p) if p.anisotropic() => "the balls together at their capacity limit, the race centre off the axis; on supports that differ by direction no closed form says whether a semi-balanced orbit exists there: none was found from the scan's starts",
+            _ => "no balanced state exists: the balls' capacity falls short, a couple no plane can cancel, or, planar, below the speed where the semi-balanced state exists",
+        };
         s.push_str(&format!(
-            "partially balanced (no balanced state exists: the balls' capacity falls short, a couple no plane can cancel, or, planar, below the speed where the semi-balanced state exists; a residual of {}: spatial and linear a fraction of the unbalance, planar the race centre's distance from the axis over its distance without the balls' resultant) at {} of {} speeds, {}: the verdicts there are the partially balanced state's\n",
+            "partially balanced ({why}; a residual of {}: spatial and linear a fraction of the unbalance, planar the race centre's distance from the axis over its distance without the balls' resultant) at {} of {} speeds, {}: the verdicts there are the partially balanced state's\n",
             residual_range(&partial),
             partial.len(),
             r.points.len(),

@@ -461,8 +461,15 @@ pub fn outcome_words(p: &autobal::planar::PlanarRotor, s: &Summary) -> String {
         );
     }
     let what = match s.outcome {
+        RunOutcome::Balanced if p.s2 > 0.0 && p.anisotropic() => {
+            "semi-balanced (the race centre on the axis and C at s2 on average over a revolution: supports that differ by direction make them swing about it)"
+        }
         RunOutcome::Balanced if p.s2 > 0.0 => "semi-balanced (the race centre on the axis, C whirling at s2)",
         RunOutcome::Balanced => "balanced",
+        // supports that differ by direction: decided on the end state alone (no closed form)
+        RunOutcome::PartiallyBalanced if p.anisotropic() => {
+            "partially balanced: the balls rest together at their capacity limit with the race centre off the axis"
+        }
         // with enough ball mass for high speeds (α∞ > 1) the capacity is not what falls short
         RunOutcome::PartiallyBalanced if capacity_ratio(p) > 1.0 => {
             "partially balanced: no semi-balanced state at this speed, the balls rest together against the unbalance"

@@ -489,13 +489,22 @@ impl Rotor {
                 // E on the axis (to 1e-6 of its whirl without the balls' resultant):
                 // (semi-)balanced; on a periodic orbit E's mean position over the revolution
                 // (its once-per-revolution whirl in fixed axes: the orbit's start alone reads
-                // the swing as a whirl); the balls bunched: partially balanced; else, on a
-                // periodic orbit only (an equilibrium has no swing to leave a residual),
-                // (semi-)balanced to the residual while it is at most 5 %; not balanced
+                // the swing as a whirl), and there (semi-)balanced to the residual while E is
+                // within the allowance (5 % of s2, or of the residual's reference where that
+                // is smaller: `balance_allowance`; an equilibrium has no swing to leave a
+                // residual); the balls bunched (on a periodic orbit: together, their mean
+                // resultant at least 99 % of the capacity, as the run's test: the swing parts
+                // balls of different masses or drags, 0.01 rad on audit 23's rotor):
+                // partially balanced; not balanced
                 let balanced = if p.s2 == 0.0 { StateKind::Balanced } else { StateKind::SemiBalanced };
-                if r <= BALANCED_EXACTLY {
+                let periodic = field.period().is_some();
+                let together = || {
+                    let b = mean_of(&rows, x.len(), |row| crate::planar::stationary::ball_resultant(p, ball_coordinates(field).map(|i| row[i])).to_vec());
+                    crate::spatial::dynamics::simulate::together(b[0].hypot(b[1]), crate::planar::stationary::ball_capacity(p))
+                };
+                if r <= BALANCED_EXACTLY || periodic && r <= crate::planar::stationary::balance_allowance(p, f.omega()) {
                     balanced
-                } else if bunched(&ball_angles(field, x)) && r < 1.0 {
+                } else if (bunched(&ball_angles(field, x)) || periodic && together()) && r < 1.0 {
                     // partially: the balls reduce the unbalance; with the race centred the
                     // residual is the residual unbalance itself, and bunched on the unbalance's
                     // side (below the critical speed, residual > 1) they add to it: not
@@ -505,8 +514,6 @@ impl Rotor {
                     // state below its semi-balanced speed, 1.91 at 200 rad/s, read partially
                     // balanced until session 16; a review of the planar run's words)
                     StateKind::PartiallyBalanced
-                } else if field.period().is_some() && r <= BALANCE_TOLERANCE {
-                    balanced
                 } else {
                     StateKind::NotBalanced
                 }
@@ -950,10 +957,15 @@ pub enum StateKind {
     /// race whirls at more than 0.05 (`BALANCE_TOLERANCE`) of its whirl without the balls' resultant); its residual
     /// is the static one only (the linear rotor's nodes carry no axial positions).
     Balanced,
-    /// Paper 004's eccentric race: the race centre E on the axis, the disk whirling at `s2`.
+    /// Paper 004's eccentric race: the race centre E on the axis, the disk whirling at `s2`
+    /// (at an equilibrium to `1e-6` of E's offset without the balls' resultant; on a periodic
+    /// orbit, supports that differ by direction, E's mean position within 5 % of `s2`
+    /// of the axis, [`crate::planar::stationary::balance_allowance`]).
     SemiBalanced,
     /// The balls cannot cancel the unbalance (capacity short, or below the speed where the
     /// semi-balanced state exists): a residual unbalance, a plane's balls bunched at its limit
+    /// (the planar rotor's on a periodic orbit: together, their mean resultant at least 99 % of
+    /// the capacity, E off the axis beyond the semi-balanced allowance)
     /// (spatial: or one plane against a couple about it, which no placement cancels), the
     /// residual unbalance below 1 where the residual is the unbalance itself (the planar rotor
     /// with its race centred: a state with the balls on the unbalance's side, residual above 1,

@@ -951,6 +951,7 @@ fn ending(rotor: &LinearRotor, window: &RevolutionWindow, y: &[f64], phi: f64, o
         short: short.then(|| (if settled { least() } else { f64::INFINITY }, together)),
         residual: if short { residual_unbalance } else { race_whirl.unwrap_or(f64::INFINITY) },
         residual_couple: None,
+        tolerance: crate::spatial::dynamics::simulate::BALANCE_TOLERANCE,
     });
     End { residual_unbalance, race_whirl, ball_drift, averaged: last.is_some(), settled, outcome }
 }

@@ -468,9 +468,12 @@ pub struct Summary {
     /// for a centred race) and both below 1 (a residual of 1 or more: the race centre no
     /// nearer the axis than without the balls), else not balanced; else balanced (with an
     /// eccentric race: the semi-balanced state, E on the axis) with `residual_unbalance` at most
-    /// [`BALANCE_TOLERANCE`](crate::spatial::dynamics::simulate::BALANCE_TOLERANCE), else not
-    /// balanced. Without balls, or at rest (final speed below [`REST_FRACTION`] of
-    /// `sqrt(k/m0)`), not balanced.
+    /// [`stationary::balance_allowance`] (5 % of the residual's reference or of `s2`, the
+    /// smaller), else not balanced. On supports that differ by direction (no closed form for
+    /// either) the end state alone decides: balanced within the allowance, else partially
+    /// balanced where the balls ended together with the residual below 1, else not balanced.
+    /// Without balls, or at rest (final speed below [`REST_FRACTION`] of `sqrt(k/m0)`), not
+    /// balanced.
     pub outcome: crate::spatial::dynamics::RunOutcome,
     /// Whether the motion had settled at the end: the whirl radius and the balls' angles change
     /// no faster (relative rate, 1/s) than the limit `3 |ω̇/ω| + 1e-4 sqrt(k/m0)`, i.e.
@@ -716,14 +719,21 @@ fn simulate_sampled(
     let [ex, ey, bx, by] = match last {
         Some(m) => [m[0], m[1], m[2], m[3]],
         None => {
-            let b = PlanarRecorder::resultant(rotor, y[3..nc].iter().copied());
+            let b = stationary::ball_resultant(rotor, y[3..nc].iter().copied());
             [y[0], y[1], b[0], b[1]]
         }
     };
     let race = (rotor.s2 * rotor.gamma.cos(), rotor.s2 * rotor.gamma.sin());
     let residual_unbalance = (ex + race.0).hypot(ey + race.1) / stationary::race_offset_scale(rotor, final_omega);
     let capacity = stationary::ball_capacity(rotor);
-    let short = !stationary::semi_balanced_exists(rotor, final_omega);
+    let together = crate::spatial::dynamics::simulate::together(bx.hypot(by), capacity);
+    let allowance = stationary::balance_allowance(rotor, final_omega);
+    // where the supports differ by direction the closed forms (the supports' means) say neither
+    // whether the semi-balanced orbit exists nor what the bunched one leaves: the end state
+    // decides, as `stability`'s state words do (`crate::rotor_stability::Rotor::classify`):
+    // balanced within the allowance, else partially balanced where the balls ended together
+    // nearer the axis than no balls would leave E (residual below 1), else not balanced
+    let short = if rotor.anisotropic() { residual_unbalance > allowance } else { !stationary::semi_balanced_exists(rotor, final_omega) };
     // at (or near) rest nothing turns the balls against the unbalance: no balanced or partially
     // balanced state to read (the semi-balanced demand and the residual's scale degenerate)
     let at_rest = at_rest(rotor, final_omega);
@@ -738,12 +748,12 @@ fn simulate_sampled(
             // (`crate::rotor_stability::Rotor::state_kind`): with the race centred, below the
             // critical speed they join the unbalance (`≈ 1 + α`); with an eccentric one stuck
             // below resonance they can leave E further out than without them
-            let least = stationary::bunched_residual(rotor, final_omega).unwrap_or(f64::INFINITY);
-            let together = crate::spatial::dynamics::simulate::together(bx.hypot(by), capacity);
+            let least = if rotor.anisotropic() { residual_unbalance } else { stationary::bunched_residual(rotor, final_omega).unwrap_or(f64::INFINITY) };
             (least, together && least < 1.0 && residual_unbalance < 1.0)
         }),
         residual: residual_unbalance,
         residual_couple: None,
+        tolerance: allowance,
     });
     // the end checks (`crate::rotor_stability::end_checks`); this run's gate requires the run
     // completed as well (the outcome balanced or partially balanced implies it, not balanced
@@ -883,18 +893,6 @@ impl PlanarRecorder<'_> {
     fn width(&self) -> usize {
         4 + self.rotor.n
     }
-
-    /// The balls' resultant `Σ m_j r e^{iψ_j}` in rotor axes for the angles `psi`.
-    fn resultant(rotor: &PlanarRotor, psi: impl Iterator<Item = f64>) -> [f64; 2] {
-        let mut b = [0.0; 2];
-        for (j, a) in psi.enumerate() {
-            let (s, c) = a.sin_cos();
-            let m = rotor.ball_mass(j) * rotor.r;
-            b[0] += m * c;
-            b[1] += m * s;
-        }
-        b
-    }
 }
 
 impl crate::simulation::Recorder for PlanarRecorder<'_> {
@@ -903,7 +901,7 @@ impl crate::simulation::Recorder for PlanarRecorder<'_> {
     }
 
     fn record(&self, _t: f64, y: &[f64], out: &mut [f64]) {
-        let b = PlanarRecorder::resultant(self.rotor, y[3..self.nc].iter().copied());
+        let b = stationary::ball_resultant(self.rotor, y[3..self.nc].iter().copied());
         out[..4].copy_from_slice(&[y[0], y[1], b[0], b[1]]);
         out[4..].copy_from_slice(&y[3..self.nc]);
     }

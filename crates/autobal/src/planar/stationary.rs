@@ -166,6 +166,36 @@ pub fn race_offset_scale(p: &PlanarRotor, w: f64) -> f64 {
     }
 }
 
+/// The residual (a fraction of [`race_offset_scale`]) up to which a periodic orbit, or a run's
+/// end, counts as balanced (semi-balanced with an eccentric race):
+/// [`BALANCE_TOLERANCE`](crate::spatial::dynamics::simulate::BALANCE_TOLERANCE) (5 %) of the
+/// smaller of the scale and a length that does not resonate, `s2` (`s1` for a centred race):
+/// the race centre E within 5 % of `s2` of the axis, so C whirls at `s2` to within 5 % (the
+/// run's own radius test, [`crate::planar::Summary::balanced`]). Why: the scale, E's offset
+/// without the balls' resultant by the supports' means, grows without bound between the split
+/// critical speeds of supports that differ by direction; 5 % of it there was 1.2 mm on a rotor
+/// with `s2` = 1.3 mm (audit 23, F1: balls at their capacity limit read semi-balanced), while
+/// a semi-balanced orbit's swing leaves E 0.2-15 µm off the axis on that rotor (0.02-1.1 %
+/// of `s2`), its second order.
+pub fn balance_allowance(p: &PlanarRotor, w: f64) -> f64 {
+    let length = if p.s2 > 0.0 { p.s2 } else { p.s1 };
+    let ratio = length / race_offset_scale(p, w);
+    crate::spatial::dynamics::simulate::BALANCE_TOLERANCE * if ratio > 0.0 && ratio < 1.0 { ratio } else { 1.0 }
+}
+
+/// The balls' resultant `Σ m_j r e^{iψ_j}` (kg·m, rotor axes) at the angles `psi` (rad, from
+/// CG), each ball its own mass ([`PlanarRotor::ball_mass`]).
+pub fn ball_resultant(p: &PlanarRotor, psi: impl Iterator<Item = f64>) -> [f64; 2] {
+    let mut b = [0.0; 2];
+    for (j, a) in psi.enumerate() {
+        let (s, c) = a.sin_cos();
+        let m = p.ball_mass(j) * p.r;
+        b[0] += m * c;
+        b[1] += m * s;
+    }
+    b
+}
+
 /// The residual of the bunched steady whirl at speed `w`, as a fraction of
 /// [`race_offset_scale`]: every ball at one angle on the far side of the line through the axis
 /// and the race centre E, their resultant the capacity `B` ([`ball_capacity`]): the aligned

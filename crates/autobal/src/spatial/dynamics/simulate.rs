@@ -285,13 +285,17 @@ pub(crate) struct Ending {
     pub residual: f64,
     /// The residual couple, a fraction of the unbalance's couple, if it has one.
     pub residual_couple: Option<f64>,
+    /// The residual (and couple) up to which the run is balanced: [`BALANCE_TOLERANCE`], or
+    /// less where the residual's reference resonates (the planar run's
+    /// `crate::planar::stationary::balance_allowance`).
+    pub tolerance: f64,
 }
 
 /// The outcome of a run from its [`Ending`]: without balls not balanced; not settled while
 /// the balls move; where no balanced state exists partially balanced when the balls ended
 /// together with the residual within [`PARTIAL_TOLERANCE`] of the closed form, else not
-/// balanced; else balanced with the residual (and the couple's) at most [`BALANCE_TOLERANCE`],
-/// else not balanced.
+/// balanced; else balanced with the residual (and the couple's) at most [`Ending::tolerance`]
+/// ([`BALANCE_TOLERANCE`] or less), else not balanced.
 pub(crate) fn run_outcome(e: &Ending) -> RunOutcome {
     if !e.balls {
         RunOutcome::NotBalanced
@@ -303,7 +307,7 @@ pub(crate) fn run_outcome(e: &Ending) -> RunOutcome {
         } else {
             RunOutcome::NotBalanced
         }
-    } else if e.residual <= BALANCE_TOLERANCE && !matches!(e.residual_couple, Some(c) if c > BALANCE_TOLERANCE) {
+    } else if e.residual <= e.tolerance && !matches!(e.residual_couple, Some(c) if c > e.tolerance) {
         RunOutcome::Balanced
     } else {
         RunOutcome::NotBalanced
@@ -646,6 +650,7 @@ fn summarise(eq: &Equations, t: f64, y: &[f64], peak: (f64, f64, f64), stats: St
         short: (capacity < s0n).then(|| (1.0 - capacity / s0n, together())),
         residual: residual_unbalance,
         residual_couple,
+        tolerance: BALANCE_TOLERANCE,
     });
     // the end checks (`crate::rotor_stability::end_checks`), in the model's own units (`si`
     // false); the end state in turning axes already: the field's reduced state
