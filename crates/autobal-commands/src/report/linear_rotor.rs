@@ -163,6 +163,13 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
     if let Some(w) = cfg.operating_speed {
         let g = crate::general::GeneralRotor::linear(model.clone());
         let op = crate::general::operating_at(&g, w, "linear_rotor.operating_speed", &st, &ctx.control)?;
+        // stopped (Ctrl-C, the budget): the speeds solved kept, the section incomplete, and
+        // why said before the verdict's line (as `stability`'s INCOMPLETE line; it ended the
+        // report with an error, "nothing is printed")
+        if let Some(why) = op.stopped_message() {
+            s.complete = false;
+            s.p(super::html::esc(crate::stability::incomplete_line(&Some(why)).trim_end()));
+        }
         let line = crate::general::operating_line(&g, &st, &op);
         s.p(format!("<b>{}</b>", super::html::esc(line.trim_end())));
         // the caveat on the verdict's line, before any lines of other states
