@@ -370,7 +370,10 @@ for c in "${cases[@]}"; do
         span=2.9; lo=0.1
         case $c in INTFAST:*) span=0.29; lo=0.01 ;; esac
         c=${c#*:}
-        limit=$(awk "BEGIN { printf \"%.2f\", $lo + $span * $RANDOM / 32767 }")
+        # ($RANDOM drawn here: expanded inside the command substitution it came from a subshell,
+        # which bash reseeds, so HOSTILE_SEED did not make the times repeat)
+        r=$RANDOM
+        limit=$(awk "BEGIN { printf \"%.2f\", $lo + $span * $r / 32767 }")
         interrupt=$limit
         run_dir=int$i
         mkdir -p "$run_dir" ;;
