@@ -370,15 +370,22 @@ for c in "${cases[@]}"; do
         span=2.9; lo=0.1
         case $c in INTFAST:*) span=0.29; lo=0.01 ;; esac
         c=${c#*:}
-        limit=$(awk "BEGIN { printf \"%.2f\", $lo + $span * $RANDOM / 32767 }")
+        # ($RANDOM drawn here: expanded inside the command substitution it came from a subshell,
+        # which bash reseeds, so HOSTILE_SEED did not make the times repeat)
+        r=$RANDOM
+        limit=$(awk "BEGIN { printf \"%.2f\", $lo + $span * $r / 32767 }")
         interrupt=$limit
         run_dir=int$i
         mkdir -p "$run_dir" ;;
     esac
     start=$(date +%s%N)
     # shellcheck disable=SC2086
-    # at the limit: SIGINT (Ctrl-C), then SIGKILL 10 s later if it is ignored
-    out=$( (cd "$run_dir" && ulimit -v "$LIMIT_KB" && timeout --preserve-status -s INT -k 10 "$limit" "$BIN" $c) 2>&1 >/dev/null)
+    # at the limit: SIGINT (Ctrl-C), then SIGKILL 10 s later if it is ignored. One SIGINT, as
+    # a terminal's Ctrl-C sends: without --foreground, timeout sends it to the command and then
+    # to its whole process group, the command included, a second Ctrl-C, which autobal's
+    # handler rightly takes as "stop at once" (exit 130: rows 54, 124 and 178 of session 24's
+    # first run, where the two came far enough apart not to merge)
+    out=$( (cd "$run_dir" && ulimit -v "$LIMIT_KB" && timeout --foreground --preserve-status -s INT -k 10 "$limit" "$BIN" $c) 2>&1 >/dev/null)
     code=$?
     secs=$(awk "BEGIN { printf \"%.2f\", ($(date +%s%N) - $start) / 1e9 }")
     long=$(awk "BEGIN { print ($secs >= $limit) ? 1 : 0 }")

@@ -89,6 +89,10 @@ fn ranges_general(root: &Table, source: &str, control: &Control) -> Result<(Valu
     let omega_max = general::default_omega_max(&g, root)?;
     let r = general::analyse(&g, omega_max, general::default_samples(&g), control)?;
     let op = general::operating(&g, root, &r, control)?;
+    if let Some(why) = op.as_ref().and_then(|o| o.stopped) {
+        // (`ranges` keeps no part of a stopped run, as of a stopped scan: `general::analyse`)
+        bail!("{why}: the verdict at the operating speed stopped; nothing is printed");
+    }
     let why = not_defined(root);
     let model = if autobal::config::is_spatial(root) {
         autobal::reports::to_json(&autobal::reports::model_report(&autobal::config::spatial(root)?, source))

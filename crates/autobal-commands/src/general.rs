@@ -99,8 +99,8 @@ fn round(x: f64) -> f64 {
 }
 
 /// Run the general route over `(0, omega_max]` (model units) with `samples` speeds, under
-/// `control`; a stopped scan is an error (the report's use: `stability` keeps what a stopped
-/// scan analysed, [`scan`]).
+/// `control`; a stopped scan is an error (`ranges`' use, which prints nothing of a stopped
+/// scan: `stability` and the report keep what a stopped scan analysed, [`scan`]).
 pub fn analyse(g: &GeneralRotor, omega_max: f64, samples: usize, control: &Control) -> Result<RotorStability> {
     let (out, speeds) = scan(g, omega_max, samples, control)?;
     if let Some(why) = out.stopped {
@@ -261,8 +261,8 @@ pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64, op: Option<&O
     s.push_str(&not_balanced_text(r, |w| speed_text(g, w)));
     let missing = r.points.iter().filter(|p| p.verdict.is_none()).count();
     let solved = r.points.len() - missing;
-    if r.points.is_empty() && r.cut_short() {
-        s.push_str("no verdict: the scan stopped before its first speed\n");
+    if let Some(line) = stopped_before_first_speed(r) {
+        s.push_str(line);
     } else if r.stable_ranges.is_empty() && solved == 0 {
         let analysed = r.points.iter().filter(|p| p.analysed).count();
         s.push_str(&format!(
@@ -301,6 +301,13 @@ pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64, op: Option<&O
     }
     s.push_str(&missing_lines(r, |w| speed_text(g, w)));
     s
+}
+
+/// The table's line for a scan stopped before its first speed, `None` otherwise: no range, no
+/// "nowhere", no count of speeds without a state (review 23: "no stationary state was found at
+/// any of the 0 speeds"). The general and linear routes' one rule.
+pub(crate) fn stopped_before_first_speed(r: &RotorStability) -> Option<&'static str> {
+    (r.points.is_empty() && r.cut_short()).then_some("no verdict: the scan stopped before its first speed\n")
 }
 
 /// The table's lines on the speeds without a verdict: those below the periodic-orbit floor as
@@ -470,15 +477,39 @@ pub struct Operating {
     pub points: Vec<autobal::rotor_stability::SpeedPoint>,
     /// The scan's stable range that holds the whole operating speed, if one does.
     pub range: Option<autobal::analysis::StableRange>,
+    /// Why the verdict stopped before its end (Ctrl-C, a budget), `None` where it is complete:
+    /// `points` then holds the speeds solved before the stop ([`Operating::stopped_message`]).
+    pub stopped: Option<autobal::control::StopReason>,
 }
 
+/// The speeds solved across an operating range `[lo, hi]` (one at a single speed).
+const OPERATING_RANGE_SPEEDS: usize = 9;
+
 impl Operating {
+    /// The speeds the verdict solves: one, or [`OPERATING_RANGE_SPEEDS`] across a range.
+    fn planned(&self) -> usize {
+        if self.omega[0] == self.omega[1] {
+            1
+        } else {
+            OPERATING_RANGE_SPEEDS
+        }
+    }
+
+    /// Whether the verdict stopped before it solved every one of its speeds.
+    fn cut_short(&self) -> bool {
+        self.stopped.is_some() && self.points.len() < self.planned()
+    }
+
     /// The verdict over the speeds solved there: stable where every one is, unstable where one
     /// is, else neutral (stable or neutral everywhere, neutral somewhere); `None` where a speed
-    /// has no state.
+    /// has no state. Stopped before its last speed: unstable where a speed solved is (the
+    /// others cannot make it stable), else `None`.
     pub fn verdict(&self) -> Option<Verdict> {
         let v: Option<Vec<Verdict>> = self.points.iter().map(|p| p.verdict).collect();
         let v = v?;
+        if self.cut_short() {
+            return v.contains(&Verdict::Unstable).then_some(Verdict::Unstable);
+        }
         Some(if v.iter().all(|x| *x == Verdict::Stable) {
             Verdict::Stable
         } else if v.contains(&Verdict::Unstable) {
@@ -517,29 +548,48 @@ pub fn operating_at(g: &GeneralRotor, omega: [f64; 2], key: &str, r: &RotorStabi
             }
             _ => anyhow::Error::from(e),
         })?;
-    if let Some(why) = scan.stopped {
-        anyhow::bail!("{why}: the verdict at the operating speed stopped after {} of {} speeds; nothing is printed", scan.value.points.len(), speeds.len());
-    }
-    let scan = scan.value;
+    // stopped (Ctrl-C, a budget): the speeds solved until then are kept, and said
+    // (`stopped_message`; it was an error, "nothing is printed", after a complete scan)
     let range = r.stable_ranges.iter().find(|st| st.from <= omega[0] && omega[1] <= st.to).cloned();
-    Ok(Operating { omega, points: scan.points, range })
+    Ok(Operating { omega, points: scan.value.points, range, stopped: scan.stopped })
+}
+
+impl Operating {
+    /// Why a stopped verdict is incomplete and what it kept, after a complete scan: `None`
+    /// where the verdict is complete. "interrupted: the scan is complete; the verdict at the
+    /// operating speed stopped after 3 of 9 speeds solved there (kept: JSON
+    /// operating.points): no verdict", or "NOT STABLE" where a speed solved is unstable; all
+    /// speeds solved, the stop came while their family of balanced states was followed.
+    pub fn stopped_message(&self) -> Option<String> {
+        let why = self.stopped?;
+        let (k, n) = (self.points.len(), self.planned());
+        Some(if k < n {
+            let decided = if self.verdict().is_some() { "NOT STABLE, a speed solved is unstable" } else { "no verdict" };
+            format!("{why}: the scan is complete; the verdict at the operating speed stopped after {k} of {n} speeds solved there (kept: JSON operating.points): {decided}")
+        } else {
+            format!("{why}: the scan is complete, and the verdict at the operating speed at its {n} speeds; the stop came while their family of balanced states was followed")
+        })
+    }
 }
 
 /// [`Operating`] as JSON: `omega` (`[lo, hi]`, the rotor's units), `stable` (every speed
 /// solved there stable), `verdict` (`stable`, `unstable` where one speed is, else `neutral`;
 /// `null` where a speed has no state), `max_growth_rate` (the largest `abscissa` there; `null` where no
 /// state was found), `stable_range` (`{from, to}` of the scan, or `null`), `points` (as the
-/// scan's).
+/// scan's); stopped before its end (Ctrl-C, a budget), also `complete: false` and `stopped`
+/// ([`Operating::stopped_message`]), its `points` the speeds solved, `verdict` `unstable` where
+/// one of them is, else `null`, and `max_growth_rate` over them.
 pub fn operating_json(op: &Operating) -> Value {
     let verdict = op.verdict();
-    json!({
+    let v = json!({
         "omega": op.omega,
         "stable": verdict == Some(Verdict::Stable),
         "verdict": verdict.map(Verdict::name),
         "max_growth_rate": if verdict.is_some() { json!(op.max_growth_rate()) } else { Value::Null },
         "stable_range": op.range.as_ref().map_or(Value::Null, |st| json!({"from": st.from, "to": st.to})),
         "points": op.points,
-    })
+    });
+    crate::stability::mark_json(v, &op.stopped_message())
 }
 
 /// The first line of the general route's table at the operating speed: STABLE only where
@@ -590,9 +640,15 @@ fn other_orbits_line(g: &GeneralRotor, op: &Operating) -> String {
 /// [`operating_line`]'s verdict.
 fn operating_verdict_line(g: &GeneralRotor, r: &RotorStability, op: &Operating) -> String {
     let at = if op.omega[0] == op.omega[1] { speed_text(g, op.omega[0]) } else { format!("{} to {}", speed_text(g, op.omega[0]), speed_text(g, op.omega[1])) };
+    let failure = op.points.iter().find_map(|p| p.verdict.is_none().then_some(p.failure.as_deref())).flatten();
+    // stopped before its last speed (its words: `stopped_message`, on the INCOMPLETE line)
+    let cut = op.cut_short().then(|| format!("stopped after {} of {} speeds solved there", op.points.len(), op.planned()));
     let Some(verdict) = op.verdict() else {
-        let failure = op.points.iter().find_map(|p| p.verdict.is_none().then_some(p.failure.as_deref())).flatten();
-        return format!("operating speed {at}: no verdict: {}\n", failure.unwrap_or("no stationary state found"));
+        let why = match (&cut, failure) {
+            (Some(cut), None) => cut.clone(),
+            (cut, failure) => format!("{}{}", failure.unwrap_or("no stationary state found"), cut.as_ref().map_or(String::new(), |c| format!("; {c}"))),
+        };
+        return format!("operating speed {at}: no verdict: {why}\n");
     };
     let per = if g.si { " 1/s" } else { " (per unit τ)" };
     let how = if g.rotor.is_periodic() { "Floquet multipliers" } else { "eigenvalues" };
@@ -634,7 +690,9 @@ fn operating_verdict_line(g: &GeneralRotor, r: &RotorStability, op: &Operating) 
             // the scan's stable range nearest to the operating speed, as the closed-form route says
             let dist = |st: &&autobal::analysis::StableRange| if st.to < op.omega[0] { op.omega[0] - st.to } else { (st.from - op.omega[1]).max(0.0) };
             let near = r.stable_ranges.iter().min_by(|a, b| dist(a).total_cmp(&dist(b))).map_or_else(|| "no stable range on the axis".to_string(), |st| format!("nearest stable range {}", range(st)));
-            format!("operating speed {at}: the {state} state is NOT STABLE (exact, {how}{member}); {rate}; {near}\n")
+            // stopped: decided by a speed solved before the stop, its rate a lower bound
+            let cut = cut.map_or(String::new(), |c| format!(" ({c}: one of them is unstable, the rate is theirs)"));
+            format!("operating speed {at}: the {state} state is NOT STABLE (exact, {how}{member}){cut}; {rate}; {near}\n")
         }
     }
 }
@@ -919,10 +977,39 @@ mod tests {
         // as `operating` builds it: no range of the scan holds 500 rad/s
         let range = r.stable_ranges.iter().find(|st| st.from <= 500.0 && 500.0 <= st.to).cloned();
         assert!(range.is_none(), "{:?}", r.stable_ranges);
-        let op = Operating { omega: [500.0, 500.0], points: at.points, range };
+        let op = Operating { omega: [500.0, 500.0], points: at.points, range, stopped: None };
         assert_eq!(op.verdict(), Some(Verdict::Stable));
         let line = operating_verdict_line(&g, &r, &op);
         assert!(line.contains("outside the scan's speed axis") && !line.contains("more --samples"), "{line}");
+    }
+
+    /// The verdict over an operating range stopped before its last speed (Ctrl-C): none from
+    /// stable speeds (those not solved may be unstable), NOT STABLE from an unstable one (the
+    /// others cannot make the range stable), the usual verdict where every speed was solved
+    /// (the stop came in the family phase). Paper 004's Jeffcott rotor, stable over 450-500
+    /// rad/s; one point relabelled unstable for the second case.
+    #[test]
+    fn a_stopped_operating_verdict_decides_only_what_its_speeds_decide() {
+        let g = GeneralRotor { rotor: Rotor::Planar(PlanarRotor { n: 2, s2: 0.0, ..PlanarRotor::paper() }), si: true, omega0: 1.0 };
+        let r = analyse(&g, 600.0, 30, &Control::default()).unwrap();
+        let whole = operating_at(&g, [450.0, 500.0], "key", &r, &Control::default()).unwrap();
+        assert_eq!((whole.points.len(), whole.verdict(), whole.stopped_message()), (9, Some(Verdict::Stable), None));
+        let stopped = Some(autobal::control::StopReason::Interrupted);
+        let cut = Operating { points: whole.points[..2].to_vec(), stopped, ..whole.clone() };
+        assert_eq!(cut.verdict(), None);
+        let why = cut.stopped_message().unwrap();
+        assert!(why.ends_with("stopped after 2 of 9 speeds solved there (kept: JSON operating.points): no verdict"), "{why}");
+        assert!(operating_verdict_line(&g, &r, &cut).ends_with(": no verdict: stopped after 2 of 9 speeds solved there\n"));
+        let mut unstable = cut.clone();
+        unstable.points[1].verdict = Some(Verdict::Unstable);
+        assert_eq!(unstable.verdict(), Some(Verdict::Unstable));
+        assert!(unstable.stopped_message().unwrap().ends_with(": NOT STABLE, a speed solved is unstable"));
+        let all = Operating { stopped, ..whole.clone() };
+        assert_eq!(all.verdict(), Some(Verdict::Stable));
+        assert!(all.stopped_message().unwrap().contains("the verdict at the operating speed at its 9 speeds"));
+        let json = operating_json(&cut);
+        assert_eq!((json["complete"].clone(), json["points"].as_array().unwrap().len()), (json!(false), 2));
+        assert!(operating_json(&whole).get("complete").is_none());
     }
 
     /// A stable range over states that are not balanced never reads plain "stable": the label

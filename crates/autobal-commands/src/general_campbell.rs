@@ -113,17 +113,6 @@ pub const MODES_AT_FIRST_SPEED: &str = "ranked at the first speed of the grid, n
 /// Why a periodic orbit's diagram has no crossing speeds.
 pub const FLOQUET_CROSSINGS: &str = "not defined for Floquet exponents: their imaginary parts are defined modulo 2π/T (Ω under gravity, 2Ω where only the supports differ by direction), so a curve's crossing of h×Ω is a crossing of other harmonics on other branches; `autobal critical` gives the locked rotor's critical speeds where they are defined";
 
-/// The Campbell diagram of the general route with the balls free and the `1×` crossings (what
-/// `autobal campbell` and Python's `campbell` give by default), its numbers checked finite.
-/// A stopped diagram is an error here (the report's use: it prints no part of it).
-pub fn campbell(g: &GeneralRotor, omega_max: f64, points: usize, control: &Control) -> Result<GeneralCampbell> {
-    let c = campbell_with(g, omega_max, points, Balls::Free, &[1], control)?;
-    if let Some(why) = c.stopped {
-        anyhow::bail!("{why}");
-    }
-    Ok(c)
-}
-
 /// The Campbell diagram of the general route with the balls `balls` (`--balls`), its fixed-axes
 /// view and the crossings with `h×Ω` for each of `harmonics` (`--harmonics`, checked by
 /// [`crate::linear::check_harmonics`]), its numbers checked finite once.

@@ -335,8 +335,8 @@ pub fn stability_table(cfg: &LinearRotorConfig, r: &RotorStability, red: &Option
     s.push_str(&partial_text(cfg, r));
     s.push_str(&linear_residual_text(r));
     s.push_str(&crate::general::not_balanced_text(r, speed_text));
-    if r.points.is_empty() && r.cut_short() {
-        s.push_str("no verdict: the scan stopped before its first speed\n");
+    if let Some(line) = crate::general::stopped_before_first_speed(r) {
+        s.push_str(line);
     } else if r.stable_ranges.is_empty() {
         s.push_str(&format!("stable: nowhere in (0, {}]\n", speed_text(crate::general::analysed_span(r, omega_max))));
     }

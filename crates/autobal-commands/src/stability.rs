@@ -171,27 +171,30 @@ impl Args {
         // the verdict at the operating speed, as the general route's (first line, JSON
         // `operating`)
         let (r, op, stopped) = kept_scan(out, speeds.len(), control, |r, control| {
-            cfg.operating_speed.map(|w| general::operating_at(&g, w, "linear_rotor.operating_speed", r, control).map(|o| Box::new((g, o)))).transpose()
+            cfg.operating_speed.map(|w| general::operating_at(&g, w, "linear_rotor.operating_speed", r, control)).transpose()
         })?;
+        let op = op.map(|o| Box::new((g, o)));
         Ok(Output::LinearRotor { cfg: Box::new(cfg), r: Box::new(r), red: Box::new(red), omega_max, op, stopped })
     }
 }
 
-/// A general or linear-rotor scan (`out`, over a grid of `speeds`) as `stability` gives it,
-/// with the verdict at the operating speed (`op`, asked only of a complete scan) and why it
-/// stopped ([`stopped_message`]). Stopped during the scan (Ctrl-C, a budget): the speeds
-/// analysed until then, their ranges ending at the last of them, no family ranges (counted over
-/// the speeds whose family was followed, scattered since the families run in parallel, they
-/// read the others as not stable: review 22's "all members sampled stable: 80-160, 480-560"
-/// where the whole run gives 80-800), no operating-speed verdict. Stopped during the verdict:
-/// the complete scan, no verdict (review 22: it was lost). Audit 21's F2: three balls on a
-/// 28-DOF rotor ran for minutes, and Ctrl-C then lost everything.
-fn kept_scan<T>(
+/// A general or linear-rotor scan (`out`, over a grid of `speeds`) as `stability` (and the
+/// report's general route) gives it, with the verdict at the operating speed (`op`, asked only
+/// of a complete scan) and why it stopped ([`stopped_message`]). Stopped during the scan
+/// (Ctrl-C, a budget): the speeds analysed until then, their ranges ending at the last of them,
+/// no family ranges (counted over the speeds whose family was followed, scattered since the
+/// families run in parallel, they read the others as not stable: review 22's "all members
+/// sampled stable: 80-160, 480-560" where the whole run gives 80-800), no operating-speed
+/// verdict. Stopped during the verdict: the complete scan (review 22: it was lost) and the
+/// verdict's speeds solved until then ([`general::Operating::stopped_message`]: no verdict, or
+/// NOT STABLE where one of them is unstable). Audit 21's F2: three balls on a 28-DOF rotor ran
+/// for minutes, and Ctrl-C then lost everything.
+pub(crate) fn kept_scan(
     out: autobal::control::Outcome<RotorStability>,
     speeds: usize,
     control: &Control,
-    op: impl FnOnce(&RotorStability, &Control) -> Result<Option<T>>,
-) -> Result<(RotorStability, Option<T>, Option<String>)> {
+    op: impl FnOnce(&RotorStability, &Control) -> Result<Option<general::Operating>>,
+) -> Result<(RotorStability, Option<general::Operating>, Option<String>)> {
     let mut r = out.value;
     if let Some(why) = out.stopped {
         let families = r.points.iter().filter(|p| p.family_dimension > 0).count();
@@ -205,7 +208,12 @@ fn kept_scan<T>(
     // speeds then the families followed (`stability_over_speed_with`): one count over the run
     let families = r.points.iter().filter(|p| p.family_dimension > 0).count();
     match op(&r, &control.counted_after((speeds + families) as u64)) {
-        Ok(o) => Ok((r, o, None)),
+        Ok(o) => {
+            let why = o.as_ref().and_then(general::Operating::stopped_message);
+            Ok((r, o, why))
+        }
+        // (a stop that ends the verdict's solve with an error: none known since the verdict
+        // keeps its speeds, kept as the rule for any that does)
         Err(e) => match control.should_stop() {
             Some(why) => Ok((r, None, Some(format!("{why}: the scan is complete, the verdict at the operating speed was stopped and is not given")))),
             None => Err(e),
@@ -751,22 +759,82 @@ mod tests {
         let g = GeneralRotor { rotor: Rotor::Planar(PlanarRotor { n: 2, s2: 0.0, ..PlanarRotor::paper() }), si: true, omega0: 1.0 };
         let (out, speeds) = general::scan(&g, 600.0, 10, &Control::none()).unwrap();
         let control = Control::new();
-        let (r, op, why) = kept_scan(out.clone(), speeds, &control, |_, _| -> Result<Option<()>> {
+        let (r, op, why) = kept_scan(out.clone(), speeds, &control, |_, _| {
             control.cancel();
             anyhow::bail!("interrupted")
         })
         .unwrap();
         assert_eq!(
-            (r.points.len(), op, why.as_deref()),
-            (10, None, Some("interrupted: the scan is complete, the verdict at the operating speed was stopped and is not given"))
+            (r.points.len(), op.is_none(), why.as_deref()),
+            (10, true, Some("interrupted: the scan is complete, the verdict at the operating speed was stopped and is not given"))
         );
-        let e =
-            kept_scan(out.clone(), speeds, &Control::none(), |_, _| -> Result<Option<()>> { anyhow::bail!("analysis.operating_speed: bad") }).err().unwrap();
+        let e = kept_scan(out.clone(), speeds, &Control::none(), |_, _| anyhow::bail!("analysis.operating_speed: bad")).err().unwrap();
         assert_eq!(e.to_string(), "analysis.operating_speed: bad");
+        // the verdict stopped at its first speed (the control cancelled before it): kept, said
+        let stopped = Control::new();
+        stopped.cancel();
+        let (r, op, why) =
+            kept_scan(out.clone(), speeds, &Control::none(), |r, _| general::operating_at(&g, [450.0, 500.0], "key", r, &stopped).map(Some)).unwrap();
+        let op = op.expect("the verdict kept");
+        assert_eq!((r.points.len(), op.points.len(), op.verdict()), (10, 0, None));
+        assert_eq!(why, op.stopped_message());
         let mut cut = out;
         cut.stopped = Some(autobal::control::StopReason::Interrupted);
-        let (_, op, why) = kept_scan(cut, speeds, &Control::none(), |_, _| -> Result<Option<()>> { panic!("no verdict asked of a stopped scan") }).unwrap();
+        let (_, op, why) = kept_scan(cut, speeds, &Control::none(), |_, _| panic!("no verdict asked of a stopped scan")).unwrap();
         assert!(op.is_none() && why.unwrap().starts_with("interrupted: 10 of 10 speeds analysed"));
+    }
+
+    /// The verdict at the operating speed stopped (Ctrl-C after the scan and 3 of its 9
+    /// speeds) keeps what it solved and says so (`stability` dropped it: "the verdict at the
+    /// operating speed was stopped and is not given"; the report ended with an error, "nothing
+    /// is printed"): `stopped` names the count, the JSON has the whole scan and `operating` with
+    /// `complete: false` and the 3 speeds solved, bit for bit the complete run's first 3; the
+    /// table's first line says INCOMPLETE and the verdict's line that it stopped. A range
+    /// whose lower end is unstable is NOT STABLE from the first speed solved (the others cannot
+    /// make it stable); one stable at the speeds solved has no verdict. The shaft example (2
+    /// balls: no family, so the scan reports one item per speed, then the verdict one per speed).
+    #[test]
+    fn a_stopped_operating_speed_verdict_keeps_the_speeds_solved() {
+        use crate::command::Output as _;
+        let shaft = include_str!("../../../examples/linear_rotor_shaft.toml");
+        let with = |range: &str| {
+            let text = shaft.replacen("[linear_rotor]\n", &format!("[linear_rotor]\noperating_speed = \"{range}\"\n"), 1);
+            Args { config: tables(&text, &[]), samples: Some(12), ..Default::default() }
+        };
+        // 450-500 rad/s: stable at each of its 9 speeds (the balanced state is stable from
+        // ~420 rad/s), so no verdict from 3 of them
+        let whole = with("450-500 rad/s").run(&Control::none()).unwrap().json().unwrap();
+        assert_eq!(whole["operating"]["verdict"], "stable");
+        let solved = whole["operating"]["points"].as_array().unwrap().clone();
+        assert_eq!(solved.len(), 9);
+        let out = with("450-500 rad/s").run(&stop_after(12 + 3)).unwrap();
+        let why = out.stopped().expect("stopped");
+        assert_eq!(why, "interrupted: the scan is complete; the verdict at the operating speed stopped after 3 of 9 speeds solved there (kept: JSON operating.points): no verdict");
+        let v = out.json().unwrap();
+        assert_eq!((v["complete"].clone(), v["points"].as_array().unwrap().len()), (serde_json::json!(false), 12));
+        let op = &v["operating"];
+        assert_eq!(
+            (op["complete"].clone(), op["stopped"].clone(), op["verdict"].clone()),
+            (serde_json::json!(false), serde_json::json!(why), serde_json::Value::Null)
+        );
+        assert_eq!(op["points"].as_array().unwrap()[..], solved[..3]);
+        let t = out.table().unwrap();
+        assert!(t.starts_with(&format!("INCOMPLETE ({why})\noperating speed 450 rad/s")), "{t}");
+        assert!(t.lines().nth(1).unwrap().ends_with(": no verdict: stopped after 3 of 9 speeds solved there"), "{t}");
+        // 300-500 rad/s: unstable at its first speed, so NOT STABLE from that one alone
+        let whole = with("300-500 rad/s").run(&Control::none()).unwrap().json().unwrap();
+        assert_eq!(
+            (whole["operating"]["verdict"].clone(), whole["operating"]["points"][0]["verdict"].clone()),
+            (serde_json::json!("unstable"), serde_json::json!("unstable"))
+        );
+        let out = with("300-500 rad/s").run(&stop_after(12 + 1)).unwrap();
+        let why = out.stopped().unwrap();
+        assert!(why.ends_with("after 1 of 9 speeds solved there (kept: JSON operating.points): NOT STABLE, a speed solved is unstable"), "{why}");
+        let v = out.json().unwrap();
+        assert_eq!((v["operating"]["verdict"].clone(), v["operating"]["stable"].clone()), (serde_json::json!("unstable"), serde_json::json!(false)));
+        assert_eq!(v["operating"]["points"].as_array().unwrap()[..], whole["operating"]["points"].as_array().unwrap()[..1]);
+        let t = out.table().unwrap();
+        assert!(t.contains("is NOT STABLE (exact, eigenvalues) (stopped after 1 of 9 speeds solved there: one of them is unstable, the rate is theirs); largest growth rate"), "{t}");
     }
 
     /// One count over the whole run (review 22: "the progress bar restarts its count"): the

@@ -7,7 +7,7 @@
 //! rotors of several sizes, nor with the stiffness rounded to 9 significant digits.
 
 use autobal::linear_rotor::shaft::{Disk, ShaftBuilder};
-use autobal::linear_rotor::{divergence_threshold, diverges, static_divergence, Layout, LinearRotor};
+use autobal::linear_rotor::{divergence_threshold, static_divergence, Layout, LinearRotor};
 
 /// 7 nodes `x, y, α, β` (28 DOFs) with `M = diag(m)` and `K = M^½ H D H M^½`, `H` a Householder
 /// reflection (`I − 2 v vᵀ / vᵀv`, orthogonal and symmetric, dense), so that `K v = λ M v` has
@@ -58,7 +58,6 @@ fn a_slow_divergence_on_a_stiff_rotor_is_named_with_its_omega_squared() {
     // c N ε max|ω²| (K itself rounded to ε of its entries adds as much)
     let solver = 100.0 * 28.0 * f64::EPSILON * 1e10;
     assert!((div[0] + 100.0).abs() <= solver, "ω² = {} against −100 (solver's bound {solver})", div[0]);
-    assert!(diverges(div[0], &got) && !diverges(got[1], &got));
     // the others are the known spectrum, each to the same absolute accuracy
     for (g, w) in got.iter().zip(&spectrum(-100.0)) {
         assert!((g - w).abs() <= solver.max(1e-12 * w.abs()), "{g} vs {w}");

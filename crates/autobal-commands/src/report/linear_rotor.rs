@@ -163,6 +163,13 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
     if let Some(w) = cfg.operating_speed {
         let g = crate::general::GeneralRotor::linear(model.clone());
         let op = crate::general::operating_at(&g, w, "linear_rotor.operating_speed", &st, &ctx.control)?;
+        // stopped (Ctrl-C, the budget): the speeds solved kept, the section incomplete, and
+        // why said before the verdict's line (as `stability`'s INCOMPLETE line; it ended the
+        // report with an error, "nothing is printed")
+        if let Some(why) = op.stopped_message() {
+            s.complete = false;
+            s.p(super::html::esc(crate::stability::incomplete_line(&Some(why)).trim_end()));
+        }
         let line = crate::general::operating_line(&g, &st, &op);
         s.p(format!("<b>{}</b>", super::html::esc(line.trim_end())));
         // the caveat on the verdict's line, before any lines of other states
@@ -284,4 +291,40 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
         }
     }
     Ok(Some(s))
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::command::ConfigSource;
+    use autobal::control::Control;
+
+    /// The linear rotor's section stopped (Ctrl-C) during the verdict at its operating speed,
+    /// after 3 of the range's 9 speeds, keeps them and says so before the verdict's line (it
+    /// ended the whole report with an error, "nothing is printed"); the section is incomplete.
+    /// The shaft example over 450-500 rad/s, stable at each speed: no verdict from 3 of them.
+    #[test]
+    fn a_stopped_operating_verdict_keeps_the_section() {
+        let text = include_str!("../../../../examples/linear_rotor_shaft.toml").replacen(
+            "[linear_rotor]\n",
+            "[linear_rotor]\noperating_speed = \"450-500 rad/s\"\n",
+            1,
+        );
+        let root = crate::config::parse_text(&text, "shaft.toml").unwrap();
+        let control = Control::new();
+        let c = control.clone();
+        // the verdict's 9 speeds are the first reports of the section (its scan runs without
+        // the control)
+        let control = control.with_progress(move |p| {
+            if p.total == 9 && p.done >= 3 {
+                c.cancel();
+            }
+        });
+        let ctx = super::super::context(&ConfigSource::tables(root, "shaft.toml"), true, super::super::Kind::User, &control).unwrap();
+        let s = super::build(&ctx).unwrap().unwrap();
+        assert!(!s.complete);
+        let html: String = s.blocks.iter().filter_map(|b| if let super::super::Block::Html(h) = b { Some(h.as_str()) } else { None }).collect();
+        let why = "INCOMPLETE (interrupted: the scan is complete; the verdict at the operating speed stopped after 3 of 9 speeds solved there (kept: JSON operating.points): no verdict)";
+        assert!(html.contains(why), "{html}");
+        assert!(html.contains("no verdict: stopped after 3 of 9 speeds solved there"), "{html}");
+    }
 }

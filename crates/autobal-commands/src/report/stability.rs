@@ -112,8 +112,14 @@ fn general_route(ctx: &Ctx) -> Result<Option<Section>> {
             )
         }
     };
-    let r = crate::general::analyse(&g, omega_max, samples, &ctx.control)?;
+    // under the report's control, as `stability` runs it: stopped (Ctrl-C, the budget), the
+    // speeds analysed are kept and the section is incomplete (it ended the report with an
+    // error, "nothing is printed"); the report's verdict at the operating speed is its own
+    // (below), so none is asked here
+    let (out, speeds) = crate::general::scan(&g, omega_max, samples, &ctx.control)?;
+    let (r, _, stopped) = crate::stability::kept_scan(out, speeds, &ctx.control, |_, _| Ok(None))?;
     let mut s = Section::new("stability", "Exact stability of the stationary state over speed (general route)");
+    s.complete = stopped.is_none();
     let what: Vec<String> = autobal::config::ignored_by_linear_model(&ctx.root);
     s.p(format!(
         "{} The general route finds the stationary state from the full nonlinear equations at each of {samples} speeds and takes its eigenvalues (or Floquet multipliers), as <code>autobal stability</code> does for this config. What it prints:",
@@ -123,9 +129,18 @@ fn general_route(ctx: &Ctx) -> Result<Option<Section>> {
             format!("The config has what paper 000's 12-state model does not represent ({}), so its rotor is analysed as given.", super::esc(&what.join(", ")))
         }
     ));
-    s.html(format!("<pre>{}</pre>\n", super::esc(&crate::general::table(&g, &r, omega_max, None))));
+    let table = crate::stability::incomplete_line(&stopped) + &crate::general::table(&g, &r, omega_max, None);
+    s.html(format!("<pre>{}</pre>\n", super::esc(&table)));
     let speed = |w: f64| if g.si { format!("{} rpm", crate::num::grouped(w * crate::num::RPM_PER_RAD_S, 0)) } else { format!("Ω = {}", fmt(w, 4)) };
     match op {
+        // a stopped scan's ranges end where it stopped: no verdict from them
+        Some([lo, hi]) if stopped.is_some() => {
+            let at = if lo == hi { speed(lo) } else { format!("{} – {}", speed(lo), speed(hi)) };
+            s.summary.push(format!(
+                "<b>{}</b>",
+                super::esc(&format!("operating speed {at}: no verdict: the stability scan was stopped ({})", stopped.as_deref().unwrap_or_default()))
+            ));
+        }
         Some([lo, hi]) => {
             let at = if lo == hi { speed(lo) } else { format!("{} – {}", speed(lo), speed(hi)) };
             let inside = r.stable_ranges.iter().find(|x| x.from <= lo && hi <= x.to);
@@ -156,13 +171,18 @@ fn general_route(ctx: &Ctx) -> Result<Option<Section>> {
             if matches!(g.rotor, Rotor::Planar(_)) { " (a planar config has none)" } else { " (<code>[analysis] operating_speed</code>)" }
         )),
     }
-    let mut p = crate::general::margin_plot(&g, &r, omega_max);
+    let mut p = crate::stability::mark_stopped(crate::general::margin_plot(&g, &r, omega_max), &stopped, r.points.last().map(|q| q.omega));
     p.vlines.extend(super::rotor::operating_vlines(op, 1.0));
     if g.si {
         p.x2 = Some(crate::plot::SecondAxis { factor: crate::num::RPM_PER_RAD_S, label: "n (rpm)".into() });
     }
     s.figure("stability_margin", p, "The stationary state's margin over speed by the general route (largest Re λ, or largest Floquet exponent for a periodic orbit), the stable ranges shaded and the operating speed marked.");
-    general_campbell(ctx, &g, omega_max, op, &mut s)?;
+    if stopped.is_some() {
+        s.h3("campbell", "Campbell diagrams");
+        s.p("Not computed: the report was stopped during the stability scan above.");
+    } else {
+        general_campbell(ctx, &g, omega_max, op, &mut s)?;
+    }
     Ok(Some(s))
 }
 
@@ -184,7 +204,14 @@ fn general_campbell(ctx: &Ctx, g: &crate::general::GeneralRotor, omega_max: f64,
     use autobal::analysis::Kind;
     let points = general_campbell_points(g.rotor.is_periodic(), ctx.quick);
     s.h3("campbell", "Campbell diagrams");
-    let c = crate::general_campbell::campbell(g, omega_max, points, &ctx.control)?;
+    // stopped (Ctrl-C, the budget): the speeds analysed (or every speed, the search for the
+    // crossings stopped) kept and drawn, marked, the section incomplete, as `autobal campbell`
+    // keeps them (it ended the report with an error)
+    let c = crate::general_campbell::campbell_with(g, omega_max, points, Balls::Free, &[1], &ctx.control)?;
+    if c.stopped.is_some() {
+        s.complete = false;
+        s.p(super::esc(crate::stability::incomplete_line(&c.stopped).trim_end()));
+    }
     let periodic = c.diagram.kind == Kind::PeriodicOrbit;
     s.p(format!(
         "The {} of the stationary state at {points} speeds, balls free, by the general route (what <code>autobal campbell</code> computes for this config){}.",
@@ -207,9 +234,11 @@ fn general_campbell(ctx: &Ctx, g: &crate::general::GeneralRotor, omega_max: f64,
             if list.is_empty() { "none on the axis".to_string() } else { list.join(", ") }
         ));
     }
-    let mut modes = crate::general_campbell::campbell_plot(g, &c, omega_max);
+    let mark = |p| crate::stability::mark_stopped(p, &c.stopped, None);
+    let mut modes = mark(crate::general_campbell::campbell_plot(g, &c, omega_max));
     modes.vlines.extend(super::rotor::operating_vlines(op, kx));
-    let (mut rot, mut fixed) = crate::general_campbell::components_plots(g, &c);
+    let (rot, fixed) = crate::general_campbell::components_plots(g, &c);
+    let (mut rot, mut fixed) = (mark(rot), mark(fixed));
     for p in [&mut rot, &mut fixed] {
         p.vlines.extend(super::rotor::operating_vlines(op, 1.0));
     }
@@ -387,4 +416,87 @@ fn map(m: &SpatialModel, x: Axis, y: Axis, set: fn(&mut SpatialModel, f64), ball
         true
     })?;
     Ok(MapResult { x, y, rows, quantity: Quantity::Margin })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::command::ConfigSource;
+    use autobal::control::Control;
+
+    /// The user report's context for paper 004's planar example (the general route) under
+    /// `control`.
+    fn planar_ctx(control: &Control) -> Ctx {
+        let root = crate::config::parse_text(include_str!("../../../../examples/planar.toml"), "planar.toml").unwrap();
+        super::super::context(&ConfigSource::tables(root, "planar.toml"), false, super::super::Kind::User, control).unwrap()
+    }
+
+    /// A control that cancels itself once a computation whose progress counts `total` items
+    /// has reported `k` done (a Ctrl-C after `k` speeds of that computation): the scan's 200
+    /// speeds, the Campbell diagram's 240.
+    fn stop_after(total: u64, k: u64) -> Control {
+        let control = Control::new();
+        let c = control.clone();
+        control.with_progress(move |p| {
+            if p.total == total && p.done >= k {
+                c.cancel();
+            }
+        })
+    }
+
+    /// The section's HTML as one string.
+    fn html(s: &Section) -> String {
+        s.blocks.iter().filter_map(|b| if let super::super::Block::Html(h) = b { Some(h.as_str()) } else { None }).collect()
+    }
+
+    /// The report's general route stopped during its stability scan (Ctrl-C after 3 of 200
+    /// speeds) keeps the speeds analysed, as `stability` does, and marks its section
+    /// incomplete (it ended the whole report with an error, "nothing is printed"): the table's
+    /// first line INCOMPLETE with the count, the figure's title too, no Campbell diagram (not
+    /// computed: said); the same section not stopped is complete, with its diagram.
+    #[test]
+    fn the_general_route_s_stopped_scan_keeps_the_speeds_analysed() {
+        let s = general_route(&planar_ctx(&stop_after(200, 3))).unwrap().unwrap();
+        assert!(!s.complete);
+        let h = html(&s);
+        assert!(h.contains("INCOMPLETE (interrupted: 3 of 200 speeds analysed; what was analysed is printed"), "{h}");
+        assert!(h.contains("Not computed: the report was stopped during the stability scan above."), "{h}");
+        let figs: Vec<&super::super::Figure> = s.figures().collect();
+        assert_eq!(figs.len(), 1);
+        assert!(figs[0].plot.title.starts_with("INCOMPLETE: "), "{}", figs[0].plot.title);
+        let whole = general_route(&planar_ctx(&Control::none())).unwrap().unwrap();
+        assert!(whole.complete && !html(&whole).contains("INCOMPLETE"));
+        assert_eq!(whole.figures().count(), 4);
+    }
+
+    /// Stopped during its Campbell diagram (after the whole scan, 5 of 240 speeds), the
+    /// section keeps the scan and the curves analysed, marks them (the figures' titles), and
+    /// is incomplete (it ended the report with an error).
+    #[test]
+    fn the_general_route_s_stopped_campbell_keeps_its_curves() {
+        let s = general_route(&planar_ctx(&stop_after(240, 5))).unwrap().unwrap();
+        assert!(!s.complete);
+        let h = html(&s);
+        assert!(!h.contains("INCOMPLETE (interrupted: 3 of 200"), "the scan is complete: {h}");
+        assert!(h.contains("INCOMPLETE (interrupted: ") && h.contains(" of 240 speeds analysed"), "{h}");
+        let titles: Vec<&str> = s.figures().map(|f| f.plot.title.as_str()).collect();
+        assert_eq!(titles.len(), 4);
+        assert!(!titles[0].starts_with("INCOMPLETE") && titles[1..].iter().all(|t| t.starts_with("INCOMPLETE: ")), "{titles:?}");
+    }
+
+    /// The whole report stopped in that section is written, its output says it is incomplete
+    /// and names the section (the CLI then exits 2 with that line, as other stopped commands);
+    /// it was an error, no page.
+    #[test]
+    fn a_report_stopped_in_the_general_route_is_written_and_says_so() {
+        let dir = std::env::temp_dir().join(format!("autobal-report-general-stopped-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let out = super::super::write(&planar_ctx(&stop_after(200, 3)), &dir).unwrap();
+        let why = out.incomplete.expect("incomplete");
+        assert!(why.starts_with("interrupted: the report in ") && why.contains("Exact stability of the stationary state over speed (general route)"), "{why}");
+        // (the sections run in parallel: another's count of 200 may stop it first)
+        let page = std::fs::read_to_string(out.index).unwrap();
+        assert!(page.contains("INCOMPLETE (interrupted: ") && page.contains(" of 200 speeds analysed"));
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 }

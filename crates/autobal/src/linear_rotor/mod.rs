@@ -456,12 +456,6 @@ pub fn static_divergence(omega_squared: &[f64]) -> Vec<f64> {
     omega_squared.iter().copied().filter(|v| *v < -threshold).collect()
 }
 
-/// Whether `omega_squared` is a divergent mode's among all the eigenvalues `all` it is one of
-/// ([`static_divergence`]'s rule, for a caller that goes mode by mode).
-pub fn diverges(omega_squared: f64, all: &[f64]) -> bool {
-    omega_squared < -divergence_threshold(all)
-}
-
 impl LinearRotor {
     /// A structure of `nodes` nodes with zero matrices, no unbalance and no balancer.
     pub fn zeros(nodes: usize, layout: Layout) -> Self {
