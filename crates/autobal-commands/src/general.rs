@@ -246,7 +246,7 @@ pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64, op: Option<&O
         // on supports that differ by direction no closed form says where the planar rotor's
         // semi-balanced orbit exists: the balls were found at their capacity limit, no more
         let why = match &g.rotor {
-            Rotor::Planar(p) if p.anisotropic() => "the balls together at their capacity limit, the race centre off the axis; on supports that differ by direction no closed form says whether a semi-balanced orbit exists there: none was found from the scan's starts",
+            Rotor::Planar(p) if p.anisotropic() && p.s2 > 0.0 && p.n >= 2 => "the balls together at their capacity limit, the race centre off the axis; on supports that differ by direction no closed form says whether a semi-balanced orbit exists there: none was found from the scan's starts",
             _ => "no balanced state exists: the balls' capacity falls short, a couple no plane can cancel, or, planar, below the speed where the semi-balanced state exists",
         };
         s.push_str(&format!(

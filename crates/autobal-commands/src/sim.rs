@@ -467,7 +467,7 @@ pub fn outcome_words(p: &autobal::planar::PlanarRotor, s: &Summary) -> String {
         RunOutcome::Balanced if p.s2 > 0.0 => "semi-balanced (the race centre on the axis, C whirling at s2)",
         RunOutcome::Balanced => "balanced",
         // supports that differ by direction: decided on the end state alone (no closed form)
-        RunOutcome::PartiallyBalanced if p.anisotropic() => {
+        RunOutcome::PartiallyBalanced if p.anisotropic() && p.s2 > 0.0 && p.n >= 2 => {
             "partially balanced: the balls rest together at their capacity limit with the race centre off the axis"
         }
         // with enough ball mass for high speeds (α∞ > 1) the capacity is not what falls short

@@ -489,22 +489,22 @@ impl Rotor {
                 // E on the axis (to 1e-6 of its whirl without the balls' resultant):
                 // (semi-)balanced; on a periodic orbit E's mean position over the revolution
                 // (its once-per-revolution whirl in fixed axes: the orbit's start alone reads
-                // the swing as a whirl), and there (semi-)balanced to the residual while E is
-                // within the allowance (5 % of s2, or of the residual's reference where that
-                // is smaller: `balance_allowance`; an equilibrium has no swing to leave a
-                // residual); the balls bunched (on a periodic orbit: together, their mean
-                // resultant at least 99 % of the capacity, as the run's test: the swing parts
-                // balls of different masses or drags, 0.01 rad on audit 23's rotor):
-                // partially balanced; not balanced
+                // the swing as a whirl). Else the balls bunched: partially balanced; else, on a
+                // periodic orbit only (an equilibrium has no swing to leave a residual),
+                // (semi-)balanced while E is within the allowance (5 % of s2, or of the
+                // residual's reference where that is smaller: `balance_allowance`), partially
+                // balanced where the balls are together (their mean resultant at least 99 % of
+                // the capacity, the run's test: the swing parts balls of different masses or
+                // drags, 0.01 rad on audit 23's rotor); not balanced
                 let balanced = if p.s2 == 0.0 { StateKind::Balanced } else { StateKind::SemiBalanced };
                 let periodic = field.period().is_some();
                 let together = || {
                     let b = mean_of(&rows, x.len(), |row| crate::planar::stationary::ball_resultant(p, ball_coordinates(field).map(|i| row[i])).to_vec());
                     crate::spatial::dynamics::simulate::together(b[0].hypot(b[1]), crate::planar::stationary::ball_capacity(p))
                 };
-                if r <= BALANCED_EXACTLY || periodic && r <= crate::planar::stationary::balance_allowance(p, f.omega()) {
+                if r <= BALANCED_EXACTLY {
                     balanced
-                } else if (bunched(&ball_angles(field, x)) || periodic && together()) && r < 1.0 {
+                } else if bunched(&ball_angles(field, x)) && r < 1.0 {
                     // partially: the balls reduce the unbalance; with the race centred the
                     // residual is the residual unbalance itself, and bunched on the unbalance's
                     // side (below the critical speed, residual > 1) they add to it: not
@@ -513,6 +513,15 @@ impl Rotor {
                     // axis than no balls would, so not balanced either (paper 004's bunched
                     // state below its semi-balanced speed, 1.91 at 200 rad/s, read partially
                     // balanced until session 16; a review of the planar run's words)
+                    // (before the allowance: equal balls bunched on a periodic orbit are at their
+                    // capacity limit, whatever E's offset; review 24a: E 2.3 µm off the axis, 2.3 %
+                    // of s2, below the speed where the semi-balanced state begins)
+                    StateKind::PartiallyBalanced
+                } else if periodic && r <= crate::planar::stationary::balance_allowance(p, f.omega()) {
+                    balanced
+                } else if periodic && together() && r < 1.0 {
+                    // (the balls of different masses or drags, parted by the swing, at their
+                    // capacity limit: the rule of the bunched ones above)
                     StateKind::PartiallyBalanced
                 } else {
                     StateKind::NotBalanced

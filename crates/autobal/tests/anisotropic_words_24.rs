@@ -90,16 +90,36 @@ fn the_semi_balanced_orbit_on_anisotropic_supports_still_reads_semi_balanced() {
 }
 
 #[test]
-fn the_allowance_is_five_percent_of_the_smaller_length() {
-    let p = q1();
-    for omega in [100.0, 200.0, 250.0, 255.0, 300.0, 600.0] {
-        let scale = stationary::race_offset_scale(&p, omega);
-        let a = stationary::balance_allowance(&p, omega);
-        // as a length: 5 % of min(scale, s2)
-        assert!((a * scale - 0.05 * scale.min(p.s2)).abs() <= 1e-15, "Ω {omega}: {a} × {scale}");
+fn equal_balls_bunched_on_an_anisotropic_orbit_stay_partially_balanced() {
+    // review 24a's F3: examples/planar.toml on supports 8e4/1.3e5 N/m, 20/30 kg/s, s2 = 0.1 mm,
+    // γ = 1.5, c_psi = 0.01. At 70 rad/s the balls' capacity falls short of the semi-balanced
+    // demand by the supports' means (1.033 of it; that state begins at 73.6 rad/s), and the
+    // orbit found has its two equal balls bunched at their capacity limit with E 2.3 µm off the
+    // axis (2.3 % of s2, inside the allowance): bunched balls are the capacity limit whatever
+    // E's offset, as on equal supports (3f95976 called it semi-balanced)
+    let p = PlanarRotor { k: 8.0e4, k_y: Some(1.3e5), c: 20.0, c_y: Some(30.0), s2: 1e-4, gamma: 1.5, c_psi: 0.01, ..PlanarRotor::paper() };
+    let (state, residual) = stability_state(&p, 70.0);
+    assert_eq!(state, StateKind::PartiallyBalanced, "residual {residual}");
+    // the semi-balanced orbit above that speed keeps its word
+    assert_eq!(stability_state(&p, 84.0).0, StateKind::SemiBalanced);
+}
+
+#[test]
+fn equal_supports_keep_the_five_percent_allowance() {
+    // review 24a's F1: on equal supports the closed forms catch a capacity-limited end, and the
+    // allowance stays 5 % of the residual's reference: a fast ramp on examples/planar.toml
+    // (350 rad/s at 100 1/s² for 2 s) ends with its balls lagging, E 0.95 % of the reference
+    // off the axis (5.5 % of s2): balanced, as sessions 15-23 read it (a 5 %-of-s2 rule read
+    // it not balanced)
+    let p = PlanarRotor::paper();
+    assert!(!p.anisotropic());
+    for omega in [100.0, 288.0, 550.0] {
+        assert_eq!(stationary::balance_allowance(&p, omega), 0.05);
     }
-    // a centred race: s1 is the length
-    let c = PlanarRotor { s2: 0.0, ..q1() };
-    let scale = stationary::race_offset_scale(&c, 255.0);
-    assert!((stationary::balance_allowance(&c, 255.0) * scale - 0.05 * scale.min(c.s1)).abs() <= 1e-15);
+    let settings = Settings::new(&p, 2.0);
+    let s = simulate(&p, &Drive::Acceleration { omega0: 350.0, b: 100.0 }, &settings, |_| true).unwrap();
+    eprintln!("{s:?}");
+    assert!(s.residual_unbalance > 0.009 && s.residual_unbalance < 0.0125, "{}", s.residual_unbalance);
+    assert_eq!(s.outcome, RunOutcome::Balanced, "{s:?}");
+    assert!(s.balanced);
 }

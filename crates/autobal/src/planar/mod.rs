@@ -729,11 +729,15 @@ fn simulate_sampled(
     let together = crate::spatial::dynamics::simulate::together(bx.hypot(by), capacity);
     let allowance = stationary::balance_allowance(rotor, final_omega);
     // where the supports differ by direction the closed forms (the supports' means) say neither
-    // whether the semi-balanced orbit exists nor what the bunched one leaves: the end state
-    // decides, as `stability`'s state words do (`crate::rotor_stability::Rotor::classify`):
-    // balanced within the allowance, else partially balanced where the balls ended together
-    // nearer the axis than no balls would leave E (residual below 1), else not balanced
-    let short = if rotor.anisotropic() { residual_unbalance > allowance } else { !stationary::semi_balanced_exists(rotor, final_omega) };
+    // whether the semi-balanced orbit exists (an eccentric race, two balls or more: the end
+    // state decides, balanced within the allowance) nor what the bunched orbit leaves (there
+    // the balls count as partially balancing where they ended together nearer the axis than no
+    // balls would leave E, residual below 1), as `stability`'s state words
+    // (`crate::rotor_stability::Rotor::classify`). A centred race's balanced state needs
+    // `Σ m_j r ≥ m1 s1` whatever the supports, and one ball has no semi-balanced state: the
+    // closed form's existence there
+    let by_end_state = rotor.anisotropic() && rotor.s2 > 0.0 && rotor.n >= 2;
+    let short = if by_end_state { residual_unbalance > allowance } else { !stationary::semi_balanced_exists(rotor, final_omega) };
     // at (or near) rest nothing turns the balls against the unbalance: no balanced or partially
     // balanced state to read (the semi-balanced demand and the residual's scale degenerate)
     let at_rest = at_rest(rotor, final_omega);
