@@ -196,6 +196,19 @@ pub fn json(g: &GeneralRotor, r: &RotorStability, omega_max: f64) -> Value {
     })
 }
 
+/// How many members of the family were analysed at each speed, for the family's line:
+/// `", 52-135 members analysed per speed (drawn and corrected onto the family, bunched,
+/// searched)"` ([`autobal::rotor_stability::FamilyStability::members_analysed`]; a count of
+/// members, not of the points drawn); empty where none was followed.
+pub(crate) fn members_words(f: &autobal::rotor_stability::FamilyStability) -> String {
+    let what = if f.dimension >= 2 { " (drawn and corrected onto the family, bunched, searched)" } else { "" };
+    match f.members_analysed {
+        Some([a, b]) if a == b => format!(", {a} members analysed at each speed{what}"),
+        Some([a, b]) => format!(", {a}-{b} members analysed per speed{what}"),
+        None => String::new(),
+    }
+}
+
 /// The table of the general route.
 pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64, op: Option<&Operating>) -> String {
     let mut s = String::new();
@@ -229,9 +242,10 @@ pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64, op: Option<&O
             }
         };
         s.push_str(&format!(
-            "family ({}): all members sampled stable: {}
+            "family ({}{}): all members sampled stable: {}
 ",
             f.parameterisation.split(':').next().unwrap_or(""),
+            members_words(f),
             list(&f.all_members_stable)
         ));
         s.push_str(&format!(

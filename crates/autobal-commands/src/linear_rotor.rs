@@ -358,8 +358,9 @@ pub fn stability_table(cfg: &LinearRotorConfig, r: &RotorStability, red: &Option
             }
         };
         s.push_str(&format!(
-            "the balanced states form a family of dimension {} (the ranges above are one member's): all members sampled stable: {}; at least one member sampled stable (which is not \"stable\"): {}\n",
+            "the balanced states form a family of dimension {}{} (the ranges above are one member's): all members sampled stable: {}; at least one member sampled stable (which is not \"stable\"): {}\n",
             f.dimension,
+            crate::general::members_words(f),
             list(&f.all_members_stable),
             list(&f.some_members_stable)
         ));

@@ -42,7 +42,10 @@
 //! [`crate::analysis::family`] as the speed scan of [`crate::rotor_stability`] follows it, more
 //! coarsely to stay cheap: continuation at steps of [`MAP_FAMILY_STEP`] in scaled arclength for
 //! `k = 1`, with the least and the most stable member refined by a parabolic step
-//! ([`FamilyOptions::refine_extremes`]), and [`MAP_FAMILY_SAMPLES`] members drawn for `k ≥ 2`.
+//! ([`FamilyOptions::refine_extremes`]), and [`MAP_FAMILY_SAMPLES`] members drawn for `k ≥ 2`
+//! with the family's bunched members ([`crate::rotor_stability::bunched_members`]: each plane's
+//! balls in two coinciding groups, the corners where its extremes can sit) and the search for
+//! the extremes from them.
 //! The cell's [`GeneralCell::family`] says whether all, some or none of the members are stable,
 //! and [`GeneralCell::family_max_margin`], [`GeneralCell::family_min_margin`] give the margins
 //! of the least and the most stable member. "Some members stable" is not "stable": a run can
@@ -147,9 +150,10 @@ impl GeneralCell {
 pub const MAP_FAMILY_STEP: f64 = 0.3;
 
 /// Members drawn on a map cell's family of dimension `k ≥ 2` (40; a periodic orbit's 12): a
-/// sample, as the speed scan's 200, so "all stable" there means all members drawn and those
-/// the search for the extremes reached ([`FamilyOptions::refine_extremes`]: at most
-/// `max(samples / 2, 4k)` more per extreme).
+/// sample, as the speed scan's 200, so "all stable" there means all members drawn (those Newton
+/// corrects onto the family), the bunched members ([`crate::rotor_stability::bunched_members`]:
+/// three with four equal balls in a plane) and those the search for the extremes reached
+/// ([`FamilyOptions::refine_extremes`]: at most `max(samples / 2, 4k)` more per extreme).
 pub const MAP_FAMILY_SAMPLES: usize = 40;
 
 /// The family through `state` (of dimension `k ≥ 1`) at one cell, sampled as
@@ -170,7 +174,7 @@ fn cell_family(field: &Field, state: &StationaryState, newton: &NewtonOptions) -
         relabellings: crate::rotor_stability::ball_rotations(field),
         ..FamilyOptions::default()
     };
-    let fam = family(field, state, &opts).ok()?;
+    let fam = family(field, state, &crate::rotor_stability::with_bunched(opts, field, state)).ok()?;
     let (hi, lo) = fam.extremes()?;
     Some((fam.verdict(), hi.stability.abscissa, lo.stability.abscissa))
 }

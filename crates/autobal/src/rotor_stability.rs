@@ -1039,8 +1039,18 @@ pub struct Member {
 /// sampled members are stable.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct FamilyPoint {
-    /// Members sampled.
+    /// Members analysed: the member given, the points drawn that Newton corrected onto the
+    /// family (a family of dimension `k ≥ 2`) or the continuation's members (`k = 1`), the
+    /// bunched members and those the search for the extremes added.
     pub members: usize,
+    /// Points drawn (`k ≥ 2`; only those corrected onto the family are members); 0 for a
+    /// continuation.
+    pub drawn: usize,
+    /// Bunched members analysed (`k ≥ 2`: each plane's balls in two coinciding groups,
+    /// [`crate::analysis::FamilyOptions::seeds`]).
+    pub bunched: usize,
+    /// Members the search for the extremes added ([`crate::analysis::FamilyOptions::refine_extremes`]).
+    pub searched: usize,
     /// Of which stable.
     pub stable_members: usize,
     /// All, some, or none of the sampled members stable.
@@ -1064,8 +1074,11 @@ pub struct FamilyPoint {
 pub struct FamilyStability {
     /// Its dimension `k` (`n − 2` for `n ≥ 3` balls in one plane).
     pub dimension: usize,
-    /// How it is parameterised and sampled, in words.
+    /// How it is parameterised and sampled, in words (with how many members were analysed).
     pub parameterisation: String,
+    /// The fewest and the most members analysed at one grid speed ([`FamilyPoint::members`]);
+    /// `None` where no family was followed.
+    pub members_analysed: Option<[usize; 2]>,
     /// The speed ranges where **every** sampled member is stable (ends located to 1e-9
     /// relative where the largest abscissa over the sampled members crosses 0).
     pub all_members_stable: Vec<StableRange>,
@@ -1594,11 +1607,20 @@ fn family_options(field: &Field, newton: &NewtonOptions) -> FamilyOptions {
     }
 }
 
+/// [`family_options`] (or a map cell's) with the bunched members through `state` as seeds
+/// ([`bunched_members`]; for a family of dimension `k ≥ 2`, where the sample is random).
+pub(crate) fn with_bunched(mut opts: FamilyOptions, field: &Field, state: &StationaryState) -> FamilyOptions {
+    if state.family_dimension >= 2 {
+        opts.seeds = bunched_members(field, &state.x);
+    }
+    opts
+}
+
 /// The family through the member `state` at speed `omega`, summarised; `None` where it
 /// cannot be followed.
 fn family_point(rotor: &Rotor, omega: f64, state: &StationaryState, newton: &NewtonOptions) -> Option<FamilyPoint> {
     let f = rotor.field(omega).ok()?;
-    let fam: Family = family(&f, state, &family_options(&f, newton)).ok()?;
+    let fam: Family = family(&f, state, &with_bunched(family_options(&f, newton), &f, state)).ok()?;
     let (hi, lo) = fam.extremes()?;
     let name = |m: &crate::analysis::FamilyMember| Member {
         parameter: m.parameter.clone(),
@@ -1608,6 +1630,9 @@ fn family_point(rotor: &Rotor, omega: f64, state: &StationaryState, newton: &New
     };
     Some(FamilyPoint {
         members: fam.members.len(),
+        drawn: fam.drawn,
+        bunched: fam.seeded,
+        searched: fam.searched,
         stable_members: fam.stable_count(),
         verdict: fam.verdict(),
         closed: fam.closed,
@@ -1702,17 +1727,26 @@ fn family_over_speed(
         *out = crate::analysis::assemble_ranges(|i| points[i].omega, |i| good(&points[i]), &boundary);
     }
     let [all, some] = ranges;
+    let counts: Vec<usize> = points.iter().filter_map(|p| p.family.as_ref().map(|f| f.members)).collect();
+    let members_analysed = counts.iter().min().zip(counts.iter().max()).map(|(a, b)| [*a, *b]);
+    let analysed = match members_analysed {
+        Some([a, b]) if a == b => format!("{a} members analysed at each grid speed followed (points[].family.members)"),
+        Some([a, b]) => format!("{a}-{b} members analysed per grid speed followed (points[].family.members)"),
+        None => "no member analysed".to_string(),
+    };
     let parameterisation = if dimension == 1 {
-        "one-parameter family (n − 2 = 1 free parameter): the balls' angles move together keeping Σ m r e^{iψ} (the balancing condition) fixed; \
-         parameter s = arclength along the family in the balls' angles (rad, the other states scaled by the model's scales), s = 0 at the member Newton reaches from the closed form (member_psi); \
-         swept by continuation at steps of 0.1 until it closes (all round) or ends, the least and the most stable member then refined by one parabolic step each, at every grid speed"
-            .to_string()
-    } else {
         format!(
-            "{dimension}-parameter family (n − 2 = {dimension} free parameters): sampled at 200 members, each the member given displaced along the family's tangent space by π times coefficients uniform in [−1, 1]^{dimension} (fixed seed) and corrected onto the family by minimum-norm Newton, then the least and the most stable member searched for beyond the sample (a compass search over those coefficients from the extreme members drawn), at every grid speed; not a sweep: a stable or unstable island smaller than the sampling can be missed"
+            "one-parameter family (n − 2 = 1 free parameter): the balls' angles move together keeping Σ m r e^{{iψ}} (the balancing condition) fixed; \
+             parameter s = arclength along the family in the balls' angles (rad, the other states scaled by the model's scales), s = 0 at the member Newton reaches from the closed form (member_psi); \
+             swept by continuation at steps of 0.1 until it closes (all round) or ends, the least and the most stable member then refined by one parabolic step each, at every grid speed; {analysed}"
+        )
+    } else {
+        let drawn = points.iter().find_map(|p| p.family.as_ref().map(|f| f.drawn)).unwrap_or(0);
+        format!(
+            "{dimension}-parameter family (n − 2 = {dimension} free parameters): at every grid speed the member Newton reaches and {drawn} points drawn, each that member displaced along the family's tangent space by π times coefficients uniform in [−1, 1]^{dimension} (fixed seed) and corrected onto the family by minimum-norm Newton (those where it fails or leaves the family dropped: points[].family.drawn), with the bunched members (each plane's balls in two coinciding groups keeping its Σ m r e^{{iψ}}: the family's corners, points[].family.bunched), then the least and the most stable member searched for beyond them (a compass search over those coefficients from the extreme members: points[].family.searched); {analysed}; not a sweep: a stable or unstable island smaller than the sampling can be missed"
         )
     };
-    (FamilyStability { dimension, parameterisation, all_members_stable: all, some_members_stable: some }, stopped)
+    (FamilyStability { dimension, parameterisation, members_analysed, all_members_stable: all, some_members_stable: some }, stopped)
 }
 
 /// Where `g` (the family's largest or smallest abscissa) crosses 0 between `lo` and `hi`
@@ -1897,6 +1931,140 @@ pub(crate) fn ball_coordinates(f: &Field) -> std::ops::Range<usize> {
 /// The balls' angles in a reduced state.
 pub(crate) fn ball_angles(f: &Field, x: &[f64]) -> Vec<f64> {
     x[ball_coordinates(f)].to_vec()
+}
+
+/// Each plane's balls: `(index of its angle in the reduced state, mass, drag)` per ball, planes
+/// in order (the planar rotor's one plane with its `ball_masses`, `ball_drags`; a spatial or
+/// linear rotor's planes of equal balls).
+fn ball_planes(f: &Field) -> Vec<Vec<(usize, f64, f64)>> {
+    match f {
+        Field::Planar(p) => {
+            let r = p.rotor();
+            vec![(0..r.n).map(|j| (2 + j, r.ball_mass(j), r.ball_drag(j))).collect()]
+        }
+        Field::Spatial(s) => {
+            let mut first = s.coords() - s.rotor().balls();
+            let mut out = vec![];
+            for p in &s.rotor().planes {
+                out.push((first..first + p.n).map(|i| (i, p.ball_mass, p.drag)).collect());
+                first += p.n;
+            }
+            out
+        }
+        Field::Linear(l) => {
+            let mut first = l.rotor().dofs();
+            let mut out = vec![];
+            for p in &l.rotor().balancers {
+                out.push((first..first + p.balls).map(|i| (i, p.ball_mass, p.drag)).collect());
+                first += p.balls;
+            }
+            out
+        }
+    }
+}
+
+/// The ways of putting one plane's balls at two angles, `ψ_j = a` for the balls of the first
+/// group and `b` for the others, that keep the plane's resultant `C = Σ m_j e^{iψ_j}` of the
+/// angles in `x` (so the rotor's state, which depends on the balls through their resultants
+/// alone, stays that of `x`): with group masses `M_1`, `M_2` the triangle
+/// `M_1 e^{ia} + M_2 e^{ib} = C`, `a = arg C ± acos((M_1² + |C|² − M_2²)/(2 M_1 |C|))`,
+/// `b = arg(C − M_1 e^{ia})` (the two mirror solutions), which exists where
+/// `|M_1 − M_2| ≤ |C| ≤ M_1 + M_2` and `C ≠ 0`. Balls of equal mass and drag are interchangeable
+/// (a relabelling is the same physical state, with the same stability): one grouping per choice
+/// of how many of each kind go in the first group, a grouping and its complement once, and of a
+/// grouping that its complement's relabelling is (equal halves) the one mirror. Each is the
+/// angles of the plane's balls (in `plane`'s order), each within `π` of its angle in `x`.
+fn two_group_angles(plane: &[(usize, f64, f64)], x: &[f64]) -> Vec<Vec<f64>> {
+    // the kinds of ball, each with its balls (positions in `plane`)
+    let mut kinds: Vec<(f64, f64, Vec<usize>)> = vec![];
+    for (j, &(_, m, c)) in plane.iter().enumerate() {
+        match kinds.iter_mut().find(|k| k.0 == m && k.1 == c) {
+            Some(k) => k.2.push(j),
+            None => kinds.push((m, c, vec![j])),
+        }
+    }
+    let (cx, cy) = plane.iter().fold((0.0, 0.0), |(cx, cy), &(i, m, _)| (cx + m * x[i].cos(), cy + m * x[i].sin()));
+    let r = cx.hypot(cy);
+    let total: f64 = plane.iter().map(|b| b.1).sum();
+    let tau = std::f64::consts::TAU;
+    let mut out = vec![];
+    // how many of each kind in the first group, counted as a mixed-radix number
+    let sizes: Vec<usize> = kinds.iter().map(|k| k.2.len()).collect();
+    let combos: usize = sizes.iter().map(|s| s + 1).product();
+    for code in 1..combos.saturating_sub(1) {
+        let mut rest = code;
+        let take: Vec<usize> = sizes
+            .iter()
+            .map(|s| {
+                let t = rest % (s + 1);
+                rest /= s + 1;
+                t
+            })
+            .collect();
+        let complement: Vec<usize> = sizes.iter().zip(&take).map(|(s, t)| s - t).collect();
+        // a grouping and its complement are the same placement with the groups swapped
+        if take > complement {
+            continue;
+        }
+        let m1: f64 = kinds.iter().zip(&take).map(|(k, &t)| k.0 * t as f64).sum();
+        let m2 = total - m1;
+        if r == 0.0 || !(r <= m1 + m2 && r >= (m1 - m2).abs()) {
+            continue;
+        }
+        let cos1 = ((m1 * m1 + r * r - m2 * m2) / (2.0 * m1 * r)).clamp(-1.0, 1.0);
+        // equal halves: the second mirror is the first with the groups relabelled
+        let branches: &[f64] = if take == complement { &[1.0] } else { &[1.0, -1.0] };
+        for &branch in branches {
+            let a = cy.atan2(cx) + branch * cos1.acos();
+            let b = (cy - m1 * a.sin()).atan2(cx - m1 * a.cos());
+            let mut angles = vec![b; plane.len()];
+            for (k, &t) in kinds.iter().zip(&take) {
+                for &j in &k.2[..t] {
+                    angles[j] = a;
+                }
+            }
+            for (angle, &(i, _, _)) in angles.iter_mut().zip(plane) {
+                *angle -= tau * ((*angle - x[i]) / tau).round();
+            }
+            out.push(angles);
+        }
+    }
+    out
+}
+
+/// The family's bunched members through the member `x` ([`crate::analysis::FamilyOptions::seeds`]):
+/// the states with the balls of each plane of three or more in two coinciding groups, the
+/// plane's resultant `C = Σ m_j e^{iψ_j}` kept (`M_1 e^{ia} + M_2 e^{ib} = C`: a triangle, two
+/// mirror solutions; one grouping per choice of how many balls of each kind, mass and drag, go
+/// in the first group, a grouping and its complement once). Those are the family's corners,
+/// finitely many, where its extremes can sit: three or more groups leave a family of dimension
+/// `groups − 2 ≥ 1`, one group is the capacity's limit. The other coordinates are those of `x`
+/// (the rotor's state depends on the balls through the resultants alone); every combination
+/// over the planes (a plane of fewer than three balls, or without a grouping, as in `x`). The
+/// balls are point masses here (the fields refuse real balls), so coinciding balls are the
+/// model's own states, not an overlap.
+pub fn bunched_members(f: &Field, x: &[f64]) -> Vec<Vec<f64>> {
+    let mut out: Vec<Vec<f64>> = vec![x.to_vec()];
+    for plane in ball_planes(f).iter().filter(|p| p.len() >= 3) {
+        let groupings = two_group_angles(plane, x);
+        if groupings.is_empty() {
+            continue;
+        }
+        let mut next = vec![];
+        for y in &out {
+            next.push(y.clone());
+            for g in &groupings {
+                let mut z = y.clone();
+                for (&(i, _, _), &a) in plane.iter().zip(g) {
+                    z[i] = a;
+                }
+                next.push(z);
+            }
+        }
+        out = next;
+    }
+    out.remove(0); // x itself
+    out
 }
 
 /// The angle (rad, in `[0, π/2]`) between a ball at `psi` and the line through the axis at

@@ -34,7 +34,7 @@ pub struct FamilyOptions {
     /// through the abscissae of the extreme member and its two neighbours, corrected onto the
     /// family), so that a coarse step still finds the extremes of the abscissa along the family
     /// to well within the step; for a family of dimension `k ≥ 2`, a compass search from the
-    /// least and the most stable member drawn (steps along the sampling's coefficients halved to
+    /// least and the most stable member drawn or seeded (steps along the sampling's coefficients halved to
     /// 1/512 of the samples' spacing, at most `max(samples / 2, 4k)` corrections), the members it
     /// reaches added (default `false`).
     pub refine_extremes: bool,
@@ -46,6 +46,16 @@ pub struct FamilyOptions {
     /// is a fundamental domain (every member of the family is a relabelling of a member on
     /// it, the same physical state, with the same stability), reported `closed`. Default none.
     pub relabellings: Vec<Vec<usize>>,
+    /// For a family of dimension `k ≥ 2`: states at (or near) special members, each corrected
+    /// onto the family by the samples' corrector (minimum-norm Newton, from the member given's
+    /// monodromy matrix where periodic) and, where it lands on the family (its dimension `k`),
+    /// added to the members after the draws: before the verdict and the extremes, and a start
+    /// of the compass search ([`FamilyOptions::refine_extremes`]). Why: the extremes of the
+    /// abscissa can sit at the family's corners, members where balls coincide, which a uniform
+    /// sample rarely comes near (the rotors give their bunched members,
+    /// `crate::rotor_stability`'s groupings of each plane's balls in two). Unused for `k ≤ 1`
+    /// (the continuation passes within half a step of every member). Default none.
+    pub seeds: Vec<Vec<f64>>,
 }
 
 impl Default for FamilyOptions {
@@ -59,6 +69,7 @@ impl Default for FamilyOptions {
             newton: NewtonOptions::default(),
             refine_extremes: false,
             relabellings: vec![],
+            seeds: vec![],
         }
     }
 }
@@ -112,6 +123,15 @@ pub struct Family {
     pub closed: bool,
     /// For a continuation: its length in scaled arclength (all round when `closed`).
     pub length: f64,
+    /// For a random sample (`k ≥ 2`): the points drawn (`samples − 1`; those Newton corrects
+    /// onto the family are members, the others are dropped); 0 otherwise.
+    pub drawn: usize,
+    /// For a random sample: the members added from [`FamilyOptions::seeds`] (the seeds that
+    /// landed on the family); 0 otherwise.
+    pub seeded: usize,
+    /// The members the search for the extremes added ([`FamilyOptions::refine_extremes`]: the
+    /// compass search's, or the continuation's parabolic steps').
+    pub searched: usize,
 }
 
 /// A range of the family's parameter where its members are stable.
@@ -240,7 +260,7 @@ pub fn family<F: VectorField + ?Sized>(f: &F, member: &StationaryState, opts: &F
     let k = member.family_dimension;
     let first = FamilyMember { parameter: vec![], stability: stability(f, member)?, state: member.clone() };
     if k == 0 {
-        return Ok(Family { dimension: 0, sampling: Sampling::Isolated, members: vec![first], closed: false, length: 0.0 });
+        return Ok(Family { dimension: 0, sampling: Sampling::Isolated, members: vec![first], closed: false, length: 0.0, drawn: 0, seeded: 0, searched: 0 });
     }
     if !(opts.step > 0.0 && opts.step.is_finite()) {
         return Err(AnalysisError::InvalidInput { field: "step".into(), reason: "must be positive and finite".into() });
@@ -266,18 +286,47 @@ pub fn family<F: VectorField + ?Sized>(f: &F, member: &StationaryState, opts: &F
         let point =
             |a: &[f64]| -> Vec<f64> { (0..n).map(|i| member.x[i] + std::f64::consts::PI * s[i] * (0..k).map(|j| a[j] * basis[j][i]).sum::<f64>()).collect() };
         let mut members = vec![FamilyMember { parameter: vec![0.0; k], ..first }];
-        for _ in 1..opts.samples.max(1) {
+        // each member's offset from the point its parameter names (`x − point(a)`): zero for
+        // the members drawn (a member is `point(a)` corrected), the seed's normal part for a
+        // seed (its parameter the projection of `x − x_0` on the tangent basis), so that the
+        // compass search steps from `point(a + δ d) + offset` and a drawn member's trials are
+        // `point(a + δ d)` bit for bit
+        let mut offsets: Vec<Option<Vec<f64>>> = vec![None];
+        let drawn = opts.samples.max(1) - 1;
+        for _ in 0..drawn {
             let a: Vec<f64> = (0..k).map(|_| uniform()).collect();
             if let Some(mut m) = correct(&point(&a), member) {
                 m.parameter = a;
                 members.push(m);
+                offsets.push(None);
             }
         }
+        let mut seeded = 0;
+        for x in opts.seeds.iter().filter(|x| x.len() == n) {
+            let Some(mut m) = correct(x, member) else { continue };
+            // the coefficients of `x − x_0` along the (orthonormal) tangent basis, over π
+            let d: Vec<f64> = (0..n).map(|i| (m.state.x[i] - member.x[i]) / s[i]).collect();
+            let a: Vec<f64> = (0..k).map(|j| (0..n).map(|i| d[i] * basis[j][i]).sum::<f64>() / std::f64::consts::PI).collect();
+            let p = point(&a);
+            offsets.push(Some((0..n).map(|i| m.state.x[i] - p[i]).collect()));
+            m.parameter = a;
+            members.push(m);
+            seeded += 1;
+        }
+        let mut searched = 0;
         if opts.refine_extremes {
-            let extra = compass_extremes(&members, k, opts.samples, |a, near| correct(&point(a), near));
+            let trial = |a: &[f64], offset: Option<&[f64]>, near: &StationaryState| {
+                let mut x = point(a);
+                if let Some(o) = offset {
+                    x.iter_mut().zip(o).for_each(|(x, o)| *x += o);
+                }
+                correct(&x, near)
+            };
+            let extra = compass_extremes(&members, &offsets, k, opts.samples, trial);
+            searched = extra.len();
             members.extend(extra);
         }
-        return Ok(Family { dimension: k, sampling: Sampling::Random { seed: opts.seed }, members, closed: false, length: 0.0 });
+        return Ok(Family { dimension: k, sampling: Sampling::Random { seed: opts.seed }, members, closed: false, length: 0.0, drawn, seeded, searched });
     }
     // k = 1: continuation both ways from the member given, until the family closes (returns
     // to the member given) or ends
@@ -351,7 +400,7 @@ pub fn family<F: VectorField + ?Sized>(f: &F, member: &StationaryState, opts: &F
         // the whole family, s ∈ [0, length)
         let mut members = vec![FamilyMember { parameter: vec![0.0], ..first }];
         members.extend(forward);
-        Family { dimension: 1, sampling: Sampling::Continuation { step: h }, members, closed: true, length: arc }
+        Family { dimension: 1, sampling: Sampling::Continuation { step: h }, members, closed: true, length: arc, drawn: 0, seeded: 0, searched: 0 }
     } else {
         // open: the other direction too, members ordered by s
         let (mut backward, _, back_arc) = walk(-1.0, budget.saturating_sub(forward.len()))?;
@@ -359,7 +408,7 @@ pub fn family<F: VectorField + ?Sized>(f: &F, member: &StationaryState, opts: &F
         let mut members = backward;
         members.push(FamilyMember { parameter: vec![0.0], ..first });
         members.extend(forward);
-        Family { dimension: 1, sampling: Sampling::Continuation { step: h }, members, closed: false, length: arc + back_arc }
+        Family { dimension: 1, sampling: Sampling::Continuation { step: h }, members, closed: false, length: arc + back_arc, drawn: 0, seeded: 0, searched: 0 }
     };
     if opts.refine_extremes {
         // across the ends of an arc closed at a relabelling the neighbours are not the same
@@ -378,7 +427,9 @@ pub fn family<F: VectorField + ?Sized>(f: &F, member: &StationaryState, opts: &F
 /// samples): steps `±δ` along each coefficient, a step taken where it moves the abscissa the
 /// wanted way, `δ` halved where none does, from `δ_0 = ½ (2^k / samples)^{1/k}` (half the
 /// samples' mean spacing in `[−1, 1]^k`) down to `δ_0 / 512`, at most `max(samples / 2, 4k)`
-/// corrections per extreme. The member reached is added (where it moved): every corrected point
+/// corrections per extreme. A seed ([`FamilyOptions::seeds`]) can be the start: its parameter is
+/// its projection `a_s` on the tangent basis, and its trials `point(a_s + Σ δ d) + (x_s −
+/// point(a_s))` (the seed moved along the basis). The member reached is added (where it moved): every corrected point
 /// is a member, so the extremes can only grow towards the true ones. Why: the extremes of
 /// the abscissa can sit at special members a uniform sample rarely comes near (review 22: four
 /// balls, `m = 0.04`, paper 000's base case: the member with three balls bunched grows at
@@ -386,9 +437,10 @@ pub fn family<F: VectorField + ?Sized>(f: &F, member: &StationaryState, opts: &F
 /// 2.138 where that member's own range begins at 2.1438).
 fn compass_extremes(
     members: &[FamilyMember],
+    offsets: &[Option<Vec<f64>>],
     k: usize,
     samples: usize,
-    correct: impl Fn(&[f64], &StationaryState) -> Option<FamilyMember>,
+    correct: impl Fn(&[f64], Option<&[f64]>, &StationaryState) -> Option<FamilyMember>,
 ) -> Vec<FamilyMember> {
     let budget = (samples / 2).max(4 * k);
     let delta0 = 0.5 * (2f64.powi(k as i32) / samples.max(1) as f64).powf(1.0 / k as f64);
@@ -422,7 +474,9 @@ fn compass_extremes(
     let mut extra = vec![];
     for sign in [1.0, -1.0] {
         let by = |m: &&FamilyMember| sign * m.stability.abscissa;
-        let Some(start) = members.iter().filter(|m| m.parameter.len() == k).max_by(|a, b| by(a).total_cmp(&by(b))) else { continue };
+        let Some((start, offset)) = members.iter().zip(offsets).filter(|(m, _)| m.parameter.len() == k).max_by(|a, b| by(&a.0).total_cmp(&by(&b.0))) else {
+            continue;
+        };
         let mut best = start.clone();
         let (mut delta, mut used, mut moved, mut last) = (delta0, 0, false, 0);
         while delta >= delta0 / 512.0 && used < budget {
@@ -436,7 +490,7 @@ fn compass_extremes(
                 used += 1;
                 let i = (last + t) % dirs.len();
                 let a: Vec<f64> = best.parameter.iter().zip(&dirs[i]).map(|(a, d)| a + delta * d).collect();
-                if let Some(mut m) = correct(&a, &best.state) {
+                if let Some(mut m) = correct(&a, offset.as_deref(), &best.state) {
                     if sign * m.stability.abscissa > sign * best.stability.abscissa {
                         m.parameter = a;
                         step = Some((m, i));
@@ -530,6 +584,7 @@ fn refine_extremes<F: VectorField + ?Sized>(f: &F, fam: &mut Family, sc: &[f64],
         }
         extra.push(FamilyMember { parameter: vec![s], state, stability });
     }
+    fam.searched = extra.len();
     fam.members.extend(extra);
     fam.members.sort_by(|a, b| a.parameter[0].total_cmp(&b.parameter[0]));
 }

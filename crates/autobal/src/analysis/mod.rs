@@ -48,7 +48,8 @@
 //!   `I − Φ(T)`, by SVD) with a minimum-norm Newton corrector at a fixed step in scaled
 //!   arclength, both ways until it returns to its start (modulo `2π` in the angles named in
 //!   [`FamilyOptions::angles`]) or ends; for `k ≥ 2` a seeded random sample over the tangent
-//!   space corrected onto the family ([`Sampling`]).
+//!   space corrected onto the family ([`Sampling`]), with the special members the caller names
+//!   ([`FamilyOptions::seeds`]: the rotors' bunched members) corrected and added.
 //! - [`stability()`]: the eigenvalues `λ` of `J` (equilibrium) or the Floquet multipliers `μ`,
 //!   eigenvalues of the monodromy matrix `Φ(T)` (periodic orbit), with Floquet exponents
 //!   `ln μ / T`; the `k` structural eigenvalues nearest 0 (multipliers nearest 1) are reported
