@@ -260,6 +260,17 @@ impl Csv {
             copy_short(buf, s.as_bytes());
             return Some(s.len());
         }
+        // not verbatim with 1 ≤ |v| < 1e15: an integer. One that does not end in 0 (a run's
+        // grid times and speeds) is its digits: they are the shortest (dropping one moves it by
+        // at least 1, over 8 ulps there) and positional is shorter than the exponent form (`n`
+        // against `n + 2` or more); written without the general layout's second conversion
+        let a = v.abs();
+        if (1.0..1e15).contains(&a) {
+            let i = a as u64;
+            if !i.is_multiple_of(10) {
+                return Some(write_integer(buf, v < 0.0, i));
+            }
+        }
         // 1e-5 ≤ |v| < 1e-3, zmij's `0.000F` or `0.0000F`: the exponent form is shorter
         // (`n + 3 + [n > 1]` against `n + 5` or more) and is a byte move
         let (neg, m) = (v < 0.0, s.as_bytes());
@@ -319,6 +330,27 @@ impl Csv {
         buf[..t.len()].copy_from_slice(t);
         t.len()
     }
+}
+
+/// The decimal digits of `i` (below 1e15: at most 15), after a `-` when `neg`, at the start of
+/// `buf`: their length.
+#[inline]
+fn write_integer(buf: &mut [u8; 40], neg: bool, mut i: u64) -> usize {
+    // backwards into the end of a scratch of 16, then moved to the front by fixed-size moves
+    let mut d = [0u8; 16];
+    let mut k = d.len();
+    loop {
+        k -= 1;
+        d[k] = b'0' + (i % 10) as u8;
+        i /= 10;
+        if i == 0 {
+            break;
+        }
+    }
+    let at = usize::from(neg);
+    buf[0] = b'-';
+    copy_short_at(buf, at, &d[k..]);
+    at + d.len() - k
 }
 
 /// `dst[..src.len()] = src` for `src` of at most 32 bytes as two overlapping fixed-size moves
@@ -489,6 +521,22 @@ mod tests {
         for i in -2000i64..2000 {
             check_csv(i as f64);
             check_csv(i as f64 * 1e15);
+        }
+        // integers up to 1e15 and beyond, every length: the integer shortcut is Rust's `{}`
+        // text (exact for an integer-valued f64) where it is taken, and the general layout's
+        let mut x = 0x9E37_79B9_7F4A_7C15u64;
+        for k in 0..20_000u64 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let i = (x >> (k % 64)) as i64 * if k % 3 == 0 { -1 } else { 1 };
+            for i in [i, i.saturating_add(1), i / 10 * 10, 999_999_999_999_999, 1_000_000_000_000_001, 999_999_999_999_990] {
+                let v = i as f64;
+                check_csv(v);
+                if v.abs() < 1e15 && v as i64 % 10 != 0 {
+                    assert_eq!(Csv(v).to_string(), format!("{}", v as i64), "{v:e}");
+                }
+            }
         }
         for bits in (1u64..2000).chain((0..64).map(|s| 1u64 << s)) {
             check_csv(f64::from_bits(bits)); // subnormals

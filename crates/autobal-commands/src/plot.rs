@@ -804,7 +804,11 @@ impl Plot {
                     // limit) that the data do not have, and which thinning would move; not an
                     // axis-aligned one (a map's cell edges), whose right-angle miters are the
                     // square corners of its cells
-                    let join = if dense && !axis_aligned(&written()) { r#" stroke-linejoin="round""# } else { "" };
+                    // (`axis_aligned(&written())` without building the written points: the same
+                    // rounding, stopped at the first turn)
+                    let px = |v: f64| round_i64(v * 100.0) as f64 / 100.0;
+                    let written_axis_aligned = || kept.windows(2).all(|w| px(w[0].0) == px(w[1].0) || px(w[0].1) == px(w[1].1));
+                    let join = if dense && !written_axis_aligned() { r#" stroke-linejoin="round""# } else { "" };
                     let _ = writeln!(s, r#"" stroke="{}" stroke-width="{}"{join}{dash}/>"#, se.color, se.width.unwrap_or(2.0));
                 } else if let Some(&(x, y)) = seg.first() {
                     *clip |= !disk_inside((x, y), 2.0, area);
@@ -1340,13 +1344,15 @@ pub fn line_columns<I: Iterator<Item = (f64, f64)> + Clone>(points: I) -> Vec<(f
     // the current run: its column, and (position, point) of its first, largest, smallest, last
     type Run = (i64, [(usize, (f64, f64)); 4]);
     let flush = |run: &mut Option<Run>, out: &mut Vec<(f64, f64)>| {
-        if let Some((_, mut four)) = run.take() {
-            four.sort_by_key(|e| e.0);
-            let mut last = usize::MAX;
-            for (k, p) in four {
-                if k != last {
+        if let Some((_, [first, hi, lo, last])) = run.take() {
+            // in the order of their positions, each once: the run's first is its earliest and
+            // its last its latest, so only the largest and smallest are ordered
+            let (a, b) = if hi.0 <= lo.0 { (hi, lo) } else { (lo, hi) };
+            let mut prev = usize::MAX;
+            for (k, p) in [first, a, b, last] {
+                if k != prev {
                     out.push(p);
-                    last = k;
+                    prev = k;
                 }
             }
         }
@@ -2008,6 +2014,25 @@ mod tests {
             assert_eq!(thin.ranges(), whole.ranges(), "line {i}");
             assert!(thin.to_svg() == whole.to_svg(), "line {i}: the figures differ");
         }
+    }
+
+    /// A dense curve (more than `THIN_ABOVE` column points) is stroked with round joins unless
+    /// its written points (two decimals) turn only at right angles: a 200-step staircase (400
+    /// points, each step in its own pixel column) keeps SVG's miter joins, a 400-point sine
+    /// and the same staircase with one step's riser tilted by 0.1 px get round ones. (The
+    /// written points are checked as written: a tilt below the 0.005 px rounding would not
+    /// count.)
+    #[test]
+    fn dense_curves_get_round_joins_unless_axis_aligned() {
+        let figure = |points: Vec<(f64, f64)>| Plot { series: vec![Series::new("a", points, "#000")], ..Default::default() }.to_svg();
+        let stairs: Vec<(f64, f64)> = (0..200).flat_map(|k| [(k as f64, k as f64), (k as f64 + 1.0, k as f64)]).collect();
+        let svg = figure(stairs.clone());
+        assert!(svg.contains("<polyline") && !svg.contains("linejoin"), "the staircase");
+        let mut tilted = stairs;
+        tilted[201].0 += 0.1 * 200.0 / PW;
+        assert!(figure(tilted).contains(r#"stroke-linejoin="round""#), "the tilted staircase");
+        let sine: Vec<(f64, f64)> = (0..400).map(|k| (k as f64, (k as f64 / 20.0).sin())).collect();
+        assert!(figure(sine).contains(r#"stroke-linejoin="round""#), "the sine");
     }
 
     /// Every vertex `chord_thin` drops lies within the tolerance of the chord (the segment)
