@@ -20,7 +20,9 @@ fn json(args: &[&str]) -> serde_json::Value {
 /// search's resolution (its last step, `δ_0 / 512` in the sampling's coefficients, ~4e-4 rad in
 /// the balls' angles, on a maximum that is a cone where the bunched balls' eigenvalues meet;
 /// measured 0.4 % below). The 200 members drawn alone reach −1.2e-2 ... their largest is
-/// negative (every member drawn stable), so this fails without the search.
+/// negative (every member drawn stable), so this fails without the search and the bunched
+/// seeds both (since session 24 the seeds alone find that member: tests/bunched_members_24.rs
+/// in autobal fails without them).
 #[test]
 fn the_general_route_finds_the_bunched_member_the_closed_form_names() {
     let set = ["--set", "dimensionless.n=4", "--set", "dimensionless.m=0.04", "--omega-max", "2.12", "--samples", "10", "--format", "json"];
