@@ -119,7 +119,21 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
         (true, true) => 60,
         (true, false) => 20,
     };
-    let (st, _) = lr::stability(cfg, omega_max, samples)?;
+    // under the report's control, as `autobal stability` runs it (`general::scan`,
+    // `stability::kept_scan`): stopped (Ctrl-C, the budget) during the scan, the speeds
+    // analysed kept, no verdict at the operating speed, the section incomplete; stopped
+    // during that verdict, the speeds it solved kept (its scan ran without the control: Ctrl-C
+    // did not stop it)
+    let g = crate::general::GeneralRotor::linear(model.clone());
+    let (out, asked) = crate::general::scan(&g, omega_max, samples, &ctx.control)?;
+    let (st, op, stopped) = crate::stability::kept_scan(out, asked, &ctx.control, |r, c| {
+        cfg.operating_speed.map(|w| crate::general::operating_at(&g, w, "linear_rotor.operating_speed", r, c)).transpose()
+    })?;
+    if stopped.is_some() {
+        s.complete = false;
+        s.p(super::html::esc(crate::stability::incomplete_line(&stopped).trim_end()));
+    }
+    let analysed = crate::general::analysed_span(&st, omega_max);
     // each end as `stability` words it: a located boundary, else the axis' end, a switch of
     // state or a grid speed next to one without a state ([`crate::general::end_text`])
     let ranges: Vec<String> = st
@@ -127,7 +141,7 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
         .iter()
         .map(|r| format!("{} to {}", crate::general::end_text(&st, r, false, speed), crate::general::end_text(&st, r, true, speed)))
         .collect();
-    let verdict = if ranges.is_empty() { format!("nowhere in (0, {}]", speed(omega_max)) } else { ranges.join("; ") };
+    let verdict = if ranges.is_empty() { format!("nowhere in (0, {}]", speed(analysed)) } else { ranges.join("; ") };
     // the verdicts are the grid's: a range's located ends are exact, but an unstable gap
     // between two stable grid speeds narrower than the step is not seen (the quick grid's
     // 60 speeds stepped over 386-411 rad/s on the shaft example with me = 5e-3: review 21)
@@ -160,25 +174,20 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
     }
     let what = if partial.is_empty() { "the balanced state" } else { "the stationary state (balanced, else partially balanced)" };
     // the verdict at `linear_rotor.operating_speed` first, as `autobal stability` prints it
-    if let Some(w) = cfg.operating_speed {
-        let g = crate::general::GeneralRotor::linear(model.clone());
-        let op = crate::general::operating_at(&g, w, "linear_rotor.operating_speed", &st, &ctx.control)?;
-        // stopped (Ctrl-C, the budget): the speeds solved kept, the section incomplete, and
-        // why said before the verdict's line (as `stability`'s INCOMPLETE line; it ended the
-        // report with an error, "nothing is printed")
-        if let Some(why) = op.stopped_message() {
-            s.complete = false;
-            s.p(super::html::esc(crate::stability::incomplete_line(&Some(why)).trim_end()));
-        }
-        let line = crate::general::operating_line(&g, &st, &op);
+    // (none where the scan was stopped; stopped itself, the INCOMPLETE line above says why)
+    if let Some(op) = &op {
+        let line = crate::general::operating_line(&g, &st, op);
         s.p(format!("<b>{}</b>", super::html::esc(line.trim_end())));
         // the caveat on the verdict's line, before any lines of other states
         let line = line.trim_end();
         let (first, rest) = line.split_once('\n').map_or((line, String::new()), |(a, b)| (a, format!("\n{b}")));
         s.summary.push(format!("{first}{caveat}{rest}"));
     }
-    s.summary.push(format!("Linear rotor: {what} is stable {verdict}{caveat}."));
-    s.figure("linear_rotor_stability_margin", lr::margin_plot(&st, omega_max), "The balanced state's stability margin over speed (largest Re λ, or the largest Floquet exponent of a periodic orbit), the exactly stable ranges shaded: <code>autobal stability --svg</code>'s figure.");
+    let incomplete = if st.cut_short() { format!(" (INCOMPLETE: the scan stopped at {})", speed(analysed)) } else { String::new() };
+    s.summary.push(format!("Linear rotor: {what} is stable {verdict}{caveat}{incomplete}."));
+    let margin = lr::margin_plot(&st, omega_max);
+    let margin = if st.cut_short() { crate::stability::mark_stopped(margin, &stopped, st.points.last().map(|q| q.omega)) } else { margin };
+    s.figure("linear_rotor_stability_margin", margin, "The balanced state's stability margin over speed (largest Re λ, or the largest Floquet exponent of a periodic orbit), the exactly stable ranges shaded: <code>autobal stability --svg</code>'s figure.");
 
     // the structure's Campbell diagram without the balls
     s.h3("linear_rotor_campbell", "Campbell diagram");
@@ -312,10 +321,9 @@ mod tests {
         let root = crate::config::parse_text(&text, "shaft.toml").unwrap();
         let control = Control::new();
         let c = control.clone();
-        // the verdict's 9 speeds are the first reports of the section (its scan runs without
-        // the control)
+        // the verdict's 9 speeds are counted after the quick scan's 60 (`kept_scan`)
         let control = control.with_progress(move |p| {
-            if p.total == 9 && p.done >= 3 {
+            if p.total == 69 && p.done >= 63 {
                 c.cancel();
             }
         });
@@ -326,5 +334,39 @@ mod tests {
         let why = "INCOMPLETE (interrupted: the scan is complete; the verdict at the operating speed stopped after 3 of 9 speeds solved there (kept: JSON operating.points): no verdict)";
         assert!(html.contains(why), "{html}");
         assert!(html.contains("no verdict: stopped after 3 of 9 speeds solved there"), "{html}");
+    }
+
+    /// The same section stopped during its stability scan (after 5 of the quick grid's 60
+    /// speeds) keeps the speeds analysed and says so, gives no verdict at the operating speed,
+    /// and its figure's title says INCOMPLETE (the scan ran without the report's control:
+    /// Ctrl-C did not stop it).
+    #[test]
+    fn a_stopped_scan_keeps_the_speeds_analysed() {
+        let text = include_str!("../../../../examples/linear_rotor_shaft.toml").replacen(
+            "[linear_rotor]\n",
+            "[linear_rotor]\noperating_speed = \"450-500 rad/s\"\n",
+            1,
+        );
+        let root = crate::config::parse_text(&text, "shaft.toml").unwrap();
+        let control = Control::new();
+        let c = control.clone();
+        let control = control.with_progress(move |p| {
+            if p.total == 60 && p.done >= 5 {
+                c.cancel();
+            }
+        });
+        let ctx = super::super::context(&ConfigSource::tables(root, "shaft.toml"), true, super::super::Kind::User, &control).unwrap();
+        let s = super::build(&ctx).unwrap().unwrap();
+        assert!(!s.complete);
+        let html: String = s.blocks.iter().filter_map(|b| if let super::super::Block::Html(h) = b { Some(h.as_str()) } else { None }).collect();
+        assert!(html.contains("INCOMPLETE (interrupted: 5 of 60 speeds analysed"), "{html}");
+        assert!(!html.contains("operating speed 450"), "{html}");
+        assert!(s.summary.iter().any(|l| l.contains("INCOMPLETE: the scan stopped at")), "{:?}", s.summary);
+        let fig = s
+            .blocks
+            .iter()
+            .find_map(|b| if let super::super::Block::Figure(f) = b { (f.id == "linear_rotor_stability_margin").then_some(f) } else { None })
+            .unwrap();
+        assert!(fig.plot.title.starts_with("INCOMPLETE: "), "{}", fig.plot.title);
     }
 }
