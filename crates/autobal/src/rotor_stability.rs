@@ -1963,13 +1963,22 @@ fn ball_planes(f: &Field) -> Vec<Vec<(usize, f64, f64)>> {
     }
 }
 
+/// The most groupings [`two_group_angles`] keeps for one plane (balls that all differ: a subset).
+const MAX_GROUPINGS: usize = 32;
+
+/// The most codes (ways of splitting the kinds of ball) [`two_group_angles`] tries for one plane.
+const MAX_GROUPING_CODES: usize = 4096;
+
 /// The ways of putting one plane's balls at two angles, `ψ_j = a` for the balls of the first
 /// group and `b` for the others, that keep the plane's resultant `C = Σ m_j e^{iψ_j}` of the
 /// angles in `x` (so the rotor's state, which depends on the balls through their resultants
 /// alone, stays that of `x`): with group masses `M_1`, `M_2` the triangle
 /// `M_1 e^{ia} + M_2 e^{ib} = C`, `a = arg C ± acos((M_1² + |C|² − M_2²)/(2 M_1 |C|))`,
 /// `b = arg(C − M_1 e^{ia})` (the two mirror solutions), which exists where
-/// `|M_1 − M_2| ≤ |C| ≤ M_1 + M_2` and `C ≠ 0`. Balls of equal mass and drag are interchangeable
+/// `|M_1 − M_2| < |C| < M_1 + M_2` (strictly, by `1e-9` of the plane's ball mass: at either
+/// limit every ball is on one line, where the family's dimension changes) and `C ≠ 0`; at most
+/// [`MAX_GROUPINGS`] of the first [`MAX_GROUPING_CODES`] splits (balls that all differ have
+/// `2^(n−1)` of them). Balls of equal mass and drag are interchangeable
 /// (a relabelling is the same physical state, with the same stability): one grouping per choice
 /// of how many of each kind go in the first group, a grouping and its complement once, and of a
 /// grouping that its complement's relabelling is (equal halves) the one mirror. Each is the
@@ -1990,8 +1999,14 @@ fn two_group_angles(plane: &[(usize, f64, f64)], x: &[f64]) -> Vec<Vec<f64>> {
     let mut out = vec![];
     // how many of each kind in the first group, counted as a mixed-radix number
     let sizes: Vec<usize> = kinds.iter().map(|k| k.2.len()).collect();
-    let combos: usize = sizes.iter().map(|s| s + 1).product();
+    // at most MAX_GROUPING_CODES codes tried and MAX_GROUPINGS groupings kept: balls that all
+    // differ have 2^(n−1) groupings (review 24b: 70 for eight masses, 1006 for twelve; the
+    // product overflows from 64 kinds), so the seeds of many different balls are a subset
+    let combos: usize = sizes.iter().try_fold(1usize, |p, s| p.checked_mul(s + 1)).unwrap_or(usize::MAX).min(MAX_GROUPING_CODES);
     for code in 1..combos.saturating_sub(1) {
+        if out.len() >= MAX_GROUPINGS {
+            break;
+        }
         let mut rest = code;
         let take: Vec<usize> = sizes
             .iter()
@@ -2008,7 +2023,12 @@ fn two_group_angles(plane: &[(usize, f64, f64)], x: &[f64]) -> Vec<Vec<f64>> {
         }
         let m1: f64 = kinds.iter().zip(&take).map(|(k, &t)| k.0 * t as f64).sum();
         let m2 = total - m1;
-        if r == 0.0 || !(r <= m1 + m2 && r >= (m1 - m2).abs()) {
+        // strictly inside the triangle's limits: at |M1 − M2| = |C| or M1 + M2 = |C| every ball
+        // is on one line and the family's dimension changes there (review 24b: ten balls of
+        // 0.030-0.041 kg on examples/planar.toml, 13 splits exactly at the limit, each a
+        // "member" with one zero eigenvalue more than the family's)
+        let margin = 1e-9 * total;
+        if r == 0.0 || !(r < m1 + m2 - margin && r > (m1 - m2).abs() + margin) {
             continue;
         }
         let cos1 = ((m1 * m1 + r * r - m2 * m2) / (2.0 * m1 * r)).clamp(-1.0, 1.0);
@@ -2036,7 +2056,7 @@ fn two_group_angles(plane: &[(usize, f64, f64)], x: &[f64]) -> Vec<Vec<f64>> {
 /// the states with the balls of each plane of three or more in two coinciding groups, the
 /// plane's resultant `C = Σ m_j e^{iψ_j}` kept (`M_1 e^{ia} + M_2 e^{ib} = C`: a triangle, two
 /// mirror solutions; one grouping per choice of how many balls of each kind, mass and drag, go
-/// in the first group, a grouping and its complement once). Those are the family's corners,
+/// in the first group, a grouping and its complement once; at most `MAX_GROUPINGS` over the planes). Those are the family's corners,
 /// finitely many, where its extremes can sit: three or more groups leave a family of dimension
 /// `groups − 2 ≥ 1`, one group is the capacity's limit. The other coordinates are those of `x`
 /// (the rotor's state depends on the balls through the resultants alone); every combination
@@ -2053,7 +2073,8 @@ pub fn bunched_members(f: &Field, x: &[f64]) -> Vec<Vec<f64>> {
         let mut next = vec![];
         for y in &out {
             next.push(y.clone());
-            for g in &groupings {
+            // (at most MAX_GROUPINGS seeds over the planes together)
+            for g in groupings.iter().take(MAX_GROUPINGS.saturating_sub(next.len() - 1)) {
                 let mut z = y.clone();
                 for (&(i, _, _), &a) in plane.iter().zip(g) {
                     z[i] = a;

@@ -427,9 +427,8 @@ pub fn family<F: VectorField + ?Sized>(f: &F, member: &StationaryState, opts: &F
 /// samples): steps `±δ` along each coefficient, a step taken where it moves the abscissa the
 /// wanted way, `δ` halved where none does, from `δ_0 = ½ (2^k / samples)^{1/k}` (half the
 /// samples' mean spacing in `[−1, 1]^k`) down to `δ_0 / 512`, at most `max(samples / 2, 4k)`
-/// corrections per extreme. A seed ([`FamilyOptions::seeds`]) can be the start: its parameter is
-/// its projection `a_s` on the tangent basis, and its trials `point(a_s + Σ δ d) + (x_s −
-/// point(a_s))` (the seed moved along the basis). The member reached is added (where it moved): every corrected point
+/// corrections per extreme; from the drawn members only, never from a seed
+/// ([`FamilyOptions::seeds`]: a corner, where states Newton accepts beside it are not members). The member reached is added (where it moved): every corrected point
 /// is a member, so the extremes can only grow towards the true ones. Why: the extremes of
 /// the abscissa can sit at special members a uniform sample rarely comes near (review 22: four
 /// balls, `m = 0.04`, paper 000's base case: the member with three balls bunched grows at
@@ -474,7 +473,13 @@ fn compass_extremes(
     let mut extra = vec![];
     for sign in [1.0, -1.0] {
         let by = |m: &&FamilyMember| sign * m.stability.abscissa;
-        let Some((start, offset)) = members.iter().zip(offsets).filter(|(m, _)| m.parameter.len() == k).max_by(|a, b| by(&a.0).total_cmp(&by(&b.0))) else {
+        // from the drawn members only: stepped off a seeded corner (balls coinciding, where
+        // the family's dimension changes) Newton accepts states ~1e-7 off the family (the
+        // balance's 1e-6), whose abscissa is not a member's (review 24b: +7.5e-7 beside the
+        // corner's −3.9e-8, so the every-member range began 7e-7 late)
+        let Some((start, offset)) =
+            members.iter().zip(offsets).filter(|(m, o)| m.parameter.len() == k && o.is_none()).max_by(|a, b| by(&a.0).total_cmp(&by(&b.0)))
+        else {
             continue;
         };
         let mut best = start.clone();
