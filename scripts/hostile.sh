@@ -359,6 +359,11 @@ echo "|---|---|---|---|---|"
 i=0
 for c in "${cases[@]}"; do
     i=$((i + 1))
+    # one draw per Ctrl-C row before the HOSTILE_ONLY skip, so that a subset repeats the whole
+    # table's times (review 24c). ($RANDOM drawn in this shell: expanded inside a command
+    # substitution it came from a subshell, which bash reseeds, so HOSTILE_SEED did not make
+    # the times repeat)
+    case $c in INT*:*) r=$RANDOM ;; esac
     # HOSTILE_ONLY="3 71": run only these rows (numbers as in the table)
     if [ -n "${HOSTILE_ONLY:-}" ] && ! printf ' %s ' "$HOSTILE_ONLY" | grep -q " $i "; then continue; fi
     limit=$LIMIT_S
@@ -370,9 +375,6 @@ for c in "${cases[@]}"; do
         span=2.9; lo=0.1
         case $c in INTFAST:*) span=0.29; lo=0.01 ;; esac
         c=${c#*:}
-        # ($RANDOM drawn here: expanded inside the command substitution it came from a subshell,
-        # which bash reseeds, so HOSTILE_SEED did not make the times repeat)
-        r=$RANDOM
         limit=$(awk "BEGIN { printf \"%.2f\", $lo + $span * $r / 32767 }")
         interrupt=$limit
         run_dir=int$i

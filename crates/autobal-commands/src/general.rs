@@ -573,7 +573,7 @@ impl Operating {
     /// where the verdict is complete. "interrupted: the scan is complete; the verdict at the
     /// operating speed stopped after 3 of 9 speeds solved there (kept: JSON
     /// operating.points): no verdict", or "NOT STABLE" where a speed solved is unstable; all
-    /// speeds solved, the stop came while their family of balanced states was followed.
+    /// speeds solved, the stop came after them (locating a boundary between them, or following their family).
     pub fn stopped_message(&self) -> Option<String> {
         let why = self.stopped?;
         let (k, n) = (self.points.len(), self.planned());
@@ -581,7 +581,7 @@ impl Operating {
             let decided = if self.verdict().is_some() { "NOT STABLE, a speed solved is unstable" } else { "no verdict" };
             format!("{why}: the scan is complete; the verdict at the operating speed stopped after {k} of {n} speeds solved there (kept: JSON operating.points): {decided}")
         } else {
-            format!("{why}: the scan is complete, and the verdict at the operating speed at its {n} speeds; the stop came while their family of balanced states was followed")
+            format!("{why}: the scan is complete, and the verdict at the operating speed at its {n} speeds; the stop came after them (while a stability boundary between them was located or their family of balanced states followed)")
         })
     }
 }
