@@ -468,10 +468,12 @@ pub struct Summary {
     /// for a centred race) and both below 1 (a residual of 1 or more: the race centre no
     /// nearer the axis than without the balls), else not balanced; else balanced (with an
     /// eccentric race: the semi-balanced state, E on the axis) with `residual_unbalance` at most
-    /// [`stationary::balance_allowance`] (5 % of the residual's reference or of `s2`, the
-    /// smaller), else not balanced. On supports that differ by direction (no closed form for
-    /// either) the end state alone decides: balanced within the allowance, else partially
-    /// balanced where the balls ended together with the residual below 1, else not balanced.
+    /// [`stationary::balance_allowance`] (5 % of the residual's reference; on supports that
+    /// differ by direction of it or of `s2`, the smaller), else not balanced. On supports that
+    /// differ by direction with an eccentric race and two balls or more (no closed form for
+    /// either question) the end state alone decides: balanced within the allowance, else
+    /// partially balanced where the balls ended together with the residual below 1, else not
+    /// balanced.
     /// Without balls, or at rest (final speed below [`REST_FRACTION`] of `sqrt(k/m0)`), not
     /// balanced.
     pub outcome: crate::spatial::dynamics::RunOutcome,
