@@ -307,12 +307,10 @@ mod tests {
     use crate::command::ConfigSource;
     use autobal::control::Control;
 
-    /// The linear rotor's section stopped (Ctrl-C) during the verdict at its operating speed,
-    /// after 3 of the range's 9 speeds, keeps them and says so before the verdict's line (it
-    /// ended the whole report with an error, "nothing is printed"); the section is incomplete.
-    /// The shaft example over 450-500 rad/s, stable at each speed: no verdict from 3 of them.
-    #[test]
-    fn a_stopped_operating_verdict_keeps_the_section() {
+    /// The quick report's linear section on the shaft example with `operating_speed =
+    /// "450-500 rad/s"`, stopped (as Ctrl-C) at the first progress report `(done, total)` for
+    /// which `stop` says so; and the section's HTML.
+    fn stopped_section(stop: impl Fn(u64, u64) -> bool + Send + Sync + 'static) -> (super::super::Section, String) {
         let text = include_str!("../../../../examples/linear_rotor_shaft.toml").replacen(
             "[linear_rotor]\n",
             "[linear_rotor]\noperating_speed = \"450-500 rad/s\"\n",
@@ -321,16 +319,26 @@ mod tests {
         let root = crate::config::parse_text(&text, "shaft.toml").unwrap();
         let control = Control::new();
         let c = control.clone();
-        // the verdict's 9 speeds are counted after the quick scan's 60 (`kept_scan`)
         let control = control.with_progress(move |p| {
-            if p.total == 69 && p.done >= 63 {
+            if stop(p.done, p.total) {
                 c.cancel();
             }
         });
         let ctx = super::super::context(&ConfigSource::tables(root, "shaft.toml"), true, super::super::Kind::User, &control).unwrap();
         let s = super::build(&ctx).unwrap().unwrap();
-        assert!(!s.complete);
         let html: String = s.blocks.iter().filter_map(|b| if let super::super::Block::Html(h) = b { Some(h.as_str()) } else { None }).collect();
+        (s, html)
+    }
+
+    /// The linear rotor's section stopped (Ctrl-C) during the verdict at its operating speed,
+    /// after 3 of the range's 9 speeds, keeps them and says so before the verdict's line (it
+    /// ended the whole report with an error, "nothing is printed"); the section is incomplete.
+    /// The shaft example over 450-500 rad/s, stable at each speed: no verdict from 3 of them.
+    #[test]
+    fn a_stopped_operating_verdict_keeps_the_section() {
+        // the verdict's 9 speeds are counted after the quick scan's 60 (`kept_scan`)
+        let (s, html) = stopped_section(|done, total| total == 69 && done >= 63);
+        assert!(!s.complete);
         let why = "INCOMPLETE (interrupted: the scan is complete; the verdict at the operating speed stopped after 3 of 9 speeds solved there (kept: JSON operating.points): no verdict)";
         assert!(html.contains(why), "{html}");
         assert!(html.contains("no verdict: stopped after 3 of 9 speeds solved there"), "{html}");
@@ -342,23 +350,8 @@ mod tests {
     /// Ctrl-C did not stop it).
     #[test]
     fn a_stopped_scan_keeps_the_speeds_analysed() {
-        let text = include_str!("../../../../examples/linear_rotor_shaft.toml").replacen(
-            "[linear_rotor]\n",
-            "[linear_rotor]\noperating_speed = \"450-500 rad/s\"\n",
-            1,
-        );
-        let root = crate::config::parse_text(&text, "shaft.toml").unwrap();
-        let control = Control::new();
-        let c = control.clone();
-        let control = control.with_progress(move |p| {
-            if p.total == 60 && p.done >= 5 {
-                c.cancel();
-            }
-        });
-        let ctx = super::super::context(&ConfigSource::tables(root, "shaft.toml"), true, super::super::Kind::User, &control).unwrap();
-        let s = super::build(&ctx).unwrap().unwrap();
+        let (s, html) = stopped_section(|done, total| total == 60 && done >= 5);
         assert!(!s.complete);
-        let html: String = s.blocks.iter().filter_map(|b| if let super::super::Block::Html(h) = b { Some(h.as_str()) } else { None }).collect();
         assert!(html.contains("INCOMPLETE (interrupted: 5 of 60 speeds analysed"), "{html}");
         assert!(!html.contains("operating speed 450"), "{html}");
         assert!(s.summary.iter().any(|l| l.contains("INCOMPLETE: the scan stopped at")), "{:?}", s.summary);
