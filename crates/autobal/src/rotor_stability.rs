@@ -2031,12 +2031,10 @@ fn two_group_angles(plane: &[(usize, f64, f64)], x: &[f64]) -> Vec<Vec<f64>> {
         if r == 0.0 || !(r < m1 + m2 - margin && r > (m1 - m2).abs() + margin) {
             continue;
         }
-        let cos1 = ((m1 * m1 + r * r - m2 * m2) / (2.0 * m1 * r)).clamp(-1.0, 1.0);
         // equal halves: the second mirror is the first with the groups relabelled
         let branches: &[f64] = if take == complement { &[1.0] } else { &[1.0, -1.0] };
         for &branch in branches {
-            let a = cy.atan2(cx) + branch * cos1.acos();
-            let b = (cy - m1 * a.sin()).atan2(cx - m1 * a.cos());
+            let (a, b) = crate::spatial::dynamics::field::triangle_angles(m1, [cx, cy], r, m2, branch);
             let mut angles = vec![b; plane.len()];
             for (k, &t) in kinds.iter().zip(&take) {
                 for &j in &k.2[..t] {

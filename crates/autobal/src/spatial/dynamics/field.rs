@@ -605,21 +605,29 @@ impl VectorField for SpatialField {
 /// (supports that differ by direction).
 pub(crate) fn two_groups(n: usize, mr: f64, t: [f64; 2]) -> Vec<Vec<f64>> {
     let need = t[0].hypot(t[1]);
-    let dir = t[1].atan2(t[0]);
     let mut out = vec![];
     for big in n.div_ceil(2)..n {
         let (a, b) = (big as f64 * mr, (n - big) as f64 * mr);
         if need < (a - b).abs() || need > a + b || need == 0.0 {
             continue;
         }
-        let off = ((a * a + need * need - b * b) / (2.0 * a * need)).clamp(-1.0, 1.0).acos();
         // an even split's mirror is the same placement with the groups swapped
         let sides: &[f64] = if 2 * big == n { &[1.0] } else { &[1.0, -1.0] };
         for &side in sides {
-            let alpha = dir + side * off;
-            let beta = (t[1] - a * alpha.sin()).atan2(t[0] - a * alpha.cos());
+            let (alpha, beta) = triangle_angles(a, t, need, b, side);
             out.push((0..n).map(|j| if j < big { alpha } else { beta }).collect());
         }
     }
     out
+}
+
+/// The angles `(α, β)` of two groups of resultants `a` and `b` with `a e^{iα} + b e^{iβ} = t`
+/// (`need = |t|`; the triangle of sides `a`, `b`, `|t|`, whose existence the caller checks):
+/// `α = arg t + side · acos((a² + |t|² − b²)/(2 a |t|))`, `side = ±1` the two mirror solutions,
+/// `β = arg(t − a e^{iα})`. One home of [`two_groups`]' and the family's bunched members'
+/// triangle (`crate::rotor_stability::bunched_members`).
+pub(crate) fn triangle_angles(a: f64, t: [f64; 2], need: f64, b: f64, side: f64) -> (f64, f64) {
+    let off = ((a * a + need * need - b * b) / (2.0 * a * need)).clamp(-1.0, 1.0).acos();
+    let alpha = t[1].atan2(t[0]) + side * off;
+    (alpha, (t[1] - a * alpha.sin()).atan2(t[0] - a * alpha.cos()))
 }
