@@ -988,16 +988,21 @@ pub fn locked_rotor(rotor: &Rotor, omega: f64, undamped: bool) -> Result<Rotor> 
             if p.n > 0 {
                 let x = guess.ok_or_else(|| no_balance(rotor))?;
                 let e = Complex64::from_polar(p.s2, p.gamma);
-                let balls: Complex64 = x[2..2 + p.n].iter().map(|&psi| e + Complex64::from_polar(p.r, psi)).sum();
-                let m = p.m2 + p.n as f64 * p.m3;
-                let centre = (e * p.m2 + balls * p.m3) / m;
+                // each ball at its own mass (`planar.ball_masses`, else m3)
+                let balls: Complex64 = x[2..2 + p.n].iter().enumerate().map(|(j, &psi)| (e + Complex64::from_polar(p.r, psi)) * p.ball_mass(j)).sum();
+                let m = p.m2 + (0..p.n).map(|j| p.ball_mass(j)).sum::<f64>();
+                let centre = (e * p.m2 + balls) / m;
                 q.m2 = m;
                 q.s2 = centre.norm();
                 q.gamma = if centre.norm() > 0.0 { centre.arg() } else { 0.0 };
                 q.n = 0;
+                // no balls left: their per-ball lists go with them
+                q.ball_masses = None;
+                q.ball_drags = None;
             }
             if undamped {
                 q.c = 0.0;
+                q.c_y = q.c_y.map(|_| 0.0);
             }
             Rotor::Planar(q)
         }

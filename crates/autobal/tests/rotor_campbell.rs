@@ -125,6 +125,36 @@ fn the_jeffcott_rotors_locked_critical_speed_is_sqrt_k_over_m_total() {
 }
 
 #[test]
+fn balls_of_their_own_masses_lock_into_the_rotors_mass() {
+    // Audit 25's F1: a planar rotor with a mass and a drag per ball (`ball_masses`,
+    // `ball_drags`) and supports that differ by direction. Locked, it is a point mass
+    // m1 + m2 + Σ m_j on springs k_x, k_y: critical speeds sqrt(k_x / M) and sqrt(k_y / M), each
+    // simple (the whirl is a line, not a circle), to the bisection's 1e-12 (1e-9 allowed).
+    // Before the fix the locked rotor kept the per-ball lists with n = 0 and was refused
+    // ("needs one mass per ball (planar.n = 0)"), and its mass used n m3.
+    let p = PlanarRotor {
+        k: 8.0e4,
+        k_y: Some(1.3e5),
+        c: 30.0,
+        c_y: Some(70.0),
+        s2: 5e-4,
+        gamma: 0.7,
+        r: 0.06,
+        ball_masses: Some(vec![0.028, 0.034]),
+        ball_drags: Some(vec![0.07, 0.13]),
+        ..PlanarRotor::paper()
+    };
+    let m_total = p.m1 + p.m2 + 0.028 + 0.034;
+    let want = [(p.k / m_total).sqrt(), (1.3e5 / m_total).sqrt()];
+    let r = locked_critical_speeds(&Rotor::Planar(p), 1.5 * want[1], 400).unwrap();
+    let got: Vec<f64> = r.speeds.iter().map(|s| s.omega).collect();
+    assert_eq!(got.len(), 2, "{got:?} vs {want:?}");
+    for (g, w) in got.iter().zip(want) {
+        assert!((g - w).abs() <= 1e-9 * w, "{g} vs sqrt(k/M) {w}");
+    }
+}
+
+#[test]
 fn the_jeffcott_campbell_curves_whirl_at_the_natural_frequency() {
     // The planar Jeffcott rotor (race centred) with the balls free: far above the critical
     // speed the rotor's modes are nearly those of the mass on its spring, whose fixed-axes
