@@ -64,6 +64,8 @@ fn critical_json_has_the_documented_fields() {
     assert_eq!(v["anisotropy"]["exact"].as_f64(), Some(0.0));
     let r = v["autobalancing_ranges"].as_array().unwrap();
     assert!(r.last().unwrap()[1].is_null(), "last range unbounded");
+    // audit 25's F4: 003's ranges are labelled a necessary condition in the JSON too
+    assert!(v["autobalancing_ranges_are"].as_str().unwrap().starts_with("necessary condition (paper 003"), "{}", v["autobalancing_ranges_are"]);
     assert!(v["antiresonance_speed"].as_f64().unwrap() > 0.0);
 }
 

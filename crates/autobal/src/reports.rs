@@ -599,6 +599,8 @@ pub struct CriticalReport {
     pub antiresonance_speed_rpm: Option<f64>,
     /// Where autobalancing is possible (003's necessary condition).
     pub autobalancing_ranges: RangePairs,
+    /// What they are ([`CRITICAL_RANGES_ARE`]): a necessary condition, not a verdict.
+    pub autobalancing_ranges_are: &'static str,
     /// The same in rpm.
     pub autobalancing_ranges_rpm: Option<RangePairs>,
     /// 003's class of the rotor.
@@ -640,6 +642,12 @@ pub struct CriticalSpeedReport {
     pub interval_rpm: Option<Option<[f64; 2]>>,
 }
 
+/// What `critical`'s `autobalancing_ranges` are (audit 25's F4: its JSON gave them unlabelled,
+/// where a reader takes them for a verdict): 003's necessary condition, and where the exact
+/// verdict is computed (`critical` computes it only at the operating speed).
+pub const CRITICAL_RANGES_ARE: &str =
+    "necessary condition (paper 003, eqs (1)-(3)): not a verdict; the exact stable ranges: `autobal stability` or `autobal ranges` (its `exact`)";
+
 /// `autobal critical` ([`CriticalReport`]).
 pub fn critical(c: &SpatialConfig, source: &str) -> CriticalReport {
     let m = &c.model;
@@ -661,6 +669,7 @@ pub fn critical(c: &SpatialConfig, source: &str) -> CriticalReport {
         antiresonance_speed_rad_s: a_rad,
         antiresonance_speed_rpm: a_rpm,
         autobalancing_ranges: range_pairs(&ar.ranges),
+        autobalancing_ranges_are: CRITICAL_RANGES_ARE,
         autobalancing_ranges_rpm: ranges_rpm(m, &ar.ranges),
         balancing_class: ar.class,
         critical_speeds: cs.speeds.iter().map(speed).collect(),
