@@ -901,7 +901,9 @@ fn check_tolerance_reports_both_end_states() {
     assert_eq!(c["rtol"], 1e-8);
     assert_eq!(c["tighter_rtol"], 1e-9);
     assert_eq!(v["steps"], plain["steps"]);
-    assert!(plain.get("tolerance_check").is_none());
+    // without the check the JSON says the end state was not checked (audit 25's F5)
+    assert_eq!(plain["tolerance_check"]["checked"], false, "{}", plain["tolerance_check"]);
+    assert_eq!(c["checked"], true);
     let s = json(&["simulate", "--config", &examples("spatial.toml"), "--set", "drive.t_end=200", "--format", "json", "--out", o, "--check-tolerance"]);
     assert_eq!(s["tolerance_check"]["end_state"], s["outcome"], "{s}");
     let (code, _, err) = autobal(&["simulate", "--config", &examples("linear_rotor_shaft.toml"), "--out", o, "--check-tolerance"]);

@@ -917,7 +917,7 @@ pub fn simulate_json(cfg: &LinearRotorConfig, s: &RunSummary, red: &Option<Reduc
         "averaged": s.averaged,
         "settled": s.settled,
         "creep_rate": s.creep_rate,
-        "warnings": s.warnings,
+        "warnings": run_warnings(s),
         "steps": s.steps,
         "wall_s": wall,
     })
@@ -974,18 +974,26 @@ fn outcome_line(s: &RunSummary) -> String {
         s.residual_unbalance,
         autobal::simulation::window::basis_words(s.averaged)
     );
-    // (a creep, or an end at no stationary state, has its own line among the warnings: its
-    // balls' drift passed the test)
-    if s.outcome == RunOutcome::NotSettled && s.stopped.is_none() && s.warnings.is_empty() {
-        t.push_str(&format!(
-            "warning: not settled: the speed still changes over the last two revolutions, or the balls' mean angles still drift from one revolution to the next{}: a transient (raise drive.t_end), a run-up, or balls circulating round the race; the residual is no stationary state's\n",
-            s.ball_drift.map_or(", or it turned less than two revolutions".to_string(), |d| format!(" (by {d:.2e} rad)"))
-        ));
-    }
-    for w in &s.warnings {
+    for w in &run_warnings(s) {
         t.push_str(&format!("warning: {w}\n"));
     }
     t
+}
+
+/// The run's warnings: the summary's, or where the run completed not settled without one that
+/// says why, that it is no stationary state (audit 25: the table said so, the JSON's
+/// `warnings` was empty).
+pub fn run_warnings(s: &RunSummary) -> Vec<String> {
+    use autobal::spatial::dynamics::RunOutcome;
+    // (a creep, or an end at no stationary state, has its own line among the warnings: its
+    // balls' drift passed the test)
+    if s.outcome == RunOutcome::NotSettled && s.stopped.is_none() && s.warnings.is_empty() {
+        return vec![format!(
+            "not settled: the speed still changes over the last two revolutions, or the balls' mean angles still drift from one revolution to the next{}: a transient (raise drive.t_end), a run-up, or balls circulating round the race; the residual is no stationary state's",
+            s.ball_drift.map_or(", or it turned less than two revolutions".to_string(), |d| format!(" (by {d:.2e} rad)"))
+        )];
+    }
+    s.warnings.clone()
 }
 
 /// The stability margin over speed as a figure (`stability --svg`, the report): the largest

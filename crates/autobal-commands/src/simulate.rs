@@ -362,10 +362,22 @@ impl Output {
         }
         match &self.run {
             Run::Planar { summary, .. } => n.extend(summary.warnings.iter().map(|w| format!("warning: {w}"))),
-            Run::Spatial { summary, .. } => n.extend(summary.warnings.iter().map(|w| format!("warning: {w}"))),
-            Run::Linear { run, .. } => n.extend(run.summary.warnings.iter().map(|w| format!("warning: {w}"))),
+            Run::Spatial { summary, .. } => n.extend(spatial_sim::warnings(summary).iter().map(|w| format!("warning: {w}"))),
+            Run::Linear { run, .. } => n.extend(linear_rotor::run_warnings(&run.summary).iter().map(|w| format!("warning: {w}"))),
         }
         n
+    }
+
+    /// The run's relative tolerance where its end state is a verdict that was not checked
+    /// against a tighter one ([`tolerance::unchecked`]): a ball model's complete run without
+    /// `--check-tolerance` (a linear rotor's run has no check yet; a stopped run no end state).
+    fn unchecked_rtol(&self) -> Option<f64> {
+        match &self.run {
+            _ if self.tolerance.is_some() || self.run.stopped().is_some() => None,
+            Run::Planar { cfg, .. } => Some(cfg.settings.rtol),
+            Run::Spatial { sim, .. } => Some(sim.lib.settings.rtol),
+            Run::Linear { .. } => None,
+        }
     }
 
     /// Whether the run is of paper 004's planar rotor or the spatial rotor (whose ball angles
@@ -384,8 +396,12 @@ impl command::Output for Output {
             Run::Spatial { sim, summary, wall, .. } => spatial_sim::summary_json(sim, summary, *wall),
             Run::Linear { cfg, setup, run } => linear_rotor::simulate_json(cfg, &run.summary, &setup.reduction, run.wall),
         };
-        if let (Some(c), Some(o)) = (&self.tolerance, v.as_object_mut()) {
-            o.insert("tolerance_check".into(), c.json());
+        if let Some(o) = v.as_object_mut() {
+            if let Some(c) = &self.tolerance {
+                o.insert("tolerance_check".into(), c.json());
+            } else if let Some(rtol) = self.unchecked_rtol() {
+                o.insert("tolerance_check".into(), tolerance::unchecked(rtol).0);
+            }
         }
         Ok(v)
     }
@@ -396,11 +412,16 @@ impl command::Output for Output {
             Run::Spatial { sim, summary, wall, .. } => spatial_sim::summary_table(sim, summary, *wall),
             Run::Linear { setup, run, .. } => linear_rotor::simulate_table(&run.summary, &setup.reduction, run.wall),
         };
-        if let Some(c) = &self.tolerance {
+        let line = match (&self.tolerance, self.unchecked_rtol()) {
+            (Some(c), _) => Some(c.line()),
+            (None, Some(rtol)) => Some(tolerance::unchecked(rtol).1),
+            (None, None) => None,
+        };
+        if let Some(line) = line {
             if !t.ends_with('\n') {
                 t.push('\n');
             }
-            t.push_str(&c.line());
+            t.push_str(&line);
             t.push('\n');
         }
         Ok(t)
@@ -520,5 +541,30 @@ mod tests {
         assert!(format!("{e:#}").starts_with("--check-tolerance: not yet"), "{e:#}");
         assert!(std::fs::read_dir(&d).unwrap().next().is_none(), "no file made");
         let _ = std::fs::remove_dir_all(&d);
+    }
+
+    /// Issue 18 item 4 (audit 25's F5): a run not checked against the tolerance says so, in
+    /// the table and in the JSON (`tolerance_check.checked` false), where `--check-tolerance`
+    /// gives the check itself; and a spatial run that ends not settled carries its warning in
+    /// the JSON's `warnings` as in the table (it was the table's only).
+    #[test]
+    fn an_unchecked_end_state_says_it_is_unchecked() {
+        let o = Args { config: planar(&SHORT), ..Default::default() }.run(&Control::none()).unwrap();
+        let j = o.json().unwrap();
+        assert_eq!(j["tolerance_check"]["checked"], false, "{j}");
+        assert_eq!(j["tolerance_check"]["rtol"].as_f64(), Some(1e-8));
+        assert!(o.table().unwrap().contains("not checked against a tighter one"));
+        let c = Args { config: planar(&SHORT), check_tolerance: true, ..Default::default() }.run(&Control::none()).unwrap();
+        assert_eq!(c.json().unwrap()["tolerance_check"]["checked"], true);
+        assert!(!c.table().unwrap().contains("not checked"));
+        let spatial = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/spatial.toml");
+        let s = Args { config: ConfigSource::file(Some(std::path::Path::new(spatial)), &["drive.t_end=20".to_string()]), ..Default::default() }
+            .run(&Control::none())
+            .unwrap();
+        let j = s.json().unwrap();
+        assert_eq!(j["outcome"], "not_settled", "{j}");
+        let w = j["warnings"].as_array().unwrap();
+        assert!(w.len() == 1 && w[0].as_str().unwrap().starts_with("the balls have not settled"), "{w:?}");
+        assert!(s.table().unwrap().contains("warning: the balls have not settled"));
     }
 }

@@ -151,9 +151,30 @@ pub fn run_rows(sim: &SpatialSim, rows: &mut dyn FnMut(&[f64]) -> Result<()>, co
     Ok((summary, env.kept, wall))
 }
 
-/// The summary as `--format json` prints it ([`autobal::reports::spatial_simulation`]).
+/// The summary as `--format json` prints it ([`autobal::reports::spatial_simulation`]), its
+/// `warnings` those the table prints ([`warnings`]).
 pub fn summary_json(sim: &SpatialSim, s: &Summary, wall: f64) -> Value {
-    autobal::reports::spatial_simulation(sim, s, wall)
+    let mut v = autobal::reports::spatial_simulation(sim, s, wall);
+    if let Some(o) = v.as_object_mut() {
+        o.insert("warnings".into(), serde_json::json!(warnings(s)));
+    }
+    v
+}
+
+/// The run's warnings: the summary's, or where the run completed not settled without one that
+/// says why, that it is no stationary state (audit 25: the table said so, the JSON's
+/// `warnings` was empty).
+pub fn warnings(s: &Summary) -> Vec<String> {
+    use autobal::spatial::dynamics::RunOutcome;
+    // (not where the creep check said why: the balls creep away from an unstable balanced
+    // state, which a longer run leaves, and their drift passed the test)
+    if s.outcome == RunOutcome::NotSettled && s.stopped.is_none() && s.warnings.is_empty() {
+        return vec![format!(
+            "the balls have not settled: their mean angles still drift from one revolution to the next{}: a transient (raise drive.t_end) or balls circulating round the race; the residual and radius are no stationary state's",
+            s.ball_drift.map_or(", or it turned less than two revolutions".to_string(), |d| format!(" by {d:.2e} rad"))
+        )];
+    }
+    s.warnings.clone()
 }
 
 pub fn summary_table(sim: &SpatialSim, s: &Summary, wall: f64) -> String {
@@ -207,16 +228,7 @@ pub fn summary_table(sim: &SpatialSim, s: &Summary, wall: f64) -> String {
             RunOutcome::NotSettled => "not settled",
         }
     );
-    // (not where the creep check said why: the balls creep away from an unstable balanced
-    // state, which a longer run leaves, and their drift passed the test)
-    if s.outcome == RunOutcome::NotSettled && s.stopped.is_none() && s.warnings.is_empty() {
-        let _ = writeln!(
-            o,
-            "warning: the balls have not settled: their mean angles still drift from one revolution to the next{}: a transient (raise drive.t_end) or balls circulating round the race; the residual and radius are no stationary state's",
-            s.ball_drift.map_or(", or it turned less than two revolutions".to_string(), |d| format!(" by {d:.2e} rad"))
-        );
-    }
-    for w in &s.warnings {
+    for w in &warnings(s) {
         let _ = writeln!(o, "warning: {w}");
     }
     let _ = writeln!(o, "integration: {} steps ({} rejected), {} right-hand sides, {:.3} s", s.steps, s.rejected_steps, s.rhs_evaluations, wall);

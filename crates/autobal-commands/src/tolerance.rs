@@ -25,6 +25,7 @@ impl Check {
     /// The `tolerance_check` object of the summary's JSON.
     pub fn json(&self) -> Value {
         json!({
+            "checked": true,
             "rtol": self.first.0,
             "end_state": self.first.1,
             "tighter_rtol": self.second.0,
@@ -54,6 +55,20 @@ impl Check {
             )
         }
     }
+}
+
+/// What a run not checked says about its tolerance (issue 18 item 4: an end state decided by
+/// the tolerance must not read as the answer; the check costs a second run, so it is asked
+/// for): the `tolerance_check` object of the JSON, `checked` false, and the table's line.
+pub fn unchecked(rtol: f64) -> (Value, String) {
+    let what = "the end state at this tolerance, not checked against a tighter one: a start near a basin boundary or a chaotic transient can end elsewhere at another tolerance; --check-tolerance runs it again at a tenth";
+    (
+        json!({ "checked": false, "rtol": rtol, "depends_on_tolerance": null, "what": what }),
+        format!(
+            "tolerance: the end state above is that at rtol {}, not checked against a tighter one (a start near a basin boundary can end elsewhere): --check-tolerance runs it again at a tenth",
+            autobal::error::fmt_num(rtol)
+        ),
+    )
 }
 
 /// Paper 004's planar rotor: `cfg`'s run at its tolerances ended in `first`.

@@ -841,7 +841,7 @@ fn passage_warnings(rotor: &PlanarRotor, drive: &Drive, settings: &Settings, (w_
     }
     if !settled {
         w.push(format!(
-            "the run ends before the motion settled (at {final_omega:.2} rad/s the balls still move relative to the rotor or the whirl is still changing): final_amplitude and balanced describe a transient; raise drive.t_end"
+            "the run ends before the motion settled (at {final_omega:.2} rad/s the balls still move relative to the rotor or the whirl is still changing): final_amplitude and balanced describe no stationary state: a transient (raise drive.t_end) or balls circulating round the race"
         ));
     }
     w
