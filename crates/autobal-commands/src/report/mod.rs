@@ -352,9 +352,6 @@ fn write_sections(ctx: &Ctx, dir: &Path, sections: &[Section], t0: Instant) -> R
     // file complete (review 24c: it said "incomplete (stopped while writing)")
     let incomplete: Vec<&str> = sections.iter().filter(|s| !s.complete).map(|s| s.title.as_str()).collect();
     let interrupted = !incomplete.is_empty();
-    if !interrupted && ctx.control.should_stop().is_some() {
-        crate::term::note("report: the stop came after every section had completed: the report is complete");
-    }
     // a stopped run never replaces a complete report (`simulate`'s stopped CSV does, a file of
     // its complete rows; a report's page is many files): it goes to `DIR/incomplete/`, the
     // complete one left byte for byte (review 24c: the incomplete page replaced it)
@@ -382,6 +379,9 @@ fn write_sections(ctx: &Ctx, dir: &Path, sections: &[Section], t0: Instant) -> R
     files.push((index.clone(), page.into_bytes()));
     crate::outfile::write_all_or_none("--out", &files)?;
     remove_stale(&previous, &files);
+    if !interrupted && ctx.control.should_stop().is_some() {
+        crate::term::note("report: the stop came after every section had completed: the report is complete");
+    }
     crate::term::note(&format!(
         "report: {} sections, {} figures in {:.1} s (computing {:.1} s, figures {:.1} s)",
         sections.len(),
