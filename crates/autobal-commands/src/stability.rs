@@ -180,7 +180,7 @@ impl Args {
 
 /// A general or linear-rotor scan (`out`, over a grid of `speeds`) as `stability` (and the
 /// report's general route) gives it, with the verdict at the operating speed (`op`, asked only
-/// of a complete scan) and why it stopped ([`stopped_message`]). Stopped during the scan
+/// of a complete scan) and why it stopped (`stopped_message`). Stopped during the scan
 /// (Ctrl-C, a budget): the speeds analysed until then, their ranges ending at the last of them,
 /// no family ranges (counted over the speeds whose family was followed, scattered since the
 /// families run in parallel, they read the others as not stable: review 22's "all members
@@ -189,7 +189,7 @@ impl Args {
 /// verdict's speeds solved until then ([`general::Operating::stopped_message`]: no verdict, or
 /// NOT STABLE where one of them is unstable). Audit 21's F2: three balls on a 28-DOF rotor ran
 /// for minutes, and Ctrl-C then lost everything.
-pub(crate) fn kept_scan(
+pub fn kept_scan(
     out: autobal::control::Outcome<RotorStability>,
     speeds: usize,
     control: &Control,
@@ -242,7 +242,7 @@ fn stopped_message(why: autobal::control::StopReason, done: usize, speeds: usize
 
 /// A stopped scan's JSON: `complete: false` and `stopped` (why, what was kept); a complete
 /// run's JSON is as before, without either key.
-pub(crate) fn mark_json(mut v: Value, stopped: &Option<String>) -> Value {
+pub fn mark_json(mut v: Value, stopped: &Option<String>) -> Value {
     if let Some(why) = stopped {
         v["complete"] = false.into();
         v["stopped"] = why.as_str().into();

@@ -24,6 +24,16 @@ const SIGNAL_POLL: Duration = Duration::from_millis(50);
 /// Run `f` on a worker thread with the GIL released, checking for signals meanwhile; on a
 /// signal, set the cancel flag `f` polls, wait for `f` to return, and raise the signal's error.
 fn interruptible<R: Send>(py: Python<'_>, f: impl FnOnce(&Control) -> R + Send) -> PyResult<R> {
+    match interruptible_kept(py, f)? {
+        (r, None) => Ok(r),
+        (_, Some(e)) => Err(e),
+    }
+}
+
+/// [`interruptible`], keeping what `f` returned after a signal stopped it: `(f's value, the
+/// signal's error)`, the error `None` where no signal came (a command that keeps what it
+/// computed until the stop hands it to Python on the `KeyboardInterrupt`, [`with_result`]).
+fn interruptible_kept<R: Send>(py: Python<'_>, f: impl FnOnce(&Control) -> R + Send) -> PyResult<(R, Option<PyErr>)> {
     let cancel = Control::new();
     std::thread::scope(|s| {
         let (tx, mut rx) = std::sync::mpsc::channel();
@@ -35,18 +45,28 @@ fn interruptible<R: Send>(py: Python<'_>, f: impl FnOnce(&Control) -> R + Send) 
             let (got, back) = py.detach(move || (rx.recv_timeout(SIGNAL_POLL), rx));
             rx = back;
             match got {
-                Ok(r) => return Ok(r),
+                Ok(r) => return Ok((r, None)),
                 Err(std::sync::mpsc::RecvTimeoutError::Disconnected) => return Err(PyRuntimeError::new_err("autobal: the worker thread panicked")),
                 Err(std::sync::mpsc::RecvTimeoutError::Timeout) => {
                     if let Err(e) = py.check_signals() {
                         cancel.cancel();
-                        let _ = py.detach(move || rx.recv());
-                        return Err(e);
+                        return match py.detach(move || rx.recv()) {
+                            Ok(r) => Ok((r, Some(e))),
+                            Err(_) => Err(e),
+                        };
                     }
                 }
             }
         }
     })
+}
+
+/// The signal's error `e` (`KeyboardInterrupt`) with what the stopped call kept as its
+/// `result` attribute, the JSON text the call returns (as `SimulationError.result` holds a
+/// stopped run's samples).
+fn with_result(py: Python<'_>, e: PyErr, result: String) -> PyErr {
+    let _ = e.value(py).setattr("result", result);
+    e
 }
 
 /// `work` in a pool of `threads` threads (kept for the next call with the same number: building

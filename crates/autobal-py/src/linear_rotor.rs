@@ -486,7 +486,9 @@ impl PyLinearRotor {
     /// and `operating`: the verdict at `operating_speed` (a speed or range with its unit, or a
     /// number in rad/s, read as a config's `linear_rotor.operating_speed`), computed by the
     /// CLI's code (`autobal_commands::general::operating_at`, `operating_json`); `null` without
-    /// one, as the CLI's.
+    /// one, as the CLI's. Ctrl-C stops it and raises `KeyboardInterrupt` whose `result` is the
+    /// JSON of what was analysed until then, marked as the CLI's (`complete: false`,
+    /// `stopped`: the speeds analysed, or the complete scan and the operating speeds solved).
     #[pyo3(signature = (omega_max, samples=200, modes=None, operating_speed=None))]
     fn stability(&self, py: Python<'_>, omega_max: f64, samples: usize, modes: Option<usize>, operating_speed: Option<Bound<'_, PyAny>>) -> PyResult<String> {
         // read as the config reader reads the key: the same forms, the same refusals
@@ -495,7 +497,7 @@ impl PyLinearRotor {
             _ => None,
         };
         let r = self.rotor.clone();
-        let res = crate::interruptible(py, move |control| -> anyhow::Result<serde_json::Value> {
+        let (res, signal) = crate::interruptible_kept(py, move |control| -> anyhow::Result<serde_json::Value> {
             let speeds = autobal::rotor_stability::speed_grid(omega_max, samples)?;
             let (rotor, red) = match modes.filter(|m| *m > 0) {
                 Some(p) => {
@@ -505,24 +507,29 @@ impl PyLinearRotor {
                 None => (r, None),
             };
             // as `autobal stability` on a linear rotor config (`stability::Args::linear_rotor`):
-            // the scan under the control, then the verdict at the operating speed
+            // the scan under the control, then the verdict at the operating speed; stopped
+            // (Ctrl-C), what was analysed is kept and marked (`complete: false`, `stopped`), as
+            // the CLI's JSON (it was dropped: review 24)
             let g = autobal_commands::general::GeneralRotor::linear(rotor);
             let out = autobal::rotor_stability::stability_over_speed_with(&g.rotor, &speeds, control)?;
-            if let Some(why) = out.stopped {
-                anyhow::bail!("{why}: the stability scan stopped after {} of {} speeds", out.value.points.len(), speeds.len());
-            }
-            let st = out.value;
-            let op = operating.map(|w| autobal_commands::general::operating_at(&g, w, "linear_rotor.operating_speed", &st, control)).transpose()?;
+            let (st, op, stopped) = autobal_commands::stability::kept_scan(out, speeds.len(), control, |st, control| {
+                operating.map(|w| autobal_commands::general::operating_at(&g, w, "linear_rotor.operating_speed", st, control)).transpose()
+            })?;
             let mut v = serde_json::to_value(&st).map_err(|e| autobal::Error::invalid("stability", e.to_string()))?;
             v["omega_max"] = serde_json::json!(omega_max);
             v["reduction"] = serde_json::to_value(&red).map_err(|e| autobal::Error::invalid("reduction", e.to_string()))?;
             v["operating"] = op.as_ref().map_or(serde_json::Value::Null, autobal_commands::general::operating_json);
-            Ok(v)
-        })?
-        .map_err(|e| match e.downcast::<autobal::Error>() {
-            Ok(e) => err(py, e),
-            Err(e) => crate::any_err(py, e),
+            Ok(autobal_commands::stability::mark_json(v, &stopped))
         })?;
+        let res = match (res, signal) {
+            // Ctrl-C: `KeyboardInterrupt`, its `result` the JSON kept
+            (Ok(v), Some(e)) => return Err(crate::with_result(py, e, v.to_string())),
+            (Err(_), Some(e)) => return Err(e),
+            (r, None) => r.map_err(|e| match e.downcast::<autobal::Error>() {
+                Ok(e) => err(py, e),
+                Err(e) => crate::any_err(py, e),
+            })?,
+        };
         Ok(res.to_string())
     }
 

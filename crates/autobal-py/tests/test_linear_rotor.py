@@ -222,3 +222,38 @@ def test_linear_rotor_stability_takes_the_operating_speed_as_the_cli():
         with pytest.raises(autobal.InvalidParameter) as e:
             lr.stability(1500.0, samples=20, modes=4, operating_speed=value)
         assert str(e.value) == want and e.value.field == "linear_rotor.operating_speed"
+
+
+def test_linear_rotor_stability_stopped_keeps_what_it_analysed():
+    """Ctrl-C during ``LinearRotor.stability`` (review 24: it raised ``KeyboardInterrupt`` and
+    dropped the scan, where the CLI keeps the speeds analysed): ``KeyboardInterrupt`` still, its
+    ``result`` the JSON kept, marked as the CLI's (``complete: false``, ``stopped`` naming the
+    count), its points the first speeds of the grid; each of them equals a complete scan over
+    those same speeds (a second run: the grid's first ``k`` speeds are
+    ``stability(omega_max * k / n, samples=k)``'s to rounding, one division: 1e-15 relative)."""
+    import _thread
+    import threading
+
+    lr = autobal.LinearRotor.from_config(SHAFT)
+    n, omega_max = 1_000_000, 1500.0  # far more speeds than a second computes
+    ctrl_c = threading.Timer(1.0, _thread.interrupt_main)
+    ctrl_c.start()
+    try:
+        with pytest.raises(KeyboardInterrupt) as e:
+            lr.stability(omega_max, samples=n, modes=4)
+    finally:
+        ctrl_c.cancel()
+    kept = json.loads(e.value.result)
+    k = len(kept["points"])
+    assert kept["complete"] is False and 0 < k < n
+    assert kept["stopped"].startswith(f"interrupted: {k} of {n} speeds analysed"), kept["stopped"]
+    omegas = [p["omega"] for p in kept["points"]]
+    assert all(abs(w - omega_max * i / n) <= 1e-15 * w for i, w in zip(range(1, k + 1), omegas))
+    whole = json.loads(lr.stability(omega_max * k / n, samples=k, modes=4))
+    assert "complete" not in whole and len(whole["points"]) == k
+    for a, b in zip(kept["points"], whole["points"]):
+        assert a["verdict"] == b["verdict"]
+        # the abscissa at speeds 1e-15 apart: the eigenvalues move by that much relative, well
+        # under 1e-9 of the largest rate (the solver's own round-off is ~1e-13 of it)
+        if a["abscissa"] is not None:
+            assert abs(a["abscissa"] - b["abscissa"]) <= 1e-9 * max(1.0, abs(b["abscissa"]))

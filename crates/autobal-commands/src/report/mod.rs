@@ -15,7 +15,9 @@
 //! are written beside.
 //!
 //! A Ctrl-C stops the long computations; the page is still written, says which sections are
-//! incomplete, and the command exits with an error.
+//! incomplete, and the command exits with an error. A stopped report never replaces a complete
+//! one: where `--out` holds one, it goes to `--out/incomplete/` ([`INCOMPLETE_FOLDER`]). A
+//! report that replaces an earlier one removes the earlier figures it does not write.
 
 mod basins;
 mod design;
@@ -336,10 +338,26 @@ fn write_in(ctx: &Ctx, dir: &Path) -> Result<Output> {
         })
         .collect();
     let sections: Vec<Section> = built.into_iter().collect::<Result<Vec<_>>>()?.into_iter().flatten().collect();
+    write_sections(ctx, dir, &sections, t0)
+}
+
+/// Write the report of `sections` (built from `t0` on) into the folder `dir` ([`write_in`]).
+fn write_sections(ctx: &Ctx, dir: &Path, sections: &[Section], t0: Instant) -> Result<Output> {
     let compute_s = t0.elapsed().as_secs_f64();
-    for line in summary_lines(&sections) {
+    for line in summary_lines(sections) {
         crate::term::note(&format!("report: summary: {}", html::strip(line)));
     }
+    // what was cut short is what the sections say: figures and the page never ask the control,
+    // so a stop that came after the last section (while the figures were rendered) leaves every
+    // file complete (review 24c: it said "incomplete (stopped while writing)")
+    let incomplete: Vec<&str> = sections.iter().filter(|s| !s.complete).map(|s| s.title.as_str()).collect();
+    let interrupted = !incomplete.is_empty();
+    // a stopped run never replaces a complete report (`simulate`'s stopped CSV does, a file of
+    // its complete rows; a report's page is many files): it goes to `DIR/incomplete/`, the
+    // complete one left byte for byte (review 24c: the incomplete page replaced it)
+    let kept = interrupted && holds_complete_report(dir);
+    let out_dir = if kept { dir.join(INCOMPLETE_FOLDER) } else { dir.to_path_buf() };
+    let previous = previous_figure_files(&out_dir);
     // figure files, in parallel (rasterising is the slow part)
     let figs: Vec<&Figure> = sections.iter().flat_map(|s| s.figures()).collect();
     let mut files: Vec<(PathBuf, Vec<u8>)> = figs
@@ -347,21 +365,23 @@ fn write_in(ctx: &Ctx, dir: &Path) -> Result<Output> {
         .map(|f| -> Result<[(PathBuf, Vec<u8>); 2]> {
             let svg = f.plot.to_svg();
             let png = crate::plot::svg_to_png(&svg, 1.5)?;
-            Ok([(dir.join(format!("{}.svg", f.id)), svg.into_bytes()), (dir.join(format!("{}.png", f.id)), png)])
+            Ok([(out_dir.join(format!("{}.svg", f.id)), svg.into_bytes()), (out_dir.join(format!("{}.png", f.id)), png)])
         })
         .collect::<Result<Vec<_>>>()?
         .into_iter()
         .flatten()
         .collect();
     for (name, text) in [("plotly-cartesian.min.js", PLOTLY_JS), ("plotly-LICENSE.txt", PLOTLY_LICENSE), ("report.js", REPORT_JS)] {
-        files.push((dir.join(name), text.as_bytes().to_vec()));
+        files.push((out_dir.join(name), text.as_bytes().to_vec()));
     }
-    let incomplete: Vec<&str> = sections.iter().filter(|s| !s.complete).map(|s| s.title.as_str()).collect();
-    let interrupted = ctx.control.should_stop().is_some() || !incomplete.is_empty();
-    let page = page(ctx, &sections, interrupted, &incomplete, t0.elapsed().as_secs_f64());
-    let index = dir.join("index.html");
+    let page = page(ctx, sections, interrupted, &incomplete, t0.elapsed().as_secs_f64());
+    let index = out_dir.join("index.html");
     files.push((index.clone(), page.into_bytes()));
     crate::outfile::write_all_or_none("--out", &files)?;
+    remove_stale(&previous, &files);
+    if !interrupted && ctx.control.should_stop().is_some() {
+        crate::term::note("report: the stop came after every section had completed: the report is complete");
+    }
     crate::term::note(&format!(
         "report: {} sections, {} figures in {:.1} s (computing {:.1} s, figures {:.1} s)",
         sections.len(),
@@ -371,15 +391,52 @@ fn write_in(ctx: &Ctx, dir: &Path) -> Result<Output> {
         t0.elapsed().as_secs_f64() - compute_s
     ));
     let incomplete = interrupted.then(|| {
-        format!(
-            "interrupted: the report in {} is incomplete ({})",
-            index.display(),
-            if incomplete.is_empty() { "stopped while writing".to_string() } else { incomplete.join(", ") }
-        )
+        let kept = if kept { format!("; the complete report in {} is left as it was", dir.join("index.html").display()) } else { String::new() };
+        format!("interrupted: the report in {} is incomplete ({}){kept}", index.display(), incomplete.join(", "))
     });
     let failed: Vec<String> = sections.iter().filter_map(|s| s.failed.as_ref().map(|w| format!("in its section \"{}\" {w}", s.title))).collect();
     let failed = (!failed.is_empty()).then(|| format!("the report in {} is written, but {} (its section says why)", index.display(), failed.join("; ")));
     Ok(Output { index, sections: sections.len(), figures: figs.len(), incomplete, failed })
+}
+
+/// The opening of an incomplete page's warning ([`page`]).
+const INTERRUPTED_DIV: &str = "<div class=\"warn\" id=\"interrupted\">";
+
+/// Where a stopped report goes when `--out` holds a complete report (its page without the
+/// interruption's warning): the complete one is left as it was.
+pub const INCOMPLETE_FOLDER: &str = "incomplete";
+
+/// Whether `dir` holds a complete report of autobal: its `index.html` is a report's page
+/// without the interruption's warning.
+fn holds_complete_report(dir: &Path) -> bool {
+    std::fs::read_to_string(dir.join("index.html")).is_ok_and(|p| p.contains("<title>autobal report") && !p.contains(INTERRUPTED_DIV))
+}
+
+/// The figure files (`ID.svg`, `ID.png`) the report page in `dir` links, if `dir` holds one:
+/// read before a new report replaces the page, so that those the new one does not write can
+/// be removed ([`remove_stale`]). Only names made of the report's figure ids' characters.
+fn previous_figure_files(dir: &Path) -> Vec<PathBuf> {
+    let Ok(page) = std::fs::read_to_string(dir.join("index.html")) else { return vec![] };
+    if !page.contains("<title>autobal report") {
+        return vec![];
+    }
+    page.split("data-fig=\"")
+        .skip(1)
+        .filter_map(|rest| rest.split_once('"').map(|(id, _)| id))
+        .filter(|id| !id.is_empty() && id.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'_' || b == b'-'))
+        .flat_map(|id| [dir.join(format!("{id}.svg")), dir.join(format!("{id}.png"))])
+        .collect()
+}
+
+/// Remove the previous report's figure files (`previous`) that the report just written
+/// (`written`) does not have: a figure of an earlier run, linked by no page, would read as
+/// this run's (review 24c: a stopped rerun left the earlier Campbell diagrams).
+fn remove_stale(previous: &[PathBuf], written: &[(PathBuf, Vec<u8>)]) {
+    for p in previous {
+        if !written.iter().any(|(w, _)| w == p) {
+            let _ = std::fs::remove_file(p);
+        }
+    }
 }
 
 /// A section whose analysis needs the linearisation of a stationary state the config's rotor
@@ -435,8 +492,8 @@ fn page(ctx: &Ctx, sections: &[Section], interrupted: bool, incomplete: &[&str],
     if interrupted {
         let _ = writeln!(
             h,
-            "<div class=\"warn\" id=\"interrupted\"><b>Interrupted.</b> This report is incomplete: {}. Numbers of runs cut short are marked as such.</div>",
-            if incomplete.is_empty() { "the run was stopped".to_string() } else { format!("sections cut short: {}", esc(&incomplete.join(", "))) }
+            "{INTERRUPTED_DIV}<b>Interrupted.</b> This report is incomplete: sections cut short: {}. Numbers of runs cut short are marked as such.</div>",
+            esc(&incomplete.join(", "))
         );
     }
     match ctx.kind {
@@ -514,4 +571,99 @@ fn figure_html(f: &Figure, no: usize) -> String {
         alt = esc(&f.plot.title),
         cap = f.caption,
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use autobal::control::Control;
+
+    /// The user report's context of examples/planar.toml under `control` (no section is run:
+    /// the tests write sections they make).
+    fn ctx(control: &Control) -> Ctx {
+        let root = crate::config::parse_text(include_str!("../../../../examples/planar.toml"), "planar.toml").unwrap();
+        context(&ConfigSource::tables(root, "planar.toml"), true, Kind::User, control).unwrap()
+    }
+
+    /// A section with one figure per id, complete or cut short.
+    fn section(ids: &[&str], complete: bool) -> Section {
+        let mut s = Section::new("test", "Test section");
+        for id in ids {
+            let plot =
+                Plot { title: format!("figure {id}"), series: vec![crate::plot::Series::new("a", vec![(0.0, 1.0), (1.0, 2.0)], "#000")], ..Default::default() };
+            s.figure(*id, plot, "caption");
+        }
+        s.complete = complete;
+        s
+    }
+
+    fn scratch(name: &str) -> PathBuf {
+        let d = std::env::temp_dir().join(format!("autobal-report-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&d);
+        std::fs::create_dir_all(&d).unwrap();
+        d
+    }
+
+    /// Every file of `dir` with its bytes, sorted (a folder's listing, to compare before/after).
+    fn files(dir: &Path) -> Vec<(String, Vec<u8>)> {
+        let mut v: Vec<(String, Vec<u8>)> = std::fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .filter(|p| p.is_file())
+            .map(|p| (p.file_name().unwrap().to_string_lossy().into_owned(), std::fs::read(&p).unwrap()))
+            .collect();
+        v.sort();
+        v
+    }
+
+    /// A stop that comes after every section completed (while the figures are rendered: the
+    /// control stopped before [`write_sections`]) leaves every file whole: the report is
+    /// complete and says so (review 24c: "incomplete (stopped while writing)", exit 2); a
+    /// section cut short makes it incomplete, naming that section.
+    #[test]
+    fn a_stop_after_the_sections_leaves_a_complete_report() {
+        let d = scratch("stop-after");
+        let control = Control::new();
+        control.cancel();
+        let out = write_sections(&ctx(&control), &d, &[section(&["f1"], true)], Instant::now()).unwrap();
+        assert_eq!(out.incomplete, None);
+        assert!(command::Output::stopped(&out).is_none());
+        assert!(!std::fs::read_to_string(&out.index).unwrap().contains("id=\"interrupted\""));
+        let e = d.join("e");
+        let out = write_sections(&ctx(&control), &e, &[section(&["f1"], false)], Instant::now()).unwrap();
+        assert_eq!(out.incomplete.unwrap(), format!("interrupted: the report in {} is incomplete (Test section)", e.join("index.html").display()));
+        let _ = std::fs::remove_dir_all(&d);
+    }
+
+    /// A stopped report into a folder that holds a complete one leaves it byte for byte and
+    /// goes to `incomplete/` (review 24c: it replaced the complete page, the earlier figures
+    /// left beside it); a report that replaces one (complete over anything, a stopped one over
+    /// a stopped one) removes the earlier figures it does not write, and nothing else.
+    #[test]
+    fn a_stop_never_replaces_a_complete_report_and_no_stale_figure_stays() {
+        let d = scratch("kept");
+        let c = ctx(&Control::none());
+        write_sections(&c, &d, &[section(&["f1", "campbell"], true)], Instant::now()).unwrap();
+        std::fs::write(d.join("notes.txt"), "the user's").unwrap();
+        let before = files(&d);
+        assert_eq!(before.len(), 9);
+        let out = write_sections(&c, &d, &[section(&["f1"], false)], Instant::now()).unwrap();
+        assert_eq!(files(&d), before, "the complete report is left as it was");
+        let inc = d.join(INCOMPLETE_FOLDER);
+        assert_eq!(out.index, inc.join("index.html"));
+        assert!(out.incomplete.unwrap().ends_with(&format!("; the complete report in {} is left as it was", d.join("index.html").display())));
+        assert!(std::fs::read_to_string(inc.join("index.html")).unwrap().contains(INTERRUPTED_DIV));
+        assert!(inc.join("f1.svg").is_file() && inc.join("f1.png").is_file() && !inc.join("campbell.svg").exists());
+        // a stopped one again: it replaces the stopped one there, and its stale figure goes
+        write_sections(&c, &d, &[section(&["f2"], false)], Instant::now()).unwrap();
+        assert!(inc.join("f2.svg").is_file() && !inc.join("f1.svg").exists() && !inc.join("f1.png").exists());
+        assert_eq!(files(&d), before);
+        // a complete rerun replaces the complete report; the earlier Campbell figures go, the
+        // user's file stays
+        let out = write_sections(&c, &d, &[section(&["f1"], true)], Instant::now()).unwrap();
+        assert_eq!(out.index, d.join("index.html"));
+        let names: Vec<String> = files(&d).into_iter().map(|(n, _)| n).collect();
+        assert_eq!(names, ["f1.png", "f1.svg", "index.html", "notes.txt", "plotly-LICENSE.txt", "plotly-cartesian.min.js", "report.js"]);
+        let _ = std::fs::remove_dir_all(&d);
+    }
 }

@@ -114,10 +114,12 @@ fn general_route(ctx: &Ctx) -> Result<Option<Section>> {
     };
     // under the report's control, as `stability` runs it: stopped (Ctrl-C, the budget), the
     // speeds analysed are kept and the section is incomplete (it ended the report with an
-    // error, "nothing is printed"); the report's verdict at the operating speed is its own
-    // (below), so none is asked here
+    // error, "nothing is printed"); the verdict at the operating speed is `stability`'s
+    // (`general::operating`: the state solved at the speed itself), not read off the scan's
+    // ranges, so that the report and `stability` cannot disagree (review 24: a speed between
+    // two grid speeds near a boundary could read STABLE from the ranges)
     let (out, speeds) = crate::general::scan(&g, omega_max, samples, &ctx.control)?;
-    let (r, _, stopped) = crate::stability::kept_scan(out, speeds, &ctx.control, |_, _| Ok(None))?;
+    let (r, operating, stopped) = crate::stability::kept_scan(out, speeds, &ctx.control, |r, c| crate::general::operating(&g, &ctx.root, r, c))?;
     let mut s = Section::new("stability", "Exact stability of the stationary state over speed (general route)");
     s.complete = stopped.is_none();
     let what: Vec<String> = autobal::config::ignored_by_linear_model(&ctx.root);
@@ -129,44 +131,25 @@ fn general_route(ctx: &Ctx) -> Result<Option<Section>> {
             format!("The config has what paper 000's 12-state model does not represent ({}), so its rotor is analysed as given.", super::esc(&what.join(", ")))
         }
     ));
-    let table = crate::stability::incomplete_line(&stopped) + &crate::general::table(&g, &r, omega_max, None);
+    let table = crate::stability::incomplete_line(&stopped) + &crate::general::table(&g, &r, omega_max, operating.as_ref());
     s.html(format!("<pre>{}</pre>\n", super::esc(&table)));
     let speed = |w: f64| if g.si { format!("{} rpm", crate::num::grouped(w * crate::num::RPM_PER_RAD_S, 0)) } else { format!("Ω = {}", fmt(w, 4)) };
-    match op {
+    match (&operating, op) {
+        // `stability`'s first line, word for word (its other-orbits line after it)
+        (Some(o), _) => {
+            let text = crate::general::operating_line(&g, &r, o);
+            let text: Vec<&str> = text.lines().map(str::trim).collect();
+            s.summary.push(verdict_html(o.verdict() == Some(autobal::analysis::Verdict::Stable), &text.join("; ")));
+        }
         // a stopped scan's ranges end where it stopped: no verdict from them
-        Some([lo, hi]) if stopped.is_some() => {
+        (None, Some([lo, hi])) => {
             let at = if lo == hi { speed(lo) } else { format!("{} – {}", speed(lo), speed(hi)) };
             s.summary.push(format!(
                 "<b>{}</b>",
                 super::esc(&format!("operating speed {at}: no verdict: the stability scan was stopped ({})", stopped.as_deref().unwrap_or_default()))
             ));
         }
-        Some([lo, hi]) => {
-            let at = if lo == hi { speed(lo) } else { format!("{} – {}", speed(lo), speed(hi)) };
-            let inside = r.stable_ranges.iter().find(|x| x.from <= lo && hi <= x.to);
-            let text = match inside {
-                Some(x) => {
-                    let below = x.from_is_boundary.then_some(lo - x.from);
-                    let above = x.to_is_boundary.then_some(x.to - hi);
-                    let margin = match (below, above) {
-                        (Some(b), Some(a)) if a < b => format!("margin {} to its upper end", speed(a)),
-                        (Some(b), _) => format!("margin {} to its lower end", speed(b)),
-                        (None, Some(a)) => format!("margin {} to its upper end", speed(a)),
-                        (None, None) => "stable over the whole axis".into(),
-                    };
-                    // the ends as `stability` words them: the axis' end, a switch of state or
-                    // a grid speed next to one without a state are not located boundaries
-                    format!(
-                        "operating speed {at}: the balanced state is STABLE (exact, general route) in the stable range {} – {}, {margin}",
-                        crate::general::end_text(&r, x, false, speed),
-                        crate::general::end_text(&r, x, true, speed)
-                    )
-                }
-                None => format!("operating speed {at}: the balanced state is NOT STABLE (exact, general route)"),
-            };
-            s.summary.push(verdict_html(inside.is_some(), &text));
-        }
-        None => s.summary.push(format!(
+        (None, None) => s.summary.push(format!(
             "No operating speed given{}: see the stable ranges of the stability section.",
             if matches!(g.rotor, Rotor::Planar(_)) { " (a planar config has none)" } else { " (<code>[analysis] operating_speed</code>)" }
         )),
@@ -179,7 +162,11 @@ fn general_route(ctx: &Ctx) -> Result<Option<Section>> {
     s.figure("stability_margin", p, "The stationary state's margin over speed by the general route (largest Re λ, or largest Floquet exponent for a periodic orbit), the stable ranges shaded and the operating speed marked.");
     if stopped.is_some() {
         s.h3("campbell", "Campbell diagrams");
-        s.p("Not computed: the report was stopped during the stability scan above.");
+        s.p(if operating.is_some() {
+            "Not computed: the report was stopped during the verdict at the operating speed above."
+        } else {
+            "Not computed: the report was stopped during the stability scan above."
+        });
     } else {
         general_campbell(ctx, &g, omega_max, op, &mut s)?;
     }
@@ -482,6 +469,37 @@ mod tests {
         let titles: Vec<&str> = s.figures().map(|f| f.plot.title.as_str()).collect();
         assert_eq!(titles.len(), 4);
         assert!(!titles[0].starts_with("INCOMPLETE") && titles[1..].iter().all(|t| t.starts_with("INCOMPLETE: ")), "{titles:?}");
+    }
+
+    /// The summary's verdict at the operating speed on the general route is `stability`'s,
+    /// word for word (its first line), by one route (`general::operating`). Review 24: the
+    /// report read it off the scan's stable ranges. The two-plane example without gravity is
+    /// stable from the boundary located at 1201.07649 rad/s, between its grid speeds 1180.09
+    /// (unstable) and 1223.80 (stable); at 1201.0765 rad/s, inside that range by 1e-5 rad/s,
+    /// the state solved there has a growth rate of -1.1e-6 1/s, within the neutral tolerance:
+    /// `stability` says NEUTRAL (undecided), the ranges read STABLE. Both verdicts checked
+    /// (a speed well inside the range: STABLE in both), so the comparison is not of two copies
+    /// of one word.
+    #[test]
+    fn the_general_route_s_verdict_at_the_operating_speed_is_stability_s() {
+        use crate::command::{Command as _, Output as _};
+        let two = include_str!("../../../../examples/spatial_two_plane.toml");
+        let mut words = vec![];
+        for at in ["1201.0765 rad/s", "1300 rad/s"] {
+            let sets = ["spatial.gravity=[0.0, 0.0, 0.0]".to_string(), format!("analysis.operating_speed=\"{at}\"")];
+            let mut root = crate::config::parse_text(two, "two.toml").unwrap();
+            for s in &sets {
+                crate::config::apply_set(&mut root, s).unwrap();
+            }
+            let cli = crate::stability::Args { config: ConfigSource::tables(root.clone(), "two.toml"), ..Default::default() }.run(&Control::none()).unwrap();
+            let first = cli.table().unwrap().lines().next().unwrap().to_string();
+            let stable = cli.json().unwrap()["operating"]["stable"].as_bool().unwrap();
+            let ctx = super::super::context(&ConfigSource::tables(root, "two.toml"), false, super::super::Kind::User, &Control::none()).unwrap();
+            let s = general_route(&ctx).unwrap().unwrap();
+            assert_eq!(s.summary[0], verdict_html(stable, &first), "{at}");
+            words.push(first.split(" state is ").nth(1).unwrap().split(' ').next().unwrap().to_string());
+        }
+        assert_eq!(words, ["NEUTRAL", "STABLE"]);
     }
 
     /// The whole report stopped in that section is written, its output says it is incomplete
