@@ -228,6 +228,20 @@ pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64, op: Option<&O
             s.push_str("gravity breaks the family of balanced states of 3 or more balls in a plane: the orbits have each such plane's balls in two groups (the member's angles in the JSON's member_psi); at each speed the orbit of least growth rate among those found from every split and its mirror is the one analysed, the others are in the JSON's points[].other_orbits (docs/notes/stability.md)\n");
         }
     }
+    if let Rotor::Planar(_) = &g.rotor {
+        // audit 25's F3: the eccentric race on supports that differ by direction breaks the
+        // family as gravity does; the scan lists the other orbits it found
+        let with: Vec<&autobal::rotor_stability::SpeedPoint> = r.points.iter().filter(|p| p.verdict.is_some() && !p.other_orbits.is_empty()).collect();
+        if !with.is_empty() {
+            let other = with.iter().filter(|p| p.other_orbits.iter().any(|o| Some(o.verdict) != p.verdict)).count();
+            s.push_str(&format!(
+                "an eccentric race on supports that differ by direction breaks the family of balanced states of 3 or more balls: the orbits have the balls in two groups (the member's angles in the JSON's member_psi); at each speed the orbit of least growth rate among those found from every split and its mirror is the one analysed, the others are in the JSON's points[].other_orbits: found at {} of {} speeds, {} (docs/notes/stability.md)\n",
+                with.len(),
+                r.points.len(),
+                if other > 0 { format!("of another verdict than the one analysed at {other} of them (a run may sit near either; the analysed one is the stable one where one is)") } else { "of the same verdict".to_string() }
+            ));
+        }
+    }
     if let Some(f) = &r.family {
         let list = |v: &[autobal::analysis::StableRange]| {
             if v.is_empty() {

@@ -806,7 +806,9 @@ pub struct SpeedPoint {
     pub family: Option<FamilyPoint>,
     /// With a family: which of its members are stable (all, some, none): `family`'s verdict.
     pub family_verdict: Option<FamilyVerdict>,
-    /// Under gravity across the axis with `n ≥ 3` balls in a plane: the other periodic orbits
+    /// Under gravity across the axis with `n ≥ 3` balls in a plane, or on the planar rotor with
+    /// an eccentric race on supports that differ by direction and `n ≥ 3` equal balls
+    /// ([`Rotor::planar_split_orbits`]): the other periodic orbits
     /// found at this speed from the groups' placements ([`OtherOrbit`]); on a spatial or linear
     /// rotor whose balls cannot cancel its unbalance, the other partially balanced equilibria found
     /// from the candidate starts ([`Rotor::partial_states`]: the one of least growth rate is
@@ -1477,6 +1479,15 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
             return None;
         }
         let mut orbits = Rotor::gravity_orbits(f, &newton);
+        if orbits.is_empty() && matches!(rotor, Rotor::Planar(p) if p.s2 > 0.0) {
+            // the planar rotor with an eccentric race on supports that differ by direction,
+            // n >= 3 equal balls: the family breaks into isolated orbits with the balls in two
+            // groups, as under gravity; every placement shot, the least growth rate analysed,
+            // the others listed (audit 25's F3: the scan analysed the stable orbit, reached by
+            // continuation, and said nothing of its unstable mirror, +9.6e-5 against -9.5e-5
+            // 1/s at 332.6 rad/s). Empty for any other planar rotor (split_guesses)
+            orbits = Rotor::planar_split_orbits(f, &newton);
+        }
         if orbits.is_empty() {
             // a spatial rotor's partially balanced equilibria from each candidate start, the
             // least growth rate analysed, the others listed (Rotor::partial_states)
@@ -1549,6 +1560,7 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
                 // the placements' other orbits at this grid speed, less the one analysed
                 other_orbits: match (rotor, orbits_at.iter().find(|(w, _)| *w == p.omega)) {
                     (Rotor::Spatial(r), Some((_, found))) => found.iter().filter(|o| !same_placement(r, &o.member_psi, &psi)).cloned().collect(),
+                    (Rotor::Planar(_), Some((_, found))) => found.iter().filter(|o| !same_angles(&o.member_psi, &psi)).cloned().collect(),
                     (Rotor::Linear(r), Some((_, found))) => {
                         let sizes: Vec<usize> = r.balancers.iter().map(|b| b.balls).collect();
                         found.iter().filter(|o| !same_in_planes(&sizes, &o.member_psi, &psi)).cloned().collect()

@@ -124,3 +124,42 @@ fn a_map_row_finds_the_scans_two_group_orbits() {
         assert!((c.margin - a).abs() <= 1e-7, "{} rad/s: map {}, scan {a}", p.omega, c.margin);
     }
 }
+
+#[test]
+fn the_scan_lists_the_unstable_mirror_beside_the_stable_orbit() {
+    // audit 25's F3: the scan analysed the stable two-group orbit and said nothing of its
+    // unstable mirror. Now every placement is shot at each speed, the least growth rate
+    // analysed and the others listed in `other_orbits`. References from the auditors' own
+    // fixed-axes models, not autobal: audit 19's rotor at 400 rad/s (stable −3.3232e-5, mirror
+    // +3.6e-5 1/s: its central-difference monodromy is good to ~1e-6 1/s) and audit 25's A3
+    // (eccentric race at γ = 0.7, supports 8e4/1.3e5 N/m with damping 30/70 N s/m, three
+    // 20 g balls, c_ψ = 0.1) at 332.609 rad/s (its complex-step monodromy at rtol 1e-12: good
+    // to ~2e-9 1/s): −9.480489e-5 and its mirror +9.565373e-5. autobal's shooting (rtol 1e-10
+    // over half a revolution) is good to ~1e-7 1/s; the two orbits differ by 7e-5 (400 rad/s)
+    // and 1.9e-4 1/s (332.6 rad/s), so these tolerances tell them apart.
+    let a3 = PlanarRotor {
+        n: 3,
+        m3: 0.02,
+        c_psi: 0.1,
+        s2: 5e-4,
+        gamma: 0.7,
+        r: 0.06,
+        k: 8.0e4,
+        k_y: Some(1.3e5),
+        c: 30.0,
+        c_y: Some(70.0),
+        c_theta: 0.0,
+        i_g: 0.0025,
+        ..PlanarRotor::paper()
+    };
+    for (p, w, stable, mirror, tol) in [(rotor(), 400.0, AUDIT_EXPONENT, 3.6e-5, 1.5e-6), (a3, 332.609, -9.480489e-5, 9.565373e-5, 1e-7)] {
+        let out = stability_over_speed(&Rotor::Planar(p), &[w]).unwrap();
+        let pt = &out.points[0];
+        assert_eq!(pt.verdict, Some(Verdict::Stable), "{w} rad/s: {pt:?}");
+        assert!((pt.abscissa.unwrap() - stable).abs() < tol, "{w} rad/s: analysed {:e} vs {stable:e}", pt.abscissa.unwrap());
+        assert_eq!(pt.other_orbits.len(), 1, "{w} rad/s: {:?}", pt.other_orbits);
+        let o = &pt.other_orbits[0];
+        assert_eq!(o.verdict, Verdict::Unstable);
+        assert!((o.abscissa - mirror).abs() < tol, "{w} rad/s: mirror {:e} vs {mirror:e}", o.abscissa);
+    }
+}
