@@ -1076,7 +1076,10 @@ fn no_state_free(rotor: &Rotor) -> Error {
     Error::invalid(
         "balancer",
         match rotor {
-            Rotor::Planar(p) if p.s2 != 0.0 => "no semi-balanced state at this speed: the balls cannot supply the unbalance (|B| > n m3 r)",
+            // (audit 25's F2: `stability` and `map` analyse a state there; say why this does not)
+            Rotor::Planar(p) if p.s2 != 0.0 => {
+                "no semi-balanced state at this speed: the balls cannot supply the unbalance (|B| > n m3 r); with an eccentric race the diagram follows the semi-balanced state only (`stability` analyses the state the balls rest in here)"
+            }
             _ => "no balanced state (the balls' capacity falls short of the unbalance) and no start for the partially balanced one",
         },
     )
