@@ -59,7 +59,9 @@ impl<const N: usize> Lu<N> {
         d
     }
 
-    /// Solve `A x = b` in place (the first `n` entries of `b`).
+    /// Solve `A x = b` in place (the first `n` entries of `b`): the tests' reference for
+    /// [`Lu::solve_columns`], which the library uses.
+    #[cfg(test)]
     pub(crate) fn solve(&self, b: &mut [f64; N]) {
         let n = self.n;
         // the factorisation swapped whole rows (multipliers included): apply every interchange
@@ -77,6 +79,42 @@ impl<const N: usize> Lu<N> {
                 b[k] -= self.a[k][j] * b[j];
             }
             b[k] /= self.a[k][k];
+        }
+    }
+}
+
+impl<const N: usize> Lu<N> {
+    /// Solve `A X = B` in place for the first `m` columns of `b` (`b[i][c]`, rows `0..n`):
+    /// `Lu::solve` (the tests' reference) on every column, the same operations on each
+    /// element in the same order (each column's result is `solve`'s bit for bit), done row by
+    /// row so that the columns' updates run together instead of one column's whole solve after
+    /// another (the linear model's `M⁻¹[K G]`: 12 columns). The columns from `m` on are only
+    /// permuted with the rows (the interchanges swap whole rows), the rows from `n` on untouched.
+    pub(crate) fn solve_columns<const M: usize>(&self, b: &mut [[f64; M]; N], m: usize) {
+        let n = self.n;
+        for k in 0..n {
+            b.swap(k, self.piv[k]);
+        }
+        for k in 0..n {
+            let bk = b[k];
+            for i in k + 1..n {
+                let f = self.a[i][k];
+                for c in 0..m {
+                    b[i][c] -= f * bk[c];
+                }
+            }
+        }
+        for k in (0..n).rev() {
+            for j in k + 1..n {
+                let (f, bj) = (self.a[k][j], b[j]);
+                for c in 0..m {
+                    b[k][c] -= f * bj[c];
+                }
+            }
+            let d = self.a[k][k];
+            for c in 0..m {
+                b[k][c] /= d;
+            }
         }
     }
 }
@@ -135,6 +173,45 @@ mod tests {
             assert!((b2[i] - x[i]).abs() < 1e-14, "{b2:?}");
         }
         assert!(Lu::new([[1.0, 2.0], [2.0, 4.0]], 2).is_none());
+    }
+
+    /// The columns solved together are `solve`'s on each column bit for bit (the same
+    /// operations in the same order), on a system that needs pivoting, with fewer columns
+    /// than the array holds (the rest only permuted with the rows) and fewer rows (the rest
+    /// untouched); and they solve the system.
+    #[test]
+    fn columns_solved_together_are_each_columns_solve_bit_for_bit() {
+        let m = [[0.0, 2.0, 1.0, 3.0, 0.0], [1.0, 1.0, 0.0, -1.0, 0.0], [4.0, -1.0, 2.0, 0.5, 0.0], [2.0, 0.0, -3.0, 1.0, 0.0], [0.0; 5]];
+        let lu = Lu::new(m, 4).unwrap();
+        let mut b = [[0.0; 6]; 5];
+        for i in 0..5 {
+            for c in 0..6 {
+                b[i][c] = ((7 * i + 3 * c) % 11) as f64 / 3.0 - 1.7 + 0.1 * c as f64;
+            }
+        }
+        let orig = b;
+        lu.solve_columns(&mut b, 5);
+        for c in 0..5 {
+            let mut col = [0.0; 5];
+            for i in 0..4 {
+                col[i] = orig[i][c];
+            }
+            lu.solve(&mut col);
+            for i in 0..4 {
+                assert_eq!(b[i][c].to_bits(), col[i].to_bits(), "row {i}, column {c}");
+                // the residual of row i: integer-sized entries, 1e-13 of them
+                let r: f64 = (0..4).map(|j| m[i][j] * b[j][c]).sum::<f64>() - orig[i][c];
+                assert!(r.abs() < 1e-13, "row {i}, column {c}: residual {r}");
+            }
+        }
+        // the column beyond `m`: its entries permuted with the rows, not changed; the row
+        // beyond `n` left as it was
+        let mut was: Vec<u64> = (0..4).map(|i| orig[i][5].to_bits()).collect();
+        let mut now: Vec<u64> = (0..4).map(|i| b[i][5].to_bits()).collect();
+        was.sort_unstable();
+        now.sort_unstable();
+        assert_eq!(was, now);
+        assert_eq!(b[4], orig[4]);
     }
 
     #[test]

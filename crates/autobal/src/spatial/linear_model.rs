@@ -24,6 +24,7 @@
 
 use crate::error::{Error, Result};
 use crate::linalg::charpoly::PencilTerms;
+use crate::linalg::dense::Lu;
 use crate::spatial::params::SpatialModel;
 
 pub use crate::linalg::small::{Mat12, Mat6, Pencil, MAX_COORDS, MAX_STATES};
@@ -157,20 +158,22 @@ impl Pencil {
     /// First-order state matrix `A = [[0, I], [−M⁻¹K, −M⁻¹G]]` for `y = (q, q')`
     /// (Gaussian elimination with partial pivoting on `M`).
     pub fn state_matrix(&self) -> Mat12 {
+        self.state_matrix_by(Lu::new(self.m, self.n).as_ref())
+    }
+
+    /// [`Pencil::state_matrix`] with `M` factored by the caller (`None`: singular); the
+    /// columns of `[K G]` solved together ([`Lu::solve_columns`], each column bit for bit
+    /// `Lu::solve`'s).
+    fn state_matrix_by(&self, lu: Option<&Lu<MAX_COORDS>>) -> Mat12 {
         let n = self.n;
         // solve M [X Y] = [K G] (a singular M, impossible for physical inputs, gives NaN)
         let mut rhs = [[f64::NAN; 2 * MAX_COORDS]; MAX_COORDS];
-        if let Some(lu) = crate::linalg::dense::Lu::new(self.m, n) {
-            for c in 0..2 * n {
-                let mut col = [0.0; MAX_COORDS];
-                for i in 0..n {
-                    col[i] = if c < n { self.k[i][c] } else { self.g[i][c - n] };
-                }
-                lu.solve(&mut col);
-                for i in 0..n {
-                    rhs[i][c] = col[i];
-                }
+        if let Some(lu) = lu {
+            for i in 0..n {
+                rhs[i][..n].copy_from_slice(&self.k[i][..n]);
+                rhs[i][n..2 * n].copy_from_slice(&self.g[i][..n]);
             }
+            lu.solve_columns(&mut rhs, 2 * n);
         }
         let mut a = [[0.0; MAX_STATES]; MAX_STATES];
         for i in 0..n {
@@ -199,10 +202,14 @@ pub struct StateSpace {
 impl StateSpace {
     /// Factor the model's linearised equations once.
     pub fn new(model: &SpatialModel, balls: Balls) -> Result<Self> {
-        let a0 = Pencil::new(model, 0.0, balls)?.state_matrix();
-        let ap = Pencil::new(model, 1.0, balls)?.state_matrix();
-        let am = Pencil::new(model, -1.0, balls)?.state_matrix();
-        let states = Pencil::new(model, 0.0, balls)?.states();
+        let (p0, pp, pm) = (Pencil::new(model, 0.0, balls)?, Pencil::new(model, 1.0, balls)?, Pencil::new(model, -1.0, balls)?);
+        // `M` does not depend on Ω (eq (6)): one factorisation serves the three pencils where
+        // their mass matrices are the same bits (each is then what `state_matrix` gives)
+        let lu = Lu::new(p0.m, p0.n);
+        let same_m = |p: &Pencil| p.m.iter().flatten().zip(p0.m.iter().flatten()).all(|(a, b)| a.to_bits() == b.to_bits());
+        let by = |p: &Pencil| if same_m(p) { p.state_matrix_by(lu.as_ref()) } else { p.state_matrix() };
+        let (a0, ap, am) = (by(&p0), by(&pp), by(&pm));
+        let states = p0.states();
         let mut a1 = [[0.0; MAX_STATES]; MAX_STATES];
         let mut a2 = [[0.0; MAX_STATES]; MAX_STATES];
         for i in 0..states {
@@ -224,5 +231,44 @@ impl StateSpace {
             }
         }
         a
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spatial::params::DimensionlessInput;
+
+    /// `StateSpace::new`'s matrices (one LU of `M` shared by the three pencils, the columns
+    /// solved together) are bit for bit those built from each pencil's own
+    /// `Pencil::state_matrix`, the route they replaced: balls free and locked, on paper 003's
+    /// rotor at two bearing positions with `bench_map`'s balls (the map's outputs depend on these bits). Fails if a
+    /// pencil's `G` or `K` is paired with another's (the three differ in `Ω`).
+    #[test]
+    fn state_space_is_each_pencils_state_matrix_bit_for_bit() {
+        for l_left in [0.8, 0.35] {
+            let input = DimensionlessInput { direct_balls: Some((0.05, 0.5)), ..DimensionlessInput::paper_003(l_left) };
+            let model = SpatialModel::from_dimensionless(&input).unwrap();
+            for balls in [Balls::Free, Balls::Locked] {
+                let ss = StateSpace::new(&model, balls).unwrap();
+                let a = |w: f64| Pencil::new(&model, w, balls).unwrap().state_matrix();
+                let (a0, ap, am) = (a(0.0), a(1.0), a(-1.0));
+                let bits = |m: &Mat12| m.iter().flatten().map(|v| v.to_bits()).collect::<Vec<_>>();
+                let mut a1 = [[0.0; MAX_STATES]; MAX_STATES];
+                let mut a2 = [[0.0; MAX_STATES]; MAX_STATES];
+                for i in 0..ss.states {
+                    for j in 0..ss.states {
+                        a1[i][j] = 0.5 * (ap[i][j] - am[i][j]);
+                        a2[i][j] = 0.5 * (ap[i][j] + am[i][j]) - a0[i][j];
+                    }
+                }
+                assert_eq!(bits(&ss.a0), bits(&a0), "A0, {balls:?}, l_left {l_left}");
+                assert_eq!(bits(&ss.a1), bits(&a1), "A1, {balls:?}, l_left {l_left}");
+                assert_eq!(bits(&ss.a2), bits(&a2), "A2, {balls:?}, l_left {l_left}");
+                assert_eq!(ss.states, Pencil::new(&model, 0.0, balls).unwrap().states());
+                // and the matrices are not trivially equal: the speed terms are there
+                assert!(ss.a1.iter().flatten().any(|v| *v != 0.0) && ss.a2.iter().flatten().any(|v| *v != 0.0));
+            }
+        }
     }
 }
