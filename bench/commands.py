@@ -57,7 +57,8 @@ def cases(d):
     return {
         "simulate": ([EXE, "simulate", "--out", os.path.join(d, "sim.csv")],
                      lambda: (lambda j: (j[0]["wall_s"][0], j[1]))(lib_json([os.path.join(EX, "passage")]))),
-        "map": ([EXE, "map", "--threads", "1", "--quantity", "margin", "--x", "dimensionless.z_a=-2:2:400", "--y", "omega=0.05:4.5:400",
+        # the rotor of bench_map and stability_map.py (bench/stability_map.toml)
+        "map": ([EXE, "map", "--config", os.path.join(ROOT, "bench", "stability_map.toml"), "--threads", "1", "--quantity", "margin", "--x", "dimensionless.z_a=-2:2:400", "--y", "omega=0.05:4.5:400",
                  "--out", os.path.join(d, "map")],
                 lambda: (lambda j: (j[0]["margin_s"], j[1]))(lib_json([os.path.join(EX, "bench_map"), "400", "400", os.path.join(d, "m.bin"), "maps"], env1))),
         "campbell": ([EXE, "campbell", "--points", "200", "--omega-max", "5", "--format", "json"],

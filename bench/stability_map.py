@@ -39,6 +39,7 @@ Load average before and after, CPU beside wall, LOADED rule: bench/measure.py.
 
 Usage: python3 bench/stability_map.py [N] [REPEATS] [--allow-loaded] [--json FILE]   (default 400 5)
 """
+import csv
 import json
 import os
 import statistics
@@ -184,6 +185,7 @@ def numpy_verdict(zs, ws):
     return time.perf_counter() - t0, stable
 
 
+CONFIG = os.path.join(os.path.dirname(os.path.abspath(__file__)), "stability_map.toml")
 CPU = {"numpy_margin": [], "numpy_verdict": [], "autobal_example": [], "command_margin": [], "command_verdict": []}
 WALL = {"command_margin": [], "command_verdict": []}
 
@@ -210,8 +212,9 @@ def main():
         CPU["autobal_example"].append(measure.children_cpu() - c0)
         if os.path.exists(cli):
             for q in ("margin", "verdict"):
-                w, c = measure.run_cmd([cli, "map", "--threads", "1", "--quantity", q, "--x", f"dimensionless.z_a=-2:2:{N}",
-                                        "--y", f"omega=0.05:4.5:{N}", "--out", tmp])
+                # the same rotor as NumPy's and the example's (bench/stability_map.toml)
+                w, c = measure.run_cmd([cli, "map", "--config", CONFIG, "--threads", "1", "--quantity", q, "--x", f"dimensionless.z_a=-2:2:{N}",
+                                        "--y", f"omega=0.05:4.5:{N}", "--out", f"{tmp}_{q}"])
                 WALL[f"command_{q}"].append(w)
                 CPU[f"command_{q}"].append(c)
         rs = json.loads(res.stdout.strip().splitlines()[-1])
@@ -237,6 +240,12 @@ def main():
         "max_margin_difference_over_certified_bound": float(np.max(np.abs(alpha_rs - alpha_np) / (1e-10 * (1.0 + modulus_np) + 1e-12))),
         "stable_fraction": float(stable_np.mean()),
     }
+    if os.path.exists(cli):
+        # the command's own CSV: the same map (rows by speed, z_A fastest, as NumPy's layout)
+        with open(f"{tmp}_margin.csv") as f:
+            alpha_cmd = np.array([float(r["max_real_part"]) for r in csv.DictReader(f)])
+        checks["command_max_margin_difference_over_certified_bound"] = float(
+            np.max(np.abs(alpha_cmd - alpha_np) / (1e-10 * (1.0 + modulus_np) + 1e-12)))
     us = lambda s: 1e6 * s / k  # noqa: E731
     report = {
         "grid": f"{N} x {N}",
@@ -279,7 +288,8 @@ def main():
     print(json.dumps(report, indent=2))
     measure.write_table(OPTS.json, report, ok)
     if (checks["verdict_mismatches_away_from_boundary"] or checks["margin_verdict_mismatches_away_from_boundary"]
-            or checks["numpy_rh_verdict_mismatches_away_from_boundary"] or checks["max_margin_difference_over_certified_bound"] > 1.0):
+            or checks["numpy_rh_verdict_mismatches_away_from_boundary"] or checks["max_margin_difference_over_certified_bound"] > 1.0
+            or checks.get("command_max_margin_difference_over_certified_bound", 0.0) > 1.0):
         sys.exit("autobal and NumPy disagree")
 
 

@@ -257,6 +257,13 @@ fn axis_value_needs_general(spec: &autobal::spatial::paths::SpatialSpec, path: &
             (g("unbalance.mass") * g("unbalance.radius"), n * g("balancer.ball_mass") * g("balancer.race_radius"), n)
         }
     };
+    // a config that gives the 12-state model's inputs directly (`delta_a`, `m`, `d_a`: no
+    // masses, so no unbalance or capacity to read) has no general route at all (it needs the
+    // masses): the closed form's (session 25: such a map over z_a was refused, "the
+    // simulation needs the masses", where `critical` and `stability` take the config)
+    if !(u.is_finite() && cap.is_finite()) {
+        return n == 1.0;
+    }
     n == 1.0 || !(u.abs() > autobal::rotor_stability::NO_UNBALANCE * cap)
 }
 
@@ -1391,6 +1398,55 @@ mod tests {
 
     fn tables(text: &str) -> ConfigSource {
         ConfigSource::tables(crate::config::parse_text(text, "test").unwrap(), "test")
+    }
+
+    /// A config with the 12-state model's inputs given directly (`delta_a`, `m`, `d_a`, no
+    /// masses: bench/stability_map.py's rotor) maps over `z_a` on the closed form, as the full
+    /// rule says (it has no general route: that needs the masses); it was refused, the axis
+    /// rule reading the missing masses as "no unbalance". Its margins are the 12-state model's
+    /// own: the map's cell equals `spatial::stability::margin` on the model built from the
+    /// same inputs (bit for bit: the same route), and not the model with masses.
+    #[test]
+    fn a_config_of_direct_inputs_maps_on_the_closed_form() {
+        let text = "[dimensionless]\nc_sigma = 0.75\nrho_s = 0.4\nl_left = 0.8\nz_a = 0.0\ndelta_a = 0.1\nm = 0.05\nd_a = 0.5\nh_x = 0.05\nh_s = 0.1\n";
+        let root = crate::config::parse_text(text, "test").unwrap();
+        let cfg = config::build(&root, "test").unwrap();
+        for z in [-2.0, 0.0, 1.5] {
+            let mut r = root.clone();
+            autobal::config::set_number(&mut r, "dimensionless.z_a", z).unwrap();
+            assert!(!crate::general::needs_general_verdict(&r));
+            assert!(!axis_value_needs_general(&cfg.spec, "dimensionless.z_a", z), "z_a = {z}");
+        }
+        let args = Args {
+            config: tables(text),
+            x: parse_axis("--x", "dimensionless.z_a=-2:2:3").unwrap(),
+            y: parse_axis("--y", "omega=0.5:1.5:2").unwrap(),
+            quantity: Quantity::Margin,
+            ..Default::default()
+        };
+        let o = args.run(&Control::none()).unwrap();
+        let RouteOutput::Closed { cells: Some(cells), rows_done, .. } = &o.route else { panic!("not the closed form's route") };
+        assert_eq!(*rows_done, 2);
+        use autobal::spatial::params::{AnisotropyInput, DimensionlessInput, SpatialModel};
+        for (j, &w) in o.y.values.iter().enumerate() {
+            for (i, &z) in o.x.values.iter().enumerate() {
+                let inp = DimensionlessInput {
+                    c_sigma: 0.75,
+                    rho_s: 0.4,
+                    l_left: 0.8,
+                    z_a: z,
+                    anisotropy: AnisotropyInput::Direct(0.1),
+                    h_x: 0.05,
+                    h_s: 0.1,
+                    method: autobal::spatial::inertia::AnisotropyMethod::Exact,
+                    direct_balls: Some((0.05, 0.5)),
+                };
+                let want = autobal::spatial::stability::margin(&SpatialModel::from_dimensionless(&inp).unwrap(), w, Balls::Free).unwrap();
+                // the map certifies its margin to 1e-10 (1 + |λ|) (spatial::map): the same
+                // rightmost eigenvalue by another route
+                assert!((cells[j][i].margin - want).abs() <= 1e-9, "z_a {z}, Ω {w}: map {} vs {want}", cells[j][i].margin);
+            }
+        }
     }
 
     /// [`axis_value_needs_general`] against the full rule it stands for
