@@ -311,6 +311,13 @@ impl Plan {
             PlanRoute::Closed { cfg, .. } => cfg.dimensional,
             PlanRoute::General { root, planar, linear, .. } => !planar && !linear && config::is_dimensional(root),
         };
+        // the unit of the margins per τ (audit 25's F6: printed nowhere, and on a two-plane
+        // rotor not the whole rotor's sqrt(c/M))
+        let omega0 = match &self.route {
+            _ if !dimensional => None,
+            PlanRoute::Closed { cfg, .. } => cfg.model.scale.map(|s| s.omega0),
+            PlanRoute::General { root, .. } => autobal::config::spatial_simulation(root).ok().and_then(|s| s.config.model.scale.map(|s| s.omega0)),
+        };
         Ok(Output {
             x: a.x.clone(),
             y: a.y.clone(),
@@ -320,6 +327,7 @@ impl Plan {
             route,
             written: None,
             margin_column: margin_column(dimensional),
+            omega0,
         })
     }
 }
@@ -343,7 +351,13 @@ pub struct Output {
     /// The margin's column name in the CSV and Python's table ([`margin_column`]): per τ on a
     /// dimensional spatial config.
     pub margin_column: &'static str,
+    /// On a dimensional spatial config, `ω0 = sqrt(c_x / M_s)` (rad/s) of paper 000's
+    /// nondimensionalisation: the margin column is per `τ = ω0 t` ([`OMEGA0_WORDS`]).
+    pub omega0: Option<f64>,
 }
+
+/// What `ω0` is, beside its value in the table: `M_s` is paper 000's one-plane rotor's mass.
+pub const OMEGA0_WORDS: &str = "sqrt(c_x / M_s), M_s = the rotor with the unbalance and the first balancer plane's balls, paper 000's (a couple mass and a second plane's balls are not in it)";
 
 /// The cells and counts of each route.
 pub enum RouteOutput {
@@ -541,6 +555,7 @@ impl command::Output for Output {
             "wall_s": self.secs,
             "stopped": command::Output::stopped(self),
             "margin_column": self.margin_column,
+            "omega0_rad_s": self.omega0,
         });
         match &self.route {
             RouteOutput::Closed { continued, direct, traced, .. } => {
@@ -582,7 +597,10 @@ impl command::Output for Output {
         let n = self.x.values.len();
         let done = self.rows_done();
         let per_point = 1e6 * self.secs / (done * n).max(1) as f64;
-        Ok(match &self.route {
+        let unit = self.omega0.map_or(String::new(), |w| {
+            format!("{}: margins per τ = ω0 t, ω0 = {} rad/s = {OMEGA0_WORDS} (multiply by ω0 for 1/s)\n", self.margin_column, autobal::error::fmt_num(w))
+        });
+        Ok(unit + &match &self.route {
             RouteOutput::Closed { continued, direct, .. } => format!(
                 "{done} rows × {n} points in {:.2} s ({per_point:.2} µs per point; {continued} by continuation, {direct} direct solves){}\n",
                 self.secs,
@@ -1447,6 +1465,33 @@ mod tests {
                 assert!((cells[j][i].margin - want).abs() <= 1e-9, "z_a {z}, Ω {w}: map {} vs {want}", cells[j][i].margin);
             }
         }
+    }
+
+    /// Audit 25's F6: on a dimensional spatial config the margins are per τ = ω0 t with
+    /// ω0 = sqrt(c_x / M_s) (paper 000's M_s); the map prints and returns that ω0: equal to
+    /// sqrt((c_L + c_R) / (M_r + m0 + n m)) from examples/dimensional.toml's own entries to
+    /// round-off.
+    #[test]
+    fn a_dimensional_map_names_its_omega0() {
+        let root = crate::config::parse_text(include_str!("../../../examples/dimensional.toml"), "test").unwrap();
+        let a = |k: &str| -> f64 {
+            let (t, f) = k.split_once('.').unwrap();
+            root[t][f].as_float().or_else(|| root[t][f].as_integer().map(|i| i as f64)).unwrap()
+        };
+        let m_s = a("rotor.mass") + a("unbalance.mass") + a("balancer.balls") * a("balancer.ball_mass");
+        let want = (a("supports.stiffness_left") + a("supports.stiffness_right")).sqrt() / m_s.sqrt();
+        let args = Args {
+            config: ConfigSource::tables(root.clone(), "test"),
+            x: parse_axis("--x", "balancer.z=0.3:0.45:2").unwrap(),
+            y: parse_axis("--y", "omega=0.5:3:2").unwrap(),
+            quantity: Quantity::Margin,
+            ..Default::default()
+        };
+        let o = args.run(&Control::none()).unwrap();
+        let w = o.omega0.unwrap();
+        assert!((w - want).abs() <= 1e-12 * want, "{w} vs {want}");
+        assert_eq!(o.json().unwrap()["omega0_rad_s"].as_f64(), Some(w));
+        assert!(o.table().unwrap().starts_with("max_real_part_per_tau: margins per τ = ω0 t, ω0 = "));
     }
 
     /// [`axis_value_needs_general`] against the full rule it stands for
