@@ -440,9 +440,20 @@ impl command::Output for Output {
 
     /// The run's stop, naming the CSV that keeps the samples up to then.
     fn stopped(&self) -> Option<String> {
-        self.run.stopped().map(|st| match &self.written {
-            Some(w) => format!("{st}: the samples up to then are kept in {}", w.csv.display()),
-            None => st.to_string(),
+        if let Some(st) = self.run.stopped() {
+            return Some(match &self.written {
+                Some(w) => format!("{st}: the samples up to then are kept in {}", w.csv.display()),
+                None => st.to_string(),
+            });
+        }
+        // the run complete, its check against the tolerance stopped (review 25a: this read as
+        // a passed check, exit 0)
+        self.tolerance.as_ref().filter(|c| c.stopped()).map(|_| match &self.written {
+            Some(w) => format!(
+                "the tolerance check stopped before its second run ended: the run itself is complete (its samples in {}), its end state not checked",
+                w.csv.display()
+            ),
+            None => "the tolerance check stopped before its second run ended: the run itself is complete, its end state not checked".to_string(),
         })
     }
 }
@@ -566,5 +577,22 @@ mod tests {
         let w = j["warnings"].as_array().unwrap();
         assert!(w.len() == 1 && w[0].as_str().unwrap().starts_with("the balls have not settled"), "{w:?}");
         assert!(s.table().unwrap().contains("warning: the balls have not settled"));
+    }
+
+    /// Review 25a: a check whose second run stopped (Ctrl-C during `--check-tolerance`) read
+    /// "the same end state", `checked: true`, exit 0. Now it says the check was not done, its
+    /// JSON `checked` is false and the command's stop names it (the front ends exit as for a
+    /// stopped run).
+    #[test]
+    fn a_stopped_tolerance_check_is_no_check() {
+        use autobal::tolerance::EndState;
+        let mut o = Args { config: planar(&SHORT), ..Default::default() }.run(&Control::none()).unwrap();
+        assert!(o.stopped().is_none());
+        o.tolerance = Some(Check { first: (1e-8, EndState::Balanced), second: (1e-9, EndState::Stopped), depends: false });
+        let why = o.stopped().expect("the check's stop");
+        assert!(why.starts_with("the tolerance check stopped before its second run ended"), "{why}");
+        assert_eq!(o.json().unwrap()["tolerance_check"]["checked"], false);
+        let t = o.table().unwrap();
+        assert!(t.contains("tolerance check: NOT DONE") && !t.contains("the same end state"), "{t}");
     }
 }

@@ -22,10 +22,17 @@ pub struct Check {
 }
 
 impl Check {
-    /// The `tolerance_check` object of the summary's JSON.
+    /// Whether the second run stopped before its end (Ctrl-C, a budget): then nothing is
+    /// checked (review 25a: a stopped second run read "the same end state", exit 0).
+    pub fn stopped(&self) -> bool {
+        self.second.1 == EndState::Stopped
+    }
+
+    /// The `tolerance_check` object of the summary's JSON (`checked` false where the second
+    /// run stopped).
     pub fn json(&self) -> Value {
         json!({
-            "checked": true,
+            "checked": !self.stopped(),
             "rtol": self.first.0,
             "end_state": self.first.1,
             "tighter_rtol": self.second.0,
@@ -38,7 +45,14 @@ impl Check {
     /// The line the table adds.
     pub fn line(&self) -> String {
         let name = |s: EndState| serde_json::to_value(s).ok().and_then(|v| v.as_str().map(str::to_string)).unwrap_or_default();
-        if self.depends {
+        if self.stopped() {
+            format!(
+                "tolerance check: NOT DONE: the run again at rtol {} stopped before its end; the end state above ({} at rtol {}) is not checked",
+                autobal::error::fmt_num(self.second.0),
+                name(self.first.1),
+                autobal::error::fmt_num(self.first.0)
+            )
+        } else if self.depends {
             format!(
                 "tolerance check: the END STATE DEPENDS ON THE TOLERANCE ({} at rtol {}, {} at rtol {}): the outcome above is not the answer",
                 name(self.first.1),
