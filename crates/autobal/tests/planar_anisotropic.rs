@@ -630,3 +630,44 @@ fn the_eccentric_race_on_unequal_supports_settles_on_the_shot_orbit() {
         |s: &StationaryState| (ux - s.x[0]).abs() < 1e-6 * len && (uy - s.x[1]).abs() < 1e-6 * len && (0..2).all(|j| angle(last.psi[j], s.x[2 + j]) < 1e-6);
     assert!(orbits.iter().any(on), "run ends at C ({ux}, {uy}), balls {:?}; orbits {:?}, {:?}", last.psi, &orbits[0].x[..4], &orbits[1].x[..4]);
 }
+
+#[test]
+fn unequal_balls_reach_every_unbalance_of_their_annulus_in_any_order() {
+    // Review 25a's F2: with three or more unequal balls the placement tried only three layouts
+    // of balls 3.. and missed reachable unbalances (its 4-ball rotor: "no balanced state" where
+    // the same balls listed largest first balance). The polygon-closure bound, independent of
+    // the placement: lengths l_j = m_j r sum to a vector of any magnitude in
+    // [max(0, 2 max l − Σ l), Σ l] and no other. Checked on a grid of magnitudes and
+    // directions, for every order of the balls: inside the annulus a placement whose sum
+    // equals b to 1e-12 of Σ l (round-off of a few trigonometric steps), outside none.
+    use autobal::planar::field::unequal_balls_balancing;
+    let r = 0.06;
+    for masses in [vec![0.0763, 0.0120, 0.1015, 0.0553], vec![0.2, 0.01, 0.02, 0.03, 0.015], vec![0.05, 0.02, 0.02]] {
+        let l: Vec<f64> = masses.iter().map(|m| m * r).collect();
+        let sum: f64 = l.iter().sum();
+        let lo = (2.0 * l.iter().copied().fold(0.0, f64::max) - sum).max(0.0);
+        let mut orders = vec![masses.clone()];
+        let mut rev = masses.clone();
+        rev.reverse();
+        orders.push(rev);
+        let mut sorted = masses.clone();
+        sorted.sort_by(f64::total_cmp);
+        orders.push(sorted);
+        for m in &orders {
+            for k in 0..=40 {
+                let mag = 1.1 * sum * k as f64 / 40.0;
+                let b = C::from_polar(mag, 0.3 + 0.7 * k as f64);
+                let inside = mag >= lo * (1.0 + 1e-9) && mag <= sum * (1.0 - 1e-9);
+                let outside = mag < lo * (1.0 - 1e-9) || mag > sum * (1.0 + 1e-9);
+                match unequal_balls_balancing(m, r, b) {
+                    Some(psi) => {
+                        assert!(!outside, "{m:?}: |b| = {mag} outside [{lo}, {sum}] placed {psi:?}");
+                        let got: C = psi.iter().zip(m).map(|(a, mj)| C::from_polar(mj * r, *a)).sum();
+                        assert!((got - b).norm() <= 1e-12 * sum, "{m:?}: |b| = {mag}: sum {got} vs {b}");
+                    }
+                    None => assert!(!inside, "{m:?}: |b| = {mag} inside [{lo}, {sum}] but no placement"),
+                }
+            }
+        }
+    }
+}

@@ -278,7 +278,11 @@ pub fn two_ball_angles(a: f64, b: f64, d: C) -> Option<(f64, f64)> {
 /// `b` (`r Σ m_j e^{iψ_j} = b`): for two balls the closed form [`two_ball_angles`]; for more,
 /// balls 3.. placed first (spread evenly, or all along `b`, or all against it: the first of
 /// these that leaves the remainder within reach of balls 1 and 2), then balls 1 and 2 by the
-/// closed form. One member of the family (`n ≥ 3`); `None` where none of the placements works.
+/// closed form; where none of those three does, balls 3.. placed one by one so that what is
+/// left stays within reach of the balls still free ([`place_in_reach`]). One member of the
+/// family (`n ≥ 3`); `None` exactly where no placement exists: `|b|` outside the annulus
+/// `max(0, 2 max l − Σ l) ≤ |b| ≤ Σ l` of the lengths `l_j = m_j r` (a polygon closes with
+/// sides `l_j` and `|b|` exactly then).
 pub fn unequal_balls_balancing(masses: &[f64], r: f64, b: C) -> Option<Vec<f64>> {
     let n = masses.len();
     if n < 2 {
@@ -300,7 +304,60 @@ pub fn unequal_balls_balancing(masses: &[f64], r: f64, b: C) -> Option<Vec<f64>>
             return Some(psi);
         }
     }
-    None
+    // (review 25a: with n >= 3 unequal balls those three placements missed reachable
+    // unbalances, so `critical` and `stability` reported "no balanced state" where one exists,
+    // and the answer depended on the order the balls were listed in)
+    place_in_reach(masses, r, b)
+}
+
+/// The reach of balls of lengths `l` (kg·m): the annulus `[max(0, 2 max l − Σ l), Σ l]` of the
+/// magnitudes their sum `Σ l_j e^{iψ_j}` can take.
+fn reach(l: &[f64]) -> (f64, f64) {
+    let sum: f64 = l.iter().sum();
+    let max = l.iter().copied().fold(0.0, f64::max);
+    ((2.0 * max - sum).max(0.0), sum)
+}
+
+/// [`unequal_balls_balancing`]'s general placement: balls 3.. one at a time, each at the angle
+/// that leaves a remainder `D'` of magnitude `ρ` within the reach of the balls still free (the
+/// middle of `[||D| − l_k|, |D| + l_k] ∩ reach(rest)`, not empty whenever `|D|` is within the
+/// reach of all of them: the reach of a set is the circle of radius `l_k` swept over the
+/// annulus of the rest), by the triangle `(|D|, l_k, ρ)`; then balls 1 and 2 by
+/// [`two_ball_angles`]. `None` where `|b|` is outside the balls' reach.
+fn place_in_reach(masses: &[f64], r: f64, b: C) -> Option<Vec<f64>> {
+    let l: Vec<f64> = masses.iter().map(|m| m * r).collect();
+    let (lo, hi) = reach(&l);
+    // a relative slack of round-off (the triangle limits themselves are reachable)
+    let tol = 1e-12 * hi;
+    if b.norm() < lo - tol || b.norm() > hi + tol {
+        return None;
+    }
+    let n = l.len();
+    let mut d = b;
+    let mut rest = vec![0.0; n - 2];
+    for k in 2..n {
+        // the balls still free after k: 1, 2 and k+1..
+        let free: Vec<f64> = [l[0], l[1]].into_iter().chain(l[k + 1..].iter().copied()).collect();
+        let (rlo, rhi) = reach(&free);
+        let dn = d.norm();
+        let (a, z) = (((dn - l[k]).abs()).max(rlo), (dn + l[k]).min(rhi));
+        if a > z + tol {
+            return None;
+        }
+        let rho = 0.5 * (a + z.max(a));
+        let phi = if dn > 0.0 && l[k] > 0.0 {
+            let c = ((dn * dn + l[k] * l[k] - rho * rho) / (2.0 * dn * l[k])).clamp(-1.0, 1.0);
+            d.arg() + c.acos()
+        } else {
+            0.0
+        };
+        rest[k - 2] = phi;
+        d -= C::from_polar(l[k], phi);
+    }
+    let (pa, pb) = two_ball_angles(l[0], l[1], d)?;
+    let mut psi = vec![pa, pb];
+    psi.extend(rest);
+    Some(psi)
 }
 
 impl VectorField for PlanarField {
