@@ -1059,13 +1059,19 @@ fn point_mass_balls(rotor: &Rotor) -> Rotor {
 /// falls short of the unbalance at every speed (the spatial and the linear rotor; the planar
 /// rotor with its race centred), the partially balanced state, from the starts of
 /// `stability`'s scan ([`Rotor::first_start`]: each plane's balls on its share, else bunched).
+/// With an eccentric race, supports that differ by direction and `n ≥ 3` equal balls, the
+/// two-group orbit of least growth rate ([`Rotor::planar_split_orbits`]) first.
 /// Not for paper 004's eccentric race below its semi-balanced speed: there the diagram follows
 /// the semi-balanced state only (a switch to the balls bunched there added crossings that
 /// depend on the grid; tried and reverted in session 17), and a speed without it has no point.
 fn free_start(rotor: &Rotor, f: &Field, opts: &NewtonOptions) -> Option<Vec<f64>> {
     let start = Rotor::gravity_orbit_start(f, opts).or_else(|| Rotor::guess(f));
     match rotor {
-        Rotor::Planar(p) if p.s2 != 0.0 => start,
+        // an eccentric race on supports that differ by direction with n >= 3 equal balls: the
+        // two-group orbit of least growth rate, as `stability` and `map` analyse (review 25b:
+        // from the closed form's member, no orbit there, the diagram followed an unstable 2+2
+        // orbit of four balls where the scan analyses a stable 3+1 one); else the closed form
+        Rotor::Planar(p) if p.s2 != 0.0 => Rotor::planar_split_orbits(f, opts).into_iter().next().map(|(x, _)| x).or(start),
         _ if start.is_some() => start,
         _ => Rotor::first_start(f, None),
     }

@@ -305,14 +305,22 @@ fn solve(c: &CellRotor, w: f64, previous: Option<&StationaryState>, closed_form:
     // partially balanced state of least growth rate among the candidate starts and the
     // neighbour's state, as the speed scan analyses (Rotor::partial_states; from one start
     // until session 21 the cell could analyse another state than `stability`)
+    // the planar rotor with an eccentric race on supports that differ by direction and n >= 3
+    // equal balls: the family breaks into two-group orbits as under gravity, and the speed scan
+    // analyses the one of least growth rate (Rotor::planar_split_orbits in its start, session
+    // 25): so does the cell (review 25b: with four balls the cells continued onto an unstable
+    // 2+2 orbit where the scan analyses a stable 3+1 one)
+    let eccentric_split = matches!(&field, Field::Planar(f) if f.rotor().s2 > 0.0 && f.split_guesses().len() > 1);
     let closed = || {
         if !closed_form {
             return None;
         }
-        let orbit = Rotor::gravity_orbit_start(&field, &opts).or_else(|| {
-            let carried: Vec<Vec<f64>> = near.map(|x| vec![x.to_vec()]).unwrap_or_default();
-            Rotor::partial_states_from(&field, &opts, &carried).into_iter().next().map(|(x, _)| x)
-        });
+        let orbit = Rotor::gravity_orbit_start(&field, &opts)
+            .or_else(|| eccentric_split.then(|| Rotor::planar_split_orbits(&field, &opts).into_iter().next().map(|(x, _)| x)).flatten())
+            .or_else(|| {
+                let carried: Vec<Vec<f64>> = near.map(|x| vec![x.to_vec()]).unwrap_or_default();
+                Rotor::partial_states_from(&field, &opts, &carried).into_iter().next().map(|(x, _)| x)
+            });
         Rotor::first_start(&field, orbit)
     };
     // Under gravity across the axis with n >= 3 balls in a plane, orbits with the balls in
@@ -323,7 +331,7 @@ fn solve(c: &CellRotor, w: f64, previous: Option<&StationaryState>, closed_form:
     // examples/washing_machine.toml under gravity at 1362.5 rpm, balancer.z = 0.2556, read
     // "unstable" (+3.74e-4 1/s, the other orbit) on a 25 x 10 map and "stable" (-1.64e-4 1/s)
     // in `stability` and on a 3 x 2 map (session 19's audit; tests/gravity_family.rs)
-    let placements = matches!(&field, Field::Spatial(f) if f.split_guesses().len() > 1);
+    let placements = matches!(&field, Field::Spatial(f) if f.split_guesses().len() > 1) || eccentric_split;
     // the last resort, as the speed scan's, where neither start reaches a state: the planar
     // rotor's orbit with n >= 3 balls in two groups on supports that differ by direction
     // (Rotor::planar_split_orbits, the least growth rate first)

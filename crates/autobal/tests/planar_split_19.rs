@@ -163,3 +163,38 @@ fn the_scan_lists_the_unstable_mirror_beside_the_stable_orbit() {
         assert!((o.abscissa - mirror).abs() < tol, "{w} rad/s: mirror {:e} vs {mirror:e}", o.abscissa);
     }
 }
+
+#[test]
+fn four_balls_map_cells_and_the_campbell_diagram_take_the_scans_orbit() {
+    // review 25b: with four balls (audit 25's A3 with n = 4, m3 = 15 g) the scan analyses the
+    // stable 3+1 orbit (−6.777178e-5 1/s at 332.609 rad/s by the auditor's own monodromy, the
+    // 2+2 orbit +5.353e-5 and the other 3+1 +6.827e-5), while the map's cells and the
+    // Campbell diagram continued onto the unstable 2+2 orbit. Now all three take the orbit of
+    // least growth rate: the same verdicts, margins equal to the shooting's ~1e-7 1/s, and the
+    // diagram's largest non-structural real part the scan's abscissa to that accuracy.
+    use autobal::paths::Axis;
+    use autobal::rotor_map::general_map;
+    let text = "[planar]\nm1 = 1.0\nm2 = 0.2\nn = 4\nm3 = 0.015\nc_psi = 0.1\ns1 = 0.003\ns2 = 0.0005\ngamma = 0.7\nr = 0.06\nk_x = 8.0e4\nk_y = 1.3e5\nc_x = 30.0\nc_y = 70.0\nc_theta = 0.0\ni_g = 0.0025\n";
+    let root = autobal::config::parse(text, "a4b").unwrap();
+    let p = autobal::config::planar_rotor_for_analysis(&root).unwrap();
+    let speeds = vec![332.609, 400.0, 600.0];
+    let scan = stability_over_speed(&Rotor::Planar(p.clone()), &speeds).unwrap();
+    assert!((scan.points[0].abscissa.unwrap() + 6.777178e-5).abs() < 1e-7, "{:?}", scan.points[0].abscissa);
+    let x = Axis { path: "omega".into(), values: speeds.clone() };
+    let y = Axis { path: "planar.c_psi".into(), values: vec![0.1] };
+    let mut cells = vec![];
+    general_map(&root, &x, &y, None, &autobal::control::Control::none(), &mut |_, r| {
+        cells.extend_from_slice(r);
+        true
+    })
+    .unwrap();
+    for (c, q) in cells.iter().zip(&scan.points) {
+        assert_eq!(c.verdict, q.verdict, "{} rad/s: map {c:?}, scan {q:?}", q.omega);
+        assert!((c.margin - q.abscissa.unwrap()).abs() <= 1e-7, "{} rad/s: map {}, scan {:?}", q.omega, c.margin, q.abscissa);
+    }
+    let camp = autobal::rotor_campbell::campbell_over_speed(&Rotor::Planar(p), &speeds).unwrap();
+    for (i, q) in scan.points.iter().enumerate() {
+        let top = camp.lines.iter().filter_map(|l| l.points[i].as_ref()).filter(|e| !e.structural).map(|e| e.re).fold(f64::NEG_INFINITY, f64::max);
+        assert!((top - q.abscissa.unwrap()).abs() <= 1e-7, "{} rad/s: campbell {top}, scan {:?}", q.omega, q.abscissa);
+    }
+}
