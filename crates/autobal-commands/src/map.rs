@@ -104,7 +104,7 @@ fn check_axis(flag: &str, name: &str, a: &Axis) -> Result<()> {
 /// Whether the axis is a speed: `omega` or, for a dimensional config, `speed_rpm`, `speed`
 /// (rad/s), `speed_hz` ([`autobal::units::SPEED_PATHS`]).
 fn is_speed(a: &Axis) -> bool {
-    autobal::units::speed_path_unit(&a.path).is_some()
+    is_speed_path(&a.path)
 }
 
 /// Where a map's rows go as they are computed.
@@ -313,10 +313,34 @@ impl Plan {
         };
         // the unit of the margins per τ (audit 25's F6: printed nowhere, and on a two-plane
         // rotor not the whole rotor's sqrt(c/M))
+        // (review 25b: an axis over a stiffness or a mass moves ω0 from cell to cell, and each
+        // cell's margin is per τ of its own: one ω0 printed for all was 12-15 % off there.
+        // ω0 = sqrt(c_x / M_s) is monotone in each such entry, so its range over the map is
+        // that over the four corners)
         let omega0 = match &self.route {
             _ if !dimensional => None,
-            PlanRoute::Closed { cfg, .. } => cfg.model.scale.map(|s| s.omega0),
-            PlanRoute::General { root, .. } => autobal::config::spatial_simulation(root).ok().and_then(|s| s.config.model.scale.map(|s| s.omega0)),
+            PlanRoute::Closed { cfg, .. } => omega0_range(
+                a,
+                |path, v, s: &mut autobal::spatial::paths::SpatialSpec| {
+                    if is_speed_path(path) {
+                        return Ok(());
+                    }
+                    s.set(path, v)
+                },
+                &cfg.spec,
+                |s| Ok(s.build()?.scale.map(|k| k.omega0)),
+            ),
+            PlanRoute::General { root, .. } => omega0_range(
+                a,
+                |path, v, t: &mut toml::Table| {
+                    if is_speed_path(path) {
+                        return Ok(());
+                    }
+                    autobal::config::set_number(t, path, v)
+                },
+                root.as_ref(),
+                |t| Ok(autobal::config::spatial_simulation(t)?.config.model.scale.map(|k| k.omega0)),
+            ),
         };
         Ok(Output {
             x: a.x.clone(),
@@ -352,8 +376,38 @@ pub struct Output {
     /// dimensional spatial config.
     pub margin_column: &'static str,
     /// On a dimensional spatial config, `ω0 = sqrt(c_x / M_s)` (rad/s) of paper 000's
-    /// nondimensionalisation: the margin column is per `τ = ω0 t` ([`OMEGA0_WORDS`]).
-    pub omega0: Option<f64>,
+    /// nondimensionalisation: the margin column is per `τ = ω0 t` ([`OMEGA0_WORDS`]); its
+    /// least and largest value over the map (equal unless an axis moves a stiffness or a mass:
+    /// then each cell's margin is per τ of its own cell's `ω0`).
+    pub omega0: Option<[f64; 2]>,
+}
+
+/// `ω0` over the map's four corners (`[min, max]`; equal where no axis moves it), each corner
+/// `base` with the axes' first or last values set by `set` and `ω0` read by `omega0`; `None`
+/// where a corner has none.
+fn omega0_range<T: Clone>(
+    a: &Args,
+    set: impl Fn(&str, f64, &mut T) -> autobal::Result<()>,
+    base: &T,
+    omega0: impl Fn(&T) -> autobal::Result<Option<f64>>,
+) -> Option<[f64; 2]> {
+    let ends = |ax: &Axis| [ax.values[0], ax.values[ax.values.len() - 1]];
+    let mut range = [f64::INFINITY, f64::NEG_INFINITY];
+    for xv in ends(&a.x) {
+        for yv in ends(&a.y) {
+            let mut t = base.clone();
+            set(&a.x.path, xv, &mut t).ok()?;
+            set(&a.y.path, yv, &mut t).ok()?;
+            let w = omega0(&t).ok()??;
+            range = [range[0].min(w), range[1].max(w)];
+        }
+    }
+    Some(range)
+}
+
+/// Whether an axis path is the speed (not a config entry; [`is_speed`]).
+fn is_speed_path(path: &str) -> bool {
+    autobal::units::speed_path_unit(path).is_some()
 }
 
 /// What `ω0` is, beside its value in the table: `M_s` is paper 000's one-plane rotor's mass.
@@ -555,7 +609,8 @@ impl command::Output for Output {
             "wall_s": self.secs,
             "stopped": command::Output::stopped(self),
             "margin_column": self.margin_column,
-            "omega0_rad_s": self.omega0,
+            "omega0_rad_s": self.omega0.filter(|[a, b]| a == b).map(|[a, _]| a),
+            "omega0_range_rad_s": self.omega0,
         });
         match &self.route {
             RouteOutput::Closed { continued, direct, traced, .. } => {
@@ -597,8 +652,17 @@ impl command::Output for Output {
         let n = self.x.values.len();
         let done = self.rows_done();
         let per_point = 1e6 * self.secs / (done * n).max(1) as f64;
-        let unit = self.omega0.map_or(String::new(), |w| {
-            format!("{}: margins per τ = ω0 t, ω0 = {} rad/s = {OMEGA0_WORDS} (multiply by ω0 for 1/s)\n", self.margin_column, autobal::error::fmt_num(w))
+        let unit = self.omega0.map_or(String::new(), |[a, b]| {
+            if a == b {
+                format!("{}: margins per τ = ω0 t, ω0 = {} rad/s = {OMEGA0_WORDS} (multiply by ω0 for 1/s)\n", self.margin_column, autobal::error::fmt_num(a))
+            } else {
+                format!(
+                    "{}: margins per τ = ω0 t of each cell's own ω0 = {OMEGA0_WORDS}, which the axes move: {} to {} rad/s over the map (multiply a cell's margin by its own ω0 for 1/s)\n",
+                    self.margin_column,
+                    autobal::error::fmt_num(a),
+                    autobal::error::fmt_num(b)
+                )
+            }
         });
         Ok(unit + &match &self.route {
             RouteOutput::Closed { continued, direct, .. } => format!(
@@ -1488,10 +1552,26 @@ mod tests {
             ..Default::default()
         };
         let o = args.run(&Control::none()).unwrap();
-        let w = o.omega0.unwrap();
+        let [w, w1] = o.omega0.unwrap();
+        assert_eq!(w, w1, "no axis moves it");
         assert!((w - want).abs() <= 1e-12 * want, "{w} vs {want}");
         assert_eq!(o.json().unwrap()["omega0_rad_s"].as_f64(), Some(w));
         assert!(o.table().unwrap().starts_with("max_real_part_per_tau: margins per τ = ω0 t, ω0 = "));
+        // review 25b: an axis over the left stiffness moves ω0 cell by cell: its range, from
+        // each corner's own sqrt(c_x / M_s), and no single value
+        let args = Args {
+            config: ConfigSource::tables(root.clone(), "test"),
+            x: parse_axis("--x", "speed=600:700:2").unwrap(),
+            y: parse_axis("--y", "supports.stiffness_left=1e6:4e6:2").unwrap(),
+            quantity: Quantity::Margin,
+            ..Default::default()
+        };
+        let o = args.run(&Control::none()).unwrap();
+        let [lo, hi] = o.omega0.unwrap();
+        let corner = |c_l: f64| ((c_l + a("supports.stiffness_right")) / m_s).sqrt();
+        assert!((lo - corner(1e6)).abs() <= 1e-12 * lo && (hi - corner(4e6)).abs() <= 1e-12 * hi, "{lo} {hi}");
+        assert!(o.json().unwrap()["omega0_rad_s"].is_null());
+        assert!(o.table().unwrap().contains("of each cell's own ω0"));
     }
 
     /// [`axis_value_needs_general`] against the full rule it stands for

@@ -652,6 +652,10 @@ fn map_dict<'py>(py: Python<'py>, args: autobal_commands::map::Args, threads: Op
     d.set_item("y", PyArray1::from_vec(py, ys))?;
     // the margin's name in the CLI's CSV (per τ on a dimensional spatial config)
     d.set_item("margin_column", out.margin_column)?;
+    // the per-τ margins' unit on a dimensional spatial config (one value, or None where the
+    // axes move it: then its range), as the CLI prints it
+    d.set_item("omega0_rad_s", out.omega0.filter(|[a, b]| a == b).map(|[a, _]| a))?;
+    d.set_item("omega0_range_rad_s", out.omega0.map(|r| r.to_vec()))?;
     match out.route {
         RouteOutput::Closed { cells: Some(cells), .. } => {
             let flat = || cells.iter().flatten();

@@ -488,6 +488,32 @@ def test_stability_map_equals_the_cli_map(tmp_path):
     with pytest.raises(InvalidParameter) as e:
         autobal.SpatialModel().stability_map("dimensionless.z_a=-2:2:3", "dimensionless.l_left=0.5:1:3")
     assert e.value.field == "omega"
+    # the per-tau margins' omega0 on an SI config (audit 25's F6): sqrt((c_L + c_R) / M_s),
+    # M_s = rotor + unbalance + balls from the file's own entries; None on a dimensionless one
+    si = str(ROOT / "examples" / "dimensional.toml")
+    m = autobal.run("map", config=si, x="balancer.z=0.3:0.45:2", y="omega=0.5:3:2")
+    cfg = tomllib_load(si)
+    m_s = cfg["rotor"]["mass"] + cfg["unbalance"]["mass"] + cfg["balancer"]["balls"] * cfg["balancer"]["ball_mass"]
+    want = ((cfg["supports"]["stiffness_left"] + cfg["supports"]["stiffness_right"]) / m_s) ** 0.5
+    assert m["omega0_rad_s"] == pytest.approx(want, rel=1e-12) and m["omega0_range_rad_s"] == [m["omega0_rad_s"]] * 2
+    assert autobal.run("map", config=dim, x="dimensionless.z_a=-2:2:3", y="omega=0.5:3:2")["omega0_rad_s"] is None
+
+
+def tomllib_load(path):
+    """The numbers of a flat TOML file (`[section]`, `key = number  # comment`) as nested dicts:
+    enough for the examples' entries, without tomllib (Python 3.11+)."""
+    out, sec = {}, None
+    for line in open(path, encoding="utf-8"):
+        line = line.split("#", 1)[0].strip()
+        if line.startswith("[") and line.endswith("]"):
+            sec = out.setdefault(line[1:-1], {})
+        elif "=" in line and sec is not None:
+            k, v = (t.strip() for t in line.split("=", 1))
+            try:
+                sec[k] = float(v)
+            except ValueError:
+                pass
+    return out
 
 
 def test_the_readme_session_runs_as_printed(tmp_path, monkeypatch):
