@@ -279,7 +279,7 @@ pub fn two_ball_angles(a: f64, b: f64, d: C) -> Option<(f64, f64)> {
 /// balls 3.. placed first (spread evenly, or all along `b`, or all against it: the first of
 /// these that leaves the remainder within reach of balls 1 and 2), then balls 1 and 2 by the
 /// closed form; where none of those three does, balls 3.. placed one by one so that what is
-/// left stays within reach of the balls still free ([`place_in_reach`]). One member of the
+/// left stays within reach of the balls still free (`place_in_reach`). One member of the
 /// family (`n ≥ 3`); `None` exactly where no placement exists: `|b|` outside the annulus
 /// `max(0, 2 max l − Σ l) ≤ |b| ≤ Σ l` of the lengths `l_j = m_j r` (a polygon closes with
 /// sides `l_j` and `|b|` exactly then).
