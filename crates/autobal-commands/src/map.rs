@@ -104,7 +104,7 @@ fn check_axis(flag: &str, name: &str, a: &Axis) -> Result<()> {
 /// Whether the axis is a speed: `omega` or, for a dimensional config, `speed_rpm`, `speed`
 /// (rad/s), `speed_hz` ([`autobal::units::SPEED_PATHS`]).
 fn is_speed(a: &Axis) -> bool {
-    is_speed_path(&a.path)
+    autobal::units::speed_path_unit(&a.path).is_some()
 }
 
 /// Where a map's rows go as they are computed.
@@ -312,33 +312,17 @@ impl Plan {
             PlanRoute::General { root, planar, linear, .. } => !planar && !linear && config::is_dimensional(root),
         };
         // the unit of the margins per τ (audit 25's F6: printed nowhere, and on a two-plane
-        // rotor not the whole rotor's sqrt(c/M))
-        // (review 25b: an axis over a stiffness or a mass moves ω0 from cell to cell, and each
-        // cell's margin is per τ of its own: one ω0 printed for all was 12-15 % off there.
-        // ω0 = sqrt(c_x / M_s) is monotone in each such entry, so its range over the map is
-        // that over the four corners)
+        // rotor not the whole rotor's sqrt(c/M)); its range where an axis moves it (review
+        // 25b: one ω0 printed for all cells was 12-15 % off there)
         let omega0 = match &self.route {
             _ if !dimensional => None,
-            PlanRoute::Closed { cfg, .. } => omega0_range(
-                a,
-                |path, v, s: &mut autobal::spatial::paths::SpatialSpec| {
-                    if is_speed_path(path) {
-                        return Ok(());
-                    }
-                    s.set(path, v)
-                },
-                &cfg.spec,
-                |s| Ok(s.build()?.scale.map(|k| k.omega0)),
-            ),
+            PlanRoute::Closed { cfg, .. } => {
+                omega0_range(a, &cfg.spec, |s: &mut autobal::spatial::paths::SpatialSpec, path, v| s.set(path, v), |s| Ok(s.build()?.scale.map(|k| k.omega0)))
+            }
             PlanRoute::General { root, .. } => omega0_range(
                 a,
-                |path, v, t: &mut toml::Table| {
-                    if is_speed_path(path) {
-                        return Ok(());
-                    }
-                    autobal::config::set_number(t, path, v)
-                },
                 root.as_ref(),
+                |t: &mut toml::Table, path, v| autobal::config::set_number(t, path, v),
                 |t| Ok(autobal::config::spatial_simulation(t)?.config.model.scale.map(|k| k.omega0)),
             ),
         };
@@ -382,32 +366,29 @@ pub struct Output {
     pub omega0: Option<[f64; 2]>,
 }
 
-/// `ω0` over the map's four corners (`[min, max]`; equal where no axis moves it), each corner
-/// `base` with the axes' first or last values set by `set` and `ω0` read by `omega0`; `None`
-/// where a corner has none.
+/// `ω0` over the map's four corners (`[min, max]`; equal where no axis moves it): `base` with
+/// each config axis at its first or last value (`set`; a speed axis is no config entry) and
+/// `ω0` read by `omega0`; `None` where a corner has none. `ω0 = sqrt(c_x / M_s)` is monotone
+/// in each entry that moves it (a stiffness, a mass), so the corners hold its extremes.
 fn omega0_range<T: Clone>(
     a: &Args,
-    set: impl Fn(&str, f64, &mut T) -> autobal::Result<()>,
     base: &T,
+    set: impl Fn(&mut T, &str, f64) -> autobal::Result<()>,
     omega0: impl Fn(&T) -> autobal::Result<Option<f64>>,
 ) -> Option<[f64; 2]> {
     let ends = |ax: &Axis| [ax.values[0], ax.values[ax.values.len() - 1]];
+    let put = |t: &mut T, ax: &Axis, v: f64| if is_speed(ax) { Ok(()) } else { set(t, &ax.path, v) };
     let mut range = [f64::INFINITY, f64::NEG_INFINITY];
     for xv in ends(&a.x) {
         for yv in ends(&a.y) {
             let mut t = base.clone();
-            set(&a.x.path, xv, &mut t).ok()?;
-            set(&a.y.path, yv, &mut t).ok()?;
+            put(&mut t, &a.x, xv).ok()?;
+            put(&mut t, &a.y, yv).ok()?;
             let w = omega0(&t).ok()??;
             range = [range[0].min(w), range[1].max(w)];
         }
     }
     Some(range)
-}
-
-/// Whether an axis path is the speed (not a config entry; [`is_speed`]).
-fn is_speed_path(path: &str) -> bool {
-    autobal::units::speed_path_unit(path).is_some()
 }
 
 /// What `ω0` is, beside its value in the table: `M_s` is paper 000's one-plane rotor's mass.
