@@ -229,6 +229,7 @@ impl command::Command for Args {
     /// interrupted: the page says which sections were cut short).
     fn run(&self, control: &autobal::control::Control) -> Result<Output> {
         crate::outfile::Outputs::new().inputs(self.config.path()).output("--out", &self.out.join("index.html")).check()?;
+        check_folder(&self.out)?;
         let ctx = context(&self.config, self.quick, self.kind(), control)?;
         write(&ctx, &self.out)
     }
@@ -357,6 +358,16 @@ fn write_sections(ctx: &Ctx, dir: &Path, sections: &[Section], t0: Instant) -> R
     // complete one left byte for byte (review 24c: the incomplete page replaced it)
     let kept = interrupted && holds_complete_report(dir);
     let out_dir = if kept { dir.join(INCOMPLETE_FOLDER) } else { dir.to_path_buf() };
+    if kept {
+        if out_dir.exists() && !out_dir.is_dir() {
+            bail!(
+                "--out {}: is not a folder; a stopped report goes there when {} holds a complete one (which is left as it was): move it away",
+                out_dir.display(),
+                dir.display()
+            );
+        }
+        check_folder(&out_dir)?;
+    }
     let previous = previous_figure_files(&out_dir);
     // figure files, in parallel (rasterising is the slow part)
     let figs: Vec<&Figure> = sections.iter().flat_map(|s| s.figures()).collect();
@@ -371,7 +382,7 @@ fn write_sections(ctx: &Ctx, dir: &Path, sections: &[Section], t0: Instant) -> R
         .into_iter()
         .flatten()
         .collect();
-    for (name, text) in [("plotly-cartesian.min.js", PLOTLY_JS), ("plotly-LICENSE.txt", PLOTLY_LICENSE), ("report.js", REPORT_JS)] {
+    for (name, text) in ASSETS.into_iter().zip([PLOTLY_JS, PLOTLY_LICENSE, REPORT_JS]) {
         files.push((out_dir.join(name), text.as_bytes().to_vec()));
     }
     let page = page(ctx, sections, interrupted, &incomplete, t0.elapsed().as_secs_f64());
@@ -379,6 +390,9 @@ fn write_sections(ctx: &Ctx, dir: &Path, sections: &[Section], t0: Instant) -> R
     files.push((index.clone(), page.into_bytes()));
     crate::outfile::write_all_or_none("--out", &files)?;
     remove_stale(&previous, &files);
+    if !interrupted {
+        remove_stopped_report(&dir.join(INCOMPLETE_FOLDER));
+    }
     if !interrupted && ctx.control.should_stop().is_some() {
         crate::term::note("report: the stop came after every section had completed: the report is complete");
     }
@@ -410,6 +424,48 @@ pub const INCOMPLETE_FOLDER: &str = "incomplete";
 /// without the interruption's warning.
 fn holds_complete_report(dir: &Path) -> bool {
     std::fs::read_to_string(dir.join("index.html")).is_ok_and(|p| p.contains("<title>autobal report") && !p.contains(INTERRUPTED_DIV))
+}
+
+/// The files a report writes whatever its sections (beside `index.html` and the figures).
+const ASSETS: [&str; 3] = ["plotly-cartesian.min.js", "plotly-LICENSE.txt", "report.js"];
+
+/// Refuse a folder that holds files of the user's own where the report would write: an
+/// `index.html` that is not a report's page of autobal, or, with no page at all, a file named as
+/// one of the report's [`ASSETS`] (review 25a: a user's own `index.html` in `--out` was
+/// replaced). Checked before any section runs; a folder holding autobal's report is the
+/// report's to replace.
+fn check_folder(dir: &Path) -> Result<()> {
+    let index = dir.join("index.html");
+    if index.exists() {
+        if !std::fs::read_to_string(&index).is_ok_and(|p| p.contains("<title>autobal report")) {
+            bail!("--out {}: holds an index.html that is not an autobal report, which the report would replace: give a new or empty folder", dir.display());
+        }
+        return Ok(());
+    }
+    if let Some(a) = ASSETS.iter().find(|a| dir.join(a).exists()) {
+        bail!("--out {}: holds a file {a} that no autobal report page links, which the report would replace: give a new or empty folder", dir.display());
+    }
+    Ok(())
+}
+
+/// Remove the stopped report that an earlier run left in `dir` (`--out/incomplete/`) once a
+/// complete report is written beside it: its page, the figures it links and the [`ASSETS`],
+/// then the folder if nothing else is left in it (review 25a: the stale stopped page stayed
+/// after a complete rerun). Nothing that is not a report's file is removed.
+fn remove_stopped_report(dir: &Path) {
+    let index = dir.join("index.html");
+    if !std::fs::read_to_string(&index).is_ok_and(|p| p.contains("<title>autobal report")) {
+        return;
+    }
+    let mut ours = previous_figure_files(dir);
+    ours.extend(ASSETS.iter().map(|a| dir.join(a)));
+    ours.push(index);
+    for p in &ours {
+        let _ = std::fs::remove_file(p);
+    }
+    if std::fs::remove_dir(dir).is_ok() {
+        crate::term::note(&format!("report: removed the earlier stopped report in {}", dir.display()));
+    }
 }
 
 /// The figure files (`ID.svg`, `ID.png`) the report page in `dir` links, if `dir` holds one:
@@ -664,6 +720,55 @@ mod tests {
         assert_eq!(out.index, d.join("index.html"));
         let names: Vec<String> = files(&d).into_iter().map(|(n, _)| n).collect();
         assert_eq!(names, ["f1.png", "f1.svg", "index.html", "notes.txt", "plotly-LICENSE.txt", "plotly-cartesian.min.js", "report.js"]);
+        // and the stopped report of the earlier run is gone with its folder (review 25a: it
+        // stayed, a stale page beside the complete one)
+        assert!(!inc.exists());
+        // a stopped report whose folder also holds a file of the user's: the report's files
+        // go, the user's file and so the folder stay
+        write_sections(&c, &d, &[section(&["f3"], false)], Instant::now()).unwrap();
+        std::fs::write(inc.join("mine.txt"), "the user's").unwrap();
+        write_sections(&c, &d, &[section(&["f1"], true)], Instant::now()).unwrap();
+        let left: Vec<String> = files(&inc).into_iter().map(|(n, _)| n).collect();
+        assert_eq!(left, ["mine.txt"]);
+        let _ = std::fs::remove_dir_all(&d);
+    }
+
+    /// A folder holding the user's own `index.html`, or a file named as one of the report's
+    /// assets with no report page, is refused before anything runs (review 25a: the user's
+    /// page was replaced); an empty folder, a new one and one holding autobal's report are
+    /// taken. The message names `--out` and the folder.
+    #[test]
+    fn a_folder_with_the_users_own_page_is_refused() {
+        let d = scratch("users-page");
+        check_folder(&d).unwrap();
+        check_folder(&d.join("new")).unwrap();
+        std::fs::write(d.join("index.html"), "<html><title>my notes</title></html>").unwrap();
+        let e = check_folder(&d).unwrap_err().to_string();
+        assert!(e.starts_with(&format!("--out {}: holds an index.html that is not an autobal report", d.display())), "{e}");
+        std::fs::remove_file(d.join("index.html")).unwrap();
+        std::fs::write(d.join("report.js"), "// mine").unwrap();
+        let e = check_folder(&d).unwrap_err().to_string();
+        assert!(e.contains("holds a file report.js"), "{e}");
+        std::fs::remove_file(d.join("report.js")).unwrap();
+        // autobal's own report: taken (a rerun replaces it)
+        write_sections(&ctx(&Control::none()), &d, &[section(&["f1"], true)], Instant::now()).unwrap();
+        check_folder(&d).unwrap();
+        let _ = std::fs::remove_dir_all(&d);
+    }
+
+    /// A stopped report into a folder holding a complete one, where `incomplete` is a file:
+    /// one line naming it, and the complete report left as it was (review 25a: the error named
+    /// the staged temporary file inside a folder that could not exist).
+    #[test]
+    fn an_incomplete_file_in_the_way_is_named() {
+        let d = scratch("incomplete-file");
+        let c = ctx(&Control::none());
+        write_sections(&c, &d, &[section(&["f1"], true)], Instant::now()).unwrap();
+        std::fs::write(d.join(INCOMPLETE_FOLDER), "the user's").unwrap();
+        let before = files(&d);
+        let e = write_sections(&c, &d, &[section(&["f1"], false)], Instant::now()).err().expect("refused").to_string();
+        assert!(e.starts_with(&format!("--out {}: is not a folder", d.join(INCOMPLETE_FOLDER).display())), "{e}");
+        assert_eq!(files(&d), before);
         let _ = std::fs::remove_dir_all(&d);
     }
 }
