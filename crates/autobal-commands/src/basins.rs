@@ -50,6 +50,11 @@ pub struct Output {
     pub svg: Option<PathBuf>,
     /// A linear rotor config's ends (`ends` is then empty): the runs of [`autobal::linear_rotor::basins`].
     pub linear: Option<Vec<Option<autobal::linear_rotor::basins::BasinEnd>>>,
+    /// The runs' relative tolerance: each end is that at this tolerance, not checked against a
+    /// tighter one (the table's line and the JSON's `tolerance_check`, as `simulate`'s:
+    /// [`crate::tolerance::unchecked`]; issue 18 item 4: near a basin boundary, which is what
+    /// this grid maps, an end can depend on the tolerance).
+    pub rtol: f64,
 }
 
 impl command::Command for Args {
@@ -68,7 +73,15 @@ impl command::Command for Args {
         let t0 = std::time::Instant::now();
         let ends = basins(&sim.rotor, &cases, &sim.settings, control)?.value;
         let wall = t0.elapsed().as_secs_f64();
-        Ok(Output { angles: cases.iter().map(|c| [c.initial.psi[0], c.initial.psi[1]]).collect(), ends, wall, written: None, svg: None, linear: None })
+        Ok(Output {
+            angles: cases.iter().map(|c| [c.initial.psi[0], c.initial.psi[1]]).collect(),
+            ends,
+            wall,
+            written: None,
+            svg: None,
+            linear: None,
+            rtol: sim.settings.rtol,
+        })
     }
 }
 
@@ -137,6 +150,7 @@ impl command::Output for Output {
         if let Some(p) = &self.svg {
             v["svg"] = json!(p.display().to_string());
         }
+        v["tolerance_check"] = crate::tolerance::unchecked_runs(self.rtol).0;
         Ok(v)
     }
     fn table(&self) -> Result<String> {
@@ -145,14 +159,15 @@ impl command::Output for Output {
             None => (self.ends.len(), self.ends.iter().flatten().count(), self.ends.iter().flatten().filter(|s| s.balanced).count()),
         };
         Ok(format!(
-            "{balanced} of {runs} runs balanced ({:.1} %), {:.2} s{}\n",
+            "{balanced} of {runs} runs balanced ({:.1} %), {:.2} s{}\n{}\n",
             100.0 * balanced as f64 / done.max(1) as f64,
             self.wall,
             match (&self.written, &self.svg) {
                 (Some(c), Some(f)) => format!("; wrote {} and {}", c.display(), f.display()),
                 (Some(p), None) | (None, Some(p)) => format!("; wrote {}", p.display()),
                 (None, None) => String::new(),
-            }
+            },
+            crate::tolerance::unchecked_runs(self.rtol).1
         ))
     }
     /// `basins`: [`Output::plot`].
@@ -187,6 +202,7 @@ fn linear(root: &toml::Table, dir: &std::path::Path, n: usize, control: &Control
         written: None,
         svg: None,
         linear: Some(ends),
+        rtol: run.settings.rtol,
     })
 }
 
@@ -228,6 +244,10 @@ mod tests {
         assert_eq!(o.stopped().unwrap(), format!("interrupted: {done} of 4 runs complete"));
         o.written = Some("b.csv".into());
         assert!(o.stopped().unwrap().ends_with(", kept in b.csv"));
-        assert!(o.table().unwrap().ends_with("; wrote b.csv\n"));
+        let table = o.table().unwrap();
+        assert!(table.lines().next().unwrap().ends_with("; wrote b.csv"), "{table}");
+        // each run's end at the config's tolerance, said (issue 18 item 4; audit 25)
+        assert!(table.lines().nth(1).unwrap().starts_with("tolerance: each run's end is that at rtol 1e-8, none checked"), "{table}");
+        assert_eq!(o.json().unwrap()["tolerance_check"]["checked"], json!(false));
     }
 }

@@ -513,6 +513,7 @@ impl Plan {
         }
         let mut header = autobal::sweep::report(&self.grid, self.shard, &self.range, outcome.complete(), self.problem.clone(), vec![]);
         header["definition_checksum"] = json!(definition_checksum(&self.root, &self.grid));
+        header["tolerance_check"] = tolerance_check();
         let model = match &self.base {
             Base::Planar(_) => ("Planar rotor", "rotor"),
             Base::Spatial(_) => ("Spatial rotor", "first balancer plane"),
@@ -535,6 +536,15 @@ impl Plan {
             model,
         })
     }
+}
+
+/// The JSON's `tolerance_check`: no run's end was checked against a tighter tolerance
+/// ([`crate::tolerance::unchecked_runs`]); `rtol` null, as each run ends at its own (an axis may
+/// move `integration.rtol`).
+fn tolerance_check() -> Value {
+    let mut check = crate::tolerance::unchecked_runs(f64::NAN).0;
+    check["rtol"] = Value::Null;
+    check
 }
 
 /// The runs' JSON ([`autobal::sweep::run_json`], compact, one line each, in order).
@@ -619,9 +629,14 @@ impl Output {
         Ok(())
     }
 
-    /// Lines for standard error: the first runs' warnings, the count of the others.
+    /// Lines for standard error: the first runs' warnings, the count of the others, and that no
+    /// run's end was checked against a tighter tolerance (issue 18 item 4; audit 25: the
+    /// outcomes read as answers).
     pub fn notes(&self) -> Vec<String> {
         let mut out = self.warnings.clone();
+        if self.delivered > 0 {
+            out.push(format!("note: {}", crate::tolerance::UNCHECKED_RUNS));
+        }
         if self.more_warned > 0 {
             let json = self.written.as_ref().map_or("the JSON".to_string(), |s| crate::term::with_suffix(s, "json").display().to_string());
             out.push(format!("warning: {} more points have warnings (each run's warnings and stop reason are in {json})", self.more_warned));
@@ -864,6 +879,7 @@ mod tests {
         let runs: Vec<Value> = spilled.lines().map(|l| serde_json::from_str(l).unwrap()).collect();
         let mut built = autobal::sweep::report(&plan.grid, plan.shard, &plan.range, true, plan.problem.clone(), runs);
         built["definition_checksum"] = json!(definition_checksum(&plan.root, &plan.grid));
+        built["tolerance_check"] = tolerance_check();
         let built: Value = serde_json::from_str(&serde_json::to_string_pretty(&built).unwrap()).unwrap();
         assert_eq!(streamed, built);
         assert_eq!(streamed["runs"].as_array().unwrap().len(), points);

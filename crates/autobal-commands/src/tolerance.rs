@@ -85,6 +85,23 @@ pub fn unchecked(rtol: f64) -> (Value, String) {
     )
 }
 
+/// What [`unchecked_runs`] says of a grid of runs (`sweep`'s note; the JSON's `what`).
+pub const UNCHECKED_RUNS: &str = "each run's end state is that at its tolerance, none checked against a tighter one: a start near a basin boundary or a chaotic transient can end elsewhere at another tolerance; simulate --check-tolerance checks one run";
+
+/// [`unchecked`] for a grid of runs (`basins`, `sweep`): each run's end (`outcome`, `balanced`)
+/// is that at `rtol`, none checked against a tighter one (a run near a basin boundary can end
+/// elsewhere at another tolerance; `simulate --check-tolerance` checks one run).
+pub fn unchecked_runs(rtol: f64) -> (Value, String) {
+    let what = UNCHECKED_RUNS;
+    (
+        json!({ "checked": false, "rtol": rtol, "depends_on_tolerance": null, "what": what }),
+        format!(
+            "tolerance: each run's end is that at rtol {}, none checked against a tighter one (near a basin boundary a run can end elsewhere): simulate --check-tolerance checks one",
+            autobal::error::fmt_num(rtol)
+        ),
+    )
+}
+
 /// Paper 004's planar rotor: `cfg`'s run at its tolerances ended in `first`.
 pub fn planar(cfg: &PlanarConfig, first: &autobal::planar::Summary, control: &Control) -> Result<Check> {
     let p = PlanarProblem { rotor: cfg.rotor.clone(), drive: cfg.drive.clone(), settings: cfg.settings.clone() };
