@@ -511,7 +511,7 @@ impl Output {
                 }
                 if outcome.families > 0 {
                     out.push(format!(
-                        "{} cells have a family of balanced states (n ≥ 3 balls): max_real_part and verdict are those of one member, the one reached from the closed form (balls in a symmetric arc); the column family says whether all, some or none of the family's members are stable",
+                        "{} cells have a family of balanced states (n ≥ 3 balls, or no unbalance to cancel): max_real_part and verdict are those of one member, the one reached from the closed form (balls in a symmetric arc); the column family says whether all, some or none of the family's members are stable",
                         outcome.families
                     ));
                 }
