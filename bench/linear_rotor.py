@@ -35,7 +35,10 @@ with `scipy.io.mmread`, so both sides integrate the same equations.
 Load average before and after, CPU beside wall, the LOADED rule: bench/measure.py. The issue's
 goal: each autobal figure under 1 s (2 cores).
 
-Usage: python3 bench/linear_rotor.py [--allow-loaded] [--json FILE]
+The autobal extension must be a release build (bench/measure.py's check_extension: a dev-profile
+one is refused unless --allow-dev-extension; a release wheel: docs/notes/benchmarks.md).
+
+Usage: python3 bench/linear_rotor.py [--allow-loaded] [--allow-dev-extension] [--json FILE]
        (the autobal binary: $AUTOBAL_BIN, else target/release/autobal, else target/debug/autobal)
 """
 from __future__ import annotations
@@ -227,10 +230,13 @@ class Reduced:
 
 def main() -> None:
     s = measure.Session("linear_rotor", allow_loaded=OPTS.allow_loaded)
+    build, ok = measure.check_extension("linear_rotor", OPTS.allow_dev_extension)
+    if not ok:
+        raise SystemExit("linear_rotor.py: the autobal extension is not a release build (--allow-dev-extension to time it anyway)")
     from scipy.integrate import solve_ivp
 
     exe = binary()
-    report: dict = {"rotor": "40 Euler-Bernoulli elements (164 DOFs), one 2-ball balancer, reduced to 4 mode pairs"}
+    report: dict = {"extension": build, "rotor": "40 Euler-Bernoulli elements (164 DOFs), one 2-ball balancer, reduced to 4 mode pairs"}
     with tempfile.TemporaryDirectory() as td:
         d = Path(td)
         cfg = d / "shaft.toml"

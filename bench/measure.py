@@ -8,6 +8,11 @@ Rules (docs/notes/benchmarks.md):
   by different amounts (a Python process more than a short Rust one);
 - a LOADED run prints `LOADED` and its figures, but writes no result table (no --json/--table
   file) unless `--allow-loaded` is given, and then the table says LOADED;
+- a script that times the Python extension (`import autobal`) prints how it was built
+  (`_autobal.build_info()`, `extension_build`) and refuses to time a dev-profile one (opt-level
+  1, debug assertions: what scripts/test.sh installs into .venv) against the release CLI unless
+  `--allow-dev-extension` is given, and then its figures say DEV-EXTENSION; a release wheel for
+  benchmarking: docs/notes/benchmarks.md, "Reproduce";
 - CPU time (user + system) is reported beside every wall time: of this process
   (`time.process_time`, all its threads) for in-process work, of the finished child processes
   (`resource.getrusage(RUSAGE_CHILDREN)`) for commands. CPU time does not count the time a
@@ -159,10 +164,48 @@ class Session:
         return True
 
 
+def extension_build() -> dict:
+    """How the imported `autobal` extension was compiled: `_autobal.build_info()` (profile,
+    opt_level, debug_assertions, debug_info) with `file` (the extension's path) and `release`:
+    True for opt-level 3 without debug assertions, the settings of the release CLI. An extension
+    from before `build_info` is reported as not release (its build is unknown)."""
+    from autobal import _autobal
+
+    info = {"file": _autobal.__file__}
+    if hasattr(_autobal, "build_info"):
+        info.update(_autobal.build_info())
+        info["release"] = info["opt_level"] == "3" and not info["debug_assertions"]
+    else:
+        info.update(profile="unknown (no build_info: an older wheel)", release=False)
+    return info
+
+
+def check_extension(name: str, allow_dev: bool) -> tuple[dict, bool]:
+    """Print how the imported autobal extension was built (stderr); (its `extension_build()`,
+    True when it may be timed: a release build, or `allow_dev` (--allow-dev-extension), then
+    marked DEV-EXTENSION)."""
+    info = extension_build()
+    flags = "" if "opt_level" not in info else (f", opt-level {info['opt_level']}, debug assertions {'on' if info['debug_assertions'] else 'off'}, "
+                                                f"debug info {'on' if info['debug_info'] else 'off'}")
+    print(f"[{name}] autobal extension {info['file']}: profile {info['profile']}{flags}", file=sys.stderr)
+    if info["release"]:
+        return info, True
+    print(f"[{name}] DEV-EXTENSION: not a release build, so its timings are not comparable with the release CLI's; "
+          + ("timed anyway because of --allow-dev-extension, marked DEV-EXTENSION" if allow_dev else
+             "not timed (a release wheel: docs/notes/benchmarks.md, Reproduce; --allow-dev-extension to time it anyway)"), file=sys.stderr)
+    return info, allow_dev
+
+
 def add_args(ap) -> None:
     """The options every bench script shares: --allow-loaded and --json FILE (the result table)."""
     ap.add_argument("--allow-loaded", action="store_true", help="write the result table even if the load average was above 1 per core (marked LOADED)")
     ap.add_argument("--json", metavar="FILE", help="write the result table (JSON) to FILE; refused for a LOADED run without --allow-loaded")
+
+
+def add_extension_args(ap) -> None:
+    """The option of the scripts that time the Python extension: --allow-dev-extension."""
+    ap.add_argument("--allow-dev-extension", action="store_true",
+                    help="time the autobal extension even if it is not a release build (marked DEV-EXTENSION; see docs/notes/benchmarks.md)")
 
 
 def write_table(path: str | None, report: dict, ok: bool) -> None:
@@ -178,10 +221,12 @@ def write_table(path: str | None, report: dict, ok: bool) -> None:
 
 
 def strip_args(argv):
-    """For scripts with positional arguments: take --allow-loaded and --json FILE out of `argv`
-    (in place) and return them as an object with .allow_loaded and .json."""
+    """For scripts with positional arguments: take --allow-loaded, --allow-dev-extension and
+    --json FILE out of `argv` (in place) and return them as an object with .allow_loaded,
+    .allow_dev_extension and .json."""
     class Opts:
         allow_loaded = False
+        allow_dev_extension = False
         json = None
 
     o = Opts()
@@ -190,6 +235,8 @@ def strip_args(argv):
     for a in it:
         if a == "--allow-loaded":
             o.allow_loaded = True
+        elif a == "--allow-dev-extension":
+            o.allow_dev_extension = True
         elif a == "--json":
             o.json = next(it, None)
         elif a.startswith("--json="):

@@ -17,8 +17,10 @@ point against the cost per point inside a batch of 2000 (threads=1 for both).
 
     python3 bench/python_sweep.py [--pairs 7] [--bin target/release/autobal] [--overhead-only]
 
-The package must be installed (`pip install ./crates/autobal-py`, a release build) and the CLI
-built with the same profile (`cargo build --release -p autobal-cli`).
+The package must be a release build, as the CLI is (`cargo build --release -p autobal-cli`): the
+script prints `_autobal.build_info()` and refuses a dev-profile extension (what scripts/test.sh
+installs into .venv) unless `--allow-dev-extension` (its figures then marked DEV-EXTENSION). A
+release wheel for benchmarking: docs/notes/benchmarks.md, "Reproduce" (`PYTHONPATH=DIR`).
 """
 
 from __future__ import annotations
@@ -72,8 +74,12 @@ def main() -> None:
     measure.add_args(ap)
     ap.add_argument("--bin", default=os.environ.get("AUTOBAL_BIN", "target/release/autobal"))
     ap.add_argument("--overhead-only", action="store_true", help="only the cost per call")
+    measure.add_extension_args(ap)
     a = ap.parse_args()
     sess = measure.Session("python_sweep", allow_loaded=a.allow_loaded)
+    build, ok = measure.check_extension("python_sweep", a.allow_dev_extension)
+    if not ok:
+        raise SystemExit("python_sweep.py: the autobal extension is not a release build (--allow-dev-extension to time it anyway)")
     problem = autobal.PlanarProblem(set=SETS)
     if a.overhead_only:
         overhead(problem)
@@ -103,7 +109,7 @@ def main() -> None:
         c, p = [r[k] for r in runs[0]], [r[k] for r in runs[1]]
         print(f"{name:4}: CLI {spread(c)} s; Python {spread(p)} s; ratio Python/CLI {spread([y / x for x, y in zip(c, p)])}")
     overhead(problem)
-    report = {"cli_wall_s": [r[0] for r in runs[0]], "cli_cpu_s": [r[1] for r in runs[0]],
+    report = {"extension": build, "cli_wall_s": [r[0] for r in runs[0]], "cli_cpu_s": [r[1] for r in runs[0]],
               "python_wall_s": [r[0] for r in runs[1]], "python_cpu_s": [r[1] for r in runs[1]]}
     measure.write_table(a.json, report, sess.finish(report))
 

@@ -25,13 +25,19 @@ What it runs (release binary, `--exe`):
   W = 1 and T worker processes, one thread each; wall time and the workers' CPU time (psutil,
   read on each worker before and after) per run, the cluster's start-up reported apart.
   Throughput per worker = points / wall / W, against the CLI's per core = points / wall of
-  `sweep --threads 1`; and points per CPU second of each.
+  `sweep --threads 1`; and points per CPU second of each. The extension must be a release
+  build, as the CLI is: the script prints `_autobal.build_info()` and skips the Dask section
+  for a dev-profile extension (what scripts/test.sh installs into .venv: opt-level 1, debug
+  assertions; 2.8 times the instructions per passage of this sweep) unless
+  `--allow-dev-extension`, which marks its rows DEV-EXTENSION. To time a release wheel (docs/notes/benchmarks.md, "Reproduce"):
+  `PYTHONPATH=DIR .venv/bin/python bench/scaling.py`, DIR holding
+  `pip install --no-deps --target DIR` of a wheel from `maturin build --release`.
 
 The load average before and after, CPU time beside wall time, LOADED flagging and the JSON table
 follow bench/measure.py.
 
     .venv/bin/python bench/scaling.py [--exe target/release/autobal] [--threads 2] [--repeats 3]
-        [--quick] [--no-dask] [--json FILE] [--allow-loaded]
+        [--quick] [--no-dask] [--json FILE] [--allow-loaded] [--allow-dev-extension]
 """
 from __future__ import annotations
 
@@ -123,7 +129,7 @@ def memory_section(exe, grid, work) -> dict:
     return out
 
 
-def dask_section(exe, grid, threads, repeats, work, cli_rows) -> dict:
+def dask_section(exe, grid, threads, repeats, work, cli_rows, allow_dev=False) -> dict:
     try:
         import autobal
         import psutil
@@ -131,6 +137,11 @@ def dask_section(exe, grid, threads, repeats, work, cli_rows) -> dict:
     except ImportError as e:
         print(f"Dask section skipped: {e}", file=sys.stderr)
         return {"skipped": str(e)}
+    build, ok = measure.check_extension("scaling", allow_dev)
+    if not ok:
+        print("Dask section skipped: the autobal extension is not a release build (--allow-dev-extension to time it)", file=sys.stderr)
+        return {"skipped": "the autobal extension is not a release build", "extension": build}
+    mark = "" if build["release"] else " DEV-EXTENSION"
     gs = grid["sweep"]
     axes = [f"planar.c_psi=0.05:0.2:{gs}", f"drive.b=100:200:{gs}"]
     problem = autobal.PlanarProblem(set={k: float(v) for k, v in (s.split("=") for s in SWEEP_SETS)})
@@ -140,7 +151,7 @@ def dask_section(exe, grid, threads, repeats, work, cli_rows) -> dict:
         t = psutil.Process().cpu_times()
         return t.user + t.system
 
-    out = {"points": points, "workers": {}}
+    out = {"points": points, "workers": {}, "extension": build}
     reference = None
     for w in (1, threads):
         t0 = time.perf_counter()
@@ -169,7 +180,7 @@ def dask_section(exe, grid, threads, repeats, work, cli_rows) -> dict:
             "same_bits_as_one_worker": same,
         }
         out["workers"][w] = row
-        print(f"dask    {w} worker(s): start-up {startup:.2f} s; sweep {wall['median']:.3f} s wall, workers' CPU {cpu['median']:.3f} s; "
+        print(f"dask{mark}    {w} worker(s): start-up {startup:.2f} s; sweep {wall['median']:.3f} s wall, workers' CPU {cpu['median']:.3f} s; "
               f"{row['points_per_s_per_worker']:.0f} points/s per worker, {row['points_per_cpu_s']:.0f} per CPU s", file=sys.stderr)
     cli = cli_rows.get("sweep")
     if cli:
@@ -179,7 +190,7 @@ def dask_section(exe, grid, threads, repeats, work, cli_rows) -> dict:
         out["cli_points_per_cpu_s"] = per_cpu
         for w, row in out["workers"].items():
             row["per_worker_over_cli_per_core"] = row["points_per_s_per_worker"] / per_core
-            print(f"dask    {w} worker(s) per worker / CLI per core (wall): {row['per_worker_over_cli_per_core']:.2f}; "
+            print(f"dask{mark}    {w} worker(s) per worker / CLI per core (wall): {row['per_worker_over_cli_per_core']:.2f}; "
                   f"per CPU s: {row['points_per_cpu_s'] / per_cpu:.2f}", file=sys.stderr)
     return out
 
@@ -192,6 +203,7 @@ def main():
     ap.add_argument("--quick", action="store_true", help="smaller grids (a check that the script runs, not a measurement)")
     ap.add_argument("--no-dask", action="store_true")
     measure.add_args(ap)
+    measure.add_extension_args(ap)
     a = ap.parse_args()
     grid = {"map": 100, "sweep": 12, "basins": 6} if a.quick else {"map": 300, "sweep": 40, "basins": 16}
     sess = measure.Session("scaling", allow_loaded=a.allow_loaded)
@@ -199,7 +211,7 @@ def main():
     with tempfile.TemporaryDirectory() as work:
         report["threads"] = threads_section(a.exe, grid, a.threads, a.repeats, work)
         report["memory"] = memory_section(a.exe, grid, work)
-        report["dask"] = {"skipped": "--no-dask"} if a.no_dask else dask_section(a.exe, grid, a.threads, a.repeats, work, report["threads"])
+        report["dask"] = {"skipped": "--no-dask"} if a.no_dask else dask_section(a.exe, grid, a.threads, a.repeats, work, report["threads"], a.allow_dev_extension)
     ok = sess.finish(report)
     measure.write_table(a.json, report, ok)
 

@@ -913,6 +913,21 @@ fn cli_main(py: Python<'_>, argv: Vec<String>) -> i32 {
     py.detach(move || autobal_cli::main_with_args(argv))
 }
 
+/// How this extension was compiled (the Cargo profile of the `autobal-py` crate, which the
+/// workspace's library crates share): `profile` ("release" or "debug": the base profile, so
+/// `--profile dev` says "debug"), `opt_level` ("0" to "3", "s", "z"), `debug_assertions` and
+/// `debug_info` (booleans). Timings are comparable with the release CLI only for an extension
+/// with `opt_level` "3" and no debug assertions (bench/scaling.py checks it).
+#[pyfunction]
+fn build_info(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("profile", env!("AUTOBAL_BUILD_PROFILE"))?;
+    d.set_item("opt_level", env!("AUTOBAL_BUILD_OPT_LEVEL"))?;
+    d.set_item("debug_assertions", cfg!(debug_assertions))?;
+    d.set_item("debug_info", env!("AUTOBAL_BUILD_DEBUG") == "true")?;
+    Ok(d)
+}
+
 #[pymodule]
 fn _autobal(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
@@ -950,6 +965,7 @@ fn _autobal(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(report, m)?)?;
     m.add_function(wrap_pyfunction!(merge, m)?)?;
     m.add_function(wrap_pyfunction!(export_model, m)?)?;
+    m.add_function(wrap_pyfunction!(build_info, m)?)?;
     m.add("COMMANDS_WITH_FIGURES", autobal_commands::figures_api::COMMANDS_WITH_FIGURES.to_vec())?;
     m.add("COMMANDS", autobal_cli::command_names())?;
     Ok(())
