@@ -982,17 +982,6 @@ pub fn spatial_simulation(root: &Table) -> Result<SpatialSimulation> {
                     return Err(Error::invalid(t, "a second unbalance mass or balancer plane needs the dimensional tables ([rotor], [supports], ...)"));
                 }
             }
-            // the simulation's inertia and balls are the masses' (`from_dimensionless`): a ΔĀ or
-            // D_A given beside them sets the 12-state linear model's anisotropy only (review
-            // 25b: `map` over an axis through zero unbalance, drawn on this model, dropped
-            // `delta_a` without a word)
-            let d = sec("dimensionless");
-            let masses = ["m0", "r0", "r"].iter().any(|k| d.table.is_some_and(|t| t.contains_key(*k)));
-            d.used_only_if(
-                !masses,
-                &["delta_a", "d_a"],
-                "beside the masses: the simulation's inertia is the masses' (m0, r0, m, r, n); delta_a and d_a set the 12-state linear model's anisotropy only",
-            );
             SpatialRotor::from_dimensionless(&config.model)?
         }
     };
@@ -1306,35 +1295,6 @@ pub fn entry_use(root: &Table, models: &[Model]) -> EntryUse {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// `delta_a` (and `d_a`) beside the masses set the 12-state linear model's anisotropy; the
-    /// spatial simulation's inertia is the masses': on the simulation alone (`simulate`, the
-    /// general route of `stability` and `map`) they are reported as of no effect, with the
-    /// reason; where the linear model runs too, they are used (review 25b: `map` over an axis
-    /// through zero unbalance dropped `delta_a` without a word). Without masses (ΔĀ given
-    /// directly) `delta_a` is the rotor's only anisotropy input and is not reported.
-    #[test]
-    fn delta_a_beside_the_masses_is_no_input_of_the_simulation() {
-        let mut root = parse(DEFAULT_SPATIAL, "default").unwrap();
-        set(&mut root, "dimensionless.delta_a", 0.1.into()).unwrap();
-        set(&mut root, "dimensionless.d_a", 0.5.into()).unwrap();
-        let u = entry_use(&root, &[Model::Spatial]);
-        let keys: Vec<&str> = u.moot.iter().map(|m| m.key.as_str()).collect();
-        assert_eq!(keys, ["dimensionless.d_a", "dimensionless.delta_a"]);
-        assert!(u.moot[0].why.starts_with("beside the masses"), "{}", u.moot[0].why);
-        assert!(entry_use(&root, &[Model::Linear]).is_empty());
-        assert!(entry_use(&root, &[Model::Linear, Model::Spatial]).is_empty());
-        // ΔĀ given directly, no masses: the simulation cannot be built (it needs the masses),
-        // and nothing is reported as unused
-        let mut direct = parse(DEFAULT_SPATIAL, "default").unwrap();
-        let d = direct.get_mut("dimensionless").and_then(Value::as_table_mut).unwrap();
-        for k in ["m0", "r0", "r", "n"] {
-            d.remove(k);
-        }
-        d.insert("delta_a".into(), 0.1.into());
-        d.insert("d_a".into(), 0.5.into());
-        assert!(entry_use(&direct, &[Model::Linear]).is_empty());
-    }
 
     #[test]
     fn the_defaults_are_the_presets() {
