@@ -150,7 +150,10 @@ impl command::Output for Output {
         if let Some(p) = &self.svg {
             v["svg"] = json!(p.display().to_string());
         }
-        v["tolerance_check"] = crate::tolerance::unchecked_runs(self.rtol).0;
+        // (a linear rotor's runs have no tolerance check, as `simulate`'s: review 26a)
+        if self.linear.is_none() {
+            v["tolerance_check"] = crate::tolerance::unchecked_runs(self.rtol).0;
+        }
         Ok(v)
     }
     fn table(&self) -> Result<String> {
@@ -159,7 +162,7 @@ impl command::Output for Output {
             None => (self.ends.len(), self.ends.iter().flatten().count(), self.ends.iter().flatten().filter(|s| s.balanced).count()),
         };
         Ok(format!(
-            "{balanced} of {runs} runs balanced ({:.1} %), {:.2} s{}\n{}\n",
+            "{balanced} of {runs} runs balanced ({:.1} %), {:.2} s{}\n{}",
             100.0 * balanced as f64 / done.max(1) as f64,
             self.wall,
             match (&self.written, &self.svg) {
@@ -167,7 +170,7 @@ impl command::Output for Output {
                 (Some(p), None) | (None, Some(p)) => format!("; wrote {}", p.display()),
                 (None, None) => String::new(),
             },
-            crate::tolerance::unchecked_runs(self.rtol).1
+            if self.linear.is_none() { crate::tolerance::unchecked_runs(self.rtol).1 + "\n" } else { String::new() }
         ))
     }
     /// `basins`: [`Output::plot`].

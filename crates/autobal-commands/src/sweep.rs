@@ -513,7 +513,10 @@ impl Plan {
         }
         let mut header = autobal::sweep::report(&self.grid, self.shard, &self.range, outcome.complete(), self.problem.clone(), vec![]);
         header["definition_checksum"] = json!(definition_checksum(&self.root, &self.grid));
-        header["tolerance_check"] = tolerance_check();
+        // a linear rotor's runs have no tolerance check (as `simulate`'s: review 26a)
+        if !matches!(self.base, Base::Linear(_)) {
+            header["tolerance_check"] = tolerance_check();
+        }
         let model = match &self.base {
             Base::Planar(_) => ("Planar rotor", "rotor"),
             Base::Spatial(_) => ("Spatial rotor", "first balancer plane"),
@@ -634,7 +637,7 @@ impl Output {
     /// outcomes read as answers).
     pub fn notes(&self) -> Vec<String> {
         let mut out = self.warnings.clone();
-        if self.delivered > 0 {
+        if self.delivered > 0 && self.model.0 != "Linear rotor" {
             out.push(format!("note: {}", crate::tolerance::UNCHECKED_RUNS));
         }
         if self.more_warned > 0 {

@@ -385,6 +385,17 @@ fn write_sections(ctx: &Ctx, dir: &Path, sections: &[Section], t0: Instant) -> R
     for (name, text) in ASSETS.into_iter().zip([PLOTLY_JS, PLOTLY_LICENSE, REPORT_JS]) {
         files.push((out_dir.join(name), text.as_bytes().to_vec()));
     }
+    // a folder with no report page: no file of the user's is replaced by a figure of the same
+    // name (review 26a: `ID.png` of the user's was overwritten)
+    if !std::fs::read_to_string(out_dir.join("index.html")).is_ok_and(|p| p.contains("<title>autobal report")) {
+        if let Some((p, _)) = files.iter().find(|(p, _)| p.exists()) {
+            bail!(
+                "--out {}: holds a file {} that no autobal report page links, which the report would replace: give a new or empty folder",
+                out_dir.display(),
+                p.display()
+            );
+        }
+    }
     let page = page(ctx, sections, interrupted, &incomplete, t0.elapsed().as_secs_f64());
     let index = out_dir.join("index.html");
     files.push((index.clone(), page.into_bytes()));
@@ -454,7 +465,12 @@ fn check_folder(dir: &Path) -> Result<()> {
 /// after a complete rerun). Nothing that is not a report's file is removed.
 fn remove_stopped_report(dir: &Path) {
     let index = dir.join("index.html");
-    if !std::fs::read_to_string(&index).is_ok_and(|p| p.contains("<title>autobal report")) {
+    // a real folder (not a link to another), holding a stopped report's page (not a complete
+    // one a user wrote there with `--out DIR/incomplete`): review 26a
+    if !std::fs::symlink_metadata(dir).is_ok_and(|m| m.is_dir()) {
+        return;
+    }
+    if !std::fs::read_to_string(&index).is_ok_and(|p| p.contains("<title>autobal report") && p.contains(INTERRUPTED_DIV)) {
         return;
     }
     let mut ours = previous_figure_files(dir);
@@ -754,6 +770,36 @@ mod tests {
         write_sections(&ctx(&Control::none()), &d, &[section(&["f1"], true)], Instant::now()).unwrap();
         check_folder(&d).unwrap();
         let _ = std::fs::remove_dir_all(&d);
+    }
+
+    /// Review 26a: a complete rerun removes only a stopped report's files from
+    /// `DIR/incomplete` (not a complete report the user wrote there, not through a link to
+    /// another folder); in a folder with no report page a figure named as a user's file is
+    /// refused, the file left as it was.
+    #[test]
+    fn only_a_stopped_report_is_removed_and_no_users_figure_replaced() {
+        let d = scratch("review26a");
+        let c = ctx(&Control::none());
+        // a complete report in DIR/incomplete (`--out DIR/incomplete`) stays
+        write_sections(&c, &d.join(INCOMPLETE_FOLDER), &[section(&["g1"], true)], Instant::now()).unwrap();
+        write_sections(&c, &d, &[section(&["f1"], true)], Instant::now()).unwrap();
+        assert!(d.join(INCOMPLETE_FOLDER).join("index.html").is_file() && d.join(INCOMPLETE_FOLDER).join("g1.svg").is_file());
+        // a link named `incomplete` to another folder holding a stopped report: not followed
+        let e = scratch("review26a-other");
+        write_sections(&c, &e, &[section(&["h1"], false)], Instant::now()).unwrap();
+        let l = scratch("review26a-link");
+        std::os::unix::fs::symlink(&e, l.join(INCOMPLETE_FOLDER)).unwrap();
+        write_sections(&c, &l, &[section(&["f1"], true)], Instant::now()).unwrap();
+        assert!(e.join("index.html").is_file() && e.join("h1.svg").is_file());
+        // a user's file named as a figure, no report page: refused, the file kept
+        let u = scratch("review26a-users-figure");
+        std::fs::write(u.join("f1.png"), "mine").unwrap();
+        let err = write_sections(&c, &u, &[section(&["f1"], true)], Instant::now()).err().expect("refused").to_string();
+        assert!(err.contains("f1.png") && err.starts_with(&format!("--out {}: holds a file", u.display())), "{err}");
+        assert_eq!(std::fs::read_to_string(u.join("f1.png")).unwrap(), "mine");
+        for x in [d, e, l, u] {
+            let _ = std::fs::remove_dir_all(&x);
+        }
     }
 
     /// A stopped report into a folder holding a complete one, where `incomplete` is a file:
