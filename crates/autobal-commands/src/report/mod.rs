@@ -368,7 +368,9 @@ fn write_sections(ctx: &Ctx, dir: &Path, sections: &[Section], t0: Instant) -> R
         }
         check_folder(&out_dir)?;
     }
-    let previous = previous_figure_files(&out_dir);
+    // the page in the folder written to, if it is autobal's: read once
+    let before = report_page(&out_dir);
+    let previous = before.as_deref().map_or(vec![], |p| figure_files(&out_dir, p));
     // figure files, in parallel (rasterising is the slow part)
     let figs: Vec<&Figure> = sections.iter().flat_map(|s| s.figures()).collect();
     let mut files: Vec<(PathBuf, Vec<u8>)> = figs
@@ -387,7 +389,7 @@ fn write_sections(ctx: &Ctx, dir: &Path, sections: &[Section], t0: Instant) -> R
     }
     // a folder with no report page: no file of the user's is replaced by a figure of the same
     // name (review 26a: `ID.png` of the user's was overwritten)
-    if !std::fs::read_to_string(out_dir.join("index.html")).is_ok_and(|p| p.contains("<title>autobal report")) {
+    if before.is_none() {
         if let Some((p, _)) = files.iter().find(|(p, _)| p.exists()) {
             bail!(
                 "--out {}: holds a file {} that no autobal report page links, which the report would replace: give a new or empty folder",
@@ -434,7 +436,12 @@ pub const INCOMPLETE_FOLDER: &str = "incomplete";
 /// Whether `dir` holds a complete report of autobal: its `index.html` is a report's page
 /// without the interruption's warning.
 fn holds_complete_report(dir: &Path) -> bool {
-    std::fs::read_to_string(dir.join("index.html")).is_ok_and(|p| p.contains("<title>autobal report") && !p.contains(INTERRUPTED_DIV))
+    report_page(dir).is_some_and(|p| !p.contains(INTERRUPTED_DIV))
+}
+
+/// The `index.html` of `dir` if it is a report's page of autobal (any version's: its title).
+fn report_page(dir: &Path) -> Option<String> {
+    std::fs::read_to_string(dir.join("index.html")).ok().filter(|p| p.contains("<title>autobal report"))
 }
 
 /// The files a report writes whatever its sections (beside `index.html` and the figures).
@@ -446,9 +453,8 @@ const ASSETS: [&str; 3] = ["plotly-cartesian.min.js", "plotly-LICENSE.txt", "rep
 /// replaced). Checked before any section runs; a folder holding autobal's report is the
 /// report's to replace.
 fn check_folder(dir: &Path) -> Result<()> {
-    let index = dir.join("index.html");
-    if index.exists() {
-        if !std::fs::read_to_string(&index).is_ok_and(|p| p.contains("<title>autobal report")) {
+    if dir.join("index.html").exists() {
+        if report_page(dir).is_none() {
             bail!("--out {}: holds an index.html that is not an autobal report, which the report would replace: give a new or empty folder", dir.display());
         }
         return Ok(());
@@ -464,18 +470,15 @@ fn check_folder(dir: &Path) -> Result<()> {
 /// then the folder if nothing else is left in it (review 25a: the stale stopped page stayed
 /// after a complete rerun). Nothing that is not a report's file is removed.
 fn remove_stopped_report(dir: &Path) {
-    let index = dir.join("index.html");
     // a real folder (not a link to another), holding a stopped report's page (not a complete
     // one a user wrote there with `--out DIR/incomplete`): review 26a
     if !std::fs::symlink_metadata(dir).is_ok_and(|m| m.is_dir()) {
         return;
     }
-    if !std::fs::read_to_string(&index).is_ok_and(|p| p.contains("<title>autobal report") && p.contains(INTERRUPTED_DIV)) {
-        return;
-    }
-    let mut ours = previous_figure_files(dir);
+    let Some(page) = report_page(dir).filter(|p| p.contains(INTERRUPTED_DIV)) else { return };
+    let mut ours = figure_files(dir, &page);
     ours.extend(ASSETS.iter().map(|a| dir.join(a)));
-    ours.push(index);
+    ours.push(dir.join("index.html"));
     for p in &ours {
         let _ = std::fs::remove_file(p);
     }
@@ -484,14 +487,11 @@ fn remove_stopped_report(dir: &Path) {
     }
 }
 
-/// The figure files (`ID.svg`, `ID.png`) the report page in `dir` links, if `dir` holds one:
-/// read before a new report replaces the page, so that those the new one does not write can
-/// be removed ([`remove_stale`]). Only names made of the report's figure ids' characters.
-fn previous_figure_files(dir: &Path) -> Vec<PathBuf> {
-    let Ok(page) = std::fs::read_to_string(dir.join("index.html")) else { return vec![] };
-    if !page.contains("<title>autobal report") {
-        return vec![];
-    }
+/// The figure files (`ID.svg`, `ID.png`) in `dir` that its report page `page` links
+/// ([`report_page`]): read before a new report replaces the page, so that those the new one
+/// does not write can be removed ([`remove_stale`]). Only names made of the report's figure
+/// ids' characters.
+fn figure_files(dir: &Path, page: &str) -> Vec<PathBuf> {
     page.split("data-fig=\"")
         .skip(1)
         .filter_map(|rest| rest.split_once('"').map(|(id, _)| id))
