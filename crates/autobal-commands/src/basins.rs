@@ -52,9 +52,10 @@ pub struct Output {
     pub linear: Option<Vec<Option<autobal::linear_rotor::basins::BasinEnd>>>,
     /// The runs' relative tolerance: each end is that at this tolerance, not checked against a
     /// tighter one (the table's line and the JSON's `tolerance_check`, as `simulate`'s:
-    /// [`crate::tolerance::unchecked`]; issue 18 item 4: near a basin boundary, which is what
-    /// this grid maps, an end can depend on the tolerance).
-    pub rtol: f64,
+    /// [`crate::tolerance::unchecked_runs`]; issue 18 item 4: near a basin boundary, which is
+    /// what this grid maps, an end can depend on the tolerance). `None` where the runs have no
+    /// tolerance check (a linear rotor's, as `simulate`'s: review 26a).
+    pub rtol: Option<f64>,
 }
 
 impl command::Command for Args {
@@ -80,7 +81,7 @@ impl command::Command for Args {
             written: None,
             svg: None,
             linear: None,
-            rtol: sim.settings.rtol,
+            rtol: Some(sim.settings.rtol),
         })
     }
 }
@@ -150,9 +151,8 @@ impl command::Output for Output {
         if let Some(p) = &self.svg {
             v["svg"] = json!(p.display().to_string());
         }
-        // (a linear rotor's runs have no tolerance check, as `simulate`'s: review 26a)
-        if self.linear.is_none() {
-            v["tolerance_check"] = crate::tolerance::unchecked_runs(self.rtol).0;
+        if let Some(r) = self.rtol {
+            v["tolerance_check"] = crate::tolerance::unchecked_runs(Some(r)).0;
         }
         Ok(v)
     }
@@ -170,7 +170,7 @@ impl command::Output for Output {
                 (Some(p), None) | (None, Some(p)) => format!("; wrote {}", p.display()),
                 (None, None) => String::new(),
             },
-            if self.linear.is_none() { crate::tolerance::unchecked_runs(self.rtol).1 + "\n" } else { String::new() }
+            self.rtol.map_or(String::new(), |r| crate::tolerance::unchecked_runs(Some(r)).1 + "\n")
         ))
     }
     /// `basins`: [`Output::plot`].
@@ -205,7 +205,7 @@ fn linear(root: &toml::Table, dir: &std::path::Path, n: usize, control: &Control
         written: None,
         svg: None,
         linear: Some(ends),
-        rtol: run.settings.rtol,
+        rtol: None,
     })
 }
 

@@ -296,8 +296,7 @@ mod tests {
         let cases = autobal::spatial::dynamics::basins::angle_grid(&sim.initial, &sim.drive, 2, 2);
         let ends = autobal::spatial::dynamics::basins::basins(&sim.rotor, &cases, &sim.settings, &Control::none()).unwrap().value;
         let angles: Vec<[f64; 2]> = cases.iter().map(|c| [c.initial.psi[0], c.initial.psi[1]]).collect();
-        let report =
-            crate::basins::Output { angles: angles.clone(), ends: ends.clone(), wall: 0.0, written: None, svg: None, linear: None, rtol: f64::NAN }.plot();
+        let report = crate::basins::Output { angles: angles.clone(), ends: ends.clone(), wall: 0.0, written: None, svg: None, linear: None, rtol: None }.plot();
         assert_eq!(f[0].plot.to_plotly()["data"], report.to_plotly()["data"]);
         assert_eq!(f[0].plot.title, report.title);
         let z = &f[0].plot.heatmap.as_ref().unwrap().z;

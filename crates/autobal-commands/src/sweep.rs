@@ -515,7 +515,7 @@ impl Plan {
         header["definition_checksum"] = json!(definition_checksum(&self.root, &self.grid));
         // a linear rotor's runs have no tolerance check (as `simulate`'s: review 26a)
         if !matches!(self.base, Base::Linear(_)) {
-            header["tolerance_check"] = tolerance_check();
+            header["tolerance_check"] = crate::tolerance::unchecked_runs(None).0;
         }
         let model = match &self.base {
             Base::Planar(_) => ("Planar rotor", "rotor"),
@@ -539,15 +539,6 @@ impl Plan {
             model,
         })
     }
-}
-
-/// The JSON's `tolerance_check`: no run's end was checked against a tighter tolerance
-/// ([`crate::tolerance::unchecked_runs`]); `rtol` null, as each run ends at its own (an axis may
-/// move `integration.rtol`).
-fn tolerance_check() -> Value {
-    let mut check = crate::tolerance::unchecked_runs(f64::NAN).0;
-    check["rtol"] = Value::Null;
-    check
 }
 
 /// The runs' JSON ([`autobal::sweep::run_json`], compact, one line each, in order).
@@ -637,7 +628,7 @@ impl Output {
     /// outcomes read as answers).
     pub fn notes(&self) -> Vec<String> {
         let mut out = self.warnings.clone();
-        if self.delivered > 0 && self.model.0 != "Linear rotor" {
+        if self.delivered > 0 && self.header.get("tolerance_check").is_some() {
             out.push(format!("note: {}", crate::tolerance::UNCHECKED_RUNS));
         }
         if self.more_warned > 0 {
@@ -882,7 +873,7 @@ mod tests {
         let runs: Vec<Value> = spilled.lines().map(|l| serde_json::from_str(l).unwrap()).collect();
         let mut built = autobal::sweep::report(&plan.grid, plan.shard, &plan.range, true, plan.problem.clone(), runs);
         built["definition_checksum"] = json!(definition_checksum(&plan.root, &plan.grid));
-        built["tolerance_check"] = tolerance_check();
+        built["tolerance_check"] = crate::tolerance::unchecked_runs(None).0;
         let built: Value = serde_json::from_str(&serde_json::to_string_pretty(&built).unwrap()).unwrap();
         assert_eq!(streamed, built);
         assert_eq!(streamed["runs"].as_array().unwrap().len(), points);

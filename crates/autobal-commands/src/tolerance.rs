@@ -89,16 +89,14 @@ pub fn unchecked(rtol: f64) -> (Value, String) {
 pub const UNCHECKED_RUNS: &str = "each run's end state is that at its tolerance, none checked against a tighter one: a start near a basin boundary or a chaotic transient can end elsewhere at another tolerance; simulate --check-tolerance checks one run";
 
 /// [`unchecked`] for a grid of runs (`basins`, `sweep`): each run's end (`outcome`, `balanced`)
-/// is that at `rtol`, none checked against a tighter one (a run near a basin boundary can end
-/// elsewhere at another tolerance; `simulate --check-tolerance` checks one run).
-pub fn unchecked_runs(rtol: f64) -> (Value, String) {
-    let what = UNCHECKED_RUNS;
+/// is that at `rtol` (`None`: each run's own, as a sweep's axis may move it; JSON null), none
+/// checked against a tighter one (a run near a basin boundary can end elsewhere at another
+/// tolerance; `simulate --check-tolerance` checks one run).
+pub fn unchecked_runs(rtol: Option<f64>) -> (Value, String) {
+    let at = rtol.map_or("its tolerance".to_string(), |r| format!("rtol {}", autobal::error::fmt_num(r)));
     (
-        json!({ "checked": false, "rtol": rtol, "depends_on_tolerance": null, "what": what }),
-        format!(
-            "tolerance: each run's end is that at rtol {}, none checked against a tighter one (near a basin boundary a run can end elsewhere): simulate --check-tolerance checks one",
-            autobal::error::fmt_num(rtol)
-        ),
+        json!({ "checked": false, "rtol": rtol, "depends_on_tolerance": null, "what": UNCHECKED_RUNS }),
+        format!("tolerance: each run's end is that at {at}, none checked against a tighter one (near a basin boundary a run can end elsewhere): simulate --check-tolerance checks one"),
     )
 }
 

@@ -80,7 +80,7 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
         written: None,
         svg: None,
         linear: None,
-        rtol: sim.settings.rtol,
+        rtol: Some(sim.settings.rtol),
     };
     let done: Vec<_> = out.ends.iter().flatten().collect();
     s.complete = done.len() == cases.len() && !stopped;
