@@ -477,7 +477,7 @@ fn run(cli: Cli, control: &Control) -> Result<()> {
         Command::Stability { common, format, lin, samples, svg, route } => {
             // the output is checked before the run
             let svg: Vec<(PathBuf, &str)> = svg.map(|p| (outfile::resolve(&p, "stability.svg"), "stability_margin")).into_iter().collect();
-            check_outputs(common.config.as_deref(), "--svg", &svg)?;
+            check_outputs(&common.source(), "--svg", &svg)?;
             let args = stability::Args { config: common.source(), omega_max: lin.omega_max, balls: lin.balls.into(), samples, route };
             // every route's scan asks the control and keeps what it analysed (audit 21's F2:
             // three balls on a 28-DOF rotor took minutes with no sign of life): Ctrl-C stops it
@@ -494,7 +494,7 @@ fn run(cli: Cli, control: &Control) -> Result<()> {
         }
         Command::Campbell { common, format, lin, points, svg, view, harmonics, route } => {
             let svg = svg.map(|p| campbell::svg_files(&outfile::resolve(&p, "campbell"), view)).unwrap_or_default();
-            check_outputs(common.config.as_deref(), "--svg", &svg)?;
+            check_outputs(&common.source(), "--svg", &svg)?;
             let args = campbell::Args {
                 config: common.source(),
                 omega_max: lin.omega_max,
@@ -523,7 +523,7 @@ fn run(cli: Cli, control: &Control) -> Result<()> {
                 boundary,
                 route,
             };
-            run_map(&args, common.config.as_deref(), &out, threads, control)
+            run_map(&args, &out, threads, control)
         }
         Command::Simulate { config, set, dt, out, parquet, format, check_tolerance } => {
             let files = Some(simulate::Files { out, parquet });
@@ -544,7 +544,7 @@ fn run(cli: Cli, control: &Control) -> Result<()> {
             let path = outfile::resolve(&out, "basins.csv");
             let svg = (!no_plots).then(|| basins::figure_path(&path));
             let mut files = outfile::Outputs::new();
-            files.inputs(config.as_deref()).output("--out", &path);
+            files.source_inputs(&ConfigSource::file(config.as_deref(), &set)).output("--out", &path);
             if let Some(p) = &svg {
                 files.output("--out", p);
             }
@@ -604,12 +604,12 @@ fn stopped_after(printed: Result<()>, stopped: Option<String>) -> Result<()> {
 }
 
 /// Check the files a command will write (`(path, figure id)`), before it runs.
-fn check_outputs(config: Option<&std::path::Path>, flag: &str, files: &[(PathBuf, &str)]) -> Result<()> {
+fn check_outputs(config: &ConfigSource, flag: &str, files: &[(PathBuf, &str)]) -> Result<()> {
     if files.is_empty() {
         return Ok(());
     }
     let mut o = outfile::Outputs::new();
-    o.inputs(config);
+    o.source_inputs(config);
     for (p, _) in files {
         o.output(flag, p);
     }
@@ -653,7 +653,7 @@ fn run_sweep(a: SweepFlags, control: &Control) -> Result<()> {
     let (csv_path, json_path, pq_path) = (term::with_suffix(&stem, "csv"), term::with_suffix(&stem, "json"), term::with_suffix(&stem, "parquet"));
     let svg = if a.no_plots { vec![] } else { sweep::figure_paths(&stem) };
     let mut o = outfile::Outputs::new();
-    o.inputs(a.config.as_deref()).stem("--out", &given, &stem).output("--out", &csv_path).output("--out", &json_path);
+    o.source_inputs(&args.config).stem("--out", &given, &stem).output("--out", &csv_path).output("--out", &json_path);
     if a.parquet {
         o.output("--parquet", &pq_path);
     }
@@ -715,7 +715,7 @@ fn run_sweep(a: SweepFlags, control: &Control) -> Result<()> {
 /// `STEM_boundary.csv`), then the rows streamed to the CSV (renamed into place when the map
 /// ends or is interrupted: complete rows only; an error removes it), the figure and the
 /// boundary written, the summary line printed.
-fn run_map(args: &map::Args, config: Option<&std::path::Path>, out: &std::path::Path, threads: Option<usize>, control: &Control) -> Result<()> {
+fn run_map(args: &map::Args, out: &std::path::Path, threads: Option<usize>, control: &Control) -> Result<()> {
     let plan = args.prepare()?;
     let own = OWN_PROCESS.load(std::sync::atomic::Ordering::Relaxed);
     if own {
@@ -734,7 +734,7 @@ fn run_map(args: &map::Args, config: Option<&std::path::Path>, out: &std::path::
     let given = outfile::resolve(out, "stability-map");
     let stem = term::out_stem(&given, &["csv", "svg", "png"]);
     let mut o = outfile::Outputs::new();
-    o.inputs(config).stem("--out", &given, &stem);
+    o.source_inputs(&args.config).stem("--out", &given, &stem);
     for p in outfile::stem_files(&stem, &["csv", "svg", "png"]) {
         o.output("--out", &p);
     }

@@ -688,3 +688,106 @@ fn regression_a_planar_config_without_drive_is_analysed() {
     assert!(line.contains("a planar run needs a [drive] table") && !line.contains("replaces the default run-up"), "{line}");
     std::fs::remove_dir_all(&d).ok();
 }
+
+#[test]
+fn regression_report_replaced_a_users_own_index_html() {
+    // review 25a: `report --out DIR` replaced a user's own `index.html` (and files named as
+    // the report's assets) in DIR; review 26a F5: the refusal was tested on the folder check
+    // alone, not through the command. Refused before any section runs, the files untouched,
+    // nothing added to the folder.
+    let d = scratch("report-own-index");
+    let planar = examples("planar.toml");
+    let r = d.join("r");
+    std::fs::create_dir_all(&r).unwrap();
+    std::fs::write(r.join("index.html"), "<html><title>my notes</title></html>").unwrap();
+    let line = rejects_in(&d, &["report", "--quick", "--config", &planar, "--out", "r"], "--out r: holds an index.html that is not an autobal report");
+    assert!(line.contains("give a new or empty folder"), "{line}");
+    assert_eq!(std::fs::read_to_string(r.join("index.html")).unwrap(), "<html><title>my notes</title></html>");
+    assert_eq!(std::fs::read_dir(&r).unwrap().count(), 1, "nothing written beside it");
+    // no page, but a file named as one of the report's assets
+    std::fs::remove_file(r.join("index.html")).unwrap();
+    std::fs::write(r.join("report.js"), "my script").unwrap();
+    let line = rejects_in(&d, &["report", "--quick", "--config", &planar, "--out", "r"], "--out r: holds a file report.js that no autobal report page links");
+    assert!(line.contains("give a new or empty folder"), "{line}");
+    assert_eq!(std::fs::read_to_string(r.join("report.js")).unwrap(), "my script");
+    assert_eq!(std::fs::read_dir(&r).unwrap().count(), 1, "nothing written beside it");
+    std::fs::remove_dir_all(&d).ok();
+}
+
+#[test]
+fn a_sweeps_note_says_no_runs_end_was_checked_against_a_tighter_tolerance() {
+    // issue 18 item 4, review 26a F5: a sweep's outcomes are each run's end at its own
+    // tolerance; the note on stderr and the JSON's `tolerance_check` say so (rtol null: an
+    // axis may move it), for the planar and spatial rotors; a linear rotor's runs (no balls'
+    // basins) get neither
+    let d = scratch("sweep-tolerance-note");
+    let note = "note: each run's end state is that at its tolerance, none checked against a tighter one: a start near a basin boundary or a chaotic transient can end elsewhere at another tolerance; simulate --check-tolerance checks one run";
+    let (code, out, err) = run_in(
+        &d,
+        Duration::from_secs(120),
+        &["sweep", "--threads", "1", "--x", "drive.b=100,200", "--set", "drive.t_end=0.5", "--set", "drive.omega0=250", "--out", "s"],
+    );
+    assert_eq!(code, 0, "{out} {err}");
+    assert_eq!(err.lines().filter(|l| *l == note).count(), 1, "{err}");
+    let j: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(d.join("s.json")).unwrap()).unwrap();
+    let c = &j["tolerance_check"];
+    assert_eq!((&c["checked"], &c["rtol"]), (&serde_json::json!(false), &serde_json::Value::Null), "{c}");
+    assert_eq!(format!("note: {}", c["what"].as_str().unwrap()), note);
+    let shaft = short_shaft(&d);
+    let (code, out, err) = run_in(&d, Duration::from_secs(120), &["sweep", "--threads", "1", "--config", &shaft, "--x", "drive.t_end=0.04,0.05", "--out", "l"]);
+    assert_eq!(code, 0, "{out} {err}");
+    assert!(!err.contains("none checked against a tighter one"), "{err}");
+    let j: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(d.join("l.json")).unwrap()).unwrap();
+    assert!(j.get("tolerance_check").is_none(), "{}", j["tolerance_check"]);
+    std::fs::remove_dir_all(&d).ok();
+}
+
+#[test]
+fn regression_an_output_overwrote_a_matrix_file_named_by_set() {
+    // hunt 27: the files a linear rotor config names were protected from the outputs only as
+    // the file on disk names them: `--set 'linear_rotor.kst="kst.svg"' --svg kst.svg` wrote
+    // the figure over the matrix file. Refused before anything runs, the file untouched.
+    let d = scratch("set-named-input");
+    let shaft = short_shaft(&d);
+    std::fs::write(d.join("kst.svg"), "my matrix").unwrap();
+    std::fs::write(d.join("fix.csv"), "my masses").unwrap();
+    let line = rejects_in(&d, &["stability", "--config", &shaft, "--samples", "10", "--set", "linear_rotor.kst=\"kst.svg\"", "--svg", "kst.svg"], "--svg");
+    assert!(line.contains("kst.svg"), "{line}");
+    let line = rejects_in(
+        &d,
+        &[
+            "map",
+            "--config",
+            &shaft,
+            "--set",
+            "linear_rotor.rotor_fixed_mass=\"fix.csv\"",
+            "--x",
+            "speed=100:2000:2",
+            "--y",
+            "linear_rotor.drag=0.05:0.1:2",
+            "--out",
+            "fix",
+        ],
+        "--out",
+    );
+    assert!(line.contains("fix.csv"), "{line}");
+    assert_eq!(std::fs::read_to_string(d.join("kst.svg")).unwrap(), "my matrix");
+    assert_eq!(std::fs::read_to_string(d.join("fix.csv")).unwrap(), "my masses");
+    std::fs::remove_dir_all(&d).ok();
+}
+
+#[test]
+fn regression_report_wrote_over_its_own_config_in_the_output_folder() {
+    // hunt 27: a config kept in the report's folder under a figure's name was overwritten
+    // (`--config rep/stability_margin.svg --out rep`) or removed as a stale figure; refused
+    // before any section runs, the config untouched. Another name there is safe and runs.
+    let d = scratch("report-own-config");
+    let text = std::fs::read_to_string(examples("planar.toml")).unwrap();
+    std::fs::create_dir_all(d.join("rep")).unwrap();
+    std::fs::write(d.join("rep/stability_margin.svg"), &text).unwrap();
+    let line = rejects_in(&d, &["report", "--quick", "--config", "rep/stability_margin.svg", "--out", "rep"], "--out rep: holds the run's input");
+    assert!(line.contains("stability_margin.svg"), "{line}");
+    assert_eq!(std::fs::read_to_string(d.join("rep/stability_margin.svg")).unwrap(), text);
+    assert_eq!(std::fs::read_dir(d.join("rep")).unwrap().count(), 1, "nothing written beside it");
+    std::fs::remove_dir_all(&d).ok();
+}

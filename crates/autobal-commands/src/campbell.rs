@@ -78,6 +78,8 @@ pub enum Output {
         omega_max: f64,
         /// The figure view (`--view`).
         view: CampbellView,
+        /// The operating speed `[lo, hi]` (model units), marked in the figures.
+        op: Option<[f64; 2]>,
     },
 }
 
@@ -105,7 +107,13 @@ impl command::Command for Args {
             let w = general_campbell::omega_max(&root, &g, self.omega_max.as_deref())?;
             let c = general_campbell::campbell_with(&g, w, points, self.balls, &harmonics, control)
                 .map_err(|e| crate::general::name_omega_max(e, self.omega_max.is_some(), "analysis.omega_max"))?;
-            return Ok(Output::General { g: Box::new(g), c: Box::new(c), omega_max: w, view: self.view });
+            // (a spatial config's `analysis.operating_speed`, as the report reads it)
+            let op = autobal::config::is_spatial(&root)
+                .then(|| autobal::config::spatial(&root).ok())
+                .flatten()
+                .and_then(|cfg| cfg.analysis.operating_speed)
+                .map(|[a, b]| [a * g.omega0, b * g.omega0]);
+            return Ok(Output::General { g: Box::new(g), c: Box::new(c), omega_max: w, view: self.view, op });
         }
         let cfg = config::build(&root, &source)?;
         config::check_entries(&root, "campbell", &[config::Model::Linear])?;
@@ -142,7 +150,7 @@ impl Args {
         let w = crate::linear_rotor::omega_max(self.omega_max.as_deref(), &cfg)?;
         let c = general_campbell::campbell_with(&g, w, points, Balls::Free, harmonics, control)
             .map_err(|e| crate::general::name_omega_max(e, self.omega_max.is_some(), "linear_rotor.omega_max"))?;
-        Ok(Output::General { g: Box::new(g), c: Box::new(c), omega_max: w, view: self.view })
+        Ok(Output::General { g: Box::new(g), c: Box::new(c), omega_max: w, view: self.view, op: cfg.operating_speed })
     }
 }
 
@@ -182,13 +190,21 @@ impl command::Output for Output {
             Output::Closed(run) => run.figures(),
             // a stopped diagram's figures say so in their titles (its curves end at the last
             // speed analysed)
-            Output::General { g, c, omega_max, view } => {
-                let mark = |p| crate::stability::mark_stopped(p, &c.stopped, None);
+            // the operating speed marked, as in the report (walk 27): on the fixed-axes view's
+            // rpm axis for an SI rotor, else in the rotor's units
+            Output::General { g, c, omega_max, view, op } => {
+                let mark = |mut p: crate::plot::Plot, k: f64| {
+                    p.vlines.extend(crate::figures::operating_vlines(*op, k));
+                    crate::stability::mark_stopped(p, &c.stopped, None)
+                };
                 match view {
-                    CampbellView::Fixed => vec![Figure::new("campbell_modes", mark(general_campbell::campbell_plot(g, c, *omega_max)))],
+                    CampbellView::Fixed => {
+                        let k = if g.si { crate::num::RPM_PER_RAD_S } else { 1.0 };
+                        vec![Figure::new("campbell_modes", mark(general_campbell::campbell_plot(g, c, *omega_max), k))]
+                    }
                     CampbellView::Components => {
                         let (rotating, fixed) = general_campbell::components_plots(g, c);
-                        vec![Figure::new("campbell_rotating", mark(rotating)), Figure::new("campbell_fixed", mark(fixed))]
+                        vec![Figure::new("campbell_rotating", mark(rotating, 1.0)), Figure::new("campbell_fixed", mark(fixed, 1.0))]
                     }
                 }
             }
@@ -369,6 +385,42 @@ mod tests {
         let table_only = Args { points: Some(points), omega_max: Some("3".into()), json: false, ..Default::default() }.run(&Control::none()).unwrap();
         assert_eq!(table_only.table().unwrap(), out.table().unwrap());
         assert!(table_only.json().is_err(), "no JSON was kept");
+    }
+
+    /// `campbell`'s and `stability`'s figures mark the washer's operating speed (1400 rpm)
+    /// where it lies on each figure's own axis, on the closed-form route and the general one
+    /// (walk 27: the commands' figures had no mark, the report's Campbell diagram had it at the
+    /// rad/s value on its rpm axis): 1400 on an rpm axis, 1400·2π/60 = 146.608 on a rad/s one,
+    /// read from the axis title, not from the code's factors.
+    #[test]
+    fn the_commands_figures_mark_the_operating_speed_in_their_own_unit() {
+        let text = include_str!("../../../examples/washing_machine.toml");
+        assert!(text.contains("operating_speed = \"1400 rpm\""));
+        let config = || ConfigSource::tables(crate::config::parse_text(text, "washer.toml").unwrap(), "washer.toml");
+        let check = |figs: Vec<Figure>| {
+            for f in &figs {
+                let marks: Vec<f64> = f.plot.vlines.iter().filter(|(_, l)| l == "operating speed").map(|(x, _)| *x).collect();
+                let want = if f.plot.x_label.contains("rpm") {
+                    1400.0
+                } else if f.plot.x_label.contains("rad/s") {
+                    1400.0 * std::f64::consts::TAU / 60.0
+                } else {
+                    panic!("{}: axis {}", f.id, f.plot.x_label)
+                };
+                // the config's rpm to Ω and back: a few ulps
+                assert!(marks.len() == 1 && (marks[0] - want).abs() <= 1e-9 * want, "{} ({}): marks {marks:?}, want {want}", f.id, f.plot.x_label);
+            }
+            figs.len()
+        };
+        for route in [Route::Auto, Route::General] {
+            for view in [CampbellView::Fixed, CampbellView::Components] {
+                let args = Args { config: config(), points: Some(if route == Route::General { 8 } else { 40 }), route, view, ..Default::default() };
+                let n = check(args.run(&Control::none()).unwrap().figures().unwrap());
+                assert!(n >= 1, "{route:?} {view:?}");
+            }
+            let args = crate::stability::Args { config: config(), route, samples: Some(if route == Route::General { 10 } else { 200 }), ..Default::default() };
+            assert_eq!(check(args.run(&Control::none()).unwrap().figures().unwrap()), 1);
+        }
     }
 
     /// Stopped at once (the control already cancelled, as by a Ctrl-C during the first speed),

@@ -60,6 +60,16 @@ impl SpeedUnit {
     }
 }
 
+/// Vertical markers at the operating speed (`analysis.operating_speed`, `Ω`) on an axis that
+/// shows `k · Ω`: one line, or one at each end of a range.
+pub fn operating_vlines(op: Option<[f64; 2]>, k: f64) -> Vec<(f64, String)> {
+    match op {
+        Some([lo, hi]) if lo == hi => vec![(k * lo, "operating speed".into())],
+        Some([lo, hi]) => vec![(k * lo, "operating from".into()), (k * hi, "operating to".into())],
+        None => vec![],
+    }
+}
+
 /// Colours for many curves: the palette without black and grey, then more distinct ones, ordered
 /// so that the first nine differ in hue (no two greens or two light blues among them).
 pub fn curve_color(i: usize) -> &'static str {

@@ -79,7 +79,17 @@ pub fn operating_lines(cfg: &Config, v: Option<autobal::Result<autobal::reports:
         format!("operating speed {at}: the balanced state is STABLE (exact, balls {}) in the stable range {}, {margin}; {rate}\n", v.balls, range(r))
     } else {
         let near = v.nearest_stable_range.map_or(format!("no stable range up to {}", end(v.span)), |r| format!("nearest stable range {}", range(r)));
-        format!("operating speed {at}: the balanced state is NOT STABLE (exact, balls {}); {rate}; {near}\n", v.balls)
+        // a growth rate within the tolerance of zero is no instability (hunt 27: 1 rpm read NOT
+        // STABLE at 8.7e-11 1/s; the general route says NEUTRAL there): not stable, and why
+        let word = if v.max_real_part.abs() <= autobal::spatial::stability::STABILITY_TOLERANCE {
+            format!(
+                "NEUTRAL (not stable: its largest growth rate is within the tolerance {} ω0 of zero)",
+                crate::num::fmt(autobal::spatial::stability::STABILITY_TOLERANCE, 1)
+            )
+        } else {
+            "NOT STABLE".to_string()
+        };
+        format!("operating speed {at}: the balanced state is {word} (exact, balls {}); {rate}; {near}\n", v.balls)
     }
 }
 
@@ -642,12 +652,15 @@ impl CampbellRun {
     /// `campbell_fixed` and `campbell_rotating` (`--view components`).
     pub fn figures(&self) -> Vec<crate::command::Figure> {
         use crate::command::Figure;
-        let (rot, fx) = crate::figures::campbell_plots(&self.cfg.model, &self.plot, &self.fixed().line_modes);
-        vec![
-            Figure::new("campbell_modes", crate::figures::campbell_fixed_plot(&self.cfg.model, self.fixed())),
-            Figure::new("campbell_fixed", fx),
-            Figure::new("campbell_rotating", rot),
-        ]
+        let (mut rot, mut fx) = crate::figures::campbell_plots(&self.cfg.model, &self.plot, &self.fixed().line_modes);
+        let mut modes = crate::figures::campbell_fixed_plot(&self.cfg.model, self.fixed());
+        // the operating speed marked on each figure's own axis, as in the report (walk 27)
+        let op = self.cfg.analysis.operating_speed;
+        for p in [&mut rot, &mut fx] {
+            p.vlines.extend(crate::figures::operating_vlines(op, crate::figures::SpeedUnit::of(&self.cfg.model).factor));
+        }
+        modes.vlines.extend(crate::figures::operating_vlines(op, crate::figures::fixed_axes_of(&self.cfg.model).kx));
+        vec![Figure::new("campbell_modes", modes), Figure::new("campbell_fixed", fx), Figure::new("campbell_rotating", rot)]
     }
 
     /// Why the run is incomplete, or `None`.

@@ -149,6 +149,10 @@ impl Args {
         if self.x.path == self.y.path {
             bail!("--y {}: the same key as --x; give the second axis another field", self.y.path);
         }
+        // a fixed speed beside a speed axis would be ignored (hunt 27: exit 0, no word)
+        if let (Some(t), Some((flag, a))) = (&self.omega, [("--x", &self.x), ("--y", &self.y)].into_iter().find(|(_, a)| is_speed(a))) {
+            bail!("--omega {t}: the map's {flag} axis {} is the speed already; drop --omega, or map over two other parameters at that speed", a.path);
+        }
         // a linear rotor config ([linear_rotor]) takes its own --set and the general route
         let (root, source) = self.config.read_any()?;
         let linear = crate::linear_rotor::is_linear(&root);
@@ -1457,6 +1461,31 @@ pub fn plot_cells(r: &FigureCells, title: &str) -> Plot {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `--omega` beside a speed axis was ignored, exit 0 (hunt 27): refused, naming the axis,
+    /// on both routes (the planar config's general route, the washer's closed form).
+    #[test]
+    fn a_fixed_speed_beside_a_speed_axis_is_refused() {
+        for (text, x, y) in [
+            (include_str!("../../../examples/planar.toml"), "planar.c_psi=0.05:0.2:2", "omega=300:400:2"),
+            (include_str!("../../../examples/washing_machine.toml"), "balancer.drag=0.5:3:2", "speed_rpm=300:1500:2"),
+        ] {
+            let root = crate::config::parse_text(text, "c.toml").unwrap();
+            let args = Args {
+                config: ConfigSource::tables(root, "c.toml"),
+                x: parse_axis("--x", x).unwrap(),
+                y: parse_axis("--y", y).unwrap(),
+                omega: Some("3000 rpm".into()),
+                ..Default::default()
+            };
+            let e = args.prepare().err().expect("refused").to_string();
+            let axis = y.split('=').next().unwrap();
+            assert_eq!(
+                e,
+                format!("--omega 3000 rpm: the map's --y axis {axis} is the speed already; drop --omega, or map over two other parameters at that speed")
+            );
+        }
+    }
     use crate::command::{Command as _, Output as _};
 
     fn tables(text: &str) -> ConfigSource {

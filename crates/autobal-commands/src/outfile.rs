@@ -285,15 +285,26 @@ impl Outputs {
         self
     }
 
-    /// The `--config` file, when one is given (the embedded default is no file), and the files
-    /// a linear rotor config names (its matrices: [`autobal::linear_rotor::config::file_names`],
-    /// relative to the config's folder), so that no output overwrites them: for a caller
-    /// without the config's tables, which are read here again ([`Outputs::config_inputs`]).
-    pub fn inputs(&mut self, config: Option<&Path>) -> &mut Self {
-        self.config_inputs(config, None)
+    /// [`Outputs::config_inputs`] of a command's config as given (`--config` and `--set`, or
+    /// Python's tables): the files the config names *after* its overrides are inputs (hunt 27:
+    /// `--set 'linear_rotor.kst="kst.svg"' --svg kst.svg` overwrote the matrix file, which only
+    /// the file on disk was searched for). A config that cannot be read or set here adds only
+    /// itself (the command reports that error where it reads the config).
+    pub fn source_inputs(&mut self, config: &crate::command::ConfigSource) -> &mut Self {
+        use crate::command::ConfigSource;
+        match config {
+            ConfigSource::File { path, sets } if !sets.is_empty() => match config.read_any() {
+                Ok((root, _)) => self.config_inputs(path.as_deref(), Some((&root, config.dir()))),
+                Err(_) => self.config_inputs(path.as_deref(), None),
+            },
+            ConfigSource::File { path, .. } => self.config_inputs(path.as_deref(), None),
+            ConfigSource::Tables { root, dir, .. } => self.config_inputs(None, Some((root, dir))),
+        }
     }
 
-    /// [`Outputs::inputs`] with the tables the command read (after `--set`, or Python's tables)
+    /// The `--config` file, when one is given (the embedded default is no file), and the files
+    /// a linear rotor config names (its matrices: [`autobal::linear_rotor::config::file_names`],
+    /// relative to the config's folder), so that no output overwrites them; with the tables the command read (after `--set`, or Python's tables)
     /// and the folder their files are read from, where it has them: the files they name are
     /// the inputs (not those of the file on disk), and the file is not read again. Without
     /// them, a config file that cannot be read or parsed here adds only itself (the command

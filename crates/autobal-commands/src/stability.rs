@@ -302,18 +302,25 @@ impl command::Output for Output {
             }
         }
     }
-    /// `stability_margin`: the margin over speed with the stable ranges shaded (a linear rotor
-    /// config's: [`crate::linear_rotor::margin_plot`]); a stopped scan's marked incomplete
+    /// `stability_margin`: the margin over speed with the stable ranges shaded and the
+    /// operating speed marked (a linear rotor config's: [`crate::linear_rotor::margin_plot`]);
+    /// a stopped scan's marked incomplete
     /// (its title begins `INCOMPLETE:`, a line marks where the scan stopped).
     fn figures(&self) -> Result<Vec<Figure>> {
         let p = match self {
             Output::Closed { cfg, c, stopped, .. } => {
-                let p = crate::figures::margin_plot(&cfg.model, c);
+                let mut p = crate::figures::margin_plot(&cfg.model, c);
+                // the operating speed marked, as in the report (walk 27: the command's figure had none)
+                p.vlines.extend(crate::figures::operating_vlines(cfg.analysis.operating_speed, crate::figures::SpeedUnit::of(&cfg.model).factor));
                 // the series is every grid speed analysed, in the figure's unit
                 let at = p.series.first().and_then(|s| s.points.last()).map(|q| q.0);
                 mark_stopped(p, stopped, at)
             }
-            Output::General { g, r, omega_max, stopped, .. } => mark_stopped(general::margin_plot(g, r, *omega_max), stopped, r.points.last().map(|q| q.omega)),
+            Output::General { g, r, omega_max, op, stopped } => {
+                let mut p = general::margin_plot(g, r, *omega_max);
+                p.vlines.extend(crate::figures::operating_vlines(op.as_ref().map(|o| o.omega), 1.0));
+                mark_stopped(p, stopped, r.points.last().map(|q| q.omega))
+            }
             Output::LinearRotor { r, omega_max, stopped, .. } => {
                 mark_stopped(crate::linear_rotor::margin_plot(r, *omega_max), stopped, r.points.last().map(|q| q.omega))
             }
@@ -330,6 +337,26 @@ impl command::Output for Output {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// At 1 rpm the washer's balanced state has a growth rate of ~1e-10 1/s (ω0 30.3 rad/s:
+    /// ~3e-12 ω0, inside the 1e-11 tolerance): the one-plane route said NOT STABLE, the
+    /// general route NEUTRAL (hunt 27); now both say NEUTRAL, and the JSON stays not stable.
+    /// At 200 rpm (below the lowest critical speed, 284 rpm: unstable) it still says NOT STABLE.
+    #[test]
+    fn a_growth_rate_within_the_tolerance_reads_neutral_not_unstable() {
+        let text = include_str!("../../../examples/washing_machine.toml");
+        let at = |speed: &str| {
+            let mut root = crate::config::parse_text(text, "w.toml").unwrap();
+            crate::config::apply_set(&mut root, &format!("analysis.operating_speed=\"{speed}\"")).unwrap();
+            Args { config: ConfigSource::tables(root, "w.toml"), ..Default::default() }.run(&Control::none()).unwrap()
+        };
+        let out = at("1 rpm");
+        let first = out.table().unwrap().lines().nth(1).unwrap().to_string();
+        assert!(first.contains("the balanced state is NEUTRAL (not stable: its largest growth rate is within the tolerance 1e-11 ω0 of zero)"), "{first}");
+        assert_eq!(out.json().unwrap()["operating_speed"]["stable"], false);
+        let out = at("200 rpm");
+        assert!(out.table().unwrap().lines().nth(1).unwrap().contains("the balanced state is NOT STABLE (exact"), "{}", out.table().unwrap());
+    }
     use crate::command::{Command as _, Output as _};
     use autobal::control::Control;
 

@@ -248,6 +248,18 @@ fn number(v: &Value, field: &str) -> Result<f64> {
     match v {
         Value::Float(f) => Ok(*f),
         Value::Integer(i) => Ok(*i as f64),
+        // a string with a unit (walk 27: `drive.omega0 = "1400 rpm"`): the config's numbers
+        // carry no units; say which, and what a speed's string reads as
+        Value::String(t) if t.trim().parse::<f64>().is_err() && t.chars().next().is_some_and(|c| c.is_ascii_digit() || c == '.' || c == '-') => {
+            Err(Error::invalid(
+                field,
+                format!(
+                    "expected a bare number, got {}: numbers here carry no unit (SI in a dimensional config: kg, m, s, N/m, N s/m, rad/s; only analysis.operating_speed and analysis.omega_max read units){}",
+                    describe(v),
+                    crate::units::speed_hint(t).map_or(String::new(), |h| format!("; {h}"))
+                ),
+            ))
+        }
         o => Err(Error::invalid(field, format!("expected a number, got {}", describe(o)))),
     }
 }
@@ -1295,6 +1307,29 @@ pub fn entry_use(root: &Table, models: &[Model]) -> EntryUse {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A number written with a unit (walk 27: `drive.omega0 = "1400 rpm"` read "expected a
+    /// number, got the string …"): the message says numbers carry no unit, which keys read
+    /// one, and what a speed's string is in rad/s (1400·π/30 = 146.608 rad/s); a number in a
+    /// string, or a word, keeps the plain message.
+    #[test]
+    fn a_number_with_a_unit_is_told_that_numbers_carry_none() {
+        let e = number(&Value::String("1400 rpm".into()), "drive.omega0").unwrap_err().to_string();
+        assert_eq!(
+            e,
+            "drive.omega0: expected a bare number, got the string \"1400 rpm\": numbers here carry no unit (SI in a dimensional config: kg, m, s, N/m, N s/m, rad/s; only analysis.operating_speed and analysis.omega_max read units); 1400 rpm = 146.608 rad/s"
+        );
+        let e = number(&Value::String("2e5 N/m".into()), "supports.stiffness_left").unwrap_err().to_string();
+        assert!(
+            e.starts_with("supports.stiffness_left: expected a bare number, got the string \"2e5 N/m\": numbers here carry no unit")
+                && e.ends_with("read units)"),
+            "{e}"
+        );
+        assert_eq!(number(&Value::String("0.08".into()), "x").unwrap_err().to_string(), "x: expected a number, got the string \"0.08\"");
+        assert_eq!(number(&Value::String("fast".into()), "x").unwrap_err().to_string(), "x: expected a number, got the string \"fast\"");
+        assert_eq!(crate::units::speed_hint("25 Hz").as_deref(), Some("25 Hz = 157.08 rad/s"));
+        assert_eq!(crate::units::speed_hint("157 rad/s"), None);
+    }
 
     #[test]
     fn the_defaults_are_the_presets() {

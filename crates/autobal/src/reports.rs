@@ -205,11 +205,16 @@ pub fn operating_verdict(model: &SpatialModel, op: [f64; 2], stable: &[SpeedRang
     })
 }
 
-/// The verdict at the config's operating speed, if it has one: exact stable ranges over
-/// `(0, max(span, 1.25 hi)]` with [`OPERATING_SAMPLES`] grid speeds.
+/// The verdict at the config's operating speed, if it has one: exact stable ranges with
+/// [`OPERATING_SAMPLES`] grid speeds up to the speed axis' end ([`speed_axis_max`]: the config's
+/// `analysis.omega_max`, else the automatic end, which reaches 1.25 hi), or up to `1.25 hi`
+/// where that end lies below the operating speed's top `hi`. The span `autobal stability` scans
+/// for the same config, so `critical` and `stability` name one range (walk 27: with
+/// `omega_max` between `hi` and `1.25 hi`, `critical` read past it).
 pub fn operating_of(c: &SpatialConfig, balls: Balls) -> Option<Result<OperatingVerdict>> {
     let op = c.analysis.operating_speed?;
-    let span = speed_axis_max(c).max(crate::config::OPERATING_SPEED_MARGIN * op[1]);
+    let axis = speed_axis_max(c);
+    let span = if op[1] <= axis { axis } else { axis.max(crate::config::OPERATING_SPEED_MARGIN * op[1]) };
     Some(crate::spatial::stability::stability_ranges(&c.model, span, OPERATING_SAMPLES, balls, crate::spatial::comparison::RANGE_TOLERANCE).and_then(|s| {
         check_finite("stability", &s)?;
         operating_verdict(&c.model, op, &s.stable_ranges, span, balls)

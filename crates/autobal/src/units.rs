@@ -157,6 +157,16 @@ pub fn parse_speed(field: &str, text: &str) -> Result<Speed> {
     Ok(Speed { value, unit })
 }
 
+/// For a config value that should be a bare number but is a string with a unit: what that string
+/// reads as in SI, e.g. `"1400 rpm"` → `Some("1400 rpm = 146.6 rad/s")`; `None` where it is
+/// no speed with a unit (a bare number in a string, a unit not a speed's, not a number).
+pub fn speed_hint(text: &str) -> Option<String> {
+    let (value, rest) = split_number(text)?;
+    let unit = SpeedUnit::from_text(rest)?;
+    let k = unit.rad_s()?;
+    (value.is_finite() && unit != SpeedUnit::RadPerS).then(|| format!("{} {} = {} rad/s", fmt_num(value), unit.symbol(), fmt_num(value * k)))
+}
+
 /// Parse a speed or a range of speeds: `"1400 rpm"`, `"1200-1400 rpm"`, `"1200 rpm - 1400 rpm"`,
 /// `"1.2 to 1.6"`; the unit written once applies to both ends. Returns `(lo, hi)` (equal for one
 /// speed), `lo ≤ hi`.

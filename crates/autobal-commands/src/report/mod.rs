@@ -228,7 +228,8 @@ impl command::Command for Args {
     /// build every section in parallel under `control`, write the folder (also when
     /// interrupted: the page says which sections were cut short).
     fn run(&self, control: &autobal::control::Control) -> Result<Output> {
-        crate::outfile::Outputs::new().inputs(self.config.path()).output("--out", &self.out.join("index.html")).check()?;
+        crate::outfile::Outputs::new().source_inputs(&self.config).output("--out", &self.out.join("index.html")).check()?;
+        check_inputs_outside(&self.out, &self.config)?;
         check_folder(&self.out)?;
         let ctx = context(&self.config, self.quick, self.kind(), control)?;
         write(&ctx, &self.out)
@@ -461,6 +462,33 @@ fn check_folder(dir: &Path) -> Result<()> {
     }
     if let Some(a) = ASSETS.iter().find(|a| dir.join(a).exists()) {
         bail!("--out {}: holds a file {a} that no autobal report page links, which the report would replace: give a new or empty folder", dir.display());
+    }
+    Ok(())
+}
+
+/// Refuse an input of the run (the config file, the files a linear rotor config names) that
+/// lies in `dir` or its stopped report's folder under a name the report writes or removes
+/// there: `index.html`, one of the [`ASSETS`], a figure's `.svg` or `.png` (hunt 27: `--config
+/// rep/stability_margin.svg --out rep` overwrote the config, `rep/basins.svg` was removed as a
+/// stale figure). Checked before any section runs; any other name is safe there.
+fn check_inputs_outside(dir: &Path, config: &command::ConfigSource) -> Result<()> {
+    let mut inputs: Vec<PathBuf> = config.path().map(Path::to_path_buf).into_iter().collect();
+    if let Ok((root, _)) = config.read_any() {
+        inputs.extend(autobal::linear_rotor::config::file_names(&root).into_iter().map(|(_, name)| config.dir().join(name)));
+    }
+    let folders: Vec<PathBuf> = [dir.to_path_buf(), dir.join(INCOMPLETE_FOLDER)].iter().filter_map(|d| std::fs::canonicalize(d).ok()).collect();
+    for f in &inputs {
+        let (Some(name), Some(parent)) = (f.file_name().and_then(|n| n.to_str()), f.parent()) else { continue };
+        let parent = if parent.as_os_str().is_empty() { Path::new(".") } else { parent };
+        let Ok(parent) = std::fs::canonicalize(parent) else { continue };
+        let ours = name == "index.html" || ASSETS.contains(&name) || name.ends_with(".svg") || name.ends_with(".png");
+        if ours && folders.contains(&parent) {
+            bail!(
+                "--out {}: holds the run's input {}, under a name the report writes or removes there: give another folder, or keep the input elsewhere",
+                dir.display(),
+                f.display()
+            );
+        }
     }
     Ok(())
 }

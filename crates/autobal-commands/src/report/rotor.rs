@@ -58,15 +58,7 @@ pub fn speed_axis(m: &SpatialModel) -> (f64, String, Option<SecondAxis>) {
     }
 }
 
-/// Vertical markers at the operating speed (`analysis.operating_speed`, `Ω`) on an axis that
-/// shows `k · Ω`: one line, or one at each end of a range.
-pub fn operating_vlines(op: Option<[f64; 2]>, k: f64) -> Vec<(f64, String)> {
-    match op {
-        Some([lo, hi]) if lo == hi => vec![(k * lo, "operating speed".into())],
-        Some([lo, hi]) => vec![(k * lo, "operating from".into()), (k * hi, "operating to".into())],
-        None => vec![],
-    }
-}
+pub use crate::figures::operating_vlines;
 
 /// The critical speeds of the rotor as the config gives it, by the general route
 /// ([`autobal::rotor_campbell::locked_critical_speeds`], as `autobal critical` computes them for

@@ -125,8 +125,19 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
             at(summary.omega_at_peak),
             at(summary.final_omega),
             fmt(ls * summary.final_amplitude, 3),
-            if summary.balanced { "the balls balance the rotor" } else { "the balls have not balanced the rotor" }
+            if summary.balanced {
+                "the balls balance the rotor".to_string()
+            } else {
+                // why, as `simulate` says it (walk 27: the report said STABLE in the stability
+                // section and "not balanced" here, without the run's own warning); and what the
+                // stability verdict does not say
+                let why = spatial_sim::warnings(&summary).first().map_or(String::new(), |w| format!(" ({})", super::esc(w)));
+                format!("the balls have not balanced the rotor{why}; the stability of the balanced state (a linear verdict) says the balls stay balanced once near it, not that a run reaches it")
+            }
         ));
+        for w in &spatial_sim::warnings(&summary) {
+            s.p(format!("Warning: {}.", super::esc(w)));
+        }
     } else {
         s.summary.push("The run-up was cut short: no peak to report.".into());
     }

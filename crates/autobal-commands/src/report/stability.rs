@@ -87,9 +87,12 @@ pub fn build_user(ctx: &Ctx) -> Result<Option<Section>> {
     let fx = autobal::spatial::campbell::fixed_axes(m, &c, balls, &[1])?;
     let (mut rot, mut fixed) = campbell_plots(m, &c, &fx.line_modes);
     let mut modes = crate::figures::campbell_fixed_plot(m, &fx);
-    for p in [&mut rot, &mut fixed, &mut modes] {
+    for p in [&mut rot, &mut fixed] {
         p.vlines.extend(super::rotor::operating_vlines(cfg.analysis.operating_speed, u.factor));
     }
+    // the engineers' diagram has its own axes (rpm for a dimensional model: walk 27 found the
+    // operating speed drawn at its rad/s value on that rpm axis)
+    modes.vlines.extend(super::rotor::operating_vlines(cfg.analysis.operating_speed, crate::figures::fixed_axes_of(m).kx));
     s.figure("campbell_modes", modes, "Campbell diagram as engineers read it: one curve per mode of natural frequency in fixed axes (forward whirl solid, backward dashed), coloured by log decrement, the 1x line and the critical speeds (its crossings) marked.");
     s.figure("campbell_fixed", fixed, CAMPBELL_FIXED_CAPTION);
     s.figure("campbell_rotating", rot, "Campbell diagram in rotating axes: Im λ of each tracked eigenvalue (the frequency seen from the rotor).");
@@ -500,6 +503,35 @@ mod tests {
             words.push(first.split(" state is ").nth(1).unwrap().split(' ').next().unwrap().to_string());
         }
         assert_eq!(words, ["NEUTRAL", "STABLE"]);
+    }
+
+    /// Every figure of the washer's section marks its operating speed (1400 rpm) where that
+    /// speed lies on the figure's own axis: 1400 on an rpm axis, 1400·2π/60 = 146.608 on a
+    /// rad/s one (walk 27: the Campbell diagram in rpm drew it at 146.6). The expected values
+    /// come from the axis title and the config's "1400 rpm", not from the code's factors.
+    #[test]
+    fn the_operating_speed_is_marked_in_each_figure_s_own_unit() {
+        let root = crate::config::parse_text(include_str!("../../../../examples/washing_machine.toml"), "washer.toml").unwrap();
+        assert!(include_str!("../../../../examples/washing_machine.toml").contains("operating_speed = \"1400 rpm\""));
+        let ctx = super::super::context(&ConfigSource::tables(root, "washer.toml"), false, super::super::Kind::User, &Control::none()).unwrap();
+        let s = build_user(&ctx).unwrap().unwrap();
+        let mut seen = vec![];
+        for f in s.figures() {
+            let marks: Vec<f64> = f.plot.vlines.iter().filter(|(_, l)| l == "operating speed").map(|(x, _)| *x).collect();
+            let want = if f.plot.x_label.contains("rpm") {
+                1400.0
+            } else if f.plot.x_label.contains("rad/s") {
+                1400.0 * std::f64::consts::TAU / 60.0
+            } else {
+                panic!("{}: axis {}", f.id, f.plot.x_label)
+            };
+            // one mark, at the speed to the conversion's rounding (the config's ω0 scaling
+            // there and back: a few ulps)
+            assert_eq!(marks.len(), 1, "{}: {marks:?}", f.id);
+            assert!((marks[0] - want).abs() <= 1e-9 * want, "{} ({}): marked at {}, want {want}", f.id, f.plot.x_label, marks[0]);
+            seen.push(f.id.clone());
+        }
+        assert!(seen.iter().any(|id| id == "campbell_modes") && seen.iter().any(|id| id == "stability_margin"), "{seen:?}");
     }
 
     /// The whole report stopped in that section is written, its output says it is incomplete

@@ -827,12 +827,15 @@ fn passage_warnings(rotor: &PlanarRotor, drive: &Drive, settings: &Settings, (w_
     if let Some((w0, sense)) = passage {
         if sense > 0.0 && w0.abs() < wn && w_max < wn {
             let hint = match drive {
-                Drive::Acceleration { b, .. } => format!("; at b = {b} it gets there at t = {:.4e} s: raise drive.t_end", (wn - w0) / b),
+                // (b and t_end through fmt_num: `{}` wrote b = 1e-300 with 300 zeros, hunt 27)
+                Drive::Acceleration { b, .. } => {
+                    format!("; at b = {} it gets there at t = {:.4e} s: raise drive.t_end", crate::error::fmt_num(*b), (wn - w0) / b)
+                }
                 _ => " (the torque cannot pass it, or drive.t_end is too short)".to_string(),
             };
             w.push(format!(
                 "resonance was never reached: the speed stays below sqrt(k/m0) = {wn:.2} rad/s (at most {w_max:.2} rad/s by t = {} s){hint}",
-                settings.t_end
+                crate::error::fmt_num(settings.t_end)
             ));
         }
         if sense < 0.0 && w0.abs() > wn && w_min > wn {
@@ -961,5 +964,22 @@ impl<F: FnMut(&Sample) -> bool> Hooks for PlanarHooks<'_, F> {
         } else {
             Control::Stop
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The never-reached warning writes `b` and `t_end` as numbers are written in messages
+    /// (`fmt_num`): `b = 1e-300` was 302 characters of `0.000…1` (hunt 27).
+    #[test]
+    fn the_never_reached_warning_writes_a_tiny_acceleration_as_a_number() {
+        let rotor = PlanarRotor::paper();
+        let drive = Drive::Acceleration { omega0: 0.0, b: 1e-300 };
+        let w = passage_warnings(&rotor, &drive, &Settings::new(&rotor, 0.5), (0.0, 5e-301), 5e-301, true);
+        assert_eq!(w.len(), 1, "{w:?}");
+        assert!(w[0].contains("by t = 0.5 s); at b = 1e-300 it gets there at t = "), "{}", w[0]);
+        assert!(w[0].len() < 250, "{}", w[0]);
     }
 }

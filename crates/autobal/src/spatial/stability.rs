@@ -281,8 +281,10 @@ pub fn eigenvalues_at(model: &SpatialModel, omega: f64, balls: Balls) -> Result<
 /// Result of [`stability_ranges`].
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct StabilityRanges {
-    /// Speeds `0 < Ω ≤ Ω_max` that are stable by [`counts_as_stable`];
-    /// ends located by bisection to `tolerance`; `hi = None` when the range reaches `Ω_max`.
+    /// Speeds of the grid's span `Ω_max/1000 ≤ Ω ≤ Ω_max` ([`stability_grid`]) that are stable by
+    /// [`counts_as_stable`]; ends located by bisection to `tolerance`, except a range stable at
+    /// the first speed analysed, which starts there (`lo` = that speed: nothing below it is
+    /// analysed); `hi = None` when the range reaches `Ω_max`.
     pub stable_ranges: Vec<SpeedRange>,
     /// `(Ω, max Re λ)` on the grid.
     pub max_real_part: Vec<(f64, f64)>,
@@ -290,9 +292,10 @@ pub struct StabilityRanges {
     pub tolerance: f64,
 }
 
-/// Exact stability ranges over `(0, omega_max]`: a grid of `samples` speeds, seeded with the
-/// analytic critical speeds and the middles of their split pairs, then bisection on every
-/// change of verdict down to `tol` in Ω. A flutter range narrower than the grid spacing can
+/// Exact stability ranges over `[omega_max/1000, omega_max]`: a grid of `samples` speeds,
+/// seeded with the analytic critical speeds and the middles of their split pairs, then bisection
+/// on every change of verdict down to `tol` in Ω (a range stable at the grid's first speed starts
+/// there). A flutter range narrower than the grid spacing can
 /// escape the grid; split-pair ranges cannot.
 ///
 /// ```
@@ -344,7 +347,9 @@ pub fn stability_ranges_with(
     let Some(&(_, a_first)) = alpha.first() else {
         return Ok(Outcome { value: StabilityRanges { stable_ranges: ranges, max_real_part: alpha, tolerance: tol }, stopped });
     };
-    let mut start: Option<f64> = if stable(a_first) { Some(0.0) } else { None };
+    // a range stable at the first speed analysed starts there: nothing below it is known (walk
+    // 27: an axis whose first speed lay above the lowest critical speed read "stable 0 – …")
+    let mut start: Option<f64> = if stable(a_first) { Some(alpha[0].0) } else { None };
     for k in 1..alpha.len() {
         let (w0, a0) = alpha[k - 1];
         let (w1, a1) = alpha[k];
