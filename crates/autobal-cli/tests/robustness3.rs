@@ -791,3 +791,133 @@ fn regression_report_wrote_over_its_own_config_in_the_output_folder() {
     assert_eq!(std::fs::read_dir(d.join("rep")).unwrap().count(), 1, "nothing written beside it");
     std::fs::remove_dir_all(&d).ok();
 }
+
+/// Review 25b R4: `dimensionless.delta_a` and `d_a` beside the masses are inputs of the 12-state
+/// linear model only (ΔĀ, D_A); the spatial simulation's rotor has the masses' inertia and balls.
+/// Where a command runs that rotor alone, they were taken without a word; session 26's warning
+/// "no effect" was false (reverted): the linear model's critical speeds set the default run-up's
+/// end and the general route's default speed range. One line now names them and what they set
+/// in the run, and each claim is checked against the runs themselves: the numbers it prints are
+/// the runs' end speeds and speed ranges, and the run without the keys, given what the line says
+/// they set, is the same run (byte for byte, JSON but for the wall time).
+#[test]
+fn regression_delta_a_beside_the_masses_was_taken_by_the_simulation_without_a_word() {
+    use serde_json::Value;
+    let d = scratch("delta-a-beside-the-masses");
+    let text = std::fs::read_to_string(examples("spatial.toml")).unwrap();
+    // the example without its [drive] table (the next table is [initial]): the default run-up
+    let (head, rest) = text.split_at(text.find("\n[drive]").expect("examples/spatial.toml has [drive]"));
+    let bare = format!("{head}\n{}", &rest[rest.find("\n[initial]").unwrap()..]);
+    std::fs::write(d.join("bare.toml"), &bare).unwrap();
+    let keys = ["--set", "dimensionless.delta_a=0.1", "--set", "dimensionless.d_a=0.5"];
+    let run = |args: &[&str]| {
+        let (code, out, err) = run_in(&d, Duration::from_secs(120), args);
+        assert_eq!(code, 0, "autobal {}: {err}", args.join(" "));
+        (out, err)
+    };
+    let with_keys = |args: &[&str]| run(&[args, &keys[..]].concat());
+    let lines = |err: &str| err.lines().filter(|l| l.contains("beside the masses")).map(String::from).collect::<Vec<_>>();
+    let head = |cmd: &str| {
+        format!("warning: {cmd}: dimensionless.d_a, dimensionless.delta_a beside the masses are inputs of the 12-state linear model only: the spatial simulation's rotor, which {cmd} runs, has the masses' inertia and balls (m0, r0, m, r, n); ")
+    };
+    let json = |s: &str| serde_json::from_str::<Value>(s).unwrap();
+    let without = |mut v: Value, keys: &[&str]| {
+        for k in keys {
+            v.as_object_mut().unwrap().remove(*k);
+        }
+        v
+    };
+    // a number as the JSON printed it (every digit: the shortest text that reads back the same)
+    let raw = |s: &str, key: &str| {
+        let at = s.find(&format!("\"{key}\": ")).unwrap_or_else(|| panic!("{key} in {s}")) + key.len() + 4;
+        s[at..].split([',', '\n']).next().unwrap().trim().to_string()
+    };
+    // the line's "X with them, Y without": each the printed 6 digits of the run's own value
+    let printed = |line: &str, before: &str| -> [f64; 2] {
+        let t = &line[line.find(before).unwrap_or_else(|| panic!("{before} in {line}")) + before.len()..];
+        let w: Vec<&str> = t.split(' ').collect();
+        assert_eq!((w[1], w[2], w[4].trim_end_matches(',')), ("with", "them,", "without"), "{line}");
+        [w[0].parse().unwrap(), w[3].trim_end_matches(',').parse().unwrap()]
+    };
+    let six = |x: f64, y: f64| (x / y - 1.0).abs() < 5e-6; // 6 significant digits printed
+
+    // simulate without [drive]: they set only where the default run-up ends
+    let (out_k, err_k) = with_keys(&["simulate", "--config", "bare.toml", "--format", "json", "--out", "k.csv"]);
+    let (out_m, err_m) = run(&["simulate", "--config", "bare.toml", "--format", "json", "--out", "m.csv"]);
+    assert!(lines(&err_m).is_empty(), "{err_m}");
+    let l = lines(&err_k);
+    assert_eq!(l.len(), 1, "{err_k}");
+    assert!(
+        l[0].starts_with(&format!(
+            "{}in this run they set only where the default run-up ends (no [drive]; its acceleration and duration follow): Ω = ",
+            head("simulate")
+        )),
+        "{}",
+        l[0]
+    );
+    assert!(l[0].ends_with(" without, from the linear model's critical speeds"), "{}", l[0]);
+    let [w_k, w_m] = printed(&l[0], "Ω = ");
+    let (k, m) = (json(&out_k), json(&out_m));
+    assert!(six(w_k, k["final_omega"].as_f64().unwrap()) && six(w_m, m["final_omega"].as_f64().unwrap()), "{} {k} {m}", l[0]);
+    assert!(w_k / w_m > 1.2, "ΔĀ = 0.1 moves the linear model's top critical speed: {}", l[0]);
+    // ... and nothing else: the masses alone, given that run-up as their [drive], run the same run
+    let given = format!("{bare}\n[drive]\nkind = \"acceleration\"\nomega0 = 0.0\nb = {}\nt_end = {}\n", raw(&out_k, "b"), raw(&out_k, "t_end"));
+    std::fs::write(d.join("given.toml"), given).unwrap();
+    let (out_g, err_g) = run(&["simulate", "--config", "given.toml", "--format", "json", "--out", "g.csv"]);
+    assert!(lines(&err_g).is_empty(), "{err_g}");
+    let g = json(&out_g);
+    assert_eq!((&k["drive_is_default"], &g["drive_is_default"]), (&Value::Bool(true), &Value::Bool(false)));
+    assert!(without(k, &["wall_time_s", "drive_is_default"]) == without(g, &["wall_time_s", "drive_is_default"]), "{out_k}\n{out_g}");
+    assert!(std::fs::read(d.join("k.csv")).unwrap() == std::fs::read(d.join("g.csv")).unwrap(), "the samples, byte for byte");
+
+    // simulate with its own [drive]: they set nothing
+    let spatial = examples("spatial.toml");
+    let (out_k, err_k) = with_keys(&["simulate", "--config", &spatial, "--set", "drive.t_end=200", "--format", "json", "--out", "k2.csv"]);
+    assert_eq!(lines(&err_k), [format!("{}they set nothing in this run", head("simulate"))]);
+    let (out_m, _) = run(&["simulate", "--config", &spatial, "--set", "drive.t_end=200", "--format", "json", "--out", "m2.csv"]);
+    assert!(without(json(&out_k), &["wall_time_s"]) == without(json(&out_m), &["wall_time_s"]), "{out_k}\n{out_m}");
+    assert!(std::fs::read(d.join("k2.csv")).unwrap() == std::fs::read(d.join("m2.csv")).unwrap(), "the samples, byte for byte");
+
+    // stability's general route: only its default speed range
+    let stab = ["stability", "--config", &spatial, "--route", "general", "--samples", "20", "--format", "json"];
+    let (out_k, err_k) = with_keys(&stab);
+    let (out_m, _) = run(&stab);
+    let l = lines(&err_k);
+    assert_eq!(l.len(), 1, "{err_k}");
+    assert!(l[0].starts_with(&format!("{}in this run they set only the default speed range (--omega-max sets it): 0 < Ω ≤ ", head("stability"))), "{}", l[0]);
+    let [w_k, w_m] = printed(&l[0], "0 < Ω ≤ ");
+    assert!(six(w_k, json(&out_k)["omega_max"].as_f64().unwrap()) && six(w_m, json(&out_m)["omega_max"].as_f64().unwrap()), "{}", l[0]);
+    assert_ne!(json(&out_k), json(&out_m));
+    // the masses alone over that range: the same scan
+    let top = raw(&out_k, "omega_max");
+    let (out_g, err_g) = run(&[&stab[..], &["--omega-max", &top]].concat());
+    assert!(lines(&err_g).is_empty(), "{err_g}");
+    assert_eq!(json(&out_k), json(&out_g));
+    // given the range, they set nothing
+    let (_, err_k) = with_keys(&[&stab[..], &["--omega-max", &top]].concat());
+    assert_eq!(lines(&err_k), [format!("{}they set nothing in this run", head("stability"))]);
+
+    // critical's general route over a given range: only paper 003's necessary ranges printed beside
+    let crit = ["critical", "--config", &spatial, "--route", "general", "--omega-max", "3", "--format", "json"];
+    let (out_k, err_k) = with_keys(&crit);
+    assert_eq!(
+        lines(&err_k),
+        [format!("{}in this run they set only paper 003's necessary ranges printed beside the exact ones (the linear model's)", head("critical"))]
+    );
+    let (out_m, _) = run(&crit);
+    let (k, m) = (json(&out_k), json(&out_m));
+    assert_ne!(k["necessary_condition_003"], m["necessary_condition_003"]);
+    assert_eq!(without(k, &["necessary_condition_003"]), without(m, &["necessary_condition_003"]));
+
+    // a map on the general route (an axis through zero unbalance) at given speeds: nothing
+    let map = ["map", "--config", &spatial, "--x", "dimensionless.m0=0:0.05:3", "--y", "omega=1:2:3", "--set", "dimensionless.delta_a=0.1"];
+    let (_, err_k) = run(&[&map[..], &["--out", "mk"]].concat());
+    assert_eq!(
+        lines(&err_k),
+        ["warning: map: dimensionless.delta_a beside the masses is an input of the 12-state linear model only: the spatial simulation's rotor, which map runs, has the masses' inertia and balls (m0, r0, m, r, n); it sets nothing in this run"]
+    );
+    let (_, err_m) = run(&["map", "--config", &spatial, "--x", "dimensionless.m0=0:0.05:3", "--y", "omega=1:2:3", "--out", "mm"]);
+    assert!(lines(&err_m).is_empty(), "{err_m}");
+    assert!(std::fs::read(d.join("mk.csv")).unwrap() == std::fs::read(d.join("mm.csv")).unwrap(), "the map, byte for byte");
+    std::fs::remove_dir_all(&d).ok();
+}

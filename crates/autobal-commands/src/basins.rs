@@ -68,7 +68,7 @@ impl command::Command for Args {
             return linear(&root, self.config.dir(), self.n, control);
         }
         let sim = crate::spatial_sim::build(&root, &source)?;
-        crate::config::check_entries(&root, "basins", &[crate::config::Model::Spatial])?;
+        crate::config::check_entries_with(&root, "basins", &[crate::config::Model::Spatial], crate::config::FromLinear::RunUp)?;
         check_angle_grid(&sim.rotor, self.n, "--n")?;
         let cases = angle_grid(&sim.initial, &sim.drive, self.n, self.n);
         let t0 = std::time::Instant::now();

@@ -95,7 +95,8 @@ impl command::Command for Args {
         }
         if self.route.is_general(&root) {
             let g = crate::general::rotor_of(&root)?;
-            config::check_entries(&root, "campbell", &[config::simulation_model(&root)])?;
+            let from_linear = config::FromLinear::SpeedRange { omega_max_given: self.omega_max.is_some(), necessary: false };
+            config::check_entries_with(&root, "campbell", &[config::simulation_model(&root)], from_linear)?;
             let points = self.points.unwrap_or(if g.rotor.is_periodic() { 60 } else { DEFAULT_POINTS });
             if !GENERAL_POINTS.contains(&points) {
                 return Err(autobal::Error::invalid(

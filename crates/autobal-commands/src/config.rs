@@ -227,7 +227,40 @@ pub fn ignored_warning(keys: &[String], command: &str) -> Option<String> {
 /// rotor's table or key) is an error naming it; entries only the spatial simulation uses (for
 /// the linear model) and entries the rest of the config makes moot are one warning line each
 /// on standard error; a bare speed in a dimensional config gets its note ([`bare_speed_notes`]).
+/// A run on the spatial simulation's rotor that takes something from the 12-state linear model
+/// calls [`check_entries_with`] instead, saying what.
 pub fn check_entries(root: &Table, command: &str, models: &[Model]) -> Result<()> {
+    check_entries_with(root, command, models, FromLinear::Nothing)
+}
+
+/// What a run on the spatial simulation's rotor takes from paper 000's 12-state linear model,
+/// through which `dimensionless.delta_a` and `d_a` given beside the masses still act there
+/// ([`autobal::config::EntryUse::linear_only`]; the rotor's inertia and balls are the masses').
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FromLinear {
+    /// Nothing: a map on the general route (its speeds are an axis or `--omega`).
+    Nothing,
+    /// A run in time (`simulate`, `sweep`, `basins`): where the default run-up ends when the
+    /// config has no `[drive]` (1.3 times the linear model's highest critical speed, unless
+    /// `analysis.operating_speed` or `analysis.omega_max` says;
+    /// [`autobal::config::default_run_up`]).
+    RunUp,
+    /// The general route's stationary analysis (`stability`, `campbell`, `critical`): its
+    /// default speed range, unless `--omega-max` gives it (`omega_max_given`)
+    /// ([`crate::general::default_omega_max`]), and for `critical` (`necessary`) paper 003's
+    /// necessary ranges printed beside the exact ones
+    /// ([`crate::general_campbell::necessary_ranges`]).
+    SpeedRange {
+        /// `--omega-max` was given: the default range is not used.
+        omega_max_given: bool,
+        /// The run prints 003's necessary ranges where they are defined.
+        necessary: bool,
+    },
+}
+
+/// [`check_entries`], for a run that takes `from_linear` from the 12-state linear model: its
+/// line on the entries that are that model's inputs only says what they set in this run.
+pub fn check_entries_with(root: &Table, command: &str, models: &[Model], from_linear: FromLinear) -> Result<()> {
     let u = autobal::config::entry_use(root, models);
     if let Some(first) = u.foreign.first() {
         let runs: Vec<&str> = models.iter().map(|m| m.describe()).collect();
@@ -258,10 +291,74 @@ pub fn check_entries(root: &Table, command: &str, models: &[Model]) -> Result<()
             if u.moot.len() == 1 { "has" } else { "have" }
         ));
     }
+    if !u.linear_only.is_empty() {
+        crate::term::note(&linear_only_warning(root, command, &u.linear_only, from_linear));
+    }
     for n in bare_speed_notes(root) {
         crate::term::note(&n);
     }
     Ok(())
+}
+
+/// The warning on `keys`, inputs of the 12-state linear model only
+/// ([`autobal::config::EntryUse::linear_only`]), on `command`'s run on the spatial simulation's
+/// rotor: that rotor's inertia and balls are the masses', and what the keys still set in this
+/// run, found by running the defaults of `from_linear` on the config with and without them
+/// (the values are printed), or that they set nothing.
+pub fn linear_only_warning(root: &Table, command: &str, keys: &[String], from_linear: FromLinear) -> String {
+    let mut without = root.clone();
+    for k in keys {
+        if let Some((table, key)) = k.split_once('.') {
+            if let Some(t) = without.get_mut(table).and_then(toml::Value::as_table_mut) {
+                t.remove(key);
+            }
+        }
+    }
+    let one = keys.len() == 1;
+    let them = if one { "it" } else { "them" };
+    let num = |w: Option<f64>| w.map_or_else(|| "none".to_string(), autobal::error::fmt_num);
+    let mut set = vec![];
+    match from_linear {
+        FromLinear::Nothing => {}
+        FromLinear::RunUp => {
+            // the end speed of the default run-up (its acceleration and duration follow from it
+            // and the fixed number of revolutions), `None` where the config has its own [drive]
+            let end = |t: &Table| autobal::config::spatial_simulation(t).ok().filter(|s| s.default_drive).map(|s| s.drive.kinematics(s.settings.t_end).0);
+            let (with, wo) = (end(root), end(&without));
+            if with.is_some() && with != wo {
+                set.push(format!(
+                    "where the default run-up ends (no [drive]; its acceleration and duration follow){}: Ω = {} with {them}, {} without, from the linear model's critical speeds",
+                    if command == "sweep" { " on the base config" } else { "" },
+                    num(with),
+                    num(wo),
+                ));
+            }
+        }
+        FromLinear::SpeedRange { omega_max_given, necessary } => {
+            if !omega_max_given {
+                let top = |t: &Table| crate::general::rotor_of(t).and_then(|g| crate::general::default_omega_max(&g, t)).ok();
+                let (with, wo) = (top(root), top(&without));
+                if with.is_some() && with != wo {
+                    set.push(format!("the default speed range (--omega-max sets it): 0 < Ω ≤ {} with {them}, {} without", num(with), num(wo)));
+                }
+            }
+            if necessary {
+                let ranges = |t: &Table| crate::general_campbell::necessary_ranges(t, 1.0).ok().flatten();
+                let with = ranges(root);
+                if with.is_some() && with != ranges(&without) {
+                    set.push("paper 003's necessary ranges printed beside the exact ones (the linear model's)".to_string());
+                }
+            }
+        }
+    }
+    let (subject, verb) = if one { ("it", "sets") } else { ("they", "set") };
+    let run = if command == "sweep" { "these runs" } else { "this run" };
+    let effect = if set.is_empty() { format!("{subject} {verb} nothing in {run}") } else { format!("in {run} {subject} {verb} only {}", set.join(", and ")) };
+    format!(
+        "warning: {command}: {} beside the masses {} of the 12-state linear model only: the spatial simulation's rotor, which {command} runs, has the masses' inertia and balls (m0, r0, m, r, n); {effect}",
+        keys.join(", "),
+        if one { "is an input" } else { "are inputs" },
+    )
 }
 
 /// The models `command` runs on a simulation config: the spatial simulation for a spatial

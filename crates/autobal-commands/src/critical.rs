@@ -52,7 +52,8 @@ impl command::Command for Args {
         }
         if self.route.is_general(&root) {
             let g = crate::general::rotor_of(&root)?;
-            config::check_entries(&root, "critical", &[config::simulation_model(&root)])?;
+            let from_linear = config::FromLinear::SpeedRange { omega_max_given: self.omega_max.is_some(), necessary: true };
+            config::check_entries_with(&root, "critical", &[config::simulation_model(&root)], from_linear)?;
             let w = general_campbell::omega_max(&root, &g, self.omega_max.as_deref())?;
             let c = general_campbell::critical(&root, &g, w, control)?;
             return Ok(Output::General(Box::new((g, c))));

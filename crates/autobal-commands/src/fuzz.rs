@@ -256,7 +256,7 @@ fn outcome_round_two(root: &Table) -> Result<(), String> {
             Err(e) => assert_names_a_field(&e.to_string()),
             Ok(()) => {
                 let u = autobal::config::entry_use(root, &[model]);
-                for k in u.foreign.iter().chain(&u.moot).map(|u| u.key.as_str()).chain(u.simulation_only.iter().map(String::as_str)) {
+                for k in u.foreign.iter().chain(&u.moot).map(|u| u.key.as_str()).chain(u.simulation_only.iter().chain(&u.linear_only).map(String::as_str)) {
                     assert!(real(k), "{model:?}: entry_use names `{k}`, no key of the config");
                     // a reported entry is one the config has
                     let table = k.trim_start_matches('[').trim_end_matches(']').split('.').next().unwrap();
@@ -264,6 +264,10 @@ fn outcome_round_two(root: &Table) -> Result<(), String> {
                 }
                 if model != Model::Linear {
                     assert!(u.simulation_only.is_empty(), "{model:?}: {:?}", u.simulation_only);
+                }
+                // the linear model's own inputs are used where it runs
+                if model != Model::Spatial {
+                    assert!(u.linear_only.is_empty(), "{model:?}: {:?}", u.linear_only);
                 }
             }
         }

@@ -70,11 +70,8 @@ pub fn omega_max(root: &Table, g: &GeneralRotor, arg: Option<&str>) -> Result<f6
             autobal::limits::check_as("--omega-max", "analysis.omega_max", w / g.omega0)?;
             w
         }
-        (Rotor::Planar(_) | Rotor::Linear(_), None) => 3.0 * g.rotor.natural_frequency(),
-        (Rotor::Spatial(_), None) => {
-            let cfg = autobal::config::spatial(root)?;
-            cfg.analysis.speed_axis_max(2.0 * autobal::reports::default_omega_max(&cfg.model)) * g.omega0
-        }
+        // the general route's default axis, as `stability`'s
+        (_, None) => crate::general::default_omega_max(g, root)?,
     })
 }
 
@@ -589,12 +586,7 @@ pub fn critical(root: &Table, g: &GeneralRotor, omega_max: f64, control: &Contro
         Err(e @ autobal::Error::NoLinearisation { .. }) => Err(e.to_string()),
         Err(e) => return Err(e.into()),
     };
-    let necessary = if autobal::config::is_spatial(root) && autobal::config::ignored_by_linear_model(root).is_empty() {
-        let cfg = autobal::config::spatial(root)?;
-        Some(autobal::spatial::ranges::autobalancing_ranges(&cfg.model).ranges.iter().map(|r| (r.lo * g.omega0, r.hi.map(|h| h * g.omega0))).collect())
-    } else {
-        None
-    };
+    let necessary = necessary_ranges(root, g.omega0)?;
     if let Ok(l) = &locked {
         autobal::limits::check_finite("critical.locked", l)?;
     }
@@ -602,6 +594,19 @@ pub fn critical(root: &Table, g: &GeneralRotor, omega_max: f64, control: &Contro
         autobal::limits::check_finite("critical.stability", &st.stable_ranges)?;
     }
     Ok(GeneralCritical { locked, stability, necessary, omega_max })
+}
+
+/// Paper 003's necessary ranges (eqs (1)-(3)) that the general `critical` prints beside the
+/// exact ones, in the rotor's units (`omega0`: rad/s per Ω): those of the 12-state linear model,
+/// defined where that model describes the config (a spatial config with no entry it leaves
+/// out), else `None`.
+pub fn necessary_ranges(root: &Table, omega0: f64) -> Result<Option<Vec<(f64, Option<f64>)>>> {
+    Ok(if autobal::config::is_spatial(root) && autobal::config::ignored_by_linear_model(root).is_empty() {
+        let cfg = autobal::config::spatial(root)?;
+        Some(autobal::spatial::ranges::autobalancing_ranges(&cfg.model).ranges.iter().map(|r| (r.lo * omega0, r.hi.map(|h| h * omega0))).collect())
+    } else {
+        None
+    })
 }
 
 const LOCKED_WHAT: &str = "balls locked at the closed-form balanced position (point masses of the rotor), no damping: speeds where a natural frequency in fixed axes equals the speed (a whirl standing still in turning axes: the stiffness block of the exact Jacobian is singular)";

@@ -134,7 +134,7 @@ impl Args {
             Model::Linear(Box::new(cfg), Box::new(setup))
         } else if autobal::config::is_spatial(&root) {
             let mut sim = spatial_sim::build(&root, &source)?;
-            config::check_entries(&root, "simulate", &[config::Model::Spatial])?;
+            config::check_entries_with(&root, "simulate", &[config::Model::Spatial], config::FromLinear::RunUp)?;
             if sim.default_drive {
                 let (w_end, _) = sim.drive.kinematics(sim.settings.t_end);
                 let unit = if sim.config.dimensional { " rad/s" } else { " (Ω)" };

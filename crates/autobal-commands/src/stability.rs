@@ -108,7 +108,8 @@ impl command::Command for Args {
                 bail!("--balls locked: the general route analyses the balls free (use the closed-form route of a one-plane config for the locked rotor)");
             }
             let g = general::rotor_of(&root)?;
-            config::check_entries(&root, "stability", &[config::simulation_model(&root)])?;
+            let from_linear = config::FromLinear::SpeedRange { omega_max_given: self.omega_max.is_some(), necessary: false };
+            config::check_entries_with(&root, "stability", &[config::simulation_model(&root)], from_linear)?;
             // a periodic orbit costs a shooting (the variational equations over a revolution) per speed
             let samples = check_count("--samples", self.samples.unwrap_or(general::default_samples(&g)), SAMPLES)?;
             // rad/s: a speed with its unit on an SI config, a bare number times the unit of its

@@ -328,7 +328,7 @@ impl Args {
         let (base, problem, units) = if autobal::config::is_spatial(&root) {
             // the spatial rotor of papers 000/003: the config's keys are the paths
             let sim = crate::spatial_sim::build(&root, &source)?;
-            config::check_entries(&root, "sweep", &[config::Model::Spatial])?;
+            config::check_entries_with(&root, "sweep", &[config::Model::Spatial], config::FromLinear::RunUp)?;
             let base = SpatialSweep::new(root.clone())?;
             for (flag, ax) in &axes {
                 SpatialSweep::set(&mut root.clone(), &ax.path, ax.values[0]).map_err(|e| anyhow!("{flag} {e}"))?;

@@ -310,6 +310,17 @@ impl<'a> Section<'a> {
             }
         }
     }
+    /// The `keys` (if given) are read by the model being built but its own parts do not take
+    /// them: inputs of paper 000's 12-state linear model only, which this model consults for
+    /// defaults alone ([`EntryUse::linear_only`]: `dimensionless.delta_a` and `d_a` beside the
+    /// masses, where the spatial simulation's rotor is the masses').
+    pub fn linear_model_only(&self, keys: &[&str]) {
+        for k in keys {
+            if self.table.is_some_and(|t| t.contains_key(*k)) {
+                uses::linear_only(&self.field(k));
+            }
+        }
+    }
     /// A number, if given.
     pub fn f64(&self, key: &str) -> Result<Option<f64>> {
         self.get(key).map(|v| number(v, &self.field(key))).transpose()
@@ -994,7 +1005,14 @@ pub fn spatial_simulation(root: &Table) -> Result<SpatialSimulation> {
                     return Err(Error::invalid(t, "a second unbalance mass or balancer plane needs the dimensional tables ([rotor], [supports], ...)"));
                 }
             }
-            SpatialRotor::from_dimensionless(&config.model)?
+            let rotor = SpatialRotor::from_dimensionless(&config.model)?;
+            // its inertia and balls are the masses' (m0, r0, m, r, n): `delta_a` and `d_a`
+            // beside them set the 12-state linear model's anisotropy (ΔĀ, D_A) only, which a run
+            // still consults for its defaults (the default run-up's end below; the general
+            // route's default speed range): the commands say what a run takes from them (review
+            // 25b R4; session 26's "no effect" was false where those defaults are used)
+            sec("dimensionless").linear_model_only(&LINEAR_MODEL_ONLY);
+            rotor
         }
     };
     let sp = sec("spatial");
@@ -1040,6 +1058,12 @@ pub fn spatial_simulation(root: &Table) -> Result<SpatialSimulation> {
     Ok(SpatialSimulation { config, rotor, drive, initial, settings, default_drive })
 }
 
+/// The keys of `[dimensionless]` that, given beside the masses (`m0`, `r0`, `m`, `r`, `n`), are
+/// inputs of the 12-state linear model only: the spatial simulation's rotor takes its inertia and
+/// balls from the masses ([`SpatialRotor::from_dimensionless`]), the linear model its anisotropy
+/// from `delta_a` (ΔĀ = ΔĀ0, overriding the masses') and `D_A` from `d_a` (eq (17), `n ≥ 3`).
+pub const LINEAR_MODEL_ONLY: [&str; 2] = ["delta_a", "d_a"];
+
 /// Which entries the model being built reads: [`Section::get`] records every given key while a
 /// [`track`] is running on this thread, [`Section::used_only_if`] takes back those the rest of
 /// the config makes moot. A thread-local, so that every reader (and every reader added later)
@@ -1056,6 +1080,9 @@ mod uses {
         pub read: BTreeSet<String>,
         /// Entries read but of no effect, with why (`"with balancer2.balls = 0"`).
         pub moot: BTreeMap<String, String>,
+        /// Entries read that the model's own parts do not take: inputs of the linear model
+        /// only, consulted for defaults ([`super::Section::linear_model_only`]).
+        pub linear_only: BTreeSet<String>,
     }
 
     thread_local! {
@@ -1079,6 +1106,15 @@ mod uses {
         })
     }
 
+    pub fn linear_only(field: &str) {
+        USES.with(|u| {
+            if let Some(u) = u.borrow_mut().as_mut() {
+                u.read.remove(field);
+                u.linear_only.insert(field.to_string());
+            }
+        })
+    }
+
     /// Run `f`, recording what it reads (a [`track`] inside another records for both).
     pub fn track<T>(f: impl FnOnce() -> T) -> (T, Uses) {
         let outer = USES.with(|u| u.borrow_mut().replace(Uses::default()));
@@ -1087,6 +1123,7 @@ mod uses {
         if let Some(mut o) = outer {
             o.read.extend(mine.read.iter().cloned());
             o.moot.extend(mine.moot.clone());
+            o.linear_only.extend(mine.linear_only.iter().cloned());
             USES.with(|u| *u.borrow_mut() = Some(o));
         }
         (out, mine)
@@ -1158,12 +1195,19 @@ pub struct EntryUse {
     /// Entries the model has, of no effect with the rest of the config (`drive.b` with
     /// `kind = "speed"`, a ball mass with no balls, a restitution without contact): a warning.
     pub moot: Vec<Unused>,
+    /// Entries that are inputs of the 12-state linear model only, on a command that runs the
+    /// spatial simulation's rotor and not that model: `dimensionless.delta_a` and `d_a` beside
+    /// the masses ([`LINEAR_MODEL_ONLY`]; the rotor's inertia and balls are the masses'). Not of
+    /// no effect: the linear model's critical speeds set the default run-up's end (no `[drive]`)
+    /// and the general route's default speed range. A warning naming what they set in the
+    /// command's run, which the command knows (`check_entries` in the commands crate).
+    pub linear_only: Vec<String>,
 }
 
 impl EntryUse {
     /// Whether every entry is used.
     pub fn is_empty(&self) -> bool {
-        self.foreign.is_empty() && self.simulation_only.is_empty() && self.moot.is_empty()
+        self.foreign.is_empty() && self.simulation_only.is_empty() && self.moot.is_empty() && self.linear_only.is_empty()
     }
 }
 
@@ -1203,6 +1247,9 @@ fn neutral(root: &Table, table: &str, key: &str, value: &Value) -> bool {
 ///   `simulate`);
 /// - read by the spatial simulation but not by the linear model ([`Model::Linear`] among
 ///   `models`): [`EntryUse::simulation_only`], a warning;
+/// - read by the spatial simulation as an input of the 12-state linear model only
+///   (`dimensionless.delta_a`, `d_a` beside the masses), with [`Model::Linear`] not among
+///   `models`: [`EntryUse::linear_only`], a warning saying what they set in the run;
 /// - otherwise the model has the entry but the rest of the config makes it moot:
 ///   [`EntryUse::moot`], a warning saying why.
 ///
@@ -1222,6 +1269,7 @@ fn neutral(root: &Table, table: &str, key: &str, value: &Value) -> bool {
 pub fn entry_use(root: &Table, models: &[Model]) -> EntryUse {
     let mut read = std::collections::BTreeSet::new();
     let mut moot = std::collections::BTreeMap::new();
+    let mut linear_only = std::collections::BTreeSet::new();
     let mut linear = None;
     let mut simulation = None;
     let mut any_built = false;
@@ -1235,6 +1283,7 @@ pub fn entry_use(root: &Table, models: &[Model]) -> EntryUse {
         for (k, v) in &u.moot {
             moot.entry(k.clone()).or_insert_with(|| v.clone());
         }
+        linear_only.extend(u.linear_only.iter().cloned());
         match m {
             Model::Linear => linear = Some(u.read),
             Model::Spatial => simulation = Some(u.read),
@@ -1268,6 +1317,12 @@ pub fn entry_use(root: &Table, models: &[Model]) -> EntryUse {
                 }
                 continue;
             }
+            // before the neutral values: `delta_a = 0` beside the masses is ΔĀ = 0, not the
+            // masses' anisotropy (read by the linear model, it is in `read` above)
+            if linear_only.contains(&field) {
+                classes.push((3, Unused { key: field, why: String::new() }));
+                continue;
+            }
             if neutral(root, table, key, value) {
                 any_read = true; // a neutral entry keeps the others from reading as the whole table
                 continue;
@@ -1288,7 +1343,7 @@ pub fn entry_use(root: &Table, models: &[Model]) -> EntryUse {
                 classes.push((2, Unused { key: field, why }));
             }
         }
-        let whole = !any_read && classes.len() == t.len() && t.len() > 1 && classes.iter().all(|(c, _)| *c == classes[0].0 && *c != 2);
+        let whole = !any_read && classes.len() == t.len() && t.len() > 1 && classes.iter().all(|(c, _)| *c == classes[0].0 && *c < 2);
         if whole {
             let (c, first) = classes.swap_remove(0);
             classes = vec![(c, Unused { key: format!("[{table}]"), why: first.why })];
@@ -1297,6 +1352,7 @@ pub fn entry_use(root: &Table, models: &[Model]) -> EntryUse {
             match c {
                 0 => out.foreign.push(u),
                 1 => out.simulation_only.push(u.key),
+                3 => out.linear_only.push(u.key),
                 _ => out.moot.push(u),
             }
         }
@@ -1380,6 +1436,88 @@ mod tests {
             let e = spatial(&root).unwrap_err().to_string();
             assert!(e.starts_with("analysis.omega_max: ") && e.contains(why) && !e.contains('\n'), "{v}: {e}");
         }
+    }
+
+    /// `delta_a` and `d_a` beside the masses are inputs of the 12-state linear model only
+    /// (review 25b R4): the spatial simulation reads them (their checks apply) but its rotor's
+    /// inertia and balls are the masses', so on the simulation alone they are
+    /// [`EntryUse::linear_only`], neither used nor moot (session 26 reported them as of no
+    /// effect, which is false where the run takes the linear model's defaults: the next test);
+    /// where the linear model runs they are used. `delta_a = 0` is ΔĀ = 0, not a neutral value.
+    #[test]
+    fn delta_a_beside_the_masses_is_an_input_of_the_linear_model_only() {
+        let mut root = parse(DEFAULT_SPATIAL, "default").unwrap();
+        set(&mut root, "dimensionless.delta_a", 0.1.into()).unwrap();
+        // n = 2 at E = 2: the balancing positions give D_A = |2/E² − 1| = 0.5, the only value taken
+        set(&mut root, "dimensionless.d_a", 0.5.into()).unwrap();
+        let u = entry_use(&root, &[Model::Spatial]);
+        assert_eq!(u.linear_only, ["dimensionless.d_a", "dimensionless.delta_a"]);
+        assert!(u.foreign.is_empty() && u.simulation_only.is_empty() && u.moot.is_empty(), "{u:?}");
+        assert!(entry_use(&root, &[Model::Linear]).is_empty());
+        assert!(entry_use(&root, &[Model::Linear, Model::Spatial]).is_empty());
+        set(&mut root, "dimensionless.delta_a", 0.0.into()).unwrap();
+        assert_eq!(entry_use(&root, &[Model::Spatial]).linear_only, ["dimensionless.d_a", "dimensionless.delta_a"]);
+        // ΔĀ given directly, no masses: the simulation cannot be built (it needs the masses),
+        // and the linear model uses both
+        let mut direct = parse(DEFAULT_SPATIAL, "default").unwrap();
+        let d = direct.get_mut("dimensionless").and_then(Value::as_table_mut).unwrap();
+        for k in ["m0", "r0", "r", "n"] {
+            d.remove(k);
+        }
+        d.insert("delta_a".into(), 0.1.into());
+        d.insert("d_a".into(), 0.5.into());
+        assert!(spatial_simulation(&direct).is_err());
+        assert!(entry_use(&direct, &[Model::Linear]).is_empty());
+        assert!(entry_use(&direct, &[Model::Spatial]).is_empty());
+    }
+
+    /// What `delta_a` and `d_a` beside the masses set in the spatial simulation (review 25b R4,
+    /// measured): with a `[drive]`, nothing (the rotor, drive, start and settings are those of
+    /// the config without them); without one, where the default run-up ends: 1.3 times the
+    /// highest critical speed of the linear model, whose ΔĀ they move (Ω 3.85 → 4.94 here), and
+    /// nothing else: the config without them, told to end the run-up there
+    /// (`analysis.omega_max`), runs the same run.
+    #[test]
+    fn delta_a_beside_the_masses_sets_only_the_default_run_ups_end() {
+        let given = parse(include_str!("../../../examples/spatial.toml"), "spatial").unwrap();
+        let mut keys = given.clone();
+        set(&mut keys, "dimensionless.delta_a", 0.1.into()).unwrap();
+        set(&mut keys, "dimensionless.d_a", 0.5.into()).unwrap();
+        let sim = |t: &Table| spatial_simulation(t).unwrap();
+        let (a, b) = (sim(&given), sim(&keys));
+        // the linear model's anisotropy moved (the masses': 0, 000's base case is isotropic)
+        assert!((a.config.model.anisotropy.used - b.config.model.anisotropy.used).abs() > 0.05);
+        assert!(!b.default_drive);
+        assert_eq!((&a.rotor, &a.drive, &a.initial, &a.settings), (&b.rotor, &b.drive, &b.initial, &b.settings));
+        // no [drive]: the default run-up
+        let (mut bare, mut bare_keys) = (given.clone(), keys.clone());
+        bare.remove("drive");
+        bare_keys.remove("drive");
+        let (a, b) = (sim(&bare), sim(&bare_keys));
+        assert!(a.default_drive && b.default_drive);
+        assert_eq!((&a.rotor, &a.initial), (&b.rotor, &b.initial));
+        let end = |s: &SpatialSimulation| s.drive.kinematics(s.settings.t_end).0;
+        // 1.3 times the linear model's highest critical speed (eq (16)), to the rounding of
+        // b·t_end (a few ulp)
+        let top =
+            |s: &SpatialSimulation| 1.3 * crate::spatial::critical_speeds::critical_speeds(&s.config.model).speeds.iter().map(|c| c.omega).fold(1.0, f64::max);
+        for s in [&a, &b] {
+            assert!((end(s) / top(s) - 1.0).abs() < 1e-14, "{} {}", end(s), top(s));
+        }
+        assert!(end(&b) / end(&a) > 1.2, "Ω_end {} with the keys, {} without", end(&b), end(&a));
+        // told to end where theirs ends, the config without them runs their run
+        let mut told = bare.clone();
+        set(&mut told, "analysis.omega_max", end(&b).into()).unwrap();
+        let c = sim(&told);
+        assert_eq!((&c.rotor, &c.initial), (&b.rotor, &b.initial));
+        let (Drive::Acceleration { omega0: w_c, b: b_c }, Drive::Acceleration { omega0: w_b, b: b_b }) = (&c.drive, &b.drive) else {
+            panic!("the default run-up accelerates: {:?} {:?}", c.drive, b.drive)
+        };
+        // the same to the rounding of the end speed read back as b·t_end (a few ulp)
+        let near = |x: f64, y: f64| (x - y).abs() <= 1e-14 * y.abs();
+        assert!(*w_c == 0.0 && *w_b == 0.0 && near(*b_c, *b_b), "{b_c} {b_b}");
+        assert!(near(c.settings.t_end, b.settings.t_end) && c.settings.dt == b.settings.dt, "{:?} {:?}", c.settings, b.settings);
+        assert_eq!((c.settings.method, c.settings.rtol, c.settings.atol), (b.settings.method, b.settings.rtol, b.settings.atol));
     }
 
     /// One test per class of [`entry_use`], on the three models.
