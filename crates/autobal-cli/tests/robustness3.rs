@@ -921,3 +921,21 @@ fn regression_delta_a_beside_the_masses_was_taken_by_the_simulation_without_a_wo
     assert!(std::fs::read(d.join("mk.csv")).unwrap() == std::fs::read(d.join("mm.csv")).unwrap(), "the map, byte for byte");
     std::fs::remove_dir_all(&d).ok();
 }
+
+#[test]
+fn regression_basins_refused_every_set_of_a_linear_rotor() {
+    // hunt 27: `basins` read a linear rotor config's `--set` as the spatial rotor's ("linear_rotor:
+    // unknown table"), which every other command takes; the set is applied, and it is used
+    let d = scratch("basins-linear-set");
+    let shaft = short_shaft(&d);
+    let run = |set: &str| {
+        let (code, out, err) =
+            run_in(&d, Duration::from_secs(120), &["basins", "--config", &shaft, "--n", "2", "--no-plots", "--set", set, "--format", "json", "--out", "b.csv"]);
+        assert_eq!(code, 0, "--set {set}: {out} {err}");
+        std::fs::read_to_string(d.join("b.csv")).unwrap()
+    };
+    let heavier = run("linear_rotor.balancer[0].ball_mass=0.05");
+    let lighter = run("linear_rotor.balancer[0].ball_mass=0.01");
+    assert_ne!(heavier, lighter, "the set is used");
+    std::fs::remove_dir_all(&d).ok();
+}

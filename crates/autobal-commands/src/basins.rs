@@ -63,7 +63,7 @@ impl command::Command for Args {
     type Output = Output;
 
     fn run(&self, control: &Control) -> Result<Output> {
-        let (root, source) = self.config.read()?;
+        let (root, source) = self.config.read_any()?;
         if crate::linear_rotor::is_linear(&root) {
             return linear(&root, self.config.dir(), self.n, control);
         }

@@ -250,18 +250,29 @@ fn number(v: &Value, field: &str) -> Result<f64> {
         Value::Integer(i) => Ok(*i as f64),
         // a string with a unit (walk 27: `drive.omega0 = "1400 rpm"`): the config's numbers
         // carry no units; say which, and what a speed's string reads as
-        Value::String(t) if t.trim().parse::<f64>().is_err() && t.chars().next().is_some_and(|c| c.is_ascii_digit() || c == '.' || c == '-') => {
+        Value::String(t) if t.len() <= 100 && t.trim().parse::<f64>().is_err() && starts_with_number_then_letters(t) => {
             Err(Error::invalid(
                 field,
                 format!(
-                    "expected a bare number, got {}: numbers here carry no unit (SI in a dimensional config: kg, m, s, N/m, N s/m, rad/s; only analysis.operating_speed and analysis.omega_max read units){}",
+                    "expected a bare number, got {}: numbers here carry no unit (SI in a dimensional config: kg, m, s, N/m, N s/m, rad/s; dimensionless ones in a [dimensionless] config; only analysis.operating_speed and analysis.omega_max of a dimensional config read units){}",
                     describe(v),
-                    crate::units::speed_hint(t).map_or(String::new(), |h| format!("; {h}"))
+                    crate::units::speed_hint(t).map_or(String::new(), |h| format!("; as an SI speed, {h}"))
                 ),
             ))
         }
         o => Err(Error::invalid(field, format!("expected a number, got {}", describe(o)))),
     }
+}
+
+/// Whether `t` (trimmed) is a number followed by a unit-like word: `"1400 rpm"`, `"2e5 N/m"`,
+/// `"+3 rpm"` (not `"-"`, `"."`, `"1,5"`, `"fast"`).
+fn starts_with_number_then_letters(t: &str) -> bool {
+    let t = t.trim();
+    let end = t.find(|c: char| c.is_alphabetic() && c != 'e' && c != 'E').unwrap_or(t.len());
+    let (num, rest) = t.split_at(end);
+    // "1e5x": the exponent's e is the number's; a word is what follows the number
+    let num = num.trim();
+    !rest.is_empty() && num.parse::<f64>().is_ok()
 }
 
 fn describe(v: &Value) -> String {
@@ -1373,7 +1384,7 @@ mod tests {
         let e = number(&Value::String("1400 rpm".into()), "drive.omega0").unwrap_err().to_string();
         assert_eq!(
             e,
-            "drive.omega0: expected a bare number, got the string \"1400 rpm\": numbers here carry no unit (SI in a dimensional config: kg, m, s, N/m, N s/m, rad/s; only analysis.operating_speed and analysis.omega_max read units); 1400 rpm = 146.608 rad/s"
+            "drive.omega0: expected a bare number, got the string \"1400 rpm\": numbers here carry no unit (SI in a dimensional config: kg, m, s, N/m, N s/m, rad/s; dimensionless ones in a [dimensionless] config; only analysis.operating_speed and analysis.omega_max of a dimensional config read units); as an SI speed, 1400 rpm = 146.608 rad/s"
         );
         let e = number(&Value::String("2e5 N/m".into()), "supports.stiffness_left").unwrap_err().to_string();
         assert!(
@@ -1383,6 +1394,12 @@ mod tests {
         );
         assert_eq!(number(&Value::String("0.08".into()), "x").unwrap_err().to_string(), "x: expected a number, got the string \"0.08\"");
         assert_eq!(number(&Value::String("fast".into()), "x").unwrap_err().to_string(), "x: expected a number, got the string \"fast\"");
+        for plain in ["-", ".", "1,5", "e5"] {
+            assert!(number(&Value::String(plain.into()), "x").unwrap_err().to_string().starts_with("x: expected a number, got"), "{plain}");
+        }
+        assert!(number(&Value::String("  +3 rpm".into()), "x").unwrap_err().to_string().ends_with("as an SI speed, 3 rpm = 0.314159 rad/s"));
+        // a long string is not searched for a speed (quadratic): the plain message
+        assert!(number(&Value::String("1".repeat(200) + " rpm"), "x").unwrap_err().to_string().starts_with("x: expected a number, got"));
         assert_eq!(crate::units::speed_hint("25 Hz").as_deref(), Some("25 Hz = 157.08 rad/s"));
         assert_eq!(crate::units::speed_hint("157 rad/s"), None);
     }

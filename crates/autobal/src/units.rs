@@ -158,9 +158,13 @@ pub fn parse_speed(field: &str, text: &str) -> Result<Speed> {
 }
 
 /// For a config value that should be a bare number but is a string with a unit: what that string
-/// reads as in SI, e.g. `"1400 rpm"` → `Some("1400 rpm = 146.6 rad/s")`; `None` where it is
+/// reads as in SI (a string over 100 characters: `None`), e.g. `"1400 rpm"` → `Some("1400 rpm = 146.6 rad/s")`; `None` where it is
 /// no speed with a unit (a bare number in a string, a unit not a speed's, not a number).
 pub fn speed_hint(text: &str) -> Option<String> {
+    // (as `parse_speed`: `split_number` tries every prefix, quadratic in the length)
+    if text.len() > 100 {
+        return None;
+    }
     let (value, rest) = split_number(text)?;
     let unit = SpeedUnit::from_text(rest)?;
     let k = unit.rad_s()?;

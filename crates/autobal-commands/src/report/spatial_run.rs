@@ -132,7 +132,7 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
                 // section and "not balanced" here, without the run's own warning); and what the
                 // stability verdict does not say
                 let why = spatial_sim::warnings(&summary).first().map_or(String::new(), |w| format!(" ({})", super::esc(w)));
-                format!("the balls have not balanced the rotor{why}; the stability of the balanced state (a linear verdict) says the balls stay balanced once near it, not that a run reaches it")
+                format!("the balls have not balanced the rotor{why}; a STABLE verdict of the balanced state (the stability section) is a linear one: it says the balls stay balanced once near that state, not that a run reaches it")
             }
         ));
         for w in &spatial_sim::warnings(&summary) {

@@ -281,10 +281,12 @@ pub fn eigenvalues_at(model: &SpatialModel, omega: f64, balls: Balls) -> Result<
 /// Result of [`stability_ranges`].
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct StabilityRanges {
-    /// Speeds of the grid's span `Ω_max/1000 ≤ Ω ≤ Ω_max` ([`stability_grid`]) that are stable by
-    /// [`counts_as_stable`]; ends located by bisection to `tolerance`, except a range stable at
-    /// the first speed analysed, which starts there (`lo` = that speed: nothing below it is
-    /// analysed); `hi = None` when the range reaches `Ω_max`.
+    /// Speeds `0 < Ω ≤ Ω_max` that are stable by [`counts_as_stable`], from the grid's speeds
+    /// `Ω_max/1000 … Ω_max` ([`stability_grid`]); ends located by bisection to `tolerance`,
+    /// except a range stable at the first speed analysed, which starts there with the balls
+    /// free (nothing below it is analysed, and free balls are unstable below the lowest
+    /// critical speed) and at 0 with the balls locked; `hi = None` when the range reaches
+    /// `Ω_max`.
     pub stable_ranges: Vec<SpeedRange>,
     /// `(Ω, max Re λ)` on the grid.
     pub max_real_part: Vec<(f64, f64)>,
@@ -295,7 +297,7 @@ pub struct StabilityRanges {
 /// Exact stability ranges over `[omega_max/1000, omega_max]`: a grid of `samples` speeds,
 /// seeded with the analytic critical speeds and the middles of their split pairs, then bisection
 /// on every change of verdict down to `tol` in Ω (a range stable at the grid's first speed starts
-/// there). A flutter range narrower than the grid spacing can
+/// there with the balls free, at 0 with the balls locked). A flutter range narrower than the grid spacing can
 /// escape the grid; split-pair ranges cannot.
 ///
 /// ```
@@ -347,9 +349,12 @@ pub fn stability_ranges_with(
     let Some(&(_, a_first)) = alpha.first() else {
         return Ok(Outcome { value: StabilityRanges { stable_ranges: ranges, max_real_part: alpha, tolerance: tol }, stopped });
     };
-    // a range stable at the first speed analysed starts there: nothing below it is known (walk
-    // 27: an axis whose first speed lay above the lowest critical speed read "stable 0 – …")
-    let mut start: Option<f64> = if stable(a_first) { Some(alpha[0].0) } else { None };
+    // a range stable at the first speed analysed: with the balls free it starts there (the
+    // balanced state of free balls is unstable below the lowest critical speed, so a stable
+    // first speed means the axis began above it, and nothing below is known: walk 27's axis
+    // read "stable 0 – …"); with the balls locked at 0 (a damped rotor near rest is stable,
+    // neutral without damping, which the locked verdict allows)
+    let mut start: Option<f64> = if stable(a_first) { Some(if balls == Balls::Locked { 0.0 } else { alpha[0].0 }) } else { None };
     for k in 1..alpha.len() {
         let (w0, a0) = alpha[k - 1];
         let (w1, a1) = alpha[k];
