@@ -361,6 +361,112 @@ pub fn linear_only_warning(root: &Table, command: &str, keys: &[String], from_li
     )
 }
 
+/// The one check of `sweep`'s and `map`'s axes (`(flag, axis)`, e.g. `("--x", axis)`), on the
+/// config `root` the `models` of `command` run, before anything runs: an axis whose key no
+/// model of the command reads, or whose key the rest of the config makes moot, would give the
+/// same result at every point (a user reads that as a rotor insensitive to the key), so it is
+/// refused, naming the axis. Each axis that is a plain config key ([`autobal::config::set_number`]
+/// takes it; speeds and derived paths such as `drive.psi0[1]` are left to the commands' own
+/// checks) is set, in a copy of `root` with the other axes at their first or last values, to a
+/// few of its values and classified by [`autobal::config::entry_use`] (the classes of
+/// docs/reference/robustness.md, "Every entry is used") and by `unused`: the command's own
+/// keys that no model's build tells apart (`Some(reason)` for a key the command does not use
+/// on that config). The axis is taken when one of those configs uses the key; a value at the
+/// key's neutral 0 (which [`autobal::config::entry_use`] never reports) decides nothing.
+pub fn check_axes(
+    root: &Table,
+    command: &str,
+    models: &[Model],
+    axes: &[(&str, &autobal::paths::Axis)],
+    unused: &dyn Fn(&Table, &str) -> Option<String>,
+) -> Result<()> {
+    // the values tried of an axis: at most 8, its ends among them
+    fn sample(values: &[f64]) -> Vec<f64> {
+        let n = values.len();
+        let k = n.min(8);
+        (0..k).map(|i| values[if k == 1 { 0 } else { i * (n - 1) / (k - 1) }]).collect()
+    }
+    let plain: Vec<bool> = axes.iter().map(|(_, a)| autobal::config::set_number(&mut root.clone(), &a.path, 1.0).is_ok()).collect();
+    for (i, (flag, ax)) in axes.iter().enumerate() {
+        if !plain[i] || ax.values.is_empty() {
+            continue;
+        }
+        let table = ax.path.split('.').next().unwrap_or_default();
+        let whole = format!("[{table}]");
+        // the other axes at their first or last values (every combination of at most 4 of them)
+        let others: Vec<&autobal::paths::Axis> = axes.iter().enumerate().filter(|(j, _)| *j != i && plain[*j]).map(|(_, (_, a))| *a).take(4).collect();
+        let mut reason: Option<String> = None;
+        let mut used = false;
+        'contexts: for combo in 0..(1usize << others.len()) {
+            let mut ctx = root.clone();
+            for (j, a) in others.iter().enumerate() {
+                let v = if combo >> j & 1 == 0 { a.values.first() } else { a.values.last() };
+                if let Some(&v) = v {
+                    let _ = autobal::config::set_number(&mut ctx, &a.path, v);
+                }
+            }
+            for v in sample(&ax.values) {
+                let mut c = ctx.clone();
+                if autobal::config::set_number(&mut c, &ax.path, v).is_err() {
+                    continue;
+                }
+                if let Some(why) = unused(&c, &ax.path) {
+                    reason.get_or_insert(why);
+                    continue;
+                }
+                let u = autobal::config::entry_use(&c, models);
+                let is = |k: &str| k == ax.path || k == whole;
+                if let Some(f) = u.foreign.iter().find(|f| is(&f.key)) {
+                    let runs: Vec<&str> = models.iter().map(|m| m.describe()).collect();
+                    reason.get_or_insert(format!("not used by `{command}`, which runs {}: this entry {}", runs.join(" and "), f.why));
+                } else if let Some(m) = u.moot.iter().find(|m| is(&m.key)) {
+                    reason.get_or_insert(if m.why == "not used with the rest of this config" {
+                        format!("no effect on `{command}` with the rest of this config")
+                    } else {
+                        format!("no effect on `{command}` with the rest of this config ({})", m.why)
+                    });
+                } else if models == [Model::Linear] && u.simulation_only.iter().any(|k| is(k)) {
+                    reason.get_or_insert(format!("used only by `simulate`/`basins`: `{command}` runs the linear model of papers 000/003, which leaves it out"));
+                } else if v != 0.0 {
+                    used = true;
+                    break 'contexts;
+                }
+            }
+        }
+        if let (false, Some(why)) = (used, reason) {
+            bail!("{flag} {}: {why}; every point would be the same", ax.path);
+        }
+    }
+    Ok(())
+}
+
+/// Why the `[drive]` key `path` (`drive.torque`, …) of the config `c` has no effect: its drive's
+/// kind does not use it (`with drive.kind = "schedule"`), or `None`. The builds read every
+/// kind's parameters as a menu ([`autobal::config::drive`]: a `--set drive.kind=motor` switches),
+/// so [`autobal::config::entry_use`] counts them as used; an axis over one ([`check_axes`]) is
+/// still the same run at every point.
+pub fn drive_key_unused(c: &Table, path: &str) -> Option<String> {
+    let key = path.strip_prefix("drive.")?;
+    let d = c.get("drive")?.as_table()?;
+    let kind = d.get("kind").and_then(toml::Value::as_str).unwrap_or("acceleration");
+    let of = d.get("schedule_of").and_then(toml::Value::as_str).unwrap_or("speed");
+    let kinds: &[&str] = match key {
+        "b" => &["acceleration"],
+        "torque" | "t_off" => &["torque", "motor"],
+        "omega_idle" => &["motor"],
+        "omega0" => &["speed", "acceleration", "torque", "motor", "schedule"],
+        _ => return None,
+    };
+    let speed_schedule = kind == "schedule" && of == "speed";
+    if kinds.contains(&kind) && !(key == "omega0" && speed_schedule) {
+        return None;
+    }
+    Some(match speed_schedule {
+        true => format!("with drive.kind = \"{kind}\", schedule_of = \"{of}\""),
+        false => format!("with drive.kind = \"{kind}\""),
+    })
+}
+
 /// The models `command` runs on a simulation config: the spatial simulation for a spatial
 /// config ([`autobal::config::is_spatial`]), else the planar rotor.
 pub fn simulation_model(root: &Table) -> Model {

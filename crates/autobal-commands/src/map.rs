@@ -205,6 +205,7 @@ impl Args {
                 cfg.spec.clone().set(&a.path, a.lo()).map_err(|e| anyhow!("{flag}: {e}"))?;
             }
         }
+        config::check_axes(&root, "map", &[config::Model::Linear], &[("--x", xa), ("--y", ya)], &map_unused)?;
         if is_speed(xa) && is_speed(ya) {
             bail!("--x, --y: only one axis can be omega");
         }
@@ -223,12 +224,25 @@ impl Args {
         }
         if !linear {
             config::check_entries(&root, "map", &[config::simulation_model(&root)])?;
+            config::check_axes(&root, "map", &[config::simulation_model(&root)], &[("--x", &self.x), ("--y", &self.y)], &map_unused)?;
         }
         let speed = self.omega.as_deref().map(|t| autobal::units::parse_speed("--omega", t)).transpose()?;
         // the linear rotor's speed is ω in rad/s, as the planar rotor's
         let planar = linear || !autobal::config::is_spatial(&root);
         Ok(Plan { args: self.clone(), route: PlanRoute::General { root: Box::new(root), speed, planar, linear } })
     }
+}
+
+/// The keys a map's models read without using them ([`config::check_axes`]): a map computes
+/// the stationary states at prescribed speeds, so a run's settings (`[drive]`, `[integration]`,
+/// `[initial]`) and the drag on the spin (`spatial.spin_drag`, `planar.c_theta`) change none of
+/// its cells.
+fn map_unused(_: &toml::Table, path: &str) -> Option<String> {
+    let table = path.split('.').next().unwrap_or_default();
+    if autobal::config::RUN_TABLES.contains(&table) {
+        return Some("a run's setting: `map` computes the stationary states at each speed and runs nothing".into());
+    }
+    matches!(path, "spatial.spin_drag" | "planar.c_theta").then(|| "acts on the spin only, and `map` prescribes the speed (its speed axis or --omega)".into())
 }
 
 /// Whether the map's cell with `path = value` on the closed form's config `spec` needs the

@@ -280,6 +280,33 @@ impl command::Command for Args {
     }
 }
 
+/// The keys the spatial simulation reads without using them on `c` ([`config::check_axes`]):
+/// `spatial.spin_drag` where the drive prescribes the speed; the parameters of another drive
+/// kind ([`config::drive_key_unused`]); of `[analysis]`, the sensitivity's limit always, the
+/// speeds but for the default run-up of a config without `[drive]` (its end:
+/// `operating_speed`, else `omega_max`).
+fn simulation_unused(c: &toml::Table, path: &str) -> Option<String> {
+    // the drag on the spin acts only where a torque drives the spin, not where the speed is given
+    let d = c.get("drive").and_then(toml::Value::as_table);
+    let kind = d.and_then(|d| d.get("kind")).and_then(toml::Value::as_str).unwrap_or("acceleration");
+    let of = d.and_then(|d| d.get("schedule_of")).and_then(toml::Value::as_str).unwrap_or("speed");
+    if path == "spatial.spin_drag" && (matches!(kind, "speed" | "acceleration") || (kind == "schedule" && of == "speed")) {
+        let of = if kind == "schedule" { format!(", schedule_of = \"{of}\"") } else { String::new() };
+        return Some(format!("no effect on `sweep` with the rest of this config (with drive.kind = \"{kind}\"{of}: the speed is prescribed, the drag acts on a spin a torque drives)"));
+    }
+    if let Some(why) = config::drive_key_unused(c, path) {
+        return Some(format!("no effect on `sweep` with the rest of this config ({why})"));
+    }
+    let has = |k: &str| c.get("analysis").and_then(|a| a.get(k)).is_some();
+    let why = match path {
+        "analysis.sensitivity_limit" => "an analytic commands' setting (the sensitivity's limit), which the simulation does not use",
+        "analysis.omega_max" | "analysis.operating_speed" if c.contains_key("drive") => "it sets only the default run-up's end, and this config gives [drive]",
+        "analysis.omega_max" if has("operating_speed") => "the default run-up ends at analysis.operating_speed",
+        _ => return None,
+    };
+    Some(format!("no effect on `sweep` with the rest of this config ({why})"))
+}
+
 impl Args {
     /// The axes with their options, checked: parameter paths, distinct.
     fn axes(&self) -> Result<Vec<(&'static str, &Axis)>> {
@@ -308,6 +335,7 @@ impl Args {
         if let ConfigSource::File { path, sets } = &self.config {
             if let Some((root, base, problem)) = crate::linear_rotor::sweep_base(path.as_deref(), sets)? {
                 let axes = self.axes()?;
+                Self::check_linear_axes(&base, &axes)?;
                 return self.plan(Base::Linear(Box::new(base)), root, axes, problem, ("mm", 1e3));
             }
         }
@@ -315,6 +343,7 @@ impl Args {
             if crate::linear_rotor::is_linear(root) {
                 let (root, base, problem) = crate::linear_rotor::sweep_base_of(root.clone(), dir)?;
                 let axes = self.axes()?;
+                Self::check_linear_axes(&base, &axes)?;
                 return self.plan(Base::Linear(Box::new(base)), root, axes, problem, ("mm", 1e3));
             }
         }
@@ -333,6 +362,8 @@ impl Args {
             for (flag, ax) in &axes {
                 SpatialSweep::set(&mut root.clone(), &ax.path, ax.values[0]).map_err(|e| anyhow!("{flag} {e}"))?;
             }
+            // (after the paths' own checks, which name another rotor's key and a bad element)
+            config::check_axes(&root, "sweep", &[config::Model::Spatial], &axes, &simulation_unused)?;
             let problem = base.to_json()?;
             let units = if sim.config.dimensional { ("mm", 1e3) } else { ("ρ_s", 1.0) };
             (Base::Spatial(Box::new(base)), problem, units)
@@ -344,10 +375,22 @@ impl Args {
                 let mut p = base.clone();
                 autobal::paths::Parameters::set(&mut p, &ax.path, ax.values[0]).map_err(|e| anyhow!("{flag} {e}"))?;
             }
+            config::check_axes(&root, "sweep", &[config::Model::Planar], &axes, &|_, _| None)?;
             let problem = serde_json::to_value(&base)?;
             (Base::Planar(Box::new(base)), problem, ("mm", 1e3))
         };
         self.plan(base, root, axes, problem, units)
+    }
+
+    /// A linear rotor's axes: `linear_rotor.omega_max` sets only the default run-up of a
+    /// config without `[drive]` ([`crate::linear_rotor::drive_of`]).
+    fn check_linear_axes(base: &autobal::linear_rotor::spec::LinearRotorSpec, axes: &[(&'static str, &Axis)]) -> Result<()> {
+        for (flag, ax) in axes {
+            if ax.path == "linear_rotor.omega_max" && base.config_at(&[])?.drive.is_some() {
+                bail!("{flag} {}: no effect on `sweep` with the rest of this config (it sets only the default run-up's end, and this config gives [drive]); every point would be the same", ax.path);
+            }
+        }
+        Ok(())
     }
 
     /// The grid and the shard's points, checked on `base`.
