@@ -339,6 +339,24 @@ impl command::Output for Output {
 mod tests {
     use super::*;
 
+    /// `critical` and `stability` give the washer's verdict at 1400 rpm over one span: the
+    /// config's `analysis.omega_max = "1500 rpm"` (between the operating speed and 1.25 times it,
+    /// 1750 rpm, where `critical` used to read), as the same stable range (walk 27).
+    #[test]
+    fn critical_and_stability_scan_one_span_at_the_operating_speed() {
+        let text = include_str!("../../../examples/washing_machine.toml");
+        let mut root = crate::config::parse_text(text, "w.toml").unwrap();
+        crate::config::apply_set(&mut root, "analysis.omega_max=\"1500 rpm\"").unwrap();
+        let st = Args { config: ConfigSource::tables(root.clone(), "w.toml"), ..Default::default() }.run(&Control::none()).unwrap().json().unwrap();
+        let cr = crate::critical::Args { config: ConfigSource::tables(root, "w.toml"), ..Default::default() }.run(&Control::none()).unwrap().json().unwrap();
+        let (a, b) = (&st["operating_speed"], &cr["operating_speed"]);
+        // 1500 rpm in rpm, to the conversion's rounding
+        assert!((a["span_rpm"].as_f64().unwrap() - 1500.0).abs() < 1e-9, "{a}");
+        assert_eq!(a["span"], b["span"], "{a} {b}");
+        assert_eq!(a["stable_range"], b["stable_range"]);
+        assert_eq!(a["stable"], true);
+    }
+
     /// At 1 rpm the washer's balanced state has a growth rate of ~1e-10 1/s (ω0 30.3 rad/s:
     /// ~3e-12 ω0, inside the 1e-11 tolerance): the one-plane route said NOT STABLE, the
     /// general route NEUTRAL (hunt 27); now both say NEUTRAL, and the JSON stays not stable.
