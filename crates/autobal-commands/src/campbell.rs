@@ -108,12 +108,8 @@ impl command::Command for Args {
             let w = general_campbell::omega_max(&root, &g, self.omega_max.as_deref())?;
             let c = general_campbell::campbell_with(&g, w, points, self.balls, &harmonics, control)
                 .map_err(|e| crate::general::name_omega_max(e, self.omega_max.is_some(), "analysis.omega_max"))?;
-            // (a spatial config's `analysis.operating_speed`, as the report reads it)
-            let op = autobal::config::is_spatial(&root)
-                .then(|| autobal::config::spatial(&root).ok())
-                .flatten()
-                .and_then(|cfg| cfg.analysis.operating_speed)
-                .map(|[a, b]| [a * g.omega0, b * g.omega0]);
+            // (only marked in the figures: a config whose operating speed cannot be read marks none)
+            let op = crate::general::operating_speed(&g, &root).ok().flatten();
             return Ok(Output::General { g: Box::new(g), c: Box::new(c), omega_max: w, view: self.view, op });
         }
         let cfg = config::build(&root, &source)?;
@@ -400,16 +396,7 @@ mod tests {
         let config = || ConfigSource::tables(crate::config::parse_text(text, "washer.toml").unwrap(), "washer.toml");
         let check = |figs: Vec<Figure>| {
             for f in &figs {
-                let marks: Vec<f64> = f.plot.vlines.iter().filter(|(_, l)| l == "operating speed").map(|(x, _)| *x).collect();
-                let want = if f.plot.x_label.contains("rpm") {
-                    1400.0
-                } else if f.plot.x_label.contains("rad/s") {
-                    1400.0 * std::f64::consts::TAU / 60.0
-                } else {
-                    panic!("{}: axis {}", f.id, f.plot.x_label)
-                };
-                // the config's rpm to Ω and back: a few ulps
-                assert!(marks.len() == 1 && (marks[0] - want).abs() <= 1e-9 * want, "{} ({}): marks {marks:?}, want {want}", f.id, f.plot.x_label);
+                crate::figures::assert_marks_operating_rpm(&f.id, &f.plot, 1400.0);
             }
             figs.len()
         };

@@ -70,6 +70,24 @@ pub fn operating_vlines(op: Option<[f64; 2]>, k: f64) -> Vec<(f64, String)> {
     }
 }
 
+/// Test check that figure `id`'s `plot` marks an operating speed of `rpm` once, where that
+/// speed lies on its own axis: `rpm` on an rpm axis, `rpm·2π/60` on a rad/s one, read from the
+/// axis title (not from the code's factors); to a relative 1e-9 (the config's rpm to Ω and
+/// back: a few ulps). Panics otherwise.
+#[cfg(test)]
+pub(crate) fn assert_marks_operating_rpm(id: &str, plot: &Plot, rpm: f64) {
+    let marks: Vec<f64> = plot.vlines.iter().filter(|(_, l)| l == "operating speed").map(|(x, _)| *x).collect();
+    let want = if plot.x_label.contains("rpm") {
+        rpm
+    } else if plot.x_label.contains("rad/s") {
+        rpm * std::f64::consts::TAU / 60.0
+    } else {
+        panic!("{id}: axis {}", plot.x_label)
+    };
+    assert_eq!(marks.len(), 1, "{id}: {marks:?}");
+    assert!((marks[0] - want).abs() <= 1e-9 * want, "{id} ({}): marked at {}, want {want}", plot.x_label, marks[0]);
+}
+
 /// Colours for many curves: the palette without black and grey, then more distinct ones, ordered
 /// so that the first nine differ in hue (no two greens or two light blues among them).
 pub fn curve_color(i: usize) -> &'static str {

@@ -553,13 +553,19 @@ impl Operating {
     }
 }
 
-/// [`Operating`] for a config with `analysis.operating_speed`, else `None`.
-pub fn operating(g: &GeneralRotor, root: &Table, r: &RotorStability, control: &Control) -> Result<Option<Operating>> {
+/// A spatial config's `analysis.operating_speed` `[lo, hi]` in the rotor's units (rad/s, or Ω),
+/// else `None` (a planar config has none).
+pub fn operating_speed(g: &GeneralRotor, root: &Table) -> Result<Option<[f64; 2]>> {
     if !autobal::config::is_spatial(root) {
         return Ok(None);
     }
-    let Some([lo, hi]) = autobal::config::spatial(root)?.analysis.operating_speed else { return Ok(None) };
-    operating_at(g, [lo * g.omega0, hi * g.omega0], "analysis.operating_speed", r, control).map(Some)
+    Ok(autobal::config::spatial(root)?.analysis.operating_speed.map(|[lo, hi]| [lo * g.omega0, hi * g.omega0]))
+}
+
+/// [`Operating`] for a config with `analysis.operating_speed`, else `None`.
+pub fn operating(g: &GeneralRotor, root: &Table, r: &RotorStability, control: &Control) -> Result<Option<Operating>> {
+    let Some(op) = operating_speed(g, root)? else { return Ok(None) };
+    operating_at(g, op, "analysis.operating_speed", r, control).map(Some)
 }
 
 /// The verdict at the operating speed `omega` (`[lo, hi]`, the rotor's units; a linear rotor's

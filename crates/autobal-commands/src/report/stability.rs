@@ -517,18 +517,7 @@ mod tests {
         let s = build_user(&ctx).unwrap().unwrap();
         let mut seen = vec![];
         for f in s.figures() {
-            let marks: Vec<f64> = f.plot.vlines.iter().filter(|(_, l)| l == "operating speed").map(|(x, _)| *x).collect();
-            let want = if f.plot.x_label.contains("rpm") {
-                1400.0
-            } else if f.plot.x_label.contains("rad/s") {
-                1400.0 * std::f64::consts::TAU / 60.0
-            } else {
-                panic!("{}: axis {}", f.id, f.plot.x_label)
-            };
-            // one mark, at the speed to the conversion's rounding (the config's ω0 scaling
-            // there and back: a few ulps)
-            assert_eq!(marks.len(), 1, "{}: {marks:?}", f.id);
-            assert!((marks[0] - want).abs() <= 1e-9 * want, "{} ({}): marked at {}, want {want}", f.id, f.plot.x_label, marks[0]);
+            crate::figures::assert_marks_operating_rpm(&f.id, &f.plot, 1400.0);
             seen.push(f.id.clone());
         }
         assert!(seen.iter().any(|id| id == "campbell_modes") && seen.iter().any(|id| id == "stability_margin"), "{seen:?}");
