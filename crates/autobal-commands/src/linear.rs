@@ -190,25 +190,19 @@ pub fn bare_speed_note(flag: &str, text: &str, converted: &str) {
     crate::term::note(&format!("note: {flag} {text} is the dimensionless Ω = {text}, i.e. {converted}; give a unit (rpm, rad/s or Hz) for SI"));
 }
 
-/// A map's fixed speed given in SI (`--omega 1400rpm`) is one `Ω` only if neither axis changes
-/// the rotor's `ω0 = sqrt(c_x/M_s)` (masses, stiffnesses do): checked at both ends of each axis.
-pub fn check_fixed_speed(cfg: &Config, axes: [(&str, f64, f64); 2]) -> Result<()> {
+/// Whether a map's fixed speed given in SI (`--omega 1400rpm`) is a different `Ω` across the
+/// map: an axis moves the rotor's `ω0 = sqrt(c_x/M_s)` (masses, stiffnesses do), checked at
+/// both ends of each axis (`ω0` is monotone in each entry). Then every cell is mapped at its
+/// own `Ω` ([`autobal::spatial::map::stability_map_at_speed`]).
+pub fn fixed_speed_moves_omega0(cfg: &Config, axes: [(&str, f64, f64); 2]) -> bool {
     let w0 = cfg.model.scale.map(|s| s.omega0);
-    for (key, lo, hi) in axes {
-        for v in [lo, hi] {
+    axes.iter().any(|&(key, lo, hi)| {
+        [lo, hi].into_iter().any(|v| {
             let mut s = cfg.spec.clone();
-            if s.set(key, v).is_err() {
-                continue; // the map names the bad path itself
-            }
-            let other = s.build().ok().and_then(|m| m.scale.map(|s| s.omega0));
-            if other.is_some() && other != w0 {
-                anyhow::bail!(
-                    "--omega: {key} changes the rotor's ω0 (the unit of Ω), so a speed in SI is a different Ω across the map; give --omega as Ω, or map over a speed axis (speed_rpm=LO:HI:N)"
-                );
-            }
-        }
-    }
-    Ok(())
+            // a bad path: the map names it itself
+            s.set(key, v).is_ok() && s.build().ok().and_then(|m| m.scale.map(|s| s.omega0)).is_some_and(|o| Some(o) != w0)
+        })
+    })
 }
 
 /// The speed axis of the linear commands: `--omega-max` (a speed with its unit, or `Ω`), else

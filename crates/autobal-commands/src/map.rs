@@ -126,8 +126,20 @@ pub struct Plan {
 }
 
 enum PlanRoute {
-    Closed { cfg: Box<Config>, omega: Option<f64> },
-    General { root: Box<toml::Table>, speed: Option<autobal::units::Speed>, planar: bool, linear: bool },
+    /// `omega`: the fixed speed as `Ω` of the config's rotor; `at_si`: the fixed speed in rad/s
+    /// where the axes move `ω0`, each cell then at its own `Ω`
+    /// ([`autobal::spatial::map::stability_map_at_speed`]).
+    Closed {
+        cfg: Box<Config>,
+        omega: Option<f64>,
+        at_si: Option<f64>,
+    },
+    General {
+        root: Box<toml::Table>,
+        speed: Option<autobal::units::Speed>,
+        planar: bool,
+        linear: bool,
+    },
 }
 
 impl command::Command for Args {
@@ -189,8 +201,15 @@ impl Args {
                 bail!("{flag} {}: a speed in SI needs a dimensional config (the rotor's ω0); this config is dimensionless: use omega=LO:HI:N (Ω)", a.path);
             }
         }
-        if self.omega.as_deref().is_some_and(|t| autobal::units::parse_speed("--omega", t).is_ok_and(|s| s.is_si())) && !is_speed(xa) && !is_speed(ya) {
-            crate::linear::check_fixed_speed(&cfg, [(&xa.path, xa.lo(), xa.hi()), (&ya.path, ya.lo(), ya.hi())])?;
+        // a fixed speed in SI over axes that move ω0 is a different Ω in each cell: each cell
+        // at its own (the engineer's question: this machine at 1400 rpm, over its design)
+        let fixed_si = self.omega.as_deref().and_then(|t| autobal::units::parse_speed("--omega", t).ok()).filter(|s| s.is_si());
+        let at_si = fixed_si
+            .filter(|_| !is_speed(xa) && !is_speed(ya))
+            .filter(|_| crate::linear::fixed_speed_moves_omega0(&cfg, [(&xa.path, xa.lo(), xa.hi()), (&ya.path, ya.lo(), ya.hi())]))
+            .and_then(|s| s.unit.rad_s().map(|k| s.value * k));
+        if at_si.is_some() && self.boundary {
+            bail!("--boundary: at a fixed speed in SI over axes that move ω0 (each cell at its own Ω) the boundary is not traced; use --route general (its boundary is bisected between cells), or give --omega as Ω");
         }
         for (flag, a) in [("--x", xa), ("--y", ya)] {
             if a.path == "omega" {
@@ -212,7 +231,7 @@ impl Args {
         if !is_speed(xa) && !is_speed(ya) && omega.is_none() {
             return Err(autobal::Error::invalid("--omega", "required when neither axis is omega (the speed at which to map)").into());
         }
-        Ok(Plan { args: self.clone(), route: PlanRoute::Closed { cfg: Box::new(cfg), omega } })
+        Ok(Plan { args: self.clone(), route: PlanRoute::Closed { cfg: Box::new(cfg), omega, at_si } })
     }
 }
 
@@ -304,7 +323,7 @@ impl Plan {
         }
         let t0 = std::time::Instant::now();
         let route = match &self.route {
-            PlanRoute::Closed { cfg, omega } => {
+            PlanRoute::Closed { cfg, omega, at_si } => {
                 let traced = match a.boundary {
                     true => {
                         let t = std::time::Instant::now();
@@ -317,10 +336,16 @@ impl Plan {
                     // nothing of the map is computed after an interrupted trace
                     let (dx, dy) = (decimate(&a.x).1, decimate(&a.y).1);
                     let figure = FigureCells::new(dx, dy, a.quantity);
-                    RouteOutput::Closed { figure, cells: None, rows_done: 0, continued: 0, direct: 0, traced }
+                    RouteOutput::Closed { figure, cells: None, rows_done: 0, continued: 0, direct: 0, traced, at_si: None }
                 } else {
-                    let (figure, run, cells) = compute(cfg, &a.x, &a.y, *omega, a.balls, a.quantity, rows, control)?;
-                    RouteOutput::Closed { figure, cells, rows_done: run.rows_done, continued: run.continued, direct: run.direct, traced }
+                    let speed = match at_si {
+                        Some(w) => FixedSpeed::Si(*w),
+                        None => FixedSpeed::Omega(*omega),
+                    };
+                    let (figure, run, cells) = compute(cfg, &a.x, &a.y, speed, a.balls, a.quantity, rows, control)?;
+                    // the speed as given (`1400 rpm`), named in the table and the figure
+                    let at_si = at_si.and(a.omega.as_deref()).and_then(|t| autobal::units::parse_speed("--omega", t).ok()).map(|s| s.to_string());
+                    RouteOutput::Closed { figure, cells, rows_done: run.rows_done, continued: run.continued, direct: run.direct, traced, at_si }
                 }
             }
             PlanRoute::General { root, speed, planar, linear } => general(root, a, *speed, *planar, *linear, rows, control)?,
@@ -428,6 +453,9 @@ pub enum RouteOutput {
         /// The traced boundary and its wall time (s), with `boundary`; the map is not computed
         /// when the trace was interrupted.
         traced: Option<(Boundary, f64)>,
+        /// The fixed speed in SI over axes that move `ω0` (as given, e.g. `1400 rpm`): each
+        /// cell at its own `Ω`.
+        at_si: Option<String>,
     },
     /// The general route.
     General {
@@ -612,8 +640,9 @@ impl command::Output for Output {
             "omega0_range_rad_s": self.omega0,
         });
         match &self.route {
-            RouteOutput::Closed { continued, direct, traced, .. } => {
+            RouteOutput::Closed { continued, direct, traced, at_si, .. } => {
                 v["route"] = json!("closed_form");
+                v["fixed_speed"] = json!(at_si);
                 v["continued"] = json!(continued);
                 v["direct"] = json!(direct);
                 if let Some((b, _)) = traced {
@@ -664,8 +693,9 @@ impl command::Output for Output {
             }
         });
         Ok(unit + &match &self.route {
-            RouteOutput::Closed { continued, direct, .. } => format!(
-                "{done} rows × {n} points in {:.2} s ({per_point:.2} µs per point; {continued} by continuation, {direct} direct solves){}\n",
+            RouteOutput::Closed { continued, direct, at_si, .. } => format!(
+                "{}{done} rows × {n} points in {:.2} s ({per_point:.2} µs per point; {continued} by continuation, {direct} direct solves){}\n",
+                at_si.as_ref().map_or(String::new(), |w| format!("every cell at {w}: its own Ω = ω/ω0 of that cell's rotor\n")),
                 self.secs,
                 self.wrote()
             ),
@@ -691,8 +721,9 @@ impl command::Output for Output {
             return Ok(vec![]);
         }
         let p = match &self.route {
-            RouteOutput::Closed { figure, traced, .. } => {
-                let mut p = plot_cells(figure, &format!("Stability map, balls {}", if self.balls == Balls::Free { "free" } else { "locked" }));
+            RouteOutput::Closed { figure, traced, at_si, .. } => {
+                let at = at_si.as_ref().map_or(String::new(), |w| format!(" at {w}"));
+                let mut p = plot_cells(figure, &format!("Stability map, balls {}{at}", if self.balls == Balls::Free { "free" } else { "locked" }));
                 if let Some((b, _)) = traced {
                     p.series.extend(boundary_series(b));
                 }
@@ -964,6 +995,15 @@ pub fn margin_column(dimensional: bool) -> &'static str {
     }
 }
 
+/// A closed-form map's speed when neither axis is one.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum FixedSpeed {
+    /// `Ω` of the config's rotor for every cell (`None`: a speed axis gives it).
+    Omega(Option<f64>),
+    /// One speed in rad/s over axes that move `ω0`: each cell at its own `Ω = ω/ω0`.
+    Si(f64),
+}
+
 /// Compute the map with the library ([`autobal::spatial::map::stability_map_units`]), handing
 /// the rows to `rows` in grid order and keeping a decimated copy for the figures.
 #[allow(clippy::too_many_arguments)]
@@ -971,12 +1011,16 @@ pub fn compute(
     cfg: &Config,
     x: &Axis,
     y: &Axis,
-    omega: Option<f64>,
+    speed: FixedSpeed,
     balls: Balls,
     quantity: Quantity,
     rows: Rows<'_>,
     control: &Control,
 ) -> Result<(FigureCells, MapRun, Option<Vec<Vec<Cell>>>)> {
+    let omega = match speed {
+        FixedSpeed::Omega(o) => o,
+        FixedSpeed::Si(_) => None,
+    };
     let settings = autobal::spatial::map::MapSettings { balls, quantity, omega };
     let (kx, dx) = decimate(x);
     let (ky, dy) = decimate(y);
@@ -994,8 +1038,8 @@ pub fn compute(
     }
     let mut out = csv.as_ref().map(|_| CsvRows::new(x, y, quantity == Quantity::Verdict, rayon::current_num_threads()));
     let mut io_error: Option<std::io::Error> = None;
-    let outcome = autobal::spatial::map::stability_map_units(&cfg.spec, x, y, &settings, control, &mut |j, cells| {
-        if j % ky == 0 && j / ky < kept.rows.len() {
+    let mut on_row = |j: usize, cells: &[Cell]| {
+        if j.is_multiple_of(ky) && j / ky < kept.rows.len() {
             kept.set_row(j / ky, cells, kx, nd);
         }
         if keep_all {
@@ -1009,7 +1053,11 @@ pub fn compute(
         }
         control.report(j as u64 + 1, ny as u64);
         true
-    });
+    };
+    let outcome = match speed {
+        FixedSpeed::Si(w) => autobal::spatial::map::stability_map_at_speed(&cfg.spec, x, y, w, &settings, control, &mut on_row),
+        FixedSpeed::Omega(_) => autobal::spatial::map::stability_map_units(&cfg.spec, x, y, &settings, control, &mut on_row),
+    };
     if let Some(e) = io_error {
         return Err(e.into());
     }

@@ -419,6 +419,20 @@ pub fn stability_map<F: ModelFamily>(
     control: &Control,
     on_row: &mut dyn FnMut(usize, &[Cell]) -> bool,
 ) -> Result<MapOutcome> {
+    map_at(spec, x, y, s, None, control, on_row)
+}
+
+/// [`stability_map`], or with `si` (rad/s) the map at that one speed, each cell at its own
+/// `Ω = si/ω0` ([`stability_map_at_speed`]).
+fn map_at<F: ModelFamily>(
+    spec: &F,
+    x: &Axis,
+    y: &Axis,
+    s: &MapSettings,
+    si: Option<f64>,
+    control: &Control,
+    on_row: &mut dyn FnMut(usize, &[Cell]) -> bool,
+) -> Result<MapOutcome> {
     s.validate()?;
     for a in [x, y] {
         if a.values.is_empty() {
@@ -439,8 +453,12 @@ pub fn stability_map<F: ModelFamily>(
     if is_omega(x) && is_omega(y) {
         return Err(Error::invalid(OMEGA, "only one axis can be the speed"));
     }
-    let w = match (is_omega(x), is_omega(y)) {
-        (false, false) => Some(s.omega.ok_or_else(|| Error::invalid(OMEGA, "required when neither axis is the speed (the speed at which to map)"))?),
+    let w = match (is_omega(x), is_omega(y), si) {
+        (false, false, Some(w)) => Some(CellSpeed::Si(w)),
+        (false, false, None) => {
+            Some(CellSpeed::Omega(s.omega.ok_or_else(|| Error::invalid(OMEGA, "required when neither axis is the speed (the speed at which to map)"))?))
+        }
+        (_, _, Some(_)) => return Err(Error::invalid(OMEGA, "the map's speed is given (one speed in SI): its axes are two other parameters")),
         _ => None,
     };
     if let Some(why) = control.should_stop() {
@@ -705,6 +723,15 @@ fn map_speed_columns<F: ModelFamily>(spec: &F, x: &Axis, y: &Axis, s: &MapSettin
     Ok(out)
 }
 
+/// A map's speed when neither axis is one.
+#[derive(Debug, Clone, Copy)]
+enum CellSpeed {
+    /// `Ω`, the same for every cell.
+    Omega(f64),
+    /// One speed in rad/s: each cell at `Ω = ω/ω0` of its own model.
+    Si(f64),
+}
+
 /// Neither axis is the speed: every point its own model at speed `w`. A block's row buffers
 /// are allocated once and reused; where points fail, the error is the one of the
 /// lowest-numbered row's first failing point.
@@ -712,11 +739,20 @@ fn map_fixed_speed<F: ModelFamily>(
     spec: &F,
     x: &Axis,
     y: &Axis,
-    w: f64,
+    w: CellSpeed,
     s: &MapSettings,
     on_row: &mut dyn FnMut(usize, &[Cell]) -> bool,
 ) -> Result<MapOutcome> {
-    let w = w.max(OMEGA_FLOOR);
+    // the model's Ω at this speed (a model without an SI scale has no Ω for a speed in SI)
+    let omega_of = |m: &SpatialModel| -> Result<f64> {
+        let w = match w {
+            CellSpeed::Omega(w) => w,
+            CellSpeed::Si(w) => {
+                w / m.scale.map(|k| k.omega0).ok_or_else(|| Error::invalid(OMEGA, "a speed in SI needs the rotor's ω0 (a dimensional config): give it as Ω"))?
+            }
+        };
+        Ok(w.max(OMEGA_FLOOR))
+    };
     let nx = x.values.len();
     let ny = y.values.len();
     let block = (BLOCK_CELLS / nx).max(2 * rayon::current_num_threads());
@@ -734,6 +770,7 @@ fn map_fixed_speed<F: ModelFamily>(
                 cells.clear();
                 for &xv in &x.values {
                     let m = sy.with(&x.path, xv)?.model()?;
+                    let w = omega_of(&m)?;
                     let ss = StateSpace::new(&m, s.balls)?;
                     let necessary = autobalancing_ranges(&m).ranges.iter().any(|r| r.contains(w));
                     cells.push(match s.quantity {
@@ -879,6 +916,65 @@ pub fn stability_map_units(
         j0 = j1;
     }
     Ok(out)
+}
+
+/// A stability map at one speed given in SI, `w` rad/s, over two axes that may move the
+/// rotor's `ω0 = sqrt(c_x/M_s)` (a mass, a stiffness): every cell at its own
+/// `Ω = w/ω0(x, y)`, the `Ω` of paper 000's eq (6) for that cell's rotor, so that the whole
+/// map is the one speed an engineer asks about (a washer's spin at 1400 rpm over its ball mass
+/// and suspension). Each cell is its own model solved directly at its `Ω`, as every cell of a
+/// map without a speed axis is (`s.omega` is not read); a cell equals the one-point map at
+/// that `Ω` (the example). Rows go to `on_row` in order; the control is asked between rows.
+///
+/// Errors: an axis that is a speed (the speed is `w`), a path the model refuses, a rotor
+/// without an SI scale (a dimensionless config: give `Ω`).
+///
+/// ```
+/// use autobal::spatial::map::{stability_map, stability_map_at_speed, Axis, MapSettings};
+/// let root = autobal::config::parse(include_str!("../../../../examples/washing_machine.toml"), "w").unwrap();
+/// let c = autobal::config::spatial(&root).unwrap();
+/// let w = 1400.0 * std::f64::consts::PI / 30.0; // 1400 rpm in rad/s
+/// let x = Axis::linspace("balancer.ball_mass", 0.1, 0.5, 3);
+/// let y = Axis::linspace("supports.stiffness_left", 1e4, 3e4, 2);
+/// let mut rows = vec![];
+/// stability_map_at_speed(&c.spec, &x, &y, w, &MapSettings::default(), &autobal::control::Control::none(), &mut |_, r| {
+///     rows.push(r.to_vec());
+///     true
+/// })
+/// .unwrap();
+/// // the last cell is the rotor with 0.5 kg of balls on 3e4 N/m springs, at its own Ω
+/// let mut one = c.spec.clone();
+/// one.set("balancer.ball_mass", 0.5).unwrap();
+/// one.set("supports.stiffness_left", 3e4).unwrap();
+/// let omega = w / one.build().unwrap().scale.unwrap().omega0;
+/// let point = |path: &str, v: f64| Axis { path: path.into(), values: vec![v] };
+/// let s = MapSettings { omega: Some(omega), ..MapSettings::default() };
+/// let mut cell = vec![];
+/// stability_map(&c.spec, &point("balancer.ball_mass", 0.5), &point("supports.stiffness_left", 3e4), &s, &autobal::control::Control::none(), &mut |_, r| {
+///     cell = r.to_vec();
+///     true
+/// })
+/// .unwrap();
+/// assert_eq!(rows[1][2], cell[0]);
+/// ```
+pub fn stability_map_at_speed<F: ModelFamily>(
+    spec: &F,
+    x: &Axis,
+    y: &Axis,
+    w: f64,
+    s: &MapSettings,
+    control: &Control,
+    on_row: &mut dyn FnMut(usize, &[Cell]) -> bool,
+) -> Result<MapOutcome> {
+    for a in [x, y] {
+        if crate::units::speed_path_unit(&a.path).is_some() {
+            return Err(Error::invalid(a.path.clone(), "the map's speed is given (one speed in SI): its axes are two other parameters"));
+        }
+    }
+    if !(w.is_finite() && w >= 0.0) {
+        return Err(Error::invalid(OMEGA, format!("the speed must be finite and non-negative, got {w} rad/s")));
+    }
+    map_at(spec, x, y, s, Some(w), control, on_row)
 }
 
 #[cfg(test)]
