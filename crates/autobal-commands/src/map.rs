@@ -722,7 +722,7 @@ impl command::Output for Output {
         }
         let p = match &self.route {
             RouteOutput::Closed { figure, traced, at_si, .. } => {
-                let at = at_si.as_ref().map_or(String::new(), |w| format!(" at {w}"));
+                let at = at_si.as_ref().map_or(String::new(), |w| format!(", at {w}"));
                 let mut p = plot_cells(figure, &format!("Stability map, balls {}{at}", if self.balls == Balls::Free { "free" } else { "locked" }));
                 if let Some((b, _)) = traced {
                     p.series.extend(boundary_series(b));
