@@ -16,7 +16,7 @@ use crate::plot::Series;
 use anyhow::{anyhow, bail, Result};
 use autobal::control::Control;
 use autobal::paths::Axis;
-use autobal::rotor_map::{BoundaryPoint, FamilyVerdict, GeneralCell, GeneralMapOutcome, Kind, Verdict};
+use autobal::rotor_map::{Along, BoundaryPoint, FamilyVerdict, GeneralCell, GeneralMapOutcome, Kind, Verdict};
 use autobal::rotor_stability::StateKind;
 use autobal::spatial::boundary::{Boundary, Codim2Kind, CurveKind, TraceSettings};
 use autobal::spatial::linear_model::Balls;
@@ -448,6 +448,13 @@ pub enum RouteOutput {
     },
 }
 
+/// The bisected boundary points found along `x` (within a row) and along `y` (within a
+/// column).
+fn along_counts(t: &[BoundaryPoint]) -> (usize, usize) {
+    let nx = t.iter().filter(|b| b.along == Along::X).count();
+    (nx, t.len() - nx)
+}
+
 /// `STEM_boundary.csv`: the traced boundary beside the map.
 pub fn boundary_path(stem: &Path) -> PathBuf {
     PathBuf::from(format!("{}_boundary.csv", stem.display()))
@@ -495,17 +502,19 @@ impl Output {
     }
 
     /// The traced boundary as CSV (`STEM_boundary.csv`), with `boundary`: the closed form's
-    /// curves ([`boundary_csv`]), or the general route's bisected points `x,y,from,to` (`x` to
-    /// 1e-9 relative where the margin changes sign or a stationary state appears, with the
-    /// verdicts on either side).
+    /// curves ([`boundary_csv`]), or the general route's bisected points `x,y,from,to,along`
+    /// (where the margin changes sign or a stationary state appears between two neighbouring
+    /// cells, bisected to 1e-9 relative along `x` between two cells of a row or along `y`
+    /// between two of a column, as `along` says; `from`, `to` the verdicts on the sides of the
+    /// smaller and the larger value of that axis).
     pub fn boundary_csv(&self) -> Option<String> {
         match &self.route {
             RouteOutput::Closed { traced, .. } => traced.as_ref().map(|(b, _)| boundary_csv(b, &self.x.path, &self.y.path)),
             RouteOutput::General { traced, .. } => traced.as_ref().map(|pts| {
                 use std::fmt::Write as _;
-                let mut t = format!("{},{},from,to\n", self.x.path, self.y.path);
+                let mut t = format!("{},{},from,to,along\n", self.x.path, self.y.path);
                 for b in pts {
-                    let _ = writeln!(t, "{},{},{},{}", crate::num::Csv(b.x), crate::num::Csv(b.y), verdict_name(b.from), verdict_name(b.to));
+                    let _ = writeln!(t, "{},{},{},{},{}", crate::num::Csv(b.x), crate::num::Csv(b.y), verdict_name(b.from), verdict_name(b.to), b.along.key());
                 }
                 t
             }),
@@ -525,7 +534,13 @@ impl Output {
             ))),
             RouteOutput::General { traced, outcome, .. } => {
                 if let Some(t) = traced {
-                    out.push(wrote(format!("boundary: {} points bisected along {} to 1e-9 relative", t.len(), self.x.path)));
+                    let (nx, ny) = along_counts(t);
+                    out.push(wrote(format!(
+                        "boundary: {} points bisected to 1e-9 relative between neighbouring cells ({nx} along {} within a row, {ny} along {} within a column)",
+                        t.len(),
+                        self.x.path,
+                        self.y.path
+                    )));
                 }
                 if outcome.families > 0 {
                     out.push(format!(
@@ -632,7 +647,8 @@ impl command::Output for Output {
                 v["partially_balanced"] = json!(outcome.partially_balanced);
                 v["not_balanced"] = json!(outcome.not_balanced);
                 if let Some(t) = traced {
-                    v["boundary"] = json!({"bisected_points": t.len()});
+                    let (nx, ny) = along_counts(t);
+                    v["boundary"] = json!({"bisected_points": t.len(), "along_x": nx, "along_y": ny});
                 }
             }
         }
@@ -1788,7 +1804,7 @@ mod tests {
         let RouteOutput::General { traced: Some(t), .. } = &out.route else { panic!("general route, traced") };
         assert_eq!(p.series.iter().any(|s| s.label == "bisected boundary points"), !t.is_empty());
         assert_eq!(out.json().unwrap()["route"], json!("general"));
-        assert!(out.boundary_csv().unwrap().starts_with("omega,planar.c_psi,from,to\n"));
+        assert!(out.boundary_csv().unwrap().starts_with("omega,planar.c_psi,from,to,along\n"));
     }
 
     /// A linear rotor config given as tables (Python's) reads its matrix files relative to the
