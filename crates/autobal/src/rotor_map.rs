@@ -235,11 +235,44 @@ fn build(root: &Table) -> Result<CellRotor> {
     }
 }
 
-/// `root` with `path` set to `v`; errors name the path and the value.
+/// `root` with `path` set to `v` ([`set_path`]); errors name the path and the value.
 fn with(root: &Table, path: &str, v: f64) -> Result<Table> {
     let mut t = root.clone();
-    config::set_number(&mut t, path, v).map_err(|e| name_axis(e, path, v))?;
+    set_path(&mut t, path, v).map_err(|e| name_axis(e, path, v))?;
     Ok(t)
+}
+
+/// The per-ball lists of `[planar]` that a map's axis sets by element, and the common value
+/// each replaces: `planar.ball_masses[j]` (`m3`), `planar.ball_drags[j]` (`c_psi`).
+const PLANAR_PER_BALL: [(&str, &str); 2] = [("planar.ball_masses", "m3"), ("planar.ball_drags", "c_psi")];
+
+/// Set a map's axis `path` to `v` in the config `root`: a `table.key`
+/// ([`config::set_number`]), or element `j` (1-based) of an array key, `table.key[j]`
+/// ([`config::set_element`]; config.md's `planar.ball_masses[j]`, `planar.ball_drags[j]`, as
+/// `sweep` takes them). Where the config gives one value for every ball (`planar.m3`,
+/// `planar.c_psi`) instead of the list, the list is made of that value for each of the
+/// `planar.n` balls, in its place, and then element `j` set: the other balls keep the common
+/// value, as `sweep`'s planar paths do ([`crate::planar::problem::PlanarProblem`]). Until session 28 a
+/// map handed the indexed path to `set_number`, which refused it as an unknown key while
+/// naming `ball_masses` among the known ones.
+fn set_path(root: &mut Table, path: &str, v: f64) -> Result<()> {
+    let Some((key, j)) = crate::paths::indexed(path) else { return config::set_number(root, path, v) };
+    let j = j.map_err(|r| Error::invalid(path, r))?;
+    if let Some((_, common)) = PLANAR_PER_BALL.iter().find(|(k, _)| *k == key) {
+        let list = key.trim_start_matches("planar.");
+        if let Some(p) = root.get_mut("planar").and_then(|t| t.as_table_mut()) {
+            if !p.contains_key(list) {
+                if let (Some(c), Some(n)) =
+                    (p.get(*common).and_then(|c| c.as_float().or(c.as_integer().map(|i| i as f64))), p.get("n").and_then(|n| n.as_integer()))
+                {
+                    let n = usize::try_from(n).unwrap_or(0).min(crate::planar::MAX_BALLS);
+                    p.remove(*common);
+                    p.insert(list.into(), toml::Value::Array(vec![toml::Value::Float(c); n]));
+                }
+            }
+        }
+    }
+    config::set_element(root, path, key, j, v)
 }
 
 fn name_axis(e: Error, path: &str, v: f64) -> Error {
@@ -1067,6 +1100,56 @@ mod tests {
         for (p, q) in along_y.iter().zip(&along_x) {
             assert!(p.x == q.y && (p.y - q.x).abs() <= 2e-9 * p.y, "{p:?} vs {q:?}");
         }
+    }
+
+    /// `planar.ball_masses[j]` and `planar.ball_drags[j]` as a map's axes (config.md lists them
+    /// "for maps and sweeps"; hunt 28: the map refused them as unknown keys of `[planar]` while
+    /// naming `ball_masses` among the known ones). Each cell equals the speed scan of the rotor
+    /// with that ball's value set as `sweep` sets it (second route: the planar problem's own
+    /// parameter path on the built rotor, not the config's table; the same Newton from the same
+    /// closed form, so the margins agree to round-off, 1e-9 relative), on a config with per-ball
+    /// lists and on one with the common `m3`, `c_psi` (the list then made of it, the other
+    /// balls keeping it, as `sweep` does); the value moves the margins (the axis is not
+    /// ignored); a ball past `planar.n` is refused naming the path.
+    #[test]
+    fn a_balls_own_mass_and_drag_are_map_axes() {
+        use crate::paths::Parameters as _;
+        let common = config::parse(include_str!("../../../examples/planar.toml"), "planar").unwrap();
+        let mut lists = common.clone();
+        let p = lists.get_mut("planar").and_then(|t| t.as_table_mut()).unwrap();
+        p.remove("m3");
+        p.remove("c_psi");
+        p.insert("n".into(), toml::Value::Integer(3));
+        let floats = |v: &[f64]| toml::Value::Array(v.iter().map(|&x| toml::Value::Float(x)).collect());
+        p.insert("ball_masses".into(), floats(&[0.025, 0.035, 0.02]));
+        p.insert("ball_drags".into(), floats(&[0.08, 0.12, 0.1]));
+        for (root, path, values) in [
+            (&lists, "planar.ball_drags[1]", vec![0.05, 0.3]),
+            (&lists, "planar.ball_masses[3]", vec![0.02, 0.04]),
+            (&common, "planar.ball_masses[2]", vec![0.02, 0.04]),
+            (&common, "planar.ball_drags[1]", vec![0.05, 0.3]),
+        ] {
+            let wn = config::planar(root).unwrap().rotor.natural_frequency();
+            let speeds: Vec<f64> = [0.6, 1.4, 2.5, 4.0].iter().map(|k| k * wn).collect();
+            let x = Axis { path: path.into(), values: values.clone() };
+            let y = Axis { path: "omega".into(), values: speeds.clone() };
+            let rows = collect(root, &x, &y, None).unwrap_or_else(|e| panic!("{path}: {e}"));
+            for (i, &v) in values.iter().enumerate() {
+                let mut problem = config::planar(root).unwrap();
+                problem.set(path, v).unwrap();
+                let scan = crate::rotor_stability::stability_over_speed(&Rotor::Planar(problem.rotor), &speeds).unwrap();
+                for (row, p) in rows.iter().zip(&scan.points) {
+                    let (cell, a) = (row[i], p.abscissa.unwrap());
+                    assert_eq!(cell.verdict, p.verdict, "{path} = {v}");
+                    assert!((cell.margin - a).abs() <= 1e-9 * a.abs().max(1.0), "{path} = {v}: {} vs {a}", cell.margin);
+                }
+            }
+            assert!(rows.iter().any(|r| (r[0].margin - r[1].margin).abs() > 1e-6 * r[0].margin.abs()), "{path}: the value changes nothing");
+        }
+        let x = Axis { path: "planar.ball_masses[4]".into(), values: vec![0.02, 0.03] };
+        let y = Axis { path: "omega".into(), values: vec![100.0, 200.0] };
+        let e = collect(&lists, &x, &y, None).unwrap_err().to_string();
+        assert!(e.starts_with("planar.ball_masses[4]: ") && e.contains("has 3 elements"), "{e}");
     }
 
     #[test]
