@@ -567,11 +567,13 @@ impl Output {
         }
     }
 
-    /// The state the general route maps.
+    /// The state the general route maps, in words: the kind of the cells' states, or that no
+    /// cell has one ([`general_state`]).
     fn state(outcome: &GeneralMapOutcome) -> &'static str {
-        match outcome.periodic > 0 {
-            false => "equilibrium (eigenvalues)",
-            true => "periodic orbit (Floquet multipliers)",
+        match general_state(outcome) {
+            None => NO_STATE,
+            Some(Kind::Equilibrium) => "equilibrium (eigenvalues)",
+            Some(Kind::PeriodicOrbit) => "periodic orbit (Floquet multipliers)",
         }
     }
 }
@@ -592,6 +594,22 @@ fn state_words(o: &GeneralMapOutcome) -> String {
     }
     format!("; cells whose state is {}: the verdicts there are those states', not a balanced state's (the CSV's state column)", parts.join(", "))
 }
+
+/// The kind of stationary state the general route's map found: a periodic orbit where any cell
+/// has one, else an equilibrium; `None` where no cell has a stationary state (every cell
+/// without one or not analysed: then no kind is claimed, hunt 28: such a map read "stationary
+/// state: equilibrium (eigenvalues)" on a config whose state would be a periodic orbit).
+fn general_state(o: &GeneralMapOutcome) -> Option<Kind> {
+    match (o.closed_form + o.continued, o.periodic) {
+        (0, _) => None,
+        (_, 0) => Some(Kind::Equilibrium),
+        _ => Some(Kind::PeriodicOrbit),
+    }
+}
+
+/// The table's and the figure's words where no cell of the general route's map has a
+/// stationary state.
+const NO_STATE: &str = "none found (no cell has a stationary state)";
 
 /// The table's words on the cells below the periodic-orbit floor (none: nothing).
 fn not_analysed_words(n: usize) -> String {
@@ -638,7 +656,8 @@ impl command::Output for Output {
             }
             RouteOutput::General { outcome, traced, .. } => {
                 v["route"] = json!("general");
-                v["state"] = json!(if outcome.periodic > 0 { "periodic_orbit" } else { "equilibrium" });
+                // null where no cell has a stationary state (no kind is claimed)
+                v["state"] = json!(general_state(outcome).map(|k| if k == Kind::PeriodicOrbit { "periodic_orbit" } else { "equilibrium" }));
                 v["closed_form"] = json!(outcome.closed_form);
                 v["continued"] = json!(outcome.continued);
                 v["without_stationary_state"] = json!(outcome.none);
@@ -701,7 +720,9 @@ impl command::Output for Output {
 
     /// `stability_map`: the margin (or verdict) heatmap with the stability boundary; the closed
     /// form adds 003's necessary boundary and, with `boundary`, the traced curves; the general
-    /// route the bisected boundary points. None when the map was not computed.
+    /// route the bisected boundary points. None when the map was not computed. An interrupted
+    /// map's title begins `INCOMPLETE:` (as `stability`'s and `campbell`'s figures:
+    /// `stability::mark_stopped`; its rows not computed are blank).
     fn figures(&self) -> Result<Vec<Figure>> {
         if !self.map_computed() {
             return Ok(vec![]);
@@ -718,7 +739,7 @@ impl command::Output for Output {
                 general_plot(fx, fy, frows, outcome, *planar, *linear, self.quantity, traced.as_deref())
             }
         };
-        Ok(vec![Figure::new("stability_map", p)])
+        Ok(vec![Figure::new("stability_map", crate::stability::mark_stopped(p, &command::Output::stopped(self), None))])
     }
 
     fn stopped(&self) -> Option<String> {
@@ -1152,7 +1173,7 @@ fn general_plot(
     quantity: Quantity,
     traced: Option<&[BoundaryPoint]>,
 ) -> crate::plot::Plot {
-    let periodic = outcome.periodic > 0;
+    let found = general_state(outcome);
     let mut r = FigureCells::new(fx.clone(), fy.clone(), quantity);
     for (j, row) in frows.iter().enumerate() {
         if let Some(row) = row {
@@ -1160,10 +1181,7 @@ fn general_plot(
             r.set_row(j, &cells, 1, cells.len());
         }
     }
-    let state = match if periodic { Kind::PeriodicOrbit } else { Kind::Equilibrium } {
-        Kind::Equilibrium => "equilibrium (eigenvalues)",
-        Kind::PeriodicOrbit => "periodic orbit (Floquet multipliers)",
-    };
+    let state = Output::state(outcome);
     let model = if linear {
         "linear"
     } else if planar {
@@ -1195,7 +1213,11 @@ fn general_plot(
             }
         }
         if quantity == Quantity::Margin {
-            let what = if periodic { "largest Floquet exponent" } else { "max Re λ" };
+            let what = match found {
+                None => "margin",
+                Some(Kind::PeriodicOrbit) => "largest Floquet exponent",
+                Some(Kind::Equilibrium) => "max Re λ",
+            };
             h.label = format!("{what} ({}; < 0 stable)", if planar { "1/s" } else { "per unit τ" });
         }
     }
@@ -1780,6 +1802,46 @@ mod tests {
         out.written = Some("m".into());
         assert!(out.stopped().unwrap().ends_with(" and kept in m.csv"));
         assert!(out.table().unwrap().ends_with("; wrote m.csv, m.svg, m.png\n"));
+        // its figure says so, as stability's and campbell's do (hunt 28: no mark)
+        let title = &out.figures().unwrap()[0].plot.title;
+        assert!(title.starts_with("INCOMPLETE: Stability map"), "{title}");
+        // the general route's too; a complete map's title has no mark
+        let general = Args {
+            config: tables(crate::config::DEFAULT_PLANAR),
+            x: parse_axis("--x", "omega=100:400:3").unwrap(),
+            y: parse_axis("--y", "planar.c_psi=0.05:0.2:3").unwrap(),
+            ..Default::default()
+        };
+        let out = general.run(&control).unwrap();
+        assert!(out.stopped().is_some());
+        let title = &out.figures().unwrap()[0].plot.title;
+        assert!(title.starts_with("INCOMPLETE: Stability map of the planar rotor"), "{title}");
+        let title = &general.run(&Control::none()).unwrap().figures().unwrap()[0].plot.title;
+        assert!(title.starts_with("Stability map of the planar rotor"), "{title}");
+    }
+
+    /// A general map none of whose cells has a stationary state claims no kind of state (hunt
+    /// 28: the two-plane rotor under gravity at 500-1000 rpm, where the state would be a
+    /// periodic orbit, read "stationary state: equilibrium (eigenvalues)" in the table and the
+    /// figure's title): the table and the title say none was found, the JSON's `state` is null.
+    #[test]
+    fn a_map_without_any_state_claims_no_kind_of_state() {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/spatial_two_plane.toml");
+        let args = Args {
+            config: ConfigSource::file(Some(&path), &[]),
+            x: parse_axis("--x", "balancer.drag=0.1:1:2").unwrap(),
+            y: parse_axis("--y", "speed_rpm=500:1000:2").unwrap(),
+            ..Default::default()
+        };
+        let out = args.run(&Control::none()).unwrap();
+        let RouteOutput::General { outcome, .. } = &out.route else { panic!("general route") };
+        assert_eq!((outcome.none, outcome.closed_form + outcome.continued), (4, 0));
+        let table = out.table().unwrap();
+        assert!(table.contains("; stationary state: none found (no cell has a stationary state)"), "{table}");
+        assert!(!table.contains("equilibrium") && !table.contains("periodic"), "{table}");
+        let title = &out.figures().unwrap()[0].plot.title;
+        assert!(title.contains("general route: none found (no cell has a stationary state)") && !title.contains("equilibrium"), "{title}");
+        assert_eq!(out.json().unwrap()["state"], Value::Null);
     }
 
     /// The general route's map (a planar config): its own figure (the general route's title, no
@@ -1804,6 +1866,9 @@ mod tests {
         let RouteOutput::General { traced: Some(t), .. } = &out.route else { panic!("general route, traced") };
         assert_eq!(p.series.iter().any(|s| s.label == "bisected boundary points"), !t.is_empty());
         assert_eq!(out.json().unwrap()["route"], json!("general"));
+        // the planar rotor's balanced state is an equilibrium, named so
+        assert!(p.title.contains("(general route: equilibrium (eigenvalues))"), "{}", p.title);
+        assert_eq!(out.json().unwrap()["state"], json!("equilibrium"));
         assert!(out.boundary_csv().unwrap().starts_with("omega,planar.c_psi,from,to,along\n"));
     }
 
