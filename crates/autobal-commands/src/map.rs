@@ -149,9 +149,15 @@ impl Args {
         if self.x.path == self.y.path {
             bail!("--y {}: the same key as --x; give the second axis another field", self.y.path);
         }
-        // a fixed speed beside a speed axis would be ignored (hunt 27: exit 0, no word)
-        if let (Some(t), Some((flag, a))) = (&self.omega, [("--x", &self.x), ("--y", &self.y)].into_iter().find(|(_, a)| is_speed(a))) {
-            bail!("--omega {t}: the map's {flag} axis {} is the speed already; drop --omega, or map over two other parameters at that speed", a.path);
+        // a fixed speed beside a speed axis would be ignored (hunt 27: exit 0, no word): the
+        // library's one check and message (Python's linear rotor map meets it there), the
+        // field as the CLI's flag
+        if let Some(t) = &self.omega {
+            let s = autobal::units::parse_speed("--omega", t)?;
+            autobal::rotor_map::check_fixed_speed(&self.x, &self.y, Some(s)).map_err(|e| match e {
+                autobal::Error::InvalidParameter { reason, .. } => autobal::Error::invalid("--omega", reason),
+                e => e,
+            })?;
         }
         // a linear rotor config ([linear_rotor]) takes its own --set and the general route
         let (root, source) = self.config.read_any()?;
@@ -1532,9 +1538,13 @@ mod tests {
             };
             let e = args.prepare().err().expect("refused").to_string();
             let axis = y.split('=').next().unwrap();
+            // the library's words (rotor_map::check_fixed_speed), which Python's linear rotor
+            // map gives too, the field as the CLI's flag
             assert_eq!(
                 e,
-                format!("--omega 3000 rpm: the map's --y axis {axis} is the speed already; drop --omega, or map over two other parameters at that speed")
+                format!(
+                    "--omega: 3000 rpm: the map's y axis {axis} is the speed already; drop the fixed speed, or map over two other parameters at that speed"
+                )
             );
         }
     }

@@ -713,6 +713,34 @@ fn check_axis(src: Source, a: &Axis) -> Result<()> {
     }
 }
 
+/// Refuse a fixed speed `speed` given beside a speed axis (`omega`, `speed`, `speed_rpm`,
+/// `speed_hz`): the axis sets every cell's speed, so the fixed one would be ignored. The error
+/// names `omega`, the key both front ends take (the CLI's `--omega`, Python's `omega`), with
+/// the speed as given and the axis: one check and one message for every map, the 12-state
+/// route's included (the command layer asks it before choosing a route). Hunt 27 found the
+/// CLI ignoring `--omega` there (exit 0), hunt 28 Python's `autobal.map` on a linear rotor
+/// config, which reached this module without the CLI's check.
+///
+/// ```
+/// use autobal::rotor_map::check_fixed_speed;
+/// use autobal::spatial::map::Axis;
+/// use autobal::units::parse_speed;
+/// let (x, y) = (Axis::new("planar.c_psi", vec![0.05, 0.1]), Axis::new("speed_rpm", vec![500.0, 900.0]));
+/// let e = check_fixed_speed(&x, &y, Some(parse_speed("omega", "3000 rpm").unwrap())).unwrap_err();
+/// assert_eq!(e.to_string(), "omega: 3000 rpm: the map's y axis speed_rpm is the speed already; drop the fixed speed, or map over two other parameters at that speed");
+/// assert!(check_fixed_speed(&x, &y, None).is_ok());
+/// ```
+pub fn check_fixed_speed(x: &Axis, y: &Axis, speed: Option<Speed>) -> Result<()> {
+    let Some(s) = speed else { return Ok(()) };
+    match [("x", x), ("y", y)].into_iter().find(|(_, a)| speed_unit(a).is_some()) {
+        Some((which, a)) => Err(Error::invalid(
+            "omega",
+            format!("{s}: the map's {which} axis {} is the speed already; drop the fixed speed, or map over two other parameters at that speed", a.path),
+        )),
+        None => Ok(()),
+    }
+}
+
 /// The stationary state's verdict and margin over the grid `x × y` (module docs): `on_row(j,
 /// cells)` gets row `j` (`cells[i]` at `(x_i, y_j)`) in order and returns whether to go on;
 /// `speed` is the speed when neither axis is one (a bare number is `omega`'s unit).
@@ -831,6 +859,7 @@ fn map_on(
     if sx.is_none() && sy.is_none() && speed.is_none() {
         return Err(Error::invalid("omega", "required when neither axis is the speed (the speed at which to map)"));
     }
+    check_fixed_speed(x, y, speed)?;
     let mut plane = Plane { src, x, y, speed, line: None };
     // the rotors along the parameter axis, once, when the other axis is the speed
     let other = match (sx, sy) {
