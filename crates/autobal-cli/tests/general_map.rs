@@ -108,15 +108,16 @@ fn planar_jeffcott_map_is_unstable_below_the_critical_speed_in_every_row() {
         // well above it the balls balance the rotor (paper 004 with the race centred)
         assert_eq!(row[44][3], "stable", "{row:?}");
     }
-    // --boundary: per row, the bisected points lie between the grid cells whose verdicts
-    // differ, and the first one (unstable to stable) above sqrt(k/M)
+    // --boundary: per row, the points bisected along x lie between the grid cells whose
+    // verdicts differ, and the first one (unstable to stable) above sqrt(k/M)
     let text = std::fs::read_to_string(format!("{}_boundary.csv", stem.display())).unwrap();
     let mut lines = text.lines();
-    assert_eq!(lines.next().unwrap(), "omega,planar.c_psi,from,to");
+    assert_eq!(lines.next().unwrap(), "omega,planar.c_psi,from,to,along");
     let pts: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    assert!(pts.iter().all(|p| p.len() == 5 && (p[4] == "x" || p[4] == "y")), "{text}");
     for row in rows.chunks(45) {
         let y = &row[0][1];
-        let mine: Vec<&Vec<&str>> = pts.iter().filter(|p| p[1] == y).collect();
+        let mine: Vec<&Vec<&str>> = pts.iter().filter(|p| p[1] == y && p[4] == "x").collect();
         let first = mine.first().unwrap_or_else(|| panic!("no boundary point at c_psi {y}"));
         assert_eq!((first[2], first[3]), ("unstable", "stable"));
         let b = num(first[0]);

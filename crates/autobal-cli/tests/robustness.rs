@@ -1105,3 +1105,53 @@ fn regression_a_tiny_slip_rate_was_a_non_finite_state_and_a_misfit_ball_a_contac
         rejects(&["sweep", "--x", "planar.ball_diameter=0.001:0.5:3", "--set", "planar.contact=true", "--set", "drive.t_end=0.05"], "planar.ball_diameter");
     assert!(line.contains("does not fit"), "{line}");
 }
+
+#[test]
+fn regression_map_boundary_along_the_y_axis_was_0_points() {
+    // hunt 28: --boundary bisected only within rows; with the speed on --y every column turns
+    // from unstable to stable along it, and the map said "0 points" with an empty CSV
+    let dir = common::scratch_in("robustness", "boundary-y");
+    let shaft = examples("linear_rotor_shaft.toml");
+    let (code, _, err) = run_in(
+        &dir,
+        Duration::from_secs(120),
+        &["map", "--config", &shaft, "--x", "linear_rotor.support_stiffness_scale=0.5:2:3", "--y", "speed=100:3000:6", "--boundary", "--out", "m"],
+    );
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("boundary: 3 points bisected") && err.contains("3 along speed within a column"), "{err}");
+    let csv = std::fs::read_to_string(dir.join("m_boundary.csv")).unwrap();
+    let rows: Vec<&str> = csv.lines().skip(1).collect();
+    assert_eq!(rows.len(), 3, "{csv}");
+    assert!(rows.iter().all(|r| r.ends_with(",unstable,stable,y")), "{csv}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn regression_map_refused_the_documented_planar_ball_masses_j() {
+    // hunt 28: config.md lists planar.ball_masses[j], planar.ball_drags[j] "for maps and
+    // sweeps"; map said "unknown key (known keys of [planar]: ... ball_masses ...)"
+    let planar = examples("planar.toml");
+    for ax in ["planar.ball_drags[1]=0.05:0.1:2", "planar.ball_masses[2]=0.02:0.04:2"] {
+        let (code, out, err) = run_for(Duration::from_secs(60), &["map", "--config", &planar, "--x", ax, "--y", "omega=20:900:3", "--out", "mbm"]);
+        assert_eq!(code, 0, "--x {ax}: {err}");
+        assert!(out.contains("3 rows × 2 points"), "{out}");
+    }
+    // a ball the rotor does not have (planar.toml: n = 2) is refused naming the path
+    let line = rejects(&["map", "--config", &planar, "--x", "planar.ball_masses[3]=0.02:0.04:2", "--y", "omega=20:900:3", "--out", "mbm"], "--x");
+    assert!(line.contains("planar.ball_masses[3]") && line.contains("has 2 elements"), "{line}");
+}
+
+#[test]
+fn regression_a_map_without_any_stationary_state_claimed_an_equilibrium() {
+    // hunt 28: no cell has a state (gravity: it would be a periodic orbit), and the table and
+    // the figure's title said "stationary state: equilibrium (eigenvalues)"
+    let dir = common::scratch_in("robustness", "no-state");
+    let cfg = examples("spatial_two_plane.toml");
+    let (code, out, err) =
+        run_in(&dir, Duration::from_secs(120), &["map", "--config", &cfg, "--x", "balancer.drag=0.1:1:2", "--y", "speed_rpm=500:1000:2", "--out", "m"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("stationary state: none found (no cell has a stationary state)") && !out.contains("equilibrium"), "{out}");
+    let svg = std::fs::read_to_string(dir.join("m.svg")).unwrap();
+    assert!(!svg.contains("equilibrium") && !svg.contains("Floquet"), "the figure claims a kind of state");
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -90,8 +90,15 @@ impl Output {
     /// The basins' figure (the report's `basins`, `autobal basins`' and Python's): a cell of
     /// an `n × n` heatmap per run at its first two balls' initial angles (ψ1 the column, ψ2
     /// the row, °), -1 (green) where it ends balanced, +1 (orange) where not, NaN (grey) not
-    /// run; a linear rotor config's is [`crate::linear_rotor::basins_plot`].
+    /// run; a linear rotor config's is [`crate::linear_rotor::basins_plot`]. An interrupted
+    /// grid's title begins `INCOMPLETE:` (as `stability`'s and `campbell`'s figures:
+    /// `stability::mark_stopped`; the runs not done are the grey cells).
     pub fn plot(&self) -> Plot {
+        crate::stability::mark_stopped(self.unmarked_plot(), &command::Output::stopped(self), None)
+    }
+
+    /// [`Output::plot`] without the mark of an interrupted grid.
+    fn unmarked_plot(&self) -> Plot {
         if let Some(l) = &self.linear {
             return crate::linear_rotor::basins_plot(&self.angles, l);
         }
@@ -234,6 +241,7 @@ mod tests {
         assert!(o.csv().starts_with("psi_1,psi_2,balanced,residual_unbalance,final_amplitude,completed"));
         assert_eq!(o.json().unwrap()["model"], json!("linear"));
         assert_eq!(o.stopped().unwrap(), "interrupted: 0 of 4 runs complete");
+        assert!(o.plot().title.starts_with("INCOMPLETE: "), "{}", o.plot().title);
         let e = Args { config: ConfigSource::file(Some(&path), &[]), n: 1 }.run(&control).err().unwrap().to_string();
         assert!(e.starts_with("--n"), "{e}");
     }
@@ -254,6 +262,11 @@ mod tests {
         assert_eq!(o.stopped().unwrap(), format!("interrupted: {done} of 4 runs complete"));
         o.written = Some("b.csv".into());
         assert!(o.stopped().unwrap().ends_with(", kept in b.csv"));
+        // its figure says so, as stability's and campbell's (hunt 28: it had no mark), the
+        // CLI's SVG (`plot`) and the figure of `figures` alike
+        for title in [o.plot().title, o.figures().unwrap()[0].plot.title.clone()] {
+            assert_eq!(title, "INCOMPLETE: Where the balls end, by their initial angles");
+        }
         let table = o.table().unwrap();
         assert!(table.lines().next().unwrap().ends_with("; wrote b.csv"), "{table}");
         // the share is of the runs completed, named as such (hunt 27)

@@ -16,7 +16,7 @@ use crate::plot::Series;
 use anyhow::{anyhow, bail, Result};
 use autobal::control::Control;
 use autobal::paths::Axis;
-use autobal::rotor_map::{BoundaryPoint, FamilyVerdict, GeneralCell, GeneralMapOutcome, Kind, Verdict};
+use autobal::rotor_map::{Along, BoundaryPoint, FamilyVerdict, GeneralCell, GeneralMapOutcome, Kind, Verdict};
 use autobal::rotor_stability::StateKind;
 use autobal::spatial::boundary::{Boundary, Codim2Kind, CurveKind, TraceSettings};
 use autobal::spatial::linear_model::Balls;
@@ -161,9 +161,15 @@ impl Args {
         if self.x.path == self.y.path {
             bail!("--y {}: the same key as --x; give the second axis another field", self.y.path);
         }
-        // a fixed speed beside a speed axis would be ignored (hunt 27: exit 0, no word)
-        if let (Some(t), Some((flag, a))) = (&self.omega, [("--x", &self.x), ("--y", &self.y)].into_iter().find(|(_, a)| is_speed(a))) {
-            bail!("--omega {t}: the map's {flag} axis {} is the speed already; drop --omega, or map over two other parameters at that speed", a.path);
+        // a fixed speed beside a speed axis would be ignored (hunt 27: exit 0, no word): the
+        // library's one check and message (Python's linear rotor map meets it there), the
+        // field as the CLI's flag
+        if let Some(t) = &self.omega {
+            let s = autobal::units::parse_speed("--omega", t)?;
+            autobal::rotor_map::check_fixed_speed(&self.x, &self.y, Some(s)).map_err(|e| match e {
+                autobal::Error::InvalidParameter { reason, .. } => autobal::Error::invalid("--omega", reason),
+                e => e,
+            })?;
         }
         // a linear rotor config ([linear_rotor]) takes its own --set and the general route
         let (root, source) = self.config.read_any()?;
@@ -476,6 +482,13 @@ pub enum RouteOutput {
     },
 }
 
+/// The bisected boundary points found along `x` (within a row) and along `y` (within a
+/// column).
+fn along_counts(t: &[BoundaryPoint]) -> (usize, usize) {
+    let nx = t.iter().filter(|b| b.along == Along::X).count();
+    (nx, t.len() - nx)
+}
+
 /// `STEM_boundary.csv`: the traced boundary beside the map.
 pub fn boundary_path(stem: &Path) -> PathBuf {
     PathBuf::from(format!("{}_boundary.csv", stem.display()))
@@ -523,17 +536,19 @@ impl Output {
     }
 
     /// The traced boundary as CSV (`STEM_boundary.csv`), with `boundary`: the closed form's
-    /// curves ([`boundary_csv`]), or the general route's bisected points `x,y,from,to` (`x` to
-    /// 1e-9 relative where the margin changes sign or a stationary state appears, with the
-    /// verdicts on either side).
+    /// curves ([`boundary_csv`]), or the general route's bisected points `x,y,from,to,along`
+    /// (where the margin changes sign or a stationary state appears between two neighbouring
+    /// cells, bisected to 1e-9 relative along `x` between two cells of a row or along `y`
+    /// between two of a column, as `along` says; `from`, `to` the verdicts on the sides of the
+    /// smaller and the larger value of that axis).
     pub fn boundary_csv(&self) -> Option<String> {
         match &self.route {
             RouteOutput::Closed { traced, .. } => traced.as_ref().map(|(b, _)| boundary_csv(b, &self.x.path, &self.y.path)),
             RouteOutput::General { traced, .. } => traced.as_ref().map(|pts| {
                 use std::fmt::Write as _;
-                let mut t = format!("{},{},from,to\n", self.x.path, self.y.path);
+                let mut t = format!("{},{},from,to,along\n", self.x.path, self.y.path);
                 for b in pts {
-                    let _ = writeln!(t, "{},{},{},{}", crate::num::Csv(b.x), crate::num::Csv(b.y), verdict_name(b.from), verdict_name(b.to));
+                    let _ = writeln!(t, "{},{},{},{},{}", crate::num::Csv(b.x), crate::num::Csv(b.y), verdict_name(b.from), verdict_name(b.to), b.along.key());
                 }
                 t
             }),
@@ -553,7 +568,13 @@ impl Output {
             ))),
             RouteOutput::General { traced, outcome, .. } => {
                 if let Some(t) = traced {
-                    out.push(wrote(format!("boundary: {} points bisected along {} to 1e-9 relative", t.len(), self.x.path)));
+                    let (nx, ny) = along_counts(t);
+                    out.push(wrote(format!(
+                        "boundary: {} points bisected to 1e-9 relative between neighbouring cells ({nx} along {} within a row, {ny} along {} within a column)",
+                        t.len(),
+                        self.x.path,
+                        self.y.path
+                    )));
                 }
                 if outcome.families > 0 {
                     out.push(format!(
@@ -580,11 +601,13 @@ impl Output {
         }
     }
 
-    /// The state the general route maps.
+    /// The state the general route maps, in words: the kind of the cells' states, or that no
+    /// cell has one ([`general_state`]).
     fn state(outcome: &GeneralMapOutcome) -> &'static str {
-        match outcome.periodic > 0 {
-            false => "equilibrium (eigenvalues)",
-            true => "periodic orbit (Floquet multipliers)",
+        match general_state(outcome) {
+            None => NO_STATE,
+            Some(Kind::Equilibrium) => "equilibrium (eigenvalues)",
+            Some(Kind::PeriodicOrbit) => "periodic orbit (Floquet multipliers)",
         }
     }
 }
@@ -605,6 +628,22 @@ fn state_words(o: &GeneralMapOutcome) -> String {
     }
     format!("; cells whose state is {}: the verdicts there are those states', not a balanced state's (the CSV's state column)", parts.join(", "))
 }
+
+/// The kind of stationary state the general route's map found: a periodic orbit where any cell
+/// has one, else an equilibrium; `None` where no cell has a stationary state (every cell
+/// without one or not analysed: then no kind is claimed, hunt 28: such a map read "stationary
+/// state: equilibrium (eigenvalues)" on a config whose state would be a periodic orbit).
+fn general_state(o: &GeneralMapOutcome) -> Option<Kind> {
+    match (o.closed_form + o.continued, o.periodic) {
+        (0, _) => None,
+        (_, 0) => Some(Kind::Equilibrium),
+        _ => Some(Kind::PeriodicOrbit),
+    }
+}
+
+/// The table's and the figure's words where no cell of the general route's map has a
+/// stationary state.
+const NO_STATE: &str = "none found (no cell has a stationary state)";
 
 /// The table's words on the cells below the periodic-orbit floor (none: nothing).
 fn not_analysed_words(n: usize) -> String {
@@ -652,7 +691,8 @@ impl command::Output for Output {
             }
             RouteOutput::General { outcome, traced, .. } => {
                 v["route"] = json!("general");
-                v["state"] = json!(if outcome.periodic > 0 { "periodic_orbit" } else { "equilibrium" });
+                // null where no cell has a stationary state (no kind is claimed)
+                v["state"] = json!(general_state(outcome).map(|k| if k == Kind::PeriodicOrbit { "periodic_orbit" } else { "equilibrium" }));
                 v["closed_form"] = json!(outcome.closed_form);
                 v["continued"] = json!(outcome.continued);
                 v["without_stationary_state"] = json!(outcome.none);
@@ -661,7 +701,8 @@ impl command::Output for Output {
                 v["partially_balanced"] = json!(outcome.partially_balanced);
                 v["not_balanced"] = json!(outcome.not_balanced);
                 if let Some(t) = traced {
-                    v["boundary"] = json!({"bisected_points": t.len()});
+                    let (nx, ny) = along_counts(t);
+                    v["boundary"] = json!({"bisected_points": t.len(), "along_x": nx, "along_y": ny});
                 }
             }
         }
@@ -715,7 +756,9 @@ impl command::Output for Output {
 
     /// `stability_map`: the margin (or verdict) heatmap with the stability boundary; the closed
     /// form adds 003's necessary boundary and, with `boundary`, the traced curves; the general
-    /// route the bisected boundary points. None when the map was not computed.
+    /// route the bisected boundary points. None when the map was not computed. An interrupted
+    /// map's title begins `INCOMPLETE:` (as `stability`'s and `campbell`'s figures:
+    /// `stability::mark_stopped`; its rows not computed are blank).
     fn figures(&self) -> Result<Vec<Figure>> {
         if !self.map_computed() {
             return Ok(vec![]);
@@ -733,7 +776,7 @@ impl command::Output for Output {
                 general_plot(fx, fy, frows, outcome, *planar, *linear, self.quantity, traced.as_deref())
             }
         };
-        Ok(vec![Figure::new("stability_map", p)])
+        Ok(vec![Figure::new("stability_map", crate::stability::mark_stopped(p, &command::Output::stopped(self), None))])
     }
 
     fn stopped(&self) -> Option<String> {
@@ -1184,7 +1227,7 @@ fn general_plot(
     quantity: Quantity,
     traced: Option<&[BoundaryPoint]>,
 ) -> crate::plot::Plot {
-    let periodic = outcome.periodic > 0;
+    let found = general_state(outcome);
     let mut r = FigureCells::new(fx.clone(), fy.clone(), quantity);
     for (j, row) in frows.iter().enumerate() {
         if let Some(row) = row {
@@ -1192,10 +1235,7 @@ fn general_plot(
             r.set_row(j, &cells, 1, cells.len());
         }
     }
-    let state = match if periodic { Kind::PeriodicOrbit } else { Kind::Equilibrium } {
-        Kind::Equilibrium => "equilibrium (eigenvalues)",
-        Kind::PeriodicOrbit => "periodic orbit (Floquet multipliers)",
-    };
+    let state = Output::state(outcome);
     let model = if linear {
         "linear"
     } else if planar {
@@ -1227,7 +1267,11 @@ fn general_plot(
             }
         }
         if quantity == Quantity::Margin {
-            let what = if periodic { "largest Floquet exponent" } else { "max Re λ" };
+            let what = match found {
+                None => "margin",
+                Some(Kind::PeriodicOrbit) => "largest Floquet exponent",
+                Some(Kind::Equilibrium) => "max Re λ",
+            };
             h.label = format!("{what} ({}; < 0 stable)", if planar { "1/s" } else { "per unit τ" });
         }
     }
@@ -1542,9 +1586,13 @@ mod tests {
             };
             let e = args.prepare().err().expect("refused").to_string();
             let axis = y.split('=').next().unwrap();
+            // the library's words (rotor_map::check_fixed_speed), which Python's linear rotor
+            // map gives too, the field as the CLI's flag
             assert_eq!(
                 e,
-                format!("--omega 3000 rpm: the map's --y axis {axis} is the speed already; drop --omega, or map over two other parameters at that speed")
+                format!(
+                    "--omega: 3000 rpm: the map's y axis {axis} is the speed already; drop the fixed speed, or map over two other parameters at that speed"
+                )
             );
         }
     }
@@ -1812,6 +1860,46 @@ mod tests {
         out.written = Some("m".into());
         assert!(out.stopped().unwrap().ends_with(" and kept in m.csv"));
         assert!(out.table().unwrap().ends_with("; wrote m.csv, m.svg, m.png\n"));
+        // its figure says so, as stability's and campbell's do (hunt 28: no mark)
+        let title = &out.figures().unwrap()[0].plot.title;
+        assert!(title.starts_with("INCOMPLETE: Stability map"), "{title}");
+        // the general route's too; a complete map's title has no mark
+        let general = Args {
+            config: tables(crate::config::DEFAULT_PLANAR),
+            x: parse_axis("--x", "omega=100:400:3").unwrap(),
+            y: parse_axis("--y", "planar.c_psi=0.05:0.2:3").unwrap(),
+            ..Default::default()
+        };
+        let out = general.run(&control).unwrap();
+        assert!(out.stopped().is_some());
+        let title = &out.figures().unwrap()[0].plot.title;
+        assert!(title.starts_with("INCOMPLETE: Stability map of the planar rotor"), "{title}");
+        let title = &general.run(&Control::none()).unwrap().figures().unwrap()[0].plot.title;
+        assert!(title.starts_with("Stability map of the planar rotor"), "{title}");
+    }
+
+    /// A general map none of whose cells has a stationary state claims no kind of state (hunt
+    /// 28: the two-plane rotor under gravity at 500-1000 rpm, where the state would be a
+    /// periodic orbit, read "stationary state: equilibrium (eigenvalues)" in the table and the
+    /// figure's title): the table and the title say none was found, the JSON's `state` is null.
+    #[test]
+    fn a_map_without_any_state_claims_no_kind_of_state() {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/spatial_two_plane.toml");
+        let args = Args {
+            config: ConfigSource::file(Some(&path), &[]),
+            x: parse_axis("--x", "balancer.drag=0.1:1:2").unwrap(),
+            y: parse_axis("--y", "speed_rpm=500:1000:2").unwrap(),
+            ..Default::default()
+        };
+        let out = args.run(&Control::none()).unwrap();
+        let RouteOutput::General { outcome, .. } = &out.route else { panic!("general route") };
+        assert_eq!((outcome.none, outcome.closed_form + outcome.continued), (4, 0));
+        let table = out.table().unwrap();
+        assert!(table.contains("; stationary state: none found (no cell has a stationary state)"), "{table}");
+        assert!(!table.contains("equilibrium") && !table.contains("periodic"), "{table}");
+        let title = &out.figures().unwrap()[0].plot.title;
+        assert!(title.contains("general route: none found (no cell has a stationary state)") && !title.contains("equilibrium"), "{title}");
+        assert_eq!(out.json().unwrap()["state"], Value::Null);
     }
 
     /// The general route's map (a planar config): its own figure (the general route's title, no
@@ -1836,7 +1924,10 @@ mod tests {
         let RouteOutput::General { traced: Some(t), .. } = &out.route else { panic!("general route, traced") };
         assert_eq!(p.series.iter().any(|s| s.label == "bisected boundary points"), !t.is_empty());
         assert_eq!(out.json().unwrap()["route"], json!("general"));
-        assert!(out.boundary_csv().unwrap().starts_with("omega,planar.c_psi,from,to\n"));
+        // the planar rotor's balanced state is an equilibrium, named so
+        assert!(p.title.contains("(general route: equilibrium (eigenvalues))"), "{}", p.title);
+        assert_eq!(out.json().unwrap()["state"], json!("equilibrium"));
+        assert!(out.boundary_csv().unwrap().starts_with("omega,planar.c_psi,from,to,along\n"));
     }
 
     /// A linear rotor config given as tables (Python's) reads its matrix files relative to the

@@ -592,7 +592,7 @@ impl Options {
 /// JSON text of `stability` (`omega_max`, `samples`), `simulate` (`dt`: the summary),
 /// `basins` (`n`), `sweep` (`x`, `y`, `axis`, `shard` "K/N", `threads`: the sweep's JSON) and
 /// `map` (`x`, `y`, `omega`, `boundary`, `threads`: the axes, `margin` and `verdict` per cell as
-/// `len(y) × len(x)` lists, the bisected boundary points), as the CLI computes them; `sets`: the
+/// `len(y) × len(x)` lists, the bisected boundary points with the axis bisected, `along`), as the CLI computes them; `sets`: the
 /// CLI's `--set` (`linear_rotor.KEY`, `drive.KEY`, `integration.KEY`); `options`: the keyword
 /// options as JSON.
 #[pyfunction]

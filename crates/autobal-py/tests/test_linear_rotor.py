@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import json
 import re
+import subprocess
 from pathlib import Path
 
 import numpy as np
@@ -169,6 +170,50 @@ def test_run_and_analyse_on_a_linear_rotor_config(tmp_path):
     st = autobal.run("stability", SHAFT, omega_max="1500 rad/s", samples=20)
     assert st["model"] == "linear"
     assert autobal.analyse("map", SHAFT, x="speed=100:1500:4", y="linear_rotor.drag=0.02,0.1").result["margin"].shape == (2, 4)
+
+
+def test_the_maps_boundary_is_bisected_along_both_axes_as_by_the_cli(tmp_path):
+    """``boundary=True`` on a linear rotor config with the speed on ``y`` (hunt 28: only the rows
+    were bisected, so every column's change from unstable to stable along the speed gave no
+    point): one point per column, ``along`` ``"y"``, the CLI's ``_boundary.csv`` row for row (the
+    same code: equal to 1e-12 relative, far inside the 1e-9 bisection); transposed, the same
+    points along ``"x"``."""
+    x, y = "linear_rotor.support_stiffness_scale=0.5,1.25,2", "speed=100:3000:6"
+    m = autobal.run("map", SHAFT, x=x, y=y, boundary=True)
+    pts = m["boundary"]
+    assert [(p["x"], p["along"], p["from"], p["to"]) for p in pts] == [(s, "y", "unstable", "stable") for s in (0.5, 1.25, 2.0)]
+    cli("map", "--config", SHAFT, "--x", x.replace("0.5,1.25,2", "0.5:2:3"), "--y", y, "--boundary", "--out", str(tmp_path / "m"))
+    lines = (tmp_path / "m_boundary.csv").read_text().splitlines()
+    assert lines[0] == "linear_rotor.support_stiffness_scale,speed,from,to,along"
+    rows = [line.split(",") for line in lines[1:]]
+    assert len(rows) == len(pts)
+    for r, p in zip(rows, pts):
+        assert float(r[0]) == p["x"] and abs(float(r[1]) - p["y"]) <= 1e-12 * p["y"] and r[2:] == [p["from"], p["to"], p["along"]]
+    t = autobal.run("map", SHAFT, x=y, y=x, boundary=True)["boundary"]
+    assert [(q["y"], q["along"]) for q in t] == [(p["x"], "x") for p in pts]
+    assert all(abs(q["x"] - p["y"]) <= 1e-12 * p["y"] for q, p in zip(t, pts))
+
+
+def test_a_fixed_speed_beside_a_speed_axis_is_refused_as_by_the_cli(tmp_path):
+    """``omega`` beside a speed axis: ``autobal.run("map")`` on a linear rotor config ignored it
+    (hunt 28; the CLI refuses it since hunt 27). Refused in the library's one place
+    (``rotor_map::check_fixed_speed``), so Python on a linear rotor config, Python on any other
+    config and the CLI say the same words, Python's field its keyword ``omega``."""
+    words = "3000 rpm: the map's y axis {} is the speed already; drop the fixed speed, or map over two other parameters at that speed"
+    with pytest.raises(autobal.InvalidParameter) as e:
+        autobal.run("map", SHAFT, x="linear_rotor.drag=0.02,0.1", y="speed=100:1500:3", omega="3000 rpm")
+    assert str(e.value) == "omega: " + words.format("speed")
+    out = subprocess.run(
+        [binary(), "map", "--config", SHAFT, "--x", "linear_rotor.drag=0.02:0.1:2", "--y", "speed=100:1500:3", "--omega", "3000 rpm", "--out", str(tmp_path / "m")],
+        capture_output=True,
+        text=True,
+    )
+    assert out.returncode != 0 and out.stderr.strip() == "error: --omega: " + words.format("speed"), out.stderr
+    assert not (tmp_path / "m.csv").exists()
+    planar = str(ROOT / "examples" / "planar.toml")
+    with pytest.raises(autobal.InvalidParameter) as e:
+        autobal.run("map", planar, x="planar.c_psi=0.05:0.2:2", y="omega=300:400:2", omega="3000 rpm")
+    assert str(e.value) == "omega: " + words.format("omega")
 
 
 def _cli_stability(*sets: str, omega_max: str = "1500 rad/s", samples: str = "20"):

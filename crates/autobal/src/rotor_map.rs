@@ -235,11 +235,44 @@ fn build(root: &Table) -> Result<CellRotor> {
     }
 }
 
-/// `root` with `path` set to `v`; errors name the path and the value.
+/// `root` with `path` set to `v` ([`set_path`]); errors name the path and the value.
 fn with(root: &Table, path: &str, v: f64) -> Result<Table> {
     let mut t = root.clone();
-    config::set_number(&mut t, path, v).map_err(|e| name_axis(e, path, v))?;
+    set_path(&mut t, path, v).map_err(|e| name_axis(e, path, v))?;
     Ok(t)
+}
+
+/// The per-ball lists of `[planar]` that a map's axis sets by element, and the common value
+/// each replaces: `planar.ball_masses[j]` (`m3`), `planar.ball_drags[j]` (`c_psi`).
+const PLANAR_PER_BALL: [(&str, &str); 2] = [("planar.ball_masses", "m3"), ("planar.ball_drags", "c_psi")];
+
+/// Set a map's axis `path` to `v` in the config `root`: a `table.key`
+/// ([`config::set_number`]), or element `j` (1-based) of an array key, `table.key[j]`
+/// ([`config::set_element`]; config.md's `planar.ball_masses[j]`, `planar.ball_drags[j]`, as
+/// `sweep` takes them). Where the config gives one value for every ball (`planar.m3`,
+/// `planar.c_psi`) instead of the list, the list is made of that value for each of the
+/// `planar.n` balls, in its place, and then element `j` set: the other balls keep the common
+/// value, as `sweep`'s planar paths do ([`crate::planar::problem::PlanarProblem`]). Until session 28 a
+/// map handed the indexed path to `set_number`, which refused it as an unknown key while
+/// naming `ball_masses` among the known ones.
+fn set_path(root: &mut Table, path: &str, v: f64) -> Result<()> {
+    let Some((key, j)) = crate::paths::indexed(path) else { return config::set_number(root, path, v) };
+    let j = j.map_err(|r| Error::invalid(path, r))?;
+    if let Some((_, common)) = PLANAR_PER_BALL.iter().find(|(k, _)| *k == key) {
+        let list = key.trim_start_matches("planar.");
+        if let Some(p) = root.get_mut("planar").and_then(|t| t.as_table_mut()) {
+            if !p.contains_key(list) {
+                if let (Some(c), Some(n)) =
+                    (p.get(*common).and_then(|c| c.as_float().or(c.as_integer().map(|i| i as f64))), p.get("n").and_then(|n| n.as_integer()))
+                {
+                    let n = usize::try_from(n).unwrap_or(0).min(crate::planar::MAX_BALLS);
+                    p.remove(*common);
+                    p.insert(list.into(), toml::Value::Array(vec![toml::Value::Float(c); n]));
+                }
+            }
+        }
+    }
+    config::set_element(root, path, key, j, v)
 }
 
 fn name_axis(e: Error, path: &str, v: f64) -> Error {
@@ -399,7 +432,8 @@ enum Start {
     Last,
 }
 
-/// One end of a bisection: `x`, the verdict, the state, the cell.
+/// One end of a bisection: its coordinate along the axis bisected, the verdict, the state, the
+/// cell.
 type Side = (f64, Option<Verdict>, Option<StationaryState>, GeneralCell);
 
 /// Which side of the stability boundary a cell lies on: 0 without a stationary state, 1 where
@@ -433,14 +467,15 @@ struct Plane<'a> {
 
 impl Plane<'_> {
     /// The rotor at `(xv, yv)` (grid index `(i, j)` for the prebuilt line) and its speed.
-    /// `i` is `None` off the grid's `x` values (a bisection), where a rotor along `x` is built.
-    fn cell(&self, i: Option<usize>, j: usize, xv: f64, yv: f64) -> Result<(std::borrow::Cow<'_, CellRotor>, f64)> {
+    /// `i` is `None` off the grid's `x` values, `j` off its `y` values (a bisection along that
+    /// axis), where the rotor at that value is built.
+    fn cell(&self, i: Option<usize>, j: Option<usize>, xv: f64, yv: f64) -> Result<(std::borrow::Cow<'_, CellRotor>, f64)> {
         use std::borrow::Cow;
         match (speed_unit(self.x), speed_unit(self.y)) {
             (Some(u), None) => {
-                let c = match &self.line {
-                    Some(l) => Cow::Borrowed(&l[j]),
-                    None => Cow::Owned(self.build_at(&[(&self.y.path, yv)])?),
+                let c = match (&self.line, j) {
+                    (Some(l), Some(j)) => Cow::Borrowed(&l[j]),
+                    _ => Cow::Owned(self.build_at(&[(&self.y.path, yv)])?),
                 };
                 let w = model_speed(&c, Speed { value: xv, unit: u }, &self.x.path)?;
                 Ok((c, w))
@@ -514,7 +549,7 @@ impl Plane<'_> {
         for &j in &ys {
             for &i in &xs {
                 let (xv, yv) = (self.x.values[i], self.y.values[j]);
-                let (c, w) = self.cell(Some(i), j, xv, yv)?;
+                let (c, w) = self.cell(Some(i), Some(j), xv, yv)?;
                 // as `solve`: a cell whose state is no periodic orbit (an equilibrium at rest,
                 // `w = 0`), or without a field there, is analysed
                 let periodic = c.rotor.field(w).is_ok_and(|f| f.period().is_some());
@@ -537,14 +572,16 @@ impl Plane<'_> {
     /// Row `j`: every `x` at `y_j`, continued along the row (then, for a cell left without a
     /// state, once more from its right-hand neighbour's state: a row that finds its first
     /// state only at larger `x` continues it back); with `trace`, the points where the verdict
-    /// changes between neighbouring cells, bisected along `x`.
-    fn row(&self, j: usize, trace: bool) -> Result<(Vec<GeneralCell>, Vec<BoundaryPoint>)> {
+    /// changes between neighbouring cells of the row, bisected along `x`, and each cell's state
+    /// (for the bisections along `y` between this row and the next: [`Plane::column_points`]).
+    #[allow(clippy::type_complexity)]
+    fn row(&self, j: usize, trace: bool) -> Result<(Vec<GeneralCell>, Vec<BoundaryPoint>, Vec<Option<StationaryState>>)> {
         let yv = self.y.values[j];
         let mut previous: Option<StationaryState> = None;
         let mut out = Vec::with_capacity(self.x.values.len());
         let mut states: Vec<Option<StationaryState>> = Vec::with_capacity(self.x.values.len());
         for (i, &xv) in self.x.values.iter().enumerate() {
-            let (c, w) = self.cell(Some(i), j, xv, yv)?;
+            let (c, w) = self.cell(Some(i), Some(j), xv, yv)?;
             let (cell, x) = solve(&c, w, previous.as_ref(), true, true);
             states.push(x.clone());
             previous = x.or(previous);
@@ -552,7 +589,7 @@ impl Plane<'_> {
         }
         for i in (0..out.len().saturating_sub(1)).rev() {
             if out[i].verdict.is_none() && out[i].analysed && states[i + 1].is_some() {
-                let (c, w) = self.cell(Some(i), j, self.x.values[i], yv)?;
+                let (c, w) = self.cell(Some(i), Some(j), self.x.values[i], yv)?;
                 let (cell, x) = solve(&c, w, states[i + 1].as_ref(), false, true);
                 if cell.verdict.is_some() {
                     out[i] = cell;
@@ -563,37 +600,73 @@ impl Plane<'_> {
         let mut points = vec![];
         if trace {
             for i in 0..out.len().saturating_sub(1) {
-                let (a, b) = (side(&out[i]), side(&out[i + 1]));
-                // two states of different kinds side by side (e.g. the balls bunched on the
-                // unbalance's side next to the semi-balanced state): a switch of state, not a
-                // change of one state's stability, so no boundary is bisected there
-                let switch = out[i].state.is_some() && out[i + 1].state.is_some() && out[i].state != out[i + 1].state;
-                if a != b && a != 3 && b != 3 && !switch {
+                if crosses(&out[i], &out[i + 1]) {
                     let end = |k: usize| (self.x.values[k], out[k].verdict, states[k].clone(), out[k]);
-                    points.extend(self.bisect(j, end(i), end(i + 1))?);
+                    points.extend(self.bisect(Along::X, j, end(i), end(i + 1))?);
                 }
             }
+            // the states kept for the bisections along `y` (a block of rows' worth) without
+            // their monodromy matrices, `dim²` numbers each (a 60-state orbit's 29 kB: 0.9 GB
+            // for 64 rows of 500 cells): a bisection's first midpoint is then shot without that
+            // hint (one more variational integration), the later ones with their neighbour's
+            for s in states.iter_mut().flatten() {
+                s.monodromy = None;
+            }
+        } else {
+            states.clear();
         }
-        Ok((out, points))
+        Ok((out, points, states))
     }
 
-    /// The point between `lo` and `hi` (x, verdict, state) on row `j` where the verdict changes,
-    /// by bisection to [`BOUNDARY_RTOL`] relative in `x`; `None` where a midpoint is not analysed
-    /// (below the periodic-orbit floor, side 3): the interval then holds cells on no side, and
-    /// taking such a midpoint for the far side would walk towards it and report a boundary
-    /// that is only the floor's edge.
-    fn bisect(&self, j: usize, lo: Side, hi: Side) -> Result<Option<BoundaryPoint>> {
-        let yv = self.y.values[j];
+    /// The points where the verdict changes between rows `j` and `j + 1` (cells `lo`, `hi`
+    /// with their states `lo_states`, `hi_states`), column by column, bisected along `y` as
+    /// [`Plane::row`] bisects along `x`; the columns in parallel.
+    fn column_points(
+        &self,
+        j: usize,
+        (lo, lo_states): (&[GeneralCell], &[Option<StationaryState>]),
+        (hi, hi_states): (&[GeneralCell], &[Option<StationaryState>]),
+    ) -> Result<Vec<BoundaryPoint>> {
+        let found: Vec<Option<BoundaryPoint>> = (0..lo.len().min(hi.len()))
+            .into_par_iter()
+            .map(|i| {
+                if !crosses(&lo[i], &hi[i]) {
+                    return Ok(None);
+                }
+                let state = |s: &[Option<StationaryState>]| s.get(i).cloned().flatten();
+                let a = (self.y.values[j], lo[i].verdict, state(lo_states), lo[i]);
+                let b = (self.y.values[j + 1], hi[i].verdict, state(hi_states), hi[i]);
+                self.bisect(Along::Y, i, a, b)
+            })
+            .collect::<Result<_>>()?;
+        Ok(found.into_iter().flatten().collect())
+    }
+
+    /// The point between `lo` and `hi` (coordinate along `along`, verdict, state) on row `k`
+    /// (`along` [`Along::X`]) or column `k` (`along` [`Along::Y`]) where the verdict changes, by
+    /// bisection to [`BOUNDARY_RTOL`] relative in that coordinate; `None` where a midpoint is not
+    /// analysed (below the periodic-orbit floor, side 3): the interval then holds cells on no
+    /// side, and taking such a midpoint for the far side would walk towards it and report a
+    /// boundary that is only the floor's edge.
+    fn bisect(&self, along: Along, k: usize, lo: Side, hi: Side) -> Result<Option<BoundaryPoint>> {
         let (from, to) = (lo.1, hi.1);
         let side_lo = side(&lo.3);
         let (mut a, mut b) = (lo.0, hi.0);
         let (mut xa, mut xb) = (lo.2, hi.2);
+        let at = |t: f64| match along {
+            Along::X => (t, self.y.values[k]),
+            Along::Y => (self.x.values[k], t),
+        };
         while (b - a).abs() > BOUNDARY_RTOL * a.abs().max(b.abs()) {
             let mid = 0.5 * (a + b);
             if mid == a || mid == b {
                 break;
             }
-            let (c, w) = self.cell(None, j, mid, yv)?;
+            let (xv, yv) = at(mid);
+            let (c, w) = match along {
+                Along::X => self.cell(None, Some(k), xv, yv)?,
+                Along::Y => self.cell(Some(k), None, xv, yv)?,
+            };
             let (cell, x) = solve(&c, w, xa.as_ref().or(xb.as_ref()), true, false);
             if side(&cell) == 3 {
                 return Ok(None);
@@ -606,8 +679,19 @@ impl Plane<'_> {
                 xb = x.or(xb);
             }
         }
-        Ok(Some(BoundaryPoint { x: 0.5 * (a + b), y: yv, from, to }))
+        let (x, y) = at(0.5 * (a + b));
+        Ok(Some(BoundaryPoint { x, y, from, to, along }))
     }
+}
+
+/// Whether the boundary is bisected between two neighbouring cells (along a row or a column):
+/// they lie on different sides ([`side`]), neither below the periodic-orbit floor, and they do
+/// not hold two states of different kinds (e.g. the balls bunched on the unbalance's side next
+/// to the semi-balanced state: a switch of state, not a change of one state's stability).
+fn crosses(a: &GeneralCell, b: &GeneralCell) -> bool {
+    let (sa, sb) = (side(a), side(b));
+    let switch = a.state.is_some() && b.state.is_some() && a.state != b.state;
+    sa != sb && sa != 3 && sb != 3 && !switch
 }
 
 /// Where a map's rotors come from: a planar or spatial config ([`build`]), or a linear rotor's
@@ -636,6 +720,34 @@ fn check_axis(src: Source, a: &Axis) -> Result<()> {
     }
 }
 
+/// Refuse a fixed speed `speed` given beside a speed axis (`omega`, `speed`, `speed_rpm`,
+/// `speed_hz`): the axis sets every cell's speed, so the fixed one would be ignored. The error
+/// names `omega`, the key both front ends take (the CLI's `--omega`, Python's `omega`), with
+/// the speed as given and the axis: one check and one message for every map, the 12-state
+/// route's included (the command layer asks it before choosing a route). Hunt 27 found the
+/// CLI ignoring `--omega` there (exit 0), hunt 28 Python's `autobal.map` on a linear rotor
+/// config, which reached this module without the CLI's check.
+///
+/// ```
+/// use autobal::rotor_map::check_fixed_speed;
+/// use autobal::spatial::map::Axis;
+/// use autobal::units::parse_speed;
+/// let (x, y) = (Axis::new("planar.c_psi", vec![0.05, 0.1]), Axis::new("speed_rpm", vec![500.0, 900.0]));
+/// let e = check_fixed_speed(&x, &y, Some(parse_speed("omega", "3000 rpm").unwrap())).unwrap_err();
+/// assert_eq!(e.to_string(), "omega: 3000 rpm: the map's y axis speed_rpm is the speed already; drop the fixed speed, or map over two other parameters at that speed");
+/// assert!(check_fixed_speed(&x, &y, None).is_ok());
+/// ```
+pub fn check_fixed_speed(x: &Axis, y: &Axis, speed: Option<Speed>) -> Result<()> {
+    let Some(s) = speed else { return Ok(()) };
+    match [("x", x), ("y", y)].into_iter().find(|(_, a)| speed_unit(a).is_some()) {
+        Some((which, a)) => Err(Error::invalid(
+            "omega",
+            format!("{s}: the map's {which} axis {} is the speed already; drop the fixed speed, or map over two other parameters at that speed", a.path),
+        )),
+        None => Ok(()),
+    }
+}
+
 /// The stationary state's verdict and margin over the grid `x × y` (module docs): `on_row(j,
 /// cells)` gets row `j` (`cells[i]` at `(x_i, y_j)`) in order and returns whether to go on;
 /// `speed` is the speed when neither axis is one (a bare number is `omega`'s unit).
@@ -650,28 +762,56 @@ pub fn general_map(
     general_map_traced(root, x, y, speed, false, control, &mut |j, cells, _| on_row(j, cells))
 }
 
-/// Where the verdict changes along `x` between two cells of a row: `x` located by bisection to
-/// [`BOUNDARY_RTOL`] relative, `y` the row's value.
+/// Where the verdict changes between two neighbouring cells, along a row (`x` located by
+/// bisection to [`BOUNDARY_RTOL`] relative, `y` the row's value) or along a column (`y`
+/// bisected, `x` the column's value): [`BoundaryPoint::along`] says which.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct BoundaryPoint {
-    /// The boundary's `x`.
+    /// The boundary's `x` (the column's, along `y`).
     pub x: f64,
-    /// The row's `y`.
+    /// The boundary's `y` (the row's, along `x`).
     pub y: f64,
-    /// The verdict on the side of smaller `x` (`None`: no stationary state).
+    /// The verdict on the side of the smaller value of the axis bisected (`None`: no stationary
+    /// state).
     pub from: Option<Verdict>,
-    /// The verdict on the side of larger `x`.
+    /// The verdict on the side of its larger value.
     pub to: Option<Verdict>,
+    /// The axis along which the point was bisected (`"x"`: between two cells of a row; `"y"`:
+    /// of a column).
+    pub along: Along,
 }
 
-/// Relative width in `x` to which [`general_map_traced`] bisects a verdict change: `|b − a| ≤
-/// 1e-9 max(|a|, |b|)`, as [`crate::analysis::speed_scan`] bisects the ends of stable ranges.
+/// The axis along which a [`BoundaryPoint`] was bisected.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Along {
+    /// Along `x`, between two cells of a row.
+    X,
+    /// Along `y`, between two cells of a column.
+    Y,
+}
+
+impl Along {
+    /// `"x"` or `"y"`, as the JSON and the boundary CSV write it.
+    pub fn key(self) -> &'static str {
+        match self {
+            Along::X => "x",
+            Along::Y => "y",
+        }
+    }
+}
+
+/// Relative width in the coordinate bisected (`x` along a row, `y` along a column) to which
+/// [`general_map_traced`] bisects a verdict change: `|b − a| ≤ 1e-9 max(|a|, |b|)`, as
+/// [`crate::analysis::speed_scan`] bisects the ends of stable ranges.
 pub const BOUNDARY_RTOL: f64 = 1e-9;
 
-/// [`general_map`], and with `trace` the stability boundary of each row: wherever the margin
-/// changes sign between neighbouring cells, or a stationary state appears or disappears, the
-/// change is located by bisection along `x` ([`BoundaryPoint`]; each midpoint solved from the
-/// closed form, else continued from the nearer side's state). `on_row(j, cells, points)`.
+/// [`general_map`], and with `trace` the stability boundary: wherever the margin changes sign
+/// between neighbouring cells, or a stationary state appears or disappears, the change is
+/// located by bisection, along `x` between two cells of a row and along `y` between two cells of
+/// a column ([`BoundaryPoint`]; each midpoint solved from the closed form, else continued from
+/// the nearer side's state). `on_row(j, cells, points)`: row `j`'s points along `x`, then those
+/// along `y` between rows `j - 1` and `j`.
 #[allow(clippy::type_complexity)]
 pub fn general_map_traced(
     root: &Table,
@@ -726,6 +866,7 @@ fn map_on(
     if sx.is_none() && sy.is_none() && speed.is_none() {
         return Err(Error::invalid("omega", "required when neither axis is the speed (the speed at which to map)"));
     }
+    check_fixed_speed(x, y, speed)?;
     let mut plane = Plane { src, x, y, speed, line: None };
     // the rotors along the parameter axis, once, when the other axis is the speed
     let other = match (sx, sy) {
@@ -738,7 +879,7 @@ fn map_on(
         plane.line = Some(line);
     }
     // the model's own refusals (real balls, a bad speed unit) before any row: at the first cell
-    let (c, w) = plane.cell(Some(0), 0, x.values[0], y.values[0])?;
+    let (c, w) = plane.cell(Some(0), Some(0), x.values[0], y.values[0])?;
     c.rotor.field(w.max(f64::MIN_POSITIVE))?;
     drop(c);
     // a map whose every cell is below the periodic-orbit floor is refused, naming the speed
@@ -748,16 +889,40 @@ fn map_on(
     let mut out = GeneralMapOutcome { complete: true, ..Default::default() };
     let block = (4 * rayon::current_num_threads()).max(1);
     let mut j0 = 0;
+    // with `trace`: the last row handed on and its cells' states (the bisections along `y`
+    // between it and the next block's first row)
+    let mut last: Option<(Vec<GeneralCell>, Vec<Option<StationaryState>>)> = None;
     while j0 < y.values.len() {
         let j1 = (j0 + block).min(y.values.len());
-        let rows: Vec<Option<(Vec<GeneralCell>, Vec<BoundaryPoint>)>> =
+        #[allow(clippy::type_complexity)]
+        let rows: Vec<Option<(Vec<GeneralCell>, Vec<BoundaryPoint>, Vec<Option<StationaryState>>)>> =
             (j0..j1).into_par_iter().map(|j| if control.should_stop().is_some() { Ok(None) } else { plane.row(j, trace).map(Some) }).collect::<Result<_>>()?;
-        for (jj, row) in rows.into_iter().enumerate() {
-            let Some((row, points)) = row else {
+        // the points along `y` between each row and the one before it (both computed)
+        let mut along_y: Vec<Vec<BoundaryPoint>> = vec![vec![]; rows.len()];
+        if trace {
+            let pairs: Vec<(usize, (&[GeneralCell], &[Option<StationaryState>]), (&[GeneralCell], &[Option<StationaryState>]))> = (0..rows.len())
+                .filter_map(|jj| {
+                    let (hi, _, hs) = rows[jj].as_ref()?;
+                    let (lo, ls) = match jj {
+                        0 => last.as_ref().map(|(c, s)| (c.as_slice(), s.as_slice()))?,
+                        _ => rows[jj - 1].as_ref().map(|(c, _, s)| (c.as_slice(), s.as_slice()))?,
+                    };
+                    Some((jj, (lo, ls), (hi.as_slice(), hs.as_slice())))
+                })
+                .collect();
+            let found: Vec<(usize, Vec<BoundaryPoint>)> =
+                pairs.into_par_iter().map(|(jj, lo, hi)| Ok((jj, plane.column_points(j0 + jj - 1, lo, hi)?))).collect::<Result<_>>()?;
+            for (jj, p) in found {
+                along_y[jj] = p;
+            }
+        }
+        for ((jj, row), more) in rows.into_iter().enumerate().zip(along_y) {
+            let Some((row, mut points, states)) = row else {
                 out.complete = false;
                 out.stopped = Some(control.should_stop().unwrap_or(StopReason::Interrupted));
                 return Ok(out);
             };
+            points.extend(more);
             for c in &row {
                 match c.verdict {
                     None if !c.analysed => out.not_analysed += 1,
@@ -779,6 +944,9 @@ fn map_on(
             }
             out.rows += 1;
             let go_on = on_row(j0 + jj, &row, &points);
+            if trace {
+                last = Some((row, states));
+            }
             control.report(out.rows as u64, y.values.len() as u64);
             if !go_on {
                 out.complete = j0 + jj + 1 == y.values.len();
@@ -916,6 +1084,110 @@ mod tests {
         }
     }
 
+    /// The boundary along `y` (hunt 28: only the rows were bisected, so a map with the speed
+    /// on `y` reported no point although every column changed from unstable to stable along
+    /// it): each column's points are the speed scan's range ends at that column's `c_psi`
+    /// (second route: `stability_over_speed` bisects them to 1e-9 relative in Ω as the map
+    /// bisects along `y`, so they agree to 2e-9 relative, both last intervals), at the column's
+    /// exact `x`, `along` `y`, in the order of the columns; the same map transposed finds them
+    /// along `x`.
+    #[test]
+    fn the_boundary_is_bisected_along_y_too() {
+        let root = planar_root();
+        let wn = config::planar(&root).unwrap().rotor.natural_frequency();
+        let speeds: Vec<f64> = (1..=6).map(|i| 0.5 * wn * i as f64).collect();
+        let drags = vec![0.1, 0.2];
+        let traced = |x: &Axis, y: &Axis| {
+            let mut pts = vec![];
+            general_map_traced(&root, x, y, None, true, &Control::none(), &mut |_, _, p| {
+                pts.extend_from_slice(p);
+                true
+            })
+            .unwrap();
+            pts
+        };
+        let (w, c) = (Axis { path: "omega".into(), values: speeds.clone() }, Axis { path: "planar.c_psi".into(), values: drags.clone() });
+        let pts = traced(&c, &w);
+        let along_y: Vec<&BoundaryPoint> = pts.iter().filter(|p| p.along == Along::Y).collect();
+        let mut n = 0;
+        for &d in &drags {
+            let mut r = root.clone();
+            config::set_number(&mut r, "planar.c_psi", d).unwrap();
+            let scan = crate::rotor_stability::stability_over_speed(&Rotor::Planar(config::planar(&r).unwrap().rotor), &speeds).unwrap();
+            let ends: Vec<f64> =
+                scan.stable_ranges.iter().flat_map(|r| [(r.from, r.from_is_boundary), (r.to, r.to_is_boundary)]).filter(|e| e.1).map(|e| e.0).collect();
+            let mine: Vec<&&BoundaryPoint> = along_y.iter().filter(|p| p.x == d).collect();
+            assert!(!ends.is_empty());
+            assert_eq!(mine.len(), ends.len(), "c_psi {d}: {mine:?} vs {ends:?}");
+            for (p, e) in mine.iter().zip(&ends) {
+                assert!((p.y - e).abs() <= 2e-9 * e, "{} vs {e}", p.y);
+                assert_eq!((p.from, p.to), (Some(Verdict::Unstable), Some(Verdict::Stable)));
+            }
+            n += ends.len();
+        }
+        assert_eq!(along_y.len(), n);
+        // transposed: the same points, found along x (the same bisection: 2e-9 relative)
+        let t = traced(&w, &c);
+        let mut along_x: Vec<&BoundaryPoint> = t.iter().filter(|p| p.along == Along::X).collect();
+        along_x.sort_by(|a, b| a.y.total_cmp(&b.y));
+        assert_eq!(along_x.len(), n);
+        let mut along_y = along_y;
+        along_y.sort_by(|a, b| a.x.total_cmp(&b.x));
+        for (p, q) in along_y.iter().zip(&along_x) {
+            assert!(p.x == q.y && (p.y - q.x).abs() <= 2e-9 * p.y, "{p:?} vs {q:?}");
+        }
+    }
+
+    /// `planar.ball_masses[j]` and `planar.ball_drags[j]` as a map's axes (config.md lists them
+    /// "for maps and sweeps"; hunt 28: the map refused them as unknown keys of `[planar]` while
+    /// naming `ball_masses` among the known ones). Each cell equals the speed scan of the rotor
+    /// with that ball's value set as `sweep` sets it (second route: the planar problem's own
+    /// parameter path on the built rotor, not the config's table; the same Newton from the same
+    /// closed form, so the margins agree to round-off, 1e-9 relative), on a config with per-ball
+    /// lists and on one with the common `m3`, `c_psi` (the list then made of it, the other
+    /// balls keeping it, as `sweep` does); the value moves the margins (the axis is not
+    /// ignored); a ball past `planar.n` is refused naming the path.
+    #[test]
+    fn a_balls_own_mass_and_drag_are_map_axes() {
+        use crate::paths::Parameters as _;
+        let common = config::parse(include_str!("../../../examples/planar.toml"), "planar").unwrap();
+        let mut lists = common.clone();
+        let p = lists.get_mut("planar").and_then(|t| t.as_table_mut()).unwrap();
+        p.remove("m3");
+        p.remove("c_psi");
+        p.insert("n".into(), toml::Value::Integer(3));
+        let floats = |v: &[f64]| toml::Value::Array(v.iter().map(|&x| toml::Value::Float(x)).collect());
+        p.insert("ball_masses".into(), floats(&[0.025, 0.035, 0.02]));
+        p.insert("ball_drags".into(), floats(&[0.08, 0.12, 0.1]));
+        for (root, path, values) in [
+            (&lists, "planar.ball_drags[1]", vec![0.05, 0.3]),
+            (&lists, "planar.ball_masses[3]", vec![0.02, 0.04]),
+            (&common, "planar.ball_masses[2]", vec![0.02, 0.04]),
+            (&common, "planar.ball_drags[1]", vec![0.05, 0.3]),
+        ] {
+            let wn = config::planar(root).unwrap().rotor.natural_frequency();
+            let speeds: Vec<f64> = [0.6, 1.4, 2.5, 4.0].iter().map(|k| k * wn).collect();
+            let x = Axis { path: path.into(), values: values.clone() };
+            let y = Axis { path: "omega".into(), values: speeds.clone() };
+            let rows = collect(root, &x, &y, None).unwrap_or_else(|e| panic!("{path}: {e}"));
+            for (i, &v) in values.iter().enumerate() {
+                let mut problem = config::planar(root).unwrap();
+                problem.set(path, v).unwrap();
+                let scan = crate::rotor_stability::stability_over_speed(&Rotor::Planar(problem.rotor), &speeds).unwrap();
+                for (row, p) in rows.iter().zip(&scan.points) {
+                    let (cell, a) = (row[i], p.abscissa.unwrap());
+                    assert_eq!(cell.verdict, p.verdict, "{path} = {v}");
+                    assert!((cell.margin - a).abs() <= 1e-9 * a.abs().max(1.0), "{path} = {v}: {} vs {a}", cell.margin);
+                }
+            }
+            assert!(rows.iter().any(|r| (r[0].margin - r[1].margin).abs() > 1e-6 * r[0].margin.abs()), "{path}: the value changes nothing");
+        }
+        let x = Axis { path: "planar.ball_masses[4]".into(), values: vec![0.02, 0.03] };
+        let y = Axis { path: "omega".into(), values: vec![100.0, 200.0] };
+        let e = collect(&lists, &x, &y, None).unwrap_err().to_string();
+        assert!(e.starts_with("planar.ball_masses[4]: ") && e.contains("has 3 elements"), "{e}");
+    }
+
     #[test]
     fn cancelling_stops_before_the_rows() {
         let root = planar_root();
@@ -944,11 +1216,11 @@ mod tests {
         let root = config::parse(include_str!("../../../examples/spatial_two_plane.toml"), "two-plane").unwrap();
         let (x, y) = (Axis { path: "speed".into(), values: vec![0.0, 1.0] }, Axis { path: "balancer.drag".into(), values: vec![0.5] });
         let plane = Plane { src: Source::Config(&root), x: &x, y: &y, speed: None, line: None };
-        let (c, w) = plane.cell(None, 0, 0.5, 0.5).unwrap();
+        let (c, w) = plane.cell(None, Some(0), 0.5, 0.5).unwrap();
         assert!(c.rotor.below_periodic_floor(w).is_some() && c.rotor.field(w).unwrap().period().is_some());
         let stable = GeneralCell { margin: -1.0, verdict: Some(Verdict::Stable), ..GeneralCell::NONE };
         let unstable = GeneralCell { margin: 1.0, verdict: Some(Verdict::Unstable), ..GeneralCell::NONE };
-        let p = plane.bisect(0, (0.0, stable.verdict, None, stable), (1.0, unstable.verdict, None, unstable)).unwrap();
+        let p = plane.bisect(Along::X, 0, (0.0, stable.verdict, None, stable), (1.0, unstable.verdict, None, unstable)).unwrap();
         assert!(p.is_none(), "{p:?}");
     }
 }
