@@ -1105,3 +1105,20 @@ fn regression_a_tiny_slip_rate_was_a_non_finite_state_and_a_misfit_ball_a_contac
         rejects(&["sweep", "--x", "planar.ball_diameter=0.001:0.5:3", "--set", "planar.contact=true", "--set", "drive.t_end=0.05"], "planar.ball_diameter");
     assert!(line.contains("does not fit"), "{line}");
 }
+
+/// `stability --svg st.png` wrote SVG text under a .png name, and `campbell --svg c.png` wrote
+/// `c.png.svg` (session 28's hunt): refused in one line naming `--svg`, before the run, writing
+/// nothing; `export-model --stem .` wrote the hidden `sub/..toml`, `--stem ..` wrote
+/// `sub/...toml`: refused naming `--stem`, writing nothing.
+#[test]
+fn regression_an_svg_name_of_another_format_and_a_folder_stem_are_refused() {
+    let d = scratch("svgname");
+    let line = rejects(&["stability", "--samples", "10", "--svg", &s(&d.join("st.png"))], "--svg");
+    assert!(line.contains("SVG only") && line.contains(".svg"), "{line}");
+    rejects(&["campbell", "--points", "10", "--svg", &s(&d.join("c.png"))], "--svg");
+    for stem in [".", "..", ""] {
+        rejects(&["export-model", "--out", &s(&d.join("sub")), "--stem", stem], &format!("--stem {stem:?}"));
+    }
+    assert!(tree(&d).is_empty(), "{:?}", tree(&d));
+    std::fs::remove_dir_all(&d).ok();
+}

@@ -298,7 +298,7 @@ pub enum CampbellView {
 pub fn campbell_svg_paths(prefix: &std::path::Path, view: CampbellView) -> Vec<std::path::PathBuf> {
     let p = prefix.display().to_string();
     match view {
-        CampbellView::Fixed if p.ends_with(".svg") => vec![prefix.to_path_buf()],
+        CampbellView::Fixed if p.to_ascii_lowercase().ends_with(".svg") => vec![prefix.to_path_buf()],
         CampbellView::Fixed => vec![format!("{p}.svg").into()],
         CampbellView::Components => ["rotating", "fixed"].iter().map(|s| format!("{p}_{s}.svg").into()).collect(),
     }

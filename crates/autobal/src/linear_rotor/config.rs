@@ -377,6 +377,7 @@ fn npy_matrix(a: NpyArray, field: &str, what: &str) -> Result<(usize, Vec<f64>)>
 /// A square matrix from the file `path` named by the key `field`: Matrix Market text or a
 /// `.npy` array (`(n, row-major entries)`).
 fn matrix_file(field: &str, path: &str, load: &mut dyn FnMut(&str) -> std::result::Result<Vec<u8>, String>) -> Result<(usize, Vec<f64>)> {
+    empty_name(field, path)?;
     if path.ends_with(".npz") {
         return Err(Error::invalid(field, format!("{path}: an .npz archive holds all the matrices: name it as linear_rotor.matrices")));
     }
@@ -392,6 +393,15 @@ fn matrix_file(field: &str, path: &str, load: &mut dyn FnMut(&str) -> std::resul
     }
     bounded_entries(field, path, rows, &a)?;
     Ok((rows, a))
+}
+
+/// A file name given as the empty string: named as such (`rotor_fixed_mass = ""` said
+/// "linear_rotor.rotor_fixed_mass: : : cannot read: …", the empty name between colons).
+fn empty_name(field: &str, path: &str) -> Result<()> {
+    if path.trim().is_empty() {
+        return Err(Error::invalid(field, format!("the file name is empty ({path:?}): give the matrix file's name, relative to the config's folder")));
+    }
+    Ok(())
 }
 
 /// [`linear_rotor`] with a loader of bytes: matrix files are Matrix Market text, `.npy` arrays
@@ -428,6 +438,7 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
     // the .npz archive, read once: its arrays by key
     let mut archive: Option<Vec<(String, NpyArray)>> = None;
     if let Some(path) = string("matrices")? {
+        empty_name("linear_rotor.matrices", path)?;
         if let Some(k) = ["m", "c", "g", "k", "kst", "spin_chart"].iter().find(|k| lr.contains_key(**k)) {
             return Err(Error::invalid(format!("linear_rotor.{k}"), "give the matrices either in the archive linear_rotor.matrices or one by one, not both"));
         }
