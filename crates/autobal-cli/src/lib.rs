@@ -477,6 +477,7 @@ fn run(cli: Cli, control: &Control) -> Result<()> {
         Command::Stability { common, format, lin, samples, svg, route } => {
             // the output is checked before the run
             let svg: Vec<(PathBuf, &str)> = svg.map(|p| (outfile::resolve(&p, "stability.svg"), "stability_margin")).into_iter().collect();
+            svg.iter().try_for_each(|(p, _)| outfile::check_svg_name("--svg", p, false))?;
             check_outputs(&common.source(), "--svg", &svg)?;
             let args = stability::Args { config: common.source(), omega_max: lin.omega_max, balls: lin.balls.into(), samples, route };
             // every route's scan asks the control and keeps what it analysed (audit 21's F2:
@@ -493,6 +494,9 @@ fn run(cli: Cli, control: &Control) -> Result<()> {
             show(&out, format)
         }
         Command::Campbell { common, format, lin, points, svg, view, harmonics, route } => {
+            if let Some(p) = &svg {
+                outfile::check_svg_name("--svg", &outfile::resolve(p, "campbell"), true)?;
+            }
             let svg = svg.map(|p| campbell::svg_files(&outfile::resolve(&p, "campbell"), view)).unwrap_or_default();
             check_outputs(&common.source(), "--svg", &svg)?;
             let args = campbell::Args {

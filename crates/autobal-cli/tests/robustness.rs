@@ -1155,3 +1155,20 @@ fn regression_a_map_without_any_stationary_state_claimed_an_equilibrium() {
     assert!(!svg.contains("equilibrium") && !svg.contains("Floquet"), "the figure claims a kind of state");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `stability --svg st.png` wrote SVG text under a .png name, and `campbell --svg c.png` wrote
+/// `c.png.svg` (session 28's hunt): refused in one line naming `--svg`, before the run, writing
+/// nothing; `export-model --stem .` wrote the hidden `sub/..toml`, `--stem ..` wrote
+/// `sub/...toml`: refused naming `--stem`, writing nothing.
+#[test]
+fn regression_an_svg_name_of_another_format_and_a_folder_stem_are_refused() {
+    let d = scratch("svgname");
+    let line = rejects(&["stability", "--samples", "10", "--svg", &s(&d.join("st.png"))], "--svg");
+    assert!(line.contains("SVG only") && line.contains(".svg"), "{line}");
+    rejects(&["campbell", "--points", "10", "--svg", &s(&d.join("c.png"))], "--svg");
+    for stem in [".", "..", ""] {
+        rejects(&["export-model", "--out", &s(&d.join("sub")), "--stem", stem], &format!("--stem {stem:?}"));
+    }
+    assert!(tree(&d).is_empty(), "{:?}", tree(&d));
+    std::fs::remove_dir_all(&d).ok();
+}

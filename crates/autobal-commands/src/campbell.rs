@@ -4,7 +4,7 @@
 //! periodic orbit, of the nonlinear equations' exact linearisation; on a `[linear_rotor]`
 //! config always, the rotor with its balls free).
 
-use crate::command::{self, check_count, check_speed, ConfigSource, Figure, Route};
+use crate::command::{self, check_count, ConfigSource, Figure, Route};
 use crate::config;
 use crate::general::GeneralRotor;
 use crate::general_campbell;
@@ -107,7 +107,7 @@ impl command::Command for Args {
             }
             let w = general_campbell::omega_max(&root, &g, self.omega_max.as_deref())?;
             let c = general_campbell::campbell_with(&g, w, points, self.balls, &harmonics, control)
-                .map_err(|e| crate::general::name_omega_max(e, self.omega_max.is_some(), "analysis.omega_max"))?;
+                .map_err(|e| crate::general::name_omega_max(e, self.omega_max.is_some(), "analysis.omega_max", &root, &g))?;
             // (only marked in the figures: a config whose operating speed cannot be read marks none)
             let op = crate::general::operating_speed(&g, &root).ok().flatten();
             return Ok(Output::General { g: Box::new(g), c: Box::new(c), omega_max: w, view: self.view, op });
@@ -115,8 +115,8 @@ impl command::Command for Args {
         let cfg = config::build(&root, &source)?;
         config::check_entries(&root, "campbell", &[config::Model::Linear])?;
         let w = linear::omega_max(&cfg, self.omega_max.as_deref())?;
-        if self.omega_max.is_some() {
-            check_speed("--omega-max", w)?;
+        if let Some(t) = self.omega_max.as_deref() {
+            crate::command::check_speed_omega("--omega-max", t, w, linear::omega0_of_unit(&cfg, t))?;
         }
         let points = check_count("--points", self.points.unwrap_or(DEFAULT_POINTS), POINTS)?;
         let run = linear::campbell_run(&cfg, w, points, self.balls, self.json, &harmonics, control)?;
@@ -146,7 +146,7 @@ impl Args {
         }
         let w = crate::linear_rotor::omega_max(self.omega_max.as_deref(), &cfg)?;
         let c = general_campbell::campbell_with(&g, w, points, Balls::Free, harmonics, control)
-            .map_err(|e| crate::general::name_omega_max(e, self.omega_max.is_some(), "linear_rotor.omega_max"))?;
+            .map_err(|e| crate::general::name_omega_max(e, self.omega_max.is_some(), "linear_rotor.omega_max", root, &g))?;
         Ok(Output::General { g: Box::new(g), c: Box::new(c), omega_max: w, view: self.view, op: cfg.operating_speed })
     }
 }

@@ -191,6 +191,37 @@ pub fn check_count(flag: &str, n: usize, range: std::ops::RangeInclusive<usize>)
     Ok(n)
 }
 
+/// A top speed `w` in rad/s given as `text` by `flag` (`--omega-max 1e7rpm` on a planar or
+/// linear rotor, whose speeds are rad/s): positive, at most 1e6 rad/s (the SI speeds' range,
+/// as `drive.omega_idle`'s). The error says what was given and its value in rad/s (it called
+/// 1.0472e6 rad/s a "dimensionless speed").
+pub fn check_speed_rad_s(flag: &str, text: &str, w: f64) -> Result<()> {
+    let l = autobal::limits::limit("drive.omega_idle").expect("drive.omega_idle has a limit");
+    if !l.contains(w) {
+        let f = autobal::error::fmt_num;
+        let text = text.trim();
+        let is = if text.trim_end_matches("rad/s").trim() == f(w) || text == f(w) { String::new() } else { format!(" is {} rad/s,", f(w)) };
+        return Err(autobal::Error::invalid(flag, format!("{text}{is} outside {} ({})", l.describe(), l.why)).into());
+    }
+    Ok(())
+}
+
+/// A top speed `Ω` (dimensionless) given as `text` by `flag`, within the range of
+/// `analysis.omega_max`; `omega0` (rad/s per Ω) where the config is SI, so that the error says
+/// what `text` is in Ω (`--omega-max: 1e9 rpm is Ω = ω/ω0 = 2.1e5 (ω0 = 500 rad/s), outside …`).
+pub fn check_speed_omega(flag: &str, text: &str, omega: f64, omega0: Option<f64>) -> Result<()> {
+    let l = autobal::limits::limit("analysis.omega_max").expect("analysis.omega_max has a limit");
+    if !l.contains(omega) {
+        let f = autobal::error::fmt_num;
+        let is = match omega0 {
+            Some(w0) => format!("{} is Ω = ω/ω0 = {} (ω0 = {} rad/s),", text.trim(), f(omega), f(w0)),
+            None => format!("{} (Ω)", text.trim()),
+        };
+        return Err(autobal::Error::invalid(flag, format!("{is} outside {} ({})", l.describe(), l.why)).into());
+    }
+    Ok(())
+}
+
 /// A dimensionless speed option (`--omega`, `--omega-max`): finite, ≥ 0 and within the range
 /// of `analysis.omega_max` (`--omega` may be 0).
 pub fn check_speed(flag: &str, w: f64) -> Result<()> {

@@ -55,7 +55,10 @@ impl command::Command for Args {
             let from_linear = config::FromLinear::SpeedRange { omega_max_given: self.omega_max.is_some(), necessary: true };
             config::check_entries_with(&root, "critical", &[config::simulation_model(&root)], from_linear)?;
             let w = general_campbell::omega_max(&root, &g, self.omega_max.as_deref())?;
-            let c = general_campbell::critical(&root, &g, w, control)?;
+            let c = general_campbell::critical(&root, &g, w, control).map_err(|e| match e.downcast::<autobal::Error>() {
+                Ok(e) => crate::general::name_omega_max(crate::general::floor_in_units(&g, e, &[w]), self.omega_max.is_some(), "analysis.omega_max", &root, &g),
+                Err(e) => e,
+            })?;
             return Ok(Output::General(Box::new((g, c))));
         }
         if self.omega_max.is_some() {

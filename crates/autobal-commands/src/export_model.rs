@@ -45,8 +45,16 @@ impl command::Command for Args {
     type Output = Output;
 
     fn run(&self, _control: &Control) -> Result<Output> {
-        if self.stem.is_empty() || self.stem.contains(['/', '\\']) {
+        if self.stem.trim().is_empty() {
+            bail!("--stem {:?}: is empty: give a file name stem such as `rotor` (the folder is --out)", self.stem);
+        }
+        if self.stem.contains(['/', '\\']) {
             bail!("--stem {:?}: a file name stem without a folder (the folder is --out)", self.stem);
+        }
+        // (`.` wrote the hidden `..toml` and `._M.mtx`, `..` wrote `...toml`: a folder's name,
+        // not a file's stem)
+        if self.stem.chars().all(|c| c == '.') {
+            bail!("--stem {:?}: names a folder (`.`, `..`), not a file: give a file name stem such as `rotor` (the folder is --out)", self.stem);
         }
         // (a newline in the stem wrote files whose names break every listing and message)
         if self.stem.chars().any(char::is_control) {
@@ -121,6 +129,12 @@ mod tests {
         // a stem with a folder in it is refused before anything is written
         let e = Args { out: d.join("other"), stem: "a/b".into(), ..Default::default() }.run(&Control::none()).err().unwrap();
         assert!(format!("{e:#}").starts_with("--stem \"a/b\""), "{e:#}");
+        assert!(!d.join("other").exists());
+        // `.` and `..` name folders: they wrote the hidden `..toml`, `._M.mtx` and `...toml`
+        for stem in [".", "..", ""] {
+            let e = Args { out: d.join("other"), stem: stem.into(), ..Default::default() }.run(&Control::none()).err().unwrap();
+            assert!(format!("{e:#}").starts_with(&format!("--stem {stem:?}: ")) && !format!("{e:#}").contains('\n'), "{e:#}");
+        }
         assert!(!d.join("other").exists());
         let _ = std::fs::remove_dir_all(&d);
     }

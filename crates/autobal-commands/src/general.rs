@@ -854,14 +854,78 @@ pub fn floor_in_units(g: &GeneralRotor, e: autobal::Error, speeds: &[f64]) -> an
 /// The library's `omega_max` error (a top speed below what the periodic-orbit analysis
 /// resolves, [`autobal::rotor_stability::Rotor::periodic_floor`]) named as the user gave the
 /// speed: `--omega-max` where `flag_set`, else the config's key `key` (`analysis.omega_max`,
-/// `linear_rotor.omega_max`); `stability` and `campbell` alike.
-pub fn name_omega_max(e: anyhow::Error, flag_set: bool, key: &str) -> anyhow::Error {
+/// `linear_rotor.omega_max`) where `root` has it; where neither gave it, the axis's top is the
+/// default ([`default_omega_max`]) and the message names what raised the floor above it, the
+/// key of the stiffest support where one key sets the fastest natural frequency (a planar
+/// rotor's `planar.k_y = 1e13` was reported as `analysis.omega_max`, a key a planar config may
+/// not hold), else `--omega-max`; `stability`, `campbell` and `critical` alike.
+pub fn name_omega_max(e: anyhow::Error, flag_set: bool, key: &str, root: &Table, g: &GeneralRotor) -> anyhow::Error {
     match e.downcast_ref::<autobal::Error>() {
         Some(autobal::Error::InvalidParameter { field, reason }) if field == "omega_max" => {
-            let flag = if flag_set { "--omega-max" } else { key };
-            autobal::Error::invalid(flag, reason.clone()).into()
+            let (table, k) = key.split_once('.').unwrap_or(("", key));
+            let key_given = root.get(table).and_then(|t| t.get(k)).is_some();
+            if flag_set {
+                autobal::Error::invalid("--omega-max", reason.clone()).into()
+            } else if key_given {
+                autobal::Error::invalid(key, reason.clone()).into()
+            } else {
+                default_below_floor(g, root)
+                    .unwrap_or_else(|| autobal::Error::invalid("--omega-max", format!("not given: the default speed axis's {reason}")))
+                    .into()
+            }
         }
         _ => e,
+    }
+}
+
+/// The error of a default speed axis ([`default_omega_max`]: no `--omega-max`, no config key)
+/// whose top lies below the periodic-orbit floor: naming what raised the floor where one key
+/// did ([`floor_cause`]), both speeds with their unit. `None` where there is no such floor.
+fn default_below_floor(g: &GeneralRotor, root: &Table) -> Option<autobal::Error> {
+    // (a linear rotor's default axis is its own, `crate::linear_rotor::default_omega_max`)
+    if matches!(g.rotor, Rotor::Linear(_)) {
+        return None;
+    }
+    let top = default_omega_max(g, root).ok()?;
+    let floor = g.rotor.periodic_floor(top)?;
+    let wn = g.rotor.fastest_natural_frequency(top);
+    let (field, cause) = floor_cause(g);
+    let cause = cause.unwrap_or_else(|| format!("not given: the fastest natural frequency, {},", speed_text(g, wn)));
+    Some(autobal::Error::invalid(
+        field,
+        format!(
+            "{cause} puts the slowest speed the periodic-orbit analysis resolves at {} (a revolution spans at most {} of its periods), above the speed axis's default top {} ({}): give --omega-max above it",
+            speed_text(g, floor),
+            fmt_num(autobal::rotor_stability::PERIODS_PER_REVOLUTION),
+            speed_text(g, top),
+            default_top_words(g)
+        ),
+    ))
+}
+
+/// How [`default_omega_max`] sets the axis's top, for messages.
+fn default_top_words(g: &GeneralRotor) -> String {
+    match &g.rotor {
+        Rotor::Planar(_) | Rotor::Linear(_) => "3 times the slowest natural frequency".into(),
+        Rotor::Spatial(_) => "twice the linear model's automatic axis".into(),
+    }
+}
+
+/// The config key that sets the fastest natural frequency, and words saying how, where one key
+/// does (the planar rotor's stiffer direction: `sqrt(k/m0)`); else `--omega-max` and `None`.
+fn floor_cause(g: &GeneralRotor) -> (String, Option<String>) {
+    match &g.rotor {
+        Rotor::Planar(p) => {
+            let (kx, ky) = p.stiffness_xy();
+            let (key, k) = match p.k_y {
+                None => ("k", kx),
+                Some(_) if ky >= kx => ("k_y", ky),
+                Some(_) => ("k_x", kx),
+            };
+            let wn = (k / p.total_mass()).sqrt();
+            (format!("planar.{key}"), Some(format!("{} N/m, through the fastest natural frequency sqrt({key}/m0) = {},", fmt_num(k), speed_text(g, wn))))
+        }
+        _ => ("--omega-max".into(), None),
     }
 }
 

@@ -67,7 +67,12 @@ pub fn omega_max(root: &Table, g: &GeneralRotor, arg: Option<&str>) -> Result<f6
                     s.value * g.omega0
                 }
             };
-            autobal::limits::check_as("--omega-max", "analysis.omega_max", w / g.omega0)?;
+            match &g.rotor {
+                // rad/s, a planar or linear rotor's unit (the dimensionless range called 1.0472e6
+                // rad/s from `1e7 rpm` "dimensionless")
+                Rotor::Planar(_) | Rotor::Linear(_) => crate::command::check_speed_rad_s("--omega-max", t, w)?,
+                Rotor::Spatial(_) => crate::command::check_speed_omega("--omega-max", t, w / g.omega0, g.si.then_some(g.omega0))?,
+            }
             w
         }
         // the general route's default axis, as `stability`'s

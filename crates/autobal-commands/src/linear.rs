@@ -205,6 +205,13 @@ pub fn fixed_speed_moves_omega0(cfg: &Config, axes: [(&str, f64, f64); 2]) -> bo
     })
 }
 
+/// ω0 (rad/s per Ω) where `text`, a speed option's value, has a unit and the config is SI:
+/// what converted it to Ω (a bare number is Ω itself); for the errors that say so.
+pub fn omega0_of_unit(cfg: &Config, text: &str) -> Option<f64> {
+    let with_unit = autobal::units::parse_speed("--omega-max", text).is_ok_and(|s| s.unit.rad_s().is_some());
+    cfg.model.scale.map(|s| s.omega0).filter(|_| with_unit)
+}
+
 /// The speed axis of the linear commands: `--omega-max` (a speed with its unit, or `Ω`), else
 /// the config's `analysis.omega_max`, else automatic: up to 1.3 times the highest critical
 /// speed and 1.25 times the top of the operating speed ([`autobal::reports::speed_axis_max`]).
@@ -285,7 +292,7 @@ pub enum CampbellView {
 pub fn campbell_svg_paths(prefix: &std::path::Path, view: CampbellView) -> Vec<std::path::PathBuf> {
     let p = prefix.display().to_string();
     match view {
-        CampbellView::Fixed if p.ends_with(".svg") => vec![prefix.to_path_buf()],
+        CampbellView::Fixed if p.to_ascii_lowercase().ends_with(".svg") => vec![prefix.to_path_buf()],
         CampbellView::Fixed => vec![format!("{p}.svg").into()],
         CampbellView::Components => ["rotating", "fixed"].iter().map(|s| format!("{p}_{s}.svg").into()).collect(),
     }

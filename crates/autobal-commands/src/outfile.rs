@@ -37,6 +37,31 @@ pub fn names_folder(p: &Path) -> bool {
     s.ends_with('/') || s.ends_with(std::path::MAIN_SEPARATOR) || p.file_name().is_none() || p.is_dir()
 }
 
+/// A `--svg` name whose extension is not `.svg` (any case) is refused: the figures are SVG
+/// text only (`stability --svg st.png` wrote SVG under a .png name, silently). A name without
+/// an extension is taken as it is; `prefix`: the name is the prefix of the figures'
+/// names (`campbell`: `PREFIX.svg`, `PREFIX_rotating.svg`), which may still end in `.svg`.
+///
+/// ```
+/// use autobal_commands::outfile::check_svg_name;
+/// use std::path::Path;
+/// assert!(check_svg_name("--svg", Path::new("m.svg"), false).is_ok());
+/// assert!(check_svg_name("--svg", Path::new("runs/m"), false).is_ok());
+/// let e = check_svg_name("--svg", Path::new("st.png"), false).unwrap_err().to_string();
+/// assert!(e.starts_with("--svg: st.png: the figure is written as SVG only"), "{e}");
+/// ```
+pub fn check_svg_name(flag: &str, path: &Path, prefix: bool) -> Result<()> {
+    let Some(ext) = path.extension().map(|e| e.to_string_lossy().to_string()) else { return Ok(()) };
+    if ext.eq_ignore_ascii_case("svg") {
+        return Ok(());
+    }
+    let name = path.display();
+    if prefix {
+        bail!("{flag}: {name}: the figures are written as SVG only (PREFIX.svg), and a prefix ending in .{ext} names another format: give the prefix without .{ext}");
+    }
+    bail!("{flag}: {name}: the figure is written as SVG only, and a .{ext} name would hold SVG text: give a name ending in .svg");
+}
+
 /// `--out` as given, or `DIR/default` when it names a folder ([`names_folder`]).
 pub fn resolve(out: &Path, default: &str) -> PathBuf {
     if names_folder(out) {
@@ -677,6 +702,20 @@ mod tests {
         let _ = std::fs::remove_dir_all(&d);
         std::fs::create_dir_all(&d).unwrap();
         d
+    }
+
+    /// `--svg st.png` wrote SVG text under a .png name (session 28's hunt): a name or prefix
+    /// with another extension than `.svg` (any case) is refused naming the flag; a name without
+    /// an extension is taken, as a folder's default name is.
+    #[test]
+    fn an_svg_name_with_another_extension_is_refused() {
+        for (name, prefix) in [("st.svg", false), ("st.SVG", false), ("runs/st", false), ("c", true), ("c.svg", true), ("runs/", false)] {
+            check_svg_name("--svg", &resolve(Path::new(name), "stability.svg"), prefix).unwrap();
+        }
+        for (name, prefix) in [("st.png", false), ("st.pdf", false), ("c.png", true), ("runs/c.jpeg", true)] {
+            let e = check_svg_name("--svg", Path::new(name), prefix).unwrap_err().to_string();
+            assert!(e.starts_with(&format!("--svg: {name}: the figure")) && e.contains("SVG only") && !e.contains('\n'), "{e}");
+        }
     }
 
     /// A set of files written whole or not at all: the third cannot be created (its folder is

@@ -3,7 +3,7 @@
 //! necessary ranges: [`crate::linear`]), the general route (the nonlinear equations' exact
 //! linearisation: [`crate::general`]), or a linear rotor config ([`crate::linear_rotor`]).
 
-use crate::command::{self, check_count, check_speed, ConfigSource, Figure, Route};
+use crate::command::{self, check_count, ConfigSource, Figure, Route};
 use crate::config::{self, Config};
 use crate::general::{self, GeneralRotor};
 use crate::linear::{self, Comparison};
@@ -119,15 +119,15 @@ impl command::Command for Args {
                 None => general::default_omega_max(&g, &root)?,
             };
             // under the control, as a linear rotor's: a stopped scan keeps the speeds it analysed
-            let (out, speeds) = general::scan(&g, omega_max, samples, control).map_err(|e| self.name_omega_max(e, "analysis.omega_max"))?;
+            let (out, speeds) = general::scan(&g, omega_max, samples, control).map_err(|e| self.name_omega_max(e, "analysis.omega_max", &root, &g))?;
             let (r, op, stopped) = kept_scan(out, speeds, control, |r, control| general::operating(&g, &root, r, control))?;
             return Ok(Output::General { g: Box::new(g), r: Box::new(r), omega_max, op: op.map(Box::new), stopped });
         }
         let mut cfg = config::build(&root, &source)?;
         config::check_entries(&root, "stability", &[config::Model::Linear])?;
         let w = linear::omega_max(&cfg, self.omega_max.as_deref())?;
-        if self.omega_max.is_some() {
-            check_speed("--omega-max", w)?;
+        if let Some(t) = self.omega_max.as_deref() {
+            crate::command::check_speed_omega("--omega-max", t, w, linear::omega0_of_unit(&cfg, t))?;
         }
         let samples = check_count("--samples", self.samples.unwrap_or(DEFAULT_SAMPLES), SAMPLES)?;
         let out = autobal::spatial::comparison::compare_with(&cfg.model, w, samples, self.balls, control)?;
@@ -147,8 +147,8 @@ impl Args {
     /// resolves, [`autobal::rotor_stability::Rotor::periodic_floor`]) named as the user
     /// gave the speed: `--omega-max`, else the config's key `key` (`analysis.omega_max`,
     /// `linear_rotor.omega_max`).
-    fn name_omega_max(&self, e: anyhow::Error, key: &str) -> anyhow::Error {
-        general::name_omega_max(e, self.omega_max.is_some(), key)
+    fn name_omega_max(&self, e: anyhow::Error, key: &str, root: &toml::Table, g: &GeneralRotor) -> anyhow::Error {
+        general::name_omega_max(e, self.omega_max.is_some(), key, root, g)
     }
 
     /// `stability` on a linear rotor config ([`crate::linear_rotor`]).
@@ -168,7 +168,7 @@ impl Args {
         // (as the general route: a speed below the periodic floor is said in rad/s and rpm)
         let g = GeneralRotor::linear(rotor);
         let out = autobal::rotor_stability::stability_over_speed_with(&g.rotor, &speeds, control)
-            .map_err(|e| self.name_omega_max(general::floor_in_units(&g, e, &speeds), "linear_rotor.omega_max"))?;
+            .map_err(|e| self.name_omega_max(general::floor_in_units(&g, e, &speeds), "linear_rotor.omega_max", root, &g))?;
         // the verdict at the operating speed, as the general route's (first line, JSON
         // `operating`)
         let (r, op, stopped) = kept_scan(out, speeds.len(), control, |r, control| {
@@ -520,6 +520,47 @@ mod tests {
         let args = Args { config: tables(two, &["analysis.omega_max=\"0.001 rad/s\""]), ..Default::default() };
         let e = format!("{:#}", args.run(&Control::none()).err().expect("refused"));
         assert!(e.starts_with("analysis.omega_max: 0.001 rad/s ("), "{e}");
+    }
+
+    /// A default speed axis (no `--omega-max`, no config key) below the periodic-orbit floor:
+    /// the planar rotor's `k_y = 1e13` raises the fastest natural frequency to
+    /// sqrt(1e13/1.26) = 2.81718e6 rad/s, the floor to 1/1000 of it, above the default top
+    /// 3 sqrt(9e4/1.26) = 801.784 rad/s. `stability` named `analysis.omega_max` (a key a planar
+    /// config may not hold) and `critical` a bare `omega_max` with unitless numbers; both now
+    /// name `planar.k_y`, with the speeds in rad/s. And a top speed out of range on a planar
+    /// rotor is said in rad/s, not as a "dimensionless speed" (session 28's hunt).
+    #[test]
+    fn a_default_axis_below_the_floor_names_the_key_that_raised_it() {
+        let aniso = "[planar]\nm1 = 1.0\nm2 = 0.2\nm3 = 0.03\nn = 2\ns1 = 0.003\ns2 = 0.0005\nr = 0.06\n\
+                     k_x = 9.0e4\nk_y = 1e13\nc_x = 40.0\nc_y = 60.0\nc_psi = 0.1\ni_g = 0.0025\n";
+        let want = "planar.k_y: 1e13 N/m, through the fastest natural frequency sqrt(k_y/m0) = 2.81718e6 rad/s (2.69021e7 rpm), puts the slowest \
+                    speed the periodic-orbit analysis resolves at 2817.18 rad/s (26902.1 rpm) (a revolution spans at most 1000 of its periods), above \
+                    the speed axis's default top 801.784 rad/s (7656.47 rpm) (3 times the slowest natural frequency): give --omega-max above it";
+        let e = format!("{:#}", Args { config: tables(aniso, &[]), ..Default::default() }.run(&Control::none()).err().expect("refused"));
+        assert_eq!(e, want);
+        let critical = crate::critical::Args { config: tables(aniso, &[]), route: Route::Auto, omega_max: None };
+        let e = format!("{:#}", critical.run(&Control::none()).err().expect("refused"));
+        assert_eq!(e, want);
+        let campbell = crate::campbell::Args { config: tables(aniso, &[]), points: Some(10), ..Default::default() };
+        let e = format!("{:#}", campbell.run(&Control::none()).err().expect("refused"));
+        assert_eq!(e, want);
+        // given, the flag is named (as before)
+        let args = Args { config: tables(aniso, &[]), omega_max: Some("800 rad/s".into()), ..Default::default() };
+        let e = format!("{:#}", args.run(&Control::none()).err().expect("refused"));
+        assert!(e.starts_with("--omega-max: 800 rad/s (7639.44 rpm), the grid's top speed, is below 2817.18 rad/s"), "{e}");
+        // rad/s, the planar rotor's unit: 1e7 rpm = 1.0472e6 rad/s
+        let planar = include_str!("../../../examples/planar.toml");
+        let args = Args { config: tables(planar, &[]), omega_max: Some("1e7 rpm".into()), ..Default::default() };
+        let e = format!("{:#}", args.run(&Control::none()).err().expect("refused"));
+        assert!(e.starts_with("--omega-max: 1e7 rpm is 1.0472e6 rad/s, outside (0, 1e6] rad/s (") && !e.contains("dimensionless"), "{e}");
+        // Ω, a spatial rotor's: its ω0 said
+        let dimensional = include_str!("../../../examples/dimensional.toml");
+        let args = Args { config: tables(dimensional, &[]), omega_max: Some("1e12 rpm".into()), ..Default::default() };
+        let e = format!("{:#}", args.run(&Control::none()).err().expect("refused"));
+        assert!(
+            e.starts_with("--omega-max: 1e12 rpm is Ω = ω/ω0 = ") && e.contains("(ω0 = ") && e.contains(" rad/s), outside (0, 1e6] (dimensionless speed"),
+            "{e}"
+        );
     }
 
     /// A linear rotor under gravity whose bearings change with speed (the shaft example, one

@@ -249,6 +249,26 @@ fn read_with(text: &str, files: &[(&str, Vec<u8>)]) -> Result<LinearRotorConfig,
     linear_rotor_bytes(&root, &mut |p| files.iter().find(|f| f.0 == p).map(|f| f.1.clone()).ok_or(format!("{p}: missing"))).map_err(|e| e.to_string())
 }
 
+/// A matrix file named by the empty string (`rotor_fixed_mass = ""`) said
+/// "linear_rotor.rotor_fixed_mass: : : cannot read: …" (session 28's hunt): the empty name is
+/// said as such, for every file key and the archive.
+#[test]
+fn an_empty_file_name_is_said_to_be_empty() {
+    let (rest, n, m, k) = small();
+    let files = [("M.npy", npy(&m, n, 0)), ("K.npy", npy(&k, n, 0))];
+    let with = |extra: &str| rest.replacen("[linear_rotor]\n", &format!("[linear_rotor]\n{extra}"), 1);
+    read_with(&with("m = \"M.npy\"\nk = \"K.npy\"\n"), &files).unwrap();
+    for (extra, key) in [
+        ("m = \"M.npy\"\nk = \"K.npy\"\nrotor_fixed_mass = \"\"\n", "linear_rotor.rotor_fixed_mass"),
+        ("m = \"\"\nk = \"K.npy\"\n", "linear_rotor.m"),
+        ("m = \"M.npy\"\nk = \" \"\n", "linear_rotor.k"),
+        ("matrices = \"\"\n", "linear_rotor.matrices"),
+    ] {
+        let e = read_with(&with(extra), &files).map(|_| ()).unwrap_err();
+        assert!(e.starts_with(&format!("{key}: the file name is empty (")) && !e.contains(": : "), "{e}");
+    }
+}
+
 /// An `.npz` archive with two members for one array (`K` beside `k`, or `K.npy` twice) was
 /// read with the first and the other silently ignored.
 #[test]

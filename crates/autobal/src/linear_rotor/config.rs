@@ -172,6 +172,35 @@ fn within_magnitude(field: &str, value: f64, hi: f64, unit: &str, why: &str) -> 
     Ok(value)
 }
 
+/// The constant bearings' damping through the dimensionless damping it implies, as the
+/// spatial rotor's supports (`h̄x`, [`crate::spatial::dynamics::SpatialRotor::to_dimensionless`]):
+/// `Σ c/(M ω0)` with `ω0 = sqrt(Σ k/M)`, over the constant bearings (`(key of c, k, c)`), `M`
+/// the rotor's mass along x (`uᵀ M u` for the unit translation `u` along x of every node), within the
+/// range of `dimensionless.h_x` (a damping ratio up to 500; beyond, the supports do not move).
+/// The error names the `c` of the bearing of the largest damping; without stiffness in the
+/// constant bearings there is no `ω0` and nothing to check. (`c = 1e12` on the shaft example was
+/// taken.)
+fn check_bearing_damping(rotor: &LinearRotor, bearings: &[(String, f64, f64)]) -> Result<()> {
+    let (k, c) = bearings.iter().fold((0.0, 0.0), |(k, c), b| (k + b.1, c + b.2));
+    let Some(worst) = bearings.iter().reduce(|w, b| if b.2 > w.2 { b } else { w }) else { return Ok(()) };
+    let n = rotor.dofs();
+    let along_x: Vec<usize> = (0..n).filter(|&i| matches!(rotor.dof_node(i), Some((_, Direction::X)))).collect();
+    let mass: f64 = along_x.iter().map(|&i| along_x.iter().map(|&j| rotor.m[i * n + j]).sum::<f64>()).sum();
+    if !(k > 0.0 && mass > 0.0) {
+        return Ok(());
+    }
+    let f = crate::error::fmt_num;
+    let omega0 = (k / mass).sqrt();
+    let what = format!(
+        "the constant bearings' Σ c/(M ω0) with ω0 = sqrt(Σ k/M) = {} rad/s (Σ c = {} N·s/m, Σ k = {} N/m, the rotor's mass M = {} kg)",
+        f(omega0),
+        f(c),
+        f(k),
+        f(mass)
+    );
+    crate::limits::check_derived(&worst.0, "dimensionless.h_x", c / (mass * omega0), &what).map(|_| ())
+}
+
 fn within(field: &str, value: f64, lo: (f64, bool), hi: f64, unit: &str, why: &str) -> Result<f64> {
     crate::error::finite(field, value)?;
     if lo.0 == 0.0 {
@@ -348,6 +377,7 @@ fn npy_matrix(a: NpyArray, field: &str, what: &str) -> Result<(usize, Vec<f64>)>
 /// A square matrix from the file `path` named by the key `field`: Matrix Market text or a
 /// `.npy` array (`(n, row-major entries)`).
 fn matrix_file(field: &str, path: &str, load: &mut dyn FnMut(&str) -> std::result::Result<Vec<u8>, String>) -> Result<(usize, Vec<f64>)> {
+    empty_name(field, path)?;
     if path.ends_with(".npz") {
         return Err(Error::invalid(field, format!("{path}: an .npz archive holds all the matrices: name it as linear_rotor.matrices")));
     }
@@ -363,6 +393,15 @@ fn matrix_file(field: &str, path: &str, load: &mut dyn FnMut(&str) -> std::resul
     }
     bounded_entries(field, path, rows, &a)?;
     Ok((rows, a))
+}
+
+/// A file name given as the empty string: named as such (`rotor_fixed_mass = ""` said
+/// "linear_rotor.rotor_fixed_mass: : : cannot read: …", the empty name between colons).
+fn empty_name(field: &str, path: &str) -> Result<()> {
+    if path.trim().is_empty() {
+        return Err(Error::invalid(field, format!("the file name is empty ({path:?}): give the matrix file's name, relative to the config's folder")));
+    }
+    Ok(())
 }
 
 /// [`linear_rotor`] with a loader of bytes: matrix files are Matrix Market text, `.npy` arrays
@@ -399,6 +438,7 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
     // the .npz archive, read once: its arrays by key
     let mut archive: Option<Vec<(String, NpyArray)>> = None;
     if let Some(path) = string("matrices")? {
+        empty_name("linear_rotor.matrices", path)?;
         if let Some(k) = ["m", "c", "g", "k", "kst", "spin_chart"].iter().find(|k| lr.contains_key(**k)) {
             return Err(Error::invalid(format!("linear_rotor.{k}"), "give the matrices either in the archive linear_rotor.matrices or one by one, not both"));
         }
@@ -682,6 +722,7 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
         rotor.rotor_fixed_mass = a;
     }
     // bearings: constant isotropic ones into K, C; tables over speed kept as speed bearings
+    let mut constant_bearings: Vec<(String, f64, f64)> = Vec::new();
     for (i, br) in items(lr, "bearings")?.iter().enumerate() {
         let node = br.req_usize("node")?;
         if node >= rotor.nodes {
@@ -709,6 +750,7 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
                 // eigenvalue solver that did not converge, naming no field)
                 within(&br.field("k"), k, (0.0, false), 1e13, "N/m", STIFF)?;
                 within(&br.field("c"), c, (0.0, false), 1e12, "N·s/m", DAMP)?;
+                constant_bearings.push((br.field("c"), k, c));
                 let Bearing { node, k, c } = Bearing { node, k, c };
                 let (mut kk, mut cc) = (std::mem::take(&mut rotor.k), std::mem::take(&mut rotor.c));
                 rotor.add_bearing_block(node, link, &[k, 0.0, 0.0, k], &mut kk);
@@ -784,6 +826,7 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
             }
         }
     }
+    check_bearing_damping(&rotor, &constant_bearings)?;
     for u in items(lr, "unbalance")? {
         if let Some(me) = u.f64("me")? {
             within_magnitude(&u.field("me"), me, 1e12, "kg·m", "1e9 kg at 1e3 m")?;

@@ -423,6 +423,36 @@ pub(crate) fn check_ranges(r: &PlanarRotor) -> Result<()> {
             ));
         }
     }
+    check_damping_ratios(r)
+}
+
+/// Each direction's support damping through the dimensionless damping it implies, as the
+/// spatial rotor's supports (`h̄x`, [`crate::spatial::dynamics::SpatialRotor::to_dimensionless`]):
+/// `c_d/(m0 ω_d)` with `ω_d = sqrt(k_d/m0)`, within the range of `dimensionless.h_x` (a
+/// damping ratio up to 500; beyond, the supports do not move). The error names the damping
+/// key the config gives: `planar.c` (the same in every direction, held against the smaller
+/// stiffness where `k_x` and `k_y` differ), else `planar.c_x` or `planar.c_y`. (`c_y = 1e12`
+/// was taken, and `stability` then ran for minutes.)
+fn check_damping_ratios(r: &PlanarRotor) -> Result<()> {
+    let m0 = r.total_mass();
+    let ((kx, ky), (cx, cy)) = (r.stiffness_xy(), r.damping_xy());
+    let k_keys = if r.k_y.is_some() { ["k_x", "k_y"] } else { ["k", "k"] };
+    let c_keys = if r.c_y.is_some() { ["c_x", "c_y"] } else { ["c", "c"] };
+    // x then y; the isotropic c against the smaller stiffness, named once
+    let mut order = [(0, kx, cx), (1, ky, cy)];
+    if r.c_y.is_none() && ky < kx {
+        order.swap(0, 1);
+    }
+    for (d, k, c) in order {
+        let (kk, ck) = (k_keys[d], c_keys[d]);
+        let omega = (k / m0).sqrt();
+        let what = format!(
+            "{ck}/(m0 ω) with ω = sqrt({kk}/m0) = {} rad/s (m0 = {} kg), the dimensionless damping of the supports,",
+            crate::error::fmt_num(omega),
+            crate::error::fmt_num(m0)
+        );
+        crate::limits::check_derived(&format!("planar.{ck}"), "dimensionless.h_x", c / (m0 * omega), &what)?;
+    }
     Ok(())
 }
 

@@ -223,6 +223,7 @@ impl SpatialRotor {
         if self.supports.len() == 1 && !self.lock_tilt {
             return Err(Error::invalid("supports", "one support cannot hold the tilt: give two supports or lock the tilt (spatial.lock_tilt = true)"));
         }
+        self.check_damping_ratios()?;
         for (i, u) in self.unbalances.iter().enumerate() {
             let t = if i == 0 { "unbalance" } else { "couple" };
             non_negative(&format!("{t}.mass"), u.mass)?;
@@ -246,6 +247,32 @@ impl SpatialRotor {
             finite(&format!("spatial.gravity[{i}]"), *g)?;
         }
         non_negative("spatial.spin_drag", self.spin_drag)?;
+        Ok(())
+    }
+
+    /// The supports' damping in each fixed direction through the dimensionless damping it
+    /// implies, as [`Self::to_dimensionless`] checks the x direction's `h̄x`:
+    /// `h_d = (Σ damping_d)/(M_s ω0_d)` with `ω0_d = sqrt((Σ stiffness_d)/M_s)`, `d` = x, y,
+    /// within the range of `dimensionless.h_x` (a damping ratio up to 500). The error names
+    /// the support of the larger damping as the config spells it (`supports.damping_left_y`):
+    /// a y damping of 1e12 N·s/m was taken and the general route then ran for minutes.
+    /// The stiffnesses must be positive (checked before).
+    fn check_damping_ratios(&self) -> Result<()> {
+        let ms = self.total_mass();
+        for (d, suffix) in [(0, ""), (1, "_y")] {
+            let stiffness: f64 = self.supports.iter().map(|s| s.stiffness[d]).sum();
+            let damping: f64 = self.supports.iter().map(|s| s.damping[d]).sum();
+            let omega0 = (stiffness / ms).sqrt();
+            // the support of the larger damping (the left one at a tie, as to_dimensionless)
+            let worse = (0..self.supports.len()).fold(0, |w, i| if self.supports[i].damping[d] > self.supports[w].damping[d] { i } else { w });
+            let side = ["left", "right"][worse];
+            let what = if self.supports.len() == 2 {
+                format!("(damping_left{suffix} + damping_right{suffix})/(M_s ω0{suffix}), ω0{suffix} = sqrt((stiffness_left{suffix} + stiffness_right{suffix})/M_s),")
+            } else {
+                format!("damping_left{suffix}/(M_s ω0{suffix}), ω0{suffix} = sqrt(stiffness_left{suffix}/M_s),")
+            };
+            check_derived(&format!("supports.damping_{side}{suffix}"), "dimensionless.h_x", damping / (ms * omega0), &what)?;
+        }
         Ok(())
     }
 
