@@ -920,7 +920,8 @@ pub fn stability_map_units(
 
 /// A stability map at one speed given in SI, `w` rad/s, over two axes that may move the
 /// rotor's `ω0 = sqrt(c_x/M_s)` (a mass, a stiffness): every cell at its own
-/// `Ω = w/ω0(x, y)`, the `Ω` of paper 000's eq (6) for that cell's rotor, so that the whole
+/// `Ω = w/ω0(x, y)` of paper 000's eqs (8), (10) for that cell's rotor (whose every
+/// dimensionless coefficient is scaled by that `ω0`), so that the whole
 /// map is the one speed an engineer asks about (a washer's spin at 1400 rpm over its ball mass
 /// and suspension). Each cell is its own model solved directly at its `Ω`, as every cell of a
 /// map without a speed axis is (`s.omega` is not read); a cell equals the one-point map at
