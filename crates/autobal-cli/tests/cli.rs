@@ -502,6 +502,23 @@ fn interrupted_after(args: &[&str], ms: u64) -> (Option<i32>, String, String) {
 
 #[cfg(unix)]
 #[test]
+fn interrupted_shooting_stops_inside_the_first_speed() {
+    // hunts 27-28: a stiff rotor (damping along y near its bound: the supports' damping ratio
+    // ~900) takes seconds to minutes per speed in its shooting, which asked no control, so a
+    // Ctrl-C was answered only after that speed. Now the integrations ask the thread's stop
+    // probe: a Ctrl-C 0.5 s in stops the first speed's shooting, and nothing of it is reported
+    // (before: the first speed finished and was reported, "1 of 10 speeds analysed")
+    let cfg = format!("{}/../../examples/spatial_two_plane.toml", env!("CARGO_MANIFEST_DIR"));
+    for cmd in [&["stability", "--samples", "10"][..], &["campbell", "--points", "5"][..]] {
+        let args = [cmd, &["--config", &cfg, "--set", "supports.damping_left_y=1e7"][..]].concat();
+        let (code, _, err) = interrupted_after(&args, 500);
+        assert_eq!(code, Some(2), "{cmd:?}: {err}");
+        assert!(err.contains("error: interrupted: 0 of"), "{cmd:?}: {err}");
+    }
+}
+
+#[cfg(unix)]
+#[test]
 fn interrupted_campbell_writes_the_speeds_computed() {
     // ten million speeds take minutes: Ctrl-C after 1.5 s stops the run; the JSON holds the
     // speeds computed (every line as long as the speed axis), says it is incomplete, the figures

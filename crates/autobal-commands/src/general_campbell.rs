@@ -345,6 +345,11 @@ pub fn campbell_table(g: &GeneralRotor, gc: &GeneralCampbell) -> String {
     let n = c.omega.len();
     let mut at = vec![0, n / 4, n / 2, 3 * n / 4, n.saturating_sub(1)];
     at.dedup();
+    if n == 0 {
+        // stopped before its first speed (Ctrl-C during the first speed's shooting)
+        let _ = writeln!(s, "\nno speed computed");
+        at.clear();
+    }
     for k in at {
         let _ = writeln!(s, "\nspeed {}", speed_text(g, c.omega[k]));
         if let Some(f) = &c.failures[k] {

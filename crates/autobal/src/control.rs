@@ -123,6 +123,37 @@ pub struct Progress {
 
 type Observer = Arc<dyn Fn(Progress) + Send + Sync>;
 
+thread_local! {
+    /// This thread's stop probe ([`with_probe`]).
+    static PROBE: std::cell::RefCell<Option<Control>> = const { std::cell::RefCell::new(None) };
+}
+
+/// Run `f` with `control` as this thread's *stop probe*: the inner loops that take no control
+/// of their own (the analyses' integrations over one period, [`crate::ode::lean`]) ask it
+/// every few hundred steps ([`probe`]) and end early when it says stop, so that Ctrl-C, a
+/// signal or a budget stops one speed's shooting or monodromy within milliseconds instead of
+/// after that speed (minutes on a stiff rotor: hunts 27 and 28). The caller, which asks
+/// `control` itself, then drops what the stopped loop left unfinished. The previous probe is
+/// restored afterwards (also on a panic). Worker threads have their own: a parallel loop
+/// installs it in each task.
+pub fn with_probe<T>(control: &Control, f: impl FnOnce() -> T) -> T {
+    struct Restore(Option<Control>);
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            let prev = self.0.take();
+            PROBE.with(|p| *p.borrow_mut() = prev);
+        }
+    }
+    let _restore = Restore(PROBE.with(|p| p.replace(Some(control.clone()))));
+    f()
+}
+
+/// Why this thread's stop probe ([`with_probe`]) says stop; `None` without a probe or while it
+/// goes on.
+pub fn probe() -> Option<StopReason> {
+    PROBE.with(|p| p.borrow().as_ref().and_then(Control::should_stop))
+}
+
 /// What every long computation is run under: a cancel flag shared across threads, an optional
 /// wall-time budget, an optional progress observer (see the [module docs](self)). Cloning shares
 /// the flag, the budget's clock and the observer.

@@ -761,31 +761,41 @@ pub fn campbell_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Control
             control.report(per_speed.len() as u64, speeds.len() as u64);
             continue;
         }
-        let guess = free_start(rotor, &f, &opts);
-        let near = previous.as_ref().map(|p| p.x.clone());
-        let hint = previous.as_ref().and_then(|p| p.monodromy.clone());
-        let mut result = Err(reason(no_state_free(rotor)));
-        // the closed form, shot from first with `hint` (Rotor::settle_balanced does not repeat it)
-        let guess_tried = guess.clone();
-        for start in [guess, near].into_iter().flatten() {
-            match stationary_near(&f, &start, hint.as_deref(), &opts) {
-                Ok(s) => {
-                    result = Ok(s);
-                    break;
+        // under the control's stop probe: a stop ends this speed's integrations early, and a
+        // speed that failed then is dropped, not reported as a speed without a state
+        let computed = crate::control::with_probe(control, || {
+            let guess = free_start(rotor, &f, &opts);
+            let near = previous.as_ref().map(|p| p.x.clone());
+            let hint = previous.as_ref().and_then(|p| p.monodromy.clone());
+            let mut result = Err(reason(no_state_free(rotor)));
+            // the closed form, shot from first with `hint` (Rotor::settle_balanced does not repeat it)
+            let guess_tried = guess.clone();
+            for start in [guess, near].into_iter().flatten() {
+                match stationary_near(&f, &start, hint.as_deref(), &opts) {
+                    Ok(s) => {
+                        result = Ok(s);
+                        break;
+                    }
+                    Err(e) => result = Err(e.to_string()),
                 }
-                Err(e) => result = Err(e.to_string()),
             }
-        }
-        // the balanced (semi-balanced) state wherever Newton reaches one, as `stability` and
-        // `map` analyse (Rotor::settle_balanced, the commands' one rule), classified once
-        let result = result.map(|s| Rotor::settle_balanced(&f, s, hint.as_deref(), guess_tried.as_deref(), &opts));
-        match result.and_then(|(s, class)| spectrum_and_modes_at(rotor, &f, w, &s).map(|p| (s, class, p)).map_err(|e| e.to_string())) {
+            // the balanced (semi-balanced) state wherever Newton reaches one, as `stability` and
+            // `map` analyse (Rotor::settle_balanced, the commands' one rule), classified once
+            let result = result.map(|s| Rotor::settle_balanced(&f, s, hint.as_deref(), guess_tried.as_deref(), &opts));
+            result.and_then(|(s, class)| spectrum_and_modes_at(rotor, &f, w, &s).map(|p| (s, class, p)).map_err(|e| e.to_string()))
+        });
+        match computed {
             Ok((s, class, (p, modes))) => {
                 states[per_speed.len()] = Some(class.0);
                 previous = Some(s);
                 tracker.push(Some(&p), Some(modes));
                 per_speed.push(Some(()));
                 failures.push(None);
+            }
+            Err(_) if control.should_stop().is_some() => {
+                analysed.pop();
+                stopped = control.should_stop();
+                break;
             }
             Err(e) => {
                 previous = None;

@@ -895,8 +895,20 @@ fn map_on(
     while j0 < y.values.len() {
         let j1 = (j0 + block).min(y.values.len());
         #[allow(clippy::type_complexity)]
-        let rows: Vec<Option<(Vec<GeneralCell>, Vec<BoundaryPoint>, Vec<Option<StationaryState>>)>> =
-            (j0..j1).into_par_iter().map(|j| if control.should_stop().is_some() { Ok(None) } else { plane.row(j, trace).map(Some) }).collect::<Result<_>>()?;
+        let rows: Vec<Option<(Vec<GeneralCell>, Vec<BoundaryPoint>, Vec<Option<StationaryState>>)>> = (j0..j1)
+            .into_par_iter()
+            .map(|j| {
+                if control.should_stop().is_some() {
+                    return Ok(None);
+                }
+                // under the stop probe (a stop ends a cell's shooting early): a row with a
+                // cell left without a state once the control says stop is dropped, not
+                // handed over with a cell that only the stop left without one
+                let row = crate::control::with_probe(control, || plane.row(j, trace))?;
+                let cut = control.should_stop().is_some() && row.0.iter().any(|c| c.verdict.is_none() && c.analysed);
+                Ok((!cut).then_some(row))
+            })
+            .collect::<Result<_>>()?;
         // the points along `y` between each row and the one before it (both computed)
         let mut along_y: Vec<Vec<BoundaryPoint>> = vec![vec![]; rows.len()];
         if trace {
@@ -910,8 +922,10 @@ fn map_on(
                     Some((jj, (lo, ls), (hi.as_slice(), hs.as_slice())))
                 })
                 .collect();
-            let found: Vec<(usize, Vec<BoundaryPoint>)> =
-                pairs.into_par_iter().map(|(jj, lo, hi)| Ok((jj, plane.column_points(j0 + jj - 1, lo, hi)?))).collect::<Result<_>>()?;
+            let found: Vec<(usize, Vec<BoundaryPoint>)> = pairs
+                .into_par_iter()
+                .map(|(jj, lo, hi)| Ok((jj, crate::control::with_probe(control, || plane.column_points(j0 + jj - 1, lo, hi))?)))
+                .collect::<Result<_>>()?;
             for (jj, p) in found {
                 along_y[jj] = p;
             }

@@ -641,8 +641,14 @@ where
             break;
         }
         let m = points.len();
-        match evaluate_grid(omega, m.checked_sub(2).map(|i| &points[i]), points.last()) {
+        // under the control's stop probe: a stop ends this speed's integrations early, and a
+        // speed that failed then is dropped, not reported as a speed without a state
+        match crate::control::with_probe(control, || evaluate_grid(omega, m.checked_sub(2).map(|i| &points[i]), points.last())) {
             Ok((state, st)) => points.push(ScanPoint { omega, state: Some(state), stability: Some(st), failure: None }),
+            Err(_) if control.should_stop().is_some() => {
+                stopped = control.should_stop();
+                break;
+            }
             Err(e) => points.push(ScanPoint { omega, state: None, stability: None, failure: Some(e) }),
         }
         control.report(points.len() as u64, speeds.len() as u64);
@@ -657,7 +663,7 @@ where
         if a.is_stable() == b.is_stable() || a.stability.is_none() || b.stability.is_none() || stopped.is_some() {
             continue;
         }
-        let (mut end, mut why, mut switch) = locate_end(a, b, opts.boundary_rtol, control, evaluate);
+        let (mut end, mut why, mut switch) = crate::control::with_probe(control, || locate_end(a, b, opts.boundary_rtol, control, evaluate));
         if switch && why.is_none() {
             // the last bracket holds two states (the grid speeds' starts, or the trials', reach
             // different ones): locate again following only the stable side's state, each trial
@@ -694,7 +700,7 @@ where
             };
             if followed.is_stable() != kept.is_stable() {
                 let (p, q) = if a.is_stable() { (kept, &followed) } else { (&followed, kept) };
-                (end, why, switch) = locate_end(p, q, opts.boundary_rtol, control, follow);
+                (end, why, switch) = crate::control::with_probe(control, || locate_end(p, q, opts.boundary_rtol, control, follow));
             } else {
                 // the followed state is stable at the other grid speed too: the range's state
                 // goes on, and the verdict there is another state's: the switch is the grid speed

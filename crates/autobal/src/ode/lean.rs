@@ -1,5 +1,6 @@
 //! DOP853 over one interval with nothing else: no events, no observer, no dense output, no
-//! method switching, no budgets. For the many short integrations of a shooting method (the flow
+//! method switching, no budgets (only the thread's stop probe, [`crate::control::with_probe`],
+//! asked every 256 steps). For the many short integrations of a shooting method (the flow
 //! over a period, the variational equations `Φ' = J Φ` on `n²` states), where
 //! [`Solver::integrate`](super::Solver::integrate)'s generality is not used.
 //!
@@ -104,7 +105,8 @@ impl Lean {
 /// `0.9 err^{−1/8}` within `[1/3, 6]`, not above 1 after a rejection; a non-finite step cut
 /// fivefold) and end handling of [`Solver`](super::Solver) under `Method::Dop853` with default
 /// options: the same steps and, bit for bit, the same result ([module docs](self)). The
-/// [`Outcome`] says how it ended (`Completed`, `StepTooSmall`, `NotFinite`).
+/// [`Outcome`] says how it ended (`Completed`, `StepTooSmall`, `NotFinite`, or `Stopped` when
+/// this thread's stop probe says so, [`crate::control::with_probe`]).
 pub fn integrate<S: System + ?Sized>(sys: &S, work: &mut Lean, t0: f64, y: &mut [f64], t_end: f64, rtol: f64, atol: &[f64]) -> Outcome {
     let n = work.n;
     assert!(y.len() == n && atol.len() == n && sys.dim() == n, "state, atol and system of length n");
@@ -133,7 +135,16 @@ pub fn integrate<S: System + ?Sized>(sys: &S, work: &mut Lean, t0: f64, y: &mut 
     };
     let q = dop853::ORDER as f64;
     let mut rejected_last = false;
+    let mut attempts = 0u32;
     loop {
+        // this thread's stop probe, every 256 attempted steps (crate::control::with_probe)
+        attempts = attempts.wrapping_add(1);
+        if attempts.is_multiple_of(256) {
+            if let Some(why) = crate::control::probe() {
+                y.copy_from_slice(&work.y);
+                return Outcome { status: Status::Stopped(why), t, stats };
+            }
+        }
         if t >= t_end {
             y.copy_from_slice(&work.y);
             return Outcome { status: Status::Completed, t, stats };
@@ -206,6 +217,38 @@ mod tests {
             dy[3] = -9.0 * y[2] - 0.1 * y[3] * y[0] + (0.7 * t).sin();
             dy[4] = -0.3 * y[4] + y[0] * y[0];
         }
+    }
+
+    #[test]
+    fn a_stop_probe_ends_an_integration_within_256_steps() {
+        // hunts 27-28: one speed's shooting on a stiff rotor took minutes and did not ask the
+        // control; the thread's stop probe (crate::control::with_probe) is asked every 256
+        // attempted steps. A cancelled control installed as the probe stops the integration at
+        // the first ask (at most 256 steps of 12 evaluations and the start's 2); the same
+        // integration with the control not installed runs to its end (thousands of steps: an
+        // oscillator of period 0.63 over 300 periods)
+        struct Osc;
+        impl System for Osc {
+            fn dim(&self) -> usize {
+                2
+            }
+            fn rhs(&self, _t: f64, y: &[f64], dy: &mut [f64]) {
+                dy[0] = y[1];
+                dy[1] = -100.0 * y[0];
+            }
+        }
+        let (rtol, atol, t_end) = (1e-10, vec![1e-10; 2], 190.0);
+        let control = crate::control::Control::new();
+        control.cancel();
+        let mut a = vec![1.0, 0.0];
+        let stopped = crate::control::with_probe(&control, || integrate(&Osc, &mut Lean::new(2), 0.0, &mut a, t_end, rtol, &atol));
+        assert!(matches!(stopped.status, Status::Stopped(crate::control::StopReason::Interrupted)), "{:?}", stopped.status);
+        assert!(stopped.stats.rhs_evaluations <= 256 * 12 + 2 && stopped.t < t_end, "{:?} at t = {}", stopped.stats, stopped.t);
+        let mut b = vec![1.0, 0.0];
+        let done = integrate(&Osc, &mut Lean::new(2), 0.0, &mut b, t_end, rtol, &atol);
+        assert!(done.status.is_completed() && done.stats.rhs_evaluations > 4 * 256 * 12, "{:?}", done.stats);
+        // the probe is this thread's only while installed
+        assert!(crate::control::probe().is_none());
     }
 
     #[test]
