@@ -58,9 +58,7 @@
 //! - [`speed_scan`]: the stationary state continued along a grid of speeds (each Newton from
 //!   the model's closed-form guess, else from the previous speed's solution, per
 //!   [`ScanOptions::prefer_guess`]; a periodic orbit's shooting starting from the previous
-//!   orbit's monodromy matrix, and, from the third grid speed on, where the closed form comes
-//!   first but is not the orbit itself, from the state extrapolated from the two previous
-//!   orbits, kept only within their spread of it), its stability at each, and the ends of the stable ranges
+//!   orbit's monodromy matrix), its stability at each, and the ends of the stable ranges
 //!   located to `1e-9` relative in `Ω` (Brent's method on the abscissa, safeguarded by
 //!   bisection; a periodic orbit's trial speeds shot from the state interpolated between the
 //!   two nearest solutions, with the nearest one's monodromy matrix).

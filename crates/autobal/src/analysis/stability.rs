@@ -1,7 +1,7 @@
 //! Linear stability of a stationary state, and its continuation over the rotor speed (module
 //! docs of [`crate::analysis`]).
 
-use super::stationary::{periodic_at, stationary_near, NewtonOptions, StationaryState};
+use super::stationary::{stationary_near, NewtonOptions, StationaryState};
 use super::{AnalysisError, Result, VectorField};
 use crate::control::{Control, Outcome};
 use crate::linalg::eigen::complex_solve;
@@ -195,10 +195,6 @@ pub struct ScanOptions {
     /// Start Newton from the model's closed-form state before the previous speed's solution
     /// (default `true`): the closed form names the branch (balanced, semi-balanced) whose
     /// stability is asked, and continuation could otherwise switch branches at a bifurcation.
-    /// A periodic orbit's grid speed past the second, where the closed form is not the orbit
-    /// itself (one flow tells), is shot first from the state extrapolated from the two
-    /// previous grid speeds' orbits, kept only if the orbit found lies within their spread of
-    /// it (the same branch), else from the closed form as above.
     pub prefer_guess: bool,
 }
 
@@ -310,16 +306,6 @@ fn predict(p: &Trial, q: &Trial, omega: f64) -> Option<(Vec<f64>, Vec<f64>)> {
     let x: Vec<f64> = xp.x.iter().zip(&xq.x).map(|(a, b)| a + w * (b - a)).collect();
     let spread: Vec<f64> = xp.x.iter().zip(&xq.x).map(|(a, b)| (b - a).abs()).collect();
     x.iter().all(|v| v.is_finite()).then_some((x, spread))
-}
-
-/// Whether the state `x` found from the prediction `x_pred` lies within the neighbours'
-/// `spread` of it ([`predict`]): `‖S⁻¹(x − x_pred)‖∞ ≤ ‖S⁻¹ spread‖∞ + 1e-6`, scaled by
-/// [`VectorField::scales`].
-fn within_spread<F: VectorField>(f: &F, x: &[f64], x_pred: &[f64], spread: &[f64]) -> bool {
-    let sc = f.scales();
-    let scaled = |v: &mut dyn Iterator<Item = f64>| v.zip(&sc).map(|(d, s)| (d / s).abs()).fold(0.0, f64::max);
-    let off = scaled(&mut x.iter().zip(x_pred).map(|(a, b)| a - b));
-    off <= scaled(&mut spread.iter().copied()) + 1e-6
 }
 
 /// The end of a stable range between the grid speeds `a` and `b` (verdicts differ), located to
@@ -487,9 +473,8 @@ fn bisect(
 /// The stationary state and its stability along `speeds` (ascending or descending), and the
 /// ends of the stable ranges (module docs of [`crate::analysis`]): `field_at(Ω)` builds the
 /// model at speed `Ω`; `guess_at(&field, Ω)` gives its closed-form stationary state where one
-/// exists. At each speed Newton starts from the guess, else from the previous speed's
-/// solution ([`ScanOptions::prefer_guess`]: a periodic orbit's grid speed past the second from
-/// the two previous orbits extrapolated, where the guess is not the orbit); between two speeds whose verdicts differ (stable or not), the boundary is bracketed
+/// exists. At each speed Newton starts from the previous speed's solution, else from the
+/// guess; between two speeds whose verdicts differ (stable or not), the boundary is bracketed
 /// to `boundary_rtol · Ω` on the sign of the abscissa `α` (so an end is where `α` crosses
 /// zero) by Brent's method on `α` (inverse quadratic interpolation and secant steps,
 /// safeguarded by bisection; bisection on the verdict where `α` is missing), a periodic orbit's
@@ -548,28 +533,6 @@ where
     if let Some(w) = speeds.iter().find(|w| !w.is_finite()) {
         return Err(AnalysisError::InvalidInput { field: "speeds".into(), reason: format!("{w} is not a finite speed") });
     }
-    // the state at `omega` by Newton from the closed form `guess` and the previous speed's
-    // solution (in the order `prefer_guess` asks), else from the last resort; then `settle`
-    let from_starts =
-        |f: &F, omega: f64, previous: Option<&StationaryState>, guess: Option<Vec<f64>>| -> std::result::Result<(StationaryState, Stability), String> {
-            let hint = previous.and_then(|p| p.monodromy.as_deref());
-            // the closed-form state first where the model has one: near a bifurcation (a real
-            // eigenvalue crossing zero, where another branch of stationary states crosses the
-            // balanced one) Newton from a neighbour's solution can land on the other branch, whose
-            // stability is the opposite; the closed form pins the branch the user asked about
-            let near = previous.map(|p| p.x.as_slice());
-            let starts = if opts.prefer_guess { [guess.as_deref(), near] } else { [near, guess.as_deref()] };
-            // a periodic orbit's shooting starts from the neighbour's monodromy matrix (no
-            // variational integration until the orbit is found)
-            let state = solve_at(f, &starts, hint, &opts.newton).or_else(|e| match last_at(f, omega) {
-                Some(last) => solve_at(f, &[Some(last.as_slice())], hint, &opts.newton).map_err(|_| e),
-                None => Err(e),
-            })?;
-            // the guess, first, was shot from with `hint` whatever came of it
-            let tried = if opts.prefer_guess { guess.as_deref() } else { None };
-            let state = settle(f, state, hint, tried);
-            stability(f, &state).map(|st| (state, st)).map_err(|e| e.to_string())
-        };
     // `predicted`: a start from the neighbours of a range end's trial speed, and their spread
     // `|x_p − x_q|` (how far from it the state found may lie: below)
     let evaluate =
@@ -583,73 +546,55 @@ where
             // neighbours' spread of the prediction (else the closed form, as at a grid speed)
             if let Some((x_pred, spread)) = predicted {
                 if let Ok(state) = stationary_near(&f, x_pred, hint, &opts.newton) {
-                    if within_spread(&f, &state.x, x_pred, spread) {
+                    let sc = f.scales();
+                    let scaled = |v: &mut dyn Iterator<Item = f64>| v.zip(&sc).map(|(d, s)| (d / s).abs()).fold(0.0, f64::max);
+                    let off = scaled(&mut state.x.iter().zip(x_pred).map(|(a, b)| a - b));
+                    if off <= scaled(&mut spread.iter().copied()) + 1e-6 {
                         return stability(&f, &state).map(|st| (state, st)).map_err(|e| e.to_string());
                     }
                 }
             }
             let guess = guess_at(&f, omega);
-            from_starts(&f, omega, previous, guess)
+            // the closed-form state first where the model has one: near a bifurcation (a real
+            // eigenvalue crossing zero, where another branch of stationary states crosses the
+            // balanced one) Newton from a neighbour's solution can land on the other branch, whose
+            // stability is the opposite; the closed form pins the branch the user asked about
+            let near = previous.map(|p| p.x.as_slice());
+            let starts = if opts.prefer_guess { [guess.as_deref(), near] } else { [near, guess.as_deref()] };
+            // a periodic orbit's shooting starts from the neighbour's monodromy matrix (no
+            // variational integration until the orbit is found)
+            let state = solve_at(&f, &starts, hint, &opts.newton).or_else(|e| match last_at(&f, omega) {
+                Some(last) => solve_at(&f, &[Some(last.as_slice())], hint, &opts.newton).map_err(|_| e),
+                None => Err(e),
+            })?;
+            // the guess, first, was shot from with `hint` whatever came of it
+            let tried = if opts.prefer_guess { guess.as_deref() } else { None };
+            let state = settle(&f, state, hint, tried);
+            stability(&f, &state).map(|st| (state, st)).map_err(|e| e.to_string())
         };
-    // a grid speed of a periodic orbit with two solved grid speeds before it (`p`, `q`, the
-    // previous), where the closed form comes first (`prefer_guess`): the closed form's orbit
-    // where it is one itself (one flow tells, and the answer is then the closed form's bit for
-    // bit: the planar rotor's balanced state on unequal supports); else shot from the state
-    // extrapolated from `p`'s and `q`'s orbits, taken only within their spread of it (as at a
-    // range end's trial) and settled as at any grid speed; else from the closed form and the
-    // previous orbit. The closed form is the autonomous neighbour, not the orbit: shot from
-    // it with the previous speed's monodromy, the first quasi-Newton step stalls and the
-    // variational equations are integrated again (a steering monodromy, ~9 flows' cost), which
-    // the extrapolated start (~1e-6-1e-4 off, scaled) does not need on the two-plane rotor
-    // under gravity above 1250 rad/s. (The guess is asked once: a rotor's guess can shoot
-    // orbits and keeps what it found per speed.)
-    let evaluate_grid = |omega: f64, p: Option<&ScanPoint>, q: Option<&ScanPoint>| -> std::result::Result<(StationaryState, Stability), String> {
-        let previous = q.and_then(|q| q.state.as_ref());
-        let predicted = match (p, q) {
-            (Some(p), Some(q)) if opts.prefer_guess => predict(&Trial::of(p), &Trial::of(q), omega),
-            _ => None,
-        };
-        let Some((x_pred, spread)) = predicted else { return evaluate(omega, previous, None) };
-        let f = field_at(omega).map_err(|e| e.to_string())?;
-        let hint = previous.and_then(|p| p.monodromy.as_deref());
-        let guess = guess_at(&f, omega);
-        if let Some(g) = guess.as_deref() {
-            match periodic_at(&f, g, hint, &opts.newton) {
-                Ok(Some(state)) => {
-                    let state = settle(&f, state, hint, Some(g));
-                    return stability(&f, &state).map(|st| (state, st)).map_err(|e| e.to_string());
-                }
-                Ok(None) => {}
-                Err(_) => return from_starts(&f, omega, previous, guess),
-            }
-        }
-        if let Ok(state) = stationary_near(&f, &x_pred, hint, &opts.newton) {
-            if within_spread(&f, &state.x, &x_pred, &spread) {
-                // a state that is not the wanted one (the rotor's balanced) is shot again from
-                // the closed form, as `from_starts` would have (tried: nothing yet)
-                let state = settle(&f, state, hint, None);
-                return stability(&f, &state).map(|st| (state, st)).map_err(|e| e.to_string());
-            }
-        }
-        from_starts(&f, omega, previous, guess)
-    };
     let mut points: Vec<ScanPoint> = Vec::with_capacity(speeds.len());
+    let mut previous: Option<StationaryState> = None;
     let mut stopped = None;
     for &omega in speeds {
         if let Some(why) = control.should_stop() {
             stopped = Some(why);
             break;
         }
-        let m = points.len();
         // under the control's stop probe: a stop ends this speed's integrations early, and a
         // speed that failed then is dropped, not reported as a speed without a state
-        match crate::control::with_probe(control, || evaluate_grid(omega, m.checked_sub(2).map(|i| &points[i]), points.last())) {
-            Ok((state, st)) => points.push(ScanPoint { omega, state: Some(state), stability: Some(st), failure: None }),
+        match crate::control::with_probe(control, || evaluate(omega, previous.as_ref(), None)) {
+            Ok((state, st)) => {
+                previous = Some(state.clone());
+                points.push(ScanPoint { omega, state: Some(state), stability: Some(st), failure: None });
+            }
             Err(_) if control.should_stop().is_some() => {
                 stopped = control.should_stop();
                 break;
             }
-            Err(e) => points.push(ScanPoint { omega, state: None, stability: None, failure: Some(e) }),
+            Err(e) => {
+                previous = None;
+                points.push(ScanPoint { omega, state: None, stability: None, failure: Some(e) });
+            }
         }
         control.report(points.len() as u64, speeds.len() as u64);
     }

@@ -64,42 +64,7 @@ pub fn stationary<F: VectorField + ?Sized>(f: &F, guess: &[f64], opts: &NewtonOp
 /// guess; ignored for an equilibrium, or when of the wrong size or not finite. The result is
 /// the same orbit (to the tolerance) with its own monodromy matrix.
 pub fn stationary_near<F: VectorField + ?Sized>(f: &F, guess: &[f64], monodromy_hint: Option<&[f64]>, opts: &NewtonOptions) -> Result<StationaryState> {
-    let (s, k) = checked(f, guess)?;
-    match f.period() {
-        None => equilibrium(f, guess, &s, k, opts),
-        Some(t) if t > 0.0 && t.is_finite() => periodic(f, guess, t, &s, k, opts, monodromy_hint, None),
-        Some(t) => {
-            Err(AnalysisError::InvalidInput { field: "period".into(), reason: format!("must be positive and finite, got {}", crate::error::fmt_num(t)) })
-        }
-    }
-}
-
-/// The periodic orbit through `guess` itself, where `guess` is one (its residual after one
-/// flow over the period at most the tolerance): then [`stationary_near`]'s result from `guess`
-/// bit for bit, at its cost (that flow and the orbit's monodromy matrix); `None` where `guess`
-/// is not the orbit (one flow spent) or `f` is autonomous (nothing spent). A speed scan asks it
-/// of the closed form before shooting from elsewhere, so that where the closed form is the
-/// orbit (the planar rotor's balanced state on unequal supports) the answer is the closed
-/// form's.
-pub(crate) fn periodic_at<F: VectorField + ?Sized>(
-    f: &F,
-    guess: &[f64],
-    monodromy_hint: Option<&[f64]>,
-    opts: &NewtonOptions,
-) -> Result<Option<StationaryState>> {
-    let (s, k) = checked(f, guess)?;
-    let Some(t) = f.period().filter(|t| *t > 0.0 && t.is_finite()) else { return Ok(None) };
-    let end = flow(f, guess, t, &s, opts.rtol)?;
-    let r = norm_inf(&guess.iter().zip(&end).zip(&s).map(|((a, b), si)| (a - b) / si).collect::<Vec<f64>>());
-    if !(r <= opts.periodic_tolerance) {
-        return Ok(None);
-    }
-    periodic(f, guess, t, &s, k, opts, monodromy_hint, Some(end)).map(Some)
-}
-
-/// `guess`'s length and finiteness, and the field's scales, checked: the scales and the
-/// family dimension at `guess`.
-fn checked<F: VectorField + ?Sized>(f: &F, guess: &[f64]) -> Result<(Vec<f64>, usize)> {
+    let hint = monodromy_hint;
     let n = f.dim();
     if guess.len() != n {
         return Err(AnalysisError::InvalidInput { field: "guess".into(), reason: format!("has {} components, the field {n}", guess.len()) });
@@ -111,7 +76,14 @@ fn checked<F: VectorField + ?Sized>(f: &F, guess: &[f64]) -> Result<(Vec<f64>, u
     if s.len() != n || s.iter().any(|v| !(*v > 0.0 && v.is_finite())) {
         return Err(AnalysisError::InvalidInput { field: "scales".into(), reason: "need one positive finite scale per state".into() });
     }
-    Ok((s, f.structural_zeros(guess)))
+    let k = f.structural_zeros(guess);
+    match f.period() {
+        None => equilibrium(f, guess, &s, k, opts),
+        Some(t) if t > 0.0 && t.is_finite() => periodic(f, guess, t, &s, k, opts, hint),
+        Some(t) => {
+            Err(AnalysisError::InvalidInput { field: "period".into(), reason: format!("must be positive and finite, got {}", crate::error::fmt_num(t)) })
+        }
+    }
 }
 
 fn non_finite<F: VectorField + ?Sized>(f: &F, v: &[f64], what: &str) -> Result<()> {
@@ -988,8 +960,6 @@ fn near_unit_multiplier(b: &[f64], n: usize) -> String {
     }
 }
 
-// `first`: the flow `x(T; guess)` at `opts.rtol` where the caller has it ([`periodic_at`])
-#[allow(clippy::too_many_arguments)]
 fn periodic<F: VectorField + ?Sized>(
     f: &F,
     guess: &[f64],
@@ -998,7 +968,6 @@ fn periodic<F: VectorField + ?Sized>(
     k: usize,
     opts: &NewtonOptions,
     hint: Option<&[f64]>,
-    first: Option<Vec<f64>>,
 ) -> Result<StationaryState> {
     let n = f.dim();
     let tol = opts.periodic_tolerance;
@@ -1013,13 +982,7 @@ fn periodic<F: VectorField + ?Sized>(
     let mut x = guess.to_vec();
     // the residual at x (from a flow at rtol) and the matrix; `fresh`: the matrix was
     // integrated at x (not carried from a neighbour or updated since)
-    let mut r = residual(
-        &x,
-        &match first {
-            Some(end) => end,
-            None => flow(f, &x, period, s, opts.rtol)?,
-        },
-    );
+    let mut r = residual(&x, &flow(f, &x, period, s, opts.rtol)?);
     let (mut b, mut fresh) = match hint.filter(|h| h.len() == n * n && h.iter().all(|v| v.is_finite())) {
         Some(h) => (shooting_matrix(h, s, n), false),
         // a guess that is the orbit already (the planar rotor's balanced state on unequal
