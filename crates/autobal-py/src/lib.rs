@@ -632,7 +632,8 @@ fn in_pool<R: Send>(threads: Option<usize>, work: impl FnOnce() -> anyhow::Resul
 /// A map's cells as arrays `len(y) × len(x)` (row `j` at `y[j]`): `margin` (max Re λ, or the
 /// largest Floquet exponent on the general route; NaN with `quantity="verdict"` or where no
 /// stationary state was found), `stable`; on the closed-form route `necessary` (inside 003's
-/// necessary ranges), on the general route `verdict` (`"stable"`, `"unstable"`, `"neutral"`,
+/// necessary ranges) and `fixed_speed` (a speed in SI over axes that move ω0, as given, e.g.
+/// `"1400 rpm"`: every cell at its own Ω; else None), on the general route `verdict` (`"stable"`, `"unstable"`, `"neutral"`,
 /// `""`: no stationary state), `family_dimension` and `state` (`"balanced"`, `"semi_balanced"`,
 /// `"partially_balanced"`, `"not_balanced"`, `""` without a state).
 fn map_dict<'py>(py: Python<'py>, args: autobal_commands::map::Args, threads: Option<usize>) -> PyResult<Bound<'py, PyDict>> {
@@ -657,7 +658,10 @@ fn map_dict<'py>(py: Python<'py>, args: autobal_commands::map::Args, threads: Op
     d.set_item("omega0_rad_s", out.omega0.filter(|[a, b]| a == b).map(|[a, _]| a))?;
     d.set_item("omega0_range_rad_s", out.omega0.map(|r| r.to_vec()))?;
     match out.route {
-        RouteOutput::Closed { cells: Some(cells), .. } => {
+        RouteOutput::Closed { cells: Some(cells), at_si, .. } => {
+            // a fixed speed in SI over axes that move ω0: every cell at its own Ω (the speed as
+            // given, as the CLI's table and figure name it); None otherwise
+            d.set_item("fixed_speed", at_si)?;
             let flat = || cells.iter().flatten();
             d.set_item("margin", PyArray1::from_vec(py, flat().map(|c| c.margin).collect()).reshape([ny, nx])?)?;
             d.set_item("stable", PyArray1::from_vec(py, flat().map(|c| c.stable).collect()).reshape([ny, nx])?)?;

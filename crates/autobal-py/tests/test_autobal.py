@@ -499,6 +499,25 @@ def test_stability_map_equals_the_cli_map(tmp_path):
     assert autobal.run("map", config=dim, x="dimensionless.z_a=-2:2:3", y="omega=0.5:3:2")["omega0_rad_s"] is None
 
 
+
+def test_a_design_map_at_an_si_speed_is_the_cli_map(tmp_path):
+    """`autobal.run("map", omega="6000rpm")` over two axes that move omega0 (a ball mass, a
+    stiffness): every cell at its own Omega, as the CLI maps it (the same CSV cells, bit for
+    bit), and the key `fixed_speed` names the speed; over axes that do not move omega0 it is
+    None (one Omega for the whole map)."""
+    exe = os.environ.get("AUTOBAL_BIN", str(ROOT / "target" / "debug" / "autobal"))
+    si = str(ROOT / "examples" / "dimensional.toml")
+    x, y = "balancer.ball_mass=0.01:0.05:6", "supports.stiffness_left=1e6:4e6:5"
+    subprocess.run([exe, "map", "--config", si, "--x", x, "--y", y, "--omega", "6000rpm", "--out", str(tmp_path / "d")], check=True, capture_output=True)
+    rows = [line.split(",") for line in (tmp_path / "d.csv").read_text().splitlines()[1:]]
+    got = autobal.run("map", config=si, x=x, y=y, omega="6000rpm")
+    assert got["fixed_speed"] == "6000 rpm"
+    assert [float(r[2]) for r in rows] == got["margin"].ravel().tolist()
+    assert [r[3] == "1" for r in rows] == got["stable"].ravel().tolist()
+    assert got["stable"].any() and not got["stable"].all()
+    assert autobal.run("map", config=si, x="balancer.drag=0.5:3:2", y="balancer.z=0.3:0.45:2", omega="6000rpm")["fixed_speed"] is None
+
+
 def tomllib_load(path):
     """The numbers of a flat TOML file (`[section]`, `key = number  # comment`) as nested dicts:
     enough for the examples' entries, without tomllib (Python 3.11+)."""
