@@ -190,21 +190,6 @@ pub fn bare_speed_note(flag: &str, text: &str, converted: &str) {
     crate::term::note(&format!("note: {flag} {text} is the dimensionless Ω = {text}, i.e. {converted}; give a unit (rpm, rad/s or Hz) for SI"));
 }
 
-/// Whether a map's fixed speed given in SI (`--omega 1400rpm`) is a different `Ω` across the
-/// map: an axis moves the rotor's `ω0 = sqrt(c_x/M_s)` (masses, stiffnesses do), checked at
-/// both ends of each axis (`ω0` is monotone in each entry). Then every cell is mapped at its
-/// own `Ω` ([`autobal::spatial::map::stability_map_at_speed`]).
-pub fn fixed_speed_moves_omega0(cfg: &Config, axes: [(&str, f64, f64); 2]) -> bool {
-    let w0 = cfg.model.scale.map(|s| s.omega0);
-    axes.iter().any(|&(key, lo, hi)| {
-        [lo, hi].into_iter().any(|v| {
-            let mut s = cfg.spec.clone();
-            // a bad path: the map names it itself
-            s.set(key, v).is_ok() && s.build().ok().and_then(|m| m.scale.map(|s| s.omega0)).is_some_and(|o| Some(o) != w0)
-        })
-    })
-}
-
 /// ω0 (rad/s per Ω) where `text`, a speed option's value, has a unit and the config is SI:
 /// what converted it to Ω (a bare number is Ω itself); for the errors that say so.
 pub fn omega0_of_unit(cfg: &Config, text: &str) -> Option<f64> {

@@ -210,29 +210,20 @@ impl Args {
         // a fixed speed in SI over axes that move ω0 is a different Ω in each cell: each cell
         // at its own (the engineer's question: this machine at 1400 rpm, over its design)
         let fixed_si = self.omega.as_deref().and_then(|t| autobal::units::parse_speed("--omega", t).ok()).filter(|s| s.is_si());
+        // ω0 over the map's corners ([`omega0_range`], the table's unit): the axes move it
+        // where the corners differ (ω0 is monotone in each entry that moves it)
+        let corners =
+            omega0_range(self, &cfg.spec, |s: &mut autobal::spatial::paths::SpatialSpec, path, v| s.set(path, v), |s| Ok(s.build()?.scale.map(|k| k.omega0)));
         let at_si = fixed_si
             .filter(|_| !is_speed(xa) && !is_speed(ya))
-            .filter(|_| crate::linear::fixed_speed_moves_omega0(&cfg, [(&xa.path, xa.lo(), xa.hi()), (&ya.path, ya.lo(), ya.hi())]))
+            .filter(|_| corners.is_some_and(|[lo, hi]| lo != hi))
             .and_then(|s| s.unit.rad_s().map(|k| s.value * k))
             .filter(|&w| w > 0.0);
-        if let Some(w) = at_si {
-            // the largest Ω is the cell's of least ω0, at a corner (ω0 is monotone in each
-            // entry that moves it): within the range of Ω there (rev28: 5e6 rpm on 1 N/m
-            // springs was Ω = 1.7e6 in a corner, taken)
-            let corner = |xv: f64, yv: f64| -> Option<f64> {
-                let mut s = cfg.spec.clone();
-                s.set(&xa.path, xv).ok()?;
-                s.set(&ya.path, yv).ok()?;
-                s.build().ok()?.scale.map(|k| k.omega0)
-            };
-            let least = [(xa.lo(), ya.lo()), (xa.lo(), ya.hi()), (xa.hi(), ya.lo()), (xa.hi(), ya.hi())]
-                .into_iter()
-                .filter_map(|(xv, yv)| corner(xv, yv))
-                .fold(f64::INFINITY, f64::min);
-            if least.is_finite() {
-                check_speed("--omega", w / least)
-                    .map_err(|e| anyhow!("{e} (Ω = ω/ω0 at the map's corner of least ω0 = {} rad/s)", autobal::error::fmt_num(least)))?;
-            }
+        if let (Some(w), Some([least, _])) = (at_si, corners) {
+            // the largest Ω is the cell's of least ω0, at a corner: within the range of Ω
+            // there (rev28: 5e6 rpm on 1 N/m springs was Ω = 1.7e6 in a corner, taken)
+            check_speed("--omega", w / least)
+                .map_err(|e| anyhow!("{e} (Ω = ω/ω0 at the map's corner of least ω0 = {} rad/s)", autobal::error::fmt_num(least)))?;
         }
         if at_si.is_some() && self.boundary {
             bail!("--boundary: at a fixed speed in SI over axes that move ω0 (each cell at its own Ω) the boundary is not traced; use --route general (its boundary is bisected between cells), or give --omega as Ω");
