@@ -104,7 +104,7 @@ pub(crate) use stability::assemble_ranges;
 pub(crate) use stability::speed_scan_with_last;
 pub use stability::{
     mode, speed_scan, speed_scan_with, stability, Eigenvalue, Kind, ScanOptions, ScanPoint, SpeedScan, Stability, StableRange, Verdict, FLOQUET_TOLERANCE,
-    NEUTRAL_TOLERANCE,
+    NEUTRAL_TOLERANCE, STOPPABLE_EIGEN_N,
 };
 pub use stationary::{orbit_samples, stationary, stationary_near, NewtonOptions, StationaryState, VariationalSystem};
 
@@ -171,6 +171,15 @@ pub enum AnalysisError {
         what: String,
         /// The QR iteration's report.
         source: eigen_dyn::NoConvergence,
+    },
+    /// A stop (Ctrl-C, a budget) asked through the thread's stop probe
+    /// ([`crate::control::with_probe`]) ended a large eigenvalue solve before it finished.
+    #[error("the {what}'s eigenvalues were not computed: {reason}")]
+    Stopped {
+        /// "Jacobian" or "monodromy matrix".
+        what: String,
+        /// Why.
+        reason: crate::control::StopReason,
     },
     /// The integration over one period (shooting) did not complete.
     #[error("the integration over one period T = {} s did not complete: {reason}", crate::error::fmt_num(*period))]

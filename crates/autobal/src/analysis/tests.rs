@@ -315,3 +315,60 @@ fn newton_takes_the_full_step_where_a_weak_row_makes_the_residual_grow() {
     assert!(s.iterations <= 3, "{s:?}");
     assert!((s.x[0] + 0.5).abs() <= 1e-15 && (s.x[1] - 1.0).abs() <= 1e-15, "{s:?}");
 }
+
+/// `x' = A x` with `A` a fixed `n × n` matrix: the origin is an equilibrium with the spectrum
+/// of `A`.
+struct Linear {
+    a: Vec<f64>,
+    n: usize,
+}
+
+impl VectorField for Linear {
+    fn dim(&self) -> usize {
+        self.n
+    }
+    fn rhs(&self, _t: f64, x: &[f64], dx: &mut [f64]) {
+        for (i, d) in dx.iter_mut().enumerate() {
+            *d = (0..self.n).map(|j| self.a[i * self.n + j] * x[j]).sum();
+        }
+    }
+    fn jacobian(&self, _t: f64, _x: &[f64], j: &mut [f64]) {
+        j.copy_from_slice(&self.a);
+    }
+    fn period(&self) -> Option<f64> {
+        None
+    }
+}
+
+#[test]
+fn a_stop_asked_through_the_probe_ends_a_large_eigenvalue_solve_with_a_typed_error() {
+    // at STOPPABLE_EIGEN_N states a cancelled control installed as the thread's probe ends the
+    // solve (Stopped, its reason Interrupted); one state fewer, or without the probe, the solve
+    // is never asked and finishes: the verdict of A = −I + a small skew part is stable
+    let field = |n: usize| {
+        let a: Vec<f64> = (0..n * n)
+            .map(|k| {
+                if k / n == k % n {
+                    -1.0
+                } else if k / n + 1 == k % n {
+                    0.5
+                } else if k % n + 1 == k / n {
+                    -0.5
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        Linear { a, n }
+    };
+    let stopped = crate::control::Control::new();
+    stopped.cancel();
+    let big = field(STOPPABLE_EIGEN_N);
+    let state = |n: usize| StationaryState { x: vec![0.0; n], period: None, iterations: 0, residual: 0.0, family_dimension: 0, monodromy: None };
+    let e = crate::control::with_probe(&stopped, || stability(&big, &state(big.n))).unwrap_err();
+    assert!(matches!(e, AnalysisError::Stopped { reason: crate::control::StopReason::Interrupted, .. }), "{e:?}");
+    assert_eq!(e.to_string(), "the Jacobian's eigenvalues were not computed: interrupted");
+    assert_eq!(stability(&big, &state(big.n)).unwrap().verdict, Verdict::Stable);
+    let small = field(STOPPABLE_EIGEN_N - 1);
+    assert_eq!(crate::control::with_probe(&stopped, || stability(&small, &state(small.n))).unwrap().verdict, Verdict::Stable);
+}

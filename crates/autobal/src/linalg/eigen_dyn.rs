@@ -55,23 +55,47 @@ impl std::error::Error for NoConvergence {}
 /// assert!((l[0].re + 0.1).abs() < 1e-15 && (l[1].im - 0.99f64.sqrt()).abs() < 1e-15);
 /// ```
 pub fn eigenvalues(a: &[f64], n: usize) -> Result<Vec<Complex64>, NoConvergence> {
+    // `stop` never says yes: always `Some`
+    eigenvalues_or_stop(a, n, || false).map(Option::unwrap_or_default)
+}
+
+/// [`eigenvalues`], asking `stop` once per column of the Hessenberg reduction and once per QR
+/// iteration (each `O(n²)` work or less on an `n × n` matrix; a 2 × 2 matrix has neither and
+/// is never asked, so a few milliseconds apart even
+/// at `n` in the thousands, where the whole solve takes tens of seconds); `Ok(None)` as soon as
+/// it says yes (the work so far is dropped). For a caller that must stop within a moment of
+/// Ctrl-C on a large model ([`crate::analysis`] on a linear rotor of hundreds of DOFs); with
+/// `|| false` it is [`eigenvalues`].
+///
+/// ```
+/// use autobal::linalg::eigen_dyn::eigenvalues_or_stop;
+/// // a 3 × 3 matrix is reduced over one column, where a stop that says yes ends it
+/// let a = [1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 10.0];
+/// assert!(eigenvalues_or_stop(&a, 3, || true).unwrap().is_none());
+/// assert_eq!(eigenvalues_or_stop(&a, 3, || false).unwrap().unwrap().len(), 3);
+/// ```
+pub fn eigenvalues_or_stop(a: &[f64], n: usize, stop: impl Fn() -> bool) -> Result<Option<Vec<Complex64>>, NoConvergence> {
     assert_eq!(a.len(), n * n, "an n × n matrix");
     if a.iter().any(|x| !x.is_finite()) {
         return Err(NoConvergence { remaining: n, iterations: 0 });
     }
     if n == 0 {
-        return Ok(vec![]);
+        return Ok(Some(vec![]));
     }
     let mut b = vec![vec![0.0; n + 1]; n + 1];
     for i in 0..n {
         b[i + 1][1..].copy_from_slice(&a[i * n..(i + 1) * n]);
     }
     balance(&mut b, n);
-    hessenberg(&mut b, n);
+    if hessenberg(&mut b, n, &stop) {
+        return Ok(None);
+    }
     let mut wr = vec![0.0; n];
     let mut wi = vec![0.0; n];
-    hqr(&mut b, n, &mut wr, &mut wi)?;
-    Ok(wr.iter().zip(&wi).map(|(&r, &i)| Complex64::new(r, i)).collect())
+    if hqr(&mut b, n, &mut wr, &mut wi, &stop)? {
+        return Ok(None);
+    }
+    Ok(Some(wr.iter().zip(&wi).map(|(&r, &i)| Complex64::new(r, i)).collect()))
 }
 
 /// Spectral abscissa `max Re λ` of the `n × n` matrix `a` ([`eigenvalues`]).
@@ -126,9 +150,13 @@ fn balance(a: &mut [Vec<f64>], n: usize) {
 }
 
 /// Reduce to upper Hessenberg form by Gaussian elimination with pivoting (EISPACK `elmhes`);
-/// entries below the subdiagonal are zeroed.
-fn hessenberg(a: &mut [Vec<f64>], n: usize) {
+/// entries below the subdiagonal are zeroed. `true` when `stop` (asked once per column) said
+/// yes: the reduction is then unfinished.
+fn hessenberg(a: &mut [Vec<f64>], n: usize, stop: &impl Fn() -> bool) -> bool {
     for m in 2..n {
+        if stop() {
+            return true;
+        }
         let mut x: f64 = 0.0;
         let mut i = m;
         for j in m..=n {
@@ -168,6 +196,7 @@ fn hessenberg(a: &mut [Vec<f64>], n: usize) {
             a[i][j] = 0.0;
         }
     }
+    false
 }
 
 fn sign(a: f64, b: f64) -> f64 {
@@ -179,9 +208,10 @@ fn sign(a: f64, b: f64) -> f64 {
 }
 
 /// Eigenvalues of an upper Hessenberg matrix by the Francis double-shift QR iteration
-/// (EISPACK `hqr`, eigenvalues only; the matrix is destroyed).
+/// (EISPACK `hqr`, eigenvalues only; the matrix is destroyed). `Ok(true)` when `stop` (asked
+/// once per iteration) said yes: `wr`, `wi` are then incomplete.
 #[allow(unused_assignments)] // the working scalars carry values between the stages, as in EISPACK
-fn hqr(a: &mut [Vec<f64>], n: usize, wr: &mut [f64], wi: &mut [f64]) -> Result<(), NoConvergence> {
+fn hqr(a: &mut [Vec<f64>], n: usize, wr: &mut [f64], wi: &mut [f64], stop: &impl Fn() -> bool) -> Result<bool, NoConvergence> {
     let mut anorm = 0.0;
     for i in 1..=n {
         for j in (i.max(2) - 1)..=n {
@@ -250,6 +280,9 @@ fn hqr(a: &mut [Vec<f64>], n: usize, wr: &mut [f64], wi: &mut [f64]) -> Result<(
                         x = 0.75 * s;
                         y = x;
                         w = -0.4375 * s * s;
+                    }
+                    if stop() {
+                        return Ok(true);
                     }
                     its += 1;
                     let mut m = nu - 2;
@@ -340,7 +373,7 @@ fn hqr(a: &mut [Vec<f64>], n: usize, wr: &mut [f64], wi: &mut [f64]) -> Result<(
             }
         }
     }
-    Ok(())
+    Ok(false)
 }
 
 #[cfg(test)]
@@ -402,6 +435,38 @@ mod tests {
             worst = worst.max(d);
         }
         worst
+    }
+
+    #[test]
+    fn a_stop_ends_the_solve_at_the_next_column_or_iteration_and_never_changes_an_answer() {
+        // 120 x 120 random: the reduction asks once per column (118 times), the QR once per
+        // iteration. A stop that says yes on its k-th question gives no eigenvalues, asked
+        // exactly k times (it ends at once); one that never says yes gives eigenvalues()'s
+        // answer bit for bit, having been asked at least once per column.
+        let mut rng = Rng(7);
+        let n = 120;
+        let a: Vec<f64> = (0..n * n).map(|_| rng.next() * 2.0 - 1.0).collect();
+        let plain = eigenvalues(&a, n).unwrap();
+        let asked = std::cell::Cell::new(0usize);
+        let never = eigenvalues_or_stop(&a, n, || {
+            asked.set(asked.get() + 1);
+            false
+        })
+        .unwrap()
+        .unwrap();
+        assert_eq!(never, plain);
+        let total = asked.get();
+        assert!(total >= n - 2 + n / 2, "asked {total} times");
+        for k in [1, n / 2, n - 2, n - 1, total] {
+            let asked = std::cell::Cell::new(0usize);
+            let stopped = eigenvalues_or_stop(&a, n, || {
+                asked.set(asked.get() + 1);
+                asked.get() >= k
+            })
+            .unwrap();
+            assert!(stopped.is_none(), "k = {k}");
+            assert_eq!(asked.get(), k);
+        }
     }
 
     #[test]

@@ -969,7 +969,17 @@ impl LinearRotorField {
         let mut xd = vec![Dual::<SEEDS>::cst(0.0); d2];
         let mut out = vec![Dual::<SEEDS>::cst(0.0); nc];
         let mut col = vec![0.0; nc];
+        // a large rotor's Jacobian (~n³ operations, seconds at 800 DOFs) asks the thread's stop
+        // probe once per pass: stopped, it is left NaN, which the analysis reports as non-finite
+        // and its scan, asking the same probe, drops (the speed was not finished)
+        let ask = d2 >= crate::analysis::STOPPABLE_EIGEN_N;
         for start in (0..d2).step_by(SEEDS) {
+            if ask && crate::control::probe().is_some() {
+                for r in nc..d2 {
+                    jac[r * dim..r * dim + d2].iter_mut().for_each(|v| *v = f64::NAN);
+                }
+                return;
+            }
             for (i, v) in xd.iter_mut().enumerate() {
                 *v = if i >= start && i < start + SEEDS { Dual::var(x[i], i - start) } else { Dual::cst(x[i]) };
             }
