@@ -60,9 +60,9 @@ pub fn eigenvalues(a: &[f64], n: usize) -> Result<Vec<Complex64>, NoConvergence>
 }
 
 /// [`eigenvalues`], asking `stop` once per column of the Hessenberg reduction and once per QR
-/// iteration (each `O(n²)` work or less on an `n × n` matrix; a 2 × 2 matrix has neither and
-/// is never asked, so a few milliseconds apart even
-/// at `n` in the thousands, where the whole solve takes tens of seconds); `Ok(None)` as soon as
+/// iteration (each `O(n²)` work or less on an `n × n` matrix, so a few milliseconds apart even
+/// at `n` in the thousands, where the whole solve takes tens of seconds; a 2 × 2 matrix has
+/// neither and is never asked); `Ok(None)` as soon as
 /// it says yes (the work so far is dropped). For a caller that must stop within a moment of
 /// Ctrl-C on a large model ([`crate::analysis`] on a linear rotor of hundreds of DOFs); with
 /// `|| false` it is [`eigenvalues`].
