@@ -870,7 +870,14 @@ pub fn name_omega_max(e: anyhow::Error, flag_set: bool, key: &str, root: &Table,
                 autobal::Error::invalid(key, reason.clone()).into()
             } else {
                 default_below_floor(g, root)
-                    .unwrap_or_else(|| autobal::Error::invalid("--omega-max", format!("not given: the default speed axis's {reason}")))
+                    .unwrap_or_else(|| match floor_cause(g, root) {
+                        // a linear rotor's default axis is its own: the key that raised the floor
+                        // named before the library's words
+                        (field, Some(cause)) => {
+                            autobal::Error::invalid(field, format!("{cause} raises the floor: the default speed axis's {reason}; give --omega-max above it"))
+                        }
+                        (_, None) => autobal::Error::invalid("--omega-max", format!("not given: the default speed axis's {reason}")),
+                    })
                     .into()
             }
         }
@@ -889,7 +896,7 @@ fn default_below_floor(g: &GeneralRotor, root: &Table) -> Option<autobal::Error>
     let top = default_omega_max(g, root).ok()?;
     let floor = g.rotor.periodic_floor(top)?;
     let wn = g.rotor.fastest_natural_frequency(top);
-    let (field, cause) = floor_cause(g);
+    let (field, cause) = floor_cause(g, root);
     let cause = cause.unwrap_or_else(|| format!("not given: the fastest natural frequency, {},", speed_text(g, wn)));
     Some(autobal::Error::invalid(
         field,
@@ -911,9 +918,29 @@ fn default_top_words(g: &GeneralRotor) -> String {
     }
 }
 
-/// The config key that sets the fastest natural frequency, and words saying how, where one key
-/// does (the planar rotor's stiffer direction: `sqrt(k/m0)`); else `--omega-max` and `None`.
-fn floor_cause(g: &GeneralRotor) -> (String, Option<String>) {
+/// The config key that sets the fastest natural frequency (and so the periodic-orbit floor,
+/// [`autobal::rotor_stability::Rotor::periodic_floor`]), and words saying how, where one key
+/// does; else `--omega-max` and `None`. One rule for every rotor, the messages of a default
+/// speed axis below the floor ([`default_below_floor`], [`name_omega_max`]):
+/// - planar: the stiffer direction's key, `sqrt(k/m0)` (`planar.k_y`; `planar.k` where one
+///   stiffness holds for both);
+/// - spatial, one plane or two (a dimensional config's `[supports]`): the stiffest support in
+///   the stiffer direction, `supports.stiffness_right_y` (the x key where its `_y` twin is not
+///   given, as it then sets both directions);
+/// - linear: the bearing without which the fastest natural frequency (at rest) falls to half
+///   or less, the one it falls most without (`linear_rotor.bearings[0].k`; a table's `kxx` or
+///   `kyy`, the stiffer at rest): that key holds the floor up. Its own `sqrt(k/M_dd)` over
+///   its node's mass would not tell: the consistent mass lets the neighbours swing against
+///   the node, so the bearing's mode is faster than that, by ~2 on the shaft example's end
+///   node at 1e13 N/m, and half of the fastest frequency missed it. Only on the full model: a
+///   reduction (`linear_rotor.modes`) renumbers the nodes and makes the interior modal, so a
+///   bearing's node may have no DOF of its own there.
+///
+/// Gravity or supports that differ by direction make the stationary state a periodic orbit,
+/// and so make the floor apply; its height is the stiffness's.
+fn floor_cause(g: &GeneralRotor, root: &Table) -> (String, Option<String>) {
+    let none = || ("--omega-max".to_string(), None);
+    let wn = g.rotor.fastest_natural_frequency(0.0);
     match &g.rotor {
         Rotor::Planar(p) => {
             let (kx, ky) = p.stiffness_xy();
@@ -925,13 +952,165 @@ fn floor_cause(g: &GeneralRotor) -> (String, Option<String>) {
             let wn = (k / p.total_mass()).sqrt();
             (format!("planar.{key}"), Some(format!("{} N/m, through the fastest natural frequency sqrt({key}/m0) = {},", fmt_num(k), speed_text(g, wn))))
         }
-        _ => ("--omega-max".into(), None),
+        Rotor::Spatial(s) if g.si && s.supports.len() == 2 && root.contains_key("supports") => {
+            // the stiffest (support, direction); x first, so an isotropic support names its x key
+            let Some((side, dir, k)) = s
+                .supports
+                .iter()
+                .zip(["left", "right"])
+                .flat_map(|(sp, side)| [(side, 0, sp.stiffness[0]), (side, 1, sp.stiffness[1])])
+                .reduce(|a, b| if b.2 > a.2 { b } else { a })
+            else {
+                return none();
+            };
+            let y_key = format!("stiffness_{side}_y");
+            let key = if dir == 1 && root.get("supports").and_then(|t| t.get(&y_key)).is_some() { y_key } else { format!("stiffness_{side}") };
+            let along = ["x", "y"][dir];
+            (
+                format!("supports.{key}"),
+                Some(format!("{} N/m, the stiffest support (along {along}), through the fastest natural frequency {},", fmt_num(k), speed_text(g, wn))),
+            )
+        }
+        Rotor::Linear(r) if root.get("linear_rotor").and_then(|t| t.get("modes")).and_then(|v| v.as_integer()).is_none_or(|m| m <= 0) => {
+            let Some(bearings) = root.get("linear_rotor").and_then(|t| t.get("bearings")).and_then(|v| v.as_array()) else { return none() };
+            let n = r.dofs();
+            let num = |v: Option<&toml::Value>| v.and_then(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)));
+            let node_of = |v: Option<&toml::Value>| v.and_then(|v| v.as_integer()).and_then(|v| usize::try_from(v).ok()).filter(|&v| v < r.nodes);
+            // the fastest natural frequency without each bearing: (key, node, stiffness, it);
+            // the tables in the config's order are the rotor's `speed_bearings`
+            let mut without: Vec<(String, usize, f64, f64)> = vec![];
+            let mut t = 0;
+            for (i, b) in bearings.iter().enumerate() {
+                let Some(node) = node_of(b.get("node")) else { continue };
+                let mut rest = r.clone();
+                let (key, k) = if b.get("speeds").is_some() {
+                    if t >= rest.speed_bearings.len() {
+                        continue;
+                    }
+                    let (k, _) = rest.speed_bearings.remove(t).at(0.0);
+                    t += 1;
+                    let y = if b.get("kyy").is_some() { "kyy" } else { "kxx" };
+                    if k[3] > k[0] {
+                        (format!("linear_rotor.bearings[{i}].{y}"), k[3])
+                    } else {
+                        (format!("linear_rotor.bearings[{i}].kxx"), k[0])
+                    }
+                } else if let Some(k) = num(b.get("k")) {
+                    // K less the bearing's block, along x and y, to ground or to its link
+                    let (x, y, _) = rest.node_dofs(node);
+                    let link = node_of(b.get("link")).map(|l| rest.node_dofs(l));
+                    for (d, i) in [x, y].into_iter().enumerate() {
+                        rest.k[i * n + i] -= k;
+                        if let Some((lx, ly, _)) = link {
+                            let j = [lx, ly][d];
+                            rest.k[j * n + j] -= k;
+                            rest.k[i * n + j] += k;
+                            rest.k[j * n + i] += k;
+                        }
+                    }
+                    (format!("linear_rotor.bearings[{i}].k"), k)
+                } else {
+                    continue;
+                };
+                without.push((key, node, k, Rotor::Linear(rest).fastest_natural_frequency(0.0)));
+            }
+            // the bearing without which the fastest natural frequency falls most, named where
+            // it falls to half or less
+            match without.into_iter().filter(|b| b.3.is_finite()).reduce(|a, b| if b.3 < a.3 { b } else { a }) {
+                Some((key, node, k, w)) if w <= 0.5 * wn => (
+                    key,
+                    Some(format!(
+                        "{} N/m at node {node}, through the fastest natural frequency {} ({} without this bearing),",
+                        fmt_num(k),
+                        speed_text(g, wn),
+                        speed_text(g, w)
+                    )),
+                ),
+                _ => none(),
+            }
+        }
+        _ => none(),
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The error of `stability`, `critical` and `campbell` on `root` without `--omega-max`.
+    fn default_axis_errors(root: &Table) -> [String; 3] {
+        use crate::command::Command;
+        let src = || crate::command::ConfigSource::tables(root.clone(), "test");
+        let e = |r: Result<()>| r.err().map_or("not refused".to_string(), |e| format!("{e:#}"));
+        [
+            e(crate::stability::Args { config: src(), samples: Some(10), ..Default::default() }.run(&Control::none()).map(|_| ())),
+            e(crate::critical::Args { config: src(), route: crate::command::Route::Auto, omega_max: None }.run(&Control::none()).map(|_| ())),
+            e(crate::campbell::Args { config: src(), points: Some(10), ..Default::default() }.run(&Control::none()).map(|_| ())),
+        ]
+    }
+
+    /// `text` with `sets` (`table.key`, value).
+    fn with(text: &str, sets: &[(&str, f64)]) -> Table {
+        let mut root = crate::config::parse_text(text, "test").unwrap();
+        for (k, v) in sets {
+            autobal::config::set_number(&mut root, k, *v).unwrap();
+        }
+        root
+    }
+
+    /// A default speed axis below the periodic-orbit floor names the key that raised the floor
+    /// on every rotor, by [`floor_cause`] (the planar rotor's rule since session 28:
+    /// `stability::tests::a_default_axis_below_the_floor_names_the_key_that_raised_it`). The
+    /// spatial rotor, one plane and two, with supports of 1e3 N/m along x and 1e13 N/m at the
+    /// right along y: the fastest natural frequency 1.2e6 rad/s puts the floor at ~1238 rad/s,
+    /// above the default top 43.3 rad/s; it said "--omega-max: not given: the fastest natural
+    /// frequency, …". Now `supports.stiffness_right_y`, the key the user set.
+    #[test]
+    fn a_spatial_default_axis_below_the_floor_names_the_stiffest_support() {
+        let sets = [("supports.stiffness_left", 1e3), ("supports.stiffness_right", 1e3), ("supports.stiffness_right_y", 1e13)];
+        // one plane, anisotropic by the `_y` key (a periodic orbit); two planes under gravity
+        for (text, name) in
+            [(include_str!("../../../examples/dimensional.toml"), "one plane"), (include_str!("../../../examples/spatial_two_plane.toml"), "two planes")]
+        {
+            for e in default_axis_errors(&with(text, &sets)) {
+                assert!(
+                    e.starts_with("supports.stiffness_right_y: 1e13 N/m, the stiffest support (along y), through the fastest natural frequency 1.237")
+                        && e.contains("puts the slowest speed the periodic-orbit analysis resolves at 123")
+                        && e.contains("above the speed axis's default top")
+                        && e.ends_with("give --omega-max above it")
+                        && !e.contains('\n'),
+                    "{name}: {e}"
+                );
+            }
+        }
+    }
+
+    /// The linear rotor: the shaft example's full model (no `modes`) under gravity, its first
+    /// bearing at `k = 1e13`: the fastest natural frequency 1.7e7 rad/s (at least that bearing's
+    /// own sqrt(k/m) over its node's mass), the floor ~16900 rad/s above the default top
+    /// ~2900 rad/s. It said "--omega-max: not given: the default speed axis's …"; now the
+    /// bearing's key. The example as it is (`modes = 4`) has no such floor, and a reduction
+    /// names no bearing.
+    #[test]
+    fn a_linear_default_axis_below_the_floor_names_the_stiff_bearing() {
+        let shaft = include_str!("../../../examples/linear_rotor_shaft.toml");
+        let text = shaft.replacen("[linear_rotor]\n", "[linear_rotor]\ngravity = [0.0, -9.81]\n", 1).replacen("\nmodes = 4 ", "\n# modes = 4 ", 1).replacen(
+            "node = 0\nk = 2e6\n",
+            "node = 0\nk = 1e13\n",
+            1,
+        );
+        assert!(text.contains("# modes = 4") && text.contains("k = 1e13"));
+        let [stability, _, campbell] = default_axis_errors(&crate::config::parse_text(&text, "test").unwrap());
+        for e in [stability, campbell] {
+            assert!(
+                e.starts_with("linear_rotor.bearings[0].k: 1e13 N/m at node 0, through the fastest natural frequency ")
+                    && e.contains("raises the floor: the default speed axis's ")
+                    && e.ends_with("give --omega-max above it")
+                    && !e.contains('\n'),
+                "{e}"
+            );
+        }
+    }
     use autobal::planar::PlanarRotor;
     use autobal::rotor_stability::StateKind;
 

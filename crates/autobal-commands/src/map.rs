@@ -225,8 +225,15 @@ impl Args {
             check_speed("--omega", w / least)
                 .map_err(|e| anyhow!("{e} (Ω = ω/ω0 at the map's corner of least ω0 = {} rad/s)", autobal::error::fmt_num(least)))?;
         }
+        // typed, the options named as both front ends call them (`--route general` and
+        // `route="general"`, `--omega` and `omega=`): Python's `analyse("map", boundary=True)`
+        // reached this only while drawing, after every cell, with the CLI's flags (session 29)
         if at_si.is_some() && self.boundary {
-            bail!("--boundary: at a fixed speed in SI over axes that move ω0 (each cell at its own Ω) the boundary is not traced; use --route general (its boundary is bisected between cells), or give --omega as Ω");
+            return Err(autobal::Error::invalid(
+                "--boundary",
+                "at a fixed speed in SI over axes that move ω0 (each cell at its own Ω) the boundary is not traced; use route general (its boundary is bisected between cells), or give omega as Ω",
+            )
+            .into());
         }
         for (flag, a) in [("--x", xa), ("--y", ya)] {
             if a.path == "omega" {
@@ -322,6 +329,15 @@ fn axis_value_needs_general(spec: &autobal::spatial::paths::SpatialSpec, path: &
 }
 
 impl Plan {
+    /// The plan with its options checked as given, `boundary` included ([`Args::prepare`]),
+    /// that computes the cells without tracing the boundary: Python's `analyse("map",
+    /// boundary=True)` keeps the cells and traces the boundary only for its figure, so a
+    /// boundary that cannot be traced is refused before any cell is computed.
+    pub fn untraced(mut self) -> Plan {
+        self.args.boundary = false;
+        self
+    }
+
     /// Compute the map under `control` (Ctrl-C keeps the complete rows; progress is reported in
     /// rows), its rows going to `rows`.
     pub fn run(&self, control: &Control, rows: Rows<'_>) -> Result<Output> {
@@ -1607,6 +1623,47 @@ mod tests {
             );
         }
     }
+
+    /// `boundary` at a fixed speed in SI over axes that move ω0 (each cell at its own Ω, no
+    /// plane to trace): refused by `prepare`, before any cell, as a typed error whose field is
+    /// the option (`--boundary`, Python's `boundary`) and whose reason names the other options
+    /// as both front ends call them (session 29: Python met the CLI's `--route general`,
+    /// `--omega` in its message, and only after every cell, while drawing). The plan without
+    /// `boundary` is taken, and [`Plan::untraced`] leaves the check done and the trace off.
+    #[test]
+    fn a_boundary_at_a_fixed_si_speed_is_refused_before_any_cell() {
+        let text = include_str!("../../../examples/dimensional.toml");
+        let args = |boundary: bool| Args {
+            config: tables(text),
+            x: parse_axis("--x", "balancer.ball_mass=0.01:0.05:3").unwrap(),
+            y: parse_axis("--y", "supports.stiffness_left=1e6:4e6:2").unwrap(),
+            omega: Some("6000rpm".into()),
+            boundary,
+            ..Default::default()
+        };
+        let e = args(true).prepare().err().expect("refused");
+        match e.downcast_ref::<autobal::Error>() {
+            Some(autobal::Error::InvalidParameter { field, reason }) => {
+                assert_eq!(field, "--boundary");
+                assert!(reason.starts_with("at a fixed speed in SI over axes that move ω0 (each cell at its own Ω) the boundary is not traced"), "{reason}");
+                assert!(reason.contains("route general") && reason.contains("omega as Ω") && !reason.contains("--"), "{reason}");
+            }
+            _ => panic!("not a typed error: {e:#}"),
+        }
+        assert!(args(false).prepare().is_ok());
+        // over axes that keep ω0 the boundary is traced; `untraced` keeps the cells only
+        let plain = Args {
+            config: tables(text),
+            x: parse_axis("--x", "balancer.drag=0.5:3:2").unwrap(),
+            y: parse_axis("--y", "balancer.z=0.3:0.45:2").unwrap(),
+            omega: Some("6000rpm".into()),
+            boundary: true,
+            ..Default::default()
+        };
+        let o = plain.prepare().unwrap().untraced().run(&Control::none(), Rows::Keep).unwrap();
+        assert!(matches!(o.route, RouteOutput::Closed { cells: Some(_), traced: None, .. }));
+    }
+
     use crate::command::{Command as _, Output as _};
 
     fn tables(text: &str) -> ConfigSource {

@@ -637,12 +637,15 @@ fn in_pool<R: Send>(threads: Option<usize>, work: impl FnOnce() -> anyhow::Resul
 /// `""`: no stationary state), `family_dimension` and `state` (`"balanced"`, `"semi_balanced"`,
 /// `"partially_balanced"`, `"not_balanced"`, `""` without a state).
 fn map_dict<'py>(py: Python<'py>, args: autobal_commands::map::Args, threads: Option<usize>) -> PyResult<Bound<'py, PyDict>> {
-    use autobal_commands::command::{Command, Output};
+    use autobal_commands::command::Output;
     use autobal_commands::map::RouteOutput;
     let (xs, ys) = (args.x.values.clone(), args.y.values.clone());
     let (nx, ny) = (xs.len(), ys.len());
     let out = commands_call(py, move |c| {
-        let out = in_pool(threads, || args.run(c))?;
+        // the options checked as given (`boundary` among them: refused here, before any cell,
+        // where it cannot be traced), the cells computed without the trace (the dict has no
+        // place for it; `analyse`'s figure traces it)
+        let out = in_pool(threads, || args.prepare()?.untraced().run(c, autobal_commands::map::Rows::Keep))?;
         if let Some(why) = out.stopped() {
             anyhow::bail!("{why}");
         }
@@ -735,9 +738,10 @@ fn stability_map<'py>(
 
 /// `autobal map` on any config (as [`figures`] takes it), by the CLI's `map::Args`: the cells
 /// as arrays ([`map_dict`]); `x`, `y` as `(path, values)`; `omega` a speed with its unit or a
-/// bare number (Ω); `route` `"auto"` or `"general"`.
+/// bare number (Ω); `route` `"auto"` or `"general"`; `boundary` (`analyse`'s, for its figure)
+/// checked as the CLI's `--boundary` before any cell is computed, not traced.
 #[pyfunction]
-#[pyo3(signature = (text, dict, source, sets, x, y, omega=None, balls=None, quantity=None, route=None, threads=None))]
+#[pyo3(signature = (text, dict, source, sets, x, y, omega=None, balls=None, quantity=None, route=None, threads=None, boundary=false))]
 #[allow(clippy::too_many_arguments)]
 fn map_cells<'py>(
     py: Python<'py>,
@@ -752,6 +756,7 @@ fn map_cells<'py>(
     quantity: Option<&str>,
     route: Option<&str>,
     threads: Option<usize>,
+    boundary: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     use autobal_commands::command::Route;
     let root = table(py, text, dict, source, sets)?;
@@ -764,6 +769,7 @@ fn map_cells<'py>(
             SpeedArg::Number(w) => format!("{w}"),
             SpeedArg::Text(t) => t,
         }),
+        boundary,
         ..Default::default()
     };
     if let Some(b) = balls {

@@ -518,6 +518,28 @@ def test_a_design_map_at_an_si_speed_is_the_cli_map(tmp_path):
     assert autobal.run("map", config=si, x="balancer.drag=0.5:3:2", y="balancer.z=0.3:0.45:2", omega="6000rpm")["fixed_speed"] is None
 
 
+def test_a_design_maps_boundary_at_an_si_speed_is_refused_before_any_cell():
+    """`analyse("map", omega="6000rpm", boundary=True)` over axes that move omega0 (each cell at
+    its own Omega: no plane to trace): computed every cell, then failed on `.plot()` with the
+    CLI's `--route general`, `--omega` (session 29). Now `analyse` itself raises
+    `InvalidParameter` on `boundary`, the options named as Python calls them, as the CLI
+    refuses `--boundary` (its words, its flag). Over axes that keep omega0 it is taken."""
+    si = str(ROOT / "examples" / "dimensional.toml")
+    x, y = "balancer.ball_mass=0.01:0.05:3", "supports.stiffness_left=1e6:4e6:2"
+    with pytest.raises(autobal.InvalidParameter) as e:
+        autobal.analyse("map", config=si, x=x, y=y, omega="6000rpm", boundary=True)
+    assert e.value.field == "boundary"
+    words = "at a fixed speed in SI over axes that move ω0 (each cell at its own Ω) the boundary is not traced; use route general (its boundary is bisected between cells), or give omega as Ω"
+    assert str(e.value) == "boundary: " + words
+    exe = os.environ.get("AUTOBAL_BIN", str(ROOT / "target" / "debug" / "autobal"))
+    out = subprocess.run([exe, "map", "--config", si, "--x", x, "--y", y, "--omega", "6000rpm", "--boundary", "--out", "unused"], capture_output=True, text=True)
+    assert out.returncode == 2 and out.stderr.strip() == "error: --boundary: " + words, out.stderr
+    # without boundary, or over axes that keep omega0, the map is taken
+    assert autobal.analyse("map", config=si, x=x, y=y, omega="6000rpm").result["fixed_speed"] == "6000 rpm"
+    r = autobal.analyse("map", config=si, x="balancer.drag=0.5:3:2", y="balancer.z=0.3:0.45:2", omega="6000rpm", boundary=True)
+    assert r.result["fixed_speed"] is None
+
+
 def tomllib_load(path):
     """The numbers of a flat TOML file (`[section]`, `key = number  # comment`) as nested dicts:
     enough for the examples' entries, without tomllib (Python 3.11+)."""

@@ -95,3 +95,43 @@ fn linear_bearing_damping_is_held_to_the_spatial_ratio() {
     expect_refused(run(1.001 * limit), "linear_rotor.bearings[1].c");
     expect_refused(run(1e12), "linear_rotor.bearings[1].c");
 }
+
+/// The linear rotor's tabulated bearings (session 29: `cxx = 1e12` in a table was taken and
+/// ran for minutes; only constant bearings' `c` was bounded): each value at its row, `|c|/(M
+/// ω0)` with `ω0 = sqrt(K/M)`, `K` the supports' stiffness along the value's direction at the
+/// row's speed (the constant bearing's `k` plus the table's `kxx` or `kyy` there). The same
+/// shaft as above, its second bearing tabulated: `kxx = [2e6, 3e6]` at `[0, 1000]` rad/s, so
+/// row 1 is held against `K = 5e6`, row 0 against `K = 4e6`; `kyy` given lower, `[1e6, 1e6]`,
+/// so `cyy` is held against 3e6. The key and row named; `cyy` where given, else `cxx`.
+#[test]
+fn linear_tabulated_bearing_damping_is_held_at_each_row() {
+    let text = |cxx: [f64; 2], cyy: Option<[f64; 2]>, cxy: [f64; 2]| {
+        let cyy = cyy.map_or(String::new(), |c| format!("cyy = [{:e}, {:e}]\n", c[0], c[1]));
+        format!(
+            "[linear_rotor]\nmodes = 2\n[[linear_rotor.elements]]\nlength = 0.1\ndiameter = 0.025\ne = 2.1e11\nrho = 7850.0\ncount = 6\n\
+             [[linear_rotor.disks]]\nnode = 3\nmass = 4.0\nid = 0.01\nip = 0.02\n\
+             [[linear_rotor.bearings]]\nnode = 0\nk = 2e6\nc = 300.0\n[[linear_rotor.bearings]]\nnode = 6\nspeeds = [0.0, 1000.0]\n\
+             kxx = [2e6, 3e6]\nkyy = [1e6, 1e6]\ncxx = [{:e}, {:e}]\ncxy = [{:e}, {:e}]\n{cyy}",
+            cxx[0], cxx[1], cxy[0], cxy[1]
+        )
+    };
+    let mass = 7850.0 * std::f64::consts::PI * 0.025 * 0.025 / 4.0 * 0.6 + 4.0;
+    let limit = |k: f64| BOUND * (k * mass).sqrt();
+    let run = |t: String| autobal::linear_rotor::config::linear_rotor_bytes(&with(&t, &[]), &mut |p| Err(format!("{p}: no files here"))).map(|_| ());
+    let small = Some([300.0, 300.0]);
+    // row 1 (1000 rad/s): K along x = 2e6 + 3e6
+    run(text([300.0, 0.999 * limit(5e6)], small, [0.0; 2])).unwrap();
+    expect_refused(run(text([300.0, 1.001 * limit(5e6)], small, [0.0; 2])), "linear_rotor.bearings[1].cxx[1]");
+    // row 0 (0 rad/s): K along x = 2e6 + 2e6
+    run(text([0.999 * limit(4e6), 300.0], small, [0.0; 2])).unwrap();
+    expect_refused(run(text([1.001 * limit(4e6), 300.0], small, [0.0; 2])), "linear_rotor.bearings[1].cxx[0]");
+    // along y, K = 2e6 + 1e6 at both rows: cyy named where given, cxx where cyy falls back to it
+    run(text([300.0; 2], Some([300.0, 0.999 * limit(3e6)]), [0.0; 2])).unwrap();
+    expect_refused(run(text([300.0; 2], Some([300.0, 1.001 * limit(3e6)]), [0.0; 2])), "linear_rotor.bearings[1].cyy[1]");
+    expect_refused(run(text([300.0, 1.001 * limit(3e6)], None, [0.0; 2])), "linear_rotor.bearings[1].cxx[1]");
+    // a cross-coupled term: its magnitude, either sign
+    run(text([300.0; 2], small, [0.0, -0.999 * limit(5e6)])).unwrap();
+    expect_refused(run(text([300.0; 2], small, [0.0, -1.001 * limit(5e6)])), "linear_rotor.bearings[1].cxy[1]");
+    // the reported case
+    expect_refused(run(text([300.0, 1e12], small, [0.0; 2])), "linear_rotor.bearings[1].cxx[1]");
+}

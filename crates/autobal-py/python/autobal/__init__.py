@@ -500,26 +500,35 @@ def run(command: str, config: ConfigLike = None, set: Optional[Mapping[str, Any]
         _no_more(command, options)
         return json.loads(_autobal.spatial_basins(SpatialModel(config, set=set)._cfg, n)[1])
     if command == "map":
-        if "x" not in options or "y" not in options:
-            raise _invalid("x", "required, with y (e.g. x='dimensionless.z_a=-2:2:41', y='omega=0.05:4.5:41')")
-        (xp, xv), (yp, yv) = _axes([options.pop("x"), options.pop("y")])
-        kw = {k: options.pop(k) for k in ("omega", "balls", "quantity", "route", "threads") if k in options}
-        _no_more(command, options)
-        # the config as the CLI reads it (any rotor: a planar or two-plane config takes the
-        # general route, as on the CLI), the command's own defaults and checks (map::Args)
-        text, table, source = _read(config, _autobal.DEFAULT_SPATIAL, SpatialModel._DEFAULT_NAME)
-        out = _autobal.map_cells(text, table, source, list((set or {}).items()), (xp, xv), (yp, yv), **kw)
-        for name in ("verdict", "state"):
-            if name in out:
-                out[name] = np.array(out[name], dtype=object)
-        out["x_path"], out["y_path"] = xp, yp
-        return out
+        return _map(config, set, options)
     if command == "report":
         raise _invalid("command", "report writes a folder of pages: autobal.report(config, out=...) (or autobal.analyse(\"report\", ...))")
     raise _invalid(
         "command",
         f"\"{command}\" is not a command of autobal.run (inertia, critical, ranges, stability, campbell, simulate, sweep, merge, basins, map, export-model)",
     )
+
+
+def _map(config: ConfigLike, set: Optional[Mapping[str, Any]], options: Dict[str, Any], boundary: bool = False) -> Dict[str, Any]:
+    """``run("map", ...)`` on any config but a linear rotor's: the cells as arrays.
+    ``boundary`` (:func:`analyse`'s, traced for its figure only) is checked as the CLI's
+    ``--boundary`` before any cell is computed (a map at a speed in SI over axes that move
+    omega0 cannot be traced: refused here, not after every cell while drawing)."""
+    command = "map"
+    if "x" not in options or "y" not in options:
+        raise _invalid("x", "required, with y (e.g. x='dimensionless.z_a=-2:2:41', y='omega=0.05:4.5:41')")
+    (xp, xv), (yp, yv) = _axes([options.pop("x"), options.pop("y")])
+    kw = {k: options.pop(k) for k in ("omega", "balls", "quantity", "route", "threads") if k in options}
+    _no_more(command, options)
+    # the config as the CLI reads it (any rotor: a planar or two-plane config takes the
+    # general route, as on the CLI), the command's own defaults and checks (map::Args)
+    text, table, source = _read(config, _autobal.DEFAULT_SPATIAL, SpatialModel._DEFAULT_NAME)
+    out = _autobal.map_cells(text, table, source, list((set or {}).items()), (xp, xv), (yp, yv), boundary=bool(boundary), **kw)
+    for name in ("verdict", "state"):
+        if name in out:
+            out[name] = np.array(out[name], dtype=object)
+    out["x_path"], out["y_path"] = xp, yp
+    return out
 
 
 # the options of the analytic commands (the others take theirs from ``options`` one by one)
@@ -577,8 +586,9 @@ def analyse(command: str, config: ConfigLike = None, set: Optional[Mapping[str, 
         arrays, summary = _autobal.spatial_basins(SpatialModel(config, set=set)._cfg, options.get("n"))
         result = json.loads(summary)
     elif command == "map":
-        # `boundary` draws the traced boundary on the figure; the cells are the same
-        result = run(command, config, set, **{k: v for k, v in options.items() if k != "boundary"})
+        # `boundary` draws the traced boundary on the figure; the cells are the same, and a
+        # boundary that cannot be traced is refused before any of them is computed
+        result = _map(config, set, {k: v for k, v in options.items() if k != "boundary"}, boundary=options.get("boundary", False))
     else:
         result = run(command, config, set, **options)
     planar_default = command in ("simulate", "sweep")

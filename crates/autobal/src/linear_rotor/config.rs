@@ -183,9 +183,7 @@ fn within_magnitude(field: &str, value: f64, hi: f64, unit: &str, why: &str) -> 
 fn check_bearing_damping(rotor: &LinearRotor, bearings: &[(String, f64, f64)]) -> Result<()> {
     let (k, c) = bearings.iter().fold((0.0, 0.0), |(k, c), b| (k + b.1, c + b.2));
     let Some(worst) = bearings.iter().reduce(|w, b| if b.2 > w.2 { b } else { w }) else { return Ok(()) };
-    let n = rotor.dofs();
-    let along_x: Vec<usize> = (0..n).filter(|&i| matches!(rotor.dof_node(i), Some((_, Direction::X)))).collect();
-    let mass: f64 = along_x.iter().map(|&i| along_x.iter().map(|&j| rotor.m[i * n + j]).sum::<f64>()).sum();
+    let mass = mass_along_x(rotor);
     if !(k > 0.0 && mass > 0.0) {
         return Ok(());
     }
@@ -199,6 +197,69 @@ fn check_bearing_damping(rotor: &LinearRotor, bearings: &[(String, f64, f64)]) -
         f(mass)
     );
     crate::limits::check_derived(&worst.0, "dimensionless.h_x", c / (mass * omega0), &what).map(|_| ())
+}
+
+/// The rotor's mass along x, `uᵀ M u` for the unit translation `u` along x of every node (a
+/// rigid translation: no rotary inertia's energy).
+fn mass_along_x(rotor: &LinearRotor) -> f64 {
+    let n = rotor.dofs();
+    let along_x: Vec<usize> = (0..n).filter(|&i| matches!(rotor.dof_node(i), Some((_, Direction::X)))).collect();
+    along_x.iter().map(|&i| along_x.iter().map(|&j| rotor.m[i * n + j]).sum::<f64>()).sum()
+}
+
+/// The tabulated bearings' damping (`speed_bearings`, each with its config name
+/// `linear_rotor.bearings[i]` and whether it gave `cyy`), every value of `cxx`, `cxy`, `cyx`,
+/// `cyy` at its table row through the dimensionless damping it implies, as the constant
+/// bearings' `c` ([`check_bearing_damping`]): `|c|/(M ω0)` with `ω0 = sqrt(K/M)` within the
+/// range of `dimensionless.h_x`, `M` the rotor's mass along x ([`mass_along_x`]) and `K` the
+/// supports' stiffness along the value's force direction (x for `cxx`, `cxy`; y for `cyx`,
+/// `cyy`) at that row's speed `w_j`: every constant bearing's `k` plus every table's direct
+/// stiffness (`kxx`, `kyy`) at `w_j`, interpolated as the rotor does ([`SpeedBearing::at`]).
+///
+/// Why that stiffness: a table's row holds at its speed, and a fluid film's stiffness and
+/// damping both grow with speed, so what the row's damping acts against is the stiffness the
+/// rotor sits on at that speed. The constant bearings' `ω0` alone would miss the tables'
+/// stiffness (none at all beside tabulated bearings only, which left `cxx = 1e12` unbounded:
+/// it was taken and ran for minutes), the row's own stiffness alone the supports in parallel
+/// (a pure damper row, `kxx = 0`, beside stiff constant bearings). Each value is held on its
+/// own, so the error names the user's key and row (`linear_rotor.bearings[1].cxx[2]`; `cxx`
+/// for `cyy` where `cyy` falls back to it); the cross-coupled terms may be negative, their
+/// magnitude is held. Where `K ≤ 0` at a row (no `ω0`: no stiffness, or a film's negative
+/// one) only the absolute bound of 1e12 N·s/m holds there.
+fn check_table_damping(rotor: &LinearRotor, constant_k: f64, names: &[(String, bool)]) -> Result<()> {
+    let mass = mass_along_x(rotor);
+    if !(mass > 0.0) {
+        return Ok(());
+    }
+    let f = crate::error::fmt_num;
+    for (b, (name, gave_cyy)) in rotor.speed_bearings.iter().zip(names) {
+        for (j, (&w, c)) in b.speeds.iter().zip(&b.c).enumerate() {
+            // the supports' stiffness along x and y at this row's speed
+            let (kx, ky) = rotor.speed_bearings.iter().fold((constant_k, constant_k), |(x, y), o| {
+                let (k, _) = o.at(w);
+                (x + k[0], y + k[3])
+            });
+            for (e, key) in ["cxx", "cxy", "cyx", "cyy"].into_iter().enumerate() {
+                let (k, dir) = if e < 2 { (kx, "x") } else { (ky, "y") };
+                if !(k > 0.0) {
+                    continue;
+                }
+                let given = if key == "cyy" && !gave_cyy { "cxx" } else { key };
+                let stands = if given == key { "" } else { " (cyy too: not given)" };
+                let omega0 = (k / mass).sqrt();
+                let what = format!(
+                    "|{given}|/(M ω0) at {} rad/s with ω0 = sqrt(K/M) = {} rad/s ({given} = {} N·s/m{stands}; K = {} N/m, the supports' stiffness along {dir} at that speed: the constant bearings' k and the tables' k{dir}{dir}; the rotor's mass M = {} kg)",
+                    f(w),
+                    f(omega0),
+                    f(c[e]),
+                    f(k),
+                    f(mass)
+                );
+                crate::limits::check_derived(&format!("{name}.{given}[{j}]"), "dimensionless.h_x", c[e].abs() / (mass * omega0), &what)?;
+            }
+        }
+    }
+    Ok(())
 }
 
 fn within(field: &str, value: f64, lo: (f64, bool), hi: f64, unit: &str, why: &str) -> Result<f64> {
@@ -723,6 +784,8 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
     }
     // bearings: constant isotropic ones into K, C; tables over speed kept as speed bearings
     let mut constant_bearings: Vec<(String, f64, f64)> = Vec::new();
+    // each table's name and whether it gave `cyy` (else `cxx` stands for it), as `speed_bearings`
+    let mut table_names: Vec<(String, bool)> = Vec::new();
     for (i, br) in items(lr, "bearings")?.iter().enumerate() {
         let node = br.req_usize("node")?;
         if node >= rotor.nodes {
@@ -816,6 +879,7 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
                 let (cxx, cxy, cyx) = (col("cxx", None)?, col("cxy", None)?, col("cyx", None)?);
                 let cyy = col("cyy", Some("cxx"))?;
                 let _ = i;
+                table_names.push((br.name.clone(), br.t.contains_key("cyy")));
                 rotor.speed_bearings.push(SpeedBearing {
                     node,
                     link,
@@ -827,6 +891,7 @@ pub fn linear_rotor_bytes(root: &Table, load: &mut dyn FnMut(&str) -> std::resul
         }
     }
     check_bearing_damping(&rotor, &constant_bearings)?;
+    check_table_damping(&rotor, constant_bearings.iter().map(|b| b.1).sum(), &table_names)?;
     for u in items(lr, "unbalance")? {
         if let Some(me) = u.f64("me")? {
             within_magnitude(&u.field("me"), me, 1e12, "kg·m", "1e9 kg at 1e3 m")?;
