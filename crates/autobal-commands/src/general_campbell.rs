@@ -191,6 +191,47 @@ fn partial_state(c: &RotorCampbell) -> Option<&'static str> {
     c.states.iter().flatten().any(|s| *s == StateKind::PartiallyBalanced).then_some(PARTIAL_STATE)
 }
 
+/// A crossing's component share below which unbalance hardly excites it (session 29). The
+/// response at a crossing is the force's projection on the mode (the left eigenvector's
+/// component, amplitude ~√share) times the mode's component that moves the rotor there
+/// (~√share): ~share of a pure whirl's at the same damping. Below 1e-3 that is 60 dB down,
+/// under what a run-up or a measured Campbell diagram shows (j.toml: the rotor's forward
+/// mode's backward component at −Ω, share 1.83e-6 at 32.56 rad/s).
+pub const NEGLIGIBLE_SHARE: f64 = 1e-3;
+
+/// Why a critical speed of the equilibrium route is not excited by unbalance, `None` where
+/// it is. Unbalance is a load fixed in the turning axes: constant there, it meets only a
+/// mode with `ν̂ = 0` (the forward `1×` crossing, share 1). A backward `1×` crossing
+/// (`ν̂ = 2Ω`: the backward component at `−Ω`) answers only to a backward-whirling `1×` force,
+/// which supports alike in every direction (the equilibrium route) do not make: on a Jeffcott
+/// rotor the backward whirl `−ω_d` meets it at the same speed as the forward one, not excited.
+/// A component with share below [`NEGLIGIBLE_SHARE`] is not excited by anything.
+pub fn not_excited(k: &autobal::spatial::campbell::CriticalSpeed) -> Option<String> {
+    if k.share < NEGLIGIBLE_SHARE {
+        return Some(format!("not excited: its component's share is below {NEGLIGIBLE_SHARE} (the response there is ~share of a pure whirl's)"));
+    }
+    if k.harmonic == 1 && k.whirl == autobal::spatial::stability::Whirl::Backward {
+        return Some("not excited by unbalance: a backward whirl at −Ω (unbalance is constant in turning axes and meets only ν = 0, the forward 1×)".into());
+    }
+    None
+}
+
+/// The group of the mode a crossing lies on: that of its curve's line at the drawn speed
+/// nearest the crossing (`None` where the line has no point).
+fn crossing_group(gc: &GeneralCampbell, f: &FixedCampbell, k: &autobal::spatial::campbell::CriticalSpeed) -> Option<autobal::spatial::stability::Group> {
+    let line = &gc.diagram.lines.get(f.curves.get(k.curve)?.line)?.points;
+    line.iter()
+        .zip(&gc.diagram.omega)
+        .filter_map(|(p, &w)| p.map(|p| (p, w)))
+        .min_by(|a, b| (a.1 - k.omega).abs().total_cmp(&(b.1 - k.omega).abs()))
+        .map(|(p, _)| p.group)
+}
+
+/// What the crossings of the diagram with the balls free on the equilibrium route leave out:
+/// the rotor's own critical speed (session 29, j.toml: 96.76 rad/s was listed as a backward
+/// crossing and no forward one, while `critical` gives 96.67 rad/s forward).
+pub const FREE_BALLS_CRITICAL: &str = "with the balls free their motion shifts the rotor's forward mode: it need not cross 1× (on a Jeffcott rotor it stays above the line, at ν ≈ 20 in turning axes, and no forward crossing is listed); the rotor's critical speed, its forward whirl meeting 1× with the balls locked, is given by `--balls locked` (ν = 0: the damped natural frequency) or `autobal critical` (undamped)";
+
 /// What a Floquet exponent given as a bound is ([`autobal::rotor_campbell::CampbellPoint::decay_at_least`]).
 pub const UNDETERMINED: &str = "a Floquet multiplier below the monodromy's round-off (|μ| < δ = 100 · 1e-10 · ‖S⁻¹ΦS‖∞) gives no exponent, only a bound: re and log_decrement are null and decay_at_least says the mode decays at least that fast, σ ≤ ln(|μ| + δ)/T (its im, the phase of round-off, is not determined either)";
 
@@ -200,6 +241,34 @@ fn kept(l: &autobal::rotor_campbell::CampbellLine) -> bool {
     let pts: Vec<_> = l.points.iter().flatten().collect();
     let up = pts.iter().filter(|p| p.im >= 0.0).count();
     !pts.is_empty() && 2 * up >= pts.len() && !pts.iter().all(|p| p.structural)
+}
+
+/// The rows of [`campbell_table`] at speed index `k`: every eigenvalue (structural zeros left
+/// out) but the `Im λ < 0` one of each conjugate pair, found at that speed among all the
+/// lines, not by the lines' tracking. Before session 29 the rows were the points with
+/// `Im λ ≥ 0` of the lines [`kept`] over the whole grid: a kept line's point with `Im λ < 0`
+/// (the line crossed the real axis) and the real eigenvalues of lines left out were dropped,
+/// the largest growth rate among them (j.toml at 25 rad/s: 3 rows of 8 eigenvalues).
+fn table_points(c: &RotorCampbell, k: usize) -> Vec<autobal::rotor_campbell::CampbellPoint> {
+    let pts: Vec<_> = c.lines.iter().filter_map(|l| l.points[k]).filter(|p| !p.structural).collect();
+    // |a − conj(p)|
+    let gap = |a: &autobal::rotor_campbell::CampbellPoint, p: &autobal::rotor_campbell::CampbellPoint| (a.re - p.re).hypot(a.im + p.im);
+    let mut used = vec![false; pts.len()];
+    let mut rows = vec![];
+    for (i, p) in pts.iter().enumerate() {
+        if p.im >= 0.0 {
+            rows.push(*p);
+            continue;
+        }
+        // Im λ < 0: left out where an unused point with Im λ > 0 is its conjugate (a real
+        // Jacobian's, or a real monodromy's exponents on their branch), else shown
+        let partner = (0..pts.len()).filter(|&j| j != i && !used[j] && pts[j].im > 0.0).min_by(|&a, &b| gap(&pts[a], p).total_cmp(&gap(&pts[b], p)));
+        match partner {
+            Some(j) if gap(&pts[j], p) <= 1e-6 * (1.0 + p.re.hypot(p.im)) => used[j] = true,
+            _ => rows.push(*p),
+        }
+    }
+    rows
 }
 
 /// The JSON of the general Campbell diagram: the tracked lines, and the fixed-axes view with
@@ -258,6 +327,14 @@ pub fn campbell_json(g: &GeneralRotor, gc: &GeneralCampbell, omega_max: f64) -> 
                 .map(|k| {
                     let mut e =
                         json!({ "omega": k.omega, "mode": k.mode, "whirl": k.whirl, "share": k.share, "harmonic": k.harmonic, "frequency": k.frequency });
+                    if let Some(gr) = crossing_group(gc, f, k) {
+                        e["group"] = json!(crate::figures::group_name(gr));
+                    }
+                    let why = not_excited(k);
+                    e["excited"] = json!(why.is_none());
+                    if let Some(why) = why {
+                        e["not_excited"] = json!(why);
+                    }
                     if let (true, Some(o)) = (g.si, e.as_object_mut()) {
                         o.insert("omega_rad_s".into(), json!(k.omega));
                         o.insert("omega_rpm".into(), json!(rpm(k.omega)));
@@ -267,6 +344,9 @@ pub fn campbell_json(g: &GeneralRotor, gc: &GeneralCampbell, omega_max: f64) -> 
                 })
                 .collect();
             v["critical_speeds"] = json!(crit);
+            if gc.balls == Balls::Free {
+                v["critical_speeds_note"] = json!(FREE_BALLS_CRITICAL);
+            }
         }
         (_, why) => {
             v["critical_speeds"] = Value::Null;
@@ -363,7 +443,7 @@ pub fn campbell_table(g: &GeneralRotor, gc: &GeneralCampbell) -> String {
         }
         let hz = if g.si { format!(" {:>11}", "fixed Hz") } else { String::new() };
         let _ = writeln!(s, "  {:>12} {:>12} {:>10} {:>12}{hz}  {:<12} {:<9}", "ν", "σ", "log dec", "fixed f", "group", "whirl");
-        let mut pts: Vec<_> = c.lines.iter().filter(|l| kept(l)).filter_map(|l| l.points[k]).filter(|p| !p.structural && p.im >= 0.0).collect();
+        let mut pts = table_points(c, k);
         pts.sort_by(|a, b| a.fixed_frequency.abs().total_cmp(&b.fixed_frequency.abs()));
         for p in pts {
             let hz = if g.si { format!(" {:>11}", fmt_num(round(p.fixed_frequency / (2.0 * std::f64::consts::PI)))) } else { String::new() };
@@ -434,6 +514,14 @@ fn crossings_table(g: &GeneralRotor, gc: &GeneralCampbell) -> String {
             fmt_num(round(k.frequency)),
             crate::linear::component_text(k.share),
         );
+        if let Some(why) = not_excited(k) {
+            let _ = writeln!(s, "      {why}");
+        } else if crossing_group(gc, f, k) == Some(autobal::spatial::stability::Group::Balls) {
+            let _ = writeln!(s, "      a mode of the balls (its group at the nearest drawn speed): it hardly moves the rotor, not the rotor's critical speed");
+        }
+    }
+    if gc.balls == Balls::Free {
+        let _ = writeln!(s, "  note: {FREE_BALLS_CRITICAL}");
     }
     s
 }

@@ -1545,7 +1545,9 @@ const REAL_TOL: f64 = 1e-9;
 /// pair of conjugate lines (the kept line of each pair found by 2-colouring the graph of lines
 /// that are conjugate somewhere; structural zeros and speeds without a state left out), the
 /// followed component `f = Ω ± ν` the dominant one unless the other continues the curve better
-/// by more than two speed steps, `δ = −2π σ/|f|` per fixed-axes cycle, and the crossings with
+/// by more than two speed steps, each point's `σ` and `ν` its own line's (where the line is
+/// real, the largest real eigenvalue left out of its conjugacy component is beside it as
+/// `paired_re`, `paired_line`), `δ = −2π σ/|f|` per fixed-axes cycle, and the crossings with
 /// the excitation lines `h Ω` for each `h` of `harmonics` by the 12-state route's rule and
 /// search ([`crate::spatial::campbell`]: a circular component's frequency meets `hΩ`, `ν̂ = 0`
 /// for the forward `1×`, bisected to `1e-13` relative on the stationary state's spectrum
@@ -1628,12 +1630,18 @@ pub fn fixed_view_with(rotor: &Rotor, balls: Balls, c: &RotorCampbell, harmonics
                 }
             };
             let (f, share) = cand[pick];
-            let mut sigma = m.re;
+            // the line's own σ (session 29: before, a real point carried the largest of the
+            // real eigenvalues left out of its component, another line's value under this
+            // line's number: j.toml at 25 rad/s, line 4 with line 7's 0.275); that largest
+            // one is given beside it as `paired_re`, `paired_line`
+            let sigma = m.re;
+            let mut paired: Option<(f64, usize)> = None;
             if is_real(&m) {
-                // the real eigenvalues of the component left out here: their decay counts
                 for j in (0..nl).filter(|&j| dropped[j] && component[j] == component[li]) {
                     if let Some(p) = at(j, k).filter(|p| is_real(p)) {
-                        sigma = sigma.max(p.re);
+                        if paired.is_none_or(|(r, _)| p.re > r) {
+                            paired = Some((p.re, j));
+                        }
                     }
                 }
             }
@@ -1656,6 +1664,8 @@ pub fn fixed_view_with(rotor: &Rotor, balls: Balls, c: &RotorCampbell, harmonics
                     .filter(|_| m.decay_at_least.is_none()),
                 share,
                 decay_at_least: m.decay_at_least,
+                paired_re: paired.map(|(r, _)| r),
+                paired_line: paired.map(|(_, j)| j),
             });
             idx.push(k);
         }

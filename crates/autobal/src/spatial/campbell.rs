@@ -164,6 +164,16 @@ pub struct FixedPoint {
     /// `None`. Always `None` on the 12-state route (eigenvalues).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub decay_at_least: Option<f64>,
+    /// The general route ([`crate::rotor_campbell::fixed_view`]), where the curve's line is
+    /// real at this speed: the largest real part of the real eigenvalues left out here of its
+    /// conjugacy component (the other half of an overdamped pair, on another line), which
+    /// `re` no longer carries (session 29: `re` is the named line's own value). `None` (not in
+    /// the JSON) elsewhere, and always on the 12-state route (its `re` still carries it).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub paired_re: Option<f64>,
+    /// The tracked line of [`Self::paired_re`].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub paired_line: Option<usize>,
 }
 
 /// One mode's curve in fixed axes.
@@ -334,6 +344,8 @@ pub fn fixed_axes_with(model: &SpatialModel, c: &Campbell, balls: Balls, harmoni
                 log_decrement: (f.abs() >= 1e-12).then(|| -2.0 * std::f64::consts::PI * sigma / f.abs()),
                 share,
                 decay_at_least: None,
+                paired_re: None,
+                paired_line: None,
             });
         }
         curves.push(FixedCurve { line: li, mode: 0, points: pts });
