@@ -1382,7 +1382,7 @@ pub fn trace(cfg: &Config, x: &Axis, y: &Axis, omega: Option<f64>, balls: Balls,
 }
 
 // The map's figure: Figures of stability maps (`autobal map` and the report): the margin heatmap
-// with its colour bar, the exact stability boundary and 003's necessary boundary as lines, axes
+// with its colour bar, the stability boundary and 003's necessary boundary along cell edges, axes
 // named by the physics (not by config keys). Written as SVG and PNG from one [`Plot`].
 use crate::plot::{ColorScale, Heatmap, Plot};
 
@@ -1419,6 +1419,15 @@ pub fn axis_label(key: &str) -> String {
     ];
     known.iter().find(|k| k.0 == key).map_or_else(|| key.to_string(), |k| k.1.to_string())
 }
+
+/// The legend of the closed route's boundary drawn along cell edges between cells of different
+/// exact verdicts: the exact boundary lies within a cell of it, not on it (a traced or bisected
+/// boundary is its own series; walk29 read the staircase labelled "exact stability boundary" as
+/// the boundary itself, off the bisected points).
+pub const STABLE_EDGE_LABEL: &str = "stability boundary, to a cell";
+
+/// The legend of the cell-edge boundary of 003's necessary condition ([`STABLE_EDGE_LABEL`]).
+pub const NECESSARY_EDGE_LABEL: &str = "003 necessary boundary, to a cell";
 
 /// The hash of a rounded point in [`chain`]: each integer multiplied into the state and mixed
 /// (Fibonacci hashing; the keys are ours, never an adversary's, so no SipHash is needed).
@@ -1581,8 +1590,8 @@ pub fn plot_cells(r: &FigureCells, title: &str) -> Plot {
         x_label: axis_label(&r.x.path),
         y_label: axis_label(&r.y.path),
         series: vec![
-            Series::new("exact stability boundary", boundary(r, FigureCells::STABLE), "#000000"),
-            Series::new("003 necessary boundary", boundary(r, FigureCells::NECESSARY), "#CC79A7").dashed(),
+            Series::new(STABLE_EDGE_LABEL, boundary(r, FigureCells::STABLE), "#000000"),
+            Series::new(NECESSARY_EDGE_LABEL, boundary(r, FigureCells::NECESSARY), "#CC79A7").dashed(),
         ],
         x_range: Some((r.x.lo() - dx / 2.0, r.x.hi() + dx / 2.0)),
         y_range: Some((r.y.lo() - dy / 2.0, r.y.hi() + dy / 2.0)),

@@ -108,7 +108,7 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
     let ignored = autobal::config::ignored_by_linear_model(&ctx.root);
     let balls = if m.balls.is_some() { Balls::Free } else { Balls::Locked };
     s.p(format!(
-        "The exact stability of the balanced state (the margin of the stability section, balls {}) over the speed and one design parameter at a time, the others the config's. Colour: the largest real part of the eigenvalues (blue stable, red unstable, white near zero, square-root scale on each side); solid black: the exact stability boundary; dashed: 003's necessary condition; the vertical line is the config's value, the horizontal one the operating speed; grey: no balanced state there (too little ball mass to cancel the unbalance) or a row not computed.{}",
+        "The exact stability of the balanced state (the margin of the stability section, balls {}) over the speed and one design parameter at a time, the others the config's. Colour: the largest real part of the eigenvalues (blue stable, red unstable, white near zero, square-root scale on each side); solid black: the stability boundary between cells of different exact verdicts (the boundary lies within a cell of it); dashed: 003's necessary condition; the vertical line is the config's value, the horizontal one the operating speed; grey: no balanced state there (too little ball mass to cancel the unbalance) or a row not computed.{}",
         if balls == Balls::Free { "free" } else { "locked" },
         if ignored.is_empty() {
             String::new()
@@ -321,7 +321,7 @@ fn general(ctx: &Ctx) -> Result<Option<Section>> {
         let r = MapResult { x, y, rows: cells, quantity: Quantity::Margin };
         let mut p = crate::map::plot(&r, d.title);
         // no 003 necessary condition off the 12-state model
-        p.series.retain(|se| se.label != "003 necessary boundary");
+        p.series.retain(|se| se.label != crate::map::NECESSARY_EDGE_LABEL);
         if let Some(h) = p.heatmap.as_mut() {
             // cells without a stationary state stay blank
             for (zr, kr) in h.z.iter_mut().zip(&rows) {

@@ -361,7 +361,7 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
             stem,
             p,
             format!(
-                "Stability map {what}: largest real part of the eigenvalues (colour bar: blue stable, red unstable, white near zero, square-root scale on each side), the exact stability boundary (solid black) and the boundary of 003's necessary condition (dashed). The other parameters are this rotor's.{}",
+                "Stability map {what}: largest real part of the eigenvalues (colour bar: blue stable, red unstable, white near zero, square-root scale on each side), the stability boundary between cells of different exact verdicts (solid black; the boundary lies within a cell of it) and the boundary of 003's necessary condition (dashed). The other parameters are this rotor's.{}",
                 if complete { "" } else { " <b>Interrupted: grey rows were not computed.</b>" }
             ),
         );
