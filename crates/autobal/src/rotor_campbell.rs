@@ -1151,7 +1151,7 @@ pub fn unlocked_words(unlocked: usize, samples: usize) -> String {
 }
 
 /// The words of [`LockedCriticalSpeeds::partial`]: the speeds where no balanced state exists
-/// and the balls are locked at the partially balanced placement ([`lock_state`]).
+/// and the balls are locked at the partially balanced placement (bunched against the unbalance).
 pub fn partial_words(partial: usize, samples: usize) -> String {
     let at = if partial == samples { "at any speed of the grid".to_string() } else { format!("at {partial} of {samples} speeds of the grid") };
     format!(
