@@ -153,3 +153,22 @@ fn the_family_note_needs_three_balls_and_equal_speeds_merge() {
     assert_eq!(listed, unique, "{t}");
     assert!(!t.contains("3 or more"), "{t}");
 }
+
+#[test]
+fn critical_locks_an_eccentric_race_on_anisotropic_supports_at_every_speed() {
+    // review 29's rnd/p29_0.toml: one ball, an eccentric race, k_x != k_y: neither closed form
+    // places the ball below its semi-balanced speed, and 1362 of 2000 speeds went unsearched
+    // ("none at the 638 of 2000 speeds searched"); the planar balls' placement does not enter
+    // the locked rotor's linearisation: sqrt(k_x/m0) and sqrt(k_y/m0)
+    let body = "[planar]\nm1 = 3.1436141458374456\nm2 = 0.39240696184087503\nm3 = 0.18361361972000573\nn = 1\ns1 = 0.0028800158767381913\ns2 = 0.001061530016035415\ngamma = 1.2474803919927735\nr = 0.08550002539798886\nk_x = 7231.015059248485\nk_y = 8807.02932861872\nc_x = 10.147903131522126\nc_y = 16.91317188587021\nc_psi = 0.028810620939040302\nc_theta = 0.0\ni_g = 0.03143614145837446\n";
+    let cfg = config("p29_0.toml", body);
+    let v = json(&["critical", "--config", &cfg, "--format", "json"]);
+    let m0 = 3.1436141458374456 + 0.39240696184087503 + 0.18361361972000573;
+    let want = [(7231.015059248485f64 / m0).sqrt(), (8807.02932861872f64 / m0).sqrt()];
+    let got = speeds(&v);
+    assert_eq!(got.len(), 2, "{v}");
+    for (a, b) in got.iter().zip(want) {
+        assert!((a - b).abs() <= 1e-9 * b, "{a} vs {b}");
+    }
+    assert_eq!(v["locked_critical_speeds"]["speeds_not_searched"], 0);
+}

@@ -1002,8 +1002,28 @@ pub fn locked_rotor(rotor: &Rotor, omega: f64, undamped: bool) -> Result<Rotor> 
 /// through its point mass (the mass, and the inertia `m R²` whose direction moves with `2ψ`), so
 /// the placement moves them little (review 29: the critical speeds were "none" wherever the balls
 /// could not balance).
+/// The planar rotor's balls join its housing's mass, and their placement does not enter the
+/// locked rotor's linearisation (`the_jeffcott_rotors_locked_critical_speed_is_sqrt_k_over_m_total`):
+/// where neither closed form places them (an eccentric race on supports that differ by
+/// direction, below its semi-balanced speed), they are locked opposite the race centre's offset.
 fn lock_state(f: &Field, partial: bool) -> Option<(Vec<f64>, bool)> {
-    Rotor::guess(f).map(|x| (x, false)).or_else(|| if partial { Rotor::placed_guess(f).or_else(|| Rotor::bunched_guess(f)).map(|x| (x, true)) } else { None })
+    let planar_any = || match f {
+        Field::Planar(pf) if pf.rotor().n > 0 => {
+            let p = pf.rotor();
+            let nr = 2 + p.n;
+            let mut x = vec![0.0; 2 * nr];
+            x[2..nr].iter_mut().for_each(|v| *v = p.gamma + std::f64::consts::PI);
+            Some(x)
+        }
+        _ => None,
+    };
+    Rotor::guess(f).map(|x| (x, false)).or_else(|| {
+        if partial {
+            Rotor::placed_guess(f).or_else(|| Rotor::bunched_guess(f)).or_else(planar_any).map(|x| (x, true))
+        } else {
+            None
+        }
+    })
 }
 
 /// [`locked_rotor`], with the balls at [`lock_state`]'s placement (`partial`: the partially
