@@ -1,7 +1,9 @@
 //! `autobal critical`: paper 000's critical speeds (eq (16)), sensitivity criterion and
 //! autobalancing ranges where its 12-state model represents the config ([`crate::output`]),
-//! else the general route ([`crate::general_campbell::critical`]: the locked critical speeds
-//! and the exact stability ranges of the nonlinear equations' linearisation); on a linear rotor
+//! else the general route ([`crate::general_campbell::critical`]: the verdict at the operating
+//! speed first, as on the closed-form route, then the locked critical speeds, with the balls
+//! at the partially balanced placement where they cannot balance, and the exact stability
+//! ranges of the nonlinear equations' linearisation); on a linear rotor
 //! config its natural frequencies at rest with the balls as rings
 //! ([`crate::linear_rotor_summary::critical`]).
 

@@ -664,6 +664,9 @@ pub struct GeneralCritical {
     pub necessary: Option<Vec<(f64, Option<f64>)>>,
     /// The top of the speed axis.
     pub omega_max: f64,
+    /// The verdict at the config's operating speed (`analysis.operating_speed`), printed first
+    /// as `stability` prints it; `None` without one or without a stability scan.
+    pub operating: Option<crate::general::Operating>,
 }
 
 /// Run `critical` by the general route over `(0, omega_max]`.
@@ -691,7 +694,15 @@ pub fn critical(root: &Table, g: &GeneralRotor, omega_max: f64, control: &Contro
     if let Ok(st) = &stability {
         autobal::limits::check_finite("critical.stability", &st.stable_ranges)?;
     }
-    Ok(GeneralCritical { locked, stability, necessary, omega_max })
+    // the verdict at the operating speed first, as `stability` and the closed-form route say it
+    let operating = match &stability {
+        Ok(st) => crate::general::operating(g, root, st, control)?,
+        Err(_) => None,
+    };
+    if let Some(why) = operating.as_ref().and_then(|o| o.stopped) {
+        anyhow::bail!("{why}: the verdict at the operating speed stopped; nothing is printed");
+    }
+    Ok(GeneralCritical { locked, stability, necessary, omega_max, operating })
 }
 
 /// Paper 003's necessary ranges (eqs (1)-(3)) that the general `critical` prints beside the
@@ -707,7 +718,7 @@ pub fn necessary_ranges(root: &Table, omega0: f64) -> Result<Option<Vec<(f64, Op
     })
 }
 
-const LOCKED_WHAT: &str = "balls locked at the closed-form balanced position (point masses of the rotor), no damping: speeds where a natural frequency in fixed axes equals the speed (a whirl standing still in turning axes: the stiffness block of the exact Jacobian is singular)";
+const LOCKED_WHAT: &str = "balls locked at the closed-form balanced position (where none exists, at the partially balanced placement), as point masses of the rotor, no damping: speeds where a natural frequency in fixed axes equals the speed (a whirl standing still in turning axes: the stiffness block of the exact Jacobian is singular)";
 
 /// The JSON of the general `critical`.
 pub fn critical_json(g: &GeneralRotor, c: &GeneralCritical) -> Value {
@@ -721,13 +732,17 @@ pub fn critical_json(g: &GeneralRotor, c: &GeneralCritical) -> Value {
             Ok(l) => json!({
                 "what": LOCKED_WHAT,
                 "speeds": l.speeds.iter().map(|s| {
-                    let mut e = json!({ "omega": s.omega, "multiplicity": s.multiplicity, "motion": s.motion, "whirl": s.whirl });
+                    let mut e = json!({ "omega": s.omega, "multiplicity": s.multiplicity, "motion": s.motion, "whirl": s.whirl, "split": s.split, "balls_partially_balanced": s.partial });
                     if g.si { e["rpm"] = json!(rpm(s.omega)); }
                     e
                 }).collect::<Vec<_>>(),
                 "grid": l.samples,
                 "ball_angles": l.ball_angles,
-                "speeds_without_balanced_state": l.unlocked,
+                "same_speed_tolerance": autobal::rotor_campbell::SAME_SPEED,
+                "speeds_without_balanced_state": l.partial + l.unlocked,
+                "speeds_locked_partially_balanced": l.partial,
+                "speeds_not_searched": l.unlocked,
+                "not_computed": (l.samples > 0 && l.unlocked == l.samples).then(|| autobal::rotor_campbell::unlocked_words(l.unlocked, l.samples)),
             }),
             Err(e) => json!({ "what": LOCKED_WHAT, "speeds": Value::Null, "not_located": e }),
         },
@@ -744,6 +759,9 @@ pub fn critical_json(g: &GeneralRotor, c: &GeneralCritical) -> Value {
                     r
                 })
                 .collect::<Vec<_>>());
+            let missing: Vec<_> = st.points.iter().filter(|p| p.verdict.is_none()).collect();
+            v["speeds_without_stationary_state"] = json!(missing.len());
+            v["no_stationary_state_first_reason"] = json!(missing.first().and_then(|p| p.failure.clone()));
             v["stationary_state"] = json!(st.kind);
             v["family_dimension"] = json!(st.family_dimension);
             v["member_psi"] = json!(st.member_psi);
@@ -753,6 +771,7 @@ pub fn critical_json(g: &GeneralRotor, c: &GeneralCritical) -> Value {
             v["stability_not_analysed"] = json!(e);
         }
     }
+    v["operating"] = c.operating.as_ref().map_or(Value::Null, crate::general::operating_json);
     v["necessary_condition_003"] = match &c.necessary {
         Some(r) => json!({
             "what": "necessary condition for autobalancing (003 eqs (1)-(3)), not sufficient: the exact ranges above decide",
@@ -769,13 +788,22 @@ pub fn critical_json(g: &GeneralRotor, c: &GeneralCritical) -> Value {
 /// 3 or more balls breaks into orbits with two groups of balls (`stability`'s `member_psi`), so
 /// the closed-form placement the speeds are located at is not where the balls settle (gravity
 /// itself does not enter the locked rotor's stiffness; the placement moves the speeds only
-/// through the balls' point masses).
-fn locked_placement_note(g: &GeneralRotor) -> &'static str {
+/// through the balls' point masses). The family's words only where a plane has 3 or more balls
+/// (review 29: printed for 2 balls); `partial`: no balanced state, the partially balanced
+/// placement ([`autobal::rotor_campbell::partial_words`]).
+fn locked_placement_note(g: &GeneralRotor, partial: bool) -> &'static str {
+    if partial {
+        return "no balanced state: the partially balanced placement, the balls bunched against the unbalance";
+    }
     match &g.rotor {
         Rotor::Spatial(s) if s.gravity_across() && s.planes.iter().any(|p| p.n >= 3) => {
             "the closed-form placement without gravity; under gravity the balls settle in two groups per plane, at angles that move with the speed (`stability`'s member_psi): the speeds above are the named placement's"
         }
-        _ => "with 3 or more balls in a plane the balanced states form a family: these speeds are the named member's",
+        Rotor::Spatial(s) if s.planes.iter().any(|p| p.n >= 3) => "with 3 or more balls in a plane the balanced states form a family: these speeds are the named member's",
+        // an eccentric race on supports that differ by direction breaks the family, as gravity does
+        Rotor::Planar(p) if p.n >= 3 && !(p.anisotropic() && p.s2 != 0.0) => "with 3 or more balls the balanced states form a family: these speeds are the named member's",
+        Rotor::Planar(p) if p.n >= 3 => "the closed-form placement; on supports that differ by direction the eccentric race's balls settle in two groups (`stability`'s member_psi): the speeds above are the named placement's",
+        _ => "the closed-form balanced placement",
     }
 }
 
@@ -784,16 +812,40 @@ pub fn critical_table(g: &GeneralRotor, c: &GeneralCritical) -> String {
     let mut s = String::new();
     let _ = writeln!(s, "Critical speeds and exact stability (general route, {} rotor)", g.rotor.model_name());
     let _ = writeln!(s, "critical speeds: {LOCKED_WHAT}");
+    if let (Some(op), Ok(st)) = (&c.operating, &c.stability) {
+        // the verdict first, as `stability` and the closed-form route open (review 29)
+        s.insert_str(0, &crate::general::operating_line(g, st, op));
+    }
     match &c.locked {
-        Ok(l) if l.speeds.is_empty() => {
+        // "none" only where every speed of the axis was searched (review 29: "none up to" where
+        // no speed was)
+        Ok(l) if l.speeds.is_empty() && l.unlocked == 0 => {
             let _ = writeln!(s, "  none up to {}", speed_text(g, c.omega_max));
+        }
+        Ok(l) if l.speeds.is_empty() && l.unlocked >= l.samples => {
+            let _ = writeln!(s, "  not computed: no speed of the axis has a placement to lock the balls at");
+        }
+        Ok(l) if l.speeds.is_empty() => {
+            let _ = writeln!(
+                s,
+                "  none at the {} of {} speeds searched up to {} (the others not searched: below)",
+                l.samples - l.unlocked,
+                l.samples,
+                speed_text(g, c.omega_max)
+            );
         }
         Ok(l) => {
             for (i, k) in l.speeds.iter().enumerate() {
                 let motion = serde_json::to_string(&k.motion).unwrap_or_default();
+                let merged = match k.split {
+                    Some([a, b]) => {
+                        format!("; {} speeds {:.1e} apart, relative, merged (below {:.0e})", k.multiplicity, (b - a) / b, autobal::rotor_campbell::SAME_SPEED)
+                    }
+                    None => String::new(),
+                };
                 let _ = writeln!(
                     s,
-                    "  {:>2}. {}  {} whirl, {} (multiplicity {})",
+                    "  {:>2}. {}  {} whirl, {} (multiplicity {}{merged})",
                     i + 1,
                     speed_text(g, k.omega),
                     whirl_name(k.whirl),
@@ -809,7 +861,11 @@ pub fn critical_table(g: &GeneralRotor, c: &GeneralCritical) -> String {
     if let Ok(l) = &c.locked {
         if !l.ball_angles.is_empty() {
             let deg: Vec<String> = l.ball_angles.iter().map(|p| format!("{:.2}°", p.to_degrees().rem_euclid(360.0))).collect();
-            let _ = writeln!(s, "  balls locked at {} ({})", deg.join(", "), locked_placement_note(g));
+            let partial_only = l.partial > 0 && l.partial + l.unlocked == l.samples;
+            let _ = writeln!(s, "  balls locked at {} ({})", deg.join(", "), locked_placement_note(g, partial_only));
+        }
+        if l.partial > 0 {
+            let _ = writeln!(s, "  ({})", autobal::rotor_campbell::partial_words(l.partial, l.samples));
         }
         if l.unlocked > 0 {
             let _ = writeln!(s, "  ({})", autobal::rotor_campbell::unlocked_words(l.unlocked, l.samples));
@@ -827,18 +883,38 @@ pub fn critical_table(g: &GeneralRotor, c: &GeneralCritical) -> String {
         "\nexact stability of the {} (balls free; {}):",
         match (&g.rotor, st.kind) {
             (_, Kind::PeriodicOrbit) => "stationary periodic orbit",
+            // (review 29: "the balanced state" where no speed has one)
+            _ if !st.points.iter().any(|p| matches!(p.state, Some(StateKind::Balanced | StateKind::SemiBalanced))) => "stationary state",
             (Rotor::Planar(p), _) if p.s2 != 0.0 => "semi-balanced state (race centre on the axis)",
             _ => "balanced state",
         },
         if st.kind == Kind::PeriodicOrbit { "Floquet multipliers" } else { "eigenvalues of the exact Jacobian" }
     );
-    if st.stable_ranges.is_empty() {
-        let _ = writeln!(s, "  stable: nowhere in (0, {}]", speed_text(g, c.omega_max));
+    // as `stability` words it (review 29: "stable: nowhere" where no speed had a state)
+    let solved = st.points.iter().filter(|p| p.verdict.is_some()).count();
+    if st.stable_ranges.is_empty() && solved == 0 {
+        let analysed = st.points.iter().filter(|p| p.analysed).count();
+        let _ = writeln!(
+            s,
+            "  no verdict: no stationary state was found at any of the {analysed} speeds analysed of {} in (0, {}]",
+            st.points.len(),
+            speed_text(g, c.omega_max)
+        );
+    } else if st.stable_ranges.is_empty() {
+        let _ = writeln!(
+            s,
+            "  stable: nowhere among the {solved} of {} speeds in (0, {}] where a stationary state was found",
+            st.points.len(),
+            speed_text(g, c.omega_max)
+        );
     }
     for r in &st.stable_ranges {
         // as `stability` words them: a grid speed next to one without a state is not the axis' end
         let end = |upper: bool| crate::general::end_text(st, r, upper, |w| speed_text(g, w));
         let _ = writeln!(s, "  stable: {} to {}", end(false), end(true));
+    }
+    for line in crate::general::missing_lines(st, |w| speed_text(g, w)).lines() {
+        let _ = writeln!(s, "  {line}");
     }
     match &c.necessary {
         Some(r) => {
@@ -868,14 +944,14 @@ mod tests {
     fn the_locked_placement_note_follows_gravity() {
         let text = include_str!("../../../examples/washing_machine.toml");
         let plain = crate::general::rotor_of(&crate::config::parse_text(text, "w").unwrap()).unwrap();
-        assert!(locked_placement_note(&plain).contains("form a family"));
+        assert!(locked_placement_note(&plain, false).contains("form a family"));
         let heavy = format!("{text}\n[spatial]\ngravity = [0.0, -9.81, 0.0]\n");
         let heavy = crate::general::rotor_of(&crate::config::parse_text(&heavy, "w").unwrap()).unwrap();
-        let note = locked_placement_note(&heavy);
+        let note = locked_placement_note(&heavy, false);
         assert!(note.contains("two groups") && !note.contains("form a family"), "{note}");
         // gravity along the axis (a vertical machine) keeps the family
         let vertical = format!("{text}\n[spatial]\ngravity = [0.0, 0.0, -9.81]\n");
         let vertical = crate::general::rotor_of(&crate::config::parse_text(&vertical, "w").unwrap()).unwrap();
-        assert!(locked_placement_note(&vertical).contains("form a family"));
+        assert!(locked_placement_note(&vertical, false).contains("form a family"));
     }
 }

@@ -63,7 +63,9 @@
 //!
 //! # Critical speeds ([`locked_critical_speeds`])
 //! The rotor with its balls **locked** at the closed-form balanced position (each ball becomes
-//! a point mass of the rotor: [`locked_rotor`]) and **without damping** (as 000 eq (16)),
+//! a point mass of the rotor: [`locked_rotor`]; where no balanced state exists, at the partially
+//! balanced placement, each plane's balls bunched against its share: [`partial_words`]) and
+//! **without damping** (as 000 eq (16)),
 //! linearised about the centred rotor (exact AD Jacobian `[[0, I], [A, B]]` of the model's
 //! field). A critical speed is where a natural frequency in fixed axes equals the speed:
 //! - **turning axes**, where this Jacobian does not depend on time (supports equal in every
@@ -85,7 +87,8 @@
 //!   frames, no single frequency defines a critical speed, and
 //!   [`crate::Error::NoLinearisation`] says so (the Floquet Campbell diagram still applies).
 //!
-//! The changes of the count are bracketed on a grid and bisected to `1e-12` relative.
+//! The changes of the count are bracketed on a grid and bisected to `1e-12` relative; speeds of
+//! one motion and whirl closer than [`SAME_SPEED`] are merged into one.
 
 use crate::analysis::{mode, stability, stationary, stationary_near, Kind, NewtonOptions, StationaryState, VectorField};
 use crate::control::{Control, Outcome};
@@ -987,11 +990,57 @@ pub const SLOW: f64 = 1e-3;
 /// critical speeds. The planar rotor's balls join its housing (`m2`, at the race centre) as one
 /// mass at their common centre; the spatial rotor's become unbalance masses in their planes.
 pub fn locked_rotor(rotor: &Rotor, omega: f64, undamped: bool) -> Result<Rotor> {
+    lock(rotor, omega, undamped, false).map(|(r, _)| r)
+}
+
+/// Where the critical speeds lock the balls, on the field `f` of the point-mass rotor: the
+/// closed-form balanced (semi-balanced) state ([`Rotor::guess`]), `false`; where none exists and
+/// `partial` (the balls' capacity short of the unbalance; paper 004's eccentric race below its
+/// semi-balanced speed) the placement the balls rest at with too little capacity, `true`: two
+/// planes each on its share ([`Rotor::placed_guess`]), else each plane's balls bunched against
+/// its share ([`Rotor::bunched_guess`]). A locked ball changes the rotor's critical speeds only
+/// through its point mass (the mass, and the inertia `m R²` whose direction moves with `2ψ`), so
+/// the placement moves them little (review 29: the critical speeds were "none" wherever the balls
+/// could not balance).
+/// The planar rotor's balls join its housing's mass, and their placement does not enter the
+/// locked rotor's linearisation (`the_jeffcott_rotors_locked_critical_speed_is_sqrt_k_over_m_total`):
+/// where neither closed form places them (an eccentric race on supports that differ by
+/// direction, below its semi-balanced speed), they are locked opposite the race centre's offset.
+fn lock_state(f: &Field, partial: bool) -> Option<(Vec<f64>, bool)> {
+    let planar_any = || match f {
+        Field::Planar(pf) if pf.rotor().n > 0 => {
+            let p = pf.rotor();
+            let nr = 2 + p.n;
+            let mut x = vec![0.0; 2 * nr];
+            x[2..nr].iter_mut().for_each(|v| *v = p.gamma + std::f64::consts::PI);
+            Some(x)
+        }
+        _ => None,
+    };
+    Rotor::guess(f).map(|x| (x, false)).or_else(|| {
+        if partial {
+            Rotor::placed_guess(f).or_else(|| Rotor::bunched_guess(f)).or_else(planar_any).map(|x| (x, true))
+        } else {
+            None
+        }
+    })
+}
+
+/// [`locked_rotor`], with the balls at [`lock_state`]'s placement (`partial`: the partially
+/// balanced one where no balanced state exists), and whether that placement is the partial one.
+fn lock(rotor: &Rotor, omega: f64, undamped: bool, partial: bool) -> Result<(Rotor, bool)> {
     refuse_linear(rotor, "the locked rotor")?;
     // the closed form does not depend on the balls' contact and rolling physics (which have no
     // linearisation): it is taken on point-mass balls, which are locked anyway
     let f = point_mass_balls(rotor).field(omega)?;
-    let guess = Rotor::guess(&f);
+    let state = lock_state(&f, partial);
+    let is_partial = state.as_ref().is_some_and(|s| s.1);
+    Ok((locked_at(rotor, &f, state.map(|s| s.0), undamped)?, is_partial))
+}
+
+/// [`lock`]'s rotor: the balls of `rotor` locked at the state `guess` of its point-mass field
+/// `f` (`None`: no placement, an error).
+fn locked_at(rotor: &Rotor, f: &Field, guess: Option<Vec<f64>>, undamped: bool) -> Result<Rotor> {
     Ok(match rotor {
         Rotor::Planar(p) => {
             let mut q = p.clone();
@@ -1020,7 +1069,7 @@ pub fn locked_rotor(rotor: &Rotor, omega: f64, undamped: bool) -> Result<Rotor> 
             let mut q = s.clone();
             if s.balls() > 0 {
                 let x = guess.ok_or_else(|| no_balance(rotor))?;
-                let angles = crate::rotor_stability::ball_angles(&f, &x);
+                let angles = crate::rotor_stability::ball_angles(f, &x);
                 let mut psi = angles.iter();
                 for plane in q.planes.iter_mut() {
                     for _ in 0..plane.n {
@@ -1113,14 +1162,30 @@ fn no_balance(rotor: &Rotor) -> Error {
 }
 
 /// The words of [`LockedCriticalSpeeds::unlocked`] (`critical`'s table and the report): the
-/// critical speeds lock the balls at the (semi-)balanced state, which does not exist where the
-/// balls cannot supply the unbalance; with the balls free they rest elsewhere (partially
-/// balanced where their capacity falls short), the state `stability` analyses.
+/// critical speeds lock the balls at the (semi-)balanced state, else at the partially balanced
+/// placement ([`partial_words`]); a speed with neither is not searched.
 pub fn unlocked_words(unlocked: usize, samples: usize) -> String {
     format!(
-        "{unlocked} of {samples} speeds of the grid have no (semi-)balanced state to lock the balls at (the balls cannot supply the unbalance there) and were not searched; with the balls free, `autobal stability` analyses the state they rest in there (partially balanced where their capacity falls short)"
+        "{unlocked} of {samples} speeds of the grid have neither a (semi-)balanced state nor a partially balanced placement to lock the balls at and were not searched; with the balls free, `autobal stability` analyses the state they rest in there"
     )
 }
+
+/// The words of [`LockedCriticalSpeeds::partial`]: the speeds where no balanced state exists
+/// and the balls are locked at the partially balanced placement (bunched against the unbalance).
+pub fn partial_words(partial: usize, samples: usize) -> String {
+    let at = if partial == samples { "at any speed of the grid".to_string() } else { format!("at {partial} of {samples} speeds of the grid") };
+    format!(
+        "no balanced state {at} (the balls cannot supply the unbalance): there the balls are locked where they rest with too little capacity, bunched against the unbalance (each plane's against its share: the partially balanced placement); a locked ball moves the critical speeds only through its point mass"
+    )
+}
+
+/// Two critical speeds closer than this, relative, are one ([`LockedCriticalSpeed::split`]):
+/// the table prints 6 significant digits, so two speeds at least this far apart (a unit of the
+/// sixth digit at most) always print apart, and no support stiffness is known to 1e-5. On
+/// review 29's r1.toml the translational pair, split by the locked balls' inertia through a
+/// coupling that nearly vanishes (`k_L z_L = k_R z_R` about the rotor's centre of mass), lay
+/// 5.3e-8 apart: one speed, printed twice with multiplicity 1 each.
+pub const SAME_SPEED: f64 = 1e-5;
 
 /// What moves most at a critical speed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -1147,6 +1212,12 @@ pub struct LockedCriticalSpeed {
     /// direction) or backward (a backward mode whose frequency equals the speed: excited by an
     /// unbalance only through supports that differ by direction).
     pub whirl: Whirl,
+    /// Where speeds closer than [`SAME_SPEED`] (relative) were merged into this one (their mean,
+    /// with their multiplicities summed): the lowest and the highest; `None` for one speed.
+    pub split: Option<[f64; 2]>,
+    /// Whether the balls were locked at the partially balanced placement there (no balanced
+    /// state: [`LockedCriticalSpeeds::partial`]).
+    pub partial: bool,
 }
 
 /// The critical speeds of the locked rotor up to `omega_max` ([`locked_critical_speeds`]).
@@ -1159,9 +1230,14 @@ pub struct LockedCriticalSpeeds {
     /// The grid's number of speeds (a crossing and its return within one grid step cancel in
     /// the count and are missed).
     pub samples: usize,
-    /// Speeds of the grid where the closed form has no balanced state to lock the balls in
-    /// (too little capacity; paper 004's eccentric race at low speed): not searched.
+    /// Speeds of the grid where the closed form has no balanced state to lock the balls in,
+    /// and none for the partially balanced placement ([`LockedCriticalSpeeds::partial`]):
+    /// not searched.
     pub unlocked: usize,
+    /// Speeds of the grid without a balanced state (too little capacity; paper 004's eccentric
+    /// race at low speed), where the balls are locked at the partially balanced placement
+    /// instead ([`partial_words`]).
+    pub partial: usize,
     /// The balls' locked angles (rad, all planes in order) at the first speed searched: with
     /// `n ≥ 3` balls in a plane the balanced states form a family, and the critical speeds
     /// depend on the member (its inertia), which these angles name (the closed form's).
@@ -1176,7 +1252,7 @@ pub struct LockedCriticalSpeeds {
 /// singular; `Q = M⁻¹ (K − Ω² M + iΩ² G)`, Hermitian up to `M`, real eigenvalues) as its real
 /// `2m × 2m` embedding `[[Re Q, −Im Q], [Im Q, Re Q]]`, each eigenvalue twice.
 fn stiffness_block(rotor: &Rotor, omega: f64) -> Result<(Vec<f64>, usize, usize, Field)> {
-    let locked = locked_rotor(rotor, omega, true)?;
+    let (locked, _) = lock(rotor, omega, true, true)?;
     let f = locked.field(omega)?;
     let n = f.dim();
     let m = n / 2;
@@ -1292,20 +1368,25 @@ fn fixed_axes_jacobian(f: &Field, omega: f64, t: f64) -> Result<Vec<f64>> {
     Ok(jf)
 }
 
-/// The number of eigenvalues of `A(Ω)` with a positive real part; `None` where the closed form
-/// has no balanced state to lock the balls in.
-fn positive_count(rotor: &Rotor, omega: f64) -> Result<Option<usize>> {
+/// The number of eigenvalues of `A(Ω)` with a positive real part, and whether the balls are
+/// locked at the partially balanced placement ([`lock_state`]); `None` where there is no
+/// placement to lock the balls in.
+fn positive_count(rotor: &Rotor, omega: f64) -> Result<Option<(usize, bool)>> {
     let has_balls = match rotor {
         Rotor::Planar(p) => p.n > 0,
         Rotor::Spatial(s) => s.balls() > 0,
         Rotor::Linear(l) => l.total_balls() > 0,
     };
-    if has_balls && Rotor::guess(&point_mass_balls(rotor).field(omega)?).is_none() {
-        return Ok(None);
-    }
+    let partial = match has_balls {
+        true => match lock_state(&point_mass_balls(rotor).field(omega)?, true) {
+            Some((_, p)) => p,
+            None => return Ok(None),
+        },
+        false => false,
+    };
     let (a, d, copies, _) = stiffness_block(rotor, omega)?;
     let ev = eigenvalues(&a, d).map_err(|e| Error::invalid("critical", format!("the eigenvalues of the stiffness block did not converge: {e}")))?;
-    Ok(Some(ev.iter().filter(|z| z.re > 0.0).count().div_ceil(copies)))
+    Ok(Some((ev.iter().filter(|z| z.re > 0.0).count().div_ceil(copies), partial)))
 }
 
 /// The critical speeds of `rotor` with its balls locked at balance and no damping, in
@@ -1316,10 +1397,12 @@ fn positive_count(rotor: &Rotor, omega: f64) -> Result<Option<usize>> {
 pub fn locked_critical_speeds(rotor: &Rotor, omega_max: f64, samples: usize) -> Result<LockedCriticalSpeeds> {
     refuse_linear(rotor, "the locked critical speeds")?;
     let speeds = crate::rotor_stability::speed_grid(omega_max, samples)?;
-    let counts: Vec<Option<usize>> = speeds.iter().map(|&w| positive_count(rotor, w)).collect::<Result<_>>()?;
-    let mut out = vec![];
+    let found: Vec<Option<(usize, bool)>> = speeds.iter().map(|&w| positive_count(rotor, w)).collect::<Result<_>>()?;
+    let counts: Vec<Option<usize>> = found.iter().map(|c| c.map(|c| c.0)).collect();
+    let mut out: Vec<LockedCriticalSpeed> = vec![];
     for k in 0..speeds.len() - 1 {
         let (Some(c0), Some(c1)) = (counts[k], counts[k + 1]) else { continue };
+        let partial = found[k].is_some_and(|c| c.1) || found[k + 1].is_some_and(|c| c.1);
         let (mut start, mut c_lo) = (speeds[k], c0);
         // one crossing after the other while the count still differs from the step's end
         while c_lo != c1 {
@@ -1330,7 +1413,7 @@ pub fn locked_critical_speeds(rotor: &Rotor, omega_max: f64, samples: usize) -> 
                 if mid <= lo || mid >= hi {
                     break;
                 }
-                match positive_count(rotor, mid)? {
+                match positive_count(rotor, mid)?.map(|c| c.0) {
                     Some(c) if c == c_lo => lo = mid,
                     Some(c) => {
                         hi = mid;
@@ -1341,7 +1424,7 @@ pub fn locked_critical_speeds(rotor: &Rotor, omega_max: f64, samples: usize) -> 
             }
             let w = 0.5 * (lo + hi);
             let (motion, whirl) = motion_at(rotor, w)?;
-            out.push(LockedCriticalSpeed { omega: w, multiplicity: c_lo.abs_diff(c_hi), motion, whirl });
+            out.push(LockedCriticalSpeed { omega: w, multiplicity: c_lo.abs_diff(c_hi), motion, whirl, split: None, partial });
             if hi >= speeds[k + 1] {
                 break;
             }
@@ -1350,17 +1433,45 @@ pub fn locked_critical_speeds(rotor: &Rotor, omega_max: f64, samples: usize) -> 
         }
     }
     let gaps = counts.iter().filter(|c| c.is_none()).count();
-    let ball_angles = speeds
-        .iter()
-        .zip(&counts)
-        .find(|(_, c)| c.is_some())
-        .and_then(|(&w, _)| {
-            let f = point_mass_balls(rotor).field(w).ok()?;
-            let x = Rotor::guess(&f)?;
+    let partial = found.iter().filter(|c| c.is_some_and(|c| c.1)).count();
+    // the angles of the first speed with a balanced placement, else of the first with any
+    let first = found.iter().position(|c| c.is_some_and(|c| !c.1)).or_else(|| found.iter().position(|c| c.is_some()));
+    let ball_angles = first
+        .and_then(|k| {
+            let f = point_mass_balls(rotor).field(speeds[k]).ok()?;
+            let (x, _) = lock_state(&f, true)?;
             Some(crate::rotor_stability::ball_angles(&f, &x))
         })
         .unwrap_or_default();
-    Ok(LockedCriticalSpeeds { speeds: out, omega_max, samples: speeds.len(), unlocked: gaps, ball_angles })
+    Ok(LockedCriticalSpeeds { speeds: merge_same_speeds(out), omega_max, samples: speeds.len(), unlocked: gaps, partial, ball_angles })
+}
+
+/// `speeds` (ascending) with each run of speeds of one motion and whirl closer than
+/// [`SAME_SPEED`] (relative, from the run's lowest) merged into one: their mean, the sum of
+/// their multiplicities, [`LockedCriticalSpeed::split`] their lowest and highest.
+fn merge_same_speeds(speeds: Vec<LockedCriticalSpeed>) -> Vec<LockedCriticalSpeed> {
+    let mut out: Vec<(LockedCriticalSpeed, Vec<f64>)> = vec![];
+    for s in speeds {
+        if let Some((last, members)) = out.last_mut() {
+            let lo = members[0];
+            if last.motion == s.motion && last.whirl == s.whirl && s.omega - lo <= SAME_SPEED * s.omega {
+                members.push(s.omega);
+                last.multiplicity += s.multiplicity;
+                last.partial |= s.partial;
+                continue;
+            }
+        }
+        out.push((s, vec![s.omega]));
+    }
+    out.into_iter()
+        .map(|(mut s, members)| {
+            if members.len() > 1 {
+                s.omega = members.iter().sum::<f64>() / members.len() as f64;
+                s.split = Some([members[0], members[members.len() - 1]]);
+            }
+            s
+        })
+        .collect()
 }
 
 /// What moves most in the synchronous whirl at a critical speed `w`, and its sense: from the
