@@ -1016,6 +1016,13 @@ impl StateKind {
     }
 }
 
+/// How far below 1 a residual must be for the balls to count as reducing the unbalance
+/// ([`state_from_residual`]): 1e-3. Two balls opposite each other on the line of the whirl
+/// leave the unbalance whole, a residual of 1 to rounding (the planar Jeffcott rotor's
+/// opposite-ball equilibrium, `tests/end_state_18.rs`, read partially balanced with the bare
+/// `r < 1`), or to the swing's second order on a periodic orbit.
+pub const NO_REDUCTION: f64 = 1e-3;
+
 /// **The one rule** that names a state by its residual unbalance, for `stability`'s states
 /// ([`Rotor::classify`]) and `simulate`'s settled runs
 /// ([`crate::spatial::dynamics::simulate::RunOutcome`]) alike: `residual` the residual
@@ -1024,9 +1031,9 @@ impl StateKind {
 /// `can_balance` whether a balanced state exists at all (the balls' capacity suffices and
 /// no couple is left that no plane cancels; where it does not, the state is never balanced,
 /// issue 18 item 4). Balanced: `residual ≤ tolerance` where the balls can balance (or
-/// `residual ≤ 1e-6` whatever the closed form says). Partially balanced: `residual < 1`,
-/// the balls reduce the unbalance (the residual printed beside it). Not balanced:
-/// `residual ≥ 1`, the balls do not reduce the unbalance or add to it (a ball on the heavy
+/// `residual ≤ 1e-6` whatever the closed form says). Partially balanced: `residual < 1`
+/// (by more than [`NO_REDUCTION`]), the balls reduce the unbalance (the residual printed
+/// beside it). Not balanced: `residual ≥ 1` (to [`NO_REDUCTION`]), the balls do not reduce the unbalance or add to it (a ball on the heavy
 /// side below the critical speed; two balls opposite each other, residual 1). Before
 /// session 29 the spatial route called every state of a rotor that cannot balance
 /// "partially balanced" (a lone ball on the heavy side, residual 1.45) and `simulate` called
@@ -1034,7 +1041,7 @@ impl StateKind {
 pub fn state_from_residual(residual: f64, tolerance: f64, can_balance: bool) -> StateKind {
     if residual <= BALANCED_EXACTLY || (can_balance && residual <= tolerance) {
         StateKind::Balanced
-    } else if residual < 1.0 {
+    } else if residual < 1.0 - NO_REDUCTION {
         StateKind::PartiallyBalanced
     } else {
         StateKind::NotBalanced

@@ -689,7 +689,9 @@ fn summarise(eq: &Equations, t: f64, y: &[f64], peak: (f64, f64, f64), stats: St
         // gravity ≈ M g / Σ k). While the orbit drifts the last revolution's mean is the
         // transient's (review 29: r1.toml 0.969 mm against 0.079 mm settled, the two-plane
         // example 0.774 mm against m g/k = 0.0284 mm), and no window tells the two apart
-        static_sag: mean_r.filter(|_| settled).map(|m| m[0].hypot(m[1])),
+        // (a run without balls, or otherwise not called "not settled", under gravity: its
+        // whirl is steady about the sag, as before)
+        static_sag: mean_r.filter(|_| settled || (r.gravity_across() && outcome != RunOutcome::NotSettled)).map(|m| m[0].hypot(m[1])),
         final_omega: omega,
         residual_unbalance,
         residual_couple,
