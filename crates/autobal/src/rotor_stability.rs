@@ -2449,8 +2449,12 @@ mod tests {
         for w in [50.0, 300.0] {
             let states = crate::rotor_partial::partially_balanced(&rotor, w).unwrap();
             assert!(!states.is_empty());
+            // no balanced state: partially balanced below 1, else not balanced (the two balls
+            // opposite, residual 1 of the couple: the one state at 50 rad/s), session 29's rule
+            let f = rotor.field(w).unwrap();
             for st in &states {
-                assert_eq!(st.kind, StateKind::PartiallyBalanced, "Ω {w}: {:?}", st.psi);
+                let r = Rotor::residual(&f, &st.x);
+                assert_eq!(st.kind, state_from_residual(r, BALANCE_TOLERANCE, false), "Ω {w}: {:?}, residual {r}", st.psi);
             }
         }
     }
