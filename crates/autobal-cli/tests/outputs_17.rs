@@ -149,13 +149,15 @@ fn static_sag_only_where_it_is_a_sag() {
     assert!(v["static_sag"].is_null(), "{v}");
     assert!(mean(&v) > 0.01, "the transient's mean is off the axis: {v}");
     assert!(!final_line(&table).contains("sag"), "{table}");
-    // the same run under gravity across the axis: the sag is there (tests/verdicts.rs checks it
-    // against the two-spring closed form), the mean displacement's length
+    // the same run under gravity across the axis: still not settled, so no sag either (session
+    // 29, review 29: the transient's mean read as the sag, 0.969 mm against 0.079 mm settled);
+    // the table and the JSON say why (tests/verdicts.rs checks a settled sag against the
+    // two-spring closed form)
     let (v, table) = run(&["drive.t_end=50", "spatial.gravity=[0.0, -0.01, 0.0]"]);
     assert_eq!(v["outcome"], "not_settled", "{v}");
-    // (1e-12: the JSON's numbers read back by serde_json, which may be 1 ulp off)
-    assert!((v["static_sag"].as_f64().unwrap() / mean(&v) - 1.0).abs() < 1e-12, "{v}");
-    assert!(final_line(&table).contains("static sag"), "{table}");
+    assert!(v["static_sag"].is_null(), "{v}");
+    assert!(v["static_sag_note"].as_str().is_some_and(|n| n.contains("not settled")), "{v}");
+    assert!(final_line(&table).contains("static sag not reported (the run has not settled"), "{table}");
     // the example as it is: settled and balanced without gravity, the stationary motion on the
     // axis (a sag of round-off: below 1e-9 ρ_s, measured 1.9e-12)
     let (v, table) = run(&[]);

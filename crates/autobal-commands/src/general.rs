@@ -275,7 +275,7 @@ pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64, op: Option<&O
         // semi-balanced orbit exists: the balls were found at their capacity limit, no more
         let why = match &g.rotor {
             Rotor::Planar(p) if p.anisotropic() && p.s2 > 0.0 && p.n >= 2 => "the balls together at their capacity limit, the race centre off the axis; on supports that differ by direction no closed form says whether a semi-balanced orbit exists there: none was found from the scan's starts",
-            _ => "no balanced state exists: the balls' capacity falls short, a couple no plane can cancel, or, planar, below the speed where the semi-balanced state exists",
+            _ => "the balls reduce the unbalance without cancelling it, a residual below 1: no balanced state exists (the balls' capacity falls short, a couple no plane can cancel, or, planar, below the speed where the semi-balanced state exists), or the state found is not the balanced one",
         };
         s.push_str(&format!(
             "partially balanced ({why}; a residual of {}: spatial and linear a fraction of the unbalance, planar the race centre's distance from the axis over its distance without the balls' resultant) at {} of {} speeds, {}: the verdicts there are the partially balanced state's\n",

@@ -474,7 +474,7 @@ pub fn outcome_words(p: &autobal::planar::PlanarRotor, s: &Summary) -> String {
         RunOutcome::PartiallyBalanced if capacity_ratio(p) > 1.0 => {
             "partially balanced: no semi-balanced state at this speed, the balls rest together against the unbalance"
         }
-        RunOutcome::PartiallyBalanced => "partially balanced: the balls' capacity falls short, they rest together against the unbalance",
+        RunOutcome::PartiallyBalanced => "partially balanced: the balls reduce the unbalance without cancelling it (a residual below 1: their capacity short, a couple one plane cannot cancel, or the balls settled off the balanced state)",
         RunOutcome::NotBalanced => "not balanced",
         RunOutcome::NotSettled => return "not settled".to_string(),
     };

@@ -157,6 +157,13 @@ pub fn summary_json(sim: &SpatialSim, s: &Summary, wall: f64) -> Value {
     let mut v = autobal::reports::spatial_simulation(sim, s, wall);
     if let Some(o) = v.as_object_mut() {
         o.insert("warnings".into(), serde_json::json!(warnings(s)));
+        // the table's reason for a missing sag under gravity (a run not settled)
+        if s.static_sag.is_none() && s.averaged && sim.rotor.gravity_across() {
+            o.insert(
+                "static_sag_note".into(),
+                serde_json::json!("not reported: the run has not settled, the last revolution's mean position is the transient's"),
+            );
+        }
     }
     v
 }
@@ -170,7 +177,7 @@ pub fn warnings(s: &Summary) -> Vec<String> {
     // state, which a longer run leaves, and their drift passed the test)
     if s.outcome == RunOutcome::NotSettled && s.stopped.is_none() && s.warnings.is_empty() {
         return vec![format!(
-            "the balls have not settled: their mean angles still drift from one revolution to the next{}: a transient (raise drive.t_end) or balls circulating round the race; the residual and radius are no stationary state's",
+            "the balls have not settled: their mean angles still drift from one revolution to the next{}: a transient (raise drive.t_end) or balls circulating round the race; the residual and radius are no stationary state's, and the static sag is not reported (the last revolution's mean position is the transient's)",
             s.ball_drift.map_or(", or it turned less than two revolutions".to_string(), |d| format!(" by {d:.2e} rad"))
         )];
     }
@@ -216,6 +223,8 @@ pub fn summary_table(sim: &SpatialSim, s: &Summary, wall: f64) -> String {
         match s.static_sag {
             Some(sag) =>
                 format!("; static sag {:.6} {lu} (last revolution: radius = RMS whirl about the mean position, sag = its distance from the axis)", ls * sag),
+            // under gravity a sag is expected: say why there is none (not settled)
+            None if s.averaged && sim.rotor.gravity_across() => "; static sag not reported (the run has not settled: the last revolution's mean position is the transient's)".to_string(),
             None => String::new(),
         },
         s.residual_unbalance,
@@ -223,7 +232,7 @@ pub fn summary_table(sim: &SpatialSim, s: &Summary, wall: f64) -> String {
         autobal::simulation::window::basis_words(s.averaged),
         match s.outcome {
             RunOutcome::Balanced => "balanced",
-            RunOutcome::PartiallyBalanced => "partially balanced: the balls' capacity falls short, they rest together against the unbalance",
+            RunOutcome::PartiallyBalanced => "partially balanced: the balls reduce the unbalance without cancelling it (a residual below 1: their capacity short, a couple one plane cannot cancel, or the balls settled off the balanced state)",
             RunOutcome::NotBalanced => "not balanced",
             RunOutcome::NotSettled => "not settled",
         }

@@ -524,7 +524,9 @@ impl Rotor {
                     // capacity limit: the rule of the bunched ones above)
                     StateKind::PartiallyBalanced
                 } else {
-                    StateKind::NotBalanced
+                    // the one rule (state_from_residual) for what is left: no balanced state
+                    // here, so below 1 the balls reduce the unbalance (partially), else not
+                    state_from_residual(r, 0.0, false)
                 }
             }
             Field::Spatial(s) => {
@@ -538,21 +540,12 @@ impl Rotor {
                 // residual is 60 to 740 times it on the gravity cases of
                 // tests/state_kind_orbits.rs (independent of g: both second order), while the
                 // opposite-ball orbit's (~1) is ~1e3 times its own, so no factor separates them
-                if r <= BALANCED_EXACTLY {
-                    StateKind::Balanced
-                } else if !spatial_can_balance(s) {
-                    // (a residual above 1 does not say the balls add to the unbalance here: it is
-                    // the larger of the static and couple parts about the reference plane, and
-                    // balls that cancel the static part move the couple about it; Rodrigues et
-                    // al.'s two-plane rotor at 0.97 m_c has a state with its balls on the heavy
-                    // side, residual 1.97, read partially balanced: a measure by the support
-                    // forces would tell them apart, not done)
-                    StateKind::PartiallyBalanced
-                } else if field.period().is_some() && r <= BALANCE_TOLERANCE {
-                    StateKind::Balanced
-                } else {
-                    StateKind::NotBalanced
-                }
+                // (the one rule, state_from_residual: a residual of 1 or more is not balanced
+                // whether or not the balls could balance; before session 29 a rotor that
+                // cannot balance had every state partially balanced, a lone ball on the heavy
+                // side with residual 1.45 too, where `simulate` said not balanced)
+                let tolerance = if field.period().is_some() { BALANCE_TOLERANCE } else { BALANCED_EXACTLY };
+                state_from_residual(r, tolerance, spatial_can_balance(s))
             }
         };
         (kind, r)
@@ -1020,6 +1013,38 @@ impl StateKind {
             StateKind::PartiallyBalanced => "partially balanced",
             StateKind::NotBalanced => "not balanced",
         }
+    }
+}
+
+/// How far below 1 a residual must be for the balls to count as reducing the unbalance
+/// ([`state_from_residual`]): 1e-3. Two balls opposite each other on the line of the whirl
+/// leave the unbalance whole, a residual of 1 to rounding (the planar Jeffcott rotor's
+/// opposite-ball equilibrium, `tests/end_state_18.rs`, read partially balanced with the bare
+/// `r < 1`), or to the swing's second order on a periodic orbit.
+pub const NO_REDUCTION: f64 = 1e-3;
+
+/// **The one rule** that names a state by its residual unbalance, for `stability`'s states
+/// ([`Rotor::classify`]) and `simulate`'s settled runs
+/// ([`crate::spatial::dynamics::simulate::RunOutcome`]) alike: `residual` the residual
+/// unbalance as a fraction of the rotor's own (the larger of the static and couple parts
+/// where both are measured), `tolerance` the residual up to which the state is balanced,
+/// `can_balance` whether a balanced state exists at all (the balls' capacity suffices and
+/// no couple is left that no plane cancels; where it does not, the state is never balanced,
+/// issue 18 item 4). Balanced: `residual ≤ tolerance` where the balls can balance (or
+/// `residual ≤ 1e-6` whatever the closed form says). Partially balanced: `residual < 1`
+/// (by more than [`NO_REDUCTION`]), the balls reduce the unbalance (the residual printed
+/// beside it). Not balanced: `residual ≥ 1` (to [`NO_REDUCTION`]), the balls do not reduce the unbalance or add to it (a ball on the heavy
+/// side below the critical speed; two balls opposite each other, residual 1). Before
+/// session 29 the spatial route called every state of a rotor that cannot balance
+/// "partially balanced" (a lone ball on the heavy side, residual 1.45) and `simulate` called
+/// a reducing state "not balanced" unless the balls were together at the capacity limit.
+pub fn state_from_residual(residual: f64, tolerance: f64, can_balance: bool) -> StateKind {
+    if residual <= BALANCED_EXACTLY || (can_balance && residual <= tolerance) {
+        StateKind::Balanced
+    } else if residual < 1.0 - NO_REDUCTION {
+        StateKind::PartiallyBalanced
+    } else {
+        StateKind::NotBalanced
     }
 }
 
@@ -2424,8 +2449,12 @@ mod tests {
         for w in [50.0, 300.0] {
             let states = crate::rotor_partial::partially_balanced(&rotor, w).unwrap();
             assert!(!states.is_empty());
+            // no balanced state: partially balanced below 1, else not balanced (the two balls
+            // opposite, residual 1 of the couple: the one state at 50 rad/s), session 29's rule
+            let f = rotor.field(w).unwrap();
             for st in &states {
-                assert_eq!(st.kind, StateKind::PartiallyBalanced, "Ω {w}: {:?}", st.psi);
+                let r = Rotor::residual(&f, &st.x);
+                assert_eq!(st.kind, state_from_residual(r, BALANCE_TOLERANCE, false), "Ω {w}: {:?}, residual {r}", st.psi);
             }
         }
     }

@@ -203,7 +203,11 @@ fn the_two_plane_rotors_residual_under_gravity_is_the_swings_second_order() {
     let speeds = autobal::rotor_stability::speed_grid(2185.36, 50).unwrap();
     let sc = autobal::rotor_stability::stability_over_speed(&full, &speeds).unwrap();
     for p in &sc.points {
-        assert_ne!(p.state, Some(StateKind::PartiallyBalanced), "Ω {}: {:?}", p.omega, p.member_psi);
+        // (session 29: the one rule, `state_from_residual`; the swing's residual of 0.30-0.65
+        // at 131-219 rad/s, not balanced before, is partially balanced: below 1)
+        if let (Some(k), Some(r)) = (p.state, p.residual) {
+            assert_eq!(k, autobal::rotor_stability::state_from_residual(r, 0.05, true), "Ω {}: {:?}, residual {r}", p.omega, p.member_psi);
+        }
         if p.state.is_some() {
             assert!(p.residual.is_some_and(|r| r.is_finite()), "Ω {}", p.omega);
         }
@@ -266,7 +270,11 @@ fn one_plane_against_a_couple_is_partially_balanced() {
         let sc = autobal::rotor_stability::stability_over_speed(&rotor, &autobal::rotor_stability::speed_grid(wmax, 20).unwrap()).unwrap();
         let mut n = 0;
         for p in sc.points.iter().filter(|p| p.state.is_some()) {
-            assert_eq!(p.state, Some(StateKind::PartiallyBalanced), "{name}, Ω {}: residual {:?}", p.omega, p.residual);
+            // partially balanced below 1, not balanced at 1 or more (session 29's one rule: at
+            // 14.6 rad/s the washer's balls add to the unbalance, 2.20; before, every state here
+            // was partially balanced)
+            let want = if p.residual.unwrap() < 1.0 - autobal::rotor_stability::NO_REDUCTION { StateKind::PartiallyBalanced } else { StateKind::NotBalanced };
+            assert_eq!(p.state, Some(want), "{name}, Ω {}: residual {:?}", p.omega, p.residual);
             // the couple leaves a residual of a few per cent (CLI: 0.034..0.54)
             assert!(p.residual.is_some_and(|r| r > lo && r.is_finite()), "{name}, Ω {}: {:?}", p.omega, p.residual);
             n += 1;

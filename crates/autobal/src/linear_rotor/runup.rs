@@ -952,6 +952,7 @@ fn ending(rotor: &LinearRotor, window: &RevolutionWindow, y: &[f64], phi: f64, o
         residual: if short { residual_unbalance } else { race_whirl.unwrap_or(f64::INFINITY) },
         residual_couple: None,
         tolerance: crate::spatial::dynamics::simulate::BALANCE_TOLERANCE,
+        race_whirl_basis: true,
     });
     End { residual_unbalance, race_whirl, ball_drift, averaged: last.is_some(), settled, outcome }
 }

@@ -790,6 +790,7 @@ fn simulate_sampled(
         residual: residual_unbalance,
         residual_couple: None,
         tolerance: allowance,
+        race_whirl_basis: false,
     });
     // the end checks (`crate::rotor_stability::end_checks`); this run's gate requires the run
     // completed as well (the outcome balanced or partially balanced implies it, not balanced

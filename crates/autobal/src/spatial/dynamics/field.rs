@@ -244,8 +244,9 @@ impl SpatialField {
             let need = t[0].hypot(t[1]);
             (n >= 3 && n % 2 == 1 && need < mr * (1.0 - 1e-12)).then(|| {
                 format!(
-                    "no balanced periodic orbit: under gravity across the axis a plane's {n} balls settle only in two groups, and no two groups give its share of the unbalance ({} kg m, below one ball's m R = {} kg m): no balanced orbit exists (a run's balls creep along the placements that balance)",
+                    "the balls can balance but cannot come to rest balanced: placements of a plane's {n} balls that cancel its share of the unbalance ({} kg m) exist (their capacity is {} kg m), but under gravity across the axis the balls are stationary only in two groups, and no two groups give a share below one ball's m R = {} kg m; so no balanced periodic orbit exists, and a run's balls creep slowly along the placements that balance (balanced on average, not a stationary state): the stability of that creeping motion is not analysed, so no verdict (`simulate` shows whether a run balances)",
                     crate::error::fmt_num(need),
+                    crate::error::fmt_num(n as f64 * mr),
                     crate::error::fmt_num(mr)
                 )
             })

@@ -124,11 +124,12 @@ pub struct Summary {
     /// before round 3, session 18).
     pub mean_displacement: Option<[f64; 2]>,
     /// `|r̄|`, the static sag at the (first) balancer plane (see [`Summary::mean_displacement`]),
-    /// where it is one: the run turned at least a revolution (a mean was taken) and either
-    /// gravity acts across the spin axis ([`SpatialRotor::gravity_across`]: the sag it
-    /// causes, `≈ M g / Σ k`) or the balls settled (the stationary motion's mean position).
-    /// `None` otherwise: without gravity a run that did not settle has no sag, and the last
-    /// revolution's mean displacement is the transient's.
+    /// where it is one: the run turned at least a revolution (a mean was taken) and settled
+    /// (the stationary motion's mean position; under gravity across the axis
+    /// [`SpatialRotor::gravity_across`] the sag it causes, `≈ M g / Σ k`). `None` otherwise:
+    /// a run that did not settle has no sag to measure, its last revolution's mean
+    /// displacement is the transient's (until session 29 it was reported under gravity
+    /// anyway: 0.969 mm on a run whose settled sag is 0.079 mm).
     pub static_sag: Option<f64>,
     /// Spin rate at the end.
     pub final_omega: f64,
@@ -254,13 +255,14 @@ pub fn drift_tolerance(omega: f64, natural_frequency: f64) -> f64 {
 pub enum RunOutcome {
     /// The balls cancel the unbalance on average over a revolution (see [`Summary::balanced`]).
     Balanced,
-    /// The balls' capacity `Σ m R` falls short of the static unbalance `|U|`: the balls of
-    /// every plane ended together (resultant at least 99 % of the plane's capacity) against
-    /// the unbalance, the residual within [`PARTIAL_TOLERANCE`] of the
-    /// closed form `1 − Σ m R / |U|`. The least residual there is; never `Balanced`.
+    /// Settled with a residual unbalance below 1 (the balls reduce the unbalance) but not
+    /// balanced: above the tolerance, or the balls' capacity `Σ m R` short of the unbalance
+    /// (then never `Balanced`; the balls usually end together against the unbalance, the
+    /// residual near the closed form `1 − Σ m R / |U|`). The one rule of `stability`'s states
+    /// (`crate::rotor_stability::state_from_residual`).
     PartiallyBalanced,
-    /// Settled (or without balls) but neither of the above: e.g. the balls on the heavy side
-    /// below the critical speed, or no balls.
+    /// Settled with a residual unbalance of 1 or more (the balls do not reduce the unbalance,
+    /// or add to it: e.g. on the heavy side below the critical speed), or no balls.
     NotBalanced,
     /// The balls' mean angles still drift between the last two revolutions by more than
     /// [`drift_tolerance`] (a transient, or balls circulating round the race), or the run turned
@@ -289,28 +291,45 @@ pub(crate) struct Ending {
     /// less where the residual's reference resonates (the planar run's
     /// `crate::planar::stationary::balance_allowance`).
     pub tolerance: f64,
+    /// The linear rotor's run: `residual` is its race whirl (`stability`'s `race_whirl`
+    /// basis, [`crate::linear_rotor::partial::state_kind`]), not a residual unbalance, so
+    /// [`crate::rotor_stability::state_from_residual`]'s "below 1 reduces the unbalance" does
+    /// not apply: balanced within the tolerance, partially balanced only with the balls
+    /// together at the capacity-short residual (within [`PARTIAL_TOLERANCE`]), else not
+    /// balanced, the linear `stability`'s words.
+    pub race_whirl_basis: bool,
 }
 
 /// The outcome of a run from its [`Ending`]: without balls not balanced; not settled while
-/// the balls move; where no balanced state exists partially balanced when the balls ended
-/// together with the residual within [`PARTIAL_TOLERANCE`] of the closed form, else not
-/// balanced; else balanced with the residual (and the couple's) at most [`Ending::tolerance`]
-/// ([`BALANCE_TOLERANCE`] or less), else not balanced.
+/// the balls move; else the one rule of `stability`'s states
+/// (`crate::rotor_stability::state_from_residual`) on the larger of the residual and the
+/// couple's: balanced at most [`Ending::tolerance`] where a balanced state exists, partially
+/// balanced below 1, not balanced at 1 or more.
 pub(crate) fn run_outcome(e: &Ending) -> RunOutcome {
     if !e.balls {
         RunOutcome::NotBalanced
     } else if !e.settled {
         RunOutcome::NotSettled
-    } else if let Some((least, together)) = e.short {
-        if together && (e.residual - least).abs() <= PARTIAL_TOLERANCE {
-            RunOutcome::PartiallyBalanced
-        } else {
-            RunOutcome::NotBalanced
+    } else if e.race_whirl_basis {
+        match e.short {
+            Some((least, together)) if together && (e.residual - least).abs() <= PARTIAL_TOLERANCE => RunOutcome::PartiallyBalanced,
+            Some(_) => RunOutcome::NotBalanced,
+            None if e.residual <= e.tolerance => RunOutcome::Balanced,
+            None => RunOutcome::NotBalanced,
         }
-    } else if e.residual <= e.tolerance && !matches!(e.residual_couple, Some(c) if c > e.tolerance) {
-        RunOutcome::Balanced
     } else {
-        RunOutcome::NotBalanced
+        // the one rule of `stability`'s states (crate::rotor_stability::state_from_residual):
+        // balanced within the tolerance where a balanced state exists; else partially balanced
+        // below 1 (the balls reduce the unbalance), not balanced at 1 or more. Before session
+        // 29 a run whose balls reduced the unbalance without being together at the capacity
+        // limit read "not balanced" where `stability` read the same state "partially balanced"
+        // (review 29: the washer with a tilted axis, residual 0.17, couple 0.29)
+        let residual = e.residual.max(e.residual_couple.unwrap_or(0.0));
+        match crate::rotor_stability::state_from_residual(residual, e.tolerance, e.short.is_none()) {
+            crate::rotor_stability::StateKind::Balanced => RunOutcome::Balanced,
+            crate::rotor_stability::StateKind::NotBalanced => RunOutcome::NotBalanced,
+            _ => RunOutcome::PartiallyBalanced,
+        }
     }
 }
 
@@ -651,6 +670,7 @@ fn summarise(eq: &Equations, t: f64, y: &[f64], peak: (f64, f64, f64), stats: St
         residual: residual_unbalance,
         residual_couple,
         tolerance: BALANCE_TOLERANCE,
+        race_whirl_basis: false,
     });
     // the end checks (`crate::rotor_stability::end_checks`), in the model's own units (`si`
     // false); the end state in turning axes already: the field's reduced state
@@ -665,8 +685,13 @@ fn summarise(eq: &Equations, t: f64, y: &[f64], peak: (f64, f64, f64), stats: St
         t_at_peak: peak.2,
         final_amplitude: whirl,
         mean_displacement: mean_r,
-        // a sag where it is one: gravity across the axis, or the stationary motion's mean
-        static_sag: mean_r.filter(|_| r.gravity_across() || settled).map(|m| m[0].hypot(m[1])),
+        // a sag only where the run settled: the stationary motion's mean position (under
+        // gravity ≈ M g / Σ k). While the orbit drifts the last revolution's mean is the
+        // transient's (review 29: r1.toml 0.969 mm against 0.079 mm settled, the two-plane
+        // example 0.774 mm against m g/k = 0.0284 mm), and no window tells the two apart
+        // (a run without balls, or otherwise not called "not settled", under gravity: its
+        // whirl is steady about the sag, as before)
+        static_sag: mean_r.filter(|_| settled || (r.gravity_across() && outcome != RunOutcome::NotSettled)).map(|m| m[0].hypot(m[1])),
         final_omega: omega,
         residual_unbalance,
         residual_couple,
