@@ -3,27 +3,8 @@
 //! found, the verdict at the operating speed first, the family note for two balls, and one
 //! speed listed twice.
 
-use std::process::Command;
-
-fn autobal(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_autobal")).args(args).output().expect("binary runs");
-    (out.status.code().unwrap_or(-1), String::from_utf8_lossy(&out.stdout).into_owned(), String::from_utf8_lossy(&out.stderr).into_owned())
-}
-
-fn text(args: &[&str]) -> String {
-    let (code, out, err) = autobal(args);
-    assert_eq!(code, 0, "{args:?}: {err}");
-    out
-}
-
-fn json(args: &[&str]) -> serde_json::Value {
-    let out = text(args);
-    serde_json::from_str(&out).unwrap_or_else(|e| panic!("{args:?}: {e}\n{out}"))
-}
-
-fn example(name: &str) -> String {
-    format!("{}/../../examples/{name}", env!("CARGO_MANIFEST_DIR"))
-}
+mod common;
+use common::{examples as example, json, text};
 
 /// A config written to a file of the test's own (`name` unique per test).
 fn config(name: &str, body: &str) -> String {

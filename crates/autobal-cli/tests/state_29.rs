@@ -5,19 +5,9 @@
 //! unbalance is below one ball's `m R` can balance but not come to rest, and `stability` says
 //! so rather than that no balanced state exists.
 
+mod common;
+use common::{autobal, json};
 use std::path::{Path, PathBuf};
-use std::process::Command;
-
-fn autobal(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_autobal")).args(args).output().expect("binary runs");
-    (out.status.code().unwrap_or(-1), String::from_utf8_lossy(&out.stdout).into_owned(), String::from_utf8_lossy(&out.stderr).into_owned())
-}
-
-fn json(args: &[&str]) -> serde_json::Value {
-    let (code, out, err) = autobal(args);
-    assert_eq!(code, 0, "{args:?}: {err}");
-    serde_json::from_str(&out).unwrap_or_else(|e| panic!("{args:?}: {e}\n{out}"))
-}
 
 fn tmp(name: &str) -> PathBuf {
     let d = Path::new(env!("CARGO_TARGET_TMPDIR")).join("state_29").join(name);

@@ -54,3 +54,22 @@ pub fn run_in(dir: &std::path::Path, limit: Duration, args: &[&str]) -> (i32, St
     let status = wait_for(child, limit, &args.join(" "));
     (status.code().unwrap_or(-1), o.join().unwrap(), e.join().unwrap())
 }
+
+/// Run the binary with `args` in the current folder, for at most 10 minutes (a hang fails the
+/// test): `(exit code, stdout, stderr)`.
+pub fn autobal(args: &[&str]) -> (i32, String, String) {
+    run_in(std::path::Path::new("."), Duration::from_secs(600), args)
+}
+
+/// Standard output of a run that must succeed (exit 0).
+pub fn text(args: &[&str]) -> String {
+    let (code, out, err) = autobal(args);
+    assert_eq!(code, 0, "{args:?}: {err}");
+    out
+}
+
+/// Standard output of a run that must succeed, parsed as JSON.
+pub fn json(args: &[&str]) -> serde_json::Value {
+    let out = text(args);
+    serde_json::from_str(&out).unwrap_or_else(|e| panic!("{args:?}: {e}\n{out}"))
+}
