@@ -784,6 +784,20 @@ pub fn critical_json(g: &GeneralRotor, c: &GeneralCritical) -> Value {
     v
 }
 
+/// What `critical` and the report say where the locked rotor has no critical speed on the
+/// axis up to `top` (its text): "none" only where every speed of the axis was searched
+/// (review 29: "none up to" where no speed had a placement to lock the balls at and none was
+/// searched), "not computed" where none was, else how many were.
+pub fn no_critical_speed_words(l: &autobal::rotor_campbell::LockedCriticalSpeeds, top: &str) -> String {
+    if l.unlocked == 0 {
+        format!("none up to {top}")
+    } else if l.unlocked >= l.samples {
+        "not computed: no speed of the axis has a placement to lock the balls at".to_string()
+    } else {
+        format!("none at the {} of {} speeds searched up to {top} (the others not searched)", l.samples - l.unlocked, l.samples)
+    }
+}
+
 /// What the balls' locked placement is: with gravity across the axis the balanced family of
 /// 3 or more balls breaks into orbits with two groups of balls (`stability`'s `member_psi`), so
 /// the closed-form placement the speeds are located at is not where the balls settle (gravity
@@ -817,22 +831,8 @@ pub fn critical_table(g: &GeneralRotor, c: &GeneralCritical) -> String {
         s.insert_str(0, &crate::general::operating_line(g, st, op));
     }
     match &c.locked {
-        // "none" only where every speed of the axis was searched (review 29: "none up to" where
-        // no speed was)
-        Ok(l) if l.speeds.is_empty() && l.unlocked == 0 => {
-            let _ = writeln!(s, "  none up to {}", speed_text(g, c.omega_max));
-        }
-        Ok(l) if l.speeds.is_empty() && l.unlocked >= l.samples => {
-            let _ = writeln!(s, "  not computed: no speed of the axis has a placement to lock the balls at");
-        }
         Ok(l) if l.speeds.is_empty() => {
-            let _ = writeln!(
-                s,
-                "  none at the {} of {} speeds searched up to {} (the others not searched: below)",
-                l.samples - l.unlocked,
-                l.samples,
-                speed_text(g, c.omega_max)
-            );
+            let _ = writeln!(s, "  {}", no_critical_speed_words(l, &speed_text(g, c.omega_max)));
         }
         Ok(l) => {
             for (i, k) in l.speeds.iter().enumerate() {
@@ -935,6 +935,24 @@ pub fn critical_table(g: &GeneralRotor, c: &GeneralCritical) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// "none" only where every speed was searched; where none was, "not computed"; else how
+    /// many (review 29: "none up to" where no speed had been searched). `critical` and the
+    /// report both say it through this function.
+    #[test]
+    fn no_critical_speed_says_none_only_where_every_speed_was_searched() {
+        let l = |unlocked: usize| autobal::rotor_campbell::LockedCriticalSpeeds {
+            speeds: vec![],
+            omega_max: 300.0,
+            samples: 50,
+            unlocked,
+            partial: 0,
+            ball_angles: vec![],
+        };
+        assert_eq!(no_critical_speed_words(&l(0), "300 rad/s"), "none up to 300 rad/s");
+        assert_eq!(no_critical_speed_words(&l(50), "300 rad/s"), "not computed: no speed of the axis has a placement to lock the balls at");
+        assert_eq!(no_critical_speed_words(&l(20), "300 rad/s"), "none at the 30 of 50 speeds searched up to 300 rad/s (the others not searched)");
+    }
 
     /// `critical`'s locked placement note: the washer (three balls in a plane) names the family's
     /// member without gravity, and says under gravity that the balls settle elsewhere, in two

@@ -76,7 +76,7 @@ fn general_critical(ctx: &Ctx, s: &mut Section, summary: bool) -> Result<()> {
     s.h3("rotor-critical-general", "Critical speeds of the rotor as given (general route)");
     let what: Vec<String> = autobal::config::ignored_by_linear_model(&ctx.root);
     s.p(format!(
-        "The {} rotor as the config gives it{}, its balls locked where they balance it (point masses of the rotor) and no damping: the speeds up to {} where a natural frequency in fixed axes equals the speed, from the exact Jacobian of its nonlinear equations (what <code>autobal critical</code> prints for this config).",
+        "The {} rotor as the config gives it{}, its balls locked where they balance it, or where no balanced state exists where they rest bunched against the unbalance (point masses of the rotor), and no damping: the speeds up to {} where a natural frequency in fixed axes equals the speed, from the exact Jacobian of its nonlinear equations (what <code>autobal critical</code> prints for this config).",
         g.rotor.model_name(),
         if what.is_empty() { String::new() } else { format!(" (with {})", super::esc(&what.join(", "))) },
         speed(omega_max)
@@ -102,21 +102,22 @@ fn general_critical(ctx: &Ctx, s: &mut Section, summary: bool) -> Result<()> {
                     r
                 })
                 .collect();
+            let none = crate::general_campbell::no_critical_speed_words(&l, &speed(omega_max));
             if rows.is_empty() {
-                s.p(format!("None up to {}.", speed(omega_max)));
+                s.p(format!("{}{}.", none[..1].to_uppercase(), &none[1..]));
             } else if g.si {
                 s.table(&["", "ω (rad/s)", "n (rpm)", "whirl", "motion", "multiplicity (–)"], &rows);
             } else {
                 s.table(&["", "Ω (–)", "whirl", "motion", "multiplicity (–)"], &rows);
             }
+            if l.partial > 0 {
+                s.p(format!("{}.", super::esc(&autobal::rotor_campbell::partial_words(l.partial, l.samples))));
+            }
             if l.unlocked > 0 {
                 s.p(format!("{}.", autobal::rotor_campbell::unlocked_words(l.unlocked, l.samples)));
             }
             let list: Vec<String> = l.speeds.iter().map(|k| speed(k.omega).split(" (").next().unwrap_or_default().to_string()).collect();
-            format!(
-                "Critical speeds of the rotor as given (balls held at balance, general route): {}.",
-                if list.is_empty() { format!("none up to {}", speed(omega_max)) } else { list.join(", ") }
-            )
+            format!("Critical speeds of the rotor as given (balls held at balance, general route): {}.", if list.is_empty() { none } else { list.join(", ") })
         }
         Err(e @ autobal::Error::NoLinearisation { .. }) => {
             s.p(format!("Not located: {}.", super::esc(&e.to_string())));

@@ -79,7 +79,7 @@ pub fn build(ctx: &Ctx) -> Result<Option<Section>> {
             Ok(l) => format!(
                 "The critical speeds of the rotor as given, its balls held at balance (general route, as <code>autobal critical</code> and the first section), are {} ({}).",
                 if l.speeds.is_empty() {
-                    format!("none up to {} {speed_unit}{}", fmt(omega_max, 4), rpm(omega_max))
+                    crate::general_campbell::no_critical_speed_words(&l, &format!("{} {speed_unit}{}", fmt(omega_max, 4), rpm(omega_max)))
                 } else {
                     l.speeds.iter().map(|k| format!("{} {speed_unit}{}", fmt(k.omega, 4), rpm(k.omega))).collect::<Vec<_>>().join(", ")
                 },
