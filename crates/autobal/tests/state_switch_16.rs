@@ -56,11 +56,10 @@ fn a_switch_between_two_partially_balanced_states_is_not_a_boundary() {
         assert_eq!(stability(f, &s).unwrap().verdict, Verdict::Stable, "the range's state at {w} rad/s");
     }
     // further down the same state swings the balls to the heavy side: at 150 rad/s the
-    // checker's own model (SciPy) gives a residual of 1.97 of the unbalance. (Still worded
-    // "partially balanced": the spatial residual is the larger of the static and couple parts
-    // about the reference plane, and above 1 does not by itself say the balls add to the
-    // unbalance; two_plane.rs's coincident planes have such a state that does cancel the
-    // static part. Left: a measure by the support forces.)
+    // checker's own model (SciPy) gives a residual of 1.97 of the unbalance, worded "not
+    // balanced" since session 29's one rule (`rotor_stability::state_from_residual`: a residual
+    // of 1 or more, the larger of the static and couple parts, is not reduced by the balls;
+    // it was "partially balanced" before, while `simulate` called such a state not balanced)
     while w > 150.0 {
         w = (w - 0.5).max(150.0);
         let fw = at(w);
@@ -69,7 +68,7 @@ fn a_switch_between_two_partially_balanced_states_is_not_a_boundary() {
     }
     let (kind, residual) = Rotor::classify(&at(150.0), &s.x);
     assert!((residual - 1.97).abs() < 0.01, "{residual}");
-    assert_eq!(kind, autobal::rotor_stability::StateKind::PartiallyBalanced);
+    assert_eq!(kind, autobal::rotor_stability::StateKind::NotBalanced);
     // and the scan's own state below 315 rad/s is the stable one now, the unstable one (balls
     // opposite the unbalance, the scan's state there until session 21) listed beside it
     let r_below = stability_over_speed(&rotor, &[below]).unwrap();
