@@ -1252,7 +1252,11 @@ pub struct LockedCriticalSpeeds {
 /// singular; `Q = M⁻¹ (K − Ω² M + iΩ² G)`, Hermitian up to `M`, real eigenvalues) as its real
 /// `2m × 2m` embedding `[[Re Q, −Im Q], [Im Q, Re Q]]`, each eigenvalue twice.
 fn stiffness_block(rotor: &Rotor, omega: f64) -> Result<(Vec<f64>, usize, usize, Field)> {
-    let (locked, _) = lock(rotor, omega, true, true)?;
+    stiffness_block_of(&lock(rotor, omega, true, true)?.0, omega)
+}
+
+/// [`stiffness_block`] of the rotor already `locked` (undamped, its balls at their placement).
+fn stiffness_block_of(locked: &Rotor, omega: f64) -> Result<(Vec<f64>, usize, usize, Field)> {
     let f = locked.field(omega)?;
     let n = f.dim();
     let m = n / 2;
@@ -1377,14 +1381,15 @@ fn positive_count(rotor: &Rotor, omega: f64) -> Result<Option<(usize, bool)>> {
         Rotor::Spatial(s) => s.balls() > 0,
         Rotor::Linear(l) => l.total_balls() > 0,
     };
-    let partial = match has_balls {
-        true => match lock_state(&point_mass_balls(rotor).field(omega)?, true) {
-            Some((_, p)) => p,
-            None => return Ok(None),
-        },
-        false => false,
+    // the placement found once: the point-mass field and its closed form are what `lock` builds
+    let (locked, partial) = if has_balls {
+        let f = point_mass_balls(rotor).field(omega)?;
+        let Some((x, partial)) = lock_state(&f, true) else { return Ok(None) };
+        (locked_at(rotor, &f, Some(x), true)?, partial)
+    } else {
+        (lock(rotor, omega, true, true)?.0, false)
     };
-    let (a, d, copies, _) = stiffness_block(rotor, omega)?;
+    let (a, d, copies, _) = stiffness_block_of(&locked, omega)?;
     let ev = eigenvalues(&a, d).map_err(|e| Error::invalid("critical", format!("the eigenvalues of the stiffness block did not converge: {e}")))?;
     Ok(Some((ev.iter().filter(|z| z.re > 0.0).count().div_ceil(copies), partial)))
 }

@@ -966,30 +966,25 @@ pub enum StateKind {
     /// orbit, supports that differ by direction, E's mean position within 5 % of `s2`
     /// of the axis, [`crate::planar::stationary::balance_allowance`]).
     SemiBalanced,
-    /// The balls cannot cancel the unbalance (capacity short, or below the speed where the
-    /// semi-balanced state exists): a residual unbalance, a plane's balls bunched at its limit
-    /// (the planar rotor's on a periodic orbit: together, their mean resultant at least 99 % of
-    /// the capacity, E off the axis beyond the semi-balanced allowance)
-    /// (spatial: or one plane against a couple about it, which no placement cancels), the
-    /// residual unbalance below 1 where the residual is the unbalance itself (the planar rotor
-    /// with its race centred: a state with the balls on the unbalance's side, residual above 1,
-    /// is [`StateKind::NotBalanced`]; the spatial residual, static and couple over the larger,
-    /// exceeds 1 with a couple about a plane that no ball there cancels, so it keeps the rule).
+    /// Not balanced, but the balls reduce the unbalance: the residual unbalance below 1 (by
+    /// more than [`NO_REDUCTION`]; [`state_from_residual`], the one rule `simulate`'s settled
+    /// runs use too). Typically the balls cannot cancel the unbalance (capacity short, or
+    /// below the speed where paper 004's semi-balanced state exists) and rest bunched at their
+    /// limit; the spatial residual is the larger of the static and couple parts (one plane
+    /// against a couple about it is never balanced). Planar: the balls bunched (or, on a
+    /// periodic orbit, together at their capacity limit) with a residual below 1, else the one
+    /// rule. Linear: the race-whirl rule of [`crate::linear_rotor::partial::state_kind`].
     PartiallyBalanced,
-    /// A state in which the balls do not balance although no plane's balls are bunched and
-    /// their capacity could: at an equilibrium the race whirls and each ball sits on the line
-    /// of the whirl, on either side of it (two balls opposite each other: their resultant is
-    /// zero). A ball is at rest on a whirling race only there (its tangential force
+    /// The balls do not reduce the unbalance: a residual unbalance of 1 or more
+    /// ([`state_from_residual`]; before session 29 the spatial route called such states
+    /// partially balanced where the balls could not balance). E.g. the balls on the heavy side
+    /// below the critical speed, or two balls opposite each other on the line of the whirl: a
+    /// ball is at rest on a whirling race only on that line (its tangential force
     /// `m_b Ω² |d| sin(ψ − arg d)` vanishes), so such states exist at every speed beside the
-    /// balanced one; Newton can reach one from a poor start, and it is named, never called
-    /// balanced ([`state_kind`](Rotor::state_kind)). On a periodic orbit (gravity, supports
-    /// that differ by direction) the same states swing, and at low speed under gravity the
-    /// balanced orbit's own swing can leave more than 5 % of the unbalance (the spatial
-    /// two-plane example at 131 rad/s: 0.30): not balanced either. Recognised by the planar
-    /// rotor's E off the axis with the balls not bunched, the linear rotor's race whirling (mean
-    /// over an orbit) at more than 0.05 (`BALANCE_TOLERANCE`) of its whirl without the balls' resultant
-    /// ([`crate::linear_rotor::partial::state_kind`]), the spatial rotor's residual above 5 %
-    /// of the unbalance (at an equilibrium above `1e-6`) where a balanced state exists.
+    /// balanced one and Newton can reach one from a poor start; they are named, never called
+    /// balanced ([`state_kind`](Rotor::state_kind)). Linear: the race whirling (mean over an
+    /// orbit) at more than 0.05 (`BALANCE_TOLERANCE`) of its whirl without the balls'
+    /// resultant ([`crate::linear_rotor::partial::state_kind`]).
     NotBalanced,
 }
 
