@@ -71,7 +71,7 @@
 //! assert!(rows.iter().all(|r| r[0].verdict == Some(Verdict::Unstable)));
 //! ```
 
-use crate::analysis::{family, stability, stationary_near, FamilyOptions, NewtonOptions, StationaryState, VectorField};
+use crate::analysis::{family, stability, stationary_near, FamilyOptions, NewtonOptions, StationaryState, VectorField, FILL_SUBSTEPS};
 pub use crate::analysis::{FamilyVerdict, Kind, Verdict};
 use crate::config;
 use crate::control::{Control, StopReason};
@@ -569,53 +569,146 @@ impl Plane<'_> {
         }))
     }
 
-    /// Row `j`: every `x` at `y_j`, continued along the row (then, for a cell left without a
-    /// state, once more from its right-hand neighbour's state: a row that finds its first
-    /// state only at larger `x` continues it back); with `trace`, the points where the verdict
-    /// changes between neighbouring cells of the row, bisected along `x`, and each cell's state
-    /// (for the bisections along `y` between this row and the next: [`Plane::column_points`]).
+    /// Row `j`'s cells and states: every `x` at `y_j`, continued along the row; a cell left
+    /// without a state next to one with a state is then reached from that neighbour by
+    /// continuation in smaller steps ([`Plane::continue_to`]), first from the left, then from
+    /// the right (a row that finds its first state only at larger `x` continues it back). Until
+    /// session 30 the fill was one step from the right-hand neighbour, and whether a cell had a
+    /// state depended on the grid: the washer of examples/washing_machine.toml under gravity at
+    /// 200 rpm, balancer.z = 0.22, had a partially balanced orbit on a 6-column map (reached
+    /// from 300 rpm) and none on an 11-column one (the step from 250 rpm failed), where a
+    /// bisection then reported the state "appearing" at 200.0000001 rpm.
     #[allow(clippy::type_complexity)]
-    fn row(&self, j: usize, trace: bool) -> Result<(Vec<GeneralCell>, Vec<BoundaryPoint>, Vec<Option<StationaryState>>)> {
+    fn row_cells(&self, j: usize) -> Result<(Vec<GeneralCell>, Vec<Option<StationaryState>>)> {
         let yv = self.y.values[j];
         let mut previous: Option<StationaryState> = None;
         let mut out = Vec::with_capacity(self.x.values.len());
         let mut states: Vec<Option<StationaryState>> = Vec::with_capacity(self.x.values.len());
         for (i, &xv) in self.x.values.iter().enumerate() {
             let (c, w) = self.cell(Some(i), Some(j), xv, yv)?;
-            let (cell, x) = solve(&c, w, previous.as_ref(), true, true);
+            let (mut cell, mut x) = solve(&c, w, previous.as_ref(), true, true);
+            if cell.verdict.is_none() && cell.analysed && i > 0 {
+                if let Some(from) = &states[i - 1] {
+                    if let Some((c2, x2)) = self.continue_to(Along::X, j, i, self.x.values[i - 1], from, xv, false)? {
+                        (cell, x) = (c2, Some(x2));
+                    }
+                }
+            }
             states.push(x.clone());
             previous = x.or(previous);
             out.push(cell);
         }
         for i in (0..out.len().saturating_sub(1)).rev() {
-            if out[i].verdict.is_none() && out[i].analysed && states[i + 1].is_some() {
-                let (c, w) = self.cell(Some(i), Some(j), self.x.values[i], yv)?;
-                let (cell, x) = solve(&c, w, states[i + 1].as_ref(), false, true);
-                if cell.verdict.is_some() {
-                    out[i] = cell;
-                    states[i] = x;
+            if out[i].verdict.is_none() && out[i].analysed {
+                if let Some(from) = states[i + 1].clone() {
+                    if let Some((cell, x)) = self.continue_to(Along::X, j, i, self.x.values[i + 1], &from, self.x.values[i], true)? {
+                        out[i] = cell;
+                        states[i] = Some(x);
+                    }
                 }
             }
         }
+        Ok((out, states))
+    }
+
+    /// The cell at grid index `idx` along `along` (column `idx` of row `k` along `x`, row `idx`
+    /// of column `k` along `y`) reached by continuation from `from`, the state at coordinate
+    /// `a`, to the cell's coordinate `b`: natural-parameter steps, halved where Newton fails
+    /// and doubled again where it succeeds, from the whole gap (from half of it with `!whole`:
+    /// the caller has tried the whole gap in one step) down to `|b − a| / FILL_SUBSTEPS`; `None` where a step that small
+    /// fails, or a point on the way is below the periodic-orbit floor. Each point is solved as
+    /// a row's cell ([`solve`], the closed form's starts too) with the last state reached
+    /// carried (the neighbour's state continued, and the candidate partially balanced starts
+    /// from it), as a bisection solves its midpoints: the washer above has, at 250 rpm, an
+    /// orbit that folds at 211 rpm beside the one that reaches 200 rpm (and folds at 189 rpm);
+    /// following only the cell's state, the 11-column map kept 200 rpm empty. Only the cell
+    /// itself gets its family's verdict.
+    #[allow(clippy::too_many_arguments)]
+    fn continue_to(
+        &self,
+        along: Along,
+        k: usize,
+        idx: usize,
+        a: f64,
+        from: &StationaryState,
+        b: f64,
+        whole: bool,
+    ) -> Result<Option<(GeneralCell, StationaryState)>> {
+        let gap = b - a;
+        let least = gap.abs() / FILL_SUBSTEPS;
+        let at = |t: f64, on_grid: bool| match along {
+            Along::X => self.cell(on_grid.then_some(idx), Some(k), t, self.y.values[k]),
+            Along::Y => self.cell(Some(k), on_grid.then_some(idx), self.x.values[k], t),
+        };
+        let (mut t, mut state, mut h) = (a, from.clone(), if whole { gap } else { 0.5 * gap });
+        while h.abs() >= least {
+            let reach = (t + h - b) * gap.signum() >= 0.0;
+            let next = if reach { b } else { t + h };
+            let (c, w) = at(next, reach)?;
+            let (cell, x) = solve(&c, w, Some(&state), true, reach);
+            if side(&cell) == 3 {
+                return Ok(None);
+            }
+            match x {
+                Some(x) if reach => return Ok(Some((GeneralCell { continued: true, ..cell }, x))),
+                Some(x) => {
+                    (t, state) = (next, x);
+                    h = (2.0 * h).abs().min((b - t).abs()) * gap.signum();
+                }
+                None => h *= 0.5,
+            }
+        }
+        Ok(None)
+    }
+
+    /// Row `j`'s points where the verdict changes between neighbouring cells (`cells`, their
+    /// `states`), bisected along `x`.
+    fn row_points(&self, j: usize, cells: &[GeneralCell], states: &[Option<StationaryState>]) -> Result<Vec<BoundaryPoint>> {
         let mut points = vec![];
-        if trace {
-            for i in 0..out.len().saturating_sub(1) {
-                if crosses(&out[i], &out[i + 1]) {
-                    let end = |k: usize| (self.x.values[k], out[k].verdict, states[k].clone(), out[k]);
-                    points.extend(self.bisect(Along::X, j, end(i), end(i + 1))?);
+        for i in 0..cells.len().saturating_sub(1) {
+            if crosses(&cells[i], &cells[i + 1]) {
+                let end = |k: usize| (self.x.values[k], cells[k].verdict, states[k].clone(), cells[k]);
+                points.extend(self.bisect(Along::X, j, end(i), end(i + 1))?);
+            }
+        }
+        Ok(points)
+    }
+
+    /// Column `i` of rows `j0..` (`rows[jj]`: the cells, their states), with the row below them
+    /// (`below`, already handed on: its cells are not changed): a cell left without a state
+    /// next to one with a state in the column is reached from it by continuation along `y`
+    /// ([`Plane::continue_to`]), upwards, then downwards. Returns the cells changed, `(jj,
+    /// cell, state)`.
+    #[allow(clippy::type_complexity)]
+    fn fill_column(
+        &self,
+        i: usize,
+        j0: usize,
+        below: Option<&Option<StationaryState>>,
+        rows: &[(Vec<GeneralCell>, Vec<Option<StationaryState>>)],
+    ) -> Result<Vec<(usize, GeneralCell, StationaryState)>> {
+        let n = rows.len();
+        let mut col: Vec<(GeneralCell, Option<StationaryState>)> = (0..n).map(|jj| (rows[jj].0[i], rows[jj].1[i].clone())).collect();
+        let mut changed = vec![];
+        let missing = |c: &GeneralCell| c.verdict.is_none() && c.analysed;
+        for jj in 0..n {
+            let from = if jj == 0 { below.cloned().flatten() } else { col[jj - 1].1.clone() };
+            if let (true, Some(from), Some(j)) = (missing(&col[jj].0), from, (j0 + jj).checked_sub(1)) {
+                if let Some((c, x)) = self.continue_to(Along::Y, i, j0 + jj, self.y.values[j], &from, self.y.values[j0 + jj], true)? {
+                    col[jj] = (c, Some(x));
+                    changed.push(jj);
                 }
             }
-            // the states kept for the bisections along `y` (a block of rows' worth) without
-            // their monodromy matrices, `dim²` numbers each (a 60-state orbit's 29 kB: 0.9 GB
-            // for 64 rows of 500 cells): a bisection's first midpoint is then shot without that
-            // hint (one more variational integration), the later ones with their neighbour's
-            for s in states.iter_mut().flatten() {
-                s.monodromy = None;
-            }
-        } else {
-            states.clear();
         }
-        Ok((out, points, states))
+        for jj in (0..n.saturating_sub(1)).rev() {
+            if let (true, Some(from)) = (missing(&col[jj].0), col[jj + 1].1.clone()) {
+                if let Some((c, x)) = self.continue_to(Along::Y, i, j0 + jj, self.y.values[j0 + jj + 1], &from, self.y.values[j0 + jj], true)? {
+                    col[jj] = (c, Some(x));
+                    changed.push(jj);
+                }
+            }
+        }
+        Ok(changed.into_iter().map(|jj| (jj, col[jj].0, col[jj].1.clone().expect("a filled cell has its state"))).collect())
     }
 
     /// The points where the verdict changes between rows `j` and `j + 1` (cells `lo`, `hi`
@@ -677,6 +770,26 @@ impl Plane<'_> {
             } else {
                 b = mid;
                 xb = x.or(xb);
+            }
+        }
+        // a state that appears (or disappears) at the very cell without one: the cell's own
+        // starts missed a state that continuation reaches (the bisection's midpoints are
+        // continued from the side with a state), so no stationary state appears there; not a
+        // boundary (the fill in Plane::row_cells and Plane::fill_column reaches most such cells
+        // first: this is the case where a fold lies within FILL_SUBSTEPS of the cell)
+        let none_end = match (side_lo, side(&hi.3)) {
+            (0, s) if s != 0 && a == lo.0 => Some((a, &xb)),
+            (s, 0) if s != 0 && b == hi.0 => Some((b, &xa)),
+            _ => None,
+        };
+        if let Some((t, Some(from))) = none_end {
+            let (xv, yv) = at(t);
+            let (c, w) = match along {
+                Along::X => self.cell(None, Some(k), xv, yv)?,
+                Along::Y => self.cell(Some(k), None, xv, yv)?,
+            };
+            if solve(&c, w, Some(from), false, false).1.is_some() {
+                return Ok(None);
             }
         }
         let (x, y) = at(0.5 * (a + b));
@@ -889,13 +1002,13 @@ fn map_on(
     let mut out = GeneralMapOutcome { complete: true, ..Default::default() };
     let block = (4 * rayon::current_num_threads()).max(1);
     let mut j0 = 0;
-    // with `trace`: the last row handed on and its cells' states (the bisections along `y`
-    // between it and the next block's first row)
+    // the last row handed on and its cells' states (the fill along `y` and the bisections along
+    // `y` between it and the next block's first row)
     let mut last: Option<(Vec<GeneralCell>, Vec<Option<StationaryState>>)> = None;
     while j0 < y.values.len() {
         let j1 = (j0 + block).min(y.values.len());
         #[allow(clippy::type_complexity)]
-        let rows: Vec<Option<(Vec<GeneralCell>, Vec<BoundaryPoint>, Vec<Option<StationaryState>>)>> = (j0..j1)
+        let computed: Vec<Option<(Vec<GeneralCell>, Vec<Option<StationaryState>>)>> = (j0..j1)
             .into_par_iter()
             .map(|j| {
                 if control.should_stop().is_some() {
@@ -904,20 +1017,60 @@ fn map_on(
                 // under the stop probe (a stop ends a cell's shooting early): a row with a
                 // cell left without a state once the control says stop is dropped, not
                 // handed over with a cell that only the stop left without one
-                let row = crate::control::with_probe(control, || plane.row(j, trace))?;
+                let row = crate::control::with_probe(control, || plane.row_cells(j))?;
                 let cut = control.should_stop().is_some() && row.0.iter().any(|c| c.verdict.is_none() && c.analysed);
                 Ok((!cut).then_some(row))
             })
             .collect::<Result<_>>()?;
-        // the points along `y` between each row and the one before it (both computed)
+        // the rows before the first one dropped (only a stop drops one: the block is then not
+        // handed on, below)
+        let mut rows: Vec<(Vec<GeneralCell>, Vec<Option<StationaryState>>)> = computed.into_iter().map_while(|r| r).collect();
+        // each column's cells left without a state, reached from their neighbours in the column
+        // (a cell of the row already handed on is not changed)
+        let below = last.as_ref().map(|(_, s)| s.as_slice());
+        let filled: Vec<Vec<(usize, GeneralCell, StationaryState)>> = (0..x.values.len())
+            .into_par_iter()
+            .map(|i| crate::control::with_probe(control, || plane.fill_column(i, j0, below.map(|s| &s[i]), &rows)))
+            .collect::<Result<_>>()?;
+        if control.should_stop().is_some() {
+            // a stop during the fill may have left a cell without the state it would have
+            // reached: the block is not handed on
+            out.complete = false;
+            out.stopped = control.should_stop();
+            return Ok(out);
+        }
+        for (i, f) in filled.into_iter().enumerate() {
+            for (jj, cell, state) in f {
+                rows[jj].0[i] = cell;
+                rows[jj].1[i] = Some(state);
+            }
+        }
+        // the points along `x` within each row, and along `y` between each row and the one
+        // before it (both computed)
+        let mut along_x: Vec<Vec<BoundaryPoint>> = vec![vec![]; rows.len()];
         let mut along_y: Vec<Vec<BoundaryPoint>> = vec![vec![]; rows.len()];
         if trace {
+            along_x = rows
+                .par_iter()
+                .enumerate()
+                .map(|(jj, (c, s))| crate::control::with_probe(control, || plane.row_points(j0 + jj, c, s)))
+                .collect::<Result<_>>()?;
+        }
+        // the states kept (for the next block's fill and bisections) without their monodromy
+        // matrices, `dim²` numbers each (a 60-state orbit's 29 kB: 0.9 GB for 64 rows of 500
+        // cells): a continuation from them is then shot without that hint (one more variational
+        // integration)
+        for s in rows.iter_mut().flat_map(|r| r.1.iter_mut()).flatten() {
+            s.monodromy = None;
+        }
+        if trace {
+            #[allow(clippy::type_complexity)]
             let pairs: Vec<(usize, (&[GeneralCell], &[Option<StationaryState>]), (&[GeneralCell], &[Option<StationaryState>]))> = (0..rows.len())
                 .filter_map(|jj| {
-                    let (hi, _, hs) = rows[jj].as_ref()?;
+                    let (hi, hs) = &rows[jj];
                     let (lo, ls) = match jj {
                         0 => last.as_ref().map(|(c, s)| (c.as_slice(), s.as_slice()))?,
-                        _ => rows[jj - 1].as_ref().map(|(c, _, s)| (c.as_slice(), s.as_slice()))?,
+                        _ => (rows[jj - 1].0.as_slice(), rows[jj - 1].1.as_slice()),
                     };
                     Some((jj, (lo, ls), (hi.as_slice(), hs.as_slice())))
                 })
@@ -930,12 +1083,7 @@ fn map_on(
                 along_y[jj] = p;
             }
         }
-        for ((jj, row), more) in rows.into_iter().enumerate().zip(along_y) {
-            let Some((row, mut points, states)) = row else {
-                out.complete = false;
-                out.stopped = Some(control.should_stop().unwrap_or(StopReason::Interrupted));
-                return Ok(out);
-            };
+        for (jj, ((row, states), (mut points, more))) in rows.into_iter().zip(along_x.into_iter().zip(along_y)).enumerate() {
             points.extend(more);
             for c in &row {
                 match c.verdict {
@@ -958,9 +1106,7 @@ fn map_on(
             }
             out.rows += 1;
             let go_on = on_row(j0 + jj, &row, &points);
-            if trace {
-                last = Some((row, states));
-            }
+            last = Some((row, states));
             control.report(out.rows as u64, y.values.len() as u64);
             if !go_on {
                 out.complete = j0 + jj + 1 == y.values.len();

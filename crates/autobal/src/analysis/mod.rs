@@ -103,8 +103,8 @@ pub use family::{family, Family, FamilyMember, FamilyOptions, FamilyVerdict, Par
 pub(crate) use stability::assemble_ranges;
 pub(crate) use stability::speed_scan_with_last;
 pub use stability::{
-    mode, speed_scan, speed_scan_with, stability, Eigenvalue, Kind, ScanOptions, ScanPoint, SpeedScan, Stability, StableRange, Verdict, FLOQUET_TOLERANCE,
-    NEUTRAL_TOLERANCE, STOPPABLE_EIGEN_N,
+    mode, speed_scan, speed_scan_with, stability, Eigenvalue, Kind, ScanOptions, ScanPoint, SpeedScan, Stability, StableRange, Verdict, FILL_SUBSTEPS,
+    FLOQUET_TOLERANCE, NEUTRAL_TOLERANCE, STOPPABLE_EIGEN_N,
 };
 pub use stationary::{orbit_samples, stationary, stationary_near, NewtonOptions, StationaryState, VariationalSystem};
 

@@ -116,6 +116,14 @@ impl Stability {
 /// where Ctrl-C waited ~30 s for the speed's solve before).
 pub const STOPPABLE_EIGEN_N: usize = 64;
 
+/// The smallest step, as a fraction of the gap between two neighbouring grid points (speeds
+/// of a scan, cells of a map), in which a state found at one is continued to the other where
+/// that point's own starts find none (64, six halvings; the bisection of a range end or a map
+/// boundary then locates a fold closer than that). Until session 30 a scan never went back,
+/// and a map went back one step: the washer under gravity (balancer.z = 0.22) at 200 rpm had
+/// its partially balanced orbit on one grid and none on another (tests/map_fill_30.rs).
+pub const FILL_SUBSTEPS: f64 = 64.0;
+
 /// The linear stability of the stationary `state` of `f` (module docs of [`crate::analysis`]):
 /// eigenvalues of `J(0, x)` for an equilibrium, Floquet multipliers of `Φ(T)` for a periodic
 /// orbit; the `state.family_dimension` eigenvalues nearest 0 (multipliers nearest 1) set apart
@@ -587,6 +595,28 @@ where
             let state = settle(&f, state, hint, tried);
             stability(&f, &state).map(|st| (state, st)).map_err(|e| e.to_string())
         };
+    // a speed left without a state next to one with a state (`from` at speed `a`), reached from
+    // it ([`FILL_SUBSTEPS`]): steps from the whole gap (half of it where the whole was tried)
+    // halved where no state is found and doubled again where one is, each speed solved as a
+    // grid speed is with the last state carried
+    let fill = |a: f64, from: &StationaryState, b: f64, whole: bool| -> Option<(StationaryState, Stability)> {
+        let gap = b - a;
+        let least = gap.abs() / FILL_SUBSTEPS;
+        let (mut t, mut state, mut h) = (a, from.clone(), if whole { gap } else { 0.5 * gap });
+        while h.abs() >= least && control.should_stop().is_none() {
+            let reach = (t + h - b) * gap.signum() >= 0.0;
+            let next = if reach { b } else { t + h };
+            match evaluate(next, Some(&state), None) {
+                Ok(found) if reach => return Some(found),
+                Ok((x, _)) => {
+                    (t, state) = (next, x);
+                    h = (2.0 * h).abs().min((b - t).abs()) * gap.signum();
+                }
+                Err(_) => h *= 0.5,
+            }
+        }
+        None
+    };
     let mut points: Vec<ScanPoint> = Vec::with_capacity(speeds.len());
     let mut previous: Option<StationaryState> = None;
     let mut stopped = None;
@@ -597,7 +627,13 @@ where
         }
         // under the control's stop probe: a stop ends this speed's integrations early, and a
         // speed that failed then is dropped, not reported as a speed without a state
-        match crate::control::with_probe(control, || evaluate(omega, previous.as_ref(), None)) {
+        let found = crate::control::with_probe(control, || {
+            evaluate(omega, previous.as_ref(), None).or_else(|e| match (&previous, points.last()) {
+                (Some(from), Some(p)) => fill(p.omega, from, omega, false).ok_or(e),
+                _ => Err(e),
+            })
+        });
+        match found {
             Ok((state, st)) => {
                 previous = Some(state.clone());
                 points.push(ScanPoint { omega, state: Some(state), stability: Some(st), failure: None });
@@ -612,6 +648,22 @@ where
             }
         }
         control.report(points.len() as u64, speeds.len() as u64);
+    }
+    // a speed left without a state below one with a state, reached from above (a scan that
+    // finds its first state only at a higher speed continues it back), as a map's row does
+    if stopped.is_none() {
+        for i in (0..points.len().saturating_sub(1)).rev() {
+            let Some(from) = points[i + 1].state.clone().filter(|_| points[i].state.is_none()) else { continue };
+            let (a, b) = (points[i + 1].omega, points[i].omega);
+            match crate::control::with_probe(control, || fill(a, &from, b, true)) {
+                Some((state, st)) => points[i] = ScanPoint { omega: b, state: Some(state), stability: Some(st), failure: None },
+                None if control.should_stop().is_some() => {
+                    stopped = control.should_stop();
+                    break;
+                }
+                None => {}
+            }
+        }
     }
     // boundaries between neighbours whose verdicts differ, both analysed: next to a speed
     // where no state was found (Newton failed there) the range ends at its last analysed grid
