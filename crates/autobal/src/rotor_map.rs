@@ -306,10 +306,12 @@ fn model_speed(c: &CellRotor, s: Speed, field: &str) -> Result<f64> {
 /// continues; one variational integration per cell instead of two), then the closed form
 /// (also with that matrix); for an equilibrium the closed form first (it names the branch).
 ///
-/// With `families`, a state of a family ([`VectorField::structural_zeros`] `> 0`) gets its
-/// family's verdict too ([`cell_family`]); a bisection, which follows the member's margin,
-/// goes without.
-fn solve(c: &CellRotor, w: f64, previous: Option<&StationaryState>, closed_form: bool, families: bool) -> (GeneralCell, Option<StationaryState>) {
+/// With `classify`, the state is settled and named as the speed scan does it
+/// ([`Rotor::settle_balanced`] where the closed form is tried, else [`Rotor::classify`]); with
+/// `family`, a state of a family ([`VectorField::structural_zeros`] `> 0`) gets its family's
+/// verdict too ([`cell_family`]). A bisection, which follows the member's margin, goes without
+/// both; a continuation's steps to a cell ([`Plane::continue_to`]) without the family.
+fn solve(c: &CellRotor, w: f64, previous: Option<&StationaryState>, closed_form: bool, classify: bool, family: bool) -> (GeneralCell, Option<StationaryState>) {
     let Ok(field) = c.rotor.field(w) else { return (GeneralCell::NONE, None) };
     let periodic = field.period().is_some();
     // the periodic-orbit floor (the speed scan's one rule): a revolution spanning more than
@@ -392,13 +394,13 @@ fn solve(c: &CellRotor, w: f64, previous: Option<&StationaryState>, closed_form:
         // (semi-balanced) one wherever Newton reaches it (Rotor::settle_balanced, the commands'
         // one rule; a cell continued from a not-balanced neighbour kept that orbit until
         // session 21, audit 21's F4), classified once; a bisection follows its ends' state
-        let (state, class) = if families && closed_form {
+        let (state, class) = if classify && closed_form {
             // the closed form was shot from with `hint` where this start is it or came after it
             let tried = if continued { None } else { closed_start.as_deref() };
             let (state, class) = Rotor::settle_balanced(&field, state, hint, tried, &opts);
             (state, Some(class.0))
         } else {
-            let class = if families { Some(Rotor::classify(&field, &state.x).0) } else { None };
+            let class = if classify { Some(Rotor::classify(&field, &state.x).0) } else { None };
             (state, class)
         };
         let Ok(st) = stability(&field, &state) else { continue };
@@ -413,7 +415,7 @@ fn solve(c: &CellRotor, w: f64, previous: Option<&StationaryState>, closed_form:
             state: class,
             ..GeneralCell::NONE
         };
-        if families && state.family_dimension > 0 {
+        if family && state.family_dimension > 0 {
             if let Some((v, hi, lo)) = cell_family(&field, &state, &opts) {
                 (cell.family, cell.family_max_margin, cell.family_min_margin) = (Some(v), hi / c.scale, lo / c.scale);
             }
@@ -421,6 +423,13 @@ fn solve(c: &CellRotor, w: f64, previous: Option<&StationaryState>, closed_form:
         return (cell, Some(state));
     }
     (GeneralCell::NONE, None)
+}
+
+/// A map row's cells and their states (`None` where a cell has none).
+#[derive(Clone)]
+struct RawRow {
+    cells: Vec<GeneralCell>,
+    states: Vec<Option<StationaryState>>,
 }
 
 /// Where a cell's Newton starts ([`solve`]): the neighbour's state, the speed scan's first
@@ -586,7 +595,7 @@ impl Plane<'_> {
         let mut states: Vec<Option<StationaryState>> = Vec::with_capacity(self.x.values.len());
         for (i, &xv) in self.x.values.iter().enumerate() {
             let (c, w) = self.cell(Some(i), Some(j), xv, yv)?;
-            let (mut cell, mut x) = solve(&c, w, previous.as_ref(), true, true);
+            let (mut cell, mut x) = solve(&c, w, previous.as_ref(), true, true, true);
             if cell.verdict.is_none() && cell.analysed && i > 0 {
                 if let Some(from) = &states[i - 1] {
                     if let Some((c2, x2)) = self.continue_to(Along::X, j, i, self.x.values[i - 1], from, xv, false)? {
@@ -607,6 +616,13 @@ impl Plane<'_> {
                     }
                 }
             }
+        }
+        // the states kept (for the fill along `y` and the bisections) without their monodromy
+        // matrices, `dim²` numbers each (a 60-state orbit's 29 kB: 0.9 GB for 64 rows of 500
+        // cells): a continuation or bisection from them is shot without that hint (one more
+        // variational integration)
+        for s in states.iter_mut().flatten() {
+            s.monodromy = None;
         }
         Ok((out, states))
     }
@@ -635,6 +651,11 @@ impl Plane<'_> {
         whole: bool,
     ) -> Result<Option<(GeneralCell, StationaryState)>> {
         let gap = b - a;
+        if gap == 0.0 {
+            // two grid values equal: nothing to continue over (the cell was solved with its own
+            // starts)
+            return Ok(None);
+        }
         let least = gap.abs() / FILL_SUBSTEPS;
         let at = |t: f64, on_grid: bool| match along {
             Along::X => self.cell(on_grid.then_some(idx), Some(k), t, self.y.values[k]),
@@ -645,7 +666,7 @@ impl Plane<'_> {
             let reach = (t + h - b) * gap.signum() >= 0.0;
             let next = if reach { b } else { t + h };
             let (c, w) = at(next, reach)?;
-            let (cell, x) = solve(&c, w, Some(&state), true, reach);
+            let (cell, x) = solve(&c, w, Some(&state), true, true, reach);
             if side(&cell) == 3 {
                 return Ok(None);
             }
@@ -674,41 +695,40 @@ impl Plane<'_> {
         Ok(points)
     }
 
-    /// Column `i` of rows `j0..` (`rows[jj]`: the cells, their states), with the row below them
-    /// (`below`, already handed on: its cells are not changed): a cell left without a state
-    /// next to one with a state in the column is reached from it by continuation along `y`
-    /// ([`Plane::continue_to`]), upwards, then downwards. Returns the cells changed, `(jj,
-    /// cell, state)`.
+    /// Column `i`'s cells left without a state in `rows` (consecutive rows, from row `j0`),
+    /// each reached by continuation along `y` ([`Plane::continue_to`]) from the state its own
+    /// row found in the row below, else in the row above, as [`Plane::row_cells`] left them
+    /// (`raw`, the same rows), never from a state this fill reached, so that a cell's state
+    /// depends on its neighbours only, not on how the map's rows fall into blocks (which
+    /// follows the number of threads). The first of `rows` is not filled from below (it is the
+    /// row held back from the last block, filled from below there, or the map's first row).
+    /// Returns the cells changed, `(jj, cell, state)`.
     #[allow(clippy::type_complexity)]
-    fn fill_column(
-        &self,
-        i: usize,
-        j0: usize,
-        below: Option<&Option<StationaryState>>,
-        rows: &[(Vec<GeneralCell>, Vec<Option<StationaryState>>)],
-    ) -> Result<Vec<(usize, GeneralCell, StationaryState)>> {
+    fn fill_column(&self, i: usize, j0: usize, raw: &[RawRow], rows: &[RawRow]) -> Result<Vec<(usize, GeneralCell, StationaryState)>> {
         let n = rows.len();
-        let mut col: Vec<(GeneralCell, Option<StationaryState>)> = (0..n).map(|jj| (rows[jj].0[i], rows[jj].1[i].clone())).collect();
         let mut changed = vec![];
-        let missing = |c: &GeneralCell| c.verdict.is_none() && c.analysed;
         for jj in 0..n {
-            let from = if jj == 0 { below.cloned().flatten() } else { col[jj - 1].1.clone() };
-            if let (true, Some(from), Some(j)) = (missing(&col[jj].0), from, (j0 + jj).checked_sub(1)) {
-                if let Some((c, x)) = self.continue_to(Along::Y, i, j0 + jj, self.y.values[j], &from, self.y.values[j0 + jj], true)? {
-                    col[jj] = (c, Some(x));
-                    changed.push(jj);
+            let cell = &rows[jj].cells[i];
+            if cell.verdict.is_some() || !cell.analysed {
+                continue;
+            }
+            let j = j0 + jj;
+            let mut got = None;
+            if jj > 0 {
+                if let Some(from) = &raw[jj - 1].states[i] {
+                    got = self.continue_to(Along::Y, i, j, self.y.values[j - 1], from, self.y.values[j], true)?;
                 }
             }
-        }
-        for jj in (0..n.saturating_sub(1)).rev() {
-            if let (true, Some(from)) = (missing(&col[jj].0), col[jj + 1].1.clone()) {
-                if let Some((c, x)) = self.continue_to(Along::Y, i, j0 + jj, self.y.values[j0 + jj + 1], &from, self.y.values[j0 + jj], true)? {
-                    col[jj] = (c, Some(x));
-                    changed.push(jj);
+            if got.is_none() && jj + 1 < n {
+                if let Some(from) = &raw[jj + 1].states[i] {
+                    got = self.continue_to(Along::Y, i, j, self.y.values[j + 1], from, self.y.values[j], true)?;
                 }
             }
+            if let Some((c, x)) = got {
+                changed.push((jj, c, x));
+            }
         }
-        Ok(changed.into_iter().map(|jj| (jj, col[jj].0, col[jj].1.clone().expect("a filled cell has its state"))).collect())
+        Ok(changed)
     }
 
     /// The points where the verdict changes between rows `j` and `j + 1` (cells `lo`, `hi`
@@ -745,7 +765,7 @@ impl Plane<'_> {
         let (from, to) = (lo.1, hi.1);
         let side_lo = side(&lo.3);
         let (mut a, mut b) = (lo.0, hi.0);
-        let (mut xa, mut xb) = (lo.2, hi.2);
+        let (mut xa, mut xb) = (lo.2.clone(), hi.2.clone());
         let at = |t: f64| match along {
             Along::X => (t, self.y.values[k]),
             Along::Y => (self.x.values[k], t),
@@ -760,7 +780,7 @@ impl Plane<'_> {
                 Along::X => self.cell(None, Some(k), xv, yv)?,
                 Along::Y => self.cell(Some(k), None, xv, yv)?,
             };
-            let (cell, x) = solve(&c, w, xa.as_ref().or(xb.as_ref()), true, false);
+            let (cell, x) = solve(&c, w, xa.as_ref().or(xb.as_ref()), true, false, false);
             if side(&cell) == 3 {
                 return Ok(None);
             }
@@ -788,8 +808,16 @@ impl Plane<'_> {
                 Along::X => self.cell(None, Some(k), xv, yv)?,
                 Along::Y => self.cell(Some(k), None, xv, yv)?,
             };
-            if solve(&c, w, Some(from), false, false).1.is_some() {
-                return Ok(None);
+            if let (cell, Some(x)) = solve(&c, w, Some(from), false, false, false) {
+                // the state's own boundary between that cell and the far end, if its margin
+                // changes sign there (the far end's side is a state's)
+                let lo_is_none = side_lo == 0;
+                let far = if lo_is_none { &hi.3 } else { &lo.3 };
+                if side(&cell) == side(far) {
+                    return Ok(None);
+                }
+                let end = (t, cell.verdict, Some(x), cell);
+                return if lo_is_none { self.bisect(along, k, end, hi) } else { self.bisect(along, k, lo, end) };
             }
         }
         let (x, y) = at(0.5 * (a + b));
@@ -1002,13 +1030,14 @@ fn map_on(
     let mut out = GeneralMapOutcome { complete: true, ..Default::default() };
     let block = (4 * rayon::current_num_threads()).max(1);
     let mut j0 = 0;
-    // the last row handed on and its cells' states (the fill along `y` and the bisections along
-    // `y` between it and the next block's first row)
+    // the last row handed on, final (the bisections along `y` between it and the next row)
     let mut last: Option<(Vec<GeneralCell>, Vec<Option<StationaryState>>)> = None;
+    // the block's last row, held back until the next block's first row is computed (its cells
+    // are filled from that row's too): as its row left it (`raw`), and filled from below
+    let mut held: Option<(RawRow, RawRow)> = None;
     while j0 < y.values.len() {
         let j1 = (j0 + block).min(y.values.len());
-        #[allow(clippy::type_complexity)]
-        let computed: Vec<Option<(Vec<GeneralCell>, Vec<Option<StationaryState>>)>> = (j0..j1)
+        let computed: Vec<Option<RawRow>> = (j0..j1)
             .into_par_iter()
             .map(|j| {
                 if control.should_stop().is_some() {
@@ -1017,73 +1046,89 @@ fn map_on(
                 // under the stop probe (a stop ends a cell's shooting early): a row with a
                 // cell left without a state once the control says stop is dropped, not
                 // handed over with a cell that only the stop left without one
-                let row = crate::control::with_probe(control, || plane.row_cells(j))?;
-                let cut = control.should_stop().is_some() && row.0.iter().any(|c| c.verdict.is_none() && c.analysed);
-                Ok((!cut).then_some(row))
+                let (cells, states) = crate::control::with_probe(control, || plane.row_cells(j))?;
+                let cut = control.should_stop().is_some() && cells.iter().any(|c| c.verdict.is_none() && c.analysed);
+                Ok((!cut).then_some(RawRow { cells, states }))
             })
             .collect::<Result<_>>()?;
-        // the rows before the first one dropped (only a stop drops one: the block is then not
-        // handed on, below)
-        let mut rows: Vec<(Vec<GeneralCell>, Vec<Option<StationaryState>>)> = computed.into_iter().map_while(|r| r).collect();
+        let Some(computed) = computed.into_iter().collect::<Option<Vec<RawRow>>>() else {
+            // a stop: this block (and the row held back) is not handed on
+            out.complete = false;
+            out.stopped = Some(control.should_stop().unwrap_or(StopReason::Interrupted));
+            return Ok(out);
+        };
+        // the rows of this round: the one held back (filled from below already), then the block's
+        let base = j0 - usize::from(held.is_some());
+        let (mut raw, mut rows): (Vec<RawRow>, Vec<RawRow>) = (vec![], vec![]);
+        if let Some((r, f)) = held.take() {
+            raw.push(r);
+            rows.push(f);
+        }
+        rows.extend(computed.iter().cloned());
+        raw.extend(computed);
+        let n = raw.len();
         // each column's cells left without a state, reached from their neighbours in the column
-        // (a cell of the row already handed on is not changed)
-        let below = last.as_ref().map(|(_, s)| s.as_slice());
         let filled: Vec<Vec<(usize, GeneralCell, StationaryState)>> = (0..x.values.len())
             .into_par_iter()
-            .map(|i| crate::control::with_probe(control, || plane.fill_column(i, j0, below.map(|s| &s[i]), &rows)))
+            .map(|i| crate::control::with_probe(control, || plane.fill_column(i, base, &raw, &rows)))
             .collect::<Result<_>>()?;
-        if control.should_stop().is_some() {
-            // a stop during the fill may have left a cell without the state it would have
-            // reached: the block is not handed on
-            out.complete = false;
-            out.stopped = control.should_stop();
-            return Ok(out);
-        }
         for (i, f) in filled.into_iter().enumerate() {
             for (jj, cell, state) in f {
-                rows[jj].0[i] = cell;
-                rows[jj].1[i] = Some(state);
+                rows[jj].cells[i] = cell;
+                rows[jj].states[i] = Some(state);
             }
         }
-        // the points along `x` within each row, and along `y` between each row and the one
-        // before it (both computed)
+        // the rows final now: all but the last, which is held back for the next block's first
+        // row (its fill from above), unless it is the map's last
+        let done = if j1 == y.values.len() { n } else { n - 1 };
+        if done < n {
+            held = Some((raw.pop().expect("a row"), rows.pop().expect("a row")));
+        }
+        drop(raw);
+        // the points along `x` within each final row, and along `y` between each final row and
+        // the one before it
         let mut along_x: Vec<Vec<BoundaryPoint>> = vec![vec![]; rows.len()];
         let mut along_y: Vec<Vec<BoundaryPoint>> = vec![vec![]; rows.len()];
         if trace {
             along_x = rows
                 .par_iter()
                 .enumerate()
-                .map(|(jj, (c, s))| crate::control::with_probe(control, || plane.row_points(j0 + jj, c, s)))
+                .map(|(jj, r)| crate::control::with_probe(control, || plane.row_points(base + jj, &r.cells, &r.states)))
                 .collect::<Result<_>>()?;
         }
-        // the states kept (for the next block's fill and bisections) without their monodromy
-        // matrices, `dim²` numbers each (a 60-state orbit's 29 kB: 0.9 GB for 64 rows of 500
-        // cells): a continuation from them is then shot without that hint (one more variational
-        // integration)
-        for s in rows.iter_mut().flat_map(|r| r.1.iter_mut()).flatten() {
+        // (a state the fill reached keeps its monodromy matrix only until here)
+        for s in rows.iter_mut().flat_map(|r| r.states.iter_mut()).flatten() {
             s.monodromy = None;
         }
         if trace {
             #[allow(clippy::type_complexity)]
             let pairs: Vec<(usize, (&[GeneralCell], &[Option<StationaryState>]), (&[GeneralCell], &[Option<StationaryState>]))> = (0..rows.len())
                 .filter_map(|jj| {
-                    let (hi, hs) = &rows[jj];
+                    let hi = &rows[jj];
                     let (lo, ls) = match jj {
                         0 => last.as_ref().map(|(c, s)| (c.as_slice(), s.as_slice()))?,
-                        _ => (rows[jj - 1].0.as_slice(), rows[jj - 1].1.as_slice()),
+                        _ => (rows[jj - 1].cells.as_slice(), rows[jj - 1].states.as_slice()),
                     };
-                    Some((jj, (lo, ls), (hi.as_slice(), hs.as_slice())))
+                    Some((jj, (lo, ls), (hi.cells.as_slice(), hi.states.as_slice())))
                 })
                 .collect();
             let found: Vec<(usize, Vec<BoundaryPoint>)> = pairs
                 .into_par_iter()
-                .map(|(jj, lo, hi)| Ok((jj, crate::control::with_probe(control, || plane.column_points(j0 + jj - 1, lo, hi))?)))
+                .map(|(jj, lo, hi)| Ok((jj, crate::control::with_probe(control, || plane.column_points(base + jj - 1, lo, hi))?)))
                 .collect::<Result<_>>()?;
             for (jj, p) in found {
                 along_y[jj] = p;
             }
         }
-        for (jj, ((row, states), (mut points, more))) in rows.into_iter().zip(along_x.into_iter().zip(along_y)).enumerate() {
+        if control.should_stop().is_some() {
+            // a stop during the fill or the bisections may have left a cell without the state
+            // it would have reached, or a point misplaced: these rows are not handed on
+            out.complete = false;
+            out.stopped = control.should_stop();
+            return Ok(out);
+        }
+        for (jj, (row, (mut points, more))) in rows.into_iter().zip(along_x.into_iter().zip(along_y)).enumerate() {
+            let RawRow { cells: row, states } = row;
             points.extend(more);
             for c in &row {
                 match c.verdict {
@@ -1105,11 +1150,11 @@ fn map_on(
                 }
             }
             out.rows += 1;
-            let go_on = on_row(j0 + jj, &row, &points);
+            let go_on = on_row(base + jj, &row, &points);
             last = Some((row, states));
             control.report(out.rows as u64, y.values.len() as u64);
             if !go_on {
-                out.complete = j0 + jj + 1 == y.values.len();
+                out.complete = base + jj + 1 == y.values.len();
                 out.stopped = (!out.complete).then_some(StopReason::Observer);
                 return Ok(out);
             }

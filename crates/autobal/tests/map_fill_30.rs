@@ -102,3 +102,39 @@ fn a_cells_state_is_the_same_on_every_grid_and_no_state_appears_at_a_grid_cell()
         }
     }
 }
+
+#[test]
+fn the_column_fill_does_not_depend_on_how_rows_fall_into_blocks() {
+    // A map hands its rows on in blocks of 4 x threads rows; a cell is filled from the row
+    // above it even where that row falls in the next block (the block's last row is held back
+    // until then). Speeds 50-550 rpm along y: with one thread the blocks are 50-200 and
+    // 250-400 rpm, and the 200 rpm cell (no state of its own) is reached from 250 rpm across the
+    // blocks' edge; with two threads both are in one block. Review 30 found the first version
+    // of the fill leaving the cell empty with one thread (the block's last row was handed on
+    // before the next block was computed).
+    let root = washer();
+    let z = Axis { path: "balancer.z".into(), values: vec![0.22, 0.26] };
+    let s = Axis { path: "speed_rpm".into(), values: (0..11).map(|i| 50.0 + 50.0 * i as f64).collect() };
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        pool.install(|| {
+            let mut cells = vec![];
+            general_map_traced(&root, &z, &s, None, true, &Control::none(), &mut |_, row, _| {
+                cells.extend_from_slice(row);
+                true
+            })
+            .unwrap();
+            cells
+        })
+    };
+    let (one, two) = (run(1), run(2));
+    assert_eq!(one.len(), 22);
+    for (k, (a, b)) in one.iter().zip(&two).enumerate() {
+        assert_eq!((a.verdict, a.state), (b.verdict, b.state), "cell {k}: {a:?} vs {b:?}");
+        if a.verdict.is_some() {
+            assert!((a.margin - b.margin).abs() <= 1e-9, "cell {k}: {} vs {}", a.margin, b.margin);
+        }
+    }
+    // the 200 rpm cells (row 3) have the orbit
+    assert!(one[6].verdict.is_some() && one[7].verdict.is_some(), "{:?}", &one[6..8]);
+}
