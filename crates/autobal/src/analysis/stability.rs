@@ -603,7 +603,8 @@ where
         let gap = b - a;
         let least = gap.abs() / FILL_SUBSTEPS;
         let (mut t, mut state, mut h) = (a, from.clone(), if whole { gap } else { 0.5 * gap });
-        while h.abs() >= least && control.should_stop().is_none() {
+        // (a zero gap, a speed given twice: nothing to continue over)
+        while gap != 0.0 && h.abs() >= least && control.should_stop().is_none() {
             let reach = (t + h - b) * gap.signum() >= 0.0;
             let next = if reach { b } else { t + h };
             match evaluate(next, Some(&state), None) {
