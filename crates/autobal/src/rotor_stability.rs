@@ -1731,33 +1731,47 @@ fn family_over_speed(
         let fp = family_point(rotor, omega, &state, newton)?;
         Some((fp.least_stable.abscissa, fp.most_stable.abscissa))
     };
-    let mut ranges = [vec![], vec![]];
-    for (which, out) in ranges.iter_mut().enumerate() {
-        // which = 0: all members (largest abscissa < 0); 1: some (smallest < 0)
-        let value = |p: &SpeedPoint| p.family.as_ref().map(|f| if which == 0 { f.least_stable.abscissa } else { f.most_stable.abscissa });
-        let good = |p: &SpeedPoint| p.family_verdict.is_some_and(|v| if which == 0 { v == FamilyVerdict::AllStable } else { v != FamilyVerdict::NoneStable });
-        let mut boundary = vec![None; points.len()];
-        for i in 0..points.len().saturating_sub(1) {
+    // which = 0: all members (largest abscissa < 0); 1: some (smallest < 0)
+    let value = |which: usize, p: &SpeedPoint| p.family.as_ref().map(|f| if which == 0 { f.least_stable.abscissa } else { f.most_stable.abscissa });
+    let good = |which: usize, p: &SpeedPoint| {
+        p.family_verdict.is_some_and(|v| if which == 0 { v == FamilyVerdict::AllStable } else { v != FamilyVerdict::NoneStable })
+    };
+    // every range end's bracket, (which, i): between two analysed speeds only (as the scan's
+    // own ranges); located in parallel, each by its own sequence of families (on two ball
+    // planes of three balls each, the all- and the some-members ends took 35 of the 72 s of
+    // `stability` one after the other: walk 29)
+    let brackets: Vec<(usize, usize)> = if stopped.is_some() {
+        vec![]
+    } else {
+        (0..2)
+            .flat_map(|which| (0..points.len().saturating_sub(1)).map(move |i| (which, i)))
+            .filter(|&(which, i)| {
+                let (a, b) = (&points[i], &points[i + 1]);
+                good(which, a) != good(which, b) && a.verdict.is_some() && b.verdict.is_some()
+            })
+            .collect()
+    };
+    let located: Vec<((usize, usize), std::result::Result<f64, StopReason>)> = brackets
+        .into_par_iter()
+        .map(|(which, i)| {
             let (a, b) = (&points[i], &points[i + 1]);
-            // a range end between two analysed speeds only (as the scan's own ranges)
-            if good(a) == good(b) || a.verdict.is_none() || b.verdict.is_none() {
-                continue;
-            }
-            if stopped.is_some() {
-                continue;
-            }
             let near = states[i].or(states[i + 1]).map(|s| s.x.clone());
             let g = |w: f64| extremes_at(w, near.as_deref()).map(|e| if which == 0 { e.0 } else { e.1 });
-            match locate(a.omega, b.omega, value(a), value(b), good(a), g, control) {
-                // a family's range ends are where its extreme abscissa crosses 0, never a
-                // switch of state
-                Ok(w) => boundary[i] = Some((w, false)),
-                Err(why) => stopped = Some(why),
-            }
+            ((which, i), locate(a.omega, b.omega, value(which, a), value(which, b), good(which, a), g, control))
+        })
+        .collect();
+    // the ends located (those a stop cut short are not: their ranges end at the grid speed)
+    let mut boundaries = [vec![None; points.len()], vec![None; points.len()]];
+    for ((which, i), r) in located {
+        match r {
+            // a family's range ends are where its extreme abscissa crosses 0, never a switch
+            // of state
+            Ok(w) => boundaries[which][i] = Some((w, false)),
+            Err(why) => stopped = stopped.or(Some(why)),
         }
-        // the scan's own rule (one function: session 18 found the two copies the same)
-        *out = crate::analysis::assemble_ranges(|i| points[i].omega, |i| good(&points[i]), &boundary);
     }
+    // the scan's own rule (one function: session 18 found the two copies the same)
+    let ranges = [0, 1].map(|which| crate::analysis::assemble_ranges(|i| points[i].omega, |i| good(which, &points[i]), &boundaries[which]));
     let [all, some] = ranges;
     let counts: Vec<usize> = points.iter().filter_map(|p| p.family.as_ref().map(|f| f.members)).collect();
     let members_analysed = counts.iter().min().zip(counts.iter().max()).map(|(a, b)| [*a, *b]);
