@@ -71,7 +71,7 @@
 //! assert!(rows.iter().all(|r| r[0].verdict == Some(Verdict::Unstable)));
 //! ```
 
-use crate::analysis::{family, stability, stationary_near, FamilyOptions, NewtonOptions, StationaryState, VectorField, FILL_SUBSTEPS};
+use crate::analysis::{family, stability, states_switch, stationary_near, FamilyOptions, NewtonOptions, StationaryState, VectorField, FILL_SUBSTEPS};
 pub use crate::analysis::{FamilyVerdict, Kind, Verdict};
 use crate::config;
 use crate::control::{Control, StopReason};
@@ -761,9 +761,23 @@ impl Plane<'_> {
     /// analysed (below the periodic-orbit floor, side 3): the interval then holds cells on no
     /// side, and taking such a midpoint for the far side would walk towards it and report a
     /// boundary that is only the floor's edge.
+    ///
+    /// Each midpoint is solved from the closed form, else continued from the nearer side's
+    /// state. Where the last bracket holds two different states (the speed scan's test,
+    /// [`crate::analysis::states_switch`]: e.g. the partially balanced orbit on one side and the
+    /// balanced one on the other), the point is located again following only the stable
+    /// side's state ([`Plane::follow_stable`]), as the speed scan locates a range end.
     fn bisect(&self, along: Along, k: usize, lo: Side, hi: Side) -> Result<Option<BoundaryPoint>> {
+        self.bisect_with(along, k, lo, hi, None)
+    }
+
+    /// [`Plane::bisect`]; with `follow` `Some(true)` (`Some(false)`) each midpoint is continued
+    /// from `lo`'s (`hi`'s) side's state only, never from the closed form, and a midpoint
+    /// without a state lies on the other side: the point is where that state changes
+    /// stability or is lost; `None` if the last bracket still holds two states.
+    fn bisect_with(&self, along: Along, k: usize, lo: Side, hi: Side, follow: Option<bool>) -> Result<Option<BoundaryPoint>> {
         let (from, to) = (lo.1, hi.1);
-        let side_lo = side(&lo.3);
+        let (side_lo, side_hi) = (side(&lo.3), side(&hi.3));
         let (mut a, mut b) = (lo.0, hi.0);
         let (mut xa, mut xb) = (lo.2.clone(), hi.2.clone());
         let at = |t: f64| match along {
@@ -780,11 +794,19 @@ impl Plane<'_> {
                 Along::X => self.cell(None, Some(k), xv, yv)?,
                 Along::Y => self.cell(Some(k), None, xv, yv)?,
             };
-            let (cell, x) = solve(&c, w, xa.as_ref().or(xb.as_ref()), true, false, false);
+            let (cell, x) = match follow {
+                None => solve(&c, w, xa.as_ref().or(xb.as_ref()), true, false, false),
+                Some(true) => solve(&c, w, xa.as_ref(), false, false, false),
+                Some(false) => solve(&c, w, xb.as_ref(), false, false, false),
+            };
             if side(&cell) == 3 {
                 return Ok(None);
             }
-            if side(&cell) == side_lo {
+            let on_lo = match follow {
+                Some(false) => side(&cell) != side_hi,
+                _ => side(&cell) == side_lo,
+            };
+            if on_lo {
                 a = mid;
                 xa = x.or(xa);
             } else {
@@ -792,12 +814,25 @@ impl Plane<'_> {
                 xb = x.or(xb);
             }
         }
+        // two states in the last bracket (measured against the grid ends' states, the speed
+        // scan's test): a switch of state, not one state's change of stability
+        let switch = match (&xa, &xb, &lo.2, &hi.2) {
+            (Some(p), Some(q), Some(g), Some(h)) => states_switch((&p.x, &q.x, (b - a).abs()), (&g.x, &h.x, (hi.0 - lo.0).abs())),
+            _ => false,
+        };
+        if switch {
+            return match follow {
+                None => self.follow_stable(along, k, lo, hi),
+                Some(_) => Ok(None),
+            };
+        }
         // a state that appears (or disappears) at the very cell without one: the cell's own
         // starts missed a state that continuation reaches (the bisection's midpoints are
         // continued from the side with a state), so no stationary state appears there; not a
         // boundary (the fill in Plane::row_cells and Plane::fill_column reaches most such cells
         // first: this is the case where a fold lies within FILL_SUBSTEPS of the cell)
-        let none_end = match (side_lo, side(&hi.3)) {
+        let none_end = match (side_lo, side_hi) {
+            _ if follow.is_some() => None,
             (0, s) if s != 0 && a == lo.0 => Some((a, &xb)),
             (s, 0) if s != 0 && b == hi.0 => Some((b, &xa)),
             _ => None,
@@ -823,16 +858,68 @@ impl Plane<'_> {
         let (x, y) = at(0.5 * (a + b));
         Ok(Some(BoundaryPoint { x, y, from, to, along }))
     }
+
+    /// The point between `lo` and `hi` (their states differ: [`Plane::bisect`] ended on a
+    /// switch) where the stable end's state changes stability or is lost, as the speed scan
+    /// locates a range end after a switch: that state is continued to the other end in
+    /// [`FOLLOW_STEPS`] equal steps (a branch can turn fast over one grid step); where it is
+    /// stable there too, the other end's verdict is another state's and no point is reported
+    /// (a switch, not a boundary); else the change is bisected on that state alone. `None`
+    /// also where neither end is stable.
+    fn follow_stable(&self, along: Along, k: usize, lo: Side, hi: Side) -> Result<Option<BoundaryPoint>> {
+        let keep_lo = side(&lo.3) == 1;
+        if !keep_lo && side(&hi.3) != 1 {
+            return Ok(None);
+        }
+        let (kept, other) = if keep_lo { (&lo, &hi) } else { (&hi, &lo) };
+        let Some(mut state) = kept.2.clone() else { return Ok(None) };
+        let mut end = (GeneralCell::NONE, None);
+        for s in 1..=FOLLOW_STEPS {
+            let t = if s == FOLLOW_STEPS { other.0 } else { kept.0 + (other.0 - kept.0) * s as f64 / FOLLOW_STEPS as f64 };
+            let (xv, yv) = match along {
+                Along::X => (t, self.y.values[k]),
+                Along::Y => (self.x.values[k], t),
+            };
+            let (c, w) = match along {
+                Along::X => self.cell(None, Some(k), xv, yv)?,
+                Along::Y => self.cell(Some(k), None, xv, yv)?,
+            };
+            end = solve(&c, w, Some(&state), false, false, false);
+            match (side(&end.0), &end.1) {
+                (3, _) => return Ok(None),
+                (_, Some(x)) if s < FOLLOW_STEPS => state = x.clone(),
+                (_, Some(_)) => {}
+                (_, None) => break,
+            }
+        }
+        if end.1.is_some() && side(&end.0) == 1 {
+            // the stable state goes on to the other end: the other end's verdict is another
+            // state's
+            return Ok(None);
+        }
+        let far = (other.0, other.1, end.1, end.0);
+        if keep_lo {
+            self.bisect_with(along, k, lo.clone(), far, Some(true))
+        } else {
+            self.bisect_with(along, k, far, hi.clone(), Some(false))
+        }
+    }
 }
 
+/// Steps in which [`Plane::follow_stable`] continues the stable end's state to the other end,
+/// as the speed scan does after a switch ([`crate::analysis::speed_scan`]: 16; the two-plane
+/// rotor's partially balanced state below 322 rad/s moves its balls 0.6 rad over one grid step).
+const FOLLOW_STEPS: usize = 16;
+
 /// Whether the boundary is bisected between two neighbouring cells (along a row or a column):
-/// they lie on different sides ([`side`]), neither below the periodic-orbit floor, and they do
-/// not hold two states of different kinds (e.g. the balls bunched on the unbalance's side next
-/// to the semi-balanced state: a switch of state, not a change of one state's stability).
+/// they lie on different sides ([`side`]) and neither below the periodic-orbit floor. Two cells
+/// holding states of different kinds are bisected too ([`Plane::bisect`] tells a switch of
+/// state from a change of one state's stability: walk 30 found `--boundary` silent between a
+/// partially balanced unstable cell and a balanced stable one, where the balanced state's own
+/// boundary lies, until session 31 this refused such pairs).
 fn crosses(a: &GeneralCell, b: &GeneralCell) -> bool {
     let (sa, sb) = (side(a), side(b));
-    let switch = a.state.is_some() && b.state.is_some() && a.state != b.state;
-    sa != sb && sa != 3 && sb != 3 && !switch
+    sa != sb && sa != 3 && sb != 3
 }
 
 /// Where a map's rotors come from: a planar or spatial config ([`build`]), or a linear rotor's

@@ -102,6 +102,7 @@ mod stationary;
 pub use family::{family, Family, FamilyMember, FamilyOptions, FamilyVerdict, ParameterRange, Sampling};
 pub(crate) use stability::assemble_ranges;
 pub(crate) use stability::speed_scan_with_last;
+pub(crate) use stability::states_switch;
 pub use stability::{
     mode, speed_scan, speed_scan_with, stability, Eigenvalue, Kind, ScanOptions, ScanPoint, SpeedScan, Stability, StableRange, Verdict, FILL_SUBSTEPS,
     FLOQUET_TOLERANCE, NEUTRAL_TOLERANCE, STOPPABLE_EIGEN_N,

@@ -454,16 +454,20 @@ const SAME_STATE: f64 = 1e-2;
 /// the grid step's size (the balls elsewhere by ~1 rad) however narrow the bracket.
 fn switches(p: &Trial, q: &Trial, a: &ScanPoint, b: &ScanPoint) -> bool {
     let (Some(xp), Some(xq), Some(xa), Some(xb)) = (p.state.as_ref(), q.state.as_ref(), a.state.as_ref(), b.state.as_ref()) else { return false };
-    if xp.x.len() != xq.x.len() || xa.x.len() != xb.x.len() || xp.x.len() != xa.x.len() {
+    states_switch((&xp.x, &xq.x, (p.omega - q.omega).abs()), (&xa.x, &xb.x, (a.omega - b.omega).abs()))
+}
+
+/// [`switches`]' test on bare states: the last bracket's states `xp`, `xq` a `width` apart
+/// (in the parameter bisected) against the grid step's `xa`, `xb` a `step` apart. One rule for
+/// the speed scan's range ends and a map's boundary points ([`crate::rotor_map`]). `false`
+/// where the states' lengths differ or the step is 0.
+pub(crate) fn states_switch((xp, xq, width): (&[f64], &[f64], f64), (xa, xb, step): (&[f64], &[f64], f64)) -> bool {
+    if xp.len() != xq.len() || xa.len() != xb.len() || xp.len() != xa.len() || step == 0.0 {
         return false;
     }
     let diff = |u: &[f64], v: &[f64]| u.iter().zip(v).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
-    let size = xp.x.iter().chain(&xq.x).map(|v| v.abs()).fold(0.0, f64::max);
-    let (width, step) = ((p.omega - q.omega).abs(), (a.omega - b.omega).abs());
-    if step == 0.0 {
-        return false;
-    }
-    diff(&xp.x, &xq.x) > 1e3 * (width / step) * diff(&xa.x, &xb.x) + SAME_STATE * (1.0 + size)
+    let size = xp.iter().chain(xq).map(|v| v.abs()).fold(0.0, f64::max);
+    diff(xp, xq) > 1e3 * (width / step) * diff(xa, xb) + SAME_STATE * (1.0 + size)
 }
 
 /// Bisection of the bracket `[p, q]` (sides differ) on the verdict, to `rtol · Ω`.
