@@ -1273,7 +1273,7 @@ fn general_plot(
     let title = format!("Stability map of the {model} rotor's stationary state (general route: {state})");
     let mut p = plot_cells(&r, &title);
     // no 003 necessary ranges off the 12-state model
-    p.series.retain(|s| s.label != "003 necessary boundary");
+    p.series.retain(|s| s.label != NECESSARY_EDGE_LABEL);
     if planar {
         // the planar model's `omega` is ω itself (no ω0)
         for (key, label) in [(&r.x.path, &mut p.x_label), (&r.y.path, &mut p.y_label)] {
@@ -1997,7 +1997,7 @@ mod tests {
         let p = &out.figures().unwrap()[0].plot;
         assert!(p.title.contains("general route"), "{}", p.title);
         assert_eq!(p.x_label, "speed ω (rad/s)");
-        assert!(p.series.iter().all(|s| s.label != "003 necessary boundary"));
+        assert!(p.series.iter().all(|s| !s.label.contains("003")), "{:?}", p.series.iter().map(|s| &s.label).collect::<Vec<_>>());
         let RouteOutput::General { traced: Some(t), .. } = &out.route else { panic!("general route, traced") };
         assert_eq!(p.series.iter().any(|s| s.label == "bisected boundary points"), !t.is_empty());
         assert_eq!(out.json().unwrap()["route"], json!("general"));

@@ -598,7 +598,7 @@ impl Plane<'_> {
             let (mut cell, mut x) = solve(&c, w, previous.as_ref(), true, true, true);
             if cell.verdict.is_none() && cell.analysed && i > 0 {
                 if let Some(from) = &states[i - 1] {
-                    if let Some((c2, x2)) = self.continue_to(Along::X, j, i, self.x.values[i - 1], from, xv, false)? {
+                    if let Some((c2, x2)) = self.continue_to(Along::X, j, Some(i), self.x.values[i - 1], from, xv, false)? {
                         (cell, x) = (c2, Some(x2));
                     }
                 }
@@ -610,7 +610,7 @@ impl Plane<'_> {
         for i in (0..out.len().saturating_sub(1)).rev() {
             if out[i].verdict.is_none() && out[i].analysed {
                 if let Some(from) = states[i + 1].clone() {
-                    if let Some((cell, x)) = self.continue_to(Along::X, j, i, self.x.values[i + 1], &from, self.x.values[i], true)? {
+                    if let Some((cell, x)) = self.continue_to(Along::X, j, Some(i), self.x.values[i + 1], &from, self.x.values[i], true)? {
                         out[i] = cell;
                         states[i] = Some(x);
                     }
@@ -628,8 +628,9 @@ impl Plane<'_> {
     }
 
     /// The cell at grid index `idx` along `along` (column `idx` of row `k` along `x`, row `idx`
-    /// of column `k` along `y`) reached by continuation from `from`, the state at coordinate
-    /// `a`, to the cell's coordinate `b`: natural-parameter steps, halved where Newton fails
+    /// of column `k` along `y`; `None`: a bisection's midpoint off the grid, solved as the
+    /// bisection solves it, without the state's name and family) reached by continuation from
+    /// `from`, the state at coordinate `a`, to the cell's coordinate `b`: natural-parameter steps, halved where Newton fails
     /// and doubled again where it succeeds, from the whole gap (from half of it with `!whole`:
     /// the caller has tried the whole gap in one step) down to `|b − a| / FILL_SUBSTEPS`; `None` where a step that small
     /// fails, or a point on the way is below the periodic-orbit floor. Each point is solved as
@@ -644,7 +645,7 @@ impl Plane<'_> {
         &self,
         along: Along,
         k: usize,
-        idx: usize,
+        idx: Option<usize>,
         a: f64,
         from: &StationaryState,
         b: f64,
@@ -658,15 +659,15 @@ impl Plane<'_> {
         }
         let least = gap.abs() / FILL_SUBSTEPS;
         let at = |t: f64, on_grid: bool| match along {
-            Along::X => self.cell(on_grid.then_some(idx), Some(k), t, self.y.values[k]),
-            Along::Y => self.cell(Some(k), on_grid.then_some(idx), self.x.values[k], t),
+            Along::X => self.cell(idx.filter(|_| on_grid), Some(k), t, self.y.values[k]),
+            Along::Y => self.cell(Some(k), idx.filter(|_| on_grid), self.x.values[k], t),
         };
         let (mut t, mut state, mut h) = (a, from.clone(), if whole { gap } else { 0.5 * gap });
         while h.abs() >= least {
             let reach = (t + h - b) * gap.signum() >= 0.0;
             let next = if reach { b } else { t + h };
             let (c, w) = at(next, reach)?;
-            let (cell, x) = solve(&c, w, Some(&state), true, true, reach);
+            let (cell, x) = solve(&c, w, Some(&state), true, idx.is_some(), reach && idx.is_some());
             if side(&cell) == 3 {
                 return Ok(None);
             }
@@ -716,12 +717,12 @@ impl Plane<'_> {
             let mut got = None;
             if jj > 0 {
                 if let Some(from) = &raw[jj - 1].states[i] {
-                    got = self.continue_to(Along::Y, i, j, self.y.values[j - 1], from, self.y.values[j], true)?;
+                    got = self.continue_to(Along::Y, i, Some(j), self.y.values[j - 1], from, self.y.values[j], true)?;
                 }
             }
             if got.is_none() && jj + 1 < n {
                 if let Some(from) = &raw[jj + 1].states[i] {
-                    got = self.continue_to(Along::Y, i, j, self.y.values[j + 1], from, self.y.values[j], true)?;
+                    got = self.continue_to(Along::Y, i, Some(j), self.y.values[j + 1], from, self.y.values[j], true)?;
                 }
             }
             if let Some((c, x)) = got {
@@ -740,11 +741,11 @@ impl Plane<'_> {
         (lo, lo_states): (&[GeneralCell], &[Option<StationaryState>]),
         (hi, hi_states): (&[GeneralCell], &[Option<StationaryState>]),
     ) -> Result<Vec<BoundaryPoint>> {
-        let found: Vec<Option<BoundaryPoint>> = (0..lo.len().min(hi.len()))
+        let found: Vec<Vec<BoundaryPoint>> = (0..lo.len().min(hi.len()))
             .into_par_iter()
             .map(|i| {
                 if !crosses(&lo[i], &hi[i]) {
-                    return Ok(None);
+                    return Ok(vec![]);
                 }
                 let state = |s: &[Option<StationaryState>]| s.get(i).cloned().flatten();
                 let a = (self.y.values[j], lo[i].verdict, state(lo_states), lo[i]);
@@ -767,19 +768,22 @@ impl Plane<'_> {
     /// [`crate::analysis::states_switch`]: e.g. the partially balanced orbit on one side and the
     /// balanced one on the other), the point is located again following only the stable
     /// side's state ([`Plane::follow_stable`]), as the speed scan locates a range end.
-    fn bisect(&self, along: Along, k: usize, lo: Side, hi: Side) -> Result<Option<BoundaryPoint>> {
+    fn bisect(&self, along: Along, k: usize, lo: Side, hi: Side) -> Result<Vec<BoundaryPoint>> {
         self.bisect_with(along, k, lo, hi, None)
     }
 
     /// [`Plane::bisect`]; with `follow` `Some(true)` (`Some(false)`) each midpoint is continued
     /// from `lo`'s (`hi`'s) side's state only, never from the closed form, and a midpoint
     /// without a state lies on the other side: the point is where that state changes
-    /// stability or is lost; `None` if the last bracket still holds two states.
-    fn bisect_with(&self, along: Along, k: usize, lo: Side, hi: Side, follow: Option<bool>) -> Result<Option<BoundaryPoint>> {
-        let (from, to) = (lo.1, hi.1);
+    /// stability or is lost; none if the last bracket still holds two states.
+    fn bisect_with(&self, along: Along, k: usize, lo: Side, hi: Side, follow: Option<bool>) -> Result<Vec<BoundaryPoint>> {
         let (side_lo, side_hi) = (side(&lo.3), side(&hi.3));
+        // one end without a state: the bracket locates where a state appears or is lost
+        let appears = follow.is_none() && (side_lo == 0) != (side_hi == 0);
         let (mut a, mut b) = (lo.0, hi.0);
         let (mut xa, mut xb) = (lo.2.clone(), hi.2.clone());
+        // the cells at the bracket's ends (a midpoint's once it replaces an end)
+        let (mut ca, mut cb) = (lo.3, hi.3);
         let at = |t: f64| match along {
             Along::X => (t, self.y.values[k]),
             Along::Y => (self.x.values[k], t),
@@ -794,13 +798,26 @@ impl Plane<'_> {
                 Along::X => self.cell(None, Some(k), xv, yv)?,
                 Along::Y => self.cell(Some(k), None, xv, yv)?,
             };
-            let (cell, x) = match follow {
+            let (mut cell, mut x) = match follow {
                 None => solve(&c, w, xa.as_ref().or(xb.as_ref()), true, false, false),
                 Some(true) => solve(&c, w, xa.as_ref(), false, false, false),
                 Some(false) => solve(&c, w, xb.as_ref(), false, false, false),
             };
+            if appears && x.is_none() && side(&cell) != 3 {
+                // no state from one Newton jump: continued from the end that has one in
+                // halved steps (Plane::continue_to), so that the point is where the state
+                // ends, not where one jump across half the bracket failed (walk 31: the
+                // washer's orbit "appearing" at 200.0000001 rpm, the first midpoint of
+                // 150-250 rpm, where it exists down to its fold at 188.58 rpm)
+                let from = if side_lo == 0 { (b, &xb) } else { (a, &xa) };
+                if let (t, Some(state)) = from {
+                    if let Some((c2, x2)) = self.continue_to(along, k, None, t, state, mid, false)? {
+                        (cell, x) = (c2, Some(x2));
+                    }
+                }
+            }
             if side(&cell) == 3 {
-                return Ok(None);
+                return Ok(vec![]);
             }
             let on_lo = match follow {
                 Some(false) => side(&cell) != side_hi,
@@ -809,9 +826,11 @@ impl Plane<'_> {
             if on_lo {
                 a = mid;
                 xa = x.or(xa);
+                ca = cell;
             } else {
                 b = mid;
                 xb = x.or(xb);
+                cb = cell;
             }
         }
         // two states in the last bracket (measured against the grid ends' states, the speed
@@ -823,7 +842,7 @@ impl Plane<'_> {
         if switch {
             return match follow {
                 None => self.follow_stable(along, k, lo, hi),
-                Some(_) => Ok(None),
+                Some(_) => Ok(vec![]),
             };
         }
         // a state that appears (or disappears) at the very cell without one: the cell's own
@@ -832,9 +851,9 @@ impl Plane<'_> {
         // boundary (the fill in Plane::row_cells and Plane::fill_column reaches most such cells
         // first: this is the case where a fold lies within FILL_SUBSTEPS of the cell)
         let none_end = match (side_lo, side_hi) {
-            _ if follow.is_some() => None,
-            (0, s) if s != 0 && a == lo.0 => Some((a, &xb)),
-            (s, 0) if s != 0 && b == hi.0 => Some((b, &xa)),
+            _ if !appears => None,
+            (0, _) if a == lo.0 => Some((a, &xb)),
+            (_, 0) if b == hi.0 => Some((b, &xa)),
             _ => None,
         };
         if let Some((t, Some(from))) = none_end {
@@ -849,14 +868,32 @@ impl Plane<'_> {
                 let lo_is_none = side_lo == 0;
                 let far = if lo_is_none { &hi.3 } else { &lo.3 };
                 if side(&cell) == side(far) {
-                    return Ok(None);
+                    return Ok(vec![]);
                 }
                 let end = (t, cell.verdict, Some(x), cell);
                 return if lo_is_none { self.bisect(along, k, end, hi) } else { self.bisect(along, k, lo, end) };
             }
         }
         let (x, y) = at(0.5 * (a + b));
-        Ok(Some(BoundaryPoint { x, y, from, to, along }))
+        if !appears {
+            return Ok(vec![BoundaryPoint { x, y, from: lo.1, to: hi.1, along }]);
+        }
+        // where a state appears (or is lost): the verdict on its side is that state's at the
+        // bracket's end, not the far cell's (walk 31: "stable" from the balanced cell at 350
+        // rpm beside a partially balanced orbit, unstable, appearing at its fold), and that
+        // state's own change of stability between there and the far cell is bisected as
+        // between two cells (walk 31: the balanced orbit's boundary at 303.14 rpm was lost
+        // behind the fold at 188.58)
+        let lo_is_none = side_lo == 0;
+        let (t, state, cell) = if lo_is_none { (b, xb, cb) } else { (a, xa, ca) };
+        let point = BoundaryPoint { x, y, from: if lo_is_none { None } else { cell.verdict }, to: if lo_is_none { cell.verdict } else { None }, along };
+        let mut points = vec![point];
+        let far = if lo_is_none { &hi } else { &lo };
+        if state.is_some() && side(&cell) != 0 && side(&cell) != side(&far.3) {
+            let end = (t, cell.verdict, state, cell);
+            points.extend(if lo_is_none { self.bisect(along, k, end, hi)? } else { self.bisect(along, k, lo, end)? });
+        }
+        Ok(points)
     }
 
     /// The point between `lo` and `hi` (their states differ: [`Plane::bisect`] ended on a
@@ -866,13 +903,13 @@ impl Plane<'_> {
     /// stable there too, the other end's verdict is another state's and no point is reported
     /// (a switch, not a boundary); else the change is bisected on that state alone. `None`
     /// also where neither end is stable.
-    fn follow_stable(&self, along: Along, k: usize, lo: Side, hi: Side) -> Result<Option<BoundaryPoint>> {
+    fn follow_stable(&self, along: Along, k: usize, lo: Side, hi: Side) -> Result<Vec<BoundaryPoint>> {
         let keep_lo = side(&lo.3) == 1;
         if !keep_lo && side(&hi.3) != 1 {
-            return Ok(None);
+            return Ok(vec![]);
         }
         let (kept, other) = if keep_lo { (&lo, &hi) } else { (&hi, &lo) };
-        let Some(mut state) = kept.2.clone() else { return Ok(None) };
+        let Some(mut state) = kept.2.clone() else { return Ok(vec![]) };
         let mut end = (GeneralCell::NONE, None);
         for s in 1..=FOLLOW_STEPS {
             let t = if s == FOLLOW_STEPS { other.0 } else { kept.0 + (other.0 - kept.0) * s as f64 / FOLLOW_STEPS as f64 };
@@ -886,7 +923,7 @@ impl Plane<'_> {
             };
             end = solve(&c, w, Some(&state), false, false, false);
             match (side(&end.0), &end.1) {
-                (3, _) => return Ok(None),
+                (3, _) => return Ok(vec![]),
                 (_, Some(x)) if s < FOLLOW_STEPS => state = x.clone(),
                 (_, Some(_)) => {}
                 (_, None) => break,
@@ -895,7 +932,7 @@ impl Plane<'_> {
         if end.1.is_some() && side(&end.0) == 1 {
             // the stable state goes on to the other end: the other end's verdict is another
             // state's
-            return Ok(None);
+            return Ok(vec![]);
         }
         let far = (other.0, other.1, end.1, end.0);
         if keep_lo {
@@ -1513,6 +1550,6 @@ mod tests {
         let stable = GeneralCell { margin: -1.0, verdict: Some(Verdict::Stable), ..GeneralCell::NONE };
         let unstable = GeneralCell { margin: 1.0, verdict: Some(Verdict::Unstable), ..GeneralCell::NONE };
         let p = plane.bisect(Along::X, 0, (0.0, stable.verdict, None, stable), (1.0, unstable.verdict, None, unstable)).unwrap();
-        assert!(p.is_none(), "{p:?}");
+        assert!(p.is_empty(), "{p:?}");
     }
 }
