@@ -365,18 +365,19 @@ pub fn campbell_fixed_plot_in(axes: &FixedAxes, f: &FixedCampbell) -> Plot {
     const LISTED: usize = 12;
     for (j, cs) in f.critical_speeds.iter().enumerate() {
         let whirl = if cs.whirl == Whirl::Backward { "backward" } else { "forward" };
-        // a minor circular component (share < ½): said, and marked in grey, so that it does
-        // not read as the mode's resonance
+        // a minor circular component (share < ½), or an overdamped crossing (no resonance):
+        // said, and marked in grey, so that it does not read as the mode's resonance
         let minor = cs.share < 0.5;
         let label = if j < LISTED {
             let comp = if minor { format!(", minor component, share {}", crate::num::fmt(cs.share, 2)) } else { String::new() };
-            format!("critical {}: {} (mode {}, {whirl}, {}×{comp})", j + 1, axes.speed(cs.omega), cs.mode, cs.harmonic)
+            let od = if cs.overdamped { ", overdamped: no resonance" } else { "" };
+            format!("critical {}: {} (mode {}, {whirl}, {}×{comp}{od})", j + 1, axes.speed(cs.omega), cs.mode, cs.harmonic)
         } else if j == LISTED {
             format!("further critical speeds ({})", f.critical_speeds.len() - LISTED)
         } else {
             String::new()
         };
-        let se = Series::new(label, vec![(kx * cs.omega, ky * cs.frequency)], if minor { "#999999" } else { "#000000" }).markers();
+        let se = Series::new(label, vec![(kx * cs.omega, ky * cs.frequency)], if minor || cs.overdamped { "#999999" } else { "#000000" }).markers();
         series.push(if j >= LISTED { se.group("further critical speeds") } else { se });
     }
     // the colour classes of the log decrement, as legend entries without points
@@ -450,16 +451,24 @@ mod tests {
 
     /// A minor circular component's crossing (paper 000's rotor with free balls: two backward
     /// components of share ~1e-3 meet 1×) is labelled as such and marked grey; a major one not.
+    /// So is an overdamped end on the real axis (session 31: the balls' drag pair at 0.0774 and
+    /// 0.1319), no resonance.
     #[test]
     fn a_minor_components_critical_speed_says_so() {
         let m = SpatialModel::from_dimensionless(&DimensionlessInput::paper_000(0.8)).unwrap();
         let c = campbell(&m, &linspace(0.01, 4.0, 300), Balls::Free).unwrap();
         let f = fixed_axes(&m, &c, Balls::Free, &[1]).unwrap();
         assert!(f.critical_speeds.iter().any(|cs| cs.share < 0.5) && f.critical_speeds.iter().any(|cs| cs.share >= 0.5), "{:?}", f.critical_speeds);
+        assert!(
+            f.critical_speeds.iter().any(|cs| cs.overdamped) && f.critical_speeds.iter().any(|cs| cs.share >= 0.5 && !cs.overdamped),
+            "{:?}",
+            f.critical_speeds
+        );
         let p = campbell_fixed_plot(&m, &f);
         for (cs, se) in f.critical_speeds.iter().zip(p.series.iter().filter(|s| s.label.starts_with("critical "))) {
             assert_eq!(se.label.contains("minor component"), cs.share < 0.5, "{}", se.label);
-            assert_eq!(se.color == "#999999", cs.share < 0.5, "{}", se.label);
+            assert_eq!(se.label.contains("overdamped"), cs.overdamped, "{}", se.label);
+            assert_eq!(se.color == "#999999", cs.share < 0.5 || cs.overdamped, "{}", se.label);
         }
     }
 }

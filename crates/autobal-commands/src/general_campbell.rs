@@ -326,7 +326,7 @@ pub fn campbell_json(g: &GeneralRotor, gc: &GeneralCampbell, omega_max: f64) -> 
                 .iter()
                 .map(|k| {
                     let mut e =
-                        json!({ "omega": k.omega, "mode": k.mode, "whirl": k.whirl, "share": k.share, "harmonic": k.harmonic, "frequency": k.frequency });
+                        json!({ "omega": k.omega, "mode": k.mode, "whirl": k.whirl, "share": k.share, "harmonic": k.harmonic, "frequency": k.frequency, "overdamped": k.overdamped });
                     if let Some(gr) = crossing_group(gc, f, k) {
                         e["group"] = json!(crate::figures::group_name(gr));
                     }
@@ -514,11 +514,17 @@ fn crossings_table(g: &GeneralRotor, gc: &GeneralCampbell) -> String {
             fmt_num(round(k.frequency)),
             crate::linear::component_text(k.share),
         );
+        if k.overdamped {
+            let _ = writeln!(s, "      {}", crate::linear::OVERDAMPED);
+        }
         if let Some(why) = not_excited(k) {
             let _ = writeln!(s, "      {why}");
         } else if crossing_group(gc, f, k) == Some(autobal::spatial::stability::Group::Balls) {
             let _ = writeln!(s, "      a mode of the balls (its group at the nearest drawn speed): it hardly moves the rotor, not the rotor's critical speed");
         }
+    }
+    if f.critical_speeds.iter().any(|k| k.overdamped) {
+        let _ = writeln!(s, "  note: {}", crate::linear::OVERDAMPED_NOTE);
     }
     if gc.balls == Balls::Free {
         let _ = writeln!(s, "  note: {FREE_BALLS_CRITICAL}");

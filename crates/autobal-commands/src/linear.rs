@@ -215,6 +215,17 @@ pub fn campbell_grid(w: f64, points: usize) -> Vec<f64> {
     autobal::reports::campbell_speeds(w, points)
 }
 
+/// `ν` as the table prints it: 5 decimals, or 4 significant digits where those would show a
+/// resolved `ν` (one with a log decrement) as 0.00000 beside its large log decrement (a nearly
+/// real pair, e.g. two balls' drag modes near where they meet).
+fn nu_text(nu: f64, resolved: bool) -> String {
+    if resolved && nu != 0.0 && nu.abs() < 5e-6 {
+        format!("{nu:.3e}")
+    } else {
+        format!("{nu:.5}")
+    }
+}
+
 pub fn campbell_table(cfg: &Config, c: &Campbell) -> String {
     let mut s = String::new();
     let _ = writeln!(s, "config: {}", cfg.source);
@@ -250,8 +261,8 @@ pub fn campbell_table(cfg: &Config, c: &Campbell) -> String {
             });
             let _ = writeln!(
                 s,
-                "  {:>10.5} {:>10.5} {:>10} {:>12.5}{si}  {:<12} {:<9}",
-                m.im,
+                "  {:>10} {:>10.5} {:>10} {:>12.5}{si}  {:<12} {:<9}",
+                nu_text(m.im, m.log_decrement.is_some()),
                 m.re,
                 m.log_decrement.map_or("—".into(), |d| format!("{d:.4}")),
                 m.fixed_frequency,
@@ -305,6 +316,13 @@ fn whirl_name(w: Whirl) -> &'static str {
     }
 }
 
+/// The mark of an overdamped crossing of `ν = 0` ([`autobal::spatial::campbell::CriticalSpeed::overdamped`]),
+/// under its entry in the tables of both routes.
+pub const OVERDAMPED: &str = "overdamped, no resonance (see the note)";
+
+/// What an overdamped crossing is, once under the tables' list of crossings where one is.
+pub const OVERDAMPED_NOTE: &str = "overdamped, no resonance: ν = 0 is reached, but the pair decays faster than it oscillates (|ν| ≤ |σ|) within Ω/5 of there on every side where it is complex, so the response to unbalance (∝ 1/|λ|) has no half-power band narrow enough for an amplification factor of 2.5 (API 684: critically damped, e.g. two balls' drag modes)";
+
 /// A crossing's component in words: `whole motion` on the real axis (share 1: both components
 /// at `Ω`), else the major (share ≥ ½) or minor component with its share.
 pub fn component_text(share: f64) -> String {
@@ -345,6 +363,12 @@ pub fn fixed_table(cfg: &Config, f: &FixedCampbell, at: &[f64]) -> String {
             hz(k.frequency),
             component_text(k.share)
         );
+        if k.overdamped {
+            let _ = writeln!(s, "      {OVERDAMPED}");
+        }
+    }
+    if f.critical_speeds.iter().any(|k| k.overdamped) {
+        let _ = writeln!(s, "  note: {OVERDAMPED_NOTE}");
     }
     let _ = writeln!(s, "\nmodes in fixed axes (one continuous curve per mode; log dec per fixed-axes cycle):");
     for &w in at {

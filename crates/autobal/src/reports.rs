@@ -1087,6 +1087,9 @@ pub struct CrossingReport {
     /// `60 Ω ω0/2π` (rpm).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub omega_rpm: Option<f64>,
+    /// A crossing of `ν = 0` whose pair is overdamped near it: no resonance
+    /// ([`crate::spatial::campbell::CriticalSpeed::overdamped`]).
+    pub overdamped: bool,
     /// Share of the crossing circular component in the mode's amplitude squared (`> ½` the
     /// major component, `< ½` the minor one; `1` on the real axis, `ν = 0`).
     pub share: f64,
@@ -1128,6 +1131,7 @@ pub fn campbell_fixed(model: &SpatialModel, f: &crate::spatial::campbell::FixedC
                 omega: k.omega,
                 omega_rad_s: w0.map(|w0| k.omega * w0),
                 omega_rpm: w0.map(|w0| k.omega * w0 * 60.0 / tau),
+                overdamped: k.overdamped,
                 share: k.share,
                 whirl: k.whirl,
             })

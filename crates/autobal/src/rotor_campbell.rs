@@ -100,6 +100,7 @@ use crate::spatial::dynamics::PointMass;
 pub use crate::spatial::linear_model::Balls;
 pub use crate::spatial::stability::Group;
 use crate::spatial::stability::Whirl as FixedWhirl;
+use crate::spatial::stability::{log_decrement, spectrum_scale};
 use num_complex::Complex64;
 use serde::Serialize;
 
@@ -145,7 +146,9 @@ pub struct CampbellPoint {
     pub forward_share: f64,
     /// Whirl direction in fixed axes.
     pub whirl: Whirl,
-    /// Logarithmic decrement per fixed-axes cycle `−2π σ/|f|` (`None` where `|f|` is 0).
+    /// Logarithmic decrement per fixed-axes cycle `−2π σ/|f|` (`None` where `|f|` is not
+    /// resolved: [`crate::spatial::stability::log_decrement`], on the scale of the values of
+    /// the speed whose `re` is known).
     pub log_decrement: Option<f64>,
     /// A structural eigenvalue (the family of balanced states: 0, multiplier 1), not a mode.
     pub structural: bool,
@@ -360,7 +363,8 @@ fn spectrum_and_modes_at(rotor: &Rotor, field: &Field, omega: f64, state: &Stati
             fixed_frequency: f,
             forward_share: share,
             whirl,
-            log_decrement: (f.abs() > 0.0).then(|| -2.0 * std::f64::consts::PI * lam.re / f.abs()),
+            // set below, on the scale of the whole spectrum
+            log_decrement: None,
             structural,
             group,
             decay_at_least,
@@ -368,6 +372,12 @@ fn spectrum_and_modes_at(rotor: &Rotor, field: &Field, omega: f64, state: &Stati
         // the coordinates' half (the state is [q, q̇]), as the 12-state route's MAC of the
         // pencil's q
         modes.push(v.iter().zip(&scales).take(n / 2).map(|(z, s)| z / s).collect());
+    }
+    // the log decrement on the scale of the values whose real part is known (a multiplier
+    // below round-off has none, and an exponent far below every other)
+    let scale = spectrum_scale(out.iter().filter(|p| p.decay_at_least.is_none()).map(|p| Complex64::new(p.re, p.im)));
+    for p in &mut out {
+        p.log_decrement = log_decrement(p.re, p.fixed_frequency, scale);
     }
     Ok((out, modes))
 }
@@ -1710,6 +1720,9 @@ pub fn fixed_view_with(rotor: &Rotor, balls: Balls, c: &RotorCampbell, harmonics
         |i, j| (0..n).any(|k| conj(i, j, k)),
         |l| (0..n).filter_map(|k| at(l, k)).filter(|p| p.im >= 0.0).count() as i64,
     );
+    // the scale of each speed's spectrum (the values whose real part is known), for the log
+    // decrement's resolution
+    let scales: Vec<f64> = (0..n).map(|k| spectrum_scale((0..nl).filter_map(|i| at(i, k)).filter(|p| p.decay_at_least.is_none()).map(|p| z(&p)))).collect();
     // (curve, the speed index of each of its points)
     let mut curves: Vec<(FixedCurve, Vec<usize>)> = vec![];
     for (li, &left_out) in dropped.iter().enumerate() {
@@ -1775,9 +1788,7 @@ pub fn fixed_view_with(rotor: &Rotor, balls: Balls, c: &RotorCampbell, harmonics
                 whirl,
                 re: sigma,
                 nu: m.im,
-                log_decrement: (f.abs() >= 1e-12 * w.abs().max(1.0))
-                    .then(|| -2.0 * std::f64::consts::PI * sigma / f.abs())
-                    .filter(|_| m.decay_at_least.is_none()),
+                log_decrement: log_decrement(sigma, f, scales[k]).filter(|_| m.decay_at_least.is_none()),
                 share,
                 decay_at_least: m.decay_at_least,
                 paired_re: paired.map(|(r, _)| r),

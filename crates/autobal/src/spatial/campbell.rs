@@ -16,6 +16,10 @@
 //! The logarithmic decrement per fixed-axes cycle is `δ = −2π σ/|f|` (the fixed-axes eigenvalue
 //! of the component is `σ + i f`, ROSS's convention); `δ > 0` decays. (The rotating-axes
 //! [`Mode::log_decrement`](crate::spatial::stability::Mode::log_decrement) divides by `|ν|` instead.)
+//! Both, on both routes, are given where the frequency is resolved and `None` below
+//! ([`crate::spatial::stability::log_decrement`]: `|f| > √ε` times the largest `|λ|` at that
+//! speed, the error of a double eigenvalue; session 31, before four rules, `|f|` above 0,
+//! 1e-12 or `1e-12 max(1, Ω)`).
 //!
 //! **Critical speeds** are a property of the model, not of the grid or of the curve drawn. A
 //! conjugate pair `λ, λ̄` (`ν̂ = |ν|`) whirls in fixed axes as two circular components, at
@@ -48,6 +52,36 @@
 //!   share below 1e-9, e.g. an isotropic rotor's, is no motion and has none).
 //!
 //! The jump of a drawn curve where it changes component is never a crossing.
+//!
+//! **Overdamped ends** (session 31). An end on the real axis is where the pair's forward whirl
+//! meets `1×`, but a resonance needs the pair to oscillate there: the response to unbalance
+//! (constant in rotating axes; each mode's part `∝ 1/|λ|`) is `∝ 1/|σ|` at the end and falls to
+//! half power (`|λ|² = 2σ²`) where `ν̂ = |σ|`. A pair that stays overdamped, `ν̂ ≤ |σ|` (damping
+//! ratio `|σ|/|λ| ≥ 1/√2`), within `Ω_c/5` ([`RESONANCE_WINDOW`]) of the end `Ω_c` on every
+//! side where it is complex has no half-power band narrower than `Ω_c/2.5`: API 684's
+//! amplification factor `Ω_c/(Ω₂ − Ω₁)` is below 2.5, a critically damped mode that needs no
+//! separation margin. Such an end is still listed (the `ν̂ = 0` event is the model's) and marked
+//! [`CriticalSpeed::overdamped`] (the tables say "overdamped, no resonance", the figure draws it
+//! grey). The half-power point is looked for on the refined lines' points of the complex run
+//! next to the end inside the window and at the window's edge on the model's spectrum
+//! (`resonant`); a run that returns to the axis inside the window (a stretch off the axis: two
+//! real drag eigenvalues meeting and parting) or meets the grid's end has none there. The
+//! band's width is taken as twice the nearer side's, the lenient reading: an end is unmarked
+//! where either side alone gives `AF ≥ 2.5` (examples/default.toml: the stretch on the axis
+//! 2.101767-2.106803 has its half-power points 0.12 below and 0.79 above, so its lower end is a
+//! critical speed and its upper one overdamped; taken together, `AF` = 2.3). A damped Jeffcott
+//! rotor (`λ = −ζ + i(ω_d − Ω)`, half-power band `2ζ` wide) is marked exactly where
+//! `ζ > ω_d/5`, `ζ > 1/√26`, its `AF = ω_d/2ζ` below 2.5 (tests/campbell_overdamped_31.rs).
+//! Marked on the examples (their default grids, 12-state route where it applies):
+//! default.toml and spatial.toml 0.07736 and 0.1319 (the two balls' drag pair, `σ ≈ −0.1`,
+//! `ν̂ < 1e-4` next to the axis) and 2.107; dimensional.toml 0.0272, 0.0922, 0.1697 (its drag
+//! pair, `σ ≈ −0.05`) and 1.148153, 1.151660 (a stretch off the axis, `ν̂ ≤ 0.012 |σ|`);
+//! washing_machine.toml 0.3898, 0.6201, 0.9163, 1.230, 3.076, 3.326 (the drag pair, `ν̂ < |σ|`
+//! wherever complex up to the top, 6.04), 1.635 and 2.303 (half-power points 0.46 and 1.05
+//! away); planar.toml
+//! 276.262 and 487.268 rad/s; linear_rotor_shaft.toml 2426.6 rad/s; linear_rotor_windows.toml
+//! 176.797 (`Re λ ≈ −260`, `ν̂ ≤ 3.4e-4 |σ|`) and 1162.95 rad/s. Only ends on the axis are
+//! judged: the components' crossings (`h ≥ 2`, backward) are never marked.
 //!
 //! **Independent of the drawn grid** (session 14). The search does not run on the drawn
 //! speeds but on a grid refined on the model's spectrum (`refine`):
@@ -113,7 +147,7 @@ use crate::error::{Error, Result};
 use crate::linalg::eigen::eigenvalues;
 use crate::spatial::linear_model::{Balls, Pencil};
 use crate::spatial::params::SpatialModel;
-use crate::spatial::stability::{classify_vector, no_conv, pencil_null_vector, Campbell, Whirl};
+use crate::spatial::stability::{classify_vector, log_decrement, no_conv, pencil_null_vector, spectrum_scale, Campbell, Whirl};
 use num_complex::Complex64;
 use serde::Serialize;
 
@@ -153,7 +187,8 @@ pub struct FixedPoint {
     pub re: f64,
     /// Rotating-axes frequency `ν = Im λ`.
     pub nu: f64,
-    /// Logarithmic decrement per fixed-axes cycle `δ = −2π σ/|f|` (`None` where `|f| < 1e-12`).
+    /// Logarithmic decrement per fixed-axes cycle `δ = −2π σ/|f|` (`None` where `|f|` is not
+    /// resolved: [`crate::spatial::stability::log_decrement`]).
     pub log_decrement: Option<f64>,
     /// Share of the followed component in the eigenvector's amplitude squared (`≥ ½` where the
     /// curve follows the dominant one).
@@ -211,6 +246,13 @@ pub struct CriticalSpeed {
     /// (`> ½`: the major component, `< ½`: the minor one); `1` where the pair is on the real
     /// axis of the rotating frame (`ν = 0`: its two components coincide at `Ω`).
     pub share: f64,
+    /// A crossing of `ν̂ = 0` (forward, `1×`) whose pair is overdamped there: on no side where
+    /// it is complex does it oscillate faster than it decays, `ν̂ > |σ|`, within
+    /// [`RESONANCE_WINDOW`]` · Ω` of the crossing, so the response to unbalance (`∝ 1/|λ|`)
+    /// has no half-power band narrow enough for an amplification factor of 2.5 there: no
+    /// resonance (module docs). Listed, marked, not left out. Always `false` for the other
+    /// crossings.
+    pub overdamped: bool,
 }
 
 /// A Campbell diagram in fixed axes: curves in the order of their mode numbers (module docs:
@@ -288,6 +330,8 @@ pub fn fixed_axes_with(model: &SpatialModel, c: &Campbell, balls: Balls, harmoni
         |i, j| (0..n).any(|k| !is_real(i, k) && !is_real(j, k) && conj_at(c, i, j, k)),
         |l| c.lines[l].modes.iter().filter(|m| m.im >= 0.0).count() as i64,
     );
+    // the scale of each speed's spectrum, for the log decrement's resolution
+    let scales: Vec<f64> = (0..n).map(|k| spectrum_scale(c.lines.iter().map(|l| lam(&l.modes[k])))).collect();
     let mut curves = vec![];
     for (li, line) in c.lines.iter().enumerate() {
         if dropped[li] || n == 0 {
@@ -341,7 +385,7 @@ pub fn fixed_axes_with(model: &SpatialModel, c: &Campbell, balls: Balls, harmoni
                 whirl,
                 re: sigma,
                 nu: m.im,
-                log_decrement: (f.abs() >= 1e-12).then(|| -2.0 * std::f64::consts::PI * sigma / f.abs()),
+                log_decrement: log_decrement(sigma, f, scales[k]),
                 share,
                 decay_at_least: None,
                 paired_re: None,
@@ -571,7 +615,8 @@ impl Spectrum for PencilSpectrum<'_> {
     fn shares(&self, w: f64, lam: Complex64) -> Result<(f64, f64)> {
         let p = Pencil::new(self.model, w, self.balls)?;
         let x = pencil_null_vector(&p, lam);
-        let s = classify_vector(&p, w, lam, &x).forward_share;
+        // (the shares only: the log decrement's scale does not matter here)
+        let s = classify_vector(&p, w, lam, &x, lam.norm()).forward_share;
         Ok((s, 1.0 - s))
     }
 }
@@ -984,7 +1029,7 @@ fn axis_crossings<S: Spectrum>(l: &Lines, spec: &S, out: &mut Vec<Found>) -> Res
     // from several brackets, or the entry and exit of a pair passing through the axis): the
     // middle of the group; quiet where every end of it is
     ev.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let cs = |w: f64| CriticalSpeed { omega: w, harmonic: 1, curve: 0, mode: 0, whirl: Whirl::Forward, frequency: w, share: 1.0 };
+    let cs = |w: f64| CriticalSpeed { omega: w, harmonic: 1, curve: 0, mode: 0, whirl: Whirl::Forward, frequency: w, share: 1.0, overdamped: false };
     let mut i = 0;
     while i < ev.len() {
         let mut j = i + 1;
@@ -1066,7 +1111,7 @@ fn component_crossings<S: Spectrum>(pair: &Pair<S>, h: u32, out: &mut Vec<Found>
             }
             let whirl = if forward { Whirl::Forward } else { Whirl::Backward };
             out.push(Found {
-                cs: CriticalSpeed { omega: w, harmonic: h, curve: 0, mode: 0, whirl, frequency: h as f64 * w, share },
+                cs: CriticalSpeed { omega: w, harmonic: h, curve: 0, mode: 0, whirl, frequency: h as f64 * w, share, overdamped: false },
                 line: pair.line,
                 quiet: false,
             });
@@ -1151,7 +1196,7 @@ fn search<S: Spectrum>(l: &Lines, spec: &S, harmonics: &[u32], curves: &[FixedCu
     // first speed, and there the kept line it is, or the kept line nearest it up to
     // conjugation (its partner); its mode: that line's number (`modes`), else the curve's
     let nl = l.z.len();
-    let curve_of = |f: &Found| -> (usize, usize) {
+    let curve_of = |f: &Found| -> (usize, usize, usize) {
         let w = f.cs.omega;
         let k1 = l.omega.partition_point(|&x| x <= w).clamp(1, n - 1);
         let k0 = k1 - 1;
@@ -1193,7 +1238,7 @@ fn search<S: Spectrum>(l: &Lines, spec: &S, harmonics: &[u32], curves: &[FixedCu
         };
         let mode = |c: usize| modes.get(line).copied().flatten().or_else(|| curves.get(c).map(|cv| cv.mode)).unwrap_or(0);
         if let Some(i) = curves.iter().position(|cv| cv.line == line) {
-            return (i, mode(i));
+            return (i, mode(i), line);
         }
         // the line's first speed with a value (a general-route diagram can start without one)
         let k = (0..n).find(|&k| l.z[line][k].is_some()).unwrap_or(0);
@@ -1203,10 +1248,16 @@ fn search<S: Spectrum>(l: &Lines, spec: &S, harmonics: &[u32], curves: &[FixedCu
             _ => f64::INFINITY,
         };
         let c = (0..curves.len()).min_by(|&a, &b| dist(a).total_cmp(&dist(b))).unwrap_or(0);
-        (c, mode(c))
+        (c, mode(c), line)
     };
     for f in &mut found {
-        (f.cs.curve, f.cs.mode) = curve_of(f);
+        let line;
+        (f.cs.curve, f.cs.mode, line) = curve_of(f);
+        // an end on the real axis: a resonance only where its pair oscillates faster than it
+        // decays near it, on its complex side (module docs)
+        if f.cs.harmonic == 1 && f.cs.whirl == Whirl::Forward && !f.quiet {
+            f.cs.overdamped = !resonant(l, spec, line, f.cs.omega);
+        }
     }
     found.sort_by(|a, b| a.cs.harmonic.cmp(&b.cs.harmonic).then((a.cs.whirl as u8).cmp(&(b.cs.whirl as u8))).then(a.cs.omega.total_cmp(&b.cs.omega)));
     // the lines of a pair find the same crossing: one crossing per group closer than the
@@ -1231,6 +1282,57 @@ fn search<S: Spectrum>(l: &Lines, spec: &S, harmonics: &[u32], curves: &[FixedCu
     }
     out.sort_by(|a, b| a.omega.total_cmp(&b.omega).then(a.harmonic.cmp(&b.harmonic)).then(a.mode.cmp(&b.mode)).then(a.curve.cmp(&b.curve)));
     Ok(out)
+}
+
+/// Half the window, relative to the crossing's speed `Ω_c`, in which an end on the real axis
+/// must show its resonance ([`CriticalSpeed::overdamped`]): API 684's amplification factor
+/// `AF = Ω_c/(Ω₂ − Ω₁)` (`Ω₁`, `Ω₂` the half-power speeds) is at least 2.5 for a critical speed
+/// that calls for a separation margin, a half-power band at most `Ω_c/2.5` wide, so at most
+/// `Ω_c/5` on either side of it.
+pub const RESONANCE_WINDOW: f64 = 0.2;
+
+/// Whether the pair of line `line` of `l`, on the real axis at `w` (an end found in the step of
+/// `l` holding `w`), oscillates faster than it decays, `ν̂ > |σ|` (its damping ratio
+/// `|σ|/|λ|` below `1/√2`: past its half-power point), at some speed within
+/// [`RESONANCE_WINDOW`]` · w` of `w` on a side where the line is complex: at the points of `l`
+/// of the line's complex run next to `w` inside the window, and where the run reaches the
+/// window's edge, at the edge itself (the pair's eigenvalue there on `spec`, [`Pair::at`]), so
+/// that a `ν̂/|σ|` rising through 1 inside the window is seen on every grid. A run that
+/// returns to the axis, or the grid's end, inside the window ends the side.
+fn resonant<S: Spectrum>(l: &Lines, spec: &S, line: usize, w: f64) -> bool {
+    let om = l.omega;
+    let n = om.len();
+    let half = RESONANCE_WINDOW * w.abs();
+    let k1 = om.partition_point(|&x| x <= w).clamp(1, n - 1);
+    let k0 = k1 - 1;
+    let under = |z: Complex64| z.im.abs() > z.re.abs();
+    let complex = |k: usize| l.z[line][k].filter(|z| !on_axis(z.im.abs(), om[k]));
+    for (start, down) in [(k0, true), (k1, false)] {
+        let mut k = start;
+        let mut prev: Option<usize> = None;
+        while let Some(z) = complex(k) {
+            if (om[k] - w).abs() > half {
+                // the edge lies between the last point inside (or the crossing) and this one
+                let edge = if down { w - half } else { w + half };
+                let (a, b) = prev.map_or((k, k), |p| (p.min(k), p.max(k)));
+                if (Pair { l, spec, line }).at(a, b, edge).is_ok_and(under) {
+                    return true;
+                }
+                break;
+            }
+            if under(z) {
+                return true;
+            }
+            prev = Some(k);
+            match (down, k) {
+                (true, 0) => break,
+                (true, _) => k -= 1,
+                (false, _) if k + 1 >= n => break,
+                (false, _) => k += 1,
+            }
+        }
+    }
+    false
 }
 
 /// The line of `l` carrying the pair that leaves (or reaches) the real axis at the end `w`

@@ -27,6 +27,35 @@ use serde::Serialize;
 /// Real parts within this distance of zero count as zero.
 pub const STABILITY_TOLERANCE: f64 = 1e-11;
 
+/// `√ε = 2⁻²⁶ ≈ 1.49e-8`: a frequency at most this times the spectrum's scale
+/// ([`spectrum_scale`]) is not resolved by the eigenvalue computation ([`log_decrement`]).
+pub const FREQUENCY_RESOLUTION: f64 = 1.490_116_119_384_765_6e-8;
+
+/// The logarithmic decrement `δ = −2π σ/|f|` of an eigenvalue of real part `σ` whose motion has
+/// the frequency `f` (`ν = Im λ` in rotating axes, `Ω ± ν` in fixed axes), `None` where `|f|`
+/// is not resolved: `|f| ≤ `[`FREQUENCY_RESOLUTION`]` · scale`, `scale` the largest `|λ|` of the
+/// spectrum at that speed ([`spectrum_scale`]). The one rule of every route and view.
+///
+/// Why `√ε · scale`: QR returns the exact eigenvalues of `A + E`, `‖E‖ ≈ ε‖A‖`; a simple
+/// eigenvalue moves by `κ ε ‖A‖`, but a double one (two real eigenvalues meeting, where a pair
+/// reaches the real axis) by up to `√(ε ‖A‖ · ‖N‖)`, `N` the nilpotent part coupling them
+/// (`‖N‖ ≤ ‖A‖`): `√ε ‖A‖` at most, and the balanced state matrix's norm is of the order of
+/// its spectral radius (examples/spatial.toml at `Ω` = 0.00716: `‖A‖₂` = 2.51, largest `|λ|`
+/// = 1.59). A smaller `|f|` can be round-off, and `−2πσ/|f|` then any large number of either
+/// whirl; a larger one is the eigenvalue's. A nearly real pair above it keeps its large `δ`:
+/// that is its value (the two balls' drag modes of examples/spatial.toml with `h_s` = 0.03 at
+/// `Ω` = 0.00716, `σ ± iν = −0.0300011 ± 1.2086e-6 i`, `δ` = 1.56e5 in rotating axes: the same
+/// `ν` to 5 digits from 60-digit eigenvalues of the same matrix, with every entry perturbed
+/// by an ulp, and smooth in `h_s`, `∝ √(h* − h_s)` down to 1e-11 near where the two meet).
+pub fn log_decrement(sigma: f64, f: f64, scale: f64) -> Option<f64> {
+    (f.abs() > FREQUENCY_RESOLUTION * scale).then(|| -2.0 * std::f64::consts::PI * sigma / f.abs())
+}
+
+/// The scale of a spectrum for [`log_decrement`]: its largest `|λ|` (0 for none).
+pub fn spectrum_scale(ev: impl IntoIterator<Item = Complex64>) -> f64 {
+    ev.into_iter().map(|z| z.norm()).filter(|x| x.is_finite()).fold(0.0, f64::max)
+}
+
 /// The stability verdict from the spectral abscissa (module docs): strict with the balls free,
 /// neutral allowed with the balls locked.
 pub fn counts_as_stable(alpha: f64, balls: Balls) -> bool {
@@ -99,7 +128,8 @@ pub struct Mode {
     pub im: f64,
     /// Decay rate `−σ`.
     pub decay_rate: f64,
-    /// Logarithmic decrement `−2π σ/|ν|` (`None` for a real eigenvalue).
+    /// Logarithmic decrement `−2π σ/|ν|` per rotating-axes cycle (`None` for a real
+    /// eigenvalue, or where `|ν|` is not resolved: [`log_decrement`]).
     pub log_decrement: Option<f64>,
     /// Dominant coordinate group of the eigenvector.
     pub group: Group,
@@ -223,13 +253,15 @@ fn null_vector(a: &mut [[Complex64; 6]; 6], n: usize) -> [Complex64; 6] {
 }
 
 /// Interpret eigenvalue `lam` of `pencil` at speed `omega` from its eigenvector
-/// ([`pencil_null_vector`]).
+/// ([`pencil_null_vector`]; the scale of [`log_decrement`] from the pencil's spectrum).
 pub fn classify(p: &Pencil, omega: f64, lam: Complex64) -> Mode {
-    classify_vector(p, omega, lam, &pencil_null_vector(p, lam))
+    let scale = eigenvalues(&p.state_matrix(), p.states()).map_or(lam.norm(), spectrum_scale);
+    classify_vector(p, omega, lam, &pencil_null_vector(p, lam), scale)
 }
 
-/// [`classify`] with the eigenvector given.
-pub fn classify_vector(p: &Pencil, omega: f64, lam: Complex64, x: &[Complex64; 6]) -> Mode {
+/// [`classify`] with the eigenvector given, and the scale of the spectrum at `omega`
+/// ([`spectrum_scale`]) for the log decrement's resolution ([`log_decrement`]).
+pub fn classify_vector(p: &Pencil, omega: f64, lam: Complex64, x: &[Complex64; 6], scale: f64) -> Mode {
     let n = p.n;
     // kinetic-energy weights: s is the balls' unbalance, about m̄ times their displacement,
     // so the balls' share is |s|²/m̄ (translation and tilt are normalised alike by the papers)
@@ -262,7 +294,7 @@ pub fn classify_vector(p: &Pencil, omega: f64, lam: Complex64, x: &[Complex64; 6
         re: lam.re,
         im: lam.im,
         decay_rate: -lam.re,
-        log_decrement: (nu.abs() > 1e-12).then(|| -2.0 * std::f64::consts::PI * lam.re / nu.abs()),
+        log_decrement: log_decrement(lam.re, nu, scale),
         group,
         fixed_frequency: fixed,
         forward_share: if fw + bw > 0.0 { fw / (fw + bw) } else { 0.5 },
@@ -629,12 +661,13 @@ pub fn campbell_stream(
             tracking_assignment(&dist, &cost_of, n)
         };
         modes.clear();
+        let scale = spectrum_scale(ev[..n].iter().copied());
         for i in 0..n {
             let j = order[i];
             lam[0][i] = lam[1][i];
             lam[1][i] = ev[j];
             vec[i] = xs[j];
-            modes.push(classify_vector(&p, w, ev[j], &xs[j]));
+            modes.push(classify_vector(&p, w, ev[j], &xs[j], scale));
         }
         prev_w = [prev_w[1], w];
         stats.speeds += 1;
