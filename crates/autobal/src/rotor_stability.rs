@@ -1491,8 +1491,12 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
     let newton = opts.newton.clone();
     // the orbits found from the groups' placements at each speed, kept for `other_orbits`
     let orbits_at: std::sync::Mutex<Vec<(f64, Vec<OtherOrbit>)>> = Default::default();
-    // the partially balanced states of the last speed solved, carried as starts to the next
-    let carried: std::sync::Mutex<Vec<Vec<f64>>> = Default::default();
+    // the partially balanced states found at each speed solved, those of the nearest speed
+    // solved carried as starts to the next solve (the last speed solved until session 31: a
+    // range end's location then started from whatever state an earlier, unrelated location's
+    // last trial left, and the two-plane rotor's end near 445 rad/s moved by 0.08 rad/s when
+    // an earlier location took fewer trials)
+    let carried: std::sync::Mutex<Vec<(f64, Vec<Vec<f64>>)>> = Default::default();
     let guess = |f: &Field, omega: f64| {
         // no balanced orbit where no two groups give a plane's share: no start
         if f.gravity_circulation().is_some() {
@@ -1511,11 +1515,15 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
         if orbits.is_empty() {
             // a spatial rotor's partially balanced equilibria from each candidate start, the
             // least growth rate analysed, the others listed (Rotor::partial_states)
-            let mut kept = carried.lock().map(|c| c.clone()).unwrap_or_default();
-            orbits = Rotor::partial_states_from(f, &newton, &kept);
-            kept = orbits.iter().map(|(x, _)| x.clone()).collect();
+            let near = carried
+                .lock()
+                .ok()
+                .and_then(|c| c.iter().min_by(|p, q| (p.0 - omega).abs().total_cmp(&(q.0 - omega).abs()).then(p.0.total_cmp(&q.0))).map(|(_, x)| x.clone()))
+                .unwrap_or_default();
+            orbits = Rotor::partial_states_from(f, &newton, &near);
+            let kept: Vec<Vec<f64>> = orbits.iter().map(|(x, _)| x.clone()).collect();
             if let Ok(mut c) = carried.lock() {
-                *c = kept;
+                c.push((omega, kept));
             }
         }
         let start = orbits.first().map(|(x, _)| x.clone());

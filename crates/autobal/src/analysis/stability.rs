@@ -335,10 +335,14 @@ fn predict(p: &Trial, q: &Trial, omega: f64) -> Option<(Vec<f64>, Vec<f64>)> {
 /// `rtol · Ω` on the sign of the abscissa `α` by Brent's method (inverse quadratic
 /// interpolation and secant steps on `α`, safeguarded by bisection, every step at least half
 /// the tolerance: Brent, *Algorithms for Minimization without Derivatives*, 1973, ch. 4,
-/// `zeroin`); by bisection on the side where `α` is missing at an end, has one sign at both
-/// (an end whose verdict is neutral) or a trial finds no state. Each trial starts from its two
-/// nearest solutions ([`predict`]) and the nearest one's monodromy matrix. Returns the middle
-/// of the last bracket (`None` if stopped) and why it stopped.
+/// `zeroin`); by bisection on the side where `α` is missing at an end or a trial finds no
+/// state. Where `α` has one sign at both ends (the verdicts differ by the neutral band alone:
+/// one end neutral, `α` within the stability test's tolerance of zero on the other end's
+/// side), there is no zero to bisect: the end is the neutral speed where the secant puts the
+/// zero within the tolerance of it, else none (the range ends at its grid speed). Each trial
+/// starts from its two nearest solutions ([`predict`]) and the nearest one's monodromy matrix.
+/// Returns the middle of the last bracket (`None` if stopped or not located) and why it
+/// stopped.
 fn locate_end<E>(a: &ScanPoint, b: &ScanPoint, rtol: f64, control: &Control, evaluate: E) -> (Option<f64>, Option<crate::control::StopReason>, bool)
 where
     E: Fn(f64, Option<&StationaryState>, Option<(&[f64], &[f64])>) -> std::result::Result<(StationaryState, Stability), String>,
@@ -361,6 +365,23 @@ where
         }
     };
     let (ta, tb) = (Trial::of(a), Trial::of(b));
+    if let (Some(x), Some(y)) = (ta.alpha, tb.alpha) {
+        if (x < 0.0) == (y < 0.0) {
+            // the verdicts differ by the neutral band alone: one end is neutral (|α| within the
+            // stability test's tolerance) on the same side of zero as the other, so `α` has no
+            // zero in the bracket to bisect, and a bisection on its sign walked to the far end
+            // (walk 31: a linear rotor's range start "located" at 309.9999998 rad/s, a grid
+            // speed minus the tolerance, where α = −3.4e-11 at 300 and −0.0038 at 310). The
+            // zero lies beyond the neutral end by about |α|/|dα/dω| (the secant's slope
+            // across the bracket): the end is the neutral speed where that is within the
+            // tolerance, else not located (`None`: the range ends at its grid speed)
+            let (near, far) = if x.abs() <= y.abs() { (&ta, &tb) } else { (&tb, &ta) };
+            let slope = (y - x) / (tb.omega - ta.omega);
+            let offset = near.alpha.map_or(f64::INFINITY, f64::abs) / slope.abs();
+            let end = (offset <= tolerance(near.omega, far.omega)).then_some(near.omega);
+            return (end, None, false);
+        }
+    }
     // Brent's variables: `b` the best estimate, `c` the other end of the bracket [b, c], `a`
     // the previous `b`
     let (mut pa, mut pb) = (ta.clone(), tb.clone());
