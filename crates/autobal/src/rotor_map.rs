@@ -475,6 +475,16 @@ struct Plane<'a> {
 }
 
 impl Plane<'_> {
+    /// The rotor at coordinate `t` along `along` on row `k` (along `x`) or column `k` (along
+    /// `y`), and its speed: [`Plane::cell`] with `idx` the grid index of `t` on that axis
+    /// (`None` off the grid: a bisection's midpoint or a continuation's step).
+    fn on_line(&self, along: Along, k: usize, idx: Option<usize>, t: f64) -> Result<(std::borrow::Cow<'_, CellRotor>, f64)> {
+        match along {
+            Along::X => self.cell(idx, Some(k), t, self.y.values[k]),
+            Along::Y => self.cell(Some(k), idx, self.x.values[k], t),
+        }
+    }
+
     /// The rotor at `(xv, yv)` (grid index `(i, j)` for the prebuilt line) and its speed.
     /// `i` is `None` off the grid's `x` values, `j` off its `y` values (a bisection along that
     /// axis), where the rotor at that value is built.
@@ -658,15 +668,11 @@ impl Plane<'_> {
             return Ok(None);
         }
         let least = gap.abs() / FILL_SUBSTEPS;
-        let at = |t: f64, on_grid: bool| match along {
-            Along::X => self.cell(idx.filter(|_| on_grid), Some(k), t, self.y.values[k]),
-            Along::Y => self.cell(Some(k), idx.filter(|_| on_grid), self.x.values[k], t),
-        };
         let (mut t, mut state, mut h) = (a, from.clone(), if whole { gap } else { 0.5 * gap });
         while h.abs() >= least {
             let reach = (t + h - b) * gap.signum() >= 0.0;
             let next = if reach { b } else { t + h };
-            let (c, w) = at(next, reach)?;
+            let (c, w) = self.on_line(along, k, idx.filter(|_| reach), next)?;
             let (cell, x) = solve(&c, w, Some(&state), true, idx.is_some(), reach && idx.is_some());
             if side(&cell) == 3 {
                 return Ok(None);
@@ -793,11 +799,7 @@ impl Plane<'_> {
             if mid == a || mid == b {
                 break;
             }
-            let (xv, yv) = at(mid);
-            let (c, w) = match along {
-                Along::X => self.cell(None, Some(k), xv, yv)?,
-                Along::Y => self.cell(Some(k), None, xv, yv)?,
-            };
+            let (c, w) = self.on_line(along, k, None, mid)?;
             let (mut cell, mut x) = match follow {
                 None => solve(&c, w, xa.as_ref().or(xb.as_ref()), true, false, false),
                 Some(true) => solve(&c, w, xa.as_ref(), false, false, false),
@@ -857,11 +859,7 @@ impl Plane<'_> {
             _ => None,
         };
         if let Some((t, Some(from))) = none_end {
-            let (xv, yv) = at(t);
-            let (c, w) = match along {
-                Along::X => self.cell(None, Some(k), xv, yv)?,
-                Along::Y => self.cell(Some(k), None, xv, yv)?,
-            };
+            let (c, w) = self.on_line(along, k, None, t)?;
             if let (cell, Some(x)) = solve(&c, w, Some(from), false, false, false) {
                 // the state's own boundary between that cell and the far end, if its margin
                 // changes sign there (the far end's side is a state's)
@@ -913,14 +911,7 @@ impl Plane<'_> {
         let mut end = (GeneralCell::NONE, None);
         for s in 1..=FOLLOW_STEPS {
             let t = if s == FOLLOW_STEPS { other.0 } else { kept.0 + (other.0 - kept.0) * s as f64 / FOLLOW_STEPS as f64 };
-            let (xv, yv) = match along {
-                Along::X => (t, self.y.values[k]),
-                Along::Y => (self.x.values[k], t),
-            };
-            let (c, w) = match along {
-                Along::X => self.cell(None, Some(k), xv, yv)?,
-                Along::Y => self.cell(Some(k), None, xv, yv)?,
-            };
+            let (c, w) = self.on_line(along, k, None, t)?;
             end = solve(&c, w, Some(&state), false, false, false);
             match (side(&end.0), &end.1) {
                 (3, _) => return Ok(vec![]),

@@ -375,10 +375,10 @@ where
             // zero lies beyond the neutral end by about |α|/|dα/dω| (the secant's slope
             // across the bracket): the end is the neutral speed where that is within the
             // tolerance, else not located (`None`: the range ends at its grid speed)
-            let (near, far) = if x.abs() <= y.abs() { (&ta, &tb) } else { (&tb, &ta) };
             let slope = (y - x) / (tb.omega - ta.omega);
-            let offset = near.alpha.map_or(f64::INFINITY, f64::abs) / slope.abs();
-            let end = (offset <= tolerance(near.omega, far.omega)).then_some(near.omega);
+            let near = if x.abs() <= y.abs() { ta.omega } else { tb.omega };
+            let offset = x.abs().min(y.abs()) / slope.abs();
+            let end = (offset <= tolerance(ta.omega, tb.omega)).then_some(near);
             return (end, None, false);
         }
     }
