@@ -272,7 +272,39 @@ impl Args {
         let speed = self.omega.as_deref().map(|t| autobal::units::parse_speed("--omega", t)).transpose()?;
         // the linear rotor's speed is ω in rad/s, as the planar rotor's
         let planar = linear || !autobal::config::is_spatial(&root);
+        self.check_speed_axes(&root, planar)?;
         Ok(Plan { args: self.clone(), route: PlanRoute::General { root: Box::new(root), speed, planar, linear } })
+    }
+}
+
+impl Args {
+    /// The general route's speed axis within the range `stability` takes for its top speed
+    /// (`--omega-max`, the one check and message: [`crate::command::check_speed_rad_s`] in
+    /// rad/s for a planar or linear rotor, [`crate::command::check_speed_omega`] in `Ω` for a
+    /// spatial one, an SI axis at the config's `ω0`). Walk 32: the map took speeds of 1e308
+    /// (exit 0, every cell without a state) where `stability` refuses them.
+    fn check_speed_axes(&self, root: &toml::Table, planar: bool) -> Result<()> {
+        for (flag, a) in [("--x", &self.x), ("--y", &self.y)] {
+            let Some(unit) = autobal::units::speed_path_unit(&a.path) else { continue };
+            let flag = format!("{flag} {}", a.path);
+            let hi = a.hi();
+            let f = autobal::error::fmt_num;
+            match unit.rad_s() {
+                // rad/s on a planar or linear rotor; a dimensionless spatial rotor's Ω
+                None if planar => crate::command::check_speed_rad_s(&flag, &format!("{} rad/s", f(hi)), hi)?,
+                None => crate::command::check_speed_omega(&flag, &f(hi), hi, None)?,
+                Some(k) if planar => crate::command::check_speed_rad_s(&flag, &format!("{} {}", f(hi), unit.symbol()), hi * k)?,
+                Some(k) => {
+                    // the config's ω0 (an axis that moves it moves it a little); a config the
+                    // rotor cannot be built from is left to the map's own error
+                    // (a dimensionless one: the library's refusal of an SI axis)
+                    if let Some(g) = crate::general::rotor_of(root).ok().filter(|g| g.si) {
+                        crate::command::check_speed_omega(&flag, &format!("{} {}", f(hi), unit.symbol()), hi * k / g.omega0, Some(g.omega0))?;
+                    }
+                }
+            }
+        }
+        Ok(())
     }
 }
 
@@ -564,10 +596,11 @@ impl Output {
 
     /// The traced boundary as CSV (`STEM_boundary.csv`), with `boundary`: the closed form's
     /// curves ([`boundary_csv`]), or the general route's bisected points `x,y,from,to,along`
-    /// (where the margin changes sign or a stationary state appears between two neighbouring
-    /// cells, bisected to 1e-9 relative along `x` between two cells of a row or along `y`
-    /// between two of a column, as `along` says; `from`, `to` the verdicts on the sides of the
-    /// smaller and the larger value of that axis).
+    /// (where the margin changes sign, bisected to 1e-9 relative, or a stationary state
+    /// appears or is lost, to ~1e-4 relative ([`autobal::rotor_map::FOLD_RTOL`]), between two
+    /// neighbouring cells, along `x` between two cells of a row or along `y` between two of a
+    /// column, as `along` says; `from`, `to` the verdicts on the sides of the smaller and the
+    /// larger value of that axis, empty where there is no stationary state).
     pub fn boundary_csv(&self) -> Option<String> {
         match &self.route {
             RouteOutput::Closed { traced, .. } => traced.as_ref().map(|(b, _)| boundary_csv(b, &self.x.path, &self.y.path)),
@@ -596,8 +629,20 @@ impl Output {
             RouteOutput::General { traced, outcome, .. } => {
                 if let Some(t) = traced {
                     let (nx, ny) = along_counts(t);
+                    // a state's fold is where continuation stops converging, not bisected to
+                    // 1e-9 (walk 32: the note claimed 1e-9 for every point)
+                    let folds = t.iter().filter(|b| b.from.is_none() || b.to.is_none()).count();
+                    let located = if folds == 0 {
+                        "bisected to 1e-9 relative".to_string()
+                    } else {
+                        format!(
+                            "{} where the verdict changes, bisected to 1e-9 relative, {folds} where a stationary state appears or is lost (an empty from or to: a fold, located where continuation stops converging, to ~{} relative)",
+                            t.len() - folds,
+                            autobal::error::fmt_num(autobal::rotor_map::FOLD_RTOL)
+                        )
+                    };
                     out.push(wrote(format!(
-                        "boundary: {} points bisected to 1e-9 relative between neighbouring cells ({nx} along {} within a row, {ny} along {} within a column)",
+                        "boundary: {} points between neighbouring cells ({nx} along {} within a row, {ny} along {} within a column): {located}",
                         t.len(),
                         self.x.path,
                         self.y.path
@@ -729,7 +774,8 @@ impl command::Output for Output {
                 v["not_balanced"] = json!(outcome.not_balanced);
                 if let Some(t) = traced {
                     let (nx, ny) = along_counts(t);
-                    v["boundary"] = json!({"bisected_points": t.len(), "along_x": nx, "along_y": ny});
+                    let folds = t.iter().filter(|b| b.from.is_none() || b.to.is_none()).count();
+                    v["boundary"] = json!({"bisected_points": t.len(), "along_x": nx, "along_y": ny, "fold_points": folds, "rtol": autobal::rotor_map::BOUNDARY_RTOL, "fold_rtol": autobal::rotor_map::FOLD_RTOL});
                 }
             }
         }
@@ -1378,7 +1424,21 @@ pub fn boundary_csv(b: &Boundary, x: &str, y: &str) -> String {
 pub fn trace(cfg: &Config, x: &Axis, y: &Axis, omega: Option<f64>, balls: Balls, control: &Control) -> Result<Boundary> {
     let ends = |a: &Axis| Axis::range(a.path.clone(), a.lo(), a.hi());
     let s = TraceSettings { balls, omega, ..Default::default() };
-    autobal::spatial::boundary::trace_boundary_units(&cfg.spec, &ends(x), &ends(y), &s, control).map_err(|e| anyhow!("--boundary: {e}"))
+    // a value the config refuses inside the map's range (an integer key such as
+    // `balancer.balls` at 2.03125) names the axis, as the general route does (walk 32: it read
+    // "--boundary: balancer.balls: ...", as if the option were wrong)
+    autobal::spatial::boundary::trace_boundary_units(&cfg.spec, &ends(x), &ends(y), &s, control).map_err(|e| match (&e, e.field()) {
+        (autobal::Error::InvalidParameter { reason, .. }, Some(f)) if f == x.path || f == y.path => {
+            let (flag, a) = if f == x.path { ("--x", x) } else { ("--y", y) };
+            let fm = autobal::error::fmt_num;
+            anyhow!(
+                "{flag} {f}: a value inside the map's range {} to {} (where the boundary is traced) gives an invalid rotor: {reason}",
+                fm(a.lo()),
+                fm(a.hi())
+            )
+        }
+        _ => anyhow!("--boundary: {e}"),
+    })
 }
 
 // The map's figure: Figures of stability maps (`autobal map` and the report): the margin heatmap
@@ -1606,6 +1666,64 @@ mod tests {
 
     /// `--omega` beside a speed axis was ignored, exit 0 (hunt 27): refused, naming the axis,
     /// on both routes (the planar config's general route, the washer's closed form).
+    /// The general route's speed axis takes the range `stability --omega-max` takes, with its
+    /// message (walk 32: `map` took 1e308 rad/s, exit 0, every cell empty): rad/s on a planar
+    /// rotor, `Ω` (at the config's ω0 for an SI axis) on a spatial one; the largest speed
+    /// accepted (1e6 rad/s) still maps.
+    #[test]
+    fn a_speed_axis_past_stabilitys_limit_is_refused() {
+        let planar = include_str!("../../../examples/planar.toml");
+        let washer = include_str!("../../../examples/washing_machine.toml");
+        for (text, x, y, want) in [
+            (planar, "omega=100:1e308:3", "planar.c_psi=0.05:0.2:2", "--x omega: 1e308 rad/s outside (0, 1e6] rad/s ("),
+            (planar, "planar.c_psi=0.05:0.2:2", "speed_rpm=100:2e7:2", "--y speed_rpm: 2e7 rpm is 2.0944e6 rad/s, outside (0, 1e6] rad/s ("),
+            (washer, "speed_rpm=100:1e308:2", "balancer.drag=0.5:3:2", "--x speed_rpm: 1e308 rpm is Ω = ω/ω0 = "),
+        ] {
+            let args =
+                Args { config: tables(text), x: parse_axis("--x", x).unwrap(), y: parse_axis("--y", y).unwrap(), route: Route::General, ..Default::default() };
+            let e = args.prepare().err().expect("refused").to_string();
+            assert!(e.starts_with(want), "{e}");
+            // the message `stability --omega-max` gives for that speed
+            let top = if x.starts_with("balancer") || x.starts_with("planar") { y } else { x };
+            let (path, hi) = (top.split('=').next().unwrap(), top.rsplit(':').nth(1).unwrap());
+            let unit = match path {
+                "omega" => "rad/s",
+                _ => "rpm",
+            };
+            let st = crate::stability::Args { config: tables(text), omega_max: Some(format!("{hi} {unit}")), route: Route::General, ..Default::default() };
+            let se = command::Command::run(&st, &Control::none()).err().expect("stability refuses it").to_string();
+            assert_eq!(e.split_once(": ").unwrap().1, se.split_once(": ").unwrap().1, "map: {e}\nstability: {se}");
+        }
+        let ok = Args {
+            config: tables(planar),
+            x: parse_axis("--x", "omega=1e5:1e6:2").unwrap(),
+            y: parse_axis("--y", "planar.c_psi=0.05:0.2:2").unwrap(),
+            ..Default::default()
+        };
+        assert!(ok.prepare().is_ok());
+    }
+
+    /// A value the config refuses inside the map's range, met where the closed route traces
+    /// its boundary (`balancer.balls` is a whole number; the trace's points lie between the
+    /// grid's), names the axis and the range, not `--boundary` (walk 32).
+    #[test]
+    fn an_invalid_rotor_inside_the_range_names_the_axis() {
+        let args = Args {
+            config: tables(include_str!("../../../examples/dimensional.toml")),
+            x: parse_axis("--x", "balancer.balls=2:4:3").unwrap(),
+            y: parse_axis("--y", "speed_rpm=3000:6000:2").unwrap(),
+            boundary: true,
+            ..Default::default()
+        };
+        let e = args.prepare().and_then(|p| p.run(&Control::none(), Rows::Keep)).err().expect("refused").to_string();
+        assert!(
+            e.starts_with(
+                "--x balancer.balls: a value inside the map's range 2 to 4 (where the boundary is traced) gives an invalid rotor: must be a whole number"
+            ),
+            "{e}"
+        );
+    }
+
     #[test]
     fn a_fixed_speed_beside_a_speed_axis_is_refused() {
         for (text, x, y) in [

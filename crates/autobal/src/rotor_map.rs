@@ -275,6 +275,25 @@ fn set_path(root: &mut Table, path: &str, v: f64) -> Result<()> {
     config::set_element(root, path, key, j, v)
 }
 
+/// The error of the config at `v` on the axis `a` off its grid values (a boundary's bisection
+/// or continuation point), naming the axis, the value and the map's range: `PATH: V, inside the
+/// map's range LO to HI (where the boundary is bisected), gives an invalid rotor: REASON` (the
+/// reason without the `at PATH = V: ` that [`name_axis`] put in).
+fn inside_range(a: &Axis, v: f64, e: Error) -> Error {
+    let (lo, hi) = a.values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &x| (l.min(x), h.max(x)));
+    let reason = match &e {
+        Error::InvalidParameter { field, reason } if *field == a.path => {
+            let at = format!("at {} = {}: ", a.path, fmt_num(v));
+            reason.strip_prefix(&at).unwrap_or(reason).to_string()
+        }
+        e => e.to_string(),
+    };
+    Error::invalid(
+        a.path.clone(),
+        format!("{}, inside the map's range {} to {} (where the boundary is bisected), gives an invalid rotor: {reason}", fmt_num(v), fmt_num(lo), fmt_num(hi)),
+    )
+}
+
 fn name_axis(e: Error, path: &str, v: f64) -> Error {
     if e.field() == Some(path) {
         e
@@ -326,13 +345,7 @@ fn solve(c: &CellRotor, w: f64, previous: Option<&StationaryState>, closed_form:
     }
     let previous = previous.filter(|p| p.x.len() == field.dim());
     let hint = previous.and_then(|p| p.monodromy.as_deref());
-    let mut opts = NewtonOptions::default();
-    if periodic {
-        // as rotor_stability: the shooting at rtol 1e-10 keeps multipliers near 1 good to ~1e-9,
-        // inside FLOQUET_TOLERANCE (1e-8)
-        opts.max_iterations = 20;
-        opts.rtol = 1e-10;
-    }
+    let opts = newton_options(periodic);
     let near = previous.map(|p| p.x.as_slice());
     // the speed scan's start (Rotor::first_start: under gravity with n >= 3 balls in a plane
     // the orbit with the balls in two groups, the closed form, each plane's share, the balls
@@ -425,6 +438,18 @@ fn solve(c: &CellRotor, w: f64, previous: Option<&StationaryState>, closed_form:
     (GeneralCell::NONE, None)
 }
 
+/// Newton's options of a cell: the defaults, and for a periodic orbit the shooting at rtol
+/// 1e-10 (20 iterations), as `rotor_stability`: multipliers near 1 good to ~1e-9, inside
+/// `FLOQUET_TOLERANCE` (1e-8).
+fn newton_options(periodic: bool) -> NewtonOptions {
+    let mut opts = NewtonOptions::default();
+    if periodic {
+        opts.max_iterations = 20;
+        opts.rtol = 1e-10;
+    }
+    opts
+}
+
 /// A map row's cells and their states (`None` where a cell has none).
 #[derive(Clone)]
 struct RawRow {
@@ -477,12 +502,20 @@ struct Plane<'a> {
 impl Plane<'_> {
     /// The rotor at coordinate `t` along `along` on row `k` (along `x`) or column `k` (along
     /// `y`), and its speed: [`Plane::cell`] with `idx` the grid index of `t` on that axis
-    /// (`None` off the grid: a bisection's midpoint or a continuation's step).
+    /// (`None` off the grid: a bisection's midpoint or a continuation's step). Off the grid, a
+    /// value the config refuses (an integer key such as `balancer.balls` at 2.5, a hole in a
+    /// key's range) is an error naming the axis, the value and the map's range it lies in
+    /// ([`inside_range`]; walk 32: the point was named as if the user had given it).
     fn on_line(&self, along: Along, k: usize, idx: Option<usize>, t: f64) -> Result<(std::borrow::Cow<'_, CellRotor>, f64)> {
-        match along {
+        let r = match along {
             Along::X => self.cell(idx, Some(k), t, self.y.values[k]),
             Along::Y => self.cell(Some(k), idx, self.x.values[k], t),
+        };
+        if idx.is_some() {
+            return r;
         }
+        let axis = if along == Along::X { self.x } else { self.y };
+        r.map_err(|e| inside_range(axis, t, e))
     }
 
     /// The rotor at `(xv, yv)` (grid index `(i, j)` for the prebuilt line) and its speed.
@@ -694,9 +727,11 @@ impl Plane<'_> {
     fn row_points(&self, j: usize, cells: &[GeneralCell], states: &[Option<StationaryState>]) -> Result<Vec<BoundaryPoint>> {
         let mut points = vec![];
         for i in 0..cells.len().saturating_sub(1) {
+            let end = |k: usize| (self.x.values[k], cells[k].verdict, states[k].clone(), cells[k]);
             if crosses(&cells[i], &cells[i + 1]) {
-                let end = |k: usize| (self.x.values[k], cells[k].verdict, states[k].clone(), cells[k]);
                 points.extend(self.bisect(Along::X, j, end(i), end(i + 1))?);
+            } else if differ_in_kind(&cells[i], &cells[i + 1]) {
+                points.extend(self.follow_each(Along::X, j, end(i), end(i + 1))?);
             }
         }
         Ok(points)
@@ -750,13 +785,16 @@ impl Plane<'_> {
         let found: Vec<Vec<BoundaryPoint>> = (0..lo.len().min(hi.len()))
             .into_par_iter()
             .map(|i| {
-                if !crosses(&lo[i], &hi[i]) {
-                    return Ok(vec![]);
-                }
                 let state = |s: &[Option<StationaryState>]| s.get(i).cloned().flatten();
                 let a = (self.y.values[j], lo[i].verdict, state(lo_states), lo[i]);
                 let b = (self.y.values[j + 1], hi[i].verdict, state(hi_states), hi[i]);
-                self.bisect(Along::Y, i, a, b)
+                if crosses(&lo[i], &hi[i]) {
+                    self.bisect(Along::Y, i, a, b)
+                } else if differ_in_kind(&lo[i], &hi[i]) {
+                    self.follow_each(Along::Y, i, a, b)
+                } else {
+                    Ok(vec![])
+                }
             })
             .collect::<Result<_>>()?;
         Ok(found.into_iter().flatten().collect())
@@ -772,16 +810,18 @@ impl Plane<'_> {
     /// Each midpoint is solved from the closed form, else continued from the nearer side's
     /// state. Where the last bracket holds two different states (the speed scan's test,
     /// [`crate::analysis::states_switch`]: e.g. the partially balanced orbit on one side and the
-    /// balanced one on the other), the point is located again following only the stable
-    /// side's state ([`Plane::follow_stable`]), as the speed scan locates a range end.
+    /// balanced one on the other), each side's state is followed towards the other side and
+    /// its own changes of stability located ([`Plane::follow_each`]); a state lost on the way
+    /// gives no point.
     fn bisect(&self, along: Along, k: usize, lo: Side, hi: Side) -> Result<Vec<BoundaryPoint>> {
         self.bisect_with(along, k, lo, hi, None)
     }
 
     /// [`Plane::bisect`]; with `follow` `Some(true)` (`Some(false)`) each midpoint is continued
     /// from `lo`'s (`hi`'s) side's state only, never from the closed form, and a midpoint
-    /// without a state lies on the other side: the point is where that state changes
-    /// stability or is lost; none if the last bracket still holds two states.
+    /// without a state lies on the other side ([`Plane::changes_along`] calls it with that
+    /// state at both ends, on two sides: the point is where that state changes stability);
+    /// none if the last bracket still holds two states.
     fn bisect_with(&self, along: Along, k: usize, lo: Side, hi: Side, follow: Option<bool>) -> Result<Vec<BoundaryPoint>> {
         let (side_lo, side_hi) = (side(&lo.3), side(&hi.3));
         // one end without a state: the bracket locates where a state appears or is lost
@@ -843,7 +883,7 @@ impl Plane<'_> {
         };
         if switch {
             return match follow {
-                None => self.follow_stable(along, k, lo, hi),
+                None => self.follow_each(along, k, lo, hi),
                 Some(_) => Ok(vec![]),
             };
         }
@@ -874,7 +914,7 @@ impl Plane<'_> {
         }
         let (x, y) = at(0.5 * (a + b));
         if !appears {
-            return Ok(vec![BoundaryPoint { x, y, from: lo.1, to: hi.1, along }]);
+            return Ok(vec![BoundaryPoint { x, y, from: lo.1, to: hi.1, along, rtol: BOUNDARY_RTOL }]);
         }
         // where a state appears (or is lost): the verdict on its side is that state's at the
         // bracket's end, not the far cell's (walk 31: "stable" from the balanced cell at 350
@@ -884,7 +924,12 @@ impl Plane<'_> {
         // behind the fold at 188.58)
         let lo_is_none = side_lo == 0;
         let (t, state, cell) = if lo_is_none { (b, xb, cb) } else { (a, xa, ca) };
-        let point = BoundaryPoint { x, y, from: if lo_is_none { None } else { cell.verdict }, to: if lo_is_none { cell.verdict } else { None }, along };
+        // where the state is lost (a fold): the bracket's end is where continuation in halved
+        // steps stopped converging, not a change of sign bisected, so it is not claimed to
+        // BOUNDARY_RTOL (walk 32: one fold 1.4e-5 relative apart on three grids)
+        let from = if lo_is_none { None } else { cell.verdict };
+        let to = if lo_is_none { cell.verdict } else { None };
+        let point = BoundaryPoint { x, y, from, to, along, rtol: FOLD_RTOL };
         let mut points = vec![point];
         let far = if lo_is_none { &hi } else { &lo };
         if state.is_some() && side(&cell) != 0 && side(&cell) != side(&far.3) {
@@ -894,47 +939,60 @@ impl Plane<'_> {
         Ok(points)
     }
 
-    /// The point between `lo` and `hi` (their states differ: [`Plane::bisect`] ended on a
-    /// switch) where the stable end's state changes stability or is lost, as the speed scan
-    /// locates a range end after a switch: that state is continued to the other end in
-    /// [`FOLLOW_STEPS`] equal steps (a branch can turn fast over one grid step); where it is
-    /// stable there too, the other end's verdict is another state's and no point is reported
-    /// (a switch, not a boundary); else the change is bisected on that state alone. `None`
-    /// also where neither end is stable.
-    fn follow_stable(&self, along: Along, k: usize, lo: Side, hi: Side) -> Result<Vec<BoundaryPoint>> {
-        let keep_lo = side(&lo.3) == 1;
-        if !keep_lo && side(&hi.3) != 1 {
-            return Ok(vec![]);
-        }
-        let (kept, other) = if keep_lo { (&lo, &hi) } else { (&hi, &lo) };
-        let Some(mut state) = kept.2.clone() else { return Ok(vec![]) };
-        let mut end = (GeneralCell::NONE, None);
-        for s in 1..=FOLLOW_STEPS {
-            let t = if s == FOLLOW_STEPS { other.0 } else { kept.0 + (other.0 - kept.0) * s as f64 / FOLLOW_STEPS as f64 };
-            let (c, w) = self.on_line(along, k, None, t)?;
-            end = solve(&c, w, Some(&state), false, false, false);
-            match (side(&end.0), &end.1) {
-                (3, _) => return Ok(vec![]),
-                (_, Some(x)) if s < FOLLOW_STEPS => state = x.clone(),
-                (_, Some(_)) => {}
-                (_, None) => break,
+    /// The points between `lo` and `hi` (their states differ: [`Plane::bisect`] ended on a
+    /// switch, or two cells on one side hold states of different kinds, [`differ_in_kind`])
+    /// where either end's state changes stability: each end's state is continued towards the
+    /// other end ([`Plane::changes_along`]) and each change of its verdict bisected on that
+    /// state alone. A state lost on the way (a fold) ends its walk without a point: that is a
+    /// switch of state, not a change of stability (walk 32: the planar rotor's not-balanced
+    /// state lost at 277.65 rad/s was reported "stable to unstable" there, a point no
+    /// `stability` range ends at). Points found by both walks (one state on both ends after all) are
+    /// reported once; the points in increasing coordinate.
+    fn follow_each(&self, along: Along, k: usize, lo: Side, hi: Side) -> Result<Vec<BoundaryPoint>> {
+        let mut points = self.changes_along(along, k, &lo, hi.0, true)?;
+        for p in self.changes_along(along, k, &hi, lo.0, false)? {
+            let c = |q: &BoundaryPoint| if along == Along::X { q.x } else { q.y };
+            let same = |q: &BoundaryPoint| (c(q) - c(&p)).abs() <= 1e-6 * c(&p).abs().max(f64::MIN_POSITIVE) && (q.from, q.to) == (p.from, p.to);
+            if !points.iter().any(same) {
+                points.push(p);
             }
         }
-        if end.1.is_some() && side(&end.0) == 1 {
-            // the stable state goes on to the other end: the other end's verdict is another
-            // state's
+        points.sort_by(|p, q| if along == Along::X { p.x.total_cmp(&q.x) } else { p.y.total_cmp(&q.y) });
+        Ok(points)
+    }
+
+    /// The changes of stability of the state of `from` continued towards `to` in
+    /// [`FOLLOW_STEPS`] equal steps (a branch can turn fast over one grid step), each from the
+    /// last step's state only (never the closed form), each step's side against the last's; a
+    /// change is bisected on that state alone ([`Plane::bisect_with`] following `from`'s side,
+    /// `from_lo`: `from` is the bracket's lower end). The walk ends where the state is lost or
+    /// a step is below the periodic-orbit floor. Two changes within one step (a window
+    /// narrower than a sixteenth of the grid step) are not seen.
+    fn changes_along(&self, along: Along, k: usize, from: &Side, to: f64, from_lo: bool) -> Result<Vec<BoundaryPoint>> {
+        let Some(mut state) = from.2.clone() else { return Ok(vec![]) };
+        if side(&from.3) == 0 || side(&from.3) == 3 {
             return Ok(vec![]);
         }
-        let far = (other.0, other.1, end.1, end.0);
-        if keep_lo {
-            self.bisect_with(along, k, lo.clone(), far, Some(true))
-        } else {
-            self.bisect_with(along, k, far, hi.clone(), Some(false))
+        let mut last: Side = from.clone();
+        let mut points = vec![];
+        for s in 1..=FOLLOW_STEPS {
+            let t = if s == FOLLOW_STEPS { to } else { from.0 + (to - from.0) * s as f64 / FOLLOW_STEPS as f64 };
+            let (c, w) = self.on_line(along, k, None, t)?;
+            let (cell, x) = solve(&c, w, Some(&state), false, false, false);
+            let Some(x) = x.filter(|_| side(&cell) != 3) else { break };
+            let here: Side = (t, cell.verdict, Some(x.clone()), cell);
+            if side(&cell) != side(&last.3) {
+                let (a, b) = if from_lo { (last.clone(), here.clone()) } else { (here.clone(), last.clone()) };
+                points.extend(self.bisect_with(along, k, a, b, Some(from_lo))?);
+            }
+            state = x;
+            last = here;
         }
+        Ok(points)
     }
 }
 
-/// Steps in which [`Plane::follow_stable`] continues the stable end's state to the other end,
+/// Steps in which [`Plane::changes_along`] continues an end's state to the other end,
 /// as the speed scan does after a switch ([`crate::analysis::speed_scan`]: 16; the two-plane
 /// rotor's partially balanced state below 322 rad/s moves its balls 0.6 rad over one grid step).
 const FOLLOW_STEPS: usize = 16;
@@ -948,6 +1006,19 @@ const FOLLOW_STEPS: usize = 16;
 fn crosses(a: &GeneralCell, b: &GeneralCell) -> bool {
     let (sa, sb) = (side(a), side(b));
     sa != sb && sa != 3 && sb != 3
+}
+
+/// Whether two neighbouring cells on the same side (both with a negative margin, or both
+/// not) hold stationary states of different kinds ([`GeneralCell::state`], or an equilibrium
+/// beside a periodic orbit): the state of either may change stability between them before it
+/// is lost, so each is followed towards the other ([`Plane::follow_each`]). Walk 32: the
+/// planar rotor of examples/planar.toml at `c_psi` 0.15, stable and not balanced at 200
+/// rad/s, stable and semi-balanced at 300, the semi-balanced state unstable below 296.2
+/// rad/s (`stability`'s range start): until session 32 such a pair was never bisected and
+/// the point was missing on a 100 rad/s grid.
+fn differ_in_kind(a: &GeneralCell, b: &GeneralCell) -> bool {
+    let (sa, sb) = (side(a), side(b));
+    sa == sb && (sa == 1 || sa == 2) && (a.state != b.state || a.kind != b.kind)
 }
 
 /// Where a map's rotors come from: a planar or spatial config ([`build`]), or a linear rotor's
@@ -1035,6 +1106,11 @@ pub struct BoundaryPoint {
     /// The axis along which the point was bisected (`"x"`: between two cells of a row; `"y"`:
     /// of a column).
     pub along: Along,
+    /// The relative tolerance in the coordinate bisected to which the point is located:
+    /// [`BOUNDARY_RTOL`] where the verdict changes (the margin's sign, bisected), [`FOLD_RTOL`]
+    /// where a stationary state appears or is lost (`from` or `to` `None`: where continuation
+    /// stops converging).
+    pub rtol: f64,
 }
 
 /// The axis along which a [`BoundaryPoint`] was bisected.
@@ -1061,6 +1137,21 @@ impl Along {
 /// [`general_map_traced`] bisects a verdict change: `|b − a| ≤ 1e-9 max(|a|, |b|)`, as
 /// [`crate::analysis::speed_scan`] bisects the ends of stable ranges.
 pub const BOUNDARY_RTOL: f64 = 1e-9;
+
+/// Relative tolerance claimed for a point where a stationary state appears or is lost (a
+/// fold, [`BoundaryPoint::from`] or [`BoundaryPoint::to`] `None`): 1e-4 of the coordinate.
+/// Such a point is not a change of sign bisected but where Newton's continuation towards the
+/// fold, in steps halved down to [`FILL_SUBSTEPS`] of the gap and then by bisection, stops
+/// converging; near a fold the branch moves as the square root of the distance and one real
+/// exponent tends to 0, so Newton's basin shrinks and where it fails depends on the state it
+/// starts from. Seen: the orbit of examples/dimensional.toml under gravity lost near 1130.32
+/// rpm at `balancer.drag` 0.5, 1.4e-5 relative apart on grids of 3, 5 and 7 speeds over
+/// 300-1500 rpm (tests/map_fold_32.rs); the washer's at 188.58 rpm 3e-9 apart
+/// (tests/map_switch_31.rs). Locating the fold itself (the zero of that exponent, or
+/// arclength continuation round it) was tried in session 32: the exponent's square
+/// extrapolated to zero within ~1e-8 of each grid's own bracket on the dimensional rotor, so
+/// its three branches fold 1.4e-5 apart, and no grid-independent fold was found.
+pub const FOLD_RTOL: f64 = 1e-4;
 
 /// [`general_map`], and with `trace` the stability boundary: wherever the margin changes sign
 /// between neighbouring cells, or a stationary state appears or disappears, the change is
