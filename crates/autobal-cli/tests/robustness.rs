@@ -1118,7 +1118,10 @@ fn regression_map_boundary_along_the_y_axis_was_0_points() {
         &["map", "--config", &shaft, "--x", "linear_rotor.support_stiffness_scale=0.5:2:3", "--y", "speed=100:3000:6", "--boundary", "--out", "m"],
     );
     assert_eq!(code, 0, "{err}");
-    assert!(err.contains("boundary: 3 points bisected") && err.contains("3 along speed within a column"), "{err}");
+    assert!(
+        err.contains("boundary: 3 points between neighbouring cells") && err.contains("3 along speed within a column") && err.contains("bisected to 1e-9"),
+        "{err}"
+    );
     let csv = std::fs::read_to_string(dir.join("m_boundary.csv")).unwrap();
     let rows: Vec<&str> = csv.lines().skip(1).collect();
     assert_eq!(rows.len(), 3, "{csv}");
