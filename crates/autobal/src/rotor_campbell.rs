@@ -94,7 +94,7 @@ use crate::analysis::{mode, stability, stationary, stationary_near, Kind, Newton
 use crate::control::{Control, Outcome};
 use crate::error::{Error, Result};
 use crate::linalg::eigen_dyn::eigenvalues;
-use crate::rotor_stability::{Field, Rotor, StateKind};
+use crate::rotor_stability::{newton_options, Field, Rotor, StateKind};
 use crate::spatial::campbell::{FixedCampbell, FixedCurve, FixedPoint};
 use crate::spatial::dynamics::PointMass;
 pub use crate::spatial::linear_model::Balls;
@@ -204,7 +204,8 @@ impl From<CampbellPoint> for PointJson {
 }
 
 /// The relative accuracy of the monodromy matrices of the general route's Floquet analyses:
-/// the shooting's `rtol` of the Campbell scans, at which the orbit's monodromy matrix is
+/// the shooting's `rtol` of the general route (`rotor_stability::newton_options`, shared by the
+/// Campbell scans, the speed scan and the map's cells), at which the orbit's monodromy matrix is
 /// integrated (DOP853, its Jacobian interpolated to the same `rtol`: [`crate::analysis`]).
 pub const MONODROMY_RTOL: f64 = 1e-10;
 
@@ -707,16 +708,6 @@ fn linear_whirl_pairs(r: &crate::linear_rotor::LinearRotor) -> Vec<(usize, usize
             (a, b, 1.0, (mean.max(0.0) / ms).sqrt())
         })
         .collect()
-}
-
-/// Newton's options of the general route (as [`crate::rotor_stability::stability_over_speed`]).
-fn newton_options(periodic: bool) -> NewtonOptions {
-    let mut o = NewtonOptions::default();
-    if periodic {
-        o.max_iterations = 20;
-        o.rtol = MONODROMY_RTOL;
-    }
-    o
 }
 
 /// The Campbell diagram of `rotor` over `speeds` (module docs): at each speed the stationary
@@ -1882,6 +1873,16 @@ impl crate::spatial::campbell::Spectrum for StateSpectrum<'_> {
 #[cfg(test)]
 mod tests_18b {
     use super::*;
+
+    /// The round-off bound of the multipliers ([`MONODROMY_RTOL`]) assumes the orbits were
+    /// shot at that `rtol`: the general route's Newton options (one function since session 32)
+    /// must integrate at it, and the equilibria keep the defaults.
+    #[test]
+    fn the_general_routes_shooting_integrates_at_the_monodromy_rtol() {
+        assert_eq!(newton_options(true).rtol, MONODROMY_RTOL);
+        assert_eq!(newton_options(true).max_iterations, 20);
+        assert_eq!(newton_options(false).rtol, NewtonOptions::default().rtol);
+    }
 
     /// The isotropic undamped 2-DOF rotor in turning axes, `ẍ − 2Ωẏ + (ω² − Ω²) x = 0`,
     /// `ÿ + 2Ωẋ + (ω² − Ω²) y = 0` (state `[x, y, ẋ, ẏ]`). By hand: `z = x + iy` obeys

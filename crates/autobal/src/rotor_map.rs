@@ -77,7 +77,7 @@ use crate::config;
 use crate::control::{Control, StopReason};
 use crate::error::{fmt_num, Error, Result};
 use crate::linear_rotor::spec::LinearRotorSpec;
-use crate::rotor_stability::{Field, Rotor, StateKind};
+use crate::rotor_stability::{newton_options, Field, Rotor, StateKind};
 use crate::spatial::map::Axis;
 use crate::units::{speed_path_unit, Speed, SpeedUnit};
 use rayon::prelude::*;
@@ -436,18 +436,6 @@ fn solve(c: &CellRotor, w: f64, previous: Option<&StationaryState>, closed_form:
         return (cell, Some(state));
     }
     (GeneralCell::NONE, None)
-}
-
-/// Newton's options of a cell: the defaults, and for a periodic orbit the shooting at rtol
-/// 1e-10 (20 iterations), as `rotor_stability`: multipliers near 1 good to ~1e-9, inside
-/// `FLOQUET_TOLERANCE` (1e-8).
-fn newton_options(periodic: bool) -> NewtonOptions {
-    let mut opts = NewtonOptions::default();
-    if periodic {
-        opts.max_iterations = 20;
-        opts.rtol = 1e-10;
-    }
-    opts
 }
 
 /// A map row's cells and their states (`None` where a cell has none).
@@ -1146,7 +1134,7 @@ pub const BOUNDARY_RTOL: f64 = 1e-9;
 /// exponent tends to 0, so Newton's basin shrinks and where it fails depends on the state it
 /// starts from. Seen: the orbit of examples/dimensional.toml under gravity lost near 1130.32
 /// rpm at `balancer.drag` 0.5, 1.4e-5 relative apart on grids of 3, 5 and 7 speeds over
-/// 300-1500 rpm (tests/map_fold_32.rs); the washer's at 188.58 rpm 3e-9 apart
+/// 300-1500 rpm (tests/map_walk_32.rs); the washer's at 188.58 rpm 3e-9 apart
 /// (tests/map_switch_31.rs). Locating the fold itself (the zero of that exponent, or
 /// arclength continuation round it) was tried in session 32: the exponent's square
 /// extrapolated to zero within ~1e-8 of each grid's own bracket on the dimensional rotor, so
