@@ -548,6 +548,12 @@ fn along_counts(t: &[BoundaryPoint]) -> (usize, usize) {
     (nx, t.len() - nx)
 }
 
+/// The general route's points where a stationary state appears or is lost (`from` or `to`
+/// empty: located to [`autobal::rotor_map::FOLD_RTOL`], not bisected to 1e-9).
+fn fold_count(t: &[BoundaryPoint]) -> usize {
+    t.iter().filter(|b| b.from.is_none() || b.to.is_none()).count()
+}
+
 /// `STEM_boundary.csv`: the traced boundary beside the map.
 pub fn boundary_path(stem: &Path) -> PathBuf {
     PathBuf::from(format!("{}_boundary.csv", stem.display()))
@@ -631,7 +637,7 @@ impl Output {
                     let (nx, ny) = along_counts(t);
                     // a state's fold is where continuation stops converging, not bisected to
                     // 1e-9 (walk 32: the note claimed 1e-9 for every point)
-                    let folds = t.iter().filter(|b| b.from.is_none() || b.to.is_none()).count();
+                    let folds = fold_count(t);
                     let located = if folds == 0 {
                         "bisected to 1e-9 relative".to_string()
                     } else {
@@ -774,7 +780,7 @@ impl command::Output for Output {
                 v["not_balanced"] = json!(outcome.not_balanced);
                 if let Some(t) = traced {
                     let (nx, ny) = along_counts(t);
-                    let folds = t.iter().filter(|b| b.from.is_none() || b.to.is_none()).count();
+                    let folds = fold_count(t);
                     v["boundary"] = json!({"bisected_points": t.len(), "along_x": nx, "along_y": ny, "fold_points": folds, "rtol": autobal::rotor_map::BOUNDARY_RTOL, "fold_rtol": autobal::rotor_map::FOLD_RTOL});
                 }
             }
@@ -1664,8 +1670,6 @@ pub fn plot_cells(r: &FigureCells, title: &str) -> Plot {
 mod tests {
     use super::*;
 
-    /// `--omega` beside a speed axis was ignored, exit 0 (hunt 27): refused, naming the axis,
-    /// on both routes (the planar config's general route, the washer's closed form).
     /// The general route's speed axis takes the range `stability --omega-max` takes, with its
     /// message (walk 32: `map` took 1e308 rad/s, exit 0, every cell empty): rad/s on a planar
     /// rotor, `Ω` (at the config's ω0 for an SI axis) on a spatial one; the largest speed
@@ -1724,6 +1728,8 @@ mod tests {
         );
     }
 
+    /// `--omega` beside a speed axis was ignored, exit 0 (hunt 27): refused, naming the axis,
+    /// on both routes (the planar config's general route, the washer's closed form).
     #[test]
     fn a_fixed_speed_beside_a_speed_axis_is_refused() {
         for (text, x, y) in [
