@@ -223,10 +223,11 @@ fn the_general_routes_critical_speeds_do_not_depend_on_the_grid() {
     let cfg = autobal::linear_rotor::config::linear_rotor(&root, &mut |_| Err("no files".into())).unwrap();
     let linear = Rotor::Linear(autobal::linear_rotor::reduce::reduce(&cfg.rotor, cfg.modes.unwrap(), &[]).unwrap().rotor);
     // speeds up to 3 ω_n (the command's default) on the planar rotor, up to 2500 rad/s on the
-    // shaft (its default 1.5 times the 4th natural frequency is ~2700): 5 and 21 crossings
+    // shaft (its default 1.5 times the 4th natural frequency is ~2700): 5 and 23 crossings (21
+    // before session 33, without the two ends of the shaft's exchange at 373.576 and 374.635)
     let cases = [
         ("planar.toml", &planar, 3.0 * planar.natural_frequency(), 1000, &[60, 100, 150, 240, 401][..], 5),
-        ("linear_rotor_shaft.toml", &linear, 2500.0, 240, &[60, 100, 150][..], 21),
+        ("linear_rotor_shaft.toml", &linear, 2500.0, 240, &[60, 100, 150][..], 23),
     ];
     for (name, rotor, w, fine, grids, count) in cases {
         let reference = general(rotor, w, fine, &[1, 2]);
@@ -238,17 +239,14 @@ fn the_general_routes_critical_speeds_do_not_depend_on_the_grid() {
                 assert!(k.share > 1e-9 && k.share <= 1.0, "{name}: {k:?}");
             }
         }
-        // Known and not solved: on the shaft the forward mode's pair misses the real axis by
-        // ν̂ ≈ 2e-5 rad/s at 374.6348 rad/s, where the QR error near the near-double eigenvalue
-        // (~sqrt(ε |A|)) exceeds the on-axis band (3.7e-8 rad/s): the computed pair is real at
-        // some trial speeds, so a grid whose search samples there reports a forward 1×
-        // crossing (150 speeds) and the others do not. It is left out of the comparison, by
-        // name, until the band follows the eigenvalues' accuracy.
-        let noisy = |k: &CriticalSpeed| name.starts_with("linear") && k.harmonic == 1 && k.whirl == Whirl::Forward && (k.omega - 374.6348).abs() < 1e-3;
-        let reference: Vec<CriticalSpeed> = reference.into_iter().filter(|k| !noisy(k)).collect();
+        // The shaft's forward pair at 374.6348 rad/s, left out of this comparison until session
+        // 33 as a near miss of the axis seen only on some grids (150 speeds), lands on it: an
+        // independent numpy model has ν̂ = 0.102 at 374.634 and two real eigenvalues −3.856,
+        // −3.708 at 374.635. It was the start of a run to the last speed, left out where judged
+        // in its step and listed where a window found it; as one end of an exchange
+        // (spatial::campbell::exchanges) it is now listed on every grid, and compared.
         for &n in grids {
-            let got: Vec<CriticalSpeed> = general(rotor, w, n, &[1, 2]).into_iter().filter(|k| !noisy(k)).collect();
-            identical(&got, &reference, &format!("{name}, {n} speeds"));
+            identical(&general(rotor, w, n, &[1, 2]), &reference, &format!("{name}, {n} speeds"));
         }
         eprintln!("{name}: {} critical speeds on every grid", reference.len());
     }

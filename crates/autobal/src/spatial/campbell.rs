@@ -43,7 +43,12 @@
 //!   (a pair landing where only one of its two real eigenvalues stays on the axis to the last
 //!   speed is a crossing: which of two real lines meeting later continues is the collision
 //!   convention, not the physics; another end in the same step does not decide it, nor a
-//!   window around a local minimum that finds the same change).
+//!   window around a local minimum that finds the same change). An **exchange** is crossings
+//!   (session 33, `exchanges`): a run from the first speed that leaves the axis where, as the
+//!   next change of the count, a pair complex before it lands and runs to the last speed, the
+//!   lines that left staying complex past it: a whirl passes `1×` and changes places with the
+//!   synchronous pair, and both ends are listed (examples/linear_rotor_shaft.toml, balls free:
+//!   373.576 and 374.635 rad/s, the rotor's first forward critical speed, left out before).
 //! * `ν̂ = (h − 1)Ω`, `h ≥ 2`: the forward component at `hΩ`; `ν̂ = (h + 1)Ω`: the other
 //!   component backward at `−hΩ`. Bracketed by the sign of `ν̂ − (h ∓ 1)Ω` on the grid and
 //!   bisected on the model's eigenvalues (the pair's eigenvalue at a trial speed: the one
@@ -883,9 +888,12 @@ fn axis_crossings<S: Spectrum>(l: &Lines, spec: &S, out: &mut Vec<Found>) -> Res
     // a line's run on the axis through k reaches the first (last) grid point
     let from_start = |i: usize, k: usize| (0..=k).all(|q| real(i, q));
     let to_end = |i: usize, k: usize| (k..n).all(|q| real(i, q));
-    // (speed, line, quiet)
     // (speed, line, quiet, judged: attributed to the lines changing realness in its step)
     let mut ev: Vec<(f64, usize, bool, bool)> = vec![];
+    // beside each quiet judged end: its step, whether its lines leave the axis there (a run
+    // from the first speed ends) or land on it (a run to the last speed starts), and those
+    // lines (for `exchanges`)
+    let mut quiet_ends: Vec<(usize, usize, bool, Vec<usize>)> = vec![];
     let mut speeds = vec![];
     for k in 0..n.saturating_sub(1) {
         let (Some(ca), Some(cb)) = (counts[k], counts[k + 1]) else { continue };
@@ -928,7 +936,11 @@ fn axis_crossings<S: Spectrum>(l: &Lines, spec: &S, out: &mut Vec<Found>) -> Res
                     let d = |i: usize| (re(i) - x).abs();
                     let d0 = movers.iter().map(|&i| d(i)).fold(f64::INFINITY, f64::min);
                     let near: Vec<usize> = movers.iter().copied().filter(|&i| d(i) <= d0 + 1e-9 * (1.0 + x.abs())).collect();
-                    (near[0], near.iter().all(|&i| quiet_of(i)))
+                    let quiet = near.iter().all(|&i| quiet_of(i));
+                    if quiet {
+                        quiet_ends.push((ev.len(), k, real(near[0], k), near.clone()));
+                    }
+                    (near[0], quiet)
                 }
                 _ => (movers.first().copied().unwrap_or_else(fallback), false),
             };
@@ -1025,6 +1037,9 @@ fn axis_crossings<S: Spectrum>(l: &Lines, spec: &S, out: &mut Vec<Found>) -> Res
             }
         }
     }
+    for e in exchanges(l, &counts, &quiet_ends) {
+        ev[e].2 = false;
+    }
     // one crossing per group of ends closer than the passage band (duplicates of one end found
     // from several brackets, or the entry and exit of a pair passing through the axis): the
     // middle of the group; quiet where every end of it is
@@ -1047,6 +1062,46 @@ fn axis_crossings<S: Spectrum>(l: &Lines, spec: &S, out: &mut Vec<Found>) -> Res
         i = j;
     }
     Ok(())
+}
+
+/// The quiet ends of [`axis_crossings`] that are an **exchange** on the axis (session 33), and so
+/// crossings: indices into its events. `ends` holds, for each quiet end judged in its step, its
+/// event, its step `k`, whether its lines leave the axis there (the end of a run from the first
+/// speed) and those lines. An exchange is a run from the first speed that ends at step `k1`
+/// (the count of real eigenvalues falls, `c → c'`) and, as the next change of the count, a pair
+/// that was complex before `k1` landing at step `k2` where a run to the last speed starts (the
+/// count back to `c`), the lines that left staying complex past `k2`: the synchronous run goes
+/// on with other eigenvalues, and the pair that landed, complex on one side of the stretch off
+/// the axis, and the pair that left, complex on the other, are one whirl meeting `1×` between
+/// the two ends. examples/linear_rotor_shaft.toml with its balls free: the balls' two
+/// synchronous (real) eigenvalues, real from rest, meet at 373.576 rad/s and leave as a complex
+/// pair that whirls forward below `Ω` above it (`f = Ω − ν̂` ≈ 371-373); the rotor's first
+/// forward pair, above `Ω` below it (375.8 at 360 rad/s), lands at 374.635 and stays real to the
+/// top as the balls' drag pair. Each end alone is the end of a run that reaches the grid's
+/// first or last speed and was left out as such (sessions 14-32): the rotor's first forward
+/// critical speed, a resonance of the balls-as-a-ring model at 374.45 (amplification factor
+/// ≈ 98), was missing from the list. Both ends are reported, as the two ends of a stretch off
+/// the axis elsewhere.
+fn exchanges(l: &Lines, counts: &[Option<usize>], ends: &[(usize, usize, bool, Vec<usize>)]) -> Vec<usize> {
+    let om = l.omega;
+    let complex = |i: usize, k: usize| l.z[i][k].is_some_and(|z| !on_axis(z.im.abs(), om[k]));
+    let mut out = vec![];
+    for (e1, k1, leave1, lines1) in ends.iter().filter(|e| e.2) {
+        for (e2, k2, leave2, lines2) in ends {
+            if *leave2 || *k2 <= *k1 || *k2 + 1 >= counts.len() {
+                continue;
+            }
+            let (Some(c), Some(c1)) = (counts[*k1], counts[k1 + 1]) else { continue };
+            // the count falls at k1, holds, and comes back at k2: no other change between
+            let next = (k1 + 1..=*k2).all(|k| counts[k] == Some(c1)) && counts[k2 + 1] == Some(c) && c1 < c;
+            // two pairs: the one landing complex before k1, the one leaving complex after k2
+            let other = lines2.iter().all(|&i| complex(i, *k1) && !lines1.contains(&i)) && lines1.iter().all(|&i| complex(i, k2 + 1));
+            if next && other && *leave1 {
+                out.extend([*e1, *e2]);
+            }
+        }
+    }
+    out
 }
 
 /// Golden-section search for the minimum of `f` on `[a, b]` (`fa`, `fb` its values there), to
