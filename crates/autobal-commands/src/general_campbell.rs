@@ -48,6 +48,40 @@ fn unit(g: &GeneralRotor) -> &'static str {
     }
 }
 
+/// The unit of the frequencies (`im`, `fixed_frequency`, `frequency`, `nu`): rad/s on an SI
+/// config, multiples of ω0 on a dimensionless one (as the 12-state route's `(ω0)` columns).
+fn frequency_unit(g: &GeneralRotor) -> &'static str {
+    if g.si {
+        "rad/s"
+    } else {
+        "ω0"
+    }
+}
+
+/// The unit of the growth rates (`re`): 1/s on an SI config, multiples of ω0 on a dimensionless
+/// one.
+fn rate_unit(g: &GeneralRotor) -> &'static str {
+    if g.si {
+        "1/s"
+    } else {
+        "ω0"
+    }
+}
+
+/// [`autobal::units::parse_speed`] for a rotor whose speeds are rad/s (a planar or linear
+/// rotor): its errors do not offer "a bare number for the dimensionless Ω", which such a rotor
+/// does not have (review 32: `campbell --omega-max abc` on a linear rotor); `bare` is what
+/// replaces it: `""` where a bare number is refused (a linear rotor), `", or a bare number in
+/// rad/s"` where it is read so (a planar rotor).
+pub fn parse_speed_rad_s(field: &str, text: &str, bare: &str) -> autobal::Result<autobal::units::Speed> {
+    autobal::units::parse_speed(field, text).map_err(|e| match e {
+        autobal::Error::InvalidParameter { field, reason } => {
+            autobal::Error::InvalidParameter { field, reason: reason.replace(", or a bare number for the dimensionless Ω", bare) }
+        }
+        e => e,
+    })
+}
+
 /// The top of the speed axis (model units: rad/s, or Ω of a dimensionless spatial config):
 /// `--omega-max` (a speed with its unit on an SI config, a bare number in units of ω0 or, for
 /// the planar rotor, rad/s), else 3 ω_n for the planar rotor, else twice the 12-state model's
@@ -55,7 +89,11 @@ fn unit(g: &GeneralRotor) -> &'static str {
 pub fn omega_max(root: &Table, g: &GeneralRotor, arg: Option<&str>) -> Result<f64> {
     Ok(match (&g.rotor, arg) {
         (_, Some(t)) => {
-            let s = autobal::units::parse_speed("--omega-max", t)?;
+            let s = match &g.rotor {
+                Rotor::Planar(_) => parse_speed_rad_s("--omega-max", t, ", or a bare number in rad/s")?,
+                Rotor::Linear(_) => parse_speed_rad_s("--omega-max", t, "")?,
+                Rotor::Spatial(_) => autobal::units::parse_speed("--omega-max", t)?,
+            };
             let w = match s.unit.rad_s() {
                 Some(k) if g.si => s.value * k,
                 Some(_) => s.to_omega("--omega-max", None)?,
@@ -232,6 +270,26 @@ fn crossing_group(gc: &GeneralCampbell, f: &FixedCampbell, k: &autobal::spatial:
 /// crossing and no forward one, while `critical` gives 96.67 rad/s forward).
 pub const FREE_BALLS_CRITICAL: &str = "with the balls free their motion shifts the rotor's forward mode: it need not cross 1× (on a Jeffcott rotor it stays above the line, at ν ≈ 20 in turning axes, and no forward crossing is listed); the rotor's critical speed, its forward whirl meeting 1× with the balls locked, is given by `--balls locked` (ν = 0: the damped natural frequency) or `autobal critical` (undamped)";
 
+/// [`FREE_BALLS_CRITICAL`] for a linear rotor (session 33), whose balls neither `--balls locked`
+/// nor `critical` lock: `campbell --balls locked` refuses a linear rotor, and its `critical`
+/// gives the natural frequencies at rest (no gyroscopic or bearing terms of the speed). It names
+/// what gives its critical speeds: the forward `1×` crossings listed (balls free), and the
+/// structure's own diagram without the balls in `autobal report`. Two forward ends close
+/// together are a stretch off the axis where the rotor's forward pair and the balls'
+/// synchronous pair change places (`autobal::spatial::campbell`, exchanges):
+/// examples/linear_rotor_shaft.toml's 373.576 and 374.635 rad/s, about the balls-as-a-ring
+/// model's resonance at 374.45 rad/s (review 32).
+pub const LINEAR_FREE_BALLS_CRITICAL: &str = "with the balls free their motion shifts the rotor's forward modes; the forward 1× crossings above (ν = 0) are this model's critical speeds, and two close together are the two ends of a stretch off the axis where the rotor's forward whirl passes 1× and changes places with the balls' synchronous pair (examples/linear_rotor_shaft.toml: 373.576 and 374.635 rad/s, its first forward critical speed); a linear rotor's balls cannot be locked (`campbell --balls locked` refuses it), `autobal critical` gives its undamped natural frequencies at rest with the balls as rings (no gyroscopic or bearing terms of the speed), and `autobal report` draws the structure's Campbell diagram without the balls, whose crossings of 1× are its critical speeds";
+
+/// The note under a balls-free diagram's critical speeds: [`LINEAR_FREE_BALLS_CRITICAL`] for a
+/// linear rotor, else [`FREE_BALLS_CRITICAL`].
+pub fn free_balls_note(g: &GeneralRotor) -> &'static str {
+    match g.rotor {
+        Rotor::Linear(_) => LINEAR_FREE_BALLS_CRITICAL,
+        _ => FREE_BALLS_CRITICAL,
+    }
+}
+
 /// What a Floquet exponent given as a bound is ([`autobal::rotor_campbell::CampbellPoint::decay_at_least`]).
 pub const UNDETERMINED: &str = "a Floquet multiplier below the monodromy's round-off (|μ| < δ = 100 · 1e-10 · ‖S⁻¹ΦS‖∞) gives no exponent, only a bound: re and log_decrement are null and decay_at_least says the mode decays at least that fast, σ ≤ ln(|μ| + δ)/T (its im, the phase of round-off, is not determined either)";
 
@@ -345,7 +403,7 @@ pub fn campbell_json(g: &GeneralRotor, gc: &GeneralCampbell, omega_max: f64) -> 
                 .collect();
             v["critical_speeds"] = json!(crit);
             if gc.balls == Balls::Free {
-                v["critical_speeds_note"] = json!(FREE_BALLS_CRITICAL);
+                v["critical_speeds_note"] = json!(free_balls_note(g));
             }
         }
         (_, why) => {
@@ -364,6 +422,8 @@ fn lines_json(g: &GeneralRotor, c: &RotorCampbell, omega_max: f64) -> Value {
         "stationary_state": c.kind,
         "what": what(c),
         "speed_unit": unit(g),
+        "frequency_unit": frequency_unit(g),
+        "rate_unit": rate_unit(g),
         "omega_max": omega_max,
         "omega": c.omega,
         "lines": c.lines,
@@ -382,6 +442,8 @@ fn lines_json(g: &GeneralRotor, c: &RotorCampbell, omega_max: f64) -> Value {
         v["state_followed"] = json!(p);
     }
     if g.si {
+        // the SI speeds under the 12-state route's key too (its `omega` is the dimensionless Ω)
+        v["omega_rad_s"] = json!(c.omega);
         v["omega_rpm"] = json!(c.omega.iter().map(|&w| rpm(w)).collect::<Vec<_>>());
     }
     v
@@ -419,9 +481,11 @@ pub fn campbell_table(g: &GeneralRotor, gc: &GeneralCampbell) -> String {
     if gc.fixed.as_ref().is_some_and(|f| f.modes_at_first_speed) {
         let _ = writeln!(s, "mode numbers: {MODES_AT_FIRST_SPEED}");
     }
-    let rate = if g.si { "1/s" } else { "ω0" };
-    let _ =
-        writeln!(s, "ν, σ in {rate} (turning axes); fixed f = Ω ± ν of the dominant whirl component (fixed axes, > 0 forward); log dec per fixed-axes cycle");
+    let (fu, ru) = (frequency_unit(g), rate_unit(g));
+    let _ = writeln!(
+        s,
+        "ν in {fu}, σ in {ru} (turning axes); fixed f = Ω ± ν of the dominant whirl component in {fu} (fixed axes, > 0 forward); log dec per fixed-axes cycle"
+    );
     let n = c.omega.len();
     let mut at = vec![0, n / 4, n / 2, 3 * n / 4, n.saturating_sub(1)];
     at.dedup();
@@ -442,14 +506,23 @@ pub fn campbell_table(g: &GeneralRotor, gc: &GeneralCampbell) -> String {
             continue;
         }
         let hz = if g.si { format!(" {:>11}", "fixed Hz") } else { String::new() };
-        let _ = writeln!(s, "  {:>12} {:>12} {:>10} {:>12}{hz}  {:<12} {:<9}", "ν", "σ", "log dec", "fixed f", "group", "whirl");
+        let _ = writeln!(
+            s,
+            "  {:>12} {:>12} {:>10} {:>15}{hz}  {:<12} {:<9}",
+            format!("ν ({fu})"),
+            format!("σ ({ru})"),
+            "log dec",
+            format!("fixed f ({fu})"),
+            "group",
+            "whirl"
+        );
         let mut pts = table_points(c, k);
         pts.sort_by(|a, b| a.fixed_frequency.abs().total_cmp(&b.fixed_frequency.abs()));
         for p in pts {
             let hz = if g.si { format!(" {:>11}", fmt_num(round(p.fixed_frequency / (2.0 * std::f64::consts::PI)))) } else { String::new() };
             let _ = writeln!(
                 s,
-                "  {:>12} {:>12} {:>10} {:>12}{hz}  {:<12} {:<9}",
+                "  {:>12} {:>12} {:>10} {:>15}{hz}  {:<12} {:<9}",
                 fmt_num(round(p.im)),
                 match p.decay_at_least {
                     Some(r) => format!("< −{}", fmt_num(round(r))),
@@ -502,7 +575,7 @@ fn crossings_table(g: &GeneralRotor, gc: &GeneralCampbell) -> String {
         let hz = if g.si { format!(" ({} Hz)", fmt_num(round(k.frequency / (2.0 * std::f64::consts::PI)))) } else { String::new() };
         let _ = writeln!(
             s,
-            "  {:>2}. {}  mode {}, {}, {}×, frequency {}{hz}, {}",
+            "  {:>2}. {}  mode {}, {}, {}×, frequency {} {}{hz}, {}",
             j + 1,
             speed_text(g, k.omega),
             k.mode,
@@ -512,6 +585,7 @@ fn crossings_table(g: &GeneralRotor, gc: &GeneralCampbell) -> String {
             },
             k.harmonic,
             fmt_num(round(k.frequency)),
+            frequency_unit(g),
             crate::linear::component_text(k.share),
         );
         if k.overdamped {
@@ -527,7 +601,7 @@ fn crossings_table(g: &GeneralRotor, gc: &GeneralCampbell) -> String {
         let _ = writeln!(s, "  note: {}", crate::linear::OVERDAMPED_NOTE);
     }
     if gc.balls == Balls::Free {
-        let _ = writeln!(s, "  note: {FREE_BALLS_CRITICAL}");
+        let _ = writeln!(s, "  note: {}", free_balls_note(g));
     }
     s
 }

@@ -131,7 +131,8 @@ pub fn default_omega_max(cfg: &LinearRotorConfig) -> Result<f64> {
 /// every speed flag is, else [`default_omega_max`].
 pub fn omega_max(flag: Option<&str>, cfg: &LinearRotorConfig) -> Result<f64> {
     let Some(t) = flag else { return default_omega_max(cfg) };
-    let s = autobal::units::parse_speed("--omega-max", t)?;
+    // (its error names no dimensionless Ω: a linear rotor has none)
+    let s = crate::general_campbell::parse_speed_rad_s("--omega-max", t, "")?;
     let w = s.value * s.unit.rad_s().ok_or_else(|| anyhow!("--omega-max: give a speed with its unit (rad/s, rpm, Hz) for a linear rotor"))?;
     crate::command::check_speed_rad_s("--omega-max", t, w)?;
     Ok(w)
