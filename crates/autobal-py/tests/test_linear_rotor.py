@@ -182,6 +182,8 @@ def test_the_maps_boundary_is_bisected_along_both_axes_as_by_the_cli(tmp_path):
     m = autobal.run("map", SHAFT, x=x, y=y, boundary=True)
     pts = m["boundary"]
     assert [(p["x"], p["along"], p["from"], p["to"]) for p in pts] == [(s, "y", "unstable", "stable") for s in (0.5, 1.25, 2.0)]
+    # each a change of verdict, bisected to the library's BOUNDARY_RTOL (not a fold's 1e-4)
+    assert [p["rtol"] for p in pts] == [1e-9] * 3
     cli("map", "--config", SHAFT, "--x", x.replace("0.5,1.25,2", "0.5:2:3"), "--y", y, "--boundary", "--out", str(tmp_path / "m"))
     lines = (tmp_path / "m_boundary.csv").read_text().splitlines()
     assert lines[0] == "linear_rotor.support_stiffness_scale,speed,from,to,along"

@@ -40,7 +40,8 @@ def run(command: str, config: Any, set: Optional[Mapping[str, Any]] = None, **op
     """The dict ``autobal COMMAND --config CONFIG --format json`` prints (``map``: the axes'
     values, ``margin`` (1/s, NaN without a balanced state) and ``stable`` as arrays
     ``len(y) × len(x)``, ``verdict`` as lists, the bisected ``boundary`` points with
-    ``boundary=True``: ``x``, ``y``, ``from``, ``to``, ``along``, the axis bisected)."""
+    ``boundary=True``: ``x``, ``y``, ``from``, ``to``, ``along``, the axis bisected, and ``rtol``,
+    the relative tolerance in that axis to which the point is located)."""
     return run_with_extra(command, config, set, **options)[0]
 
 
