@@ -7,13 +7,16 @@
 //!   modes keep theirs (a damped Jeffcott rotor's, from the closed-form eigenvalue), and so does
 //!   a nearly real pair whose `ν` is resolved (two balls' drag modes: `ν` checked against
 //!   60-digit eigenvalues of the same matrix).
-//! * An end of a stretch on the real axis of the rotating frame (`ν̂ = 0`, forward `1×`) whose
-//!   pair never oscillates faster than it decays (`ν̂ > |σ|`) within `Ω/5` of it, on a side
-//!   where it is complex, is marked overdamped: no resonance (API 684's amplification factor
-//!   below 2.5). For a damped Jeffcott rotor the half-power band is exactly `2ζ` wide about
-//!   `ω_d`, so the mark changes at `ζ = ω_d/5`, `ζ* = 1/√26`; the two balls' drag modes of
-//!   examples/default.toml (`σ ≈ −0.1`, `|ν| < 1e-4`) are marked on both routes, the real
-//!   crossings are not.
+//! * An end of a stretch on the real axis of the rotating frame (`ν̂ = 0`, forward `1×`) is
+//!   marked overdamped (no resonance) only where API 684's amplification factor is established
+//!   below 2.5 (session 33's rule, replacing session 31's `ν̂ > |σ|` within `Ω/5` of each end
+//!   alone): the stretch and both its ends are one event, `r` the smallest `|λ|` on it, the
+//!   half-power points where `|λ| = √2 r` beside it. For a damped Jeffcott rotor the band is
+//!   exactly `2ζ` wide about `ω_d`, so the mark changes at `ζ = ω_d/5`, `ζ* = 1/√26`; the two
+//!   balls' drag modes of examples/default.toml (`σ ≈ −0.1`, `|ν| < 1e-4`) are marked on both
+//!   routes; its ball pair's stretch 2.101767-2.106803 (AF ≈ 9.6) and
+//!   examples/linear_rotor_shaft.toml's 2425.487-2426.598 rad/s (AF = 3.74) are not, whatever
+//!   the axis's top.
 
 use autobal::spatial::campbell::{fixed_axes, CriticalSpeed};
 use autobal::spatial::linear_model::Balls;
