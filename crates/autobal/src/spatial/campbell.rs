@@ -85,8 +85,9 @@
 //! spatial.toml 0.07736 and 0.1319 (the two balls' drag pair, `σ ≈ −0.1`, real between them,
 //! `|λ| ≈ 0.1` beside); dimensional.toml 0.0272 and 0.0922 (its drag pair, `σ ≈ −0.05`);
 //! washing_machine.toml 0.3898, 0.6201 and 0.9163, 1.230 (two stretches of the drag pair);
-//! planar.toml 276.262 rad/s (its stretch on the axis from below 220.3 rad/s, `|λ| ≈ 926`
-//! 1/s, and `|λ| < √2 r` 43 rad/s above it). Not marked: default.toml's ball pair on the axis
+//! planar.toml 276.262 rad/s (its stretch on the axis taken from 220.3 rad/s, the last grid
+//! point below where both of the pair's lines are real, `r` ≈ 926 1/s, and `|λ| < √2 r` 43
+//! rad/s above it). Not marked: default.toml's ball pair on the axis
 //! 2.101767-2.106803 (`|λ|` reaches `√2 · 0.0767` 0.137 below and 0.076 above: `AF` ≈ 9.6;
 //! session 31 marked its upper end); linear_rotor_shaft.toml 2425.487-2426.598 rad/s (`√2 ·
 //! 277.3` reached 347.0 rad/s below and 300.0 above: `AF` = 3.74, a forced response of the
