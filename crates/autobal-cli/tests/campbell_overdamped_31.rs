@@ -17,7 +17,8 @@ fn example(name: &str) -> String {
 #[test]
 fn the_drag_modes_crossings_are_marked_overdamped_on_both_routes() {
     // examples/default.toml: the two balls' drag pair meets the axis at 0.0773556 and leaves it
-    // at 0.131932 (overdamped: marked), a ball pair lands at 2.101767 (a resonance: not)
+    // at 0.131932 (overdamped: marked), a ball pair lies on it from 2.101767 to 2.106803 (one
+    // resonance, AF ≈ 9.6: neither end marked; session 31 marked 2.106803)
     let cfg = example("default.toml");
     for route in ["auto", "general"] {
         let v: serde_json::Value = serde_json::from_str(&autobal(&["campbell", "-c", &cfg, "--route", route, "--format", "json"])).unwrap();
@@ -28,6 +29,7 @@ fn the_drag_modes_crossings_are_marked_overdamped_on_both_routes() {
         assert_eq!(mark(0.0773556), [true], "{route}: {ks:?}");
         assert_eq!(mark(0.131932), [true], "{route}: {ks:?}");
         assert_eq!(mark(2.101767), [false], "{route}: {ks:?}");
+        assert_eq!(mark(2.106803), [false], "{route}: {ks:?}");
         let table = autobal(&["campbell", "-c", &cfg, "--route", route]);
         assert_eq!(table.matches("overdamped, no resonance (see the note)").count(), ks.iter().filter(|k| k["overdamped"] == true).count(), "{table}");
         assert!(table.contains("note: overdamped, no resonance: ν = 0 is reached"), "{table}");

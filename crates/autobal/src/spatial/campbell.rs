@@ -58,35 +58,53 @@
 //!
 //! The jump of a drawn curve where it changes component is never a crossing.
 //!
-//! **Overdamped ends** (session 31). An end on the real axis is where the pair's forward whirl
-//! meets `1×`, but a resonance needs the pair to oscillate there: the response to unbalance
-//! (constant in rotating axes; each mode's part `∝ 1/|λ|`) is `∝ 1/|σ|` at the end and falls to
-//! half power (`|λ|² = 2σ²`) where `ν̂ = |σ|`. A pair that stays overdamped, `ν̂ ≤ |σ|` (damping
-//! ratio `|σ|/|λ| ≥ 1/√2`), within `Ω_c/5` ([`RESONANCE_WINDOW`]) of the end `Ω_c` on every
-//! side where it is complex has no half-power band narrower than `Ω_c/2.5`: API 684's
-//! amplification factor `Ω_c/(Ω₂ − Ω₁)` is below 2.5, a critically damped mode that needs no
-//! separation margin. Such an end is still listed (the `ν̂ = 0` event is the model's) and marked
-//! [`CriticalSpeed::overdamped`] (the tables say "overdamped, no resonance", the figure draws it
-//! grey). The half-power point is looked for on the refined lines' points of the complex run
-//! next to the end inside the window and at the window's edge on the model's spectrum
-//! (`resonant`); a run that returns to the axis inside the window (a stretch off the axis: two
-//! real drag eigenvalues meeting and parting) or meets the grid's end has none there. The
-//! band's width is taken as twice the nearer side's, the lenient reading: an end is unmarked
-//! where either side alone gives `AF ≥ 2.5` (examples/default.toml: the stretch on the axis
-//! 2.101767-2.106803 has its half-power points 0.12 below and 0.79 above, so its lower end is a
-//! critical speed and its upper one overdamped; taken together, `AF` = 2.3). A damped Jeffcott
-//! rotor (`λ = −ζ + i(ω_d − Ω)`, half-power band `2ζ` wide) is marked exactly where
+//! **Overdamped ends** (session 31; the rule of session 33). An end on the real axis is where
+//! the pair's forward whirl meets `1×`, but a resonance needs a peak of the response there. The
+//! response to unbalance is constant in rotating axes; in the single-mode approximation each
+//! mode's part is `∝ 1/|λ|`. It peaks on the pair's stretch on the axis `[a, b]` (the two ends
+//! found; `a = b` for a pair passing through it; one end and the grid's end where the stretch
+//! runs off the grid), where the pair is real and `|λ|` smallest: the peak reference `r` is the
+//! smallest `|λ|` of the pair's two real eigenvalues on it (at its ends and at the refined
+//! grid's points inside it, or its middle where none is: the smaller `r`, the narrower the
+//! band, the safe side for a mark that says "no resonance"). The half-power points `Ω₁ < a`,
+//! `Ω₂ > b` are where `|λ|` of the complex runs beside it first reaches `√2 r` (found on the
+//! refined lines' points, located on the model's spectrum by `illinois` on `Pair::at`), and
+//! API 684's amplification factor is `AF = Ω_c/(Ω₂ − Ω₁)`, `Ω_c = (a + b)/2`. Both ends of a
+//! stretch are one event and carry one verdict, [`CriticalSpeed::overdamped`] (the tables say
+//! "overdamped, no resonance", the figure draws it grey), set only where `AF <` [`AF_MIN`] = 2.5
+//! is established (`overdamped_end`): both points found and `Ω₂ − Ω₁ > Ω_c/2.5`, or what is
+//! known of the band already that wide (a side that returns to the axis, meets the grid's end
+//! or a speed without spectrum counts only as far as `|λ| < √2 r` is checked on it; a side on
+//! which `|λ| < √2 r` holds `Ω_c/2.5 − (b − a)` from the stretch settles it alone). Not marked,
+//! no claim: a band not established that wide (cut by the axis's end: the verdict then does
+//! not change with `--omega-max` from "no" to "yes", only from "undetermined" to a verdict); a
+//! stretch on which the pair's smaller real `|λ|` reaches `√2 r` (a long stretch whose real
+//! eigenvalue heads for zero: its peak is inside, not a band about the stretch); a side on
+//! which `|λ|` drops below `r` (the response peaks beside the stretch). The pair's lines on the
+//! stretch are the line and its conjugate's line beside it; where one of them meets another
+//! real eigenvalue first (partners exchanged on the axis), the stretch is taken to the last
+//! grid point where both are real and that side is open. A damped Jeffcott rotor
+//! (`λ = −ζ + i(ω_d − Ω)`, `|λ|² = ζ² + (ω_d − Ω)²`: `r = ζ`, band `2ζ`) is marked exactly where
 //! `ζ > ω_d/5`, `ζ > 1/√26`, its `AF = ω_d/2ζ` below 2.5 (tests/campbell_overdamped_31.rs).
-//! Marked on the examples (their default grids, 12-state route where it applies):
-//! default.toml and spatial.toml 0.07736 and 0.1319 (the two balls' drag pair, `σ ≈ −0.1`,
-//! `ν̂ < 1e-4` next to the axis) and 2.107; dimensional.toml 0.0272, 0.0922, 0.1697 (its drag
-//! pair, `σ ≈ −0.05`) and 1.148153, 1.151660 (a stretch off the axis, `ν̂ ≤ 0.012 |σ|`);
-//! washing_machine.toml 0.3898, 0.6201, 0.9163, 1.230, 3.076, 3.326 (the drag pair, `ν̂ < |σ|`
-//! wherever complex up to the top, 6.04), 1.635 and 2.303 (half-power points 0.46 and 1.05
-//! away); planar.toml
-//! 276.262 and 487.268 rad/s; linear_rotor_shaft.toml 2426.6 rad/s; linear_rotor_windows.toml
-//! 176.797 (`Re λ ≈ −260`, `ν̂ ≤ 3.4e-4 |σ|`) and 1162.95 rad/s. Only ends on the axis are
-//! judged: the components' crossings (`h ≥ 2`, backward) are never marked.
+//! Marked on the examples (their default axes, `autobal campbell`): default.toml and
+//! spatial.toml 0.07736 and 0.1319 (the two balls' drag pair, `σ ≈ −0.1`, real between them,
+//! `|λ| ≈ 0.1` beside); dimensional.toml 0.0272 and 0.0922 (its drag pair, `σ ≈ −0.05`);
+//! washing_machine.toml 0.3898, 0.6201 and 0.9163, 1.230 (two stretches of the drag pair);
+//! planar.toml 276.262 rad/s (its stretch on the axis taken from 220.3 rad/s, the last grid
+//! point below where both of the pair's lines are real, `r` ≈ 926 1/s, and `|λ| < √2 r` 43
+//! rad/s above it). Not marked: default.toml's ball pair on the axis
+//! 2.101767-2.106803 (`|λ|` reaches `√2 · 0.0767` 0.137 below and 0.076 above: `AF` ≈ 9.6;
+//! session 31 marked its upper end); linear_rotor_shaft.toml 2425.487-2426.598 rad/s (`√2 ·
+//! 277.3` reached 347.0 rad/s below and 300.0 above: `AF` = 3.74, a forced response of the
+//! shaft gives ≈ 3.7; on the default axis, 2543 rad/s, the upper point is past its end:
+//! undetermined; session 31 marked 2426.598 there and not to 3000 rad/s). Session 31's marks
+//! dropped as not established: dimensional.toml 0.1697 and 1.148153, 1.151660;
+//! washing_machine.toml 1.635, 2.303, 3.076, 3.326; planar.toml 487.268; linear_rotor_windows.toml
+//! 176.797 and 1162.95 rad/s. Only ends on the axis are judged: the components' crossings
+//! (`h ≥ 2`, backward) are never marked. Tolerances: `r` is sampled at the refined grid's
+//! points (measured: 2e-5 relative on the shaft, 4e-4 on default.toml's ball pair from one grid
+//! to another), and a `|λ|` that rises past `√2 r` and falls back between two of them is not
+//! seen; the half-power points are then located to `BISECT_TOL` (1e-13 relative).
 //!
 //! **Independent of the drawn grid** (session 14). The search does not run on the drawn
 //! speeds but on a grid refined on the model's spectrum (`refine`):
@@ -251,12 +269,12 @@ pub struct CriticalSpeed {
     /// (`> ½`: the major component, `< ½`: the minor one); `1` where the pair is on the real
     /// axis of the rotating frame (`ν = 0`: its two components coincide at `Ω`).
     pub share: f64,
-    /// A crossing of `ν̂ = 0` (forward, `1×`) whose pair is overdamped there: on no side where
-    /// it is complex does it oscillate faster than it decays, `ν̂ > |σ|`, within
-    /// [`RESONANCE_WINDOW`]` · Ω` of the crossing, so the response to unbalance (`∝ 1/|λ|`)
-    /// has no half-power band narrow enough for an amplification factor of 2.5 there: no
-    /// resonance (module docs). Listed, marked, not left out. Always `false` for the other
-    /// crossings.
+    /// A crossing of `ν̂ = 0` (forward, `1×`) that is certainly no resonance: the response to
+    /// unbalance (`∝ 1/|λ|`) about the pair's stretch on the axis (both its ends one event) has
+    /// a half-power band established wider than `Ω_c/`[`AF_MIN`] (`|λ| < √2 r`, `r` the
+    /// smallest `|λ|` on the stretch), API 684's amplification factor below 2.5 (module docs,
+    /// "Overdamped ends"). Listed, marked, not left out. `false` where the band is not
+    /// established (no claim either way) and for the other crossings.
     pub overdamped: bool,
 }
 
@@ -1311,7 +1329,7 @@ fn search<S: Spectrum>(l: &Lines, spec: &S, harmonics: &[u32], curves: &[FixedCu
         // an end on the real axis: a resonance only where its pair oscillates faster than it
         // decays near it, on its complex side (module docs)
         if f.cs.harmonic == 1 && f.cs.whirl == Whirl::Forward && !f.quiet {
-            f.cs.overdamped = !resonant(l, spec, line, f.cs.omega);
+            f.cs.overdamped = overdamped_end(l, spec, line, f.cs.omega);
         }
     }
     found.sort_by(|a, b| a.cs.harmonic.cmp(&b.cs.harmonic).then((a.cs.whirl as u8).cmp(&(b.cs.whirl as u8))).then(a.cs.omega.total_cmp(&b.cs.omega)));
@@ -1339,55 +1357,215 @@ fn search<S: Spectrum>(l: &Lines, spec: &S, harmonics: &[u32], curves: &[FixedCu
     Ok(out)
 }
 
-/// Half the window, relative to the crossing's speed `Ω_c`, in which an end on the real axis
-/// must show its resonance ([`CriticalSpeed::overdamped`]): API 684's amplification factor
-/// `AF = Ω_c/(Ω₂ − Ω₁)` (`Ω₁`, `Ω₂` the half-power speeds) is at least 2.5 for a critical speed
-/// that calls for a separation margin, a half-power band at most `Ω_c/2.5` wide, so at most
-/// `Ω_c/5` on either side of it.
-pub const RESONANCE_WINDOW: f64 = 0.2;
+/// The amplification factor below which a crossing needs no separation margin (API 684): an
+/// end on the real axis is marked [`CriticalSpeed::overdamped`] only where its half-power band
+/// is certainly wider than `Ω_c/AF_MIN` (module docs, "Overdamped ends").
+pub const AF_MIN: f64 = 2.5;
 
-/// Whether the pair of line `line` of `l`, on the real axis at `w` (an end found in the step of
-/// `l` holding `w`), oscillates faster than it decays, `ν̂ > |σ|` (its damping ratio
-/// `|σ|/|λ|` below `1/√2`: past its half-power point), at some speed within
-/// [`RESONANCE_WINDOW`]` · w` of `w` on a side where the line is complex: at the points of `l`
-/// of the line's complex run next to `w` inside the window, and where the run reaches the
-/// window's edge, at the edge itself (the pair's eigenvalue there on `spec`, [`Pair::at`]), so
-/// that a `ν̂/|σ|` rising through 1 inside the window is seen on every grid. A run that
-/// returns to the axis, or the grid's end, inside the window ends the side.
-fn resonant<S: Spectrum>(l: &Lines, spec: &S, line: usize, w: f64) -> bool {
-    let om = l.omega;
-    let n = om.len();
-    let half = RESONANCE_WINDOW * w.abs();
-    let k1 = om.partition_point(|&x| x <= w).clamp(1, n - 1);
-    let k0 = k1 - 1;
-    let under = |z: Complex64| z.im.abs() > z.re.abs();
-    let complex = |k: usize| l.z[line][k].filter(|z| !on_axis(z.im.abs(), om[k]));
-    for (start, down) in [(k0, true), (k1, false)] {
-        let mut k = start;
-        let mut prev: Option<usize> = None;
-        while let Some(z) = complex(k) {
-            if (om[k] - w).abs() > half {
-                // the edge lies between the last point inside (or the crossing) and this one
-                let edge = if down { w - half } else { w + half };
-                let (a, b) = prev.map_or((k, k), |p| (p.min(k), p.max(k)));
-                if (Pair { l, spec, line }).at(a, b, edge).is_ok_and(under) {
-                    return true;
-                }
-                break;
-            }
-            if under(z) {
-                return true;
-            }
-            prev = Some(k);
-            match (down, k) {
-                (true, 0) => break,
-                (true, _) => k -= 1,
-                (false, _) if k + 1 >= n => break,
-                (false, _) => k += 1,
-            }
+/// What one side of a stretch on the real axis shows of `|λ|` against the half-power level
+/// `√2 r` ([`overdamped_end`]), as a distance from the stretch's end.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Side {
+    /// `|λ|` reaches `√2 r` this far from the end (the half-power point, on the spectrum).
+    Half(f64),
+    /// `|λ| < √2 r` is established this far and no further: the complex run returns to the
+    /// axis, meets the grid's end or a speed without spectrum (a lower bound of the side).
+    Open(f64),
+    /// `|λ| < √2 r` established at least this far: the side alone makes the band wide enough.
+    Wide(f64),
+    /// `|λ|` falls below `r` on the run: the response peaks beside the stretch, not at it.
+    Beside,
+}
+
+impl Side {
+    fn reach(self) -> f64 {
+        match self {
+            Side::Half(d) | Side::Open(d) | Side::Wide(d) => d,
+            Side::Beside => 0.0,
         }
     }
-    false
+}
+
+/// Whether the end on the real axis at `w` (found in the step of `l` holding `w`, the pair on
+/// line `line` on its complex side) is certainly no resonance (module docs, "Overdamped
+/// ends"): the stretch `[a, b]` on the axis it bounds (both ends, or one end and the grid's
+/// end; `a = b` for a pair passing through the axis) is one event; its peak reference `r` is
+/// the smallest `|λ|` of the pair on it (the ends, and the pair's two real eigenvalues at the
+/// grid's points inside, or at its middle where none is); the half-power points `Ω₁ < a`,
+/// `Ω₂ > b` are where `|λ|` of the complex runs beside it first reaches `√2 r` (located on the
+/// spectrum, [`Pair::at`]); it is marked only where `Ω₂ − Ω₁ > Ω_c/`[`AF_MIN`], `Ω_c =
+/// (a + b)/2`, is established: both points found that far apart, or what is known of the
+/// band (a side that returns to the axis or meets the grid's end counts only as far as
+/// `|λ| < √2 r` is established on it) already that wide. A side on which `|λ|` drops below `r`
+/// (the response peaks beside the stretch) and any failure leave it unmarked (no claim).
+fn overdamped_end<S: Spectrum>(l: &Lines, spec: &S, line: usize, w: f64) -> bool {
+    overdamped_end_or(l, spec, line, w).unwrap_or(false)
+}
+
+/// [`overdamped_end`], its spectrum's errors returned.
+fn overdamped_end_or<S: Spectrum>(l: &Lines, spec: &S, line: usize, w: f64) -> Result<bool> {
+    let om = l.omega;
+    let n = om.len();
+    let k1 = om.partition_point(|&x| x <= w).clamp(1, n - 1);
+    let k0 = k1 - 1;
+    let pair = Pair { l, spec, line };
+    let real = |q: usize, k: usize| l.z[q][k].is_some_and(|z| on_axis(z.im.abs(), om[k]));
+    let complex = |k: usize| l.z[line][k].is_some_and(|z| !on_axis(z.im.abs(), om[k]));
+    let pr = &pair;
+    let axis = |k0: usize, k1: usize| move |x: f64| -> Result<bool> { Ok(on_axis(pr.nu(k0, k1, x)?, x)) };
+    // which side of w the stretch lies on: the grid's, else the count just beside w
+    let d = 0.5 * PASSAGE_TOL * w.abs().max(1.0);
+    let up = if real(line, k1) && complex(k0) {
+        Some(true)
+    } else if real(line, k0) && complex(k1) {
+        Some(false)
+    } else {
+        match count_at(spec, (w - d).max(om[k0]))?.cmp(&count_at(spec, (w + d).min(om[k1]))?) {
+            std::cmp::Ordering::Less => Some(true),
+            std::cmp::Ordering::Greater => Some(false),
+            std::cmp::Ordering::Equal => None,
+        }
+    };
+    // the pair's other line: the conjugate of this one at the complex grid point next to w
+    let mirror = |k: usize| -> Option<usize> {
+        let m = l.z[line][k].filter(|_| complex(k))?;
+        (0..l.z.len()).find(|&q| q != line && l.z[q][k].is_some_and(|z| z.re == m.re && z.im == -m.im))
+    };
+    let partner = mirror(k0).or_else(|| mirror(k1));
+    // both of the pair's lines real at grid point k (the line alone where no partner is known)
+    let both = |k: usize| real(line, k) && partner.is_none_or(|p| real(p, k));
+    // the pair back off the axis at k as itself: the line complex there, its partner (if any) its conjugate
+    let back = |k: usize| complex(k) && partner.is_none_or(|p| mirror(k) == Some(p));
+    // the stretch [a, b]; the first complex grid point beside it on each side with the step
+    // (grid indices) to interpolate the first segment on, `None` where the pair's run is not
+    // there (the grid's end, no spectrum, a run back on the axis inside the step, a real
+    // eigenvalue of the pair meeting another one first: the stretch is then taken to the last
+    // grid point where both are real, and the side is open); the grid points inside it
+    type Start = Option<(usize, (usize, usize))>;
+    let (a, b, lo, hi, inside): (f64, f64, Start, Start, Vec<usize>) = match up {
+        None => (w, w, complex(k0).then_some((k0, (k0, k1))), complex(k1).then_some((k1, (k0, k1))), vec![]),
+        Some(true) => {
+            let lo = complex(k0).then_some((k0, (k0, k1)));
+            if both(k1) {
+                let mut kr = k1;
+                while kr + 1 < n && both(kr + 1) {
+                    kr += 1;
+                }
+                let inside = (k1..=kr).collect();
+                if kr + 1 < n && back(kr + 1) {
+                    (w, bisect(om[kr], om[kr + 1], axis(kr, kr + 1))?, lo, Some((kr + 1, (kr, kr + 1))), inside)
+                } else {
+                    (w, om[kr], lo, None, inside)
+                }
+            } else if complex(k1) && axis(k0, k1)(w + d)? {
+                (w, bisect(w + d, om[k1], axis(k0, k1))?, lo, Some((k1, (k0, k1))), vec![])
+            } else {
+                return Ok(false);
+            }
+        }
+        Some(false) => {
+            let hi = complex(k1).then_some((k1, (k0, k1)));
+            if both(k0) {
+                let mut kr = k0;
+                while kr > 0 && both(kr - 1) {
+                    kr -= 1;
+                }
+                let inside = (kr..=k0).collect();
+                if kr > 0 && back(kr - 1) {
+                    (bisect(om[kr - 1], om[kr], axis(kr - 1, kr))?, w, Some((kr - 1, (kr - 1, kr))), hi, inside)
+                } else {
+                    (om[kr], w, None, hi, inside)
+                }
+            } else if complex(k0) && axis(k0, k1)(w - d)? {
+                (bisect(om[k0], w - d, axis(k0, k1))?, w, Some((k0, (k0, k1))), hi, vec![])
+            } else {
+                return Ok(false);
+            }
+        }
+    };
+    // the peak reference r: the smallest |λ| of the pair on the stretch (the smaller it is, the
+    // narrower the band: the safe side for a mark that says "no resonance"); `small` the
+    // smaller |λ| of the pair at each point of the stretch, checked below to stay inside the band
+    let at_end = |x: f64, s: Start| -> Result<Option<f64>> {
+        match s {
+            Some((_, (g0, g1))) => Ok(Some(pair.at(g0, g1, x)?.norm())),
+            None => Ok(None),
+        }
+    };
+    let mut small: Vec<f64> = [at_end(a, lo)?, at_end(b, hi)?].into_iter().flatten().collect();
+    for &k in &inside {
+        let v = std::iter::once(line).chain(partner).filter_map(|q| l.z[q][k].filter(|_| real(q, k))).map(|z| z.norm()).fold(f64::INFINITY, f64::min);
+        small.push(v);
+    }
+    if inside.is_empty() && b > a {
+        // the two real eigenvalues nearest the pair's mean at the stretch's middle
+        let mid = 0.5 * (a + b);
+        let guess = pair.at(k0, k1, a)?.re;
+        let mut ev: Vec<f64> = spec.eigenvalues(mid)?.iter().filter(|z| on_axis(z.im.abs(), mid)).map(|z| z.re).collect();
+        ev.sort_by(|p, q| (p - guess).abs().total_cmp(&(q - guess).abs()));
+        small.push(ev.iter().take(2).map(|v| v.abs()).fold(f64::INFINITY, f64::min));
+    }
+    let r = small.iter().copied().fold(f64::INFINITY, f64::min);
+    if !r.is_finite() || r <= 0.0 {
+        return Ok(false);
+    }
+    let level = std::f64::consts::SQRT_2 * r;
+    // the response stays above half power over the whole stretch, or the band is not [Ω₁, Ω₂]
+    if small.iter().any(|&v| v >= level) {
+        return Ok(false);
+    }
+    let centre = 0.5 * (a + b);
+    let need = centre / AF_MIN;
+    // farther than this on one side, the band is wide enough whatever the other side does
+    let cap = (need - (b - a)).max(0.0);
+    let walk = |start: Start, from: f64, down: bool| -> Result<Side> {
+        let Some((mut k, mut seg)) = start else { return Ok(Side::Open(0.0)) };
+        let mut prev = from;
+        let g = |x: f64, seg: (usize, usize)| -> Result<f64> { Ok(pair.at(seg.0, seg.1, x)?.norm() - level) };
+        let half = |lo: f64, hi: f64, seg: (usize, usize)| -> Result<Side> {
+            let (ga, gb) = (g(lo, seg)?, g(hi, seg)?);
+            if ga >= 0.0 {
+                return Ok(Side::Half((lo - from).abs()));
+            }
+            let x = illinois(lo, hi, ga, gb, |x| g(x, seg))?;
+            Ok(Side::Half((x - from).abs()))
+        };
+        loop {
+            let Some(z) = l.z[line][k].filter(|_| complex(k)) else { return Ok(Side::Open((prev - from).abs())) };
+            if (om[k] - from).abs() > cap {
+                let edge = if down { from - cap } else { from + cap };
+                let ze = pair.at(seg.0, seg.1, edge)?.norm();
+                if ze < r {
+                    return Ok(Side::Beside);
+                }
+                return if ze < level { Ok(Side::Wide(cap)) } else { half(prev, edge, seg) };
+            }
+            if z.norm() < r {
+                return Ok(Side::Beside);
+            }
+            if z.norm() >= level {
+                return half(prev, om[k], seg);
+            }
+            prev = om[k];
+            let next = match (down, k) {
+                (true, 0) => return Ok(Side::Open((prev - from).abs())),
+                (true, _) => k - 1,
+                (false, _) if k + 1 >= n => return Ok(Side::Open((prev - from).abs())),
+                (false, _) => k + 1,
+            };
+            seg = (k.min(next), k.max(next));
+            k = next;
+        }
+    };
+    let (below, above) = (walk(lo, a, true)?, walk(hi, b, false)?);
+    if below == Side::Beside || above == Side::Beside {
+        return Ok(false);
+    }
+    if matches!(below, Side::Wide(_)) || matches!(above, Side::Wide(_)) {
+        return Ok(true);
+    }
+    // what is established of the band Ω₂ − Ω₁ (all of it where both points are found)
+    Ok((b - a) + below.reach() + above.reach() > need)
 }
 
 /// The line of `l` carrying the pair that leaves (or reaches) the real axis at the end `w`
