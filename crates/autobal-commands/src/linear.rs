@@ -229,7 +229,10 @@ fn nu_text(nu: f64, resolved: bool) -> String {
 pub fn campbell_table(cfg: &Config, c: &Campbell) -> String {
     let mut s = String::new();
     let _ = writeln!(s, "config: {}", cfg.source);
-    let _ = writeln!(s, "Campbell diagram: eigenvalues λ = σ + iν in rotating axes (Im ≥ 0 shown; log dec = −2πσ/|ν| per rotating-axes cycle), fixed-axes whirl frequency");
+    let _ = writeln!(
+        s,
+        "Campbell diagram: eigenvalues λ = σ + iν in rotating axes (Im ≥ 0 shown; log dec = −2πσ/|ν| per rotating-axes cycle), fixed-axes whirl frequency"
+    );
     let n = c.omega.len();
     let mut at = vec![0, n / 4, n / 2, 3 * n / 4, n.saturating_sub(1)];
     at.dedup();
