@@ -84,6 +84,17 @@
 //!   by that eigenvalue, a move along the near-null direction that shifts the abscissa by more
 //!   than its own error, and the stability boundary with it).
 //!   Otherwise [`AnalysisError::NoConvergence`] with the residual reached.
+//! - **Growth over a period**: a periodic orbit whose flow over one period amplifies a
+//!   deviation by more than `1/rtol` (the scaled norm `‖S⁻¹ Φ S‖∞` of a monodromy matrix
+//!   integrated at the shooting's start or at a restart; where the first flow from the start
+//!   takes more than 20 000 steps, one deviation's growth, measured over sixteenths of the
+//!   period until it passes the limit) is refused at once
+//!   ([`AnalysisError::Unresolvable`]): the residual `x0 − x(T)` then carries the
+//!   integration's error times that growth, and the Newton step `(I − Φ) d = r` loses as
+//!   many digits, so the search only crawls (a statically unstable rotor, `K` indefinite,
+//!   diverging at 99.5 1/s, took more than 100 s without an answer at 6 rad/s, growth
+//!   `e^51` over `T = π/Ω`). Measured on that rotor (rtol `1e-10`): found at growth 4e6
+//!   (20 rad/s), not found (the ordinary message, in 2 s) at 7e8 (15 rad/s).
 //! - **Verdict**, equilibrium: neutral where `|α| ≤ 1e-9 ρ`, `ρ = max |λ|` the characteristic
 //!   rate of the linearisation. The balanced QR's eigenvalues carry an absolute error of about
 //!   `ε ρ` times their condition number; `1e-9` leaves room for condition numbers up to ~1e6
@@ -189,6 +200,34 @@ pub enum AnalysisError {
         period: f64,
         /// The integrator's outcome.
         reason: String,
+    },
+    /// The periodic orbit is beyond single shooting: the flow amplifies a deviation from the
+    /// start by `growth` within `within` of the period (the monodromy matrix's scaled norm
+    /// `‖S⁻¹ Φ S‖∞` at the shooting's point over the whole period, or one deviation's growth
+    /// until it passed the limit), above `limit` (`1/rtol`), where the shooting's
+    /// residual `x0 − x(T)` carries the integration's error times that growth and the Newton
+    /// step `(I − Φ) d = r` loses its digits (module docs). No orbit and no verdict: a
+    /// statically unstable rotor (an indefinite `K`) at a speed whose period spans many
+    /// e-foldings of its divergence, where the search only crawls.
+    #[error(
+        "no periodic orbit computed: single shooting cannot resolve it here: the flow amplifies a deviation by {} within t = {} s of its period T = {} s (a growth rate of about ln(that)/t = {} 1/s), beyond {} (1/rtol), where the shooting residual carries the integration's error times that growth; its stability is not determined here",
+        crate::error::fmt_num(*growth),
+        crate::error::fmt_num(*within),
+        crate::error::fmt_num(*period),
+        crate::error::fmt_num(growth.ln() / within),
+        crate::error::fmt_num(*limit)
+    )]
+    Unresolvable {
+        /// The period `T`.
+        period: f64,
+        /// The growth measured: `‖S⁻¹ Φ(T) S‖∞` at the shooting's point, or one deviation's
+        /// scaled growth over `within`.
+        growth: f64,
+        /// Over what time `growth` was measured (`T`, or less where one deviation passed the
+        /// limit sooner).
+        within: f64,
+        /// The most growth the shooting takes on (`1/rtol`).
+        limit: f64,
     },
     /// A state or right-hand side component became NaN or infinite.
     #[error("{component} became non-finite in the {what}")]

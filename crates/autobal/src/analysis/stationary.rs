@@ -351,13 +351,95 @@ impl<F: VectorField + ?Sized> System for Plain<'_, F> {
 /// `Method::Dop853`, with stage sums over contiguous vectors, which on the `n²` variational
 /// states cost a third of `Solver`'s per-component sums in the dev profile).
 fn integrate_period<S: System>(sys: &S, y: &mut [f64], period: f64, rtol: f64, atol: Vec<f64>) -> Result<()> {
+    integrate_period_capped(sys, y, period, rtol, atol, u64::MAX).map(|_| ())
+}
+
+/// The tangent flow `x' = f(t, x)`, `v' = J(t, x) v` (`2n` states): how one deviation `v` from
+/// `x` grows ([`growth_beyond`]).
+struct Tangent<'a, F: VectorField + ?Sized> {
+    f: &'a F,
+    jac: RefCell<Vec<f64>>,
+}
+
+impl<F: VectorField + ?Sized> System for Tangent<'_, F> {
+    fn dim(&self) -> usize {
+        2 * self.f.dim()
+    }
+    fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
+        let n = self.f.dim();
+        let (x, v) = y.split_at(n);
+        let (dx, dv) = dy.split_at_mut(n);
+        self.f.rhs(t, x, dx);
+        let mut j = self.jac.borrow_mut();
+        self.f.jacobian(t, x, &mut j);
+        for a in 0..n {
+            dv[a] = (0..n).map(|c| j[a * n + c] * v[c]).sum();
+        }
+    }
+    fn component_name(&self, i: usize) -> String {
+        let n = self.f.dim();
+        if i < n {
+            self.f.component_name(i)
+        } else {
+            format!("δ{}", self.f.component_name(i - n))
+        }
+    }
+}
+
+/// Chunks of a period over which [`growth_beyond`] measures the growth.
+const GROWTH_CHUNKS: usize = 16;
+
+/// Whether the flow over `period` from `x0` amplifies a deviation by more than `limit`: `x`
+/// and one deviation `v` (scaled components of one magnitude, mixed signs) integrated by
+/// DOP853 at [`MATRIX_RTOL`] over [`GROWTH_CHUNKS`] chunks of the period, stopped at the end of
+/// the first chunk where `‖S⁻¹ v‖∞` exceeds `limit` (its growth and the time reached: a lower
+/// bound on the growth over the period, since `‖S⁻¹ Φ S‖∞ ≥ ‖S⁻¹ v(t)‖∞` for `‖S⁻¹ v(0)‖∞ = 1`
+/// up to `t`, and the flow goes on); `None` where it stays within `limit` over the period or
+/// an integration fails. It stops while the deviation is still small, where the plain flow
+/// from a start off the orbit runs on until the deviation is enormous (and its steps with it).
+fn growth_beyond<F: VectorField + ?Sized>(f: &F, x0: &[f64], period: f64, s: &[f64], limit: f64) -> Option<(f64, f64)> {
+    let n = f.dim();
+    let sys = Tangent { f, jac: RefCell::new(vec![0.0; n * n]) };
+    let mut y = x0.to_vec();
+    y.extend((0..n).map(|i| if i % 2 == 0 { s[i] } else { -0.7 * s[i] }));
+    let mut atol: Vec<f64> = s.iter().map(|v| MATRIX_RTOL * v).collect();
+    atol.extend_from_slice(&atol.clone());
+    let mut work = lean::Lean::new(2 * n);
+    for c in 1..=GROWTH_CHUNKS {
+        let (t0, t1) = (period * (c - 1) as f64 / GROWTH_CHUNKS as f64, period * c as f64 / GROWTH_CHUNKS as f64);
+        let out = lean::integrate(&sys, &mut work, t0, &mut y, t1, MATRIX_RTOL, &atol);
+        if !out.status.is_completed() {
+            return None;
+        }
+        let growth = (0..n).map(|i| (y[n + i] / s[i]).abs()).fold(0.0, f64::max);
+        if growth > limit {
+            return Some((growth, t1));
+        }
+    }
+    None
+}
+
+/// Attempted steps of a shooting's first flow (from its start, [`periodic`]) after which it is
+/// asked whether the growth over the period is beyond the shooting ([`growth_beyond`]); where it
+/// is not, the flow goes on to its end. Periodic orbits at 1e-10 take hundreds to a few
+/// thousand steps a period (408 on tests/indefinite_stiffness_33.rs at 5.97 rad/s); a flow
+/// from a start off an orbit that grows by `e^{ΛT}` runs on while its deviation grows and the
+/// motion with it (more than a million steps there from a start carried from 20 rad/s).
+const FIRST_FLOW_STEPS: u64 = 20_000;
+
+/// [`integrate_period`] with at most `max_steps` attempted steps ([`lean::integrate_capped`]);
+/// the steps it attempted (accepted and rejected).
+fn integrate_period_capped<S: System>(sys: &S, y: &mut [f64], period: f64, rtol: f64, atol: Vec<f64>, max_steps: u64) -> Result<Option<u64>> {
     // the options' own checks (positive finite tolerances), as Solver::new makes them
     Options::new(rtol, rtol).method(Method::Dop853).atol_per_component(atol.clone()).validate()?;
-    let out = lean::integrate(sys, &mut lean::Lean::new(y.len()), 0.0, y, period, rtol, &atol);
+    let out = lean::integrate_capped(sys, &mut lean::Lean::new(y.len()), 0.0, y, period, rtol, &atol, max_steps);
+    if out.status == crate::ode::Status::Stopped(crate::control::StopReason::TooManySteps { max_steps }) {
+        return Ok(None);
+    }
     if !out.status.is_completed() {
         return Err(AnalysisError::Integration { period, reason: out.to_string() });
     }
-    Ok(())
+    Ok(Some(out.stats.steps + out.stats.rejected))
 }
 
 /// Most equispaced samples per period of the interpolated Jacobian ([`monodromy`]) before the
@@ -900,6 +982,28 @@ fn flow<F: VectorField + ?Sized>(f: &F, x0: &[f64], period: f64, s: &[f64], rtol
     Ok(y)
 }
 
+/// [`flow`] with at most `max_steps` attempted steps, and the steps it attempted; `None` where
+/// it needed more.
+fn flow_capped<F: VectorField + ?Sized>(f: &F, x0: &[f64], period: f64, s: &[f64], rtol: f64, max_steps: u64) -> Result<Option<(Vec<f64>, u64)>> {
+    let mut y = x0.to_vec();
+    let steps = integrate_period_capped(&Plain(f), &mut y, period, rtol, s.iter().map(|v| rtol * v).collect(), max_steps)?;
+    Ok(steps.map(|k| (y, k)))
+}
+
+/// The most steps a line search's trial flow of [`periodic`] may take: this many times those of
+/// the flow from the current point (at least [`TRIAL_STEPS_FLOOR`]). A trial point whose flow
+/// needs far more steps than the current point's lies where the motion is far faster, outside
+/// the neighbourhood where the shooting's linear model holds; it counts as a failed trial (the
+/// step is halved), as a trial whose integration fails, so the cap can only shorten a step,
+/// never accept one. Without it a statically unstable rotor (`K` indefinite,
+/// tests/indefinite_stiffness_33.rs) took 1.18 million steps (20 s in debug) on one trial flow
+/// at 5.97 rad/s, against 408 from the current point: the rotor's deviation grew by ~e^51 over
+/// the period and drove the balls round ever faster.
+const TRIAL_STEPS_FACTOR: u64 = 20;
+
+/// The least step cap of a trial flow ([`TRIAL_STEPS_FACTOR`]).
+const TRIAL_STEPS_FLOOR: u64 = 2000;
+
 /// `x(T; x0)` and `Φ(T)` (module docs of [`crate::analysis`]): the [`orbit`], then its
 /// [`monodromy`].
 fn variational_flow<F: VectorField + ?Sized>(f: &F, x0: &[f64], period: f64, s: &[f64], rtol: f64) -> Result<(Orbit, Vec<f64>)> {
@@ -960,6 +1064,22 @@ fn near_unit_multiplier(b: &[f64], n: usize) -> String {
     }
 }
 
+/// `‖S⁻¹ Φ S‖∞`: how much the flow over a period amplifies a deviation, in scaled variables.
+fn scaled_growth(phi: &[f64], s: &[f64], n: usize) -> f64 {
+    (0..n).map(|a| (0..n).map(|c| (phi[a * n + c] * s[c] / s[a]).abs()).sum::<f64>()).fold(0.0, f64::max)
+}
+
+/// [`AnalysisError::Unresolvable`] where the monodromy matrix `phi` (integrated at the
+/// shooting's point) amplifies a deviation by more than `1/rtol` (module docs of
+/// [`crate::analysis`]), else `phi`'s shooting matrix.
+fn resolvable_matrix(phi: &[f64], s: &[f64], n: usize, period: f64, rtol: f64) -> Result<Vec<f64>> {
+    let (growth, limit) = (scaled_growth(phi, s, n), 1.0 / rtol);
+    if growth > limit || !growth.is_finite() {
+        return Err(AnalysisError::Unresolvable { period, growth, within: period, limit });
+    }
+    Ok(shooting_matrix(phi, s, n))
+}
+
 fn periodic<F: VectorField + ?Sized>(
     f: &F,
     guess: &[f64],
@@ -982,13 +1102,25 @@ fn periodic<F: VectorField + ?Sized>(
     let mut x = guess.to_vec();
     // the residual at x (from a flow at rtol) and the matrix; `fresh`: the matrix was
     // integrated at x (not carried from a neighbour or updated since)
-    let mut r = residual(&x, &flow(f, &x, period, s, opts.rtol)?);
+    // the first flow, from the start: past FIRST_FLOW_STEPS, asked whether the growth over the
+    // period is beyond the shooting before it goes on
+    let limit = 1.0 / opts.rtol;
+    let (xt, mut steps) = match flow_capped(f, &x, period, s, opts.rtol, FIRST_FLOW_STEPS)? {
+        Some(done) => done,
+        None => {
+            if let Some((growth, within)) = growth_beyond(f, &x, period, s, limit) {
+                return Err(AnalysisError::Unresolvable { period, growth, within, limit });
+            }
+            flow_capped(f, &x, period, s, opts.rtol, u64::MAX)?.ok_or_else(|| AnalysisError::Integration { period, reason: "no step budget".into() })?
+        }
+    };
+    let mut r = residual(&x, &xt);
     let (mut b, mut fresh) = match hint.filter(|h| h.len() == n * n && h.iter().all(|v| v.is_finite())) {
         Some(h) => (shooting_matrix(h, s, n), false),
         // a guess that is the orbit already (the planar rotor's balanced state on unequal
         // supports) needs no matrix to steer: only the orbit's monodromy below
         None if norm_inf(&r) <= tol => (vec![], true),
-        None => (shooting_matrix(&matrix_monodromy(f, &x, period, s, opts.rtol)?, s, n), true),
+        None => (resolvable_matrix(&matrix_monodromy(f, &x, period, s, opts.rtol)?, s, n, period, opts.rtol)?, true),
     };
     // the orbit found: one Newton step with its exact matrix (quadratic: from a residual at
     // the tolerance to the integration's error; the quasi-Newton iteration stops just below
@@ -1069,15 +1201,17 @@ fn periodic<F: VectorField + ?Sized>(
         // that is accepted only at 1/4 or 1/8, e.g. a direction a few times too long, would
         // then cost a refresh, and refreshes are capped: kept at 1/16)
         let shortest = if fresh { 1e-10 } else { 1.0 / 16.0 };
+        // each trial flow capped at TRIAL_STEPS_FACTOR times the current point's steps
+        let cap = steps.saturating_mul(TRIAL_STEPS_FACTOR).max(TRIAL_STEPS_FLOOR);
         let step = direction(&b, n, &r, k).and_then(|d| {
             let r0 = norm2(&r);
             let mut lambda = 1.0;
             while lambda >= shortest {
                 let xn: Vec<f64> = x.iter().zip(&d).zip(s).map(|((xi, di), si)| xi + lambda * di * si).collect();
-                if let Ok(xt) = flow(f, &xn, period, s, opts.rtol) {
+                if let Ok(Some((xt, used))) = flow_capped(f, &xn, period, s, opts.rtol, cap) {
                     let rn = residual(&xn, &xt);
                     if norm2(&rn) < (1.0 - 1e-4 * lambda) * r0 {
-                        return Some((xn, rn, lambda, d));
+                        return Some((xn, rn, lambda, d, used));
                     }
                 }
                 lambda *= 0.5;
@@ -1085,7 +1219,7 @@ fn periodic<F: VectorField + ?Sized>(
             None
         });
         match step {
-            Some((xn, rn, lambda, d)) => {
+            Some((xn, rn, lambda, d, used)) => {
                 // Broyden's update B ← B + (Δr − B p) pᵀ / pᵀp, p = λ d the scaled step
                 let p: Vec<f64> = d.iter().map(|v| lambda * v).collect();
                 let pp: f64 = p.iter().map(|v| v * v).sum();
@@ -1103,13 +1237,14 @@ fn periodic<F: VectorField + ?Sized>(
                 let stalled = norm2(&rn) > 0.5 * norm2(&r);
                 x = xn;
                 r = rn;
+                steps = used;
                 fresh = false;
                 if stalled && norm_inf(&r) > tol {
                     refreshes += 1;
                     if refreshes > max_refreshes {
                         return Err(fail(it, norm_inf(&r), &format!("{}{}", stagnates(), near_unit_multiplier(&b, n))));
                     }
-                    b = shooting_matrix(&matrix_monodromy(f, &x, period, s, opts.rtol)?, s, n);
+                    b = resolvable_matrix(&matrix_monodromy(f, &x, period, s, opts.rtol)?, s, n, period, opts.rtol)?;
                     fresh = true;
                 }
             }
@@ -1119,7 +1254,7 @@ fn periodic<F: VectorField + ?Sized>(
                 if refreshes > max_refreshes {
                     return Err(fail(it, res, &format!("{}{}", stagnates(), near_unit_multiplier(&b, n))));
                 }
-                b = shooting_matrix(&matrix_monodromy(f, &x, period, s, opts.rtol)?, s, n);
+                b = resolvable_matrix(&matrix_monodromy(f, &x, period, s, opts.rtol)?, s, n, period, opts.rtol)?;
                 fresh = true;
             }
             // round-off level of the integration: no step can reduce it further

@@ -16,6 +16,7 @@
 use super::dop853;
 use super::dop853_tableau as tab;
 use super::{Outcome, Stats, Status, System};
+use crate::control::StopReason;
 
 /// Buffers of [`integrate`] for a state of length `n`; reusable between calls.
 pub struct Lean {
@@ -108,6 +109,13 @@ impl Lean {
 /// [`Outcome`] says how it ended (`Completed`, `StepTooSmall`, `NotFinite`, or `Stopped` when
 /// this thread's stop probe says so, [`crate::control::with_probe`]).
 pub fn integrate<S: System + ?Sized>(sys: &S, work: &mut Lean, t0: f64, y: &mut [f64], t_end: f64, rtol: f64, atol: &[f64]) -> Outcome {
+    integrate_capped(sys, work, t0, y, t_end, rtol, atol, u64::MAX)
+}
+
+/// [`integrate`] with at most `max_steps` attempted steps (accepted and rejected): past them
+/// it stops with `Stopped(TooManySteps)`, the state at the last accepted step.
+#[allow(clippy::too_many_arguments)]
+pub fn integrate_capped<S: System + ?Sized>(sys: &S, work: &mut Lean, t0: f64, y: &mut [f64], t_end: f64, rtol: f64, atol: &[f64], max_steps: u64) -> Outcome {
     let n = work.n;
     assert!(y.len() == n && atol.len() == n && sys.dim() == n, "state, atol and system of length n");
     let mut stats = Stats::default();
@@ -148,6 +156,10 @@ pub fn integrate<S: System + ?Sized>(sys: &S, work: &mut Lean, t0: f64, y: &mut 
         if t >= t_end {
             y.copy_from_slice(&work.y);
             return Outcome { status: Status::Completed, t, stats };
+        }
+        if stats.steps + stats.rejected >= max_steps {
+            y.copy_from_slice(&work.y);
+            return Outcome { status: Status::Stopped(StopReason::TooManySteps { max_steps }), t, stats };
         }
         let last = t + 1.01 * h >= t_end;
         if last {
@@ -249,6 +261,27 @@ mod tests {
         assert!(done.status.is_completed() && done.stats.rhs_evaluations > 4 * 256 * 12, "{:?}", done.stats);
         // the probe is this thread's only while installed
         assert!(crate::control::probe().is_none());
+    }
+
+    #[test]
+    fn a_step_cap_stops_after_that_many_attempts_and_a_loose_one_changes_nothing() {
+        // integrate_capped (the shooting's trial flows, analysis::stationary): `max_steps`
+        // attempted steps (accepted and rejected) and no more, the state at the last accepted
+        // one; a cap above what the integration needs gives integrate's steps and bits
+        let (rtol, atol) = (1e-10, vec![1e-10; 5]);
+        let y0 = [0.3, -0.1, 0.5, 0.2, 0.1];
+        let mut free = y0.to_vec();
+        let done = integrate(&Test, &mut Lean::new(5), 0.0, &mut free, 20.0, rtol, &atol);
+        let used = done.stats.steps + done.stats.rejected;
+        assert!(done.status.is_completed() && used > 100, "{:?}", done.stats);
+        let mut capped = y0.to_vec();
+        let stopped = integrate_capped(&Test, &mut Lean::new(5), 0.0, &mut capped, 20.0, rtol, &atol, 50);
+        assert_eq!(stopped.status, Status::Stopped(StopReason::TooManySteps { max_steps: 50 }));
+        assert_eq!(stopped.stats.steps + stopped.stats.rejected, 50, "{:?}", stopped.stats);
+        assert!(stopped.t > 0.0 && stopped.t < 20.0 && capped != free, "t = {}", stopped.t);
+        let mut loose = y0.to_vec();
+        let same = integrate_capped(&Test, &mut Lean::new(5), 0.0, &mut loose, 20.0, rtol, &atol, used);
+        assert!(same.status.is_completed() && same.stats == done.stats && loose == free, "{:?}", same.stats);
     }
 
     #[test]
