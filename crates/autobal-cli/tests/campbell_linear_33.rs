@@ -60,7 +60,7 @@ fn the_shafts_first_forward_critical_speed_is_listed_on_two_grids() {
     for ((x, y), want) in a.iter().zip(&b).zip(ENDS) {
         assert!((x.0 - want).abs() < TOL, "{} vs the independent {want}", x.0);
         assert!((x.0 - y.0).abs() <= 1e-6 * want, "grids: {} vs {}", x.0, y.0);
-        assert!(!x.1 && !y.1, "an oscillating pair on its complex side: not overdamped");
+        assert!(!x.1 && !y.1, "an exchange's ends are not judged overdamped (no claim)");
         assert!(x.2 && y.2, "a forward 1× end is excited by unbalance");
     }
     // the backward crossing between them is still there (the backward whirl at −Ω)

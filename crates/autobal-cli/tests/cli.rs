@@ -512,6 +512,8 @@ fn interrupted_after(args: &[&str], ms: u64) -> (Option<i32>, String, String) {
         if !before_start {
             return (out.status.code(), String::from_utf8_lossy(&out.stdout).into(), err);
         }
+        // said, so that a handler installed later and later shows in the test's output
+        eprintln!("{args:?}: SIGINT after {ms} ms came before the command had started; again after {} ms", 2 * ms);
         ms *= 2;
     }
     panic!("{args:?}: every SIGINT arrived before the command had installed its handler");

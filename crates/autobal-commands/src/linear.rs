@@ -324,7 +324,7 @@ fn whirl_name(w: Whirl) -> &'static str {
 pub const OVERDAMPED: &str = "overdamped, no resonance (see the note)";
 
 /// What an overdamped crossing is, once under the tables' list of crossings where one is.
-pub const OVERDAMPED_NOTE: &str = "overdamped, no resonance: ν = 0 is reached, but the response to unbalance (each mode's part ∝ 1/|λ|) has a half-power band certainly wider than Ω_c/2.5 about the pair's stretch on the axis (|λ| below √2 times its smallest value there, over the stretch and beyond it), so API 684's amplification factor is below 2.5: a critically damped mode, e.g. two balls' drag modes. An end whose band is not established (cut by the axis's end, or |λ| smaller beside it) is not marked";
+pub const OVERDAMPED_NOTE: &str = "overdamped, no resonance: ν = 0 is reached, but the response to unbalance (each mode's part ∝ 1/|λ|) has a half-power band certainly wider than Ω_c/2.5 about the pair's stretch on the axis (|λ| below √2 times its smallest value there, over the stretch and beyond it), so the single-mode estimate of API 684's amplification factor is below 2.5: a critically damped mode, e.g. two balls' drag modes. An end whose band is not established (cut by the axis's end, or |λ| smaller beside it) is not marked";
 
 /// A crossing's component in words: `whole motion` on the real axis (share 1: both components
 /// at `Ω`), else the major (share ≥ ½) or minor component with its share.

@@ -90,6 +90,9 @@ fn same(a: &[CriticalSpeed], b: &[CriticalSpeed], what: &str) {
         assert!((x.omega - y.omega).abs() <= 1e-8 * y.omega.max(1.0), "{what}: {x:?} vs {y:?}");
         assert_eq!((x.harmonic, x.whirl), (y.harmonic, y.whirl), "{what}: {x:?} vs {y:?}");
         assert!((x.share - y.share).abs() <= 1e-6, "{what}: {x:?} vs {y:?}");
+        // the overdamped mark is the model's too (its half-power points located on the
+        // spectrum), not the grid's (review 33)
+        assert_eq!(x.overdamped, y.overdamped, "{what}: {x:?} vs {y:?}");
     }
 }
 
@@ -174,7 +177,8 @@ fn an_isotropic_rotor_has_no_minor_components() {
 
 /// Two lists of crossings the same to 1e-9 relative: both are bisected to 1e-13 on the same
 /// spectrum (on the count of real eigenvalues for `h = 1` forward, on `ν̂ − cΩ` otherwise);
-/// only the brackets differ with the grid. Shares to 1e-6 (eigenvectors at speeds 1e-13 apart).
+/// only the brackets differ with the grid. Shares to 1e-6 (eigenvectors at speeds 1e-13 apart),
+/// the overdamped marks equal.
 fn identical(a: &[CriticalSpeed], b: &[CriticalSpeed], what: &str) {
     let list = |v: &[CriticalSpeed]| {
         v.iter().map(|k| format!("{:.10}{}{}", k.omega, if k.whirl == Whirl::Forward { "f" } else { "b" }, k.harmonic)).collect::<Vec<_>>()
@@ -184,6 +188,9 @@ fn identical(a: &[CriticalSpeed], b: &[CriticalSpeed], what: &str) {
         assert!((x.omega - y.omega).abs() <= 1e-9 * y.omega.abs().max(1.0), "{what}: {x:?} vs {y:?}");
         assert_eq!((x.harmonic, x.whirl), (y.harmonic, y.whirl), "{what}: {x:?} vs {y:?}");
         assert!((x.share - y.share).abs() <= 1e-6, "{what}: {x:?} vs {y:?}");
+        // the overdamped mark is the model's too (its half-power points located on the
+        // spectrum), not the grid's (review 33)
+        assert_eq!(x.overdamped, y.overdamped, "{what}: {x:?} vs {y:?}");
     }
 }
 

@@ -8,8 +8,8 @@
 //!   a nearly real pair whose `ν` is resolved (two balls' drag modes: `ν` checked against
 //!   60-digit eigenvalues of the same matrix).
 //! * An end of a stretch on the real axis of the rotating frame (`ν̂ = 0`, forward `1×`) is
-//!   marked overdamped (no resonance) only where API 684's amplification factor is established
-//!   below 2.5 (session 33's rule, replacing session 31's `ν̂ > |σ|` within `Ω/5` of each end
+//!   marked overdamped (no resonance) only where the single-mode estimate (`∝ 1/|λ|`) of API
+//!   684's amplification factor is established below 2.5 (session 33's rule, replacing session 31's `ν̂ > |σ|` within `Ω/5` of each end
 //!   alone): the stretch and both its ends are one event, `r` the smallest `|λ|` on it, the
 //!   half-power points where `|λ| = √2 r` beside it. For a damped Jeffcott rotor the band is
 //!   exactly `2ζ` wide about `ω_d`, so the mark changes at `ζ = ω_d/5`, `ζ* = 1/√26`; the two

@@ -49,6 +49,12 @@
 //!   lines that left staying complex past it: a whirl passes `1×` and changes places with the
 //!   synchronous pair, and both ends are listed (examples/linear_rotor_shaft.toml, balls free:
 //!   373.576 and 374.635 rad/s, the rotor's first forward critical speed, left out before).
+//!   What is checked is the count and the lines, not the whirl's side of `Ω`: the two ends
+//!   must lie within `EXCHANGE_WINDOW` (5 %) of each other, else they are not paired (review
+//!   33); an exchange inside one grid step (the count unchanged across it) and the opposite
+//!   order (a pair landing, then a run from the first speed leaving) are not recognised and
+//!   stay left out. An exchange's ends are not judged overdamped (the runs they end are not the
+//!   event: no claim either way).
 //! * `ν̂ = (h − 1)Ω`, `h ≥ 2`: the forward component at `hΩ`; `ν̂ = (h + 1)Ω`: the other
 //!   component backward at `−hΩ`. Bracketed by the sign of `ν̂ − (h ∓ 1)Ω` on the grid and
 //!   bisected on the model's eigenvalues (the pair's eigenvalue at a trial speed: the one
@@ -69,29 +75,37 @@
 //! band, the safe side for a mark that says "no resonance"). The half-power points `Ω₁ < a`,
 //! `Ω₂ > b` are where `|λ|` of the complex runs beside it first reaches `√2 r` (found on the
 //! refined lines' points, located on the model's spectrum by `illinois` on `Pair::at`), and
-//! API 684's amplification factor is `AF = Ω_c/(Ω₂ − Ω₁)`, `Ω_c = (a + b)/2`. Both ends of a
-//! stretch are one event and carry one verdict, [`CriticalSpeed::overdamped`] (the tables say
+//! the single-mode estimate of API 684's amplification factor is `AF = Ω_c/(Ω₂ − Ω₁)`,
+//! `Ω_c = (a + b)/2` (API 684 reads it on the unbalance response itself; on a damped Jeffcott
+//! rotor the estimate lies above the response's, 2.58 against 2.23 at `ζ = 0.19`, review 33:
+//! it errs towards "resonance", the safe side). Both ends of a
+//! stretch are one event, judged for a verdict, [`CriticalSpeed::overdamped`] (the tables say
 //! "overdamped, no resonance", the figure draws it grey), set only where `AF <` [`AF_MIN`] = 2.5
 //! is established (`overdamped_end`): both points found and `Ω₂ − Ω₁ > Ω_c/2.5`, or what is
-//! known of the band already that wide (a side that returns to the axis, meets the grid's end
-//! or a speed without spectrum counts only as far as `|λ| < √2 r` is checked on it; a side on
+//! known of the band already that wide (a complex side that returns to the axis, meets the
+//! grid's end or a speed without spectrum counts only as far as `|λ| < √2 r` is checked on it;
+//! a side on
 //! which `|λ| < √2 r` holds `Ω_c/2.5 − (b − a)` from the stretch settles it alone). Not marked,
 //! no claim: a band not established that wide (cut by the axis's end: the verdict then does
 //! not change with `--omega-max` from "no" to "yes", only from "undetermined" to a verdict); a
 //! stretch on which the pair's smaller real `|λ|` reaches `√2 r` (a long stretch whose real
 //! eigenvalue heads for zero: its peak is inside, not a band about the stretch); a side on
 //! which `|λ|` drops below `r` (the response peaks beside the stretch). The pair's lines on the
-//! stretch are the line and its conjugate's line beside it; where one of them meets another
-//! real eigenvalue first (partners exchanged on the axis), the stretch is taken to the last
-//! grid point where both are real and that side is open. A damped Jeffcott rotor
+//! stretch are the line and its conjugate's line beside it. A stretch that runs to the grid's
+//! first or last speed, or where one of those lines meets another real eigenvalue first
+//! (partners exchanged on the axis), is not marked (its peak may lie past what is seen: no
+//! claim, review 33); one that runs into speeds without a state ends there (the event ends
+//! with the state) and that side is open. Each end is judged on its own lines (the two ends
+//! of a stretch are found apart and could, near the threshold, disagree: not seen on the
+//! examples, where both ends of every stretch carry one verdict). A damped Jeffcott rotor
 //! (`λ = −ζ + i(ω_d − Ω)`, `|λ|² = ζ² + (ω_d − Ω)²`: `r = ζ`, band `2ζ`) is marked exactly where
 //! `ζ > ω_d/5`, `ζ > 1/√26`, its `AF = ω_d/2ζ` below 2.5 (tests/campbell_overdamped_31.rs).
 //! Marked on the examples (their default axes, `autobal campbell`): default.toml and
 //! spatial.toml 0.07736 and 0.1319 (the two balls' drag pair, `σ ≈ −0.1`, real between them,
 //! `|λ| ≈ 0.1` beside); dimensional.toml 0.0272 and 0.0922 (its drag pair, `σ ≈ −0.05`);
 //! washing_machine.toml 0.3898, 0.6201 and 0.9163, 1.230 (two stretches of the drag pair);
-//! planar.toml 276.262 rad/s (its stretch on the axis taken from 220.3 rad/s, the last grid
-//! point below where both of the pair's lines are real, `r` ≈ 926 1/s, and `|λ| < √2 r` 43
+//! planar.toml 276.262 rad/s (its stretch on the axis taken from 220.3 rad/s, the first speed
+//! of the grid with a semi-balanced state, `r` ≈ 926 1/s, and `|λ| < √2 r` 43
 //! rad/s above it). Not marked: default.toml's ball pair on the axis
 //! 2.101767-2.106803 (`|λ|` reaches `√2 · 0.0767` 0.137 below and 0.076 above: `AF` ≈ 9.6;
 //! session 31 marked its upper end); linear_rotor_shaft.toml 2425.487-2426.598 rad/s (`√2 ·
@@ -877,6 +891,9 @@ struct Found {
     /// The end of a run on the real axis that reaches the first speed (or one that reaches the
     /// last speed): not a crossing unless another line crosses there too.
     quiet: bool,
+    /// One of the two ends of an exchange on the axis ([`exchanges`]): its stretch on the axis
+    /// is not the event, so it is not judged overdamped.
+    exchange: bool,
 }
 
 /// The speeds where a pair reaches or leaves the real axis (`ν̂ = 0`: both fixed-axes
@@ -1055,8 +1072,11 @@ fn axis_crossings<S: Spectrum>(l: &Lines, spec: &S, out: &mut Vec<Found>) -> Res
             }
         }
     }
-    for e in exchanges(l, &counts, &quiet_ends) {
+    let speeds: Vec<f64> = ev.iter().map(|e| e.0).collect();
+    let mut exchanged: Vec<f64> = vec![];
+    for e in exchanges(l, &counts, &quiet_ends, &speeds) {
         ev[e].2 = false;
+        exchanged.push(ev[e].0);
     }
     // one crossing per group of ends closer than the passage band (duplicates of one end found
     // from several brackets, or the entry and exit of a pair passing through the axis): the
@@ -1076,7 +1096,8 @@ fn axis_crossings<S: Spectrum>(l: &Lines, spec: &S, out: &mut Vec<Found>) -> Res
         let judged: Vec<_> = g.iter().filter(|e| e.3).collect();
         let quiet = if judged.is_empty() { g.iter().all(|e| e.2) } else { judged.iter().all(|e| e.2) };
         let pick = if judged.is_empty() { g.iter().find(|e| !e.2) } else { judged.iter().copied().find(|e| !e.2) }.unwrap_or(&g[0]);
-        out.push(Found { cs: cs(w), line: pick.1, quiet });
+        let exchange = g.iter().any(|e| exchanged.contains(&e.0));
+        out.push(Found { cs: cs(w), line: pick.1, quiet, exchange });
         i = j;
     }
     Ok(())
@@ -1100,7 +1121,7 @@ fn axis_crossings<S: Spectrum>(l: &Lines, spec: &S, out: &mut Vec<Found>) -> Res
 /// critical speed, a resonance of the balls-as-a-ring model at 374.45 (amplification factor
 /// ≈ 98), was missing from the list. Both ends are reported, as the two ends of a stretch off
 /// the axis elsewhere.
-fn exchanges(l: &Lines, counts: &[Option<usize>], ends: &[(usize, usize, bool, Vec<usize>)]) -> Vec<usize> {
+fn exchanges(l: &Lines, counts: &[Option<usize>], ends: &[(usize, usize, bool, Vec<usize>)], speeds: &[f64]) -> Vec<usize> {
     let om = l.omega;
     let complex = |i: usize, k: usize| l.z[i][k].is_some_and(|z| !on_axis(z.im.abs(), om[k]));
     let mut out = vec![];
@@ -1114,13 +1135,23 @@ fn exchanges(l: &Lines, counts: &[Option<usize>], ends: &[(usize, usize, bool, V
             let next = (k1 + 1..=*k2).all(|k| counts[k] == Some(c1)) && counts[k2 + 1] == Some(c) && c1 < c;
             // two pairs: the one landing complex before k1, the one leaving complex after k2
             let other = lines2.iter().all(|&i| complex(i, *k1) && !lines1.contains(&i)) && lines1.iter().all(|&i| complex(i, k2 + 1));
-            if next && other && *leave1 {
+            // one whirl meeting 1×: the two ends close (EXCHANGE_WINDOW)
+            let close = speeds[*e2] - speeds[*e1] <= EXCHANGE_WINDOW * speeds[*e1].abs().max(1.0);
+            if next && other && close && *leave1 {
                 out.extend([*e1, *e2]);
             }
         }
     }
     out
 }
+
+/// How far apart, relative to the first end's speed, the two ends of an exchange on the axis
+/// ([`exchanges`]) may lie: they are one whirl meeting `1×` (examples/linear_rotor_shaft.toml:
+/// 373.576 and 374.635 rad/s, 0.28 % apart). Ends farther apart are not paired (a run from the
+/// first speed leaving and an unrelated pair landing much higher, with no change of the count
+/// between them, are not one crossing: review 33); both stay left out, as every end of a run
+/// reaching the grid's first or last speed.
+const EXCHANGE_WINDOW: f64 = 0.05;
 
 /// Golden-section search for the minimum of `f` on `[a, b]` (`fa`, `fb` its values there), to
 /// [`BISECT_TOL`] or until a value below `stop` is found: the speed and the value there. It
@@ -1187,6 +1218,7 @@ fn component_crossings<S: Spectrum>(pair: &Pair<S>, h: u32, out: &mut Vec<Found>
                 cs: CriticalSpeed { omega: w, harmonic: h, curve: 0, mode: 0, whirl, frequency: h as f64 * w, share, overdamped: false },
                 line: pair.line,
                 quiet: false,
+                exchange: false,
             });
         }
     }
@@ -1328,7 +1360,7 @@ fn search<S: Spectrum>(l: &Lines, spec: &S, harmonics: &[u32], curves: &[FixedCu
         (f.cs.curve, f.cs.mode, line) = curve_of(f);
         // an end on the real axis: a resonance only where its pair oscillates faster than it
         // decays near it, on its complex side (module docs)
-        if f.cs.harmonic == 1 && f.cs.whirl == Whirl::Forward && !f.quiet {
+        if f.cs.harmonic == 1 && f.cs.whirl == Whirl::Forward && !f.quiet && !f.exchange {
             f.cs.overdamped = overdamped_end(l, spec, line, f.cs.omega);
         }
     }
@@ -1454,8 +1486,13 @@ fn overdamped_end_or<S: Spectrum>(l: &Lines, spec: &S, line: usize, w: f64) -> R
                 let inside = (k1..=kr).collect();
                 if kr + 1 < n && back(kr + 1) {
                     (w, bisect(om[kr], om[kr + 1], axis(kr, kr + 1))?, lo, Some((kr + 1, (kr, kr + 1))), inside)
-                } else {
+                } else if kr + 1 < n && l.z[line][kr + 1].is_none() {
+                    // no state beyond: the event ends where the state does
                     (w, om[kr], lo, None, inside)
+                } else {
+                    // the grid's end, or a real eigenvalue of the pair meeting another one: the
+                    // peak may lie past what is seen (review 33): no claim
+                    return Ok(false);
                 }
             } else if complex(k1) && axis(k0, k1)(w + d)? {
                 (w, bisect(w + d, om[k1], axis(k0, k1))?, lo, Some((k1, (k0, k1))), vec![])
@@ -1473,8 +1510,13 @@ fn overdamped_end_or<S: Spectrum>(l: &Lines, spec: &S, line: usize, w: f64) -> R
                 let inside = (kr..=k0).collect();
                 if kr > 0 && back(kr - 1) {
                     (bisect(om[kr - 1], om[kr], axis(kr - 1, kr))?, w, Some((kr - 1, (kr - 1, kr))), hi, inside)
-                } else {
+                } else if kr > 0 && l.z[line][kr - 1].is_none() {
+                    // no state below: the event starts where the state does
                     (om[kr], w, None, hi, inside)
+                } else {
+                    // the grid's start, or a real eigenvalue of the pair meeting another one:
+                    // no claim (as above)
+                    return Ok(false);
                 }
             } else if complex(k0) && axis(k0, k1)(w - d)? {
                 (bisect(om[k0], w - d, axis(k0, k1))?, w, Some((k0, (k0, k1))), hi, vec![])
@@ -2120,5 +2162,33 @@ mod tests {
         control.cancel();
         let e = crossings(&l, &spec, &[2], &curves, &[Some(1), Some(1)], &control).unwrap_err();
         assert!(matches!(e, Error::Interrupted { .. }), "{e}");
+    }
+
+    /// `exchanges` on synthetic lines (review 33): lines 0, 1 real from the first speed up to
+    /// step `k1` and a conjugate pair after; lines 2, 3 a pair before step `k2` and real from
+    /// there to the last speed. Ends 0.28 % apart (the shaft's) are one exchange; the same
+    /// pattern with its ends 40 % apart is two unrelated ends, left out.
+    #[test]
+    fn an_exchange_pairs_close_ends_only() {
+        let run = |omega: &[f64], k1: usize, k2: usize| {
+            let n = omega.len();
+            let c = |re: f64, im: f64| Some(Complex64::new(re, im));
+            let z = vec![
+                (0..n).map(|k| if k <= k1 { c(-1.0, 0.0) } else { c(-1.0, 2.0) }).collect(),
+                (0..n).map(|k| if k <= k1 { c(-2.0, 0.0) } else { c(-1.0, -2.0) }).collect(),
+                (0..n).map(|k| if k <= k2 { c(-3.0, 5.0) } else { c(-3.0, 0.0) }).collect(),
+                (0..n).map(|k| if k <= k2 { c(-3.0, -5.0) } else { c(-4.0, 0.0) }).collect(),
+            ];
+            let l = Lines { omega, z, known: vec![true; n] };
+            let counts: Vec<Option<usize>> = (0..n).map(|k| l.count(k)).collect();
+            assert_eq!(counts[k1], Some(2));
+            assert_eq!(counts[k1 + 1], Some(0));
+            assert_eq!(counts[k2 + 1], Some(2));
+            let ends = vec![(0, k1, true, vec![0, 1]), (1, k2, false, vec![2, 3])];
+            let speeds = [0.5 * (omega[k1] + omega[k1 + 1]), 0.5 * (omega[k2] + omega[k2 + 1])];
+            exchanges(&l, &counts, &ends, &speeds)
+        };
+        assert_eq!(run(&[372.0, 373.0, 374.0, 375.0, 376.0], 1, 2), vec![0, 1]);
+        assert_eq!(run(&[100.0, 200.0, 300.0, 400.0, 500.0], 1, 2), Vec::<usize>::new());
     }
 }
