@@ -47,10 +47,9 @@ fn frozen_rate() -> f64 {
 /// the positive direction's), and 20 rad/s, where the growth over a period is `e^15` = 4e6.
 const SPEEDS: [f64; 2] = [298.511 / 50.0, 20.0];
 
-/// Under a 30 s budget, a watchdog, not a timing (the old code spent it at the first speed and
-/// stopped there, `stopped` then says so; the new one takes ~1 s in debug): the first
-/// speed has no state and no verdict, its failure naming the growth over the period, found in
-/// well under a second in debug; 20 rad/s is unstable by its Floquet exponent, which at a speed
+/// Under a 30 s budget as a watchdog (the old code spent it at the first speed and stopped
+/// there): the first speed has no state and no verdict, its failure naming the growth over the
+/// period (the monodromy matrix at the closed-form start); 20 rad/s is unstable by its Floquet exponent, which at a speed
 /// this far below the divergence rate (Ω/λ₊ = 0.2) lies within 1e-3 of the frozen rate
 /// (measured 97.0696 against 97.0593: 1.1e-4).
 #[test]
@@ -71,6 +70,13 @@ fn a_speed_whose_growth_is_beyond_the_shooting_is_refused_at_once_by_name() {
     let a = high.abscissa.unwrap();
     assert!((a - frozen_rate()).abs() <= 1e-3 * frozen_rate(), "Floquet exponent {a} against the frozen rate {}", frozen_rate());
     assert!(r.stable_ranges.is_empty(), "{:?}", r.stable_ranges);
+    // the scan then reaches back from 20 rad/s to the first speed (its fill), whose line
+    // searches at 5.97, 9.5 and 13 rad/s flow from points off the orbit: each such trial is
+    // capped at 20x the current point's steps, and the refusal follows from the refreshed
+    // matrix (checked by hand: 5 capped trials at 8740 steps at 5.97 rad/s, 10 at 9.5 rad/s, 2
+    // at 13 rad/s), where one uncapped trial took 1.18 million steps (20 s in debug), so the
+    // watchdog above stops the scan without the cap; at 5.97 rad/s the closed-form start, tried
+    // after the carried one, runs past the first flow's cap and is refused at 7/16 of the period
 }
 
 /// The Campbell diagram meets the same shooting: the first speed fails by name, promptly.
@@ -82,4 +88,29 @@ fn the_campbell_diagram_refuses_that_speed_by_name() {
     assert!(c.failures[0].as_deref().is_some_and(|f| f.contains("single shooting cannot resolve it here")), "{:?}", c.failures[0]);
     assert!(c.failures[1].is_none(), "{:?}", c.failures[1]);
     assert!(c.lines.iter().all(|l| l.points[0].is_none()));
+}
+
+/// The Campbell diagram's first default speed on this rotor, 2.49 rad/s (`T = π/Ω` = 1.26 s,
+/// growth `e^{λ₊ T}` ≈ e^122 over the period): the first flow from the closed-form start runs
+/// past its 20 000 steps (it crawled there before the shooting's caps), so the shooting asks one
+/// deviation's growth over sixteenths of the period and refuses at the first sixteenth where it
+/// passes `1/rtol`, before `T` (checked by hand: the first flow's cap and that refusal,
+/// not the monodromy matrix's). The rate printed, `ln(growth)/t`, is the diverging mode's
+/// within 20 % (one deviation's growth over a part of the period, its start transient
+/// included).
+#[test]
+fn a_first_flow_past_its_step_cap_is_refused_within_part_of_the_period() {
+    let omega = 2.49;
+    let out = campbell_over_speed_with(&rotor(), &[omega], &Control::new().with_budget(Duration::from_secs(30))).unwrap();
+    assert!(out.stopped.is_none(), "{:?}", out.stopped);
+    let why = out.value.failures[0].clone().expect("no failure at 2.49 rad/s");
+    assert!(why.contains("single shooting cannot resolve it here"), "{why}");
+    let number = |after: &str| -> f64 { why.split(after).nth(1).and_then(|s| s.split_whitespace().next()).and_then(|s| s.parse().ok()).expect(&why) };
+    let (within, period, rate) = (number("within t = "), number("of its period T = "), number("a growth rate of about ln(that)/t = "));
+    // (the message's numbers carry 6 significant digits)
+    assert!((period - std::f64::consts::PI / omega).abs() <= 1e-5 * period, "{why}");
+    // at the end of a sixteenth of the period short of the period: 3/16 measured
+    let sixteenths = within / (period / 16.0);
+    assert!((sixteenths - sixteenths.round()).abs() <= 1e-4 && sixteenths.round() < 16.0, "refused at t = {within} s, the period {period} s: {why}");
+    assert!((rate - frozen_rate()).abs() <= 0.2 * frozen_rate(), "rate {rate} against {}", frozen_rate());
 }

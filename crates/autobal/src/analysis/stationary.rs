@@ -392,11 +392,14 @@ const GROWTH_CHUNKS: usize = 16;
 /// Whether the flow over `period` from `x0` amplifies a deviation by more than `limit`: `x`
 /// and one deviation `v` (scaled components of one magnitude, mixed signs) integrated by
 /// DOP853 at [`MATRIX_RTOL`] over [`GROWTH_CHUNKS`] chunks of the period, stopped at the end of
-/// the first chunk where `‖S⁻¹ v‖∞` exceeds `limit` (its growth and the time reached: a lower
-/// bound on the growth over the period, since `‖S⁻¹ Φ S‖∞ ≥ ‖S⁻¹ v(t)‖∞` for `‖S⁻¹ v(0)‖∞ = 1`
-/// up to `t`, and the flow goes on); `None` where it stays within `limit` over the period or
-/// an integration fails. It stops while the deviation is still small, where the plain flow
-/// from a start off the orbit runs on until the deviation is enormous (and its steps with it).
+/// the first chunk where `‖S⁻¹ v(t)‖∞` exceeds `limit` (that growth and the time `t` reached);
+/// `None` where it stays within `limit` over the period or an integration fails. What it
+/// measures is the flow linearised along the trajectory from `x0`, not along the orbit:
+/// `v(t) = Φ(t; x0) v(0)`, `‖S⁻¹ v(0)‖∞ = 1`, so `‖S⁻¹ v(t)‖∞ ≤ ‖S⁻¹ Φ(t; x0) S‖∞`, a lower
+/// bound on that trajectory's growth over `[0, t]`; it is the orbit's only where `x0` lies on
+/// the orbit (a start far off it, on a nonlinear model, can grow where the orbit does not).
+/// It stops while the deviation is still small, where the plain flow from a start off the
+/// orbit runs on until the deviation is enormous (and its steps with it).
 fn growth_beyond<F: VectorField + ?Sized>(f: &F, x0: &[f64], period: f64, s: &[f64], limit: f64) -> Option<(f64, f64)> {
     let n = f.dim();
     let sys = Tangent { f, jac: RefCell::new(vec![0.0; n * n]) };
