@@ -278,42 +278,50 @@ fn scaled_rate(jac: &[f64], s: &[f64], n: usize) -> f64 {
     }
 }
 
-/// `x' = f(t, x)` with the variational equations `Φ' = J(t, x) Φ` (Φ row-major `n × n` after
-/// `x` in the state): the ODE system whose solution over one period gives the monodromy
-/// matrix `Φ(T)`.
+/// `x' = f(t, x)` with the variational equations `Φ' = J(t, x) Φ` (Φ row-major `n × m` after
+/// `x` in the state): with `m = n` ([`VariationalSystem::new`]) the ODE system whose solution
+/// over one period gives the monodromy matrix `Φ(T)`; with `m = 1` the tangent flow of one
+/// deviation `v' = J v` ([`growth_beyond`]).
 pub struct VariationalSystem<'a, F: VectorField + ?Sized> {
     f: &'a F,
     n: usize,
+    /// The columns of `Φ`.
+    m: usize,
     jac: RefCell<Vec<f64>>,
 }
 
 impl<'a, F: VectorField + ?Sized> VariationalSystem<'a, F> {
     /// The variational system of `f`.
     pub fn new(f: &'a F) -> Self {
+        Self::with_columns(f, f.dim())
+    }
+
+    /// The variational equations of `m` deviations (the columns of `Φ`).
+    fn with_columns(f: &'a F, m: usize) -> Self {
         let n = f.dim();
-        VariationalSystem { f, n, jac: RefCell::new(vec![0.0; n * n]) }
+        VariationalSystem { f, n, m, jac: RefCell::new(vec![0.0; n * n]) }
     }
 }
 
 impl<F: VectorField + ?Sized> System for VariationalSystem<'_, F> {
     fn dim(&self) -> usize {
-        self.n + self.n * self.n
+        self.n + self.n * self.m
     }
 
     fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
-        let n = self.n;
+        let (n, m) = (self.n, self.m);
         let (x, phi) = y.split_at(n);
         let (dx, dphi) = dy.split_at_mut(n);
         self.f.rhs(t, x, dx);
         let mut j = self.jac.borrow_mut();
         self.f.jacobian(t, x, &mut j);
         for a in 0..n {
-            let row = &mut dphi[a * n..(a + 1) * n];
+            let row = &mut dphi[a * m..(a + 1) * m];
             row.iter_mut().for_each(|v| *v = 0.0);
             for c in 0..n {
                 let jac = j[a * n + c];
                 if jac != 0.0 {
-                    for (o, p) in row.iter_mut().zip(&phi[c * n..(c + 1) * n]) {
+                    for (o, p) in row.iter_mut().zip(&phi[c * m..(c + 1) * m]) {
                         *o += jac * p;
                     }
                 }
@@ -324,9 +332,12 @@ impl<F: VectorField + ?Sized> System for VariationalSystem<'_, F> {
     fn component_name(&self, i: usize) -> String {
         if i < self.n {
             self.f.component_name(i)
-        } else {
+        } else if self.m == self.n {
             let (a, b) = ((i - self.n) / self.n, (i - self.n) % self.n);
             format!("Φ[{a}][{b}] (∂{} / ∂{} at t = 0)", self.f.component_name(a), self.f.component_name(b))
+        } else {
+            let (a, b) = ((i - self.n) / self.m, (i - self.n) % self.m);
+            format!("δ{} (deviation {b})", self.f.component_name(a))
         }
     }
 }
@@ -354,38 +365,6 @@ fn integrate_period<S: System>(sys: &S, y: &mut [f64], period: f64, rtol: f64, a
     integrate_period_capped(sys, y, period, rtol, atol, u64::MAX).map(|_| ())
 }
 
-/// The tangent flow `x' = f(t, x)`, `v' = J(t, x) v` (`2n` states): how one deviation `v` from
-/// `x` grows ([`growth_beyond`]).
-struct Tangent<'a, F: VectorField + ?Sized> {
-    f: &'a F,
-    jac: RefCell<Vec<f64>>,
-}
-
-impl<F: VectorField + ?Sized> System for Tangent<'_, F> {
-    fn dim(&self) -> usize {
-        2 * self.f.dim()
-    }
-    fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
-        let n = self.f.dim();
-        let (x, v) = y.split_at(n);
-        let (dx, dv) = dy.split_at_mut(n);
-        self.f.rhs(t, x, dx);
-        let mut j = self.jac.borrow_mut();
-        self.f.jacobian(t, x, &mut j);
-        for a in 0..n {
-            dv[a] = (0..n).map(|c| j[a * n + c] * v[c]).sum();
-        }
-    }
-    fn component_name(&self, i: usize) -> String {
-        let n = self.f.dim();
-        if i < n {
-            self.f.component_name(i)
-        } else {
-            format!("δ{}", self.f.component_name(i - n))
-        }
-    }
-}
-
 /// Chunks of a period over which [`growth_beyond`] measures the growth.
 const GROWTH_CHUNKS: usize = 16;
 
@@ -402,7 +381,7 @@ const GROWTH_CHUNKS: usize = 16;
 /// orbit runs on until the deviation is enormous (and its steps with it).
 fn growth_beyond<F: VectorField + ?Sized>(f: &F, x0: &[f64], period: f64, s: &[f64], limit: f64) -> Option<(f64, f64)> {
     let n = f.dim();
-    let sys = Tangent { f, jac: RefCell::new(vec![0.0; n * n]) };
+    let sys = VariationalSystem::with_columns(f, 1);
     let mut y = x0.to_vec();
     y.extend((0..n).map(|i| if i % 2 == 0 { s[i] } else { -0.7 * s[i] }));
     let mut atol: Vec<f64> = s.iter().map(|v| MATRIX_RTOL * v).collect();
