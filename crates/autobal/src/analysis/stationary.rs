@@ -281,7 +281,7 @@ fn scaled_rate(jac: &[f64], s: &[f64], n: usize) -> f64 {
 /// `x' = f(t, x)` with the variational equations `Φ' = J(t, x) Φ` (Φ row-major `n × m` after
 /// `x` in the state): with `m = n` ([`VariationalSystem::new`]) the ODE system whose solution
 /// over one period gives the monodromy matrix `Φ(T)`; with `m = 1` the tangent flow of one
-/// deviation `v' = J v` ([`growth_beyond`]).
+/// deviation `v' = J v` (the shooting's growth check).
 pub struct VariationalSystem<'a, F: VectorField + ?Sized> {
     f: &'a F,
     n: usize,
