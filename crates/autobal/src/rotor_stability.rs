@@ -2273,11 +2273,18 @@ pub const NO_UNBALANCE: f64 = 1e-6;
 /// its share) exists (the capacity suffices) and leaves at most [`BALANCED_EXACTLY`] of it (one
 /// plane cancels the static unbalance only: a nonzero couple about it stays).
 fn spatial_can_balance(s: &SpatialField) -> bool {
-    let Some(g) = s.balanced_guess() else { return false };
-    let m = s.coords();
-    let nb = s.rotor().balls();
-    let units: Vec<[f64; 2]> = g[m - nb..m].iter().map(|a| [a.cos(), a.sin()]).collect();
-    spatial_residual(s.rotor(), &units) <= BALANCED_EXACTLY
+    spatial_balance_exists(s.rotor())
+}
+
+/// [`spatial_can_balance`] from the rotor alone (no field, no speed): the one test of whether
+/// a balanced state exists for `stability` and for a run's verdict (the spatial
+/// `simulate`'s summary, which before session 34 compared the total capacity with the static
+/// unbalance only and called runs "balanced" where a plane fell short of its share or one
+/// plane faced a couple: walk 34, a residual couple of 1.6 % read "balanced").
+pub(crate) fn spatial_balance_exists(r: &SpatialRotor) -> bool {
+    let Some(psi) = crate::spatial::dynamics::field::balancing_ball_angles(r) else { return false };
+    let units: Vec<[f64; 2]> = psi.iter().map(|a| [a.cos(), a.sin()]).collect();
+    spatial_residual(r, &units) <= BALANCED_EXACTLY
 }
 
 /// Whether the balls at `psi` (rad, one plane) are bunched: every angle within `1e-6` rad of the

@@ -146,44 +146,7 @@ impl SpatialField {
     /// `None` when a plane's capacity `n m R` is below its share, with no balls or more than
     /// two planes of balls.
     pub fn balanced_guess(&self) -> Option<Vec<f64>> {
-        let planes: Vec<_> = self.rotor.planes.iter().filter(|p| p.n > 0).collect();
-        let s0 = self.rotor.static_unbalance();
-        let targets: Vec<[f64; 2]> = match planes.len() {
-            1 => vec![[-s0[0], -s0[1]]],
-            2 => {
-                let zr = self.rotor.z_reference();
-                let (z1, z2) = (planes[0].z - zr, planes[1].z - zr);
-                if z1 == z2 {
-                    let (a, b) = (planes[0], planes[1]);
-                    let (ma, mb) = (a.ball_mass * a.race_radius, b.ball_mass * b.race_radius);
-                    let t = [-s0[0], -s0[1]];
-                    let psi = if ma == mb {
-                        arc_angles(a.n + b.n, ma, t)?
-                    } else if a.n == 1 || b.n == 1 {
-                        let (ta, tb) = coincident_split(a.n, ma, b.n, mb, t)?;
-                        let mut psi = arc_angles(a.n, ma, ta)?;
-                        psi.extend(arc_angles(b.n, mb, tb)?);
-                        psi
-                    } else {
-                        let (ca, cb) = (a.n as f64 * ma, b.n as f64 * mb);
-                        let share = |c: f64| [t[0] * c / (ca + cb), t[1] * c / (ca + cb)];
-                        let mut psi = arc_angles(a.n, ma, share(ca))?;
-                        psi.extend(arc_angles(b.n, mb, share(cb))?);
-                        psi
-                    };
-                    return Some(self.with_ball_angles(&psi));
-                }
-                let c0 = self.rotor.couple_unbalance();
-                let b1 = [(z2 * s0[0] - c0[0]) / (z1 - z2), (z2 * s0[1] - c0[1]) / (z1 - z2)];
-                vec![b1, [-s0[0] - b1[0], -s0[1] - b1[1]]]
-            }
-            _ => return None,
-        };
-        let mut psi = vec![];
-        for (p, t) in planes.iter().zip(targets) {
-            psi.extend(arc_angles(p.n, p.ball_mass * p.race_radius, t)?);
-        }
-        Some(self.with_ball_angles(&psi))
+        balancing_ball_angles(&self.rotor).map(|psi| self.with_ball_angles(&psi))
     }
 
     /// Starts for the balanced **periodic orbit under gravity across the axis** when a plane
@@ -631,4 +594,51 @@ pub(crate) fn triangle_angles(a: f64, t: [f64; 2], need: f64, b: f64, side: f64)
     let off = ((a * a + need * need - b * b) / (2.0 * a * need)).clamp(-1.0, 1.0).acos();
     let alpha = t[1].atan2(t[0]) + side * off;
     (alpha, (t[1] - a * alpha.sin()).atan2(t[0] - a * alpha.cos()))
+}
+
+/// The balls' angles (rad, the planes with balls in order) of [`SpatialField::balanced_guess`]'s
+/// closed-form placement, from the rotor alone (no speed, no field: a run with real balls has
+/// no field but the same question): each plane's balls on the arc of its share `b_p` of the
+/// unbalance (Rodrigues et al. 2008, eq (21): `b_1 + b_2 = −s0`, `ζ_1 b_1 + ζ_2 b_2 = −c0`);
+/// `None` where a plane's capacity `n m R` is below its share, with no balls or more than two
+/// planes of balls. One plane cancels the static part only.
+pub(crate) fn balancing_ball_angles(rotor: &SpatialRotor) -> Option<Vec<f64>> {
+    let planes: Vec<_> = rotor.planes.iter().filter(|p| p.n > 0).collect();
+    let s0 = rotor.static_unbalance();
+    let targets: Vec<[f64; 2]> = match planes.len() {
+        1 => vec![[-s0[0], -s0[1]]],
+        2 => {
+            let zr = rotor.z_reference();
+            let (z1, z2) = (planes[0].z - zr, planes[1].z - zr);
+            if z1 == z2 {
+                let (a, b) = (planes[0], planes[1]);
+                let (ma, mb) = (a.ball_mass * a.race_radius, b.ball_mass * b.race_radius);
+                let t = [-s0[0], -s0[1]];
+                let psi = if ma == mb {
+                    arc_angles(a.n + b.n, ma, t)?
+                } else if a.n == 1 || b.n == 1 {
+                    let (ta, tb) = coincident_split(a.n, ma, b.n, mb, t)?;
+                    let mut psi = arc_angles(a.n, ma, ta)?;
+                    psi.extend(arc_angles(b.n, mb, tb)?);
+                    psi
+                } else {
+                    let (ca, cb) = (a.n as f64 * ma, b.n as f64 * mb);
+                    let share = |c: f64| [t[0] * c / (ca + cb), t[1] * c / (ca + cb)];
+                    let mut psi = arc_angles(a.n, ma, share(ca))?;
+                    psi.extend(arc_angles(b.n, mb, share(cb))?);
+                    psi
+                };
+                return Some(psi);
+            }
+            let c0 = rotor.couple_unbalance();
+            let b1 = [(z2 * s0[0] - c0[0]) / (z1 - z2), (z2 * s0[1] - c0[1]) / (z1 - z2)];
+            vec![b1, [-s0[0] - b1[0], -s0[1] - b1[1]]]
+        }
+        _ => return None,
+    };
+    let mut psi = vec![];
+    for (p, t) in planes.iter().zip(targets) {
+        psi.extend(arc_angles(p.n, p.ball_mass * p.race_radius, t)?);
+    }
+    Some(psi)
 }

@@ -663,10 +663,17 @@ fn summarise(eq: &Equations, t: f64, y: &[f64], peak: (f64, f64, f64), stats: St
             plane_together(units)
         })
     };
+    // whether a balanced state exists: `stability`'s test (each plane's capacity against its
+    // share of the static and couple unbalance, one plane against a couple never), not the
+    // total capacity against the static unbalance alone (walk 34: two planes each 1.6 % short
+    // of a pure couple's share, and the washer with a couple, read "balanced")
+    let exists = crate::rotor_stability::spatial_balance_exists(r);
     let outcome = run_outcome(&Ending {
         balls: nb > 0,
         settled,
-        short: (capacity < s0n).then(|| (1.0 - capacity / s0n, together())),
+        // (the closed-form residual of the first element is read on the linear rotor's race
+        // whirl basis only; here `short` says that no balanced state exists)
+        short: (!exists).then(|| ((1.0 - capacity / s0n.max(f64::MIN_POSITIVE)).max(0.0), together())),
         residual: residual_unbalance,
         residual_couple,
         tolerance: BALANCE_TOLERANCE,
