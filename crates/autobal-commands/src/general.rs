@@ -171,6 +171,8 @@ pub fn json(g: &GeneralRotor, r: &RotorStability, omega_max: f64) -> Value {
         .iter()
         .map(|s| {
             let mut v = stable_range_json(s);
+            // the states the range covers, as points[].state names them ("not_balanced", ...)
+            v["states"] = json!(range_state_keys(r, s));
             if g.si {
                 v["from_rpm"] = json!(rpm(s.from));
                 v["to_rpm"] = json!(rpm(s.to));
@@ -242,32 +244,7 @@ pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64, op: Option<&O
             ));
         }
     }
-    if let Some(f) = &r.family {
-        let list = |v: &[autobal::analysis::StableRange]| {
-            if v.is_empty() {
-                "nowhere on the axis".to_string()
-            } else {
-                // each end in the words of the one member's ranges ("(end of the axis)", a grid
-                // speed; audit 21's F8: the family's lines dropped them)
-                v.iter()
-                    .map(|st| format!("{} to {}", end_text(r, st, false, |w| speed_text(g, w)), end_text(r, st, true, |w| speed_text(g, w))))
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            }
-        };
-        s.push_str(&format!(
-            "family ({}{}): all members sampled stable: {}
-",
-            f.parameterisation.split(':').next().unwrap_or(""),
-            members_words(f),
-            list(&f.all_members_stable)
-        ));
-        s.push_str(&format!(
-            "family: at least one member sampled stable (some members, which is not \"stable\"): {}
-",
-            list(&f.some_members_stable)
-        ));
-    }
+    s.push_str(&family_range_lines(r, |w| speed_text(g, w)));
     let partial: Vec<&autobal::rotor_stability::SpeedPoint> =
         r.points.iter().filter(|p| p.state == Some(autobal::rotor_stability::StateKind::PartiallyBalanced)).collect();
     if let (Some(a), Some(b)) = (partial.first(), partial.last()) {
@@ -308,16 +285,7 @@ pub fn table(g: &GeneralRotor, r: &RotorStability, omega_max: f64, op: Option<&O
         for st in &r.stable_ranges {
             let from = end_text(r, st, false, |w| speed_text(g, w));
             let to = end_text(r, st, true, |w| speed_text(g, w));
-            // the states the range covers: "partially balanced, stable" never reads "stable"
-            let kinds = range_states(r, st);
-            let label = if kinds.iter().any(|k| *k != "balanced" && *k != "semi-balanced") {
-                format!("{}, stable", kinds.join(" then "))
-            } else if r.family.is_some() {
-                "stable (the one member per speed reached from the closed form)".to_string()
-            } else {
-                "stable".to_string()
-            };
-            s.push_str(&format!("{label}: {from} to {to}\n"));
+            s.push_str(&format!("{}: {from} to {to}\n", range_label(r, st)));
         }
     }
     let neutral = r.points.iter().filter(|p| p.verdict == Some(Verdict::Neutral)).count();
@@ -376,15 +344,62 @@ pub(crate) fn family_line(r: &RotorStability, speed: impl Fn(f64) -> String) -> 
     }
 }
 
+/// The family's lines of the table (`r.family`: its ranges where all the members sampled and
+/// where at least one is stable, each end in the words of [`end_text`]); empty without a
+/// family. `stability`'s and `critical`'s one text.
+pub(crate) fn family_range_lines(r: &RotorStability, speed: impl Fn(f64) -> String) -> String {
+    let Some(f) = &r.family else { return String::new() };
+    let list = |v: &[autobal::analysis::StableRange]| {
+        if v.is_empty() {
+            "nowhere on the axis".to_string()
+        } else {
+            // each end in the words of the one member's ranges ("(end of the axis)", a grid
+            // speed; audit 21's F8: the family's lines dropped them)
+            v.iter().map(|st| format!("{} to {}", end_text(r, st, false, &speed), end_text(r, st, true, &speed))).collect::<Vec<_>>().join(", ")
+        }
+    };
+    format!(
+        "family ({}{}): all members sampled stable: {}\nfamily: at least one member sampled stable (some members, which is not \"stable\"): {}\n",
+        f.parameterisation.split(':').next().unwrap_or(""),
+        members_words(f),
+        list(&f.all_members_stable),
+        list(&f.some_members_stable)
+    )
+}
+
+/// A stable range's label in the table: the states it covers ([`range_states`]: "not
+/// balanced, stable", "partially balanced, stable" never read "stable"), on a family that its
+/// verdicts are one member's; `stability`'s and `critical`'s one text.
+pub(crate) fn range_label(r: &RotorStability, st: &autobal::analysis::StableRange) -> String {
+    let kinds = range_states(r, st);
+    if kinds.iter().any(|k| *k != "balanced" && *k != "semi-balanced") {
+        format!("{}, stable", kinds.join(" then "))
+    } else if r.family.is_some() {
+        "stable (the one member per speed reached from the closed form)".to_string()
+    } else {
+        "stable".to_string()
+    }
+}
+
+/// The states a stable range covers as the JSON's `points[].state` names them
+/// ([`autobal::rotor_stability::StateKind::key`]), in order, each once in a row
+/// ([`range_states`]' points).
+pub(crate) fn range_state_keys(r: &RotorStability, st: &autobal::analysis::StableRange) -> Vec<&'static str> {
+    let mut k: Vec<&str> = range_points(r, st).filter_map(|p| p.state.map(|k| k.key())).collect();
+    k.dedup();
+    k
+}
+
+/// The points of a stable range: stable, within its ends (not a switch end's grid speed, whose
+/// state is another).
+fn range_points<'a>(r: &'a RotorStability, st: &'a autobal::analysis::StableRange) -> impl Iterator<Item = &'a autobal::rotor_stability::SpeedPoint> {
+    r.points.iter().filter(|p| p.omega >= st.from && p.omega <= st.to && p.abscissa.is_some_and(|a| a < 0.0))
+}
+
 /// The names of the states a stable range covers, in order, each once in a row: its own
 /// points (stable: not a switch end's grid speed, whose state is another).
 pub(crate) fn range_states(r: &RotorStability, st: &autobal::analysis::StableRange) -> Vec<&'static str> {
-    let mut k: Vec<&str> = r
-        .points
-        .iter()
-        .filter(|p| p.omega >= st.from && p.omega <= st.to && p.abscissa.is_some_and(|a| a < 0.0))
-        .filter_map(|p| p.state.map(|k| k.name()))
-        .collect();
+    let mut k: Vec<&str> = range_points(r, st).filter_map(|p| p.state.map(|k| k.name())).collect();
     k.dedup();
     k
 }

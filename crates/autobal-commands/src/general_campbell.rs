@@ -144,6 +144,11 @@ pub struct GeneralCampbell {
     /// the speeds analysed before the stop (no crossings), or every speed with the search for
     /// the crossings stopped (the command prints it and exits 2, as the closed-form route).
     pub stopped: Option<String>,
+    /// The balls free: `stability`'s analysis at the diagram's first speed with a balanced
+    /// (semi-balanced) state, for the family of balanced states and the member the values are
+    /// of (review 34's D5: neither named), in `stability`'s words ([`crate::general::family_line`]);
+    /// `None` with the balls locked, a stopped scan, or no such speed.
+    pub member: Option<RotorStability>,
 }
 
 /// What the mode numbers are where they were ranked at the first speed (no spectrum at the
@@ -208,7 +213,17 @@ pub fn campbell_with(g: &GeneralRotor, omega_max: f64, points: usize, balls: Bal
     if let Some(f) = &fixed {
         autobal::limits::check_finite("campbell.critical_speeds", &f.critical_speeds)?;
     }
-    Ok(GeneralCampbell { diagram: c, balls, harmonics: harmonics.to_vec(), fixed, crossings_not_given: why, stopped })
+    let member = if balls == Balls::Free && stopped.is_none() { member_at_first_state(g, &c, control) } else { None };
+    Ok(GeneralCampbell { diagram: c, balls, harmonics: harmonics.to_vec(), fixed, crossings_not_given: why, stopped, member })
+}
+
+/// `stability` at the diagram's first speed whose state is balanced (semi-balanced), Newton
+/// from the closed form as the diagram's: the family's dimension and the member its values
+/// are of, named as `stability` names it; `None` without such a speed or where it fails or stops.
+fn member_at_first_state(g: &GeneralRotor, c: &RotorCampbell, control: &Control) -> Option<RotorStability> {
+    let k = c.states.iter().position(|s| matches!(s, Some(StateKind::Balanced | StateKind::SemiBalanced)))?;
+    let out = autobal::rotor_stability::stability_over_speed_with(&g.rotor, &[c.omega[k]], control).ok()?;
+    out.stopped.is_none().then_some(out.value)
 }
 
 fn what(c: &RotorCampbell) -> &'static str {
@@ -343,6 +358,12 @@ pub fn campbell_json(g: &GeneralRotor, gc: &GeneralCampbell, omega_max: f64) -> 
         v["locked"] = json!("the balls locked where the closed form puts them at each speed (point masses of the rotor), damping kept");
     }
     v["harmonics"] = json!(gc.harmonics);
+    // the family of balanced states and the member whose values these are, as `stability`'s
+    // JSON has them (review 34's D5)
+    if let Some(m) = &gc.member {
+        v["family_dimension"] = json!(m.family_dimension);
+        v["member_psi"] = json!(m.member_psi);
+    }
     let tau = 2.0 * std::f64::consts::PI;
     match &gc.fixed {
         Some(f) => {
@@ -471,6 +492,10 @@ pub fn campbell_table(g: &GeneralRotor, gc: &GeneralCampbell) -> String {
     let _ = writeln!(s, "values: {}", what(c));
     if let Some(p) = partial_state(c) {
         let _ = writeln!(s, "state: {p}");
+    }
+    if let Some(m) = gc.member.as_ref().filter(|m| m.family_dimension > 0) {
+        // the member the values are of, in `stability`'s words (review 34's D5)
+        s.push_str(&crate::general::family_line(m, |w| speed_text(g, w)));
     }
     if c.kind == Kind::PeriodicOrbit {
         let _ = writeln!(s, "branch: {FLOQUET_BRANCH}");
@@ -834,6 +859,8 @@ pub fn critical_json(g: &GeneralRotor, c: &GeneralCritical) -> Value {
                 .iter()
                 .map(|s| {
                     let mut r = crate::general::stable_range_json(s);
+                    // the states the range covers, as `stability`'s JSON names them (review 34's D3)
+                    r["states"] = json!(crate::general::range_state_keys(st, s));
                     r["from_si"] = to_si(s.from);
                     r["to_si"] = to_si(s.to);
                     r
@@ -845,6 +872,8 @@ pub fn critical_json(g: &GeneralRotor, c: &GeneralCritical) -> Value {
             v["stationary_state"] = json!(st.kind);
             v["family_dimension"] = json!(st.family_dimension);
             v["member_psi"] = json!(st.member_psi);
+            // the family's ranges (all members sampled stable, some), as `stability`'s JSON has them
+            v["family"] = json!(st.family);
         }
         Err(e) => {
             v["exact_stable_ranges"] = Value::Null;
@@ -884,10 +913,28 @@ pub fn no_critical_speed_words(l: &autobal::rotor_campbell::LockedCriticalSpeeds
 /// itself does not enter the locked rotor's stiffness; the placement moves the speeds only
 /// through the balls' point masses). The family's words only where a plane has 3 or more balls
 /// (review 29: printed for 2 balls); `partial`: no balanced state, the partially balanced
-/// placement ([`autobal::rotor_campbell::partial_words`]).
-fn locked_placement_note(g: &GeneralRotor, partial: bool) -> &'static str {
+/// placement ([`autobal::rotor_campbell::partial_words`]) at `angles` (rad): spatial and linear
+/// against the unbalance; planar on the line of the whirl, which side of the unbalance read
+/// from the angles (review 34's D6: "against the unbalance" of balls at 0°, on it: the planar
+/// ψ is measured from the unbalance).
+fn locked_placement_note(g: &GeneralRotor, partial: bool, angles: &[f64]) -> String {
     if partial {
-        return "no balanced state: the partially balanced placement, the balls bunched against the unbalance";
+        let side = match &g.rotor {
+            Rotor::Planar(p) if !angles.is_empty() => {
+                // the planar rotor's unbalance at ψ = 0 (m1 s1), with an eccentric race's (m2 + n m3) s2 at γ
+                let e = (p.m2 + p.n as f64 * p.m3) * p.s2;
+                let u = (e * p.gamma.sin()).atan2(p.m1 * p.s1 + e * p.gamma.cos());
+                let along = angles.iter().map(|a| (a - u).cos()).sum::<f64>();
+                if along > 0.0 {
+                    "on the line of the whirl on the unbalance's side (0° is the direction of the disk's mass centre, m1 s1), adding to it, as below the critical speed"
+                } else {
+                    "on the line of the whirl against the unbalance (0° is the direction of the disk's mass centre, m1 s1), as above the critical speed"
+                }
+            }
+            Rotor::Planar(_) => "on the line of the whirl",
+            _ => "against the unbalance (each plane's against its share)",
+        };
+        return format!("no balanced state: the partially balanced placement, the balls bunched {side}");
     }
     match &g.rotor {
         Rotor::Spatial(s) if s.gravity_across() && s.planes.iter().any(|p| p.n >= 3) => {
@@ -899,6 +946,7 @@ fn locked_placement_note(g: &GeneralRotor, partial: bool) -> &'static str {
         Rotor::Planar(p) if p.n >= 3 => "the closed-form placement; on supports that differ by direction the eccentric race's balls settle in two groups (`stability`'s member_psi): the speeds above are the named placement's",
         _ => "the closed-form balanced placement",
     }
+    .to_string()
 }
 
 /// The table of the general `critical`.
@@ -942,7 +990,7 @@ pub fn critical_table(g: &GeneralRotor, c: &GeneralCritical) -> String {
         if !l.ball_angles.is_empty() {
             let deg: Vec<String> = l.ball_angles.iter().map(|p| format!("{:.2}°", p.to_degrees().rem_euclid(360.0))).collect();
             let partial_only = l.partial > 0 && l.partial + l.unlocked == l.samples;
-            let _ = writeln!(s, "  balls locked at {} ({})", deg.join(", "), locked_placement_note(g, partial_only));
+            let _ = writeln!(s, "  balls locked at {} ({})", deg.join(", "), locked_placement_note(g, partial_only, &l.ball_angles));
         }
         if l.partial > 0 {
             let _ = writeln!(s, "  ({})", autobal::rotor_campbell::partial_words(l.partial, l.samples));
@@ -988,11 +1036,20 @@ pub fn critical_table(g: &GeneralRotor, c: &GeneralCritical) -> String {
             speed_text(g, c.omega_max)
         );
     }
-    for r in &st.stable_ranges {
-        // as `stability` words them: a grid speed next to one without a state is not the axis' end
-        let end = |upper: bool| crate::general::end_text(st, r, upper, |w| speed_text(g, w));
-        let _ = writeln!(s, "  stable: {} to {}", end(false), end(true));
+    // as `stability` words them (review 34's D3: a bare "stable" for states that add to the
+    // unbalance, one member's range as "the balanced state"): the family's member named, its
+    // ranges over the members, each range with the states it covers
+    let indent = |text: String| text.lines().map(|l| format!("  {l}\n")).collect::<String>();
+    if st.family_dimension > 0 {
+        s.push_str(&indent(crate::general::family_line(st, |w| speed_text(g, w))));
     }
+    s.push_str(&indent(crate::general::family_range_lines(st, |w| speed_text(g, w))));
+    for r in &st.stable_ranges {
+        // a grid speed next to one without a state is not the axis' end
+        let end = |upper: bool| crate::general::end_text(st, r, upper, |w| speed_text(g, w));
+        let _ = writeln!(s, "  {}: {} to {}", crate::general::range_label(st, r), end(false), end(true));
+    }
+    s.push_str(&indent(crate::general::not_balanced_text(st, |w| speed_text(g, w))));
     for line in crate::general::missing_lines(st, |w| speed_text(g, w)).lines() {
         let _ = writeln!(s, "  {line}");
     }
@@ -1042,14 +1099,14 @@ mod tests {
     fn the_locked_placement_note_follows_gravity() {
         let text = include_str!("../../../examples/washing_machine.toml");
         let plain = crate::general::rotor_of(&crate::config::parse_text(text, "w").unwrap()).unwrap();
-        assert!(locked_placement_note(&plain, false).contains("form a family"));
+        assert!(locked_placement_note(&plain, false, &[]).contains("form a family"));
         let heavy = format!("{text}\n[spatial]\ngravity = [0.0, -9.81, 0.0]\n");
         let heavy = crate::general::rotor_of(&crate::config::parse_text(&heavy, "w").unwrap()).unwrap();
-        let note = locked_placement_note(&heavy, false);
+        let note = locked_placement_note(&heavy, false, &[]);
         assert!(note.contains("two groups") && !note.contains("form a family"), "{note}");
         // gravity along the axis (a vertical machine) keeps the family
         let vertical = format!("{text}\n[spatial]\ngravity = [0.0, 0.0, -9.81]\n");
         let vertical = crate::general::rotor_of(&crate::config::parse_text(&vertical, "w").unwrap()).unwrap();
-        assert!(locked_placement_note(&vertical, false).contains("form a family"));
+        assert!(locked_placement_note(&vertical, false, &[]).contains("form a family"));
     }
 }

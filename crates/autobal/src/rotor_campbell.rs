@@ -1172,11 +1172,13 @@ pub fn unlocked_words(unlocked: usize, samples: usize) -> String {
 }
 
 /// The words of [`LockedCriticalSpeeds::partial`]: the speeds where no balanced state exists
-/// and the balls are locked at the partially balanced placement (bunched against the unbalance).
+/// and the balls are locked at the partially balanced placement: spatial and linear, bunched
+/// against the unbalance; planar, bunched on the line of the whirl ([`Rotor::bunched_guess`]),
+/// on the unbalance's side below the critical speed (where they add to it), against it above.
 pub fn partial_words(partial: usize, samples: usize) -> String {
     let at = if partial == samples { "at any speed of the grid".to_string() } else { format!("at {partial} of {samples} speeds of the grid") };
     format!(
-        "no balanced state {at} (the balls cannot supply the unbalance): there the balls are locked where they rest with too little capacity, bunched against the unbalance (each plane's against its share: the partially balanced placement); a locked ball moves the critical speeds only through its point mass"
+        "no balanced state {at} (the balls cannot supply the unbalance): there the balls are locked where they rest with too little capacity, bunched (the partially balanced placement: spatial and linear, against the unbalance, each plane's against its share; planar, on the line of the rotor's whirl, on the unbalance's side below the critical speed, where they add to it, against it above); a locked ball moves the critical speeds only through its point mass"
     )
 }
 
