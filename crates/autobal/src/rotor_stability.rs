@@ -1148,6 +1148,11 @@ pub struct RotorStability {
     /// of the axis (not in the JSON, which says `complete: false` itself).
     #[serde(skip)]
     pub speeds_asked: usize,
+    /// The speeds the scan added between grid speeds of one verdict where the samples of `α`
+    /// say a zero crossing may hide (`analysis::stability`'s refinement): they take part in
+    /// `stable_ranges` only, not in `points` (the grid) nor the family's ranges (not in the JSON).
+    #[serde(skip)]
+    pub refined_speeds: Vec<f64>,
 }
 
 impl RotorStability {
@@ -1619,6 +1624,7 @@ pub fn stability_over_speed_with(rotor: &Rotor, speeds: &[f64], control: &Contro
         has_unbalance: rotor.has_unbalance(),
         residual_scale: rotor.residual_scale(),
         speeds_asked: speeds.len(),
+        refined_speeds: scan.refined.iter().map(|p| p.omega).collect(),
     };
     Ok(Outcome { value, stopped })
 }

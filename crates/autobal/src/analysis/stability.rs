@@ -275,8 +275,79 @@ pub struct StableRange {
 pub struct SpeedScan {
     /// Every speed of the grid, in order.
     pub points: Vec<ScanPoint>,
-    /// The stable ranges, ends located to `boundary_rtol`.
+    /// The stable ranges, ends located to `boundary_rtol`, over the grid and the speeds
+    /// `refined` added.
     pub stable_ranges: Vec<StableRange>,
+    /// The speeds added between grid speeds of one verdict where α's samples say a zero
+    /// crossing may hide there (`refine_speeds`), in the order analysed: ordinary points of
+    /// the ranges' location, kept out of `points` (the grid asked for).
+    pub refined: Vec<ScanPoint>,
+}
+
+/// How near zero the extremum of the parabola through three consecutive samples of `α` may
+/// stay, as a fraction of the three samples' spread `max α − min α`, for the speed of that
+/// extremum to be analysed (`refine_speeds`).
+pub const REFINE_REACH: f64 = 1.0;
+
+/// At most this many rounds of `refine_speeds` (each round's speeds analysed before the next
+/// round's parabolas are drawn through them).
+pub const REFINE_PASSES: usize = 12;
+
+/// At most this many speeds tried by `refine_speeds` over one scan.
+pub const REFINE_MAX_SPEEDS: usize = 32;
+
+/// The speeds where a scan's samples `points` (analysed, ascending or descending) say that `α`
+/// may cross zero between two neighbours of one verdict: for each three consecutive points
+/// with a finite `α`, the parabola through them; where its vertex `ω*` lies strictly between
+/// two neighbours whose verdicts are both stable (both unstable), is a maximum (a minimum) of
+/// `α`, and its value there is at least `−REFINE_REACH · spread` (at most `+REFINE_REACH ·
+/// spread`), `spread` the three samples' `max α − min α`, the speed `ω*`. A local extremum of
+/// `α` toward zero, modelled within the samples' own variation of zero, is the signature of a
+/// dip through zero narrower than the grid step (walk 34: `α` = −0.051, −0.114, −2.90 1/s at
+/// 286.8, 302.7, 318.6 rad/s, a concave parabola peaking at +0.26 near 294.4, where `α` is
+/// positive over 296.65-298.11); a monotone `α`, or an extremum far from zero against its
+/// variation, adds nothing. A speed closer than `1 / FILL_SUBSTEPS` of its grid step (`grid`:
+/// the grid speeds, ascending) to a sample or to one in `tried` is left out: the search at one
+/// extremum converges geometrically onto it (walk 34's two-ball rotor: 20.4, 20.8, 21.0,
+/// 21.02, ... at a minimum of α near +1e-4 1/s), and a dip narrower than that is not sought.
+fn refine_speeds(points: &[ScanPoint], tried: &[f64], grid: &[f64]) -> Vec<f64> {
+    let sample = |p: &ScanPoint| p.stability.as_ref().filter(|s| s.abscissa.is_finite()).map(|s| (p.omega, s.abscissa));
+    let definite = |p: &ScanPoint| p.stability.as_ref().map(|s| s.verdict).filter(|v| *v != Verdict::Neutral);
+    let mut out: Vec<f64> = vec![];
+    for w in points.windows(3) {
+        let (Some((x0, y0)), Some((x1, y1)), Some((x2, y2))) = (sample(&w[0]), sample(&w[1]), sample(&w[2])) else { continue };
+        // Newton's form p(x) = y0 + d01 (x − x0) + a (x − x0)(x − x1) = y1 + b (x − x1) + a (x − x1)²
+        let d01 = (y1 - y0) / (x1 - x0);
+        let d12 = (y2 - y1) / (x2 - x1);
+        let a = (d12 - d01) / (x2 - x0);
+        if !a.is_finite() || a == 0.0 {
+            continue;
+        }
+        let b = d01 + a * (x1 - x0);
+        let (xv, yv) = (x1 - b / (2.0 * a), y1 - b * b / (4.0 * a));
+        if !(xv > x0.min(x2) && xv < x0.max(x2) && yv.is_finite()) {
+            continue;
+        }
+        let (pa, pb) = if (xv - x1) * (x2 - x1) > 0.0 { (&w[1], &w[2]) } else { (&w[0], &w[1]) };
+        let (Some(va), Some(vb)) = (definite(pa), definite(pb)) else { continue };
+        if va != vb {
+            continue; // the boundary loop locates this interval's end
+        }
+        let stable = va == Verdict::Stable;
+        // an extremum toward zero: a maximum (a < 0) of a stable α, a minimum of an unstable one
+        if stable != (a < 0.0) {
+            continue;
+        }
+        let spread = y0.max(y1).max(y2) - y0.min(y1).min(y2);
+        let reaches = if stable { yv >= -REFINE_REACH * spread } else { yv <= REFINE_REACH * spread };
+        let k = grid.partition_point(|&g| g < xv).clamp(1, grid.len().max(2) - 1);
+        let step = grid.get(k).zip(grid.get(k - 1)).map_or((pb.omega - pa.omega).abs(), |(h, l)| h - l);
+        let clear = |x: f64| (x - xv).abs() > step / FILL_SUBSTEPS;
+        if reaches && clear(pa.omega) && clear(pb.omega) && tried.iter().chain(&out).all(|&t| clear(t)) {
+            out.push(xv);
+        }
+    }
+    out
 }
 
 /// The stationary state at one speed: Newton from each of `starts` in turn (the first that
@@ -696,13 +767,68 @@ where
             }
         }
     }
+    // the grid's verdicts alone miss a dip of α through zero narrower than the grid step
+    // (walk 34: a stable range's 1.5 rad/s unstable gap, and a 9.3 rad/s stable range between
+    // two unstable grid speeds): refine where α's samples say one may hide ([`refine_speeds`]),
+    // the speeds added taking part in the ranges below but not in `points` (the grid asked for)
+    let mut all = points.clone();
+    let mut refined: Vec<ScanPoint> = vec![];
+    if stopped.is_none() {
+        let ascending = speeds.first() <= speeds.last();
+        let mut tried: Vec<f64> = vec![];
+        let mut grid: Vec<f64> = speeds.to_vec();
+        grid.sort_by(f64::total_cmp);
+        'passes: for _ in 0..REFINE_PASSES {
+            let candidates = refine_speeds(&all, &tried, &grid);
+            if candidates.is_empty() {
+                break;
+            }
+            for omega in candidates {
+                if tried.len() >= REFINE_MAX_SPEEDS {
+                    break 'passes;
+                }
+                if let Some(why) = control.should_stop() {
+                    stopped = Some(why);
+                    break 'passes;
+                }
+                tried.push(omega);
+                // from the nearest analysed speed's state (and, for an orbit, the prediction
+                // from the two nearest), as a range end's trial speed is solved
+                let mut near: Vec<&ScanPoint> = all.iter().filter(|p| p.state.is_some()).collect();
+                near.sort_by(|p, q| (p.omega - omega).abs().total_cmp(&(q.omega - omega).abs()));
+                let nearest = near.first().and_then(|p| p.state.as_ref());
+                let predicted = match near.as_slice() {
+                    [p, q, ..] => predict(&Trial::of(p), &Trial::of(q), omega),
+                    _ => None,
+                };
+                let found = crate::control::with_probe(control, || {
+                    evaluate(omega, nearest, predicted.as_ref().map(|(x, s)| (x.as_slice(), s.as_slice()))).or_else(|_| evaluate(omega, nearest, None))
+                });
+                match found {
+                    Ok((state, st)) => {
+                        let p = ScanPoint { omega, state: Some(state), stability: Some(st), failure: None };
+                        refined.push(p.clone());
+                        let at = all.partition_point(|q| if ascending { q.omega < omega } else { q.omega > omega });
+                        all.insert(at, p);
+                    }
+                    // a speed where no state is found adds nothing (it would break a range
+                    // where nothing is known), and is not tried again
+                    Err(_) if control.should_stop().is_some() => {
+                        stopped = control.should_stop();
+                        break 'passes;
+                    }
+                    Err(_) => {}
+                }
+            }
+        }
+    }
     // boundaries between neighbours whose verdicts differ, both analysed: next to a speed
     // where no state was found (Newton failed there) the range ends at its last analysed grid
     // speed, not located (`*_is_boundary` false): a located end between a failed and a stable
     // point would claim stability up to a speed about which nothing is known
-    let mut boundary = vec![None; points.len()];
-    for i in 0..points.len().saturating_sub(1) {
-        let (a, b) = (&points[i], &points[i + 1]);
+    let mut boundary = vec![None; all.len()];
+    for i in 0..all.len().saturating_sub(1) {
+        let (a, b) = (&all[i], &all[i + 1]);
         if a.is_stable() == b.is_stable() || a.stability.is_none() || b.stability.is_none() || stopped.is_some() {
             continue;
         }
@@ -755,8 +881,8 @@ where
             None => boundary[i] = end.map(|w| (w, switch)),
         }
     }
-    let stable_ranges = assemble_ranges(|i| points[i].omega, |i| points[i].is_stable(), &boundary);
-    Ok(Outcome { value: SpeedScan { points, stable_ranges }, stopped })
+    let stable_ranges = assemble_ranges(|i| all[i].omega, |i| all[i].is_stable(), &boundary);
+    Ok(Outcome { value: SpeedScan { points, stable_ranges, refined }, stopped })
 }
 
 /// The ranges over a grid of `boundary.len()` speeds (`omega(i)`, ascending) where `good(i)`
