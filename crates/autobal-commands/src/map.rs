@@ -656,8 +656,9 @@ impl Output {
                 }
                 if outcome.families > 0 {
                     out.push(format!(
-                        "{} cells have a family of balanced states (n ≥ 3 balls, or no unbalance to cancel): max_real_part and verdict are those of one member, the one reached from the closed form (balls in a symmetric arc); the column family says whether all, some or none of the family's members are stable",
-                        outcome.families
+                        "{} cells have a family of balanced states (n ≥ 3 balls, or no unbalance to cancel): max_real_part and verdict{} are those of one member, the one reached from the closed form (balls in a symmetric arc); the column family says whether all, some or none of the family's members are stable",
+                        outcome.families,
+                        if traced.is_some() { ", and the boundary points," } else { "" }
                     ));
                 }
             }
@@ -781,7 +782,9 @@ impl command::Output for Output {
                 if let Some(t) = traced {
                     let (nx, ny) = along_counts(t);
                     let folds = fold_count(t);
-                    v["boundary"] = json!({"bisected_points": t.len(), "along_x": nx, "along_y": ny, "fold_points": folds, "rtol": autobal::rotor_map::BOUNDARY_RTOL, "fold_rtol": autobal::rotor_map::FOLD_RTOL});
+                    // family_member: the points are those of one member's margin where cells
+                    // have a family (walk 34: nothing said so of the boundary)
+                    v["boundary"] = json!({"bisected_points": t.len(), "along_x": nx, "along_y": ny, "fold_points": folds, "rtol": autobal::rotor_map::BOUNDARY_RTOL, "fold_rtol": autobal::rotor_map::FOLD_RTOL, "family_member": outcome.families > 0});
                 }
             }
         }
@@ -1322,7 +1325,11 @@ fn general_plot(
     } else {
         "spatial"
     };
-    let title = format!("Stability map of the {model} rotor's stationary state (general route: {state})");
+    // with n >= 3 balls in a plane a cell's state is one member of a family of balanced
+    // states: the colour and the bisected points are that member's (walk 34: only a line on
+    // standard error said so, for the colour alone)
+    let member = if outcome.families > 0 { FAMILY_MEMBER_NOTE } else { "" };
+    let title = format!("Stability map of the {model} rotor's stationary state (general route: {state}){member}");
     let mut p = plot_cells(&r, &title);
     // no 003 necessary ranges off the 12-state model
     p.series.retain(|s| s.label != NECESSARY_EDGE_LABEL);
@@ -1371,6 +1378,11 @@ fn general_plot(
     }
     p
 }
+
+/// What the general route's figure title adds where cells have a family of balanced states
+/// (`n ≥ 3` balls in a plane): its colour and bisected boundary points are one member's.
+pub const FAMILY_MEMBER_NOTE: &str =
+    "; where a cell has a family of balanced states (n ≥ 3 balls, or no unbalance to cancel), colour and boundary points are one member's, the one reached from the closed form";
 
 /// The traced curves as figure series: the stability boundary solid (Hopf blue, fold orange),
 /// the rest of each curve thin and dashed, codimension-two points as markers.

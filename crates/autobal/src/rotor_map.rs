@@ -934,8 +934,13 @@ impl Plane<'_> {
     /// state alone. A state lost on the way (a fold) ends its walk without a point: that is a
     /// switch of state, not a change of stability (walk 32: the planar rotor's not-balanced
     /// state lost at 277.65 rad/s was reported "stable to unstable" there, a point no
-    /// `stability` range ends at). Points found by both walks (one state on both ends after all) are
-    /// reported once; the points in increasing coordinate.
+    /// `stability` range ends at). Nor does a change of its stability where the map analyses
+    /// another state on either side of it ([`Plane::is_maps_state`]; walk 34: the bunched balls
+    /// past the ball mass where the balanced state branches off them). So a switch of state
+    /// gives a point only where the map's verdict changes there: the state the map analyses on
+    /// one side, followed across, changes stability at the switch. Points found by both walks
+    /// (one state on both ends after all) are reported once; the points in increasing
+    /// coordinate.
     fn follow_each(&self, along: Along, k: usize, lo: Side, hi: Side) -> Result<Vec<BoundaryPoint>> {
         let mut points = self.changes_along(along, k, &lo, hi.0, true)?;
         for p in self.changes_along(along, k, &hi, lo.0, false)? {
@@ -969,7 +974,13 @@ impl Plane<'_> {
             let (cell, x) = solve(&c, w, Some(&state), false, false, false);
             let Some(x) = x.filter(|_| side(&cell) != 3) else { break };
             let here: Side = (t, cell.verdict, Some(x.clone()), cell);
-            if side(&cell) != side(&last.3) {
+            // a change of the followed state's stability is a point of the map's boundary
+            // only where the map analyses that state on both sides of it (walk 34: the
+            // two-plane rotor's bunched balls, followed past the ball mass where the balanced
+            // state branches off them, turn unstable there, where the map's state is the
+            // balanced one, stable: a "stable to unstable" point between two stable cells);
+            // the first step's `last` is the grid cell, whose state is the map's
+            if crosses(&last.3, &cell) && (s == 1 || self.is_maps_state(along, k, &last)?) && self.is_maps_state(along, k, &here)? {
                 let (a, b) = if from_lo { (last.clone(), here.clone()) } else { (here.clone(), last.clone()) };
                 points.extend(self.bisect_with(along, k, a, b, Some(from_lo))?);
             }
@@ -977,6 +988,23 @@ impl Plane<'_> {
             last = here;
         }
         Ok(points)
+    }
+
+    /// Whether the state of `at` (a step of [`Plane::changes_along`]: a state continued from
+    /// a neighbouring cell's) is the one a map cell there analyses ([`solve`] from the closed
+    /// form and that state, settled on the balanced state wherever Newton reaches it, as
+    /// `stability`): what it is is the same ([`Rotor::classify`]) and, for an isolated state,
+    /// it is the same state ([`states_switch`]'s test of one state found twice; a family's
+    /// member reached from the closed form is another member of the same family).
+    fn is_maps_state(&self, along: Along, k: usize, at: &Side) -> Result<bool> {
+        let Some(followed) = &at.2 else { return Ok(false) };
+        let (c, w) = self.on_line(along, k, None, at.0)?;
+        let Ok(field) = c.rotor.field(w) else { return Ok(false) };
+        let (cell, Some(maps)) = solve(&c, w, Some(followed), true, true, false) else { return Ok(false) };
+        if cell.state != Some(Rotor::classify(&field, &followed.x).0) {
+            return Ok(false);
+        }
+        Ok(maps.family_dimension > 0 || !states_switch((&maps.x, &followed.x, 0.0), (&followed.x, &followed.x, 1.0)))
     }
 }
 
@@ -990,10 +1018,16 @@ const FOLLOW_STEPS: usize = 16;
 /// holding states of different kinds are bisected too ([`Plane::bisect`] tells a switch of
 /// state from a change of one state's stability: walk 30 found `--boundary` silent between a
 /// partially balanced unstable cell and a balanced stable one, where the balanced state's own
-/// boundary lies, until session 31 this refused such pairs).
+/// boundary lies, until session 31 this refused such pairs). Two neutral cells
+/// ([`Verdict::Neutral`]: `|α|` within the verdict's threshold, where linearisation cannot
+/// decide) are not, whatever the signs of their margins: a margin that touches 0 over a range
+/// has a sign of round-off (walk 34: the planar rotor at the ball mass where its balanced
+/// state branches off the bunched balls, neutral at every speed, gave a "neutral to neutral"
+/// point).
 fn crosses(a: &GeneralCell, b: &GeneralCell) -> bool {
     let (sa, sb) = (side(a), side(b));
-    sa != sb && sa != 3 && sb != 3
+    let neutral = a.verdict == Some(Verdict::Neutral) && b.verdict == Some(Verdict::Neutral);
+    sa != sb && sa != 3 && sb != 3 && !neutral
 }
 
 /// Whether two neighbouring cells on the same side (both with a negative margin, or both
