@@ -146,7 +146,7 @@ pub struct GeneralCampbell {
     pub stopped: Option<String>,
     /// The balls free: `stability`'s analysis at the diagram's first speed with a balanced
     /// (semi-balanced) state, for the family of balanced states and the member the values are
-    /// of (review 34's D5: neither named), in `stability`'s words ([`crate::general::family_line`]);
+    /// of (review 34's D5: neither named), in `stability`'s words (`general::family_line`);
     /// `None` with the balls locked, a stopped scan, or no such speed.
     pub member: Option<RotorStability>,
 }

@@ -279,9 +279,11 @@ pub(crate) struct Ending {
     /// [`drift_tolerance`] per revolution; planar: `crate::planar::Summary::settled`) and the
     /// run completed.
     pub settled: bool,
-    /// Where no balanced state exists (the capacity short): the closed-form residual of the
-    /// balls together against the unbalance, and whether they ended together (their resultant
-    /// at least 99 % of the capacity).
+    /// Where no balanced state exists (`stability`'s test: a plane's capacity short of its
+    /// share, or one plane against a couple): the least residual of the balls together against
+    /// the unbalance, read only on the linear rotor's race-whirl basis (the spatial run passes
+    /// `max(0, 1 − Σ m R/|s0|)`, which it does not read), and whether they ended together
+    /// (their resultant at least 99 % of the capacity).
     pub short: Option<(f64, bool)>,
     /// The residual unbalance, a fraction of the unbalance, averaged over the last revolution.
     pub residual: f64,
